@@ -1,0 +1,6 @@
+//! `flowmbd-beam`: studies of the flowmbd toolkit (not implemented yet; see the README's crate map).
+
+fn main() {
+    eprintln!("flowmbd-beam: no studies are available yet in this build");
+    std::process::exit(2);
+}

@@ -1,0 +1,63 @@
+//! Typed errors of the multibody layer.
+
+use thiserror::Error;
+
+/// Errors raised while building or integrating a multibody model.
+///
+/// Every variant names the offending item (body, constraint, field) and, where it applies,
+/// the simulation time in seconds.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum MbdError {
+    /// A model parameter is invalid (non-positive mass, non-unit Euler parameters, ...).
+    #[error("invalid input for {item}: {reason}")]
+    InvalidInput {
+        /// What was wrong (e.g. `body "crank": mass`).
+        item: String,
+        /// Why it is rejected.
+        reason: String,
+    },
+    /// A state contains NaN or infinity.
+    #[error("non-finite value in {what} at t = {t} s")]
+    NonFinite {
+        /// Which quantity (e.g. `velocity of body "rod"`).
+        what: String,
+        /// Simulation time [s].
+        t: f64,
+    },
+    /// The augmented (KKT) or Newton matrix is singular, e.g. redundant constraints.
+    #[error("singular system matrix at t = {t} s: {detail}")]
+    Singular {
+        /// Simulation time [s].
+        t: f64,
+        /// Which constraints or DOFs are suspected.
+        detail: String,
+    },
+    /// A Newton iteration (implicit integrator, projection, static solve) did not converge.
+    #[error(
+        "Newton iteration did not converge at t = {t} s after {iterations} iterations (residual {residual:e})"
+    )]
+    NoConvergence {
+        /// Simulation time [s].
+        t: f64,
+        /// Iterations performed.
+        iterations: usize,
+        /// Last residual norm.
+        residual: f64,
+    },
+    /// The adaptive step size fell below its minimum.
+    #[error("step size underflow at t = {t} s (h = {h:e} s)")]
+    StepSizeUnderflow {
+        /// Simulation time [s].
+        t: f64,
+        /// Rejected step size [s].
+        h: f64,
+    },
+    /// A model (implementor of [`crate::SecondOrderSystem`]) reported a failure.
+    #[error("model error at t = {t} s: {message}")]
+    Model {
+        /// Simulation time [s].
+        t: f64,
+        /// The model's message.
+        message: String,
+    },
+}

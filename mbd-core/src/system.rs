@@ -1,0 +1,144 @@
+//! The generic constrained second-order system that all flowmbd models implement.
+//!
+//! A model provides, at time `t`, positions `q` (length [`SecondOrderSystem::n_q`]) and
+//! velocities `v` (length [`SecondOrderSystem::n_v`]):
+//!
+//! ```text
+//!   q̇ = H(q) v                                   (kinematic map, identity for most models)
+//!   M(q) v̇ + Dᵀ(q) λ = f(t, q, v)                 (Ribaric (2.16), Lin (2.27))
+//!   Φ(t, q) = 0,   D v = ν(t, q),   D v̇ = γ(t, q, v)
+//! ```
+//!
+//! `f` contains applied, elastic, damping and quadratic-velocity forces. Rigid bodies with Euler
+//! parameters have `n_q = 7`, `n_v = 6` per body (r, p / ṙ, ω̄); ANCF meshes, reduced flexible
+//! bodies and flowing-material models have `q̇ = v`. The integrators of [`crate`] only see this
+//! trait, so models of different crates couple in one system by composition.
+
+use crate::MbdError;
+use faer::Mat;
+use faer::sparse::SparseColMat;
+
+/// A system matrix (mass, tangent stiffness/damping, constraint Jacobian), dense for small
+/// models, sparse (CSC) for large ones.
+#[derive(Debug, Clone)]
+pub enum SysMatrix {
+    /// Dense matrix.
+    Dense(Mat<f64>),
+    /// Sparse compressed-column matrix.
+    Sparse(SparseColMat<usize, f64>),
+}
+
+impl SysMatrix {
+    /// Number of rows.
+    pub fn nrows(&self) -> usize {
+        match self {
+            SysMatrix::Dense(m) => m.nrows(),
+            SysMatrix::Sparse(m) => m.nrows(),
+        }
+    }
+
+    /// Number of columns.
+    pub fn ncols(&self) -> usize {
+        match self {
+            SysMatrix::Dense(m) => m.ncols(),
+            SysMatrix::Sparse(m) => m.ncols(),
+        }
+    }
+
+    /// Dense copy of the matrix.
+    pub fn to_dense(&self) -> Mat<f64> {
+        match self {
+            SysMatrix::Dense(m) => m.clone(),
+            SysMatrix::Sparse(m) => m.to_dense(),
+        }
+    }
+}
+
+/// Tangent matrices of the generalized forces: `K_t = -∂f/∂q · H(q)` and `C_t = -∂f/∂v`,
+/// both `n_v × n_v` (used by implicit integrators and static solvers).
+#[derive(Debug, Clone)]
+pub struct ForceTangent {
+    /// Tangent stiffness `-∂f/∂q · H` [N/m or consistent units].
+    pub stiffness: SysMatrix,
+    /// Tangent damping `-∂f/∂v` [N·s/m or consistent units].
+    pub damping: SysMatrix,
+}
+
+/// A constrained second-order system (see the module documentation for the equations).
+///
+/// Only the sizes, [`mass`](Self::mass) and [`forces`](Self::forces) are required; a model
+/// without constraints keeps the default constraint methods, and a model without an analytic
+/// tangent returns `None` from [`force_tangent`](Self::force_tangent) so that integrators
+/// fall back to finite differences.
+pub trait SecondOrderSystem {
+    /// Number of position coordinates `q`.
+    fn n_q(&self) -> usize;
+
+    /// Number of velocity coordinates `v` (equals `n_q` unless rotations are parametrised
+    /// redundantly, e.g. Euler parameters).
+    fn n_v(&self) -> usize {
+        self.n_q()
+    }
+
+    /// Number of (holonomic or rheonomic) constraint equations.
+    fn n_c(&self) -> usize {
+        0
+    }
+
+    /// Kinematic map `q̇ = H(q) v` (Nikravesh: `ṗ = ½ Lᵀ(p) ω̄` for Euler parameters).
+    fn position_rate(&self, _q: &[f64], v: &[f64], qdot: &mut [f64]) {
+        qdot.copy_from_slice(v);
+    }
+
+    /// Restore invariants of `q` after an update (e.g. normalise Euler parameters).
+    fn normalize(&self, _q: &mut [f64]) {}
+
+    /// Whether [`mass`](Self::mass) is independent of `t` and `q` (lets integrators factor it once).
+    fn mass_is_constant(&self) -> bool {
+        false
+    }
+
+    /// Mass matrix `M(q)` (`n_v × n_v`, symmetric positive (semi)definite).
+    fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError>;
+
+    /// Generalized forces `f(t, q, v)` (length `n_v`), written into `f` (overwrite, not add).
+    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError>;
+
+    /// Analytic tangent of the forces, or `None` to request finite differences.
+    fn force_tangent(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _v: &[f64],
+    ) -> Result<Option<ForceTangent>, MbdError> {
+        Ok(None)
+    }
+
+    /// Constraint residual `Φ(t, q)` (length `n_c`).
+    fn constraint_residual(&self, _t: f64, _q: &[f64], _phi: &mut [f64]) -> Result<(), MbdError> {
+        Ok(())
+    }
+
+    /// Constraint Jacobian `D(t, q)` with respect to the velocities (`n_c × n_v`).
+    fn constraint_jacobian(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
+        Ok(SysMatrix::Dense(Mat::zeros(0, self.n_v())))
+    }
+
+    /// Velocity right-hand side `ν` of `D v = ν` (`-Φ_t` for rheonomic drivers; length `n_c`).
+    fn constraint_velocity_rhs(&self, _t: f64, _q: &[f64], nu: &mut [f64]) -> Result<(), MbdError> {
+        nu.fill(0.0);
+        Ok(())
+    }
+
+    /// Acceleration right-hand side `γ` of `D v̇ = γ` (length `n_c`).
+    fn constraint_gamma(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _v: &[f64],
+        gamma: &mut [f64],
+    ) -> Result<(), MbdError> {
+        gamma.fill(0.0);
+        Ok(())
+    }
+}
