@@ -25,3 +25,11 @@ pub use integrators::{
     AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Rk4, Solution, State, Stats,
 };
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
+pub mod body;
+pub mod constraints;
+pub mod forces;
+pub mod kinematics;
+pub mod multibody;
+
+pub use body::{BodyState, RigidBody};
+pub use multibody::MultibodySystem;
