@@ -1,29 +1,31 @@
-use ancf::mesh::straight_coordinates;
-use ancf::*;
+use ancf::dynamics::*;
 fn main() {
-    for (nu, h) in [(0.3, 0.1), (0.0, 0.5)] {
-        for n in [2usize, 4, 8] {
-            for fixed in [
-                vec![0usize, 1, 4, 5],
-                vec![0, 1, 2, 3, 4, 5],
-                vec![0, 1, 2, 3],
-            ] {
-                let mat = Material::new(2.07e11, nu, 7850.0).unwrap();
-                let sec = Section::rectangle(0.1, h).unwrap();
-                let le = 2.0 / n as f64;
-                let els: Vec<_> = (0..n)
-                    .map(|_| OmarShabanaBeam::new(le, mat, sec).unwrap())
-                    .collect();
-                let mesh = Mesh::chain(els).unwrap();
-                let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [2.0, 0.0], n);
-                let mut f = vec![0.0; mesh.n_dof()];
-                f[mesh.node_dof(n, 1)] = -5e8 * h * h * h;
-                let s = solve_static(&mesh, &q0, &fixed, &f, &StaticOptions::default()).unwrap();
-                println!(
-                    "nu={nu} h={h} n={n} fixed={fixed:?} {:?}",
-                    mesh.node_position(&s.q, n)
-                );
-            }
+    let args: Vec<String> = std::env::args().collect();
+    if args[1] == "p" {
+        let mut c = PendulumCase::default();
+        c.h = args[2].parse().unwrap();
+        c.t_end = args[3].parse().unwrap();
+        let t0 = std::time::Instant::now();
+        let s = pendulum(&c, 100, |_| {}).unwrap();
+        println!(
+            "drift {:e} J, time {:?}, last {:?}",
+            energy_drift(&s),
+            t0.elapsed(),
+            s.last().unwrap()
+        );
+    } else {
+        let mut c = SpinningCase::default();
+        c.h = args[2].parse().unwrap();
+        c.rho_inf = args[3].parse().unwrap();
+        let t0 = std::time::Instant::now();
+        let s = spinning(&c, 500, |_| {}).unwrap();
+        for x in s.iter().step_by(4) {
+            println!("t={:.2} ext={:.5e} off={:.3e}", x.t, x.value, x.value2);
         }
+        println!(
+            "time {:?}, exact {:e}",
+            t0.elapsed(),
+            spinning_extension(8.0, 2766.67, 6.895e10, 4.0)
+        );
     }
 }

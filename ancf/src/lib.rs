@@ -11,6 +11,7 @@
 //!   spinning beam).
 
 pub mod autodiff;
+pub mod dynamics;
 pub mod element;
 pub mod error;
 pub mod material;
@@ -20,6 +21,7 @@ pub mod shape;
 pub mod sparse;
 pub mod statics;
 pub mod studies;
+pub mod system;
 
 pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBeam};
 pub use error::AncfError;
@@ -27,3 +29,4 @@ pub use material::Material;
 pub use mesh::Mesh;
 pub use section::Section;
 pub use statics::{StaticOptions, StaticSolution, solve_static};
+pub use system::{AncfSystem, Energies, MeshForce, Prescribed};
