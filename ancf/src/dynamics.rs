@@ -52,7 +52,7 @@ impl Default for PendulumCase {
             density: 7850.0,
             gravity: 9.81,
             t_end: 1.0,
-            h: 1e-4,
+            h: 5e-5,
             rho_inf: 1.0,
         }
     }
