@@ -1,31 +1,19 @@
-use ancf::dynamics::*;
+use ancf::belt::*;
+use ancf::*;
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    if args[1] == "p" {
-        let mut c = PendulumCase::default();
-        c.h = args[2].parse().unwrap();
-        c.t_end = args[3].parse().unwrap();
-        let t0 = std::time::Instant::now();
-        let s = pendulum(&c, 100, |_| {}).unwrap();
-        println!(
-            "drift {:e} J, time {:?}, last {:?}",
-            energy_drift(&s),
-            t0.elapsed(),
-            s.last().unwrap()
-        );
-    } else {
-        let mut c = SpinningCase::default();
-        c.h = args[2].parse().unwrap();
-        c.rho_inf = args[3].parse().unwrap();
-        let t0 = std::time::Instant::now();
-        let s = spinning(&c, 500, |_| {}).unwrap();
-        for x in s.iter().step_by(4) {
-            println!("t={:.2} ext={:.5e} off={:.3e}", x.t, x.value, x.value2);
-        }
-        println!(
-            "time {:?}, exact {:e}",
-            t0.elapsed(),
-            spinning_extension(8.0, 2766.67, 6.895e10, 4.0)
-        );
-    }
+    let mat = Material::new(1e8, 0.3, 1036.0).unwrap();
+    let sec = Section::rectangle(0.01, 0.01).unwrap();
+    let mesh = belt_loop(10, 1.276, mat, sec, 1.0, 0.01, 5).unwrap();
+    let path = TwoPulleyPath::kerkkanen();
+    let q0 = coordinates_on_path(&mesh, path.length(), |s| path.point(s));
+    let fixed = [0, 1, mesh.node_dof(5, 1)];
+    let opts = StaticOptions {
+        increments: 1,
+        max_iterations: 200,
+        tolerance: 1e-10,
+        line_search: true,
+    };
+    let t = std::time::Instant::now();
+    let sol = solve_static(&mesh, &q0, &fixed, &vec![0.0; mesh.n_dof()], &opts).unwrap();
+    println!("iterations {:?} in {:?}", sol.iterations, t.elapsed());
 }
