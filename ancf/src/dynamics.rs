@@ -135,7 +135,7 @@ pub fn pendulum(
         });
     };
     alpha(case.h, case.rho_inf).integrate(&sys, State::new(0.0, q0, v0), case.t_end, |st| {
-        if k % every == 0 || st.t >= case.t_end - 1e-12 {
+        if k.is_multiple_of(every) || st.t >= case.t_end - 1e-12 {
             record(st, &mut out);
             progress(st.t / case.t_end);
         }
@@ -226,7 +226,7 @@ pub fn spinning(
     mut progress: impl FnMut(f64),
 ) -> Result<Vec<Sample>, AncfError> {
     check_run(case.h, case.t_end, every)?;
-    if !(case.spin_up > 0.0) {
+    if case.spin_up.is_nan() || case.spin_up <= 0.0 {
         return Err(invalid(
             "spin_up",
             format!("must be > 0 s, got {}", case.spin_up),
@@ -270,7 +270,7 @@ pub fn spinning(
     let mut k = 0usize;
     let l = case.length;
     alpha(case.h, case.rho_inf).integrate(&sys, State::new(0.0, q0, v0), case.t_end, |st| {
-        if k % every == 0 || st.t >= case.t_end - 1e-12 {
+        if k.is_multiple_of(every) || st.t >= case.t_end - 1e-12 {
             let m = sys.mesh();
             let chord: f64 = (0..n)
                 .map(|i| {

@@ -10,6 +10,9 @@
 //! * [`studies`]: Kerkkänen §2.4 test set-ups (simply supported beam, cantilever, pendulum,
 //!   spinning beam).
 
+// Index loops mirror the element and quadrature formulas (several arrays per index).
+#![allow(clippy::needless_range_loop)]
+
 pub mod autodiff;
 pub mod belt;
 pub mod dynamics;

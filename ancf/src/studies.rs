@@ -138,7 +138,7 @@ impl Study for SimplySupported {
     type Output = f64;
     fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
         let n_el = mesh.elements().len();
-        if n_el % 2 != 0 {
+        if !n_el.is_multiple_of(2) {
             return Err(invalid(
                 "elements",
                 format!("must be even so that a node sits at mid-span, got {n_el}"),

@@ -173,7 +173,7 @@ impl Study for SimplySupported {
         c: &StaticConfig,
         _ctx: &mut StudyContext,
     ) -> Result<DeflectionSummary, StudyError> {
-        if c.elements % 2 != 0 {
+        if !c.elements.is_multiple_of(2) {
             return Err(
                 InputError::new("elements", format!("must be even, got {}", c.elements)).into(),
             );
