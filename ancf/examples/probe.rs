@@ -1,19 +1,24 @@
-use ancf::belt::*;
-use ancf::*;
+use ancf::dynamics::*;
+use ancf::studies::BeamElementKind;
 fn main() {
-    let mat = Material::new(1e8, 0.3, 1036.0).unwrap();
-    let sec = Section::rectangle(0.01, 0.01).unwrap();
-    let mesh = belt_loop(10, 1.276, mat, sec, 1.0, 0.01, 5).unwrap();
-    let path = TwoPulleyPath::kerkkanen();
-    let q0 = coordinates_on_path(&mesh, path.length(), |s| path.point(s));
-    let fixed = [0, 1, mesh.node_dof(5, 1)];
-    let opts = StaticOptions {
-        increments: 1,
-        max_iterations: 200,
-        tolerance: 1e-10,
-        line_search: true,
-    };
-    let t = std::time::Instant::now();
-    let sol = solve_static(&mesh, &q0, &fixed, &vec![0.0; mesh.n_dof()], &opts).unwrap();
-    println!("iterations {:?} in {:?}", sol.iterations, t.elapsed());
+    for el in [BeamElementKind::Proposed, BeamElementKind::OmarShabana] {
+        for n in [4, 8] {
+            let c = PendulumCase {
+                element: el,
+                elements: n,
+                t_end: 1.0,
+                h: 5e-5,
+                ..Default::default()
+            };
+            let t = std::time::Instant::now();
+            let s = pendulum(&c, 2000, |_| {}).unwrap();
+            println!(
+                "{el:?} n={n} {:?} drift {:e} tip(0.5s) {:?} tip(1s) {:?}",
+                t.elapsed(),
+                energy_drift(&s),
+                s[s.len() / 2].tip,
+                s.last().unwrap().tip
+            );
+        }
+    }
 }
