@@ -32,7 +32,7 @@ pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBea
 pub use error::AncfError;
 pub use material::Material;
 pub use mesh::Mesh;
-pub use pulley::PulleyContact;
+pub use pulley::{ContactDistribution, PulleyContact};
 pub use section::Section;
 pub use statics::{StaticOptions, StaticSolution, solve_static, solve_static_with};
 pub use system::{AncfSystem, Energies, MeshForce, Prescribed};

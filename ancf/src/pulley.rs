@@ -23,6 +23,17 @@ pub struct ElementRecord {
     pub record: ContactRecord,
 }
 
+/// Contact output of one obstacle: point records, torque and resultant force on the obstacle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactDistribution {
+    /// Quadrature points in contact (pressure, friction, slip).
+    pub records: Vec<ElementRecord>,
+    /// Torque on the obstacle about its centre [N·m], Kerkkänen (3.26).
+    pub torque: f64,
+    /// Resultant force on the obstacle [N].
+    pub reaction: [f64; 2],
+}
+
 impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
     fn each<E: Element>(
         &self,
@@ -68,25 +79,34 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
         }
     }
 
-    /// Contact records (pressure, friction, slip at every quadrature point in contact) and the
-    /// total torque on the obstacle [N·m].
+    /// Contact records (pressure, friction, slip at every quadrature point in contact), torque
+    /// and resultant force on the obstacle.
     pub fn distribution<E: Element>(
         &self,
         mesh: &Mesh<E>,
         q: &[f64],
         v: &[f64],
-    ) -> (Vec<ElementRecord>, f64) {
-        let mut recs = Vec::new();
+    ) -> ContactDistribution {
+        let mut records = Vec::new();
         let mut torque = 0.0;
+        let mut reaction = [0.0; 2];
         self.each(
             mesh,
             q,
             v,
             false,
-            |_, o| torque += o.torque,
-            Some(&mut recs),
+            |_, o| {
+                torque += o.torque;
+                reaction[0] += o.reaction[0];
+                reaction[1] += o.reaction[1];
+            },
+            Some(&mut records),
         );
-        (recs, torque)
+        ContactDistribution {
+            records,
+            torque,
+            reaction,
+        }
     }
 }
 

@@ -120,7 +120,8 @@ fn belt_hoop_on_pulley_matches_analytical_penetration() {
     let extra: [&dyn MeshForce<_>; 1] = [&pc];
     let sol = solve_static_with(&mesh, &q0, &fixed, &vec![0.0; mesh.n_dof()], &extra, &opts)
         .expect("hoop equilibrium");
-    let (recs, torque) = pc.distribution(&mesh, &sol.q, &vec![0.0; mesh.n_dof()]);
+    let dist = pc.distribution(&mesh, &sol.q, &vec![0.0; mesh.n_dof()]);
+    let (recs, torque) = (dist.records, dist.torque);
     assert_eq!(recs.len(), 5 * n, "every quadrature point in contact");
     let mean = recs.iter().map(|r| r.record.penetration).sum::<f64>() / recs.len() as f64;
     let exact = hoop_penetration(mat.young * sec.area, k, r, l0);
@@ -221,4 +222,89 @@ fn system_tangent_with_contact_matches_finite_differences() {
         }
     }
     assert!(cmax > 0.0);
+}
+
+// Kerkkänen Table 3.1 belt (1.2727 m, E = 1e8 Pa, 20 elements) mounted on the two pulleys
+// (path 1.276273 m) with frictionless penalty contact (k_p = 1e7 N/m²): the static pretension.
+// References: global equilibrium of each pulley (the resultant contact force equals the pull of
+// the two straight spans, 2N, with N = EA/2 (λ² − 1) λ from the span strain), and the seed
+// note's estimate N ≈ 26.5 N, d ≈ 0.033 mm (§7.6).
+#[test]
+fn belt_pretension_on_two_pulleys() {
+    let (mat, sec) = belt_material();
+    let n = 20;
+    let mesh = belt_loop(n, 1.2727, mat, sec, 1.0, 0.01, 5).unwrap();
+    let path = TwoPulleyPath::kerkkanen();
+    let q0 = coordinates_on_path(&mesh, path.length(), |s| path.point(s));
+    let k = 1e7;
+    let mk = |c: [f64; 2]| PulleyContact {
+        contact: LineContact {
+            surface: Disk::fixed(c, path.radius),
+            normal: LinearPenalty {
+                stiffness: k,
+                damping: 10.0,
+            },
+            friction: Frictionless,
+            rule: GaussRule::new(5),
+        },
+    };
+    let (p1, p2) = (mk(path.left), mk(path.right));
+    // node 0 is at the bottom of the left pulley, travelling along +x: fix its x
+    let fixed = [mesh.node_dof(0, 0)];
+    let opts = StaticOptions {
+        increments: 1,
+        max_iterations: 100,
+        tolerance: 1e-11,
+        line_search: true,
+    };
+    let extra: [&dyn MeshForce<_>; 2] = [&p1, &p2];
+    let sol = solve_static_with(&mesh, &q0, &fixed, &vec![0.0; mesh.n_dof()], &extra, &opts)
+        .expect("pretension equilibrium");
+    let zero = vec![0.0; mesh.n_dof()];
+    let d1 = p1.distribution(&mesh, &sol.q, &zero);
+    let d2 = p2.distribution(&mesh, &sol.q, &zero);
+    let pmax = d1
+        .records
+        .iter()
+        .chain(&d2.records)
+        .map(|r| r.record.penetration)
+        .fold(0.0, f64::max);
+    // span strain: the middle element of the lower span (node 2 → 3 lies on it)
+    let a = mesh.node_position(&sol.q, 2);
+    let b = mesh.node_position(&sol.q, 3);
+    let lam = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt() / (1.2727 / n as f64);
+    let ea = mat.young * sec.area;
+    let tension = ea / 2.0 * (lam * lam - 1.0) * lam;
+    // the belt pulls the right pulley towards −x with 2N, the left one towards +x
+    assert!(
+        (d2.reaction[0] + 2.0 * tension).abs() < 0.02 * tension,
+        "{:?} vs 2N = {}",
+        d2.reaction,
+        2.0 * tension
+    );
+    assert!(
+        (d1.reaction[0] - 2.0 * tension).abs() < 0.02 * tension,
+        "{:?}",
+        d1.reaction
+    );
+    assert!(d1.reaction[1].abs() < 0.02 * tension && d1.torque.abs() < 1e-9);
+    assert!(
+        (tension - 26.5).abs() < 0.05 * 26.5,
+        "pretension {tension} N (note: ≈ 26.5 N)"
+    );
+    // mean penetration ≈ T/(kR) ≈ 0.033 mm for a uniform pressure (4 elements per half pulley
+    // make the discrete pressure wavy: the peak is about twice the mean)
+    let all: Vec<f64> = d1
+        .records
+        .iter()
+        .chain(&d2.records)
+        .map(|r| r.record.penetration)
+        .collect();
+    let mean = all.iter().sum::<f64>() / all.len() as f64;
+    let uniform = tension / (k * path.radius);
+    assert!(
+        (mean - uniform).abs() < 0.25 * uniform,
+        "mean penetration {mean} m vs T/(kR) = {uniform} m"
+    );
+    assert!(pmax < 3.0 * uniform, "peak penetration {pmax} m");
 }
