@@ -252,7 +252,8 @@ impl AlphaStepper {
         let mut h = h0;
         let mut halvings = 0usize;
         while self.state.t < t_end - 1e-12 * h0 {
-            let hs = h.min(t_end - self.state.t);
+            let rem = t_end - self.state.t;
+            let hs = if rem <= h * (1.0 + 1e-8) { rem } else { h };
             match self.step(sys, hs) {
                 Ok(()) => {
                     observer(&self.state);
