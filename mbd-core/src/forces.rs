@@ -23,6 +23,10 @@ pub trait ForceElement: Send + Sync {
     fn potential_energy(&self, _bodies: &[RigidBody], _kin: &[BodyKin]) -> f64 {
         0.0
     }
+    /// Whether the generalized force is independent of the state (no tangent contribution).
+    fn is_state_independent(&self) -> bool {
+        false
+    }
 }
 
 /// Adds the global force `force` [N] acting at body point `s'` of body `b` to `f`.
@@ -59,6 +63,9 @@ impl ForceElement for Gravity {
     }
     fn bodies(&self) -> Vec<Option<BodyId>> {
         Vec::new()
+    }
+    fn is_state_independent(&self) -> bool {
+        true
     }
     fn apply(&self, _t: f64, bodies: &[RigidBody], _kin: &[BodyKin], f: &mut [f64]) {
         for (b, body) in bodies.iter().enumerate() {

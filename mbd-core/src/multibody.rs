@@ -11,7 +11,9 @@ use crate::constraints::{Constraint, Equation};
 use crate::forces::ForceElement;
 use crate::integrators::State;
 use crate::kinematics::euler::{compose_local_rotation, pdot_from_omega_local};
+use crate::kinematics::tilde::tilde;
 use crate::kinematics::tilde::{get3, get4, put3, put4};
+use crate::system::ForceTangent;
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
 use faer::sparse::{SparseColMat, Triplet};
@@ -399,6 +401,92 @@ impl SecondOrderSystem for MultibodySystem {
             });
         }
         Ok(())
+    }
+
+    /// Analytic gyroscopic damping `C = ω̃'J' − (J'ω')~` per body (from Lin (2.26)) plus, for
+    /// each state-dependent force element, forward differences over the (at most two) bodies
+    /// it acts on, so that the tangent stays sparse.
+    fn force_tangent(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<Option<ForceTangent>, MbdError> {
+        let n = self.n_v();
+        let kin = self.kinematics(q, Some(v));
+        let mut kt: Vec<Triplet<usize, usize, f64>> = Vec::new();
+        let mut ct: Vec<Triplet<usize, usize, f64>> = Vec::new();
+        for (k, b) in self.bodies.iter().enumerate() {
+            let w = kin[k].w;
+            let c = tilde(&w) * b.inertia - tilde(&(b.inertia * w));
+            for i in 0..3 {
+                for j in 0..3 {
+                    ct.push(Triplet::new(6 * k + 3 + i, 6 * k + 3 + j, c[(i, j)]));
+                }
+            }
+        }
+        let mut f0 = vec![0.0; n];
+        let mut f1 = vec![0.0; n];
+        for fe in &self.forces {
+            if fe.is_state_independent() {
+                continue;
+            }
+            let mut bs: Vec<usize> = fe.bodies().into_iter().flatten().collect();
+            bs.sort_unstable();
+            bs.dedup();
+            if bs.is_empty() {
+                continue;
+            }
+            f0.fill(0.0);
+            fe.apply(t, &self.bodies, &kin, &mut f0);
+            for &b in &bs {
+                for c in 0..6 {
+                    let mut kp = kin.clone();
+                    // position perturbation through ⊕ (translation or body-frame rotation)
+                    let eps = 1e-7 * (1.0 + if c < 3 { kin[b].r[c].abs() } else { 0.0 });
+                    if c < 3 {
+                        kp[b].r[c] += eps;
+                    } else {
+                        let mut th = Vector3::zeros();
+                        th[c - 3] = eps;
+                        let p = compose_local_rotation(&kin[b].p, &th);
+                        kp[b] = BodyKin::new(kin[b].r, p, kin[b].rdot, kin[b].w);
+                    }
+                    f1.fill(0.0);
+                    fe.apply(t, &self.bodies, &kp, &mut f1);
+                    for &r in &bs {
+                        for i in 0..6 {
+                            let d = -(f1[6 * r + i] - f0[6 * r + i]) / eps;
+                            if d != 0.0 {
+                                kt.push(Triplet::new(6 * r + i, 6 * b + c, d));
+                            }
+                        }
+                    }
+                    // velocity perturbation
+                    let mut kp = kin.clone();
+                    let ev = 1e-7 * (1.0 + v[6 * b + c].abs());
+                    if c < 3 {
+                        kp[b].rdot[c] += ev;
+                    } else {
+                        kp[b].w[c - 3] += ev;
+                    }
+                    f1.fill(0.0);
+                    fe.apply(t, &self.bodies, &kp, &mut f1);
+                    for &r in &bs {
+                        for i in 0..6 {
+                            let d = -(f1[6 * r + i] - f0[6 * r + i]) / ev;
+                            if d != 0.0 {
+                                ct.push(Triplet::new(6 * r + i, 6 * b + c, d));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(Some(ForceTangent {
+            stiffness: self.matrix_from_triplets(n, n, kt, t)?,
+            damping: self.matrix_from_triplets(n, n, ct, t)?,
+        }))
     }
 
     fn constraint_residual(&self, t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
