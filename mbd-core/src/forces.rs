@@ -5,7 +5,7 @@
 //! body point `s'` contributes `f` and the body-frame moment `n' = s' × (Aᵀ f)` (Lin (2.3),
 //! (2.25)–(2.26)).
 
-use crate::body::{BodyId, BodyKin, RigidBody};
+use crate::body::{BodyId, BodyKin, RigidBody, Term};
 use crate::constraints::Attachment;
 use crate::kinematics::tilde::add3;
 use nalgebra::Vector3;
@@ -130,9 +130,11 @@ impl ForceElement for SpringDamper {
     }
 }
 
-/// Rotational spring-damper about the axis `i.axis` (fixed in body i): relative angle θ of
-/// body j measured from `reference_i` to `reference_j` (|θ| < π), torque
-/// `T = −k (θ − θ₀) − c θ̇` [N·m] on body j and `−T` on body i.
+/// Rotational spring-damper about the axis `i.axis` (fixed in body i): relative angle
+/// `θ = atan2(x_j·y_i, x_j·x_i)` of the body-j direction `reference_j` measured from
+/// `reference_i` (|θ| < π), generalized force `−(k (θ − θ₀) + c θ̇) ∂θ̇/∂v` (exact virtual work of
+/// the potential `½ k (θ − θ₀)²`; for aligned axes, e.g. with a revolute joint, this is the
+/// torque `T = −k (θ − θ₀) − c θ̇` about the axis on body j and `−T` on body i).
 #[derive(Debug, Clone)]
 pub struct RotationalSpringDamper {
     /// Name.
@@ -154,15 +156,24 @@ pub struct RotationalSpringDamper {
 }
 
 impl RotationalSpringDamper {
-    fn angle(&self, ki: &BodyKin, kj: &BodyKin) -> (f64, f64, Vector3<f64>) {
+    /// Angle θ [rad], rate θ̇ [rad/s] and `∂θ̇/∂v` of bodies i and j.
+    fn angle(&self, ki: &BodyKin, kj: &BodyKin) -> (f64, f64, [f64; 6], [f64; 6]) {
         let a = self.i.axis;
         let xi = (self.reference_i - a * a.dot(&self.reference_i)).normalize();
         let yi = a.cross(&xi);
-        let xj = kj.a * self.reference_j;
-        let ag = ki.a * a;
-        let th = (xj.dot(&(ki.a * yi))).atan2(xj.dot(&(ki.a * xi)));
-        let thd = ag.dot(&(kj.omega_global() - ki.omega_global()));
-        (th, thd, ag)
+        let xj = Term::vector(kj, &self.reference_j, 1);
+        let s = Term::vector(ki, &yi, 0).dot(&xj);
+        let c = Term::vector(ki, &xi, 0).dot(&xj);
+        let n2 = (s.phi * s.phi + c.phi * c.phi).max(1e-300);
+        let th = s.phi.atan2(c.phi);
+        let thd = (c.phi * s.rate - s.phi * c.rate) / n2;
+        let mut di = [0.0; 6];
+        let mut dj = [0.0; 6];
+        for k in 0..6 {
+            di[k] = (c.phi * s.di[k] - s.phi * c.di[k]) / n2;
+            dj[k] = (c.phi * s.dj[k] - s.phi * c.dj[k]) / n2;
+        }
+        (th, thd, di, dj)
     }
 }
 
@@ -175,18 +186,22 @@ impl ForceElement for RotationalSpringDamper {
     }
     fn apply(&self, _t: f64, _bodies: &[RigidBody], kin: &[BodyKin], f: &mut [f64]) {
         let (ki, kj) = (kin_of(kin, self.i.body), kin_of(kin, self.j.body));
-        let (th, thd, ag) = self.angle(&ki, &kj);
+        let (th, thd, di, dj) = self.angle(&ki, &kj);
         let torque = -self.stiffness * (th - self.free_angle) - self.damping * thd;
-        if let Some(b) = self.j.body {
-            add_torque(f, b, &kj, &(ag * torque));
-        }
         if let Some(b) = self.i.body {
-            add_torque(f, b, &ki, &(-ag * torque));
+            for k in 0..6 {
+                f[6 * b + k] += torque * di[k];
+            }
+        }
+        if let Some(b) = self.j.body {
+            for k in 0..6 {
+                f[6 * b + k] += torque * dj[k];
+            }
         }
     }
     fn potential_energy(&self, _bodies: &[RigidBody], kin: &[BodyKin]) -> f64 {
         let (ki, kj) = (kin_of(kin, self.i.body), kin_of(kin, self.j.body));
-        let (th, _, _) = self.angle(&ki, &kj);
+        let (th, ..) = self.angle(&ki, &kj);
         0.5 * self.stiffness * (th - self.free_angle).powi(2)
     }
 }
