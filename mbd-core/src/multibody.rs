@@ -489,6 +489,76 @@ impl SecondOrderSystem for MultibodySystem {
         }))
     }
 
+    /// `∂(Dᵀλ)/∂q` by forward differences local to each constraint's two bodies (sparse).
+    fn constraint_force_tangent(
+        &self,
+        t: f64,
+        q: &[f64],
+        lambda: &[f64],
+    ) -> Result<Option<SysMatrix>, MbdError> {
+        let n = self.n_v();
+        let kin = self.kinematics(q, None);
+        let ground = BodyKin::ground();
+        let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::new();
+        let mut eqs = Vec::new();
+        // generalized constraint force Dᵀλ of one constraint on its bodies (12 entries)
+        let gen_force = |c: &dyn Constraint,
+                         off: usize,
+                         ki: &BodyKin,
+                         kj: &BodyKin,
+                         eqs: &mut Vec<Equation>|
+         -> [f64; 12] {
+            eqs.clear();
+            c.eval(t, ki, kj, eqs);
+            let mut g = [0.0; 12];
+            for (r, e) in eqs.iter().enumerate() {
+                let l = lambda[off + r];
+                for k in 0..6 {
+                    g[k] += e.row.di[k] * l;
+                    g[6 + k] += e.row.dj[k] * l;
+                }
+            }
+            g
+        };
+        for (ci, c) in self.constraints.iter().enumerate() {
+            let off = self.offsets[ci];
+            if lambda[off..off + c.n_eq()].iter().all(|&l| l == 0.0) {
+                continue;
+            }
+            let bodies = c.bodies();
+            let kof = |b: Option<BodyId>| b.map(|b| kin[b]).unwrap_or(ground);
+            let (ki, kj) = (kof(bodies[0]), kof(bodies[1]));
+            let g0 = gen_force(c.as_ref(), off, &ki, &kj, &mut eqs);
+            for (side, b) in bodies.iter().enumerate() {
+                let Some(b) = *b else { continue };
+                let kb = kin[b];
+                for col in 0..6 {
+                    let eps = 1e-7 * (1.0 + if col < 3 { kb.r[col].abs() } else { 0.0 });
+                    let mut kp = kb;
+                    if col < 3 {
+                        kp.r[col] += eps;
+                    } else {
+                        let mut th = Vector3::zeros();
+                        th[col - 3] = eps;
+                        kp = BodyKin::new(kb.r, compose_local_rotation(&kb.p, &th), kb.rdot, kb.w);
+                    }
+                    let (pi, pj) = if side == 0 { (kp, kj) } else { (ki, kp) };
+                    let g1 = gen_force(c.as_ref(), off, &pi, &pj, &mut eqs);
+                    for (rs, rb) in bodies.iter().enumerate() {
+                        let Some(rb) = *rb else { continue };
+                        for k in 0..6 {
+                            let d = (g1[6 * rs + k] - g0[6 * rs + k]) / eps;
+                            if d != 0.0 {
+                                trip.push(Triplet::new(6 * rb + k, 6 * b + col, d));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(Some(self.matrix_from_triplets(n, n, trip, t)?))
+    }
+
     fn constraint_residual(&self, t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
         for (p, e) in phi.iter_mut().zip(self.equations(t, q, None)) {
             *p = e.row.phi;

@@ -144,6 +144,18 @@ pub trait SecondOrderSystem {
         Ok(None)
     }
 
+    /// Tangent of the constraint forces for fixed multipliers, `K_c = ∂(Dᵀ(q) λ)/∂q · H`
+    /// (`n_v × n_v`, the "geometric stiffness" of the joints), or `None` to neglect it in the
+    /// Newton matrix of the implicit integrators (quasi-Newton).
+    fn constraint_force_tangent(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _lambda: &[f64],
+    ) -> Result<Option<SysMatrix>, MbdError> {
+        Ok(None)
+    }
+
     /// Constraint residual `Φ(t, q)` (length `n_c`).
     fn constraint_residual(&self, _t: f64, _q: &[f64], _phi: &mut [f64]) -> Result<(), MbdError> {
         Ok(())

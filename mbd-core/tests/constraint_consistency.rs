@@ -41,16 +41,36 @@ fn all_constraints(bi: Option<usize>) -> Vec<Box<dyn Fn(&mut MultibodySystem)>> 
     let aj = || att(Some(1), [-0.2, 0.1, 0.05], [0.2, -0.3, 1.0]);
     vec![
         Box::new(move |s| {
-            s.add_constraint(Spherical { name: "sph".into(), i: ai(), j: aj() }).unwrap();
+            s.add_constraint(Spherical {
+                name: "sph".into(),
+                i: ai(),
+                j: aj(),
+            })
+            .unwrap();
         }),
         Box::new(move |s| {
-            s.add_constraint(Revolute { name: "rev".into(), i: ai(), j: aj() }).unwrap();
+            s.add_constraint(Revolute {
+                name: "rev".into(),
+                i: ai(),
+                j: aj(),
+            })
+            .unwrap();
         }),
         Box::new(move |s| {
-            s.add_constraint(Fixed { name: "fix".into(), i: ai(), j: aj() }).unwrap();
+            s.add_constraint(Fixed {
+                name: "fix".into(),
+                i: ai(),
+                j: aj(),
+            })
+            .unwrap();
         }),
         Box::new(move |s| {
-            s.add_constraint(Universal { name: "uni".into(), i: ai(), j: aj() }).unwrap();
+            s.add_constraint(Universal {
+                name: "uni".into(),
+                i: ai(),
+                j: aj(),
+            })
+            .unwrap();
         }),
         Box::new(move |s| {
             s.add_constraint(Prismatic {
@@ -63,13 +83,29 @@ fn all_constraints(bi: Option<usize>) -> Vec<Box<dyn Fn(&mut MultibodySystem)>> 
             .unwrap();
         }),
         Box::new(move |s| {
-            s.add_constraint(Distance { name: "dist".into(), i: ai(), j: aj(), length: 0.7 }).unwrap();
+            s.add_constraint(Distance {
+                name: "dist".into(),
+                i: ai(),
+                j: aj(),
+                length: 0.7,
+            })
+            .unwrap();
         }),
         Box::new(move |s| {
-            s.add_constraint(PointOnPlane { name: "pop".into(), i: ai(), j: aj() }).unwrap();
+            s.add_constraint(PointOnPlane {
+                name: "pop".into(),
+                i: ai(),
+                j: aj(),
+            })
+            .unwrap();
         }),
         Box::new(move |s| {
-            s.add_constraint(PlanarRevolute { name: "prev".into(), i: ai(), j: aj() }).unwrap();
+            s.add_constraint(PlanarRevolute {
+                name: "prev".into(),
+                i: ai(),
+                j: aj(),
+            })
+            .unwrap();
         }),
         Box::new(move |s| {
             s.add_constraint(RotationDriver {
@@ -78,7 +114,11 @@ fn all_constraints(bi: Option<usize>) -> Vec<Box<dyn Fn(&mut MultibodySystem)>> 
                 j: aj(),
                 reference_i: Vector3::new(1.0, 0.0, 0.0),
                 reference_j: Vector3::new(0.0, 1.0, 0.2),
-                law: DriverLaw::SpeedRamp { theta0: 0.3, omega: 5.0, ramp: 0.5 },
+                law: DriverLaw::SpeedRamp {
+                    theta0: 0.3,
+                    omega: 5.0,
+                    ramp: 0.5,
+                },
             })
             .unwrap();
         }),
@@ -90,7 +130,11 @@ fn all_constraints(bi: Option<usize>) -> Vec<Box<dyn Fn(&mut MultibodySystem)>> 
                 reference_i: Vector3::new(0.0, 1.0, 0.0),
                 reference_j: Vector3::new(1.0, 0.0, 0.0),
                 law: DriverLaw::Custom(Arc::new(|t: f64| {
-                    (0.4 * (3.0 * t).sin(), 1.2 * (3.0 * t).cos(), -3.6 * (3.0 * t).sin())
+                    (
+                        0.4 * (3.0 * t).sin(),
+                        1.2 * (3.0 * t).cos(),
+                        -3.6 * (3.0 * t).sin(),
+                    )
                 })),
             })
             .unwrap();
@@ -117,7 +161,8 @@ fn jacobian_nu_gamma_match_finite_differences() {
             let name = sys.constraints()[0].name().to_string();
             let phi_at = |tau: f64| {
                 let mut phi = vec![0.0; nc];
-                sys.constraint_residual(s.t + tau, &moved(&sys, &s, tau), &mut phi).unwrap();
+                sys.constraint_residual(s.t + tau, &moved(&sys, &s, tau), &mut phi)
+                    .unwrap();
                 phi
             };
             let h = 1e-4;
@@ -151,7 +196,10 @@ fn jacobian_nu_gamma_match_finite_differences() {
 fn force_elements_derive_from_their_potential() {
     // f = −∂V/∂q along q ⊕ ε δ for conservative elements (damping zero)
     let (mut sys, s) = two_bodies();
-    sys.add_force(Gravity { g: Vector3::new(0.0, -9.81, 1.0) }).unwrap();
+    sys.add_force(Gravity {
+        g: Vector3::new(0.0, -9.81, 1.0),
+    })
+    .unwrap();
     sys.add_force(SpringDamper {
         name: "spring".into(),
         i: att(Some(0), [0.1, 0.0, 0.2], [0.0, 0.0, 1.0]),
@@ -185,6 +233,56 @@ fn force_elements_derive_from_their_potential() {
             sys.potential_energy(&State::new(s.t, q, zero_v.clone()))
         };
         let dv = (v_at(h, &mut dq) - v_at(-h, &mut dq)) / (2.0 * h);
-        assert!((f[dof] + dv).abs() < 1e-5 * (1.0 + dv.abs()), "dof {dof}: f {} vs −dV {}", f[dof], -dv);
+        assert!(
+            (f[dof] + dv).abs() < 1e-5 * (1.0 + dv.abs()),
+            "dof {dof}: f {} vs −dV {}",
+            f[dof],
+            -dv
+        );
+    }
+}
+
+#[test]
+fn constraint_force_tangent_matches_global_differences() {
+    // K_c = ∂(Dᵀλ)/∂q (through ⊕) against central differences of the whole Dᵀ(q) λ
+    for add in all_constraints(Some(0)) {
+        let (mut sys, s) = two_bodies();
+        add(&mut sys);
+        let nc = sys.n_c();
+        let lambda: Vec<f64> = (0..nc)
+            .map(|k| 1.0 + 0.37 * k as f64 - 0.1 * (k * k) as f64)
+            .collect();
+        let kc = sys
+            .constraint_force_tangent(s.t, &s.q, &lambda)
+            .unwrap()
+            .unwrap()
+            .to_dense();
+        let dtl = |q: &[f64]| {
+            let mut g = vec![0.0; 12];
+            sys.constraint_jacobian(s.t, q)
+                .unwrap()
+                .tmul_vec_add(1.0, &lambda, &mut g);
+            g
+        };
+        for j in 0..12 {
+            let h = 1e-6;
+            let mut dq = vec![0.0; 12];
+            let mut qp = vec![0.0; 14];
+            let mut qm = vec![0.0; 14];
+            dq[j] = h;
+            sys.integrate_position(&s.q, &dq, &mut qp);
+            dq[j] = -h;
+            sys.integrate_position(&s.q, &dq, &mut qm);
+            let (gp, gm) = (dtl(&qp), dtl(&qm));
+            for i in 0..12 {
+                let fd = (gp[i] - gm[i]) / (2.0 * h);
+                assert!(
+                    (fd - kc[(i, j)]).abs() < 1e-5 * (1.0 + fd.abs()),
+                    "{} K_c[{i},{j}] = {} vs {fd}",
+                    sys.constraints()[0].name(),
+                    kc[(i, j)]
+                );
+            }
+        }
     }
 }
