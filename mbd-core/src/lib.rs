@@ -29,8 +29,12 @@ pub mod body;
 pub mod constraints;
 pub mod examples_chain;
 pub mod forces;
+pub mod history;
 pub mod kinematics;
 pub mod multibody;
+pub mod statics;
 
 pub use body::{BodyState, RigidBody};
+pub use history::{History, Probe};
 pub use multibody::MultibodySystem;
+pub use statics::{StaticOptions, StaticSolution, static_equilibrium};
