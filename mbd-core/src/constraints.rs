@@ -420,7 +420,7 @@ impl Constraint for RotationDriver {
         // Φ̈ = C c̈1 − S c̈2 − 2θ̇ (S ċ1 + C ċ2) − θ̈ (S c1 + C c2) − θ̇² (C c1 − S c2)
         let gamma = -row.quad + 2.0 * thd * scdot + thdd * sc + thd * thd * row.phi;
         let mut row = row;
-        row.rate = row.rate - thd * sc; // total Φ̇
+        row.rate -= thd * sc; // total Φ̇
         out.push(Equation { row, nu, gamma });
     }
 }

@@ -15,6 +15,8 @@
 //! println!("{:?}", sol.stats);
 //! ```
 
+#![allow(clippy::needless_range_loop, clippy::too_many_arguments)]
+
 pub mod error;
 pub mod integrators;
 pub mod linalg;

@@ -36,7 +36,9 @@ fn att(b: Option<usize>, p: [f64; 3], a: [f64; 3]) -> Attachment {
     Attachment::new(b, Vector3::from(p), Vector3::from(a))
 }
 
-fn all_constraints(bi: Option<usize>) -> Vec<Box<dyn Fn(&mut MultibodySystem)>> {
+type AddConstraint = Box<dyn Fn(&mut MultibodySystem)>;
+
+fn all_constraints(bi: Option<usize>) -> Vec<AddConstraint> {
     let ai = move || att(bi, [0.1, -0.2, 0.3], [0.3, 0.4, 1.0]);
     let aj = || att(Some(1), [-0.2, 0.1, 0.05], [0.2, -0.3, 1.0]);
     vec![

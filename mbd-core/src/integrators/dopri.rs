@@ -183,10 +183,12 @@ impl DormandPrince {
             item: format!("Dormand-Prince {item}"),
             reason,
         };
-        if !(self.rtol >= 0.0 && self.atol >= 0.0 && self.rtol + self.atol > 0.0)
-            || !self.rtol.is_finite()
-            || !self.atol.is_finite()
-        {
+        let ok = self.rtol.is_finite()
+            && self.atol.is_finite()
+            && self.rtol >= 0.0
+            && self.atol >= 0.0
+            && self.rtol + self.atol > 0.0;
+        if !ok {
             return Err(bad(
                 "tolerances",
                 format!(
