@@ -5,6 +5,7 @@
 //! body point `s'` contributes `f` and the body-frame moment `n' = s' × (Aᵀ f)` (Lin (2.3),
 //! (2.25)–(2.26)).
 
+use crate::MbdError;
 use crate::body::{BodyId, BodyKin, RigidBody, Term};
 use crate::constraints::Attachment;
 use crate::kinematics::tilde::add3;
@@ -27,6 +28,25 @@ pub trait ForceElement: Send + Sync {
     fn is_state_independent(&self) -> bool {
         false
     }
+    /// Checks the parameters (called when the element is added to a system).
+    fn validate(&self) -> Result<(), MbdError> {
+        Ok(())
+    }
+}
+
+fn check_params(name: &str, params: &[(&str, f64, bool)]) -> Result<(), MbdError> {
+    for &(field, v, nonneg) in params {
+        if !v.is_finite() || (nonneg && v < 0.0) {
+            return Err(MbdError::InvalidInput {
+                item: format!("force element \"{name}\": {field}"),
+                reason: format!(
+                    "must be finite{}, got {v}",
+                    if nonneg { " and non-negative" } else { "" }
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Adds the global force `force` [N] acting at body point `s'` of body `b` to `f`.
@@ -67,6 +87,16 @@ impl ForceElement for Gravity {
     fn is_state_independent(&self) -> bool {
         true
     }
+    fn validate(&self) -> Result<(), MbdError> {
+        check_params(
+            "gravity",
+            &[
+                ("g.x", self.g.x, false),
+                ("g.y", self.g.y, false),
+                ("g.z", self.g.z, false),
+            ],
+        )
+    }
     fn apply(&self, _t: f64, bodies: &[RigidBody], _kin: &[BodyKin], f: &mut [f64]) {
         for (b, body) in bodies.iter().enumerate() {
             add3(f, 6 * b, &(self.g * body.mass));
@@ -105,6 +135,16 @@ impl ForceElement for SpringDamper {
     }
     fn bodies(&self) -> Vec<Option<BodyId>> {
         vec![self.i.body, self.j.body]
+    }
+    fn validate(&self) -> Result<(), MbdError> {
+        check_params(
+            &self.name,
+            &[
+                ("stiffness", self.stiffness, true),
+                ("damping", self.damping, true),
+                ("free_length", self.free_length, true),
+            ],
+        )
     }
     fn apply(&self, _t: f64, _bodies: &[RigidBody], kin: &[BodyKin], f: &mut [f64]) {
         let (ki, kj) = (kin_of(kin, self.i.body), kin_of(kin, self.j.body));
@@ -183,6 +223,25 @@ impl ForceElement for RotationalSpringDamper {
     }
     fn bodies(&self) -> Vec<Option<BodyId>> {
         vec![self.i.body, self.j.body]
+    }
+    fn validate(&self) -> Result<(), MbdError> {
+        check_params(
+            &self.name,
+            &[
+                ("stiffness", self.stiffness, true),
+                ("damping", self.damping, true),
+                ("free_angle", self.free_angle, false),
+            ],
+        )?;
+        let a = self.i.axis;
+        let r = self.reference_i;
+        if a.norm() == 0.0 || (r - a * a.dot(&r) / a.norm_squared()).norm() <= 1e-9 * r.norm() {
+            return Err(MbdError::InvalidInput {
+                item: format!("force element \"{}\": reference_i", self.name),
+                reason: "axis is zero or reference vector is parallel to it".into(),
+            });
+        }
+        Ok(())
     }
     fn apply(&self, _t: f64, _bodies: &[RigidBody], kin: &[BodyKin], f: &mut [f64]) {
         let (ki, kj) = (kin_of(kin, self.i.body), kin_of(kin, self.j.body));

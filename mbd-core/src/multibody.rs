@@ -81,6 +81,7 @@ impl MultibodySystem {
     /// Adds a constraint (validates its body references); returns its index.
     pub fn add_constraint(&mut self, c: impl Constraint + 'static) -> Result<usize, MbdError> {
         let what = format!("constraint \"{}\"", c.name());
+        c.validate()?;
         let [bi, bj] = c.bodies();
         self.check_body(bi, &what)?;
         self.check_body(bj, &what)?;
@@ -105,6 +106,7 @@ impl MultibodySystem {
     /// Adds a force element (validates its body references).
     pub fn add_force(&mut self, f: impl ForceElement + 'static) -> Result<(), MbdError> {
         let what = format!("force element \"{}\"", f.name());
+        f.validate()?;
         for b in f.bodies() {
             self.check_body(b, &what)?;
         }
@@ -142,7 +144,13 @@ impl MultibodySystem {
         let mut q = vec![0.0; 7 * states.len()];
         let mut v = vec![0.0; 6 * states.len()];
         for (k, s) in states.iter().enumerate() {
-            s.check(&self.bodies[k].name)?;
+            s.check(&self.bodies[k].name).map_err(|e| match e {
+                MbdError::InvalidInput { item, reason } => MbdError::InvalidInput {
+                    item: format!("{item} at t = {t} s"),
+                    reason,
+                },
+                other => other,
+            })?;
             put3(&mut q, 7 * k, &s.r);
             put4(&mut q, 7 * k + 3, &s.p);
             put3(&mut v, 6 * k, &s.rdot);
@@ -606,6 +614,10 @@ impl SecondOrderSystem for MultibodySystem {
             *p = e.gamma;
         }
         Ok(())
+    }
+
+    fn check_state(&self, t: f64, q: &[f64], _v: &[f64]) -> Result<(), MbdError> {
+        self.check_euler_parameters(t, q)
     }
 
     fn constraint_name(&self, row: usize) -> String {

@@ -126,6 +126,22 @@ fn all_constraints(bi: Option<usize>) -> Vec<AddConstraint> {
         }),
         Box::new(move |s| {
             s.add_constraint(RotationDriver {
+                name: "drv-table".into(),
+                i: ai(),
+                j: aj(),
+                reference_i: Vector3::new(1.0, 0.0, 0.0),
+                reference_j: Vector3::new(0.0, 1.0, 0.2),
+                // t = 0.2 s lies inside the second segment (θ̈ = 30 rad/s² there)
+                law: DriverLaw::SpeedTable {
+                    theta0: -0.2,
+                    times: vec![0.0, 0.1, 0.3],
+                    speeds: vec![1.0, 2.0, 8.0],
+                },
+            })
+            .unwrap();
+        }),
+        Box::new(move |s| {
+            s.add_constraint(RotationDriver {
                 name: "drv-custom".into(),
                 i: ai(),
                 j: aj(),
@@ -287,4 +303,112 @@ fn constraint_force_tangent_matches_global_differences() {
             }
         }
     }
+}
+
+#[test]
+fn driver_laws_are_consistent() {
+    // θ̇ and θ̈ are the derivatives of θ (central differences), for every law
+    let laws = [
+        DriverLaw::ConstantSpeed {
+            theta0: 0.1,
+            omega: 3.0,
+        },
+        DriverLaw::SpeedRamp {
+            theta0: 0.1,
+            omega: 3.0,
+            ramp: 0.8,
+        },
+        DriverLaw::SpeedTable {
+            theta0: 0.4,
+            times: vec![0.1, 0.5, 0.9],
+            speeds: vec![2.0, -1.0, 4.0],
+        },
+    ];
+    for law in &laws {
+        for &t in &[-0.3, 0.05, 0.3, 0.7, 1.3] {
+            let h = 1e-5;
+            let (th_p, w_p, _) = law.eval(t + h);
+            let (th_m, w_m, _) = law.eval(t - h);
+            let (_, w, a) = law.eval(t);
+            assert!(
+                ((th_p - th_m) / (2.0 * h) - w).abs() < 1e-6,
+                "{law:?} t {t}"
+            );
+            assert!(((w_p - w_m) / (2.0 * h) - a).abs() < 1e-4, "{law:?} t {t}");
+        }
+    }
+    // table: θ(0.5) = θ0 + ∫ ω = 0.4 + 2·0.1 + (2 + (−1))/2·0.4 = 0.8
+    assert!((laws[2].eval(0.5).0 - 0.8).abs() < 1e-14);
+}
+
+#[test]
+fn invalid_joint_and_force_parameters_are_rejected() {
+    let (mut sys, _) = two_bodies();
+    let e = sys
+        .add_constraint(Distance {
+            name: "rope".into(),
+            i: att(Some(0), [0.0; 3], [0.0, 0.0, 1.0]),
+            j: att(Some(1), [0.0; 3], [0.0, 0.0, 1.0]),
+            length: -1.0,
+        })
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("rope") && e.to_string().contains("length"),
+        "{e}"
+    );
+    let e = sys
+        .add_constraint(Revolute {
+            name: "axle".into(),
+            i: att(Some(0), [0.0; 3], [0.0, 0.0, 0.0]),
+            j: att(Some(1), [0.0; 3], [0.0, 0.0, 1.0]),
+        })
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("axle") && e.to_string().contains("axis"),
+        "{e}"
+    );
+    let e = sys
+        .add_constraint(RotationDriver {
+            name: "motor".into(),
+            i: att(None, [0.0; 3], [0.0, 0.0, 1.0]),
+            j: att(Some(0), [0.0; 3], [0.0, 0.0, 1.0]),
+            reference_i: Vector3::x(),
+            reference_j: Vector3::x(),
+            law: DriverLaw::SpeedTable {
+                theta0: 0.0,
+                times: vec![0.0, 0.0],
+                speeds: vec![1.0, 2.0],
+            },
+        })
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("motor") && e.to_string().contains("increase"),
+        "{e}"
+    );
+    let e = sys
+        .add_force(SpringDamper {
+            name: "strut".into(),
+            i: att(Some(0), [0.0; 3], [0.0, 0.0, 1.0]),
+            j: att(Some(1), [0.0; 3], [0.0, 0.0, 1.0]),
+            stiffness: f64::NAN,
+            damping: 0.0,
+            free_length: 0.1,
+        })
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("strut") && e.to_string().contains("stiffness"),
+        "{e}"
+    );
+}
+
+#[test]
+fn non_unit_euler_parameters_in_a_raw_state_are_rejected_with_time() {
+    use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
+    let (sys, mut s) = two_bodies();
+    s.q[7 + 3] *= 1.1; // body "b"
+    let e = GeneralizedAlpha::new(AlphaParams::default())
+        .integrate(&sys, s, 1.0, |_| {})
+        .unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.contains("\"b\"") && msg.contains("t = 0.2"), "{msg}");
 }
