@@ -140,7 +140,10 @@ pub fn remove_anchor_columns(basis: &Basis, anchored: &[usize]) -> Result<Basis>
     Ok(Basis {
         method: basis.method,
         psi: select_cols(psi.as_ref(), &keep),
-        columns: keep.iter().map(|&c| basis.columns[c]).collect::<Vec<Column>>(),
+        columns: keep
+            .iter()
+            .map(|&c| basis.columns[c])
+            .collect::<Vec<Column>>(),
     })
 }
 
@@ -151,18 +154,16 @@ pub fn remove_anchor_columns(basis: &Basis, anchored: &[usize]) -> Result<Basis>
 /// `s` has `dim` entries per node; the result is `n × 6` (3-D) or `n × 3` (2-D).
 pub fn rigid_body_modes(s: &[f64], dim: usize) -> Result<Mat<f64>> {
     match dim {
-        2 => {
-            Ok(Mat::from_fn(s.len(), 3, |i, j| {
-                let (node, c) = (i / 2, i % 2);
-                let (x, y) = (s[2 * node], s[2 * node + 1]);
-                match j {
-                    0 => (c == 0) as u8 as f64,
-                    1 => (c == 1) as u8 as f64,
-                    _ if c == 0 => -y,
-                    _ => x,
-                }
-            }))
-        }
+        2 => Ok(Mat::from_fn(s.len(), 3, |i, j| {
+            let (node, c) = (i / 2, i % 2);
+            let (x, y) = (s[2 * node], s[2 * node + 1]);
+            match j {
+                0 => (c == 0) as u8 as f64,
+                1 => (c == 1) as u8 as f64,
+                _ if c == 0 => -y,
+                _ => x,
+            }
+        })),
         3 => Ok(Mat::from_fn(s.len(), 6, |i, j| {
             let (node, c) = (i / 3, i % 3);
             if j < 3 {

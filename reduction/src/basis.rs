@@ -127,7 +127,11 @@ pub fn fixed_interface_modes(
     check_inputs(k, m, part)?;
     let kii = select(k, part.interior(), part.interior());
     let mii = select(m, part.interior(), part.interior());
-    sym_gen_eig("fixed-interface problem (K_ii, M_ii)", kii.as_ref(), mii.as_ref())
+    sym_gen_eig(
+        "fixed-interface problem (K_ii, M_ii)",
+        kii.as_ref(),
+        mii.as_ref(),
+    )
 }
 
 /// Static (constraint) modes `Ψs = −K_ii⁻¹ K_ib` (Lin (6.3), Ribaric (3.5)); `n_i × n_b`.
@@ -188,7 +192,14 @@ pub fn build_basis(
                 Method::CraigBampton => Some(static_modes(k, part)?),
                 _ => Some(condensed_modes(k, part, &lam, &phi, &idx)?),
             };
-            Ok(assemble(part, method, coupling.as_ref(), Some(&phi), &lam, &idx))
+            Ok(assemble(
+                part,
+                method,
+                coupling.as_ref(),
+                Some(&phi),
+                &lam,
+                &idx,
+            ))
         }
     }
 }

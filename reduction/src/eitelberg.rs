@@ -2,7 +2,8 @@
 //! its application to structures (Lin (6.39)–(6.45)), which reproduces Guyan reduction.
 
 use crate::error::{ReductionError, Result};
-use crate::linalg::{check_square, inverse, solve_general};
+use crate::linalg::{check_finite, check_square, inverse, solve_general};
+use faer::linalg::solvers::Solve;
 use faer::{Mat, MatRef};
 
 /// Largest state dimension accepted by the dense Kronecker Lyapunov solver
@@ -51,8 +52,19 @@ pub fn lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>> {
         }
     }
     let rhs = Mat::from_fn(nn, 1, |r, _| -q[(r % n, r / n)]);
-    let x = solve_general("Lyapunov equation", big.as_ref(), rhs.as_ref())?;
-    Ok(Mat::from_fn(n, n, |i, j| x[(j * n + i, 0)]))
+    let lu = big.partial_piv_lu();
+    let mut x = lu.solve(&rhs);
+    // iterative refinement: the Kronecker system is ill-conditioned when the stable poles are
+    // lightly damped (sep(A, −Aᵀ) small), as for structures with output feedback
+    for _ in 0..3 {
+        let r = &rhs - &big * &x;
+        let dx = lu.solve(&r);
+        x += &dx;
+    }
+    check_finite("Lyapunov solution", x.as_ref())?;
+    let s = Mat::from_fn(n, n, |i, j| x[(j * n + i, 0)]);
+    // S is symmetric in exact arithmetic
+    Ok(crate::linalg::symmetrize(&s))
 }
 
 /// Eitelberg's method (Lin Appendix C): zero steady-state error and minimal equation error.
@@ -134,7 +146,13 @@ pub fn eitelberg_structure(
             0.0
         }
     });
-    let b = Mat::from_fn(2 * n, nb, |i, j| if i < n { 0.0 } else { minv[(i - n, boundary[j])] });
+    let b = Mat::from_fn(2 * n, nb, |i, j| {
+        if i < n {
+            0.0
+        } else {
+            minv[(i - n, boundary[j])]
+        }
+    });
     let r = Mat::from_fn(2 * nb, 2 * n, |i, j| {
         if i < nb {
             (j == boundary[i]) as u8 as f64

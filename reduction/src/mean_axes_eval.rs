@@ -69,7 +69,11 @@ pub fn evaluate_mean_axes(
     let nq = nr + nz;
     let nb = boundary.len();
     // G = [P Ψ]
-    let g = Mat::from_fn(n, nq, |i, j| if j < nr { p[(i, j)] } else { psi[(i, j - nr)] });
+    let g = Mat::from_fn(
+        n,
+        nq,
+        |i, j| if j < nr { p[(i, j)] } else { psi[(i, j - nr)] },
+    );
     // A = blockdiag(0, ΨᵀKΨ)
     let kr = congruence(psi, k, psi);
     let mut a = Mat::<f64>::zeros(nq, nq);
@@ -107,7 +111,11 @@ pub fn evaluate_mean_axes(
         }
     }
     let rhs = Mat::from_fn(nk, nb, |i, l| (i == nq + nr + l) as u8 as f64);
-    let sol = solve_general("mean-axes static problem (8.30)", kkt.as_ref(), rhs.as_ref())?;
+    let sol = solve_general(
+        "mean-axes static problem (8.30)",
+        kkt.as_ref(),
+        rhs.as_ref(),
+    )?;
     let cq = sol.subrows(0, nq).to_owned();
     let cmodes = &g * &cq;
 

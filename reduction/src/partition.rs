@@ -58,7 +58,9 @@ impl DofPartition {
             if j >= nn {
                 return Err(ReductionError::InvalidDofs {
                     what: "boundary node set".into(),
-                    reason: format!("node {j} (0-based) is out of range (the model has {nn} nodes)"),
+                    reason: format!(
+                        "node {j} (0-based) is out of range (the model has {nn} nodes)"
+                    ),
                 });
             }
             dofs.extend((0..dofs_per_node).map(|c| dofs_per_node * j + c));

@@ -153,7 +153,10 @@ impl ReducedModel {
             psi: DenseMatrix::from_mat(self.psi.as_ref()),
             mass: DenseMatrix::from_mat(self.mass.as_ref()),
             stiffness: DenseMatrix::from_mat(self.stiffness.as_ref()),
-            damping: self.damping.as_ref().map(|d| DenseMatrix::from_mat(d.as_ref())),
+            damping: self
+                .damping
+                .as_ref()
+                .map(|d| DenseMatrix::from_mat(d.as_ref())),
         };
         serde_json::to_string(&file).map_err(|e| ReductionError::File {
             path: "<memory>".into(),
@@ -289,7 +292,12 @@ impl DenseMatrix {
         }
     }
 
-    fn to_mat(&self, field: &str, rows: usize, cols: usize) -> std::result::Result<Mat<f64>, String> {
+    fn to_mat(
+        &self,
+        field: &str,
+        rows: usize,
+        cols: usize,
+    ) -> std::result::Result<Mat<f64>, String> {
         if self.rows != rows || self.cols != cols || self.col_major.len() != rows * cols {
             return Err(format!(
                 "field `{field}` is {}x{} with {} values, expected {rows}x{cols}",
@@ -298,6 +306,8 @@ impl DenseMatrix {
                 self.col_major.len()
             ));
         }
-        Ok(Mat::from_fn(rows, cols, |i, j| self.col_major[j * rows + i]))
+        Ok(Mat::from_fn(rows, cols, |i, j| {
+            self.col_major[j * rows + i]
+        }))
     }
 }

@@ -83,7 +83,11 @@ pub fn appendix_a_beam() -> Result<LinBeam> {
     let x = solve_general("rotational stiffness K_θθ", kqq.as_ref(), ktq.transpose())?;
     let k = &ktt - &ktq * &x;
     let k = crate::linalg::symmetrize(&k);
-    let m = Mat::from_fn(2 * nn, 2 * nn, |i, j| if i == j { NODE_MASS[i / 2] } else { 0.0 });
+    let m = Mat::from_fn(
+        2 * nn,
+        2 * nn,
+        |i, j| if i == j { NODE_MASS[i / 2] } else { 0.0 },
+    );
     let s = (0..nn).flat_map(|j| [LE * j as f64, 0.0]).collect();
     Ok(LinBeam { k, m, s })
 }
@@ -94,6 +98,31 @@ pub fn node_dofs(nodes_1based: &[usize]) -> Vec<usize> {
         .iter()
         .flat_map(|&j| [2 * (j - 1), 2 * (j - 1) + 1])
         .collect()
+}
+
+/// The 10×10 basis of Lin (7.2): `{δo; δu} = [I 0; 0 Ψu]{δo; zu}` with `o = {ξ1, η1, η5}`
+/// (simply supported beam) and `Ψu` the M-normalized modes of `eig(K_uu, M_uu)`, rows in natural
+/// DOF order, columns z1..z3 = ξ1, η1, η5, then the 7 modes in ascending frequency.
+pub fn simply_supported_basis(beam: &LinBeam) -> Result<Mat<f64>> {
+    let o = [0usize, 1, 9];
+    let u: Vec<usize> = (0..10).filter(|d| !o.contains(d)).collect();
+    let kuu = select(beam.k.as_ref(), &u, &u);
+    let muu = select(beam.m.as_ref(), &u, &u);
+    let (_, psiu) = sym_gen_eig(
+        "simply supported beam (K_uu, M_uu)",
+        kuu.as_ref(),
+        muu.as_ref(),
+    )?;
+    let mut psi_ss = Mat::<f64>::zeros(10, 10);
+    for (c, &d) in o.iter().enumerate() {
+        psi_ss[(d, c)] = 1.0;
+    }
+    for (r, &d) in u.iter().enumerate() {
+        for c in 0..7 {
+            psi_ss[(d, 3 + c)] = psiu[(r, c)];
+        }
+    }
+    Ok(psi_ss)
 }
 
 /// Results of the ch. 7.1 profile tests for one method.
@@ -135,21 +164,7 @@ pub fn profile_study(beam: &LinBeam) -> Result<ProfileStudy> {
         .iter()
         .map(|&me| build_basis(beam.k.as_ref(), beam.m.as_ref(), &part, me, &kept).map(|b| b.psi))
         .collect::<Result<_>>()?;
-    // Profile 1: simply supported basis, o = {ξ1, η1, η5}, Ψu from eig(Kuu, Muu) (Lin (7.2)).
-    let o = [0usize, 1, 9];
-    let u: Vec<usize> = (0..10).filter(|d| !o.contains(d)).collect();
-    let kuu = select(beam.k.as_ref(), &u, &u);
-    let muu = select(beam.m.as_ref(), &u, &u);
-    let (_, psiu) = sym_gen_eig("simply supported beam (K_uu, M_uu)", kuu.as_ref(), muu.as_ref())?;
-    let mut psi_ss = Mat::<f64>::zeros(10, 10);
-    for (c, &d) in o.iter().enumerate() {
-        psi_ss[(d, c)] = 1.0;
-    }
-    for (r, &d) in u.iter().enumerate() {
-        for c in 0..7 {
-            psi_ss[(d, 3 + c)] = psiu[(r, c)];
-        }
-    }
+    let psi_ss = simply_supported_basis(beam)?;
     let dcol = Mat::from_fn(10, 1, |i, _| delta[i]);
     let z = solve_general("simply supported basis Ψ", psi_ss.as_ref(), dcol.as_ref())?;
     // kept modal coordinates z4, z5; match the sign of the kept modes of the bases
@@ -218,7 +233,8 @@ pub fn guyan_hz(beam: &LinBeam, masters_1based: &[usize]) -> Result<Vec<f64>> {
         Method::Guyan,
         &ModeSelection::Lowest(0),
     )?;
-    let red = crate::reduced::ReducedModel::from_basis(b, beam.k.as_ref(), beam.m.as_ref(), None, 2)?;
+    let red =
+        crate::reduced::ReducedModel::from_basis(b, beam.k.as_ref(), beam.m.as_ref(), None, 2)?;
     Ok(red.natural_frequencies_hz()?.into_iter().skip(3).collect())
 }
 
