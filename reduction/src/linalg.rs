@@ -185,11 +185,12 @@ pub fn lstsq(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Result<Mat<f64>> {
     Ok(x)
 }
 
-/// Generalized symmetric-definite eigenproblem `K φ = λ M φ` (dense, all pairs) by the Cholesky
-/// transform `L⁻¹ K L⁻ᵀ` (Lin (6.11), MATLAB `eig(K, M)`).
+/// Generalized symmetric-definite eigenproblem `K φ = λ M φ` (dense, all pairs), Lin (6.11),
+/// MATLAB `eig(K, M)`; delegates to fe-model's Cholesky-transform solver
+/// ([`fe_model::dense_modes`]).
 ///
-/// Returns eigenvalues in ascending order and M-normalized eigenvectors (`ΦᵀMΦ = I`), each with
-/// the deterministic sign of [`fix_sign`].
+/// Returns eigenvalues in ascending order and M-normalized eigenvectors (`ΦᵀMΦ = I`), each
+/// signed so that its largest-magnitude entry is positive (fe-model's convention).
 pub fn sym_gen_eig(
     what: &str,
     k: MatRef<'_, f64>,
@@ -201,65 +202,17 @@ pub fn sym_gen_eig(
     if n == 0 {
         return Ok((Vec::new(), Mat::zeros(0, 0)));
     }
-    let llt = m
-        .llt(Side::Lower)
-        .map_err(|_| ReductionError::NotPositiveDefinite {
+    let modes = fe_model::dense_modes(k, m, n).map_err(|e| match e {
+        fe_model::FeError::NotPositiveDefinite { .. } => ReductionError::NotPositiveDefinite {
             what: format!("mass matrix of {what}"),
             hint: "every DOF needs positive mass".into(),
-        })?;
-    let l = llt.L().to_owned();
-    // C = L⁻¹ K L⁻ᵀ
-    let mut x = k.to_owned();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(
-        l.as_ref(),
-        x.as_mut(),
-        faer::Par::Seq,
-    );
-    let mut c = x.transpose().to_owned();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(
-        l.as_ref(),
-        c.as_mut(),
-        faer::Par::Seq,
-    );
-    let c = symmetrize(&c);
-    let evd = c
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| ReductionError::Numerical {
+        },
+        other => ReductionError::Numerical {
             what: format!("eigen solve of {what}"),
-            detail: format!("{e:?}"),
-        })?;
-    let lam: Vec<f64> = (0..n).map(|i| evd.S().column_vector()[i]).collect();
-    let mut phi = evd.U().to_owned();
-    faer::linalg::triangular_solve::solve_upper_triangular_in_place(
-        l.transpose(),
-        phi.as_mut(),
-        faer::Par::Seq,
-    );
-    fix_sign(&mut phi);
-    Ok((lam, phi))
-}
-
-/// Deterministic eigenvector sign: the first entry whose magnitude is within `1e-6` (relative)
-/// of the column's largest magnitude is made positive.
-pub fn fix_sign(phi: &mut Mat<f64>) {
-    for j in 0..phi.ncols() {
-        let mut amax = 0.0_f64;
-        for i in 0..phi.nrows() {
-            amax = amax.max(phi[(i, j)].abs());
-        }
-        let mut sgn = 1.0;
-        for i in 0..phi.nrows() {
-            if phi[(i, j)].abs() >= (1.0 - 1e-6) * amax {
-                sgn = phi[(i, j)].signum();
-                break;
-            }
-        }
-        if sgn < 0.0 {
-            for i in 0..phi.nrows() {
-                phi[(i, j)] = -phi[(i, j)];
-            }
-        }
-    }
+            detail: other.to_string(),
+        },
+    })?;
+    Ok((modes.values, modes.vectors))
 }
 
 /// Natural frequencies in Hz from eigenvalues `λ = ω²` (negative round-off is clamped to 0).

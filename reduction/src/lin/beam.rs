@@ -36,52 +36,36 @@ pub struct LinBeam {
     pub s: Vec<f64>,
 }
 
-/// Stiffness of a 2-D Euler–Bernoulli frame element along ξ, DOFs (u1, v1, θ1, u2, v2, θ2).
-fn frame_element(e: f64, a: f64, i: f64, l: f64) -> [[f64; 6]; 6] {
-    let ea = e * a / l;
-    let b = e * i / (l * l * l);
-    let mut k = [[0.0; 6]; 6];
-    k[0][0] = ea;
-    k[0][3] = -ea;
-    k[3][0] = -ea;
-    k[3][3] = ea;
-    let bend = [
-        [12.0, 6.0 * l, -12.0, 6.0 * l],
-        [6.0 * l, 4.0 * l * l, -6.0 * l, 2.0 * l * l],
-        [-12.0, -6.0 * l, 12.0, -6.0 * l],
-        [6.0 * l, 2.0 * l * l, -6.0 * l, 4.0 * l * l],
-    ];
-    let map = [1, 2, 4, 5];
-    for r in 0..4 {
-        for c in 0..4 {
-            k[map[r]][map[c]] = b * bend[r][c];
-        }
-    }
-    k
-}
-
-/// Builds the Appendix A beam: 4 frame elements (E, A, I above), assembled with (u, v, θ) per
-/// node, the rotations removed by static condensation `K = K_tt − K_tθ K_θθ⁻¹ K_θt` (as Lin did
-/// with the FElt model), lumped masses 0.1/0.2/0.2/0.2/0.1 kg.
+/// Builds the Appendix A beam: fe-model's straight planar frame (4 Euler–Bernoulli elements,
+/// EA = E·A, EI = E·I with the rounded I) with (u, v, θ) per node; the rotations are removed by
+/// static condensation (Guyan with the translations as masters, `K = K_tt − K_tθ K_θθ⁻¹ K_θt`),
+/// as Lin did with the FElt model; lumped masses 0.1/0.2/0.2/0.2/0.1 kg.
 pub fn appendix_a_beam() -> Result<LinBeam> {
     let nn = 5;
-    let mut k15 = Mat::<f64>::zeros(3 * nn, 3 * nn);
-    let ke = frame_element(E, AREA, I_AREA, LE);
-    for el in 0..4 {
-        let dofs: Vec<usize> = (0..6).map(|c| 3 * el + c).collect();
-        for r in 0..6 {
-            for c in 0..6 {
-                k15[(dofs[r], dofs[c])] += ke[r][c];
-            }
+    let section = fe_model::element::Frame2dSection {
+        ea: E * AREA,
+        ei: E * I_AREA,
+        mass_per_length: 0.0,
+    };
+    let fe = fe_model::generate::straight_beam_2d(4.0 * LE, 4, section, 0.0).map_err(|e| {
+        crate::ReductionError::InvalidParameter {
+            name: "Appendix A beam".into(),
+            reason: e.to_string(),
         }
-    }
+    })?;
+    let k15 = fe
+        .stiffness()
+        .map_err(|e| crate::ReductionError::Numerical {
+            what: "Appendix A beam assembly".into(),
+            detail: e.to_string(),
+        })?
+        .to_dense();
     let t: Vec<usize> = (0..nn).flat_map(|j| [3 * j, 3 * j + 1]).collect();
-    let th: Vec<usize> = (0..nn).map(|j| 3 * j + 2).collect();
-    let ktt = select(k15.as_ref(), &t, &t);
-    let ktq = select(k15.as_ref(), &t, &th);
-    let kqq = select(k15.as_ref(), &th, &th);
-    let x = solve_general("rotational stiffness K_θθ", kqq.as_ref(), ktq.transpose())?;
-    let k = &ktt - &ktq * &x;
+    let part = DofPartition::from_boundary_dofs(3 * nn, &t)?;
+    let psi_s = crate::basis::static_modes(k15.as_ref(), &part)?;
+    // K = K_tt + K_tθ Ψs (Lin (6.8))
+    let ktq = select(k15.as_ref(), &t, part.interior());
+    let k = select(k15.as_ref(), &t, &t) + &ktq * &psi_s;
     let k = crate::linalg::symmetrize(&k);
     let m = Mat::from_fn(
         2 * nn,
