@@ -7,13 +7,21 @@
 //! * [`grid`], [`derivative`]: nodal values sampled at flow coordinates `s_i` (open or closed),
 //!   finite-difference, FE-consistent, polynomial and spectral derivative operators, applied per
 //!   DOF component (Ribaric App. A).
+//! * [`galerkin`], [`gyroscopic`]: the analytical moving string (4.26)–(4.30), state-matrix
+//!   eigenvalues and the matrix-exponential response.
 
 pub mod derivative;
 pub mod error;
+pub mod galerkin;
 pub mod grid;
+pub mod gyroscopic;
+pub mod params;
 
 pub use derivative::{
     DerivativeMethod, FlowLine, LineOperator, ModeDerivatives, mode_shape_derivatives,
 };
 pub use error::FlowError;
+pub use galerkin::GalerkinString;
 pub use grid::{End, FlowGrid, Topology};
+pub use gyroscopic::{GyroscopicSystem, StateEigen};
+pub use params::StringParams;
