@@ -9,13 +9,17 @@
 //!   DOF component (Ribaric App. A).
 //! * [`galerkin`], [`gyroscopic`]: the analytical moving string (4.26)–(4.30), state-matrix
 //!   eigenvalues and the matrix-exponential response.
+//! * [`travelling`]: the travelling string with fixed ends in flowing-material modal coordinates
+//!   (4.12)–(4.20), a gyroscopic [`mbd_core::SecondOrderSystem`].
 
 pub mod derivative;
 pub mod error;
 pub mod galerkin;
 pub mod grid;
 pub mod gyroscopic;
+pub mod modal;
 pub mod params;
+pub mod travelling;
 
 pub use derivative::{
     DerivativeMethod, FlowLine, LineOperator, ModeDerivatives, mode_shape_derivatives,
@@ -24,4 +28,6 @@ pub use error::FlowError;
 pub use galerkin::GalerkinString;
 pub use grid::{End, FlowGrid, Topology};
 pub use gyroscopic::{GyroscopicSystem, StateEigen};
+pub use modal::ModalBasis;
 pub use params::StringParams;
+pub use travelling::{AxialMotion, FlowingString};
