@@ -68,15 +68,24 @@ fn flowing_frequencies_match_exact_moving_string() {
     for i in 0..5 {
         assert!((all[i] - der[i]).abs() < 2e-3, "{:?}", &all[..5]);
     }
-    for (v, modes) in [(0.0, 20), (10.0, 20), (20.0, 30), (30.0, 40)] {
-        let f = flowing(99, modes, m, v)
+    // FE discretisation error of mode 5 at n = 99 is (5πh)²/24 ≈ 1.03e-3 at v = 0; relative
+    // errors grow near the critical speed (measured 0.34 % at v = 30, n = 99), so n = 199 there.
+    for (v, n, modes) in [
+        (0.0, 99, 20),
+        (10.0, 99, 20),
+        (20.0, 99, 30),
+        (30.0, 199, 60),
+    ] {
+        let f = flowing(n, modes, m, v)
             .frozen(v, 0.0)
             .state_eigen()
             .unwrap()
             .damped_frequencies_hz();
         let e = max_rel_err(&f, v, 5);
-        // FE discretisation error of mode 5 at n = 99 is (5πh)²/24 ≈ 1.03e-3 at v = 0.
-        assert!(e < 1.1e-3, "v = {v}, {modes} modes: rel. error {e}");
+        assert!(
+            e < 1.1e-3,
+            "v = {v}, n = {n}, {modes} modes: rel. error {e}"
+        );
     }
 }
 
