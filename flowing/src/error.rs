@@ -44,3 +44,12 @@ pub(crate) fn invalid(item: impl Into<String>, reason: impl Into<String>) -> Flo
         reason: reason.into(),
     }
 }
+
+impl From<fe_model::FeError> for FlowError {
+    fn from(e: fe_model::FeError) -> Self {
+        FlowError::InvalidInput {
+            item: "finite-element model".into(),
+            reason: e.to_string(),
+        }
+    }
+}

@@ -11,7 +11,10 @@
 //!   eigenvalues and the matrix-exponential response.
 //! * [`travelling`]: the travelling string with fixed ends in flowing-material modal coordinates
 //!   (4.12)–(4.20), a gyroscopic [`mbd_core::SecondOrderSystem`].
+//! * [`contact`], [`pulley`]: the string wrapped on two pulleys with variable-size contact
+//!   (4.10), (4.11) and the travelling string with variable contact (4.31)–(4.40).
 
+pub mod contact;
 pub mod derivative;
 pub mod error;
 pub mod galerkin;
@@ -19,8 +22,11 @@ pub mod grid;
 pub mod gyroscopic;
 pub mod modal;
 pub mod params;
+pub mod pulley;
+pub mod string_fe;
 pub mod travelling;
 
+pub use contact::{ContactSettings, ContactString, HarmonicLoad, simulate_contact};
 pub use derivative::{
     DerivativeMethod, FlowLine, LineOperator, ModeDerivatives, mode_shape_derivatives,
 };
@@ -30,4 +36,6 @@ pub use grid::{End, FlowGrid, Topology};
 pub use gyroscopic::{GyroscopicSystem, StateEigen};
 pub use modal::ModalBasis;
 pub use params::StringParams;
+pub use pulley::Pulley;
+pub use string_fe::StringMesh;
 pub use travelling::{AxialMotion, FlowingString};
