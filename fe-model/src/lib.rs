@@ -19,7 +19,7 @@ pub mod sparse;
 
 pub use assembly::{Assembler, assemble};
 pub use damping::Rayleigh;
-pub use eigen::{Modes, dense_modes};
+pub use eigen::{Modes, SparseEigenOptions, dense_modes, sparse_modes};
 pub use element::{Element, MassKind, MatrixKind};
 pub use error::FeError;
 pub use mesh::{Cell, CellKind, Mesh};
