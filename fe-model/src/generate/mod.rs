@@ -2,6 +2,8 @@
 
 pub mod beam;
 pub mod belt;
+pub mod block;
 
 pub use beam::{straight_beam_2d, straight_string};
 pub use belt::{BeltLoopConfig, belt_loop};
+pub use block::hex_block;
