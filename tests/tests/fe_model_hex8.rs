@@ -210,8 +210,8 @@ fn selective_reduced_integration_avoids_volumetric_locking() {
     );
 }
 
-/// Geometric stiffness of a uniaxial prestress: a thin hex bar under σ_xx = T/A, all DOFs of
-/// its end faces fixed except rotation-free, vibrates like a tensioned pinned beam,
+/// Geometric stiffness of a uniaxial prestress: a thin hex bar under σ_xx = T/A with its end
+/// faces fixed vibrates like a tensioned string/beam,
 /// f_n = n/(2L) √(T/ρA) √(1 + (nπ)² EI/(T L²)) (Rao §11.5).
 #[test]
 fn prestressed_hex_bar_matches_tensioned_beam() {
