@@ -12,6 +12,7 @@ pub mod eigen;
 pub mod element;
 pub mod error;
 pub mod generate;
+pub mod io;
 pub mod mesh;
 pub mod model;
 pub mod partition;

@@ -3,7 +3,9 @@
 pub mod beam;
 pub mod belt;
 pub mod block;
+pub mod tire;
 
 pub use beam::{straight_beam_2d, straight_string};
 pub use belt::{BeltLoopConfig, belt_loop};
 pub use block::hex_block;
+pub use tire::{Tire, TireConfig, TireZone, tire};
