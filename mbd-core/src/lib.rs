@@ -5,9 +5,31 @@
 //! (index-1) equations of motion (Ribaric (2.16), Lin (2.27)), the generic
 //! [`system::SecondOrderSystem`] interface that every model of the workspace implements, and the
 //! time integrators (RK4, Dormand–Prince 5(4) with events, generalized-α in index-3 form).
+//!
+//! ## Using the integrators
+//!
+//! ```ignore
+//! use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
+//! let alpha = GeneralizedAlpha::new(AlphaParams { h: 1e-3, rho_inf: 0.8, ..Default::default() });
+//! let sol = alpha.integrate(&model, State::new(0.0, q0, v0), 1.0, |s| println!("{}", s.t))?;
+//! println!("{:?}", sol.stats);
+//! ```
 
 pub mod error;
+pub mod integrators;
+pub mod linalg;
 pub mod system;
 
 pub use error::MbdError;
-pub use system::{SecondOrderSystem, SysMatrix};
+pub use integrators::{
+    AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Rk4, Solution, State, Stats,
+};
+pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
+pub mod body;
+pub mod constraints;
+pub mod forces;
+pub mod kinematics;
+pub mod multibody;
+
+pub use body::{BodyState, RigidBody};
+pub use multibody::MultibodySystem;

@@ -93,6 +93,36 @@ pub trait SecondOrderSystem {
     /// Restore invariants of `q` after an update (e.g. normalise Euler parameters).
     fn normalize(&self, _q: &mut [f64]) {}
 
+    /// Composition `q_new = q ⊕ Δ` of a position with an increment `Δ` given in velocity
+    /// coordinates (length `n_v`), used by the implicit integrators (the Lie-group form of
+    /// generalized-α, Brüls, Cardona & Arnold 2012). The default is `q + Δ` when `n_q == n_v`,
+    /// and the first-order map `q + H(q) Δ` followed by [`normalize`](Self::normalize)
+    /// otherwise; rigid-body models override it with the exact exponential map.
+    fn integrate_position(&self, q: &[f64], dq: &[f64], q_new: &mut [f64]) {
+        if self.n_q() == self.n_v() {
+            for ((o, a), b) in q_new.iter_mut().zip(q).zip(dq) {
+                *o = a + b;
+            }
+        } else {
+            self.position_rate(q, dq, q_new);
+            for (o, a) in q_new.iter_mut().zip(q) {
+                *o += a;
+            }
+            self.normalize(q_new);
+        }
+    }
+
+    /// Human-readable name of constraint row `row` (used in error messages, e.g. for redundant
+    /// constraints).
+    fn constraint_name(&self, row: usize) -> String {
+        format!("constraint row {row}")
+    }
+
+    /// Human-readable name of velocity coordinate `dof` (used in error messages).
+    fn dof_name(&self, dof: usize) -> String {
+        format!("coordinate {dof}")
+    }
+
     /// Whether [`mass`](Self::mass) is independent of `t` and `q` (lets integrators factor it once).
     fn mass_is_constant(&self) -> bool {
         false

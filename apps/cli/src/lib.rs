@@ -1,5 +1,28 @@
 //! # flowmbd-cli
 //!
-//! Shared plumbing for the `flowmbd-*` binaries (app conventions): TOML configuration with
-//! embedded defaults, `--print-config`, `--config`, `--out`, `--json`, progress bars, CSV/plot/VTK
-//! output folders and the exit-code policy (2 = bad input, 1 = numerical failure).
+//! Shared plumbing for the `flowmbd-*` binaries, so that every app follows the same conventions
+//! and stays thin:
+//!
+//! - [`CommonArgs`]: `--config FILE`, `--print-config`, `--out DIR`, `--json`, `--quiet`;
+//! - [`config`]: TOML configuration with embedded defaults, one-line errors naming file, line and
+//!   field, and semantic validation through [`Validate`];
+//! - [`Study`] / [`run_study`]: the exit-code policy (0 ok, 2 bad input, 1 numerical failure with
+//!   the results so far kept in `summary.json`);
+//! - [`OutputDir`]: the study's output folder (`summary.json`, CSV tables);
+//! - [`plot`]: line plots written as PNG and SVG;
+//! - [`Progress`]: a progress bar on stderr, hidden with `--quiet` or without a terminal.
+
+pub mod args;
+pub mod config;
+pub mod error;
+pub mod output;
+pub mod plot;
+pub mod progress;
+pub mod study;
+
+pub use args::CommonArgs;
+pub use config::{Validate, load_config};
+pub use error::{CliError, InputError};
+pub use output::OutputDir;
+pub use progress::Progress;
+pub use study::{Study, StudyContext, StudyError, run_study};

@@ -1,0 +1,32 @@
+//! The command-line options shared by every study of every app.
+
+use std::path::{Path, PathBuf};
+
+/// Options every `flowmbd-<app> <study>` subcommand accepts (flatten into the study's clap args).
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct CommonArgs {
+    /// TOML configuration overriding the embedded defaults (see --print-config).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Print the effective configuration as TOML and exit.
+    #[arg(long)]
+    pub print_config: bool,
+    /// Output folder [default: out/<app>/<study>].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Print the summary as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+impl CommonArgs {
+    /// The output folder: `--out`, or `out/<app>/<study>` relative to the working directory.
+    pub fn out_dir(&self, app: &str, study: &str) -> PathBuf {
+        self.out
+            .clone()
+            .unwrap_or_else(|| Path::new("out").join(app).join(study))
+    }
+}

@@ -1,0 +1,77 @@
+//! Error types of the app layer and their exit codes.
+
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// A semantic error in user input: which field, and why it is rejected.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("{field}: {reason}")]
+pub struct InputError {
+    /// Dotted path of the offending field (e.g. `pulleys[1].radius`).
+    pub field: String,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+impl InputError {
+    /// A new input error for `field`.
+    pub fn new(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self {
+            field: field.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// Errors of the app plumbing (configuration, output files).
+#[derive(Debug, Error)]
+pub enum CliError {
+    /// The configuration file could not be read.
+    #[error("{path}: cannot read configuration: {source}")]
+    ReadConfig {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The configuration file is not valid TOML or does not match the schema.
+    #[error("{path}:{line}:{column}: {message}")]
+    ParseConfig {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line of the error.
+        line: usize,
+        /// 1-based column of the error.
+        column: usize,
+        /// What the parser reported (names the field where it can).
+        message: String,
+    },
+    /// A field has a value the study cannot accept.
+    #[error("{origin}: {error}")]
+    Invalid {
+        /// Where the configuration came from (file name or "defaults").
+        origin: String,
+        /// The field and reason.
+        error: InputError,
+    },
+    /// An output file could not be written.
+    #[error("{path}: cannot write: {message}")]
+    Write {
+        /// The file or folder.
+        path: PathBuf,
+        /// The underlying error.
+        message: String,
+    },
+}
+
+impl CliError {
+    /// The process exit code for this error: 2 for bad input, 1 for output failures.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            CliError::ReadConfig { .. }
+            | CliError::ParseConfig { .. }
+            | CliError::Invalid { .. } => 2,
+            CliError::Write { .. } => 1,
+        }
+    }
+}

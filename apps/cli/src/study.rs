@@ -1,0 +1,261 @@
+//! A study (one subcommand of an app) and the runner that applies the app conventions.
+
+use crate::args::CommonArgs;
+use crate::config::{Validate, load_config, to_toml};
+use crate::error::{CliError, InputError};
+use crate::output::OutputDir;
+use crate::progress::Progress;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use std::process::ExitCode;
+use thiserror::Error;
+
+/// Why a study stopped.
+#[derive(Debug, Error)]
+pub enum StudyError {
+    /// The input is unusable (exit code 2).
+    #[error("{0}")]
+    Input(#[from] InputError),
+    /// The computation failed (exit code 1); `partial` holds what was computed so far.
+    #[error("{message}")]
+    Numerical {
+        /// What failed, where and when.
+        message: String,
+        /// Results computed before the failure (written to `summary.json`).
+        partial: Option<serde_json::Value>,
+    },
+    /// Plumbing error (configuration, output files).
+    #[error("{0}")]
+    Cli(#[from] CliError),
+}
+
+impl StudyError {
+    /// A numerical failure without partial results.
+    pub fn numerical(message: impl std::fmt::Display) -> Self {
+        StudyError::Numerical {
+            message: message.to_string(),
+            partial: None,
+        }
+    }
+
+    /// The process exit code of this error.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            StudyError::Input(_) => 2,
+            StudyError::Numerical { .. } => 1,
+            StudyError::Cli(e) => e.exit_code(),
+        }
+    }
+}
+
+/// What a running study gets from the runner.
+pub struct StudyContext {
+    /// The output folder.
+    pub out: OutputDir,
+    /// `--quiet` was given.
+    pub quiet: bool,
+}
+
+impl StudyContext {
+    /// A progress bar over `total` units of work (hidden when quiet or not on a terminal).
+    pub fn progress(&self, total: f64, message: &str) -> Progress {
+        Progress::new(total, message, self.quiet)
+    }
+}
+
+/// One study of an app: its configuration type, names and computation.
+pub trait Study {
+    /// The study's configuration; `Default` reproduces the seed's case.
+    type Config: Serialize + DeserializeOwned + Default + Validate;
+    /// The study's summary (written to `summary.json`, printed by `--json`).
+    type Summary: Serialize;
+    /// App name, e.g. `"belt"` (default output folder `out/<app>/<study>`).
+    const APP: &'static str;
+    /// Study name, e.g. `"speed-loss"`.
+    const NAME: &'static str;
+
+    /// Apply command-line overrides (such as `--speed`) to the loaded configuration.
+    fn apply_overrides(&self, _config: &mut Self::Config) {}
+
+    /// Run the study. Write histories into `ctx.out` as they are computed.
+    fn run(
+        &self,
+        config: &Self::Config,
+        ctx: &mut StudyContext,
+    ) -> Result<Self::Summary, StudyError>;
+}
+
+/// Run `study` under the app conventions and return the process exit code:
+/// 0 success, 2 bad input (one line naming the field), 1 numerical failure (partial results kept).
+pub fn run_study<S: Study>(study: &S, args: &CommonArgs) -> ExitCode {
+    match try_run(study, args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!(
+                "flowmbd-{} {}: error: {}",
+                S::APP,
+                S::NAME,
+                e.to_string().replace('\n', " ")
+            );
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
+fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
+    let mut config: S::Config = load_config(args.config.as_deref())?;
+    study.apply_overrides(&mut config);
+    config.validate().map_err(|error| CliError::Invalid {
+        origin: "command line".into(),
+        error,
+    })?;
+    let config_text = to_toml(&config);
+    if args.print_config {
+        print!("{config_text}");
+        return Ok(());
+    }
+    let out = OutputDir::create(args.out_dir(S::APP, S::NAME))?;
+    std::fs::write(out.path("config.toml"), &config_text).map_err(|e| CliError::Write {
+        path: out.path("config.toml"),
+        message: e.to_string(),
+    })?;
+    let mut ctx = StudyContext {
+        out: out.clone(),
+        quiet: args.quiet,
+    };
+    match study.run(&config, &mut ctx) {
+        Ok(summary) => {
+            let path = out.write_json("summary.json", &summary)?;
+            if args.json {
+                let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Write {
+                    path: path.clone(),
+                    message: e.to_string(),
+                })?;
+                println!("{text}");
+            } else if !args.quiet {
+                eprintln!("results written to {}", out.root().display());
+            }
+            Ok(())
+        }
+        Err(StudyError::Numerical { message, partial }) => {
+            let failed =
+                serde_json::json!({ "status": "failed", "error": message, "partial": partial });
+            out.write_json("summary.json", &failed)?;
+            Err(StudyError::Numerical {
+                message: format!("{message} (results so far in {})", out.root().display()),
+                partial,
+            })
+        }
+        Err(e) => Err(e),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde::Deserialize;
+
+    #[derive(Debug, Clone, Serialize, Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    struct Cfg {
+        steps: usize,
+    }
+    impl Default for Cfg {
+        fn default() -> Self {
+            Self { steps: 4 }
+        }
+    }
+    impl Validate for Cfg {
+        fn validate(&self) -> Result<(), InputError> {
+            if self.steps == 0 {
+                Err(InputError::new("steps", "must be at least 1"))
+            } else {
+                Ok(())
+            }
+        }
+    }
+
+    struct Sum {
+        steps: Option<usize>,
+        fail_after: Option<usize>,
+    }
+    impl Study for Sum {
+        type Config = Cfg;
+        type Summary = serde_json::Value;
+        const APP: &'static str = "test";
+        const NAME: &'static str = "sum";
+        fn apply_overrides(&self, c: &mut Cfg) {
+            if let Some(s) = self.steps {
+                c.steps = s;
+            }
+        }
+        fn run(&self, c: &Cfg, ctx: &mut StudyContext) -> Result<serde_json::Value, StudyError> {
+            let mut sink = ctx.out.csv("h.csv", &["i"])?;
+            for i in 0..c.steps {
+                if Some(i) == self.fail_after {
+                    sink.flush()?;
+                    return Err(StudyError::Numerical {
+                        message: format!("diverged at step {i}"),
+                        partial: Some(serde_json::json!({ "done": i })),
+                    });
+                }
+                sink.row(&[i as f64])?;
+            }
+            sink.finish()?;
+            Ok(serde_json::json!({ "total": (0..c.steps).sum::<usize>() }))
+        }
+    }
+
+    fn args(dir: &std::path::Path) -> CommonArgs {
+        CommonArgs {
+            out: Some(dir.to_path_buf()),
+            quiet: true,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn exit_codes_follow_the_conventions() {
+        let dir = std::env::temp_dir().join(format!("flowmbd-cli-study-{}", std::process::id()));
+        let ok = try_run(
+            &Sum {
+                steps: Some(5),
+                fail_after: None,
+            },
+            &args(&dir),
+        );
+        assert!(ok.is_ok());
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["total"], 10);
+
+        let bad = try_run(
+            &Sum {
+                steps: Some(0),
+                fail_after: None,
+            },
+            &args(&dir),
+        )
+        .unwrap_err();
+        assert_eq!(bad.exit_code(), 2);
+        assert!(bad.to_string().contains("steps"), "{bad}");
+
+        let failed = try_run(
+            &Sum {
+                steps: None,
+                fail_after: Some(2),
+            },
+            &args(&dir),
+        )
+        .unwrap_err();
+        assert_eq!(failed.exit_code(), 1);
+        let kept = std::fs::read_to_string(dir.join("h.csv")).unwrap();
+        assert_eq!(kept.lines().count(), 3, "header + 2 rows kept: {kept}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["partial"]["done"], 2);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

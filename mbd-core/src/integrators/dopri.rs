@@ -1,0 +1,556 @@
+//! Dormand–Prince 5(4) with error control, 4th-order dense output and event location
+//! (Dormand & Prince 1980; dense output and step-size control after Hairer, Nørsett & Wanner,
+//! *Solving ODEs I*, II.5 and II.6).
+
+use super::accel::{AccelSolver, Stabilization};
+use super::{Integrator, Solution, State, Stats};
+use crate::{MbdError, SecondOrderSystem};
+
+const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
+const A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+/// Difference of the 5th- and 4th-order weights.
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+/// Dense-output weights (Hairer's `dopri5`, `contd5`).
+const D: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+/// What to do when an event is located.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EventAction {
+    /// Stop the integration at the event (the returned state is the state at the event).
+    Stop,
+    /// Record the event and continue.
+    Continue,
+}
+
+/// A zero-crossing function `g(state)` whose sign change is located in time (contact,
+/// switching). `direction`: `+1` only rising crossings, `-1` only falling ones, `0` both.
+pub struct Event<'a> {
+    /// Name used in the [`EventRecord`].
+    pub name: String,
+    /// The switching function.
+    pub g: Box<dyn Fn(&State) -> f64 + 'a>,
+    /// Crossing direction filter.
+    pub direction: i8,
+    /// Action at the event.
+    pub action: EventAction,
+}
+
+impl<'a> Event<'a> {
+    /// An event stopping the integration on any crossing of `g`.
+    pub fn stop(name: &str, g: impl Fn(&State) -> f64 + 'a) -> Self {
+        Self {
+            name: name.into(),
+            g: Box::new(g),
+            direction: 0,
+            action: EventAction::Stop,
+        }
+    }
+}
+
+/// A located event.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EventRecord {
+    /// Index of the event in the list passed to the integrator.
+    pub index: usize,
+    /// Name of the event.
+    pub name: String,
+    /// Located time [s].
+    pub t: f64,
+    /// State at the event (dense output).
+    pub state: State,
+}
+
+/// Dormand–Prince 5(4) with error control on `y = (q, v)`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DormandPrince {
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance (units of `q` and `v`).
+    pub atol: f64,
+    /// Initial step [s] (0: automatic, Hairer's initial-step heuristic).
+    pub h0: f64,
+    /// Maximum step [s] (0: unbounded).
+    pub h_max: f64,
+    /// Minimum step [s] before [`MbdError::StepSizeUnderflow`].
+    pub h_min: f64,
+    /// Maximum number of steps.
+    pub max_steps: usize,
+    /// Time tolerance of event location [s].
+    pub event_tol: f64,
+    /// Constraint stabilisation.
+    pub stabilization: Stabilization,
+}
+
+impl Default for DormandPrince {
+    fn default() -> Self {
+        Self {
+            rtol: 1e-8,
+            atol: 1e-10,
+            h0: 0.0,
+            h_max: 0.0,
+            h_min: 1e-14,
+            max_steps: 10_000_000,
+            event_tol: 1e-13,
+            stabilization: Stabilization::default(),
+        }
+    }
+}
+
+struct Rhs<'s, S: SecondOrderSystem + ?Sized> {
+    sys: &'s S,
+    nq: usize,
+    nv: usize,
+    solver: AccelSolver,
+    lam: Vec<f64>,
+    stab: Stabilization,
+}
+
+impl<S: SecondOrderSystem + ?Sized> Rhs<'_, S> {
+    fn eval(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        stats: &mut Stats,
+    ) -> Result<(), MbdError> {
+        let (q, v) = y.split_at(self.nq);
+        let (dq, dv) = dy.split_at_mut(self.nq);
+        self.sys.position_rate(q, v, dq);
+        debug_assert_eq!(dv.len(), self.nv);
+        self.solver
+            .solve(self.sys, t, q, v, &self.stab, stats, dv, &mut self.lam)
+    }
+}
+
+impl DormandPrince {
+    /// Dormand–Prince with relative and absolute tolerances.
+    pub fn new(rtol: f64, atol: f64) -> Self {
+        Self {
+            rtol,
+            atol,
+            ..Default::default()
+        }
+    }
+
+    fn validate(&self) -> Result<(), MbdError> {
+        let bad = |item: &str, reason: String| MbdError::InvalidInput {
+            item: format!("Dormand-Prince {item}"),
+            reason,
+        };
+        if !(self.rtol >= 0.0 && self.atol >= 0.0 && self.rtol + self.atol > 0.0)
+            || !self.rtol.is_finite()
+            || !self.atol.is_finite()
+        {
+            return Err(bad(
+                "tolerances",
+                format!(
+                    "rtol = {}, atol = {} must be non-negative, finite and not both zero",
+                    self.rtol, self.atol
+                ),
+            ));
+        }
+        for (name, v) in [
+            ("h0", self.h0),
+            ("h_max", self.h_max),
+            ("h_min", self.h_min),
+            ("event_tol", self.event_tol),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(bad(
+                    name,
+                    format!("must be finite and non-negative, got {v}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Integrates without events.
+    pub fn integrate<S: SecondOrderSystem + ?Sized>(
+        &self,
+        sys: &S,
+        state0: State,
+        t_end: f64,
+        observer: impl FnMut(&State),
+    ) -> Result<Solution, MbdError> {
+        self.integrate_with_events(sys, state0, t_end, &[], observer)
+    }
+
+    /// Integrates from `state0` to `t_end` [s], locating the zero crossings of `events`
+    /// (on the dense output, Illinois regula falsi to `event_tol`). `observer` sees the initial
+    /// state, every accepted step and every located event.
+    pub fn integrate_with_events<S: SecondOrderSystem + ?Sized>(
+        &self,
+        sys: &S,
+        state0: State,
+        t_end: f64,
+        events: &[Event<'_>],
+        mut observer: impl FnMut(&State),
+    ) -> Result<Solution, MbdError> {
+        self.validate()?;
+        state0.check(sys)?;
+        let nq = sys.n_q();
+        let nv = sys.n_v();
+        let ny = nq + nv;
+        let mut stats = Stats::default();
+        let mut rhs = Rhs {
+            sys,
+            nq,
+            nv,
+            solver: AccelSolver::default(),
+            lam: vec![0.0; sys.n_c()],
+            stab: self.stabilization,
+        };
+        let mut t = state0.t;
+        let mut y: Vec<f64> = state0.q.iter().chain(state0.v.iter()).copied().collect();
+        observer(&state0);
+        let mut records = Vec::new();
+        let to_state = |t: f64, y: &[f64]| {
+            let mut q = y[..nq].to_vec();
+            sys.normalize(&mut q);
+            State::new(t, q, y[nq..].to_vec())
+        };
+        let mut g_prev: Vec<f64> = events.iter().map(|e| (e.g)(&state0)).collect();
+        let mut k = vec![vec![0.0; ny]; 7];
+        rhs.eval(t, &y, &mut k[0], &mut stats)?;
+        let span = t_end - t;
+        if span <= 0.0 {
+            return Ok(Solution {
+                state: state0,
+                stats,
+                events: records,
+            });
+        }
+        let h_max = if self.h_max > 0.0 { self.h_max } else { span };
+        let sc =
+            |y0: &[f64], y1: &[f64], i: usize| self.atol + self.rtol * y0[i].abs().max(y1[i].abs());
+        // initial step (Hairer, Nørsett & Wanner II.4)
+        let mut h = if self.h0 > 0.0 {
+            self.h0
+        } else {
+            let d0 = (y
+                .iter()
+                .enumerate()
+                .map(|(i, x)| (x / sc(&y, &y, i)).powi(2))
+                .sum::<f64>()
+                / ny as f64)
+                .sqrt();
+            let d1 = (k[0]
+                .iter()
+                .enumerate()
+                .map(|(i, x)| (x / sc(&y, &y, i)).powi(2))
+                .sum::<f64>()
+                / ny as f64)
+                .sqrt();
+            let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+                1e-6
+            } else {
+                0.01 * d0 / d1
+            };
+            let y1: Vec<f64> = y.iter().zip(&k[0]).map(|(a, b)| a + h0 * b).collect();
+            let mut f1 = vec![0.0; ny];
+            rhs.eval(t + h0, &y1, &mut f1, &mut stats)?;
+            let d2 = (f1
+                .iter()
+                .zip(&k[0])
+                .enumerate()
+                .map(|(i, (a, b))| ((a - b) / sc(&y, &y, i)).powi(2))
+                .sum::<f64>()
+                / ny as f64)
+                .sqrt()
+                / h0;
+            let h1 = if d1.max(d2) <= 1e-15 {
+                (h0 * 1e-3).max(1e-6)
+            } else {
+                (0.01 / d1.max(d2)).powf(0.2)
+            };
+            (100.0 * h0).min(h1)
+        };
+        h = h.min(h_max).min(span);
+        let mut ys = vec![0.0; ny];
+        let mut y1 = vec![0.0; ny];
+        let mut last_reject = false;
+        let mut nsteps = 0usize;
+        while t < t_end {
+            if nsteps >= self.max_steps {
+                return Err(MbdError::NoConvergence {
+                    t,
+                    iterations: nsteps,
+                    residual: h,
+                });
+            }
+            nsteps += 1;
+            if t + 1.01 * h >= t_end {
+                h = t_end - t;
+            }
+            if h < self.h_min {
+                return Err(MbdError::StepSizeUnderflow { t, h });
+            }
+            let mut stage_failed = false;
+            for s in 1..7 {
+                for i in 0..ny {
+                    let mut acc = 0.0;
+                    for j in 0..s {
+                        acc += A[s][j] * k[j][i];
+                    }
+                    ys[i] = y[i] + h * acc;
+                }
+                let (done, rest) = k.split_at_mut(s);
+                let _ = done;
+                let r = rhs.eval(t + C[s] * h, &ys, &mut rest[0], &mut stats);
+                if let Err(e) = r {
+                    // a failure inside a step (e.g. NaN from a too-large step) rejects the step
+                    if matches!(e, MbdError::NonFinite { .. }) && h > self.h_min {
+                        stage_failed = true;
+                        break;
+                    }
+                    return Err(e);
+                }
+            }
+            if stage_failed {
+                stats.rejected_steps += 1;
+                h *= 0.25;
+                last_reject = true;
+                continue;
+            }
+            // y1 = stage 7 argument (FSAL)
+            y1.copy_from_slice(&ys);
+            let mut err = 0.0;
+            for i in 0..ny {
+                let mut e = 0.0;
+                for j in 0..7 {
+                    e += E[j] * k[j][i];
+                }
+                let s = sc(&y, &y1, i);
+                err += (h * e / s).powi(2);
+            }
+            let err = (err / ny as f64).sqrt();
+            if !err.is_finite() || err > 1.0 {
+                stats.rejected_steps += 1;
+                let fac = if err.is_finite() {
+                    (0.9 * err.powf(-0.2)).max(0.2)
+                } else {
+                    0.1
+                };
+                h *= fac;
+                last_reject = true;
+                continue;
+            }
+            // accepted: dense-output coefficients
+            let t_new = t + h;
+            let mut rc = vec![vec![0.0; ny]; 5];
+            for i in 0..ny {
+                let ydiff = y1[i] - y[i];
+                let bspl = h * k[0][i] - ydiff;
+                rc[0][i] = y[i];
+                rc[1][i] = ydiff;
+                rc[2][i] = bspl;
+                rc[3][i] = ydiff - h * k[6][i] - bspl;
+                let mut dd = 0.0;
+                for j in 0..7 {
+                    dd += D[j] * k[j][i];
+                }
+                rc[4][i] = h * dd;
+            }
+            let dense = |tt: f64| -> Vec<f64> {
+                let th = (tt - t) / h;
+                let th1 = 1.0 - th;
+                (0..ny)
+                    .map(|i| {
+                        rc[0][i]
+                            + th * (rc[1][i] + th1 * (rc[2][i] + th * (rc[3][i] + th1 * rc[4][i])))
+                    })
+                    .collect()
+            };
+            let st_new = to_state(t_new, &y1);
+            // events
+            let mut first: Option<(usize, f64)> = None;
+            let g_new: Vec<f64> = events.iter().map(|e| (e.g)(&st_new)).collect();
+            for (ie, ev) in events.iter().enumerate() {
+                let (g0, g1) = (g_prev[ie], g_new[ie]);
+                let crossed = (g0 < 0.0 && g1 >= 0.0 && ev.direction >= 0)
+                    || (g0 > 0.0 && g1 <= 0.0 && ev.direction <= 0);
+                if !crossed {
+                    continue;
+                }
+                let te = locate(
+                    |tt| (ev.g)(&to_state(tt, &dense(tt))),
+                    t,
+                    t_new,
+                    g0,
+                    g1,
+                    self.event_tol,
+                );
+                if first.is_none_or(|(_, tf)| te < tf) {
+                    first = Some((ie, te));
+                }
+            }
+            stats.steps += 1;
+            if let Some((ie, te)) = first {
+                stats.events += 1;
+                let se = to_state(te, &dense(te));
+                records.push(EventRecord {
+                    index: ie,
+                    name: events[ie].name.clone(),
+                    t: te,
+                    state: se.clone(),
+                });
+                if events[ie].action == EventAction::Stop {
+                    observer(&se);
+                    return Ok(Solution {
+                        state: se,
+                        stats,
+                        events: records,
+                    });
+                }
+            }
+            g_prev = g_new;
+            // accept
+            t = t_new;
+            let mut st = st_new;
+            let mut changed = st.q[..] != y1[..nq];
+            if self.stabilization.project {
+                rhs.solver
+                    .project(sys, &mut st, &self.stabilization, &mut stats)?;
+                changed = true;
+            }
+            st.check(sys)?;
+            observer(&st);
+            y[..nq].copy_from_slice(&st.q);
+            y[nq..].copy_from_slice(&st.v);
+            if changed {
+                rhs.eval(t, &y, &mut k[0], &mut stats)?;
+            } else {
+                let k6 = k[6].clone();
+                k[0].copy_from_slice(&k6);
+            }
+            let mut fac = if err > 0.0 {
+                0.9 * err.powf(-0.2)
+            } else {
+                10.0
+            };
+            fac = fac.clamp(0.2, 10.0);
+            if last_reject {
+                fac = fac.min(1.0);
+            }
+            last_reject = false;
+            h = (h * fac).min(h_max);
+        }
+        let state = to_state(t, &y);
+        Ok(Solution {
+            state,
+            stats,
+            events: records,
+        })
+    }
+}
+
+/// Root of `g` in `[a, b]` with `g(a) = ga`, `g(b) = gb` of opposite signs (Illinois variant of
+/// regula falsi; bisection safeguard), to time tolerance `tol`.
+fn locate(
+    g: impl Fn(f64) -> f64,
+    mut a: f64,
+    mut b: f64,
+    mut ga: f64,
+    mut gb: f64,
+    tol: f64,
+) -> f64 {
+    let mut side = 0i8;
+    for _ in 0..200 {
+        if (b - a).abs() <= tol {
+            break;
+        }
+        let mut m = if ga != gb {
+            b - gb * (b - a) / (gb - ga)
+        } else {
+            0.5 * (a + b)
+        };
+        if !(m > a && m < b) {
+            m = 0.5 * (a + b);
+        }
+        let gm = g(m);
+        if gm == 0.0 {
+            // the earliest zero might be left of m: shrink the bracket from the right
+            b = m;
+            gb = gm;
+            if ga == 0.0 {
+                break;
+            }
+            continue;
+        }
+        if (gm > 0.0) == (ga > 0.0) {
+            a = m;
+            ga = gm;
+            if side == -1 {
+                gb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = m;
+            gb = gm;
+            if side == 1 {
+                ga *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    b
+}
+
+impl Integrator for DormandPrince {
+    fn integrate_dyn(
+        &mut self,
+        sys: &dyn SecondOrderSystem,
+        state0: State,
+        t_end: f64,
+        observer: &mut dyn FnMut(&State),
+    ) -> Result<Solution, MbdError> {
+        self.integrate(sys, state0, t_end, observer)
+    }
+}

@@ -1,0 +1,551 @@
+//! Implicit generalized-α integrator in the index-3 form of Arnold & Brüls (2007).
+//!
+//! Equations at `t_{n+1}` (unknowns `v̇_{n+1}`, `λ_{n+1}`):
+//!
+//! ```text
+//!   M(q) v̇ + Dᵀ(q) λ − f(t, q, v) = 0,     Φ(t, q) = 0
+//!   q_{n+1} = q_n ⊕ Δq,   Δq = h v_n + h² (½ − β) a_n + h² β a_{n+1}
+//!   v_{n+1} = v_n + h (1 − γ) a_n + h γ a_{n+1}
+//!   (1 − α_m) a_{n+1} + α_m a_n = (1 − α_f) v̇_{n+1} + α_f v̇_n
+//! ```
+//!
+//! with the Chung–Hulbert parameters `α_m = (2ρ∞ − 1)/(ρ∞ + 1)`, `α_f = ρ∞/(ρ∞ + 1)`,
+//! `γ = ½ + α_f − α_m`, `β = ¼ (γ + ½)²`. `⊕` is
+//! [`SecondOrderSystem::integrate_position`] (the Lie-group form of Brüls, Cardona & Arnold
+//! (2012) for rotations). Newton iterations on the position correction `Δx` use the scaled
+//! iteration matrix
+//!
+//! ```text
+//!   [ M + (γ'/β') C_t + K_t/β'   Dᵀ ] [ Δx     ]   [ −r/β' ]
+//!   [ D                          0  ] [ Δλ/β'  ] = [ −Φ    ],
+//!   β' = (1 − α_m) / (h² β (1 − α_f)),   γ' = γ / (h β),
+//! ```
+//!
+//! which stays well conditioned as `h → 0` (the scaling of Arnold & Brüls / Bottasso et al.).
+
+use super::accel::{AccelSolver, Stabilization};
+use super::{Integrator, Solution, State, Stats, check_step, explain_singular};
+use crate::linalg::KktSolver;
+use crate::{MbdError, SecondOrderSystem, SysMatrix};
+use faer::Mat;
+
+/// How the Newton matrix is obtained.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JacobianMode {
+    /// `M`, the model's [`SecondOrderSystem::force_tangent`] and `D` (finite differences of
+    /// the forces if the model has no analytic tangent). Geometric terms `∂(M v̇ + Dᵀλ)/∂q`
+    /// are neglected (quasi-Newton); sparse matrices stay sparse.
+    Analytic,
+    /// Dense forward differences of the complete residual (mass, constraint forces, forces and
+    /// constraints): exact Newton matrix, `n_v` residual evaluations per update.
+    FiniteDifference,
+}
+
+/// When the Newton matrix is re-evaluated and re-factored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NewtonUpdate {
+    /// Full Newton: every iteration.
+    EveryIteration,
+    /// Modified Newton: once per step (falls back to full Newton if a step fails).
+    EveryStep,
+}
+
+/// Parameters of the generalized-α integrator.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AlphaParams {
+    /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1] (1: no numerical damping).
+    pub rho_inf: f64,
+    /// Nominal step size [s].
+    pub h: f64,
+    /// Absolute Newton tolerance on the position correction `‖Δx‖∞` [m or rad].
+    pub newton_atol: f64,
+    /// Relative Newton tolerance (times `‖Δq‖∞` of the step).
+    pub newton_rtol: f64,
+    /// Maximum Newton iterations per step.
+    pub max_newton_iterations: usize,
+    /// Newton-matrix source.
+    pub jacobian: JacobianMode,
+    /// Newton-matrix update strategy.
+    pub update: NewtonUpdate,
+    /// Maximum number of step halvings after a failed Newton iteration.
+    pub max_halvings: usize,
+    /// Project the velocities onto `D v = ν` after each step (the index-3 form satisfies the
+    /// constraints at position level only).
+    pub project_velocities: bool,
+}
+
+impl Default for AlphaParams {
+    fn default() -> Self {
+        Self {
+            rho_inf: 0.8,
+            h: 1e-3,
+            newton_atol: 1e-10,
+            newton_rtol: 1e-8,
+            max_newton_iterations: 20,
+            jacobian: JacobianMode::Analytic,
+            update: NewtonUpdate::EveryIteration,
+            max_halvings: 8,
+            project_velocities: false,
+        }
+    }
+}
+
+/// The four generalized-α coefficients `(α_m, α_f, β, γ)` from ρ∞ (Chung & Hulbert 1993).
+pub fn alpha_coefficients(rho_inf: f64) -> (f64, f64, f64, f64) {
+    let r = rho_inf;
+    let am = (2.0 * r - 1.0) / (r + 1.0);
+    let af = r / (r + 1.0);
+    let g = 0.5 + af - am;
+    let b = 0.25 * (g + 0.5) * (g + 0.5);
+    (am, af, b, g)
+}
+
+/// Generalized-α integrator (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GeneralizedAlpha {
+    /// Parameters.
+    pub params: AlphaParams,
+}
+
+impl GeneralizedAlpha {
+    /// Integrator with the given parameters.
+    pub fn new(params: AlphaParams) -> Self {
+        Self { params }
+    }
+
+    /// A stepper started at `state0` (consistent initial accelerations and multipliers from the
+    /// index-1 equations).
+    pub fn stepper<S: SecondOrderSystem + ?Sized>(
+        &self,
+        sys: &S,
+        state0: State,
+    ) -> Result<AlphaStepper, MbdError> {
+        AlphaStepper::new(sys, state0, self.params)
+    }
+
+    /// Integrates from `state0` to `t_end` [s] with the nominal step `params.h` (the last step
+    /// is shortened; failed Newton iterations halve the step). `observer` sees the initial state
+    /// and every accepted step.
+    pub fn integrate<S: SecondOrderSystem + ?Sized>(
+        &self,
+        sys: &S,
+        state0: State,
+        t_end: f64,
+        mut observer: impl FnMut(&State),
+    ) -> Result<Solution, MbdError> {
+        let mut st = self.stepper(sys, state0)?;
+        observer(st.state());
+        st.advance_to(sys, t_end, &mut observer)?;
+        Ok(Solution {
+            state: st.state().clone(),
+            stats: st.stats,
+            events: Vec::new(),
+        })
+    }
+}
+
+impl Integrator for GeneralizedAlpha {
+    fn integrate_dyn(
+        &mut self,
+        sys: &dyn SecondOrderSystem,
+        state0: State,
+        t_end: f64,
+        observer: &mut dyn FnMut(&State),
+    ) -> Result<Solution, MbdError> {
+        self.integrate(sys, state0, t_end, observer)
+    }
+}
+
+/// Stepping object of the generalized-α integrator: holds the state, the accelerations
+/// `v̇`, the algorithmic accelerations `a`, the multipliers `λ` and the statistics.
+pub struct AlphaStepper {
+    /// Parameters.
+    pub params: AlphaParams,
+    state: State,
+    vdot: Vec<f64>,
+    a: Vec<f64>,
+    lambda: Vec<f64>,
+    /// Statistics so far.
+    pub stats: Stats,
+    kkt: KktSolver,
+    mass_cache: Option<SysMatrix>,
+}
+
+impl AlphaStepper {
+    /// Starts at `state0`; `v̇₀` and `λ₀` solve the index-1 equations, `a₀ = v̇₀`.
+    pub fn new<S: SecondOrderSystem + ?Sized>(
+        sys: &S,
+        state0: State,
+        params: AlphaParams,
+    ) -> Result<Self, MbdError> {
+        check_step(params.h, "generalized-alpha step h")?;
+        if !(0.0..=1.0).contains(&params.rho_inf) {
+            return Err(MbdError::InvalidInput {
+                item: "generalized-alpha rho_inf".into(),
+                reason: format!("must lie in [0, 1], got {}", params.rho_inf),
+            });
+        }
+        if params.max_newton_iterations == 0 {
+            return Err(MbdError::InvalidInput {
+                item: "generalized-alpha max_newton_iterations".into(),
+                reason: "must be at least 1".into(),
+            });
+        }
+        state0.check(sys)?;
+        let mut stats = Stats::default();
+        let mut vdot = vec![0.0; sys.n_v()];
+        let mut lambda = vec![0.0; sys.n_c()];
+        AccelSolver::default().solve(
+            sys,
+            state0.t,
+            &state0.q,
+            &state0.v,
+            &Stabilization::default(),
+            &mut stats,
+            &mut vdot,
+            &mut lambda,
+        )?;
+        let a = vdot.clone();
+        Ok(Self {
+            params,
+            state: state0,
+            vdot,
+            a,
+            lambda,
+            stats,
+            kkt: KktSolver::new(),
+            mass_cache: None,
+        })
+    }
+
+    /// Current state.
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// Current accelerations `v̇`.
+    pub fn acceleration(&self) -> &[f64] {
+        &self.vdot
+    }
+
+    /// Current Lagrange multipliers `λ` (generalized reactions `−Dᵀλ`).
+    pub fn lambda(&self) -> &[f64] {
+        &self.lambda
+    }
+
+    /// Symbolic sparse analyses performed so far (sparse models).
+    pub fn symbolic_factorizations(&self) -> usize {
+        self.kkt.symbolic_factorizations
+    }
+
+    /// Integrates up to `t_end` with the nominal step, halving after Newton failures.
+    pub fn advance_to<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t_end: f64,
+        observer: &mut dyn FnMut(&State),
+    ) -> Result<(), MbdError> {
+        let h0 = self.params.h;
+        let mut h = h0;
+        let mut halvings = 0usize;
+        while self.state.t < t_end - 1e-12 * h0 {
+            let hs = h.min(t_end - self.state.t);
+            match self.step(sys, hs) {
+                Ok(()) => {
+                    observer(&self.state);
+                    if halvings > 0 {
+                        halvings -= 1;
+                        h *= 2.0;
+                    }
+                }
+                Err(MbdError::NoConvergence { .. }) if halvings < self.params.max_halvings => {
+                    self.stats.rejected_steps += 1;
+                    halvings += 1;
+                    h *= 0.5;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(())
+    }
+
+    /// One step of size `h` [s]. On failure the state is unchanged.
+    pub fn step<S: SecondOrderSystem + ?Sized>(&mut self, sys: &S, h: f64) -> Result<(), MbdError> {
+        check_step(h, "generalized-alpha step h")?;
+        let p = self.params;
+        let r = self.step_impl(sys, h, p.update);
+        match r {
+            Err(MbdError::NoConvergence { .. }) if p.update == NewtonUpdate::EveryStep => {
+                self.stats.rejected_steps += 1;
+                self.step_impl(sys, h, NewtonUpdate::EveryIteration)
+            }
+            other => other,
+        }
+    }
+
+    fn step_impl<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        h: f64,
+        update: NewtonUpdate,
+    ) -> Result<(), MbdError> {
+        let p = self.params;
+        let (am, af, beta, gamma) = alpha_coefficients(p.rho_inf);
+        let n = sys.n_v();
+        let nc = sys.n_c();
+        let t0 = self.state.t;
+        let t1 = t0 + h;
+        let bp = (1.0 - am) / (h * h * beta * (1.0 - af));
+        let gp = gamma / (h * beta);
+
+        // predictor: v̇_{n+1} = v̇_n, λ_{n+1} = λ_n
+        let mut vdot1 = self.vdot.clone();
+        let mut lam1 = self.lambda.clone();
+        let mut dq = vec![0.0; n];
+        let mut v1 = vec![0.0; n];
+        for i in 0..n {
+            let a1 = (af * self.vdot[i] - am * self.a[i] + (1.0 - af) * vdot1[i]) / (1.0 - am);
+            dq[i] = h * self.state.v[i] + h * h * ((0.5 - beta) * self.a[i] + beta * a1);
+            v1[i] = self.state.v[i] + h * ((1.0 - gamma) * self.a[i] + gamma * a1);
+        }
+        let mut q1 = vec![0.0; sys.n_q()];
+        sys.integrate_position(&self.state.q, &dq, &mut q1);
+
+        let mut r = vec![0.0; n];
+        let mut phi = vec![0.0; nc];
+        let mut rhs = vec![0.0; n + nc];
+        let mut converged = false;
+        let mut last = f64::INFINITY;
+        let mut it = 0;
+        while it < p.max_newton_iterations {
+            it += 1;
+            self.stats.newton_iterations += 1;
+            self.residual(sys, t1, &q1, &v1, &vdot1, &lam1, &mut r, &mut phi)?;
+            let need_matrix = match update {
+                NewtonUpdate::EveryIteration => true,
+                NewtonUpdate::EveryStep => it == 1 || !self.kkt.is_factored(),
+            };
+            if need_matrix {
+                self.newton_matrix(sys, t1, &q1, &v1, &vdot1, &lam1, &r, &phi, bp, gp)
+                    .map_err(|e| explain_singular(sys, t1, &q1, e))?;
+            }
+            for i in 0..n {
+                rhs[i] = -r[i] / bp;
+            }
+            for i in 0..nc {
+                rhs[n + i] = -phi[i];
+            }
+            self.kkt.solve(&mut rhs, t1)?;
+            let mut dx_norm = 0.0f64;
+            for i in 0..n {
+                let dx = rhs[i];
+                dx_norm = dx_norm.max(dx.abs());
+                dq[i] += dx;
+                v1[i] += gp * dx;
+                vdot1[i] += bp * dx;
+            }
+            for i in 0..nc {
+                lam1[i] += bp * rhs[n + i];
+            }
+            sys.integrate_position(&self.state.q, &dq, &mut q1);
+            last = dx_norm;
+            let dq_norm = dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            if !dx_norm.is_finite() {
+                break;
+            }
+            if dx_norm <= p.newton_atol + p.newton_rtol * dq_norm {
+                converged = true;
+                break;
+            }
+        }
+        if !converged {
+            return Err(MbdError::NoConvergence {
+                t: t1,
+                iterations: it,
+                residual: last,
+            });
+        }
+        // accept
+        for i in 0..n {
+            self.a[i] = (af * self.vdot[i] - am * self.a[i] + (1.0 - af) * vdot1[i]) / (1.0 - am);
+        }
+        sys.normalize(&mut q1);
+        let mut new_state = State::new(t1, q1, v1);
+        if p.project_velocities && nc > 0 {
+            super::accel::project_velocities(sys, &mut new_state)?;
+        }
+        new_state.check(sys)?;
+        self.state = new_state;
+        self.vdot = vdot1;
+        self.lambda = lam1;
+        self.stats.steps += 1;
+        Ok(())
+    }
+
+    /// `r = M v̇ + Dᵀλ − f`, `φ = Φ(t, q)`.
+    #[allow(clippy::too_many_arguments)]
+    fn residual<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        vdot: &[f64],
+        lam: &[f64],
+        r: &mut [f64],
+        phi: &mut [f64],
+    ) -> Result<(), MbdError> {
+        let n = sys.n_v();
+        let mut f = vec![0.0; n];
+        sys.forces(t, q, v, &mut f)?;
+        self.stats.force_evaluations += 1;
+        if let Some(i) = f.iter().position(|x| !x.is_finite()) {
+            return Err(MbdError::NonFinite {
+                what: format!("force on {}", sys.dof_name(i)),
+                t,
+            });
+        }
+        let m = self.mass(sys, t, q)?;
+        m.mul_vec(vdot, r);
+        if !phi.is_empty() {
+            let d = sys.constraint_jacobian(t, q)?;
+            d.tmul_vec_add(1.0, lam, r);
+            sys.constraint_residual(t, q, phi)?;
+        }
+        for i in 0..n {
+            r[i] -= f[i];
+        }
+        Ok(())
+    }
+
+    fn mass<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        q: &[f64],
+    ) -> Result<SysMatrix, MbdError> {
+        if sys.mass_is_constant() {
+            if let Some(m) = &self.mass_cache {
+                return Ok(m.clone());
+            }
+            let m = sys.mass(t, q)?;
+            self.mass_cache = Some(m.clone());
+            Ok(m)
+        } else {
+            sys.mass(t, q)
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn newton_matrix<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        vdot: &[f64],
+        lam: &[f64],
+        r0: &[f64],
+        phi0: &[f64],
+        bp: f64,
+        gp: f64,
+    ) -> Result<(), MbdError> {
+        let n = sys.n_v();
+        let nc = sys.n_c();
+        self.stats.jacobian_evaluations += 1;
+        self.stats.factorizations += 1;
+        match self.params.jacobian {
+            JacobianMode::Analytic => {
+                let m = self.mass(sys, t, q)?;
+                let d = if nc > 0 {
+                    Some(sys.constraint_jacobian(t, q)?)
+                } else {
+                    None
+                };
+                let tangent = match sys.force_tangent(t, q, v)? {
+                    Some(tg) => (tg.stiffness, tg.damping),
+                    None => self.fd_force_tangent(sys, t, q, v)?,
+                };
+                self.kkt.factor(
+                    &[(1.0, &m), (gp / bp, &tangent.1), (1.0 / bp, &tangent.0)],
+                    d.as_ref(),
+                    t,
+                )
+            }
+            JacobianMode::FiniteDifference => {
+                // column j: perturb the Newton unknown Δx_j by ε:
+                //   q → q ⊕ ε e_j, v → v + γ' ε e_j, v̇ → v̇ + β' ε e_j
+                let mut s = Mat::<f64>::zeros(n, n);
+                let mut dmat = Mat::<f64>::zeros(nc, n);
+                let mut qp = vec![0.0; q.len()];
+                let mut vp = v.to_vec();
+                let mut ap = vdot.to_vec();
+                let mut rp = vec![0.0; n];
+                let mut php = vec![0.0; nc];
+                let mut e = vec![0.0; n];
+                for j in 0..n {
+                    let eps = 1e-7 * (1.0 + v[j].abs() / gp.max(1e-300)).min(1e3);
+                    e[j] = eps;
+                    sys.integrate_position(q, &e, &mut qp);
+                    e[j] = 0.0;
+                    vp[j] = v[j] + gp * eps;
+                    ap[j] = vdot[j] + bp * eps;
+                    self.residual(sys, t, &qp, &vp, &ap, lam, &mut rp, &mut php)?;
+                    vp[j] = v[j];
+                    ap[j] = vdot[j];
+                    for i in 0..n {
+                        s[(i, j)] = (rp[i] - r0[i]) / (eps * bp);
+                    }
+                    for i in 0..nc {
+                        dmat[(i, j)] = (php[i] - phi0[i]) / eps;
+                    }
+                }
+                let sm = SysMatrix::Dense(s);
+                let dm = SysMatrix::Dense(dmat);
+                self.kkt
+                    .factor(&[(1.0, &sm)], if nc > 0 { Some(&dm) } else { None }, t)
+            }
+        }
+    }
+
+    /// Forward-difference tangent `K = −∂f/∂q` (through `⊕`), `C = −∂f/∂v` (dense).
+    fn fd_force_tangent<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<(SysMatrix, SysMatrix), MbdError> {
+        let n = sys.n_v();
+        let mut f0 = vec![0.0; n];
+        sys.forces(t, q, v, &mut f0)?;
+        let mut k = Mat::<f64>::zeros(n, n);
+        let mut c = Mat::<f64>::zeros(n, n);
+        let mut fp = vec![0.0; n];
+        let mut qp = vec![0.0; q.len()];
+        let mut vp = v.to_vec();
+        let mut e = vec![0.0; n];
+        for j in 0..n {
+            let eps = 1e-7;
+            e[j] = eps;
+            sys.integrate_position(q, &e, &mut qp);
+            e[j] = 0.0;
+            sys.forces(t, &qp, v, &mut fp)?;
+            for i in 0..n {
+                k[(i, j)] = -(fp[i] - f0[i]) / eps;
+            }
+            let ev = 1e-7 * (1.0 + v[j].abs());
+            vp[j] = v[j] + ev;
+            sys.forces(t, q, &vp, &mut fp)?;
+            vp[j] = v[j];
+            for i in 0..n {
+                c[(i, j)] = -(fp[i] - f0[i]) / ev;
+            }
+        }
+        self.stats.force_evaluations += 2 * n + 1;
+        Ok((SysMatrix::Dense(k), SysMatrix::Dense(c)))
+    }
+}

@@ -1,0 +1,472 @@
+//! A rigid multibody system (bodies + constraints + force elements) implementing
+//! [`SecondOrderSystem`] with Euler parameters.
+//!
+//! Per body `q = (r, p)` (7) and `v = (ṙ, ω')` (6, body-frame angular velocity), so that the
+//! mass matrix `diag(m I, J')` is constant and the Newton–Euler equations read
+//! `m r̈ = f`, `J' ω̇' = n' − ω̃' J' ω'` (Lin (2.25)–(2.26)); `ṗ = ½ Lᵀ ω'` (Lin (2.14)).
+//! The constrained equations are Ribaric (2.16) / Lin (2.27), with reactions `−Dᵀλ`.
+
+use crate::body::{BodyId, BodyKin, BodyState, RigidBody};
+use crate::constraints::{Constraint, Equation};
+use crate::forces::ForceElement;
+use crate::integrators::State;
+use crate::kinematics::euler::{compose_local_rotation, pdot_from_omega_local};
+use crate::kinematics::tilde::{get3, get4, put3, put4};
+use crate::{MbdError, SecondOrderSystem, SysMatrix};
+use faer::Mat;
+use faer::sparse::{SparseColMat, Triplet};
+use nalgebra::Vector3;
+
+/// Number of bodies above which matrices are returned sparse.
+pub const SPARSE_THRESHOLD: usize = 12;
+
+/// Reaction of one constraint on its two bodies (global force [N] at the mass centre and
+/// global torque about the mass centre [N·m]), from `−Dᵀλ`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reaction {
+    /// Constraint name.
+    pub name: String,
+    /// Force on body i (zero for the ground).
+    pub force_i: Vector3<f64>,
+    /// Torque on body i.
+    pub torque_i: Vector3<f64>,
+    /// Force on body j.
+    pub force_j: Vector3<f64>,
+    /// Torque on body j.
+    pub torque_j: Vector3<f64>,
+}
+
+/// Rigid bodies, constraints and force elements.
+#[derive(Default)]
+pub struct MultibodySystem {
+    bodies: Vec<RigidBody>,
+    constraints: Vec<Box<dyn Constraint>>,
+    offsets: Vec<usize>,
+    forces: Vec<Box<dyn ForceElement>>,
+    n_c: usize,
+    /// Force sparse (`Some(true)`) or dense (`Some(false)`) matrices; `None`: dense up to
+    /// [`SPARSE_THRESHOLD`] bodies.
+    pub sparse: Option<bool>,
+}
+
+impl MultibodySystem {
+    /// Empty system.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds a body, returns its id.
+    pub fn add_body(&mut self, body: RigidBody) -> BodyId {
+        self.bodies.push(body);
+        self.bodies.len() - 1
+    }
+
+    fn check_body(&self, b: Option<BodyId>, what: &str) -> Result<(), MbdError> {
+        if let Some(b) = b
+            && b >= self.bodies.len()
+        {
+            return Err(MbdError::InvalidInput {
+                item: what.into(),
+                reason: format!(
+                    "refers to body {b}, but the system has {} bodies",
+                    self.bodies.len()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Adds a constraint (validates its body references); returns its index.
+    pub fn add_constraint(&mut self, c: impl Constraint + 'static) -> Result<usize, MbdError> {
+        let what = format!("constraint \"{}\"", c.name());
+        let [bi, bj] = c.bodies();
+        self.check_body(bi, &what)?;
+        self.check_body(bj, &what)?;
+        if bi.is_some() && bi == bj {
+            return Err(MbdError::InvalidInput {
+                item: what,
+                reason: "connects a body to itself".into(),
+            });
+        }
+        if bi.is_none() && bj.is_none() {
+            return Err(MbdError::InvalidInput {
+                item: what,
+                reason: "connects the ground to the ground".into(),
+            });
+        }
+        self.offsets.push(self.n_c);
+        self.n_c += c.n_eq();
+        self.constraints.push(Box::new(c));
+        Ok(self.constraints.len() - 1)
+    }
+
+    /// Adds a force element (validates its body references).
+    pub fn add_force(&mut self, f: impl ForceElement + 'static) -> Result<(), MbdError> {
+        let what = format!("force element \"{}\"", f.name());
+        for b in f.bodies() {
+            self.check_body(b, &what)?;
+        }
+        self.forces.push(Box::new(f));
+        Ok(())
+    }
+
+    /// Bodies.
+    pub fn bodies(&self) -> &[RigidBody] {
+        &self.bodies
+    }
+
+    /// Constraints.
+    pub fn constraints(&self) -> &[Box<dyn Constraint>] {
+        &self.constraints
+    }
+
+    /// First row of constraint `c` in `Φ` and `λ`.
+    pub fn constraint_offset(&self, c: usize) -> usize {
+        self.offsets[c]
+    }
+
+    /// Assembles the system state from body states (validated: unit `p`, finite values).
+    pub fn state(&self, t: f64, states: &[BodyState]) -> Result<State, MbdError> {
+        if states.len() != self.bodies.len() {
+            return Err(MbdError::InvalidInput {
+                item: "initial state".into(),
+                reason: format!(
+                    "{} body states given for {} bodies",
+                    states.len(),
+                    self.bodies.len()
+                ),
+            });
+        }
+        let mut q = vec![0.0; 7 * states.len()];
+        let mut v = vec![0.0; 6 * states.len()];
+        for (k, s) in states.iter().enumerate() {
+            s.check(&self.bodies[k].name)?;
+            put3(&mut q, 7 * k, &s.r);
+            put4(&mut q, 7 * k + 3, &s.p);
+            put3(&mut v, 6 * k, &s.rdot);
+            put3(&mut v, 6 * k + 3, &s.omega_local);
+        }
+        Ok(State::new(t, q, v))
+    }
+
+    /// State of body `k`.
+    pub fn body_state(&self, state: &State, k: BodyId) -> BodyState {
+        BodyState {
+            r: get3(&state.q, 7 * k),
+            p: get4(&state.q, 7 * k + 3),
+            rdot: get3(&state.v, 6 * k),
+            omega_local: get3(&state.v, 6 * k + 3),
+        }
+    }
+
+    /// Kinematics of every body (velocities zero when `v` is `None`).
+    pub fn kinematics(&self, q: &[f64], v: Option<&[f64]>) -> Vec<BodyKin> {
+        (0..self.bodies.len())
+            .map(|k| {
+                let (rd, w) = match v {
+                    Some(v) => (get3(v, 6 * k), get3(v, 6 * k + 3)),
+                    None => (Vector3::zeros(), Vector3::zeros()),
+                };
+                BodyKin::new(get3(q, 7 * k), get4(q, 7 * k + 3), rd, w)
+            })
+            .collect()
+    }
+
+    /// Checks that every Euler-parameter vector is unit (within 1e-6) at time `t`.
+    pub fn check_euler_parameters(&self, t: f64, q: &[f64]) -> Result<(), MbdError> {
+        for (k, b) in self.bodies.iter().enumerate() {
+            let p = get4(q, 7 * k + 3);
+            let n = p.norm_squared();
+            if !n.is_finite() {
+                return Err(MbdError::NonFinite {
+                    what: format!("Euler parameters of body \"{}\"", b.name),
+                    t,
+                });
+            }
+            if (n - 1.0).abs() > 1e-6 {
+                return Err(MbdError::InvalidInput {
+                    item: format!("body \"{}\": Euler parameters at t = {t} s", b.name),
+                    reason: format!("pᵀp − 1 = {:.3e}", n - 1.0),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn equations(&self, t: f64, q: &[f64], v: Option<&[f64]>) -> Vec<Equation> {
+        let kin = self.kinematics(q, v);
+        let ground = BodyKin::ground();
+        let mut out = Vec::with_capacity(self.n_c);
+        for c in &self.constraints {
+            let [bi, bj] = c.bodies();
+            let ki = bi.map(|b| &kin[b]).unwrap_or(&ground);
+            let kj = bj.map(|b| &kin[b]).unwrap_or(&ground);
+            c.eval(t, ki, kj, &mut out);
+        }
+        out
+    }
+
+    fn use_sparse(&self) -> bool {
+        self.sparse.unwrap_or(self.bodies.len() > SPARSE_THRESHOLD)
+    }
+
+    /// Kinetic energy `½ Σ (m ṙᵀṙ + ω'ᵀ J' ω')` [J].
+    pub fn kinetic_energy(&self, state: &State) -> f64 {
+        self.bodies
+            .iter()
+            .enumerate()
+            .map(|(k, b)| {
+                let rd = get3(&state.v, 6 * k);
+                let w = get3(&state.v, 6 * k + 3);
+                0.5 * (b.mass * rd.norm_squared() + w.dot(&(b.inertia * w)))
+            })
+            .sum()
+    }
+
+    /// Potential energy of the force elements [J].
+    pub fn potential_energy(&self, state: &State) -> f64 {
+        let kin = self.kinematics(&state.q, Some(&state.v));
+        self.forces
+            .iter()
+            .map(|f| f.potential_energy(&self.bodies, &kin))
+            .sum()
+    }
+
+    /// Linear momentum `Σ m ṙ` [kg·m/s].
+    pub fn linear_momentum(&self, state: &State) -> Vector3<f64> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .map(|(k, b)| get3(&state.v, 6 * k) * b.mass)
+            .sum()
+    }
+
+    /// Angular momentum about the global origin `Σ (r × m ṙ + A J' ω')` [kg·m²/s].
+    pub fn angular_momentum(&self, state: &State) -> Vector3<f64> {
+        let kin = self.kinematics(&state.q, Some(&state.v));
+        self.bodies
+            .iter()
+            .zip(&kin)
+            .map(|(b, k)| k.r.cross(&(k.rdot * b.mass)) + k.a * (b.inertia * k.w))
+            .sum()
+    }
+
+    /// Reaction forces per constraint from the multipliers `λ` (Lin (2.27): reaction `−Dᵀλ`).
+    pub fn reactions(&self, state: &State, lambda: &[f64]) -> Result<Vec<Reaction>, MbdError> {
+        if lambda.len() != self.n_c {
+            return Err(MbdError::InvalidInput {
+                item: "multipliers".into(),
+                reason: format!("length {} (expected {})", lambda.len(), self.n_c),
+            });
+        }
+        let eqs = self.equations(state.t, &state.q, Some(&state.v));
+        let kin = self.kinematics(&state.q, None);
+        let mut out = Vec::new();
+        for (ci, c) in self.constraints.iter().enumerate() {
+            let [bi, bj] = c.bodies();
+            let mut gi = [0.0; 6];
+            let mut gj = [0.0; 6];
+            for r in 0..c.n_eq() {
+                let row = self.offsets[ci] + r;
+                for k in 0..6 {
+                    gi[k] -= eqs[row].row.di[k] * lambda[row];
+                    gj[k] -= eqs[row].row.dj[k] * lambda[row];
+                }
+            }
+            let torque = |b: Option<BodyId>, g: &[f64; 6]| {
+                b.map(|b| kin[b].a * Vector3::new(g[3], g[4], g[5]))
+                    .unwrap_or_else(Vector3::zeros)
+            };
+            let force = |b: Option<BodyId>, g: &[f64; 6]| {
+                if b.is_some() {
+                    Vector3::new(g[0], g[1], g[2])
+                } else {
+                    Vector3::zeros()
+                }
+            };
+            out.push(Reaction {
+                name: c.name().into(),
+                force_i: force(bi, &gi),
+                torque_i: torque(bi, &gi),
+                force_j: force(bj, &gj),
+                torque_j: torque(bj, &gj),
+            });
+        }
+        Ok(out)
+    }
+
+    fn matrix_from_triplets(
+        &self,
+        nr: usize,
+        nc: usize,
+        trip: Vec<Triplet<usize, usize, f64>>,
+        t: f64,
+    ) -> Result<SysMatrix, MbdError> {
+        if self.use_sparse() {
+            SparseColMat::try_new_from_triplets(nr, nc, &trip)
+                .map(SysMatrix::Sparse)
+                .map_err(|e| MbdError::Model {
+                    t,
+                    message: format!("sparse assembly failed: {e:?}"),
+                })
+        } else {
+            let mut m = Mat::<f64>::zeros(nr, nc);
+            for tr in trip {
+                m[(tr.row, tr.col)] += tr.val;
+            }
+            Ok(SysMatrix::Dense(m))
+        }
+    }
+}
+
+impl SecondOrderSystem for MultibodySystem {
+    fn n_q(&self) -> usize {
+        7 * self.bodies.len()
+    }
+    fn n_v(&self) -> usize {
+        6 * self.bodies.len()
+    }
+    fn n_c(&self) -> usize {
+        self.n_c
+    }
+
+    fn position_rate(&self, q: &[f64], v: &[f64], qdot: &mut [f64]) {
+        for k in 0..self.bodies.len() {
+            qdot[7 * k..7 * k + 3].copy_from_slice(&v[6 * k..6 * k + 3]);
+            let pd = pdot_from_omega_local(&get4(q, 7 * k + 3), &get3(v, 6 * k + 3));
+            put4(qdot, 7 * k + 3, &pd);
+        }
+    }
+
+    fn normalize(&self, q: &mut [f64]) {
+        for k in 0..self.bodies.len() {
+            let p = get4(q, 7 * k + 3);
+            let n = p.norm();
+            if n > 0.0 && n.is_finite() {
+                put4(q, 7 * k + 3, &(p / n));
+            }
+        }
+    }
+
+    /// `r + Δr`, `p ⊗ exp(Δθ'/2)` (exact rotation update, Lie-group generalized-α).
+    fn integrate_position(&self, q: &[f64], dq: &[f64], q_new: &mut [f64]) {
+        for k in 0..self.bodies.len() {
+            for c in 0..3 {
+                q_new[7 * k + c] = q[7 * k + c] + dq[6 * k + c];
+            }
+            let p = compose_local_rotation(&get4(q, 7 * k + 3), &get3(dq, 6 * k + 3));
+            put4(q_new, 7 * k + 3, &p);
+        }
+    }
+
+    fn mass_is_constant(&self) -> bool {
+        true
+    }
+
+    fn mass(&self, t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
+        let n = self.n_v();
+        let mut trip = Vec::with_capacity(12 * self.bodies.len());
+        for (k, b) in self.bodies.iter().enumerate() {
+            for c in 0..3 {
+                trip.push(Triplet::new(6 * k + c, 6 * k + c, b.mass));
+                for d in 0..3 {
+                    trip.push(Triplet::new(
+                        6 * k + 3 + c,
+                        6 * k + 3 + d,
+                        b.inertia[(c, d)],
+                    ));
+                }
+            }
+        }
+        self.matrix_from_triplets(n, n, trip, t)
+    }
+
+    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+        f.fill(0.0);
+        let kin = self.kinematics(q, Some(v));
+        for (k, b) in self.bodies.iter().enumerate() {
+            let w = kin[k].w;
+            let gyro = -w.cross(&(b.inertia * w));
+            put3(f, 6 * k + 3, &gyro);
+        }
+        for fe in &self.forces {
+            fe.apply(t, &self.bodies, &kin, f);
+        }
+        if let Some(i) = f.iter().position(|x| !x.is_finite()) {
+            return Err(MbdError::NonFinite {
+                what: format!("force on {} (element output)", self.dof_name(i)),
+                t,
+            });
+        }
+        Ok(())
+    }
+
+    fn constraint_residual(&self, t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
+        for (p, e) in phi.iter_mut().zip(self.equations(t, q, None)) {
+            *p = e.row.phi;
+        }
+        Ok(())
+    }
+
+    fn constraint_jacobian(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
+        let eqs = self.equations(t, q, None);
+        let mut trip = Vec::with_capacity(12 * eqs.len());
+        let mut row = 0;
+        for c in &self.constraints {
+            let [bi, bj] = c.bodies();
+            for _ in 0..c.n_eq() {
+                let e = &eqs[row];
+                for k in 0..6 {
+                    if let Some(b) = bi {
+                        trip.push(Triplet::new(row, 6 * b + k, e.row.di[k]));
+                    }
+                    if let Some(b) = bj {
+                        trip.push(Triplet::new(row, 6 * b + k, e.row.dj[k]));
+                    }
+                }
+                row += 1;
+            }
+        }
+        self.matrix_from_triplets(self.n_c, self.n_v(), trip, t)
+    }
+
+    fn constraint_velocity_rhs(&self, t: f64, q: &[f64], nu: &mut [f64]) -> Result<(), MbdError> {
+        for (p, e) in nu.iter_mut().zip(self.equations(t, q, None)) {
+            *p = e.nu;
+        }
+        Ok(())
+    }
+
+    fn constraint_gamma(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        gamma: &mut [f64],
+    ) -> Result<(), MbdError> {
+        for (p, e) in gamma.iter_mut().zip(self.equations(t, q, Some(v))) {
+            *p = e.gamma;
+        }
+        Ok(())
+    }
+
+    fn constraint_name(&self, row: usize) -> String {
+        let c = self
+            .offsets
+            .partition_point(|&o| o <= row)
+            .saturating_sub(1);
+        match self.constraints.get(c) {
+            Some(con) => format!("\"{}\" (equation {})", con.name(), row - self.offsets[c]),
+            None => format!("constraint row {row}"),
+        }
+    }
+
+    fn dof_name(&self, dof: usize) -> String {
+        let k = dof / 6;
+        let names = ["x", "y", "z", "ωx'", "ωy'", "ωz'"];
+        match self.bodies.get(k) {
+            Some(b) => format!("body \"{}\" {}", b.name, names[dof % 6]),
+            None => format!("coordinate {dof}"),
+        }
+    }
+}
