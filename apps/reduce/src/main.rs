@@ -1,6 +1,35 @@
-//! `flowmbd-reduce`: studies of the flowmbd toolkit (not implemented yet; see the README's crate map).
+//! `flowmbd-reduce`: model-reduction studies of the flowmbd toolkit.
+//!
+//! Subcommands (one module each; `--help` on each lists its options):
+//! - `modes`: lowest modes of `K φ = λ M φ` read from Matrix Market files;
+//! - `tire-mesh`: the generated truck-tire carcass, its M and K as Matrix Market, mesh as VTK
+//!   and node sets as JSON.
 
-fn main() {
-    eprintln!("flowmbd-reduce: no studies are available yet in this build");
-    std::process::exit(2);
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+mod modes;
+mod tire_mesh;
+
+/// Model-reduction studies of the flowmbd toolkit.
+#[derive(Debug, Parser)]
+#[command(name = "flowmbd-reduce", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    study: Study,
+}
+
+#[derive(Debug, Subcommand)]
+enum Study {
+    /// Lowest natural frequencies and modes of Matrix Market M and K.
+    Modes(modes::Args),
+    /// Generate the truck-tire carcass mesh and write M, K, mesh and node sets.
+    TireMesh(tire_mesh::Args),
+}
+
+fn main() -> ExitCode {
+    match Cli::parse().study {
+        Study::Modes(args) => modes::run(&args),
+        Study::TireMesh(args) => tire_mesh::run(&args),
+    }
 }
