@@ -27,6 +27,7 @@ pub use integrators::{
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub mod body;
 pub mod constraints;
+pub mod floating;
 pub mod forces;
 pub mod kinematics;
 pub mod multibody;
