@@ -30,6 +30,7 @@ pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub mod body;
 pub mod constraints;
 pub mod examples_chain;
+pub mod floating;
 pub mod forces;
 pub mod history;
 pub mod kinematics;
