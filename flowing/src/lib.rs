@@ -23,6 +23,7 @@ pub mod gyroscopic;
 pub mod modal;
 pub mod params;
 pub mod pulley;
+pub mod spectrum;
 pub mod string_fe;
 pub mod travelling;
 
@@ -38,4 +39,4 @@ pub use modal::ModalBasis;
 pub use params::StringParams;
 pub use pulley::Pulley;
 pub use string_fe::StringMesh;
-pub use travelling::{AxialMotion, FlowingString};
+pub use travelling::{AxialMotion, FlowingString, TimeHistory, simulate_rk4, triangular_pluck};

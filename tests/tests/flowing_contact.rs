@@ -175,24 +175,63 @@ fn craig_bampton_with_all_modes_equals_nodal_model() {
     let m = mesh(39);
     let c = candidates(&m, &pulleys(), 0.08).unwrap();
     let nf = 39 - c.len();
-    let mut nod = ContactString::nodal(&m, c.clone(), DerivativeMethod::default(), AxialMotion::Constant { speed: 0.0 }, None).unwrap();
-    let mut cb = ContactString::craig_bampton(&m, c, nf, DerivativeMethod::default(), AxialMotion::Constant { speed: 0.0 }, None).unwrap();
+    let mut nod = ContactString::nodal(
+        &m,
+        c.clone(),
+        DerivativeMethod::default(),
+        AxialMotion::Constant { speed: 0.0 },
+        None,
+    )
+    .unwrap();
+    let mut cb = ContactString::craig_bampton(
+        &m,
+        c,
+        nf,
+        DerivativeMethod::default(),
+        AxialMotion::Constant { speed: 0.0 },
+        None,
+    )
+    .unwrap();
     let yn = nod.static_equilibrium().unwrap();
     let yc = cb.static_equilibrium().unwrap();
     let uc = cb.deflection(&yc);
     for i in 0..39 {
-        assert!((yn[i] - uc[i]).abs() < 1e-10, "node {i}: {} vs {}", yn[i], uc[i]);
+        assert!(
+            (yn[i] - uc[i]).abs() < 1e-10,
+            "node {i}: {} vs {}",
+            yn[i],
+            uc[i]
+        );
     }
     assert_eq!(nod.active, cb.active);
     let u0 = pluck(&nod, &yn, 0.03);
     let y0c = flowing::contact::coordinates_of(&cb, m.mass.as_ref(), &u0).unwrap();
     let s = ContactSettings::default();
-    let rn = simulate_contact(&mut nod, State::new(0.0, u0, vec![0.0; 39]), 0.03, &s, |_, _| {}).unwrap();
-    let rc = simulate_contact(&mut cb, State::new(0.0, y0c, vec![0.0; 39]), 0.03, &s, |_, _| {}).unwrap();
+    let rn = simulate_contact(
+        &mut nod,
+        State::new(0.0, u0, vec![0.0; 39]),
+        0.03,
+        &s,
+        |_, _| {},
+    )
+    .unwrap();
+    let rc = simulate_contact(
+        &mut cb,
+        State::new(0.0, y0c, vec![0.0; 39]),
+        0.03,
+        &s,
+        |_, _| {},
+    )
+    .unwrap();
     let uc = cb.deflection(&rc.state.q);
     let scale = rn.state.q.iter().fold(0.0f64, |a, b| a.max(b.abs()));
     for i in 0..39 {
-        assert!((rn.state.q[i] - uc[i]).abs() < 1e-5 * scale, "node {i}: {} vs {}", rn.state.q[i], uc[i]);
+        assert!(
+            (rn.state.q[i] - uc[i]).abs() < 1e-5 * scale,
+            "node {i}: {} vs {}",
+            rn.state.q[i],
+            uc[i]
+        );
     }
     assert_eq!(rn.events.len(), rc.events.len());
 }
@@ -205,7 +244,15 @@ fn travelling_wrapped_string_energy_balance() {
     let v = 10.0;
     let m = mesh(39);
     let c = candidates(&m, &pulleys(), 0.08).unwrap();
-    let mut s = ContactString::craig_bampton(&m, c, 12, DerivativeMethod::default(), AxialMotion::Constant { speed: v }, None).unwrap();
+    let mut s = ContactString::craig_bampton(
+        &m,
+        c,
+        12,
+        DerivativeMethod::default(),
+        AxialMotion::Constant { speed: v },
+        None,
+    )
+    .unwrap();
     for i in 0..s.dim() {
         for j in 0..s.dim() {
             assert!((s.mx_r[(i, j)] + s.mx_r[(j, i)]).abs() < 1e-9);
@@ -216,15 +263,27 @@ fn travelling_wrapped_string_energy_balance() {
     v0[0] = 0.5; // kick the first span mode
     let e0 = s.energy(&y, &v0, v);
     let mut samples = Vec::new();
-    let run = simulate_contact(&mut s, State::new(0.0, y, v0), 0.04, &ContactSettings::default(), |sys, st| {
-        samples.push((st.t, sys.energy(&st.q, &st.v, v)));
-    })
+    let run = simulate_contact(
+        &mut s,
+        State::new(0.0, y, v0),
+        0.04,
+        &ContactSettings::default(),
+        |sys, st| {
+            samples.push((st.t, sys.energy(&st.q, &st.v, v)));
+        },
+    )
     .unwrap();
     let loss = |t: f64, incl: bool| {
-        run.events.iter().filter(|e| e.t < t || (incl && e.t == t)).map(|e| e.impact_loss).sum::<f64>()
+        run.events
+            .iter()
+            .filter(|e| e.t < t || (incl && e.t == t))
+            .map(|e| e.impact_loss)
+            .sum::<f64>()
     };
     for (t, e) in &samples {
-        let b = (e + loss(*t, false) - e0).abs().min((e + loss(*t, true) - e0).abs());
+        let b = (e + loss(*t, false) - e0)
+            .abs()
+            .min((e + loss(*t, true) - e0).abs());
         assert!(b < 1e-6 * e0, "t = {t}: imbalance {b} of {e0}");
     }
 }
