@@ -568,6 +568,20 @@ pub fn simulate_contact(
     settle(sys, &mut state, settings, &mut events)?;
     while state.t < t_end {
         let snapshot = sys.clone();
+        // All release events share one index-1 solve per distinct state.
+        let cache: std::cell::RefCell<Option<(f64, Vec<f64>, Vec<f64>, Vec<f64>)>> =
+            std::cell::RefCell::new(None);
+        let forces_at = |st: &State| -> Option<Vec<f64>> {
+            if let Some((t, q, v, p)) = cache.borrow().as_ref() {
+                if *t == st.t && *q == st.q && *v == st.v {
+                    return Some(p.clone());
+                }
+            }
+            let p = snapshot.contact_forces(st).ok()?;
+            *cache.borrow_mut() = Some((st.t, st.q.clone(), st.v.clone(), p.clone()));
+            Some(p)
+        };
+        let forces_at = &forces_at;
         let evs: Vec<Event<'_>> = (0..nc)
             .map(|c| {
                 let s = &snapshot;
@@ -575,9 +589,9 @@ pub fn simulate_contact(
                     let tol = settings.force_tol;
                     Event {
                         name: format!("release {c}"),
-                        g: Box::new(move |st: &State| match s.contact_forces(st) {
-                            Ok(p) => p[c] + tol,
-                            Err(_) => 1.0,
+                        g: Box::new(move |st: &State| match forces_at(st) {
+                            Some(p) => p[c] + tol,
+                            None => 1.0,
                         }),
                         direction: -1,
                         action: EventAction::Stop,
