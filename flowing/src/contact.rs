@@ -473,6 +473,9 @@ impl SecondOrderSystem for ContactString {
     }
 }
 
+/// `(t, q, v, contact forces)` of the last evaluated state.
+type CachedForces = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// Settings of the active-set simulation.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -569,13 +572,14 @@ pub fn simulate_contact(
     while state.t < t_end {
         let snapshot = sys.clone();
         // All release events share one index-1 solve per distinct state.
-        let cache: std::cell::RefCell<Option<(f64, Vec<f64>, Vec<f64>, Vec<f64>)>> =
-            std::cell::RefCell::new(None);
+        let cache: std::cell::RefCell<Option<CachedForces>> = std::cell::RefCell::new(None);
         let forces_at = |st: &State| -> Option<Vec<f64>> {
-            if let Some((t, q, v, p)) = cache.borrow().as_ref() {
-                if *t == st.t && *q == st.q && *v == st.v {
-                    return Some(p.clone());
-                }
+            if let Some((t, q, v, p)) = cache.borrow().as_ref()
+                && *t == st.t
+                && *q == st.q
+                && *v == st.v
+            {
+                return Some(p.clone());
             }
             let p = snapshot.contact_forces(st).ok()?;
             *cache.borrow_mut() = Some((st.t, st.q.clone(), st.v.clone(), p.clone()));

@@ -14,6 +14,10 @@
 //! * [`contact`], [`pulley`]: the string wrapped on two pulleys with variable-size contact
 //!   (4.10), (4.11) and the travelling string with variable contact (4.31)–(4.40).
 
+// Dense numerical kernels index several arrays with one loop variable; iterator chains would
+// obscure the equations.
+#![allow(clippy::needless_range_loop)]
+
 pub mod contact;
 pub mod derivative;
 pub mod error;

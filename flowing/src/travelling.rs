@@ -111,7 +111,7 @@ impl AxialMotion {
                 damping,
                 force,
             } => {
-                if !(mass > 0.0) {
+                if mass.is_nan() || mass <= 0.0 {
                     return Err(invalid(
                         "axial motion: mass",
                         format!("{mass} is not positive"),
@@ -395,7 +395,7 @@ pub fn simulate_rk4(
     let mut hist = TimeHistory::default();
     let mut count = 0usize;
     mbd_core::Rk4::new(h).integrate(sys, mbd_core::State::new(0.0, q0, v0), t_end, |s| {
-        if count % every == 0 {
+        if count.is_multiple_of(every) {
             hist.t.push(s.t);
             hist.q.push(s.q.clone());
             hist.v.push(s.v.clone());

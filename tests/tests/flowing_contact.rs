@@ -1,5 +1,6 @@
 //! The string wrapped on two pulleys with variable-size contact (Ribaric (4.10), (4.11),
 //! (4.31)–(4.40)).
+#![allow(clippy::needless_range_loop)] // index loops mirror the matrix equations
 
 use flowing::contact::{ContactEvent, candidates};
 use flowing::{

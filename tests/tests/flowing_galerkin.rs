@@ -1,4 +1,5 @@
 //! The analytical moving string (Ribaric (4.26)–(4.30)).
+#![allow(clippy::needless_range_loop)] // index loops mirror the matrix equations
 
 use flowing::{GalerkinString, StringParams};
 

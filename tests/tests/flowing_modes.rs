@@ -1,5 +1,6 @@
 //! Property tests over random string meshes: mode-shape invariants (Ribaric (4.7)) and the link
 //! between flowing's FE-consistent derivative operators and fe-model's string element.
+#![allow(clippy::needless_range_loop)] // index loops mirror the matrix equations
 
 use faer::Mat;
 use fe_model::MassKind;

@@ -3,6 +3,7 @@
 //! The FE data here are the closed-form modes of Ribaric's string (4.1) (n interior nodes,
 //! h = L/(n+1), lumped mass μh, fixed ends): ψ_k(j) = √(2/((n+1)μh)) sin(jkπ/(n+1)),
 //! ω_k² = 4T/(μh²) sin²(kπ/(2(n+1))), an independent reference for the library's pipeline.
+#![allow(clippy::needless_range_loop)] // index loops mirror the matrix equations
 
 use faer::Mat;
 use flowing::derivative::{FdScheme, FirstDifference, MassKind, SecondDifference};

@@ -139,10 +139,10 @@ impl Study for SweepStudy {
                 f_unst = Some(v);
             }
             let mut row = vec![v];
-            for n in 0..c.tracked {
+            for (n, s) in series.iter_mut().enumerate().take(c.tracked) {
                 row.push(fa.get(n).copied().unwrap_or(f64::NAN));
                 if let Some(f) = fa.get(n) {
-                    series[n].push((v, *f));
+                    s.push((v, *f));
                 }
             }
             for n in 0..c.tracked {
@@ -151,10 +151,10 @@ impl Study for SweepStudy {
                     series[c.tracked + n].push((v, *f));
                 }
                 let ex = c.string.exact_moving_frequency_hz(n + 1, v);
-                if v < 0.9 * crit {
-                    if let Some(f) = ff.get(n) {
-                        max_err = max_err.max((f - ex).abs() / ex);
-                    }
+                if v < 0.9 * crit
+                    && let Some(f) = ff.get(n)
+                {
+                    max_err = max_err.max((f - ex).abs() / ex);
                 }
             }
             for n in 0..c.tracked {
