@@ -11,6 +11,7 @@
 //!   spinning beam).
 
 pub mod autodiff;
+pub mod belt_drive;
 pub mod dynamics;
 pub mod element;
 pub mod error;
