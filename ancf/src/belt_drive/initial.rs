@@ -17,8 +17,9 @@
 //! starts at rest).
 
 use super::model::BeltDrive;
-use crate::error::{AncfError, invalid};
+use crate::error::AncfError;
 use crate::sparse::Pattern;
+use mbd_core::SecondOrderSystem;
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
@@ -202,20 +203,4 @@ impl BeltDrive {
             mean_tension,
         })
     }
-}
-
-/// Convenience: the error for an unusable belt length (longer than the path plus 10 %, or
-/// shorter than 90 % of it: the uniform placement would be far from equilibrium).
-pub(crate) fn check_length(drive: &BeltDrive) -> Result<(), AncfError> {
-    let lp = drive.path().length();
-    let lb = drive.spec().belt.length;
-    if !(0.9 * lp..=1.1 * lp).contains(&lb) {
-        return Err(invalid(
-            "belt.length",
-            format!(
-                "{lb} m is not within 10 % of the belt path length {lp:.6} m over the pulleys"
-            ),
-        ));
-    }
-    Ok(())
 }

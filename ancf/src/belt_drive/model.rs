@@ -47,6 +47,16 @@ pub struct BeltDrive {
     pattern: Pattern,
     mass_values: Vec<f64>,
     scratch: Mutex<Scratch>,
+    elastic_cache: Mutex<ElasticCache>,
+    tangent_refresh: f64,
+}
+
+/// The last elastic tangent and the coordinates it was evaluated at.
+struct ElasticCache {
+    q: Vec<f64>,
+    k: Vec<f64>,
+    valid: bool,
+    evaluations: usize,
 }
 
 impl std::fmt::Debug for BeltDrive {
@@ -76,6 +86,16 @@ impl BeltDrive {
             })
             .collect();
         let path = BeltPath::new(&path_pulleys).map_err(|e| invalid("pulleys", e.to_string()))?;
+        let lp = path.length();
+        let lb = spec.belt.length;
+        if !(0.9 * lp..=1.1 * lp).contains(&lb) {
+            return Err(invalid(
+                "belt.length",
+                format!(
+                    "{lb} m is not within 10 % of the belt path length {lp:.6} m over the pulleys"
+                ),
+            ));
+        }
         let b = &spec.belt;
         let material = Material {
             young: b.young,
@@ -144,6 +164,13 @@ impl BeltDrive {
             pattern,
             mass_values,
             scratch,
+            elastic_cache: Mutex::new(ElasticCache {
+                q: Vec::new(),
+                k: Vec::new(),
+                valid: false,
+                evaluations: 0,
+            }),
+            tangent_refresh: 0.02,
         })
     }
 
@@ -175,6 +202,54 @@ impl BeltDrive {
     pub fn element_length(&self) -> f64 {
         self.mesh.elements()[0].length()
     }
+    /// Reuse the elastic part of the tangent stiffness in [`SecondOrderSystem::force_tangent`]
+    /// until some element's relative node position `(r_J − r_I)/l` or nodal slope has changed
+    /// by more than `tol` since it was evaluated (`0`: always re-evaluate, the exact Newton
+    /// matrix). The contact tangent is always exact. With the inertia term `M/(h²β)` dominating
+    /// the Newton matrix, a tangent that lags by a small rotation only slows the convergence of
+    /// generalized-α's Newton iterations marginally, while the belt element's second
+    /// derivatives (automatic differentiation) are by far the most expensive part of a step.
+    pub fn with_tangent_refresh(mut self, tol: f64) -> Self {
+        self.tangent_refresh = tol.max(0.0);
+        self
+    }
+
+    /// Number of elastic tangent evaluations so far (for statistics).
+    pub fn elastic_tangent_evaluations(&self) -> usize {
+        self.elastic_cache
+            .lock()
+            .map(|c| c.evaluations)
+            .unwrap_or_else(|e| e.into_inner().evaluations)
+    }
+
+    /// Whether the cached elastic tangent at `q_ref` may be reused at `q`.
+    fn tangent_still_valid(&self, q_ref: &[f64], q: &[f64]) -> bool {
+        let tol = self.tangent_refresh;
+        if tol <= 0.0 {
+            return false;
+        }
+        let l = self.element_length();
+        for el in 0..self.mesh.elements().len() {
+            let i = self.mesh.global_dof(el, 0);
+            let j = self.mesh.global_dof(el, 6);
+            for a in 0..2 {
+                let d = (q[j + a] - q[i + a]) - (q_ref[j + a] - q_ref[i + a]);
+                if d.abs() > tol * l {
+                    return false;
+                }
+            }
+        }
+        for node in 0..self.mesh.n_nodes() {
+            for k in 2..6 {
+                let g = 6 * node + k;
+                if (q[g] - q_ref[g]).abs() > tol {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
     /// Assembly pattern of the system matrices (built once).
     pub fn pattern(&self) -> &Pattern {
         &self.pattern
@@ -446,11 +521,21 @@ impl SecondOrderSystem for BeltDrive {
     ) -> Result<Option<ForceTangent>, MbdError> {
         let nb = self.n_belt;
         let pat = &self.pattern;
-        let mut k = pat.zeros();
+        let mut k = {
+            let mut cache = self.elastic_cache.lock().unwrap_or_else(|e| e.into_inner());
+            if !(cache.valid && self.tangent_still_valid(&cache.q, q)) {
+                let mut fbuf = vec![0.0; nb];
+                let mut kv = pat.zeros();
+                self.mesh
+                    .elastic_tangent_into(&q[..nb], &mut fbuf, pat, &mut kv, 1.0);
+                cache.k = kv;
+                cache.q = q.to_vec();
+                cache.valid = true;
+                cache.evaluations += 1;
+            }
+            cache.k.clone()
+        };
         let mut c = pat.zeros();
-        let mut fbuf = vec![0.0; nb];
-        self.mesh
-            .elastic_tangent_into(&q[..nb], &mut fbuf, pat, &mut k, 1.0);
         let omegas = self.speeds(t, v);
         let n_el = self.mesh.elements().len();
         let nf = self.free.len();
