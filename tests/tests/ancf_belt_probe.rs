@@ -15,12 +15,13 @@ fn probe() {
     let t_end: f64 = std::env::var("TEND").ok().and_then(|s| s.parse().ok()).unwrap_or(0.05);
     let h: f64 = std::env::var("H").ok().and_then(|s| s.parse().ok()).unwrap_or(1e-4);
     let full = std::env::var("FULL").is_ok();
-    let opts = SimulationOptions { h, full_newton: full, ..Default::default() };
+    let atol: f64 = std::env::var("ATOL").ok().and_then(|s| s.parse().ok()).unwrap_or(1e-9);
+    let opts = SimulationOptions { h, full_newton: full, newton_atol: atol, ..Default::default() };
     let t0 = Instant::now();
     let j = d.pulley_dof(1).unwrap();
     let mut last = 0.0;
     let sol = simulate(&d, &init.q, t_end, &opts, |s| {
-        if s.t - last >= 0.05 - 1e-9 { last = s.t; println!("t {:.3} w_driven {:.5} T {:?}", s.t, s.v[j], post::span_tensions(&d, &s.q)); }
+        if s.t - last >= 0.1 - 1e-9 { last = s.t; println!("t {:.3} w_driven {:.5} T {:?}", s.t, s.v[j], post::span_tensions(&d, &s.q)); }
     }).unwrap();
     println!("wall {:?} stats {:?} elastic tangents {}", t0.elapsed(), sol.stats, d.elastic_tangent_evaluations());
 }
