@@ -32,7 +32,9 @@ fn moving_state(d: &BeltDrive, speed: f64) -> (Vec<f64>, Vec<f64>) {
 // be −∂f/∂q, −∂f/∂v including the belt–pulley coupling through the free pulley's speed).
 #[test]
 fn analytic_tangent_matches_finite_differences() {
-    let d = BeltDrive::new(BeltDriveSpec::default()).unwrap().with_tangent_refresh(0.0);
+    let d = BeltDrive::new(BeltDriveSpec::default())
+        .unwrap()
+        .with_tangent_refresh(0.0);
     let (q, v) = moving_state(&d, 0.9);
     let t = 0.5;
     let n = d.n_q();
@@ -87,7 +89,11 @@ fn static_closure_of_free_belt_is_a_circle() {
         "closure: mean radius {:.6} m (expected {expected:.6}), variation {var:.2e}, {} iterations",
         r.mean_radius, r.iterations
     );
-    assert!((r.mean_radius - 0.2031).abs() < 5e-4, "radius {}", r.mean_radius);
+    assert!(
+        (r.mean_radius - 0.2031).abs() < 5e-4,
+        "radius {}",
+        r.mean_radius
+    );
     assert!((r.mean_radius - expected).abs() < 2e-3 * expected);
     assert!(var < 5e-3, "not a circle: variation {var}");
 }
@@ -112,7 +118,10 @@ fn initial_pretension_matches_closed_form() {
         init.mean_tension, init.holding_force, init.iterations
     );
     for t in spans {
-        assert!((t - expected).abs() < 0.03 * expected, "span tension {t} vs {expected}");
+        assert!(
+            (t - expected).abs() < 0.03 * expected,
+            "span tension {t} vs {expected}"
+        );
     }
     assert!(init.holding_force.abs() < 1e-3 * expected);
     // equal spans by symmetry (up to the holding spring)

@@ -3,8 +3,8 @@
 //! and released; Newton–Raphson finds the equilibrium, a circle of circumference equal to the
 //! belt length (seed note §7.5: radius `1.276/(2π) = 0.20308 m`).
 
-use super::spec::BeltDriveSpec;
 use super::BeltDrive;
+use super::spec::BeltDriveSpec;
 use crate::error::AncfError;
 use crate::statics::{StaticOptions, solve_static};
 

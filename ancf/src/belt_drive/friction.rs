@@ -42,7 +42,10 @@ impl BeltFriction {
             return Err(("friction.mu".into(), format!("must be ≥ 0, got {mu}")));
         }
         if !(other.is_finite() && other > 0.0) {
-            return Err((format!("friction.{name}"), format!("must be > 0, got {other}")));
+            return Err((
+                format!("friction.{name}"),
+                format!("must be > 0, got {other}"),
+            ));
         }
         Ok(())
     }

@@ -19,10 +19,10 @@
 use super::model::BeltDrive;
 use crate::error::AncfError;
 use crate::sparse::Pattern;
-use mbd_core::SecondOrderSystem;
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use mbd_core::SecondOrderSystem;
 
 /// Result of the initial-configuration solve.
 #[derive(Debug, Clone)]
@@ -91,12 +91,11 @@ impl BeltDrive {
             .collect();
         groups.push(vec![Some(0), Some(1)]);
         let pattern = Pattern::new(nb, &groups);
-        let symbolic = SymbolicLu::try_new(pattern.symbolic().as_ref()).map_err(|e| {
-            AncfError::Singular {
+        let symbolic =
+            SymbolicLu::try_new(pattern.symbolic().as_ref()).map_err(|e| AncfError::Singular {
                 load_factor: 1.0,
                 detail: format!("symbolic LU of the belt stiffness: {e:?}"),
-            }
-        })?;
+            })?;
         let b = &self.spec().belt;
         let k_hold = b.alpha1 * b.young * b.width * b.thickness / self.element_length();
         let t0 = self.path().point(0.0).tangent;
@@ -202,5 +201,28 @@ impl BeltDrive {
             holding_force: k_hold * u,
             mean_tension,
         })
+    }
+}
+
+impl BeltDrive {
+    /// Velocities of a belt travelling rigidly along its current centreline at `speed` [m/s]
+    /// (nodal `ṙ = V r_x/‖r_x‖`, slope rates zero) with every free pulley rolling with it
+    /// (`θ̇ = V/R`): a start close to steady running, used by the benchmarks to skip the ramp.
+    pub fn travelling_velocity(&self, q: &[f64], speed: f64) -> Vec<f64> {
+        let mut v = vec![0.0; self.n_q()];
+        for node in 0..self.mesh().n_nodes() {
+            let k = 6 * node;
+            let n = q[k + 2].hypot(q[k + 3]);
+            if n > 0.0 {
+                v[k] = speed * q[k + 2] / n;
+                v[k + 1] = speed * q[k + 3] / n;
+            }
+        }
+        for (p, pl) in self.pulleys().iter().enumerate() {
+            if let Some(j) = self.pulley_dof(p) {
+                v[j] = speed / pl.radius;
+            }
+        }
+        v
     }
 }

@@ -2,9 +2,9 @@
 //! angles of the free pulleys, coupled through distributed penalty contact with friction
 //! (Kerkkänen (3.20)–(3.27)) and the pulley equations (3.26).
 
+use super::BeltFriction;
 use super::pulley::{Pulley, PulleyDrive};
 use super::spec::BeltDriveSpec;
-use super::BeltFriction;
 use crate::element::{BeltElement, Element};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;

@@ -101,7 +101,12 @@ impl Default for BeltDriveSpec {
     /// (3.29), free driven pulley at (0.191441, 0) with `I = 0.1 kg·m²` and no load, both
     /// `R = 0.08125 m`.
     fn default() -> Self {
-        Self::two_pulley(0.08125, 0.08125, SpeedProfile::kerkkanen(12.0), TorqueProfile::None)
+        Self::two_pulley(
+            0.08125,
+            0.08125,
+            SpeedProfile::kerkkanen(12.0),
+            TorqueProfile::None,
+        )
     }
 }
 
@@ -153,7 +158,10 @@ impl BeltDriveSpec {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(invalid(format!("belt.{name}"), format!("must be > 0, got {v}")))
+                Err(invalid(
+                    format!("belt.{name}"),
+                    format!("must be > 0, got {v}"),
+                ))
             }
         };
         pos("length", b.length)?;

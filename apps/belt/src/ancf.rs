@@ -463,9 +463,15 @@ impl AncfStudy {
         ctx.out.write_csv(
             "tension.csv",
             &["s_material", "x", "y", "strain", "tension"],
-            samples
-                .iter()
-                .map(|p| [p.s_material, p.position[0], p.position[1], p.strain, p.tension]),
+            samples.iter().map(|p| {
+                [
+                    p.s_material,
+                    p.position[0],
+                    p.position[1],
+                    p.strain,
+                    p.tension,
+                ]
+            }),
         )?;
         let recs = drive.contact_records(s.t, &s.q, &s.v);
         ctx.out.write_csv(
@@ -536,7 +542,9 @@ impl AncfStudy {
             ))
             .with(Series::points(
                 "friction",
-                on.iter().map(|r| (r.s_material, r.friction_force)).collect(),
+                on.iter()
+                    .map(|r| (r.s_material, r.friction_force))
+                    .collect(),
             ))
             .save(&ctx.out.path(&format!("contact_{}", pulley.name)))?;
             let mut arc: Vec<(f64, f64)> = on
@@ -554,7 +562,9 @@ impl AncfStudy {
         }
 
         let w_driver = drive.pulley_speed(driver, s.t, &s.v);
-        let w_driven = driven.map(|p| drive.pulley_speed(p, s.t, &s.v)).unwrap_or(f64::NAN);
+        let w_driven = driven
+            .map(|p| drive.pulley_speed(p, s.t, &s.v))
+            .unwrap_or(f64::NAN);
         let summary = Summary {
             omega_driver_end: w_driver,
             omega_driven_end: w_driven,
