@@ -24,6 +24,7 @@ pub mod modal;
 pub mod params;
 pub mod pulley;
 pub mod string_fe;
+pub mod tire;
 pub mod travelling;
 
 pub use contact::{ContactSettings, ContactString, HarmonicLoad, simulate_contact};
