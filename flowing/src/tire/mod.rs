@@ -24,3 +24,5 @@ pub mod lcp;
 pub mod statics;
 pub use ground::{Ground, GroundConfig, GroundKind};
 pub use statics::{PatchSolution, Preload, preload, solve_patch};
+pub mod rolling;
+pub use rolling::{NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce};
