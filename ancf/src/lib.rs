@@ -15,6 +15,7 @@
 
 pub mod autodiff;
 pub mod belt;
+pub mod belt_drive;
 pub mod dynamics;
 pub mod element;
 pub mod error;
