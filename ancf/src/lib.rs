@@ -2,3 +2,38 @@
 //!
 //! Absolute nodal coordinate formulation elements (Kerkkänen 2006): the 2D shear-deformable
 //! linear beam, the Omar–Shabana beam, the 2D belt element, and planar belt drives built from them.
+//!
+//! * [`element`]: the [`Element`] trait and the three planar elements;
+//! * [`mesh`]: meshes with shared nodes (closed loops), sparse constant mass, assembled forces
+//!   and tangents, energies;
+//! * [`statics`]: Newton–Raphson with load increments and line search;
+//! * [`studies`]: Kerkkänen §2.4 test set-ups (simply supported beam, cantilever, pendulum,
+//!   spinning beam).
+
+// Index loops mirror the element and quadrature formulas (several arrays per index).
+#![allow(clippy::needless_range_loop)]
+
+pub mod autodiff;
+pub mod belt;
+pub mod belt_drive;
+pub mod dynamics;
+pub mod element;
+pub mod error;
+pub mod material;
+pub mod mesh;
+pub mod pulley;
+pub mod section;
+pub mod shape;
+pub mod sparse;
+pub mod statics;
+pub mod studies;
+pub mod system;
+
+pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBeam};
+pub use error::AncfError;
+pub use material::Material;
+pub use mesh::Mesh;
+pub use pulley::{ContactDistribution, PulleyContact};
+pub use section::Section;
+pub use statics::{StaticOptions, StaticSolution, solve_static, solve_static_with};
+pub use system::{AncfSystem, Energies, MeshForce, Prescribed};

@@ -29,6 +29,7 @@ pub mod params;
 pub mod pulley;
 pub mod spectrum;
 pub mod string_fe;
+pub mod tire;
 pub mod travelling;
 
 pub use contact::{ContactSettings, ContactString, HarmonicLoad, simulate_contact};

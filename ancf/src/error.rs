@@ -1,0 +1,53 @@
+//! Typed errors of the ANCF layer.
+
+use mbd_core::MbdError;
+use thiserror::Error;
+
+/// Errors raised while building or solving an ANCF model.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum AncfError {
+    /// A model parameter is invalid; `item` names it (e.g. `element 3: length`).
+    #[error("invalid input for {item}: {reason}")]
+    InvalidInput {
+        /// What was wrong (element, node, field).
+        item: String,
+        /// Why it is rejected.
+        reason: String,
+    },
+    /// The static Newton iteration did not converge.
+    #[error(
+        "static Newton iteration did not converge at load factor {load_factor} after {iterations} iterations (residual {residual:e} N)"
+    )]
+    NoConvergence {
+        /// Load factor of the failing increment (0..1].
+        load_factor: f64,
+        /// Iterations performed in that increment.
+        iterations: usize,
+        /// Last residual norm [N].
+        residual: f64,
+    },
+    /// The tangent stiffness could not be factored (mechanism, missing supports).
+    #[error("singular tangent stiffness at load factor {load_factor}: {detail}")]
+    Singular {
+        /// Load factor of the failing increment.
+        load_factor: f64,
+        /// Details from the factorization.
+        detail: String,
+    },
+    /// A state contains NaN or infinity.
+    #[error("non-finite value in {what}")]
+    NonFinite {
+        /// Which quantity.
+        what: String,
+    },
+    /// An error from the multibody layer (integrators).
+    #[error(transparent)]
+    Mbd(#[from] MbdError),
+}
+
+pub(crate) fn invalid(item: impl Into<String>, reason: impl Into<String>) -> AncfError {
+    AncfError::InvalidInput {
+        item: item.into(),
+        reason: reason.into(),
+    }
+}

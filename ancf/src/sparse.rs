@@ -1,0 +1,143 @@
+//! Sparse (CSC) assembly with a pattern built once: every element's `ndof × ndof` block has a
+//! precomputed scatter map into the value array, so refilling a tangent or mass matrix is an
+//! allocation-free loop.
+
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+
+/// Sentinel for an element entry that is not assembled (a fixed/eliminated DOF).
+const DROPPED: usize = usize::MAX;
+
+/// Sparsity pattern of an `n × n` assembled matrix and per-element scatter maps.
+#[derive(Debug, Clone)]
+pub struct Pattern {
+    n: usize,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    scatter: Vec<Vec<usize>>,
+}
+
+impl Pattern {
+    /// Pattern of the matrix assembled from elements whose coordinates map to global rows
+    /// `element_dofs[e][k]` (`None` = not assembled). Every diagonal entry is included.
+    pub fn new(n: usize, element_dofs: &[Vec<Option<usize>>]) -> Self {
+        let mut cols: Vec<Vec<usize>> = (0..n).map(|j| vec![j]).collect();
+        for dofs in element_dofs {
+            for &dj in dofs.iter().flatten() {
+                for &di in dofs.iter().flatten() {
+                    cols[dj].push(di);
+                }
+            }
+        }
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for c in &mut cols {
+            c.sort_unstable();
+            c.dedup();
+            row_idx.extend_from_slice(c);
+            col_ptr.push(row_idx.len());
+        }
+        let scatter = element_dofs
+            .iter()
+            .map(|dofs| {
+                let m = dofs.len();
+                let mut s = vec![DROPPED; m * m];
+                for (b, dj) in dofs.iter().enumerate() {
+                    for (a, di) in dofs.iter().enumerate() {
+                        if let (Some(i), Some(j)) = (di, dj) {
+                            let col = &row_idx[col_ptr[*j]..col_ptr[*j + 1]];
+                            // the entry exists by construction
+                            let pos = col.binary_search(i).unwrap_or(0);
+                            s[a + b * m] = col_ptr[*j] + pos;
+                        }
+                    }
+                }
+                s
+            })
+            .collect();
+        Self {
+            n,
+            col_ptr,
+            row_idx,
+            scatter,
+        }
+    }
+
+    /// Matrix dimension.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Number of stored entries.
+    pub fn nnz(&self) -> usize {
+        self.row_idx.len()
+    }
+
+    /// A zeroed value array.
+    pub fn zeros(&self) -> Vec<f64> {
+        vec![0.0; self.row_idx.len()]
+    }
+
+    /// `vals += scale · ke` for element `el` (`ke` column-major, as given to [`Pattern::new`]).
+    #[inline]
+    pub fn add_element(&self, vals: &mut [f64], el: usize, ke: &[f64], scale: f64) {
+        for (&pos, &v) in self.scatter[el].iter().zip(ke) {
+            if pos != DROPPED {
+                vals[pos] += scale * v;
+            }
+        }
+    }
+
+    /// Position of the diagonal entry `(i, i)` in the value array.
+    pub fn diagonal_position(&self, i: usize) -> usize {
+        let col = &self.row_idx[self.col_ptr[i]..self.col_ptr[i + 1]];
+        self.col_ptr[i] + col.binary_search(&i).unwrap_or(0)
+    }
+
+    /// Position of entry `(i, j)` in the value array, if stored.
+    pub fn position(&self, i: usize, j: usize) -> Option<usize> {
+        let col = &self.row_idx[self.col_ptr[j]..self.col_ptr[j + 1]];
+        col.binary_search(&i).ok().map(|p| self.col_ptr[j] + p)
+    }
+
+    /// All stored entries as `(row, col, position)`.
+    pub fn entries(&self) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+        (0..self.n).flat_map(move |j| {
+            (self.col_ptr[j]..self.col_ptr[j + 1]).map(move |p| (self.row_idx[p], j, p))
+        })
+    }
+
+    /// faer CSC matrix with this pattern and the given values.
+    pub fn to_matrix(&self, vals: Vec<f64>) -> SparseColMat<usize, f64> {
+        let sym = SymbolicSparseColMat::new_checked(
+            self.n,
+            self.n,
+            self.col_ptr.clone(),
+            None,
+            self.row_idx.clone(),
+        );
+        SparseColMat::new(sym, vals)
+    }
+
+    /// Symbolic structure (for symbolic factorizations that are reused).
+    pub fn symbolic(&self) -> SymbolicSparseColMat<usize> {
+        SymbolicSparseColMat::new_checked(
+            self.n,
+            self.n,
+            self.col_ptr.clone(),
+            None,
+            self.row_idx.clone(),
+        )
+    }
+
+    /// `y = A x` for values `vals` in this pattern (overwrites `y`).
+    pub fn mul_vec(&self, vals: &[f64], x: &[f64], y: &mut [f64]) {
+        y.fill(0.0);
+        for j in 0..self.n {
+            let xj = x[j];
+            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
+                y[self.row_idx[p]] += vals[p] * xj;
+            }
+        }
+    }
+}

@@ -1,0 +1,245 @@
+//! The static test set-ups of Kerkkänen §2.4 (Tables 2.1–2.4), shared by the validation tests
+//! and the `flowmbd-beam` app.
+
+use crate::element::{Element, OmarShabanaBeam, ProposedBeam};
+use crate::error::{AncfError, invalid};
+use crate::material::Material;
+use crate::mesh::{Mesh, straight_coordinates};
+use crate::section::Section;
+use crate::statics::{StaticOptions, solve_static};
+use serde::{Deserialize, Serialize};
+
+/// Which beam element a study uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BeamElementKind {
+    /// Kerkkänen's proposed 8-DOF linear element (§2.1.1).
+    Proposed,
+    /// The Omar–Shabana 12-DOF element (§2.1).
+    OmarShabana,
+}
+
+/// Build a straight chain of `n_el` equal elements with `make(element_length)`.
+pub fn beam_mesh<E, F>(length: f64, n_el: usize, make: F) -> Result<Mesh<E>, AncfError>
+where
+    E: Element,
+    F: Fn(f64) -> Result<E, AncfError>,
+{
+    if n_el == 0 {
+        return Err(invalid("elements", "must be ≥ 1"));
+    }
+    if !(length.is_finite() && length > 0.0) {
+        return Err(invalid("length", format!("must be > 0 m, got {length}")));
+    }
+    let le = length / n_el as f64;
+    let els = (0..n_el).map(|_| make(le)).collect::<Result<Vec<_>, _>>()?;
+    Mesh::chain(els)
+}
+
+/// A chapter-2 static beam (Kerkkänen §2.4): `E = 2.07·10¹¹ Pa`, `ρ = 7850 kg/m³`, `L = 2 m`,
+/// width 0.1 m, `k_s = 5/6`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StaticBeamCase {
+    /// Element type.
+    pub element: BeamElementKind,
+    /// Number of elements.
+    pub elements: usize,
+    /// Poisson's ratio [-].
+    pub nu: f64,
+    /// Section height (in-plane) [m].
+    pub height: f64,
+    /// Section width [m].
+    pub width: f64,
+    /// Beam length [m].
+    pub length: f64,
+    /// Young's modulus [Pa].
+    pub young: f64,
+    /// Density [kg/m³].
+    pub density: f64,
+    /// Load increments of the Newton solver.
+    pub increments: usize,
+}
+
+impl StaticBeamCase {
+    /// The thesis's data with the given element, mesh, `ν` and height.
+    pub fn kerkkanen(element: BeamElementKind, elements: usize, nu: f64, height: f64) -> Self {
+        Self {
+            element,
+            elements,
+            nu,
+            height,
+            width: 0.1,
+            length: 2.0,
+            young: 2.07e11,
+            density: 7850.0,
+            increments: 1,
+        }
+    }
+
+    fn material(&self) -> Result<Material, AncfError> {
+        Material::new(self.young, self.nu, self.density)
+    }
+
+    fn section(&self) -> Result<Section, AncfError> {
+        Section::rectangle(self.width, self.height)
+    }
+}
+
+/// Supports and load of a static study, expressed on a chain mesh.
+trait Study {
+    type Output;
+    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError>;
+    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64>;
+    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> Self::Output;
+}
+
+fn run_study<S: Study>(case: &StaticBeamCase, study: &S) -> Result<S::Output, AncfError> {
+    let (mat, sec) = (case.material()?, case.section()?);
+    match case.element {
+        BeamElementKind::Proposed => {
+            let mesh = beam_mesh(case.length, case.elements, |l| {
+                ProposedBeam::new(l, mat, sec)
+            })?;
+            solve_study(case, &mesh, study)
+        }
+        BeamElementKind::OmarShabana => {
+            let mesh = beam_mesh(case.length, case.elements, |l| {
+                OmarShabanaBeam::new(l, mat, sec)
+            })?;
+            solve_study(case, &mesh, study)
+        }
+    }
+}
+
+fn solve_study<E: Element, S: Study>(
+    case: &StaticBeamCase,
+    mesh: &Mesh<E>,
+    study: &S,
+) -> Result<S::Output, AncfError> {
+    let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [case.length, 0.0], case.elements);
+    let opts = StaticOptions {
+        increments: case.increments,
+        ..Default::default()
+    };
+    let sol = solve_static(mesh, &q0, &study.fixed(mesh)?, &study.load(mesh), &opts)?;
+    Ok(study.output(mesh, &sol.q))
+}
+
+/// Simply supported beam of Kerkkänen §2.4 (Tables 2.1, 2.2): first node pinned, last node
+/// vertically supported, slopes free, vertical force `force` [N] at the mid-point node.
+#[derive(Debug, Clone, Copy)]
+pub struct SimplySupported {
+    /// Vertical mid-point force [N] (−1000 N in the thesis).
+    pub force: f64,
+}
+
+impl Study for SimplySupported {
+    type Output = f64;
+    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
+        let n_el = mesh.elements().len();
+        if !n_el.is_multiple_of(2) {
+            return Err(invalid(
+                "elements",
+                format!("must be even so that a node sits at mid-span, got {n_el}"),
+            ));
+        }
+        Ok(vec![
+            mesh.node_dof(0, 0),
+            mesh.node_dof(0, 1),
+            mesh.node_dof(n_el, 1),
+        ])
+    }
+    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64> {
+        let mut f = vec![0.0; mesh.n_dof()];
+        f[mesh.node_dof(mesh.elements().len() / 2, 1)] = self.force;
+        f
+    }
+    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> f64 {
+        mesh.node_position(q, mesh.elements().len() / 2)[1]
+    }
+}
+
+/// Large-deflection cantilever of Kerkkänen §2.4 (Tables 2.3, 2.4): clamp of the position and
+/// of the cross-section slope `r_y` at the first node (`r_x` free for the 12-DOF element), tip
+/// force `force` [N] in `y`.
+#[derive(Debug, Clone, Copy)]
+pub struct Cantilever {
+    /// Vertical tip force [N] (`−5·10⁸ h³` in the thesis).
+    pub force: f64,
+}
+
+impl Study for Cantilever {
+    type Output = [f64; 2];
+    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
+        let o = mesh.layout().cross_slope_offset();
+        Ok(vec![
+            mesh.node_dof(0, 0),
+            mesh.node_dof(0, 1),
+            mesh.node_dof(0, o),
+            mesh.node_dof(0, o + 1),
+        ])
+    }
+    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64> {
+        let mut f = vec![0.0; mesh.n_dof()];
+        f[mesh.node_dof(mesh.elements().len(), 1)] = self.force;
+        f
+    }
+    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> [f64; 2] {
+        mesh.node_position(q, mesh.elements().len())
+    }
+}
+
+/// Mid-point vertical position [m] of the simply supported beam under −1000 N
+/// (Kerkkänen Tables 2.1/2.2 print it in mm).
+pub fn simply_supported_deflection(case: &StaticBeamCase) -> Result<f64, AncfError> {
+    run_study(case, &SimplySupported { force: -1000.0 })
+}
+
+/// Tip position `(x, y)` [m] of the cantilever under the tip force `−5·10⁸ h³` N
+/// (Kerkkänen Tables 2.3/2.4).
+pub fn cantilever_tip(case: &StaticBeamCase) -> Result<[f64; 2], AncfError> {
+    let force = -5.0e8 * case.height.powi(3);
+    run_study(case, &Cantilever { force })
+}
+
+/// The cantilever's deformed centreline sampled at `per_element + 1` points per element [m].
+#[derive(Debug, Clone, Copy)]
+struct CantileverLine {
+    force: f64,
+    per_element: usize,
+}
+
+impl Study for CantileverLine {
+    type Output = Vec<[f64; 2]>;
+    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
+        Cantilever { force: self.force }.fixed(mesh)
+    }
+    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64> {
+        Cantilever { force: self.force }.load(mesh)
+    }
+    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> Vec<[f64; 2]> {
+        let mut pts = Vec::new();
+        for (i, el) in mesh.elements().iter().enumerate() {
+            let start = if i == 0 { 0 } else { 1 };
+            for k in start..=self.per_element {
+                let x = el.length() * k as f64 / self.per_element as f64;
+                pts.push(mesh.position(q, i, x, 0.0));
+            }
+        }
+        pts
+    }
+}
+
+/// Deformed centreline of the cantilever of [`cantilever_tip`], `per_element` segments per
+/// element (for plots and VTK output).
+pub fn cantilever_centreline(
+    case: &StaticBeamCase,
+    per_element: usize,
+) -> Result<Vec<[f64; 2]>, AncfError> {
+    if per_element == 0 {
+        return Err(invalid("per_element", "must be ≥ 1"));
+    }
+    let force = -5.0e8 * case.height.powi(3);
+    run_study(case, &CantileverLine { force, per_element })
+}

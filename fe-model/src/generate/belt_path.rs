@@ -1,0 +1,517 @@
+//! Geometry of an open belt running over any number of pulleys.
+//!
+//! The path is the undeformed belt line of Ribaric (5.1)–(5.4): a closed curve made of straight
+//! spans (common tangents of consecutive pulleys) and circular arcs (the wraps). It is
+//! parametrised by the arc length `s ∈ [0, L)`, measured in the travel direction from the start
+//! of the first span (the point where the belt leaves the first pulley). At every `s` it gives the
+//! position `r(s)`, the unit tangent `e_t` (travel direction), the unit normal `e_n` pointing to the
+//! centre of curvature, and the curvature `1/ρ` (`0` on spans), so that the acceleration of a
+//! material point flowing with speed `v` along the path is `a e_t + (v²/ρ) e_n` (Ribaric (5.3)).
+//!
+//! Each pulley is wrapped either with the pulley inside the loop ([`WrapSide::Inside`], the belt
+//! turns clockwise around it when the loop runs clockwise) or from the back ([`WrapSide::Outside`],
+//! a back-side idler). Consecutive pulleys are joined by the tangent line that leaves the first
+//! pulley and reaches the next one consistently with their wrap sides.
+//!
+//! For the two equal pulleys of Ribaric Table 6-1 (centres (0, 0) and (L_c, 0)) this reproduces the
+//! parametrisation of the seed-000 note §10.1: upper span `y = R` to the right, arc on pulley 2,
+//! lower span back to the left, arc on pulley 1; `L = 2 L_c + 2πR`.
+
+use crate::FeError;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// How the belt wraps a pulley.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum WrapSide {
+    /// The pulley lies inside the loop (drive and driven pulleys of an open belt).
+    #[default]
+    Inside,
+    /// The belt's back runs over the pulley (back-side idler / tensioner).
+    Outside,
+}
+
+/// A pulley as seen by the belt path: centre [m], (pitch) radius [m] and wrap side.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PathPulley {
+    /// Centre (x, y) [m].
+    pub center: [f64; 2],
+    /// Radius of the belt line on this pulley [m].
+    pub radius: f64,
+    /// Wrap side.
+    #[serde(default)]
+    pub side: WrapSide,
+}
+
+/// One piece of the path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Segment {
+    /// Straight span from pulley `from` to the next pulley.
+    Span {
+        /// Index of the pulley the span leaves.
+        from: usize,
+        /// Start point [m].
+        start: [f64; 2],
+        /// Unit direction of travel.
+        direction: [f64; 2],
+    },
+    /// Circular wrap on pulley `pulley`.
+    Arc {
+        /// Pulley index.
+        pulley: usize,
+        /// Polar angle of the arrival point measured at the pulley centre [rad].
+        theta_start: f64,
+        /// +1 when the belt turns clockwise on this pulley, −1 counter-clockwise.
+        turn: f64,
+    },
+}
+
+/// A located piece of the path: `s ∈ [s_start, s_start + length)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathPiece {
+    /// Arc length at the start of the piece [m].
+    pub s_start: f64,
+    /// Length of the piece [m].
+    pub length: f64,
+    /// Geometry.
+    pub segment: Segment,
+}
+
+/// Geometry of the path at one arc-length position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathPoint {
+    /// Arc length `s` (reduced to `[0, L)`) [m].
+    pub s: f64,
+    /// Position `r(s)` [m].
+    pub position: [f64; 2],
+    /// Unit tangent `e_t` (travel direction).
+    pub tangent: [f64; 2],
+    /// Unit normal `e_n` toward the centre of curvature (the left or right normal of the tangent
+    /// on spans, chosen continuous with the preceding arc).
+    pub normal: [f64; 2],
+    /// Curvature `1/ρ` [1/m] (0 on spans).
+    pub curvature: f64,
+    /// Pulley index when on an arc.
+    pub pulley: Option<usize>,
+}
+
+/// A closed belt path over pulleys listed in travel order (see the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeltPath {
+    pulleys: Vec<PathPulley>,
+    pieces: Vec<PathPiece>,
+    length: f64,
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn norm(a: [f64; 2]) -> f64 {
+    a[0].hypot(a[1])
+}
+
+impl BeltPath {
+    /// Build the path over `pulleys` (in travel order, at least two; the loop runs clockwise
+    /// around the pulleys wrapped [`WrapSide::Inside`]).
+    ///
+    /// Errors: fewer than two pulleys, a non-positive radius, overlapping pulleys for which no
+    /// common tangent exists, or a wrap of zero length.
+    pub fn new(pulleys: &[PathPulley]) -> Result<Self, FeError> {
+        let n = pulleys.len();
+        if n < 2 {
+            return Err(FeError::param(
+                "pulleys",
+                n as f64,
+                "a belt needs at least two pulleys",
+            ));
+        }
+        for (i, p) in pulleys.iter().enumerate() {
+            FeError::check_positive(&format!("pulleys[{i}].radius"), p.radius)?;
+            if !(p.center[0].is_finite() && p.center[1].is_finite()) {
+                return Err(FeError::param(
+                    &format!("pulleys[{i}].center"),
+                    f64::NAN,
+                    "must be finite",
+                ));
+            }
+        }
+        // Tangent line from pulley i to pulley i+1. With d = +1 for a clockwise wrap, the
+        // contact point is p = c + d r m, where m is the left normal of the travel direction t.
+        // Collinearity of the two contact points gives m·Δ = d_a r_a − d_b r_b; t·Δ > 0 picks the
+        // root.
+        let turn = |p: &PathPulley| match p.side {
+            WrapSide::Inside => 1.0,
+            WrapSide::Outside => -1.0,
+        };
+        let mut leave = Vec::with_capacity(n); // (departure point on i, arrival point on i+1, t)
+        for i in 0..n {
+            let (a, b) = (&pulleys[i], &pulleys[(i + 1) % n]);
+            let delta = sub(b.center, a.center);
+            let l = norm(delta);
+            let c = turn(a) * a.radius - turn(b) * b.radius;
+            if l <= c.abs() || l == 0.0 {
+                return Err(FeError::param(
+                    &format!("pulleys[{}].center", (i + 1) % n),
+                    l,
+                    &format!(
+                        "no common tangent between pulleys {i} and {}: centres too close",
+                        (i + 1) % n
+                    ),
+                ));
+            }
+            let phi = delta[1].atan2(delta[0]);
+            let beta = (c / l).acos();
+            let m = [(phi + beta).cos(), (phi + beta).sin()];
+            let t = [m[1], -m[0]];
+            let pa = [
+                a.center[0] + turn(a) * a.radius * m[0],
+                a.center[1] + turn(a) * a.radius * m[1],
+            ];
+            let pb = [
+                b.center[0] + turn(b) * b.radius * m[0],
+                b.center[1] + turn(b) * b.radius * m[1],
+            ];
+            leave.push((pa, pb, t));
+        }
+        let mut pieces = Vec::with_capacity(2 * n);
+        let mut s = 0.0;
+        for i in 0..n {
+            let (pa, pb, t) = leave[i];
+            let span = norm(sub(pb, pa));
+            pieces.push(PathPiece {
+                s_start: s,
+                length: span,
+                segment: Segment::Span {
+                    from: i,
+                    start: pa,
+                    direction: t,
+                },
+            });
+            s += span;
+            // wrap on pulley j = i+1 from the arrival point pb to the departure point of the next span
+            let j = (i + 1) % n;
+            let pj = &pulleys[j];
+            let depart = leave[j].0;
+            let th0 = (pb[1] - pj.center[1]).atan2(pb[0] - pj.center[0]);
+            let th1 = (depart[1] - pj.center[1]).atan2(depart[0] - pj.center[0]);
+            let d = turn(pj);
+            // clockwise: the angle decreases from th0 to th1
+            let wrap = (d * (th0 - th1)).rem_euclid(2.0 * PI);
+            if wrap <= 1e-12 {
+                return Err(FeError::param(
+                    &format!("pulleys[{j}]"),
+                    wrap,
+                    "the belt does not wrap this pulley (zero wrap angle)",
+                ));
+            }
+            let len = wrap * pj.radius;
+            pieces.push(PathPiece {
+                s_start: s,
+                length: len,
+                segment: Segment::Arc {
+                    pulley: j,
+                    theta_start: th0,
+                    turn: d,
+                },
+            });
+            s += len;
+        }
+        Ok(Self {
+            pulleys: pulleys.to_vec(),
+            pieces,
+            length: s,
+        })
+    }
+
+    /// Two pulleys of radius `radius` at (0, 0) and (`center_distance`, 0): the drive of
+    /// Ribaric Table 6-1 and Kerkkänen Table 3.1.
+    pub fn two_pulleys(
+        center_distance: f64,
+        radius_1: f64,
+        radius_2: f64,
+    ) -> Result<Self, FeError> {
+        Self::new(&[
+            PathPulley {
+                center: [0.0, 0.0],
+                radius: radius_1,
+                side: WrapSide::Inside,
+            },
+            PathPulley {
+                center: [center_distance, 0.0],
+                radius: radius_2,
+                side: WrapSide::Inside,
+            },
+        ])
+    }
+
+    /// Total path length `L` [m].
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
+    /// The pulleys, in travel order.
+    pub fn pulleys(&self) -> &[PathPulley] {
+        &self.pulleys
+    }
+
+    /// Spans and arcs in travel order (span 0 leaves pulley 0; arc `k` follows span `k`).
+    pub fn pieces(&self) -> &[PathPiece] {
+        &self.pieces
+    }
+
+    /// The arc on pulley `k`: (s at arrival, wrap length) [m].
+    pub fn arc_of(&self, pulley: usize) -> Option<(f64, f64)> {
+        self.pieces.iter().find_map(|p| match p.segment {
+            Segment::Arc { pulley: k, .. } if k == pulley => Some((p.s_start, p.length)),
+            _ => None,
+        })
+    }
+
+    /// Wrap angle on pulley `k` [rad].
+    pub fn wrap_angle(&self, pulley: usize) -> Option<f64> {
+        self.arc_of(pulley)
+            .map(|(_, l)| l / self.pulleys[pulley].radius)
+    }
+
+    /// `s` reduced to `[0, L)`.
+    pub fn wrap_s(&self, s: f64) -> f64 {
+        let r = s.rem_euclid(self.length);
+        if r >= self.length { 0.0 } else { r }
+    }
+
+    /// Geometry at arc length `s` (any real `s`: the path is periodic).
+    pub fn point(&self, s: f64) -> PathPoint {
+        let s = self.wrap_s(s);
+        let idx = self
+            .pieces
+            .partition_point(|p| p.s_start <= s)
+            .saturating_sub(1);
+        let piece = &self.pieces[idx];
+        let u = s - piece.s_start;
+        match piece.segment {
+            Segment::Span {
+                start,
+                direction,
+                from,
+            } => {
+                // normal continuous with the arc the span leaves (toward the side of pulley `from`)
+                let d = match self.pulleys[from].side {
+                    WrapSide::Inside => 1.0,
+                    WrapSide::Outside => -1.0,
+                };
+                PathPoint {
+                    s,
+                    position: [start[0] + u * direction[0], start[1] + u * direction[1]],
+                    tangent: direction,
+                    normal: [d * direction[1], -d * direction[0]],
+                    curvature: 0.0,
+                    pulley: None,
+                }
+            }
+            Segment::Arc {
+                pulley,
+                theta_start,
+                turn,
+            } => {
+                let p = &self.pulleys[pulley];
+                let th = theta_start - turn * u / p.radius;
+                let (sn, cs) = th.sin_cos();
+                PathPoint {
+                    s,
+                    position: [p.center[0] + p.radius * cs, p.center[1] + p.radius * sn],
+                    tangent: [turn * sn, -turn * cs],
+                    normal: [-cs, -sn],
+                    curvature: 1.0 / p.radius,
+                    pulley: Some(pulley),
+                }
+            }
+        }
+    }
+
+    /// Node positions `s_i` for a mesh with element length close to `span_h` on spans and
+    /// `arc_h` on arcs [m]; every span and arc end is a node, each piece gets at least one
+    /// element. The result is increasing, starts at 0 and excludes `L` (closed loop).
+    pub fn mesh_positions(&self, span_h: f64, arc_h: f64) -> Result<Vec<f64>, FeError> {
+        FeError::check_positive("span_element_length", span_h)?;
+        FeError::check_positive("arc_element_length", arc_h)?;
+        let mut s = Vec::new();
+        for piece in &self.pieces {
+            let h = match piece.segment {
+                Segment::Span { .. } => span_h,
+                Segment::Arc { .. } => arc_h,
+            };
+            let n = ((piece.length / h).round() as usize).max(1);
+            for k in 0..n {
+                s.push(piece.s_start + piece.length * k as f64 / n as f64);
+            }
+        }
+        Ok(s)
+    }
+
+    /// Indices of the nodes `s_nodes` lying on the arc of `pulley` or within `margin` [m] of it
+    /// (measured along the path, periodically): the contact-node set of Ribaric 5.2 / 6.1.
+    pub fn contact_nodes(&self, s_nodes: &[f64], pulley: usize, margin: f64) -> Vec<usize> {
+        let Some((a, len)) = self.arc_of(pulley) else {
+            return Vec::new();
+        };
+        let l = self.length;
+        s_nodes
+            .iter()
+            .enumerate()
+            .filter(|&(_, &s)| {
+                // distance from s to the interval [a - margin, a + len + margin] on the loop
+                let u = (s - (a - margin)).rem_euclid(l);
+                u <= len + 2.0 * margin + 1e-12
+            })
+            .map(|(i, _)| i)
+            .collect()
+    }
+}
+
+/// Tributary length of each node of a closed loop with nodes at `s_nodes` (increasing, in
+/// `[0, L)`): half the sum of the adjacent element lengths [m] (seed-000 note §10.1, used to scale
+/// the penalty law (6.1)).
+pub fn tributary_lengths(s_nodes: &[f64], loop_length: f64) -> Vec<f64> {
+    let n = s_nodes.len();
+    (0..n)
+        .map(|i| {
+            let next = if i + 1 < n {
+                s_nodes[i + 1]
+            } else {
+                s_nodes[0] + loop_length
+            };
+            let prev = if i > 0 {
+                s_nodes[i - 1]
+            } else {
+                s_nodes[n - 1] - loop_length
+            };
+            0.5 * (next - prev)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64, tol: f64) -> bool {
+        (a - b).abs() <= tol
+    }
+
+    // seed-000 note §10.1 (Ribaric Table 6-1 geometry): L = 2 L_c + 2πR, upper span y = R to the right
+    #[test]
+    fn two_equal_pulleys_match_the_closed_form_path() {
+        let (lc, r) = (0.45, 0.05);
+        let p = BeltPath::two_pulleys(lc, r, r).unwrap();
+        assert!(close(p.length(), 2.0 * lc + 2.0 * PI * r, 1e-12));
+        let a = p.point(0.1);
+        assert!(close(a.position[0], 0.1, 1e-12) && close(a.position[1], r, 1e-12));
+        assert!(close(a.tangent[0], 1.0, 1e-15) && close(a.tangent[1], 0.0, 1e-15));
+        assert_eq!(a.curvature, 0.0);
+        // middle of the arc on pulley 2: rightmost point, moving down, normal to the left
+        let m = p.point(lc + 0.5 * PI * r);
+        assert!(close(m.position[0], lc + r, 1e-12) && close(m.position[1], 0.0, 1e-12));
+        assert!(close(m.tangent[1], -1.0, 1e-12) && close(m.normal[0], -1.0, 1e-12));
+        assert_eq!(m.pulley, Some(1));
+        // lower span moves left at y = -R
+        let b = p.point(lc + PI * r + 0.2);
+        assert!(close(b.position[0], lc - 0.2, 1e-12) && close(b.position[1], -r, 1e-12));
+        assert!(close(b.tangent[0], -1.0, 1e-12));
+        assert!(close(p.wrap_angle(0).unwrap(), PI, 1e-12));
+    }
+
+    // Geometry invariants: tangent continuity, |e_t| = 1, e_t ⟂ e_n, dr/ds = e_t (finite differences)
+    #[test]
+    fn path_is_c1_and_tangent_is_the_derivative() {
+        let p = BeltPath::new(&[
+            PathPulley {
+                center: [0.0, 0.0],
+                radius: 0.1,
+                side: WrapSide::Inside,
+            },
+            PathPulley {
+                center: [0.5, 0.1],
+                radius: 0.05,
+                side: WrapSide::Inside,
+            },
+            PathPulley {
+                center: [0.25, -0.05],
+                radius: 0.04,
+                side: WrapSide::Outside,
+            },
+        ])
+        .unwrap();
+        let l = p.length();
+        let h = 1e-6;
+        for k in 0..2000 {
+            let s = l * k as f64 / 2000.0;
+            let q = p.point(s);
+            let (a, b) = (p.point(s - h), p.point(s + h));
+            let fd = [
+                (b.position[0] - a.position[0]) / (2.0 * h),
+                (b.position[1] - a.position[1]) / (2.0 * h),
+            ];
+            assert!(
+                close(fd[0], q.tangent[0], 1e-5) && close(fd[1], q.tangent[1], 1e-5),
+                "s = {s}"
+            );
+            assert!(close(norm(q.tangent), 1.0, 1e-12));
+            assert!(close(
+                q.tangent[0] * q.normal[0] + q.tangent[1] * q.normal[1],
+                0.0,
+                1e-12
+            ));
+        }
+        // wrap angles of a closed convex-plus-idler loop: inside wraps minus outside wraps = 2π
+        let total = p.wrap_angle(0).unwrap() + p.wrap_angle(1).unwrap() - p.wrap_angle(2).unwrap();
+        let w: Vec<f64> = (0..3).map(|k| p.wrap_angle(k).unwrap()).collect();
+        assert!(close(total, 2.0 * PI, 1e-9), "{total} {w:?}");
+    }
+
+    // Unequal pulleys: wrap angles π ± 2 asin((R2 − R1)/L_c) (seed-000 note §10.1)
+    #[test]
+    fn unequal_pulleys_wrap_angles() {
+        let (lc, r1, r2) = (0.3, 0.05, 0.1218 / 2.0 + 0.03);
+        let p = BeltPath::two_pulleys(lc, r1, r2).unwrap();
+        let g = ((r2 - r1) / lc).asin();
+        assert!(close(p.wrap_angle(0).unwrap(), PI - 2.0 * g, 1e-12));
+        assert!(close(p.wrap_angle(1).unwrap(), PI + 2.0 * g, 1e-12));
+        let span = (lc * lc - (r2 - r1).powi(2)).sqrt();
+        assert!(close(
+            p.length(),
+            2.0 * span + r1 * (PI - 2.0 * g) + r2 * (PI + 2.0 * g),
+            1e-12
+        ));
+    }
+
+    #[test]
+    fn mesh_positions_contact_sets_and_tributary_lengths() {
+        let p = BeltPath::two_pulleys(0.45, 0.05, 0.05).unwrap();
+        let s = p.mesh_positions(0.045, 0.0157).unwrap();
+        assert_eq!(s.len(), 10 + 10 + 10 + 10);
+        let trib = tributary_lengths(&s, p.length());
+        assert!(close(trib.iter().sum::<f64>(), p.length(), 1e-12));
+        let c1 = p.contact_nodes(&s, 1, 0.05);
+        // arc of pulley 2 has 11 nodes on [L_c, L_c + πR] (both ends) plus one span node each side
+        assert_eq!(c1.len(), 13);
+        let c0 = p.contact_nodes(&s, 0, 0.0);
+        assert!(
+            c0.contains(&0),
+            "node 0 (end of arc 0 / start of span 0) is on pulley 1's arc"
+        );
+    }
+
+    #[test]
+    fn bad_geometry_is_a_typed_error() {
+        assert!(BeltPath::two_pulleys(0.05, 0.1, 0.2).is_err());
+        assert!(BeltPath::two_pulleys(0.45, -0.1, 0.05).is_err());
+        assert!(BeltPath::new(&[]).is_err());
+        let e = BeltPath::two_pulleys(0.45, 0.05, 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("pulleys[1].radius"), "{e}");
+    }
+}
