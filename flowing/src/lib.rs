@@ -14,6 +14,7 @@
 //! * [`contact`], [`pulley`]: the string wrapped on two pulleys with variable-size contact
 //!   (4.10), (4.11) and the travelling string with variable contact (4.31)–(4.40).
 
+pub mod belt;
 pub mod contact;
 pub mod derivative;
 pub mod error;
