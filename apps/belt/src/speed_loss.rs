@@ -74,8 +74,15 @@ impl Validate for Config {
         if self.omegas.is_empty() {
             return Err(InputError::new("omegas", "give at least one driver speed"));
         }
-        if let Some(i) = self.omegas.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
-            return Err(InputError::new(format!("omegas[{i}]"), "must be finite and > 0 [rad/s]"));
+        if let Some(i) = self
+            .omegas
+            .iter()
+            .position(|w| !(w.is_finite() && *w > 0.0))
+        {
+            return Err(InputError::new(
+                format!("omegas[{i}]"),
+                "must be finite and > 0 [rad/s]",
+            ));
         }
         if self.history_every == 0 {
             return Err(InputError::new("history_every", "must be at least 1"));
@@ -150,9 +157,16 @@ fn run_case(
         .map_err(StudyError::numerical)?;
     let modes = belt.n_modes() + 2;
     let name = format!("history_omega_{:.1}.csv", settings.omega_driver);
-    let mut csv = ctx
-        .out
-        .csv(&name, &["t", "omega_driver", "omega_driven", "load_torque", "belt_speed"])?;
+    let mut csv = ctx.out.csv(
+        &name,
+        &[
+            "t",
+            "omega_driver",
+            "omega_driven",
+            "load_torque",
+            "belt_speed",
+        ],
+    )?;
     let mut io_err = None;
     let mut k = 0usize;
     let mut seen = 0usize;
@@ -186,7 +200,13 @@ fn run_case(
             .iter()
             .map(|p| analytical(drive, p.torque, settings.omega_driver))
             .collect(),
-        points: points.iter().map(|p: &SpeedLossPoint| Point { torque: p.torque, delta_omega: p.delta_omega }).collect(),
+        points: points
+            .iter()
+            .map(|p: &SpeedLossPoint| Point {
+                torque: p.torque,
+                delta_omega: p.delta_omega,
+            })
+            .collect(),
         stats,
         wall_time_s: start.elapsed().as_secs_f64(),
     };
@@ -194,7 +214,13 @@ fn run_case(
 }
 
 fn analytical(d: &BeltDriveConfig, torque: f64, omega: f64) -> f64 {
-    analytical_speed_loss(d.geometry.radius_driven, d.belt.tension, d.belt.ea, torque, omega)
+    analytical_speed_loss(
+        d.geometry.radius_driven,
+        d.belt.tension,
+        d.belt.ea,
+        torque,
+        omega,
+    )
 }
 
 impl Study for SpeedLoss {
@@ -228,7 +254,14 @@ impl Study for SpeedLoss {
                 omega_driver: w,
                 ..c.procedure.clone()
             };
-            let r = run_case(&c.drive, &settings, c.history_every, ctx_ref, &done, &report);
+            let r = run_case(
+                &c.drive,
+                &settings,
+                c.history_every,
+                ctx_ref,
+                &done,
+                &report,
+            );
             if let Ok(mut v) = results.lock() {
                 v.push(r);
             }
@@ -236,7 +269,10 @@ impl Study for SpeedLoss {
         progress.finish();
         let mut cases = Vec::new();
         let mut modes = 0;
-        for r in results.into_inner().map_err(|_| StudyError::numerical("a worker panicked"))? {
+        for r in results
+            .into_inner()
+            .map_err(|_| StudyError::numerical("a worker panicked"))?
+        {
             let (case, m) = r?;
             modes = m;
             cases.push(case);
@@ -249,7 +285,12 @@ impl Study for SpeedLoss {
         });
         let mut table = ctx.out.csv(
             "speed_loss.csv",
-            &["omega_driver", "torque", "delta_omega", "delta_omega_analytical"],
+            &[
+                "omega_driver",
+                "torque",
+                "delta_omega",
+                "delta_omega_analytical",
+            ],
         )?;
         let mut plot = LinePlot::new(
             "Angular speed loss (Ribaric Table 6-1, T0 = 310 N)",
@@ -262,12 +303,20 @@ impl Study for SpeedLoss {
             }
             plot.series.push(Series {
                 name: format!("flowing, ω₁ = {} rad/s", case.omega_driver),
-                points: case.points.iter().map(|p| (p.torque, p.delta_omega)).collect(),
+                points: case
+                    .points
+                    .iter()
+                    .map(|p| (p.torque, p.delta_omega))
+                    .collect(),
                 style: Style::LinePoints,
             });
             plot.series.push(Series::line(
                 format!("Bechtel (6.3), ω₁ = {} rad/s", case.omega_driver),
-                case.points.iter().zip(&case.analytical).map(|(p, a)| (p.torque, *a)).collect(),
+                case.points
+                    .iter()
+                    .zip(&case.analytical)
+                    .map(|(p, a)| (p.torque, *a))
+                    .collect(),
             ));
         }
         table.finish()?;
