@@ -169,7 +169,7 @@ fn run_case(
     )?;
     let mut io_err = None;
     let mut k = 0usize;
-    let mut seen = 0usize;
+    let mut found = 0usize;
     let result = speed_loss_sweep(&mut belt, settings, |st, s: Sample| {
         k += 1;
         if k % every == 0
@@ -177,8 +177,10 @@ fn run_case(
         {
             io_err.get_or_insert(e);
         }
-        // a point is complete when the load moves on: count them through the sweep's time stamps
-        let _ = seen;
+        if s.points > found {
+            found = s.points;
+            report(done.fetch_add(1, Ordering::Relaxed) + 1);
+        }
     });
     csv.flush()?;
     if let Some(e) = io_err {
@@ -191,9 +193,9 @@ fn run_case(
             "points": f.points,
         })),
     })?;
-    seen = points.len();
-    done.fetch_add(seen, Ordering::Relaxed);
-    report(done.load(Ordering::Relaxed));
+    // the last point ends the sweep, after the last observer call
+    let extra = points.len().saturating_sub(found);
+    report(done.fetch_add(extra, Ordering::Relaxed) + extra);
     let case = Case {
         omega_driver: settings.omega_driver,
         analytical: points

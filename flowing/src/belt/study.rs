@@ -152,6 +152,8 @@ pub struct Sample {
     pub omega_driven: f64,
     /// Load torque [N m].
     pub load: f64,
+    /// Steady points found so far.
+    pub points: usize,
 }
 
 /// Run the procedure on `model` (its driver and load schedules are overwritten). `observer`
@@ -204,6 +206,7 @@ pub fn speed_loss_sweep<M: DriveModel>(
                 omega_driver: model.driver_speed(st.t),
                 omega_driven: model.driven_speed(&st.v),
                 load: model.load_mut().value(st.t),
+                points: points.len(),
             };
             observer(st, sample);
             if st.t < level_start - 0.5 * h {
