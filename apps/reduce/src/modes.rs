@@ -164,10 +164,16 @@ impl Study for ModesStudy<'_> {
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         if c.mass.is_empty() {
-            return Err(input("mass", "required (--mass M.mtx or `mass` in the configuration)"));
+            return Err(input(
+                "mass",
+                "required (--mass M.mtx or `mass` in the configuration)",
+            ));
         }
         if c.stiffness.is_empty() {
-            return Err(input("stiffness", "required (--stiffness K.mtx or `stiffness` in the configuration)"));
+            return Err(input(
+                "stiffness",
+                "required (--stiffness K.mtx or `stiffness` in the configuration)",
+            ));
         }
         let bar = ctx.progress(4.0, "modes");
         let read = |field: &str, p: &str| -> Result<_, StudyError> {
