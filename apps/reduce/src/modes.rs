@@ -76,10 +76,8 @@ impl Validate for Config {
         if self.count == 0 {
             return Err(InputError::new("count", "must be at least 1"));
         }
-        if let Some(s) = self.shift {
-            if !s.is_finite() {
-                return Err(InputError::new("shift", "must be finite"));
-            }
+        if self.shift.is_some_and(|s| !s.is_finite()) {
+            return Err(InputError::new("shift", "must be finite"));
         }
         Ok(())
     }

@@ -318,7 +318,7 @@ pub fn sparse_modes(
             let mut phi = Mat::zeros(n, conv);
             for j in 0..conv {
                 let theta = vals[j] / op.scale;
-                if !(theta > 0.0) {
+                if theta.is_nan() || theta <= 0.0 {
                     return Err(FeError::Eigen(format!(
                         "non-positive Ritz value {theta:e}: shift σ = {sigma:e} is not below the spectrum"
                     )));
