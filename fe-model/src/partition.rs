@@ -161,7 +161,13 @@ mod tests {
         use faer::linalg::solvers::Solve;
         let n = 6;
         let k = Mat::from_fn(n, n, |i, j| {
-            if i == j { 4.0 } else if i.abs_diff(j) == 1 { -1.0 } else { 0.0 }
+            if i == j {
+                4.0
+            } else if i.abs_diff(j) == 1 {
+                -1.0
+            } else {
+                0.0
+            }
         });
         let ks = crate::sparse::from_dense(k.as_ref(), 0.0).unwrap();
         let p = DofPartition::fixed(n, &[0, 4]).unwrap();
