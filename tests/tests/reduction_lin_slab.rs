@@ -31,7 +31,12 @@ fn slab_masses_match_table_b1() {
             _ => 3.9,
         };
         for c in 0..3 {
-            close(s.m[(3 * (j - 1) + c, 3 * (j - 1) + c)], expect, 1e-12, &format!("mass of node {j}"));
+            close(
+                s.m[(3 * (j - 1) + c, 3 * (j - 1) + c)],
+                expect,
+                1e-12,
+                &format!("mass of node {j}"),
+            );
         }
         total += s.m[(3 * (j - 1), 3 * (j - 1))];
     }
@@ -51,24 +56,42 @@ fn slab_frequencies_match_the_companion_reproduction() {
     let s = slab::appendix_b_slab().unwrap();
     let (lam, _) = reduction::linalg::sym_gen_eig("slab", s.k.as_ref(), s.m.as_ref()).unwrap();
     let ff = eig_to_hz(&lam);
-    for (i, f) in [7.0702, 8.3248, 11.7924, 12.9756, 16.2365, 17.7662].iter().enumerate() {
+    for (i, f) in [7.0702, 8.3248, 11.7924, 12.9756, 16.2365, 17.7662]
+        .iter()
+        .enumerate()
+    {
         close(ff[6 + i], *f, 5e-5, "free-free");
     }
     let part = DofPartition::from_boundary_dofs(90, &node_dofs(&[16, 18, 28, 30])).unwrap();
     let (lf, _) = fixed_interface_modes(s.k.as_ref(), s.m.as_ref(), &part).unwrap();
     let fi = eig_to_hz(&lf);
-    for (i, f) in [5.5080, 6.7123, 7.1141, 7.6270, 10.4370, 11.4839].iter().enumerate() {
+    for (i, f) in [5.5080, 6.7123, 7.1141, 7.6270, 10.4370, 11.4839]
+        .iter()
+        .enumerate()
+    {
         close(fi[i], *f, 5e-5, "fixed-interface");
     }
     let red = |m: Method, nodes: &[usize]| {
         let part = DofPartition::from_boundary_dofs(90, &node_dofs(nodes)).unwrap();
-        let b = build_basis(s.k.as_ref(), s.m.as_ref(), &part, m, &ModeSelection::Lowest(6)).unwrap();
-        let pre = check_mean_axes_preconditions(s.k.as_ref(), s.m.as_ref(), b.psi.as_ref(), &s.s, 3).unwrap();
+        let b = build_basis(
+            s.k.as_ref(),
+            s.m.as_ref(),
+            &part,
+            m,
+            &ModeSelection::Lowest(6),
+        )
+        .unwrap();
+        let pre =
+            check_mean_axes_preconditions(s.k.as_ref(), s.m.as_ref(), b.psi.as_ref(), &s.s, 3)
+                .unwrap();
         let r = ReducedModel::from_basis(b, s.k.as_ref(), s.m.as_ref(), None, 3).unwrap();
         (r.natural_frequencies_hz().unwrap(), pre.passes)
     };
     let (cb, cb_ok) = red(Method::CraigBampton, &[16, 18, 28, 30]);
-    for (i, f) in [7.4987, 9.2934, 13.5888, 14.4126, 21.3825].iter().enumerate() {
+    for (i, f) in [7.4987, 9.2934, 13.5888, 14.4126, 21.3825]
+        .iter()
+        .enumerate()
+    {
         close(cb[6 + i], *f, 5e-5, "CB");
     }
     let (gr, gr_ok) = red(Method::Guyan, &[16, 18, 28, 30, 5, 11]);
@@ -92,13 +115,22 @@ fn simulation1_statics_table() {
     let table = [
         (SlabMethod::NoReduction, [0.001691, -0.017142, 0.005213]),
         (SlabMethod::CraigBampton, [0.001691, -0.017142, 0.005120]),
-        (SlabMethod::ModeCondensation, [0.001691, -0.017142, 0.005120]),
+        (
+            SlabMethod::ModeCondensation,
+            [0.001691, -0.017142, 0.005120],
+        ),
         (SlabMethod::Guyan, [0.001691, -0.017142, 0.007252]),
-        (SlabMethod::FixedInterfaceModalTruncation, [0.000696, -0.000691, -0.009020]),
+        (
+            SlabMethod::FixedInterfaceModalTruncation,
+            [0.000696, -0.000691, -0.009020],
+        ),
     ];
     for (m, expect) in table {
         let b = slab::slab_basis(&s, m, 6).unwrap();
-        assert_eq!(b.psi.ncols(), if m == SlabMethod::NoReduction { 84 } else { 12 });
+        assert_eq!(
+            b.psi.ncols(),
+            if m == SlabMethod::NoReduction { 84 } else { 12 }
+        );
         let d = slab::sim1_statics(&s, &b).unwrap();
         for c in 0..3 {
             close(d[c], expect[c], 5e-7, &format!("{} δ'8[{c}]", m.label()));
@@ -118,16 +150,28 @@ fn history(sim: SlabSimulation, m: SlabMethod, p: &SlabSimParams) -> Vec<[f64; 3
 fn simulation1_cb_equals_mc_and_oscillates_about_the_statics() {
     // Lin §7.2.2: CB and MC identical and close to NR; MT amplitude "quite insufficient";
     // undamped step loading oscillates about the statics (companion §14.6).
-    let p = SlabSimParams { duration_s: 1.0, ..Default::default() };
+    let p = SlabSimParams {
+        duration_s: 1.0,
+        ..Default::default()
+    };
     let sim = SlabSimulation::NoRigidMotion;
     let nr = history(sim, SlabMethod::NoReduction, &p);
     let cb = history(sim, SlabMethod::CraigBampton, &p);
     let mc = history(sim, SlabMethod::ModeCondensation, &p);
     let mt = history(sim, SlabMethod::FixedInterfaceModalTruncation, &p);
-    let cbmc = cb.iter().zip(&mc).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
+    let cbmc = cb
+        .iter()
+        .zip(&mc)
+        .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
     assert!(cbmc < 1e-10, "CB vs MC {cbmc}");
     let rms = |a: &[[f64; 3]], b: &[[f64; 3]], c: usize| {
-        (a.iter().zip(b).map(|(x, y)| (x[c] - y[c]).powi(2)).sum::<f64>() / a.len() as f64).sqrt()
+        (a.iter()
+            .zip(b)
+            .map(|(x, y)| (x[c] - y[c]).powi(2))
+            .sum::<f64>()
+            / a.len() as f64)
+            .sqrt()
     };
     let amp = |a: &[[f64; 3]], c: usize| a.iter().map(|x| x[c].abs()).fold(0.0, f64::max);
     // η (the sag direction): CB tracks NR within 10 % of the NR amplitude; MT within 10 % fails
@@ -135,22 +179,42 @@ fn simulation1_cb_equals_mc_and_oscillates_about_the_statics() {
     assert!(amp(&mt, 1) < 0.1 * amp(&nr, 1), "MT amplitude not small");
     // mean over the run ≈ statics of NR (−0.017142 in η)
     let mean_eta = nr.iter().map(|x| x[1]).sum::<f64>() / nr.len() as f64;
-    assert!((mean_eta + 0.017142).abs() < 0.1 * 0.017142, "mean η {mean_eta}");
+    assert!(
+        (mean_eta + 0.017142).abs() < 0.1 * 0.017142,
+        "mean η {mean_eta}"
+    );
 }
 
 #[test]
 fn simulation2_cb_equals_mc() {
     // Lin §7.2.3: CB = MC; reasonably close to NR; MT poorest.
-    let p = SlabSimParams { duration_s: 0.5, ..Default::default() };
+    let p = SlabSimParams {
+        duration_s: 0.5,
+        ..Default::default()
+    };
     let sim = SlabSimulation::Orbit;
     let nr = history(sim, SlabMethod::NoReduction, &p);
     let cb = history(sim, SlabMethod::CraigBampton, &p);
     let mc = history(sim, SlabMethod::ModeCondensation, &p);
     let mt = history(sim, SlabMethod::FixedInterfaceModalTruncation, &p);
-    let cbmc = cb.iter().zip(&mc).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
+    let cbmc = cb
+        .iter()
+        .zip(&mc)
+        .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
     assert!(cbmc < 1e-9, "CB vs MC {cbmc}");
     let err = |a: &[[f64; 3]]| {
-        (a.iter().zip(&nr).map(|(x, y)| (0..3).map(|c| (x[c] - y[c]).powi(2)).sum::<f64>()).sum::<f64>() / a.len() as f64).sqrt()
+        (a.iter()
+            .zip(&nr)
+            .map(|(x, y)| (0..3).map(|c| (x[c] - y[c]).powi(2)).sum::<f64>())
+            .sum::<f64>()
+            / a.len() as f64)
+            .sqrt()
     };
-    assert!(err(&cb) < err(&mt), "CB error {} vs MT error {}", err(&cb), err(&mt));
+    assert!(
+        err(&cb) < err(&mt),
+        "CB error {} vs MT error {}",
+        err(&cb),
+        err(&mt)
+    );
 }
