@@ -95,7 +95,7 @@ pub fn reduced_model_sparse(
     let n = basis.psi.nrows();
     check_sparse("stiffness matrix K", k, n)?;
     check_sparse("mass matrix M", m, n)?;
-    if dofs_per_node == 0 || n % dofs_per_node != 0 {
+    if dofs_per_node == 0 || !n.is_multiple_of(dofs_per_node) {
         return Err(ReductionError::InvalidParameter {
             name: "dofs_per_node".into(),
             reason: format!("{dofs_per_node} does not divide the number of DOFs {n}"),

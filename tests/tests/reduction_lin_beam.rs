@@ -2,6 +2,7 @@
 //!
 //! Reference values are the dissertation's printed numbers (seed 002), as transcribed in the
 //! reading companion `seed-002-lin.md` §6-§10 and §15. Each test names its table or equation.
+#![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
 use faer::Mat;
 use reduction::basis::{

@@ -150,6 +150,18 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
             k.ncols()
         )));
     }
+    if !n.is_multiple_of(a.dofs_per_node) {
+        return Err(Failure::Input(format!(
+            "--dofs-per-node: {} does not divide the matrix size {n}",
+            a.dofs_per_node
+        )));
+    }
+    let n_nodes = n / a.dofs_per_node;
+    if let Some(j) = nodes.iter().find(|&&j| j > n_nodes) {
+        return Err(Failure::Input(format!(
+            "--boundary: node {j} is out of range (1-based; the model has {n_nodes} nodes)"
+        )));
+    }
     let zero_based: Vec<usize> = nodes.iter().map(|j| j - 1).collect();
     let part = DofPartition::from_boundary_nodes(n, a.dofs_per_node, &zero_based)
         .map_err(|e| Failure::Input(format!("--boundary: {e}")))?;
