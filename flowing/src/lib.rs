@@ -18,6 +18,7 @@
 // obscure the equations.
 #![allow(clippy::needless_range_loop)]
 
+pub mod belt;
 pub mod contact;
 pub mod derivative;
 pub mod error;

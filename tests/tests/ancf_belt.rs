@@ -308,3 +308,67 @@ fn belt_pretension_on_two_pulleys() {
     );
     assert!(pmax < 3.0 * uniform, "peak penetration {pmax} m");
 }
+
+// Dynamics through mbd-core's generalized-α with distributed contact and creep-rate friction
+// (Kerkkänen (3.20)–(3.27)): a pre-tensioned belt hoop on a pulley spinning at ω is dragged
+// along until it co-rotates (no load ⇒ no creep): the belt's mean angular velocity → ω.
+#[test]
+fn hoop_is_dragged_to_pulley_speed_by_friction() {
+    use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
+    let (mat, sec) = belt_material();
+    let r = 0.08125;
+    let l0 = 0.99 * 2.0 * std::f64::consts::PI * r;
+    let n = 12;
+    let mesh = belt_loop(n, l0, mat, sec, 1.0, 0.01, 5).unwrap();
+    let circle = |s: f64| {
+        let a = s / r;
+        ([r * a.cos(), r * a.sin()], [-a.sin(), a.cos()])
+    };
+    let q0 = coordinates_on_path(&mesh, 2.0 * std::f64::consts::PI * r, circle);
+    let omega = 5.0;
+    let pc = PulleyContact {
+        contact: LineContact {
+            surface: Disk {
+                center: [0.0, 0.0],
+                radius: r,
+                velocity: [0.0, 0.0],
+                omega,
+            },
+            normal: LinearPenalty {
+                stiffness: 1e7,
+                damping: 10.0,
+            },
+            friction: CreepRate {
+                mu: 1.2,
+                creep: 100.0,
+            },
+            rule: GaussRule::new(5),
+        },
+    };
+    let sys = AncfSystem::new(mesh).with_force(Box::new(pc));
+    let ga = GeneralizedAlpha::new(AlphaParams {
+        rho_inf: 0.5,
+        h: 1e-4,
+        ..Default::default()
+    });
+    let v0 = vec![0.0; q0.len()];
+    let sol = ga
+        .integrate(&sys, State::new(0.0, q0, v0), 0.02, |_| {})
+        .expect("integration");
+    let m = sys.mesh();
+    let w_belt: f64 = (0..n)
+        .map(|i| {
+            let k = m.node_dof(i, 0);
+            let (p, v) = (
+                [sol.state.q[k], sol.state.q[k + 1]],
+                [sol.state.v[k], sol.state.v[k + 1]],
+            );
+            (p[0] * v[1] - p[1] * v[0]) / (p[0] * p[0] + p[1] * p[1])
+        })
+        .sum::<f64>()
+        / n as f64;
+    assert!(
+        (w_belt - omega).abs() < 0.01 * omega,
+        "belt angular velocity {w_belt} rad/s vs ω = {omega}"
+    );
+}

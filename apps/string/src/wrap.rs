@@ -52,6 +52,8 @@ pub struct WrapConfig {
     pub derivative: DerivativeMethod,
     /// Contact and integrator settings.
     pub contact: ContactSettings,
+    /// Number of VTK snapshots (`wrap_NNN.vtu`: deformed string, pulleys, contact forces).
+    pub vtk_snapshots: usize,
 }
 
 impl Default for WrapConfig {
@@ -87,6 +89,7 @@ impl Default for WrapConfig {
             sample: 5e-4,
             derivative: DerivativeMethod::default(),
             contact: ContactSettings::default(),
+            vtk_snapshots: 20,
         }
     }
 }
@@ -174,6 +177,91 @@ pub struct WrapSummary {
     pub max_active_gap: f64,
     /// Integrator steps.
     pub steps: usize,
+}
+
+/// Writes the deformed string (anchors included), the pulley circles and the nodal contact
+/// forces as a VTK unstructured grid (fe-model's VTU writer).
+fn write_vtk(
+    path: &std::path::Path,
+    sys: &ContactString,
+    st: &State,
+    pulleys: &[Pulley],
+    length: f64,
+    positions: &[f64],
+) -> Result<(), StudyError> {
+    use fe_model::io::vtk::{PointField, write_vtu};
+    use fe_model::{Cell, CellKind, Mesh};
+    let u = sys.deflection(&st.q);
+    let p = sys.contact_forces(st).map_err(study_error)?;
+    let mut force = vec![0.0; u.len()];
+    let mut active = vec![0.0; u.len()];
+    for (c, k) in sys.candidates.iter().enumerate() {
+        force[k.node] = p[c];
+        active[k.node] = f64::from(u8::from(sys.active[c]));
+    }
+    let mut mesh = Mesh::new(1);
+    let mut fvals = Vec::new();
+    let mut avals = Vec::new();
+    let mut uvals = Vec::new();
+    let mut push = |mesh: &mut Mesh, x: f64, y: f64, f: f64, a: f64, defl: f64| {
+        fvals.push(f);
+        avals.push(a);
+        uvals.push(defl);
+        mesh.add_node([x, y, 0.0])
+    };
+    let mut prev = push(&mut mesh, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for (j, x) in positions.iter().enumerate() {
+        let n = push(&mut mesh, *x, u[j], force[j], active[j], u[j]);
+        mesh.cells.push(Cell {
+            kind: CellKind::Line,
+            nodes: vec![prev, n],
+        });
+        prev = n;
+    }
+    let n = push(&mut mesh, length, 0.0, 0.0, 0.0, 0.0);
+    mesh.cells.push(Cell {
+        kind: CellKind::Line,
+        nodes: vec![prev, n],
+    });
+    for pl in pulleys {
+        let segs = 96;
+        let cy = pl.top - pl.radius;
+        let first = mesh.n_nodes();
+        for k in 0..segs {
+            let a = 2.0 * std::f64::consts::PI * k as f64 / segs as f64;
+            let id = push(
+                &mut mesh,
+                pl.center_x + pl.radius * a.cos(),
+                cy + pl.radius * a.sin(),
+                0.0,
+                0.0,
+                0.0,
+            );
+            let next = if k + 1 == segs { first } else { id + 1 };
+            mesh.cells.push(Cell {
+                kind: CellKind::Line,
+                nodes: vec![id, next],
+            });
+        }
+    }
+    let fields = vec![
+        PointField {
+            name: "contact_force_N".into(),
+            components: 1,
+            values: fvals,
+        },
+        PointField {
+            name: "active".into(),
+            components: 1,
+            values: avals,
+        },
+        PointField {
+            name: "deflection_m".into(),
+            components: 1,
+            values: uvals,
+        },
+    ];
+    write_vtu(path, &mesh, &fields).map_err(|e| StudyError::numerical(format!("VTK output: {e}")))
 }
 
 /// The `wrap` study.
@@ -270,6 +358,14 @@ impl Study for WrapStudy {
         let mut max_gap: f64 = 0.0;
         let mut rows: Vec<Vec<f64>> = Vec::new();
         let mut io_err = None;
+        let positions = mesh.grid.positions().to_vec();
+        let vtk_dt = if c.vtk_snapshots > 0 {
+            c.duration / c.vtk_snapshots as f64
+        } else {
+            f64::INFINITY
+        };
+        let mut next_vtk = 0.0;
+        let mut vtk_count = 0usize;
         let run = simulate_contact(&mut sys, st0, c.duration, &c.contact, |s, st| {
             for (ci, a) in s.active.iter().enumerate() {
                 if *a {
@@ -282,6 +378,14 @@ impl Study for WrapStudy {
             }
             let span = free_span(s, c.string.length, np);
             max_span = max_span.max(span);
+            if st.t + 1e-12 >= next_vtk {
+                next_vtk += vtk_dt;
+                let path = ctx.out.path(&format!("wrap_{vtk_count:03}.vtu"));
+                vtk_count += 1;
+                if let Err(e) = write_vtk(&path, s, st, &c.pulleys, c.string.length, &positions) {
+                    io_err.get_or_insert(e);
+                }
+            }
             if st.t + 1e-12 >= next {
                 next += c.sample;
                 let p = s
@@ -292,7 +396,7 @@ impl Study for WrapStudy {
                 row.extend(act.iter());
                 row.extend(per_pulley(s, np, |k| p[k]));
                 if let Err(e) = csv.row(&row) {
-                    io_err.get_or_insert(e);
+                    io_err.get_or_insert(e.into());
                 }
                 rows.push(row);
                 bar.set(st.t);
@@ -301,7 +405,7 @@ impl Study for WrapStudy {
         bar.finish();
         csv.finish()?;
         if let Some(e) = io_err {
-            return Err(e.into());
+            return Err(e);
         }
         let run = run.map_err(|e| StudyError::Numerical {
             message: format!("contact simulation failed: {e}"),
