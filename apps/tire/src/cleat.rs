@@ -104,10 +104,18 @@ pub fn summarize(r: &RigResult) -> Summary {
 pub fn write_outputs(ctx: &StudyContext, r: &RigResult, prefix: &str) -> Result<(), StudyError> {
     ctx.out.write_csv(
         &format!("{prefix}forces.csv"),
-        &["t_s", "fx_n", "fy_n", "f_lateral_n", "spin_rad_s", "active_nodes", "normal_sum_n"],
-        r.samples.iter().map(|s| {
-            vec![s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]
-        }),
+        &[
+            "t_s",
+            "fx_n",
+            "fy_n",
+            "f_lateral_n",
+            "spin_rad_s",
+            "active_nodes",
+            "normal_sum_n",
+        ],
+        r.samples
+            .iter()
+            .map(|s| vec![s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]),
     )?;
     let (sx, sy) = r.spectra();
     ctx.out.write_csv(
@@ -117,10 +125,14 @@ pub fn write_outputs(ctx: &StudyContext, r: &RigResult, prefix: &str) -> Result<
     )?;
     let fx: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.fx)).collect();
     let fy: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.fy)).collect();
-    LinePlot::new(format!("Spindle forces at {} km/h", r.speed_kmh), "t [s]", "F [N]")
-        .with(Series::line("Fx (longitudinal)", fx))
-        .with(Series::line("Fy (vertical)", fy))
-        .save(&ctx.out.path(&format!("{prefix}forces")))?;
+    LinePlot::new(
+        format!("Spindle forces at {} km/h", r.speed_kmh),
+        "t [s]",
+        "F [N]",
+    )
+    .with(Series::line("Fx (longitudinal)", fx))
+    .with(Series::line("Fy (vertical)", fy))
+    .save(&ctx.out.path(&format!("{prefix}forces")))?;
     let lim = |s: &flowing::tire::Spectrum| -> Vec<(f64, f64)> {
         s.freq_hz
             .iter()
@@ -129,10 +141,14 @@ pub fn write_outputs(ctx: &StudyContext, r: &RigResult, prefix: &str) -> Result<
             .map(|(f, a)| (*f, *a))
             .collect()
     };
-    LinePlot::new(format!("Spectra at {} km/h", r.speed_kmh), "f [Hz]", "amplitude [N]")
-        .with(Series::line("Fx", lim(&sx)))
-        .with(Series::line("Fy", lim(&sy)))
-        .save(&ctx.out.path(&format!("{prefix}spectra")))?;
+    LinePlot::new(
+        format!("Spectra at {} km/h", r.speed_kmh),
+        "f [Hz]",
+        "amplitude [N]",
+    )
+    .with(Series::line("Fx", lim(&sx)))
+    .with(Series::line("Fy", lim(&sy)))
+    .save(&ctx.out.path(&format!("{prefix}spectra")))?;
     Ok(())
 }
 

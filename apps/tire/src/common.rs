@@ -1,9 +1,9 @@
 //! Shared pieces of the tire studies: the tire source (generated truck tire, reduced and saved,
 //! or a saved reduced tire reused) and error mapping.
 
+use fe_model::generate::TireConfig;
 use flowing::tire::{ReducedTire, ReductionConfig, TireError, generated_tire, reduce};
 use flowmbd_cli::{InputError, StudyError};
-use fe_model::generate::TireConfig;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -53,10 +53,16 @@ impl TireSource {
     /// Basic checks.
     pub fn validate(&self) -> Result<(), InputError> {
         if self.reduction.contact_nodes == 0 {
-            return Err(InputError::new("tire.reduction.contact_nodes", "must be positive"));
+            return Err(InputError::new(
+                "tire.reduction.contact_nodes",
+                "must be positive",
+            ));
         }
         if self.reduction.free_modes == 0 {
-            return Err(InputError::new("tire.reduction.free_modes", "must be positive"));
+            return Err(InputError::new(
+                "tire.reduction.free_modes",
+                "must be positive",
+            ));
         }
         Ok(())
     }
@@ -68,7 +74,10 @@ impl TireSource {
             return ReducedTire::load(path).map_err(tire_err);
         }
         if !quiet {
-            eprintln!("reducing the generated tire (saved to `{}`)", self.reduced_file);
+            eprintln!(
+                "reducing the generated tire (saved to `{}`)",
+                self.reduced_file
+            );
         }
         let fe = generated_tire(&self.generator).map_err(tire_err)?;
         let (red, _) = reduce(&fe, &self.reduction).map_err(tire_err)?;

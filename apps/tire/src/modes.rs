@@ -76,7 +76,10 @@ impl Study for Modes {
         ctx.out.write_csv(
             "modes.csv",
             &["mode", "full_hz", "reduced_hz"],
-            full.iter().zip(&reduced).enumerate().map(|(i, (f, r))| vec![(i + 1) as f64, *f, *r]),
+            full.iter()
+                .zip(&reduced)
+                .enumerate()
+                .map(|(i, (f, r))| vec![(i + 1) as f64, *f, *r]),
         )?;
         Ok(Summary {
             full_hz: full,

@@ -118,8 +118,12 @@ impl Study for Pressure {
                 length_m: if xs.is_empty() { 0.0 } else { len },
             });
         }
-        let road = out.pop().ok_or_else(|| StudyError::numerical("no road patch"))?;
-        let drum = out.pop().ok_or_else(|| StudyError::numerical("no drum patch"))?;
+        let road = out
+            .pop()
+            .ok_or_else(|| StudyError::numerical("no road patch"))?;
+        let drum = out
+            .pop()
+            .ok_or_else(|| StudyError::numerical("no drum patch"))?;
         Ok(Summary { drum, road })
     }
 }

@@ -80,7 +80,10 @@ impl Study for Reduce {
         ctx.out.write_csv(
             "free_modes.csv",
             &["mode", "f_hz"],
-            red.free_mode_hz.iter().enumerate().map(|(i, f)| vec![(i + 1) as f64, *f]),
+            red.free_mode_hz
+                .iter()
+                .enumerate()
+                .map(|(i, f)| vec![(i + 1) as f64, *f]),
         )?;
         Ok(Summary {
             fe_dof: fe.n_dofs(),

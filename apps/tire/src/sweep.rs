@@ -48,7 +48,10 @@ impl Validate for Config {
         }
         for (i, v) in self.speeds_kmh.iter().enumerate() {
             if !(*v > 0.0 && v.is_finite()) {
-                return Err(InputError::new(format!("speeds_kmh[{i}]"), "must be positive"));
+                return Err(InputError::new(
+                    format!("speeds_kmh[{i}]"),
+                    "must be positive",
+                ));
             }
         }
         Ok(())
@@ -103,11 +106,21 @@ impl Study for Sweep {
             &["speed_kmh", "f_hz", "fx_amp_n", "fy_amp_n"],
             grid_rows.into_iter(),
         )?;
-        let pts = |a: &[f64]| c.speeds_kmh.iter().copied().zip(a.iter().copied()).collect();
-        LinePlot::new("Peak spectral amplitude against speed", "v [km/h]", "amplitude [N]")
-            .with(Series::line("Fy", pts(&ay)))
-            .with(Series::line("Fx", pts(&ax)))
-            .save(&ctx.out.path("peak_vs_speed"))?;
+        let pts = |a: &[f64]| {
+            c.speeds_kmh
+                .iter()
+                .copied()
+                .zip(a.iter().copied())
+                .collect()
+        };
+        LinePlot::new(
+            "Peak spectral amplitude against speed",
+            "v [km/h]",
+            "amplitude [N]",
+        )
+        .with(Series::line("Fy", pts(&ay)))
+        .with(Series::line("Fx", pts(&ax)))
+        .save(&ctx.out.path("peak_vs_speed"))?;
         let incr = ay.windows(2).any(|w| w[1] > w[0]);
         let decr = ay.windows(2).any(|w| w[1] < w[0]);
         Ok(Summary {

@@ -29,5 +29,10 @@ pub fn coarse_tire_config(circumferential: usize, section: usize, patch_deg: f64
 /// prestress). The candidate contact nodes are the generator's `contact_patch` set.
 pub fn generated_tire(cfg: &TireConfig) -> Result<TireFe, TireError> {
     let t = tire(cfg)?;
-    TireFe::from_fe_model(&t.model, "rim", "contact_patch", cfg.inflation_pressure > 0.0)
+    TireFe::from_fe_model(
+        &t.model,
+        "rim",
+        "contact_patch",
+        cfg.inflation_pressure > 0.0,
+    )
 }

@@ -148,7 +148,11 @@ pub struct RigResult {
 impl RigResult {
     /// Samples of the recording window (t ≥ 0).
     pub fn record(&self) -> Vec<Sample> {
-        self.samples.iter().copied().filter(|s| s.t >= 0.0).collect()
+        self.samples
+            .iter()
+            .copied()
+            .filter(|s| s.t >= 0.0)
+            .collect()
     }
 
     /// Spectra of the recorded `F_x`, `F_y`.
@@ -156,7 +160,10 @@ impl RigResult {
         let r = self.record();
         let fx: Vec<f64> = r.iter().map(|s| s.fx).collect();
         let fy: Vec<f64> = r.iter().map(|s| s.fy).collect();
-        (amplitude_spectrum(&fx, self.dt), amplitude_spectrum(&fy, self.dt))
+        (
+            amplitude_spectrum(&fx, self.dt),
+            amplitude_spectrum(&fy, self.dt),
+        )
     }
 
     /// RMS fluctuations of the recorded `(F_x, F_y)` [N].
@@ -175,9 +182,15 @@ pub fn run_cleat(
     progress: &mut dyn FnMut(f64),
 ) -> Result<RigResult, TireError> {
     if !(cfg.speed_kmh >= 0.0 && cfg.speed_kmh.is_finite()) {
-        return Err(invalid("speed_kmh", format!("{} is negative", cfg.speed_kmh)));
+        return Err(invalid(
+            "speed_kmh",
+            format!("{} is negative", cfg.speed_kmh),
+        ));
     }
-    for (name, v) in [("settle_time", cfg.settle_time), ("record_time", cfg.record_time)] {
+    for (name, v) in [
+        ("settle_time", cfg.settle_time),
+        ("record_time", cfg.record_time),
+    ] {
         if !(v >= 0.0 && v.is_finite()) {
             return Err(invalid(name, format!("{v} s is negative")));
         }

@@ -110,7 +110,10 @@ impl RollingConfig {
             if v > 0.0 && v.is_finite() {
                 Ok(())
             } else {
-                Err(invalid(format!("rolling.{name}"), format!("{v} is not positive")))
+                Err(invalid(
+                    format!("rolling.{name}"),
+                    format!("{v} is not positive"),
+                ))
             }
         };
         pos("time_step", self.time_step)?;
@@ -121,7 +124,10 @@ impl RollingConfig {
         pos("spin_tolerance", self.spin_tolerance)?;
         pos("contact_margin", self.contact_margin)?;
         if !(self.friction >= 0.0 && self.friction.is_finite()) {
-            return Err(invalid("rolling.friction", format!("{} is negative", self.friction)));
+            return Err(invalid(
+                "rolling.friction",
+                format!("{} is negative", self.friction),
+            ));
         }
         if let NormalContact::Penalty { stiffness } = self.normal {
             pos("normal.stiffness", stiffness)?;
@@ -225,7 +231,10 @@ impl<'a> RollingTire<'a> {
         ground.cfg.validate()?;
         let nz = red.n_z();
         if z0.len() != nz {
-            return Err(invalid("initial coordinates", format!("{} values for {nz} coordinates", z0.len())));
+            return Err(invalid(
+                "initial coordinates",
+                format!("{} values for {nz} coordinates", z0.len()),
+            ));
         }
         Ok(Self {
             red,
@@ -263,7 +272,11 @@ impl<'a> RollingTire<'a> {
         let red = self.red;
         let nz = red.n_z();
         let n = nz + 1;
-        let (h, bn, gn) = (self.cfg.time_step, self.cfg.newmark_beta, self.cfg.newmark_gamma);
+        let (h, bn, gn) = (
+            self.cfg.time_step,
+            self.cfg.newmark_beta,
+            self.cfg.newmark_gamma,
+        );
         let (a, b) = (self.alpha, self.beta);
         // C_eff = 2θ̇G₁ + αM + βK, K_eff = K + θ̇²G₂ + βθ̇K₁
         let mut q = Mat::<f64>::zeros(nz, 2 * nz);
@@ -289,7 +302,8 @@ impl<'a> RollingTire<'a> {
         }
         for j in 0..nz {
             for i in 0..nz {
-                s[(1 + i, 1 + j)] = red.m[(i, j)] + gn * h * q[(i, j)] + bn * h * h * q[(i, nz + j)];
+                s[(1 + i, 1 + j)] =
+                    red.m[(i, j)] + gn * h * q[(i, j)] + bn * h * h * q[(i, nz + j)];
             }
         }
         let lu = s.partial_piv_lu();
@@ -378,7 +392,11 @@ impl<'a> RollingTire<'a> {
         let red = self.red;
         let nz = red.n_z();
         let nc = red.n_contact();
-        let (h, bn, gn) = (self.cfg.time_step, self.cfg.newmark_beta, self.cfg.newmark_gamma);
+        let (h, bn, gn) = (
+            self.cfg.time_step,
+            self.cfg.newmark_beta,
+            self.cfg.newmark_gamma,
+        );
         let st = &self.state;
         let spin_pred = st.theta_d + (1.0 - gn) * h * st.theta_dd;
         let need = match &self.factor {
@@ -417,7 +435,9 @@ impl<'a> RollingTire<'a> {
         }
         // free end-of-step state
         let t1 = st.t + h;
-        let z_free: Vec<f64> = (0..nz).map(|j| pred[nz + j] + bn * h * h * a_free[1 + j]).collect();
+        let z_free: Vec<f64> = (0..nz)
+            .map(|j| pred[nz + j] + bn * h * h * a_free[1 + j])
+            .collect();
         let zd_free: Vec<f64> = (0..nz).map(|j| pred[j] + gn * h * a_free[1 + j]).collect();
         let spin_free = spin_pred + gn * h * a_free[0];
         let mut dc = vec![0.0; 3 * nc];
@@ -559,7 +579,11 @@ impl<'a> RollingTire<'a> {
                             new[0] * t1v[1] + new[1] * t2v[1],
                             new[0] * t1v[2] + new[1] * t2v[2],
                         ];
-                        let d = [newv[0] - ft[ki][0], newv[1] - ft[ki][1], newv[2] - ft[ki][2]];
+                        let d = [
+                            newv[0] - ft[ki][0],
+                            newv[1] - ft[ki][1],
+                            newv[2] - ft[ki][2],
+                        ];
                         let dm = dot(&d, &d).sqrt();
                         if dm == 0.0 {
                             continue;

@@ -79,7 +79,9 @@ fn contact_at(
                 reason: "static contact active set did not converge".into(),
             });
         }
-        let new_f: Vec<f64> = (0..3 * nc).map(|k| nrm[k / 3][k % 3] * sol.lambda[k / 3]).collect();
+        let new_f: Vec<f64> = (0..3 * nc)
+            .map(|k| nrm[k / 3][k % 3] * sol.lambda[k / 3])
+            .collect();
         let new_delta: Vec<f64> = (0..3 * nc)
             .map(|r| (0..3 * nc).map(|k| y[(r, k)] * new_f[k]).sum())
             .collect();
@@ -281,7 +283,11 @@ pub fn preload_rolling(
         .collect();
     let mut patch = solve_patch(&y, &shifted, ground, load)?;
     // deflection measured from the unloaded, non-rolling outer radius
-    let touch = red.contact_positions.iter().map(|s| s[2]).fold(f64::INFINITY, f64::min);
+    let touch = red
+        .contact_positions
+        .iter()
+        .map(|s| s[2])
+        .fold(f64::INFINITY, f64::min);
     patch.deflection = patch.top - touch;
     for i in 0..nc3 {
         patch.delta_c[i] += (0..nz).map(|j| red.tc[(i, j)] * z0[j]).sum::<f64>();
