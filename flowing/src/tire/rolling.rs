@@ -97,7 +97,7 @@ impl Default for RollingConfig {
             slip_regularization: 0.05,
             normal: NormalContact::Lagrange,
             wheel_spin_inertia: 2.0,
-            spin_tolerance: 2e-3,
+            spin_tolerance: 1e-2,
             contact_margin: 0.02,
         }
     }
@@ -424,7 +424,7 @@ impl<'a> RollingTire<'a> {
         let mut bvec = vec![0.0; nz + 1];
         bvec[0] = self.drive_torque;
         for j in 0..nz {
-            bvec[1 + j] = -spin * spin * red.c_s[j] - g1z[j] * st.theta_dd;
+            bvec[1 + j] = -spin_pred * spin_pred * red.c_s[j] - g1z[j] * st.theta_dd;
         }
         let mut a_free = vec![0.0; nz + 1];
         matvec(&fac.s_inv, &bvec, &mut a_free);
