@@ -73,6 +73,10 @@ pub struct Summary {
     pub fy_mean_before_n: f64,
     /// Rayleigh α [1/s], β [s].
     pub rayleigh: [f64; 2],
+    /// Time steps and refactorisations of the iteration matrix.
+    pub steps: usize,
+    /// Refactorisations (spin-rate drift).
+    pub refactors: usize,
 }
 
 /// Summary of a rig result.
@@ -97,6 +101,8 @@ pub fn summarize(r: &RigResult) -> Summary {
         preload_deflection_m: r.preload.deflection,
         fy_mean_before_n: before.iter().sum::<f64>() / before.len().max(1) as f64,
         rayleigh: [r.rayleigh.alpha, r.rayleigh.beta],
+        steps: r.samples.len(),
+        refactors: r.refactors,
     }
 }
 

@@ -98,7 +98,7 @@ impl Default for RollingConfig {
             normal: NormalContact::Lagrange,
             wheel_spin_inertia: 2.0,
             spin_tolerance: 1e-2,
-            contact_margin: 0.02,
+            contact_margin: 0.005,
         }
     }
 }
@@ -174,8 +174,8 @@ struct Factor {
     spin: f64,
     /// S⁻¹ (n × n), n = 1 + n_z.
     s_inv: Mat<f64>,
-    /// R = S⁻¹ [C_eff K_eff] (n × 2 n_z), acting on [ż̃; z̃].
-    r: Mat<f64>,
+    /// Q = [C_eff K_eff] (n_z × 2 n_z), acting on [ż̃; z̃].
+    q: Mat<f64>,
     /// X = S⁻¹ [0; T_cᵀ] (n × 3 n_c).
     x: Mat<f64>,
     /// Y = T_c X_z (3 n_c × 3 n_c).
@@ -314,14 +314,6 @@ impl<'a> RollingTire<'a> {
                 reason: "the Newmark iteration matrix is singular".into(),
             });
         }
-        let mut qe = Mat::<f64>::zeros(n, 2 * nz);
-        for j in 0..2 * nz {
-            qe[(0, j)] = spin_row[j];
-            for i in 0..nz {
-                qe[(1 + i, j)] = q[(i, j)];
-            }
-        }
-        let r = &s_inv * &qe;
         let nc3 = red.tc.nrows();
         let mut tct = Mat::<f64>::zeros(n, nc3);
         for j in 0..nc3 {
@@ -343,7 +335,7 @@ impl<'a> RollingTire<'a> {
         self.factor = Some(Factor {
             spin,
             s_inv,
-            r,
+            q,
             x,
             y,
             yv,
@@ -411,7 +403,7 @@ impl<'a> RollingTire<'a> {
             reason: "no factorisation".into(),
         })?;
         let st = &self.state;
-        let spin = fac.spin;
+
         // predictors
         let mut pred = vec![0.0; 2 * nz]; // [ż̃; z̃]
         for j in 0..nz {
@@ -426,13 +418,14 @@ impl<'a> RollingTire<'a> {
         for j in 0..nz {
             bvec[1 + j] = -spin_pred * spin_pred * red.c_s[j] - g1z[j] * st.theta_dd;
         }
+        let mut qp = vec![0.0; nz];
+        matvec(&fac.q, &pred, &mut qp);
+        bvec[0] -= dot(&fac.spin_row, &pred);
+        for j in 0..nz {
+            bvec[1 + j] -= qp[j];
+        }
         let mut a_free = vec![0.0; nz + 1];
         matvec(&fac.s_inv, &bvec, &mut a_free);
-        let mut tmp = vec![0.0; nz + 1];
-        matvec(&fac.r, &pred, &mut tmp);
-        for (a, t) in a_free.iter_mut().zip(&tmp) {
-            *a -= t;
-        }
         // free end-of-step state
         let t1 = st.t + h;
         let z_free: Vec<f64> = (0..nz)
@@ -498,7 +491,7 @@ impl<'a> RollingTire<'a> {
                     w[(kj, kj)] += 1.0 / stiffness;
                 }
             }
-            for _outer in 0..6 {
+            for _outer in 0..3 {
                 // normal problem with the tangential forces frozen
                 let q: Vec<f64> = (0..m)
                     .map(|ki| {
@@ -540,10 +533,25 @@ impl<'a> RollingTire<'a> {
                     }
                 }
                 let lam_max = lambda_c.iter().fold(0.0f64, |a, &b| a.max(b));
+                let act: Vec<usize> = (0..m).filter(|&k| lambda_c[k] > 0.0).collect();
+                for k in 0..m {
+                    if lambda_c[k] <= 0.0 && ft[k] != [0.0; 3] {
+                        // released node: drop its friction and its effect on the others
+                        let d = [-ft[k][0], -ft[k][1], -ft[k][2]];
+                        ft[k] = [0.0; 3];
+                        for &kk in &act {
+                            let e = blk(&fac.yv, cand[kk], cand[k], &d);
+                            for a in 0..3 {
+                                dv[kk][a] += c1 * e[a];
+                            }
+                        }
+                    }
+                }
                 let mut outer_change = 0.0f64;
-                for _sweep in 0..40 {
+                for _sweep in 0..10 {
                     let mut change = 0.0f64;
-                    for (ki, &i) in cand.iter().enumerate() {
+                    for &ki in &act {
+                        let i = cand[ki];
                         let n = gp[ki].normal;
                         let t1v = [n[2], 0.0, -n[0]];
                         let t2v = [0.0, 1.0, 0.0];
@@ -590,19 +598,19 @@ impl<'a> RollingTire<'a> {
                         }
                         change = change.max(dm);
                         ft[ki] = newv;
-                        for (kk, &k) in cand.iter().enumerate() {
-                            let e = blk(&fac.yv, k, i, &d);
+                        for &kk in &act {
+                            let e = blk(&fac.yv, cand[kk], i, &d);
                             for a in 0..3 {
                                 dv[kk][a] += c1 * e[a];
                             }
                         }
                     }
                     outer_change = outer_change.max(change);
-                    if change <= 1e-6 * (mu * lam_max + 1.0) {
+                    if change <= 1e-5 * (mu * lam_max + 1.0) {
                         break;
                     }
                 }
-                if outer_change <= 1e-6 * (mu * lam_max + 1.0) {
+                if outer_change <= 1e-5 * (mu * lam_max + 1.0) {
                     break;
                 }
             }
