@@ -94,7 +94,7 @@ impl Default for RigConfig {
         Self {
             load: 4448.2,
             speed_kmh: 60.0,
-            settle_time: 0.15,
+            settle_time: 0.4,
             record_time: 0.3,
             ground: GroundConfig::default(),
             damping: DampingConfig::default(),
