@@ -2,7 +2,9 @@
 //! spindle forces `F_x`, `F_y` against time, their spectra, and the patch VTK series.
 
 use crate::common::{TireSource, input, tire_err};
-use flowing::tire::{RigConfig, RigResult, run_cleat};
+use fe_model::io::vtk::{PointField, write_vtu};
+use fe_model::{Cell, CellKind, Mesh};
+use flowing::tire::{RigConfig, RigResult, RollingTire, TireError, run_cleat_observed};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -19,13 +21,26 @@ pub struct Args {
 }
 
 /// Configuration.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// The tire.
     pub tire: TireSource,
     /// The rig.
     pub rig: RigConfig,
+    /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many steps
+    /// (0 = none) into `vtk/`.
+    pub vtk_every: usize,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            tire: TireSource::default(),
+            rig: RigConfig::default(),
+            vtk_every: 25,
+        }
+    }
 }
 
 impl Validate for Config {
@@ -158,6 +173,31 @@ pub fn write_outputs(ctx: &StudyContext, r: &RigResult, prefix: &str) -> Result<
     Ok(())
 }
 
+/// The deformed contact nodes as VTK vertices with the normal force and friction force fields.
+fn write_patch_vtu(path: &std::path::Path, sim: &RollingTire) -> Result<(), TireError> {
+    let mut mesh = Mesh::new(3);
+    for p in sim.contact_positions() {
+        let i = mesh.add_node(p);
+        mesh.cells.push(Cell {
+            kind: CellKind::Vertex,
+            nodes: vec![i],
+        });
+    }
+    let fields = [
+        PointField {
+            name: "normal_force_N".into(),
+            components: 1,
+            values: sim.state.lambda.clone(),
+        },
+        PointField {
+            name: "friction_force_N".into(),
+            components: 3,
+            values: sim.state.friction.iter().flatten().copied().collect(),
+        },
+    ];
+    Ok(write_vtu(path, &mesh, &fields)?)
+}
+
 struct Cleat {
     speed: Option<f64>,
 }
@@ -177,7 +217,20 @@ impl Study for Cleat {
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let red = c.tire.reduced(ctx.quiet)?;
         let bar = ctx.progress(1.0, "cleat test");
-        let r = run_cleat(&red, &c.rig, &mut |f| bar.set(f)).map_err(tire_err)?;
+        let vtk_dir = ctx.out.path("vtk");
+        if c.vtk_every > 0 {
+            std::fs::create_dir_all(&vtk_dir)
+                .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
+        }
+        let every = c.vtk_every;
+        let mut observer = |k: usize, sim: &RollingTire| -> Result<(), TireError> {
+            if every == 0 || k % every != 0 {
+                return Ok(());
+            }
+            write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)
+        };
+        let r = run_cleat_observed(&red, &c.rig, &mut |f| bar.set(f), &mut observer)
+            .map_err(tire_err)?;
         bar.finish();
         write_outputs(ctx, &r, "")?;
         Ok(summarize(&r))

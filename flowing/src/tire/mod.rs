@@ -30,5 +30,5 @@ pub mod model;
 pub use model::{coarse_tire_config, generated_tire, truck_tire_config};
 pub mod rig;
 pub mod spectrum;
-pub use rig::{DampingConfig, RigConfig, RigResult, Sample, run_cleat};
+pub use rig::{DampingConfig, RigConfig, RigResult, Sample, run_cleat, run_cleat_observed};
 pub use spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};

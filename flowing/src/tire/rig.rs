@@ -181,6 +181,17 @@ pub fn run_cleat(
     cfg: &RigConfig,
     progress: &mut dyn FnMut(f64),
 ) -> Result<RigResult, TireError> {
+    run_cleat_observed(red, cfg, progress, &mut |_, _| Ok(()))
+}
+
+/// [`run_cleat`] with an observer called after every step with the step number and the model
+/// (e.g. to write VTK snapshots of the patch).
+pub fn run_cleat_observed(
+    red: &ReducedTire,
+    cfg: &RigConfig,
+    progress: &mut dyn FnMut(f64),
+    observer: &mut dyn FnMut(usize, &RollingTire) -> Result<(), TireError>,
+) -> Result<RigResult, TireError> {
     if !(cfg.speed_kmh >= 0.0 && cfg.speed_kmh.is_finite()) {
         return Err(invalid(
             "speed_kmh",
@@ -224,6 +235,7 @@ pub fn run_cleat(
     let t0 = Instant::now();
     for k in 0..steps {
         sim.step()?;
+        observer(k, &sim)?;
         let f = sim.spindle_force();
         samples.push(Sample {
             t: sim.state.t - cfg.settle_time,
