@@ -166,3 +166,66 @@ fn rings_are_uniform_circumferential_grids() {
         }
     }
 }
+
+#[test]
+fn imported_matrix_market_tire_matches_the_generated_one() {
+    // Import path of issue 9 (M, K from Matrix Market with nodes, rim and patch sets): export
+    // the generated tire and read it back; the reduced frequencies must agree (same model).
+    use fe_model::io::mtx::{Symmetry, write_sparse};
+    let fe = small();
+    let dir = std::env::temp_dir().join(format!("flowmbd_tire_import_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = |n: &str| dir.join(n).display().to_string();
+    write_sparse(p("k.mtx"), fe.stiffness.as_ref(), Symmetry::General).unwrap();
+    let mt: Vec<faer::sparse::Triplet<usize, usize, f64>> = fe
+        .mass
+        .iter()
+        .enumerate()
+        .map(|(i, &m)| faer::sparse::Triplet::new(i, i, m))
+        .collect();
+    let m =
+        faer::sparse::SparseColMat::try_new_from_triplets(fe.n_dofs(), fe.n_dofs(), &mt).unwrap();
+    write_sparse(p("m.mtx"), m.as_ref(), Symmetry::General).unwrap();
+    let nodes: String = fe
+        .nodes
+        .iter()
+        .map(|x| format!("{:e}, {:e}, {:e}\n", x[0], x[1], x[2]))
+        .collect();
+    std::fs::write(p("nodes.csv"), format!("# x, y, z\n{nodes}")).unwrap();
+    let list = |v: &[usize]| {
+        v.iter()
+            .map(|i| i.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    std::fs::write(p("rim.txt"), list(&fe.rim)).unwrap();
+    std::fs::write(p("patch.txt"), list(&fe.candidates)).unwrap();
+    let files = ImportFiles {
+        stiffness: p("k.mtx"),
+        mass: p("m.mtx"),
+        nodes: p("nodes.csv"),
+        rim_nodes: p("rim.txt"),
+        patch_nodes: p("patch.txt"),
+    };
+    let imp = imported_tire(&files).unwrap();
+    let cfg = ReductionConfig {
+        contact_nodes: 12,
+        free_modes: 20,
+        ..Default::default()
+    };
+    let fa = reduce(&fe, &cfg).unwrap().0.frequencies_hz().unwrap();
+    let fb = reduce(&imp, &cfg).unwrap().0.frequencies_hz().unwrap();
+    for (a, b) in fa.iter().zip(&fb).take(20) {
+        assert!(rel(*a, *b) < 1e-9, "{a} vs {b}");
+    }
+    // a bad coordinate line is reported with file and line
+    std::fs::write(p("bad.csv"), "0, 0, 0\n1, x, 2\n").unwrap();
+    let e = imported_tire(&ImportFiles {
+        nodes: p("bad.csv"),
+        ..files
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("bad.csv:2"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -2,7 +2,10 @@
 //! or a saved reduced tire reused) and error mapping.
 
 use fe_model::generate::TireConfig;
-use flowing::tire::{ReducedTire, ReductionConfig, TireError, generated_tire, reduce};
+use flowing::tire::{
+    ImportFiles, ReducedTire, ReductionConfig, TireError, TireFe, generated_tire, imported_tire,
+    reduce,
+};
 use flowmbd_cli::{InputError, StudyError};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -16,6 +19,9 @@ pub struct TireSource {
     pub reduced_file: String,
     /// Generated tire (fe-model generator; default: 295/80 R22.5 truck tire at 38 psi).
     pub generator: TireConfig,
+    /// Imported tire (Matrix Market M and K, nodes, rim and patch node lists); replaces the
+    /// generated one when given.
+    pub import: Option<ImportFiles>,
     /// Reduction (Ribaric §8.2: 95 contact nodes, 50 free-node modes).
     pub reduction: ReductionConfig,
 }
@@ -25,6 +31,7 @@ impl Default for TireSource {
         Self {
             reduced_file: "out/tire/reduced-truck-95c-50m.json".into(),
             generator: TireConfig::default(),
+            import: None,
             reduction: ReductionConfig::default(),
         }
     }
@@ -67,6 +74,14 @@ impl TireSource {
         Ok(())
     }
 
+    /// The FE model: imported when `import` is given, otherwise generated.
+    pub fn fe_model(&self) -> Result<TireFe, StudyError> {
+        match &self.import {
+            Some(files) => imported_tire(files).map_err(tire_err),
+            None => generated_tire(&self.generator).map_err(tire_err),
+        }
+    }
+
     /// Load the saved reduced tire, or reduce the generated one (and save it).
     pub fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError> {
         let path = Path::new(&self.reduced_file);
@@ -79,7 +94,7 @@ impl TireSource {
                 self.reduced_file
             );
         }
-        let fe = generated_tire(&self.generator).map_err(tire_err)?;
+        let fe = self.fe_model()?;
         let (red, _) = reduce(&fe, &self.reduction).map_err(tire_err)?;
         if !self.reduced_file.is_empty() {
             if let Some(dir) = path.parent() {

@@ -2,7 +2,7 @@
 //! (sparse shift-invert) against the reduced model (Ribaric §8.2 validation).
 
 use crate::common::{TireSource, tire_err};
-use flowing::tire::{full_frequencies_hz, generated_tire};
+use flowing::tire::full_frequencies_hz;
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
@@ -62,7 +62,7 @@ impl Study for Modes {
     const NAME: &'static str = "modes";
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let fe = generated_tire(&c.tire.generator).map_err(tire_err)?;
+        let fe = c.tire.fe_model()?;
         let full = full_frequencies_hz(&fe, c.count).map_err(tire_err)?;
         let red = c.tire.reduced(ctx.quiet)?;
         let mut reduced = red.frequencies_hz().map_err(tire_err)?;

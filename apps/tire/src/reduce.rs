@@ -2,7 +2,7 @@
 //! file; the stage times are the benchmark record of the 60 000-DOF reduction.
 
 use crate::common::{TireSource, tire_err};
-use flowing::tire::{ReductionTimings, generated_tire, reduce};
+use flowing::tire::{ReductionTimings, reduce};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
@@ -64,7 +64,7 @@ impl Study for Reduce {
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let t = Instant::now();
-        let fe = generated_tire(&c.tire.generator).map_err(tire_err)?;
+        let fe = c.tire.fe_model()?;
         let assembly_s = t.elapsed().as_secs_f64();
         let (red, timings) = reduce(&fe, &c.tire.reduction).map_err(tire_err)?;
         let file = if c.tire.reduced_file.is_empty() {

@@ -27,7 +27,9 @@ pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch}
 pub mod rolling;
 pub use rolling::{NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce};
 pub mod model;
-pub use model::{coarse_tire_config, generated_tire, truck_tire_config};
+pub use model::{
+    ImportFiles, coarse_tire_config, generated_tire, imported_tire, truck_tire_config,
+};
 pub mod rig;
 pub mod spectrum;
 pub use rig::{DampingConfig, RigConfig, RigResult, Sample, run_cleat, run_cleat_observed};
