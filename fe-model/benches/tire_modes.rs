@@ -76,6 +76,10 @@ fn main() {
         rep.max_orthogonality_error,
         rep.max_relative_residual
     );
+    println!(
+        "eigen breakdown: factor {:.3} s, Krylov-Schur {:.3} s, Sturm LDLT {:.3} s; rejected attempts: {:?}",
+        rep.seconds_factor, rep.seconds_lanczos, rep.seconds_sturm, rep.rejected_attempts
+    );
     let f: Vec<String> = modes
         .frequencies_hz
         .iter()

@@ -28,7 +28,7 @@ use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Accum, Col, Mat, MatMut, MatRef, Par};
 use serde::Serialize;
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Options of [`sparse_modes`].
 #[derive(Debug, Clone)]
@@ -100,6 +100,14 @@ pub struct SparseEigenReport {
     pub found_below_cut: Option<usize>,
     /// Whether the model was small enough to be solved densely.
     pub dense_fallback: bool,
+    /// Why earlier attempts were rejected (empty when the first attempt passed).
+    pub rejected_attempts: Vec<String>,
+    /// Wall-clock seconds: symbolic + numeric Cholesky of `K − σM`.
+    pub seconds_factor: f64,
+    /// Wall-clock seconds in Krylov–Schur (all attempts).
+    pub seconds_lanczos: f64,
+    /// Wall-clock seconds of the Sturm-count LDLᵀ factorizations.
+    pub seconds_sturm: f64,
 }
 
 /// Shift-invert operator `T/θ_scale` (see the module documentation).
@@ -214,11 +222,16 @@ pub fn sparse_modes(
             sturm_count: None,
             found_below_cut: None,
             dense_fallback: true,
+            rejected_attempts: Vec::new(),
+            seconds_factor: 0.0,
+            seconds_lanczos: 0.0,
+            seconds_sturm: 0.0,
         };
         return Ok((modes, report));
     }
 
     // factorization of K − σM on the union pattern
+    let t_factor = Instant::now();
     let a0 = shifted(k, m, 0.0)?;
     let analysis = Analysis::new(a0.as_ref())?;
     let (sigma, llt) = match opts.shift {
@@ -244,6 +257,7 @@ pub fn sparse_modes(
             }
         },
     };
+    let seconds_factor = t_factor.elapsed().as_secs_f64();
     let (_fwd, inv) = analysis.perm();
     let mut t = Vec::with_capacity(m.compute_nnz());
     for (r, c, v) in triplets(m) {
@@ -281,9 +295,13 @@ pub fn sparse_modes(
     let mut op = Arc::new(op);
 
     let mut dim = base_dim.min(n - 2);
+    let mut rejected = Vec::new();
+    let (mut seconds_lanczos, mut seconds_sturm) = (0.0, 0.0);
     let mut last_err = FeError::Eigen("no attempt made".into());
     for attempt in 1..=opts.attempts.max(1) {
+        let t_l = Instant::now();
         let (vals, vecs, op_back) = run_lanczos(op, nev, dim, opts, par)?;
+        seconds_lanczos += t_l.elapsed().as_secs_f64();
         op = op_back;
         let conv = vals.len();
         let result = (|| -> Result<(Modes, SparseEigenReport), FeError> {
@@ -330,8 +348,10 @@ pub fn sparse_modes(
                     None => last + 1e-4 * last.abs().max(1e-12),
                 };
                 let below = lam.iter().filter(|&&l| l < c).count();
+                let t_s = Instant::now();
                 let a = shifted(k, m, c)?;
                 let negs = analysis.negative_pivots(a.as_ref())?;
+                seconds_sturm += t_s.elapsed().as_secs_f64();
                 if negs != below {
                     return Err(FeError::Eigen(format!(
                         "Sturm check failed: {negs} eigenvalues below {c:e} rad²/s² ({:.6} Hz) but {below} found",
@@ -360,12 +380,17 @@ pub fn sparse_modes(
                 sturm_count: sturm,
                 found_below_cut: found_below,
                 dense_fallback: false,
+                rejected_attempts: rejected.clone(),
+                seconds_factor,
+                seconds_lanczos,
+                seconds_sturm,
             };
             Ok((modes, report))
         })();
         match result {
             Ok(r) => return Ok(r),
             Err(e) => {
+                rejected.push(format!("attempt {attempt} (subspace {dim}): {e}"));
                 last_err = e;
                 dim = ((dim * 3) / 2).min(n - 2);
             }

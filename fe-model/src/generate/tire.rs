@@ -24,7 +24,7 @@ use std::f64::consts::PI;
 
 /// Tire generator parameters (SI units).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct TireConfig {
     /// Rim (bead seat) diameter [m].
     pub rim_diameter: f64,
@@ -92,6 +92,71 @@ impl Default for TireConfig {
             integration: Hex8Integration::SelectiveReduced,
             patch_half_angle_deg: 8.0,
         }
+    }
+}
+
+impl TireConfig {
+    /// Check every field; the error names the offending field.
+    pub fn validate(&self) -> Result<(), FeError> {
+        for (zone, m) in [
+            ("tread", &self.tread),
+            ("sidewall", &self.sidewall),
+            ("bead", &self.bead),
+        ] {
+            m.validate().map_err(|e| match e {
+                FeError::InvalidParameter {
+                    name,
+                    value,
+                    reason,
+                } => FeError::InvalidParameter {
+                    name: format!("{zone}.{name}"),
+                    value,
+                    reason,
+                },
+                other => other,
+            })?;
+        }
+        FeError::check_positive("rim_diameter", self.rim_diameter)?;
+        FeError::check_positive("width", self.width)?;
+        FeError::check_positive("tread_thickness", self.tread_thickness)?;
+        FeError::check_positive("sidewall_thickness", self.sidewall_thickness)?;
+        FeError::check_non_negative("inflation_pressure", self.inflation_pressure)?;
+        FeError::check_non_negative("patch_half_angle_deg", self.patch_half_angle_deg)?;
+        if self.outer_diameter <= self.rim_diameter + 2.0 * self.tread_thickness {
+            return Err(FeError::param(
+                "outer_diameter",
+                self.outer_diameter,
+                "must exceed rim_diameter + 2·tread_thickness",
+            ));
+        }
+        if self.width <= 2.0 * self.sidewall_thickness {
+            return Err(FeError::param(
+                "width",
+                self.width,
+                "must exceed 2·sidewall_thickness",
+            ));
+        }
+        for (name, v, min) in [
+            (
+                "circumferential_divisions",
+                self.circumferential_divisions,
+                8,
+            ),
+            ("section_divisions", self.section_divisions, 4),
+            ("thickness_divisions", self.thickness_divisions, 1),
+        ] {
+            if v < min {
+                return Err(FeError::param(name, v as f64, &format!("must be >= {min}")));
+            }
+        }
+        if 2 * self.bead_elements >= self.section_divisions {
+            return Err(FeError::param(
+                "bead_elements",
+                self.bead_elements as f64,
+                "must be < section_divisions / 2",
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -188,46 +253,7 @@ fn section(cfg: &TireConfig) -> Section {
 /// `contact_patch` (the part of `tread_outer` within ±`patch_half_angle_deg` of θ = π),
 /// `all`.
 pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
-    FeError::check_positive("rim_diameter", cfg.rim_diameter)?;
-    FeError::check_positive("width", cfg.width)?;
-    FeError::check_positive("tread_thickness", cfg.tread_thickness)?;
-    FeError::check_positive("sidewall_thickness", cfg.sidewall_thickness)?;
-    FeError::check_non_negative("inflation_pressure", cfg.inflation_pressure)?;
-    FeError::check_non_negative("patch_half_angle_deg", cfg.patch_half_angle_deg)?;
-    if cfg.outer_diameter <= cfg.rim_diameter + 2.0 * cfg.tread_thickness {
-        return Err(FeError::param(
-            "outer_diameter",
-            cfg.outer_diameter,
-            "must exceed rim_diameter + 2·tread_thickness",
-        ));
-    }
-    if cfg.width <= 2.0 * cfg.sidewall_thickness {
-        return Err(FeError::param(
-            "width",
-            cfg.width,
-            "must exceed 2·sidewall_thickness",
-        ));
-    }
-    for (name, v, min) in [
-        (
-            "circumferential_divisions",
-            cfg.circumferential_divisions,
-            8,
-        ),
-        ("section_divisions", cfg.section_divisions, 4),
-        ("thickness_divisions", cfg.thickness_divisions, 1),
-    ] {
-        if v < min {
-            return Err(FeError::param(name, v as f64, &format!("must be >= {min}")));
-        }
-    }
-    if 2 * cfg.bead_elements >= cfg.section_divisions {
-        return Err(FeError::param(
-            "bead_elements",
-            cfg.bead_elements as f64,
-            "must be < section_divisions / 2",
-        ));
-    }
+    cfg.validate()?;
     let sec = section(cfg);
     let (ns, nt, nc) = (
         cfg.section_divisions,
