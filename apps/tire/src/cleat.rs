@@ -224,7 +224,7 @@ impl Study for Cleat {
         }
         let every = c.vtk_every;
         let mut observer = |k: usize, sim: &RollingTire| -> Result<(), TireError> {
-            if every == 0 || k % every != 0 {
+            if every == 0 || !k.is_multiple_of(every) {
                 return Ok(());
             }
             write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)

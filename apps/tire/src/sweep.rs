@@ -104,7 +104,7 @@ impl Study for Sweep {
         ctx.out.write_csv(
             "waterfall.csv",
             &["speed_kmh", "f_hz", "fx_amp_n", "fy_amp_n"],
-            grid_rows.into_iter(),
+            grid_rows,
         )?;
         let pts = |a: &[f64]| {
             c.speeds_kmh
