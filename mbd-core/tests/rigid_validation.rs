@@ -212,7 +212,25 @@ fn slider_closed_form(theta: f64) -> f64 {
     CRANK * theta.cos() + (ROD * ROD - (CRANK * theta.sin()).powi(2)).sqrt()
 }
 
+#[derive(Clone, Copy, PartialEq)]
+enum Wrist {
+    /// R-S-U-P: crank revolute, spherical crank pin, universal wrist pin, prismatic.
+    Universal,
+    /// R-R-planar R-P: the planar loop closed with a planar revolute (2 equations).
+    PlanarRevolute,
+    /// R-R-R-P with full revolutes: one redundant equation.
+    Revolute,
+}
+
 fn slider_crank(omega: f64, theta0: f64) -> (MultibodySystem, State) {
+    slider_crank_with(omega, theta0, Wrist::Universal).unwrap()
+}
+
+fn slider_crank_with(
+    omega: f64,
+    theta0: f64,
+    wrist: Wrist,
+) -> Result<(MultibodySystem, State), MbdError> {
     let (a, b) = (CRANK, ROD);
     let mut sys = MultibodySystem::new();
     let crank =
@@ -227,17 +245,33 @@ fn slider_crank(omega: f64, theta0: f64) -> (MultibodySystem, State) {
         j: Attachment::new(Some(crank), Vector3::new(-a / 2.0, 0.0, 0.0), z),
     })
     .unwrap();
-    sys.add_constraint(Spherical {
-        name: "crank pin".into(),
-        i: Attachment::point(Some(crank), Vector3::new(a / 2.0, 0.0, 0.0)),
-        j: Attachment::point(Some(rod), Vector3::new(-b / 2.0, 0.0, 0.0)),
-    })
-    .unwrap();
-    sys.add_constraint(Universal {
-        name: "wrist pin".into(),
-        i: Attachment::new(Some(rod), Vector3::new(b / 2.0, 0.0, 0.0), z),
-        j: Attachment::new(Some(slider), Vector3::zeros(), Vector3::x()),
-    })
+    let pin_i = Attachment::new(Some(crank), Vector3::new(a / 2.0, 0.0, 0.0), z);
+    let pin_j = Attachment::new(Some(rod), Vector3::new(-b / 2.0, 0.0, 0.0), z);
+    if wrist == Wrist::Universal {
+        sys.add_constraint(Spherical { name: "crank pin".into(), i: pin_i, j: pin_j })
+            .unwrap();
+    } else {
+        sys.add_constraint(Revolute { name: "crank pin".into(), i: pin_i, j: pin_j })
+            .unwrap();
+    }
+    let wrist_rod = Attachment::new(Some(rod), Vector3::new(b / 2.0, 0.0, 0.0), z);
+    match wrist {
+        Wrist::Universal => sys.add_constraint(Universal {
+            name: "wrist pin".into(),
+            i: wrist_rod,
+            j: Attachment::new(Some(slider), Vector3::zeros(), Vector3::x()),
+        }),
+        Wrist::PlanarRevolute => sys.add_constraint(PlanarRevolute {
+            name: "wrist pin".into(),
+            i: wrist_rod,
+            j: Attachment::point(Some(slider), Vector3::zeros()),
+        }),
+        Wrist::Revolute => sys.add_constraint(Revolute {
+            name: "wrist pin".into(),
+            i: wrist_rod,
+            j: Attachment::new(Some(slider), Vector3::zeros(), z),
+        }),
+    }
     .unwrap();
     sys.add_constraint(Prismatic {
         name: "slide".into(),
@@ -272,8 +306,32 @@ fn slider_crank(omega: f64, theta0: f64) -> (MultibodySystem, State) {
     ];
     let mut s0 = sys.state(0.0, &states).unwrap();
     // consistent velocities: D v = ν (unique: no free DOF left)
-    project_velocities(&sys, &mut s0).unwrap();
-    (sys, s0)
+    project_velocities(&sys, &mut s0)?;
+    Ok((sys, s0))
+}
+
+#[test]
+fn planar_slider_crank_with_planar_revolute_and_redundant_variant() {
+    // R-R-(planar R)-P: same closed-form slider position
+    let (omega, theta0) = (-3.0, 1.0);
+    let (sys, s0) = slider_crank_with(omega, theta0, Wrist::PlanarRevolute).unwrap();
+    assert_eq!(sys.n_c(), 18);
+    let mut max_err = 0.0f64;
+    GeneralizedAlpha::new(AlphaParams { h: 2e-3, rho_inf: 0.5, ..Default::default() })
+        .integrate(&sys, s0, 1.0, |s| {
+            max_err = max_err.max((s.q[14] - slider_closed_form(theta0 + omega * s.t)).abs());
+        })
+        .unwrap();
+    assert!(max_err < 1e-9, "planar-revolute slider error {max_err:e}");
+    // with a full revolute at the wrist the planar loop is over-constrained (20 equations,
+    // 18 coordinates): a typed error naming the redundant joint
+    let e = match slider_crank_with(omega, theta0, Wrist::Revolute) {
+        Err(e) => e,
+        Ok(_) => panic!("redundant slider-crank accepted"),
+    };
+    assert!(matches!(e, MbdError::Singular { .. }), "{e}");
+    assert!(e.to_string().contains("redundant"), "{e}");
+    println!("{e}");
 }
 
 #[test]
