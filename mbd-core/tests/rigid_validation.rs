@@ -248,11 +248,19 @@ fn slider_crank_with(
     let pin_i = Attachment::new(Some(crank), Vector3::new(a / 2.0, 0.0, 0.0), z);
     let pin_j = Attachment::new(Some(rod), Vector3::new(-b / 2.0, 0.0, 0.0), z);
     if wrist == Wrist::Universal {
-        sys.add_constraint(Spherical { name: "crank pin".into(), i: pin_i, j: pin_j })
-            .unwrap();
+        sys.add_constraint(Spherical {
+            name: "crank pin".into(),
+            i: pin_i,
+            j: pin_j,
+        })
+        .unwrap();
     } else {
-        sys.add_constraint(Revolute { name: "crank pin".into(), i: pin_i, j: pin_j })
-            .unwrap();
+        sys.add_constraint(Revolute {
+            name: "crank pin".into(),
+            i: pin_i,
+            j: pin_j,
+        })
+        .unwrap();
     }
     let wrist_rod = Attachment::new(Some(rod), Vector3::new(b / 2.0, 0.0, 0.0), z);
     match wrist {
@@ -317,11 +325,15 @@ fn planar_slider_crank_with_planar_revolute_and_redundant_variant() {
     let (sys, s0) = slider_crank_with(omega, theta0, Wrist::PlanarRevolute).unwrap();
     assert_eq!(sys.n_c(), 18);
     let mut max_err = 0.0f64;
-    GeneralizedAlpha::new(AlphaParams { h: 2e-3, rho_inf: 0.5, ..Default::default() })
-        .integrate(&sys, s0, 1.0, |s| {
-            max_err = max_err.max((s.q[14] - slider_closed_form(theta0 + omega * s.t)).abs());
-        })
-        .unwrap();
+    GeneralizedAlpha::new(AlphaParams {
+        h: 2e-3,
+        rho_inf: 0.5,
+        ..Default::default()
+    })
+    .integrate(&sys, s0, 1.0, |s| {
+        max_err = max_err.max((s.q[14] - slider_closed_form(theta0 + omega * s.t)).abs());
+    })
+    .unwrap();
     assert!(max_err < 1e-9, "planar-revolute slider error {max_err:e}");
     // with a full revolute at the wrist the planar loop is over-constrained (20 equations,
     // 18 coordinates): a typed error naming the redundant joint
