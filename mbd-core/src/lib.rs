@@ -64,6 +64,7 @@ pub use integrators::{
 };
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub mod body;
+pub mod composite;
 pub mod constraints;
 pub mod examples_chain;
 pub mod forces;
@@ -73,6 +74,7 @@ pub mod multibody;
 pub mod statics;
 
 pub use body::{BodyState, RigidBody};
+pub use composite::{CompositeSystem, Coupling, CouplingEval};
 pub use history::{History, Probe};
 pub use multibody::MultibodySystem;
 pub use statics::{StaticOptions, StaticSolution, static_equilibrium};
