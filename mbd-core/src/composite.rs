@@ -31,7 +31,7 @@ pub trait Coupling: Send + Sync {
     fn name(&self) -> &str;
     /// Number of equations.
     fn n_eq(&self) -> usize;
-    /// Evaluates at time `t` [s] on the global `q`, `v` (velocities zero when only `Φ` or `D`
+    /// Evaluates at time `t` \[s\] on the global `q`, `v` (velocities zero when only `Φ` or `D`
     /// are needed).
     fn eval(&self, t: f64, q: &[f64], v: &[f64], out: &mut CouplingEval);
 }
