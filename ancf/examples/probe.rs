@@ -1,31 +1,24 @@
 use ancf::dynamics::*;
+use ancf::studies::BeamElementKind;
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    if args[1] == "p" {
-        let mut c = PendulumCase::default();
-        c.h = args[2].parse().unwrap();
-        c.t_end = args[3].parse().unwrap();
-        let t0 = std::time::Instant::now();
-        let s = pendulum(&c, 100, |_| {}).unwrap();
-        println!(
-            "drift {:e} J, time {:?}, last {:?}",
-            energy_drift(&s),
-            t0.elapsed(),
-            s.last().unwrap()
-        );
-    } else {
-        let mut c = SpinningCase::default();
-        c.h = args[2].parse().unwrap();
-        c.rho_inf = args[3].parse().unwrap();
-        let t0 = std::time::Instant::now();
-        let s = spinning(&c, 500, |_| {}).unwrap();
-        for x in s.iter().step_by(4) {
-            println!("t={:.2} ext={:.5e} off={:.3e}", x.t, x.value, x.value2);
+    for el in [BeamElementKind::Proposed, BeamElementKind::OmarShabana] {
+        for n in [4, 8] {
+            let c = PendulumCase {
+                element: el,
+                elements: n,
+                t_end: 1.0,
+                h: 5e-5,
+                ..Default::default()
+            };
+            let t = std::time::Instant::now();
+            let s = pendulum(&c, 2000, |_| {}).unwrap();
+            println!(
+                "{el:?} n={n} {:?} drift {:e} tip(0.5s) {:?} tip(1s) {:?}",
+                t.elapsed(),
+                energy_drift(&s),
+                s[s.len() / 2].tip,
+                s.last().unwrap().tip
+            );
         }
-        println!(
-            "time {:?}, exact {:e}",
-            t0.elapsed(),
-            spinning_extension(8.0, 2766.67, 6.895e10, 4.0)
-        );
     }
 }

@@ -121,12 +121,41 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
         edot: &[f64],
         jacobian: bool,
         out: &mut ElementContact,
+        records: Option<&mut Vec<ContactRecord>>,
+    ) {
+        self.element_on(
+            &self.surface,
+            length,
+            blocks,
+            shape,
+            e,
+            edot,
+            jacobian,
+            out,
+            records,
+        );
+    }
+
+    /// As [`LineContact::element`] but against `surface` instead of `self.surface` (an obstacle
+    /// whose state — e.g. a pulley's angular velocity — changes between calls, without
+    /// rebuilding the pairing).
+    #[allow(clippy::too_many_arguments)]
+    pub fn element_on(
+        &self,
+        surface: &S,
+        length: f64,
+        blocks: usize,
+        shape: impl Fn(f64, &mut [f64]),
+        e: &[f64],
+        edot: &[f64],
+        jacobian: bool,
+        out: &mut ElementContact,
         mut records: Option<&mut Vec<ContactRecord>>,
     ) {
         let ndof = 2 * blocks;
         debug_assert!(blocks <= MAX_BLOCKS && out.ndof == ndof);
         out.clear(jacobian);
-        let c = self.surface.center();
+        let c = surface.center();
         let mut s = [0.0; MAX_BLOCKS];
         for (xi, wq) in self.rule.iter() {
             shape(xi, &mut s[..blocks]);
@@ -138,7 +167,7 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
                 v[0] += s[k] * edot[2 * k];
                 v[1] += s[k] * edot[2 * k + 1];
             }
-            let Some(pc) = point_contact(&self.surface, &self.normal, &self.friction, p, v) else {
+            let Some(pc) = point_contact(surface, &self.normal, &self.friction, p, v) else {
                 continue;
             };
             out.active_points += 1;

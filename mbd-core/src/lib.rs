@@ -67,6 +67,7 @@ pub mod body;
 pub mod composite;
 pub mod constraints;
 pub mod examples_chain;
+pub mod floating;
 pub mod forces;
 pub mod history;
 pub mod kinematics;

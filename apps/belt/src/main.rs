@@ -9,6 +9,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+mod ancf;
 mod demo;
 
 /// Belt-drive studies of the flowmbd toolkit.
@@ -23,12 +24,15 @@ struct Cli {
 enum Study {
     /// Rigid-body slider-crank with a rotational driver (mbd-core demonstration).
     Demo(demo::Args),
+    /// Planar ANCF belt drive (Kerkkänen ch. 3).
+    Ancf(ancf::Args),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.study {
         Some(Study::Demo(args)) => demo::run(&args),
+        Some(Study::Ancf(args)) => ancf::run(&args),
         None => demo::run(&demo::Args::default()),
     }
 }

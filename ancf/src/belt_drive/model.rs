@@ -1,0 +1,574 @@
+//! The belt drive as one [`SecondOrderSystem`]: ANCF belt coordinates followed by the rotation
+//! angles of the free pulleys, coupled through distributed penalty contact with friction
+//! (Kerkkänen (3.20)–(3.27)) and the pulley equations (3.26).
+
+use super::BeltFriction;
+use super::pulley::{Pulley, PulleyDrive};
+use super::spec::BeltDriveSpec;
+use crate::element::{BeltElement, Element};
+use crate::error::{AncfError, invalid};
+use crate::material::Material;
+use crate::mesh::Mesh;
+use crate::section::Section;
+use crate::shape;
+use crate::sparse::Pattern;
+use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact, LinearPenalty};
+use fe_model::generate::belt_path::{BeltPath, PathPulley};
+use mbd_core::system::ForceTangent;
+use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
+use std::sync::Mutex;
+
+/// Coordinates of one element.
+const NE: usize = 12;
+
+/// Per-call work buffers (kept so that the force and tangent loops do not allocate).
+struct Scratch {
+    contact: ElementContact,
+    k_local: Vec<f64>,
+    c_local: Vec<f64>,
+}
+
+/// A planar belt drive (see the module documentation of [`super`]).
+///
+/// Coordinates: `q = [e; θ]`, `e` the belt's nodal coordinates (6 per node, closed loop with a
+/// shared first node, Kerkkänen §2.3 option (b)), `θ` the travel-sense rotation angles of the
+/// free pulleys in pulley order. The equations are `M ë = Q_e + Q_c` (2.27) with the contact
+/// forces (3.27), and `I θ̈ = s τ − T_a(t)` for each free pulley, with `τ` the counter-clockwise
+/// contact torque (3.26), `s = ±1` the travel-sense sign of the pulley ([`Pulley::ccw_sign`])
+/// and `T_a` the load, which opposes the travel-sense rotation.
+pub struct BeltDrive {
+    spec: BeltDriveSpec,
+    path: BeltPath,
+    mesh: Mesh<BeltElement>,
+    n_belt: usize,
+    pulley_dof: Vec<Option<usize>>,
+    free: Vec<usize>,
+    line: LineContact<Disk, LinearPenalty, BeltFriction>,
+    pattern: Pattern,
+    mass_values: Vec<f64>,
+    scratch: Mutex<Scratch>,
+    elastic_cache: Mutex<ElasticCache>,
+    tangent_refresh: f64,
+}
+
+/// The last elastic tangent and the coordinates it was evaluated at.
+struct ElasticCache {
+    q: Vec<f64>,
+    k: Vec<f64>,
+    valid: bool,
+    evaluations: usize,
+}
+
+impl std::fmt::Debug for BeltDrive {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BeltDrive")
+            .field("elements", &self.mesh.elements().len())
+            .field("pulleys", &self.spec.pulleys.len())
+            .field("n_q", &self.n_q())
+            .finish()
+    }
+}
+
+impl BeltDrive {
+    /// Build the drive: validate `spec`, compute the open-belt path over the pulleys, mesh the
+    /// belt with `belt.elements` equal straight elements of length `belt.length / n`, and set up
+    /// the sparse pattern (element blocks and element–pulley coupling blocks) and the constant
+    /// mass matrix (2.26) plus the pulley inertias.
+    pub fn new(spec: BeltDriveSpec) -> Result<Self, AncfError> {
+        spec.validate()?;
+        let path_pulleys: Vec<PathPulley> = spec
+            .pulleys
+            .iter()
+            .map(|p| PathPulley {
+                center: p.center,
+                radius: p.radius,
+                side: p.side,
+            })
+            .collect();
+        let path = BeltPath::new(&path_pulleys).map_err(|e| invalid("pulleys", e.to_string()))?;
+        let lp = path.length();
+        let lb = spec.belt.length;
+        if !(0.9 * lp..=1.1 * lp).contains(&lb) {
+            return Err(invalid(
+                "belt.length",
+                format!(
+                    "{lb} m is not within 10 % of the belt path length {lp:.6} m over the pulleys"
+                ),
+            ));
+        }
+        let b = &spec.belt;
+        let material = Material {
+            young: b.young,
+            poisson: b.poisson,
+            density: b.density,
+            shear_factor: b.shear_factor,
+        };
+        let section = Section::rectangle(b.width, b.thickness)?;
+        let l = b.length / b.elements as f64;
+        let el = BeltElement::new(l, material, section, b.alpha1, b.alpha2, b.gauss_points)?;
+        let mesh = Mesh::closed_loop(vec![el; b.elements])?;
+        let n_belt = mesh.n_dof();
+        let mut pulley_dof = Vec::with_capacity(spec.pulleys.len());
+        let mut free = Vec::new();
+        for (i, p) in spec.pulleys.iter().enumerate() {
+            if p.is_free() {
+                pulley_dof.push(Some(n_belt + free.len()));
+                free.push(i);
+            } else {
+                pulley_dof.push(None);
+            }
+        }
+        let n = n_belt + free.len();
+        let n_el = mesh.elements().len();
+        let mut groups: Vec<Vec<Option<usize>>> = (0..n_el)
+            .map(|e| (0..NE).map(|k| Some(mesh.global_dof(e, k))).collect())
+            .collect();
+        for e in 0..n_el {
+            let mut g: Vec<Option<usize>> = (0..NE).map(|k| Some(mesh.global_dof(e, k))).collect();
+            g.extend((0..free.len()).map(|k| Some(n_belt + k)));
+            groups.push(g);
+        }
+        let pattern = Pattern::new(n, &groups);
+        let mut mass_values = pattern.zeros();
+        for e in 0..n_el {
+            pattern.add_element(&mut mass_values, e, mesh.element_mass(e), 1.0);
+        }
+        for (k, &pi) in free.iter().enumerate() {
+            if let PulleyDrive::Free { inertia, .. } = spec.pulleys[pi].drive {
+                mass_values[pattern.diagonal_position(n_belt + k)] += inertia;
+            }
+        }
+        let line = LineContact {
+            surface: Disk::fixed([0.0, 0.0], 1.0),
+            normal: LinearPenalty {
+                stiffness: spec.contact.stiffness,
+                damping: spec.contact.damping,
+            },
+            friction: spec.contact.friction,
+            rule: GaussRule::new(spec.contact.points),
+        };
+        let m = NE + free.len();
+        let scratch = Mutex::new(Scratch {
+            contact: ElementContact::new(NE),
+            k_local: vec![0.0; m * m],
+            c_local: vec![0.0; m * m],
+        });
+        Ok(Self {
+            spec,
+            path,
+            mesh,
+            n_belt,
+            pulley_dof,
+            free,
+            line,
+            pattern,
+            mass_values,
+            scratch,
+            elastic_cache: Mutex::new(ElasticCache {
+                q: Vec::new(),
+                k: Vec::new(),
+                valid: false,
+                evaluations: 0,
+            }),
+            tangent_refresh: 0.02,
+        })
+    }
+
+    /// The description the drive was built from.
+    pub fn spec(&self) -> &BeltDriveSpec {
+        &self.spec
+    }
+    /// The undeformed open-belt path over the pulleys.
+    pub fn path(&self) -> &BeltPath {
+        &self.path
+    }
+    /// The belt mesh.
+    pub fn mesh(&self) -> &Mesh<BeltElement> {
+        &self.mesh
+    }
+    /// The pulleys in travel order.
+    pub fn pulleys(&self) -> &[Pulley] {
+        &self.spec.pulleys
+    }
+    /// Number of belt coordinates.
+    pub fn n_belt(&self) -> usize {
+        self.n_belt
+    }
+    /// Coordinate index of pulley `p`'s angle, if it is free.
+    pub fn pulley_dof(&self, p: usize) -> Option<usize> {
+        self.pulley_dof.get(p).copied().flatten()
+    }
+    /// Reference element length `l` [m].
+    pub fn element_length(&self) -> f64 {
+        self.mesh.elements()[0].length()
+    }
+    /// Reuse the elastic part of the tangent stiffness in [`SecondOrderSystem::force_tangent`]
+    /// until some element's relative node position `(r_J − r_I)/l` or nodal slope has changed
+    /// by more than `tol` since it was evaluated (`0`: always re-evaluate, the exact Newton
+    /// matrix). The contact tangent is always exact. With the inertia term `M/(h²β)` dominating
+    /// the Newton matrix, a tangent that lags by a small rotation only slows the convergence of
+    /// generalized-α's Newton iterations marginally, while the belt element's second
+    /// derivatives (automatic differentiation) are by far the most expensive part of a step.
+    pub fn with_tangent_refresh(mut self, tol: f64) -> Self {
+        self.tangent_refresh = tol.max(0.0);
+        self
+    }
+
+    /// Number of elastic tangent evaluations so far (for statistics).
+    pub fn elastic_tangent_evaluations(&self) -> usize {
+        self.elastic_cache
+            .lock()
+            .map(|c| c.evaluations)
+            .unwrap_or_else(|e| e.into_inner().evaluations)
+    }
+
+    /// Whether the cached elastic tangent at `q_ref` may be reused at `q`.
+    fn tangent_still_valid(&self, q_ref: &[f64], q: &[f64]) -> bool {
+        let tol = self.tangent_refresh;
+        if tol <= 0.0 {
+            return false;
+        }
+        let l = self.element_length();
+        for el in 0..self.mesh.elements().len() {
+            let i = self.mesh.global_dof(el, 0);
+            let j = self.mesh.global_dof(el, 6);
+            for a in 0..2 {
+                let d = (q[j + a] - q[i + a]) - (q_ref[j + a] - q_ref[i + a]);
+                if d.abs() > tol * l {
+                    return false;
+                }
+            }
+        }
+        for node in 0..self.mesh.n_nodes() {
+            for k in 2..6 {
+                let g = 6 * node + k;
+                if (q[g] - q_ref[g]).abs() > tol {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Assembly pattern of the system matrices (built once).
+    pub fn pattern(&self) -> &Pattern {
+        &self.pattern
+    }
+
+    /// Travel-sense angular speed of pulley `p` at `(t, v)` [rad/s]: the prescribed history for
+    /// driven pulleys, the velocity coordinate for free ones.
+    pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
+        match (&self.spec.pulleys[p].drive, self.pulley_dof[p]) {
+            (PulleyDrive::Speed { speed }, _) => speed.eval(t)[0],
+            (PulleyDrive::Free { .. }, Some(j)) => v[j],
+            (PulleyDrive::Free { .. }, None) => 0.0,
+        }
+    }
+
+    /// Disk of pulley `p` spinning with travel-sense speed `omega` [rad/s].
+    fn disk(&self, p: usize, omega: f64) -> Disk {
+        let pl = &self.spec.pulleys[p];
+        Disk {
+            center: pl.center,
+            radius: pl.radius,
+            velocity: [0.0, 0.0],
+            omega: pl.ccw_sign() * omega,
+        }
+    }
+
+    /// Whether element `el` (nodes at `e`) may touch pulley `p`: a point of the element lies
+    /// within one chord length of a node, so the element is skipped when both nodes are
+    /// farther than that from the pulley surface (Kerkkänen §3.2's pre-check).
+    #[inline]
+    fn may_touch(&self, e: &[f64], p: usize) -> bool {
+        let pl = &self.spec.pulleys[p];
+        let d = |x: f64, y: f64| ((x - pl.center[0]).powi(2) + (y - pl.center[1]).powi(2)).sqrt();
+        let chord = ((e[6] - e[0]).powi(2) + (e[7] - e[1]).powi(2)).sqrt();
+        let gap = d(e[0], e[1]).min(d(e[6], e[7])) - pl.radius;
+        gap <= chord
+    }
+
+    /// Runs the distributed contact of every element against every pulley at travel-sense
+    /// pulley speeds `omegas` and hands each element–pulley pair with active points to `sink`.
+    fn contact_pass(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        omegas: &[f64],
+        jacobian: bool,
+        scratch: &mut Scratch,
+        mut sink: impl FnMut(usize, usize, &ElementContact, &mut Scratch),
+    ) {
+        let l = self.element_length();
+        let mut e = [0.0; NE];
+        let mut ed = [0.0; NE];
+        for el in 0..self.mesh.elements().len() {
+            self.mesh.gather(q, el, &mut e);
+            let mut gathered_v = false;
+            for p in 0..self.spec.pulleys.len() {
+                if !self.may_touch(&e, p) {
+                    continue;
+                }
+                if !gathered_v {
+                    self.mesh.gather(v, el, &mut ed);
+                    gathered_v = true;
+                }
+                let disk = self.disk(p, omegas[p]);
+                let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
+                self.line.element_on(
+                    &disk,
+                    l,
+                    6,
+                    |xi, s| s[..6].copy_from_slice(&shape::cubic(l, xi * l, 0.0).s),
+                    &e,
+                    &ed,
+                    jacobian,
+                    &mut ec,
+                    None,
+                );
+                if ec.active_points > 0 {
+                    sink(el, p, &ec, scratch);
+                }
+                scratch.contact = ec;
+            }
+        }
+    }
+
+    fn speeds(&self, t: f64, v: &[f64]) -> Vec<f64> {
+        (0..self.spec.pulleys.len())
+            .map(|p| self.pulley_speed(p, t, v))
+            .collect()
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Scratch> {
+        self.scratch.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Belt forces `Q_e + Q_c` (length `n_belt`) and the travel-sense contact torques on every
+    /// pulley `s τ` [N·m], with the pulleys spinning at `omegas` (travel sense, rad/s).
+    pub fn belt_forces(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        omegas: &[f64],
+        f: &mut [f64],
+        torques: &mut [f64],
+    ) {
+        let nb = self.n_belt;
+        self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
+        torques.fill(0.0);
+        let mut scratch = self.lock();
+        self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
+            self.mesh.scatter_add(f, el, &ec.q, 1.0);
+            torques[p] += self.spec.pulleys[p].ccw_sign() * ec.torque;
+        });
+    }
+
+    /// Belt tangent `K = −∂(Q_e + Q_c)/∂e` restricted to the belt coordinates with the pulleys
+    /// held at `omegas`, assembled into `pat` (whose first groups are the mesh elements, in
+    /// order); `f` receives the forces.
+    pub(crate) fn belt_stiffness(
+        &self,
+        q: &[f64],
+        omegas: &[f64],
+        pat: &Pattern,
+        f: &mut [f64],
+        k_vals: &mut [f64],
+    ) {
+        let nb = self.n_belt;
+        k_vals.fill(0.0);
+        self.mesh
+            .elastic_tangent_into(&q[..nb], &mut f[..nb], pat, k_vals, 1.0);
+        let zero = vec![0.0; q.len()];
+        let mut scratch = self.lock();
+        self.contact_pass(q, &zero, omegas, true, &mut scratch, |el, _, ec, _| {
+            self.mesh.scatter_add(f, el, &ec.q, 1.0);
+            pat.add_element(k_vals, el, &ec.dq_de, -1.0);
+        });
+    }
+
+    /// Contact state at every active quadrature point, for output (force distributions and
+    /// belt–pulley relative velocity, Kerkkänen Figs 3.13–3.20).
+    pub fn contact_records(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<PointRecord> {
+        let omegas = self.speeds(t, v);
+        let l = self.element_length();
+        let mut out = Vec::new();
+        let mut recs: Vec<ContactRecord> = Vec::new();
+        let mut ec = ElementContact::new(NE);
+        let mut e = [0.0; NE];
+        let mut ed = [0.0; NE];
+        for el in 0..self.mesh.elements().len() {
+            self.mesh.gather(q, el, &mut e);
+            self.mesh.gather(v, el, &mut ed);
+            for p in 0..self.spec.pulleys.len() {
+                if !self.may_touch(&e, p) {
+                    continue;
+                }
+                recs.clear();
+                let disk = self.disk(p, omegas[p]);
+                self.line.element_on(
+                    &disk,
+                    l,
+                    6,
+                    |xi, s| s[..6].copy_from_slice(&shape::cubic(l, xi * l, 0.0).s),
+                    &e,
+                    &ed,
+                    false,
+                    &mut ec,
+                    Some(&mut recs),
+                );
+                let sgn = self.spec.pulleys[p].ccw_sign();
+                for r in &recs {
+                    out.push(PointRecord {
+                        pulley: p,
+                        element: el,
+                        s_material: (el as f64 + r.xi) * l,
+                        position: r.position,
+                        penetration: r.penetration,
+                        normal_force: r.normal_force,
+                        friction_force: sgn * r.friction_force,
+                        slip: sgn * r.slip,
+                    });
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Contact state at one quadrature point, in the travel sense of the pulley.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PointRecord {
+    /// Pulley index.
+    pub pulley: usize,
+    /// Element index.
+    pub element: usize,
+    /// Material (unstretched) arc length along the belt from node 0 [m].
+    pub s_material: f64,
+    /// Position [m].
+    pub position: [f64; 2],
+    /// Penetration `d` (3.21) [m].
+    pub penetration: f64,
+    /// Normal force per unit length `k_p d + c_p ḋ` (3.20) [N/m].
+    pub normal_force: f64,
+    /// Friction force per unit length on the belt, positive in the travel direction [N/m].
+    pub friction_force: f64,
+    /// Relative velocity of the belt with respect to the pulley surface (3.25), positive when
+    /// the belt is faster in the travel direction [m/s].
+    pub slip: f64,
+}
+
+impl SecondOrderSystem for BeltDrive {
+    fn n_q(&self) -> usize {
+        self.n_belt + self.free.len()
+    }
+    fn dof_name(&self, dof: usize) -> String {
+        if dof < self.n_belt {
+            let names = ["r_x", "r_y", "r,x_x", "r,x_y", "r,y_x", "r,y_y"];
+            format!("belt node {} {}", dof / 6, names[dof % 6])
+        } else if let Some(&p) = self.free.get(dof - self.n_belt) {
+            format!("pulley \"{}\" angle", self.spec.pulleys[p].name)
+        } else {
+            format!("coordinate {dof}")
+        }
+    }
+    fn mass_is_constant(&self) -> bool {
+        true
+    }
+    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
+        Ok(SysMatrix::Sparse(
+            self.pattern.to_matrix(self.mass_values.clone()),
+        ))
+    }
+    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+        let nb = self.n_belt;
+        self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
+        f[nb..].fill(0.0);
+        let np = self.spec.pulleys.len();
+        let mut omegas = [0.0; 16];
+        let omegas: &mut [f64] = if np <= 16 {
+            &mut omegas[..np]
+        } else {
+            return Err(MbdError::InvalidInput {
+                item: "pulleys".into(),
+                reason: format!("at most 16 supported, got {np}"),
+            });
+        };
+        for (p, o) in omegas.iter_mut().enumerate() {
+            *o = self.pulley_speed(p, t, v);
+        }
+        let mut scratch = self.lock();
+        self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
+            self.mesh.scatter_add(f, el, &ec.q, 1.0);
+            if let Some(j) = self.pulley_dof[p] {
+                f[j] += self.spec.pulleys[p].ccw_sign() * ec.torque;
+            }
+        });
+        for &p in &self.free {
+            if let (PulleyDrive::Free { load, .. }, Some(j)) =
+                (&self.spec.pulleys[p].drive, self.pulley_dof[p])
+            {
+                f[j] -= load.eval(t);
+            }
+        }
+        Ok(())
+    }
+    fn force_tangent(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<Option<ForceTangent>, MbdError> {
+        let nb = self.n_belt;
+        let pat = &self.pattern;
+        let mut k = {
+            let mut cache = self.elastic_cache.lock().unwrap_or_else(|e| e.into_inner());
+            if !(cache.valid && self.tangent_still_valid(&cache.q, q)) {
+                let mut fbuf = vec![0.0; nb];
+                let mut kv = pat.zeros();
+                self.mesh
+                    .elastic_tangent_into(&q[..nb], &mut fbuf, pat, &mut kv, 1.0);
+                cache.k = kv;
+                cache.q = q.to_vec();
+                cache.valid = true;
+                cache.evaluations += 1;
+            }
+            cache.k.clone()
+        };
+        let mut c = pat.zeros();
+        let omegas = self.speeds(t, v);
+        let n_el = self.mesh.elements().len();
+        let nf = self.free.len();
+        let m = NE + nf;
+        let mut scratch = self.lock();
+        self.contact_pass(q, v, &omegas, true, &mut scratch, |el, p, ec, s| {
+            s.k_local.fill(0.0);
+            s.c_local.fill(0.0);
+            for b in 0..NE {
+                for a in 0..NE {
+                    s.k_local[a + b * m] = -ec.dq_de[a + b * NE];
+                    s.c_local[a + b * m] = -ec.dq_dedot[a + b * NE];
+                }
+            }
+            if let Some(j) = self.pulley_dof[p] {
+                let kp = j - nb;
+                let sg = self.spec.pulleys[p].ccw_sign();
+                let col = NE + kp;
+                for a in 0..NE {
+                    // f_belt depends on ω_ccw = s θ̇
+                    s.c_local[a + col * m] = -sg * ec.dq_domega[a];
+                    // pulley row: s τ
+                    s.k_local[col + a * m] = -sg * ec.dtorque_de[a];
+                    s.c_local[col + a * m] = -sg * ec.dtorque_dedot[a];
+                }
+                s.c_local[col + col * m] = -ec.dtorque_domega;
+            }
+            pat.add_element(&mut k, n_el + el, &s.k_local, 1.0);
+            pat.add_element(&mut c, n_el + el, &s.c_local, 1.0);
+        });
+        Ok(Some(ForceTangent {
+            stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
+            damping: SysMatrix::Sparse(pat.to_matrix(c)),
+        }))
+    }
+}

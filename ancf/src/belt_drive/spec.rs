@@ -1,0 +1,214 @@
+//! Plain-data description of a planar belt drive (Kerkkänen §3.3, Table 3.1).
+
+use super::friction::BeltFriction;
+use super::profile::{SpeedProfile, TorqueProfile};
+use super::pulley::{Pulley, PulleyDrive};
+use crate::error::{AncfError, invalid};
+use fe_model::generate::belt_path::WrapSide;
+use serde::{Deserialize, Serialize};
+
+/// The belt: ANCF belt elements (Kerkkänen §3.1) in a closed loop.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BeltSpec {
+    /// Unstretched belt length [m] (Table 3.1 runs: 1.2727 m, shorter than the 1.276273 m path,
+    /// which pre-strains the belt on the pulleys).
+    pub length: f64,
+    /// Number of elements (Kerkkänen: 20, 25, 30).
+    pub elements: usize,
+    /// Section width (out of plane) [m].
+    pub width: f64,
+    /// Section thickness (in plane) [m].
+    pub thickness: f64,
+    /// Young's modulus `E` [Pa].
+    pub young: f64,
+    /// Poisson's ratio `ν` [-].
+    pub poisson: f64,
+    /// Density `ρ` [kg/m³].
+    pub density: f64,
+    /// Shear correction factor `k_s` [-] (not stated for the belt; 5/6 as in Ch. 2).
+    pub shear_factor: f64,
+    /// Axial stiffness multiplier `α₁` (3.18).
+    pub alpha1: f64,
+    /// Bending/shear stiffness multiplier `α₂` (3.18)–(3.19).
+    pub alpha2: f64,
+    /// Gauss points along each element for the strain energy.
+    pub gauss_points: usize,
+}
+
+impl Default for BeltSpec {
+    /// Kerkkänen Table 3.1.
+    fn default() -> Self {
+        Self {
+            length: 1.2727,
+            elements: 20,
+            width: 0.01,
+            thickness: 0.01,
+            young: 1.0e8,
+            poisson: 0.3,
+            density: 1036.0,
+            shear_factor: 5.0 / 6.0,
+            alpha1: 1.0,
+            alpha2: 0.01,
+            gauss_points: 5,
+        }
+    }
+}
+
+/// Distributed penalty contact with friction (Kerkkänen (3.20)–(3.27)).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ContactSpec {
+    /// Penalty stiffness per unit length `k_p` [N/m²].
+    pub stiffness: f64,
+    /// Penalty damping per unit length `c_p` [N·s/m²].
+    pub damping: f64,
+    /// Friction law.
+    pub friction: BeltFriction,
+    /// Gauss points per element for the contact integral (3.27) (Kerkkänen: 5, 7, 11 agree).
+    pub points: usize,
+}
+
+impl Default for ContactSpec {
+    /// Kerkkänen Table 3.1.
+    fn default() -> Self {
+        Self {
+            stiffness: 1.0e7,
+            damping: 10.0,
+            friction: BeltFriction::CreepRate {
+                mu: 1.2,
+                creep: 1.0e5,
+            },
+            points: 5,
+        }
+    }
+}
+
+/// A complete belt drive: pulleys in travel order, belt and contact.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BeltDriveSpec {
+    /// Pulleys in travel order (the belt runs from pulley 0 to pulley 1, …).
+    pub pulleys: Vec<Pulley>,
+    /// Belt.
+    pub belt: BeltSpec,
+    /// Contact.
+    pub contact: ContactSpec,
+}
+
+impl Default for BeltDriveSpec {
+    /// Kerkkänen Table 3.1 (example 3.3-B): driver at (−0.191441, 0) ramped to 12 rad/s by
+    /// (3.29), free driven pulley at (0.191441, 0) with `I = 0.1 kg·m²` and no load, both
+    /// `R = 0.08125 m`.
+    fn default() -> Self {
+        Self::two_pulley(
+            0.08125,
+            0.08125,
+            SpeedProfile::kerkkanen(12.0),
+            TorqueProfile::None,
+        )
+    }
+}
+
+impl BeltDriveSpec {
+    /// Kerkkänen's two-pulley layout (Table 3.1 centres, driver first) with the given radii,
+    /// driver speed and driven-pulley load.
+    pub fn two_pulley(r1: f64, r2: f64, speed: SpeedProfile, load: TorqueProfile) -> Self {
+        Self {
+            pulleys: vec![
+                Pulley {
+                    name: "driver".into(),
+                    center: [-0.191441, 0.0],
+                    radius: r1,
+                    side: WrapSide::Inside,
+                    drive: PulleyDrive::Speed { speed },
+                },
+                Pulley {
+                    name: "driven".into(),
+                    center: [0.191441, 0.0],
+                    radius: r2,
+                    side: WrapSide::Inside,
+                    drive: PulleyDrive::Free { inertia: 0.1, load },
+                },
+            ],
+            belt: BeltSpec::default(),
+            contact: ContactSpec::default(),
+        }
+    }
+
+    /// Check every parameter; the error names the field.
+    pub fn validate(&self) -> Result<(), AncfError> {
+        if self.pulleys.len() < 2 {
+            return Err(invalid(
+                "pulleys",
+                format!("need at least 2, got {}", self.pulleys.len()),
+            ));
+        }
+        for (i, p) in self.pulleys.iter().enumerate() {
+            p.validate().map_err(|(f, r)| invalid(f, r))?;
+            if self.pulleys[..i].iter().any(|o| o.name == p.name) {
+                return Err(invalid(
+                    format!("pulley \"{}\": name", p.name),
+                    "is used twice",
+                ));
+            }
+        }
+        let b = &self.belt;
+        let pos = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(invalid(
+                    format!("belt.{name}"),
+                    format!("must be > 0, got {v}"),
+                ))
+            }
+        };
+        pos("length", b.length)?;
+        pos("width", b.width)?;
+        pos("thickness", b.thickness)?;
+        pos("young", b.young)?;
+        pos("density", b.density)?;
+        pos("shear_factor", b.shear_factor)?;
+        pos("alpha1", b.alpha1)?;
+        pos("alpha2", b.alpha2)?;
+        if !(b.poisson.is_finite() && b.poisson > -1.0 && b.poisson < 0.5) {
+            return Err(invalid(
+                "belt.poisson",
+                format!("must lie in (-1, 0.5), got {}", b.poisson),
+            ));
+        }
+        if b.elements < 3 {
+            return Err(invalid(
+                "belt.elements",
+                format!("a closed loop needs at least 3, got {}", b.elements),
+            ));
+        }
+        if b.gauss_points == 0 {
+            return Err(invalid("belt.gauss_points", "must be at least 1"));
+        }
+        let c = &self.contact;
+        if !(c.stiffness.is_finite() && c.stiffness > 0.0) {
+            return Err(invalid(
+                "contact.stiffness",
+                format!("must be > 0 N/m², got {}", c.stiffness),
+            ));
+        }
+        if !(c.damping.is_finite() && c.damping >= 0.0) {
+            return Err(invalid(
+                "contact.damping",
+                format!("must be ≥ 0 N·s/m², got {}", c.damping),
+            ));
+        }
+        if c.points == 0 || c.points > 20 {
+            return Err(invalid(
+                "contact.points",
+                format!("must lie in 1..=20, got {}", c.points),
+            ));
+        }
+        c.friction
+            .validate()
+            .map_err(|(f, r)| invalid(format!("contact.{f}"), r))?;
+        Ok(())
+    }
+}

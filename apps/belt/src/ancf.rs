@@ -1,0 +1,619 @@
+//! `flowmbd-belt ancf`: the planar ANCF belt drive of Kerkkänen ch. 3 (library:
+//! [`ancf::belt_drive`]). Defaults are Table 3.1 with the driver ramp (3.29) (example 3.3-B);
+//! `apps/belt/examples/kerkkanen-3-3-*.toml` hold the other examples.
+//!
+//! Output folder: `history.csv` (pulley speeds, span mid-point positions, span tensions),
+//! `tension.csv` (tension along the belt at the end), `contact.csv` (normal and friction force
+//! per unit length and belt–pulley relative velocity at every active contact point at the end),
+//! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtk` + `belt.vtk.series`).
+
+use ancf::belt_drive::{
+    BeltDrive, BeltDriveSpec, InitialOptions, SimulationOptions, free_belt_closure, post,
+};
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use mbd_core::integrators::{AlphaStepper, GeneralizedAlpha, State};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Command-line arguments of the `ancf` study.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// End time [s] (overrides `t_end`).
+    #[arg(long)]
+    pub t_end: Option<f64>,
+}
+
+/// What the study computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Analysis {
+    /// Example 3.3-A: static closure of the free belt (no pulleys in the analysis; the belt
+    /// length is set to the path length).
+    StaticClosure,
+    /// Dynamic simulation of the drive.
+    Dynamic,
+}
+
+/// Output options.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OutputConfig {
+    /// Sampling interval of `history.csv` [s].
+    pub history_interval: f64,
+    /// Interval between VTK frames of the belt [s].
+    pub vtk_interval: f64,
+    /// Points per element in the VTK polyline and `tension.csv`.
+    pub points_per_element: usize,
+}
+
+impl Default for OutputConfig {
+    fn default() -> Self {
+        Self {
+            history_interval: 1e-3,
+            vtk_interval: 0.02,
+            points_per_element: 8,
+        }
+    }
+}
+
+/// Configuration of the `ancf` study (SI units).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Config {
+    /// Static closure (3.3-A) or dynamic run.
+    pub analysis: Analysis,
+    /// End time [s].
+    pub t_end: f64,
+    /// Reuse tolerance of the elastic tangent (see `BeltDrive::with_tangent_refresh`).
+    pub tangent_refresh: f64,
+    /// The drive: pulleys (travel order), belt, contact.
+    pub drive: BeltDriveSpec,
+    /// Integrator.
+    pub integrator: SimulationOptions,
+    /// Output.
+    pub output: OutputConfig,
+}
+
+impl Default for Config {
+    /// Kerkkänen example 3.3-B: Table 3.1, 20 elements, driver ramp (3.29) to 12 rad/s.
+    fn default() -> Self {
+        Self {
+            analysis: Analysis::Dynamic,
+            t_end: 1.0,
+            tangent_refresh: 0.02,
+            drive: BeltDriveSpec::default(),
+            integrator: SimulationOptions::default(),
+            output: OutputConfig::default(),
+        }
+    }
+}
+
+impl Validate for Config {
+    fn validate(&self) -> Result<(), InputError> {
+        let input = |e: ancf::AncfError| match e {
+            ancf::AncfError::InvalidInput { item, reason } => {
+                InputError::new(format!("drive: {item}"), reason)
+            }
+            other => InputError::new("drive", other.to_string()),
+        };
+        self.drive.validate().map_err(input)?;
+        self.integrator.validate().map_err(|e| match e {
+            ancf::AncfError::InvalidInput { item, reason } => InputError::new(item, reason),
+            other => InputError::new("integrator", other.to_string()),
+        })?;
+        if !(self.t_end.is_finite() && self.t_end > 0.0) {
+            return Err(InputError::new(
+                "t_end",
+                format!("must be > 0 s, got {}", self.t_end),
+            ));
+        }
+        if !(self.tangent_refresh.is_finite() && self.tangent_refresh >= 0.0) {
+            return Err(InputError::new("tangent_refresh", "must be ≥ 0"));
+        }
+        let o = &self.output;
+        if !(o.history_interval.is_finite() && o.history_interval > 0.0) {
+            return Err(InputError::new("output.history_interval", "must be > 0 s"));
+        }
+        if !(o.vtk_interval.is_finite() && o.vtk_interval > 0.0) {
+            return Err(InputError::new("output.vtk_interval", "must be > 0 s"));
+        }
+        if o.points_per_element == 0 || o.points_per_element > 100 {
+            return Err(InputError::new(
+                "output.points_per_element",
+                "must lie in 1..=100",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Summary of a run (`summary.json`, `--json`).
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct Summary {
+    /// Driver pulley speed at the end [rad/s] (travel sense).
+    pub omega_driver_end: f64,
+    /// Driven (first free) pulley speed at the end [rad/s] (travel sense).
+    pub omega_driven_end: f64,
+    /// Tension of the span running into the driver at the end [N].
+    pub tension_tight: f64,
+    /// Tension of the span leaving the driver at the end [N].
+    pub tension_slack: f64,
+    /// Wall time of the whole study [s].
+    pub wall_time_s: f64,
+    /// End time reached [s].
+    pub t_end: f64,
+    /// Integration steps.
+    pub steps: usize,
+    /// Newton iterations.
+    pub newton_iterations: usize,
+    /// Pre-tension after the initial static solve (mean over the belt) [N].
+    pub initial_tension: f64,
+    /// Speed ratio driven/driver at the end.
+    pub speed_ratio: f64,
+    /// Static closure only: mean radius of the closed belt [m].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub closure_radius: Option<f64>,
+    /// Static closure only: relative radius variation (max − min)/mean.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub closure_radius_variation: Option<f64>,
+}
+
+struct AncfStudy {
+    t_end: Option<f64>,
+}
+
+fn to_study_error(e: ancf::AncfError) -> StudyError {
+    match e {
+        ancf::AncfError::InvalidInput { item, reason } => {
+            StudyError::Input(InputError::new(format!("drive: {item}"), reason))
+        }
+        other => StudyError::numerical(other),
+    }
+}
+
+/// Which pulleys play driver and driven in the summary: the first speed-driven pulley and the
+/// first free one.
+fn roles(drive: &BeltDrive) -> (usize, Option<usize>) {
+    let driver = drive
+        .pulleys()
+        .iter()
+        .position(|p| !p.is_free())
+        .unwrap_or(0);
+    let driven = drive.pulleys().iter().position(|p| p.is_free());
+    (driver, driven)
+}
+
+/// The spans running into and out of the driver: (tight, slack) indices.
+fn tight_slack(spans: &[post::SpanLine], driver: usize) -> (Option<usize>, Option<usize>) {
+    (
+        spans.iter().position(|s| s.to == driver),
+        spans.iter().position(|s| s.from == driver),
+    )
+}
+
+fn write_vtk(
+    drive: &BeltDrive,
+    q: &[f64],
+    per_el: usize,
+    path: &std::path::Path,
+) -> Result<(), StudyError> {
+    let samples = post::tension_samples(drive, q, per_el);
+    let werr = |e: std::io::Error| {
+        StudyError::Cli(flowmbd_cli::CliError::Write {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    };
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path).map_err(werr)?);
+    let n = samples.len();
+    let mut text = String::new();
+    text.push_str("# vtk DataFile Version 3.0\nflowmbd ANCF belt\nASCII\nDATASET POLYDATA\n");
+    text.push_str(&format!("POINTS {n} double\n"));
+    for s in &samples {
+        text.push_str(&format!("{} {} 0\n", s.position[0], s.position[1]));
+    }
+    text.push_str(&format!("LINES 1 {}\n{}", n + 2, n + 1));
+    for i in 0..n {
+        text.push_str(&format!(" {i}"));
+    }
+    text.push_str(" 0\n");
+    text.push_str(&format!(
+        "POINT_DATA {n}\nSCALARS tension double 1\nLOOKUP_TABLE default\n"
+    ));
+    for s in &samples {
+        text.push_str(&format!("{}\n", s.tension));
+    }
+    f.write_all(text.as_bytes()).map_err(werr)?;
+    f.flush().map_err(werr)
+}
+
+impl AncfStudy {
+    fn closure(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        let start = Instant::now();
+        let mut spec = c.drive.clone();
+        // the belt is stress-free on the path length (Kerkkänen: 1.276 m on the 1.276273 m path)
+        let path = BeltDrive::new(spec.clone()).map_err(to_study_error)?;
+        spec.belt.length = path.path().length();
+        let r = free_belt_closure(&spec).map_err(to_study_error)?;
+        let drive = BeltDrive::new(spec).map_err(to_study_error)?;
+        let samples = post::tension_samples(&drive, &r.q, c.output.points_per_element);
+        ctx.out.write_csv(
+            "closure.csv",
+            &["s_material", "x", "y"],
+            samples
+                .iter()
+                .map(|s| [s.s_material, s.position[0], s.position[1]]),
+        )?;
+        let q0 = drive.placed_coordinates();
+        let init = post::tension_samples(&drive, &q0, c.output.points_per_element);
+        let pts = |v: &[post::TensionSample]| {
+            let mut p: Vec<(f64, f64)> = v.iter().map(|s| (s.position[0], s.position[1])).collect();
+            if let Some(&f) = p.first() {
+                p.push(f);
+            }
+            p
+        };
+        LinePlot::new("Free belt closure (Kerkkänen 3.3-A)", "x [m]", "y [m]")
+            .with(Series::line("initial guess", pts(&init)))
+            .with(Series::line("equilibrium", pts(&samples)))
+            .save(&ctx.out.path("closure"))?;
+        std::fs::create_dir_all(ctx.out.path("vtk")).map_err(|e| {
+            StudyError::Cli(flowmbd_cli::CliError::Write {
+                path: ctx.out.path("vtk"),
+                message: e.to_string(),
+            })
+        })?;
+        write_vtk(
+            &drive,
+            &r.q,
+            c.output.points_per_element,
+            &ctx.out.path("vtk/belt_0000.vtk"),
+        )?;
+        Ok(Summary {
+            wall_time_s: start.elapsed().as_secs_f64(),
+            newton_iterations: r.iterations,
+            closure_radius: Some(r.mean_radius),
+            closure_radius_variation: Some((r.radius_range[1] - r.radius_range[0]) / r.mean_radius),
+            ..Default::default()
+        })
+    }
+
+    fn dynamic(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        let start = Instant::now();
+        let drive = BeltDrive::new(c.drive.clone())
+            .map_err(to_study_error)?
+            .with_tangent_refresh(c.tangent_refresh);
+        let init = drive
+            .initial_state(&InitialOptions::default())
+            .map_err(to_study_error)?;
+        let (driver, driven) = roles(&drive);
+        let spans = post::spans(&drive);
+        let (tight, slack) = tight_slack(&spans, driver);
+        let np = drive.pulleys().len();
+
+        let mut header: Vec<String> = vec!["t".into()];
+        for p in drive.pulleys() {
+            header.push(format!("omega_{}", p.name));
+        }
+        for k in 0..spans.len() {
+            header.push(format!("span{k}_mid_x"));
+            header.push(format!("span{k}_mid_y"));
+        }
+        for k in 0..spans.len() {
+            header.push(format!("span{k}_tension"));
+        }
+        let hdr: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
+        let mut csv = ctx.out.csv("history.csv", &hdr)?;
+        let vtk_dir = ctx.out.path("vtk");
+        std::fs::create_dir_all(&vtk_dir).map_err(|e| {
+            StudyError::Cli(flowmbd_cli::CliError::Write {
+                path: vtk_dir.clone(),
+                message: e.to_string(),
+            })
+        })?;
+        let mut vtk_frames: Vec<(String, f64)> = Vec::new();
+        let mut speeds: Vec<Vec<(f64, f64)>> = vec![Vec::new(); np];
+        let mut mids: Vec<Vec<(f64, f64)>> = vec![Vec::new(); spans.len()];
+        let mut tens: Vec<Vec<(f64, f64)>> = vec![Vec::new(); spans.len()];
+
+        let mut record = |s: &State,
+                          csv: &mut flowmbd_cli::output::CsvSink,
+                          speeds: &mut Vec<Vec<(f64, f64)>>|
+         -> Result<Vec<f64>, StudyError> {
+            let mut row = vec![s.t];
+            for (p, sp) in speeds.iter_mut().enumerate() {
+                let w = drive.pulley_speed(p, s.t, &s.v);
+                row.push(w);
+                sp.push((s.t, w));
+            }
+            let m = post::span_midpoints(&drive, &s.q);
+            for (k, mp) in m.iter().enumerate() {
+                let p = mp.unwrap_or([f64::NAN, f64::NAN]);
+                row.push(p[0]);
+                row.push(p[1]);
+                if p[1].is_finite() {
+                    mids[k].push((s.t, p[1]));
+                }
+            }
+            let t = post::span_tensions(&drive, &s.q);
+            for (k, v) in t.iter().enumerate() {
+                row.push(*v);
+                if v.is_finite() {
+                    tens[k].push((s.t, *v));
+                }
+            }
+            csv.row(&row)?;
+            Ok(t)
+        };
+
+        let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
+        let mut last_tensions = record(&s0, &mut csv, &mut speeds)?;
+        write_vtk(
+            &drive,
+            &s0.q,
+            c.output.points_per_element,
+            &vtk_dir.join("belt_0000.vtk"),
+        )?;
+        vtk_frames.push(("vtk/belt_0000.vtk".into(), 0.0));
+
+        let progress = ctx.progress(c.t_end, "ANCF belt drive");
+        let mut next_hist = c.output.history_interval;
+        let mut next_vtk = c.output.vtk_interval;
+        let mut final_state = s0.clone();
+        let mut steps = 0;
+        let mut newton = 0;
+        let failure: Option<String> = match c.integrator.integrator {
+            ancf::belt_drive::IntegratorKind::GeneralizedAlpha => {
+                let ga = GeneralizedAlpha::new(c.integrator.alpha_params());
+                match ga.stepper(&drive, s0.clone()) {
+                    Err(e) => Some(e.to_string()),
+                    Ok(mut st) => {
+                        let mut err = None;
+                        while st.state().t < c.t_end - 1e-12 {
+                            let t_next = (st.state().t + c.output.history_interval).min(c.t_end);
+                            if let Err(e) = advance(&mut st, &drive, t_next) {
+                                err = Some(e.to_string());
+                                break;
+                            }
+                            let s = st.state().clone();
+                            if s.t >= next_hist - 1e-12 || s.t >= c.t_end - 1e-12 {
+                                last_tensions = record(&s, &mut csv, &mut speeds)?;
+                                next_hist += c.output.history_interval;
+                            }
+                            if s.t >= next_vtk - 1e-12 {
+                                let name = format!("vtk/belt_{:04}.vtk", vtk_frames.len());
+                                write_vtk(
+                                    &drive,
+                                    &s.q,
+                                    c.output.points_per_element,
+                                    &ctx.out.path(&name),
+                                )?;
+                                vtk_frames.push((name, s.t));
+                                next_vtk += c.output.vtk_interval;
+                            }
+                            progress.set(s.t);
+                            final_state = s;
+                        }
+                        steps = st.stats.steps;
+                        newton = st.stats.newton_iterations;
+                        err
+                    }
+                }
+            }
+            ancf::belt_drive::IntegratorKind::Rk4 => {
+                let mut frames = Vec::new();
+                let mut hist: Vec<State> = Vec::new();
+                let r = ancf::belt_drive::simulate(&drive, &init.q, c.t_end, &c.integrator, |s| {
+                    if s.t >= next_hist - 1e-12 {
+                        hist.push(s.clone());
+                        next_hist += c.output.history_interval;
+                    }
+                    if s.t >= next_vtk - 1e-12 {
+                        frames.push(s.clone());
+                        next_vtk += c.output.vtk_interval;
+                    }
+                    progress.set(s.t);
+                });
+                for s in &hist {
+                    last_tensions = record(s, &mut csv, &mut speeds)?;
+                }
+                for s in &frames {
+                    let name = format!("vtk/belt_{:04}.vtk", vtk_frames.len());
+                    write_vtk(
+                        &drive,
+                        &s.q,
+                        c.output.points_per_element,
+                        &ctx.out.path(&name),
+                    )?;
+                    vtk_frames.push((name, s.t));
+                }
+                match r {
+                    Ok(sol) => {
+                        steps = sol.stats.steps;
+                        final_state = sol.state;
+                        None
+                    }
+                    Err(e) => {
+                        if let Some(s) = hist.last() {
+                            final_state = s.clone();
+                        }
+                        Some(e.to_string())
+                    }
+                }
+            }
+        };
+        progress.finish();
+        csv.finish()?;
+        let s = &final_state;
+
+        // VTK series index (ParaView ".series" JSON)
+        let series = serde_json::json!({
+            "file-series-version": "1.0",
+            "files": vtk_frames.iter().map(|(n, t)| serde_json::json!({"name": n, "time": t})).collect::<Vec<_>>(),
+        });
+        ctx.out.write_json("belt.vtk.series", &series)?;
+
+        // end-of-run distributions
+        let samples = post::tension_samples(&drive, &s.q, c.output.points_per_element);
+        ctx.out.write_csv(
+            "tension.csv",
+            &["s_material", "x", "y", "strain", "tension"],
+            samples.iter().map(|p| {
+                [
+                    p.s_material,
+                    p.position[0],
+                    p.position[1],
+                    p.strain,
+                    p.tension,
+                ]
+            }),
+        )?;
+        let recs = drive.contact_records(s.t, &s.q, &s.v);
+        ctx.out.write_csv(
+            "contact.csv",
+            &[
+                "pulley",
+                "s_material",
+                "arc",
+                "x",
+                "y",
+                "penetration",
+                "normal_force",
+                "friction_force",
+                "relative_velocity",
+            ],
+            recs.iter().map(|r| {
+                [
+                    r.pulley as f64,
+                    r.s_material,
+                    post::pulley_arc_coordinate(&drive, r.pulley, r.position),
+                    r.position[0],
+                    r.position[1],
+                    r.penetration,
+                    r.normal_force,
+                    r.friction_force,
+                    r.slip,
+                ]
+            }),
+        )?;
+
+        // plots
+        let mut pl = LinePlot::new("Pulley speeds", "t [s]", "ω [rad/s]");
+        for (p, sp) in speeds.into_iter().enumerate() {
+            pl = pl.with(Series::line(drive.pulleys()[p].name.clone(), sp));
+        }
+        pl.save(&ctx.out.path("pulley_speeds"))?;
+        let mut pl = LinePlot::new("Span mid-points", "t [s]", "y [m]");
+        for (k, m) in mids.into_iter().enumerate() {
+            pl = pl.with(Series::line(format!("span {k}"), m));
+        }
+        pl.save(&ctx.out.path("span_midpoints"))?;
+        let mut pl = LinePlot::new("Span tensions", "t [s]", "T [N]");
+        for (k, m) in tens.into_iter().enumerate() {
+            pl = pl.with(Series::line(format!("span {k}"), m));
+        }
+        pl.save(&ctx.out.path("span_tensions"))?;
+        LinePlot::new(
+            format!("Tension along the belt at t = {:.3} s", s.t),
+            "s (material) [m]",
+            "T [N]",
+        )
+        .with(Series::line(
+            "tension",
+            samples.iter().map(|p| (p.s_material, p.tension)).collect(),
+        ))
+        .save(&ctx.out.path("tension"))?;
+        for (p, pulley) in drive.pulleys().iter().enumerate() {
+            let mut on: Vec<_> = recs.iter().filter(|r| r.pulley == p).collect();
+            on.sort_by(|a, b| a.s_material.total_cmp(&b.s_material));
+            LinePlot::new(
+                format!("Contact forces on {} at t = {:.3} s", pulley.name, s.t),
+                "s (material) [m]",
+                "force per length [N/m]",
+            )
+            .with(Series::points(
+                "normal",
+                on.iter().map(|r| (r.s_material, r.normal_force)).collect(),
+            ))
+            .with(Series::points(
+                "friction",
+                on.iter()
+                    .map(|r| (r.s_material, r.friction_force))
+                    .collect(),
+            ))
+            .save(&ctx.out.path(&format!("contact_{}", pulley.name)))?;
+            let mut arc: Vec<(f64, f64)> = on
+                .iter()
+                .map(|r| (post::pulley_arc_coordinate(&drive, p, r.position), r.slip))
+                .collect();
+            arc.sort_by(|a, b| a.0.total_cmp(&b.0));
+            LinePlot::new(
+                format!("Belt–pulley relative velocity on {}", pulley.name),
+                "arc from inlet [m]",
+                "v_belt − v_pulley [m/s]",
+            )
+            .with(Series::points("relative velocity", arc))
+            .save(&ctx.out.path(&format!("relative_velocity_{}", pulley.name)))?;
+        }
+
+        let w_driver = drive.pulley_speed(driver, s.t, &s.v);
+        let w_driven = driven
+            .map(|p| drive.pulley_speed(p, s.t, &s.v))
+            .unwrap_or(f64::NAN);
+        let summary = Summary {
+            omega_driver_end: w_driver,
+            omega_driven_end: w_driven,
+            tension_tight: tight.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
+            tension_slack: slack.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
+            wall_time_s: start.elapsed().as_secs_f64(),
+            t_end: s.t,
+            steps,
+            newton_iterations: newton,
+            initial_tension: init.mean_tension,
+            speed_ratio: w_driven / w_driver,
+            closure_radius: None,
+            closure_radius_variation: None,
+        };
+        if let Some(msg) = failure {
+            return Err(StudyError::Numerical {
+                message: format!("integration failed: {msg}"),
+                partial: serde_json::to_value(&summary).ok(),
+            });
+        }
+        Ok(summary)
+    }
+}
+
+fn advance(st: &mut AlphaStepper, drive: &BeltDrive, t: f64) -> Result<(), mbd_core::MbdError> {
+    st.advance_to(drive, t, &mut |_| {})
+}
+
+impl Study for AncfStudy {
+    type Config = Config;
+    type Summary = Summary;
+    const APP: &'static str = "belt";
+    const NAME: &'static str = "ancf";
+
+    fn apply_overrides(&self, c: &mut Config) {
+        if let Some(t) = self.t_end {
+            c.t_end = t;
+        }
+    }
+
+    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        match c.analysis {
+            Analysis::StaticClosure => self.closure(c, ctx),
+            Analysis::Dynamic => self.dynamic(c, ctx),
+        }
+    }
+}
+
+/// Run the `ancf` study under the app conventions.
+pub fn run(args: &Args) -> ExitCode {
+    run_study(&AncfStudy { t_end: args.t_end }, &args.common)
+}
