@@ -169,6 +169,11 @@ fn heavy_top_steady_precession() {
         .unwrap();
     let (_, prec) = top_angles(&sol.state);
     let e1 = top.sys.kinetic_energy(&sol.state) + top.sys.potential_energy(&sol.state);
+    println!(
+        "top DP5: precession error {:.2e} rad of {expected:.4} rad, nutation {max_tilt:.2e}, |Φ| {max_phi:.2e}, dE/E {:.2e}",
+        (prec - expected).abs(),
+        ((e1 - e0) / e0).abs()
+    );
     assert!(
         (prec - expected).abs() < 1e-6,
         "DP5 precession {prec} vs {expected}"
@@ -192,6 +197,11 @@ fn heavy_top_steady_precession() {
         })
         .unwrap();
     let (tilt, prec) = top_angles(&sol.state);
+    println!(
+        "top gen-alpha: precession rel. error {:.2e}, tilt error {:.2e}, |Φ| {max_phi:.2e}",
+        ((prec - expected) / expected).abs(),
+        (tilt - top.cos_theta).abs()
+    );
     assert!(max_phi < 1e-10, "gen-alpha constraint drift {max_phi:e}");
     assert!(
         (prec - expected).abs() < 2e-3 * expected,
@@ -364,6 +374,7 @@ fn slider_crank_matches_closed_form_kinematics() {
             max_err = max_err.max((x - slider_closed_form(theta0 + omega * s.t)).abs());
         })
         .unwrap();
+    println!("slider-crank gen-alpha: max slider error {max_err:.2e} m");
     assert!(max_err < 1e-9, "gen-alpha slider error {max_err:e}");
     println!("slider-crank gen-alpha stats {:?}", sol.stats);
 
@@ -387,6 +398,7 @@ fn slider_crank_matches_closed_form_kinematics() {
         max_verr = max_verr.max((s.v[12] - xd).abs());
     })
     .unwrap();
+    println!("slider-crank DP5: max slider error {max_err:.2e} m, velocity {max_verr:.2e} m/s");
     assert!(max_err < 1e-9, "DP5 slider error {max_err:e}");
     assert!(max_verr < 1e-8, "DP5 slider velocity error {max_verr:e}");
 }
@@ -442,6 +454,10 @@ fn falling_ball_event_time() {
     let t_star = (2.0 * (z0 - radius) / g).sqrt();
     assert_eq!(sol.events.len(), 1);
     assert_eq!(sol.events[0].name, "ground contact");
+    println!(
+        "falling ball: event time error {:.2e} s",
+        sol.events[0].t - t_star
+    );
     assert!(
         (sol.events[0].t - t_star).abs() < 1e-9,
         "{:e}",

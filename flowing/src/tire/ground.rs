@@ -50,11 +50,19 @@ impl Default for GroundConfig {
 impl GroundConfig {
     /// Check the parameters (field names in the messages).
     pub fn validate(&self) -> Result<(), TireError> {
-        if self.kind == GroundKind::Drum && !(self.drum_radius > 0.0 && self.drum_radius.is_finite()) {
-            return Err(invalid("ground.drum_radius", format!("{} is not positive", self.drum_radius)));
+        if self.kind == GroundKind::Drum
+            && !(self.drum_radius > 0.0 && self.drum_radius.is_finite())
+        {
+            return Err(invalid(
+                "ground.drum_radius",
+                format!("{} is not positive", self.drum_radius),
+            ));
         }
         if self.cleat && !(self.cleat_radius > 0.0 && self.cleat_radius.is_finite()) {
-            return Err(invalid("ground.cleat_radius", format!("{} is not positive", self.cleat_radius)));
+            return Err(invalid(
+                "ground.cleat_radius",
+                format!("{} is not positive", self.cleat_radius),
+            ));
         }
         Ok(())
     }

@@ -24,7 +24,9 @@ pub struct LcpSolution {
 /// `warm` (indices believed active). `tol` is the gap tolerance [m].
 pub fn solve_lcp(w: &Mat<f64>, q: &[f64], warm: &[bool], tol: f64) -> LcpSolution {
     let n = q.len();
-    let mut active: Vec<bool> = (0..n).map(|i| warm.get(i).copied().unwrap_or(false) || q[i] < -tol).collect();
+    let mut active: Vec<bool> = (0..n)
+        .map(|i| warm.get(i).copied().unwrap_or(false) || q[i] < -tol)
+        .collect();
     let mut lambda = vec![0.0; n];
     let max_iter = 4 * n + 20;
     for it in 0..max_iter {

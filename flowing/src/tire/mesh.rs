@@ -10,9 +10,9 @@
 //! (U23) and carry no deflection; their stiffness rows give the spindle forces (7.2).
 
 use super::error::{TireError, invalid};
+use crate::grid::{FlowGrid, Topology};
 use faer::sparse::SparseColMat;
 use fe_model::{FeModel, MassKind};
-use crate::grid::{FlowGrid, Topology};
 use std::f64::consts::PI;
 
 /// A tire FE model: node coordinates [m], stiffness K (3 DOFs per node, node-major, including the
@@ -201,7 +201,9 @@ impl TireFe {
                     ),
                 ));
             }
-            nodes.sort_by(|&a, &b| node_angle(&self.nodes[a]).total_cmp(&node_angle(&self.nodes[b])));
+            nodes.sort_by(|&a, &b| {
+                node_angle(&self.nodes[a]).total_cmp(&node_angle(&self.nodes[b]))
+            });
             let theta: Vec<f64> = nodes.iter().map(|&i| node_angle(&self.nodes[i])).collect();
             rings.push(Ring { nodes, theta });
         }

@@ -152,7 +152,11 @@ fn lowest_modes(
     let count = count.min(dofs.len());
     if dofs.len() <= 3000 {
         let m = diag_block(&fe.mass, dofs);
-        Ok(fe_model::dense_modes(k.to_dense().as_ref(), m.as_ref(), count)?)
+        Ok(fe_model::dense_modes(
+            k.to_dense().as_ref(),
+            m.as_ref(),
+            count,
+        )?)
     } else {
         Err(invalid(
             what,
@@ -193,9 +197,12 @@ pub fn reduce(
     let ts = Instant::now();
     let k_ff = submatrix(fe.stiffness.as_ref(), &part.f, &part.f)?;
     let k_fc = submatrix(fe.stiffness.as_ref(), &part.f, &part.c)?.to_dense();
-    let llt = k_ff
-        .sp_cholesky(Side::Lower)
-        .map_err(|e| linalg("static modes: Cholesky of K^ff (is the rim set fixing the tire?)", e))?;
+    let llt = k_ff.sp_cholesky(Side::Lower).map_err(|e| {
+        linalg(
+            "static modes: Cholesky of K^ff (is the rim set fixing the tire?)",
+            e,
+        )
+    })?;
     let mut psi_s = k_fc;
     llt.solve_in_place(psi_s.as_mut());
     for j in 0..psi_s.ncols() {
@@ -248,7 +255,8 @@ pub fn reduce(
         }
     }
     let mtt = mt.transpose();
-    let sym = |a: Mat<f64>| Mat::from_fn(a.nrows(), a.ncols(), |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+    let sym =
+        |a: Mat<f64>| Mat::from_fn(a.nrows(), a.ncols(), |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
     let m_z = sym(mtt * &t);
     let g1 = mtt * &der.d1;
     let g2 = mtt * &der.d2;

@@ -110,7 +110,10 @@ impl RollingConfig {
             if v > 0.0 && v.is_finite() {
                 Ok(())
             } else {
-                Err(invalid(format!("rolling.{name}"), format!("{v} is not positive")))
+                Err(invalid(
+                    format!("rolling.{name}"),
+                    format!("{v} is not positive"),
+                ))
             }
         };
         pos("time_step", self.time_step)?;
@@ -121,7 +124,10 @@ impl RollingConfig {
         pos("spin_tolerance", self.spin_tolerance)?;
         pos("contact_margin", self.contact_margin)?;
         if !(self.friction >= 0.0 && self.friction.is_finite()) {
-            return Err(invalid("rolling.friction", format!("{} is negative", self.friction)));
+            return Err(invalid(
+                "rolling.friction",
+                format!("{} is negative", self.friction),
+            ));
         }
         if let NormalContact::Penalty { stiffness } = self.normal {
             pos("normal.stiffness", stiffness)?;
@@ -221,7 +227,10 @@ impl<'a> RollingTire<'a> {
         ground.cfg.validate()?;
         let nz = red.n_z();
         if z0.len() != nz {
-            return Err(invalid("initial coordinates", format!("{} values for {nz} coordinates", z0.len())));
+            return Err(invalid(
+                "initial coordinates",
+                format!("{} values for {nz} coordinates", z0.len()),
+            ));
         }
         Ok(Self {
             red,
@@ -258,7 +267,11 @@ impl<'a> RollingTire<'a> {
         let red = self.red;
         let nz = red.n_z();
         let n = nz + 1;
-        let (h, bn, gn) = (self.cfg.time_step, self.cfg.newmark_beta, self.cfg.newmark_gamma);
+        let (h, bn, gn) = (
+            self.cfg.time_step,
+            self.cfg.newmark_beta,
+            self.cfg.newmark_gamma,
+        );
         let (a, b) = (self.alpha, self.beta);
         // C_eff = 2θ̇G₁ + αM + βK, K_eff = K + θ̇²G₂ + βθ̇K₁
         let mut q = Mat::<f64>::zeros(nz, 2 * nz);
@@ -284,7 +297,8 @@ impl<'a> RollingTire<'a> {
         }
         for j in 0..nz {
             for i in 0..nz {
-                s[(1 + i, 1 + j)] = red.m[(i, j)] + gn * h * q[(i, j)] + bn * h * h * q[(i, nz + j)];
+                s[(1 + i, 1 + j)] =
+                    red.m[(i, j)] + gn * h * q[(i, j)] + bn * h * h * q[(i, nz + j)];
             }
         }
         let lu = s.partial_piv_lu();
@@ -363,7 +377,11 @@ impl<'a> RollingTire<'a> {
         let red = self.red;
         let nz = red.n_z();
         let nc = red.n_contact();
-        let (h, bn, gn) = (self.cfg.time_step, self.cfg.newmark_beta, self.cfg.newmark_gamma);
+        let (h, bn, gn) = (
+            self.cfg.time_step,
+            self.cfg.newmark_beta,
+            self.cfg.newmark_gamma,
+        );
         let st = &self.state;
         let spin_pred = st.theta_d + (1.0 - gn) * h * st.theta_dd;
         let need = match &self.factor {
@@ -402,7 +420,9 @@ impl<'a> RollingTire<'a> {
         }
         // free end-of-step state
         let t1 = st.t + h;
-        let z_free: Vec<f64> = (0..nz).map(|j| pred[nz + j] + bn * h * h * a_free[1 + j]).collect();
+        let z_free: Vec<f64> = (0..nz)
+            .map(|j| pred[nz + j] + bn * h * h * a_free[1 + j])
+            .collect();
         let zd_free: Vec<f64> = (0..nz).map(|j| pred[j] + gn * h * a_free[1 + j]).collect();
         let spin_free = spin_pred + gn * h * a_free[0];
         let mut dc = vec![0.0; 3 * nc];
@@ -451,7 +471,11 @@ impl<'a> RollingTire<'a> {
                     let vn = dot(&v, &n);
                     let w = [v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]];
                     let den = (dot(&w, &w) + eps * eps).sqrt();
-                    dirs[k] = [n[0] - mu * w[0] / den, n[1] - mu * w[1] / den, n[2] - mu * w[2] / den];
+                    dirs[k] = [
+                        n[0] - mu * w[0] / den,
+                        n[1] - mu * w[1] / den,
+                        n[2] - mu * w[2] / den,
+                    ];
                 }
                 let m = cand.len();
                 let mut w = Mat::<f64>::zeros(m, m);

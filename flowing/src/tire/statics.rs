@@ -79,7 +79,9 @@ fn contact_at(
                 reason: "static contact active set did not converge".into(),
             });
         }
-        let new_f: Vec<f64> = (0..3 * nc).map(|k| nrm[k / 3][k % 3] * sol.lambda[k / 3]).collect();
+        let new_f: Vec<f64> = (0..3 * nc)
+            .map(|k| nrm[k / 3][k % 3] * sol.lambda[k / 3])
+            .collect();
         let new_delta: Vec<f64> = (0..3 * nc)
             .map(|r| (0..3 * nc).map(|k| y[(r, k)] * new_f[k]).sum())
             .collect();
