@@ -2,12 +2,13 @@
 //! and the spinning beam with centrifugal stiffening (Figs 2.9–2.11, Wu & Haug) — integrated by
 //! mbd-core's generalized-α method.
 
-use crate::element::ProposedBeam;
+use crate::element::{Element, OmarShabanaBeam, ProposedBeam};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
+use crate::mesh::Mesh;
 use crate::mesh::straight_coordinates;
 use crate::section::Section;
-use crate::studies::beam_mesh;
+use crate::studies::{BeamElementKind, beam_mesh};
 use crate::system::{AncfSystem, Energies, Prescribed};
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
 use serde::{Deserialize, Serialize};
@@ -19,7 +20,9 @@ use std::sync::Arc;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PendulumCase {
-    /// Number of proposed elements.
+    /// Element type (the thesis compares both in Fig. 2.8 and Table 2.5).
+    pub element: BeamElementKind,
+    /// Number of elements.
     pub elements: usize,
     /// Beam length [m].
     pub length: f64,
@@ -44,6 +47,7 @@ pub struct PendulumCase {
 impl Default for PendulumCase {
     fn default() -> Self {
         Self {
+            element: BeamElementKind::Proposed,
             elements: 4,
             length: 2.0,
             side: 0.1,
@@ -52,7 +56,7 @@ impl Default for PendulumCase {
             density: 7850.0,
             gravity: 9.81,
             t_end: 1.0,
-            h: 1e-4,
+            h: 5e-5,
             rho_inf: 1.0,
         }
     }
@@ -103,14 +107,33 @@ fn check_run(h: f64, t_end: f64, every: usize) -> Result<(), AncfError> {
 pub fn pendulum(
     case: &PendulumCase,
     every: usize,
-    mut progress: impl FnMut(f64),
+    progress: impl FnMut(f64),
 ) -> Result<Vec<Sample>, AncfError> {
     check_run(case.h, case.t_end, every)?;
     let mat = Material::new(case.young, case.nu, case.density)?;
     let sec = Section::rectangle(case.side, case.side)?;
-    let mesh = beam_mesh(case.length, case.elements, |l| {
-        ProposedBeam::new(l, mat, sec)
-    })?;
+    match case.element {
+        BeamElementKind::Proposed => {
+            let mesh = beam_mesh(case.length, case.elements, |l| {
+                ProposedBeam::new(l, mat, sec)
+            })?;
+            pendulum_run(case, mesh, every, progress)
+        }
+        BeamElementKind::OmarShabana => {
+            let mesh = beam_mesh(case.length, case.elements, |l| {
+                OmarShabanaBeam::new(l, mat, sec)
+            })?;
+            pendulum_run(case, mesh, every, progress)
+        }
+    }
+}
+
+fn pendulum_run<E: Element>(
+    case: &PendulumCase,
+    mesh: Mesh<E>,
+    every: usize,
+    mut progress: impl FnMut(f64),
+) -> Result<Vec<Sample>, AncfError> {
     let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [case.length, 0.0], case.elements);
     let pins = vec![
         Prescribed::fixed(0, "pin x", 0.0),
@@ -135,7 +158,7 @@ pub fn pendulum(
         });
     };
     alpha(case.h, case.rho_inf).integrate(&sys, State::new(0.0, q0, v0), case.t_end, |st| {
-        if k % every == 0 || st.t >= case.t_end - 1e-12 {
+        if k.is_multiple_of(every) || st.t >= case.t_end - 1e-12 {
             record(st, &mut out);
             progress(st.t / case.t_end);
         }
@@ -226,7 +249,7 @@ pub fn spinning(
     mut progress: impl FnMut(f64),
 ) -> Result<Vec<Sample>, AncfError> {
     check_run(case.h, case.t_end, every)?;
-    if !(case.spin_up > 0.0) {
+    if case.spin_up.is_nan() || case.spin_up <= 0.0 {
         return Err(invalid(
             "spin_up",
             format!("must be > 0 s, got {}", case.spin_up),
@@ -270,7 +293,7 @@ pub fn spinning(
     let mut k = 0usize;
     let l = case.length;
     alpha(case.h, case.rho_inf).integrate(&sys, State::new(0.0, q0, v0), case.t_end, |st| {
-        if k % every == 0 || st.t >= case.t_end - 1e-12 {
+        if k.is_multiple_of(every) || st.t >= case.t_end - 1e-12 {
             let m = sys.mesh();
             let chord: f64 = (0..n)
                 .map(|i| {

@@ -10,13 +10,18 @@
 //! * [`studies`]: Kerkkänen §2.4 test set-ups (simply supported beam, cantilever, pendulum,
 //!   spinning beam).
 
+// Index loops mirror the element and quadrature formulas (several arrays per index).
+#![allow(clippy::needless_range_loop)]
+
 pub mod autodiff;
+pub mod belt;
 pub mod belt_drive;
 pub mod dynamics;
 pub mod element;
 pub mod error;
 pub mod material;
 pub mod mesh;
+pub mod pulley;
 pub mod section;
 pub mod shape;
 pub mod sparse;
@@ -28,6 +33,7 @@ pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBea
 pub use error::AncfError;
 pub use material::Material;
 pub use mesh::Mesh;
+pub use pulley::{ContactDistribution, PulleyContact};
 pub use section::Section;
-pub use statics::{StaticOptions, StaticSolution, solve_static};
+pub use statics::{StaticOptions, StaticSolution, solve_static, solve_static_with};
 pub use system::{AncfSystem, Energies, MeshForce, Prescribed};

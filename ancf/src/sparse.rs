@@ -94,6 +94,19 @@ impl Pattern {
         self.col_ptr[i] + col.binary_search(&i).unwrap_or(0)
     }
 
+    /// Position of entry `(i, j)` in the value array, if stored.
+    pub fn position(&self, i: usize, j: usize) -> Option<usize> {
+        let col = &self.row_idx[self.col_ptr[j]..self.col_ptr[j + 1]];
+        col.binary_search(&i).ok().map(|p| self.col_ptr[j] + p)
+    }
+
+    /// All stored entries as `(row, col, position)`.
+    pub fn entries(&self) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+        (0..self.n).flat_map(move |j| {
+            (self.col_ptr[j]..self.col_ptr[j + 1]).map(move |p| (self.row_idx[p], j, p))
+        })
+    }
+
     /// faer CSC matrix with this pattern and the given values.
     pub fn to_matrix(&self, vals: Vec<f64>) -> SparseColMat<usize, f64> {
         let sym = SymbolicSparseColMat::new_checked(

@@ -6,6 +6,7 @@ use crate::element::Element;
 use crate::error::{AncfError, invalid};
 use crate::mesh::Mesh;
 use crate::sparse::Pattern;
+use crate::system::MeshForce;
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
@@ -54,6 +55,20 @@ pub fn solve_static<E: Element>(
     load: &[f64],
     opts: &StaticOptions,
 ) -> Result<StaticSolution, AncfError> {
+    solve_static_with(mesh, q0, fixed, load, &[], opts)
+}
+
+/// [`solve_static`] with additional (configuration-dependent, velocity-free) forces such as
+/// frictionless penalty contact, evaluated at zero velocity; their tangent enters the Newton
+/// matrix. The load factor scales `load` only.
+pub fn solve_static_with<E: Element>(
+    mesh: &Mesh<E>,
+    q0: &[f64],
+    fixed: &[usize],
+    load: &[f64],
+    extra: &[&dyn MeshForce<E>],
+    opts: &StaticOptions,
+) -> Result<StaticSolution, AncfError> {
     let n = mesh.n_dof();
     if q0.len() != n || load.len() != n {
         return Err(invalid(
@@ -95,18 +110,38 @@ pub fn solve_static<E: Element>(
         })
         .collect();
     let pattern = Pattern::new(nf, &dofs);
+    let full = mesh.pattern();
+    let to_reduced: Vec<Option<usize>> = full
+        .entries()
+        .map(|(i, j, _)| match (map[i], map[j]) {
+            (Some(a), Some(b)) => pattern.position(a, b),
+            _ => None,
+        })
+        .collect();
+    let zero_v = vec![0.0; n];
+    let mut kfull = full.zeros();
+    let mut cfull = full.zeros();
     let symbolic =
         SymbolicLu::try_new(pattern.symbolic().as_ref()).map_err(|e| AncfError::Singular {
             load_factor: 0.0,
             detail: format!("symbolic LU: {e:?}"),
         })?;
 
+    // conservative problems (no extra forces) use the total potential as merit function
+    let energy_merit = extra.is_empty();
+    let potential = |q: &[f64], lam: f64| -> f64 {
+        mesh.strain_energy(q) - lam * q.iter().zip(load).map(|(a, b)| a * b).sum::<f64>()
+    };
+    let diag: Vec<usize> = (0..nf).map(|i| pattern.diagonal_position(i)).collect();
     let mut q = q0.to_vec();
     let mut f = vec![0.0; n];
     let mut kv = pattern.zeros();
     let mut iterations = Vec::with_capacity(opts.increments);
     let residual_of = |q: &[f64], lam: f64, f: &mut [f64]| -> f64 {
         mesh.elastic_forces(q, f);
+        for x in extra {
+            x.add_forces(mesh, 0.0, q, &zero_v, f);
+        }
         free.iter()
             .map(|&k| {
                 let r = f[k] + lam * load[k];
@@ -122,8 +157,18 @@ pub fn solve_static<E: Element>(
         let mut it = 0;
         while it < opts.max_iterations {
             it += 1;
+            kfull.fill(0.0);
+            mesh.elastic_tangent_into(&q, &mut f, full, &mut kfull, 1.0);
+            for x in extra {
+                x.add_forces(mesh, 0.0, &q, &zero_v, &mut f);
+                x.add_tangent(mesh, 0.0, &q, &zero_v, &mut kfull, &mut cfull);
+            }
             kv.fill(0.0);
-            mesh.elastic_tangent_into(&q, &mut f, &pattern, &mut kv, 1.0);
+            for (p, r) in to_reduced.iter().enumerate() {
+                if let Some(r) = r {
+                    kv[*r] += kfull[p];
+                }
+            }
             let mut rhs = Mat::<f64>::zeros(nf, 1);
             let mut res = 0.0;
             for (i, &k) in free.iter().enumerate() {
@@ -144,31 +189,63 @@ pub fn solve_static<E: Element>(
                     detail: format!("{e:?}"),
                 }
             })?;
-            let dx = lu.solve(&rhs);
+            let mut dx = lu.solve(&rhs);
             let mut alpha = 1.0;
             let mut trial = q.clone();
-            let apply = |alpha: f64, trial: &mut [f64]| {
+            let apply = |alpha: f64, dx: &Mat<f64>, trial: &mut [f64]| {
                 for (i, &k) in free.iter().enumerate() {
                     trial[k] = q[k] + alpha * dx[(i, 0)];
                 }
             };
-            apply(alpha, &mut trial);
-            if opts.line_search {
-                let mut r_new = residual_of(&trial, lam, &mut f);
+            let slope = |d: &Mat<f64>| (0..nf).map(|i| rhs[(i, 0)] * d[(i, 0)]).sum::<f64>();
+            if opts.line_search && energy_merit {
+                // Π = U − λFᵀq decreases along Δ iff RᵀΔ > 0; otherwise regularise K + μI
+                // (Levenberg–Marquardt) until it does. Then Armijo backtracking on Π.
+                let dmax = diag.iter().map(|&p| kv[p].abs()).fold(0.0, f64::max);
+                let mut mu_rel = 1e-8;
+                while slope(&dx) <= 0.0 && mu_rel < 1e3 {
+                    let mut kreg = kv.clone();
+                    for &p in &diag {
+                        kreg[p] += mu_rel * dmax;
+                    }
+                    if let Ok(lu) = Lu::try_new_with_symbolic(
+                        symbolic.clone(),
+                        pattern.to_matrix(kreg).as_ref(),
+                    ) {
+                        dx = lu.solve(&rhs);
+                    }
+                    mu_rel *= 10.0;
+                }
+                let s0 = slope(&dx);
+                let pi0 = potential(&q, lam);
+                apply(alpha, &dx, &mut trial);
                 let mut tries = 0;
-                while !(r_new <= (1.0 - 1e-4 * alpha) * res || r_new < 1e-9 * res.max(1.0))
-                    && tries < 12
+                while potential(&trial, lam) > pi0 - 1e-4 * alpha * s0 + 1e-14 * pi0.abs()
+                    && tries < 30
                 {
                     alpha *= 0.5;
-                    apply(alpha, &mut trial);
+                    apply(alpha, &dx, &mut trial);
+                    tries += 1;
+                }
+            } else if opts.line_search {
+                apply(alpha, &dx, &mut trial);
+                let accept = |r_new: f64, alpha: f64| {
+                    r_new <= (1.0 - 1e-4 * alpha) * res || r_new < 1e-9 * res.max(1.0)
+                };
+                let mut r_new = residual_of(&trial, lam, &mut f);
+                let mut tries = 0;
+                while !accept(r_new, alpha) && tries < 12 {
+                    alpha *= 0.5;
+                    apply(alpha, &dx, &mut trial);
                     r_new = residual_of(&trial, lam, &mut f);
                     tries += 1;
                 }
-                if tries == 12 {
-                    // no decrease found: take the full step (Newton may still converge)
+                if !accept(r_new, alpha) {
                     alpha = 1.0;
-                    apply(alpha, &mut trial);
+                    apply(alpha, &dx, &mut trial);
                 }
+            } else {
+                apply(alpha, &dx, &mut trial);
             }
             let step = (0..nf)
                 .map(|i| (alpha * dx[(i, 0)]).abs())

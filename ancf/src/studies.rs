@@ -138,7 +138,7 @@ impl Study for SimplySupported {
     type Output = f64;
     fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
         let n_el = mesh.elements().len();
-        if n_el % 2 != 0 {
+        if !n_el.is_multiple_of(2) {
             return Err(invalid(
                 "elements",
                 format!("must be even so that a node sits at mid-span, got {n_el}"),
@@ -201,4 +201,45 @@ pub fn simply_supported_deflection(case: &StaticBeamCase) -> Result<f64, AncfErr
 pub fn cantilever_tip(case: &StaticBeamCase) -> Result<[f64; 2], AncfError> {
     let force = -5.0e8 * case.height.powi(3);
     run_study(case, &Cantilever { force })
+}
+
+/// The cantilever's deformed centreline sampled at `per_element + 1` points per element [m].
+#[derive(Debug, Clone, Copy)]
+struct CantileverLine {
+    force: f64,
+    per_element: usize,
+}
+
+impl Study for CantileverLine {
+    type Output = Vec<[f64; 2]>;
+    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
+        Cantilever { force: self.force }.fixed(mesh)
+    }
+    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64> {
+        Cantilever { force: self.force }.load(mesh)
+    }
+    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> Vec<[f64; 2]> {
+        let mut pts = Vec::new();
+        for (i, el) in mesh.elements().iter().enumerate() {
+            let start = if i == 0 { 0 } else { 1 };
+            for k in start..=self.per_element {
+                let x = el.length() * k as f64 / self.per_element as f64;
+                pts.push(mesh.position(q, i, x, 0.0));
+            }
+        }
+        pts
+    }
+}
+
+/// Deformed centreline of the cantilever of [`cantilever_tip`], `per_element` segments per
+/// element (for plots and VTK output).
+pub fn cantilever_centreline(
+    case: &StaticBeamCase,
+    per_element: usize,
+) -> Result<Vec<[f64; 2]>, AncfError> {
+    if per_element == 0 {
+        return Err(invalid("per_element", "must be ≥ 1"));
+    }
+    let force = -5.0e8 * case.height.powi(3);
+    run_study(case, &CantileverLine { force, per_element })
 }

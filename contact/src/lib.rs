@@ -13,6 +13,9 @@
 //! * [`distributed`]: Gauss-quadrature contact along elements (Kerkkänen (3.26)–(3.27));
 //! * [`lagrange`]: unilateral constraints with an active set.
 
+// Index loops mirror the element and quadrature formulas (several arrays per index).
+#![allow(clippy::needless_range_loop)]
+
 pub mod distributed;
 pub mod friction;
 pub mod geometry;

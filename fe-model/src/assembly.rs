@@ -4,7 +4,8 @@
 //! ([`SymbolicSparseColMat::try_new_from_indices`], duplicates summed); every later assembly
 //! (K, M, K_G, or a refill after a parameter change) only recomputes the element matrices —
 //! in parallel over elements with rayon for large meshes — and scatters the values through the
-//! stored argsort.
+//! stored argsort. Element matrices are symmetrised on the way, so the global matrices are
+//! exactly (bitwise) symmetric.
 
 use crate::FeError;
 use crate::element::{Element, MatrixKind};
@@ -22,6 +23,8 @@ pub struct Assembler {
     argsort: Argsort<usize>,
     /// Start of each element's values in the flat value array.
     offsets: Vec<usize>,
+    /// For each stored entry (i, j): the position of (j, i) (the pattern is symmetric).
+    mirror: Vec<usize>,
 }
 
 impl Assembler {
@@ -56,11 +59,25 @@ impl Assembler {
         let (symbolic, argsort) =
             SymbolicSparseColMat::try_new_from_indices(n_dofs, n_dofs, &pairs)
                 .map_err(|e| FeError::Sparse(format!("assembly pattern: {e:?}")))?;
+        let cp = symbolic.col_ptr();
+        let ri = symbolic.row_idx();
+        let mut mirror = vec![0usize; ri.len()];
+        for j in 0..n_dofs {
+            for p in cp[j]..cp[j + 1] {
+                let i = ri[p];
+                let col_i = &ri[cp[i]..cp[i + 1]];
+                let q = col_i.binary_search(&j).map_err(|_| {
+                    FeError::Sparse(format!("assembly pattern not symmetric at ({i}, {j})"))
+                })?;
+                mirror[p] = cp[i] + q;
+            }
+        }
         Ok(Self {
             n_dofs,
             symbolic,
             argsort,
             offsets,
+            mirror,
         })
     }
 
@@ -104,9 +121,11 @@ impl Assembler {
                 if m.nrows() != nd || m.ncols() != nd {
                     return Err(nd);
                 }
+                // symmetrised, so that the global matrix is bitwise symmetric (a(i,j) and
+                // a(j,i) are then sums of identical terms in identical order)
                 for c in 0..nd {
                     for r in 0..nd {
-                        out[c * nd + r] = m[(r, c)];
+                        out[c * nd + r] = 0.5 * (m[(r, c)] + m[(c, r)]);
                     }
                 }
             }
@@ -129,8 +148,19 @@ impl Assembler {
                 check(fill(pair), e)?;
             }
         }
-        SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &values)
-            .map_err(|e| FeError::Sparse(format!("assembly values: {e:?}")))
+        let mut a = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &values)
+            .map_err(|e| FeError::Sparse(format!("assembly values: {e:?}")))?;
+        // duplicates may be summed in a different order for (i, j) and (j, i): make the result
+        // bitwise symmetric
+        let v = a.val_mut();
+        for (p, &q) in self.mirror.iter().enumerate() {
+            if p < q {
+                let s = 0.5 * (v[p] + v[q]);
+                v[p] = s;
+                v[q] = s;
+            }
+        }
+        Ok(a)
     }
 }
 

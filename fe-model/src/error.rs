@@ -66,6 +66,16 @@ pub enum FeError {
         /// What is wrong.
         reason: String,
     },
+    /// Matrix Market / ABAQUS matrix file error, with the 1-based line number.
+    #[error("{file}:{line}: {kind}")]
+    Matrix {
+        /// File name (or a label such as "<input>").
+        file: String,
+        /// 1-based line number (0 = whole file).
+        line: usize,
+        /// What is wrong.
+        kind: MatrixFileError,
+    },
     /// I/O error with the file it concerns.
     #[error("{file}: {source}")]
     Io {
@@ -117,4 +127,61 @@ impl FeError {
             Err(Self::param(name, value, "must be finite and >= 0"))
         }
     }
+}
+
+/// What is wrong in a matrix exchange file (see [`FeError::Matrix`]).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum MatrixFileError {
+    /// Missing or malformed `%%MatrixMarket` banner, or an unsupported object/format/field/symmetry.
+    #[error("bad header: {0}")]
+    Header(String),
+    /// The size line is missing or malformed.
+    #[error("bad size line: {0}")]
+    Size(String),
+    /// The file ended before all declared entries were read.
+    #[error("truncated file: expected {expected} entries, found {found}")]
+    Truncated {
+        /// Declared entries.
+        expected: usize,
+        /// Entries found.
+        found: usize,
+    },
+    /// More entries than declared.
+    #[error("more entries than the {expected} declared")]
+    TooManyEntries {
+        /// Declared entries.
+        expected: usize,
+    },
+    /// A line could not be parsed.
+    #[error("syntax error: {0}")]
+    Syntax(String),
+    /// A 1-based index is outside `1..=size`.
+    #[error("index ({row}, {col}) out of range for a {nrows}×{ncols} matrix")]
+    IndexOutOfRange {
+        /// Row index as written.
+        row: i64,
+        /// Column index as written.
+        col: i64,
+        /// Declared rows.
+        nrows: usize,
+        /// Declared columns.
+        ncols: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error("non-finite value `{0}`")]
+    NonFinite(String),
+    /// A matrix declared symmetric is not: `a(i,j) ≠ a(j,i)`.
+    #[error(
+        "matrix declared symmetric but a({row},{col}) = {value} differs from a({col},{row}) = {mirror}"
+    )]
+    NotSymmetric {
+        /// Row (1-based).
+        row: usize,
+        /// Column (1-based).
+        col: usize,
+        /// Value at (row, col).
+        value: f64,
+        /// Value at (col, row).
+        mirror: f64,
+    },
 }

@@ -12,6 +12,7 @@ pub mod eigen;
 pub mod element;
 pub mod error;
 pub mod generate;
+pub mod io;
 pub mod mesh;
 pub mod model;
 pub mod partition;
@@ -19,7 +20,7 @@ pub mod sparse;
 
 pub use assembly::{Assembler, assemble};
 pub use damping::Rayleigh;
-pub use eigen::{Modes, dense_modes};
+pub use eigen::{Modes, SparseEigenOptions, dense_modes, sparse_modes};
 pub use element::{Element, MassKind, MatrixKind};
 pub use error::FeError;
 pub use mesh::{Cell, CellKind, Mesh};

@@ -473,6 +473,9 @@ impl SecondOrderSystem for ContactString {
     }
 }
 
+/// `(t, q, v, contact forces)` of the last evaluated state.
+type CachedForces = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// Settings of the active-set simulation.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -564,8 +567,25 @@ pub fn simulate_contact(
     let mut events = Vec::new();
     let mut stats = mbd_core::Stats::default();
     let nc = sys.candidates.len();
+    // The initial state may not match the active set (e.g. a pluck next to a contact node).
+    settle(sys, &mut state, settings, &mut events)?;
     while state.t < t_end {
         let snapshot = sys.clone();
+        // All release events share one index-1 solve per distinct state.
+        let cache: std::cell::RefCell<Option<CachedForces>> = std::cell::RefCell::new(None);
+        let forces_at = |st: &State| -> Option<Vec<f64>> {
+            if let Some((t, q, v, p)) = cache.borrow().as_ref()
+                && *t == st.t
+                && *q == st.q
+                && *v == st.v
+            {
+                return Some(p.clone());
+            }
+            let p = snapshot.contact_forces(st).ok()?;
+            *cache.borrow_mut() = Some((st.t, st.q.clone(), st.v.clone(), p.clone()));
+            Some(p)
+        };
+        let forces_at = &forces_at;
         let evs: Vec<Event<'_>> = (0..nc)
             .map(|c| {
                 let s = &snapshot;
@@ -573,9 +593,9 @@ pub fn simulate_contact(
                     let tol = settings.force_tol;
                     Event {
                         name: format!("release {c}"),
-                        g: Box::new(move |st: &State| match s.contact_forces(st) {
-                            Ok(p) => p[c] + tol,
-                            Err(_) => 1.0,
+                        g: Box::new(move |st: &State| match forces_at(st) {
+                            Some(p) => p[c] + tol,
+                            None => 1.0,
                         }),
                         direction: -1,
                         action: EventAction::Stop,
@@ -626,26 +646,7 @@ pub fn simulate_contact(
             activated: !was_active,
             impact_loss: loss,
         });
-        // Consistency sweep: release contacts that are now tensile.
-        loop {
-            let p = sys.contact_forces(&state)?;
-            let worst = (0..nc)
-                .filter(|&k| sys.active[k])
-                .min_by(|&a, &b| p[a].total_cmp(&p[b]));
-            match worst {
-                Some(k) if p[k] < -settings.force_tol => {
-                    sys.active[k] = false;
-                    events.push(ContactEvent {
-                        t: state.t,
-                        candidate: k,
-                        node: sys.candidates[k].node,
-                        activated: false,
-                        impact_loss: 0.0,
-                    });
-                }
-                _ => break,
-            }
-        }
+        settle(sys, &mut state, settings, &mut events)?;
         observer(sys, &state);
     }
     Ok(ContactRun {
@@ -653,6 +654,66 @@ pub fn simulate_contact(
         events,
         stats,
     })
+}
+
+/// Makes the active set consistent with `state`: releases tensile contacts one at a time (most
+/// tensile first), then activates penetrating candidates with a plastic impact, until nothing
+/// changes.
+fn settle(
+    sys: &mut ContactString,
+    state: &mut State,
+    settings: &ContactSettings,
+    events: &mut Vec<ContactEvent>,
+) -> Result<(), FlowError> {
+    let stab = Stabilization {
+        project: true,
+        projection_tol: 1e-12,
+        ..Default::default()
+    };
+    let nc = sys.candidates.len();
+    for _ in 0..(4 * nc + 4) {
+        let p = sys.contact_forces(state)?;
+        let worst = (0..nc)
+            .filter(|&k| sys.active[k])
+            .min_by(|&a, &b| p[a].total_cmp(&p[b]));
+        if let Some(k) = worst.filter(|&k| p[k] < -settings.force_tol) {
+            sys.active[k] = false;
+            events.push(ContactEvent {
+                t: state.t,
+                candidate: k,
+                node: sys.candidates[k].node,
+                activated: false,
+                impact_loss: 0.0,
+            });
+            continue;
+        }
+        let pen: Vec<usize> = (0..nc)
+            .filter(|&k| !sys.active[k] && sys.gap(k, &state.q) < -settings.gap_tol)
+            .collect();
+        if pen.is_empty() {
+            return Ok(());
+        }
+        let before = kinetic(sys, &state.v);
+        for &k in &pen {
+            sys.active[k] = true;
+        }
+        project_positions(&*sys, state, &stab)?;
+        project_velocities(&*sys, state)?;
+        let loss = before - kinetic(sys, &state.v);
+        for (i, &k) in pen.iter().enumerate() {
+            events.push(ContactEvent {
+                t: state.t,
+                candidate: k,
+                node: sys.candidates[k].node,
+                activated: true,
+                impact_loss: if i == 0 { loss } else { 0.0 },
+            });
+        }
+    }
+    Err(FlowError::Mbd(MbdError::Model {
+        t: state.t,
+        message: "the contact active set does not settle (chattering)".into(),
+    }))
 }
 
 /// `Tᵀ M u` helper: generalized coordinates of a nodal field in the span of `T` (least squares

@@ -75,16 +75,20 @@ impl FlowGrid {
         let last = positions[positions.len() - 1];
         match topology {
             Topology::Open { start, end } => {
-                if let End::Zero(a) = start {
-                    if !(a.is_finite() && a < first) {
+                if let End::Zero(a) = start
+                    && !(a.is_finite() && a < first)
+                {
+                    {
                         return Err(invalid(
                             "flow grid: start end",
                             format!("zero-value end at {a} must lie before the first node {first}"),
                         ));
                     }
                 }
-                if let End::Zero(b) = end {
-                    if !(b.is_finite() && b > last) {
+                if let End::Zero(b) = end
+                    && !(b.is_finite() && b > last)
+                {
+                    {
                         return Err(invalid(
                             "flow grid: end end",
                             format!("zero-value end at {b} must lie after the last node {last}"),
@@ -119,7 +123,7 @@ impl FlowGrid {
     /// `n` equally spaced interior nodes of a line `[a, b]` with zero values at both ends
     /// (the fixed string of Ribaric (4.1): `h = L/(n+1)`).
     pub fn uniform_fixed(a: f64, b: f64, n: usize) -> Result<Self, FlowError> {
-        if n == 0 || !(b > a) {
+        if n == 0 || a.is_nan() || b.is_nan() || b <= a {
             return Err(invalid(
                 "flow grid",
                 format!("need n > 0 and b > a (n = {n}, a = {a}, b = {b})"),

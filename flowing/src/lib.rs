@@ -14,6 +14,11 @@
 //! * [`contact`], [`pulley`]: the string wrapped on two pulleys with variable-size contact
 //!   (4.10), (4.11) and the travelling string with variable contact (4.31)–(4.40).
 
+// Dense numerical kernels index several arrays with one loop variable; iterator chains would
+// obscure the equations.
+#![allow(clippy::needless_range_loop)]
+
+pub mod belt;
 pub mod contact;
 pub mod derivative;
 pub mod error;
@@ -23,7 +28,9 @@ pub mod gyroscopic;
 pub mod modal;
 pub mod params;
 pub mod pulley;
+pub mod spectrum;
 pub mod string_fe;
+pub mod tire;
 pub mod travelling;
 
 pub use contact::{ContactSettings, ContactString, HarmonicLoad, simulate_contact};
@@ -38,4 +45,4 @@ pub use modal::ModalBasis;
 pub use params::StringParams;
 pub use pulley::Pulley;
 pub use string_fe::StringMesh;
-pub use travelling::{AxialMotion, FlowingString};
+pub use travelling::{AxialMotion, FlowingString, TimeHistory, simulate_rk4, triangular_pluck};

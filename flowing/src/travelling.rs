@@ -111,7 +111,7 @@ impl AxialMotion {
                 damping,
                 force,
             } => {
-                if !(mass > 0.0) {
+                if mass.is_nan() || mass <= 0.0 {
                     return Err(invalid(
                         "axial motion: mass",
                         format!("{mass} is not positive"),
@@ -332,4 +332,76 @@ impl SecondOrderSystem for FlowingString {
         }
         Ok(())
     }
+}
+
+/// Triangular pluck `u(x)` of peak `amplitude` [m] at `x_peak` [m] on a string between fixed ends
+/// at `a` and `b`, sampled at `positions` (the initial condition of Ribaric Fig. 4-6).
+pub fn triangular_pluck(
+    positions: &[f64],
+    a: f64,
+    b: f64,
+    x_peak: f64,
+    amplitude: f64,
+) -> Result<Vec<f64>, FlowError> {
+    if !(x_peak > a && x_peak < b) {
+        return Err(invalid(
+            "pluck position",
+            format!("{x_peak} m must lie strictly between the ends {a} and {b} m"),
+        ));
+    }
+    if !amplitude.is_finite() {
+        return Err(invalid("pluck amplitude", "not finite"));
+    }
+    Ok(positions
+        .iter()
+        .map(|&x| {
+            if x <= a || x >= b {
+                0.0
+            } else if x <= x_peak {
+                amplitude * (x - a) / (x_peak - a)
+            } else {
+                amplitude * (b - x) / (b - x_peak)
+            }
+        })
+        .collect())
+}
+
+/// Uniformly sampled time history of a [`FlowingString`] run.
+#[derive(Debug, Clone, Default)]
+pub struct TimeHistory {
+    /// Sample times [s].
+    pub t: Vec<f64>,
+    /// Positions `q` (modal coordinates, then the axial coordinate if dynamic) per sample.
+    pub q: Vec<Vec<f64>>,
+    /// Velocities per sample.
+    pub v: Vec<Vec<f64>>,
+}
+
+/// Integrates `sys` from `(q0, v0)` at t = 0 to `t_end` [s] with mbd-core's fixed-step RK4 of
+/// step `h` [s], keeping every `every`-th step (sampling period `every · h`). `progress` sees the
+/// current time.
+pub fn simulate_rk4(
+    sys: &FlowingString,
+    q0: Vec<f64>,
+    v0: Vec<f64>,
+    t_end: f64,
+    h: f64,
+    every: usize,
+    mut progress: impl FnMut(f64),
+) -> Result<TimeHistory, FlowError> {
+    if every == 0 {
+        return Err(invalid("sampling", "every must be at least 1"));
+    }
+    let mut hist = TimeHistory::default();
+    let mut count = 0usize;
+    mbd_core::Rk4::new(h).integrate(sys, mbd_core::State::new(0.0, q0, v0), t_end, |s| {
+        if count.is_multiple_of(every) {
+            hist.t.push(s.t);
+            hist.q.push(s.q.clone());
+            hist.v.push(s.v.clone());
+            progress(s.t);
+        }
+        count += 1;
+    })?;
+    Ok(hist)
 }

@@ -5,6 +5,7 @@
 //! Every equation provides `Φ`, its Jacobian `D` with respect to the body velocities
 //! `(ṙ, ω')`, the velocity right-hand side `ν = −Φ_t` and `γ` of `D v̇ = γ`.
 
+use crate::MbdError;
 use crate::body::{BodyId, BodyKin, Row, Term};
 use nalgebra::Vector3;
 use std::sync::Arc;
@@ -41,6 +42,47 @@ pub trait Constraint: Send + Sync {
     fn bodies(&self) -> [Option<BodyId>; 2];
     /// Appends the `n_eq` equations at time `t` [s] for the kinematics of the two bodies.
     fn eval(&self, t: f64, ki: &BodyKin, kj: &BodyKin, out: &mut Vec<Equation>);
+    /// Checks the parameters (called when the constraint is added to a system).
+    fn validate(&self) -> Result<(), MbdError> {
+        Ok(())
+    }
+}
+
+fn check_vec(name: &str, field: &str, v: &Vector3<f64>, nonzero: bool) -> Result<(), MbdError> {
+    if !v.iter().all(|x| x.is_finite()) || (nonzero && v.norm() == 0.0) {
+        return Err(MbdError::InvalidInput {
+            item: format!("constraint \"{name}\": {field}"),
+            reason: format!(
+                "must be finite{}, got {:?}",
+                if nonzero { " and non-zero" } else { "" },
+                v.as_slice()
+            ),
+        });
+    }
+    Ok(())
+}
+
+fn check_reference(
+    name: &str,
+    field: &str,
+    axis: &Vector3<f64>,
+    r: &Vector3<f64>,
+) -> Result<(), MbdError> {
+    check_vec(name, field, r, true)?;
+    if (r - axis * axis.dot(r)).norm() <= 1e-9 * r.norm() {
+        return Err(MbdError::InvalidInput {
+            item: format!("constraint \"{name}\": {field}"),
+            reason: "reference vector is parallel to the axis".into(),
+        });
+    }
+    Ok(())
+}
+
+fn check_attachments(name: &str, i: &Attachment, j: &Attachment) -> Result<(), MbdError> {
+    check_vec(name, "i.point", &i.point, false)?;
+    check_vec(name, "j.point", &j.point, false)?;
+    check_vec(name, "i.axis", &i.axis, true)?;
+    check_vec(name, "j.axis", &j.axis, true)
 }
 
 /// A joint frame on a body: a point `s'` [m] and a unit axis `a'` in body coordinates (for the
@@ -56,13 +98,14 @@ pub struct Attachment {
 }
 
 impl Attachment {
-    /// Attachment at `point` with axis `axis` (normalised).
+    /// Attachment at `point` with axis `axis` (normalised; must be non-zero).
     pub fn new(body: Option<BodyId>, point: Vector3<f64>, axis: Vector3<f64>) -> Self {
         let n = axis.norm();
         Self {
             body,
             point,
-            axis: if n > 0.0 { axis / n } else { Vector3::z() },
+            // a zero axis is kept (and rejected by `Constraint::validate`)
+            axis: if n > 0.0 { axis / n } else { axis },
         }
     }
 
@@ -95,6 +138,10 @@ macro_rules! common {
         fn bodies(&self) -> [Option<BodyId>; 2] {
             [self.i.body, self.j.body]
         }
+        fn validate(&self) -> Result<(), MbdError> {
+            check_attachments(&self.name, &self.i, &self.j)?;
+            self.validate_extra()
+        }
     };
 }
 
@@ -107,6 +154,12 @@ pub struct Spherical {
     pub i: Attachment,
     /// Frame on body j.
     pub j: Attachment,
+}
+
+impl Spherical {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        Ok(())
+    }
 }
 
 impl Constraint for Spherical {
@@ -130,6 +183,12 @@ pub struct Fixed {
     pub i: Attachment,
     /// Frame on body j.
     pub j: Attachment,
+}
+
+impl Fixed {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        Ok(())
+    }
 }
 
 impl Constraint for Fixed {
@@ -163,6 +222,12 @@ pub struct Revolute {
     pub j: Attachment,
 }
 
+impl Revolute {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        Ok(())
+    }
+}
+
 impl Constraint for Revolute {
     common!(5);
     fn eval(&self, _t: f64, ki: &BodyKin, kj: &BodyKin, out: &mut Vec<Equation>) {
@@ -186,6 +251,12 @@ pub struct Universal {
     pub i: Attachment,
     /// Frame on body j (cross axis of body j, perpendicular to that of i).
     pub j: Attachment,
+}
+
+impl Universal {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        Ok(())
+    }
 }
 
 impl Constraint for Universal {
@@ -216,6 +287,13 @@ pub struct Prismatic {
     pub reference_i: Vector3<f64>,
     /// Reference vector on body j, perpendicular to `j.axis` (parallel to `reference_i`).
     pub reference_j: Vector3<f64>,
+}
+
+impl Prismatic {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        check_reference(&self.name, "reference_i", &self.i.axis, &self.reference_i)?;
+        check_reference(&self.name, "reference_j", &self.j.axis, &self.reference_j)
+    }
 }
 
 impl Constraint for Prismatic {
@@ -252,6 +330,18 @@ pub struct Distance {
     pub length: f64,
 }
 
+impl Distance {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        if !(self.length.is_finite() && self.length > 0.0) {
+            return Err(MbdError::InvalidInput {
+                item: format!("constraint \"{}\": length", self.name),
+                reason: format!("must be positive and finite, got {} m", self.length),
+            });
+        }
+        Ok(())
+    }
+}
+
 impl Constraint for Distance {
     common!(1);
     fn eval(&self, _t: f64, ki: &BodyKin, kj: &BodyKin, out: &mut Vec<Equation>) {
@@ -274,6 +364,12 @@ pub struct PointOnPlane {
     pub j: Attachment,
 }
 
+impl PointOnPlane {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        Ok(())
+    }
+}
+
 impl Constraint for PointOnPlane {
     common!(1);
     fn eval(&self, _t: f64, ki: &BodyKin, kj: &BodyKin, out: &mut Vec<Equation>) {
@@ -294,6 +390,12 @@ pub struct PlanarRevolute {
     pub i: Attachment,
     /// Point on body j.
     pub j: Attachment,
+}
+
+impl PlanarRevolute {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        Ok(())
+    }
 }
 
 impl Constraint for PlanarRevolute {
@@ -326,6 +428,16 @@ pub enum DriverLaw {
         /// Ramp duration [s].
         ramp: f64,
     },
+    /// Piecewise-linear angular speed through the points `(times[k], speeds[k])` [s, rad/s]
+    /// (constant before the first and after the last point); θ is its exact integral.
+    SpeedTable {
+        /// Angle at t = 0 [rad].
+        theta0: f64,
+        /// Strictly increasing times [s].
+        times: Vec<f64>,
+        /// Angular speeds [rad/s].
+        speeds: Vec<f64>,
+    },
     /// User function `t ↦ (θ, θ̇, θ̈)` [rad, rad/s, rad/s²].
     Custom(Arc<dyn Fn(f64) -> (f64, f64, f64) + Send + Sync>),
 }
@@ -346,6 +458,14 @@ impl std::fmt::Debug for DriverLaw {
                     "SpeedRamp {{ theta0: {theta0}, omega: {omega}, ramp: {ramp} }}"
                 )
             }
+            DriverLaw::SpeedTable {
+                theta0,
+                times,
+                speeds,
+            } => write!(
+                f,
+                "SpeedTable {{ theta0: {theta0}, times: {times:?}, speeds: {speeds:?} }}"
+            ),
             DriverLaw::Custom(_) => write!(f, "Custom(..)"),
         }
     }
@@ -375,9 +495,95 @@ impl DriverLaw {
                     (th, w, a)
                 }
             }
+            DriverLaw::SpeedTable {
+                theta0,
+                times,
+                speeds,
+            } => speed_table(*theta0, times, speeds, t),
             DriverLaw::Custom(f) => f(t),
         }
     }
+
+    /// Checks the parameters (finite values; speed table sorted and of matching lengths).
+    pub fn validate(&self, name: &str) -> Result<(), MbdError> {
+        let bad = |reason: String| MbdError::InvalidInput {
+            item: format!("driver \"{name}\""),
+            reason,
+        };
+        match self {
+            DriverLaw::ConstantSpeed { theta0, omega } => {
+                if !(theta0.is_finite() && omega.is_finite()) {
+                    return Err(bad("theta0 and omega must be finite".into()));
+                }
+            }
+            DriverLaw::SpeedRamp {
+                theta0,
+                omega,
+                ramp,
+            } => {
+                if !(theta0.is_finite() && omega.is_finite() && ramp.is_finite() && *ramp >= 0.0) {
+                    return Err(bad("theta0, omega finite and ramp >= 0 required".into()));
+                }
+            }
+            DriverLaw::SpeedTable {
+                theta0,
+                times,
+                speeds,
+            } => {
+                if times.is_empty() || times.len() != speeds.len() {
+                    return Err(bad(format!(
+                        "speed table needs as many times ({}) as speeds ({}), at least one",
+                        times.len(),
+                        speeds.len()
+                    )));
+                }
+                if !theta0.is_finite() || times.iter().chain(speeds).any(|x| !x.is_finite()) {
+                    return Err(bad("non-finite value in the speed table".into()));
+                }
+                if let Some(k) = times.windows(2).position(|w| w[1] <= w[0]) {
+                    return Err(bad(format!(
+                        "times must increase strictly (entry {} = {} s)",
+                        k + 1,
+                        times[k + 1]
+                    )));
+                }
+            }
+            DriverLaw::Custom(_) => {}
+        }
+        Ok(())
+    }
+}
+
+/// θ, θ̇, θ̈ of a piecewise-linear speed table (exact integral: trapezoids between breakpoints).
+fn speed_table(theta0: f64, times: &[f64], speeds: &[f64], t: f64) -> (f64, f64, f64) {
+    let n = times.len();
+    if n == 0 || n != speeds.len() {
+        return (theta0, 0.0, 0.0);
+    }
+    let speed = |x: f64| -> (f64, f64) {
+        if x <= times[0] {
+            (speeds[0], 0.0)
+        } else if x >= times[n - 1] {
+            (speeds[n - 1], 0.0)
+        } else {
+            let k = times.partition_point(|&tk| tk <= x) - 1;
+            let slope = (speeds[k + 1] - speeds[k]) / (times[k + 1] - times[k]);
+            (speeds[k] + slope * (x - times[k]), slope)
+        }
+    };
+    let (a, b, sign) = if t >= 0.0 {
+        (0.0, t, 1.0)
+    } else {
+        (t, 0.0, -1.0)
+    };
+    let mut acc = 0.0;
+    let mut x0 = a;
+    for x1 in times.iter().copied().filter(|&x| x > a && x < b).chain([b]) {
+        acc += 0.5 * (speed(x0).0 + speed(x1).0) * (x1 - x0);
+        x0 = x1;
+    }
+    let (w, alpha) = speed(t);
+    (theta0 + sign * acc, w, alpha)
 }
 
 /// Rheonomic rotation driver: the angle θ(t) of body j relative to body i about the axis
@@ -401,6 +607,14 @@ pub struct RotationDriver {
     pub law: DriverLaw,
 }
 
+impl RotationDriver {
+    fn validate_extra(&self) -> Result<(), MbdError> {
+        check_reference(&self.name, "reference_i", &self.i.axis, &self.reference_i)?;
+        check_vec(&self.name, "reference_j", &self.reference_j, true)?;
+        self.law.validate(&self.name)
+    }
+}
+
 impl Constraint for RotationDriver {
     common!(1);
     fn eval(&self, t: f64, ki: &BodyKin, kj: &BodyKin, out: &mut Vec<Equation>) {
@@ -420,7 +634,7 @@ impl Constraint for RotationDriver {
         // Φ̈ = C c̈1 − S c̈2 − 2θ̇ (S ċ1 + C ċ2) − θ̈ (S c1 + C c2) − θ̇² (C c1 − S c2)
         let gamma = -row.quad + 2.0 * thd * scdot + thdd * sc + thd * thd * row.phi;
         let mut row = row;
-        row.rate = row.rate - thd * sc; // total Φ̇
+        row.rate -= thd * sc; // total Φ̇
         out.push(Equation { row, nu, gamma });
     }
 }

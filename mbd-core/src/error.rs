@@ -52,6 +52,14 @@ pub enum MbdError {
         /// Rejected step size [s].
         h: f64,
     },
+    /// Writing output failed.
+    #[error("cannot write {path}: {message}")]
+    Io {
+        /// File path.
+        path: String,
+        /// Underlying error.
+        message: String,
+    },
     /// A model (implementor of [`crate::SecondOrderSystem`]) reported a failure.
     #[error("model error at t = {t} s: {message}")]
     Model {

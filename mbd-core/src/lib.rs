@@ -15,6 +15,8 @@
 //! println!("{:?}", sol.stats);
 //! ```
 
+#![allow(clippy::needless_range_loop, clippy::too_many_arguments)]
+
 pub mod error;
 pub mod integrators;
 pub mod linalg;
@@ -27,9 +29,15 @@ pub use integrators::{
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub mod body;
 pub mod constraints;
+pub mod examples_chain;
+pub mod floating;
 pub mod forces;
+pub mod history;
 pub mod kinematics;
 pub mod multibody;
+pub mod statics;
 
 pub use body::{BodyState, RigidBody};
+pub use history::{History, Probe};
 pub use multibody::MultibodySystem;
+pub use statics::{StaticOptions, StaticSolution, static_equilibrium};

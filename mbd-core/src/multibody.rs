@@ -11,7 +11,9 @@ use crate::constraints::{Constraint, Equation};
 use crate::forces::ForceElement;
 use crate::integrators::State;
 use crate::kinematics::euler::{compose_local_rotation, pdot_from_omega_local};
+use crate::kinematics::tilde::tilde;
 use crate::kinematics::tilde::{get3, get4, put3, put4};
+use crate::system::ForceTangent;
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
 use faer::sparse::{SparseColMat, Triplet};
@@ -79,6 +81,7 @@ impl MultibodySystem {
     /// Adds a constraint (validates its body references); returns its index.
     pub fn add_constraint(&mut self, c: impl Constraint + 'static) -> Result<usize, MbdError> {
         let what = format!("constraint \"{}\"", c.name());
+        c.validate()?;
         let [bi, bj] = c.bodies();
         self.check_body(bi, &what)?;
         self.check_body(bj, &what)?;
@@ -103,6 +106,7 @@ impl MultibodySystem {
     /// Adds a force element (validates its body references).
     pub fn add_force(&mut self, f: impl ForceElement + 'static) -> Result<(), MbdError> {
         let what = format!("force element \"{}\"", f.name());
+        f.validate()?;
         for b in f.bodies() {
             self.check_body(b, &what)?;
         }
@@ -140,7 +144,13 @@ impl MultibodySystem {
         let mut q = vec![0.0; 7 * states.len()];
         let mut v = vec![0.0; 6 * states.len()];
         for (k, s) in states.iter().enumerate() {
-            s.check(&self.bodies[k].name)?;
+            s.check(&self.bodies[k].name).map_err(|e| match e {
+                MbdError::InvalidInput { item, reason } => MbdError::InvalidInput {
+                    item: format!("{item} at t = {t} s"),
+                    reason,
+                },
+                other => other,
+            })?;
             put3(&mut q, 7 * k, &s.r);
             put4(&mut q, 7 * k + 3, &s.p);
             put3(&mut v, 6 * k, &s.rdot);
@@ -401,6 +411,162 @@ impl SecondOrderSystem for MultibodySystem {
         Ok(())
     }
 
+    /// Analytic gyroscopic damping `C = ω̃'J' − (J'ω')~` per body (from Lin (2.26)) plus, for
+    /// each state-dependent force element, forward differences over the (at most two) bodies
+    /// it acts on, so that the tangent stays sparse.
+    fn force_tangent(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<Option<ForceTangent>, MbdError> {
+        let n = self.n_v();
+        let kin = self.kinematics(q, Some(v));
+        let mut kt: Vec<Triplet<usize, usize, f64>> = Vec::new();
+        let mut ct: Vec<Triplet<usize, usize, f64>> = Vec::new();
+        for (k, b) in self.bodies.iter().enumerate() {
+            let w = kin[k].w;
+            let c = tilde(&w) * b.inertia - tilde(&(b.inertia * w));
+            for i in 0..3 {
+                for j in 0..3 {
+                    ct.push(Triplet::new(6 * k + 3 + i, 6 * k + 3 + j, c[(i, j)]));
+                }
+            }
+        }
+        let mut f0 = vec![0.0; n];
+        let mut f1 = vec![0.0; n];
+        for fe in &self.forces {
+            if fe.is_state_independent() {
+                continue;
+            }
+            let mut bs: Vec<usize> = fe.bodies().into_iter().flatten().collect();
+            bs.sort_unstable();
+            bs.dedup();
+            if bs.is_empty() {
+                continue;
+            }
+            f0.fill(0.0);
+            fe.apply(t, &self.bodies, &kin, &mut f0);
+            for &b in &bs {
+                for c in 0..6 {
+                    let mut kp = kin.clone();
+                    // position perturbation through ⊕ (translation or body-frame rotation)
+                    let eps = 1e-7 * (1.0 + if c < 3 { kin[b].r[c].abs() } else { 0.0 });
+                    if c < 3 {
+                        kp[b].r[c] += eps;
+                    } else {
+                        let mut th = Vector3::zeros();
+                        th[c - 3] = eps;
+                        let p = compose_local_rotation(&kin[b].p, &th);
+                        kp[b] = BodyKin::new(kin[b].r, p, kin[b].rdot, kin[b].w);
+                    }
+                    f1.fill(0.0);
+                    fe.apply(t, &self.bodies, &kp, &mut f1);
+                    for &r in &bs {
+                        for i in 0..6 {
+                            let d = -(f1[6 * r + i] - f0[6 * r + i]) / eps;
+                            if d != 0.0 {
+                                kt.push(Triplet::new(6 * r + i, 6 * b + c, d));
+                            }
+                        }
+                    }
+                    // velocity perturbation
+                    let mut kp = kin.clone();
+                    let ev = 1e-7 * (1.0 + v[6 * b + c].abs());
+                    if c < 3 {
+                        kp[b].rdot[c] += ev;
+                    } else {
+                        kp[b].w[c - 3] += ev;
+                    }
+                    f1.fill(0.0);
+                    fe.apply(t, &self.bodies, &kp, &mut f1);
+                    for &r in &bs {
+                        for i in 0..6 {
+                            let d = -(f1[6 * r + i] - f0[6 * r + i]) / ev;
+                            if d != 0.0 {
+                                ct.push(Triplet::new(6 * r + i, 6 * b + c, d));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(Some(ForceTangent {
+            stiffness: self.matrix_from_triplets(n, n, kt, t)?,
+            damping: self.matrix_from_triplets(n, n, ct, t)?,
+        }))
+    }
+
+    /// `∂(Dᵀλ)/∂q` by forward differences local to each constraint's two bodies (sparse).
+    fn constraint_force_tangent(
+        &self,
+        t: f64,
+        q: &[f64],
+        lambda: &[f64],
+    ) -> Result<Option<SysMatrix>, MbdError> {
+        let n = self.n_v();
+        let kin = self.kinematics(q, None);
+        let ground = BodyKin::ground();
+        let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::new();
+        let mut eqs = Vec::new();
+        // generalized constraint force Dᵀλ of one constraint on its bodies (12 entries)
+        let gen_force = |c: &dyn Constraint,
+                         off: usize,
+                         ki: &BodyKin,
+                         kj: &BodyKin,
+                         eqs: &mut Vec<Equation>|
+         -> [f64; 12] {
+            eqs.clear();
+            c.eval(t, ki, kj, eqs);
+            let mut g = [0.0; 12];
+            for (r, e) in eqs.iter().enumerate() {
+                let l = lambda[off + r];
+                for k in 0..6 {
+                    g[k] += e.row.di[k] * l;
+                    g[6 + k] += e.row.dj[k] * l;
+                }
+            }
+            g
+        };
+        for (ci, c) in self.constraints.iter().enumerate() {
+            let off = self.offsets[ci];
+            if lambda[off..off + c.n_eq()].iter().all(|&l| l == 0.0) {
+                continue;
+            }
+            let bodies = c.bodies();
+            let kof = |b: Option<BodyId>| b.map(|b| kin[b]).unwrap_or(ground);
+            let (ki, kj) = (kof(bodies[0]), kof(bodies[1]));
+            let g0 = gen_force(c.as_ref(), off, &ki, &kj, &mut eqs);
+            for (side, b) in bodies.iter().enumerate() {
+                let Some(b) = *b else { continue };
+                let kb = kin[b];
+                for col in 0..6 {
+                    let eps = 1e-7 * (1.0 + if col < 3 { kb.r[col].abs() } else { 0.0 });
+                    let mut kp = kb;
+                    if col < 3 {
+                        kp.r[col] += eps;
+                    } else {
+                        let mut th = Vector3::zeros();
+                        th[col - 3] = eps;
+                        kp = BodyKin::new(kb.r, compose_local_rotation(&kb.p, &th), kb.rdot, kb.w);
+                    }
+                    let (pi, pj) = if side == 0 { (kp, kj) } else { (ki, kp) };
+                    let g1 = gen_force(c.as_ref(), off, &pi, &pj, &mut eqs);
+                    for (rs, rb) in bodies.iter().enumerate() {
+                        let Some(rb) = *rb else { continue };
+                        for k in 0..6 {
+                            let d = (g1[6 * rs + k] - g0[6 * rs + k]) / eps;
+                            if d != 0.0 {
+                                trip.push(Triplet::new(6 * rb + k, 6 * b + col, d));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(Some(self.matrix_from_triplets(n, n, trip, t)?))
+    }
+
     fn constraint_residual(&self, t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
         for (p, e) in phi.iter_mut().zip(self.equations(t, q, None)) {
             *p = e.row.phi;
@@ -448,6 +614,10 @@ impl SecondOrderSystem for MultibodySystem {
             *p = e.gamma;
         }
         Ok(())
+    }
+
+    fn check_state(&self, t: f64, q: &[f64], _v: &[f64]) -> Result<(), MbdError> {
+        self.check_euler_parameters(t, q)
     }
 
     fn constraint_name(&self, row: usize) -> String {

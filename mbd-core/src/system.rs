@@ -112,6 +112,13 @@ pub trait SecondOrderSystem {
         }
     }
 
+    /// Model-specific validation of a state at time `t` [s] (e.g. unit Euler parameters),
+    /// called by the integrators on the initial state; sizes and finiteness are checked by the
+    /// caller.
+    fn check_state(&self, _t: f64, _q: &[f64], _v: &[f64]) -> Result<(), MbdError> {
+        Ok(())
+    }
+
     /// Human-readable name of constraint row `row` (used in error messages, e.g. for redundant
     /// constraints).
     fn constraint_name(&self, row: usize) -> String {
@@ -141,6 +148,18 @@ pub trait SecondOrderSystem {
         _q: &[f64],
         _v: &[f64],
     ) -> Result<Option<ForceTangent>, MbdError> {
+        Ok(None)
+    }
+
+    /// Tangent of the constraint forces for fixed multipliers, `K_c = ∂(Dᵀ(q) λ)/∂q · H`
+    /// (`n_v × n_v`, the "geometric stiffness" of the joints), or `None` to neglect it in the
+    /// Newton matrix of the implicit integrators (quasi-Newton).
+    fn constraint_force_tangent(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _lambda: &[f64],
+    ) -> Result<Option<SysMatrix>, MbdError> {
         Ok(None)
     }
 

@@ -278,3 +278,39 @@ fn pendulum_all_integrators_match_minimal_coordinates() {
         }
     }
 }
+
+#[test]
+fn dopri_dense_output_at_requested_times() {
+    // analytic x = cos(ω t) at 101 requested times; 4th-order interpolant between steps
+    let sys = Sdof {
+        m: 1.0,
+        k: (2.0 * PI).powi(2),
+        analytic_tangent: true,
+    };
+    let times: Vec<f64> = (0..=100).map(|k| 0.0137 * k as f64).collect();
+    let mut seen = Vec::new();
+    let sol = DormandPrince::new(1e-10, 1e-12)
+        .integrate_dense(&sys, sdof_state(), &times, &[], |s| {
+            seen.push((s.t, s.q[0]))
+        })
+        .unwrap();
+    assert_eq!(seen.len(), times.len());
+    // dense output does not change the step sequence
+    let plain = DormandPrince::new(1e-10, 1e-12)
+        .integrate(&sys, sdof_state(), 1.37, |_| {})
+        .unwrap();
+    assert_eq!(sol.stats.steps, plain.stats.steps);
+    for ((t, x), tr) in seen.iter().zip(&times) {
+        assert_eq!(t, tr);
+        assert!(
+            (x - (2.0 * PI * t).cos()).abs() < 1e-8,
+            "t {t}: {}",
+            x - (2.0 * PI * t).cos()
+        );
+    }
+    assert!(
+        DormandPrince::default()
+            .integrate_dense(&sys, sdof_state(), &[0.2, 0.1], &[], |_| {})
+            .is_err()
+    );
+}

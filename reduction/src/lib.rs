@@ -17,6 +17,7 @@ pub mod linalg;
 pub mod mean_axes_eval;
 pub mod partition;
 pub mod reduced;
+pub mod sparse;
 
 pub use basis::{Basis, Column, Method, ModeSelection, build_basis};
 pub use error::ReductionError;

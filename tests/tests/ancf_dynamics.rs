@@ -49,3 +49,33 @@ fn spinning_beam_steady_extension() {
     let b = hub_angle(15.0, 4.0, 15.0);
     assert!((a[0] - b[0]).abs() < 1e-8 && (a[1] - b[1]).abs() < 1e-8);
 }
+
+// Kerkkänen Fig. 2.8: with 8 elements the proposed and the Omar–Shabana element give nearly the
+// same tip motion of the falling pendulum (second formulation as reference); 0.6 s, h = 2e-4 s.
+#[test]
+fn pendulum_proposed_agrees_with_omar_shabana() {
+    use ancf::studies::BeamElementKind;
+    let run = |element| {
+        let case = PendulumCase {
+            element,
+            elements: 8,
+            t_end: 0.6,
+            h: 2e-4,
+            ..Default::default()
+        };
+        pendulum(&case, 50, |_| {}).expect("pendulum run")
+    };
+    let p = run(BeamElementKind::Proposed);
+    let o = run(BeamElementKind::OmarShabana);
+    assert_eq!(p.len(), o.len());
+    for (a, b) in p.iter().zip(&o) {
+        let d = ((a.tip[0] - b.tip[0]).powi(2) + (a.tip[1] - b.tip[1]).powi(2)).sqrt();
+        assert!(
+            d < 0.02,
+            "t = {}: tips differ by {d} m (1 % of L allowed)",
+            a.t
+        );
+    }
+    // the tip has fallen by more than a metre by then
+    assert!(p.last().unwrap().tip[1] < -1.0);
+}

@@ -1,4 +1,5 @@
 //! Validation of the mode-shape derivative operators (Ribaric App. A).
+#![allow(clippy::needless_range_loop)] // index loops mirror the matrix equations
 
 use faer::Mat;
 use flowing::derivative::{

@@ -115,3 +115,27 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// The sparse path (one Cholesky of K_ii for all static modes, sparse projection) equals
+    /// the dense Guyan basis and reduced matrices.
+    #[test]
+    fn sparse_static_modes_equal_dense((k, m, bnd, _nk) in model()) {
+        let n = k.nrows();
+        let part = DofPartition::from_boundary_dofs(n, &bnd).unwrap();
+        let ks = fe_model::sparse::from_dense(k.as_ref(), 0.0).unwrap();
+        let ms = fe_model::sparse::from_dense(m.as_ref(), 0.0).unwrap();
+        let bs = reduction::sparse::guyan_sparse(ks.as_ref(), &part).unwrap();
+        let bd = build_basis(k.as_ref(), m.as_ref(), &part, Method::Guyan, &ModeSelection::Lowest(0)).unwrap();
+        let d = &bs.psi - &bd.psi;
+        prop_assert!(max_abs(d.as_ref()) < 1e-10 * (1.0 + max_abs(bd.psi.as_ref())));
+        let rs = reduction::sparse::reduced_model_sparse(bs, ks.as_ref(), ms.as_ref(), 1).unwrap();
+        let rd = ReducedModel::from_basis(bd, k.as_ref(), m.as_ref(), None, 1).unwrap();
+        let dk = &rs.stiffness - &rd.stiffness;
+        let dm = &rs.mass - &rd.mass;
+        prop_assert!(max_abs(dk.as_ref()) < 1e-9 * (1.0 + max_abs(rd.stiffness.as_ref())));
+        prop_assert!(max_abs(dm.as_ref()) < 1e-9 * (1.0 + max_abs(rd.mass.as_ref())));
+    }
+}

@@ -141,8 +141,25 @@ impl BeltElement {
             }
             s
         };
-        let rcx = [comb(&p.sx, 0), comb(&p.sx, 1)];
-        let rcxx = [comb(&p.sxx, 0), comb(&p.sxx, 1)];
+        let xi = p.xi;
+        let prim = [
+            comb(&p.sx, 0),
+            comb(&p.sx, 1),
+            comb(&p.sxx, 0),
+            comb(&p.sxx, 1),
+            nt.sg_i.scale(1.0 - xi) + nt.sg_j.scale(xi),
+            (nt.sg_j - nt.sg_i).scale(1.0 / self.length),
+            nt.ny_i.scale(1.0 - xi) + nt.ny_j.scale(xi) - T::cst(1.0),
+        ];
+        self.density_primary(&prim)
+    }
+
+    /// Energy per unit length as a function of the seven primary quantities at a point:
+    /// `[r_{c,x}, r_{c,xx}, sin γ, (sin γ)_x, ε_yy]`.
+    fn density_primary<T: Real>(&self, p: &[T; 7]) -> T {
+        let rcx = [p[0], p[1]];
+        let rcxx = [p[2], p[3]];
+        let (sg, sgx, eyy) = (p[4], p[5], p[6]);
         let a = rcx[0] * rcx[0] + rcx[1] * rcx[1];
         let inv = a.sqrt().recip();
         let t = [rcx[0] * inv, rcx[1] * inv];
@@ -150,9 +167,6 @@ impl BeltElement {
         let tdot = t[0] * rcxx[0] + t[1] * rcxx[1];
         let tx = [(rcxx[0] - t[0] * tdot) * inv, (rcxx[1] - t[1] * tdot) * inv];
         let nx = [-tx[1], tx[0]];
-        let xi = p.xi;
-        let sg = nt.sg_i.scale(1.0 - xi) + nt.sg_j.scale(xi);
-        let sgx = (nt.sg_j - nt.sg_i).scale(1.0 / self.length);
         let rs = [n[0] - sg * t[0], n[1] - sg * t[1]];
         let rsx = [
             nx[0] - sgx * t[0] - sg * tx[0],
@@ -162,7 +176,6 @@ impl BeltElement {
         let c = rsx[0] * rsx[0] + rsx[1] * rsx[1];
         let d = rcx[0] * rs[0] + rcx[1] * rs[1];
         let f = rsx[0] * rs[0] + rsx[1] * rs[1];
-        let eyy = nt.ny_i.scale(1.0 - xi) + nt.ny_j.scale(xi) - T::cst(1.0);
         let (ee, s) = (self.material.young, &self.section);
         let g = self.material.shear_factor * self.material.shear_modulus();
         let am1 = a - T::cst(1.0);
@@ -173,6 +186,111 @@ impl BeltElement {
         (axial + bend).scale(0.5 * ee)
             + shear.scale(0.5 * g * self.alpha2)
             + (eyy * eyy).scale(0.5 * ee * s.area)
+    }
+
+    /// Tangent by second-order AD over all 12 coordinates at once (slow; the reference for the
+    /// chain-rule tangent of [`Element::elastic_tangent`]).
+    pub fn elastic_tangent_reference(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
+        let v: [Hyper<N>; N] = std::array::from_fn(|i| Hyper::linear(e[i], &[(i, 1.0)]));
+        let u = self.energy_generic(&v);
+        for i in 0..N {
+            q[i] = -u.g[i];
+            for j in 0..N {
+                k[i + j * N] = u.h[i][j];
+            }
+        }
+    }
+
+    /// Chain-rule tangent: second-order AD over the 4 coordinates `(r_x, r_y)` of each node for
+    /// the nodal shear angle and slope norm, and over the 7 primary quantities at each Gauss
+    /// point; `H_e = Σ w (Jᵀ H_p J) + Σ (∂U/∂s) ∂²s/∂e²` for the nodal functions `s`.
+    fn tangent_chain(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
+        let node = |off: usize| {
+            let v: [Hyper<4>; 4] = std::array::from_fn(|i| Hyper::linear(e[off + i], &[(i, 1.0)]));
+            let nx = (v[0] * v[0] + v[1] * v[1]).sqrt();
+            let ny = (v[2] * v[2] + v[3] * v[3]).sqrt();
+            let sg = -((v[0] * v[2] + v[1] * v[3]) * (nx * ny).recip());
+            (sg, ny)
+        };
+        let (sgi, nyi) = node(2);
+        let (sgj, nyj) = node(8);
+        let l = self.length;
+        let mut grad = [0.0; N];
+        let mut h = [[0.0; N]; N];
+        let mut coef = [0.0; 4]; // ∂U/∂(sg_i, ny_i, sg_j, ny_j)
+        for pt in &self.points {
+            let xi = pt.xi;
+            let mut pv = [0.0; 7];
+            for kk in 0..CUBIC_BLOCKS {
+                pv[0] += pt.sx[kk] * e[2 * kk];
+                pv[1] += pt.sx[kk] * e[2 * kk + 1];
+                pv[2] += pt.sxx[kk] * e[2 * kk];
+                pv[3] += pt.sxx[kk] * e[2 * kk + 1];
+            }
+            pv[4] = (1.0 - xi) * sgi.v + xi * sgj.v;
+            pv[5] = (sgj.v - sgi.v) / l;
+            pv[6] = (1.0 - xi) * nyi.v + xi * nyj.v - 1.0;
+            let vars: [Hyper<7>; 7] = std::array::from_fn(|i| Hyper::linear(pv[i], &[(i, 1.0)]));
+            let d = self.density_primary(&vars);
+            // J = ∂p/∂e (7 × 12)
+            let mut jac = [[0.0; N]; 7];
+            for kk in 0..CUBIC_BLOCKS {
+                jac[0][2 * kk] = pt.sx[kk];
+                jac[1][2 * kk + 1] = pt.sx[kk];
+                jac[2][2 * kk] = pt.sxx[kk];
+                jac[3][2 * kk + 1] = pt.sxx[kk];
+            }
+            for i in 0..4 {
+                jac[4][2 + i] = (1.0 - xi) * sgi.g[i];
+                jac[4][8 + i] = xi * sgj.g[i];
+                jac[5][2 + i] = -sgi.g[i] / l;
+                jac[5][8 + i] = sgj.g[i] / l;
+                jac[6][2 + i] = (1.0 - xi) * nyi.g[i];
+                jac[6][8 + i] = xi * nyj.g[i];
+            }
+            let w = pt.w;
+            // grad += w Jᵀ g ; hj = H_p J (7 × 12) ; h += w Jᵀ hj
+            let mut hj = [[0.0; N]; 7];
+            for a in 0..7 {
+                for c in 0..N {
+                    let mut acc = 0.0;
+                    for b in 0..7 {
+                        acc += d.h[a][b] * jac[b][c];
+                    }
+                    hj[a][c] = acc;
+                }
+            }
+            for c in 0..N {
+                let mut gacc = 0.0;
+                for a in 0..7 {
+                    gacc += jac[a][c] * d.g[a];
+                }
+                grad[c] += w * gacc;
+                for r in 0..N {
+                    let mut acc = 0.0;
+                    for a in 0..7 {
+                        acc += jac[a][r] * hj[a][c];
+                    }
+                    h[r][c] += w * acc;
+                }
+            }
+            coef[0] += w * ((1.0 - xi) * d.g[4] - d.g[5] / l);
+            coef[2] += w * (xi * d.g[4] + d.g[5] / l);
+            coef[1] += w * (1.0 - xi) * d.g[6];
+            coef[3] += w * xi * d.g[6];
+        }
+        for i in 0..4 {
+            for j in 0..4 {
+                h[2 + i][2 + j] += coef[0] * sgi.h[i][j] + coef[1] * nyi.h[i][j];
+                h[8 + i][8 + j] += coef[2] * sgj.h[i][j] + coef[3] * nyj.h[i][j];
+            }
+        }
+        for i in 0..N {
+            q[i] = -grad[i];
+            for j in 0..N {
+                k[i + j * N] = h[i][j];
+            }
+        }
     }
 
     fn energy_generic<T: Real>(&self, e: &[T; N]) -> T {
@@ -214,13 +332,6 @@ impl Element for BeltElement {
         }
     }
     fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
-        let v: [Hyper<N>; N] = std::array::from_fn(|i| Hyper::linear(e[i], &[(i, 1.0)]));
-        let u = self.energy_generic(&v);
-        for i in 0..N {
-            q[i] = -u.g[i];
-            for j in 0..N {
-                k[i + j * N] = u.h[i][j];
-            }
-        }
+        self.tangent_chain(e, q, k)
     }
 }

@@ -1,8 +1,10 @@
 //! `flowmbd-belt`: belt-drive studies.
 //!
 //! Subcommands (one per study; `--help` on each lists its options):
-//! - `demo`: rigid-body slider-crank driven at constant speed (integrator demonstration; the default
-//!   until the flowing-material speed-loss study is complete).
+//! - `speed-loss` (the default): angular speed loss against load torque of the flowing-material
+//!   belt drive (Ribaric ch. 5–6, Table 6-1) with Bechtel's analytical line;
+//! - `ancf`: the planar ANCF belt drive of Kerkkänen ch. 3;
+//! - `demo`: rigid-body slider-crank driven at constant speed (mbd-core demonstration).
 //!
 //! Run without a subcommand, the default study runs on its embedded defaults.
 
@@ -11,6 +13,7 @@ use std::process::ExitCode;
 
 mod ancf;
 mod demo;
+mod speed_loss;
 
 /// Belt-drive studies of the flowmbd toolkit.
 #[derive(Debug, Parser)]
@@ -22,6 +25,8 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Study {
+    /// Speed loss against load torque, flowing-material belt (Ribaric Figs. 6-6, 6-7).
+    SpeedLoss(speed_loss::Args),
     /// Rigid-body slider-crank with a rotational driver (mbd-core demonstration).
     Demo(demo::Args),
     /// Planar ANCF belt drive (Kerkkänen ch. 3).
@@ -33,6 +38,7 @@ fn main() -> ExitCode {
     match cli.study {
         Some(Study::Demo(args)) => demo::run(&args),
         Some(Study::Ancf(args)) => ancf::run(&args),
-        None => demo::run(&demo::Args::default()),
+        Some(Study::SpeedLoss(args)) => speed_loss::run(&args),
+        None => speed_loss::run(&speed_loss::Args::default()),
     }
 }

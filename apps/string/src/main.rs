@@ -1,6 +1,100 @@
-//! `flowmbd-string`: studies of the flowmbd toolkit (not implemented yet; see the README's crate map).
+//! `flowmbd-string`: the travelling string of Ribaric ch. 4 (flowing material, analytical
+//! Galerkin model, variable-size contact on two pulleys).
+//!
+//! Studies: `modes`, `sweep`, `simulate`, `wrap` (see `--help` of each). Defaults reproduce
+//! Ribaric Sec. 4.2.3: L = 1 m, ρ = 7850 kg/m³, A = 7.854e-5 m², T = 1000 N.
 
-fn main() {
-    eprintln!("flowmbd-string: no studies are available yet in this build");
-    std::process::exit(2);
+mod common;
+mod modes;
+mod simulate;
+mod sweep;
+mod wrap;
+
+use clap::{Parser, Subcommand};
+use flowmbd_cli::{CommonArgs, run_study};
+use std::process::ExitCode;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "flowmbd-string",
+    version,
+    about = "Travelling string with flowing material (Ribaric ch. 4)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    study: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Damped natural frequencies of the analytical Galerkin model and the discrete
+    /// flowing-material model at one axial speed.
+    Modes {
+        /// Axial speed [m/s].
+        #[arg(long)]
+        speed: Option<f64>,
+        /// Interior FE nodes.
+        #[arg(long)]
+        nodes: Option<usize>,
+        /// Retained modes of the flowing-material model.
+        #[arg(long)]
+        modes: Option<usize>,
+        #[command(flatten)]
+        common: CommonArgs,
+    },
+    /// Frequencies against axial speed from 0 to past the critical speed (CSV and plot).
+    Sweep {
+        /// Interior FE nodes.
+        #[arg(long)]
+        nodes: Option<usize>,
+        /// Retained modes of the flowing-material model.
+        #[arg(long)]
+        modes: Option<usize>,
+        #[command(flatten)]
+        common: CommonArgs,
+    },
+    /// Transient after a pluck: modal coordinates and their spectra (Ribaric Fig. 4-6 right).
+    Simulate {
+        /// Axial speed [m/s].
+        #[arg(long)]
+        speed: Option<f64>,
+        #[command(flatten)]
+        common: CommonArgs,
+    },
+    /// The string partly wrapped on two pulleys, lifting off under a harmonic load.
+    Wrap {
+        /// Axial speed [m/s].
+        #[arg(long)]
+        speed: Option<f64>,
+        #[command(flatten)]
+        common: CommonArgs,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.study {
+        Command::Modes {
+            speed,
+            nodes,
+            modes,
+            common,
+        } => run_study(
+            &modes::ModesStudy {
+                speed,
+                nodes,
+                modes,
+            },
+            &common,
+        ),
+        Command::Sweep {
+            nodes,
+            modes,
+            common,
+        } => run_study(&sweep::SweepStudy { nodes, modes }, &common),
+        Command::Simulate { speed, common } => {
+            run_study(&simulate::SimulateStudy { speed }, &common)
+        }
+        Command::Wrap { speed, common } => run_study(&wrap::WrapStudy { speed }, &common),
+    }
 }

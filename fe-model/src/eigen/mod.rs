@@ -8,8 +8,13 @@ use faer::{Mat, MatMut};
 use serde::Serialize;
 
 pub mod dense;
+pub mod factor;
+pub mod sparse;
+pub mod sturm;
 
-pub use dense::dense_modes;
+pub use dense::{dense_modes, dense_modes_shifted};
+pub use sparse::{SparseEigenOptions, SparseEigenReport, sparse_modes};
+pub use sturm::sturm_count;
 
 /// Eigen solution of `K φ = λ M φ`.
 #[derive(Debug, Clone)]

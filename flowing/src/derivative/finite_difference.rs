@@ -48,15 +48,15 @@ impl Default for FdScheme {
     }
 }
 
+/// A sparse derivative matrix.
+pub type SparseOp = SparseColMat<usize, f64>;
+
 /// Sparse `n × n` matrices `(D₁, D₂)` of a finite-difference scheme on `grid`.
 ///
 /// Interior nodes use their two neighbours (a zero-value end acts as a neighbour whose value is
 /// known to be zero, Ribaric (A.2) with erratum E20: node spacings, not mode indices); nodes at a
 /// free end use the one-sided 3-point stencil (exact for quadratics).
-pub fn fd_matrices(
-    grid: &FlowGrid,
-    scheme: FdScheme,
-) -> Result<(SparseColMat<usize, f64>, SparseColMat<usize, f64>), FlowError> {
+pub fn fd_matrices(grid: &FlowGrid, scheme: FdScheme) -> Result<(SparseOp, SparseOp), FlowError> {
     crate::grid::require_nodes(grid, 3, "finite-difference derivative")?;
     let n = grid.len();
     let mut t1 = Vec::with_capacity(3 * n);

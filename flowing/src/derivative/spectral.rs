@@ -110,7 +110,7 @@ impl SpectralOperator {
         let mut d2 = Mat::<f64>::zeros(n, values.ncols());
         let mut buf = vec![Complex::new(0.0, 0.0); len];
         let mut b1 = vec![Complex::new(0.0, 0.0); len];
-        let nyquist = (len % 2 == 0).then_some(len / 2);
+        let nyquist = len.is_multiple_of(2).then_some(len / 2);
         for c in 0..values.ncols() {
             buf.iter_mut().for_each(|z| *z = Complex::new(0.0, 0.0));
             match self.extension {

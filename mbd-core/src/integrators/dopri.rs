@@ -183,10 +183,12 @@ impl DormandPrince {
             item: format!("Dormand-Prince {item}"),
             reason,
         };
-        if !(self.rtol >= 0.0 && self.atol >= 0.0 && self.rtol + self.atol > 0.0)
-            || !self.rtol.is_finite()
-            || !self.atol.is_finite()
-        {
+        let ok = self.rtol.is_finite()
+            && self.atol.is_finite()
+            && self.rtol >= 0.0
+            && self.atol >= 0.0
+            && self.rtol + self.atol > 0.0;
+        if !ok {
             return Err(bad(
                 "tolerances",
                 format!(
@@ -231,6 +233,54 @@ impl DormandPrince {
         state0: State,
         t_end: f64,
         events: &[Event<'_>],
+        observer: impl FnMut(&State),
+    ) -> Result<Solution, MbdError> {
+        self.run(sys, state0, t_end, events, None, observer)
+    }
+
+    /// Integrates up to the last of `times` [s] (strictly increasing, not before the initial
+    /// time) and calls `observer` exactly at these times, from the 4th-order dense output
+    /// (Hairer's `contd5`), plus at a stopping event.
+    pub fn integrate_dense<S: SecondOrderSystem + ?Sized>(
+        &self,
+        sys: &S,
+        state0: State,
+        times: &[f64],
+        events: &[Event<'_>],
+        observer: impl FnMut(&State),
+    ) -> Result<Solution, MbdError> {
+        let bad = |reason: String| MbdError::InvalidInput {
+            item: "Dormand-Prince output times".into(),
+            reason,
+        };
+        let Some(&t_end) = times.last() else {
+            return Err(bad("no output time given".into()));
+        };
+        if times.iter().any(|t| !t.is_finite()) {
+            return Err(bad("non-finite output time".into()));
+        }
+        if let Some(k) = times.windows(2).position(|w| w[1] <= w[0]) {
+            return Err(bad(format!(
+                "times must increase strictly (entry {})",
+                k + 1
+            )));
+        }
+        if times[0] < state0.t {
+            return Err(bad(format!(
+                "first output time {} s is before the initial time {} s",
+                times[0], state0.t
+            )));
+        }
+        self.run(sys, state0, t_end, events, Some(times), observer)
+    }
+
+    fn run<S: SecondOrderSystem + ?Sized>(
+        &self,
+        sys: &S,
+        state0: State,
+        t_end: f64,
+        events: &[Event<'_>],
+        output: Option<&[f64]>,
         mut observer: impl FnMut(&State),
     ) -> Result<Solution, MbdError> {
         self.validate()?;
@@ -249,7 +299,20 @@ impl DormandPrince {
         };
         let mut t = state0.t;
         let mut y: Vec<f64> = state0.q.iter().chain(state0.v.iter()).copied().collect();
-        observer(&state0);
+        let mut next_out = 0usize;
+        match output {
+            None => observer(&state0),
+            Some(times) => {
+                while next_out < times.len() && times[next_out] <= state0.t {
+                    observer(&State::new(
+                        times[next_out],
+                        state0.q.clone(),
+                        state0.v.clone(),
+                    ));
+                    next_out += 1;
+                }
+            }
+        }
         let mut records = Vec::new();
         let to_state = |t: f64, y: &[f64]| {
             let mut q = y[..nq].to_vec();
@@ -432,6 +495,19 @@ impl DormandPrince {
                 }
             }
             stats.steps += 1;
+            if let Some(times) = output {
+                let t_stop = first.map(|(_, te)| te).unwrap_or(t_new);
+                while next_out < times.len() && times[next_out] <= t_stop {
+                    let to = times[next_out];
+                    let so = if to == t_new {
+                        st_new.clone()
+                    } else {
+                        to_state(to, &dense(to))
+                    };
+                    observer(&so);
+                    next_out += 1;
+                }
+            }
             if let Some((ie, te)) = first {
                 stats.events += 1;
                 let se = to_state(te, &dense(te));
@@ -461,7 +537,9 @@ impl DormandPrince {
                 changed = true;
             }
             st.check(sys)?;
-            observer(&st);
+            if output.is_none() {
+                observer(&st);
+            }
             y[..nq].copy_from_slice(&st.q);
             y[nq..].copy_from_slice(&st.v);
             if changed {

@@ -33,9 +33,9 @@ use faer::Mat;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum JacobianMode {
-    /// `M`, the model's [`SecondOrderSystem::force_tangent`] and `D` (finite differences of
-    /// the forces if the model has no analytic tangent). Geometric terms `∂(M v̇ + Dᵀλ)/∂q`
-    /// are neglected (quasi-Newton); sparse matrices stay sparse.
+    /// `M`, the model's [`SecondOrderSystem::force_tangent`] (finite differences of the forces
+    /// if the model has none), [`SecondOrderSystem::constraint_force_tangent`] (neglected if
+    /// `None`) and `D`. `∂(M v̇)/∂q` is neglected; sparse matrices stay sparse.
     Analytic,
     /// Dense forward differences of the complete residual (mass, constraint forces, forces and
     /// constraints): exact Newton matrix, `n_v` residual evaluations per update.
@@ -252,7 +252,8 @@ impl AlphaStepper {
         let mut h = h0;
         let mut halvings = 0usize;
         while self.state.t < t_end - 1e-12 * h0 {
-            let hs = h.min(t_end - self.state.t);
+            let rem = t_end - self.state.t;
+            let hs = if rem <= h * (1.0 + 1e-8) { rem } else { h };
             match self.step(sys, hs) {
                 Ok(()) => {
                     observer(&self.state);
@@ -324,21 +325,32 @@ impl AlphaStepper {
             it += 1;
             self.stats.newton_iterations += 1;
             self.residual(sys, t1, &q1, &v1, &vdot1, &lam1, &mut r, &mut phi)?;
-            let need_matrix = match update {
-                NewtonUpdate::EveryIteration => true,
-                NewtonUpdate::EveryStep => it == 1 || !self.kkt.is_factored(),
+            let fill_rhs = |rhs: &mut [f64]| {
+                for i in 0..n {
+                    rhs[i] = -r[i] / bp;
+                }
+                for i in 0..nc {
+                    rhs[n + i] = -phi[i];
+                }
             };
-            if need_matrix {
+            // From the second iteration on, first try the correction with the factorisation of
+            // the previous iteration: if it is already below the tolerance the step has
+            // converged and no new factorisation is needed.
+            let mut have_solution = false;
+            if it > 1 && self.kkt.is_factored() {
+                fill_rhs(&mut rhs);
+                self.kkt.solve(&mut rhs, t1)?;
+                let dqn = dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+                let dxn = rhs[..n].iter().fold(0.0f64, |a, x| a.max(x.abs()));
+                have_solution =
+                    update == NewtonUpdate::EveryStep || dxn <= p.newton_atol + p.newton_rtol * dqn;
+            }
+            if !have_solution {
                 self.newton_matrix(sys, t1, &q1, &v1, &vdot1, &lam1, &r, &phi, bp, gp)
                     .map_err(|e| explain_singular(sys, t1, &q1, e))?;
+                fill_rhs(&mut rhs);
+                self.kkt.solve(&mut rhs, t1)?;
             }
-            for i in 0..n {
-                rhs[i] = -r[i] / bp;
-            }
-            for i in 0..nc {
-                rhs[n + i] = -phi[i];
-            }
-            self.kkt.solve(&mut rhs, t1)?;
             let mut dx_norm = 0.0f64;
             for i in 0..n {
                 let dx = rhs[i];
@@ -469,11 +481,16 @@ impl AlphaStepper {
                     Some(tg) => (tg.stiffness, tg.damping),
                     None => self.fd_force_tangent(sys, t, q, v)?,
                 };
-                self.kkt.factor(
-                    &[(1.0, &m), (gp / bp, &tangent.1), (1.0 / bp, &tangent.0)],
-                    d.as_ref(),
-                    t,
-                )
+                let kc = if nc > 0 {
+                    sys.constraint_force_tangent(t, q, lam)?
+                } else {
+                    None
+                };
+                let mut blocks = vec![(1.0, &m), (gp / bp, &tangent.1), (1.0 / bp, &tangent.0)];
+                if let Some(kc) = &kc {
+                    blocks.push((1.0 / bp, kc));
+                }
+                self.kkt.factor(&blocks, d.as_ref(), t)
             }
             JacobianMode::FiniteDifference => {
                 // column j: perturb the Newton unknown Δx_j by ε:

@@ -77,7 +77,7 @@ impl State {
                 t: self.t,
             });
         }
-        Ok(())
+        sys.check_state(self.t, &self.q, &self.v)
     }
 }
 

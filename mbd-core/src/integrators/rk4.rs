@@ -9,11 +9,13 @@ use crate::{MbdError, SecondOrderSystem};
 ///
 /// The last step is shortened to end exactly at `t_end`. Positions are normalised
 /// ([`SecondOrderSystem::normalize`]) and, if requested, projected after every step.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Rk4 {
     /// Step size [s].
     pub h: f64,
     /// Constraint stabilisation.
+    #[serde(default)]
     pub stabilization: Stabilization,
 }
 

@@ -36,18 +36,74 @@ pub struct LinBeam {
     pub s: Vec<f64>,
 }
 
+/// Parameters of the Appendix A beam; `Default` is Lin's model.
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct BeamParams {
+    /// Young's modulus E [Pa].
+    pub young_modulus_pa: f64,
+    /// Cross-section area A [m²].
+    pub area_m2: f64,
+    /// Second moment of area I [m⁴].
+    pub second_moment_m4: f64,
+    /// Beam length [m] (4 equal elements).
+    pub length_m: f64,
+    /// Lumped masses of the 5 nodes [kg].
+    pub node_masses_kg: [f64; 5],
+}
+
+impl Default for BeamParams {
+    fn default() -> Self {
+        Self {
+            young_modulus_pa: E,
+            area_m2: AREA,
+            second_moment_m4: I_AREA,
+            length_m: 4.0 * LE,
+            node_masses_kg: NODE_MASS,
+        }
+    }
+}
+
 /// Builds the Appendix A beam: fe-model's straight planar frame (4 Euler–Bernoulli elements,
 /// EA = E·A, EI = E·I with the rounded I) with (u, v, θ) per node; the rotations are removed by
 /// static condensation (Guyan with the translations as masters, `K = K_tt − K_tθ K_θθ⁻¹ K_θt`),
 /// as Lin did with the FElt model; lumped masses 0.1/0.2/0.2/0.2/0.1 kg.
 pub fn appendix_a_beam() -> Result<LinBeam> {
+    beam_from(&BeamParams::default())
+}
+
+/// The Appendix A beam with other parameters (same topology: 5 nodes, 4 elements).
+pub fn beam_from(p: &BeamParams) -> Result<LinBeam> {
     let nn = 5;
+    for (name, v) in [
+        ("young_modulus_pa", p.young_modulus_pa),
+        ("area_m2", p.area_m2),
+        ("second_moment_m4", p.second_moment_m4),
+        ("length_m", p.length_m),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(crate::ReductionError::InvalidParameter {
+                name: name.into(),
+                reason: format!("must be positive and finite, got {v}"),
+            });
+        }
+    }
+    if let Some(m) = p
+        .node_masses_kg
+        .iter()
+        .find(|m| !(m.is_finite() && **m > 0.0))
+    {
+        return Err(crate::ReductionError::InvalidParameter {
+            name: "node_masses_kg".into(),
+            reason: format!("every mass must be positive and finite, got {m}"),
+        });
+    }
     let section = fe_model::element::Frame2dSection {
-        ea: E * AREA,
-        ei: E * I_AREA,
+        ea: p.young_modulus_pa * p.area_m2,
+        ei: p.young_modulus_pa * p.second_moment_m4,
         mass_per_length: 0.0,
     };
-    let fe = fe_model::generate::straight_beam_2d(4.0 * LE, 4, section, 0.0).map_err(|e| {
+    let fe = fe_model::generate::straight_beam_2d(p.length_m, 4, section, 0.0).map_err(|e| {
         crate::ReductionError::InvalidParameter {
             name: "Appendix A beam".into(),
             reason: e.to_string(),
@@ -67,12 +123,11 @@ pub fn appendix_a_beam() -> Result<LinBeam> {
     let ktq = select(k15.as_ref(), &t, part.interior());
     let k = select(k15.as_ref(), &t, &t) + &ktq * &psi_s;
     let k = crate::linalg::symmetrize(&k);
-    let m = Mat::from_fn(
-        2 * nn,
-        2 * nn,
-        |i, j| if i == j { NODE_MASS[i / 2] } else { 0.0 },
-    );
-    let s = (0..nn).flat_map(|j| [LE * j as f64, 0.0]).collect();
+    let m = Mat::from_fn(2 * nn, 2 * nn, |i, j| {
+        if i == j { p.node_masses_kg[i / 2] } else { 0.0 }
+    });
+    let le = p.length_m / 4.0;
+    let s = (0..nn).flat_map(|j| [le * j as f64, 0.0]).collect();
     Ok(LinBeam { k, m, s })
 }
 
@@ -136,7 +191,13 @@ pub struct ProfileStudy {
 /// The ch. 7.1 profile tests on the Appendix A beam (boundary nodes 1 and 5, two kept
 /// fixed-interface modes = first and second bending).
 pub fn profile_study(beam: &LinBeam) -> Result<ProfileStudy> {
-    let delta = PROFILE_DELTA;
+    profile_study_with(beam, &PROFILE_DELTA)
+}
+
+/// The ch. 7.1 profile tests for an arbitrary assumed deformation `delta` (10 values, DOF order
+/// ξ1, η1, …, ξ5, η5) [m].
+pub fn profile_study_with(beam: &LinBeam, delta: &[f64; 10]) -> Result<ProfileStudy> {
+    let delta = *delta;
     let part = DofPartition::from_boundary_dofs(10, &node_dofs(&[1, 5]))?;
     let kept = ModeSelection::Lowest(2);
     let methods = [
@@ -229,12 +290,18 @@ pub fn fixed_interface_hz(beam: &LinBeam) -> Result<Vec<f64>> {
     Ok(eig_to_hz(&lam))
 }
 
-/// Node positions relative to the mass centre (Lin (8.39)): ξ shifted by −0.5 m.
+/// Node positions relative to the mass centre (Lin (8.39): ξ shifted by −0.5 m for Lin's beam).
 pub fn mass_centre_positions(beam: &LinBeam) -> Vec<f64> {
+    let m: Vec<f64> = (0..beam.s.len() / 2)
+        .map(|j| beam.m[(2 * j, 2 * j)])
+        .collect();
+    let mt: f64 = m.iter().sum();
+    let cx: f64 = (0..m.len()).map(|j| m[j] * beam.s[2 * j]).sum::<f64>() / mt;
+    let cy: f64 = (0..m.len()).map(|j| m[j] * beam.s[2 * j + 1]).sum::<f64>() / mt;
     beam.s
         .iter()
         .enumerate()
-        .map(|(i, &x)| if i % 2 == 0 { x - 0.5 } else { x })
+        .map(|(i, &x)| if i % 2 == 0 { x - cx } else { x - cy })
         .collect()
 }
 
@@ -281,7 +348,12 @@ pub struct LinBeamSummary {
 
 /// Runs every beam study of Lin ch. 6-8 and collects the summary.
 pub fn summary(beam: &LinBeam) -> Result<LinBeamSummary> {
-    let prof = profile_study(beam)?;
+    summary_with(beam, &PROFILE_DELTA)
+}
+
+/// [`summary`] with another assumed profile deformation.
+pub fn summary_with(beam: &LinBeam, delta: &[f64; 10]) -> Result<LinBeamSummary> {
+    let prof = profile_study_with(beam, delta)?;
     Ok(LinBeamSummary {
         free_free_hz: free_free_hz(beam)?,
         guyan_a_hz: guyan_hz(beam, &[1, 3, 5])?,

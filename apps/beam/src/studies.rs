@@ -1,0 +1,561 @@
+//! The four studies of `flowmbd-beam`: configuration (defaults = Kerkkänen's cases), overrides,
+//! and output. The computations live in `ancf::studies` and `ancf::dynamics`.
+
+use crate::vtk;
+use ancf::AncfError;
+use ancf::dynamics::{self, PendulumCase, SpinningCase};
+use ancf::studies::{self, BeamElementKind, StaticBeamCase};
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
+use serde::{Deserialize, Serialize};
+
+/// Library errors: invalid input → exit code 2, anything else → numerical failure (exit 1).
+fn study_error(e: AncfError) -> StudyError {
+    match e {
+        AncfError::InvalidInput { item, reason } => {
+            StudyError::Input(InputError::new(item, reason))
+        }
+        other => StudyError::numerical(other),
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<(), InputError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(InputError::new(
+            field,
+            format!("must be a positive number, got {v}"),
+        ))
+    }
+}
+
+fn poisson(v: f64) -> Result<(), InputError> {
+    if v.is_finite() && (-1.0..0.5).contains(&v) && v > -1.0 {
+        Ok(())
+    } else {
+        Err(InputError::new(
+            "nu",
+            format!("must lie in (-1, 0.5), got {v}"),
+        ))
+    }
+}
+
+fn at_least_one(field: &str, v: usize) -> Result<(), InputError> {
+    if v >= 1 {
+        Ok(())
+    } else {
+        Err(InputError::new(field, "must be at least 1"))
+    }
+}
+
+/// Static beam configuration (Kerkkänen §2.4: `L = 2 m`, width 0.1 m, `E = 2.07·10¹¹ Pa`,
+/// `ρ = 7850 kg/m³`).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct StaticConfig {
+    /// `proposed` or `omar-shabana`.
+    pub element: BeamElementKind,
+    /// Number of elements.
+    pub elements: usize,
+    /// Poisson's ratio [-].
+    pub nu: f64,
+    /// Section height [m].
+    pub height: f64,
+    /// Section width [m].
+    pub width: f64,
+    /// Length [m].
+    pub length: f64,
+    /// Young's modulus [Pa].
+    pub young: f64,
+    /// Density [kg/m³].
+    pub density: f64,
+    /// Newton load increments.
+    pub increments: usize,
+}
+
+impl StaticConfig {
+    fn simply_supported() -> Self {
+        Self::from(StaticBeamCase::kerkkanen(
+            BeamElementKind::Proposed,
+            8,
+            0.0,
+            0.1,
+        ))
+    }
+    fn case(&self) -> StaticBeamCase {
+        StaticBeamCase {
+            element: self.element,
+            elements: self.elements,
+            nu: self.nu,
+            height: self.height,
+            width: self.width,
+            length: self.length,
+            young: self.young,
+            density: self.density,
+            increments: self.increments,
+        }
+    }
+}
+
+impl From<StaticBeamCase> for StaticConfig {
+    fn from(c: StaticBeamCase) -> Self {
+        Self {
+            element: c.element,
+            elements: c.elements,
+            nu: c.nu,
+            height: c.height,
+            width: c.width,
+            length: c.length,
+            young: c.young,
+            density: c.density,
+            increments: c.increments,
+        }
+    }
+}
+
+impl Default for StaticConfig {
+    fn default() -> Self {
+        Self::simply_supported()
+    }
+}
+
+impl Validate for StaticConfig {
+    fn validate(&self) -> Result<(), InputError> {
+        at_least_one("elements", self.elements)?;
+        at_least_one("increments", self.increments)?;
+        poisson(self.nu)?;
+        positive("height", self.height)?;
+        positive("width", self.width)?;
+        positive("length", self.length)?;
+        positive("young", self.young)?;
+        if !(self.density.is_finite() && self.density >= 0.0) {
+            return Err(InputError::new("density", "must be ≥ 0"));
+        }
+        Ok(())
+    }
+}
+
+/// `simply-supported`: Table 2.1 (ν = 0) by default.
+pub struct SimplySupported {
+    pub element: Option<BeamElementKind>,
+    pub nu: Option<f64>,
+    pub elements: Option<usize>,
+}
+
+/// Summary of `simply-supported`.
+#[derive(Debug, Serialize)]
+pub struct DeflectionSummary {
+    /// Vertical position of the mid-point [mm] (Kerkkänen Tables 2.1/2.2).
+    pub midpoint_deflection_mm: f64,
+}
+
+impl Study for SimplySupported {
+    type Config = StaticConfig;
+    type Summary = DeflectionSummary;
+    const APP: &'static str = "beam";
+    const NAME: &'static str = "simply-supported";
+
+    fn apply_overrides(&self, c: &mut StaticConfig) {
+        if let Some(e) = self.element {
+            c.element = e;
+        }
+        if let Some(v) = self.nu {
+            c.nu = v;
+        }
+        if let Some(n) = self.elements {
+            c.elements = n;
+        }
+    }
+
+    fn run(
+        &self,
+        c: &StaticConfig,
+        _ctx: &mut StudyContext,
+    ) -> Result<DeflectionSummary, StudyError> {
+        if !c.elements.is_multiple_of(2) {
+            return Err(
+                InputError::new("elements", format!("must be even, got {}", c.elements)).into(),
+            );
+        }
+        let d = studies::simply_supported_deflection(&c.case()).map_err(study_error)?;
+        Ok(DeflectionSummary {
+            midpoint_deflection_mm: d * 1e3,
+        })
+    }
+}
+
+/// Cantilever configuration: Table 2.3 (Model 1: h = 0.1 m, ν = 0.3) by default.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CantileverConfig {
+    /// Beam data.
+    pub beam: StaticConfig,
+    /// Segments per element of the deformed-shape output.
+    pub shape_segments: usize,
+}
+
+impl Default for CantileverConfig {
+    fn default() -> Self {
+        let mut beam = StaticConfig::from(StaticBeamCase::kerkkanen(
+            BeamElementKind::Proposed,
+            8,
+            0.3,
+            0.1,
+        ));
+        beam.increments = 10;
+        Self {
+            beam,
+            shape_segments: 8,
+        }
+    }
+}
+
+impl Validate for CantileverConfig {
+    fn validate(&self) -> Result<(), InputError> {
+        self.beam
+            .validate()
+            .map_err(|e| InputError::new(format!("beam.{}", e.field), e.reason))?;
+        at_least_one("shape_segments", self.shape_segments)
+    }
+}
+
+/// `cantilever`.
+pub struct Cantilever {
+    pub element: Option<BeamElementKind>,
+    pub h: Option<f64>,
+    pub nu: Option<f64>,
+    pub elements: Option<usize>,
+}
+
+/// Summary of `cantilever`.
+#[derive(Debug, Serialize)]
+pub struct TipSummary {
+    /// Tip position (x, y) [m] (Kerkkänen Tables 2.3/2.4).
+    pub tip: [f64; 2],
+}
+
+impl Study for Cantilever {
+    type Config = CantileverConfig;
+    type Summary = TipSummary;
+    const APP: &'static str = "beam";
+    const NAME: &'static str = "cantilever";
+
+    fn apply_overrides(&self, c: &mut CantileverConfig) {
+        if let Some(e) = self.element {
+            c.beam.element = e;
+        }
+        if let Some(v) = self.h {
+            c.beam.height = v;
+        }
+        if let Some(v) = self.nu {
+            c.beam.nu = v;
+        }
+        if let Some(n) = self.elements {
+            c.beam.elements = n;
+        }
+    }
+
+    fn run(&self, c: &CantileverConfig, ctx: &mut StudyContext) -> Result<TipSummary, StudyError> {
+        let case = c.beam.case();
+        let line = studies::cantilever_centreline(&case, c.shape_segments).map_err(study_error)?;
+        let tip = *line
+            .last()
+            .ok_or_else(|| StudyError::numerical("empty centreline"))?;
+        ctx.out.write_csv(
+            "shape.csv",
+            &["x_m", "y_m"],
+            line.iter().map(|p| [p[0], p[1]]),
+        )?;
+        std::fs::write(
+            ctx.out.path("shape.vtk"),
+            vtk::polyline("cantilever centreline", &line),
+        )
+        .map_err(|e| StudyError::numerical(format!("cannot write shape.vtk: {e}")))?;
+        LinePlot::new("Deformed cantilever (Kerkkänen Fig. 2.4)", "x [m]", "y [m]")
+            .with(Series::line(
+                "centreline",
+                line.iter().map(|p| (p[0], p[1])).collect(),
+            ))
+            .save(&ctx.out.path("shape"))?;
+        Ok(TipSummary { tip })
+    }
+}
+
+/// Pendulum configuration (newtype over the library case).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct PendulumConfig(pub PendulumCase);
+
+impl Validate for PendulumConfig {
+    fn validate(&self) -> Result<(), InputError> {
+        let c = &self.0;
+        at_least_one("elements", c.elements)?;
+        for (f, v) in [
+            ("length", c.length),
+            ("side", c.side),
+            ("young", c.young),
+            ("t_end", c.t_end),
+            ("h", c.h),
+        ] {
+            positive(f, v)?;
+        }
+        poisson(c.nu)?;
+        if !(0.0..=1.0).contains(&c.rho_inf) {
+            return Err(InputError::new(
+                "rho_inf",
+                format!("must lie in [0, 1], got {}", c.rho_inf),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// `pendulum`.
+pub struct Pendulum {
+    pub elements: Option<usize>,
+}
+
+/// Summary of `pendulum`.
+#[derive(Debug, Serialize)]
+pub struct PendulumSummary {
+    /// Number of elements.
+    pub elements: usize,
+    /// Largest deviation of `T + U + V` from its initial value [J] (thesis: 0.62e-4 J).
+    pub max_energy_deviation_j: f64,
+    /// Lowest tip height [m].
+    pub min_tip_y_m: f64,
+    /// Tip position at the end [m].
+    pub final_tip: [f64; 2],
+    /// Largest kinetic energy [J].
+    pub max_kinetic_j: f64,
+}
+
+impl Study for Pendulum {
+    type Config = PendulumConfig;
+    type Summary = PendulumSummary;
+    const APP: &'static str = "beam";
+    const NAME: &'static str = "pendulum";
+
+    fn apply_overrides(&self, c: &mut PendulumConfig) {
+        if let Some(n) = self.elements {
+            c.0.elements = n;
+        }
+    }
+
+    fn run(
+        &self,
+        c: &PendulumConfig,
+        ctx: &mut StudyContext,
+    ) -> Result<PendulumSummary, StudyError> {
+        let case = c.0;
+        let bar = ctx.progress(1.0, "pendulum");
+        let every = ((case.t_end / case.h) / 2000.0).ceil().max(1.0) as usize;
+        let s = dynamics::pendulum(&case, every, |f| bar.set(f)).map_err(study_error)?;
+        bar.finish();
+        ctx.out.write_csv(
+            "history.csv",
+            &[
+                "t_s",
+                "tip_x_m",
+                "tip_y_m",
+                "kinetic_j",
+                "strain_j",
+                "potential_j",
+                "total_j",
+            ],
+            s.iter().map(|x| {
+                [
+                    x.t,
+                    x.tip[0],
+                    x.tip[1],
+                    x.energy.kinetic,
+                    x.energy.strain,
+                    x.energy.potential,
+                    x.energy.total,
+                ]
+            }),
+        )?;
+        LinePlot::new(
+            "Pendulum tip vertical position (Kerkkänen Fig. 2.6)",
+            "t [s]",
+            "tip y [m]",
+        )
+        .with(Series::line(
+            format!("{} elements", case.elements),
+            s.iter().map(|x| (x.t, x.tip[1])).collect(),
+        ))
+        .save(&ctx.out.path("tip"))?;
+        LinePlot::new(
+            "Pendulum energies (Kerkkänen Fig. 2.7)",
+            "t [s]",
+            "energy [J]",
+        )
+        .with(Series::line(
+            "kinetic",
+            s.iter().map(|x| (x.t, x.energy.kinetic)).collect(),
+        ))
+        .with(Series::line(
+            "strain",
+            s.iter().map(|x| (x.t, x.energy.strain)).collect(),
+        ))
+        .with(Series::line(
+            "potential",
+            s.iter().map(|x| (x.t, x.energy.potential)).collect(),
+        ))
+        .with(Series::line(
+            "total",
+            s.iter().map(|x| (x.t, x.energy.total)).collect(),
+        ))
+        .save(&ctx.out.path("energy"))?;
+        let last = s
+            .last()
+            .ok_or_else(|| StudyError::numerical("no samples"))?;
+        Ok(PendulumSummary {
+            elements: case.elements,
+            max_energy_deviation_j: dynamics::energy_drift(&s),
+            min_tip_y_m: s.iter().map(|x| x.tip[1]).fold(f64::INFINITY, f64::min),
+            final_tip: last.tip,
+            max_kinetic_j: s.iter().map(|x| x.energy.kinetic).fold(0.0, f64::max),
+        })
+    }
+}
+
+/// Spinning-beam configuration (newtype over the library case).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct SpinningConfig(pub SpinningCase);
+
+impl Validate for SpinningConfig {
+    fn validate(&self) -> Result<(), InputError> {
+        let c = &self.0;
+        at_least_one("elements", c.elements)?;
+        for (f, v) in [
+            ("length", c.length),
+            ("width", c.width),
+            ("height", c.height),
+            ("young", c.young),
+            ("density", c.density),
+            ("spin_up", c.spin_up),
+            ("t_end", c.t_end),
+            ("h", c.h),
+        ] {
+            positive(f, v)?;
+        }
+        poisson(c.nu)?;
+        if !c.omega.is_finite() {
+            return Err(InputError::new("omega", "must be finite"));
+        }
+        if !(0.0..=1.0).contains(&c.rho_inf) {
+            return Err(InputError::new(
+                "rho_inf",
+                format!("must lie in [0, 1], got {}", c.rho_inf),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// `spinning`.
+pub struct Spinning {
+    pub elements: Option<usize>,
+}
+
+/// Summary of `spinning`.
+#[derive(Debug, Serialize)]
+pub struct SpinningSummary {
+    /// Mean axial extension over the last 10 % of the run [m].
+    pub steady_extension_m: f64,
+    /// Kerkkänen (2.37) evaluated with the configuration's data [m].
+    pub analytical_extension_m: f64,
+    /// Value printed in the thesis [m].
+    pub printed_extension_m: f64,
+    /// Relative difference to the printed value [-].
+    pub relative_error: f64,
+    /// Largest tip offset from the rigid shadow beam [m].
+    pub max_tip_offset_m: f64,
+}
+
+impl Study for Spinning {
+    type Config = SpinningConfig;
+    type Summary = SpinningSummary;
+    const APP: &'static str = "beam";
+    const NAME: &'static str = "spinning";
+
+    fn apply_overrides(&self, c: &mut SpinningConfig) {
+        if let Some(n) = self.elements {
+            c.0.elements = n;
+        }
+    }
+
+    fn run(
+        &self,
+        c: &SpinningConfig,
+        ctx: &mut StudyContext,
+    ) -> Result<SpinningSummary, StudyError> {
+        let case = c.0;
+        let bar = ctx.progress(1.0, "spinning beam");
+        let every = ((case.t_end / case.h) / 4000.0).ceil().max(1.0) as usize;
+        let s = dynamics::spinning(&case, every, |f| bar.set(f)).map_err(study_error)?;
+        bar.finish();
+        ctx.out.write_csv(
+            "history.csv",
+            &[
+                "t_s",
+                "tip_x_m",
+                "tip_y_m",
+                "axial_extension_m",
+                "tip_offset_m",
+                "kinetic_j",
+                "strain_j",
+            ],
+            s.iter().map(|x| {
+                [
+                    x.t,
+                    x.tip[0],
+                    x.tip[1],
+                    x.value,
+                    x.value2,
+                    x.energy.kinetic,
+                    x.energy.strain,
+                ]
+            }),
+        )?;
+        LinePlot::new(
+            "Tip offset from the rigid shadow beam (Kerkkänen Fig. 2.10)",
+            "t [s]",
+            "offset [m]",
+        )
+        .with(Series::line(
+            "flexible − rigid",
+            s.iter().map(|x| (x.t, x.value2)).collect(),
+        ))
+        .save(&ctx.out.path("tip_offset"))?;
+        let exact = dynamics::spinning_extension(case.length, case.density, case.young, case.omega);
+        LinePlot::new(
+            "Axial extension (Kerkkänen Fig. 2.11)",
+            "t [s]",
+            "extension [m]",
+        )
+        .with(Series::line(
+            "ANCF",
+            s.iter().map(|x| (x.t, x.value)).collect(),
+        ))
+        .with(Series::line(
+            "(2.37)",
+            vec![(0.0, exact), (case.t_end, exact)],
+        ))
+        .save(&ctx.out.path("extension"))?;
+        let t0 = 0.9 * case.t_end;
+        let tail: Vec<f64> = s.iter().filter(|x| x.t >= t0).map(|x| x.value).collect();
+        let steady = tail.iter().sum::<f64>() / tail.len().max(1) as f64;
+        let printed = 1.09545e-4;
+        Ok(SpinningSummary {
+            steady_extension_m: steady,
+            analytical_extension_m: exact,
+            printed_extension_m: printed,
+            relative_error: (steady - printed) / printed,
+            max_tip_offset_m: s.iter().map(|x| x.value2.abs()).fold(0.0, f64::max),
+        })
+    }
+}

@@ -1,0 +1,94 @@
+//! End-to-end checks of the `flowmbd-beam` binary: JSON outputs against Kerkkänen's tables and
+//! the exit-code conventions.
+
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_flowmbd-beam"))
+        .args(args)
+        .output()
+        .expect("binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+    )
+}
+
+fn tmp(name: &str) -> String {
+    std::env::temp_dir()
+        .join(format!("flowmbd-beam-{}-{name}", std::process::id()))
+        .display()
+        .to_string()
+}
+
+// Kerkkänen Table 2.2, proposed element, n = 4: −0.091333 mm.
+#[test]
+fn simply_supported_json() {
+    let out = tmp("ss");
+    let (code, stdout) = run(&[
+        "simply-supported",
+        "--element",
+        "proposed",
+        "--nu",
+        "0.3",
+        "--elements",
+        "4",
+        "--json",
+        "--quiet",
+        "--out",
+        &out,
+    ]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let d = v["midpoint_deflection_mm"].as_f64().unwrap();
+    assert!((d + 0.091333).abs() < 0.5e-6, "{d}");
+    let _ = std::fs::remove_dir_all(out);
+}
+
+// Kerkkänen Table 2.3, proposed element, n = 4: (1.86351, −0.66320) m.
+#[test]
+fn cantilever_json() {
+    let out = tmp("c");
+    let (code, stdout) = run(&[
+        "cantilever",
+        "--element",
+        "proposed",
+        "--h",
+        "0.1",
+        "--nu",
+        "0.3",
+        "--elements",
+        "4",
+        "--json",
+        "--quiet",
+        "--out",
+        &out,
+    ]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let tip = [v["tip"][0].as_f64().unwrap(), v["tip"][1].as_f64().unwrap()];
+    assert!(
+        (tip[0] - 1.86351).abs() < 0.5e-5 && (tip[1] + 0.66320).abs() < 0.5e-5,
+        "{tip:?}"
+    );
+    assert!(std::path::Path::new(&out).join("shape.vtk").exists());
+    let _ = std::fs::remove_dir_all(out);
+}
+
+// App conventions: bad input exits with code 2.
+#[test]
+fn bad_input_exits_2() {
+    let out = tmp("bad");
+    let (code, _) = run(&[
+        "simply-supported",
+        "--elements",
+        "3",
+        "--quiet",
+        "--out",
+        &out,
+    ]);
+    assert_eq!(code, 2);
+    let (code, _) = run(&["cantilever", "--h=-0.1", "--quiet", "--out", &out]);
+    assert_eq!(code, 2);
+    let _ = std::fs::remove_dir_all(out);
+}

@@ -1,0 +1,342 @@
+//! `flowmbd-belt speed-loss`: angular speed loss Δω = ω₁ − ω₂ of the two-pulley drive of
+//! Ribaric Table 6-1 against the load torque, at the driver speeds of Figs. 6-6 and 6-7, with
+//! Bechtel's analytical line (6.3). The physics and the procedure live in `flowing::belt`.
+
+use flowing::belt::study::{Sample, SpeedLossPoint, SweepStats};
+use flowing::belt::{
+    BeltDriveConfig, BeltFe, FlowingBelt, Schedule, SpeedLossSettings, analytical_speed_loss,
+    speed_loss_sweep,
+};
+use flowmbd_cli::plot::{LinePlot, Series, Style};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::process::ExitCode;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Belt model used for the study.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ModelKind {
+    /// Flowing-material modal model with a stationary mesh (Ribaric (5.14)).
+    #[default]
+    Flowing,
+}
+
+/// Command-line arguments.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Driver speed [rad/s] (replaces the configured list of speeds).
+    #[arg(long)]
+    pub omega: Option<f64>,
+    /// Load torques [N m], comma separated (e.g. 0,5,10).
+    #[arg(long, value_delimiter = ',')]
+    pub torques: Option<Vec<f64>>,
+    /// Belt model.
+    #[arg(long, value_enum)]
+    pub model: Option<ModelKind>,
+}
+
+/// Study configuration.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Config {
+    /// Belt model.
+    pub model: ModelKind,
+    /// Driver speeds [rad/s] (Figs. 6-6 and 6-7: 62.8 and 22.6).
+    pub omegas: Vec<f64>,
+    /// The drive (Table 6-1).
+    pub drive: BeltDriveConfig,
+    /// The procedure (torques, ramps, steady-state detection, integrator). Its `omega_driver`
+    /// is replaced by each entry of `omegas`.
+    pub procedure: SpeedLossSettings,
+    /// Write every n-th integration step to the history CSV files.
+    pub history_every: usize,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            model: ModelKind::Flowing,
+            omegas: vec![62.8, 22.6],
+            drive: BeltDriveConfig::default(),
+            procedure: SpeedLossSettings::default(),
+            history_every: 20,
+        }
+    }
+}
+
+impl Validate for Config {
+    fn validate(&self) -> Result<(), InputError> {
+        if self.omegas.is_empty() {
+            return Err(InputError::new("omegas", "give at least one driver speed"));
+        }
+        if let Some(i) = self
+            .omegas
+            .iter()
+            .position(|w| !(w.is_finite() && *w > 0.0))
+        {
+            return Err(InputError::new(
+                format!("omegas[{i}]"),
+                "must be finite and > 0 [rad/s]",
+            ));
+        }
+        if self.history_every == 0 {
+            return Err(InputError::new("history_every", "must be at least 1"));
+        }
+        self.drive
+            .validate()
+            .map_err(|(f, r)| InputError::new(format!("drive.{f}"), r))?;
+        self.procedure
+            .validate()
+            .map_err(|(f, r)| InputError::new(format!("procedure.{f}"), r))
+    }
+}
+
+/// One driver speed's result.
+#[derive(Debug, Clone, Serialize)]
+pub struct Case {
+    /// Driver speed [rad/s].
+    pub omega_driver: f64,
+    /// Steady points.
+    pub points: Vec<Point>,
+    /// Bechtel's Δω (6.3) at the same torques [rad/s].
+    pub analytical: Vec<f64>,
+    /// Integration statistics.
+    pub stats: SweepStats,
+    /// Wall time of this case [s].
+    pub wall_time_s: f64,
+}
+
+/// One point of the summary.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Point {
+    /// Load torque [N m].
+    pub torque: f64,
+    /// Steady speed loss [rad/s].
+    pub delta_omega: f64,
+}
+
+/// Summary: the first speed's case at the top level (the `--omega` contract), all cases below.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Driver speed of the first case [rad/s].
+    pub omega_driver: f64,
+    /// Model.
+    pub model: ModelKind,
+    /// Points of the first case.
+    pub points: Vec<Point>,
+    /// Analytical Δω of the first case [rad/s].
+    pub analytical: Vec<f64>,
+    /// Every driver speed.
+    pub cases: Vec<Case>,
+    /// Number of modal coordinates of the flowing model.
+    pub modal_coordinates: usize,
+    /// Total wall time [s].
+    pub wall_time_s: f64,
+}
+
+struct SpeedLoss {
+    args: Args,
+}
+
+fn run_case(
+    drive: &BeltDriveConfig,
+    settings: &SpeedLossSettings,
+    every: usize,
+    ctx: &StudyContext,
+    done: &AtomicUsize,
+    report: &(dyn Fn(usize) + Sync),
+) -> Result<(Case, usize), StudyError> {
+    let start = std::time::Instant::now();
+    let fe = BeltFe::new(drive).map_err(|e| StudyError::numerical(e))?;
+    let mut belt = FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0))
+        .map_err(StudyError::numerical)?;
+    let modes = belt.n_modes() + 2;
+    let name = format!("history_omega_{:.1}.csv", settings.omega_driver);
+    let mut csv = ctx.out.csv(
+        &name,
+        &[
+            "t",
+            "omega_driver",
+            "omega_driven",
+            "load_torque",
+            "belt_speed",
+        ],
+    )?;
+    let mut io_err = None;
+    let mut k = 0usize;
+    let mut found = 0usize;
+    let result = speed_loss_sweep(&mut belt, settings, |st, s: Sample| {
+        k += 1;
+        if k % every == 0
+            && let Err(e) = csv.row(&[s.t, s.omega_driver, s.omega_driven, s.load, st.v[0]])
+        {
+            io_err.get_or_insert(e);
+        }
+        if s.points > found {
+            found = s.points;
+            report(done.fetch_add(1, Ordering::Relaxed) + 1);
+        }
+    });
+    csv.flush()?;
+    if let Some(e) = io_err {
+        return Err(e.into());
+    }
+    let (points, stats) = result.map_err(|f| StudyError::Numerical {
+        message: format!("ω₁ = {} rad/s: {}", settings.omega_driver, f.error),
+        partial: Some(serde_json::json!({
+            "omega_driver": settings.omega_driver,
+            "points": f.points,
+        })),
+    })?;
+    // the last point ends the sweep, after the last observer call
+    let extra = points.len().saturating_sub(found);
+    report(done.fetch_add(extra, Ordering::Relaxed) + extra);
+    let case = Case {
+        omega_driver: settings.omega_driver,
+        analytical: points
+            .iter()
+            .map(|p| analytical(drive, p.torque, settings.omega_driver))
+            .collect(),
+        points: points
+            .iter()
+            .map(|p: &SpeedLossPoint| Point {
+                torque: p.torque,
+                delta_omega: p.delta_omega,
+            })
+            .collect(),
+        stats,
+        wall_time_s: start.elapsed().as_secs_f64(),
+    };
+    Ok((case, modes))
+}
+
+fn analytical(d: &BeltDriveConfig, torque: f64, omega: f64) -> f64 {
+    analytical_speed_loss(
+        d.geometry.radius_driven,
+        d.belt.tension,
+        d.belt.ea,
+        torque,
+        omega,
+    )
+}
+
+impl Study for SpeedLoss {
+    type Config = Config;
+    type Summary = Summary;
+    const APP: &'static str = "belt";
+    const NAME: &'static str = "speed-loss";
+
+    fn apply_overrides(&self, c: &mut Config) {
+        if let Some(w) = self.args.omega {
+            c.omegas = vec![w];
+        }
+        if let Some(t) = &self.args.torques {
+            c.procedure.torques = t.clone();
+        }
+        if let Some(m) = self.args.model {
+            c.model = m;
+        }
+    }
+
+    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        let start = std::time::Instant::now();
+        let total = c.omegas.len() * c.procedure.torques.len();
+        let progress = ctx.progress(total as f64, "speed loss");
+        let done = AtomicUsize::new(0);
+        let report = |n: usize| progress.set(n as f64);
+        let ctx_ref: &StudyContext = ctx;
+        let results: Mutex<Vec<Result<(Case, usize), StudyError>>> = Mutex::new(Vec::new());
+        c.omegas.par_iter().for_each(|&w| {
+            let settings = SpeedLossSettings {
+                omega_driver: w,
+                ..c.procedure.clone()
+            };
+            let r = run_case(
+                &c.drive,
+                &settings,
+                c.history_every,
+                ctx_ref,
+                &done,
+                &report,
+            );
+            if let Ok(mut v) = results.lock() {
+                v.push(r);
+            }
+        });
+        progress.finish();
+        let mut cases = Vec::new();
+        let mut modes = 0;
+        for r in results
+            .into_inner()
+            .map_err(|_| StudyError::numerical("a worker panicked"))?
+        {
+            let (case, m) = r?;
+            modes = m;
+            cases.push(case);
+        }
+        // keep the configured order of speeds
+        cases.sort_by(|a, b| {
+            let ia = c.omegas.iter().position(|w| *w == a.omega_driver);
+            let ib = c.omegas.iter().position(|w| *w == b.omega_driver);
+            ia.cmp(&ib)
+        });
+        let mut table = ctx.out.csv(
+            "speed_loss.csv",
+            &[
+                "omega_driver",
+                "torque",
+                "delta_omega",
+                "delta_omega_analytical",
+            ],
+        )?;
+        let mut plot = LinePlot::new(
+            "Angular speed loss (Ribaric Table 6-1, T0 = 310 N)",
+            "load torque [N m]",
+            "Δω = ω₁ − ω₂ [rad/s]",
+        );
+        for case in &cases {
+            for (p, a) in case.points.iter().zip(&case.analytical) {
+                table.row(&[case.omega_driver, p.torque, p.delta_omega, *a])?;
+            }
+            plot.series.push(Series {
+                name: format!("flowing, ω₁ = {} rad/s", case.omega_driver),
+                points: case
+                    .points
+                    .iter()
+                    .map(|p| (p.torque, p.delta_omega))
+                    .collect(),
+                style: Style::LinePoints,
+            });
+            plot.series.push(Series::line(
+                format!("Bechtel (6.3), ω₁ = {} rad/s", case.omega_driver),
+                case.points
+                    .iter()
+                    .zip(&case.analytical)
+                    .map(|(p, a)| (p.torque, *a))
+                    .collect(),
+            ));
+        }
+        table.finish()?;
+        plot.save(&ctx.out.path("speed_loss"))?;
+        let first = &cases[0];
+        Ok(Summary {
+            omega_driver: first.omega_driver,
+            model: c.model,
+            points: first.points.clone(),
+            analytical: first.analytical.clone(),
+            modal_coordinates: modes,
+            cases,
+            wall_time_s: start.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+/// Run the study under the app conventions.
+pub fn run(args: &Args) -> ExitCode {
+    run_study(&SpeedLoss { args: args.clone() }, &args.common)
+}

@@ -1,0 +1,153 @@
+//! `flowmbd-reduce lin-beam`: Lin (2005) ch. 6.2, 6.3, 7.1 and 8.5 on the Appendix A beam.
+
+use flowmbd_cli::args::CommonArgs;
+use flowmbd_cli::config::Validate;
+use flowmbd_cli::error::InputError;
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
+use reduction::lin::beam::{self, BeamParams, LinBeamSummary, PROFILE_DELTA};
+use serde::{Deserialize, Serialize};
+use std::process::ExitCode;
+
+/// Command-line arguments of `lin-beam`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+/// Configuration; the defaults are Lin's Appendix A beam and profile (7.1).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Config {
+    /// The beam (Appendix A).
+    pub beam: BeamParams,
+    /// Assumed deformation of the profile tests, DOF order ξ1, η1, …, ξ5, η5 [m] (Lin (7.1)).
+    pub profile_delta_m: [f64; 10],
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            beam: BeamParams::default(),
+            profile_delta_m: PROFILE_DELTA,
+        }
+    }
+}
+
+impl Validate for Config {
+    fn validate(&self) -> Result<(), InputError> {
+        let b = &self.beam;
+        for (name, v) in [
+            ("beam.young_modulus_pa", b.young_modulus_pa),
+            ("beam.area_m2", b.area_m2),
+            ("beam.second_moment_m4", b.second_moment_m4),
+            ("beam.length_m", b.length_m),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(InputError::new(
+                    name,
+                    format!("must be positive and finite, got {v}"),
+                ));
+            }
+        }
+        if let Some((i, m)) = b
+            .node_masses_kg
+            .iter()
+            .enumerate()
+            .find(|(_, m)| !(m.is_finite() && **m > 0.0))
+        {
+            return Err(InputError::new(
+                format!("beam.node_masses_kg[{i}]"),
+                format!("must be positive and finite, got {m}"),
+            ));
+        }
+        if let Some((i, d)) = self
+            .profile_delta_m
+            .iter()
+            .enumerate()
+            .find(|(_, d)| !d.is_finite())
+        {
+            return Err(InputError::new(
+                format!("profile_delta_m[{i}]"),
+                format!("must be finite, got {d}"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+struct LinBeamStudy;
+
+impl Study for LinBeamStudy {
+    type Config = Config;
+    type Summary = LinBeamSummary;
+    const APP: &'static str = "reduce";
+    const NAME: &'static str = "lin-beam";
+
+    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<LinBeamSummary, StudyError> {
+        let b = beam::beam_from(&c.beam).map_err(StudyError::numerical)?;
+        let summary = beam::summary_with(&b, &c.profile_delta_m).map_err(StudyError::numerical)?;
+        let prof =
+            beam::profile_study_with(&b, &c.profile_delta_m).map_err(StudyError::numerical)?;
+        // profiles: one row per DOF
+        let header = [
+            "dof",
+            "reference",
+            "p1_mt",
+            "p1_cb",
+            "p1_mc",
+            "p2_mt",
+            "p2_cb",
+            "p2_mc",
+        ];
+        let rows: Vec<Vec<f64>> = (0..10)
+            .map(|i| {
+                let mut r = vec![i as f64, c.profile_delta_m[i]];
+                r.extend(prof.profile1.iter().map(|p| p.delta[i]));
+                r.extend(prof.profile2.iter().map(|p| p.delta[i]));
+                r
+            })
+            .collect();
+        ctx.out
+            .write_csv("profiles.csv", &header, rows.iter().map(|r| r.as_slice()))?;
+        let mut fr = ctx
+            .out
+            .csv("frequencies.csv", &["set", "index", "frequency_hz"])?;
+        for (set, v) in [
+            (0.0, &summary.free_free_hz),
+            (1.0, &summary.guyan_a_hz),
+            (2.0, &summary.guyan_b_hz),
+            (3.0, &summary.fixed_interface_hz),
+            (4.0, &summary.mean_axes_normal_hz),
+        ] {
+            for (i, f) in v.iter().enumerate() {
+                fr.row(&[set, i as f64, *f])?;
+            }
+        }
+        fr.finish()?;
+        // deformed profiles: transverse deflection η against the axial position ξ + δξ
+        let xi: Vec<f64> = (0..5).map(|j| b.s[2 * j]).collect();
+        let curve = |d: &[f64]| -> Vec<(f64, f64)> {
+            (0..5).map(|j| (xi[j] + d[2 * j], d[2 * j + 1])).collect()
+        };
+        for (k, profile) in [&prof.profile1, &prof.profile2].iter().enumerate() {
+            let plot = LinePlot::new(
+                format!("Lin beam, profile {} (Fig. 7-{})", k + 1, k + 1),
+                "axial position ξ + δξ [m]",
+                "transverse deflection δη [m]",
+            )
+            .with(Series::points("reference (7.1)", curve(&c.profile_delta_m)))
+            .with(Series::line("fixed-interface MT", curve(&profile[0].delta)))
+            .with(Series::line("Craig-Bampton", curve(&profile[1].delta)))
+            .with(Series::line("mode condensation", curve(&profile[2].delta)));
+            plot.save(&ctx.out.path(&format!("profile{}", k + 1)))?;
+        }
+        Ok(summary)
+    }
+}
+
+/// Runs `lin-beam` under the app conventions.
+pub fn run(a: Args) -> ExitCode {
+    run_study(&LinBeamStudy, &a.common)
+}

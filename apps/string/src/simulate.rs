@@ -1,0 +1,254 @@
+//! `simulate`: transient of the travelling string after a pluck, modal coordinates and their
+//! spectra (Ribaric Fig. 4-6 right: each modal coordinate vibrates at several frequencies).
+
+use crate::common::*;
+use flowing::spectrum::amplitude_spectrum;
+use flowing::{DerivativeMethod, StringParams, simulate_rk4, triangular_pluck};
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
+use serde::{Deserialize, Serialize};
+
+/// Triangular pluck (initial deflection, zero velocity).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pluck {
+    /// Position of the peak [m].
+    pub x: f64,
+    /// Peak deflection [m].
+    pub amplitude: f64,
+}
+
+/// Configuration (defaults: notes §2.1 time-domain check: v = 20 m/s, n = 99, 10 modes, pluck
+/// 1 mm at 0.3 m, 4 s).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SimulateConfig {
+    /// String parameters.
+    pub string: StringParams,
+    /// Axial speed [m/s].
+    pub speed: f64,
+    /// Interior FE nodes.
+    pub nodes: usize,
+    /// Retained modes.
+    pub modes: usize,
+    /// Initial pluck.
+    pub pluck: Pluck,
+    /// Duration [s].
+    pub duration: f64,
+    /// RK4 step [s].
+    pub step: f64,
+    /// Keep every n-th step (sampling period = step · sample_every).
+    pub sample_every: usize,
+    /// Spectral peaks below this fraction of the largest amplitude are ignored.
+    pub peak_threshold: f64,
+    /// Mode-shape derivative operator.
+    pub derivative: DerivativeMethod,
+}
+
+impl Default for SimulateConfig {
+    fn default() -> Self {
+        Self {
+            string: StringParams::default(),
+            speed: 20.0,
+            nodes: 99,
+            modes: 10,
+            pluck: Pluck {
+                x: 0.3,
+                amplitude: 1e-3,
+            },
+            duration: 4.0,
+            step: 5e-5,
+            sample_every: 20,
+            peak_threshold: 0.05,
+            derivative: DerivativeMethod::default(),
+        }
+    }
+}
+
+impl Validate for SimulateConfig {
+    fn validate(&self) -> Result<(), InputError> {
+        check_string(&self.string, "string")?;
+        check_number("speed", self.speed, false)?;
+        check_nodes_modes(self.nodes, self.modes)?;
+        if !(self.pluck.x > 0.0 && self.pluck.x < self.string.length) {
+            return Err(InputError::new(
+                "pluck.x",
+                format!("must lie strictly inside (0, length), got {}", self.pluck.x),
+            ));
+        }
+        check_number("pluck.amplitude", self.pluck.amplitude, false)?;
+        if !(self.duration.is_finite() && self.duration > 0.0) {
+            return Err(InputError::new("duration", "must be positive"));
+        }
+        if !(self.step.is_finite() && self.step > 0.0 && self.step < self.duration) {
+            return Err(InputError::new(
+                "step",
+                "must be positive and below the duration",
+            ));
+        }
+        if self.sample_every == 0 {
+            return Err(InputError::new("sample_every", "must be at least 1"));
+        }
+        if !(self.peak_threshold > 0.0 && self.peak_threshold < 1.0) {
+            return Err(InputError::new("peak_threshold", "must lie in (0, 1)"));
+        }
+        if (self.duration / (self.step * self.sample_every as f64)) < 8.0 {
+            return Err(InputError::new("duration", "gives fewer than 8 samples"));
+        }
+        Ok(())
+    }
+}
+
+/// Spectral peaks of one modal coordinate.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModePeaks {
+    /// Mode number (1-based).
+    pub mode: usize,
+    /// Peak frequencies [Hz].
+    pub peaks_hz: Vec<f64>,
+}
+
+/// Summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct SimulateSummary {
+    /// Axial speed [m/s].
+    pub speed: f64,
+    /// Damped frequencies of the model (eigenvalues) [Hz].
+    pub model_hz: Vec<f64>,
+    /// Exact moving-string frequencies n(c²−v²)/(2cL) [Hz].
+    pub exact_hz: Vec<f64>,
+    /// Frequency resolution of the spectra [Hz].
+    pub resolution_hz: f64,
+    /// Peaks of every modal coordinate.
+    pub peaks: Vec<ModePeaks>,
+    /// Relative drift of the conserved energy-like invariant H over the run.
+    pub hamiltonian_drift: f64,
+}
+
+/// The `simulate` study.
+pub struct SimulateStudy {
+    pub speed: Option<f64>,
+}
+
+impl Study for SimulateStudy {
+    type Config = SimulateConfig;
+    type Summary = SimulateSummary;
+    const APP: &'static str = "string";
+    const NAME: &'static str = "simulate";
+
+    fn apply_overrides(&self, c: &mut SimulateConfig) {
+        if let Some(v) = self.speed {
+            c.speed = v;
+        }
+    }
+
+    fn run(
+        &self,
+        c: &SimulateConfig,
+        ctx: &mut StudyContext,
+    ) -> Result<SimulateSummary, StudyError> {
+        let (mesh, sys) = flowing_model(c.string, c.nodes, c.modes, c.derivative, c.speed)?;
+        let (model_hz, _) = flowing_frequencies(&sys, c.speed)?;
+        let u0 = triangular_pluck(
+            mesh.grid.positions(),
+            0.0,
+            c.string.length,
+            c.pluck.x,
+            c.pluck.amplitude,
+        )
+        .map_err(study_error)?;
+        let z0 = sys.project(&u0).map_err(study_error)?;
+        let k = c.modes;
+        let bar = ctx.progress(c.duration, "RK4");
+        let hist = simulate_rk4(
+            &sys,
+            z0.clone(),
+            vec![0.0; k],
+            c.duration,
+            c.step,
+            c.sample_every,
+            |t| bar.set(t),
+        )
+        .map_err(study_error)?;
+        bar.finish();
+        let mut header = vec!["t".to_string()];
+        header.extend((1..=k).map(|i| format!("z{i}")));
+        let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
+        ctx.out.write_csv(
+            "modal_history.csv",
+            &hdr,
+            hist.t.iter().zip(&hist.q).map(|(t, q)| {
+                std::iter::once(*t)
+                    .chain(q.iter().copied())
+                    .collect::<Vec<f64>>()
+            }),
+        )?;
+        let dt = c.step * c.sample_every as f64;
+        let mut spectra = Vec::new();
+        let mut peaks = Vec::new();
+        for m in 0..k {
+            let sig: Vec<f64> = hist.q.iter().map(|q| q[m]).collect();
+            let s = amplitude_spectrum(&sig, dt, 1).map_err(study_error)?;
+            peaks.push(ModePeaks {
+                mode: m + 1,
+                peaks_hz: s.peaks(c.peak_threshold).into_iter().map(|p| p.0).collect(),
+            });
+            spectra.push(s);
+        }
+        let nf = spectra[0].frequencies.len();
+        let mut header = vec!["f_hz".to_string()];
+        header.extend((1..=k).map(|i| format!("amp_z{i}")));
+        let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
+        ctx.out.write_csv(
+            "spectra.csv",
+            &hdr,
+            (0..nf).map(|i| {
+                std::iter::once(spectra[0].frequencies[i])
+                    .chain(spectra.iter().map(|s| s.amplitudes[i]))
+                    .collect::<Vec<f64>>()
+            }),
+        )?;
+        let fmax = model_hz.get(k.min(6) - 1).copied().unwrap_or(200.0) * 1.3;
+        let mut plot = LinePlot::new(
+            "Spectra of the modal coordinates",
+            "frequency [Hz]",
+            "amplitude",
+        );
+        for (m, s) in spectra.iter().enumerate().take(5) {
+            let pts: Vec<(f64, f64)> = s
+                .frequencies
+                .iter()
+                .zip(&s.amplitudes)
+                .filter(|(f, _)| **f <= fmax)
+                .map(|(f, a)| (*f, *a))
+                .collect();
+            plot = plot.with(Series::line(format!("z{}", m + 1), pts));
+        }
+        plot.save(&ctx.out.path("spectra"))?;
+        let mut plot = LinePlot::new("Modal coordinates after the pluck", "t [s]", "z [√kg·m]");
+        for m in 0..k.min(3) {
+            let pts: Vec<(f64, f64)> = hist
+                .t
+                .iter()
+                .zip(&hist.q)
+                .filter(|(t, _)| **t <= 0.25)
+                .map(|(t, q)| (*t, q[m]))
+                .collect();
+            plot = plot.with(Series::line(format!("z{}", m + 1), pts));
+        }
+        plot.save(&ctx.out.path("modal_history"))?;
+        let h0 = sys.hamiltonian(&z0, &vec![0.0; k], c.speed);
+        let last = hist.q.len() - 1;
+        let h1 = sys.hamiltonian(&hist.q[last], &hist.v[last], c.speed);
+        Ok(SimulateSummary {
+            speed: c.speed,
+            exact_hz: (1..=k)
+                .map(|n| c.string.exact_moving_frequency_hz(n, c.speed))
+                .collect(),
+            model_hz,
+            resolution_hz: spectra[0].frequencies[1],
+            peaks,
+            hamiltonian_drift: if h0 != 0.0 { (h1 - h0) / h0 } else { 0.0 },
+        })
+    }
+}

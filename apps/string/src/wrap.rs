@@ -1,0 +1,457 @@
+//! `wrap`: the string partly wrapped on two pulleys (Ribaric Fig. 4-4, 4-7, (4.10), (4.11),
+//! (4.31)–(4.40)), lifting off under a harmonic load; active-set Lagrange contact with
+//! event location.
+
+use crate::common::*;
+use flowing::contact::{ContactString, HarmonicLoad, candidates};
+use flowing::{
+    AxialMotion, ContactSettings, DerivativeMethod, Pulley, StringMesh, StringParams,
+    simulate_contact,
+};
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
+use mbd_core::integrators::State;
+use serde::{Deserialize, Serialize};
+
+/// Coordinates of the wrapped string.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Formulation {
+    /// Nodal deflections (4.10).
+    Nodal,
+    /// Craig–Bampton / flowing material (4.11), (4.40).
+    CraigBampton,
+}
+
+/// Configuration. The string runs between anchors at 0 and `string.length` (both at u = 0) and
+/// over two pulleys whose tops lie `top` above the anchors (the default wraps ≈ 5 cm on each).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct WrapConfig {
+    /// String parameters (`length`: anchor to anchor) [SI].
+    pub string: StringParams,
+    /// Interior FE nodes.
+    pub nodes: usize,
+    /// Pulleys.
+    pub pulleys: Vec<Pulley>,
+    /// Candidate contact nodes: within this distance of a pulley centre [m].
+    pub candidate_half_width: f64,
+    /// Formulation.
+    pub formulation: Formulation,
+    /// Retained free-node modes (Craig–Bampton only).
+    pub free_modes: usize,
+    /// Axial speed [m/s] (travelling string, (4.40)).
+    pub speed: f64,
+    /// Harmonic load.
+    pub load: HarmonicLoad,
+    /// Duration [s].
+    pub duration: f64,
+    /// Output sampling period [s].
+    pub sample: f64,
+    /// Mode-shape derivative operator.
+    pub derivative: DerivativeMethod,
+    /// Contact and integrator settings.
+    pub contact: ContactSettings,
+    /// Number of VTK snapshots (`wrap_NNN.vtu`: deformed string, pulleys, contact forces).
+    pub vtk_snapshots: usize,
+}
+
+impl Default for WrapConfig {
+    fn default() -> Self {
+        Self {
+            string: StringParams {
+                length: 1.2,
+                ..StringParams::default()
+            },
+            nodes: 119,
+            pulleys: vec![
+                Pulley {
+                    center_x: 0.1,
+                    top: 0.015,
+                    radius: 0.25,
+                },
+                Pulley {
+                    center_x: 1.1,
+                    top: 0.015,
+                    radius: 0.25,
+                },
+            ],
+            candidate_half_width: 0.08,
+            formulation: Formulation::CraigBampton,
+            free_modes: 20,
+            speed: 0.0,
+            load: HarmonicLoad {
+                x: 0.6,
+                amplitude: 15.0,
+                frequency: 20.0,
+            },
+            duration: 0.3,
+            sample: 5e-4,
+            derivative: DerivativeMethod::default(),
+            contact: ContactSettings::default(),
+            vtk_snapshots: 20,
+        }
+    }
+}
+
+impl Validate for WrapConfig {
+    fn validate(&self) -> Result<(), InputError> {
+        check_string(&self.string, "string")?;
+        if self.nodes < 5 {
+            return Err(InputError::new("nodes", "needs at least 5 interior nodes"));
+        }
+        if self.pulleys.is_empty() {
+            return Err(InputError::new("pulleys", "at least one pulley is needed"));
+        }
+        for (i, p) in self.pulleys.iter().enumerate() {
+            if !(p.radius.is_finite() && p.radius > 0.0) {
+                return Err(InputError::new(
+                    format!("pulleys[{i}].radius"),
+                    format!("must be positive, got {}", p.radius),
+                ));
+            }
+            if !(p.center_x > 0.0 && p.center_x < self.string.length) {
+                return Err(InputError::new(
+                    format!("pulleys[{i}].center_x"),
+                    "must lie between the anchors",
+                ));
+            }
+            check_number(&format!("pulleys[{i}].top"), p.top, false)?;
+            if !(self.candidate_half_width > 0.0 && self.candidate_half_width < p.radius) {
+                return Err(InputError::new(
+                    "candidate_half_width",
+                    format!("must be positive and below pulleys[{i}].radius"),
+                ));
+            }
+        }
+        check_number("speed", self.speed, false)?;
+        if self.speed.abs() >= self.string.wave_speed() {
+            return Err(InputError::new(
+                "speed",
+                "must be below the critical speed √(T/ρA)",
+            ));
+        }
+        check_number("load.amplitude", self.load.amplitude, false)?;
+        check_number("load.frequency", self.load.frequency, true)?;
+        if !(self.load.x > 0.0 && self.load.x < self.string.length) {
+            return Err(InputError::new("load.x", "must lie between the anchors"));
+        }
+        if !(self.duration.is_finite() && self.duration > 0.0) {
+            return Err(InputError::new("duration", "must be positive"));
+        }
+        if !(self.sample.is_finite() && self.sample > 0.0 && self.sample <= self.duration) {
+            return Err(InputError::new(
+                "sample",
+                "must be positive and at most the duration",
+            ));
+        }
+        if self.formulation == Formulation::CraigBampton && self.free_modes == 0 {
+            return Err(InputError::new("free_modes", "must be at least 1"));
+        }
+        Ok(())
+    }
+}
+
+/// Summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct WrapSummary {
+    /// Generalized coordinates.
+    pub coordinates: usize,
+    /// Candidate contact nodes per pulley.
+    pub candidates_per_pulley: Vec<usize>,
+    /// Active contact nodes per pulley in static equilibrium.
+    pub initial_active_per_pulley: Vec<usize>,
+    /// Static contact force per pulley [N].
+    pub initial_force_per_pulley: Vec<f64>,
+    /// Fewest active contact nodes per pulley during the run.
+    pub min_active_per_pulley: Vec<usize>,
+    /// Lift-off (release) events.
+    pub releases: usize,
+    /// Re-contact (activation) events.
+    pub contacts: usize,
+    /// Kinetic energy removed by plastic impacts [J].
+    pub impact_loss: f64,
+    /// Longest free span between the pulleys during the run [m].
+    pub max_free_span: f64,
+    /// Largest |gap| of an active node (constraint drift) [m].
+    pub max_active_gap: f64,
+    /// Integrator steps.
+    pub steps: usize,
+}
+
+/// Writes the deformed string (anchors included), the pulley circles and the nodal contact
+/// forces as a VTK unstructured grid (fe-model's VTU writer).
+fn write_vtk(
+    path: &std::path::Path,
+    sys: &ContactString,
+    st: &State,
+    pulleys: &[Pulley],
+    length: f64,
+    positions: &[f64],
+) -> Result<(), StudyError> {
+    use fe_model::io::vtk::{PointField, write_vtu};
+    use fe_model::{Cell, CellKind, Mesh};
+    let u = sys.deflection(&st.q);
+    let p = sys.contact_forces(st).map_err(study_error)?;
+    let mut force = vec![0.0; u.len()];
+    let mut active = vec![0.0; u.len()];
+    for (c, k) in sys.candidates.iter().enumerate() {
+        force[k.node] = p[c];
+        active[k.node] = f64::from(u8::from(sys.active[c]));
+    }
+    let mut mesh = Mesh::new(1);
+    let mut fvals = Vec::new();
+    let mut avals = Vec::new();
+    let mut uvals = Vec::new();
+    let mut push = |mesh: &mut Mesh, x: f64, y: f64, f: f64, a: f64, defl: f64| {
+        fvals.push(f);
+        avals.push(a);
+        uvals.push(defl);
+        mesh.add_node([x, y, 0.0])
+    };
+    let mut prev = push(&mut mesh, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for (j, x) in positions.iter().enumerate() {
+        let n = push(&mut mesh, *x, u[j], force[j], active[j], u[j]);
+        mesh.cells.push(Cell {
+            kind: CellKind::Line,
+            nodes: vec![prev, n],
+        });
+        prev = n;
+    }
+    let n = push(&mut mesh, length, 0.0, 0.0, 0.0, 0.0);
+    mesh.cells.push(Cell {
+        kind: CellKind::Line,
+        nodes: vec![prev, n],
+    });
+    for pl in pulleys {
+        let segs = 96;
+        let cy = pl.top - pl.radius;
+        let first = mesh.n_nodes();
+        for k in 0..segs {
+            let a = 2.0 * std::f64::consts::PI * k as f64 / segs as f64;
+            let id = push(
+                &mut mesh,
+                pl.center_x + pl.radius * a.cos(),
+                cy + pl.radius * a.sin(),
+                0.0,
+                0.0,
+                0.0,
+            );
+            let next = if k + 1 == segs { first } else { id + 1 };
+            mesh.cells.push(Cell {
+                kind: CellKind::Line,
+                nodes: vec![id, next],
+            });
+        }
+    }
+    let fields = vec![
+        PointField {
+            name: "contact_force_N".into(),
+            components: 1,
+            values: fvals,
+        },
+        PointField {
+            name: "active".into(),
+            components: 1,
+            values: avals,
+        },
+        PointField {
+            name: "deflection_m".into(),
+            components: 1,
+            values: uvals,
+        },
+    ];
+    write_vtu(path, &mesh, &fields).map_err(|e| StudyError::numerical(format!("VTK output: {e}")))
+}
+
+/// The `wrap` study.
+pub struct WrapStudy {
+    pub speed: Option<f64>,
+}
+
+fn per_pulley(sys: &ContactString, n: usize, f: impl Fn(usize) -> f64) -> Vec<f64> {
+    let mut v = vec![0.0; n];
+    for (c, k) in sys.candidates.iter().enumerate() {
+        v[k.pulley] += f(c);
+    }
+    v
+}
+
+/// Length between the last contact on the first pulley and the first contact on the last pulley
+/// (an anchor where a pulley has no contact) [m].
+fn free_span(sys: &ContactString, length: f64, n_pulleys: usize) -> f64 {
+    let right0 = sys
+        .candidates
+        .iter()
+        .enumerate()
+        .filter(|(c, k)| sys.active[*c] && k.pulley == 0)
+        .map(|(_, k)| k.x)
+        .fold(0.0, f64::max);
+    let left1 = sys
+        .candidates
+        .iter()
+        .enumerate()
+        .filter(|(c, k)| sys.active[*c] && k.pulley + 1 == n_pulleys)
+        .map(|(_, k)| k.x)
+        .fold(length, f64::min);
+    left1 - right0
+}
+
+impl Study for WrapStudy {
+    type Config = WrapConfig;
+    type Summary = WrapSummary;
+    const APP: &'static str = "string";
+    const NAME: &'static str = "wrap";
+
+    fn apply_overrides(&self, c: &mut WrapConfig) {
+        if let Some(v) = self.speed {
+            c.speed = v;
+        }
+    }
+
+    fn run(&self, c: &WrapConfig, ctx: &mut StudyContext) -> Result<WrapSummary, StudyError> {
+        let mesh = StringMesh::uniform(c.string, c.nodes).map_err(study_error)?;
+        let cands = candidates(&mesh, &c.pulleys, c.candidate_half_width).map_err(study_error)?;
+        let motion = AxialMotion::Constant { speed: c.speed };
+        let mut sys = match c.formulation {
+            Formulation::Nodal => {
+                ContactString::nodal(&mesh, cands, c.derivative, motion, Some(c.load))
+            }
+            Formulation::CraigBampton => ContactString::craig_bampton(
+                &mesh,
+                cands,
+                c.free_modes,
+                c.derivative,
+                motion,
+                Some(c.load),
+            ),
+        }
+        .map_err(study_error)?;
+        let np = c.pulleys.len();
+        let y0 = sys.static_equilibrium().map_err(study_error)?;
+        let st0 = State::new(0.0, y0.clone(), vec![0.0; y0.len()]);
+        let p0 = sys.contact_forces(&st0).map_err(study_error)?;
+        let cand_pp: Vec<usize> = per_pulley(&sys, np, |_| 1.0)
+            .iter()
+            .map(|x| *x as usize)
+            .collect();
+        let act_pp: Vec<usize> = per_pulley(&sys, np, |c| f64::from(u8::from(sys.active[c])))
+            .iter()
+            .map(|x| *x as usize)
+            .collect();
+        let force_pp = per_pulley(&sys, np, |c| p0[c]);
+        let load_node = sys.load.map(|l| l.0).unwrap_or(0);
+        let mut header = vec![
+            "t".to_string(),
+            "midload_deflection".into(),
+            "free_span".into(),
+            "energy".into(),
+        ];
+        header.extend((0..np).map(|p| format!("active_pulley{p}")));
+        header.extend((0..np).map(|p| format!("force_pulley{p}")));
+        let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
+        let mut csv = ctx.out.csv("history.csv", &hdr)?;
+        let bar = ctx.progress(c.duration, "contact simulation");
+        let mut next = 0.0;
+        let mut min_act = act_pp.clone();
+        let mut max_span = free_span(&sys, c.string.length, np);
+        let mut max_gap: f64 = 0.0;
+        let mut rows: Vec<Vec<f64>> = Vec::new();
+        let mut io_err = None;
+        let positions = mesh.grid.positions().to_vec();
+        let vtk_dt = if c.vtk_snapshots > 0 {
+            c.duration / c.vtk_snapshots as f64
+        } else {
+            f64::INFINITY
+        };
+        let mut next_vtk = 0.0;
+        let mut vtk_count = 0usize;
+        let run = simulate_contact(&mut sys, st0, c.duration, &c.contact, |s, st| {
+            for (ci, a) in s.active.iter().enumerate() {
+                if *a {
+                    max_gap = max_gap.max(s.gap(ci, &st.q).abs());
+                }
+            }
+            let act: Vec<f64> = per_pulley(s, np, |k| f64::from(u8::from(s.active[k])));
+            for p in 0..np {
+                min_act[p] = min_act[p].min(act[p] as usize);
+            }
+            let span = free_span(s, c.string.length, np);
+            max_span = max_span.max(span);
+            if st.t + 1e-12 >= next_vtk {
+                next_vtk += vtk_dt;
+                let path = ctx.out.path(&format!("wrap_{vtk_count:03}.vtu"));
+                vtk_count += 1;
+                if let Err(e) = write_vtk(&path, s, st, &c.pulleys, c.string.length, &positions) {
+                    io_err.get_or_insert(e);
+                }
+            }
+            if st.t + 1e-12 >= next {
+                next += c.sample;
+                let p = s
+                    .contact_forces(st)
+                    .unwrap_or_else(|_| vec![f64::NAN; s.candidates.len()]);
+                let u = s.deflection(&st.q);
+                let mut row = vec![st.t, u[load_node], span, s.energy(&st.q, &st.v, c.speed)];
+                row.extend(act.iter());
+                row.extend(per_pulley(s, np, |k| p[k]));
+                if let Err(e) = csv.row(&row) {
+                    io_err.get_or_insert(e.into());
+                }
+                rows.push(row);
+                bar.set(st.t);
+            }
+        });
+        bar.finish();
+        csv.finish()?;
+        if let Some(e) = io_err {
+            return Err(e);
+        }
+        let run = run.map_err(|e| StudyError::Numerical {
+            message: format!("contact simulation failed: {e}"),
+            partial: Some(serde_json::json!({ "samples": rows.len() })),
+        })?;
+        ctx.out.write_csv(
+            "events.csv",
+            &["t", "candidate", "node", "activated", "impact_loss"],
+            run.events.iter().map(|e| {
+                [
+                    e.t,
+                    e.candidate as f64,
+                    e.node as f64,
+                    f64::from(u8::from(e.activated)),
+                    e.impact_loss,
+                ]
+            }),
+        )?;
+        let mut plot = LinePlot::new(
+            "Wrapped string: active contact nodes",
+            "t [s]",
+            "active nodes",
+        );
+        for p in 0..np {
+            plot = plot.with(Series::line(
+                format!("pulley {p}"),
+                rows.iter().map(|r| (r[0], r[4 + p])).collect(),
+            ));
+        }
+        plot.save(&ctx.out.path("active_nodes"))?;
+        let plot = LinePlot::new("Wrapped string: deflection at the load", "t [s]", "u [m]").with(
+            Series::line("u(load)", rows.iter().map(|r| (r[0], r[1])).collect()),
+        );
+        plot.save(&ctx.out.path("deflection"))?;
+        Ok(WrapSummary {
+            coordinates: sys.dim(),
+            candidates_per_pulley: cand_pp,
+            initial_active_per_pulley: act_pp,
+            initial_force_per_pulley: force_pp,
+            min_active_per_pulley: min_act,
+            releases: run.events.iter().filter(|e| !e.activated).count(),
+            contacts: run.events.iter().filter(|e| e.activated).count(),
+            impact_loss: run.events.iter().map(|e| e.impact_loss).sum(),
+            max_free_span: max_span,
+            max_active_gap: max_gap,
+            steps: run.stats.steps,
+        })
+    }
+}

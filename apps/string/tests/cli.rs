@@ -1,0 +1,111 @@
+//! End-to-end checks of `flowmbd-string` (app conventions and the `modes` output contract).
+
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_flowmbd-string"))
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("flowmbd-string-{}-{name}", std::process::id()))
+}
+
+// Reference: exact f_n = n(c²−v²)/(2cL) (notes §2.1, v = 20 m/s: 15.171, 30.341, 45.512, 60.683,
+// 75.854 Hz) and c = 40.2735 m/s; JSON keys as specified by the issue.
+#[test]
+fn modes_json_matches_exact_moving_string() {
+    let out = bin()
+        .args([
+            "modes", "--speed", "20", "--nodes", "99", "--modes", "20", "--json", "--quiet",
+            "--out",
+        ])
+        .arg(tmp("modes"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let obj = v.as_object().unwrap();
+    let mut keys: Vec<&str> = obj.keys().map(String::as_str).collect();
+    keys.sort();
+    assert_eq!(
+        keys,
+        ["analytical_hz", "critical_speed", "flowing_hz", "speed"]
+    );
+    assert_eq!(v["speed"].as_f64().unwrap(), 20.0);
+    assert!((v["critical_speed"].as_f64().unwrap() - 40.2735).abs() < 1e-3);
+    let exact = [15.171, 30.341, 45.512, 60.683, 75.854];
+    // Galerkin (40 terms): 1e-3; flowing (n = 99, 20 modes): FE + truncation error ≈ 0.11 % on f5.
+    for (key, tol) in [("analytical_hz", 1e-3), ("flowing_hz", 1.5e-3)] {
+        let f: Vec<f64> = v[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert!(f.len() >= 5);
+        for w in f.windows(2) {
+            assert!(w[1] >= w[0], "{key} not ascending");
+        }
+        for i in 0..5 {
+            assert!(
+                (f[i] - exact[i]).abs() < tol * exact[i],
+                "{key}[{i}] = {} vs {}",
+                f[i],
+                exact[i]
+            );
+        }
+    }
+}
+
+// Reference: app conventions — bad input exits with 2 and a one-line message naming the field;
+// unknown configuration fields are rejected with file and line.
+#[test]
+fn bad_input_exits_with_2_naming_the_field() {
+    let out = bin()
+        .args(["modes", "--modes", "0", "--quiet", "--out"])
+        .arg(tmp("bad"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("modes"), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    let cfg = tmp("cfg.toml");
+    std::fs::write(&cfg, "speed = 10.0\nnodez = 5\n").unwrap();
+    let out = bin()
+        .args(["modes", "--quiet", "--config"])
+        .arg(&cfg)
+        .arg("--out")
+        .arg(tmp("bad2"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("nodez") && err.contains(":2:"), "{err}");
+}
+
+// Reference: --print-config round-trips through --config (the defaults are a valid file).
+#[test]
+fn printed_config_is_accepted_back() {
+    for study in ["modes", "sweep", "simulate", "wrap"] {
+        let out = bin().args([study, "--print-config"]).output().unwrap();
+        assert!(out.status.success(), "{study}");
+        let cfg = tmp(&format!("{study}.toml"));
+        std::fs::write(&cfg, &out.stdout).unwrap();
+        let again = bin()
+            .args([study, "--print-config", "--config"])
+            .arg(&cfg)
+            .output()
+            .unwrap();
+        assert!(
+            again.status.success(),
+            "{study}: {}",
+            String::from_utf8_lossy(&again.stderr)
+        );
+        assert_eq!(out.stdout, again.stdout, "{study}");
+    }
+}

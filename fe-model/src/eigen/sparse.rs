@@ -1,0 +1,497 @@
+//! Sparse shift-invert Lanczos for the lowest modes of large models.
+//!
+//! With `A = K − σM = Pᵀ L Lᵀ P` (σ below the wanted spectrum, negative for free–free models
+//! with rigid modes), the symmetric operator `T = L⁻¹ (P M Pᵀ) L⁻ᵀ` has eigenvalues
+//! `θ = 1/(λ − σ)`: the lowest λ become the largest θ, which faer's thick-restart
+//! Krylov–Schur Lanczos (`faer::matrix_free::eigen::partial_self_adjoint_eigen`) finds
+//! (Ericsson & Ruhe 1980, the ARPACK/eigsh shift-invert mode 3 with a Cholesky-symmetrised
+//! operator). `φ = Pᵀ L⁻ᵀ y / √θ` is M-normalised.
+//!
+//! Safeguards (shared/notes/rust-ecosystem.md §1.3): subspace `max_dim ≥ max(3·nev, nev+100)`;
+//! `extra` modes beyond the requested count so that a multiplet at the cut is not split; a
+//! non-symmetric deterministic start vector; M-orthogonality check (catches ghost duplicates);
+//! a Sturm count by LDLᵀ of `K − cM` proving no mode below the cut was missed; retries with a
+//! larger subspace; and a wall-clock timeout around the Lanczos iteration (faer-rs#262).
+
+use super::dense::dense_modes;
+use super::factor::{Analysis, Llt, shifted};
+use super::{Modes, frequency_hz};
+use crate::FeError;
+use crate::sparse::triplets;
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::matrix_free::LinOp;
+use faer::matrix_free::eigen::{
+    PartialEigenParams, partial_self_adjoint_eigen, partial_self_adjoint_eigen_scratch,
+};
+use faer::sparse::linalg::matmul::sparse_dense_matmul;
+use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
+use faer::{Accum, Col, Mat, MatMut, MatRef, Par};
+use serde::Serialize;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Options of [`sparse_modes`].
+#[derive(Debug, Clone)]
+pub struct SparseEigenOptions {
+    /// Shift σ [rad²/s²]; `None` = automatic: 0 if `K` is positive definite, otherwise a small
+    /// negative shift `−10⁻⁶·tr(K)/tr(M)` (free–free models).
+    pub shift: Option<f64>,
+    /// Extra modes computed beyond the requested count (multiplets at the cut).
+    pub extra: usize,
+    /// Krylov subspace size; `None` = `max(3·nev, nev + 100)`.
+    pub max_dim: Option<usize>,
+    /// Convergence tolerance on the Ritz residual of the scaled operator (largest θ ≈ 1).
+    pub tolerance: f64,
+    /// Maximum Krylov–Schur restarts per attempt.
+    pub max_restarts: usize,
+    /// Largest allowed |φᵢᵀ M φⱼ − δᵢⱼ|.
+    pub orthogonality_tol: f64,
+    /// Run the Sturm-sequence check.
+    pub sturm_check: bool,
+    /// Attempts (each with a 1.5× larger subspace) before giving up.
+    pub attempts: usize,
+    /// Wall-clock limit of one Lanczos run.
+    pub timeout: Duration,
+    /// Models with at most this many DOFs are solved densely.
+    pub dense_below: usize,
+}
+
+impl Default for SparseEigenOptions {
+    fn default() -> Self {
+        Self {
+            shift: None,
+            extra: 4,
+            max_dim: None,
+            tolerance: 1e-12,
+            max_restarts: 500,
+            orthogonality_tol: 1e-6,
+            sturm_check: true,
+            attempts: 3,
+            timeout: Duration::from_secs(1800),
+            dense_below: 400,
+        }
+    }
+}
+
+/// Diagnostics of a sparse eigen solution.
+#[derive(Debug, Clone, Serialize)]
+pub struct SparseEigenReport {
+    /// DOFs.
+    pub dof: usize,
+    /// Shift σ used [rad²/s²].
+    pub shift: f64,
+    /// Krylov subspace size of the accepted attempt.
+    pub max_dim: usize,
+    /// Attempts made.
+    pub attempts: usize,
+    /// Converged Ritz pairs of the accepted attempt.
+    pub converged: usize,
+    /// Non-zeros of the Cholesky factor.
+    pub factor_nnz: usize,
+    /// Largest |φᵢᵀ M φⱼ − δᵢⱼ|.
+    pub max_orthogonality_error: f64,
+    /// Largest relative residual ‖Kφ − λMφ‖ / ‖Kφ‖ (or ‖λMφ‖ when larger).
+    pub max_relative_residual: f64,
+    /// Sturm cut c [rad²/s²] (between the last returned mode and the next distinct one).
+    pub sturm_cut: Option<f64>,
+    /// Negative pivots of LDLᵀ of `K − cM` (eigenvalues below the cut).
+    pub sturm_count: Option<usize>,
+    /// Modes found below the cut (must equal `sturm_count`).
+    pub found_below_cut: Option<usize>,
+    /// Whether the model was small enough to be solved densely.
+    pub dense_fallback: bool,
+    /// Why earlier attempts were rejected (empty when the first attempt passed).
+    pub rejected_attempts: Vec<String>,
+    /// Wall-clock seconds: symbolic + numeric Cholesky of `K − σM`.
+    pub seconds_factor: f64,
+    /// Wall-clock seconds in Krylov–Schur (all attempts).
+    pub seconds_lanczos: f64,
+    /// Wall-clock seconds of the Sturm-count LDLᵀ factorizations.
+    pub seconds_sturm: f64,
+}
+
+/// Shift-invert operator `T/θ_scale` (see the module documentation).
+#[derive(Debug)]
+struct ShiftInvert {
+    llt: Llt,
+    m_perm: SparseColMat<usize, f64>,
+    scale: f64,
+}
+
+impl LinOp<f64> for ShiftInvert {
+    fn apply_scratch(&self, rhs_ncols: usize, par: Par) -> StackReq {
+        self.llt.scratch(rhs_ncols, par)
+    }
+    fn nrows(&self) -> usize {
+        self.m_perm.nrows()
+    }
+    fn ncols(&self) -> usize {
+        self.m_perm.ncols()
+    }
+    fn apply(
+        &self,
+        mut out: MatMut<'_, f64>,
+        rhs: MatRef<'_, f64>,
+        par: Par,
+        stack: &mut MemStack,
+    ) {
+        let mut tmp = rhs.to_owned();
+        self.llt.lt_solve(tmp.as_mut(), par, stack);
+        sparse_dense_matmul(
+            out.as_mut(),
+            Accum::Replace,
+            self.m_perm.as_ref(),
+            tmp.as_ref(),
+            self.scale,
+            par,
+        );
+        self.llt.l_solve(out, par, stack);
+    }
+    fn conj_apply(
+        &self,
+        out: MatMut<'_, f64>,
+        rhs: MatRef<'_, f64>,
+        par: Par,
+        stack: &mut MemStack,
+    ) {
+        self.apply(out, rhs, par, stack)
+    }
+}
+
+/// Deterministic, non-symmetric start vector (a fixed linear congruential sequence).
+fn start_vector(n: usize, seed: u64) -> Col<f64> {
+    let mut s = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    Col::from_fn(n, |_| {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+    })
+}
+
+/// The `count` lowest eigenpairs of `K φ = λ M φ` for sparse symmetric K (semi-definite allowed
+/// with a negative shift) and symmetric positive definite M, with the safeguards of the module
+/// documentation. Returns the modes (ascending, M-normalised, sign convention of [`Modes`]) and
+/// a diagnostic report.
+pub fn sparse_modes(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    count: usize,
+    opts: &SparseEigenOptions,
+) -> Result<(Modes, SparseEigenReport), FeError> {
+    let n = k.nrows();
+    if k.ncols() != n || m.nrows() != n || m.ncols() != n {
+        return Err(FeError::Dimension {
+            context: "sparse_modes: K and M must be square and of equal size".into(),
+            expected: n,
+            got: m.nrows(),
+        });
+    }
+    for (name, a) in [("K", k), ("M", m)] {
+        if let Some((r, c, v)) = triplets(a).find(|t| !t.2.is_finite()) {
+            return Err(FeError::Eigen(format!(
+                "{name}[{r},{c}] = {v} is not finite"
+            )));
+        }
+    }
+    if count == 0 || n == 0 {
+        return Err(FeError::param(
+            "count",
+            count as f64,
+            "must be >= 1 and <= the number of DOFs",
+        ));
+    }
+    let count = count.min(n);
+    let nev = (count + opts.extra).min(n);
+    let base_dim = opts.max_dim.unwrap_or((3 * nev).max(nev + 100));
+
+    if n <= opts.dense_below || n <= base_dim + 2 {
+        let modes = dense_modes(k.to_dense().as_ref(), m.to_dense().as_ref(), count)?;
+        let report = SparseEigenReport {
+            dof: n,
+            shift: 0.0,
+            max_dim: n,
+            attempts: 1,
+            converged: n,
+            factor_nnz: 0,
+            max_orthogonality_error: orthogonality_error(m, modes.vectors.as_ref()),
+            max_relative_residual: max_residual(k, m, &modes),
+            sturm_cut: None,
+            sturm_count: None,
+            found_below_cut: None,
+            dense_fallback: true,
+            rejected_attempts: Vec::new(),
+            seconds_factor: 0.0,
+            seconds_lanczos: 0.0,
+            seconds_sturm: 0.0,
+        };
+        return Ok((modes, report));
+    }
+
+    // factorization of K − σM on the union pattern
+    let t_factor = Instant::now();
+    let a0 = shifted(k, m, 0.0)?;
+    let analysis = Analysis::new(a0.as_ref())?;
+    let (sigma, llt) = match opts.shift {
+        Some(s) => {
+            let a = shifted(k, m, s)?;
+            (
+                s,
+                analysis.llt(a.as_ref(), &format!("K - sigma M (sigma = {s})"))?,
+            )
+        }
+        None => match analysis.llt(a0.as_ref(), "K") {
+            Ok(l) => (0.0, l),
+            Err(_) => {
+                let tr = |a: SparseColMatRef<'_, usize, f64>| {
+                    triplets(a).filter(|t| t.0 == t.1).map(|t| t.2).sum::<f64>()
+                };
+                let s = -1e-6 * tr(k) / tr(m);
+                let a = shifted(k, m, s)?;
+                (
+                    s,
+                    analysis.llt(a.as_ref(), &format!("K - sigma M (sigma = {s:e})"))?,
+                )
+            }
+        },
+    };
+    let seconds_factor = t_factor.elapsed().as_secs_f64();
+    let (_fwd, inv) = analysis.perm();
+    let mut t = Vec::with_capacity(m.compute_nnz());
+    for (r, c, v) in triplets(m) {
+        t.push(Triplet::new(inv[r], inv[c], v));
+    }
+    let m_perm = SparseColMat::try_new_from_triplets(n, n, &t)
+        .map_err(|e| FeError::Sparse(format!("P M Pᵀ: {e:?}")))?;
+    let par = Par::rayon(0);
+
+    // scale so that the largest θ ≈ 1 (a few power iterations)
+    let mut op = ShiftInvert {
+        llt,
+        m_perm,
+        scale: 1.0,
+    };
+    {
+        let mut mem = MemBuffer::new(op.apply_scratch(1, par));
+        let stack = MemStack::new(&mut mem);
+        let mut x = start_vector(n, 7).as_mat().to_owned();
+        let mut y = Mat::zeros(n, 1);
+        let mut est = 1.0;
+        for _ in 0..6 {
+            let nx = x.norm_l2();
+            op.apply(y.as_mut(), x.as_ref(), par, stack);
+            est = y.norm_l2() / nx;
+            std::mem::swap(&mut x, &mut y);
+        }
+        if !(est.is_finite() && est > 0.0) {
+            return Err(FeError::Eigen(
+                "shift-invert operator is zero or not finite".into(),
+            ));
+        }
+        op.scale = 1.0 / est;
+    }
+    let mut op = Arc::new(op);
+
+    let mut dim = base_dim.min(n - 2);
+    let mut rejected = Vec::new();
+    let (mut seconds_lanczos, mut seconds_sturm) = (0.0, 0.0);
+    let mut last_err = FeError::Eigen("no attempt made".into());
+    for attempt in 1..=opts.attempts.max(1) {
+        let t_l = Instant::now();
+        let (vals, vecs, op_back) = run_lanczos(op, nev, dim, opts, par)?;
+        seconds_lanczos += t_l.elapsed().as_secs_f64();
+        op = op_back;
+        let conv = vals.len();
+        let result = (|| -> Result<(Modes, SparseEigenReport), FeError> {
+            if conv < count {
+                return Err(FeError::Eigen(format!(
+                    "only {conv} of {nev} Ritz pairs converged (subspace {dim})"
+                )));
+            }
+            // back-transform: θ = scale_inv · θ', λ = σ + 1/θ, φ = Pᵀ L⁻ᵀ y / √θ
+            let mut y = vecs;
+            let mut mem = MemBuffer::new(op.llt.scratch(conv, par));
+            op.llt.lt_solve(y.as_mut(), par, MemStack::new(&mut mem));
+            let mut lambdas = Vec::with_capacity(conv);
+            let mut phi = Mat::zeros(n, conv);
+            for j in 0..conv {
+                let theta = vals[j] / op.scale;
+                if !(theta > 0.0) {
+                    return Err(FeError::Eigen(format!(
+                        "non-positive Ritz value {theta:e}: shift σ = {sigma:e} is not below the spectrum"
+                    )));
+                }
+                lambdas.push(sigma + 1.0 / theta);
+                let s = 1.0 / theta.sqrt();
+                for r in 0..n {
+                    phi[(r, j)] = y[(inv[r], j)] * s;
+                }
+            }
+            let all = Modes::from_parts(lambdas, phi);
+            let orth = orthogonality_error(m, all.vectors.as_ref());
+            if orth > opts.orthogonality_tol {
+                return Err(FeError::Eigen(format!(
+                    "M-orthogonality check failed (max |φᵢᵀMφⱼ − δᵢⱼ| = {orth:e}): duplicated (ghost) Ritz vector"
+                )));
+            }
+            // Sturm cut between the last returned mode and the next distinct converged one
+            let (mut cut, mut found_below, mut sturm) = (None, None, None);
+            if opts.sturm_check {
+                let lam = &all.values;
+                let last = lam[count - 1];
+                let tolgap = 1e-7 * last.abs().max(sigma.abs()).max(1e-300);
+                let next = lam[count..].iter().copied().find(|&l| l - last > tolgap);
+                let c = match next {
+                    Some(nx) => 0.5 * (last + nx),
+                    None => last + 1e-4 * last.abs().max(1e-12),
+                };
+                let below = lam.iter().filter(|&&l| l < c).count();
+                let t_s = Instant::now();
+                let a = shifted(k, m, c)?;
+                let negs = analysis.negative_pivots(a.as_ref())?;
+                seconds_sturm += t_s.elapsed().as_secs_f64();
+                if negs != below {
+                    return Err(FeError::Eigen(format!(
+                        "Sturm check failed: {negs} eigenvalues below {c:e} rad²/s² ({:.6} Hz) but {below} found",
+                        frequency_hz(c)
+                    )));
+                }
+                cut = Some(c);
+                found_below = Some(below);
+                sturm = Some(negs);
+            }
+            let modes = Modes {
+                values: all.values[..count].to_vec(),
+                frequencies_hz: all.frequencies_hz[..count].to_vec(),
+                vectors: all.vectors.subcols(0, count).to_owned(),
+            };
+            let report = SparseEigenReport {
+                dof: n,
+                shift: sigma,
+                max_dim: dim,
+                attempts: attempt,
+                converged: conv,
+                factor_nnz: analysis.factor_nnz(),
+                max_orthogonality_error: orth,
+                max_relative_residual: max_residual(k, m, &modes),
+                sturm_cut: cut,
+                sturm_count: sturm,
+                found_below_cut: found_below,
+                dense_fallback: false,
+                rejected_attempts: rejected.clone(),
+                seconds_factor,
+                seconds_lanczos,
+                seconds_sturm,
+            };
+            Ok((modes, report))
+        })();
+        match result {
+            Ok(r) => return Ok(r),
+            Err(e) => {
+                rejected.push(format!("attempt {attempt} (subspace {dim}): {e}"));
+                last_err = e;
+                dim = ((dim * 3) / 2).min(n - 2);
+            }
+        }
+    }
+    Err(last_err)
+}
+
+type LanczosOut = (Vec<f64>, Mat<f64>, Arc<ShiftInvert>);
+
+/// One Krylov–Schur run on a worker thread with a wall-clock limit.
+fn run_lanczos(
+    op: Arc<ShiftInvert>,
+    nev: usize,
+    dim: usize,
+    opts: &SparseEigenOptions,
+    par: Par,
+) -> Result<LanczosOut, FeError> {
+    let n = op.nrows();
+    let tol = opts.tolerance;
+    let max_restarts = opts.max_restarts;
+    let (tx, rx) = std::sync::mpsc::channel();
+    let op2 = op.clone();
+    std::thread::Builder::new()
+        .name("fe-model-lanczos".into())
+        .spawn(move || {
+            let params = PartialEigenParams {
+                max_dim: dim,
+                max_restarts,
+                ..Default::default()
+            };
+            let mut vecs = Mat::zeros(n, nev);
+            let mut vals = vec![0.0; nev];
+            let v0 = start_vector(n, 12345);
+            let mut mem =
+                MemBuffer::new(partial_self_adjoint_eigen_scratch(&*op2, nev, par, params));
+            let info = partial_self_adjoint_eigen(
+                vecs.as_mut(),
+                &mut vals,
+                &*op2,
+                v0.as_ref(),
+                tol,
+                par,
+                MemStack::new(&mut mem),
+                params,
+            );
+            let conv = info.n_converged_eigen.min(nev);
+            vals.truncate(conv);
+            let vecs = vecs.subcols(0, conv).to_owned();
+            let _ = tx.send((vals, vecs));
+        })
+        .map_err(|e| FeError::Eigen(format!("cannot start the Lanczos thread: {e}")))?;
+    match rx.recv_timeout(opts.timeout) {
+        Ok((vals, vecs)) => Ok((vals, vecs, op)),
+        Err(_) => Err(FeError::Eigen(format!(
+            "Krylov–Schur did not finish within {:?} (nev {nev}, subspace {dim}); see faer-rs#262",
+            opts.timeout
+        ))),
+    }
+}
+
+/// `max |φᵢᵀ M φⱼ − δᵢⱼ|`.
+pub fn orthogonality_error(m: SparseColMatRef<'_, usize, f64>, phi: MatRef<'_, f64>) -> f64 {
+    let mut mp = Mat::zeros(phi.nrows(), phi.ncols());
+    sparse_dense_matmul(mp.as_mut(), Accum::Replace, m, phi, 1.0, Par::rayon(0));
+    let g = phi.transpose() * &mp;
+    let mut e: f64 = 0.0;
+    for i in 0..g.nrows() {
+        for j in 0..g.ncols() {
+            let d = if i == j { 1.0 } else { 0.0 };
+            e = e.max((g[(i, j)] - d).abs());
+        }
+    }
+    e
+}
+
+/// Largest relative residual `‖Kφ − λMφ‖ / max(‖Kφ‖, ‖λMφ‖)` over the modes.
+pub fn max_residual(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    modes: &Modes,
+) -> f64 {
+    let phi = modes.vectors.as_ref();
+    let mut kp = Mat::zeros(phi.nrows(), phi.ncols());
+    let mut mp = Mat::zeros(phi.nrows(), phi.ncols());
+    sparse_dense_matmul(kp.as_mut(), Accum::Replace, k, phi, 1.0, Par::rayon(0));
+    sparse_dense_matmul(mp.as_mut(), Accum::Replace, m, phi, 1.0, Par::rayon(0));
+    let mut worst: f64 = 0.0;
+    for j in 0..phi.ncols() {
+        let l = modes.values[j];
+        let (mut r, mut a, mut b) = (0.0, 0.0, 0.0);
+        for i in 0..phi.nrows() {
+            let x = kp[(i, j)] - l * mp[(i, j)];
+            r += x * x;
+            a += kp[(i, j)] * kp[(i, j)];
+            b += (l * mp[(i, j)]).powi(2);
+        }
+        let den = a.max(b).sqrt();
+        if den > 0.0 {
+            worst = worst.max(r.sqrt() / den);
+        }
+    }
+    worst
+}

@@ -1,0 +1,401 @@
+//! Surrogate 3D truck-tire carcass: a hexahedral mesh revolved from a parametric cross-section.
+//!
+//! Stands in for the confidential >60 000-DOF ABAQUS truck-tire model of Ribaric §8.1 (seed
+//! note T1: geometry and material unpublished). Cross-section (radial distance ρ, axial y):
+//! the carcass mid-line is the upper part of a super-ellipse (exponent 4, "boxy" like a tire)
+//! centred at `ρ_c = R_rim + 0.35 H` (H = section height), cut at the rim radius, resampled to
+//! equal arc length; the wall is offset ±t/2 along the mid-line normal with the thickness
+//! blending from the sidewall value to the tread value over the crown (`w = max(0, sin φ)⁴`).
+//! Zones: `bead` (the first and last `bead_elements` mid-line elements), `tread` (w ≥ 0.5),
+//! `sidewall` (the rest). The section is revolved about the y axis:
+//! `x = ρ sin θ, z = ρ cos θ` (θ = 0 at the top, θ = π at the road contact).
+//!
+//! Inflation prestress (thin-membrane estimate, per element, for the geometric stiffness):
+//! meridional membrane force `N_s = p H/2`, hoop force `N_θ = p H/2` in the sidewall and
+//! `N_θ = p R_o` in the tread (belt), divided by the local wall thickness; a documented
+//! engineering approximation, not the seed's nonlinear ABAQUS inflation state.
+
+use crate::FeError;
+use crate::element::{Elastic, Hex8, Hex8Integration};
+use crate::mesh::{Cell, CellKind, Mesh};
+use crate::model::FeModel;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// Tire generator parameters (SI units).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TireConfig {
+    /// Rim (bead seat) diameter [m].
+    pub rim_diameter: f64,
+    /// Outer (tread surface) diameter [m].
+    pub outer_diameter: f64,
+    /// Section width [m].
+    pub width: f64,
+    /// Tread (crown) wall thickness [m].
+    pub tread_thickness: f64,
+    /// Sidewall thickness [m].
+    pub sidewall_thickness: f64,
+    /// Elements around the circumference.
+    pub circumferential_divisions: usize,
+    /// Elements along the cross-section mid-line (bead to bead).
+    pub section_divisions: usize,
+    /// Elements through the wall thickness.
+    pub thickness_divisions: usize,
+    /// Mid-line elements at each end belonging to the bead zone.
+    pub bead_elements: usize,
+    /// Tread zone material.
+    pub tread: Elastic,
+    /// Sidewall zone material.
+    pub sidewall: Elastic,
+    /// Bead zone material.
+    pub bead: Elastic,
+    /// Inflation pressure p [Pa] for the prestress (0 = none).
+    pub inflation_pressure: f64,
+    /// Stiffness integration rule.
+    pub integration: Hex8Integration,
+    /// Half angle [deg] of the `contact_patch` node set around θ = π (bottom).
+    pub patch_half_angle_deg: f64,
+}
+
+impl Default for TireConfig {
+    /// A 295/80 R22.5-class truck tire (rim 22.5 in), inflation 38 psi = 262 kPa (Ribaric
+    /// §8.1 test), homogenised rubber/cord materials: 63 936 DOFs (≥ 60 000 as the seed's
+    /// model).
+    fn default() -> Self {
+        Self {
+            rim_diameter: 0.5715,
+            outer_diameter: 1.044,
+            width: 0.295,
+            tread_thickness: 0.022,
+            sidewall_thickness: 0.012,
+            circumferential_divisions: 192,
+            section_divisions: 36,
+            thickness_divisions: 2,
+            bead_elements: 2,
+            tread: Elastic {
+                young: 150e6,
+                poisson: 0.45,
+                density: 1500.0,
+            },
+            sidewall: Elastic {
+                young: 25e6,
+                poisson: 0.45,
+                density: 1200.0,
+            },
+            bead: Elastic {
+                young: 1.0e9,
+                poisson: 0.3,
+                density: 3000.0,
+            },
+            inflation_pressure: 262e3,
+            integration: Hex8Integration::SelectiveReduced,
+            patch_half_angle_deg: 8.0,
+        }
+    }
+}
+
+impl TireConfig {
+    /// Check every field; the error names the offending field.
+    pub fn validate(&self) -> Result<(), FeError> {
+        for (zone, m) in [
+            ("tread", &self.tread),
+            ("sidewall", &self.sidewall),
+            ("bead", &self.bead),
+        ] {
+            m.validate().map_err(|e| match e {
+                FeError::InvalidParameter {
+                    name,
+                    value,
+                    reason,
+                } => FeError::InvalidParameter {
+                    name: format!("{zone}.{name}"),
+                    value,
+                    reason,
+                },
+                other => other,
+            })?;
+        }
+        FeError::check_positive("rim_diameter", self.rim_diameter)?;
+        FeError::check_positive("width", self.width)?;
+        FeError::check_positive("tread_thickness", self.tread_thickness)?;
+        FeError::check_positive("sidewall_thickness", self.sidewall_thickness)?;
+        FeError::check_non_negative("inflation_pressure", self.inflation_pressure)?;
+        FeError::check_non_negative("patch_half_angle_deg", self.patch_half_angle_deg)?;
+        if self.outer_diameter <= self.rim_diameter + 2.0 * self.tread_thickness {
+            return Err(FeError::param(
+                "outer_diameter",
+                self.outer_diameter,
+                "must exceed rim_diameter + 2·tread_thickness",
+            ));
+        }
+        if self.width <= 2.0 * self.sidewall_thickness {
+            return Err(FeError::param(
+                "width",
+                self.width,
+                "must exceed 2·sidewall_thickness",
+            ));
+        }
+        for (name, v, min) in [
+            (
+                "circumferential_divisions",
+                self.circumferential_divisions,
+                8,
+            ),
+            ("section_divisions", self.section_divisions, 4),
+            ("thickness_divisions", self.thickness_divisions, 1),
+        ] {
+            if v < min {
+                return Err(FeError::param(name, v as f64, &format!("must be >= {min}")));
+            }
+        }
+        if 2 * self.bead_elements >= self.section_divisions {
+            return Err(FeError::param(
+                "bead_elements",
+                self.bead_elements as f64,
+                "must be < section_divisions / 2",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Material zone of a tire element.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TireZone {
+    /// Bead (rim contact).
+    Bead,
+    /// Sidewall.
+    Sidewall,
+    /// Tread / crown.
+    Tread,
+}
+
+/// A generated tire: the FE model plus per-element zones and the cross-section mid-line.
+#[derive(Debug)]
+pub struct Tire {
+    /// Mesh and elements (DOFs u, v, w per node).
+    pub model: FeModel,
+    /// Zone of each element (same order as `model.elements`).
+    pub zones: Vec<TireZone>,
+}
+
+struct Section {
+    /// (ρ, y) of each mid-line point, equal arc length.
+    mid: Vec<[f64; 2]>,
+    /// Unit outward normal (ρ, y) at each point.
+    normal: Vec<[f64; 2]>,
+    /// Crown weight w ∈ [0, 1] at each point.
+    crown: Vec<f64>,
+}
+
+fn section(cfg: &TireConfig) -> Section {
+    let r_rim = cfg.rim_diameter / 2.0;
+    let r_o = cfg.outer_diameter / 2.0;
+    let h = r_o - r_rim;
+    let rho_c = r_rim + 0.35 * h;
+    let a_rho = r_o - cfg.tread_thickness / 2.0 - rho_c;
+    let a_y = cfg.width / 2.0 - cfg.sidewall_thickness / 2.0;
+    let sp = |x: f64| x.signum() * x.abs().sqrt(); // exponent 2/p with p = 4
+    let curve = |phi: f64| [rho_c + a_rho * sp(phi.sin()), a_y * sp(phi.cos())];
+    // φ at the rim cut: ρ = R_rim ⇒ sp(sin φ) = (R_rim − ρ_c)/a_rho
+    let s0 = ((r_rim - rho_c) / a_rho).clamp(-1.0, 0.0);
+    let phi0 = -(s0 * s0).asin(); // sin φ0 = −s0², φ0 < 0
+    let (pa, pb) = (PI - phi0, phi0); // left bead → top → right bead
+    // dense polyline, then resample at equal arc length
+    let nd = 4000;
+    let dense: Vec<[f64; 2]> = (0..=nd)
+        .map(|i| curve(pa + (pb - pa) * i as f64 / nd as f64))
+        .collect();
+    let mut cum = vec![0.0];
+    for w in dense.windows(2) {
+        let d = ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt();
+        cum.push(cum.last().copied().unwrap_or(0.0) + d);
+    }
+    let total = *cum.last().unwrap_or(&1.0);
+    let ns = cfg.section_divisions;
+    let mut mid = Vec::with_capacity(ns + 1);
+    let mut crown = Vec::with_capacity(ns + 1);
+    let mut seg = 0usize;
+    for i in 0..=ns {
+        let target = total * i as f64 / ns as f64;
+        while seg + 1 < cum.len() - 1 && cum[seg + 1] < target {
+            seg += 1;
+        }
+        let t = ((target - cum[seg]) / (cum[seg + 1] - cum[seg])).clamp(0.0, 1.0);
+        let p = [
+            dense[seg][0] + t * (dense[seg + 1][0] - dense[seg][0]),
+            dense[seg][1] + t * (dense[seg + 1][1] - dense[seg][1]),
+        ];
+        mid.push(p);
+        let phi = pa + (pb - pa) * (seg as f64 + t) / nd as f64;
+        crown.push(phi.sin().max(0.0).powi(4));
+    }
+    // outward normal: rotate the tangent (dρ, dy) so that it points away from (ρ_c, 0)
+    let mut normal = Vec::with_capacity(ns + 1);
+    for i in 0..=ns {
+        let (a, b) = (mid[i.saturating_sub(1)], mid[(i + 1).min(ns)]);
+        let t = [b[0] - a[0], b[1] - a[1]];
+        let l = (t[0] * t[0] + t[1] * t[1]).sqrt();
+        let mut n = [-t[1] / l, t[0] / l];
+        let out = [mid[i][0] - rho_c, mid[i][1]];
+        if n[0] * out[0] + n[1] * out[1] < 0.0 {
+            n = [-n[0], -n[1]];
+        }
+        normal.push(n);
+    }
+    Section { mid, normal, crown }
+}
+
+/// Generate the tire. Node sets: `rim` (all nodes of the first and last mid-line stations,
+/// bonded to the wheel), `tread_outer` (outer-surface nodes of the tread zone),
+/// `contact_patch` (the part of `tread_outer` within ±`patch_half_angle_deg` of θ = π),
+/// `all`.
+pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
+    cfg.validate()?;
+    let sec = section(cfg);
+    let (ns, nt, nc) = (
+        cfg.section_divisions,
+        cfg.thickness_divisions,
+        cfg.circumferential_divisions,
+    );
+    let thick = |i: usize| {
+        cfg.sidewall_thickness + (cfg.tread_thickness - cfg.sidewall_thickness) * sec.crown[i]
+    };
+    let id = |j: usize, i: usize, k: usize| (j % nc) * (ns + 1) * (nt + 1) + i * (nt + 1) + k;
+    let mut mesh = Mesh::new(3);
+    for j in 0..nc {
+        let th = 2.0 * PI * j as f64 / nc as f64;
+        for i in 0..=ns {
+            for k in 0..=nt {
+                let off = (-0.5 + k as f64 / nt as f64) * thick(i);
+                let rho = sec.mid[i][0] + off * sec.normal[i][0];
+                let y = sec.mid[i][1] + off * sec.normal[i][1];
+                mesh.add_node([rho * th.sin(), y, rho * th.cos()]);
+            }
+        }
+    }
+    let h_sec = (cfg.outer_diameter - cfg.rim_diameter) / 2.0;
+    let p = cfg.inflation_pressure;
+    let mut els = Vec::with_capacity(nc * ns * nt);
+    let mut zones = Vec::with_capacity(nc * ns * nt);
+    let mut flip: Option<bool> = None;
+    for j in 0..nc {
+        for i in 0..ns {
+            let w = 0.5 * (sec.crown[i] + sec.crown[i + 1]);
+            let zone = if i < cfg.bead_elements || i >= ns - cfg.bead_elements {
+                TireZone::Bead
+            } else if w >= 0.5 {
+                TireZone::Tread
+            } else {
+                TireZone::Sidewall
+            };
+            let mat = match zone {
+                TireZone::Bead => cfg.bead,
+                TireZone::Sidewall => cfg.sidewall,
+                TireZone::Tread => cfg.tread,
+            };
+            // membrane prestress in (meridional s, hoop θ) directions at the element centre
+            let t_loc = 0.5 * (thick(i) + thick(i + 1));
+            let n_s = p * h_sec / 2.0;
+            let n_th = if zone == TireZone::Tread {
+                p * cfg.outer_diameter / 2.0
+            } else {
+                p * h_sec / 2.0
+            };
+            let thc = 2.0 * PI * (j as f64 + 0.5) / nc as f64;
+            let ds = [
+                sec.mid[i + 1][0] - sec.mid[i][0],
+                sec.mid[i + 1][1] - sec.mid[i][1],
+            ];
+            let dl = (ds[0] * ds[0] + ds[1] * ds[1]).sqrt();
+            let s_vec = [ds[0] / dl * thc.sin(), ds[1] / dl, ds[0] / dl * thc.cos()];
+            let e_th = [thc.cos(), 0.0, -thc.sin()];
+            let (ss, st) = (n_s / t_loc, n_th / t_loc);
+            let mut sigma = [[0.0; 3]; 3];
+            for a in 0..3 {
+                for b in 0..3 {
+                    sigma[a][b] = ss * s_vec[a] * s_vec[b] + st * e_th[a] * e_th[b];
+                }
+            }
+            let prestress = if p > 0.0 { Some(sigma) } else { None };
+            for k in 0..nt {
+                let base = [
+                    id(j, i, k),
+                    id(j, i + 1, k),
+                    id(j, i + 1, k + 1),
+                    id(j, i, k + 1),
+                ];
+                let next = [
+                    id(j + 1, i, k),
+                    id(j + 1, i + 1, k),
+                    id(j + 1, i + 1, k + 1),
+                    id(j + 1, i, k + 1),
+                ];
+                let build = |f: bool| -> Result<Hex8, FeError> {
+                    let (lo, hi) = if f { (next, base) } else { (base, next) };
+                    let nodes = [lo[0], lo[1], lo[2], lo[3], hi[0], hi[1], hi[2], hi[3]];
+                    let mut dofs = [0usize; 24];
+                    let mut x = [[0.0; 3]; 8];
+                    for (a, &nd) in nodes.iter().enumerate() {
+                        x[a] = mesh.nodes[nd];
+                        for d in 0..3 {
+                            dofs[3 * a + d] = 3 * nd + d;
+                        }
+                    }
+                    Hex8::new(dofs, x, mat, cfg.integration, prestress)
+                };
+                let el = match flip {
+                    Some(f) => build(f)?,
+                    None => match build(false) {
+                        Ok(e) => {
+                            flip = Some(false);
+                            e
+                        }
+                        Err(_) => {
+                            flip = Some(true);
+                            build(true)?
+                        }
+                    },
+                };
+                let nodes = el.dofs.iter().step_by(3).map(|d| d / 3).collect();
+                mesh.cells.push(Cell {
+                    kind: CellKind::Hexahedron,
+                    nodes,
+                });
+                els.push(el);
+                zones.push(zone);
+            }
+        }
+    }
+    let mut rim = Vec::new();
+    let mut tread_outer = Vec::new();
+    let mut patch = Vec::new();
+    let half = cfg.patch_half_angle_deg.to_radians();
+    for j in 0..nc {
+        let th = 2.0 * PI * j as f64 / nc as f64;
+        for k in 0..=nt {
+            rim.push(id(j, 0, k));
+            rim.push(id(j, ns, k));
+        }
+        for i in 0..=ns {
+            if sec.crown[i] >= 0.5 {
+                let n = id(j, i, nt);
+                tread_outer.push(n);
+                if (th - PI).abs() <= half + 1e-12 {
+                    patch.push(n);
+                }
+            }
+        }
+    }
+    mesh.set_node_set("rim", rim)?;
+    mesh.set_node_set("tread_outer", tread_outer)?;
+    mesh.set_node_set("contact_patch", patch)?;
+    mesh.set_node_set("all", (0..mesh.n_nodes()).collect())?;
+    let mut model = FeModel::new(mesh);
+    for e in els {
+        model.push(e);
+    }
+    Ok(Tire { model, zones })
+}

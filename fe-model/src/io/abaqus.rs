@@ -1,0 +1,178 @@
+//! ABAQUS matrix files written by `*MATRIX GENERATE` with
+//! `*MATRIX OUTPUT, STIFFNESS=YES, MASS=YES, FORMAT=MATRIX INPUT` (files `job_STIF1.mtx`,
+//! `job_MASS1.mtx`): one entry per line, `row node, row DOF, column node, column DOF, value`,
+//! comma separated, one triangle of the symmetric matrix (Abaqus Analysis User's Guide,
+//! "Generating matrices"). Lines starting with `*` are keywords/comments and skipped.
+//!
+//! Reading collects the (node, DOF) pairs of all given files, numbers them in ascending
+//! (node, DOF) order — the [`AbaqusDofMap`] — and assembles every file with that common map,
+//! mirroring one-triangle storage into a full symmetric matrix.
+
+use crate::FeError;
+use crate::error::MatrixFileError as E;
+use faer::sparse::{SparseColMat, Triplet};
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+/// Parsed entries of one ABAQUS matrix file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AbaqusEntries {
+    /// Source name (for errors).
+    pub file: String,
+    /// `(row node, row dof, col node, col dof, value, line)`.
+    pub entries: Vec<(u64, u32, u64, u32, f64, usize)>,
+}
+
+/// Map between ABAQUS (node label, DOF number 1..6) and matrix row index.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct AbaqusDofMap {
+    /// `(node, dof)` of each row, ascending.
+    pub dofs: Vec<(u64, u32)>,
+    index: HashMap<(u64, u32), usize>,
+}
+
+impl AbaqusDofMap {
+    /// Row index of `(node, dof)`.
+    pub fn index(&self, node: u64, dof: u32) -> Option<usize> {
+        self.index.get(&(node, dof)).copied()
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.dofs.len()
+    }
+
+    /// Whether the map is empty.
+    pub fn is_empty(&self) -> bool {
+        self.dofs.is_empty()
+    }
+}
+
+fn err(file: &str, line: usize, kind: E) -> FeError {
+    FeError::Matrix {
+        file: file.to_string(),
+        line,
+        kind,
+    }
+}
+
+/// Parse ABAQUS matrix text; `file` names the source in errors.
+pub fn parse(text: &str, file: &str) -> Result<AbaqusEntries, FeError> {
+    let mut entries = Vec::new();
+    for (i, l) in text.lines().enumerate() {
+        let ln = i + 1;
+        let t = l.trim();
+        if t.is_empty() || t.starts_with('*') {
+            continue;
+        }
+        let f: Vec<&str> = t
+            .split(',')
+            .map(|s| s.trim())
+            .filter(|s| !s.is_empty())
+            .collect();
+        if f.len() != 5 {
+            return Err(err(
+                file,
+                ln,
+                E::Syntax(format!(
+                    "expected `node, dof, node, dof, value`, found `{t}`"
+                )),
+            ));
+        }
+        let node = |s: &str| -> Result<u64, FeError> {
+            s.parse()
+                .map_err(|_| err(file, ln, E::Syntax(format!("`{s}` is not a node label"))))
+        };
+        let dof = |s: &str| -> Result<u32, FeError> {
+            let d: u32 = s
+                .parse()
+                .map_err(|_| err(file, ln, E::Syntax(format!("`{s}` is not a DOF number"))))?;
+            if d == 0 {
+                return Err(err(file, ln, E::Syntax("DOF numbers start at 1".into())));
+            }
+            Ok(d)
+        };
+        let v: f64 = f[4]
+            .parse()
+            .map_err(|_| err(file, ln, E::Syntax(format!("`{}` is not a number", f[4]))))?;
+        if !v.is_finite() {
+            return Err(err(file, ln, E::NonFinite(f[4].to_string())));
+        }
+        entries.push((node(f[0])?, dof(f[1])?, node(f[2])?, dof(f[3])?, v, ln));
+    }
+    Ok(AbaqusEntries {
+        file: file.to_string(),
+        entries,
+    })
+}
+
+/// Read one ABAQUS matrix file.
+pub fn read(path: impl AsRef<Path>) -> Result<AbaqusEntries, FeError> {
+    let path = path.as_ref();
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| FeError::Io {
+        file: name.clone(),
+        source,
+    })?;
+    parse(&text, &name)
+}
+
+/// Assemble the given files with one common DOF map (full symmetric storage; one-triangle
+/// files are mirrored, two-triangle files are checked for symmetry).
+pub fn assemble(
+    files: &[&AbaqusEntries],
+) -> Result<(AbaqusDofMap, Vec<SparseColMat<usize, f64>>), FeError> {
+    let mut set = BTreeMap::new();
+    for f in files {
+        for &(n1, d1, n2, d2, _, _) in &f.entries {
+            set.insert((n1, d1), ());
+            set.insert((n2, d2), ());
+        }
+    }
+    let dofs: Vec<(u64, u32)> = set.into_keys().collect();
+    let index: HashMap<(u64, u32), usize> = dofs.iter().enumerate().map(|(i, &k)| (k, i)).collect();
+    let n = dofs.len();
+    let mut out = Vec::with_capacity(files.len());
+    for f in files {
+        // key (max, min) → (value, line, stored with row < col?)
+        let mut tri: HashMap<(usize, usize), (f64, usize, bool)> = HashMap::new();
+        for &(n1, d1, n2, d2, v, ln) in &f.entries {
+            let (r, c) = (index[&(n1, d1)], index[&(n2, d2)]);
+            let upper = r < c;
+            let key = if upper { (c, r) } else { (r, c) };
+            match tri.get_mut(&key) {
+                Some((old, _, side)) if *side != upper && r != c => {
+                    let tol = 1e-12 * old.abs().max(v.abs());
+                    if (*old - v).abs() > tol {
+                        return Err(err(
+                            &f.file,
+                            ln,
+                            E::NotSymmetric {
+                                row: r + 1,
+                                col: c + 1,
+                                value: v,
+                                mirror: *old,
+                            },
+                        ));
+                    }
+                }
+                Some((old, _, _)) => *old += v,
+                None => {
+                    tri.insert(key, (v, ln, upper));
+                }
+            }
+        }
+        let mut t = Vec::with_capacity(2 * tri.len());
+        for ((r, c), (v, _, _)) in tri {
+            t.push(Triplet::new(r, c, v));
+            if r != c {
+                t.push(Triplet::new(c, r, v));
+            }
+        }
+        out.push(
+            SparseColMat::try_new_from_triplets(n, n, &t)
+                .map_err(|e| FeError::Sparse(format!("ABAQUS matrix {}: {e:?}", f.file)))?,
+        );
+    }
+    Ok((AbaqusDofMap { dofs, index }, out))
+}

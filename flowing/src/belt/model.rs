@@ -1,0 +1,405 @@
+//! The belt's finite-element loop and its flowing-material reduction basis (Ribaric 5.2–5.4).
+//!
+//! [`BeltFe`] holds what both formulations share: the path (fe-model's [`BeltPath`]), the node
+//! positions `r_i` at arc lengths `s_i` (56 non-uniform elements by default: short on the arcs),
+//! the stacked unit tangents `e_t` and discrete curvature vectors `ε_n`, the lumped mass, the
+//! stiffness `K = K_e + K_g(T0)` (the geometric stiffness of the pre-tension is what gives the
+//! spans their ≈ 63 Hz first mode, seed-000 note U7), the Rayleigh damping `C = αM + βK`, the
+//! pre-tension force `f0` of the reference state and the contact-node sets (each arc plus a
+//! lift-off margin).
+//!
+//! Choices the seed leaves open (documented here, seed-000 note U6, U8, U29, §10.1):
+//! - rotational entries of `e_t` and `ε_n` are zero: θ is a deflection field;
+//! - lumped mass (HRZ: `ρA L/2` per translation, `ρA L³/78` per rotation), so that
+//!   `e_tᵀ M e_t = m_belt` holds exactly;
+//! - `ε_n,i = (u_i − u_{i−1}) / L_i` with `u_i` the unit chord of element `i` and `L_i` the
+//!   tributary length: the discrete curvature of the chord polygon (→ `e_n/ρ` as the mesh is
+//!   refined). With it the centrifugal load `m_i v² ε_n,i` is exactly `ρv²/T0` times the
+//!   pre-tension force `f0,i = T0 (u_i − u_{i−1})`, the classical belt result;
+//! - Rayleigh damping `C = αM + βK_e` on the elastic stiffness (see [`BeltFe::damping`]);
+//! - the reference state is the belt mounted on the path with tension T0 (the printed 1.2 m
+//!   belt length is inconsistent with the path, note U8).
+
+use super::config::BeltDriveConfig;
+use crate::derivative::{DerivativeMethod, FdScheme, FirstDifference, SecondDifference};
+use crate::error::{FlowError, invalid};
+use crate::grid::{FlowGrid, Topology};
+use crate::{FlowLine, mode_shape_derivatives};
+use faer::Mat;
+use fe_model::element::{Element, Frame2d, Frame2dSection, MassKind, MatrixKind};
+use fe_model::generate::belt_path::{BeltPath, tributary_lengths};
+use reduction::{DofPartition, Method, ModeSelection, build_basis};
+
+/// DOFs per belt node (u, v, θ).
+pub const NODE_DOFS: usize = 3;
+
+/// The belt loop shared by the nodal and the flowing-material formulations.
+#[derive(Debug, Clone)]
+pub struct BeltFe {
+    /// The configuration it was built from.
+    pub config: BeltDriveConfig,
+    /// Undeformed belt path.
+    pub path: BeltPath,
+    /// Arc length of each node [m] (increasing, in `[0, L)`).
+    pub s: Vec<f64>,
+    /// Node positions `r_i` [m].
+    pub position: Vec<[f64; 2]>,
+    /// Path unit tangent at each node.
+    pub tangent: Vec<[f64; 2]>,
+    /// Discrete curvature vector `ε_n,i` [1/m].
+    pub curvature: Vec<[f64; 2]>,
+    /// Tributary length of each node [m].
+    pub tributary: Vec<f64>,
+    /// Diagonal of the lumped mass matrix (`3N`) [kg, kg m²].
+    pub mass: Vec<f64>,
+    /// Stiffness `K_e + K_g(T0)` (`3N × 3N`).
+    pub stiffness: Mat<f64>,
+    /// Rayleigh damping `αM + βK_e`. The stiffness-proportional part models the rubber's
+    /// viscoelasticity, so it uses the elastic stiffness only: the geometric stiffness of the
+    /// pre-tension is not a material property, and `β K_g` acting on the advected deflection rate
+    /// `v T_,s z` would exert spurious forces on the arcs (a rigid slide of the mounted belt along
+    /// an arc is not a deformation). With `β K`, the unloaded driven pulley ran 5·10⁻⁶ (relative)
+    /// faster than the driver; with `β K_e` the two agree to 10⁻⁷.
+    pub damping: Mat<f64>,
+    /// Pre-tension force of the reference state (`3N`) [N].
+    pub pretension: Vec<f64>,
+    /// Contact nodes of each pulley (pulley 0 = driver, 1 = driven).
+    pub contact_nodes: Vec<Vec<usize>>,
+    /// Radius of each pulley's contact surface [m]: the path radius plus the penalty
+    /// penetration `p0` under the mounting pressure `T0/R`, so that the belt mounted with
+    /// tension T0 has its line exactly on the path (the role of Ribaric §6.4 step 1, "move the
+    /// pulleys apart until T0").
+    pub contact_radius: Vec<f64>,
+}
+
+impl BeltFe {
+    /// Build the loop from `config` (validated first).
+    pub fn new(config: &BeltDriveConfig) -> Result<Self, FlowError> {
+        config
+            .validate()
+            .map_err(|(field, reason)| invalid(format!("belt drive: {field}"), reason))?;
+        let g = &config.geometry;
+        let path = BeltPath::two_pulleys(g.center_distance, g.radius_driver, g.radius_driven)?;
+        // element lengths: each piece divided into the configured number of elements
+        let mut s = Vec::new();
+        for piece in path.pieces() {
+            let n = match piece.segment {
+                fe_model::generate::belt_path::Segment::Span { .. } => config.mesh.span_elements,
+                fe_model::generate::belt_path::Segment::Arc { .. } => config.mesh.arc_elements,
+            };
+            for k in 0..n {
+                s.push(piece.s_start + piece.length * k as f64 / n as f64);
+            }
+        }
+        let n_nodes = s.len();
+        let l = path.length();
+        let points: Vec<_> = s.iter().map(|&si| path.point(si)).collect();
+        let position: Vec<[f64; 2]> = points.iter().map(|p| p.position).collect();
+        let tangent: Vec<[f64; 2]> = points.iter().map(|p| p.tangent).collect();
+        let tributary = tributary_lengths(&s, l);
+        // unit chords u_i from node i to node i+1
+        let chords: Vec<[f64; 2]> = (0..n_nodes)
+            .map(|i| {
+                let (a, b) = (position[i], position[(i + 1) % n_nodes]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let h = dx.hypot(dy);
+                [dx / h, dy / h]
+            })
+            .collect();
+        let t0 = config.belt.tension;
+        let mut curvature = vec![[0.0; 2]; n_nodes];
+        let mut pretension = vec![0.0; NODE_DOFS * n_nodes];
+        for i in 0..n_nodes {
+            let (u, up) = (chords[i], chords[(i + n_nodes - 1) % n_nodes]);
+            for c in 0..2 {
+                curvature[i][c] = (u[c] - up[c]) / tributary[i];
+                pretension[NODE_DOFS * i + c] = t0 * (u[c] - up[c]);
+            }
+        }
+        let section = Frame2dSection {
+            ea: config.belt.ea,
+            ei: config.belt.ei,
+            mass_per_length: config.belt.mass_per_length,
+        };
+        let ndof = NODE_DOFS * n_nodes;
+        let mut stiffness = Mat::<f64>::zeros(ndof, ndof);
+        let mut elastic = Mat::<f64>::zeros(ndof, ndof);
+        let mut mass = vec![0.0; ndof];
+        for i in 0..n_nodes {
+            let j = (i + 1) % n_nodes;
+            let dofs = [3 * i, 3 * i + 1, 3 * i + 2, 3 * j, 3 * j + 1, 3 * j + 2];
+            let e = Frame2d::new(dofs, position[i], position[j], section, t0)?;
+            let k = e.stiffness();
+            let kg = e
+                .matrix(MatrixKind::Geometric)
+                .unwrap_or_else(|| Mat::zeros(6, 6));
+            let m = e.mass(MassKind::Lumped);
+            for a in 0..6 {
+                mass[dofs[a]] += m[(a, a)];
+                for b in 0..6 {
+                    stiffness[(dofs[a], dofs[b])] += k[(a, b)] + kg[(a, b)];
+                    elastic[(dofs[a], dofs[b])] += k[(a, b)];
+                }
+            }
+        }
+        let (alpha, beta) = (config.damping.alpha, config.damping.beta);
+        let damping = Mat::from_fn(ndof, ndof, |i, j| {
+            beta * elastic[(i, j)] + if i == j { alpha * mass[i] } else { 0.0 }
+        });
+        let margin = config.mesh.contact_margin_nodes;
+        let contact_nodes = (0..2)
+            .map(|p| {
+                let (a, len) = path.arc_of(p).unwrap_or((0.0, 0.0));
+                // nodes on the arc (both ends) plus `margin` nodes beyond each end
+                let on: Vec<usize> = (0..n_nodes)
+                    .filter(|&i| (s[i] - a).rem_euclid(l) <= len + 1e-9 * l)
+                    .collect();
+                // first and last along the path (the arc of pulley 0 wraps past node 0)
+                let along = |i: &usize| (s[*i] - a).rem_euclid(l);
+                let first = *on
+                    .iter()
+                    .min_by(|x, y| along(x).total_cmp(&along(y)))
+                    .unwrap_or(&0);
+                let last = *on
+                    .iter()
+                    .max_by(|x, y| along(x).total_cmp(&along(y)))
+                    .unwrap_or(&0);
+                let mut set: Vec<usize> = on.clone();
+                for k in 1..=margin {
+                    set.push((first + n_nodes - k) % n_nodes);
+                    set.push((last + k) % n_nodes);
+                }
+                set.sort_unstable();
+                set.dedup();
+                set
+            })
+            .collect();
+        let contact_radius = path
+            .pulleys()
+            .iter()
+            .map(|p| p.radius + mounting_penetration(config, p.radius))
+            .collect();
+        Ok(Self {
+            contact_radius,
+            config: *config,
+            path,
+            s,
+            position,
+            tangent,
+            curvature,
+            tributary,
+            mass,
+            stiffness,
+            damping,
+            pretension,
+            contact_nodes,
+        })
+    }
+
+    /// Number of nodes.
+    pub fn n_nodes(&self) -> usize {
+        self.s.len()
+    }
+
+    /// Number of nodal DOFs (`3N`).
+    pub fn n_dofs(&self) -> usize {
+        NODE_DOFS * self.s.len()
+    }
+
+    /// Belt mass `e_tᵀ M e_t` [kg].
+    pub fn belt_mass(&self) -> f64 {
+        self.mass
+            .chunks(NODE_DOFS)
+            .zip(&self.tangent)
+            .map(|(m, t)| m[0] * t[0] * t[0] + m[1] * t[1] * t[1])
+            .sum()
+    }
+
+    /// Stacked tangents `e_t` (`3N`, zero rotational entries), Ribaric (5.4).
+    pub fn stacked_tangent(&self) -> Vec<f64> {
+        let mut e = vec![0.0; self.n_dofs()];
+        for (i, t) in self.tangent.iter().enumerate() {
+            e[NODE_DOFS * i] = t[0];
+            e[NODE_DOFS * i + 1] = t[1];
+        }
+        e
+    }
+
+    /// Stacked curvature vectors `ε_n` (`3N`), Ribaric (5.4).
+    pub fn stacked_curvature(&self) -> Vec<f64> {
+        let mut e = vec![0.0; self.n_dofs()];
+        for (i, k) in self.curvature.iter().enumerate() {
+            e[NODE_DOFS * i] = k[0];
+            e[NODE_DOFS * i + 1] = k[1];
+        }
+        e
+    }
+
+    /// Pulley index of each contact node (`None` for free nodes).
+    pub fn node_pulley(&self) -> Vec<Option<usize>> {
+        let mut out = vec![None; self.n_nodes()];
+        for (p, set) in self.contact_nodes.iter().enumerate() {
+            for &i in set {
+                out[i] = Some(p);
+            }
+        }
+        out
+    }
+
+    /// The flow grid of the closed loop (node arc lengths, period `L`).
+    pub fn grid(&self) -> Result<FlowGrid, FlowError> {
+        FlowGrid::new(
+            self.s.clone(),
+            Topology::Closed {
+                period: self.path.length(),
+            },
+        )
+    }
+}
+
+/// Penetration `p0` [m] of the penalty law (6.1) under the uniform pressure `T0/R` of a belt
+/// with tension T0 on a pulley of radius R: the root of `k₂ p² + k₁ p = T0/R`
+/// (72 µm for Table 6-1, seed-000 note §2.3).
+pub fn mounting_penetration(config: &BeltDriveConfig, radius: f64) -> f64 {
+    let (k2, k1) = (
+        config.contact.penalty_quadratic,
+        config.contact.penalty_linear,
+    );
+    let q = config.belt.tension / radius;
+    if k2 > 0.0 {
+        (-k1 + (k1 * k1 + 4.0 * k2 * q).sqrt()) / (2.0 * k2)
+    } else {
+        q / k1
+    }
+}
+
+/// The flowing-material basis `δ = T z` with its periodic derivatives along s (Ribaric
+/// (5.9)–(5.13)).
+///
+/// Columns: first the boundary (contact-node translation) columns, i.e. the static modes
+/// `[Ψ_s; I]` of Ribaric (5.9) with `Ψ^c = I`, then the kept fixed-interface (free-node) modes `Ψ^f`.
+/// The contact-node rotations belong to the interior set, so they are represented by the static
+/// and free-node modes (their stiff rotary-inertia modes are what truncation removes).
+///
+/// Reference condition (Ribaric 5.3, note U5): the tangential deflection of node 0 (where the
+/// belt leaves the driver) is zero in every column — node 0's two boundary columns are merged
+/// into one along its path normal. This removes the rank deficiency of (5.6): without it, a
+/// uniform tangential deflection is indistinguishable from a change of the belt speed.
+#[derive(Debug, Clone)]
+pub struct FlowingBasis {
+    /// `T` (`3N × m`).
+    pub t: Mat<f64>,
+    /// `T_,s`.
+    pub ts: Mat<f64>,
+    /// `T_,ss`.
+    pub tss: Mat<f64>,
+    /// Number of boundary (static-mode) columns; the remaining columns are free-node modes.
+    pub n_boundary: usize,
+}
+
+impl FlowingBasis {
+    /// Build the basis for `fe` keeping `free_modes` free-node modes (`None`: all).
+    pub fn new(fe: &BeltFe, free_modes: Option<usize>) -> Result<Self, FlowError> {
+        let n = fe.n_dofs();
+        let pulley = fe.node_pulley();
+        let mut boundary = Vec::new();
+        for (i, p) in pulley.iter().enumerate() {
+            if p.is_some() {
+                boundary.push(NODE_DOFS * i);
+                boundary.push(NODE_DOFS * i + 1);
+            }
+        }
+        if pulley[0].is_none() {
+            return Err(invalid(
+                "belt basis",
+                "node 0 (reference node) must be a contact node",
+            ));
+        }
+        let part = DofPartition::from_boundary_dofs(n, &boundary).map_err(red)?;
+        let n_interior = part.interior().len();
+        let keep = free_modes.unwrap_or(n_interior).min(n_interior);
+        let mass = Mat::from_fn(n, n, |i, j| if i == j { fe.mass[i] } else { 0.0 });
+        let basis = build_basis(
+            fe.stiffness.as_ref(),
+            mass.as_ref(),
+            &part,
+            Method::CraigBampton,
+            &ModeSelection::Lowest(keep),
+        )
+        .map_err(red)?;
+        let psi = &basis.psi;
+        let nb = part.boundary().len();
+        // merge node 0's (x, y) columns (boundary positions 0 and 1) into its normal direction
+        debug_assert_eq!((part.boundary()[0], part.boundary()[1]), (0, 1));
+        let tan = fe.tangent[0];
+        let nrm = [-tan[1], tan[0]];
+        let m = psi.ncols() - 1;
+        let t = Mat::from_fn(n, m, |i, j| {
+            if j == 0 {
+                nrm[0] * psi[(i, 0)] + nrm[1] * psi[(i, 1)]
+            } else {
+                psi[(i, j + 1)]
+            }
+        });
+        let lines = FlowLine::per_component(
+            &fe.grid()?,
+            &(0..fe.n_nodes()).collect::<Vec<_>>(),
+            NODE_DOFS,
+        )?;
+        let method = DerivativeMethod::FiniteDifference(FdScheme {
+            first: FirstDifference::ThreePoint,
+            second: SecondDifference::ThreePoint,
+        });
+        let d = mode_shape_derivatives(&lines, method, t.as_ref())?;
+        Ok(Self {
+            t,
+            ts: d.d1,
+            tss: d.d2,
+            n_boundary: nb - 1,
+        })
+    }
+
+    /// Number of modal coordinates `m`.
+    pub fn len(&self) -> usize {
+        self.t.ncols()
+    }
+
+    /// Whether the basis is empty (never for a constructed basis).
+    pub fn is_empty(&self) -> bool {
+        self.t.ncols() == 0
+    }
+}
+
+fn red(e: reduction::ReductionError) -> FlowError {
+    FlowError::LinearAlgebra {
+        what: "belt reduction basis".into(),
+        reason: e.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // seed-000 note BELT-1: e_tᵀ M e_t = m_belt = ρ L_path, e_tᵀ M ε_n ≈ 0, ε_n → e_n/R on arcs.
+    #[test]
+    fn path_kinematics_with_lumped_mass() {
+        let fe = BeltFe::new(&BeltDriveConfig::default()).unwrap();
+        assert_eq!(fe.n_nodes(), 56);
+        let l = 2.0 * 0.45 + 2.0 * std::f64::consts::PI * 0.05;
+        assert!((fe.belt_mass() - 0.096 * l).abs() < 1e-12);
+        let (et, en) = (fe.stacked_tangent(), fe.stacked_curvature());
+        let dot: f64 = (0..fe.n_dofs()).map(|i| et[i] * fe.mass[i] * en[i]).sum();
+        assert!(dot.abs() < 1e-9, "e_tᵀ M ε_n = {dot}");
+        // an interior arc node: |ε_n| = 1/R to O(h²)
+        let k = fe.curvature[fe.contact_nodes[1][5]];
+        assert!((k[0].hypot(k[1]) * 0.05 - 1.0).abs() < 2e-3);
+        // the pre-tension force of an arc node is T0·L_i/R toward the centre
+        let i = fe.contact_nodes[1][5];
+        let f = (fe.pretension[3 * i], fe.pretension[3 * i + 1]);
+        assert!(
+            (f.0.hypot(f.1) - 310.0 * fe.tributary[i] / 0.05).abs()
+                < 1e-2 * 310.0 * fe.tributary[i] / 0.05
+        );
+    }
+}

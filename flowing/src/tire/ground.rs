@@ -1,0 +1,144 @@
+//! The tire's ground: a drum (radius 1.25 m) or a flat road, each optionally carrying a
+//! semicircular transverse cleat (radius 10 mm), Ribaric §8.3 and §8.5 (seed note U19, U25).
+//!
+//! The geometry is planar in the wheel's `(x, z)` plane (longitudinal, vertical) and extruded
+//! along the wheel axis `y`; it is evaluated with the contact crate's [`CleatedDrum`],
+//! [`CleatedRoad`], [`Disk`] and [`HalfPlane`]. The ground surface moves under the fixed
+//! spindle with speed `v` opposite to the travel direction (`−x` at the patch), so the tire rolls
+//! forwards in `+x`; the cleat reaches the bottom of the wheel (`x = 0`) at `cleat_time`.
+
+use super::error::{TireError, invalid};
+use contact::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::FRAC_PI_2;
+
+/// Kind of ground.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GroundKind {
+    /// Rotating drum (test rig, Ribaric §8.3).
+    Drum,
+    /// Flat road (Ribaric §8.5).
+    Road,
+}
+
+/// Ground settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GroundConfig {
+    /// Drum or flat road.
+    pub kind: GroundKind,
+    /// Drum radius [m] (1.25 m, Ribaric §8.5).
+    pub drum_radius: f64,
+    /// Whether the cleat is mounted.
+    pub cleat: bool,
+    /// Cleat radius [m] (10 mm semicircle, Ribaric §8.3).
+    pub cleat_radius: f64,
+}
+
+impl Default for GroundConfig {
+    fn default() -> Self {
+        Self {
+            kind: GroundKind::Drum,
+            drum_radius: 1.25,
+            cleat: true,
+            cleat_radius: 0.010,
+        }
+    }
+}
+
+impl GroundConfig {
+    /// Check the parameters (field names in the messages).
+    pub fn validate(&self) -> Result<(), TireError> {
+        if self.kind == GroundKind::Drum
+            && !(self.drum_radius > 0.0 && self.drum_radius.is_finite())
+        {
+            return Err(invalid(
+                "ground.drum_radius",
+                format!("{} is not positive", self.drum_radius),
+            ));
+        }
+        if self.cleat && !(self.cleat_radius > 0.0 && self.cleat_radius.is_finite()) {
+            return Err(invalid(
+                "ground.cleat_radius",
+                format!("{} is not positive", self.cleat_radius),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Closest-point data of a node in 3-D (wheel frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GroundPoint {
+    /// Signed gap [m] (negative = penetration).
+    pub gap: f64,
+    /// Outward unit normal of the ground.
+    pub normal: [f64; 3],
+    /// Velocity of the ground material at the closest point [m/s].
+    pub velocity: [f64; 3],
+    /// Whether the closest point is on the cleat.
+    pub on_cleat: bool,
+}
+
+/// The ground at a given surface speed and height.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ground {
+    /// Settings.
+    pub cfg: GroundConfig,
+    /// Height `z` of the ground's top (drum apex or road surface) in the wheel frame [m].
+    pub top: f64,
+    /// Surface speed `v` [m/s] (material moves towards `−x` at the patch).
+    pub speed: f64,
+    /// Time at which the cleat passes `x = 0` [s].
+    pub cleat_time: f64,
+}
+
+impl Ground {
+    /// Closest-point query of the wheel-frame point `p` at time `t`.
+    pub fn query(&self, t: f64, p: [f64; 3]) -> GroundPoint {
+        let q = [p[0], p[2]];
+        let sp = match self.cfg.kind {
+            GroundKind::Drum => {
+                let r = self.cfg.drum_radius;
+                let w = self.speed / r; // counter-clockwise in (x, z): apex moves to −x
+                let drum = Disk {
+                    center: [0.0, self.top - r],
+                    radius: r,
+                    velocity: [0.0, 0.0],
+                    omega: w,
+                };
+                if self.cfg.cleat {
+                    CleatedDrum {
+                        drum,
+                        cleat_radius: self.cfg.cleat_radius,
+                        cleat_angle: FRAC_PI_2 + w * (t - self.cleat_time),
+                    }
+                    .closest(q)
+                } else {
+                    drum.closest(q)
+                }
+            }
+            GroundKind::Road => {
+                let mut s = if self.cfg.cleat {
+                    CleatedRoad {
+                        height: self.top,
+                        cleat_radius: self.cfg.cleat_radius,
+                        cleat_x: -self.speed * (t - self.cleat_time),
+                    }
+                    .closest(q)
+                } else {
+                    HalfPlane::ground(self.top).closest(q)
+                };
+                s.surface_velocity = [-self.speed, 0.0];
+                s
+            }
+        };
+        GroundPoint {
+            gap: sp.gap,
+            normal: [sp.normal[0], 0.0, sp.normal[1]],
+            velocity: [sp.surface_velocity[0], 0.0, sp.surface_velocity[1]],
+            on_cleat: sp.part == 1,
+        }
+    }
+}

@@ -1,0 +1,28 @@
+//! The reduced FE tire with flowing material (Ribaric ch. 7–8).
+//!
+//! * [`mesh`]: the tire FE model (lumped M, K with inflation prestress, rim and patch node
+//!   sets, circumferential rings) — Ribaric (7.1), (7.4);
+//! * [`reduce`], [`reduced`]: the reduction of §8.2 (contact-node, free-node and static modes,
+//!   circumferential mode-shape derivatives) and the saved reduced tire;
+//! * [`ground`]: drum or flat road with a semicircular cleat (contact crate geometry);
+//! * [`statics`]: the preload (static contact with Lagrange multipliers, Ribaric §7.3);
+//! * [`rolling`]: the wheel–tire equations (7.10)/(7.17) with the notes' corrections E15, E16,
+//!   U15–U17, integrated with Lagrange contact and Coulomb slip friction;
+//! * [`rig`]: the cleat-test sequence of §8.3 and its outputs; [`spectrum`]: amplitude spectra.
+
+pub mod error;
+pub mod mesh;
+pub mod reduce;
+pub mod reduced;
+
+pub use error::TireError;
+pub use mesh::{Ring, TireFe};
+pub use reduce::{ReductionConfig, ReductionTimings, full_frequencies_hz, reduce};
+pub use reduced::ReducedTire;
+pub mod ground;
+pub mod lcp;
+pub mod statics;
+pub use ground::{Ground, GroundConfig, GroundKind};
+pub use statics::{PatchSolution, Preload, preload, solve_patch};
+pub mod rolling;
+pub use rolling::{NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce};

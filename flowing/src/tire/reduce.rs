@@ -1,0 +1,370 @@
+//! The reduction of Ribaric §8.2 (recipe R4/R9 of the seed note):
+//!
+//! 1. contact nodes (c-nodes): the `n_c` candidate patch nodes nearest the road point θ = π;
+//! 2. free-node modes `Ψ^f`: the lowest modes of `(K^ff, M^ff)` with contact and rim nodes fixed;
+//! 3. contact-node modes `Ψ^c`: all modes of `(K^cc, M^cc)` with free and rim nodes fixed;
+//! 4. static modes `Ψ_s = −(K^ff)⁻¹ K^fc` (condensation onto the contact nodes), `Ψ_s^c = Ψ_s Ψ^c`
+//!    (7.11);
+//! 5. circumferential derivatives `T_,θ`, `T_,θθ` of every column, per Cartesian component
+//!    along each ring (App. A; periodic grids of the flowing crate);
+//! 6. projection onto the matrices of [`ReducedTire`].
+//!
+//! With all free-node modes kept, `T` spans every deflection with fixed rim, so the reduced model
+//! reproduces the FE model exactly (eigenfrequencies and statics); with truncation the static
+//! modes keep the statics under contact-node loads exact (Craig–Bampton, Ribaric §3.3).
+
+use super::error::{TireError, invalid, linalg};
+use super::mesh::{TireFe, node_angle};
+use super::reduced::ReducedTire;
+use crate::derivative::{DerivativeMethod, FdScheme, FlowLine, mode_shape_derivatives};
+use faer::prelude::*;
+use faer::sparse::linalg::matmul::sparse_dense_matmul;
+use faer::{Accum, Mat, Par, Side};
+use fe_model::sparse::submatrix;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::time::Instant;
+
+/// Reduction settings (Ribaric §8.2 defaults: 95 contact nodes, 50 free-node modes).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ReductionConfig {
+    /// Number of contact nodes `n_c` (95 in Ribaric §8.2, 252 in §8.4.2).
+    pub contact_nodes: usize,
+    /// Number of kept free-node modes `n_f` (50 in Ribaric §8.2); more than exist = all.
+    pub free_modes: usize,
+    /// Circumferential derivative operator (App. A). Default: finite differences (A.1) with the
+    /// 3-point second difference on the periodic ring grids.
+    pub derivative: DerivativeMethod,
+    /// Tolerance grouping nodes into rings by `(ρ, y)` [m].
+    pub ring_tolerance: f64,
+}
+
+impl Default for ReductionConfig {
+    fn default() -> Self {
+        Self {
+            contact_nodes: 95,
+            free_modes: 50,
+            derivative: DerivativeMethod::FiniteDifference(FdScheme::default()),
+            ring_tolerance: 1e-6,
+        }
+    }
+}
+
+/// Wall-clock times of the reduction stages [s] (for the benchmark record).
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct ReductionTimings {
+    /// Free-node and contact-node eigen problems.
+    pub modes_s: f64,
+    /// Static modes (sparse Cholesky of `K^ff` and solves).
+    pub static_modes_s: f64,
+    /// Circumferential derivatives.
+    pub derivatives_s: f64,
+    /// Projections onto the reduced matrices.
+    pub projection_s: f64,
+    /// Total.
+    pub total_s: f64,
+}
+
+/// DOF partition of the tire: free (f), contact (c) and rim DOFs.
+#[derive(Debug, Clone)]
+pub struct TirePartition {
+    /// Contact nodes in c-order.
+    pub contact_nodes: Vec<usize>,
+    /// Free DOFs (ascending).
+    pub f: Vec<usize>,
+    /// Contact DOFs (3 per contact node, node order).
+    pub c: Vec<usize>,
+    /// Rim DOFs.
+    pub rim: Vec<usize>,
+}
+
+/// The `n` candidate nodes nearest the road point θ = π (angular distance first, then `|y|`),
+/// i.e. whole cross-section rows of the patch grown from its centre.
+pub fn select_contact_nodes(fe: &TireFe, n: usize) -> Result<Vec<usize>, TireError> {
+    if n == 0 || n > fe.candidates.len() {
+        return Err(invalid(
+            "contact_nodes",
+            format!(
+                "{n} requested but the candidate patch set has {} nodes",
+                fe.candidates.len()
+            ),
+        ));
+    }
+    let key = |i: usize| {
+        let d = (node_angle(&fe.nodes[i]) - PI).abs();
+        ((d * 1e6).round() as i64, fe.nodes[i][1].abs())
+    };
+    let mut c = fe.candidates.clone();
+    c.sort_by(|&a, &b| {
+        let (ka, kb) = (key(a), key(b));
+        ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1)).then(a.cmp(&b))
+    });
+    c.truncate(n);
+    Ok(c)
+}
+
+impl TirePartition {
+    /// Partition for the given contact nodes.
+    pub fn new(fe: &TireFe, contact_nodes: Vec<usize>) -> Self {
+        let rim = fe.rim_mask();
+        let mut is_c = vec![false; fe.n_nodes()];
+        for &c in &contact_nodes {
+            is_c[c] = true;
+        }
+        let mut f = Vec::new();
+        let mut r = Vec::new();
+        for i in 0..fe.n_nodes() {
+            let d = [3 * i, 3 * i + 1, 3 * i + 2];
+            if rim[i] {
+                r.extend(d);
+            } else if !is_c[i] {
+                f.extend(d);
+            }
+        }
+        let c = contact_nodes
+            .iter()
+            .flat_map(|&i| [3 * i, 3 * i + 1, 3 * i + 2])
+            .collect();
+        Self {
+            contact_nodes,
+            f,
+            c,
+            rim: r,
+        }
+    }
+}
+
+fn diag_block(mass: &[f64], dofs: &[usize]) -> Mat<f64> {
+    Mat::from_fn(dofs.len(), dofs.len(), |i, j| {
+        if i == j { mass[dofs[i]] } else { 0.0 }
+    })
+}
+
+/// The lowest `count` modes of `(K, diag M)` restricted to `dofs` (dense below 3000 DOFs).
+fn lowest_modes(
+    fe: &TireFe,
+    dofs: &[usize],
+    count: usize,
+    what: &str,
+) -> Result<fe_model::Modes, TireError> {
+    let k = submatrix(fe.stiffness.as_ref(), dofs, dofs)?;
+    let count = count.min(dofs.len());
+    if dofs.len() <= 3000 {
+        let m = diag_block(&fe.mass, dofs);
+        Ok(fe_model::dense_modes(
+            k.to_dense().as_ref(),
+            m.as_ref(),
+            count,
+        )?)
+    } else {
+        Err(invalid(
+            what,
+            format!(
+                "{} DOFs need the sparse eigen solver, not available in this build",
+                dofs.len()
+            ),
+        ))
+    }
+}
+
+/// Reduce the tire (Ribaric §8.2). Returns the reduced tire and the stage timings.
+pub fn reduce(
+    fe: &TireFe,
+    cfg: &ReductionConfig,
+) -> Result<(ReducedTire, ReductionTimings), TireError> {
+    let t0 = Instant::now();
+    fe.validate()?;
+    if !(cfg.ring_tolerance > 0.0) {
+        return Err(invalid("ring_tolerance", "must be positive"));
+    }
+    let contact = select_contact_nodes(fe, cfg.contact_nodes)?;
+    let part = TirePartition::new(fe, contact.clone());
+    let (nf_dofs, nc3) = (part.f.len(), part.c.len());
+    if nf_dofs == 0 {
+        return Err(invalid("contact_nodes", "leave no free nodes"));
+    }
+    let mut tim = ReductionTimings::default();
+
+    // eigen problems (steps 2-3)
+    let ts = Instant::now();
+    let fmodes = lowest_modes(fe, &part.f, cfg.free_modes, "free-node modes")?;
+    let k_cc = submatrix(fe.stiffness.as_ref(), &part.c, &part.c)?.to_dense();
+    let cmodes = fe_model::dense_modes(k_cc.as_ref(), diag_block(&fe.mass, &part.c).as_ref(), nc3)?;
+    tim.modes_s = ts.elapsed().as_secs_f64();
+
+    // static modes (step 4)
+    let ts = Instant::now();
+    let k_ff = submatrix(fe.stiffness.as_ref(), &part.f, &part.f)?;
+    let k_fc = submatrix(fe.stiffness.as_ref(), &part.f, &part.c)?.to_dense();
+    let llt = k_ff.sp_cholesky(Side::Lower).map_err(|e| {
+        linalg(
+            "static modes: Cholesky of K^ff (is the rim set fixing the tire?)",
+            e,
+        )
+    })?;
+    let mut psi_s = k_fc;
+    llt.solve_in_place(psi_s.as_mut());
+    for j in 0..psi_s.ncols() {
+        for i in 0..psi_s.nrows() {
+            psi_s[(i, j)] = -psi_s[(i, j)];
+        }
+    }
+    let psi_sc = &psi_s * &cmodes.vectors;
+    tim.static_modes_s = ts.elapsed().as_secs_f64();
+
+    // basis T on all DOFs (rim rows zero)
+    let nfm = fmodes.len();
+    let nz = nfm + nc3;
+    let n = fe.n_dofs();
+    let mut t = Mat::<f64>::zeros(n, nz);
+    for (r, &d) in part.f.iter().enumerate() {
+        for j in 0..nfm {
+            t[(d, j)] = fmodes.vectors[(r, j)];
+        }
+        for j in 0..nc3 {
+            t[(d, nfm + j)] = psi_sc[(r, j)];
+        }
+    }
+    for (r, &d) in part.c.iter().enumerate() {
+        for j in 0..nc3 {
+            t[(d, nfm + j)] = cmodes.vectors[(r, j)];
+        }
+    }
+    drop(psi_sc);
+    drop(psi_s);
+
+    // derivatives (step 5)
+    let ts = Instant::now();
+    let rings = fe.rings(cfg.ring_tolerance)?;
+    let mut lines = Vec::with_capacity(3 * rings.len());
+    for ring in &rings {
+        let grid = ring.grid()?;
+        lines.extend(FlowLine::per_component(&grid, &ring.nodes, 3)?);
+    }
+    let der = mode_shape_derivatives(&lines, cfg.derivative, t.as_ref())?;
+    tim.derivatives_s = ts.elapsed().as_secs_f64();
+
+    // projections (step 6)
+    let ts = Instant::now();
+    let mut mt = t.clone();
+    for i in 0..n {
+        let m = fe.mass[i];
+        for j in 0..nz {
+            mt[(i, j)] *= m;
+        }
+    }
+    let mtt = mt.transpose();
+    let sym =
+        |a: Mat<f64>| Mat::from_fn(a.nrows(), a.ncols(), |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+    let m_z = sym(mtt * &t);
+    let g1 = mtt * &der.d1;
+    let g2 = mtt * &der.d2;
+    let mut s_th = Mat::<f64>::zeros(n, 2);
+    for (i, x) in fe.nodes.iter().enumerate() {
+        // η = ŷ: η × s = (z, 0, −x); η × (η × s) = (−x, 0, −z)
+        s_th[(3 * i, 0)] = x[2];
+        s_th[(3 * i + 2, 0)] = -x[0];
+        s_th[(3 * i, 1)] = -x[0];
+        s_th[(3 * i + 2, 1)] = -x[2];
+    }
+    let ms = mtt * &s_th;
+    let mut kt_full = Mat::<f64>::zeros(n, nz);
+    sparse_dense_matmul(
+        kt_full.as_mut(),
+        Accum::Replace,
+        fe.stiffness.as_ref(),
+        t.as_ref(),
+        1.0,
+        Par::rayon(0),
+    );
+    let k_z = sym(t.transpose() * &kt_full);
+    let mut ktd = Mat::<f64>::zeros(n, nz);
+    sparse_dense_matmul(
+        ktd.as_mut(),
+        Accum::Replace,
+        fe.stiffness.as_ref(),
+        der.d1.as_ref(),
+        1.0,
+        Par::rayon(0),
+    );
+    let k1 = t.transpose() * &ktd;
+    let rim_sum = |a: &Mat<f64>| {
+        let mut f = Mat::<f64>::zeros(3, nz);
+        let mut mo = Mat::<f64>::zeros(3, nz);
+        for &r in &fe.rim {
+            let s = fe.nodes[r];
+            for j in 0..nz {
+                let v = [a[(3 * r, j)], a[(3 * r + 1, j)], a[(3 * r + 2, j)]];
+                for c in 0..3 {
+                    f[(c, j)] += v[c];
+                }
+                mo[(0, j)] += s[1] * v[2] - s[2] * v[1];
+                mo[(1, j)] += s[2] * v[0] - s[0] * v[2];
+                mo[(2, j)] += s[0] * v[1] - s[1] * v[0];
+            }
+        }
+        (f, mo)
+    };
+    let (kr, kt) = rim_sum(&kt_full);
+    let (kr1, kt1) = rim_sum(&ktd);
+    let tc = Mat::from_fn(nc3, nz, |i, j| t[(part.c[i], j)]);
+    let tc_theta = Mat::from_fn(nc3, nz, |i, j| der.d1[(part.c[i], j)]);
+    tim.projection_s = ts.elapsed().as_secs_f64();
+
+    let rim = fe.rim_mask();
+    let mut tire_mass = 0.0;
+    let mut rim_mass = 0.0;
+    let mut rim_j = 0.0;
+    for (i, x) in fe.nodes.iter().enumerate() {
+        let m = fe.mass[3 * i];
+        if rim[i] {
+            rim_mass += m;
+            rim_j += m * (x[0] * x[0] + x[2] * x[2]);
+        } else {
+            tire_mass += m;
+        }
+    }
+    let contact_positions: Vec<[f64; 3]> = contact.iter().map(|&i| fe.nodes[i]).collect();
+    let outer_radius = contact_positions
+        .iter()
+        .map(|x| (x[0] * x[0] + x[2] * x[2]).sqrt())
+        .fold(0.0, f64::max);
+    tim.total_s = t0.elapsed().as_secs_f64();
+    Ok((
+        ReducedTire {
+            n_free_modes: nfm,
+            contact_nodes: contact,
+            contact_positions,
+            free_mode_hz: fmodes.frequencies_hz.clone(),
+            contact_mode_hz: cmodes.frequencies_hz.clone(),
+            tire_mass,
+            rim_mass,
+            rim_spin_inertia: rim_j,
+            outer_radius,
+            derivative: cfg.derivative,
+            m: m_z,
+            k: k_z,
+            g1,
+            g2,
+            k1,
+            m_theta: (0..nz).map(|j| ms[(j, 0)]).collect(),
+            c_s: (0..nz).map(|j| ms[(j, 1)]).collect(),
+            kr,
+            kr1,
+            kt,
+            kt1,
+            tc,
+            tc_theta,
+        },
+        tim,
+    ))
+}
+
+/// Eigenfrequencies of the full FE tire with the rim fixed, `K φ = ω² M φ` on all non-rim DOFs
+/// [Hz] (the reference of the reduction tests; dense, small models only).
+pub fn full_frequencies_hz(fe: &TireFe, count: usize) -> Result<Vec<f64>, TireError> {
+    let rim = fe.rim_mask();
+    let dofs: Vec<usize> = (0..fe.n_dofs()).filter(|d| !rim[d / 3]).collect();
+    Ok(lowest_modes(fe, &dofs, count, "full tire modes")?.frequencies_hz)
+}

@@ -1,0 +1,279 @@
+//! The reduced tire of Ribaric §8.2: the projected matrices of the flowing-material modal form
+//! (7.17), saved as a versioned JSON file and reused by every simulation.
+//!
+//! Basis (7.11): `δ = T z`, `z = [z^f; z^c]`, `T = [Ψ^f  Ψ_s Ψ^c; 0  Ψ^c]` on the tire DOFs
+//! (rim DOFs carry no deflection). With the lumped mass `M`, stiffness `K`, the circumferential
+//! derivatives `T_,θ`, `T_,θθ` (App. A, per Cartesian component along each ring), the rigid
+//! rotation fields `s_,θ = η × s` and `s_,θθ = η × (η × s)` the stored matrices are
+//!
+//! ```text
+//!   M_z = TᵀMT,  K_z = TᵀKT,  G₁ = TᵀMT_,θ,  G₂ = TᵀMT_,θθ,  K₁ = TᵀKT_,θ,
+//!   m_θ = TᵀM s_,θ,  c_s = TᵀM s_,θθ,
+//!   K_r = Σ_rim K_{rim,·} T,  K_θ = Σ_rim s̃ K_{rim,·} T  (and the same with T_,θ)   (7.2)
+//! ```
+//! plus the contact-node rows `T_c`, `T_c,θ` and the undeformed contact-node positions `s^c`.
+
+use super::error::{TireError, invalid};
+use crate::derivative::DerivativeMethod;
+use faer::Mat;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// File format name of a saved reduced tire.
+pub const FORMAT: &str = "flowmbd-reduced-tire";
+/// Current file format version.
+pub const VERSION: u32 = 1;
+
+/// The reduced flowing-material tire (see the module documentation for the definitions).
+#[derive(Debug, Clone)]
+pub struct ReducedTire {
+    /// Number of kept free-node modes `n_f`.
+    pub n_free_modes: usize,
+    /// FE node index of each contact node (c-node), in `z^c` order.
+    pub contact_nodes: Vec<usize>,
+    /// Undeformed contact-node positions `s^c` in the wheel frame [m].
+    pub contact_positions: Vec<[f64; 3]>,
+    /// Frequencies of the kept free-node modes (contact and rim nodes fixed) [Hz].
+    pub free_mode_hz: Vec<f64>,
+    /// Frequencies of the contact-node modes (free and rim nodes fixed) [Hz].
+    pub contact_mode_hz: Vec<f64>,
+    /// Tire mass without the rim nodes [kg].
+    pub tire_mass: f64,
+    /// Mass of the rim nodes (added to the wheel) [kg].
+    pub rim_mass: f64,
+    /// Spin inertia of the rim nodes about the wheel axis (added to the wheel) [kg·m²].
+    pub rim_spin_inertia: f64,
+    /// Unloaded outer radius of the contact nodes (largest `ρ`) [m].
+    pub outer_radius: f64,
+    /// Derivative method used for `T_,θ`, `T_,θθ`.
+    pub derivative: DerivativeMethod,
+    /// `M_z = TᵀMT` [kg].
+    pub m: Mat<f64>,
+    /// `K_z = TᵀKT` [N/m].
+    pub k: Mat<f64>,
+    /// `G₁ = TᵀMT_,θ` [kg/rad].
+    pub g1: Mat<f64>,
+    /// `G₂ = TᵀMT_,θθ` [kg/rad²].
+    pub g2: Mat<f64>,
+    /// `K₁ = TᵀKT_,θ` [N/(m·rad)].
+    pub k1: Mat<f64>,
+    /// `m_θ = TᵀM s_,θ` [kg·m/rad].
+    pub m_theta: Vec<f64>,
+    /// `c_s = TᵀM s_,θθ` [kg·m/rad²].
+    pub c_s: Vec<f64>,
+    /// Rim force per coordinate `K_r = Σ_rim K T` (3 × n_z) [N/m], Ribaric (7.2).
+    pub kr: Mat<f64>,
+    /// `Σ_rim K T_,θ` (3 × n_z).
+    pub kr1: Mat<f64>,
+    /// Rim moment per coordinate `K_θ = Σ_rim s̃ K T` (3 × n_z) [N], Ribaric (7.2).
+    pub kt: Mat<f64>,
+    /// `Σ_rim s̃ K T_,θ` (3 × n_z).
+    pub kt1: Mat<f64>,
+    /// Contact-node rows of `T` (3 n_c × n_z).
+    pub tc: Mat<f64>,
+    /// Contact-node rows of `T_,θ` (3 n_c × n_z) [1/rad].
+    pub tc_theta: Mat<f64>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Dense {
+    rows: usize,
+    cols: usize,
+    data: Vec<f64>,
+}
+
+impl Dense {
+    fn from(m: &Mat<f64>) -> Self {
+        let mut data = Vec::with_capacity(m.nrows() * m.ncols());
+        for j in 0..m.ncols() {
+            for i in 0..m.nrows() {
+                data.push(m[(i, j)]);
+            }
+        }
+        Self {
+            rows: m.nrows(),
+            cols: m.ncols(),
+            data,
+        }
+    }
+    fn to(&self, name: &str, rows: usize, cols: usize) -> Result<Mat<f64>, TireError> {
+        if self.rows != rows || self.cols != cols || self.data.len() != rows * cols {
+            return Err(invalid(
+                format!("reduced tire field `{name}`"),
+                format!(
+                    "is {}×{} with {} values, expected {rows}×{cols}",
+                    self.rows,
+                    self.cols,
+                    self.data.len()
+                ),
+            ));
+        }
+        Ok(Mat::from_fn(rows, cols, |i, j| self.data[j * rows + i]))
+    }
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileV1 {
+    format: String,
+    version: u32,
+    n_free_modes: usize,
+    contact_nodes: Vec<usize>,
+    contact_positions: Vec<[f64; 3]>,
+    free_mode_hz: Vec<f64>,
+    contact_mode_hz: Vec<f64>,
+    tire_mass: f64,
+    rim_mass: f64,
+    rim_spin_inertia: f64,
+    outer_radius: f64,
+    derivative: DerivativeMethod,
+    m: Dense,
+    k: Dense,
+    g1: Dense,
+    g2: Dense,
+    k1: Dense,
+    m_theta: Vec<f64>,
+    c_s: Vec<f64>,
+    kr: Dense,
+    kr1: Dense,
+    kt: Dense,
+    kt1: Dense,
+    tc: Dense,
+    tc_theta: Dense,
+}
+
+impl ReducedTire {
+    /// Number of contact nodes `n_c`.
+    pub fn n_contact(&self) -> usize {
+        self.contact_nodes.len()
+    }
+
+    /// Number of tire coordinates `n_z = n_f + 3 n_c`.
+    pub fn n_z(&self) -> usize {
+        self.m.nrows()
+    }
+
+    /// Number of DOF of the wheel–tire model: 6 wheel DOF + `n_z` (Ribaric §8.2: 6 + 285 + 50 =
+    /// 341).
+    pub fn dof(&self) -> usize {
+        6 + self.n_z()
+    }
+
+    /// Eigenfrequencies of the reduced tire with the wheel fixed, not rolling: `K_z φ = ω² M_z φ`
+    /// [Hz], ascending.
+    pub fn frequencies_hz(&self) -> Result<Vec<f64>, TireError> {
+        let modes = fe_model::dense_modes(self.k.as_ref(), self.m.as_ref(), self.n_z())?;
+        Ok(modes.frequencies_hz)
+    }
+
+    /// Serialise to the versioned JSON text.
+    pub fn to_json(&self) -> Result<String, TireError> {
+        let f = FileV1 {
+            format: FORMAT.into(),
+            version: VERSION,
+            n_free_modes: self.n_free_modes,
+            contact_nodes: self.contact_nodes.clone(),
+            contact_positions: self.contact_positions.clone(),
+            free_mode_hz: self.free_mode_hz.clone(),
+            contact_mode_hz: self.contact_mode_hz.clone(),
+            tire_mass: self.tire_mass,
+            rim_mass: self.rim_mass,
+            rim_spin_inertia: self.rim_spin_inertia,
+            outer_radius: self.outer_radius,
+            derivative: self.derivative,
+            m: Dense::from(&self.m),
+            k: Dense::from(&self.k),
+            g1: Dense::from(&self.g1),
+            g2: Dense::from(&self.g2),
+            k1: Dense::from(&self.k1),
+            m_theta: self.m_theta.clone(),
+            c_s: self.c_s.clone(),
+            kr: Dense::from(&self.kr),
+            kr1: Dense::from(&self.kr1),
+            kt: Dense::from(&self.kt),
+            kt1: Dense::from(&self.kt1),
+            tc: Dense::from(&self.tc),
+            tc_theta: Dense::from(&self.tc_theta),
+        };
+        serde_json::to_string(&f).map_err(|e| invalid("reduced tire", e.to_string()))
+    }
+
+    /// Parse the versioned JSON text; `origin` names the source in errors.
+    pub fn from_json(text: &str, origin: &str) -> Result<Self, TireError> {
+        let file_err = |reason: String| TireError::File {
+            path: origin.to_string(),
+            reason,
+        };
+        let head: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| file_err(format!("not JSON: {e}")))?;
+        let format = head.get("format").and_then(|v| v.as_str()).unwrap_or("");
+        if format != FORMAT {
+            return Err(file_err(format!(
+                "field `format` is `{format}`, expected `{FORMAT}`"
+            )));
+        }
+        let version = head.get("version").and_then(|v| v.as_u64()).unwrap_or(0);
+        if version != u64::from(VERSION) {
+            return Err(file_err(format!(
+                "field `version` is {version}; this build reads version {VERSION}"
+            )));
+        }
+        let f: FileV1 = serde_json::from_value(head).map_err(|e| file_err(e.to_string()))?;
+        let nc = f.contact_nodes.len();
+        let nz = f.m.rows;
+        if nz != f.n_free_modes + 3 * nc {
+            return Err(file_err(format!(
+                "{nz} coordinates but n_free_modes + 3·contact nodes = {}",
+                f.n_free_modes + 3 * nc
+            )));
+        }
+        if f.contact_positions.len() != nc || f.m_theta.len() != nz || f.c_s.len() != nz {
+            return Err(file_err("inconsistent vector lengths".into()));
+        }
+        let sq = |d: &Dense, n: &str| d.to(n, nz, nz);
+        Ok(Self {
+            n_free_modes: f.n_free_modes,
+            contact_positions: f.contact_positions,
+            free_mode_hz: f.free_mode_hz,
+            contact_mode_hz: f.contact_mode_hz,
+            tire_mass: f.tire_mass,
+            rim_mass: f.rim_mass,
+            rim_spin_inertia: f.rim_spin_inertia,
+            outer_radius: f.outer_radius,
+            derivative: f.derivative,
+            m: sq(&f.m, "m")?,
+            k: sq(&f.k, "k")?,
+            g1: sq(&f.g1, "g1")?,
+            g2: sq(&f.g2, "g2")?,
+            k1: sq(&f.k1, "k1")?,
+            m_theta: f.m_theta,
+            c_s: f.c_s,
+            kr: f.kr.to("kr", 3, nz)?,
+            kr1: f.kr1.to("kr1", 3, nz)?,
+            kt: f.kt.to("kt", 3, nz)?,
+            kt1: f.kt1.to("kt1", 3, nz)?,
+            tc: f.tc.to("tc", 3 * nc, nz)?,
+            tc_theta: f.tc_theta.to("tc_theta", 3 * nc, nz)?,
+            contact_nodes: f.contact_nodes,
+        })
+    }
+
+    /// Save to `path` (JSON).
+    pub fn save(&self, path: &Path) -> Result<(), TireError> {
+        let text = self.to_json()?;
+        std::fs::write(path, text).map_err(|e| TireError::File {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })
+    }
+
+    /// Load from `path`.
+    pub fn load(path: &Path) -> Result<Self, TireError> {
+        let text = std::fs::read_to_string(path).map_err(|e| TireError::File {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })?;
+        Self::from_json(&text, &path.display().to_string())
+    }
+}
