@@ -305,7 +305,7 @@ impl BeltDrive {
         for el in 0..self.mesh.elements().len() {
             self.mesh.gather(q, el, &mut e);
             let mut gathered_v = false;
-            for p in 0..self.spec.pulleys.len() {
+            for (p, &omega) in omegas.iter().enumerate() {
                 if !self.may_touch(&e, p) {
                     continue;
                 }
@@ -313,7 +313,7 @@ impl BeltDrive {
                     self.mesh.gather(v, el, &mut ed);
                     gathered_v = true;
                 }
-                let disk = self.disk(p, omegas[p]);
+                let disk = self.disk(p, omega);
                 let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
                 self.line.element_on(
                     &disk,
@@ -400,12 +400,12 @@ impl BeltDrive {
         for el in 0..self.mesh.elements().len() {
             self.mesh.gather(q, el, &mut e);
             self.mesh.gather(v, el, &mut ed);
-            for p in 0..self.spec.pulleys.len() {
+            for (p, &omega) in omegas.iter().enumerate() {
                 if !self.may_touch(&e, p) {
                     continue;
                 }
                 recs.clear();
-                let disk = self.disk(p, omegas[p]);
+                let disk = self.disk(p, omega);
                 self.line.element_on(
                     &disk,
                     l,
