@@ -189,9 +189,10 @@ mod tests {
         let n = [0.6f64, 0.8];
         let d = [0.1 + 0.0499 * n[0], -0.02 + 0.0499 * n[1]];
         let t = [n[1], -n[0]];
-        let c = eval(d, [3.0 * t[0], 3.0 * t[1]], 3.0 / 0.05);
+        // the pulley point under the node (radius 0.0499 m) moves at ω r
+        let c = eval(d, [3.0 * t[0], 3.0 * t[1]], 3.0 / 0.0499);
         assert!(c.friction.abs() < 1e-9 && c.normal > 0.0);
-        let fast = eval(d, [3.1 * t[0], 3.1 * t[1]], 3.0 / 0.05);
+        let fast = eval(d, [3.1 * t[0], 3.1 * t[1]], 3.0 / 0.0499);
         assert!(fast.friction < 0.0 && fast.torque > 0.0);
         let open = eval([0.1 + 0.06, -0.02], [0.0, 0.0], 0.0);
         assert_eq!(open.force, [0.0, 0.0]);
