@@ -115,7 +115,7 @@ impl Assembler {
             slices.push(a);
             rest = b;
         }
-        let fill = |(el, out): (&Box<dyn Element>, &mut &mut [f64])| -> Result<(), usize> {
+        let fill = |(el, out): (&dyn Element, &mut &mut [f64])| -> Result<(), usize> {
             let nd = el.dofs().len();
             if let Some(m) = el.matrix(kind) {
                 if m.nrows() != nd || m.ncols() != nd {
@@ -142,10 +142,10 @@ impl Assembler {
                 .par_iter()
                 .zip(slices.par_iter_mut())
                 .enumerate()
-                .try_for_each(|(e, pair)| check(fill(pair), e))?;
+                .try_for_each(|(e, (el, out))| check(fill((el.as_ref(), out)), e))?;
         } else {
-            for (e, pair) in elements.iter().zip(slices.iter_mut()).enumerate() {
-                check(fill(pair), e)?;
+            for (e, (el, out)) in elements.iter().zip(slices.iter_mut()).enumerate() {
+                check(fill((el.as_ref(), out)), e)?;
             }
         }
         let mut a = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &values)

@@ -6,6 +6,9 @@ use crate::element::{Element, MassKind, MatrixKind};
 use crate::mesh::Mesh;
 use faer::sparse::SparseColMat;
 
+/// Sparse global matrix type.
+type SpMat = SparseColMat<usize, f64>;
+
 /// Mesh and elements. Element DOFs are global DOFs of the mesh numbering.
 #[derive(Debug)]
 pub struct FeModel {
@@ -60,11 +63,7 @@ impl FeModel {
     }
 
     /// Global matrices (K, M) with one shared pattern; `with_geometric` adds K_G to K.
-    pub fn k_and_m(
-        &self,
-        mass: MassKind,
-        with_geometric: bool,
-    ) -> Result<(SparseColMat<usize, f64>, SparseColMat<usize, f64>), FeError> {
+    pub fn k_and_m(&self, mass: MassKind, with_geometric: bool) -> Result<(SpMat, SpMat), FeError> {
         let asm = self.assembler()?;
         let mut k = asm.assemble(&self.elements, MatrixKind::Stiffness)?;
         if with_geometric {

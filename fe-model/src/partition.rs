@@ -110,6 +110,30 @@ impl DofPartition {
         out
     }
 
+    /// Keep the selected (fixed) DOFs in a full-size matrix instead of eliminating them: their
+    /// rows and columns are zeroed and `diag` is put on their diagonal (e.g. 1 in K and 0 in a
+    /// static solve's load, so that `u_fixed = 0`). The matrix keeps its size and numbering.
+    pub fn keep_fixed(
+        &self,
+        a: SparseColMatRef<'_, usize, f64>,
+        diag: f64,
+    ) -> Result<SparseColMat<usize, f64>, FeError> {
+        self.check(a.nrows(), a.ncols())?;
+        let mut t = Vec::with_capacity(a.compute_nnz());
+        for (r, c, v) in crate::sparse::triplets(a) {
+            let fr = self.slot[r].is_ok();
+            let fc = self.slot[c].is_ok();
+            if !fr && !fc {
+                t.push(faer::sparse::Triplet::new(r, c, v));
+            }
+        }
+        for &d in &self.a {
+            t.push(faer::sparse::Triplet::new(d, d, diag));
+        }
+        SparseColMat::try_new_from_triplets(self.n, self.n, &t)
+            .map_err(|e| FeError::Sparse(format!("keep_fixed: {e:?}")))
+    }
+
     fn set(&self, selected: bool) -> &[usize] {
         if selected { &self.a } else { &self.b }
     }
@@ -123,5 +147,41 @@ impl DofPartition {
             });
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Eliminated and kept fixed DOFs give the same static solution (the kept system is the
+    /// eliminated one plus decoupled identity rows).
+    #[test]
+    fn eliminated_and_kept_agree() {
+        use faer::linalg::solvers::Solve;
+        let n = 6;
+        let k = Mat::from_fn(n, n, |i, j| {
+            if i == j {
+                4.0
+            } else if i.abs_diff(j) == 1 {
+                -1.0
+            } else {
+                0.0
+            }
+        });
+        let ks = crate::sparse::from_dense(k.as_ref(), 0.0).unwrap();
+        let p = DofPartition::fixed(n, &[0, 4]).unwrap();
+        assert_eq!(p.rest(), &[1, 2, 3, 5]);
+        let kff = p.dense_block(k.as_ref(), false, false).unwrap();
+        let f = Mat::from_fn(4, 1, |i, _| 1.0 + i as f64);
+        let uf = kff.partial_piv_lu().solve(&f);
+        let kept = p.keep_fixed(ks.as_ref(), 1.0).unwrap().to_dense();
+        let ff = p.expand_rest(f.as_ref(), 0.0);
+        let u = kept.partial_piv_lu().solve(&ff);
+        let ue = p.expand_rest(uf.as_ref(), 0.0);
+        for i in 0..n {
+            assert!((u[(i, 0)] - ue[(i, 0)]).abs() < 1e-14);
+        }
+        assert!(DofPartition::fixed(3, &[5]).is_err());
     }
 }

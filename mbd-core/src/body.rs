@@ -10,12 +10,12 @@ use nalgebra::{Matrix3, SMatrix, Vector3, Vector4};
 /// means the ground (inertial frame).
 pub type BodyId = usize;
 
-/// A rigid body: mass [kg] and inertia tensor about the mass centre in the body frame [kg·m²].
+/// A rigid body: mass \[kg\] and inertia tensor about the mass centre in the body frame [kg·m²].
 #[derive(Debug, Clone, PartialEq)]
 pub struct RigidBody {
     /// Name used in messages and output.
     pub name: String,
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass: f64,
     /// Body-frame inertia about the mass centre `J'` [kg·m²] (Lin (2.26)).
     pub inertia: Matrix3<f64>,
@@ -78,11 +78,11 @@ impl RigidBody {
     }
 }
 
-/// State of one body: position of the mass centre `r` [m], Euler parameters `p`, velocity `ṙ`
+/// State of one body: position of the mass centre `r` \[m\], Euler parameters `p`, velocity `ṙ`
 /// [m/s] and body-frame angular velocity `ω'` [rad/s].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyState {
-    /// Mass-centre position [m].
+    /// Mass-centre position \[m\].
     pub r: Vector3<f64>,
     /// Euler parameters (unit).
     pub p: Vector4<f64>,
@@ -128,7 +128,7 @@ pub type Jac3x6 = SMatrix<f64, 3, 6>;
 /// Kinematic quantities of one body used by constraints and force elements.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyKin {
-    /// Mass-centre position [m].
+    /// Mass-centre position \[m\].
     pub r: Vector3<f64>,
     /// Euler parameters.
     pub p: Vector4<f64>,

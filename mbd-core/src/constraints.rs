@@ -40,7 +40,7 @@ pub trait Constraint: Send + Sync {
     fn n_eq(&self) -> usize;
     /// The two bodies (`None` = ground).
     fn bodies(&self) -> [Option<BodyId>; 2];
-    /// Appends the `n_eq` equations at time `t` [s] for the kinematics of the two bodies.
+    /// Appends the `n_eq` equations at time `t` \[s\] for the kinematics of the two bodies.
     fn eval(&self, t: f64, ki: &BodyKin, kj: &BodyKin, out: &mut Vec<Equation>);
     /// Checks the parameters (called when the constraint is added to a system).
     fn validate(&self) -> Result<(), MbdError> {
@@ -85,13 +85,13 @@ fn check_attachments(name: &str, i: &Attachment, j: &Attachment) -> Result<(), M
     check_vec(name, "j.axis", &j.axis, true)
 }
 
-/// A joint frame on a body: a point `s'` [m] and a unit axis `a'` in body coordinates (for the
+/// A joint frame on a body: a point `s'` \[m\] and a unit axis `a'` in body coordinates (for the
 /// ground: global coordinates).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Attachment {
     /// Body (`None` = ground).
     pub body: Option<BodyId>,
-    /// Point in body coordinates [m].
+    /// Point in body coordinates \[m\].
     pub point: Vector3<f64>,
     /// Unit axis in body coordinates.
     pub axis: Vector3<f64>,
@@ -326,7 +326,7 @@ pub struct Distance {
     pub i: Attachment,
     /// Point on body j.
     pub j: Attachment,
-    /// Distance L [m].
+    /// Distance L \[m\].
     pub length: f64,
 }
 
@@ -411,29 +411,29 @@ impl Constraint for PlanarRevolute {
 /// Prescribed angle of a rotation driver as a function of time.
 #[derive(Clone)]
 pub enum DriverLaw {
-    /// `θ = θ₀ + ω t` [rad], ω [rad/s].
+    /// `θ = θ₀ + ω t` \[rad\], ω [rad/s].
     ConstantSpeed {
-        /// Initial angle [rad].
+        /// Initial angle \[rad\].
         theta0: f64,
         /// Angular speed [rad/s].
         omega: f64,
     },
-    /// Smooth start to speed ω [rad/s] over `ramp` [s] (cubic speed ramp
+    /// Smooth start to speed ω [rad/s] over `ramp` \[s\] (cubic speed ramp
     /// `ω(t) = ω (3τ² − 2τ³)`, τ = t/ramp), then constant speed.
     SpeedRamp {
-        /// Initial angle [rad].
+        /// Initial angle \[rad\].
         theta0: f64,
         /// Final angular speed [rad/s].
         omega: f64,
-        /// Ramp duration [s].
+        /// Ramp duration \[s\].
         ramp: f64,
     },
     /// Piecewise-linear angular speed through the points `(times[k], speeds[k])` [s, rad/s]
     /// (constant before the first and after the last point); θ is its exact integral.
     SpeedTable {
-        /// Angle at t = 0 [rad].
+        /// Angle at t = 0 \[rad\].
         theta0: f64,
-        /// Strictly increasing times [s].
+        /// Strictly increasing times \[s\].
         times: Vec<f64>,
         /// Angular speeds [rad/s].
         speeds: Vec<f64>,
@@ -472,7 +472,7 @@ impl std::fmt::Debug for DriverLaw {
 }
 
 impl DriverLaw {
-    /// `(θ, θ̇, θ̈)` at time `t` [s].
+    /// `(θ, θ̇, θ̈)` at time `t` \[s\].
     pub fn eval(&self, t: f64) -> (f64, f64, f64) {
         match self {
             DriverLaw::ConstantSpeed { theta0, omega } => (theta0 + omega * t, *omega, 0.0),

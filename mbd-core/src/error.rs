@@ -21,13 +21,13 @@ pub enum MbdError {
     NonFinite {
         /// Which quantity (e.g. `velocity of body "rod"`).
         what: String,
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         t: f64,
     },
     /// The augmented (KKT) or Newton matrix is singular, e.g. redundant constraints.
     #[error("singular system matrix at t = {t} s: {detail}")]
     Singular {
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         t: f64,
         /// Which constraints or DOFs are suspected.
         detail: String,
@@ -37,7 +37,7 @@ pub enum MbdError {
         "Newton iteration did not converge at t = {t} s after {iterations} iterations (residual {residual:e})"
     )]
     NoConvergence {
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         t: f64,
         /// Iterations performed.
         iterations: usize,
@@ -47,9 +47,9 @@ pub enum MbdError {
     /// The adaptive step size fell below its minimum.
     #[error("step size underflow at t = {t} s (h = {h:e} s)")]
     StepSizeUnderflow {
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         t: f64,
-        /// Rejected step size [s].
+        /// Rejected step size \[s\].
         h: f64,
     },
     /// Writing output failed.
@@ -63,7 +63,7 @@ pub enum MbdError {
     /// A model (implementor of [`crate::SecondOrderSystem`]) reported a failure.
     #[error("model error at t = {t} s: {message}")]
     Model {
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         t: f64,
         /// The model's message.
         message: String,

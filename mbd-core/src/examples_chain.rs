@@ -7,7 +7,7 @@ use crate::integrators::State;
 use crate::{MbdError, MultibodySystem, RigidBody};
 use nalgebra::{Vector3, Vector4};
 
-/// A hanging chain of `n` slender links (length `link` [m], mass 1 kg each) joined by
+/// A hanging chain of `n` slender links (length `link` \[m\], mass 1 kg each) joined by
 /// spherical joints, the first one to the ground at the origin, under gravity −z. Initially
 /// straight, tilted by 0.3 rad from the vertical about x, at rest. `(system, initial state)`.
 pub fn spherical_chain(n: usize, link: f64) -> Result<(MultibodySystem, State), MbdError> {

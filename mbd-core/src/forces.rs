@@ -18,9 +18,9 @@ pub trait ForceElement: Send + Sync {
     fn name(&self) -> &str;
     /// Bodies it acts on (`None` = ground), used for validation.
     fn bodies(&self) -> Vec<Option<BodyId>>;
-    /// Adds the generalized forces at time `t` [s] into `f` (length `6 N`).
+    /// Adds the generalized forces at time `t` \[s\] into `f` (length `6 N`).
     fn apply(&self, t: f64, bodies: &[RigidBody], kin: &[BodyKin], f: &mut [f64]);
-    /// Potential energy [J] (0 for non-conservative elements).
+    /// Potential energy \[J\] (0 for non-conservative elements).
     fn potential_energy(&self, _bodies: &[RigidBody], _kin: &[BodyKin]) -> f64 {
         0.0
     }
@@ -49,7 +49,7 @@ fn check_params(name: &str, params: &[(&str, f64, bool)]) -> Result<(), MbdError
     Ok(())
 }
 
-/// Adds the global force `force` [N] acting at body point `s'` of body `b` to `f`.
+/// Adds the global force `force` \[N\] acting at body point `s'` of body `b` to `f`.
 pub fn add_point_force(
     f: &mut [f64],
     b: BodyId,
@@ -111,7 +111,7 @@ impl ForceElement for Gravity {
     }
 }
 
-/// Translational spring-damper between two points: tension `F = k (L − L₀) + c L̇` [N] along
+/// Translational spring-damper between two points: tension `F = k (L − L₀) + c L̇` \[N\] along
 /// the line of the points.
 #[derive(Debug, Clone)]
 pub struct SpringDamper {
@@ -125,7 +125,7 @@ pub struct SpringDamper {
     pub stiffness: f64,
     /// Damping c [N·s/m].
     pub damping: f64,
-    /// Free length L₀ [m].
+    /// Free length L₀ \[m\].
     pub free_length: f64,
 }
 
@@ -191,12 +191,12 @@ pub struct RotationalSpringDamper {
     pub stiffness: f64,
     /// Damping [N·m·s/rad].
     pub damping: f64,
-    /// Free angle θ₀ [rad].
+    /// Free angle θ₀ \[rad\].
     pub free_angle: f64,
 }
 
 impl RotationalSpringDamper {
-    /// Angle θ [rad], rate θ̇ [rad/s] and `∂θ̇/∂v` of bodies i and j.
+    /// Angle θ \[rad\], rate θ̇ [rad/s] and `∂θ̇/∂v` of bodies i and j.
     fn angle(&self, ki: &BodyKin, kj: &BodyKin) -> (f64, f64, [f64; 6], [f64; 6]) {
         let a = self.i.axis;
         let xi = (self.reference_i - a * a.dot(&self.reference_i)).normalize();
@@ -265,7 +265,7 @@ impl ForceElement for RotationalSpringDamper {
     }
 }
 
-/// Function of time and body kinematics returning a global vector (force [N] or torque [N·m]).
+/// Function of time and body kinematics returning a global vector (force \[N\] or torque [N·m]).
 pub type VectorLaw = Arc<dyn Fn(f64, &BodyKin) -> Vector3<f64> + Send + Sync>;
 
 /// Applied global force at a body point, a function of time and the body's state.
@@ -275,9 +275,9 @@ pub struct AppliedForce {
     pub name: String,
     /// Body.
     pub body: BodyId,
-    /// Application point in body coordinates [m].
+    /// Application point in body coordinates \[m\].
     pub point: Vector3<f64>,
-    /// `(t, kinematics) ↦ force` [N], global.
+    /// `(t, kinematics) ↦ force` \[N\], global.
     pub law: VectorLaw,
 }
 

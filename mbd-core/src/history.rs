@@ -7,7 +7,7 @@ use std::path::Path;
 
 /// A probe: a named scalar function of the state.
 pub struct Probe<'a> {
-    /// Column name (with unit, e.g. `"slider x [m]"`).
+    /// Column name (with unit, e.g. `"slider x \[m\]"`).
     pub name: String,
     /// The quantity.
     pub f: Box<dyn Fn(&State) -> f64 + 'a>,
@@ -23,13 +23,13 @@ impl<'a> Probe<'a> {
     }
 }
 
-/// Recorded time history: a time column `t [s]` and one column per probe.
+/// Recorded time history: a time column `t \[s\]` and one column per probe.
 pub struct History<'a> {
     probes: Vec<Probe<'a>>,
     /// Record every `every`-th observed state (1 = all).
     pub every: usize,
     seen: usize,
-    /// Times [s].
+    /// Times \[s\].
     pub t: Vec<f64>,
     /// Rows of probe values (same order as the probes).
     pub rows: Vec<Vec<f64>>,
@@ -69,7 +69,7 @@ impl<'a> History<'a> {
         Some(self.rows.iter().map(|r| r[k]).collect())
     }
 
-    /// Writes the history as CSV (header `t [s]`, probe names; full precision).
+    /// Writes the history as CSV (header `t \[s\]`, probe names; full precision).
     pub fn write_csv<W: Write>(&self, w: W, label: &str) -> Result<(), MbdError> {
         let io = |e: csv::Error| MbdError::Io {
             path: label.into(),

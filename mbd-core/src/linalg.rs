@@ -16,7 +16,7 @@ use crate::{MbdError, SysMatrix};
 use faer::Mat;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, Triplet};
 
 impl SysMatrix {
     /// `y = A x` (overwrites `y`).
@@ -128,6 +128,13 @@ enum Factor {
     Sparse(Lu<usize, f64>),
 }
 
+/// Cached assembly order (triplet indices → CSC) of the last sparse matrix.
+struct AssemblyCache {
+    indices: Vec<(usize, usize)>,
+    symbolic: SymbolicSparseColMat<usize>,
+    argsort: Argsort<usize>,
+}
+
 /// Cached sparse symbolic analysis together with the pattern it was computed for.
 struct SymbolicCache {
     col_ptr: Vec<usize>,
@@ -143,6 +150,7 @@ struct SymbolicCache {
 pub struct KktSolver {
     factor: Option<Factor>,
     cache: Option<SymbolicCache>,
+    assembly: Option<AssemblyCache>,
     n: usize,
     n_c: usize,
     /// Number of numeric factorisations performed.
@@ -166,6 +174,7 @@ impl KktSolver {
         Self {
             factor: None,
             cache: None,
+            assembly: None,
             n: 0,
             n_c: 0,
             factorizations: 0,
@@ -292,12 +301,7 @@ impl KktSolver {
                     t,
                 });
             }
-            let a = SparseColMat::<usize, f64>::try_new_from_triplets(dim, dim, &trip).map_err(
-                |e| MbdError::Model {
-                    t,
-                    message: format!("sparse assembly failed: {e:?}"),
-                },
-            )?;
+            let a = self.assemble(dim, &trip, t)?;
             let same = self.cache.as_ref().is_some_and(|c| {
                 c.col_ptr == a.symbolic().col_ptr() && c.row_idx == a.symbolic().row_idx()
             });
@@ -331,6 +335,46 @@ impl KktSolver {
         }
         self.factorizations += 1;
         Ok(())
+    }
+
+    /// CSC matrix from triplets, reusing the sorting of the previous call when the triplet
+    /// indices are identical (same model, new values).
+    fn assemble(
+        &mut self,
+        dim: usize,
+        trip: &[Triplet<usize, usize, f64>],
+        t: f64,
+    ) -> Result<SparseColMat<usize, f64>, MbdError> {
+        let err = |e: String| MbdError::Model {
+            t,
+            message: format!("sparse assembly failed: {e}"),
+        };
+        let same = self.assembly.as_ref().is_some_and(|c| {
+            c.symbolic.nrows() == dim
+                && c.indices.len() == trip.len()
+                && c.indices
+                    .iter()
+                    .zip(trip)
+                    .all(|(&(r, cc), tr)| r == tr.row && cc == tr.col)
+        });
+        if !same {
+            let pairs: Vec<Pair<usize, usize>> =
+                trip.iter().map(|tr| Pair::new(tr.row, tr.col)).collect();
+            let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)
+                .map_err(|e| err(format!("{e:?}")))?;
+            self.assembly = Some(AssemblyCache {
+                indices: trip.iter().map(|tr| (tr.row, tr.col)).collect(),
+                symbolic,
+                argsort,
+            });
+        }
+        let c = self
+            .assembly
+            .as_ref()
+            .ok_or_else(|| err("missing assembly cache".into()))?;
+        let vals: Vec<f64> = trip.iter().map(|tr| tr.val).collect();
+        SparseColMat::new_from_argsort(c.symbolic.clone(), &c.argsort, &vals)
+            .map_err(|e| err(format!("{e:?}")))
     }
 
     /// Solves with the current factorisation: `rhs` holds `[b; c]` on input (length

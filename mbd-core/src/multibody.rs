@@ -22,7 +22,7 @@ use nalgebra::Vector3;
 /// Number of bodies above which matrices are returned sparse.
 pub const SPARSE_THRESHOLD: usize = 12;
 
-/// Reaction of one constraint on its two bodies (global force [N] at the mass centre and
+/// Reaction of one constraint on its two bodies (global force \[N\] at the mass centre and
 /// global torque about the mass centre [N·m]), from `−Dᵀλ`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Reaction {
@@ -220,7 +220,7 @@ impl MultibodySystem {
         self.sparse.unwrap_or(self.bodies.len() > SPARSE_THRESHOLD)
     }
 
-    /// Kinetic energy `½ Σ (m ṙᵀṙ + ω'ᵀ J' ω')` [J].
+    /// Kinetic energy `½ Σ (m ṙᵀṙ + ω'ᵀ J' ω')` \[J\].
     pub fn kinetic_energy(&self, state: &State) -> f64 {
         self.bodies
             .iter()
@@ -233,7 +233,7 @@ impl MultibodySystem {
             .sum()
     }
 
-    /// Potential energy of the force elements [J].
+    /// Potential energy of the force elements \[J\].
     pub fn potential_energy(&self, state: &State) -> f64 {
         let kin = self.kinematics(&state.q, Some(&state.v));
         self.forces

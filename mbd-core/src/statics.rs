@@ -38,7 +38,7 @@ pub struct StaticSolution {
     pub iterations: usize,
 }
 
-/// Static equilibrium at time `t` [s] from the guess `q0`: Newton iterations on
+/// Static equilibrium at time `t` \[s\] from the guess `q0`: Newton iterations on
 /// `[K_t + K_c, Dᵀ; D, 0] [Δx; Δλ] = [f − Dᵀλ; −Φ]`, `q ← q ⊕ Δx`, with the model's tangent
 /// (finite differences if it has none). A model without stiffness in some direction (a free
 /// body) gives [`MbdError::Singular`].

@@ -112,7 +112,7 @@ pub trait SecondOrderSystem {
         }
     }
 
-    /// Model-specific validation of a state at time `t` [s] (e.g. unit Euler parameters),
+    /// Model-specific validation of a state at time `t` \[s\] (e.g. unit Euler parameters),
     /// called by the integrators on the initial state; sizes and finiteness are checked by the
     /// caller.
     fn check_state(&self, _t: f64, _q: &[f64], _v: &[f64]) -> Result<(), MbdError> {

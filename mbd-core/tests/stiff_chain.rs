@@ -233,3 +233,20 @@ fn high_frequency_damping_is_governed_by_rho_inf() {
         );
     }
 }
+
+#[test]
+fn sparse_newton_matrix_reuses_its_symbolic_factorisation() {
+    // the pattern of M + K/β' + Dᵀ… does not change: one symbolic LU for the whole run
+    let c = chain();
+    let n = 2 * c.pairs;
+    let s0 = State::new(0.0, vec![1e-3; n], vec![0.0; n]);
+    let ga = GeneralizedAlpha::new(AlphaParams {
+        h: 0.05,
+        ..Default::default()
+    });
+    let mut st = ga.stepper(&c, s0).unwrap();
+    st.advance_to(&c, 2.0, &mut |_| {}).unwrap();
+    assert_eq!(st.stats.steps, 40);
+    assert!(st.stats.factorizations >= 40);
+    assert_eq!(st.symbolic_factorizations(), 1);
+}

@@ -292,3 +292,52 @@ pub fn check_mean_axes_preconditions(
         && orth(p.as_ref(), 1e-10)?.ncols() == n_rigid;
     Ok(out)
 }
+
+/// Adapting vector of the modal coordinates (Lin (8.12)–(8.21)): for a frame translation and
+/// small rotation `{Δr; Δθ}` (6 values in 3-D, 3 in 2-D), the `x` with `Ψ x = −P {Δr; Δθ}`,
+/// `x = −V0 R⁻¹ {Δr; Δθ}`, `Ψ0 = Ψ V0 = P R` (V0: the zero-eigenvalue vectors of
+/// `eig(ΨᵀKΨ, ΨᵀMΨ)`). Requires the chapter-8 preconditions
+/// ([`check_mean_axes_preconditions`]).
+pub fn adapting_vector(
+    k: MatRef<'_, f64>,
+    m: MatRef<'_, f64>,
+    psi: MatRef<'_, f64>,
+    s: &[f64],
+    dim: usize,
+    rigid: &[f64],
+) -> Result<Vec<f64>> {
+    let pre = check_mean_axes_preconditions(k, m, psi, s, dim)?;
+    if !pre.passes {
+        return Err(ReductionError::InvalidParameter {
+            name: "basis".into(),
+            reason: format!(
+                "violates the chapter-8 preconditions (rank {}/{}, {} zero eigenvalues for {} rigid modes)",
+                pre.rank, pre.n_cols, pre.n_zero_eigenvalues, pre.n_rigid
+            ),
+        });
+    }
+    let p = rigid_body_modes(s, dim)?;
+    if rigid.len() != p.ncols() {
+        return Err(ReductionError::InvalidParameter {
+            name: "rigid".into(),
+            reason: format!("expected {} values, got {}", p.ncols(), rigid.len()),
+        });
+    }
+    let kr = congruence(psi, k, psi);
+    let mr = congruence(psi, m, psi);
+    let (lam, v) = sym_gen_eig("reduced model (ΨᵀKΨ, ΨᵀMΨ)", kr.as_ref(), mr.as_ref())?;
+    let lmax = lam.iter().fold(0.0_f64, |a, &l| a.max(l.abs()));
+    let zero: Vec<usize> = (0..lam.len())
+        .filter(|&i| lam[i].abs() <= 1e-9 * lmax.max(f64::MIN_POSITIVE))
+        .collect();
+    let v0 = select_cols(v.as_ref(), &zero);
+    let psi0 = psi * &v0;
+    // R = (PᵀP)⁻¹ Pᵀ Ψ0   (8.18)
+    let ptp = p.transpose() * &p;
+    let ptpsi0 = p.transpose() * &psi0;
+    let r = solve_general("PᵀP", ptp.as_ref(), ptpsi0.as_ref())?;
+    let rhs = Mat::from_fn(rigid.len(), 1, |i, _| rigid[i]);
+    let y = solve_general("R of (8.18)", r.as_ref(), rhs.as_ref())?;
+    let x = &v0 * &y;
+    Ok((0..x.nrows()).map(|i| -x[(i, 0)]).collect())
+}

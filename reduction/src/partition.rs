@@ -46,7 +46,7 @@ impl DofPartition {
     /// Partition from boundary nodes (0-based node indices); node `j` owns DOFs
     /// `dofs_per_node·j .. dofs_per_node·(j+1)` (Lin: 2 per node in 2-D, 3 in 3-D).
     pub fn from_boundary_nodes(n: usize, dofs_per_node: usize, nodes: &[usize]) -> Result<Self> {
-        if dofs_per_node == 0 || n % dofs_per_node != 0 {
+        if dofs_per_node == 0 || !n.is_multiple_of(dofs_per_node) {
             return Err(ReductionError::InvalidParameter {
                 name: "dofs_per_node".into(),
                 reason: format!("{dofs_per_node} does not divide the number of DOFs {n}"),

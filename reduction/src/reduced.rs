@@ -45,7 +45,7 @@ impl ReducedModel {
         let n = basis.psi.nrows();
         check_square("stiffness matrix K", k, n)?;
         check_square("mass matrix M", m, n)?;
-        if dofs_per_node == 0 || n % dofs_per_node != 0 {
+        if dofs_per_node == 0 || !n.is_multiple_of(dofs_per_node) {
             return Err(ReductionError::InvalidParameter {
                 name: "dofs_per_node".into(),
                 reason: format!("{dofs_per_node} does not divide the number of DOFs {n}"),
@@ -200,7 +200,7 @@ impl ReducedModel {
             Some(d) => Some(d.to_mat("damping", nz, nz).map_err(&err)?),
             None => None,
         };
-        if f.dofs_per_node == 0 || f.n_full % f.dofs_per_node != 0 {
+        if f.dofs_per_node == 0 || !f.n_full.is_multiple_of(f.dofs_per_node) {
             return Err(err(format!(
                 "field `dofs_per_node` = {} does not divide n_full = {}",
                 f.dofs_per_node, f.n_full

@@ -140,7 +140,9 @@ fn free_free_ring_with_repeated_modes_passes_sturm_check() {
         if count >= 12 {
             for p in 0..4 {
                 let (a, b) = (sp.values[3 + 2 * p], sp.values[4 + 2 * p]);
-                assert!((a - b).abs() < 1e-9 * a, "pair {p}: {a} vs {b}");
+                // equal up to the solver accuracy of this stiff (EA/EI = 5e4) free ring,
+                // ~1e-9 relative; the next distinct ring mode is ≥ 2.8× higher
+                assert!((a - b).abs() < 1e-7 * a, "pair {p}: {a} vs {b}");
             }
             // inextensional ring theory ω_n² = EI n²(n²−1)² / (ρA R⁴ (n²+1)) (Blevins Table 12-2)
             for (p, nn) in [2.0f64, 3.0, 4.0].iter().enumerate() {

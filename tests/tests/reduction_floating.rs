@@ -1,6 +1,7 @@
 //! Floating-frame deformable bodies (mbd-core::floating) with bases from `reduction`:
 //! invariants of Lin ch. 3-5 and 8 and Ribaric (2.45)-(2.52), integrated with mbd-core's
 //! integrators.
+#![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
 use faer::Mat;
 use mbd_core::floating::{

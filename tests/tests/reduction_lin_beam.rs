@@ -2,6 +2,7 @@
 //!
 //! Reference values are the dissertation's printed numbers (seed 002), as transcribed in the
 //! reading companion `seed-002-lin.md` §6-§10 and §15. Each test names its table or equation.
+#![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
 use faer::Mat;
 use reduction::basis::{
@@ -595,4 +596,56 @@ fn reduced_model_round_trip_and_guyan_a_matrices() {
         .to_string();
     assert!(err.contains("version") && err.contains("x.json"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn adaptation_of_modal_coordinates_cancels_the_frame_motion() {
+    // Lin (8.13), (8.21): Ψ x = −(Ih Δr + s̆ Δθ) for the MC basis of §8.5 (2-D: Δr_ξ, Δr_η, Δθ).
+    let b = beam();
+    let part = DofPartition::from_boundary_dofs(10, &node_dofs(&[1, 5])).unwrap();
+    let basis = build_basis(
+        b.k.as_ref(),
+        b.m.as_ref(),
+        &part,
+        Method::ModeCondensation,
+        &ModeSelection::Lowest(2),
+    )
+    .unwrap();
+    let s = beam::mass_centre_positions(&b);
+    let rigid = [0.01, -0.02, 0.03];
+    let x = reduction::axes::adapting_vector(
+        b.k.as_ref(),
+        b.m.as_ref(),
+        basis.psi.as_ref(),
+        &s,
+        2,
+        &rigid,
+    )
+    .unwrap();
+    let p = reduction::axes::rigid_body_modes(&s, 2).unwrap();
+    for i in 0..10 {
+        let px: f64 = (0..6).map(|j| basis.psi[(i, j)] * x[j]).sum();
+        let pr: f64 = (0..3).map(|j| p[(i, j)] * rigid[j]).sum();
+        assert!((px + pr).abs() < 1e-12, "row {i}: Ψx = {px}, −Pθ = {}", -pr);
+    }
+    // fixed-interface "modal truncation" fails the preconditions (Lin §8.1)
+    let mt = build_basis(
+        b.k.as_ref(),
+        b.m.as_ref(),
+        &part,
+        Method::FixedInterfaceModalTruncation,
+        &ModeSelection::Lowest(2),
+    )
+    .unwrap();
+    assert!(
+        reduction::axes::adapting_vector(
+            b.k.as_ref(),
+            b.m.as_ref(),
+            mt.psi.as_ref(),
+            &s,
+            2,
+            &rigid
+        )
+        .is_err()
+    );
 }

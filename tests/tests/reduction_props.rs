@@ -1,5 +1,6 @@
 //! Property tests of the reduction bases on random SPD models (independent references:
 //! Lin §6.5.4 theorem, Rayleigh–Ritz bounds, static exactness of Guyan for boundary loads).
+#![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
 use faer::Mat;
 use proptest::prelude::*;

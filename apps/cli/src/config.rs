@@ -21,7 +21,20 @@ pub fn load_config<C>(path: Option<&Path>) -> Result<C, CliError>
 where
     C: DeserializeOwned + Default + Validate,
 {
-    let (config, origin) = match path {
+    let (config, origin) = read_config::<C>(path)?;
+    config
+        .validate()
+        .map_err(|error| CliError::Invalid { origin, error })?;
+    Ok(config)
+}
+
+/// The embedded defaults, or `path` parsed over them, not yet validated (so that command-line
+/// overrides can be applied first), with the origin used in messages.
+pub fn read_config<C>(path: Option<&Path>) -> Result<(C, String), CliError>
+where
+    C: DeserializeOwned + Default,
+{
+    Ok(match path {
         None => (C::default(), "defaults".to_string()),
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|source| CliError::ReadConfig {
@@ -30,11 +43,7 @@ where
             })?;
             (parse_config(&text, p)?, p.display().to_string())
         }
-    };
-    config
-        .validate()
-        .map_err(|error| CliError::Invalid { origin, error })?;
-    Ok(config)
+    })
 }
 
 /// Parse TOML `text` (from `path`, used in messages) into `C`.

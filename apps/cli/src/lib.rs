@@ -21,7 +21,7 @@ pub mod progress;
 pub mod study;
 
 pub use args::CommonArgs;
-pub use config::{Validate, load_config};
+pub use config::{Validate, load_config, read_config};
 pub use error::{CliError, InputError};
 pub use output::OutputDir;
 pub use progress::Progress;

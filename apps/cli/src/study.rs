@@ -1,7 +1,7 @@
 //! A study (one subcommand of an app) and the runner that applies the app conventions.
 
 use crate::args::CommonArgs;
-use crate::config::{Validate, load_config, to_toml};
+use crate::config::{Validate, read_config, to_toml};
 use crate::error::{CliError, InputError};
 use crate::output::OutputDir;
 use crate::progress::Progress;
@@ -103,10 +103,11 @@ pub fn run_study<S: Study>(study: &S, args: &CommonArgs) -> ExitCode {
 }
 
 fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
-    let mut config: S::Config = load_config(args.config.as_deref())?;
+    // overrides first, then one validation of the effective configuration
+    let (mut config, origin) = read_config::<S::Config>(args.config.as_deref())?;
     study.apply_overrides(&mut config);
     config.validate().map_err(|error| CliError::Invalid {
-        origin: "command line".into(),
+        origin: format!("{origin} with command-line options"),
         error,
     })?;
     let config_text = to_toml(&config);

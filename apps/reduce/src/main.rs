@@ -4,13 +4,17 @@
 //! - `modes`: lowest modes of `K φ = λ M φ` read from Matrix Market files;
 //! - `tire-mesh`: the generated truck-tire carcass, its M and K as Matrix Market, mesh as VTK
 //!   and node sets as JSON;
-//! - `lin-beam`: Lin ch. 6, 7.1 and 8.5 on the Appendix A beam.
+//! - `lin-beam`: Lin ch. 6, 7.1 and 8.5 on the Appendix A beam;
+//! - `lin-slab`: Lin §7.2 simulations on the Appendix B slab (NR, GR, MT, CB, MC);
+//! - `reduce`: reduce user Matrix Market matrices and write the reduced model.
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod lin_beam;
+mod lin_slab;
 mod modes;
+mod reduce_cmd;
 mod tire_mesh;
 
 /// Model-reduction studies of the flowmbd toolkit.
@@ -29,6 +33,10 @@ enum Study {
     TireMesh(tire_mesh::Args),
     /// Lin ch. 6-8 on the Appendix A beam: frequencies, Guyan models, profile tests, mean axes.
     LinBeam(lin_beam::Args),
+    /// Lin §7.2 simulations 1-2 on the Appendix B slab: NR, Guyan, modal truncation, CB, MC.
+    LinSlab(lin_slab::Args),
+    /// Reduce Matrix Market M and K with a boundary node set; write the reduced model.
+    Reduce(reduce_cmd::Args),
 }
 
 fn main() -> ExitCode {
@@ -36,5 +44,7 @@ fn main() -> ExitCode {
         Study::Modes(args) => modes::run(&args),
         Study::TireMesh(args) => tire_mesh::run(&args),
         Study::LinBeam(args) => lin_beam::run(args),
+        Study::LinSlab(args) => lin_slab::run(args),
+        Study::Reduce(args) => reduce_cmd::run(args),
     }
 }

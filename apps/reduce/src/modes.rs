@@ -71,19 +71,13 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        if self.mass.is_empty() {
-            return Err(InputError::new("mass", "required (--mass M.mtx)"));
-        }
-        if self.stiffness.is_empty() {
-            return Err(InputError::new("stiffness", "required (--stiffness K.mtx)"));
-        }
+        // `mass` and `stiffness` are required, but checked in `run`: the defaults are validated
+        // before the command-line overrides are applied
         if self.count == 0 {
             return Err(InputError::new("count", "must be at least 1"));
         }
-        if let Some(s) = self.shift {
-            if !s.is_finite() {
-                return Err(InputError::new("shift", "must be finite"));
-            }
+        if self.shift.is_some_and(|s| !s.is_finite()) {
+            return Err(InputError::new("shift", "must be finite"));
         }
         Ok(())
     }
@@ -167,6 +161,18 @@ impl Study for ModesStudy<'_> {
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        if c.mass.is_empty() {
+            return Err(input(
+                "mass",
+                "required (--mass M.mtx or `mass` in the configuration)",
+            ));
+        }
+        if c.stiffness.is_empty() {
+            return Err(input(
+                "stiffness",
+                "required (--stiffness K.mtx or `stiffness` in the configuration)",
+            ));
+        }
         let bar = ctx.progress(4.0, "modes");
         let read = |field: &str, p: &str| -> Result<_, StudyError> {
             mtx::read(p)

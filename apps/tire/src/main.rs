@@ -1,6 +1,52 @@
-//! `flowmbd-tire`: studies of the flowmbd toolkit (not implemented yet; see the README's crate map).
+//! `flowmbd-tire`: the reduced FE truck tire with flowing material (Ribaric ch. 7-8).
+//!
+//! Subcommands (one per study; `--help` on each lists its options):
+//! - `modes`: eigenfrequencies of the generated tire (rim fixed), full FE vs reduced;
+//! - `reduce`: the reduction of §8.2, saved as a reduced-tire file and timed;
+//! - `cleat`: the cleat test of §8.3 at one speed (`--speed 60 --json`);
+//! - `sweep`: the speed sweep 20-100 km/h (Figs. 8-7, 8-8, 8-14);
+//! - `pressure`: the patch force distribution on the drum and on a flat road (Fig. 8-12).
 
-fn main() {
-    eprintln!("flowmbd-tire: no studies are available yet in this build");
-    std::process::exit(2);
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+mod cleat;
+mod common;
+mod modes;
+mod pressure;
+mod reduce;
+mod sweep;
+
+/// Reduced FE tire studies of the flowmbd toolkit.
+#[derive(Debug, Parser)]
+#[command(name = "flowmbd-tire", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    study: Option<Study>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Study {
+    /// Eigenfrequencies of the tire with the rim fixed: full FE model and reduced model.
+    Modes(modes::Args),
+    /// Reduce the generated tire (Ribaric §8.2) and save the reduced-tire file.
+    Reduce(reduce::Args),
+    /// Cleat test at one speed (Ribaric §8.3).
+    Cleat(cleat::Args),
+    /// Speed sweep of the cleat test (Ribaric Figs. 8-7, 8-8, 8-14).
+    Sweep(sweep::Args),
+    /// Patch force distribution on the drum and on a flat road (Ribaric Fig. 8-12).
+    Pressure(pressure::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.study {
+        Some(Study::Modes(a)) => modes::run(&a),
+        Some(Study::Reduce(a)) => reduce::run(&a),
+        Some(Study::Cleat(a)) => cleat::run(&a),
+        Some(Study::Sweep(a)) => sweep::run(&a),
+        Some(Study::Pressure(a)) => pressure::run(&a),
+        None => cleat::run(&cleat::Args::default()),
+    }
 }

@@ -166,28 +166,25 @@ impl Hex8 {
         let (_, dn) = shape(xi);
         // J_ij = ∂x_j/∂ξ_i
         let mut j = Matrix3::zeros();
-        for a in 0..8 {
+        for (dna, xa) in dn.iter().zip(&self.x) {
             for r in 0..3 {
                 for c in 0..3 {
-                    j[(r, c)] += dn[a][r] * self.x[a][c];
+                    j[(r, c)] += dna[r] * xa[c];
                 }
             }
         }
         let det = j.determinant();
         let jinv = j.try_inverse().unwrap_or_else(Matrix3::zeros);
-        let mut g = [Vector3::zeros(); 8];
-        for a in 0..8 {
-            g[a] = jinv * Vector3::new(dn[a][0], dn[a][1], dn[a][2]);
-        }
+        let g = dn.map(|d| jinv * Vector3::new(d[0], d[1], d[2]));
         (g, det)
     }
 
     /// Strain-displacement matrix B (6×24, Voigt xx, yy, zz, γxy, γyz, γzx) as plain array.
     fn b_matrix(g: &[Vector3<f64>; 8]) -> [[f64; 24]; 6] {
         let mut b = [[0.0; 24]; 6];
-        for a in 0..8 {
+        for (a, ga) in g.iter().enumerate() {
             let c = 3 * a;
-            let (gx, gy, gz) = (g[a][0], g[a][1], g[a][2]);
+            let (gx, gy, gz) = (ga[0], ga[1], ga[2]);
             b[0][c] = gx;
             b[1][c + 1] = gy;
             b[2][c + 2] = gz;

@@ -26,8 +26,9 @@
 //! projected with the whole basis `Tᵀ` (Galerkin) instead of (5.14)'s mixed projection (`Ψ^fᵀ` on
 //! free rows, nodal contact rows) — both coincide when all modes are kept (T square), and the
 //! Galerkin form keeps the truncated model's energy balance (cf. U15 for the tire); the damping
-//! acts on the material deflection rate `δ̇_m = T ż + v T_,s z` (note U10: the viscoelastic
-//! strain rate follows the material), for both the α and β parts.
+//! `β K_e` acts on the material deflection rate `δ̇_m = T ż + v T_,s z` (note U10: the
+//! viscoelastic strain rate follows the material) and `α M` on the Eulerian rate `T ż` (no drag
+//! in the steady state; the same choice as the tire model).
 
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, FlowingBasis, NODE_DOFS};
@@ -156,7 +157,12 @@ impl FlowingBelt {
         let a_mss = project(&et, &basis.t, &scale_rows(&basis.tss));
         let a_k = project(&et, &basis.t, &(&fe.stiffness * &basis.t));
         let a_c = project(&et, &basis.t, &(&fe.damping * &basis.t));
-        let a_cs = project(&et, &basis.t, &(&fe.damping * &basis.ts));
+        // β K_e acts on the material rate, α M on the Eulerian rate only (module docs)
+        let alpha = fe.config.damping.alpha;
+        let beta_k = Mat::from_fn(n, n, |i, j| {
+            fe.damping[(i, j)] - if i == j { alpha * mdiag[i] } else { 0.0 }
+        });
+        let a_cs = project(&et, &basis.t, &(&beta_k * &basis.ts));
         let men: Vec<f64> = (0..n).map(|i| mdiag[i] * en[i]).collect();
         let p_en = project_vec(&et, &basis.t, &men);
         let p_f0 = project_vec(&et, &basis.t, &fe.pretension);

@@ -23,6 +23,14 @@ pub mod ground;
 pub mod lcp;
 pub mod statics;
 pub use ground::{Ground, GroundConfig, GroundKind};
-pub use statics::{PatchSolution, Preload, preload, solve_patch};
+pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
 pub mod rolling;
 pub use rolling::{NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce};
+pub mod model;
+pub use model::{
+    ImportFiles, coarse_tire_config, generated_tire, imported_tire, truck_tire_config,
+};
+pub mod rig;
+pub mod spectrum;
+pub use rig::{DampingConfig, RigConfig, RigResult, Sample, run_cleat, run_cleat_observed};
+pub use spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};

@@ -150,7 +150,7 @@ fn lowest_modes(
 ) -> Result<fe_model::Modes, TireError> {
     let k = submatrix(fe.stiffness.as_ref(), dofs, dofs)?;
     let count = count.min(dofs.len());
-    if dofs.len() <= 3000 {
+    if dofs.len() <= 1200 || count * 3 >= dofs.len() {
         let m = diag_block(&fe.mass, dofs);
         Ok(fe_model::dense_modes(
             k.to_dense().as_ref(),
@@ -158,13 +158,16 @@ fn lowest_modes(
             count,
         )?)
     } else {
-        Err(invalid(
-            what,
-            format!(
-                "{} DOFs need the sparse eigen solver, not available in this build",
-                dofs.len()
-            ),
-        ))
+        let mt: Vec<faer::sparse::Triplet<usize, usize, f64>> = dofs
+            .iter()
+            .enumerate()
+            .map(|(i, &d)| faer::sparse::Triplet::new(i, i, fe.mass[d]))
+            .collect();
+        let m = faer::sparse::SparseColMat::try_new_from_triplets(dofs.len(), dofs.len(), &mt)
+            .map_err(|e| linalg(format!("{what}: mass matrix"), e))?;
+        let opts = fe_model::SparseEigenOptions::default();
+        let (modes, _report) = fe_model::sparse_modes(k.as_ref(), m.as_ref(), count, &opts)?;
+        Ok(modes)
     }
 }
 

@@ -97,8 +97,8 @@ impl Default for RollingConfig {
             slip_regularization: 0.05,
             normal: NormalContact::Lagrange,
             wheel_spin_inertia: 2.0,
-            spin_tolerance: 2e-3,
-            contact_margin: 0.02,
+            spin_tolerance: 1e-2,
+            contact_margin: 0.005,
         }
     }
 }
@@ -155,6 +155,8 @@ pub struct RollingState {
     pub theta_dd: f64,
     /// Normal multiplier per contact node [N].
     pub lambda: Vec<f64>,
+    /// Friction force per contact node (wheel frame) [N].
+    pub friction: Vec<[f64; 3]>,
 }
 
 /// Spindle force of the tire on the wheel, in the output frame of U18.
@@ -172,12 +174,14 @@ struct Factor {
     spin: f64,
     /// S⁻¹ (n × n), n = 1 + n_z.
     s_inv: Mat<f64>,
-    /// R = S⁻¹ [C_eff K_eff] (n × 2 n_z), acting on [ż̃; z̃].
-    r: Mat<f64>,
+    /// Q = [C_eff K_eff] (n_z × 2 n_z), acting on [ż̃; z̃].
+    q: Mat<f64>,
     /// X = S⁻¹ [0; T_cᵀ] (n × 3 n_c).
     x: Mat<f64>,
     /// Y = T_c X_z (3 n_c × 3 n_c).
     y: Mat<f64>,
+    /// Yv = Y + (η × s) X_θ: material-velocity response of the contact nodes (3 n_c × 3 n_c).
+    yv: Mat<f64>,
     /// Spin-row coefficients on [ż̃; z̃].
     spin_row: Vec<f64>,
 }
@@ -248,6 +252,7 @@ impl<'a> RollingTire<'a> {
                 theta_d: spin,
                 theta_dd: 0.0,
                 lambda: vec![0.0; red.n_contact()],
+                friction: vec![[0.0; 3]; red.n_contact()],
             },
             factor: None,
             refactors: 0,
@@ -309,14 +314,6 @@ impl<'a> RollingTire<'a> {
                 reason: "the Newmark iteration matrix is singular".into(),
             });
         }
-        let mut qe = Mat::<f64>::zeros(n, 2 * nz);
-        for j in 0..2 * nz {
-            qe[(0, j)] = spin_row[j];
-            for i in 0..nz {
-                qe[(1 + i, j)] = q[(i, j)];
-            }
-        }
-        let r = &s_inv * &qe;
         let nc3 = red.tc.nrows();
         let mut tct = Mat::<f64>::zeros(n, nc3);
         for j in 0..nc3 {
@@ -326,12 +323,22 @@ impl<'a> RollingTire<'a> {
         }
         let x = &s_inv * &tct;
         let y = &red.tc * x.subrows(1, nz);
+        let mut yv = y.clone();
+        for (i, sp) in red.contact_positions.iter().enumerate() {
+            let rig = [sp[2], 0.0, -sp[0]];
+            for k in 0..nc3 {
+                for a in 0..3 {
+                    yv[(3 * i + a, k)] += rig[a] * x[(0, k)];
+                }
+            }
+        }
         self.factor = Some(Factor {
             spin,
             s_inv,
-            r,
+            q,
             x,
             y,
+            yv,
             spin_row,
         });
         self.refactors += 1;
@@ -396,7 +403,7 @@ impl<'a> RollingTire<'a> {
             reason: "no factorisation".into(),
         })?;
         let st = &self.state;
-        let spin = fac.spin;
+
         // predictors
         let mut pred = vec![0.0; 2 * nz]; // [ż̃; z̃]
         for j in 0..nz {
@@ -409,15 +416,16 @@ impl<'a> RollingTire<'a> {
         let mut bvec = vec![0.0; nz + 1];
         bvec[0] = self.drive_torque;
         for j in 0..nz {
-            bvec[1 + j] = -spin * spin * red.c_s[j] - g1z[j] * st.theta_dd;
+            bvec[1 + j] = -spin_pred * spin_pred * red.c_s[j] - g1z[j] * st.theta_dd;
+        }
+        let mut qp = vec![0.0; nz];
+        matvec(&fac.q, &pred, &mut qp);
+        bvec[0] -= dot(&fac.spin_row, &pred);
+        for j in 0..nz {
+            bvec[1 + j] -= qp[j];
         }
         let mut a_free = vec![0.0; nz + 1];
         matvec(&fac.s_inv, &bvec, &mut a_free);
-        let mut tmp = vec![0.0; nz + 1];
-        matvec(&fac.r, &pred, &mut tmp);
-        for (a, t) in a_free.iter_mut().zip(&tmp) {
-            *a -= t;
-        }
         // free end-of-step state
         let t1 = st.t + h;
         let z_free: Vec<f64> = (0..nz)
@@ -439,63 +447,63 @@ impl<'a> RollingTire<'a> {
                 gp.push(g);
             }
         }
-        let mut lambda_c = vec![0.0; cand.len()];
-        let mut dirs: Vec<[f64; 3]> = gp.iter().map(|g| g.normal).collect();
-        if !cand.is_empty() {
+        let m = cand.len();
+        let mut lambda_c = vec![0.0; m];
+        let mut ft: Vec<[f64; 3]> = cand.iter().map(|&i| self.state.friction[i]).collect();
+        if m > 0 {
             let mu = self.cfg.friction;
-            let eps = self.cfg.slip_regularization;
-            let mut vc = vec![0.0; 3 * nc];
-            let mut vt = vec![0.0; 3 * nc];
             let warm: Vec<bool> = cand.iter().map(|&i| self.state.lambda[i] > 0.0).collect();
-            let mut zd_it = zd_free.clone();
-            let mut z_it = z_free.clone();
-            let mut spin_it = spin_free;
-            for pass in 0..2 {
-                // material slip velocities for the friction directions
-                if mu > 0.0 {
-                    matvec(&red.tc, &zd_it, &mut vc);
-                    matvec(&red.tc_theta, &z_it, &mut vt);
-                }
+            // free material slip velocities of the candidates
+            let mut vfree = vec![[0.0; 3]; m];
+            if mu > 0.0 {
+                let mut vc = vec![0.0; 3 * nc];
+                let mut vt = vec![0.0; 3 * nc];
+                matvec(&red.tc, &zd_free, &mut vc);
+                matvec(&red.tc_theta, &z_free, &mut vt);
                 for (k, &i) in cand.iter().enumerate() {
-                    let n = gp[k].normal;
-                    if mu == 0.0 {
-                        dirs[k] = n;
-                        continue;
-                    }
                     let s = red.contact_positions[i];
-                    let rig = [spin_it * s[2], 0.0, -spin_it * s[0]];
-                    let mut v = [0.0; 3];
+                    let rig = [spin_free * s[2], 0.0, -spin_free * s[0]];
                     for a in 0..3 {
-                        v[a] = rig[a] + vc[3 * i + a] + spin_it * vt[3 * i + a] - gp[k].velocity[a];
+                        vfree[k][a] =
+                            rig[a] + vc[3 * i + a] + spin_free * vt[3 * i + a] - gp[k].velocity[a];
                     }
-                    let vn = dot(&v, &n);
-                    let w = [v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]];
-                    let den = (dot(&w, &w) + eps * eps).sqrt();
-                    dirs[k] = [
-                        n[0] - mu * w[0] / den,
-                        n[1] - mu * w[1] / den,
-                        n[2] - mu * w[2] / den,
-                    ];
                 }
-                let m = cand.len();
-                let mut w = Mat::<f64>::zeros(m, m);
-                for (kj, &j) in cand.iter().enumerate() {
-                    for (ki, &i) in cand.iter().enumerate() {
-                        let n = gp[ki].normal;
-                        let d = dirs[kj];
-                        let mut s = 0.0;
-                        for a in 0..3 {
-                            for b in 0..3 {
-                                s += n[a] * fac.y[(3 * i + a, 3 * j + b)] * d[b];
+            } else {
+                ft.iter_mut().for_each(|f| *f = [0.0; 3]);
+            }
+            let c2 = bn * h * h;
+            let c1 = gn * h;
+            let blk = |a: &Mat<f64>, i: usize, j: usize, v: &[f64; 3]| -> [f64; 3] {
+                let mut o = [0.0; 3];
+                for (r, or) in o.iter_mut().enumerate() {
+                    for (c, vc) in v.iter().enumerate() {
+                        *or += a[(3 * i + r, 3 * j + c)] * vc;
+                    }
+                }
+                o
+            };
+            let mut w = Mat::<f64>::zeros(m, m);
+            for (kj, &j) in cand.iter().enumerate() {
+                for (ki, &i) in cand.iter().enumerate() {
+                    w[(ki, kj)] = c2 * dot(&gp[ki].normal, &blk(&fac.y, i, j, &gp[kj].normal));
+                }
+                if let NormalContact::Penalty { stiffness } = self.cfg.normal {
+                    w[(kj, kj)] += 1.0 / stiffness;
+                }
+            }
+            for _outer in 0..3 {
+                // normal problem with the tangential forces frozen
+                let q: Vec<f64> = (0..m)
+                    .map(|ki| {
+                        let mut g = gp[ki].gap;
+                        for (kj, &j) in cand.iter().enumerate() {
+                            if ft[kj] != [0.0; 3] {
+                                g += c2 * dot(&gp[ki].normal, &blk(&fac.y, cand[ki], j, &ft[kj]));
                             }
                         }
-                        w[(ki, kj)] = bn * h * h * s;
-                    }
-                    if let NormalContact::Penalty { stiffness } = self.cfg.normal {
-                        w[(kj, kj)] += 1.0 / stiffness;
-                    }
-                }
-                let q: Vec<f64> = gp.iter().map(|g| g.gap).collect();
+                        g
+                    })
+                    .collect();
                 let sol = solve_lcp(&w, &q, &warm, 1e-12);
                 if !sol.converged {
                     return Err(TireError::Simulation {
@@ -504,19 +512,120 @@ impl<'a> RollingTire<'a> {
                     });
                 }
                 lambda_c = sol.lambda;
-                if pass == 0 && mu > 0.0 {
-                    let da = self.contact_correction(&cand, &dirs, &lambda_c);
-                    for j in 0..nz {
-                        z_it[j] = z_free[j] + bn * h * h * da[1 + j];
-                        zd_it[j] = zd_free[j] + gn * h * da[1 + j];
+                if mu == 0.0 {
+                    break;
+                }
+                // tangential problem: Coulomb friction (set-valued sign at zero slip) by block
+                // Gauss-Seidel with projection onto the friction disk |f_t| <= mu lambda
+                let mut dv = vec![[0.0; 3]; m];
+                for (kj, &j) in cand.iter().enumerate() {
+                    let n = gp[kj].normal;
+                    let f = [
+                        n[0] * lambda_c[kj] + ft[kj][0],
+                        n[1] * lambda_c[kj] + ft[kj][1],
+                        n[2] * lambda_c[kj] + ft[kj][2],
+                    ];
+                    for (ki, &i) in cand.iter().enumerate() {
+                        let d = blk(&fac.yv, i, j, &f);
+                        for a in 0..3 {
+                            dv[ki][a] += c1 * d[a];
+                        }
                     }
-                    spin_it = spin_free + gn * h * da[0];
-                } else {
+                }
+                let lam_max = lambda_c.iter().fold(0.0f64, |a, &b| a.max(b));
+                let act: Vec<usize> = (0..m).filter(|&k| lambda_c[k] > 0.0).collect();
+                for k in 0..m {
+                    if lambda_c[k] <= 0.0 && ft[k] != [0.0; 3] {
+                        // released node: drop its friction and its effect on the others
+                        let d = [-ft[k][0], -ft[k][1], -ft[k][2]];
+                        ft[k] = [0.0; 3];
+                        for &kk in &act {
+                            let e = blk(&fac.yv, cand[kk], cand[k], &d);
+                            for a in 0..3 {
+                                dv[kk][a] += c1 * e[a];
+                            }
+                        }
+                    }
+                }
+                let mut outer_change = 0.0f64;
+                for _sweep in 0..10 {
+                    let mut change = 0.0f64;
+                    for &ki in &act {
+                        let i = cand[ki];
+                        let n = gp[ki].normal;
+                        let t1v = [n[2], 0.0, -n[0]];
+                        let t2v = [0.0, 1.0, 0.0];
+                        let v = [
+                            vfree[ki][0] + dv[ki][0],
+                            vfree[ki][1] + dv[ki][1],
+                            vfree[ki][2] + dv[ki][2],
+                        ];
+                        let r = [dot(&t1v, &v), dot(&t2v, &v)];
+                        let bt1 = blk(&fac.yv, i, i, &t1v);
+                        let bt2 = blk(&fac.yv, i, i, &t2v);
+                        let b = [
+                            [c1 * dot(&t1v, &bt1), c1 * dot(&t1v, &bt2)],
+                            [c1 * dot(&t2v, &bt1), c1 * dot(&t2v, &bt2)],
+                        ];
+                        let det = b[0][0] * b[1][1] - b[0][1] * b[1][0];
+                        if !(det.abs() > 0.0) {
+                            continue;
+                        }
+                        let old = [dot(&t1v, &ft[ki]), dot(&t2v, &ft[ki])];
+                        let mut new = [
+                            old[0] - (b[1][1] * r[0] - b[0][1] * r[1]) / det,
+                            old[1] - (-b[1][0] * r[0] + b[0][0] * r[1]) / det,
+                        ];
+                        let cap = mu * lambda_c[ki];
+                        let mag = (new[0] * new[0] + new[1] * new[1]).sqrt();
+                        if mag > cap {
+                            let sc = if mag > 0.0 { cap / mag } else { 0.0 };
+                            new = [new[0] * sc, new[1] * sc];
+                        }
+                        let newv = [
+                            new[0] * t1v[0] + new[1] * t2v[0],
+                            new[0] * t1v[1] + new[1] * t2v[1],
+                            new[0] * t1v[2] + new[1] * t2v[2],
+                        ];
+                        let d = [
+                            newv[0] - ft[ki][0],
+                            newv[1] - ft[ki][1],
+                            newv[2] - ft[ki][2],
+                        ];
+                        let dm = dot(&d, &d).sqrt();
+                        if dm == 0.0 {
+                            continue;
+                        }
+                        change = change.max(dm);
+                        ft[ki] = newv;
+                        for &kk in &act {
+                            let e = blk(&fac.yv, cand[kk], i, &d);
+                            for a in 0..3 {
+                                dv[kk][a] += c1 * e[a];
+                            }
+                        }
+                    }
+                    outer_change = outer_change.max(change);
+                    if change <= 1e-5 * (mu * lam_max + 1.0) {
+                        break;
+                    }
+                }
+                if outer_change <= 1e-5 * (mu * lam_max + 1.0) {
                     break;
                 }
             }
         }
-        let da = self.contact_correction(&cand, &dirs, &lambda_c);
+        let forces: Vec<[f64; 3]> = (0..m)
+            .map(|k| {
+                let n = gp[k].normal;
+                [
+                    n[0] * lambda_c[k] + ft[k][0],
+                    n[1] * lambda_c[k] + ft[k][1],
+                    n[2] * lambda_c[k] + ft[k][2],
+                ]
+            })
+            .collect();
+        let da = self.contact_correction(&cand, &forces);
         let st = &mut self.state;
         let theta_dd = a_free[0] + da[0];
         st.theta += h * st.theta_d + h * h * ((0.5 - bn) * st.theta_dd + bn * theta_dd);
@@ -529,8 +638,10 @@ impl<'a> RollingTire<'a> {
             st.zd[j] = pred[j] + gn * h * a;
         }
         st.lambda.iter_mut().for_each(|l| *l = 0.0);
+        st.friction.iter_mut().for_each(|f| *f = [0.0; 3]);
         for (k, &i) in cand.iter().enumerate() {
             st.lambda[i] = lambda_c[k];
+            st.friction[i] = ft[k];
         }
         st.t = t1;
         if !(st.theta_d.is_finite() && st.z.iter().all(|v| v.is_finite())) {
@@ -542,19 +653,16 @@ impl<'a> RollingTire<'a> {
         Ok(())
     }
 
-    /// Acceleration change `X Σ dⱼ λⱼ` of the contact forces.
-    fn contact_correction(&self, cand: &[usize], dirs: &[[f64; 3]], lambda: &[f64]) -> Vec<f64> {
+    /// Acceleration change `X Σ fⱼ` of the contact-node forces `fⱼ` (normal + friction).
+    fn contact_correction(&self, cand: &[usize], forces: &[[f64; 3]]) -> Vec<f64> {
         let nz = self.red.n_z();
         let mut da = vec![0.0; nz + 1];
         let Some(fac) = self.factor.as_ref() else {
             return da;
         };
         for (k, &j) in cand.iter().enumerate() {
-            if lambda[k] == 0.0 {
-                continue;
-            }
             for b in 0..3 {
-                let c = dirs[k][b] * lambda[k];
+                let c = forces[k][b];
                 if c == 0.0 {
                     continue;
                 }

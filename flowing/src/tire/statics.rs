@@ -225,12 +225,75 @@ pub struct Preload {
     pub z: Vec<f64>,
 }
 
-/// Preload the reduced tire onto the ground with `load` [N].
+/// Preload the reduced tire onto the ground with `load` [N] (not rolling).
 pub fn preload(red: &ReducedTire, ground: &GroundConfig, load: f64) -> Result<Preload, TireError> {
     let (y, x) = reduced_flexibility(red)?;
     let patch = solve_patch(&y, &red.contact_positions, ground, load)?;
     let z = (0..red.n_z())
         .map(|r| (0..patch.f_c.len()).map(|k| x[(r, k)] * patch.f_c[k]).sum())
+        .collect();
+    Ok(Preload { patch, z })
+}
+
+/// Preload of the steadily rolling tire (spin rate `spin` [rad/s], Rayleigh `beta` [s]): the
+/// Eulerian steady state `ż = 0` of the rolling equations,
+/// `(K_z + θ̇² G₂ + β θ̇ K₁) z + θ̇² c_s = T_cᵀ f^c`, with the normal contact forces carrying
+/// `load` (friction neglected in the preload). With the spindle fixed at this position the
+/// rolling tire starts in equilibrium, so the vertical spindle force equals the load.
+pub fn preload_rolling(
+    red: &ReducedTire,
+    ground: &GroundConfig,
+    load: f64,
+    spin: f64,
+    beta: f64,
+) -> Result<Preload, TireError> {
+    let nz = red.n_z();
+    let keff = Mat::from_fn(nz, nz, |i, j| {
+        red.k[(i, j)] + spin * spin * red.g2[(i, j)] + beta * spin * red.k1[(i, j)]
+    });
+    let lu = keff.partial_piv_lu();
+    let mut rhs = Mat::<f64>::zeros(nz, red.tc.nrows() + 1);
+    for j in 0..red.tc.nrows() {
+        for i in 0..nz {
+            rhs[(i, j)] = red.tc[(j, i)];
+        }
+    }
+    for i in 0..nz {
+        rhs[(i, red.tc.nrows())] = -spin * spin * red.c_s[i];
+    }
+    let sol = lu.solve(&rhs);
+    if !sol.as_ref().is_all_finite() {
+        return Err(linalg("steady rolling stiffness", "singular"));
+    }
+    let nc3 = red.tc.nrows();
+    let x = sol.subcols(0, nc3).to_owned();
+    let z0: Vec<f64> = (0..nz).map(|i| sol[(i, nc3)]).collect();
+    let y = &red.tc * &x;
+    let shifted: Vec<[f64; 3]> = red
+        .contact_positions
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let mut p = *s;
+            for (a, pa) in p.iter_mut().enumerate() {
+                *pa += (0..nz).map(|j| red.tc[(3 * i + a, j)] * z0[j]).sum::<f64>();
+            }
+            p
+        })
+        .collect();
+    let mut patch = solve_patch(&y, &shifted, ground, load)?;
+    // deflection measured from the unloaded, non-rolling outer radius
+    let touch = red
+        .contact_positions
+        .iter()
+        .map(|s| s[2])
+        .fold(f64::INFINITY, f64::min);
+    patch.deflection = patch.top - touch;
+    for i in 0..nc3 {
+        patch.delta_c[i] += (0..nz).map(|j| red.tc[(i, j)] * z0[j]).sum::<f64>();
+    }
+    let z = (0..nz)
+        .map(|r| z0[r] + (0..nc3).map(|k| x[(r, k)] * patch.f_c[k]).sum::<f64>())
         .collect();
     Ok(Preload { patch, z })
 }

@@ -99,7 +99,7 @@ impl FlexBody {
         axis: AxisCondition,
     ) -> Result<Self, MbdError> {
         let n = s.len();
-        if n == 0 || n % 3 != 0 {
+        if n == 0 || !n.is_multiple_of(3) {
             return Err(bad(
                 name,
                 "node positions",
@@ -194,7 +194,7 @@ impl FlexBody {
                 }
             }
         }
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             return Err(bad(
                 name,
                 "mass matrix",

@@ -101,6 +101,9 @@ struct FlexKin {
     dd: Vec<Vector3<f64>>,
 }
 
+/// Position, velocity-Jacobian columns `(v index, 3-vector)` and quadratic acceleration term.
+type PointKin = (Vector3<f64>, Vec<(usize, Vector3<f64>)>, Vector3<f64>);
+
 struct Row {
     cols: Vec<(usize, f64)>,
     phi: f64,
@@ -423,12 +426,7 @@ impl FloatingSystem {
 
     /// Position, velocity-Jacobian columns `(v index, 3-vector)` and quadratic acceleration
     /// term (`d̈ = J v̇ + a_q`) of a point.
-    fn point_kin(
-        &self,
-        p: &Point,
-        rk: &[RigKin],
-        fk: &[FlexKin],
-    ) -> (Vector3<f64>, Vec<(usize, Vector3<f64>)>, Vector3<f64>) {
+    fn point_kin(&self, p: &Point, rk: &[RigKin], fk: &[FlexKin]) -> PointKin {
         match *p {
             Point::Ground(x) => (x, Vec::new(), Vector3::zeros()),
             Point::Rigid { body, local } => {

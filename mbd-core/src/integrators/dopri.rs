@@ -99,7 +99,7 @@ pub struct EventRecord {
     pub index: usize,
     /// Name of the event.
     pub name: String,
-    /// Located time [s].
+    /// Located time \[s\].
     pub t: f64,
     /// State at the event (dense output).
     pub state: State,
@@ -113,15 +113,15 @@ pub struct DormandPrince {
     pub rtol: f64,
     /// Absolute tolerance (units of `q` and `v`).
     pub atol: f64,
-    /// Initial step [s] (0: automatic, Hairer's initial-step heuristic).
+    /// Initial step \[s\] (0: automatic, Hairer's initial-step heuristic).
     pub h0: f64,
-    /// Maximum step [s] (0: unbounded).
+    /// Maximum step \[s\] (0: unbounded).
     pub h_max: f64,
-    /// Minimum step [s] before [`MbdError::StepSizeUnderflow`].
+    /// Minimum step \[s\] before [`MbdError::StepSizeUnderflow`].
     pub h_min: f64,
     /// Maximum number of steps.
     pub max_steps: usize,
-    /// Time tolerance of event location [s].
+    /// Time tolerance of event location \[s\].
     pub event_tol: f64,
     /// Constraint stabilisation.
     pub stabilization: Stabilization,
@@ -224,7 +224,7 @@ impl DormandPrince {
         self.integrate_with_events(sys, state0, t_end, &[], observer)
     }
 
-    /// Integrates from `state0` to `t_end` [s], locating the zero crossings of `events`
+    /// Integrates from `state0` to `t_end` \[s\], locating the zero crossings of `events`
     /// (on the dense output, Illinois regula falsi to `event_tol`). `observer` sees the initial
     /// state, every accepted step and every located event.
     pub fn integrate_with_events<S: SecondOrderSystem + ?Sized>(
@@ -238,7 +238,7 @@ impl DormandPrince {
         self.run(sys, state0, t_end, events, None, observer)
     }
 
-    /// Integrates up to the last of `times` [s] (strictly increasing, not before the initial
+    /// Integrates up to the last of `times` \[s\] (strictly increasing, not before the initial
     /// time) and calls `observer` exactly at these times, from the 4th-order dense output
     /// (Hairer's `contd5`), plus at a stopping event.
     pub fn integrate_dense<S: SecondOrderSystem + ?Sized>(

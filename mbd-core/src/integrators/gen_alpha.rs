@@ -58,7 +58,7 @@ pub enum NewtonUpdate {
 pub struct AlphaParams {
     /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1] (1: no numerical damping).
     pub rho_inf: f64,
-    /// Nominal step size [s].
+    /// Nominal step size \[s\].
     pub h: f64,
     /// Absolute Newton tolerance on the position correction `‖Δx‖∞` [m or rad].
     pub newton_atol: f64,
@@ -126,7 +126,7 @@ impl GeneralizedAlpha {
         AlphaStepper::new(sys, state0, self.params)
     }
 
-    /// Integrates from `state0` to `t_end` [s] with the nominal step `params.h` (the last step
+    /// Integrates from `state0` to `t_end` \[s\] with the nominal step `params.h` (the last step
     /// is shortened; failed Newton iterations halve the step). `observer` sees the initial state
     /// and every accepted step.
     pub fn integrate<S: SecondOrderSystem + ?Sized>(
@@ -273,7 +273,7 @@ impl AlphaStepper {
         Ok(())
     }
 
-    /// One step of size `h` [s]. On failure the state is unchanged.
+    /// One step of size `h` \[s\]. On failure the state is unchanged.
     pub fn step<S: SecondOrderSystem + ?Sized>(&mut self, sys: &S, h: f64) -> Result<(), MbdError> {
         check_step(h, "generalized-alpha step h")?;
         let p = self.params;

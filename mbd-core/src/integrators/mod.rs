@@ -31,7 +31,7 @@ use crate::{MbdError, SecondOrderSystem};
 /// `v` (length `n_v`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct State {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// Positions.
     pub q: Vec<f64>,
@@ -126,7 +126,7 @@ pub struct Solution {
 
 /// A time integrator (extension point: the user picks the integrator at run time).
 pub trait Integrator {
-    /// Integrates `sys` from `state0` to `t_end` [s], calling `observer` with the initial state
+    /// Integrates `sys` from `state0` to `t_end` \[s\], calling `observer` with the initial state
     /// and after every accepted step.
     fn integrate_dyn(
         &mut self,

@@ -12,7 +12,7 @@ use crate::{MbdError, SecondOrderSystem};
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Rk4 {
-    /// Step size [s].
+    /// Step size \[s\].
     pub h: f64,
     /// Constraint stabilisation.
     #[serde(default)]
@@ -20,7 +20,7 @@ pub struct Rk4 {
 }
 
 impl Rk4 {
-    /// RK4 with step `h` [s] and no constraint stabilisation.
+    /// RK4 with step `h` \[s\] and no constraint stabilisation.
     pub fn new(h: f64) -> Self {
         Self {
             h,
@@ -34,7 +34,7 @@ impl Rk4 {
         self
     }
 
-    /// Integrates from `state0` to `t_end` [s]; `observer` sees the initial state and every
+    /// Integrates from `state0` to `t_end` \[s\]; `observer` sees the initial state and every
     /// step's end state.
     pub fn integrate<S: SecondOrderSystem + ?Sized>(
         &self,

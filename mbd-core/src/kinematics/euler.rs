@@ -90,7 +90,7 @@ pub fn check_unit(p: &Vector4<f64>, what: &str) -> Result<(), MbdError> {
     Ok(())
 }
 
-/// Euler parameters of a rotation by `phi` [rad] about the unit axis `u`:
+/// Euler parameters of a rotation by `phi` \[rad\] about the unit axis `u`:
 /// `e0 = cos(φ/2)`, `e = sin(φ/2) u` (Lin (2.4), (2.5)). `u` is normalised here.
 pub fn from_axis_angle(u: &Vector3<f64>, phi: f64) -> Vector4<f64> {
     let n = u.norm();
@@ -163,7 +163,7 @@ pub fn product(p: &Vector4<f64>, q: &Vector4<f64>) -> Vector4<f64> {
     Vector4::new(s, v.x, v.y, v.z)
 }
 
-/// Exponential map of a body-frame rotation vector `θ'` [rad]: `p ⊗ exp(θ'/2)`, the exact
+/// Exponential map of a body-frame rotation vector `θ'` \[rad\]: `p ⊗ exp(θ'/2)`, the exact
 /// composition used by the Lie-group generalized-α (Brüls, Cardona & Arnold 2012).
 pub fn compose_local_rotation(p: &Vector4<f64>, theta_local: &Vector3<f64>) -> Vector4<f64> {
     let phi = theta_local.norm();

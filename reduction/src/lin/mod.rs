@@ -2,3 +2,5 @@
 //! 8.5 studies, and the Appendix B slab.
 
 pub mod beam;
+pub mod slab;
+pub mod slab_sim;

@@ -190,7 +190,11 @@ pub fn sim1_statics(slab: &LinSlab, basis: &Basis) -> Result<[f64; 3]> {
     let psi = &basis.psi;
     let nz = psi.ncols();
     let nq = 6 + nz;
-    let g = Mat::from_fn(90, nq, |i, j| if j < 6 { p[(i, j)] } else { psi[(i, j - 6)] });
+    let g = Mat::from_fn(
+        90,
+        nq,
+        |i, j| if j < 6 { p[(i, j)] } else { psi[(i, j - 6)] },
+    );
     let kr = congruence(psi.as_ref(), slab.k.as_ref(), psi.as_ref());
     let supports = [
         3 * 15,

@@ -4,7 +4,9 @@
 
 use super::slab::{G, LinSlab, SlabMethod, slab_basis};
 use crate::error::{ReductionError, Result};
-use mbd_core::floating::{AxisCondition, FlexBody, FlexState, FloatingSystem, Point, PrescribedMotion};
+use mbd_core::floating::{
+    AxisCondition, FlexBody, FlexState, FloatingSystem, Point, PrescribedMotion,
+};
 use mbd_core::integrators::{Rk4, State};
 use nalgebra::{Vector3, Vector4};
 use serde::{Deserialize, Serialize};
@@ -73,7 +75,10 @@ pub fn build(
     let mut sys = FloatingSystem::new();
     sys.gravity = Vector3::new(0.0, 0.0, -G);
     let fb = sys.add_flex(body);
-    let node = |j: usize| Point::FlexNode { body: fb, node: j - 1 };
+    let node = |j: usize| Point::FlexNode {
+        body: fb,
+        node: j - 1,
+    };
     let fixed = |sys: &mut FloatingSystem, j: usize, c: usize| -> Result<()> {
         let x0 = super::slab::node_position(j)[c];
         sys.add_driver(PrescribedMotion {
@@ -121,7 +126,11 @@ pub fn build(
             let y30 = super::slab::node_position(30)[1];
             for (c, motion) in [
                 (0usize, xs),
-                (1, Box::new(move |_| [y30, 0.0, 0.0]) as Box<dyn Fn(f64) -> [f64; 3] + Send + Sync>),
+                (
+                    1,
+                    Box::new(move |_| [y30, 0.0, 0.0])
+                        as Box<dyn Fn(f64) -> [f64; 3] + Send + Sync>,
+                ),
                 (2, zs),
             ] {
                 sys.add_driver(PrescribedMotion {

@@ -1,0 +1,256 @@
+//! `flowmbd-reduce lin-slab`: Lin (2005) §7.2 simulations 1 and 2 on the Appendix B slab,
+//! comparing no reduction (NR), Guyan (GR), fixed-interface modal truncation (MT),
+//! Craig–Bampton (CB) and mode condensation (MC); local deflections of node 8.
+
+use flowmbd_cli::args::CommonArgs;
+use flowmbd_cli::config::Validate;
+use flowmbd_cli::error::InputError;
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
+use reduction::lin::slab::{self, SlabMethod};
+use reduction::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::process::ExitCode;
+
+/// Command-line arguments of `lin-slab`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+/// Configuration; the defaults reproduce Lin's set-up (6 kept modes, R = 4 m, T = 1 s) with the
+/// companion's integrator choice (RK4, 1 ms, 1 s).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Config {
+    /// Simulations to run (`no-rigid-motion` = Sim 1, `orbit` = Sim 2).
+    pub simulations: Vec<SlabSimulation>,
+    /// Models to compare (NR must be present: it is the reference).
+    pub methods: Vec<SlabMethod>,
+    /// Duration, step, kept modes, orbit parameters.
+    pub params: SlabSimParams,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            simulations: vec![SlabSimulation::NoRigidMotion, SlabSimulation::Orbit],
+            methods: SlabMethod::ALL.to_vec(),
+            params: SlabSimParams::default(),
+        }
+    }
+}
+
+impl Validate for Config {
+    fn validate(&self) -> Result<(), InputError> {
+        let p = &self.params;
+        if !(p.duration_s.is_finite() && p.duration_s > 0.0) {
+            return Err(InputError::new(
+                "params.duration_s",
+                format!("must be positive, got {}", p.duration_s),
+            ));
+        }
+        if !(p.step_s.is_finite() && p.step_s > 0.0 && p.step_s <= p.duration_s) {
+            return Err(InputError::new(
+                "params.step_s",
+                format!("must be in (0, duration_s], got {}", p.step_s),
+            ));
+        }
+        if p.n_modes == 0 || p.n_modes > 66 {
+            return Err(InputError::new(
+                "params.n_modes",
+                format!(
+                    "must be 1..=66 (interior DOFs 78 minus 12), got {}",
+                    p.n_modes
+                ),
+            ));
+        }
+        for (name, v) in [
+            ("params.orbit_radius_m", p.orbit_radius_m),
+            ("params.orbit_period_s", p.orbit_period_s),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(InputError::new(name, format!("must be positive, got {v}")));
+            }
+        }
+        if !self.methods.contains(&SlabMethod::NoReduction) {
+            return Err(InputError::new(
+                "methods",
+                "must contain \"no-reduction\" (the reference)",
+            ));
+        }
+        if self.simulations.is_empty() {
+            return Err(InputError::new("simulations", "must not be empty"));
+        }
+        Ok(())
+    }
+}
+
+/// Per simulation and method: RMS difference from NR per component [m], constraint drift [m].
+#[derive(Debug, Clone, Serialize)]
+pub struct MethodResult {
+    /// RMS of δ'8 − δ'8(NR) over the run, components ξ, η, ζ [m].
+    pub rms_vs_nr_m: [f64; 3],
+    /// Largest |δ'8| per component [m].
+    pub peak_m: [f64; 3],
+    /// Largest position-level constraint residual [m].
+    pub max_drift_m: f64,
+}
+
+/// Summary of `lin-slab`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Linearised gravity statics of simulation 1, δ'8 per method [m].
+    pub sim1_statics_m: BTreeMap<String, [f64; 3]>,
+    /// Per simulation, per method.
+    pub simulations: BTreeMap<String, BTreeMap<String, MethodResult>>,
+    /// Largest |δ'8(CB) − δ'8(MC)| per simulation [m] (Lin §6.5.4: zero up to round-off).
+    pub cb_mc_max_difference_m: BTreeMap<String, f64>,
+}
+
+struct LinSlabStudy;
+
+fn sim_name(s: SlabSimulation) -> &'static str {
+    match s {
+        SlabSimulation::NoRigidMotion => "sim1",
+        SlabSimulation::Orbit => "sim2",
+    }
+}
+
+impl Study for LinSlabStudy {
+    type Config = Config;
+    type Summary = Summary;
+    const APP: &'static str = "reduce";
+    const NAME: &'static str = "lin-slab";
+
+    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        let s = slab::appendix_b_slab().map_err(StudyError::numerical)?;
+        let mut statics = BTreeMap::new();
+        for &m in &c.methods {
+            let b = slab::slab_basis(&s, m, c.params.n_modes).map_err(StudyError::numerical)?;
+            statics.insert(
+                m.label().to_string(),
+                slab::sim1_statics(&s, &b).map_err(StudyError::numerical)?,
+            );
+        }
+        let total = (c.simulations.len() * c.methods.len()) as f64;
+        let bar = ctx.progress(total, "slab simulations");
+        let mut done = 0.0;
+        let mut sims = BTreeMap::new();
+        let mut cbmc = BTreeMap::new();
+        for &sim in &c.simulations {
+            let mut hist: Vec<(SlabMethod, Vec<f64>, Vec<[f64; 3]>)> = Vec::new();
+            let mut drifts = Vec::new();
+            for &m in &c.methods {
+                let mut t = Vec::new();
+                let mut h = Vec::new();
+                let drift = simulate(&s, m, sim, &c.params, |ti, d| {
+                    t.push(ti);
+                    h.push(d);
+                })
+                .map_err(|e| StudyError::Numerical {
+                    message: e.to_string(),
+                    partial: serde_json::to_value(&statics).ok(),
+                })?;
+                drifts.push(drift);
+                hist.push((m, t, h));
+                done += 1.0;
+                bar.set(done);
+            }
+            let name = sim_name(sim);
+            // CSV: t, then ξ, η, ζ per method
+            let mut header = vec!["t_s".to_string()];
+            for (m, _, _) in &hist {
+                for comp in ["xi", "eta", "zeta"] {
+                    header.push(format!("{}_{comp}_m", m.label()));
+                }
+            }
+            let hdr: Vec<&str> = header.iter().map(|x| x.as_str()).collect();
+            let n = hist[0].1.len();
+            let rows: Vec<Vec<f64>> = (0..n)
+                .map(|i| {
+                    let mut r = vec![hist[0].1[i]];
+                    for (_, _, h) in &hist {
+                        r.extend_from_slice(&h[i]);
+                    }
+                    r
+                })
+                .collect();
+            ctx.out.write_csv(
+                &format!("{name}_node8.csv"),
+                &hdr,
+                rows.iter().map(|r| r.as_slice()),
+            )?;
+            for (comp, label) in ["ξ", "η", "ζ"].iter().enumerate() {
+                let mut plot = LinePlot::new(
+                    format!("Lin slab {name}: local deflection δ'{label} of node 8"),
+                    "time [s]",
+                    format!("δ'{label}8 [m]"),
+                );
+                for (m, t, h) in &hist {
+                    plot = plot.with(Series::line(
+                        m.label(),
+                        t.iter().zip(h).map(|(a, b)| (*a, b[comp])).collect(),
+                    ));
+                }
+                plot.save(
+                    &ctx.out
+                        .path(&format!("{name}_{}", ["xi", "eta", "zeta"][comp])),
+                )?;
+            }
+            let nr = &hist
+                .iter()
+                .find(|x| x.0 == SlabMethod::NoReduction)
+                .expect("validated")
+                .2;
+            let mut per = BTreeMap::new();
+            for ((m, _, h), drift) in hist.iter().zip(&drifts) {
+                let mut rms = [0.0; 3];
+                let mut peak = [0.0f64; 3];
+                for (a, b) in h.iter().zip(nr) {
+                    for k in 0..3 {
+                        rms[k] += (a[k] - b[k]).powi(2);
+                        peak[k] = peak[k].max(a[k].abs());
+                    }
+                }
+                for r in rms.iter_mut() {
+                    *r = (*r / h.len() as f64).sqrt();
+                }
+                per.insert(
+                    m.label().to_string(),
+                    MethodResult {
+                        rms_vs_nr_m: rms,
+                        peak_m: peak,
+                        max_drift_m: *drift,
+                    },
+                );
+            }
+            let get = |x: SlabMethod| hist.iter().find(|y| y.0 == x).map(|y| &y.2);
+            if let (Some(a), Some(b)) = (
+                get(SlabMethod::CraigBampton),
+                get(SlabMethod::ModeCondensation),
+            ) {
+                let d = a
+                    .iter()
+                    .zip(b)
+                    .map(|(x, y)| (0..3).map(|k| (x[k] - y[k]).abs()).fold(0.0, f64::max))
+                    .fold(0.0, f64::max);
+                cbmc.insert(name.to_string(), d);
+            }
+            sims.insert(name.to_string(), per);
+        }
+        bar.finish();
+        Ok(Summary {
+            sim1_statics_m: statics,
+            simulations: sims,
+            cb_mc_max_difference_m: cbmc,
+        })
+    }
+}
+
+/// Runs `lin-slab` under the app conventions.
+pub fn run(a: Args) -> ExitCode {
+    run_study(&LinSlabStudy, &a.common)
+}

@@ -1,0 +1,257 @@
+//! `flowmbd-reduce reduce`: reduce user Matrix Market matrices with a boundary node set and
+//! write the reduced model (versioned JSON, `reduction::ReducedModel`).
+//!
+//! ```text
+//! flowmbd-reduce reduce --mass M.mtx --stiffness K.mtx --boundary 1,5,10-12 --method cb \
+//!     --modes 20 --out model.json [--dofs-per-node 3] [--json]
+//! ```
+//!
+//! Models up to [`DENSE_LIMIT`] DOFs use the dense path (every method); larger ones the sparse
+//! path (one sparse Cholesky of `K_ii` for the static modes; Guyan and Craig–Bampton).
+
+use reduction::basis::{Method, ModeSelection, build_basis};
+use reduction::{DofPartition, ReducedModel};
+use serde::Serialize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Largest model reduced with dense matrices.
+pub const DENSE_LIMIT: usize = 3000;
+
+/// Reduction method on the command line.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MethodArg {
+    /// Static condensation (Guyan).
+    Guyan,
+    /// Craig–Bampton.
+    Cb,
+    /// Mode condensation (Nikravesh; same span as CB).
+    Mc,
+    /// Lin's "modal truncation": boundary DOFs + fixed-interface modes, no static modes.
+    FixedInterfaceMt,
+    /// Free-free modal truncation (the lowest modes of the whole model).
+    FreeFreeMt,
+}
+
+impl MethodArg {
+    fn method(self) -> Method {
+        match self {
+            MethodArg::Guyan => Method::Guyan,
+            MethodArg::Cb => Method::CraigBampton,
+            MethodArg::Mc => Method::ModeCondensation,
+            MethodArg::FixedInterfaceMt => Method::FixedInterfaceModalTruncation,
+            MethodArg::FreeFreeMt => Method::FreeFreeModalTruncation,
+        }
+    }
+}
+
+/// Command-line arguments of `reduce`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Mass matrix (Matrix Market, symmetric positive definite) [kg].
+    #[arg(long, value_name = "M.mtx")]
+    mass: PathBuf,
+    /// Stiffness matrix (Matrix Market, symmetric) [N/m].
+    #[arg(long, value_name = "K.mtx")]
+    stiffness: PathBuf,
+    /// Boundary (interface) nodes, 1-based, comma-separated, ranges allowed: `1,5,10-12`.
+    #[arg(long, value_name = "NODES")]
+    boundary: String,
+    /// Reduction method.
+    #[arg(long, value_enum, default_value = "cb")]
+    method: MethodArg,
+    /// Number of kept normal modes (ignored by guyan).
+    #[arg(long, default_value_t = 10)]
+    modes: usize,
+    /// DOFs per node (node j owns DOFs dofs_per_node·(j−1) .. dofs_per_node·j − 1).
+    #[arg(long, default_value_t = 3)]
+    dofs_per_node: usize,
+    /// Output file of the reduced model (versioned JSON).
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
+    /// Print the summary as JSON on stdout.
+    #[arg(long)]
+    json: bool,
+    /// No messages on stderr.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Summary of a `reduce` run.
+#[derive(Debug, Serialize)]
+pub struct Summary {
+    /// Method.
+    pub method: String,
+    /// DOFs of the full model.
+    pub n_full: usize,
+    /// Boundary DOFs kept.
+    pub n_boundary: usize,
+    /// Reduced coordinates.
+    pub n_reduced: usize,
+    /// Lowest natural frequencies of the reduced model [Hz] (at most 20).
+    pub frequencies_hz: Vec<f64>,
+    /// Wall time of the reduction [s].
+    pub reduction_s: f64,
+    /// Written file.
+    pub file: String,
+}
+
+fn parse_nodes(text: &str) -> Result<Vec<usize>, String> {
+    let mut out = Vec::new();
+    for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let bad = || format!("--boundary: \"{part}\" is not a node number or range a-b (1-based)");
+        if let Some((a, b)) = part.split_once('-') {
+            let a: usize = a.trim().parse().map_err(|_| bad())?;
+            let b: usize = b.trim().parse().map_err(|_| bad())?;
+            if a == 0 || b < a {
+                return Err(bad());
+            }
+            out.extend(a..=b);
+        } else {
+            let a: usize = part.parse().map_err(|_| bad())?;
+            if a == 0 {
+                return Err(bad());
+            }
+            out.push(a);
+        }
+    }
+    if out.is_empty() {
+        return Err("--boundary: no nodes given".into());
+    }
+    Ok(out)
+}
+
+enum Failure {
+    Input(String),
+    Numerical(String),
+}
+
+fn run_inner(a: &Args) -> Result<Summary, Failure> {
+    let input = |e: String| Failure::Input(e);
+    let nodes = parse_nodes(&a.boundary).map_err(input)?;
+    if a.dofs_per_node == 0 {
+        return Err(Failure::Input("--dofs-per-node: must be at least 1".into()));
+    }
+    let read = |p: &PathBuf, what: &str| {
+        fe_model::io::mtx::read(p)
+            .and_then(|m| m.to_sparse())
+            .map_err(|e| Failure::Input(format!("--{what} {}: {e}", p.display())))
+    };
+    let m = read(&a.mass, "mass")?;
+    let k = read(&a.stiffness, "stiffness")?;
+    let n = k.nrows();
+    if k.ncols() != n || m.nrows() != n || m.ncols() != n {
+        return Err(Failure::Input(format!(
+            "--mass/--stiffness: matrices are {}x{} and {}x{}, expected equal square sizes",
+            m.nrows(),
+            m.ncols(),
+            k.nrows(),
+            k.ncols()
+        )));
+    }
+    if !n.is_multiple_of(a.dofs_per_node) {
+        return Err(Failure::Input(format!(
+            "--dofs-per-node: {} does not divide the matrix size {n}",
+            a.dofs_per_node
+        )));
+    }
+    let n_nodes = n / a.dofs_per_node;
+    if let Some(j) = nodes.iter().find(|&&j| j > n_nodes) {
+        return Err(Failure::Input(format!(
+            "--boundary: node {j} is out of range (1-based; the model has {n_nodes} nodes)"
+        )));
+    }
+    let zero_based: Vec<usize> = nodes.iter().map(|j| j - 1).collect();
+    let part = DofPartition::from_boundary_nodes(n, a.dofs_per_node, &zero_based)
+        .map_err(|e| Failure::Input(format!("--boundary: {e}")))?;
+    let method = a.method.method();
+    let t0 = Instant::now();
+    let num = |e: reduction::ReductionError| Failure::Numerical(e.to_string());
+    let red = if n <= DENSE_LIMIT {
+        let (kd, md) = (k.to_dense(), m.to_dense());
+        let basis = build_basis(
+            kd.as_ref(),
+            md.as_ref(),
+            &part,
+            method,
+            &ModeSelection::Lowest(a.modes),
+        )
+        .map_err(|e| match e {
+            reduction::ReductionError::InvalidParameter { .. }
+            | reduction::ReductionError::InvalidDofs { .. } => Failure::Input(e.to_string()),
+            other => Failure::Numerical(other.to_string()),
+        })?;
+        ReducedModel::from_basis(basis, kd.as_ref(), md.as_ref(), None, a.dofs_per_node)
+            .map_err(num)?
+    } else {
+        match method {
+            Method::Guyan => {
+                let b = reduction::sparse::guyan_sparse(k.as_ref(), &part).map_err(num)?;
+                reduction::sparse::reduced_model_sparse(b, k.as_ref(), m.as_ref(), a.dofs_per_node)
+                    .map_err(num)?
+            }
+            Method::CraigBampton => {
+                reduction::sparse::craig_bampton_sparse(
+                    k.as_ref(),
+                    m.as_ref(),
+                    &part,
+                    a.modes,
+                    a.dofs_per_node,
+                )
+                .map_err(num)?
+                .0
+            }
+            other => {
+                return Err(Failure::Input(format!(
+                    "--method: {} needs the dense path, limited to {DENSE_LIMIT} DOFs (model has {n}); use guyan or cb",
+                    other.short_name()
+                )));
+            }
+        }
+    };
+    let reduction_s = t0.elapsed().as_secs_f64();
+    red.save(&a.out)
+        .map_err(|e| Failure::Input(format!("--out: {e}")))?;
+    let f = red.natural_frequencies_hz().map_err(num)?;
+    Ok(Summary {
+        method: method.short_name().into(),
+        n_full: n,
+        n_boundary: part.boundary().len(),
+        n_reduced: red.n_reduced(),
+        frequencies_hz: f.into_iter().take(20).collect(),
+        reduction_s,
+        file: a.out.display().to_string(),
+    })
+}
+
+/// Runs `reduce`: exit 0 on success, 2 on bad input, 1 on numerical failure.
+pub fn run(a: Args) -> ExitCode {
+    match run_inner(&a) {
+        Ok(s) => {
+            if a.json {
+                match serde_json::to_string_pretty(&s) {
+                    Ok(t) => println!("{t}"),
+                    Err(e) => {
+                        eprintln!("flowmbd-reduce reduce: error: {e}");
+                        return ExitCode::from(1);
+                    }
+                }
+            } else if !a.quiet {
+                eprintln!(
+                    "reduced {} DOFs to {} coordinates ({}) in {:.2} s; written to {}",
+                    s.n_full, s.n_reduced, s.method, s.reduction_s, s.file
+                );
+            }
+            ExitCode::SUCCESS
+        }
+        Err(Failure::Input(m)) => {
+            eprintln!("flowmbd-reduce reduce: error: {}", m.replace('\n', " "));
+            ExitCode::from(2)
+        }
+        Err(Failure::Numerical(m)) => {
+            eprintln!("flowmbd-reduce reduce: error: {}", m.replace('\n', " "));
+            ExitCode::from(1)
+        }
+    }
+}

@@ -1,0 +1,134 @@
+//! End-to-end tests of `flowmbd-reduce tire-mesh` and `modes` (app conventions: JSON summary,
+//! exit code 2 with a one-line message naming the field on bad input).
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_flowmbd-reduce"))
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("flowmbd-reduce-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// tire-mesh writes M, K, mesh and node sets; modes on them with the rim fixed returns
+/// ascending frequencies whose axisymmetric pairs coincide, matching a run without the mesh.
+#[test]
+fn tire_mesh_then_modes() {
+    let dir = tmp("e2e");
+    let cfg = dir.join("small.toml");
+    std::fs::write(
+        &cfg,
+        "[tire]\ncircumferential_divisions = 16\nsection_divisions = 10\nthickness_divisions = 1\nbead_elements = 1\n",
+    )
+    .unwrap();
+    let tm = dir.join("tm");
+    let out = bin()
+        .args(["tire-mesh", "--quiet", "--json", "--config"])
+        .arg(&cfg)
+        .arg("--out")
+        .arg(&tm)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(s["dof"], 3 * 16 * 11 * 2);
+    for f in [
+        "K.mtx",
+        "M.mtx",
+        "mesh.vtu",
+        "mesh.json",
+        "node_sets.json",
+        "rim_dofs.txt",
+    ] {
+        assert!(tm.join(f).exists(), "{f}");
+    }
+    let md = dir.join("md");
+    let out = bin()
+        .args(["modes", "--quiet", "--json", "--count", "6"])
+        .arg("--mass")
+        .arg(tm.join("M.mtx"))
+        .arg("--stiffness")
+        .arg(tm.join("K.mtx"))
+        .arg("--fixed")
+        .arg(tm.join("rim_dofs.txt"))
+        .arg("--mesh")
+        .arg(tm.join("mesh.json"))
+        .arg("--out")
+        .arg(&md)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        s.as_object().unwrap().len(),
+        2,
+        "exactly dof and frequencies_hz"
+    );
+    assert_eq!(s["dof"], 3 * 16 * 11 * 2);
+    let f: Vec<f64> = s["frequencies_hz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(f.len(), 6);
+    assert!(f.windows(2).all(|w| w[0] <= w[1]));
+    assert!(f[0] > 1.0);
+    assert!(md.join("modes.vtu").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Bad input exits with code 2 and names the field (and the file line for matrix errors).
+#[test]
+fn bad_input_exits_2_naming_the_field() {
+    let dir = tmp("bad");
+    let m = dir.join("M.mtx");
+    std::fs::write(
+        &m,
+        "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1.0\n2 3 1.0\n",
+    )
+    .unwrap();
+    let out = bin()
+        .args(["modes", "--quiet", "--count", "1"])
+        .arg("--mass")
+        .arg(&m)
+        .arg("--stiffness")
+        .arg(&m)
+        .arg("--out")
+        .arg(dir.join("o"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("mass") && err.contains("M.mtx:4"), "{err}");
+    let cfg = dir.join("c.toml");
+    std::fs::write(&cfg, "[tire]\nwidth = -1.0\n").unwrap();
+    let out = bin()
+        .args(["tire-mesh", "--quiet", "--config"])
+        .arg(&cfg)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("tire.width"));
+    let cfg2 = dir.join("c2.toml");
+    std::fs::write(&cfg2, "[tire]\nwheel = 3\n").unwrap();
+    let out = bin()
+        .args(["tire-mesh", "--quiet", "--config"])
+        .arg(&cfg2)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).ok();
+}

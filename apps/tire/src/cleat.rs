@@ -1,0 +1,243 @@
+//! `flowmbd-tire cleat`: the cleat test of Ribaric §8.3 at one speed (drum or flat road):
+//! spindle forces `F_x`, `F_y` against time, their spectra, and the patch VTK series.
+
+use crate::common::{TireSource, input, tire_err};
+use fe_model::io::vtk::{PointField, write_vtu};
+use fe_model::{Cell, CellKind, Mesh};
+use flowing::tire::{RigConfig, RigResult, RollingTire, TireError, run_cleat_observed};
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use serde::{Deserialize, Serialize};
+use std::process::ExitCode;
+
+/// Command-line arguments.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    common: CommonArgs,
+    /// Speed [km/h] (overrides `rig.speed_kmh`).
+    #[arg(long)]
+    speed: Option<f64>,
+}
+
+/// Configuration.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Config {
+    /// The tire.
+    pub tire: TireSource,
+    /// The rig.
+    pub rig: RigConfig,
+    /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many steps
+    /// (0 = none) into `vtk/`.
+    pub vtk_every: usize,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            tire: TireSource::default(),
+            rig: RigConfig::default(),
+            vtk_every: 25,
+        }
+    }
+}
+
+impl Validate for Config {
+    fn validate(&self) -> Result<(), InputError> {
+        self.tire.validate()?;
+        validate_rig(&self.rig)
+    }
+}
+
+/// Validate rig settings.
+pub fn validate_rig(rig: &RigConfig) -> Result<(), InputError> {
+    rig.rolling.validate().map_err(input)?;
+    rig.ground.validate().map_err(input)?;
+    if !(rig.speed_kmh > 0.0 && rig.speed_kmh.is_finite()) {
+        return Err(InputError::new("rig.speed_kmh", "must be positive"));
+    }
+    if !(rig.load > 0.0 && rig.load.is_finite()) {
+        return Err(InputError::new("rig.load", "must be positive"));
+    }
+    Ok(())
+}
+
+/// Summary (the JSON keys first).
+#[derive(Debug, Serialize)]
+pub struct Summary {
+    /// Speed [km/h].
+    pub speed_kmh: f64,
+    /// Wheel–tire DOF.
+    pub dof: usize,
+    /// Dominant frequency of the vertical force [Hz].
+    pub fy_peak_hz: f64,
+    /// Dominant frequency of the longitudinal force [Hz].
+    pub fx_peak_hz: f64,
+    /// RMS of the vertical force fluctuation after the hit [N].
+    pub fy_rms: f64,
+    /// RMS of the longitudinal force fluctuation after the hit [N].
+    pub fx_rms: f64,
+    /// Wall time of the time integration [s].
+    pub wall_time_s: f64,
+    /// Wall time per simulated second.
+    pub wall_per_simulated_s: f64,
+    /// Preload deflection [m].
+    pub preload_deflection_m: f64,
+    /// Mean vertical force before the hit [N].
+    pub fy_mean_before_n: f64,
+    /// Rayleigh α [1/s], β [s].
+    pub rayleigh: [f64; 2],
+    /// Time steps and refactorisations of the iteration matrix.
+    pub steps: usize,
+    /// Refactorisations (spin-rate drift).
+    pub refactors: usize,
+}
+
+/// Summary of a rig result.
+pub fn summarize(r: &RigResult) -> Summary {
+    let (sx, sy) = r.spectra();
+    let (rx, ry) = r.rms();
+    let before: Vec<f64> = r
+        .samples
+        .iter()
+        .filter(|s| s.t < 0.0 && s.t > -0.05)
+        .map(|s| s.fy)
+        .collect();
+    Summary {
+        speed_kmh: r.speed_kmh,
+        dof: r.dof,
+        fy_peak_hz: sy.peak(10.0, 500.0).map_or(0.0, |p| p.0),
+        fx_peak_hz: sx.peak(10.0, 500.0).map_or(0.0, |p| p.0),
+        fy_rms: ry,
+        fx_rms: rx,
+        wall_time_s: r.wall_time_s,
+        wall_per_simulated_s: r.wall_time_s / r.simulated_s.max(1e-12),
+        preload_deflection_m: r.preload.deflection,
+        fy_mean_before_n: before.iter().sum::<f64>() / before.len().max(1) as f64,
+        rayleigh: [r.rayleigh.alpha, r.rayleigh.beta],
+        steps: r.samples.len(),
+        refactors: r.refactors,
+    }
+}
+
+/// Write the force history, spectra and plots of a rig result under `prefix`.
+pub fn write_outputs(ctx: &StudyContext, r: &RigResult, prefix: &str) -> Result<(), StudyError> {
+    ctx.out.write_csv(
+        &format!("{prefix}forces.csv"),
+        &[
+            "t_s",
+            "fx_n",
+            "fy_n",
+            "f_lateral_n",
+            "spin_rad_s",
+            "active_nodes",
+            "normal_sum_n",
+        ],
+        r.samples
+            .iter()
+            .map(|s| vec![s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]),
+    )?;
+    let (sx, sy) = r.spectra();
+    ctx.out.write_csv(
+        &format!("{prefix}spectra.csv"),
+        &["f_hz", "fx_amp_n", "fy_amp_n"],
+        (0..sx.freq_hz.len()).map(|k| vec![sx.freq_hz[k], sx.amplitude[k], sy.amplitude[k]]),
+    )?;
+    let fx: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.fx)).collect();
+    let fy: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.fy)).collect();
+    LinePlot::new(
+        format!("Spindle forces at {} km/h", r.speed_kmh),
+        "t [s]",
+        "F [N]",
+    )
+    .with(Series::line("Fx (longitudinal)", fx))
+    .with(Series::line("Fy (vertical)", fy))
+    .save(&ctx.out.path(&format!("{prefix}forces")))?;
+    let lim = |s: &flowing::tire::Spectrum| -> Vec<(f64, f64)> {
+        s.freq_hz
+            .iter()
+            .zip(&s.amplitude)
+            .filter(|(f, _)| **f <= 300.0)
+            .map(|(f, a)| (*f, *a))
+            .collect()
+    };
+    LinePlot::new(
+        format!("Spectra at {} km/h", r.speed_kmh),
+        "f [Hz]",
+        "amplitude [N]",
+    )
+    .with(Series::line("Fx", lim(&sx)))
+    .with(Series::line("Fy", lim(&sy)))
+    .save(&ctx.out.path(&format!("{prefix}spectra")))?;
+    Ok(())
+}
+
+/// The deformed contact nodes as VTK vertices with the normal force and friction force fields.
+fn write_patch_vtu(path: &std::path::Path, sim: &RollingTire) -> Result<(), TireError> {
+    let mut mesh = Mesh::new(3);
+    for p in sim.contact_positions() {
+        let i = mesh.add_node(p);
+        mesh.cells.push(Cell {
+            kind: CellKind::Vertex,
+            nodes: vec![i],
+        });
+    }
+    let fields = [
+        PointField {
+            name: "normal_force_N".into(),
+            components: 1,
+            values: sim.state.lambda.clone(),
+        },
+        PointField {
+            name: "friction_force_N".into(),
+            components: 3,
+            values: sim.state.friction.iter().flatten().copied().collect(),
+        },
+    ];
+    Ok(write_vtu(path, &mesh, &fields)?)
+}
+
+struct Cleat {
+    speed: Option<f64>,
+}
+
+impl Study for Cleat {
+    type Config = Config;
+    type Summary = Summary;
+    const APP: &'static str = "tire";
+    const NAME: &'static str = "cleat";
+
+    fn apply_overrides(&self, c: &mut Config) {
+        if let Some(v) = self.speed {
+            c.rig.speed_kmh = v;
+        }
+    }
+
+    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        let red = c.tire.reduced(ctx.quiet)?;
+        let bar = ctx.progress(1.0, "cleat test");
+        let vtk_dir = ctx.out.path("vtk");
+        if c.vtk_every > 0 {
+            std::fs::create_dir_all(&vtk_dir)
+                .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
+        }
+        let every = c.vtk_every;
+        let mut observer = |k: usize, sim: &RollingTire| -> Result<(), TireError> {
+            if every == 0 || !k.is_multiple_of(every) {
+                return Ok(());
+            }
+            write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)
+        };
+        let r = run_cleat_observed(&red, &c.rig, &mut |f| bar.set(f), &mut observer)
+            .map_err(tire_err)?;
+        bar.finish();
+        write_outputs(ctx, &r, "")?;
+        Ok(summarize(&r))
+    }
+}
+
+/// Run the study.
+pub fn run(args: &Args) -> ExitCode {
+    run_study(&Cleat { speed: args.speed }, &args.common)
+}

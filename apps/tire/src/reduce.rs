@@ -1,0 +1,106 @@
+//! `flowmbd-tire reduce`: generate the tire, reduce it (Ribaric §8.2) and save the reduced-tire
+//! file; the stage times are the benchmark record of the 60 000-DOF reduction.
+
+use crate::common::{TireSource, tire_err};
+use flowing::tire::{ReductionTimings, reduce};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use serde::{Deserialize, Serialize};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Command-line arguments.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+/// Configuration.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Config {
+    /// The tire (the reduced file is always recomputed and written).
+    pub tire: TireSource,
+}
+
+impl Validate for Config {
+    fn validate(&self) -> Result<(), InputError> {
+        self.tire.validate()
+    }
+}
+
+/// Summary.
+#[derive(Debug, Serialize)]
+pub struct Summary {
+    /// FE DOFs.
+    pub fe_dof: usize,
+    /// Wheel–tire DOF after reduction (6 + n_f + 3 n_c).
+    pub dof: usize,
+    /// Kept free-node modes.
+    pub free_modes: usize,
+    /// Contact nodes.
+    pub contact_nodes: usize,
+    /// Highest kept free-node mode [Hz].
+    pub free_mode_max_hz: f64,
+    /// Highest contact-node mode [Hz].
+    pub contact_mode_max_hz: f64,
+    /// Tire mass [kg].
+    pub tire_mass_kg: f64,
+    /// Mesh generation and assembly [s].
+    pub assembly_s: f64,
+    /// Reduction stage times [s].
+    pub timings: ReductionTimings,
+    /// Saved file.
+    pub file: String,
+}
+
+struct Reduce;
+
+impl Study for Reduce {
+    type Config = Config;
+    type Summary = Summary;
+    const APP: &'static str = "tire";
+    const NAME: &'static str = "reduce";
+
+    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        let t = Instant::now();
+        let fe = c.tire.fe_model()?;
+        let assembly_s = t.elapsed().as_secs_f64();
+        let (red, timings) = reduce(&fe, &c.tire.reduction).map_err(tire_err)?;
+        let file = if c.tire.reduced_file.is_empty() {
+            ctx.out.path("reduced-tire.json").display().to_string()
+        } else {
+            c.tire.reduced_file.clone()
+        };
+        let p = std::path::Path::new(&file);
+        if let Some(d) = p.parent() {
+            let _ = std::fs::create_dir_all(d);
+        }
+        red.save(p).map_err(tire_err)?;
+        ctx.out.write_csv(
+            "free_modes.csv",
+            &["mode", "f_hz"],
+            red.free_mode_hz
+                .iter()
+                .enumerate()
+                .map(|(i, f)| vec![(i + 1) as f64, *f]),
+        )?;
+        Ok(Summary {
+            fe_dof: fe.n_dofs(),
+            dof: red.dof(),
+            free_modes: red.n_free_modes,
+            contact_nodes: red.n_contact(),
+            free_mode_max_hz: red.free_mode_hz.last().copied().unwrap_or(0.0),
+            contact_mode_max_hz: red.contact_mode_hz.last().copied().unwrap_or(0.0),
+            tire_mass_kg: red.tire_mass,
+            assembly_s,
+            timings,
+            file,
+        })
+    }
+}
+
+/// Run the study.
+pub fn run(args: &Args) -> ExitCode {
+    run_study(&Reduce, &args.common)
+}

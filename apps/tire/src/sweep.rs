@@ -1,0 +1,138 @@
+//! `flowmbd-tire sweep`: the cleat test at 20, 30, ..., 100 km/h (Ribaric Figs. 8-7, 8-8 on the
+//! drum, 8-14 on the flat road): peak spectral amplitudes against speed and the spectra as a
+//! speed × frequency table for contour/waterfall plots.
+
+use crate::cleat::{Summary as CleatSummary, summarize, validate_rig};
+use crate::common::{TireSource, tire_err};
+use flowing::tire::{RigConfig, run_cleat};
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use serde::{Deserialize, Serialize};
+use std::process::ExitCode;
+
+/// Command-line arguments.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+/// Configuration.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Config {
+    /// The tire.
+    pub tire: TireSource,
+    /// The rig (its speed is replaced by each sweep speed).
+    pub rig: RigConfig,
+    /// Speeds [km/h].
+    pub speeds_kmh: Vec<f64>,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            tire: TireSource::default(),
+            rig: RigConfig::default(),
+            speeds_kmh: (2..=10).map(|k| 10.0 * k as f64).collect(),
+        }
+    }
+}
+
+impl Validate for Config {
+    fn validate(&self) -> Result<(), InputError> {
+        self.tire.validate()?;
+        validate_rig(&self.rig)?;
+        if self.speeds_kmh.is_empty() {
+            return Err(InputError::new("speeds_kmh", "is empty"));
+        }
+        for (i, v) in self.speeds_kmh.iter().enumerate() {
+            if !(*v > 0.0 && v.is_finite()) {
+                return Err(InputError::new(
+                    format!("speeds_kmh[{i}]"),
+                    "must be positive",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Summary.
+#[derive(Debug, Serialize)]
+pub struct Summary {
+    /// Per-speed summaries.
+    pub runs: Vec<CleatSummary>,
+    /// Peak vertical amplitude per speed [N].
+    pub fy_peak_amplitude_n: Vec<f64>,
+    /// Peak longitudinal amplitude per speed [N].
+    pub fx_peak_amplitude_n: Vec<f64>,
+    /// Whether the vertical amplitude against speed is non-monotonic.
+    pub fy_amplitude_non_monotonic: bool,
+}
+
+struct Sweep;
+
+impl Study for Sweep {
+    type Config = Config;
+    type Summary = Summary;
+    const APP: &'static str = "tire";
+    const NAME: &'static str = "sweep";
+
+    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        let red = c.tire.reduced(ctx.quiet)?;
+        let bar = ctx.progress(c.speeds_kmh.len() as f64, "speed sweep");
+        let mut runs = Vec::new();
+        let (mut ay, mut ax) = (Vec::new(), Vec::new());
+        let mut grid_rows = Vec::new();
+        for (k, &v) in c.speeds_kmh.iter().enumerate() {
+            let mut rig = c.rig.clone();
+            rig.speed_kmh = v;
+            let r = run_cleat(&red, &rig, &mut |f| bar.set(k as f64 + f)).map_err(tire_err)?;
+            let (sx, sy) = r.spectra();
+            ay.push(sy.peak(10.0, 500.0).map_or(0.0, |p| p.1));
+            ax.push(sx.peak(10.0, 500.0).map_or(0.0, |p| p.1));
+            for i in 0..sy.freq_hz.len() {
+                if sy.freq_hz[i] <= 300.0 {
+                    grid_rows.push(vec![v, sy.freq_hz[i], sx.amplitude[i], sy.amplitude[i]]);
+                }
+            }
+            crate::cleat::write_outputs(ctx, &r, &format!("v{v:03.0}_"))?;
+            runs.push(summarize(&r));
+        }
+        bar.finish();
+        ctx.out.write_csv(
+            "waterfall.csv",
+            &["speed_kmh", "f_hz", "fx_amp_n", "fy_amp_n"],
+            grid_rows,
+        )?;
+        let pts = |a: &[f64]| {
+            c.speeds_kmh
+                .iter()
+                .copied()
+                .zip(a.iter().copied())
+                .collect()
+        };
+        LinePlot::new(
+            "Peak spectral amplitude against speed",
+            "v [km/h]",
+            "amplitude [N]",
+        )
+        .with(Series::line("Fy", pts(&ay)))
+        .with(Series::line("Fx", pts(&ax)))
+        .save(&ctx.out.path("peak_vs_speed"))?;
+        let incr = ay.windows(2).any(|w| w[1] > w[0]);
+        let decr = ay.windows(2).any(|w| w[1] < w[0]);
+        Ok(Summary {
+            runs,
+            fy_peak_amplitude_n: ay,
+            fx_peak_amplitude_n: ax,
+            fy_amplitude_non_monotonic: incr && decr,
+        })
+    }
+}
+
+/// Run the study.
+pub fn run(args: &Args) -> ExitCode {
+    run_study(&Sweep, &args.common)
+}

@@ -1,0 +1,265 @@
+//! The cleat-test rig of Ribaric §8.3: inflate (the prestressed stiffness of the reduced tire),
+//! preload onto the drum or road (1000 lb = 4448 N), run at speed, roll over the cleat and
+//! record the spindle forces `F_x` (longitudinal) and `F_y` (vertical); spectra of the response.
+//!
+//! Sequence (seed note U22): static preload with the spindle free vertically; the spindle is then
+//! fixed at that position; the tire starts at the test speed ("accelerated": spin rate
+//! `v / R_e` with the effective rolling radius `R_e = R₀ − d/3` of a belted tire with
+//! deflection `d`) and rolls freely (no drive torque) for `settle_time` before the cleat reaches
+//! the patch centre; recording continues for `record_time` after the hit.
+
+use super::error::{TireError, invalid};
+use super::ground::{Ground, GroundConfig};
+use super::reduced::ReducedTire;
+use super::rolling::{RollingConfig, RollingTire};
+use super::spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};
+use super::statics::{PatchSolution, preload, preload_rolling};
+use fe_model::Rayleigh;
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// Rayleigh damping from two target modal damping ratios (Ribaric §8.4.1: the 5th and 12th
+/// modes, ≈3 % or ≈1 %), modes of the reduced tire with the wheel fixed (1-based numbers).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DampingConfig {
+    /// First target mode number (1-based).
+    pub mode1: usize,
+    /// Damping ratio at the first mode.
+    pub zeta1: f64,
+    /// Second target mode number (1-based).
+    pub mode2: usize,
+    /// Damping ratio at the second mode.
+    pub zeta2: f64,
+}
+
+impl Default for DampingConfig {
+    fn default() -> Self {
+        Self {
+            mode1: 5,
+            zeta1: 0.03,
+            mode2: 12,
+            zeta2: 0.03,
+        }
+    }
+}
+
+impl DampingConfig {
+    /// Rayleigh coefficients from the reduced tire's frequencies.
+    pub fn rayleigh(&self, red: &ReducedTire) -> Result<Rayleigh, TireError> {
+        let f = red.frequencies_hz()?;
+        let pick = |m: usize, name: &str| {
+            if m == 0 || m > f.len() {
+                Err(invalid(
+                    format!("damping.{name}"),
+                    format!("mode {m} does not exist (1..={})", f.len()),
+                ))
+            } else {
+                Ok(2.0 * std::f64::consts::PI * f[m - 1])
+            }
+        };
+        let (w1, w2) = (pick(self.mode1, "mode1")?, pick(self.mode2, "mode2")?);
+        if (w1 - w2).abs() < 1e-9 * w2 {
+            return Err(invalid(
+                "damping.mode2",
+                "has the same frequency as mode1 (choose modes of different frequency)",
+            ));
+        }
+        Ok(Rayleigh::from_modal_ratios(w1, self.zeta1, w2, self.zeta2)?)
+    }
+}
+
+/// Cleat-test settings (defaults: Ribaric §8.3 at 60 km/h on the drum).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RigConfig {
+    /// Vertical preload [N] (1000 lb).
+    pub load: f64,
+    /// Speed [km/h].
+    pub speed_kmh: f64,
+    /// Time rolled before the cleat reaches the patch centre [s].
+    pub settle_time: f64,
+    /// Time recorded after the cleat hit [s].
+    pub record_time: f64,
+    /// Ground.
+    pub ground: GroundConfig,
+    /// Damping.
+    pub damping: DampingConfig,
+    /// Integration and contact.
+    pub rolling: RollingConfig,
+}
+
+impl Default for RigConfig {
+    fn default() -> Self {
+        Self {
+            load: 4448.2,
+            speed_kmh: 60.0,
+            settle_time: 0.4,
+            record_time: 0.3,
+            ground: GroundConfig::default(),
+            damping: DampingConfig::default(),
+            rolling: RollingConfig::default(),
+        }
+    }
+}
+
+/// One recorded sample.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Sample {
+    /// Time [s] (0 at the cleat hit).
+    pub t: f64,
+    /// Longitudinal spindle force `F_x` [N].
+    pub fx: f64,
+    /// Vertical spindle force `F_y` [N].
+    pub fy: f64,
+    /// Lateral spindle force [N].
+    pub fz: f64,
+    /// Spin rate [rad/s].
+    pub spin: f64,
+    /// Contact nodes in contact.
+    pub active: usize,
+    /// Sum of the normal multipliers [N].
+    pub normal_sum: f64,
+}
+
+/// Result of a cleat test.
+#[derive(Debug, Clone, Serialize)]
+pub struct RigResult {
+    /// Speed [km/h].
+    pub speed_kmh: f64,
+    /// DOF of the wheel–tire model (6 + n_z).
+    pub dof: usize,
+    /// Preload solution.
+    pub preload: PatchSolution,
+    /// Rayleigh coefficients.
+    pub rayleigh: Rayleigh,
+    /// Samples (every time step) from the start of the run.
+    pub samples: Vec<Sample>,
+    /// Time step [s].
+    pub dt: f64,
+    /// Wall time of the time integration [s].
+    pub wall_time_s: f64,
+    /// Simulated time [s].
+    pub simulated_s: f64,
+    /// Refactorisations of the iteration matrix.
+    pub refactors: usize,
+}
+
+impl RigResult {
+    /// Samples of the recording window (t ≥ 0).
+    pub fn record(&self) -> Vec<Sample> {
+        self.samples
+            .iter()
+            .copied()
+            .filter(|s| s.t >= 0.0)
+            .collect()
+    }
+
+    /// Spectra of the recorded `F_x`, `F_y`.
+    pub fn spectra(&self) -> (Spectrum, Spectrum) {
+        let r = self.record();
+        let fx: Vec<f64> = r.iter().map(|s| s.fx).collect();
+        let fy: Vec<f64> = r.iter().map(|s| s.fy).collect();
+        (
+            amplitude_spectrum(&fx, self.dt),
+            amplitude_spectrum(&fy, self.dt),
+        )
+    }
+
+    /// RMS fluctuations of the recorded `(F_x, F_y)` [N].
+    pub fn rms(&self) -> (f64, f64) {
+        let r = self.record();
+        let fx: Vec<f64> = r.iter().map(|s| s.fx).collect();
+        let fy: Vec<f64> = r.iter().map(|s| s.fy).collect();
+        (rms_fluctuation(&fx), rms_fluctuation(&fy))
+    }
+}
+
+/// Run the cleat test. `progress` receives the fraction done (0..1).
+pub fn run_cleat(
+    red: &ReducedTire,
+    cfg: &RigConfig,
+    progress: &mut dyn FnMut(f64),
+) -> Result<RigResult, TireError> {
+    run_cleat_observed(red, cfg, progress, &mut |_, _| Ok(()))
+}
+
+/// [`run_cleat`] with an observer called after every step with the step number and the model
+/// (e.g. to write VTK snapshots of the patch).
+pub fn run_cleat_observed(
+    red: &ReducedTire,
+    cfg: &RigConfig,
+    progress: &mut dyn FnMut(f64),
+    observer: &mut dyn FnMut(usize, &RollingTire) -> Result<(), TireError>,
+) -> Result<RigResult, TireError> {
+    if !(cfg.speed_kmh >= 0.0 && cfg.speed_kmh.is_finite()) {
+        return Err(invalid(
+            "speed_kmh",
+            format!("{} is negative", cfg.speed_kmh),
+        ));
+    }
+    for (name, v) in [
+        ("settle_time", cfg.settle_time),
+        ("record_time", cfg.record_time),
+    ] {
+        if !(v >= 0.0 && v.is_finite()) {
+            return Err(invalid(name, format!("{v} s is negative")));
+        }
+    }
+    cfg.rolling.validate()?;
+    let ray = cfg.damping.rayleigh(red)?;
+    let v = cfg.speed_kmh / 3.6;
+    let pre0 = preload(red, &cfg.ground, cfg.load)?;
+    let r_e = red.outer_radius - pre0.patch.deflection / 3.0;
+    let pre = preload_rolling(red, &cfg.ground, cfg.load, v / r_e, ray.beta)?;
+    let ground = Ground {
+        cfg: cfg.ground.clone(),
+        top: pre.patch.top,
+        speed: v,
+        cleat_time: cfg.settle_time,
+    };
+    let mut sim = RollingTire::new(
+        red,
+        cfg.rolling.clone(),
+        ground,
+        ray.alpha,
+        ray.beta,
+        pre.z.clone(),
+        v / r_e,
+    )?;
+    sim.state.lambda = pre.patch.lambda.clone();
+    let h = cfg.rolling.time_step;
+    let total = cfg.settle_time + cfg.record_time;
+    let steps = (total / h).round() as usize;
+    let mut samples = Vec::with_capacity(steps);
+    let t0 = Instant::now();
+    for k in 0..steps {
+        sim.step()?;
+        observer(k, &sim)?;
+        let f = sim.spindle_force();
+        samples.push(Sample {
+            t: sim.state.t - cfg.settle_time,
+            fx: f.fx,
+            fy: f.fy,
+            fz: f.fz,
+            spin: sim.state.theta_d,
+            active: sim.active_count(),
+            normal_sum: sim.total_normal_force(),
+        });
+        if k % 200 == 0 {
+            progress(k as f64 / steps as f64);
+        }
+    }
+    progress(1.0);
+    Ok(RigResult {
+        speed_kmh: cfg.speed_kmh,
+        dof: red.dof(),
+        preload: pre.patch,
+        rayleigh: ray,
+        samples,
+        dt: h,
+        wall_time_s: t0.elapsed().as_secs_f64(),
+        simulated_s: steps as f64 * h,
+        refactors: sim.refactors,
+    })
+}
