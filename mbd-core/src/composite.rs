@@ -434,34 +434,5 @@ fn fd_tangent(
     q: &[f64],
     v: &[f64],
 ) -> Result<ForceTangent, MbdError> {
-    let n = p.n_v();
-    let mut f0 = vec![0.0; n];
-    p.forces(t, q, v, &mut f0)?;
-    let mut k = Mat::<f64>::zeros(n, n);
-    let mut c = Mat::<f64>::zeros(n, n);
-    let mut fp = vec![0.0; n];
-    let mut qp = vec![0.0; q.len()];
-    let mut vp = v.to_vec();
-    let mut e = vec![0.0; n];
-    for j in 0..n {
-        let eps = 1e-7;
-        e[j] = eps;
-        p.integrate_position(q, &e, &mut qp);
-        e[j] = 0.0;
-        p.forces(t, &qp, v, &mut fp)?;
-        for i in 0..n {
-            k[(i, j)] = -(fp[i] - f0[i]) / eps;
-        }
-        let ev = 1e-7 * (1.0 + v[j].abs());
-        vp[j] = v[j] + ev;
-        p.forces(t, q, &vp, &mut fp)?;
-        vp[j] = v[j];
-        for i in 0..n {
-            c[(i, j)] = -(fp[i] - f0[i]) / ev;
-        }
-    }
-    Ok(ForceTangent {
-        stiffness: SysMatrix::Dense(k),
-        damping: SysMatrix::Dense(c),
-    })
+    crate::system::finite_difference_tangent(p, t, q, v)
 }

@@ -191,3 +191,45 @@ pub trait SecondOrderSystem {
         Ok(())
     }
 }
+
+/// Dense forward-difference tangent of a model's forces: `K = −∂f/∂q` (perturbing `q` through
+/// [`SecondOrderSystem::integrate_position`], so rotations stay on their manifold) and
+/// `C = −∂f/∂v`; `2 n_v + 1` force evaluations. The fallback of the implicit integrators for
+/// models without [`SecondOrderSystem::force_tangent`].
+pub fn finite_difference_tangent<S: SecondOrderSystem + ?Sized>(
+    sys: &S,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+) -> Result<ForceTangent, MbdError> {
+    let n = sys.n_v();
+    let mut f0 = vec![0.0; n];
+    sys.forces(t, q, v, &mut f0)?;
+    let mut k = Mat::<f64>::zeros(n, n);
+    let mut c = Mat::<f64>::zeros(n, n);
+    let mut fp = vec![0.0; n];
+    let mut qp = vec![0.0; q.len()];
+    let mut vp = v.to_vec();
+    let mut e = vec![0.0; n];
+    for j in 0..n {
+        let eps = 1e-7;
+        e[j] = eps;
+        sys.integrate_position(q, &e, &mut qp);
+        e[j] = 0.0;
+        sys.forces(t, &qp, v, &mut fp)?;
+        for i in 0..n {
+            k[(i, j)] = -(fp[i] - f0[i]) / eps;
+        }
+        let ev = 1e-7 * (1.0 + v[j].abs());
+        vp[j] = v[j] + ev;
+        sys.forces(t, q, &vp, &mut fp)?;
+        vp[j] = v[j];
+        for i in 0..n {
+            c[(i, j)] = -(fp[i] - f0[i]) / ev;
+        }
+    }
+    Ok(ForceTangent {
+        stiffness: SysMatrix::Dense(k),
+        damping: SysMatrix::Dense(c),
+    })
+}

@@ -536,33 +536,8 @@ impl AlphaStepper {
         q: &[f64],
         v: &[f64],
     ) -> Result<(SysMatrix, SysMatrix), MbdError> {
-        let n = sys.n_v();
-        let mut f0 = vec![0.0; n];
-        sys.forces(t, q, v, &mut f0)?;
-        let mut k = Mat::<f64>::zeros(n, n);
-        let mut c = Mat::<f64>::zeros(n, n);
-        let mut fp = vec![0.0; n];
-        let mut qp = vec![0.0; q.len()];
-        let mut vp = v.to_vec();
-        let mut e = vec![0.0; n];
-        for j in 0..n {
-            let eps = 1e-7;
-            e[j] = eps;
-            sys.integrate_position(q, &e, &mut qp);
-            e[j] = 0.0;
-            sys.forces(t, &qp, v, &mut fp)?;
-            for i in 0..n {
-                k[(i, j)] = -(fp[i] - f0[i]) / eps;
-            }
-            let ev = 1e-7 * (1.0 + v[j].abs());
-            vp[j] = v[j] + ev;
-            sys.forces(t, q, &vp, &mut fp)?;
-            vp[j] = v[j];
-            for i in 0..n {
-                c[(i, j)] = -(fp[i] - f0[i]) / ev;
-            }
-        }
-        self.stats.force_evaluations += 2 * n + 1;
-        Ok((SysMatrix::Dense(k), SysMatrix::Dense(c)))
+        let tan = crate::system::finite_difference_tangent(sys, t, q, v)?;
+        self.stats.force_evaluations += 2 * sys.n_v() + 1;
+        Ok((tan.stiffness, tan.damping))
     }
 }
