@@ -229,26 +229,9 @@ pub fn theta_matrix(
     phi: &Mat<f64>,
     kept: &[usize],
 ) -> Result<Mat<f64>> {
-    let kib = select(k, part.interior(), part.boundary());
     let deleted: Vec<usize> = (0..lam.len()).filter(|i| !kept.contains(i)).collect();
-    let mut theta = Mat::<f64>::zeros(deleted.len(), part.boundary().len());
-    for (r, &d) in deleted.iter().enumerate() {
-        // K̄n^d = φdᵀ K_ii φd = λ_d (M-normalized)
-        if lam[d] <= 0.0 {
-            return Err(ReductionError::NotPositiveDefinite {
-                what: "interior stiffness K_ii".into(),
-                hint: format!("deleted fixed-interface mode {d} has eigenvalue {}", lam[d]),
-            });
-        }
-        for c in 0..part.boundary().len() {
-            let mut s = 0.0;
-            for i in 0..phi.nrows() {
-                s += phi[(i, d)] * kib[(i, c)];
-            }
-            theta[(r, c)] = -s / lam[d];
-        }
-    }
-    Ok(theta)
+    // K̄n^d = φdᵀ K_ii φd = λ_d (M-normalized)
+    modal_coupling(k, part, lam, phi, &deleted, "deleted")
 }
 
 /// The coordinate change `X = −(K̄n^k)⁻¹ Ψn^kᵀ K_ib` of Lin (6.34), with `Ψs = Ψm + Ψn^k X`:
@@ -260,24 +243,37 @@ pub fn cb_to_mc_x(
     phi: &Mat<f64>,
     kept: &[usize],
 ) -> Result<Mat<f64>> {
+    modal_coupling(k, part, lam, phi, kept, "kept")
+}
+
+/// `−λ_j⁻¹ φ_jᵀ K_ib` for the fixed-interface modes `modes` (rows), the common kernel of Θ
+/// (Lin (6.29)) and X (Lin (6.34)); `which` names the mode set in errors.
+fn modal_coupling(
+    k: MatRef<'_, f64>,
+    part: &DofPartition,
+    lam: &[f64],
+    phi: &Mat<f64>,
+    modes: &[usize],
+    which: &str,
+) -> Result<Mat<f64>> {
     let kib = select(k, part.interior(), part.boundary());
-    let mut x = Mat::<f64>::zeros(kept.len(), part.boundary().len());
-    for (r, &kk) in kept.iter().enumerate() {
-        if lam[kk] <= 0.0 {
+    let mut out = Mat::<f64>::zeros(modes.len(), part.boundary().len());
+    for (r, &j) in modes.iter().enumerate() {
+        if lam[j] <= 0.0 {
             return Err(ReductionError::NotPositiveDefinite {
                 what: "interior stiffness K_ii".into(),
-                hint: format!("kept fixed-interface mode {kk} has eigenvalue {}", lam[kk]),
+                hint: format!("{which} fixed-interface mode {j} has eigenvalue {}", lam[j]),
             });
         }
         for c in 0..part.boundary().len() {
             let mut s = 0.0;
             for i in 0..phi.nrows() {
-                s += phi[(i, kk)] * kib[(i, c)];
+                s += phi[(i, j)] * kib[(i, c)];
             }
-            x[(r, c)] = -s / lam[kk];
+            out[(r, c)] = -s / lam[j];
         }
     }
-    Ok(x)
+    Ok(out)
 }
 
 /// Reduced matrices of mode condensation in closed form, Ribaric (3.22)–(3.23) with the
