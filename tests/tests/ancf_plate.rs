@@ -228,19 +228,7 @@ fn linear_cantilever_strip_matches_beam_theory() {
         "reference state must be stress-free"
     );
     let k = k.to_dense();
-    // consistent edge load at x = lx, z direction
-    let mut f = vec![0.0; mesh.n_coords()];
-    let rule = GaussRule::new(4);
-    for cell in mesh.cells.iter().skip(nx - 1).step_by(nx) {
-        let dofs = mesh.cell_dofs(cell);
-        let (a, b) = (cell.plate.shape().a(), cell.plate.shape().b());
-        for (eta, w) in rule.iter() {
-            let s = cell.plate.shape().eval(a, eta * b).s;
-            for kk in 0..12 {
-                f[dofs[3 * kk + 2]] += p / ly * s[kk] * w * b;
-            }
-        }
-    }
+    let f = tip_edge_load(&mesh, nx, p, ly, 2);
     let free: Vec<usize> = (0..mesh.n_coords())
         .filter(|&i| (i / 9) % (nx + 1) != 0)
         .collect();
