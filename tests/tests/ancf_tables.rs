@@ -58,8 +58,8 @@ fn table_2_2_proposed() {
     check_mm(BeamElementKind::Proposed, 0.3, &t, "Table 2.2 proposed");
 }
 
-// Kerkkänen Tables 2.1/2.2, "Omar–Shabana ANCF" columns, n = 2…16 (the rows the seed note
-// reproduced) [mm].
+// Kerkkänen Tables 2.1/2.2, "Omar–Shabana ANCF" columns [mm]: every row of Table 2.2 and
+// n = 2…16 of Table 2.1 to the printed digits.
 #[test]
 fn tables_2_1_2_2_omar_shabana() {
     let t1 = [
@@ -79,6 +79,8 @@ fn tables_2_1_2_2_omar_shabana() {
         (4, -0.067879),
         (8, -0.071262),
         (16, -0.072112),
+        (32, -0.072327),
+        (64, -0.072382),
     ];
     check_mm(
         BeamElementKind::OmarShabana,
@@ -86,6 +88,26 @@ fn tables_2_1_2_2_omar_shabana() {
         &t2,
         "Table 2.2 Omar-Shabana",
     );
+}
+
+// Kerkkänen Table 2.1 (ν = 0), "Omar–Shabana ANCF" rows n = 32, 64 [mm]. We get −0.0970035 and
+// −0.0970761 mm against the printed −0.097005 and −0.097078 mm, i.e. 1.5e-6 and 1.9e-6 mm (two
+// units of the last printed digit, 2e-5 relative). An independent numpy implementation of the
+// same element (dense Newton, same 4×3 Gauss rule) gives −0.09700353618 and −0.09707608073 mm,
+// equal to ours within 1e-11 mm, and the same element reproduces all Table 2.2 rows (ν = 0.3)
+// and n ≤ 16 of Table 2.1 exactly, so we attribute the gap to the thesis's own solution of
+// these two rows; the tolerance records it and still fails
+// if the element changes (the n = 16 → 32 change is 2.9e-4 mm).
+#[test]
+fn table_2_1_omar_shabana_fine_meshes() {
+    for (n, printed_mm) in [(32, -0.097005), (64, -0.097078)] {
+        let case = StaticBeamCase::kerkkanen(BeamElementKind::OmarShabana, n, 0.0, 0.1);
+        let got_mm = simply_supported_deflection(&case).expect("solve") * 1e3;
+        assert!(
+            (got_mm - printed_mm).abs() <= 2.5e-6,
+            "Table 2.1 Omar-Shabana n={n}: got {got_mm:.7} mm, printed {printed_mm} mm"
+        );
+    }
 }
 
 // Kerkkänen Table 2.3 (Model 1: h = 0.1 m, ν = 0.3), "Proposed" column, tip (x, y) [m].
