@@ -22,6 +22,7 @@ pub mod element;
 pub mod error;
 pub mod material;
 pub mod mesh;
+pub mod node_contact;
 pub mod plate;
 pub mod pulley;
 pub mod section;
@@ -35,7 +36,11 @@ pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBea
 pub use error::AncfError;
 pub use material::Material;
 pub use mesh::Mesh;
+pub use node_contact::NodalContact;
 pub use pulley::{ContactDistribution, PulleyContact};
 pub use section::Section;
-pub use statics::{StaticOptions, StaticSolution, solve_static, solve_static_with};
+pub use statics::{
+    StaticOptions, StaticSolution, UnilateralOptions, UnilateralSolution, solve_static,
+    solve_static_unilateral, solve_static_with,
+};
 pub use system::{AncfSystem, Energies, MeshForce, Prescribed};
