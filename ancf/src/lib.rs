@@ -41,4 +41,4 @@ pub use statics::{
     StaticOptions, StaticSolution, UnilateralOptions, UnilateralSolution, solve_static,
     solve_static_unilateral, solve_static_with,
 };
-pub use system::{AncfSystem, Energies, MeshForce, Prescribed};
+pub use system::{AncfSystem, ContactStep, Energies, MeshForce, Prescribed, integrate_unilateral};
