@@ -126,6 +126,12 @@ pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
                 format!("node {node} out of range 0..{}", mesh.n_nodes()),
             ));
         }
+        if map[mesh.node_dof(node, 0)].is_none() && map[mesh.node_dof(node, 1)].is_none() {
+            return Err(invalid(
+                format!("unilateral static solve: contact node {c}"),
+                format!("node {node} has both position coordinates fixed"),
+            ));
+        }
     }
     let node_dofs = |node: usize| [mesh.node_dof(node, 0), mesh.node_dof(node, 1)];
     let gaps_of = |q: &[f64]| -> Vec<f64> {
@@ -349,6 +355,20 @@ mod tests {
         )
         .unwrap_err();
         assert!(e.to_string().contains("penetrates"), "{e}");
+        let e = solve_static_unilateral(
+            &mesh,
+            &q0,
+            &fixed,
+            &load,
+            &HalfPlane::ground(-1.0),
+            &[0],
+            &opts,
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("both position coordinates fixed"),
+            "{e}"
+        );
     }
 
     // Reference: force balance of a rigid-support problem. A cantilever bar whose tip rests
