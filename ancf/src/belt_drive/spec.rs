@@ -61,6 +61,9 @@ impl Default for BeltSpec {
 pub struct ContactSpec {
     /// Penalty stiffness per unit length `k_p` [N/m²].
     pub stiffness: f64,
+    /// Quadratic penalty coefficient per unit length `k₂` [N/m³] (Ribaric (6.1):
+    /// `f_n = k₂ d² + k_p d`; `0` for Kerkkänen's linear law (3.20)).
+    pub quadratic: f64,
     /// Penalty damping per unit length `c_p` [N·s/m²].
     pub damping: f64,
     /// Friction law.
@@ -74,6 +77,7 @@ impl Default for ContactSpec {
     fn default() -> Self {
         Self {
             stiffness: 1.0e7,
+            quadratic: 0.0,
             damping: 10.0,
             friction: BeltFriction::CreepRate {
                 mu: 1.2,
@@ -192,6 +196,12 @@ impl BeltDriveSpec {
             return Err(invalid(
                 "contact.stiffness",
                 format!("must be > 0 N/m², got {}", c.stiffness),
+            ));
+        }
+        if !(c.quadratic.is_finite() && c.quadratic >= 0.0) {
+            return Err(invalid(
+                "contact.quadratic",
+                format!("must be ≥ 0 N/m³, got {}", c.quadratic),
             ));
         }
         if !(c.damping.is_finite() && c.damping >= 0.0) {
