@@ -161,11 +161,11 @@ pub struct ContactStep {
     pub state: State,
     /// Active contact nodes after the step.
     pub active: Vec<usize>,
-    /// Compressive contact force of each active node [N] (same order as `active`).
+    /// Compressive contact force of each active node \[N\] (same order as `active`).
     pub forces: Vec<f64>,
 }
 
-/// Integrate `system` from `state0` to `t_end` [s] with generalized-α (`params`) and the
+/// Integrate `system` from `state0` to `t_end` \[s\] with generalized-α (`params`) and the
 /// frictionless unilateral contact of `nodes` against `surface`; `observer` sees every
 /// accepted step. The nodes must start outside the obstacle.
 pub fn integrate_unilateral<E: Element, S: Surface + ?Sized>(
