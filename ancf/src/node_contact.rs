@@ -13,7 +13,7 @@ use contact::{FrictionLaw, NormalLaw, PointContact, Surface, point_contact};
 pub struct NodalContact<S, NL, FL> {
     /// Obstacle.
     pub surface: S,
-    /// Normal law (force per node [N]).
+    /// Normal law (force per node \[N\]).
     pub normal: NL,
     /// Friction law.
     pub friction: FL,

@@ -12,7 +12,7 @@
 //!
 //! with `g` the signed distance of the node to the obstacle, `∇g = n` its outward normal and
 //! `∂²g/∂r² = ∂n/∂r` (the contact crate's [`unilateral_row`] data), `λ_i ≥ 0` the compressive
-//! contact force [N]. After convergence, contacts with `λ_i < 0` are released and the deepest
+//! contact force \[N\]. After convergence, contacts with `λ_i < 0` are released and the deepest
 //! penetrating inactive node is activated; the increment is repeated until the set is stable.
 
 use super::StaticOptions;
@@ -31,7 +31,7 @@ pub struct UnilateralOptions {
     /// Load increments, Newton iterations and tolerance (the line search is not used: the
     /// KKT iteration takes full steps).
     pub newton: StaticOptions,
-    /// An inactive node is activated when its gap is below `−gap_tolerance` [m].
+    /// An inactive node is activated when its gap is below `−gap_tolerance` \[m\].
     pub gap_tolerance: f64,
     /// Largest number of active-set passes per load increment.
     pub max_passes: usize,
@@ -52,11 +52,11 @@ impl Default for UnilateralOptions {
 pub struct UnilateralSolution {
     /// Equilibrium coordinates.
     pub q: Vec<f64>,
-    /// Contact force `λ_i ≥ 0` of every candidate node [N] (0 when inactive).
+    /// Contact force `λ_i ≥ 0` of every candidate node \[N\] (0 when inactive).
     pub multipliers: Vec<f64>,
     /// Whether each candidate node is in contact.
     pub active: Vec<bool>,
-    /// Gap of every candidate node [m] (0 within the tolerance when active).
+    /// Gap of every candidate node \[m\] (0 within the tolerance when active).
     pub gaps: Vec<f64>,
     /// Active-set passes per load increment.
     pub passes: Vec<usize>,
@@ -65,7 +65,7 @@ pub struct UnilateralSolution {
 }
 
 impl UnilateralSolution {
-    /// Sum of the contact forces [N].
+    /// Sum of the contact forces \[N\].
     pub fn total_force(&self) -> f64 {
         self.multipliers.iter().sum()
     }
@@ -124,6 +124,12 @@ pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
             return Err(invalid(
                 format!("unilateral static solve: contact node {c}"),
                 format!("node {node} out of range 0..{}", mesh.n_nodes()),
+            ));
+        }
+        if map[mesh.node_dof(node, 0)].is_none() && map[mesh.node_dof(node, 1)].is_none() {
+            return Err(invalid(
+                format!("unilateral static solve: contact node {c}"),
+                format!("node {node} has both position coordinates fixed"),
             ));
         }
     }
@@ -349,6 +355,20 @@ mod tests {
         )
         .unwrap_err();
         assert!(e.to_string().contains("penetrates"), "{e}");
+        let e = solve_static_unilateral(
+            &mesh,
+            &q0,
+            &fixed,
+            &load,
+            &HalfPlane::ground(-1.0),
+            &[0],
+            &opts,
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("both position coordinates fixed"),
+            "{e}"
+        );
     }
 
     // Reference: force balance of a rigid-support problem. A cantilever bar whose tip rests
