@@ -14,6 +14,7 @@ pub mod eitelberg;
 pub mod error;
 pub mod lin;
 pub mod linalg;
+pub mod lyapunov;
 pub mod mean_axes_eval;
 pub mod partition;
 pub mod reduced;
