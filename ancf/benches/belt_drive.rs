@@ -2,7 +2,7 @@
 //! implicit generalized-α (analytic Jacobian, h = 1e-4 s) against explicit RK4 at its stable
 //! step, side by side in one run (generalized-α with full and with modified Newton). RK4's step
 //! is 0.95 × the limit `h*` of [`BeltDrive::rk4_step_limit`] (eigenvalues of the linearised
-//! system at the start state), confirmed by 2 ms runs at 0.9 h* (bounded) and 1.1 h* (blows up).
+//! system at the start state), confirmed by 5 ms runs at 0.9 h* (bounded) and 1.1 h* (blows up).
 //! `cargo bench -p ancf --bench belt_drive` prints the ratio recorded in BENCHMARKS.md.
 //!
 //! Both runs start from the static pre-strained state with the belt travelling at the driver's
@@ -87,21 +87,25 @@ fn main() {
         lim.limiting[0],
         lim.limiting[1]
     );
+    // bounded: every coordinate and velocity finite, positions within 1 m of the start, every
+    // velocity (nodal, slope rates, pulley) below 100 (m/s or 1/s) — the belt runs at 0.975 m/s,
+    // slopes turn at ≤ 12 rad/s; an unstable mode (the fastest is the thickness-stretch mode of
+    // r_y) grows by ~1.9 per step at 1.1 h* and passes these bounds within a few hundred steps
     let bounded = |h: f64, window: f64| -> bool {
         match Rk4::new(h).integrate(&d, state0.clone(), window, |_| {}) {
             Ok(s) => {
-                s.state.v.iter().all(|x| x.is_finite())
-                    && s.state.v[..d.n_belt()]
-                        .iter()
-                        .enumerate()
-                        .filter(|(k, _)| k % 6 < 2)
-                        .all(|(_, x)| x.abs() < 5.0 * speed)
+                s.state
+                    .q
+                    .iter()
+                    .zip(&state0.q)
+                    .all(|(a, b)| a.is_finite() && (a - b).abs() < 1.0)
+                    && s.state.v.iter().all(|x| x.is_finite() && x.abs() < 100.0)
                     && (s.state.v[driven] - 12.0).abs() < 6.0
             }
             Err(_) => false,
         }
     };
-    let check_window = 2e-3;
+    let check_window = 5e-3;
     let below = bounded(0.9 * lim.h_max, check_window);
     let above = bounded(1.1 * lim.h_max, check_window);
     println!(

@@ -32,9 +32,49 @@ fn moving_state(d: &BeltDrive, speed: f64) -> (Vec<f64>, Vec<f64>) {
 // be −∂f/∂q, −∂f/∂v including the belt–pulley coupling through the free pulley's speed).
 #[test]
 fn analytic_tangent_matches_finite_differences() {
-    let d = BeltDrive::new(BeltDriveSpec::default())
-        .unwrap()
-        .with_tangent_refresh(0.0);
+    check_tangent(BeltDriveSpec::default());
+}
+
+// Reference: as above, with the Kelvin–Voigt axial damping (BeltSpec::axial_damping) and the
+// polynomial penalty (6.1) switched on; and the damping force vanishes for a rigid rotation of
+// the belt (ε̇ = 0).
+#[test]
+fn damped_tangent_matches_finite_differences_and_rigid_rotation_is_undamped() {
+    let mut spec = BeltDriveSpec::default();
+    spec.belt.axial_damping = 1.8e-3;
+    spec.contact.quadratic = 3.0e11;
+    check_tangent(spec.clone());
+    // rigid rotation about the origin at 5 rad/s: ṙ = ω Ĩ r, slopes rotate likewise
+    let mut free = spec.clone();
+    free.pulleys[0].center = [-5.0, 0.0];
+    free.pulleys[1].center = [5.0, 0.0];
+    free.belt.length = 2.0 * 10.0 + std::f64::consts::TAU * 0.08125;
+    free.contact.damping = 0.0;
+    let d = BeltDrive::new(free).unwrap();
+    let q = d.placed_coordinates();
+    let mut v = vec![0.0; q.len()];
+    for node in 0..d.mesh().n_nodes() {
+        for b in 0..3 {
+            let k = 6 * node + 2 * b;
+            v[k] = -5.0 * q[k + 1];
+            v[k + 1] = 5.0 * q[k];
+        }
+    }
+    let (mut f0, mut f1) = (vec![0.0; q.len()], vec![0.0; q.len()]);
+    d.forces(0.0, &q, &vec![0.0; q.len()], &mut f0).unwrap();
+    d.forces(0.0, &q, &v, &mut f1).unwrap();
+    let diff = f0
+        .iter()
+        .zip(&f1)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let scale = f0.iter().map(|a| a.abs()).fold(0.0, f64::max);
+    println!("rigid rotation: damping force {diff:e} (elastic forces up to {scale:e})");
+    assert!(diff < 1e-9 * scale.max(1.0));
+}
+
+fn check_tangent(spec: BeltDriveSpec) {
+    let d = BeltDrive::new(spec).unwrap().with_tangent_refresh(0.0);
     let (q, v) = moving_state(&d, 0.9);
     let t = 0.5;
     let n = d.n_q();

@@ -562,6 +562,7 @@ impl BeltDrive {
         let nb = self.n_belt;
         self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
         f[nb..].fill(0.0);
+        self.axial_damping(q, v, f, None);
         let mut scratch = self.lock();
         self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
             self.mesh.scatter_add(f, el, &ec.q, 1.0);
@@ -597,6 +598,7 @@ impl BeltDrive {
             cache.k.clone()
         };
         let mut c = pat.zeros();
+        self.axial_damping(q, v, &mut [], Some((&mut k, &mut c)));
         let n_el = self.mesh.elements().len();
         let nf = self.free.len();
         let m = NE + nf;
@@ -629,6 +631,78 @@ impl BeltDrive {
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),
+        }
+    }
+
+    /// Kelvin–Voigt damping of the axial strain rate ([`super::BeltSpec::axial_damping`]):
+    /// `Q_d = −β α₁EA ∫ S_xᵀ r_x (r_xᵀ ṙ_x) dx` added to `f` (when not empty), and with
+    /// `tangent = Some((k, c))` its Jacobians `−∂Q_d/∂e = β α₁EA ∫ S_xᵀ((r_xᵀṙ_x) I + r_x ṙ_xᵀ) S_x dx`
+    /// and `−∂Q_d/∂ė = β α₁EA ∫ S_xᵀ r_x r_xᵀ S_x dx` added to the element blocks.
+    fn axial_damping(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        mut tangent: Option<(&mut Vec<f64>, &mut Vec<f64>)>,
+    ) {
+        let b = &self.spec.belt;
+        if b.axial_damping <= 0.0 {
+            return;
+        }
+        let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
+        let l = self.element_length();
+        let rule = GaussRule::new(b.gauss_points);
+        let mut e = [0.0; NE];
+        let mut ed = [0.0; NE];
+        let mut qd = [0.0; NE];
+        let mut kl = [0.0; NE * NE];
+        let mut cl = [0.0; NE * NE];
+        for el in 0..self.mesh.elements().len() {
+            self.mesh.gather(q, el, &mut e);
+            self.mesh.gather(v, el, &mut ed);
+            qd.fill(0.0);
+            kl.fill(0.0);
+            cl.fill(0.0);
+            for (xi, w) in rule.iter() {
+                let sx = shape::cubic(l, xi * l, 0.0).sx;
+                let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
+                for a in 0..6 {
+                    for c in 0..2 {
+                        rx[c] += sx[a] * e[2 * a + c];
+                        rxd[c] += sx[a] * ed[2 * a + c];
+                    }
+                }
+                let rate = rx[0] * rxd[0] + rx[1] * rxd[1];
+                let wl = w * l * coef;
+                for a in 0..6 {
+                    for c in 0..2 {
+                        qd[2 * a + c] -= wl * sx[a] * rx[c] * rate;
+                    }
+                }
+                if tangent.is_some() {
+                    for bb in 0..6 {
+                        for d in 0..2 {
+                            let col = 2 * bb + d;
+                            for a in 0..6 {
+                                for c in 0..2 {
+                                    let row = 2 * a + c;
+                                    let ss = wl * sx[a] * sx[bb];
+                                    let delta = if c == d { rate } else { 0.0 };
+                                    kl[row + col * NE] += ss * (delta + rx[c] * rxd[d]);
+                                    cl[row + col * NE] += ss * rx[c] * rx[d];
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            if !f.is_empty() {
+                self.mesh.scatter_add(f, el, &qd, 1.0);
+            }
+            if let Some((k, c)) = tangent.as_mut() {
+                self.pattern.add_element(k, el, &kl, 1.0);
+                self.pattern.add_element(c, el, &cl, 1.0);
+            }
         }
     }
 }

@@ -34,6 +34,12 @@ pub struct BeltSpec {
     pub alpha2: f64,
     /// Gauss points along each element for the strain energy.
     pub gauss_points: usize,
+    /// Stiffness-proportional (Kelvin–Voigt) damping of the axial strain rate `β` [s]: axial
+    /// force `α₁EA (ε + β ε̇)` with the Green strain `ε = (r_xᵀr_x − 1)/2` (Kerkkänen (3.18)'s
+    /// axial term). `0` (Kerkkänen: no material damping) by default. It is the Lagrangian-mesh
+    /// counterpart of Ribaric's `β K_e` Rayleigh damping on the material deflection rate; rigid
+    /// motions (the belt wrapping a pulley) have `ε̇ = 0` and are not damped.
+    pub axial_damping: f64,
 }
 
 impl Default for BeltSpec {
@@ -51,6 +57,7 @@ impl Default for BeltSpec {
             alpha1: 1.0,
             alpha2: 0.01,
             gauss_points: 5,
+            axial_damping: 0.0,
         }
     }
 }
@@ -186,6 +193,12 @@ impl BeltDriveSpec {
             return Err(invalid(
                 "belt.elements",
                 format!("a closed loop needs at least 3, got {}", b.elements),
+            ));
+        }
+        if !(b.axial_damping.is_finite() && b.axial_damping >= 0.0) {
+            return Err(invalid(
+                "belt.axial_damping",
+                format!("must be ≥ 0 s, got {}", b.axial_damping),
             ));
         }
         if b.gauss_points == 0 {

@@ -16,7 +16,7 @@
 //! | penalty (6.1) `F_N = L_ele (k₂ δ² + k₁ δ)` per contact node | the same law per unit length, distributed: `f_n = k₂ d² + k₁ d + c_p ḋ` (Kerkkänen (3.20) with the quadratic term), integrated by Gauss quadrature (3.27) |
 //! | the mounted belt's line on the path (flowing: contact radius `R + p₀`, `p₀` the penetration under `T0/R`, 72 µm) | the same: pulley radius `R + p₀`, so that the belt centreline sinks by `p₀` onto the path of radius R |
 //! | tanh friction (6.2) `μ`, `κ` per node | [`BeltFriction::Tanh`] per unit length, same `μ`, `κ` |
-//! | Rayleigh damping `αM + βK_e` of the deflection | none on the belt (the ANCF element has no material damping and `αM` on absolute velocities would brake the moving belt); contact damping `c_p` ([`AncfSettings::contact_damping`], 10 % of the critical value `2√(k₁ ρA)` by default) and generalized-α's numerical damping remove the contact and high-frequency vibrations |
+//! | Rayleigh damping `αM + βK_e` of the deflection (β on the material rate) | the stiffness-proportional part as Kelvin–Voigt damping of the axial strain rate with the same β ([`BeltSpec::axial_damping`]: axial force `EA(ε + β ε̇)`; without it the driven pulley's torsional vibration against the spans, ≈57 Hz, decayed with ζ ≈ 0.003 and the steady-state detection never triggered); bending undamped; the mass-proportional part `αM` is dropped (on the absolute velocities of a Lagrangian mesh it would brake the moving belt); generalized-α's numerical damping (ρ∞ of the procedure) damps the contact vibrations; penalty damping `c_p` ([`AncfSettings::contact_damping`]) is 0 by default, as in (6.1) |
 //! | driven inertia `I` | the free pulley's inertia |
 //! | driver speed and load schedules of the procedure | supplied at every evaluation through [`BeltDrive::forces_with`] / [`BeltDrive::force_tangent_with`] |
 //!
@@ -51,11 +51,16 @@ pub struct AncfSettings {
     pub contact_points: usize,
     /// Section width `b` [m] (planar model: only `b h` and `b h³` matter, through EA and EI).
     pub width: f64,
-    /// Penalty damping `c_p` [N·s/m²]; `None`: 10 % of critical, `0.2 √(k₁ ρA)`.
-    pub contact_damping: Option<f64>,
+    /// Penalty damping `c_p` [N·s/m²] (default 0, as in (6.1)). A damped law is discontinuous
+    /// where a quadrature point enters or leaves contact (`c_p ḋ ≠ 0` at `d = 0`): with
+    /// `c_p = 500` (10 % of critical) Newton cycled at a contact change during the spin-up.
+    pub contact_damping: f64,
     /// Generalized-α step [s] (replaces the procedure's step for this model).
     pub step: f64,
-    /// Reuse tolerance of the elastic tangent (`BeltDrive::with_tangent_refresh`).
+    /// Reuse tolerance of the elastic tangent (`BeltDrive::with_tangent_refresh`); `0` (exact
+    /// tangent) by default: the procedure's Newton tolerance (1e-10 m) is tight, and with the
+    /// Table 6-1 belt (EA = 152 kN) a lagging tangent (0.02) stalled Newton at 6e-6 m during
+    /// the spin-up.
     pub tangent_refresh: f64,
 }
 
@@ -65,9 +70,9 @@ impl Default for AncfSettings {
             elements: 40,
             contact_points: 5,
             width: 0.02,
-            contact_damping: None,
+            contact_damping: 0.0,
             step: 1e-4,
-            tangent_refresh: 0.02,
+            tangent_refresh: 0.0,
         }
     }
 }
@@ -86,12 +91,10 @@ impl AncfSettings {
                 return Err((name.into(), format!("must be finite and > 0 (got {v})")));
             }
         }
-        if let Some(c) = self.contact_damping
-            && !(c.is_finite() && c >= 0.0)
-        {
+        if !(self.contact_damping.is_finite() && self.contact_damping >= 0.0) {
             return Err((
                 "contact_damping".into(),
-                format!("must be finite and ≥ 0 (got {c})"),
+                format!("must be finite and ≥ 0 (got {})", self.contact_damping),
             ));
         }
         if !(self.tangent_refresh.is_finite() && self.tangent_refresh >= 0.0) {
@@ -154,9 +157,7 @@ pub fn ancf_spec(
     let area = s.width * thickness;
     let young = b.ea / area;
     let density = b.mass_per_length / area;
-    let contact_damping = s
-        .contact_damping
-        .unwrap_or(0.2 * (cfg.contact.penalty_linear * b.mass_per_length).sqrt());
+    let contact_damping = s.contact_damping;
     let pulley = |k: usize, name: &str, drive: PulleyDrive| Pulley {
         name: name.into(),
         center: centers[k],
@@ -194,6 +195,7 @@ pub fn ancf_spec(
             alpha1: 1.0,
             alpha2: 1.0,
             gauss_points: 5,
+            axial_damping: cfg.damping.beta,
         },
         contact: ContactSpec {
             stiffness: cfg.contact.penalty_linear,

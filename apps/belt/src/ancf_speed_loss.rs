@@ -46,7 +46,7 @@ pub fn run_case(
     let mut found = 0usize;
     let result = speed_loss_sweep(&mut model, &settings, |_, s: Sample| {
         k += 1;
-        if k % every == 0
+        if k.is_multiple_of(every)
             && let Err(e) = csv.row(&[s.t, s.omega_driver, s.omega_driven, s.load])
         {
             io_err.get_or_insert(e);

@@ -55,7 +55,7 @@ impl Default for WaveSettings {
             amplitude: 2e-3,
             half_width: 0.2,
             t_end: 0.1,
-            step: 2e-5,
+            step: 5e-5,
             rho_inf: 0.9,
             samples: 1000,
         }
