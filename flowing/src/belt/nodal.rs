@@ -33,8 +33,13 @@
 //!   turns: the polygonal (element-passing) excitation the stationary mesh avoids.
 //! - The node masses (lumped, [`BeltFe::mass`]) and the penalty tributary lengths travel with
 //!   the material nodes (constant).
-//! - `ε_n^i = e_n^i/ρ^i` of the exact path at the node's current position (Ribaric (5.3)):
-//!   `1/R` on the arcs, 0 on the spans. Rotational entries of `e_t`, `ε_n` are zero (note U6).
+//! - `ε_n^i = e_n^i/ρ^i` (Ribaric (5.3), (5.4)) is evaluated as the discrete curvature of the
+//!   current chord polygon, `(u_i − u_{i−1}) / L_i` (`u` unit chords, `L_i` the material
+//!   tributary length): the definition of [`BeltFe::curvature`], so both formulations agree at
+//!   `s_b = 0` and the centrifugal load stays `ρv²/T0` times the pre-tension force. The exact
+//!   path curvature (`1/R` on arcs, 0 on spans) jumps when a node crosses a tangent point, a
+//!   force discontinuous in `s_b` on which the Newton iterations of the implicit integrator
+//!   stall. Rotational entries of `e_t`, `ε_n` are zero (note U6).
 //! - Damping: `C δ̇` with the nodal rate δ̇, which is the material rate here (note U10: the
 //!   flowing form applies `α M` to the Eulerian rate; the difference, `α M v δ_,s`, is a drag of
 //!   order 10⁻³ N for Table 6-1).
@@ -60,8 +65,8 @@ type Block = [[f64; 6]; 6];
 struct Mesh {
     pos: Vec<[f64; 2]>,
     tan: Vec<[f64; 2]>,
-    nrm: Vec<[f64; 2]>,
-    kappa: Vec<f64>,
+    /// Discrete curvature vector `ε_n,i = (u_i − u_{i−1}) / L_i` of the current chord polygon.
+    eps_n: Vec<[f64; 2]>,
     /// `K_e + K_g(T0)` of each element (global axes, DOFs of nodes `e`, `e+1`).
     k: Vec<Block>,
     /// `K_e` of each element (for the β part of the damping).
@@ -242,17 +247,18 @@ impl NodalBelt {
             chords.push([el.c, el.s]);
         }
         let mut f0 = vec![0.0; NODE_DOFS * n];
+        let mut eps_n = vec![[0.0; 2]; n];
         for i in 0..n {
             let (u, up) = (chords[i], chords[(i + n - 1) % n]);
             for c in 0..2 {
                 f0[NODE_DOFS * i + c] = t0 * (u[c] - up[c]);
+                eps_n[i][c] = (u[c] - up[c]) / self.fe.tributary[i];
             }
         }
         Ok(Mesh {
             pos: pts.iter().map(|p| p.position).collect(),
             tan: pts.iter().map(|p| p.tangent).collect(),
-            nrm: pts.iter().map(|p| p.normal).collect(),
-            kappa: pts.iter().map(|p| p.curvature).collect(),
+            eps_n,
             k,
             ke,
             f0,
@@ -354,9 +360,9 @@ impl NodalBelt {
             *gi -= alpha * mi * di;
         }
         for i in 0..n {
-            let c = mesh.kappa[i] * vb * vb * self.fe.mass[NODE_DOFS * i];
+            let c = vb * vb * self.fe.mass[NODE_DOFS * i];
             for a in 0..2 {
-                g[NODE_DOFS * i + a] -= c * mesh.nrm[i][a];
+                g[NODE_DOFS * i + a] -= c * mesh.eps_n[i][a];
             }
         }
         let mut torque = 0.0;
@@ -419,9 +425,9 @@ impl NodalBelt {
             cv[(1 + i, 1 + i)] += alpha * self.fe.mass[i];
         }
         for i in 0..n {
-            let c = 2.0 * mesh.kappa[i] * vb * self.fe.mass[NODE_DOFS * i];
+            let c = 2.0 * vb * self.fe.mass[NODE_DOFS * i];
             for a in 0..2 {
-                cv[(1 + NODE_DOFS * i + a, 0)] += c * mesh.nrm[i][a];
+                cv[(1 + NODE_DOFS * i + a, 0)] += c * mesh.eps_n[i][a];
             }
         }
         for (i, p, c) in self.contacts(&mesh, t, q, v) {
@@ -770,5 +776,65 @@ mod tests {
             scale > 1e-9 && err < 1e-6 * scale.max(1e-6),
             "{err} vs {scale}"
         );
+    }
+}
+
+#[cfg(test)]
+mod experiment {
+    use super::*;
+    use crate::belt::{BeltDriveConfig, FlowingBelt, SpeedLossSettings, speed_loss_sweep};
+
+    fn env(k: &str, d: f64) -> f64 {
+        std::env::var(k)
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(d)
+    }
+
+    #[test]
+    #[ignore = "experiment"]
+    fn compare() {
+        let mut cfg = BeltDriveConfig::default();
+        cfg.mesh.span_elements = env("SPAN", 10.0) as usize;
+        cfg.mesh.arc_elements = env("ARC", 18.0) as usize;
+        let settings = SpeedLossSettings {
+            omega_driver: env("OMEGA", 62.8),
+            torques: vec![0.0, env("TORQUE", 8.0)],
+            window: env("WINDOW", 0.05),
+            tolerance: env("TOL", 2e-4),
+            max_hold: 3.0,
+            step: env("STEP", 2.5e-4),
+            ..Default::default()
+        };
+        let fe = BeltFe::new(&cfg).unwrap();
+        if env("FLOW", 1.0) > 0.0 {
+            let mut fl =
+                FlowingBelt::new(fe.clone(), Schedule::constant(0.0), Schedule::constant(0.0))
+                    .unwrap();
+            let t = std::time::Instant::now();
+            let (p, s) = speed_loss_sweep(&mut fl, &settings, |_, _| {}).unwrap();
+            println!("flowing {:?} {:?} wall {}", p, s, t.elapsed().as_secs_f64());
+        }
+        let mut nb = NodalBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).unwrap();
+        let t = std::time::Instant::now();
+        let mut k = 0;
+        let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+        let r = speed_loss_sweep(&mut nb, &settings, |st, s| {
+            k += 1;
+            lo = lo.min(s.omega_driven);
+            hi = hi.max(s.omega_driven);
+            if k % 400 == 0 {
+                println!(
+                    "t {:.4} v {:.4} w2 range {:.4} {:.4}",
+                    st.t, st.v[0], lo, hi
+                );
+                lo = f64::MAX;
+                hi = f64::MIN;
+            }
+        });
+        match r {
+            Ok((p, s)) => println!("nodal {:?} {:?} wall {}", p, s, t.elapsed().as_secs_f64()),
+            Err(f) => println!("nodal failed {} {:?}", f.error, f.points),
+        }
     }
 }
