@@ -2,10 +2,11 @@
 //! Ribaric Table 6-1 against the load torque, at the driver speeds of Figs. 6-6 and 6-7, with
 //! Bechtel's analytical line (6.3). The physics and the procedure live in `flowing::belt`.
 
+use flowing::belt::nodal::NodalBelt;
 use flowing::belt::study::{Sample, SpeedLossPoint, SweepStats};
 use flowing::belt::{
-    BeltDriveConfig, BeltFe, FlowingBelt, Schedule, SpeedLossSettings, analytical_speed_loss,
-    speed_loss_sweep,
+    BeltDriveConfig, BeltFe, DriveModel, FlowingBelt, Schedule, SpeedLossSettings,
+    analytical_speed_loss, speed_loss_sweep,
 };
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
@@ -22,6 +23,18 @@ pub enum ModelKind {
     /// Flowing-material modal model with a stationary mesh (Ribaric (5.14)).
     #[default]
     Flowing,
+    /// Nodal model with a rotating (Lagrangian) mesh (Ribaric (5.7)): the reference the
+    /// flowing form replaces; needs a fine uniform mesh (`drive.mesh`) to be accurate.
+    Nodal,
+}
+
+impl ModelKind {
+    fn name(self) -> &'static str {
+        match self {
+            ModelKind::Flowing => "flowing",
+            ModelKind::Nodal => "nodal",
+        }
+    }
 }
 
 /// Command-line arguments.
@@ -133,7 +146,8 @@ pub struct Summary {
     pub analytical: Vec<f64>,
     /// Every driver speed.
     pub cases: Vec<Case>,
-    /// Number of modal coordinates of the flowing model.
+    /// Number of coordinates of the model (modal + belt + pulley for the flowing model,
+    /// nodal + belt + pulley for the nodal model).
     pub modal_coordinates: usize,
     /// Total wall time [s].
     pub wall_time_s: f64,
@@ -144,6 +158,34 @@ struct SpeedLoss {
 }
 
 fn run_case(
+    model: ModelKind,
+    drive: &BeltDriveConfig,
+    settings: &SpeedLossSettings,
+    every: usize,
+    ctx: &StudyContext,
+    done: &AtomicUsize,
+    report: &(dyn Fn(usize) + Sync),
+) -> Result<(Case, usize), StudyError> {
+    let fe = BeltFe::new(drive).map_err(|e| StudyError::numerical(e))?;
+    let (driver, load) = (Schedule::constant(0.0), Schedule::constant(0.0));
+    match model {
+        ModelKind::Flowing => {
+            let mut belt = FlowingBelt::new(fe, driver, load).map_err(StudyError::numerical)?;
+            let dofs = belt.n_modes() + 2;
+            sweep_case(&mut belt, dofs, drive, settings, every, ctx, done, report)
+        }
+        ModelKind::Nodal => {
+            let mut belt = NodalBelt::new(fe, driver, load).map_err(StudyError::numerical)?;
+            let dofs = belt.n_nodal() + 2;
+            sweep_case(&mut belt, dofs, drive, settings, every, ctx, done, report)
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn sweep_case<M: DriveModel>(
+    belt: &mut M,
+    modes: usize,
     drive: &BeltDriveConfig,
     settings: &SpeedLossSettings,
     every: usize,
@@ -152,10 +194,6 @@ fn run_case(
     report: &(dyn Fn(usize) + Sync),
 ) -> Result<(Case, usize), StudyError> {
     let start = std::time::Instant::now();
-    let fe = BeltFe::new(drive).map_err(|e| StudyError::numerical(e))?;
-    let mut belt = FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0))
-        .map_err(StudyError::numerical)?;
-    let modes = belt.n_modes() + 2;
     let name = format!("history_omega_{:.1}.csv", settings.omega_driver);
     let mut csv = ctx.out.csv(
         &name,
@@ -170,7 +208,7 @@ fn run_case(
     let mut io_err = None;
     let mut k = 0usize;
     let mut found = 0usize;
-    let result = speed_loss_sweep(&mut belt, settings, |st, s: Sample| {
+    let result = speed_loss_sweep(belt, settings, |st, s: Sample| {
         k += 1;
         if k % every == 0
             && let Err(e) = csv.row(&[s.t, s.omega_driver, s.omega_driven, s.load, st.v[0]])
@@ -257,6 +295,7 @@ impl Study for SpeedLoss {
                 ..c.procedure.clone()
             };
             let r = run_case(
+                c.model,
                 &c.drive,
                 &settings,
                 c.history_every,
@@ -304,7 +343,7 @@ impl Study for SpeedLoss {
                 table.row(&[case.omega_driver, p.torque, p.delta_omega, *a])?;
             }
             plot.series.push(Series {
-                name: format!("flowing, ω₁ = {} rad/s", case.omega_driver),
+                name: format!("{}, ω₁ = {} rad/s", c.model.name(), case.omega_driver),
                 points: case
                     .points
                     .iter()

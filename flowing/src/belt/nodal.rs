@@ -54,6 +54,7 @@ use contact::friction::CoulombTanh;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet};
 use fe_model::element::{Frame2d, Frame2dSection};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
@@ -95,42 +96,74 @@ pub struct NodalBelt {
     mass_total: f64,
 }
 
-/// Rotate a local 6×6 element matrix to global axes: `Tᵀ k T`, `T = diag(R, 1, R, 1)`.
+/// Rotate a local 6×6 element matrix to global axes: `Tᵀ k T`, `T = diag(R, 1, R, 1)` with
+/// `R = [c s; −s c]` (fe-model's [`Frame2d`] convention).
 fn rotate(local: &Mat<f64>, c: f64, s: f64) -> Block {
-    // T rows: [c s 0; −s c 0; 0 0 1] per node
-    let t = |i: usize, j: usize| -> f64 {
-        if i / 3 != j / 3 {
-            return 0.0;
-        }
-        match (i % 3, j % 3) {
-            (0, 0) | (1, 1) => c,
-            (0, 1) => s,
-            (1, 0) => -s,
-            (2, 2) => 1.0,
-            _ => 0.0,
-        }
-    };
-    let mut kt = [[0.0; 6]; 6];
-    for i in 0..6 {
-        for j in 0..6 {
-            let mut a = 0.0;
-            for l in 0..6 {
-                a += local[(i, l)] * t(l, j);
-            }
-            kt[i][j] = a;
+    let mut a = [[0.0; 6]; 6];
+    for (i, row) in a.iter_mut().enumerate() {
+        for b in [0, 3] {
+            let (k0, k1) = (local[(i, b)], local[(i, b + 1)]);
+            row[b] = c * k0 - s * k1;
+            row[b + 1] = s * k0 + c * k1;
+            row[b + 2] = local[(i, b + 2)];
         }
     }
     let mut out = [[0.0; 6]; 6];
-    for i in 0..6 {
+    for b in [0, 3] {
         for j in 0..6 {
-            let mut a = 0.0;
-            for l in 0..6 {
-                a += t(l, i) * kt[l][j];
-            }
-            out[i][j] = a;
+            let (a0, a1) = (a[b][j], a[b + 1][j]);
+            out[b][j] = c * a0 - s * a1;
+            out[b + 1][j] = s * a0 + c * a1;
+            out[b + 2][j] = a[b + 2][j];
         }
     }
     out
+}
+
+/// Triplets of a tangent matrix whose row 0 is `e_tᵀ` times the nodal rows (Ribaric (5.6)).
+struct Tangent<'a> {
+    trip: Vec<Triplet<usize, usize, f64>>,
+    row0: Vec<f64>,
+    tan: &'a [[f64; 2]],
+    n: usize,
+}
+
+impl<'a> Tangent<'a> {
+    fn new(n: usize, tan: &'a [[f64; 2]]) -> Self {
+        Self {
+            trip: Vec::with_capacity(64 * n),
+            row0: vec![0.0; n],
+            tan,
+            n,
+        }
+    }
+
+    /// Entry `(r, c)` (`r ≥ 1`); a nodal translation row also feeds row 0.
+    fn add(&mut self, r: usize, c: usize, x: f64) {
+        self.trip.push(Triplet::new(r, c, x));
+        let k = r.wrapping_sub(1);
+        if r >= 1 && k < NODE_DOFS * self.tan.len() && k % NODE_DOFS < 2 {
+            self.row0[c] += self.tan[k / NODE_DOFS][k % NODE_DOFS] * x;
+        }
+    }
+
+    fn finish_row0(mut self) -> Result<SparseColMat<usize, f64>, MbdError> {
+        for c in 0..self.n {
+            self.trip.push(Triplet::new(0, c, self.row0[c]));
+        }
+        SparseColMat::try_new_from_triplets(self.n, self.n, &self.trip).map_err(|e| {
+            MbdError::Model {
+                t: 0.0,
+                message: format!("nodal belt tangent assembly: {e:?}"),
+            }
+        })
+    }
+
+    /// Like [`Self::finish_row0`], with `(0, 0)` given (the difference column's row 0).
+    fn finish(mut self, k00: f64) -> Result<SparseColMat<usize, f64>, MbdError> {
+        self.row0[0] = k00;
+        self.finish_row0()
+    }
 }
 
 impl NodalBelt {
@@ -400,9 +433,16 @@ impl NodalBelt {
         Ok(())
     }
 
-    /// `(K_t, C_t) = (−∂f/∂q, −∂f/∂v)`: analytic in `δ`, `δ̇`, `v`, `ω₂`; the `s_b` column by a
-    /// forward difference (it carries the rebuilt element frames).
-    fn tangent(&self, t: f64, q: &[f64], v: &[f64]) -> Result<(Mat<f64>, Mat<f64>), MbdError> {
+    /// `(K_t, C_t) = (−∂f/∂q, −∂f/∂v)` as sparse matrices with a pattern independent of the
+    /// state (element blocks, every node's contact block, the full rows and columns of `s_b`
+    /// and `φ₂`), so the integrator's symbolic LU is reused: analytic in `δ`, `δ̇`, `v`, `ω₂`;
+    /// the `s_b` column by a forward difference (it carries the rebuilt element frames).
+    fn tangent(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<(SparseColMat<usize, f64>, SparseColMat<usize, f64>), MbdError> {
         let n = self.n();
         let nd = self.n_nodal();
         let nv = nd + 2;
@@ -410,60 +450,69 @@ impl NodalBelt {
         let mesh = self.mesh(q[0])?;
         let vb = v[0];
         let (alpha, beta) = (self.fe.config.damping.alpha, self.fe.config.damping.beta);
-        let mut kq = Mat::<f64>::zeros(nv, nv);
-        let mut cv = Mat::<f64>::zeros(nv, nv);
+        let mut kq = Tangent::new(nv, &mesh.tan);
+        let mut cv = Tangent::new(nv, &mesh.tan);
         for e in 0..n {
             let dofs = self.element_dofs(e);
             for a in 0..6 {
                 for b in 0..6 {
-                    kq[(1 + dofs[a], 1 + dofs[b])] += mesh.k[e][a][b];
-                    cv[(1 + dofs[a], 1 + dofs[b])] += beta * mesh.ke[e][a][b];
+                    kq.add(1 + dofs[a], 1 + dofs[b], mesh.k[e][a][b]);
+                    cv.add(1 + dofs[a], 1 + dofs[b], beta * mesh.ke[e][a][b]);
                 }
             }
         }
         for i in 0..nd {
-            cv[(1 + i, 1 + i)] += alpha * self.fe.mass[i];
+            cv.add(1 + i, 1 + i, alpha * self.fe.mass[i]);
         }
         for i in 0..n {
             let c = 2.0 * vb * self.fe.mass[NODE_DOFS * i];
             for a in 0..2 {
-                cv[(1 + NODE_DOFS * i + a, 0)] += c * mesh.eps_n[i][a];
+                cv.add(1 + NODE_DOFS * i + a, 0, c * mesh.eps_n[i][a]);
             }
         }
+        let mut touching = vec![[None::<NodeContact>; 2]; n];
         for (i, p, c) in self.contacts(&mesh, t, q, v) {
+            touching[i][p] = Some(c);
+        }
+        // every node's contact entries, zero when open (fixed pattern)
+        for (i, pair) in touching.iter().enumerate() {
             let r = 1 + NODE_DOFS * i;
             let et = mesh.tan[i];
+            let mut dd = [[0.0; 2]; 2];
+            let mut dv = [[0.0; 2]; 2];
+            let mut dw = [0.0; 2];
+            let (mut tdd, mut tdv, mut tdw) = ([0.0; 2], [0.0; 2], 0.0);
+            for (p, c) in pair.iter().enumerate() {
+                let Some(c) = c else { continue };
+                for a in 0..2 {
+                    for b in 0..2 {
+                        dd[a][b] += c.df_dd[a][b];
+                        dv[a][b] += c.df_dv[a][b];
+                    }
+                    if p == 1 {
+                        dw[a] += c.df_dw[a];
+                        tdd[a] += c.dt_dd[a];
+                        tdv[a] += c.dt_dv[a];
+                    }
+                }
+                if p == 1 {
+                    tdw += c.dt_dw;
+                }
+            }
             for a in 0..2 {
                 for b in 0..2 {
-                    kq[(r + a, r + b)] -= c.df_dd[a][b];
-                    cv[(r + a, r + b)] -= c.df_dv[a][b];
+                    kq.add(r + a, r + b, -dd[a][b]);
+                    cv.add(r + a, r + b, -dv[a][b]);
                 }
-                cv[(r + a, 0)] -= c.df_dv[a][0] * et[0] + c.df_dv[a][1] * et[1];
-                if p == 1 {
-                    cv[(r + a, ip)] -= c.df_dw[a];
-                }
+                cv.add(r + a, 0, -(dv[a][0] * et[0] + dv[a][1] * et[1]));
+                cv.add(r + a, ip, -dw[a]);
+                kq.add(ip, r + a, -tdd[a]);
+                cv.add(ip, r + a, -tdv[a]);
             }
-            if p == 1 {
-                for b in 0..2 {
-                    kq[(ip, r + b)] -= c.dt_dd[b];
-                    cv[(ip, r + b)] -= c.dt_dv[b];
-                }
-                cv[(ip, 0)] -= c.dt_dv[0] * et[0] + c.dt_dv[1] * et[1];
-                cv[(ip, ip)] -= c.dt_dw;
-            }
+            cv.add(ip, 0, -(tdv[0] * et[0] + tdv[1] * et[1]));
+            cv.add(ip, ip, -tdw);
         }
-        // row 0 = e_tᵀ (rows of the nodal block)
-        for j in 0..nv {
-            let (mut sk, mut sc) = (0.0, 0.0);
-            for i in 0..n {
-                let r = 1 + NODE_DOFS * i;
-                sk += mesh.tan[i][0] * kq[(r, j)] + mesh.tan[i][1] * kq[(r + 1, j)];
-                sc += mesh.tan[i][0] * cv[(r, j)] + mesh.tan[i][1] * cv[(r + 1, j)];
-            }
-            kq[(0, j)] = sk;
-            cv[(0, j)] = sc;
-        }
-        // s_b column: forward difference of the forces
+        // s_b column: forward difference of the forces (rows 1.. here; row 0 below)
         let eps = 1e-7;
         let mut f0 = vec![0.0; nv];
         let mut f1 = vec![0.0; nv];
@@ -472,10 +521,11 @@ impl NodalBelt {
         qp[0] += eps;
         let mesh1 = self.mesh(qp[0])?;
         self.forces_on(&mesh1, t, &qp, v, &mut f1)?;
-        for i in 0..nv {
-            kq[(i, 0)] = -(f1[i] - f0[i]) / eps;
+        for i in 1..nv {
+            kq.add(i, 0, -(f1[i] - f0[i]) / eps);
         }
-        Ok((kq, cv))
+        let k00 = -(f1[0] - f0[0]) / eps;
+        Ok((kq.finish(k00)?, cv.finish_row0()?))
     }
 
     /// Static equilibrium of the mounted belt on the resting pulleys (`v = 0`, `s_b = 0`) under
@@ -496,7 +546,7 @@ impl NodalBelt {
             let mesh = still.mesh(0.0)?;
             still.forces_on(&mesh, 0.0, &q, &v, &mut f)?;
             let res = f[1..=nd].iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            let (kt, _) = still.tangent(0.0, &q, &v)?;
+            let kt = still.tangent(0.0, &q, &v)?.0.to_dense();
             let et = mesh.tan[self.reference_node];
             let a = Mat::from_fn(nd + 1, nd + 1, |i, j| match (i < nd, j < nd) {
                 (true, true) => kt[(i + 1, j + 1)],
@@ -567,25 +617,31 @@ impl SecondOrderSystem for NodalBelt {
         }
     }
 
+    /// Sparse: `[[m, (M e_t)ᵀ, 0], [M e_t, M, 0], [0, 0, J₂]]` (Ribaric (5.6)).
     fn mass(&self, _t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         let nd = self.n_nodal();
         let nv = nd + 2;
-        let mut mm = Mat::<f64>::zeros(nv, nv);
-        mm[(0, 0)] = self.mass_total;
+        let mut trip = Vec::with_capacity(3 * nv);
+        trip.push(Triplet::new(0, 0, self.mass_total));
         for i in 0..self.n() {
             let tan = self.fe.path.point(self.fe.s[i] + q[0]).tangent;
             for a in 0..2 {
                 let r = 1 + NODE_DOFS * i + a;
                 let m = self.fe.mass[NODE_DOFS * i + a] * tan[a];
-                mm[(r, 0)] = m;
-                mm[(0, r)] = m;
+                trip.push(Triplet::new(r, 0, m));
+                trip.push(Triplet::new(0, r, m));
             }
         }
         for i in 0..nd {
-            mm[(1 + i, 1 + i)] = self.fe.mass[i];
+            trip.push(Triplet::new(1 + i, 1 + i, self.fe.mass[i]));
         }
-        mm[(nd + 1, nd + 1)] = self.inertia;
-        Ok(SysMatrix::Dense(mm))
+        trip.push(Triplet::new(nd + 1, nd + 1, self.inertia));
+        SparseColMat::try_new_from_triplets(nv, nv, &trip)
+            .map(SysMatrix::Sparse)
+            .map_err(|e| MbdError::Model {
+                t: 0.0,
+                message: format!("nodal belt mass assembly: {e:?}"),
+            })
     }
 
     fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
@@ -601,8 +657,8 @@ impl SecondOrderSystem for NodalBelt {
     ) -> Result<Option<ForceTangent>, MbdError> {
         let (k, c) = self.tangent(t, q, v)?;
         Ok(Some(ForceTangent {
-            stiffness: SysMatrix::Dense(k),
-            damping: SysMatrix::Dense(c),
+            stiffness: SysMatrix::Sparse(k),
+            damping: SysMatrix::Sparse(c),
         }))
     }
 
@@ -619,11 +675,21 @@ impl SecondOrderSystem for NodalBelt {
         let k = self.reference_node;
         let p = self.fe.path.point(self.fe.s[k] + q[0]);
         let d = &q[1 + NODE_DOFS * k..];
-        let mut dm = Mat::<f64>::zeros(1, self.n_q());
-        dm[(0, 0)] = p.curvature * (p.normal[0] * d[0] + p.normal[1] * d[1]);
-        dm[(0, 1 + NODE_DOFS * k)] = p.tangent[0];
-        dm[(0, 2 + NODE_DOFS * k)] = p.tangent[1];
-        Ok(SysMatrix::Dense(dm))
+        let trip = [
+            Triplet::new(
+                0,
+                0,
+                p.curvature * (p.normal[0] * d[0] + p.normal[1] * d[1]),
+            ),
+            Triplet::new(0, 1 + NODE_DOFS * k, p.tangent[0]),
+            Triplet::new(0, 2 + NODE_DOFS * k, p.tangent[1]),
+        ];
+        SparseColMat::try_new_from_triplets(1, self.n_q(), &trip)
+            .map(SysMatrix::Sparse)
+            .map_err(|e| MbdError::Model {
+                t: 0.0,
+                message: format!("nodal belt constraint Jacobian: {e:?}"),
+            })
     }
 
     /// `γ = v² κ² e_tᵀ δ^k − 2 v κ e_nᵀ δ̇^k` (`∂e_n/∂s = −κ e_t`).
@@ -720,6 +786,7 @@ mod tests {
         }
         v[nv - 1] = 59.0;
         let (kt, ct) = b.tangent(0.5, &q, &v).unwrap();
+        let (kt, ct) = (kt.to_dense(), ct.to_dense());
         let mut fp = vec![0.0; nv];
         let mut fm = vec![0.0; nv];
         let mut worst: f64 = 0.0;
