@@ -157,11 +157,12 @@ pub struct Sample {
 }
 
 /// How often a step whose Newton iterations fail is split in two halves (recursively).
-const MAX_HALVINGS: usize = 4;
+pub const MAX_HALVINGS: usize = 4;
 
-/// One step of size `h`; if Newton fails, two steps of `h/2` (recursively, `depth` levels).
-/// The rotating-mesh model needs it when a coarse element lands on a pulley.
-fn robust_step<M: DriveModel>(
+/// One step of size `h` [s]; if Newton fails, two steps of `h/2` (recursively, `depth`
+/// levels). The rotating-mesh model ([`super::nodal::NodalBelt`]) needs it when a coarse
+/// element lands on a pulley.
+pub fn robust_step<M: DriveModel>(
     stepper: &mut AlphaStepper,
     model: &M,
     h: f64,
