@@ -61,6 +61,9 @@ use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 /// 6×6 element matrix in global axes.
 type Block = [[f64; 6]; 6];
 
+/// Sparse system matrix.
+type Sparse = SparseColMat<usize, f64>;
+
 /// The reference polygon at one belt travel `s_b`: node frames and element matrices.
 #[derive(Debug, Clone)]
 struct Mesh {
@@ -437,12 +440,7 @@ impl NodalBelt {
     /// state (element blocks, every node's contact block, the full rows and columns of `s_b`
     /// and `φ₂`), so the integrator's symbolic LU is reused: analytic in `δ`, `δ̇`, `v`, `ω₂`;
     /// the `s_b` column by a forward difference (it carries the rebuilt element frames).
-    fn tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-    ) -> Result<(SparseColMat<usize, f64>, SparseColMat<usize, f64>), MbdError> {
+    fn tangent(&self, t: f64, q: &[f64], v: &[f64]) -> Result<(Sparse, Sparse), MbdError> {
         let n = self.n();
         let nd = self.n_nodal();
         let nv = nd + 2;
