@@ -12,7 +12,7 @@ use flowing::spectrum::amplitude_spectrum;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
 
 /// A uniform loop: `span` elements per span, `arc` per arc (Table 6-1 geometry: 0.45 m spans,
-/// 0.157 m arcs; 20/7 and 60/21 give equal element lengths to 0.3 %).
+/// 0.157 m arcs; 20/7 and 80/28 give equal element lengths to 0.3 %).
 fn uniform(span: usize, arc: usize) -> BeltDriveConfig {
     let mut cfg = BeltDriveConfig::default();
     cfg.mesh.span_elements = span;
@@ -127,13 +127,13 @@ fn nodal_speed_loss_on_a_coarse_uniform_loop() {
 }
 
 // Issue 8 validation: flowing and rotating-mesh nodal forms agree on Δω within 2 % at the same
-// mesh (uniform, 162 elements: 7.5 mm, 21 per arc; on coarser loops the rotating mesh's
-// polygonal excitation biases it upward: +17 % at 54 elements, +3 % at 108). Heavy: the nodal
-// model integrates 488 coordinates for ≈ 1.4 s.
+// mesh (uniform, 216 elements of 5.6 mm, 28 per arc). On coarser loops the rotating mesh's
+// polygonal excitation biases it upward (slip reference ω R at the pulley surface): +17 % at
+// 54 elements, +2.1 % at 162. Heavy: the nodal model integrates 650 coordinates for ≈ 1.4 s.
 #[test]
-#[ignore = "heavy: the 162-element nodal model for 1.4 s of simulated time (several minutes)"]
+#[ignore = "heavy: the 216-element nodal model for 1.4 s of simulated time (several minutes)"]
 fn flowing_and_nodal_agree_within_two_percent() {
-    let cfg = uniform(60, 21);
+    let cfg = uniform(80, 28);
     let fe = BeltFe::new(&cfg).unwrap();
     let mut nodal = NodalBelt::new(fe.clone(), Schedule::default(), Schedule::default()).unwrap();
     let pn = sweep(&mut nodal, &[0.0, 8.0]);

@@ -82,7 +82,7 @@ pub struct Config {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct NodalOptions {
-    /// Mesh of the rotating loop (default: uniform, 162 elements of 7.5 mm).
+    /// Mesh of the rotating loop (default: uniform, 216 elements of 5.6 mm).
     pub mesh: BeltMesh,
     /// Averaging window [s].
     pub window: f64,
@@ -94,8 +94,8 @@ impl Default for NodalOptions {
     fn default() -> Self {
         Self {
             mesh: BeltMesh {
-                span_elements: 60,
-                arc_elements: 21,
+                span_elements: 80,
+                arc_elements: 28,
                 contact_margin_nodes: 1,
             },
             window: 0.1,
