@@ -14,7 +14,6 @@ use std::process::ExitCode;
 
 mod ancf;
 mod ancf_drive_model;
-mod ancf_speed_loss;
 mod demo;
 mod speed_loss;
 mod wave;

@@ -11,6 +11,7 @@ pub mod config;
 pub mod contact;
 pub mod flowing_system;
 pub mod model;
+pub mod nodal;
 pub mod schedule;
 pub mod study;
 pub mod wave;
