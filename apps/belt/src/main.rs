@@ -13,7 +13,6 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod ancf;
-mod ancf_drive_model;
 mod demo;
 mod speed_loss;
 mod wave;

@@ -2,7 +2,6 @@
 //! Ribaric Table 6-1 against the load torque, at the driver speeds of Figs. 6-6 and 6-7, with
 //! Bechtel's analytical line (6.3). The physics and the procedure live in `flowing::belt`.
 
-use crate::ancf_drive_model::{AncfDrive, AncfSettings};
 use flowing::belt::config::BeltMesh;
 use flowing::belt::nodal::NodalBelt;
 use flowing::belt::study::{Sample, SpeedLossPoint, SweepStats};
@@ -10,6 +9,7 @@ use flowing::belt::{
     BeltDriveConfig, BeltFe, DriveModel, FlowingBelt, Schedule, SpeedLossSettings,
     analytical_speed_loss, speed_loss_sweep,
 };
+use flowmbd_belt::ancf_drive_model::{AncfDrive, AncfSettings};
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use rayon::prelude::*;
@@ -26,7 +26,7 @@ pub enum ModelKind {
     #[default]
     Flowing,
     /// ANCF belt elements in a rotating (Lagrangian) mesh, Kerkkänen ch. 3 (the high-fidelity
-    /// reference; `crate::ancf_drive_model`).
+    /// reference; `flowmbd_belt::ancf_drive_model`).
     Ancf,
     /// Nodal model with a rotating (Lagrangian) mesh (Ribaric (5.7)): the reference the
     /// flowing form replaces; needs a fine uniform mesh (`drive.mesh`) to be accurate.

@@ -128,8 +128,38 @@ impl Default for BeltDamping {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltReduction {
-    /// Fixed-interface (free-node) modes kept; `None` keeps all (no truncation).
+    /// Fixed-interface (free-node) modes kept; `None` keeps all (no truncation). In TOML a
+    /// number, or `"all"` for `None` (so that a printed configuration reads back unchanged).
+    #[serde(with = "mode_count")]
     pub free_modes: Option<usize>,
+}
+
+/// `Option<usize>` as a number or the string `"all"` (`None`): TOML has no null.
+mod mode_count {
+    use serde::{Deserialize, Deserializer, Serializer, de::Error};
+
+    pub fn serialize<S: Serializer>(v: &Option<usize>, s: S) -> Result<S::Ok, S::Error> {
+        match v {
+            Some(n) => s.serialize_u64(*n as u64),
+            None => s.serialize_str("all"),
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Count {
+            N(usize),
+            S(String),
+        }
+        match Count::deserialize(d)? {
+            Count::N(n) => Ok(Some(n)),
+            Count::S(s) if s == "all" => Ok(None),
+            Count::S(s) => Err(D::Error::custom(format!(
+                "expected a number of modes or \"all\", got \"{s}\""
+            ))),
+        }
+    }
 }
 
 impl Default for BeltReduction {

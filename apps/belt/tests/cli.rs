@@ -1,0 +1,115 @@
+//! End-to-end checks of the `flowmbd-belt` binary: the speed-loss JSON contract of issue 8, the
+//! configuration round trip, the shipped example configurations and the exit-code conventions.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_flowmbd-belt"))
+        .args(args)
+        .output()
+        .expect("binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn tmp(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("flowmbd-belt-{}-{name}", std::process::id()))
+}
+
+// Issue 8 contract; physics: unloaded the driven pulley turns at the driver's speed (to the
+// steady-state tolerance of the app's default procedure; the 1e-6 relative check with a tight
+// tolerance is tests/tests/flowing_belt.rs) and under load Δω > 0 next to a positive Bechtel (6.3).
+#[test]
+fn speed_loss_json_contract() {
+    let out = tmp("sl");
+    let (code, stdout, stderr) = run(&[
+        "speed-loss",
+        "--omega",
+        "22.6",
+        "--torques",
+        "0,4",
+        "--json",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(v["omega_driver"].as_f64(), Some(22.6));
+    assert_eq!(v["model"].as_str(), Some("flowing"));
+    let points = v["points"].as_array().unwrap();
+    assert_eq!(points.len(), 2);
+    assert_eq!(points[0]["torque"].as_f64(), Some(0.0));
+    let d0 = points[0]["delta_omega"].as_f64().unwrap();
+    let d4 = points[1]["delta_omega"].as_f64().unwrap();
+    assert!(
+        d0.abs() <= 1e-3 && d0.abs() < 0.01 * d4,
+        "unloaded Δω = {d0}"
+    );
+    assert!(d4 > 0.0, "loaded Δω = {d4}");
+    let analytical = v["analytical"].as_array().unwrap();
+    assert_eq!(analytical.len(), 2);
+    assert!(analytical[1].as_f64().unwrap() > 0.0);
+    for f in ["summary.json", "speed_loss.csv", "config.toml"] {
+        assert!(out.join(f).exists(), "{f} missing");
+    }
+    let _ = std::fs::remove_dir_all(out);
+}
+
+// App conventions: `--print-config` output is a complete configuration that reads back to itself.
+#[test]
+fn printed_configuration_round_trips() {
+    for study in ["speed-loss", "ancf", "wave"] {
+        let (code, printed, stderr) = run(&[study, "--print-config"]);
+        assert_eq!(code, 0, "{study}: {stderr}");
+        let file = tmp(&format!("{study}.toml"));
+        std::fs::write(&file, &printed).unwrap();
+        let (code, again, stderr) =
+            run(&[study, "--config", file.to_str().unwrap(), "--print-config"]);
+        assert_eq!(code, 0, "{study}: {stderr}");
+        assert_eq!(printed, again, "{study}");
+        let _ = std::fs::remove_file(file);
+    }
+}
+
+// The shipped Kerkkänen 3.3 example configurations are valid input for `ancf`.
+#[test]
+fn shipped_examples_are_valid() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut n = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().and_then(|e| e.to_str()) != Some("toml") {
+            continue;
+        }
+        let (code, _, stderr) =
+            run(&["ancf", "--config", path.to_str().unwrap(), "--print-config"]);
+        assert_eq!(code, 0, "{}: {stderr}", path.display());
+        n += 1;
+    }
+    assert_eq!(n, 6, "kerkkanen-3-3-a … f");
+}
+
+// Bad input: exit 2 with one line naming the field (file and line for TOML errors).
+#[test]
+fn bad_input_exits_2_naming_the_field() {
+    let file = tmp("bad.toml");
+    std::fs::write(&file, "history_every = 10\nno_such_field = 1\n").unwrap();
+    let (code, _, stderr) = run(&["speed-loss", "--config", file.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("no_such_field"), "{stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+
+    std::fs::write(&file, "history_every = 0\n").unwrap();
+    let (code, _, stderr) = run(&["speed-loss", "--config", file.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("history_every"), "{stderr}");
+    let _ = std::fs::remove_file(file);
+
+    let (code, _, _) = run(&["speed-loss", "--torques", "0,abc"]);
+    assert_eq!(code, 2);
+}
