@@ -7,7 +7,12 @@
 //! * [`mesh`]: meshes with shared nodes (closed loops), sparse constant mass, assembled forces
 //!   and tangents, energies;
 //! * [`plate`]: the 36-coordinate thin plate element of Kerkkänen §4.3 and plate meshes;
-//! * [`statics`]: Newton–Raphson with load increments and line search;
+//! * [`statics`]: Newton–Raphson with load increments and line search, and
+//!   [`solve_static_unilateral`] (frictionless node contact by Lagrange multipliers with an
+//!   active set);
+//! * [`system`]: meshes as mbd-core systems, and [`integrate_unilateral`] (generalized-α with
+//!   the same unilateral contact);
+//! * [`node_contact`]: nodal penalty contact ([`NodalContact`]), the penalty counterpart;
 //! * [`studies`]: Kerkkänen §2.4 test set-ups (simply supported beam, cantilever, pendulum,
 //!   spinning beam).
 
@@ -43,4 +48,4 @@ pub use statics::{
     StaticOptions, StaticSolution, UnilateralOptions, UnilateralSolution, solve_static,
     solve_static_unilateral, solve_static_with,
 };
-pub use system::{AncfSystem, Energies, MeshForce, Prescribed};
+pub use system::{AncfSystem, ContactStep, Energies, MeshForce, Prescribed, integrate_unilateral};

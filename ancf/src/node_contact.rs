@@ -13,7 +13,7 @@ use contact::{FrictionLaw, NormalLaw, PointContact, Surface, point_contact};
 pub struct NodalContact<S, NL, FL> {
     /// Obstacle.
     pub surface: S,
-    /// Normal law (force per node [N]).
+    /// Normal law (force per node \[N\]).
     pub normal: NL,
     /// Friction law.
     pub friction: FL,
@@ -85,5 +85,86 @@ where
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::ProposedBeam;
+    use crate::material::Material;
+    use crate::mesh::straight_coordinates;
+    use crate::section::Section;
+    use contact::{CoulombTanh, Disk, LinearPenalty};
+
+    // Reference: central finite differences of `add_forces` (the tangent is −∂Q/∂q, −∂Q/∂v).
+    #[test]
+    fn tangent_matches_finite_differences() {
+        let mat = Material::new(2.0e9, 0.3, 1000.0).unwrap();
+        let sec = Section::rectangle(0.05, 0.01).unwrap();
+        let els = (0..3)
+            .map(|_| ProposedBeam::new(0.1, mat, sec))
+            .collect::<Result<Vec<_>, _>>()
+            .unwrap();
+        let mesh = Mesh::chain(els).unwrap();
+        let mut q = straight_coordinates(mesh.layout(), [0.0, 0.0], [0.3, 0.0], 3);
+        // nodes 1 and 2 pushed into a rotating disk below the beam, node 3 outside
+        q[mesh.node_dof(1, 1)] = -0.004;
+        q[mesh.node_dof(2, 1)] = -0.006;
+        let v: Vec<f64> = (0..q.len())
+            .map(|k| 0.01 * ((k as f64) * 0.7).sin())
+            .collect();
+        let contact = NodalContact {
+            surface: Disk {
+                center: [0.15, -0.5],
+                radius: 0.499,
+                velocity: [0.0, 0.0],
+                omega: 2.0,
+            },
+            normal: LinearPenalty {
+                stiffness: 1e6,
+                damping: 50.0,
+            },
+            friction: CoulombTanh {
+                mu: 0.3,
+                kappa: 20.0,
+            },
+            nodes: vec![1, 2, 3],
+        };
+        let pat = mesh.pattern();
+        let mut kv = pat.zeros();
+        let mut cv = pat.zeros();
+        contact.add_tangent(&mesh, 0.0, &q, &v, &mut kv, &mut cv);
+        let n = q.len();
+        let force = |q: &[f64], v: &[f64]| {
+            let mut f = vec![0.0; n];
+            contact.add_forces(&mesh, 0.0, q, v, &mut f);
+            f
+        };
+        let h = 1e-8;
+        let mut worst: f64 = 0.0;
+        for j in 0..n {
+            for (which, vals) in [(0, &kv), (1, &cv)] {
+                let (mut qp, mut qm, mut vp, mut vm) = (q.clone(), q.clone(), v.clone(), v.clone());
+                if which == 0 {
+                    qp[j] += h;
+                    qm[j] -= h;
+                } else {
+                    vp[j] += h;
+                    vm[j] -= h;
+                }
+                let (fp, fm) = (force(&qp, &vp), force(&qm, &vm));
+                for i in 0..n {
+                    let fd = -(fp[i] - fm[i]) / (2.0 * h);
+                    let an = pat.position(i, j).map_or(0.0, |p| vals[p]);
+                    worst = worst.max((fd - an).abs() / (1.0 + fd.abs()));
+                }
+            }
+        }
+        assert!(worst < 1e-5, "largest relative tangent error {worst}");
+        // the contact is really active with friction
+        let states = contact.states(&mesh, &q, &v);
+        assert!(states[0].is_some() && states[1].is_some() && states[2].is_none());
+        assert!(states[0].unwrap().friction.force.abs() > 0.0);
     }
 }

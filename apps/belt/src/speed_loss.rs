@@ -22,6 +22,9 @@ pub enum ModelKind {
     /// Flowing-material modal model with a stationary mesh (Ribaric (5.14)).
     #[default]
     Flowing,
+    /// ANCF belt elements in a rotating (Lagrangian) mesh, Kerkkänen ch. 3 (the high-fidelity
+    /// reference; `crate::ancf_drive_model`).
+    Ancf,
 }
 
 /// Command-line arguments.
@@ -55,6 +58,8 @@ pub struct Config {
     pub procedure: SpeedLossSettings,
     /// Write every n-th integration step to the history CSV files.
     pub history_every: usize,
+    /// Discretisation of the ANCF belt (`model = "ancf"` only).
+    pub ancf: crate::ancf_drive_model::AncfSettings,
 }
 
 impl Default for Config {
@@ -65,6 +70,7 @@ impl Default for Config {
             drive: BeltDriveConfig::default(),
             procedure: SpeedLossSettings::default(),
             history_every: 20,
+            ancf: Default::default(),
         }
     }
 }
@@ -90,6 +96,9 @@ impl Validate for Config {
         self.drive
             .validate()
             .map_err(|(f, r)| InputError::new(format!("drive.{f}"), r))?;
+        self.ancf
+            .validate()
+            .map_err(|(f, r)| InputError::new(format!("ancf.{f}"), r))?;
         self.procedure
             .validate()
             .map_err(|(f, r)| InputError::new(format!("procedure.{f}"), r))
@@ -256,14 +265,25 @@ impl Study for SpeedLoss {
                 omega_driver: w,
                 ..c.procedure.clone()
             };
-            let r = run_case(
-                &c.drive,
-                &settings,
-                c.history_every,
-                ctx_ref,
-                &done,
-                &report,
-            );
+            let r = match c.model {
+                ModelKind::Ancf => crate::ancf_speed_loss::run_case(
+                    &c.drive,
+                    &c.ancf,
+                    &settings,
+                    c.history_every,
+                    ctx_ref,
+                    &done,
+                    &report,
+                ),
+                ModelKind::Flowing => run_case(
+                    &c.drive,
+                    &settings,
+                    c.history_every,
+                    ctx_ref,
+                    &done,
+                    &report,
+                ),
+            };
             if let Ok(mut v) = results.lock() {
                 v.push(r);
             }

@@ -13,6 +13,7 @@ pub mod flowing_system;
 pub mod model;
 pub mod schedule;
 pub mod study;
+pub mod wave;
 
 pub use config::BeltDriveConfig;
 pub use flowing_system::{FlowingBelt, NodeReport};
