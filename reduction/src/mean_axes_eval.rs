@@ -19,7 +19,7 @@ pub struct MeanAxesEvaluation {
     pub constraint_coordinates: Mat<f64>,
     /// `[Δd]^c = G [Δr; Δθ; Δz]^c` (Lin (8.32)): `n × n_b`.
     pub constraint_modes: Mat<f64>,
-    /// Non-zero natural frequencies of (8.33)/(8.45) [Hz], ascending.
+    /// Non-zero natural frequencies of (8.33)/(8.45) \[Hz\], ascending.
     pub normal_frequencies_hz: Vec<f64>,
     /// `[Δr; Δθ; Δz]^n`, each column scaled to unit max-abs entry (MATLAB QZ convention of the
     /// printed vectors; sign free).

@@ -131,7 +131,7 @@ impl ReducedModel {
             .collect())
     }
 
-    /// Natural frequencies of the reduced model [Hz], ascending (`eig(K_r, M_r)`).
+    /// Natural frequencies of the reduced model \[Hz\], ascending (`eig(K_r, M_r)`).
     pub fn natural_frequencies_hz(&self) -> Result<Vec<f64>> {
         let (lam, _) = sym_gen_eig(
             "reduced model (K_r, M_r)",

@@ -155,7 +155,7 @@ fn assemble(
         columns,
     }
 }
-/// Timings of a sparse Craig–Bampton reduction [s].
+/// Timings of a sparse Craig–Bampton reduction \[s\].
 #[derive(Debug, Clone, Serialize)]
 pub struct SparseCbReport {
     /// Full DOFs.

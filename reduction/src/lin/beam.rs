@@ -10,18 +10,18 @@ use crate::partition::DofPartition;
 use faer::Mat;
 use serde::Serialize;
 
-/// Young's modulus [Pa] ("30e5", Lin Appendix A).
+/// Young's modulus \[Pa\] ("30e5", Lin Appendix A).
 pub const E: f64 = 3.0e6;
-/// Cross-section area b·h [m²].
+/// Cross-section area b·h \[m²\].
 pub const AREA: f64 = 0.005;
-/// Second moment of area [m⁴], the **rounded** value 1.0417e-6 printed by Lin (the printed K and
+/// Second moment of area \[m⁴\], the **rounded** value 1.0417e-6 printed by Lin (the printed K and
 /// every frequency follow from it, Lin note §10).
 pub const I_AREA: f64 = 1.0417e-6;
-/// Element length [m] (4 elements over 1 m).
+/// Element length \[m\] (4 elements over 1 m).
 pub const LE: f64 = 0.25;
-/// Lumped nodal masses [kg] (Lin Appendix A).
+/// Lumped nodal masses \[kg\] (Lin Appendix A).
 pub const NODE_MASS: [f64; 5] = [0.1, 0.2, 0.2, 0.2, 0.1];
-/// Assumed deformation of the profile tests, DOF order ξ1, η1, …, ξ5, η5 (Lin (7.1)) [m].
+/// Assumed deformation of the profile tests, DOF order ξ1, η1, …, ξ5, η5 (Lin (7.1)) \[m\].
 pub const PROFILE_DELTA: [f64; 10] = [0.0, 0.0, 0.05, 0.26, 0.10, 0.22, 0.11, 0.04, 0.25, 0.0];
 
 /// The Appendix A beam: condensed stiffness (θ removed by static condensation), lumped mass and
@@ -30,9 +30,9 @@ pub const PROFILE_DELTA: [f64; 10] = [0.0, 0.0, 0.05, 0.26, 0.10, 0.22, 0.11, 0.
 pub struct LinBeam {
     /// 10×10 stiffness [N/m], DOF order ξ1, η1, …, ξ5, η5.
     pub k: Mat<f64>,
-    /// 10×10 diagonal mass [kg].
+    /// 10×10 diagonal mass \[kg\].
     pub m: Mat<f64>,
-    /// Node positions (ξ, η) relative to node 1 [m] (Lin Table A-1).
+    /// Node positions (ξ, η) relative to node 1 \[m\] (Lin Table A-1).
     pub s: Vec<f64>,
 }
 
@@ -40,15 +40,15 @@ pub struct LinBeam {
 #[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeamParams {
-    /// Young's modulus E [Pa].
+    /// Young's modulus E \[Pa\].
     pub young_modulus_pa: f64,
-    /// Cross-section area A [m²].
+    /// Cross-section area A \[m²\].
     pub area_m2: f64,
-    /// Second moment of area I [m⁴].
+    /// Second moment of area I \[m⁴\].
     pub second_moment_m4: f64,
-    /// Beam length [m] (4 equal elements).
+    /// Beam length \[m\] (4 equal elements).
     pub length_m: f64,
-    /// Lumped masses of the 5 nodes [kg].
+    /// Lumped masses of the 5 nodes \[kg\].
     pub node_masses_kg: [f64; 5],
 }
 
@@ -195,7 +195,7 @@ pub fn profile_study(beam: &LinBeam) -> Result<ProfileStudy> {
 }
 
 /// The ch. 7.1 profile tests for an arbitrary assumed deformation `delta` (10 values, DOF order
-/// ξ1, η1, …, ξ5, η5) [m].
+/// ξ1, η1, …, ξ5, η5) \[m\].
 pub fn profile_study_with(beam: &LinBeam, delta: &[f64; 10]) -> Result<ProfileStudy> {
     let delta = *delta;
     let part = DofPartition::from_boundary_dofs(10, &node_dofs(&[1, 5]))?;
@@ -261,13 +261,13 @@ pub fn profile_study_with(beam: &LinBeam, delta: &[f64; 10]) -> Result<ProfileSt
     })
 }
 
-/// Natural frequencies [Hz] of the full beam, free-free, ascending (Lin §6.2.1).
+/// Natural frequencies \[Hz\] of the full beam, free-free, ascending (Lin §6.2.1).
 pub fn free_free_hz(beam: &LinBeam) -> Result<Vec<f64>> {
     let (lam, _) = sym_gen_eig("free-free beam", beam.k.as_ref(), beam.m.as_ref())?;
     Ok(eig_to_hz(&lam))
 }
 
-/// Deformation frequencies [Hz] of a Guyan-reduced beam with the given 1-based master nodes
+/// Deformation frequencies \[Hz\] of a Guyan-reduced beam with the given 1-based master nodes
 /// (the three rigid-body zeros dropped) (Lin §6.2.1 models (a) and (b)).
 pub fn guyan_hz(beam: &LinBeam, masters_1based: &[usize]) -> Result<Vec<f64>> {
     let part = DofPartition::from_boundary_dofs(10, &node_dofs(masters_1based))?;
@@ -283,7 +283,7 @@ pub fn guyan_hz(beam: &LinBeam, masters_1based: &[usize]) -> Result<Vec<f64>> {
     Ok(red.natural_frequencies_hz()?.into_iter().skip(3).collect())
 }
 
-/// Fixed-interface frequencies [Hz] with boundary nodes 1 and 5 (Lin §6.3, Fig. 6-7).
+/// Fixed-interface frequencies \[Hz\] with boundary nodes 1 and 5 (Lin §6.3, Fig. 6-7).
 pub fn fixed_interface_hz(beam: &LinBeam) -> Result<Vec<f64>> {
     let part = DofPartition::from_boundary_dofs(10, &node_dofs(&[1, 5]))?;
     let (lam, _) = fixed_interface_modes(beam.k.as_ref(), beam.m.as_ref(), &part)?;
@@ -330,19 +330,19 @@ pub fn mean_axes_study(beam: &LinBeam, method: Method) -> Result<MeanAxesEvaluat
 /// The summary printed by `flowmbd-reduce lin-beam --json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct LinBeamSummary {
-    /// Free-free frequencies of the full beam [Hz] (10, three rigid zeros first).
+    /// Free-free frequencies of the full beam \[Hz\] (10, three rigid zeros first).
     pub free_free_hz: Vec<f64>,
-    /// Guyan model (a), masters 1, 3, 5: deformation frequencies [Hz].
+    /// Guyan model (a), masters 1, 3, 5: deformation frequencies \[Hz\].
     pub guyan_a_hz: Vec<f64>,
-    /// Guyan model (b), masters 1, 2, 5: deformation frequencies [Hz].
+    /// Guyan model (b), masters 1, 2, 5: deformation frequencies \[Hz\].
     pub guyan_b_hz: Vec<f64>,
-    /// Fixed-interface frequencies, boundary nodes 1 and 5 [Hz].
+    /// Fixed-interface frequencies, boundary nodes 1 and 5 \[Hz\].
     pub fixed_interface_hz: Vec<f64>,
     /// Profile 1 errors ‖δ* − δ‖: fixed-interface MT, CB, MC.
     pub profile1_errors: Vec<f64>,
     /// Profile 2 errors: fixed-interface MT, CB, MC.
     pub profile2_errors: Vec<f64>,
-    /// Non-zero frequencies of the mean-axes eigenproblem (8.45) with mode condensation [Hz].
+    /// Non-zero frequencies of the mean-axes eigenproblem (8.45) with mode condensation \[Hz\].
     pub mean_axes_normal_hz: Vec<f64>,
 }
 

@@ -14,7 +14,7 @@ use crate::partition::DofPartition;
 use faer::Mat;
 use serde::{Deserialize, Serialize};
 
-/// Young's modulus [Pa] (Appendix B).
+/// Young's modulus \[Pa\] (Appendix B).
 pub const E: f64 = 0.2e6;
 /// Poisson's ratio (Appendix B).
 pub const NU: f64 = 0.33;
@@ -28,9 +28,9 @@ pub const G: f64 = 9.80665;
 pub struct LinSlab {
     /// 90×90 stiffness [N/m].
     pub k: Mat<f64>,
-    /// 90×90 lumped mass [kg].
+    /// 90×90 lumped mass \[kg\].
     pub m: Mat<f64>,
-    /// Node positions relative to node 16 (Appendix B frame) [m], 3 per node.
+    /// Node positions relative to node 16 (Appendix B frame) \[m\], 3 per node.
     pub s: Vec<f64>,
 }
 
@@ -180,7 +180,7 @@ pub fn slab_basis(slab: &LinSlab, method: SlabMethod, n_modes: usize) -> Result<
 }
 
 /// Linearised gravity statics of simulation 1 (Lin §7.2.2 supports: node 16 fixed, 18 in x,
-/// 28 and 30 in z; nodal-fixed frame 16/28/18): the local deflection `δ'` of node 8 [m].
+/// 28 and 30 in z; nodal-fixed frame 16/28/18): the local deflection `δ'` of node 8 \[m\].
 ///
 /// Unknowns: frame translation Δr, small rotation Δθ and the basis coordinates z; absolute
 /// displacement `Δd = Ih Δr + (Δθ × s) + Ψ z`; minimise `½zᵀΨᵀKΨz − (Mĝ)ᵀΔd` subject to the six

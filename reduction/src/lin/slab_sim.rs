@@ -31,15 +31,15 @@ pub enum SlabSimulation {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SlabSimParams {
-    /// End time [s] (not given by Lin; companion §13.2).
+    /// End time \[s\] (not given by Lin; companion §13.2).
     pub duration_s: f64,
-    /// RK4 step [s] (highest slab frequency ≈ 73 Hz: 1 ms is well inside stability).
+    /// RK4 step \[s\] (highest slab frequency ≈ 73 Hz: 1 ms is well inside stability).
     pub step_s: f64,
     /// Fixed-interface modes kept by MT, CB, MC (Lin: 6).
     pub n_modes: usize,
-    /// Orbit radius R of simulation 2 [m] (Lin (7.10): 4).
+    /// Orbit radius R of simulation 2 \[m\] (Lin (7.10): 4).
     pub orbit_radius_m: f64,
-    /// Orbit period T of simulation 2 [s] (Lin: 1).
+    /// Orbit period T of simulation 2 \[s\] (Lin: 1).
     pub orbit_period_s: f64,
     /// The previous simulation of simulation 3 (links, forces, table interval).
     pub sim3: Sim3Params,
@@ -174,8 +174,8 @@ pub fn build(
     Ok((sys, st))
 }
 
-/// Runs one simulation; `observer(t, δ'_8)` receives the local deflection of node 8 [m] at the
-/// start and after every step. Returns the largest position-level constraint residual [m].
+/// Runs one simulation; `observer(t, δ'_8)` receives the local deflection of node 8 \[m\] at the
+/// start and after every step. Returns the largest position-level constraint residual \[m\].
 pub fn simulate(
     slab: &LinSlab,
     method: SlabMethod,

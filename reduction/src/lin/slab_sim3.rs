@@ -34,7 +34,7 @@
 //! are the exact integrals of the piecewise-linear acceleration from the recorded initial state,
 //! so the position, velocity and acceleration constraints are mutually consistent.
 //!
-//! Forces at driven nodes change only the multipliers of the emulation (companion §7.2.4 [D]);
+//! Forces at driven nodes change only the multipliers of the emulation (companion §7.2.4 \[D\]);
 //! they are applied anyway, as Lin does.
 
 use super::slab::{G, LinSlab, SlabMethod, node_position, slab_basis};
@@ -77,24 +77,24 @@ impl LinkDirection {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Sim3Params {
-    /// Length of the link at node 18 [m] (Lin: 2).
+    /// Length of the link at node 18 \[m\] (Lin: 2).
     pub short_link_m: f64,
-    /// Length of the link at node 30 [m] (Lin: 3).
+    /// Length of the link at node 30 \[m\] (Lin: 3).
     pub long_link_m: f64,
     /// Link mass per length [kg/m] (not given; 0.5 as the plank links of Lin §5.3.3).
     pub link_mass_per_length_kg_m: f64,
-    /// Link radius for the axial inertia `m r²/2` [m] (not given; slender rods).
+    /// Link radius for the axial inertia `m r²/2` \[m\] (not given; slender rods).
     pub link_radius_m: f64,
     /// Direction of both links from the slab to the ground (not given).
     pub link_direction: LinkDirection,
-    /// Inclination of the undeformed slab about global +x through nodes 18 and 30 [deg]
+    /// Inclination of the undeformed slab about global +x through nodes 18 and 30 \[deg\]
     /// (Lin: 45° "towards the −y direction").
     pub inclination_deg: f64,
-    /// Constant global force at node 16 [N] (Lin: {−40, 160, −20}).
+    /// Constant global force at node 16 \[N\] (Lin: {−40, 160, −20}).
     pub force_node16_n: [f64; 3],
-    /// Constant global force at node 28 [N] (Lin: {60, −240, −30}).
+    /// Constant global force at node 28 \[N\] (Lin: {60, −240, −30}).
     pub force_node28_n: [f64; 3],
-    /// Sampling interval of the acceleration tables [s] (Lin: 5 ms).
+    /// Sampling interval of the acceleration tables \[s\] (Lin: 5 ms).
     pub table_interval_s: f64,
 }
 
@@ -118,11 +118,11 @@ impl Default for Sim3Params {
 /// lookup tables), linearly interpolated in time, with the initial positions and velocities.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AccelTable {
-    /// Sampling interval [s].
+    /// Sampling interval \[s\].
     pub interval_s: f64,
     /// Driven nodes (1-based Lin numbers).
     pub nodes: Vec<usize>,
-    /// Initial global positions of the nodes [m].
+    /// Initial global positions of the nodes \[m\].
     pub x0: Vec<Vector3<f64>>,
     /// Initial global velocities of the nodes [m/s].
     pub v0: Vec<Vector3<f64>>,
@@ -192,12 +192,12 @@ impl AccelTable {
         })
     }
 
-    /// Time of the last sample [s]; beyond it the last acceleration is held.
+    /// Time of the last sample \[s\]; beyond it the last acceleration is held.
     pub fn end_time(&self) -> f64 {
         (self.acc.len() - 1) as f64 * self.interval_s
     }
 
-    /// Position [m], velocity [m/s] and acceleration [m/s²] of node index `i` at `t` [s]: the
+    /// Position \[m\], velocity [m/s] and acceleration [m/s²] of node index `i` at `t` \[s\]: the
     /// linear interpolant of the samples and its exact integrals.
     pub fn motion(&self, i: usize, t: f64) -> [Vector3<f64>; 3] {
         let h = self.interval_s;
@@ -224,11 +224,11 @@ impl AccelTable {
 pub struct SourceRun {
     /// The acceleration tables of nodes 16, 18, 28, 30.
     pub table: AccelTable,
-    /// Times of the source steps [s].
+    /// Times of the source steps \[s\].
     pub t: Vec<f64>,
-    /// Local deflection δ'8 of the source (NR, frame 16/28/18) at those times [m].
+    /// Local deflection δ'8 of the source (NR, frame 16/28/18) at those times \[m\].
     pub node8: Vec<[f64; 3]>,
-    /// Largest position-level constraint residual of the source [m].
+    /// Largest position-level constraint residual of the source \[m\].
     pub max_drift_m: f64,
 }
 
@@ -518,8 +518,8 @@ pub fn emulation_system(
 }
 
 /// Runs the emulation for `method`; `observer(t, δ'_8)` receives the local deflection of node 8
-/// [m] at the start and after every RK4 step of `step_s`. Returns the largest position-level
-/// constraint residual [m].
+/// \[m\] at the start and after every RK4 step of `step_s`. Returns the largest position-level
+/// constraint residual \[m\].
 pub fn simulate_emulated(
     slab: &LinSlab,
     method: SlabMethod,
