@@ -3,8 +3,8 @@
 
 use fe_model::generate::TireConfig;
 use flowing::tire::{
-    ImportFiles, ReducedTire, ReductionConfig, TireError, TireFe, generated_tire, imported_tire,
-    reduce,
+    GroundKind, ImportFiles, ReducedTire, ReductionConfig, RigConfig, TireError, TireFe,
+    generated_tire, imported_tire, reduce,
 };
 use flowmbd_cli::{InputError, StudyError};
 use serde::{Deserialize, Serialize};
@@ -103,5 +103,67 @@ impl TireSource {
             red.save(path).map_err(tire_err)?;
         }
         Ok(red)
+    }
+}
+
+/// Command-line overrides of the rig shared by `cleat` and `sweep` (the sensitivity studies of
+/// Ribaric §8.4–8.5 without editing a configuration file).
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct RigFlags {
+    /// Ground: `drum` (R = 1.25 m) or `road` (overrides `rig.ground.kind`).
+    #[arg(long, value_parser = ["drum", "road"])]
+    pub ground: Option<String>,
+    /// Coulomb friction coefficient (overrides `rig.rolling.friction`; §8.4.3: 0.85 or 0).
+    #[arg(long)]
+    pub friction: Option<f64>,
+    /// Damping ratio at both target modes (overrides `rig.damping.zeta1/zeta2`; §8.4.1: 0.01
+    /// or 0.03).
+    #[arg(long)]
+    pub zeta: Option<f64>,
+    /// Roll without the cleat (steady rolling).
+    #[arg(long)]
+    pub no_cleat: bool,
+    /// Time step [s] (overrides `rig.rolling.time_step`).
+    #[arg(long)]
+    pub time_step: Option<f64>,
+    /// Contact nodes of the reduction (overrides `tire.reduction.contact_nodes`; §8.4.2: 95 or
+    /// 252). With the default reduced-tire file name, the file name follows the count.
+    #[arg(long)]
+    pub contact_nodes: Option<usize>,
+}
+
+impl RigFlags {
+    /// Apply the overrides.
+    pub fn apply(&self, tire: &mut TireSource, rig: &mut RigConfig) {
+        if let Some(g) = &self.ground {
+            rig.ground.kind = if g == "road" {
+                GroundKind::Road
+            } else {
+                GroundKind::Drum
+            };
+        }
+        if let Some(mu) = self.friction {
+            rig.rolling.friction = mu;
+        }
+        if let Some(z) = self.zeta {
+            rig.damping.zeta1 = z;
+            rig.damping.zeta2 = z;
+        }
+        if self.no_cleat {
+            rig.ground.cleat = false;
+        }
+        if let Some(h) = self.time_step {
+            rig.rolling.time_step = h;
+        }
+        if let Some(n) = self.contact_nodes {
+            let default_file = TireSource::default().reduced_file;
+            if tire.reduced_file == default_file {
+                tire.reduced_file = format!(
+                    "out/tire/reduced-truck-{n}c-{}m.json",
+                    tire.reduction.free_modes
+                );
+            }
+            tire.reduction.contact_nodes = n;
+        }
     }
 }

@@ -25,10 +25,12 @@ pub mod statics;
 pub use ground::{Ground, GroundConfig, GroundKind};
 pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
 pub mod rolling;
-pub use rolling::{NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce};
+pub use rolling::{
+    NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce, StepStats,
+};
 pub mod model;
 pub use model::{
-    ImportFiles, coarse_tire_config, generated_tire, imported_tire, truck_tire_config,
+    ImportFiles, ImportFormat, coarse_tire_config, generated_tire, imported_tire, truck_tire_config,
 };
 pub mod rig;
 pub mod spectrum;
