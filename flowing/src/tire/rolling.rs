@@ -36,10 +36,17 @@
 //! # Integration
 //! Newmark (β_N, γ_N) with the contact gaps imposed at the end of each step (index-3), a
 //! linearly implicit step: the θ̇-dependent gyroscopic/centrifugal matrices are evaluated at a
-//! spin rate frozen until it drifts by more than `spin_tolerance` (then the iteration matrix is
-//! refactored), the term `G₁ z θ̈` is lagged one step, and the friction directions are
-//! iterated twice per step. Per step, the contact problem is a small LCP on the Delassus matrix
-//! `W = β_N h² N T_c S⁻¹ T_cᵀ (N − μ T̂)` built from the cached `T_c S⁻¹ T_cᵀ`.
+//! spin rate frozen until it drifts by more than `spin_tolerance` (then the iteration matrix
+//! `S = [J ⋯; m_θ M + γh C_eff + βh² K_eff]` is refactorised, LU), the term `G₁ z θ̈` is lagged
+//! one step, and the normal (LCP) and friction (projected Gauss–Seidel) problems are alternated
+//! up to three times per step. Per step the cost is one product with `R = [C_eff K_eff G₁]`,
+//! one LU solve, `T_c z` for the candidate search, and work on the candidates only: the
+//! columns `X_j = S⁻¹[0; T_cᵀ]` and `Y_j = T_c X_j` of a contact node are computed when the node
+//! first becomes a candidate after a refactorisation (the Delassus matrix
+//! `W = β_N h² N Y (N − μ T̂)` of the candidates is then a gather from the cached `Y`), and
+//! nothing is allocated once the work arrays have grown. Candidates are the nodes whose free
+//! gap is below `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the
+//! surface speed); [`StepStats::late_contacts`] counts nodes that were missed.
 
 use super::error::{TireError, invalid};
 use super::ground::{Ground, GroundPoint};
@@ -200,7 +207,9 @@ struct Factor {
 }
 
 impl Factor {
-    /// `v ← S⁻¹ v` with the stored LU (sequential, no allocation).
+    /// `v ← S⁻¹ v` with the stored LU (sequential, no allocation). (An explicit `S⁻¹` and a
+    /// matrix–vector product per step were measured as fast overall: the saving per step is
+    /// spent again in forming the inverse at each refactorisation.)
     fn solve(&self, v: &mut [f64], tmp: &mut [f64]) {
         for (t, &p) in tmp.iter_mut().zip(&self.perm) {
             *t = v[p];
