@@ -19,8 +19,12 @@ pub struct TireSource {
     pub reduced_file: String,
     /// Generated tire (fe-model generator; default: 295/80 R22.5 truck tire at 38 psi).
     pub generator: TireConfig,
-    /// Imported tire (Matrix Market M and K, nodes, rim and patch node lists); replaces the
-    /// generated one when given.
+    /// Imported tire (ABAQUS `*MATRIX GENERATE` or Matrix Market M and K, node coordinates,
+    /// rim and candidate patch node sets; see `flowing::tire::ImportFiles`); replaces the
+    /// generated one when given. Example:
+    /// `[tire.import]` `format = "abaqus"`, `stiffness = "job_STIF1.mtx"`,
+    /// `mass = "job_MASS1.mtx"`, `nodes = "nodes.inp"`, `rim_nodes = "rim.inp"`,
+    /// `patch_nodes = "patch.inp"`.
     pub import: Option<ImportFiles>,
     /// Reduction (Ribaric §8.2: 95 contact nodes, 50 free-node modes).
     pub reduction: ReductionConfig,
@@ -57,8 +61,38 @@ pub fn input(e: TireError) -> InputError {
 }
 
 impl TireSource {
+    /// The reduced-tire file actually used: with an imported tire and the default (generated
+    /// tire's) file name, a name of its own, so that the generated tire's file is never reused
+    /// for an imported model.
+    pub fn reduced_path(&self) -> String {
+        if self.import.is_some() && self.reduced_file == TireSource::default().reduced_file {
+            format!(
+                "out/tire/reduced-imported-{}c-{}m.json",
+                self.reduction.contact_nodes, self.reduction.free_modes
+            )
+        } else {
+            self.reduced_file.clone()
+        }
+    }
+
     /// Basic checks.
     pub fn validate(&self) -> Result<(), InputError> {
+        if let Some(files) = &self.import {
+            for (field, path) in [
+                ("stiffness", &files.stiffness),
+                ("mass", &files.mass),
+                ("nodes", &files.nodes),
+                ("rim_nodes", &files.rim_nodes),
+                ("patch_nodes", &files.patch_nodes),
+            ] {
+                if !std::path::Path::new(path).is_file() {
+                    return Err(InputError::new(
+                        format!("tire.import.{field}"),
+                        format!("file `{path}` does not exist"),
+                    ));
+                }
+            }
+        }
         if self.reduction.contact_nodes == 0 {
             return Err(InputError::new(
                 "tire.reduction.contact_nodes",
@@ -84,19 +118,22 @@ impl TireSource {
 
     /// Load the saved reduced tire, or reduce the generated one (and save it).
     pub fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError> {
-        let path = Path::new(&self.reduced_file);
-        if !self.reduced_file.is_empty() && path.exists() {
+        let file = self.reduced_path();
+        let path = Path::new(&file);
+        if !file.is_empty() && path.exists() {
             return ReducedTire::load(path).map_err(tire_err);
         }
         if !quiet {
-            eprintln!(
-                "reducing the generated tire (saved to `{}`)",
-                self.reduced_file
-            );
+            let what = if self.import.is_some() {
+                "imported"
+            } else {
+                "generated"
+            };
+            eprintln!("reducing the {what} tire (saved to `{file}`)");
         }
         let fe = self.fe_model()?;
         let (red, _) = reduce(&fe, &self.reduction).map_err(tire_err)?;
-        if !self.reduced_file.is_empty() {
+        if !file.is_empty() {
             if let Some(dir) = path.parent() {
                 let _ = std::fs::create_dir_all(dir);
             }
