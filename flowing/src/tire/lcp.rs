@@ -117,7 +117,7 @@ impl LcpWork {
             let mut changed = false;
             let lam_scale = self.lambda.iter().fold(0.0f64, |m, l| m.max(l.abs()));
             for &i in &self.idx {
-                if !(self.lambda[i] >= -1e-12 * lam_scale) {
+                if self.lambda[i].is_nan() || self.lambda[i] < -1e-12 * lam_scale {
                     self.active[i] = false;
                     changed = true;
                 }

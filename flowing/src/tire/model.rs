@@ -162,18 +162,11 @@ fn read_mtx(path: &str) -> Result<faer::sparse::SparseColMat<usize, f64>, TireEr
     })
 }
 
+type Sparse = faer::sparse::SparseColMat<usize, f64>;
+
 /// ABAQUS matrices reordered to the node order of the node file (DOF `3 i + d − 1` for node
 /// `i`, DOF `d` = 1..3).
-fn read_abaqus(
-    files: &ImportFiles,
-    labels: &[u64],
-) -> Result<
-    (
-        faer::sparse::SparseColMat<usize, f64>,
-        faer::sparse::SparseColMat<usize, f64>,
-    ),
-    TireError,
-> {
+fn read_abaqus(files: &ImportFiles, labels: &[u64]) -> Result<(Sparse, Sparse), TireError> {
     let ke = fe_model::io::abaqus::read(&files.stiffness)?;
     let me = fe_model::io::abaqus::read(&files.mass)?;
     let (map, mats) = fe_model::io::abaqus::assemble(&[&ke, &me])?;

@@ -178,7 +178,7 @@ pub fn reduce(
 ) -> Result<(ReducedTire, ReductionTimings), TireError> {
     let t0 = Instant::now();
     fe.validate()?;
-    if !(cfg.ring_tolerance > 0.0) {
+    if cfg.ring_tolerance.is_nan() || cfg.ring_tolerance <= 0.0 {
         return Err(invalid("ring_tolerance", "must be positive"));
     }
     let contact = select_contact_nodes(fe, cfg.contact_nodes)?;

@@ -926,7 +926,7 @@ impl<'a> RollingTire<'a> {
                         [c1 * dot3(&t2v, &bt1), c1 * dot3(&t2v, &bt2)],
                     ];
                     let det = b[0][0] * b[1][1] - b[0][1] * b[1][0];
-                    if !(det.abs() > 0.0) {
+                    if det.is_nan() || det == 0.0 {
                         continue;
                     }
                     let old = [dot3(&t1v, &w.ft[ki]), dot3(&t2v, &w.ft[ki])];
