@@ -164,7 +164,8 @@ pub struct RigFlags {
     #[arg(long)]
     pub time_step: Option<f64>,
     /// Contact nodes of the reduction (overrides `tire.reduction.contact_nodes`; §8.4.2: 95 or
-    /// 252). With the default reduced-tire file name, the file name follows the count.
+    /// 252). With the default reduced-tire file name, the file name follows the count; the
+    /// generated tire's candidate patch is widened when needed.
     #[arg(long)]
     pub contact_nodes: Option<usize>,
 }
@@ -201,6 +202,12 @@ impl RigFlags {
                 );
             }
             tire.reduction.contact_nodes = n;
+            // the generator's candidate set grows about linearly with the patch angle (99 nodes
+            // at the default ±8°): widen it so that n nodes exist (252 nodes: ±25.5°)
+            let need = 8.0 * 1.2 * n as f64 / 95.0;
+            if tire.generator.patch_half_angle_deg < need {
+                tire.generator.patch_half_angle_deg = need;
+            }
         }
     }
 }
