@@ -33,6 +33,11 @@ pub struct Config {
     /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many steps
     /// (0 = none) into `vtk/`.
     pub vtk_every: usize,
+    /// Write a VTK (`.vtu`) snapshot of the whole deforming tire (every ring at the
+    /// reduction's visualisation stations, as closed polylines, with the displacement field)
+    /// every this many steps (0 = none) into `vtk/` (needs a reduced tire made with
+    /// `tire.reduction.viz_stations > 0`).
+    pub vtk_tire_every: usize,
 }
 
 impl Default for Config {
@@ -41,6 +46,7 @@ impl Default for Config {
             tire: TireSource::default(),
             rig: RigConfig::default(),
             vtk_every: 25,
+            vtk_tire_every: 50,
         }
     }
 }
@@ -209,6 +215,37 @@ fn write_patch_vtu(path: &std::path::Path, sim: &RollingTire) -> Result<(), Tire
     Ok(write_vtu(path, &mesh, &fields)?)
 }
 
+/// The whole deforming tire (visualisation rows of the reduced basis) as VTK line cells with the
+/// displacement field.
+fn write_tire_vtu(
+    path: &std::path::Path,
+    viz: &flowing::tire::VizBasis,
+    sim: &RollingTire,
+) -> Result<(), TireError> {
+    let x = viz.deformed(&sim.state.z);
+    let mut mesh = Mesh::new(3);
+    for p in &x {
+        mesh.add_node(*p);
+    }
+    for l in &viz.lines {
+        mesh.cells.push(Cell {
+            kind: CellKind::Line,
+            nodes: vec![l[0], l[1]],
+        });
+    }
+    let disp: Vec<f64> = x
+        .iter()
+        .zip(&viz.positions)
+        .flat_map(|(a, s)| [a[0] - s[0], a[1] - s[1], a[2] - s[2]])
+        .collect();
+    let fields = [PointField {
+        name: "displacement_m".into(),
+        components: 3,
+        values: disp,
+    }];
+    Ok(write_vtu(path, &mesh, &fields)?)
+}
+
 struct Cleat {
     speed: Option<f64>,
     rig: RigFlags,
@@ -235,12 +272,34 @@ impl Study for Cleat {
             std::fs::create_dir_all(&vtk_dir)
                 .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
         }
+        if c.vtk_tire_every > 0 && red.viz.is_none() && !ctx.quiet {
+            eprintln!(
+                "note: the reduced tire has no visualisation rows (reduce again with \
+                 tire.reduction.viz_stations > 0 for the whole-tire VTK series)"
+            );
+        }
+        if c.vtk_tire_every > 0 && red.viz.is_some() {
+            std::fs::create_dir_all(&vtk_dir)
+                .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
+        }
         let every = c.vtk_every;
+        let tire_every = c.vtk_tire_every;
+        let viz = red.viz.as_ref();
         let mut observer = |k: usize, sim: &RollingTire| -> Result<(), TireError> {
-            if every == 0 || !k.is_multiple_of(every) {
-                return Ok(());
+            if every > 0 && k.is_multiple_of(every) {
+                write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)?;
             }
-            write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)
+            if let Some(v) = viz
+                && tire_every > 0
+                && k.is_multiple_of(tire_every)
+            {
+                write_tire_vtu(
+                    &vtk_dir.join(format!("tire_{:05}.vtu", k / tire_every)),
+                    v,
+                    sim,
+                )?;
+            }
+            Ok(())
         };
         let r = run_cleat_observed(&red, &c.rig, &mut |f| bar.set(f), &mut observer)
             .map_err(tire_err)?;

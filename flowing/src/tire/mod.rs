@@ -18,7 +18,7 @@ pub mod reduced;
 pub use error::TireError;
 pub use mesh::{Ring, TireFe};
 pub use reduce::{ReductionConfig, ReductionTimings, full_frequencies_hz, reduce};
-pub use reduced::ReducedTire;
+pub use reduced::{ReducedTire, VizBasis};
 pub mod ground;
 pub mod lcp;
 pub mod statics;
