@@ -2,10 +2,13 @@
 //! Ribaric Table 6-1 against the load torque, at the driver speeds of Figs. 6-6 and 6-7, with
 //! Bechtel's analytical line (6.3). The physics and the procedure live in `flowing::belt`.
 
+use crate::ancf_drive_model::{AncfDrive, AncfSettings};
+use flowing::belt::config::BeltMesh;
+use flowing::belt::nodal::NodalBelt;
 use flowing::belt::study::{Sample, SpeedLossPoint, SweepStats};
 use flowing::belt::{
-    BeltDriveConfig, BeltFe, FlowingBelt, Schedule, SpeedLossSettings, analytical_speed_loss,
-    speed_loss_sweep,
+    BeltDriveConfig, BeltFe, DriveModel, FlowingBelt, Schedule, SpeedLossSettings,
+    analytical_speed_loss, speed_loss_sweep,
 };
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
@@ -22,6 +25,22 @@ pub enum ModelKind {
     /// Flowing-material modal model with a stationary mesh (Ribaric (5.14)).
     #[default]
     Flowing,
+    /// ANCF belt elements in a rotating (Lagrangian) mesh, Kerkkänen ch. 3 (the high-fidelity
+    /// reference; `crate::ancf_drive_model`).
+    Ancf,
+    /// Nodal model with a rotating (Lagrangian) mesh (Ribaric (5.7)): the reference the
+    /// flowing form replaces; needs a fine uniform mesh (`drive.mesh`) to be accurate.
+    Nodal,
+}
+
+impl ModelKind {
+    fn name(self) -> &'static str {
+        match self {
+            ModelKind::Flowing => "flowing",
+            ModelKind::Nodal => "nodal",
+            ModelKind::Ancf => "ancf",
+        }
+    }
 }
 
 /// Command-line arguments.
@@ -55,6 +74,41 @@ pub struct Config {
     pub procedure: SpeedLossSettings,
     /// Write every n-th integration step to the history CSV files.
     pub history_every: usize,
+    /// Discretisation of the ANCF belt (`model = "ancf"` only).
+    pub ancf: AncfSettings,
+    /// Settings used instead of `drive.mesh` and the procedure's steady-state window when
+    /// `model = "nodal"`.
+    pub nodal: NodalOptions,
+}
+
+/// What the rotating-mesh model needs to reach an accurate steady state: a fine uniform loop
+/// (its elements travel over the pulleys, so short arc elements alone do not help) and a
+/// longer averaging window over its element-passing ripple. With the defaults its Δω agrees
+/// with the flowing model's within 2 % (tests/tests/flowing_belt_nodal.rs); on the
+/// 56-element flowing mesh its polygonal ripple (±1 rad/s) prevents any steady state.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct NodalOptions {
+    /// Mesh of the rotating loop (default: uniform, 216 elements of 5.6 mm).
+    pub mesh: BeltMesh,
+    /// Averaging window [s].
+    pub window: f64,
+    /// Steady-state tolerance between consecutive windows [rad/s].
+    pub tolerance: f64,
+}
+
+impl Default for NodalOptions {
+    fn default() -> Self {
+        Self {
+            mesh: BeltMesh {
+                span_elements: 80,
+                arc_elements: 28,
+                contact_margin_nodes: 1,
+            },
+            window: 0.1,
+            tolerance: 1e-3,
+        }
+    }
 }
 
 impl Default for Config {
@@ -65,6 +119,8 @@ impl Default for Config {
             drive: BeltDriveConfig::default(),
             procedure: SpeedLossSettings::default(),
             history_every: 20,
+            ancf: Default::default(),
+            nodal: NodalOptions::default(),
         }
     }
 }
@@ -90,6 +146,24 @@ impl Validate for Config {
         self.drive
             .validate()
             .map_err(|(f, r)| InputError::new(format!("drive.{f}"), r))?;
+        self.ancf
+            .validate()
+            .map_err(|(f, r)| InputError::new(format!("ancf.{f}"), r))?;
+        if self.model == ModelKind::Nodal {
+            BeltDriveConfig {
+                mesh: self.nodal.mesh,
+                ..self.drive
+            }
+            .validate()
+            .map_err(|(f, r)| InputError::new(format!("nodal.{f}"), r))?;
+            SpeedLossSettings {
+                window: self.nodal.window,
+                tolerance: self.nodal.tolerance,
+                ..self.procedure.clone()
+            }
+            .validate()
+            .map_err(|(f, r)| InputError::new(format!("nodal.{f}"), r))?;
+        }
         self.procedure
             .validate()
             .map_err(|(f, r)| InputError::new(format!("procedure.{f}"), r))
@@ -133,7 +207,8 @@ pub struct Summary {
     pub analytical: Vec<f64>,
     /// Every driver speed.
     pub cases: Vec<Case>,
-    /// Number of modal coordinates of the flowing model.
+    /// Number of coordinates of the model (modal + belt + pulley for the flowing model,
+    /// nodal + belt + pulley for the nodal model).
     pub modal_coordinates: usize,
     /// Total wall time [s].
     pub wall_time_s: f64,
@@ -143,7 +218,64 @@ struct SpeedLoss {
     args: Args,
 }
 
+#[allow(clippy::too_many_arguments)]
 fn run_case(
+    model: ModelKind,
+    drive: &BeltDriveConfig,
+    ancf: &AncfSettings,
+    settings: &SpeedLossSettings,
+    every: usize,
+    ctx: &StudyContext,
+    done: &AtomicUsize,
+    report: &(dyn Fn(usize) + Sync),
+) -> Result<(Case, usize), StudyError> {
+    let (driver, load) = (Schedule::constant(0.0), Schedule::constant(0.0));
+    match model {
+        ModelKind::Flowing => {
+            let fe = BeltFe::new(drive).map_err(StudyError::numerical)?;
+            let mut belt = FlowingBelt::new(fe, driver, load).map_err(StudyError::numerical)?;
+            let dofs = belt.n_modes() + 2;
+            sweep_case(
+                &mut belt, dofs, true, drive, settings, every, ctx, done, report,
+            )
+        }
+        ModelKind::Nodal => {
+            let fe = BeltFe::new(drive).map_err(StudyError::numerical)?;
+            let mut belt = NodalBelt::new(fe, driver, load).map_err(StudyError::numerical)?;
+            let dofs = belt.n_nodal() + 2;
+            sweep_case(
+                &mut belt, dofs, true, drive, settings, every, ctx, done, report,
+            )
+        }
+        ModelKind::Ancf => {
+            let mut belt = AncfDrive::new(drive, ancf).map_err(|e| match e {
+                ancf::AncfError::InvalidInput { item, reason } => {
+                    StudyError::Input(InputError::new(format!("ancf: {item}"), reason))
+                }
+                other => StudyError::numerical(other),
+            })?;
+            let dofs = mbd_core::SecondOrderSystem::n_q(belt.drive());
+            // the derived parameters of the Table 6-1 → ANCF mapping, for the record
+            ctx.out.write_json(
+                &format!("ancf_mapping_omega_{:.1}.json", settings.omega_driver),
+                belt.mapping(),
+            )?;
+            let settings = SpeedLossSettings {
+                step: ancf.step,
+                ..settings.clone()
+            };
+            sweep_case(
+                &mut belt, dofs, false, drive, &settings, every, ctx, done, report,
+            )
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn sweep_case<M: DriveModel>(
+    belt: &mut M,
+    modes: usize,
+    belt_speed_column: bool,
     drive: &BeltDriveConfig,
     settings: &SpeedLossSettings,
     every: usize,
@@ -152,28 +284,25 @@ fn run_case(
     report: &(dyn Fn(usize) + Sync),
 ) -> Result<(Case, usize), StudyError> {
     let start = std::time::Instant::now();
-    let fe = BeltFe::new(drive).map_err(|e| StudyError::numerical(e))?;
-    let mut belt = FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0))
-        .map_err(StudyError::numerical)?;
-    let modes = belt.n_modes() + 2;
     let name = format!("history_omega_{:.1}.csv", settings.omega_driver);
-    let mut csv = ctx.out.csv(
-        &name,
-        &[
-            "t",
-            "omega_driver",
-            "omega_driven",
-            "load_torque",
-            "belt_speed",
-        ],
-    )?;
+    // the flowing and nodal models carry the belt speed as their first velocity
+    let columns = [
+        "t",
+        "omega_driver",
+        "omega_driven",
+        "load_torque",
+        "belt_speed",
+    ];
+    let n_col = if belt_speed_column { 5 } else { 4 };
+    let mut csv = ctx.out.csv(&name, &columns[..n_col])?;
     let mut io_err = None;
     let mut k = 0usize;
     let mut found = 0usize;
-    let result = speed_loss_sweep(&mut belt, settings, |st, s: Sample| {
+    let result = speed_loss_sweep(belt, settings, |st, s: Sample| {
         k += 1;
-        if k % every == 0
-            && let Err(e) = csv.row(&[s.t, s.omega_driver, s.omega_driven, s.load, st.v[0]])
+        let row = [s.t, s.omega_driver, s.omega_driven, s.load, st.v[0]];
+        if k.is_multiple_of(every)
+            && let Err(e) = csv.row(&row[..n_col])
         {
             io_err.get_or_insert(e);
         }
@@ -252,12 +381,20 @@ impl Study for SpeedLoss {
         let ctx_ref: &StudyContext = ctx;
         let results: Mutex<Vec<Result<(Case, usize), StudyError>>> = Mutex::new(Vec::new());
         c.omegas.par_iter().for_each(|&w| {
-            let settings = SpeedLossSettings {
+            let mut settings = SpeedLossSettings {
                 omega_driver: w,
                 ..c.procedure.clone()
             };
+            let mut drive = c.drive;
+            if c.model == ModelKind::Nodal {
+                drive.mesh = c.nodal.mesh;
+                settings.window = c.nodal.window;
+                settings.tolerance = c.nodal.tolerance;
+            }
             let r = run_case(
-                &c.drive,
+                c.model,
+                &drive,
+                &c.ancf,
                 &settings,
                 c.history_every,
                 ctx_ref,
@@ -304,7 +441,7 @@ impl Study for SpeedLoss {
                 table.row(&[case.omega_driver, p.torque, p.delta_omega, *a])?;
             }
             plot.series.push(Series {
-                name: format!("flowing, ω₁ = {} rad/s", case.omega_driver),
+                name: format!("{}, ω₁ = {} rad/s", c.model.name(), case.omega_driver),
                 points: case
                     .points
                     .iter()

@@ -12,7 +12,9 @@
 //! is `τ = −F_T R`.
 
 use contact::friction::FrictionLaw;
+use contact::geometry::{Disk, rot90};
 use contact::normal::NormalLaw;
+use contact::point::point_contact;
 
 /// A rigid pulley seen by the belt nodes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,6 +58,11 @@ pub struct NodeContact {
 
 /// Contact force of a node at position `d` with material velocity `vel` against `pulley`
 /// turning at `omega` (see the module documentation for the conventions).
+///
+/// The contact maths is the contact crate's: [`point_contact`] against a rotating [`Disk`]
+/// (Kerkkänen (3.21)–(3.25)), which turns counter-clockwise at `−turn·ω`; this function only
+/// maps its counter-clockwise tangent `t_ccw = Ĩ n` onto the belt's travel tangent
+/// `t = −turn·t_ccw` and adds the reaction torque on the pulley.
 pub fn node_contact(
     pulley: &PulleyFrame,
     omega: f64,
@@ -64,62 +71,50 @@ pub fn node_contact(
     normal_law: &impl NormalLaw,
     friction_law: &impl FrictionLaw,
 ) -> NodeContact {
-    let rel = [d[0] - pulley.center[0], d[1] - pulley.center[1]];
-    let r = rel[0].hypot(rel[1]);
-    let pen = pulley.radius - r;
-    if pen <= 0.0 || r == 0.0 {
+    let sgn = -pulley.turn;
+    let disk = Disk {
+        center: pulley.center,
+        radius: pulley.radius,
+        velocity: [0.0, 0.0],
+        omega: sgn * omega,
+    };
+    let Some(c) = point_contact(&disk, normal_law, friction_law, d, vel) else {
+        let rel = [d[0] - pulley.center[0], d[1] - pulley.center[1]];
         return NodeContact {
-            penetration: pen,
+            penetration: pulley.radius - rel[0].hypot(rel[1]),
             ..Default::default()
         };
-    }
-    let n = [rel[0] / r, rel[1] / r];
-    let tu = pulley.turn;
-    let t = [tu * n[1], -tu * n[0]];
-    let nf = normal_law.normal(pen, 0.0);
-    let slip = t[0] * vel[0] + t[1] * vel[1] - omega * r;
-    let ff = friction_law.friction(slip, nf.force);
-    let (fn_, ft) = (nf.force, ff.force);
-    // dn/dd = (I − n nᵀ)/r ; dt/dd = turn·J·dn/dd with J = [[0, 1], [−1, 0]]
-    let pn = [
-        [(1.0 - n[0] * n[0]) / r, -n[0] * n[1] / r],
-        [-n[1] * n[0] / r, (1.0 - n[1] * n[1]) / r],
-    ];
-    let dt = [
-        [tu * pn[1][0], tu * pn[1][1]],
-        [-tu * pn[0][0], -tu * pn[0][1]],
-    ];
-    let mut dfn_dd = [0.0; 2];
-    let mut dslip_dd = [0.0; 2];
-    let mut dft_dd = [0.0; 2];
+    };
+    let n = c.surface.normal;
+    let tc = rot90(n);
+    let dn = c.surface.dn_dp;
+    let dtc = [[-dn[1][0], -dn[1][1]], [dn[0][0], dn[0][1]]];
+    let r = pulley.radius;
+    let f = c.force;
+    // friction along the travel tangent: F_T = sgn·(t_ccw · f); torque τ = −R F_T
+    let ft = sgn * c.friction.force;
+    let df_dw = [sgn * c.df_domega[0], sgn * c.df_domega[1]];
+    let mut dt_dd = [0.0; 2];
+    let mut dt_dv = [0.0; 2];
     for j in 0..2 {
-        dfn_dd[j] = -nf.d_pen * n[j];
-        dslip_dd[j] = vel[0] * dt[0][j] + vel[1] * dt[1][j] - omega * n[j];
-        dft_dd[j] = ff.d_slip * dslip_dd[j] + ff.d_normal * dfn_dd[j];
-    }
-    let mut df_dd = [[0.0; 2]; 2];
-    let mut df_dv = [[0.0; 2]; 2];
-    let mut df_dw = [0.0; 2];
-    for i in 0..2 {
-        for j in 0..2 {
-            df_dd[i][j] = n[i] * dfn_dd[j] + fn_ * pn[i][j] + t[i] * dft_dd[j] + ft * dt[i][j];
-            df_dv[i][j] = t[i] * ff.d_slip * t[j];
-        }
-        df_dw[i] = -t[i] * ff.d_slip * r;
+        dt_dd[j] = -r
+            * sgn
+            * (tc[0] * c.df_dp[0][j] + tc[1] * c.df_dp[1][j] + f[0] * dtc[0][j] + f[1] * dtc[1][j]);
+        dt_dv[j] = -r * sgn * (tc[0] * c.df_dv[0][j] + tc[1] * c.df_dv[1][j]);
     }
     NodeContact {
-        penetration: pen,
-        normal: fn_,
+        penetration: c.penetration,
+        normal: c.normal.force,
         friction: ft,
-        slip,
-        force: [fn_ * n[0] + ft * t[0], fn_ * n[1] + ft * t[1]],
+        slip: sgn * c.slip,
+        force: f,
         torque: -ft * r,
-        df_dd,
-        df_dv,
+        df_dd: c.df_dp,
+        df_dv: c.df_dv,
         df_dw,
-        dt_dd: [-r * dft_dd[0] - ft * n[0], -r * dft_dd[1] - ft * n[1]],
-        dt_dv: [-r * ff.d_slip * t[0], -r * ff.d_slip * t[1]],
-        dt_dw: r * r * ff.d_slip,
+        dt_dd,
+        dt_dv,
+        dt_dw: -r * sgn * (tc[0] * df_dw[0] + tc[1] * df_dw[1]),
     }
 }
 
@@ -184,16 +179,25 @@ mod tests {
     }
 
     // Sticking belt node (no slip) carries no friction; a faster belt drives the pulley (τ > 0).
+    // Slip reference: the pulley surface point under the node moves at ω R with R = 0.05 m (the
+    // contact crate's nominal radius; re-baselined from ω r at the node, r = 0.0499 m).
     #[test]
     fn friction_direction_and_open_contact() {
         let n = [0.6f64, 0.8];
         let d = [0.1 + 0.0499 * n[0], -0.02 + 0.0499 * n[1]];
         let t = [n[1], -n[0]];
-        // the pulley point under the node (radius 0.0499 m) moves at ω r
-        let c = eval(d, [3.0 * t[0], 3.0 * t[1]], 3.0 / 0.0499);
+        let c = eval(d, [3.0 * t[0], 3.0 * t[1]], 3.0 / 0.05);
         assert!(c.friction.abs() < 1e-9 && c.normal > 0.0);
-        let fast = eval(d, [3.1 * t[0], 3.1 * t[1]], 3.0 / 0.0499);
+        // the old reference (ω r at the node) leaves a slip of ω·p = 6 mm/s here
+        let old = eval(d, [3.0 * t[0], 3.0 * t[1]], 3.0 / 0.0499);
+        assert!(
+            (old.slip + 3.0 * 0.0001 / 0.0499).abs() < 1e-12,
+            "{}",
+            old.slip
+        );
+        let fast = eval(d, [3.1 * t[0], 3.1 * t[1]], 3.0 / 0.05);
         assert!(fast.friction < 0.0 && fast.torque > 0.0);
+        assert!((fast.torque + fast.friction * 0.05).abs() < 1e-12);
         let open = eval([0.1 + 0.06, -0.02], [0.0, 0.0], 0.0);
         assert_eq!(open.force, [0.0, 0.0]);
     }

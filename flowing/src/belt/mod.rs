@@ -11,8 +11,10 @@ pub mod config;
 pub mod contact;
 pub mod flowing_system;
 pub mod model;
+pub mod nodal;
 pub mod schedule;
 pub mod study;
+pub mod wave;
 
 pub use config::BeltDriveConfig;
 pub use flowing_system::{FlowingBelt, NodeReport};

@@ -44,7 +44,7 @@ impl Schedule {
     /// Checks that the knot times are finite and strictly increasing.
     pub fn validate(&self, name: &str) -> Result<(), (String, String)> {
         for (i, w) in self.knots.windows(2).enumerate() {
-            if !(w[1].0 > w[0].0) {
+            if w[1].0.partial_cmp(&w[0].0) != Some(std::cmp::Ordering::Greater) {
                 return Err((
                     format!("{name}.knots[{}]", i + 1),
                     "times must increase strictly".into(),

@@ -156,6 +156,27 @@ pub struct Sample {
     pub points: usize,
 }
 
+/// How often a step whose Newton iterations fail is split in two halves (recursively).
+pub const MAX_HALVINGS: usize = 4;
+
+/// One step of size `h` [s]; if Newton fails, two steps of `h/2` (recursively, `depth`
+/// levels). The rotating-mesh model ([`super::nodal::NodalBelt`]) needs it when a coarse
+/// element lands on a pulley.
+pub fn robust_step<M: DriveModel>(
+    stepper: &mut AlphaStepper,
+    model: &M,
+    h: f64,
+    depth: usize,
+) -> Result<(), MbdError> {
+    match stepper.step(model, h) {
+        Err(MbdError::NoConvergence { .. }) if depth > 0 => {
+            robust_step(stepper, model, 0.5 * h, depth - 1)?;
+            robust_step(stepper, model, 0.5 * h, depth - 1)
+        }
+        other => other,
+    }
+}
+
 /// Run the procedure on `model` (its driver and load schedules are overwritten). `observer`
 /// sees every step (e.g. to write histories or update a progress bar).
 pub fn speed_loss_sweep<M: DriveModel>(
@@ -199,7 +220,7 @@ pub fn speed_loss_sweep<M: DriveModel>(
         let mut means: Vec<f64> = Vec::new();
         let (mut sum, mut count) = (0.0, 0usize);
         loop {
-            stepper.step(&*model, h).map_err(|e| fail(e, &points))?;
+            robust_step(&mut stepper, &*model, h, MAX_HALVINGS).map_err(|e| fail(e, &points))?;
             let st = stepper.state();
             let sample = Sample {
                 t: st.t,
