@@ -201,6 +201,7 @@ fn imported_matrix_market_tire_matches_the_generated_one() {
     std::fs::write(p("rim.txt"), list(&fe.rim)).unwrap();
     std::fs::write(p("patch.txt"), list(&fe.candidates)).unwrap();
     let files = ImportFiles {
+        format: ImportFormat::MatrixMarket,
         stiffness: p("k.mtx"),
         mass: p("m.mtx"),
         nodes: p("nodes.csv"),

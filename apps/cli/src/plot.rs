@@ -62,10 +62,13 @@ pub struct LinePlot {
     pub series: Vec<Series>,
 }
 
-const FONT: &str = "sans-serif";
+/// Font family name of the embedded font (after [`register_font`]).
+pub const FONT: &str = "sans-serif";
 static REGISTER_FONT: Once = Once::new();
 
-fn register_font() {
+/// Register the embedded DejaVu font under [`FONT`] (idempotent); call before drawing text
+/// with plotters directly.
+pub fn register_font() {
     REGISTER_FONT.call_once(|| {
         // The embedded font is valid TrueType; registration cannot fail for it, and if it did the
         // plot would be drawn without text rather than abort the study.

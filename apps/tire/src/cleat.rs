@@ -1,7 +1,7 @@
 //! `flowmbd-tire cleat`: the cleat test of Ribaric §8.3 at one speed (drum or flat road):
 //! spindle forces `F_x`, `F_y` against time, their spectra, and the patch VTK series.
 
-use crate::common::{TireSource, input, tire_err};
+use crate::common::{RigFlags, TireSource, input, tire_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowing::tire::{RigConfig, RigResult, RollingTire, TireError, run_cleat_observed};
@@ -18,6 +18,8 @@ pub struct Args {
     /// Speed [km/h] (overrides `rig.speed_kmh`).
     #[arg(long)]
     speed: Option<f64>,
+    #[command(flatten)]
+    rig: RigFlags,
 }
 
 /// Configuration.
@@ -31,6 +33,11 @@ pub struct Config {
     /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many steps
     /// (0 = none) into `vtk/`.
     pub vtk_every: usize,
+    /// Write a VTK (`.vtu`) snapshot of the whole deforming tire (every ring at the
+    /// reduction's visualisation stations, as closed polylines, with the displacement field)
+    /// every this many steps (0 = none) into `vtk/` (needs a reduced tire made with
+    /// `tire.reduction.viz_stations > 0`).
+    pub vtk_tire_every: usize,
 }
 
 impl Default for Config {
@@ -39,6 +46,7 @@ impl Default for Config {
             tire: TireSource::default(),
             rig: RigConfig::default(),
             vtk_every: 25,
+            vtk_tire_every: 50,
         }
     }
 }
@@ -82,28 +90,33 @@ pub struct Summary {
     pub wall_time_s: f64,
     /// Wall time per simulated second.
     pub wall_per_simulated_s: f64,
+    /// CPU time of the integration per simulated second (independent of the machine load).
+    pub cpu_per_simulated_s: Option<f64>,
     /// Preload deflection [m].
     pub preload_deflection_m: f64,
-    /// Mean vertical force before the hit [N].
+    /// Mean vertical spindle force of the steadily rolling tire before the cleat [N].
     pub fy_mean_before_n: f64,
+    /// Mean longitudinal spindle force before the cleat (rolling resistance) [N].
+    pub fx_mean_before_n: f64,
+    /// Preload [N].
+    pub load_n: f64,
     /// Rayleigh α [1/s], β [s].
     pub rayleigh: [f64; 2],
     /// Time steps and refactorisations of the iteration matrix.
     pub steps: usize,
     /// Refactorisations (spin-rate drift).
     pub refactors: usize,
+    /// Work counters of the integration.
+    pub stats: flowing::tire::StepStats,
 }
 
 /// Summary of a rig result.
 pub fn summarize(r: &RigResult) -> Summary {
     let (sx, sy) = r.spectra();
     let (rx, ry) = r.rms();
-    let before: Vec<f64> = r
-        .samples
-        .iter()
-        .filter(|s| s.t < 0.0 && s.t > -0.05)
-        .map(|s| s.fy)
-        .collect();
+    // the steadily rolling tire: the last 50 ms before the first node touches the cleat (the
+    // cleat enters the patch (L/2 + r)/v before it reaches the patch centre at t = 0)
+    let before = r.mean_before_cleat(0.05).unwrap_or((0.0, 0.0));
     Summary {
         speed_kmh: r.speed_kmh,
         dof: r.dof,
@@ -113,11 +126,15 @@ pub fn summarize(r: &RigResult) -> Summary {
         fx_rms: rx,
         wall_time_s: r.wall_time_s,
         wall_per_simulated_s: r.wall_time_s / r.simulated_s.max(1e-12),
+        cpu_per_simulated_s: r.cpu_time_s.map(|c| c / r.simulated_s.max(1e-12)),
         preload_deflection_m: r.preload.deflection,
-        fy_mean_before_n: before.iter().sum::<f64>() / before.len().max(1) as f64,
+        fy_mean_before_n: before.1,
+        fx_mean_before_n: before.0,
+        load_n: r.load,
         rayleigh: [r.rayleigh.alpha, r.rayleigh.beta],
         steps: r.samples.len(),
         refactors: r.refactors,
+        stats: r.stats,
     }
 }
 
@@ -198,8 +215,40 @@ fn write_patch_vtu(path: &std::path::Path, sim: &RollingTire) -> Result<(), Tire
     Ok(write_vtu(path, &mesh, &fields)?)
 }
 
+/// The whole deforming tire (visualisation rows of the reduced basis) as VTK line cells with the
+/// displacement field.
+fn write_tire_vtu(
+    path: &std::path::Path,
+    viz: &flowing::tire::VizBasis,
+    sim: &RollingTire,
+) -> Result<(), TireError> {
+    let x = viz.deformed(&sim.state.z);
+    let mut mesh = Mesh::new(3);
+    for p in &x {
+        mesh.add_node(*p);
+    }
+    for l in &viz.lines {
+        mesh.cells.push(Cell {
+            kind: CellKind::Line,
+            nodes: vec![l[0], l[1]],
+        });
+    }
+    let disp: Vec<f64> = x
+        .iter()
+        .zip(&viz.positions)
+        .flat_map(|(a, s)| [a[0] - s[0], a[1] - s[1], a[2] - s[2]])
+        .collect();
+    let fields = [PointField {
+        name: "displacement_m".into(),
+        components: 3,
+        values: disp,
+    }];
+    Ok(write_vtu(path, &mesh, &fields)?)
+}
+
 struct Cleat {
     speed: Option<f64>,
+    rig: RigFlags,
 }
 
 impl Study for Cleat {
@@ -212,6 +261,7 @@ impl Study for Cleat {
         if let Some(v) = self.speed {
             c.rig.speed_kmh = v;
         }
+        self.rig.apply(&mut c.tire, &mut c.rig);
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
@@ -222,12 +272,34 @@ impl Study for Cleat {
             std::fs::create_dir_all(&vtk_dir)
                 .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
         }
+        if c.vtk_tire_every > 0 && red.viz.is_none() && !ctx.quiet {
+            eprintln!(
+                "note: the reduced tire has no visualisation rows (reduce again with \
+                 tire.reduction.viz_stations > 0 for the whole-tire VTK series)"
+            );
+        }
+        if c.vtk_tire_every > 0 && red.viz.is_some() {
+            std::fs::create_dir_all(&vtk_dir)
+                .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
+        }
         let every = c.vtk_every;
+        let tire_every = c.vtk_tire_every;
+        let viz = red.viz.as_ref();
         let mut observer = |k: usize, sim: &RollingTire| -> Result<(), TireError> {
-            if every == 0 || !k.is_multiple_of(every) {
-                return Ok(());
+            if every > 0 && k.is_multiple_of(every) {
+                write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)?;
             }
-            write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)
+            if let Some(v) = viz
+                && tire_every > 0
+                && k.is_multiple_of(tire_every)
+            {
+                write_tire_vtu(
+                    &vtk_dir.join(format!("tire_{:05}.vtu", k / tire_every)),
+                    v,
+                    sim,
+                )?;
+            }
+            Ok(())
         };
         let r = run_cleat_observed(&red, &c.rig, &mut |f| bar.set(f), &mut observer)
             .map_err(tire_err)?;
@@ -239,5 +311,11 @@ impl Study for Cleat {
 
 /// Run the study.
 pub fn run(args: &Args) -> ExitCode {
-    run_study(&Cleat { speed: args.speed }, &args.common)
+    run_study(
+        &Cleat {
+            speed: args.speed,
+            rig: args.rig.clone(),
+        },
+        &args.common,
+    )
 }

@@ -3,8 +3,8 @@
 
 use fe_model::generate::TireConfig;
 use flowing::tire::{
-    ImportFiles, ReducedTire, ReductionConfig, TireError, TireFe, generated_tire, imported_tire,
-    reduce,
+    GroundKind, ImportFiles, ReducedTire, ReductionConfig, RigConfig, TireError, TireFe,
+    generated_tire, imported_tire, reduce,
 };
 use flowmbd_cli::{InputError, StudyError};
 use serde::{Deserialize, Serialize};
@@ -19,8 +19,12 @@ pub struct TireSource {
     pub reduced_file: String,
     /// Generated tire (fe-model generator; default: 295/80 R22.5 truck tire at 38 psi).
     pub generator: TireConfig,
-    /// Imported tire (Matrix Market M and K, nodes, rim and patch node lists); replaces the
-    /// generated one when given.
+    /// Imported tire (ABAQUS `*MATRIX GENERATE` or Matrix Market M and K, node coordinates,
+    /// rim and candidate patch node sets; see `flowing::tire::ImportFiles`); replaces the
+    /// generated one when given. Example:
+    /// `[tire.import]` `format = "abaqus"`, `stiffness = "job_STIF1.mtx"`,
+    /// `mass = "job_MASS1.mtx"`, `nodes = "nodes.inp"`, `rim_nodes = "rim.inp"`,
+    /// `patch_nodes = "patch.inp"`.
     pub import: Option<ImportFiles>,
     /// Reduction (Ribaric §8.2: 95 contact nodes, 50 free-node modes).
     pub reduction: ReductionConfig,
@@ -57,8 +61,38 @@ pub fn input(e: TireError) -> InputError {
 }
 
 impl TireSource {
+    /// The reduced-tire file actually used: with an imported tire and the default (generated
+    /// tire's) file name, a name of its own, so that the generated tire's file is never reused
+    /// for an imported model.
+    pub fn reduced_path(&self) -> String {
+        if self.import.is_some() && self.reduced_file == TireSource::default().reduced_file {
+            format!(
+                "out/tire/reduced-imported-{}c-{}m.json",
+                self.reduction.contact_nodes, self.reduction.free_modes
+            )
+        } else {
+            self.reduced_file.clone()
+        }
+    }
+
     /// Basic checks.
     pub fn validate(&self) -> Result<(), InputError> {
+        if let Some(files) = &self.import {
+            for (field, path) in [
+                ("stiffness", &files.stiffness),
+                ("mass", &files.mass),
+                ("nodes", &files.nodes),
+                ("rim_nodes", &files.rim_nodes),
+                ("patch_nodes", &files.patch_nodes),
+            ] {
+                if !std::path::Path::new(path).is_file() {
+                    return Err(InputError::new(
+                        format!("tire.import.{field}"),
+                        format!("file `{path}` does not exist"),
+                    ));
+                }
+            }
+        }
         if self.reduction.contact_nodes == 0 {
             return Err(InputError::new(
                 "tire.reduction.contact_nodes",
@@ -84,24 +118,96 @@ impl TireSource {
 
     /// Load the saved reduced tire, or reduce the generated one (and save it).
     pub fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError> {
-        let path = Path::new(&self.reduced_file);
-        if !self.reduced_file.is_empty() && path.exists() {
+        let file = self.reduced_path();
+        let path = Path::new(&file);
+        if !file.is_empty() && path.exists() {
             return ReducedTire::load(path).map_err(tire_err);
         }
         if !quiet {
-            eprintln!(
-                "reducing the generated tire (saved to `{}`)",
-                self.reduced_file
-            );
+            let what = if self.import.is_some() {
+                "imported"
+            } else {
+                "generated"
+            };
+            eprintln!("reducing the {what} tire (saved to `{file}`)");
         }
         let fe = self.fe_model()?;
         let (red, _) = reduce(&fe, &self.reduction).map_err(tire_err)?;
-        if !self.reduced_file.is_empty() {
+        if !file.is_empty() {
             if let Some(dir) = path.parent() {
                 let _ = std::fs::create_dir_all(dir);
             }
             red.save(path).map_err(tire_err)?;
         }
         Ok(red)
+    }
+}
+
+/// Command-line overrides of the rig shared by `cleat` and `sweep` (the sensitivity studies of
+/// Ribaric §8.4–8.5 without editing a configuration file).
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct RigFlags {
+    /// Ground: `drum` (R = 1.25 m) or `road` (overrides `rig.ground.kind`).
+    #[arg(long, value_parser = ["drum", "road"])]
+    pub ground: Option<String>,
+    /// Coulomb friction coefficient (overrides `rig.rolling.friction`; §8.4.3: 0.85 or 0).
+    #[arg(long)]
+    pub friction: Option<f64>,
+    /// Damping ratio at both target modes (overrides `rig.damping.zeta1/zeta2`; §8.4.1: 0.01
+    /// or 0.03).
+    #[arg(long)]
+    pub zeta: Option<f64>,
+    /// Roll without the cleat (steady rolling).
+    #[arg(long)]
+    pub no_cleat: bool,
+    /// Time step [s] (overrides `rig.rolling.time_step`).
+    #[arg(long)]
+    pub time_step: Option<f64>,
+    /// Contact nodes of the reduction (overrides `tire.reduction.contact_nodes`; §8.4.2: 95 or
+    /// 252). With the default reduced-tire file name, the file name follows the count; the
+    /// generated tire's candidate patch is widened when needed.
+    #[arg(long)]
+    pub contact_nodes: Option<usize>,
+}
+
+impl RigFlags {
+    /// Apply the overrides.
+    pub fn apply(&self, tire: &mut TireSource, rig: &mut RigConfig) {
+        if let Some(g) = &self.ground {
+            rig.ground.kind = if g == "road" {
+                GroundKind::Road
+            } else {
+                GroundKind::Drum
+            };
+        }
+        if let Some(mu) = self.friction {
+            rig.rolling.friction = mu;
+        }
+        if let Some(z) = self.zeta {
+            rig.damping.zeta1 = z;
+            rig.damping.zeta2 = z;
+        }
+        if self.no_cleat {
+            rig.ground.cleat = false;
+        }
+        if let Some(h) = self.time_step {
+            rig.rolling.time_step = h;
+        }
+        if let Some(n) = self.contact_nodes {
+            let default_file = TireSource::default().reduced_file;
+            if tire.reduced_file == default_file {
+                tire.reduced_file = format!(
+                    "out/tire/reduced-truck-{n}c-{}m.json",
+                    tire.reduction.free_modes
+                );
+            }
+            tire.reduction.contact_nodes = n;
+            // the generator's candidate set grows about linearly with the patch angle (99 nodes
+            // at the default ±8°): widen it so that n nodes exist (252 nodes: ±25.5°)
+            let need = 8.0 * 1.2 * n as f64 / 95.0;
+            if tire.generator.patch_half_angle_deg < need {
+                tire.generator.patch_half_angle_deg = need;
+            }
+        }
     }
 }

@@ -12,6 +12,7 @@ use std::process::ExitCode;
 
 mod cleat;
 mod common;
+mod maps;
 mod modes;
 mod pressure;
 mod reduce;

@@ -3,6 +3,7 @@
 
 use crate::common::{TireSource, tire_err};
 use flowing::tire::{GroundConfig, GroundKind, preload};
+use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
@@ -82,6 +83,14 @@ impl Study for Pressure {
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let red = c.tire.reduced(ctx.quiet)?;
         let mut out = Vec::new();
+        let mut plot = LinePlot::new(
+            format!(
+                "Contact-node forces at {:.0} N (drum R = {} m vs flat road)",
+                c.load, c.drum_radius
+            ),
+            "x [m] (longitudinal position in the patch)",
+            "node force [N]",
+        );
         for kind in [GroundKind::Drum, GroundKind::Road] {
             let g = GroundConfig {
                 kind,
@@ -102,6 +111,15 @@ impl Study for Pressure {
                     .zip(&p.patch.lambda)
                     .map(|(s, l)| vec![s[0], s[1], s[2], *l]),
             )?;
+            plot = plot.with(Series::points(
+                name,
+                red.contact_positions
+                    .iter()
+                    .zip(&p.patch.lambda)
+                    .filter(|(_, l)| **l > 0.0)
+                    .map(|(s, l)| (s[0], *l))
+                    .collect(),
+            ));
             let xs: Vec<f64> = red
                 .contact_positions
                 .iter()
@@ -118,6 +136,7 @@ impl Study for Pressure {
                 length_m: if xs.is_empty() { 0.0 } else { len },
             });
         }
+        plot.save(&ctx.out.path("patch_forces"))?;
         let road = out
             .pop()
             .ok_or_else(|| StudyError::numerical("no road patch"))?;

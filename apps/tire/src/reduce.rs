@@ -70,7 +70,7 @@ impl Study for Reduce {
         let file = if c.tire.reduced_file.is_empty() {
             ctx.out.path("reduced-tire.json").display().to_string()
         } else {
-            c.tire.reduced_file.clone()
+            c.tire.reduced_path()
         };
         let p = std::path::Path::new(&file);
         if let Some(d) = p.parent() {

@@ -3,7 +3,8 @@
 //! speed × frequency table for contour/waterfall plots.
 
 use crate::cleat::{Summary as CleatSummary, summarize, validate_rig};
-use crate::common::{TireSource, tire_err};
+use crate::common::{RigFlags, TireSource, tire_err};
+use crate::maps::SpectrumMap;
 use flowing::tire::{RigConfig, run_cleat};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
@@ -15,6 +16,8 @@ use std::process::ExitCode;
 pub struct Args {
     #[command(flatten)]
     common: CommonArgs,
+    #[command(flatten)]
+    rig: RigFlags,
 }
 
 /// Configuration.
@@ -67,11 +70,18 @@ pub struct Summary {
     pub fy_peak_amplitude_n: Vec<f64>,
     /// Peak longitudinal amplitude per speed [N].
     pub fx_peak_amplitude_n: Vec<f64>,
+    /// Frequency of the vertical peak per speed [Hz].
+    pub fy_peak_hz: Vec<f64>,
     /// Whether the vertical amplitude against speed is non-monotonic.
     pub fy_amplitude_non_monotonic: bool,
+    /// Speeds at which the vertical peak amplitude has a local minimum (a dip; Ribaric: 40–50
+    /// km/h on the drum, 45–55 km/h on the road) [km/h].
+    pub fy_amplitude_dips_kmh: Vec<f64>,
 }
 
-struct Sweep;
+struct Sweep {
+    rig: RigFlags,
+}
 
 impl Study for Sweep {
     type Config = Config;
@@ -79,19 +89,45 @@ impl Study for Sweep {
     const APP: &'static str = "tire";
     const NAME: &'static str = "sweep";
 
+    fn apply_overrides(&self, c: &mut Config) {
+        self.rig.apply(&mut c.tire, &mut c.rig);
+    }
+
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let red = c.tire.reduced(ctx.quiet)?;
         let bar = ctx.progress(c.speeds_kmh.len() as f64, "speed sweep");
         let mut runs = Vec::new();
         let (mut ay, mut ax) = (Vec::new(), Vec::new());
         let mut grid_rows = Vec::new();
+        let (mut fpk, mut freqs) = (Vec::new(), Vec::new());
+        let (mut mx, mut my) = (Vec::new(), Vec::new());
         for (k, &v) in c.speeds_kmh.iter().enumerate() {
             let mut rig = c.rig.clone();
             rig.speed_kmh = v;
             let r = run_cleat(&red, &rig, &mut |f| bar.set(k as f64 + f)).map_err(tire_err)?;
             let (sx, sy) = r.spectra();
-            ay.push(sy.peak(10.0, 500.0).map_or(0.0, |p| p.1));
+            let py = sy.peak(10.0, 500.0).unwrap_or((0.0, 0.0));
+            ay.push(py.1);
+            fpk.push(py.0);
             ax.push(sx.peak(10.0, 500.0).map_or(0.0, |p| p.1));
+            // the map on the frequency grid of the first run (all runs share the record length
+            // and step, hence the grid)
+            if k == 0 {
+                freqs = sy.freq_hz.iter().copied().filter(|f| *f <= 300.0).collect();
+            }
+            let row = |s: &flowing::tire::Spectrum| -> Vec<f64> {
+                freqs
+                    .iter()
+                    .map(|f| {
+                        s.freq_hz
+                            .iter()
+                            .position(|g| (g - f).abs() < 1e-9 * f.max(1.0))
+                            .map_or(0.0, |i| s.amplitude[i])
+                    })
+                    .collect()
+            };
+            mx.push(row(&sx));
+            my.push(row(&sy));
             for i in 0..sy.freq_hz.len() {
                 if sy.freq_hz[i] <= 300.0 {
                     grid_rows.push(vec![v, sy.freq_hz[i], sx.amplitude[i], sy.amplitude[i]]);
@@ -106,6 +142,34 @@ impl Study for Sweep {
             &["speed_kmh", "f_hz", "fx_amp_n", "fy_amp_n"],
             grid_rows,
         )?;
+        // the speed x frequency matrices (rows: speeds, columns: frequencies)
+        let header: Vec<String> = std::iter::once("speed_kmh".to_string())
+            .chain(freqs.iter().map(|f| format!("{f:.3}")))
+            .collect();
+        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+        for (name, m) in [("fy", &my), ("fx", &mx)] {
+            ctx.out.write_csv(
+                &format!("{name}_matrix.csv"),
+                &header,
+                c.speeds_kmh.iter().zip(m.iter()).map(|(v, row)| {
+                    std::iter::once(*v)
+                        .chain(row.iter().copied())
+                        .collect::<Vec<f64>>()
+                }),
+            )?;
+            let label = if name == "fy" {
+                "vertical Fy"
+            } else {
+                "longitudinal Fx"
+            };
+            SpectrumMap {
+                title: format!("Spectrum of the {label} spindle force against speed"),
+                speeds: &c.speeds_kmh,
+                freqs: &freqs,
+                amp: m,
+            }
+            .save(&ctx.out.path(&format!("{name}_map")))?;
+        }
         let pts = |a: &[f64]| {
             c.speeds_kmh
                 .iter()
@@ -123,16 +187,27 @@ impl Study for Sweep {
         .save(&ctx.out.path("peak_vs_speed"))?;
         let incr = ay.windows(2).any(|w| w[1] > w[0]);
         let decr = ay.windows(2).any(|w| w[1] < w[0]);
+        let dips = (1..ay.len().saturating_sub(1))
+            .filter(|&i| ay[i] < ay[i - 1] && ay[i] < ay[i + 1])
+            .map(|i| c.speeds_kmh[i])
+            .collect();
         Ok(Summary {
             runs,
             fy_peak_amplitude_n: ay,
             fx_peak_amplitude_n: ax,
+            fy_peak_hz: fpk,
             fy_amplitude_non_monotonic: incr && decr,
+            fy_amplitude_dips_kmh: dips,
         })
     }
 }
 
 /// Run the study.
 pub fn run(args: &Args) -> ExitCode {
-    run_study(&Sweep, &args.common)
+    run_study(
+        &Sweep {
+            rig: args.rig.clone(),
+        },
+        &args.common,
+    )
 }

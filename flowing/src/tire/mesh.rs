@@ -154,7 +154,7 @@ impl TireFe {
             ));
         }
         for (d, &m) in self.mass.iter().enumerate() {
-            if !(m > 0.0 && m.is_finite()) && !is_rim[d / 3] {
+            if !(is_rim[d / 3] || m > 0.0 && m.is_finite()) {
                 return Err(invalid(
                     format!("mass of node {} (DOF {d})", d / 3),
                     format!("lumped mass {m} is not positive"),

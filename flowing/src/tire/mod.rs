@@ -18,17 +18,19 @@ pub mod reduced;
 pub use error::TireError;
 pub use mesh::{Ring, TireFe};
 pub use reduce::{ReductionConfig, ReductionTimings, full_frequencies_hz, reduce};
-pub use reduced::ReducedTire;
+pub use reduced::{ReducedTire, VizBasis};
 pub mod ground;
 pub mod lcp;
 pub mod statics;
 pub use ground::{Ground, GroundConfig, GroundKind};
 pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
 pub mod rolling;
-pub use rolling::{NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce};
+pub use rolling::{
+    NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce, StepStats,
+};
 pub mod model;
 pub use model::{
-    ImportFiles, coarse_tire_config, generated_tire, imported_tire, truck_tire_config,
+    ImportFiles, ImportFormat, coarse_tire_config, generated_tire, imported_tire, truck_tire_config,
 };
 pub mod rig;
 pub mod spectrum;

@@ -37,23 +37,39 @@ pub fn generated_tire(cfg: &TireConfig) -> Result<TireFe, TireError> {
     )
 }
 
+/// Format of the matrix files of an imported tire.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ImportFormat {
+    /// Matrix Market (`3n × 3n`, node-major DOFs x, y, z); nodes, rim and patch sets are
+    /// 0-based node indices in the order of the node file.
+    #[default]
+    MatrixMarket,
+    /// ABAQUS `*MATRIX GENERATE` output (`node, dof, node, dof, value` per line, one triangle;
+    /// translational DOFs 1–3 only); the node file lists `label, x, y, z` (as in `*NODE`), the
+    /// rim and patch files list node labels (as in `*NSET` data lines).
+    Abaqus,
+}
+
 /// Files of an imported tire model (e.g. exported from ABAQUS, Ribaric §8.1: M and K extracted
-/// under load and inflation): Matrix Market stiffness and mass (`3n × 3n`, node-major DOFs x, y,
-/// z), node coordinates in the wheel frame (one `x, y, z` line per node [m]), and the rim and
-/// candidate patch node indices (0-based, separated by white space or commas). Lines starting
-/// with `#` are comments.
+/// under load and inflation): stiffness and mass, node coordinates in the wheel frame [m], and
+/// the rim and candidate patch node sets (separated by white space or commas). Lines starting
+/// with `#` (and, for ABAQUS, `*`) are comments.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ImportFiles {
-    /// Stiffness matrix (Matrix Market).
+    /// Matrix file format (default: Matrix Market).
+    #[serde(default)]
+    pub format: ImportFormat,
+    /// Stiffness matrix (with the inflation prestress).
     pub stiffness: String,
-    /// Mass matrix (Matrix Market; lumped by row sums if consistent).
+    /// Mass matrix (lumped by row sums if consistent).
     pub mass: String,
-    /// Node coordinates (text, `x, y, z` per line).
+    /// Node coordinates (text, `x, y, z` per line; ABAQUS: `label, x, y, z`).
     pub nodes: String,
-    /// Rim node indices (text).
+    /// Rim node indices (ABAQUS: labels).
     pub rim_nodes: String,
-    /// Candidate patch node indices (text).
+    /// Candidate patch node indices (ABAQUS: labels).
     pub patch_nodes: String,
 }
 
@@ -69,7 +85,7 @@ fn read_indices(path: &str) -> Result<Vec<usize>, TireError> {
     let mut out = Vec::new();
     for (ln, line) in text.lines().enumerate() {
         let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
+        if line.is_empty() || line.starts_with('#') || line.starts_with('*') {
             continue;
         }
         for tok in line
@@ -85,18 +101,35 @@ fn read_indices(path: &str) -> Result<Vec<usize>, TireError> {
     Ok(out)
 }
 
-fn read_nodes(path: &str) -> Result<Vec<[f64; 3]>, TireError> {
+/// Node coordinates; with `labelled`, each line starts with the node label (returned too).
+fn read_nodes_labelled(path: &str, labelled: bool) -> Result<(Vec<u64>, Vec<[f64; 3]>), TireError> {
     let text = read_text(path)?;
     let mut out = Vec::new();
+    let mut labels = Vec::new();
     for (ln, line) in text.lines().enumerate() {
         let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
+        if line.is_empty() || line.starts_with('#') || line.starts_with('*') {
             continue;
         }
-        let v: Vec<&str> = line
+        let mut v: Vec<&str> = line
             .split(|c: char| c == ',' || c.is_whitespace())
             .filter(|t| !t.is_empty())
             .collect();
+        if labelled {
+            let lab = v.first().and_then(|t| t.parse::<u64>().ok());
+            match lab {
+                Some(l) => {
+                    labels.push(l);
+                    v.remove(0);
+                }
+                None => {
+                    return Err(TireError::File {
+                        path: format!("{path}:{}", ln + 1),
+                        reason: format!("expected `label, x, y, z`, got `{line}`"),
+                    });
+                }
+            }
+        }
         let parse = |t: &str| t.parse::<f64>().ok().filter(|x| x.is_finite());
         match (
             v.len(),
@@ -111,7 +144,7 @@ fn read_nodes(path: &str) -> Result<Vec<[f64; 3]>, TireError> {
             }
         }
     }
-    Ok(out)
+    Ok((labels, out))
 }
 
 fn read_mtx(path: &str) -> Result<faer::sparse::SparseColMat<usize, f64>, TireError> {
@@ -129,12 +162,100 @@ fn read_mtx(path: &str) -> Result<faer::sparse::SparseColMat<usize, f64>, TireEr
     })
 }
 
+type Sparse = faer::sparse::SparseColMat<usize, f64>;
+
+/// ABAQUS matrices reordered to the node order of the node file (DOF `3 i + d − 1` for node
+/// `i`, DOF `d` = 1..3).
+fn read_abaqus(files: &ImportFiles, labels: &[u64]) -> Result<(Sparse, Sparse), TireError> {
+    let ke = fe_model::io::abaqus::read(&files.stiffness)?;
+    let me = fe_model::io::abaqus::read(&files.mass)?;
+    let (map, mats) = fe_model::io::abaqus::assemble(&[&ke, &me])?;
+    let pos: std::collections::HashMap<u64, usize> =
+        labels.iter().enumerate().map(|(i, &l)| (l, i)).collect();
+    let mut new_index = Vec::with_capacity(map.len());
+    for &(node, dof) in &map.dofs {
+        let Some(&i) = pos.get(&node) else {
+            return Err(TireError::File {
+                path: files.nodes.clone(),
+                reason: format!("node {node} of the ABAQUS matrices has no coordinates"),
+            });
+        };
+        if !(1..=3).contains(&dof) {
+            return Err(TireError::File {
+                path: files.stiffness.clone(),
+                reason: format!(
+                    "node {node} has DOF {dof}; only translational DOFs 1-3 (solid elements) are supported"
+                ),
+            });
+        }
+        new_index.push(3 * i + dof as usize - 1);
+    }
+    let n = 3 * labels.len();
+    let mut out = Vec::with_capacity(2);
+    for (a, name) in mats.iter().zip([&files.stiffness, &files.mass]) {
+        let t: Vec<faer::sparse::Triplet<usize, usize, f64>> = a
+            .as_ref()
+            .triplet_iter()
+            .map(|e| faer::sparse::Triplet::new(new_index[e.row], new_index[e.col], *e.val))
+            .collect();
+        out.push(
+            faer::sparse::SparseColMat::try_new_from_triplets(n, n, &t).map_err(|e| {
+                TireError::File {
+                    path: name.clone(),
+                    reason: format!("cannot build the sparse matrix: {e:?}"),
+                }
+            })?,
+        );
+    }
+    let m = out.pop().ok_or_else(|| TireError::File {
+        path: files.mass.clone(),
+        reason: "no mass matrix".into(),
+    })?;
+    let k = out.pop().ok_or_else(|| TireError::File {
+        path: files.stiffness.clone(),
+        reason: "no stiffness matrix".into(),
+    })?;
+    Ok((k, m))
+}
+
+/// Node labels → 0-based indices in the node file's order.
+fn labels_to_indices(path: &str, set: &[usize], labels: &[u64]) -> Result<Vec<usize>, TireError> {
+    let pos: std::collections::HashMap<u64, usize> =
+        labels.iter().enumerate().map(|(i, &l)| (l, i)).collect();
+    set.iter()
+        .map(|&l| {
+            pos.get(&(l as u64))
+                .copied()
+                .ok_or_else(|| TireError::File {
+                    path: path.to_string(),
+                    reason: format!("node label {l} is not in the node file"),
+                })
+        })
+        .collect()
+}
+
 /// Import a tire FE model from files (see [`ImportFiles`]).
 pub fn imported_tire(files: &ImportFiles) -> Result<TireFe, TireError> {
-    let k = read_mtx(&files.stiffness)?;
-    let m = read_mtx(&files.mass)?;
-    let nodes = read_nodes(&files.nodes)?;
-    let rim = read_indices(&files.rim_nodes)?;
-    let patch = read_indices(&files.patch_nodes)?;
-    TireFe::from_matrices(nodes, k, &m, rim, patch)
+    match files.format {
+        ImportFormat::MatrixMarket => {
+            let k = read_mtx(&files.stiffness)?;
+            let m = read_mtx(&files.mass)?;
+            let (_, nodes) = read_nodes_labelled(&files.nodes, false)?;
+            let rim = read_indices(&files.rim_nodes)?;
+            let patch = read_indices(&files.patch_nodes)?;
+            TireFe::from_matrices(nodes, k, &m, rim, patch)
+        }
+        ImportFormat::Abaqus => {
+            let (labels, nodes) = read_nodes_labelled(&files.nodes, true)?;
+            let (k, m) = read_abaqus(files, &labels)?;
+            let rim =
+                labels_to_indices(&files.rim_nodes, &read_indices(&files.rim_nodes)?, &labels)?;
+            let patch = labels_to_indices(
+                &files.patch_nodes,
+                &read_indices(&files.patch_nodes)?,
+                &labels,
+            )?;
+            TireFe::from_matrices(nodes, k, &m, rim, patch)
+        }
+    }
 }

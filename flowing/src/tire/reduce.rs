@@ -15,7 +15,7 @@
 
 use super::error::{TireError, invalid, linalg};
 use super::mesh::{TireFe, node_angle};
-use super::reduced::ReducedTire;
+use super::reduced::{ReducedTire, VizBasis};
 use crate::derivative::{DerivativeMethod, FdScheme, FlowLine, mode_shape_derivatives};
 use faer::prelude::*;
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
@@ -38,6 +38,10 @@ pub struct ReductionConfig {
     pub derivative: DerivativeMethod,
     /// Tolerance grouping nodes into rings by `(ρ, y)` [m].
     pub ring_tolerance: f64,
+    /// Circumferential stations per ring kept for visualising the whole deforming tire (rows
+    /// of `T` at every ring's nodes at these stations, see [`super::reduced::VizBasis`]);
+    /// 0 = none.
+    pub viz_stations: usize,
 }
 
 impl Default for ReductionConfig {
@@ -47,6 +51,7 @@ impl Default for ReductionConfig {
             free_modes: 50,
             derivative: DerivativeMethod::FiniteDifference(FdScheme::default()),
             ring_tolerance: 1e-6,
+            viz_stations: 16,
         }
     }
 }
@@ -178,7 +183,7 @@ pub fn reduce(
 ) -> Result<(ReducedTire, ReductionTimings), TireError> {
     let t0 = Instant::now();
     fe.validate()?;
-    if !(cfg.ring_tolerance > 0.0) {
+    if cfg.ring_tolerance.is_nan() || cfg.ring_tolerance <= 0.0 {
         return Err(invalid("ring_tolerance", "must be positive"));
     }
     let contact = select_contact_nodes(fe, cfg.contact_nodes)?;
@@ -247,6 +252,28 @@ pub fn reduce(
     }
     let der = mode_shape_derivatives(&lines, cfg.derivative, t.as_ref())?;
     tim.derivatives_s = ts.elapsed().as_secs_f64();
+    // visualisation rows: every ring at `viz_stations` equally spaced stations, closed
+    // circumferential polylines
+    let viz = (cfg.viz_stations > 0).then(|| {
+        let (mut nodes, mut segs) = (Vec::new(), Vec::new());
+        for ring in &rings {
+            let len = ring.nodes.len();
+            let ns = cfg.viz_stations.min(len);
+            let first = nodes.len();
+            for s in 0..ns {
+                nodes.push(ring.nodes[s * len / ns]);
+            }
+            for s in 0..ns {
+                segs.push([first + s, first + (s + 1) % ns]);
+            }
+        }
+        VizBasis {
+            rows: Mat::from_fn(3 * nodes.len(), nz, |i, j| t[(3 * nodes[i / 3] + i % 3, j)]),
+            positions: nodes.iter().map(|&i| fe.nodes[i]).collect(),
+            lines: segs,
+            nodes,
+        }
+    });
 
     // projections (step 6)
     let ts = Instant::now();
@@ -359,6 +386,7 @@ pub fn reduce(
             kt1,
             tc,
             tc_theta,
+            viz,
         },
         tim,
     ))

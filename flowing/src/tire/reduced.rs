@@ -73,6 +73,51 @@ pub struct ReducedTire {
     pub tc: Mat<f64>,
     /// Contact-node rows of `T_,θ` (3 n_c × n_z) [1/rad].
     pub tc_theta: Mat<f64>,
+    /// Rows of `T` for visualising the whole deforming tire (optional).
+    pub viz: Option<VizBasis>,
+}
+
+/// Rows of the basis `T` at a subset of the tire's nodes (every ring at equally spaced
+/// circumferential stations), so that the deformed shape of the whole tire,
+/// `xᵢ = sᵢ + (T z)ᵢ`, can be drawn from the reduced coordinates (VTK series).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VizBasis {
+    /// FE node indices.
+    pub nodes: Vec<usize>,
+    /// Their undeformed positions `sᵢ` [m].
+    pub positions: Vec<[f64; 3]>,
+    /// Line segments (pairs of indices into `nodes`) along the rings.
+    pub lines: Vec<[usize; 2]>,
+    /// Rows of `T` (3 n_v × n_z).
+    pub rows: Mat<f64>,
+}
+
+impl VizBasis {
+    /// Deformed positions for the reduced coordinates `z` [m].
+    pub fn deformed(&self, z: &[f64]) -> Vec<[f64; 3]> {
+        let zr = faer::MatRef::from_column_major_slice(z, z.len(), 1);
+        let d = &self.rows * zr;
+        self.positions
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                [
+                    s[0] + d[(3 * i, 0)],
+                    s[1] + d[(3 * i + 1, 0)],
+                    s[2] + d[(3 * i + 2, 0)],
+                ]
+            })
+            .collect()
+    }
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct VizFile {
+    nodes: Vec<usize>,
+    positions: Vec<[f64; 3]>,
+    lines: Vec<[usize; 2]>,
+    rows: Dense,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -141,6 +186,8 @@ struct FileV1 {
     kt1: Dense,
     tc: Dense,
     tc_theta: Dense,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    viz: Option<VizFile>,
 }
 
 impl ReducedTire {
@@ -195,6 +242,12 @@ impl ReducedTire {
             kt1: Dense::from(&self.kt1),
             tc: Dense::from(&self.tc),
             tc_theta: Dense::from(&self.tc_theta),
+            viz: self.viz.as_ref().map(|v| VizFile {
+                nodes: v.nodes.clone(),
+                positions: v.positions.clone(),
+                lines: v.lines.clone(),
+                rows: Dense::from(&v.rows),
+            }),
         };
         serde_json::to_string(&f).map_err(|e| invalid("reduced tire", e.to_string()))
     }
@@ -232,6 +285,21 @@ impl ReducedTire {
             return Err(file_err("inconsistent vector lengths".into()));
         }
         let sq = |d: &Dense, n: &str| d.to(n, nz, nz);
+        let viz = match f.viz {
+            None => None,
+            Some(v) => {
+                let nv = v.nodes.len();
+                if v.positions.len() != nv || v.lines.iter().flatten().any(|&i| i >= nv) {
+                    return Err(file_err("inconsistent visualisation basis `viz`".into()));
+                }
+                Some(VizBasis {
+                    rows: v.rows.to("viz.rows", 3 * nv, nz)?,
+                    nodes: v.nodes,
+                    positions: v.positions,
+                    lines: v.lines,
+                })
+            }
+        };
         Ok(Self {
             n_free_modes: f.n_free_modes,
             contact_positions: f.contact_positions,
@@ -255,6 +323,7 @@ impl ReducedTire {
             kt1: f.kt1.to("kt1", 3, nz)?,
             tc: f.tc.to("tc", 3 * nc, nz)?,
             tc_theta: f.tc_theta.to("tc_theta", 3 * nc, nz)?,
+            viz,
             contact_nodes: f.contact_nodes,
         })
     }

@@ -11,7 +11,7 @@
 use super::error::{TireError, invalid};
 use super::ground::{Ground, GroundConfig};
 use super::reduced::ReducedTire;
-use super::rolling::{RollingConfig, RollingTire};
+use super::rolling::{RollingConfig, RollingTire, StepStats};
 use super::spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};
 use super::statics::{PatchSolution, preload, preload_rolling};
 use fe_model::Rayleigh;
@@ -120,6 +120,8 @@ pub struct Sample {
     pub active: usize,
     /// Sum of the normal multipliers [N].
     pub normal_sum: f64,
+    /// Contact nodes pressed onto the cleat.
+    pub cleat_nodes: usize,
 }
 
 /// Result of a cleat test.
@@ -127,6 +129,8 @@ pub struct Sample {
 pub struct RigResult {
     /// Speed [km/h].
     pub speed_kmh: f64,
+    /// Preload [N].
+    pub load: f64,
     /// DOF of the wheel–tire model (6 + n_z).
     pub dof: usize,
     /// Preload solution.
@@ -137,12 +141,17 @@ pub struct RigResult {
     pub samples: Vec<Sample>,
     /// Time step [s].
     pub dt: f64,
-    /// Wall time of the time integration [s].
+    /// Wall time of the time integration [s] (the observer's time excluded).
     pub wall_time_s: f64,
+    /// CPU time of the integrating thread [s] (Linux `/proc/thread-self/schedstat`; `None`
+    /// elsewhere): the load-independent cost on a shared machine.
+    pub cpu_time_s: Option<f64>,
     /// Simulated time [s].
     pub simulated_s: f64,
     /// Refactorisations of the iteration matrix.
     pub refactors: usize,
+    /// Work counters of the integration.
+    pub stats: StepStats,
 }
 
 impl RigResult {
@@ -164,6 +173,28 @@ impl RigResult {
             amplitude_spectrum(&fx, self.dt),
             amplitude_spectrum(&fy, self.dt),
         )
+    }
+
+    /// Samples before the first contact with the cleat (the steadily rolling tire).
+    pub fn before_cleat(&self) -> Vec<Sample> {
+        self.samples
+            .iter()
+            .take_while(|s| s.cleat_nodes == 0 && s.t < 0.0)
+            .copied()
+            .collect()
+    }
+
+    /// Mean `(F_x, F_y)` over the last `window` seconds before the first cleat contact [N]
+    /// (`None` if there are no such samples).
+    pub fn mean_before_cleat(&self, window: f64) -> Option<(f64, f64)> {
+        let b = self.before_cleat();
+        let t_end = b.last()?.t;
+        let w: Vec<&Sample> = b.iter().filter(|s| s.t > t_end - window).collect();
+        let n = w.len() as f64;
+        Some((
+            w.iter().map(|s| s.fx).sum::<f64>() / n,
+            w.iter().map(|s| s.fy).sum::<f64>() / n,
+        ))
     }
 
     /// RMS fluctuations of the recorded `(F_x, F_y)` [N].
@@ -233,9 +264,15 @@ pub fn run_cleat_observed(
     let steps = (total / h).round() as usize;
     let mut samples = Vec::with_capacity(steps);
     let t0 = Instant::now();
+    let c0 = thread_cpu_s();
+    let (mut obs_wall, mut obs_cpu) = (0.0, 0.0);
     for k in 0..steps {
         sim.step()?;
+        // the observer's output (e.g. VTK files) is not part of the integration cost
+        let (w_obs, c_obs) = (Instant::now(), thread_cpu_s());
         observer(k, &sim)?;
+        obs_wall += w_obs.elapsed().as_secs_f64();
+        obs_cpu += thread_cpu_s().zip(c_obs).map_or(0.0, |(b, a)| b - a);
         let f = sim.spindle_force();
         samples.push(Sample {
             t: sim.state.t - cfg.settle_time,
@@ -245,6 +282,7 @@ pub fn run_cleat_observed(
             spin: sim.state.theta_d,
             active: sim.active_count(),
             normal_sum: sim.total_normal_force(),
+            cleat_nodes: sim.cleat_contacts,
         });
         if k % 200 == 0 {
             progress(k as f64 / steps as f64);
@@ -253,13 +291,24 @@ pub fn run_cleat_observed(
     progress(1.0);
     Ok(RigResult {
         speed_kmh: cfg.speed_kmh,
+        load: cfg.load,
         dof: red.dof(),
         preload: pre.patch,
         rayleigh: ray,
         samples,
         dt: h,
-        wall_time_s: t0.elapsed().as_secs_f64(),
+        wall_time_s: t0.elapsed().as_secs_f64() - obs_wall,
+        cpu_time_s: c0.zip(thread_cpu_s()).map(|(a, b)| b - a - obs_cpu),
         simulated_s: steps as f64 * h,
         refactors: sim.refactors,
+        stats: sim.stats,
     })
+}
+
+/// CPU time consumed by the calling thread so far [s], from `/proc/thread-self/schedstat`
+/// (first field: nanoseconds on the CPU); `None` where that file does not exist.
+pub fn thread_cpu_s() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
 }

@@ -36,16 +36,28 @@
 //! # Integration
 //! Newmark (β_N, γ_N) with the contact gaps imposed at the end of each step (index-3), a
 //! linearly implicit step: the θ̇-dependent gyroscopic/centrifugal matrices are evaluated at a
-//! spin rate frozen until it drifts by more than `spin_tolerance` (then the iteration matrix is
-//! refactored), the term `G₁ z θ̈` is lagged one step, and the friction directions are
-//! iterated twice per step. Per step, the contact problem is a small LCP on the Delassus matrix
-//! `W = β_N h² N T_c S⁻¹ T_cᵀ (N − μ T̂)` built from the cached `T_c S⁻¹ T_cᵀ`.
+//! spin rate frozen until it drifts by more than `spin_tolerance` (then the iteration matrix
+//! `S = [J ⋯; m_θ M + γh C_eff + βh² K_eff]` is refactorised, LU), the term `G₁ z θ̈` is lagged
+//! one step, and the normal (LCP) and friction (projected Gauss–Seidel) problems are alternated
+//! up to three times per step. Per step the cost is one product with `R = [C_eff K_eff G₁]`,
+//! one LU solve, `T_c z` for the candidate search, and work on the candidates only: the
+//! columns `X_j = S⁻¹[0; T_cᵀ]` and `Y_j = T_c X_j` of a contact node are computed when the node
+//! first becomes a candidate after a refactorisation (the Delassus matrix
+//! `W = β_N h² N Y (N − μ T̂)` of the candidates is then a gather from the cached `Y`), and
+//! nothing is allocated once the work arrays have grown. Candidates are the nodes whose free
+//! gap is below `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the
+//! surface speed); [`StepStats::late_contacts`] counts nodes that were missed.
 
 use super::error::{TireError, invalid};
-use super::ground::Ground;
-use super::lcp::solve_lcp;
+use super::ground::{Ground, GroundPoint};
+use super::lcp::LcpWork;
 use super::reduced::ReducedTire;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
 use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::{
+    solve_unit_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
 use faer::prelude::*;
 use faer::{Accum, Mat, Par};
 use serde::{Deserialize, Serialize};
@@ -83,7 +95,8 @@ pub struct RollingConfig {
     pub wheel_spin_inertia: f64,
     /// Relative drift of θ̇ that triggers a refactorisation.
     pub spin_tolerance: f64,
-    /// Contact-node candidates: gap below this margin [m].
+    /// Contact-node candidates: gap below this margin [m] (plus `h·v` for nodes facing the
+    /// cleat, whose faces approach at up to the surface speed `v`).
     pub contact_margin: f64,
 }
 
@@ -98,7 +111,7 @@ impl Default for RollingConfig {
             normal: NormalContact::Lagrange,
             wheel_spin_inertia: 2.0,
             spin_tolerance: 1e-2,
-            contact_margin: 0.005,
+            contact_margin: 0.0005,
         }
     }
 }
@@ -170,20 +183,104 @@ pub struct SpindleForce {
     pub fz: f64,
 }
 
+/// The Newmark iteration matrix `S` factorised at a frozen spin rate, with the contact-node
+/// columns of `S⁻¹` computed lazily (only for nodes that become contact candidates) and kept
+/// until the next refactorisation.
 struct Factor {
+    /// Spin rate at which `S` and `R` were formed [rad/s].
     spin: f64,
-    /// S⁻¹ (n × n), n = 1 + n_z.
-    s_inv: Mat<f64>,
-    /// Q = [C_eff K_eff] (n_z × 2 n_z), acting on [ż̃; z̃].
-    q: Mat<f64>,
-    /// X = S⁻¹ [0; T_cᵀ] (n × 3 n_c).
+    /// Packed LU factors of `S` (n × n, n = 1 + n_z), `P S = L U`.
+    lu: Mat<f64>,
+    /// Row permutation of the LU (forward).
+    perm: Vec<usize>,
+    /// Row permutation of the LU (inverse).
+    perm_inv: Vec<usize>,
+    /// `R = [Q̂ | [0; G₁]]` (n × 3 n_z) acting on `[ż̃; z̃; θ̈ z]`; row 0 holds the rim-moment
+    /// (spin) row, rows 1.. `[C_eff K_eff G₁]`.
+    r: Mat<f64>,
+    /// Cached columns `X_j = S⁻¹ [0; T_cᵀ]` of the three DOF of contact node j (n × 3 n_c).
     x: Mat<f64>,
-    /// Y = T_c X_z (3 n_c × 3 n_c).
+    /// Cached `Y_j = T_c X_j,z` (3 n_c × 3 n_c, columns of node j).
     y: Mat<f64>,
-    /// Yv = Y + (η × s) X_θ: material-velocity response of the contact nodes (3 n_c × 3 n_c).
-    yv: Mat<f64>,
-    /// Spin-row coefficients on [ż̃; z̃].
-    spin_row: Vec<f64>,
+    /// Whether node j's columns of `x` and `y` belong to this factorisation.
+    have: Vec<bool>,
+}
+
+impl Factor {
+    /// `v ← S⁻¹ v` with the stored LU (sequential, no allocation). (An explicit `S⁻¹` and a
+    /// matrix–vector product per step were measured as fast overall: the saving per step is
+    /// spent again in forming the inverse at each refactorisation.)
+    fn solve(&self, v: &mut [f64], tmp: &mut [f64]) {
+        for (t, &p) in tmp.iter_mut().zip(&self.perm) {
+            *t = v[p];
+        }
+        let n = v.len();
+        let mut m = MatMut::from_column_major_slice_mut(tmp, n, 1);
+        solve_unit_lower_triangular_in_place(self.lu.as_ref(), m.rb_mut(), Par::Seq);
+        solve_upper_triangular_in_place(self.lu.as_ref(), m.rb_mut(), Par::Seq);
+        v.copy_from_slice(tmp);
+    }
+}
+
+/// Per-step work arrays, allocated once (the step itself does not allocate once their
+/// capacities are reached, except inside the small contact LCP).
+struct Work {
+    /// `[ż̃; z̃; θ̈ z]` (3 n_z).
+    pred: Vec<f64>,
+    /// Right-hand side, then free accelerations `[θ̈; z̈]` (n).
+    a: Vec<f64>,
+    /// LU permutation buffer (n).
+    tmp: Vec<f64>,
+    /// Contact nodes missing their cached columns.
+    missing: Vec<usize>,
+    /// Column blocks of the missing nodes (n × 3k, 3 n_c × 3k).
+    block: Mat<f64>,
+    yblock: Mat<f64>,
+    z_free: Vec<f64>,
+    zd_free: Vec<f64>,
+    /// Contact-node displacements `T_c z` (3 n_c).
+    dc: Vec<f64>,
+    cand: Vec<usize>,
+    /// Whether each contact node was a candidate in the previous step.
+    was_cand: Vec<bool>,
+    gp: Vec<GroundPoint>,
+    lambda: Vec<f64>,
+    ft: Vec<[f64; 3]>,
+    warm: Vec<bool>,
+    vfree: Vec<[f64; 3]>,
+    vdone: Vec<bool>,
+    /// Candidate blocks of `Y` and `Y_v` (3m × 3m, column-major).
+    yc: Vec<f64>,
+    yvc: Vec<f64>,
+    q: Vec<f64>,
+    dv: Vec<[f64; 3]>,
+    act: Vec<usize>,
+    forces: Vec<[f64; 3]>,
+    w: Mat<f64>,
+    lcp: LcpWork,
+}
+
+/// Work counters of the time integration (for benchmarks and diagnostics).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct StepStats {
+    /// Time steps taken.
+    pub steps: usize,
+    /// Sum over the steps of the contact candidates.
+    pub candidates: usize,
+    /// Sum over the steps of the nodes in contact.
+    pub active: usize,
+    /// Normal LCP solves.
+    pub lcp_solves: usize,
+    /// Friction Gauss–Seidel sweeps.
+    pub friction_sweeps: usize,
+    /// Contact-node column sets computed (`S⁻¹` columns of one node).
+    pub columns: usize,
+    /// Nodes found penetrating by more than the contact margin that were not candidates in the
+    /// previous step (a candidate margin too small for the approach speed; should stay 0).
+    pub late_contacts: usize,
+    /// Seconds spent in: free step (product with R + solve), candidate search, contact
+    /// columns, contact problem, refactorisations.
+    pub seconds: [f64; 5],
 }
 
 /// The reduced tire rolling on a ground, with the spindle fixed.
@@ -201,18 +298,67 @@ pub struct RollingTire<'a> {
     /// Current state.
     pub state: RollingState,
     factor: Option<Factor>,
+    /// `T_cᵀ` and `T_c,θᵀ` (n_z × 3 n_c): contiguous rows of the contact-node maps.
+    tct: Mat<f64>,
+    tct_theta: Mat<f64>,
+    work: Work,
     /// Number of refactorisations so far.
     pub refactors: usize,
+    /// Work counters.
+    pub stats: StepStats,
+    /// Contact nodes pressed onto the cleat in the last step.
+    pub cleat_contacts: usize,
 }
 
-fn matvec(a: &Mat<f64>, x: &[f64], out: &mut [f64]) {
+fn matvec(a: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
     let xv = MatRef::from_column_major_slice(x, x.len(), 1);
     let ov = MatMut::from_column_major_slice_mut(out, a.nrows(), 1);
-    matmul(ov, Accum::Replace, a.as_ref(), xv, 1.0, Par::Seq);
+    matmul(ov, Accum::Replace, a, xv, 1.0, Par::Seq);
 }
 
+/// Dot product with four partial sums (vectorisable).
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    let mut acc = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// `y += c x` (vectorisable).
+fn axpy(c: f64, x: &[f64], y: &mut [f64]) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi += c * xi;
+    }
+}
+
+/// The contiguous storage of a column of a (column-major) `Mat`.
+fn col_slice(m: &Mat<f64>, j: usize) -> &[f64] {
+    m.col(j)
+        .try_as_col_major()
+        .map_or(&[][..], |c| c.as_slice())
+}
+
+fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// 3 × 3 block `(i, j)` of the column-major `ld × ld` array `a` times `v`.
+#[inline]
+fn blk(a: &[f64], ld: usize, i: usize, j: usize, v: &[f64; 3]) -> [f64; 3] {
+    let mut o = [0.0; 3];
+    for (c, vc) in v.iter().enumerate() {
+        let col = &a[(3 * j + c) * ld + 3 * i..(3 * j + c) * ld + 3 * i + 3];
+        o[0] += col[0] * vc;
+        o[1] += col[1] * vc;
+        o[2] += col[2] * vc;
+    }
+    o
 }
 
 impl<'a> RollingTire<'a> {
@@ -236,6 +382,35 @@ impl<'a> RollingTire<'a> {
                 format!("{} values for {nz} coordinates", z0.len()),
             ));
         }
+        let nc = red.n_contact();
+        let n = nz + 1;
+        let work = Work {
+            pred: vec![0.0; 3 * nz],
+            a: vec![0.0; n],
+            tmp: vec![0.0; n],
+            missing: Vec::with_capacity(nc),
+            block: Mat::zeros(0, 0),
+            yblock: Mat::zeros(0, 0),
+            z_free: vec![0.0; nz],
+            zd_free: vec![0.0; nz],
+            dc: vec![0.0; 3 * nc],
+            cand: Vec::with_capacity(nc),
+            was_cand: vec![true; nc],
+            gp: Vec::with_capacity(nc),
+            lambda: Vec::with_capacity(nc),
+            ft: Vec::with_capacity(nc),
+            warm: Vec::with_capacity(nc),
+            vfree: Vec::with_capacity(nc),
+            vdone: Vec::with_capacity(nc),
+            yc: Vec::new(),
+            yvc: Vec::new(),
+            q: Vec::with_capacity(nc),
+            dv: Vec::with_capacity(nc),
+            act: Vec::with_capacity(nc),
+            forces: Vec::with_capacity(nc),
+            w: Mat::zeros(0, 0),
+            lcp: LcpWork::default(),
+        };
         Ok(Self {
             red,
             cfg,
@@ -251,11 +426,16 @@ impl<'a> RollingTire<'a> {
                 theta: 0.0,
                 theta_d: spin,
                 theta_dd: 0.0,
-                lambda: vec![0.0; red.n_contact()],
-                friction: vec![[0.0; 3]; red.n_contact()],
+                lambda: vec![0.0; nc],
+                friction: vec![[0.0; 3]; nc],
             },
             factor: None,
+            tct: red.tc.transpose().to_owned(),
+            tct_theta: red.tc_theta.transpose().to_owned(),
+            work,
             refactors: 0,
+            stats: StepStats::default(),
+            cleat_contacts: 0,
         })
     }
 
@@ -272,77 +452,131 @@ impl<'a> RollingTire<'a> {
         let red = self.red;
         let nz = red.n_z();
         let n = nz + 1;
+        let nc = red.n_contact();
+        let nc3 = 3 * nc;
         let (h, bn, gn) = (
             self.cfg.time_step,
             self.cfg.newmark_beta,
             self.cfg.newmark_gamma,
         );
         let (a, b) = (self.alpha, self.beta);
-        // C_eff = 2θ̇G₁ + αM + βK, K_eff = K + θ̇²G₂ + βθ̇K₁
-        let mut q = Mat::<f64>::zeros(nz, 2 * nz);
-        for j in 0..nz {
-            for i in 0..nz {
-                q[(i, j)] = 2.0 * spin * red.g1[(i, j)] + a * red.m[(i, j)] + b * red.k[(i, j)];
-                q[(i, nz + j)] =
-                    red.k[(i, j)] + spin * spin * red.g2[(i, j)] + b * spin * red.k1[(i, j)];
-            }
-        }
+        let mut f = match self.factor.take() {
+            Some(f) => f,
+            None => Factor {
+                spin,
+                lu: Mat::zeros(n, n),
+                perm: vec![0; n],
+                perm_inv: vec![0; n],
+                r: Mat::zeros(n, 3 * nz),
+                x: Mat::zeros(n, nc3),
+                y: Mat::zeros(nc3, nc3),
+                have: vec![false; nc],
+            },
+        };
+        f.spin = spin;
+        f.have.iter_mut().for_each(|h| *h = false);
+        // R: row 0 = rim moment about the axis (β K_θ ż + (K_θ + β θ̇ K_θ,θ) z), rows 1.. =
+        // [C_eff  K_eff  G₁] with C_eff = 2θ̇G₁ + αM + βK, K_eff = K + θ̇²G₂ + βθ̇K₁.
         let kt = red.kt.row(1);
         let kt1 = red.kt1.row(1);
-        let mut spin_row = vec![0.0; 2 * nz];
         for j in 0..nz {
-            spin_row[j] = b * kt[j];
-            spin_row[nz + j] = kt[j] + b * spin * kt1[j];
-        }
-        let mut s = Mat::<f64>::zeros(n, n);
-        s[(0, 0)] = self.spin_inertia();
-        for j in 0..nz {
-            s[(0, 1 + j)] = gn * h * spin_row[j] + bn * h * h * spin_row[nz + j];
-            s[(1 + j, 0)] = red.m_theta[j];
-        }
-        for j in 0..nz {
+            f.r[(0, j)] = b * kt[j];
+            f.r[(0, nz + j)] = kt[j] + b * spin * kt1[j];
+            f.r[(0, 2 * nz + j)] = 0.0;
             for i in 0..nz {
-                s[(1 + i, 1 + j)] =
-                    red.m[(i, j)] + gn * h * q[(i, j)] + bn * h * h * q[(i, nz + j)];
+                f.r[(1 + i, j)] =
+                    2.0 * spin * red.g1[(i, j)] + a * red.m[(i, j)] + b * red.k[(i, j)];
+                f.r[(1 + i, nz + j)] =
+                    red.k[(i, j)] + spin * spin * red.g2[(i, j)] + b * spin * red.k1[(i, j)];
+                f.r[(1 + i, 2 * nz + j)] = red.g1[(i, j)];
             }
         }
-        let lu = s.partial_piv_lu();
-        let s_inv = lu.solve(Mat::<f64>::identity(n, n));
-        if !s_inv.as_ref().is_all_finite() {
+        // S = [J  γh r₀ᶜ + βh² r₀ᵏ; m_θ  M + γh C_eff + βh² K_eff]
+        f.lu[(0, 0)] = self.spin_inertia();
+        for j in 0..nz {
+            f.lu[(0, 1 + j)] = gn * h * f.r[(0, j)] + bn * h * h * f.r[(0, nz + j)];
+            f.lu[(1 + j, 0)] = red.m_theta[j];
+            for i in 0..nz {
+                f.lu[(1 + i, 1 + j)] =
+                    red.m[(i, j)] + gn * h * f.r[(1 + i, j)] + bn * h * h * f.r[(1 + i, nz + j)];
+            }
+        }
+        let mut buf = MemBuffer::new(lu_in_place_scratch::<usize, f64>(
+            n,
+            n,
+            Par::Seq,
+            Default::default(),
+        ));
+        let _ = lu_in_place(
+            f.lu.as_mut(),
+            &mut f.perm,
+            &mut f.perm_inv,
+            Par::Seq,
+            MemStack::new(&mut buf),
+            Default::default(),
+        );
+        let singular = (0..n).any(|i| {
+            let d = f.lu[(i, i)];
+            !(d.is_finite() && d != 0.0)
+        });
+        if singular {
             return Err(TireError::Simulation {
                 time: self.state.t,
                 reason: "the Newmark iteration matrix is singular".into(),
             });
         }
-        let nc3 = red.tc.nrows();
-        let mut tct = Mat::<f64>::zeros(n, nc3);
-        for j in 0..nc3 {
-            for i in 0..nz {
-                tct[(1 + i, j)] = red.tc[(j, i)];
-            }
+        self.factor = Some(f);
+        self.refactors += 1;
+        Ok(())
+    }
+
+    /// Compute the cached columns `X_j = S⁻¹[0; T_cᵀ]`, `Y_j = T_c X_j` of the contact nodes in
+    /// `work.cand` that do not have them for the current factorisation (one blocked solve and
+    /// one product for all of them).
+    fn ensure_columns(&mut self) {
+        let Some(f) = self.factor.as_mut() else {
+            return;
+        };
+        let nz = self.red.n_z();
+        let n = nz + 1;
+        let w = &mut self.work;
+        w.missing.clear();
+        w.missing
+            .extend(w.cand.iter().copied().filter(|&j| !f.have[j]));
+        let k = w.missing.len();
+        if k == 0 {
+            return;
         }
-        let x = &s_inv * &tct;
-        let y = &red.tc * x.subrows(1, nz);
-        let mut yv = y.clone();
-        for (i, sp) in red.contact_positions.iter().enumerate() {
-            let rig = [sp[2], 0.0, -sp[0]];
-            for k in 0..nc3 {
-                for a in 0..3 {
-                    yv[(3 * i + a, k)] += rig[a] * x[(0, k)];
+        // right-hand sides [0; T_cᵀ] of the missing nodes, row-permuted: P [0; T_cᵀ]
+        w.block.resize_with(n, 3 * k, |_, _| 0.0);
+        for (b, &j) in w.missing.iter().enumerate() {
+            for c in 0..3 {
+                let src = self.tct.col(3 * j + c);
+                for (r, &p) in f.perm.iter().enumerate() {
+                    w.block[(r, 3 * b + c)] = if p == 0 { 0.0 } else { src[p - 1] };
                 }
             }
         }
-        self.factor = Some(Factor {
-            spin,
-            s_inv,
-            q,
-            x,
-            y,
-            yv,
-            spin_row,
-        });
-        self.refactors += 1;
-        Ok(())
+        solve_unit_lower_triangular_in_place(f.lu.as_ref(), w.block.as_mut(), Par::Seq);
+        solve_upper_triangular_in_place(f.lu.as_ref(), w.block.as_mut(), Par::Seq);
+        w.yblock
+            .resize_with(3 * self.red.n_contact(), 3 * k, |_, _| 0.0);
+        matmul(
+            w.yblock.as_mut(),
+            Accum::Replace,
+            self.red.tc.as_ref(),
+            w.block.as_ref().subrows(1, nz),
+            1.0,
+            Par::Seq,
+        );
+        for (b, &j) in w.missing.iter().enumerate() {
+            for c in 0..3 {
+                f.x.col_mut(3 * j + c).copy_from(w.block.col(3 * b + c));
+                f.y.col_mut(3 * j + c).copy_from(w.yblock.col(3 * b + c));
+            }
+            f.have[j] = true;
+        }
+        self.stats.columns += k;
     }
 
     /// Spindle force of the tire on the wheel (7.2) in the current state.
@@ -370,7 +604,7 @@ impl<'a> RollingTire<'a> {
     /// Deformed contact-node positions `sᵢ + (T_c z)ᵢ` [m].
     pub fn contact_positions(&self) -> Vec<[f64; 3]> {
         let mut d = vec![0.0; self.red.tc.nrows()];
-        matvec(&self.red.tc, &self.state.z, &mut d);
+        matvec(self.red.tc.as_ref(), &self.state.z, &mut d);
         self.red
             .contact_positions
             .iter()
@@ -380,6 +614,10 @@ impl<'a> RollingTire<'a> {
     }
 
     /// Advance one time step.
+    ///
+    /// Cost per step: one product with `R` (n × 3 n_z), one LU solve, `T_c z` for the
+    /// candidate search, and the candidate rows of the cached `Y`, `X`; the iteration matrix is
+    /// refactorised only when θ̇ drifts by more than `spin_tolerance`.
     pub fn step(&mut self) -> Result<(), TireError> {
         let red = self.red;
         let nz = red.n_z();
@@ -389,261 +627,127 @@ impl<'a> RollingTire<'a> {
             self.cfg.newmark_beta,
             self.cfg.newmark_gamma,
         );
-        let st = &self.state;
-        let spin_pred = st.theta_d + (1.0 - gn) * h * st.theta_dd;
+        let spin_pred = self.state.theta_d + (1.0 - gn) * h * self.state.theta_dd;
         let need = match &self.factor {
             None => true,
             Some(f) => (spin_pred - f.spin).abs() > self.cfg.spin_tolerance * f.spin.abs().max(1.0),
         };
+        let clk = std::time::Instant::now();
         if need {
             self.refactor(spin_pred)?;
         }
-        let fac = self.factor.as_ref().ok_or_else(|| TireError::Simulation {
-            time: self.state.t,
-            reason: "no factorisation".into(),
-        })?;
-        let st = &self.state;
-
-        // predictors
-        let mut pred = vec![0.0; 2 * nz]; // [ż̃; z̃]
-        for j in 0..nz {
-            pred[j] = st.zd[j] + (1.0 - gn) * h * st.zdd[j];
-            pred[nz + j] = st.z[j] + h * st.zd[j] + h * h * (0.5 - bn) * st.zdd[j];
-        }
-        // right-hand side vector terms: b = [τ; −θ̇²c_s − G₁ z θ̈]
-        let mut g1z = vec![0.0; nz];
-        matvec(&red.g1, &st.z, &mut g1z);
-        let mut bvec = vec![0.0; nz + 1];
-        bvec[0] = self.drive_torque;
-        for j in 0..nz {
-            bvec[1 + j] = -spin_pred * spin_pred * red.c_s[j] - g1z[j] * st.theta_dd;
-        }
-        let mut qp = vec![0.0; nz];
-        matvec(&fac.q, &pred, &mut qp);
-        bvec[0] -= dot(&fac.spin_row, &pred);
-        for j in 0..nz {
-            bvec[1 + j] -= qp[j];
-        }
-        let mut a_free = vec![0.0; nz + 1];
-        matvec(&fac.s_inv, &bvec, &mut a_free);
-        // free end-of-step state
-        let t1 = st.t + h;
-        let z_free: Vec<f64> = (0..nz)
-            .map(|j| pred[nz + j] + bn * h * h * a_free[1 + j])
-            .collect();
-        let zd_free: Vec<f64> = (0..nz).map(|j| pred[j] + gn * h * a_free[1 + j]).collect();
-        let spin_free = spin_pred + gn * h * a_free[0];
-        let mut dc = vec![0.0; 3 * nc];
-        matvec(&red.tc, &z_free, &mut dc);
-        // candidates
-        let mut cand = Vec::new();
-        let mut gp = Vec::new();
-        for i in 0..nc {
-            let s = red.contact_positions[i];
-            let p = [s[0] + dc[3 * i], s[1] + dc[3 * i + 1], s[2] + dc[3 * i + 2]];
-            let g = self.ground.query(t1, p);
-            if g.gap < self.cfg.contact_margin {
-                cand.push(i);
-                gp.push(g);
-            }
-        }
-        let m = cand.len();
-        let mut lambda_c = vec![0.0; m];
-        let mut ft: Vec<[f64; 3]> = cand.iter().map(|&i| self.state.friction[i]).collect();
-        if m > 0 {
-            let mu = self.cfg.friction;
-            let warm: Vec<bool> = cand.iter().map(|&i| self.state.lambda[i] > 0.0).collect();
-            // free material slip velocities of the candidates
-            let mut vfree = vec![[0.0; 3]; m];
-            if mu > 0.0 {
-                let mut vc = vec![0.0; 3 * nc];
-                let mut vt = vec![0.0; 3 * nc];
-                matvec(&red.tc, &zd_free, &mut vc);
-                matvec(&red.tc_theta, &z_free, &mut vt);
-                for (k, &i) in cand.iter().enumerate() {
-                    let s = red.contact_positions[i];
-                    let rig = [spin_free * s[2], 0.0, -spin_free * s[0]];
-                    for a in 0..3 {
-                        vfree[k][a] =
-                            rig[a] + vc[3 * i + a] + spin_free * vt[3 * i + a] - gp[k].velocity[a];
-                    }
-                }
-            } else {
-                ft.iter_mut().for_each(|f| *f = [0.0; 3]);
-            }
-            let c2 = bn * h * h;
-            let c1 = gn * h;
-            let blk = |a: &Mat<f64>, i: usize, j: usize, v: &[f64; 3]| -> [f64; 3] {
-                let mut o = [0.0; 3];
-                for (r, or) in o.iter_mut().enumerate() {
-                    for (c, vc) in v.iter().enumerate() {
-                        *or += a[(3 * i + r, 3 * j + c)] * vc;
-                    }
-                }
-                o
+        let c0 = clk.elapsed().as_secs_f64();
+        let cb;
+        let t1 = self.state.t + h;
+        {
+            let Some(fac) = self.factor.as_ref() else {
+                return Err(TireError::Simulation {
+                    time: self.state.t,
+                    reason: "no factorisation".into(),
+                });
             };
-            let mut w = Mat::<f64>::zeros(m, m);
-            for (kj, &j) in cand.iter().enumerate() {
-                for (ki, &i) in cand.iter().enumerate() {
-                    w[(ki, kj)] = c2 * dot(&gp[ki].normal, &blk(&fac.y, i, j, &gp[kj].normal));
-                }
-                if let NormalContact::Penalty { stiffness } = self.cfg.normal {
-                    w[(kj, kj)] += 1.0 / stiffness;
-                }
+            let st = &self.state;
+            let w = &mut self.work;
+            // predictors [ż̃; z̃] and the lagged θ̈ z of the G₁ z θ̈ term
+            for j in 0..nz {
+                w.pred[j] = st.zd[j] + (1.0 - gn) * h * st.zdd[j];
+                w.pred[nz + j] = st.z[j] + h * st.zd[j] + h * h * (0.5 - bn) * st.zdd[j];
+                w.pred[2 * nz + j] = st.theta_dd * st.z[j];
             }
-            for _outer in 0..3 {
-                // normal problem with the tangential forces frozen
-                let q: Vec<f64> = (0..m)
-                    .map(|ki| {
-                        let mut g = gp[ki].gap;
-                        for (kj, &j) in cand.iter().enumerate() {
-                            if ft[kj] != [0.0; 3] {
-                                g += c2 * dot(&gp[ki].normal, &blk(&fac.y, cand[ki], j, &ft[kj]));
-                            }
-                        }
-                        g
-                    })
-                    .collect();
-                let sol = solve_lcp(&w, &q, &warm, 1e-12);
-                if !sol.converged {
-                    return Err(TireError::Simulation {
-                        time: t1,
-                        reason: "contact active set did not converge".into(),
-                    });
-                }
-                lambda_c = sol.lambda;
-                if mu == 0.0 {
-                    break;
-                }
-                // tangential problem: Coulomb friction (set-valued sign at zero slip) by block
-                // Gauss-Seidel with projection onto the friction disk |f_t| <= mu lambda
-                let mut dv = vec![[0.0; 3]; m];
-                for (kj, &j) in cand.iter().enumerate() {
-                    let n = gp[kj].normal;
-                    let f = [
-                        n[0] * lambda_c[kj] + ft[kj][0],
-                        n[1] * lambda_c[kj] + ft[kj][1],
-                        n[2] * lambda_c[kj] + ft[kj][2],
-                    ];
-                    for (ki, &i) in cand.iter().enumerate() {
-                        let d = blk(&fac.yv, i, j, &f);
-                        for a in 0..3 {
-                            dv[ki][a] += c1 * d[a];
-                        }
+            // S a = [τ; −θ̇²c_s] − R [ż̃; z̃; θ̈ z]
+            matvec(fac.r.as_ref(), &w.pred, &mut w.a);
+            w.a[0] = self.drive_torque - w.a[0];
+            for j in 0..nz {
+                w.a[1 + j] = -spin_pred * spin_pred * red.c_s[j] - w.a[1 + j];
+            }
+            fac.solve(&mut w.a, &mut w.tmp);
+            for j in 0..nz {
+                w.z_free[j] = w.pred[nz + j] + bn * h * h * w.a[1 + j];
+                w.zd_free[j] = w.pred[j] + gn * h * w.a[1 + j];
+            }
+            cb = clk.elapsed().as_secs_f64();
+            self.stats.seconds[0] += cb - c0;
+            matvec(red.tc.as_ref(), &w.z_free, &mut w.dc);
+            // candidates
+            w.cand.clear();
+            w.gp.clear();
+            for i in 0..nc {
+                let s = red.contact_positions[i];
+                let p = [
+                    s[0] + w.dc[3 * i],
+                    s[1] + w.dc[3 * i + 1],
+                    s[2] + w.dc[3 * i + 2],
+                ];
+                let g = self.ground.query(t1, p);
+                // the cleat's faces approach the nodes at up to the surface speed
+                let margin = if g.on_cleat {
+                    self.cfg.contact_margin + h * self.ground.speed.abs()
+                } else {
+                    self.cfg.contact_margin
+                };
+                if g.gap < margin {
+                    if g.gap < -self.cfg.contact_margin && !w.was_cand[i] {
+                        self.stats.late_contacts += 1;
                     }
-                }
-                let lam_max = lambda_c.iter().fold(0.0f64, |a, &b| a.max(b));
-                let act: Vec<usize> = (0..m).filter(|&k| lambda_c[k] > 0.0).collect();
-                for k in 0..m {
-                    if lambda_c[k] <= 0.0 && ft[k] != [0.0; 3] {
-                        // released node: drop its friction and its effect on the others
-                        let d = [-ft[k][0], -ft[k][1], -ft[k][2]];
-                        ft[k] = [0.0; 3];
-                        for &kk in &act {
-                            let e = blk(&fac.yv, cand[kk], cand[k], &d);
-                            for a in 0..3 {
-                                dv[kk][a] += c1 * e[a];
-                            }
-                        }
-                    }
-                }
-                let mut outer_change = 0.0f64;
-                for _sweep in 0..10 {
-                    let mut change = 0.0f64;
-                    for &ki in &act {
-                        let i = cand[ki];
-                        let n = gp[ki].normal;
-                        let t1v = [n[2], 0.0, -n[0]];
-                        let t2v = [0.0, 1.0, 0.0];
-                        let v = [
-                            vfree[ki][0] + dv[ki][0],
-                            vfree[ki][1] + dv[ki][1],
-                            vfree[ki][2] + dv[ki][2],
-                        ];
-                        let r = [dot(&t1v, &v), dot(&t2v, &v)];
-                        let bt1 = blk(&fac.yv, i, i, &t1v);
-                        let bt2 = blk(&fac.yv, i, i, &t2v);
-                        let b = [
-                            [c1 * dot(&t1v, &bt1), c1 * dot(&t1v, &bt2)],
-                            [c1 * dot(&t2v, &bt1), c1 * dot(&t2v, &bt2)],
-                        ];
-                        let det = b[0][0] * b[1][1] - b[0][1] * b[1][0];
-                        if !(det.abs() > 0.0) {
-                            continue;
-                        }
-                        let old = [dot(&t1v, &ft[ki]), dot(&t2v, &ft[ki])];
-                        let mut new = [
-                            old[0] - (b[1][1] * r[0] - b[0][1] * r[1]) / det,
-                            old[1] - (-b[1][0] * r[0] + b[0][0] * r[1]) / det,
-                        ];
-                        let cap = mu * lambda_c[ki];
-                        let mag = (new[0] * new[0] + new[1] * new[1]).sqrt();
-                        if mag > cap {
-                            let sc = if mag > 0.0 { cap / mag } else { 0.0 };
-                            new = [new[0] * sc, new[1] * sc];
-                        }
-                        let newv = [
-                            new[0] * t1v[0] + new[1] * t2v[0],
-                            new[0] * t1v[1] + new[1] * t2v[1],
-                            new[0] * t1v[2] + new[1] * t2v[2],
-                        ];
-                        let d = [
-                            newv[0] - ft[ki][0],
-                            newv[1] - ft[ki][1],
-                            newv[2] - ft[ki][2],
-                        ];
-                        let dm = dot(&d, &d).sqrt();
-                        if dm == 0.0 {
-                            continue;
-                        }
-                        change = change.max(dm);
-                        ft[ki] = newv;
-                        for &kk in &act {
-                            let e = blk(&fac.yv, cand[kk], i, &d);
-                            for a in 0..3 {
-                                dv[kk][a] += c1 * e[a];
-                            }
-                        }
-                    }
-                    outer_change = outer_change.max(change);
-                    if change <= 1e-5 * (mu * lam_max + 1.0) {
-                        break;
-                    }
-                }
-                if outer_change <= 1e-5 * (mu * lam_max + 1.0) {
-                    break;
+                    w.cand.push(i);
+                    w.gp.push(g);
                 }
             }
         }
-        let forces: Vec<[f64; 3]> = (0..m)
-            .map(|k| {
-                let n = gp[k].normal;
-                [
-                    n[0] * lambda_c[k] + ft[k][0],
-                    n[1] * lambda_c[k] + ft[k][1],
-                    n[2] * lambda_c[k] + ft[k][2],
-                ]
-            })
-            .collect();
-        let da = self.contact_correction(&cand, &forces);
+        let c1 = clk.elapsed().as_secs_f64();
+        self.stats.seconds[1] += c1 - cb;
+        self.ensure_columns();
+        let c2 = clk.elapsed().as_secs_f64();
+        self.stats.seconds[2] += c2 - c1;
+        let spin_free = spin_pred + gn * h * self.work.a[0];
+        self.solve_contact(t1, spin_free)?;
+        self.stats.seconds[3] += clk.elapsed().as_secs_f64() - c2;
+        self.stats.seconds[4] += c0;
+        let Some(fac) = self.factor.as_ref() else {
+            return Err(TireError::Simulation {
+                time: self.state.t,
+                reason: "no factorisation".into(),
+            });
+        };
+        let w = &mut self.work;
+        // contact correction a += X Σ fⱼ
+        for (k, &j) in w.cand.iter().enumerate() {
+            for b in 0..3 {
+                let c = w.forces[k][b];
+                if c == 0.0 {
+                    continue;
+                }
+                axpy(c, col_slice(&fac.x, 3 * j + b), &mut w.a);
+            }
+        }
         let st = &mut self.state;
-        let theta_dd = a_free[0] + da[0];
+        let theta_dd = w.a[0];
         st.theta += h * st.theta_d + h * h * ((0.5 - bn) * st.theta_dd + bn * theta_dd);
         st.theta_d = spin_pred + gn * h * theta_dd;
         st.theta_dd = theta_dd;
         for j in 0..nz {
-            let a = a_free[1 + j] + da[1 + j];
+            let a = w.a[1 + j];
             st.zdd[j] = a;
-            st.z[j] = pred[nz + j] + bn * h * h * a;
-            st.zd[j] = pred[j] + gn * h * a;
+            st.z[j] = w.pred[nz + j] + bn * h * h * a;
+            st.zd[j] = w.pred[j] + gn * h * a;
         }
         st.lambda.iter_mut().for_each(|l| *l = 0.0);
         st.friction.iter_mut().for_each(|f| *f = [0.0; 3]);
-        for (k, &i) in cand.iter().enumerate() {
-            st.lambda[i] = lambda_c[k];
-            st.friction[i] = ft[k];
+        w.was_cand.iter_mut().for_each(|c| *c = false);
+        for &i in &w.cand {
+            w.was_cand[i] = true;
+        }
+        for (k, &i) in w.cand.iter().enumerate() {
+            st.lambda[i] = w.lambda[k];
+            st.friction[i] = w.ft[k];
         }
         st.t = t1;
+        self.stats.steps += 1;
+        self.stats.candidates += w.cand.len();
+        self.stats.active += w.lambda.iter().filter(|&&l| l > 0.0).count();
+        self.cleat_contacts = (0..w.cand.len())
+            .filter(|&k| w.lambda[k] > 0.0 && w.gp[k].on_cleat)
+            .count();
         if !(st.theta_d.is_finite() && st.z.iter().all(|v| v.is_finite())) {
             return Err(TireError::Simulation {
                 time: t1,
@@ -653,26 +757,231 @@ impl<'a> RollingTire<'a> {
         Ok(())
     }
 
-    /// Acceleration change `X Σ fⱼ` of the contact-node forces `fⱼ` (normal + friction).
-    fn contact_correction(&self, cand: &[usize], forces: &[[f64; 3]]) -> Vec<f64> {
-        let nz = self.red.n_z();
-        let mut da = vec![0.0; nz + 1];
+    /// The contact problem of the candidates in `work` (normal LCP on the Delassus matrix with
+    /// the friction forces frozen, then Coulomb friction by projected block Gauss–Seidel,
+    /// alternated); leaves the contact forces in `work.forces`.
+    fn solve_contact(&mut self, t1: f64, spin_free: f64) -> Result<(), TireError> {
+        let red = self.red;
+        let (h, bn, gn) = (
+            self.cfg.time_step,
+            self.cfg.newmark_beta,
+            self.cfg.newmark_gamma,
+        );
         let Some(fac) = self.factor.as_ref() else {
-            return da;
+            return Ok(());
         };
-        for (k, &j) in cand.iter().enumerate() {
-            for b in 0..3 {
-                let c = forces[k][b];
-                if c == 0.0 {
-                    continue;
-                }
-                let col = fac.x.col(3 * j + b);
-                for r in 0..=nz {
-                    da[r] += col[r] * c;
+        let w = &mut self.work;
+        let m = w.cand.len();
+        let mu = self.cfg.friction;
+        w.lambda.clear();
+        w.lambda.resize(m, 0.0);
+        w.ft.clear();
+        w.warm.clear();
+        w.forces.clear();
+        for &i in &w.cand {
+            w.ft.push(if mu > 0.0 {
+                self.state.friction[i]
+            } else {
+                [0.0; 3]
+            });
+            w.warm.push(self.state.lambda[i] > 0.0);
+        }
+        if m == 0 {
+            return Ok(());
+        }
+        // compact candidate blocks of Y and of Y_v = Y + (η × s) X_θ (material velocity)
+        let ld = 3 * m;
+        w.yc.clear();
+        w.yc.resize(ld * ld, 0.0);
+        w.yvc.clear();
+        w.yvc.resize(ld * ld, 0.0);
+        for (kb, &jb) in w.cand.iter().enumerate() {
+            for c in 0..3 {
+                let col = 3 * jb + c;
+                let ycol = fac.y.col(col);
+                let xth = fac.x[(0, col)];
+                let dst = (3 * kb + c) * ld;
+                for (ka, &ia) in w.cand.iter().enumerate() {
+                    let sp = red.contact_positions[ia];
+                    let rig = [sp[2], 0.0, -sp[0]];
+                    for r in 0..3 {
+                        let v = ycol[3 * ia + r];
+                        w.yc[dst + 3 * ka + r] = v;
+                        w.yvc[dst + 3 * ka + r] = v + rig[r] * xth;
+                    }
                 }
             }
         }
-        da
+        // free material slip velocities, computed for the nodes that become active
+        w.vfree.clear();
+        w.vfree.resize(m, [0.0; 3]);
+        w.vdone.clear();
+        w.vdone.resize(m, false);
+        let c2 = bn * h * h;
+        let c1 = gn * h;
+        w.w.resize_with(m, m, |_, _| 0.0);
+        for kj in 0..m {
+            for ki in 0..m {
+                w.w[(ki, kj)] =
+                    c2 * dot3(&w.gp[ki].normal, &blk(&w.yc, ld, ki, kj, &w.gp[kj].normal));
+            }
+            if let NormalContact::Penalty { stiffness } = self.cfg.normal {
+                w.w[(kj, kj)] += 1.0 / stiffness;
+            }
+        }
+        let tol = |lam_max: f64| 1e-5 * (mu * lam_max + 1.0);
+        for _outer in 0..3 {
+            // normal problem with the tangential forces frozen
+            w.q.clear();
+            for ki in 0..m {
+                let mut g = w.gp[ki].gap;
+                for kj in 0..m {
+                    if w.ft[kj] != [0.0; 3] {
+                        g += c2 * dot3(&w.gp[ki].normal, &blk(&w.yc, ld, ki, kj, &w.ft[kj]));
+                    }
+                }
+                w.q.push(g);
+            }
+            let (converged, _) = w.lcp.solve(w.w.as_ref(), &w.q, &w.warm, 1e-12);
+            self.stats.lcp_solves += 1;
+            if !converged {
+                return Err(TireError::Simulation {
+                    time: t1,
+                    reason: "contact active set did not converge".into(),
+                });
+            }
+            w.lambda.copy_from_slice(&w.lcp.lambda);
+            if mu == 0.0 {
+                break;
+            }
+            // tangential problem: Coulomb friction (set-valued sign at zero slip) by block
+            // Gauss–Seidel with projection onto the friction disk |f_t| ≤ μλ
+            w.dv.clear();
+            w.dv.resize(m, [0.0; 3]);
+            for kj in 0..m {
+                let n = w.gp[kj].normal;
+                let l = w.lambda[kj];
+                let f = [
+                    n[0] * l + w.ft[kj][0],
+                    n[1] * l + w.ft[kj][1],
+                    n[2] * l + w.ft[kj][2],
+                ];
+                for ki in 0..m {
+                    let d = blk(&w.yvc, ld, ki, kj, &f);
+                    for a in 0..3 {
+                        w.dv[ki][a] += c1 * d[a];
+                    }
+                }
+            }
+            let lam_max = w.lambda.iter().fold(0.0f64, |a, &b| a.max(b));
+            w.act.clear();
+            w.act.extend((0..m).filter(|&k| w.lambda[k] > 0.0));
+            for &k in &w.act {
+                if w.vdone[k] {
+                    continue;
+                }
+                let i = w.cand[k];
+                let s = red.contact_positions[i];
+                let rig = [spin_free * s[2], 0.0, -spin_free * s[0]];
+                for a in 0..3 {
+                    let c = 3 * i + a;
+                    let vc = dot(col_slice(&self.tct, c), &w.zd_free);
+                    let vt = dot(col_slice(&self.tct_theta, c), &w.z_free);
+                    w.vfree[k][a] = rig[a] + vc + spin_free * vt - w.gp[k].velocity[a];
+                }
+                w.vdone[k] = true;
+            }
+            for k in 0..m {
+                if w.lambda[k] <= 0.0 && w.ft[k] != [0.0; 3] {
+                    // released node: drop its friction and its effect on the others
+                    let d = [-w.ft[k][0], -w.ft[k][1], -w.ft[k][2]];
+                    w.ft[k] = [0.0; 3];
+                    for &kk in &w.act {
+                        let e = blk(&w.yvc, ld, kk, k, &d);
+                        for a in 0..3 {
+                            w.dv[kk][a] += c1 * e[a];
+                        }
+                    }
+                }
+            }
+            let mut outer_change = 0.0f64;
+            for _sweep in 0..10 {
+                self.stats.friction_sweeps += 1;
+                let mut change = 0.0f64;
+                for ai in 0..w.act.len() {
+                    let ki = w.act[ai];
+                    let n = w.gp[ki].normal;
+                    let t1v = [n[2], 0.0, -n[0]];
+                    let t2v = [0.0, 1.0, 0.0];
+                    let v = [
+                        w.vfree[ki][0] + w.dv[ki][0],
+                        w.vfree[ki][1] + w.dv[ki][1],
+                        w.vfree[ki][2] + w.dv[ki][2],
+                    ];
+                    let r = [dot3(&t1v, &v), dot3(&t2v, &v)];
+                    let bt1 = blk(&w.yvc, ld, ki, ki, &t1v);
+                    let bt2 = blk(&w.yvc, ld, ki, ki, &t2v);
+                    let b = [
+                        [c1 * dot3(&t1v, &bt1), c1 * dot3(&t1v, &bt2)],
+                        [c1 * dot3(&t2v, &bt1), c1 * dot3(&t2v, &bt2)],
+                    ];
+                    let det = b[0][0] * b[1][1] - b[0][1] * b[1][0];
+                    if det.is_nan() || det == 0.0 {
+                        continue;
+                    }
+                    let old = [dot3(&t1v, &w.ft[ki]), dot3(&t2v, &w.ft[ki])];
+                    let mut new = [
+                        old[0] - (b[1][1] * r[0] - b[0][1] * r[1]) / det,
+                        old[1] - (-b[1][0] * r[0] + b[0][0] * r[1]) / det,
+                    ];
+                    let cap = mu * w.lambda[ki];
+                    let mag = (new[0] * new[0] + new[1] * new[1]).sqrt();
+                    if mag > cap {
+                        let sc = if mag > 0.0 { cap / mag } else { 0.0 };
+                        new = [new[0] * sc, new[1] * sc];
+                    }
+                    let newv = [
+                        new[0] * t1v[0] + new[1] * t2v[0],
+                        new[0] * t1v[1] + new[1] * t2v[1],
+                        new[0] * t1v[2] + new[1] * t2v[2],
+                    ];
+                    let d = [
+                        newv[0] - w.ft[ki][0],
+                        newv[1] - w.ft[ki][1],
+                        newv[2] - w.ft[ki][2],
+                    ];
+                    let dm = dot3(&d, &d).sqrt();
+                    if dm == 0.0 {
+                        continue;
+                    }
+                    change = change.max(dm);
+                    w.ft[ki] = newv;
+                    for &kk in &w.act {
+                        let e = blk(&w.yvc, ld, kk, ki, &d);
+                        for a in 0..3 {
+                            w.dv[kk][a] += c1 * e[a];
+                        }
+                    }
+                }
+                outer_change = outer_change.max(change);
+                if change <= tol(lam_max) {
+                    break;
+                }
+            }
+            if outer_change <= tol(lam_max) {
+                break;
+            }
+        }
+        for k in 0..m {
+            let n = w.gp[k].normal;
+            let l = w.lambda[k];
+            w.forces.push([
+                n[0] * l + w.ft[k][0],
+                n[1] * l + w.ft[k][1],
+                n[2] * l + w.ft[k][2],
+            ]);
+        }
+        Ok(())
     }
 
     /// Total normal contact force vector `Σ λᵢ nᵢ`-weighted vertical component [N] (the
@@ -686,8 +995,12 @@ impl<'a> RollingTire<'a> {
         self.state.lambda.iter().filter(|&&l| l > 0.0).count()
     }
 
-    /// The spin-row coefficients (for diagnostics).
-    pub fn spin_row(&self) -> Option<&[f64]> {
-        self.factor.as_ref().map(|f| f.spin_row.as_slice())
+    /// The spin-row coefficients `[β K_θ; K_θ + β θ̇ K_θ,θ]` of the current factorisation (for
+    /// diagnostics).
+    pub fn spin_row(&self) -> Option<Vec<f64>> {
+        let nz = self.red.n_z();
+        self.factor
+            .as_ref()
+            .map(|f| (0..2 * nz).map(|j| f.r[(0, j)]).collect())
     }
 }

@@ -17,7 +17,7 @@ pub struct Spectrum {
 /// corrected for the window's coherent gain (0.5).
 pub fn amplitude_spectrum(x: &[f64], dt: f64) -> Spectrum {
     let n = x.len();
-    if n < 2 || !(dt > 0.0) {
+    if n < 2 || dt.is_nan() || dt <= 0.0 {
         return Spectrum {
             freq_hz: Vec::new(),
             amplitude: Vec::new(),

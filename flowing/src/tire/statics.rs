@@ -38,12 +38,11 @@ pub struct PatchSolution {
     pub f_c: Vec<f64>,
 }
 
+/// Multipliers λ, contact-node forces f^c and deflections δ^c of one contact state.
+type ContactState = (Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// Contact state for a fixed ground height: returns (λ, f^c, δ^c).
-fn contact_at(
-    y: &Mat<f64>,
-    s_c: &[[f64; 3]],
-    ground: &Ground,
-) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>), TireError> {
+fn contact_at(y: &Mat<f64>, s_c: &[[f64; 3]], ground: &Ground) -> Result<ContactState, TireError> {
     let nc = s_c.len();
     let mut delta = vec![0.0; 3 * nc];
     let mut lambda = vec![0.0; nc];
@@ -123,10 +122,10 @@ pub fn solve_patch(
         speed: 0.0,
         cleat_time: 0.0,
     };
-    let force = |top: f64| -> Result<(f64, Vec<f64>, Vec<f64>, Vec<f64>), TireError> {
+    let force = |top: f64| -> Result<(f64, ContactState), TireError> {
         let (l, f, d) = contact_at(y, s_c, &ground_at(top))?;
         let fz: f64 = (0..s_c.len()).map(|i| f[3 * i + 2]).sum();
-        Ok((fz, l, f, d))
+        Ok((fz, (l, f, d)))
     };
     // bracket: e in (0, e_hi]
     let (mut lo, mut f_lo) = (0.0, 0.0);
@@ -172,7 +171,7 @@ pub fn solve_patch(
             break;
         }
     }
-    let (fz, lambda, f_c, delta_c) = force(touch + e)?;
+    let (fz, (lambda, f_c, delta_c)) = force(touch + e)?;
     Ok(PatchSolution {
         top: touch + e,
         deflection: e,
