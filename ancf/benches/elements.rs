@@ -1,7 +1,7 @@
 //! Cost of the element kernels and of one assembled tangent of a 20-element belt (the inner
 //! loop of implicit belt-drive integration, Kerkkänen ch. 3).
 
-use ancf::belt::{TwoPulleyPath, belt_loop, coordinates_on_path};
+use ancf::belt::{belt_loop, coordinates_on_belt_path, kerkkanen_path};
 use ancf::element::{BeltElement, Element, OmarShabanaBeam, ProposedBeam};
 use ancf::mesh::straight_coordinates;
 use ancf::system::MeshForce;
@@ -53,8 +53,8 @@ fn belt_assembly(c: &mut Criterion) {
     let mat = Material::new(1e8, 0.3, 1036.0).unwrap();
     let sec = Section::rectangle(0.01, 0.01).unwrap();
     let mesh = belt_loop(20, 1.2727, mat, sec, 1.0, 0.01, 5).unwrap();
-    let path = TwoPulleyPath::kerkkanen();
-    let q = coordinates_on_path(&mesh, path.length(), |s| path.point(s));
+    let path = kerkkanen_path();
+    let q = coordinates_on_belt_path(&mesh, &path);
     let v: Vec<f64> = (0..q.len()).map(|i| 0.01 * (i as f64).cos()).collect();
     let pat = mesh.pattern();
     let mut kv = pat.zeros();
@@ -66,13 +66,13 @@ fn belt_assembly(c: &mut Criterion) {
             mesh.elastic_tangent_into(black_box(&q), &mut f, pat, &mut kv, 1.0)
         })
     });
-    let pulleys: Vec<_> = [path.left, path.right]
+    let pulleys: Vec<_> = [path.pulleys()[0].center, path.pulleys()[1].center]
         .iter()
         .map(|&c| PulleyContact {
             contact: LineContact {
                 surface: Disk {
                     center: c,
-                    radius: path.radius,
+                    radius: path.pulleys()[0].radius,
                     velocity: [0.0; 2],
                     omega: 12.0,
                 },

@@ -1,71 +1,33 @@
-//! Closed planar belts of belt elements (Kerkkänen §3.1, §3.3): the two-pulley belt path,
-//! equally spaced nodes along it, and the closed-loop mesh with a shared first node.
+//! Closed planar belts of belt elements (Kerkkänen §3.1, §3.3): the two-pulley belt path of
+//! Table 3.1 (fe-model's [`BeltPath`]), equally spaced nodes along a path, and the closed-loop
+//! mesh with a shared first node.
 
 use crate::element::{BeltElement, Element, NodeLayout};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::section::Section;
-use std::f64::consts::PI;
+use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
 
-/// Open belt path around two equal pulleys of radius `radius` [m] with centres `left` and
-/// `right` on a horizontal line: lower span left→right, arc around the right pulley, upper span
-/// right→left, arc around the left pulley (counter-clockwise travel).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TwoPulleyPath {
-    /// Left pulley centre [m].
-    pub left: [f64; 2],
-    /// Right pulley centre [m].
-    pub right: [f64; 2],
-    /// Pulley radius [m].
-    pub radius: f64,
+/// Kerkkänen Table 3.1 two-pulley path: `O₁ = (−0.191441, 0)`, `O₂ = (0.191441, 0)`,
+/// `R = 0.08125 m` (path length 1.276273 m), as a [`BeltPath`] (the belt leaves the first
+/// pulley at the start and runs clockwise around both).
+pub fn kerkkanen_path() -> BeltPath {
+    let pulley = |x: f64| PathPulley {
+        center: [x, 0.0],
+        radius: 0.08125,
+        side: WrapSide::Inside,
+    };
+    BeltPath::new(&[pulley(-0.191441), pulley(0.191441)])
+        .expect("Kerkkänen Table 3.1: two separate pulleys have an open-belt path")
 }
 
-impl TwoPulleyPath {
-    /// Kerkkänen Table 3.1 geometry: `O₁ = (−0.191441, 0)`, `O₂ = (0.191441, 0)`,
-    /// `R = 0.08125 m` (path length 1.276273 m).
-    pub fn kerkkanen() -> Self {
-        Self {
-            left: [-0.191441, 0.0],
-            right: [0.191441, 0.0],
-            radius: 0.08125,
-        }
-    }
-
-    fn span(&self) -> f64 {
-        self.right[0] - self.left[0]
-    }
-
-    /// Path length `2 l_s + 2πR` [m].
-    pub fn length(&self) -> f64 {
-        2.0 * self.span() + 2.0 * PI * self.radius
-    }
-
-    /// Point and unit tangent at arc length `s` from the start of the lower span (the bottom
-    /// of the left pulley).
-    pub fn point(&self, s: f64) -> ([f64; 2], [f64; 2]) {
-        let (ls, r) = (self.span(), self.radius);
-        let arc = PI * r;
-        let s = s.rem_euclid(self.length());
-        if s < ls {
-            ([self.left[0] + s, self.left[1] - r], [1.0, 0.0])
-        } else if s < ls + arc {
-            let a = -PI / 2.0 + (s - ls) / r;
-            (
-                [self.right[0] + r * a.cos(), self.right[1] + r * a.sin()],
-                [-a.sin(), a.cos()],
-            )
-        } else if s < 2.0 * ls + arc {
-            let u = s - ls - arc;
-            ([self.right[0] - u, self.right[1] + r], [-1.0, 0.0])
-        } else {
-            let a = PI / 2.0 + (s - 2.0 * ls - arc) / r;
-            (
-                [self.left[0] + r * a.cos(), self.left[1] + r * a.sin()],
-                [-a.sin(), a.cos()],
-            )
-        }
-    }
+/// [`coordinates_on_path`] along a [`BeltPath`].
+pub fn coordinates_on_belt_path<E: Element>(mesh: &Mesh<E>, path: &BeltPath) -> Vec<f64> {
+    coordinates_on_path(mesh, path.length(), |s| {
+        let p = path.point(s);
+        (p.position, p.tangent)
+    })
 }
 
 /// A closed loop of `n` belt elements of total unstretched length `length` [m]

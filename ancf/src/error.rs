@@ -34,6 +34,16 @@ pub enum AncfError {
         /// Details from the factorization.
         detail: String,
     },
+    /// The contact active set did not settle within the allowed passes.
+    #[error(
+        "contact active set did not settle at load factor {load_factor} after {passes} passes (use more load increments)"
+    )]
+    ActiveSet {
+        /// Load factor of the failing increment.
+        load_factor: f64,
+        /// Active-set passes performed.
+        passes: usize,
+    },
     /// A state contains NaN or infinity.
     #[error("non-finite value in {what}")]
     NonFinite {

@@ -1,12 +1,18 @@
 //! # ancf
 //!
 //! Absolute nodal coordinate formulation elements (Kerkkänen 2006): the 2D shear-deformable
-//! linear beam, the Omar–Shabana beam, the 2D belt element, and planar belt drives built from them.
+//! linear beam, the Omar–Shabana beam, the 2D belt element, planar belt drives built from them, and the thin plate element.
 //!
 //! * [`element`]: the [`Element`] trait and the three planar elements;
 //! * [`mesh`]: meshes with shared nodes (closed loops), sparse constant mass, assembled forces
 //!   and tangents, energies;
-//! * [`statics`]: Newton–Raphson with load increments and line search;
+//! * [`plate`]: the 36-coordinate thin plate element of Kerkkänen §4.3 and plate meshes;
+//! * [`statics`]: Newton–Raphson with load increments and line search, and
+//!   [`solve_static_unilateral`] (frictionless node contact by Lagrange multipliers with an
+//!   active set);
+//! * [`system`]: meshes as mbd-core systems, and [`integrate_unilateral`] (generalized-α with
+//!   the same unilateral contact);
+//! * [`node_contact`]: nodal penalty contact ([`NodalContact`]), the penalty counterpart;
 //! * [`studies`]: Kerkkänen §2.4 test set-ups (simply supported beam, cantilever, pendulum,
 //!   spinning beam).
 
@@ -21,6 +27,8 @@ pub mod element;
 pub mod error;
 pub mod material;
 pub mod mesh;
+pub mod node_contact;
+pub mod plate;
 pub mod pulley;
 pub mod section;
 pub mod shape;
@@ -33,7 +41,11 @@ pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBea
 pub use error::AncfError;
 pub use material::Material;
 pub use mesh::Mesh;
+pub use node_contact::NodalContact;
 pub use pulley::{ContactDistribution, PulleyContact};
 pub use section::Section;
-pub use statics::{StaticOptions, StaticSolution, solve_static, solve_static_with};
-pub use system::{AncfSystem, Energies, MeshForce, Prescribed};
+pub use statics::{
+    StaticOptions, StaticSolution, UnilateralOptions, UnilateralSolution, solve_static,
+    solve_static_unilateral, solve_static_with,
+};
+pub use system::{AncfSystem, ContactStep, Energies, MeshForce, Prescribed, integrate_unilateral};

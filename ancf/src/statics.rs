@@ -11,6 +11,9 @@ use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 
+mod unilateral;
+pub use unilateral::{UnilateralOptions, UnilateralSolution, solve_static_unilateral};
+
 /// Options of the static solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StaticOptions {

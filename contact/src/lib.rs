@@ -11,7 +11,8 @@
 //!   (Kerkkänen Fig. 3.3), [`CoulombSlip`] (Ribaric §8.4.3);
 //! * [`point`]: nodal contact with exact derivatives;
 //! * [`distributed`]: Gauss-quadrature contact along elements (Kerkkänen (3.26)–(3.27));
-//! * [`lagrange`]: unilateral constraints with an active set.
+//! * [`lagrange`]: unilateral constraints with an active set (used by the ancf crate's static
+//!   and generalized-α contact solvers).
 
 // Index loops mirror the element and quadrature formulas (several arrays per index).
 #![allow(clippy::needless_range_loop)]

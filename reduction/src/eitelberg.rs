@@ -7,7 +7,9 @@ use faer::linalg::solvers::Solve;
 use faer::{Mat, MatRef};
 
 /// Largest state dimension accepted by the dense Kronecker Lyapunov solver
-/// (`n² × n²` system): 48 states, i.e. structures up to 24 DOFs.
+/// [`lyapunov_kronecker`] (`n² × n²` system): 48 states, i.e. structures up to 24 DOFs.
+/// Eitelberg's method itself uses the Bartels–Stewart solver [`crate::lyapunov::lyapunov`],
+/// which has no such limit.
 pub const MAX_LYAPUNOV_STATES: usize = 48;
 
 /// Reduced system `ξ̇ = A_r ξ + B_r u`, `η = C_r ξ` of Lin (6.37)–(6.38).
@@ -23,7 +25,8 @@ pub struct EitelbergReduction {
 
 /// Solves the continuous Lyapunov equation `A S + S Aᵀ + Q = 0` (MATLAB `lyap(A, Q)`) by the
 /// Kronecker form `(I⊗A + A⊗I) vec S = −vec Q` (dense LU; at most [`MAX_LYAPUNOV_STATES`]).
-pub fn lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>> {
+/// Kept as an independent reference for [`crate::lyapunov::lyapunov`].
+pub fn lyapunov_kronecker(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>> {
     let n = a.nrows();
     check_square("Lyapunov A", a, n)?;
     check_square("Lyapunov Q", q, n)?;
@@ -69,6 +72,10 @@ pub fn lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>> {
 
 /// Eitelberg's method (Lin Appendix C): zero steady-state error and minimal equation error.
 ///
+/// The Lyapunov equation `A S + S Aᵀ = −P Pᵀ` is solved directly by Bartels–Stewart
+/// ([`crate::lyapunov::lyapunov`]); Cellier's SVD rotation `Â = Uᵀ A U` of Appendix C only
+/// changes the basis of the same equation and is not needed.
+///
 /// `R` (v × n) selects the kept states (`x_r = R x`), `C = C_r R`. `A` must be asymptotically
 /// stable (use output feedback first, see [`eitelberg_structure`]).
 pub fn eitelberg(
@@ -76,6 +83,29 @@ pub fn eitelberg(
     b: MatRef<'_, f64>,
     c: MatRef<'_, f64>,
     r: MatRef<'_, f64>,
+) -> Result<EitelbergReduction> {
+    eitelberg_with(a, b, c, r, LyapunovSolver::BartelsStewart)
+}
+
+/// Which Lyapunov solver Eitelberg's method uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LyapunovSolver {
+    /// Bartels–Stewart on a complex Schur form with refinement ([`crate::lyapunov::lyapunov`]),
+    /// O(n³): the default, for any size.
+    #[default]
+    BartelsStewart,
+    /// Dense Kronecker form ([`lyapunov_kronecker`]), O(n⁶): reference, at most
+    /// [`MAX_LYAPUNOV_STATES`] states.
+    Kronecker,
+}
+
+/// [`eitelberg`] with a chosen Lyapunov solver.
+pub fn eitelberg_with(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    c: MatRef<'_, f64>,
+    r: MatRef<'_, f64>,
+    solver: LyapunovSolver,
 ) -> Result<EitelbergReduction> {
     let n = a.nrows();
     check_square("Eitelberg A", a, n)?;
@@ -99,7 +129,10 @@ pub fn eitelberg(
     // P = A⁻¹ B
     let p = solve_general("A P = B", a, b)?;
     let q = &p * p.transpose();
-    let s = lyapunov(a, q.as_ref())?;
+    let s = match solver {
+        LyapunovSolver::BartelsStewart => crate::lyapunov::lyapunov(a, q.as_ref())?,
+        LyapunovSolver::Kronecker => lyapunov_kronecker(a, q.as_ref())?,
+    };
     let rsr = r * &s * r.transpose();
     let rasr = r * a * &s * r.transpose();
     // A_r = (R A S Rᵀ)(R S Rᵀ)⁻¹ = ((R S Rᵀ)⁻ᵀ (R A S Rᵀ)ᵀ)ᵀ
@@ -124,6 +157,16 @@ pub fn eitelberg_structure(
     k: MatRef<'_, f64>,
     m: MatRef<'_, f64>,
     boundary: &[usize],
+) -> Result<(Mat<f64>, EitelbergReduction)> {
+    eitelberg_structure_with(k, m, boundary, LyapunovSolver::BartelsStewart)
+}
+
+/// [`eitelberg_structure`] with a chosen Lyapunov solver.
+pub fn eitelberg_structure_with(
+    k: MatRef<'_, f64>,
+    m: MatRef<'_, f64>,
+    boundary: &[usize],
+    solver: LyapunovSolver,
 ) -> Result<(Mat<f64>, EitelbergReduction)> {
     let n = k.nrows();
     check_square("stiffness matrix K", k, n)?;
@@ -162,7 +205,7 @@ pub fn eitelberg_structure(
     });
     let l = Mat::from_fn(nb, 2 * nb, |i, j| ((j == i) || (j == nb + i)) as u8 as f64);
     let a_fb = &a - &b * &l * &r;
-    let mut red = eitelberg(a_fb.as_ref(), b.as_ref(), r.as_ref(), r.as_ref())?;
+    let mut red = eitelberg_with(a_fb.as_ref(), b.as_ref(), r.as_ref(), r.as_ref(), solver)?;
     red.a_r = &red.a_r + &red.b_r * &l * &red.c_r;
     let minvk_r = Mat::from_fn(nb, nb, |i, j| -red.a_r[(nb + i, j)]);
     Ok((minvk_r, red))

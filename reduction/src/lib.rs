@@ -2,8 +2,10 @@
 //!
 //! Reduction bases for deformable bodies (Lin 2005, Ribaric 2012 ch. 3): static condensation
 //! (Guyan), fixed-interface and free-free modal truncation, Craig–Bampton, mode condensation and
-//! Eitelberg's method; axis (reference) conditions (nodal-fixed, mean, principal axes) applied to
-//! them; the [`ReducedModel`] with recovery of nodal fields and a versioned file format.
+//! Eitelberg's method (with a Bartels–Stewart Lyapunov solver, [`lyapunov`]); axis (reference)
+//! conditions (nodal-fixed, mean, principal axes) applied to them; the [`ReducedModel`] with
+//! recovery of nodal fields and a versioned file format; Lin's example models and studies
+//! ([`lin`]: the Appendix A beam, the Appendix B slab and its simulations 1–3).
 //!
 //! Floating-frame bodies that use these bases live in `mbd-core::floating` (layering: the basis
 //! is plain data handed down).
@@ -14,6 +16,7 @@ pub mod eitelberg;
 pub mod error;
 pub mod lin;
 pub mod linalg;
+pub mod lyapunov;
 pub mod mean_axes_eval;
 pub mod partition;
 pub mod reduced;

@@ -3,7 +3,7 @@
 //! §3.2 against a one-dimensional analytical solution), and the exactness of the contact
 //! tangent inside an `AncfSystem`.
 
-use ancf::belt::{TwoPulleyPath, belt_loop, coordinates_on_path};
+use ancf::belt::{belt_loop, coordinates_on_belt_path, coordinates_on_path, kerkkanen_path};
 use ancf::statics::{StaticOptions, solve_static, solve_static_with};
 use ancf::system::MeshForce;
 use ancf::{AncfSystem, Element, Material, PulleyContact, Section};
@@ -24,8 +24,8 @@ fn belt_material() -> (Material, Section) {
 fn free_belt_closes_to_a_circle() {
     let (mat, sec) = belt_material();
     let mesh = belt_loop(10, 1.276, mat, sec, 1.0, 0.01, 5).unwrap();
-    let path = TwoPulleyPath::kerkkanen();
-    let q0 = coordinates_on_path(&mesh, path.length(), |s| path.point(s));
+    let path = kerkkanen_path();
+    let q0 = coordinates_on_belt_path(&mesh, &path);
     let fixed = [
         mesh.node_dof(0, 0),
         mesh.node_dof(0, 1),
@@ -234,12 +234,12 @@ fn belt_pretension_on_two_pulleys() {
     let (mat, sec) = belt_material();
     let n = 20;
     let mesh = belt_loop(n, 1.2727, mat, sec, 1.0, 0.01, 5).unwrap();
-    let path = TwoPulleyPath::kerkkanen();
-    let q0 = coordinates_on_path(&mesh, path.length(), |s| path.point(s));
+    let path = kerkkanen_path();
+    let q0 = coordinates_on_belt_path(&mesh, &path);
     let k = 1e7;
     let mk = |c: [f64; 2]| PulleyContact {
         contact: LineContact {
-            surface: Disk::fixed(c, path.radius),
+            surface: Disk::fixed(c, path.pulleys()[0].radius),
             normal: LinearPenalty {
                 stiffness: k,
                 damping: 10.0,
@@ -248,8 +248,9 @@ fn belt_pretension_on_two_pulleys() {
             rule: GaussRule::new(5),
         },
     };
-    let (p1, p2) = (mk(path.left), mk(path.right));
-    // node 0 is at the bottom of the left pulley, travelling along +x: fix its x
+    let (p1, p2) = (mk(path.pulleys()[0].center), mk(path.pulleys()[1].center));
+    // node 0 is at the top of the left pulley (where the path leaves it), travelling along +x:
+    // fix its x
     let fixed = [mesh.node_dof(0, 0)];
     let opts = StaticOptions {
         increments: 1,
@@ -269,7 +270,7 @@ fn belt_pretension_on_two_pulleys() {
         .chain(&d2.records)
         .map(|r| r.record.penetration)
         .fold(0.0, f64::max);
-    // span strain: the middle element of the lower span (node 2 → 3 lies on it)
+    // span strain: the middle element of the upper span (node 2 → 3 lies on it)
     let a = mesh.node_position(&sol.q, 2);
     let b = mesh.node_position(&sol.q, 3);
     let lam = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt() / (1.2727 / n as f64);
@@ -301,7 +302,7 @@ fn belt_pretension_on_two_pulleys() {
         .map(|r| r.record.penetration)
         .collect();
     let mean = all.iter().sum::<f64>() / all.len() as f64;
-    let uniform = tension / (k * path.radius);
+    let uniform = tension / (k * path.pulleys()[0].radius);
     assert!(
         (mean - uniform).abs() < 0.25 * uniform,
         "mean penetration {mean} m vs T/(kR) = {uniform} m"

@@ -32,9 +32,49 @@ fn moving_state(d: &BeltDrive, speed: f64) -> (Vec<f64>, Vec<f64>) {
 // be −∂f/∂q, −∂f/∂v including the belt–pulley coupling through the free pulley's speed).
 #[test]
 fn analytic_tangent_matches_finite_differences() {
-    let d = BeltDrive::new(BeltDriveSpec::default())
-        .unwrap()
-        .with_tangent_refresh(0.0);
+    check_tangent(BeltDriveSpec::default());
+}
+
+// Reference: as above, with the Kelvin–Voigt axial damping (BeltSpec::axial_damping) and the
+// polynomial penalty (6.1) switched on; and the damping force vanishes for a rigid rotation of
+// the belt (ε̇ = 0).
+#[test]
+fn damped_tangent_matches_finite_differences_and_rigid_rotation_is_undamped() {
+    let mut spec = BeltDriveSpec::default();
+    spec.belt.axial_damping = 1.8e-3;
+    spec.contact.quadratic = 3.0e11;
+    check_tangent(spec.clone());
+    // rigid rotation about the origin at 5 rad/s: ṙ = ω Ĩ r, slopes rotate likewise
+    let mut free = spec.clone();
+    free.pulleys[0].center = [-5.0, 0.0];
+    free.pulleys[1].center = [5.0, 0.0];
+    free.belt.length = 2.0 * 10.0 + std::f64::consts::TAU * 0.08125;
+    free.contact.damping = 0.0;
+    let d = BeltDrive::new(free).unwrap();
+    let q = d.placed_coordinates();
+    let mut v = vec![0.0; q.len()];
+    for node in 0..d.mesh().n_nodes() {
+        for b in 0..3 {
+            let k = 6 * node + 2 * b;
+            v[k] = -5.0 * q[k + 1];
+            v[k + 1] = 5.0 * q[k];
+        }
+    }
+    let (mut f0, mut f1) = (vec![0.0; q.len()], vec![0.0; q.len()]);
+    d.forces(0.0, &q, &vec![0.0; q.len()], &mut f0).unwrap();
+    d.forces(0.0, &q, &v, &mut f1).unwrap();
+    let diff = f0
+        .iter()
+        .zip(&f1)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let scale = f0.iter().map(|a| a.abs()).fold(0.0, f64::max);
+    println!("rigid rotation: damping force {diff:e} (elastic forces up to {scale:e})");
+    assert!(diff < 1e-9 * scale.max(1.0));
+}
+
+fn check_tangent(spec: BeltDriveSpec) {
+    let d = BeltDrive::new(spec).unwrap().with_tangent_refresh(0.0);
     let (q, v) = moving_state(&d, 0.9);
     let t = 0.5;
     let n = d.n_q();
@@ -253,14 +293,21 @@ fn mesh_convergence_3_3_b() {
     }
 }
 
-// Reference: Kerkkänen example 3.3-E: at 120 rad/s with T_a = 45 N m the tight-minus-slack span
-// tension equals T_a/R = 553.8 N (driven pulley torque balance, seed note §7.9) within 5 %, and
-// with ν_s = 1e5 the belt–pulley relative velocity changes sign at the inlet of the driven
-// pulley and drops towards zero at its exit, but keeps its sign on the driver (Fig. 3.17; the
-// thesis also shows a sign change at the driven exit, which this model reproduces only as a
-// dip: see the report in BENCHMARKS.md / the session report).
+// Reference: Kerkkänen example 3.3-E (§3.3, Fig. 3.17, seed note §7.9): at 120 rad/s with
+// T_a = 45 N m the tight-minus-slack span tension equals T_a/R = 553.8 N (driven pulley torque
+// balance) within 5 %, and with ν_s = 1e5 the belt–pulley relative velocity (3.25) changes sign
+// at the inlet AND at the exit of the driven pulley, but keeps its sign on the driver.
+//
+// Why the exit sign change was missed before: the relative velocity was only looked at in the
+// contact quadrature points (5 per 41 mm element, ~8 mm apart). Where the belt leaves the driven
+// pulley its centreline rises out of the ≈2 mm penetration within a few millimetres, so its
+// velocity turns away from the pulley tangent t and tᵀṙ drops below the surface speed ωR: the
+// relative velocity falls from +0.05 m/s to below zero over the last ~10 mm of contact — between
+// two quadrature points (the last one sat at +0.005 m/s at t = 1 s). The field is sampled here at
+// 20 points per element (`contact_records_sampled`), which resolves the zone; the dynamics are
+// those of the 5-point rule (5, 7 and 11 points agree: `contact_quadrature_5_7_11_points_agree`).
 #[test]
-#[ignore = "1 s at 120 rad/s with 30 elements (tens of minutes in release mode)"]
+#[ignore = "1 s at 120 rad/s with 30 elements (~1.5 min in release mode on an idle machine)"]
 fn loaded_high_speed_3_3_e() {
     let mut spec = BeltDriveSpec::two_pulley(
         0.08125,
@@ -287,7 +334,7 @@ fn loaded_high_speed_3_3_e() {
         hist.last().unwrap().1
     );
     assert!((dt - expected).abs() < 0.05 * expected);
-    let recs = d.contact_records(s.t, &s.q, &s.v);
+    let recs = d.contact_records_sampled(s.t, &s.q, &s.v, 20);
     let profile = |p: usize| {
         let mut on: Vec<(f64, f64)> = recs
             .iter()
@@ -299,24 +346,26 @@ fn loaded_high_speed_3_3_e() {
     };
     let (driver, driven) = (profile(0), profile(1));
     for (name, pr) in [("driver", &driver), ("driven", &driven)] {
-        let v: Vec<String> = pr.iter().map(|(a, v)| format!("{a:.3}:{v:+.4}")).collect();
+        let v: Vec<String> = pr.iter().map(|(a, v)| format!("{a:.4}:{v:+.4}")).collect();
         println!("{name} relative velocity (arc m : m/s): {}", v.join(" "));
     }
-    // driver: the pulley surface is faster than the belt over the whole arc (relative velocity
-    // ≤ 0), allowing isolated points within 10 % of the peak creep speed
+    // driver: the pulley surface is at least as fast as the belt over the whole arc (relative
+    // velocity ≤ 0), allowing isolated points within 10 % of the peak creep speed
     let peak = driver.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let driver_max = driver.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+    println!("driver: largest relative velocity {driver_max:+.4} m/s, peak |v_t| {peak:.4} m/s");
     assert!(
-        driver.iter().all(|p| p.1 < 0.1 * peak),
+        driver_max < 0.1 * peak,
         "driver relative velocity changes sign"
     );
-    // driven: the belt is slower than the pulley at the inlet and faster inside the arc
+    // driven: negative at the inlet, positive inside the arc (belt faster: it drives the
+    // pulley), negative again at the exit
     let n = driven.len();
-    assert!(
-        driven[..n / 4].iter().any(|p| p.1 < 0.0),
-        "no inlet sign change on the driven pulley"
-    );
-    assert!(driven[n / 4..3 * n / 4].iter().all(|p| p.1 > 0.0));
-    let exit_min = driven[3 * n / 4..]
+    let inlet_min = driven[..n / 8]
+        .iter()
+        .map(|p| p.1)
+        .fold(f64::INFINITY, f64::min);
+    let exit_min = driven[7 * n / 8..]
         .iter()
         .map(|p| p.1)
         .fold(f64::INFINITY, f64::min);
@@ -324,11 +373,17 @@ fn loaded_high_speed_3_3_e() {
         .iter()
         .map(|p| p.1)
         .fold(0.0, f64::max);
+    let mid_positive = driven[n / 4..3 * n / 4]
+        .iter()
+        .filter(|p| p.1 > 0.0)
+        .count();
     println!(
-        "driven exit: smallest relative velocity {exit_min:+.4} m/s (arc maximum {mid_max:+.4})"
+        "driven: inlet minimum {inlet_min:+.4} m/s, exit minimum {exit_min:+.4} m/s, arc maximum {mid_max:+.4} m/s, {mid_positive}/{} mid-arc points positive",
+        n / 2
     );
-    // exit: the relative velocity drops towards (Kerkkänen: below) zero
-    assert!(exit_min < 0.2 * mid_max);
+    assert!(inlet_min < 0.0, "no inlet sign change on the driven pulley");
+    assert!(exit_min < 0.0, "no exit sign change on the driven pulley");
+    assert!(mid_positive as f64 >= 0.9 * (n / 2) as f64);
 }
 
 // Reference: Kerkkänen example 3.3-F (Fig. 3.21): with R2 = 0.1218 m the speed ratio tends to

@@ -19,17 +19,8 @@ fn check_mm(kind: BeamElementKind, nu: f64, table: &[(usize, f64)], label: &str)
 }
 
 fn check_tip(kind: BeamElementKind, nu: f64, h: f64, table: &[(usize, [f64; 2])], label: &str) {
-    check_tip_tol(kind, nu, h, table, label, 0.5e-5 + 1e-9)
-}
-
-fn check_tip_tol(
-    kind: BeamElementKind,
-    nu: f64,
-    h: f64,
-    table: &[(usize, [f64; 2])],
-    label: &str,
-    tol: f64,
-) {
+    // printed with 5 decimals in m: half a unit of the last digit (+ roundoff)
+    let tol = 0.5e-5 + 1e-9;
     for &(n, printed) in table {
         let mut case = StaticBeamCase::kerkkanen(kind, n, nu, h);
         case.increments = 10;
@@ -67,8 +58,8 @@ fn table_2_2_proposed() {
     check_mm(BeamElementKind::Proposed, 0.3, &t, "Table 2.2 proposed");
 }
 
-// Kerkkänen Tables 2.1/2.2, "Omar–Shabana ANCF" columns, n = 2…16 (the rows the seed note
-// reproduced) [mm].
+// Kerkkänen Tables 2.1/2.2, "Omar–Shabana ANCF" columns [mm]: every row of Table 2.2 and
+// n = 2…16 of Table 2.1 to the printed digits.
 #[test]
 fn tables_2_1_2_2_omar_shabana() {
     let t1 = [
@@ -88,6 +79,8 @@ fn tables_2_1_2_2_omar_shabana() {
         (4, -0.067879),
         (8, -0.071262),
         (16, -0.072112),
+        (32, -0.072327),
+        (64, -0.072382),
     ];
     check_mm(
         BeamElementKind::OmarShabana,
@@ -95,6 +88,26 @@ fn tables_2_1_2_2_omar_shabana() {
         &t2,
         "Table 2.2 Omar-Shabana",
     );
+}
+
+// Kerkkänen Table 2.1 (ν = 0), "Omar–Shabana ANCF" rows n = 32, 64 [mm]. We get −0.0970035 and
+// −0.0970761 mm against the printed −0.097005 and −0.097078 mm, i.e. 1.5e-6 and 1.9e-6 mm (two
+// units of the last printed digit, 2e-5 relative). An independent numpy implementation of the
+// same element (dense Newton, same 4×3 Gauss rule) gives −0.09700353618 and −0.09707608073 mm,
+// equal to ours within 1e-11 mm, and the same element reproduces all Table 2.2 rows (ν = 0.3)
+// and n ≤ 16 of Table 2.1 exactly, so we attribute the gap to the thesis's own solution of
+// these two rows; the tolerance records it and still fails
+// if the element changes (the n = 16 → 32 change is 2.9e-4 mm).
+#[test]
+fn table_2_1_omar_shabana_fine_meshes() {
+    for (n, printed_mm) in [(32, -0.097005), (64, -0.097078)] {
+        let case = StaticBeamCase::kerkkanen(BeamElementKind::OmarShabana, n, 0.0, 0.1);
+        let got_mm = simply_supported_deflection(&case).expect("solve") * 1e3;
+        assert!(
+            (got_mm - printed_mm).abs() <= 2.5e-6,
+            "Table 2.1 Omar-Shabana n={n}: got {got_mm:.7} mm, printed {printed_mm} mm"
+        );
+    }
 }
 
 // Kerkkänen Table 2.3 (Model 1: h = 0.1 m, ν = 0.3), "Proposed" column, tip (x, y) [m].
@@ -139,41 +152,48 @@ fn table_2_4_proposed() {
     );
 }
 
-// Kerkkänen Tables 2.3/2.4, "Omar–Shabana" columns, n = 2, 4, 8.
-//
-// Table 2.3 rows differ by up to 2.4e-5 m (n = 4 by 5.5e-6 m, i.e. one unit of the last
-// printed digit), and Table 2.4 (h = 0.5 m) by up to 1.1e-3 m (0.15 %, our element slightly more
-// flexible), although the same element reproduces Tables 2.1/2.2 to the printed digits; the
-// difference is insensitive to the Gauss rule (3-6 points), the load path and ν, so we could not
-// confirm the seed note's claim of an exact match for these rows. The tolerances below document
-// the observed gap (they still fail if the element or the clamp changes: fixing r_x as well or
-// dropping one Gauss point moves the tip by 1e-4 to 0.2 m).
+// Kerkkänen Table 2.3 (Model 1: h = 0.1 m, ν = 0.3), "Omar–Shabana" column, tip (x, y) [m],
+// every printed row. The clamp fixes r, r_x and r_y of the root node (see
+// `ancf::studies::Cantilever`); with r_x free, as the seed note claims, the rows differ by up to
+// 2.4e-5 m here and 1.0e-3 m in Table 2.4 (independent numpy oracle and this crate agree).
 #[test]
-fn tables_2_3_2_4_omar_shabana() {
-    let t3 = [
-        (2, [1.95536, -0.37731]),
-        (4, [1.91970, -0.50932]),
-        (8, [1.91344, -0.53035]),
+fn table_2_3_omar_shabana() {
+    let col = [
+        [1.95536, -0.37731],
+        [1.91970, -0.50932],
+        [1.91344, -0.53035],
+        [1.91276, -0.53267],
+        [1.91264, -0.53309],
+        [1.91262, -0.53319],
     ];
-    check_tip_tol(
+    let t: Vec<_> = NS.iter().copied().zip(col).collect();
+    check_tip(
         BeamElementKind::OmarShabana,
         0.3,
         0.1,
-        &t3,
+        &t,
         "Table 2.3 Omar-Shabana",
-        3e-5,
     );
-    let t4 = [
-        (2, [1.86909, -0.64098]),
-        (4, [1.84841, -0.69436]),
-        (8, [1.84498, -0.70341]),
+}
+
+// Kerkkänen Table 2.4 (Model 2: h = 0.5 m, ν = 0), "Omar–Shabana" column, tip (X, Y) [m],
+// every printed row, same clamp as Table 2.3.
+#[test]
+fn table_2_4_omar_shabana() {
+    let col = [
+        [1.86909, -0.64098],
+        [1.84841, -0.69436],
+        [1.84498, -0.70341],
+        [1.84407, -0.70573],
+        [1.84378, -0.70643],
+        [1.84367, -0.70667],
     ];
-    check_tip_tol(
+    let t: Vec<_> = NS.iter().copied().zip(col).collect();
+    check_tip(
         BeamElementKind::OmarShabana,
         0.0,
         0.5,
-        &t4,
+        &t,
         "Table 2.4 Omar-Shabana",
-        1.2e-3,
     );
 }

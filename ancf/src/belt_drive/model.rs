@@ -2,7 +2,7 @@
 //! angles of the free pulleys, coupled through distributed penalty contact with friction
 //! (Kerkkänen (3.20)–(3.27)) and the pulley equations (3.26).
 
-use super::BeltFriction;
+use super::friction::{BeltFriction, BeltNormal};
 use super::pulley::{Pulley, PulleyDrive};
 use super::spec::BeltDriveSpec;
 use crate::element::{BeltElement, Element};
@@ -12,7 +12,7 @@ use crate::mesh::Mesh;
 use crate::section::Section;
 use crate::shape;
 use crate::sparse::Pattern;
-use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact, LinearPenalty};
+use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact};
 use fe_model::generate::belt_path::{BeltPath, PathPulley};
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
@@ -20,6 +20,9 @@ use std::sync::Mutex;
 
 /// Coordinates of one element.
 const NE: usize = 12;
+
+/// Largest number of pulleys of one drive.
+const MAX_PULLEYS: usize = 16;
 
 /// Per-call work buffers (kept so that the force and tangent loops do not allocate).
 struct Scratch {
@@ -43,7 +46,7 @@ pub struct BeltDrive {
     n_belt: usize,
     pulley_dof: Vec<Option<usize>>,
     free: Vec<usize>,
-    line: LineContact<Disk, LinearPenalty, BeltFriction>,
+    line: LineContact<Disk, BeltNormal, BeltFriction>,
     pattern: Pattern,
     mass_values: Vec<f64>,
     scratch: Mutex<Scratch>,
@@ -140,8 +143,9 @@ impl BeltDrive {
         }
         let line = LineContact {
             surface: Disk::fixed([0.0, 0.0], 1.0),
-            normal: LinearPenalty {
+            normal: BeltNormal {
                 stiffness: spec.contact.stiffness,
+                quadratic: spec.contact.quadratic,
                 damping: spec.contact.damping,
             },
             friction: spec.contact.friction,
@@ -390,6 +394,44 @@ impl BeltDrive {
     /// Contact state at every active quadrature point, for output (force distributions and
     /// belt–pulley relative velocity, Kerkkänen Figs 3.13–3.20).
     pub fn contact_records(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<PointRecord> {
+        self.records_on(&self.line, t, q, v)
+    }
+
+    /// Contact state sampled at `per_element` equally spaced points of every element (at
+    /// `ξ = (k + ½)/per_element`), independent of the quadrature rule of the contact forces.
+    ///
+    /// The relative velocity (3.25) and the penetration are pointwise fields of the solution;
+    /// the quadrature points, ~8 mm apart with 5 points on 41 mm elements, are too sparse to
+    /// resolve the few-millimetre inlet and exit zones of a contact arc where the belt's
+    /// velocity turns away from the pulley tangent (Kerkkänen Fig. 3.17). The force values of
+    /// these records are the force densities (3.20), (3.23) at the sampled points.
+    pub fn contact_records_sampled(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        per_element: usize,
+    ) -> Vec<PointRecord> {
+        let n = per_element.max(1);
+        let line = LineContact {
+            surface: self.line.surface,
+            normal: self.line.normal,
+            friction: self.line.friction,
+            rule: GaussRule {
+                points: (0..n).map(|k| (k as f64 + 0.5) / n as f64).collect(),
+                weights: vec![1.0 / n as f64; n],
+            },
+        };
+        self.records_on(&line, t, q, v)
+    }
+
+    fn records_on(
+        &self,
+        line: &LineContact<Disk, BeltNormal, BeltFriction>,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Vec<PointRecord> {
         let omegas = self.speeds(t, v);
         let l = self.element_length();
         let mut out = Vec::new();
@@ -406,7 +448,7 @@ impl BeltDrive {
                 }
                 recs.clear();
                 let disk = self.disk(p, omega);
-                self.line.element_on(
+                line.element_on(
                     &disk,
                     l,
                     6,
@@ -481,36 +523,22 @@ impl SecondOrderSystem for BeltDrive {
         ))
     }
     fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
-        let nb = self.n_belt;
-        self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
-        f[nb..].fill(0.0);
         let np = self.spec.pulleys.len();
-        let mut omegas = [0.0; 16];
-        let omegas: &mut [f64] = if np <= 16 {
-            &mut omegas[..np]
-        } else {
+        if np > MAX_PULLEYS {
             return Err(MbdError::InvalidInput {
                 item: "pulleys".into(),
-                reason: format!("at most 16 supported, got {np}"),
+                reason: format!("at most {MAX_PULLEYS} supported, got {np}"),
             });
-        };
-        for (p, o) in omegas.iter_mut().enumerate() {
-            *o = self.pulley_speed(p, t, v);
         }
-        let mut scratch = self.lock();
-        self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
-            self.mesh.scatter_add(f, el, &ec.q, 1.0);
-            if let Some(j) = self.pulley_dof[p] {
-                f[j] += self.spec.pulleys[p].ccw_sign() * ec.torque;
-            }
-        });
-        for &p in &self.free {
-            if let (PulleyDrive::Free { load, .. }, Some(j)) =
-                (&self.spec.pulleys[p].drive, self.pulley_dof[p])
-            {
-                f[j] -= load.eval(t);
+        let mut omegas = [0.0; MAX_PULLEYS];
+        let mut loads = [0.0; MAX_PULLEYS];
+        for p in 0..np {
+            omegas[p] = self.pulley_speed(p, t, v);
+            if let PulleyDrive::Free { load, .. } = &self.spec.pulleys[p].drive {
+                loads[p] = load.eval(t);
             }
         }
+        self.forces_with(q, v, &omegas[..np], &loads[..np], f);
         Ok(())
     }
     fn force_tangent(
@@ -519,6 +547,40 @@ impl SecondOrderSystem for BeltDrive {
         q: &[f64],
         v: &[f64],
     ) -> Result<Option<ForceTangent>, MbdError> {
+        let omegas = self.speeds(t, v);
+        Ok(Some(self.force_tangent_with(q, v, &omegas)))
+    }
+}
+
+impl BeltDrive {
+    /// Generalized forces `Q_e + Q_c` (2.27), (3.27) and the free pulleys' right-hand sides
+    /// `s τ − T_a` (3.26) with the pulleys spinning at the travel-sense speeds `omegas`
+    /// [rad/s] and load torques `loads` [N·m] (one per pulley; ignored for speed-driven
+    /// pulleys): the [`SecondOrderSystem::forces`] of the drive with externally supplied inputs
+    /// (used by adapters that schedule the driver speed and the load themselves).
+    pub fn forces_with(&self, q: &[f64], v: &[f64], omegas: &[f64], loads: &[f64], f: &mut [f64]) {
+        let nb = self.n_belt;
+        self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
+        f[nb..].fill(0.0);
+        self.axial_damping(q, v, f, None);
+        let mut scratch = self.lock();
+        self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
+            self.mesh.scatter_add(f, el, &ec.q, 1.0);
+            if let Some(j) = self.pulley_dof[p] {
+                f[j] += self.spec.pulleys[p].ccw_sign() * ec.torque;
+            }
+        });
+        for &p in &self.free {
+            if let Some(j) = self.pulley_dof[p] {
+                f[j] -= loads[p];
+            }
+        }
+    }
+
+    /// [`SecondOrderSystem::force_tangent`] with the pulleys spinning at the travel-sense
+    /// speeds `omegas` [rad/s] (one per pulley; for a free pulley it must equal its velocity
+    /// coordinate, whose column receives the speed coupling).
+    pub fn force_tangent_with(&self, q: &[f64], v: &[f64], omegas: &[f64]) -> ForceTangent {
         let nb = self.n_belt;
         let pat = &self.pattern;
         let mut k = {
@@ -536,12 +598,12 @@ impl SecondOrderSystem for BeltDrive {
             cache.k.clone()
         };
         let mut c = pat.zeros();
-        let omegas = self.speeds(t, v);
+        self.axial_damping(q, v, &mut [], Some((&mut k, &mut c)));
         let n_el = self.mesh.elements().len();
         let nf = self.free.len();
         let m = NE + nf;
         let mut scratch = self.lock();
-        self.contact_pass(q, v, &omegas, true, &mut scratch, |el, p, ec, s| {
+        self.contact_pass(q, v, omegas, true, &mut scratch, |el, p, ec, s| {
             s.k_local.fill(0.0);
             s.c_local.fill(0.0);
             for b in 0..NE {
@@ -566,9 +628,81 @@ impl SecondOrderSystem for BeltDrive {
             pat.add_element(&mut k, n_el + el, &s.k_local, 1.0);
             pat.add_element(&mut c, n_el + el, &s.c_local, 1.0);
         });
-        Ok(Some(ForceTangent {
+        ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),
-        }))
+        }
+    }
+
+    /// Kelvin–Voigt damping of the axial strain rate ([`super::BeltSpec::axial_damping`]):
+    /// `Q_d = −β α₁EA ∫ S_xᵀ r_x (r_xᵀ ṙ_x) dx` added to `f` (when not empty), and with
+    /// `tangent = Some((k, c))` its Jacobians `−∂Q_d/∂e = β α₁EA ∫ S_xᵀ((r_xᵀṙ_x) I + r_x ṙ_xᵀ) S_x dx`
+    /// and `−∂Q_d/∂ė = β α₁EA ∫ S_xᵀ r_x r_xᵀ S_x dx` added to the element blocks.
+    fn axial_damping(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        mut tangent: Option<(&mut Vec<f64>, &mut Vec<f64>)>,
+    ) {
+        let b = &self.spec.belt;
+        if b.axial_damping <= 0.0 {
+            return;
+        }
+        let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
+        let l = self.element_length();
+        let rule = GaussRule::new(b.gauss_points);
+        let mut e = [0.0; NE];
+        let mut ed = [0.0; NE];
+        let mut qd = [0.0; NE];
+        let mut kl = [0.0; NE * NE];
+        let mut cl = [0.0; NE * NE];
+        for el in 0..self.mesh.elements().len() {
+            self.mesh.gather(q, el, &mut e);
+            self.mesh.gather(v, el, &mut ed);
+            qd.fill(0.0);
+            kl.fill(0.0);
+            cl.fill(0.0);
+            for (xi, w) in rule.iter() {
+                let sx = shape::cubic(l, xi * l, 0.0).sx;
+                let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
+                for a in 0..6 {
+                    for c in 0..2 {
+                        rx[c] += sx[a] * e[2 * a + c];
+                        rxd[c] += sx[a] * ed[2 * a + c];
+                    }
+                }
+                let rate = rx[0] * rxd[0] + rx[1] * rxd[1];
+                let wl = w * l * coef;
+                for a in 0..6 {
+                    for c in 0..2 {
+                        qd[2 * a + c] -= wl * sx[a] * rx[c] * rate;
+                    }
+                }
+                if tangent.is_some() {
+                    for bb in 0..6 {
+                        for d in 0..2 {
+                            let col = 2 * bb + d;
+                            for a in 0..6 {
+                                for c in 0..2 {
+                                    let row = 2 * a + c;
+                                    let ss = wl * sx[a] * sx[bb];
+                                    let delta = if c == d { rate } else { 0.0 };
+                                    kl[row + col * NE] += ss * (delta + rx[c] * rxd[d]);
+                                    cl[row + col * NE] += ss * rx[c] * rx[d];
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            if !f.is_empty() {
+                self.mesh.scatter_add(f, el, &qd, 1.0);
+            }
+            if let Some((k, c)) = tangent.as_mut() {
+                self.pattern.add_element(k, el, &kl, 1.0);
+                self.pattern.add_element(c, el, &cl, 1.0);
+            }
+        }
     }
 }

@@ -120,3 +120,156 @@ pub fn simulate(
     }?;
     Ok(sol)
 }
+
+/// The explicit RK4 step limit of a belt-drive state, from the eigenvalues of the linearised
+/// first-order system.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ExplicitStepLimit {
+    /// Largest step [s] for which `|R(hλ)| ≤ 1` for every eigenvalue `λ` with `Re λ ≤ 0`,
+    /// `R(z) = 1 + z + z²/2 + z³/6 + z⁴/24` the RK4 amplification factor.
+    pub h_max: f64,
+    /// The eigenvalue that sets the limit [1/s].
+    pub limiting: [f64; 2],
+    /// Largest `|Im λ|`, the highest (damped) eigenfrequency [rad/s].
+    pub omega_max: f64,
+    /// Most negative `Re λ` [1/s] (e.g. the creep-rate friction's `ν_s/ρA`).
+    pub decay_max: f64,
+    /// `2√2/ω_max` [s]: the RK4 limit of the undamped highest mode (imaginary-axis limit).
+    pub h_imaginary: f64,
+    /// `2.785/|Re λ|_max` [s]: the RK4 limit of the fastest decay (real-axis limit).
+    pub h_real: f64,
+}
+
+/// RK4 amplification factor `|R(z)|`, `R(z) = Σ_{k≤4} z^k/k!`.
+fn rk4_amplification(re: f64, im: f64) -> f64 {
+    // Horner in complex arithmetic: R = 1 + z(1 + z/2(1 + z/3(1 + z/4)))
+    let mul = |a: (f64, f64), b: (f64, f64)| (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0);
+    let mut r = (1.0, 0.0);
+    for k in [4.0, 3.0, 2.0, 1.0] {
+        let zr = mul((re / k, im / k), r);
+        r = (1.0 + zr.0, zr.1);
+    }
+    r.0.hypot(r.1)
+}
+
+/// Largest `h` with `|R(hλ)| ≤ 1` along the ray of `λ` (`Re λ ≤ 0`, `λ ≠ 0`).
+fn rk4_ray_limit(re: f64, im: f64) -> f64 {
+    let m = re.hypot(im);
+    // RK4's stability region lies within |z| < 3: scan, then bisect the first exit
+    let n = 600;
+    let mut lo = 0.0;
+    let mut hi = f64::NAN;
+    for k in 1..=n {
+        let h = 3.0 * k as f64 / (n as f64 * m);
+        if rk4_amplification(h * re, h * im) > 1.0 + 1e-12 {
+            hi = h;
+            break;
+        }
+        lo = h;
+    }
+    if hi.is_nan() {
+        return f64::INFINITY;
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if rk4_amplification(mid * re, mid * im) > 1.0 + 1e-12 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    lo
+}
+
+impl BeltDrive {
+    /// The RK4 step limit at the state `(t, q, v)`: eigenvalues `λ` of the linearised
+    /// first-order system `[δq̇; δv̇] = [0, I; −M⁻¹K, −M⁻¹C] [δq; δv]` with the analytic tangent
+    /// `K = −∂f/∂q`, `C = −∂f/∂v` (dense, `2 n_q` eigenvalues), and the largest step keeping
+    /// every decaying or oscillating mode inside RK4's stability region. Eigenvalues with
+    /// `Re λ > 0` (physical instabilities) and `|λ| < 1e-6` (rigid motions) set no limit.
+    pub fn rk4_step_limit(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<ExplicitStepLimit, AncfError> {
+        use faer::Mat;
+        use faer::prelude::Solve;
+        use mbd_core::SecondOrderSystem;
+        let n = self.n_q();
+        let num = |e: mbd_core::MbdError| AncfError::NonFinite {
+            what: format!("linearised belt drive at t = {t} s: {e}"),
+        };
+        let m = self.mass(t, q).map_err(num)?.to_dense();
+        let tg = self
+            .force_tangent(t, q, v)
+            .map_err(num)?
+            .ok_or_else(|| AncfError::NonFinite {
+                what: "belt drive tangent".into(),
+            })?;
+        let k = tg.stiffness.to_dense();
+        let c = tg.damping.to_dense();
+        let lu = m.partial_piv_lu();
+        let mk = lu.solve(&k);
+        let mc = lu.solve(&c);
+        let a = Mat::<f64>::from_fn(2 * n, 2 * n, |i, j| match (i < n, j < n) {
+            (true, true) => 0.0,
+            (true, false) => {
+                if j - n == i {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            (false, true) => -mk[(i - n, j)],
+            (false, false) => -mc[(i - n, j - n)],
+        });
+        let ev = a.eigenvalues().map_err(|e| AncfError::Singular {
+            load_factor: 1.0,
+            detail: format!("eigenvalues of the linearised belt drive: {e:?}"),
+        })?;
+        let mut out = ExplicitStepLimit {
+            h_max: f64::INFINITY,
+            limiting: [0.0, 0.0],
+            omega_max: 0.0,
+            decay_max: 0.0,
+            h_imaginary: f64::INFINITY,
+            h_real: f64::INFINITY,
+        };
+        for z in &ev {
+            let (re, im) = (z.re, z.im);
+            if !(re.is_finite() && im.is_finite()) {
+                return Err(AncfError::NonFinite {
+                    what: "eigenvalue of the linearised belt drive".into(),
+                });
+            }
+            if re > 0.0 || re.hypot(im) < 1e-6 {
+                continue;
+            }
+            out.omega_max = out.omega_max.max(im.abs());
+            out.decay_max = out.decay_max.max(-re);
+            let h = rk4_ray_limit(re, im);
+            if h < out.h_max {
+                out.h_max = h;
+                out.limiting = [re, im];
+            }
+        }
+        out.h_imaginary = 2.0 * std::f64::consts::SQRT_2 / out.omega_max;
+        out.h_real = 2.785 / out.decay_max;
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Reference: the RK4 stability interval on the negative real axis ends at z = −2.7853 and
+    // on the imaginary axis at |z| = 2√2 (Hairer–Wanner, Solving ODEs II, §IV.2).
+    #[test]
+    fn rk4_stability_limits_on_the_axes() {
+        assert!((rk4_ray_limit(-1.0, 0.0) - 2.785_293).abs() < 1e-5);
+        assert!((rk4_ray_limit(-1e-300, 1.0) - 2.0 * std::f64::consts::SQRT_2).abs() < 1e-6);
+        assert!((rk4_amplification(-1.0, 0.0) - 0.375).abs() < 1e-15);
+    }
+}

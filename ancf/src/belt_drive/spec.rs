@@ -34,6 +34,12 @@ pub struct BeltSpec {
     pub alpha2: f64,
     /// Gauss points along each element for the strain energy.
     pub gauss_points: usize,
+    /// Stiffness-proportional (Kelvin–Voigt) damping of the axial strain rate `β` [s]: axial
+    /// force `α₁EA (ε + β ε̇)` with the Green strain `ε = (r_xᵀr_x − 1)/2` (Kerkkänen (3.18)'s
+    /// axial term). `0` (Kerkkänen: no material damping) by default. It is the Lagrangian-mesh
+    /// counterpart of Ribaric's `β K_e` Rayleigh damping on the material deflection rate; rigid
+    /// motions (the belt wrapping a pulley) have `ε̇ = 0` and are not damped.
+    pub axial_damping: f64,
 }
 
 impl Default for BeltSpec {
@@ -51,6 +57,7 @@ impl Default for BeltSpec {
             alpha1: 1.0,
             alpha2: 0.01,
             gauss_points: 5,
+            axial_damping: 0.0,
         }
     }
 }
@@ -61,6 +68,9 @@ impl Default for BeltSpec {
 pub struct ContactSpec {
     /// Penalty stiffness per unit length `k_p` [N/m²].
     pub stiffness: f64,
+    /// Quadratic penalty coefficient per unit length `k₂` [N/m³] (Ribaric (6.1):
+    /// `f_n = k₂ d² + k_p d`; `0` for Kerkkänen's linear law (3.20)).
+    pub quadratic: f64,
     /// Penalty damping per unit length `c_p` [N·s/m²].
     pub damping: f64,
     /// Friction law.
@@ -74,6 +84,7 @@ impl Default for ContactSpec {
     fn default() -> Self {
         Self {
             stiffness: 1.0e7,
+            quadratic: 0.0,
             damping: 10.0,
             friction: BeltFriction::CreepRate {
                 mu: 1.2,
@@ -184,6 +195,12 @@ impl BeltDriveSpec {
                 format!("a closed loop needs at least 3, got {}", b.elements),
             ));
         }
+        if !(b.axial_damping.is_finite() && b.axial_damping >= 0.0) {
+            return Err(invalid(
+                "belt.axial_damping",
+                format!("must be ≥ 0 s, got {}", b.axial_damping),
+            ));
+        }
         if b.gauss_points == 0 {
             return Err(invalid("belt.gauss_points", "must be at least 1"));
         }
@@ -192,6 +209,12 @@ impl BeltDriveSpec {
             return Err(invalid(
                 "contact.stiffness",
                 format!("must be > 0 N/m², got {}", c.stiffness),
+            ));
+        }
+        if !(c.quadratic.is_finite() && c.quadratic >= 0.0) {
+            return Err(invalid(
+                "contact.quadratic",
+                format!("must be ≥ 0 N/m³, got {}", c.quadratic),
             ));
         }
         if !(c.damping.is_finite() && c.damping >= 0.0) {

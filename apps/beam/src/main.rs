@@ -3,7 +3,9 @@
 //! * `simply-supported`: mid-point deflection of the simply supported beam (Tables 2.1, 2.2);
 //! * `cantilever`: tip of the large-deflection cantilever (Tables 2.3, 2.4);
 //! * `pendulum`: falling flexible pendulum, tip history and energies (Figs 2.6, 2.7);
-//! * `spinning`: spinning beam with centrifugal extension (Figs 2.10, 2.11).
+//! * `spinning`: spinning beam with centrifugal extension (Figs 2.10, 2.11);
+//! * `ground-contact`: cantilever on rigid ground by unilateral Lagrange contact, against
+//!   Euler–Bernoulli (issue 6 validation of the active-set contact).
 
 mod studies;
 mod vtk;
@@ -91,6 +93,20 @@ enum Command {
         #[command(flatten)]
         common: CommonArgs,
     },
+    /// Cantilever under a line load q = f·q* on rigid ground (unilateral Lagrange contact).
+    GroundContact {
+        /// Element type.
+        #[arg(long, value_enum)]
+        element: Option<ElementArg>,
+        /// Number of elements.
+        #[arg(long)]
+        elements: Option<usize>,
+        /// Line load as a multiple f of the critical load q* = 72 EI g₀/L⁴.
+        #[arg(long)]
+        load_factor: Option<f64>,
+        #[command(flatten)]
+        common: CommonArgs,
+    },
 }
 
 fn main() -> ExitCode {
@@ -130,5 +146,18 @@ fn main() -> ExitCode {
         Command::Spinning { elements, common } => {
             run_study(&studies::Spinning { elements }, &common)
         }
+        Command::GroundContact {
+            element,
+            elements,
+            load_factor,
+            common,
+        } => run_study(
+            &studies::GroundContact {
+                element: element.map(Into::into),
+                elements,
+                load_factor,
+            },
+            &common,
+        ),
     }
 }

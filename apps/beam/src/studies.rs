@@ -1,10 +1,10 @@
-//! The four studies of `flowmbd-beam`: configuration (defaults = Kerkkänen's cases), overrides,
+//! The studies of `flowmbd-beam`: configuration (defaults = Kerkkänen's cases), overrides,
 //! and output. The computations live in `ancf::studies` and `ancf::dynamics`.
 
 use crate::vtk;
 use ancf::AncfError;
 use ancf::dynamics::{self, PendulumCase, SpinningCase};
-use ancf::studies::{self, BeamElementKind, StaticBeamCase};
+use ancf::studies::{self, BeamElementKind, GroundContactCase, StaticBeamCase};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
@@ -556,6 +556,105 @@ impl Study for Spinning {
             printed_extension_m: printed,
             relative_error: (steady - printed) / printed,
             max_tip_offset_m: s.iter().map(|x| x.value2.abs()).fold(0.0, f64::max),
+        })
+    }
+}
+
+/// Ground-contact configuration (newtype over the library case; default: proposed element,
+/// 64 elements, `q = 4q*`).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct GroundContactConfig(pub GroundContactCase);
+
+impl Validate for GroundContactConfig {
+    fn validate(&self) -> Result<(), InputError> {
+        let c = &self.0;
+        at_least_one("elements", c.elements)?;
+        at_least_one("increments", c.increments)?;
+        for (f, v) in [
+            ("length", c.length),
+            ("height", c.height),
+            ("width", c.width),
+            ("young", c.young),
+            ("gap", c.gap),
+            ("load_factor", c.load_factor),
+        ] {
+            positive(f, v)?;
+        }
+        poisson(c.nu)
+    }
+}
+
+/// `ground-contact`.
+pub struct GroundContact {
+    pub element: Option<BeamElementKind>,
+    pub elements: Option<usize>,
+    pub load_factor: Option<f64>,
+}
+
+/// Summary of `ground-contact`.
+#[derive(Debug, Serialize)]
+pub struct GroundContactSummary {
+    /// Line load `q` [N/m] and Euler–Bernoulli critical load `q*` [N/m].
+    pub line_load: f64,
+    pub critical_load: f64,
+    /// Total contact force [N] and its Euler–Bernoulli value.
+    pub total_force: f64,
+    pub euler_bernoulli_total_force: f64,
+    /// First node in contact [m] and the Euler–Bernoulli start of the contact zone.
+    pub first_contact_x: Option<f64>,
+    pub euler_bernoulli_contact_start: f64,
+}
+
+impl Study for GroundContact {
+    type Config = GroundContactConfig;
+    type Summary = GroundContactSummary;
+    const APP: &'static str = "beam";
+    const NAME: &'static str = "ground-contact";
+
+    fn apply_overrides(&self, c: &mut GroundContactConfig) {
+        if let Some(e) = self.element {
+            c.0.element = e;
+        }
+        if let Some(n) = self.elements {
+            c.0.elements = n;
+        }
+        if let Some(v) = self.load_factor {
+            c.0.load_factor = v;
+        }
+    }
+
+    fn run(
+        &self,
+        c: &GroundContactConfig,
+        ctx: &mut StudyContext,
+    ) -> Result<GroundContactSummary, StudyError> {
+        let r = studies::ground_contact(&c.0).map_err(study_error)?;
+        ctx.out.write_csv(
+            "contact.csv",
+            &["x_m", "y_m", "contact_force_n"],
+            r.positions
+                .iter()
+                .zip(&r.forces)
+                .map(|(p, f)| [p[0], p[1], *f]),
+        )?;
+        LinePlot::new("Contact forces on the ground", "x [m]", "force [N]")
+            .with(Series::line(
+                "nodal contact force",
+                r.positions
+                    .iter()
+                    .zip(&r.forces)
+                    .map(|(p, f)| (p[0], *f))
+                    .collect(),
+            ))
+            .save(&ctx.out.path("contact"))?;
+        Ok(GroundContactSummary {
+            line_load: r.line_load,
+            critical_load: r.critical_load,
+            total_force: r.total_force,
+            euler_bernoulli_total_force: r.euler_bernoulli_total_force,
+            first_contact_x: r.first_contact_x,
+            euler_bernoulli_contact_start: r.euler_bernoulli_contact_start,
         })
     }
 }

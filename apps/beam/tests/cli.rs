@@ -92,3 +92,26 @@ fn bad_input_exits_2() {
     assert_eq!(code, 2);
     let _ = std::fs::remove_dir_all(out);
 }
+
+// ground-contact: total contact force of the default case (q = 4q*) within 1e-3 of the
+// Euler–Bernoulli value qL − 2qa/3 (see tests/tests/ancf_contact_lagrange.rs).
+#[test]
+fn ground_contact_json() {
+    let out = tmp("g");
+    let (code, stdout) = run(&["ground-contact", "--json", "--quiet", "--out", &out]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let total = v["total_force"].as_f64().unwrap();
+    let eb = v["euler_bernoulli_total_force"].as_f64().unwrap();
+    assert!(((total - eb) / eb).abs() < 1e-3, "{total} N vs {eb} N");
+    assert!(std::path::Path::new(&out).join("contact.csv").exists());
+    let (code, _) = run(&[
+        "ground-contact",
+        "--load-factor=-1",
+        "--quiet",
+        "--out",
+        &out,
+    ]);
+    assert_eq!(code, 2);
+    let _ = std::fs::remove_dir_all(out);
+}

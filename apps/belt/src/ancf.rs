@@ -4,7 +4,9 @@
 //!
 //! Output folder: `history.csv` (pulley speeds, span mid-point positions, span tensions),
 //! `tension.csv` (tension along the belt at the end), `contact.csv` (normal and friction force
-//! per unit length and belt–pulley relative velocity at every active contact point at the end),
+//! per unit length and belt–pulley relative velocity at every active contact quadrature point at
+//! the end), `relative_velocity.csv` (the relative velocity (3.25) sampled at
+//! `output.points_per_element` points per element, which resolves the inlet and exit zones),
 //! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtk` + `belt.vtk.series`).
 
 use ancf::belt_drive::{
@@ -56,7 +58,7 @@ impl Default for OutputConfig {
         Self {
             history_interval: 1e-3,
             vtk_interval: 0.02,
-            points_per_element: 8,
+            points_per_element: 20,
         }
     }
 }
@@ -502,6 +504,29 @@ impl AncfStudy {
             }),
         )?;
 
+        // the relative velocity sampled densely (the inlet and exit zones are narrower than the
+        // spacing of the contact quadrature points)
+        let fine = drive.contact_records_sampled(s.t, &s.q, &s.v, c.output.points_per_element);
+        ctx.out.write_csv(
+            "relative_velocity.csv",
+            &[
+                "pulley",
+                "s_material",
+                "arc",
+                "penetration",
+                "relative_velocity",
+            ],
+            fine.iter().map(|r| {
+                [
+                    r.pulley as f64,
+                    r.s_material,
+                    post::pulley_arc_coordinate(&drive, r.pulley, r.position),
+                    r.penetration,
+                    r.slip,
+                ]
+            }),
+        )?;
+
         // plots
         let mut pl = LinePlot::new("Pulley speeds", "t [s]", "ω [rad/s]");
         for (p, sp) in speeds.into_iter().enumerate() {
@@ -547,8 +572,9 @@ impl AncfStudy {
                     .collect(),
             ))
             .save(&ctx.out.path(&format!("contact_{}", pulley.name)))?;
-            let mut arc: Vec<(f64, f64)> = on
+            let mut arc: Vec<(f64, f64)> = fine
                 .iter()
+                .filter(|r| r.pulley == p)
                 .map(|r| (post::pulley_arc_coordinate(&drive, p, r.position), r.slip))
                 .collect();
             arc.sort_by(|a, b| a.0.total_cmp(&b.0));

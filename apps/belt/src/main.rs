@@ -4,6 +4,7 @@
 //! - `speed-loss` (the default): angular speed loss against load torque of the flowing-material
 //!   belt drive (Ribaric ch. 5–6, Table 6-1) with Bechtel's analytical line;
 //! - `ancf`: the planar ANCF belt drive of Kerkkänen ch. 3;
+//! - `wave`: rotating vs non-rotating flowing belt with a deflected span (Ribaric Fig. 6-3);
 //! - `demo`: rigid-body slider-crank driven at constant speed (mbd-core demonstration).
 //!
 //! Run without a subcommand, the default study runs on its embedded defaults.
@@ -12,8 +13,11 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod ancf;
+mod ancf_drive_model;
+mod ancf_speed_loss;
 mod demo;
 mod speed_loss;
+mod wave;
 
 /// Belt-drive studies of the flowmbd toolkit.
 #[derive(Debug, Parser)]
@@ -31,6 +35,8 @@ enum Study {
     Demo(demo::Args),
     /// Planar ANCF belt drive (Kerkkänen ch. 3).
     Ancf(ancf::Args),
+    /// Rotating vs non-rotating flowing belt with a deflected span (Ribaric Fig. 6-3).
+    Wave(wave::Args),
 }
 
 fn main() -> ExitCode {
@@ -39,6 +45,7 @@ fn main() -> ExitCode {
         Some(Study::Demo(args)) => demo::run(&args),
         Some(Study::Ancf(args)) => ancf::run(&args),
         Some(Study::SpeedLoss(args)) => speed_loss::run(&args),
+        Some(Study::Wave(args)) => wave::run(&args),
         None => speed_loss::run(&speed_loss::Args::default()),
     }
 }

@@ -27,6 +27,9 @@ pub enum ModelKind {
     /// Nodal model with a rotating (Lagrangian) mesh (Ribaric (5.7)): the reference the
     /// flowing form replaces; needs a fine uniform mesh (`drive.mesh`) to be accurate.
     Nodal,
+    /// ANCF belt elements in a rotating (Lagrangian) mesh, Kerkkänen ch. 3 (the high-fidelity
+    /// reference; `crate::ancf_drive_model`).
+    Ancf,
 }
 
 impl ModelKind {
@@ -34,6 +37,7 @@ impl ModelKind {
         match self {
             ModelKind::Flowing => "flowing",
             ModelKind::Nodal => "nodal",
+            ModelKind::Ancf => "ancf",
         }
     }
 }
@@ -72,6 +76,8 @@ pub struct Config {
     /// Settings used instead of `drive.mesh` and the procedure's steady-state window when
     /// `model = "nodal"`.
     pub nodal: NodalOptions,
+    /// Discretisation of the ANCF belt (`model = "ancf"` only).
+    pub ancf: crate::ancf_drive_model::AncfSettings,
 }
 
 /// What the rotating-mesh model needs to reach an accurate steady state: a fine uniform loop
@@ -113,6 +119,7 @@ impl Default for Config {
             procedure: SpeedLossSettings::default(),
             history_every: 20,
             nodal: NodalOptions::default(),
+            ancf: Default::default(),
         }
     }
 }
@@ -153,6 +160,9 @@ impl Validate for Config {
             .validate()
             .map_err(|(f, r)| InputError::new(format!("nodal.{f}"), r))?;
         }
+        self.ancf
+            .validate()
+            .map_err(|(f, r)| InputError::new(format!("ancf.{f}"), r))?;
         self.procedure
             .validate()
             .map_err(|(f, r)| InputError::new(format!("procedure.{f}"), r))
@@ -229,6 +239,9 @@ fn run_case(
             let dofs = belt.n_nodal() + 2;
             sweep_case(&mut belt, dofs, drive, settings, every, ctx, done, report)
         }
+        ModelKind::Ancf => Err(StudyError::numerical(
+            "the ANCF belt runs through ancf_speed_loss::run_case",
+        )),
     }
 }
 
@@ -350,15 +363,26 @@ impl Study for SpeedLoss {
                 settings.window = c.nodal.window;
                 settings.tolerance = c.nodal.tolerance;
             }
-            let r = run_case(
-                c.model,
-                &drive,
-                &settings,
-                c.history_every,
-                ctx_ref,
-                &done,
-                &report,
-            );
+            let r = match c.model {
+                ModelKind::Ancf => crate::ancf_speed_loss::run_case(
+                    &c.drive,
+                    &c.ancf,
+                    &settings,
+                    c.history_every,
+                    ctx_ref,
+                    &done,
+                    &report,
+                ),
+                ModelKind::Flowing | ModelKind::Nodal => run_case(
+                    c.model,
+                    &drive,
+                    &settings,
+                    c.history_every,
+                    ctx_ref,
+                    &done,
+                    &report,
+                ),
+            };
             if let Ok(mut v) = results.lock() {
                 v.push(r);
             }

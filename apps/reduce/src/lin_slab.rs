@@ -1,6 +1,9 @@
-//! `flowmbd-reduce lin-slab`: Lin (2005) §7.2 simulations 1 and 2 on the Appendix B slab,
+//! `flowmbd-reduce lin-slab`: Lin (2005) §7.2 simulations 1–3 on the Appendix B slab,
 //! comparing no reduction (NR), Guyan (GR), fixed-interface modal truncation (MT),
-//! Craig–Bampton (CB) and mode condensation (MC); local deflections of node 8.
+//! Craig–Bampton (CB) and mode condensation (MC); local deflections of node 8. Simulation 3
+//! first regenerates Lin's acceleration tables with the previous simulation of Fig. 7-12(b)
+//! (`reduction::lin::slab_sim3`, assumptions in its docs) and writes them to
+//! `sim3_tables.csv`.
 
 use flowmbd_cli::args::CommonArgs;
 use flowmbd_cli::config::Validate;
@@ -9,9 +12,11 @@ use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
 use reduction::lin::slab::{self, SlabMethod};
 use reduction::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use reduction::lin::slab_sim3::{DRIVEN_NODES, record_source, simulate_emulated};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::process::ExitCode;
+use std::sync::Arc;
 
 /// Command-line arguments of `lin-slab`.
 #[derive(clap::Args, Debug)]
@@ -25,7 +30,7 @@ pub struct Args {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
-    /// Simulations to run (`no-rigid-motion` = Sim 1, `orbit` = Sim 2).
+    /// Simulations to run (`no-rigid-motion` = Sim 1, `orbit` = Sim 2, `emulated` = Sim 3).
     pub simulations: Vec<SlabSimulation>,
     /// Models to compare (NR must be present: it is the reference).
     pub methods: Vec<SlabMethod>,
@@ -36,7 +41,11 @@ pub struct Config {
 impl Default for Config {
     fn default() -> Self {
         Self {
-            simulations: vec![SlabSimulation::NoRigidMotion, SlabSimulation::Orbit],
+            simulations: vec![
+                SlabSimulation::NoRigidMotion,
+                SlabSimulation::Orbit,
+                SlabSimulation::Emulated,
+            ],
             methods: SlabMethod::ALL.to_vec(),
             params: SlabSimParams::default(),
         }
@@ -75,6 +84,35 @@ impl Validate for Config {
                 return Err(InputError::new(name, format!("must be positive, got {v}")));
             }
         }
+        let s3 = &p.sim3;
+        for (name, v) in [
+            ("params.sim3.short_link_m", s3.short_link_m),
+            ("params.sim3.long_link_m", s3.long_link_m),
+            (
+                "params.sim3.link_mass_per_length_kg_m",
+                s3.link_mass_per_length_kg_m,
+            ),
+            ("params.sim3.link_radius_m", s3.link_radius_m),
+            ("params.sim3.table_interval_s", s3.table_interval_s),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(InputError::new(name, format!("must be positive, got {v}")));
+            }
+        }
+        if !s3.inclination_deg.is_finite() {
+            return Err(InputError::new(
+                "params.sim3.inclination_deg",
+                "must be finite",
+            ));
+        }
+        for (name, f) in [
+            ("params.sim3.force_node16_n", s3.force_node16_n),
+            ("params.sim3.force_node28_n", s3.force_node28_n),
+        ] {
+            if !f.iter().all(|x| x.is_finite()) {
+                return Err(InputError::new(name, "must have finite components"));
+            }
+        }
         if !self.methods.contains(&SlabMethod::NoReduction) {
             return Err(InputError::new(
                 "methods",
@@ -108,6 +146,23 @@ pub struct Summary {
     pub simulations: BTreeMap<String, BTreeMap<String, MethodResult>>,
     /// Largest |δ'8(CB) − δ'8(MC)| per simulation [m] (Lin §6.5.4: zero up to round-off).
     pub cb_mc_max_difference_m: BTreeMap<String, f64>,
+    /// Simulation 3 only: the previous simulation that produced the tables.
+    pub sim3_source: Option<Sim3Source>,
+}
+
+/// The previous simulation of simulation 3 (Lin Fig. 7-12(b)).
+#[derive(Debug, Clone, Serialize)]
+pub struct Sim3Source {
+    /// Number of table rows (samples) and their interval [s].
+    pub samples: usize,
+    /// Sampling interval [s].
+    pub interval_s: f64,
+    /// Largest position-level constraint residual of the source run [m].
+    pub max_drift_m: f64,
+    /// Largest |δ'8| of the source run [m].
+    pub peak_node8_m: f64,
+    /// Largest |δ'8(NR emulation) − δ'8(source)| [m]: the table interpolation error.
+    pub nr_emulation_vs_source_m: Option<f64>,
 }
 
 struct LinSlabStudy;
@@ -116,6 +171,7 @@ fn sim_name(s: SlabSimulation) -> &'static str {
     match s {
         SlabSimulation::NoRigidMotion => "sim1",
         SlabSimulation::Orbit => "sim2",
+        SlabSimulation::Emulated => "sim3",
     }
 }
 
@@ -140,17 +196,30 @@ impl Study for LinSlabStudy {
         let mut done = 0.0;
         let mut sims = BTreeMap::new();
         let mut cbmc = BTreeMap::new();
+        let mut sim3_source = None;
         for &sim in &c.simulations {
             let mut hist: Vec<(SlabMethod, Vec<f64>, Vec<[f64; 3]>)> = Vec::new();
             let mut drifts = Vec::new();
+            let source = if sim == SlabSimulation::Emulated {
+                let src = record_source(&s, &c.params).map_err(StudyError::numerical)?;
+                write_sim3_tables(ctx, &src)?;
+                Some(src)
+            } else {
+                None
+            };
+            let table = source.as_ref().map(|x| Arc::new(x.table.clone()));
             for &m in &c.methods {
                 let mut t = Vec::new();
                 let mut h = Vec::new();
-                let drift = simulate(&s, m, sim, &c.params, |ti, d| {
+                let obs = |ti: f64, d: [f64; 3]| {
                     t.push(ti);
                     h.push(d);
-                })
-                .map_err(|e| StudyError::Numerical {
+                };
+                let res = match &table {
+                    Some(tab) => simulate_emulated(&s, m, tab, &c.params, obs),
+                    None => simulate(&s, m, sim, &c.params, obs),
+                };
+                let drift = res.map_err(|e| StudyError::Numerical {
                     message: e.to_string(),
                     partial: serde_json::to_value(&statics).ok(),
                 })?;
@@ -239,6 +308,25 @@ impl Study for LinSlabStudy {
                     .fold(0.0, f64::max);
                 cbmc.insert(name.to_string(), d);
             }
+            if let Some(src) = &source {
+                let vs = get(SlabMethod::NoReduction).map(|h| {
+                    h.iter()
+                        .zip(&src.node8)
+                        .map(|(x, y)| (0..3).map(|k| (x[k] - y[k]).abs()).fold(0.0, f64::max))
+                        .fold(0.0, f64::max)
+                });
+                sim3_source = Some(Sim3Source {
+                    samples: src.table.acc.len(),
+                    interval_s: src.table.interval_s,
+                    max_drift_m: src.max_drift_m,
+                    peak_node8_m: src
+                        .node8
+                        .iter()
+                        .flat_map(|x| x.iter().map(|v| v.abs()))
+                        .fold(0.0, f64::max),
+                    nr_emulation_vs_source_m: vs,
+                });
+            }
             sims.insert(name.to_string(), per);
         }
         bar.finish();
@@ -246,8 +334,51 @@ impl Study for LinSlabStudy {
             sim1_statics_m: statics,
             simulations: sims,
             cb_mc_max_difference_m: cbmc,
+            sim3_source,
         })
     }
+}
+
+/// Writes the regenerated tables (`sim3_tables.csv`: t, then x, y, z accelerations of nodes 16,
+/// 18, 28, 30 [m/s²]) and the source's node-8 history (`sim3_source_node8.csv`).
+fn write_sim3_tables(
+    ctx: &mut StudyContext,
+    src: &reduction::lin::slab_sim3::SourceRun,
+) -> Result<(), StudyError> {
+    let mut header = vec!["t_s".to_string()];
+    for j in DRIVEN_NODES {
+        for c in ["x", "y", "z"] {
+            header.push(format!("a{c}{j}_m_s2"));
+        }
+    }
+    let hdr: Vec<&str> = header.iter().map(|x| x.as_str()).collect();
+    let rows: Vec<Vec<f64>> = src
+        .table
+        .acc
+        .iter()
+        .enumerate()
+        .map(|(k, a)| {
+            let mut r = vec![k as f64 * src.table.interval_s];
+            for v in a {
+                r.extend_from_slice(&[v.x, v.y, v.z]);
+            }
+            r
+        })
+        .collect();
+    ctx.out
+        .write_csv("sim3_tables.csv", &hdr, rows.iter().map(|r| r.as_slice()))?;
+    let rows: Vec<[f64; 4]> = src
+        .t
+        .iter()
+        .zip(&src.node8)
+        .map(|(t, d)| [*t, d[0], d[1], d[2]])
+        .collect();
+    ctx.out.write_csv(
+        "sim3_source_node8.csv",
+        &["t_s", "xi_m", "eta_m", "zeta_m"],
+        rows.iter().map(|r| r.as_slice()),
+    )?;
+    Ok(())
 }
 
 /// Runs `lin-slab` under the app conventions.

@@ -33,7 +33,7 @@ enum Study {
     TireMesh(tire_mesh::Args),
     /// Lin ch. 6-8 on the Appendix A beam: frequencies, Guyan models, profile tests, mean axes.
     LinBeam(lin_beam::Args),
-    /// Lin §7.2 simulations 1-2 on the Appendix B slab: NR, Guyan, modal truncation, CB, MC.
+    /// Lin §7.2 simulations 1-3 on the Appendix B slab: NR, Guyan, modal truncation, CB, MC.
     LinSlab(lin_slab::Args),
     /// Reduce Matrix Market M and K with a boundary node set; write the reduced model.
     Reduce(reduce_cmd::Args),

@@ -14,6 +14,7 @@ pub mod model;
 pub mod nodal;
 pub mod schedule;
 pub mod study;
+pub mod wave;
 
 pub use config::BeltDriveConfig;
 pub use flowing_system::{FlowingBelt, NodeReport};

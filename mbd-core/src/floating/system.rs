@@ -337,6 +337,25 @@ impl FloatingSystem {
         self.point_kin(p, &rk, &fk).0
     }
 
+    /// Global velocity of a point, `ḋ = J v` [m/s] (Lin (5.2)).
+    pub fn point_velocity(&self, state: &State, p: &Point) -> Vector3<f64> {
+        let (rk, fk) = self.kinematics(&state.q, Some(&state.v));
+        let (_, jac, _) = self.point_kin(p, &rk, &fk);
+        jac.iter()
+            .fold(Vector3::zeros(), |acc, (i, col)| acc + col * state.v[*i])
+    }
+
+    /// Global acceleration of a point for the velocity derivatives `vdot` (e.g. from
+    /// [`crate::integrators::accelerations`]): `d̈ = J v̇ + A w'` [m/s²] (Lin (5.3), (5.5)).
+    ///
+    /// # Panics
+    /// If `vdot` is shorter than [`SecondOrderSystem::n_v`].
+    pub fn point_acceleration(&self, state: &State, vdot: &[f64], p: &Point) -> Vector3<f64> {
+        let (rk, fk) = self.kinematics(&state.q, Some(&state.v));
+        let (_, jac, aq) = self.point_kin(p, &rk, &fk);
+        jac.iter().fold(aq, |acc, (i, col)| acc + col * vdot[*i])
+    }
+
     /// Mean-axis residuals of flexible body `k` (Lin Table 4-2, local):
     /// `[IhᵀM'δ' (3), IhᵀM'δ̇' (3), b~'ᵀM'δ̇' (3)]`.
     pub fn mean_axis_residuals(&self, state: &State, k: usize) -> [f64; 9] {

@@ -4,3 +4,4 @@
 pub mod beam;
 pub mod slab;
 pub mod slab_sim;
+pub mod slab_sim3;
