@@ -194,8 +194,8 @@ fn point_masses_and_springs() {
     let (a, b, c) = (m1 * m2, -(k * m2 + (k + kg) * m1), k * kg);
     let disc = (b * b - 4.0 * a * c).sqrt();
     let w2 = [(-b - disc) / (2.0 * a), (-b + disc) / (2.0 * a)];
-    for i in 0..2 {
-        assert!((modes.values[i] - w2[i]).abs() < 1e-12 * w2[i]);
+    for (got, want) in modes.values.iter().zip(w2) {
+        assert!((got - want).abs() < 1e-12 * want);
     }
     assert!(Spring::between(3, 3, 1.0).is_err());
     assert!(PointMass::new(vec![0], -1.0).is_err());
