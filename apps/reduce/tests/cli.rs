@@ -1,24 +1,14 @@
 //! End-to-end tests of `flowmbd-reduce tire-mesh` and `modes` (app conventions: JSON summary,
 //! exit code 2 with a one-line message naming the field on bad input).
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_flowmbd-reduce"))
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("flowmbd-reduce-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{bin, tmp};
 
 /// tire-mesh writes M, K, mesh and node sets; modes on them with the rim fixed returns
 /// ascending frequencies whose axisymmetric pairs coincide, matching a run without the mesh.
 #[test]
 fn tire_mesh_then_modes() {
-    let dir = tmp("e2e");
+    let dir = tmp("e2e", "e2e");
     let cfg = dir.join("small.toml");
     std::fs::write(
         &cfg,
@@ -33,12 +23,7 @@ fn tire_mesh_then_modes() {
         .arg(&tm)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let s = common::json_of(&out);
     assert_eq!(s["dof"], 3 * 16 * 11 * 2);
     for f in [
         "K.mtx",
@@ -65,12 +50,7 @@ fn tire_mesh_then_modes() {
         .arg(&md)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let s = common::json_of(&out);
     assert_eq!(
         s.as_object().unwrap().len(),
         2,
@@ -93,7 +73,7 @@ fn tire_mesh_then_modes() {
 /// Bad input exits with code 2 and names the field (and the file line for matrix errors).
 #[test]
 fn bad_input_exits_2_naming_the_field() {
-    let dir = tmp("bad");
+    let dir = tmp("e2e", "bad");
     let m = dir.join("M.mtx");
     std::fs::write(
         &m,

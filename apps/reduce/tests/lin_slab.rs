@@ -3,22 +3,12 @@
 //! the NR emulation follows the source run (the unreduced model it was recorded from), and bad
 //! simulation-3 parameters exit with code 2 naming the field.
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_flowmbd-reduce"))
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("flowmbd-reduce-slab-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{bin, tmp};
 
 #[test]
 fn simulation3_writes_tables_and_cb_equals_mc() {
-    let dir = tmp("sim3");
+    let dir = tmp("slab", "sim3");
     let cfg = dir.join("sim3.toml");
     std::fs::write(
         &cfg,
@@ -33,12 +23,7 @@ fn simulation3_writes_tables_and_cb_equals_mc() {
         .arg(&out_dir)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let s = common::json_of(&out);
     let cbmc = s["cb_mc_max_difference_m"]["sim3"].as_f64().unwrap();
     assert!(cbmc < 1e-9, "CB vs MC {cbmc}");
     let src = &s["sim3_source"];
@@ -67,7 +52,7 @@ fn simulation3_writes_tables_and_cb_equals_mc() {
 
 #[test]
 fn bad_simulation3_parameters_exit_2_naming_the_field() {
-    let dir = tmp("bad");
+    let dir = tmp("slab", "bad");
     for (text, field) in [
         (
             "[params.sim3]\ntable_interval_s = -0.005\n",

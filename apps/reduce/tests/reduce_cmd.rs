@@ -2,22 +2,14 @@
 //! (Lin's Appendix B slab), the written `ReducedModel` compared with the library's
 //! Craig–Bampton, and bad input (exit 2, one line naming the option, file and line).
 
+mod common;
+use common::{bin, tmp};
 use faer::Mat;
 use reduction::basis::{Method, ModeSelection, build_basis};
 use reduction::lin::slab::{appendix_b_slab, node_dofs};
 use reduction::{DofPartition, ReducedModel};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_flowmbd-reduce"))
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("flowmbd-reduce-cmd-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use std::path::Path;
+use std::process::Output;
 
 /// Symmetric coordinate Matrix Market file (lower triangle, round-trip `{:?}` digits), written
 /// here by hand so that the test does not depend on fe-model's writer.
@@ -56,7 +48,7 @@ fn reduce(args: &[&str], m: &Path, k: &Path, out: &Path) -> Output {
 #[test]
 fn cb_of_the_lin_slab_matches_the_library() {
     // Lin App. B slab, boundary nodes 16, 18, 28, 30 and 6 fixed-interface modes (Lin §7.2.1).
-    let dir = tmp("cb");
+    let dir = tmp("cmd", "cb");
     let s = appendix_b_slab().unwrap();
     let (m, k) = (dir.join("M.mtx"), dir.join("K.mtx"));
     write_mtx(&m, &s.m);
@@ -79,12 +71,7 @@ fn cb_of_the_lin_slab_matches_the_library() {
         &k,
         &file,
     );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let summary = common::json_of(&out);
     assert_eq!(summary["n_full"], 90);
     assert_eq!(summary["n_reduced"], 18);
     // the written file, loaded back
@@ -147,7 +134,7 @@ fn expect_input_error(out: &Output, needles: &[&str]) {
 
 #[test]
 fn bad_input_exits_2_naming_the_option_file_and_line() {
-    let dir = tmp("bad");
+    let dir = tmp("cmd", "bad");
     let s = appendix_b_slab().unwrap();
     let (m, k) = (dir.join("M.mtx"), dir.join("K.mtx"));
     write_mtx(&m, &s.m);
