@@ -442,9 +442,22 @@ impl ContactSolver {
             let mut accepted = false;
             let mut phi_t = std::mem::take(&mut self.tmp);
             for _ in 0..30 {
+                // projected trial point: λ ≥ 0 (the solution's normal forces are
+                // non-negative; iterates at λ < 0 can stall at the kink of max(0, ·))
                 for i in 0..n {
                     self.xt[i] = self.x[i] + t * self.dx[i];
                     self.yt[i] = self.y[i] + t * self.dy[i];
+                }
+                for k in 0..m {
+                    if self.xt[3 * k] < 0.0 {
+                        let c = -self.xt[3 * k];
+                        self.xt[3 * k] = 0.0;
+                        self.ensure_col(src, k);
+                        let col = &self.d[3 * k * n..(3 * k + 1) * n];
+                        for (yi, &dv) in self.yt.iter_mut().zip(col) {
+                            *yi += c * dv;
+                        }
+                    }
                 }
                 let (xt, mut yt) = (std::mem::take(&mut self.xt), std::mem::take(&mut self.yt));
                 let mut y = std::mem::take(&mut self.y);
@@ -838,6 +851,54 @@ pub fn local_friction(b: [[f64; 2]; 2], r: [f64; 2], rho: f64, s: &SolveSettings
                 }
             }
             f
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One node, regularised law: `λ = −g/d_N`; `u = v + d_T f`, `f = −μλ u/√(u²+ε²)` reduces
+    /// to a monotone scalar equation in `u`, solved here by bisection (independent reference).
+    #[test]
+    fn single_node_regularized_against_bisection() {
+        for &(dn, dt, g, v, mu, eps) in &[
+            (1.0, 1.0, -1.0, 1.0, 0.5, 0.1),
+            (2e-7, 4e-3, -1e-4, 3.0, 0.85, 0.05),
+            (2e-7, 4e-3, -1e-4, -0.2, 0.85, 0.05),
+            (1.0, 0.5, -2.0, 0.01, 1.0, 0.01),
+        ] {
+            let d = [dn, 0.0, 0.0, 0.0, dt, 0.0, 0.0, 0.0, dt];
+            let b = [g, v, 0.0];
+            let mut s = ContactSolver::default();
+            s.reset(&[0.0; 3]);
+            s.set_gaps([g]);
+            let set = SolveSettings {
+                mu,
+                law: FrictionLaw::Regularized,
+                epsilon: eps,
+                ..SolveSettings::default()
+            };
+            let rep = s.solve(&mut DenseProblem { d: &d, b: &b }, &[[dn, dt]], &set);
+            let lam = -g / dn;
+            // u − v + d_T μλ u/√(u²+ε²) = 0, increasing in u
+            let h = |u: f64| u - v + dt * mu * lam * u / (u * u + eps * eps).sqrt();
+            let (mut lo, mut hi) = (-v.abs() - 1.0, v.abs() + 1.0);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if h(mid) > 0.0 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            let u = 0.5 * (lo + hi);
+            let f = -mu * lam * u / (u * u + eps * eps).sqrt();
+            assert!(rep.converged, "{rep:?}");
+            assert!((s.x()[0] - lam).abs() <= 1e-9 * lam);
+            assert!((s.x()[1] - f).abs() <= 1e-9 * lam, "{} vs {f}", s.x()[1]);
+            assert!(s.x()[2].abs() <= 1e-9 * lam);
         }
     }
 }
