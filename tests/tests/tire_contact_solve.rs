@@ -42,7 +42,7 @@ fn solve(d: &[f64], b: &[f64], warm: &[f64], s: &SolveSettings) -> (Vec<f64>, So
     solver.reset(warm);
     solver.set_gaps((0..m).map(|k| b[3 * k]));
     let mut src = DenseProblem { d, b };
-    let rep = solver.solve(&mut src, &diag_of(d, m), s);
+    let rep = solver.solve(&mut src, &diag_of(d, m), s, false, None);
     (solver.x().to_vec(), rep)
 }
 

@@ -95,6 +95,8 @@ pub struct SolveReport {
     pub converged: bool,
     /// Newton iterations (LU factorisations) used.
     pub newton_iterations: usize,
+    /// Chord iterations (solves with an earlier LU) used.
+    pub chord_iterations: usize,
     /// Whether the fallback alternation was run.
     pub fallback: bool,
     /// Normal LCP solves of the fallback.
@@ -143,6 +145,19 @@ enum State {
     Pressed,
 }
 
+/// A factorised Newton matrix and the classification of the contacts it was built for.
+struct LuSlot {
+    pattern: Vec<u8>,
+    n: usize,
+    /// Packed LU factors `P J = L U`.
+    lu: Mat<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    valid: bool,
+    /// Clock of the last use (least recently used slot is refactorised).
+    used: u64,
+}
+
 /// Reusable buffers of the contact solve (no allocation once grown).
 pub struct ContactSolver {
     m: usize,
@@ -164,15 +179,19 @@ pub struct ContactSolver {
     lk: Vec<[[f64; 3]; 3]>,
     gk: Vec<[[f64; 3]; 3]>,
     act: Vec<usize>,
-    jac: Mat<f64>,
+    /// Classification per contact (0 open, 1 pressed/slip, 2 stick).
+    pattern: Vec<u8>,
+    /// The last few Newton matrices (LU factors), by classification: chord steps use the one
+    /// of the current classification (the patch often alternates between two from step to
+    /// step).
+    slots: Vec<LuSlot>,
+    clock: u64,
     rhs: Vec<f64>,
     tmp: Vec<f64>,
     dx: Vec<f64>,
     dy: Vec<f64>,
     xt: Vec<f64>,
     yt: Vec<f64>,
-    perm: Vec<usize>,
-    perm_inv: Vec<usize>,
     mem: Option<MemBuffer>,
     mem_n: usize,
     lcp: LcpWork,
@@ -198,15 +217,25 @@ impl Default for ContactSolver {
             lk: Vec::new(),
             gk: Vec::new(),
             act: Vec::new(),
-            jac: Mat::zeros(0, 0),
+            pattern: Vec::new(),
+            slots: (0..3)
+                .map(|_| LuSlot {
+                    pattern: Vec::new(),
+                    n: 0,
+                    lu: Mat::zeros(0, 0),
+                    perm: Vec::new(),
+                    perm_inv: Vec::new(),
+                    valid: false,
+                    used: 0,
+                })
+                .collect(),
+            clock: 0,
             rhs: Vec::new(),
             tmp: Vec::new(),
             dx: Vec::new(),
             dy: Vec::new(),
             xt: Vec::new(),
             yt: Vec::new(),
-            perm: Vec::new(),
-            perm_inv: Vec::new(),
             mem: None,
             mem_n: 0,
             lcp: LcpWork::default(),
@@ -402,12 +431,16 @@ impl ContactSolver {
 
     /// Solve the problem set up by [`reset`](Self::reset) and [`set_gaps`](Self::set_gaps)
     /// (`diag` = the diagonal normal and tangential compliances `D_kk` used for `r_N`, `r_T`,
-    /// per contact `[d_N, d_T]`).
+    /// per contact `[d_N, d_T]`). With `reuse`, the caller states that the contacts are the
+    /// same as in the previous solve (a nearby `D`): its last LU may serve for chord steps.
+    /// `alt` is an optional second warm start (3m), used if its residual is smaller.
     pub fn solve(
         &mut self,
         src: &mut dyn DelassusSource,
         diag: &[[f64; 2]],
         s: &SolveSettings,
+        reuse: bool,
+        alt: Option<&[f64]>,
     ) -> SolveReport {
         let m = self.m;
         let n = 3 * m;
@@ -426,15 +459,52 @@ impl ContactSolver {
         clear_fill(&mut self.yt, n, 0.0);
         clear_fill(&mut self.tmp, n, 0.0);
         let mut norm = self.evaluate(src, s);
+        if let Some(alt) = alt.filter(|a| a.len() == n) {
+            // a second warm start (e.g. the forces two steps back: contact chatter alternates
+            // from step to step): keep the one with the smaller relative residual
+            let s1 = self.scale().max(1e-300);
+            self.xt.copy_from_slice(&self.x);
+            self.x.copy_from_slice(alt);
+            for k in 0..m {
+                if !(self.x[3 * k] > 0.0) {
+                    self.x[3 * k..3 * k + 3].copy_from_slice(&[0.0; 3]);
+                }
+            }
+            let norm_alt = self.evaluate(src, s);
+            if norm_alt / self.scale().max(1e-300) < norm / s1 {
+                norm = norm_alt;
+            } else {
+                std::mem::swap(&mut self.x, &mut self.xt);
+                norm = self.evaluate(src, s);
+            }
+        }
         let mut ok = false;
-        for _ in 0..s.max_newton {
+        // chord steps reuse the last LU (also the previous solve's, when the caller says the
+        // problem has the same structure) while the classification of the contacts is
+        // unchanged and the residual contracts fast; else a full Newton step
+        if !reuse {
+            self.slots.iter_mut().for_each(|sl| sl.valid = false);
+        }
+        let mut chord_ok = reuse && self.slots.iter().any(|sl| sl.valid);
+        let mut chords = 0;
+        while rep.newton_iterations < s.max_newton {
             if norm <= s.tol * self.scale() {
                 ok = true;
                 break;
             }
-            rep.newton_iterations += 1;
-            if !self.newton_direction(src, s) {
+            let chord = chord_ok && chords < 4 * s.max_newton;
+            let Some(factored) = self.newton_direction(src, s, chord) else {
+                if chord {
+                    chord_ok = false;
+                    continue;
+                }
                 break;
+            };
+            if factored {
+                rep.newton_iterations += 1;
+            } else {
+                rep.chord_iterations += 1;
+                chords += 1;
             }
             // line search on ½‖Φ‖² (Armijo) along dx; y is affine in x
             let mut t = 1.0;
@@ -467,7 +537,13 @@ impl ContactSolver {
                 self.xt = xt;
                 self.yt = yt;
                 let theta: f64 = phi_t.iter().map(|p| p * p).sum();
-                if theta <= (1.0 - 2e-4 * t) * theta0 || theta == 0.0 {
+                // a chord step must contract ‖Φ‖ by 4 (else: a full Newton step next)
+                let good = if factored {
+                    theta <= (1.0 - 2e-4 * t) * theta0
+                } else {
+                    theta <= theta0 / 16.0
+                };
+                if good || theta == 0.0 {
                     std::mem::swap(&mut self.x, &mut self.xt);
                     std::mem::swap(&mut self.y, &mut self.yt);
                     std::mem::swap(&mut self.phi, &mut phi_t);
@@ -475,9 +551,16 @@ impl ContactSolver {
                     accepted = true;
                     break;
                 }
+                if !factored {
+                    break;
+                }
                 t *= 0.5;
             }
             self.tmp = phi_t;
+            chord_ok = accepted && t == 1.0;
+            if !accepted && !factored {
+                continue;
+            }
             if !accepted {
                 let before = norm;
                 norm = self.evaluate(src, s);
@@ -504,18 +587,28 @@ impl ContactSolver {
         rep
     }
 
-    /// The Newton direction `dx` (and `dy = D dx`) at `x`; false if the Jacobian is singular.
-    fn newton_direction(&mut self, src: &mut dyn DelassusSource, s: &SolveSettings) -> bool {
+    /// The Newton direction `dx` (and `dy = D dx`) at `x`; `None` if the Jacobian is singular
+    /// or (`chord`) the classification changed since the last LU, else whether an LU was made.
+    /// With `chord`, the last LU replaces the Jacobian (simplified Newton).
+    fn newton_direction(
+        &mut self,
+        src: &mut dyn DelassusSource,
+        s: &SolveSettings,
+        chord: bool,
+    ) -> Option<bool> {
         let m = self.m;
         let n = 3 * m;
         self.act.clear();
+        self.pattern.clear();
         for k in 0..m {
             let sig = self.x[3 * k] - self.rn[k] * self.y[3 * k];
             if sig <= 0.0 {
                 self.state[k] = State::Open;
+                self.pattern.push(0);
                 continue;
             }
             self.state[k] = State::Pressed;
+            self.pattern.push(1);
             self.act.push(k);
             let (rn, rt) = (self.rn[k], self.rt[k]);
             let f = [self.x[3 * k + 1], self.x[3 * k + 2]];
@@ -531,6 +624,7 @@ impl ContactSolver {
                     let nz = z[0].hypot(z[1]);
                     if nz <= rho {
                         // stick: Φ_T = r_T u
+                        self.pattern[k] = 2;
                         g[1][1] = rt;
                         g[2][2] = rt;
                     } else {
@@ -589,9 +683,36 @@ impl ContactSolver {
         // dy_open = D dx_open (columns available: x_k ≠ 0 had its column)
         let mut dy = std::mem::take(&mut self.dy);
         self.apply(&self.dx, &mut dy, false);
-        self.jac.resize_with(na, na, |_, _| 0.0);
+        // a cached LU of the same classification (chord), or the slot to factor into
+        let found = self
+            .slots
+            .iter()
+            .position(|sl| sl.valid && sl.pattern == self.pattern);
+        let chord = chord && found.is_some();
+        self.clock += 1;
+        let cur = match found {
+            Some(i) => i,
+            None => {
+                let mut best = 0;
+                for (i, sl) in self.slots.iter().enumerate() {
+                    if !sl.valid || sl.used < self.slots[best].used {
+                        best = i;
+                        if !sl.valid {
+                            break;
+                        }
+                    }
+                }
+                best
+            }
+        };
+        self.slots[cur].used = self.clock;
+        if !chord {
+            // the slot's old factors are overwritten: valid again only once refactorised
+            self.slots[cur].valid = false;
+            self.slots[cur].lu.resize_with(na, na, |_, _| 0.0);
+        }
         self.rhs.clear();
-        for (ia, &k) in self.act.iter().enumerate() {
+        for &k in self.act.iter() {
             let g = &self.gk[k];
             for r in 0..3 {
                 let mut v = -self.phi[3 * k + r];
@@ -600,21 +721,40 @@ impl ContactSolver {
                 }
                 self.rhs.push(v);
             }
-            // J_kl = δ_kl L_k + G_k D_kl
+        }
+        if !chord {
+            // J_kl = δ_kl L_k + G_k D_kl, column by column
             for (ja, &l) in self.act.iter().enumerate() {
                 for c in 0..3 {
-                    let col = &self.d[(3 * l + c) * n + 3 * k..(3 * l + c) * n + 3 * k + 3];
-                    for r in 0..3 {
-                        let mut v = g[r][0] * col[0] + g[r][1] * col[1] + g[r][2] * col[2];
-                        if k == l {
-                            v += self.lk[k][r][c];
+                    let dcol = &self.d[(3 * l + c) * n..(3 * l + c + 1) * n];
+                    let mut jc = self.slots[cur].lu.col_mut(3 * ja + c);
+                    let Some(jcol) = jc.rb_mut().try_as_col_major_mut() else {
+                        self.dy = dy;
+                        return None;
+                    };
+                    let jcol = jcol.as_slice_mut();
+                    for (ia, &k) in self.act.iter().enumerate() {
+                        let g = &self.gk[k];
+                        let d3 = &dcol[3 * k..3 * k + 3];
+                        for r in 0..3 {
+                            jcol[3 * ia + r] = g[r][0] * d3[0] + g[r][1] * d3[1] + g[r][2] * d3[2];
                         }
-                        self.jac[(3 * ia + r, 3 * ja + c)] = v;
+                        if k == l {
+                            for r in 0..3 {
+                                jcol[3 * ia + r] += self.lk[k][r][c];
+                            }
+                        }
                     }
                 }
             }
         }
-        if na > 0 {
+        let slot = &mut self.slots[cur];
+        if chord && slot.n != na {
+            self.dy = dy;
+            return None;
+        }
+        if na > 0 && !chord {
+            slot.valid = false;
             if self.mem_n < na {
                 self.mem = Some(MemBuffer::new(lu_in_place_scratch::<usize, f64>(
                     na,
@@ -624,33 +764,39 @@ impl ContactSolver {
                 )));
                 self.mem_n = na;
             }
-            self.perm.resize(na, 0);
-            self.perm_inv.resize(na, 0);
+            slot.perm.resize(na, 0);
+            slot.perm_inv.resize(na, 0);
             let Some(mem) = self.mem.as_mut() else {
                 self.dy = dy;
-                return false;
+                return None;
             };
             let _ = lu_in_place(
-                self.jac.as_mut(),
-                &mut self.perm,
-                &mut self.perm_inv,
+                slot.lu.as_mut(),
+                &mut slot.perm,
+                &mut slot.perm_inv,
                 Par::Seq,
                 MemStack::new(mem),
                 Default::default(),
             );
             let singular = (0..na).any(|i| {
-                let d = self.jac[(i, i)];
+                let d = slot.lu[(i, i)];
                 !(d.is_finite() && d != 0.0)
             });
             if singular {
                 self.dy = dy;
-                return false;
+                return None;
             }
+            slot.valid = true;
+            slot.n = na;
+            slot.pattern.clear();
+            slot.pattern.extend_from_slice(&self.pattern);
+        }
+        if na > 0 {
             self.tmp.clear();
-            self.tmp.extend(self.perm.iter().map(|&p| self.rhs[p]));
+            self.tmp.extend(slot.perm.iter().map(|&p| self.rhs[p]));
             let mut sol = MatMut::from_column_major_slice_mut(&mut self.tmp[..na], na, 1);
-            solve_unit_lower_triangular_in_place(self.jac.as_ref(), sol.rb_mut(), Par::Seq);
-            solve_upper_triangular_in_place(self.jac.as_ref(), sol.rb_mut(), Par::Seq);
+            solve_unit_lower_triangular_in_place(slot.lu.as_ref(), sol.rb_mut(), Par::Seq);
+            solve_upper_triangular_in_place(slot.lu.as_ref(), sol.rb_mut(), Par::Seq);
             for (ia, &k) in self.act.iter().enumerate() {
                 for a in 0..3 {
                     self.dx[3 * k + a] = self.tmp[3 * ia + a];
@@ -660,7 +806,7 @@ impl ContactSolver {
         }
         self.apply(&self.dx, &mut dy, false);
         self.dy = dy;
-        self.dx.iter().all(|v| v.is_finite())
+        self.dx.iter().all(|v| v.is_finite()).then_some(!chord)
     }
 
     /// The fallback: normal LCP with the friction frozen, alternated with block Gauss–Seidel
@@ -880,7 +1026,13 @@ mod tests {
                 epsilon: eps,
                 ..SolveSettings::default()
             };
-            let rep = s.solve(&mut DenseProblem { d: &d, b: &b }, &[[dn, dt]], &set);
+            let rep = s.solve(
+                &mut DenseProblem { d: &d, b: &b },
+                &[[dn, dt]],
+                &set,
+                false,
+                None,
+            );
             let lam = -g / dn;
             // u − v + d_T μλ u/√(u²+ε²) = 0, increasing in u
             let h = |u: f64| u - v + dt * mu * lam * u / (u * u + eps * eps).sqrt();

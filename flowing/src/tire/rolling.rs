@@ -257,9 +257,17 @@ struct Work {
     lambda: Vec<f64>,
     ft: Vec<[f64; 3]>,
     forces: Vec<[f64; 3]>,
-    /// Warm start `(λ, f1, f2)` per candidate (3m) and diagonal compliances `[d_N, d_T]`.
+    /// Warm starts `(λ, f1, f2)` per candidate (3m; from the last step and the one before)
+    /// and diagonal compliances `[d_N, d_T]`.
     x0: Vec<f64>,
+    x1: Vec<f64>,
+    /// Normal and friction forces per contact node two steps back [N].
+    lambda2: Vec<f64>,
+    friction2: Vec<[f64; 3]>,
     diag: Vec<[f64; 2]>,
+    /// Scaled local frames and rigid-spin coefficients of the candidates ([`TireDelassus`]).
+    frames: Vec<[[f64; 3]; 3]>,
+    rig_t1: Vec<f64>,
     /// The coupled normal + friction solver (buffers reused).
     solver: ContactSolver,
 }
@@ -279,6 +287,8 @@ pub struct StepStats {
     pub friction_sweeps: usize,
     /// Newton iterations (LU factorisations) of the coupled contact solve.
     pub contact_newton: usize,
+    /// Chord iterations (solves with an earlier Newton matrix) of the contact solve.
+    pub contact_chord: usize,
     /// Steps whose contact solve fell back to the normal/friction alternation.
     pub contact_fallbacks: usize,
     /// Steps whose contact solve missed `contact_tolerance` (forces kept).
@@ -379,8 +389,11 @@ struct TireDelassus<'b> {
     red: &'b ReducedTire,
     cand: &'b [usize],
     gp: &'b [GroundPoint],
-    c1: f64,
-    c2: f64,
+    /// Local frames `[n, t1, t2]` of the candidates, scaled by `β_N h²` (row n) and `γ_N h`
+    /// (rows t1, t2).
+    frames: &'b [[[f64; 3]; 3]],
+    /// `γ_N h t1ᵀ(η × s)` per candidate (`t2ᵀ(η × s) = 0`).
+    rig_t1: &'b [f64],
     penalty: f64,
     tct: &'b Mat<f64>,
     tct_theta: &'b Mat<f64>,
@@ -389,15 +402,41 @@ struct TireDelassus<'b> {
     spin_free: f64,
 }
 
+/// The scaled frames and rigid-spin coefficients of the candidates for [`TireDelassus`].
+fn candidate_frames(
+    red: &ReducedTire,
+    cand: &[usize],
+    gp: &[GroundPoint],
+    c1: f64,
+    c2: f64,
+    frames: &mut Vec<[[f64; 3]; 3]>,
+    rig_t1: &mut Vec<f64>,
+) {
+    frames.clear();
+    rig_t1.clear();
+    for (k, &i) in cand.iter().enumerate() {
+        let n = gp[k].normal;
+        let (t1, t2) = tangents(&n);
+        frames.push([
+            [c2 * n[0], c2 * n[1], c2 * n[2]],
+            [c1 * t1[0], c1 * t1[1], c1 * t1[2]],
+            [c1 * t2[0], c1 * t2[1], c1 * t2[2]],
+        ]);
+        let s = red.contact_positions[i];
+        rig_t1.push(c1 * (t1[0] * s[2] - t1[2] * s[0]));
+    }
+}
+
 impl TireDelassus<'_> {
-    fn frame(&self, k: usize) -> [[f64; 3]; 3] {
-        let n = self.gp[k].normal;
+    /// Unit force directions `[n, t1, t2]` of candidate `l`.
+    fn directions(&self, l: usize) -> [[f64; 3]; 3] {
+        let n = self.gp[l].normal;
         let (t1, t2) = tangents(&n);
         [n, t1, t2]
     }
 
     /// Local outputs of node `k` for a unit force `e` (wheel frame) on node `l`.
-    fn response(&self, k: usize, l: usize, e: &[f64; 3], fk: &[[f64; 3]; 3]) -> [f64; 3] {
+    fn response(&self, k: usize, l: usize, e: &[f64; 3]) -> [f64; 3] {
         let (i, j) = (self.cand[k], self.cand[l]);
         let mut v = [0.0; 3];
         let mut xth = 0.0;
@@ -408,22 +447,20 @@ impl TireDelassus<'_> {
             v[2] += er * col[3 * i + 2];
             xth += er * self.fac.x[(0, 3 * j + r)];
         }
-        let s = self.red.contact_positions[i];
-        let rig = [s[2], 0.0, -s[0]];
-        let vv = [v[0] + rig[0] * xth, v[1], v[2] + rig[2] * xth];
+        let f = &self.frames[k];
         [
-            self.c2 * dot3(&fk[0], &v),
-            self.c1 * dot3(&fk[1], &vv),
-            self.c1 * dot3(&fk[2], &vv),
+            dot3(&f[0], &v),
+            dot3(&f[1], &v) + self.rig_t1[k] * xth,
+            dot3(&f[2], &v),
         ]
     }
 
     /// The diagonal compliances `[D_N,kk, (D_T,kk,11 + D_T,kk,22)/2]` of node `k`.
     fn diagonal(&self, k: usize) -> [f64; 2] {
-        let fk = self.frame(k);
-        let dn = self.response(k, k, &fk[0], &fk)[0] + self.penalty;
-        let d1 = self.response(k, k, &fk[1], &fk)[1];
-        let d2 = self.response(k, k, &fk[2], &fk)[2];
+        let e = self.directions(k);
+        let dn = self.response(k, k, &e[0])[0] + self.penalty;
+        let d1 = self.response(k, k, &e[1])[1];
+        let d2 = self.response(k, k, &e[2])[2];
         [dn, 0.5 * (d1 + d2)]
     }
 }
@@ -431,12 +468,36 @@ impl TireDelassus<'_> {
 impl DelassusSource for TireDelassus<'_> {
     fn columns(&mut self, l: usize, cols: &mut [f64]) {
         let ld = 3 * self.cand.len();
-        let fl = self.frame(l);
-        for k in 0..self.cand.len() {
-            let fk = self.frame(k);
-            for (c, e) in fl.iter().enumerate() {
-                let o = self.response(k, l, e, &fk);
-                cols[c * ld + 3 * k..c * ld + 3 * k + 3].copy_from_slice(&o);
+        let e = self.directions(l);
+        let j = self.cand[l];
+        // the three Y columns of node l combined along the unit force directions:
+        // Y e_c = Σ_r e_c[r] Y[:, 3j + r], and X_θ e_c
+        let (y0, y1, y2) = (
+            col_slice(&self.fac.y, 3 * j),
+            col_slice(&self.fac.y, 3 * j + 1),
+            col_slice(&self.fac.y, 3 * j + 2),
+        );
+        let mut xth = [0.0; 3];
+        for (c, ec) in e.iter().enumerate() {
+            for (r, er) in ec.iter().enumerate() {
+                xth[c] += er * self.fac.x[(0, 3 * j + r)];
+            }
+        }
+        for (k, &i) in self.cand.iter().enumerate() {
+            let a = &y0[3 * i..3 * i + 3];
+            let b = &y1[3 * i..3 * i + 3];
+            let c3 = &y2[3 * i..3 * i + 3];
+            let f = &self.frames[k];
+            for (c, ec) in e.iter().enumerate() {
+                let v = [
+                    ec[0] * a[0] + ec[1] * b[0] + ec[2] * c3[0],
+                    ec[0] * a[1] + ec[1] * b[1] + ec[2] * c3[1],
+                    ec[0] * a[2] + ec[1] * b[2] + ec[2] * c3[2],
+                ];
+                let o = &mut cols[c * ld + 3 * k..c * ld + 3 * k + 3];
+                o[0] = dot3(&f[0], &v);
+                o[1] = dot3(&f[1], &v) + self.rig_t1[k] * xth[c];
+                o[2] = dot3(&f[2], &v);
             }
         }
         cols[3 * l] += self.penalty;
@@ -499,7 +560,12 @@ impl<'a> RollingTire<'a> {
             ft: Vec::with_capacity(nc),
             forces: Vec::with_capacity(nc),
             x0: Vec::with_capacity(3 * nc),
+            x1: Vec::with_capacity(3 * nc),
+            lambda2: vec![0.0; nc],
+            friction2: vec![[0.0; 3]; nc],
             diag: Vec::with_capacity(nc),
+            frames: Vec::with_capacity(nc),
+            rig_t1: Vec::with_capacity(nc),
             solver: ContactSolver::default(),
         };
         Ok(Self {
@@ -871,28 +937,35 @@ impl<'a> RollingTire<'a> {
         if m == 0 {
             return Ok(());
         }
-        // warm start: last step's forces in the local frames (n, t1, t2)
+        // warm starts: the forces of the last step and of the one before (contact nodes at the
+        // patch edges chatter with period two), in the local frames (n, t1, t2)
         w.x0.clear();
+        w.x1.clear();
         for (k, &i) in w.cand.iter().enumerate() {
             let (t1v, t2v) = tangents(&w.gp[k].normal);
-            let f = if mu > 0.0 {
-                self.state.friction[i]
-            } else {
-                [0.0; 3]
-            };
-            w.x0.extend([self.state.lambda[i], dot3(&t1v, &f), dot3(&t2v, &f)]);
+            for (x, lam, f) in [
+                (&mut w.x0, self.state.lambda[i], self.state.friction[i]),
+                (&mut w.x1, w.lambda2[i], w.friction2[i]),
+            ] {
+                let f = if mu > 0.0 { f } else { [0.0; 3] };
+                x.extend([lam, dot3(&t1v, &f), dot3(&t2v, &f)]);
+            }
         }
+        w.lambda2.copy_from_slice(&self.state.lambda);
+        w.friction2.copy_from_slice(&self.state.friction);
         let penalty = match self.cfg.normal {
             NormalContact::Penalty { stiffness } => 1.0 / stiffness,
             NormalContact::Lagrange => 0.0,
         };
+        let (c1, c2) = (gn * h, bn * h * h);
+        candidate_frames(red, &w.cand, &w.gp, c1, c2, &mut w.frames, &mut w.rig_t1);
         let mut src = TireDelassus {
             fac,
             red,
             cand: &w.cand,
             gp: &w.gp,
-            c1: gn * h,
-            c2: bn * h * h,
+            frames: &w.frames,
+            rig_t1: &w.rig_t1,
             penalty,
             tct: &self.tct,
             tct_theta: &self.tct_theta,
@@ -913,8 +986,18 @@ impl<'a> RollingTire<'a> {
             tol: self.cfg.contact_tolerance,
             ..SolveSettings::default()
         };
-        let rep = w.solver.solve(&mut src, &w.diag, &settings);
+        // same candidates as in the last step: its Newton matrix may serve for chord steps
+        let same = w.cand.iter().all(|&i| w.was_cand[i])
+            && w.cand.len() == w.was_cand.iter().filter(|&&c| c).count();
+        let rep = w.solver.solve(
+            &mut src,
+            &w.diag,
+            &settings,
+            same,
+            same.then_some(&w.x1[..]),
+        );
         self.stats.contact_newton += rep.newton_iterations;
+        self.stats.contact_chord += rep.chord_iterations;
         self.stats.lcp_solves += rep.lcp_solves;
         self.stats.friction_sweeps += rep.sweeps;
         if rep.fallback {
