@@ -175,11 +175,12 @@ fn lcp_enumerate(w: &[Vec<f64>], q: &[f64]) -> Vec<f64> {
                 ok = false;
                 break;
             }
-            for r in 0..k {
+            let pivot_row = a[c].clone();
+            for (r, row) in a.iter_mut().enumerate() {
                 if r != c {
-                    let f = a[r][c] / a[c][c];
-                    for cc in c..=k {
-                        a[r][cc] -= f * a[c][cc];
+                    let f = row[c] / pivot_row[c];
+                    for (x, p) in row.iter_mut().zip(&pivot_row).skip(c) {
+                        *x -= f * p;
                     }
                 }
             }
@@ -394,12 +395,16 @@ fn random_problem(m: usize, seed: &[f64], gaps: &[f64], slips: &[f64]) -> (Vec<f
     let mut bmat = vec![vec![0.0; n]; n];
     for i in 0..n {
         for j in 0..n {
-            bmat[i][j] =
-                seed[(i * n + j) % seed.len()] * if (i + 2 * j) % 3 == 0 { 1.0 } else { 0.5 };
+            bmat[i][j] = seed[(i * n + j) % seed.len()]
+                * if (i + 2 * j).is_multiple_of(3) {
+                    1.0
+                } else {
+                    0.5
+                };
         }
     }
     // A = B Bᵀ / n + I + skew (positive definite symmetric part), scaled by rows/columns
-    let sc = |i: usize| -> f64 { if i % 3 == 0 { 1e-3 } else { 1.0 } };
+    let sc = |i: usize| -> f64 { if i.is_multiple_of(3) { 1e-3 } else { 1.0 } };
     let mut rows = vec![vec![0.0; n]; n];
     for i in 0..n {
         for j in 0..n {
@@ -410,7 +415,7 @@ fn random_problem(m: usize, seed: &[f64], gaps: &[f64], slips: &[f64]) -> (Vec<f
             v += 0.1 * (bmat[i][j] - bmat[j][i]);
             // normal–tangential coupling kept moderate (|D_NT| μ < |D_NN|: beyond it the
             // frictional problem may have no solution, Painlevé-like)
-            let cross = if (i % 3 == 0) != (j % 3 == 0) {
+            let cross = if i.is_multiple_of(3) != j.is_multiple_of(3) {
                 0.1
             } else {
                 1.0

@@ -266,14 +266,17 @@ impl ContactSolver {
         let m = x0.len() / 3;
         self.m = m;
         let n = 3 * m;
-        clear_fill(&mut self.d, n * n, 0.0);
+        // D is read only in the column blocks marked in `have`: no need to clear it
+        if self.d.len() < n * n {
+            self.d.resize(n * n, 0.0);
+        }
         clear_fill(&mut self.have, m, false);
         clear_fill(&mut self.b, n, 0.0);
         clear_fill(&mut self.have_b, m, false);
         self.x.clear();
         self.x.extend_from_slice(x0);
         for k in 0..m {
-            if !(self.x[3 * k] > 0.0) {
+            if self.x[3 * k].is_nan() || self.x[3 * k] <= 0.0 {
                 self.x[3 * k..3 * k + 3].copy_from_slice(&[0.0; 3]);
             }
         }
@@ -466,7 +469,7 @@ impl ContactSolver {
             self.xt.copy_from_slice(&self.x);
             self.x.copy_from_slice(alt);
             for k in 0..m {
-                if !(self.x[3 * k] > 0.0) {
+                if self.x[3 * k].is_nan() || self.x[3 * k] <= 0.0 {
                     self.x[3 * k..3 * k + 3].copy_from_slice(&[0.0; 3]);
                 }
             }
