@@ -28,22 +28,25 @@
 //! # Contact (E15)
 //! A contact node `i` at mesh position `xᵢ = sᵢ + (T_c z)ᵢ` is constrained by its gap `gᵢ ≥ 0`
 //! (closest point on the drum/road/cleat), with multiplier `λᵢ ≥ 0` along the normal `nᵢ`; the
-//! friction force of Coulomb slip without stick is `−μ λᵢ t̂ᵢ` along the slip of the material
-//! over the ground, `vᵢ = θ̇ η × sᵢ + (T_c ż + θ̇ T_c,θ z)ᵢ − u_ground`, regularised as
-//! `t̂ = v_t/√(|v_t|² + ε²)` (U20). The penalty option replaces the rigid constraint by a
-//! compliance `1/k` on the diagonal of the contact problem.
+//! friction force opposes the slip of the material over the ground,
+//! `vᵢ = θ̇ η × sᵢ + (T_c ż + θ̇ T_c,θ z)ᵢ − u_ground`: set-valued Coulomb with stick
+//! (`|fᵢ| ≤ μλᵢ`, `fᵢ = −μλᵢ v̂_t` when slipping; default) or Ribaric's slip-only regularised
+//! `fᵢ = −μλᵢ v_t/√(|v_t|² + ε²)` (U20), see [`FrictionLaw`]. The penalty option replaces the
+//! rigid constraint by a compliance `1/k` on the diagonal of the contact problem.
 //!
 //! # Integration
 //! Newmark (β_N, γ_N) with the contact gaps imposed at the end of each step (index-3), a
 //! linearly implicit step: the θ̇-dependent gyroscopic/centrifugal matrices are evaluated at a
 //! spin rate frozen until it drifts by more than `spin_tolerance` (then the iteration matrix
 //! `S = [J ⋯; m_θ M + γh C_eff + βh² K_eff]` is refactorised, LU), the term `G₁ z θ̈` is lagged
-//! one step, and the normal (LCP) and friction (projected Gauss–Seidel) problems are alternated
-//! up to three times per step. Per step the cost is one product with `R = [C_eff K_eff G₁]`,
+//! one step, and the normal and friction problems are solved together by a semismooth Newton
+//! method on the Alart–Curnier equations in the local contact frames
+//! ([`super::contact_solve`]), converged to `contact_tolerance`. Per step the cost is one
+//! product with `R = [C_eff K_eff G₁]`,
 //! one LU solve, `T_c z` for the candidate search, and work on the candidates only: the
 //! columns `X_j = S⁻¹[0; T_cᵀ]` and `Y_j = T_c X_j` of a contact node are computed when the node
-//! first becomes a candidate after a refactorisation (the Delassus matrix
-//! `W = β_N h² N Y (N − μ T̂)` of the candidates is then a gather from the cached `Y`), and
+//! first becomes a candidate after a refactorisation (the local Delassus matrix of the
+//! candidates is then a gather from the cached `Y`, `X`), and
 //! nothing is allocated once the work arrays have grown. Candidates are the nodes whose free
 //! gap is below `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the
 //! surface speed); [`StepStats::late_contacts`] counts nodes that were missed.
