@@ -486,21 +486,27 @@ impl DelassusSource for TireDelassus<'_> {
                 xth[c] += er * self.fac.x[(0, 3 * j + r)];
             }
         }
+        // planar ground (n_y = 0): n and t1 lie in the (x, z) plane, t2 = ŷ, so each frame
+        // vector has two (n, t1) or one (t2) nonzero component
+        let (nx, nz) = (e[0][0], e[0][2]);
         for (k, &i) in self.cand.iter().enumerate() {
             let a = &y0[3 * i..3 * i + 3];
             let b = &y1[3 * i..3 * i + 3];
             let c3 = &y2[3 * i..3 * i + 3];
             let f = &self.frames[k];
-            for (c, ec) in e.iter().enumerate() {
-                let v = [
-                    ec[0] * a[0] + ec[1] * b[0] + ec[2] * c3[0],
-                    ec[0] * a[1] + ec[1] * b[1] + ec[2] * c3[1],
-                    ec[0] * a[2] + ec[1] * b[2] + ec[2] * c3[2],
-                ];
+            let (fnx, fnz, ftx, ftz, fy) = (f[0][0], f[0][2], f[1][0], f[1][2], f[2][1]);
+            let rig = self.rig_t1[k];
+            // unit force along n, t1 (combinations of Y columns 0 and 2) and ŷ (column 1)
+            let vs = [
+                [nx * a[0] + nz * c3[0], nx * a[1] + nz * c3[1], nx * a[2] + nz * c3[2]],
+                [nz * a[0] - nx * c3[0], nz * a[1] - nx * c3[1], nz * a[2] - nx * c3[2]],
+                [b[0], b[1], b[2]],
+            ];
+            for (c, v) in vs.iter().enumerate() {
                 let o = &mut cols[c * ld + 3 * k..c * ld + 3 * k + 3];
-                o[0] = dot3(&f[0], &v);
-                o[1] = dot3(&f[1], &v) + self.rig_t1[k] * xth[c];
-                o[2] = dot3(&f[2], &v);
+                o[0] = fnx * v[0] + fnz * v[2];
+                o[1] = ftx * v[0] + ftz * v[2] + rig * xth[c];
+                o[2] = fy * v[1];
             }
         }
         cols[3 * l] += self.penalty;
