@@ -482,3 +482,73 @@ proptest! {
         }
     }
 }
+
+/// Reusing the previous solve's Newton matrices (chord steps, `reuse = true`) and a second
+/// warm start must not change the answer: a sequence of slowly varying problems (as in time
+/// stepping) solved with reuse against fresh solves (second route to the same zeros of Φ).
+#[test]
+fn reuse_of_newton_matrices_gives_the_fresh_solution() {
+    let m = 4;
+    let seed: Vec<f64> = (0..50)
+        .map(|i| ((i * 37 % 23) as f64 / 11.5) - 1.0)
+        .collect();
+    let gaps = [-1.5, -0.5, 0.3, -1.0, 0.0, 0.0];
+    let slips = [1.0, 0.5, -2.0, 0.2, 0.1, -0.1, 0.5, 0.5, 0.0, 0.0, 0.0, 0.0];
+    let mut solver = ContactSolver::default();
+    let mut prev: Vec<f64> = vec![0.0; 3 * m];
+    let mut prev2: Vec<f64> = vec![0.0; 3 * m];
+    let mut chords = 0;
+    for step in 0..40 {
+        let t = step as f64 * 0.05;
+        let g: Vec<f64> = gaps.iter().map(|g| g + 0.3 * (3.0 * t).sin()).collect();
+        let u: Vec<f64> = slips.iter().map(|v| v * (1.0 + 0.5 * t.cos())).collect();
+        let (d, b) = random_problem(m, &seed, &g, &u);
+        let s = coulomb(0.7);
+        solver.reset(&prev);
+        solver.set_gaps((0..m).map(|k| b[3 * k]));
+        let mut src = DenseProblem { d: &d, b: &b };
+        let rep = solver.solve(&mut src, &diag_of(&d, m), &s, step > 0, Some(&prev2));
+        assert!(rep.converged, "step {step}: {rep:?}");
+        chords += rep.chord_iterations;
+        let x = solver.x().to_vec();
+        let (xf, repf) = solve(&d, &b, &vec![0.0; 3 * m], &s);
+        assert!(repf.converged);
+        let scale = xf.iter().step_by(3).fold(1e-12f64, |a, l| a.max(*l));
+        for i in 0..3 * m {
+            assert!(
+                (x[i] - xf[i]).abs() <= 1e-8 * scale,
+                "step {step} entry {i}: reuse {} vs fresh {}",
+                x[i],
+                xf[i]
+            );
+        }
+        prev2 = std::mem::replace(&mut prev, x);
+    }
+    assert!(chords > 0, "the chord path was not exercised");
+}
+
+/// Configs: `friction_law` is `coulomb` (default) or `regularized`; configs that set
+/// `slip_regularization` (session 2 files) still load; an unknown law is rejected by name.
+#[test]
+fn rolling_config_friction_law_parses() {
+    use flowing::tire::RollingConfig;
+    let old: RollingConfig =
+        toml::from_str("friction = 0.85\nslip_regularization = 0.05\n").unwrap();
+    assert_eq!(old.friction_law, FrictionLaw::Coulomb);
+    let reg: RollingConfig =
+        toml::from_str("friction_law = \"regularized\"\nslip_regularization = 0.02\n").unwrap();
+    assert_eq!(reg.friction_law, FrictionLaw::Regularized);
+    assert!(reg.validate().is_ok());
+    let bad = toml::from_str::<RollingConfig>("friction_law = \"sticky\"\n").unwrap_err();
+    assert!(bad.to_string().contains("sticky"), "{bad}");
+    let neg = RollingConfig {
+        contact_tolerance: 0.0,
+        ..RollingConfig::default()
+    };
+    assert!(
+        neg.validate()
+            .unwrap_err()
+            .to_string()
+            .contains("contact_tolerance")
+    );
+}

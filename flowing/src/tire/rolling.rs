@@ -498,8 +498,16 @@ impl DelassusSource for TireDelassus<'_> {
             let rig = self.rig_t1[k];
             // unit force along n, t1 (combinations of Y columns 0 and 2) and ŷ (column 1)
             let vs = [
-                [nx * a[0] + nz * c3[0], nx * a[1] + nz * c3[1], nx * a[2] + nz * c3[2]],
-                [nz * a[0] - nx * c3[0], nz * a[1] - nx * c3[1], nz * a[2] - nx * c3[2]],
+                [
+                    nx * a[0] + nz * c3[0],
+                    nx * a[1] + nz * c3[1],
+                    nx * a[2] + nz * c3[2],
+                ],
+                [
+                    nz * a[0] - nx * c3[0],
+                    nz * a[1] - nx * c3[1],
+                    nz * a[2] - nx * c3[2],
+                ],
                 [b[0], b[1], b[2]],
             ];
             for (c, v) in vs.iter().enumerate() {
