@@ -42,7 +42,7 @@ fn solve(d: &[f64], b: &[f64], warm: &[f64], s: &SolveSettings) -> (Vec<f64>, So
     solver.reset(warm);
     solver.set_gaps((0..m).map(|k| b[3 * k]));
     let mut src = DenseProblem { d, b };
-    let rep = solver.solve(&mut src, &diag_of(d, m), s, false, None);
+    let rep = solver.solve(&mut src, &diag_of(d, m), s, false, &[]);
     (solver.x().to_vec(), rep)
 }
 
@@ -507,7 +507,7 @@ fn reuse_of_newton_matrices_gives_the_fresh_solution() {
         solver.reset(&prev);
         solver.set_gaps((0..m).map(|k| b[3 * k]));
         let mut src = DenseProblem { d: &d, b: &b };
-        let rep = solver.solve(&mut src, &diag_of(&d, m), &s, step > 0, Some(&prev2));
+        let rep = solver.solve(&mut src, &diag_of(&d, m), &s, step > 0, &[&prev2]);
         assert!(rep.converged, "step {step}: {rep:?}");
         chords += rep.chord_iterations;
         let x = solver.x().to_vec();

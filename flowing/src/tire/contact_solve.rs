@@ -436,14 +436,14 @@ impl ContactSolver {
     /// (`diag` = the diagonal normal and tangential compliances `D_kk` used for `r_N`, `r_T`,
     /// per contact `[d_N, d_T]`). With `reuse`, the caller states that the contacts are the
     /// same as in the previous solve (a nearby `D`): its last LU may serve for chord steps.
-    /// `alt` is an optional second warm start (3m), used if its residual is smaller.
+    /// `alts` are further warm starts (3m each), used if their residual is smaller.
     pub fn solve(
         &mut self,
         src: &mut dyn DelassusSource,
         diag: &[[f64; 2]],
         s: &SolveSettings,
         reuse: bool,
-        alt: Option<&[f64]>,
+        alts: &[&[f64]],
     ) -> SolveReport {
         let m = self.m;
         let n = 3 * m;
@@ -462,21 +462,31 @@ impl ContactSolver {
         clear_fill(&mut self.yt, n, 0.0);
         clear_fill(&mut self.tmp, n, 0.0);
         let mut norm = self.evaluate(src, s);
-        if let Some(alt) = alt.filter(|a| a.len() == n) {
-            // a second warm start (e.g. the forces two steps back: contact chatter alternates
-            // from step to step): keep the one with the smaller relative residual
-            let s1 = self.scale().max(1e-300);
+        // further warm starts (e.g. the forces two steps back, contact chatter alternating from
+        // step to step, or an extrapolation): keep the one with the smallest relative residual
+        if alts.iter().any(|a| a.len() == n) {
+            let mut best = norm / self.scale().max(1e-300);
+            let mut best_is_current = true;
             self.xt.copy_from_slice(&self.x);
-            self.x.copy_from_slice(alt);
-            for k in 0..m {
-                if self.x[3 * k].is_nan() || self.x[3 * k] <= 0.0 {
-                    self.x[3 * k..3 * k + 3].copy_from_slice(&[0.0; 3]);
+            for alt in alts.iter().filter(|a| a.len() == n) {
+                self.x.copy_from_slice(alt);
+                for k in 0..m {
+                    if self.x[3 * k].is_nan() || self.x[3 * k] <= 0.0 {
+                        self.x[3 * k..3 * k + 3].copy_from_slice(&[0.0; 3]);
+                    }
+                }
+                let na = self.evaluate(src, s);
+                let rel = na / self.scale().max(1e-300);
+                if rel < best {
+                    best = rel;
+                    norm = na;
+                    best_is_current = true;
+                    self.xt.copy_from_slice(&self.x);
+                } else {
+                    best_is_current = false;
                 }
             }
-            let norm_alt = self.evaluate(src, s);
-            if norm_alt / self.scale().max(1e-300) < norm / s1 {
-                norm = norm_alt;
-            } else {
+            if !best_is_current {
                 std::mem::swap(&mut self.x, &mut self.xt);
                 norm = self.evaluate(src, s);
             }

@@ -264,6 +264,7 @@ struct Work {
     /// and diagonal compliances `[d_N, d_T]`.
     x0: Vec<f64>,
     x1: Vec<f64>,
+    x2: Vec<f64>,
     /// Normal and friction forces per contact node two steps back [N].
     lambda2: Vec<f64>,
     friction2: Vec<[f64; 3]>,
@@ -578,6 +579,7 @@ impl<'a> RollingTire<'a> {
             forces: Vec::with_capacity(nc),
             x0: Vec::with_capacity(3 * nc),
             x1: Vec::with_capacity(3 * nc),
+            x2: Vec::with_capacity(3 * nc),
             lambda2: vec![0.0; nc],
             friction2: vec![[0.0; 3]; nc],
             diag: Vec::with_capacity(nc),
@@ -968,6 +970,9 @@ impl<'a> RollingTire<'a> {
                 x.extend([lam, dot3(&t1v, &f), dot3(&t2v, &f)]);
             }
         }
+        // and the linear extrapolation of the last two
+        w.x2.clear();
+        w.x2.extend(w.x0.iter().zip(&w.x1).map(|(a, b)| 2.0 * a - b));
         w.lambda2.copy_from_slice(&self.state.lambda);
         w.friction2.copy_from_slice(&self.state.friction);
         let penalty = match self.cfg.normal {
@@ -1006,12 +1011,13 @@ impl<'a> RollingTire<'a> {
         // same candidates as in the last step: its Newton matrix may serve for chord steps
         let same = w.cand.iter().all(|&i| w.was_cand[i])
             && w.cand.len() == w.was_cand.iter().filter(|&&c| c).count();
+        let alts = [&w.x1[..], &w.x2[..]];
         let rep = w.solver.solve(
             &mut src,
             &w.diag,
             &settings,
             same,
-            same.then_some(&w.x1[..]),
+            if same { &alts[..] } else { &[] },
         );
         self.stats.contact_newton += rep.newton_iterations;
         self.stats.contact_chord += rep.chord_iterations;
