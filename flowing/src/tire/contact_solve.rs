@@ -1044,7 +1044,7 @@ mod tests {
                 &[[dn, dt]],
                 &set,
                 false,
-                None,
+                &[],
             );
             let lam = -g / dn;
             // u − v + d_T μλ u/√(u²+ε²) = 0, increasing in u
