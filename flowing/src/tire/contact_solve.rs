@@ -167,6 +167,8 @@ pub struct ContactSolver {
     /// Free values `b` (3m); tangential entries valid iff `have_b[k]`.
     b: Vec<f64>,
     have_b: Vec<bool>,
+    /// Whether the free slip velocities matter (μ > 0).
+    need_slip: bool,
     /// Unknowns (warm start in, solution out).
     x: Vec<f64>,
     y: Vec<f64>,
@@ -208,6 +210,7 @@ impl Default for ContactSolver {
             have: Vec::new(),
             b: Vec::new(),
             have_b: Vec::new(),
+            need_slip: true,
             x: Vec::new(),
             y: Vec::new(),
             phi: Vec::new(),
@@ -364,7 +367,10 @@ impl ContactSolver {
                         let rho = s.mu * sig;
                         let z = [f[0] - self.rt[k] * u[0], f[1] - self.rt[k] * u[1]];
                         let nz = z[0].hypot(z[1]);
-                        if nz <= rho {
+                        if rho <= 0.0 {
+                            // μ = 0: the disk is a point, f = 0 whatever the slip
+                            [0.0, 0.0]
+                        } else if nz <= rho {
                             z
                         } else {
                             [rho * z[0] / nz, rho * z[1] / nz]
@@ -395,6 +401,9 @@ impl ContactSolver {
         y: &mut [f64],
         mut also: Option<&mut [f64]>,
     ) {
+        if !self.need_slip {
+            return;
+        }
         for k in 0..self.m {
             if self.have_b[k] || x[3 * k] - self.rn[k] * y[3 * k] <= 0.0 {
                 continue;
@@ -452,6 +461,7 @@ impl ContactSolver {
             rep.converged = true;
             return rep;
         }
+        self.need_slip = s.mu > 0.0;
         for k in 0..m {
             self.rn[k] = 1.0 / diag[k][0].abs().max(1e-300);
             self.rt[k] = 1.0 / diag[k][1].abs().max(1e-300);
@@ -635,7 +645,11 @@ impl ContactSolver {
                     let rho = s.mu * sig;
                     let z = [f[0] - rt * u[0], f[1] - rt * u[1]];
                     let nz = z[0].hypot(z[1]);
-                    if nz <= rho {
+                    if rho <= 0.0 {
+                        // μ = 0: Φ_T = f
+                        l[1][1] = 1.0;
+                        l[2][2] = 1.0;
+                    } else if nz <= rho {
                         // stick: Φ_T = r_T u
                         self.pattern[k] = 2;
                         g[1][1] = rt;
@@ -870,7 +884,7 @@ impl ContactSolver {
                 }
             }
             for k in 0..m {
-                if self.x[3 * k] > 0.0 {
+                if self.need_slip && self.x[3 * k] > 0.0 {
                     self.ensure_b(src, k);
                 }
             }
