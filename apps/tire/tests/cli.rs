@@ -188,6 +188,7 @@ fn reduce_writes_the_file_and_modes_reuses_it() {
             .zip(&full)
             .all(|(a, b)| (a - b).abs() < 1e-9 * b)
     );
+    assert_plot(&dir.join("m"), "modes");
     std::fs::remove_dir_all(&dir).ok();
 }
 
