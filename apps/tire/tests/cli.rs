@@ -383,6 +383,10 @@ fn cleat_spindle_force_before_the_cleat_equals_the_load() {
         (mean - load).abs() < 0.01 * load,
         "history mean {mean} N vs load {load} N"
     );
+    assert!(
+        !out_dir.join("vtk").exists(),
+        "VTK series written although disabled"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -690,6 +694,29 @@ fn numerical_failure_exits_1_and_keeps_the_history() {
     // the history starts like a healthy run's: the preload at the first step
     let fy = csv_column(&out.join("forces.csv"), "fy_n");
     assert!((fy[0] - 4448.2).abs() < 0.05 * 4448.2, "first Fy {}", fy[0]);
+    // the sweep fails the same way at its first speed: exit 1, the speed named, no run kept
+    let cfg = config(
+        &dir,
+        "s.toml",
+        "speeds_kmh = [40.0, 60.0]",
+        file,
+        "[rig.rolling]\nnewmark_beta = 0.01\n",
+    );
+    let sw = dir.join("s");
+    let (code, _, err) = outcome(&run(&[
+        "sweep",
+        "--quiet",
+        "--config",
+        cfg.to_str().unwrap(),
+        "--out",
+        sw.to_str().unwrap(),
+    ]));
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("at 40 km/h"), "{err}");
+    let s: Value =
+        serde_json::from_str(&std::fs::read_to_string(sw.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["status"].as_str(), Some("failed"));
+    assert_eq!(s["partial"].as_array().map(Vec::len), Some(0));
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -13,9 +13,11 @@ pub fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_flowmbd-tire"))
 }
 
-/// A fresh scratch folder `flowmbd-tire-<test>-<pid>` in the system temp dir.
+/// A fresh scratch folder `flowmbd-tire-<test>-<pid>` in Cargo's scratch folder for integration
+/// tests (`target/tmp`).
 pub fn tmp(test: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("flowmbd-tire-{test}-{}", std::process::id()));
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("flowmbd-tire-{test}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
