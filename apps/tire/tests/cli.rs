@@ -468,6 +468,12 @@ fn sweep_writes_the_maps_and_agrees_with_single_runs() {
             "{key}: {a} vs {b}"
         );
     }
+    // the history `cleat` streams while it runs is the one `sweep` writes from the finished
+    // run's samples, row for row
+    assert_eq!(
+        std::fs::read_to_string(dir.join("c/forces.csv")).unwrap(),
+        std::fs::read_to_string(sw.join("v060_forces.csv")).unwrap()
+    );
     // the 60 km/h row of the matrix is the single run's spectrum up to 300 Hz
     let fr = csv_column(&dir.join("c/spectra.csv"), "f_hz");
     let amp = csv_column(&dir.join("c/spectra.csv"), "fy_amp_n");
