@@ -28,10 +28,11 @@
 //! # Contact (E15)
 //! A contact node `i` at mesh position `xᵢ = sᵢ + (T_c z)ᵢ` is constrained by its gap `gᵢ ≥ 0`
 //! (closest point on the drum/road/cleat), with multiplier `λᵢ ≥ 0` along the normal `nᵢ`; the
-//! friction force of Coulomb slip without stick is `−μ λᵢ t̂ᵢ` along the slip of the material
-//! over the ground, `vᵢ = θ̇ η × sᵢ + (T_c ż + θ̇ T_c,θ z)ᵢ − u_ground`, regularised as
-//! `t̂ = v_t/√(|v_t|² + ε²)` (U20). The penalty option replaces the rigid constraint by a
-//! compliance `1/k` on the diagonal of the contact problem.
+//! friction force opposes the slip of the material over the ground,
+//! `vᵢ = θ̇ η × sᵢ + (T_c ż + θ̇ T_c,θ z)ᵢ − u_ground`: set-valued Coulomb with stick
+//! (`|fᵢ| ≤ μλᵢ`, `fᵢ = −μλᵢ v̂_t` when slipping; default) or Ribaric's slip-only regularised
+//! `fᵢ = −μλᵢ v_t/√(|v_t|² + ε²)` (U20), see [`FrictionLaw`]. The penalty option replaces the
+//! rigid constraint by a compliance `1/k` on the diagonal of the contact problem.
 //!
 //! # Integration
 //! Newmark (β_N, γ_N) with the contact gaps imposed at the end of each step (index-3), a
@@ -42,17 +43,18 @@
 //! responses `X = S⁻¹[0; T_cᵀ]` and `Y = T_c X_z` of all contact nodes, only when θ̇ drifts by
 //! more than `matrix_tolerance` (10 %: once per run at constant speed); in between, the
 //! gyroscopic part `2γh(θ̇_R − θ̇_S)G₁` of `S(θ̇_R) − S(θ̇_S)` is applied to the previous step's
-//! accelerations, like the lagged term `G₁ z θ̈`. The normal (LCP) and friction (projected
-//! Gauss–Seidel) problems are alternated up to three times per step. Per step the cost is one
+//! accelerations, like the lagged term `G₁ z θ̈`. The normal and friction problems are solved
+//! together by a semismooth Newton method on the Alart–Curnier equations in the local contact
+//! frames ([`super::contact_solve`]), converged to `contact_tolerance`. Per step the cost is one
 //! product with `R` (n × 3 n_z), one with `S⁻¹` (n × n), `T_c z` for the candidate search, and
-//! work on the candidates only (gathers from `Y` and `X`); nothing is allocated once the work
-//! arrays have grown. Candidates are the nodes whose free
+//! work on the candidates only (the local Delassus matrix is a gather from `Y` and `X`);
+//! nothing is allocated once the work arrays have grown. Candidates are the nodes whose free
 //! gap is below `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the
 //! surface speed); [`StepStats::late_contacts`] counts nodes that were missed.
 
+use super::contact_solve::{ContactSolver, DelassusSource, FrictionLaw, SolveSettings};
 use super::error::{TireError, invalid};
 use super::ground::{Ground, GroundPoint};
-use super::lcp::LcpWork;
 use super::reduced::ReducedTire;
 use faer::linalg::matmul::matmul;
 use faer::prelude::*;
@@ -84,8 +86,15 @@ pub struct RollingConfig {
     pub newmark_gamma: f64,
     /// Coulomb friction coefficient μ (Ribaric §8.4.3: 0.85 nominal, 0 pure slip).
     pub friction: f64,
-    /// Slip-velocity regularisation ε of the Coulomb direction [m/s].
+    /// Friction law: `coulomb` (set-valued, with stick; default) or `regularized`
+    /// (Ribaric's slip-only `f = −μλ u/√(|u|²+ε²)`, seed note U20).
+    pub friction_law: FrictionLaw,
+    /// Slip-velocity regularisation ε of the `regularized` friction law [m/s] (unused by
+    /// `coulomb`).
     pub slip_regularization: f64,
+    /// Relative tolerance of the contact solve: Alart–Curnier residual (complementarity and
+    /// friction law, in force units) below this times the largest normal force.
+    pub contact_tolerance: f64,
     /// Normal contact law.
     pub normal: NormalContact,
     /// Spin inertia of the wheel (without the rim nodes, which are added) [kg·m²].
@@ -109,7 +118,9 @@ impl Default for RollingConfig {
             newmark_beta: 0.25,
             newmark_gamma: 0.5,
             friction: 0.85,
+            friction_law: FrictionLaw::Coulomb,
             slip_regularization: 0.05,
+            contact_tolerance: 1e-10,
             normal: NormalContact::Lagrange,
             wheel_spin_inertia: 2.0,
             spin_tolerance: 1e-2,
@@ -136,6 +147,7 @@ impl RollingConfig {
         pos("newmark_beta", self.newmark_beta)?;
         pos("newmark_gamma", self.newmark_gamma)?;
         pos("slip_regularization", self.slip_regularization)?;
+        pos("contact_tolerance", self.contact_tolerance)?;
         pos("wheel_spin_inertia", self.wheel_spin_inertia)?;
         pos("spin_tolerance", self.spin_tolerance)?;
         pos("matrix_tolerance", self.matrix_tolerance)?;
@@ -230,18 +242,20 @@ struct Work {
     gp: Vec<GroundPoint>,
     lambda: Vec<f64>,
     ft: Vec<[f64; 3]>,
-    warm: Vec<bool>,
-    vfree: Vec<[f64; 3]>,
-    vdone: Vec<bool>,
-    /// Candidate blocks of `Y` and `Y_v` (3m × 3m, column-major).
-    yc: Vec<f64>,
-    yvc: Vec<f64>,
-    q: Vec<f64>,
-    dv: Vec<[f64; 3]>,
-    act: Vec<usize>,
     forces: Vec<[f64; 3]>,
-    w: Mat<f64>,
-    lcp: LcpWork,
+    /// Warm starts `(λ, f1, f2)` per candidate (3m; from the last step and the one before)
+    /// and diagonal compliances `[d_N, d_T]`.
+    x0: Vec<f64>,
+    x1: Vec<f64>,
+    /// Normal and friction forces per contact node two steps back [N].
+    lambda2: Vec<f64>,
+    friction2: Vec<[f64; 3]>,
+    diag: Vec<[f64; 2]>,
+    /// Scaled local frames and rigid-spin coefficients of the candidates ([`TireDelassus`]).
+    frames: Vec<[[f64; 3]; 3]>,
+    rig_t1: Vec<f64>,
+    /// The coupled normal + friction solver (buffers reused).
+    solver: ContactSolver,
 }
 
 /// Work counters of the time integration (for benchmarks and diagnostics).
@@ -253,10 +267,18 @@ pub struct StepStats {
     pub candidates: usize,
     /// Sum over the steps of the nodes in contact.
     pub active: usize,
-    /// Normal LCP solves.
+    /// Normal LCP solves (of the fallback alternation).
     pub lcp_solves: usize,
-    /// Friction Gauss–Seidel sweeps.
+    /// Friction Gauss–Seidel sweeps (of the fallback alternation).
     pub friction_sweeps: usize,
+    /// Newton iterations (LU factorisations) of the coupled contact solve.
+    pub contact_newton: usize,
+    /// Chord iterations (solves with an earlier Newton matrix) of the contact solve.
+    pub contact_chord: usize,
+    /// Steps whose contact solve fell back to the normal/friction alternation.
+    pub contact_fallbacks: usize,
+    /// Steps whose contact solve missed `contact_tolerance` (forces kept).
+    pub contact_unconverged: usize,
     /// Contact-node column sets computed (`S⁻¹` columns of one node).
     pub columns: usize,
     /// Re-formings of the spin-dependent force matrix `R` (drift beyond `spin_tolerance`).
@@ -334,17 +356,162 @@ fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// 3 × 3 block `(i, j)` of the column-major `ld × ld` array `a` times `v`.
-#[inline]
-fn blk(a: &[f64], ld: usize, i: usize, j: usize, v: &[f64; 3]) -> [f64; 3] {
-    let mut o = [0.0; 3];
-    for (c, vc) in v.iter().enumerate() {
-        let col = &a[(3 * j + c) * ld + 3 * i..(3 * j + c) * ld + 3 * i + 3];
-        o[0] += col[0] * vc;
-        o[1] += col[1] * vc;
-        o[2] += col[2] * vc;
+/// Tangent basis `t1 = [n_z, 0, −n_x]`, `t2 = ŷ` of a ground normal in the wheel's `(x, z)`
+/// plane (the ground is extruded along the axis `y`, so `n_y = 0`).
+fn tangents(n: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
+    ([n[2], 0.0, -n[0]], [0.0, 1.0, 0.0])
+}
+
+/// The local Delassus matrix of the candidates, gathered lazily from the cached columns:
+/// rows `(g_k, u1_k, u2_k)`, columns `(λ_l, f1_l, f2_l)`,
+///
+/// ```text
+///   D_N,kl = β_N h² n_kᵀ Y_kl R_l (+ 1/k_penalty on the diagonal),
+///   D_T,kl = γ_N h t_kᵀ (Y_kl + (η × s_k) X_θ,l) R_l,     R_l = [n_l t1_l t2_l],
+/// ```
+///
+/// where `Y_kl` moves contact node k under a unit force on node l (end-of-step displacement per
+/// unit `Δz̈`) and `(η × s_k) X_θ,l` is the rigid spin part of the material velocity (E15).
+struct TireDelassus<'b> {
+    fac: &'b Factor,
+    red: &'b ReducedTire,
+    cand: &'b [usize],
+    gp: &'b [GroundPoint],
+    /// Local frames `[n, t1, t2]` of the candidates, scaled by `β_N h²` (row n) and `γ_N h`
+    /// (rows t1, t2).
+    frames: &'b [[[f64; 3]; 3]],
+    /// `γ_N h t1ᵀ(η × s)` per candidate (`t2ᵀ(η × s) = 0`).
+    rig_t1: &'b [f64],
+    penalty: f64,
+    tct: &'b Mat<f64>,
+    tct_theta: &'b Mat<f64>,
+    z_free: &'b [f64],
+    zd_free: &'b [f64],
+    spin_free: f64,
+}
+
+/// The scaled frames and rigid-spin coefficients of the candidates for [`TireDelassus`].
+fn candidate_frames(
+    red: &ReducedTire,
+    cand: &[usize],
+    gp: &[GroundPoint],
+    c1: f64,
+    c2: f64,
+    frames: &mut Vec<[[f64; 3]; 3]>,
+    rig_t1: &mut Vec<f64>,
+) {
+    frames.clear();
+    rig_t1.clear();
+    for (k, &i) in cand.iter().enumerate() {
+        let n = gp[k].normal;
+        let (t1, t2) = tangents(&n);
+        frames.push([
+            [c2 * n[0], c2 * n[1], c2 * n[2]],
+            [c1 * t1[0], c1 * t1[1], c1 * t1[2]],
+            [c1 * t2[0], c1 * t2[1], c1 * t2[2]],
+        ]);
+        let s = red.contact_positions[i];
+        rig_t1.push(c1 * (t1[0] * s[2] - t1[2] * s[0]));
     }
-    o
+}
+
+impl TireDelassus<'_> {
+    /// Unit force directions `[n, t1, t2]` of candidate `l`.
+    fn directions(&self, l: usize) -> [[f64; 3]; 3] {
+        let n = self.gp[l].normal;
+        let (t1, t2) = tangents(&n);
+        [n, t1, t2]
+    }
+
+    /// Local outputs of node `k` for a unit force `e` (wheel frame) on node `l`.
+    fn response(&self, k: usize, l: usize, e: &[f64; 3]) -> [f64; 3] {
+        let (i, j) = (self.cand[k], self.cand[l]);
+        let mut v = [0.0; 3];
+        let mut xth = 0.0;
+        for (r, er) in e.iter().enumerate() {
+            let col = col_slice(&self.fac.y, 3 * j + r);
+            v[0] += er * col[3 * i];
+            v[1] += er * col[3 * i + 1];
+            v[2] += er * col[3 * i + 2];
+            xth += er * self.fac.x[(0, 3 * j + r)];
+        }
+        let f = &self.frames[k];
+        [
+            dot3(&f[0], &v),
+            dot3(&f[1], &v) + self.rig_t1[k] * xth,
+            dot3(&f[2], &v),
+        ]
+    }
+
+    /// The diagonal compliances `[D_N,kk, (D_T,kk,11 + D_T,kk,22)/2]` of node `k`.
+    fn diagonal(&self, k: usize) -> [f64; 2] {
+        let e = self.directions(k);
+        let dn = self.response(k, k, &e[0])[0] + self.penalty;
+        let d1 = self.response(k, k, &e[1])[1];
+        let d2 = self.response(k, k, &e[2])[2];
+        [dn, 0.5 * (d1 + d2)]
+    }
+}
+
+impl DelassusSource for TireDelassus<'_> {
+    fn columns(&mut self, l: usize, cols: &mut [f64]) {
+        let ld = 3 * self.cand.len();
+        let e = self.directions(l);
+        let j = self.cand[l];
+        // the three Y columns of node l combined along the unit force directions:
+        // Y e_c = Σ_r e_c[r] Y[:, 3j + r], and X_θ e_c
+        let (y0, y1, y2) = (
+            col_slice(&self.fac.y, 3 * j),
+            col_slice(&self.fac.y, 3 * j + 1),
+            col_slice(&self.fac.y, 3 * j + 2),
+        );
+        let mut xth = [0.0; 3];
+        for (c, ec) in e.iter().enumerate() {
+            for (r, er) in ec.iter().enumerate() {
+                xth[c] += er * self.fac.x[(0, 3 * j + r)];
+            }
+        }
+        // planar ground (n_y = 0): n and t1 lie in the (x, z) plane, t2 = ŷ, so each frame
+        // vector has two (n, t1) or one (t2) nonzero component
+        let (nx, nz) = (e[0][0], e[0][2]);
+        for (k, &i) in self.cand.iter().enumerate() {
+            let a = &y0[3 * i..3 * i + 3];
+            let b = &y1[3 * i..3 * i + 3];
+            let c3 = &y2[3 * i..3 * i + 3];
+            let f = &self.frames[k];
+            let (fnx, fnz, ftx, ftz, fy) = (f[0][0], f[0][2], f[1][0], f[1][2], f[2][1]);
+            let rig = self.rig_t1[k];
+            // unit force along n, t1 (combinations of Y columns 0 and 2) and ŷ (column 1)
+            let vs = [
+                [nx * a[0] + nz * c3[0], nx * a[1] + nz * c3[1], nx * a[2] + nz * c3[2]],
+                [nz * a[0] - nx * c3[0], nz * a[1] - nx * c3[1], nz * a[2] - nx * c3[2]],
+                [b[0], b[1], b[2]],
+            ];
+            for (c, v) in vs.iter().enumerate() {
+                let o = &mut cols[c * ld + 3 * k..c * ld + 3 * k + 3];
+                o[0] = fnx * v[0] + fnz * v[2];
+                o[1] = ftx * v[0] + ftz * v[2] + rig * xth[c];
+                o[2] = fy * v[1];
+            }
+        }
+        cols[3 * l] += self.penalty;
+    }
+
+    fn free_slip(&mut self, k: usize) -> [f64; 2] {
+        let i = self.cand[k];
+        let s = self.red.contact_positions[i];
+        let sf = self.spin_free;
+        let rig = [sf * s[2], 0.0, -sf * s[0]];
+        let mut v = [0.0; 3];
+        for (a, va) in v.iter_mut().enumerate() {
+            let c = 3 * i + a;
+            let vc = dot(col_slice(self.tct, c), self.zd_free);
+            let vt = dot(col_slice(self.tct_theta, c), self.z_free);
+            *va = rig[a] + vc + sf * vt - self.gp[k].velocity[a];
+        }
+        let (t1, t2) = tangents(&self.gp[k].normal);
+        [dot3(&t1, &v), dot3(&t2, &v)]
+    }
 }
 
 impl<'a> RollingTire<'a> {
@@ -382,17 +549,15 @@ impl<'a> RollingTire<'a> {
             gp: Vec::with_capacity(nc),
             lambda: Vec::with_capacity(nc),
             ft: Vec::with_capacity(nc),
-            warm: Vec::with_capacity(nc),
-            vfree: Vec::with_capacity(nc),
-            vdone: Vec::with_capacity(nc),
-            yc: Vec::new(),
-            yvc: Vec::new(),
-            q: Vec::with_capacity(nc),
-            dv: Vec::with_capacity(nc),
-            act: Vec::with_capacity(nc),
             forces: Vec::with_capacity(nc),
-            w: Mat::zeros(0, 0),
-            lcp: LcpWork::default(),
+            x0: Vec::with_capacity(3 * nc),
+            x1: Vec::with_capacity(3 * nc),
+            lambda2: vec![0.0; nc],
+            friction2: vec![[0.0; 3]; nc],
+            diag: Vec::with_capacity(nc),
+            frames: Vec::with_capacity(nc),
+            rig_t1: Vec::with_capacity(nc),
+            solver: ContactSolver::default(),
         };
         Ok(Self {
             red,
@@ -723,9 +888,10 @@ impl<'a> RollingTire<'a> {
         Ok(())
     }
 
-    /// The contact problem of the candidates in `work` (normal LCP on the Delassus matrix with
-    /// the friction forces frozen, then Coulomb friction by projected block Gauss–Seidel,
-    /// alternated); leaves the contact forces in `work.forces`.
+    /// The contact problem of the candidates in `work`: normal contact and friction coupled,
+    /// solved by the semismooth Newton method of [`ContactSolver`] on the local Delassus
+    /// matrix (gathered lazily from the cached `Y`, `X`), warm-started from the previous
+    /// step's forces; leaves the contact forces in `work.forces`.
     fn solve_contact(&mut self, t1: f64, spin_free: f64) -> Result<(), TireError> {
         let red = self.red;
         let (h, bn, gn) = (
@@ -740,212 +906,100 @@ impl<'a> RollingTire<'a> {
         let m = w.cand.len();
         let mu = self.cfg.friction;
         w.lambda.clear();
-        w.lambda.resize(m, 0.0);
         w.ft.clear();
-        w.warm.clear();
         w.forces.clear();
-        for &i in &w.cand {
-            w.ft.push(if mu > 0.0 {
-                self.state.friction[i]
-            } else {
-                [0.0; 3]
-            });
-            w.warm.push(self.state.lambda[i] > 0.0);
-        }
         if m == 0 {
             return Ok(());
         }
-        // compact candidate blocks of Y and of Y_v = Y + (η × s) X_θ (material velocity)
-        let ld = 3 * m;
-        w.yc.clear();
-        w.yc.resize(ld * ld, 0.0);
-        w.yvc.clear();
-        w.yvc.resize(ld * ld, 0.0);
-        for (kb, &jb) in w.cand.iter().enumerate() {
-            for c in 0..3 {
-                let col = 3 * jb + c;
-                let ycol = fac.y.col(col);
-                let xth = fac.x[(0, col)];
-                let dst = (3 * kb + c) * ld;
-                for (ka, &ia) in w.cand.iter().enumerate() {
-                    let sp = red.contact_positions[ia];
-                    let rig = [sp[2], 0.0, -sp[0]];
-                    for r in 0..3 {
-                        let v = ycol[3 * ia + r];
-                        w.yc[dst + 3 * ka + r] = v;
-                        w.yvc[dst + 3 * ka + r] = v + rig[r] * xth;
-                    }
-                }
+        // warm starts: the forces of the last step and of the one before (contact nodes at the
+        // patch edges chatter with period two), in the local frames (n, t1, t2)
+        w.x0.clear();
+        w.x1.clear();
+        for (k, &i) in w.cand.iter().enumerate() {
+            let (t1v, t2v) = tangents(&w.gp[k].normal);
+            for (x, lam, f) in [
+                (&mut w.x0, self.state.lambda[i], self.state.friction[i]),
+                (&mut w.x1, w.lambda2[i], w.friction2[i]),
+            ] {
+                let f = if mu > 0.0 { f } else { [0.0; 3] };
+                x.extend([lam, dot3(&t1v, &f), dot3(&t2v, &f)]);
             }
         }
-        // free material slip velocities, computed for the nodes that become active
-        w.vfree.clear();
-        w.vfree.resize(m, [0.0; 3]);
-        w.vdone.clear();
-        w.vdone.resize(m, false);
-        let c2 = bn * h * h;
-        let c1 = gn * h;
-        w.w.resize_with(m, m, |_, _| 0.0);
-        for kj in 0..m {
-            for ki in 0..m {
-                w.w[(ki, kj)] =
-                    c2 * dot3(&w.gp[ki].normal, &blk(&w.yc, ld, ki, kj, &w.gp[kj].normal));
-            }
-            if let NormalContact::Penalty { stiffness } = self.cfg.normal {
-                w.w[(kj, kj)] += 1.0 / stiffness;
-            }
+        w.lambda2.copy_from_slice(&self.state.lambda);
+        w.friction2.copy_from_slice(&self.state.friction);
+        let penalty = match self.cfg.normal {
+            NormalContact::Penalty { stiffness } => 1.0 / stiffness,
+            NormalContact::Lagrange => 0.0,
+        };
+        let (c1, c2) = (gn * h, bn * h * h);
+        candidate_frames(red, &w.cand, &w.gp, c1, c2, &mut w.frames, &mut w.rig_t1);
+        let mut src = TireDelassus {
+            fac,
+            red,
+            cand: &w.cand,
+            gp: &w.gp,
+            frames: &w.frames,
+            rig_t1: &w.rig_t1,
+            penalty,
+            tct: &self.tct,
+            tct_theta: &self.tct_theta,
+            z_free: &w.z_free,
+            zd_free: &w.zd_free,
+            spin_free,
+        };
+        w.diag.clear();
+        for k in 0..m {
+            w.diag.push(src.diagonal(k));
         }
-        let tol = |lam_max: f64| 1e-5 * (mu * lam_max + 1.0);
-        for _outer in 0..3 {
-            // normal problem with the tangential forces frozen
-            w.q.clear();
-            for ki in 0..m {
-                let mut g = w.gp[ki].gap;
-                for kj in 0..m {
-                    if w.ft[kj] != [0.0; 3] {
-                        g += c2 * dot3(&w.gp[ki].normal, &blk(&w.yc, ld, ki, kj, &w.ft[kj]));
-                    }
-                }
-                w.q.push(g);
-            }
-            let (converged, _) = w.lcp.solve(w.w.as_ref(), &w.q, &w.warm, 1e-12);
-            self.stats.lcp_solves += 1;
-            if !converged {
-                return Err(TireError::Simulation {
-                    time: t1,
-                    reason: "contact active set did not converge".into(),
-                });
-            }
-            w.lambda.copy_from_slice(&w.lcp.lambda);
-            if mu == 0.0 {
-                break;
-            }
-            // tangential problem: Coulomb friction (set-valued sign at zero slip) by block
-            // Gauss–Seidel with projection onto the friction disk |f_t| ≤ μλ
-            w.dv.clear();
-            w.dv.resize(m, [0.0; 3]);
-            for kj in 0..m {
-                let n = w.gp[kj].normal;
-                let l = w.lambda[kj];
-                let f = [
-                    n[0] * l + w.ft[kj][0],
-                    n[1] * l + w.ft[kj][1],
-                    n[2] * l + w.ft[kj][2],
-                ];
-                for ki in 0..m {
-                    let d = blk(&w.yvc, ld, ki, kj, &f);
-                    for a in 0..3 {
-                        w.dv[ki][a] += c1 * d[a];
-                    }
-                }
-            }
-            let lam_max = w.lambda.iter().fold(0.0f64, |a, &b| a.max(b));
-            w.act.clear();
-            w.act.extend((0..m).filter(|&k| w.lambda[k] > 0.0));
-            for &k in &w.act {
-                if w.vdone[k] {
-                    continue;
-                }
-                let i = w.cand[k];
-                let s = red.contact_positions[i];
-                let rig = [spin_free * s[2], 0.0, -spin_free * s[0]];
-                for a in 0..3 {
-                    let c = 3 * i + a;
-                    let vc = dot(col_slice(&self.tct, c), &w.zd_free);
-                    let vt = dot(col_slice(&self.tct_theta, c), &w.z_free);
-                    w.vfree[k][a] = rig[a] + vc + spin_free * vt - w.gp[k].velocity[a];
-                }
-                w.vdone[k] = true;
-            }
-            for k in 0..m {
-                if w.lambda[k] <= 0.0 && w.ft[k] != [0.0; 3] {
-                    // released node: drop its friction and its effect on the others
-                    let d = [-w.ft[k][0], -w.ft[k][1], -w.ft[k][2]];
-                    w.ft[k] = [0.0; 3];
-                    for &kk in &w.act {
-                        let e = blk(&w.yvc, ld, kk, k, &d);
-                        for a in 0..3 {
-                            w.dv[kk][a] += c1 * e[a];
-                        }
-                    }
-                }
-            }
-            let mut outer_change = 0.0f64;
-            for _sweep in 0..10 {
-                self.stats.friction_sweeps += 1;
-                let mut change = 0.0f64;
-                for ai in 0..w.act.len() {
-                    let ki = w.act[ai];
-                    let n = w.gp[ki].normal;
-                    let t1v = [n[2], 0.0, -n[0]];
-                    let t2v = [0.0, 1.0, 0.0];
-                    let v = [
-                        w.vfree[ki][0] + w.dv[ki][0],
-                        w.vfree[ki][1] + w.dv[ki][1],
-                        w.vfree[ki][2] + w.dv[ki][2],
-                    ];
-                    let r = [dot3(&t1v, &v), dot3(&t2v, &v)];
-                    let bt1 = blk(&w.yvc, ld, ki, ki, &t1v);
-                    let bt2 = blk(&w.yvc, ld, ki, ki, &t2v);
-                    let b = [
-                        [c1 * dot3(&t1v, &bt1), c1 * dot3(&t1v, &bt2)],
-                        [c1 * dot3(&t2v, &bt1), c1 * dot3(&t2v, &bt2)],
-                    ];
-                    let det = b[0][0] * b[1][1] - b[0][1] * b[1][0];
-                    if det.is_nan() || det == 0.0 {
-                        continue;
-                    }
-                    let old = [dot3(&t1v, &w.ft[ki]), dot3(&t2v, &w.ft[ki])];
-                    let mut new = [
-                        old[0] - (b[1][1] * r[0] - b[0][1] * r[1]) / det,
-                        old[1] - (-b[1][0] * r[0] + b[0][0] * r[1]) / det,
-                    ];
-                    let cap = mu * w.lambda[ki];
-                    let mag = (new[0] * new[0] + new[1] * new[1]).sqrt();
-                    if mag > cap {
-                        let sc = if mag > 0.0 { cap / mag } else { 0.0 };
-                        new = [new[0] * sc, new[1] * sc];
-                    }
-                    let newv = [
-                        new[0] * t1v[0] + new[1] * t2v[0],
-                        new[0] * t1v[1] + new[1] * t2v[1],
-                        new[0] * t1v[2] + new[1] * t2v[2],
-                    ];
-                    let d = [
-                        newv[0] - w.ft[ki][0],
-                        newv[1] - w.ft[ki][1],
-                        newv[2] - w.ft[ki][2],
-                    ];
-                    let dm = dot3(&d, &d).sqrt();
-                    if dm == 0.0 {
-                        continue;
-                    }
-                    change = change.max(dm);
-                    w.ft[ki] = newv;
-                    for &kk in &w.act {
-                        let e = blk(&w.yvc, ld, kk, ki, &d);
-                        for a in 0..3 {
-                            w.dv[kk][a] += c1 * e[a];
-                        }
-                    }
-                }
-                outer_change = outer_change.max(change);
-                if change <= tol(lam_max) {
-                    break;
-                }
-            }
-            if outer_change <= tol(lam_max) {
-                break;
-            }
+        w.solver.reset(&w.x0);
+        w.solver.set_gaps(w.gp.iter().map(|g| g.gap));
+        let settings = SolveSettings {
+            mu,
+            law: self.cfg.friction_law,
+            epsilon: self.cfg.slip_regularization,
+            tol: self.cfg.contact_tolerance,
+            ..SolveSettings::default()
+        };
+        // same candidates as in the last step: its Newton matrix may serve for chord steps
+        let same = w.cand.iter().all(|&i| w.was_cand[i])
+            && w.cand.len() == w.was_cand.iter().filter(|&&c| c).count();
+        let rep = w.solver.solve(
+            &mut src,
+            &w.diag,
+            &settings,
+            same,
+            same.then_some(&w.x1[..]),
+        );
+        self.stats.contact_newton += rep.newton_iterations;
+        self.stats.contact_chord += rep.chord_iterations;
+        self.stats.lcp_solves += rep.lcp_solves;
+        self.stats.friction_sweeps += rep.sweeps;
+        if rep.fallback {
+            self.stats.contact_fallbacks += 1;
+        }
+        if !rep.converged {
+            self.stats.contact_unconverged += 1;
+        }
+        let x = w.solver.x();
+        if !x.iter().all(|v| v.is_finite()) {
+            return Err(TireError::Simulation {
+                time: t1,
+                reason: "the contact forces became non-finite".into(),
+            });
         }
         for k in 0..m {
             let n = w.gp[k].normal;
-            let l = w.lambda[k];
-            w.forces.push([
-                n[0] * l + w.ft[k][0],
-                n[1] * l + w.ft[k][1],
-                n[2] * l + w.ft[k][2],
-            ]);
+            let (t1v, t2v) = tangents(&n);
+            let (l, f1, f2) = (x[3 * k], x[3 * k + 1], x[3 * k + 2]);
+            let ft = [
+                f1 * t1v[0] + f2 * t2v[0],
+                f1 * t1v[1] + f2 * t2v[1],
+                f1 * t1v[2] + f2 * t2v[2],
+            ];
+            w.lambda.push(l);
+            w.ft.push(ft);
+            w.forces
+                .push([n[0] * l + ft[0], n[1] * l + ft[1], n[2] * l + ft[2]]);
         }
         Ok(())
     }
