@@ -103,10 +103,17 @@ fn cleat_excites_a_tire_mode_and_friction_mainly_changes_fx() {
 /// free-rolling speed at 60 km/h for 0.3 s (θ̇ grows by about 20 %): spindle forces and spin
 /// rate per step.
 fn spin_up(spin_tolerance: f64, matrix_tolerance: f64) -> (Vec<[f64; 3]>, usize) {
+    spin_up_with(|r| {
+        r.spin_tolerance = spin_tolerance;
+        r.matrix_tolerance = matrix_tolerance;
+    })
+}
+
+/// [`spin_up`] with the rolling settings changed by `set`.
+fn spin_up_with(set: impl Fn(&mut RollingConfig)) -> (Vec<[f64; 3]>, usize) {
     let red = tire();
     let mut rc = rig(GroundKind::Road, false, 0.0);
-    rc.rolling.spin_tolerance = spin_tolerance;
-    rc.rolling.matrix_tolerance = matrix_tolerance;
+    set(&mut rc.rolling);
     let ray = rc.damping.rayleigh(red).unwrap();
     let pre = preload(red, &rc.ground, rc.load).unwrap();
     let v = rc.speed_kmh / 3.6;
@@ -196,5 +203,86 @@ fn frozen_iteration_matrix_matches_exact_newmark() {
         d[2] < 1e-2 * fx_range,
         "Fx differs by {} N ({fx_range} N)",
         d[2]
+    );
+}
+
+#[test]
+fn generalized_alpha_with_unit_spectral_radius_is_the_trapezoidal_rule() {
+    // Second formulation: ρ∞ = 1 gives α_m = α_f = ½, β = ¼, γ = ½, whose step is algebraically
+    // the plain Newmark trapezoidal rule (α_m = α_f = 0); the pseudo-accelerations then equal
+    // the accelerations (Arnold & Brüls 2007).
+    let (ga, _) = spin_up_with(|r| *r = r.clone().generalized_alpha(1.0));
+    let (nm, _) = spin_up_with(|r| {
+        r.alpha_m = 0.0;
+        r.alpha_f = 0.0;
+        r.newmark_beta = 0.25;
+        r.newmark_gamma = 0.5;
+    });
+    let d = max_diff(&ga, &nm);
+    println!("rho 1 vs trapezoidal: {d:?}");
+    assert!(
+        d[0] < 1e-9 * nm[0][2],
+        "spin rates differ by {} rad/s",
+        d[0]
+    );
+    assert!(
+        d[1] < 1e-6 * 4448.2 && d[2] < 1e-6 * 4448.2,
+        "forces differ: {d:?}"
+    );
+    // and ρ∞ = 0.9 (the default) is a different, second-order scheme: close to the trapezoidal
+    // rule on this smooth run (its numerical damping acts at the highest frequencies)
+    let (def, _) = spin_up_with(|_| {});
+    let d = max_diff(&def, &nm);
+    println!("default vs trapezoidal: {d:?}");
+    assert!(d[0] > 1e-12, "the default scheme is not generalized-α");
+    assert!(
+        d[0] < 1e-3 * nm[0][2],
+        "spin rates differ by {} rad/s",
+        d[0]
+    );
+}
+
+#[test]
+fn steady_rolling_with_friction_does_not_chatter() {
+    // Issue 9: rolling steadily on a flat road without a cleat, the spindle forces become
+    // constant and the vertical force equals the load, here with μ = 0.85. With the
+    // trapezoidal rule (ρ∞ = 1) the index-3 contact forces alternate from step to step
+    // (period-two chatter at the patch edges); generalized-α with ρ∞ = 0.9 damps it. The
+    // indicator is the largest second difference of the total normal force Σλ over the steps.
+    let red = tire();
+    let mut rc = rig(GroundKind::Road, false, 0.85);
+    rc.settle_time = 0.3;
+    rc.record_time = 0.1;
+    let stats = |rc: &RigConfig| {
+        let r = run_cleat(red, rc, &mut |_| {}).unwrap();
+        let rec: Vec<&Sample> = r.samples.iter().filter(|s| s.t > 0.0).collect();
+        let fy = rec.iter().map(|s| s.fy).sum::<f64>() / rec.len() as f64;
+        let chatter = rec
+            .windows(3)
+            .map(|w| (w[1].normal_sum - 0.5 * (w[0].normal_sum + w[2].normal_sum)).abs())
+            .fold(0.0, f64::max);
+        let (lo, hi) = rec
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), s| (a.min(s.fy), b.max(s.fy)));
+        (fy, chatter, hi - lo)
+    };
+    let (fy, chatter, spread) = stats(&rc);
+    let mut trap = rc.clone();
+    trap.rolling = trap.rolling.generalized_alpha(1.0);
+    let (_, trap_chatter, _) = stats(&trap);
+    println!(
+        "rho 0.9: Fy {fy} N, spread {spread} N, chatter {chatter} N; rho 1: chatter {trap_chatter} N"
+    );
+    assert!(
+        (fy - rc.load).abs() < 0.02 * rc.load,
+        "Fy {fy} vs load {}",
+        rc.load
+    );
+    assert!(spread < 0.005 * rc.load, "Fy ripple {spread} N");
+    assert!(chatter < 1e-4 * rc.load, "Σλ alternates by {chatter} N");
+    // the indicator sees the trapezoidal rule's chatter
+    assert!(
+        trap_chatter > 5.0 * chatter,
+        "trapezoidal {trap_chatter} N vs {chatter} N"
     );
 }

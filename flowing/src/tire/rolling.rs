@@ -35,8 +35,12 @@
 //! rigid constraint by a compliance `1/k` on the diagonal of the contact problem.
 //!
 //! # Integration
-//! Newmark (β_N, γ_N) with the contact gaps imposed at the end of each step (index-3), a
-//! linearly implicit step. The θ̇-dependent gyroscopic/centrifugal/damping matrix
+//! Generalized-α (Chung–Hulbert, in the form of Arnold and Brüls with pseudo-accelerations;
+//! spectral radius ρ∞ = 0.9 by default, ρ∞ = 1 is the trapezoidal Newmark rule) with the
+//! contact gaps imposed at the end of each step (index-3), a linearly implicit step. The small
+//! high-frequency damping of ρ∞ < 1 removes the period-two chatter of the index-3 contact
+//! forces at the patch edges that the trapezoidal rule leaves undamped (and with it the
+//! sensitivity of the cleat response to round-off and to the contact tolerance). The θ̇-dependent gyroscopic/centrifugal/damping matrix
 //! `R = [C_eff K_eff G₁]` is evaluated at a spin rate frozen until it drifts by more than
 //! `spin_tolerance` (then re-formed: cheap). The iteration matrix
 //! `S = [J ⋯; m_θ M + γh C_eff + βh² K_eff]` is inverted explicitly, together with the contact
@@ -80,10 +84,15 @@ pub enum NormalContact {
 pub struct RollingConfig {
     /// Time step `h` [s].
     pub time_step: f64,
-    /// Newmark β.
+    /// Newmark β of the generalized-α update (see [`RollingConfig::generalized_alpha`]).
     pub newmark_beta: f64,
-    /// Newmark γ.
+    /// Newmark γ of the generalized-α update.
     pub newmark_gamma: f64,
+    /// Generalized-α weight α_m of the pseudo-acceleration (0 with `alpha_f = 0`: plain
+    /// Newmark).
+    pub alpha_m: f64,
+    /// Generalized-α weight α_f of the true acceleration.
+    pub alpha_f: f64,
     /// Coulomb friction coefficient μ (Ribaric §8.4.3: 0.85 nominal, 0 pure slip).
     pub friction: f64,
     /// Friction law: `coulomb` (set-valued, with stick; default) or `regularized`
@@ -115,8 +124,10 @@ impl Default for RollingConfig {
     fn default() -> Self {
         Self {
             time_step: 2e-4,
-            newmark_beta: 0.25,
-            newmark_gamma: 0.5,
+            newmark_beta: GA_DEFAULT.2,
+            newmark_gamma: GA_DEFAULT.3,
+            alpha_m: GA_DEFAULT.0,
+            alpha_f: GA_DEFAULT.1,
             friction: 0.85,
             friction_law: FrictionLaw::Coulomb,
             slip_regularization: 0.05,
@@ -130,7 +141,40 @@ impl Default for RollingConfig {
     }
 }
 
+/// `(α_m, α_f, β, γ)` of the default generalized-α scheme, spectral radius ρ∞ = 0.9.
+const GA_DEFAULT: (f64, f64, f64, f64) = {
+    // Chung–Hulbert (1993) with ρ∞ = 0.9: α_m = (2ρ∞ − 1)/(ρ∞ + 1), α_f = ρ∞/(ρ∞ + 1),
+    // γ = 1/2 − α_m + α_f, β = (γ + 1/2)²/4 (written out: const fns cannot use powi)
+    let (am, af) = (0.8 / 1.9, 0.9 / 1.9);
+    let g = 0.5 - am + af;
+    (am, af, 0.25 * (g + 0.5) * (g + 0.5), g)
+};
+
 impl RollingConfig {
+    /// Set the time integration to the generalized-α method of Chung and Hulbert (1993) in the
+    /// form of Arnold and Brüls (2007) with spectral radius `rho_inf` ∈ [0, 1] at infinite
+    /// frequency: `α_m = (2ρ∞ − 1)/(ρ∞ + 1)`, `α_f = ρ∞/(ρ∞ + 1)`, `γ = ½ − α_m + α_f`,
+    /// `β = (γ + ½)²/4`. Second-order accurate; ρ∞ = 1 is the trapezoidal rule (Newmark
+    /// β = ¼, γ = ½, no numerical damping); ρ∞ < 1 damps the highest frequencies, e.g. the
+    /// period-two chatter of index-3 contact at the patch edges. The default is ρ∞ = 0.9.
+    pub fn generalized_alpha(mut self, rho_inf: f64) -> Self {
+        let am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
+        let af = rho_inf / (rho_inf + 1.0);
+        let g = 0.5 - am + af;
+        self.alpha_m = am;
+        self.alpha_f = af;
+        self.newmark_gamma = g;
+        self.newmark_beta = 0.25 * (g + 0.5).powi(2);
+        self
+    }
+
+    /// The coefficients `(β', γ')` of the end-of-step accelerations `z̈ₙ₊₁` in `zₙ₊₁` (times
+    /// h²) and `żₙ₊₁` (times h): `β (1 − α_f)/(1 − α_m)`, `γ (1 − α_f)/(1 − α_m)`.
+    pub fn implicit_coefficients(&self) -> (f64, f64) {
+        let r = (1.0 - self.alpha_f) / (1.0 - self.alpha_m);
+        (self.newmark_beta * r, self.newmark_gamma * r)
+    }
+
     /// Check the parameters (field names in the messages).
     pub fn validate(&self) -> Result<(), TireError> {
         let pos = |name: &str, v: f64| {
@@ -146,6 +190,14 @@ impl RollingConfig {
         pos("time_step", self.time_step)?;
         pos("newmark_beta", self.newmark_beta)?;
         pos("newmark_gamma", self.newmark_gamma)?;
+        for (name, v) in [("alpha_m", self.alpha_m), ("alpha_f", self.alpha_f)] {
+            if !(v.is_finite() && v < 1.0 && v > -1.0) {
+                return Err(invalid(
+                    format!("rolling.{name}"),
+                    format!("{v} is outside (−1, 1)"),
+                ));
+            }
+        }
         pos("slip_regularization", self.slip_regularization)?;
         pos("contact_tolerance", self.contact_tolerance)?;
         pos("wheel_spin_inertia", self.wheel_spin_inertia)?;
@@ -176,12 +228,16 @@ pub struct RollingState {
     pub zd: Vec<f64>,
     /// Their accelerations `z̈`.
     pub zdd: Vec<f64>,
+    /// The generalized-α pseudo-accelerations `a` of `z` (equal to `z̈` for plain Newmark).
+    pub acc: Vec<f64>,
     /// Wheel spin angle θ [rad].
     pub theta: f64,
     /// Spin rate θ̇ [rad/s].
     pub theta_d: f64,
     /// Spin acceleration θ̈ [rad/s²].
     pub theta_dd: f64,
+    /// Pseudo-acceleration of θ [rad/s²].
+    pub theta_acc: f64,
     /// Normal multiplier per contact node [N].
     pub lambda: Vec<f64>,
     /// Friction force per contact node (wheel frame) [N].
@@ -483,8 +539,16 @@ impl DelassusSource for TireDelassus<'_> {
             let rig = self.rig_t1[k];
             // unit force along n, t1 (combinations of Y columns 0 and 2) and ŷ (column 1)
             let vs = [
-                [nx * a[0] + nz * c3[0], nx * a[1] + nz * c3[1], nx * a[2] + nz * c3[2]],
-                [nz * a[0] - nx * c3[0], nz * a[1] - nx * c3[1], nz * a[2] - nx * c3[2]],
+                [
+                    nx * a[0] + nz * c3[0],
+                    nx * a[1] + nz * c3[1],
+                    nx * a[2] + nz * c3[2],
+                ],
+                [
+                    nz * a[0] - nx * c3[0],
+                    nz * a[1] - nx * c3[1],
+                    nz * a[2] - nx * c3[2],
+                ],
                 [b[0], b[1], b[2]],
             ];
             for (c, v) in vs.iter().enumerate() {
@@ -571,9 +635,11 @@ impl<'a> RollingTire<'a> {
                 z: z0,
                 zd: vec![0.0; nz],
                 zdd: vec![0.0; nz],
+                acc: vec![0.0; nz],
                 theta: 0.0,
                 theta_d: spin,
                 theta_dd: 0.0,
+                theta_acc: 0.0,
                 lambda: vec![0.0; nc],
                 friction: vec![[0.0; 3]; nc],
             },
@@ -630,11 +696,8 @@ impl<'a> RollingTire<'a> {
         let nz = red.n_z();
         let n = nz + 1;
         let nc3 = 3 * red.n_contact();
-        let (h, bn, gn) = (
-            self.cfg.time_step,
-            self.cfg.newmark_beta,
-            self.cfg.newmark_gamma,
-        );
+        let h = self.cfg.time_step;
+        let (bn, gn) = self.cfg.implicit_coefficients();
         let (a, b) = (self.alpha, self.beta);
         let sp = spin_s;
         let kt = red.kt.row(1);
@@ -736,12 +799,20 @@ impl<'a> RollingTire<'a> {
         let red = self.red;
         let nz = red.n_z();
         let nc = red.n_contact();
-        let (h, bn, gn) = (
-            self.cfg.time_step,
-            self.cfg.newmark_beta,
-            self.cfg.newmark_gamma,
-        );
-        let spin_pred = self.state.theta_d + (1.0 - gn) * h * self.state.theta_dd;
+        // Generalized-α (Arnold–Brüls form): with the pseudo-accelerations a,
+        //   zₙ₊₁ = zₙ + h żₙ + h²(½ − β) aₙ + h² β aₙ₊₁,   żₙ₊₁ = żₙ + h(1 − γ) aₙ + h γ aₙ₊₁,
+        //   (1 − α_m) aₙ₊₁ = (1 − α_f) z̈ₙ₊₁ + α_f z̈ₙ − α_m aₙ,
+        // and the equations of motion at tₙ₊₁. Eliminating aₙ₊₁ leaves a Newmark-like step in
+        // z̈ₙ₊₁ with the coefficients (β', γ') = (β, γ)(1 − α_f)/(1 − α_m) and the known part
+        // wₙ = (α_f z̈ₙ − α_m aₙ)/(1 − α_m) in the predictors.
+        let h = self.cfg.time_step;
+        let (bn0, gn0) = (self.cfg.newmark_beta, self.cfg.newmark_gamma);
+        let (bn, gn) = self.cfg.implicit_coefficients();
+        let (am, af) = (self.cfg.alpha_m, self.cfg.alpha_f);
+        let known = |zdd: f64, acc: f64| (af * zdd - am * acc) / (1.0 - am);
+        let w_theta = known(self.state.theta_dd, self.state.theta_acc);
+        let spin_pred =
+            self.state.theta_d + h * ((1.0 - gn0) * self.state.theta_acc + gn0 * w_theta);
         let drift = |s: f64, tol: f64| (spin_pred - s).abs() > tol * s.abs().max(1.0);
         let (need_s, need_r) = match &self.factor {
             None => (true, true),
@@ -784,8 +855,9 @@ impl<'a> RollingTire<'a> {
             // effect).
             let lag = 2.0 * gn * h * (fac.spin - fac.spin_s);
             for j in 0..nz {
-                w.pred[j] = st.zd[j] + (1.0 - gn) * h * st.zdd[j];
-                w.pred[nz + j] = st.z[j] + h * st.zd[j] + h * h * (0.5 - bn) * st.zdd[j];
+                let (acc, wj) = (st.acc[j], known(st.zdd[j], st.acc[j]));
+                w.pred[j] = st.zd[j] + h * ((1.0 - gn0) * acc + gn0 * wj);
+                w.pred[nz + j] = st.z[j] + h * st.zd[j] + h * h * ((0.5 - bn0) * acc + bn0 * wj);
                 w.pred[2 * nz + j] = st.theta_dd * st.z[j] + lag * st.zdd[j];
             }
             // S a = [τ; −θ̇²c_s] − R [ż̃; z̃; θ̈ z]
@@ -853,11 +925,15 @@ impl<'a> RollingTire<'a> {
         }
         let st = &mut self.state;
         let theta_dd = w.a[0];
-        st.theta += h * st.theta_d + h * h * ((0.5 - bn) * st.theta_dd + bn * theta_dd);
+        let r = (1.0 - af) / (1.0 - am);
+        let theta_acc = w_theta + r * theta_dd;
+        st.theta += h * st.theta_d + h * h * ((0.5 - bn0) * st.theta_acc + bn0 * theta_acc);
         st.theta_d = spin_pred + gn * h * theta_dd;
         st.theta_dd = theta_dd;
+        st.theta_acc = theta_acc;
         for j in 0..nz {
             let a = w.a[1 + j];
+            st.acc[j] = known(st.zdd[j], st.acc[j]) + r * a;
             st.zdd[j] = a;
             st.z[j] = w.pred[nz + j] + bn * h * h * a;
             st.zd[j] = w.pred[j] + gn * h * a;
@@ -894,11 +970,8 @@ impl<'a> RollingTire<'a> {
     /// step's forces; leaves the contact forces in `work.forces`.
     fn solve_contact(&mut self, t1: f64, spin_free: f64) -> Result<(), TireError> {
         let red = self.red;
-        let (h, bn, gn) = (
-            self.cfg.time_step,
-            self.cfg.newmark_beta,
-            self.cfg.newmark_gamma,
-        );
+        let h = self.cfg.time_step;
+        let (bn, gn) = self.cfg.implicit_coefficients();
         let Some(fac) = self.factor.as_ref() else {
             return Ok(());
         };
