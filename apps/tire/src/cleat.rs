@@ -1,12 +1,14 @@
 //! `flowmbd-tire cleat`: the cleat test of Ribaric §8.3 at one speed (drum or flat road):
 //! spindle forces `F_x`, `F_y` against time, their spectra, and the patch VTK series.
 
-use crate::common::{RigFlags, TireSource, input, tire_err};
+use crate::common::{RigFlags, TireSource, input, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowing::tire::{RigConfig, RigResult, RollingTire, TireError, run_cleat_observed};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use flowmbd_cli::{
+    CliError, CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study,
+};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 
@@ -58,15 +60,39 @@ impl Validate for Config {
     }
 }
 
-/// Validate rig settings.
+/// Validate rig settings (fields named by their configuration path, `rig.…`).
 pub fn validate_rig(rig: &RigConfig) -> Result<(), InputError> {
-    rig.rolling.validate().map_err(input)?;
-    rig.ground.validate().map_err(input)?;
+    let in_rig = |e| {
+        let e = input(e);
+        InputError::new(format!("rig.{}", e.field), e.reason)
+    };
+    rig.rolling.validate().map_err(in_rig)?;
+    rig.ground.validate().map_err(in_rig)?;
     if !(rig.speed_kmh > 0.0 && rig.speed_kmh.is_finite()) {
         return Err(InputError::new("rig.speed_kmh", "must be positive"));
     }
     if !(rig.load > 0.0 && rig.load.is_finite()) {
         return Err(InputError::new("rig.load", "must be positive"));
+    }
+    if !(rig.settle_time >= 0.0 && rig.settle_time.is_finite()) {
+        return Err(InputError::new(
+            "rig.settle_time",
+            "must not be negative [s]",
+        ));
+    }
+    if !(rig.record_time > 0.0 && rig.record_time.is_finite()) {
+        return Err(InputError::new("rig.record_time", "must be positive [s]"));
+    }
+    // a recording of fewer than two steps has no spectrum and no RMS
+    let h = rig.rolling.time_step;
+    if 2.0 * h > rig.record_time {
+        return Err(InputError::new(
+            "rig.rolling.time_step",
+            format!(
+                "{h} s leaves fewer than 2 steps in rig.record_time = {} s",
+                rig.record_time
+            ),
+        ));
     }
     Ok(())
 }
@@ -138,23 +164,35 @@ pub fn summarize(r: &RigResult) -> Summary {
     }
 }
 
-/// Write the force history, spectra and plots of a rig result under `prefix`.
-pub fn write_outputs(ctx: &StudyContext, r: &RigResult, prefix: &str) -> Result<(), StudyError> {
-    ctx.out.write_csv(
-        &format!("{prefix}forces.csv"),
-        &[
-            "t_s",
-            "fx_n",
-            "fy_n",
-            "f_lateral_n",
-            "spin_rad_s",
-            "active_nodes",
-            "normal_sum_n",
-        ],
-        r.samples
-            .iter()
-            .map(|s| vec![s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]),
-    )?;
+/// Columns of the force history `forces.csv`.
+const FORCE_COLUMNS: [&str; 7] = [
+    "t_s",
+    "fx_n",
+    "fy_n",
+    "f_lateral_n",
+    "spin_rad_s",
+    "active_nodes",
+    "normal_sum_n",
+];
+
+/// Write the spectra and plots of a rig result under `prefix`, and its force history
+/// `{prefix}forces.csv` too when `history` is set (the `cleat` study streams that file while it
+/// runs instead, so that a failed run keeps it).
+pub fn write_outputs(
+    ctx: &StudyContext,
+    r: &RigResult,
+    prefix: &str,
+    history: bool,
+) -> Result<(), StudyError> {
+    if history {
+        ctx.out.write_csv(
+            &format!("{prefix}forces.csv"),
+            &FORCE_COLUMNS,
+            r.samples
+                .iter()
+                .map(|s| vec![s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]),
+        )?;
+    }
     let (sx, sy) = r.spectra();
     ctx.out.write_csv(
         &format!("{prefix}spectra.csv"),
@@ -285,7 +323,33 @@ impl Study for Cleat {
         let every = c.vtk_every;
         let tire_every = c.vtk_tire_every;
         let viz = red.viz.as_ref();
+        // the force history is streamed (same rows as `RigResult::samples`), so that a run that
+        // fails keeps the history up to the failure
+        let settle = c.rig.settle_time;
+        let mut history = ctx.out.csv("forces.csv", &FORCE_COLUMNS)?;
+        let mut history_err: Option<CliError> = None;
+        let mut done = (0usize, f64::NAN);
         let mut observer = |k: usize, sim: &RollingTire| -> Result<(), TireError> {
+            let f = sim.spindle_force();
+            let t = sim.state.t - settle;
+            let row = [
+                t,
+                f.fx,
+                f.fy,
+                f.fz,
+                sim.state.theta_d,
+                sim.active_count() as f64,
+                sim.total_normal_force(),
+            ];
+            if let Err(e) = history.row(&row) {
+                let reason = e.to_string();
+                history_err = Some(e);
+                return Err(TireError::Simulation {
+                    time: sim.state.t,
+                    reason,
+                });
+            }
+            done = (k + 1, t);
             if every > 0 && k.is_multiple_of(every) {
                 write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)?;
             }
@@ -301,10 +365,33 @@ impl Study for Cleat {
             }
             Ok(())
         };
-        let r = run_cleat_observed(&red, &c.rig, &mut |f| bar.set(f), &mut observer)
-            .map_err(tire_err)?;
+        let result = run_cleat_observed(&red, &c.rig, &mut |f| bar.set(f), &mut observer);
+        let r = match result {
+            Ok(r) => {
+                history.finish()?;
+                r
+            }
+            Err(e) => {
+                let _ = history.flush();
+                if let Some(e) = history_err {
+                    return Err(e.into());
+                }
+                return Err(match rig_err(e) {
+                    StudyError::Numerical { message, .. } => StudyError::Numerical {
+                        message,
+                        partial: Some(serde_json::json!({
+                            "speed_kmh": c.rig.speed_kmh,
+                            "steps_done": done.0,
+                            "t_last_s": done.1,
+                            "history": "forces.csv",
+                        })),
+                    },
+                    other => other,
+                });
+            }
+        };
         bar.finish();
-        write_outputs(ctx, &r, "")?;
+        write_outputs(ctx, &r, "", false)?;
         Ok(summarize(&r))
     }
 }

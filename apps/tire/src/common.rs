@@ -45,10 +45,22 @@ impl Default for TireSource {
 pub fn tire_err(e: TireError) -> StudyError {
     match e {
         TireError::Invalid { item, reason } => StudyError::Input(InputError::new(item, reason)),
-        TireError::File { path, reason } => {
-            StudyError::Input(InputError::new(format!("reduced_file {path}"), reason))
-        }
+        TireError::File { path, reason } => StudyError::Input(InputError::new(
+            format!("tire.reduced_file `{path}`"),
+            reason,
+        )),
         other => StudyError::numerical(other),
+    }
+}
+
+/// Map an error of the rig (cleat test): like [`tire_err`], with the rig's invalid items named
+/// by their configuration path (`rig.damping.mode1`, not `damping.mode1`).
+pub fn rig_err(e: TireError) -> StudyError {
+    match e {
+        TireError::Invalid { item, reason } => {
+            StudyError::Input(InputError::new(format!("rig.{item}"), reason))
+        }
+        other => tire_err(other),
     }
 }
 
@@ -121,7 +133,21 @@ impl TireSource {
         let file = self.reduced_path();
         let path = Path::new(&file);
         if !file.is_empty() && path.exists() {
-            return ReducedTire::load(path).map_err(tire_err);
+            let red = ReducedTire::load(path).map_err(tire_err)?;
+            // a file made with another reduction would silently answer a different question
+            let (nc, nf) = (red.n_contact(), red.n_free_modes);
+            let want = &self.reduction;
+            if nc != want.contact_nodes || nf != want.free_modes {
+                return Err(StudyError::Input(InputError::new(
+                    format!("tire.reduced_file `{file}`"),
+                    format!(
+                        "holds {nc} contact nodes and {nf} free-node modes but \
+                         tire.reduction asks for {} and {} (delete the file or name another)",
+                        want.contact_nodes, want.free_modes
+                    ),
+                )));
+            }
+            return Ok(red);
         }
         if !quiet {
             let what = if self.import.is_some() {

@@ -3,6 +3,7 @@
 
 use crate::common::{TireSource, tire_err};
 use flowing::tire::full_frequencies_hz;
+use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
@@ -81,6 +82,20 @@ impl Study for Modes {
                 .enumerate()
                 .map(|(i, (f, r))| vec![(i + 1) as f64, *f, *r]),
         )?;
+        let pts = |f: &[f64]| -> Vec<(f64, f64)> {
+            f.iter()
+                .enumerate()
+                .map(|(i, f)| ((i + 1) as f64, *f))
+                .collect()
+        };
+        LinePlot::new(
+            "Eigenfrequencies with the rim fixed: full FE vs reduced",
+            "mode",
+            "f [Hz]",
+        )
+        .with(Series::points("full FE", pts(&full)))
+        .with(Series::points("reduced", pts(&reduced)))
+        .save(&ctx.out.path("modes"))?;
         Ok(Summary {
             full_hz: full,
             reduced_hz: reduced,

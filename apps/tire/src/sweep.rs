@@ -3,7 +3,7 @@
 //! speed × frequency table for contour/waterfall plots.
 
 use crate::cleat::{Summary as CleatSummary, summarize, validate_rig};
-use crate::common::{RigFlags, TireSource, tire_err};
+use crate::common::{RigFlags, TireSource, rig_err};
 use crate::maps::SpectrumMap;
 use flowing::tire::{RigConfig, run_cleat};
 use flowmbd_cli::plot::{LinePlot, Series};
@@ -104,7 +104,19 @@ impl Study for Sweep {
         for (k, &v) in c.speeds_kmh.iter().enumerate() {
             let mut rig = c.rig.clone();
             rig.speed_kmh = v;
-            let r = run_cleat(&red, &rig, &mut |f| bar.set(k as f64 + f)).map_err(tire_err)?;
+            let r = match run_cleat(&red, &rig, &mut |f| bar.set(k as f64 + f)) {
+                Ok(r) => r,
+                // the speeds done so far keep their files and go into the failed summary
+                Err(e) => {
+                    return Err(match rig_err(e) {
+                        StudyError::Numerical { message, .. } => StudyError::Numerical {
+                            message: format!("at {v} km/h: {message}"),
+                            partial: serde_json::to_value(&runs).ok(),
+                        },
+                        other => other,
+                    });
+                }
+            };
             let (sx, sy) = r.spectra();
             let py = sy.peak(10.0, 500.0).unwrap_or((0.0, 0.0));
             ay.push(py.1);
@@ -133,7 +145,7 @@ impl Study for Sweep {
                     grid_rows.push(vec![v, sy.freq_hz[i], sx.amplitude[i], sy.amplitude[i]]);
                 }
             }
-            crate::cleat::write_outputs(ctx, &r, &format!("v{v:03.0}_"))?;
+            crate::cleat::write_outputs(ctx, &r, &format!("v{v:03.0}_"), true)?;
             runs.push(summarize(&r));
         }
         bar.finish();
