@@ -54,7 +54,7 @@
 //! work on the candidates only (the local Delassus matrix is a gather from `Y` and `X`);
 //! nothing is allocated once the work arrays have grown. Candidates are the nodes whose free
 //! gap is below `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the
-//! surface speed); [`StepStats::late_contacts`] counts nodes that were missed.
+//! surface speed); [`StepStats::late_contacts`] counts impacts begun within one step.
 
 use super::contact_solve::{ContactSolver, DelassusSource, FrictionLaw, SolveSettings};
 use super::error::{TireError, invalid};
@@ -340,8 +340,11 @@ pub struct StepStats {
     pub columns: usize,
     /// Re-formings of the spin-dependent force matrix `R` (drift beyond `spin_tolerance`).
     pub force_matrix_updates: usize,
-    /// Nodes found penetrating by more than the contact margin that were not candidates in the
-    /// previous step (a candidate margin too small for the approach speed; should stay 0).
+    /// Nodes whose free end-of-step gap is below −`contact_margin` although they were not
+    /// candidates in the previous step: impacts begun within one step. They are part of this
+    /// step's contact problem (candidates are chosen from the current free gaps), so no contact
+    /// is lost; a large count says that the step resolves the approach coarsely (e.g. the
+    /// cleat's faces at high speed, or a lightly damped tread).
     pub late_contacts: usize,
     /// Seconds spent in: free step (products with `R` and `S⁻¹`), candidate search,
     /// re-forming `R`, contact problem, inverting `S` (with the contact-node columns).
