@@ -40,13 +40,16 @@
 //! contact gaps imposed at the end of each step (index-3), a linearly implicit step. The small
 //! high-frequency damping of ρ∞ < 1 removes the period-two chatter of the index-3 contact
 //! forces at the patch edges that the trapezoidal rule leaves undamped (and with it the
-//! sensitivity of the cleat response to round-off and to the contact tolerance). The θ̇-dependent gyroscopic/centrifugal/damping matrix
-//! `R = [C_eff K_eff G₁]` is evaluated at a spin rate frozen until it drifts by more than
-//! `spin_tolerance` (then re-formed: cheap). The iteration matrix
-//! `S = [J ⋯; m_θ M + γh C_eff + βh² K_eff]` is inverted explicitly, together with the contact
+//! sensitivity of the cleat response to round-off and to the contact tolerance).
+//!
+//! The θ̇-dependent gyroscopic/centrifugal/damping matrix `R = [C_eff K_eff G₁]` is evaluated at
+//! a spin rate frozen until it drifts by more than `spin_tolerance` (then re-formed: cheap). The
+//! iteration matrix `S = [J ⋯; m_θ M + γ'h C_eff + β'h² K_eff]`, with the generalized-α
+//! coefficients `(β', γ') = (β, γ)(1 − α_f)/(1 − α_m)` of the end-of-step accelerations
+//! ([`RollingConfig::implicit_coefficients`]), is inverted explicitly, together with the contact
 //! responses `X = S⁻¹[0; T_cᵀ]` and `Y = T_c X_z` of all contact nodes, only when θ̇ drifts by
 //! more than `matrix_tolerance` (10 %: once per run at constant speed); in between, the
-//! gyroscopic part `2γh(θ̇_R − θ̇_S)G₁` of `S(θ̇_R) − S(θ̇_S)` is applied to the previous step's
+//! gyroscopic part `2γ'h(θ̇_R − θ̇_S)G₁` of `S(θ̇_R) − S(θ̇_S)` is applied to the previous step's
 //! accelerations, like the lagged term `G₁ z θ̈`. The normal and friction problems are solved
 //! together by a semismooth Newton method on the Alart–Curnier equations in the local contact
 //! frames ([`super::contact_solve`]), converged to `contact_tolerance`. Per step the cost is one
