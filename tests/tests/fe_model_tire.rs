@@ -105,3 +105,134 @@ fn tire_rigid_modes_and_axisymmetric_pairs() {
         sp.frequencies_hz
     );
 }
+
+/// Optional cord layers (smeared rebar, off by default): per-element fibre directions are unit,
+/// the belt is circumferential (`e_θ`: orthogonal to the axis and to the radius) in the tread's
+/// outer layer only, the carcass is meridional (orthogonal to `e_θ`) in sidewall and tread and
+/// absent in the beads; zero-modulus cords leave K and M unchanged bit for bit; and under the
+/// linear field `u = c (x, 0, z)` (uniform hoop strain c, Voigt strain `c diag(1, 0, 1)`) the
+/// belt adds the exact strain energy `½ E_f φ c² V_belt`, with `V_belt` taken independently
+/// from the belt's added mass `ρ_f φ V_belt`.
+#[test]
+fn tire_cord_layers_directions_and_energy() {
+    use fe_model::generate::CordLayer;
+    let base = TireConfig {
+        thickness_divisions: 2,
+        ..small()
+    };
+    assert!(base.belt.is_none() && base.carcass.is_none());
+    let on = TireConfig {
+        belt: Some(CordLayer {
+            modulus: 20e9,
+            density: 0.0,
+            outer_layer_only: true,
+        }),
+        carcass: Some(CordLayer {
+            modulus: 1e9,
+            density: 0.0,
+            outer_layer_only: false,
+        }),
+        ..base.clone()
+    };
+    let t = tire(&on).unwrap();
+    let nt = on.thickness_divisions;
+    let (mut n_belt, mut n_carcass) = (0, 0);
+    for (e, (zone, fib)) in t.zones.iter().zip(&t.fibres).enumerate() {
+        let cell = &t.model.mesh.cells[e].nodes;
+        let c = cell.iter().fold([0.0; 3], |s, &n| {
+            let p = t.model.mesh.nodes[n];
+            [s[0] + p[0] / 8.0, s[1] + p[1] / 8.0, s[2] + p[2] / 8.0]
+        });
+        let th = c[0].atan2(c[2]);
+        let e_th = [th.cos(), 0.0, -th.sin()];
+        let e_r = [th.sin(), 0.0, th.cos()];
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let layer = e % nt; // elements are generated layer-fastest
+        let expect = match zone {
+            TireZone::Bead => 0,
+            TireZone::Sidewall => 1,
+            TireZone::Tread => 1 + usize::from(layer + 1 == nt),
+        };
+        assert_eq!(fib.len(), expect, "element {e} {zone:?} layer {layer}");
+        for f in fib {
+            assert!((dot(f.direction, f.direction) - 1.0).abs() < 1e-12);
+            if f.modulus == 20e9 {
+                n_belt += 1;
+                assert!(dot(f.direction, e_th) > 1.0 - 1e-12, "belt along e_θ");
+                assert!(f.direction[1].abs() < 1e-12 && dot(f.direction, e_r).abs() < 1e-12);
+            } else {
+                n_carcass += 1;
+                assert!(dot(f.direction, e_th).abs() < 1e-12, "carcass ⟂ e_θ");
+            }
+        }
+    }
+    assert!(n_belt > 0 && n_carcass > n_belt);
+
+    // off and zero-modulus cords: identical matrices
+    let (k0, m0) = tire(&base)
+        .unwrap()
+        .model
+        .k_and_m(MassKind::Consistent, true)
+        .unwrap();
+    let zero = TireConfig {
+        belt: on.belt.map(|b| CordLayer { modulus: 0.0, ..b }),
+        carcass: on.carcass.map(|b| CordLayer { modulus: 0.0, ..b }),
+        ..base.clone()
+    };
+    let (kz, mz) = tire(&zero)
+        .unwrap()
+        .model
+        .k_and_m(MassKind::Consistent, true)
+        .unwrap();
+    assert_eq!(k0.val(), kz.val());
+    assert_eq!(m0.val(), mz.val());
+
+    // belt energy under uniform hoop strain against its added mass
+    let (rho_b, e_b, c) = (5000.0, 20e9, 1e-3);
+    let belt_only = TireConfig {
+        belt: Some(CordLayer {
+            modulus: e_b,
+            density: rho_b,
+            outer_layer_only: true,
+        }),
+        ..base.clone()
+    };
+    let (kb, mb) = tire(&belt_only)
+        .unwrap()
+        .model
+        .k_and_m(MassKind::Consistent, true)
+        .unwrap();
+    let (kd0, kdb) = (k0.to_dense(), kb.to_dense());
+    let nodes = &t.model.mesh.nodes;
+    let u = faer::Mat::from_fn(kd0.nrows(), 1, |d, _| match d % 3 {
+        0 => c * nodes[d / 3][0],
+        2 => c * nodes[d / 3][2],
+        _ => 0.0,
+    });
+    let du = (u.transpose() * (&kdb - &kd0) * &u)[(0, 0)];
+    let v_belt = (mb.val().iter().sum::<f64>() - m0.val().iter().sum::<f64>()) / 3.0 / rho_b;
+    assert!(v_belt > 0.0);
+    let expect = e_b * c * c * v_belt;
+    assert!(
+        (du - expect).abs() < 1e-9 * expect,
+        "uᵀΔKu {du} vs E c² V {expect}"
+    );
+
+    // serde: the default has no cord keys, unknown cord fields are rejected
+    let json = serde_json::to_string(&TireConfig::default()).unwrap();
+    assert!(!json.contains("belt") && !json.contains("carcass"));
+    let bad = r#"{"belt": {"modulus": 1e9, "angle": 20}}"#;
+    assert!(serde_json::from_str::<TireConfig>(bad).is_err());
+    let good: TireConfig = serde_json::from_str(r#"{"carcass": {"modulus": 1e9}}"#).unwrap();
+    assert_eq!(good.carcass.unwrap().modulus, 1e9);
+    assert!(!good.carcass.unwrap().outer_layer_only);
+    let neg = TireConfig {
+        belt: Some(CordLayer {
+            modulus: -1.0,
+            density: 0.0,
+            outer_layer_only: false,
+        }),
+        ..small()
+    };
+    assert!(tire(&neg).unwrap_err().to_string().contains("belt.modulus"));
+}
