@@ -375,15 +375,15 @@ pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
             let cords = |k: usize| -> Result<Vec<Fibre>, FeError> {
                 let mut f = Vec::new();
                 let layer_ok = |c: &CordLayer| !c.outer_layer_only || k + 1 == nt;
-                if let Some(c) = cfg.belt.as_ref().filter(|c| layer_ok(c)) {
-                    if zone == TireZone::Tread {
-                        f.push(Fibre::new(e_th, c.modulus, c.density)?);
-                    }
+                let belt = cfg.belt.filter(|c| layer_ok(c) && zone == TireZone::Tread);
+                if let Some(c) = belt {
+                    f.push(Fibre::new(e_th, c.modulus, c.density)?);
                 }
-                if let Some(c) = cfg.carcass.as_ref().filter(|c| layer_ok(c)) {
-                    if zone != TireZone::Bead {
-                        f.push(Fibre::new(s_vec, c.modulus, c.density)?);
-                    }
+                let carcass = cfg
+                    .carcass
+                    .filter(|c| layer_ok(c) && zone != TireZone::Bead);
+                if let Some(c) = carcass {
+                    f.push(Fibre::new(s_vec, c.modulus, c.density)?);
                 }
                 Ok(f)
             };
