@@ -126,11 +126,13 @@ fn tire_cord_layers_directions_and_energy() {
             modulus: 20e9,
             density: 0.0,
             outer_layer_only: true,
+            angle_deg: 0.0,
         }),
         carcass: Some(CordLayer {
             modulus: 1e9,
             density: 0.0,
             outer_layer_only: false,
+            angle_deg: 0.0,
         }),
         ..base.clone()
     };
@@ -194,6 +196,7 @@ fn tire_cord_layers_directions_and_energy() {
             modulus: e_b,
             density: rho_b,
             outer_layer_only: true,
+            angle_deg: 0.0,
         }),
         ..base.clone()
     };
@@ -218,6 +221,44 @@ fn tire_cord_layers_directions_and_energy() {
         "uᵀΔKu {du} vs E c² V {expect}"
     );
 
+    // crossed belt plies at ±20°: two families in the outer tread layer with half the modulus,
+    // a± = cos α e_θ ± sin α e_s, so a₊ + a₋ = 2 cos α e_θ and a₊·a₋ = cos 2α
+    let alpha = 20f64.to_radians();
+    let crossed = TireConfig {
+        belt: Some(CordLayer {
+            modulus: 20e9,
+            density: 0.0,
+            outer_layer_only: true,
+            angle_deg: 20.0,
+        }),
+        ..base.clone()
+    };
+    let tc = tire(&crossed).unwrap();
+    let mut n_pairs = 0;
+    for (e, (zone, fib)) in tc.zones.iter().zip(&tc.fibres).enumerate() {
+        let expect = usize::from(*zone == TireZone::Tread && e % nt + 1 == nt);
+        assert_eq!(fib.len(), 2 * expect);
+        if fib.len() == 2 {
+            n_pairs += 1;
+            let th = {
+                let p = tc.model.mesh.cells[e].nodes.iter().fold([0.0; 2], |s, &n| {
+                    let q = tc.model.mesh.nodes[n];
+                    [s[0] + q[0], s[1] + q[2]]
+                });
+                p[0].atan2(p[1])
+            };
+            let e_th = [th.cos(), 0.0, -th.sin()];
+            let (a, b) = (fib[0].direction, fib[1].direction);
+            for i in 0..3 {
+                assert!((a[i] + b[i] - 2.0 * alpha.cos() * e_th[i]).abs() < 1e-12);
+            }
+            let ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            assert!((ab - (2.0 * alpha).cos()).abs() < 1e-12);
+            assert!(fib.iter().all(|f| f.modulus == 10e9));
+        }
+    }
+    assert!(n_pairs > 0);
+
     // serde: the default has no cord keys, unknown cord fields are rejected
     let json = serde_json::to_string(&TireConfig::default()).unwrap();
     assert!(!json.contains("belt") && !json.contains("carcass"));
@@ -231,10 +272,26 @@ fn tire_cord_layers_directions_and_energy() {
             modulus: -1.0,
             density: 0.0,
             outer_layer_only: false,
+            angle_deg: 0.0,
         }),
         ..small()
     };
     assert!(tire(&neg).unwrap_err().to_string().contains("belt.modulus"));
+    let steep = TireConfig {
+        carcass: Some(CordLayer {
+            modulus: 1e9,
+            density: 0.0,
+            outer_layer_only: false,
+            angle_deg: 95.0,
+        }),
+        ..small()
+    };
+    assert!(
+        tire(&steep)
+            .unwrap_err()
+            .to_string()
+            .contains("carcass.angle_deg")
+    );
 }
 
 /// The cord-reinforced candidate of the rebar scan (BENCHMARKS.md, fe-model section): carcass
@@ -251,6 +308,7 @@ fn cord_reinforced_tire_reaches_ribaric_spectrum() {
             modulus: 5e9,
             density: 196.0,
             outer_layer_only: false,
+            angle_deg: 0.0,
         }),
         ..Default::default()
     };

@@ -86,13 +86,42 @@ pub struct CordLayer {
     /// default).
     #[serde(default)]
     pub outer_layer_only: bool,
+    /// Cord angle α [deg] from the layer's main direction (belt: `e_θ`, carcass: `e_s`) towards
+    /// the other in-surface direction. 0 (default): one family along the main direction; α ≠ 0:
+    /// two crossed families at ±α (like a pair of belt plies), each with half the modulus and
+    /// density.
+    #[serde(default)]
+    pub angle_deg: f64,
 }
 
 impl CordLayer {
     fn validate(&self, name: &str) -> Result<(), FeError> {
         FeError::check_non_negative(&format!("{name}.modulus"), self.modulus)?;
         FeError::check_non_negative(&format!("{name}.density"), self.density)?;
+        if !(self.angle_deg.is_finite() && self.angle_deg.abs() <= 90.0) {
+            return Err(FeError::param(
+                &format!("{name}.angle_deg"),
+                self.angle_deg,
+                "must be in [-90, 90]",
+            ));
+        }
         Ok(())
+    }
+
+    /// The fibre families of this layer with main direction `p` and in-surface direction `q`
+    /// (both unit, orthogonal): `cos α p ± sin α q`.
+    fn fibres(&self, p: [f64; 3], q: [f64; 3]) -> Result<Vec<Fibre>, FeError> {
+        if self.angle_deg == 0.0 {
+            return Ok(vec![Fibre::new(p, self.modulus, self.density)?]);
+        }
+        let (s, c) = self.angle_deg.to_radians().sin_cos();
+        [1.0, -1.0]
+            .iter()
+            .map(|sg| {
+                let a = std::array::from_fn(|i| c * p[i] + sg * s * q[i]);
+                Fibre::new(a, 0.5 * self.modulus, 0.5 * self.density)
+            })
+            .collect()
     }
 }
 
@@ -377,13 +406,13 @@ pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
                 let layer_ok = |c: &CordLayer| !c.outer_layer_only || k + 1 == nt;
                 let belt = cfg.belt.filter(|c| layer_ok(c) && zone == TireZone::Tread);
                 if let Some(c) = belt {
-                    f.push(Fibre::new(e_th, c.modulus, c.density)?);
+                    f.extend(c.fibres(e_th, s_vec)?);
                 }
                 let carcass = cfg
                     .carcass
                     .filter(|c| layer_ok(c) && zone != TireZone::Bead);
                 if let Some(c) = carcass {
-                    f.push(Fibre::new(s_vec, c.modulus, c.density)?);
+                    f.extend(c.fibres(s_vec, e_th)?);
                 }
                 Ok(f)
             };
