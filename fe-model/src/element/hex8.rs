@@ -10,13 +10,16 @@
 //!   incompressible rubber (ν → 0.5) without hourglass modes;
 //! - `K_G = ∫ G_aᵀ σ G_b dV · I₃` (σ the 3×3 Cauchy prestress, `G_a = ∇N_a`), e.g. from tire
 //!   inflation (Bathe (6.54), the linearised initial-stress term);
-//! - consistent mass `ρ ∫ N_a N_b dV · I₃` (2×2×2 Gauss); lumped mass by row sums (equal to
-//!   HRZ for the trilinear element).
+//! - optional smeared fibre families ([`Fibre`], ABAQUS `*REBAR`-like):
+//!   `K_f = Σ_families ∫ Bᵀ (E_f φ) m mᵀ B dV` at 2×2×2 Gauss for both integration rules (the
+//!   uniaxial fibre strain does not lock), added to the matrix stiffness above;
+//! - consistent mass `ρ ∫ N_a N_b dV · I₃` (2×2×2 Gauss, `ρ` = matrix density plus the fibres'
+//!   smeared `ρ_f φ`); lumped mass by row sums (equal to HRZ for the trilinear element).
 //!
 //! Node order is VTK's (`VTK_HEXAHEDRON`): bottom face (ζ = −1) counter-clockwise, then the top.
 //! DOFs per node: (u, v, w); element DOF order (u₀, v₀, w₀, u₁, …).
 
-use super::{Element, MassKind};
+use super::{Element, Fibre, MassKind};
 use crate::FeError;
 use faer::Mat;
 use nalgebra::{Matrix3, Vector3};
@@ -101,6 +104,8 @@ pub struct Hex8 {
     pub integration: Hex8Integration,
     /// Cauchy prestress σ [Pa] (symmetric), for the geometric stiffness; `None` = none.
     pub prestress: Option<[[f64; 3]; 3]>,
+    /// Smeared uniaxial fibre families (rebar) on top of the matrix material; empty = none.
+    pub fibres: Vec<Fibre>,
 }
 
 /// Shape functions and natural derivatives at ξ.
@@ -147,6 +152,7 @@ impl Hex8 {
             material,
             integration,
             prestress,
+            fibres: Vec::new(),
         };
         for xi in gauss8().iter().chain(std::iter::once(&[0.0; 3])) {
             let (_, det) = e.gradients(*xi);
@@ -159,6 +165,45 @@ impl Hex8 {
             }
         }
         Ok(e)
+    }
+
+    /// The same element with the given fibre families (replacing any previous ones), each
+    /// checked by [`Fibre::validate`].
+    pub fn with_fibres(mut self, fibres: Vec<Fibre>) -> Result<Self, FeError> {
+        for f in &fibres {
+            f.validate()?;
+        }
+        self.fibres = fibres;
+        Ok(self)
+    }
+
+    /// Fibre stiffness `K_f = Σ ∫ Bᵀ (E_f φ) m mᵀ B dV` (2×2×2 Gauss) alone (24×24); zero
+    /// without fibres. See [`Fibre`].
+    pub fn fibre_stiffness(&self) -> Mat<f64> {
+        let mut k = Mat::zeros(24, 24);
+        if self.fibres.is_empty() {
+            return k;
+        }
+        for xi in gauss8() {
+            let (g, det) = self.gradients(xi);
+            let b = Self::b_matrix(&g);
+            for f in &self.fibres {
+                let m = f.voigt();
+                // Bᵀ m: the fibre strain ε_aa per unit nodal DOF
+                let mut bm = [0.0; 24];
+                for (c, v) in bm.iter_mut().enumerate() {
+                    *v = (0..6).map(|i| b[i][c] * m[i]).sum();
+                }
+                let w = f.modulus * det;
+                for r in 0..24 {
+                    let wr = w * bm[r];
+                    for c in 0..24 {
+                        k[(r, c)] += wr * bm[c];
+                    }
+                }
+            }
+        }
+        k
     }
 
     /// Physical shape-function gradients `∇N_a` and `det J` at ξ.
@@ -278,11 +323,14 @@ impl Element for Hex8 {
                 Self::add_btdb(&mut k, &Self::b_matrix(&g), &vol, 8.0 * det);
             }
         }
+        if !self.fibres.is_empty() {
+            k += self.fibre_stiffness();
+        }
         k
     }
 
     fn mass(&self, kind: MassKind) -> Mat<f64> {
-        let rho = self.material.density;
+        let rho = self.material.density + self.fibres.iter().map(|f| f.density).sum::<f64>();
         let mut nn = [[0.0; 8]; 8];
         for xi in gauss8() {
             let (n, _) = shape(xi);

@@ -7,6 +7,7 @@
 use faer::Mat;
 
 pub mod bar;
+pub mod fibre;
 pub mod frame2d;
 pub mod frame3d;
 pub mod hex8;
@@ -14,6 +15,7 @@ pub mod point;
 pub mod string;
 
 pub use bar::Bar;
+pub use fibre::Fibre;
 pub use frame2d::{Frame2d, Frame2dSection};
 pub use frame3d::{Frame3d, Frame3dSection};
 pub use hex8::{Elastic, Hex8, Hex8Integration};

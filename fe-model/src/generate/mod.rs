@@ -10,4 +10,4 @@ pub use beam::{straight_beam_2d, straight_string};
 pub use belt::{BeltLoopConfig, belt_loop};
 pub use belt_path::{BeltPath, PathPoint, PathPulley, WrapSide};
 pub use block::hex_block;
-pub use tire::{Tire, TireConfig, TireZone, tire};
+pub use tire::{CordLayer, Tire, TireConfig, TireZone, tire};

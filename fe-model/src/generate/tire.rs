@@ -14,9 +14,15 @@
 //! meridional membrane force `N_s = p H/2`, hoop force `N_θ = p H/2` in the sidewall and
 //! `N_θ = p R_o` in the tread (belt), divided by the local wall thickness; a documented
 //! engineering approximation, not the seed's nonlinear ABAQUS inflation state.
+//!
+//! Optional cord reinforcement (off by default, [`TireConfig::belt`], [`TireConfig::carcass`]):
+//! smeared uniaxial fibre families ([`Fibre`], ABAQUS `*REBAR`-like) on top of the zone
+//! materials: a circumferential steel belt (direction `e_θ` at the element centre) in the tread
+//! zone (all layers, or only the outer layer), and radial carcass cords (direction: the section
+//! mid-line tangent `e_s`, meridional) in the sidewall and tread zones. The bead zone gets none.
 
 use crate::FeError;
-use crate::element::{Elastic, Hex8, Hex8Integration};
+use crate::element::{Elastic, Fibre, Hex8, Hex8Integration};
 use crate::mesh::{Cell, CellKind, Mesh};
 use crate::model::FeModel;
 use serde::{Deserialize, Serialize};
@@ -56,6 +62,67 @@ pub struct TireConfig {
     pub integration: Hex8Integration,
     /// Half angle [deg] of the `contact_patch` node set around θ = π (bottom).
     pub patch_half_angle_deg: f64,
+    /// Circumferential belt cords in the tread zone (direction `e_θ`); `None` (default) = none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub belt: Option<CordLayer>,
+    /// Radial (meridional) carcass cords in the sidewall and tread zones (direction: the
+    /// section mid-line tangent); `None` (default) = none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub carcass: Option<CordLayer>,
+}
+
+/// A smeared cord family of the generated tire (see [`Fibre`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CordLayer {
+    /// Smeared cord modulus `E_f φ` [Pa] (cord Young's modulus × cord volume fraction of the
+    /// reinforced elements), e.g. steel 200 GPa × 10 % = 20 GPa.
+    pub modulus: f64,
+    /// Smeared cord density `ρ_f φ` [kg/m³] added to the zone density (default 0: the zone
+    /// densities are already homogenised rubber/cord values).
+    #[serde(default)]
+    pub density: f64,
+    /// Only the outermost element layer through the thickness (`true`) or all layers (`false`,
+    /// default).
+    #[serde(default)]
+    pub outer_layer_only: bool,
+    /// Cord angle α [deg] from the layer's main direction (belt: `e_θ`, carcass: `e_s`) towards
+    /// the other in-surface direction. 0 (default): one family along the main direction; α ≠ 0:
+    /// two crossed families at ±α (like a pair of belt plies), each with half the modulus and
+    /// density.
+    #[serde(default)]
+    pub angle_deg: f64,
+}
+
+impl CordLayer {
+    fn validate(&self, name: &str) -> Result<(), FeError> {
+        FeError::check_non_negative(&format!("{name}.modulus"), self.modulus)?;
+        FeError::check_non_negative(&format!("{name}.density"), self.density)?;
+        if !(self.angle_deg.is_finite() && self.angle_deg.abs() <= 90.0) {
+            return Err(FeError::param(
+                &format!("{name}.angle_deg"),
+                self.angle_deg,
+                "must be in [-90, 90]",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The fibre families of this layer with main direction `p` and in-surface direction `q`
+    /// (both unit, orthogonal): `cos α p ± sin α q`.
+    fn fibres(&self, p: [f64; 3], q: [f64; 3]) -> Result<Vec<Fibre>, FeError> {
+        if self.angle_deg == 0.0 {
+            return Ok(vec![Fibre::new(p, self.modulus, self.density)?]);
+        }
+        let (s, c) = self.angle_deg.to_radians().sin_cos();
+        [1.0, -1.0]
+            .iter()
+            .map(|sg| {
+                let a = std::array::from_fn(|i| c * p[i] + sg * s * q[i]);
+                Fibre::new(a, 0.5 * self.modulus, 0.5 * self.density)
+            })
+            .collect()
+    }
 }
 
 impl Default for TireConfig {
@@ -91,6 +158,8 @@ impl Default for TireConfig {
             inflation_pressure: 262e3,
             integration: Hex8Integration::SelectiveReduced,
             patch_half_angle_deg: 8.0,
+            belt: None,
+            carcass: None,
         }
     }
 }
@@ -115,6 +184,12 @@ impl TireConfig {
                 },
                 other => other,
             })?;
+        }
+        if let Some(b) = &self.belt {
+            b.validate("belt")?;
+        }
+        if let Some(c) = &self.carcass {
+            c.validate("carcass")?;
         }
         FeError::check_positive("rim_diameter", self.rim_diameter)?;
         FeError::check_positive("width", self.width)?;
@@ -179,6 +254,9 @@ pub struct Tire {
     pub model: FeModel,
     /// Zone of each element (same order as `model.elements`).
     pub zones: Vec<TireZone>,
+    /// Cord families of each element (same order; empty without cords), as given to the
+    /// element ([`Hex8::fibres`]).
+    pub fibres: Vec<Vec<Fibre>>,
 }
 
 struct Section {
@@ -280,6 +358,7 @@ pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
     let p = cfg.inflation_pressure;
     let mut els = Vec::with_capacity(nc * ns * nt);
     let mut zones = Vec::with_capacity(nc * ns * nt);
+    let mut fibres = Vec::with_capacity(nc * ns * nt);
     let mut flip: Option<bool> = None;
     for j in 0..nc {
         for i in 0..ns {
@@ -320,7 +399,25 @@ pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
                 }
             }
             let prestress = if p > 0.0 { Some(sigma) } else { None };
+            // cord families of this element (belt: e_θ in the tread; carcass: e_s outside the
+            // beads), per layer k
+            let cords = |k: usize| -> Result<Vec<Fibre>, FeError> {
+                let mut f = Vec::new();
+                let layer_ok = |c: &CordLayer| !c.outer_layer_only || k + 1 == nt;
+                let belt = cfg.belt.filter(|c| layer_ok(c) && zone == TireZone::Tread);
+                if let Some(c) = belt {
+                    f.extend(c.fibres(e_th, s_vec)?);
+                }
+                let carcass = cfg
+                    .carcass
+                    .filter(|c| layer_ok(c) && zone != TireZone::Bead);
+                if let Some(c) = carcass {
+                    f.extend(c.fibres(s_vec, e_th)?);
+                }
+                Ok(f)
+            };
             for k in 0..nt {
+                let fib = cords(k)?;
                 let base = [
                     id(j, i, k),
                     id(j, i + 1, k),
@@ -344,7 +441,7 @@ pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
                             dofs[3 * a + d] = 3 * nd + d;
                         }
                     }
-                    Hex8::new(dofs, x, mat, cfg.integration, prestress)
+                    Hex8::new(dofs, x, mat, cfg.integration, prestress)?.with_fibres(fib.clone())
                 };
                 let el = match flip {
                     Some(f) => build(f)?,
@@ -366,6 +463,7 @@ pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
                 });
                 els.push(el);
                 zones.push(zone);
+                fibres.push(fib);
             }
         }
     }
@@ -397,5 +495,9 @@ pub fn tire(cfg: &TireConfig) -> Result<Tire, FeError> {
     for e in els {
         model.push(e);
     }
-    Ok(Tire { model, zones })
+    Ok(Tire {
+        model,
+        zones,
+        fibres,
+    })
 }
