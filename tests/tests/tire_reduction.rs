@@ -259,3 +259,45 @@ fn full_truck_tire_truncation_against_the_full_model() {
         }
     }
 }
+
+#[test]
+#[ignore = "the full 63 936-DOF cord-reinforced truck tire: reduction and a 60-mode eigen solve, ~1 min"]
+fn cord_reinforced_truck_tire_meets_the_50_mode_240_hz_criterion() {
+    // Issue 9, "truncated to 50 modes, the frequencies below 240 Hz stay within 2 % of the full
+    // model", on the generated truck tire with carcass cords (E_fφ = 5 GPa with their steel
+    // mass, tread rubber 50 MPa: the fe-model cord scan's candidate with Ribaric's spectrum,
+    // 5th mode 64.2 Hz and 49 modes below 240 Hz). Measured: largest error 1.12 % (mode 38).
+    use fe_model::generate::{CordLayer, TireConfig};
+    let mut cfg = TireConfig {
+        carcass: Some(CordLayer {
+            modulus: 5e9,
+            density: 196.0,
+            outer_layer_only: false,
+            angle_deg: 0.0,
+        }),
+        ..TireConfig::default()
+    };
+    cfg.tread.young = 50e6;
+    let fe = generated_tire(&cfg).unwrap();
+    let full = full_frequencies_hz(&fe, 60).unwrap();
+    let below: Vec<(usize, f64)> = full
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|(_, b)| *b < 240.0)
+        .collect();
+    assert!(
+        (45..=50).contains(&below.len()),
+        "{} modes below 240 Hz",
+        below.len()
+    );
+    let f = reduce(&fe, &ReductionConfig::default())
+        .unwrap()
+        .0
+        .frequencies_hz()
+        .unwrap();
+    for (i, b) in below {
+        assert!(rel(f[i], b) < 0.02, "mode {}: {} vs {b} Hz", i + 1, f[i]);
+        assert!(f[i] >= b * (1.0 - 1e-9));
+    }
+}
