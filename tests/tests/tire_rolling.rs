@@ -3,28 +3,9 @@
 //! generated truck tire (96 x 8 elements, 33 contact nodes, 50 free-node modes).
 
 use flowing::tire::*;
-use std::sync::OnceLock;
 
-fn tire() -> &'static ReducedTire {
-    static T: OnceLock<ReducedTire> = OnceLock::new();
-    T.get_or_init(|| {
-        let fe = generated_tire(&coarse_tire_config(96, 8, 20.0)).expect("tire");
-        let cfg = ReductionConfig {
-            contact_nodes: 33,
-            free_modes: 50,
-            ..Default::default()
-        };
-        reduce(&fe, &cfg).expect("reduce").0
-    })
-}
-
-fn rig(kind: GroundKind, cleat: bool, mu: f64) -> RigConfig {
-    let mut rc = RigConfig::default();
-    rc.ground.kind = kind;
-    rc.ground.cleat = cleat;
-    rc.rolling.friction = mu;
-    rc
-}
+mod common;
+use common::{coarse_reduced_tire as tire, rig};
 
 #[test]
 fn steady_rolling_on_a_flat_road_is_constant_and_carries_the_load() {

@@ -3,28 +3,9 @@
 //! nodes, 50 free-node modes).
 
 use flowing::tire::*;
-use std::sync::OnceLock;
 
-fn tire() -> &'static ReducedTire {
-    static T: OnceLock<ReducedTire> = OnceLock::new();
-    T.get_or_init(|| {
-        let fe = generated_tire(&coarse_tire_config(96, 8, 20.0)).expect("tire");
-        let cfg = ReductionConfig {
-            contact_nodes: 33,
-            free_modes: 50,
-            ..Default::default()
-        };
-        reduce(&fe, &cfg).expect("reduce").0
-    })
-}
-
-fn rig(kind: GroundKind, cleat: bool, mu: f64) -> RigConfig {
-    let mut rc = RigConfig::default();
-    rc.ground.kind = kind;
-    rc.ground.cleat = cleat;
-    rc.rolling.friction = mu;
-    rc
-}
+mod common;
+use common::{coarse_reduced_tire as tire, rig};
 
 /// Mean `(F_y, Σλ)` over the last 50 ms of steady rolling without a cleat.
 fn steady(rc: &RigConfig) -> (f64, f64) {
