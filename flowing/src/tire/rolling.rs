@@ -287,6 +287,9 @@ struct Factor {
 struct Work {
     /// `[ż̃; z̃; θ̈ z]` (3 n_z).
     pred: Vec<f64>,
+    /// Known part `wₙ = (α_f z̈ₙ − α_m aₙ)/(1 − α_m)` of the generalized-α pseudo-accelerations
+    /// (n_z).
+    known: Vec<f64>,
     /// Free accelerations `[θ̈; z̈]`, then with the contact correction (n).
     a: Vec<f64>,
     /// Right-hand side of `S a = …` (n).
@@ -610,6 +613,7 @@ impl<'a> RollingTire<'a> {
         let n = nz + 1;
         let work = Work {
             pred: vec![0.0; 3 * nz],
+            known: vec![0.0; nz],
             a: vec![0.0; n],
             tmp: vec![0.0; n],
             z_free: vec![0.0; nz],
@@ -706,28 +710,7 @@ impl<'a> RollingTire<'a> {
         let nc3 = 3 * red.n_contact();
         let h = self.cfg.time_step;
         let (bn, gn) = self.cfg.implicit_coefficients();
-        let (a, b) = (self.alpha, self.beta);
         let sp = spin_s;
-        let kt = red.kt.row(1);
-        let kt1 = red.kt1.row(1);
-        let mut smat = Mat::<f64>::zeros(n, n);
-        smat[(0, 0)] = self.spin_inertia();
-        for j in 0..nz {
-            smat[(0, 1 + j)] = gn * h * b * kt[j] + bn * h * h * (kt[j] + b * sp * kt1[j]);
-            smat[(1 + j, 0)] = red.m_theta[j];
-            for i in 0..nz {
-                let c = 2.0 * sp * red.g1[(i, j)] + a * red.m[(i, j)] + b * red.k[(i, j)];
-                let k = red.k[(i, j)] + sp * sp * red.g2[(i, j)] + b * sp * red.k1[(i, j)];
-                smat[(1 + i, 1 + j)] = red.m[(i, j)] + gn * h * c + bn * h * h * k;
-            }
-        }
-        let sinv = smat.partial_piv_lu().solve(Mat::<f64>::identity(n, n));
-        if !sinv.col_iter().all(|c| c.iter().all(|v| v.is_finite())) {
-            return Err(TireError::Simulation {
-                time: self.state.t,
-                reason: "the Newmark iteration matrix is singular".into(),
-            });
-        }
         let mut f = match self.factor.take() {
             Some(f) => f,
             None => Factor {
@@ -739,6 +722,29 @@ impl<'a> RollingTire<'a> {
                 y: Mat::zeros(nc3, nc3),
             },
         };
+        // R at the same spin rate: its C_eff and K_eff blocks (row 0: the spin row) form S
+        Self::form_r(&mut f, red, self.alpha, self.beta, sp);
+        let rt = &f.rt;
+        let mut smat = Mat::<f64>::zeros(n, n);
+        smat[(0, 0)] = self.spin_inertia();
+        for j in 0..nz {
+            smat[(0, 1 + j)] = gn * h * rt[(j, 0)] + bn * h * h * rt[(nz + j, 0)];
+            smat[(1 + j, 0)] = red.m_theta[j];
+        }
+        for i in 0..nz {
+            let row = rt.col(1 + i);
+            for j in 0..nz {
+                smat[(1 + i, 1 + j)] = red.m[(i, j)] + gn * h * row[j] + bn * h * h * row[nz + j];
+            }
+        }
+        let sinv = smat.partial_piv_lu().solve(Mat::<f64>::identity(n, n));
+        if !sinv.col_iter().all(|c| c.iter().all(|v| v.is_finite())) {
+            self.factor = Some(f);
+            return Err(TireError::Simulation {
+                time: self.state.t,
+                reason: "the Newmark iteration matrix is singular".into(),
+            });
+        }
         f.spin_s = sp;
         f.sinv_t.copy_from(sinv.transpose());
         matmul(
@@ -757,7 +763,6 @@ impl<'a> RollingTire<'a> {
             1.0,
             Par::Seq,
         );
-        Self::form_r(&mut f, red, a, b, sp);
         self.factor = Some(f);
         self.refactors += 1;
         self.stats.columns += red.n_contact();
@@ -864,6 +869,7 @@ impl<'a> RollingTire<'a> {
             let lag = 2.0 * gn * h * (fac.spin - fac.spin_s);
             for j in 0..nz {
                 let (acc, wj) = (st.acc[j], known(st.zdd[j], st.acc[j]));
+                w.known[j] = wj;
                 w.pred[j] = st.zd[j] + h * ((1.0 - gn0) * acc + gn0 * wj);
                 w.pred[nz + j] = st.z[j] + h * st.zd[j] + h * h * ((0.5 - bn0) * acc + bn0 * wj);
                 w.pred[2 * nz + j] = st.theta_dd * st.z[j] + lag * st.zdd[j];
@@ -941,7 +947,7 @@ impl<'a> RollingTire<'a> {
         st.theta_acc = theta_acc;
         for j in 0..nz {
             let a = w.a[1 + j];
-            st.acc[j] = known(st.zdd[j], st.acc[j]) + r * a;
+            st.acc[j] = w.known[j] + r * a;
             st.zdd[j] = a;
             st.z[j] = w.pred[nz + j] + bn * h * h * a;
             st.zd[j] = w.pred[j] + gn * h * a;
