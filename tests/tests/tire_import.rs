@@ -4,11 +4,9 @@
 //! same as the one of the generated tire.
 
 use flowing::tire::*;
-use std::fmt::Write as _;
 
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs().max(1e-300)
-}
+mod common;
+use std::fmt::Write as _;
 
 #[test]
 fn imported_abaqus_tire_matches_the_generated_one() {
@@ -75,17 +73,8 @@ fn imported_abaqus_tire_matches_the_generated_one() {
         patch_nodes: p("patch.inp"),
     };
     let imp = imported_tire(&files).unwrap();
-    let cfg = ReductionConfig {
-        contact_nodes: 12,
-        free_modes: 20,
-        ..Default::default()
-    };
     // independent reference: the same reduction of the generated model
-    let fa = reduce(&fe, &cfg).unwrap().0.frequencies_hz().unwrap();
-    let fb = reduce(&imp, &cfg).unwrap().0.frequencies_hz().unwrap();
-    for (a, b) in fa.iter().zip(&fb).take(20) {
-        assert!(rel(*b, *a) < 1e-9, "{a} vs {b}");
-    }
+    common::assert_same_reduced_frequencies(&fe, &imp);
     // a set naming a node without coordinates is reported with the file and the label
     std::fs::write(p("bad.inp"), "1001, 5\n").unwrap();
     let e = imported_tire(&ImportFiles {

@@ -2,7 +2,8 @@
 #![allow(dead_code)]
 
 use flowing::tire::{
-    GroundKind, ReducedTire, ReductionConfig, RigConfig, coarse_tire_config, generated_tire, reduce,
+    GroundKind, ReducedTire, ReductionConfig, RigConfig, TireFe, coarse_tire_config,
+    generated_tire, reduce,
 };
 use std::sync::OnceLock;
 
@@ -28,4 +29,20 @@ pub fn rig(kind: GroundKind, cleat: bool, mu: f64) -> RigConfig {
     rc.ground.cleat = cleat;
     rc.rolling.friction = mu;
     rc
+}
+
+/// An imported tire against the generated one it was exported from (independent reference:
+/// the same reduction, 12 contact nodes and 20 free-node modes): the first 20 reduced
+/// frequencies agree to 1e-9 relative.
+pub fn assert_same_reduced_frequencies(generated: &TireFe, imported: &TireFe) {
+    let cfg = ReductionConfig {
+        contact_nodes: 12,
+        free_modes: 20,
+        ..Default::default()
+    };
+    let fa = reduce(generated, &cfg).unwrap().0.frequencies_hz().unwrap();
+    let fb = reduce(imported, &cfg).unwrap().0.frequencies_hz().unwrap();
+    for (a, b) in fa.iter().zip(&fb).take(20) {
+        assert!((b - a).abs() < 1e-9 * a.abs(), "{a} vs {b}");
+    }
 }
