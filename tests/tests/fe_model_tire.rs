@@ -118,9 +118,10 @@ fn tire_cord_layers_directions_and_energy() {
     use fe_model::generate::CordLayer;
     let base = TireConfig {
         thickness_divisions: 2,
+        carcass: None,
         ..small()
     };
-    assert!(base.belt.is_none() && base.carcass.is_none());
+    assert!(base.belt.is_none());
     let on = TireConfig {
         belt: Some(CordLayer {
             modulus: 20e9,
@@ -259,8 +260,11 @@ fn tire_cord_layers_directions_and_energy() {
     }
     assert!(n_pairs > 0);
 
-    // serde: the default has no cord keys, unknown cord fields are rejected
+    // serde: the default has carcass cords and no belt key; a tire without layers has no cord
+    // keys; unknown cord fields are rejected
     let json = serde_json::to_string(&TireConfig::default()).unwrap();
+    assert!(!json.contains("belt") && json.contains("carcass"));
+    let json = serde_json::to_string(&base).unwrap();
     assert!(!json.contains("belt") && !json.contains("carcass"));
     let bad = r#"{"belt": {"modulus": 1e9, "angle": 20}}"#;
     assert!(serde_json::from_str::<TireConfig>(bad).is_err());
@@ -294,26 +298,29 @@ fn tire_cord_layers_directions_and_energy() {
     );
 }
 
-/// The cord-reinforced candidate of the rebar scan (BENCHMARKS.md, fe-model section): carcass
-/// cords E_f φ = 5 GPa with their steel mass (φ = 2.5 %), sidewall 25 MPa, tread 50 MPa, on the
-/// full 192 × 36 × 2 tire (rim fixed, lumped mass, inflation K_G): the 5th mode near Ribaric's
-/// 64 Hz and at most 50 modes below 240 Hz (his 50 free-node modes reached 240 Hz; Ribaric §8.1).
-/// Heavy (full 63 936-DOF eigenproblem, ~15–30 s in release).
+/// The default tire, the cord-reinforced candidate of the rebar scan (BENCHMARKS.md, fe-model
+/// section): carcass cords E_f φ = 5 GPa with their steel mass (φ = 2.5 %), sidewall 25 MPa,
+/// tread 50 MPa, on the full 192 × 36 × 2 tire (rim fixed, lumped mass, inflation K_G): the 5th
+/// mode near Ribaric's 64 Hz and at most 50 modes below 240 Hz (his 50 free-node modes reached
+/// 240 Hz; Ribaric §8.1). Heavy (full 63 936-DOF eigenproblem, ~15–30 s in release).
 #[test]
 #[ignore = "full-size tire eigenproblem (~15-30 s); run with --ignored"]
 fn cord_reinforced_tire_reaches_ribaric_spectrum() {
     use fe_model::generate::CordLayer;
-    let mut cfg = TireConfig {
-        carcass: Some(CordLayer {
-            modulus: 5e9,
-            density: 196.0,
-            outer_layer_only: false,
-            angle_deg: 0.0,
-        }),
-        ..Default::default()
-    };
-    cfg.sidewall.young = 25e6;
-    cfg.tread.young = 50e6;
+    let cfg = TireConfig::default();
+    assert_eq!(
+        (cfg.tread.young, cfg.sidewall.young, cfg.carcass),
+        (
+            50e6,
+            25e6,
+            Some(CordLayer {
+                modulus: 5e9,
+                density: 196.0,
+                outer_layer_only: false,
+                angle_deg: 0.0,
+            })
+        )
+    );
     let fe = flowing::tire::generated_tire(&cfg).unwrap();
     let f = flowing::tire::full_frequencies_hz(&fe, 52).unwrap();
     let below = f.iter().filter(|&&x| x < 240.0).count();
@@ -324,11 +331,14 @@ fn cord_reinforced_tire_reaches_ribaric_spectrum() {
         f[49]
     );
     assert!((10.0..100.0).contains(&f[0]), "f1 = {} Hz", f[0]);
-    // the default (no cords) does not: 95 modes below 240 Hz, f50 = 185 Hz
-    let f0 = flowing::tire::full_frequencies_hz(
-        &flowing::tire::generated_tire(&TireConfig::default()).unwrap(),
-        52,
-    )
-    .unwrap();
-    assert!(f0[49] < 200.0, "default f50 = {}", f0[49]);
+    // the isotropic tire of earlier versions (tread 150 MPa, no cords) does not: 95 modes
+    // below 240 Hz, f50 = 185 Hz
+    let mut iso = TireConfig {
+        carcass: None,
+        ..TireConfig::default()
+    };
+    iso.tread.young = 150e6;
+    let f0 = flowing::tire::full_frequencies_hz(&flowing::tire::generated_tire(&iso).unwrap(), 52)
+        .unwrap();
+    assert!(f0[49] < 200.0, "isotropic f50 = {}", f0[49]);
 }

@@ -210,7 +210,7 @@ fn generalized_alpha_with_unit_spectral_radius_is_the_trapezoidal_rule() {
         d[1] < 1e-6 * 4448.2 && d[2] < 1e-6 * 4448.2,
         "forces differ: {d:?}"
     );
-    // and ρ∞ = 0.9 (the default) is a different, second-order scheme: close to the trapezoidal
+    // and ρ∞ = 0.5 (the default) is a different, second-order scheme: close to the trapezoidal
     // rule on this smooth run (its numerical damping acts at the highest frequencies)
     let (def, _) = spin_up_with(|_| {});
     let d = max_diff(&def, &nm);
@@ -228,7 +228,7 @@ fn steady_rolling_with_friction_does_not_chatter() {
     // Issue 9: rolling steadily on a flat road without a cleat, the spindle forces become
     // constant and the vertical force equals the load, here with μ = 0.85. With the
     // trapezoidal rule (ρ∞ = 1) the index-3 contact forces alternate from step to step
-    // (period-two chatter at the patch edges); generalized-α with ρ∞ = 0.9 damps it. The
+    // (period-two chatter at the patch edges); generalized-α with ρ∞ < 1 (default 0.5) damps it. The
     // indicator is the largest second difference of the total normal force Σλ over the steps.
     let red = tire();
     let mut rc = rig(GroundKind::Road, false, 0.85);
@@ -252,7 +252,7 @@ fn steady_rolling_with_friction_does_not_chatter() {
     trap.rolling = trap.rolling.generalized_alpha(1.0);
     let (_, trap_chatter, _) = stats(&trap);
     println!(
-        "rho 0.9: Fy {fy} N, spread {spread} N, chatter {chatter} N; rho 1: chatter {trap_chatter} N"
+        "default rho: Fy {fy} N, spread {spread} N, chatter {chatter} N; rho 1: chatter {trap_chatter} N"
     );
     assert!(
         (fy - rc.load).abs() < 0.02 * rc.load,

@@ -41,34 +41,47 @@ fn more_damping_lowers_the_vertical_peak() {
 fn steady_vertical_force_balance_before_the_cleat() {
     // Why the vertical spindle force of the steadily rolling tire differs from the preload
     // (issue 9): the preload solves the patch without friction for the Eulerian steady state, so
-    // (a) without friction the normal contact forces carry the load (Σλ = load), and the spindle
-    // force exceeds Σλ only by the net centripetal force of the discrete flowing-material model
-    // (zero for the continuum, whose steady momentum is constant), which grows as v²;
-    // (b) with friction the patch shear adds normal force at the locked spindle height.
+    // (a) without friction the normal contact forces carry the load (Σλ = load);
+    // (b) the default spindle force (Newton's second law for the tire) equals Σλ in the steady
+    // state, while the rim force of Ribaric (7.2) differs from it by the elastic residual of
+    // the truncated basis under the centrifugal load, which grows as v² (second formulation);
+    // (c) with friction the patch shear adds normal force at the locked spindle height.
     let mut a30 = rig(GroundKind::Road, false, 0.0);
     a30.speed_kmh = 30.0;
     a30.settle_time = 0.3;
     a30.record_time = 0.0;
     let mut a60 = a30.clone();
     a60.speed_kmh = 60.0;
+    let rim = |rc: &RigConfig| {
+        let mut r = rc.clone();
+        r.rolling.spindle_force = SpindleForceMethod::Rim;
+        r
+    };
     let (fy30, sl30) = steady(&a30);
     let (fy60, sl60) = steady(&a60);
+    let (rim30, _) = steady(&rim(&a30));
+    let (rim60, _) = steady(&rim(&a60));
     let load = a30.load;
-    for (sl, v) in [(sl30, 30), (sl60, 60)] {
+    for (fy, sl, v) in [(fy30, sl30, 30), (fy60, sl60, 60)] {
         assert!(
             (sl - load).abs() < 0.005 * load,
             "Σλ {sl} N vs load {load} N at {v} km/h without friction"
         );
+        assert!(
+            (fy - sl).abs() < 1e-6 * load,
+            "Fy {fy} N vs Σλ {sl} N at {v} km/h"
+        );
     }
-    let (d30, d60) = (fy30 - sl30, fy60 - sl60);
+    let (d30, d60) = (rim30 - sl30, rim60 - sl60);
+    println!("rim force − Σλ: {d30} N at 30 km/h, {d60} N at 60 km/h");
     assert!(
         d60.abs() < 0.02 * load,
-        "inertial residual {d60} N at 60 km/h"
+        "rim-force residual {d60} N at 60 km/h"
     );
     let ratio = d60 / d30;
     assert!(
         (2.5..6.0).contains(&ratio),
-        "Fy − Σλ: {d30} N at 30, {d60} N at 60 km/h (ratio {ratio}, v² gives 4)"
+        "rim force − Σλ: {d30} N at 30, {d60} N at 60 km/h (ratio {ratio}, v² gives 4)"
     );
     let mut f60 = a60.clone();
     f60.rolling.friction = 0.85;

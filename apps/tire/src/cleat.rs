@@ -134,6 +134,13 @@ pub struct Summary {
     pub refactors: usize,
     /// Work counters of the integration.
     pub stats: flowing::tire::StepStats,
+    /// Frequency of the loaded tire's vertical in-plane mode [Hz] (largest effective vertical
+    /// spindle mass, wheel fixed, preloaded patch held; `flowing::tire::loaded`): the
+    /// reference for `fy_peak_hz`.
+    pub loaded_vertical_mode_hz: Option<f64>,
+    /// Frequency of the loaded tire's mode with the largest effective longitudinal spindle
+    /// mass [Hz].
+    pub loaded_longitudinal_mode_hz: Option<f64>,
 }
 
 /// Summary of a rig result.
@@ -161,6 +168,8 @@ pub fn summarize(r: &RigResult) -> Summary {
         steps: r.samples.len(),
         refactors: r.refactors,
         stats: r.stats,
+        loaded_vertical_mode_hz: r.loaded_vertical_mode.as_ref().map(|m| m.hz),
+        loaded_longitudinal_mode_hz: r.loaded_longitudinal_mode.as_ref().map(|m| m.hz),
     }
 }
 

@@ -120,6 +120,17 @@ impl TireSource {
         Ok(())
     }
 
+    /// What the reduced tire is made from: the generated tire's configuration (or the imported
+    /// tire's files) and the reduction settings, as JSON; stored in the reduced file
+    /// ([`ReducedTire::source`]) and compared when the file is reused.
+    pub fn fingerprint(&self) -> String {
+        let model = match &self.import {
+            Some(files) => serde_json::json!({ "import": files }),
+            None => serde_json::json!({ "generator": self.generator }),
+        };
+        serde_json::json!({ "model": model, "reduction": self.reduction }).to_string()
+    }
+
     /// The FE model: imported when `import` is given, otherwise generated.
     pub fn fe_model(&self) -> Result<TireFe, StudyError> {
         match &self.import {
@@ -137,6 +148,19 @@ impl TireSource {
             // a file made with another reduction would silently answer a different question
             let (nc, nf) = (red.n_contact(), red.n_free_modes);
             let want = &self.reduction;
+            let source = self.fingerprint();
+            if red.source != source {
+                let why = if red.source.is_empty() {
+                    "does not record the tire it was made from (an older flowmbd wrote it)"
+                } else {
+                    "was made from another tire model or reduction than tire.generator / \
+                     tire.import and tire.reduction describe"
+                };
+                return Err(StudyError::Input(InputError::new(
+                    format!("tire.reduced_file `{file}`"),
+                    format!("{why} (delete the file or name another)"),
+                )));
+            }
             if nc != want.contact_nodes || nf != want.free_modes {
                 return Err(StudyError::Input(InputError::new(
                     format!("tire.reduced_file `{file}`"),
@@ -158,7 +182,8 @@ impl TireSource {
             eprintln!("reducing the {what} tire (saved to `{file}`)");
         }
         let fe = self.fe_model()?;
-        let (red, _) = reduce(&fe, &self.reduction).map_err(tire_err)?;
+        let (mut red, _) = reduce(&fe, &self.reduction).map_err(tire_err)?;
+        red.source = self.fingerprint();
         if !file.is_empty() {
             if let Some(dir) = path.parent() {
                 let _ = std::fs::create_dir_all(dir);

@@ -1,8 +1,14 @@
 //! `flowmbd-tire modes`: eigenfrequencies of the generated tire with the rim fixed, full FE model
-//! (sparse shift-invert) against the reduced model (Ribaric §8.2 validation).
+//! (sparse shift-invert) against the reduced model (Ribaric §8.2 validation), and the modes of
+//! the loaded tire (reduced, preloaded patch held on the ground, wheel fixed) with their
+//! effective spindle masses (`flowing::tire::loaded`): the vertical in-plane mode the cleat test
+//! should show (Ribaric §8.3).
 
 use crate::common::{TireSource, tire_err};
-use flowing::tire::full_frequencies_hz;
+use flowing::tire::{
+    GroundConfig, dominant_longitudinal_mode, dominant_vertical_mode, full_frequencies_hz,
+    loaded_modes_at_preload,
+};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -23,6 +29,10 @@ pub struct Config {
     pub tire: TireSource,
     /// Number of modes compared.
     pub count: usize,
+    /// Ground of the loaded tire (drum R = 1.25 m by default; the cleat is not used).
+    pub ground: GroundConfig,
+    /// Vertical load of the loaded tire [N] (1000 lb, Ribaric §8.3).
+    pub load: f64,
 }
 
 impl Default for Config {
@@ -30,6 +40,8 @@ impl Default for Config {
         Self {
             tire: TireSource::default(),
             count: 30,
+            ground: GroundConfig::default(),
+            load: 4448.2,
         }
     }
 }
@@ -39,6 +51,11 @@ impl Validate for Config {
         if self.count == 0 {
             return Err(InputError::new("count", "must be positive"));
         }
+        if !(self.load > 0.0 && self.load.is_finite()) {
+            return Err(InputError::new("load", "must be positive"));
+        }
+        // the ground's errors already name `ground.…`
+        self.ground.validate().map_err(crate::common::input)?;
         self.tire.validate()
     }
 }
@@ -52,6 +69,16 @@ pub struct Summary {
     pub reduced_hz: Vec<f64>,
     /// Largest relative error below 240 Hz.
     pub max_rel_error_below_240hz: f64,
+    /// Contact nodes held in the loaded tire (positive preload multiplier).
+    pub loaded_held_nodes: usize,
+    /// Frequencies of the loaded tire [Hz] (the first `count`).
+    pub loaded_hz: Vec<f64>,
+    /// The loaded tire's vertical in-plane mode: largest effective vertical spindle mass [Hz].
+    pub loaded_vertical_mode_hz: Option<f64>,
+    /// Its effective vertical spindle mass [kg].
+    pub loaded_vertical_mass_kg: Option<f64>,
+    /// The loaded mode with the largest effective longitudinal spindle mass [Hz].
+    pub loaded_longitudinal_mode_hz: Option<f64>,
 }
 
 struct Modes;
@@ -96,10 +123,40 @@ impl Study for Modes {
         .with(Series::points("full FE", pts(&full)))
         .with(Series::points("reduced", pts(&reduced)))
         .save(&ctx.out.path("modes"))?;
+        let (pre, loaded) = loaded_modes_at_preload(&red, &c.ground, c.load).map_err(tire_err)?;
+        ctx.out.write_csv(
+            "loaded_modes.csv",
+            &[
+                "mode",
+                "f_hz",
+                "spindle_fx",
+                "spindle_fy",
+                "spindle_lateral",
+                "vertical_mass_kg",
+                "longitudinal_mass_kg",
+            ],
+            loaded.iter().enumerate().map(|(i, m)| {
+                vec![
+                    (i + 1) as f64,
+                    m.hz,
+                    m.spindle[0],
+                    m.spindle[1],
+                    m.spindle[2],
+                    m.vertical_mass,
+                    m.longitudinal_mass,
+                ]
+            }),
+        )?;
+        let vertical = dominant_vertical_mode(&loaded);
         Ok(Summary {
             full_hz: full,
             reduced_hz: reduced,
             max_rel_error_below_240hz: err,
+            loaded_held_nodes: pre.patch.lambda.iter().filter(|&&l| l > 0.0).count(),
+            loaded_hz: loaded.iter().take(c.count).map(|m| m.hz).collect(),
+            loaded_vertical_mode_hz: vertical.map(|m| m.hz),
+            loaded_vertical_mass_kg: vertical.map(|m| m.vertical_mass.abs()),
+            loaded_longitudinal_mode_hz: dominant_longitudinal_mode(&loaded).map(|m| m.hz),
         })
     }
 }

@@ -66,7 +66,8 @@ impl Study for Reduce {
         let t = Instant::now();
         let fe = c.tire.fe_model()?;
         let assembly_s = t.elapsed().as_secs_f64();
-        let (red, timings) = reduce(&fe, &c.tire.reduction).map_err(tire_err)?;
+        let (mut red, timings) = reduce(&fe, &c.tire.reduction).map_err(tire_err)?;
+        red.source = c.tire.fingerprint();
         let file = if c.tire.reduced_file.is_empty() {
             ctx.out.path("reduced-tire.json").display().to_string()
         } else {

@@ -613,6 +613,13 @@ fn bad_input_exits_2_naming_the_field() {
             tire_tables(file).replace("contact_nodes = 33", "contact_nodes = 30"),
             "tire.reduced_file",
         ),
+        // the reduced file was made from another tire (its fingerprint records the generator)
+        (
+            "cleat",
+            vec![],
+            tire_tables(file).replace("young = 150e6", "young = 120e6"),
+            "another tire model",
+        ),
         // a reduced file that is not one (a folder)
         ("modes", vec![], tire_tables(&dir), "tire.reduced_file"),
         // an imported tire whose matrix file is missing

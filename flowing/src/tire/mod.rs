@@ -22,13 +22,19 @@ pub use reduced::{ReducedTire, VizBasis};
 pub mod contact_solve;
 pub mod ground;
 pub mod lcp;
+pub mod loaded;
 pub mod statics;
 pub use contact_solve::FrictionLaw;
 pub use ground::{Ground, GroundConfig, GroundKind};
+pub use loaded::{
+    LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, loaded_modes,
+    loaded_modes_at_preload,
+};
 pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
 pub mod rolling;
 pub use rolling::{
-    NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce, StepStats,
+    NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce, SpindleForceMethod,
+    StepStats,
 };
 pub mod model;
 pub use model::{

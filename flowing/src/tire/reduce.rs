@@ -340,6 +340,20 @@ pub fn reduce(
     let (kr1, kt1) = rim_sum(&ktd);
     let tc = Mat::from_fn(nc3, nz, |i, j| t[(part.c[i], j)]);
     let tc_theta = Mat::from_fn(nc3, nz, |i, j| der.d1[(part.c[i], j)]);
+    // translational momentum of the tire (non-rim nodes; the rim's rows of T and its
+    // derivatives are zero): eᵀM T, eᵀM T_,θ, eᵀM T_,θθ per Cartesian direction e, and eᵀM s_,θ,
+    // eᵀM s_,θθ of the rigid rotation
+    let rim_nodes = fe.rim_mask();
+    let momentum = |a: &Mat<f64>| {
+        Mat::from_fn(3, a.ncols(), |c, j| {
+            (0..n / 3)
+                .filter(|&i| !rim_nodes[i])
+                .map(|i| fe.mass[3 * i + c] * a[(3 * i + c, j)])
+                .sum()
+        })
+    };
+    let (p_e, p_e1, p_e2) = (momentum(&t), momentum(&der.d1), momentum(&der.d2));
+    let p_s = momentum(&s_th);
     tim.projection_s = ts.elapsed().as_secs_f64();
 
     let rim = fe.rim_mask();
@@ -386,7 +400,15 @@ pub fn reduce(
             kt1,
             tc,
             tc_theta,
+            p_e,
+            p_e1,
+            p_e2,
+            p_s: [
+                [p_s[(0, 0)], p_s[(1, 0)], p_s[(2, 0)]],
+                [p_s[(0, 1)], p_s[(1, 1)], p_s[(2, 1)]],
+            ],
             viz,
+            source: String::new(),
         },
         tim,
     ))

@@ -11,7 +11,10 @@
 //!   m_θ = TᵀM s_,θ,  c_s = TᵀM s_,θθ,
 //!   K_r = Σ_rim K_{rim,·} T,  K_θ = Σ_rim s̃ K_{rim,·} T  (and the same with T_,θ)   (7.2)
 //! ```
-//! plus the contact-node rows `T_c`, `T_c,θ` and the undeformed contact-node positions `s^c`.
+//! plus the contact-node rows `T_c`, `T_c,θ`, the undeformed contact-node positions `s^c` and
+//! the translational momentum projections `P = eᵀM T`, `P₁ = eᵀM T_,θ`, `P₂ = eᵀM T_,θθ`,
+//! `eᵀM s_,θ`, `eᵀM s_,θθ` (e = the three Cartesian directions; tire nodes only) of the
+//! momentum-balance spindle force ([`super::rolling::SpindleForceMethod`]).
 
 use super::error::{TireError, invalid};
 use crate::derivative::DerivativeMethod;
@@ -21,8 +24,8 @@ use std::path::Path;
 
 /// File format name of a saved reduced tire.
 pub const FORMAT: &str = "flowmbd-reduced-tire";
-/// Current file format version.
-pub const VERSION: u32 = 1;
+/// Current file format version (2: the momentum projections `p_e`, `p_e1`, `p_e2`, `p_s`).
+pub const VERSION: u32 = 2;
 
 /// The reduced flowing-material tire (see the module documentation for the definitions).
 #[derive(Debug, Clone)]
@@ -73,8 +76,22 @@ pub struct ReducedTire {
     pub tc: Mat<f64>,
     /// Contact-node rows of `T_,θ` (3 n_c × n_z) [1/rad].
     pub tc_theta: Mat<f64>,
+    /// Translational momentum per coordinate `P = eᵀM T` (3 × n_z, rows x, y, z) [kg].
+    pub p_e: Mat<f64>,
+    /// `P₁ = eᵀM T_,θ` (3 × n_z) [kg/rad]; zero up to round-off for uniform rings (the periodic
+    /// derivative of any field sums to zero around a ring).
+    pub p_e1: Mat<f64>,
+    /// `P₂ = eᵀM T_,θθ` (3 × n_z) [kg/rad²]; zero up to round-off for uniform rings.
+    pub p_e2: Mat<f64>,
+    /// `[eᵀM s_,θ, eᵀM s_,θθ]` of the rigid rotation field [kg·m]; zero for an axisymmetric
+    /// tire.
+    pub p_s: [[f64; 3]; 2],
     /// Rows of `T` for visualising the whole deforming tire (optional).
     pub viz: Option<VizBasis>,
+    /// Description of the FE model and reduction settings the tire was made from (e.g. the
+    /// generator and reduction configuration as JSON), so that a saved file is not reused for
+    /// another tire; empty when unknown (files of older versions).
+    pub source: String,
 }
 
 /// Rows of the basis `T` at a subset of the tire's nodes (every ring at equally spaced
@@ -186,8 +203,14 @@ struct FileV1 {
     kt1: Dense,
     tc: Dense,
     tc_theta: Dense,
+    p_e: Dense,
+    p_e1: Dense,
+    p_e2: Dense,
+    p_s: [[f64; 3]; 2],
     #[serde(default, skip_serializing_if = "Option::is_none")]
     viz: Option<VizFile>,
+    #[serde(default)]
+    source: String,
 }
 
 impl ReducedTire {
@@ -242,12 +265,17 @@ impl ReducedTire {
             kt1: Dense::from(&self.kt1),
             tc: Dense::from(&self.tc),
             tc_theta: Dense::from(&self.tc_theta),
+            p_e: Dense::from(&self.p_e),
+            p_e1: Dense::from(&self.p_e1),
+            p_e2: Dense::from(&self.p_e2),
+            p_s: self.p_s,
             viz: self.viz.as_ref().map(|v| VizFile {
                 nodes: v.nodes.clone(),
                 positions: v.positions.clone(),
                 lines: v.lines.clone(),
                 rows: Dense::from(&v.rows),
             }),
+            source: self.source.clone(),
         };
         serde_json::to_string(&f).map_err(|e| invalid("reduced tire", e.to_string()))
     }
@@ -323,8 +351,13 @@ impl ReducedTire {
             kt1: f.kt1.to("kt1", 3, nz)?,
             tc: f.tc.to("tc", 3 * nc, nz)?,
             tc_theta: f.tc_theta.to("tc_theta", 3 * nc, nz)?,
+            p_e: f.p_e.to("p_e", 3, nz)?,
+            p_e1: f.p_e1.to("p_e1", 3, nz)?,
+            p_e2: f.p_e2.to("p_e2", 3, nz)?,
+            p_s: f.p_s,
             viz,
             contact_nodes: f.contact_nodes,
+            source: f.source,
         })
     }
 

@@ -10,6 +10,7 @@
 
 use super::error::{TireError, invalid};
 use super::ground::{Ground, GroundConfig};
+use super::loaded::{LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, loaded_modes};
 use super::reduced::ReducedTire;
 use super::rolling::{RollingConfig, RollingTire, StepStats};
 use super::spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};
@@ -152,6 +153,13 @@ pub struct RigResult {
     pub refactors: usize,
     /// Work counters of the integration.
     pub stats: StepStats,
+    /// The loaded tire's vertical in-plane mode: the mode with the largest effective vertical
+    /// spindle mass of the non-rolling tire with the preloaded contact nodes held
+    /// ([`super::loaded`]), the reference for the dominant vertical line (Ribaric §8.3).
+    /// `None` if that eigenproblem failed.
+    pub loaded_vertical_mode: Option<LoadedMode>,
+    /// The loaded tire's mode with the largest effective longitudinal spindle mass.
+    pub loaded_longitudinal_mode: Option<LoadedMode>,
 }
 
 impl RigResult {
@@ -241,6 +249,13 @@ pub fn run_cleat_observed(
     let ray = cfg.damping.rayleigh(red)?;
     let v = cfg.speed_kmh / 3.6;
     let pre0 = preload(red, &cfg.ground, cfg.load)?;
+    let held: Vec<usize> = (0..red.n_contact())
+        .filter(|&i| pre0.patch.lambda[i] > 0.0)
+        .collect();
+    // a failure here only loses the reference mode, not the run
+    let loaded = loaded_modes(red, &held).unwrap_or_default();
+    let loaded_vertical_mode = dominant_vertical_mode(&loaded).cloned();
+    let loaded_longitudinal_mode = dominant_longitudinal_mode(&loaded).cloned();
     let r_e = red.outer_radius - pre0.patch.deflection / 3.0;
     let pre = preload_rolling(red, &cfg.ground, cfg.load, v / r_e, ray.beta)?;
     let ground = Ground {
@@ -259,6 +274,9 @@ pub fn run_cleat_observed(
         v / r_e,
     )?;
     sim.state.lambda = pre.patch.lambda.clone();
+    for (k, f) in pre.patch.f_c.iter().enumerate() {
+        sim.state.contact_force[k % 3] += f;
+    }
     let h = cfg.rolling.time_step;
     let total = cfg.settle_time + cfg.record_time;
     let steps = (total / h).round() as usize;
@@ -302,6 +320,8 @@ pub fn run_cleat_observed(
         simulated_s: steps as f64 * h,
         refactors: sim.refactors,
         stats: sim.stats,
+        loaded_vertical_mode,
+        loaded_longitudinal_mode,
     })
 }
 

@@ -58,12 +58,16 @@ pub const CONTACT: usize = 33;
 /// Free-node modes of the small tire's reduction.
 pub const MODES: usize = 50;
 
-/// The `[tire]` tables of the small tire, with its reduced-tire file at `reduced`.
+/// The `[tire]` tables of the small tire, with its reduced-tire file at `reduced`: the isotropic
+/// materials of earlier versions (tread 150 MPa, no carcass cords), as the library's rolling
+/// tests (`tests/tests/common`, which says why).
 pub fn tire_tables(reduced: &Path) -> String {
     format!(
         "[tire]\nreduced_file = {:?}\n\
          [tire.generator]\ncircumferential_divisions = {CIRC}\nsection_divisions = {SECTION}\n\
          thickness_divisions = 1\nbead_elements = 1\npatch_half_angle_deg = 20.0\n\
+         [tire.generator.tread]\nyoung = 150e6\npoisson = 0.45\ndensity = 1500.0\n\
+         [tire.generator.carcass]\nmodulus = 0.0\n\
          [tire.reduction]\ncontact_nodes = {CONTACT}\nfree_modes = {MODES}\n",
         reduced.display().to_string()
     )
