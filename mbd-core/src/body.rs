@@ -10,14 +10,14 @@ use nalgebra::{Matrix3, SMatrix, Vector3, Vector4};
 /// means the ground (inertial frame).
 pub type BodyId = usize;
 
-/// A rigid body: mass \[kg\] and inertia tensor about the mass centre in the body frame [kg·m²].
+/// A rigid body: mass \[kg\] and inertia tensor about the mass centre in the body frame \[kg·m²\].
 #[derive(Debug, Clone, PartialEq)]
 pub struct RigidBody {
     /// Name used in messages and output.
     pub name: String,
     /// Mass \[kg\].
     pub mass: f64,
-    /// Body-frame inertia about the mass centre `J'` [kg·m²] (Lin (2.26)).
+    /// Body-frame inertia about the mass centre `J'` \[kg·m²\] (Lin (2.26)).
     pub inertia: Matrix3<f64>,
 }
 
@@ -79,16 +79,16 @@ impl RigidBody {
 }
 
 /// State of one body: position of the mass centre `r` \[m\], Euler parameters `p`, velocity `ṙ`
-/// [m/s] and body-frame angular velocity `ω'` [rad/s].
+/// \[m/s\] and body-frame angular velocity `ω'` \[rad/s\].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyState {
     /// Mass-centre position \[m\].
     pub r: Vector3<f64>,
     /// Euler parameters (unit).
     pub p: Vector4<f64>,
-    /// Mass-centre velocity [m/s].
+    /// Mass-centre velocity \[m/s\].
     pub rdot: Vector3<f64>,
-    /// Body-frame angular velocity `ω'` [rad/s].
+    /// Body-frame angular velocity `ω'` \[rad/s\].
     pub omega_local: Vector3<f64>,
 }
 
@@ -134,9 +134,9 @@ pub struct BodyKin {
     pub p: Vector4<f64>,
     /// Rotation matrix `A(p)` (Lin (2.7)).
     pub a: Matrix3<f64>,
-    /// Mass-centre velocity [m/s].
+    /// Mass-centre velocity \[m/s\].
     pub rdot: Vector3<f64>,
-    /// Body-frame angular velocity ω' [rad/s].
+    /// Body-frame angular velocity ω' \[rad/s\].
     pub w: Vector3<f64>,
 }
 

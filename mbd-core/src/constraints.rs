@@ -411,34 +411,34 @@ impl Constraint for PlanarRevolute {
 /// Prescribed angle of a rotation driver as a function of time.
 #[derive(Clone)]
 pub enum DriverLaw {
-    /// `θ = θ₀ + ω t` \[rad\], ω [rad/s].
+    /// `θ = θ₀ + ω t` \[rad\], ω \[rad/s\].
     ConstantSpeed {
         /// Initial angle \[rad\].
         theta0: f64,
-        /// Angular speed [rad/s].
+        /// Angular speed \[rad/s\].
         omega: f64,
     },
-    /// Smooth start to speed ω [rad/s] over `ramp` \[s\] (cubic speed ramp
+    /// Smooth start to speed ω \[rad/s\] over `ramp` \[s\] (cubic speed ramp
     /// `ω(t) = ω (3τ² − 2τ³)`, τ = t/ramp), then constant speed.
     SpeedRamp {
         /// Initial angle \[rad\].
         theta0: f64,
-        /// Final angular speed [rad/s].
+        /// Final angular speed \[rad/s\].
         omega: f64,
         /// Ramp duration \[s\].
         ramp: f64,
     },
-    /// Piecewise-linear angular speed through the points `(times[k], speeds[k])` [s, rad/s]
+    /// Piecewise-linear angular speed through the points `(times[k], speeds[k])` \[s, rad/s\]
     /// (constant before the first and after the last point); θ is its exact integral.
     SpeedTable {
         /// Angle at t = 0 \[rad\].
         theta0: f64,
         /// Strictly increasing times \[s\].
         times: Vec<f64>,
-        /// Angular speeds [rad/s].
+        /// Angular speeds \[rad/s\].
         speeds: Vec<f64>,
     },
-    /// User function `t ↦ (θ, θ̇, θ̈)` [rad, rad/s, rad/s²].
+    /// User function `t ↦ (θ, θ̇, θ̈)` \[rad, rad/s, rad/s²\].
     Custom(Arc<dyn Fn(f64) -> (f64, f64, f64) + Send + Sync>),
 }
 

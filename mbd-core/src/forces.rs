@@ -61,7 +61,7 @@ pub fn add_point_force(
     add3(f, 6 * b + 3, &s.cross(&(k.a.transpose() * force)));
 }
 
-/// Adds the global torque `torque` [N·m] acting on body `b` to `f`.
+/// Adds the global torque `torque` \[N·m\] acting on body `b` to `f`.
 pub fn add_torque(f: &mut [f64], b: BodyId, k: &BodyKin, torque: &Vector3<f64>) {
     add3(f, 6 * b + 3, &(k.a.transpose() * torque));
 }
@@ -70,10 +70,10 @@ fn kin_of(kin: &[BodyKin], b: Option<BodyId>) -> BodyKin {
     b.map(|b| kin[b]).unwrap_or_else(BodyKin::ground)
 }
 
-/// Uniform gravity `g` [m/s²] on every body.
+/// Uniform gravity `g` \[m/s²\] on every body.
 #[derive(Debug, Clone)]
 pub struct Gravity {
-    /// Gravitational acceleration [m/s²].
+    /// Gravitational acceleration \[m/s²\].
     pub g: Vector3<f64>,
 }
 
@@ -121,9 +121,9 @@ pub struct SpringDamper {
     pub i: Attachment,
     /// Point on body j.
     pub j: Attachment,
-    /// Stiffness k [N/m].
+    /// Stiffness k \[N/m\].
     pub stiffness: f64,
-    /// Damping c [N·s/m].
+    /// Damping c \[N·s/m\].
     pub damping: f64,
     /// Free length L₀ \[m\].
     pub free_length: f64,
@@ -187,16 +187,16 @@ pub struct RotationalSpringDamper {
     pub reference_i: Vector3<f64>,
     /// Direction on body j.
     pub reference_j: Vector3<f64>,
-    /// Stiffness [N·m/rad].
+    /// Stiffness \[N·m/rad\].
     pub stiffness: f64,
-    /// Damping [N·m·s/rad].
+    /// Damping \[N·m·s/rad\].
     pub damping: f64,
     /// Free angle θ₀ \[rad\].
     pub free_angle: f64,
 }
 
 impl RotationalSpringDamper {
-    /// Angle θ \[rad\], rate θ̇ [rad/s] and `∂θ̇/∂v` of bodies i and j.
+    /// Angle θ \[rad\], rate θ̇ \[rad/s\] and `∂θ̇/∂v` of bodies i and j.
     fn angle(&self, ki: &BodyKin, kj: &BodyKin) -> (f64, f64, [f64; 6], [f64; 6]) {
         let a = self.i.axis;
         let xi = (self.reference_i - a * a.dot(&self.reference_i)).normalize();
@@ -265,7 +265,7 @@ impl ForceElement for RotationalSpringDamper {
     }
 }
 
-/// Function of time and body kinematics returning a global vector (force \[N\] or torque [N·m]).
+/// Function of time and body kinematics returning a global vector (force \[N\] or torque \[N·m\]).
 pub type VectorLaw = Arc<dyn Fn(f64, &BodyKin) -> Vector3<f64> + Send + Sync>;
 
 /// Applied global force at a body point, a function of time and the body's state.
@@ -301,7 +301,7 @@ pub struct AppliedTorque {
     pub name: String,
     /// Body.
     pub body: BodyId,
-    /// `(t, kinematics) ↦ torque` [N·m], global.
+    /// `(t, kinematics) ↦ torque` \[N·m\], global.
     pub law: VectorLaw,
 }
 

@@ -23,7 +23,7 @@ use nalgebra::Vector3;
 pub const SPARSE_THRESHOLD: usize = 12;
 
 /// Reaction of one constraint on its two bodies (global force \[N\] at the mass centre and
-/// global torque about the mass centre [N·m]), from `−Dᵀλ`.
+/// global torque about the mass centre \[N·m\]), from `−Dᵀλ`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Reaction {
     /// Constraint name.
@@ -242,7 +242,7 @@ impl MultibodySystem {
             .sum()
     }
 
-    /// Linear momentum `Σ m ṙ` [kg·m/s].
+    /// Linear momentum `Σ m ṙ` \[kg·m/s\].
     pub fn linear_momentum(&self, state: &State) -> Vector3<f64> {
         self.bodies
             .iter()
@@ -251,7 +251,7 @@ impl MultibodySystem {
             .sum()
     }
 
-    /// Angular momentum about the global origin `Σ (r × m ṙ + A J' ω')` [kg·m²/s].
+    /// Angular momentum about the global origin `Σ (r × m ṙ + A J' ω')` \[kg·m²/s\].
     pub fn angular_momentum(&self, state: &State) -> Vector3<f64> {
         let kin = self.kinematics(&state.q, Some(&state.v));
         self.bodies

@@ -9,11 +9,11 @@ use faer::Mat;
 /// Options of [`static_equilibrium`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StaticOptions {
-    /// Tolerance on the correction `‖Δx‖∞` [m or rad].
+    /// Tolerance on the correction `‖Δx‖∞` \[m or rad\].
     pub tol: f64,
     /// Maximum Newton iterations.
     pub max_iterations: usize,
-    /// Largest correction per iteration `‖Δx‖∞` (damped Newton) [m or rad].
+    /// Largest correction per iteration `‖Δx‖∞` (damped Newton) \[m or rad\].
     pub max_step: f64,
 }
 

@@ -58,9 +58,9 @@ impl SysMatrix {
 /// both `n_v × n_v` (used by implicit integrators and static solvers).
 #[derive(Debug, Clone)]
 pub struct ForceTangent {
-    /// Tangent stiffness `-∂f/∂q · H` [N/m or consistent units].
+    /// Tangent stiffness `-∂f/∂q · H` \[N/m or consistent units\].
     pub stiffness: SysMatrix,
-    /// Tangent damping `-∂f/∂v` [N·s/m or consistent units].
+    /// Tangent damping `-∂f/∂v` \[N·s/m or consistent units\].
     pub damping: SysMatrix,
 }
 

@@ -29,9 +29,9 @@ pub enum AxisCondition {
 /// rows in `Ψ'`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidCore {
-    /// Mass `m^o` [kg].
+    /// Mass `m^o` \[kg\].
     pub mass: f64,
-    /// Inertia about the frame origin in the body frame `J^o` [kg·m²].
+    /// Inertia about the frame origin in the body frame `J^o` \[kg·m²\].
     pub inertia: Matrix3<f64>,
 }
 
@@ -83,10 +83,10 @@ fn bad(name: &str, field: &str, reason: String) -> MbdError {
 impl FlexBody {
     /// New body.
     ///
-    /// * `s`: undeformed node positions relative to the frame origin, 3 per node [m];
+    /// * `s`: undeformed node positions relative to the frame origin, 3 per node \[m\];
     /// * `mass`: local nodal mass `M'` (3n × 3n, symmetric, each 3×3 nodal block a multiple of
-    ///   `I3` so that `M = Abar M' Abarᵀ = M'`, Lin (3.26)) [kg];
-    /// * `stiffness`: local nodal stiffness `K'` (3n × 3n) [N/m];
+    ///   `I3` so that `M = Abar M' Abarᵀ = M'`, Lin (3.26)) \[kg\];
+    /// * `stiffness`: local nodal stiffness `K'` (3n × 3n) \[N/m\];
     /// * `psi`: basis `Ψ'` (3n × n_z): identity for the nodal formulation, a reduction basis for
     ///   the modal one;
     /// * `axis`: the axis condition.
@@ -267,7 +267,7 @@ impl FlexBody {
         self
     }
 
-    /// Mass centre of the undeformed nodes in the body frame, `IhᵀM's' / m` [m] (zero when the
+    /// Mass centre of the undeformed nodes in the body frame, `IhᵀM's' / m` \[m\] (zero when the
     /// frame origin is at the mass centre, as mean axes expect, Lin §4.2).
     pub fn undeformed_mass_centre(&self) -> Vector3<f64> {
         self.ih_m_s / self.total_mass
@@ -288,22 +288,22 @@ impl FlexBody {
         self.axis
     }
 
-    /// Total mass of the nodes plus the rigid core [kg].
+    /// Total mass of the nodes plus the rigid core \[kg\].
     pub fn mass(&self) -> f64 {
         self.total_mass + self.core.map(|c| c.mass).unwrap_or(0.0)
     }
 
-    /// Undeformed position of node `j` in the body frame [m].
+    /// Undeformed position of node `j` in the body frame \[m\].
     pub fn node_position(&self, j: usize) -> Vector3<f64> {
         self.s[j]
     }
 
-    /// Local deflections `δ' = Ψ' z` (Lin (5.12)), 3 per node [m].
+    /// Local deflections `δ' = Ψ' z` (Lin (5.12)), 3 per node \[m\].
     pub fn deflection(&self, z: &[f64]) -> Vec<f64> {
         mat_vec(self.psi.as_ref(), z)
     }
 
-    /// Elastic energy `½ zᵀ Ψ'ᵀK'Ψ' z` [J].
+    /// Elastic energy `½ zᵀ Ψ'ᵀK'Ψ' z` \[J\].
     pub fn strain_energy(&self, z: &[f64]) -> f64 {
         let kz = mat_vec(self.k_r.as_ref(), z);
         0.5 * z.iter().zip(&kz).map(|(a, b)| a * b).sum::<f64>()

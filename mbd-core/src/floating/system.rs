@@ -14,13 +14,13 @@ use nalgebra::{Matrix3, Vector3, Vector4};
 /// State of one flexible body.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FlexState {
-    /// Frame origin [m].
+    /// Frame origin \[m\].
     pub r: Vector3<f64>,
     /// Frame Euler parameters.
     pub p: Vector4<f64>,
-    /// Frame origin velocity [m/s].
+    /// Frame origin velocity \[m/s\].
     pub rdot: Vector3<f64>,
-    /// Body-frame angular velocity ω' [rad/s].
+    /// Body-frame angular velocity ω' \[rad/s\].
     pub omega_local: Vector3<f64>,
     /// Elastic coordinates z.
     pub z: Vec<f64>,
@@ -31,13 +31,13 @@ pub struct FlexState {
 /// A material point of the system.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Point {
-    /// A fixed point of the ground [m].
+    /// A fixed point of the ground \[m\].
     Ground(Vector3<f64>),
-    /// A point of rigid body `body` at body-frame position `local` (from its mass centre) [m].
+    /// A point of rigid body `body` at body-frame position `local` (from its mass centre) \[m\].
     Rigid {
         /// Rigid-body index.
         body: usize,
-        /// Body-frame position [m].
+        /// Body-frame position \[m\].
         local: Vector3<f64>,
     },
     /// Node `node` (0-based) of flexible body `body`.
@@ -61,7 +61,7 @@ pub struct SphericalJoint {
 }
 
 /// Prescribed motion of one global component of a point (Lin (7.7)–(7.9)): `motion(t)` returns
-/// `(x, ẋ, ẍ)` [m, m/s, m/s²].
+/// `(x, ẋ, ẍ)` \[m, m/s, m/s²\].
 pub struct PrescribedMotion {
     /// Name used in messages.
     pub name: String,
@@ -73,13 +73,13 @@ pub struct PrescribedMotion {
     pub motion: Box<dyn Fn(f64) -> [f64; 3] + Send + Sync>,
 }
 
-/// A global point force `force(t)` [N] applied at a point.
+/// A global point force `force(t)` \[N\] applied at a point.
 pub struct NodeLoad {
     /// Name used in messages.
     pub name: String,
     /// Point of application.
     pub point: Point,
-    /// Global force at time t [N].
+    /// Global force at time t \[N\].
     pub force: Box<dyn Fn(f64) -> Vector3<f64> + Send + Sync>,
 }
 
@@ -124,7 +124,7 @@ pub struct FloatingSystem {
     joints: Vec<SphericalJoint>,
     drivers: Vec<PrescribedMotion>,
     loads: Vec<NodeLoad>,
-    /// Gravitational acceleration [m/s²] (global).
+    /// Gravitational acceleration \[m/s²\] (global).
     pub gravity: Vector3<f64>,
 }
 
@@ -318,7 +318,7 @@ impl FloatingSystem {
         }
     }
 
-    /// Local deflection `δ'` of node `node` of flexible body `body` [m].
+    /// Local deflection `δ'` of node `node` of flexible body `body` \[m\].
     pub fn node_deflection(&self, state: &State, body: usize, node: usize) -> Vector3<f64> {
         let fs = self.flex_state(state, body);
         let f = &self.flex[body];
@@ -331,13 +331,13 @@ impl FloatingSystem {
         d
     }
 
-    /// Global position of a point [m].
+    /// Global position of a point \[m\].
     pub fn point_position(&self, state: &State, p: &Point) -> Vector3<f64> {
         let (rk, fk) = self.kinematics(&state.q, None);
         self.point_kin(p, &rk, &fk).0
     }
 
-    /// Global velocity of a point, `ḋ = J v` [m/s] (Lin (5.2)).
+    /// Global velocity of a point, `ḋ = J v` \[m/s\] (Lin (5.2)).
     pub fn point_velocity(&self, state: &State, p: &Point) -> Vector3<f64> {
         let (rk, fk) = self.kinematics(&state.q, Some(&state.v));
         let (_, jac, _) = self.point_kin(p, &rk, &fk);
@@ -346,7 +346,7 @@ impl FloatingSystem {
     }
 
     /// Global acceleration of a point for the velocity derivatives `vdot` (e.g. from
-    /// [`crate::integrators::accelerations`]): `d̈ = J v̇ + A w'` [m/s²] (Lin (5.3), (5.5)).
+    /// [`crate::integrators::accelerations`]): `d̈ = J v̇ + A w'` \[m/s²\] (Lin (5.3), (5.5)).
     ///
     /// # Panics
     /// If `vdot` is shorter than [`SecondOrderSystem::n_v`].
@@ -376,14 +376,14 @@ impl FloatingSystem {
         ]
     }
 
-    /// Kinetic energy `½ vᵀ M v` [J].
+    /// Kinetic energy `½ vᵀ M v` \[J\].
     pub fn kinetic_energy(&self, state: &State) -> Result<f64, MbdError> {
         let m = self.mass(state.t, &state.q)?.to_dense();
         let mv = mat_vec(m.as_ref(), &state.v);
         Ok(0.5 * mv.iter().zip(&state.v).map(|(a, b)| a * b).sum::<f64>())
     }
 
-    /// Potential energy: strain energy plus gravity `−Σ m g·d` [J].
+    /// Potential energy: strain energy plus gravity `−Σ m g·d` \[J\].
     pub fn potential_energy(&self, state: &State) -> f64 {
         let (rk, fk) = self.kinematics(&state.q, None);
         let mut e = 0.0;

@@ -14,13 +14,13 @@ use crate::{MbdError, SecondOrderSystem};
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Stabilization {
-    /// Baumgarte velocity gain α [1/s] (0 disables).
+    /// Baumgarte velocity gain α \[1/s\] (0 disables).
     pub baumgarte_alpha: f64,
-    /// Baumgarte position gain β [1/s] (0 disables).
+    /// Baumgarte position gain β \[1/s\] (0 disables).
     pub baumgarte_beta: f64,
     /// Project positions and velocities onto the constraint manifold after each step.
     pub project: bool,
-    /// Tolerance on `‖Φ‖∞` for the position projection [m or rad].
+    /// Tolerance on `‖Φ‖∞` for the position projection \[m or rad\].
     pub projection_tol: f64,
     /// Maximum Newton iterations of the position projection.
     pub max_projection_iterations: usize,

@@ -56,11 +56,11 @@ pub enum NewtonUpdate {
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AlphaParams {
-    /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1] (1: no numerical damping).
+    /// Spectral radius at infinite frequency ρ∞ ∈ \[0, 1\] (1: no numerical damping).
     pub rho_inf: f64,
     /// Nominal step size \[s\].
     pub h: f64,
-    /// Absolute Newton tolerance on the position correction `‖Δx‖∞` [m or rad].
+    /// Absolute Newton tolerance on the position correction `‖Δx‖∞` \[m or rad\].
     pub newton_atol: f64,
     /// Relative Newton tolerance (times `‖Δq‖∞` of the step).
     pub newton_rtol: f64,
