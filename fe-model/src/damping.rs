@@ -13,9 +13,9 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Rayleigh {
-    /// Mass-proportional coefficient α [1/s].
+    /// Mass-proportional coefficient α \[1/s\].
     pub alpha: f64,
-    /// Stiffness-proportional coefficient β [s].
+    /// Stiffness-proportional coefficient β \[s\].
     pub beta: f64,
 }
 
@@ -46,7 +46,7 @@ impl Rayleigh {
         })
     }
 
-    /// Modal damping ratio `ζ(ω) = α/(2ω) + βω/2` at circular frequency `omega` [rad/s].
+    /// Modal damping ratio `ζ(ω) = α/(2ω) + βω/2` at circular frequency `omega` \[rad/s\].
     pub fn ratio(&self, omega: f64) -> f64 {
         self.alpha / (2.0 * omega) + self.beta * omega / 2.0
     }

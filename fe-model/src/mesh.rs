@@ -52,7 +52,7 @@ pub struct Cell {
 /// A finite-element mesh with uniform DOFs per node.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Mesh {
-    /// Node coordinates [m] (x, y, z; z = 0 for planar models).
+    /// Node coordinates \[m\] (x, y, z; z = 0 for planar models).
     pub nodes: Vec<[f64; 3]>,
     /// DOFs per node.
     pub dofs_per_node: usize,

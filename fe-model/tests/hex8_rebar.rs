@@ -11,7 +11,7 @@ const RUBBER: Elastic = Elastic {
     poisson: 0.45,
     density: 1200.0,
 };
-/// Smeared fibre modulus E_f φ [Pa] (e.g. steel 200 GPa × 1 %).
+/// Smeared fibre modulus E_f φ \[Pa\] (e.g. steel 200 GPa × 1 %).
 const EF: f64 = 2e9;
 
 const CUBE: [[f64; 3]; 8] = [

@@ -106,7 +106,7 @@ fn m_orthonormalize(m: MatRef<'_, f64>, phi: &mut Mat<f64>) {
     }
 }
 
-/// [`dense_modes`] with an explicit shift σ [rad²/s²] below the wanted spectrum (`None` = auto).
+/// [`dense_modes`] with an explicit shift σ \[rad²/s²\] below the wanted spectrum (`None` = auto).
 pub fn dense_modes_shifted(
     k: MatRef<'_, f64>,
     m: MatRef<'_, f64>,

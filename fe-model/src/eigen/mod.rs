@@ -19,9 +19,9 @@ pub use sturm::sturm_count;
 /// Eigen solution of `K φ = λ M φ`.
 #[derive(Debug, Clone)]
 pub struct Modes {
-    /// Eigenvalues λ = ω² [rad²/s²], ascending.
+    /// Eigenvalues λ = ω² \[rad²/s²\], ascending.
     pub values: Vec<f64>,
-    /// Natural frequencies [Hz]: `sign(λ) √|λ| / 2π` (a slightly negative λ of a rigid mode
+    /// Natural frequencies \[Hz\]: `sign(λ) √|λ| / 2π` (a slightly negative λ of a rigid mode
     /// shows as a tiny negative frequency rather than being hidden).
     pub frequencies_hz: Vec<f64>,
     /// Mode shapes, one M-normalised column per eigenvalue (`n × count`).
@@ -33,7 +33,7 @@ pub struct Modes {
 pub struct ModesSummary {
     /// Number of DOFs.
     pub dof: usize,
-    /// Frequencies [Hz], ascending.
+    /// Frequencies \[Hz\], ascending.
     pub frequencies_hz: Vec<f64>,
 }
 
@@ -65,7 +65,7 @@ impl Modes {
         self.values.is_empty()
     }
 
-    /// Circular frequencies ω = sign(λ)√|λ| [rad/s].
+    /// Circular frequencies ω = sign(λ)√|λ| \[rad/s\].
     pub fn omegas(&self) -> Vec<f64> {
         self.values
             .iter()
@@ -82,7 +82,7 @@ impl Modes {
     }
 }
 
-/// `sign(λ) √|λ| / 2π` [Hz] for an eigenvalue λ [rad²/s²].
+/// `sign(λ) √|λ| / 2π` \[Hz\] for an eigenvalue λ \[rad²/s²\].
 pub fn frequency_hz(lambda: f64) -> f64 {
     lambda.signum() * lambda.abs().sqrt() / (2.0 * std::f64::consts::PI)
 }

@@ -34,7 +34,7 @@ use std::time::{Duration, Instant};
 /// Options of [`sparse_modes`].
 #[derive(Debug, Clone)]
 pub struct SparseEigenOptions {
-    /// Shift σ [rad²/s²]; `None` = automatic: 0 if `K` is positive definite, otherwise a small
+    /// Shift σ \[rad²/s²\]; `None` = automatic: 0 if `K` is positive definite, otherwise a small
     /// negative shift `−10⁻⁶·tr(K)/tr(M)` (free–free models).
     pub shift: Option<f64>,
     /// Extra modes computed beyond the requested count (multiplets at the cut).
@@ -79,7 +79,7 @@ impl Default for SparseEigenOptions {
 pub struct SparseEigenReport {
     /// DOFs.
     pub dof: usize,
-    /// Shift σ used [rad²/s²].
+    /// Shift σ used \[rad²/s²\].
     pub shift: f64,
     /// Krylov subspace size of the accepted attempt.
     pub max_dim: usize,
@@ -93,7 +93,7 @@ pub struct SparseEigenReport {
     pub max_orthogonality_error: f64,
     /// Largest relative residual ‖Kφ − λMφ‖ / ‖Kφ‖ (or ‖λMφ‖ when larger).
     pub max_relative_residual: f64,
-    /// Sturm cut c [rad²/s²] (between the last returned mode and the next distinct one).
+    /// Sturm cut c \[rad²/s²\] (between the last returned mode and the next distinct one).
     pub sturm_cut: Option<f64>,
     /// Negative pivots of LDLᵀ of `K − cM` (eigenvalues below the cut).
     pub sturm_count: Option<usize>,

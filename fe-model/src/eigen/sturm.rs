@@ -6,7 +6,7 @@ use super::factor::{Analysis, shifted};
 use crate::FeError;
 use faer::sparse::SparseColMatRef;
 
-/// Number of eigenvalues of `K φ = λ M φ` strictly below `cut` [rad²/s²].
+/// Number of eigenvalues of `K φ = λ M φ` strictly below `cut` \[rad²/s²\].
 ///
 /// `analysis` must be the symbolic analysis of the union pattern of K and M (see
 /// [`super::factor::shifted`]); pass `None` to analyse here.

@@ -16,13 +16,13 @@ pub struct Bar {
     dim: usize,
     /// Unit axis vector (first `dim` entries used).
     axis: [f64; 3],
-    /// Length L [m].
+    /// Length L \[m\].
     pub length: f64,
-    /// Axial stiffness EA [N].
+    /// Axial stiffness EA \[N\].
     pub ea: f64,
-    /// Mass per length ρA [kg/m].
+    /// Mass per length ρA \[kg/m\].
     pub mass_per_length: f64,
-    /// Axial force N [N] (tension positive) for the geometric stiffness.
+    /// Axial force N \[N\] (tension positive) for the geometric stiffness.
     pub axial_force: f64,
 }
 

@@ -1,6 +1,6 @@
 //! Smeared uniaxial fibre reinforcement of a continuum element (like ABAQUS `*REBAR`).
 //!
-//! A fibre family is a unit direction `a` and a smeared modulus `E_f φ` [Pa] (fibre Young's
+//! A fibre family is a unit direction `a` and a smeared modulus `E_f φ` \[Pa\] (fibre Young's
 //! modulus times the fibre volume fraction φ). The fibres carry only their own axial strain
 //! `ε_aa = a·ε·a`, so the family adds the rank-one elasticity
 //! `D_f = E_f φ · m mᵀ` with the Voigt vector (engineering shears γxy, γyz, γzx)
@@ -8,7 +8,7 @@
 //! integrated as `K_f = ∫ Bᵀ D_f B dV` on top of the matrix material (the small-strain form of
 //! the smeared rebar layer of the ABAQUS Analysis User's Manual, `*REBAR`; derived here from the
 //! fibre strain energy `½ E_f φ ε_aa²` per unit volume). The fibre density enters the mass as
-//! `ρ_f φ` [kg/m³].
+//! `ρ_f φ` \[kg/m³\].
 //! Compressive fibre buckling and the fibre-rubber slip are not modelled (linear, tension and
 //! compression alike), which is adequate for the small vibrations of a prestressed tire.
 
@@ -19,11 +19,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Fibre {
-    /// Fibre direction `a` (unit vector in global axes, [-]).
+    /// Fibre direction `a` (unit vector in global axes, \[-\]).
     pub direction: [f64; 3],
-    /// Smeared modulus `E_f φ` [Pa] (fibre Young's modulus × volume fraction).
+    /// Smeared modulus `E_f φ` \[Pa\] (fibre Young's modulus × volume fraction).
     pub modulus: f64,
-    /// Smeared density `ρ_f φ` [kg/m³] added to the matrix density (0 = massless fibres).
+    /// Smeared density `ρ_f φ` \[kg/m³\] added to the matrix density (0 = massless fibres).
     pub density: f64,
 }
 

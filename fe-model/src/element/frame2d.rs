@@ -21,11 +21,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Frame2dSection {
-    /// Axial stiffness EA [N].
+    /// Axial stiffness EA \[N\].
     pub ea: f64,
-    /// Bending stiffness EI [N·m²].
+    /// Bending stiffness EI \[N·m²\].
     pub ei: f64,
-    /// Mass per unit length ρA [kg/m].
+    /// Mass per unit length ρA \[kg/m\].
     pub mass_per_length: f64,
 }
 
@@ -44,7 +44,7 @@ impl Frame2dSection {
 pub struct Frame2d {
     /// Global DOFs (u1, v1, θ1, u2, v2, θ2).
     pub dofs: [usize; 6],
-    /// Length L [m].
+    /// Length L \[m\].
     pub length: f64,
     /// Direction cosine c = cos α.
     pub c: f64,
@@ -52,12 +52,12 @@ pub struct Frame2d {
     pub s: f64,
     /// Section.
     pub section: Frame2dSection,
-    /// Axial force N [N] (tension positive) for the geometric stiffness.
+    /// Axial force N \[N\] (tension positive) for the geometric stiffness.
     pub axial_force: f64,
 }
 
 impl Frame2d {
-    /// New element between points `xa` and `xb` [m].
+    /// New element between points `xa` and `xb` \[m\].
     pub fn new(
         dofs: [usize; 6],
         xa: [f64; 2],

@@ -26,21 +26,21 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Frame3dSection {
-    /// Axial stiffness EA [N].
+    /// Axial stiffness EA \[N\].
     pub ea: f64,
-    /// Bending stiffness about local y, EI_y [N·m²] (bending in the x–z plane).
+    /// Bending stiffness about local y, EI_y \[N·m²\] (bending in the x–z plane).
     pub ei_y: f64,
-    /// Bending stiffness about local z, EI_z [N·m²] (bending in the x–y plane).
+    /// Bending stiffness about local z, EI_z \[N·m²\] (bending in the x–y plane).
     pub ei_z: f64,
-    /// Torsional stiffness GJ [N·m²].
+    /// Torsional stiffness GJ \[N·m²\].
     pub gj: f64,
-    /// Mass per unit length ρA [kg/m].
+    /// Mass per unit length ρA \[kg/m\].
     pub mass_per_length: f64,
-    /// Polar mass moment per unit length ρI_p [kg·m].
+    /// Polar mass moment per unit length ρI_p \[kg·m\].
     pub polar_inertia_per_length: f64,
-    /// Shear stiffness κGA for bending in the x–y plane [N]; `None` = Euler–Bernoulli.
+    /// Shear stiffness κGA for bending in the x–y plane \[N\]; `None` = Euler–Bernoulli.
     pub shear_y: Option<f64>,
-    /// Shear stiffness κGA for bending in the x–z plane [N]; `None` = Euler–Bernoulli.
+    /// Shear stiffness κGA for bending in the x–z plane \[N\]; `None` = Euler–Bernoulli.
     pub shear_z: Option<f64>,
 }
 
@@ -68,13 +68,13 @@ impl Frame3dSection {
 pub struct Frame3d {
     /// Global DOFs (6 per node).
     pub dofs: [usize; 12],
-    /// Length L [m].
+    /// Length L \[m\].
     pub length: f64,
     /// Rows: local x, y, z unit vectors in global coordinates.
     pub axes: [[f64; 3]; 3],
     /// Section.
     pub section: Frame3dSection,
-    /// Axial force N [N] (tension positive) for the geometric stiffness.
+    /// Axial force N \[N\] (tension positive) for the geometric stiffness.
     pub axial_force: f64,
 }
 
@@ -85,7 +85,7 @@ const XZ: [usize; 4] = [2, 4, 8, 10];
 const XZ_SIGN: [f64; 4] = [1.0, -1.0, 1.0, -1.0];
 
 impl Frame3d {
-    /// New element between `xa` and `xb` [m]; `orientation` gives the local y direction (any
+    /// New element between `xa` and `xb` \[m\]; `orientation` gives the local y direction (any
     /// vector not parallel to the element).
     pub fn new(
         dofs: [usize; 12],

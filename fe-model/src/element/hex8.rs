@@ -53,11 +53,11 @@ pub enum Hex8Integration {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Elastic {
-    /// Young's modulus E [Pa].
+    /// Young's modulus E \[Pa\].
     pub young: f64,
-    /// Poisson's ratio ν [-] (−1 < ν < 0.5).
+    /// Poisson's ratio ν \[-\] (−1 < ν < 0.5).
     pub poisson: f64,
-    /// Density ρ [kg/m³].
+    /// Density ρ \[kg/m³\].
     pub density: f64,
 }
 
@@ -76,7 +76,7 @@ impl Elastic {
         Ok(())
     }
 
-    /// Lamé constants (λ, μ) [Pa].
+    /// Lamé constants (λ, μ) \[Pa\].
     pub fn lame(&self) -> (f64, f64) {
         let (e, nu) = (self.young, self.poisson);
         let mu = e / (2.0 * (1.0 + nu));
@@ -84,7 +84,7 @@ impl Elastic {
         (lambda, mu)
     }
 
-    /// Bulk modulus κ = λ + 2μ/3 [Pa].
+    /// Bulk modulus κ = λ + 2μ/3 \[Pa\].
     pub fn bulk(&self) -> f64 {
         let (l, m) = self.lame();
         l + 2.0 * m / 3.0
@@ -96,13 +96,13 @@ impl Elastic {
 pub struct Hex8 {
     /// Global DOFs (24, node-major u, v, w).
     pub dofs: [usize; 24],
-    /// Node coordinates [m] (VTK order).
+    /// Node coordinates \[m\] (VTK order).
     pub x: [[f64; 3]; 8],
     /// Material.
     pub material: Elastic,
     /// Integration rule of the stiffness.
     pub integration: Hex8Integration,
-    /// Cauchy prestress σ [Pa] (symmetric), for the geometric stiffness; `None` = none.
+    /// Cauchy prestress σ \[Pa\] (symmetric), for the geometric stiffness; `None` = none.
     pub prestress: Option<[[f64; 3]; 3]>,
     /// Smeared uniaxial fibre families (rebar) on top of the matrix material; empty = none.
     pub fibres: Vec<Fibre>,
@@ -287,7 +287,7 @@ impl Hex8 {
         }
     }
 
-    /// Element volume [m³].
+    /// Element volume \[m³\].
     pub fn volume(&self) -> f64 {
         gauss8().iter().map(|&xi| self.gradients(xi).1).sum()
     }

@@ -36,9 +36,9 @@ pub enum MassKind {
 /// Which global matrix an assembly produces.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MatrixKind {
-    /// Elastic stiffness K [N/m, N/rad, ...].
+    /// Elastic stiffness K \[N/m, N/rad, ...\].
     Stiffness,
-    /// Mass M [kg, kg·m², ...].
+    /// Mass M \[kg, kg·m², ...\].
     Mass(MassKind),
     /// Geometric (prestress) stiffness K_G from the element's stored stress state.
     Geometric,

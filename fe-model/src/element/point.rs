@@ -1,7 +1,7 @@
 //! Point masses and discrete springs.
 //!
 //! - [`PointMass`]: `M = m I` on the listed DOFs (translations of one node for a particle, or
-//!   rotations with `m` = rotary inertia [kg·m²]), no stiffness (Lin Appendix A/B nodal masses).
+//!   rotations with `m` = rotary inertia \[kg·m²\]), no stiffness (Lin Appendix A/B nodal masses).
 //! - [`Spring`]: scalar spring of stiffness k between two DOFs, `K = k [1 −1; −1 1]`, or to
 //!   ground on one DOF, `K = [k]` (ground springs, bearings, contact penalties).
 
@@ -14,7 +14,7 @@ use faer::Mat;
 pub struct PointMass {
     /// DOFs carrying the mass (e.g. u, v, w of one node).
     pub dofs: Vec<usize>,
-    /// Mass [kg] (or rotary inertia [kg·m²] on rotational DOFs).
+    /// Mass \[kg\] (or rotary inertia \[kg·m²\] on rotational DOFs).
     pub mass: f64,
 }
 
@@ -50,7 +50,7 @@ impl Element for PointMass {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spring {
     dofs: Vec<usize>,
-    /// Stiffness k [N/m or N·m/rad].
+    /// Stiffness k \[N/m or N·m/rad\].
     pub stiffness: f64,
 }
 

@@ -14,11 +14,11 @@ use faer::Mat;
 pub struct StringElement {
     /// Global DOFs (transverse deflection of node a, node b).
     pub dofs: [usize; 2],
-    /// Element length h [m].
+    /// Element length h \[m\].
     pub length: f64,
-    /// Tension T0 [N].
+    /// Tension T0 \[N\].
     pub tension: f64,
-    /// Mass per unit length ρA [kg/m].
+    /// Mass per unit length ρA \[kg/m\].
     pub mass_per_length: f64,
 }
 

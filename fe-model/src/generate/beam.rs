@@ -5,8 +5,8 @@ use crate::element::{Frame2d, Frame2dSection, StringElement};
 use crate::mesh::{Cell, CellKind, Mesh};
 use crate::model::FeModel;
 
-/// Straight planar Euler–Bernoulli frame from x = 0 to x = `length` [m] with `n_elements`
-/// equal elements, DOFs (u, v, θ) per node, all elements with axial force `axial_force` [N]
+/// Straight planar Euler–Bernoulli frame from x = 0 to x = `length` \[m\] with `n_elements`
+/// equal elements, DOFs (u, v, θ) per node, all elements with axial force `axial_force` \[N\]
 /// (tension > 0) for the geometric stiffness. Node sets: `start`, `end`, `all`.
 pub fn straight_beam_2d(
     length: f64,
@@ -52,8 +52,8 @@ pub fn straight_beam_2d(
     Ok(model)
 }
 
-/// Straight taut string (Ribaric 4.1) from x = 0 to `length` [m], one transverse DOF per node,
-/// `n_elements` equal elements, tension `tension` [N], mass per length `mass_per_length` [kg/m].
+/// Straight taut string (Ribaric 4.1) from x = 0 to `length` \[m\], one transverse DOF per node,
+/// `n_elements` equal elements, tension `tension` \[N\], mass per length `mass_per_length` \[kg/m\].
 /// Node sets: `start`, `end`, `interior`.
 pub fn straight_string(
     length: f64,

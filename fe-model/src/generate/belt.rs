@@ -18,9 +18,9 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BeltLoopConfig {
-    /// Pulley centre distance L_c [m] (0 gives a circular ring).
+    /// Pulley centre distance L_c \[m\] (0 gives a circular ring).
     pub center_distance: f64,
-    /// Pulley (pitch) radius R [m].
+    /// Pulley (pitch) radius R \[m\].
     pub radius: f64,
     /// Elements per straight span.
     pub span_elements: usize,
@@ -28,7 +28,7 @@ pub struct BeltLoopConfig {
     pub arc_elements: usize,
     /// Section (EA, EI, ρA).
     pub section: Frame2dSection,
-    /// Belt tension T0 [N] used for the geometric stiffness.
+    /// Belt tension T0 \[N\] used for the geometric stiffness.
     pub tension: f64,
 }
 

@@ -32,13 +32,13 @@ pub enum WrapSide {
     Outside,
 }
 
-/// A pulley as seen by the belt path: centre [m], (pitch) radius [m] and wrap side.
+/// A pulley as seen by the belt path: centre \[m\], (pitch) radius \[m\] and wrap side.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PathPulley {
-    /// Centre (x, y) [m].
+    /// Centre (x, y) \[m\].
     pub center: [f64; 2],
-    /// Radius of the belt line on this pulley [m].
+    /// Radius of the belt line on this pulley \[m\].
     pub radius: f64,
     /// Wrap side.
     #[serde(default)]
@@ -52,7 +52,7 @@ pub enum Segment {
     Span {
         /// Index of the pulley the span leaves.
         from: usize,
-        /// Start point [m].
+        /// Start point \[m\].
         start: [f64; 2],
         /// Unit direction of travel.
         direction: [f64; 2],
@@ -61,7 +61,7 @@ pub enum Segment {
     Arc {
         /// Pulley index.
         pulley: usize,
-        /// Polar angle of the arrival point measured at the pulley centre [rad].
+        /// Polar angle of the arrival point measured at the pulley centre \[rad\].
         theta_start: f64,
         /// +1 when the belt turns clockwise on this pulley, −1 counter-clockwise.
         turn: f64,
@@ -71,9 +71,9 @@ pub enum Segment {
 /// A located piece of the path: `s ∈ [s_start, s_start + length)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathPiece {
-    /// Arc length at the start of the piece [m].
+    /// Arc length at the start of the piece \[m\].
     pub s_start: f64,
-    /// Length of the piece [m].
+    /// Length of the piece \[m\].
     pub length: f64,
     /// Geometry.
     pub segment: Segment,
@@ -82,16 +82,16 @@ pub struct PathPiece {
 /// Geometry of the path at one arc-length position.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathPoint {
-    /// Arc length `s` (reduced to `[0, L)`) [m].
+    /// Arc length `s` (reduced to `[0, L)`) \[m\].
     pub s: f64,
-    /// Position `r(s)` [m].
+    /// Position `r(s)` \[m\].
     pub position: [f64; 2],
     /// Unit tangent `e_t` (travel direction).
     pub tangent: [f64; 2],
     /// Unit normal `e_n` toward the centre of curvature (the left or right normal of the tangent
     /// on spans, chosen continuous with the preceding arc).
     pub normal: [f64; 2],
-    /// Curvature `1/ρ` [1/m] (0 on spans).
+    /// Curvature `1/ρ` \[1/m\] (0 on spans).
     pub curvature: f64,
     /// Pulley index when on an arc.
     pub pulley: Option<usize>,
@@ -247,7 +247,7 @@ impl BeltPath {
         ])
     }
 
-    /// Total path length `L` [m].
+    /// Total path length `L` \[m\].
     pub fn length(&self) -> f64 {
         self.length
     }
@@ -262,7 +262,7 @@ impl BeltPath {
         &self.pieces
     }
 
-    /// The arc on pulley `k`: (s at arrival, wrap length) [m].
+    /// The arc on pulley `k`: (s at arrival, wrap length) \[m\].
     pub fn arc_of(&self, pulley: usize) -> Option<(f64, f64)> {
         self.pieces.iter().find_map(|p| match p.segment {
             Segment::Arc { pulley: k, .. } if k == pulley => Some((p.s_start, p.length)),
@@ -270,7 +270,7 @@ impl BeltPath {
         })
     }
 
-    /// Wrap angle on pulley `k` [rad].
+    /// Wrap angle on pulley `k` \[rad\].
     pub fn wrap_angle(&self, pulley: usize) -> Option<f64> {
         self.arc_of(pulley)
             .map(|(_, l)| l / self.pulleys[pulley].radius)
@@ -332,7 +332,7 @@ impl BeltPath {
     }
 
     /// Node positions `s_i` for a mesh with element length close to `span_h` on spans and
-    /// `arc_h` on arcs [m]; every span and arc end is a node, each piece gets at least one
+    /// `arc_h` on arcs \[m\]; every span and arc end is a node, each piece gets at least one
     /// element. The result is increasing, starts at 0 and excludes `L` (closed loop).
     pub fn mesh_positions(&self, span_h: f64, arc_h: f64) -> Result<Vec<f64>, FeError> {
         FeError::check_positive("span_element_length", span_h)?;
@@ -351,7 +351,7 @@ impl BeltPath {
         Ok(s)
     }
 
-    /// Indices of the nodes `s_nodes` lying on the arc of `pulley` or within `margin` [m] of it
+    /// Indices of the nodes `s_nodes` lying on the arc of `pulley` or within `margin` \[m\] of it
     /// (measured along the path, periodically): the contact-node set of Ribaric 5.2 / 6.1.
     pub fn contact_nodes(&self, s_nodes: &[f64], pulley: usize, margin: f64) -> Vec<usize> {
         let Some((a, len)) = self.arc_of(pulley) else {
@@ -372,7 +372,7 @@ impl BeltPath {
 }
 
 /// Tributary length of each node of a closed loop with nodes at `s_nodes` (increasing, in
-/// `[0, L)`): half the sum of the adjacent element lengths [m] (seed-000 note §10.1, used to scale
+/// `[0, L)`): half the sum of the adjacent element lengths \[m\] (seed-000 note §10.1, used to scale
 /// the penalty law (6.1)).
 pub fn tributary_lengths(s_nodes: &[f64], loop_length: f64) -> Vec<f64> {
     let n = s_nodes.len();

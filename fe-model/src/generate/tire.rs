@@ -33,15 +33,15 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct TireConfig {
-    /// Rim (bead seat) diameter [m].
+    /// Rim (bead seat) diameter \[m\].
     pub rim_diameter: f64,
-    /// Outer (tread surface) diameter [m].
+    /// Outer (tread surface) diameter \[m\].
     pub outer_diameter: f64,
-    /// Section width [m].
+    /// Section width \[m\].
     pub width: f64,
-    /// Tread (crown) wall thickness [m].
+    /// Tread (crown) wall thickness \[m\].
     pub tread_thickness: f64,
-    /// Sidewall thickness [m].
+    /// Sidewall thickness \[m\].
     pub sidewall_thickness: f64,
     /// Elements around the circumference.
     pub circumferential_divisions: usize,
@@ -57,11 +57,11 @@ pub struct TireConfig {
     pub sidewall: Elastic,
     /// Bead zone material.
     pub bead: Elastic,
-    /// Inflation pressure p [Pa] for the prestress (0 = none).
+    /// Inflation pressure p \[Pa\] for the prestress (0 = none).
     pub inflation_pressure: f64,
     /// Stiffness integration rule.
     pub integration: Hex8Integration,
-    /// Half angle [deg] of the `contact_patch` node set around θ = π (bottom).
+    /// Half angle \[deg\] of the `contact_patch` node set around θ = π (bottom).
     pub patch_half_angle_deg: f64,
     /// Circumferential belt cords in the tread zone (direction `e_θ`); `None` (default) = none
     /// (a layer with `modulus = 0` is none as well).
@@ -78,10 +78,10 @@ pub struct TireConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CordLayer {
-    /// Smeared cord modulus `E_f φ` [Pa] (cord Young's modulus × cord volume fraction of the
+    /// Smeared cord modulus `E_f φ` \[Pa\] (cord Young's modulus × cord volume fraction of the
     /// reinforced elements), e.g. steel 200 GPa × 10 % = 20 GPa.
     pub modulus: f64,
-    /// Smeared cord density `ρ_f φ` [kg/m³] added to the zone density (default 0: the zone
+    /// Smeared cord density `ρ_f φ` \[kg/m³\] added to the zone density (default 0: the zone
     /// densities are already homogenised rubber/cord values).
     #[serde(default)]
     pub density: f64,
@@ -89,7 +89,7 @@ pub struct CordLayer {
     /// default).
     #[serde(default)]
     pub outer_layer_only: bool,
-    /// Cord angle α [deg] from the layer's main direction (belt: `e_θ`, carcass: `e_s`) towards
+    /// Cord angle α \[deg\] from the layer's main direction (belt: `e_θ`, carcass: `e_s`) towards
     /// the other in-surface direction. 0 (default): one family along the main direction; α ≠ 0:
     /// two crossed families at ±α (like a pair of belt plies), each with half the modulus and
     /// density.
@@ -279,7 +279,7 @@ struct Section {
     mid: Vec<[f64; 2]>,
     /// Unit outward normal (ρ, y) at each point.
     normal: Vec<[f64; 2]>,
-    /// Crown weight w ∈ [0, 1] at each point.
+    /// Crown weight w ∈ \[0, 1\] at each point.
     crown: Vec<f64>,
 }
 
