@@ -11,7 +11,7 @@ use reduction::eitelberg::{LyapunovSolver, eitelberg_structure_with, lyapunov_kr
 use reduction::lyapunov::lyapunov;
 use std::time::Instant;
 
-/// Free-free chain of `n` masses [kg] and springs [N/m] with a deterministic ±30 % variation.
+/// Free-free chain of `n` masses \[kg\] and springs \[N/m\] with a deterministic ±30 % variation.
 fn chain(n: usize) -> (Mat<f64>, Mat<f64>) {
     let var = |i: usize| 1.0 + 0.6 * ((i as f64 * 1.618_033_988_7).fract() - 0.5);
     let mut k = Mat::<f64>::zeros(n, n);

@@ -101,7 +101,7 @@ pub enum Column {
     Mode {
         /// 0-based index in ascending frequency.
         index: usize,
-        /// Eigenvalue `ω²` [rad²/s²].
+        /// Eigenvalue `ω²` \[rad²/s²\].
         eigenvalue: f64,
     },
 }

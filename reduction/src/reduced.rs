@@ -25,11 +25,11 @@ pub struct ReducedModel {
     pub columns: Vec<Column>,
     /// `n × n_z` basis Ψ, rows in natural DOF order.
     pub psi: Mat<f64>,
-    /// Reduced mass `ΨᵀMΨ` [kg or consistent units].
+    /// Reduced mass `ΨᵀMΨ` \[kg or consistent units\].
     pub mass: Mat<f64>,
-    /// Reduced stiffness `ΨᵀKΨ` [N/m or consistent units].
+    /// Reduced stiffness `ΨᵀKΨ` \[N/m or consistent units\].
     pub stiffness: Mat<f64>,
-    /// Reduced damping `ΨᵀCΨ` [N·s/m], if the full model had one.
+    /// Reduced damping `ΨᵀCΨ` \[N·s/m\], if the full model had one.
     pub damping: Option<Mat<f64>>,
 }
 

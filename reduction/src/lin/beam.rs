@@ -28,7 +28,7 @@ pub const PROFILE_DELTA: [f64; 10] = [0.0, 0.0, 0.05, 0.26, 0.10, 0.22, 0.11, 0.
 /// node positions (2 DOFs per node: ξ axial, η transverse).
 #[derive(Debug, Clone)]
 pub struct LinBeam {
-    /// 10×10 stiffness [N/m], DOF order ξ1, η1, …, ξ5, η5.
+    /// 10×10 stiffness \[N/m\], DOF order ξ1, η1, …, ξ5, η5.
     pub k: Mat<f64>,
     /// 10×10 diagonal mass \[kg\].
     pub m: Mat<f64>,

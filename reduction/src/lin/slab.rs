@@ -18,15 +18,15 @@ use serde::{Deserialize, Serialize};
 pub const E: f64 = 0.2e6;
 /// Poisson's ratio (Appendix B).
 pub const NU: f64 = 0.33;
-/// Density [kg/m³] implied by the total mass 62.4 kg of Table B-1.
+/// Density \[kg/m³\] implied by the total mass 62.4 kg of Table B-1.
 pub const DENSITY: f64 = 7.8;
-/// Standard gravity [m/s²] (Lin §3.2.2 footnote), acting in −z.
+/// Standard gravity \[m/s²\] (Lin §3.2.2 footnote), acting in −z.
 pub const G: f64 = 9.80665;
 
 /// The Appendix B slab in Lin's node numbering (node j = 1..30 → DOFs 3(j−1)..3(j−1)+2).
 #[derive(Debug, Clone)]
 pub struct LinSlab {
-    /// 90×90 stiffness [N/m].
+    /// 90×90 stiffness \[N/m\].
     pub k: Mat<f64>,
     /// 90×90 lumped mass \[kg\].
     pub m: Mat<f64>,

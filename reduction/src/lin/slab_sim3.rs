@@ -81,7 +81,7 @@ pub struct Sim3Params {
     pub short_link_m: f64,
     /// Length of the link at node 30 \[m\] (Lin: 3).
     pub long_link_m: f64,
-    /// Link mass per length [kg/m] (not given; 0.5 as the plank links of Lin §5.3.3).
+    /// Link mass per length \[kg/m\] (not given; 0.5 as the plank links of Lin §5.3.3).
     pub link_mass_per_length_kg_m: f64,
     /// Link radius for the axial inertia `m r²/2` \[m\] (not given; slender rods).
     pub link_radius_m: f64,
@@ -124,9 +124,9 @@ pub struct AccelTable {
     pub nodes: Vec<usize>,
     /// Initial global positions of the nodes \[m\].
     pub x0: Vec<Vector3<f64>>,
-    /// Initial global velocities of the nodes [m/s].
+    /// Initial global velocities of the nodes \[m/s\].
     pub v0: Vec<Vector3<f64>>,
-    /// `acc[k][i]`: global acceleration of node `nodes[i]` at `t_k` [m/s²].
+    /// `acc[k][i]`: global acceleration of node `nodes[i]` at `t_k` \[m/s²\].
     pub acc: Vec<Vec<Vector3<f64>>>,
     // exact integrals of the interpolant at the samples
     vel: Vec<Vec<Vector3<f64>>>,
@@ -197,7 +197,7 @@ impl AccelTable {
         (self.acc.len() - 1) as f64 * self.interval_s
     }
 
-    /// Position \[m\], velocity [m/s] and acceleration [m/s²] of node index `i` at `t` \[s\]: the
+    /// Position \[m\], velocity \[m/s\] and acceleration \[m/s²\] of node index `i` at `t` \[s\]: the
     /// linear interpolant of the samples and its exact integrals.
     pub fn motion(&self, i: usize, t: f64) -> [Vector3<f64>; 3] {
         let h = self.interval_s;
