@@ -20,15 +20,15 @@ pub const MAX_BLOCKS: usize = 8;
 pub struct ContactRecord {
     /// Element-local coordinate `ξ = x/l`.
     pub xi: f64,
-    /// Position of the point [m].
+    /// Position of the point \[m\].
     pub position: [f64; 2],
-    /// Penetration [m].
+    /// Penetration \[m\].
     pub penetration: f64,
-    /// Normal force per unit length [N/m] (pressure × width).
+    /// Normal force per unit length \[N/m\] (pressure × width).
     pub normal_force: f64,
-    /// Friction force per unit length along `t` [N/m].
+    /// Friction force per unit length along `t` \[N/m\].
     pub friction_force: f64,
-    /// Slip velocity [m/s].
+    /// Slip velocity \[m/s\].
     pub slip: f64,
 }
 
@@ -37,15 +37,15 @@ pub struct ContactRecord {
 pub struct ElementContact {
     /// Number of element coordinates.
     pub ndof: usize,
-    /// Generalized contact force `Q_c` [N].
+    /// Generalized contact force `Q_c` \[N\].
     pub q: Vec<f64>,
-    /// `∂Q_c/∂e` (column-major `ndof × ndof`) [N/m].
+    /// `∂Q_c/∂e` (column-major `ndof × ndof`) \[N/m\].
     pub dq_de: Vec<f64>,
-    /// `∂Q_c/∂ė` (column-major) [N·s/m].
+    /// `∂Q_c/∂ė` (column-major) \[N·s/m\].
     pub dq_dedot: Vec<f64>,
-    /// `∂Q_c/∂ω` [N·s].
+    /// `∂Q_c/∂ω` \[N·s\].
     pub dq_domega: Vec<f64>,
-    /// Torque of the contact forces on the obstacle about its centre [N·m], Kerkkänen (3.26).
+    /// Torque of the contact forces on the obstacle about its centre \[N·m\], Kerkkänen (3.26).
     pub torque: f64,
     /// `∂τ/∂e`.
     pub dtorque_de: Vec<f64>,
@@ -53,7 +53,7 @@ pub struct ElementContact {
     pub dtorque_dedot: Vec<f64>,
     /// `∂τ/∂ω`.
     pub dtorque_domega: f64,
-    /// Resultant force on the obstacle [N].
+    /// Resultant force on the obstacle \[N\].
     pub reaction: [f64; 2],
     /// Number of quadrature points in contact.
     pub active_points: usize,
@@ -107,7 +107,7 @@ pub struct LineContact<S, NL, FL> {
 }
 
 impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
-    /// Contact of one element of length `length` [m] whose centreline shape functions are
+    /// Contact of one element of length `length` \[m\] whose centreline shape functions are
     /// `shape(ξ, N)` (`blocks` values), with coordinates `e` and velocities `edot`.
     /// Fills `out` (forces always; Jacobians when `jacobian`), appends point records to
     /// `records` when given.

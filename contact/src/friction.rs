@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 /// Tangential force and its partial derivatives.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct FrictionForce {
-    /// Signed force along the tangent `t` [N or N/m].
+    /// Signed force along the tangent `t` \[N or N/m\].
     pub force: f64,
     /// `∂force/∂v_t`.
     pub d_slip: f64,
@@ -17,7 +17,7 @@ pub struct FrictionForce {
 
 /// A friction law `f_t(v_t, f_n)`.
 pub trait FrictionLaw {
-    /// Force along `t` for slip velocity `v_t` [m/s] and normal force `f_n` (the magnitude
+    /// Force along `t` for slip velocity `v_t` \[m/s\] and normal force `f_n` (the magnitude
     /// `|f_n|` bounds the force, Kerkkänen (3.23)).
     fn friction(&self, slip: f64, normal: f64) -> FrictionForce;
 }
@@ -28,7 +28,7 @@ pub trait FrictionLaw {
 pub struct CoulombTanh {
     /// Friction coefficient `μ`.
     pub mu: f64,
-    /// Slope parameter `κ` [s/m].
+    /// Slope parameter `κ` \[s/m\].
     pub kappa: f64,
 }
 
@@ -46,12 +46,12 @@ impl FrictionLaw for CoulombTanh {
 
 /// Kerkkänen's tri-linear creep-rate friction law (Fig. 3.3, seed note §4.3):
 /// `|f_t| = min(ν_s |v_t|, μ |f_n|)`, `f_t = −sign(v_t) |f_t|` — a line of slope `ν_s`
-/// [kg/(m·s) per unit length] through the origin saturated at the Coulomb bound.
+/// \[kg/(m·s) per unit length\] through the origin saturated at the Coulomb bound.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CreepRate {
     /// Friction coefficient `μ`.
     pub mu: f64,
-    /// Creep-rate factor `ν_s` [N·s/m per unit length].
+    /// Creep-rate factor `ν_s` \[N·s/m per unit length\].
     pub creep: f64,
 }
 

@@ -20,19 +20,19 @@ pub type Mat2 = [[f64; 2]; 2];
 /// Closest-point data of a query point `p`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
-    /// Signed distance [m] (> 0 separated, < 0 penetrating; penetration `d = −gap`).
+    /// Signed distance \[m\] (> 0 separated, < 0 penetrating; penetration `d = −gap`).
     pub gap: f64,
     /// Outward unit normal `n` of the obstacle at the closest point.
     pub normal: [f64; 2],
-    /// Closest point on the surface [m].
+    /// Closest point on the surface \[m\].
     pub point: [f64; 2],
-    /// Velocity of the obstacle's surface material at the closest point [m/s].
+    /// Velocity of the obstacle's surface material at the closest point \[m/s\].
     pub surface_velocity: [f64; 2],
-    /// `∂n/∂p` [1/m] (row-major).
+    /// `∂n/∂p` \[1/m\] (row-major).
     pub dn_dp: Mat2,
-    /// `∂u_s/∂p` [1/s] (row-major).
+    /// `∂u_s/∂p` \[1/s\] (row-major).
     pub dus_dp: Mat2,
-    /// `∂u_s/∂ω` [m] (surface velocity per unit angular velocity of the obstacle).
+    /// `∂u_s/∂ω` \[m\] (surface velocity per unit angular velocity of the obstacle).
     pub dus_domega: [f64; 2],
     /// Index of the primitive that produced the point (0 for simple shapes; for unions the
     /// member index).
@@ -41,24 +41,24 @@ pub struct SurfacePoint {
 
 /// A rigid obstacle surface in the plane.
 pub trait Surface {
-    /// Closest-point query for the point `p` [m].
+    /// Closest-point query for the point `p` \[m\].
     fn closest(&self, p: [f64; 2]) -> SurfacePoint;
-    /// Centre of the body for torque output (pulley axis) [m].
+    /// Centre of the body for torque output (pulley axis) \[m\].
     fn center(&self) -> [f64; 2];
 }
 
-/// A rigid disk (pulley, drum) with centre `center` [m], radius `radius` [m], translational
-/// velocity `velocity` [m/s] and angular velocity `omega` [rad/s] (counter-clockwise positive).
+/// A rigid disk (pulley, drum) with centre `center` \[m\], radius `radius` \[m\], translational
+/// velocity `velocity` \[m/s\] and angular velocity `omega` \[rad/s\] (counter-clockwise positive).
 /// The contacting body is outside the disk.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Disk {
-    /// Centre `r_o` [m].
+    /// Centre `r_o` \[m\].
     pub center: [f64; 2],
-    /// Radius `R` [m].
+    /// Radius `R` \[m\].
     pub radius: f64,
-    /// Velocity of the centre `ṙ_o` [m/s].
+    /// Velocity of the centre `ṙ_o` \[m/s\].
     pub velocity: [f64; 2],
-    /// Angular velocity `ω` [rad/s].
+    /// Angular velocity `ω` \[rad/s\].
     pub omega: f64,
 }
 
@@ -118,14 +118,14 @@ impl Surface for Disk {
 }
 
 /// A half-plane (flat road): material on the side opposite to the unit `normal`, surface
-/// through `origin`, moving tangentially with `velocity` [m/s] (e.g. a belt-type road).
+/// through `origin`, moving tangentially with `velocity` \[m/s\] (e.g. a belt-type road).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct HalfPlane {
-    /// A point of the surface [m].
+    /// A point of the surface \[m\].
     pub origin: [f64; 2],
     /// Outward unit normal.
     pub normal: [f64; 2],
-    /// Surface material velocity [m/s].
+    /// Surface material velocity \[m/s\].
     pub velocity: [f64; 2],
 }
 
@@ -168,9 +168,9 @@ impl Surface for HalfPlane {
 pub struct CleatedDrum {
     /// The drum.
     pub drum: Disk,
-    /// Cleat radius [m].
+    /// Cleat radius \[m\].
     pub cleat_radius: f64,
-    /// Polar angle of the cleat centre [rad].
+    /// Polar angle of the cleat centre \[rad\].
     pub cleat_angle: f64,
 }
 
@@ -218,11 +218,11 @@ impl Surface for CleatedDrum {
 /// abscissa `cleat_x` (Ribaric §8.5). Union of the half-plane `y ≤ height` and the cleat disk.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CleatedRoad {
-    /// Road surface height [m].
+    /// Road surface height \[m\].
     pub height: f64,
-    /// Cleat radius [m].
+    /// Cleat radius \[m\].
     pub cleat_radius: f64,
-    /// Cleat centre abscissa [m].
+    /// Cleat centre abscissa \[m\].
     pub cleat_x: f64,
 }
 

@@ -7,9 +7,9 @@ use crate::geometry::Surface;
 /// right-hand side of `D r̈ = γ`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct UnilateralRow {
-    /// Gap `g` (signed distance) [m].
+    /// Gap `g` (signed distance) \[m\].
     pub gap: f64,
-    /// Gap rate `ġ = nᵀ(ṙ − u_s)` [m/s].
+    /// Gap rate `ġ = nᵀ(ṙ − u_s)` \[m/s\].
     pub gap_rate: f64,
     /// Jacobian row `∂g/∂r = nᵀ` (acts on the node's position coordinates).
     pub normal: [f64; 2],

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 /// Normal force and its partial derivatives.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct NormalForce {
-    /// Force (per unit length for distributed laws) [N or N/m]; positive pushes apart.
+    /// Force (per unit length for distributed laws) \[N or N/m\]; positive pushes apart.
     pub force: f64,
     /// `∂force/∂d`.
     pub d_pen: f64,
@@ -16,12 +16,12 @@ pub struct NormalForce {
 
 /// A penalty law `f_n(d, ḋ)`; it is only evaluated for `d ≥ 0` (open contacts carry no force).
 pub trait NormalLaw {
-    /// Force and derivatives at penetration `d` [m] and penetration rate `ḋ` [m/s].
+    /// Force and derivatives at penetration `d` \[m\] and penetration rate `ḋ` \[m/s\].
     fn normal(&self, pen: f64, pen_rate: f64) -> NormalForce;
 }
 
 /// Linear penalty with damping, Kerkkänen (3.20): `f_n = k_p d + c_p ḋ` (per unit length:
-/// `k_p` [N/m²], `c_p` [N·s/m²]). Not clipped: the damping term may make it negative at the
+/// `k_p` \[N/m²\], `c_p` \[N·s/m²\]). Not clipped: the damping term may make it negative at the
 /// exit of a contact arc, as in the thesis (seed note §4.2).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LinearPenalty {
@@ -45,11 +45,11 @@ impl NormalLaw for LinearPenalty {
 /// node: `F_N = k₂ L δ² + k₁ L δ` (Ribaric: `k₂ = 3025.6·10⁸ N/m³`, `k₁ = 6.5·10⁷ N/m²`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PolynomialPenalty {
-    /// Quadratic coefficient `k₂` [N/m³ per metre of belt].
+    /// Quadratic coefficient `k₂` \[N/m³ per metre of belt\].
     pub quadratic: f64,
-    /// Linear coefficient `k₁` [N/m² per metre of belt].
+    /// Linear coefficient `k₁` \[N/m² per metre of belt\].
     pub linear: f64,
-    /// Tributary length `L_ele` [m].
+    /// Tributary length `L_ele` \[m\].
     pub length: f64,
 }
 

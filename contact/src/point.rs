@@ -11,11 +11,11 @@ use crate::normal::{NormalForce, NormalLaw};
 pub struct PointContact {
     /// Closest-point data.
     pub surface: SurfacePoint,
-    /// Penetration `d = −gap ≥ 0` [m], Kerkkänen (3.21).
+    /// Penetration `d = −gap ≥ 0` \[m\], Kerkkänen (3.21).
     pub penetration: f64,
-    /// Penetration rate `ḋ = −nᵀ(ṙ − u_s)` [m/s].
+    /// Penetration rate `ḋ = −nᵀ(ṙ − u_s)` \[m/s\].
     pub penetration_rate: f64,
-    /// Slip velocity `v_t = tᵀ(ṙ − u_s)`, `t = Ĩ n` [m/s], Kerkkänen (3.24)–(3.25).
+    /// Slip velocity `v_t = tᵀ(ṙ − u_s)`, `t = Ĩ n` \[m/s\], Kerkkänen (3.24)–(3.25).
     pub slip: f64,
     /// Normal law output.
     pub normal: NormalForce,
@@ -31,7 +31,7 @@ pub struct PointContact {
     pub df_domega: [f64; 2],
 }
 
-/// Evaluate contact of the point at `p` [m] moving with `v` [m/s] against `surface`.
+/// Evaluate contact of the point at `p` \[m\] moving with `v` \[m/s\] against `surface`.
 /// Returns `None` when the point is separated (`gap > 0`): no force (Kerkkänen (3.20)).
 pub fn point_contact<S, NL, FL>(
     surface: &S,
