@@ -30,7 +30,7 @@ pub fn coordinates_on_belt_path<E: Element>(mesh: &Mesh<E>, path: &BeltPath) -> 
     })
 }
 
-/// A closed loop of `n` belt elements of total unstretched length `length` [m]
+/// A closed loop of `n` belt elements of total unstretched length `length` \[m\]
 /// (Kerkkänen §3.3: elements straight and stress-free in their reference configuration).
 pub fn belt_loop(
     n: usize,

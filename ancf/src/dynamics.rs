@@ -24,21 +24,21 @@ pub struct PendulumCase {
     pub element: BeamElementKind,
     /// Number of elements.
     pub elements: usize,
-    /// Beam length [m].
+    /// Beam length \[m\].
     pub length: f64,
-    /// Section width and height [m].
+    /// Section width and height \[m\].
     pub side: f64,
-    /// Young's modulus [Pa].
+    /// Young's modulus \[Pa\].
     pub young: f64,
-    /// Poisson's ratio [-].
+    /// Poisson's ratio \[-\].
     pub nu: f64,
-    /// Density [kg/m³].
+    /// Density \[kg/m³\].
     pub density: f64,
-    /// Gravity [m/s²].
+    /// Gravity \[m/s²\].
     pub gravity: f64,
-    /// End time [s] (not stated in the thesis).
+    /// End time \[s\] (not stated in the thesis).
     pub t_end: f64,
-    /// Step size [s].
+    /// Step size \[s\].
     pub h: f64,
     /// Generalized-α spectral radius ρ∞ (1: no numerical dissipation).
     pub rho_inf: f64,
@@ -65,17 +65,17 @@ impl Default for PendulumCase {
 /// One output sample of a dynamic study.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Sample {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
-    /// Tip position [m].
+    /// Tip position \[m\].
     pub tip: [f64; 2],
-    /// Energies [J].
+    /// Energies \[J\].
     pub energy: Energies,
-    /// Study-specific scalar (pendulum: tip vertical displacement [m]; spinning beam: axial
-    /// extension [m]).
+    /// Study-specific scalar (pendulum: tip vertical displacement \[m\]; spinning beam: axial
+    /// extension \[m\]).
     pub value: f64,
     /// Second study-specific scalar (spinning beam: tip transverse offset from the rigid
-    /// shadow beam [m]).
+    /// shadow beam \[m\]).
     pub value2: f64,
 }
 
@@ -176,25 +176,25 @@ fn pendulum_run<E: Element>(
 pub struct SpinningCase {
     /// Number of proposed elements.
     pub elements: usize,
-    /// Beam length [m].
+    /// Beam length \[m\].
     pub length: f64,
-    /// Section width (out of plane) [m].
+    /// Section width (out of plane) \[m\].
     pub width: f64,
-    /// Section height (in plane) [m].
+    /// Section height (in plane) \[m\].
     pub height: f64,
-    /// Young's modulus [Pa].
+    /// Young's modulus \[Pa\].
     pub young: f64,
-    /// Poisson's ratio [-] (not stated in the thesis).
+    /// Poisson's ratio \[-\] (not stated in the thesis).
     pub nu: f64,
-    /// Density [kg/m³].
+    /// Density \[kg/m³\].
     pub density: f64,
-    /// Final hub speed `ω_s` [rad/s].
+    /// Final hub speed `ω_s` \[rad/s\].
     pub omega: f64,
-    /// Spin-up time `T_s` [s].
+    /// Spin-up time `T_s` \[s\].
     pub spin_up: f64,
-    /// End time [s].
+    /// End time \[s\].
     pub t_end: f64,
-    /// Step size [s].
+    /// Step size \[s\].
     pub h: f64,
     /// Generalized-α spectral radius ρ∞.
     pub rho_inf: f64,
@@ -234,7 +234,7 @@ pub fn hub_angle(t: f64, omega: f64, ts: f64) -> [f64; 3] {
     }
 }
 
-/// Steady axial extension of a bar spinning at `ω` [rad/s], Kerkkänen (2.36)–(2.37):
+/// Steady axial extension of a bar spinning at `ω` \[rad/s\], Kerkkänen (2.36)–(2.37):
 /// `u_x = l (tan(al)/(al) − 1)`, `a = ω √(ρA/EA)`.
 pub fn spinning_extension(length: f64, density: f64, young: f64, omega: f64) -> f64 {
     let al = omega * (density / young).sqrt() * length;
@@ -242,7 +242,7 @@ pub fn spinning_extension(length: f64, density: f64, young: f64, omega: f64) -> 
 }
 
 /// Run the spinning beam; `value` of each sample is the axial extension (sum of the nodal chord
-/// lengths minus `L`) [m], `value2` the tip's transverse offset from the rigid shadow beam [m].
+/// lengths minus `L`) \[m\], `value2` the tip's transverse offset from the rigid shadow beam \[m\].
 pub fn spinning(
     case: &SpinningCase,
     every: usize,
@@ -319,7 +319,7 @@ pub fn spinning(
     Ok(out)
 }
 
-/// Largest deviation of the total energy from its initial value [J].
+/// Largest deviation of the total energy from its initial value \[J\].
 pub fn energy_drift(samples: &[Sample]) -> f64 {
     let e0 = samples.first().map(|s| s.energy.total).unwrap_or(0.0);
     samples

@@ -23,7 +23,7 @@ pub enum AncfError {
         load_factor: f64,
         /// Iterations performed in that increment.
         iterations: usize,
-        /// Last residual norm [N].
+        /// Last residual norm \[N\].
         residual: f64,
     },
     /// The tangent stiffness could not be factored (mechanism, missing supports).

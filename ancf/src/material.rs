@@ -3,17 +3,17 @@
 use crate::error::{AncfError, invalid};
 use serde::{Deserialize, Serialize};
 
-/// Isotropic material: Young's modulus `E` [Pa], Poisson's ratio `ν` [-], density `ρ` [kg/m³],
-/// shear correction factor `k_s` [-] (5/6 in all of Kerkkänen's chapter-2 examples).
+/// Isotropic material: Young's modulus `E` \[Pa\], Poisson's ratio `ν` \[-\], density `ρ` \[kg/m³\],
+/// shear correction factor `k_s` \[-\] (5/6 in all of Kerkkänen's chapter-2 examples).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Material {
-    /// Young's modulus `E` [Pa].
+    /// Young's modulus `E` \[Pa\].
     pub young: f64,
-    /// Poisson's ratio `ν` [-].
+    /// Poisson's ratio `ν` \[-\].
     pub poisson: f64,
-    /// Density `ρ` [kg/m³].
+    /// Density `ρ` \[kg/m³\].
     pub density: f64,
-    /// Shear correction factor `k_s` [-].
+    /// Shear correction factor `k_s` \[-\].
     pub shear_factor: f64,
 }
 
@@ -59,12 +59,12 @@ impl Material {
         Ok(())
     }
 
-    /// Shear modulus `G = E / (2(1 + ν))` [Pa].
+    /// Shear modulus `G = E / (2(1 + ν))` \[Pa\].
     pub fn shear_modulus(&self) -> f64 {
         self.young / (2.0 * (1.0 + self.poisson))
     }
 
-    /// Lamé constants `(λ, μ)` [Pa], Kerkkänen (2.17).
+    /// Lamé constants `(λ, μ)` \[Pa\], Kerkkänen (2.17).
     pub fn lame(&self) -> (f64, f64) {
         let (e, nu) = (self.young, self.poisson);
         (

@@ -176,7 +176,7 @@ impl<E: Element> Mesh<E> {
         &self.element_mass[el]
     }
 
-    /// Assembled elastic forces `Q_e(q)` (overwrites `f`) [N].
+    /// Assembled elastic forces `Q_e(q)` (overwrites `f`) \[N\].
     pub fn elastic_forces(&self, q: &[f64], f: &mut [f64]) {
         f.fill(0.0);
         let mut e = [0.0; MAX_NDOF];
@@ -212,7 +212,7 @@ impl<E: Element> Mesh<E> {
         }
     }
 
-    /// Strain energy `U = Σ Uᵢ` [J].
+    /// Strain energy `U = Σ Uᵢ` \[J\].
     pub fn strain_energy(&self, q: &[f64]) -> f64 {
         let mut e = [0.0; MAX_NDOF];
         let mut u = 0.0;
@@ -223,14 +223,14 @@ impl<E: Element> Mesh<E> {
         u
     }
 
-    /// Kinetic energy `T = ½ vᵀ M v` [J] (Kerkkänen (2.34)).
+    /// Kinetic energy `T = ½ vᵀ M v` \[J\] (Kerkkänen (2.34)).
     pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
         let mut mv = vec![0.0; v.len()];
         self.pattern.mul_vec(&self.mass_values, v, &mut mv);
         0.5 * v.iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>()
     }
 
-    /// Generalized gravity forces `Q_g = Σ ∫ρ Sᵀ g dV` for acceleration `g` [m/s²].
+    /// Generalized gravity forces `Q_g = Σ ∫ρ Sᵀ g dV` for acceleration `g` \[m/s²\].
     pub fn gravity_forces(&self, g: [f64; 2]) -> Vec<f64> {
         let mut f = vec![0.0; self.n_dof()];
         let mut fe = [0.0; MAX_NDOF];
@@ -241,14 +241,14 @@ impl<E: Element> Mesh<E> {
         f
     }
 
-    /// Position of material point `(x, y)` of element `el` [m].
+    /// Position of material point `(x, y)` of element `el` \[m\].
     pub fn position(&self, q: &[f64], el: usize, x: f64, y: f64) -> [f64; 2] {
         let mut e = [0.0; MAX_NDOF];
         self.gather(q, el, &mut e);
         self.elements[el].position(&e, x, y)
     }
 
-    /// Position `r` of `node` [m].
+    /// Position `r` of `node` \[m\].
     pub fn node_position(&self, q: &[f64], node: usize) -> [f64; 2] {
         let k = self.node_dof(node, 0);
         [q[k], q[k + 1]]

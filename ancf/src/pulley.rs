@@ -28,9 +28,9 @@ pub struct ElementRecord {
 pub struct ContactDistribution {
     /// Quadrature points in contact (pressure, friction, slip).
     pub records: Vec<ElementRecord>,
-    /// Torque on the obstacle about its centre [N·m], Kerkkänen (3.26).
+    /// Torque on the obstacle about its centre \[N·m\], Kerkkänen (3.26).
     pub torque: f64,
-    /// Resultant force on the obstacle [N].
+    /// Resultant force on the obstacle \[N\].
     pub reaction: [f64; 2],
 }
 

@@ -5,22 +5,22 @@ use crate::error::{AncfError, invalid};
 use serde::{Deserialize, Serialize};
 
 /// A doubly symmetric cross-section, described by the moments that enter the ANCF energies
-/// (Kerkkänen §2.2.1): `A = ∫dA` [m²], `I₂ = ∫y² dA` [m⁴], `I₄ = ∫y⁴ dA` [m⁶]; `y` is the
+/// (Kerkkänen §2.2.1): `A = ∫dA` \[m²\], `I₂ = ∫y² dA` \[m⁴\], `I₄ = ∫y⁴ dA` \[m⁶\]; `y` is the
 /// in-plane transverse coordinate.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Section {
-    /// Area `A` [m²].
+    /// Area `A` \[m²\].
     pub area: f64,
-    /// Second moment `I₂ = ∫y² dA` [m⁴].
+    /// Second moment `I₂ = ∫y² dA` \[m⁴\].
     pub i2: f64,
-    /// Fourth moment `I₄ = ∫y⁴ dA` [m⁶].
+    /// Fourth moment `I₄ = ∫y⁴ dA` \[m⁶\].
     pub i4: f64,
-    /// Height in `y` [m] (used only for output and contact offsets).
+    /// Height in `y` \[m\] (used only for output and contact offsets).
     pub height: f64,
 }
 
 impl Section {
-    /// Rectangle of width `w` (out of plane) and height `h` (in plane, along `y`) [m]:
+    /// Rectangle of width `w` (out of plane) and height `h` (in plane, along `y`) \[m\]:
     /// `A = wh`, `I₂ = wh³/12`, `I₄ = wh⁵/80`.
     pub fn rectangle(width: f64, height: f64) -> Result<Self, AncfError> {
         if !(width.is_finite() && width > 0.0) {

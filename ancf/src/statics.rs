@@ -21,7 +21,7 @@ pub struct StaticOptions {
     pub increments: usize,
     /// Maximum Newton iterations per increment.
     pub max_iterations: usize,
-    /// Convergence: `‖Δq‖∞ ≤ tol · (1 + ‖q‖∞)` [-].
+    /// Convergence: `‖Δq‖∞ ≤ tol · (1 + ‖q‖∞)` \[-\].
     pub tolerance: f64,
     /// Backtracking line search on the residual norm.
     pub line_search: bool,
@@ -45,7 +45,7 @@ pub struct StaticSolution {
     pub q: Vec<f64>,
     /// Newton iterations per increment.
     pub iterations: Vec<usize>,
-    /// Final residual norm [N].
+    /// Final residual norm \[N\].
     pub residual: f64,
 }
 

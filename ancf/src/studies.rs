@@ -45,17 +45,17 @@ pub struct StaticBeamCase {
     pub element: BeamElementKind,
     /// Number of elements.
     pub elements: usize,
-    /// Poisson's ratio [-].
+    /// Poisson's ratio \[-\].
     pub nu: f64,
-    /// Section height (in-plane) [m].
+    /// Section height (in-plane) \[m\].
     pub height: f64,
-    /// Section width [m].
+    /// Section width \[m\].
     pub width: f64,
-    /// Beam length [m].
+    /// Beam length \[m\].
     pub length: f64,
-    /// Young's modulus [Pa].
+    /// Young's modulus \[Pa\].
     pub young: f64,
-    /// Density [kg/m³].
+    /// Density \[kg/m³\].
     pub density: f64,
     /// Load increments of the Newton solver.
     pub increments: usize,
@@ -127,10 +127,10 @@ fn solve_study<E: Element, S: Study>(
 }
 
 /// Simply supported beam of Kerkkänen §2.4 (Tables 2.1, 2.2): first node pinned, last node
-/// vertically supported, slopes free, vertical force `force` [N] at the mid-point node.
+/// vertically supported, slopes free, vertical force `force` \[N\] at the mid-point node.
 #[derive(Debug, Clone, Copy)]
 pub struct SimplySupported {
-    /// Vertical mid-point force [N] (−1000 N in the thesis).
+    /// Vertical mid-point force \[N\] (−1000 N in the thesis).
     pub force: f64,
 }
 
@@ -162,7 +162,7 @@ impl Study for SimplySupported {
 
 /// Large-deflection cantilever of Kerkkänen §2.4 (Tables 2.3, 2.4): clamp of the position and
 /// of the cross-section slope `r_y` at the first node, and for the 12-DOF element also of the
-/// axial slope `r_x = (1, 0)`; tip force `force` [N] in `y` at the centroid of the tip node.
+/// axial slope `r_x = (1, 0)`; tip force `force` \[N\] in `y` at the centroid of the tip node.
 ///
 /// The thesis only names "displacements and the slopes `∂r/∂y`" (the proposed element has no
 /// `r_x`). For the Omar–Shabana element the seed note (§7.2, App. A) claims that a free `r_x`
@@ -172,7 +172,7 @@ impl Study for SimplySupported {
 /// digits (`tests/tests/ancf_tables.rs`). We follow the printed tables, not the note.
 #[derive(Debug, Clone, Copy)]
 pub struct Cantilever {
-    /// Vertical tip force [N] (`−5·10⁸ h³` in the thesis).
+    /// Vertical tip force \[N\] (`−5·10⁸ h³` in the thesis).
     pub force: f64,
 }
 
@@ -194,20 +194,20 @@ impl Study for Cantilever {
     }
 }
 
-/// Mid-point vertical position [m] of the simply supported beam under −1000 N
+/// Mid-point vertical position \[m\] of the simply supported beam under −1000 N
 /// (Kerkkänen Tables 2.1/2.2 print it in mm).
 pub fn simply_supported_deflection(case: &StaticBeamCase) -> Result<f64, AncfError> {
     run_study(case, &SimplySupported { force: -1000.0 })
 }
 
-/// Tip position `(x, y)` [m] of the cantilever under the tip force `−5·10⁸ h³` N
+/// Tip position `(x, y)` \[m\] of the cantilever under the tip force `−5·10⁸ h³` N
 /// (Kerkkänen Tables 2.3/2.4).
 pub fn cantilever_tip(case: &StaticBeamCase) -> Result<[f64; 2], AncfError> {
     let force = -5.0e8 * case.height.powi(3);
     run_study(case, &Cantilever { force })
 }
 
-/// The cantilever's deformed centreline sampled at `per_element + 1` points per element [m].
+/// The cantilever's deformed centreline sampled at `per_element + 1` points per element \[m\].
 #[derive(Debug, Clone, Copy)]
 struct CantileverLine {
     force: f64,
@@ -260,19 +260,19 @@ pub struct GroundContactCase {
     pub element: BeamElementKind,
     /// Number of elements.
     pub elements: usize,
-    /// Beam length [m].
+    /// Beam length \[m\].
     pub length: f64,
-    /// Section height [m].
+    /// Section height \[m\].
     pub height: f64,
-    /// Section width [m].
+    /// Section width \[m\].
     pub width: f64,
-    /// Young's modulus [Pa].
+    /// Young's modulus \[Pa\].
     pub young: f64,
-    /// Poisson's ratio [-].
+    /// Poisson's ratio \[-\].
     pub nu: f64,
-    /// Initial gap between the straight beam and the ground [m].
+    /// Initial gap between the straight beam and the ground \[m\].
     pub gap: f64,
-    /// Line load as a multiple of the critical load `q*` [-].
+    /// Line load as a multiple of the critical load `q*` \[-\].
     pub load_factor: f64,
     /// Load increments.
     pub increments: usize,
@@ -298,21 +298,21 @@ impl Default for GroundContactCase {
 /// Result of [`ground_contact`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GroundContactResult {
-    /// Line load `q` [N/m].
+    /// Line load `q` \[N/m\].
     pub line_load: f64,
-    /// Euler–Bernoulli critical load `q*` [N/m].
+    /// Euler–Bernoulli critical load `q*` \[N/m\].
     pub critical_load: f64,
-    /// Deformed node positions [m] (root first).
+    /// Deformed node positions \[m\] (root first).
     pub positions: Vec<[f64; 2]>,
-    /// Contact force of every node [N] (0 at the clamp and at open nodes).
+    /// Contact force of every node \[N\] (0 at the clamp and at open nodes).
     pub forces: Vec<f64>,
-    /// Sum of the contact forces [N].
+    /// Sum of the contact forces \[N\].
     pub total_force: f64,
-    /// Reference position `x` of the first node in contact [m].
+    /// Reference position `x` of the first node in contact \[m\].
     pub first_contact_x: Option<f64>,
-    /// Euler–Bernoulli total contact force [N].
+    /// Euler–Bernoulli total contact force \[N\].
     pub euler_bernoulli_total_force: f64,
-    /// Euler–Bernoulli start of the contact zone [m] (`L` when only the tip touches).
+    /// Euler–Bernoulli start of the contact zone \[m\] (`L` when only the tip touches).
     pub euler_bernoulli_contact_start: f64,
 }
 

@@ -14,7 +14,7 @@ use std::sync::Arc;
 mod unilateral;
 pub use unilateral::{ContactStep, integrate_unilateral};
 
-/// Prescribed value `g(t)` [m or -] and its first two time derivatives.
+/// Prescribed value `g(t)` \[m or -\] and its first two time derivatives.
 pub type MotionFn = Arc<dyn Fn(f64) -> [f64; 3] + Send + Sync>;
 
 /// A global coordinate with prescribed motion.
@@ -65,7 +65,7 @@ pub trait MeshForce<E: Element>: Send + Sync {
     );
 }
 
-/// Energies of Kerkkänen (2.34) [J].
+/// Energies of Kerkkänen (2.34) \[J\].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Energies {
     /// Kinetic energy `½ vᵀ M v`.
@@ -107,14 +107,14 @@ impl<E: Element> AncfSystem<E> {
         s
     }
 
-    /// Gravity acceleration `g` [m/s²] (e.g. `[0, −9.81]`).
+    /// Gravity acceleration `g` \[m/s²\] (e.g. `[0, −9.81]`).
     pub fn with_gravity(mut self, g: [f64; 2]) -> Self {
         self.gravity = g;
         self.gravity_forces = self.mesh.gravity_forces(g);
         self
     }
 
-    /// Constant generalized load [N] (length `n_dof`).
+    /// Constant generalized load \[N\] (length `n_dof`).
     pub fn with_load(mut self, load: Vec<f64>) -> Result<Self, AncfError> {
         if load.len() != self.mesh.n_dof() {
             return Err(invalid(

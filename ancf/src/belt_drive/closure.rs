@@ -15,11 +15,11 @@ pub struct ClosureResult {
     pub q: Vec<f64>,
     /// Newton iterations (total).
     pub iterations: usize,
-    /// Centre of the node positions [m].
+    /// Centre of the node positions \[m\].
     pub center: [f64; 2],
-    /// Mean distance of the nodes and element mid-points from the centre [m].
+    /// Mean distance of the nodes and element mid-points from the centre \[m\].
     pub mean_radius: f64,
-    /// Smallest and largest distance [m].
+    /// Smallest and largest distance \[m\].
     pub radius_range: [f64; 2],
 }
 

@@ -12,14 +12,14 @@ pub enum BeltFriction {
     CreepRate {
         /// Friction coefficient `μ`.
         mu: f64,
-        /// Creep-rate factor `ν_s` [kg/(m·s)].
+        /// Creep-rate factor `ν_s` \[kg/(m·s)\].
         creep: f64,
     },
     /// `f_t = −μ tanh(κ v_t) |f_n|` (Ribaric (6.2)).
     Tanh {
         /// Friction coefficient `μ`.
         mu: f64,
-        /// Slope parameter `κ` [s/m].
+        /// Slope parameter `κ` \[s/m\].
         kappa: f64,
     },
 }
@@ -66,11 +66,11 @@ impl FrictionLaw for BeltFriction {
 /// here per unit length) when `k₂ > 0`. Not clipped (seed note §4.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BeltNormal {
-    /// Linear coefficient `k_p` [N/m²].
+    /// Linear coefficient `k_p` \[N/m²\].
     pub stiffness: f64,
-    /// Quadratic coefficient `k₂` [N/m³].
+    /// Quadratic coefficient `k₂` \[N/m³\].
     pub quadratic: f64,
-    /// Damping `c_p` [N·s/m²].
+    /// Damping `c_p` \[N·s/m²\].
     pub damping: f64,
 }
 

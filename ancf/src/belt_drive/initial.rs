@@ -31,11 +31,11 @@ pub struct InitialState {
     pub q: Vec<f64>,
     /// Newton iterations.
     pub iterations: usize,
-    /// Final residual norm [N].
+    /// Final residual norm \[N\].
     pub residual: f64,
-    /// Force in the spring holding node 0 tangentially [N].
+    /// Force in the spring holding node 0 tangentially \[N\].
     pub holding_force: f64,
-    /// Mean axial tension of the belt at equilibrium [N].
+    /// Mean axial tension of the belt at equilibrium \[N\].
     pub mean_tension: f64,
 }
 
@@ -205,7 +205,7 @@ impl BeltDrive {
 }
 
 impl BeltDrive {
-    /// Velocities of a belt travelling rigidly along its current centreline at `speed` [m/s]
+    /// Velocities of a belt travelling rigidly along its current centreline at `speed` \[m/s\]
     /// (nodal `ṙ = V r_x/‖r_x‖`, slope rates zero) with every free pulley rolling with it
     /// (`θ̇ = V/R`): a start close to steady running, used by the benchmarks to skip the ramp.
     pub fn travelling_velocity(&self, q: &[f64], speed: f64) -> Vec<f64> {

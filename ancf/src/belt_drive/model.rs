@@ -202,7 +202,7 @@ impl BeltDrive {
     pub fn pulley_dof(&self, p: usize) -> Option<usize> {
         self.pulley_dof.get(p).copied().flatten()
     }
-    /// Reference element length `l` [m].
+    /// Reference element length `l` \[m\].
     pub fn element_length(&self) -> f64 {
         self.mesh.elements()[0].length()
     }
@@ -259,7 +259,7 @@ impl BeltDrive {
         &self.pattern
     }
 
-    /// Travel-sense angular speed of pulley `p` at `(t, v)` [rad/s]: the prescribed history for
+    /// Travel-sense angular speed of pulley `p` at `(t, v)` \[rad/s\]: the prescribed history for
     /// driven pulleys, the velocity coordinate for free ones.
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
         match (&self.spec.pulleys[p].drive, self.pulley_dof[p]) {
@@ -269,7 +269,7 @@ impl BeltDrive {
         }
     }
 
-    /// Disk of pulley `p` spinning with travel-sense speed `omega` [rad/s].
+    /// Disk of pulley `p` spinning with travel-sense speed `omega` \[rad/s\].
     fn disk(&self, p: usize, omega: f64) -> Disk {
         let pl = &self.spec.pulleys[p];
         Disk {
@@ -349,7 +349,7 @@ impl BeltDrive {
     }
 
     /// Belt forces `Q_e + Q_c` (length `n_belt`) and the travel-sense contact torques on every
-    /// pulley `s τ` [N·m], with the pulleys spinning at `omegas` (travel sense, rad/s).
+    /// pulley `s τ` \[N·m\], with the pulleys spinning at `omegas` (travel sense, rad/s).
     pub fn belt_forces(
         &self,
         q: &[f64],
@@ -485,18 +485,18 @@ pub struct PointRecord {
     pub pulley: usize,
     /// Element index.
     pub element: usize,
-    /// Material (unstretched) arc length along the belt from node 0 [m].
+    /// Material (unstretched) arc length along the belt from node 0 \[m\].
     pub s_material: f64,
-    /// Position [m].
+    /// Position \[m\].
     pub position: [f64; 2],
-    /// Penetration `d` (3.21) [m].
+    /// Penetration `d` (3.21) \[m\].
     pub penetration: f64,
-    /// Normal force per unit length `k_p d + c_p ḋ` (3.20) [N/m].
+    /// Normal force per unit length `k_p d + c_p ḋ` (3.20) \[N/m\].
     pub normal_force: f64,
-    /// Friction force per unit length on the belt, positive in the travel direction [N/m].
+    /// Friction force per unit length on the belt, positive in the travel direction \[N/m\].
     pub friction_force: f64,
     /// Relative velocity of the belt with respect to the pulley surface (3.25), positive when
-    /// the belt is faster in the travel direction [m/s].
+    /// the belt is faster in the travel direction \[m/s\].
     pub slip: f64,
 }
 
@@ -555,7 +555,7 @@ impl SecondOrderSystem for BeltDrive {
 impl BeltDrive {
     /// Generalized forces `Q_e + Q_c` (2.27), (3.27) and the free pulleys' right-hand sides
     /// `s τ − T_a` (3.26) with the pulleys spinning at the travel-sense speeds `omegas`
-    /// [rad/s] and load torques `loads` [N·m] (one per pulley; ignored for speed-driven
+    /// \[rad/s\] and load torques `loads` \[N·m\] (one per pulley; ignored for speed-driven
     /// pulleys): the [`SecondOrderSystem::forces`] of the drive with externally supplied inputs
     /// (used by adapters that schedule the driver speed and the load themselves).
     pub fn forces_with(&self, q: &[f64], v: &[f64], omegas: &[f64], loads: &[f64], f: &mut [f64]) {
@@ -578,7 +578,7 @@ impl BeltDrive {
     }
 
     /// [`SecondOrderSystem::force_tangent`] with the pulleys spinning at the travel-sense
-    /// speeds `omegas` [rad/s] (one per pulley; for a free pulley it must equal its velocity
+    /// speeds `omegas` \[rad/s\] (one per pulley; for a free pulley it must equal its velocity
     /// coordinate, whose column receives the speed coupling).
     pub fn force_tangent_with(&self, q: &[f64], v: &[f64], omegas: &[f64]) -> ForceTangent {
         let nb = self.n_belt;

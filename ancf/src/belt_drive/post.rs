@@ -10,14 +10,14 @@ use fe_model::generate::belt_path::Segment;
 /// Axial state at one material point of the belt.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct TensionSample {
-    /// Material (unstretched) arc length from node 0 [m].
+    /// Material (unstretched) arc length from node 0 \[m\].
     pub s_material: f64,
-    /// Position [m].
+    /// Position \[m\].
     pub position: [f64; 2],
     /// Engineering strain of the centreline `ε = ‖r_x‖ − 1`, Kerkkänen (4.9) (the reference
     /// elements are straight with `J₀ = I`, so `α = 2 t₀ᵀ ε^m t₀ = r_xᵀ r_x − 1`).
     pub strain: f64,
-    /// Tension `α₁ E A ε` [N] (longitudinal stiffness times strain, Kerkkänen §4.2).
+    /// Tension `α₁ E A ε` \[N\] (longitudinal stiffness times strain, Kerkkänen §4.2).
     pub tension: f64,
 }
 
@@ -54,15 +54,15 @@ pub fn tension_samples(drive: &BeltDrive, q: &[f64], per_element: usize) -> Vec<
     out
 }
 
-/// Geometry of span `k` of the undeformed path: start [m], unit direction, length [m], and the
+/// Geometry of span `k` of the undeformed path: start \[m\], unit direction, length \[m\], and the
 /// pulleys it leaves and reaches.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpanLine {
-    /// Start point [m].
+    /// Start point \[m\].
     pub start: [f64; 2],
     /// Unit travel direction.
     pub direction: [f64; 2],
-    /// Length [m].
+    /// Length \[m\].
     pub length: f64,
     /// Pulley the span leaves.
     pub from: usize,
@@ -94,7 +94,7 @@ pub fn spans(drive: &BeltDrive) -> Vec<SpanLine> {
         .collect()
 }
 
-/// Mean tension [N] of the belt points that currently lie over the middle half of each span
+/// Mean tension \[N\] of the belt points that currently lie over the middle half of each span
 /// (within a quarter span length of the undeformed span line), in span order; `NaN` when no
 /// sample lies there.
 pub fn span_tensions(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
@@ -117,7 +117,7 @@ pub fn span_tensions(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// Position [m] of the belt point crossing the perpendicular bisector of each undeformed span
+/// Position \[m\] of the belt point crossing the perpendicular bisector of each undeformed span
 /// (the span mid-point of Kerkkänen Figs 3.10–3.11), in span order; `None` if the belt does
 /// not cross it within half a span length of the span line.
 pub fn span_midpoints(drive: &BeltDrive, q: &[f64]) -> Vec<Option<[f64; 2]>> {
@@ -168,7 +168,7 @@ pub fn span_midpoints(drive: &BeltDrive, q: &[f64]) -> Vec<Option<[f64; 2]>> {
         .collect()
 }
 
-/// Arc coordinate [m] of `position` on pulley `p`, measured in the travel direction from the
+/// Arc coordinate \[m\] of `position` on pulley `p`, measured in the travel direction from the
 /// point where the undeformed path arrives on the pulley (the inlet; Kerkkänen Fig. 3.17
 /// measures from the inlet contact point), in `[−πR/2, 2πR − πR/2)`.
 pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) -> f64 {

@@ -4,30 +4,30 @@
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// A prescribed pulley speed `ω(t)` [rad/s], positive when the belt travels along the path
+/// A prescribed pulley speed `ω(t)` \[rad/s\], positive when the belt travels along the path
 /// direction (see [`super::Pulley`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum SpeedProfile {
-    /// `ω(t) = omega` [rad/s].
+    /// `ω(t) = omega` \[rad/s\].
     Constant {
-        /// Speed [rad/s].
+        /// Speed \[rad/s\].
         omega: f64,
     },
     /// Kerkkänen (3.29) generalised: `0` for `t ≤ t_start`, linear ramp to `omega` at `t_end`,
     /// then `omega` (thesis: `t_start = 0.05 s`, `t_end = 0.6 s`, `omega = 12 rad/s`).
     Ramp {
-        /// End of the rest phase [s].
+        /// End of the rest phase \[s\].
         t_start: f64,
-        /// End of the ramp [s].
+        /// End of the ramp \[s\].
         t_end: f64,
-        /// Final speed [rad/s].
+        /// Final speed \[rad/s\].
         omega: f64,
     },
 }
 
 impl SpeedProfile {
-    /// Kerkkänen (3.29) with final speed `omega` [rad/s].
+    /// Kerkkänen (3.29) with final speed `omega` \[rad/s\].
     pub fn kerkkanen(omega: f64) -> Self {
         SpeedProfile::Ramp {
             t_start: 0.05,
@@ -36,7 +36,7 @@ impl SpeedProfile {
         }
     }
 
-    /// `[ω(t), ω̇(t)]` [rad/s, rad/s²].
+    /// `[ω(t), ω̇(t)]` \[rad/s, rad/s²\].
     pub fn eval(&self, t: f64) -> [f64; 2] {
         match *self {
             SpeedProfile::Constant { omega } => [omega, 0.0],
@@ -57,7 +57,7 @@ impl SpeedProfile {
         }
     }
 
-    /// Final (steady) speed [rad/s].
+    /// Final (steady) speed \[rad/s\].
     pub fn final_speed(&self) -> f64 {
         match *self {
             SpeedProfile::Constant { omega } | SpeedProfile::Ramp { omega, .. } => omega,
@@ -90,33 +90,33 @@ impl SpeedProfile {
     }
 }
 
-/// A load torque `T_a(t)` [N·m] on a free pulley; it opposes the pulley's rotation in the
+/// A load torque `T_a(t)` \[N·m\] on a free pulley; it opposes the pulley's rotation in the
 /// travel direction (Kerkkänen (3.26): "opposing torque of the driven accessories").
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum TorqueProfile {
     /// No load.
     None,
-    /// `T_a(t) = torque` [N·m].
+    /// `T_a(t) = torque` \[N·m\].
     Constant {
-        /// Torque [N·m].
+        /// Torque \[N·m\].
         torque: f64,
     },
     /// Kerkkänen (3.30) as printed: `0` for `t ≤ t_start`, `(T/2)(1 − cos(π t / t_end))` for
     /// `t_start < t ≤ t_end`, `T` afterwards (thesis: `t_start = 0.05 s`, `t_end = 0.6 s`,
     /// `T = 45 N·m`; the printed form jumps by 0.767 N·m at `t_start`, seed note §5).
     Cosine {
-        /// Start [s].
+        /// Start \[s\].
         t_start: f64,
-        /// End of the ramp [s].
+        /// End of the ramp \[s\].
         t_end: f64,
-        /// Final torque [N·m].
+        /// Final torque \[N·m\].
         torque: f64,
     },
 }
 
 impl TorqueProfile {
-    /// Kerkkänen (3.30) with final torque `torque` [N·m].
+    /// Kerkkänen (3.30) with final torque `torque` \[N·m\].
     pub fn kerkkanen(torque: f64) -> Self {
         TorqueProfile::Cosine {
             t_start: 0.05,
@@ -125,7 +125,7 @@ impl TorqueProfile {
         }
     }
 
-    /// `T_a(t)` [N·m].
+    /// `T_a(t)` \[N·m\].
     pub fn eval(&self, t: f64) -> f64 {
         match *self {
             TorqueProfile::None => 0.0,
@@ -146,7 +146,7 @@ impl TorqueProfile {
         }
     }
 
-    /// Final (steady) torque [N·m].
+    /// Final (steady) torque \[N·m\].
     pub fn final_torque(&self) -> f64 {
         match *self {
             TorqueProfile::None => 0.0,

@@ -12,20 +12,20 @@ use serde::{Deserialize, Serialize};
 pub enum PulleyDrive {
     /// Angular speed prescribed by a history (the driver of Kerkkänen (3.29)); no coordinate.
     Speed {
-        /// Speed history [rad/s] in the travel sense.
+        /// Speed history \[rad/s\] in the travel sense.
         speed: SpeedProfile,
     },
-    /// Free rotation about the fixed centre with inertia `I` [kg·m²] and a load torque
+    /// Free rotation about the fixed centre with inertia `I` \[kg·m²\] and a load torque
     /// opposing the rotation, Kerkkänen (3.26); its angle is a coordinate of the system.
     Free {
-        /// Mass moment of inertia `I` [kg·m²].
+        /// Mass moment of inertia `I` \[kg·m²\].
         inertia: f64,
-        /// Load torque history [N·m].
+        /// Load torque history \[N·m\].
         load: TorqueProfile,
     },
 }
 
-/// A pulley: centre [m], radius [m] (the belt centreline's contact radius: belt thickness is
+/// A pulley: centre \[m\], radius \[m\] (the belt centreline's contact radius: belt thickness is
 /// not part of the contact geometry, Kerkkänen §3.2), wrap side and drive.
 ///
 /// Speeds are counted in the **travel sense**: positive when the pulley surface moves with the
@@ -36,9 +36,9 @@ pub enum PulleyDrive {
 pub struct Pulley {
     /// Name used in messages and output files.
     pub name: String,
-    /// Centre (x, y) [m].
+    /// Centre (x, y) \[m\].
     pub center: [f64; 2],
-    /// Radius [m].
+    /// Radius \[m\].
     pub radius: f64,
     /// Wrap side.
     #[serde(default)]

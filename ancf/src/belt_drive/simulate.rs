@@ -24,11 +24,11 @@ pub enum IntegratorKind {
 pub struct SimulationOptions {
     /// Integrator.
     pub integrator: IntegratorKind,
-    /// Step size [s].
+    /// Step size \[s\].
     pub h: f64,
     /// Generalized-α spectral radius at infinite frequency ρ∞.
     pub rho_inf: f64,
-    /// Newton tolerance on the position correction [m] (default 1e-7 m: far below the
+    /// Newton tolerance on the position correction \[m\] (default 1e-7 m: far below the
     /// ~10⁻⁵ m contact penetrations, and loose enough that Newton does not cycle between the
     /// branches of the piecewise-linear friction law).
     pub newton_atol: f64,
@@ -98,7 +98,7 @@ impl SimulationOptions {
     }
 }
 
-/// Integrate `drive` from rest at `q0` (t = 0) to `t_end` [s]; `observer` sees every accepted
+/// Integrate `drive` from rest at `q0` (t = 0) to `t_end` \[s\]; `observer` sees every accepted
 /// step.
 pub fn simulate(
     drive: &BeltDrive,
@@ -125,18 +125,18 @@ pub fn simulate(
 /// first-order system.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ExplicitStepLimit {
-    /// Largest step [s] for which `|R(hλ)| ≤ 1` for every eigenvalue `λ` with `Re λ ≤ 0`,
+    /// Largest step \[s\] for which `|R(hλ)| ≤ 1` for every eigenvalue `λ` with `Re λ ≤ 0`,
     /// `R(z) = 1 + z + z²/2 + z³/6 + z⁴/24` the RK4 amplification factor.
     pub h_max: f64,
-    /// The eigenvalue that sets the limit [1/s].
+    /// The eigenvalue that sets the limit \[1/s\].
     pub limiting: [f64; 2],
-    /// Largest `|Im λ|`, the highest (damped) eigenfrequency [rad/s].
+    /// Largest `|Im λ|`, the highest (damped) eigenfrequency \[rad/s\].
     pub omega_max: f64,
-    /// Most negative `Re λ` [1/s] (e.g. the creep-rate friction's `ν_s/ρA`).
+    /// Most negative `Re λ` \[1/s\] (e.g. the creep-rate friction's `ν_s/ρA`).
     pub decay_max: f64,
-    /// `2√2/ω_max` [s]: the RK4 limit of the undamped highest mode (imaginary-axis limit).
+    /// `2√2/ω_max` \[s\]: the RK4 limit of the undamped highest mode (imaginary-axis limit).
     pub h_imaginary: f64,
-    /// `2.785/|Re λ|_max` [s]: the RK4 limit of the fastest decay (real-axis limit).
+    /// `2.785/|Re λ|_max` \[s\]: the RK4 limit of the fastest decay (real-axis limit).
     pub h_real: f64,
 }
 

@@ -11,22 +11,22 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BeltSpec {
-    /// Unstretched belt length [m] (Table 3.1 runs: 1.2727 m, shorter than the 1.276273 m path,
+    /// Unstretched belt length \[m\] (Table 3.1 runs: 1.2727 m, shorter than the 1.276273 m path,
     /// which pre-strains the belt on the pulleys).
     pub length: f64,
     /// Number of elements (Kerkkänen: 20, 25, 30).
     pub elements: usize,
-    /// Section width (out of plane) [m].
+    /// Section width (out of plane) \[m\].
     pub width: f64,
-    /// Section thickness (in plane) [m].
+    /// Section thickness (in plane) \[m\].
     pub thickness: f64,
-    /// Young's modulus `E` [Pa].
+    /// Young's modulus `E` \[Pa\].
     pub young: f64,
-    /// Poisson's ratio `ν` [-].
+    /// Poisson's ratio `ν` \[-\].
     pub poisson: f64,
-    /// Density `ρ` [kg/m³].
+    /// Density `ρ` \[kg/m³\].
     pub density: f64,
-    /// Shear correction factor `k_s` [-] (not stated for the belt; 5/6 as in Ch. 2).
+    /// Shear correction factor `k_s` \[-\] (not stated for the belt; 5/6 as in Ch. 2).
     pub shear_factor: f64,
     /// Axial stiffness multiplier `α₁` (3.18).
     pub alpha1: f64,
@@ -34,7 +34,7 @@ pub struct BeltSpec {
     pub alpha2: f64,
     /// Gauss points along each element for the strain energy.
     pub gauss_points: usize,
-    /// Stiffness-proportional (Kelvin–Voigt) damping of the axial strain rate `β` [s]: axial
+    /// Stiffness-proportional (Kelvin–Voigt) damping of the axial strain rate `β` \[s\]: axial
     /// force `α₁EA (ε + β ε̇)` with the Green strain `ε = (r_xᵀr_x − 1)/2` (Kerkkänen (3.18)'s
     /// axial term). `0` (Kerkkänen: no material damping) by default. It is the Lagrangian-mesh
     /// counterpart of Ribaric's `β K_e` Rayleigh damping on the material deflection rate; rigid
@@ -66,12 +66,12 @@ impl Default for BeltSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ContactSpec {
-    /// Penalty stiffness per unit length `k_p` [N/m²].
+    /// Penalty stiffness per unit length `k_p` \[N/m²\].
     pub stiffness: f64,
-    /// Quadratic penalty coefficient per unit length `k₂` [N/m³] (Ribaric (6.1):
+    /// Quadratic penalty coefficient per unit length `k₂` \[N/m³\] (Ribaric (6.1):
     /// `f_n = k₂ d² + k_p d`; `0` for Kerkkänen's linear law (3.20)).
     pub quadratic: f64,
-    /// Penalty damping per unit length `c_p` [N·s/m²].
+    /// Penalty damping per unit length `c_p` \[N·s/m²\].
     pub damping: f64,
     /// Friction law.
     pub friction: BeltFriction,

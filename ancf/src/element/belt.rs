@@ -51,7 +51,7 @@ struct NodalTerms<T> {
 }
 
 impl BeltElement {
-    /// Element of reference length `length` [m] with multipliers `alpha1` (axial) and `alpha2`
+    /// Element of reference length `length` \[m\] with multipliers `alpha1` (axial) and `alpha2`
     /// (bending and shear), and `gauss_x` Gauss points along the axis.
     pub fn new(
         length: f64,

@@ -54,7 +54,7 @@ impl<const N: usize> QuadraticStrainKernel<N> {
         ]
     }
 
-    /// Strain energy [J].
+    /// Strain energy \[J\].
     pub fn energy(&self, e: &[f64]) -> f64 {
         let mut u = 0.0;
         for p in &self.points {

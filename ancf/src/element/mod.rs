@@ -34,7 +34,7 @@ impl NodeLayout {
         }
     }
 
-    /// Nodal coordinates of a material point at `position` [m] whose (unit) axial direction is
+    /// Nodal coordinates of a material point at `position` \[m\] whose (unit) axial direction is
     /// `tangent`, with axial stretch `stretch` (`r_x = stretch·t`) and unit `r_y = Ĩ t`.
     pub fn node_coordinates(self, position: [f64; 2], tangent: [f64; 2], stretch: f64) -> Vec<f64> {
         let n = [-tangent[1], tangent[0]];
@@ -73,17 +73,17 @@ pub trait Element: Send + Sync {
     fn ndof(&self) -> usize {
         2 * self.layout().coords_per_node()
     }
-    /// Reference (stress-free, straight) length `l` [m].
+    /// Reference (stress-free, straight) length `l` \[m\].
     fn length(&self) -> f64;
-    /// Density [kg/m³].
+    /// Density \[kg/m³\].
     fn density(&self) -> f64;
     /// Cross-section.
     fn section(&self) -> &Section;
     /// Scalar shape functions `Sₖ(x, y)` (`x ∈ [0, l]`, `y` transverse) into `s[..ndof/2]`.
     fn shape(&self, x: f64, y: f64, s: &mut [f64]);
-    /// Strain energy `U(e)` [J].
+    /// Strain energy `U(e)` \[J\].
     fn strain_energy(&self, e: &[f64]) -> f64;
-    /// Elastic forces `Q_e = −(∂U/∂e)ᵀ` (Kerkkänen (2.20)) written into `q` [N].
+    /// Elastic forces `Q_e = −(∂U/∂e)ᵀ` (Kerkkänen (2.20)) written into `q` \[N\].
     fn elastic_forces(&self, e: &[f64], q: &mut [f64]);
     /// Elastic forces into `q` and the tangent stiffness `K = ∂²U/∂e²` (column-major) into `k`.
     fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut [f64]);
@@ -113,7 +113,7 @@ pub trait Element: Send + Sync {
         }
     }
 
-    /// Generalized gravity force `Q_g = ∫_V ρ Sᵀ g dV` for the acceleration `g` [m/s²] into `q`.
+    /// Generalized gravity force `Q_g = ∫_V ρ Sᵀ g dV` for the acceleration `g` \[m/s²\] into `q`.
     fn gravity_forces(&self, g: [f64; 2], q: &mut [f64]) {
         let n = self.ndof();
         let nb = n / 2;
@@ -133,7 +133,7 @@ pub trait Element: Send + Sync {
         }
     }
 
-    /// Position `r(x, y) = S(x, y) e` of a material point [m].
+    /// Position `r(x, y) = S(x, y) e` of a material point \[m\].
     fn position(&self, e: &[f64], x: f64, y: f64) -> [f64; 2] {
         let nb = self.ndof() / 2;
         let mut s = [0.0; MAX_NDOF / 2];

@@ -21,7 +21,7 @@ pub struct OmarShabanaBeam {
 }
 
 impl OmarShabanaBeam {
-    /// Element of reference length `length` [m] with `gauss_x` points along the axis (4 in the
+    /// Element of reference length `length` \[m\] with `gauss_x` points along the axis (4 in the
     /// thesis).
     pub fn with_rule(
         length: f64,

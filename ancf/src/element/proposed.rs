@@ -20,7 +20,7 @@ pub struct ProposedBeam {
 }
 
 impl ProposedBeam {
-    /// Element of reference length `length` [m].
+    /// Element of reference length `length` \[m\].
     pub fn new(length: f64, material: Material, section: Section) -> Result<Self, AncfError> {
         if !(length.is_finite() && length > 0.0) {
             return Err(invalid(

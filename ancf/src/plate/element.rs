@@ -15,7 +15,7 @@ pub const PLATE_NDOF: usize = 36;
 /// `r_x, r_y, r_xx, r_xy, r_yy` (3 components each).
 const NU: usize = 15;
 
-/// A rectangular four-node ANCF thin-plate element of size `a × b` [m], reference state flat and
+/// A rectangular four-node ANCF thin-plate element of size `a × b` \[m\], reference state flat and
 /// stress-free in the element's `x, y` plane.
 ///
 /// Element coordinates are ordered node by node (A, B, C, D) as `[r, r_x, r_y]` with three
@@ -33,12 +33,12 @@ pub struct ThinPlate {
     thickness: f64,
     material: Material,
     bending: bool,
-    /// Gauss points of the energy quadrature: shape values and weight × area [m²].
+    /// Gauss points of the energy quadrature: shape values and weight × area \[m²\].
     points: Vec<(ShapeValues, f64)>,
 }
 
 impl ThinPlate {
-    /// An `a × b` element [m] of thickness `h` [m]; `bending = false` keeps only the membrane
+    /// An `a × b` element \[m\] of thickness `h` \[m\]; `bending = false` keeps only the membrane
     /// energy (Kerkkänen's Model 2); `gauss` points per direction for the energy (≥ 2; the
     /// thesis does not state its rule, 5 is a safe default).
     pub fn new(
@@ -84,7 +84,7 @@ impl ThinPlate {
         &self.shape
     }
 
-    /// Thickness `h` [m].
+    /// Thickness `h` \[m\].
     pub fn thickness(&self) -> f64 {
         self.thickness
     }
@@ -99,7 +99,7 @@ impl ThinPlate {
         self.bending
     }
 
-    /// Position `r(x, y) = S(x, y) e` [m] of the mid-surface point at local `(x, y)` [m].
+    /// Position `r(x, y) = S(x, y) e` \[m\] of the mid-surface point at local `(x, y)` \[m\].
     pub fn position(&self, e: &[f64], x: f64, y: f64) -> [f64; 3] {
         let s = self.shape.eval(x, y).s;
         let mut r = [0.0; 3];
@@ -135,7 +135,7 @@ impl ThinPlate {
         m
     }
 
-    /// Generalized gravity force `Q_g = ρ h ∫_A Sᵀ g dA` [N] for the acceleration `g` [m/s²].
+    /// Generalized gravity force `Q_g = ρ h ∫_A Sᵀ g dA` \[N\] for the acceleration `g` \[m/s²\].
     pub fn gravity_forces(&self, g: [f64; 3]) -> [f64; PLATE_NDOF] {
         let rho_h = self.material.density * self.thickness;
         let mut q = [0.0; PLATE_NDOF];
@@ -149,7 +149,7 @@ impl ThinPlate {
         q
     }
 
-    /// Strain energy `U = U^ε + U^κ` [J], Kerkkänen (4.16), (4.17), (4.19).
+    /// Strain energy `U = U^ε + U^κ` \[J\], Kerkkänen (4.16), (4.17), (4.19).
     pub fn strain_energy(&self, e: &[f64]) -> f64 {
         let mut u = 0.0;
         for (sv, w) in &self.points {
@@ -159,7 +159,7 @@ impl ThinPlate {
         u
     }
 
-    /// Elastic forces `Q_e = −(∂U/∂e)ᵀ` [N] (Kerkkänen (2.20)) into `q` (36 entries).
+    /// Elastic forces `Q_e = −(∂U/∂e)ᵀ` \[N\] (Kerkkänen (2.20)) into `q` (36 entries).
     pub fn elastic_forces(&self, e: &[f64], q: &mut [f64]) {
         q[..PLATE_NDOF].fill(0.0);
         for (sv, w) in &self.points {
@@ -170,7 +170,7 @@ impl ThinPlate {
         }
     }
 
-    /// Elastic forces into `q` and the tangent stiffness `K = ∂²U/∂e²` [N/m] into `k`
+    /// Elastic forces into `q` and the tangent stiffness `K = ∂²U/∂e²` \[N/m\] into `k`
     /// (36 × 36), exact through second-order automatic differentiation of the energy density
     /// with respect to the 15 local kinematic quantities (chain rule through the constant
     /// shape-function derivatives).
@@ -216,7 +216,7 @@ impl ThinPlate {
         }
     }
 
-    /// Strain-energy density per unit area [J/m²] from `u = [r_x, r_y, r_xx, r_xy, r_yy]`:
+    /// Strain-energy density per unit area \[J/m²\] from `u = [r_x, r_y, r_xx, r_xy, r_yy]`:
     /// membrane (4.16, standard form) plus bending (4.17) with the curvatures (4.18)
     /// `κ_ij = r_,ijᵀ n / (‖n‖ ‖r_,i‖ ‖r_,j‖)`, `n = r_,x × r_,y`.
     fn density<T: Real>(&self, u: &[T; NU]) -> T {

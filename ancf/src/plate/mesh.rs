@@ -30,7 +30,7 @@ pub struct PlateMesh {
 }
 
 impl PlateMesh {
-    /// A flat rectangular `lx × ly` plate [m] in the global `x, y` plane with its corner at the
+    /// A flat rectangular `lx × ly` plate \[m\] in the global `x, y` plane with its corner at the
     /// origin, `nx × ny` equal elements; returns the mesh and its reference coordinates
     /// (`r = (x, y, 0)`, `r_x = (1, 0, 0)`, `r_y = (0, 1, 0)` at every node). Node `(i, j)` has
     /// index `j (nx + 1) + i`.
@@ -124,7 +124,7 @@ impl PlateMesh {
         std::array::from_fn(|i| q[dofs[i]])
     }
 
-    /// Constant sparse mass matrix (Kerkkänen (2.26)) [kg].
+    /// Constant sparse mass matrix (Kerkkänen (2.26)) \[kg\].
     pub fn mass(&self) -> Result<SparseColMat<usize, f64>, AncfError> {
         let mut t = Vec::with_capacity(self.cells.len() * PLATE_NDOF * 12);
         for cell in &self.cells {
@@ -134,7 +134,7 @@ impl PlateMesh {
         self.sparse(&t)
     }
 
-    /// Strain energy of the mesh [J].
+    /// Strain energy of the mesh \[J\].
     pub fn strain_energy(&self, q: &[f64]) -> Result<f64, AncfError> {
         self.check(q)?;
         Ok(self
@@ -144,7 +144,7 @@ impl PlateMesh {
             .sum())
     }
 
-    /// Assembled elastic forces `Q_e = −∂U/∂q` [N].
+    /// Assembled elastic forces `Q_e = −∂U/∂q` \[N\].
     pub fn elastic_forces(&self, q: &[f64]) -> Result<Vec<f64>, AncfError> {
         self.check(q)?;
         let mut f = vec![0.0; self.n_coords()];
@@ -159,7 +159,7 @@ impl PlateMesh {
         Ok(f)
     }
 
-    /// Assembled elastic forces [N] and sparse tangent stiffness `∂²U/∂q²` [N/m].
+    /// Assembled elastic forces \[N\] and sparse tangent stiffness `∂²U/∂q²` \[N/m\].
     pub fn elastic_tangent(
         &self,
         q: &[f64],
@@ -168,7 +168,7 @@ impl PlateMesh {
         self.elastic_tangent_mapped(q, &map, self.n_coords())
     }
 
-    /// Elastic forces [N] (all coordinates) and the tangent stiffness [N/m] restricted to the
+    /// Elastic forces \[N\] (all coordinates) and the tangent stiffness \[N/m\] restricted to the
     /// coordinates with `map[i] = Some(row)`, as an `n × n` sparse matrix in those rows (the
     /// unknowns of a solve with supports eliminated).
     pub fn elastic_tangent_mapped(
@@ -216,7 +216,7 @@ impl PlateMesh {
         Ok((f, k))
     }
 
-    /// Assembled gravity forces [N] for the acceleration `g` [m/s²].
+    /// Assembled gravity forces \[N\] for the acceleration `g` \[m/s²\].
     pub fn gravity_forces(&self, g: [f64; 3]) -> Vec<f64> {
         let mut f = vec![0.0; self.n_coords()];
         for cell in &self.cells {

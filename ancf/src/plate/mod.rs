@@ -1,4 +1,4 @@
-//! The ANCF thin plate (Kerkkänen §4.3; Dufva & Shabana [63]): a four-node, 36-coordinate
+//! The ANCF thin plate (Kerkkänen §4.3; Dufva & Shabana \[63\]): a four-node, 36-coordinate
 //! Kirchhoff plate element whose nodal coordinates are the position and the two in-plane
 //! gradients `[r, r_x, r_y]` (4.14). It has a constant mass matrix, describes any rigid motion
 //! exactly and takes membrane (4.16) and, optionally, bending (4.17)-(4.18) strain energy.

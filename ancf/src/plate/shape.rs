@@ -1,5 +1,5 @@
 //! Shape functions of the 36-coordinate ANCF thin plate (Kerkkänen §4.3, (4.14)-(4.15);
-//! Dufva & Shabana [63]).
+//! Dufva & Shabana \[63\]).
 //!
 //! The thesis does not print the shape functions. Following the reading note (§3.6), the element
 //! interpolates each Cartesian component with the 12-term incomplete cubic
@@ -33,20 +33,20 @@ const MONOMIALS: [(i32, i32); 12] = [
 const CORNERS: [(f64, f64); 4] = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
 
 /// The shape functions `S_k` (`k = 3·node + kind`, kind 0: `r`, 1: `r_x`, 2: `r_y`) and their
-/// derivatives at one point, with respect to the physical coordinates `x`, `y` [m].
+/// derivatives at one point, with respect to the physical coordinates `x`, `y` \[m\].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShapeValues {
     /// `S_k`.
     pub s: [f64; 12],
-    /// `∂S_k/∂x` [1/m].
+    /// `∂S_k/∂x` \[1/m\].
     pub sx: [f64; 12],
-    /// `∂S_k/∂y` [1/m].
+    /// `∂S_k/∂y` \[1/m\].
     pub sy: [f64; 12],
-    /// `∂²S_k/∂x²` [1/m²].
+    /// `∂²S_k/∂x²` \[1/m²\].
     pub sxx: [f64; 12],
-    /// `∂²S_k/∂x∂y` [1/m²].
+    /// `∂²S_k/∂x∂y` \[1/m²\].
     pub sxy: [f64; 12],
-    /// `∂²S_k/∂y²` [1/m²].
+    /// `∂²S_k/∂y²` \[1/m²\].
     pub syy: [f64; 12],
 }
 
@@ -72,7 +72,7 @@ fn dpow(t: f64, p: i32, n: i32) -> f64 {
 }
 
 impl PlateShape {
-    /// Shape functions of an element of side lengths `a` (along x) and `b` (along y) [m].
+    /// Shape functions of an element of side lengths `a` (along x) and `b` (along y) \[m\].
     pub fn new(a: f64, b: f64) -> Result<Self, AncfError> {
         for (name, v) in [("a", a), ("b", b)] {
             if !(v.is_finite() && v > 0.0) {
@@ -109,17 +109,17 @@ impl PlateShape {
         Ok(Self { a, b, coef })
     }
 
-    /// Side length along x [m].
+    /// Side length along x \[m\].
     pub fn a(&self) -> f64 {
         self.a
     }
 
-    /// Side length along y [m].
+    /// Side length along y \[m\].
     pub fn b(&self) -> f64 {
         self.b
     }
 
-    /// Shape functions and derivatives at the local point `(x, y)`, `x ∈ [0, a]`, `y ∈ [0, b]` [m].
+    /// Shape functions and derivatives at the local point `(x, y)`, `x ∈ [0, a]`, `y ∈ [0, b]` \[m\].
     pub fn eval(&self, x: f64, y: f64) -> ShapeValues {
         let (xi, eta) = (x / self.a, y / self.b);
         let (ia, ib) = (1.0 / self.a, 1.0 / self.b);

@@ -9,7 +9,7 @@ use faer::Mat;
 use faer::prelude::Solve;
 
 /// Solve `Q_e(q) + λ F = 0` for `λ = 1/n, …, 1` from `q0`, keeping the coordinates in `fixed`
-/// at their `q0` values. `load` is the generalized external force [N] (all coordinates).
+/// at their `q0` values. `load` is the generalized external force \[N\] (all coordinates).
 pub fn solve_plate_static(
     mesh: &PlateMesh,
     q0: &[f64],
