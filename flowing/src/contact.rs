@@ -51,9 +51,9 @@ pub struct Candidate {
     pub node: usize,
     /// Pulley index.
     pub pulley: usize,
-    /// Axial position [m].
+    /// Axial position \[m\].
     pub x: f64,
-    /// Pulley surface height under the node [m].
+    /// Pulley surface height under the node \[m\].
     pub surface: f64,
 }
 
@@ -61,11 +61,11 @@ pub struct Candidate {
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HarmonicLoad {
-    /// Axial position of the loaded node [m].
+    /// Axial position of the loaded node \[m\].
     pub x: f64,
-    /// Force amplitude [N] (positive: away from the pulleys).
+    /// Force amplitude \[N\] (positive: away from the pulleys).
     pub amplitude: f64,
-    /// Frequency [Hz].
+    /// Frequency \[Hz\].
     pub frequency: f64,
 }
 
@@ -94,7 +94,7 @@ pub struct ContactString {
     pub coordinate_kind: &'static str,
 }
 
-/// Candidate nodes: the mesh nodes within `half_width` of a pulley centre [m].
+/// Candidate nodes: the mesh nodes within `half_width` of a pulley centre \[m\].
 pub fn candidates(
     mesh: &StringMesh,
     pulleys: &[Pulley],
@@ -283,14 +283,14 @@ impl ContactString {
         self.t.ncols()
     }
 
-    /// Nodal deflections `u = T y` [m].
+    /// Nodal deflections `u = T y` \[m\].
     pub fn deflection(&self, y: &[f64]) -> Vec<f64> {
         (0..self.t.nrows())
             .map(|i| (0..y.len()).map(|j| self.t[(i, j)] * y[j]).sum())
             .collect()
     }
 
-    /// Gap of candidate `c`: `u_i − s(x_i)` [m].
+    /// Gap of candidate `c`: `u_i − s(x_i)` \[m\].
     pub fn gap(&self, c: usize, y: &[f64]) -> f64 {
         let k = &self.candidates[c];
         (0..y.len())
@@ -305,7 +305,7 @@ impl ContactString {
             .collect()
     }
 
-    /// Contact forces `p = −λ` [N] (compressive positive) of the active candidates, in the order
+    /// Contact forces `p = −λ` \[N\] (compressive positive) of the active candidates, in the order
     /// of the candidate list (`0` for inactive ones), from the index-1 equations.
     pub fn contact_forces(&self, state: &State) -> Result<Vec<f64>, FlowError> {
         let acc = accelerations(self, state, &Stabilization::default())?;
@@ -324,7 +324,7 @@ impl ContactString {
         })
     }
 
-    /// Energy `½ẏᵀTᵀMTẏ + ½yᵀ(TᵀKT + ẋ²TᵀMT_,ss)y` [J] at speed `ẋ` (conserved for constant speed,
+    /// Energy `½ẏᵀTᵀMTẏ + ½yᵀ(TᵀKT + ẋ²TᵀMT_,ss)y` \[J\] at speed `ẋ` (conserved for constant speed,
     /// no load, FE-consistent derivatives, and no impacts).
     pub fn energy(&self, y: &[f64], ydot: &[f64], speed: f64) -> f64 {
         let k = self.k_eff(speed, 0.0);
@@ -480,9 +480,9 @@ type CachedForces = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ContactSettings {
-    /// Penetration that activates a contact [m].
+    /// Penetration that activates a contact \[m\].
     pub gap_tol: f64,
-    /// Tensile contact force that releases a contact [N].
+    /// Tensile contact force that releases a contact \[N\].
     pub force_tol: f64,
     /// Relative tolerance of Dormand–Prince.
     pub rtol: f64,
@@ -507,7 +507,7 @@ impl Default for ContactSettings {
 /// One contact switch.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ContactEvent {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// Candidate index.
     pub candidate: usize,
@@ -515,7 +515,7 @@ pub struct ContactEvent {
     pub node: usize,
     /// `true`: activation (impact), `false`: release.
     pub activated: bool,
-    /// Kinetic energy removed by the plastic impact [J] (0 for a release).
+    /// Kinetic energy removed by the plastic impact \[J\] (0 for a release).
     pub impact_loss: f64,
 }
 
@@ -541,7 +541,7 @@ fn kinetic(sys: &ContactString, v: &[f64]) -> f64 {
     e
 }
 
-/// Integrates the wrapped string from `state0` to `t_end` [s] with Dormand–Prince and event
+/// Integrates the wrapped string from `state0` to `t_end` \[s\] with Dormand–Prince and event
 /// location (mbd-core), switching the active set at every located event (activation with a
 /// plastic impact, release on a tensile multiplier). `observer` sees every accepted step and
 /// event state together with the active set in force.

@@ -12,11 +12,11 @@ use std::f64::consts::PI;
 pub struct GalerkinString {
     /// String parameters.
     pub params: StringParams,
-    /// Axial speed `v` [m/s].
+    /// Axial speed `v` \[m/s\].
     pub speed: f64,
-    /// Gyroscopic matrix `A` (4.28), skew-symmetric [1/s].
+    /// Gyroscopic matrix `A` (4.28), skew-symmetric \[1/s\].
     pub a: Mat<f64>,
-    /// Stiffness `B` (4.28), diagonal `(c² − v²)(nπ/L)²` [1/s²].
+    /// Stiffness `B` (4.28), diagonal `(c² − v²)(nπ/L)²` \[1/s²\].
     pub b: Mat<f64>,
 }
 
@@ -75,7 +75,7 @@ impl GalerkinString {
         }
     }
 
-    /// Deflection `u(x) = Σ a_n sin(nπx/L)` (4.24) [m] for modal amplitudes `amp`.
+    /// Deflection `u(x) = Σ a_n sin(nπx/L)` (4.24) \[m\] for modal amplitudes `amp`.
     pub fn deflection(&self, amp: &[f64], x: f64) -> f64 {
         amp.iter()
             .enumerate()

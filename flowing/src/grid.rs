@@ -12,7 +12,7 @@ use crate::error::{FlowError, invalid};
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum End {
     /// The field is zero at this position (a fixed end, Ribaric (A.2)); the position lies
-    /// outside the node range [m or rad].
+    /// outside the node range \[m or rad\].
     Zero(f64),
     /// Nothing is known beyond the last node: one-sided stencils.
     Free,
@@ -28,7 +28,7 @@ pub enum Topology {
         /// End after the last node.
         end: End,
     },
-    /// A closed loop (belt path, tire ring) of the given period [m or rad].
+    /// A closed loop (belt path, tire ring) of the given period \[m or rad\].
     Closed {
         /// Period of the flow coordinate (loop length or 2π).
         period: f64,
@@ -43,7 +43,7 @@ pub struct FlowGrid {
 }
 
 impl FlowGrid {
-    /// Builds a grid from strictly increasing positions [m or rad].
+    /// Builds a grid from strictly increasing positions \[m or rad\].
     ///
     /// For an open grid a `Zero` end must lie strictly outside `[s_first, s_last]`; for a closed
     /// grid all positions must lie in `[s_0, s_0 + period)`.
@@ -160,7 +160,7 @@ impl FlowGrid {
         self.positions.is_empty()
     }
 
-    /// Node positions [m or rad].
+    /// Node positions \[m or rad\].
     pub fn positions(&self) -> &[f64] {
         &self.positions
     }

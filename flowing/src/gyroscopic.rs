@@ -20,7 +20,7 @@ pub struct GyroscopicSystem {
 /// Eigen decomposition `X L = L T` of the state matrix (Ribaric (4.30)).
 #[derive(Debug, Clone)]
 pub struct StateEigen {
-    /// Eigenvalues `T` [1/s].
+    /// Eigenvalues `T` \[1/s\].
     pub values: Vec<c64>,
     /// Right eigenvectors `L` (columns).
     pub vectors: Mat<c64>,
@@ -89,7 +89,7 @@ impl GyroscopicSystem {
     }
 
     /// Matrix-exponential response `q(t) = L e^{T t} L⁻¹ q(0)` (Ribaric (4.30), erratum E14:
-    /// the left side is `q(t)`), at each time of `times` [s]; rows are times, columns the state.
+    /// the left side is `q(t)`), at each time of `times` \[s\]; rows are times, columns the state.
     pub fn response(&self, q0: &[f64], times: &[f64]) -> Result<Vec<Vec<f64>>, FlowError> {
         let n2 = 2 * self.dim();
         if q0.len() != n2 {
@@ -129,7 +129,7 @@ impl GyroscopicSystem {
 }
 
 impl StateEigen {
-    /// Damped natural frequencies `Im(λ)/2π` [Hz] of the eigenvalues with positive imaginary
+    /// Damped natural frequencies `Im(λ)/2π` \[Hz\] of the eigenvalues with positive imaginary
     /// part, ascending.
     pub fn damped_frequencies_hz(&self) -> Vec<f64> {
         let scale = self.values.iter().fold(0.0f64, |a, z| a.max(z.norm()));
@@ -143,7 +143,7 @@ impl StateEigen {
         f
     }
 
-    /// Largest real part of the eigenvalues [1/s] (> 0: unstable).
+    /// Largest real part of the eigenvalues \[1/s\] (> 0: unstable).
     pub fn max_real_part(&self) -> f64 {
         self.values
             .iter()

@@ -5,13 +5,13 @@ use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::{Accum, Mat, MatRef, Par};
 use mbd_core::SysMatrix;
 
-/// Mass-normalised mode shapes `Ψ` (`n_dof × k`) and eigenvalues `Λ = diag(ω²)` [rad²/s²], with
+/// Mass-normalised mode shapes `Ψ` (`n_dof × k`) and eigenvalues `Λ = diag(ω²)` \[rad²/s²\], with
 /// `ΨᵀMΨ = I`, `ΨᵀKΨ = Λ` (Ribaric (4.7)).
 #[derive(Debug, Clone)]
 pub struct ModalBasis {
     /// Mode shapes (columns).
     pub psi: Mat<f64>,
-    /// Eigenvalues `ω²` [rad²/s²], ascending.
+    /// Eigenvalues `ω²` \[rad²/s²\], ascending.
     pub lambda: Vec<f64>,
 }
 

@@ -9,13 +9,13 @@ use crate::error::{FlowError, invalid};
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StringParams {
-    /// Length between the boundaries `L` [m].
+    /// Length between the boundaries `L` \[m\].
     pub length: f64,
-    /// Density `ρ₀` [kg/m³].
+    /// Density `ρ₀` \[kg/m³\].
     pub density: f64,
-    /// Cross-section `A₀` [m²].
+    /// Cross-section `A₀` \[m²\].
     pub area: f64,
-    /// Tension `T₀` [N].
+    /// Tension `T₀` \[N\].
     pub tension: f64,
 }
 
@@ -49,18 +49,18 @@ impl StringParams {
         Ok(())
     }
 
-    /// Mass per unit length `μ = ρ₀A₀` [kg/m].
+    /// Mass per unit length `μ = ρ₀A₀` \[kg/m\].
     pub fn mu(&self) -> f64 {
         self.density * self.area
     }
 
-    /// Wave speed `c = √(T₀/(ρ₀A₀))` [m/s] (Ribaric (4.21)); also the critical axial speed.
+    /// Wave speed `c = √(T₀/(ρ₀A₀))` \[m/s\] (Ribaric (4.21)); also the critical axial speed.
     pub fn wave_speed(&self) -> f64 {
         (self.tension / self.mu()).sqrt()
     }
 
     /// Exact damped natural frequency of mode `n` of the axially moving fixed–fixed string,
-    /// `f_n = n (c² − v²) / (2 c L)` [Hz] (classical result, notes §1.4.4 / erratum E25; the
+    /// `f_n = n (c² − v²) / (2 c L)` \[Hz\] (classical result, notes §1.4.4 / erratum E25; the
     /// eigenvalues of Ribaric's (4.29) converge to it).
     pub fn exact_moving_frequency_hz(&self, n: usize, speed: f64) -> f64 {
         let c = self.wave_speed();

@@ -3,15 +3,15 @@
 use crate::error::{FlowError, invalid};
 
 /// A rigid pulley under the string: a circle of radius `radius` whose top point is at
-/// `(center_x, top)` in the string's (axial x, transverse u) plane [m].
+/// `(center_x, top)` in the string's (axial x, transverse u) plane \[m\].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Pulley {
-    /// Axial position of the pulley centre [m].
+    /// Axial position of the pulley centre \[m\].
     pub center_x: f64,
-    /// Transverse coordinate of the top of the pulley [m].
+    /// Transverse coordinate of the top of the pulley \[m\].
     pub top: f64,
-    /// Radius [m].
+    /// Radius \[m\].
     pub radius: f64,
 }
 
@@ -30,7 +30,7 @@ impl Pulley {
         Ok(())
     }
 
-    /// Height of the pulley surface under axial position `x` [m] (upper half circle), or `None`
+    /// Height of the pulley surface under axial position `x` \[m\] (upper half circle), or `None`
     /// when `x` is not above the pulley.
     pub fn surface(&self, x: f64) -> Option<f64> {
         let d = x - self.center_x;

@@ -8,7 +8,7 @@ use rustfft::FftPlanner;
 /// One-sided amplitude spectrum of a uniformly sampled signal.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spectrum {
-    /// Frequencies [Hz] (bin `k`: `k / (N dt)`).
+    /// Frequencies \[Hz\] (bin `k`: `k / (N dt)`).
     pub frequencies: Vec<f64>,
     /// Amplitudes (Hann-window corrected, units of the signal).
     pub amplitudes: Vec<f64>,

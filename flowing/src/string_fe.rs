@@ -17,9 +17,9 @@ use mbd_core::SysMatrix;
 pub struct StringMesh {
     /// Interior nodes with fixed (zero-value) ends.
     pub grid: FlowGrid,
-    /// Mass matrix of the interior DOFs [kg].
+    /// Mass matrix of the interior DOFs \[kg\].
     pub mass: Mat<f64>,
-    /// Stiffness matrix of the interior DOFs [N/m].
+    /// Stiffness matrix of the interior DOFs \[N/m\].
     pub stiffness: Mat<f64>,
     /// String parameters (`length` is ignored; the grid's ends define the span).
     pub params: StringParams,

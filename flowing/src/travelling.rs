@@ -25,36 +25,36 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, tag = "kind", rename_all = "snake_case")]
 pub enum AxialMotion {
-    /// Constant speed `ẋ = speed` [m/s].
+    /// Constant speed `ẋ = speed` \[m/s\].
     Constant {
-        /// Axial speed [m/s].
+        /// Axial speed \[m/s\].
         speed: f64,
     },
-    /// Prescribed ramp `ẋ = initial_speed + acceleration·t` [m/s], `ẍ = acceleration` [m/s²].
+    /// Prescribed ramp `ẋ = initial_speed + acceleration·t` \[m/s\], `ẍ = acceleration` \[m/s²\].
     Ramp {
-        /// Speed at t = 0 [m/s].
+        /// Speed at t = 0 \[m/s\].
         initial_speed: f64,
-        /// Constant axial acceleration [m/s²].
+        /// Constant axial acceleration \[m/s²\].
         acceleration: f64,
     },
     /// Prescribed harmonic speed `ẋ = mean + amplitude·sin(2π·frequency·t)`.
     Harmonic {
-        /// Mean speed [m/s].
+        /// Mean speed \[m/s\].
         mean: f64,
-        /// Speed amplitude [m/s].
+        /// Speed amplitude \[m/s\].
         amplitude: f64,
-        /// Frequency [Hz].
+        /// Frequency \[Hz\].
         frequency: f64,
     },
     /// Dynamic axial speed: an extra coordinate `x` (axial material displacement) with
     /// `m ẍ = F − d ẋ` (a pulled string of axial inertia `m`); `ẋ(0)` is the initial velocity of
     /// that coordinate.
     Dynamic {
-        /// Axial inertia `m` [kg].
+        /// Axial inertia `m` \[kg\].
         mass: f64,
-        /// Axial damping `d` [N·s/m].
+        /// Axial damping `d` \[N·s/m\].
         damping: f64,
-        /// Pulling force `F` [N].
+        /// Pulling force `F` \[N\].
         force: f64,
     },
 }
@@ -227,7 +227,7 @@ impl FlowingString {
             .collect())
     }
 
-    /// Nodal deflection `u = Ψz` (4.16) [m].
+    /// Nodal deflection `u = Ψz` (4.16) \[m\].
     pub fn deflection(&self, z: &[f64]) -> Vec<f64> {
         let p = &self.basis.psi;
         (0..p.nrows())
@@ -235,7 +235,7 @@ impl FlowingString {
             .collect()
     }
 
-    /// Material velocity `u̇ = Ψż + ẋΨ_,x z` (4.17) [m/s].
+    /// Material velocity `u̇ = Ψż + ẋΨ_,x z` (4.17) \[m/s\].
     pub fn material_velocity(&self, z: &[f64], zdot: &[f64], speed: f64) -> Vec<f64> {
         let p = &self.basis.psi;
         (0..p.nrows())
@@ -267,7 +267,7 @@ impl FlowingString {
         }
     }
 
-    /// Energy-like invariant `H = ½żᵀż + ½zᵀ(ẋ²ΨᵀMΨ_,xx + Λ)z` [J per unit modal mass], conserved
+    /// Energy-like invariant `H = ½żᵀż + ½zᵀ(ẋ²ΨᵀMΨ_,xx + Λ)z` \[J per unit modal mass\], conserved
     /// at constant speed when `ΨᵀMΨ_,x` is skew (FE-consistent derivatives).
     pub fn hamiltonian(&self, z: &[f64], zdot: &[f64], speed: f64) -> f64 {
         let k = self.n_modes();
@@ -334,7 +334,7 @@ impl SecondOrderSystem for FlowingString {
     }
 }
 
-/// Triangular pluck `u(x)` of peak `amplitude` [m] at `x_peak` [m] on a string between fixed ends
+/// Triangular pluck `u(x)` of peak `amplitude` \[m\] at `x_peak` \[m\] on a string between fixed ends
 /// at `a` and `b`, sampled at `positions` (the initial condition of Ribaric Fig. 4-6).
 pub fn triangular_pluck(
     positions: &[f64],
@@ -369,7 +369,7 @@ pub fn triangular_pluck(
 /// Uniformly sampled time history of a [`FlowingString`] run.
 #[derive(Debug, Clone, Default)]
 pub struct TimeHistory {
-    /// Sample times [s].
+    /// Sample times \[s\].
     pub t: Vec<f64>,
     /// Positions `q` (modal coordinates, then the axial coordinate if dynamic) per sample.
     pub q: Vec<Vec<f64>>,
@@ -377,8 +377,8 @@ pub struct TimeHistory {
     pub v: Vec<Vec<f64>>,
 }
 
-/// Integrates `sys` from `(q0, v0)` at t = 0 to `t_end` [s] with mbd-core's fixed-step RK4 of
-/// step `h` [s], keeping every `every`-th step (sampling period `every · h`). `progress` sees the
+/// Integrates `sys` from `(q0, v0)` at t = 0 to `t_end` \[s\] with mbd-core's fixed-step RK4 of
+/// step `h` \[s\], keeping every `every`-th step (sampling period `every · h`). `progress` sees the
 /// current time.
 pub fn simulate_rk4(
     sys: &FlowingString,

@@ -6,11 +6,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct DriveGeometry {
-    /// Centre distance L_c [m].
+    /// Centre distance L_c \[m\].
     pub center_distance: f64,
-    /// Driver pulley radius (belt line) [m].
+    /// Driver pulley radius (belt line) \[m\].
     pub radius_driver: f64,
-    /// Driven pulley radius (belt line) [m].
+    /// Driven pulley radius (belt line) \[m\].
     pub radius_driven: f64,
 }
 
@@ -29,13 +29,13 @@ impl Default for DriveGeometry {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltSection {
-    /// Axial stiffness EA [N].
+    /// Axial stiffness EA \[N\].
     pub ea: f64,
-    /// Bending stiffness EI [N·m²].
+    /// Bending stiffness EI \[N·m²\].
     pub ei: f64,
-    /// Mass per unit length ρA [kg/m].
+    /// Mass per unit length ρA \[kg/m\].
     pub mass_per_length: f64,
-    /// Pre-tension T0 [N] of the reference (mounted) state.
+    /// Pre-tension T0 \[N\] of the reference (mounted) state.
     ///
     /// Ribaric U8: the printed belt length 1.2 m cannot be stretched onto the 1.214 m path at
     /// 310 N; we take the path of L_c and R as printed and make T0 the tension of that
@@ -82,13 +82,13 @@ impl Default for BeltMesh {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltContact {
-    /// Quadratic penalty coefficient of (6.1) [N/m³ per metre of belt].
+    /// Quadratic penalty coefficient of (6.1) \[N/m³ per metre of belt\].
     pub penalty_quadratic: f64,
-    /// Linear penalty coefficient of (6.1) [N/m² per metre of belt].
+    /// Linear penalty coefficient of (6.1) \[N/m² per metre of belt\].
     pub penalty_linear: f64,
     /// Kinetic friction coefficient μ_kin.
     pub mu: f64,
-    /// Slope of the tanh regularisation κ [s/m].
+    /// Slope of the tanh regularisation κ \[s/m\].
     pub kappa: f64,
 }
 
@@ -108,9 +108,9 @@ impl Default for BeltContact {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltDamping {
-    /// Mass-proportional coefficient α [1/s].
+    /// Mass-proportional coefficient α \[1/s\].
     pub alpha: f64,
-    /// Stiffness-proportional coefficient β [s].
+    /// Stiffness-proportional coefficient β \[s\].
     pub beta: f64,
 }
 
@@ -187,7 +187,7 @@ pub struct BeltDriveConfig {
     pub damping: BeltDamping,
     /// Reduction of the flowing model.
     pub reduction: BeltReduction,
-    /// Moment of inertia of the driven pulley about its axis [kg m²] (Table 6-1: 0.013).
+    /// Moment of inertia of the driven pulley about its axis \[kg m²\] (Table 6-1: 0.013).
     pub driven_inertia: f64,
 }
 

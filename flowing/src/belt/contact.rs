@@ -2,7 +2,7 @@
 //! regularised Coulomb friction (Ribaric (6.2)), with the analytic derivatives used by the
 //! implicit integrator.
 //!
-//! Conventions: the pulley (centre `c`, radius `R`) turns with speed `ω` [rad/s] counted positive
+//! Conventions: the pulley (centre `c`, radius `R`) turns with speed `ω` \[rad/s\] counted positive
 //! in the belt's travel direction; `turn = +1` when the belt wraps the pulley clockwise (pulley
 //! inside the loop, Ribaric Fig. 5-1), `−1` for a back-side idler. With `n` the outward unit normal
 //! at the node, the travel tangent is `t = turn·(n_y, −n_x)`, the penetration `p = R − |d − c|`,
@@ -19,9 +19,9 @@ use contact::point::point_contact;
 /// A rigid pulley seen by the belt nodes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PulleyFrame {
-    /// Centre [m].
+    /// Centre \[m\].
     pub center: [f64; 2],
-    /// Radius of the belt line [m].
+    /// Radius of the belt line \[m\].
     pub radius: f64,
     /// +1 clockwise wrap, −1 counter-clockwise (back-side) wrap.
     pub turn: f64,
@@ -30,17 +30,17 @@ pub struct PulleyFrame {
 /// Force of one node–pulley contact and its derivatives.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct NodeContact {
-    /// Penetration `p` [m] (≤ 0: open, no force).
+    /// Penetration `p` \[m\] (≤ 0: open, no force).
     pub penetration: f64,
-    /// Normal force `F_N` [N].
+    /// Normal force `F_N` \[N\].
     pub normal: f64,
-    /// Tangential (friction) force `F_T` along the travel tangent [N].
+    /// Tangential (friction) force `F_T` along the travel tangent \[N\].
     pub friction: f64,
-    /// Slip velocity [m/s].
+    /// Slip velocity \[m/s\].
     pub slip: f64,
-    /// Force on the belt node [N].
+    /// Force on the belt node \[N\].
     pub force: [f64; 2],
-    /// Reaction torque on the pulley in its travel sense [N m].
+    /// Reaction torque on the pulley in its travel sense \[N m\].
     pub torque: f64,
     /// `∂F/∂d` (row i: component i of F).
     pub df_dd: [[f64; 2]; 2],

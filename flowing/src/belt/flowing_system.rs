@@ -58,9 +58,9 @@ pub struct FlowingBelt {
     pub fe: BeltFe,
     /// The reduction basis.
     pub basis: FlowingBasis,
-    /// Driver pulley speed ω₁(t) [rad/s], positive in the travel sense.
+    /// Driver pulley speed ω₁(t) \[rad/s\], positive in the travel sense.
     pub driver_speed: Schedule,
-    /// Load torque on the driven pulley [N m], opposing its rotation.
+    /// Load torque on the driven pulley \[N m\], opposing its rotation.
     pub load_torque: Schedule,
     pulleys: [PulleyFrame; 2],
     friction: CoulombTanh,
@@ -84,7 +84,7 @@ pub struct NodeReport {
     pub node: usize,
     /// Pulley index.
     pub pulley: usize,
-    /// Arc length of the node [m].
+    /// Arc length of the node \[m\].
     pub s: f64,
     /// The contact evaluation.
     pub contact: NodeContact,
@@ -282,7 +282,7 @@ impl FlowingBelt {
             .collect()
     }
 
-    /// Torques of the contact forces on the pulleys in their travel sense [N m].
+    /// Torques of the contact forces on the pulleys in their travel sense \[N m\].
     pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> [f64; 2] {
         let mut tq = [0.0; 2];
         for r in self.contact_report(t, q, v) {
@@ -291,7 +291,7 @@ impl FlowingBelt {
         tq
     }
 
-    /// Axial tension of the belt element starting at each node [N]: `T0 + EA Δl/l`.
+    /// Axial tension of the belt element starting at each node \[N\]: `T0 + EA Δl/l`.
     pub fn element_tensions(&self, z: &[f64]) -> Vec<f64> {
         let d = self.deflection(z);
         let nn = self.fe.n_nodes();

@@ -23,9 +23,9 @@ pub use schedule::Schedule;
 pub use study::{DriveModel, SpeedLossPoint, SpeedLossSettings, speed_loss_sweep};
 
 /// Angular speed loss of Bechtel et al., Ribaric (6.3):
-/// `Δω = (1 − (2RT0 − M_p + 2Rk)/(2RT0 + M_p + 2Rk)) ω = 2 M_p ω / (2R(T0 + k) + M_p)` [rad/s],
-/// with `k = EA` [N] (the dimensionally consistent reading, seed-000 note U13), pulley radius
-/// `R` [m], pre-tension `T0` [N], load torque `M_p` [N m] and driver speed `ω` [rad/s].
+/// `Δω = (1 − (2RT0 − M_p + 2Rk)/(2RT0 + M_p + 2Rk)) ω = 2 M_p ω / (2R(T0 + k) + M_p)` \[rad/s\],
+/// with `k = EA` \[N\] (the dimensionally consistent reading, seed-000 note U13), pulley radius
+/// `R` \[m\], pre-tension `T0` \[N\], load torque `M_p` \[N m\] and driver speed `ω` \[rad/s\].
 pub fn analytical_speed_loss(radius: f64, tension: f64, ea: f64, torque: f64, omega: f64) -> f64 {
     let a = 2.0 * radius * tension + 2.0 * radius * ea;
     (1.0 - (a - torque) / (a + torque)) * omega

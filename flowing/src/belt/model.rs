@@ -40,17 +40,17 @@ pub struct BeltFe {
     pub config: BeltDriveConfig,
     /// Undeformed belt path.
     pub path: BeltPath,
-    /// Arc length of each node [m] (increasing, in `[0, L)`).
+    /// Arc length of each node \[m\] (increasing, in `[0, L)`).
     pub s: Vec<f64>,
-    /// Node positions `r_i` [m].
+    /// Node positions `r_i` \[m\].
     pub position: Vec<[f64; 2]>,
     /// Path unit tangent at each node.
     pub tangent: Vec<[f64; 2]>,
-    /// Discrete curvature vector `ε_n,i` [1/m].
+    /// Discrete curvature vector `ε_n,i` \[1/m\].
     pub curvature: Vec<[f64; 2]>,
-    /// Tributary length of each node [m].
+    /// Tributary length of each node \[m\].
     pub tributary: Vec<f64>,
-    /// Diagonal of the lumped mass matrix (`3N`) [kg, kg m²].
+    /// Diagonal of the lumped mass matrix (`3N`) \[kg, kg m²\].
     pub mass: Vec<f64>,
     /// Stiffness `K_e + K_g(T0)` (`3N × 3N`).
     pub stiffness: Mat<f64>,
@@ -61,11 +61,11 @@ pub struct BeltFe {
     /// an arc is not a deformation). With `β K`, the unloaded driven pulley ran 5·10⁻⁶ (relative)
     /// faster than the driver; with `β K_e` the two agree to 10⁻⁷.
     pub damping: Mat<f64>,
-    /// Pre-tension force of the reference state (`3N`) [N].
+    /// Pre-tension force of the reference state (`3N`) \[N\].
     pub pretension: Vec<f64>,
     /// Contact nodes of each pulley (pulley 0 = driver, 1 = driven).
     pub contact_nodes: Vec<Vec<usize>>,
-    /// Radius of each pulley's contact surface [m]: the path radius plus the penalty
+    /// Radius of each pulley's contact surface \[m\]: the path radius plus the penalty
     /// penetration `p0` under the mounting pressure `T0/R`, so that the belt mounted with
     /// tension T0 has its line exactly on the path (the role of Ribaric §6.4 step 1, "move the
     /// pulleys apart until T0").
@@ -206,7 +206,7 @@ impl BeltFe {
         NODE_DOFS * self.s.len()
     }
 
-    /// Belt mass `e_tᵀ M e_t` [kg].
+    /// Belt mass `e_tᵀ M e_t` \[kg\].
     pub fn belt_mass(&self) -> f64 {
         self.mass
             .chunks(NODE_DOFS)
@@ -257,7 +257,7 @@ impl BeltFe {
     }
 }
 
-/// Penetration `p0` [m] of the penalty law (6.1) under the uniform pressure `T0/R` of a belt
+/// Penetration `p0` \[m\] of the penalty law (6.1) under the uniform pressure `T0/R` of a belt
 /// with tension T0 on a pulley of radius R: the root of `k₂ p² + k₁ p = T0/R`
 /// (72 µm for Table 6-1, seed-000 note §2.3).
 pub fn mounting_penetration(config: &BeltDriveConfig, radius: f64) -> f64 {

@@ -85,7 +85,7 @@ struct Mesh {
     k: Vec<Block>,
     /// `K_e` of each element (for the β part of the damping).
     ke: Vec<Block>,
-    /// Pre-tension force `f0` (`3N`) [N].
+    /// Pre-tension force `f0` (`3N`) \[N\].
     f0: Vec<f64>,
 }
 
@@ -95,9 +95,9 @@ pub struct NodalBelt {
     /// The belt loop (its `s`, masses and tributary lengths are those of the material nodes at
     /// `s_b = 0`).
     pub fe: BeltFe,
-    /// Driver pulley speed ω₁(t) [rad/s], positive in the travel sense.
+    /// Driver pulley speed ω₁(t) \[rad/s\], positive in the travel sense.
     pub driver_speed: Schedule,
-    /// Load torque on the driven pulley [N m], opposing its rotation.
+    /// Load torque on the driven pulley \[N m\], opposing its rotation.
     pub load_torque: Schedule,
     /// Material node whose tangential deflection is zero (reference condition).
     pub reference_node: usize,
@@ -246,7 +246,7 @@ impl NodalBelt {
         self.fe.n_dofs() + 1
     }
 
-    /// Reference positions `r^i(s_i0 + s_b)` of the material nodes [m].
+    /// Reference positions `r^i(s_i0 + s_b)` of the material nodes \[m\].
     pub fn reference_positions(&self, s_b: f64) -> Vec<[f64; 2]> {
         self.fe
             .s
@@ -374,7 +374,7 @@ impl NodalBelt {
             .collect())
     }
 
-    /// Torques of the contact forces on the pulleys in their travel sense [N m].
+    /// Torques of the contact forces on the pulleys in their travel sense \[N m\].
     pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> Result<[f64; 2], MbdError> {
         let mesh = self.mesh(q[0])?;
         let mut tq = [0.0; 2];

@@ -17,9 +17,9 @@ use serde::{Deserialize, Serialize};
 
 /// A belt-drive model the speed-loss procedure can run.
 pub trait DriveModel: SecondOrderSystem {
-    /// Driven pulley speed [rad/s] (travel sense) from the velocities.
+    /// Driven pulley speed \[rad/s\] (travel sense) from the velocities.
     fn driven_speed(&self, v: &[f64]) -> f64;
-    /// Driver pulley speed [rad/s] at time `t`.
+    /// Driver pulley speed \[rad/s\] at time `t`.
     fn driver_speed(&self, t: f64) -> f64;
     /// Consistent state at rest (static equilibrium of the mounted belt) at `t = 0`.
     fn initial_state(&self) -> Result<State, MbdError>;
@@ -33,21 +33,21 @@ pub trait DriveModel: SecondOrderSystem {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SpeedLossSettings {
-    /// Driver speed ω₁ [rad/s] (Ribaric Figs. 6-6, 6-7: 62.8 and 22.6).
+    /// Driver speed ω₁ \[rad/s\] (Ribaric Figs. 6-6, 6-7: 62.8 and 22.6).
     pub omega_driver: f64,
-    /// Load torques on the driven pulley [N m], applied in this order.
+    /// Load torques on the driven pulley \[N m\], applied in this order.
     pub torques: Vec<f64>,
-    /// Duration of the driver's spin-up ramp [s].
+    /// Duration of the driver's spin-up ramp \[s\].
     pub spin_up: f64,
-    /// Duration of each load ramp [s].
+    /// Duration of each load ramp \[s\].
     pub torque_ramp: f64,
-    /// Length of the averaging window [s].
+    /// Length of the averaging window \[s\].
     pub window: f64,
-    /// Steady when consecutive window means differ by less than this [rad/s].
+    /// Steady when consecutive window means differ by less than this \[rad/s\].
     pub tolerance: f64,
-    /// Give up on a torque (error) after holding it this long [s].
+    /// Give up on a torque (error) after holding it this long \[s\].
     pub max_hold: f64,
-    /// Generalized-α step [s].
+    /// Generalized-α step \[s\].
     pub step: f64,
     /// Generalized-α spectral radius at infinity.
     pub rho_inf: f64,
@@ -107,22 +107,22 @@ impl SpeedLossSettings {
 /// One steady operating point.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SpeedLossPoint {
-    /// Load torque [N m].
+    /// Load torque \[N m\].
     pub torque: f64,
-    /// Steady speed loss ω₁ − ω₂ [rad/s] (mean over the last window).
+    /// Steady speed loss ω₁ − ω₂ \[rad/s\] (mean over the last window).
     pub delta_omega: f64,
-    /// Steady driven speed [rad/s].
+    /// Steady driven speed \[rad/s\].
     pub omega_driven: f64,
-    /// Difference of the last two window means [rad/s] (steady-state residual).
+    /// Difference of the last two window means \[rad/s\] (steady-state residual).
     pub drift: f64,
-    /// Simulation time at which the point was taken [s].
+    /// Simulation time at which the point was taken \[s\].
     pub time: f64,
 }
 
 /// Integration statistics of a sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct SweepStats {
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub simulated_time: f64,
     /// Steps taken.
     pub steps: usize,
@@ -144,13 +144,13 @@ pub struct SweepFailure {
 /// One sample of the time history handed to the observer.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
-    /// Driver speed [rad/s].
+    /// Driver speed \[rad/s\].
     pub omega_driver: f64,
-    /// Driven speed [rad/s].
+    /// Driven speed \[rad/s\].
     pub omega_driven: f64,
-    /// Load torque [N m].
+    /// Load torque \[N m\].
     pub load: f64,
     /// Steady points found so far.
     pub points: usize,
@@ -159,7 +159,7 @@ pub struct Sample {
 /// How often a step whose Newton iterations fail is split in two halves (recursively).
 pub const MAX_HALVINGS: usize = 4;
 
-/// One step of size `h` [s]; if Newton fails, two steps of `h/2` (recursively, `depth`
+/// One step of size `h` \[s\]; if Newton fails, two steps of `h/2` (recursively, `depth`
 /// levels). The rotating-mesh model ([`super::nodal::NodalBelt`]) needs it when a coarse
 /// element lands on a pulley.
 pub fn robust_step<M: DriveModel>(

@@ -31,16 +31,16 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct WaveSettings {
-    /// Belt speed of the running case [m/s] (default 28.4 m/s = c/2 for Table 6-1, an
+    /// Belt speed of the running case \[m/s\] (default 28.4 m/s = c/2 for Table 6-1, an
     /// "exaggerated" speed at which `1 − v²/c² = 0.75`).
     pub belt_speed: f64,
-    /// Peak initial deflection [m].
+    /// Peak initial deflection \[m\].
     pub amplitude: f64,
     /// Half-width of the initial bump as a fraction of the upper span length.
     pub half_width: f64,
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub t_end: f64,
-    /// Generalized-α step [s].
+    /// Generalized-α step \[s\].
     pub step: f64,
     /// Generalized-α spectral radius at infinity.
     pub rho_inf: f64,
@@ -103,26 +103,26 @@ impl WaveSettings {
 /// History of one run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WaveRun {
-    /// Belt speed [m/s].
+    /// Belt speed \[m/s\].
     pub belt_speed: f64,
-    /// Sample times [s].
+    /// Sample times \[s\].
     pub times: Vec<f64>,
     /// Position of the upper span's nodes along the span in the travel direction, counted from
-    /// the projection of the first pulley centre on the span line [m] (the bump is centred at
+    /// the projection of the first pulley centre on the span line \[m\] (the bump is centred at
     /// half the centre distance).
     pub span_position: Vec<f64>,
-    /// Deflection normal to the upper span at its nodes, one row per sample [m].
+    /// Deflection normal to the upper span at its nodes, one row per sample \[m\].
     pub span_deflection: Vec<Vec<f64>>,
-    /// Deflection at the node nearest the span middle, per sample [m].
+    /// Deflection at the node nearest the span middle, per sample \[m\].
     pub midspan: Vec<f64>,
-    /// Centroid `∫x w² dx / ∫w² dx` of the span deflection, per sample [m] (w² rather than w:
+    /// Centroid `∫x w² dx / ∫w² dx` of the span deflection, per sample \[m\] (w² rather than w:
     /// insensitive to the small background deflection of the running belt's spans).
     pub centroid: Vec<f64>,
-    /// Node positions of the whole deformed loop, per sample [m].
+    /// Node positions of the whole deformed loop, per sample \[m\].
     pub shapes: Vec<Vec<[f64; 2]>>,
 }
 
-/// Transverse wave speed `c = √(T0/ρA)` of the belt [m/s].
+/// Transverse wave speed `c = √(T0/ρA)` of the belt \[m/s\].
 pub fn wave_speed(config: &BeltDriveConfig) -> f64 {
     (config.belt.tension / config.belt.mass_per_length).sqrt()
 }
@@ -297,7 +297,7 @@ pub fn wave_run(
     Ok(run)
 }
 
-/// Frequency [Hz] of the largest spectral peak of `y(t)` (uniform samples) between `f_lo` and
+/// Frequency \[Hz\] of the largest spectral peak of `y(t)` (uniform samples) between `f_lo` and
 /// `f_hi`, by a scan of the discrete-time Fourier transform of the mean-free signal with a Hann
 /// window, refined by golden-section search.
 pub fn dominant_frequency(t: &[f64], y: &[f64], f_lo: f64, f_hi: f64) -> f64 {

@@ -2,7 +2,7 @@
 //!
 //! The polynomial space is that of the Vandermonde matrix (A.5) of degree `m`; the basis is
 //! Legendre polynomials of the coordinate scaled to `[−1, 1]` (same space, far better conditioned
-//! than raw monomials; the notes' [choice] of scaling). Known zero end values of an open grid are
+//! than raw monomials; the notes' \[choice\] of scaling). Known zero end values of an open grid are
 //! included as collocation points (boundary-aware). `m + 1 = n` collocates (A.8), `m + 1 < n` is
 //! the least-squares fit (A.9).
 

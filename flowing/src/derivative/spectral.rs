@@ -28,7 +28,7 @@ pub struct SpectralOperator {
     extension: Extension,
     forward: Arc<dyn Fft<f64>>,
     inverse: Arc<dyn Fft<f64>>,
-    /// Signed physical wavenumbers [rad per unit of s], length N.
+    /// Signed physical wavenumbers \[rad per unit of s\], length N.
     k: Vec<f64>,
 }
 

@@ -4,8 +4,8 @@
 //!
 //! # Problem (local frames)
 //! Contact `k` has the unknowns `x_k = (λ_k, f1_k, f2_k)` (normal multiplier and the two
-//! tangential friction components [N]) and the outputs `y_k = (g_k, u1_k, u2_k)` (end-of-step
-//! gap [m] and tangential slip velocity [m/s]), linear in the forces through the local Delassus
+//! tangential friction components \[N\]) and the outputs `y_k = (g_k, u1_k, u2_k)` (end-of-step
+//! gap \[m\] and tangential slip velocity \[m/s\]), linear in the forces through the local Delassus
 //! matrix `D` (3m × 3m) and the free values `b`:
 //!
 //! ```text
@@ -16,7 +16,7 @@
 //! ```
 //!
 //! # Alart–Curnier equations
-//! With per-contact augmentation parameters `r_N` [N/m] and `r_T` [N·s/m] (any positive value:
+//! With per-contact augmentation parameters `r_N` \[N/m\] and `r_T` \[N·s/m\] (any positive value:
 //! the solution does not depend on them; they are set to the inverse diagonal compliances so that
 //! Newton is well scaled), the conditions above are the zeros of (Alart & Curnier 1991)
 //!
@@ -54,7 +54,7 @@ pub enum FrictionLaw {
     #[default]
     Coulomb,
     /// Ribaric's slip-only regularised sign `f = −μλ u/√(|u|² + ε²)` (seed note U20), with
-    /// `ε` = `slip_regularization` [m/s].
+    /// `ε` = `slip_regularization` \[m/s\].
     Regularized,
 }
 
@@ -65,7 +65,7 @@ pub struct SolveSettings {
     pub mu: f64,
     /// Friction law.
     pub law: FrictionLaw,
-    /// Regularisation ε of the regularised law [m/s].
+    /// Regularisation ε of the regularised law \[m/s\].
     pub epsilon: f64,
     /// Relative tolerance on `‖Φ‖∞ / max λ` (forces).
     pub tol: f64,
@@ -103,7 +103,7 @@ pub struct SolveReport {
     pub lcp_solves: usize,
     /// Friction Gauss–Seidel sweeps of the fallback.
     pub sweeps: usize,
-    /// Final `‖Φ‖∞` [N].
+    /// Final `‖Φ‖∞` \[N\].
     pub residual: f64,
 }
 
@@ -113,7 +113,7 @@ pub trait DelassusSource {
     /// Fill the three columns of contact `l` (`λ_l`, `f1_l`, `f2_l`): `cols` is `3 × 3m`
     /// (column-major, leading dimension 3m), rows `(g_k, u1_k, u2_k)` of every contact `k`.
     fn columns(&mut self, l: usize, cols: &mut [f64]);
-    /// The free tangential slip velocity `(u1_k, u2_k)` [m/s] of contact `k`.
+    /// The free tangential slip velocity `(u1_k, u2_k)` \[m/s\] of contact `k`.
     fn free_slip(&mut self, k: usize) -> [f64; 2];
 }
 
@@ -292,19 +292,19 @@ impl ContactSolver {
         clear_fill(&mut self.gk, m, [[0.0; 3]; 3]);
     }
 
-    /// Set the free gaps `b_N` [m] (one per contact).
+    /// Set the free gaps `b_N` \[m\] (one per contact).
     pub fn set_gaps(&mut self, gaps: impl IntoIterator<Item = f64>) {
         for (k, g) in gaps.into_iter().enumerate().take(self.m) {
             self.b[3 * k] = g;
         }
     }
 
-    /// The solution (3m: `λ, f1, f2` per contact) [N].
+    /// The solution (3m: `λ, f1, f2` per contact) \[N\].
     pub fn x(&self) -> &[f64] {
         &self.x
     }
 
-    /// The local outputs `y = D x + b` at the solution (gaps [m], slip velocities [m/s]) of
+    /// The local outputs `y = D x + b` at the solution (gaps \[m\], slip velocities \[m/s\]) of
     /// the contacts whose columns and free velocities were needed (the others: gap only).
     pub fn y(&self) -> &[f64] {
         &self.y

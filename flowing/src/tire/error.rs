@@ -27,7 +27,7 @@ pub enum TireError {
     /// The time integration failed (e.g. the contact problem has no solution).
     #[error("tire simulation failed at t = {time:.6} s: {reason}")]
     Simulation {
-        /// Simulated time [s].
+        /// Simulated time \[s\].
         time: f64,
         /// What happened.
         reason: String,

@@ -28,11 +28,11 @@ pub enum GroundKind {
 pub struct GroundConfig {
     /// Drum or flat road.
     pub kind: GroundKind,
-    /// Drum radius [m] (1.25 m, Ribaric §8.5).
+    /// Drum radius \[m\] (1.25 m, Ribaric §8.5).
     pub drum_radius: f64,
     /// Whether the cleat is mounted.
     pub cleat: bool,
-    /// Cleat radius [m] (10 mm semicircle, Ribaric §8.3).
+    /// Cleat radius \[m\] (10 mm semicircle, Ribaric §8.3).
     pub cleat_radius: f64,
 }
 
@@ -71,11 +71,11 @@ impl GroundConfig {
 /// Closest-point data of a node in 3-D (wheel frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GroundPoint {
-    /// Signed gap [m] (negative = penetration).
+    /// Signed gap \[m\] (negative = penetration).
     pub gap: f64,
     /// Outward unit normal of the ground.
     pub normal: [f64; 3],
-    /// Velocity of the ground material at the closest point [m/s].
+    /// Velocity of the ground material at the closest point \[m/s\].
     pub velocity: [f64; 3],
     /// Whether the closest point is on the cleat.
     pub on_cleat: bool,
@@ -86,11 +86,11 @@ pub struct GroundPoint {
 pub struct Ground {
     /// Settings.
     pub cfg: GroundConfig,
-    /// Height `z` of the ground's top (drum apex or road surface) in the wheel frame [m].
+    /// Height `z` of the ground's top (drum apex or road surface) in the wheel frame \[m\].
     pub top: f64,
-    /// Surface speed `v` [m/s] (material moves towards `−x` at the patch).
+    /// Surface speed `v` \[m/s\] (material moves towards `−x` at the patch).
     pub speed: f64,
-    /// Time at which the cleat passes `x = 0` [s].
+    /// Time at which the cleat passes `x = 0` \[s\].
     pub cleat_time: f64,
 }
 

@@ -1,8 +1,8 @@
 //! Active-set solution of the contact complementarity problem of the Lagrange-multiplier contact
 //! (Ribaric §7.3, seed note U4): find `λ ≥ 0` with `w = q + W λ ≥ 0` and `λᵢ wᵢ = 0`.
 //!
-//! `q` are the free gaps [m], `W` the (possibly non-symmetric, with slip friction) Delassus
-//! matrix [m/N]. The active set starts from a warm guess; constraints with tensile multipliers
+//! `q` are the free gaps \[m\], `W` the (possibly non-symmetric, with slip friction) Delassus
+//! matrix \[m/N\]. The active set starts from a warm guess; constraints with tensile multipliers
 //! are released and penetrating ones added until both conditions hold (Murty's principal
 //! pivoting in its block form).
 
@@ -17,7 +17,7 @@ use faer::{Mat, MatMut, MatRef, Par};
 /// Result of [`solve_lcp`].
 #[derive(Debug, Clone)]
 pub struct LcpSolution {
-    /// Multipliers `λ` (≥ 0) [N].
+    /// Multipliers `λ` (≥ 0) \[N\].
     pub lambda: Vec<f64>,
     /// Active-set iterations used.
     pub iterations: usize,
@@ -30,7 +30,7 @@ pub struct LcpSolution {
 /// sequentially (no thread-pool dispatch for a 20 × 20 system).
 #[derive(Debug, Clone)]
 pub struct LcpWork {
-    /// Multipliers of the last solve [N].
+    /// Multipliers of the last solve \[N\].
     pub lambda: Vec<f64>,
     active: Vec<bool>,
     idx: Vec<usize>,
@@ -161,7 +161,7 @@ impl LcpWork {
 }
 
 /// Solve the LCP `w = q + W λ ≥ 0, λ ≥ 0, λᵀw = 0` by an active-set iteration starting from
-/// `warm` (indices believed active). `tol` is the gap tolerance [m].
+/// `warm` (indices believed active). `tol` is the gap tolerance \[m\].
 pub fn solve_lcp(w: &Mat<f64>, q: &[f64], warm: &[bool], tol: f64) -> LcpSolution {
     let mut work = LcpWork::default();
     let (converged, iterations) = work.solve(w.as_ref(), q, warm, tol);

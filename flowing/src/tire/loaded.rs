@@ -36,14 +36,14 @@ use serde::Serialize;
 /// One mode of the loaded tire.
 #[derive(Debug, Clone, Serialize)]
 pub struct LoadedMode {
-    /// Natural frequency [Hz].
+    /// Natural frequency \[Hz\].
     pub hz: f64,
     /// Spindle force of the mass-normalised mode `−K_r φ` (7.2): longitudinal `Fx`, vertical
-    /// `Fy`, lateral `Fz` [N/√kg].
+    /// `Fy`, lateral `Fz` \[N/√kg\].
     pub spindle: [f64; 3],
-    /// Effective vertical spindle mass `m_k` for vertical ground motion [kg] (module docs).
+    /// Effective vertical spindle mass `m_k` for vertical ground motion \[kg\] (module docs).
     pub vertical_mass: f64,
-    /// Effective longitudinal spindle mass `m_k` for longitudinal ground motion [kg].
+    /// Effective longitudinal spindle mass `m_k` for longitudinal ground motion \[kg\].
     pub longitudinal_mass: f64,
 }
 
@@ -156,7 +156,7 @@ pub fn dominant_longitudinal_mode(modes: &[LoadedMode]) -> Option<&LoadedMode> {
     })
 }
 
-/// The loaded modes at the static preload: the tire pressed onto `ground` with `load` [N]
+/// The loaded modes at the static preload: the tire pressed onto `ground` with `load` \[N\]
 /// ([`super::statics::preload`]), the contact nodes with a positive multiplier held.
 pub fn loaded_modes_at_preload(
     red: &ReducedTire,

@@ -15,16 +15,16 @@ use faer::sparse::SparseColMat;
 use fe_model::{FeModel, MassKind};
 use std::f64::consts::PI;
 
-/// A tire FE model: node coordinates [m], stiffness K (3 DOFs per node, node-major, including the
-/// inflation geometric stiffness when wanted) [N/m], lumped nodal masses [kg], the rim node set
+/// A tire FE model: node coordinates \[m\], stiffness K (3 DOFs per node, node-major, including the
+/// inflation geometric stiffness when wanted) \[N/m\], lumped nodal masses \[kg\], the rim node set
 /// and the candidate patch nodes.
 #[derive(Debug, Clone)]
 pub struct TireFe {
-    /// Node coordinates in the wheel frame [m].
+    /// Node coordinates in the wheel frame \[m\].
     pub nodes: Vec<[f64; 3]>,
-    /// Global stiffness `K` (`3n × 3n`, symmetric) [N/m].
+    /// Global stiffness `K` (`3n × 3n`, symmetric) \[N/m\].
     pub stiffness: SparseColMat<usize, f64>,
-    /// Lumped mass per DOF (`3n`) [kg].
+    /// Lumped mass per DOF (`3n`) \[kg\].
     pub mass: Vec<f64>,
     /// Rim (bead) nodes, bonded to the wheel.
     pub rim: Vec<usize>,
@@ -37,11 +37,11 @@ pub struct TireFe {
 pub struct Ring {
     /// Node indices in increasing θ.
     pub nodes: Vec<usize>,
-    /// Their angles θ [rad], strictly increasing within one period.
+    /// Their angles θ \[rad\], strictly increasing within one period.
     pub theta: Vec<f64>,
 }
 
-/// Circumferential angle `θ = atan2(x, z)` in `[0, 2π)` [rad].
+/// Circumferential angle `θ = atan2(x, z)` in `[0, 2π)` \[rad\].
 pub fn node_angle(x: &[f64; 3]) -> f64 {
     let t = x[0].atan2(x[2]);
     if t < 0.0 { t + 2.0 * PI } else { t }
@@ -121,7 +121,7 @@ impl TireFe {
         3 * self.nodes.len()
     }
 
-    /// Total tire mass (all nodes) [kg].
+    /// Total tire mass (all nodes) \[kg\].
     pub fn total_mass(&self) -> f64 {
         self.mass.iter().step_by(3).sum()
     }
@@ -173,7 +173,7 @@ impl TireFe {
         m
     }
 
-    /// Group the non-rim nodes into circumferential rings (same `ρ`, `y` within `tol` [m]),
+    /// Group the non-rim nodes into circumferential rings (same `ρ`, `y` within `tol` \[m\]),
     /// Ribaric App. A for the 3-D tire (seed recipe R8: group nodes by (r, y)).
     ///
     /// Every non-rim node must lie on a ring of at least 3 nodes; the error names the first that

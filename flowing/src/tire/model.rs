@@ -52,7 +52,7 @@ pub enum ImportFormat {
 }
 
 /// Files of an imported tire model (e.g. exported from ABAQUS, Ribaric §8.1: M and K extracted
-/// under load and inflation): stiffness and mass, node coordinates in the wheel frame [m], and
+/// under load and inflation): stiffness and mass, node coordinates in the wheel frame \[m\], and
 /// the rim and candidate patch node sets (separated by white space or commas). Lines starting
 /// with `#` (and, for ABAQUS, `*`) are comments.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -36,7 +36,7 @@ pub struct ReductionConfig {
     /// Circumferential derivative operator (App. A). Default: finite differences (A.1) with the
     /// 3-point second difference on the periodic ring grids.
     pub derivative: DerivativeMethod,
-    /// Tolerance grouping nodes into rings by `(ρ, y)` [m].
+    /// Tolerance grouping nodes into rings by `(ρ, y)` \[m\].
     pub ring_tolerance: f64,
     /// Circumferential stations per ring kept for visualising the whole deforming tire (rows
     /// of `T` at every ring's nodes at these stations, see [`super::reduced::VizBasis`]);
@@ -56,7 +56,7 @@ impl Default for ReductionConfig {
     }
 }
 
-/// Wall-clock times of the reduction stages [s] (for the benchmark record).
+/// Wall-clock times of the reduction stages \[s\] (for the benchmark record).
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct ReductionTimings {
     /// Free-node and contact-node eigen problems.
@@ -415,7 +415,7 @@ pub fn reduce(
 }
 
 /// Eigenfrequencies of the full FE tire with the rim fixed, `K φ = ω² M φ` on all non-rim DOFs
-/// [Hz] (the reference of the reduction tests; dense, small models only).
+/// \[Hz\] (the reference of the reduction tests; dense, small models only).
 pub fn full_frequencies_hz(fe: &TireFe, count: usize) -> Result<Vec<f64>, TireError> {
     let rim = fe.rim_mask();
     let dofs: Vec<usize> = (0..fe.n_dofs()).filter(|d| !rim[d / 3]).collect();

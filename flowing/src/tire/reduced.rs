@@ -34,56 +34,56 @@ pub struct ReducedTire {
     pub n_free_modes: usize,
     /// FE node index of each contact node (c-node), in `z^c` order.
     pub contact_nodes: Vec<usize>,
-    /// Undeformed contact-node positions `s^c` in the wheel frame [m].
+    /// Undeformed contact-node positions `s^c` in the wheel frame \[m\].
     pub contact_positions: Vec<[f64; 3]>,
-    /// Frequencies of the kept free-node modes (contact and rim nodes fixed) [Hz].
+    /// Frequencies of the kept free-node modes (contact and rim nodes fixed) \[Hz\].
     pub free_mode_hz: Vec<f64>,
-    /// Frequencies of the contact-node modes (free and rim nodes fixed) [Hz].
+    /// Frequencies of the contact-node modes (free and rim nodes fixed) \[Hz\].
     pub contact_mode_hz: Vec<f64>,
-    /// Tire mass without the rim nodes [kg].
+    /// Tire mass without the rim nodes \[kg\].
     pub tire_mass: f64,
-    /// Mass of the rim nodes (added to the wheel) [kg].
+    /// Mass of the rim nodes (added to the wheel) \[kg\].
     pub rim_mass: f64,
-    /// Spin inertia of the rim nodes about the wheel axis (added to the wheel) [kg·m²].
+    /// Spin inertia of the rim nodes about the wheel axis (added to the wheel) \[kg·m²\].
     pub rim_spin_inertia: f64,
-    /// Unloaded outer radius of the contact nodes (largest `ρ`) [m].
+    /// Unloaded outer radius of the contact nodes (largest `ρ`) \[m\].
     pub outer_radius: f64,
     /// Derivative method used for `T_,θ`, `T_,θθ`.
     pub derivative: DerivativeMethod,
-    /// `M_z = TᵀMT` [kg].
+    /// `M_z = TᵀMT` \[kg\].
     pub m: Mat<f64>,
-    /// `K_z = TᵀKT` [N/m].
+    /// `K_z = TᵀKT` \[N/m\].
     pub k: Mat<f64>,
-    /// `G₁ = TᵀMT_,θ` [kg/rad].
+    /// `G₁ = TᵀMT_,θ` \[kg/rad\].
     pub g1: Mat<f64>,
-    /// `G₂ = TᵀMT_,θθ` [kg/rad²].
+    /// `G₂ = TᵀMT_,θθ` \[kg/rad²\].
     pub g2: Mat<f64>,
-    /// `K₁ = TᵀKT_,θ` [N/(m·rad)].
+    /// `K₁ = TᵀKT_,θ` \[N/(m·rad)\].
     pub k1: Mat<f64>,
-    /// `m_θ = TᵀM s_,θ` [kg·m/rad].
+    /// `m_θ = TᵀM s_,θ` \[kg·m/rad\].
     pub m_theta: Vec<f64>,
-    /// `c_s = TᵀM s_,θθ` [kg·m/rad²].
+    /// `c_s = TᵀM s_,θθ` \[kg·m/rad²\].
     pub c_s: Vec<f64>,
-    /// Rim force per coordinate `K_r = Σ_rim K T` (3 × n_z) [N/m], Ribaric (7.2).
+    /// Rim force per coordinate `K_r = Σ_rim K T` (3 × n_z) \[N/m\], Ribaric (7.2).
     pub kr: Mat<f64>,
     /// `Σ_rim K T_,θ` (3 × n_z).
     pub kr1: Mat<f64>,
-    /// Rim moment per coordinate `K_θ = Σ_rim s̃ K T` (3 × n_z) [N], Ribaric (7.2).
+    /// Rim moment per coordinate `K_θ = Σ_rim s̃ K T` (3 × n_z) \[N\], Ribaric (7.2).
     pub kt: Mat<f64>,
     /// `Σ_rim s̃ K T_,θ` (3 × n_z).
     pub kt1: Mat<f64>,
     /// Contact-node rows of `T` (3 n_c × n_z).
     pub tc: Mat<f64>,
-    /// Contact-node rows of `T_,θ` (3 n_c × n_z) [1/rad].
+    /// Contact-node rows of `T_,θ` (3 n_c × n_z) \[1/rad\].
     pub tc_theta: Mat<f64>,
-    /// Translational momentum per coordinate `P = eᵀM T` (3 × n_z, rows x, y, z) [kg].
+    /// Translational momentum per coordinate `P = eᵀM T` (3 × n_z, rows x, y, z) \[kg\].
     pub p_e: Mat<f64>,
-    /// `P₁ = eᵀM T_,θ` (3 × n_z) [kg/rad]; zero up to round-off for uniform rings (the periodic
+    /// `P₁ = eᵀM T_,θ` (3 × n_z) \[kg/rad\]; zero up to round-off for uniform rings (the periodic
     /// derivative of any field sums to zero around a ring).
     pub p_e1: Mat<f64>,
-    /// `P₂ = eᵀM T_,θθ` (3 × n_z) [kg/rad²]; zero up to round-off for uniform rings.
+    /// `P₂ = eᵀM T_,θθ` (3 × n_z) \[kg/rad²\]; zero up to round-off for uniform rings.
     pub p_e2: Mat<f64>,
-    /// `[eᵀM s_,θ, eᵀM s_,θθ]` of the rigid rotation field [kg·m]; zero for an axisymmetric
+    /// `[eᵀM s_,θ, eᵀM s_,θθ]` of the rigid rotation field \[kg·m\]; zero for an axisymmetric
     /// tire.
     pub p_s: [[f64; 3]; 2],
     /// Rows of `T` for visualising the whole deforming tire (optional).
@@ -101,7 +101,7 @@ pub struct ReducedTire {
 pub struct VizBasis {
     /// FE node indices.
     pub nodes: Vec<usize>,
-    /// Their undeformed positions `sᵢ` [m].
+    /// Their undeformed positions `sᵢ` \[m\].
     pub positions: Vec<[f64; 3]>,
     /// Line segments (pairs of indices into `nodes`) along the rings.
     pub lines: Vec<[usize; 2]>,
@@ -110,7 +110,7 @@ pub struct VizBasis {
 }
 
 impl VizBasis {
-    /// Deformed positions for the reduced coordinates `z` [m].
+    /// Deformed positions for the reduced coordinates `z` \[m\].
     pub fn deformed(&self, z: &[f64]) -> Vec<[f64; 3]> {
         let zr = faer::MatRef::from_column_major_slice(z, z.len(), 1);
         let d = &self.rows * zr;
@@ -231,7 +231,7 @@ impl ReducedTire {
     }
 
     /// Eigenfrequencies of the reduced tire with the wheel fixed, not rolling: `K_z φ = ω² M_z φ`
-    /// [Hz], ascending.
+    /// \[Hz\], ascending.
     pub fn frequencies_hz(&self) -> Result<Vec<f64>, TireError> {
         let modes = fe_model::dense_modes(self.k.as_ref(), self.m.as_ref(), self.n_z())?;
         Ok(modes.frequencies_hz)

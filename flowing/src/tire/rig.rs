@@ -74,13 +74,13 @@ impl DampingConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RigConfig {
-    /// Vertical preload [N] (1000 lb).
+    /// Vertical preload \[N\] (1000 lb).
     pub load: f64,
-    /// Speed [km/h].
+    /// Speed \[km/h\].
     pub speed_kmh: f64,
-    /// Time rolled before the cleat reaches the patch centre [s].
+    /// Time rolled before the cleat reaches the patch centre \[s\].
     pub settle_time: f64,
-    /// Time recorded after the cleat hit [s].
+    /// Time recorded after the cleat hit \[s\].
     pub record_time: f64,
     /// Ground.
     pub ground: GroundConfig,
@@ -107,19 +107,19 @@ impl Default for RigConfig {
 /// One recorded sample.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Sample {
-    /// Time [s] (0 at the cleat hit).
+    /// Time \[s\] (0 at the cleat hit).
     pub t: f64,
-    /// Longitudinal spindle force `F_x` [N].
+    /// Longitudinal spindle force `F_x` \[N\].
     pub fx: f64,
-    /// Vertical spindle force `F_y` [N].
+    /// Vertical spindle force `F_y` \[N\].
     pub fy: f64,
-    /// Lateral spindle force [N].
+    /// Lateral spindle force \[N\].
     pub fz: f64,
-    /// Spin rate [rad/s].
+    /// Spin rate \[rad/s\].
     pub spin: f64,
     /// Contact nodes in contact.
     pub active: usize,
-    /// Sum of the normal multipliers [N].
+    /// Sum of the normal multipliers \[N\].
     pub normal_sum: f64,
     /// Contact nodes pressed onto the cleat.
     pub cleat_nodes: usize,
@@ -128,9 +128,9 @@ pub struct Sample {
 /// Result of a cleat test.
 #[derive(Debug, Clone, Serialize)]
 pub struct RigResult {
-    /// Speed [km/h].
+    /// Speed \[km/h\].
     pub speed_kmh: f64,
-    /// Preload [N].
+    /// Preload \[N\].
     pub load: f64,
     /// DOF of the wheel–tire model (6 + n_z).
     pub dof: usize,
@@ -140,14 +140,14 @@ pub struct RigResult {
     pub rayleigh: Rayleigh,
     /// Samples (every time step) from the start of the run.
     pub samples: Vec<Sample>,
-    /// Time step [s].
+    /// Time step \[s\].
     pub dt: f64,
-    /// Wall time of the time integration [s] (the observer's time excluded).
+    /// Wall time of the time integration \[s\] (the observer's time excluded).
     pub wall_time_s: f64,
-    /// CPU time of the integrating thread [s] (Linux `/proc/thread-self/schedstat`; `None`
+    /// CPU time of the integrating thread \[s\] (Linux `/proc/thread-self/schedstat`; `None`
     /// elsewhere): the load-independent cost on a shared machine.
     pub cpu_time_s: Option<f64>,
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub simulated_s: f64,
     /// Refactorisations of the iteration matrix.
     pub refactors: usize,
@@ -192,7 +192,7 @@ impl RigResult {
             .collect()
     }
 
-    /// Mean `(F_x, F_y)` over the last `window` seconds before the first cleat contact [N]
+    /// Mean `(F_x, F_y)` over the last `window` seconds before the first cleat contact \[N\]
     /// (`None` if there are no such samples).
     pub fn mean_before_cleat(&self, window: f64) -> Option<(f64, f64)> {
         let b = self.before_cleat();
@@ -205,7 +205,7 @@ impl RigResult {
         ))
     }
 
-    /// RMS fluctuations of the recorded `(F_x, F_y)` [N].
+    /// RMS fluctuations of the recorded `(F_x, F_y)` \[N\].
     pub fn rms(&self) -> (f64, f64) {
         let r = self.record();
         let fx: Vec<f64> = r.iter().map(|s| s.fx).collect();
@@ -325,7 +325,7 @@ pub fn run_cleat_observed(
     })
 }
 
-/// CPU time consumed by the calling thread so far [s] (`clock_gettime` with
+/// CPU time consumed by the calling thread so far \[s\] (`clock_gettime` with
 /// `CLOCK_THREAD_CPUTIME_ID`, a cheap vDSO call, so it can be read around every step's
 /// observer); `None` where the clock is not available.
 #[cfg(unix)]

@@ -83,9 +83,9 @@ use serde::{Deserialize, Serialize};
 pub enum NormalContact {
     /// Rigid unilateral constraint with Lagrange multipliers (Ribaric §7.3).
     Lagrange,
-    /// Linear penalty `λ = k · penetration` [N/m].
+    /// Linear penalty `λ = k · penetration` \[N/m\].
     Penalty {
-        /// Stiffness per contact node [N/m].
+        /// Stiffness per contact node \[N/m\].
         stiffness: f64,
     },
 }
@@ -111,7 +111,7 @@ pub enum SpindleForceMethod {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RollingConfig {
-    /// Time step `h` [s].
+    /// Time step `h` \[s\].
     pub time_step: f64,
     /// Newmark β of the generalized-α update (see [`RollingConfig::generalized_alpha`]).
     pub newmark_beta: f64,
@@ -127,7 +127,7 @@ pub struct RollingConfig {
     /// Friction law: `coulomb` (set-valued, with stick; default) or `regularized`
     /// (Ribaric's slip-only `f = −μλ u/√(|u|²+ε²)`, seed note U20).
     pub friction_law: FrictionLaw,
-    /// Slip-velocity regularisation ε of the `regularized` friction law [m/s] (unused by
+    /// Slip-velocity regularisation ε of the `regularized` friction law \[m/s\] (unused by
     /// `coulomb`).
     pub slip_regularization: f64,
     /// Relative tolerance of the contact solve: Alart–Curnier residual (complementarity and
@@ -135,7 +135,7 @@ pub struct RollingConfig {
     pub contact_tolerance: f64,
     /// Normal contact law.
     pub normal: NormalContact,
-    /// Spin inertia of the wheel (without the rim nodes, which are added) [kg·m²].
+    /// Spin inertia of the wheel (without the rim nodes, which are added) \[kg·m²\].
     pub wheel_spin_inertia: f64,
     /// Relative drift of θ̇ at which the spin-dependent force matrix `R` (gyroscopic,
     /// centrifugal and damping terms) is re-formed.
@@ -144,7 +144,7 @@ pub struct RollingConfig {
     /// inversions its gyroscopic part `2γh(θ̇_R − θ̇_S)G₁` is lagged by one step (see
     /// [`RollingTire::step`]).
     pub matrix_tolerance: f64,
-    /// Contact-node candidates: gap below this margin [m] (plus `h·v` for nodes facing the
+    /// Contact-node candidates: gap below this margin \[m\] (plus `h·v` for nodes facing the
     /// cleat, whose faces approach at up to the surface speed `v`).
     pub contact_margin: f64,
     /// Evaluation of the spindle force: `momentum` (default) or `rim` (Ribaric (7.2)).
@@ -193,7 +193,7 @@ const GA_DEFAULT: (f64, f64, f64, f64) = {
 
 impl RollingConfig {
     /// Set the time integration to the generalized-α method of Chung and Hulbert (1993) in the
-    /// form of Arnold and Brüls (2007) with spectral radius `rho_inf` ∈ [0, 1] at infinite
+    /// form of Arnold and Brüls (2007) with spectral radius `rho_inf` ∈ \[0, 1\] at infinite
     /// frequency: `α_m = (2ρ∞ − 1)/(ρ∞ + 1)`, `α_f = ρ∞/(ρ∞ + 1)`, `γ = ½ − α_m + α_f`,
     /// `β = (γ + ½)²/4`. Second-order accurate; ρ∞ = 1 is the trapezoidal rule (Newmark
     /// β = ¼, γ = ½, no numerical damping); ρ∞ < 1 damps the highest frequencies, e.g. the
@@ -262,7 +262,7 @@ impl RollingConfig {
 /// State of the rolling tire.
 #[derive(Debug, Clone)]
 pub struct RollingState {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// Reduced coordinates `z`.
     pub z: Vec<f64>,
@@ -272,30 +272,30 @@ pub struct RollingState {
     pub zdd: Vec<f64>,
     /// The generalized-α pseudo-accelerations `a` of `z` (equal to `z̈` for plain Newmark).
     pub acc: Vec<f64>,
-    /// Wheel spin angle θ [rad].
+    /// Wheel spin angle θ \[rad\].
     pub theta: f64,
-    /// Spin rate θ̇ [rad/s].
+    /// Spin rate θ̇ \[rad/s\].
     pub theta_d: f64,
-    /// Spin acceleration θ̈ [rad/s²].
+    /// Spin acceleration θ̈ \[rad/s²\].
     pub theta_dd: f64,
-    /// Pseudo-acceleration of θ [rad/s²].
+    /// Pseudo-acceleration of θ \[rad/s²\].
     pub theta_acc: f64,
-    /// Normal multiplier per contact node [N].
+    /// Normal multiplier per contact node \[N\].
     pub lambda: Vec<f64>,
-    /// Friction force per contact node (wheel frame) [N].
+    /// Friction force per contact node (wheel frame) \[N\].
     pub friction: Vec<[f64; 3]>,
-    /// Net force of the ground on the tire (normal and friction, wheel frame x, y, z) [N].
+    /// Net force of the ground on the tire (normal and friction, wheel frame x, y, z) \[N\].
     pub contact_force: [f64; 3],
 }
 
 /// Spindle force of the tire on the wheel, in the output frame of U18.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SpindleForce {
-    /// Longitudinal `F_x` [N].
+    /// Longitudinal `F_x` \[N\].
     pub fx: f64,
-    /// Vertical `F_y` (up positive: the carried load) [N].
+    /// Vertical `F_y` (up positive: the carried load) \[N\].
     pub fy: f64,
-    /// Lateral (along the wheel axis) [N].
+    /// Lateral (along the wheel axis) \[N\].
     pub fz: f64,
 }
 
@@ -306,9 +306,9 @@ pub struct SpindleForce {
 /// rows (dot products), which is faster here than the column-major kernel: both products are
 /// limited by memory traffic (R is 2.7 MB for the 341-DOF tire).
 struct Factor {
-    /// Spin rate at which `R` was formed [rad/s].
+    /// Spin rate at which `R` was formed \[rad/s\].
     spin: f64,
-    /// Spin rate at which `S` was inverted [rad/s].
+    /// Spin rate at which `S` was inverted \[rad/s\].
     spin_s: f64,
     /// `(S⁻¹)ᵀ` (n × n, n = 1 + n_z).
     sinv_t: Mat<f64>,
@@ -351,7 +351,7 @@ struct Work {
     x0: Vec<f64>,
     x1: Vec<f64>,
     x2: Vec<f64>,
-    /// Normal and friction forces per contact node two steps back [N].
+    /// Normal and friction forces per contact node two steps back \[N\].
     lambda2: Vec<f64>,
     friction2: Vec<[f64; 3]>,
     diag: Vec<[f64; 2]>,
@@ -404,11 +404,11 @@ pub struct RollingTire<'a> {
     cfg: RollingConfig,
     /// The ground.
     pub ground: Ground,
-    /// Rayleigh α [1/s].
+    /// Rayleigh α \[1/s\].
     pub alpha: f64,
-    /// Rayleigh β [s].
+    /// Rayleigh β \[s\].
     pub beta: f64,
-    /// Drive torque about the wheel axis [N·m] (0: free-rolling spindle).
+    /// Drive torque about the wheel axis \[N·m\] (0: free-rolling spindle).
     pub drive_torque: f64,
     /// Current state.
     pub state: RollingState,
@@ -630,7 +630,7 @@ impl DelassusSource for TireDelassus<'_> {
 }
 
 impl<'a> RollingTire<'a> {
-    /// A tire at the preload coordinates `z0`, spinning at `spin` [rad/s], with Rayleigh
+    /// A tire at the preload coordinates `z0`, spinning at `spin` \[rad/s\], with Rayleigh
     /// coefficients `alpha`, `beta`.
     pub fn new(
         red: &'a ReducedTire,
@@ -868,7 +868,7 @@ impl<'a> RollingTire<'a> {
         f
     }
 
-    /// Deformed contact-node positions `sᵢ + (T_c z)ᵢ` [m].
+    /// Deformed contact-node positions `sᵢ + (T_c z)ᵢ` \[m\].
     pub fn contact_positions(&self) -> Vec<[f64; 3]> {
         let mut d = vec![0.0; self.red.tc.nrows()];
         matvec(self.red.tc.as_ref(), &self.state.z, &mut d);
@@ -1178,7 +1178,7 @@ impl<'a> RollingTire<'a> {
         Ok(())
     }
 
-    /// Total normal contact force vector `Σ λᵢ nᵢ`-weighted vertical component [N] (the
+    /// Total normal contact force vector `Σ λᵢ nᵢ`-weighted vertical component \[N\] (the
     /// vertical force the ground exerts, friction excluded).
     pub fn total_normal_force(&self) -> f64 {
         self.state.lambda.iter().sum()

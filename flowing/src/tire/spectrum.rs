@@ -7,13 +7,13 @@ use serde::Serialize;
 /// One-sided amplitude spectrum of a uniformly sampled signal.
 #[derive(Debug, Clone, Serialize)]
 pub struct Spectrum {
-    /// Frequencies [Hz].
+    /// Frequencies \[Hz\].
     pub freq_hz: Vec<f64>,
     /// Amplitudes (same unit as the signal; a sine of amplitude A shows as ≈ A).
     pub amplitude: Vec<f64>,
 }
 
-/// Amplitude spectrum of `x` sampled every `dt` [s]: mean removed, Hann window, amplitude
+/// Amplitude spectrum of `x` sampled every `dt` \[s\]: mean removed, Hann window, amplitude
 /// corrected for the window's coherent gain (0.5).
 pub fn amplitude_spectrum(x: &[f64], dt: f64) -> Spectrum {
     let n = x.len();
@@ -42,7 +42,7 @@ pub fn amplitude_spectrum(x: &[f64], dt: f64) -> Spectrum {
 }
 
 impl Spectrum {
-    /// Frequency of the largest amplitude within `[f_lo, f_hi]` [Hz] (`None` if empty).
+    /// Frequency of the largest amplitude within `[f_lo, f_hi]` \[Hz\] (`None` if empty).
     pub fn peak(&self, f_lo: f64, f_hi: f64) -> Option<(f64, f64)> {
         self.freq_hz
             .iter()

@@ -23,18 +23,18 @@ use serde::Serialize;
 /// Static contact solution of the patch.
 #[derive(Debug, Clone, Serialize)]
 pub struct PatchSolution {
-    /// Ground top height in the wheel frame [m].
+    /// Ground top height in the wheel frame \[m\].
     pub top: f64,
-    /// Vertical deflection: unloaded outer radius + top [m] (the ground's travel past first
+    /// Vertical deflection: unloaded outer radius + top \[m\] (the ground's travel past first
     /// touch).
     pub deflection: f64,
-    /// Total vertical contact force [N].
+    /// Total vertical contact force \[N\].
     pub force: f64,
-    /// Normal multiplier per contact node [N] (contact force magnitude).
+    /// Normal multiplier per contact node \[N\] (contact force magnitude).
     pub lambda: Vec<f64>,
-    /// Contact-node deflections `δ^c` (3 n_c) [m].
+    /// Contact-node deflections `δ^c` (3 n_c) \[m\].
     pub delta_c: Vec<f64>,
-    /// Contact-node forces `f^c` (3 n_c) [N].
+    /// Contact-node forces `f^c` (3 n_c) \[N\].
     pub f_c: Vec<f64>,
 }
 
@@ -100,7 +100,7 @@ fn contact_at(y: &Mat<f64>, s_c: &[[f64; 3]], ground: &Ground) -> Result<Contact
 }
 
 /// Press the contact nodes (positions `s_c`, flexibility `y`) onto the ground until the
-/// vertical force equals `load` [N].
+/// vertical force equals `load` \[N\].
 pub fn solve_patch(
     y: &Mat<f64>,
     s_c: &[[f64; 3]],
@@ -224,7 +224,7 @@ pub struct Preload {
     pub z: Vec<f64>,
 }
 
-/// Preload the reduced tire onto the ground with `load` [N] (not rolling).
+/// Preload the reduced tire onto the ground with `load` \[N\] (not rolling).
 pub fn preload(red: &ReducedTire, ground: &GroundConfig, load: f64) -> Result<Preload, TireError> {
     let (y, x) = reduced_flexibility(red)?;
     let patch = solve_patch(&y, &red.contact_positions, ground, load)?;
@@ -234,7 +234,7 @@ pub fn preload(red: &ReducedTire, ground: &GroundConfig, load: f64) -> Result<Pr
     Ok(Preload { patch, z })
 }
 
-/// Preload of the steadily rolling tire (spin rate `spin` [rad/s], Rayleigh `beta` [s]): the
+/// Preload of the steadily rolling tire (spin rate `spin` \[rad/s\], Rayleigh `beta` \[s\]): the
 /// Eulerian steady state `ż = 0` of the rolling equations,
 /// `(K_z + θ̇² G₂ + β θ̇ K₁) z + θ̇² c_s = T_cᵀ f^c`, with the normal contact forces carrying
 /// `load` (friction neglected in the preload). With the spindle fixed at this position the
