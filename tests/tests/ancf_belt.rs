@@ -69,7 +69,7 @@ fn free_belt_closes_to_a_circle() {
 }
 
 /// Uniform equilibrium of a hoop of unstretched length L0 on a pulley of radius R (bending
-/// neglected): Π(ρ) = L0 [EA/8 (λ² − 1)² + k (R − ρ)²/2], λ = 2πρ/L0 ⇒ solve Π'(ρ) = 0.
+/// neglected): Π(ρ) = L0 \[EA/8 (λ² − 1)² + k (R − ρ)²/2\], λ = 2πρ/L0 ⇒ solve Π'(ρ) = 0.
 fn hoop_penetration(ea: f64, k: f64, r: f64, l0: f64) -> f64 {
     let c = 2.0 * std::f64::consts::PI / l0;
     let mut rho = r;

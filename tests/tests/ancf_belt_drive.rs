@@ -6,7 +6,7 @@ use ancf::belt_drive::*;
 use mbd_core::SecondOrderSystem;
 
 /// A moving state near the steady run: the equilibrium on the pulleys with the belt travelling
-/// at `speed` [m/s] along the path plus a small perturbation, pulleys spinning.
+/// at `speed` \[m/s\] along the path plus a small perturbation, pulleys spinning.
 fn moving_state(d: &BeltDrive, speed: f64) -> (Vec<f64>, Vec<f64>) {
     let init = d.initial_state(&InitialOptions::default()).unwrap();
     let q = init.q.clone();
@@ -186,7 +186,7 @@ fn bad_input_names_the_field() {
     assert!(e.contains("contact.points"), "{e}");
 }
 
-/// Driven-pulley speed history sampled every `dt` [s] and the final state of a run of `spec`
+/// Driven-pulley speed history sampled every `dt` \[s\] and the final state of a run of `spec`
 /// from the pre-strained rest state (the driver ramp (3.29) starts at rest).
 fn run(
     spec: BeltDriveSpec,

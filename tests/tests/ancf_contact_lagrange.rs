@@ -32,7 +32,7 @@ fn ei() -> f64 {
     E * W * H.powi(3) / 12.0
 }
 
-/// Critical load `q* = 72 EI g₀ / L⁴` [N/m] at which the contact starts to spread.
+/// Critical load `q* = 72 EI g₀ / L⁴` \[N/m\] at which the contact starts to spread.
 fn q_star() -> f64 {
     72.0 * ei() * G0 / L.powi(4)
 }

@@ -262,7 +262,7 @@ fn invalid_plate_input_is_rejected_with_the_field_named() {
     assert!(mesh.strain_energy(&[0.0; 5]).is_err());
 }
 
-/// Consistent uniform line load of total `p` [N] in direction `dir` on the edge `x = lx`.
+/// Consistent uniform line load of total `p` \[N\] in direction `dir` on the edge `x = lx`.
 fn tip_edge_load(mesh: &PlateMesh, nx: usize, p: f64, ly: f64, dir: usize) -> Vec<f64> {
     let mut f = vec![0.0; mesh.n_coords()];
     let rule = GaussRule::new(4);

@@ -10,7 +10,7 @@ use contact::{
     unilateral_row,
 };
 
-/// Newton solve of a node pushed onto a disk by `push` [N] (towards the centre along −n₀):
+/// Newton solve of a node pushed onto a disk by `push` \[N\] (towards the centre along −n₀):
 /// returns the equilibrium penetration.
 fn pressed_node(law: &dyn contact::NormalLaw, push: f64) -> (f64, [f64; 2]) {
     let disk = Disk::fixed([0.1, -0.2], 0.08125);

@@ -34,7 +34,7 @@ fn sweep<M: DriveModel>(model: &mut M, torques: &[f64]) -> Vec<SpeedLossPoint> {
         .0
 }
 
-/// Driven-pulley speed sampled every step from `t_from` to `t_to` [s], unloaded, driver spun up
+/// Driven-pulley speed sampled every step from `t_from` to `t_to` \[s\], unloaded, driver spun up
 /// to 62.8 rad/s over 0.3 s.
 fn driven_speed_history<M: DriveModel>(model: &mut M, t_from: f64, t_to: f64, h: f64) -> Vec<f64> {
     model.set_driver_speed(Schedule {
@@ -58,7 +58,7 @@ fn driven_speed_history<M: DriveModel>(model: &mut M, t_from: f64, t_to: f64, h:
     out
 }
 
-/// Largest spectral amplitude within `±band` Hz of `f` [Hz].
+/// Largest spectral amplitude within `±band` Hz of `f` \[Hz\].
 fn line(spec: &flowing::spectrum::Spectrum, f: f64, band: f64) -> f64 {
     spec.frequencies
         .iter()

@@ -28,7 +28,7 @@ fn rel_diff(a: &Mat<f64>, b: &Mat<f64>) -> f64 {
     max_abs(&(a - b)) / max_abs(b)
 }
 
-/// Free-free chain of `n` unit masses [kg] and springs `k` [N/m], with a deterministic
+/// Free-free chain of `n` unit masses \[kg\] and springs `k` \[N/m\], with a deterministic
 /// ±30 % variation of masses and stiffnesses so that no two modes coincide.
 fn chain(n: usize, k: f64) -> (Mat<f64>, Mat<f64>) {
     let mut kk = Mat::<f64>::zeros(n, n);

@@ -16,9 +16,9 @@ use reduction::DofPartition;
 use reduction::axes::{Axis, NodalFixedFrame, remove_anchor_columns};
 use reduction::basis::{Method, ModeSelection, build_basis};
 
-/// A 3-D truss block of `nx × ny × nz` nodes, spacing `h` [m], bars (EA [N]) between all node
+/// A 3-D truss block of `nx × ny × nz` nodes, spacing `h` \[m\], bars (EA \[N\]) between all node
 /// pairs closer than `1.01·√3·h` (so it is rigid as a structure), lumped masses varying
-/// slightly per node [kg]; positions relative to the mass centre.
+/// slightly per node \[kg\]; positions relative to the mass centre.
 fn truss_block(nx: usize, ny: usize, nz: usize, h: f64, ea: f64) -> (Vec<f64>, Mat<f64>, Mat<f64>) {
     let (s, m, k, _) = truss_block_rotated(nx, ny, nz, h, ea, false);
     (s, m, k)

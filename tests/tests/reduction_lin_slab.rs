@@ -1,8 +1,8 @@
 //! Lin (2005) Appendix B slab and the ch. 7.2 comparisons (NR, GR, MT, CB, MC).
 //!
-//! References: Table B-1 [T]; the slab's stiffness is not printed by Lin, so frequencies and
+//! References: Table B-1 \[T\]; the slab's stiffness is not printed by Lin, so frequencies and
 //! statics are checked against the companion's independent reproduction (seed-002-lin.md §14.6,
-//! [D], same element assumption: 8-node hexahedron, full 2×2×2 Gauss); time histories against
+//! \[D\], same element assumption: 8-node hexahedron, full 2×2×2 Gauss); time histories against
 //! Lin's qualitative claims (§7.2.2–7.2.5) and the CB ≡ MC theorem (§6.5.4).
 #![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
@@ -223,7 +223,7 @@ fn simulation2_cb_equals_mc() {
 /// The plank of Lin §5.3.3 (companion §5.4): the Appendix B slab hung by two chains of two
 /// rigid links (2 m, 1 kg each) at nodes 3 and 15, 250 N downward at node 22, gravity; released
 /// from rest with the chains inclined symmetrically. Returns the largest mirror asymmetry
-/// `|(d_x^3 − 2) + (d_x^15 − 2)|` [m] over the run (Appendix-B x, mirror plane x = 2).
+/// `|(d_x^3 − 2) + (d_x^15 − 2)|` \[m\] over the run (Appendix-B x, mirror plane x = 2).
 fn plank_asymmetry(axis: mbd_core::floating::AxisCondition) -> f64 {
     use mbd_core::floating::{
         FlexBody, FlexState, FloatingSystem, NodeLoad, Point, SphericalJoint,

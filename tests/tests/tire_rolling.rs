@@ -126,7 +126,7 @@ fn spin_up_with(set: impl Fn(&mut RollingConfig)) -> (Vec<[f64; 3]>, usize) {
     (out, sim.refactors)
 }
 
-/// Largest differences of spin rate [rad/s], Fy and Fx [N] between two spin-up histories.
+/// Largest differences of spin rate \[rad/s\], Fy and Fx \[N\] between two spin-up histories.
 fn max_diff(a: &[[f64; 3]], b: &[[f64; 3]]) -> [f64; 3] {
     let mut d = [0.0f64; 3];
     for (x, y) in a.iter().zip(b) {
