@@ -58,17 +58,17 @@ pub struct StaticConfig {
     pub element: BeamElementKind,
     /// Number of elements.
     pub elements: usize,
-    /// Poisson's ratio [-].
+    /// Poisson's ratio \[-\].
     pub nu: f64,
-    /// Section height [m].
+    /// Section height \[m\].
     pub height: f64,
-    /// Section width [m].
+    /// Section width \[m\].
     pub width: f64,
-    /// Length [m].
+    /// Length \[m\].
     pub length: f64,
-    /// Young's modulus [Pa].
+    /// Young's modulus \[Pa\].
     pub young: f64,
-    /// Density [kg/m³].
+    /// Density \[kg/m³\].
     pub density: f64,
     /// Newton load increments.
     pub increments: usize,
@@ -146,7 +146,7 @@ pub struct SimplySupported {
 /// Summary of `simply-supported`.
 #[derive(Debug, Serialize)]
 pub struct DeflectionSummary {
-    /// Vertical position of the mid-point [mm] (Kerkkänen Tables 2.1/2.2).
+    /// Vertical position of the mid-point \[mm\] (Kerkkänen Tables 2.1/2.2).
     pub midpoint_deflection_mm: f64,
 }
 
@@ -231,7 +231,7 @@ pub struct Cantilever {
 /// Summary of `cantilever`.
 #[derive(Debug, Serialize)]
 pub struct TipSummary {
-    /// Tip position (x, y) [m] (Kerkkänen Tables 2.3/2.4).
+    /// Tip position (x, y) \[m\] (Kerkkänen Tables 2.3/2.4).
     pub tip: [f64; 2],
 }
 
@@ -321,13 +321,13 @@ pub struct Pendulum {
 pub struct PendulumSummary {
     /// Number of elements.
     pub elements: usize,
-    /// Largest deviation of `T + U + V` from its initial value [J] (thesis: 0.62e-4 J).
+    /// Largest deviation of `T + U + V` from its initial value \[J\] (thesis: 0.62e-4 J).
     pub max_energy_deviation_j: f64,
-    /// Lowest tip height [m].
+    /// Lowest tip height \[m\].
     pub min_tip_y_m: f64,
-    /// Tip position at the end [m].
+    /// Tip position at the end \[m\].
     pub final_tip: [f64; 2],
-    /// Largest kinetic energy [J].
+    /// Largest kinetic energy \[J\].
     pub max_kinetic_j: f64,
 }
 
@@ -464,15 +464,15 @@ pub struct Spinning {
 /// Summary of `spinning`.
 #[derive(Debug, Serialize)]
 pub struct SpinningSummary {
-    /// Mean axial extension over the last 10 % of the run [m].
+    /// Mean axial extension over the last 10 % of the run \[m\].
     pub steady_extension_m: f64,
-    /// Kerkkänen (2.37) evaluated with the configuration's data [m].
+    /// Kerkkänen (2.37) evaluated with the configuration's data \[m\].
     pub analytical_extension_m: f64,
-    /// Value printed in the thesis [m].
+    /// Value printed in the thesis \[m\].
     pub printed_extension_m: f64,
-    /// Relative difference to the printed value [-].
+    /// Relative difference to the printed value \[-\].
     pub relative_error: f64,
-    /// Largest tip offset from the rigid shadow beam [m].
+    /// Largest tip offset from the rigid shadow beam \[m\].
     pub max_tip_offset_m: f64,
 }
 
@@ -595,13 +595,13 @@ pub struct GroundContact {
 /// Summary of `ground-contact`.
 #[derive(Debug, Serialize)]
 pub struct GroundContactSummary {
-    /// Line load `q` [N/m] and Euler–Bernoulli critical load `q*` [N/m].
+    /// Line load `q` \[N/m\] and Euler–Bernoulli critical load `q*` \[N/m\].
     pub line_load: f64,
     pub critical_load: f64,
-    /// Total contact force [N] and its Euler–Bernoulli value.
+    /// Total contact force \[N\] and its Euler–Bernoulli value.
     pub total_force: f64,
     pub euler_bernoulli_total_force: f64,
-    /// First node in contact [m] and the Euler–Bernoulli start of the contact zone.
+    /// First node in contact \[m\] and the Euler–Bernoulli start of the contact zone.
     pub first_contact_x: Option<f64>,
     pub euler_bernoulli_contact_start: f64,
 }

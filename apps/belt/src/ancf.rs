@@ -45,9 +45,9 @@ pub enum Analysis {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct OutputConfig {
-    /// Sampling interval of `history.csv` [s].
+    /// Sampling interval of `history.csv` \[s\].
     pub history_interval: f64,
-    /// Interval between VTK frames of the belt [s].
+    /// Interval between VTK frames of the belt \[s\].
     pub vtk_interval: f64,
     /// Points per element in the VTK polyline and `tension.csv`.
     pub points_per_element: usize,
@@ -69,7 +69,7 @@ impl Default for OutputConfig {
 pub struct Config {
     /// Static closure (3.3-A) or dynamic run.
     pub analysis: Analysis,
-    /// End time [s].
+    /// End time \[s\].
     pub t_end: f64,
     /// Reuse tolerance of the elastic tangent (see `BeltDrive::with_tangent_refresh`).
     pub tangent_refresh: f64,
@@ -137,27 +137,27 @@ impl Validate for Config {
 /// Summary of a run (`summary.json`, `--json`).
 #[derive(Debug, Clone, Serialize, Default)]
 pub struct Summary {
-    /// Driver pulley speed at the end [rad/s] (travel sense).
+    /// Driver pulley speed at the end \[rad/s\] (travel sense).
     pub omega_driver_end: f64,
-    /// Driven (first free) pulley speed at the end [rad/s] (travel sense).
+    /// Driven (first free) pulley speed at the end \[rad/s\] (travel sense).
     pub omega_driven_end: f64,
-    /// Tension of the span running into the driver at the end [N].
+    /// Tension of the span running into the driver at the end \[N\].
     pub tension_tight: f64,
-    /// Tension of the span leaving the driver at the end [N].
+    /// Tension of the span leaving the driver at the end \[N\].
     pub tension_slack: f64,
-    /// Wall time of the whole study [s].
+    /// Wall time of the whole study \[s\].
     pub wall_time_s: f64,
-    /// End time reached [s].
+    /// End time reached \[s\].
     pub t_end: f64,
     /// Integration steps.
     pub steps: usize,
     /// Newton iterations.
     pub newton_iterations: usize,
-    /// Pre-tension after the initial static solve (mean over the belt) [N].
+    /// Pre-tension after the initial static solve (mean over the belt) \[N\].
     pub initial_tension: f64,
     /// Speed ratio driven/driver at the end.
     pub speed_ratio: f64,
-    /// Static closure only: mean radius of the closed belt [m].
+    /// Static closure only: mean radius of the closed belt \[m\].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub closure_radius: Option<f64>,
     /// Static closure only: relative radius variation (max − min)/mean.

@@ -49,13 +49,13 @@ pub struct AncfSettings {
     pub elements: usize,
     /// Contact quadrature points per element.
     pub contact_points: usize,
-    /// Section width `b` [m] (planar model: only `b h` and `b h³` matter, through EA and EI).
+    /// Section width `b` \[m\] (planar model: only `b h` and `b h³` matter, through EA and EI).
     pub width: f64,
-    /// Penalty damping `c_p` [N·s/m²] (default 0, as in (6.1)). A damped law is discontinuous
+    /// Penalty damping `c_p` \[N·s/m²\] (default 0, as in (6.1)). A damped law is discontinuous
     /// where a quadrature point enters or leaves contact (`c_p ḋ ≠ 0` at `d = 0`): with
     /// `c_p = 500` (10 % of critical) Newton cycled at a contact change during the spin-up.
     pub contact_damping: f64,
-    /// Generalized-α step [s] (replaces the procedure's step for this model).
+    /// Generalized-α step \[s\] (replaces the procedure's step for this model).
     pub step: f64,
     /// Reuse tolerance of the elastic tangent (`BeltDrive::with_tangent_refresh`); `0` (exact
     /// tangent) by default: the procedure's Newton tolerance (1e-10 m) is tight, and with the
@@ -107,21 +107,21 @@ impl AncfSettings {
 /// The derived quantities of the mapping (for reports).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct AncfMapping {
-    /// Penalty penetration under the mounting pressure `T0/R` of the driver and driven pulley [m].
+    /// Penalty penetration under the mounting pressure `T0/R` of the driver and driven pulley \[m\].
     pub penetration: [f64; 2],
-    /// Path length over the nominal radii [m].
+    /// Path length over the nominal radii \[m\].
     pub path_length: f64,
-    /// Unstretched belt length [m] (after the correction to T0).
+    /// Unstretched belt length \[m\] (after the correction to T0).
     pub belt_length: f64,
-    /// Mean static span tension of the mounted belt [N] (T0 after the correction).
+    /// Mean static span tension of the mounted belt \[N\] (T0 after the correction).
     pub mounted_tension: f64,
-    /// Section thickness [m].
+    /// Section thickness \[m\].
     pub thickness: f64,
-    /// Young's modulus [Pa].
+    /// Young's modulus \[Pa\].
     pub young: f64,
-    /// Density [kg/m³].
+    /// Density \[kg/m³\].
     pub density: f64,
-    /// Penalty damping [N·s/m²].
+    /// Penalty damping \[N·s/m²\].
     pub contact_damping: f64,
 }
 

@@ -30,19 +30,19 @@ pub struct Args {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
-    /// Crank length a [m].
+    /// Crank length a \[m\].
     pub crank_length: f64,
-    /// Connecting-rod length b [m].
+    /// Connecting-rod length b \[m\].
     pub rod_length: f64,
-    /// Crank, rod and slider masses [kg].
+    /// Crank, rod and slider masses \[kg\].
     pub masses: [f64; 3],
-    /// Crank speed [rad/s].
+    /// Crank speed \[rad/s\].
     pub omega: f64,
-    /// Initial crank angle [rad] (away from the dead centres 0 and π, where the joint Jacobian is singular).
+    /// Initial crank angle \[rad\] (away from the dead centres 0 and π, where the joint Jacobian is singular).
     pub theta0: f64,
-    /// End time [s].
+    /// End time \[s\].
     pub t_end: f64,
-    /// Time step [s].
+    /// Time step \[s\].
     pub step: f64,
     /// Generalized-α spectral radius at infinity.
     pub rho_inf: f64,
@@ -107,13 +107,13 @@ impl Validate for Config {
 /// Demo summary.
 #[derive(Debug, Serialize)]
 pub struct Summary {
-    /// Largest slider-position error against the closed form [m].
+    /// Largest slider-position error against the closed form \[m\].
     pub max_slider_error_m: f64,
     /// Integration steps.
     pub steps: usize,
     /// Newton iterations.
     pub newton_iterations: usize,
-    /// Wall time [s].
+    /// Wall time \[s\].
     pub wall_time_s: f64,
 }
 

@@ -65,7 +65,7 @@ pub struct Args {
 pub struct Config {
     /// Belt model.
     pub model: ModelKind,
-    /// Driver speeds [rad/s] (Figs. 6-6 and 6-7: 62.8 and 22.6).
+    /// Driver speeds \[rad/s\] (Figs. 6-6 and 6-7: 62.8 and 22.6).
     pub omegas: Vec<f64>,
     /// The drive (Table 6-1).
     pub drive: BeltDriveConfig,
@@ -91,9 +91,9 @@ pub struct Config {
 pub struct NodalOptions {
     /// Mesh of the rotating loop (default: uniform, 216 elements of 5.6 mm).
     pub mesh: BeltMesh,
-    /// Averaging window [s].
+    /// Averaging window \[s\].
     pub window: f64,
-    /// Steady-state tolerance between consecutive windows [rad/s].
+    /// Steady-state tolerance between consecutive windows \[rad/s\].
     pub tolerance: f64,
 }
 
@@ -173,44 +173,44 @@ impl Validate for Config {
 /// One driver speed's result.
 #[derive(Debug, Clone, Serialize)]
 pub struct Case {
-    /// Driver speed [rad/s].
+    /// Driver speed \[rad/s\].
     pub omega_driver: f64,
     /// Steady points.
     pub points: Vec<Point>,
-    /// Bechtel's Δω (6.3) at the same torques [rad/s].
+    /// Bechtel's Δω (6.3) at the same torques \[rad/s\].
     pub analytical: Vec<f64>,
     /// Integration statistics.
     pub stats: SweepStats,
-    /// Wall time of this case [s].
+    /// Wall time of this case \[s\].
     pub wall_time_s: f64,
 }
 
 /// One point of the summary.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Point {
-    /// Load torque [N m].
+    /// Load torque \[N m\].
     pub torque: f64,
-    /// Steady speed loss [rad/s].
+    /// Steady speed loss \[rad/s\].
     pub delta_omega: f64,
 }
 
 /// Summary: the first speed's case at the top level (the `--omega` contract), all cases below.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
-    /// Driver speed of the first case [rad/s].
+    /// Driver speed of the first case \[rad/s\].
     pub omega_driver: f64,
     /// Model.
     pub model: ModelKind,
     /// Points of the first case.
     pub points: Vec<Point>,
-    /// Analytical Δω of the first case [rad/s].
+    /// Analytical Δω of the first case \[rad/s\].
     pub analytical: Vec<f64>,
     /// Every driver speed.
     pub cases: Vec<Case>,
     /// Number of coordinates of the model (modal + belt + pulley for the flowing model,
     /// nodal + belt + pulley for the nodal model).
     pub modal_coordinates: usize,
-    /// Total wall time [s].
+    /// Total wall time \[s\].
     pub wall_time_s: f64,
 }
 

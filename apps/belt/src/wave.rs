@@ -78,18 +78,18 @@ impl Validate for Config {
 /// One run in the summary.
 #[derive(Debug, Clone, Serialize)]
 pub struct RunSummary {
-    /// Belt speed [m/s].
+    /// Belt speed \[m/s\].
     pub belt_speed: f64,
-    /// Dominant frequency of the mid-span deflection [Hz].
+    /// Dominant frequency of the mid-span deflection \[Hz\].
     pub frequency_hz: f64,
-    /// Drift speed of the deflection centroid before the waves reach the pulleys [m/s].
+    /// Drift speed of the deflection centroid before the waves reach the pulleys \[m/s\].
     pub centroid_speed: f64,
 }
 
 /// Summary (`summary.json`, `--json`).
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
-    /// Transverse wave speed `c = √(T0/ρA)` [m/s].
+    /// Transverse wave speed `c = √(T0/ρA)` \[m/s\].
     pub wave_speed: f64,
     /// At rest.
     pub rest: RunSummary,
@@ -99,7 +99,7 @@ pub struct Summary {
     pub frequency_ratio: f64,
     /// Moving-string prediction `1 − v²/c²`.
     pub frequency_ratio_string: f64,
-    /// Wall time [s].
+    /// Wall time \[s\].
     pub wall_time_s: f64,
 }
 

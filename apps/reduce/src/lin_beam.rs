@@ -22,7 +22,7 @@ pub struct Args {
 pub struct Config {
     /// The beam (Appendix A).
     pub beam: BeamParams,
-    /// Assumed deformation of the profile tests, DOF order ξ1, η1, …, ξ5, η5 [m] (Lin (7.1)).
+    /// Assumed deformation of the profile tests, DOF order ξ1, η1, …, ξ5, η5 \[m\] (Lin (7.1)).
     pub profile_delta_m: [f64; 10],
 }
 

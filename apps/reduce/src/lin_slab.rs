@@ -126,25 +126,25 @@ impl Validate for Config {
     }
 }
 
-/// Per simulation and method: RMS difference from NR per component [m], constraint drift [m].
+/// Per simulation and method: RMS difference from NR per component \[m\], constraint drift \[m\].
 #[derive(Debug, Clone, Serialize)]
 pub struct MethodResult {
-    /// RMS of δ'8 − δ'8(NR) over the run, components ξ, η, ζ [m].
+    /// RMS of δ'8 − δ'8(NR) over the run, components ξ, η, ζ \[m\].
     pub rms_vs_nr_m: [f64; 3],
-    /// Largest |δ'8| per component [m].
+    /// Largest |δ'8| per component \[m\].
     pub peak_m: [f64; 3],
-    /// Largest position-level constraint residual [m].
+    /// Largest position-level constraint residual \[m\].
     pub max_drift_m: f64,
 }
 
 /// Summary of `lin-slab`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
-    /// Linearised gravity statics of simulation 1, δ'8 per method [m].
+    /// Linearised gravity statics of simulation 1, δ'8 per method \[m\].
     pub sim1_statics_m: BTreeMap<String, [f64; 3]>,
     /// Per simulation, per method.
     pub simulations: BTreeMap<String, BTreeMap<String, MethodResult>>,
-    /// Largest |δ'8(CB) − δ'8(MC)| per simulation [m] (Lin §6.5.4: zero up to round-off).
+    /// Largest |δ'8(CB) − δ'8(MC)| per simulation \[m\] (Lin §6.5.4: zero up to round-off).
     pub cb_mc_max_difference_m: BTreeMap<String, f64>,
     /// Simulation 3 only: the previous simulation that produced the tables.
     pub sim3_source: Option<Sim3Source>,
@@ -153,15 +153,15 @@ pub struct Summary {
 /// The previous simulation of simulation 3 (Lin Fig. 7-12(b)).
 #[derive(Debug, Clone, Serialize)]
 pub struct Sim3Source {
-    /// Number of table rows (samples) and their interval [s].
+    /// Number of table rows (samples) and their interval \[s\].
     pub samples: usize,
-    /// Sampling interval [s].
+    /// Sampling interval \[s\].
     pub interval_s: f64,
-    /// Largest position-level constraint residual of the source run [m].
+    /// Largest position-level constraint residual of the source run \[m\].
     pub max_drift_m: f64,
-    /// Largest |δ'8| of the source run [m].
+    /// Largest |δ'8| of the source run \[m\].
     pub peak_node8_m: f64,
-    /// Largest |δ'8(NR emulation) − δ'8(source)| [m]: the table interpolation error.
+    /// Largest |δ'8(NR emulation) − δ'8(source)| \[m\]: the table interpolation error.
     pub nr_emulation_vs_source_m: Option<f64>,
 }
 
@@ -340,7 +340,7 @@ impl Study for LinSlabStudy {
 }
 
 /// Writes the regenerated tables (`sim3_tables.csv`: t, then x, y, z accelerations of nodes 16,
-/// 18, 28, 30 [m/s²]) and the source's node-8 history (`sim3_source_node8.csv`).
+/// 18, 28, 30 \[m/s²\]) and the source's node-8 history (`sim3_source_node8.csv`).
 fn write_sim3_tables(
     ctx: &mut StudyContext,
     src: &reduction::lin::slab_sim3::SourceRun,

@@ -48,7 +48,7 @@ pub struct Config {
     pub mesh: String,
     /// Number of modes.
     pub count: usize,
-    /// Shift σ [rad²/s²] for shift-invert (absent = automatic).
+    /// Shift σ \[rad²/s²\] for shift-invert (absent = automatic).
     pub shift: Option<f64>,
     /// Models up to this many DOFs are solved densely.
     pub dense_below: usize,
@@ -88,7 +88,7 @@ impl Validate for Config {
 pub struct Summary {
     /// DOFs of the input matrices.
     pub dof: usize,
-    /// Natural frequencies [Hz], ascending.
+    /// Natural frequencies \[Hz\], ascending.
     pub frequencies_hz: Vec<f64>,
 }
 

@@ -89,9 +89,9 @@ pub struct Summary {
     pub n_boundary: usize,
     /// Reduced coordinates.
     pub n_reduced: usize,
-    /// Lowest natural frequencies of the reduced model [Hz] (at most 20).
+    /// Lowest natural frequencies of the reduced model \[Hz\] (at most 20).
     pub frequencies_hz: Vec<f64>,
-    /// Wall time of the reduction [s].
+    /// Wall time of the reduction \[s\].
     pub reduction_s: f64,
     /// Written file.
     pub file: String,

@@ -67,7 +67,7 @@ pub struct Summary {
     pub nnz_k: usize,
     /// Node-set sizes.
     pub node_sets: BTreeMap<String, usize>,
-    /// Total mass [kg] (rigid translation uᵀ M u).
+    /// Total mass \[kg\] (rigid translation uᵀ M u).
     pub mass_kg: f64,
     /// Files written.
     pub files: Vec<String>,

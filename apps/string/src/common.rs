@@ -87,7 +87,7 @@ pub fn flowing_model(
     Ok((mesh, sys))
 }
 
-/// Eigen analysis of the Galerkin model: (damped frequencies [Hz], max real part [1/s]).
+/// Eigen analysis of the Galerkin model: (damped frequencies \[Hz\], max real part \[1/s\]).
 pub fn galerkin_frequencies(
     p: StringParams,
     speed: f64,

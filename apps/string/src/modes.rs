@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 pub struct ModesConfig {
     /// String parameters.
     pub string: StringParams,
-    /// Axial speed [m/s].
+    /// Axial speed \[m/s\].
     pub speed: f64,
     /// Interior FE nodes (Ribaric (4.1)).
     pub nodes: usize,
@@ -57,13 +57,13 @@ impl Validate for ModesConfig {
 /// Summary printed by `--json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct ModesSummary {
-    /// Axial speed [m/s].
+    /// Axial speed \[m/s\].
     pub speed: f64,
-    /// Critical speed `c = √(T/ρA)` [m/s].
+    /// Critical speed `c = √(T/ρA)` \[m/s\].
     pub critical_speed: f64,
-    /// Damped natural frequencies of the Galerkin model (4.29) [Hz], ascending.
+    /// Damped natural frequencies of the Galerkin model (4.29) \[Hz\], ascending.
     pub analytical_hz: Vec<f64>,
-    /// Damped natural frequencies of the flowing-material model (4.20) [Hz], ascending.
+    /// Damped natural frequencies of the flowing-material model (4.20) \[Hz\], ascending.
     pub flowing_hz: Vec<f64>,
 }
 

@@ -12,9 +12,9 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Pluck {
-    /// Position of the peak [m].
+    /// Position of the peak \[m\].
     pub x: f64,
-    /// Peak deflection [m].
+    /// Peak deflection \[m\].
     pub amplitude: f64,
 }
 
@@ -25,7 +25,7 @@ pub struct Pluck {
 pub struct SimulateConfig {
     /// String parameters.
     pub string: StringParams,
-    /// Axial speed [m/s].
+    /// Axial speed \[m/s\].
     pub speed: f64,
     /// Interior FE nodes.
     pub nodes: usize,
@@ -33,9 +33,9 @@ pub struct SimulateConfig {
     pub modes: usize,
     /// Initial pluck.
     pub pluck: Pluck,
-    /// Duration [s].
+    /// Duration \[s\].
     pub duration: f64,
-    /// RK4 step [s].
+    /// RK4 step \[s\].
     pub step: f64,
     /// Keep every n-th step (sampling period = step · sample_every).
     pub sample_every: usize,
@@ -104,20 +104,20 @@ impl Validate for SimulateConfig {
 pub struct ModePeaks {
     /// Mode number (1-based).
     pub mode: usize,
-    /// Peak frequencies [Hz].
+    /// Peak frequencies \[Hz\].
     pub peaks_hz: Vec<f64>,
 }
 
 /// Summary.
 #[derive(Debug, Clone, Serialize)]
 pub struct SimulateSummary {
-    /// Axial speed [m/s].
+    /// Axial speed \[m/s\].
     pub speed: f64,
-    /// Damped frequencies of the model (eigenvalues) [Hz].
+    /// Damped frequencies of the model (eigenvalues) \[Hz\].
     pub model_hz: Vec<f64>,
-    /// Exact moving-string frequencies n(c²−v²)/(2cL) [Hz].
+    /// Exact moving-string frequencies n(c²−v²)/(2cL) \[Hz\].
     pub exact_hz: Vec<f64>,
-    /// Frequency resolution of the spectra [Hz].
+    /// Frequency resolution of the spectra \[Hz\].
     pub resolution_hz: f64,
     /// Peaks of every modal coordinate.
     pub peaks: Vec<ModePeaks>,

@@ -79,11 +79,11 @@ impl Validate for SweepConfig {
 /// Summary.
 #[derive(Debug, Clone, Serialize)]
 pub struct SweepSummary {
-    /// Critical speed [m/s].
+    /// Critical speed \[m/s\].
     pub critical_speed: f64,
-    /// Lowest swept speed at which the Galerkin model is unstable [m/s].
+    /// Lowest swept speed at which the Galerkin model is unstable \[m/s\].
     pub analytical_unstable_from: Option<f64>,
-    /// Lowest swept speed at which the flowing model is unstable [m/s].
+    /// Lowest swept speed at which the flowing model is unstable \[m/s\].
     pub flowing_unstable_from: Option<f64>,
     /// Largest relative deviation of the flowing from the exact frequencies below 0.9 c.
     pub max_rel_error_below_0_9c: f64,

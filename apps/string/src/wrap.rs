@@ -28,25 +28,25 @@ pub enum Formulation {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct WrapConfig {
-    /// String parameters (`length`: anchor to anchor) [SI].
+    /// String parameters (`length`: anchor to anchor) \[SI\].
     pub string: StringParams,
     /// Interior FE nodes.
     pub nodes: usize,
     /// Pulleys.
     pub pulleys: Vec<Pulley>,
-    /// Candidate contact nodes: within this distance of a pulley centre [m].
+    /// Candidate contact nodes: within this distance of a pulley centre \[m\].
     pub candidate_half_width: f64,
     /// Formulation.
     pub formulation: Formulation,
     /// Retained free-node modes (Craig–Bampton only).
     pub free_modes: usize,
-    /// Axial speed [m/s] (travelling string, (4.40)).
+    /// Axial speed \[m/s\] (travelling string, (4.40)).
     pub speed: f64,
     /// Harmonic load.
     pub load: HarmonicLoad,
-    /// Duration [s].
+    /// Duration \[s\].
     pub duration: f64,
-    /// Output sampling period [s].
+    /// Output sampling period \[s\].
     pub sample: f64,
     /// Mode-shape derivative operator.
     pub derivative: DerivativeMethod,
@@ -161,7 +161,7 @@ pub struct WrapSummary {
     pub candidates_per_pulley: Vec<usize>,
     /// Active contact nodes per pulley in static equilibrium.
     pub initial_active_per_pulley: Vec<usize>,
-    /// Static contact force per pulley [N].
+    /// Static contact force per pulley \[N\].
     pub initial_force_per_pulley: Vec<f64>,
     /// Fewest active contact nodes per pulley during the run.
     pub min_active_per_pulley: Vec<usize>,
@@ -169,11 +169,11 @@ pub struct WrapSummary {
     pub releases: usize,
     /// Re-contact (activation) events.
     pub contacts: usize,
-    /// Kinetic energy removed by plastic impacts [J].
+    /// Kinetic energy removed by plastic impacts \[J\].
     pub impact_loss: f64,
-    /// Longest free span between the pulleys during the run [m].
+    /// Longest free span between the pulleys during the run \[m\].
     pub max_free_span: f64,
-    /// Largest |gap| of an active node (constraint drift) [m].
+    /// Largest |gap| of an active node (constraint drift) \[m\].
     pub max_active_gap: f64,
     /// Integrator steps.
     pub steps: usize,
@@ -278,7 +278,7 @@ fn per_pulley(sys: &ContactString, n: usize, f: impl Fn(usize) -> f64) -> Vec<f6
 }
 
 /// Length between the last contact on the first pulley and the first contact on the last pulley
-/// (an anchor where a pulley has no contact) [m].
+/// (an anchor where a pulley has no contact) \[m\].
 fn free_span(sys: &ContactString, length: f64, n_pulleys: usize) -> f64 {
     let right0 = sys
         .candidates

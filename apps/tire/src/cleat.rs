@@ -100,33 +100,33 @@ pub fn validate_rig(rig: &RigConfig) -> Result<(), InputError> {
 /// Summary (the JSON keys first).
 #[derive(Debug, Serialize)]
 pub struct Summary {
-    /// Speed [km/h].
+    /// Speed \[km/h\].
     pub speed_kmh: f64,
     /// Wheel–tire DOF.
     pub dof: usize,
-    /// Dominant frequency of the vertical force [Hz].
+    /// Dominant frequency of the vertical force \[Hz\].
     pub fy_peak_hz: f64,
-    /// Dominant frequency of the longitudinal force [Hz].
+    /// Dominant frequency of the longitudinal force \[Hz\].
     pub fx_peak_hz: f64,
-    /// RMS of the vertical force fluctuation after the hit [N].
+    /// RMS of the vertical force fluctuation after the hit \[N\].
     pub fy_rms: f64,
-    /// RMS of the longitudinal force fluctuation after the hit [N].
+    /// RMS of the longitudinal force fluctuation after the hit \[N\].
     pub fx_rms: f64,
-    /// Wall time of the time integration [s].
+    /// Wall time of the time integration \[s\].
     pub wall_time_s: f64,
     /// Wall time per simulated second.
     pub wall_per_simulated_s: f64,
     /// CPU time of the integration per simulated second (independent of the machine load).
     pub cpu_per_simulated_s: Option<f64>,
-    /// Preload deflection [m].
+    /// Preload deflection \[m\].
     pub preload_deflection_m: f64,
-    /// Mean vertical spindle force of the steadily rolling tire before the cleat [N].
+    /// Mean vertical spindle force of the steadily rolling tire before the cleat \[N\].
     pub fy_mean_before_n: f64,
-    /// Mean longitudinal spindle force before the cleat (rolling resistance) [N].
+    /// Mean longitudinal spindle force before the cleat (rolling resistance) \[N\].
     pub fx_mean_before_n: f64,
-    /// Preload [N].
+    /// Preload \[N\].
     pub load_n: f64,
-    /// Rayleigh α [1/s], β [s].
+    /// Rayleigh α \[1/s\], β \[s\].
     pub rayleigh: [f64; 2],
     /// Time steps and refactorisations of the iteration matrix.
     pub steps: usize,
@@ -134,12 +134,12 @@ pub struct Summary {
     pub refactors: usize,
     /// Work counters of the integration.
     pub stats: flowing::tire::StepStats,
-    /// Frequency of the loaded tire's vertical in-plane mode [Hz] (largest effective vertical
+    /// Frequency of the loaded tire's vertical in-plane mode \[Hz\] (largest effective vertical
     /// spindle mass, wheel fixed, preloaded patch held; `flowing::tire::loaded`): the
     /// reference for `fy_peak_hz`.
     pub loaded_vertical_mode_hz: Option<f64>,
     /// Frequency of the loaded tire's mode with the largest effective longitudinal spindle
-    /// mass [Hz].
+    /// mass \[Hz\].
     pub loaded_longitudinal_mode_hz: Option<f64>,
 }
 

@@ -11,11 +11,11 @@ use std::path::Path;
 pub struct SpectrumMap<'a> {
     /// Title of the plot.
     pub title: String,
-    /// Speeds [km/h] (rows).
+    /// Speeds \[km/h\] (rows).
     pub speeds: &'a [f64],
-    /// Frequencies [Hz] (columns).
+    /// Frequencies \[Hz\] (columns).
     pub freqs: &'a [f64],
-    /// Amplitudes [N], `amp[row][col]`.
+    /// Amplitudes \[N\], `amp[row][col]`.
     pub amp: &'a [Vec<f64>],
 }
 

@@ -31,7 +31,7 @@ pub struct Config {
     pub count: usize,
     /// Ground of the loaded tire (drum R = 1.25 m by default; the cleat is not used).
     pub ground: GroundConfig,
-    /// Vertical load of the loaded tire [N] (1000 lb, Ribaric §8.3).
+    /// Vertical load of the loaded tire \[N\] (1000 lb, Ribaric §8.3).
     pub load: f64,
 }
 
@@ -63,21 +63,21 @@ impl Validate for Config {
 /// Summary.
 #[derive(Debug, Serialize)]
 pub struct Summary {
-    /// Full FE frequencies [Hz].
+    /// Full FE frequencies \[Hz\].
     pub full_hz: Vec<f64>,
-    /// Reduced frequencies [Hz].
+    /// Reduced frequencies \[Hz\].
     pub reduced_hz: Vec<f64>,
     /// Largest relative error below 240 Hz.
     pub max_rel_error_below_240hz: f64,
     /// Contact nodes held in the loaded tire (positive preload multiplier).
     pub loaded_held_nodes: usize,
-    /// Frequencies of the loaded tire [Hz] (the first `count`).
+    /// Frequencies of the loaded tire \[Hz\] (the first `count`).
     pub loaded_hz: Vec<f64>,
-    /// The loaded tire's vertical in-plane mode: largest effective vertical spindle mass [Hz].
+    /// The loaded tire's vertical in-plane mode: largest effective vertical spindle mass \[Hz\].
     pub loaded_vertical_mode_hz: Option<f64>,
-    /// Its effective vertical spindle mass [kg].
+    /// Its effective vertical spindle mass \[kg\].
     pub loaded_vertical_mass_kg: Option<f64>,
-    /// The loaded mode with the largest effective longitudinal spindle mass [Hz].
+    /// The loaded mode with the largest effective longitudinal spindle mass \[Hz\].
     pub loaded_longitudinal_mode_hz: Option<f64>,
 }
 

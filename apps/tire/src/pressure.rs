@@ -21,9 +21,9 @@ pub struct Args {
 pub struct Config {
     /// The tire.
     pub tire: TireSource,
-    /// Vertical load [N].
+    /// Vertical load \[N\].
     pub load: f64,
-    /// Drum radius [m].
+    /// Drum radius \[m\].
     pub drum_radius: f64,
 }
 
@@ -53,13 +53,13 @@ impl Validate for Config {
 /// Patch statistics of one ground.
 #[derive(Debug, Serialize)]
 pub struct Patch {
-    /// Deflection [m].
+    /// Deflection \[m\].
     pub deflection_m: f64,
     /// Nodes in contact.
     pub nodes_in_contact: usize,
-    /// Largest node force [N].
+    /// Largest node force \[N\].
     pub peak_node_force_n: f64,
-    /// Longitudinal patch length (extent of the contacting nodes) [m].
+    /// Longitudinal patch length (extent of the contacting nodes) \[m\].
     pub length_m: f64,
 }
 

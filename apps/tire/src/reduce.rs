@@ -40,15 +40,15 @@ pub struct Summary {
     pub free_modes: usize,
     /// Contact nodes.
     pub contact_nodes: usize,
-    /// Highest kept free-node mode [Hz].
+    /// Highest kept free-node mode \[Hz\].
     pub free_mode_max_hz: f64,
-    /// Highest contact-node mode [Hz].
+    /// Highest contact-node mode \[Hz\].
     pub contact_mode_max_hz: f64,
-    /// Tire mass [kg].
+    /// Tire mass \[kg\].
     pub tire_mass_kg: f64,
-    /// Mesh generation and assembly [s].
+    /// Mesh generation and assembly \[s\].
     pub assembly_s: f64,
-    /// Reduction stage times [s].
+    /// Reduction stage times \[s\].
     pub timings: ReductionTimings,
     /// Saved file.
     pub file: String,

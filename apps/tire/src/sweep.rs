@@ -28,7 +28,7 @@ pub struct Config {
     pub tire: TireSource,
     /// The rig (its speed is replaced by each sweep speed).
     pub rig: RigConfig,
-    /// Speeds [km/h].
+    /// Speeds \[km/h\].
     pub speeds_kmh: Vec<f64>,
 }
 
@@ -66,16 +66,16 @@ impl Validate for Config {
 pub struct Summary {
     /// Per-speed summaries.
     pub runs: Vec<CleatSummary>,
-    /// Peak vertical amplitude per speed [N].
+    /// Peak vertical amplitude per speed \[N\].
     pub fy_peak_amplitude_n: Vec<f64>,
-    /// Peak longitudinal amplitude per speed [N].
+    /// Peak longitudinal amplitude per speed \[N\].
     pub fx_peak_amplitude_n: Vec<f64>,
-    /// Frequency of the vertical peak per speed [Hz].
+    /// Frequency of the vertical peak per speed \[Hz\].
     pub fy_peak_hz: Vec<f64>,
     /// Whether the vertical amplitude against speed is non-monotonic.
     pub fy_amplitude_non_monotonic: bool,
     /// Speeds at which the vertical peak amplitude has a local minimum (a dip; Ribaric: 40–50
-    /// km/h on the drum, 45–55 km/h on the road) [km/h].
+    /// km/h on the drum, 45–55 km/h on the road) \[km/h\].
     pub fy_amplitude_dips_kmh: Vec<f64>,
 }
 
