@@ -32,7 +32,7 @@ pub struct ContactRecord {
     pub slip: f64,
 }
 
-/// Reusable output buffers of [`distributed_contact`] for an element with `ndof` coordinates.
+/// Reusable output buffers of [`LineContact::element`] for an element with `ndof` coordinates.
 #[derive(Debug, Clone)]
 pub struct ElementContact {
     /// Number of element coordinates.

@@ -10,7 +10,7 @@
 //! * [`model`]: [`BeltDrive`], the system (sparse pattern built once, allocation-free element
 //!   and contact loops);
 //! * [`initial`]: the pre-strained initial configuration by a static solve;
-//! * [`simulate`]: generalized-α and explicit RK4 runs;
+//! * [`mod@simulate`]: generalized-α and explicit RK4 runs;
 //! * [`post`]: tension, span and contact post-processing;
 //! * [`closure`]: example 3.3-A (free belt closing to a circle).
 

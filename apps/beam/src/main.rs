@@ -65,7 +65,9 @@ enum Command {
         /// Element type.
         #[arg(long, value_enum)]
         element: Option<ElementArg>,
+        // `[m]` stays unescaped: clap prints this doc comment as the --help text.
         /// Section height h [m].
+        #[allow(rustdoc::broken_intra_doc_links)]
         #[arg(long)]
         h: Option<f64>,
         /// Poisson's ratio.

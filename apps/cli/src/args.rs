@@ -11,7 +11,9 @@ pub struct CommonArgs {
     /// Print the effective configuration as TOML and exit.
     #[arg(long)]
     pub print_config: bool,
+    // Plain text on purpose: clap prints this doc comment as the --help text.
     /// Output folder [default: out/<app>/<study>].
+    #[allow(rustdoc::invalid_html_tags)]
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Print the summary as JSON on stdout.

@@ -49,7 +49,9 @@ impl MethodArg {
 /// Command-line arguments of `reduce`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
+    // `[kg]` stays unescaped: clap prints this doc comment as the --help text.
     /// Mass matrix (Matrix Market, symmetric positive definite) [kg].
+    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_name = "M.mtx")]
     mass: PathBuf,
     /// Stiffness matrix (Matrix Market, symmetric) [N/m].

@@ -211,7 +211,9 @@ pub struct RigFlags {
     /// Roll without the cleat (steady rolling).
     #[arg(long)]
     pub no_cleat: bool,
+    // `[s]` stays unescaped: clap prints this doc comment as the --help text.
     /// Time step [s] (overrides `rig.rolling.time_step`).
+    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     pub time_step: Option<f64>,
     /// Contact nodes of the reduction (overrides `tire.reduction.contact_nodes`; §8.4.2: 95 or

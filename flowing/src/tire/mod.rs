@@ -2,8 +2,8 @@
 //!
 //! * [`mesh`]: the tire FE model (lumped M, K with inflation prestress, rim and patch node
 //!   sets, circumferential rings) — Ribaric (7.1), (7.4);
-//! * [`reduce`], [`reduced`]: the reduction of §8.2 (contact-node, free-node and static modes,
-//!   circumferential mode-shape derivatives) and the saved reduced tire;
+//! * [`mod@reduce`], [`reduced`]: the reduction of §8.2 (contact-node, free-node and static
+//!   modes, circumferential mode-shape derivatives) and the saved reduced tire;
 //! * [`ground`]: drum or flat road with a semicircular cleat (contact crate geometry);
 //! * [`statics`]: the preload (static contact with Lagrange multipliers, Ribaric §7.3);
 //! * [`rolling`]: the wheel–tire equations (7.10)/(7.17) with the notes' corrections E15, E16,

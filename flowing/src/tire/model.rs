@@ -1,5 +1,5 @@
 //! Building the tire FE model from fe-model's generated truck-tire carcass
-//! ([`fe_model::generate::tire`]), with the inflation prestress entering through the geometric
+//! ([`mod@fe_model::generate::tire`]), with the inflation prestress entering through the geometric
 //! stiffness (Ribaric §8.1: M and K "under load and inflation").
 
 use super::error::TireError;
