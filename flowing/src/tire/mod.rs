@@ -27,7 +27,7 @@ pub mod statics;
 pub use contact_solve::FrictionLaw;
 pub use ground::{Ground, GroundConfig, GroundKind};
 pub use loaded::{
-    LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, loaded_modes,
+    LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, held_nodes, loaded_modes,
     loaded_modes_at_preload,
 };
 pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};

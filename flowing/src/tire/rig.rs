@@ -10,7 +10,9 @@
 
 use super::error::{TireError, invalid};
 use super::ground::{Ground, GroundConfig};
-use super::loaded::{LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, loaded_modes};
+use super::loaded::{
+    LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, held_nodes, loaded_modes,
+};
 use super::reduced::ReducedTire;
 use super::rolling::{RollingConfig, RollingTire, StepStats};
 use super::spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};
@@ -249,11 +251,8 @@ pub fn run_cleat_observed(
     let ray = cfg.damping.rayleigh(red)?;
     let v = cfg.speed_kmh / 3.6;
     let pre0 = preload(red, &cfg.ground, cfg.load)?;
-    let held: Vec<usize> = (0..red.n_contact())
-        .filter(|&i| pre0.patch.lambda[i] > 0.0)
-        .collect();
     // a failure here only loses the reference mode, not the run
-    let loaded = loaded_modes(red, &held).unwrap_or_default();
+    let loaded = loaded_modes(red, &held_nodes(&pre0.patch)).unwrap_or_default();
     let loaded_vertical_mode = dominant_vertical_mode(&loaded).cloned();
     let loaded_longitudinal_mode = dominant_longitudinal_mode(&loaded).cloned();
     let r_e = red.outer_radius - pre0.patch.deflection / 3.0;
