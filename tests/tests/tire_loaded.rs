@@ -11,11 +11,12 @@ use faer::{Mat, Side};
 use flowing::tire::*;
 
 /// Contact nodes carrying the static preload on the drum.
-fn held_nodes(red: &ReducedTire) -> Vec<usize> {
-    let pre = preload(red, &GroundConfig::default(), 4448.2).unwrap();
-    (0..red.n_contact())
-        .filter(|&i| pre.patch.lambda[i] > 0.0)
-        .collect()
+fn held(red: &ReducedTire) -> Vec<usize> {
+    held_nodes(
+        &preload(red, &GroundConfig::default(), 4448.2)
+            .unwrap()
+            .patch,
+    )
 }
 
 #[test]
@@ -37,7 +38,7 @@ fn holding_the_patch_stiffens_every_mode_within_the_interlacing_bounds() {
     // Invariant (Rayleigh's theorem on constraints): r independent constraints raise each
     // eigenvalue, ω_k ≤ ω̂_k ≤ ω_{k+r}.
     let red = coarse_reduced_tire();
-    let held = held_nodes(red);
+    let held = held(red);
     assert!(!held.is_empty());
     let r = 3 * held.len();
     let free = red.frequencies_hz().unwrap();
@@ -65,7 +66,7 @@ fn effective_spindle_masses_sum_to_the_constrained_static_response() {
     // (K_r G M_z z_s)·e with G the constrained flexibility, computed by a direct constrained
     // solve w = K⁻¹b − K⁻¹Aᵀ(AK⁻¹Aᵀ)⁻¹AK⁻¹b, b = M_z z_s (module docs of tire::loaded).
     let red = coarse_reduced_tire();
-    let held = held_nodes(red);
+    let held = held(red);
     let nz = red.n_z();
     let a = Mat::from_fn(3 * held.len(), nz, |r, j| {
         red.tc[(3 * held[r / 3] + r % 3, j)]
@@ -102,7 +103,7 @@ fn the_dominant_vertical_mode_is_in_plane_and_vertical() {
     // Symmetry invariant of the tire (symmetric about its mid-plane, patch held symmetrically):
     // the mode with the largest effective vertical mass loads the spindle only vertically.
     let red = coarse_reduced_tire();
-    let modes = loaded_modes(red, &held_nodes(red)).unwrap();
+    let modes = loaded_modes(red, &held(red)).unwrap();
     let v = dominant_vertical_mode(&modes).unwrap();
     let x = dominant_longitudinal_mode(&modes).unwrap();
     println!(

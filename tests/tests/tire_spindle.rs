@@ -37,28 +37,7 @@ fn cleat_forces(red: &ReducedTire, method: SpindleForceMethod) -> Vec<(f64, f64)
 fn torque_forces(red: &ReducedTire, method: SpindleForceMethod) -> Vec<(f64, f64)> {
     let mut rc = common::rig(GroundKind::Road, false, 0.85);
     rc.rolling.spindle_force = method;
-    let ray = rc.damping.rayleigh(red).unwrap();
-    let v = rc.speed_kmh / 3.6;
-    let pre0 = preload(red, &rc.ground, rc.load).unwrap();
-    let spin = v / (red.outer_radius - pre0.patch.deflection / 3.0);
-    let pre = preload_rolling(red, &rc.ground, rc.load, spin, ray.beta).unwrap();
-    let ground = Ground {
-        cfg: rc.ground.clone(),
-        top: pre.patch.top,
-        speed: v,
-        cleat_time: 1.0,
-    };
-    let mut sim = RollingTire::new(
-        red,
-        rc.rolling.clone(),
-        ground,
-        ray.alpha,
-        ray.beta,
-        pre.z.clone(),
-        spin,
-    )
-    .unwrap();
-    sim.state.lambda = pre.patch.lambda.clone();
+    let mut sim = start_rolling(red, &rc).unwrap().sim;
     sim.drive_torque = 300.0;
     (0..500)
         .map(|_| {

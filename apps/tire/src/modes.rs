@@ -7,7 +7,7 @@
 use crate::common::{TireSource, tire_err};
 use flowing::tire::{
     GroundConfig, dominant_longitudinal_mode, dominant_vertical_mode, full_frequencies_hz,
-    loaded_modes_at_preload,
+    held_nodes, loaded_modes_at_preload,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
@@ -152,7 +152,7 @@ impl Study for Modes {
             full_hz: full,
             reduced_hz: reduced,
             max_rel_error_below_240hz: err,
-            loaded_held_nodes: pre.patch.lambda.iter().filter(|&&l| l > 0.0).count(),
+            loaded_held_nodes: held_nodes(&pre.patch).len(),
             loaded_hz: loaded.iter().take(c.count).map(|m| m.hz).collect(),
             loaded_vertical_mode_hz: vertical.map(|m| m.hz),
             loaded_vertical_mass_kg: vertical.map(|m| m.vertical_mass.abs()),

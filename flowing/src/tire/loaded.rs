@@ -164,9 +164,13 @@ pub fn loaded_modes_at_preload(
     load: f64,
 ) -> Result<(super::statics::Preload, Vec<LoadedMode>), TireError> {
     let pre = super::statics::preload(red, ground, load)?;
-    let held: Vec<usize> = (0..red.n_contact())
-        .filter(|&i| pre.patch.lambda[i] > 0.0)
-        .collect();
-    let modes = loaded_modes(red, &held)?;
+    let modes = loaded_modes(red, &held_nodes(&pre.patch))?;
     Ok((pre, modes))
+}
+
+/// The contact nodes that carry a patch solution (positive normal multiplier), in order.
+pub fn held_nodes(patch: &super::statics::PatchSolution) -> Vec<usize> {
+    (0..patch.lambda.len())
+        .filter(|&i| patch.lambda[i] > 0.0)
+        .collect()
 }

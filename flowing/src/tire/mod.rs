@@ -27,7 +27,7 @@ pub mod statics;
 pub use contact_solve::FrictionLaw;
 pub use ground::{Ground, GroundConfig, GroundKind};
 pub use loaded::{
-    LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, loaded_modes,
+    LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, held_nodes, loaded_modes,
     loaded_modes_at_preload,
 };
 pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
@@ -42,5 +42,8 @@ pub use model::{
 };
 pub mod rig;
 pub mod spectrum;
-pub use rig::{DampingConfig, RigConfig, RigResult, Sample, run_cleat, run_cleat_observed};
+pub use rig::{
+    DampingConfig, RigConfig, RigResult, RigStart, Sample, run_cleat, run_cleat_observed,
+    start_rolling,
+};
 pub use spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};

@@ -10,11 +10,13 @@
 
 use super::error::{TireError, invalid};
 use super::ground::{Ground, GroundConfig};
-use super::loaded::{LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, loaded_modes};
+use super::loaded::{
+    LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, held_nodes, loaded_modes,
+};
 use super::reduced::ReducedTire;
 use super::rolling::{RollingConfig, RollingTire, StepStats};
 use super::spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};
-use super::statics::{PatchSolution, preload, preload_rolling};
+use super::statics::{PatchSolution, Preload, preload, preload_rolling};
 use fe_model::Rayleigh;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -214,6 +216,59 @@ impl RigResult {
     }
 }
 
+/// The start of the cleat test (Ribaric §8.3): the tire pressed onto the ground with the load
+/// and rolling steadily at the speed, ready to step.
+pub struct RigStart<'a> {
+    /// The rolling tire in its Eulerian steady state (`preload_rolling`), the cleat reaching the
+    /// patch centre at `t = settle_time`.
+    pub sim: RollingTire<'a>,
+    /// Rayleigh coefficients from the damping targets.
+    pub rayleigh: Rayleigh,
+    /// The static (non-rolling) preload, which sets the effective rolling radius
+    /// `R − deflection/3`.
+    pub static_preload: Preload,
+    /// The rolling preload the tire starts from.
+    pub preload: Preload,
+}
+
+/// Press the tire onto the ground and set it rolling steadily (see [`RigStart`]): Rayleigh
+/// damping from `cfg.damping`, spin rate `v / (R − d/3)`, the steady state of
+/// [`preload_rolling`] with its contact forces as the initial multipliers. The settings are
+/// validated (`rolling.…`, `damping.…`).
+pub fn start_rolling<'a>(red: &'a ReducedTire, cfg: &RigConfig) -> Result<RigStart<'a>, TireError> {
+    cfg.rolling.validate()?;
+    let rayleigh = cfg.damping.rayleigh(red)?;
+    let v = cfg.speed_kmh / 3.6;
+    let static_preload = preload(red, &cfg.ground, cfg.load)?;
+    let spin = v / (red.outer_radius - static_preload.patch.deflection / 3.0);
+    let pre = preload_rolling(red, &cfg.ground, cfg.load, spin, rayleigh.beta)?;
+    let ground = Ground {
+        cfg: cfg.ground.clone(),
+        top: pre.patch.top,
+        speed: v,
+        cleat_time: cfg.settle_time,
+    };
+    let mut sim = RollingTire::new(
+        red,
+        cfg.rolling.clone(),
+        ground,
+        rayleigh.alpha,
+        rayleigh.beta,
+        pre.z.clone(),
+        spin,
+    )?;
+    sim.state.lambda = pre.patch.lambda.clone();
+    for (k, f) in pre.patch.f_c.iter().enumerate() {
+        sim.state.contact_force[k % 3] += f;
+    }
+    Ok(RigStart {
+        sim,
+        rayleigh,
+        static_preload,
+        preload: pre,
+    })
+}
+
 /// Run the cleat test. `progress` receives the fraction done (0..1).
 pub fn run_cleat(
     red: &ReducedTire,
@@ -245,38 +300,16 @@ pub fn run_cleat_observed(
             return Err(invalid(name, format!("{v} s is negative")));
         }
     }
-    cfg.rolling.validate()?;
-    let ray = cfg.damping.rayleigh(red)?;
-    let v = cfg.speed_kmh / 3.6;
-    let pre0 = preload(red, &cfg.ground, cfg.load)?;
-    let held: Vec<usize> = (0..red.n_contact())
-        .filter(|&i| pre0.patch.lambda[i] > 0.0)
-        .collect();
+    let RigStart {
+        mut sim,
+        rayleigh: ray,
+        static_preload: pre0,
+        preload: pre,
+    } = start_rolling(red, cfg)?;
     // a failure here only loses the reference mode, not the run
-    let loaded = loaded_modes(red, &held).unwrap_or_default();
+    let loaded = loaded_modes(red, &held_nodes(&pre0.patch)).unwrap_or_default();
     let loaded_vertical_mode = dominant_vertical_mode(&loaded).cloned();
     let loaded_longitudinal_mode = dominant_longitudinal_mode(&loaded).cloned();
-    let r_e = red.outer_radius - pre0.patch.deflection / 3.0;
-    let pre = preload_rolling(red, &cfg.ground, cfg.load, v / r_e, ray.beta)?;
-    let ground = Ground {
-        cfg: cfg.ground.clone(),
-        top: pre.patch.top,
-        speed: v,
-        cleat_time: cfg.settle_time,
-    };
-    let mut sim = RollingTire::new(
-        red,
-        cfg.rolling.clone(),
-        ground,
-        ray.alpha,
-        ray.beta,
-        pre.z.clone(),
-        v / r_e,
-    )?;
-    sim.state.lambda = pre.patch.lambda.clone();
-    for (k, f) in pre.patch.f_c.iter().enumerate() {
-        sim.state.contact_force[k % 3] += f;
-    }
     let h = cfg.rolling.time_step;
     let total = cfg.settle_time + cfg.record_time;
     let steps = (total / h).round() as usize;
