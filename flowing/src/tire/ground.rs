@@ -95,6 +95,23 @@ pub struct Ground {
 }
 
 impl Ground {
+    /// Distance \[m\] along the ground surface of the cleat ahead of the patch centre (`x = 0`) at
+    /// time `t`: positive before it arrives, negative once it has passed; on the drum the
+    /// passage nearest to `t` (the cleat comes round every `2πR/v`). `None` without a cleat.
+    pub fn cleat_ahead(&self, t: f64) -> Option<f64> {
+        if !self.cfg.cleat {
+            return None;
+        }
+        let s = self.speed * (self.cleat_time - t);
+        Some(match self.cfg.kind {
+            GroundKind::Road => s,
+            GroundKind::Drum => {
+                let c = 2.0 * std::f64::consts::PI * self.cfg.drum_radius;
+                s - c * (s / c).round()
+            }
+        })
+    }
+
     /// Closest-point query of the wheel-frame point `p` at time `t`.
     pub fn query(&self, t: f64, p: [f64; 3]) -> GroundPoint {
         let q = [p[0], p[2]];

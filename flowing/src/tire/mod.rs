@@ -43,7 +43,7 @@ pub use model::{
 pub mod rig;
 pub mod spectrum;
 pub use rig::{
-    DampingConfig, RigConfig, RigResult, RigStart, Sample, run_cleat, run_cleat_observed,
-    start_rolling,
+    DampingConfig, ImpactSteps, RigConfig, RigResult, RigStart, Sample, run_cleat,
+    run_cleat_observed, start_rolling,
 };
 pub use spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};

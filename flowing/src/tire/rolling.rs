@@ -306,6 +306,8 @@ pub struct SpindleForce {
 /// rows (dot products), which is faster here than the column-major kernel: both products are
 /// limited by memory traffic (R is 2.7 MB for the 341-DOF tire).
 struct Factor {
+    /// Time step at which `S` was inverted \[s\].
+    h: f64,
     /// Spin rate at which `R` was formed \[rad/s\].
     spin: f64,
     /// Spin rate at which `S` was inverted \[rad/s\].
@@ -413,6 +415,9 @@ pub struct RollingTire<'a> {
     /// Current state.
     pub state: RollingState,
     factor: Option<Factor>,
+    /// The factorisation of the other time step after [`RollingTire::set_time_step`], kept to
+    /// switch back without inverting again.
+    spare: Option<Factor>,
     /// `T_cᵀ` and `T_c,θᵀ` (n_z × 3 n_c): contiguous rows of the contact-node maps.
     tct: Mat<f64>,
     tct_theta: Mat<f64>,
@@ -698,6 +703,7 @@ impl<'a> RollingTire<'a> {
                 contact_force: [0.0; 3],
             },
             factor: None,
+            spare: None,
             tct: red.tc.transpose().to_owned(),
             tct_theta: red.tc_theta.transpose().to_owned(),
             work,
@@ -705,6 +711,26 @@ impl<'a> RollingTire<'a> {
             stats: StepStats::default(),
             cleat_contacts: 0,
         })
+    }
+
+    /// Change the time step `h` \[s\] for the following steps (e.g. sub-steps through an impact).
+    /// The generalized-α scheme takes variable steps as they come; the iteration matrix of the
+    /// previous step size is kept, so switching back and forth between two step sizes inverts
+    /// each only once. Errors: `h` not positive.
+    pub fn set_time_step(&mut self, h: f64) -> Result<(), TireError> {
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(invalid("rolling.time_step", format!("{h} is not positive")));
+        }
+        if h == self.cfg.time_step {
+            return Ok(());
+        }
+        self.cfg.time_step = h;
+        if self.spare.as_ref().is_some_and(|f| f.h == h) {
+            std::mem::swap(&mut self.factor, &mut self.spare);
+        } else {
+            self.spare = self.factor.take();
+        }
+        Ok(())
     }
 
     /// Settings.
@@ -756,6 +782,7 @@ impl<'a> RollingTire<'a> {
         let mut f = match self.factor.take() {
             Some(f) => f,
             None => Factor {
+                h,
                 spin: sp,
                 spin_s: sp,
                 sinv_t: Mat::zeros(n, n),
@@ -788,6 +815,7 @@ impl<'a> RollingTire<'a> {
             });
         }
         f.spin_s = sp;
+        f.h = h;
         f.sinv_t.copy_from(sinv.transpose());
         matmul(
             f.x.as_mut(),
@@ -907,7 +935,7 @@ impl<'a> RollingTire<'a> {
         let (need_s, need_r) = match &self.factor {
             None => (true, true),
             Some(f) => (
-                drift(f.spin_s, self.cfg.matrix_tolerance),
+                f.h != h || drift(f.spin_s, self.cfg.matrix_tolerance),
                 drift(f.spin, self.cfg.spin_tolerance),
             ),
         };

@@ -1,0 +1,112 @@
+//! Sub-stepping through the cleat impact (`RigConfig::impact`, `RollingTire::set_time_step`)
+//! and the cleat's position along the ground (`Ground::cleat_ahead`).
+
+use flowing::tire::*;
+
+mod common;
+use common::{coarse_reduced_tire as tire, rig};
+
+#[test]
+fn cleat_position_along_drum_and_road() {
+    // Analytical: the cleat moves with the surface speed; on the drum it comes round every
+    // 2πR/v and the nearest passage is reported.
+    let mut g = Ground {
+        cfg: GroundConfig::default(),
+        top: -0.5,
+        speed: 10.0,
+        cleat_time: 0.3,
+    };
+    let period = 2.0 * std::f64::consts::PI * 1.25 / 10.0;
+    for (t, want) in [(0.3, 0.0), (0.29, 0.1), (0.31, -0.1), (0.3 + period, 0.0)] {
+        let d = g.cleat_ahead(t).unwrap();
+        assert!(
+            (d - want).abs() < 1e-12,
+            "drum t = {t}: {d} m, want {want} m"
+        );
+    }
+    g.cfg.kind = GroundKind::Road;
+    assert!((g.cleat_ahead(0.3 - period).unwrap() - 10.0 * period).abs() < 1e-12);
+    g.cfg.cleat = false;
+    assert_eq!(g.cleat_ahead(0.3), None);
+}
+
+#[test]
+fn substeps_over_the_whole_run_equal_the_small_step() {
+    // Second formulation: a window covering the whole run with n sub-steps is the run at h/n,
+    // sampled every n-th step, operation for operation.
+    let red = tire();
+    let mut fine = rig(GroundKind::Drum, true, 0.85);
+    fine.settle_time = 0.02;
+    fine.record_time = 0.02;
+    fine.impact.substeps = 1;
+    let mut coarse = fine.clone();
+    coarse.impact = ImpactSteps {
+        substeps: 4,
+        lead: 10.0,
+        trail: 10.0,
+    };
+    fine.rolling.time_step = coarse.rolling.time_step / 4.0;
+    let a = run_cleat(red, &coarse, &mut |_| {}).unwrap();
+    let b = run_cleat(red, &fine, &mut |_| {}).unwrap();
+    assert_eq!(a.samples.len() * 4, b.samples.len());
+    assert!(
+        a.samples.iter().any(|s| s.cleat_nodes > 0),
+        "the cleat is hit"
+    );
+    for (k, s) in a.samples.iter().enumerate() {
+        let f = &b.samples[4 * k + 3];
+        assert!((s.t - f.t).abs() < 1e-12);
+        assert_eq!((s.fy, s.fx, s.spin), (f.fy, f.fx, f.spin), "sample {k}");
+    }
+}
+
+#[test]
+fn substeps_are_used_only_around_the_cleat() {
+    // The window: the cleat within `lead` ahead of the patch centre until `trail` after it
+    // passed. Outside it the run is the plain one step for step (same samples before the
+    // window); the sub-steps show in the step count.
+    let red = tire();
+    let mut plain = rig(GroundKind::Drum, true, 0.85);
+    plain.settle_time = 0.03;
+    plain.record_time = 0.03;
+    plain.impact.substeps = 1;
+    let mut sub = plain.clone();
+    sub.impact = ImpactSteps {
+        substeps: 4,
+        // off the step grid (0.1 m / v and 0.01 s are whole steps), so no step starts on an edge
+        lead: 0.1003,
+        trail: 0.0101,
+    };
+    let a = run_cleat(red, &plain, &mut |_| {}).unwrap();
+    let b = run_cleat(red, &sub, &mut |_| {}).unwrap();
+    assert_eq!(a.samples.len(), b.samples.len());
+    let v = plain.speed_kmh / 3.6;
+    let h = plain.rolling.time_step;
+    // window in time: from lead/v before the cleat reaches the centre to trail after
+    let (t0, t1) = (-sub.impact.lead / v, sub.impact.trail);
+    let inside = a
+        .samples
+        .iter()
+        .filter(|s| s.t - h >= t0 && s.t - h <= t1)
+        .count();
+    assert_eq!(b.stats.steps, a.stats.steps + 3 * inside);
+    for (s, f) in a.samples.iter().zip(&b.samples) {
+        if s.t - h < t0 {
+            assert_eq!(
+                (s.fy, s.fx),
+                (f.fy, f.fx),
+                "before the window at t = {}",
+                s.t
+            );
+        }
+    }
+    let bad = RigConfig {
+        impact: ImpactSteps {
+            substeps: 0,
+            ..Default::default()
+        },
+        ..plain
+    };
+    let e = run_cleat(red, &bad, &mut |_| {}).unwrap_err().to_string();
+    assert!(e.contains("impact.substeps"), "{e}");
+}
