@@ -2,7 +2,9 @@
 //! tire, 95 contact nodes, 50 free-node modes) rolling over the 10 mm cleat on the drum at
 //! 60 km/h (0.4 s settle + 0.3 s record, h = 0.2 ms), wall and CPU seconds per simulated second
 //! for the default step and its variants side by side in one run:
-//! * default: generalized-α ρ∞ = 0.5, S inverted once per 10 % spin drift, Newton contact;
+//! * default: generalized-α ρ∞ = 0.5, S inverted once per 10 % spin drift, Newton contact,
+//!   4 sub-steps through the cleat impact;
+//! * without the 4 sub-steps through the cleat impact (`impact.substeps = 1`);
 //! * generalized-α ρ∞ = 0.9 (the default of earlier versions);
 //! * S re-inverted at every 1 % spin drift (`matrix_tolerance = 0.01`, the session-2 policy);
 //! * the trapezoidal rule (ρ∞ = 1);
@@ -34,6 +36,11 @@ fn main() {
     let base = RigConfig::default();
     let variants: Vec<(&str, RigConfig)> = vec![
         ("default (gen-alpha 0.5, S once)", base.clone()),
+        ("no impact sub-steps", {
+            let mut c = base.clone();
+            c.impact.substeps = 1;
+            c
+        }),
         ("gen-alpha rho 0.9", {
             let mut c = base.clone();
             c.rolling = c.rolling.generalized_alpha(0.9);

@@ -1,0 +1,71 @@
+//! Issue 9 acceptance on the default full-size truck tire (63 936 DOF, reduced to 341): the
+//! cleat test's validation items with the shipped defaults. Heavy (one reduction, ~25 s, and
+//! six rig runs): run with `cargo test --release -p flowmbd-validation --test tire_default --
+//! --ignored`.
+
+use fe_model::generate::TireConfig;
+use flowing::tire::*;
+
+#[test]
+#[ignore = "the full 63 936-DOF tire: reduction and six rig runs, ~40 s"]
+fn default_truck_tire_cleat_test() {
+    let fe = generated_tire(&TireConfig::default()).unwrap();
+    let (red, _) = reduce(&fe, &ReductionConfig::default()).unwrap();
+    assert_eq!(red.dof(), 341);
+    let base = RigConfig::default();
+    let run = |rc: &RigConfig| run_cleat(&red, rc, &mut |_| {}).unwrap();
+    let peak = |r: &RigResult| {
+        let (sx, sy) = r.spectra();
+        (sy.peak(10.0, 500.0).unwrap(), sx.peak(10.0, 500.0).unwrap())
+    };
+
+    // the dominant vertical line is the loaded tire's vertical in-plane mode (within two bins
+    // of the 0.3 s record)
+    let r = run(&base);
+    let ((fy_hz, fy_amp), (_, fx_amp)) = peak(&r);
+    let mode = r.loaded_vertical_mode.clone().unwrap();
+    println!(
+        "Fy line {fy_hz} Hz ({fy_amp} N), loaded vertical mode {} Hz",
+        mode.hz
+    );
+    assert!((fy_hz - mode.hz).abs() <= 2.0 / base.record_time);
+    assert!(mode.vertical_share() > 0.999);
+
+    // friction 0 changes Fx much more than Fy (the dominant lines)
+    let mut mu0 = base.clone();
+    mu0.rolling.friction = 0.0;
+    let ((_, fy0), (_, fx0)) = peak(&run(&mu0));
+    println!(
+        "μ = 0: Fy line ×{}, Fx line ×{}",
+        fy0 / fy_amp,
+        fx0 / fx_amp
+    );
+    assert!(fx0 / fx_amp > 1.5 * (fy0 / fy_amp));
+
+    // steady rolling on a flat road: constant spindle forces, the vertical one equal to the load
+    let mut steady = base.clone();
+    steady.ground.kind = GroundKind::Road;
+    steady.ground.cleat = false;
+    steady.rolling.friction = 0.0;
+    steady.settle_time = 0.3;
+    steady.record_time = 0.1;
+    let rec = run(&steady).record();
+    let fy: Vec<f64> = rec.iter().map(|s| s.fy).collect();
+    let mean = fy.iter().sum::<f64>() / fy.len() as f64;
+    let spread =
+        fy.iter().cloned().fold(f64::MIN, f64::max) - fy.iter().cloned().fold(f64::MAX, f64::min);
+    println!("steady road: Fy {mean} N, spread {spread} N");
+    assert!((mean - steady.load).abs() < 0.005 * steady.load);
+    assert!(spread < 0.002 * steady.load);
+
+    // the vertical amplitude against speed is not monotonic (road: 30, 40, 50 km/h)
+    let amp = |v: f64| {
+        let mut rc = base.clone();
+        rc.ground.kind = GroundKind::Road;
+        rc.speed_kmh = v;
+        peak(&run(&rc)).0.1
+    };
+    let (a30, a40, a50) = (amp(30.0), amp(40.0), amp(50.0));
+    println!("road Fy line: {a30} N at 30, {a40} N at 40, {a50} N at 50 km/h");
+    assert!(a40 < a30 && a40 < a50, "no dip at 40 km/h");
+}
