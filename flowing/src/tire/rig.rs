@@ -186,7 +186,7 @@ pub struct RigResult {
     pub dt: f64,
     /// Wall time of the time integration \[s\] (the observer's time excluded).
     pub wall_time_s: f64,
-    /// CPU time of the integrating thread \[s\] (Linux `/proc/thread-self/schedstat`; `None`
+    /// CPU time of the integrating thread \[s\] (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`; `None`
     /// elsewhere): the load-independent cost on a shared machine.
     pub cpu_time_s: Option<f64>,
     /// Simulated time \[s\].

@@ -179,8 +179,9 @@ impl Default for RollingConfig {
 /// bouncing on the ground unless the highest (unresolved) frequencies are damped. On the
 /// default cord-reinforced truck tire at 60 km/h on the drum the patch never settles again
 /// after the cleat for ρ∞ ≥ 0.75 (0.85: 2171 impacts begun within a step, 15.5 instead of 21
-/// contacts per step), settles at ρ∞ = 0.7 on the drum but not on the road at 70 and 100 km/h,
-/// and settles at every speed 20–100 km/h on both grounds at ρ∞ = 0.5 (BENCHMARKS.md, "tire").
+/// contacts per step), settles at ρ∞ = 0.7 on the drum but not on the road at 70 and 100 km/h
+/// (and with the rig's impact sub-steps not on the drum either: 746 late impacts), and settles
+/// at every speed 20–100 km/h on both grounds at ρ∞ = 0.5 (BENCHMARKS.md, "tire").
 /// The dissipation in the resolved band is negligible: at the 76 Hz vertical line and
 /// h = 0.2 ms, Ω h ≈ 0.1, where the algorithmic damping ratio is O((Ω h)³).
 const GA_DEFAULT: (f64, f64, f64, f64) = {
