@@ -216,6 +216,11 @@ pub struct RigFlags {
     #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     pub time_step: Option<f64>,
+    /// Sub-steps per time step while the cleat passes the patch (overrides
+    /// `rig.impact.substeps`; 1 = uniform steps, e.g. with `--time-step 5e-5` for converged
+    /// cleat amplitudes).
+    #[arg(long)]
+    pub substeps: Option<usize>,
     /// Contact nodes of the reduction (overrides `tire.reduction.contact_nodes`; §8.4.2: 95 or
     /// 252). With the default reduced-tire file name, the file name follows the count; the
     /// generated tire's candidate patch is widened when needed.
@@ -245,6 +250,9 @@ impl RigFlags {
         }
         if let Some(h) = self.time_step {
             rig.rolling.time_step = h;
+        }
+        if let Some(n) = self.substeps {
+            rig.impact.substeps = n;
         }
         if let Some(n) = self.contact_nodes {
             let default_file = TireSource::default().reduced_file;

@@ -590,6 +590,12 @@ fn bad_input_exits_2_naming_the_field() {
         ),
         (
             "cleat",
+            vec!["--substeps=0".into()],
+            tire_tables(file),
+            "rig.impact.substeps",
+        ),
+        (
+            "cleat",
             vec![],
             format!("{}[rig.damping]\nmode2 = 500\n", tire_tables(file)),
             "rig.damping.mode2",
