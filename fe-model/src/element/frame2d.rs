@@ -12,7 +12,7 @@
 //!
 //! Global matrices are `Tᵀ k T` with the node rotation `[c s 0; −s c 0; 0 0 1]`.
 
-use super::{Element, MassKind, transform};
+use super::{Element, MassKind, hermite, transform};
 use crate::FeError;
 use faer::Mat;
 use serde::{Deserialize, Serialize};
@@ -119,30 +119,17 @@ impl Frame2d {
     pub fn local_stiffness(&self) -> Mat<f64> {
         let l = self.length;
         let a = self.section.ea / l;
-        let b = self.section.ei / (l * l * l);
         Self::local(
             [[a, -a], [-a, a]],
-            [
-                [12.0 * b, 6.0 * l * b, -12.0 * b, 6.0 * l * b],
-                [6.0 * l * b, 4.0 * l * l * b, -6.0 * l * b, 2.0 * l * l * b],
-                [-12.0 * b, -6.0 * l * b, 12.0 * b, -6.0 * l * b],
-                [6.0 * l * b, 2.0 * l * l * b, -6.0 * l * b, 4.0 * l * l * b],
-            ],
+            hermite::bending_stiffness(self.section.ei, l, 0.0),
         )
     }
 
     /// Local geometric stiffness (element axes).
     pub fn local_geometric_stiffness(&self) -> Mat<f64> {
-        let l = self.length;
-        let g = self.axial_force / (30.0 * l);
         Self::local(
             [[0.0; 2]; 2],
-            [
-                [36.0 * g, 3.0 * l * g, -36.0 * g, 3.0 * l * g],
-                [3.0 * l * g, 4.0 * l * l * g, -3.0 * l * g, -l * l * g],
-                [-36.0 * g, -3.0 * l * g, 36.0 * g, -3.0 * l * g],
-                [3.0 * l * g, -l * l * g, -3.0 * l * g, 4.0 * l * l * g],
-            ],
+            hermite::geometric_stiffness(self.axial_force, self.length),
         )
     }
 
@@ -153,26 +140,7 @@ impl Frame2d {
         match kind {
             MassKind::Consistent => {
                 let a = m / 6.0;
-                let b = m / 420.0;
-                Self::local(
-                    [[2.0 * a, a], [a, 2.0 * a]],
-                    [
-                        [156.0 * b, 22.0 * l * b, 54.0 * b, -13.0 * l * b],
-                        [
-                            22.0 * l * b,
-                            4.0 * l * l * b,
-                            13.0 * l * b,
-                            -3.0 * l * l * b,
-                        ],
-                        [54.0 * b, 13.0 * l * b, 156.0 * b, -22.0 * l * b],
-                        [
-                            -13.0 * l * b,
-                            -3.0 * l * l * b,
-                            -22.0 * l * b,
-                            4.0 * l * l * b,
-                        ],
-                    ],
-                )
+                Self::local([[2.0 * a, a], [a, 2.0 * a]], hermite::consistent_mass(m, l))
             }
             MassKind::Lumped => {
                 let r = m * l * l / 78.0;

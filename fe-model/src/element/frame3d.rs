@@ -16,7 +16,7 @@
 //! - lumped mass (HRZ): `ρA L/2` per translation, `ρIp L/2` per torsion, `ρA L³/78` per
 //!   bending rotation.
 
-use super::{Element, MassKind, transform};
+use super::{Element, MassKind, hermite, transform};
 use crate::FeError;
 use faer::Mat;
 use nalgebra::Vector3;
@@ -154,26 +154,6 @@ impl Frame3d {
         }
     }
 
-    fn bend_stiffness(ei: f64, l: f64, phi: f64) -> [[f64; 4]; 4] {
-        let a = ei / ((1.0 + phi) * l * l * l);
-        [
-            [12.0 * a, 6.0 * l * a, -12.0 * a, 6.0 * l * a],
-            [
-                6.0 * l * a,
-                (4.0 + phi) * l * l * a,
-                -6.0 * l * a,
-                (2.0 - phi) * l * l * a,
-            ],
-            [-12.0 * a, -6.0 * l * a, 12.0 * a, -6.0 * l * a],
-            [
-                6.0 * l * a,
-                (2.0 - phi) * l * l * a,
-                -6.0 * l * a,
-                (4.0 + phi) * l * l * a,
-            ],
-        ]
-    }
-
     /// Local stiffness (element axes).
     pub fn local_stiffness(&self) -> Mat<f64> {
         let s = &self.section;
@@ -183,21 +163,25 @@ impl Frame3d {
         Self::put2(&mut k, 3, 9, s.gj / l);
         let phi_y = s.shear_y.map_or(0.0, |g| 12.0 * s.ei_z / (g * l * l));
         let phi_z = s.shear_z.map_or(0.0, |g| 12.0 * s.ei_y / (g * l * l));
-        Self::put_bend(&mut k, XY, [1.0; 4], Self::bend_stiffness(s.ei_z, l, phi_y));
-        Self::put_bend(&mut k, XZ, XZ_SIGN, Self::bend_stiffness(s.ei_y, l, phi_z));
+        Self::put_bend(
+            &mut k,
+            XY,
+            [1.0; 4],
+            hermite::bending_stiffness(s.ei_z, l, phi_y),
+        );
+        Self::put_bend(
+            &mut k,
+            XZ,
+            XZ_SIGN,
+            hermite::bending_stiffness(s.ei_y, l, phi_z),
+        );
         k
     }
 
     /// Local geometric stiffness (element axes).
     pub fn local_geometric_stiffness(&self) -> Mat<f64> {
         let l = self.length;
-        let g = self.axial_force / (30.0 * l);
-        let b = [
-            [36.0 * g, 3.0 * l * g, -36.0 * g, 3.0 * l * g],
-            [3.0 * l * g, 4.0 * l * l * g, -3.0 * l * g, -l * l * g],
-            [-36.0 * g, -3.0 * l * g, 36.0 * g, -3.0 * l * g],
-            [3.0 * l * g, -l * l * g, -3.0 * l * g, 4.0 * l * l * g],
-        ];
+        let b = hermite::geometric_stiffness(self.axial_force, l);
         let mut k = Mat::zeros(12, 12);
         Self::put_bend(&mut k, XY, [1.0; 4], b);
         Self::put_bend(&mut k, XZ, XZ_SIGN, b);
@@ -219,23 +203,7 @@ impl Frame3d {
                     k[(i, j)] += t / 6.0;
                     k[(j, i)] += t / 6.0;
                 }
-                let b = m / 420.0;
-                let mb = [
-                    [156.0 * b, 22.0 * l * b, 54.0 * b, -13.0 * l * b],
-                    [
-                        22.0 * l * b,
-                        4.0 * l * l * b,
-                        13.0 * l * b,
-                        -3.0 * l * l * b,
-                    ],
-                    [54.0 * b, 13.0 * l * b, 156.0 * b, -22.0 * l * b],
-                    [
-                        -13.0 * l * b,
-                        -3.0 * l * l * b,
-                        -22.0 * l * b,
-                        4.0 * l * l * b,
-                    ],
-                ];
+                let mb = hermite::consistent_mass(m, l);
                 Self::put_bend(&mut k, XY, [1.0; 4], mb);
                 Self::put_bend(&mut k, XZ, XZ_SIGN, mb);
             }

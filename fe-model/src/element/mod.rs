@@ -10,6 +10,7 @@ pub mod bar;
 pub mod fibre;
 pub mod frame2d;
 pub mod frame3d;
+mod hermite;
 pub mod hex8;
 pub mod point;
 pub mod string;
