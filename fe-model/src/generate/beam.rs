@@ -25,22 +25,7 @@ pub fn straight_beam_2d(
     }
     let mut model_elements = Vec::with_capacity(n_elements);
     for e in 0..n_elements {
-        let (a, b) = (e, e + 1);
-        mesh.cells.push(Cell {
-            kind: CellKind::Line,
-            nodes: vec![a, b],
-        });
-        let dofs = [
-            mesh.dof(a, 0),
-            mesh.dof(a, 1),
-            mesh.dof(a, 2),
-            mesh.dof(b, 0),
-            mesh.dof(b, 1),
-            mesh.dof(b, 2),
-        ];
-        let xa = [mesh.nodes[a][0], mesh.nodes[a][1]];
-        let xb = [mesh.nodes[b][0], mesh.nodes[b][1]];
-        model_elements.push(Frame2d::new(dofs, xa, xb, section, axial_force)?);
+        model_elements.push(frame2d_line(&mut mesh, e, e + 1, section, axial_force)?);
     }
     mesh.set_node_set("start", vec![0])?;
     mesh.set_node_set("end", vec![n_elements])?;
@@ -50,6 +35,34 @@ pub fn straight_beam_2d(
         model.push(e);
     }
     Ok(model)
+}
+
+/// Add a line cell from node `a` to node `b` of `mesh` (3 DOFs per node: u, v, θ) and return
+/// the planar frame element on it, global DOFs `(u_a, v_a, θ_a, u_b, v_b, θ_b)` and axial force
+/// `axial_force` \[N\] (tension > 0) for the geometric stiffness. Shared by the frame meshes
+/// of this module and of [`super::belt`].
+pub(crate) fn frame2d_line(
+    mesh: &mut Mesh,
+    a: usize,
+    b: usize,
+    section: Frame2dSection,
+    axial_force: f64,
+) -> Result<Frame2d, FeError> {
+    mesh.cells.push(Cell {
+        kind: CellKind::Line,
+        nodes: vec![a, b],
+    });
+    let dofs = [
+        mesh.dof(a, 0),
+        mesh.dof(a, 1),
+        mesh.dof(a, 2),
+        mesh.dof(b, 0),
+        mesh.dof(b, 1),
+        mesh.dof(b, 2),
+    ];
+    let xa = [mesh.nodes[a][0], mesh.nodes[a][1]];
+    let xb = [mesh.nodes[b][0], mesh.nodes[b][1]];
+    Frame2d::new(dofs, xa, xb, section, axial_force)
 }
 
 /// Straight taut string (Ribaric 4.1) from x = 0 to `length` \[m\], one transverse DOF per node,

@@ -7,9 +7,10 @@
 //! the last element connects back to node 0. Every element carries the axial force `tension`
 //! for its geometric stiffness. DOFs per node: (u, v, θ).
 
+use super::beam::frame2d_line;
 use crate::FeError;
-use crate::element::{Frame2d, Frame2dSection};
-use crate::mesh::{Cell, CellKind, Mesh};
+use crate::element::Frame2dSection;
+use crate::mesh::Mesh;
 use crate::model::FeModel;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -112,22 +113,13 @@ pub fn belt_loop(cfg: &BeltLoopConfig) -> Result<FeModel, FeError> {
     }
     let mut els = Vec::with_capacity(nn);
     for a in 0..nn {
-        let b = (a + 1) % nn;
-        mesh.cells.push(Cell {
-            kind: CellKind::Line,
-            nodes: vec![a, b],
-        });
-        let dofs = [
-            mesh.dof(a, 0),
-            mesh.dof(a, 1),
-            mesh.dof(a, 2),
-            mesh.dof(b, 0),
-            mesh.dof(b, 1),
-            mesh.dof(b, 2),
-        ];
-        let xa = [mesh.nodes[a][0], mesh.nodes[a][1]];
-        let xb = [mesh.nodes[b][0], mesh.nodes[b][1]];
-        els.push(Frame2d::new(dofs, xa, xb, cfg.section, cfg.tension)?);
+        els.push(frame2d_line(
+            &mut mesh,
+            a,
+            (a + 1) % nn,
+            cfg.section,
+            cfg.tension,
+        )?);
     }
     mesh.set_node_set("upper_span", upper)?;
     mesh.set_node_set("lower_span", lower)?;
