@@ -49,6 +49,57 @@ pub struct StaticSolution {
     pub residual: f64,
 }
 
+/// Check that the start coordinates `q0` and the load `load` both have the `n` entries of the
+/// model; `context` names the solver in the error.
+pub(crate) fn check_sizes(
+    context: &str,
+    n: usize,
+    q0: &[f64],
+    load: &[f64],
+) -> Result<(), AncfError> {
+    if q0.len() != n || load.len() != n {
+        return Err(invalid(
+            context,
+            format!(
+                "q0 has {} and load {} entries, mesh has {n} coordinates",
+                q0.len(),
+                load.len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Eliminate the supported coordinates `fixed` from the `n` unknowns (Kerkkänen §2.4: the
+/// supports are prescribed coordinates, not equations): `map[k]` is the row of global
+/// coordinate `k` in the reduced system (`None` if fixed) and `free[i]` the global coordinate
+/// of reduced row `i`, in increasing order. An index `≥ n` in `fixed` is an error naming
+/// `context`.
+pub(crate) fn free_coordinates(
+    context: &str,
+    n: usize,
+    fixed: &[usize],
+) -> Result<(Vec<Option<usize>>, Vec<usize>), AncfError> {
+    let mut map: Vec<Option<usize>> = vec![Some(0); n];
+    for &k in fixed {
+        if k >= n {
+            return Err(invalid(
+                format!("{context}: fixed"),
+                format!("coordinate {k} out of range 0..{n}"),
+            ));
+        }
+        map[k] = None;
+    }
+    let mut free = Vec::new();
+    for (k, m) in map.iter_mut().enumerate() {
+        if m.is_some() {
+            *m = Some(free.len());
+            free.push(k);
+        }
+    }
+    Ok((map, free))
+}
+
 /// Solve `Q_e(q) + λ F = 0` for `λ = 1/n, 2/n, …, 1` starting from `q0`, keeping the global
 /// coordinates listed in `fixed` at their `q0` values (supports eliminated from the unknowns).
 pub fn solve_static<E: Element>(
@@ -73,38 +124,12 @@ pub fn solve_static_with<E: Element>(
     opts: &StaticOptions,
 ) -> Result<StaticSolution, AncfError> {
     let n = mesh.n_dof();
-    if q0.len() != n || load.len() != n {
-        return Err(invalid(
-            "static solve",
-            format!(
-                "q0 has {} and load {} entries, mesh has {n} coordinates",
-                q0.len(),
-                load.len()
-            ),
-        ));
-    }
+    check_sizes("static solve", n, q0, load)?;
     if opts.increments == 0 {
         return Err(invalid("static solve: increments", "must be ≥ 1"));
     }
-    let mut map: Vec<Option<usize>> = vec![Some(0); n];
-    for &k in fixed {
-        if k >= n {
-            return Err(invalid(
-                "static solve: fixed",
-                format!("coordinate {k} out of range 0..{n}"),
-            ));
-        }
-        map[k] = None;
-    }
-    let mut nf = 0;
-    let mut free = Vec::new();
-    for (k, m) in map.iter_mut().enumerate() {
-        if m.is_some() {
-            *m = Some(nf);
-            free.push(k);
-            nf += 1;
-        }
-    }
+    let (map, free) = free_coordinates("static solve", n, fixed)?;
+    let nf = free.len();
     let dofs: Vec<Vec<Option<usize>>> = (0..mesh.elements().len())
         .map(|el| {
             (0..mesh.elements()[el].ndof())

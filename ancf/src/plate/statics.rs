@@ -4,7 +4,7 @@
 
 use super::mesh::PlateMesh;
 use crate::error::{AncfError, invalid};
-use crate::statics::{StaticOptions, StaticSolution};
+use crate::statics::{StaticOptions, StaticSolution, check_sizes};
 use faer::Mat;
 use faer::prelude::Solve;
 
@@ -18,16 +18,7 @@ pub fn solve_plate_static(
     opts: &StaticOptions,
 ) -> Result<StaticSolution, AncfError> {
     let n_all = mesh.n_coords();
-    if load.len() != n_all || q0.len() != n_all {
-        return Err(invalid(
-            "plate statics: load / q0",
-            format!(
-                "expected {n_all} values each, got {} and {}",
-                load.len(),
-                q0.len()
-            ),
-        ));
-    }
+    check_sizes("plate statics", n_all, q0, load)?;
     if opts.increments == 0 || opts.max_iterations == 0 {
         return Err(invalid(
             "plate statics: options",

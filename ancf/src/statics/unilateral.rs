@@ -15,7 +15,7 @@
 //! contact force \[N\]. After convergence, contacts with `λ_i < 0` are released and the deepest
 //! penetrating inactive node is activated; the increment is repeated until the set is stable.
 
-use super::StaticOptions;
+use super::{StaticOptions, check_sizes, free_coordinates};
 use crate::element::Element;
 use crate::error::{AncfError, invalid};
 use crate::mesh::Mesh;
@@ -85,39 +85,14 @@ pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
     opts: &UnilateralOptions,
 ) -> Result<UnilateralSolution, AncfError> {
     let n = mesh.n_dof();
-    if q0.len() != n || load.len() != n {
-        return Err(invalid(
-            "unilateral static solve",
-            format!(
-                "q0 has {} and load {} entries, mesh has {n} coordinates",
-                q0.len(),
-                load.len()
-            ),
-        ));
-    }
+    check_sizes("unilateral static solve", n, q0, load)?;
     if opts.newton.increments == 0 {
         return Err(invalid(
             "unilateral static solve: increments",
             "must be ≥ 1",
         ));
     }
-    let mut map: Vec<Option<usize>> = vec![Some(0); n];
-    for &k in fixed {
-        if k >= n {
-            return Err(invalid(
-                "unilateral static solve: fixed",
-                format!("coordinate {k} out of range 0..{n}"),
-            ));
-        }
-        map[k] = None;
-    }
-    let mut free = Vec::new();
-    for (k, m) in map.iter_mut().enumerate() {
-        if m.is_some() {
-            *m = Some(free.len());
-            free.push(k);
-        }
-    }
+    let (map, free) = free_coordinates("unilateral static solve", n, fixed)?;
     let nf = free.len();
     for (c, &node) in nodes.iter().enumerate() {
         if node >= mesh.n_nodes() {
