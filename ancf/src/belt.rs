@@ -3,7 +3,7 @@
 //! mesh with a shared first node.
 
 use crate::element::{BeltElement, Element, NodeLayout};
-use crate::error::{AncfError, invalid};
+use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::section::Section;
@@ -47,12 +47,7 @@ pub fn belt_loop(
             format!("a closed loop needs ≥ 3, got {n}"),
         ));
     }
-    if !(length.is_finite() && length > 0.0) {
-        return Err(invalid(
-            "belt: length",
-            format!("must be > 0 m, got {length}"),
-        ));
-    }
+    check_positive("belt: length", length, " m")?;
     let le = length / n as f64;
     let els = (0..n)
         .map(|_| BeltElement::new(le, material, section, alpha1, alpha2, gauss_x))

@@ -61,3 +61,18 @@ pub(crate) fn invalid(item: impl Into<String>, reason: impl Into<String>) -> Anc
         reason: reason.into(),
     }
 }
+
+/// Reject a parameter that is not finite and strictly positive: the error names `item` and
+/// says `must be > 0{unit}, got {value}`, where `unit` is the SI unit with its leading space
+/// (`" m"`) or `""` for a dimensionless value.
+pub(crate) fn check_positive(
+    item: impl Into<String>,
+    value: f64,
+    unit: &str,
+) -> Result<(), AncfError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(item, format!("must be > 0{unit}, got {value}")))
+    }
+}

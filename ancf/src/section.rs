@@ -1,7 +1,7 @@
 //! Beam cross-sections described by their even area moments, and the exact three-point rule
 //! over the section height that they define.
 
-use crate::error::{AncfError, invalid};
+use crate::error::{AncfError, check_positive};
 use serde::{Deserialize, Serialize};
 
 /// A doubly symmetric cross-section, described by the moments that enter the ANCF energies
@@ -23,18 +23,8 @@ impl Section {
     /// Rectangle of width `w` (out of plane) and height `h` (in plane, along `y`) \[m\]:
     /// `A = wh`, `I₂ = wh³/12`, `I₄ = wh⁵/80`.
     pub fn rectangle(width: f64, height: f64) -> Result<Self, AncfError> {
-        if !(width.is_finite() && width > 0.0) {
-            return Err(invalid(
-                "section: width",
-                format!("must be > 0 m, got {width}"),
-            ));
-        }
-        if !(height.is_finite() && height > 0.0) {
-            return Err(invalid(
-                "section: height",
-                format!("must be > 0 m, got {height}"),
-            ));
-        }
+        check_positive("section: width", width, " m")?;
+        check_positive("section: height", height, " m")?;
         Ok(Self {
             area: width * height,
             i2: width * height.powi(3) / 12.0,

@@ -3,7 +3,7 @@
 
 use super::{Element, NodeLayout};
 use crate::autodiff::{Dual, Hyper, Real};
-use crate::error::{AncfError, invalid};
+use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
 use crate::section::Section;
 use crate::shape::{self, CUBIC_BLOCKS};
@@ -61,24 +61,9 @@ impl BeltElement {
         alpha2: f64,
         gauss_x: usize,
     ) -> Result<Self, AncfError> {
-        if !(length.is_finite() && length > 0.0) {
-            return Err(invalid(
-                "belt element: length",
-                format!("must be > 0 m, got {length}"),
-            ));
-        }
-        if !(alpha1.is_finite() && alpha1 > 0.0) {
-            return Err(invalid(
-                "belt element: alpha1",
-                format!("must be > 0, got {alpha1}"),
-            ));
-        }
-        if !(alpha2.is_finite() && alpha2 > 0.0) {
-            return Err(invalid(
-                "belt element: alpha2",
-                format!("must be > 0, got {alpha2}"),
-            ));
-        }
+        check_positive("belt element: length", length, " m")?;
+        check_positive("belt element: alpha1", alpha1, "")?;
+        check_positive("belt element: alpha2", alpha2, "")?;
         if gauss_x == 0 {
             return Err(invalid("belt element: gauss_x", "needs at least one point"));
         }

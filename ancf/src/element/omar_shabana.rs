@@ -2,7 +2,7 @@
 
 use super::kernel::{QuadraticStrainKernel, StrainPoint};
 use super::{Element, NodeLayout};
-use crate::error::{AncfError, invalid};
+use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
 use crate::section::Section;
 use crate::shape::{self, CUBIC_BLOCKS};
@@ -29,12 +29,7 @@ impl OmarShabanaBeam {
         section: Section,
         gauss_x: usize,
     ) -> Result<Self, AncfError> {
-        if !(length.is_finite() && length > 0.0) {
-            return Err(invalid(
-                "Omar-Shabana element: length",
-                format!("must be > 0 m, got {length}"),
-            ));
-        }
+        check_positive("Omar-Shabana element: length", length, " m")?;
         if gauss_x == 0 {
             return Err(invalid(
                 "Omar-Shabana element: gauss_x",

@@ -2,7 +2,7 @@
 
 use super::kernel::{QuadraticStrainKernel, StrainPoint};
 use super::{Element, NodeLayout};
-use crate::error::{AncfError, invalid};
+use crate::error::{AncfError, check_positive};
 use crate::material::Material;
 use crate::section::Section;
 use crate::shape::{self, LINEAR_BLOCKS};
@@ -22,12 +22,7 @@ pub struct ProposedBeam {
 impl ProposedBeam {
     /// Element of reference length `length` \[m\].
     pub fn new(length: f64, material: Material, section: Section) -> Result<Self, AncfError> {
-        if !(length.is_finite() && length > 0.0) {
-            return Err(invalid(
-                "proposed element: length",
-                format!("must be > 0 m, got {length}"),
-            ));
-        }
+        check_positive("proposed element: length", length, " m")?;
         material.validate()?;
         let x = 0.5 * length;
         let points = section
