@@ -333,12 +333,7 @@ pub fn parse(text: &str, file: &str) -> Result<MtxMatrix, FeError> {
 
 /// Read a Matrix Market file.
 pub fn read(path: impl AsRef<Path>) -> Result<MtxMatrix, FeError> {
-    let path = path.as_ref();
-    let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| FeError::Io {
-        file: name.clone(),
-        source,
-    })?;
+    let (name, text) = super::read_text(path.as_ref())?;
     parse(&text, &name)
 }
 
