@@ -69,14 +69,7 @@ fn dense_modes_all(k: MatRef<'_, f64>, m: MatRef<'_, f64>, count: usize) -> Resu
             detail: format!(" ({e:?})"),
         })?;
     let l = llt.L();
-    let mut c = Mat::from_fn(n, n, |i, j| 0.5 * (k[(i, j)] + k[(j, i)]));
-    solve_lower_triangular_in_place(l, c.as_mut(), Par::Seq);
-    let mut ct = c.transpose().to_owned();
-    solve_lower_triangular_in_place(l, ct.as_mut(), Par::Seq);
-    let c = Mat::from_fn(n, n, |i, j| 0.5 * (ct[(i, j)] + ct[(j, i)]));
-    let evd = c
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| FeError::Eigen(format!("dense_modes: EVD failed ({e:?})")))?;
+    let evd = congruence_eigen(l, Mat::from_fn(n, n, |i, j| 0.5 * (k[(i, j)] + k[(j, i)])))?;
     let (s, u) = (evd.S(), evd.U());
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| s[a].total_cmp(&s[b]));
@@ -168,14 +161,7 @@ pub fn dense_modes_shifted(
     };
     let l = llt.L();
     // C = L⁻¹ M L⁻ᵀ
-    let mut c = ms.clone();
-    solve_lower_triangular_in_place(l, c.as_mut(), Par::Seq);
-    let mut ct = c.transpose().to_owned();
-    solve_lower_triangular_in_place(l, ct.as_mut(), Par::Seq);
-    let c = Mat::from_fn(n, n, |i, j| 0.5 * (ct[(i, j)] + ct[(j, i)]));
-    let evd = c
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| FeError::Eigen(format!("dense_modes: EVD failed ({e:?})")))?;
+    let evd = congruence_eigen(l, ms.clone())?;
     let s = evd.S();
     let u = evd.U();
     // largest θ first = lowest λ
@@ -192,4 +178,21 @@ pub fn dense_modes_shifted(
         }
     }
     Ok(Modes::from_parts(values, phi))
+}
+
+/// Eigen decomposition of the congruence `C = L⁻¹ A L⁻ᵀ` for a lower-triangular `L` and a
+/// symmetric `A` (consumed as workspace): two triangular solves, `C` symmetrised as
+/// `½(C + Cᵀ)` against round-off, then the faer self-adjoint EVD `C y = θ y` (Bathe, *Finite
+/// Element Procedures*, §10.2.5). Shared by the shift-invert and the textbook transform.
+fn congruence_eigen(
+    l: MatRef<'_, f64>,
+    mut a: Mat<f64>,
+) -> Result<faer::linalg::solvers::SelfAdjointEigen<f64>, FeError> {
+    let n = a.nrows();
+    solve_lower_triangular_in_place(l, a.as_mut(), Par::Seq);
+    let mut ct = a.transpose().to_owned();
+    solve_lower_triangular_in_place(l, ct.as_mut(), Par::Seq);
+    let c = Mat::from_fn(n, n, |i, j| 0.5 * (ct[(i, j)] + ct[(j, i)]));
+    c.self_adjoint_eigen(Side::Lower)
+        .map_err(|e| FeError::Eigen(format!("dense_modes: EVD failed ({e:?})")))
 }
