@@ -8,6 +8,7 @@
 //! (node, DOF) order — the [`AbaqusDofMap`] — and assembles every file with that common map,
 //! mirroring one-triangle storage into a full symmetric matrix.
 
+use super::{check_mirror, err};
 use crate::FeError;
 use crate::error::MatrixFileError as E;
 use faer::sparse::{SparseColMat, Triplet};
@@ -45,14 +46,6 @@ impl AbaqusDofMap {
     /// Whether the map is empty.
     pub fn is_empty(&self) -> bool {
         self.dofs.is_empty()
-    }
-}
-
-fn err(file: &str, line: usize, kind: E) -> FeError {
-    FeError::Matrix {
-        file: file.to_string(),
-        line,
-        kind,
     }
 }
 
@@ -137,19 +130,7 @@ pub fn assemble(
             let key = if upper { (c, r) } else { (r, c) };
             match tri.get_mut(&key) {
                 Some((old, _, side)) if *side != upper && r != c => {
-                    let tol = 1e-12 * old.abs().max(v.abs());
-                    if (*old - v).abs() > tol {
-                        return Err(err(
-                            &f.file,
-                            ln,
-                            E::NotSymmetric {
-                                row: r + 1,
-                                col: c + 1,
-                                value: v,
-                                mirror: *old,
-                            },
-                        ));
-                    }
+                    check_mirror(&f.file, ln, (r, c), v, *old)?;
                 }
                 Some((old, _, _)) => *old += v,
                 None => {

@@ -16,3 +16,38 @@ pub(crate) fn read_text(path: &std::path::Path) -> Result<(String, String), crat
     })?;
     Ok((name, text))
 }
+
+/// A matrix-file error at `line` of `file`.
+pub(crate) fn err(file: &str, line: usize, kind: crate::error::MatrixFileError) -> crate::FeError {
+    crate::FeError::Matrix {
+        file: file.to_string(),
+        line,
+        kind,
+    }
+}
+
+/// Check that an entry `value` given in both triangles agrees with its mirror `mirror` to the
+/// relative tolerance `10⁻¹²·max(|value|, |mirror|)` (symmetric storage, `A_rc = A_cr`);
+/// `row`, `col` are 0-based and reported 1-based.
+pub(crate) fn check_mirror(
+    file: &str,
+    line: usize,
+    (row, col): (usize, usize),
+    value: f64,
+    mirror: f64,
+) -> Result<(), crate::FeError> {
+    let tol = 1e-12 * mirror.abs().max(value.abs());
+    if (mirror - value).abs() > tol {
+        return Err(err(
+            file,
+            line,
+            crate::error::MatrixFileError::NotSymmetric {
+                row: row + 1,
+                col: col + 1,
+                value,
+                mirror,
+            },
+        ));
+    }
+    Ok(())
+}

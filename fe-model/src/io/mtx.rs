@@ -6,6 +6,7 @@
 //! carry the 1-based line number ([`FeError::Matrix`]). Values are written in Rust's shortest
 //! round-trip representation, so write → read reproduces every f64 bit for bit.
 
+use super::{check_mirror, err};
 use crate::FeError;
 use crate::error::MatrixFileError as E;
 use crate::sparse::triplets;
@@ -67,14 +68,6 @@ impl MtxMatrix {
             m[(r, c)] += v;
         }
         m
-    }
-}
-
-fn err(file: &str, line: usize, kind: E) -> FeError {
-    FeError::Matrix {
-        file: file.to_string(),
-        line,
-        kind,
     }
 }
 
@@ -235,19 +228,7 @@ pub fn parse(text: &str, file: &str) -> Result<MtxMatrix, FeError> {
                         match seen.get_mut(&key) {
                             Some((old, old_upper)) if *old_upper != upper => {
                                 // both triangles given: they must agree
-                                let tol = 1e-12 * old.abs().max(v.abs());
-                                if (*old - v).abs() > tol {
-                                    return Err(err(
-                                        file,
-                                        ln,
-                                        E::NotSymmetric {
-                                            row: r + 1,
-                                            col: c + 1,
-                                            value: v,
-                                            mirror: *old,
-                                        },
-                                    ));
-                                }
+                                check_mirror(file, ln, (r, c), v, *old)?;
                             }
                             Some((old, _)) => *old += v, // duplicate on the same side: summed
                             None => {
