@@ -58,6 +58,33 @@ impl Default for SlabSimParams {
     }
 }
 
+/// The floating-frame system of the slab shared by simulations 1–3: the slab as one
+/// flexible body `"slab"` with the basis of `method` (`n_modes` fixed-interface modes where the
+/// method keeps modes) and nodal-fixed axes (Lin (7.7)), under gravity `−g z`
+/// (`g` = [`G`] \[m/s²\]). Returns the system, the body's index and the number of modal
+/// coordinates; `err` names the system in mbd-core errors.
+pub(super) fn slab_system(
+    slab: &LinSlab,
+    method: SlabMethod,
+    n_modes: usize,
+    err: impl Fn(mbd_core::MbdError) -> ReductionError,
+) -> Result<(FloatingSystem, usize, usize)> {
+    let basis = slab_basis(slab, method, n_modes)?;
+    let body = FlexBody::new(
+        "slab",
+        &slab.s,
+        slab.m.as_ref(),
+        slab.k.as_ref(),
+        basis.psi.as_ref(),
+        AxisCondition::NodalFixed,
+    )
+    .map_err(err)?;
+    let mut sys = FloatingSystem::new();
+    sys.gravity = Vector3::new(0.0, 0.0, -G);
+    let fb = sys.add_flex(body);
+    Ok((sys, fb, basis.psi.ncols()))
+}
+
 /// Builds the floating-frame system and its initial state for `method` and `sim`.
 pub fn build(
     slab: &LinSlab,
@@ -69,23 +96,11 @@ pub fn build(
         let table = std::sync::Arc::new(record_source(slab, p)?.table);
         return emulation_system(slab, method, &table, p);
     }
-    let basis = slab_basis(slab, method, p.n_modes)?;
     let mbd = |e: mbd_core::MbdError| ReductionError::Numerical {
         what: format!("slab system ({})", method.label()),
         detail: e.to_string(),
     };
-    let body = FlexBody::new(
-        "slab",
-        &slab.s,
-        slab.m.as_ref(),
-        slab.k.as_ref(),
-        basis.psi.as_ref(),
-        AxisCondition::NodalFixed,
-    )
-    .map_err(mbd)?;
-    let mut sys = FloatingSystem::new();
-    sys.gravity = Vector3::new(0.0, 0.0, -G);
-    let fb = sys.add_flex(body);
+    let (mut sys, fb, nz) = slab_system(slab, method, p.n_modes, mbd)?;
     let node = |j: usize| Point::FlexNode {
         body: fb,
         node: j - 1,
@@ -156,7 +171,6 @@ pub fn build(
         }
         SlabSimulation::Emulated => unreachable!("handled above"),
     }
-    let nz = basis.psi.ncols();
     let st = sys
         .state(
             0.0,

@@ -37,12 +37,11 @@
 //! Forces at driven nodes change only the multipliers of the emulation (companion §7.2.4 \[D\]);
 //! they are applied anyway, as Lin does.
 
-use super::slab::{G, LinSlab, SlabMethod, node_position, slab_basis};
-use super::slab_sim::SlabSimParams;
+use super::slab::{LinSlab, SlabMethod, node_position};
+use super::slab_sim::{SlabSimParams, slab_system};
 use crate::error::{ReductionError, Result};
 use mbd_core::floating::{
-    AxisCondition, FlexBody, FlexState, FloatingSystem, NodeLoad, Point, PrescribedMotion,
-    SphericalJoint,
+    FlexState, FloatingSystem, NodeLoad, Point, PrescribedMotion, SphericalJoint,
 };
 use mbd_core::integrators::{Rk4, Stabilization, State, accelerations};
 use mbd_core::kinematics::euler::{a_matrix, from_axis_angle};
@@ -309,19 +308,9 @@ fn add_forces(sys: &mut FloatingSystem, fb: usize, p: &Sim3Params) -> Result<()>
 pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSystem, State)> {
     check(p)?;
     let s3 = &p.sim3;
-    let basis = slab_basis(slab, SlabMethod::NoReduction, p.n_modes)?;
     let err = mbd_err("simulation-3 source system");
-    let body = FlexBody::new(
-        "slab",
-        &slab.s,
-        slab.m.as_ref(),
-        slab.k.as_ref(),
-        basis.psi.as_ref(),
-        AxisCondition::NodalFixed,
-    )
-    .map_err(&err)?;
-    let mut sys = FloatingSystem::new();
-    sys.gravity = Vector3::new(0.0, 0.0, -G);
+    // the rigid links are added below; rigid and flexible bodies are numbered separately
+    let (mut sys, fb, nz) = slab_system(slab, SlabMethod::NoReduction, p.n_modes, &err)?;
     let (r0, e0) = initial_frame(s3);
     let a0 = a_matrix(&e0);
     let mut rigid = Vec::new();
@@ -339,7 +328,6 @@ pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSyste
         rigid.push(BodyState::at_rest(centre, Vector4::new(1.0, 0.0, 0.0, 0.0)));
         links.push((k, j, len, attach));
     }
-    let fb = sys.add_flex(body);
     for (k, j, len, attach) in links {
         let half = Vector3::new(dir * len / 2.0, 0.0, 0.0);
         sys.add_joint(SphericalJoint {
@@ -365,7 +353,6 @@ pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSyste
         .map_err(&err)?;
     }
     add_forces(&mut sys, fb, s3)?;
-    let nz = basis.psi.ncols();
     let st = sys
         .state(
             0.0,
@@ -464,21 +451,9 @@ pub fn emulation_system(
             reason: format!("drives nodes {:?}, expected {DRIVEN_NODES:?}", table.nodes),
         });
     }
-    let basis = slab_basis(slab, method, p.n_modes)?;
     let what = format!("simulation-3 emulation ({})", method.label());
     let err = mbd_err(&what);
-    let body = FlexBody::new(
-        "slab",
-        &slab.s,
-        slab.m.as_ref(),
-        slab.k.as_ref(),
-        basis.psi.as_ref(),
-        AxisCondition::NodalFixed,
-    )
-    .map_err(&err)?;
-    let mut sys = FloatingSystem::new();
-    sys.gravity = Vector3::new(0.0, 0.0, -G);
-    let fb = sys.add_flex(body);
+    let (mut sys, fb, nz) = slab_system(slab, method, p.n_modes, &err)?;
     for (i, &j) in DRIVEN_NODES.iter().enumerate() {
         for c in 0..3 {
             let tab = Arc::clone(table);
@@ -499,7 +474,6 @@ pub fn emulation_system(
     }
     add_forces(&mut sys, fb, &p.sim3)?;
     let (r0, e0) = initial_frame(&p.sim3);
-    let nz = basis.psi.ncols();
     let st = sys
         .state(
             0.0,
