@@ -195,7 +195,7 @@ pub fn simulate(
     method: SlabMethod,
     sim: SlabSimulation,
     p: &SlabSimParams,
-    mut observer: impl FnMut(f64, [f64; 3]),
+    observer: impl FnMut(f64, [f64; 3]),
 ) -> Result<f64> {
     if sim == SlabSimulation::Emulated {
         // callers comparing several methods should record the tables once and call
@@ -204,26 +204,42 @@ pub fn simulate(
         return simulate_emulated(slab, method, &table, p, observer);
     }
     let (sys, st) = build(slab, method, sim, p)?;
+    let what = format!("slab simulation ({})", method.label());
+    run_observed(&sys, st, p.step_s, p.duration_s, observer, what)
+}
+
+/// Integrates the slab system `sys` from `st` to `duration` \[s\] with RK4 steps of `step`
+/// \[s\]; `observer(t, δ'_8)` receives the local deflection of node 8 \[m\] at the start and
+/// after every step. Returns the largest position-level constraint residual \[m\]; `what`
+/// names the simulation in errors. Shared by simulations 1–3.
+pub(super) fn run_observed(
+    sys: &FloatingSystem,
+    st: State,
+    step: f64,
+    duration: f64,
+    mut observer: impl FnMut(f64, [f64; 3]),
+    what: String,
+) -> Result<f64> {
     let mut drift = 0.0f64;
-    let mut phi = vec![0.0; mbd_core::SecondOrderSystem::n_c(&sys)];
-    let mut err = None;
-    Rk4::new(p.step_s)
-        .integrate(&sys, st, p.duration_s, |x| {
+    let mut phi = vec![0.0; mbd_core::SecondOrderSystem::n_c(sys)];
+    let mut failed = None;
+    Rk4::new(step)
+        .integrate(sys, st, duration, |x| {
             let d = sys.node_deflection(x, 0, 7);
             observer(x.t, [d.x, d.y, d.z]);
-            if mbd_core::SecondOrderSystem::constraint_residual(&sys, x.t, &x.q, &mut phi).is_ok() {
+            if mbd_core::SecondOrderSystem::constraint_residual(sys, x.t, &x.q, &mut phi).is_ok() {
                 drift = drift.max(phi.iter().fold(0.0, |a: f64, b| a.max(b.abs())));
             } else {
-                err = Some(x.t);
+                failed = Some(x.t);
             }
         })
         .map_err(|e| ReductionError::Numerical {
-            what: format!("slab simulation ({})", method.label()),
+            what: what.clone(),
             detail: e.to_string(),
         })?;
-    if let Some(t) = err {
+    if let Some(t) = failed {
         return Err(ReductionError::Numerical {
-            what: format!("slab simulation ({})", method.label()),
+            what,
             detail: format!("constraint evaluation failed at t = {t} s"),
         });
     }

@@ -38,7 +38,7 @@
 //! they are applied anyway, as Lin does.
 
 use super::slab::{LinSlab, SlabMethod, node_position};
-use super::slab_sim::{SlabSimParams, slab_system};
+use super::slab_sim::{SlabSimParams, run_observed, slab_system};
 use crate::error::{ReductionError, Result};
 use mbd_core::floating::{
     FlexState, FloatingSystem, NodeLoad, Point, PrescribedMotion, SphericalJoint,
@@ -231,6 +231,19 @@ pub struct SourceRun {
     pub max_drift_m: f64,
 }
 
+/// The undeformed slab at rest (`nz` modal coordinates) with its frame at `r0` \[m\] and
+/// Euler parameters `e0`: the initial state of the source and emulation systems.
+fn slab_at_rest(r0: Vector3<f64>, e0: Vector4<f64>, nz: usize) -> FlexState {
+    FlexState {
+        r: r0,
+        p: e0,
+        rdot: Vector3::zeros(),
+        omega_local: Vector3::zeros(),
+        z: vec![0.0; nz],
+        zdot: vec![0.0; nz],
+    }
+}
+
 /// Initial frame of the slab: origin (node 16) and Euler parameters, from the inclination
 /// about the x axis through nodes 18 and 30.
 fn initial_frame(p: &Sim3Params) -> (Vector3<f64>, Vector4<f64>) {
@@ -354,18 +367,7 @@ pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSyste
     }
     add_forces(&mut sys, fb, s3)?;
     let st = sys
-        .state(
-            0.0,
-            &rigid,
-            &[FlexState {
-                r: r0,
-                p: e0,
-                rdot: Vector3::zeros(),
-                omega_local: Vector3::zeros(),
-                z: vec![0.0; nz],
-                zdot: vec![0.0; nz],
-            }],
-        )
+        .state(0.0, &rigid, &[slab_at_rest(r0, e0, nz)])
         .map_err(&err)?;
     Ok((sys, st))
 }
@@ -475,18 +477,7 @@ pub fn emulation_system(
     add_forces(&mut sys, fb, &p.sim3)?;
     let (r0, e0) = initial_frame(&p.sim3);
     let st = sys
-        .state(
-            0.0,
-            &[],
-            &[FlexState {
-                r: r0,
-                p: e0,
-                rdot: Vector3::zeros(),
-                omega_local: Vector3::zeros(),
-                z: vec![0.0; nz],
-                zdot: vec![0.0; nz],
-            }],
-        )
+        .state(0.0, &[], &[slab_at_rest(r0, e0, nz)])
         .map_err(&err)?;
     Ok((sys, st))
 }
@@ -499,32 +490,12 @@ pub fn simulate_emulated(
     method: SlabMethod,
     table: &Arc<AccelTable>,
     p: &SlabSimParams,
-    mut observer: impl FnMut(f64, [f64; 3]),
+    observer: impl FnMut(f64, [f64; 3]),
 ) -> Result<f64> {
     let (sys, st) = emulation_system(slab, method, table, p)?;
     let what = format!("simulation-3 emulation ({})", method.label());
-    let mut drift = 0.0f64;
-    let mut phi = vec![0.0; mbd_core::SecondOrderSystem::n_c(&sys)];
-    let mut failed = None;
     // the step divides the table interval so that the kinks of the interpolant fall on steps
     let interval = p.sim3.table_interval_s;
     let per = (interval / p.step_s - 1e-9).ceil().max(1.0);
-    Rk4::new(interval / per)
-        .integrate(&sys, st, p.duration_s, |x| {
-            let d = sys.node_deflection(x, 0, 7);
-            observer(x.t, [d.x, d.y, d.z]);
-            if mbd_core::SecondOrderSystem::constraint_residual(&sys, x.t, &x.q, &mut phi).is_ok() {
-                drift = drift.max(phi.iter().fold(0.0, |a: f64, b| a.max(b.abs())));
-            } else {
-                failed = Some(x.t);
-            }
-        })
-        .map_err(mbd_err(&what))?;
-    if let Some(t) = failed {
-        return Err(ReductionError::Numerical {
-            what,
-            detail: format!("constraint evaluation failed at t = {t} s"),
-        });
-    }
-    Ok(drift)
+    run_observed(&sys, st, interval / per, p.duration_s, observer, what)
 }
