@@ -99,7 +99,14 @@ impl<'a> CompositeSystem<'a> {
         &v[self.v_off[k]..self.v_off[k] + self.parts[k].n_v()]
     }
 
-    fn couplings_eval(&self, t: f64, q: &[f64], v: Option<&[f64]>) -> Vec<CouplingEval> {
+    /// The couplings evaluated at `(t, q, v)` (`v = 0` when `None`), checked by
+    /// [`Self::check_eval`].
+    fn couplings_eval(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: Option<&[f64]>,
+    ) -> Result<Vec<CouplingEval>, MbdError> {
         let zero;
         let v = match v {
             Some(v) => v,
@@ -108,7 +115,8 @@ impl<'a> CompositeSystem<'a> {
                 &zero
             }
         };
-        self.couplings
+        let evals = self
+            .couplings
             .iter()
             .map(|c| {
                 let mut e = CouplingEval {
@@ -120,7 +128,28 @@ impl<'a> CompositeSystem<'a> {
                 c.eval(t, q, v, &mut e);
                 e
             })
-            .collect()
+            .collect::<Vec<_>>();
+        self.check_eval(t, &evals)?;
+        Ok(evals)
+    }
+
+    /// Write the couplings' rows of one constraint vector (`Φ`, `ν` or `γ`, picked by `field`)
+    /// into `out` below the parts' rows.
+    fn put_couplings(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: Option<&[f64]>,
+        out: &mut [f64],
+        field: fn(&CouplingEval) -> &[f64],
+    ) -> Result<(), MbdError> {
+        let mut r = self.n_c_parts;
+        for e in self.couplings_eval(t, q, v)? {
+            let x = field(&e);
+            out[r..r + x.len()].copy_from_slice(x);
+            r += x.len();
+        }
+        Ok(())
     }
 
     fn check_eval(&self, t: f64, evals: &[CouplingEval]) -> Result<(), MbdError> {
@@ -305,14 +334,7 @@ impl SecondOrderSystem for CompositeSystem<'_> {
             let o = self.c_off[k];
             p.constraint_residual(t, self.qs(k, q), &mut phi[o..o + p.n_c()])?;
         }
-        let ev = self.couplings_eval(t, q, None);
-        self.check_eval(t, &ev)?;
-        let mut r = self.n_c_parts;
-        for e in ev {
-            phi[r..r + e.phi.len()].copy_from_slice(&e.phi);
-            r += e.phi.len();
-        }
-        Ok(())
+        self.put_couplings(t, q, None, phi, |e| &e.phi)
     }
 
     fn constraint_jacobian(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
@@ -326,8 +348,7 @@ impl SecondOrderSystem for CompositeSystem<'_> {
                 ));
             }
         }
-        let ev = self.couplings_eval(t, q, None);
-        self.check_eval(t, &ev)?;
+        let ev = self.couplings_eval(t, q, None)?;
         let mut extra = Vec::new();
         let mut r = self.n_c_parts;
         for e in ev {
@@ -344,14 +365,7 @@ impl SecondOrderSystem for CompositeSystem<'_> {
             let o = self.c_off[k];
             p.constraint_velocity_rhs(t, self.qs(k, q), &mut nu[o..o + p.n_c()])?;
         }
-        let ev = self.couplings_eval(t, q, None);
-        self.check_eval(t, &ev)?;
-        let mut r = self.n_c_parts;
-        for e in ev {
-            nu[r..r + e.nu.len()].copy_from_slice(&e.nu);
-            r += e.nu.len();
-        }
-        Ok(())
+        self.put_couplings(t, q, None, nu, |e| &e.nu)
     }
 
     fn constraint_gamma(
@@ -365,14 +379,7 @@ impl SecondOrderSystem for CompositeSystem<'_> {
             let o = self.c_off[k];
             p.constraint_gamma(t, self.qs(k, q), self.vs(k, v), &mut gamma[o..o + p.n_c()])?;
         }
-        let ev = self.couplings_eval(t, q, Some(v));
-        self.check_eval(t, &ev)?;
-        let mut r = self.n_c_parts;
-        for e in ev {
-            gamma[r..r + e.gamma.len()].copy_from_slice(&e.gamma);
-            r += e.gamma.len();
-        }
-        Ok(())
+        self.put_couplings(t, q, Some(v), gamma, |e| &e.gamma)
     }
 
     fn constraint_name(&self, row: usize) -> String {

@@ -238,16 +238,16 @@ pub struct MeanAxesPreconditions {
     pub passes: bool,
 }
 
-/// Checks the chapter-8 preconditions for using basis `psi` with mean axes (Lin §8.1, §8.2.1):
-/// full column rank, exactly 6 (3 in 2-D) zero eigenvalues of `eig(ΨᵀKΨ, ΨᵀMΨ)`, and
-/// `col-space(Ψ0) = col-space(P)` (R of (8.18) invertible).
-pub fn check_mean_axes_preconditions(
+/// The rigid-body modes `P` of [`rigid_body_modes`] after checking that `K` and `M` are square
+/// of the order of `Ψ`'s rows and that `s` has one entry per DOF (the input checks shared by
+/// [`check_mean_axes_preconditions`] and [`crate::mean_axes_eval::evaluate_mean_axes`]).
+pub(crate) fn checked_rigid_body_modes(
     k: MatRef<'_, f64>,
     m: MatRef<'_, f64>,
     psi: MatRef<'_, f64>,
     s: &[f64],
     dim: usize,
-) -> Result<MeanAxesPreconditions> {
+) -> Result<Mat<f64>> {
     let n = psi.nrows();
     check_square("stiffness matrix K", k, n)?;
     check_square("mass matrix M", m, n)?;
@@ -260,6 +260,37 @@ pub fn check_mean_axes_preconditions(
             cols: 1,
         });
     }
+    Ok(p)
+}
+
+/// `V0`: the eigenvectors of `eig(ΨᵀKΨ, ΨᵀMΨ)` whose eigenvalues are (numerically) zero,
+/// `|λ| ≤ 1e-9 max|λ|` (Lin (8.14)), as columns (none when the pencil has no zero eigenvalue).
+fn zero_eigenvectors(
+    k: MatRef<'_, f64>,
+    m: MatRef<'_, f64>,
+    psi: MatRef<'_, f64>,
+) -> Result<Mat<f64>> {
+    let kr = congruence(psi, k, psi);
+    let mr = congruence(psi, m, psi);
+    let (lam, v) = sym_gen_eig("reduced model (ΨᵀKΨ, ΨᵀMΨ)", kr.as_ref(), mr.as_ref())?;
+    let lmax = lam.iter().fold(0.0_f64, |a, &l| a.max(l.abs()));
+    let zero: Vec<usize> = (0..lam.len())
+        .filter(|&i| lam[i].abs() <= 1e-9 * lmax.max(f64::MIN_POSITIVE))
+        .collect();
+    Ok(select_cols(v.as_ref(), &zero))
+}
+
+/// Checks the chapter-8 preconditions for using basis `psi` with mean axes (Lin §8.1, §8.2.1):
+/// full column rank, exactly 6 (3 in 2-D) zero eigenvalues of `eig(ΨᵀKΨ, ΨᵀMΨ)`, and
+/// `col-space(Ψ0) = col-space(P)` (R of (8.18) invertible).
+pub fn check_mean_axes_preconditions(
+    k: MatRef<'_, f64>,
+    m: MatRef<'_, f64>,
+    psi: MatRef<'_, f64>,
+    s: &[f64],
+    dim: usize,
+) -> Result<MeanAxesPreconditions> {
+    let p = checked_rigid_body_modes(k, m, psi, s, dim)?;
     let n_rigid = p.ncols();
     let r = rank(psi, 1e-10)?;
     let mut out = MeanAxesPreconditions {
@@ -273,16 +304,9 @@ pub fn check_mean_axes_preconditions(
     if r < psi.ncols() {
         return Ok(out);
     }
-    let kr = congruence(psi, k, psi);
-    let mr = congruence(psi, m, psi);
-    let (lam, v) = sym_gen_eig("reduced model (ΨᵀKΨ, ΨᵀMΨ)", kr.as_ref(), mr.as_ref())?;
-    let lmax = lam.iter().fold(0.0_f64, |a, &l| a.max(l.abs()));
-    let zero: Vec<usize> = (0..lam.len())
-        .filter(|&i| lam[i].abs() <= 1e-9 * lmax.max(f64::MIN_POSITIVE))
-        .collect();
-    out.n_zero_eigenvalues = zero.len();
-    if !zero.is_empty() {
-        let v0 = select_cols(v.as_ref(), &zero);
+    let v0 = zero_eigenvectors(k, m, psi)?;
+    out.n_zero_eigenvalues = v0.ncols();
+    if v0.ncols() > 0 {
         let psi0 = psi * &v0;
         out.span_defect = span_distance(psi0.as_ref(), p.as_ref())?;
     }
@@ -323,14 +347,7 @@ pub fn adapting_vector(
             reason: format!("expected {} values, got {}", p.ncols(), rigid.len()),
         });
     }
-    let kr = congruence(psi, k, psi);
-    let mr = congruence(psi, m, psi);
-    let (lam, v) = sym_gen_eig("reduced model (ΨᵀKΨ, ΨᵀMΨ)", kr.as_ref(), mr.as_ref())?;
-    let lmax = lam.iter().fold(0.0_f64, |a, &l| a.max(l.abs()));
-    let zero: Vec<usize> = (0..lam.len())
-        .filter(|&i| lam[i].abs() <= 1e-9 * lmax.max(f64::MIN_POSITIVE))
-        .collect();
-    let v0 = select_cols(v.as_ref(), &zero);
+    let v0 = zero_eigenvectors(k, m, psi)?;
     let psi0 = psi * &v0;
     // R = (PᵀP)⁻¹ Pᵀ Ψ0   (8.18)
     let ptp = p.transpose() * &p;

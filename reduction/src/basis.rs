@@ -215,7 +215,7 @@ pub fn condensed_modes(
     kept: &[usize],
 ) -> Result<Mat<f64>> {
     let theta = theta_matrix(k, part, lam, phi, kept)?;
-    let deleted: Vec<usize> = (0..lam.len()).filter(|i| !kept.contains(i)).collect();
+    let deleted = deleted_modes(lam.len(), kept);
     let phid = Mat::from_fn(phi.nrows(), deleted.len(), |i, j| phi[(i, deleted[j])]);
     Ok(&phid * &theta)
 }
@@ -229,7 +229,7 @@ pub fn theta_matrix(
     phi: &Mat<f64>,
     kept: &[usize],
 ) -> Result<Mat<f64>> {
-    let deleted: Vec<usize> = (0..lam.len()).filter(|i| !kept.contains(i)).collect();
+    let deleted = deleted_modes(lam.len(), kept);
     // K̄n^d = φdᵀ K_ii φd = λ_d (M-normalized)
     modal_coupling(k, part, lam, phi, &deleted, "deleted")
 }
@@ -244,6 +244,12 @@ pub fn cb_to_mc_x(
     kept: &[usize],
 ) -> Result<Mat<f64>> {
     modal_coupling(k, part, lam, phi, kept, "kept")
+}
+
+/// The deleted fixed-interface modes (Lin §6.5.3): the indices `0..n_modes` not in `kept`,
+/// ascending.
+fn deleted_modes(n_modes: usize, kept: &[usize]) -> Vec<usize> {
+    (0..n_modes).filter(|i| !kept.contains(i)).collect()
 }
 
 /// `−λ_j⁻¹ φ_jᵀ K_ib` for the fixed-interface modes `modes` (rows), the common kernel of Θ
@@ -291,7 +297,7 @@ pub fn mode_condensation_matrices(
     let (lam, phi) = fixed_interface_modes(k, m, part)?;
     let idx = kept.resolve(lam.len())?;
     let theta = theta_matrix(k, part, &lam, &phi, &idx)?;
-    let deleted: Vec<usize> = (0..lam.len()).filter(|i| !idx.contains(i)).collect();
+    let deleted = deleted_modes(lam.len(), &idx);
     let b = part.boundary();
     let ii = part.interior();
     let nb = b.len();

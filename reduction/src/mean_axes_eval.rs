@@ -6,9 +6,9 @@
 //! `P = [Ih  ω×s]` (see [`crate::axes::rigid_body_modes`]). Conditions: the linearised mean-axis
 //! rows `[0  PᵀMΨ] q = 0` and the boundary rows `G_b q = Δd_b`.
 
-use crate::axes::rigid_body_modes;
+use crate::axes::checked_rigid_body_modes;
 use crate::error::{ReductionError, Result};
-use crate::linalg::{check_square, congruence, null_space, solve_general, sym_gen_eig, symmetrize};
+use crate::linalg::{congruence, null_space, solve_general, sym_gen_eig, symmetrize};
 use faer::{Mat, MatRef};
 
 /// Result of the mean-axes evaluation of a basis (Lin §8.4, §8.5).
@@ -45,17 +45,7 @@ pub fn evaluate_mean_axes(
     boundary: &[usize],
 ) -> Result<MeanAxesEvaluation> {
     let n = psi.nrows();
-    check_square("stiffness matrix K", k, n)?;
-    check_square("mass matrix M", m, n)?;
-    let p = rigid_body_modes(s, dim)?;
-    if p.nrows() != n {
-        return Err(ReductionError::Shape {
-            what: "node positions s".into(),
-            expected: format!("{n} values"),
-            rows: p.nrows(),
-            cols: 1,
-        });
-    }
+    let p = checked_rigid_body_modes(k, m, psi, s, dim)?;
     for &d in boundary {
         if d >= n {
             return Err(ReductionError::InvalidDofs {

@@ -3,10 +3,10 @@
 
 use crate::vtk;
 use ancf::AncfError;
-use ancf::dynamics::{self, PendulumCase, SpinningCase};
+use ancf::dynamics::{self, PendulumCase, Sample, SpinningCase};
 use ancf::studies::{self, BeamElementKind, GroundContactCase, StaticBeamCase};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
+use flowmbd_cli::{InputError, Progress, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
 
 /// Library errors: invalid input → exit code 2, anything else → numerical failure (exit 1).
@@ -39,6 +39,63 @@ fn poisson(v: f64) -> Result<(), InputError> {
             format!("must lie in (-1, 0.5), got {v}"),
         ))
     }
+}
+
+/// Generalized-α spectral radius at infinity: must lie in \[0, 1\].
+fn rho_inf(v: f64) -> Result<(), InputError> {
+    if (0.0..=1.0).contains(&v) {
+        Ok(())
+    } else {
+        Err(InputError::new(
+            "rho_inf",
+            format!("must lie in [0, 1], got {v}"),
+        ))
+    }
+}
+
+/// Run a time integration from 0 to `t_end` with step `h` \[s\] behind a progress bar
+/// labelled `label`, keeping every `every`-th step so that about `samples` samples are kept:
+/// `run(every, bar)` is the library call (the pendulum's and the spinning beam's histories).
+fn sampled_history(
+    ctx: &StudyContext,
+    label: &str,
+    t_end: f64,
+    h: f64,
+    samples: f64,
+    run: impl FnOnce(usize, &Progress) -> Result<Vec<Sample>, AncfError>,
+) -> Result<Vec<Sample>, StudyError> {
+    let bar = ctx.progress(1.0, label);
+    let every = ((t_end / h) / samples).ceil().max(1.0) as usize;
+    let s = run(every, &bar).map_err(study_error)?;
+    bar.finish();
+    Ok(s)
+}
+
+/// Write `history.csv`: time \[s\], tip position \[m\], then the study's `N` columns
+/// `columns` with the values `values(sample)`.
+fn write_history<const N: usize>(
+    ctx: &StudyContext,
+    s: &[Sample],
+    columns: [&str; N],
+    values: impl Fn(&Sample) -> [f64; N],
+) -> Result<(), StudyError> {
+    let mut header = vec!["t_s", "tip_x_m", "tip_y_m"];
+    header.extend(columns);
+    ctx.out.write_csv(
+        "history.csv",
+        &header,
+        s.iter().map(|x| {
+            let mut row = vec![x.t, x.tip[0], x.tip[1]];
+            row.extend(values(x));
+            row
+        }),
+    )?;
+    Ok(())
+}
+
+/// The plot series `(t, value(sample))` of a history.
+fn series(s: &[Sample], value: impl Fn(&Sample) -> f64) -> Vec<(f64, f64)> {
+    s.iter().map(|x| (x.t, value(x))).collect()
 }
 
 fn at_least_one(field: &str, v: usize) -> Result<(), InputError> {
@@ -301,13 +358,7 @@ impl Validate for PendulumConfig {
             positive(f, v)?;
         }
         poisson(c.nu)?;
-        if !(0.0..=1.0).contains(&c.rho_inf) {
-            return Err(InputError::new(
-                "rho_inf",
-                format!("must lie in [0, 1], got {}", c.rho_inf),
-            ));
-        }
-        Ok(())
+        rho_inf(c.rho_inf)
     }
 }
 
@@ -349,32 +400,21 @@ impl Study for Pendulum {
         ctx: &mut StudyContext,
     ) -> Result<PendulumSummary, StudyError> {
         let case = c.0;
-        let bar = ctx.progress(1.0, "pendulum");
-        let every = ((case.t_end / case.h) / 2000.0).ceil().max(1.0) as usize;
-        let s = dynamics::pendulum(&case, every, |f| bar.set(f)).map_err(study_error)?;
-        bar.finish();
-        ctx.out.write_csv(
-            "history.csv",
-            &[
-                "t_s",
-                "tip_x_m",
-                "tip_y_m",
-                "kinetic_j",
-                "strain_j",
-                "potential_j",
-                "total_j",
-            ],
-            s.iter().map(|x| {
+        let s = sampled_history(ctx, "pendulum", case.t_end, case.h, 2000.0, |every, bar| {
+            dynamics::pendulum(&case, every, |f| bar.set(f))
+        })?;
+        write_history(
+            ctx,
+            &s,
+            ["kinetic_j", "strain_j", "potential_j", "total_j"],
+            |x| {
                 [
-                    x.t,
-                    x.tip[0],
-                    x.tip[1],
                     x.energy.kinetic,
                     x.energy.strain,
                     x.energy.potential,
                     x.energy.total,
                 ]
-            }),
+            },
         )?;
         LinePlot::new(
             "Pendulum tip vertical position (Kerkkänen Fig. 2.6)",
@@ -383,7 +423,7 @@ impl Study for Pendulum {
         )
         .with(Series::line(
             format!("{} elements", case.elements),
-            s.iter().map(|x| (x.t, x.tip[1])).collect(),
+            series(&s, |x| x.tip[1]),
         ))
         .save(&ctx.out.path("tip"))?;
         LinePlot::new(
@@ -391,22 +431,13 @@ impl Study for Pendulum {
             "t [s]",
             "energy [J]",
         )
-        .with(Series::line(
-            "kinetic",
-            s.iter().map(|x| (x.t, x.energy.kinetic)).collect(),
-        ))
-        .with(Series::line(
-            "strain",
-            s.iter().map(|x| (x.t, x.energy.strain)).collect(),
-        ))
+        .with(Series::line("kinetic", series(&s, |x| x.energy.kinetic)))
+        .with(Series::line("strain", series(&s, |x| x.energy.strain)))
         .with(Series::line(
             "potential",
-            s.iter().map(|x| (x.t, x.energy.potential)).collect(),
+            series(&s, |x| x.energy.potential),
         ))
-        .with(Series::line(
-            "total",
-            s.iter().map(|x| (x.t, x.energy.total)).collect(),
-        ))
+        .with(Series::line("total", series(&s, |x| x.energy.total)))
         .save(&ctx.out.path("energy"))?;
         let last = s
             .last()
@@ -446,13 +477,7 @@ impl Validate for SpinningConfig {
         if !c.omega.is_finite() {
             return Err(InputError::new("omega", "must be finite"));
         }
-        if !(0.0..=1.0).contains(&c.rho_inf) {
-            return Err(InputError::new(
-                "rho_inf",
-                format!("must lie in [0, 1], got {}", c.rho_inf),
-            ));
-        }
-        Ok(())
+        rho_inf(c.rho_inf)
     }
 }
 
@@ -494,42 +519,26 @@ impl Study for Spinning {
         ctx: &mut StudyContext,
     ) -> Result<SpinningSummary, StudyError> {
         let case = c.0;
-        let bar = ctx.progress(1.0, "spinning beam");
-        let every = ((case.t_end / case.h) / 4000.0).ceil().max(1.0) as usize;
-        let s = dynamics::spinning(&case, every, |f| bar.set(f)).map_err(study_error)?;
-        bar.finish();
-        ctx.out.write_csv(
-            "history.csv",
-            &[
-                "t_s",
-                "tip_x_m",
-                "tip_y_m",
-                "axial_extension_m",
-                "tip_offset_m",
-                "kinetic_j",
-                "strain_j",
-            ],
-            s.iter().map(|x| {
-                [
-                    x.t,
-                    x.tip[0],
-                    x.tip[1],
-                    x.value,
-                    x.value2,
-                    x.energy.kinetic,
-                    x.energy.strain,
-                ]
-            }),
+        let s = sampled_history(
+            ctx,
+            "spinning beam",
+            case.t_end,
+            case.h,
+            4000.0,
+            |every, bar| dynamics::spinning(&case, every, |f| bar.set(f)),
+        )?;
+        write_history(
+            ctx,
+            &s,
+            ["axial_extension_m", "tip_offset_m", "kinetic_j", "strain_j"],
+            |x| [x.value, x.value2, x.energy.kinetic, x.energy.strain],
         )?;
         LinePlot::new(
             "Tip offset from the rigid shadow beam (Kerkkänen Fig. 2.10)",
             "t [s]",
             "offset [m]",
         )
-        .with(Series::line(
-            "flexible − rigid",
-            s.iter().map(|x| (x.t, x.value2)).collect(),
-        ))
+        .with(Series::line("flexible − rigid", series(&s, |x| x.value2)))
         .save(&ctx.out.path("tip_offset"))?;
         let exact = dynamics::spinning_extension(case.length, case.density, case.young, case.omega);
         LinePlot::new(
@@ -537,10 +546,7 @@ impl Study for Spinning {
             "t [s]",
             "extension [m]",
         )
-        .with(Series::line(
-            "ANCF",
-            s.iter().map(|x| (x.t, x.value)).collect(),
-        ))
+        .with(Series::line("ANCF", series(&s, |x| x.value)))
         .with(Series::line(
             "(2.37)",
             vec![(0.0, exact), (case.t_end, exact)],

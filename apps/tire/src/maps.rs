@@ -4,6 +4,7 @@
 use flowmbd_cli::StudyError;
 use flowmbd_cli::plot::{FONT, register_font};
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -31,6 +32,26 @@ fn colour(t: f64) -> RGBColor {
     RGBColor(c.0, c.1, c.2)
 }
 
+/// A chart with frequency \[Hz\] across and speed \[km/h\] up.
+type SpeedFrequencyChart<'a, DB> =
+    ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The frame shared by the contour map and the waterfall: frequency \[Hz\] across, speed
+/// \[km/h\] up, the same caption font, margin and label areas.
+fn speed_frequency_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    f: std::ops::Range<f64>,
+    v: std::ops::Range<f64>,
+) -> Result<SpeedFrequencyChart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
+    ChartBuilder::on(area)
+        .caption(caption, (FONT, 22))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(70)
+        .build_cartesian_2d(f, v)
+}
+
 impl SpectrumMap<'_> {
     fn max_amp(&self) -> f64 {
         self.amp
@@ -56,6 +77,23 @@ impl SpectrumMap<'_> {
         (df, dv)
     }
 
+    /// Frequency axis range \[Hz\]: first to last frequency.
+    fn freq_range(&self) -> (f64, f64) {
+        (
+            self.freqs.first().copied().unwrap_or(0.0),
+            self.freqs.last().copied().unwrap_or(1.0),
+        )
+    }
+
+    /// Speed axis range \[km/h\]: half a speed step `dv` below the first speed to `above`
+    /// steps above the last.
+    fn speed_range(&self, dv: f64, above: f64) -> (f64, f64) {
+        (
+            self.speeds.first().copied().unwrap_or(0.0) - 0.5 * dv,
+            self.speeds.last().copied().unwrap_or(1.0) + above * dv,
+        )
+    }
+
     fn draw_contour<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
@@ -63,22 +101,10 @@ impl SpectrumMap<'_> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
         root.fill(&WHITE).map_err(e)?;
         let (df, dv) = self.steps();
-        let (f0, f1) = (
-            self.freqs.first().copied().unwrap_or(0.0),
-            self.freqs.last().copied().unwrap_or(1.0),
-        );
-        let (v0, v1) = (
-            self.speeds.first().copied().unwrap_or(0.0) - 0.5 * dv,
-            self.speeds.last().copied().unwrap_or(1.0) + 0.5 * dv,
-        );
+        let (f0, f1) = self.freq_range();
+        let (v0, v1) = self.speed_range(dv, 0.5);
         let (main, bar) = root.split_horizontally(860);
-        let mut chart = ChartBuilder::on(&main)
-            .caption(&self.title, (FONT, 22))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(70)
-            .build_cartesian_2d(f0..f1, v0..v1)
-            .map_err(e)?;
+        let mut chart = speed_frequency_chart(&main, &self.title, f0..f1, v0..v1).map_err(e)?;
         chart
             .configure_mesh()
             .disable_mesh()
@@ -138,22 +164,10 @@ impl SpectrumMap<'_> {
         // each spectrum is drawn at the height of its speed, scaled so that the largest peak
         // spans 1.6 speed steps
         let scale = 1.6 * dv / amax;
-        let (f0, f1) = (
-            self.freqs.first().copied().unwrap_or(0.0),
-            self.freqs.last().copied().unwrap_or(1.0),
-        );
-        let v0 = self.speeds.first().copied().unwrap_or(0.0) - 0.5 * dv;
-        let v1 = self.speeds.last().copied().unwrap_or(1.0) + 2.0 * dv;
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                format!("{} (largest peak {:.0} N)", self.title, amax),
-                (FONT, 22),
-            )
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(70)
-            .build_cartesian_2d(f0..f1, v0..v1)
-            .map_err(e)?;
+        let (f0, f1) = self.freq_range();
+        let (v0, v1) = self.speed_range(dv, 2.0);
+        let caption = format!("{} (largest peak {:.0} N)", self.title, amax);
+        let mut chart = speed_frequency_chart(root, &caption, f0..f1, v0..v1).map_err(e)?;
         chart
             .configure_mesh()
             .x_desc("f [Hz]")
@@ -195,6 +209,22 @@ impl SpectrumMap<'_> {
         Ok(())
     }
 
+    /// Draw the `kind` plot (`contour` or `waterfall`) on `root` and write it to `path` (the
+    /// backend's file, named in errors).
+    fn render<DB: DrawingBackend>(
+        &self,
+        kind: &str,
+        root: &DrawingArea<DB, Shift>,
+        path: &Path,
+    ) -> Result<(), StudyError> {
+        match kind {
+            "contour" => self.draw_contour(root),
+            _ => self.draw_waterfall(root),
+        }
+        .map_err(|m| io(path, m))?;
+        root.present().map_err(|m| io(path, m))
+    }
+
     /// Write `<stem>_contour.{png,svg}` and `<stem>_waterfall.{png,svg}`.
     pub fn save(&self, stem: &Path) -> Result<(), StudyError> {
         register_font();
@@ -206,24 +236,16 @@ impl SpectrumMap<'_> {
             let base = stem.with_file_name(format!("{name}_{kind}"));
             let png = base.with_extension("png");
             let svg = base.with_extension("svg");
-            {
-                let root = BitMapBackend::new(&png, (960, 640)).into_drawing_area();
-                match kind {
-                    "contour" => self.draw_contour(&root),
-                    _ => self.draw_waterfall(&root),
-                }
-                .map_err(|m| io(&png, m))?;
-                root.present().map_err(|m| io(&png, m))?;
-            }
-            {
-                let root = SVGBackend::new(&svg, (960, 640)).into_drawing_area();
-                match kind {
-                    "contour" => self.draw_contour(&root),
-                    _ => self.draw_waterfall(&root),
-                }
-                .map_err(|m| io(&svg, m))?;
-                root.present().map_err(|m| io(&svg, m))?;
-            }
+            self.render(
+                kind,
+                &BitMapBackend::new(&png, (960, 640)).into_drawing_area(),
+                &png,
+            )?;
+            self.render(
+                kind,
+                &SVGBackend::new(&svg, (960, 640)).into_drawing_area(),
+                &svg,
+            )?;
         }
         Ok(())
     }

@@ -145,14 +145,7 @@ fn reduce_writes_the_file_and_modes_reuses_it() {
     let dir = tmp("modes");
     let before = mtime(file);
     let cfg = config(&dir, "modes.toml", "count = 30", file, "");
-    let out = run(&[
-        "modes",
-        "--json",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--out",
-        dir.join("m").to_str().unwrap(),
-    ]);
+    let out = run_study("modes", &["--json"], &cfg, &dir.join("m"));
     let m = json_of(&out);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -209,16 +202,7 @@ fn cleat_json_contract_and_outputs() {
         "",
     );
     let out_dir = dir.join("c");
-    let out = run(&[
-        "cleat",
-        "--speed",
-        "60",
-        "--json",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
+    let out = run_study("cleat", &["--speed", "60", "--json"], &cfg, &out_dir);
     let s = json_of(&out);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -253,15 +237,12 @@ fn cleat_json_contract_and_outputs() {
     // longitudinal peak is not checked: the patch's friction constraint shifts the fore-aft
     // modes of the rolling tire away from the rim-fixed ones printed by `modes`)
     let mcfg = config(&dir, "modes.toml", "count = 40", file, "");
-    let m = json_of(&run(&[
+    let m = json_of(&run_study(
         "modes",
-        "--quiet",
-        "--json",
-        "--config",
-        mcfg.to_str().unwrap(),
-        "--out",
-        dir.join("m").to_str().unwrap(),
-    ]));
+        &["--quiet", "--json"],
+        &mcfg,
+        &dir.join("m"),
+    ));
     let full = floats(&m["full_hz"]);
     let res = 1.0 / 0.3;
     let pk = f(&s["fy_peak_hz"]);
@@ -349,17 +330,12 @@ fn cleat_spindle_force_before_the_cleat_equals_the_load() {
         "",
     );
     let out_dir = dir.join("c");
-    let s = json_of(&run(&[
+    let s = json_of(&run_study(
         "cleat",
-        "--quiet",
-        "--json",
-        "--friction",
-        "0",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]));
+        &["--quiet", "--json", "--friction", "0"],
+        &cfg,
+        &out_dir,
+    ));
     let load = f(&s["load_n"]);
     assert!((load - 4448.2).abs() < 1e-9);
     let before = f(&s["fy_mean_before_n"]);
@@ -400,15 +376,7 @@ fn sweep_writes_the_maps_and_agrees_with_single_runs() {
     let speeds = [40.0, 60.0, 80.0];
     let cfg = config(&dir, "s.toml", "speeds_kmh = [40.0, 60.0, 80.0]", file, "");
     let sw = dir.join("sw");
-    let s = json_of(&run(&[
-        "sweep",
-        "--quiet",
-        "--json",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--out",
-        sw.to_str().unwrap(),
-    ]));
+    let s = json_of(&run_study("sweep", &["--quiet", "--json"], &cfg, &sw));
     let runs = s["runs"].as_array().unwrap();
     assert_eq!(runs.len(), 3);
     for (r, v) in runs.iter().zip(speeds) {
@@ -440,17 +408,12 @@ fn sweep_writes_the_maps_and_agrees_with_single_runs() {
         file,
         "",
     );
-    let c = json_of(&run(&[
+    let c = json_of(&run_study(
         "cleat",
-        "--quiet",
-        "--json",
-        "--speed",
-        "60",
-        "--config",
-        ccfg.to_str().unwrap(),
-        "--out",
-        dir.join("c").to_str().unwrap(),
-    ]));
+        &["--quiet", "--json", "--speed", "60"],
+        &ccfg,
+        &dir.join("c"),
+    ));
     let r60 = &runs[1];
     for key in ["dof", "steps"] {
         assert_eq!(r60[key], c[key], "{key}");
@@ -509,15 +472,7 @@ fn pressure_patch_forces_carry_the_load() {
     let dir = tmp("pressure");
     let cfg = config(&dir, "p.toml", "load = 4448.2", file, "");
     let out = dir.join("p");
-    let s = json_of(&run(&[
-        "pressure",
-        "--quiet",
-        "--json",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]));
+    let s = json_of(&run_study("pressure", &["--quiet", "--json"], &cfg, &out));
     for g in ["drum", "road"] {
         let force = csv_column(&out.join(format!("patch_{g}.csv")), "force_n");
         assert_eq!(force.len(), CONTACT);
@@ -686,15 +641,7 @@ fn numerical_failure_exits_1_and_keeps_the_history() {
         "[rig.rolling]\nnewmark_beta = 0.01\n",
     );
     let out = dir.join("d");
-    let (code, stdout, err) = outcome(&run(&[
-        "cleat",
-        "--quiet",
-        "--json",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]));
+    let (code, stdout, err) = outcome(&run_study("cleat", &["--quiet", "--json"], &cfg, &out));
     assert_eq!(code, 1, "{err}");
     assert!(stdout.is_empty(), "no summary printed on failure: {stdout}");
     assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
@@ -722,14 +669,7 @@ fn numerical_failure_exits_1_and_keeps_the_history() {
         "[rig.rolling]\nnewmark_beta = 0.01\n",
     );
     let sw = dir.join("s");
-    let (code, _, err) = outcome(&run(&[
-        "sweep",
-        "--quiet",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--out",
-        sw.to_str().unwrap(),
-    ]));
+    let (code, _, err) = outcome(&run_study("sweep", &["--quiet"], &cfg, &sw));
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("at 40 km/h"), "{err}");
     let s: Value =

@@ -337,20 +337,17 @@ impl DormandPrince {
         let mut h = if self.h0 > 0.0 {
             self.h0
         } else {
-            let d0 = (y
-                .iter()
-                .enumerate()
-                .map(|(i, x)| (x / sc(&y, &y, i)).powi(2))
-                .sum::<f64>()
-                / ny as f64)
-                .sqrt();
-            let d1 = (k[0]
-                .iter()
-                .enumerate()
-                .map(|(i, x)| (x / sc(&y, &y, i)).powi(2))
-                .sum::<f64>()
-                / ny as f64)
-                .sqrt();
+            // RMS norm scaled by the tolerances at y (the norm ‖·‖ of Hairer II.4)
+            let norm = |x: &[f64]| {
+                (x.iter()
+                    .enumerate()
+                    .map(|(i, x)| (x / sc(&y, &y, i)).powi(2))
+                    .sum::<f64>()
+                    / ny as f64)
+                    .sqrt()
+            };
+            let d0 = norm(&y);
+            let d1 = norm(&k[0]);
             let h0 = if d0 < 1e-5 || d1 < 1e-5 {
                 1e-6
             } else {
@@ -359,15 +356,8 @@ impl DormandPrince {
             let y1: Vec<f64> = y.iter().zip(&k[0]).map(|(a, b)| a + h0 * b).collect();
             let mut f1 = vec![0.0; ny];
             rhs.eval(t + h0, &y1, &mut f1, &mut stats)?;
-            let d2 = (f1
-                .iter()
-                .zip(&k[0])
-                .enumerate()
-                .map(|(i, (a, b))| ((a - b) / sc(&y, &y, i)).powi(2))
-                .sum::<f64>()
-                / ny as f64)
-                .sqrt()
-                / h0;
+            let df: Vec<f64> = f1.iter().zip(&k[0]).map(|(a, b)| a - b).collect();
+            let d2 = norm(&df) / h0;
             let h1 = if d1.max(d2) <= 1e-15 {
                 (h0 * 1e-3).max(1e-6)
             } else {

@@ -58,6 +58,33 @@ impl Default for SlabSimParams {
     }
 }
 
+/// The floating-frame system of the slab shared by simulations 1–3: the slab as one
+/// flexible body `"slab"` with the basis of `method` (`n_modes` fixed-interface modes where the
+/// method keeps modes) and nodal-fixed axes (Lin (7.7)), under gravity `−g z`
+/// (`g` = [`G`] \[m/s²\]). Returns the system, the body's index and the number of modal
+/// coordinates; `err` names the system in mbd-core errors.
+pub(super) fn slab_system(
+    slab: &LinSlab,
+    method: SlabMethod,
+    n_modes: usize,
+    err: impl Fn(mbd_core::MbdError) -> ReductionError,
+) -> Result<(FloatingSystem, usize, usize)> {
+    let basis = slab_basis(slab, method, n_modes)?;
+    let body = FlexBody::new(
+        "slab",
+        &slab.s,
+        slab.m.as_ref(),
+        slab.k.as_ref(),
+        basis.psi.as_ref(),
+        AxisCondition::NodalFixed,
+    )
+    .map_err(err)?;
+    let mut sys = FloatingSystem::new();
+    sys.gravity = Vector3::new(0.0, 0.0, -G);
+    let fb = sys.add_flex(body);
+    Ok((sys, fb, basis.psi.ncols()))
+}
+
 /// Builds the floating-frame system and its initial state for `method` and `sim`.
 pub fn build(
     slab: &LinSlab,
@@ -69,23 +96,11 @@ pub fn build(
         let table = std::sync::Arc::new(record_source(slab, p)?.table);
         return emulation_system(slab, method, &table, p);
     }
-    let basis = slab_basis(slab, method, p.n_modes)?;
     let mbd = |e: mbd_core::MbdError| ReductionError::Numerical {
         what: format!("slab system ({})", method.label()),
         detail: e.to_string(),
     };
-    let body = FlexBody::new(
-        "slab",
-        &slab.s,
-        slab.m.as_ref(),
-        slab.k.as_ref(),
-        basis.psi.as_ref(),
-        AxisCondition::NodalFixed,
-    )
-    .map_err(mbd)?;
-    let mut sys = FloatingSystem::new();
-    sys.gravity = Vector3::new(0.0, 0.0, -G);
-    let fb = sys.add_flex(body);
+    let (mut sys, fb, nz) = slab_system(slab, method, p.n_modes, mbd)?;
     let node = |j: usize| Point::FlexNode {
         body: fb,
         node: j - 1,
@@ -156,7 +171,6 @@ pub fn build(
         }
         SlabSimulation::Emulated => unreachable!("handled above"),
     }
-    let nz = basis.psi.ncols();
     let st = sys
         .state(
             0.0,
@@ -181,7 +195,7 @@ pub fn simulate(
     method: SlabMethod,
     sim: SlabSimulation,
     p: &SlabSimParams,
-    mut observer: impl FnMut(f64, [f64; 3]),
+    observer: impl FnMut(f64, [f64; 3]),
 ) -> Result<f64> {
     if sim == SlabSimulation::Emulated {
         // callers comparing several methods should record the tables once and call
@@ -190,26 +204,42 @@ pub fn simulate(
         return simulate_emulated(slab, method, &table, p, observer);
     }
     let (sys, st) = build(slab, method, sim, p)?;
+    let what = format!("slab simulation ({})", method.label());
+    run_observed(&sys, st, p.step_s, p.duration_s, observer, what)
+}
+
+/// Integrates the slab system `sys` from `st` to `duration` \[s\] with RK4 steps of `step`
+/// \[s\]; `observer(t, δ'_8)` receives the local deflection of node 8 \[m\] at the start and
+/// after every step. Returns the largest position-level constraint residual \[m\]; `what`
+/// names the simulation in errors. Shared by simulations 1–3.
+pub(super) fn run_observed(
+    sys: &FloatingSystem,
+    st: State,
+    step: f64,
+    duration: f64,
+    mut observer: impl FnMut(f64, [f64; 3]),
+    what: String,
+) -> Result<f64> {
     let mut drift = 0.0f64;
-    let mut phi = vec![0.0; mbd_core::SecondOrderSystem::n_c(&sys)];
-    let mut err = None;
-    Rk4::new(p.step_s)
-        .integrate(&sys, st, p.duration_s, |x| {
+    let mut phi = vec![0.0; mbd_core::SecondOrderSystem::n_c(sys)];
+    let mut failed = None;
+    Rk4::new(step)
+        .integrate(sys, st, duration, |x| {
             let d = sys.node_deflection(x, 0, 7);
             observer(x.t, [d.x, d.y, d.z]);
-            if mbd_core::SecondOrderSystem::constraint_residual(&sys, x.t, &x.q, &mut phi).is_ok() {
+            if mbd_core::SecondOrderSystem::constraint_residual(sys, x.t, &x.q, &mut phi).is_ok() {
                 drift = drift.max(phi.iter().fold(0.0, |a: f64, b| a.max(b.abs())));
             } else {
-                err = Some(x.t);
+                failed = Some(x.t);
             }
         })
         .map_err(|e| ReductionError::Numerical {
-            what: format!("slab simulation ({})", method.label()),
+            what: what.clone(),
             detail: e.to_string(),
         })?;
-    if let Some(t) = err {
+    if let Some(t) = failed {
         return Err(ReductionError::Numerical {
-            what: format!("slab simulation ({})", method.label()),
+            what,
             detail: format!("constraint evaluation failed at t = {t} s"),
         });
     }

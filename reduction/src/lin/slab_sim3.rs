@@ -37,12 +37,11 @@
 //! Forces at driven nodes change only the multipliers of the emulation (companion §7.2.4 \[D\]);
 //! they are applied anyway, as Lin does.
 
-use super::slab::{G, LinSlab, SlabMethod, node_position, slab_basis};
-use super::slab_sim::SlabSimParams;
+use super::slab::{LinSlab, SlabMethod, node_position};
+use super::slab_sim::{SlabSimParams, run_observed, slab_system};
 use crate::error::{ReductionError, Result};
 use mbd_core::floating::{
-    AxisCondition, FlexBody, FlexState, FloatingSystem, NodeLoad, Point, PrescribedMotion,
-    SphericalJoint,
+    FlexState, FloatingSystem, NodeLoad, Point, PrescribedMotion, SphericalJoint,
 };
 use mbd_core::integrators::{Rk4, Stabilization, State, accelerations};
 use mbd_core::kinematics::euler::{a_matrix, from_axis_angle};
@@ -232,6 +231,19 @@ pub struct SourceRun {
     pub max_drift_m: f64,
 }
 
+/// The undeformed slab at rest (`nz` modal coordinates) with its frame at `r0` \[m\] and
+/// Euler parameters `e0`: the initial state of the source and emulation systems.
+fn slab_at_rest(r0: Vector3<f64>, e0: Vector4<f64>, nz: usize) -> FlexState {
+    FlexState {
+        r: r0,
+        p: e0,
+        rdot: Vector3::zeros(),
+        omega_local: Vector3::zeros(),
+        z: vec![0.0; nz],
+        zdot: vec![0.0; nz],
+    }
+}
+
 /// Initial frame of the slab: origin (node 16) and Euler parameters, from the inclination
 /// about the x axis through nodes 18 and 30.
 fn initial_frame(p: &Sim3Params) -> (Vector3<f64>, Vector4<f64>) {
@@ -309,19 +321,9 @@ fn add_forces(sys: &mut FloatingSystem, fb: usize, p: &Sim3Params) -> Result<()>
 pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSystem, State)> {
     check(p)?;
     let s3 = &p.sim3;
-    let basis = slab_basis(slab, SlabMethod::NoReduction, p.n_modes)?;
     let err = mbd_err("simulation-3 source system");
-    let body = FlexBody::new(
-        "slab",
-        &slab.s,
-        slab.m.as_ref(),
-        slab.k.as_ref(),
-        basis.psi.as_ref(),
-        AxisCondition::NodalFixed,
-    )
-    .map_err(&err)?;
-    let mut sys = FloatingSystem::new();
-    sys.gravity = Vector3::new(0.0, 0.0, -G);
+    // the rigid links are added below; rigid and flexible bodies are numbered separately
+    let (mut sys, fb, nz) = slab_system(slab, SlabMethod::NoReduction, p.n_modes, &err)?;
     let (r0, e0) = initial_frame(s3);
     let a0 = a_matrix(&e0);
     let mut rigid = Vec::new();
@@ -339,7 +341,6 @@ pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSyste
         rigid.push(BodyState::at_rest(centre, Vector4::new(1.0, 0.0, 0.0, 0.0)));
         links.push((k, j, len, attach));
     }
-    let fb = sys.add_flex(body);
     for (k, j, len, attach) in links {
         let half = Vector3::new(dir * len / 2.0, 0.0, 0.0);
         sys.add_joint(SphericalJoint {
@@ -365,20 +366,8 @@ pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSyste
         .map_err(&err)?;
     }
     add_forces(&mut sys, fb, s3)?;
-    let nz = basis.psi.ncols();
     let st = sys
-        .state(
-            0.0,
-            &rigid,
-            &[FlexState {
-                r: r0,
-                p: e0,
-                rdot: Vector3::zeros(),
-                omega_local: Vector3::zeros(),
-                z: vec![0.0; nz],
-                zdot: vec![0.0; nz],
-            }],
-        )
+        .state(0.0, &rigid, &[slab_at_rest(r0, e0, nz)])
         .map_err(&err)?;
     Ok((sys, st))
 }
@@ -464,21 +453,9 @@ pub fn emulation_system(
             reason: format!("drives nodes {:?}, expected {DRIVEN_NODES:?}", table.nodes),
         });
     }
-    let basis = slab_basis(slab, method, p.n_modes)?;
     let what = format!("simulation-3 emulation ({})", method.label());
     let err = mbd_err(&what);
-    let body = FlexBody::new(
-        "slab",
-        &slab.s,
-        slab.m.as_ref(),
-        slab.k.as_ref(),
-        basis.psi.as_ref(),
-        AxisCondition::NodalFixed,
-    )
-    .map_err(&err)?;
-    let mut sys = FloatingSystem::new();
-    sys.gravity = Vector3::new(0.0, 0.0, -G);
-    let fb = sys.add_flex(body);
+    let (mut sys, fb, nz) = slab_system(slab, method, p.n_modes, &err)?;
     for (i, &j) in DRIVEN_NODES.iter().enumerate() {
         for c in 0..3 {
             let tab = Arc::clone(table);
@@ -499,20 +476,8 @@ pub fn emulation_system(
     }
     add_forces(&mut sys, fb, &p.sim3)?;
     let (r0, e0) = initial_frame(&p.sim3);
-    let nz = basis.psi.ncols();
     let st = sys
-        .state(
-            0.0,
-            &[],
-            &[FlexState {
-                r: r0,
-                p: e0,
-                rdot: Vector3::zeros(),
-                omega_local: Vector3::zeros(),
-                z: vec![0.0; nz],
-                zdot: vec![0.0; nz],
-            }],
-        )
+        .state(0.0, &[], &[slab_at_rest(r0, e0, nz)])
         .map_err(&err)?;
     Ok((sys, st))
 }
@@ -525,32 +490,12 @@ pub fn simulate_emulated(
     method: SlabMethod,
     table: &Arc<AccelTable>,
     p: &SlabSimParams,
-    mut observer: impl FnMut(f64, [f64; 3]),
+    observer: impl FnMut(f64, [f64; 3]),
 ) -> Result<f64> {
     let (sys, st) = emulation_system(slab, method, table, p)?;
     let what = format!("simulation-3 emulation ({})", method.label());
-    let mut drift = 0.0f64;
-    let mut phi = vec![0.0; mbd_core::SecondOrderSystem::n_c(&sys)];
-    let mut failed = None;
     // the step divides the table interval so that the kinks of the interpolant fall on steps
     let interval = p.sim3.table_interval_s;
     let per = (interval / p.step_s - 1e-9).ceil().max(1.0);
-    Rk4::new(interval / per)
-        .integrate(&sys, st, p.duration_s, |x| {
-            let d = sys.node_deflection(x, 0, 7);
-            observer(x.t, [d.x, d.y, d.z]);
-            if mbd_core::SecondOrderSystem::constraint_residual(&sys, x.t, &x.q, &mut phi).is_ok() {
-                drift = drift.max(phi.iter().fold(0.0, |a: f64, b| a.max(b.abs())));
-            } else {
-                failed = Some(x.t);
-            }
-        })
-        .map_err(mbd_err(&what))?;
-    if let Some(t) = failed {
-        return Err(ReductionError::Numerical {
-            what,
-            detail: format!("constraint evaluation failed at t = {t} s"),
-        });
-    }
-    Ok(drift)
+    run_observed(&sys, st, interval / per, p.duration_s, observer, what)
 }

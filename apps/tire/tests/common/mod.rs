@@ -28,6 +28,16 @@ pub fn run(args: &[&str]) -> Output {
     bin().args(args).output().expect("the binary runs")
 }
 
+/// Run `study` with the flags `flags`, then `--config cfg --out out`: the set-up shared by the
+/// tests that run a study on a written configuration.
+pub fn run_study(study: &str, flags: &[&str], cfg: &Path, out: &Path) -> Output {
+    let (cfg, out) = (cfg.to_str().unwrap(), out.to_str().unwrap());
+    let mut args = vec![study];
+    args.extend_from_slice(flags);
+    args.extend_from_slice(&["--config", cfg, "--out", out]);
+    run(&args)
+}
+
 /// Exit code, stdout and stderr of a run.
 pub fn outcome(out: &Output) -> (i32, String, String) {
     (
@@ -89,15 +99,7 @@ pub fn shared_reduced() -> &'static (PathBuf, serde_json::Value) {
         let dir = tmp("shared");
         let file = dir.join("reduced.json");
         let cfg = config(&dir, "tire.toml", "", &file, "");
-        let out = run(&[
-            "reduce",
-            "--quiet",
-            "--json",
-            "--config",
-            cfg.to_str().unwrap(),
-            "--out",
-            dir.join("reduce").to_str().unwrap(),
-        ]);
+        let out = run_study("reduce", &["--quiet", "--json"], &cfg, &dir.join("reduce"));
         let s = json_of(&out);
         assert!(file.is_file(), "reduce wrote {}", file.display());
         (file, s)
