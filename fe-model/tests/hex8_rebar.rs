@@ -71,16 +71,7 @@ fn mat_vec(k: &Mat<f64>, u: &[f64]) -> Vec<f64> {
 /// `f_a = ∮ N_a σ n dA` over the six faces (2×2 Gauss per face, exact for bilinear faces):
 /// an independent reference for `K u` (divergence theorem, div σ = 0).
 fn traction_forces(x: &[[f64; 3]; 8], sigma: [[f64; 3]; 3]) -> Vec<f64> {
-    let xi_n: [[f64; 3]; 8] = [
-        [-1.0, -1.0, -1.0],
-        [1.0, -1.0, -1.0],
-        [1.0, 1.0, -1.0],
-        [-1.0, 1.0, -1.0],
-        [-1.0, -1.0, 1.0],
-        [1.0, -1.0, 1.0],
-        [1.0, 1.0, 1.0],
-        [-1.0, 1.0, 1.0],
-    ];
+    let xi_n = fe_model::element::hex8::NODE_XI;
     let g = 1.0 / 3f64.sqrt();
     let mut f = vec![0.0; 24];
     for i in 0..3 {

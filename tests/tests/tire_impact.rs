@@ -6,6 +6,16 @@ use flowing::tire::*;
 mod common;
 use common::{coarse_reduced_tire as tire, rig};
 
+/// The cleat rig on the drum (μ = 0.85) without sub-steps, settling for `t` and recording `t`
+/// \[s\].
+fn plain_rig(t: f64) -> RigConfig {
+    let mut rc = rig(GroundKind::Drum, true, 0.85);
+    rc.settle_time = t;
+    rc.record_time = t;
+    rc.impact.substeps = 1;
+    rc
+}
+
 #[test]
 fn cleat_position_along_drum_and_road() {
     // Analytical: the cleat moves with the surface speed; on the drum it comes round every
@@ -35,10 +45,7 @@ fn substeps_over_the_whole_run_equal_the_small_step() {
     // Second formulation: a window covering the whole run with n sub-steps is the run at h/n,
     // sampled every n-th step, operation for operation.
     let red = tire();
-    let mut fine = rig(GroundKind::Drum, true, 0.85);
-    fine.settle_time = 0.02;
-    fine.record_time = 0.02;
-    fine.impact.substeps = 1;
+    let mut fine = plain_rig(0.02);
     let mut coarse = fine.clone();
     coarse.impact = ImpactSteps {
         substeps: 4,
@@ -66,10 +73,7 @@ fn substeps_are_used_only_around_the_cleat() {
     // passed. Outside it the run is the plain one step for step (same samples before the
     // window); the sub-steps show in the step count.
     let red = tire();
-    let mut plain = rig(GroundKind::Drum, true, 0.85);
-    plain.settle_time = 0.03;
-    plain.record_time = 0.03;
-    plain.impact.substeps = 1;
+    let plain = plain_rig(0.03);
     let mut sub = plain.clone();
     sub.impact = ImpactSteps {
         substeps: 4,

@@ -148,6 +148,17 @@ impl TireSource {
             // a file made with another reduction would silently answer a different question
             let (nc, nf) = (red.n_contact(), red.n_free_modes);
             let want = &self.reduction;
+            // the specific diagnosis first (counts), then any other difference (fingerprint)
+            if nc != want.contact_nodes || nf != want.free_modes {
+                return Err(StudyError::Input(InputError::new(
+                    format!("tire.reduced_file `{file}`"),
+                    format!(
+                        "holds {nc} contact nodes and {nf} free-node modes but \
+                         tire.reduction asks for {} and {} (delete the file or name another)",
+                        want.contact_nodes, want.free_modes
+                    ),
+                )));
+            }
             let source = self.fingerprint();
             if red.source != source {
                 let why = if red.source.is_empty() {
@@ -159,16 +170,6 @@ impl TireSource {
                 return Err(StudyError::Input(InputError::new(
                     format!("tire.reduced_file `{file}`"),
                     format!("{why} (delete the file or name another)"),
-                )));
-            }
-            if nc != want.contact_nodes || nf != want.free_modes {
-                return Err(StudyError::Input(InputError::new(
-                    format!("tire.reduced_file `{file}`"),
-                    format!(
-                        "holds {nc} contact nodes and {nf} free-node modes but \
-                         tire.reduction asks for {} and {} (delete the file or name another)",
-                        want.contact_nodes, want.free_modes
-                    ),
                 )));
             }
             return Ok(red);
