@@ -69,3 +69,12 @@ pub enum MbdError {
         message: String,
     },
 }
+
+impl From<crate::validate::InvalidField> for MbdError {
+    fn from(e: crate::validate::InvalidField) -> Self {
+        MbdError::InvalidInput {
+            item: e.field,
+            reason: e.reason,
+        }
+    }
+}

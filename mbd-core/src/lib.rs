@@ -21,7 +21,9 @@
 //!   [`GeneralizedAlpha`] (index 3, Newton, dense/sparse LU), index-1 accelerations and
 //!   reactions, projections;
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
-//!   [`history`]: CSV time histories.
+//!   [`history`]: CSV time histories;
+//! * [`validate`]: the one validation shape ([`Validate`], [`InvalidField`] with the field path)
+//!   and the shared range checks.
 //!
 //! ## Example: a pendulum on a revolute joint
 //!
@@ -57,12 +59,14 @@ pub mod error;
 pub mod integrators;
 pub mod linalg;
 pub mod system;
+pub mod validate;
 
 pub use error::MbdError;
 pub use integrators::{
     AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Rk4, Solution, State, Stats,
 };
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
+pub use validate::{InvalidField, Validate};
 pub mod body;
 pub mod composite;
 pub mod constraints;

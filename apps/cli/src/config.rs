@@ -5,16 +5,14 @@
 //! value when the struct is `#[serde(default)]`); unknown fields are rejected when the struct is
 //! `#[serde(deny_unknown_fields)]`. Errors name the file, line, column and field.
 
-use crate::error::{CliError, InputError};
+use crate::error::CliError;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::path::Path;
 
-/// Semantic checks of a configuration beyond its types (positive masses, ordered ranges, ...).
-pub trait Validate {
-    /// `Ok` when every field is acceptable; otherwise the first offending field.
-    fn validate(&self) -> Result<(), InputError>;
-}
+/// Semantic checks of a configuration beyond its types: the workspace's one validation trait,
+/// [`mbd_core::Validate`] (returns the first offending field with its path).
+pub use mbd_core::Validate;
 
 /// Load the configuration: the embedded defaults, or `path` parsed over them, then validated.
 pub fn load_config<C>(path: Option<&Path>) -> Result<C, CliError>
@@ -80,6 +78,7 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::InputError;
     use serde::Deserialize;
 
     #[derive(Debug, Serialize, Deserialize, PartialEq)]

@@ -3,25 +3,10 @@
 use std::path::PathBuf;
 use thiserror::Error;
 
-/// A semantic error in user input: which field, and why it is rejected.
-#[derive(Debug, Error, Clone, PartialEq)]
-#[error("{field}: {reason}")]
-pub struct InputError {
-    /// Dotted path of the offending field (e.g. `pulleys[1].radius`).
-    pub field: String,
-    /// What is wrong with it.
-    pub reason: String,
-}
-
-impl InputError {
-    /// A new input error for `field`.
-    pub fn new(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self {
-            field: field.into(),
-            reason: reason.into(),
-        }
-    }
-}
+/// A semantic error in user input: which field, and why it is rejected. This is the
+/// workspace's one validation shape, [`mbd_core::InvalidField`]: library configurations and app
+/// configurations reject fields with the same type and the same messages.
+pub use mbd_core::InvalidField as InputError;
 
 /// Errors of the app plumbing (configuration, output files).
 #[derive(Debug, Error)]

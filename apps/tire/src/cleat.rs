@@ -1,7 +1,7 @@
 //! `flowmbd-tire cleat`: the cleat test of Ribaric §8.3 at one speed (drum or flat road):
 //! spindle forces `F_x`, `F_y` against time, their spectra, and the patch VTK series.
 
-use crate::common::{RigFlags, TireSource, input, rig_err};
+use crate::common::{RigFlags, TireSource, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowing::tire::{RigConfig, RigResult, RollingTire, TireError, run_cleat_observed};
@@ -60,30 +60,11 @@ impl Validate for Config {
     }
 }
 
-/// Validate rig settings (fields named by their configuration path, `rig.…`).
+/// Validate rig settings: the library's checks ([`RigConfig`]'s `Validate`), fields named by
+/// their configuration path (`rig.…`), and what the study's spectra need: a recording of at
+/// least two steps.
 pub fn validate_rig(rig: &RigConfig) -> Result<(), InputError> {
-    let in_rig = |e| {
-        let e = input(e);
-        InputError::new(format!("rig.{}", e.field), e.reason)
-    };
-    rig.rolling.validate().map_err(in_rig)?;
-    rig.ground.validate().map_err(in_rig)?;
-    if !(rig.speed_kmh > 0.0 && rig.speed_kmh.is_finite()) {
-        return Err(InputError::new("rig.speed_kmh", "must be positive"));
-    }
-    if !(rig.load > 0.0 && rig.load.is_finite()) {
-        return Err(InputError::new("rig.load", "must be positive"));
-    }
-    if !(rig.settle_time >= 0.0 && rig.settle_time.is_finite()) {
-        return Err(InputError::new(
-            "rig.settle_time",
-            "must not be negative [s]",
-        ));
-    }
-    if !(rig.record_time > 0.0 && rig.record_time.is_finite()) {
-        return Err(InputError::new("rig.record_time", "must be positive [s]"));
-    }
-    // a recording of fewer than two steps has no spectrum and no RMS
+    rig.validate_within("rig")?;
     let h = rig.rolling.time_step;
     if 2.0 * h > rig.record_time {
         return Err(InputError::new(

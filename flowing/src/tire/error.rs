@@ -48,6 +48,12 @@ pub enum TireError {
     Flow(#[from] crate::FlowError),
 }
 
+impl From<mbd_core::InvalidField> for TireError {
+    fn from(e: mbd_core::InvalidField) -> Self {
+        invalid(e.field, e.reason)
+    }
+}
+
 /// Shorthand for a [`TireError::Invalid`].
 pub(crate) fn invalid(item: impl Into<String>, reason: impl Into<String>) -> TireError {
     TireError::Invalid {

@@ -18,6 +18,7 @@ use super::rolling::{RollingConfig, RollingTire, StepStats};
 use super::spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};
 use super::statics::{PatchSolution, Preload, preload, preload_rolling};
 use fe_model::Rayleigh;
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -143,6 +144,52 @@ impl Default for RigConfig {
             rolling: RollingConfig::default(),
             impact: ImpactSteps::default(),
         }
+    }
+}
+
+/// Most time steps (samples) one rig run may take: bounds the memory of the recording
+/// (about 64 B a sample) before anything is allocated.
+pub const MAX_RIG_STEPS: f64 = 2e7;
+
+/// Most impact sub-steps per time step.
+pub const MAX_IMPACT_SUBSTEPS: usize = 1000;
+
+impl Validate for RigConfig {
+    /// The rig's own fields and its nested `rolling.…` and `ground.…` settings (paths relative
+    /// to the rig): positive load and speed, non-negative times (`record_time = 0` runs to the
+    /// cleat only), at most [`MAX_RIG_STEPS`] steps and [`MAX_IMPACT_SUBSTEPS`] sub-steps.
+    fn validate(&self) -> Result<(), InvalidField> {
+        let nested = |e: TireError| match e {
+            TireError::Invalid { item, reason } => InvalidField::new(item, reason),
+            other => InvalidField::new("", other.to_string()),
+        };
+        self.rolling.validate().map_err(nested)?;
+        self.ground.validate().map_err(nested)?;
+        check::positive("speed_kmh", self.speed_kmh, "km/h")?;
+        check::positive("load", self.load, "N")?;
+        check::non_negative("settle_time", self.settle_time, "s")?;
+        check::non_negative("record_time", self.record_time, "s")?;
+        check::count(
+            "impact.substeps",
+            self.impact.substeps,
+            1,
+            MAX_IMPACT_SUBSTEPS,
+        )?;
+        check::non_negative("impact.lead", self.impact.lead, "m")?;
+        check::non_negative("impact.trail", self.impact.trail, "s")?;
+        let h = self.rolling.time_step;
+        let steps = (self.settle_time + self.record_time) / h;
+        if steps > MAX_RIG_STEPS {
+            return Err(InvalidField::new(
+                "record_time",
+                format!(
+                    "settle_time + record_time = {} s at rolling.time_step = {h} s is {steps:.3e} \
+                     steps, more than the {MAX_RIG_STEPS:e} a run may record",
+                    self.settle_time + self.record_time
+                ),
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -274,9 +321,9 @@ pub struct RigStart<'a> {
 /// Press the tire onto the ground and set it rolling steadily (see [`RigStart`]): Rayleigh
 /// damping from `cfg.damping`, spin rate `v / (R − d/3)`, the steady state of
 /// [`preload_rolling`] with its contact forces as the initial multipliers. The settings are
-/// validated (`rolling.…`, `damping.…`).
+/// validated first ([`RigConfig`]'s [`Validate`]).
 pub fn start_rolling<'a>(red: &'a ReducedTire, cfg: &RigConfig) -> Result<RigStart<'a>, TireError> {
-    cfg.rolling.validate()?;
+    cfg.validate()?;
     let rayleigh = cfg.damping.rayleigh(red)?;
     let v = cfg.speed_kmh / 3.6;
     let static_preload = preload(red, &cfg.ground, cfg.load)?;
@@ -326,25 +373,7 @@ pub fn run_cleat_observed(
     progress: &mut dyn FnMut(f64),
     observer: &mut dyn FnMut(usize, &RollingTire) -> Result<(), TireError>,
 ) -> Result<RigResult, TireError> {
-    if !(cfg.speed_kmh >= 0.0 && cfg.speed_kmh.is_finite()) {
-        return Err(invalid(
-            "speed_kmh",
-            format!("{} is negative", cfg.speed_kmh),
-        ));
-    }
-    if cfg.impact.substeps == 0 {
-        return Err(invalid("impact.substeps", "must be at least 1 (1 = off)"));
-    }
-    for (name, v) in [
-        ("settle_time", cfg.settle_time),
-        ("record_time", cfg.record_time),
-        ("impact.lead", cfg.impact.lead),
-        ("impact.trail", cfg.impact.trail),
-    ] {
-        if !(v >= 0.0 && v.is_finite()) {
-            return Err(invalid(name, format!("{v} s is negative")));
-        }
-    }
+    cfg.validate()?;
     let RigStart {
         mut sim,
         rayleigh: ray,
