@@ -60,7 +60,8 @@ pub mod system;
 
 pub use error::MbdError;
 pub use integrators::{
-    AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Rk4, Solution, State, Stats,
+    AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Observer, Recorder, Rk4, Solution,
+    State, Stats, StepCorrection, Stepper,
 };
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub mod body;

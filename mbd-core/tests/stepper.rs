@@ -134,7 +134,9 @@ fn recorder_samples_at_exact_times_with_dense_output() {
         rec.sink
     };
     // Dormand–Prince: own steps, 4th-order dense output between them (rtol 1e-10)
-    let mut dp = DormandPrince::new(1e-10, 1e-12).stepper(&sys, s0.clone()).unwrap();
+    let mut dp = DormandPrince::new(1e-10, 1e-12)
+        .stepper(&sys, s0.clone())
+        .unwrap();
     let hist = run(&mut dp);
     let n = (t_end / dt).floor() as usize + 1;
     assert_eq!(hist.t.len(), n);
@@ -145,7 +147,9 @@ fn recorder_samples_at_exact_times_with_dense_output() {
         assert!((x - (omega * t).cos()).abs() < 1e-8, "t = {t}: {x}");
     }
     // sampling did not change the steps: the same run without a recorder takes the same steps
-    let mut plain = DormandPrince::new(1e-10, 1e-12).stepper(&sys, s0.clone()).unwrap();
+    let mut plain = DormandPrince::new(1e-10, 1e-12)
+        .stepper(&sys, s0.clone())
+        .unwrap();
     Stepper::advance_to(&mut plain, &sys, t_end, &mut ()).unwrap();
     assert_eq!(plain.stats(), dp.stats());
     assert_eq!(plain.state(), dp.state());
@@ -153,7 +157,12 @@ fn recorder_samples_at_exact_times_with_dense_output() {
     let mut rk = Rk4::new(0.01).stepper(&sys, s0).unwrap();
     let hist = run(&mut rk);
     assert_eq!(hist.t.len(), n);
-    for (k, (&t, &x)) in hist.t.iter().zip(&hist.column("x [m]").unwrap()).enumerate() {
+    for (k, (&t, &x)) in hist
+        .t
+        .iter()
+        .zip(&hist.column("x [m]").unwrap())
+        .enumerate()
+    {
         assert_eq!(t, k as f64 * dt);
         assert!((x - (omega * t).cos()).abs() < 1e-7, "t = {t}: {x}");
     }
@@ -315,7 +324,16 @@ fn block_slides_with_coulomb_friction_at_mu_g() {
         ..Default::default()
     });
     let s0 = State::new(0.0, vec![0.0, 0.0], vec![v0, 0.0]);
-    let mut st = ga.stepper_with(&sys, s0, SlidingFloor { mu, force: [0.0; 2] }).unwrap();
+    let mut st = ga
+        .stepper_with(
+            &sys,
+            s0,
+            SlidingFloor {
+                mu,
+                force: [0.0; 2],
+            },
+        )
+        .unwrap();
     // analytical: v(t) = v₀ − μ g t until t_s = v₀/(μ g), x(t_s) = v₀²/(2 μ g), then sticking
     let t_s = v0 / (mu * g);
     let mut worst_v = 0.0f64;
@@ -330,5 +348,9 @@ fn block_slides_with_coulomb_friction_at_mu_g() {
     let s = st.state();
     assert!(s.v[0].abs() < 1e-9, "sticks: v = {}", s.v[0]);
     let x_s = v0 * v0 / (2.0 * mu * g);
-    assert!((s.q[0] - x_s).abs() < 2.0 * v0 * h, "stop at {} vs {x_s}", s.q[0]);
+    assert!(
+        (s.q[0] - x_s).abs() < 2.0 * v0 * h,
+        "stop at {} vs {x_s}",
+        s.q[0]
+    );
 }

@@ -55,6 +55,9 @@ impl<S: SecondOrderSystem + ?Sized> StepCorrection<S> for NoCorrection {
     }
 }
 
+/// `(q_n, Δq, q_{n+1}) ↦ q_{n+1} = q_n ⊕ Δq` ([`SecondOrderSystem::integrate_position`]).
+pub(crate) type PositionUpdate<'a> = &'a dyn Fn(&[f64], &[f64], &mut [f64]);
+
 /// The converged generalized-α step handed to a [`StepCorrection`]: the end-of-step unknowns
 /// and the factored iteration matrix (see the module documentation for the formulas).
 pub struct AlphaCorrection<'a> {
@@ -70,7 +73,7 @@ pub struct AlphaCorrection<'a> {
     pub(crate) lambda: &'a mut [f64],
     pub(crate) kkt: &'a KktSolver,
     pub(crate) rhs: &'a mut [f64],
-    pub(crate) integrate_position: &'a dyn Fn(&[f64], &[f64], &mut [f64]),
+    pub(crate) integrate_position: PositionUpdate<'a>,
     pub(crate) factorizations: usize,
 }
 

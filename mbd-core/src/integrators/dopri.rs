@@ -547,7 +547,7 @@ impl DopriStepper {
         sys: &S,
         t_end: f64,
     ) -> Result<bool, MbdError> {
-        if !(self.t < t_end) {
+        if self.t >= t_end || t_end.is_nan() {
             return Ok(false);
         }
         self.refresh_k0(sys)?;
@@ -556,7 +556,11 @@ impl DopriStepper {
             None => self.initial_step(sys, t_end - self.t)?,
         };
         let p = self.params;
-        let h_max = if p.h_max > 0.0 { p.h_max } else { f64::INFINITY };
+        let h_max = if p.h_max > 0.0 {
+            p.h_max
+        } else {
+            f64::INFINITY
+        };
         let (nq, ny, t) = (self.nq, self.y.len(), self.t);
         loop {
             if self.attempts >= p.max_steps {

@@ -25,7 +25,7 @@
 
 use super::accel::{AccelSolver, Stabilization};
 use super::{
-    AlphaCorrection, Integrator, NoCorrection, Solution, State, StepCorrection, Stats, Stepper,
+    AlphaCorrection, Integrator, NoCorrection, Solution, State, Stats, StepCorrection, Stepper,
     check_step, explain_singular, observe_fn,
 };
 use crate::linalg::KktSolver;
@@ -484,9 +484,8 @@ impl<C> AlphaStepper<C> {
         }
         // nonsmooth correction with the factored iteration matrix
         {
-            let integrate = |q: &[f64], d: &[f64], out: &mut [f64]| {
-                sys.integrate_position(q, d, out)
-            };
+            let integrate =
+                |q: &[f64], d: &[f64], out: &mut [f64]| sys.integrate_position(q, d, out);
             let mut ctx = AlphaCorrection {
                 h,
                 beta_prime: bp,

@@ -23,7 +23,7 @@ pub struct Recorder<O: Observer> {
 impl<O: Observer> Recorder<O> {
     /// Samples into `sink` every `dt` \[s\] from `t_first` \[s\] on.
     pub fn new(sink: O, t_first: f64, dt: f64) -> Result<Self, MbdError> {
-        if !(dt.is_finite() && dt > 0.0) || !t_first.is_finite() {
+        if !(dt.is_finite() && dt > 0.0 && t_first.is_finite()) {
             return Err(MbdError::InvalidInput {
                 item: "recorder output interval".into(),
                 reason: format!("dt = {dt} must be positive and t_first = {t_first} finite"),
@@ -65,10 +65,12 @@ impl<O: Observer> Recorder<O> {
                     if (tk - t_now).abs() <= tol {
                         self.sample(stepper.state(), tk, stepper);
                     } else {
-                        let s = stepper.dense_output(sys, tk).ok_or_else(|| MbdError::Model {
-                            t: tk,
-                            message: "no dense output at the sample time".into(),
-                        })?;
+                        let s = stepper
+                            .dense_output(sys, tk)
+                            .ok_or_else(|| MbdError::Model {
+                                t: tk,
+                                message: "no dense output at the sample time".into(),
+                            })?;
                         self.sink.observe(&s, stepper.stats());
                     }
                     self.next += 1;
