@@ -63,7 +63,8 @@ pub mod validate;
 
 pub use error::MbdError;
 pub use integrators::{
-    AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Rk4, Solution, State, Stats,
+    AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Observer, Recorder, Rk4, Solution,
+    State, Stats, StepCorrection, Stepper,
 };
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub use validate::{InvalidField, Validate};

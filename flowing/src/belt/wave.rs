@@ -24,7 +24,7 @@ use super::schedule::Schedule;
 use crate::error::{FlowError, invalid};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, Recorder, State, observe_fn};
 use serde::{Deserialize, Serialize};
 
 /// Settings of the demonstration (SI units).
@@ -281,19 +281,16 @@ pub fn wave_run(
                 .collect(),
         );
     };
-    sample(&state);
     let alpha = GeneralizedAlpha::new(AlphaParams {
         h: settings.step,
         rho_inf: settings.rho_inf,
         ..Default::default()
     });
     let mut stepper = alpha.stepper(&belt, state)?;
+    // samples at k·Δt, k = 0..=samples (the stepper is advanced to each of them)
     let dt = settings.t_end / settings.samples as f64;
-    for k in 1..=settings.samples {
-        let target = k as f64 * dt;
-        stepper.advance_to(&belt, target, &mut |_| {})?;
-        sample(stepper.state());
-    }
+    let mut rec = Recorder::new(observe_fn(&mut sample), 0.0, dt)?;
+    rec.run(&mut stepper, &belt, settings.samples as f64 * dt, &mut ())?;
     Ok(run)
 }
 

@@ -3,7 +3,7 @@
 //! *Solving ODEs I*, II.5 and II.6).
 
 use super::accel::{AccelSolver, Stabilization};
-use super::{Integrator, Solution, State, Stats};
+use super::{Integrator, Solution, State, Stats, Stepper};
 use crate::{MbdError, SecondOrderSystem};
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
@@ -142,32 +142,6 @@ impl Default for DormandPrince {
     }
 }
 
-struct Rhs<'s, S: SecondOrderSystem + ?Sized> {
-    sys: &'s S,
-    nq: usize,
-    nv: usize,
-    solver: AccelSolver,
-    lam: Vec<f64>,
-    stab: Stabilization,
-}
-
-impl<S: SecondOrderSystem + ?Sized> Rhs<'_, S> {
-    fn eval(
-        &mut self,
-        t: f64,
-        y: &[f64],
-        dy: &mut [f64],
-        stats: &mut Stats,
-    ) -> Result<(), MbdError> {
-        let (q, v) = y.split_at(self.nq);
-        let (dq, dv) = dy.split_at_mut(self.nq);
-        self.sys.position_rate(q, v, dq);
-        debug_assert_eq!(dv.len(), self.nv);
-        self.solver
-            .solve(self.sys, t, q, v, &self.stab, stats, dv, &mut self.lam)
-    }
-}
-
 impl DormandPrince {
     /// Dormand–Prince with relative and absolute tolerances.
     pub fn new(rtol: f64, atol: f64) -> Self {
@@ -274,6 +248,15 @@ impl DormandPrince {
         self.run(sys, state0, t_end, events, Some(times), observer)
     }
 
+    /// A stepper started at `state0`.
+    pub fn stepper<S: SecondOrderSystem + ?Sized>(
+        &self,
+        sys: &S,
+        state0: State,
+    ) -> Result<DopriStepper, MbdError> {
+        DopriStepper::new(sys, state0, *self)
+    }
+
     fn run<S: SecondOrderSystem + ?Sized>(
         &self,
         sys: &S,
@@ -283,25 +266,11 @@ impl DormandPrince {
         output: Option<&[f64]>,
         mut observer: impl FnMut(&State),
     ) -> Result<Solution, MbdError> {
-        self.validate()?;
-        state0.check(sys)?;
-        let nq = sys.n_q();
-        let nv = sys.n_v();
-        let ny = nq + nv;
-        let mut stats = Stats::default();
-        let mut rhs = Rhs {
-            sys,
-            nq,
-            nv,
-            solver: AccelSolver::default(),
-            lam: vec![0.0; sys.n_c()],
-            stab: self.stabilization,
-        };
-        let mut t = state0.t;
-        let mut y: Vec<f64> = state0.q.iter().chain(state0.v.iter()).copied().collect();
+        let mut st = DopriStepper::new(sys, state0, *self)?;
+        let state0 = &st.state;
         let mut next_out = 0usize;
         match output {
-            None => observer(&state0),
+            None => observer(state0),
             Some(times) => {
                 while next_out < times.len() && times[next_out] <= state0.t {
                     observer(&State::new(
@@ -314,157 +283,17 @@ impl DormandPrince {
             }
         }
         let mut records = Vec::new();
-        let to_state = |t: f64, y: &[f64]| {
-            let mut q = y[..nq].to_vec();
-            sys.normalize(&mut q);
-            State::new(t, q, y[nq..].to_vec())
-        };
-        let mut g_prev: Vec<f64> = events.iter().map(|e| (e.g)(&state0)).collect();
-        let mut k = vec![vec![0.0; ny]; 7];
-        rhs.eval(t, &y, &mut k[0], &mut stats)?;
-        let span = t_end - t;
-        if span <= 0.0 {
-            return Ok(Solution {
-                state: state0,
-                stats,
-                events: records,
-            });
-        }
-        let h_max = if self.h_max > 0.0 { self.h_max } else { span };
-        let sc =
-            |y0: &[f64], y1: &[f64], i: usize| self.atol + self.rtol * y0[i].abs().max(y1[i].abs());
-        // initial step (Hairer, Nørsett & Wanner II.4)
-        let mut h = if self.h0 > 0.0 {
-            self.h0
-        } else {
-            // RMS norm scaled by the tolerances at y (the norm ‖·‖ of Hairer II.4)
-            let norm = |x: &[f64]| {
-                (x.iter()
-                    .enumerate()
-                    .map(|(i, x)| (x / sc(&y, &y, i)).powi(2))
-                    .sum::<f64>()
-                    / ny as f64)
-                    .sqrt()
+        let mut g_prev: Vec<f64> = events.iter().map(|e| (e.g)(state0)).collect();
+        let mut stepped = false;
+        while st.attempt(sys, t_end)? {
+            stepped = true;
+            let (t, t_new) = (st.t_prev, st.t);
+            let Some(st_new) = &st.raw_end else {
+                unreachable!("an accepted step leaves its end state")
             };
-            let d0 = norm(&y);
-            let d1 = norm(&k[0]);
-            let h0 = if d0 < 1e-5 || d1 < 1e-5 {
-                1e-6
-            } else {
-                0.01 * d0 / d1
-            };
-            let y1: Vec<f64> = y.iter().zip(&k[0]).map(|(a, b)| a + h0 * b).collect();
-            let mut f1 = vec![0.0; ny];
-            rhs.eval(t + h0, &y1, &mut f1, &mut stats)?;
-            let df: Vec<f64> = f1.iter().zip(&k[0]).map(|(a, b)| a - b).collect();
-            let d2 = norm(&df) / h0;
-            let h1 = if d1.max(d2) <= 1e-15 {
-                (h0 * 1e-3).max(1e-6)
-            } else {
-                (0.01 / d1.max(d2)).powf(0.2)
-            };
-            (100.0 * h0).min(h1)
-        };
-        h = h.min(h_max).min(span);
-        let mut ys = vec![0.0; ny];
-        let mut y1 = vec![0.0; ny];
-        let mut last_reject = false;
-        let mut nsteps = 0usize;
-        while t < t_end {
-            if nsteps >= self.max_steps {
-                return Err(MbdError::NoConvergence {
-                    t,
-                    iterations: nsteps,
-                    residual: h,
-                });
-            }
-            nsteps += 1;
-            if t + 1.01 * h >= t_end {
-                h = t_end - t;
-            }
-            if h < self.h_min {
-                return Err(MbdError::StepSizeUnderflow { t, h });
-            }
-            let mut stage_failed = false;
-            for s in 1..7 {
-                for i in 0..ny {
-                    let mut acc = 0.0;
-                    for j in 0..s {
-                        acc += A[s][j] * k[j][i];
-                    }
-                    ys[i] = y[i] + h * acc;
-                }
-                let (done, rest) = k.split_at_mut(s);
-                let _ = done;
-                let r = rhs.eval(t + C[s] * h, &ys, &mut rest[0], &mut stats);
-                if let Err(e) = r {
-                    // a failure inside a step (e.g. NaN from a too-large step) rejects the step
-                    if matches!(e, MbdError::NonFinite { .. }) && h > self.h_min {
-                        stage_failed = true;
-                        break;
-                    }
-                    return Err(e);
-                }
-            }
-            if stage_failed {
-                stats.rejected_steps += 1;
-                h *= 0.25;
-                last_reject = true;
-                continue;
-            }
-            // y1 = stage 7 argument (FSAL)
-            y1.copy_from_slice(&ys);
-            let mut err = 0.0;
-            for i in 0..ny {
-                let mut e = 0.0;
-                for j in 0..7 {
-                    e += E[j] * k[j][i];
-                }
-                let s = sc(&y, &y1, i);
-                err += (h * e / s).powi(2);
-            }
-            let err = (err / ny as f64).sqrt();
-            if !err.is_finite() || err > 1.0 {
-                stats.rejected_steps += 1;
-                let fac = if err.is_finite() {
-                    (0.9 * err.powf(-0.2)).max(0.2)
-                } else {
-                    0.1
-                };
-                h *= fac;
-                last_reject = true;
-                continue;
-            }
-            // accepted: dense-output coefficients
-            let t_new = t + h;
-            let mut rc = vec![vec![0.0; ny]; 5];
-            for i in 0..ny {
-                let ydiff = y1[i] - y[i];
-                let bspl = h * k[0][i] - ydiff;
-                rc[0][i] = y[i];
-                rc[1][i] = ydiff;
-                rc[2][i] = bspl;
-                rc[3][i] = ydiff - h * k[6][i] - bspl;
-                let mut dd = 0.0;
-                for j in 0..7 {
-                    dd += D[j] * k[j][i];
-                }
-                rc[4][i] = h * dd;
-            }
-            let dense = |tt: f64| -> Vec<f64> {
-                let th = (tt - t) / h;
-                let th1 = 1.0 - th;
-                (0..ny)
-                    .map(|i| {
-                        rc[0][i]
-                            + th * (rc[1][i] + th1 * (rc[2][i] + th * (rc[3][i] + th1 * rc[4][i])))
-                    })
-                    .collect()
-            };
-            let st_new = to_state(t_new, &y1);
-            // events
+            // events (on the unprojected end state and the dense output)
             let mut first: Option<(usize, f64)> = None;
-            let g_new: Vec<f64> = events.iter().map(|e| (e.g)(&st_new)).collect();
+            let g_new: Vec<f64> = events.iter().map(|e| (e.g)(st_new)).collect();
             for (ie, ev) in events.iter().enumerate() {
                 let (g0, g1) = (g_prev[ie], g_new[ie]);
                 let crossed = (g0 < 0.0 && g1 >= 0.0 && ev.direction >= 0)
@@ -473,7 +302,7 @@ impl DormandPrince {
                     continue;
                 }
                 let te = locate(
-                    |tt| (ev.g)(&to_state(tt, &dense(tt))),
+                    |tt| (ev.g)(&st.interpolate(sys, tt)),
                     t,
                     t_new,
                     g0,
@@ -484,7 +313,6 @@ impl DormandPrince {
                     first = Some((ie, te));
                 }
             }
-            stats.steps += 1;
             if let Some(times) = output {
                 let t_stop = first.map(|(_, te)| te).unwrap_or(t_new);
                 while next_out < times.len() && times[next_out] <= t_stop {
@@ -492,15 +320,15 @@ impl DormandPrince {
                     let so = if to == t_new {
                         st_new.clone()
                     } else {
-                        to_state(to, &dense(to))
+                        st.interpolate(sys, to)
                     };
                     observer(&so);
                     next_out += 1;
                 }
             }
             if let Some((ie, te)) = first {
-                stats.events += 1;
-                let se = to_state(te, &dense(te));
+                st.stats.events += 1;
+                let se = st.interpolate(sys, te);
                 records.push(EventRecord {
                     index: ie,
                     name: events[ie].name.clone(),
@@ -511,51 +339,431 @@ impl DormandPrince {
                     observer(&se);
                     return Ok(Solution {
                         state: se,
-                        stats,
+                        stats: st.stats,
                         events: records,
                     });
                 }
             }
             g_prev = g_new;
-            // accept
-            t = t_new;
-            let mut st = st_new;
-            let mut changed = st.q[..] != y1[..nq];
-            if self.stabilization.project {
-                rhs.solver
-                    .project(sys, &mut st, &self.stabilization, &mut stats)?;
-                changed = true;
-            }
-            st.check(sys)?;
+            st.finish(sys)?;
             if output.is_none() {
-                observer(&st);
+                observer(&st.state);
             }
-            y[..nq].copy_from_slice(&st.q);
-            y[nq..].copy_from_slice(&st.v);
-            if changed {
-                rhs.eval(t, &y, &mut k[0], &mut stats)?;
+        }
+        let mut state = st.state;
+        if stepped {
+            sys.normalize(&mut state.q);
+        }
+        Ok(Solution {
+            state,
+            stats: st.stats,
+            events: records,
+        })
+    }
+}
+
+/// Stepping object of [`DormandPrince`]: state, stages, step-size controller, dense-output
+/// coefficients of the last accepted step and statistics.
+pub struct DopriStepper {
+    params: DormandPrince,
+    solver: AccelSolver,
+    lam: Vec<f64>,
+    nq: usize,
+    /// Time of `y`.
+    t: f64,
+    /// `y = (q, v)` of the accepted (normalised, projected) state.
+    y: Vec<f64>,
+    k: Vec<Vec<f64>>,
+    ys: Vec<f64>,
+    y1: Vec<f64>,
+    /// Dense-output coefficients of the last accepted step (Hairer's `rcont1..5`).
+    rc: Vec<Vec<f64>>,
+    state: State,
+    /// End state of the last accepted step before projection.
+    raw_end: Option<State>,
+    t_prev: f64,
+    h_last: f64,
+    /// Proposed next step (`None` before the first step: Hairer's initial-step heuristic).
+    h: Option<f64>,
+    last_reject: bool,
+    attempts: usize,
+    /// `k[0]` must be re-evaluated at `y` (the accepted state was normalised or projected).
+    k0_stale: bool,
+    stats: Stats,
+}
+
+/// Error scale `atol + rtol max(|y0ᵢ|, |y1ᵢ|)` (Hairer II.4).
+fn scale(p: &DormandPrince, y0: &[f64], y1: &[f64], i: usize) -> f64 {
+    p.atol + p.rtol * y0[i].abs().max(y1[i].abs())
+}
+
+fn eval_rhs<S: SecondOrderSystem + ?Sized>(
+    sys: &S,
+    solver: &mut AccelSolver,
+    lam: &mut [f64],
+    stab: &Stabilization,
+    nq: usize,
+    t: f64,
+    y: &[f64],
+    dy: &mut [f64],
+    stats: &mut Stats,
+) -> Result<(), MbdError> {
+    let (q, v) = y.split_at(nq);
+    let (dq, dv) = dy.split_at_mut(nq);
+    sys.position_rate(q, v, dq);
+    solver.solve(sys, t, q, v, stab, stats, dv, lam)
+}
+
+impl DopriStepper {
+    /// Current state (also [`Stepper::state`]).
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// Statistics so far (also [`Stepper::stats`]).
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    /// Starts at `state0` (one right-hand-side evaluation).
+    pub fn new<S: SecondOrderSystem + ?Sized>(
+        sys: &S,
+        state0: State,
+        params: DormandPrince,
+    ) -> Result<Self, MbdError> {
+        params.validate()?;
+        state0.check(sys)?;
+        let nq = sys.n_q();
+        let ny = nq + sys.n_v();
+        let y: Vec<f64> = state0.q.iter().chain(state0.v.iter()).copied().collect();
+        let mut st = Self {
+            params,
+            solver: AccelSolver::default(),
+            lam: vec![0.0; sys.n_c()],
+            nq,
+            t: state0.t,
+            y,
+            k: vec![vec![0.0; ny]; 7],
+            ys: vec![0.0; ny],
+            y1: vec![0.0; ny],
+            rc: vec![vec![0.0; ny]; 5],
+            t_prev: state0.t,
+            state: state0,
+            raw_end: None,
+            h_last: 0.0,
+            h: None,
+            last_reject: false,
+            attempts: 0,
+            k0_stale: true,
+            stats: Stats::default(),
+        };
+        st.refresh_k0(sys)?;
+        Ok(st)
+    }
+
+    fn refresh_k0<S: SecondOrderSystem + ?Sized>(&mut self, sys: &S) -> Result<(), MbdError> {
+        if self.k0_stale {
+            let stab = self.params.stabilization;
+            eval_rhs(
+                sys,
+                &mut self.solver,
+                &mut self.lam,
+                &stab,
+                self.nq,
+                self.t,
+                &self.y,
+                &mut self.k[0],
+                &mut self.stats,
+            )?;
+            self.k0_stale = false;
+        }
+        Ok(())
+    }
+
+    fn sc(&self, y0: &[f64], y1: &[f64], i: usize) -> f64 {
+        scale(&self.params, y0, y1, i)
+    }
+
+    /// Initial step (Hairer, Nørsett & Wanner II.4) for a run of length `span` \[s\].
+    fn initial_step<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        span: f64,
+    ) -> Result<f64, MbdError> {
+        let p = self.params;
+        let h_max = if p.h_max > 0.0 { p.h_max } else { span };
+        let ny = self.y.len();
+        let h = if p.h0 > 0.0 {
+            p.h0
+        } else {
+            let y = &self.y.clone();
+            let k0 = self.k[0].clone();
+            // RMS norm scaled by the tolerances at y (the norm ‖·‖ of Hairer II.4)
+            let norm = |x: &[f64]| {
+                (x.iter()
+                    .enumerate()
+                    .map(|(i, x)| (x / scale(&p, y, y, i)).powi(2))
+                    .sum::<f64>()
+                    / ny as f64)
+                    .sqrt()
+            };
+            let d0 = norm(y);
+            let d1 = norm(&k0);
+            let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+                1e-6
             } else {
-                let k6 = k[6].clone();
-                k[0].copy_from_slice(&k6);
+                0.01 * d0 / d1
+            };
+            let y1: Vec<f64> = y.iter().zip(&k0).map(|(a, b)| a + h0 * b).collect();
+            let mut f1 = vec![0.0; ny];
+            eval_rhs(
+                sys,
+                &mut self.solver,
+                &mut self.lam,
+                &p.stabilization,
+                self.nq,
+                self.t + h0,
+                &y1,
+                &mut f1,
+                &mut self.stats,
+            )?;
+            let df: Vec<f64> = f1.iter().zip(&k0).map(|(a, b)| a - b).collect();
+            let d2 = norm(&df) / h0;
+            let h1 = if d1.max(d2) <= 1e-15 {
+                (h0 * 1e-3).max(1e-6)
+            } else {
+                (0.01 / d1.max(d2)).powf(0.2)
+            };
+            (100.0 * h0).min(h1)
+        };
+        Ok(h.min(h_max).min(span))
+    }
+
+    /// One accepted step towards `t_end` (error control, dense-output coefficients, next step
+    /// size) without the projection and the bookkeeping of [`finish`](Self::finish), so that
+    /// events can stop the run at a state before the step's end.
+    fn attempt<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t_end: f64,
+    ) -> Result<bool, MbdError> {
+        if self.t >= t_end || t_end.is_nan() {
+            return Ok(false);
+        }
+        self.refresh_k0(sys)?;
+        let mut h = match self.h {
+            Some(h) => h,
+            None => self.initial_step(sys, t_end - self.t)?,
+        };
+        let p = self.params;
+        let h_max = if p.h_max > 0.0 {
+            p.h_max
+        } else {
+            f64::INFINITY
+        };
+        let (nq, ny, t) = (self.nq, self.y.len(), self.t);
+        loop {
+            if self.attempts >= p.max_steps {
+                return Err(MbdError::NoConvergence {
+                    t,
+                    iterations: self.attempts,
+                    residual: h,
+                });
             }
+            self.attempts += 1;
+            let clamped = t + 1.01 * h >= t_end;
+            if clamped {
+                h = t_end - t;
+            }
+            if h < p.h_min {
+                return Err(MbdError::StepSizeUnderflow { t, h });
+            }
+            let mut stage_failed = false;
+            for s in 1..7 {
+                for i in 0..ny {
+                    let mut acc = 0.0;
+                    for j in 0..s {
+                        acc += A[s][j] * self.k[j][i];
+                    }
+                    self.ys[i] = self.y[i] + h * acc;
+                }
+                let (_, rest) = self.k.split_at_mut(s);
+                let r = eval_rhs(
+                    sys,
+                    &mut self.solver,
+                    &mut self.lam,
+                    &p.stabilization,
+                    nq,
+                    t + C[s] * h,
+                    &self.ys,
+                    &mut rest[0],
+                    &mut self.stats,
+                );
+                if let Err(e) = r {
+                    // a failure inside a step (e.g. NaN from a too-large step) rejects the step
+                    if matches!(e, MbdError::NonFinite { .. }) && h > p.h_min {
+                        stage_failed = true;
+                        break;
+                    }
+                    return Err(e);
+                }
+            }
+            if stage_failed {
+                self.stats.rejected_steps += 1;
+                h *= 0.25;
+                self.last_reject = true;
+                continue;
+            }
+            // y1 = stage 7 argument (FSAL)
+            self.y1.copy_from_slice(&self.ys);
+            let mut err = 0.0;
+            for i in 0..ny {
+                let mut e = 0.0;
+                for j in 0..7 {
+                    e += E[j] * self.k[j][i];
+                }
+                let s = self.sc(&self.y, &self.y1, i);
+                err += (h * e / s).powi(2);
+            }
+            let err = (err / ny as f64).sqrt();
+            if !err.is_finite() || err > 1.0 {
+                self.stats.rejected_steps += 1;
+                let fac = if err.is_finite() {
+                    (0.9 * err.powf(-0.2)).max(0.2)
+                } else {
+                    0.1
+                };
+                h *= fac;
+                self.last_reject = true;
+                continue;
+            }
+            // accepted: dense-output coefficients
+            let (y, y1, k) = (&self.y, &self.y1, &self.k);
+            for i in 0..ny {
+                let ydiff = y1[i] - y[i];
+                let bspl = h * k[0][i] - ydiff;
+                self.rc[0][i] = y[i];
+                self.rc[1][i] = ydiff;
+                self.rc[2][i] = bspl;
+                self.rc[3][i] = ydiff - h * k[6][i] - bspl;
+                let mut dd = 0.0;
+                for j in 0..7 {
+                    dd += D[j] * k[j][i];
+                }
+                self.rc[4][i] = h * dd;
+            }
+            // the stop time is hit exactly
+            let t_new = if clamped { t_end } else { t + h };
+            let mut q = y1[..nq].to_vec();
+            sys.normalize(&mut q);
+            let st_new = State::new(t_new, q, y1[nq..].to_vec());
+            self.stats.steps += 1;
+            self.t_prev = t;
+            self.h_last = h;
+            self.t = t_new;
+            self.raw_end = Some(st_new);
             let mut fac = if err > 0.0 {
                 0.9 * err.powf(-0.2)
             } else {
                 10.0
             };
             fac = fac.clamp(0.2, 10.0);
-            if last_reject {
+            if self.last_reject {
                 fac = fac.min(1.0);
             }
-            last_reject = false;
-            h = (h * fac).min(h_max);
+            self.last_reject = false;
+            self.h = Some((h * fac).min(h_max));
+            return Ok(true);
         }
-        let state = to_state(t, &y);
-        Ok(Solution {
-            state,
-            stats,
-            events: records,
-        })
+    }
+
+    /// Completes the step found by [`attempt`](Self::attempt): projection (if requested),
+    /// checks, and the accepted state becomes the start of the next step.
+    fn finish<S: SecondOrderSystem + ?Sized>(&mut self, sys: &S) -> Result<(), MbdError> {
+        let Some(st_new) = &self.raw_end else {
+            return Ok(());
+        };
+        let p = self.params;
+        let nq = self.nq;
+        let mut st = st_new.clone();
+        let mut changed = st.q[..] != self.y1[..nq];
+        if p.stabilization.project {
+            self.solver
+                .project(sys, &mut st, &p.stabilization, &mut self.stats)?;
+            changed = true;
+        }
+        st.check(sys)?;
+        self.y[..nq].copy_from_slice(&st.q);
+        self.y[nq..].copy_from_slice(&st.v);
+        if changed {
+            self.k0_stale = true;
+        } else {
+            let (k0, k6) = self.k.split_at_mut(6);
+            k0[0].copy_from_slice(&k6[0]);
+        }
+        self.state = st;
+        Ok(())
+    }
+
+    /// `(q, v)` at `t` \[s\] from the dense output of the last step (normalised positions).
+    fn interpolate<S: SecondOrderSystem + ?Sized>(&self, sys: &S, t: f64) -> State {
+        let th = (t - self.t_prev) / self.h_last;
+        let th1 = 1.0 - th;
+        let rc = &self.rc;
+        let mut q = Vec::with_capacity(self.nq);
+        let mut v = Vec::with_capacity(self.y.len() - self.nq);
+        for i in 0..self.y.len() {
+            let x =
+                rc[0][i] + th * (rc[1][i] + th1 * (rc[2][i] + th * (rc[3][i] + th1 * rc[4][i])));
+            if i < self.nq { q.push(x) } else { v.push(x) }
+        }
+        sys.normalize(&mut q);
+        State::new(t, q, v)
+    }
+}
+
+impl<S: SecondOrderSystem + ?Sized> Stepper<S> for DopriStepper {
+    fn state(&self) -> &State {
+        &self.state
+    }
+
+    fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    fn step(&mut self, sys: &S, h: Option<f64>) -> Result<(), MbdError> {
+        let t_stop = match h {
+            None => f64::INFINITY,
+            Some(h) => {
+                super::check_step(h, "Dormand-Prince step")?;
+                self.t + h
+            }
+        };
+        self.step_until(sys, t_stop).map(|_| ())
+    }
+
+    fn step_until(&mut self, sys: &S, t_stop: f64) -> Result<bool, MbdError> {
+        if !self.attempt(sys, t_stop)? {
+            return Ok(false);
+        }
+        self.finish(sys)?;
+        Ok(true)
+    }
+
+    fn has_dense_output(&self) -> bool {
+        true
+    }
+
+    fn dense_output(&self, sys: &S, t: f64) -> Option<State> {
+        let raw = self.raw_end.as_ref()?;
+        if t == raw.t {
+            return Some(raw.clone());
+        }
+        let tol = 1e-12 * self.h_last.abs().max(f64::MIN_POSITIVE);
+        if t < self.t_prev - tol || t > raw.t + tol {
+            return None;
+        }
+        Some(self.interpolate(sys, t))
     }
 }
 
@@ -620,5 +828,13 @@ impl Integrator for DormandPrince {
         observer: &mut dyn FnMut(&State),
     ) -> Result<Solution, MbdError> {
         self.integrate(sys, state0, t_end, observer)
+    }
+
+    fn stepper_dyn<'a>(
+        &self,
+        sys: &(dyn SecondOrderSystem + 'a),
+        state0: State,
+    ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError> {
+        Ok(Box::new(self.stepper(sys, state0)?))
     }
 }

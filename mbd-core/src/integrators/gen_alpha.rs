@@ -24,7 +24,10 @@
 //! which stays well conditioned as `h → 0` (the scaling of Arnold & Brüls / Bottasso et al.).
 
 use super::accel::{AccelSolver, Stabilization};
-use super::{Integrator, Solution, State, Stats, check_step, explain_singular};
+use super::{
+    AlphaCorrection, Integrator, NoCorrection, Solution, State, Stats, StepCorrection, Stepper,
+    check_step, explain_singular, observe_fn,
+};
 use crate::linalg::KktSolver;
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
@@ -126,6 +129,17 @@ impl GeneralizedAlpha {
         AlphaStepper::new(sys, state0, self.params)
     }
 
+    /// A stepper started at `state0` that applies `correction` after every step's Newton
+    /// iteration (nonsmooth contact, module [`correction`](super::StepCorrection)).
+    pub fn stepper_with<S: SecondOrderSystem + ?Sized, C: StepCorrection<S>>(
+        &self,
+        sys: &S,
+        state0: State,
+        correction: C,
+    ) -> Result<AlphaStepper<C>, MbdError> {
+        Ok(AlphaStepper::new(sys, state0, self.params)?.with_correction(correction))
+    }
+
     /// Integrates from `state0` to `t_end` \[s\] with the nominal step `params.h` (the last step
     /// is shortened; failed Newton iterations halve the step). `observer` sees the initial state
     /// and every accepted step.
@@ -138,7 +152,7 @@ impl GeneralizedAlpha {
     ) -> Result<Solution, MbdError> {
         let mut st = self.stepper(sys, state0)?;
         observer(st.state());
-        st.advance_to(sys, t_end, &mut observer)?;
+        Stepper::advance_to(&mut st, sys, t_end, &mut observe_fn(observer))?;
         Ok(Solution {
             state: st.state().clone(),
             stats: st.stats,
@@ -157,11 +171,51 @@ impl Integrator for GeneralizedAlpha {
     ) -> Result<Solution, MbdError> {
         self.integrate(sys, state0, t_end, observer)
     }
+
+    fn stepper_dyn<'a>(
+        &self,
+        sys: &(dyn SecondOrderSystem + 'a),
+        state0: State,
+    ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError> {
+        Ok(Box::new(self.stepper(sys, state0)?))
+    }
+}
+
+/// Per-step vectors of [`AlphaStepper`], allocated once.
+#[derive(Default)]
+struct Work {
+    vdot1: Vec<f64>,
+    lam1: Vec<f64>,
+    dq: Vec<f64>,
+    v1: Vec<f64>,
+    q1: Vec<f64>,
+    r: Vec<f64>,
+    phi: Vec<f64>,
+    rhs: Vec<f64>,
+    f: Vec<f64>,
+}
+
+impl Work {
+    fn new(nq: usize, n: usize, nc: usize) -> Self {
+        Self {
+            vdot1: vec![0.0; n],
+            lam1: vec![0.0; nc],
+            dq: vec![0.0; n],
+            v1: vec![0.0; n],
+            q1: vec![0.0; nq],
+            r: vec![0.0; n],
+            phi: vec![0.0; nc],
+            rhs: vec![0.0; n + nc],
+            f: vec![0.0; n],
+        }
+    }
 }
 
 /// Stepping object of the generalized-α integrator: holds the state, the accelerations
-/// `v̇`, the algorithmic accelerations `a`, the multipliers `λ` and the statistics.
-pub struct AlphaStepper {
+/// `v̇`, the algorithmic accelerations `a`, the multipliers `λ`, the statistics, the factored
+/// iteration matrix, the per-step workspaces and a [`StepCorrection`] `C` applied after the
+/// Newton iteration of every step (nonsmooth contact; [`NoCorrection`] by default).
+pub struct AlphaStepper<C = NoCorrection> {
     /// Parameters.
     pub params: AlphaParams,
     state: State,
@@ -172,9 +226,14 @@ pub struct AlphaStepper {
     pub stats: Stats,
     kkt: KktSolver,
     mass_cache: Option<SysMatrix>,
+    work: Work,
+    /// Current step of [`Stepper::step_until`] (halved after Newton failures).
+    h_cur: f64,
+    halvings: usize,
+    correction: C,
 }
 
-impl AlphaStepper {
+impl AlphaStepper<NoCorrection> {
     /// Starts at `state0`; `v̇₀` and `λ₀` solve the index-1 equations, `a₀ = v̇₀`.
     pub fn new<S: SecondOrderSystem + ?Sized>(
         sys: &S,
@@ -218,7 +277,41 @@ impl AlphaStepper {
             stats,
             kkt: KktSolver::new(),
             mass_cache: None,
+            work: Work::new(sys.n_q(), sys.n_v(), sys.n_c()),
+            h_cur: params.h,
+            halvings: 0,
+            correction: NoCorrection,
         })
+    }
+}
+
+impl<C> AlphaStepper<C> {
+    /// The same stepper with the step correction `correction` (applied from the next step on).
+    pub fn with_correction<C2>(self, correction: C2) -> AlphaStepper<C2> {
+        AlphaStepper {
+            params: self.params,
+            state: self.state,
+            vdot: self.vdot,
+            a: self.a,
+            lambda: self.lambda,
+            stats: self.stats,
+            kkt: self.kkt,
+            mass_cache: self.mass_cache,
+            work: self.work,
+            h_cur: self.h_cur,
+            halvings: self.halvings,
+            correction,
+        }
+    }
+
+    /// The step correction.
+    pub fn correction(&self) -> &C {
+        &self.correction
+    }
+
+    /// The step correction (mutable, e.g. to change its data between steps).
+    pub fn correction_mut(&mut self) -> &mut C {
+        &mut self.correction
     }
 
     /// Current state.
@@ -241,90 +334,99 @@ impl AlphaStepper {
         self.kkt.symbolic_factorizations
     }
 
-    /// Integrates up to `t_end` with the nominal step, halving after Newton failures.
+    /// Integrates up to `t_end` with the nominal step, halving after Newton failures
+    /// ([`Stepper::advance_to`] with a closure observer).
     pub fn advance_to<S: SecondOrderSystem + ?Sized>(
         &mut self,
         sys: &S,
         t_end: f64,
         observer: &mut dyn FnMut(&State),
-    ) -> Result<(), MbdError> {
-        let h0 = self.params.h;
-        let mut h = h0;
-        let mut halvings = 0usize;
-        while self.state.t < t_end - 1e-12 * h0 {
-            let rem = t_end - self.state.t;
-            let hs = if rem <= h * (1.0 + 1e-8) { rem } else { h };
-            match self.step(sys, hs) {
-                Ok(()) => {
-                    observer(&self.state);
-                    if halvings > 0 {
-                        halvings -= 1;
-                        h *= 2.0;
-                    }
-                }
-                Err(MbdError::NoConvergence { .. }) if halvings < self.params.max_halvings => {
-                    self.stats.rejected_steps += 1;
-                    halvings += 1;
-                    h *= 0.5;
-                }
-                Err(e) => return Err(e),
-            }
-        }
-        Ok(())
+    ) -> Result<(), MbdError>
+    where
+        C: StepCorrection<S>,
+    {
+        Stepper::advance_to(self, sys, t_end, &mut observe_fn(observer))
     }
 
     /// One step of size `h` \[s\]. On failure the state is unchanged.
-    pub fn step<S: SecondOrderSystem + ?Sized>(&mut self, sys: &S, h: f64) -> Result<(), MbdError> {
+    pub fn step<S: SecondOrderSystem + ?Sized>(&mut self, sys: &S, h: f64) -> Result<(), MbdError>
+    where
+        C: StepCorrection<S>,
+    {
+        let t1 = self.state.t + h;
+        self.step_to(sys, h, t1)
+    }
+
+    /// One step of size `h` ending at `t1 ≈ t + h` (`t1` exactly, so that stop times are hit).
+    fn step_to<S: SecondOrderSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        h: f64,
+        t1: f64,
+    ) -> Result<(), MbdError>
+    where
+        C: StepCorrection<S>,
+    {
         check_step(h, "generalized-alpha step h")?;
         let p = self.params;
-        let r = self.step_impl(sys, h, p.update);
-        match r {
-            Err(MbdError::NoConvergence { .. }) if p.update == NewtonUpdate::EveryStep => {
-                self.stats.rejected_steps += 1;
-                self.step_impl(sys, h, NewtonUpdate::EveryIteration)
-            }
-            other => other,
+        let mut w = std::mem::take(&mut self.work);
+        let mut r = self.step_impl(sys, h, t1, p.update, &mut w);
+        if let Err(MbdError::NoConvergence { .. }) = r
+            && p.update == NewtonUpdate::EveryStep
+        {
+            self.stats.rejected_steps += 1;
+            r = self.step_impl(sys, h, t1, NewtonUpdate::EveryIteration, &mut w);
         }
+        self.work = w;
+        r
     }
 
     fn step_impl<S: SecondOrderSystem + ?Sized>(
         &mut self,
         sys: &S,
         h: f64,
+        t1: f64,
         update: NewtonUpdate,
-    ) -> Result<(), MbdError> {
+        w: &mut Work,
+    ) -> Result<(), MbdError>
+    where
+        C: StepCorrection<S>,
+    {
         let p = self.params;
         let (am, af, beta, gamma) = alpha_coefficients(p.rho_inf);
         let n = sys.n_v();
         let nc = sys.n_c();
-        let t0 = self.state.t;
-        let t1 = t0 + h;
         let bp = (1.0 - am) / (h * h * beta * (1.0 - af));
         let gp = gamma / (h * beta);
+        let Work {
+            vdot1,
+            lam1,
+            dq,
+            v1,
+            q1,
+            r,
+            phi,
+            rhs,
+            f,
+        } = w;
 
         // predictor: v̇_{n+1} = v̇_n, λ_{n+1} = λ_n
-        let mut vdot1 = self.vdot.clone();
-        let mut lam1 = self.lambda.clone();
-        let mut dq = vec![0.0; n];
-        let mut v1 = vec![0.0; n];
+        vdot1.copy_from_slice(&self.vdot);
+        lam1.copy_from_slice(&self.lambda);
         for i in 0..n {
             let a1 = (af * self.vdot[i] - am * self.a[i] + (1.0 - af) * vdot1[i]) / (1.0 - am);
             dq[i] = h * self.state.v[i] + h * h * ((0.5 - beta) * self.a[i] + beta * a1);
             v1[i] = self.state.v[i] + h * ((1.0 - gamma) * self.a[i] + gamma * a1);
         }
-        let mut q1 = vec![0.0; sys.n_q()];
-        sys.integrate_position(&self.state.q, &dq, &mut q1);
+        sys.integrate_position(&self.state.q, dq, q1);
 
-        let mut r = vec![0.0; n];
-        let mut phi = vec![0.0; nc];
-        let mut rhs = vec![0.0; n + nc];
         let mut converged = false;
         let mut last = f64::INFINITY;
         let mut it = 0;
         while it < p.max_newton_iterations {
             it += 1;
             self.stats.newton_iterations += 1;
-            self.residual(sys, t1, &q1, &v1, &vdot1, &lam1, &mut r, &mut phi)?;
+            self.residual(sys, t1, q1, v1, vdot1, lam1, r, phi, f)?;
             let fill_rhs = |rhs: &mut [f64]| {
                 for i in 0..n {
                     rhs[i] = -r[i] / bp;
@@ -338,18 +440,18 @@ impl AlphaStepper {
             // converged and no new factorisation is needed.
             let mut have_solution = false;
             if it > 1 && self.kkt.is_factored() {
-                fill_rhs(&mut rhs);
-                self.kkt.solve(&mut rhs, t1)?;
+                fill_rhs(rhs);
+                self.kkt.solve(rhs, t1)?;
                 let dqn = dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
                 let dxn = rhs[..n].iter().fold(0.0f64, |a, x| a.max(x.abs()));
                 have_solution =
                     update == NewtonUpdate::EveryStep || dxn <= p.newton_atol + p.newton_rtol * dqn;
             }
             if !have_solution {
-                self.newton_matrix(sys, t1, &q1, &v1, &vdot1, &lam1, &r, &phi, bp, gp)
-                    .map_err(|e| explain_singular(sys, t1, &q1, e))?;
-                fill_rhs(&mut rhs);
-                self.kkt.solve(&mut rhs, t1)?;
+                self.newton_matrix(sys, t1, q1, v1, vdot1, lam1, r, phi, bp, gp, f)
+                    .map_err(|e| explain_singular(sys, t1, q1, e))?;
+                fill_rhs(rhs);
+                self.kkt.solve(rhs, t1)?;
             }
             let mut dx_norm = 0.0f64;
             for i in 0..n {
@@ -362,7 +464,7 @@ impl AlphaStepper {
             for i in 0..nc {
                 lam1[i] += bp * rhs[n + i];
             }
-            sys.integrate_position(&self.state.q, &dq, &mut q1);
+            sys.integrate_position(&self.state.q, dq, q1);
             last = dx_norm;
             let dq_norm = dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
             if !dx_norm.is_finite() {
@@ -380,19 +482,50 @@ impl AlphaStepper {
                 residual: last,
             });
         }
+        // nonsmooth correction with the factored iteration matrix
+        {
+            let integrate =
+                |q: &[f64], d: &[f64], out: &mut [f64]| sys.integrate_position(q, d, out);
+            let mut ctx = AlphaCorrection {
+                h,
+                beta_prime: bp,
+                gamma_prime: gp,
+                start: &self.state,
+                t1,
+                dq,
+                q: q1,
+                v: v1,
+                vdot: vdot1,
+                lambda: lam1,
+                kkt: &self.kkt,
+                rhs,
+                integrate_position: &integrate,
+                factorizations: self.stats.factorizations,
+            };
+            self.correction.correct(sys, &mut ctx)?;
+        }
         // accept
+        sys.normalize(q1);
+        let mut new_state = State::new(t1, std::mem::take(q1), std::mem::take(v1));
+        let checked = if p.project_velocities && nc > 0 {
+            super::accel::project_velocities(sys, &mut new_state)
+        } else {
+            Ok(())
+        }
+        .and_then(|()| new_state.check(sys));
+        if let Err(e) = checked {
+            *q1 = new_state.q;
+            *v1 = new_state.v;
+            return Err(e);
+        }
         for i in 0..n {
             self.a[i] = (af * self.vdot[i] - am * self.a[i] + (1.0 - af) * vdot1[i]) / (1.0 - am);
         }
-        sys.normalize(&mut q1);
-        let mut new_state = State::new(t1, q1, v1);
-        if p.project_velocities && nc > 0 {
-            super::accel::project_velocities(sys, &mut new_state)?;
-        }
-        new_state.check(sys)?;
-        self.state = new_state;
-        self.vdot = vdot1;
-        self.lambda = lam1;
+        let old = std::mem::replace(&mut self.state, new_state);
+        *q1 = old.q;
+        *v1 = old.v;
+        std::mem::swap(&mut self.vdot, vdot1);
+        std::mem::swap(&mut self.lambda, lam1);
         self.stats.steps += 1;
         Ok(())
     }
@@ -409,10 +542,10 @@ impl AlphaStepper {
         lam: &[f64],
         r: &mut [f64],
         phi: &mut [f64],
+        f: &mut [f64],
     ) -> Result<(), MbdError> {
         let n = sys.n_v();
-        let mut f = vec![0.0; n];
-        sys.forces(t, q, v, &mut f)?;
+        sys.forces(t, q, v, f)?;
         self.stats.force_evaluations += 1;
         if let Some(i) = f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {
@@ -464,6 +597,7 @@ impl AlphaStepper {
         phi0: &[f64],
         bp: f64,
         gp: f64,
+        f: &mut [f64],
     ) -> Result<(), MbdError> {
         let n = sys.n_v();
         let nc = sys.n_c();
@@ -510,7 +644,7 @@ impl AlphaStepper {
                     e[j] = 0.0;
                     vp[j] = v[j] + gp * eps;
                     ap[j] = vdot[j] + bp * eps;
-                    self.residual(sys, t, &qp, &vp, &ap, lam, &mut rp, &mut php)?;
+                    self.residual(sys, t, &qp, &vp, &ap, lam, &mut rp, &mut php, f)?;
                     vp[j] = v[j];
                     ap[j] = vdot[j];
                     for i in 0..n {
@@ -539,5 +673,67 @@ impl AlphaStepper {
         let tan = crate::system::finite_difference_tangent(sys, t, q, v)?;
         self.stats.force_evaluations += 2 * sys.n_v() + 1;
         Ok((tan.stiffness, tan.damping))
+    }
+}
+
+impl<S: SecondOrderSystem + ?Sized, C: StepCorrection<S>> Stepper<S> for AlphaStepper<C> {
+    fn state(&self) -> &State {
+        &self.state
+    }
+
+    fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    fn step(&mut self, sys: &S, h: Option<f64>) -> Result<(), MbdError> {
+        AlphaStepper::step(self, sys, h.unwrap_or(self.params.h))
+    }
+
+    /// Nominal step (shortened to end on `t_stop`), halved after a Newton failure (up to
+    /// `max_halvings` times) and doubled back after each accepted step.
+    fn step_until(&mut self, sys: &S, t_stop: f64) -> Result<bool, MbdError> {
+        let h0 = self.params.h;
+        if self.state.t >= t_stop - 1e-12 * h0 {
+            return Ok(false);
+        }
+        loop {
+            let rem = t_stop - self.state.t;
+            let h = self.h_cur;
+            let (hs, t1) = if rem <= h * (1.0 + 1e-8) {
+                (rem, t_stop)
+            } else {
+                (h, self.state.t + h)
+            };
+            match self.step_to(sys, hs, t1) {
+                Ok(()) => {
+                    if self.halvings > 0 {
+                        self.halvings -= 1;
+                        self.h_cur *= 2.0;
+                    }
+                    return Ok(true);
+                }
+                Err(MbdError::NoConvergence { .. }) if self.halvings < self.params.max_halvings => {
+                    self.stats.rejected_steps += 1;
+                    self.halvings += 1;
+                    self.h_cur *= 0.5;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    /// Every call starts from the nominal step.
+    fn advance_to(
+        &mut self,
+        sys: &S,
+        t_stop: f64,
+        observer: &mut dyn super::Observer,
+    ) -> Result<(), MbdError> {
+        self.h_cur = self.params.h;
+        self.halvings = 0;
+        while Stepper::step_until(self, sys, t_stop)? {
+            observer.observe(&self.state, &self.stats);
+        }
+        Ok(())
     }
 }

@@ -8,22 +8,31 @@
 //!   index-3 form of Arnold & Brüls (2007) with scaled constraint equations, Newton iterations
 //!   with analytic or finite-difference Jacobians, dense or sparse LU with symbolic reuse.
 //!
-//! All integrators implement [`Integrator`] so that applications can pick one at run time, and
-//! report [`Stats`].
+//! All three are run through one [`Stepper`] interface (step, stop time, dense output,
+//! statistics; outputs through an [`Observer`] or a fixed-interval [`Recorder`]); their
+//! `integrate` functions are thin loops over it. All implement [`Integrator`] (a stepper
+//! factory) so that applications can pick one at run time. The generalized-α stepper takes a
+//! [`StepCorrection`] (nonsmooth contact impulses solved with its iteration matrix).
 
 mod accel;
+mod correction;
 mod dopri;
 mod gen_alpha;
+mod recorder;
 mod rk4;
+mod stepper;
 
 pub use accel::{
     Acceleration, Stabilization, accelerations, project_positions, project_velocities,
 };
-pub use dopri::{DormandPrince, Event, EventAction, EventRecord};
+pub use correction::{AlphaCorrection, NoCorrection, StepCorrection};
+pub use dopri::{DopriStepper, DormandPrince, Event, EventAction, EventRecord};
 pub use gen_alpha::{
     AlphaParams, AlphaStepper, GeneralizedAlpha, JacobianMode, NewtonUpdate, alpha_coefficients,
 };
-pub use rk4::Rk4;
+pub use recorder::Recorder;
+pub use rk4::{Rk4, Rk4Stepper};
+pub use stepper::{FnObserver, Observer, Stepper, observe_fn};
 
 use crate::{MbdError, SecondOrderSystem};
 
@@ -135,6 +144,14 @@ pub trait Integrator {
         t_end: f64,
         observer: &mut dyn FnMut(&State),
     ) -> Result<Solution, MbdError>;
+
+    /// A [`Stepper`] of this method started at `state0` (the stepper factory: run it with
+    /// [`Stepper::advance_to`] or a [`Recorder`]).
+    fn stepper_dyn<'a>(
+        &self,
+        sys: &(dyn SecondOrderSystem + 'a),
+        state0: State,
+    ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError>;
 }
 
 pub(crate) fn check_step(h: f64, what: &str) -> Result<(), MbdError> {

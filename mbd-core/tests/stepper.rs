@@ -1,0 +1,356 @@
+//! The one stepping interface: the three methods behind [`Stepper`] on a harmonic oscillator
+//! (orders of convergence against the analytical solution), the fixed-interval [`Recorder`],
+//! and the generalized-α step correction for nonsmooth contact (rigid floor, Coulomb friction).
+
+use faer::Mat;
+use mbd_core::integrators::{
+    AlphaCorrection, AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Recorder, Rk4,
+    State, StepCorrection, Stepper, observe_fn,
+};
+use mbd_core::{ForceTangent, History, MbdError, Probe, SecondOrderSystem, SysMatrix};
+
+/// Undamped oscillator ẍ + ω² x = 0, x(0) = 1, ẋ(0) = 0: x = cos ωt.
+struct Oscillator {
+    omega: f64,
+}
+
+impl SecondOrderSystem for Oscillator {
+    fn n_q(&self) -> usize {
+        1
+    }
+    fn mass_is_constant(&self) -> bool {
+        true
+    }
+    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
+        Ok(SysMatrix::Dense(Mat::from_fn(1, 1, |_, _| 1.0)))
+    }
+    fn forces(&self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+        f[0] = -self.omega * self.omega * q[0];
+        Ok(())
+    }
+    fn force_tangent(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _v: &[f64],
+    ) -> Result<Option<ForceTangent>, MbdError> {
+        Ok(Some(ForceTangent {
+            stiffness: SysMatrix::Dense(Mat::from_fn(1, 1, |_, _| self.omega * self.omega)),
+            damping: SysMatrix::Dense(Mat::zeros(1, 1)),
+        }))
+    }
+}
+
+/// Error at t = 1 s of the method built by `make(h)` through the boxed `Stepper` factory.
+fn error_at_1s(make: &dyn Fn(f64) -> Box<dyn Integrator>, h: f64) -> f64 {
+    let sys = Oscillator { omega: 2.0 };
+    let integ = make(h);
+    let mut st = integ
+        .stepper_dyn(&sys, State::new(0.0, vec![1.0], vec![0.0]))
+        .unwrap();
+    st.advance_to(&sys, 1.0, &mut ()).unwrap();
+    assert_eq!(st.state().t, 1.0, "stop time hit exactly");
+    // analytical x(1) = cos 2, ẋ(1) = −2 sin 2; error in the energy norm
+    let ex = st.state().q[0] - 2.0f64.cos();
+    let ev = (st.state().v[0] + 2.0 * 2.0f64.sin()) / 2.0;
+    ex.hypot(ev)
+}
+
+fn observed_order(make: &dyn Fn(f64) -> Box<dyn Integrator>, h: f64) -> f64 {
+    let e1 = error_at_1s(make, h);
+    let e2 = error_at_1s(make, h / 2.0);
+    (e1 / e2).log2()
+}
+
+#[test]
+fn three_methods_converge_at_their_orders_on_the_oscillator() {
+    // RK4: order 4 (analytical reference cos ωt)
+    let rk4 = |h: f64| Box::new(Rk4::new(h)) as Box<dyn Integrator>;
+    let p = observed_order(&rk4, 0.05);
+    assert!((p - 4.0).abs() < 0.2, "RK4 order {p}");
+    // Dormand–Prince run at a fixed step (tolerances so loose that no step is rejected and the
+    // step stays at h_max): order 5
+    let dp = |h: f64| {
+        Box::new(DormandPrince {
+            rtol: 1e6,
+            atol: 1e6,
+            h0: h,
+            h_max: h,
+            ..Default::default()
+        }) as Box<dyn Integrator>
+    };
+    let p = observed_order(&dp, 0.05);
+    assert!((p - 5.0).abs() < 0.3, "DOPRI5 order {p}");
+    // generalized-α: order 2
+    let ga = |h: f64| {
+        Box::new(GeneralizedAlpha::new(AlphaParams {
+            h,
+            rho_inf: 0.8,
+            ..Default::default()
+        })) as Box<dyn Integrator>
+    };
+    let p = observed_order(&ga, 0.01);
+    assert!((p - 2.0).abs() < 0.1, "generalized-alpha order {p}");
+}
+
+#[test]
+fn stepper_runs_match_the_integrate_wrappers() {
+    // the wrappers are loops over the stepper: same steps, same end state
+    let sys = Oscillator { omega: 3.0 };
+    let s0 = State::new(0.0, vec![1.0], vec![0.5]);
+    let dp = DormandPrince::new(1e-9, 1e-12);
+    let sol = dp.integrate(&sys, s0.clone(), 2.0, |_| {}).unwrap();
+    let mut st = dp.stepper(&sys, s0.clone()).unwrap();
+    let mut n = 0;
+    while st.step_until(&sys, 2.0).unwrap() {
+        n += 1;
+    }
+    assert_eq!(n, sol.stats.steps);
+    assert_eq!(Stepper::<Oscillator>::state(&st), &sol.state);
+    // step(None) takes the controlled step; dense output at the step end is the end state
+    let mut st = dp.stepper(&sys, s0).unwrap();
+    st.step(&sys, None).unwrap();
+    let t1 = st.state().t;
+    assert!(t1 > 0.0);
+    assert_eq!(st.dense_output(&sys, t1).unwrap().q, st.state().q);
+    assert!(st.dense_output(&sys, 2.0 * t1).is_none());
+}
+
+#[test]
+fn recorder_samples_at_exact_times_with_dense_output() {
+    let omega = 2.0;
+    let sys = Oscillator { omega };
+    let s0 = State::new(0.0, vec![1.0], vec![0.0]);
+    let dt = 0.07;
+    let t_end = 2.0;
+    let run = |stepper: &mut dyn Stepper<Oscillator>| {
+        let hist = History::new(vec![Probe::new("x [m]", |s: &State| s.q[0])]);
+        let mut rec = Recorder::new(hist, 0.0, dt).unwrap();
+        let mut steps = 0usize;
+        rec.run(stepper, &sys, t_end, &mut observe_fn(|_| steps += 1))
+            .unwrap();
+        assert_eq!(steps, stepper.stats().steps);
+        assert_eq!(stepper.state().t, t_end);
+        rec.sink
+    };
+    // Dormand–Prince: own steps, 4th-order dense output between them (rtol 1e-10)
+    let mut dp = DormandPrince::new(1e-10, 1e-12)
+        .stepper(&sys, s0.clone())
+        .unwrap();
+    let hist = run(&mut dp);
+    let n = (t_end / dt).floor() as usize + 1;
+    assert_eq!(hist.t.len(), n);
+    let x = hist.column("x [m]").unwrap();
+    for (k, (&t, &x)) in hist.t.iter().zip(&x).enumerate() {
+        assert_eq!(t, k as f64 * dt, "sample time exact");
+        // analytical x = cos ωt; dense-output error O(h⁵) within the tolerance scale
+        assert!((x - (omega * t).cos()).abs() < 1e-8, "t = {t}: {x}");
+    }
+    // sampling did not change the steps: the same run without a recorder takes the same steps
+    let mut plain = DormandPrince::new(1e-10, 1e-12)
+        .stepper(&sys, s0.clone())
+        .unwrap();
+    Stepper::advance_to(&mut plain, &sys, t_end, &mut ()).unwrap();
+    assert_eq!(plain.stats(), dp.stats());
+    assert_eq!(plain.state(), dp.state());
+    // RK4 (no dense output): advanced to every sample time, h = 0.01 (4th order, ~1e-8)
+    let mut rk = Rk4::new(0.01).stepper(&sys, s0).unwrap();
+    let hist = run(&mut rk);
+    assert_eq!(hist.t.len(), n);
+    for (k, (&t, &x)) in hist
+        .t
+        .iter()
+        .zip(&hist.column("x [m]").unwrap())
+        .enumerate()
+    {
+        assert_eq!(t, k as f64 * dt);
+        assert!((x - (omega * t).cos()).abs() < 1e-7, "t = {t}: {x}");
+    }
+    let mut csv = Vec::new();
+    hist.write_csv(&mut csv, "test").unwrap();
+    assert_eq!(String::from_utf8(csv).unwrap().lines().count(), n + 1);
+}
+
+/// Point mass `m` in the plane (x, y) under gravity −g y.
+struct Block {
+    m: f64,
+    g: f64,
+}
+
+impl SecondOrderSystem for Block {
+    fn n_q(&self) -> usize {
+        2
+    }
+    fn mass_is_constant(&self) -> bool {
+        true
+    }
+    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
+        Ok(SysMatrix::Dense(Mat::from_fn(2, 2, |i, j| {
+            if i == j { self.m } else { 0.0 }
+        })))
+    }
+    fn forces(&self, _t: f64, _q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+        f[0] = 0.0;
+        f[1] = -self.m * self.g;
+        Ok(())
+    }
+    fn force_tangent(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _v: &[f64],
+    ) -> Result<Option<ForceTangent>, MbdError> {
+        Ok(Some(ForceTangent {
+            stiffness: SysMatrix::Dense(Mat::zeros(2, 2)),
+            damping: SysMatrix::Dense(Mat::zeros(2, 2)),
+        }))
+    }
+}
+
+/// Rigid floor y ≥ 0 under a block sliding along x: index-3 unilateral contact (gap g = y,
+/// J_n = e_y) with set-valued Coulomb friction (J_t = e_x), solved on the Delassus operator
+/// W = J S⁻¹ Jᵀ as forces consistent with the generalized-α formulas (the tire's form).
+struct SlidingFloor {
+    mu: f64,
+    /// Normal and tangential contact forces of the last step \[N\].
+    force: [f64; 2],
+}
+
+impl StepCorrection<Block> for SlidingFloor {
+    fn correct(&mut self, _sys: &Block, step: &mut AlphaCorrection<'_>) -> Result<(), MbdError> {
+        self.force = [0.0; 2];
+        let gap = step.q()[1];
+        if gap >= 0.0 {
+            return Ok(());
+        }
+        let (bp, gp) = (step.beta_prime(), step.gamma_prime());
+        // columns of S⁻¹ Jᵀ: responses to unit normal and tangential forces
+        let (mut xn, mut xt) = ([0.0; 2], [0.0; 2]);
+        step.solve(&[0.0, 1.0], &mut xn, &mut [])?;
+        step.solve(&[1.0, 0.0], &mut xt, &mut [])?;
+        let w = [[xt[0], xn[0]], [xt[1], xn[1]]]; // W = J S⁻¹ Jᵀ, rows (t, n)
+        // normal: gap + W_nn λ_n / β' = 0 (closes the gap), λ_n ≥ 0
+        let lam_n = (-bp * gap / w[1][1]).max(0.0);
+        // tangential: stick if the force that stops the sliding velocity lies in the cone
+        // |λ_t| ≤ μ λ_n, else slide with λ_t = −μ λ_n sign(v_t)
+        let vt = step.v()[0] + gp / bp * w[0][1] * lam_n;
+        let stick = -bp / gp * vt / w[0][0];
+        let lam_t = stick.clamp(-self.mu * lam_n, self.mu * lam_n);
+        step.apply_force(&[lam_t, lam_n])?;
+        self.force = [lam_n, lam_t];
+        Ok(())
+    }
+}
+
+/// Rigid floor y ≥ 0 hit by a falling block: inelastic index-3 contact as in the nonsmooth
+/// generalized-α scheme, a position correction closing the gap and a velocity jump with
+/// Newton's impact law of restitution 0 (`0 ≤ v_n⁺ ⊥ Λ ≥ 0`).
+struct ImpactFloor {
+    mass: f64,
+    /// Normal impulse of the last step \[N·s\].
+    impulse: f64,
+}
+
+impl StepCorrection<Block> for ImpactFloor {
+    fn correct(&mut self, _sys: &Block, step: &mut AlphaCorrection<'_>) -> Result<(), MbdError> {
+        self.impulse = 0.0;
+        let gap = step.q()[1];
+        if gap >= 0.0 {
+            return Ok(());
+        }
+        // δq = M⁻¹ Jᵀ ν with ν = −m g: the gap closes
+        step.apply_position_correction(&[0.0, -gap]);
+        // Λ = max(0, −m v_n): the contact keeps zero normal velocity
+        let lam = (-self.mass * step.v()[1]).max(0.0);
+        step.apply_velocity_jump(&[0.0, lam / self.mass]);
+        self.impulse = lam;
+        Ok(())
+    }
+}
+
+#[test]
+fn mass_falls_onto_a_rigid_floor_and_rests() {
+    let (m, g, y0, h) = (2.0, 9.81, 0.5, 1e-3);
+    let sys = Block { m, g };
+    let ga = GeneralizedAlpha::new(AlphaParams {
+        h,
+        rho_inf: 0.5,
+        ..Default::default()
+    });
+    let s0 = State::new(0.0, vec![0.0, y0], vec![0.0, 0.0]);
+    let floor = ImpactFloor {
+        mass: m,
+        impulse: 0.0,
+    };
+    let mut st = ga.stepper_with(&sys, s0, floor).unwrap();
+    let mut impact = None;
+    let mut min_y = f64::INFINITY;
+    let mut max_y_after = f64::NEG_INFINITY;
+    while st.step_until(&sys, 1.0).unwrap() {
+        let s = st.state();
+        min_y = min_y.min(s.q[1]);
+        if impact.is_some() {
+            max_y_after = max_y_after.max(s.q[1]);
+        }
+        if impact.is_none() && st.correction().impulse > 0.0 {
+            impact = Some(s.t);
+        }
+    }
+    // analytical free-fall impact time √(2 y₀/g): contact first acts in the step containing it
+    let t_star = (2.0 * y0 / g).sqrt();
+    let ti = impact.expect("impact");
+    assert!(
+        ti >= t_star && ti < t_star + h + 1e-12,
+        "impact at {ti}, analytical {t_star}"
+    );
+    // never below the floor, no rebound (inelastic), at rest on it
+    assert!(min_y > -1e-12, "penetration {min_y}");
+    assert!(max_y_after < 1e-12, "rebound to {max_y_after}");
+    let s = st.state();
+    assert!(s.q[1].abs() < 1e-12, "rest position {}", s.q[1]);
+    assert!(s.v[1].abs() < 1e-12, "rest velocity {}", s.v[1]);
+    // at rest the floor carries the weight: impulse m g h per step
+    let f = st.correction().impulse / h;
+    assert!((f - m * g).abs() < 1e-6 * m * g, "normal force {f}");
+}
+
+#[test]
+fn block_slides_with_coulomb_friction_at_mu_g() {
+    let (m, g, mu, v0, h) = (3.0, 9.81, 0.3, 2.0, 1e-3);
+    let sys = Block { m, g };
+    let ga = GeneralizedAlpha::new(AlphaParams {
+        h,
+        rho_inf: 0.5,
+        ..Default::default()
+    });
+    let s0 = State::new(0.0, vec![0.0, 0.0], vec![v0, 0.0]);
+    let mut st = ga
+        .stepper_with(
+            &sys,
+            s0,
+            SlidingFloor {
+                mu,
+                force: [0.0; 2],
+            },
+        )
+        .unwrap();
+    // analytical: v(t) = v₀ − μ g t until t_s = v₀/(μ g), x(t_s) = v₀²/(2 μ g), then sticking
+    let t_s = v0 / (mu * g);
+    let mut worst_v = 0.0f64;
+    while st.step_until(&sys, 1.2 * t_s).unwrap() {
+        let s = st.state();
+        let v_ref = (v0 - mu * g * s.t).max(0.0);
+        if (s.t - t_s).abs() > 3.0 * h {
+            worst_v = worst_v.max((s.v[0] - v_ref).abs());
+        }
+    }
+    assert!(worst_v < 1e-3 * v0, "sliding velocity error {worst_v}");
+    let s = st.state();
+    assert!(s.v[0].abs() < 1e-9, "sticks: v = {}", s.v[0]);
+    let x_s = v0 * v0 / (2.0 * mu * g);
+    assert!(
+        (s.q[0] - x_s).abs() < 2.0 * v0 * h,
+        "stop at {} vs {x_s}",
+        s.q[0]
+    );
+}
