@@ -76,8 +76,8 @@ where
 }
 
 /// Circle `x² + y² = 4` cut by the line `x = y`.
-fn circle_line() -> Dense<impl FnMut(&[f64], f64, &mut [f64]), impl FnMut(&[f64], f64) -> [[f64; 2]; 2]>
-{
+fn circle_line()
+-> Dense<impl FnMut(&[f64], f64, &mut [f64]), impl FnMut(&[f64], f64) -> [[f64; 2]; 2]> {
     Dense::new(
         2,
         |x: &[f64], _: f64, r: &mut [f64]| {
@@ -100,7 +100,10 @@ fn finds_the_analytic_root_quadratically() {
     };
     let rep = solve(&mut p, &mut x, &opts, &mut NewtonWorkspace::new()).unwrap();
     let s = 2f64.sqrt();
-    assert!((x[0] - s).abs() < 1e-14 && (x[1] - s).abs() < 1e-14, "{x:?}");
+    assert!(
+        (x[0] - s).abs() < 1e-14 && (x[1] - s).abs() < 1e-14,
+        "{x:?}"
+    );
     assert!(rep.converged && rep.iterations() <= 7, "{rep:?}");
     // the constant ‖R_{k+1}‖/‖R_k‖² stays bounded while the residual falls from 1 to 1e-12
     let h = &p.history;
@@ -201,7 +204,13 @@ fn step_cutting_recovers_a_failed_increment() {
         ..Default::default()
     };
     let mut x = vec![0.0];
-    let e = solve(&mut spring(k, c, f), &mut x, &opts, &mut NewtonWorkspace::new()).unwrap_err();
+    let e = solve(
+        &mut spring(k, c, f),
+        &mut x,
+        &opts,
+        &mut NewtonWorkspace::new(),
+    )
+    .unwrap_err();
     assert!(matches!(e, NewtonError::NoConvergence { .. }), "{e}");
     let cut = NewtonOptions {
         load: LoadStepping {
@@ -211,7 +220,13 @@ fn step_cutting_recovers_a_failed_increment() {
         ..opts
     };
     let mut x = vec![0.0];
-    let rep = solve(&mut spring(k, c, f), &mut x, &cut, &mut NewtonWorkspace::new()).unwrap();
+    let rep = solve(
+        &mut spring(k, c, f),
+        &mut x,
+        &cut,
+        &mut NewtonWorkspace::new(),
+    )
+    .unwrap();
     assert!(rep.cuts > 0, "{rep:?}");
     assert_eq!(rep.increments.last().unwrap().load, 1.0);
     let u = cardano(k, c, f);
@@ -232,12 +247,18 @@ fn modified_newton_reuses_one_factorisation() {
     };
     let rep = solve(&mut p, &mut x, &opts, &mut NewtonWorkspace::new()).unwrap();
     let s = 2f64.sqrt();
-    assert!((x[0] - s).abs() < 1e-12 && (x[1] - s).abs() < 1e-12, "{x:?}");
+    assert!(
+        (x[0] - s).abs() < 1e-12 && (x[1] - s).abs() < 1e-12,
+        "{x:?}"
+    );
     assert_eq!(p.factorisations, 1);
     let mut full = circle_line();
     let mut y = vec![1.6, 1.3];
     let full_rep = solve(&mut full, &mut y, &opts, &mut NewtonWorkspace::new()).unwrap();
-    assert!(rep.iterations() > full_rep.iterations(), "{rep:?} {full_rep:?}");
+    assert!(
+        rep.iterations() > full_rep.iterations(),
+        "{rep:?} {full_rep:?}"
+    );
 }
 
 // Reference: the analytic root; with `max_step` the iteration is damped (never converged on a
@@ -309,8 +330,17 @@ fn active_set_changes_are_iterated_at_the_same_load() {
         active: false,
     };
     let mut x = vec![0.0, 0.0];
-    let rep = solve(&mut p, &mut x, &NewtonOptions::default(), &mut NewtonWorkspace::new()).unwrap();
-    assert!((x[0] - 1.0).abs() < 1e-14 && (x[1] - 150.0).abs() < 1e-12, "{x:?}");
+    let rep = solve(
+        &mut p,
+        &mut x,
+        &NewtonOptions::default(),
+        &mut NewtonWorkspace::new(),
+    )
+    .unwrap();
+    assert!(
+        (x[0] - 1.0).abs() < 1e-14 && (x[1] - 150.0).abs() < 1e-12,
+        "{x:?}"
+    );
     assert_eq!(rep.increments[0].passes, 2);
     let opts = NewtonOptions {
         max_passes: 1,
@@ -323,7 +353,10 @@ fn active_set_changes_are_iterated_at_the_same_load() {
     };
     let mut x = vec![0.0, 0.0];
     let e = solve(&mut p, &mut x, &opts, &mut NewtonWorkspace::new()).unwrap_err();
-    assert!(matches!(e, NewtonError::NotSettled { passes: 1, .. }), "{e}");
+    assert!(
+        matches!(e, NewtonError::NotSettled { passes: 1, .. }),
+        "{e}"
+    );
 }
 
 /// `Π = ¼ x⁴ − x` (root of `R = ∇Π = x³ − 1` at 1), with the potential as merit.
@@ -394,9 +427,17 @@ fn errors_are_typed() {
     let e = solve(&mut q, &mut x, &opts, &mut NewtonWorkspace::new()).unwrap_err();
     assert!(e.to_string().contains("load.increments"), "{e}");
     // x = 0: zero tangent, reported by the problem
-    let e = solve(&mut q, &mut x, &NewtonOptions::default(), &mut NewtonWorkspace::new())
-        .unwrap_err();
-    assert!(matches!(e, NewtonError::Problem(ref m) if m.contains("solve")), "{e}");
+    let e = solve(
+        &mut q,
+        &mut x,
+        &NewtonOptions::default(),
+        &mut NewtonWorkspace::new(),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, NewtonError::Problem(ref m) if m.contains("solve")),
+        "{e}"
+    );
     let mbd = NewtonError::<crate::MbdError>::NoConvergence {
         load: 1.0,
         iterations: 3,
