@@ -13,7 +13,7 @@ use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use mbd_core::newton::{
     self, Fallback, LineSearch, LoadStepping, NewtonError, NewtonOptions, NewtonProblem,
-    NewtonWorkspace, Tolerances,
+    NewtonReport, NewtonWorkspace, Tolerances,
 };
 
 mod unilateral;
@@ -197,19 +197,8 @@ pub fn solve_static_with<E: Element>(
             fallback: Fallback::FullStep,
         }
     });
-    let newton = NewtonOptions {
-        max_iterations: opts.max_iterations,
-        tolerances: Tolerances::relative(opts.tolerance),
-        line_search,
-        load: LoadStepping {
-            increments: opts.increments,
-            max_cuts: 0,
-        },
-        ..Default::default()
-    };
     let mut q = q0.to_vec();
-    let report = newton::solve(&mut problem, &mut q, &newton, &mut NewtonWorkspace::new())
-        .map_err(|e| newton_error("static", e))?;
+    let report = run_newton("static", &mut problem, &mut q, &opts.newton(line_search))?;
     Ok(StaticSolution {
         q,
         iterations: report.increments.iter().map(|i| i.iterations).collect(),
@@ -217,8 +206,37 @@ pub fn solve_static_with<E: Element>(
     })
 }
 
+impl StaticOptions {
+    /// The shared solver's options: `increments` equal load steps, `max_iterations`, the
+    /// relative correction test `‖Δq‖∞ ≤ tolerance (1 + ‖q‖∞)` and the given line search.
+    pub(crate) fn newton(&self, line_search: Option<LineSearch>) -> NewtonOptions {
+        NewtonOptions {
+            max_iterations: self.max_iterations,
+            tolerances: Tolerances::relative(self.tolerance),
+            line_search,
+            load: LoadStepping {
+                increments: self.increments,
+                max_cuts: 0,
+            },
+            ..Default::default()
+        }
+    }
+}
+
+/// [`newton::solve`] from `x` with a fresh workspace, its failures as [`AncfError`] naming
+/// `context`.
+pub(crate) fn run_newton<P: NewtonProblem<Error = AncfError>>(
+    context: &str,
+    problem: &mut P,
+    x: &mut [f64],
+    opts: &NewtonOptions,
+) -> Result<NewtonReport, AncfError> {
+    newton::solve(problem, x, opts, &mut NewtonWorkspace::new())
+        .map_err(|e| newton_error(context, e))
+}
+
 /// The typed error of a failed shared Newton solve; `context` names the solver.
-pub(crate) fn newton_error(context: &str, e: NewtonError<AncfError>) -> AncfError {
+fn newton_error(context: &str, e: NewtonError<AncfError>) -> AncfError {
     match e {
         NewtonError::Problem(e) => e,
         NewtonError::InvalidOption { field, reason } => {

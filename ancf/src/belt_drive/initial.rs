@@ -19,14 +19,12 @@
 use super::model::BeltDrive;
 use crate::error::AncfError;
 use crate::sparse::Pattern;
-use crate::statics::newton_error;
+use crate::statics::run_newton;
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use mbd_core::SecondOrderSystem;
-use mbd_core::newton::{
-    self, Fallback, LineSearch, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances,
-};
+use mbd_core::newton::{Fallback, LineSearch, NewtonOptions, NewtonProblem, Tolerances};
 
 /// Result of the initial-configuration solve.
 #[derive(Debug, Clone)]
@@ -140,8 +138,7 @@ impl BeltDrive {
             ..Default::default()
         };
         let mut q = q0;
-        let report = newton::solve(&mut problem, &mut q, &newton, &mut NewtonWorkspace::new())
-            .map_err(|e| newton_error("initial belt equilibrium", e))?;
+        let report = run_newton("initial belt equilibrium", &mut problem, &mut q, &newton)?;
         let mut r = vec![0.0; self.n_q()];
         problem.residual(&q, 1.0, &mut r)?;
         let (res, iterations) = (problem.residual_norm(&r), report.iterations());

@@ -5,14 +5,11 @@
 
 use super::mesh::PlateMesh;
 use crate::error::{AncfError, invalid};
-use crate::statics::{StaticOptions, StaticSolution, check_sizes, newton_error};
+use crate::statics::{StaticOptions, StaticSolution, check_sizes, run_newton};
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::SparseColMat;
-use mbd_core::newton::{
-    self, Fallback, LineSearch, LoadStepping, NewtonOptions, NewtonProblem, NewtonWorkspace,
-    Tolerances,
-};
+use mbd_core::newton::{self, Fallback, LineSearch, NewtonProblem};
 
 /// Solve `Q_e(q) + λ F = 0` for `λ = 1/n, …, 1` from `q0`, keeping the coordinates in `fixed`
 /// at their `q0` values. `load` is the generalized external force \[N\] (all coordinates).
@@ -55,25 +52,20 @@ pub fn solve_plate_static(
     // where K is positive definite). A residual-norm search stalls here: the membrane strain of
     // a large-rotation step raises the residual before the next iteration removes it. Without
     // any decrease the full Newton step is taken.
-    let newton = NewtonOptions {
-        max_iterations: opts.max_iterations,
-        tolerances: Tolerances::relative(opts.tolerance),
-        line_search: opts.line_search.then_some(LineSearch {
-            armijo: 0.0,
-            slack: 1e-12,
-            accept_below: f64::NEG_INFINITY,
-            max_trials: 12,
-            fallback: Fallback::FullStep,
-        }),
-        load: LoadStepping {
-            increments: opts.increments,
-            max_cuts: 0,
-        },
-        ..Default::default()
-    };
+    let line_search = opts.line_search.then_some(LineSearch {
+        armijo: 0.0,
+        slack: 1e-12,
+        accept_below: f64::NEG_INFINITY,
+        max_trials: 12,
+        fallback: Fallback::FullStep,
+    });
     let mut q = q0.to_vec();
-    let report = newton::solve(&mut problem, &mut q, &newton, &mut NewtonWorkspace::new())
-        .map_err(|e| newton_error("plate static", e))?;
+    let report = run_newton(
+        "plate static",
+        &mut problem,
+        &mut q,
+        &opts.newton(line_search),
+    )?;
     let mut r = vec![0.0; n_all];
     problem.residual(&q, 1.0, &mut r)?;
     Ok(StaticSolution {

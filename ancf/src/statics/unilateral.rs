@@ -16,7 +16,7 @@
 //! penetrating inactive node is activated; the increment is repeated until the set is stable
 //! (the shared [`mbd_core::newton::solve`] with [`NewtonProblem::settle`]).
 
-use super::{StaticOptions, check_sizes, free_coordinates, newton_error};
+use super::{StaticOptions, check_sizes, free_coordinates, run_newton};
 use crate::element::Element;
 use crate::error::{AncfError, invalid};
 use crate::mesh::Mesh;
@@ -25,9 +25,7 @@ use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
-use mbd_core::newton::{
-    self, LoadStepping, NewtonOptions, NewtonProblem, NewtonWorkspace, Settle, Tolerances,
-};
+use mbd_core::newton::{self, NewtonOptions, NewtonProblem, Settle};
 
 /// Options of the unilateral static solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -143,19 +141,12 @@ pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
         ));
     }
     let newton = NewtonOptions {
-        max_iterations: opts.newton.max_iterations,
-        tolerances: Tolerances::relative(opts.newton.tolerance),
-        load: LoadStepping {
-            increments: opts.newton.increments,
-            max_cuts: 0,
-        },
         max_passes: opts.max_passes,
-        ..Default::default()
+        ..opts.newton.newton(None)
     };
     let mut x = q0.to_vec();
     x.resize(n + nc, 0.0);
-    let report = newton::solve(&mut problem, &mut x, &newton, &mut NewtonWorkspace::new())
-        .map_err(|e| newton_error("unilateral static", e))?;
+    let report = run_newton("unilateral static", &mut problem, &mut x, &newton)?;
     let multipliers = x.split_off(n);
     let gaps = problem.gaps(&x);
     Ok(UnilateralSolution {
