@@ -37,7 +37,6 @@ use super::statics::dense_equilibrium;
 use contact::friction::CoulombTanh;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
-use faer::linalg::solvers::Solve;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
 /// A contact node with its rows of the basis.

@@ -64,7 +64,6 @@ use super::statics::dense_equilibrium;
 use contact::friction::CoulombTanh;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
-use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use fe_model::element::{Frame2d, Frame2dSection};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};

@@ -1,27 +1,32 @@
 use super::*;
 
+/// `R(x, μ)` into the slice.
+type ResFn = Box<dyn FnMut(&[f64], f64, &mut [f64])>;
+/// `J(x, μ)` (2×2 at most).
+type JacFn = Box<dyn FnMut(&[f64], f64) -> [[f64; 2]; 2]>;
+
 /// A small dense problem given by closures: `R(x, μ)` and `J(x, μ)` (2×2 at most, solved by
 /// Cramer's rule). Records the residual norm of every linearisation.
-struct Dense<R, J> {
+struct Dense {
     n: usize,
-    r: R,
-    j: J,
+    r: ResFn,
+    j: JacFn,
     jac: [[f64; 2]; 2],
     history: Vec<f64>,
     factorisations: usize,
     modified: bool,
 }
 
-impl<R, J> Dense<R, J>
-where
-    R: FnMut(&[f64], f64, &mut [f64]),
-    J: FnMut(&[f64], f64) -> [[f64; 2]; 2],
-{
-    fn new(n: usize, r: R, j: J) -> Self {
+impl Dense {
+    fn new(
+        n: usize,
+        r: impl FnMut(&[f64], f64, &mut [f64]) + 'static,
+        j: impl FnMut(&[f64], f64) -> [[f64; 2]; 2] + 'static,
+    ) -> Self {
         Self {
             n,
-            r,
-            j,
+            r: Box::new(r),
+            j: Box::new(j),
             jac: [[0.0; 2]; 2],
             history: Vec::new(),
             factorisations: 0,
@@ -30,11 +35,7 @@ where
     }
 }
 
-impl<R, J> NewtonProblem for Dense<R, J>
-where
-    R: FnMut(&[f64], f64, &mut [f64]),
-    J: FnMut(&[f64], f64) -> [[f64; 2]; 2],
-{
+impl NewtonProblem for Dense {
     type Error = String;
 
     fn tangent_dim(&self) -> usize {
@@ -76,8 +77,7 @@ where
 }
 
 /// Circle `x² + y² = 4` cut by the line `x = y`.
-fn circle_line()
--> Dense<impl FnMut(&[f64], f64, &mut [f64]), impl FnMut(&[f64], f64) -> [[f64; 2]; 2]> {
+fn circle_line() -> Dense {
     Dense::new(
         2,
         |x: &[f64], _: f64, r: &mut [f64]| {
@@ -153,11 +153,7 @@ fn line_search_rescues_an_overshooting_newton() {
 }
 
 /// Hardening spring `k u + c u³ = μ F`.
-fn spring(
-    k: f64,
-    c: f64,
-    f: f64,
-) -> Dense<impl FnMut(&[f64], f64, &mut [f64]), impl FnMut(&[f64], f64) -> [[f64; 2]; 2]> {
+fn spring(k: f64, c: f64, f: f64) -> Dense {
     Dense::new(
         1,
         move |x: &[f64], mu: f64, r: &mut [f64]| r[0] = k * x[0] + c * x[0].powi(3) - mu * f,
