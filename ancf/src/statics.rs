@@ -1,6 +1,7 @@
 //! Static equilibrium `Q_e(q) + λ F = 0` by Newton–Raphson with load increments and a
 //! backtracking line search (Kerkkänen §2.4 and §3.3: "Newton–Raphson iterations"; the
-//! increments and the line search are the seed note's §8.3 recommendation).
+//! increments and the line search are the seed note's §8.3 recommendation), all on the shared
+//! [`mbd_core::newton`] solver.
 
 use crate::element::Element;
 use crate::error::{AncfError, invalid};
@@ -10,6 +11,10 @@ use crate::system::MeshForce;
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use mbd_core::newton::{
+    self, Fallback, LineSearch, LoadStepping, NewtonError, NewtonOptions, NewtonProblem,
+    NewtonReport, NewtonWorkspace, Tolerances,
+};
 
 mod unilateral;
 pub use unilateral::{UnilateralOptions, UnilateralSolution, solve_static_unilateral};
@@ -115,6 +120,11 @@ pub fn solve_static<E: Element>(
 /// [`solve_static`] with additional (configuration-dependent, velocity-free) forces such as
 /// frictionless penalty contact, evaluated at zero velocity; their tangent enters the Newton
 /// matrix. The load factor scales `load` only.
+///
+/// The iteration is the shared [`mbd_core::newton::solve`]: convergence on
+/// `‖Δq‖∞ ≤ tol (1 + ‖q‖∞)`; with `line_search`, a conservative problem (no extra forces)
+/// backtracks on the total potential `Π = U − λFᵀq` after regularising `K + μI`
+/// (Levenberg–Marquardt) until the step descends, otherwise on `‖R‖₂`.
 pub fn solve_static_with<E: Element>(
     mesh: &Mesh<E>,
     q0: &[f64],
@@ -146,163 +156,232 @@ pub fn solve_static_with<E: Element>(
             _ => None,
         })
         .collect();
-    let zero_v = vec![0.0; n];
-    let mut kfull = full.zeros();
-    let mut cfull = full.zeros();
     let symbolic =
         SymbolicLu::try_new(pattern.symbolic().as_ref()).map_err(|e| AncfError::Singular {
             load_factor: 0.0,
             detail: format!("symbolic LU: {e:?}"),
         })?;
-
     // conservative problems (no extra forces) use the total potential as merit function
-    let energy_merit = extra.is_empty();
-    let potential = |q: &[f64], lam: f64| -> f64 {
-        mesh.strain_energy(q) - lam * q.iter().zip(load).map(|(a, b)| a * b).sum::<f64>()
+    let energy_merit = extra.is_empty() && opts.line_search;
+    let mut problem = MeshStatics {
+        mesh,
+        load,
+        extra,
+        free,
+        to_reduced,
+        diag: (0..nf).map(|i| pattern.diagonal_position(i)).collect(),
+        kfull: full.zeros(),
+        cfull: full.zeros(),
+        kv: pattern.zeros(),
+        pattern,
+        symbolic,
+        f: vec![0.0; n],
+        zero_v: vec![0.0; n],
+        energy_merit,
+        lam: 0.0,
     };
-    let diag: Vec<usize> = (0..nf).map(|i| pattern.diagonal_position(i)).collect();
+    let line_search = opts.line_search.then_some(if energy_merit {
+        LineSearch {
+            armijo: 1e-4,
+            slack: 1e-14,
+            accept_below: f64::NEG_INFINITY,
+            max_trials: 31,
+            fallback: Fallback::LastTrial,
+        }
+    } else {
+        LineSearch {
+            armijo: 1e-4,
+            slack: 0.0,
+            accept_below: 1e-9,
+            max_trials: 13,
+            fallback: Fallback::FullStep,
+        }
+    });
     let mut q = q0.to_vec();
-    let mut f = vec![0.0; n];
-    let mut kv = pattern.zeros();
-    let mut iterations = Vec::with_capacity(opts.increments);
-    let residual_of = |q: &[f64], lam: f64, f: &mut [f64]| -> f64 {
-        mesh.elastic_forces(q, f);
-        for x in extra {
-            x.add_forces(mesh, 0.0, q, &zero_v, f);
-        }
-        free.iter()
-            .map(|&k| {
-                let r = f[k] + lam * load[k];
-                r * r
-            })
-            .sum::<f64>()
-            .sqrt()
-    };
-    let mut last_res = 0.0;
-    for inc in 1..=opts.increments {
-        let lam = inc as f64 / opts.increments as f64;
-        let mut converged = false;
-        let mut it = 0;
-        while it < opts.max_iterations {
-            it += 1;
-            kfull.fill(0.0);
-            mesh.elastic_tangent_into(&q, &mut f, full, &mut kfull, 1.0);
-            for x in extra {
-                x.add_forces(mesh, 0.0, &q, &zero_v, &mut f);
-                x.add_tangent(mesh, 0.0, &q, &zero_v, &mut kfull, &mut cfull);
-            }
-            kv.fill(0.0);
-            for (p, r) in to_reduced.iter().enumerate() {
-                if let Some(r) = r {
-                    kv[*r] += kfull[p];
-                }
-            }
-            let mut rhs = Mat::<f64>::zeros(nf, 1);
-            let mut res = 0.0;
-            for (i, &k) in free.iter().enumerate() {
-                let r = f[k] + lam * load[k];
-                rhs[(i, 0)] = r;
-                res += r * r;
-            }
-            let res = res.sqrt();
-            if !res.is_finite() {
-                return Err(AncfError::NonFinite {
-                    what: format!("static residual at load factor {lam}"),
-                });
-            }
-            let kmat = pattern.to_matrix(kv.clone());
-            let lu = Lu::try_new_with_symbolic(symbolic.clone(), kmat.as_ref()).map_err(|e| {
-                AncfError::Singular {
-                    load_factor: lam,
-                    detail: format!("{e:?}"),
-                }
-            })?;
-            let mut dx = lu.solve(&rhs);
-            let mut alpha = 1.0;
-            let mut trial = q.clone();
-            let apply = |alpha: f64, dx: &Mat<f64>, trial: &mut [f64]| {
-                for (i, &k) in free.iter().enumerate() {
-                    trial[k] = q[k] + alpha * dx[(i, 0)];
-                }
-            };
-            let slope = |d: &Mat<f64>| (0..nf).map(|i| rhs[(i, 0)] * d[(i, 0)]).sum::<f64>();
-            if opts.line_search && energy_merit {
-                // Π = U − λFᵀq decreases along Δ iff RᵀΔ > 0; otherwise regularise K + μI
-                // (Levenberg–Marquardt) until it does. Then Armijo backtracking on Π.
-                let dmax = diag.iter().map(|&p| kv[p].abs()).fold(0.0, f64::max);
-                let mut mu_rel = 1e-8;
-                while slope(&dx) <= 0.0 && mu_rel < 1e3 {
-                    let mut kreg = kv.clone();
-                    for &p in &diag {
-                        kreg[p] += mu_rel * dmax;
-                    }
-                    if let Ok(lu) = Lu::try_new_with_symbolic(
-                        symbolic.clone(),
-                        pattern.to_matrix(kreg).as_ref(),
-                    ) {
-                        dx = lu.solve(&rhs);
-                    }
-                    mu_rel *= 10.0;
-                }
-                let s0 = slope(&dx);
-                let pi0 = potential(&q, lam);
-                apply(alpha, &dx, &mut trial);
-                let mut tries = 0;
-                while potential(&trial, lam) > pi0 - 1e-4 * alpha * s0 + 1e-14 * pi0.abs()
-                    && tries < 30
-                {
-                    alpha *= 0.5;
-                    apply(alpha, &dx, &mut trial);
-                    tries += 1;
-                }
-            } else if opts.line_search {
-                apply(alpha, &dx, &mut trial);
-                let accept = |r_new: f64, alpha: f64| {
-                    r_new <= (1.0 - 1e-4 * alpha) * res || r_new < 1e-9 * res.max(1.0)
-                };
-                let mut r_new = residual_of(&trial, lam, &mut f);
-                let mut tries = 0;
-                while !accept(r_new, alpha) && tries < 12 {
-                    alpha *= 0.5;
-                    apply(alpha, &dx, &mut trial);
-                    r_new = residual_of(&trial, lam, &mut f);
-                    tries += 1;
-                }
-                if !accept(r_new, alpha) {
-                    alpha = 1.0;
-                    apply(alpha, &dx, &mut trial);
-                }
-            } else {
-                apply(alpha, &dx, &mut trial);
-            }
-            let step = (0..nf)
-                .map(|i| (alpha * dx[(i, 0)]).abs())
-                .fold(0.0, f64::max);
-            let qmax = q.iter().map(|v| v.abs()).fold(0.0, f64::max);
-            q = trial;
-            last_res = res;
-            if !step.is_finite() {
-                return Err(AncfError::NonFinite {
-                    what: format!("Newton step at load factor {lam}"),
-                });
-            }
-            if step <= opts.tolerance * (1.0 + qmax) {
-                converged = true;
-                break;
-            }
-        }
-        iterations.push(it);
-        if !converged {
-            return Err(AncfError::NoConvergence {
-                load_factor: lam,
-                iterations: it,
-                residual: last_res,
-            });
-        }
-    }
+    let report = run_newton("static", &mut problem, &mut q, &opts.newton(line_search))?;
     Ok(StaticSolution {
         q,
-        iterations,
-        residual: last_res,
+        iterations: report.increments.iter().map(|i| i.iterations).collect(),
+        residual: report.residual,
     })
+}
+
+impl StaticOptions {
+    /// The shared solver's options: `increments` equal load steps, `max_iterations`, the
+    /// relative correction test `‖Δq‖∞ ≤ tolerance (1 + ‖q‖∞)` and the given line search.
+    pub(crate) fn newton(&self, line_search: Option<LineSearch>) -> NewtonOptions {
+        NewtonOptions {
+            max_iterations: self.max_iterations,
+            tolerances: Tolerances::relative(self.tolerance),
+            line_search,
+            load: LoadStepping {
+                increments: self.increments,
+                max_cuts: 0,
+            },
+            ..Default::default()
+        }
+    }
+}
+
+/// [`newton::solve`] from `x` with a fresh workspace, its failures as [`AncfError`] naming
+/// `context`.
+pub(crate) fn run_newton<P: NewtonProblem<Error = AncfError>>(
+    context: &str,
+    problem: &mut P,
+    x: &mut [f64],
+    opts: &NewtonOptions,
+) -> Result<NewtonReport, AncfError> {
+    newton::solve(problem, x, opts, &mut NewtonWorkspace::new())
+        .map_err(|e| newton_error(context, e))
+}
+
+/// The typed error of a failed shared Newton solve; `context` names the solver.
+fn newton_error(context: &str, e: NewtonError<AncfError>) -> AncfError {
+    match e {
+        NewtonError::Problem(e) => e,
+        NewtonError::InvalidOption { field, reason } => {
+            invalid(format!("{context} solve: {field}"), reason)
+        }
+        NewtonError::NonFinite { what, load, .. } => AncfError::NonFinite {
+            what: format!("{context} Newton {what} at load factor {load}"),
+        },
+        NewtonError::NoConvergence {
+            load,
+            iterations,
+            residual,
+            ..
+        } => AncfError::NoConvergence {
+            load_factor: load,
+            iterations,
+            residual,
+        },
+        NewtonError::NotSettled { load, passes } => AncfError::ActiveSet {
+            load_factor: load,
+            passes,
+        },
+    }
+}
+
+/// `Q_e(q) + Q_x(q) + λ F = 0` over the free coordinates: `x = q` (all coordinates, the
+/// fixed ones never corrected), `R = −(Q_e + Q_x + λF)` (zero on fixed rows), `J = K`.
+struct MeshStatics<'a, E: Element> {
+    mesh: &'a Mesh<E>,
+    load: &'a [f64],
+    extra: &'a [&'a dyn MeshForce<E>],
+    free: Vec<usize>,
+    /// Position of each full-pattern entry in the reduced pattern.
+    to_reduced: Vec<Option<usize>>,
+    diag: Vec<usize>,
+    kfull: Vec<f64>,
+    cfull: Vec<f64>,
+    kv: Vec<f64>,
+    pattern: Pattern,
+    symbolic: SymbolicLu<usize>,
+    f: Vec<f64>,
+    zero_v: Vec<f64>,
+    /// Line search on the potential: regularise the tangent until the step descends.
+    energy_merit: bool,
+    /// Load factor of the last linearisation.
+    lam: f64,
+}
+
+impl<E: Element> MeshStatics<'_, E> {
+    /// `r = −(f + λF)` on the free rows from the forces in `self.f`.
+    fn scatter_residual(&self, lam: f64, r: &mut [f64]) {
+        r.fill(0.0);
+        for &k in &self.free {
+            r[k] = -(self.f[k] + lam * self.load[k]);
+        }
+    }
+
+    fn factor(&self, kv: Vec<f64>) -> Result<Lu<usize, f64>, AncfError> {
+        Lu::try_new_with_symbolic(self.symbolic.clone(), self.pattern.to_matrix(kv).as_ref())
+            .map_err(|e| AncfError::Singular {
+                load_factor: self.lam,
+                detail: format!("{e:?}"),
+            })
+    }
+}
+
+impl<E: Element> NewtonProblem for MeshStatics<'_, E> {
+    type Error = AncfError;
+
+    fn tangent_dim(&self) -> usize {
+        self.f.len()
+    }
+
+    fn linearize(&mut self, q: &[f64], lam: f64, r: &mut [f64]) -> Result<(), AncfError> {
+        self.lam = lam;
+        self.kfull.fill(0.0);
+        let full = self.mesh.pattern();
+        self.mesh
+            .elastic_tangent_into(q, &mut self.f, full, &mut self.kfull, 1.0);
+        for x in self.extra {
+            x.add_forces(self.mesh, 0.0, q, &self.zero_v, &mut self.f);
+            x.add_tangent(
+                self.mesh,
+                0.0,
+                q,
+                &self.zero_v,
+                &mut self.kfull,
+                &mut self.cfull,
+            );
+        }
+        self.kv.fill(0.0);
+        for (p, r) in self.to_reduced.iter().enumerate() {
+            if let Some(r) = r {
+                self.kv[*r] += self.kfull[p];
+            }
+        }
+        self.scatter_residual(lam, r);
+        Ok(())
+    }
+
+    fn residual(&mut self, q: &[f64], lam: f64, r: &mut [f64]) -> Result<(), AncfError> {
+        self.mesh.elastic_forces(q, &mut self.f);
+        for x in self.extra {
+            x.add_forces(self.mesh, 0.0, q, &self.zero_v, &mut self.f);
+        }
+        self.scatter_residual(lam, r);
+        Ok(())
+    }
+
+    fn solve(&mut self, r: &[f64], dx: &mut [f64]) -> Result<(), AncfError> {
+        let nf = self.free.len();
+        let rhs = Mat::<f64>::from_fn(nf, 1, |i, _| -r[self.free[i]]);
+        let mut d = self.factor(self.kv.clone())?.solve(&rhs);
+        if self.energy_merit {
+            // Π = U − λFᵀq decreases along Δ iff RᵀΔ < 0; otherwise regularise K + μI
+            // (Levenberg–Marquardt) until it does
+            let slope = |d: &Mat<f64>| (0..nf).map(|i| rhs[(i, 0)] * d[(i, 0)]).sum::<f64>();
+            let dmax = self
+                .diag
+                .iter()
+                .map(|&p| self.kv[p].abs())
+                .fold(0.0, f64::max);
+            let mut mu_rel = 1e-8;
+            while slope(&d) <= 0.0 && mu_rel < 1e3 {
+                let mut kreg = self.kv.clone();
+                for &p in &self.diag {
+                    kreg[p] += mu_rel * dmax;
+                }
+                if let Ok(lu) = self.factor(kreg) {
+                    d = lu.solve(&rhs);
+                }
+                mu_rel *= 10.0;
+            }
+        }
+        dx.fill(0.0);
+        for (i, &k) in self.free.iter().enumerate() {
+            dx[k] = d[(i, 0)];
+        }
+        Ok(())
+    }
+
+    fn potential(&mut self, q: &[f64], lam: f64) -> Result<Option<f64>, AncfError> {
+        Ok(self.energy_merit.then(|| {
+            self.mesh.strain_energy(q)
+                - lam * q.iter().zip(self.load).map(|(a, b)| a * b).sum::<f64>()
+        }))
+    }
 }

@@ -20,6 +20,8 @@
 //! * [`integrators`]: [`Rk4`], [`DormandPrince`] (error control, dense output, events),
 //!   [`GeneralizedAlpha`] (index 3, Newton, dense/sparse LU), index-1 accelerations and
 //!   reactions, projections;
+//! * [`newton`]: the one Newton–Raphson solver (line search, load stepping, active-set passes,
+//!   report) behind every static solve of the workspace, extension point [`newton::NewtonProblem`];
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
 //!   [`history`]: CSV time histories;
 //! * [`validate`]: the one validation shape ([`Validate`], [`InvalidField`] with the field path)
@@ -77,6 +79,7 @@ pub mod forces;
 pub mod history;
 pub mod kinematics;
 pub mod multibody;
+pub mod newton;
 pub mod statics;
 
 pub use body::{BodyState, RigidBody};

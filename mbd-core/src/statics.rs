@@ -1,10 +1,11 @@
 //! Static equilibrium of a constrained system: Newton on `f(t, q, 0) − Dᵀλ = 0`, `Φ(t, q) = 0`
-//! (the static limit of Ribaric (2.16) / Lin (2.27)).
+//! (the static limit of Ribaric (2.16) / Lin (2.27)), solved by the shared [`crate::newton`] solver.
 
 use crate::integrators::State;
 use crate::linalg::KktSolver;
-use crate::{MbdError, SecondOrderSystem, SysMatrix};
-use faer::Mat;
+use crate::newton::{self, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances};
+use crate::system::finite_difference_tangent;
+use crate::{MbdError, SecondOrderSystem};
 
 /// Options of [`static_equilibrium`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,8 +41,9 @@ pub struct StaticSolution {
 
 /// Static equilibrium at time `t` \[s\] from the guess `q0`: Newton iterations on
 /// `[K_t + K_c, Dᵀ; D, 0] [Δx; Δλ] = [f − Dᵀλ; −Φ]`, `q ← q ⊕ Δx`, with the model's tangent
-/// (finite differences if it has none). A model without stiffness in some direction (a free
-/// body) gives [`MbdError::Singular`].
+/// (finite differences, [`finite_difference_tangent`], if it has none), by the shared
+/// [`newton::solve`]. A model without stiffness in some direction (a free body) gives
+/// [`MbdError::Singular`].
 pub fn static_equilibrium<S: SecondOrderSystem + ?Sized>(
     sys: &S,
     t: f64,
@@ -50,37 +52,80 @@ pub fn static_equilibrium<S: SecondOrderSystem + ?Sized>(
 ) -> Result<StaticSolution, MbdError> {
     let n = sys.n_v();
     let nc = sys.n_c();
-    let v0 = vec![0.0; n];
-    let mut state = State::new(t, q0.to_vec(), v0.clone());
+    let state = State::new(t, q0.to_vec(), vec![0.0; n]);
     state.check(sys)?;
-    let mut lambda = vec![0.0; nc];
-    let mut kkt = KktSolver::new();
-    let mut f = vec![0.0; n];
-    let mut phi = vec![0.0; nc];
-    let mut qn = q0.to_vec();
-    let mut last = f64::INFINITY;
-    for it in 1..=opts.max_iterations {
-        let q = &state.q;
-        sys.forces(t, q, &v0, &mut f)?;
-        let mut rhs = vec![0.0; n + nc];
-        rhs[..n].copy_from_slice(&f);
+    let mut problem = Statics {
+        sys,
+        state,
+        kkt: KktSolver::new(),
+        f: vec![0.0; n],
+        phi: vec![0.0; nc],
+    };
+    let mut x = q0.to_vec();
+    x.resize(q0.len() + nc, 0.0);
+    let newton = NewtonOptions {
+        max_iterations: opts.max_iterations,
+        tolerances: Tolerances::absolute(opts.tol),
+        max_step: opts.max_step,
+        ..Default::default()
+    };
+    let report = newton::solve(&mut problem, &mut x, &newton, &mut NewtonWorkspace::new())
+        .map_err(|e| e.into_mbd(t))?;
+    let lambda = x.split_off(q0.len());
+    problem.state.q.copy_from_slice(&x);
+    Ok(StaticSolution {
+        state: problem.state,
+        lambda,
+        iterations: report.iterations(),
+    })
+}
+
+/// The static KKT problem: unknowns `x = (q, λ)`, residual `R = [Dᵀλ − f; Φ]`, correction
+/// `(Δx, Δλ)` with `Δx` in the model's velocity space.
+struct Statics<'a, S: ?Sized> {
+    sys: &'a S,
+    /// Zero-velocity state at `t` (holds `q` for the finiteness check).
+    state: State,
+    kkt: KktSolver,
+    f: Vec<f64>,
+    phi: Vec<f64>,
+}
+
+impl<S: SecondOrderSystem + ?Sized> NewtonProblem for Statics<'_, S> {
+    type Error = MbdError;
+
+    fn tangent_dim(&self) -> usize {
+        self.f.len() + self.phi.len()
+    }
+
+    fn linearize(&mut self, x: &[f64], _load: f64, r: &mut [f64]) -> Result<(), MbdError> {
+        let (sys, t) = (self.sys, self.state.t);
+        let (n, nc) = (self.f.len(), self.phi.len());
+        let (q, lambda) = x.split_at(x.len() - nc);
+        let v0 = &self.state.v;
+        sys.forces(t, q, v0, &mut self.f)?;
+        // rhs = [f − Dᵀλ; −Φ] = −R
+        r[..n].copy_from_slice(&self.f);
         let d = if nc > 0 {
             let d = sys.constraint_jacobian(t, q)?;
-            d.tmul_vec_add(-1.0, &lambda, &mut rhs[..n]);
-            sys.constraint_residual(t, q, &mut phi)?;
+            d.tmul_vec_add(-1.0, lambda, &mut r[..n]);
+            sys.constraint_residual(t, q, &mut self.phi)?;
             for i in 0..nc {
-                rhs[n + i] = -phi[i];
+                r[n + i] = -self.phi[i];
             }
             Some(d)
         } else {
             None
         };
-        let kt = match sys.force_tangent(t, q, &v0)? {
+        for ri in r.iter_mut() {
+            *ri = -*ri;
+        }
+        let kt = match sys.force_tangent(t, q, v0)? {
             Some(tg) => tg.stiffness,
-            None => fd_stiffness(sys, t, q, &f)?,
+            None => finite_difference_tangent(sys, t, q, v0)?.stiffness,
         };
         let kc = if nc > 0 {
-            sys.constraint_force_tangent(t, q, &lambda)?
+            sys.constraint_force_tangent(t, q, lambda)?
         } else {
             None
         };
@@ -88,63 +133,33 @@ pub fn static_equilibrium<S: SecondOrderSystem + ?Sized>(
         if let Some(kc) = &kc {
             blocks.push((1.0, kc));
         }
-        kkt.factor(&blocks, d.as_ref(), t)
-            .map_err(|e| super::integrators::explain_singular(sys, t, q, e))?;
-        kkt.solve(&mut rhs, t)?;
-        let mut norm = rhs[..n].iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let scale = if norm > opts.max_step {
-            opts.max_step / norm
-        } else {
-            1.0
-        };
-        for x in rhs.iter_mut() {
-            *x *= scale;
-        }
-        norm *= scale;
-        sys.integrate_position(&state.q, &rhs[..n], &mut qn);
-        sys.normalize(&mut qn);
-        state.q.copy_from_slice(&qn);
-        for i in 0..nc {
-            lambda[i] += rhs[n + i];
-        }
-        state.check(sys)?;
-        last = norm;
-        if norm <= opts.tol && scale == 1.0 {
-            return Ok(StaticSolution {
-                state,
-                lambda,
-                iterations: it,
-            });
-        }
+        self.kkt
+            .factor(&blocks, d.as_ref(), t)
+            .map_err(|e| crate::integrators::explain_singular(sys, t, q, e))
     }
-    Err(MbdError::NoConvergence {
-        t,
-        iterations: opts.max_iterations,
-        residual: last,
-    })
-}
 
-fn fd_stiffness<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    t: f64,
-    q: &[f64],
-    f0: &[f64],
-) -> Result<SysMatrix, MbdError> {
-    let n = sys.n_v();
-    let v0 = vec![0.0; n];
-    let mut k = Mat::<f64>::zeros(n, n);
-    let mut e = vec![0.0; n];
-    let mut qp = vec![0.0; q.len()];
-    let mut fp = vec![0.0; n];
-    for j in 0..n {
-        let eps = 1e-7;
-        e[j] = eps;
-        sys.integrate_position(q, &e, &mut qp);
-        e[j] = 0.0;
-        sys.forces(t, &qp, &v0, &mut fp)?;
-        for i in 0..n {
-            k[(i, j)] = -(fp[i] - f0[i]) / eps;
+    fn solve(&mut self, r: &[f64], dx: &mut [f64]) -> Result<(), MbdError> {
+        for (d, ri) in dx.iter_mut().zip(r) {
+            *d = -ri;
         }
+        self.kkt.solve(dx, self.state.t)
     }
-    Ok(SysMatrix::Dense(k))
+
+    fn update(&mut self, x: &[f64], dx: &[f64], x_new: &mut [f64]) -> Result<(), MbdError> {
+        let n = self.f.len();
+        let nq = x.len() - self.phi.len();
+        self.sys
+            .integrate_position(&x[..nq], &dx[..n], &mut x_new[..nq]);
+        self.sys.normalize(&mut x_new[..nq]);
+        for i in nq..x.len() {
+            x_new[i] = x[i] + dx[n + i - nq];
+        }
+        self.state.q.copy_from_slice(&x_new[..nq]);
+        self.state.check(self.sys)
+    }
+
+    /// `‖Δx‖∞` over the coordinates only (the multipliers have force units).
+    fn correction_norm(&self, dx: &[f64]) -> f64 {
+        newton::max_abs(&dx[..self.f.len()])
+    }
 }

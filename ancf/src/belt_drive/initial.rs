@@ -7,7 +7,7 @@
 //!    length `s_i = i L_p / n`, with `r_x = (L_p / L_b) e_t` (the uniform stretch that maps the
 //!    unstretched belt length `L_b` onto the path length `L_p`) and `r_y = Ĩ e_t`.
 //! 2. **Static equilibrium.** With all pulleys at rest, Newton–Raphson with a backtracking line
-//!    search solves `Q_e(e) + Q_c(e) = 0` (elastic forces (2.20) and the normal contact forces
+//!    search (the shared [`mbd_core::newton`] solver) solves `Q_e(e) + Q_c(e) = 0` (elastic forces (2.20) and the normal contact forces
 //!    (3.20); friction vanishes at rest). Frictionless contact leaves the belt free to slide
 //!    around the pulleys, so the tangential position of node 0 is held by a penalty spring of
 //!    the axial element stiffness `α₁EA/l`; its force at equilibrium is reported (it vanishes
@@ -19,10 +19,12 @@
 use super::model::BeltDrive;
 use crate::error::AncfError;
 use crate::sparse::Pattern;
+use crate::statics::run_newton;
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use mbd_core::SecondOrderSystem;
+use mbd_core::newton::{Fallback, LineSearch, NewtonOptions, NewtonProblem, Tolerances};
 
 /// Result of the initial-configuration solve.
 #[derive(Debug, Clone)]
@@ -108,88 +110,38 @@ impl BeltDrive {
             k_hold * t0[1] * t0[1],
         ];
 
-        let mut q = q0.clone();
-        let mut f = vec![0.0; self.n_q()];
-        let mut torques = vec![0.0; self.pulleys().len()];
-        let zero_v = vec![0.0; self.n_q()];
-        // residual r = f − k_hold t (t·(x − x0)) over the belt coordinates
-        let residual = |q: &[f64], f: &mut [f64], torques: &mut [f64]| -> f64 {
-            self.belt_forces(q, &zero_v, &omegas, f, torques);
-            let u = t0[0] * (q[0] - x0[0]) + t0[1] * (q[1] - x0[1]);
-            f[0] -= k_hold * u * t0[0];
-            f[1] -= k_hold * u * t0[1];
-            f[..nb].iter().map(|x| x * x).sum::<f64>().sqrt()
+        let mut problem = Initial {
+            drive: self,
+            kv: pattern.zeros(),
+            pattern,
+            symbolic,
+            hold,
+            k_hold,
+            t0,
+            x0,
+            omegas,
+            f: vec![0.0; self.n_q()],
+            torques: vec![0.0; self.pulleys().len()],
+            zero_v: vec![0.0; self.n_q()],
+            iteration: 0,
         };
-        let mut kv = pattern.zeros();
-        let mut res = residual(&q, &mut f, &mut torques);
-        let mut iterations = 0;
-        let mut converged = false;
-        while iterations < opts.max_iterations {
-            iterations += 1;
-            if !res.is_finite() {
-                return Err(AncfError::NonFinite {
-                    what: format!("initial belt equilibrium residual (iteration {iterations})"),
-                });
-            }
-            self.belt_stiffness(&q, &omegas, &pattern, &mut f, &mut kv);
-            pattern.add_element(&mut kv, n_el, &hold, 1.0);
-            let u = t0[0] * (q[0] - x0[0]) + t0[1] * (q[1] - x0[1]);
-            f[0] -= k_hold * u * t0[0];
-            f[1] -= k_hold * u * t0[1];
-            let rhs = Mat::<f64>::from_fn(nb, 1, |i, _| f[i]);
-            let kmat = pattern.to_matrix(kv.clone());
-            let lu = Lu::try_new_with_symbolic(symbolic.clone(), kmat.as_ref()).map_err(|e| {
-                AncfError::Singular {
-                    load_factor: 1.0,
-                    detail: format!("belt tangent stiffness at iteration {iterations}: {e:?}"),
-                }
-            })?;
-            let dx = lu.solve(&rhs);
-            let mut alpha = 1.0;
-            let mut trial = q.clone();
-            let mut accepted = false;
-            for _ in 0..20 {
-                for i in 0..nb {
-                    trial[i] = q[i] + alpha * dx[(i, 0)];
-                }
-                let r_new = residual(&trial, &mut f, &mut torques);
-                if r_new.is_finite() && (r_new <= (1.0 - 1e-4 * alpha) * res || r_new < 1e-9) {
-                    res = r_new;
-                    accepted = true;
-                    break;
-                }
-                alpha *= 0.5;
-            }
-            if !accepted {
-                // take the full step: Newton may still converge from there
-                for i in 0..nb {
-                    trial[i] = q[i] + dx[(i, 0)];
-                }
-                res = residual(&trial, &mut f, &mut torques);
-                alpha = 1.0;
-            }
-            let step = (0..nb)
-                .map(|i| (alpha * dx[(i, 0)]).abs())
-                .fold(0.0, f64::max);
-            let qmax = q[..nb].iter().map(|v| v.abs()).fold(0.0, f64::max);
-            q = trial;
-            if !step.is_finite() {
-                return Err(AncfError::NonFinite {
-                    what: format!("initial belt equilibrium Newton step {iterations}"),
-                });
-            }
-            if step <= opts.tolerance * (1.0 + qmax) {
-                converged = true;
-                break;
-            }
-        }
-        if !converged {
-            return Err(AncfError::NoConvergence {
-                load_factor: 1.0,
-                iterations,
-                residual: res,
-            });
-        }
+        let newton = NewtonOptions {
+            max_iterations: opts.max_iterations,
+            tolerances: Tolerances::relative(opts.tolerance),
+            line_search: Some(LineSearch {
+                armijo: 1e-4,
+                slack: 0.0,
+                accept_below: 1e-9,
+                max_trials: 20,
+                fallback: Fallback::FullStep,
+            }),
+            ..Default::default()
+        };
+        let mut q = q0;
+        let report = run_newton("initial belt equilibrium", &mut problem, &mut q, &newton)?;
+        let mut r = vec![0.0; self.n_q()];
+        problem.residual(&q, 1.0, &mut r)?;
+        let (res, iterations) = (problem.residual_norm(&r), report.iterations());
         let u = t0[0] * (q[0] - x0[0]) + t0[1] * (q[1] - x0[1]);
         let tension = super::post::tension_samples(self, &q, 3);
         let mean_tension =
@@ -201,6 +153,92 @@ impl BeltDrive {
             holding_force: k_hold * u,
             mean_tension,
         })
+    }
+}
+
+/// The belt on resting pulleys with node 0 held tangentially: `x = q` (belt and pulley
+/// coordinates; the pulleys are never corrected), `R = −(Q_e + Q_c − k_hold t (t·(x − x0)))`.
+struct Initial<'a> {
+    drive: &'a BeltDrive,
+    pattern: Pattern,
+    symbolic: SymbolicLu<usize>,
+    kv: Vec<f64>,
+    hold: [f64; 4],
+    k_hold: f64,
+    t0: [f64; 2],
+    x0: [f64; 2],
+    omegas: Vec<f64>,
+    f: Vec<f64>,
+    torques: Vec<f64>,
+    zero_v: Vec<f64>,
+    /// Linearisations so far (named in errors).
+    iteration: usize,
+}
+
+impl Initial<'_> {
+    /// Subtract the holding spring force from `self.f` and write `r = −f` on the belt rows.
+    fn hold_and_scatter(&mut self, q: &[f64], r: &mut [f64]) {
+        let (t0, x0) = (self.t0, self.x0);
+        let u = t0[0] * (q[0] - x0[0]) + t0[1] * (q[1] - x0[1]);
+        self.f[0] -= self.k_hold * u * t0[0];
+        self.f[1] -= self.k_hold * u * t0[1];
+        let nb = self.drive.n_belt();
+        r.fill(0.0);
+        for i in 0..nb {
+            r[i] = -self.f[i];
+        }
+    }
+}
+
+impl NewtonProblem for Initial<'_> {
+    type Error = AncfError;
+
+    fn tangent_dim(&self) -> usize {
+        self.f.len()
+    }
+
+    fn linearize(&mut self, q: &[f64], _load: f64, r: &mut [f64]) -> Result<(), AncfError> {
+        self.iteration += 1;
+        self.drive
+            .belt_stiffness(q, &self.omegas, &self.pattern, &mut self.f, &mut self.kv);
+        let n_el = self.drive.mesh().elements().len();
+        self.pattern
+            .add_element(&mut self.kv, n_el, &self.hold, 1.0);
+        self.hold_and_scatter(q, r);
+        Ok(())
+    }
+
+    fn residual(&mut self, q: &[f64], _load: f64, r: &mut [f64]) -> Result<(), AncfError> {
+        self.drive.belt_forces(
+            q,
+            &self.zero_v,
+            &self.omegas,
+            &mut self.f,
+            &mut self.torques,
+        );
+        self.hold_and_scatter(q, r);
+        Ok(())
+    }
+
+    fn solve(&mut self, r: &[f64], dx: &mut [f64]) -> Result<(), AncfError> {
+        let nb = self.drive.n_belt();
+        let rhs = Mat::<f64>::from_fn(nb, 1, |i, _| -r[i]);
+        let kmat = self.pattern.to_matrix(self.kv.clone());
+        let lu = Lu::try_new_with_symbolic(self.symbolic.clone(), kmat.as_ref()).map_err(|e| {
+            AncfError::Singular {
+                load_factor: 1.0,
+                detail: format!(
+                    "belt tangent stiffness at iteration {}: {e:?}",
+                    self.iteration
+                ),
+            }
+        })?;
+        let d = lu.solve(&rhs);
+        dx.fill(0.0);
+        for i in 0..nb {
+            dx[i] = d[(i, 0)];
+        }
+        Ok(())
     }
 }
 

@@ -13,9 +13,10 @@
 //! with `g` the signed distance of the node to the obstacle, `∇g = n` its outward normal and
 //! `∂²g/∂r² = ∂n/∂r` (the contact crate's [`unilateral_row`] data), `λ_i ≥ 0` the compressive
 //! contact force \[N\]. After convergence, contacts with `λ_i < 0` are released and the deepest
-//! penetrating inactive node is activated; the increment is repeated until the set is stable.
+//! penetrating inactive node is activated; the increment is repeated until the set is stable
+//! (the shared [`mbd_core::newton::solve`] with [`NewtonProblem::settle`]).
 
-use super::{StaticOptions, check_sizes, free_coordinates};
+use super::{StaticOptions, check_sizes, free_coordinates, run_newton};
 use crate::element::Element;
 use crate::error::{AncfError, invalid};
 use crate::mesh::Mesh;
@@ -24,6 +25,7 @@ use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
+use mbd_core::newton::{self, NewtonOptions, NewtonProblem, Settle};
 
 /// Options of the unilateral static solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -93,7 +95,6 @@ pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
         ));
     }
     let (map, free) = free_coordinates("unilateral static solve", n, fixed)?;
-    let nf = free.len();
     for (c, &node) in nodes.iter().enumerate() {
         if node >= mesh.n_nodes() {
             return Err(invalid(
@@ -108,25 +109,24 @@ pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
             ));
         }
     }
-    let node_dofs = |node: usize| [mesh.node_dof(node, 0), mesh.node_dof(node, 1)];
-    let gaps_of = |q: &[f64]| -> Vec<f64> {
-        nodes
-            .iter()
-            .map(|&nd| surface.closest(mesh.node_position(q, nd)).gap)
-            .collect()
-    };
-
     let nc = nodes.len();
-    let mut q = q0.to_vec();
-    let mut lambda = vec![0.0; nc];
-    let mut set = ActiveSet::new(nc);
-    let mut passes = Vec::with_capacity(opts.newton.increments);
-    let mut iterations = 0;
-    let mut f = vec![0.0; n];
-    let pattern = mesh.pattern();
-    let mut kvals = pattern.zeros();
-    let zeros = vec![0.0; nc];
-    let gap0 = gaps_of(&q);
+    let mut problem = Unilateral {
+        mesh,
+        load,
+        surface,
+        nodes,
+        map,
+        free,
+        set: ActiveSet::new(nc),
+        act: Vec::new(),
+        kvals: mesh.pattern().zeros(),
+        f: vec![0.0; n],
+        zeros: vec![0.0; nc],
+        trip: Vec::new(),
+        gap_tolerance: opts.gap_tolerance,
+        lam: 0.0,
+    };
+    let gap0 = problem.gaps(q0);
     if let Some((c, g)) = gap0
         .iter()
         .enumerate()
@@ -140,144 +140,197 @@ pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
             ),
         ));
     }
+    let newton = NewtonOptions {
+        max_passes: opts.max_passes,
+        ..opts.newton.newton(None)
+    };
+    let mut x = q0.to_vec();
+    x.resize(n + nc, 0.0);
+    let report = run_newton("unilateral static", &mut problem, &mut x, &newton)?;
+    let multipliers = x.split_off(n);
+    let gaps = problem.gaps(&x);
+    Ok(UnilateralSolution {
+        q: x,
+        active: (0..nc).map(|c| problem.set.is_active(c)).collect(),
+        multipliers,
+        gaps,
+        passes: report.increments.iter().map(|i| i.passes).collect(),
+        iterations: report.iterations(),
+    })
+}
 
-    for inc in 1..=opts.newton.increments {
-        let lf = inc as f64 / opts.newton.increments as f64;
-        let mut pass = 0;
-        loop {
-            pass += 1;
-            let act: Vec<usize> = set.active().collect();
-            let na = act.len();
-            let dim = nf + na;
-            let mut converged = false;
-            let mut last = f64::INFINITY;
-            for _ in 0..opts.newton.max_iterations {
-                iterations += 1;
-                kvals.fill(0.0);
-                mesh.elastic_tangent_into(&q, &mut f, pattern, &mut kvals, 1.0);
-                let mut trip = Vec::with_capacity(kvals.len() + 6 * na);
-                for (i, j, p) in pattern.entries() {
-                    if let (Some(a), Some(b)) = (map[i], map[j]) {
-                        trip.push(Triplet::new(a, b, kvals[p]));
-                    }
-                }
-                let mut rhs = Mat::<f64>::zeros(dim, 1);
-                for (r, &c) in act.iter().enumerate() {
-                    let nd = nodes[c];
-                    let row = unilateral_row(surface, mesh.node_position(&q, nd), [0.0; 2]);
-                    let sp = surface.closest(mesh.node_position(&q, nd));
-                    let d = node_dofs(nd);
-                    for a in 0..2 {
-                        f[d[a]] += lambda[c] * row.normal[a];
-                        if let Some(ia) = map[d[a]] {
-                            trip.push(Triplet::new(ia, nf + r, -row.normal[a]));
-                            trip.push(Triplet::new(nf + r, ia, -row.normal[a]));
-                            for b in 0..2 {
-                                if let Some(ib) = map[d[b]] {
-                                    trip.push(Triplet::new(ia, ib, -lambda[c] * sp.dn_dp[a][b]));
-                                }
-                            }
-                        }
-                    }
-                    rhs[(nf + r, 0)] = row.gap;
-                }
-                let mut res = 0.0;
-                for (i, &k) in free.iter().enumerate() {
-                    let r = f[k] + lf * load[k];
-                    rhs[(i, 0)] = r;
-                    res += r * r;
-                }
-                last = res.sqrt();
-                if !last.is_finite() {
-                    return Err(AncfError::NonFinite {
-                        what: format!("unilateral static residual at load factor {lf}"),
-                    });
-                }
-                let kkt = SparseColMat::try_new_from_triplets(dim, dim, &trip).map_err(|e| {
-                    AncfError::Singular {
-                        load_factor: lf,
-                        detail: format!("KKT assembly: {e:?}"),
-                    }
-                })?;
-                let singular = |e: String| AncfError::Singular {
-                    load_factor: lf,
-                    detail: format!("KKT matrix with {na} active contacts: {e}"),
-                };
-                let sym =
-                    SymbolicLu::try_new(kkt.symbolic()).map_err(|e| singular(format!("{e:?}")))?;
-                let lu = Lu::try_new_with_symbolic(sym, kkt.as_ref())
-                    .map_err(|e| singular(format!("{e:?}")))?;
-                let dx = lu.solve(&rhs);
-                let mut step = 0.0f64;
-                for (i, &k) in free.iter().enumerate() {
-                    q[k] += dx[(i, 0)];
-                    step = step.max(dx[(i, 0)].abs());
-                }
-                let mut dl = 0.0f64;
-                for (r, &c) in act.iter().enumerate() {
-                    lambda[c] += dx[(nf + r, 0)];
-                    dl = dl.max(dx[(nf + r, 0)].abs());
-                }
-                if !(step.is_finite() && dl.is_finite()) {
-                    return Err(AncfError::NonFinite {
-                        what: format!("unilateral Newton step at load factor {lf}"),
-                    });
-                }
-                let qmax = q.iter().map(|v| v.abs()).fold(0.0, f64::max);
-                let lmax = lambda.iter().map(|v| v.abs()).fold(0.0, f64::max);
-                // the multipliers come out of force balances whose round-off is ~EA·1e-16
-                // per element, so they are checked relatively, at 1e-6
-                if step <= opts.newton.tolerance * (1.0 + qmax) && dl <= 1e-6 * (1.0 + lmax) {
-                    converged = true;
-                    break;
-                }
-            }
-            if !converged {
-                return Err(AncfError::NoConvergence {
-                    load_factor: lf,
-                    iterations: opts.newton.max_iterations,
-                    residual: last,
-                });
-            }
-            // activate at most the deepest penetrating node per pass (activating every
-            // penetrating node at once over-constrains the body and then releases the excess
-            // one layer per pass: 49 instead of 2 passes for a beam settling on its tip)
-            let mut gaps = gaps_of(&q);
-            let deepest = (0..nc)
-                .filter(|&c| !set.is_active(c))
-                .min_by(|&a, &b| gaps[a].total_cmp(&gaps[b]));
-            for c in 0..nc {
-                if !set.is_active(c) && Some(c) != deepest {
-                    gaps[c] = f64::INFINITY;
-                }
-            }
-            let changed = set.update(&gaps, &zeros, &lambda, -opts.gap_tolerance);
-            for (c, l) in lambda.iter_mut().enumerate() {
-                if !set.is_active(c) {
-                    *l = 0.0;
-                }
-            }
-            if !changed {
-                break;
-            }
-            if pass >= opts.max_passes {
-                return Err(AncfError::ActiveSet {
-                    load_factor: lf,
-                    passes: pass,
-                });
+/// The KKT system of the module documentation: unknowns `x = (q, λ)` (all coordinates and
+/// all candidate multipliers; fixed coordinates and inactive multipliers are never corrected),
+/// residual `R = −(Q_e + λ_F F + Σ λ_i n_i)` on the free rows and `−g_i` on the active rows.
+struct Unilateral<'a, E: Element, S: Surface + ?Sized> {
+    mesh: &'a Mesh<E>,
+    load: &'a [f64],
+    surface: &'a S,
+    nodes: &'a [usize],
+    map: Vec<Option<usize>>,
+    free: Vec<usize>,
+    set: ActiveSet,
+    /// Active candidates of the current pass, in KKT row order.
+    act: Vec<usize>,
+    kvals: Vec<f64>,
+    f: Vec<f64>,
+    zeros: Vec<f64>,
+    trip: Vec<Triplet<usize, usize, f64>>,
+    gap_tolerance: f64,
+    /// Load factor of the last linearisation.
+    lam: f64,
+}
+
+impl<E: Element, S: Surface + ?Sized> Unilateral<'_, E, S> {
+    fn gaps(&self, q: &[f64]) -> Vec<f64> {
+        self.nodes
+            .iter()
+            .map(|&nd| self.surface.closest(self.mesh.node_position(q, nd)).gap)
+            .collect()
+    }
+
+    fn n(&self) -> usize {
+        self.f.len()
+    }
+}
+
+impl<E: Element, S: Surface + ?Sized> NewtonProblem for Unilateral<'_, E, S> {
+    type Error = AncfError;
+
+    fn tangent_dim(&self) -> usize {
+        self.n() + self.nodes.len()
+    }
+
+    fn linearize(&mut self, x: &[f64], lf: f64, r: &mut [f64]) -> Result<(), AncfError> {
+        self.lam = lf;
+        let (mesh, n, nf) = (self.mesh, self.n(), self.free.len());
+        let (q, lambda) = x.split_at(n);
+        self.act.clear();
+        self.act.extend(self.set.active());
+        let pattern = mesh.pattern();
+        self.kvals.fill(0.0);
+        mesh.elastic_tangent_into(q, &mut self.f, pattern, &mut self.kvals, 1.0);
+        self.trip.clear();
+        for (i, j, p) in pattern.entries() {
+            if let (Some(a), Some(b)) = (self.map[i], self.map[j]) {
+                self.trip.push(Triplet::new(a, b, self.kvals[p]));
             }
         }
-        passes.push(pass);
+        r.fill(0.0);
+        for (row, &c) in self.act.iter().enumerate() {
+            let nd = self.nodes[c];
+            let p = mesh.node_position(q, nd);
+            let crow = unilateral_row(self.surface, p, [0.0; 2]);
+            let sp = self.surface.closest(p);
+            let d = [mesh.node_dof(nd, 0), mesh.node_dof(nd, 1)];
+            for a in 0..2 {
+                self.f[d[a]] += lambda[c] * crow.normal[a];
+                if let Some(ia) = self.map[d[a]] {
+                    self.trip.push(Triplet::new(ia, nf + row, -crow.normal[a]));
+                    self.trip.push(Triplet::new(nf + row, ia, -crow.normal[a]));
+                    for b in 0..2 {
+                        if let Some(ib) = self.map[d[b]] {
+                            self.trip
+                                .push(Triplet::new(ia, ib, -lambda[c] * sp.dn_dp[a][b]));
+                        }
+                    }
+                }
+            }
+            r[n + c] = -crow.gap;
+        }
+        for &k in &self.free {
+            r[k] = -(self.f[k] + lf * self.load[k]);
+        }
+        Ok(())
     }
-    let gaps = gaps_of(&q);
-    Ok(UnilateralSolution {
-        q,
-        active: (0..nc).map(|c| set.is_active(c)).collect(),
-        multipliers: lambda,
-        gaps,
-        passes,
-        iterations,
-    })
+
+    fn solve(&mut self, r: &[f64], dx: &mut [f64]) -> Result<(), AncfError> {
+        let (n, nf, na) = (self.n(), self.free.len(), self.act.len());
+        let dim = nf + na;
+        let lf = self.lam;
+        let kkt = SparseColMat::try_new_from_triplets(dim, dim, &self.trip).map_err(|e| {
+            AncfError::Singular {
+                load_factor: lf,
+                detail: format!("KKT assembly: {e:?}"),
+            }
+        })?;
+        let singular = |e: String| AncfError::Singular {
+            load_factor: lf,
+            detail: format!("KKT matrix with {na} active contacts: {e}"),
+        };
+        let sym = SymbolicLu::try_new(kkt.symbolic()).map_err(|e| singular(format!("{e:?}")))?;
+        let lu =
+            Lu::try_new_with_symbolic(sym, kkt.as_ref()).map_err(|e| singular(format!("{e:?}")))?;
+        let rhs = Mat::<f64>::from_fn(dim, 1, |i, _| {
+            if i < nf {
+                -r[self.free[i]]
+            } else {
+                -r[n + self.act[i - nf]]
+            }
+        });
+        let sol = lu.solve(&rhs);
+        dx.fill(0.0);
+        for (i, &k) in self.free.iter().enumerate() {
+            dx[k] = sol[(i, 0)];
+        }
+        for (row, &c) in self.act.iter().enumerate() {
+            dx[n + c] = sol[(nf + row, 0)];
+        }
+        Ok(())
+    }
+
+    /// `‖R‖₂` over the force rows.
+    fn residual_norm(&self, r: &[f64]) -> f64 {
+        r[..self.n()].iter().map(|v| v * v).sum::<f64>().sqrt()
+    }
+
+    /// `‖Δq‖∞` (the multipliers are tested in [`Self::converged`]).
+    fn correction_norm(&self, dx: &[f64]) -> f64 {
+        newton::max_abs(&dx[..self.n()])
+    }
+
+    /// `‖q‖∞` after the update.
+    fn scale(&self, _x_old: &[f64], x_new: &[f64]) -> f64 {
+        newton::max_abs(&x_new[..self.n()])
+    }
+
+    /// The multipliers come out of force balances whose round-off is ~EA·1e-16 per element,
+    /// so they are checked relatively, at 1e-6.
+    fn converged(&self, _x_old: &[f64], x_new: &[f64], dx: &[f64]) -> bool {
+        let n = self.n();
+        newton::max_abs(&dx[n..]) <= 1e-6 * (1.0 + newton::max_abs(&x_new[n..]))
+    }
+
+    /// Activate at most the deepest penetrating node per pass (activating every penetrating
+    /// node at once over-constrains the body and then releases the excess one layer per
+    /// pass: 49 instead of 2 passes for a beam settling on its tip); release tensile contacts.
+    fn settle(&mut self, x: &mut [f64], _lf: f64) -> Result<Settle, AncfError> {
+        let n = self.n();
+        let nc = self.nodes.len();
+        let mut gaps = self.gaps(&x[..n]);
+        let deepest = (0..nc)
+            .filter(|&c| !self.set.is_active(c))
+            .min_by(|&a, &b| gaps[a].total_cmp(&gaps[b]));
+        for c in 0..nc {
+            if !self.set.is_active(c) && Some(c) != deepest {
+                gaps[c] = f64::INFINITY;
+            }
+        }
+        let lambda = &mut x[n..];
+        let changed = self
+            .set
+            .update(&gaps, &self.zeros, lambda, -self.gap_tolerance);
+        for (c, l) in lambda.iter_mut().enumerate() {
+            if !self.set.is_active(c) {
+                *l = 0.0;
+            }
+        }
+        Ok(if changed {
+            Settle::Changed
+        } else {
+            Settle::Settled
+        })
+    }
 }
 
 #[cfg(test)]

@@ -33,10 +33,10 @@
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, FlowingBasis, NODE_DOFS};
 use super::schedule::Schedule;
+use super::statics::dense_equilibrium;
 use contact::friction::CoulombTanh;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
-use faer::linalg::solvers::Solve;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
 /// A contact node with its rows of the basis.
@@ -308,7 +308,7 @@ impl FlowingBelt {
     }
 
     /// Static equilibrium of the belt on the resting pulleys (`v = 0`, `ż = 0`): Newton on the
-    /// modal rows with the analytic tangent. Returns `z`.
+    /// modal rows with the analytic tangent (the shared [`mbd_core::newton`] solver). Returns `z`.
     pub fn static_equilibrium(&self) -> Result<Vec<f64>, MbdError> {
         let m = self.m;
         let mut q = vec![0.0; m + 2];
@@ -318,36 +318,16 @@ impl FlowingBelt {
             driver_speed: Schedule::constant(0.0),
             ..self.clone()
         };
-        for it in 0..50 {
+        // R = −f over the modal rows, J = K_t restricted to them
+        dense_equilibrium("belt", m, m, 1, |z, r| {
+            q[1..=m].copy_from_slice(z);
             still.forces(0.0, &q, &v, &mut f)?;
-            let res = f[1..=m].iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            let tan = still.tangent(0.0, &q, &v);
-            let k = Mat::from_fn(m, m, |i, j| tan.0[(i + 1, j + 1)]);
-            let rhs = Mat::from_fn(m, 1, |i, _| f[i + 1]);
-            let dz = k.partial_piv_lu().solve(&rhs);
-            let mut step = 0.0f64;
             for i in 0..m {
-                q[i + 1] += dz[(i, 0)];
-                step = step.max(dz[(i, 0)].abs());
+                r[i] = -f[i + 1];
             }
-            if !step.is_finite() {
-                return Err(MbdError::Singular {
-                    t: 0.0,
-                    detail: "belt static equilibrium: singular tangent".into(),
-                });
-            }
-            if step < 1e-13 || res < 1e-9 {
-                return Ok(q[1..=m].to_vec());
-            }
-            if it == 49 {
-                return Err(MbdError::NoConvergence {
-                    t: 0.0,
-                    iterations: 50,
-                    residual: res,
-                });
-            }
-        }
-        unreachable!("loop returns")
+            let tan = still.tangent(0.0, &q, &v);
+            Ok(Mat::from_fn(m, m, |i, j| tan.0[(i + 1, j + 1)]))
+        })
     }
 
     /// `(K_t, C_t)` as dense matrices: `−∂f/∂q`, `−∂f/∂v`.

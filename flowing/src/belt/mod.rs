@@ -13,6 +13,7 @@ pub mod flowing_system;
 pub mod model;
 pub mod nodal;
 pub mod schedule;
+mod statics;
 pub mod study;
 pub mod wave;
 

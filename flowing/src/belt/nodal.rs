@@ -60,10 +60,10 @@
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, NODE_DOFS};
 use super::schedule::Schedule;
+use super::statics::dense_equilibrium;
 use contact::friction::CoulombTanh;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
-use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use fe_model::element::{Frame2d, Frame2dSection};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
@@ -537,7 +537,8 @@ impl NodalBelt {
     }
 
     /// Static equilibrium of the mounted belt on the resting pulleys (`v = 0`, `s_b = 0`) under
-    /// the reference condition: Newton on `[K_t Dᵀ; D 0]`. Returns `δ` (`3N`).
+    /// the reference condition: Newton on `[K_t Dᵀ; D 0]` (the shared [`mbd_core::newton`]
+    /// solver). Returns `δ` (`3N`).
     pub fn static_equilibrium(&self) -> Result<Vec<f64>, MbdError> {
         let nd = self.n_nodal();
         let nv = nd + 2;
@@ -550,48 +551,34 @@ impl NodalBelt {
         let v = vec![0.0; nv];
         let mut f = vec![0.0; nv];
         let k = NODE_DOFS * self.reference_node;
-        for it in 0..50 {
+        // R = [−f; Φ] over the nodal rows and the reference condition, J = [K_t eᵀ; e 0]
+        // (the multiplier is solved for directly); the residual test from the second iteration
+        dense_equilibrium("nodal belt", nd, nd + 1, 2, |d, r| {
+            q[1..=nd].copy_from_slice(d);
             let mesh = still.mesh(0.0)?;
             still.forces_on(&mesh, 0.0, &q, &v, &mut f)?;
-            let res = f[1..=nd].iter().fold(0.0f64, |a, b| a.max(b.abs()));
             let kt = still.tangent(0.0, &q, &v)?.0.to_dense();
             let et = mesh.tan[self.reference_node];
-            let a = Mat::from_fn(nd + 1, nd + 1, |i, j| match (i < nd, j < nd) {
-                (true, true) => kt[(i + 1, j + 1)],
-                (true, false) => match i.checked_sub(k) {
-                    Some(0) => et[0],
-                    Some(1) => et[1],
-                    _ => 0.0,
-                },
-                (false, true) => match j.checked_sub(k) {
-                    Some(0) => et[0],
-                    Some(1) => et[1],
-                    _ => 0.0,
-                },
-                (false, false) => 0.0,
-            });
-            let phi = et[0] * q[1 + k] + et[1] * q[2 + k];
-            let rhs = Mat::from_fn(nd + 1, 1, |i, _| if i < nd { f[i + 1] } else { -phi });
-            let x = a.partial_piv_lu().solve(&rhs);
-            let mut step = 0.0f64;
             for i in 0..nd {
-                q[i + 1] += x[(i, 0)];
-                step = step.max(x[(i, 0)].abs());
+                r[i] = -f[i + 1];
             }
-            if !step.is_finite() {
-                return Err(MbdError::Singular {
-                    t: 0.0,
-                    detail: "nodal belt static equilibrium: singular tangent".into(),
-                });
-            }
-            if step < 1e-13 || (res < 1e-9 && it > 0) {
-                return Ok(q[1..=nd].to_vec());
-            }
-        }
-        Err(MbdError::NoConvergence {
-            t: 0.0,
-            iterations: 50,
-            residual: f[1..=nd].iter().fold(0.0f64, |a, b| a.max(b.abs())),
+            r[nd] = et[0] * q[1 + k] + et[1] * q[2 + k];
+            Ok(Mat::from_fn(nd + 1, nd + 1, |i, j| {
+                match (i < nd, j < nd) {
+                    (true, true) => kt[(i + 1, j + 1)],
+                    (true, false) => match i.checked_sub(k) {
+                        Some(0) => et[0],
+                        Some(1) => et[1],
+                        _ => 0.0,
+                    },
+                    (false, true) => match j.checked_sub(k) {
+                        Some(0) => et[0],
+                        Some(1) => et[1],
+                        _ => 0.0,
+                    },
+                    (false, false) => 0.0,
+                }
+            }))
         })
     }
 }
