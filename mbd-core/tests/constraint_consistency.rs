@@ -5,6 +5,7 @@
 
 use mbd_core::body::BodyState;
 use mbd_core::constraints::*;
+use mbd_core::marker::Marker;
 use mbd_core::forces::{Gravity, RotationalSpringDamper, SpringDamper};
 use mbd_core::integrators::State;
 use mbd_core::kinematics::euler::from_axis_angle;
@@ -32,8 +33,8 @@ fn two_bodies() -> (MultibodySystem, State) {
     (sys, s)
 }
 
-fn att(b: Option<usize>, p: [f64; 3], a: [f64; 3]) -> Attachment {
-    Attachment::new(b, Vector3::from(p), Vector3::from(a))
+fn att(b: Option<usize>, p: [f64; 3], a: [f64; 3]) -> Marker {
+    Marker::new(b, Vector3::from(p), Vector3::from(a))
 }
 
 type AddConstraint = Box<dyn Fn(&mut MultibodySystem)>;
