@@ -8,7 +8,7 @@
 //! same column space); Lin's qualitative ranking (§7.2.4: CB = MC close to NR, MT and GR
 //! poorer).
 
-use mbd_core::floating::Point;
+use mbd_core::marker::Marker;
 use nalgebra::Vector3;
 use reduction::lin::slab::{self, SlabMethod};
 use reduction::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
@@ -66,10 +66,7 @@ fn source_starts_inclined_at_rest_with_the_links_along_x() {
     let pos = |j: usize| {
         sys.point_position(
             &st,
-            &Point::FlexNode {
-                body: 0,
-                node: j - 1,
-            },
+            &Marker::node(0, j - 1),
         )
     };
     let h = std::f64::consts::FRAC_1_SQRT_2;
@@ -101,10 +98,7 @@ fn source_run_conserves_energy() {
         let at = |j: usize| {
             sys.point_position(
                 x,
-                &Point::FlexNode {
-                    body: 0,
-                    node: j - 1,
-                },
+                &Marker::node(0, j - 1),
             )
         };
         sys.kinetic_energy(x).unwrap() + sys.potential_energy(x)
