@@ -217,19 +217,7 @@ impl RotationDriver {
 }
 
 impl Constraint for RotationDriver {
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn n_eq(&self) -> usize {
-        1
-    }
-    fn markers(&self) -> [Marker; 2] {
-        [self.i, self.j]
-    }
-    fn validate(&self) -> Result<(), MbdError> {
-        check_markers(&self.name, &self.i, &self.j)?;
-        self.validate_extra()
-    }
+    common!(1);
     fn eval(&self, t: f64, ci: &Carrier, cj: &Carrier, out: &mut Vec<Equation>) {
         let a = self.i.axis;
         let xi = (self.reference_i - a * a.dot(&self.reference_i)).normalize();

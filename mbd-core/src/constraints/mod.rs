@@ -7,6 +7,26 @@
 //! Every equation provides `Φ`, its Jacobian `D` with respect to the carrying bodies' velocities
 //! `(ṙ, ω', ż)`, the velocity right-hand side `ν = −Φ_t` and `γ` of `D v̇ = γ`.
 
+/// The `name`, `n_eq`, `markers` and `validate` methods of a two-marker constraint with fields
+/// `name`, `i`, `j` and an inherent `validate_extra`.
+macro_rules! common {
+    ($n:expr) => {
+        fn name(&self) -> &str {
+            &self.name
+        }
+        fn n_eq(&self) -> usize {
+            $n
+        }
+        fn markers(&self) -> [Marker; 2] {
+            [self.i, self.j]
+        }
+        fn validate(&self) -> Result<(), MbdError> {
+            check_markers(&self.name, &self.i, &self.j)?;
+            self.validate_extra()
+        }
+    };
+}
+
 mod drivers;
 mod set;
 
@@ -107,24 +127,6 @@ pub fn perpendicular_basis(a: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     let h = (t - a * a.dot(&t)).normalize();
     let g = a.cross(&h);
     (h, g)
-}
-
-macro_rules! common {
-    ($n:expr) => {
-        fn name(&self) -> &str {
-            &self.name
-        }
-        fn n_eq(&self) -> usize {
-            $n
-        }
-        fn markers(&self) -> [Marker; 2] {
-            [self.i, self.j]
-        }
-        fn validate(&self) -> Result<(), MbdError> {
-            check_markers(&self.name, &self.i, &self.j)?;
-            self.validate_extra()
-        }
-    };
 }
 
 /// Spherical joint: `d_i = d_j` at the attachment points (3 equations; Lin (2.22)–(2.24)).
