@@ -2,9 +2,9 @@
 
 use crate::body::BodyState;
 use crate::constraints::Spherical;
-use crate::marker::Marker;
 use crate::forces::Gravity;
 use crate::integrators::State;
+use crate::marker::Marker;
 use crate::{MbdError, MultibodySystem, RigidBody};
 use nalgebra::{Vector3, Vector4};
 

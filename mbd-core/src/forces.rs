@@ -7,8 +7,8 @@
 
 use crate::MbdError;
 use crate::body::{BodyId, BodyKin, RigidBody};
-use crate::marker::{Carrier, Marker, Term};
 use crate::kinematics::tilde::add3;
+use crate::marker::{Carrier, Marker, Term};
 use nalgebra::Vector3;
 use std::sync::Arc;
 

@@ -11,7 +11,7 @@
 //! * [`kinematics`]: Euler parameters `A(p)`, `G(p)`, `L(p)`, `ṗ`/`ω` relations, `p̈` (Lin
 //!   (2.4)–(2.21)), tilde and stacking helpers, planar rotation matrices;
 //! * [`body`]: rigid bodies, body states and kinematics;
-//! * [`marker`]: markers (a point and a frame on a rigid body, the ground or a flexible node)
+//! * [`marker`]: markers, a point and a frame on a rigid body, the ground or a flexible node,
 //!   and the kinematic terms of joint equations;
 //! * [`constraints`]: the [`constraints::Constraint`] extension point and the joints
 //!   (fixed, spherical, revolute, universal, prismatic, distance, point-on-plane, planar

@@ -76,12 +76,7 @@ impl Marker {
 
     /// Marker at offset `offset` \[m\] from node `node` of floating body `body` with axis `axis`,
     /// both in the node frame (axis normalised).
-    pub fn node_frame(
-        body: usize,
-        node: usize,
-        offset: Vector3<f64>,
-        axis: Vector3<f64>,
-    ) -> Self {
+    pub fn node_frame(body: usize, node: usize, offset: Vector3<f64>, axis: Vector3<f64>) -> Self {
         Self {
             node: Some(node),
             ..Self::new(Some(body), offset, axis)

@@ -8,12 +8,12 @@
 
 use crate::body::{BodyId, BodyKin, BodyState, RigidBody};
 use crate::constraints::{Constraint, ConstraintSet, Equation};
-use crate::marker::{Carrier, Marker};
 use crate::forces::ForceElement;
 use crate::integrators::State;
 use crate::kinematics::euler::{compose_local_rotation, pdot_from_omega_local};
 use crate::kinematics::tilde::tilde;
 use crate::kinematics::tilde::{get3, get4, put3, put4};
+use crate::marker::{Carrier, Marker};
 use crate::system::ForceTangent;
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
@@ -203,7 +203,11 @@ impl MultibodySystem {
         let mut out = Vec::new();
         self.constraints.eval(
             t,
-            |m| m.body.map(|b| Carrier::rigid(kin[b])).unwrap_or_else(Carrier::ground),
+            |m| {
+                m.body
+                    .map(|b| Carrier::rigid(kin[b]))
+                    .unwrap_or_else(Carrier::ground)
+            },
             &mut out,
         );
         out

@@ -3,10 +3,10 @@
 
 use mbd_core::body::{BodyKin, BodyState};
 use mbd_core::constraints::{Revolute, Spherical};
-use mbd_core::marker::{Carrier, Marker, Term};
 use mbd_core::forces::Gravity;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
 use mbd_core::kinematics::tilde::{get3, get4};
+use mbd_core::marker::{Carrier, Marker, Term};
 use mbd_core::{
     CompositeSystem, Coupling, CouplingEval, MultibodySystem, RigidBody, SecondOrderSystem,
 };

@@ -5,10 +5,10 @@
 
 use mbd_core::body::BodyState;
 use mbd_core::constraints::*;
-use mbd_core::marker::Marker;
 use mbd_core::forces::{Gravity, RotationalSpringDamper, SpringDamper};
 use mbd_core::integrators::State;
 use mbd_core::kinematics::euler::from_axis_angle;
+use mbd_core::marker::Marker;
 use mbd_core::{MultibodySystem, RigidBody, SecondOrderSystem};
 use nalgebra::Vector3;
 use std::sync::Arc;

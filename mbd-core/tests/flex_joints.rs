@@ -23,12 +23,25 @@ fn generic_flex(rotations: bool) -> FlexBody {
         0.3, -0.1, 0.05, -0.2, 0.25, 0.1, 0.05, 0.1, -0.3, -0.15, -0.2, 0.12,
     ];
     let n = s.len();
-    let m = Mat::<f64>::from_fn(n, n, |i, j| if i == j { 0.5 + 0.1 * (i / 3) as f64 } else { 0.0 });
+    let m = Mat::<f64>::from_fn(n, n, |i, j| {
+        if i == j {
+            0.5 + 0.1 * (i / 3) as f64
+        } else {
+            0.0
+        }
+    });
     let k = Mat::<f64>::from_fn(n, n, |i, j| if i == j { 1e3 } else { 0.0 });
     let nz = 5;
     let psi = Mat::<f64>::from_fn(n, nz, |i, j| ((1 + i * 7 + j * 3) as f64).sin());
-    let body = FlexBody::new("flex", &s, m.as_ref(), k.as_ref(), psi.as_ref(), AxisCondition::NodalFixed)
-        .unwrap();
+    let body = FlexBody::new(
+        "flex",
+        &s,
+        m.as_ref(),
+        k.as_ref(),
+        psi.as_ref(),
+        AxisCondition::NodalFixed,
+    )
+    .unwrap();
     if rotations {
         let slopes = Mat::<f64>::from_fn(n, nz, |i, j| 0.8 * ((2 + i * 5 + j * 11) as f64).cos());
         body.with_node_rotations(slopes.as_ref()).unwrap()
@@ -73,10 +86,46 @@ fn all_constraints() -> Vec<AddConstraint> {
         ramp: 0.5,
     };
     vec![
-        Box::new(|s, i, j| add(s, Spherical { name: "sph".into(), i, j })),
-        Box::new(|s, i, j| add(s, Revolute { name: "rev".into(), i, j })),
-        Box::new(|s, i, j| add(s, Fixed { name: "fix".into(), i, j })),
-        Box::new(|s, i, j| add(s, Universal { name: "uni".into(), i, j })),
+        Box::new(|s, i, j| {
+            add(
+                s,
+                Spherical {
+                    name: "sph".into(),
+                    i,
+                    j,
+                },
+            )
+        }),
+        Box::new(|s, i, j| {
+            add(
+                s,
+                Revolute {
+                    name: "rev".into(),
+                    i,
+                    j,
+                },
+            )
+        }),
+        Box::new(|s, i, j| {
+            add(
+                s,
+                Fixed {
+                    name: "fix".into(),
+                    i,
+                    j,
+                },
+            )
+        }),
+        Box::new(|s, i, j| {
+            add(
+                s,
+                Universal {
+                    name: "uni".into(),
+                    i,
+                    j,
+                },
+            )
+        }),
         Box::new(|s, i, j| {
             add(
                 s,
@@ -100,8 +149,26 @@ fn all_constraints() -> Vec<AddConstraint> {
                 },
             )
         }),
-        Box::new(|s, i, j| add(s, PointOnPlane { name: "pop".into(), i, j })),
-        Box::new(|s, i, j| add(s, PlanarRevolute { name: "prev".into(), i, j })),
+        Box::new(|s, i, j| {
+            add(
+                s,
+                PointOnPlane {
+                    name: "pop".into(),
+                    i,
+                    j,
+                },
+            )
+        }),
+        Box::new(|s, i, j| {
+            add(
+                s,
+                PlanarRevolute {
+                    name: "prev".into(),
+                    i,
+                    j,
+                },
+            )
+        }),
         Box::new(move |s, i, j| {
             add(
                 s,
@@ -141,10 +208,28 @@ fn moved(sys: &FloatingSystem, s: &State, dv: &[f64], tau: f64) -> Vec<f64> {
 fn joints_on_flexible_nodes_match_finite_differences() {
     // Second formulation: Φ̇ = D v − ν and Φ̈ = −γ along q ⊕ τ v (v̇ = 0), and every column of
     // D against central differences of Φ along q ⊕ h e_k.
-    let rigid = Marker::new(Some(0), Vector3::new(0.1, -0.2, 0.3), Vector3::new(0.3, 0.4, 1.0));
-    let node = Marker::node_frame(0, 2, Vector3::new(-0.05, 0.08, 0.02), Vector3::new(0.2, -0.3, 1.0));
-    let node_b = Marker::node_frame(0, 1, Vector3::new(0.03, 0.0, -0.04), Vector3::new(1.0, 0.3, 0.1));
-    let ground = Marker::new(None, Vector3::new(0.2, 0.1, -0.1), Vector3::new(0.0, 0.6, 1.0));
+    let rigid = Marker::new(
+        Some(0),
+        Vector3::new(0.1, -0.2, 0.3),
+        Vector3::new(0.3, 0.4, 1.0),
+    );
+    let node = Marker::node_frame(
+        0,
+        2,
+        Vector3::new(-0.05, 0.08, 0.02),
+        Vector3::new(0.2, -0.3, 1.0),
+    );
+    let node_b = Marker::node_frame(
+        0,
+        1,
+        Vector3::new(0.03, 0.0, -0.04),
+        Vector3::new(1.0, 0.3, 0.1),
+    );
+    let ground = Marker::new(
+        None,
+        Vector3::new(0.2, 0.1, -0.1),
+        Vector3::new(0.0, 0.6, 1.0),
+    );
     let pairs = [
         ("rigid-node", rigid, node),
         ("node-rigid", node, rigid),
@@ -156,7 +241,10 @@ fn joints_on_flexible_nodes_match_finite_differences() {
             for add in all_constraints() {
                 let (mut sys, s) = rigid_and_flex(rotations);
                 add(&mut sys, mi, mj);
-                let name = format!("{} ({label}, rotations {rotations})", sys.constraints()[0].name());
+                let name = format!(
+                    "{} ({label}, rotations {rotations})",
+                    sys.constraints()[0].name()
+                );
                 let nc = sys.n_c();
                 let nv = sys.n_v();
                 let phi_at = |q: &[f64], t: f64| {
@@ -174,7 +262,9 @@ fn joints_on_flexible_nodes_match_finite_differences() {
                 let mut dv = vec![0.0; nc];
                 let mut nu = vec![0.0; nc];
                 let mut gamma = vec![0.0; nc];
-                sys.constraint_jacobian(s.t, &s.q).unwrap().mul_vec(&s.v, &mut dv);
+                sys.constraint_jacobian(s.t, &s.q)
+                    .unwrap()
+                    .mul_vec(&s.v, &mut dv);
                 sys.constraint_velocity_rhs(s.t, &s.q, &mut nu).unwrap();
                 sys.constraint_gamma(s.t, &s.q, &s.v, &mut gamma).unwrap();
                 for r in 0..nc {
@@ -227,7 +317,12 @@ fn markers_are_validated_against_the_container() {
         i: Marker::point(None, Vector3::zeros()),
         j: Marker::node(1, 0),
     });
-    assert!(bad_flex.unwrap_err().to_string().contains("flexible body 1"));
+    assert!(
+        bad_flex
+            .unwrap_err()
+            .to_string()
+            .contains("flexible body 1")
+    );
     let mut rigid_only = MultibodySystem::new();
     rigid_only.add_body(RigidBody::with_principal("a", 1.0, [1.0, 1.0, 1.0]).unwrap());
     let e = rigid_only
@@ -282,7 +377,11 @@ fn truss_bar(ns: usize, h: f64, w: f64, ea: f64, m_node: f64) -> (Vec<f64>, Mat<
 fn nodal_fixed_basis(n: usize) -> Mat<f64> {
     let anchored = [0usize, 1, 2, 3, 5, 6];
     let free: Vec<usize> = (0..3 * n).filter(|d| !anchored.contains(d)).collect();
-    Mat::<f64>::from_fn(3 * n, free.len(), |i, j| if free[j] == i { 1.0 } else { 0.0 })
+    Mat::<f64>::from_fn(
+        3 * n,
+        free.len(),
+        |i, j| if free[j] == i { 1.0 } else { 0.0 },
+    )
 }
 
 #[test]
@@ -309,7 +408,10 @@ fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
     let (s, _, _) = truss_bar(ns, h, w, 1.0, m_node);
     let n = s.len() / 3;
     let mass = m_node * n as f64;
-    let nodes: Vec<Vector3<f64>> = s.chunks(3).map(|c| Vector3::new(c[0], c[1], c[2])).collect();
+    let nodes: Vec<Vector3<f64>> = s
+        .chunks(3)
+        .map(|c| Vector3::new(c[0], c[1], c[2]))
+        .collect();
     let c = nodes.iter().sum::<Vector3<f64>>() / n as f64;
     let inertia = nodes.iter().fold(Matrix3::zeros(), |acc, x| {
         let d = x - c;
@@ -322,12 +424,20 @@ fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
     rig.add_constraint(Revolute {
         name: "hinge".into(),
         i: Marker::new(None, Vector3::zeros(), Vector3::z()),
-        j: Marker::new(Some(l), Vector3::new(-0.5 * link_len, 0.0, 0.0), Vector3::z()),
+        j: Marker::new(
+            Some(l),
+            Vector3::new(-0.5 * link_len, 0.0, 0.0),
+            Vector3::z(),
+        ),
     })
     .unwrap();
     rig.add_constraint(Revolute {
         name: "pin".into(),
-        i: Marker::new(Some(l), Vector3::new(0.5 * link_len, 0.0, 0.0), Vector3::z()),
+        i: Marker::new(
+            Some(l),
+            Vector3::new(0.5 * link_len, 0.0, 0.0),
+            Vector3::z(),
+        ),
         j: Marker::new(Some(bar), pin_local, Vector3::z()),
     })
     .unwrap();
@@ -344,10 +454,20 @@ fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
     // model 1: stiff truss bar, frame origin at node 0 (the pin), nodal-fixed axes
     let flex_far = |ea: f64| {
         let (s, m, k) = truss_bar(ns, h, w, ea, m_node);
-        let s_rel: Vec<f64> = s.chunks(3).flat_map(|x| [x[0] - s[0], x[1] - s[1], x[2] - s[2]]).collect();
+        let s_rel: Vec<f64> = s
+            .chunks(3)
+            .flat_map(|x| [x[0] - s[0], x[1] - s[1], x[2] - s[2]])
+            .collect();
         let psi = nodal_fixed_basis(n);
-        let body = FlexBody::new("bar", &s_rel, m.as_ref(), k.as_ref(), psi.as_ref(), AxisCondition::NodalFixed)
-            .unwrap();
+        let body = FlexBody::new(
+            "bar",
+            &s_rel,
+            m.as_ref(),
+            k.as_ref(),
+            psi.as_ref(),
+            AxisCondition::NodalFixed,
+        )
+        .unwrap();
         let nz = psi.ncols();
         let mut sys = FloatingSystem::new();
         sys.gravity = g;
@@ -356,12 +476,20 @@ fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
         sys.add_constraint(Revolute {
             name: "hinge".into(),
             i: Marker::new(None, Vector3::zeros(), Vector3::z()),
-            j: Marker::new(Some(l), Vector3::new(-0.5 * link_len, 0.0, 0.0), Vector3::z()),
+            j: Marker::new(
+                Some(l),
+                Vector3::new(-0.5 * link_len, 0.0, 0.0),
+                Vector3::z(),
+            ),
         })
         .unwrap();
         sys.add_constraint(Revolute {
             name: "pin".into(),
-            i: Marker::new(Some(l), Vector3::new(0.5 * link_len, 0.0, 0.0), Vector3::z()),
+            i: Marker::new(
+                Some(l),
+                Vector3::new(0.5 * link_len, 0.0, 0.0),
+                Vector3::z(),
+            ),
             j: Marker::node_frame(fb, 0, Vector3::zeros(), Vector3::z()),
         })
         .unwrap();
@@ -384,10 +512,18 @@ fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
     };
     let travel = (rigid_far - (tip + nodes[n - 1] - nodes[0])).norm();
     assert!(travel > 0.1, "the bar swings ({travel} m)");
-    let e1 = (flex_far(2e7) - rigid_far).norm();
-    let e2 = (flex_far(2e8) - rigid_far).norm();
-    eprintln!("tip travel {travel:.4} m, |flex − rigid| {e1:.3e} m (EA 2e7 N), {e2:.3e} m (EA 2e8 N)");
-    assert!(e1 < 1e-3 * travel, "EA 2e7: {e1} m");
-    // the difference is the elastic deflection: it shrinks with the stiffness
-    assert!(e2 < 0.3 * e1, "EA 2e8: {e2} m vs {e1} m");
+    let (soft, stiff) = (
+        (flex_far(2e5) - rigid_far).norm(),
+        (flex_far(2e8) - rigid_far).norm(),
+    );
+    eprintln!(
+        "tip travel {travel:.4} m; |flex − rigid| {soft:.3e} m (EA 2e5 N), {stiff:.3e} m (EA 2e8 N)"
+    );
+    // measured: 4.0e-5 m and 2.2e-6 m; the floor at EA → ∞ is the two models' different
+    // discretisation errors (h = 1 ms), the excess at EA 2e5 N the bar's elastic deflection
+    assert!(stiff < 1e-5 * travel, "EA 2e8: {stiff} m");
+    assert!(
+        soft > 5.0 * stiff,
+        "elastic deflection visible: {soft} m vs {stiff} m"
+    );
 }

@@ -2,13 +2,13 @@
 
 use mbd_core::body::BodyState;
 use mbd_core::constraints::*;
-use mbd_core::marker::Marker;
 use mbd_core::forces::{AppliedForce, Gravity};
 use mbd_core::integrators::{
     AlphaParams, DormandPrince, Event, GeneralizedAlpha, Rk4, Stabilization, State, accelerations,
     project_velocities,
 };
 use mbd_core::kinematics::euler::{a_matrix, from_axis_angle};
+use mbd_core::marker::Marker;
 use mbd_core::{MbdError, MultibodySystem, RigidBody, SecondOrderSystem};
 use nalgebra::{Vector3, Vector4};
 use std::f64::consts::PI;

@@ -2,9 +2,9 @@
 
 use mbd_core::body::BodyState;
 use mbd_core::constraints::Revolute;
-use mbd_core::marker::Marker;
 use mbd_core::forces::{Gravity, RotationalSpringDamper};
 use mbd_core::integrators::{Rk4, State};
+use mbd_core::marker::Marker;
 use mbd_core::{History, MultibodySystem, Probe, RigidBody, StaticOptions, static_equilibrium};
 use nalgebra::{Vector3, Vector4};
 

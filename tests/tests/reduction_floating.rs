@@ -8,9 +8,9 @@ use mbd_core::constraints::Spherical;
 use mbd_core::floating::{
     AxisCondition, ElasticForces, FlexBody, FlexState, FloatingSystem, RigidCore,
 };
-use mbd_core::marker::Marker;
 use mbd_core::integrators::{DormandPrince, Stabilization, accelerations};
 use mbd_core::kinematics::euler::from_axis_angle;
+use mbd_core::marker::Marker;
 use mbd_core::{BodyState, RigidBody, SecondOrderSystem};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector4};
 use reduction::DofPartition;

@@ -225,10 +225,8 @@ fn simulation2_cb_equals_mc() {
 /// from rest with the chains inclined symmetrically. Returns the largest mirror asymmetry
 /// `|(d_x^3 − 2) + (d_x^15 − 2)|` \[m\] over the run (Appendix-B x, mirror plane x = 2).
 fn plank_asymmetry(axis: mbd_core::floating::AxisCondition) -> f64 {
-    use mbd_core::floating::{
-        FlexBody, FlexState, FloatingSystem, NodeLoad,
-    };
     use mbd_core::constraints::Spherical;
+    use mbd_core::floating::{FlexBody, FlexState, FloatingSystem, NodeLoad};
     use mbd_core::marker::Marker;
     use mbd_core::{BodyState, RigidBody};
     use nalgebra::{Vector3, Vector4};

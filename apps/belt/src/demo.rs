@@ -5,13 +5,11 @@
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use mbd_core::body::BodyState;
-use mbd_core::marker::Marker;
-use mbd_core::constraints::{
-    DriverLaw, Prismatic, Revolute, RotationDriver, Spherical, Universal,
-};
+use mbd_core::constraints::{DriverLaw, Prismatic, Revolute, RotationDriver, Spherical, Universal};
 use mbd_core::forces::Gravity;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State, project_velocities};
 use mbd_core::kinematics::euler::from_axis_angle;
+use mbd_core::marker::Marker;
 use mbd_core::{MbdError, MultibodySystem, RigidBody};
 use nalgebra::{Vector3, Vector4};
 use serde::{Deserialize, Serialize};

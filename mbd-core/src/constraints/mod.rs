@@ -80,7 +80,12 @@ pub trait Constraint: Send + Sync {
     }
 }
 
-pub(crate) fn check_vec(name: &str, field: &str, v: &Vector3<f64>, nonzero: bool) -> Result<(), MbdError> {
+pub(crate) fn check_vec(
+    name: &str,
+    field: &str,
+    v: &Vector3<f64>,
+    nonzero: bool,
+) -> Result<(), MbdError> {
     if !v.iter().all(|x| x.is_finite()) || (nonzero && v.norm() == 0.0) {
         return Err(MbdError::InvalidInput {
             item: format!("constraint \"{name}\": {field}"),
@@ -391,4 +396,3 @@ impl Constraint for PlanarRevolute {
         out.push(Term::vector(ci, &self.i, &g, 0).dot(&d).into());
     }
 }
-

@@ -7,9 +7,9 @@ use super::body::{AxisCondition, ElasticForces, FlexBody, flat, mat_vec};
 use crate::body::{BodyKin, BodyState, RigidBody};
 use crate::constraints::{Constraint, ConstraintSet, Equation};
 use crate::integrators::State;
-use crate::marker::{Carrier, FlexNodes, Marker, NodeRotations, Term};
 use crate::kinematics::euler::{compose_local_rotation, pdot_from_omega_local};
 use crate::kinematics::tilde::{get3, get4, put3, put4, tilde};
+use crate::marker::{Carrier, FlexNodes, Marker, NodeRotations, Term};
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
 use nalgebra::{Matrix3, Vector3, Vector4};
@@ -377,9 +377,7 @@ impl FloatingSystem {
             };
             BodyKin::new(get3(q, oq), get4(q, oq + 3), rd, w)
         };
-        let rk = (0..self.rigid.len())
-            .map(|k| frame(7 * k, 6 * k))
-            .collect();
+        let rk = (0..self.rigid.len()).map(|k| frame(7 * k, 6 * k)).collect();
         let fk = self
             .flex
             .iter()
@@ -723,7 +721,8 @@ impl SecondOrderSystem for FloatingSystem {
             let gl = kin.frame.a.transpose() * self.gravity;
             let mut x = vec![0.0; 3 * f.n_nodes()];
             for (i, b) in kin.b.iter().enumerate() {
-                let w = kin.frame.w.cross(&kin.frame.w.cross(b)) + 2.0 * kin.frame.w.cross(&kin.dd[i]);
+                let w =
+                    kin.frame.w.cross(&kin.frame.w.cross(b)) + 2.0 * kin.frame.w.cross(&kin.dd[i]);
                 for c in 0..3 {
                     x[3 * i + c] = gl[c] - w[c];
                 }
@@ -781,7 +780,10 @@ impl SecondOrderSystem for FloatingSystem {
 
     fn constraint_residual(&self, t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
         let (axis, eqs) = self.equations(t, q, None);
-        let all = axis.iter().map(|r| r.phi).chain(eqs.iter().map(|e| e.row.phi));
+        let all = axis
+            .iter()
+            .map(|r| r.phi)
+            .chain(eqs.iter().map(|e| e.row.phi));
         for (p, x) in phi.iter_mut().zip(all) {
             *p = x;
         }
@@ -822,7 +824,10 @@ impl SecondOrderSystem for FloatingSystem {
         gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         let (axis, eqs) = self.equations(t, q, Some(v));
-        let all = axis.iter().map(|r| r.gamma).chain(eqs.iter().map(|e| e.gamma));
+        let all = axis
+            .iter()
+            .map(|r| r.gamma)
+            .chain(eqs.iter().map(|e| e.gamma));
         for (p, x) in gamma.iter_mut().zip(all) {
             *p = x;
         }

@@ -7,8 +7,8 @@ use super::slab_sim3::{Sim3Params, emulation_system, record_source, simulate_emu
 use crate::error::{ReductionError, Result};
 use mbd_core::constraints::{DriverLaw, PointDriver};
 use mbd_core::floating::{AxisCondition, FlexBody, FlexState, FloatingSystem};
-use mbd_core::marker::Marker;
 use mbd_core::integrators::{Rk4, State};
+use mbd_core::marker::Marker;
 use nalgebra::{Vector3, Vector4};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -153,10 +153,7 @@ pub fn build(
             let y30 = super::slab::node_position(30)[1];
             for (c, motion) in [
                 (0usize, xs),
-                (
-                    1,
-                    std::sync::Arc::new(move |_| (y30, 0.0, 0.0)) as Motion,
-                ),
+                (1, std::sync::Arc::new(move |_| (y30, 0.0, 0.0)) as Motion),
                 (2, zs),
             ] {
                 sys.add_constraint(PointDriver {
