@@ -5,6 +5,8 @@
 //! * a rigid link and a very stiff flexible bar joined by a revolute joint against the same
 //!   double pendulum built from rigid bodies in `MultibodySystem` (the rigid model).
 
+mod common;
+
 use faer::Mat;
 use mbd_core::body::BodyState;
 use mbd_core::constraints::*;
@@ -80,52 +82,31 @@ fn all_constraints() -> Vec<AddConstraint> {
     fn add(s: &mut FloatingSystem, c: impl Constraint + 'static) {
         s.add_constraint(c).unwrap();
     }
+    // joints with fields name, i, j only
+    macro_rules! simple {
+        ($t:ident, $n:expr) => {
+            Box::new(|s: &mut FloatingSystem, i: Marker, j: Marker| {
+                add(
+                    s,
+                    $t {
+                        name: $n.into(),
+                        i,
+                        j,
+                    },
+                )
+            }) as AddConstraint
+        };
+    }
     let law = || DriverLaw::SpeedRamp {
         theta0: 0.3,
         omega: 2.0,
         ramp: 0.5,
     };
     vec![
-        Box::new(|s, i, j| {
-            add(
-                s,
-                Spherical {
-                    name: "sph".into(),
-                    i,
-                    j,
-                },
-            )
-        }),
-        Box::new(|s, i, j| {
-            add(
-                s,
-                Revolute {
-                    name: "rev".into(),
-                    i,
-                    j,
-                },
-            )
-        }),
-        Box::new(|s, i, j| {
-            add(
-                s,
-                Fixed {
-                    name: "fix".into(),
-                    i,
-                    j,
-                },
-            )
-        }),
-        Box::new(|s, i, j| {
-            add(
-                s,
-                Universal {
-                    name: "uni".into(),
-                    i,
-                    j,
-                },
-            )
-        }),
+        simple!(Spherical, "sph"),
+        simple!(Revolute, "rev"),
+        simple!(Fixed, "fix"),
+        simple!(Universal, "uni"),
         Box::new(|s, i, j| {
             add(
                 s,
@@ -149,26 +130,8 @@ fn all_constraints() -> Vec<AddConstraint> {
                 },
             )
         }),
-        Box::new(|s, i, j| {
-            add(
-                s,
-                PointOnPlane {
-                    name: "pop".into(),
-                    i,
-                    j,
-                },
-            )
-        }),
-        Box::new(|s, i, j| {
-            add(
-                s,
-                PlanarRevolute {
-                    name: "prev".into(),
-                    i,
-                    j,
-                },
-            )
-        }),
+        simple!(PointOnPlane, "pop"),
+        simple!(PlanarRevolute, "prev"),
         Box::new(move |s, i, j| {
             add(
                 s,
@@ -194,14 +157,6 @@ fn all_constraints() -> Vec<AddConstraint> {
             )
         }),
     ]
-}
-
-/// `q ⊕ τ v` (constant `ṙ`, body-frame `ω'` and `ż`).
-fn moved(sys: &FloatingSystem, s: &State, dv: &[f64], tau: f64) -> Vec<f64> {
-    let dq: Vec<f64> = dv.iter().map(|x| x * tau).collect();
-    let mut q = vec![0.0; s.q.len()];
-    sys.integrate_position(&s.q, &dq, &mut q);
-    q
 }
 
 #[test]
@@ -247,46 +202,19 @@ fn joints_on_flexible_nodes_match_finite_differences() {
                 );
                 let nc = sys.n_c();
                 let nv = sys.n_v();
-                let phi_at = |q: &[f64], t: f64| {
+                common::check_rates(&sys, &s, &name);
+                let d = sys.constraint_jacobian(s.t, &s.q).unwrap().to_dense();
+                let phi_at = |q: &[f64]| {
                     let mut phi = vec![0.0; nc];
-                    sys.constraint_residual(t, q, &mut phi).unwrap();
+                    sys.constraint_residual(s.t, q, &mut phi).unwrap();
                     phi
                 };
-                let h = 1e-4;
-                let (pp, p0, pm) = (
-                    phi_at(&moved(&sys, &s, &s.v, h), s.t + h),
-                    phi_at(&s.q, s.t),
-                    phi_at(&moved(&sys, &s, &s.v, -h), s.t - h),
-                );
-                let d = sys.constraint_jacobian(s.t, &s.q).unwrap().to_dense();
-                let mut dv = vec![0.0; nc];
-                let mut nu = vec![0.0; nc];
-                let mut gamma = vec![0.0; nc];
-                sys.constraint_jacobian(s.t, &s.q)
-                    .unwrap()
-                    .mul_vec(&s.v, &mut dv);
-                sys.constraint_velocity_rhs(s.t, &s.q, &mut nu).unwrap();
-                sys.constraint_gamma(s.t, &s.q, &s.v, &mut gamma).unwrap();
-                for r in 0..nc {
-                    let phid = (pp[r] - pm[r]) / (2.0 * h);
-                    let phidd = (pp[r] - 2.0 * p0[r] + pm[r]) / (h * h);
-                    assert!(
-                        (phid - (dv[r] - nu[r])).abs() < 1e-6,
-                        "{name} row {r}: Φ̇ {phid} vs Dv − ν {}",
-                        dv[r] - nu[r]
-                    );
-                    assert!(
-                        (phidd + gamma[r]).abs() < 2e-5 * (1.0 + phidd.abs()),
-                        "{name} row {r}: Φ̈ {phidd} vs −γ {}",
-                        -gamma[r]
-                    );
-                }
                 for k in 0..nv {
                     let mut e = vec![0.0; nv];
                     e[k] = 1.0;
                     let (fp, fm) = (
-                        phi_at(&moved(&sys, &s, &e, 1e-6), s.t),
-                        phi_at(&moved(&sys, &s, &e, -1e-6), s.t),
+                        phi_at(&common::moved(&sys, &s, &e, 1e-6)),
+                        phi_at(&common::moved(&sys, &s, &e, -1e-6)),
                     );
                     for r in 0..nc {
                         let fd = (fp[r] - fm[r]) / 2e-6;
