@@ -2,7 +2,10 @@
 //! (Lin (2.1)–(2.3), (2.25)–(2.26)).
 
 use crate::MbdError;
-use crate::kinematics::euler::{a_matrix, check_unit};
+use crate::kinematics::euler::{
+    a_matrix, check_unit, compose_local_rotation, pdot_from_omega_local,
+};
+use crate::kinematics::tilde::{get3, get4, put4};
 use nalgebra::{Matrix3, SMatrix, Vector3, Vector4};
 
 /// Index of a body in a [`crate::multibody::MultibodySystem`]; `None` in joint definitions
@@ -176,4 +179,31 @@ impl BodyKin {
     pub fn point_velocity(&self, s: &Vector3<f64>) -> Vector3<f64> {
         self.rdot + self.a * self.w.cross(s)
     }
+}
+
+/// Rate of the frame coordinates `(r, p)` at `q[oq..oq + 7]` from the velocities `(ṙ, ω')` at
+/// `v[ov..ov + 6]`: `ṙ` and `ṗ = ½ Lᵀ ω'` (Lin (2.14)), written to `qdot[oq..oq + 7]`.
+pub fn frame_position_rate(q: &[f64], v: &[f64], oq: usize, ov: usize, qdot: &mut [f64]) {
+    qdot[oq..oq + 3].copy_from_slice(&v[ov..ov + 3]);
+    let pd = pdot_from_omega_local(&get4(q, oq + 3), &get3(v, ov + 3));
+    put4(qdot, oq + 3, &pd);
+}
+
+/// Normalises the Euler parameters at `q[oq + 3..oq + 7]` (left alone if zero or not finite).
+pub fn frame_normalize(q: &mut [f64], oq: usize) {
+    let p = get4(q, oq + 3);
+    let n = p.norm();
+    if n > 0.0 && n.is_finite() {
+        put4(q, oq + 3, &(p / n));
+    }
+}
+
+/// Frame update `r + Δr`, `p ⊗ exp(Δθ'/2)` (exact rotation update, Lie-group generalized-α)
+/// of `q[oq..oq + 7]` by `dq[ov..ov + 6]`, written to `q_new[oq..oq + 7]`.
+pub fn frame_integrate(q: &[f64], dq: &[f64], oq: usize, ov: usize, q_new: &mut [f64]) {
+    for c in 0..3 {
+        q_new[oq + c] = q[oq + c] + dq[ov + c];
+    }
+    let p = compose_local_rotation(&get4(q, oq + 3), &get3(dq, ov + 3));
+    put4(q_new, oq + 3, &p);
 }

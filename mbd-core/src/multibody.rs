@@ -6,11 +6,13 @@
 //! `m r̈ = f`, `J' ω̇' = n' − ω̃' J' ω'` (Lin (2.25)–(2.26)); `ṗ = ½ Lᵀ ω'` (Lin (2.14)).
 //! The constrained equations are Ribaric (2.16) / Lin (2.27), with reactions `−Dᵀλ`.
 
-use crate::body::{BodyId, BodyKin, BodyState, RigidBody};
+use crate::body::{
+    BodyId, BodyKin, BodyState, RigidBody, frame_integrate, frame_normalize, frame_position_rate,
+};
 use crate::constraints::{Constraint, ConstraintSet, Equation};
 use crate::forces::ForceElement;
 use crate::integrators::State;
-use crate::kinematics::euler::{compose_local_rotation, pdot_from_omega_local};
+use crate::kinematics::euler::compose_local_rotation;
 use crate::kinematics::tilde::tilde;
 use crate::kinematics::tilde::{get3, get4, put3, put4};
 use crate::marker::{Carrier, Marker};
@@ -339,30 +341,20 @@ impl SecondOrderSystem for MultibodySystem {
 
     fn position_rate(&self, q: &[f64], v: &[f64], qdot: &mut [f64]) {
         for k in 0..self.bodies.len() {
-            qdot[7 * k..7 * k + 3].copy_from_slice(&v[6 * k..6 * k + 3]);
-            let pd = pdot_from_omega_local(&get4(q, 7 * k + 3), &get3(v, 6 * k + 3));
-            put4(qdot, 7 * k + 3, &pd);
+            frame_position_rate(q, v, 7 * k, 6 * k, qdot);
         }
     }
 
     fn normalize(&self, q: &mut [f64]) {
         for k in 0..self.bodies.len() {
-            let p = get4(q, 7 * k + 3);
-            let n = p.norm();
-            if n > 0.0 && n.is_finite() {
-                put4(q, 7 * k + 3, &(p / n));
-            }
+            frame_normalize(q, 7 * k);
         }
     }
 
     /// `r + Δr`, `p ⊗ exp(Δθ'/2)` (exact rotation update, Lie-group generalized-α).
     fn integrate_position(&self, q: &[f64], dq: &[f64], q_new: &mut [f64]) {
         for k in 0..self.bodies.len() {
-            for c in 0..3 {
-                q_new[7 * k + c] = q[7 * k + c] + dq[6 * k + c];
-            }
-            let p = compose_local_rotation(&get4(q, 7 * k + 3), &get3(dq, 6 * k + 3));
-            put4(q_new, 7 * k + 3, &p);
+            frame_integrate(q, dq, 7 * k, 6 * k, q_new);
         }
     }
 

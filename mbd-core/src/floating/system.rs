@@ -4,10 +4,11 @@
 //! (8.29); Ribaric (2.45)–(2.52)).
 
 use super::body::{AxisCondition, ElasticForces, FlexBody, flat, mat_vec};
-use crate::body::{BodyKin, BodyState, RigidBody};
+use crate::body::{
+    BodyKin, BodyState, RigidBody, frame_integrate, frame_normalize, frame_position_rate,
+};
 use crate::constraints::{Constraint, ConstraintSet, Equation};
 use crate::integrators::State;
-use crate::kinematics::euler::{compose_local_rotation, pdot_from_omega_local};
 use crate::kinematics::tilde::{get3, get4, put3, put4, tilde};
 use crate::marker::{Carrier, FlexNodes, Marker, NodeRotations, Term};
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
@@ -545,45 +546,30 @@ impl SecondOrderSystem for FloatingSystem {
 
     fn position_rate(&self, q: &[f64], v: &[f64], qdot: &mut [f64]) {
         for k in 0..self.rigid.len() {
-            qdot[7 * k..7 * k + 3].copy_from_slice(&v[6 * k..6 * k + 3]);
-            let pd = pdot_from_omega_local(&get4(q, 7 * k + 3), &get3(v, 6 * k + 3));
-            put4(qdot, 7 * k + 3, &pd);
+            frame_position_rate(q, v, 7 * k, 6 * k, qdot);
         }
         for (f, (oq, ov)) in self.flex.iter().zip(self.flex_offsets()) {
-            qdot[oq..oq + 3].copy_from_slice(&v[ov..ov + 3]);
-            let pd = pdot_from_omega_local(&get4(q, oq + 3), &get3(v, ov + 3));
-            put4(qdot, oq + 3, &pd);
+            frame_position_rate(q, v, oq, ov, qdot);
             let nz = f.n_modes();
             qdot[oq + 7..oq + 7 + nz].copy_from_slice(&v[ov + 6..ov + 6 + nz]);
         }
     }
 
     fn normalize(&self, q: &mut [f64]) {
-        let mut at: Vec<usize> = (0..self.rigid.len()).map(|k| 7 * k + 3).collect();
-        at.extend(self.flex_offsets().iter().map(|(oq, _)| oq + 3));
-        for o in at {
-            let p = get4(q, o);
-            let n = p.norm();
-            if n > 0.0 && n.is_finite() {
-                put4(q, o, &(p / n));
-            }
+        for k in 0..self.rigid.len() {
+            frame_normalize(q, 7 * k);
+        }
+        for (oq, _) in self.flex_offsets() {
+            frame_normalize(q, oq);
         }
     }
 
     fn integrate_position(&self, q: &[f64], dq: &[f64], q_new: &mut [f64]) {
         for k in 0..self.rigid.len() {
-            for c in 0..3 {
-                q_new[7 * k + c] = q[7 * k + c] + dq[6 * k + c];
-            }
-            let p = compose_local_rotation(&get4(q, 7 * k + 3), &get3(dq, 6 * k + 3));
-            put4(q_new, 7 * k + 3, &p);
+            frame_integrate(q, dq, 7 * k, 6 * k, q_new);
         }
         for (f, (oq, ov)) in self.flex.iter().zip(self.flex_offsets()) {
-            for c in 0..3 {
-                q_new[oq + c] = q[oq + c] + dq[ov + c];
-            }
-            let p = compose_local_rotation(&get4(q, oq + 3), &get3(dq, ov + 3));
-            put4(q_new, oq + 3, &p);
+            frame_integrate(q, dq, oq, ov, q_new);
             for m in 0..f.n_modes() {
                 q_new[oq + 7 + m] = q[oq + 7 + m] + dq[ov + 6 + m];
             }
