@@ -312,6 +312,30 @@ fn nodal_fixed_basis(n: usize) -> Mat<f64> {
     )
 }
 
+/// The link (body `link`, length `link_len` \[m\] along its x) hinged to the ground at the
+/// origin about z, and the bar marker `bar` hinged to the link tip about z.
+fn hinge_and_pin(link: usize, link_len: f64, bar: Marker) -> [Revolute; 2] {
+    let end = |x: f64| {
+        Marker::new(
+            Some(link),
+            Vector3::new(x * link_len, 0.0, 0.0),
+            Vector3::z(),
+        )
+    };
+    [
+        Revolute {
+            name: "hinge".into(),
+            i: Marker::new(None, Vector3::zeros(), Vector3::z()),
+            j: end(-0.5),
+        },
+        Revolute {
+            name: "pin".into(),
+            i: end(0.5),
+            j: bar,
+        },
+    ]
+}
+
 #[test]
 fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
     // A double pendulum: rigid link (0.5 m) hinged to the ground about z, a 1 m bar hinged to the
@@ -349,26 +373,9 @@ fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
     let mut rig = MultibodySystem::new();
     let l = rig.add_body(link());
     let bar = rig.add_body(RigidBody::new("bar", mass, inertia).unwrap());
-    rig.add_constraint(Revolute {
-        name: "hinge".into(),
-        i: Marker::new(None, Vector3::zeros(), Vector3::z()),
-        j: Marker::new(
-            Some(l),
-            Vector3::new(-0.5 * link_len, 0.0, 0.0),
-            Vector3::z(),
-        ),
-    })
-    .unwrap();
-    rig.add_constraint(Revolute {
-        name: "pin".into(),
-        i: Marker::new(
-            Some(l),
-            Vector3::new(0.5 * link_len, 0.0, 0.0),
-            Vector3::z(),
-        ),
-        j: Marker::new(Some(bar), pin_local, Vector3::z()),
-    })
-    .unwrap();
+    for joint in hinge_and_pin(l, link_len, Marker::new(Some(bar), pin_local, Vector3::z())) {
+        rig.add_constraint(joint).unwrap();
+    }
     rig.add_force(Gravity { g }).unwrap();
     let bar_state = BodyState::at_rest(tip - pin_local, p0);
     let s0 = rig.state(0.0, &[link_state, bar_state]).unwrap();
@@ -401,26 +408,9 @@ fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
         sys.gravity = g;
         let l = sys.add_rigid(link());
         let fb = sys.add_flex(body);
-        sys.add_constraint(Revolute {
-            name: "hinge".into(),
-            i: Marker::new(None, Vector3::zeros(), Vector3::z()),
-            j: Marker::new(
-                Some(l),
-                Vector3::new(-0.5 * link_len, 0.0, 0.0),
-                Vector3::z(),
-            ),
-        })
-        .unwrap();
-        sys.add_constraint(Revolute {
-            name: "pin".into(),
-            i: Marker::new(
-                Some(l),
-                Vector3::new(0.5 * link_len, 0.0, 0.0),
-                Vector3::z(),
-            ),
-            j: Marker::node_frame(fb, 0, Vector3::zeros(), Vector3::z()),
-        })
-        .unwrap();
+        for joint in hinge_and_pin(l, link_len, Marker::node(fb, 0)) {
+            sys.add_constraint(joint).unwrap();
+        }
         let st = sys
             .state(
                 0.0,
