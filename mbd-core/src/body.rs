@@ -2,8 +2,10 @@
 //! (Lin (2.1)–(2.3), (2.25)–(2.26)).
 
 use crate::MbdError;
-use crate::kinematics::euler::{a_matrix, check_unit};
-use crate::kinematics::tilde::tilde;
+use crate::kinematics::euler::{
+    a_matrix, check_unit, compose_local_rotation, pdot_from_omega_local,
+};
+use crate::kinematics::tilde::{get3, get4, put4};
 use nalgebra::{Matrix3, SMatrix, Vector3, Vector4};
 
 /// Index of a body in a [`crate::multibody::MultibodySystem`]; `None` in joint definitions
@@ -179,145 +181,29 @@ impl BodyKin {
     }
 }
 
-/// A vector-valued kinematic expression with its derivatives: value `x`, Jacobians with respect
-/// to the velocities of the two bodies of a joint, rate `ẋ`, and the velocity-quadratic part
-/// `ẍ − (∂ẋ/∂v) v̇` of its second derivative (Lin (2.3): `A ω̃'ω̃' s'`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Term {
-    /// Value.
-    pub x: Vector3<f64>,
-    /// `∂ẋ/∂v_i` (body i).
-    pub ji: Jac3x6,
-    /// `∂ẋ/∂v_j` (body j).
-    pub jj: Jac3x6,
-    /// Rate `ẋ`.
-    pub xdot: Vector3<f64>,
-    /// Quadratic velocity part of `ẍ`.
-    pub quad: Vector3<f64>,
+/// Rate of the frame coordinates `(r, p)` at `q[oq..oq + 7]` from the velocities `(ṙ, ω')` at
+/// `v[ov..ov + 6]`: `ṙ` and `ṗ = ½ Lᵀ ω'` (Lin (2.14)), written to `qdot[oq..oq + 7]`.
+pub fn frame_position_rate(q: &[f64], v: &[f64], oq: usize, ov: usize, qdot: &mut [f64]) {
+    qdot[oq..oq + 3].copy_from_slice(&v[ov..ov + 3]);
+    let pd = pdot_from_omega_local(&get4(q, oq + 3), &get3(v, ov + 3));
+    put4(qdot, oq + 3, &pd);
 }
 
-impl Term {
-    /// Body point `s'` of body `k` (side 0 = i, 1 = j): `d = r + A s'`.
-    pub fn point(k: &BodyKin, s: &Vector3<f64>, side: usize) -> Self {
-        let mut jac = Jac3x6::zeros();
-        jac.fixed_view_mut::<3, 3>(0, 0)
-            .copy_from(&Matrix3::identity());
-        jac.fixed_view_mut::<3, 3>(0, 3)
-            .copy_from(&(-k.a * tilde(s)));
-        let (ji, jj) = if side == 0 {
-            (jac, Jac3x6::zeros())
-        } else {
-            (Jac3x6::zeros(), jac)
-        };
-        Self {
-            x: k.point(s),
-            ji,
-            jj,
-            xdot: k.point_velocity(s),
-            quad: k.a * k.w.cross(&k.w.cross(s)),
-        }
-    }
-
-    /// Body-fixed direction `a'` of body `k`: `a = A a'`.
-    pub fn vector(k: &BodyKin, a: &Vector3<f64>, side: usize) -> Self {
-        let mut jac = Jac3x6::zeros();
-        jac.fixed_view_mut::<3, 3>(0, 3)
-            .copy_from(&(-k.a * tilde(a)));
-        let (ji, jj) = if side == 0 {
-            (jac, Jac3x6::zeros())
-        } else {
-            (Jac3x6::zeros(), jac)
-        };
-        Self {
-            x: k.a * a,
-            ji,
-            jj,
-            xdot: k.a * k.w.cross(a),
-            quad: k.a * k.w.cross(&k.w.cross(a)),
-        }
-    }
-
-    /// `self − o`.
-    pub fn sub(&self, o: &Term) -> Term {
-        Term {
-            x: self.x - o.x,
-            ji: self.ji - o.ji,
-            jj: self.jj - o.jj,
-            xdot: self.xdot - o.xdot,
-            quad: self.quad - o.quad,
-        }
-    }
-
-    /// Row `k` of the term as a scalar constraint row.
-    pub fn component(&self, k: usize) -> Row {
-        let mut di = [0.0; 6];
-        let mut dj = [0.0; 6];
-        for c in 0..6 {
-            di[c] = self.ji[(k, c)];
-            dj[c] = self.jj[(k, c)];
-        }
-        Row {
-            phi: self.x[k],
-            di,
-            dj,
-            rate: self.xdot[k],
-            quad: self.quad[k],
-        }
-    }
-
-    /// Scalar product `self · o` as a constraint row (Nikravesh's dot-1/dot-2 constraints).
-    pub fn dot(&self, o: &Term) -> Row {
-        let gi = self.ji.transpose() * o.x + o.ji.transpose() * self.x;
-        let gj = self.jj.transpose() * o.x + o.jj.transpose() * self.x;
-        Row {
-            phi: self.x.dot(&o.x),
-            di: gi.into(),
-            dj: gj.into(),
-            rate: self.xdot.dot(&o.x) + self.x.dot(&o.xdot),
-            quad: self.quad.dot(&o.x) + self.x.dot(&o.quad) + 2.0 * self.xdot.dot(&o.xdot),
-        }
+/// Normalises the Euler parameters at `q[oq + 3..oq + 7]` (left alone if zero or not finite).
+pub fn frame_normalize(q: &mut [f64], oq: usize) {
+    let p = get4(q, oq + 3);
+    let n = p.norm();
+    if n > 0.0 && n.is_finite() {
+        put4(q, oq + 3, &(p / n));
     }
 }
 
-/// One scalar constraint equation: residual, Jacobian blocks (w.r.t. `(ṙ, ω')` of bodies i
-/// and j), rate `Φ̇` at the current velocities (scleronomic part) and the velocity-quadratic part
-/// of `Φ̈` (so that `γ = −quad` for a scleronomic row).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Row {
-    /// Residual `Φ`.
-    pub phi: f64,
-    /// `∂Φ̇/∂v_i`.
-    pub di: [f64; 6],
-    /// `∂Φ̇/∂v_j`.
-    pub dj: [f64; 6],
-    /// `Φ̇ = D v` at the current velocities.
-    pub rate: f64,
-    /// Velocity-quadratic part of `Φ̈`.
-    pub quad: f64,
-}
-
-impl Row {
-    /// `c · self` (linear combination helper for drivers).
-    pub fn scaled(&self, c: f64) -> Row {
-        let mut r = *self;
-        r.phi *= c;
-        r.rate *= c;
-        r.quad *= c;
-        r.di.iter_mut().for_each(|x| *x *= c);
-        r.dj.iter_mut().for_each(|x| *x *= c);
-        r
+/// Frame update `r + Δr`, `p ⊗ exp(Δθ'/2)` (exact rotation update, Lie-group generalized-α)
+/// of `q[oq..oq + 7]` by `dq[ov..ov + 6]`, written to `q_new[oq..oq + 7]`.
+pub fn frame_integrate(q: &[f64], dq: &[f64], oq: usize, ov: usize, q_new: &mut [f64]) {
+    for c in 0..3 {
+        q_new[oq + c] = q[oq + c] + dq[ov + c];
     }
-
-    /// `self + o`.
-    pub fn add(&self, o: &Row) -> Row {
-        let mut r = *self;
-        r.phi += o.phi;
-        r.rate += o.rate;
-        r.quad += o.quad;
-        for k in 0..6 {
-            r.di[k] += o.di[k];
-            r.dj[k] += o.dj[k];
-        }
-        r
-    }
+    let p = compose_local_rotation(&get4(q, oq + 3), &get3(dq, ov + 3));
+    put4(q_new, oq + 3, &p);
 }

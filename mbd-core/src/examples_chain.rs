@@ -1,9 +1,10 @@
 //! Reference models shared by tests, benchmarks and demos.
 
 use crate::body::BodyState;
-use crate::constraints::{Attachment, Spherical};
+use crate::constraints::Spherical;
 use crate::forces::Gravity;
 use crate::integrators::State;
+use crate::marker::Marker;
 use crate::{MbdError, MultibodySystem, RigidBody};
 use nalgebra::{Vector3, Vector4};
 
@@ -31,8 +32,8 @@ pub fn spherical_chain(n: usize, link: f64) -> Result<(MultibodySystem, State), 
         };
         sys.add_constraint(Spherical {
             name: format!("joint {k}"),
-            i: Attachment::point(prev, pin_prev),
-            j: Attachment::point(Some(b), Vector3::new(0.0, 0.0, 0.5 * link)),
+            i: Marker::point(prev, pin_prev),
+            j: Marker::point(Some(b), Vector3::new(0.0, 0.0, 0.5 * link)),
         })?;
         states.push(BodyState::at_rest(dir * (link * (k as f64 + 0.5)), p));
     }

@@ -6,9 +6,9 @@
 //! (2.25)–(2.26)).
 
 use crate::MbdError;
-use crate::body::{BodyId, BodyKin, RigidBody, Term};
-use crate::constraints::Attachment;
+use crate::body::{BodyId, BodyKin, RigidBody};
 use crate::kinematics::tilde::add3;
+use crate::marker::{Carrier, Marker, Term};
 use nalgebra::Vector3;
 use std::sync::Arc;
 
@@ -66,6 +66,17 @@ pub fn add_torque(f: &mut [f64], b: BodyId, k: &BodyKin, torque: &Vector3<f64>) 
     add3(f, 6 * b + 3, &(k.a.transpose() * torque));
 }
 
+/// Force elements act on rigid bodies: markers on flexible nodes are rejected.
+fn check_rigid(name: &str, markers: [&Marker; 2]) -> Result<(), MbdError> {
+    match markers.iter().position(|m| m.node.is_some()) {
+        Some(k) => Err(MbdError::InvalidInput {
+            item: format!("force element \"{name}\": {}", ["i", "j"][k]),
+            reason: "force elements act on rigid bodies; the marker is on a flexible node".into(),
+        }),
+        None => Ok(()),
+    }
+}
+
 fn kin_of(kin: &[BodyKin], b: Option<BodyId>) -> BodyKin {
     b.map(|b| kin[b]).unwrap_or_else(BodyKin::ground)
 }
@@ -118,9 +129,9 @@ pub struct SpringDamper {
     /// Name.
     pub name: String,
     /// Point on body i.
-    pub i: Attachment,
+    pub i: Marker,
     /// Point on body j.
-    pub j: Attachment,
+    pub j: Marker,
     /// Stiffness k \[N/m\].
     pub stiffness: f64,
     /// Damping c \[N·s/m\].
@@ -137,6 +148,7 @@ impl ForceElement for SpringDamper {
         vec![self.i.body, self.j.body]
     }
     fn validate(&self) -> Result<(), MbdError> {
+        check_rigid(&self.name, [&self.i, &self.j])?;
         check_params(
             &self.name,
             &[
@@ -180,9 +192,9 @@ pub struct RotationalSpringDamper {
     /// Name.
     pub name: String,
     /// Axis on body i.
-    pub i: Attachment,
+    pub i: Marker,
     /// Body j.
-    pub j: Attachment,
+    pub j: Marker,
     /// Zero-angle direction on body i.
     pub reference_i: Vector3<f64>,
     /// Direction on body j.
@@ -201,9 +213,10 @@ impl RotationalSpringDamper {
         let a = self.i.axis;
         let xi = (self.reference_i - a * a.dot(&self.reference_i)).normalize();
         let yi = a.cross(&xi);
-        let xj = Term::vector(kj, &self.reference_j, 1);
-        let s = Term::vector(ki, &yi, 0).dot(&xj);
-        let c = Term::vector(ki, &xi, 0).dot(&xj);
+        let (ci, cj) = (Carrier::rigid(*ki), Carrier::rigid(*kj));
+        let xj = Term::vector(&cj, &self.j, &self.reference_j, 1);
+        let s = Term::vector(&ci, &self.i, &yi, 0).dot(&xj);
+        let c = Term::vector(&ci, &self.i, &xi, 0).dot(&xj);
         let n2 = (s.phi * s.phi + c.phi * c.phi).max(1e-300);
         let th = s.phi.atan2(c.phi);
         let thd = (c.phi * s.rate - s.phi * c.rate) / n2;
@@ -225,6 +238,7 @@ impl ForceElement for RotationalSpringDamper {
         vec![self.i.body, self.j.body]
     }
     fn validate(&self) -> Result<(), MbdError> {
+        check_rigid(&self.name, [&self.i, &self.j])?;
         check_params(
             &self.name,
             &[

@@ -10,10 +10,13 @@
 //!
 //! * [`kinematics`]: Euler parameters `A(p)`, `G(p)`, `L(p)`, `ṗ`/`ω` relations, `p̈` (Lin
 //!   (2.4)–(2.21)), tilde and stacking helpers, planar rotation matrices;
-//! * [`body`]: rigid bodies, body states and the kinematic terms of joint equations;
+//! * [`body`]: rigid bodies, body states and kinematics;
+//! * [`marker`]: markers, a point and a frame on a rigid body, the ground or a flexible node,
+//!   and the kinematic terms of joint equations;
 //! * [`constraints`]: the [`constraints::Constraint`] extension point and the joints
 //!   (fixed, spherical, revolute, universal, prismatic, distance, point-on-plane, planar
-//!   revolute) and rheonomic rotation drivers;
+//!   revolute) and rheonomic rotation and point drivers, written once against markers and
+//!   used by [`MultibodySystem`] and [`floating::FloatingSystem`];
 //! * [`forces`]: the [`forces::ForceElement`] extension point, gravity, spring-dampers,
 //!   applied forces and torques;
 //! * [`multibody`]: [`MultibodySystem`], which implements [`SecondOrderSystem`];
@@ -30,7 +33,8 @@
 //! ## Example: a pendulum on a revolute joint
 //!
 //! ```
-//! use mbd_core::constraints::{Attachment, Revolute};
+//! use mbd_core::constraints::Revolute;
+//! use mbd_core::marker::Marker;
 //! use mbd_core::forces::Gravity;
 //! use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
 //! use mbd_core::{BodyState, MultibodySystem, RigidBody};
@@ -40,8 +44,8 @@
 //! let bar = sys.add_body(RigidBody::with_principal("bar", 1.0, [1e-3, 0.083, 0.083])?);
 //! sys.add_constraint(Revolute {
 //!     name: "hinge".into(),
-//!     i: Attachment::new(None, Vector3::zeros(), Vector3::z()),
-//!     j: Attachment::new(Some(bar), Vector3::new(-0.5, 0.0, 0.0), Vector3::z()),
+//!     i: Marker::new(None, Vector3::zeros(), Vector3::z()),
+//!     j: Marker::new(Some(bar), Vector3::new(-0.5, 0.0, 0.0), Vector3::z()),
 //! })?;
 //! sys.add_force(Gravity { g: Vector3::new(0.0, -9.81, 0.0) })?;
 //! let p = Vector4::new(1.0, 0.0, 0.0, 0.0);
@@ -78,6 +82,7 @@ pub mod floating;
 pub mod forces;
 pub mod history;
 pub mod kinematics;
+pub mod marker;
 pub mod multibody;
 pub mod newton;
 pub mod statics;

@@ -6,13 +6,16 @@
 //! `m r̈ = f`, `J' ω̇' = n' − ω̃' J' ω'` (Lin (2.25)–(2.26)); `ṗ = ½ Lᵀ ω'` (Lin (2.14)).
 //! The constrained equations are Ribaric (2.16) / Lin (2.27), with reactions `−Dᵀλ`.
 
-use crate::body::{BodyId, BodyKin, BodyState, RigidBody};
-use crate::constraints::{Constraint, Equation};
+use crate::body::{
+    BodyId, BodyKin, BodyState, RigidBody, frame_integrate, frame_normalize, frame_position_rate,
+};
+use crate::constraints::{Constraint, ConstraintSet, Equation};
 use crate::forces::ForceElement;
 use crate::integrators::State;
-use crate::kinematics::euler::{compose_local_rotation, pdot_from_omega_local};
+use crate::kinematics::euler::compose_local_rotation;
 use crate::kinematics::tilde::tilde;
 use crate::kinematics::tilde::{get3, get4, put3, put4};
+use crate::marker::{Carrier, Marker};
 use crate::system::ForceTangent;
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
@@ -42,10 +45,8 @@ pub struct Reaction {
 #[derive(Default)]
 pub struct MultibodySystem {
     bodies: Vec<RigidBody>,
-    constraints: Vec<Box<dyn Constraint>>,
-    offsets: Vec<usize>,
+    constraints: ConstraintSet,
     forces: Vec<Box<dyn ForceElement>>,
-    n_c: usize,
     /// Force sparse (`Some(true)`) or dense (`Some(false)`) matrices; `None`: dense up to
     /// [`SPARSE_THRESHOLD`] bodies.
     pub sparse: Option<bool>,
@@ -78,29 +79,25 @@ impl MultibodySystem {
         Ok(())
     }
 
-    /// Adds a constraint (validates its body references); returns its index.
+    /// Adds a constraint (validates its markers: rigid bodies of this system or the ground);
+    /// returns its index.
     pub fn add_constraint(&mut self, c: impl Constraint + 'static) -> Result<usize, MbdError> {
-        let what = format!("constraint \"{}\"", c.name());
-        c.validate()?;
-        let [bi, bj] = c.bodies();
-        self.check_body(bi, &what)?;
-        self.check_body(bj, &what)?;
-        if bi.is_some() && bi == bj {
-            return Err(MbdError::InvalidInput {
-                item: what,
-                reason: "connects a body to itself".into(),
-            });
-        }
-        if bi.is_none() && bj.is_none() {
-            return Err(MbdError::InvalidInput {
-                item: what,
-                reason: "connects the ground to the ground".into(),
-            });
-        }
-        self.offsets.push(self.n_c);
-        self.n_c += c.n_eq();
-        self.constraints.push(Box::new(c));
-        Ok(self.constraints.len() - 1)
+        let n = self.bodies.len();
+        self.constraints.add(Box::new(c), |m: &Marker, what: &str| {
+            if m.node.is_some() {
+                return Err(MbdError::InvalidInput {
+                    item: what.into(),
+                    reason: "a rigid multibody system has no flexible nodes".into(),
+                });
+            }
+            match m.body {
+                Some(b) if b >= n => Err(MbdError::InvalidInput {
+                    item: what.into(),
+                    reason: format!("refers to body {b}, but the system has {n} bodies"),
+                }),
+                _ => Ok(()),
+            }
+        })
     }
 
     /// Adds a force element (validates its body references).
@@ -121,12 +118,12 @@ impl MultibodySystem {
 
     /// Constraints.
     pub fn constraints(&self) -> &[Box<dyn Constraint>] {
-        &self.constraints
+        self.constraints.constraints()
     }
 
     /// First row of constraint `c` in `Φ` and `λ`.
     pub fn constraint_offset(&self, c: usize) -> usize {
-        self.offsets[c]
+        self.constraints.offset(c)
     }
 
     /// Assembles the system state from body states (validated: unit `p`, finite values).
@@ -205,14 +202,16 @@ impl MultibodySystem {
 
     fn equations(&self, t: f64, q: &[f64], v: Option<&[f64]>) -> Vec<Equation> {
         let kin = self.kinematics(q, v);
-        let ground = BodyKin::ground();
-        let mut out = Vec::with_capacity(self.n_c);
-        for c in &self.constraints {
-            let [bi, bj] = c.bodies();
-            let ki = bi.map(|b| &kin[b]).unwrap_or(&ground);
-            let kj = bj.map(|b| &kin[b]).unwrap_or(&ground);
-            c.eval(t, ki, kj, &mut out);
-        }
+        let mut out = Vec::new();
+        self.constraints.eval(
+            t,
+            |m| {
+                m.body
+                    .map(|b| Carrier::rigid(kin[b]))
+                    .unwrap_or_else(Carrier::ground)
+            },
+            &mut out,
+        );
         out
     }
 
@@ -263,21 +262,21 @@ impl MultibodySystem {
 
     /// Reaction forces per constraint from the multipliers `λ` (Lin (2.27): reaction `−Dᵀλ`).
     pub fn reactions(&self, state: &State, lambda: &[f64]) -> Result<Vec<Reaction>, MbdError> {
-        if lambda.len() != self.n_c {
+        if lambda.len() != self.n_c() {
             return Err(MbdError::InvalidInput {
                 item: "multipliers".into(),
-                reason: format!("length {} (expected {})", lambda.len(), self.n_c),
+                reason: format!("length {} (expected {})", lambda.len(), self.n_c()),
             });
         }
         let eqs = self.equations(state.t, &state.q, Some(&state.v));
         let kin = self.kinematics(&state.q, None);
         let mut out = Vec::new();
-        for (ci, c) in self.constraints.iter().enumerate() {
+        for (ci, c) in self.constraints().iter().enumerate() {
             let [bi, bj] = c.bodies();
             let mut gi = [0.0; 6];
             let mut gj = [0.0; 6];
             for r in 0..c.n_eq() {
-                let row = self.offsets[ci] + r;
+                let row = self.constraint_offset(ci) + r;
                 for k in 0..6 {
                     gi[k] -= eqs[row].row.di[k] * lambda[row];
                     gj[k] -= eqs[row].row.dj[k] * lambda[row];
@@ -337,35 +336,25 @@ impl SecondOrderSystem for MultibodySystem {
         6 * self.bodies.len()
     }
     fn n_c(&self) -> usize {
-        self.n_c
+        self.constraints.n_c()
     }
 
     fn position_rate(&self, q: &[f64], v: &[f64], qdot: &mut [f64]) {
         for k in 0..self.bodies.len() {
-            qdot[7 * k..7 * k + 3].copy_from_slice(&v[6 * k..6 * k + 3]);
-            let pd = pdot_from_omega_local(&get4(q, 7 * k + 3), &get3(v, 6 * k + 3));
-            put4(qdot, 7 * k + 3, &pd);
+            frame_position_rate(q, v, 7 * k, 6 * k, qdot);
         }
     }
 
     fn normalize(&self, q: &mut [f64]) {
         for k in 0..self.bodies.len() {
-            let p = get4(q, 7 * k + 3);
-            let n = p.norm();
-            if n > 0.0 && n.is_finite() {
-                put4(q, 7 * k + 3, &(p / n));
-            }
+            frame_normalize(q, 7 * k);
         }
     }
 
     /// `r + Δr`, `p ⊗ exp(Δθ'/2)` (exact rotation update, Lie-group generalized-α).
     fn integrate_position(&self, q: &[f64], dq: &[f64], q_new: &mut [f64]) {
         for k in 0..self.bodies.len() {
-            for c in 0..3 {
-                q_new[7 * k + c] = q[7 * k + c] + dq[6 * k + c];
-            }
-            let p = compose_local_rotation(&get4(q, 7 * k + 3), &get3(dq, 6 * k + 3));
-            put4(q_new, 7 * k + 3, &p);
+            frame_integrate(q, dq, 7 * k, 6 * k, q_new);
         }
     }
 
@@ -517,7 +506,7 @@ impl SecondOrderSystem for MultibodySystem {
                          eqs: &mut Vec<Equation>|
          -> [f64; 12] {
             eqs.clear();
-            c.eval(t, ki, kj, eqs);
+            c.eval(t, &Carrier::rigid(*ki), &Carrier::rigid(*kj), eqs);
             let mut g = [0.0; 12];
             for (r, e) in eqs.iter().enumerate() {
                 let l = lambda[off + r];
@@ -528,8 +517,8 @@ impl SecondOrderSystem for MultibodySystem {
             }
             g
         };
-        for (ci, c) in self.constraints.iter().enumerate() {
-            let off = self.offsets[ci];
+        for (ci, c) in self.constraints().iter().enumerate() {
+            let off = self.constraint_offset(ci);
             if lambda[off..off + c.n_eq()].iter().all(|&l| l == 0.0) {
                 continue;
             }
@@ -577,23 +566,13 @@ impl SecondOrderSystem for MultibodySystem {
     fn constraint_jacobian(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         let eqs = self.equations(t, q, None);
         let mut trip = Vec::with_capacity(12 * eqs.len());
-        let mut row = 0;
-        for c in &self.constraints {
-            let [bi, bj] = c.bodies();
-            for _ in 0..c.n_eq() {
-                let e = &eqs[row];
-                for k in 0..6 {
-                    if let Some(b) = bi {
-                        trip.push(Triplet::new(row, 6 * b + k, e.row.di[k]));
-                    }
-                    if let Some(b) = bj {
-                        trip.push(Triplet::new(row, 6 * b + k, e.row.dj[k]));
-                    }
-                }
-                row += 1;
-            }
-        }
-        self.matrix_from_triplets(self.n_c, self.n_v(), trip, t)
+        self.constraints.jacobian_entries(
+            &eqs,
+            0,
+            |m| m.body.map(|b| (6 * b, 6 * b + 6)),
+            |r, c, x| trip.push(Triplet::new(r, c, x)),
+        );
+        self.matrix_from_triplets(self.n_c(), self.n_v(), trip, t)
     }
 
     fn constraint_velocity_rhs(&self, t: f64, q: &[f64], nu: &mut [f64]) -> Result<(), MbdError> {
@@ -621,14 +600,9 @@ impl SecondOrderSystem for MultibodySystem {
     }
 
     fn constraint_name(&self, row: usize) -> String {
-        let c = self
-            .offsets
-            .partition_point(|&o| o <= row)
-            .saturating_sub(1);
-        match self.constraints.get(c) {
-            Some(con) => format!("\"{}\" (equation {})", con.name(), row - self.offsets[c]),
-            None => format!("constraint row {row}"),
-        }
+        self.constraints
+            .row_name(row)
+            .unwrap_or_else(|| format!("constraint row {row}"))
     }
 
     fn dof_name(&self, dof: usize) -> String {

@@ -1,11 +1,12 @@
 //! CompositeSystem: two separately built models joined by a coupling constraint reproduce the
 //! same mechanism built as one MultibodySystem (second formulation as reference).
 
-use mbd_core::body::{BodyKin, BodyState, Term};
-use mbd_core::constraints::{Attachment, Revolute, Spherical};
+use mbd_core::body::{BodyKin, BodyState};
+use mbd_core::constraints::{Revolute, Spherical};
 use mbd_core::forces::Gravity;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
 use mbd_core::kinematics::tilde::{get3, get4};
+use mbd_core::marker::{Carrier, Marker, Term};
 use mbd_core::{
     CompositeSystem, Coupling, CouplingEval, MultibodySystem, RigidBody, SecondOrderSystem,
 };
@@ -18,8 +19,8 @@ fn pendulum() -> MultibodySystem {
     let b = s.add_body(RigidBody::with_principal("arm", 1.0, [1e-3, 0.03, 0.03]).unwrap());
     s.add_constraint(Revolute {
         name: "hinge".into(),
-        i: Attachment::new(None, Vector3::zeros(), Vector3::new(0.0, 0.3, 1.0)),
-        j: Attachment::new(
+        i: Marker::new(None, Vector3::zeros(), Vector3::new(0.0, 0.3, 1.0)),
+        j: Marker::new(
             Some(b),
             Vector3::new(-L / 2.0, 0.0, 0.0),
             Vector3::new(0.0, 0.3, 1.0),
@@ -60,9 +61,11 @@ impl Coupling for TipJoint {
             BodyKin::new(get3(q, qo), get4(q, qo + 3), get3(v, vo), get3(v, vo + 3))
         };
         let (ka, kb) = (kin(0, 0), kin(7, 6));
-        let d = Term::point(&ka, &Vector3::new(L / 2.0, 0.0, 0.0), 0).sub(&Term::point(
-            &kb,
-            &Vector3::zeros(),
+        let tip = Marker::point(Some(0), Vector3::new(L / 2.0, 0.0, 0.0));
+        let centre = Marker::point(Some(1), Vector3::zeros());
+        let d = Term::point(&Carrier::rigid(ka), &tip, 0).sub(&Term::point(
+            &Carrier::rigid(kb),
+            &centre,
             1,
         ));
         for r in 0..3 {
@@ -85,8 +88,8 @@ fn composite_matches_single_model() {
     single
         .add_constraint(Spherical {
             name: "tip".into(),
-            i: Attachment::point(Some(0), Vector3::new(L / 2.0, 0.0, 0.0)),
-            j: Attachment::point(Some(bb), Vector3::zeros()),
+            i: Marker::point(Some(0), Vector3::new(L / 2.0, 0.0, 0.0)),
+            j: Marker::point(Some(bb), Vector3::zeros()),
         })
         .unwrap();
     // (the Gravity element of pendulum() acts on every body of the system, the bob included)

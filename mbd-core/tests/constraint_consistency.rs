@@ -3,11 +3,14 @@
 //! Lin (2.11)–(2.12) / Ribaric (2.16) with rheonomic terms); and of the force elements with
 //! their potential energy (f = −∂V/∂q).
 
+mod common;
+
 use mbd_core::body::BodyState;
 use mbd_core::constraints::*;
 use mbd_core::forces::{Gravity, RotationalSpringDamper, SpringDamper};
 use mbd_core::integrators::State;
 use mbd_core::kinematics::euler::from_axis_angle;
+use mbd_core::marker::Marker;
 use mbd_core::{MultibodySystem, RigidBody, SecondOrderSystem};
 use nalgebra::Vector3;
 use std::sync::Arc;
@@ -32,8 +35,8 @@ fn two_bodies() -> (MultibodySystem, State) {
     (sys, s)
 }
 
-fn att(b: Option<usize>, p: [f64; 3], a: [f64; 3]) -> Attachment {
-    Attachment::new(b, Vector3::from(p), Vector3::from(a))
+fn att(b: Option<usize>, p: [f64; 3], a: [f64; 3]) -> Marker {
+    Marker::new(b, Vector3::from(p), Vector3::from(a))
 }
 
 type AddConstraint = Box<dyn Fn(&mut MultibodySystem)>;
@@ -160,14 +163,6 @@ fn all_constraints(bi: Option<usize>) -> Vec<AddConstraint> {
     ]
 }
 
-/// q(τ) = q ⊕ τ v (constant ṙ and ω', so v̇ = 0).
-fn moved(sys: &MultibodySystem, s: &State, tau: f64) -> Vec<f64> {
-    let dq: Vec<f64> = s.v.iter().map(|x| x * tau).collect();
-    let mut q = vec![0.0; s.q.len()];
-    sys.integrate_position(&s.q, &dq, &mut q);
-    q
-}
-
 #[test]
 fn jacobian_nu_gamma_match_finite_differences() {
     for ground in [false, true] {
@@ -175,37 +170,8 @@ fn jacobian_nu_gamma_match_finite_differences() {
         for add in all_constraints(bi) {
             let (mut sys, s) = two_bodies();
             add(&mut sys);
-            let nc = sys.n_c();
             let name = sys.constraints()[0].name().to_string();
-            let phi_at = |tau: f64| {
-                let mut phi = vec![0.0; nc];
-                sys.constraint_residual(s.t + tau, &moved(&sys, &s, tau), &mut phi)
-                    .unwrap();
-                phi
-            };
-            let h = 1e-4;
-            let (pp, p0, pm) = (phi_at(h), phi_at(0.0), phi_at(-h));
-            let d = sys.constraint_jacobian(s.t, &s.q).unwrap();
-            let mut dv = vec![0.0; nc];
-            d.mul_vec(&s.v, &mut dv);
-            let mut nu = vec![0.0; nc];
-            sys.constraint_velocity_rhs(s.t, &s.q, &mut nu).unwrap();
-            let mut gamma = vec![0.0; nc];
-            sys.constraint_gamma(s.t, &s.q, &s.v, &mut gamma).unwrap();
-            for r in 0..nc {
-                let phid = (pp[r] - pm[r]) / (2.0 * h);
-                let phidd = (pp[r] - 2.0 * p0[r] + pm[r]) / (h * h);
-                assert!(
-                    (phid - (dv[r] - nu[r])).abs() < 1e-6,
-                    "{name} (ground {ground}) row {r}: Φ̇ {phid} vs Dv − ν {}",
-                    dv[r] - nu[r]
-                );
-                assert!(
-                    (phidd + gamma[r]).abs() < 2e-5 * (1.0 + phidd.abs()),
-                    "{name} (ground {ground}) row {r}: Φ̈ {phidd} vs −γ {}",
-                    -gamma[r]
-                );
-            }
+            common::check_rates(&sys, &s, &format!("{name} (ground {ground})"));
         }
     }
 }

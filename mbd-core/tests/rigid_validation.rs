@@ -8,6 +8,7 @@ use mbd_core::integrators::{
     project_velocities,
 };
 use mbd_core::kinematics::euler::{a_matrix, from_axis_angle};
+use mbd_core::marker::Marker;
 use mbd_core::{MbdError, MultibodySystem, RigidBody, SecondOrderSystem};
 use nalgebra::{Vector3, Vector4};
 use std::f64::consts::PI;
@@ -100,8 +101,8 @@ fn heavy_top() -> Top {
     let b = sys.add_body(RigidBody::with_principal("top", m, [j1c, j1c, j3]).unwrap());
     sys.add_constraint(Spherical {
         name: "pivot".into(),
-        i: Attachment::point(None, Vector3::zeros()),
-        j: Attachment::point(Some(b), Vector3::new(0.0, 0.0, -l)),
+        i: Marker::point(None, Vector3::zeros()),
+        j: Marker::point(Some(b), Vector3::new(0.0, 0.0, -l)),
     })
     .unwrap();
     sys.add_force(Gravity {
@@ -251,12 +252,12 @@ fn slider_crank_with(
     let z = Vector3::z();
     sys.add_constraint(Revolute {
         name: "crank bearing".into(),
-        i: Attachment::new(None, Vector3::zeros(), z),
-        j: Attachment::new(Some(crank), Vector3::new(-a / 2.0, 0.0, 0.0), z),
+        i: Marker::new(None, Vector3::zeros(), z),
+        j: Marker::new(Some(crank), Vector3::new(-a / 2.0, 0.0, 0.0), z),
     })
     .unwrap();
-    let pin_i = Attachment::new(Some(crank), Vector3::new(a / 2.0, 0.0, 0.0), z);
-    let pin_j = Attachment::new(Some(rod), Vector3::new(-b / 2.0, 0.0, 0.0), z);
+    let pin_i = Marker::new(Some(crank), Vector3::new(a / 2.0, 0.0, 0.0), z);
+    let pin_j = Marker::new(Some(rod), Vector3::new(-b / 2.0, 0.0, 0.0), z);
     if wrist == Wrist::Universal {
         sys.add_constraint(Spherical {
             name: "crank pin".into(),
@@ -272,37 +273,37 @@ fn slider_crank_with(
         })
         .unwrap();
     }
-    let wrist_rod = Attachment::new(Some(rod), Vector3::new(b / 2.0, 0.0, 0.0), z);
+    let wrist_rod = Marker::new(Some(rod), Vector3::new(b / 2.0, 0.0, 0.0), z);
     match wrist {
         Wrist::Universal => sys.add_constraint(Universal {
             name: "wrist pin".into(),
             i: wrist_rod,
-            j: Attachment::new(Some(slider), Vector3::zeros(), Vector3::x()),
+            j: Marker::new(Some(slider), Vector3::zeros(), Vector3::x()),
         }),
         Wrist::PlanarRevolute => sys.add_constraint(PlanarRevolute {
             name: "wrist pin".into(),
             i: wrist_rod,
-            j: Attachment::point(Some(slider), Vector3::zeros()),
+            j: Marker::point(Some(slider), Vector3::zeros()),
         }),
         Wrist::Revolute => sys.add_constraint(Revolute {
             name: "wrist pin".into(),
             i: wrist_rod,
-            j: Attachment::new(Some(slider), Vector3::zeros(), z),
+            j: Marker::new(Some(slider), Vector3::zeros(), z),
         }),
     }
     .unwrap();
     sys.add_constraint(Prismatic {
         name: "slide".into(),
-        i: Attachment::new(None, Vector3::zeros(), Vector3::x()),
-        j: Attachment::new(Some(slider), Vector3::zeros(), Vector3::x()),
+        i: Marker::new(None, Vector3::zeros(), Vector3::x()),
+        j: Marker::new(Some(slider), Vector3::zeros(), Vector3::x()),
         reference_i: Vector3::y(),
         reference_j: Vector3::y(),
     })
     .unwrap();
     sys.add_constraint(RotationDriver {
         name: "motor".into(),
-        i: Attachment::new(None, Vector3::zeros(), z),
-        j: Attachment::point(Some(crank), Vector3::zeros()),
+        i: Marker::new(None, Vector3::zeros(), z),
+        j: Marker::point(Some(crank), Vector3::zeros()),
         reference_i: Vector3::x(),
         reference_j: Vector3::x(),
         law: DriverLaw::ConstantSpeed { theta0, omega },
@@ -506,8 +507,8 @@ fn redundant_constraints_are_named() {
     for name in ["hinge A", "hinge B"] {
         sys.add_constraint(Revolute {
             name: name.into(),
-            i: Attachment::new(None, Vector3::zeros(), Vector3::z()),
-            j: Attachment::new(Some(b), Vector3::new(-0.5, 0.0, 0.0), Vector3::z()),
+            i: Marker::new(None, Vector3::zeros(), Vector3::z()),
+            j: Marker::new(Some(b), Vector3::new(-0.5, 0.0, 0.0), Vector3::z()),
         })
         .unwrap();
     }
@@ -537,8 +538,8 @@ fn redundant_constraints_are_named() {
     let e = sys
         .add_constraint(Spherical {
             name: "ghost".into(),
-            i: Attachment::point(Some(7), Vector3::zeros()),
-            j: Attachment::point(None, Vector3::zeros()),
+            i: Marker::point(Some(7), Vector3::zeros()),
+            j: Marker::point(None, Vector3::zeros()),
         })
         .unwrap_err();
     assert!(e.to_string().contains("ghost"), "{e}");

@@ -1,9 +1,10 @@
 //! Static equilibrium helper and CSV time histories.
 
 use mbd_core::body::BodyState;
-use mbd_core::constraints::{Attachment, Revolute};
+use mbd_core::constraints::Revolute;
 use mbd_core::forces::{Gravity, RotationalSpringDamper};
 use mbd_core::integrators::{Rk4, State};
+use mbd_core::marker::Marker;
 use mbd_core::{History, MultibodySystem, Probe, RigidBody, StaticOptions, static_equilibrium};
 use nalgebra::{Vector3, Vector4};
 
@@ -17,14 +18,14 @@ fn hinged_bar_with_torsion_spring_static_equilibrium() {
     );
     sys.add_constraint(Revolute {
         name: "hinge".into(),
-        i: Attachment::new(None, Vector3::zeros(), Vector3::z()),
-        j: Attachment::new(Some(bar), Vector3::new(-l / 2.0, 0.0, 0.0), Vector3::z()),
+        i: Marker::new(None, Vector3::zeros(), Vector3::z()),
+        j: Marker::new(Some(bar), Vector3::new(-l / 2.0, 0.0, 0.0), Vector3::z()),
     })
     .unwrap();
     sys.add_force(RotationalSpringDamper {
         name: "torsion".into(),
-        i: Attachment::new(None, Vector3::zeros(), Vector3::z()),
-        j: Attachment::point(Some(bar), Vector3::zeros()),
+        i: Marker::new(None, Vector3::zeros(), Vector3::z()),
+        j: Marker::point(Some(bar), Vector3::zeros()),
         reference_i: Vector3::x(),
         reference_j: Vector3::x(),
         stiffness: k,

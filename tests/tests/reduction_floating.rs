@@ -4,12 +4,13 @@
 #![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
 use faer::Mat;
+use mbd_core::constraints::Spherical;
 use mbd_core::floating::{
-    AxisCondition, ElasticForces, FlexBody, FlexState, FloatingSystem, Point, RigidCore,
-    SphericalJoint,
+    AxisCondition, ElasticForces, FlexBody, FlexState, FloatingSystem, RigidCore,
 };
 use mbd_core::integrators::{DormandPrince, Stabilization, accelerations};
 use mbd_core::kinematics::euler::from_axis_angle;
+use mbd_core::marker::Marker;
 use mbd_core::{BodyState, RigidBody, SecondOrderSystem};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector4};
 use reduction::DofPartition;
@@ -325,10 +326,10 @@ fn craig_bampton_and_mode_condensation_give_identical_trajectories() {
         let mut sys = FloatingSystem::new();
         sys.gravity = Vector3::new(0.0, 0.0, -9.80665);
         let fb = sys.add_flex(body);
-        sys.add_joint(SphericalJoint {
+        sys.add_constraint(Spherical {
             name: "pivot".into(),
-            a: Point::FlexNode { body: fb, node: 0 },
-            b: Point::Ground(Vector3::zeros()),
+            i: Marker::node(fb, 0),
+            j: Marker::point(None, Vector3::zeros()),
         })
         .unwrap();
         let nz = basis.psi.ncols();
@@ -347,10 +348,7 @@ fn craig_bampton_and_mode_condensation_give_identical_trajectories() {
             )
             .unwrap();
         let mut track = Vec::new();
-        let far = Point::FlexNode {
-            body: fb,
-            node: n / 3 - 1,
-        };
+        let far = Marker::node(fb, n / 3 - 1);
         let integ = DormandPrince::new(1e-10, 1e-12);
         integ
             .integrate(&sys, st, 0.6, |x| {
@@ -522,22 +520,16 @@ fn rigid_link_joined_to_flexible_node_keeps_constraints_and_energy() {
     let node = 11; // top corner (x=1, y=0.5, z=0.5) relative coordinates
     let sn = Vector3::new(s[3 * node], s[3 * node + 1], s[3 * node + 2]);
     let top = sn + Vector3::new(0.0, 0.0, 2.0);
-    sys.add_joint(SphericalJoint {
+    sys.add_constraint(Spherical {
         name: "A".into(),
-        a: Point::Rigid {
-            body: link,
-            local: Vector3::new(0.0, 0.0, 1.0),
-        },
-        b: Point::Ground(top),
+        i: Marker::point(Some(link), Vector3::new(0.0, 0.0, 1.0)),
+        j: Marker::point(None, top),
     })
     .unwrap();
-    sys.add_joint(SphericalJoint {
+    sys.add_constraint(Spherical {
         name: "B".into(),
-        a: Point::Rigid {
-            body: link,
-            local: Vector3::new(0.0, 0.0, -1.0),
-        },
-        b: Point::FlexNode { body: fb, node },
+        i: Marker::point(Some(link), Vector3::new(0.0, 0.0, -1.0)),
+        j: Marker::node(fb, node),
     })
     .unwrap();
     let st = sys

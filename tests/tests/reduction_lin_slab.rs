@@ -225,9 +225,9 @@ fn simulation2_cb_equals_mc() {
 /// from rest with the chains inclined symmetrically. Returns the largest mirror asymmetry
 /// `|(d_x^3 − 2) + (d_x^15 − 2)|` \[m\] over the run (Appendix-B x, mirror plane x = 2).
 fn plank_asymmetry(axis: mbd_core::floating::AxisCondition) -> f64 {
-    use mbd_core::floating::{
-        FlexBody, FlexState, FloatingSystem, NodeLoad, Point, SphericalJoint,
-    };
+    use mbd_core::constraints::Spherical;
+    use mbd_core::floating::{FlexBody, FlexState, FloatingSystem, NodeLoad};
+    use mbd_core::marker::Marker;
     use mbd_core::{BodyState, RigidBody};
     use nalgebra::{Vector3, Vector4};
     let s = slab::appendix_b_slab().unwrap();
@@ -323,43 +323,28 @@ fn plank_asymmetry(axis: mbd_core::floating::AxisCondition) -> f64 {
             Vector4::new(1.0, 0.0, 0.0, 0.0),
         ));
         let half = Vector3::new(0.0, 0.0, 1.0);
-        sys.add_joint(SphericalJoint {
+        sys.add_constraint(Spherical {
             name: format!("A{node}"),
-            a: Point::Rigid {
-                body: ab,
-                local: half,
-            },
-            b: Point::Ground(a),
+            i: Marker::point(Some(ab), half),
+            j: Marker::point(None, a),
         })
         .unwrap();
-        sys.add_joint(SphericalJoint {
+        sys.add_constraint(Spherical {
             name: format!("B{node}"),
-            a: Point::Rigid {
-                body: ab,
-                local: -half,
-            },
-            b: Point::Rigid {
-                body: bc,
-                local: half,
-            },
+            i: Marker::point(Some(ab), -half),
+            j: Marker::point(Some(bc), half),
         })
         .unwrap();
-        sys.add_joint(SphericalJoint {
+        sys.add_constraint(Spherical {
             name: format!("C{node}"),
-            a: Point::Rigid {
-                body: bc,
-                local: -half,
-            },
-            b: Point::FlexNode {
-                body: fb,
-                node: node - 1,
-            },
+            i: Marker::point(Some(bc), -half),
+            j: Marker::node(fb, node - 1),
         })
         .unwrap();
     }
     sys.add_load(NodeLoad {
         name: "250 N at node 22".into(),
-        point: Point::FlexNode { body: fb, node: 21 },
+        point: Marker::node(fb, 21),
         force: Box::new(|_| Vector3::new(0.0, 0.0, -250.0)),
     })
     .unwrap();
@@ -378,8 +363,8 @@ fn plank_asymmetry(axis: mbd_core::floating::AxisCondition) -> f64 {
         )
         .unwrap();
     let mut worst = 0.0f64;
-    let p3 = Point::FlexNode { body: fb, node: 2 };
-    let p15 = Point::FlexNode { body: fb, node: 14 };
+    let p3 = Marker::node(fb, 2);
+    let p15 = Marker::node(fb, 14);
     mbd_core::integrators::DormandPrince::new(1e-8, 1e-10)
         .integrate(&sys, st, 0.4, |x| {
             let a = sys.point_position(x, &p3).x - 2.0;

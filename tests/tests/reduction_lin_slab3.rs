@@ -8,7 +8,7 @@
 //! same column space); Lin's qualitative ranking (§7.2.4: CB = MC close to NR, MT and GR
 //! poorer).
 
-use mbd_core::floating::Point;
+use mbd_core::marker::Marker;
 use nalgebra::Vector3;
 use reduction::lin::slab::{self, SlabMethod};
 use reduction::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
@@ -63,15 +63,7 @@ fn source_starts_inclined_at_rest_with_the_links_along_x() {
     let s = slab::appendix_b_slab().unwrap();
     let p = SlabSimParams::default();
     let (sys, st) = source_system(&s, &p).unwrap();
-    let pos = |j: usize| {
-        sys.point_position(
-            &st,
-            &Point::FlexNode {
-                body: 0,
-                node: j - 1,
-            },
-        )
-    };
+    let pos = |j: usize| sys.point_position(&st, &Marker::node(0, j - 1));
     let h = std::f64::consts::FRAC_1_SQRT_2;
     assert!((pos(18) - Vector3::new(0.0, 2.0, 0.0)).norm() < 1e-12);
     assert!((pos(30) - Vector3::new(4.0, 2.0, 0.0)).norm() < 1e-12);
@@ -98,15 +90,7 @@ fn source_run_conserves_energy() {
     let f16 = Vector3::from(p.sim3.force_node16_n);
     let f28 = Vector3::from(p.sim3.force_node28_n);
     let energy = |x: &mbd_core::integrators::State| {
-        let at = |j: usize| {
-            sys.point_position(
-                x,
-                &Point::FlexNode {
-                    body: 0,
-                    node: j - 1,
-                },
-            )
-        };
+        let at = |j: usize| sys.point_position(x, &Marker::node(0, j - 1));
         sys.kinetic_energy(x).unwrap() + sys.potential_energy(x)
             - f16.dot(&at(16))
             - f28.dot(&at(28))

@@ -5,12 +5,11 @@
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use mbd_core::body::BodyState;
-use mbd_core::constraints::{
-    Attachment, DriverLaw, Prismatic, Revolute, RotationDriver, Spherical, Universal,
-};
+use mbd_core::constraints::{DriverLaw, Prismatic, Revolute, RotationDriver, Spherical, Universal};
 use mbd_core::forces::Gravity;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State, project_velocities};
 use mbd_core::kinematics::euler::from_axis_angle;
+use mbd_core::marker::Marker;
 use mbd_core::{MbdError, MultibodySystem, RigidBody};
 use nalgebra::{Vector3, Vector4};
 use serde::{Deserialize, Serialize};
@@ -147,32 +146,32 @@ fn model(c: &Config) -> Result<(MultibodySystem, State), MbdError> {
     let slider = sys.add_body(RigidBody::with_principal("slider", c.masses[2], [1e-3; 3])?);
     sys.add_constraint(Revolute {
         name: "crank bearing".into(),
-        i: Attachment::new(None, Vector3::zeros(), z),
-        j: Attachment::new(Some(crank), Vector3::new(-a / 2.0, 0.0, 0.0), z),
+        i: Marker::new(None, Vector3::zeros(), z),
+        j: Marker::new(Some(crank), Vector3::new(-a / 2.0, 0.0, 0.0), z),
     })?;
     sys.add_constraint(Spherical {
         name: "crank pin".into(),
-        i: Attachment::point(Some(crank), Vector3::new(a / 2.0, 0.0, 0.0)),
-        j: Attachment::point(Some(rod), Vector3::new(-b / 2.0, 0.0, 0.0)),
+        i: Marker::point(Some(crank), Vector3::new(a / 2.0, 0.0, 0.0)),
+        j: Marker::point(Some(rod), Vector3::new(-b / 2.0, 0.0, 0.0)),
     })?;
     sys.add_constraint(Universal {
         name: "wrist pin".into(),
-        i: Attachment::new(Some(rod), Vector3::new(b / 2.0, 0.0, 0.0), z),
+        i: Marker::new(Some(rod), Vector3::new(b / 2.0, 0.0, 0.0), z),
         // The slider's cross axis is the in-plane normal y: z_rod · y = 0 restrains the rod's spin
         // about its own axis in every configuration (with x it would not at the dead centres).
-        j: Attachment::new(Some(slider), Vector3::zeros(), Vector3::y()),
+        j: Marker::new(Some(slider), Vector3::zeros(), Vector3::y()),
     })?;
     sys.add_constraint(Prismatic {
         name: "slide".into(),
-        i: Attachment::new(None, Vector3::zeros(), Vector3::x()),
-        j: Attachment::new(Some(slider), Vector3::zeros(), Vector3::x()),
+        i: Marker::new(None, Vector3::zeros(), Vector3::x()),
+        j: Marker::new(Some(slider), Vector3::zeros(), Vector3::x()),
         reference_i: Vector3::y(),
         reference_j: Vector3::y(),
     })?;
     sys.add_constraint(RotationDriver {
         name: "motor".into(),
-        i: Attachment::new(None, Vector3::zeros(), z),
-        j: Attachment::point(Some(crank), Vector3::zeros()),
+        i: Marker::new(None, Vector3::zeros(), z),
+        j: Marker::point(Some(crank), Vector3::zeros()),
         reference_i: Vector3::x(),
         reference_j: Vector3::x(),
         law: DriverLaw::ConstantSpeed {

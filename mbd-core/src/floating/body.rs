@@ -44,6 +44,7 @@ pub struct FlexBody {
     pub(crate) m: Mat<f64>,
     pub(crate) m_diag: Option<Vec<f64>>,
     pub(crate) psi: Mat<f64>,
+    pub(crate) rot: Option<Mat<f64>>,
     pub(crate) k_r: Mat<f64>,
     pub(crate) c_r: Option<Mat<f64>>,
     pub(crate) axis: AxisCondition,
@@ -212,6 +213,7 @@ impl FlexBody {
             m: mass.to_owned(),
             m_diag,
             psi: psi.to_owned(),
+            rot: None,
             k_r: symmetric(&k_r),
             c_r: None,
             axis,
@@ -238,6 +240,38 @@ impl FlexBody {
             ));
         }
         self.c_r = Some(symmetric(&(self.psi.transpose() * c * &self.psi)));
+        Ok(self)
+    }
+
+    /// Gives the nodes small elastic rotations `θ_j = Φ_θ,j z` (body-frame components) with the
+    /// slopes `Φ_θ` (3 n × n_z, \[rad\] per unit z; e.g. the rotational rows of the mode shapes
+    /// of a beam model), so that markers on nodes rotate with the node
+    /// ([`crate::marker`]); without slopes a node frame is the floating frame.
+    pub fn with_node_rotations(mut self, slopes: MatRef<'_, f64>) -> Result<Self, MbdError> {
+        let (n, nz) = (self.psi.nrows(), self.psi.ncols());
+        if slopes.nrows() != n || slopes.ncols() != nz {
+            return Err(bad(
+                &self.name,
+                "node rotation slopes",
+                format!(
+                    "are {}x{}, expected {n}x{nz}",
+                    slopes.nrows(),
+                    slopes.ncols()
+                ),
+            ));
+        }
+        for j in 0..nz {
+            for i in 0..n {
+                if !slopes[(i, j)].is_finite() {
+                    return Err(bad(
+                        &self.name,
+                        "node rotation slopes",
+                        format!("entry ({i}, {j}) is not finite"),
+                    ));
+                }
+            }
+        }
+        self.rot = Some(slopes.to_owned());
         Ok(self)
     }
 

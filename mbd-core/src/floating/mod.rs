@@ -11,9 +11,10 @@
 //! (2.45)–(2.52)).
 //!
 //! [`FloatingSystem`] couples flexible bodies, rigid bodies (mbd-core's [`crate::RigidBody`]),
-//! spherical joints between any two points (ground, rigid-body point, flexible node: Lin
-//! (2.22)–(2.24), (5.1)–(5.7)), prescribed point motions (Lin (7.7)–(7.9)), gravity and point
-//! loads, and implements [`crate::SecondOrderSystem`] so that mbd-core's integrators run it.
+//! the joints and drivers of [`crate::constraints`] between markers ([`crate::marker::Marker`]:
+//! ground, rigid-body frame or flexible node, Lin (2.22)–(2.24), (5.1)–(5.7)), prescribed point
+//! motions ([`crate::constraints::PointDriver`], Lin (7.7)–(7.9)), gravity and point loads, and
+//! implements [`crate::SecondOrderSystem`] so that mbd-core's integrators run it.
 //!
 //! Velocity coordinates per body are `(ṙ, ω', ż)` with the **body-frame** angular velocity
 //! `ω'` (as for mbd-core's rigid bodies), so that the equations are Lin (3.36)/(5.19) written
@@ -23,4 +24,4 @@ mod body;
 mod system;
 
 pub use body::{AxisCondition, ElasticForces, FlexBody, RigidCore};
-pub use system::{FlexState, FloatingSystem, NodeLoad, Point, PrescribedMotion, SphericalJoint};
+pub use system::{FlexState, FloatingSystem, NodeLoad};

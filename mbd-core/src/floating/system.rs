@@ -1,12 +1,16 @@
-//! A multibody system of floating-frame deformable bodies, rigid bodies, spherical joints,
-//! prescribed point motions and loads (Lin (2.27), (5.10), (5.11), (5.18), (5.19), (7.9),
+//! A multibody system of floating-frame deformable bodies, rigid bodies, joints and drivers
+//! between markers (the [`crate::constraints`] vocabulary shared with
+//! [`crate::MultibodySystem`]), and loads (Lin (2.27), (5.10), (5.11), (5.18), (5.19), (7.9),
 //! (8.29); Ribaric (2.45)–(2.52)).
 
 use super::body::{AxisCondition, ElasticForces, FlexBody, flat, mat_vec};
-use crate::body::{BodyState, RigidBody};
+use crate::body::{
+    BodyKin, BodyState, RigidBody, frame_integrate, frame_normalize, frame_position_rate,
+};
+use crate::constraints::{Constraint, ConstraintSet, Equation};
 use crate::integrators::State;
-use crate::kinematics::euler::{a_matrix, compose_local_rotation, pdot_from_omega_local};
 use crate::kinematics::tilde::{get3, get4, put3, put4, tilde};
+use crate::marker::{Carrier, FlexNodes, Marker, NodeRotations, Term};
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
 use nalgebra::{Matrix3, Vector3, Vector4};
@@ -28,83 +32,32 @@ pub struct FlexState {
     pub zdot: Vec<f64>,
 }
 
-/// A material point of the system.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Point {
-    /// A fixed point of the ground \[m\].
-    Ground(Vector3<f64>),
-    /// A point of rigid body `body` at body-frame position `local` (from its mass centre) \[m\].
-    Rigid {
-        /// Rigid-body index.
-        body: usize,
-        /// Body-frame position \[m\].
-        local: Vector3<f64>,
-    },
-    /// Node `node` (0-based) of flexible body `body`.
-    FlexNode {
-        /// Flexible-body index.
-        body: usize,
-        /// Node index.
-        node: usize,
-    },
-}
-
-/// Spherical joint between two points: `d_a = d_b` (Lin (2.22)–(2.24), (5.1)–(5.7)).
-#[derive(Debug, Clone, PartialEq)]
-pub struct SphericalJoint {
-    /// Name used in messages.
-    pub name: String,
-    /// First point.
-    pub a: Point,
-    /// Second point.
-    pub b: Point,
-}
-
-/// Prescribed motion of one global component of a point (Lin (7.7)–(7.9)): `motion(t)` returns
-/// `(x, ẋ, ẍ)` \[m, m/s, m/s²\].
-pub struct PrescribedMotion {
-    /// Name used in messages.
-    pub name: String,
-    /// The driven point.
-    pub point: Point,
-    /// Global component 0, 1, 2 (x, y, z).
-    pub component: usize,
-    /// Position, velocity and acceleration at time t.
-    pub motion: Box<dyn Fn(f64) -> [f64; 3] + Send + Sync>,
-}
-
-/// A global point force `force(t)` \[N\] applied at a point.
+/// A global point force `force(t)` \[N\] applied at a marker point (rigid-body point or
+/// flexible node without offset).
 pub struct NodeLoad {
     /// Name used in messages.
     pub name: String,
     /// Point of application.
-    pub point: Point,
+    pub point: Marker,
     /// Global force at time t \[N\].
     pub force: Box<dyn Fn(f64) -> Vector3<f64> + Send + Sync>,
 }
 
-struct RigKin {
-    r: Vector3<f64>,
-    a: Matrix3<f64>,
-    w: Vector3<f64>,
-}
-
 struct FlexKin {
-    r: Vector3<f64>,
-    a: Matrix3<f64>,
-    w: Vector3<f64>,
+    frame: BodyKin,
     z: Vec<f64>,
     zd: Vec<f64>,
     /// deformed local positions b' = s' + Ψ'z
     b: Vec<Vector3<f64>>,
     /// local deflection rates δ̇' = Ψ'ż
     dd: Vec<Vector3<f64>>,
+    /// node rotations θ = Φ_θ z and rates θ̇ (empty without slopes)
+    theta: Vec<Vector3<f64>>,
+    theta_dot: Vec<Vector3<f64>>,
 }
 
-/// Position, velocity-Jacobian columns `(v index, 3-vector)` and quadratic acceleration term.
-type PointKin = (Vector3<f64>, Vec<(usize, Vector3<f64>)>, Vector3<f64>);
-
-struct Row {
+/// A reference-condition row of a flexible body: sparse Jacobian entries and right-hand sides.
+struct AxisRow {
     cols: Vec<(usize, f64)>,
     phi: f64,
     nu: f64,
@@ -116,13 +69,16 @@ struct Row {
 ///
 /// Coordinates: rigid bodies first (`q = (r, p)`, `v = (ṙ, ω')`), then flexible bodies
 /// (`q = (r, p, z)`, `v = (ṙ, ω', ż)`). Constraint rows: per flexible body the axis-condition
-/// rows (6 for mean or principal axes, 0 for nodal-fixed), then 3 per joint, then 1 per driver.
+/// rows (6 for mean or principal axes, 0 for nodal-fixed), then the constraints in the order
+/// they were added.
+///
+/// Markers: `node: None` refers to rigid body `body` (index from [`Self::add_rigid`]),
+/// `node: Some(n)` to node `n` of flexible body `body` (index from [`Self::add_flex`]).
 #[derive(Default)]
 pub struct FloatingSystem {
     rigid: Vec<RigidBody>,
     flex: Vec<FlexBody>,
-    joints: Vec<SphericalJoint>,
-    drivers: Vec<PrescribedMotion>,
+    constraints: ConstraintSet,
     loads: Vec<NodeLoad>,
     /// Gravitational acceleration \[m/s²\] (global).
     pub gravity: Vector3<f64>,
@@ -146,67 +102,32 @@ impl FloatingSystem {
         self.flex.len() - 1
     }
 
-    fn check_point(&self, p: &Point, what: &str) -> Result<(), MbdError> {
-        let err = |reason: String| MbdError::InvalidInput {
-            item: what.to_string(),
-            reason,
-        };
-        match *p {
-            Point::Ground(x) if !x.iter().all(|v| v.is_finite()) => {
-                Err(err("ground point is not finite".into()))
-            }
-            Point::Rigid { body, .. } if body >= self.rigid.len() => Err(err(format!(
-                "rigid body {body} does not exist ({} rigid bodies)",
-                self.rigid.len()
-            ))),
-            Point::FlexNode { body, node } => match self.flex.get(body) {
-                None => Err(err(format!(
-                    "flexible body {body} does not exist ({} flexible bodies)",
-                    self.flex.len()
-                ))),
-                Some(f) if node >= f.n_nodes() => Err(err(format!(
-                    "node {node} of flexible body \"{}\" does not exist ({} nodes)",
-                    f.name,
-                    f.n_nodes()
-                ))),
-                _ => Ok(()),
-            },
-            _ => Ok(()),
-        }
+    fn check_marker(&self, m: &Marker, what: &str) -> Result<(), MbdError> {
+        check_marker(&self.rigid, &self.flex, m, what)
     }
 
-    /// Adds a spherical joint (validates its points).
-    pub fn add_joint(&mut self, j: SphericalJoint) -> Result<(), MbdError> {
-        let what = format!("joint \"{}\"", j.name);
-        self.check_point(&j.a, &what)?;
-        self.check_point(&j.b, &what)?;
-        if matches!((j.a, j.b), (Point::Ground(_), Point::Ground(_))) {
-            return Err(MbdError::InvalidInput {
-                item: what,
-                reason: "connects the ground to the ground".into(),
-            });
-        }
-        self.joints.push(j);
-        Ok(())
+    /// Adds a joint or driver (validates its markers); returns its index.
+    pub fn add_constraint(&mut self, c: impl Constraint + 'static) -> Result<usize, MbdError> {
+        let (rigid, flex) = (&self.rigid, &self.flex);
+        self.constraints
+            .add(Box::new(c), |m, what| check_marker(rigid, flex, m, what))
     }
 
-    /// Adds a prescribed motion (validates the point and component).
-    pub fn add_driver(&mut self, d: PrescribedMotion) -> Result<(), MbdError> {
-        let what = format!("driver \"{}\"", d.name);
-        self.check_point(&d.point, &what)?;
-        if d.component > 2 {
-            return Err(MbdError::InvalidInput {
-                item: what,
-                reason: format!("component {} is not 0, 1 or 2", d.component),
-            });
-        }
-        self.drivers.push(d);
-        Ok(())
+    /// Constraints (joints and drivers), in row order after the axis-condition rows.
+    pub fn constraints(&self) -> &[Box<dyn Constraint>] {
+        self.constraints.constraints()
     }
 
     /// Adds a point load (validates the point).
     pub fn add_load(&mut self, l: NodeLoad) -> Result<(), MbdError> {
-        self.check_point(&l.point, &format!("load \"{}\"", l.name))?;
+        let what = format!("load \"{}\"", l.name);
+        self.check_marker(&l.point, &what)?;
+        if l.point.node.is_some() && l.point.point != Vector3::zeros() {
+            return Err(MbdError::InvalidInput {
+                item: what,
+                reason: "a load on a flexible node acts at the node (offset must be zero)".into(),
+            });
+        }
         self.loads.push(l);
         Ok(())
     }
@@ -331,29 +252,76 @@ impl FloatingSystem {
         d
     }
 
-    /// Global position of a point \[m\].
-    pub fn point_position(&self, state: &State, p: &Point) -> Vector3<f64> {
+    /// Global position of a marker point \[m\].
+    pub fn point_position(&self, state: &State, m: &Marker) -> Vector3<f64> {
         let (rk, fk) = self.kinematics(&state.q, None);
-        self.point_kin(p, &rk, &fk).0
+        self.carrier(m, &rk, &fk).position(m)
     }
 
-    /// Global velocity of a point, `ḋ = J v` \[m/s\] (Lin (5.2)).
-    pub fn point_velocity(&self, state: &State, p: &Point) -> Vector3<f64> {
-        let (rk, fk) = self.kinematics(&state.q, Some(&state.v));
-        let (_, jac, _) = self.point_kin(p, &rk, &fk);
-        jac.iter()
-            .fold(Vector3::zeros(), |acc, (i, col)| acc + col * state.v[*i])
+    /// Global velocity of a marker point, `ḋ = J v` \[m/s\] (Lin (5.2)).
+    pub fn point_velocity(&self, state: &State, m: &Marker) -> Vector3<f64> {
+        self.point_jv(state, &state.v, m, false)
     }
 
-    /// Global acceleration of a point for the velocity derivatives `vdot` (e.g. from
+    /// Global acceleration of a marker point for the velocity derivatives `vdot` (e.g. from
     /// [`crate::integrators::accelerations`]): `d̈ = J v̇ + A w'` \[m/s²\] (Lin (5.3), (5.5)).
     ///
     /// # Panics
     /// If `vdot` is shorter than [`SecondOrderSystem::n_v`].
-    pub fn point_acceleration(&self, state: &State, vdot: &[f64], p: &Point) -> Vector3<f64> {
+    pub fn point_acceleration(&self, state: &State, vdot: &[f64], m: &Marker) -> Vector3<f64> {
+        self.point_jv(state, vdot, m, true)
+    }
+
+    /// `J x` (plus the quadratic term if `quad`) of a marker point.
+    fn point_jv(&self, state: &State, x: &[f64], m: &Marker, quad: bool) -> Vector3<f64> {
         let (rk, fk) = self.kinematics(&state.q, Some(&state.v));
-        let (_, jac, aq) = self.point_kin(p, &rk, &fk);
-        jac.iter().fold(aq, |acc, (i, col)| acc + col * vdot[*i])
+        let t = Term::point(&self.carrier(m, &rk, &fk), m, 0);
+        let mut acc = if quad { t.quad } else { Vector3::zeros() };
+        if let Some((f, z)) = self.columns(m) {
+            for c in 0..6 {
+                acc += t.ji.column(c) * x[f + c];
+            }
+            for c in 0..t.ei.ncols() {
+                acc += t.ei.column(c) * x[z + c];
+            }
+        }
+        acc
+    }
+
+    /// The carrier of a marker (ground, rigid body or flexible body with its nodes).
+    fn carrier<'a>(&'a self, m: &Marker, rk: &[BodyKin], fk: &'a [FlexKin]) -> Carrier<'a> {
+        match (m.body, m.node) {
+            (None, _) => Carrier::ground(),
+            (Some(b), None) => Carrier::rigid(rk[b]),
+            (Some(b), Some(_)) => {
+                let (f, k) = (&self.flex[b], &fk[b]);
+                Carrier {
+                    frame: k.frame,
+                    flex: Some(FlexNodes {
+                        b: &k.b,
+                        bdot: &k.dd,
+                        psi: f.psi.as_ref(),
+                        rot: f.rot.as_ref().map(|r| NodeRotations {
+                            theta: &k.theta,
+                            theta_dot: &k.theta_dot,
+                            slopes: r.as_ref(),
+                        }),
+                    }),
+                }
+            }
+        }
+    }
+
+    /// First velocity columns of a marker's body frame and elastic coordinates.
+    fn columns(&self, m: &Marker) -> Option<(usize, usize)> {
+        let b = m.body?;
+        Some(match m.node {
+            None => (6 * b, 6 * b + 6),
+            Some(_) => {
+                let (_, ov) = self.flex_offsets()[b];
+                (ov, ov + 6)
+            }
+        })
     }
 
     /// Mean-axis residuals of flexible body `k` (Lin Table 4-2, local):
@@ -397,19 +365,20 @@ impl FloatingSystem {
             for (i, x) in mb.iter().enumerate() {
                 c[i % 3] += x;
             }
-            e -= self.gravity.dot(&(k.r * f.mass() + k.a * c));
+            e -= self.gravity.dot(&(k.frame.r * f.mass() + k.frame.a * c));
         }
         e
     }
 
-    fn kinematics(&self, q: &[f64], v: Option<&[f64]>) -> (Vec<RigKin>, Vec<FlexKin>) {
-        let rk = (0..self.rigid.len())
-            .map(|k| RigKin {
-                r: get3(q, 7 * k),
-                a: a_matrix(&get4(q, 7 * k + 3)),
-                w: v.map(|v| get3(v, 6 * k + 3)).unwrap_or_else(Vector3::zeros),
-            })
-            .collect();
+    fn kinematics(&self, q: &[f64], v: Option<&[f64]>) -> (Vec<BodyKin>, Vec<FlexKin>) {
+        let frame = |oq: usize, ov: usize| {
+            let (rd, w) = match v {
+                Some(v) => (get3(v, ov), get3(v, ov + 3)),
+                None => (Vector3::zeros(), Vector3::zeros()),
+            };
+            BodyKin::new(get3(q, oq), get4(q, oq + 3), rd, w)
+        };
+        let rk = (0..self.rigid.len()).map(|k| frame(7 * k, 6 * k)).collect();
         let fk = self
             .flex
             .iter()
@@ -422,78 +391,36 @@ impl FloatingSystem {
                     .unwrap_or_else(|| vec![0.0; nz]);
                 let d = mat_vec(f.psi.as_ref(), &z);
                 let dd = mat_vec(f.psi.as_ref(), &zd);
+                let (theta, theta_dot) = match &f.rot {
+                    Some(r) => (
+                        vectors(&mat_vec(r.as_ref(), &z)),
+                        vectors(&mat_vec(r.as_ref(), &zd)),
+                    ),
+                    None => (Vec::new(), Vec::new()),
+                };
                 FlexKin {
-                    r: get3(q, oq),
-                    a: a_matrix(&get4(q, oq + 3)),
-                    w: v.map(|v| get3(v, ov + 3)).unwrap_or_else(Vector3::zeros),
+                    frame: frame(oq, ov),
                     b: f.s
                         .iter()
                         .enumerate()
                         .map(|(i, s)| s + Vector3::new(d[3 * i], d[3 * i + 1], d[3 * i + 2]))
                         .collect(),
-                    dd: dd
-                        .chunks(3)
-                        .map(|c| Vector3::new(c[0], c[1], c[2]))
-                        .collect(),
+                    dd: vectors(&dd),
                     z,
                     zd,
+                    theta,
+                    theta_dot,
                 }
             })
             .collect();
         (rk, fk)
     }
 
-    /// Position, velocity-Jacobian columns `(v index, 3-vector)` and quadratic acceleration
-    /// term (`d̈ = J v̇ + a_q`) of a point.
-    fn point_kin(&self, p: &Point, rk: &[RigKin], fk: &[FlexKin]) -> PointKin {
-        match *p {
-            Point::Ground(x) => (x, Vec::new(), Vector3::zeros()),
-            Point::Rigid { body, local } => {
-                let k = &rk[body];
-                let mut jac = Vec::with_capacity(6);
-                for c in 0..3 {
-                    jac.push((6 * body + c, Vector3::ith(c, 1.0)));
-                }
-                let ms = -(k.a * tilde(&local));
-                for c in 0..3 {
-                    jac.push((6 * body + 3 + c, ms.column(c).into_owned()));
-                }
-                let aq = k.a * k.w.cross(&k.w.cross(&local));
-                (k.r + k.a * local, jac, aq)
-            }
-            Point::FlexNode { body, node } => {
-                let f = &self.flex[body];
-                let k = &fk[body];
-                let (_, ov) = self.flex_offsets()[body];
-                let b = k.b[node];
-                let mut jac = Vec::with_capacity(6 + f.n_modes());
-                for c in 0..3 {
-                    jac.push((ov + c, Vector3::ith(c, 1.0)));
-                }
-                let mb = -(k.a * tilde(&b));
-                for c in 0..3 {
-                    jac.push((ov + 3 + c, mb.column(c).into_owned()));
-                }
-                for m in 0..f.n_modes() {
-                    let col = Vector3::new(
-                        f.psi[(3 * node, m)],
-                        f.psi[(3 * node + 1, m)],
-                        f.psi[(3 * node + 2, m)],
-                    );
-                    if col != Vector3::zeros() {
-                        jac.push((ov + 6 + m, k.a * col));
-                    }
-                }
-                let wq = k.w.cross(&k.w.cross(&b)) + 2.0 * k.w.cross(&k.dd[node]);
-                (k.r + k.a * b, jac, k.a * wq)
-            }
-        }
-    }
-
-    fn rows(&self, t: f64, q: &[f64], v: Option<&[f64]>) -> Vec<Row> {
-        let (rk, fk) = self.kinematics(q, v);
-        let mut rows = Vec::with_capacity(self.n_c());
-        for ((f, k), (_, ov)) in self.flex.iter().zip(&fk).zip(self.flex_offsets()) {
+    /// The reference-condition rows of every flexible body (Lin Table 4-2; Ribaric
+    /// (2.42)–(2.44)).
+    fn axis_rows(&self, fk: &[FlexKin]) -> Vec<AxisRow> {
+        let mut rows = Vec::new();
+        for ((f, k), (_, ov)) in self.flex.iter().zip(fk).zip(self.flex_offsets()) {
             if f.axis == AxisCondition::NodalFixed {
                 continue;
             }
@@ -502,7 +429,7 @@ impl FloatingSystem {
             // translational mean-axis condition IhᵀM'Ψ'z = 0 (Lin (4.20), (8.26))
             let pz = mat_vec(f.ih_m_psi.as_ref(), &k.z);
             for a in 0..3 {
-                rows.push(Row {
+                rows.push(AxisRow {
                     cols: (0..nz).map(|m| (oz + m, f.ih_m_psi[(a, m)])).collect(),
                     phi: pz[a],
                     nu: 0.0,
@@ -531,7 +458,7 @@ impl FloatingSystem {
                         g += k.dd[i].cross(&node(&mdd, i));
                     }
                     for a in 0..3 {
-                        rows.push(Row {
+                        rows.push(AxisRow {
                             cols: (0..nz).map(|m| (oz + m, dcols[m][a])).collect(),
                             // non-holonomic: no position-level residual (Lin Table 4-2)
                             phi: 0.0,
@@ -579,7 +506,7 @@ impl FloatingSystem {
                                 (oz + m, d)
                             })
                             .collect();
-                        rows.push(Row {
+                        rows.push(AxisRow {
                             cols,
                             phi: dot(&bt[a], &mbt[b]),
                             nu: 0.0,
@@ -590,32 +517,17 @@ impl FloatingSystem {
                 AxisCondition::NodalFixed => {}
             }
         }
-        for j in &self.joints {
-            let (da, ja, aa) = self.point_kin(&j.a, &rk, &fk);
-            let (db, jb, ab) = self.point_kin(&j.b, &rk, &fk);
-            for c in 0..3 {
-                let mut cols: Vec<(usize, f64)> = ja.iter().map(|(i, x)| (*i, x[c])).collect();
-                cols.extend(jb.iter().map(|(i, x)| (*i, -x[c])));
-                rows.push(Row {
-                    cols,
-                    phi: da[c] - db[c],
-                    nu: 0.0,
-                    gamma: -(aa[c] - ab[c]),
-                });
-            }
-        }
-        for d in &self.drivers {
-            let (x, jx, ax) = self.point_kin(&d.point, &rk, &fk);
-            let [pos, vel, acc] = (d.motion)(t);
-            let c = d.component;
-            rows.push(Row {
-                cols: jx.iter().map(|(i, v)| (*i, v[c])).collect(),
-                phi: x[c] - pos,
-                nu: vel,
-                gamma: acc - ax[c],
-            });
-        }
         rows
+    }
+
+    /// Axis-condition rows and the equations of the constraints at `(t, q, v)` (`v = 0` when
+    /// `None`).
+    fn equations(&self, t: f64, q: &[f64], v: Option<&[f64]>) -> (Vec<AxisRow>, Vec<Equation>) {
+        let (rk, fk) = self.kinematics(q, v);
+        let mut eqs = Vec::new();
+        self.constraints
+            .eval(t, |m| self.carrier(m, &rk, &fk), &mut eqs);
+        (self.axis_rows(&fk), eqs)
     }
 }
 
@@ -629,52 +541,35 @@ impl SecondOrderSystem for FloatingSystem {
     }
 
     fn n_c(&self) -> usize {
-        self.flex.iter().map(Self::n_axis_rows).sum::<usize>()
-            + 3 * self.joints.len()
-            + self.drivers.len()
+        self.flex.iter().map(Self::n_axis_rows).sum::<usize>() + self.constraints.n_c()
     }
 
     fn position_rate(&self, q: &[f64], v: &[f64], qdot: &mut [f64]) {
         for k in 0..self.rigid.len() {
-            qdot[7 * k..7 * k + 3].copy_from_slice(&v[6 * k..6 * k + 3]);
-            let pd = pdot_from_omega_local(&get4(q, 7 * k + 3), &get3(v, 6 * k + 3));
-            put4(qdot, 7 * k + 3, &pd);
+            frame_position_rate(q, v, 7 * k, 6 * k, qdot);
         }
         for (f, (oq, ov)) in self.flex.iter().zip(self.flex_offsets()) {
-            qdot[oq..oq + 3].copy_from_slice(&v[ov..ov + 3]);
-            let pd = pdot_from_omega_local(&get4(q, oq + 3), &get3(v, ov + 3));
-            put4(qdot, oq + 3, &pd);
+            frame_position_rate(q, v, oq, ov, qdot);
             let nz = f.n_modes();
             qdot[oq + 7..oq + 7 + nz].copy_from_slice(&v[ov + 6..ov + 6 + nz]);
         }
     }
 
     fn normalize(&self, q: &mut [f64]) {
-        let mut at: Vec<usize> = (0..self.rigid.len()).map(|k| 7 * k + 3).collect();
-        at.extend(self.flex_offsets().iter().map(|(oq, _)| oq + 3));
-        for o in at {
-            let p = get4(q, o);
-            let n = p.norm();
-            if n > 0.0 && n.is_finite() {
-                put4(q, o, &(p / n));
-            }
+        for k in 0..self.rigid.len() {
+            frame_normalize(q, 7 * k);
+        }
+        for (oq, _) in self.flex_offsets() {
+            frame_normalize(q, oq);
         }
     }
 
     fn integrate_position(&self, q: &[f64], dq: &[f64], q_new: &mut [f64]) {
         for k in 0..self.rigid.len() {
-            for c in 0..3 {
-                q_new[7 * k + c] = q[7 * k + c] + dq[6 * k + c];
-            }
-            let p = compose_local_rotation(&get4(q, 7 * k + 3), &get3(dq, 6 * k + 3));
-            put4(q_new, 7 * k + 3, &p);
+            frame_integrate(q, dq, 7 * k, 6 * k, q_new);
         }
         for (f, (oq, ov)) in self.flex.iter().zip(self.flex_offsets()) {
-            for c in 0..3 {
-                q_new[oq + c] = q[oq + c] + dq[ov + c];
-            }
-            let p = compose_local_rotation(&get4(q, oq + 3), &get3(dq, ov + 3));
-            put4(q_new, oq + 3, &p);
+            frame_integrate(q, dq, oq, ov, q_new);
             for m in 0..f.n_modes() {
                 q_new[oq + 7 + m] = q[oq + 7 + m] + dq[ov + 6 + m];
             }
@@ -702,7 +597,7 @@ impl SecondOrderSystem for FloatingSystem {
             for (i, x) in mb.iter().enumerate() {
                 c1[i % 3] += x;
             }
-            let rw = -(k.a * tilde(&c1));
+            let rw = -(k.frame.a * tilde(&c1));
             // J' = b~'ᵀM'b~'
             let skw_cols: Vec<Vec<f64>> = (0..3)
                 .map(|a| {
@@ -726,7 +621,7 @@ impl SecondOrderSystem for FloatingSystem {
             if let Some(core) = f.core {
                 jl += core.inertia;
             }
-            let arz = k.a * nalgebra::DMatrix::from_fn(3, nz, |i, j| f.ih_m_psi[(i, j)]);
+            let arz = k.frame.a * nalgebra::DMatrix::from_fn(3, nz, |i, j| f.ih_m_psi[(i, j)]);
             for a in 0..3 {
                 m[(o + a, o + a)] = mtot;
                 for bb in 0..3 {
@@ -786,9 +681,10 @@ impl SecondOrderSystem for FloatingSystem {
             .collect();
         for l in &self.loads {
             let force = (l.force)(t);
-            match l.point {
-                Point::Ground(_) => {}
-                Point::Rigid { body, local } => {
+            match (l.point.body, l.point.node) {
+                (None, _) => {}
+                (Some(body), None) => {
+                    let local = l.point.point;
                     let kin = &rk[body];
                     for c in 0..3 {
                         out[6 * body + c] += force[c];
@@ -798,8 +694,8 @@ impl SecondOrderSystem for FloatingSystem {
                         out[6 * body + 3 + c] += m[c];
                     }
                 }
-                Point::FlexNode { body, node } => {
-                    let fl = fk[body].a.transpose() * force;
+                (Some(body), Some(node)) => {
+                    let fl = fk[body].frame.a.transpose() * force;
                     for c in 0..3 {
                         ext[body][3 * node + c] += fl[c];
                     }
@@ -808,10 +704,11 @@ impl SecondOrderSystem for FloatingSystem {
         }
         for (kf, (f, kin)) in self.flex.iter().zip(&fk).enumerate() {
             let (_, o) = offs[kf];
-            let gl = kin.a.transpose() * self.gravity;
+            let gl = kin.frame.a.transpose() * self.gravity;
             let mut x = vec![0.0; 3 * f.n_nodes()];
             for (i, b) in kin.b.iter().enumerate() {
-                let w = kin.w.cross(&kin.w.cross(b)) + 2.0 * kin.w.cross(&kin.dd[i]);
+                let w =
+                    kin.frame.w.cross(&kin.frame.w.cross(b)) + 2.0 * kin.frame.w.cross(&kin.dd[i]);
                 for c in 0..3 {
                     x[3 * i + c] = gl[c] - w[c];
                 }
@@ -834,10 +731,10 @@ impl SecondOrderSystem for FloatingSystem {
                 res += fi;
                 mom += b.cross(&fi);
             }
-            let mut fr = kin.a * res;
+            let mut fr = kin.frame.a * res;
             if let Some(core) = f.core {
                 fr += self.gravity * core.mass;
-                mom -= kin.w.cross(&(core.inertia * kin.w));
+                mom -= kin.frame.w.cross(&(core.inertia * kin.frame.w));
             }
             put3(out, o, &fr);
             put3(out, o + 3, &mom);
@@ -868,26 +765,39 @@ impl SecondOrderSystem for FloatingSystem {
     }
 
     fn constraint_residual(&self, t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
-        for (p, r) in phi.iter_mut().zip(self.rows(t, q, None)) {
-            *p = r.phi;
+        let (axis, eqs) = self.equations(t, q, None);
+        let all = axis
+            .iter()
+            .map(|r| r.phi)
+            .chain(eqs.iter().map(|e| e.row.phi));
+        for (p, x) in phi.iter_mut().zip(all) {
+            *p = x;
         }
         Ok(())
     }
 
     fn constraint_jacobian(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
-        let rows = self.rows(t, q, None);
-        let mut d = Mat::<f64>::zeros(rows.len(), self.n_v());
-        for (i, r) in rows.iter().enumerate() {
+        let (axis, eqs) = self.equations(t, q, None);
+        let mut d = Mat::<f64>::zeros(axis.len() + eqs.len(), self.n_v());
+        for (i, r) in axis.iter().enumerate() {
             for &(c, x) in &r.cols {
                 d[(i, c)] += x;
             }
         }
+        self.constraints.jacobian_entries(
+            &eqs,
+            axis.len(),
+            |m| self.columns(m),
+            |r, c, x| d[(r, c)] += x,
+        );
         Ok(SysMatrix::Dense(d))
     }
 
     fn constraint_velocity_rhs(&self, t: f64, q: &[f64], nu: &mut [f64]) -> Result<(), MbdError> {
-        for (p, r) in nu.iter_mut().zip(self.rows(t, q, None)) {
-            *p = r.nu;
+        let (axis, eqs) = self.equations(t, q, None);
+        let all = axis.iter().map(|r| r.nu).chain(eqs.iter().map(|e| e.nu));
+        for (p, x) in nu.iter_mut().zip(all) {
+            *p = x;
         }
         Ok(())
     }
@@ -899,8 +809,13 @@ impl SecondOrderSystem for FloatingSystem {
         v: &[f64],
         gamma: &mut [f64],
     ) -> Result<(), MbdError> {
-        for (p, r) in gamma.iter_mut().zip(self.rows(t, q, Some(v))) {
-            *p = r.gamma;
+        let (axis, eqs) = self.equations(t, q, Some(v));
+        let all = axis
+            .iter()
+            .map(|r| r.gamma)
+            .chain(eqs.iter().map(|e| e.gamma));
+        for (p, x) in gamma.iter_mut().zip(all) {
+            *p = x;
         }
         Ok(())
     }
@@ -914,18 +829,9 @@ impl SecondOrderSystem for FloatingSystem {
             }
             r -= n;
         }
-        if r < 3 * self.joints.len() {
-            return format!(
-                "joint \"{}\" (component {})",
-                self.joints[r / 3].name,
-                r % 3
-            );
-        }
-        r -= 3 * self.joints.len();
-        match self.drivers.get(r) {
-            Some(d) => format!("driver \"{}\"", d.name),
-            None => format!("constraint row {row}"),
-        }
+        self.constraints
+            .row_name(r)
+            .unwrap_or_else(|| format!("constraint row {row}"))
     }
 
     fn dof_name(&self, dof: usize) -> String {
@@ -948,5 +854,46 @@ impl SecondOrderSystem for FloatingSystem {
             }
         }
         format!("coordinate {dof}")
+    }
+}
+
+/// 3-vectors from a flat slice.
+fn vectors(x: &[f64]) -> Vec<Vector3<f64>> {
+    x.chunks(3)
+        .map(|c| Vector3::new(c[0], c[1], c[2]))
+        .collect()
+}
+
+/// A marker must name an existing rigid body (`node: None`) or an existing node of a flexible
+/// body (`node: Some`), or the ground.
+fn check_marker(
+    rigid: &[RigidBody],
+    flex: &[FlexBody],
+    m: &Marker,
+    what: &str,
+) -> Result<(), MbdError> {
+    let err = |reason: String| MbdError::InvalidInput {
+        item: what.to_string(),
+        reason,
+    };
+    match (m.body, m.node) {
+        (None, _) if m.node.is_some() => Err(err("a ground marker has no node".into())),
+        (Some(body), None) if body >= rigid.len() => Err(err(format!(
+            "rigid body {body} does not exist ({} rigid bodies)",
+            rigid.len()
+        ))),
+        (Some(body), Some(node)) => match flex.get(body) {
+            None => Err(err(format!(
+                "flexible body {body} does not exist ({} flexible bodies)",
+                flex.len()
+            ))),
+            Some(f) if node >= f.n_nodes() => Err(err(format!(
+                "node {node} of flexible body \"{}\" does not exist ({} nodes)",
+                f.name,
+                f.n_nodes()
+            ))),
+            _ => Ok(()),
+        },
+        _ => Ok(()),
     }
 }

@@ -5,13 +5,16 @@
 use super::slab::{G, LinSlab, SlabMethod, slab_basis};
 use super::slab_sim3::{Sim3Params, emulation_system, record_source, simulate_emulated};
 use crate::error::{ReductionError, Result};
-use mbd_core::floating::{
-    AxisCondition, FlexBody, FlexState, FloatingSystem, Point, PrescribedMotion,
-};
+use mbd_core::constraints::{DriverLaw, PointDriver};
+use mbd_core::floating::{AxisCondition, FlexBody, FlexState, FloatingSystem};
 use mbd_core::integrators::{Rk4, State};
+use mbd_core::marker::Marker;
 use nalgebra::{Vector3, Vector4};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
+
+/// Prescribed position, velocity and acceleration of one coordinate at time t.
+type Motion = std::sync::Arc<dyn Fn(f64) -> (f64, f64, f64) + Send + Sync>;
 
 /// Which simulation of Lin §7.2.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -101,18 +104,16 @@ pub fn build(
         detail: e.to_string(),
     };
     let (mut sys, fb, nz) = slab_system(slab, method, p.n_modes, mbd)?;
-    let node = |j: usize| Point::FlexNode {
-        body: fb,
-        node: j - 1,
-    };
+    let node = |j: usize| Marker::node(fb, j - 1);
     let fixed = |sys: &mut FloatingSystem, j: usize, c: usize| -> Result<()> {
         let x0 = super::slab::node_position(j)[c];
-        sys.add_driver(PrescribedMotion {
+        sys.add_constraint(PointDriver {
             name: format!("node {j} {}", ["x", "y", "z"][c]),
             point: node(j),
             component: c,
-            motion: Box::new(move |_| [x0, 0.0, 0.0]),
+            law: DriverLaw::Custom(std::sync::Arc::new(move |_| (x0, 0.0, 0.0))),
         })
+        .map(|_| ())
         .map_err(mbd)
     };
     let mut omega0 = Vector3::zeros();
@@ -135,35 +136,31 @@ pub fn build(
             let a = r * w * w;
             // (7.10) and its integrals with x(0) = R, ẋ(0) = 0, z(0) = 0, ż(0) = RΩ
             // (companion §7.2.3: the second harmonic adds a secular drift −RΩ/16 in z).
-            let xs: Box<dyn Fn(f64) -> [f64; 3] + Send + Sync> = Box::new(move |t| {
-                [
+            let xs: Motion = std::sync::Arc::new(move |t| {
+                (
                     r * (w * t).cos() + r / 16.0 * ((2.0 * w * t).cos() - 1.0),
                     -r * w * (w * t).sin() - r * w / 8.0 * (2.0 * w * t).sin(),
                     -a * ((w * t).cos() + 0.25 * (2.0 * w * t).cos()),
-                ]
+                )
             });
-            let zs: Box<dyn Fn(f64) -> [f64; 3] + Send + Sync> = Box::new(move |t| {
-                [
+            let zs: Motion = std::sync::Arc::new(move |t| {
+                (
                     r * (w * t).sin() + r / 32.0 * (2.0 * w * t).sin() - r * w / 16.0 * t,
                     r * w * (w * t).cos() + r * w / 16.0 * (2.0 * w * t).cos() - r * w / 16.0,
                     -a * ((w * t).sin() + 0.125 * (2.0 * w * t).sin()),
-                ]
+                )
             });
             let y30 = super::slab::node_position(30)[1];
             for (c, motion) in [
                 (0usize, xs),
-                (
-                    1,
-                    Box::new(move |_| [y30, 0.0, 0.0])
-                        as Box<dyn Fn(f64) -> [f64; 3] + Send + Sync>,
-                ),
+                (1, std::sync::Arc::new(move |_| (y30, 0.0, 0.0)) as Motion),
                 (2, zs),
             ] {
-                sys.add_driver(PrescribedMotion {
+                sys.add_constraint(PointDriver {
                     name: format!("node 30 {}", ["x", "y", "z"][c]),
                     point: node(30),
                     component: c,
-                    motion,
+                    law: DriverLaw::Custom(motion),
                 })
                 .map_err(mbd)?;
             }

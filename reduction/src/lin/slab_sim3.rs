@@ -40,11 +40,11 @@
 use super::slab::{LinSlab, SlabMethod, node_position};
 use super::slab_sim::{SlabSimParams, run_observed, slab_system};
 use crate::error::{ReductionError, Result};
-use mbd_core::floating::{
-    FlexState, FloatingSystem, NodeLoad, Point, PrescribedMotion, SphericalJoint,
-};
+use mbd_core::constraints::{DriverLaw, PointDriver, Spherical};
+use mbd_core::floating::{FlexState, FloatingSystem, NodeLoad};
 use mbd_core::integrators::{Rk4, Stabilization, State, accelerations};
 use mbd_core::kinematics::euler::{a_matrix, from_axis_angle};
+use mbd_core::marker::Marker;
 use mbd_core::{BodyState, RigidBody};
 use nalgebra::{Vector3, Vector4};
 use serde::{Deserialize, Serialize};
@@ -305,10 +305,7 @@ fn add_forces(sys: &mut FloatingSystem, fb: usize, p: &Sim3Params) -> Result<()>
         let f = Vector3::from(f);
         sys.add_load(NodeLoad {
             name: format!("constant force at node {j}"),
-            point: Point::FlexNode {
-                body: fb,
-                node: j - 1,
-            },
+            point: Marker::node(fb, j - 1),
             force: Box::new(move |_| f),
         })
         .map_err(mbd_err("simulation-3 loads"))?;
@@ -343,25 +340,16 @@ pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSyste
     }
     for (k, j, len, attach) in links {
         let half = Vector3::new(dir * len / 2.0, 0.0, 0.0);
-        sys.add_joint(SphericalJoint {
+        sys.add_constraint(Spherical {
             name: format!("link {j} to ground"),
-            a: Point::Rigid {
-                body: k,
-                local: half,
-            },
-            b: Point::Ground(attach + 2.0 * half),
+            i: Marker::point(Some(k), half),
+            j: Marker::point(None, attach + 2.0 * half),
         })
         .map_err(&err)?;
-        sys.add_joint(SphericalJoint {
+        sys.add_constraint(Spherical {
             name: format!("link {j} to node {j}"),
-            a: Point::Rigid {
-                body: k,
-                local: -half,
-            },
-            b: Point::FlexNode {
-                body: fb,
-                node: j - 1,
-            },
+            i: Marker::point(Some(k), -half),
+            j: Marker::node(fb, j - 1),
         })
         .map_err(&err)?;
     }
@@ -383,12 +371,9 @@ pub fn record_source(slab: &LinSlab, p: &SlabSimParams) -> Result<SourceRun> {
     let h = interval / per as f64;
     let n_samples = (p.duration_s / interval - 1e-9).ceil() as usize + 1;
     let t_end = (n_samples - 1) as f64 * interval;
-    let points: Vec<Point> = DRIVEN_NODES
+    let points: Vec<Marker> = DRIVEN_NODES
         .iter()
-        .map(|&j| Point::FlexNode {
-            body: fb,
-            node: j - 1,
-        })
+        .map(|&j| Marker::node(fb, j - 1))
         .collect();
     let x0: Vec<Vector3<f64>> = points.iter().map(|q| sys.point_position(&st, q)).collect();
     let v0: Vec<Vector3<f64>> = points.iter().map(|q| sys.point_velocity(&st, q)).collect();
@@ -459,17 +444,14 @@ pub fn emulation_system(
     for (i, &j) in DRIVEN_NODES.iter().enumerate() {
         for c in 0..3 {
             let tab = Arc::clone(table);
-            sys.add_driver(PrescribedMotion {
+            sys.add_constraint(PointDriver {
                 name: format!("node {j} {}", ["x", "y", "z"][c]),
-                point: Point::FlexNode {
-                    body: fb,
-                    node: j - 1,
-                },
+                point: Marker::node(fb, j - 1),
                 component: c,
-                motion: Box::new(move |t| {
+                law: DriverLaw::Custom(Arc::new(move |t| {
                     let [x, v, a] = tab.motion(i, t);
-                    [x[c], v[c], a[c]]
-                }),
+                    (x[c], v[c], a[c])
+                })),
             })
             .map_err(&err)?;
         }
