@@ -6,8 +6,8 @@
 //!
 //! Run: `cargo bench -p reduction --bench cb_tire`.
 
-use fe_model::generate::{TireConfig, tire};
 use fe_model::MassKind;
+use fe_model::generate::{TireConfig, tire};
 use reduction::DofPartition;
 use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse};
 use std::time::Instant;
@@ -60,8 +60,8 @@ fn main() {
     let part = DofPartition::new(k.nrows(), &bdofs, &rim).expect("rim / interface partition");
     let t1 = Instant::now();
     let opts = CraigBamptonOptions::with_modes(50);
-    let (red, rep) = craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, 3)
-        .expect("Craig-Bampton");
+    let (red, rep) =
+        craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, 3).expect("Craig-Bampton");
     let total = t1.elapsed().as_secs_f64();
     println!(
         "tire: {} DOF ({} fixed), {} interface nodes ({} DOF), {} modes -> {} reduced coordinates",

@@ -128,7 +128,12 @@ fn same_reduced(a: &Mat<f64>, b: &Mat<f64>, s: &[f64], tol: f64, what: &str) {
         for j in 0..b.ncols() {
             let scale = (b[(i, i)] * b[(j, j)]).abs().sqrt();
             let d = (a[(i, j)] - s[i] * s[j] * b[(i, j)]).abs();
-            assert!(d <= tol * scale, "{what}[{i},{j}]: {} vs {}", a[(i, j)], b[(i, j)]);
+            assert!(
+                d <= tol * scale,
+                "{what}[{i},{j}]: {} vs {}",
+                a[(i, j)],
+                b[(i, j)]
+            );
         }
     }
 }
@@ -139,8 +144,8 @@ fn partitioned_cb_equals_the_dense_craig_bampton() {
     // fixed DOFs removed; the same reduction up to the sign of each mode column
     let b = bar();
     let nk = 8;
-    let (red, rep) = craig_bampton_sparse(b.k.as_ref(), b.m.as_ref(), &b.part, &lanczos(nk), 3)
-        .unwrap();
+    let (red, rep) =
+        craig_bampton_sparse(b.k.as_ref(), b.m.as_ref(), &b.part, &lanczos(nk), 3).unwrap();
     let eig = rep.eigen.as_ref().unwrap();
     assert!(!eig.dense_fallback);
     assert_eq!(eig.sturm_count, eig.found_below_cut);
@@ -151,14 +156,21 @@ fn partitioned_cb_equals_the_dense_craig_bampton() {
     let nb = b.part.boundary().len();
     let mut s = vec![1.0; nb + nk];
     for j in nb..nb + nk {
-        let dot: f64 = (0..b.part.n()).map(|i| red.psi[(i, j)] * psi_d[(i, j)]).sum();
+        let dot: f64 = (0..b.part.n())
+            .map(|i| red.psi[(i, j)] * psi_d[(i, j)])
+            .sum();
         s[j] = dot.signum();
     }
     let scale = max_abs(&psi_d);
     for j in 0..nb + nk {
         for i in 0..b.part.n() {
             let d = (red.psi[(i, j)] - s[j] * psi_d[(i, j)]).abs();
-            assert!(d <= 1e-9 * scale, "Ψ[{i},{j}]: {} vs {}", red.psi[(i, j)], psi_d[(i, j)]);
+            assert!(
+                d <= 1e-9 * scale,
+                "Ψ[{i},{j}]: {} vs {}",
+                red.psi[(i, j)],
+                psi_d[(i, j)]
+            );
         }
     }
     same_reduced(&red.stiffness, &kr_d, &s, 1e-9, "K_r");
@@ -173,10 +185,21 @@ fn partitioned_cb_equals_the_dense_craig_bampton() {
     let sel = ModeSelection::Lowest(nk);
     let two = build_basis(kf.as_ref(), mf.as_ref(), &p2, Method::CraigBampton, &sel).unwrap();
     let (kd, md) = (b.k.to_dense(), b.m.to_dense());
-    let three = build_basis(kd.as_ref(), md.as_ref(), &b.part, Method::CraigBampton, &sel).unwrap();
+    let three = build_basis(
+        kd.as_ref(),
+        md.as_ref(),
+        &b.part,
+        Method::CraigBampton,
+        &sel,
+    )
+    .unwrap();
     for j in 0..nb + nk {
         for (r, &d) in free.iter().enumerate() {
-            assert_eq!(three.psi[(d, j)], two.psi[(r, j)], "three-set vs two-set Ψ[{d},{j}]");
+            assert_eq!(
+                three.psi[(d, j)],
+                two.psi[(r, j)],
+                "three-set vs two-set Ψ[{d},{j}]"
+            );
         }
         for &d in b.part.fixed() {
             assert_eq!(three.psi[(d, j)], 0.0);
@@ -184,13 +207,22 @@ fn partitioned_cb_equals_the_dense_craig_bampton() {
     }
     for j in 0..nb {
         for i in 0..b.part.n() {
-            assert!((three.psi[(i, j)] - red.psi[(i, j)]).abs() <= 1e-9 * scale, "Ψs[{i},{j}]");
+            assert!(
+                (three.psi[(i, j)] - red.psi[(i, j)]).abs() <= 1e-9 * scale,
+                "Ψs[{i},{j}]"
+            );
         }
     }
     let lin = ReducedModel::from_basis(three, kd.as_ref(), md.as_ref(), None, 3).unwrap();
-    let (a, c) = (lowest(&red.stiffness, &red.mass, 15), lowest(&lin.stiffness, &lin.mass, 15));
+    let (a, c) = (
+        lowest(&red.stiffness, &red.mass, 15),
+        lowest(&lin.stiffness, &lin.mass, 15),
+    );
     for (i, (x, y)) in a.iter().zip(&c).enumerate() {
-        assert!((x - y).abs() <= 1e-3 * y, "reduced eigenvalue {i}: {x} vs build_basis {y}");
+        assert!(
+            (x - y).abs() <= 1e-3 * y,
+            "reduced eigenvalue {i}: {x} vs build_basis {y}"
+        );
     }
 }
 
@@ -236,20 +268,29 @@ fn static_and_fixed_interface_modes_satisfy_their_definitions() {
             let unit = if i == j { 1.0 } else { 0.0 };
             assert!((mr[(nb + i, nb + j)] - unit).abs() < 1e-10, "ΦᵀMΦ[{i},{j}]");
             let kij = if i == j { lam[i] } else { 0.0 };
-            assert!((kr[(nb + i, nb + j)] - kij).abs() < 1e-9 * lam[nk - 1], "ΦᵀKΦ[{i},{j}]");
+            assert!(
+                (kr[(nb + i, nb + j)] - kij).abs() < 1e-9 * lam[nk - 1],
+                "ΦᵀKΦ[{i},{j}]"
+            );
         }
     }
     for c in 0..nb {
         for j in 0..nk {
             let scale = (kr[(c, c)] * lam[j]).sqrt();
-            assert!(kr[(c, nb + j)].abs() < 1e-9 * scale, "K_r coupling [{c},{j}]");
+            assert!(
+                kr[(c, nb + j)].abs() < 1e-9 * scale,
+                "K_r coupling [{c},{j}]"
+            );
         }
     }
     for (a, what) in [(&mr, "M_r"), (&kr, "K_r")] {
         let scale = max_abs(a);
         for i in 0..a.nrows() {
             for j in 0..i {
-                assert!((a[(i, j)] - a[(j, i)]).abs() <= 1e-12 * scale, "{what}[{i},{j}]");
+                assert!(
+                    (a[(i, j)] - a[(j, i)]).abs() <= 1e-12 * scale,
+                    "{what}[{i},{j}]"
+                );
             }
         }
     }
@@ -273,7 +314,11 @@ fn reduced_eigenvalues_bound_the_full_ones_from_above() {
     let rep = rep.unwrap();
     assert!(!rep.dense_fallback && rep.sturm_count == Some(12));
     for (i, l) in low.values.iter().enumerate() {
-        assert!((l - full[i]).abs() <= 1e-9 * full[i], "clamped mode {i}: {l} vs {}", full[i]);
+        assert!(
+            (l - full[i]).abs() <= 1e-9 * full[i],
+            "clamped mode {i}: {l} vs {}",
+            full[i]
+        );
     }
     let mut previous: Option<Vec<f64>> = None;
     for nk in [0, 3, 12] {
@@ -282,11 +327,18 @@ fn reduced_eigenvalues_bound_the_full_ones_from_above() {
         assert_eq!(red.n_reduced(), 27 + nk);
         let l = lowest(&red.stiffness, &red.mass, (27 + nk) / 2);
         for (i, li) in l.iter().enumerate() {
-            assert!(*li >= full[i] * (1.0 - 1e-9), "{nk} modes, mode {i}: {li} < {}", full[i]);
+            assert!(
+                *li >= full[i] * (1.0 - 1e-9),
+                "{nk} modes, mode {i}: {li} < {}",
+                full[i]
+            );
         }
         if let Some(p) = &previous {
             for (i, (li, pi)) in l.iter().zip(p).enumerate() {
-                assert!(*li <= pi * (1.0 + 1e-9), "{nk} modes, mode {i}: {li} > {pi}");
+                assert!(
+                    *li <= pi * (1.0 + 1e-9),
+                    "{nk} modes, mode {i}: {li} > {pi}"
+                );
             }
         }
         previous = Some(l);
@@ -296,7 +348,10 @@ fn reduced_eigenvalues_bound_the_full_ones_from_above() {
     assert_eq!(rep.n_modes, b.part.interior().len());
     let l = lowest(&red.stiffness, &red.mass, 40);
     for (i, (li, r)) in l.iter().zip(&full).enumerate() {
-        assert!((li - r).abs() <= 1e-8 * r, "untruncated mode {i}: {li} vs {r}");
+        assert!(
+            (li - r).abs() <= 1e-8 * r,
+            "untruncated mode {i}: {li} vs {r}"
+        );
     }
 }
 
@@ -309,7 +364,9 @@ fn unrestrained_interior_and_bad_partitions_are_named() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("K_ii") && e.contains("fixed"), "{e}");
-    let e = DofPartition::new(b.part.n(), &[3, 4], &[4]).unwrap_err().to_string();
+    let e = DofPartition::new(b.part.n(), &[3, 4], &[4])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("DOF 4"), "{e}");
     // a mass matrix of the wrong size
     let small = fe_model::sparse::from_dense(Mat::<f64>::identity(6, 6).as_ref(), 0.0).unwrap();
@@ -318,4 +375,3 @@ fn unrestrained_interior_and_bad_partitions_are_named() {
         .to_string();
     assert!(e.contains("mass matrix M") && e.contains("6x6"), "{e}");
 }
-

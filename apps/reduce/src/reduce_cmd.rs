@@ -180,13 +180,9 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
         }
     }
     let zero_based = |v: &[usize]| v.iter().map(|j| j - 1).collect::<Vec<_>>();
-    let part = DofPartition::from_nodes(
-        n,
-        a.dofs_per_node,
-        &zero_based(&nodes),
-        &zero_based(&fixed),
-    )
-    .map_err(|e| Failure::Input(format!("--boundary/--fixed: {e}")))?;
+    let part =
+        DofPartition::from_nodes(n, a.dofs_per_node, &zero_based(&nodes), &zero_based(&fixed))
+            .map_err(|e| Failure::Input(format!("--boundary/--fixed: {e}")))?;
     let method = a.method.method();
     let t0 = Instant::now();
     let num = |e: reduction::ReductionError| Failure::Numerical(e.to_string());

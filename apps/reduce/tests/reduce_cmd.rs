@@ -130,7 +130,14 @@ fn cb_with_a_fixed_set_matches_the_library() {
     write_mtx(&m, &s.m);
     write_mtx(&k, &s.k);
     let file = dir.join("slab_cb_fixed.json");
-    let args = ["--quiet", "--json", "--boundary", "16,18,28,30", "--modes", "6"];
+    let args = [
+        "--quiet",
+        "--json",
+        "--boundary",
+        "16,18,28,30",
+        "--modes",
+        "6",
+    ];
     let out = reduce(&[&args[..], &["--fixed", "1-3,19"]].concat(), &m, &k, &file);
     let summary = common::json_of(&out);
     assert_eq!(summary["n_fixed"], 12);
@@ -141,8 +148,12 @@ fn cb_with_a_fixed_set_matches_the_library() {
             assert_eq!(red.psi[(d, j)], 0.0, "fixed row {d}");
         }
     }
-    let part =
-        DofPartition::new(90, &node_dofs(&[16, 18, 28, 30]), &node_dofs(&[1, 2, 3, 19])).unwrap();
+    let part = DofPartition::new(
+        90,
+        &node_dofs(&[16, 18, 28, 30]),
+        &node_dofs(&[1, 2, 3, 19]),
+    )
+    .unwrap();
     let b = build_basis(
         s.k.as_ref(),
         s.m.as_ref(),
@@ -159,7 +170,10 @@ fn cb_with_a_fixed_set_matches_the_library() {
     // clamped: no rigid-body zeros
     assert!(f_lib[0] > 0.1, "{}", f_lib[0]);
     for (i, (a, b)) in f_file.iter().zip(&f_lib).enumerate() {
-        assert!((a - b).abs() <= 1e-9 * b, "frequency {i}: file {a} vs library {b}");
+        assert!(
+            (a - b).abs() <= 1e-9 * b,
+            "frequency {i}: file {a} vs library {b}"
+        );
     }
     // a node both fixed and boundary is rejected naming the options
     let out = reduce(&[&args[..], &["--fixed", "16"]].concat(), &m, &k, &file);
