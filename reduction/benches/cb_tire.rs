@@ -1,13 +1,15 @@
 //! Benchmark: Craig–Bampton reduction of fe-model's generated truck tire (≈ 64 000 DOF, rim
-//! clamped) with 95 interface nodes on the tread (the contact-patch nodes closest to the patch
-//! centre) and 50 fixed-interface modes. Static modes reuse one sparse Cholesky of `K_ii`.
+//! clamped: the fixed set of the partition) with 95 interface nodes on the tread (the
+//! contact-patch nodes closest to the patch centre) and 50 fixed-interface modes. Static modes
+//! reuse one sparse Cholesky of `K_ii`.
 //! Prints the timings of each phase (one run; the figures go into BENCHMARKS.md).
 //!
 //! Run: `cargo bench -p reduction --bench cb_tire`.
 
+use fe_model::MassKind;
 use fe_model::generate::{TireConfig, tire};
-use fe_model::{DofPartition as FePartition, MassKind};
 use reduction::DofPartition;
+use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse};
 use std::time::Instant;
 
 fn main() {
@@ -19,11 +21,8 @@ fn main() {
         .expect("assembly");
     let t_build = t0.elapsed().as_secs_f64();
     let mesh = &tire.model.mesh;
-    // clamp the rim (Dirichlet), keep the free DOFs
+    // the rim is the fixed set (clamped)
     let rim = mesh.node_set_dofs("rim", None).expect("rim set");
-    let fp = FePartition::fixed(k.nrows(), &rim).expect("partition");
-    let kff = fp.block(k.as_ref(), false, false).expect("K_ff");
-    let mff = fp.block(m.as_ref(), false, false).expect("M_ff");
     // 95 interface nodes: contact-patch nodes nearest to the patch centre (lowest point)
     let patch = mesh.node_set("contact_patch").expect("patch set").to_vec();
     let zmin = patch
@@ -54,25 +53,20 @@ fn main() {
         95,
         "the contact patch has fewer than 95 nodes"
     );
-    let mut bdofs = Vec::new();
-    for &j in &sorted {
-        for comp in 0..3 {
-            let g = mesh.dof(j, comp);
-            match fp.slot(g) {
-                Some(Err(i)) => bdofs.push(i),
-                _ => panic!("interface node {j} is on the rim"),
-            }
-        }
-    }
-    let part = DofPartition::from_boundary_dofs(kff.nrows(), &bdofs).expect("boundary");
+    let bdofs: Vec<usize> = sorted
+        .iter()
+        .flat_map(|&j| (0..3).map(move |comp| mesh.dof(j, comp)))
+        .collect();
+    let part = DofPartition::new(k.nrows(), &bdofs, &rim).expect("rim / interface partition");
     let t1 = Instant::now();
+    let opts = CraigBamptonOptions::with_modes(50);
     let (red, rep) =
-        reduction::sparse::craig_bampton_sparse(kff.as_ref(), mff.as_ref(), &part, 50, 1)
-            .expect("Craig-Bampton");
+        craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, 3).expect("Craig-Bampton");
     let total = t1.elapsed().as_secs_f64();
     println!(
-        "tire: {} free DOF, {} interface nodes ({} DOF), {} modes -> {} reduced coordinates",
-        kff.nrows(),
+        "tire: {} DOF ({} fixed), {} interface nodes ({} DOF), {} modes -> {} reduced coordinates",
+        k.nrows(),
+        rep.n_fixed,
         sorted.len(),
         bdofs.len(),
         rep.n_modes,

@@ -1,8 +1,12 @@
 //! Reduction bases `δ = Ψ z` from dense `(M, K)` and a boundary DOF set (Lin ch. 6, Ribaric ch. 3).
 //!
-//! Every basis has its rows in the natural DOF order of the full model. Column order: first the
-//! boundary DOFs (in the order of the [`DofPartition`]), then the kept normal modes in ascending
-//! frequency, except for free-free modal truncation, which has only modes.
+//! Every basis has its rows in the natural DOF order of the full model; the rows of the fixed
+//! DOFs of the [`DofPartition`] are zero (clamped). Column order: first the boundary DOFs (in the
+//! order of the [`DofPartition`]), then the kept normal modes in ascending frequency, except for
+//! free-free modal truncation, which has only modes.
+//!
+//! These dense bases serve Lin's small models and are the second formulation against which the
+//! partitioned sparse Craig–Bampton ([`crate::sparse::craig_bampton`]) is tested.
 
 use crate::error::{ReductionError, Result};
 use crate::linalg::{check_finite, check_square, select, solve_spd, sym_gen_eig};
@@ -20,7 +24,7 @@ pub enum Method {
     /// static modes, `Ψ = [I 0; 0 Ψn^k]` (Lin (6.17)). Named for what it is.
     FixedInterfaceModalTruncation,
     /// Classical free-free modal truncation: the lowest modes of `(K, M)`, rigid-body modes
-    /// included; no boundary DOFs are kept.
+    /// included; no boundary DOFs are kept (with fixed DOFs: the modes of the unfixed block).
     FreeFreeModalTruncation,
     /// Craig–Bampton, `Ψ = [I 0; Ψs Ψn^k]` (Lin (6.19), Ribaric (3.15)).
     CraigBampton,
@@ -153,7 +157,7 @@ pub fn static_modes(k: MatRef<'_, f64>, part: &DofPartition) -> Result<Mat<f64>>
 /// Builds the basis of `method` (see [`Method`]) from dense `(M, K)`.
 ///
 /// `modes` is ignored by [`Method::Guyan`]. For [`Method::FreeFreeModalTruncation`] the modes are
-/// those of the whole `(K, M)` and `part` only fixes the model size.
+/// those of the whole `(K, M)` restricted to the unfixed DOFs; the boundary set is not used.
 pub fn build_basis(
     k: MatRef<'_, f64>,
     m: MatRef<'_, f64>,
@@ -168,9 +172,20 @@ pub fn build_basis(
             Ok(assemble(part, method, Some(&psi_s), None, &[], &[]))
         }
         Method::FreeFreeModalTruncation => {
-            let (lam, phi) = sym_gen_eig("free-free problem (K, M)", k, m)?;
+            let free = part.unfixed();
+            let (lam, phi) = if part.fixed().is_empty() {
+                sym_gen_eig("free-free problem (K, M)", k, m)?
+            } else {
+                let (kf, mf) = (select(k, &free, &free), select(m, &free, &free));
+                sym_gen_eig("unfixed problem (K, M)", kf.as_ref(), mf.as_ref())?
+            };
             let idx = modes.resolve(lam.len())?;
-            let psi = Mat::from_fn(part.n(), idx.len(), |i, j| phi[(i, idx[j])]);
+            let mut psi = Mat::zeros(part.n(), idx.len());
+            for (j, &mi) in idx.iter().enumerate() {
+                for (r, &d) in free.iter().enumerate() {
+                    psi[(d, j)] = phi[(r, mi)];
+                }
+            }
             let columns = idx
                 .iter()
                 .map(|&i| Column::Mode {
@@ -346,8 +361,9 @@ fn check_inputs(k: MatRef<'_, f64>, m: MatRef<'_, f64>, part: &DofPartition) -> 
     Ok(())
 }
 
-/// `Ψ = [I 0; C Φk]` in natural row order; `coupling` = interior block of the boundary columns.
-fn assemble(
+/// `Ψ = [I 0; C Φk]` in natural row order (fixed rows zero); `coupling` = interior block of the
+/// boundary columns, `phi` the interior rows of the modes, `kept` the mode indices taken.
+pub(crate) fn assemble(
     part: &DofPartition,
     method: Method,
     coupling: Option<&Mat<f64>>,

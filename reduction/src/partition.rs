@@ -1,51 +1,86 @@
-//! Boundary / interior partition of the DOFs of a component (Lin (6.1), Ribaric (3.2)).
+//! Fixed / boundary / interior partition of the DOFs of a component (Lin (6.1), Ribaric (3.2);
+//! Ribaric §8.2 for the three-set rim / contact / free split of the tire).
 
 use crate::error::{ReductionError, Result};
 use serde::{Deserialize, Serialize};
 
-/// Partition of `n` DOFs into boundary DOFs `b` (kept physically: interface, supports, load
-/// points) and interior DOFs `i` (Lin (6.1)).
+/// Partition of `n` DOFs into fixed DOFs (clamped, e.g. a rim: zero rows in every basis),
+/// boundary DOFs `b` (kept physically: interface, supports, load points, contact nodes) and
+/// interior DOFs `i` (condensed by static modes and truncated by fixed-interface modes,
+/// Lin (6.1)).
 ///
 /// DOF indices are 0-based positions in the full vector. The boundary order is the order given
-/// by the user (it is the order of the boundary columns of every basis); interior DOFs are in
-/// ascending order.
+/// by the user (it is the order of the boundary columns of every basis); interior and fixed DOFs
+/// are in ascending order.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct DofPartition {
     n: usize,
     boundary: Vec<usize>,
     interior: Vec<usize>,
+    /// Clamped DOFs (absent in files written before the fixed set existed).
+    #[serde(default)]
+    fixed: Vec<usize>,
 }
 
 impl DofPartition {
-    /// Partition from a list of boundary DOFs (0-based, distinct, `< n`).
+    /// Partition from a list of boundary DOFs (0-based, distinct, `< n`); no fixed DOFs.
     pub fn from_boundary_dofs(n: usize, boundary: &[usize]) -> Result<Self> {
-        let mut seen = vec![false; n];
-        for &d in boundary {
-            if d >= n {
-                return Err(ReductionError::InvalidDofs {
-                    what: "boundary DOF set".into(),
-                    reason: format!("DOF {d} is out of range (the model has {n} DOFs)"),
-                });
+        Self::new(n, boundary, &[])
+    }
+
+    /// Three-set partition: `boundary` DOFs (user order), `fixed` DOFs (clamped) and the
+    /// interior = all others. Every DOF must be `< n` and appear at most once in the two lists.
+    pub fn new(n: usize, boundary: &[usize], fixed: &[usize]) -> Result<Self> {
+        // 0 = interior, 1 = boundary, 2 = fixed
+        let mut set = vec![0u8; n];
+        for (what, list, tag) in [("boundary", boundary, 1u8), ("fixed", fixed, 2u8)] {
+            for &d in list {
+                if d >= n {
+                    return Err(ReductionError::InvalidDofs {
+                        what: format!("{what} DOF set"),
+                        reason: format!("DOF {d} is out of range (the model has {n} DOFs)"),
+                    });
+                }
+                match set[d] {
+                    0 => set[d] = tag,
+                    t if t == tag => {
+                        return Err(ReductionError::InvalidDofs {
+                            what: format!("{what} DOF set"),
+                            reason: format!("DOF {d} is listed twice"),
+                        });
+                    }
+                    _ => {
+                        return Err(ReductionError::InvalidDofs {
+                            what: "fixed DOF set".into(),
+                            reason: format!("DOF {d} is also a boundary DOF"),
+                        });
+                    }
+                }
             }
-            if seen[d] {
-                return Err(ReductionError::InvalidDofs {
-                    what: "boundary DOF set".into(),
-                    reason: format!("DOF {d} is listed twice"),
-                });
-            }
-            seen[d] = true;
         }
-        let interior = (0..n).filter(|&d| !seen[d]).collect();
+        let pick = |tag: u8| (0..n).filter(|&d| set[d] == tag).collect::<Vec<_>>();
         Ok(Self {
             n,
             boundary: boundary.to_vec(),
-            interior,
+            interior: pick(0),
+            fixed: pick(2),
         })
     }
 
     /// Partition from boundary nodes (0-based node indices); node `j` owns DOFs
     /// `dofs_per_node·j .. dofs_per_node·(j+1)` (Lin: 2 per node in 2-D, 3 in 3-D).
     pub fn from_boundary_nodes(n: usize, dofs_per_node: usize, nodes: &[usize]) -> Result<Self> {
+        Self::from_nodes(n, dofs_per_node, nodes, &[])
+    }
+
+    /// Three-set partition from boundary and fixed nodes (0-based node indices, every DOF of a
+    /// listed node), see [`DofPartition::new`].
+    pub fn from_nodes(
+        n: usize,
+        dofs_per_node: usize,
+        boundary_nodes: &[usize],
+        fixed_nodes: &[usize],
+    ) -> Result<Self> {
         if dofs_per_node == 0 || !n.is_multiple_of(dofs_per_node) {
             return Err(ReductionError::InvalidParameter {
                 name: "dofs_per_node".into(),
@@ -53,19 +88,26 @@ impl DofPartition {
             });
         }
         let nn = n / dofs_per_node;
-        let mut dofs = Vec::with_capacity(nodes.len() * dofs_per_node);
-        for &j in nodes {
-            if j >= nn {
-                return Err(ReductionError::InvalidDofs {
-                    what: "boundary node set".into(),
-                    reason: format!(
-                        "node {j} (0-based) is out of range (the model has {nn} nodes)"
-                    ),
-                });
+        let dofs = |what: &str, nodes: &[usize]| {
+            let mut dofs = Vec::with_capacity(nodes.len() * dofs_per_node);
+            for &j in nodes {
+                if j >= nn {
+                    return Err(ReductionError::InvalidDofs {
+                        what: format!("{what} node set"),
+                        reason: format!(
+                            "node {j} (0-based) is out of range (the model has {nn} nodes)"
+                        ),
+                    });
+                }
+                dofs.extend((0..dofs_per_node).map(|c| dofs_per_node * j + c));
             }
-            dofs.extend((0..dofs_per_node).map(|c| dofs_per_node * j + c));
-        }
-        Self::from_boundary_dofs(n, &dofs)
+            Ok(dofs)
+        };
+        Self::new(
+            n,
+            &dofs("boundary", boundary_nodes)?,
+            &dofs("fixed", fixed_nodes)?,
+        )
     }
 
     /// Total number of DOFs.
@@ -81,5 +123,44 @@ impl DofPartition {
     /// Interior DOFs, ascending.
     pub fn interior(&self) -> &[usize] {
         &self.interior
+    }
+
+    /// Fixed (clamped) DOFs, ascending; empty for a two-set partition.
+    pub fn fixed(&self) -> &[usize] {
+        &self.fixed
+    }
+
+    /// The DOFs that are not fixed (boundary and interior), ascending.
+    pub fn unfixed(&self) -> Vec<usize> {
+        let mut is_fixed = vec![false; self.n];
+        for &d in &self.fixed {
+            is_fixed[d] = true;
+        }
+        (0..self.n).filter(|&d| !is_fixed[d]).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn three_sets_cover_every_dof_once() {
+        // invariant: boundary ∪ interior ∪ fixed = 0..n, disjoint; user order of the boundary
+        let p = DofPartition::from_nodes(12, 2, &[4, 1], &[0]).unwrap();
+        assert_eq!(p.boundary(), &[8, 9, 2, 3]);
+        assert_eq!(p.fixed(), &[0, 1]);
+        assert_eq!(p.interior(), &[4, 5, 6, 7, 10, 11]);
+        assert_eq!(p.unfixed(), vec![2, 3, 4, 5, 6, 7, 8, 9, 10, 11]);
+        let e = DofPartition::new(6, &[1, 2], &[2]).unwrap_err().to_string();
+        assert!(e.contains("fixed") && e.contains("DOF 2"), "{e}");
+        let e = DofPartition::new(6, &[1], &[7]).unwrap_err().to_string();
+        assert!(e.contains("fixed DOF set") && e.contains("7"), "{e}");
+        let e = DofPartition::new(6, &[1], &[3, 3]).unwrap_err().to_string();
+        assert!(e.contains("twice"), "{e}");
+        // files written before the fixed set existed still load
+        let old: DofPartition =
+            serde_json::from_str(r#"{"n":3,"boundary":[0],"interior":[1,2]}"#).unwrap();
+        assert_eq!(old, DofPartition::from_boundary_dofs(3, &[0]).unwrap());
     }
 }

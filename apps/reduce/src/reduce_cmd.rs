@@ -3,20 +3,24 @@
 //!
 //! ```text
 //! flowmbd-reduce reduce --mass M.mtx --stiffness K.mtx --boundary 1,5,10-12 --method cb \
-//!     --modes 20 --out model.json [--dofs-per-node 3] [--json]
+//!     --modes 20 --out model.json [--fixed 1-4] [--dofs-per-node 3] [--json]
 //! ```
 //!
-//! Models up to [`DENSE_LIMIT`] DOFs use the dense path (every method); larger ones the sparse
-//! path (one sparse Cholesky of `K_ii` for the static modes; Guyan and Craig–Bampton).
+//! Craig–Bampton and Guyan (CB without modes) at every size go through the library's one
+//! partitioned Craig–Bampton, `reduction::sparse::craig_bampton_sparse` (fixed / boundary /
+//! interior DOFs, one sparse Cholesky of `K_ii` for the static modes, shift-invert Lanczos with
+//! a Sturm check for the fixed-interface modes). The other methods use the dense bases of
+//! `reduction::basis`, limited to [`DENSE_LIMIT`] DOFs.
 
 use reduction::basis::{Method, ModeSelection, build_basis};
+use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse};
 use reduction::{DofPartition, ReducedModel};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-/// Largest model reduced with dense matrices.
+/// Largest model reduced with dense matrices (methods other than guyan and cb).
 pub const DENSE_LIMIT: usize = 3000;
 
 /// Reduction method on the command line.
@@ -60,6 +64,9 @@ pub struct Args {
     /// Boundary (interface) nodes, 1-based, comma-separated, ranges allowed: `1,5,10-12`.
     #[arg(long, value_name = "NODES")]
     boundary: String,
+    /// Fixed (clamped) nodes, 1-based, same syntax as --boundary; their DOFs are removed.
+    #[arg(long, value_name = "NODES")]
+    fixed: Option<String>,
     /// Reduction method.
     #[arg(long, value_enum, default_value = "cb")]
     method: MethodArg,
@@ -89,6 +96,8 @@ pub struct Summary {
     pub n_full: usize,
     /// Boundary DOFs kept.
     pub n_boundary: usize,
+    /// Fixed (clamped) DOFs.
+    pub n_fixed: usize,
     /// Reduced coordinates.
     pub n_reduced: usize,
     /// Lowest natural frequencies of the reduced model \[Hz\] (at most 20).
@@ -99,10 +108,10 @@ pub struct Summary {
     pub file: String,
 }
 
-fn parse_nodes(text: &str) -> Result<Vec<usize>, String> {
+fn parse_nodes(text: &str, flag: &str) -> Result<Vec<usize>, String> {
     let mut out = Vec::new();
     for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-        let bad = || format!("--boundary: \"{part}\" is not a node number or range a-b (1-based)");
+        let bad = || format!("{flag}: \"{part}\" is not a node number or range a-b (1-based)");
         if let Some((a, b)) = part.split_once('-') {
             let a: usize = a.trim().parse().map_err(|_| bad())?;
             let b: usize = b.trim().parse().map_err(|_| bad())?;
@@ -119,7 +128,7 @@ fn parse_nodes(text: &str) -> Result<Vec<usize>, String> {
         }
     }
     if out.is_empty() {
-        return Err("--boundary: no nodes given".into());
+        return Err(format!("{flag}: no nodes given"));
     }
     Ok(out)
 }
@@ -131,7 +140,11 @@ enum Failure {
 
 fn run_inner(a: &Args) -> Result<Summary, Failure> {
     let input = |e: String| Failure::Input(e);
-    let nodes = parse_nodes(&a.boundary).map_err(input)?;
+    let nodes = parse_nodes(&a.boundary, "--boundary").map_err(input)?;
+    let fixed = match &a.fixed {
+        Some(t) => parse_nodes(t, "--fixed").map_err(input)?,
+        None => Vec::new(),
+    };
     if a.dofs_per_node == 0 {
         return Err(Failure::Input("--dofs-per-node: must be at least 1".into()));
     }
@@ -159,57 +172,50 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
         )));
     }
     let n_nodes = n / a.dofs_per_node;
-    if let Some(j) = nodes.iter().find(|&&j| j > n_nodes) {
-        return Err(Failure::Input(format!(
-            "--boundary: node {j} is out of range (1-based; the model has {n_nodes} nodes)"
-        )));
+    for (flag, list) in [("--boundary", &nodes), ("--fixed", &fixed)] {
+        if let Some(j) = list.iter().find(|&&j| j > n_nodes) {
+            return Err(Failure::Input(format!(
+                "{flag}: node {j} is out of range (1-based; the model has {n_nodes} nodes)"
+            )));
+        }
     }
-    let zero_based: Vec<usize> = nodes.iter().map(|j| j - 1).collect();
-    let part = DofPartition::from_boundary_nodes(n, a.dofs_per_node, &zero_based)
-        .map_err(|e| Failure::Input(format!("--boundary: {e}")))?;
+    let zero_based = |v: &[usize]| v.iter().map(|j| j - 1).collect::<Vec<_>>();
+    let part =
+        DofPartition::from_nodes(n, a.dofs_per_node, &zero_based(&nodes), &zero_based(&fixed))
+            .map_err(|e| Failure::Input(format!("--boundary/--fixed: {e}")))?;
     let method = a.method.method();
     let t0 = Instant::now();
     let num = |e: reduction::ReductionError| Failure::Numerical(e.to_string());
-    let red = if n <= DENSE_LIMIT {
-        let (kd, md) = (k.to_dense(), m.to_dense());
-        let basis = build_basis(
-            kd.as_ref(),
-            md.as_ref(),
-            &part,
-            method,
-            &ModeSelection::Lowest(a.modes),
-        )
-        .map_err(|e| match e {
-            reduction::ReductionError::InvalidParameter { .. }
-            | reduction::ReductionError::InvalidDofs { .. } => Failure::Input(e.to_string()),
-            other => Failure::Numerical(other.to_string()),
-        })?;
-        ReducedModel::from_basis(basis, kd.as_ref(), md.as_ref(), None, a.dofs_per_node)
-            .map_err(num)?
-    } else {
-        match method {
-            Method::Guyan => {
-                let b = reduction::sparse::guyan_sparse(k.as_ref(), &part).map_err(num)?;
-                reduction::sparse::reduced_model_sparse(b, k.as_ref(), m.as_ref(), a.dofs_per_node)
-                    .map_err(num)?
-            }
-            Method::CraigBampton => {
-                reduction::sparse::craig_bampton_sparse(
-                    k.as_ref(),
-                    m.as_ref(),
-                    &part,
-                    a.modes,
-                    a.dofs_per_node,
-                )
+    let red = match method {
+        Method::Guyan | Method::CraigBampton => {
+            let modes = if method == Method::Guyan { 0 } else { a.modes };
+            let opts = CraigBamptonOptions::with_modes(modes);
+            craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, a.dofs_per_node)
                 .map_err(num)?
                 .0
-            }
-            other => {
-                return Err(Failure::Input(format!(
-                    "--method: {} needs the dense path, limited to {DENSE_LIMIT} DOFs (model has {n}); use guyan or cb",
-                    other.short_name()
-                )));
-            }
+        }
+        other if n <= DENSE_LIMIT => {
+            let (kd, md) = (k.to_dense(), m.to_dense());
+            let basis = build_basis(
+                kd.as_ref(),
+                md.as_ref(),
+                &part,
+                other,
+                &ModeSelection::Lowest(a.modes),
+            )
+            .map_err(|e| match e {
+                reduction::ReductionError::InvalidParameter { .. }
+                | reduction::ReductionError::InvalidDofs { .. } => Failure::Input(e.to_string()),
+                other => Failure::Numerical(other.to_string()),
+            })?;
+            ReducedModel::from_basis(basis, kd.as_ref(), md.as_ref(), None, a.dofs_per_node)
+                .map_err(num)?
+        }
+        other => {
+            return Err(Failure::Input(format!(
+                "--method: {} needs the dense path, limited to {DENSE_LIMIT} DOFs (model has {n}); use guyan or cb",
+                other.short_name()
+            )));
         }
     };
     let reduction_s = t0.elapsed().as_secs_f64();
@@ -220,6 +226,7 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
         method: method.short_name().into(),
         n_full: n,
         n_boundary: part.boundary().len(),
+        n_fixed: part.fixed().len(),
         n_reduced: red.n_reduced(),
         frequencies_hz: f.into_iter().take(20).collect(),
         reduction_s,

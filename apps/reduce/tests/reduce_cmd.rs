@@ -118,6 +118,71 @@ fn cb_of_the_lin_slab_matches_the_library() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+#[test]
+fn cb_with_a_fixed_set_matches_the_library() {
+    // Lin App. B slab clamped at nodes 1-3 and 19 (not colinear: every rigid-body motion
+    // restrained; fixed set), boundary nodes 16, 18, 28, 30 and 6
+    // fixed-interface modes; reference: the library's dense Craig–Bampton (`build_basis`) on
+    // the same three-set partition
+    let dir = tmp("cmd", "fixed");
+    let s = appendix_b_slab().unwrap();
+    let (m, k) = (dir.join("M.mtx"), dir.join("K.mtx"));
+    write_mtx(&m, &s.m);
+    write_mtx(&k, &s.k);
+    let file = dir.join("slab_cb_fixed.json");
+    let args = [
+        "--quiet",
+        "--json",
+        "--boundary",
+        "16,18,28,30",
+        "--modes",
+        "6",
+    ];
+    let out = reduce(&[&args[..], &["--fixed", "1-3,19"]].concat(), &m, &k, &file);
+    let summary = common::json_of(&out);
+    assert_eq!(summary["n_fixed"], 12);
+    assert_eq!(summary["n_reduced"], 18);
+    let red = ReducedModel::load(&file).unwrap();
+    for d in (0..9).chain(54..57) {
+        for j in 0..red.n_reduced() {
+            assert_eq!(red.psi[(d, j)], 0.0, "fixed row {d}");
+        }
+    }
+    let part = DofPartition::new(
+        90,
+        &node_dofs(&[16, 18, 28, 30]),
+        &node_dofs(&[1, 2, 3, 19]),
+    )
+    .unwrap();
+    let b = build_basis(
+        s.k.as_ref(),
+        s.m.as_ref(),
+        &part,
+        Method::CraigBampton,
+        &ModeSelection::Lowest(6),
+    )
+    .unwrap();
+    let lib = ReducedModel::from_basis(b, s.k.as_ref(), s.m.as_ref(), None, 3).unwrap();
+    let (f_file, f_lib) = (
+        red.natural_frequencies_hz().unwrap(),
+        lib.natural_frequencies_hz().unwrap(),
+    );
+    // clamped: no rigid-body zeros
+    assert!(f_lib[0] > 0.1, "{}", f_lib[0]);
+    for (i, (a, b)) in f_file.iter().zip(&f_lib).enumerate() {
+        assert!(
+            (a - b).abs() <= 1e-9 * b,
+            "frequency {i}: file {a} vs library {b}"
+        );
+    }
+    // a node both fixed and boundary is rejected naming the options
+    let out = reduce(&[&args[..], &["--fixed", "16"]].concat(), &m, &k, &file);
+    expect_input_error(&out, &["--fixed", "boundary"]);
+    let out = reduce(&[&args[..], &["--fixed", "31"]].concat(), &m, &k, &file);
+    expect_input_error(&out, &["--fixed", "31", "30 nodes"]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 fn expect_input_error(out: &Output, needles: &[&str]) {
     assert_eq!(
         out.status.code(),

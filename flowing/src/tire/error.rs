@@ -46,6 +46,9 @@ pub enum TireError {
     /// Error of the flowing-material layer (derivative operators).
     #[error(transparent)]
     Flow(#[from] crate::FlowError),
+    /// Error of the reduction layer (partitioned Craig–Bampton: static and free-node modes).
+    #[error(transparent)]
+    Reduction(#[from] reduction::ReductionError),
 }
 
 impl From<mbd_core::InvalidField> for TireError {

@@ -5,6 +5,10 @@
 //! 3. contact-node modes `Ψ^c`: all modes of `(K^cc, M^cc)` with free and rim nodes fixed;
 //! 4. static modes `Ψ_s = −(K^ff)⁻¹ K^fc` (condensation onto the contact nodes), `Ψ_s^c = Ψ_s Ψ^c`
 //!    (7.11);
+//!
+//! steps 2 and 4 are the partitioned Craig–Bampton of the `reduction` crate
+//! ([`reduction::sparse::craig_bampton_modes`]) with the rim as the fixed set, the contact DOFs
+//! as the boundary and the free DOFs as the interior; then
 //! 5. circumferential derivatives `T_,θ`, `T_,θθ` of every column, per Cartesian component
 //!    along each ring (App. A; periodic grids of the flowing crate);
 //! 6. projection onto the matrices of [`ReducedTire`].
@@ -17,10 +21,13 @@ use super::error::{TireError, invalid, linalg};
 use super::mesh::{TireFe, node_angle};
 use super::reduced::{ReducedTire, VizBasis};
 use crate::derivative::{DerivativeMethod, FdScheme, FlowLine, mode_shape_derivatives};
-use faer::prelude::*;
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
-use faer::{Accum, Mat, Par, Side};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Accum, Mat, Par};
+use fe_model::SparseEigenOptions;
 use fe_model::sparse::submatrix;
+use reduction::DofPartition;
+use reduction::sparse::{CraigBamptonOptions, craig_bampton_modes, fixed_interface_modes_sparse};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -61,7 +68,7 @@ impl Default for ReductionConfig {
 pub struct ReductionTimings {
     /// Free-node and contact-node eigen problems.
     pub modes_s: f64,
-    /// Static modes (sparse Cholesky of `K^ff` and solves).
+    /// Static modes (sparse Cholesky of `K^ff` and solves) and their product with `Ψ^c`.
     pub static_modes_s: f64,
     /// Circumferential derivatives.
     pub derivatives_s: f64,
@@ -138,6 +145,14 @@ impl TirePartition {
             rim: r,
         }
     }
+
+    /// The same split as a `reduction` partition: rim = fixed, contact = boundary (c-order),
+    /// free = interior (ascending, equal to [`TirePartition::f`]).
+    pub fn dof_partition(&self, n_dofs: usize) -> Result<DofPartition, TireError> {
+        let p = DofPartition::new(n_dofs, &self.c, &self.rim)?;
+        debug_assert_eq!(p.interior(), self.f.as_slice());
+        Ok(p)
+    }
 }
 
 fn diag_block(mass: &[f64], dofs: &[usize]) -> Mat<f64> {
@@ -146,33 +161,21 @@ fn diag_block(mass: &[f64], dofs: &[usize]) -> Mat<f64> {
     })
 }
 
-/// The lowest `count` modes of `(K, diag M)` restricted to `dofs` (dense below 3000 DOFs).
-fn lowest_modes(
-    fe: &TireFe,
-    dofs: &[usize],
-    count: usize,
-    what: &str,
-) -> Result<fe_model::Modes, TireError> {
-    let k = submatrix(fe.stiffness.as_ref(), dofs, dofs)?;
-    let count = count.min(dofs.len());
-    if dofs.len() <= 1200 || count * 3 >= dofs.len() {
-        let m = diag_block(&fe.mass, dofs);
-        Ok(fe_model::dense_modes(
-            k.to_dense().as_ref(),
-            m.as_ref(),
-            count,
-        )?)
-    } else {
-        let mt: Vec<faer::sparse::Triplet<usize, usize, f64>> = dofs
-            .iter()
-            .enumerate()
-            .map(|(i, &d)| faer::sparse::Triplet::new(i, i, fe.mass[d]))
-            .collect();
-        let m = faer::sparse::SparseColMat::try_new_from_triplets(dofs.len(), dofs.len(), &mt)
-            .map_err(|e| linalg(format!("{what}: mass matrix"), e))?;
-        let opts = fe_model::SparseEigenOptions::default();
-        let (modes, _report) = fe_model::sparse_modes(k.as_ref(), m.as_ref(), count, &opts)?;
-        Ok(modes)
+/// The lumped mass as a sparse diagonal matrix.
+fn sparse_mass(fe: &TireFe) -> Result<SparseColMat<usize, f64>, TireError> {
+    let t: Vec<Triplet<usize, usize, f64>> = (fe.mass.iter().enumerate())
+        .map(|(i, &m)| Triplet::new(i, i, m))
+        .collect();
+    SparseColMat::try_new_from_triplets(fe.n_dofs(), fe.n_dofs(), &t)
+        .map_err(|e| linalg("lumped mass matrix", e))
+}
+
+/// Eigen-solver options of the tire: dense up to 1200 DOFs (the coarse test tires), sparse
+/// shift-invert Lanczos with the Sturm check above.
+fn eigen_options() -> SparseEigenOptions {
+    SparseEigenOptions {
+        dense_below: 1200,
+        ..Default::default()
     }
 }
 
@@ -194,35 +197,32 @@ pub fn reduce(
     }
     let mut tim = ReductionTimings::default();
 
-    // eigen problems (steps 2-3)
+    // free-node modes and static modes (steps 2 and 4): the partitioned Craig-Bampton with the
+    // rim fixed and the contact DOFs as boundary
+    let m_sparse = sparse_mass(fe)?;
+    let cb = craig_bampton_modes(
+        fe.stiffness.as_ref(),
+        m_sparse.as_ref(),
+        &part.dof_partition(fe.n_dofs())?,
+        &CraigBamptonOptions {
+            n_modes: cfg.free_modes,
+            eigen: eigen_options(),
+        },
+    )?;
+    drop(m_sparse);
+    let fmodes = cb.normal_modes;
+    // contact-node modes (step 3)
     let ts = Instant::now();
-    let fmodes = lowest_modes(fe, &part.f, cfg.free_modes, "free-node modes")?;
     let k_cc = submatrix(fe.stiffness.as_ref(), &part.c, &part.c)?.to_dense();
     let cmodes = fe_model::dense_modes(k_cc.as_ref(), diag_block(&fe.mass, &part.c).as_ref(), nc3)?;
-    tim.modes_s = ts.elapsed().as_secs_f64();
-
-    // static modes (step 4)
+    tim.modes_s = cb.report.normal_modes_s + ts.elapsed().as_secs_f64();
     let ts = Instant::now();
-    let k_ff = submatrix(fe.stiffness.as_ref(), &part.f, &part.f)?;
-    let k_fc = submatrix(fe.stiffness.as_ref(), &part.f, &part.c)?.to_dense();
-    let llt = k_ff.sp_cholesky(Side::Lower).map_err(|e| {
-        linalg(
-            "static modes: Cholesky of K^ff (is the rim set fixing the tire?)",
-            e,
-        )
-    })?;
-    let mut psi_s = k_fc;
-    llt.solve_in_place(psi_s.as_mut());
-    for j in 0..psi_s.ncols() {
-        for i in 0..psi_s.nrows() {
-            psi_s[(i, j)] = -psi_s[(i, j)];
-        }
-    }
-    let psi_sc = &psi_s * &cmodes.vectors;
-    tim.static_modes_s = ts.elapsed().as_secs_f64();
+    let psi_sc = &cb.static_modes * &cmodes.vectors;
+    drop(cb.static_modes);
+    tim.static_modes_s = cb.report.static_modes_s + ts.elapsed().as_secs_f64();
 
     // basis T on all DOFs (rim rows zero)
-    let nfm = fmodes.len();
+    let nfm = fmodes.values.len();
     let nz = nfm + nc3;
     let n = fe.n_dofs();
     let mut t = Mat::<f64>::zeros(n, nz);
@@ -240,7 +240,6 @@ pub fn reduce(
         }
     }
     drop(psi_sc);
-    drop(psi_s);
 
     // derivatives (step 5)
     let ts = Instant::now();
@@ -380,7 +379,7 @@ pub fn reduce(
             n_free_modes: nfm,
             contact_nodes: contact,
             contact_positions,
-            free_mode_hz: fmodes.frequencies_hz.clone(),
+            free_mode_hz: fmodes.frequencies_hz,
             contact_mode_hz: cmodes.frequencies_hz.clone(),
             tire_mass,
             rim_mass,
@@ -415,9 +414,19 @@ pub fn reduce(
 }
 
 /// Eigenfrequencies of the full FE tire with the rim fixed, `K φ = ω² M φ` on all non-rim DOFs
-/// \[Hz\] (the reference of the reduction tests; dense, small models only).
+/// \[Hz\] (the reference of the reduction tests): the fixed-interface modes of the partition
+/// with the rim fixed and no boundary (dense up to 1200 DOFs, sparse shift-invert above).
 pub fn full_frequencies_hz(fe: &TireFe, count: usize) -> Result<Vec<f64>, TireError> {
-    let rim = fe.rim_mask();
-    let dofs: Vec<usize> = (0..fe.n_dofs()).filter(|d| !rim[d / 3]).collect();
-    Ok(lowest_modes(fe, &dofs, count, "full tire modes")?.frequencies_hz)
+    let mask = fe.rim_mask();
+    let rim: Vec<usize> = (0..fe.n_dofs()).filter(|d| mask[d / 3]).collect();
+    let part = DofPartition::new(fe.n_dofs(), &[], &rim)?;
+    let m = sparse_mass(fe)?;
+    let (modes, _) = fixed_interface_modes_sparse(
+        fe.stiffness.as_ref(),
+        m.as_ref(),
+        &part,
+        count,
+        &eigen_options(),
+    )?;
+    Ok(modes.frequencies_hz)
 }
