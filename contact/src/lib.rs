@@ -13,6 +13,8 @@
 //!   [`SlipRegularized`] (Ribaric U20), [`Stribeck`], and [`FrictionSpec`] for configuration;
 //! * [`point`]: nodal contact with exact derivatives;
 //! * [`distributed`]: Gauss-quadrature contact along elements (Kerkkänen (3.26)–(3.27));
+//! * [`spatial`]: 3D contact — [`spatial::Cylinder`] (optionally crowned), [`spatial::HalfSpace`],
+//!   [`spatial::point_contact_3d`] with the slip 2-vector of the same friction laws;
 //! * [`lagrange`]: unilateral constraints with an active set (used by the ancf crate's static
 //!   and generalized-α contact solvers).
 
@@ -26,6 +28,7 @@ pub mod lagrange;
 pub mod normal;
 pub mod point;
 pub mod quadrature;
+pub mod spatial;
 
 pub use distributed::{ContactRecord, ElementContact, LineContact};
 pub use friction::{
