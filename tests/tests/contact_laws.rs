@@ -5,9 +5,8 @@
 use ancf::element::{BeltElement, Element};
 use ancf::{Material, Section};
 use contact::{
-    ActiveSet, Coulomb, CoulombTanh, CreepRate, Disk, ElementContact, FrictionLaw,
-    Frictionless, GaussRule, LineContact, LinearPenalty, PolynomialPenalty, point_contact,
-    unilateral_row,
+    ActiveSet, Coulomb, CoulombTanh, CreepRate, Disk, ElementContact, FrictionLaw, Frictionless,
+    GaussRule, LineContact, LinearPenalty, PolynomialPenalty, point_contact, unilateral_row,
 };
 
 /// Newton solve of a node pushed onto a disk by `push` \[N\] (towards the centre along −n₀):

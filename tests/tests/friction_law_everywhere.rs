@@ -107,7 +107,10 @@ fn stribeck_runs_in_flowing_belt_ancf_belt_and_tire() {
     println!("flowing belt ω₂: tanh {w_ref}, Stribeck μs = μk {w_same}, μs = 1.6 {w_peak}");
     assert!(close(w_ref, w_same), "flowing: {w_ref} vs {w_same}");
     assert!(diss_ref && diss_peak, "flowing: friction not dissipative");
-    assert!((w_peak - w_ref).abs() > 1e-9 * w_ref.abs(), "flowing: Stribeck had no effect");
+    assert!(
+        (w_peak - w_ref).abs() > 1e-9 * w_ref.abs(),
+        "flowing: Stribeck had no effect"
+    );
 
     // ANCF belt
     let (a_ref, adiss_ref) = ancf_run(tanh(1.2));
@@ -116,7 +119,10 @@ fn stribeck_runs_in_flowing_belt_ancf_belt_and_tire() {
     println!("ANCF belt ω₂: tanh {a_ref}, Stribeck μs = μk {a_same}, μs = 1.6 {a_peak}");
     assert!(close(a_ref, a_same), "ANCF: {a_ref} vs {a_same}");
     assert!(adiss_ref && adiss_peak, "ANCF: friction not dissipative");
-    assert!((a_peak - a_ref).abs() > 1e-9 * a_ref.abs(), "ANCF: Stribeck had no effect");
+    assert!(
+        (a_peak - a_ref).abs() > 1e-9 * a_ref.abs(),
+        "ANCF: Stribeck had no effect"
+    );
 
     // rolling tire (Ribaric §8.4.3: μ = 0.85)
     let (fx_ref, fy_ref) = tire_run(tanh(0.85));
@@ -126,5 +132,8 @@ fn stribeck_runs_in_flowing_belt_ancf_belt_and_tire() {
         "tire (Fx, Fy): tanh ({fx_ref}, {fy_ref}), Stribeck μs = μk ({fx_same}, {fy_same}), μs = 1.2 ({fx_peak}, {fy_peak})"
     );
     assert!(close(fx_ref, fx_same) && close(fy_ref, fy_same), "tire");
-    assert!((fx_peak - fx_ref).abs() > 1e-9 * fy_ref.abs(), "tire: Stribeck had no effect");
+    assert!(
+        (fx_peak - fx_ref).abs() > 1e-9 * fy_ref.abs(),
+        "tire: Stribeck had no effect"
+    );
 }

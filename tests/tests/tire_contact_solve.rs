@@ -10,8 +10,8 @@
 use contact::{Coulomb, SlipRegularized};
 use flowing::tire::TireFriction;
 use flowing::tire::contact_solve::{ContactSolver, DenseProblem, SolveReport, SolveSettings};
-use std::sync::Arc;
 use proptest::prelude::*;
+use std::sync::Arc;
 
 /// Column-major 3m × 3m matrix from row-major rows.
 fn col_major(rows: &[Vec<f64>]) -> Vec<f64> {

@@ -102,8 +102,8 @@ impl FrictionLaw for Coulomb {
         if f0[0].hypot(f0[1]) <= rho {
             return f0;
         }
-        let bn = (b[(0, 0)].powi(2) + b[(0, 1)].powi(2) + b[(1, 0)].powi(2) + b[(1, 1)].powi(2))
-            .sqrt();
+        let bn =
+            (b[(0, 0)].powi(2) + b[(0, 1)].powi(2) + b[(1, 0)].powi(2) + b[(1, 1)].powi(2)).sqrt();
         let (mut lo, mut hi) = (0.0, bn + r[0].hypot(r[1]) / rho);
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);

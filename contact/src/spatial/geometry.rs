@@ -72,7 +72,12 @@ impl Surface3 for Cylinder {
         let (er, inv) = if rho > 0.0 {
             (radial / rho, 1.0 / rho)
         } else {
-            (a.cross(&Vector3::x()).try_normalize(0.0).unwrap_or(Vector3::y()), 0.0)
+            (
+                a.cross(&Vector3::x())
+                    .try_normalize(0.0)
+                    .unwrap_or(Vector3::y()),
+                0.0,
+            )
         };
         let r = self.radius - self.crown * zeta * zeta;
         let drdz = -2.0 * self.crown * zeta;

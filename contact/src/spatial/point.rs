@@ -60,7 +60,11 @@ where
     let proj = Matrix3::identity() - n * n.transpose();
     let t1 = (proj * sp.tangent)
         .try_normalize(1e-300)
-        .unwrap_or_else(|| n.cross(&Vector3::x()).try_normalize(0.0).unwrap_or(Vector3::y()));
+        .unwrap_or_else(|| {
+            n.cross(&Vector3::x())
+                .try_normalize(0.0)
+                .unwrap_or(Vector3::y())
+        });
     let t2 = n.cross(&t1);
     let tb = Matrix3x2::from_columns(&[t1, t2]);
     let w = v - sp.surface_velocity;
@@ -88,10 +92,7 @@ where
     let dft_dw = tb * ff.d_slip * tb.transpose() + n * n.transpose() * gs;
     let tdn = tb * ff.d_normal;
     let ft3 = tb * ff.force;
-    let df_dp = n * dfn_dp.transpose()
-        + dn * nf.force
-        + dft_dw * dw_dp
-        + tdn * dfn_dp.transpose();
+    let df_dp = n * dfn_dp.transpose() + dn * nf.force + dft_dw * dw_dp + tdn * dfn_dp.transpose();
     let df_dv = n * dfn_dv.transpose() + dft_dw * proj + tdn * dfn_dv.transpose();
     let drate_dw = n.dot(&sp.dus_domega);
     let dfn_dw = nf.d_rate * drate_dw;
@@ -160,9 +161,19 @@ mod tests {
             let dv = (f(&p, &(v + e), 20.0).force - f(&p, &(v - e), 20.0).force) / (2.0 * h);
             for i in 0..3 {
                 let sc = 1e-5 * c.df_dp.amax();
-                assert!((dp[i] - c.df_dp[(i, j)]).abs() < sc, "df{i}/dp{j}: {} vs {}", dp[i], c.df_dp[(i, j)]);
+                assert!(
+                    (dp[i] - c.df_dp[(i, j)]).abs() < sc,
+                    "df{i}/dp{j}: {} vs {}",
+                    dp[i],
+                    c.df_dp[(i, j)]
+                );
                 let sc = 1e-5 * c.df_dv.amax();
-                assert!((dv[i] - c.df_dv[(i, j)]).abs() < sc, "df{i}/dv{j}: {} vs {}", dv[i], c.df_dv[(i, j)]);
+                assert!(
+                    (dv[i] - c.df_dv[(i, j)]).abs() < sc,
+                    "df{i}/dv{j}: {} vs {}",
+                    dv[i],
+                    c.df_dv[(i, j)]
+                );
             }
         }
         let dw = (f(&p, &v, 20.0 + 1e-6).force - f(&p, &v, 20.0 - 1e-6).force) / 2e-6;

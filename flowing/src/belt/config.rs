@@ -1,7 +1,7 @@
 //! Parameters of a two-pulley belt drive (defaults: Ribaric Table 6-1).
 
-use serde::{Deserialize, Serialize};
 use contact::friction::FrictionSpec;
+use serde::{Deserialize, Serialize};
 
 /// Geometry of the drive: pulley 1 (driver) at (0, 0), pulley 2 (driven) at (`center_distance`, 0).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -38,6 +38,7 @@
 //! ([`DelassusSource`]): only contacts that carry a force or are pressed need them.
 
 use super::lcp::LcpWork;
+use contact::friction::{Coulomb, FrictionLaw};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
 use faer::linalg::triangular_solve::{
@@ -45,7 +46,6 @@ use faer::linalg::triangular_solve::{
 };
 use faer::prelude::*;
 use faer::{Mat, Par};
-use contact::friction::{Coulomb, FrictionLaw};
 use nalgebra::{Matrix2, Vector2};
 use std::sync::Arc;
 
@@ -613,9 +613,13 @@ impl ContactSolver {
             let mut g = [[0.0; 3]; 3];
             g[0][0] = rn;
             // Φ_T = f − p(f, u, λ̂), λ̂ = λ − r_N g: dΦ_T = (I − p_f) df − p_u du − p_λ̂ (dλ − r_N dg)
-            let ac = s
-                .law
-                .augmented(Vector2::new(f[0], f[1]), Vector2::new(u[0], u[1]), sig, rt, true);
+            let ac = s.law.augmented(
+                Vector2::new(f[0], f[1]),
+                Vector2::new(u[0], u[1]),
+                sig,
+                rt,
+                true,
+            );
             if ac.stick {
                 self.pattern[k] = 2;
             }

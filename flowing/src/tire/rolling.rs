@@ -69,8 +69,8 @@
 //! surface speed); [`StepStats::late_contacts`] counts impacts begun within one step.
 
 use super::contact_solve::{ContactSolver, DelassusSource, SolveSettings};
-use super::friction::TireFriction;
 use super::error::{TireError, invalid};
+use super::friction::TireFriction;
 use super::ground::{Ground, GroundPoint};
 use super::reduced::ReducedTire;
 use faer::linalg::matmul::matmul;
