@@ -7,10 +7,14 @@
 //! * [`geometry`]: [`Surface`] with [`Disk`], [`HalfPlane`], [`CleatedDrum`], [`CleatedRoad`];
 //! * [`normal`]: [`NormalLaw`] with [`LinearPenalty`] (Kerkkänen (3.20)) and
 //!   [`PolynomialPenalty`] (Ribaric (6.1));
-//! * [`friction`]: [`FrictionLaw`] with [`CoulombTanh`] (Ribaric (6.2)), [`CreepRate`]
-//!   (Kerkkänen Fig. 3.3), [`CoulombSlip`] (Ribaric §8.4.3);
+//! * [`friction`]: the one [`FrictionLaw`] trait (planar and spatial slip, smooth or
+//!   set-valued with the Alart–Curnier projection) with [`CoulombTanh`] (Ribaric (6.2)),
+//!   [`CreepRate`] (Kerkkänen Fig. 3.3), [`Coulomb`] (Ribaric §7.3, §8.4.3),
+//!   [`SlipRegularized`] (Ribaric U20), [`Stribeck`], and [`FrictionSpec`] for configuration;
 //! * [`point`]: nodal contact with exact derivatives;
 //! * [`distributed`]: Gauss-quadrature contact along elements (Kerkkänen (3.26)–(3.27));
+//! * [`spatial`]: 3D contact — [`spatial::Cylinder`] (optionally crowned), [`spatial::HalfSpace`],
+//!   [`spatial::point_contact_3d`] with the slip 2-vector of the same friction laws;
 //! * [`lagrange`]: unilateral constraints with an active set (used by the ancf crate's static
 //!   and generalized-α contact solvers).
 
@@ -24,9 +28,13 @@ pub mod lagrange;
 pub mod normal;
 pub mod point;
 pub mod quadrature;
+pub mod spatial;
 
 pub use distributed::{ContactRecord, ElementContact, LineContact};
-pub use friction::{CoulombSlip, CoulombTanh, CreepRate, FrictionForce, FrictionLaw, Frictionless};
+pub use friction::{
+    Augmented, Coulomb, CoulombTanh, CreepRate, FrictionForce, FrictionLaw, FrictionSpec,
+    FrictionSpecError, Frictionless, SlipRegularized, Stribeck, TangentFriction,
+};
 pub use geometry::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface, SurfacePoint};
 pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};
 pub use normal::{LinearPenalty, NormalForce, NormalLaw, PolynomialPenalty};

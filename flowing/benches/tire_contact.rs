@@ -56,7 +56,7 @@ fn main() {
         (
             "Newton, warm + reuse",
             SolveSettings {
-                mu: 0.85,
+                law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
                 ..SolveSettings::default()
             },
             true,
@@ -64,7 +64,7 @@ fn main() {
         (
             "Newton, cold",
             SolveSettings {
-                mu: 0.85,
+                law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
                 ..SolveSettings::default()
             },
             false,
@@ -72,7 +72,7 @@ fn main() {
         (
             "alternation (fallback), warm",
             SolveSettings {
-                mu: 0.85,
+                law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
                 max_newton: 0,
                 max_rounds: 5000,
                 ..SolveSettings::default()

@@ -5,9 +5,8 @@
 use ancf::element::{BeltElement, Element};
 use ancf::{Material, Section};
 use contact::{
-    ActiveSet, CoulombSlip, CoulombTanh, CreepRate, Disk, ElementContact, FrictionLaw,
-    Frictionless, GaussRule, LineContact, LinearPenalty, PolynomialPenalty, point_contact,
-    unilateral_row,
+    ActiveSet, Coulomb, CoulombTanh, CreepRate, Disk, ElementContact, FrictionLaw, Frictionless,
+    GaussRule, LineContact, LinearPenalty, PolynomialPenalty, point_contact, unilateral_row,
 };
 
 /// Newton solve of a node pushed onto a disk by `push` \[N\] (towards the centre along −n₀):
@@ -71,7 +70,7 @@ fn penalty_node_on_circle_recovers_f_equals_k_d() {
 // Reference: tanh(κv) → sign(v): |F_tanh − F_sign| = μ|F_N|(1 − tanh(κ|v|)) ≤ 2μ|F_N| e^{−2κ|v|}.
 #[test]
 fn tanh_law_tends_to_sign_law() {
-    let sign = CoulombSlip { mu: 1.2 };
+    let sign = Coulomb { mu: 1.2 };
     let mut prev = f64::INFINITY;
     for kappa in [10.0, 40.0, 100.0, 1e3, 1e4] {
         let law = CoulombTanh { mu: 1.2, kappa };

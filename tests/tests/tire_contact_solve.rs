@@ -7,10 +7,11 @@
 //! * the complementarity and friction-cone invariants on random positive definite Delassus
 //!   problems (proptest), for the Coulomb and the regularised law (Ribaric seed note U20).
 
-use flowing::tire::contact_solve::{
-    ContactSolver, DenseProblem, FrictionLaw, SolveReport, SolveSettings,
-};
+use contact::{Coulomb, SlipRegularized};
+use flowing::tire::TireFriction;
+use flowing::tire::contact_solve::{ContactSolver, DenseProblem, SolveReport, SolveSettings};
 use proptest::prelude::*;
+use std::sync::Arc;
 
 /// Column-major 3m × 3m matrix from row-major rows.
 fn col_major(rows: &[Vec<f64>]) -> Vec<f64> {
@@ -55,7 +56,7 @@ fn outputs(d: &[f64], b: &[f64], x: &[f64]) -> Vec<f64> {
 
 fn coulomb(mu: f64) -> SolveSettings {
     SolveSettings {
-        mu,
+        law: Arc::new(Coulomb { mu }),
         ..SolveSettings::default()
     }
 }
@@ -465,7 +466,7 @@ proptest! {
         eps in 0.05f64..1.0,
     ) {
         let (d, b) = random_problem(m, &seed, &gaps, &slips);
-        let s = SolveSettings { mu, law: FrictionLaw::Regularized, epsilon: eps, ..SolveSettings::default() };
+        let s = SolveSettings { law: Arc::new(SlipRegularized { mu, epsilon: eps }), ..SolveSettings::default() };
         let (x, rep) = solve(&d, &b, &vec![0.0; 3 * m], &s);
         prop_assert!(rep.converged, "{rep:?}");
         let y = outputs(&d, &b, &x);
@@ -534,10 +535,10 @@ fn rolling_config_friction_law_parses() {
     use flowing::tire::RollingConfig;
     let old: RollingConfig =
         toml::from_str("friction = 0.85\nslip_regularization = 0.05\n").unwrap();
-    assert_eq!(old.friction_law, FrictionLaw::Coulomb);
+    assert_eq!(old.friction_law, TireFriction::Coulomb);
     let reg: RollingConfig =
         toml::from_str("friction_law = \"regularized\"\nslip_regularization = 0.02\n").unwrap();
-    assert_eq!(reg.friction_law, FrictionLaw::Regularized);
+    assert_eq!(reg.friction_law, TireFriction::Regularized);
     assert!(reg.validate().is_ok());
     let bad = toml::from_str::<RollingConfig>("friction_law = \"sticky\"\n").unwrap_err();
     assert!(bad.to_string().contains("sticky"), "{bad}");

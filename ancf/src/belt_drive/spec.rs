@@ -231,7 +231,7 @@ impl BeltDriveSpec {
         }
         c.friction
             .validate()
-            .map_err(|(f, r)| invalid(format!("contact.{f}"), r))?;
+            .map_err(|e| invalid(format!("contact.friction.{}", e.field), e.reason))?;
         Ok(())
     }
 }

@@ -1,5 +1,6 @@
 //! Parameters of a two-pulley belt drive (defaults: Ribaric Table 6-1).
 
+use contact::friction::FrictionSpec;
 use serde::{Deserialize, Serialize};
 
 /// Geometry of the drive: pulley 1 (driver) at (0, 0), pulley 2 (driven) at (`center_distance`, 0).
@@ -78,7 +79,7 @@ impl Default for BeltMesh {
     }
 }
 
-/// Belt–pulley contact: penalty (6.1) and tanh friction (6.2).
+/// Belt–pulley contact: penalty (6.1) and tanh friction (6.2), or any friction law.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltContact {
@@ -90,6 +91,20 @@ pub struct BeltContact {
     pub mu: f64,
     /// Slope of the tanh regularisation κ \[s/m\].
     pub kappa: f64,
+    /// Friction law table (`{ law = "stribeck", … }`, see [`FrictionSpec`]) replacing the
+    /// tanh law of `mu` and `kappa` when given.
+    pub friction: Option<FrictionSpec>,
+}
+
+impl BeltContact {
+    /// The friction law per contact node: `friction` if given, else Ribaric (6.2) with `mu`,
+    /// `kappa`.
+    pub fn friction_law(&self) -> FrictionSpec {
+        self.friction.unwrap_or(FrictionSpec::Tanh {
+            mu: self.mu,
+            kappa: self.kappa,
+        })
+    }
 }
 
 impl Default for BeltContact {
@@ -100,6 +115,7 @@ impl Default for BeltContact {
             penalty_linear: 6.5e7,
             mu: 1.2,
             kappa: 40.0,
+            friction: None,
         }
     }
 }
@@ -235,6 +251,10 @@ impl BeltDriveConfig {
             if !(v.is_finite() && v >= 0.0) {
                 return Err((name.into(), format!("must be finite and >= 0 (got {v})")));
             }
+        }
+        if let Some(f) = self.contact.friction {
+            f.validate()
+                .map_err(|e| (format!("contact.friction.{}", e.field), e.reason))?;
         }
         if self.mesh.span_elements < 2 {
             return Err(("mesh.span_elements".into(), "must be at least 2".into()));

@@ -34,7 +34,7 @@ use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, FlowingBasis, NODE_DOFS};
 use super::schedule::Schedule;
 use super::statics::dense_equilibrium;
-use contact::friction::CoulombTanh;
+use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
@@ -63,7 +63,7 @@ pub struct FlowingBelt {
     /// Load torque on the driven pulley \[N m\], opposing its rotation.
     pub load_torque: Schedule,
     pulleys: [PulleyFrame; 2],
-    friction: CoulombTanh,
+    friction: FrictionSpec,
     m: usize,
     a_mass: Mat<f64>,
     mts: Mat<f64>,
@@ -191,10 +191,7 @@ impl FlowingBelt {
             turn: 1.0,
         });
         Ok(Self {
-            friction: CoulombTanh {
-                mu: cfg.contact.mu,
-                kappa: cfg.contact.kappa,
-            },
+            friction: cfg.contact.friction_law(),
             inertia: cfg.driven_inertia,
             fe,
             basis,

@@ -61,7 +61,7 @@ use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, NODE_DOFS};
 use super::schedule::Schedule;
 use super::statics::dense_equilibrium;
-use contact::friction::CoulombTanh;
+use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use faer::sparse::{SparseColMat, Triplet};
@@ -103,7 +103,7 @@ pub struct NodalBelt {
     pub reference_node: usize,
     section: Frame2dSection,
     pulleys: [PulleyFrame; 2],
-    friction: CoulombTanh,
+    friction: FrictionSpec,
     laws: Vec<PolynomialPenalty>,
     inertia: f64,
     mass_total: f64,
@@ -211,10 +211,7 @@ impl NodalBelt {
         let belt = Self {
             section,
             pulleys,
-            friction: CoulombTanh {
-                mu: cfg.contact.mu,
-                kappa: cfg.contact.kappa,
-            },
+            friction: cfg.contact.friction_law(),
             laws,
             inertia: cfg.driven_inertia,
             mass_total,

@@ -31,12 +31,14 @@
 //! pressed enter the small dense system, which is solved by a faer LU (sequential, buffers
 //! reused). A backtracking (Armijo) line search on `½‖Φ‖²` globalises the method; if it stalls,
 //! the alternation of the normal LCP ([`LcpWork`], friction frozen) and a block Gauss–Seidel on
-//! the friction forces (exact local Coulomb solve per contact) is run to the same tolerance.
+//! the friction forces (exact one-contact solve [`FrictionLaw::local_force`] of the law) is run
+//! to the same tolerance.
 //!
 //! The columns of `D` and the tangential free velocities are supplied lazily by the caller
 //! ([`DelassusSource`]): only contacts that carry a force or are pressed need them.
 
 use super::lcp::LcpWork;
+use contact::friction::{Coulomb, FrictionLaw};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
 use faer::linalg::triangular_solve::{
@@ -44,29 +46,16 @@ use faer::linalg::triangular_solve::{
 };
 use faer::prelude::*;
 use faer::{Mat, Par};
-use serde::{Deserialize, Serialize};
-
-/// Friction law of the contact nodes (Ribaric §7.3, §8.4.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum FrictionLaw {
-    /// Set-valued Coulomb friction with stick: `|f| ≤ μλ`, `f = −μλ u/|u|` when slipping.
-    #[default]
-    Coulomb,
-    /// Ribaric's slip-only regularised sign `f = −μλ u/√(|u|² + ε²)` (seed note U20), with
-    /// `ε` = `slip_regularization` \[m/s\].
-    Regularized,
-}
+use nalgebra::{Matrix2, Vector2};
+use std::sync::Arc;
 
 /// Settings of [`ContactSolver::solve`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct SolveSettings {
-    /// Friction coefficient μ.
-    pub mu: f64,
-    /// Friction law.
-    pub law: FrictionLaw,
-    /// Regularisation ε of the regularised law \[m/s\].
-    pub epsilon: f64,
+    /// Friction law of the contact nodes, any [`FrictionLaw`] (Ribaric §7.3, §8.4.3: set-valued
+    /// [`Coulomb`]; seed note U20: [`contact::SlipRegularized`]). Its tangential equation is
+    /// the Alart–Curnier `Φ_T = f − p(f, u, λ̂)` of [`FrictionLaw::augmented`].
+    pub law: Arc<dyn FrictionLaw>,
     /// Relative tolerance on `‖Φ‖∞ / max λ` (forces).
     pub tol: f64,
     /// Newton iterations before the fallback.
@@ -78,9 +67,7 @@ pub struct SolveSettings {
 impl Default for SolveSettings {
     fn default() -> Self {
         Self {
-            mu: 0.0,
-            law: FrictionLaw::Coulomb,
-            epsilon: 0.05,
+            law: Arc::new(Coulomb { mu: 0.0 }),
             tol: 1e-10,
             max_newton: 30,
             max_rounds: 500,
@@ -361,26 +348,11 @@ impl ContactSolver {
                 phi[3 * k + 2] = f[1];
             } else {
                 phi[3 * k] = lam - sig;
-                let u = [y[3 * k + 1], y[3 * k + 2]];
-                let p = match s.law {
-                    FrictionLaw::Coulomb => {
-                        let rho = s.mu * sig;
-                        let z = [f[0] - self.rt[k] * u[0], f[1] - self.rt[k] * u[1]];
-                        let nz = z[0].hypot(z[1]);
-                        if rho <= 0.0 {
-                            // μ = 0: the disk is a point, f = 0 whatever the slip
-                            [0.0, 0.0]
-                        } else if nz <= rho {
-                            z
-                        } else {
-                            [rho * z[0] / nz, rho * z[1] / nz]
-                        }
-                    }
-                    FrictionLaw::Regularized => {
-                        let r = (u[0] * u[0] + u[1] * u[1] + s.epsilon * s.epsilon).sqrt();
-                        [-s.mu * sig * u[0] / r, -s.mu * sig * u[1] / r]
-                    }
-                };
+                let u = Vector2::new(y[3 * k + 1], y[3 * k + 2]);
+                let p = s
+                    .law
+                    .augmented(Vector2::new(f[0], f[1]), u, sig, self.rt[k], false)
+                    .target;
                 phi[3 * k + 1] = f[0] - p[0];
                 phi[3 * k + 2] = f[1] - p[1];
             }
@@ -461,7 +433,7 @@ impl ContactSolver {
             rep.converged = true;
             return rep;
         }
-        self.need_slip = s.mu > 0.0;
+        self.need_slip = s.law.coefficient() > 0.0;
         for k in 0..m {
             self.rn[k] = 1.0 / diag[k][0].abs().max(1e-300);
             self.rt[k] = 1.0 / diag[k][1].abs().max(1e-300);
@@ -640,51 +612,23 @@ impl ContactSolver {
             let mut l = [[0.0; 3]; 3];
             let mut g = [[0.0; 3]; 3];
             g[0][0] = rn;
-            match s.law {
-                FrictionLaw::Coulomb => {
-                    let rho = s.mu * sig;
-                    let z = [f[0] - rt * u[0], f[1] - rt * u[1]];
-                    let nz = z[0].hypot(z[1]);
-                    if rho <= 0.0 {
-                        // μ = 0: Φ_T = f
-                        l[1][1] = 1.0;
-                        l[2][2] = 1.0;
-                    } else if nz <= rho {
-                        // stick: Φ_T = r_T u
-                        self.pattern[k] = 2;
-                        g[1][1] = rt;
-                        g[2][2] = rt;
-                    } else {
-                        // slip: Φ_T = f − ρ ẑ; dΦ_T = (I − aQ) df + a r_T Q du − μ ẑ dλ̂
-                        let zh = [z[0] / nz, z[1] / nz];
-                        let a = rho / nz;
-                        let q = [
-                            [1.0 - zh[0] * zh[0], -zh[0] * zh[1]],
-                            [-zh[1] * zh[0], 1.0 - zh[1] * zh[1]],
-                        ];
-                        for r in 0..2 {
-                            l[1 + r][0] = -s.mu * zh[r];
-                            g[1 + r][0] = s.mu * rn * zh[r];
-                            for c in 0..2 {
-                                l[1 + r][1 + c] = if r == c { 1.0 } else { 0.0 } - a * q[r][c];
-                                g[1 + r][1 + c] = a * rt * q[r][c];
-                            }
-                        }
-                    }
-                }
-                FrictionLaw::Regularized => {
-                    // Φ_T = f + μ λ̂ u/ρ(u), ρ = √(|u|²+ε²)
-                    let rr = (u[0] * u[0] + u[1] * u[1] + s.epsilon * s.epsilon).sqrt();
-                    let sv = [u[0] / rr, u[1] / rr];
-                    for r in 0..2 {
-                        l[1 + r][0] = s.mu * sv[r];
-                        g[1 + r][0] = -s.mu * rn * sv[r];
-                        l[1 + r][1 + r] = 1.0;
-                        for c in 0..2 {
-                            let js = (if r == c { 1.0 } else { 0.0 } - sv[r] * sv[c]) / rr;
-                            g[1 + r][1 + c] = s.mu * sig * js;
-                        }
-                    }
+            // Φ_T = f − p(f, u, λ̂), λ̂ = λ − r_N g: dΦ_T = (I − p_f) df − p_u du − p_λ̂ (dλ − r_N dg)
+            let ac = s.law.augmented(
+                Vector2::new(f[0], f[1]),
+                Vector2::new(u[0], u[1]),
+                sig,
+                rt,
+                true,
+            );
+            if ac.stick {
+                self.pattern[k] = 2;
+            }
+            for r in 0..2 {
+                l[1 + r][0] = -ac.d_normal[r];
+                g[1 + r][0] = rn * ac.d_normal[r];
+                for c in 0..2 {
+                    l[1 + r][1 + c] = if r == c { 1.0 } else { 0.0 } - ac.d_force[(r, c)];
+                    g[1 + r][1 + c] = -ac.d_slip[(r, c)];
                 }
             }
             self.lk[k] = l;
@@ -891,7 +835,7 @@ impl ContactSolver {
             let mut y = std::mem::take(&mut self.y);
             self.apply(&self.x, &mut y, true);
             // friction sweeps
-            if s.mu > 0.0 {
+            if s.law.coefficient() > 0.0 {
                 for _ in 0..50 {
                     rep.sweeps += 1;
                     let mut change = 0.0f64;
@@ -916,7 +860,12 @@ impl ContactSolver {
                             y[3 * k + 1] - bt[0][0] * f[0] - bt[0][1] * f[1],
                             y[3 * k + 2] - bt[1][0] * f[0] - bt[1][1] * f[1],
                         ];
-                        let new = local_friction(bt, r, s.mu * lam, s);
+                        let new = s.law.local_force(
+                            Matrix2::new(bt[0][0], bt[0][1], bt[1][0], bt[1][1]),
+                            Vector2::new(r[0], r[1]),
+                            lam,
+                        );
+                        let new = [new[0], new[1]];
                         let d = [new[0] - f[0], new[1] - f[1]];
                         if d == [0.0, 0.0] {
                             continue;
@@ -946,88 +895,6 @@ impl ContactSolver {
     }
 }
 
-/// Exact friction force of one contact with the others frozen: the tangential slip is
-/// `u = r + B f` (`B` the 2 × 2 tangential block, positive definite), and
-/// * Coulomb: `f = −B⁻¹ r` if `|B⁻¹ r| ≤ ρ` (stick), else `f = −(B + νI)⁻¹ r` with `ν > 0` such
-///   that `|f| = ρ` (then `u = −ν f`: slip opposite to the force), by bisection on `ν`;
-/// * regularised: `f = −ρ u/√(|u|²+ε²)` by a scalar fixed point on `|u|` (Newton in 2-D).
-pub fn local_friction(b: [[f64; 2]; 2], r: [f64; 2], rho: f64, s: &SolveSettings) -> [f64; 2] {
-    let solve = |nu: f64| {
-        let a = [[b[0][0] + nu, b[0][1]], [b[1][0], b[1][1] + nu]];
-        let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-        [
-            -(a[1][1] * r[0] - a[0][1] * r[1]) / det,
-            -(-a[1][0] * r[0] + a[0][0] * r[1]) / det,
-        ]
-    };
-    if rho <= 0.0 {
-        return [0.0, 0.0];
-    }
-    match s.law {
-        FrictionLaw::Coulomb => {
-            let f0 = solve(0.0);
-            if f0[0].hypot(f0[1]) <= rho {
-                return f0;
-            }
-            let bn = (b[0][0].powi(2) + b[0][1].powi(2) + b[1][0].powi(2) + b[1][1].powi(2)).sqrt();
-            let (mut lo, mut hi) = (0.0, bn + r[0].hypot(r[1]) / rho);
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi {
-                    break;
-                }
-                let f = solve(mid);
-                if f[0].hypot(f[1]) > rho {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            let f = solve(hi);
-            let nf = f[0].hypot(f[1]);
-            if nf > 0.0 {
-                [rho * f[0] / nf, rho * f[1] / nf]
-            } else {
-                f
-            }
-        }
-        FrictionLaw::Regularized => {
-            // Newton on Ψ(f) = f + ρ u/√(|u|²+ε²), u = r + B f
-            let mut f = [0.0, 0.0];
-            for _ in 0..100 {
-                let u = [
-                    r[0] + b[0][0] * f[0] + b[0][1] * f[1],
-                    r[1] + b[1][0] * f[0] + b[1][1] * f[1],
-                ];
-                let rr = (u[0] * u[0] + u[1] * u[1] + s.epsilon * s.epsilon).sqrt();
-                let sv = [u[0] / rr, u[1] / rr];
-                let psi = [f[0] + rho * sv[0], f[1] + rho * sv[1]];
-                let mut j = [[0.0; 2]; 2];
-                for (i, ji) in j.iter_mut().enumerate() {
-                    for (c, jic) in ji.iter_mut().enumerate() {
-                        let mut v = 0.0;
-                        for (k, bk) in b.iter().enumerate() {
-                            let js = (if i == k { 1.0 } else { 0.0 } - sv[i] * sv[k]) / rr;
-                            v += js * bk[c];
-                        }
-                        *jic = if i == c { 1.0 } else { 0.0 } + rho * v;
-                    }
-                }
-                let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-                let d = [
-                    -(j[1][1] * psi[0] - j[0][1] * psi[1]) / det,
-                    -(-j[1][0] * psi[0] + j[0][0] * psi[1]) / det,
-                ];
-                f = [f[0] + d[0], f[1] + d[1]];
-                if d[0].abs().max(d[1].abs()) <= 1e-15 * rho {
-                    break;
-                }
-            }
-            f
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1048,9 +915,7 @@ mod tests {
             s.reset(&[0.0; 3]);
             s.set_gaps([g]);
             let set = SolveSettings {
-                mu,
-                law: FrictionLaw::Regularized,
-                epsilon: eps,
+                law: Arc::new(contact::SlipRegularized { mu, epsilon: eps }),
                 ..SolveSettings::default()
             };
             let rep = s.solve(

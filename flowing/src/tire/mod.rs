@@ -20,11 +20,12 @@ pub use mesh::{Ring, TireFe};
 pub use reduce::{ReductionConfig, ReductionTimings, full_frequencies_hz, reduce};
 pub use reduced::{ReducedTire, VizBasis};
 pub mod contact_solve;
+pub mod friction;
 pub mod ground;
 pub mod lcp;
 pub mod loaded;
 pub mod statics;
-pub use contact_solve::FrictionLaw;
+pub use friction::TireFriction;
 pub use ground::{Ground, GroundConfig, GroundKind};
 pub use loaded::{
     LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, held_nodes, loaded_modes,

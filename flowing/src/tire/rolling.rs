@@ -40,7 +40,7 @@
 //! friction force opposes the slip of the material over the ground,
 //! `vᵢ = θ̇ η × sᵢ + (T_c ż + θ̇ T_c,θ z)ᵢ − u_ground`: set-valued Coulomb with stick
 //! (`|fᵢ| ≤ μλᵢ`, `fᵢ = −μλᵢ v̂_t` when slipping; default) or Ribaric's slip-only regularised
-//! `fᵢ = −μλᵢ v_t/√(|v_t|² + ε²)` (U20), see [`FrictionLaw`]. The penalty option replaces the
+//! `fᵢ = −μλᵢ v_t/√(|v_t|² + ε²)` (U20), or any law of the contact crate, see [`TireFriction`]. The penalty option replaces the
 //! rigid constraint by a compliance `1/k` on the diagonal of the contact problem.
 //!
 //! # Integration
@@ -68,8 +68,9 @@
 //! gap is below `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the
 //! surface speed); [`StepStats::late_contacts`] counts impacts begun within one step.
 
-use super::contact_solve::{ContactSolver, DelassusSource, FrictionLaw, SolveSettings};
+use super::contact_solve::{ContactSolver, DelassusSource, SolveSettings};
 use super::error::{TireError, invalid};
+use super::friction::TireFriction;
 use super::ground::{Ground, GroundPoint};
 use super::reduced::ReducedTire;
 use faer::linalg::matmul::matmul;
@@ -124,9 +125,10 @@ pub struct RollingConfig {
     pub alpha_f: f64,
     /// Coulomb friction coefficient μ (Ribaric §8.4.3: 0.85 nominal, 0 pure slip).
     pub friction: f64,
-    /// Friction law: `coulomb` (set-valued, with stick; default) or `regularized`
-    /// (Ribaric's slip-only `f = −μλ u/√(|u|²+ε²)`, seed note U20).
-    pub friction_law: FrictionLaw,
+    /// Friction law: `coulomb` (set-valued, with stick; default), `regularized`
+    /// (Ribaric's slip-only `f = −μλ u/√(|u|²+ε²)`, seed note U20), or a law table
+    /// (see [`TireFriction`]).
+    pub friction_law: TireFriction,
     /// Slip-velocity regularisation ε of the `regularized` friction law \[m/s\] (unused by
     /// `coulomb`).
     pub slip_regularization: f64,
@@ -160,7 +162,7 @@ impl Default for RollingConfig {
             alpha_m: GA_DEFAULT.0,
             alpha_f: GA_DEFAULT.1,
             friction: 0.85,
-            friction_law: FrictionLaw::Coulomb,
+            friction_law: TireFriction::Coulomb,
             slip_regularization: 0.05,
             contact_tolerance: 1e-10,
             normal: NormalContact::Lagrange,
@@ -255,6 +257,10 @@ impl RollingConfig {
         }
         if let NormalContact::Penalty { stiffness } = self.normal {
             pos("normal.stiffness", stiffness)?;
+        }
+        if let TireFriction::Law(spec) = self.friction_law {
+            spec.validate()
+                .map_err(|e| invalid(format!("rolling.friction_law.{}", e.field), e.reason))?;
         }
         Ok(())
     }
@@ -1103,7 +1109,11 @@ impl<'a> RollingTire<'a> {
         };
         let w = &mut self.work;
         let m = w.cand.len();
-        let mu = self.cfg.friction;
+        let law = self
+            .cfg
+            .friction_law
+            .law(self.cfg.friction, self.cfg.slip_regularization);
+        let mu = law.coefficient();
         w.lambda.clear();
         w.ft.clear();
         w.forces.clear();
@@ -1156,9 +1166,7 @@ impl<'a> RollingTire<'a> {
         w.solver.reset(&w.x0);
         w.solver.set_gaps(w.gp.iter().map(|g| g.gap));
         let settings = SolveSettings {
-            mu,
-            law: self.cfg.friction_law,
-            epsilon: self.cfg.slip_regularization,
+            law,
             tol: self.cfg.contact_tolerance,
             ..SolveSettings::default()
         };

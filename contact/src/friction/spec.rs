@@ -1,0 +1,207 @@
+//! Friction laws named in configuration files: a `law = "…"` table per law, each mapped to its
+//! [`FrictionLaw`] by enum dispatch (no allocation, `Copy`).
+
+use super::{
+    Augmented, Coulomb, CoulombTanh, CreepRate, FrictionForce, FrictionLaw, Frictionless,
+    SlipRegularized, Stribeck, TangentFriction,
+};
+use nalgebra::{Matrix2, Vector2};
+use serde::{Deserialize, Serialize};
+
+/// A friction law chosen in a configuration table, e.g. `{ law = "tanh", mu = 1.2, kappa = 40 }`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
+pub enum FrictionSpec {
+    /// [`CreepRate`]: `|f_t| = min(ν_s |v_t|, μ |f_n|)` (Kerkkänen (3.23), Fig. 3.3).
+    CreepRate {
+        /// Friction coefficient `μ`.
+        mu: f64,
+        /// Creep-rate factor `ν_s` \[kg/(m·s)\].
+        creep: f64,
+    },
+    /// [`CoulombTanh`]: `f_t = −μ tanh(κ v_t) |f_n|` (Ribaric (6.2)).
+    Tanh {
+        /// Friction coefficient `μ`.
+        mu: f64,
+        /// Slope parameter `κ` \[s/m\].
+        kappa: f64,
+    },
+    /// [`Coulomb`]: set-valued, with stick (Ribaric §7.3, §8.4.3).
+    Coulomb {
+        /// Friction coefficient `μ`.
+        mu: f64,
+    },
+    /// [`SlipRegularized`]: `f_t = −μ|f_n| v_t/√(|v_t|²+ε²)` (Ribaric, seed note U20).
+    Regularized {
+        /// Friction coefficient `μ`.
+        mu: f64,
+        /// Regularisation `ε` \[m/s\].
+        epsilon: f64,
+    },
+    /// [`Stribeck`]: `μ(v) = μ_k + (μ_s − μ_k) e^{−|v|/v_s}` with `tanh(κ v_t)`.
+    Stribeck {
+        /// Static coefficient `μ_s`.
+        mu_static: f64,
+        /// Kinetic coefficient `μ_k`.
+        mu_kinetic: f64,
+        /// Stribeck velocity `v_s` \[m/s\].
+        stribeck_velocity: f64,
+        /// Slope `κ` \[s/m\].
+        kappa: f64,
+    },
+    /// [`Frictionless`].
+    Frictionless,
+}
+
+/// An invalid parameter of a [`FrictionSpec`], named by its field.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("friction.{field}: {reason}")]
+pub struct FrictionSpecError {
+    /// Field name within the friction table (e.g. `mu`).
+    pub field: &'static str,
+    /// What is wrong.
+    pub reason: String,
+}
+
+macro_rules! dispatch {
+    ($s:expr, $l:ident => $e:expr) => {
+        match *$s {
+            FrictionSpec::CreepRate { mu, creep } => {
+                let $l = CreepRate { mu, creep };
+                $e
+            }
+            FrictionSpec::Tanh { mu, kappa } => {
+                let $l = CoulombTanh { mu, kappa };
+                $e
+            }
+            FrictionSpec::Coulomb { mu } => {
+                let $l = Coulomb { mu };
+                $e
+            }
+            FrictionSpec::Regularized { mu, epsilon } => {
+                let $l = SlipRegularized { mu, epsilon };
+                $e
+            }
+            FrictionSpec::Stribeck {
+                mu_static,
+                mu_kinetic,
+                stribeck_velocity,
+                kappa,
+            } => {
+                let $l = Stribeck {
+                    mu_static,
+                    mu_kinetic,
+                    stribeck_velocity,
+                    kappa,
+                };
+                $e
+            }
+            FrictionSpec::Frictionless => {
+                let $l = Frictionless;
+                $e
+            }
+        }
+    };
+}
+
+impl FrictionSpec {
+    /// Friction coefficient `μ` (the largest one of a Stribeck law).
+    pub fn mu(&self) -> f64 {
+        self.coefficient()
+    }
+
+    /// Check the parameters: coefficients finite and `≥ 0`, rates and velocities `> 0`.
+    pub fn validate(&self) -> Result<(), FrictionSpecError> {
+        let nonneg = |field, v: f64| {
+            if v.is_finite() && v >= 0.0 {
+                Ok(())
+            } else {
+                Err(FrictionSpecError {
+                    field,
+                    reason: format!("must be ≥ 0, got {v}"),
+                })
+            }
+        };
+        let pos = |field, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(FrictionSpecError {
+                    field,
+                    reason: format!("must be > 0, got {v}"),
+                })
+            }
+        };
+        match *self {
+            FrictionSpec::CreepRate { mu, creep } => nonneg("mu", mu).and(pos("creep", creep)),
+            FrictionSpec::Tanh { mu, kappa } => nonneg("mu", mu).and(pos("kappa", kappa)),
+            FrictionSpec::Coulomb { mu } => nonneg("mu", mu),
+            FrictionSpec::Regularized { mu, epsilon } => {
+                nonneg("mu", mu).and(pos("epsilon", epsilon))
+            }
+            FrictionSpec::Stribeck {
+                mu_static,
+                mu_kinetic,
+                stribeck_velocity,
+                kappa,
+            } => nonneg("mu_static", mu_static)
+                .and(nonneg("mu_kinetic", mu_kinetic))
+                .and(pos("stribeck_velocity", stribeck_velocity))
+                .and(pos("kappa", kappa)),
+            FrictionSpec::Frictionless => Ok(()),
+        }
+    }
+}
+
+impl FrictionLaw for FrictionSpec {
+    #[inline]
+    fn friction(&self, slip: f64, normal: f64) -> FrictionForce {
+        dispatch!(self, l => l.friction(slip, normal))
+    }
+    fn coefficient(&self) -> f64 {
+        dispatch!(self, l => l.coefficient())
+    }
+    fn friction_tangent(&self, slip: Vector2<f64>, normal: f64) -> TangentFriction {
+        dispatch!(self, l => l.friction_tangent(slip, normal))
+    }
+    fn is_set_valued(&self) -> bool {
+        dispatch!(self, l => l.is_set_valued())
+    }
+    fn augmented(
+        &self,
+        force: Vector2<f64>,
+        slip: Vector2<f64>,
+        normal: f64,
+        r_t: f64,
+        jacobian: bool,
+    ) -> Augmented {
+        dispatch!(self, l => l.augmented(force, slip, normal, r_t, jacobian))
+    }
+    fn local_force(&self, b: Matrix2<f64>, r: Vector2<f64>, normal: f64) -> Vector2<f64> {
+        dispatch!(self, l => l.local_force(b, r, normal))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Reference: the table form of each law parses and dispatches to the law itself.
+    #[test]
+    fn tables_map_to_laws() {
+        let s: FrictionSpec =
+            serde_json::from_str(r#"{"law":"tanh","mu":1.2,"kappa":40.0}"#).unwrap();
+        let t = CoulombTanh {
+            mu: 1.2,
+            kappa: 40.0,
+        };
+        assert_eq!(s.friction(0.01, 50.0), t.friction(0.01, 50.0));
+        let bad = FrictionSpec::Stribeck {
+            mu_static: 0.5,
+            mu_kinetic: 0.4,
+            stribeck_velocity: 0.0,
+            kappa: 40.0,
+        };
+        assert_eq!(bad.validate().unwrap_err().field, "stribeck_velocity");
+    }
+}

@@ -1,0 +1,220 @@
+//! Spatial obstacle surfaces: a rotating, optionally crowned cylinder and a half-space.
+//!
+//! Every shape answers [`Surface3::closest`]: the signed gap (negative when penetrating), the
+//! outward unit normal, the surface material velocity, a reference tangent, and the
+//! derivatives of normal and surface velocity with respect to the query point.
+
+use nalgebra::{Matrix3, Point3, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// Contact data of a query point `p` against a spatial surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePoint3 {
+    /// Signed gap \[m\] (> 0 separated, < 0 penetrating).
+    pub gap: f64,
+    /// Outward unit normal `n`.
+    pub normal: Vector3<f64>,
+    /// `∂g/∂p` (parallel to `n`; `n` itself for an exact distance).
+    pub gap_gradient: Vector3<f64>,
+    /// Reference unit tangent (first tangent-plane axis `t₁`; `t₂ = n × t₁`), e.g. the
+    /// circumferential direction of a cylinder.
+    pub tangent: Vector3<f64>,
+    /// Surface point \[m\].
+    pub point: Point3<f64>,
+    /// Velocity of the obstacle's surface material there \[m/s\].
+    pub surface_velocity: Vector3<f64>,
+    /// `∂n/∂p` \[1/m\].
+    pub dn_dp: Matrix3<f64>,
+    /// `∂u_s/∂p` \[1/s\].
+    pub dus_dp: Matrix3<f64>,
+    /// `∂u_s/∂ω` \[m\] (per unit angular velocity of the obstacle about its axis).
+    pub dus_domega: Vector3<f64>,
+}
+
+/// A rigid obstacle surface in space.
+pub trait Surface3 {
+    /// Contact data of the point `p` \[m\].
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3;
+    /// Reference point of the body (axis point of a pulley) \[m\].
+    fn center(&self) -> Point3<f64>;
+}
+
+/// A rigid cylinder (pulley, drum) about the unit `axis` through `center`, turning at `omega`
+/// \[rad/s\] (right-handed about `axis`), its centre moving with `velocity`. With `crown = c > 0`
+/// the radius is parabolic along the axis, `R(ζ) = R − c ζ²` (a crowned pulley, Kerkkänen
+/// ch. 4), `ζ = aᵀ(p − r_o)`. The gap is the radial one, `g = ρ − R(ζ)` (ρ the distance from the
+/// axis; Kerkkänen (3.21) in each cross-section), with normal `n = ∇g/|∇g|`,
+/// `∇g = e_r + 2cζ a`. For `c = 0` this is the planar [`crate::Disk`] in every cross-section.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Cylinder {
+    /// Axis point `r_o` \[m\].
+    pub center: Point3<f64>,
+    /// Unit axis `a`.
+    pub axis: Vector3<f64>,
+    /// Radius `R` at `ζ = 0` \[m\].
+    pub radius: f64,
+    /// Crown coefficient `c` \[1/m\] (0: straight cylinder).
+    pub crown: f64,
+    /// Velocity of the axis point \[m/s\].
+    pub velocity: Vector3<f64>,
+    /// Angular velocity about `axis` \[rad/s\].
+    pub omega: f64,
+}
+
+impl Surface3 for Cylinder {
+    /// `u_s = ṙ_o + ω R(ζ) (a × e_r)` (nominal radius, as Kerkkänen (3.24)–(3.25)).
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3 {
+        let a = self.axis;
+        let d = p - self.center;
+        let zeta = a.dot(&d);
+        let radial = d - a * zeta;
+        let rho = radial.norm();
+        let (er, inv) = if rho > 0.0 {
+            (radial / rho, 1.0 / rho)
+        } else {
+            (
+                a.cross(&Vector3::x())
+                    .try_normalize(0.0)
+                    .unwrap_or(Vector3::y()),
+                0.0,
+            )
+        };
+        let r = self.radius - self.crown * zeta * zeta;
+        let drdz = -2.0 * self.crown * zeta;
+        let proj = Matrix3::identity() - a * a.transpose();
+        // ∂e_r/∂p = (I − a aᵀ − e_r e_rᵀ)/ρ
+        let der = (proj - er * er.transpose()) * inv;
+        let m = er - a * drdz;
+        let mn = m.norm();
+        let n = m / mn;
+        // ∂m/∂p = ∂e_r/∂p + 2c a aᵀ
+        let dm = der + a * a.transpose() * (2.0 * self.crown);
+        let dn = (Matrix3::identity() - n * n.transpose()) * dm / mn;
+        let circ = a.cross(&er);
+        let cross_a = a.cross_matrix();
+        let w = self.omega;
+        // u_s = ṙ_o + ω R(ζ) a × e_r ⇒ ∂u_s/∂p = ω [(a × e_r) R' aᵀ + R [a]× ∂e_r/∂p]
+        let dus = (circ * a.transpose() * drdz + cross_a * der * r) * w;
+        SurfacePoint3 {
+            gap: rho - r,
+            normal: n,
+            gap_gradient: m,
+            tangent: circ,
+            point: self.center + a * zeta + er * r,
+            surface_velocity: self.velocity + circ * (w * r),
+            dn_dp: dn,
+            dus_dp: dus,
+            dus_domega: circ * r,
+        }
+    }
+    fn center(&self) -> Point3<f64> {
+        self.center
+    }
+}
+
+/// A half-space (flat road): material opposite to the unit `normal`, surface through `origin`,
+/// moving tangentially with `velocity` \[m/s\]; `tangent` is the first tangent axis (e.g. the
+/// rolling direction).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct HalfSpace {
+    /// A point of the surface \[m\].
+    pub origin: Point3<f64>,
+    /// Outward unit normal.
+    pub normal: Vector3<f64>,
+    /// Unit tangent `t₁` (orthogonal to `normal`).
+    pub tangent: Vector3<f64>,
+    /// Surface material velocity \[m/s\].
+    pub velocity: Vector3<f64>,
+}
+
+impl Surface3 for HalfSpace {
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3 {
+        let g = (p - self.origin).dot(&self.normal);
+        SurfacePoint3 {
+            gap: g,
+            normal: self.normal,
+            gap_gradient: self.normal,
+            tangent: self.tangent,
+            point: p - self.normal * g,
+            surface_velocity: self.velocity,
+            dn_dp: Matrix3::zeros(),
+            dus_dp: Matrix3::zeros(),
+            dus_domega: Vector3::zeros(),
+        }
+    }
+    fn center(&self) -> Point3<f64> {
+        self.origin
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Disk, Surface};
+
+    fn crowned() -> Cylinder {
+        Cylinder {
+            center: Point3::new(0.1, -0.2, 0.05),
+            axis: Vector3::new(0.3, 0.1, 1.0).normalize(),
+            radius: 0.08,
+            crown: 0.8,
+            velocity: Vector3::new(0.1, 0.0, -0.2),
+            omega: 12.0,
+        }
+    }
+
+    // Reference: central differences of the gap, normal and surface velocity.
+    #[test]
+    fn cylinder_derivatives() {
+        let c = crowned();
+        let p = Point3::new(0.17, -0.16, 0.08);
+        let s = c.closest(&p);
+        let h = 1e-7;
+        let mut grad = Vector3::zeros();
+        for j in 0..3 {
+            let mut e = Vector3::zeros();
+            e[j] = h;
+            let (a, b) = (c.closest(&(p + e)), c.closest(&(p - e)));
+            grad[j] = (a.gap - b.gap) / (2.0 * h);
+            let dn = (a.normal - b.normal) / (2.0 * h);
+            let du = (a.surface_velocity - b.surface_velocity) / (2.0 * h);
+            for i in 0..3 {
+                assert!((dn[i] - s.dn_dp[(i, j)]).abs() < 1e-5, "dn[{i}][{j}]");
+                assert!((du[i] - s.dus_dp[(i, j)]).abs() < 1e-5, "dus[{i}][{j}]");
+            }
+        }
+        // the gap gradient, along the normal
+        assert!((grad - s.gap_gradient).amax() < 1e-6);
+        assert!((s.gap_gradient.normalize() - s.normal).amax() < 1e-15);
+    }
+
+    // Reference: a straight cylinder about z is the planar disk in every cross-section.
+    #[test]
+    fn straight_cylinder_is_the_disk() {
+        let disk = Disk {
+            center: [0.2, -0.1],
+            radius: 0.08125,
+            velocity: [0.1, 0.0],
+            omega: 12.0,
+        };
+        let cyl = Cylinder {
+            center: Point3::new(0.2, -0.1, 0.0),
+            axis: Vector3::z(),
+            radius: 0.08125,
+            crown: 0.0,
+            velocity: Vector3::new(0.1, 0.0, 0.0),
+            omega: 12.0,
+        };
+        let a = disk.closest([0.25, -0.03]);
+        let b = cyl.closest(&Point3::new(0.25, -0.03, 0.4));
+        assert!((a.gap - b.gap).abs() < 1e-15);
+        for i in 0..2 {
+            assert!((a.normal[i] - b.normal[i]).abs() < 1e-15);
+            assert!((a.surface_velocity[i] - b.surface_velocity[i]).abs() < 1e-15);
+            for j in 0..2 {
+                assert!((a.dn_dp[i][j] - b.dn_dp[(i, j)]).abs() < 1e-12);
+                assert!((a.dus_dp[i][j] - b.dus_dp[(i, j)]).abs() < 1e-12);
+            }
+        }
+    }
+}

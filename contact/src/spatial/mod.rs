@@ -1,0 +1,14 @@
+//! Spatial (3D) contact: obstacle geometry with nalgebra points and vectors, and the contact of
+//! one material point with exact derivatives. The normal laws ([`crate::normal`]) and friction
+//! laws ([`crate::friction`]) are the planar ones: the friction law takes the slip 2-vector in
+//! the tangent plane ([`crate::FrictionLaw::friction_tangent`]).
+//!
+//! * [`geometry`]: [`Surface3`] with [`Cylinder`] (pulley or drum, optionally crowned, for the
+//!   3D belt of Kerkkänen ch. 4) and [`HalfSpace`] (flat road);
+//! * [`point`]: [`point_contact_3d`], the spatial counterpart of [`crate::point_contact`].
+
+pub mod geometry;
+pub mod point;
+
+pub use geometry::{Cylinder, HalfSpace, Surface3, SurfacePoint3};
+pub use point::{PointContact3, point_contact_3d};
