@@ -66,7 +66,6 @@ pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub mod body;
 pub mod composite;
 pub mod constraints;
-pub mod examples_chain;
 pub mod floating;
 pub mod forces;
 pub mod history;

@@ -4,10 +4,9 @@
 //! puts into the driven pulley's speed.
 
 use flowing::belt::nodal::NodalBelt;
-use flowing::belt::study::{DriveModel, MAX_HALVINGS, SpeedLossPoint, robust_step};
-use flowing::belt::{
-    BeltDriveConfig, BeltFe, FlowingBelt, Schedule, SpeedLossSettings, speed_loss_sweep,
-};
+use drives::speed_loss::{MAX_HALVINGS, robust_step};
+use drives::{DriveModel, SpeedLossPoint, SpeedLossSettings, speed_loss_sweep};
+use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use flowing::spectrum::amplitude_spectrum;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
 

@@ -8,7 +8,7 @@ use faer::Mat;
 use reduction::basis::{
     Method, ModeSelection, build_basis, cb_to_mc_x, condensed_modes, static_modes,
 };
-use reduction::lin::beam::{self, LinBeam, node_dofs};
+use flowmbd_cases::lin::beam::{self, LinBeam, node_dofs};
 use reduction::{DofPartition, ReducedModel};
 
 /// Asserts that `actual` rounds to the printed decimal string `printed` (half a unit of its last

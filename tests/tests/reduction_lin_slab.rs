@@ -8,8 +8,8 @@
 
 use reduction::axes::check_mean_axes_preconditions;
 use reduction::basis::{Method, ModeSelection, build_basis, fixed_interface_modes};
-use reduction::lin::slab::{self, SlabMethod, node_dofs, node_position};
-use reduction::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use flowmbd_cases::lin::slab::{self, SlabMethod, node_dofs, node_position};
+use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
 use reduction::linalg::eig_to_hz;
 use reduction::{DofPartition, ReducedModel};
 

@@ -5,7 +5,7 @@ use flowmbd_cli::config::Validate;
 use flowmbd_cli::error::InputError;
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
-use reduction::lin::beam::{self, BeamParams, LinBeamSummary, PROFILE_DELTA};
+use flowmbd_cases::lin::beam::{self, BeamParams, LinBeamSummary, PROFILE_DELTA};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 

@@ -4,7 +4,7 @@
 
 use super::slab::{G, LinSlab, SlabMethod, slab_basis};
 use super::slab_sim3::{Sim3Params, emulation_system, record_source, simulate_emulated};
-use crate::error::{ReductionError, Result};
+use reduction::error::{ReductionError, Result};
 use mbd_core::floating::{
     AxisCondition, FlexBody, FlexState, FloatingSystem, Point, PrescribedMotion,
 };

@@ -39,7 +39,7 @@
 
 use super::slab::{LinSlab, SlabMethod, node_position};
 use super::slab_sim::{SlabSimParams, run_observed, slab_system};
-use crate::error::{ReductionError, Result};
+use reduction::error::{ReductionError, Result};
 use mbd_core::floating::{
     FlexState, FloatingSystem, NodeLoad, Point, PrescribedMotion, SphericalJoint,
 };
