@@ -12,8 +12,8 @@
 //! 0.25 ms. The printed ratio compares the fastest accurate run of each form.
 //! Run: `cargo bench -p drives --bench belt` (several minutes: the nodal model is slow).
 
-use flowing::belt::nodal::NodalBelt;
 use drives::{DriveModel, SpeedLossSettings, speed_loss_sweep};
+use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use std::time::Instant;
 

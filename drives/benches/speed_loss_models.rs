@@ -9,9 +9,9 @@
 //!
 //! Run: `cargo bench -p drives --bench speed_loss_models` (several minutes).
 
-use flowing::belt::nodal::NodalBelt;
 use drives::ancf_drive_model::{AncfDrive, AncfSettings};
 use drives::{DriveModel, SpeedLossSettings, speed_loss_sweep};
+use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use mbd_core::SecondOrderSystem;
 use std::time::Instant;

@@ -24,6 +24,7 @@
 //! radius (Kerkkänen (3.25), nominal radius); the belt line runs at `R`, so a sticking belt
 //! sees a small negative slip `−ω p₀` on both pulleys alike. It cancels in Δω at zero load.
 
+use crate::model::DriveModel;
 use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec, InitialOptions, Pulley,
@@ -31,7 +32,6 @@ use ancf::belt_drive::{
 };
 use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
 use flowing::belt::model::mounting_penetration;
-use crate::model::DriveModel;
 use flowing::belt::{BeltDriveConfig, Schedule};
 use mbd_core::integrators::State;
 use mbd_core::system::ForceTangent;

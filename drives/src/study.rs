@@ -6,8 +6,8 @@
 use crate::analytical::bechtel;
 use crate::ancf_drive_model::{AncfDrive, AncfMapping, AncfSettings};
 use crate::error::DriveError;
-use crate::speed_loss::{Sample, SpeedLossPoint, SpeedLossSettings, SweepFailure, SweepStats};
 use crate::speed_loss::speed_loss_sweep;
+use crate::speed_loss::{Sample, SpeedLossPoint, SpeedLossSettings, SweepFailure, SweepStats};
 use flowing::belt::config::BeltMesh;
 use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};

@@ -72,12 +72,7 @@ pub fn summarize(
             .unzip();
         RunSummary {
             belt_speed: r.belt_speed,
-            frequency_hz: dominant_frequency(
-                &r.times,
-                &r.midspan,
-                0.2 * f_string,
-                2.0 * f_string,
-            ),
+            frequency_hz: dominant_frequency(&r.times, &r.midspan, 0.2 * f_string, 2.0 * f_string),
             centroid_speed: slope(&t, &x),
         }
     };

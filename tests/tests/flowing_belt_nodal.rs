@@ -3,9 +3,9 @@
 //! agree within 2 % at the same mesh", and the element-passing line that only the rotating mesh
 //! puts into the driven pulley's speed.
 
-use flowing::belt::nodal::NodalBelt;
 use drives::speed_loss::{MAX_HALVINGS, robust_step};
 use drives::{DriveModel, SpeedLossPoint, SpeedLossSettings, speed_loss_sweep};
+use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use flowing::spectrum::amplitude_spectrum;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};

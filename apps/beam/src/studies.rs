@@ -3,9 +3,9 @@
 
 use crate::vtk;
 use ancf::AncfError;
-use flowmbd_cases::ancf_dynamics::{self as dynamics, PendulumCase, Sample, SpinningCase};
 use ancf::beam_mesh::BeamElementKind;
 use flowmbd_cases::ancf_beams::{self as studies, GroundContactCase, StaticBeamCase};
+use flowmbd_cases::ancf_dynamics::{self as dynamics, PendulumCase, Sample, SpinningCase};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{InputError, Progress, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};

@@ -3,9 +3,9 @@
 //! the closed-form kinematics `x = a cos θ + sqrt(b² − a² sin² θ)`. The model:
 //! `flowmbd_cases::slider_crank`.
 
+use flowmbd_cases::slider_crank::SliderCrank;
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
-use flowmbd_cases::slider_crank::SliderCrank;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;

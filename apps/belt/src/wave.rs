@@ -8,8 +8,8 @@
 //! and a VTK series of the belt loop per run (`vtk/<run>_NNNN.vtk` + `<run>.vtk.series`, the
 //! deflection scaled by `vtk_scale` as in the "highly exaggerated" figure).
 
-use flowing::belt::BeltDriveConfig;
 use drives::wave::{RunSummary, summarize};
+use flowing::belt::BeltDriveConfig;
 use flowing::belt::wave::{WaveRun, WaveSettings, wave_run};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};

@@ -5,14 +5,14 @@
 //! (`flowmbd_cases::lin::slab_sim3`, assumptions in its docs) and writes them to
 //! `sim3_tables.csv`.
 
+use flowmbd_cases::lin::slab::{self, SlabMethod};
+use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use flowmbd_cases::lin::slab_sim3::{DRIVEN_NODES, record_source, simulate_emulated};
 use flowmbd_cli::args::CommonArgs;
 use flowmbd_cli::config::Validate;
 use flowmbd_cli::error::InputError;
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
-use flowmbd_cases::lin::slab::{self, SlabMethod};
-use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
-use flowmbd_cases::lin::slab_sim3::{DRIVEN_NODES, record_source, simulate_emulated};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::process::ExitCode;

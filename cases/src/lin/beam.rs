@@ -2,12 +2,12 @@
 //! models (a)/(b), ch. 6.3 fixed-interface modes, ch. 7.1 profile tests, ch. 6.6.4 Eitelberg,
 //! ch. 8.5 mean axes with mode condensation).
 
+use faer::Mat;
 use reduction::basis::{Method, ModeSelection, build_basis, fixed_interface_modes};
 use reduction::error::Result;
 use reduction::linalg::{eig_to_hz, lstsq, select, solve_general, sym_gen_eig};
 use reduction::mean_axes_eval::{MeanAxesEvaluation, evaluate_mean_axes};
 use reduction::partition::DofPartition;
-use faer::Mat;
 use serde::Serialize;
 
 /// Young's modulus \[Pa\] ("30e5", Lin Appendix A).

@@ -6,12 +6,12 @@
 //! with E = 0.2 MPa, ν = 0.33 and density 7.8 kg/m³ lumped ρV/8 per element corner, which
 //! reproduces the nodal masses of Table B-1.
 
+use faer::Mat;
 use reduction::axes::{Axis, NodalFixedFrame, nodal_fixed_selection, remove_anchor_columns};
 use reduction::basis::{Basis, Column, Method, ModeSelection, build_basis};
 use reduction::error::{ReductionError, Result};
 use reduction::linalg::{congruence, solve_general};
 use reduction::partition::DofPartition;
-use faer::Mat;
 use serde::{Deserialize, Serialize};
 
 /// Young's modulus \[Pa\] (Appendix B).
