@@ -123,9 +123,9 @@ pub struct SpeedLossCase {
 /// A belt model built for the speed-loss procedure.
 pub enum SpeedLossModel {
     /// The flowing-material belt (Ribaric (5.14)).
-    Flowing(FlowingBelt),
+    Flowing(Box<FlowingBelt>),
     /// The rotating-mesh nodal belt (Ribaric (5.7)).
-    Nodal(NodalBelt),
+    Nodal(Box<NodalBelt>),
     /// The ANCF belt drive (Kerkkänen ch. 3) with its own generalized-α step \[s\]
     /// ([`AncfSettings::step`], which replaces the procedure's).
     Ancf {
@@ -146,11 +146,13 @@ impl SpeedLossModel {
     ) -> Result<Self, DriveError> {
         let (driver, load) = (Schedule::constant(0.0), Schedule::constant(0.0));
         Ok(match kind {
-            ModelKind::Flowing => {
-                SpeedLossModel::Flowing(FlowingBelt::new(BeltFe::new(drive)?, driver, load)?)
-            }
+            ModelKind::Flowing => SpeedLossModel::Flowing(Box::new(FlowingBelt::new(
+                BeltFe::new(drive)?,
+                driver,
+                load,
+            )?)),
             ModelKind::Nodal => {
-                SpeedLossModel::Nodal(NodalBelt::new(BeltFe::new(drive)?, driver, load)?)
+                SpeedLossModel::Nodal(Box::new(NodalBelt::new(BeltFe::new(drive)?, driver, load)?))
             }
             ModelKind::Ancf => SpeedLossModel::Ancf {
                 drive: Box::new(AncfDrive::new(drive, ancf)?),
@@ -192,8 +194,8 @@ impl SpeedLossModel {
         observer: impl FnMut(&State, Sample),
     ) -> Result<SpeedLossCase, SweepFailure> {
         let (points, stats) = match self {
-            SpeedLossModel::Flowing(b) => speed_loss_sweep(b, settings, observer),
-            SpeedLossModel::Nodal(b) => speed_loss_sweep(b, settings, observer),
+            SpeedLossModel::Flowing(b) => speed_loss_sweep(b.as_mut(), settings, observer),
+            SpeedLossModel::Nodal(b) => speed_loss_sweep(b.as_mut(), settings, observer),
             SpeedLossModel::Ancf { drive, step } => {
                 let settings = SpeedLossSettings {
                     step: *step,
