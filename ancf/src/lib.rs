@@ -13,16 +13,17 @@
 //! * [`system`]: meshes as mbd-core systems, and [`integrate_unilateral`] (generalized-α with
 //!   the same unilateral contact);
 //! * [`node_contact`]: nodal penalty contact ([`NodalContact`]), the penalty counterpart;
-//! * [`studies`]: Kerkkänen §2.4 test set-ups (simply supported beam, cantilever, pendulum,
-//!   spinning beam).
+//! * [`beam_mesh`]: straight chains of the chapter-2 beam elements ([`beam_mesh::BeamElementKind`]).
+//!
+//! The paper cases built from these (Kerkkänen §2.4 test set-ups) live in `flowmbd-cases`.
 
 // Index loops mirror the element and quadrature formulas (several arrays per index).
 #![allow(clippy::needless_range_loop)]
 
 pub mod autodiff;
+pub mod beam_mesh;
 pub mod belt;
 pub mod belt_drive;
-pub mod dynamics;
 pub mod element;
 pub mod error;
 pub mod material;
@@ -34,7 +35,6 @@ pub mod section;
 pub mod shape;
 pub mod sparse;
 pub mod statics;
-pub mod studies;
 pub mod system;
 
 pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBeam};

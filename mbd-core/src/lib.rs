@@ -77,7 +77,6 @@ pub use validate::{InvalidField, Validate};
 pub mod body;
 pub mod composite;
 pub mod constraints;
-pub mod examples_chain;
 pub mod floating;
 pub mod forces;
 pub mod history;

@@ -1,15 +1,13 @@
 //! The ANCF belt as the speed-loss model of issue 8 (`flowmbd-belt speed-loss --model ancf`):
-//! the Ribaric Table 6-1 drive mapped onto ANCF belt elements (the adapter in the library part
-//! of the app, `flowmbd_belt::ancf_drive_model`), compared with the flowing-material model.
+//! the Ribaric Table 6-1 drive mapped onto ANCF belt elements (the adapter in the `drives`
+//! crate, `drives::ancf_drive_model`), compared with the flowing-material model.
 //! The long comparison is `#[ignore]`d; run it with
 //! `cargo test --release -p flowmbd-validation --test ancf_belt_speed_loss -- --ignored --nocapture`.
 
 use ancf::belt_drive::post;
-use flowing::belt::{
-    BeltDriveConfig, BeltFe, DriveModel, FlowingBelt, Schedule, SpeedLossSettings,
-    analytical_speed_loss, speed_loss_sweep,
-};
-use flowmbd_belt::ancf_drive_model::{AncfDrive, AncfSettings};
+use drives::ancf_drive_model::{AncfDrive, AncfSettings};
+use drives::{DriveModel, SpeedLossSettings, analytical_speed_loss, speed_loss_sweep};
+use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 
 // Reference: Ribaric §6.4 (T0 = 310 N) and the penalty law (6.1): after the length correction of
 // the adapter the static span tensions are T0 within 0.5 %, the unstretched length stays within

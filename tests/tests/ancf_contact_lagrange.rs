@@ -13,8 +13,8 @@
 //! * penalty contact of the same nodes, `f = k d`, whose solution tends to the Lagrange one
 //!   with an error `∝ 1/k`.
 
+use ancf::beam_mesh::beam_mesh;
 use ancf::mesh::straight_coordinates;
-use ancf::studies::beam_mesh;
 use ancf::{
     Element, Material, Mesh, NodalContact, OmarShabanaBeam, ProposedBeam, Section, StaticOptions,
     UnilateralOptions, solve_static, solve_static_unilateral, solve_static_with,

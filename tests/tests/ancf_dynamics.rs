@@ -1,7 +1,7 @@
 //! Kerkkänen §2.4 dynamic tests through mbd-core's generalized-α integrator: energy balance of
 //! the falling flexible pendulum (2.34) and the steady extension of the spinning beam (2.36).
 
-use ancf::dynamics::{
+use flowmbd_cases::ancf_dynamics::{
     PendulumCase, SpinningCase, energy_drift, hub_angle, pendulum, spinning, spinning_extension,
 };
 
@@ -54,7 +54,7 @@ fn spinning_beam_steady_extension() {
 // same tip motion of the falling pendulum (second formulation as reference); 0.6 s, h = 2e-4 s.
 #[test]
 fn pendulum_proposed_agrees_with_omar_shabana() {
-    use ancf::studies::BeamElementKind;
+    use ancf::beam_mesh::BeamElementKind;
     let run = |element| {
         let case = PendulumCase {
             element,

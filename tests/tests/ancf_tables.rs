@@ -1,7 +1,8 @@
 //! Kerkkänen Tables 2.1–2.4 (seed 001, §2.4): static beam tests of the proposed 8-DOF element
 //! and of the Omar–Shabana 12-DOF element, compared to the printed digits.
 
-use ancf::studies::{BeamElementKind, StaticBeamCase, cantilever_tip, simply_supported_deflection};
+use ancf::beam_mesh::BeamElementKind;
+use flowmbd_cases::ancf_beams::{StaticBeamCase, cantilever_tip, simply_supported_deflection};
 
 const NS: [usize; 6] = [2, 4, 8, 16, 32, 64];
 
@@ -154,7 +155,7 @@ fn table_2_4_proposed() {
 
 // Kerkkänen Table 2.3 (Model 1: h = 0.1 m, ν = 0.3), "Omar–Shabana" column, tip (x, y) [m],
 // every printed row. The clamp fixes r, r_x and r_y of the root node (see
-// `ancf::studies::Cantilever`); with r_x free, as the seed note claims, the rows differ by up to
+// `flowmbd_cases::ancf_beams::Cantilever`); with r_x free, as the seed note claims, the rows differ by up to
 // 2.4e-5 m here and 1.0e-3 m in Table 2.4 (independent numpy oracle and this crate agree).
 #[test]
 fn table_2_3_omar_shabana() {

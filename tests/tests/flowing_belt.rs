@@ -2,11 +2,8 @@
 //! analytical speed loss of Bechtel et al. (6.3), physical invariants and a second (untruncated)
 //! formulation.
 
-use flowing::belt::study::SpeedLossPoint;
-use flowing::belt::{
-    BeltDriveConfig, BeltFe, FlowingBelt, Schedule, SpeedLossSettings, analytical_speed_loss,
-    speed_loss_sweep,
-};
+use drives::{SpeedLossPoint, SpeedLossSettings, analytical_speed_loss, speed_loss_sweep};
+use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 
 fn sweep(
     cfg: &BeltDriveConfig,

@@ -3,11 +3,10 @@
 //! agree within 2 % at the same mesh", and the element-passing line that only the rotating mesh
 //! puts into the driven pulley's speed.
 
+use drives::speed_loss::{MAX_HALVINGS, robust_step};
+use drives::{DriveModel, SpeedLossPoint, SpeedLossSettings, speed_loss_sweep};
 use flowing::belt::nodal::NodalBelt;
-use flowing::belt::study::{DriveModel, MAX_HALVINGS, SpeedLossPoint, robust_step};
-use flowing::belt::{
-    BeltDriveConfig, BeltFe, FlowingBelt, Schedule, SpeedLossSettings, speed_loss_sweep,
-};
+use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use flowing::spectrum::amplitude_spectrum;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
 

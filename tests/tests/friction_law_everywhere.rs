@@ -32,7 +32,8 @@ fn close(a: f64, b: f64) -> bool {
 /// 40 ms of generalized-α; returns the driven speed and whether friction dissipated at every
 /// contact node of the final state.
 fn flowing_run(law: FrictionSpec) -> (f64, bool) {
-    use flowing::belt::{BeltDriveConfig, BeltFe, DriveModel, FlowingBelt, Schedule};
+    use drives::DriveModel;
+    use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
     let mut cfg = BeltDriveConfig::default();
     cfg.contact.friction = Some(law);
     let fe = BeltFe::new(&cfg).unwrap();

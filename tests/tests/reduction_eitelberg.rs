@@ -6,11 +6,11 @@
 
 use faer::Mat;
 use faer::linalg::solvers::{DenseSolveCore, Solve};
+use flowmbd_cases::lin::beam::{appendix_a_beam, node_dofs};
 use reduction::basis::{Method, ModeSelection, build_basis};
 use reduction::eitelberg::{
     LyapunovSolver, eitelberg_structure_with, eitelberg_with, lyapunov_kronecker,
 };
-use reduction::lin::beam::{appendix_a_beam, node_dofs};
 use reduction::lyapunov::lyapunov;
 use reduction::{DofPartition, ReducedModel};
 

@@ -5,10 +5,10 @@
 #![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
 use faer::Mat;
+use flowmbd_cases::lin::beam::{self, LinBeam, node_dofs};
 use reduction::basis::{
     Method, ModeSelection, build_basis, cb_to_mc_x, condensed_modes, static_modes,
 };
-use reduction::lin::beam::{self, LinBeam, node_dofs};
 use reduction::{DofPartition, ReducedModel};
 
 /// Asserts that `actual` rounds to the printed decimal string `printed` (half a unit of its last

@@ -6,10 +6,10 @@
 //! Lin's qualitative claims (§7.2.2–7.2.5) and the CB ≡ MC theorem (§6.5.4).
 #![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
+use flowmbd_cases::lin::slab::{self, SlabMethod, node_dofs, node_position};
+use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
 use reduction::axes::check_mean_axes_preconditions;
 use reduction::basis::{Method, ModeSelection, build_basis, fixed_interface_modes};
-use reduction::lin::slab::{self, SlabMethod, node_dofs, node_position};
-use reduction::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
 use reduction::linalg::eig_to_hz;
 use reduction::{DofPartition, ReducedModel};
 

@@ -8,11 +8,11 @@
 //! same column space); Lin's qualitative ranking (§7.2.4: CB = MC close to NR, MT and GR
 //! poorer).
 
+use flowmbd_cases::lin::slab::{self, SlabMethod};
+use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use flowmbd_cases::lin::slab_sim3::{AccelTable, record_source, simulate_emulated, source_system};
 use mbd_core::marker::Marker;
 use nalgebra::Vector3;
-use reduction::lin::slab::{self, SlabMethod};
-use reduction::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
-use reduction::lin::slab_sim3::{AccelTable, record_source, simulate_emulated, source_system};
 use std::sync::Arc;
 
 fn max_diff(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {

@@ -10,7 +10,7 @@
 mod studies;
 mod vtk;
 
-use ancf::studies::BeamElementKind;
+use ancf::beam_mesh::BeamElementKind;
 use clap::{Parser, Subcommand, ValueEnum};
 use flowmbd_cli::{CommonArgs, run_study};
 use std::process::ExitCode;

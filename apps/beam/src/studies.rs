@@ -1,10 +1,11 @@
 //! The studies of `flowmbd-beam`: configuration (defaults = Kerkkänen's cases), overrides,
-//! and output. The computations live in `ancf::studies` and `ancf::dynamics`.
+//! and output. The computations live in `flowmbd_cases::ancf_beams` and `flowmbd_cases::ancf_dynamics`.
 
 use crate::vtk;
 use ancf::AncfError;
-use ancf::dynamics::{self, PendulumCase, Sample, SpinningCase};
-use ancf::studies::{self, BeamElementKind, GroundContactCase, StaticBeamCase};
+use ancf::beam_mesh::BeamElementKind;
+use flowmbd_cases::ancf_beams::{self as studies, GroundContactCase, StaticBeamCase};
+use flowmbd_cases::ancf_dynamics::{self as dynamics, PendulumCase, Sample, SpinningCase};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{InputError, Progress, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};

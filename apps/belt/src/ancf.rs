@@ -1,5 +1,5 @@
 //! `flowmbd-belt ancf`: the planar ANCF belt drive of Kerkkänen ch. 3 (library:
-//! [`ancf::belt_drive`]). Defaults are Table 3.1 with the driver ramp (3.29) (example 3.3-B);
+//! [`ancf::belt_drive`]; the run and its time loop: [`drives::ancf_run`]). Defaults are Table 3.1 with the driver ramp (3.29) (example 3.3-B);
 //! `apps/belt/examples/kerkkanen-3-3-*.toml` hold the other examples.
 //!
 //! Output folder: `history.csv` (pulley speeds, span mid-point positions, span tensions),
@@ -9,12 +9,11 @@
 //! `output.points_per_element` points per element, which resolves the inlet and exit zones),
 //! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtk` + `belt.vtk.series`).
 
-use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, InitialOptions, SimulationOptions, free_belt_closure, post,
-};
+use ancf::belt_drive::{BeltDrive, BeltDriveSpec, InitialOptions, SimulationOptions, post};
+use drives::ancf_run::{Due, Sampling, closure_on_path, roles, run_drive, tight_slack};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
-use mbd_core::integrators::{AlphaStepper, GeneralizedAlpha, State};
+use mbd_core::integrators::State;
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::process::ExitCode;
@@ -180,26 +179,6 @@ fn to_study_error(e: ancf::AncfError) -> StudyError {
     }
 }
 
-/// Which pulleys play driver and driven in the summary: the first speed-driven pulley and the
-/// first free one.
-fn roles(drive: &BeltDrive) -> (usize, Option<usize>) {
-    let driver = drive
-        .pulleys()
-        .iter()
-        .position(|p| !p.is_free())
-        .unwrap_or(0);
-    let driven = drive.pulleys().iter().position(|p| p.is_free());
-    (driver, driven)
-}
-
-/// The spans running into and out of the driver: (tight, slack) indices.
-fn tight_slack(spans: &[post::SpanLine], driver: usize) -> (Option<usize>, Option<usize>) {
-    (
-        spans.iter().position(|s| s.to == driver),
-        spans.iter().position(|s| s.from == driver),
-    )
-}
-
 fn write_vtk(
     drive: &BeltDrive,
     q: &[f64],
@@ -239,12 +218,8 @@ fn write_vtk(
 impl AncfStudy {
     fn closure(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let start = Instant::now();
-        let mut spec = c.drive.clone();
         // the belt is stress-free on the path length (Kerkkänen: 1.276 m on the 1.276273 m path)
-        let path = BeltDrive::new(spec.clone()).map_err(to_study_error)?;
-        spec.belt.length = path.path().length();
-        let r = free_belt_closure(&spec).map_err(to_study_error)?;
-        let drive = BeltDrive::new(spec).map_err(to_study_error)?;
+        let (drive, r) = closure_on_path(&c.drive).map_err(to_study_error)?;
         let samples = post::tension_samples(&drive, &r.q, c.output.points_per_element);
         ctx.out.write_csv(
             "closure.csv",
@@ -366,91 +341,32 @@ impl AncfStudy {
         vtk_frames.push(("vtk/belt_0000.vtk".into(), 0.0));
 
         let progress = ctx.progress(c.t_end, "ANCF belt drive");
-        let mut next_hist = c.output.history_interval;
-        let mut next_vtk = c.output.vtk_interval;
-        let mut final_state = s0.clone();
-        let mut steps = 0;
-        let mut newton = 0;
-        let failure: Option<String> = match c.integrator.integrator {
-            ancf::belt_drive::IntegratorKind::GeneralizedAlpha => {
-                let ga = GeneralizedAlpha::new(c.integrator.alpha_params());
-                match ga.stepper(&drive, s0.clone()) {
-                    Err(e) => Some(e.to_string()),
-                    Ok(mut st) => {
-                        let mut err = None;
-                        while st.state().t < c.t_end - 1e-12 {
-                            let t_next = (st.state().t + c.output.history_interval).min(c.t_end);
-                            if let Err(e) = advance(&mut st, &drive, t_next) {
-                                err = Some(e.to_string());
-                                break;
-                            }
-                            let s = st.state().clone();
-                            if s.t >= next_hist - 1e-12 || s.t >= c.t_end - 1e-12 {
-                                last_tensions = record(&s, &mut csv, &mut speeds)?;
-                                next_hist += c.output.history_interval;
-                            }
-                            if s.t >= next_vtk - 1e-12 {
-                                let name = format!("vtk/belt_{:04}.vtk", vtk_frames.len());
-                                write_vtk(
-                                    &drive,
-                                    &s.q,
-                                    c.output.points_per_element,
-                                    &ctx.out.path(&name),
-                                )?;
-                                vtk_frames.push((name, s.t));
-                                next_vtk += c.output.vtk_interval;
-                            }
-                            progress.set(s.t);
-                            final_state = s;
-                        }
-                        steps = st.stats.steps;
-                        newton = st.stats.newton_iterations;
-                        err
-                    }
-                }
-            }
-            ancf::belt_drive::IntegratorKind::Rk4 => {
-                let mut frames = Vec::new();
-                let mut hist: Vec<State> = Vec::new();
-                let r = ancf::belt_drive::simulate(&drive, &init.q, c.t_end, &c.integrator, |s| {
-                    if s.t >= next_hist - 1e-12 {
-                        hist.push(s.clone());
-                        next_hist += c.output.history_interval;
-                    }
-                    if s.t >= next_vtk - 1e-12 {
-                        frames.push(s.clone());
-                        next_vtk += c.output.vtk_interval;
-                    }
-                    progress.set(s.t);
-                });
-                for s in &hist {
+        let sampling = Sampling {
+            history: c.output.history_interval,
+            frame: c.output.vtk_interval,
+        };
+        let out = &ctx.out;
+        let run = run_drive(
+            &drive,
+            &init.q,
+            c.t_end,
+            &c.integrator,
+            sampling,
+            |s, due: Due| -> Result<(), StudyError> {
+                if due.history {
                     last_tensions = record(s, &mut csv, &mut speeds)?;
                 }
-                for s in &frames {
+                if due.frame {
                     let name = format!("vtk/belt_{:04}.vtk", vtk_frames.len());
-                    write_vtk(
-                        &drive,
-                        &s.q,
-                        c.output.points_per_element,
-                        &ctx.out.path(&name),
-                    )?;
+                    write_vtk(&drive, &s.q, c.output.points_per_element, &out.path(&name))?;
                     vtk_frames.push((name, s.t));
                 }
-                match r {
-                    Ok(sol) => {
-                        steps = sol.stats.steps;
-                        final_state = sol.state;
-                        None
-                    }
-                    Err(e) => {
-                        if let Some(s) = hist.last() {
-                            final_state = s.clone();
-                        }
-                        Some(e.to_string())
-                    }
-                }
-            }
-        };
+                progress.set(s.t);
+                Ok(())
+            },
+        )?;
+        let (final_state, steps, newton, failure) =
+            (run.state, run.steps, run.newton_iterations, run.failure);
         progress.finish();
         csv.finish()?;
         let s = &final_state;
@@ -615,10 +531,6 @@ impl AncfStudy {
         }
         Ok(summary)
     }
-}
-
-fn advance(st: &mut AlphaStepper, drive: &BeltDrive, t: f64) -> Result<(), mbd_core::MbdError> {
-    st.advance_to(drive, t, &mut |_| {})
 }
 
 impl Study for AncfStudy {

@@ -1,17 +1,12 @@
 //! `flowmbd-belt demo`: a rigid slider-crank whose crank is driven at constant angular speed
 //! (mbd-core's rotation driver), integrated by generalized-α. The slider position is compared with
-//! the closed-form kinematics `x = a cos θ + sqrt(b² − a² sin² θ)`.
+//! the closed-form kinematics `x = a cos θ + sqrt(b² − a² sin² θ)`. The model:
+//! `flowmbd_cases::slider_crank`.
 
+use flowmbd_cases::slider_crank::SliderCrank;
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
-use mbd_core::body::BodyState;
-use mbd_core::constraints::{DriverLaw, Prismatic, Revolute, RotationDriver, Spherical, Universal};
-use mbd_core::forces::Gravity;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State, project_velocities};
-use mbd_core::kinematics::euler::from_axis_angle;
-use mbd_core::marker::Marker;
-use mbd_core::{MbdError, MultibodySystem, RigidBody};
-use nalgebra::{Vector3, Vector4};
+use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 
@@ -122,78 +117,16 @@ struct Demo {
     t_end: Option<f64>,
 }
 
-fn closed_form(c: &Config, theta: f64) -> f64 {
-    let (a, b) = (c.crank_length, c.rod_length);
-    a * theta.cos() + (b * b - (a * theta.sin()).powi(2)).sqrt()
-}
-
-fn model(c: &Config) -> Result<(MultibodySystem, State), MbdError> {
-    let (a, b) = (c.crank_length, c.rod_length);
-    let z = Vector3::z();
-    let mut sys = MultibodySystem::new();
-    // slender bars about their long x axis (small) and the two transverse axes
-    let bar = |m: f64, l: f64| [m * l * l / 120.0, m * l * l / 12.0, m * l * l / 12.0];
-    let crank = sys.add_body(RigidBody::with_principal(
-        "crank",
-        c.masses[0],
-        bar(c.masses[0], a),
-    )?);
-    let rod = sys.add_body(RigidBody::with_principal(
-        "rod",
-        c.masses[1],
-        bar(c.masses[1], b),
-    )?);
-    let slider = sys.add_body(RigidBody::with_principal("slider", c.masses[2], [1e-3; 3])?);
-    sys.add_constraint(Revolute {
-        name: "crank bearing".into(),
-        i: Marker::new(None, Vector3::zeros(), z),
-        j: Marker::new(Some(crank), Vector3::new(-a / 2.0, 0.0, 0.0), z),
-    })?;
-    sys.add_constraint(Spherical {
-        name: "crank pin".into(),
-        i: Marker::point(Some(crank), Vector3::new(a / 2.0, 0.0, 0.0)),
-        j: Marker::point(Some(rod), Vector3::new(-b / 2.0, 0.0, 0.0)),
-    })?;
-    sys.add_constraint(Universal {
-        name: "wrist pin".into(),
-        i: Marker::new(Some(rod), Vector3::new(b / 2.0, 0.0, 0.0), z),
-        // The slider's cross axis is the in-plane normal y: z_rod · y = 0 restrains the rod's spin
-        // about its own axis in every configuration (with x it would not at the dead centres).
-        j: Marker::new(Some(slider), Vector3::zeros(), Vector3::y()),
-    })?;
-    sys.add_constraint(Prismatic {
-        name: "slide".into(),
-        i: Marker::new(None, Vector3::zeros(), Vector3::x()),
-        j: Marker::new(Some(slider), Vector3::zeros(), Vector3::x()),
-        reference_i: Vector3::y(),
-        reference_j: Vector3::y(),
-    })?;
-    sys.add_constraint(RotationDriver {
-        name: "motor".into(),
-        i: Marker::new(None, Vector3::zeros(), z),
-        j: Marker::point(Some(crank), Vector3::zeros()),
-        reference_i: Vector3::x(),
-        reference_j: Vector3::x(),
-        law: DriverLaw::ConstantSpeed {
-            theta0: c.theta0,
-            omega: c.omega,
-        },
-    })?;
-    sys.add_force(Gravity {
-        g: Vector3::new(0.0, -9.81, 0.0),
-    })?;
-    let th = c.theta0;
-    let pin = Vector3::new(a * th.cos(), a * th.sin(), 0.0);
-    let s = Vector3::new(closed_form(c, th), 0.0, 0.0);
-    let beta = (-pin.y).atan2(s.x - pin.x);
-    let states = [
-        BodyState::at_rest(pin / 2.0, from_axis_angle(&z, th)),
-        BodyState::at_rest((pin + s) / 2.0, from_axis_angle(&z, beta)),
-        BodyState::at_rest(s, Vector4::new(1.0, 0.0, 0.0, 0.0)),
-    ];
-    let mut s0 = sys.state(0.0, &states)?;
-    project_velocities(&sys, &mut s0)?;
-    Ok((sys, s0))
+impl Config {
+    fn case(&self) -> SliderCrank {
+        SliderCrank {
+            crank_length: self.crank_length,
+            rod_length: self.rod_length,
+            masses: self.masses,
+            omega: self.omega,
+            theta0: self.theta0,
+        }
+    }
 }
 
 impl Study for Demo {
@@ -210,8 +143,9 @@ impl Study for Demo {
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let start = std::time::Instant::now();
-        let (sys, s0) = model(c).map_err(StudyError::numerical)?;
-        let slider_x = 2 * 7; // q layout: 7 coordinates (r, p) per body; slider is body 2
+        let case = c.case();
+        let (sys, s0) = case.model().map_err(StudyError::numerical)?;
+        let slider_x = SliderCrank::SLIDER_X;
         let mut csv = ctx
             .out
             .csv("history.csv", &["t", "theta", "slider_x", "closed_form_x"])?;
@@ -226,8 +160,8 @@ impl Study for Demo {
         });
         let sol = alpha
             .integrate(&sys, s0, c.t_end, |s| {
-                let theta = c.theta0 + c.omega * s.t;
-                let (x, x_ref) = (s.q[slider_x], closed_form(c, theta));
+                let theta = case.crank_angle(s.t);
+                let (x, x_ref) = (s.q[slider_x], case.closed_form(theta));
                 max_err = max_err.max((x - x_ref).abs());
                 xs.push((s.t, x));
                 refs.push((s.t, x_ref));

@@ -1,46 +1,28 @@
 //! `flowmbd-belt speed-loss`: angular speed loss Δω = ω₁ − ω₂ of the two-pulley drive of
 //! Ribaric Table 6-1 against the load torque, at the driver speeds of Figs. 6-6 and 6-7, with
-//! Bechtel's analytical line (6.3). The physics and the procedure live in `flowing::belt`.
+//! Bechtel's analytical line (6.3). The models, the procedure and the study live in `drives`;
+//! this module reads the configuration, calls [`SpeedLossModel`] per driver speed and writes
+//! the results.
 
-use flowing::belt::config::BeltMesh;
-use flowing::belt::nodal::NodalBelt;
-use flowing::belt::study::{Sample, SpeedLossPoint, SweepStats};
-use flowing::belt::{
-    BeltDriveConfig, BeltFe, DriveModel, FlowingBelt, Schedule, SpeedLossSettings,
-    analytical_speed_loss, speed_loss_sweep,
-};
-use flowmbd_belt::ancf_drive_model::{AncfDrive, AncfSettings};
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+use drives::ancf_drive_model::AncfSettings;
+use drives::speed_loss::{Sample, SweepStats};
+use drives::study::case_inputs;
+use drives::{DriveError, ModelKind, NodalOptions, SpeedLossCase, SpeedLossModel};
+use drives::{SpeedLossSettings, speed_loss::SweepFailure};
+use flowing::belt::BeltDriveConfig;
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// Belt model used for the study.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum ModelKind {
-    /// Flowing-material modal model with a stationary mesh (Ribaric (5.14)).
-    #[default]
-    Flowing,
-    /// ANCF belt elements in a rotating (Lagrangian) mesh, Kerkkänen ch. 3 (the high-fidelity
-    /// reference; `flowmbd_belt::ancf_drive_model`).
-    Ancf,
-    /// Nodal model with a rotating (Lagrangian) mesh (Ribaric (5.7)): the reference the
-    /// flowing form replaces; needs a fine uniform mesh (`drive.mesh`) to be accurate.
-    Nodal,
-}
-
-impl ModelKind {
-    fn name(self) -> &'static str {
-        match self {
-            ModelKind::Flowing => "flowing",
-            ModelKind::Nodal => "nodal",
-            ModelKind::Ancf => "ancf",
-        }
-    }
+fn model_parser() -> impl TypedValueParser<Value = ModelKind> {
+    PossibleValuesParser::new(ModelKind::ALL.map(ModelKind::name)).map(|s| {
+        // the possible values are exactly the names FromStr accepts
+        s.parse::<ModelKind>().unwrap_or_default()
+    })
 }
 
 /// Command-line arguments.
@@ -55,7 +37,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',')]
     pub torques: Option<Vec<f64>>,
     /// Belt model.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = model_parser())]
     pub model: Option<ModelKind>,
 }
 
@@ -79,36 +61,6 @@ pub struct Config {
     /// Settings used instead of `drive.mesh` and the procedure's steady-state window when
     /// `model = "nodal"`.
     pub nodal: NodalOptions,
-}
-
-/// What the rotating-mesh model needs to reach an accurate steady state: a fine uniform loop
-/// (its elements travel over the pulleys, so short arc elements alone do not help) and a
-/// longer averaging window over its element-passing ripple. With the defaults its Δω agrees
-/// with the flowing model's within 2 % (tests/tests/flowing_belt_nodal.rs); on the
-/// 56-element flowing mesh its polygonal ripple (±1 rad/s) prevents any steady state.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct NodalOptions {
-    /// Mesh of the rotating loop (default: uniform, 216 elements of 5.6 mm).
-    pub mesh: BeltMesh,
-    /// Averaging window \[s\].
-    pub window: f64,
-    /// Steady-state tolerance between consecutive windows \[rad/s\].
-    pub tolerance: f64,
-}
-
-impl Default for NodalOptions {
-    fn default() -> Self {
-        Self {
-            mesh: BeltMesh {
-                span_elements: 80,
-                arc_elements: 28,
-                contact_margin_nodes: 1,
-            },
-            window: 0.1,
-            tolerance: 1e-3,
-        }
-    }
 }
 
 impl Default for Config {
@@ -218,73 +170,44 @@ struct SpeedLoss {
     args: Args,
 }
 
-#[allow(clippy::too_many_arguments)]
-fn run_case(
-    model: ModelKind,
-    drive: &BeltDriveConfig,
-    ancf: &AncfSettings,
-    settings: &SpeedLossSettings,
-    every: usize,
-    ctx: &StudyContext,
-    done: &AtomicUsize,
-    report: &(dyn Fn(usize) + Sync),
-) -> Result<(Case, usize), StudyError> {
-    let (driver, load) = (Schedule::constant(0.0), Schedule::constant(0.0));
-    match model {
-        ModelKind::Flowing => {
-            let fe = BeltFe::new(drive).map_err(StudyError::numerical)?;
-            let mut belt = FlowingBelt::new(fe, driver, load).map_err(StudyError::numerical)?;
-            let dofs = belt.n_modes() + 2;
-            sweep_case(
-                &mut belt, dofs, true, drive, settings, every, ctx, done, report,
-            )
+fn drive_error(e: DriveError) -> StudyError {
+    match e {
+        DriveError::Ancf(ancf::AncfError::InvalidInput { item, reason }) => {
+            StudyError::Input(InputError::new(format!("ancf: {item}"), reason))
         }
-        ModelKind::Nodal => {
-            let fe = BeltFe::new(drive).map_err(StudyError::numerical)?;
-            let mut belt = NodalBelt::new(fe, driver, load).map_err(StudyError::numerical)?;
-            let dofs = belt.n_nodal() + 2;
-            sweep_case(
-                &mut belt, dofs, true, drive, settings, every, ctx, done, report,
-            )
-        }
-        ModelKind::Ancf => {
-            let mut belt = AncfDrive::new(drive, ancf).map_err(|e| match e {
-                ancf::AncfError::InvalidInput { item, reason } => {
-                    StudyError::Input(InputError::new(format!("ancf: {item}"), reason))
-                }
-                other => StudyError::numerical(other),
-            })?;
-            let dofs = mbd_core::SecondOrderSystem::n_q(belt.drive());
-            // the derived parameters of the Table 6-1 → ANCF mapping, for the record
-            ctx.out.write_json(
-                &format!("ancf_mapping_omega_{:.1}.json", settings.omega_driver),
-                belt.mapping(),
-            )?;
-            let settings = SpeedLossSettings {
-                step: ancf.step,
-                ..settings.clone()
-            };
-            sweep_case(
-                &mut belt, dofs, false, drive, &settings, every, ctx, done, report,
-            )
-        }
+        DriveError::Ancf(other) => StudyError::numerical(other),
+        DriveError::Flowing(e) => StudyError::numerical(e),
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn sweep_case<M: DriveModel>(
-    belt: &mut M,
-    modes: usize,
-    belt_speed_column: bool,
-    drive: &BeltDriveConfig,
-    settings: &SpeedLossSettings,
-    every: usize,
+fn sweep_error(omega: f64, f: SweepFailure) -> StudyError {
+    StudyError::Numerical {
+        message: format!("ω₁ = {omega} rad/s: {}", f.error),
+        partial: Some(serde_json::json!({
+            "omega_driver": omega,
+            "points": f.points,
+        })),
+    }
+}
+
+/// One driver speed: build the model, write the ANCF mapping (if any) and the history CSV
+/// while [`SpeedLossModel::sweep`] runs. `(case, number of coordinates)`.
+fn run_case(
+    c: &Config,
+    omega: f64,
     ctx: &StudyContext,
     done: &AtomicUsize,
     report: &(dyn Fn(usize) + Sync),
 ) -> Result<(Case, usize), StudyError> {
+    let (drive, settings) = case_inputs(c.model, &c.drive, &c.procedure, &c.nodal, omega);
+    let mut model = SpeedLossModel::new(c.model, &drive, &c.ancf).map_err(drive_error)?;
+    if let Some(mapping) = model.ancf_mapping() {
+        // the derived parameters of the Table 6-1 → ANCF mapping, for the record
+        ctx.out
+            .write_json(&format!("ancf_mapping_omega_{omega:.1}.json"), mapping)?;
+    }
     let start = std::time::Instant::now();
-    let name = format!("history_omega_{:.1}.csv", settings.omega_driver);
+    let name = format!("history_omega_{omega:.1}.csv");
     // the flowing and nodal models carry the belt speed as their first velocity
     let columns = [
         "t",
@@ -293,12 +216,13 @@ fn sweep_case<M: DriveModel>(
         "load_torque",
         "belt_speed",
     ];
-    let n_col = if belt_speed_column { 5 } else { 4 };
+    let n_col = if model.has_belt_speed() { 5 } else { 4 };
     let mut csv = ctx.out.csv(&name, &columns[..n_col])?;
     let mut io_err = None;
     let mut k = 0usize;
     let mut found = 0usize;
-    let result = speed_loss_sweep(belt, settings, |st, s: Sample| {
+    let every = c.history_every;
+    let result = model.sweep(&drive, &settings, |st, s: Sample| {
         k += 1;
         let row = [s.t, s.omega_driver, s.omega_driven, s.load, st.v[0]];
         if k.is_multiple_of(every)
@@ -315,43 +239,27 @@ fn sweep_case<M: DriveModel>(
     if let Some(e) = io_err {
         return Err(e.into());
     }
-    let (points, stats) = result.map_err(|f| StudyError::Numerical {
-        message: format!("ω₁ = {} rad/s: {}", settings.omega_driver, f.error),
-        partial: Some(serde_json::json!({
-            "omega_driver": settings.omega_driver,
-            "points": f.points,
-        })),
-    })?;
+    let case: SpeedLossCase = result.map_err(|f| sweep_error(omega, f))?;
     // the last point ends the sweep, after the last observer call
-    let extra = points.len().saturating_sub(found);
+    let extra = case.points.len().saturating_sub(found);
     report(done.fetch_add(extra, Ordering::Relaxed) + extra);
-    let case = Case {
-        omega_driver: settings.omega_driver,
-        analytical: points
-            .iter()
-            .map(|p| analytical(drive, p.torque, settings.omega_driver))
-            .collect(),
-        points: points
-            .iter()
-            .map(|p: &SpeedLossPoint| Point {
-                torque: p.torque,
-                delta_omega: p.delta_omega,
-            })
-            .collect(),
-        stats,
-        wall_time_s: start.elapsed().as_secs_f64(),
-    };
-    Ok((case, modes))
-}
-
-fn analytical(d: &BeltDriveConfig, torque: f64, omega: f64) -> f64 {
-    analytical_speed_loss(
-        d.geometry.radius_driven,
-        d.belt.tension,
-        d.belt.ea,
-        torque,
-        omega,
-    )
+    Ok((
+        Case {
+            omega_driver: case.omega_driver,
+            points: case
+                .points
+                .iter()
+                .map(|p| Point {
+                    torque: p.torque,
+                    delta_omega: p.delta_omega,
+                })
+                .collect(),
+            analytical: case.analytical,
+            stats: case.stats,
+            wall_time_s: start.elapsed().as_secs_f64(),
+        },
+        model.coordinates(),
+    ))
 }
 
 impl Study for SpeedLoss {
@@ -379,49 +287,20 @@ impl Study for SpeedLoss {
         let done = AtomicUsize::new(0);
         let report = |n: usize| progress.set(n as f64);
         let ctx_ref: &StudyContext = ctx;
-        let results: Mutex<Vec<Result<(Case, usize), StudyError>>> = Mutex::new(Vec::new());
-        c.omegas.par_iter().for_each(|&w| {
-            let mut settings = SpeedLossSettings {
-                omega_driver: w,
-                ..c.procedure.clone()
-            };
-            let mut drive = c.drive;
-            if c.model == ModelKind::Nodal {
-                drive.mesh = c.nodal.mesh;
-                settings.window = c.nodal.window;
-                settings.tolerance = c.nodal.tolerance;
-            }
-            let r = run_case(
-                c.model,
-                &drive,
-                &c.ancf,
-                &settings,
-                c.history_every,
-                ctx_ref,
-                &done,
-                &report,
-            );
-            if let Ok(mut v) = results.lock() {
-                v.push(r);
-            }
-        });
+        // one case per speed, in parallel; rayon keeps the configured order of speeds
+        let results: Vec<Result<(Case, usize), StudyError>> = c
+            .omegas
+            .par_iter()
+            .map(|&w| run_case(c, w, ctx_ref, &done, &report))
+            .collect();
         progress.finish();
         let mut cases = Vec::new();
         let mut modes = 0;
-        for r in results
-            .into_inner()
-            .map_err(|_| StudyError::numerical("a worker panicked"))?
-        {
+        for r in results {
             let (case, m) = r?;
             modes = m;
             cases.push(case);
         }
-        // keep the configured order of speeds
-        cases.sort_by(|a, b| {
-            let ia = c.omegas.iter().position(|w| *w == a.omega_driver);
-            let ib = c.omegas.iter().position(|w| *w == b.omega_driver);
-            ia.cmp(&ib)
-        });
         let mut table = ctx.out.csv(
             "speed_loss.csv",
             &[

@@ -1,14 +1,16 @@
 //! `flowmbd-belt wave`: the rotating vs non-rotating belt demonstration of Ribaric §6.2
 //! (Fig. 6-3): the flowing-material belt drive of Table 6-1 with a deflected upper span, at rest
-//! and running at a constant (exaggerated) speed. Physics in `flowing::belt::wave`.
+//! and running at a constant (exaggerated) speed. Physics in `flowing::belt::wave`, the
+//! measurements in `drives::wave`.
 //!
 //! Output folder: `wave.csv` (mid-span deflection and deflection centroid of both runs against
 //! time), `span_deflection.png/svg` (mid-span deflection against time), `centroid.png/svg`,
 //! and a VTK series of the belt loop per run (`vtk/<run>_NNNN.vtk` + `<run>.vtk.series`, the
 //! deflection scaled by `vtk_scale` as in the "highly exaggerated" figure).
 
+use drives::wave::{RunSummary, summarize};
 use flowing::belt::BeltDriveConfig;
-use flowing::belt::wave::{WaveRun, WaveSettings, dominant_frequency, wave_run, wave_speed};
+use flowing::belt::wave::{WaveRun, WaveSettings, wave_run};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -77,17 +79,6 @@ impl Validate for Config {
     }
 }
 
-/// One run in the summary.
-#[derive(Debug, Clone, Serialize)]
-pub struct RunSummary {
-    /// Belt speed \[m/s\].
-    pub belt_speed: f64,
-    /// Dominant frequency of the mid-span deflection \[Hz\].
-    pub frequency_hz: f64,
-    /// Drift speed of the deflection centroid before the waves reach the pulleys \[m/s\].
-    pub centroid_speed: f64,
-}
-
 /// Summary (`summary.json`, `--json`).
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
@@ -107,17 +98,6 @@ pub struct Summary {
 
 struct Wave {
     args: Args,
-}
-
-fn slope(t: &[f64], y: &[f64]) -> f64 {
-    let n = t.len() as f64;
-    if t.len() < 2 {
-        return f64::NAN;
-    }
-    let (mt, my) = (t.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let sxy: f64 = t.iter().zip(y).map(|(a, b)| (a - mt) * (b - my)).sum();
-    let sxx: f64 = t.iter().map(|a| (a - mt) * (a - mt)).sum();
-    sxy / sxx
 }
 
 fn write_vtk(
@@ -207,7 +187,7 @@ impl Study for Wave {
         progress.set(1.0);
         let running = wave_run(&c.drive, &c.wave, true).map_err(num)?;
         progress.finish();
-        let cw = wave_speed(&c.drive);
+        let m = summarize(&c.drive, &c.wave, &rest, &running);
         let base = flowing::belt::BeltFe::new(&c.drive)
             .map_err(num)?
             .position
@@ -251,8 +231,7 @@ impl Study for Wave {
             ms(&running),
         ))
         .save(&ctx.out.path("span_deflection"))?;
-        let span = c.drive.geometry.center_distance;
-        let t_free = (0.5 - c.wave.half_width) * span / (c.wave.belt_speed + cw);
+        let t_free = m.free_time;
         let cen = |r: &WaveRun| -> Vec<(f64, f64)> {
             r.times
                 .iter()
@@ -272,34 +251,12 @@ impl Study for Wave {
             cen(&running),
         ))
         .save(&ctx.out.path("centroid"))?;
-        let f_string = cw / (2.0 * span);
-        let summarize = |r: &WaveRun| {
-            let (t, x): (Vec<f64>, Vec<f64>) = r
-                .times
-                .iter()
-                .zip(&r.centroid)
-                .filter(|(t, _)| **t <= t_free)
-                .map(|(t, x)| (*t, *x))
-                .unzip();
-            RunSummary {
-                belt_speed: r.belt_speed,
-                frequency_hz: dominant_frequency(
-                    &r.times,
-                    &r.midspan,
-                    0.2 * f_string,
-                    2.0 * f_string,
-                ),
-                centroid_speed: slope(&t, &x),
-            }
-        };
-        let (a, b) = (summarize(&rest), summarize(&running));
-        let v = c.wave.belt_speed;
         Ok(Summary {
-            wave_speed: cw,
-            frequency_ratio: b.frequency_hz / a.frequency_hz,
-            frequency_ratio_string: 1.0 - v * v / (cw * cw),
-            rest: a,
-            running: b,
+            wave_speed: m.wave_speed,
+            frequency_ratio: m.frequency_ratio,
+            frequency_ratio_string: m.frequency_ratio_string,
+            rest: m.rest,
+            running: m.running,
             wall_time_s: start.elapsed().as_secs_f64(),
         })
     }

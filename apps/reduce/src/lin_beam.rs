@@ -1,11 +1,11 @@
 //! `flowmbd-reduce lin-beam`: Lin (2005) ch. 6.2, 6.3, 7.1 and 8.5 on the Appendix A beam.
 
+use flowmbd_cases::lin::beam::{self, BeamParams, LinBeamSummary, PROFILE_DELTA};
 use flowmbd_cli::args::CommonArgs;
 use flowmbd_cli::config::Validate;
 use flowmbd_cli::error::InputError;
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
-use reduction::lin::beam::{self, BeamParams, LinBeamSummary, PROFILE_DELTA};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 

@@ -2,17 +2,17 @@
 //! comparing no reduction (NR), Guyan (GR), fixed-interface modal truncation (MT),
 //! Craig–Bampton (CB) and mode condensation (MC); local deflections of node 8. Simulation 3
 //! first regenerates Lin's acceleration tables with the previous simulation of Fig. 7-12(b)
-//! (`reduction::lin::slab_sim3`, assumptions in its docs) and writes them to
+//! (`flowmbd_cases::lin::slab_sim3`, assumptions in its docs) and writes them to
 //! `sim3_tables.csv`.
 
+use flowmbd_cases::lin::slab::{self, SlabMethod};
+use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use flowmbd_cases::lin::slab_sim3::{DRIVEN_NODES, record_source, simulate_emulated};
 use flowmbd_cli::args::CommonArgs;
 use flowmbd_cli::config::Validate;
 use flowmbd_cli::error::InputError;
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
-use reduction::lin::slab::{self, SlabMethod};
-use reduction::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
-use reduction::lin::slab_sim3::{DRIVEN_NODES, record_source, simulate_emulated};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::process::ExitCode;
@@ -343,7 +343,7 @@ impl Study for LinSlabStudy {
 /// 18, 28, 30 \[m/s²\]) and the source's node-8 history (`sim3_source_node8.csv`).
 fn write_sim3_tables(
     ctx: &mut StudyContext,
-    src: &reduction::lin::slab_sim3::SourceRun,
+    src: &flowmbd_cases::lin::slab_sim3::SourceRun,
 ) -> Result<(), StudyError> {
     let mut header = vec!["t_s".to_string()];
     for j in DRIVEN_NODES {

@@ -5,8 +5,8 @@
 mod common;
 use common::{bin, tmp};
 use faer::Mat;
+use flowmbd_cases::lin::slab::{appendix_b_slab, node_dofs};
 use reduction::basis::{Method, ModeSelection, build_basis};
-use reduction::lin::slab::{appendix_b_slab, node_dofs};
 use reduction::{DofPartition, ReducedModel};
 use std::path::Path;
 use std::process::Output;

@@ -485,32 +485,3 @@ impl SecondOrderSystem for FlowingBelt {
         }))
     }
 }
-
-impl super::study::DriveModel for FlowingBelt {
-    fn driven_speed(&self, v: &[f64]) -> f64 {
-        v[self.m + 1]
-    }
-
-    fn driver_speed(&self, t: f64) -> f64 {
-        self.driver_speed.value(t)
-    }
-
-    fn initial_state(&self) -> Result<mbd_core::integrators::State, MbdError> {
-        let z = self.static_equilibrium()?;
-        let mut q = vec![0.0; self.m + 2];
-        q[1..=self.m].copy_from_slice(&z);
-        Ok(mbd_core::integrators::State::new(
-            0.0,
-            q,
-            vec![0.0; self.m + 2],
-        ))
-    }
-
-    fn set_driver_speed(&mut self, s: Schedule) {
-        self.driver_speed = s;
-    }
-
-    fn load_mut(&mut self) -> &mut Schedule {
-        &mut self.load_torque
-    }
-}

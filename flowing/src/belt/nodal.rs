@@ -702,32 +702,6 @@ impl SecondOrderSystem for NodalBelt {
     }
 }
 
-impl super::study::DriveModel for NodalBelt {
-    fn driven_speed(&self, v: &[f64]) -> f64 {
-        v[self.i_pulley()]
-    }
-
-    fn driver_speed(&self, t: f64) -> f64 {
-        self.driver_speed.value(t)
-    }
-
-    fn initial_state(&self) -> Result<mbd_core::integrators::State, MbdError> {
-        let d = self.static_equilibrium()?;
-        let nd = self.n_nodal();
-        let mut q = vec![0.0; nd + 2];
-        q[1..=nd].copy_from_slice(&d);
-        Ok(mbd_core::integrators::State::new(0.0, q, vec![0.0; nd + 2]))
-    }
-
-    fn set_driver_speed(&mut self, s: Schedule) {
-        self.driver_speed = s;
-    }
-
-    fn load_mut(&mut self) -> &mut Schedule {
-        &mut self.load_torque
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,7 +2,7 @@
 //! generalized-α (index 3, Newton with sparse LU for N > 12) and RK4 (four index-1 KKT solves).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mbd_core::examples_chain::spherical_chain;
+use flowmbd_cases::chain::spherical_chain;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, Rk4};
 use std::hint::black_box;
 use std::time::Duration;

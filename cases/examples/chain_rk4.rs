@@ -1,7 +1,7 @@
-//! RK4 on the spherical-joint chain (profiling aid): `cargo run --release -p mbd-core --example
+//! RK4 on the spherical-joint chain (profiling aid): `cargo run --release -p flowmbd-cases --example
 //! chain_rk4 -- [N] [steps]`.
 
-use mbd_core::examples_chain::spherical_chain;
+use flowmbd_cases::chain::spherical_chain;
 use mbd_core::integrators::Rk4;
 
 fn main() {

@@ -1,11 +1,11 @@
-//! Reference models shared by tests, benchmarks and demos.
+//! A reference multibody model shared by benchmarks and demos: a hanging spherical-joint chain.
 
-use crate::body::BodyState;
-use crate::constraints::Spherical;
-use crate::forces::Gravity;
-use crate::integrators::State;
-use crate::marker::Marker;
-use crate::{MbdError, MultibodySystem, RigidBody};
+use mbd_core::body::BodyState;
+use mbd_core::constraints::Spherical;
+use mbd_core::forces::Gravity;
+use mbd_core::integrators::State;
+use mbd_core::marker::Marker;
+use mbd_core::{MbdError, MultibodySystem, RigidBody};
 use nalgebra::{Vector3, Vector4};
 
 /// A hanging chain of `n` slender links (length `link` \[m\], mass 1 kg each) joined by
@@ -16,7 +16,7 @@ pub fn spherical_chain(n: usize, link: f64) -> Result<(MultibodySystem, State), 
     let j = 1.0 * link * link / 12.0;
     let tilt: f64 = 0.3;
     let dir = Vector3::new(0.0, tilt.sin(), -tilt.cos());
-    let p = crate::kinematics::euler::from_axis_angle(&Vector3::x(), tilt);
+    let p = mbd_core::kinematics::euler::from_axis_angle(&Vector3::x(), tilt);
     let mut states = Vec::with_capacity(n);
     for k in 0..n {
         let b = sys.add_body(RigidBody::with_principal(

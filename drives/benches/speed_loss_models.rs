@@ -7,13 +7,12 @@
 //!   on the same loop), h = 0.5 ms;
 //! - ANCF belt (Kerkkänen ch. 3), the `--model ancf` adapter (40 elements), h = 0.1 ms.
 //!
-//! Run: `cargo bench -p flowmbd-belt --bench speed_loss_models` (several minutes).
+//! Run: `cargo bench -p drives --bench speed_loss_models` (several minutes).
 
+use drives::ancf_drive_model::{AncfDrive, AncfSettings};
+use drives::{DriveModel, SpeedLossSettings, speed_loss_sweep};
 use flowing::belt::nodal::NodalBelt;
-use flowing::belt::{
-    BeltDriveConfig, BeltFe, DriveModel, FlowingBelt, Schedule, SpeedLossSettings, speed_loss_sweep,
-};
-use flowmbd_belt::ancf_drive_model::{AncfDrive, AncfSettings};
+use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use mbd_core::SecondOrderSystem;
 use std::time::Instant;
 

@@ -1,10 +1,10 @@
 //! The ANCF belt drive (Kerkkänen ch. 3, [`ancf::belt_drive`]) as a [`DriveModel`] of the
-//! speed-loss procedure ([`flowing::belt::speed_loss_sweep`]): the same drive as the flowing
+//! speed-loss procedure ([`crate::speed_loss_sweep`]): the same drive as the flowing
 //! study (Ribaric Table 6-1, [`BeltDriveConfig`]), meshed as a Lagrangian loop of ANCF belt
 //! elements — the high-fidelity reference of issue 8.
 //!
-//! This module depends only on `ancf`, `flowing` and `mbd-core` (flowing and ancf are siblings:
-//! neither knows the other, the adapter lives in the app).
+//! This module depends only on `ancf`, `flowing`, `fe-model` and `mbd-core` (flowing and ancf
+//! are siblings: neither knows the other, the adapter lives in `drives`, above both).
 //!
 //! # Parameter mapping (Ribaric Table 6-1 → ANCF belt drive)
 //!
@@ -24,6 +24,7 @@
 //! radius (Kerkkänen (3.25), nominal radius); the belt line runs at `R`, so a sticking belt
 //! sees a small negative slip `−ω p₀` on both pulleys alike. It cancels in Δω at zero load.
 
+use crate::model::DriveModel;
 use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec, InitialOptions, Pulley,
@@ -31,7 +32,7 @@ use ancf::belt_drive::{
 };
 use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
 use flowing::belt::model::mounting_penetration;
-use flowing::belt::{BeltDriveConfig, DriveModel, Schedule};
+use flowing::belt::{BeltDriveConfig, Schedule};
 use mbd_core::integrators::State;
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};

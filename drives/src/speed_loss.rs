@@ -10,24 +10,11 @@
 //! The load schedule is extended while integrating, so each torque is held only as long as it
 //! needs. A failure keeps the points already found ([`SweepFailure`]).
 
-use super::schedule::Schedule;
+use crate::model::DriveModel;
+use flowing::belt::Schedule;
+use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaParams, AlphaStepper, GeneralizedAlpha, State};
-use mbd_core::{MbdError, SecondOrderSystem};
 use serde::{Deserialize, Serialize};
-
-/// A belt-drive model the speed-loss procedure can run.
-pub trait DriveModel: SecondOrderSystem {
-    /// Driven pulley speed \[rad/s\] (travel sense) from the velocities.
-    fn driven_speed(&self, v: &[f64]) -> f64;
-    /// Driver pulley speed \[rad/s\] at time `t`.
-    fn driver_speed(&self, t: f64) -> f64;
-    /// Consistent state at rest (static equilibrium of the mounted belt) at `t = 0`.
-    fn initial_state(&self) -> Result<State, MbdError>;
-    /// Replace the driver-speed history.
-    fn set_driver_speed(&mut self, s: Schedule);
-    /// The load-torque history (extended by the procedure while it runs).
-    fn load_mut(&mut self) -> &mut Schedule;
-}
 
 /// Settings of the procedure (SI units).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -160,7 +147,7 @@ pub struct Sample {
 pub const MAX_HALVINGS: usize = 4;
 
 /// One step of size `h` \[s\]; if Newton fails, two steps of `h/2` (recursively, `depth`
-/// levels). The rotating-mesh model ([`super::nodal::NodalBelt`]) needs it when a coarse
+/// levels). The rotating-mesh model ([`flowing::belt::nodal::NodalBelt`]) needs it when a coarse
 /// element lands on a pulley.
 pub fn robust_step<M: DriveModel>(
     stepper: &mut AlphaStepper,

@@ -2,8 +2,8 @@
 //! Omar–Shabana (thesis: 65 % with 4 elements, 68 % with 8). Same integrator (generalized-α,
 //! ρ∞ = 1, h = 1e-4 s, 0.5 s) for both; prints wall times and the ratio (best of 3 runs).
 
-use ancf::dynamics::{PendulumCase, pendulum};
-use ancf::studies::BeamElementKind;
+use ancf::beam_mesh::BeamElementKind;
+use flowmbd_cases::ancf_dynamics::{PendulumCase, pendulum};
 use std::time::Instant;
 
 fn best_time(case: &PendulumCase) -> f64 {

@@ -1,8 +1,8 @@
 //! Spherical-joint chain demo: integrates an N-link chain with generalized-α and prints the
-//! run statistics. Usage: `cargo run --release -p mbd-core --example chain -- [N] [t_end]`.
+//! run statistics. Usage: `cargo run --release -p flowmbd-cases --example chain -- [N] [t_end]`.
 
+use flowmbd_cases::chain::spherical_chain;
 use mbd_core::SecondOrderSystem;
-use mbd_core::examples_chain::spherical_chain;
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
 
 fn main() {

@@ -39,7 +39,6 @@
 
 use super::slab::{LinSlab, SlabMethod, node_position};
 use super::slab_sim::{SlabSimParams, run_observed, slab_system};
-use crate::error::{ReductionError, Result};
 use mbd_core::constraints::{DriverLaw, PointDriver, Spherical};
 use mbd_core::floating::{FlexState, FloatingSystem, NodeLoad};
 use mbd_core::integrators::{Rk4, Stabilization, State, accelerations};
@@ -47,6 +46,7 @@ use mbd_core::kinematics::euler::{a_matrix, from_axis_angle};
 use mbd_core::marker::Marker;
 use mbd_core::{BodyState, RigidBody};
 use nalgebra::{Vector3, Vector4};
+use reduction::error::{ReductionError, Result};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 

@@ -2,12 +2,12 @@
 //! models (a)/(b), ch. 6.3 fixed-interface modes, ch. 7.1 profile tests, ch. 6.6.4 Eitelberg,
 //! ch. 8.5 mean axes with mode condensation).
 
-use crate::basis::{Method, ModeSelection, build_basis, fixed_interface_modes};
-use crate::error::Result;
-use crate::linalg::{eig_to_hz, lstsq, select, solve_general, sym_gen_eig};
-use crate::mean_axes_eval::{MeanAxesEvaluation, evaluate_mean_axes};
-use crate::partition::DofPartition;
 use faer::Mat;
+use reduction::basis::{Method, ModeSelection, build_basis, fixed_interface_modes};
+use reduction::error::Result;
+use reduction::linalg::{eig_to_hz, lstsq, select, solve_general, sym_gen_eig};
+use reduction::mean_axes_eval::{MeanAxesEvaluation, evaluate_mean_axes};
+use reduction::partition::DofPartition;
 use serde::Serialize;
 
 /// Young's modulus \[Pa\] ("30e5", Lin Appendix A).
@@ -82,7 +82,7 @@ pub fn beam_from(p: &BeamParams) -> Result<LinBeam> {
         ("length_m", p.length_m),
     ] {
         if !(v.is_finite() && v > 0.0) {
-            return Err(crate::ReductionError::InvalidParameter {
+            return Err(reduction::ReductionError::InvalidParameter {
                 name: name.into(),
                 reason: format!("must be positive and finite, got {v}"),
             });
@@ -93,7 +93,7 @@ pub fn beam_from(p: &BeamParams) -> Result<LinBeam> {
         .iter()
         .find(|m| !(m.is_finite() && **m > 0.0))
     {
-        return Err(crate::ReductionError::InvalidParameter {
+        return Err(reduction::ReductionError::InvalidParameter {
             name: "node_masses_kg".into(),
             reason: format!("every mass must be positive and finite, got {m}"),
         });
@@ -104,25 +104,25 @@ pub fn beam_from(p: &BeamParams) -> Result<LinBeam> {
         mass_per_length: 0.0,
     };
     let fe = fe_model::generate::straight_beam_2d(p.length_m, 4, section, 0.0).map_err(|e| {
-        crate::ReductionError::InvalidParameter {
+        reduction::ReductionError::InvalidParameter {
             name: "Appendix A beam".into(),
             reason: e.to_string(),
         }
     })?;
     let k15 = fe
         .stiffness()
-        .map_err(|e| crate::ReductionError::Numerical {
+        .map_err(|e| reduction::ReductionError::Numerical {
             what: "Appendix A beam assembly".into(),
             detail: e.to_string(),
         })?
         .to_dense();
     let t: Vec<usize> = (0..nn).flat_map(|j| [3 * j, 3 * j + 1]).collect();
     let part = DofPartition::from_boundary_dofs(3 * nn, &t)?;
-    let psi_s = crate::basis::static_modes(k15.as_ref(), &part)?;
+    let psi_s = reduction::basis::static_modes(k15.as_ref(), &part)?;
     // K = K_tt + K_tθ Ψs (Lin (6.8))
     let ktq = select(k15.as_ref(), &t, part.interior());
     let k = select(k15.as_ref(), &t, &t) + &ktq * &psi_s;
-    let k = crate::linalg::symmetrize(&k);
+    let k = reduction::linalg::symmetrize(&k);
     let m = Mat::from_fn(2 * nn, 2 * nn, |i, j| {
         if i == j { p.node_masses_kg[i / 2] } else { 0.0 }
     });
@@ -279,7 +279,7 @@ pub fn guyan_hz(beam: &LinBeam, masters_1based: &[usize]) -> Result<Vec<f64>> {
         &ModeSelection::Lowest(0),
     )?;
     let red =
-        crate::reduced::ReducedModel::from_basis(b, beam.k.as_ref(), beam.m.as_ref(), None, 2)?;
+        reduction::reduced::ReducedModel::from_basis(b, beam.k.as_ref(), beam.m.as_ref(), None, 2)?;
     Ok(red.natural_frequencies_hz()?.into_iter().skip(3).collect())
 }
 

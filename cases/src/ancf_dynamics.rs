@@ -2,14 +2,15 @@
 //! and the spinning beam with centrifugal stiffening (Figs 2.9–2.11, Wu & Haug) — integrated by
 //! mbd-core's generalized-α method.
 
-use crate::element::{Element, OmarShabanaBeam, ProposedBeam};
-use crate::error::{AncfError, invalid};
-use crate::material::Material;
-use crate::mesh::Mesh;
-use crate::mesh::straight_coordinates;
-use crate::section::Section;
-use crate::studies::{BeamElementKind, beam_mesh};
-use crate::system::{AncfSystem, Energies, Prescribed};
+use crate::ancf_beams::invalid;
+use ancf::AncfError;
+use ancf::beam_mesh::{BeamElementKind, beam_mesh};
+use ancf::element::{Element, OmarShabanaBeam, ProposedBeam};
+use ancf::material::Material;
+use ancf::mesh::Mesh;
+use ancf::mesh::straight_coordinates;
+use ancf::section::Section;
+use ancf::system::{AncfSystem, Energies, Prescribed};
 use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;

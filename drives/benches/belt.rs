@@ -10,13 +10,11 @@
 //!
 //! A step counts as accurate when its Δω(8 N m) lies within 1 % of the same model's Δω at
 //! 0.25 ms. The printed ratio compares the fastest accurate run of each form.
-//! Run: `cargo bench -p flowing --bench belt` (several minutes: the nodal model is slow).
+//! Run: `cargo bench -p drives --bench belt` (several minutes: the nodal model is slow).
 
+use drives::{DriveModel, SpeedLossSettings, speed_loss_sweep};
 use flowing::belt::nodal::NodalBelt;
-use flowing::belt::study::DriveModel;
-use flowing::belt::{
-    BeltDriveConfig, BeltFe, FlowingBelt, Schedule, SpeedLossSettings, speed_loss_sweep,
-};
+use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use std::time::Instant;
 
 struct Run {

@@ -1,39 +1,21 @@
 //! The static test set-ups of Kerkkänen §2.4 (Tables 2.1–2.4), shared by the validation tests
 //! and the `flowmbd-beam` app.
 
-use crate::element::{Element, OmarShabanaBeam, ProposedBeam};
-use crate::error::{AncfError, invalid};
-use crate::material::Material;
-use crate::mesh::{Mesh, straight_coordinates};
-use crate::section::Section;
-use crate::statics::{StaticOptions, solve_static};
+use ancf::beam_mesh::{BeamElementKind, beam_mesh};
+use ancf::element::{Element, OmarShabanaBeam, ProposedBeam};
+use ancf::error::AncfError;
+use ancf::material::Material;
+use ancf::mesh::{Mesh, straight_coordinates};
+use ancf::section::Section;
+use ancf::statics::{StaticOptions, solve_static};
 use serde::{Deserialize, Serialize};
 
-/// Which beam element a study uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum BeamElementKind {
-    /// Kerkkänen's proposed 8-DOF linear element (§2.1.1).
-    Proposed,
-    /// The Omar–Shabana 12-DOF element (§2.1).
-    OmarShabana,
-}
-
-/// Build a straight chain of `n_el` equal elements with `make(element_length)`.
-pub fn beam_mesh<E, F>(length: f64, n_el: usize, make: F) -> Result<Mesh<E>, AncfError>
-where
-    E: Element,
-    F: Fn(f64) -> Result<E, AncfError>,
-{
-    if n_el == 0 {
-        return Err(invalid("elements", "must be ≥ 1"));
+/// The typed input error of the ANCF crate for the field `item`.
+pub(crate) fn invalid(item: impl Into<String>, reason: impl Into<String>) -> AncfError {
+    AncfError::InvalidInput {
+        item: item.into(),
+        reason: reason.into(),
     }
-    if !(length.is_finite() && length > 0.0) {
-        return Err(invalid("length", format!("must be > 0 m, got {length}")));
-    }
-    let le = length / n_el as f64;
-    let els = (0..n_el).map(|_| make(le)).collect::<Result<Vec<_>, _>>()?;
-    Mesh::chain(els)
 }
 
 /// A chapter-2 static beam (Kerkkänen §2.4): `E = 2.07·10¹¹ Pa`, `ρ = 7850 kg/m³`, `L = 2 m`,
@@ -249,7 +231,7 @@ pub fn cantilever_centreline(
 }
 
 /// A slender cantilever under a uniform line load resting on rigid ground `y = −gap`
-/// (frictionless unilateral Lagrange contact of every free node, [`crate::solve_static_unilateral`]),
+/// (frictionless unilateral Lagrange contact of every free node, [`ancf::solve_static_unilateral`]),
 /// with the Euler–Bernoulli references: critical load `q* = 72 EI g₀/L⁴`; for `q ≤ q*` the tip
 /// alone touches with `R = 3qL/8 − 3EI g₀/L³`; for `q > q*` the beam lies flat on `[a, L]`,
 /// `a = (72 EI g₀/q)^{1/4}`, total contact force `qL − 2qa/3`.
@@ -369,7 +351,7 @@ fn solve_ground<E: Element>(
         .collect();
     let load = mesh.gravity_forces(g_eff);
     let nodes: Vec<usize> = (1..=n).collect();
-    let opts = crate::statics::UnilateralOptions {
+    let opts = ancf::statics::UnilateralOptions {
         newton: StaticOptions {
             increments: case.increments,
             ..Default::default()
@@ -378,7 +360,7 @@ fn solve_ground<E: Element>(
     };
     let ground = contact::HalfPlane::ground(-case.gap);
     let sol =
-        crate::statics::solve_static_unilateral(mesh, &q0, &fixed, &load, &ground, &nodes, &opts)?;
+        ancf::statics::solve_static_unilateral(mesh, &q0, &fixed, &load, &ground, &nodes, &opts)?;
     let le = case.length / n as f64;
     let mut forces = vec![0.0];
     forces.extend(&sol.multipliers);

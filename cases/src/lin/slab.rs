@@ -6,12 +6,12 @@
 //! with E = 0.2 MPa, ν = 0.33 and density 7.8 kg/m³ lumped ρV/8 per element corner, which
 //! reproduces the nodal masses of Table B-1.
 
-use crate::axes::{Axis, NodalFixedFrame, nodal_fixed_selection, remove_anchor_columns};
-use crate::basis::{Basis, Column, Method, ModeSelection, build_basis};
-use crate::error::{ReductionError, Result};
-use crate::linalg::{congruence, solve_general};
-use crate::partition::DofPartition;
 use faer::Mat;
+use reduction::axes::{Axis, NodalFixedFrame, nodal_fixed_selection, remove_anchor_columns};
+use reduction::basis::{Basis, Column, Method, ModeSelection, build_basis};
+use reduction::error::{ReductionError, Result};
+use reduction::linalg::{congruence, solve_general};
+use reduction::partition::DofPartition;
 use serde::{Deserialize, Serialize};
 
 /// Young's modulus \[Pa\] (Appendix B).
@@ -186,7 +186,7 @@ pub fn slab_basis(slab: &LinSlab, method: SlabMethod, n_modes: usize) -> Result<
 /// displacement `Δd = Ih Δr + (Δθ × s) + Ψ z`; minimise `½zᵀΨᵀKΨz − (Mĝ)ᵀΔd` subject to the six
 /// support conditions (KKT solve).
 pub fn sim1_statics(slab: &LinSlab, basis: &Basis) -> Result<[f64; 3]> {
-    let p = crate::axes::rigid_body_modes(&slab.s, 3)?;
+    let p = reduction::axes::rigid_body_modes(&slab.s, 3)?;
     let psi = &basis.psi;
     let nz = psi.ncols();
     let nq = 6 + nz;

@@ -4,12 +4,12 @@
 
 use super::slab::{G, LinSlab, SlabMethod, slab_basis};
 use super::slab_sim3::{Sim3Params, emulation_system, record_source, simulate_emulated};
-use crate::error::{ReductionError, Result};
 use mbd_core::constraints::{DriverLaw, PointDriver};
 use mbd_core::floating::{AxisCondition, FlexBody, FlexState, FloatingSystem};
 use mbd_core::integrators::{Rk4, State};
 use mbd_core::marker::Marker;
 use nalgebra::{Vector3, Vector4};
+use reduction::error::{ReductionError, Result};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 

@@ -1,0 +1,35 @@
+//! Belt drives above the model crates: the speed-loss procedure of Ribaric §6.4–6.5 for any
+//! belt model, the models that run it, and the drive studies the `flowmbd-belt` app calls.
+//!
+//! * [`DriveModel`]: what the procedure needs from a model, implemented here for the flowing
+//!   crate's flowing-material ([`flowing::belt::FlowingBelt`], Ribaric (5.14)) and nodal
+//!   ([`flowing::belt::nodal::NodalBelt`], (5.7)) belts, and for the ANCF belt through
+//!   [`ancf_drive_model::AncfDrive`];
+//! * [`Schedule`]: the smooth driver-speed and load-torque histories (defined in
+//!   `flowing::belt`, whose models carry them; re-exported here);
+//! * [`speed_loss`]: the procedure ([`speed_loss_sweep`]);
+//! * [`analytical`]: Bechtel's line (6.3);
+//! * [`ancf_drive_model`]: the Table 6-1 → ANCF adapter (Kerkkänen ch. 3 elements on Ribaric's
+//!   drive);
+//! * [`study`]: the speed-loss study per model and driver speed;
+//! * [`ancf_run`]: the ANCF belt drive's time loop with sampled outputs, and its closure;
+//! * [`wave`]: the measurements of the rotating vs non-rotating belt demonstration (Fig. 6-3).
+//!
+//! Layering: `drives` depends on `flowing`, `ancf`, `fe-model` and `mbd-core`; nothing below
+//! depends on it (flowing and ancf are siblings, the adapter between them lives here).
+
+pub mod analytical;
+pub mod ancf_drive_model;
+pub mod ancf_run;
+pub mod error;
+pub mod model;
+pub mod speed_loss;
+pub mod study;
+pub mod wave;
+
+pub use analytical::{analytical_speed_loss, bechtel};
+pub use error::DriveError;
+pub use flowing::belt::Schedule;
+pub use model::DriveModel;
+pub use speed_loss::{SpeedLossPoint, SpeedLossSettings, speed_loss_sweep};
+pub use study::{ModelKind, NodalOptions, SpeedLossCase, SpeedLossModel};
