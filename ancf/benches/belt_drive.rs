@@ -9,7 +9,7 @@
 //! surface speed and the driver at a constant 12 rad/s.
 
 use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, InitialOptions, PulleyDrive, SimulationOptions, SpeedProfile,
+    BeltDrive, BeltDriveSpec, InitialOptions, PulleyDrive, SimulationConfig, SpeedProfile,
 };
 use mbd_core::integrators::{GeneralizedAlpha, Rk4, State};
 use std::time::Instant;
@@ -43,7 +43,7 @@ fn main() {
     // implicit, full and modified Newton
     let mut per_s_implicit = f64::INFINITY;
     for full in [true, false] {
-        let opts = SimulationOptions {
+        let opts = SimulationConfig {
             full_newton: full,
             ..Default::default()
         };
@@ -68,7 +68,7 @@ fn main() {
             sol.state.v[driven]
         );
     }
-    let opts = SimulationOptions::default();
+    let opts = SimulationConfig::default();
 
     // explicit: RK4's stable step from the eigenvalues of the linearised system at the start
     // state (`BeltDrive::rk4_step_limit`), confirmed by short runs at 0.9× (bounded) and 1.1×

@@ -76,3 +76,12 @@ pub(crate) fn check_positive(
         Err(invalid(item, format!("must be > 0{unit}, got {value}")))
     }
 }
+
+impl From<mbd_core::InvalidField> for AncfError {
+    fn from(e: mbd_core::InvalidField) -> Self {
+        AncfError::InvalidInput {
+            item: e.field,
+            reason: e.reason,
+        }
+    }
+}

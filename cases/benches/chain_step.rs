@@ -3,7 +3,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use flowmbd_cases::chain::spherical_chain;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, Rk4};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Rk4};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -15,7 +15,7 @@ fn bench(c: &mut Criterion) {
     for n in [10usize, 100, 1000] {
         let (sys, s0) = spherical_chain(n, 0.1).unwrap();
         let h = 1e-3;
-        let ga = GeneralizedAlpha::new(AlphaParams {
+        let ga = GeneralizedAlpha::new(AlphaConfig {
             h,
             rho_inf: 0.8,
             ..Default::default()

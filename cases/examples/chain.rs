@@ -3,7 +3,7 @@
 
 use flowmbd_cases::chain::spherical_chain;
 use mbd_core::SecondOrderSystem;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -16,7 +16,7 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         h: 1e-3,
         rho_inf: 0.8,
         ..Default::default()

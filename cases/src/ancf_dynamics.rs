@@ -11,7 +11,7 @@ use ancf::mesh::Mesh;
 use ancf::mesh::straight_coordinates;
 use ancf::section::Section;
 use ancf::system::{AncfSystem, Energies, Prescribed};
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -81,7 +81,7 @@ pub struct Sample {
 }
 
 fn alpha(h: f64, rho_inf: f64) -> GeneralizedAlpha {
-    GeneralizedAlpha::new(AlphaParams {
+    GeneralizedAlpha::new(AlphaConfig {
         rho_inf,
         h,
         newton_atol: 1e-12,

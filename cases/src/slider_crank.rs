@@ -120,7 +120,7 @@ impl SliderCrank {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
+    use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 
     // generalized-α follows the closed-form slider kinematics (analytical) to 1e-4 m over a
     // quarter revolution
@@ -136,7 +136,7 @@ mod tests {
         let (sys, s0) = c.model().unwrap();
         assert!((s0.q[SliderCrank::SLIDER_X] - c.closed_form(0.3)).abs() < 1e-12);
         let mut worst = 0.0f64;
-        GeneralizedAlpha::new(AlphaParams {
+        GeneralizedAlpha::new(AlphaConfig {
             h: 1e-3,
             rho_inf: 0.8,
             ..Default::default()

@@ -33,7 +33,7 @@ pub mod spatial;
 pub use distributed::{ContactRecord, ElementContact, LineContact};
 pub use friction::{
     Augmented, Coulomb, CoulombTanh, CreepRate, FrictionForce, FrictionLaw, FrictionSpec,
-    FrictionSpecError, Frictionless, SlipRegularized, Stribeck, TangentFriction,
+    Frictionless, SlipRegularized, Stribeck, TangentFriction,
 };
 pub use geometry::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface, SurfacePoint};
 pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};

@@ -12,7 +12,7 @@
 //! 0.25 ms. The printed ratio compares the fastest accurate run of each form.
 //! Run: `cargo bench -p drives --bench belt` (several minutes: the nodal model is slow).
 
-use drives::{DriveModel, SpeedLossSettings, speed_loss_sweep};
+use drives::{DriveModel, SpeedLossConfig, speed_loss_sweep};
 use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use std::time::Instant;
@@ -27,7 +27,7 @@ struct Run {
 }
 
 fn run<M: DriveModel>(name: &str, dofs: usize, model: &mut M, step: f64) -> Option<Run> {
-    let settings = SpeedLossSettings {
+    let settings = SpeedLossConfig {
         torques: vec![0.0, 8.0],
         window: 0.1,
         tolerance: 1e-3,

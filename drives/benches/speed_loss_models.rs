@@ -9,15 +9,15 @@
 //!
 //! Run: `cargo bench -p drives --bench speed_loss_models` (several minutes).
 
-use drives::ancf_drive_model::{AncfDrive, AncfSettings};
-use drives::{DriveModel, SpeedLossSettings, speed_loss_sweep};
+use drives::ancf_drive_model::{AncfConfig, AncfDrive};
+use drives::{DriveModel, SpeedLossConfig, speed_loss_sweep};
 use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use mbd_core::SecondOrderSystem;
 use std::time::Instant;
 
 fn run<M: DriveModel>(name: &str, dofs: usize, model: &mut M, step: f64) -> Option<(f64, f64)> {
-    let settings = SpeedLossSettings {
+    let settings = SpeedLossConfig {
         torques: vec![0.0, 8.0],
         window: 0.1,
         tolerance: 1e-3,
@@ -65,7 +65,7 @@ fn main() {
         NodalBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).expect("nodal model");
     let dofs = nodal.n_nodal() + 2;
     let n = run("nodal rotating mesh, 216 el.", dofs, &mut nodal, 5e-4);
-    let a = AncfSettings::default();
+    let a = AncfConfig::default();
     let mut ancf = AncfDrive::new(&cfg, &a).expect("ANCF model");
     let dofs = ancf.n_v();
     let an = run(

@@ -11,12 +11,12 @@
 //! | Ribaric / [`BeltDriveConfig`] | ANCF ([`BeltDriveSpec`]) |
 //! |---|---|
 //! | driver at (0, 0), driven at (L_c, 0), radii R₁, R₂ | two pulleys inside the loop at the same centres; contact radius `R + p₀` (below) |
-//! | EA, EI, ρA | rectangular section of thickness `h = √(12 EI/EA)` (so that `EI/EA = h²/12`) and width `b` ([`AncfSettings::width`]); `E = EA/(b h)`, `ρ = ρA/(b h)`, `α₁ = α₂ = 1` (the belt element's axial stiffness is `α₁EA`, its bending stiffness `α₂EI`, Kerkkänen (3.18)) |
+//! | EA, EI, ρA | rectangular section of thickness `h = √(12 EI/EA)` (so that `EI/EA = h²/12`) and width `b` ([`AncfConfig::width`]); `E = EA/(b h)`, `ρ = ρA/(b h)`, `α₁ = α₂ = 1` (the belt element's axial stiffness is `α₁EA`, its bending stiffness `α₂EI`, Kerkkänen (3.18)) |
 //! | pre-tension T0 on the path of L_c and R (note U8) | unstretched length `L_b = L_path / (1 + T0/EA)` (the flowing model's choice, 1.2117 m for Table 6-1), then corrected by secant steps `L_b ← L_b (1 + (T − T0)/EA)` until the mean span tension `T` of the static solve ([`BeltDrive::initial_state`]) is T0 within 0.1 % (the role of Ribaric §6.4 step 1, "move the pulleys apart until T0"). The first estimate lands 4 % high (323 N): the belt element's bending–stretching coupling (Kerkkänen (3.18), the `(a − 1) c` term) lowers the axial force on the arcs, where the contact pressure gives `f_n R ≈ 303 N`, relative to the spans |
 //! | penalty (6.1) `F_N = L_ele (k₂ δ² + k₁ δ)` per contact node | the same law per unit length, distributed: `f_n = k₂ d² + k₁ d + c_p ḋ` (Kerkkänen (3.20) with the quadratic term), integrated by Gauss quadrature (3.27) |
 //! | the mounted belt's line on the path (flowing: contact radius `R + p₀`, `p₀` the penetration under `T0/R`, 72 µm) | the same: pulley radius `R + p₀`, so that the belt centreline sinks by `p₀` onto the path of radius R |
 //! | tanh friction (6.2) `μ`, `κ` per node | [`BeltFriction::Tanh`] per unit length, same `μ`, `κ` |
-//! | Rayleigh damping `αM + βK_e` of the deflection (β on the material rate) | the stiffness-proportional part as Kelvin–Voigt damping of the axial strain rate with the same β ([`BeltSpec::axial_damping`]: axial force `EA(ε + β ε̇)`; without it the driven pulley's torsional vibration against the spans, ≈57 Hz, decayed with ζ ≈ 0.003 and the steady-state detection never triggered); bending undamped; the mass-proportional part `αM` is dropped (on the absolute velocities of a Lagrangian mesh it would brake the moving belt); generalized-α's numerical damping (ρ∞ of the procedure) damps the contact vibrations; penalty damping `c_p` ([`AncfSettings::contact_damping`]) is 0 by default, as in (6.1) |
+//! | Rayleigh damping `αM + βK_e` of the deflection (β on the material rate) | the stiffness-proportional part as Kelvin–Voigt damping of the axial strain rate with the same β ([`BeltSpec::axial_damping`]: axial force `EA(ε + β ε̇)`; without it the driven pulley's torsional vibration against the spans, ≈57 Hz, decayed with ζ ≈ 0.003 and the steady-state detection never triggered); bending undamped; the mass-proportional part `αM` is dropped (on the absolute velocities of a Lagrangian mesh it would brake the moving belt); generalized-α's numerical damping (ρ∞ of the procedure) damps the contact vibrations; penalty damping `c_p` ([`AncfConfig::contact_damping`]) is 0 by default, as in (6.1) |
 //! | driven inertia `I` | the free pulley's inertia |
 //! | driver speed and load schedules of the procedure | supplied at every evaluation through [`BeltDrive::forces_with`] / [`BeltDrive::force_tangent_with`] |
 //!
@@ -35,6 +35,7 @@ use flowing::belt::model::mounting_penetration;
 use flowing::belt::{BeltDriveConfig, Schedule};
 use mbd_core::integrators::State;
 use mbd_core::system::ForceTangent;
+use mbd_core::validate::{InvalidField, Validate};
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use serde::{Deserialize, Serialize};
 
@@ -45,7 +46,7 @@ fn invalid(item: String, reason: String) -> AncfError {
 /// Discretisation choices of the ANCF belt that Table 6-1 does not fix.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct AncfSettings {
+pub struct AncfConfig {
     /// Number of equal belt elements (40: 30 mm elements, about 5 per pulley arc).
     pub elements: usize,
     /// Contact quadrature points per element.
@@ -65,7 +66,7 @@ pub struct AncfSettings {
     pub tangent_refresh: f64,
 }
 
-impl Default for AncfSettings {
+impl Default for AncfConfig {
     fn default() -> Self {
         Self {
             elements: 40,
@@ -78,28 +79,31 @@ impl Default for AncfSettings {
     }
 }
 
-impl AncfSettings {
-    /// Check every field; `Err` is `(field, reason)`.
-    pub fn validate(&self) -> Result<(), (String, String)> {
+impl Validate for AncfConfig {
+    /// Every field checked; the error names the field (path relative to this struct).
+    fn validate(&self) -> Result<(), InvalidField> {
         if self.elements < 8 {
-            return Err(("elements".into(), "must be at least 8".into()));
+            return Err(InvalidField::new("elements", "must be at least 8"));
         }
         if self.contact_points == 0 || self.contact_points > 20 {
-            return Err(("contact_points".into(), "must lie in 1..=20".into()));
+            return Err(InvalidField::new("contact_points", "must lie in 1..=20"));
         }
         for (name, v) in [("width", self.width), ("step", self.step)] {
             if !(v.is_finite() && v > 0.0) {
-                return Err((name.into(), format!("must be finite and > 0 (got {v})")));
+                return Err(InvalidField::new(
+                    name,
+                    format!("must be finite and > 0 (got {v})"),
+                ));
             }
         }
         if !(self.contact_damping.is_finite() && self.contact_damping >= 0.0) {
-            return Err((
-                "contact_damping".into(),
+            return Err(InvalidField::new(
+                "contact_damping",
                 format!("must be finite and ≥ 0 (got {})", self.contact_damping),
             ));
         }
         if !(self.tangent_refresh.is_finite() && self.tangent_refresh >= 0.0) {
-            return Err(("tangent_refresh".into(), "must be ≥ 0".into()));
+            return Err(InvalidField::new("tangent_refresh", "must be ≥ 0"));
         }
         Ok(())
     }
@@ -129,12 +133,10 @@ pub struct AncfMapping {
 /// The ANCF drive of `cfg` (see the module documentation for every mapping).
 pub fn ancf_spec(
     cfg: &BeltDriveConfig,
-    s: &AncfSettings,
+    s: &AncfConfig,
 ) -> Result<(BeltDriveSpec, AncfMapping), AncfError> {
-    cfg.validate()
-        .map_err(|(f, r)| invalid(format!("drive.{f}"), r))?;
-    s.validate()
-        .map_err(|(f, r)| invalid(format!("ancf.{f}"), r))?;
+    cfg.validate_within("drive")?;
+    s.validate_within("ancf")?;
     let g = &cfg.geometry;
     let b = &cfg.belt;
     let centers = [[0.0, 0.0], [g.center_distance, 0.0]];
@@ -235,7 +237,7 @@ pub struct AncfDrive {
 
 impl AncfDrive {
     /// Build the ANCF drive of `cfg` with discretisation `s`.
-    pub fn new(cfg: &BeltDriveConfig, s: &AncfSettings) -> Result<Self, AncfError> {
+    pub fn new(cfg: &BeltDriveConfig, s: &AncfConfig) -> Result<Self, AncfError> {
         let (mut spec, mut mapping) = ancf_spec(cfg, s)?;
         // secant correction of the unstretched length until the static span tension is T0
         let t0 = cfg.belt.tension;

@@ -4,7 +4,7 @@
 
 use ancf::AncfError;
 use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, SimulationOptions, free_belt_closure,
+    BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, SimulationConfig, free_belt_closure,
     post, simulate,
 };
 use mbd_core::integrators::{GeneralizedAlpha, State};
@@ -82,7 +82,7 @@ pub fn run_drive<E>(
     drive: &BeltDrive,
     q0: &[f64],
     t_end: f64,
-    opts: &SimulationOptions,
+    opts: &SimulationConfig,
     sampling: Sampling,
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<DriveRun, E> {
@@ -174,7 +174,7 @@ mod tests {
     fn generalized_alpha_run_samples_every_history_interval() {
         let drive = BeltDrive::new(BeltDriveSpec::default()).unwrap();
         let init = drive.initial_state(&InitialOptions::default()).unwrap();
-        let opts = SimulationOptions::default();
+        let opts = SimulationConfig::default();
         let mut times = Vec::new();
         let run = run_drive(
             &drive,

@@ -31,5 +31,5 @@ pub use analytical::{analytical_speed_loss, bechtel};
 pub use error::DriveError;
 pub use flowing::belt::Schedule;
 pub use model::DriveModel;
-pub use speed_loss::{SpeedLossPoint, SpeedLossSettings, speed_loss_sweep};
-pub use study::{ModelKind, NodalOptions, SpeedLossCase, SpeedLossModel};
+pub use speed_loss::{SpeedLossConfig, SpeedLossPoint, speed_loss_sweep};
+pub use study::{ModelKind, NodalConfig, SpeedLossCase, SpeedLossModel};

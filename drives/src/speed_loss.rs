@@ -13,13 +13,14 @@
 use crate::model::DriveModel;
 use flowing::belt::Schedule;
 use mbd_core::MbdError;
-use mbd_core::integrators::{AlphaParams, AlphaStepper, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
+use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
 /// Settings of the procedure (SI units).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct SpeedLossSettings {
+pub struct SpeedLossConfig {
     /// Driver speed ω₁ \[rad/s\] (Ribaric Figs. 6-6, 6-7: 62.8 and 22.6).
     pub omega_driver: f64,
     /// Load torques on the driven pulley \[N m\], applied in this order.
@@ -40,7 +41,7 @@ pub struct SpeedLossSettings {
     pub rho_inf: f64,
 }
 
-impl Default for SpeedLossSettings {
+impl Default for SpeedLossConfig {
     fn default() -> Self {
         Self {
             omega_driver: 62.8,
@@ -56,9 +57,9 @@ impl Default for SpeedLossSettings {
     }
 }
 
-impl SpeedLossSettings {
-    /// Check every field; the error names the field.
-    pub fn validate(&self) -> Result<(), (String, String)> {
+impl Validate for SpeedLossConfig {
+    /// Every field checked; the error names the field (path relative to this struct).
+    fn validate(&self) -> Result<(), InvalidField> {
         let pos = [
             ("spin_up", self.spin_up),
             ("torque_ramp", self.torque_ramp),
@@ -69,23 +70,29 @@ impl SpeedLossSettings {
         ];
         for (name, v) in pos {
             if !(v.is_finite() && v > 0.0) {
-                return Err((name.into(), format!("must be finite and > 0 (got {v})")));
+                return Err(InvalidField::new(
+                    name,
+                    format!("must be finite and > 0 (got {v})"),
+                ));
             }
         }
         if !self.omega_driver.is_finite() {
-            return Err(("omega_driver".into(), "must be finite".into()));
+            return Err(InvalidField::new("omega_driver", "must be finite"));
         }
         if self.torques.is_empty() {
-            return Err(("torques".into(), "give at least one load torque".into()));
+            return Err(InvalidField::new(
+                "torques",
+                "give at least one load torque",
+            ));
         }
         if let Some(i) = self.torques.iter().position(|t| !t.is_finite()) {
-            return Err((format!("torques[{i}]"), "must be finite".into()));
+            return Err(InvalidField::new(format!("torques[{i}]"), "must be finite"));
         }
         if !(0.0..=1.0).contains(&self.rho_inf) {
-            return Err(("rho_inf".into(), "must lie in [0, 1]".into()));
+            return Err(InvalidField::new("rho_inf", "must lie in [0, 1]"));
         }
         if self.window < 10.0 * self.step {
-            return Err(("window".into(), "must span at least 10 steps".into()));
+            return Err(InvalidField::new("window", "must span at least 10 steps"));
         }
         Ok(())
     }
@@ -168,7 +175,7 @@ pub fn robust_step<M: DriveModel>(
 /// sees every step (e.g. to write histories or update a progress bar).
 pub fn speed_loss_sweep<M: DriveModel>(
     model: &mut M,
-    settings: &SpeedLossSettings,
+    settings: &SpeedLossConfig,
     mut observer: impl FnMut(&State, Sample),
 ) -> Result<(Vec<SpeedLossPoint>, SweepStats), SweepFailure> {
     let mut points = Vec::new();
@@ -181,7 +188,7 @@ pub fn speed_loss_sweep<M: DriveModel>(
     });
     *model.load_mut() = Schedule::constant(0.0);
     let s0 = model.initial_state().map_err(|e| fail(e, &points))?;
-    let alpha = GeneralizedAlpha::new(AlphaParams {
+    let alpha = GeneralizedAlpha::new(AlphaConfig {
         h: settings.step,
         rho_inf: settings.rho_inf,
         ..Default::default()

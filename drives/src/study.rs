@@ -4,10 +4,10 @@
 //! [`SpeedLossModel::new`] and [`SpeedLossModel::sweep`] per speed, and writes the results.
 
 use crate::analytical::bechtel;
-use crate::ancf_drive_model::{AncfDrive, AncfMapping, AncfSettings};
+use crate::ancf_drive_model::{AncfConfig, AncfDrive, AncfMapping};
 use crate::error::DriveError;
 use crate::speed_loss::speed_loss_sweep;
-use crate::speed_loss::{Sample, SpeedLossPoint, SpeedLossSettings, SweepFailure, SweepStats};
+use crate::speed_loss::{Sample, SpeedLossConfig, SpeedLossPoint, SweepFailure, SweepStats};
 use flowing::belt::config::BeltMesh;
 use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
@@ -26,7 +26,7 @@ pub enum ModelKind {
     /// reference; [`crate::ancf_drive_model`]).
     Ancf,
     /// Nodal model with a rotating (Lagrangian) mesh (Ribaric (5.7)): the reference the
-    /// flowing form replaces; needs a fine uniform mesh ([`NodalOptions::mesh`]) to be accurate.
+    /// flowing form replaces; needs a fine uniform mesh ([`NodalConfig::mesh`]) to be accurate.
     Nodal,
 }
 
@@ -62,7 +62,7 @@ impl std::str::FromStr for ModelKind {
 /// 56-element flowing mesh its polygonal ripple (±1 rad/s) prevents any steady state.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct NodalOptions {
+pub struct NodalConfig {
     /// Mesh of the rotating loop (default: uniform, 216 elements of 5.6 mm).
     pub mesh: BeltMesh,
     /// Averaging window \[s\].
@@ -71,7 +71,7 @@ pub struct NodalOptions {
     pub tolerance: f64,
 }
 
-impl Default for NodalOptions {
+impl Default for NodalConfig {
     fn default() -> Self {
         Self {
             mesh: BeltMesh {
@@ -90,11 +90,11 @@ impl Default for NodalOptions {
 pub fn case_inputs(
     model: ModelKind,
     drive: &BeltDriveConfig,
-    procedure: &SpeedLossSettings,
-    nodal: &NodalOptions,
+    procedure: &SpeedLossConfig,
+    nodal: &NodalConfig,
     omega: f64,
-) -> (BeltDriveConfig, SpeedLossSettings) {
-    let mut settings = SpeedLossSettings {
+) -> (BeltDriveConfig, SpeedLossConfig) {
+    let mut settings = SpeedLossConfig {
         omega_driver: omega,
         ..procedure.clone()
     };
@@ -127,7 +127,7 @@ pub enum SpeedLossModel {
     /// The rotating-mesh nodal belt (Ribaric (5.7)).
     Nodal(Box<NodalBelt>),
     /// The ANCF belt drive (Kerkkänen ch. 3) with its own generalized-α step \[s\]
-    /// ([`AncfSettings::step`], which replaces the procedure's).
+    /// ([`AncfConfig::step`], which replaces the procedure's).
     Ancf {
         /// The adapted drive.
         drive: Box<AncfDrive>,
@@ -142,7 +142,7 @@ impl SpeedLossModel {
     pub fn new(
         kind: ModelKind,
         drive: &BeltDriveConfig,
-        ancf: &AncfSettings,
+        ancf: &AncfConfig,
     ) -> Result<Self, DriveError> {
         let (driver, load) = (Schedule::constant(0.0), Schedule::constant(0.0));
         Ok(match kind {
@@ -190,14 +190,14 @@ impl SpeedLossModel {
     pub fn sweep(
         &mut self,
         drive: &BeltDriveConfig,
-        settings: &SpeedLossSettings,
+        settings: &SpeedLossConfig,
         observer: impl FnMut(&State, Sample),
     ) -> Result<SpeedLossCase, SweepFailure> {
         let (points, stats) = match self {
             SpeedLossModel::Flowing(b) => speed_loss_sweep(b.as_mut(), settings, observer),
             SpeedLossModel::Nodal(b) => speed_loss_sweep(b.as_mut(), settings, observer),
             SpeedLossModel::Ancf { drive, step } => {
-                let settings = SpeedLossSettings {
+                let settings = SpeedLossConfig {
                     step: *step,
                     ..settings.clone()
                 };
@@ -239,8 +239,8 @@ mod tests {
     fn case_inputs_apply_the_nodal_options_to_the_nodal_model_only() {
         let (d, p, n) = (
             BeltDriveConfig::default(),
-            SpeedLossSettings::default(),
-            NodalOptions::default(),
+            SpeedLossConfig::default(),
+            NodalConfig::default(),
         );
         let (d1, s1) = case_inputs(ModelKind::Flowing, &d, &p, &n, 22.6);
         assert_eq!(d1, d);

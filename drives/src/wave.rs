@@ -4,7 +4,7 @@
 //! string's frequency ratio `1 − v²/c²` (Ribaric §4.2).
 
 use flowing::belt::BeltDriveConfig;
-use flowing::belt::wave::{WaveRun, WaveSettings, dominant_frequency, wave_speed};
+use flowing::belt::wave::{WaveConfig, WaveRun, dominant_frequency, wave_speed};
 use serde::Serialize;
 
 /// The measurements of one run.
@@ -54,7 +54,7 @@ pub fn slope(t: &[f64], y: &[f64]) -> f64 {
 /// and the centroid's drift speed until [`WaveSummary::free_time`].
 pub fn summarize(
     drive: &BeltDriveConfig,
-    settings: &WaveSettings,
+    settings: &WaveConfig,
     rest: &WaveRun,
     running: &WaveRun,
 ) -> WaveSummary {

@@ -5,16 +5,16 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use flowing::contact::candidates;
 use flowing::{
-    AxialMotion, ContactSettings, ContactString, DerivativeMethod, FlowingString, GalerkinString,
-    Pulley, StringMesh, StringParams, simulate_contact,
+    AxialMotion, ContactConfig, ContactString, DerivativeMethod, FlowingString, GalerkinString,
+    Pulley, StringConfig, StringMesh, simulate_contact,
 };
 use mbd_core::integrators::State;
 use std::hint::black_box;
 
 fn wrapped(c: &mut Criterion) {
-    let p = StringParams {
+    let p = StringConfig {
         length: 1.2,
-        ..StringParams::default()
+        ..StringConfig::default()
     };
     let mesh = StringMesh::uniform(p, 119).unwrap();
     let pulleys = [
@@ -62,7 +62,7 @@ fn wrapped(c: &mut Criterion) {
                     &mut s,
                     State::new(0.0, y, vec![0.0; n]),
                     0.01,
-                    &ContactSettings::default(),
+                    &ContactConfig::default(),
                     |_, _| {},
                 )
                 .unwrap();
@@ -74,7 +74,7 @@ fn wrapped(c: &mut Criterion) {
 }
 
 fn eigen(c: &mut Criterion) {
-    let p = StringParams::default();
+    let p = StringConfig::default();
     let mut g = c.benchmark_group("moving-string frequencies at v = 20 m/s");
     g.sample_size(10);
     g.bench_function("Galerkin (4.29), 40 terms", |b| {

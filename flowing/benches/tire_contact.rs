@@ -6,7 +6,7 @@
 //! friction Gauss–Seidel, exact local Coulomb) run to the same tolerance.
 //! Run: `cargo bench -p flowing --bench tire_contact`.
 
-use flowing::tire::contact_solve::{ContactSolver, DenseProblem, SolveSettings};
+use flowing::tire::contact_solve::{ContactSolver, DenseProblem, SolveOptions};
 use std::time::Instant;
 
 /// A patch of `m` nodes along x: normal compliance ~1e-7 m/N with 60 % coupling to the
@@ -55,27 +55,27 @@ fn main() {
     for (name, settings, warm) in [
         (
             "Newton, warm + reuse",
-            SolveSettings {
+            SolveOptions {
                 law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
-                ..SolveSettings::default()
+                ..SolveOptions::default()
             },
             true,
         ),
         (
             "Newton, cold",
-            SolveSettings {
+            SolveOptions {
                 law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
-                ..SolveSettings::default()
+                ..SolveOptions::default()
             },
             false,
         ),
         (
             "alternation (fallback), warm",
-            SolveSettings {
+            SolveOptions {
                 law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
                 max_newton: 0,
                 max_rounds: 5000,
-                ..SolveSettings::default()
+                ..SolveOptions::default()
             },
             true,
         ),

@@ -479,7 +479,7 @@ type CachedForces = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
 /// Settings of the active-set simulation.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct ContactSettings {
+pub struct ContactConfig {
     /// Penetration that activates a contact \[m\].
     pub gap_tol: f64,
     /// Tensile contact force that releases a contact \[N\].
@@ -492,7 +492,7 @@ pub struct ContactSettings {
     pub max_events: usize,
 }
 
-impl Default for ContactSettings {
+impl Default for ContactConfig {
     fn default() -> Self {
         Self {
             gap_tol: 1e-9,
@@ -549,7 +549,7 @@ pub fn simulate_contact(
     sys: &mut ContactString,
     state0: State,
     t_end: f64,
-    settings: &ContactSettings,
+    settings: &ContactConfig,
     mut observer: impl FnMut(&ContactString, &State),
 ) -> Result<ContactRun, FlowError> {
     let stab = Stabilization {
@@ -662,7 +662,7 @@ pub fn simulate_contact(
 fn settle(
     sys: &mut ContactString,
     state: &mut State,
-    settings: &ContactSettings,
+    settings: &ContactConfig,
     events: &mut Vec<ContactEvent>,
 ) -> Result<(), FlowError> {
     let stab = Stabilization {

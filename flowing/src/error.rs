@@ -53,3 +53,12 @@ impl From<fe_model::FeError> for FlowError {
         }
     }
 }
+
+impl From<mbd_core::InvalidField> for FlowError {
+    fn from(e: mbd_core::InvalidField) -> Self {
+        FlowError::InvalidInput {
+            item: e.field,
+            reason: e.reason,
+        }
+    }
+}

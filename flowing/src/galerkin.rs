@@ -2,7 +2,7 @@
 
 use crate::error::{FlowError, invalid};
 use crate::gyroscopic::GyroscopicSystem;
-use crate::params::StringParams;
+use crate::params::StringConfig;
 use faer::Mat;
 use std::f64::consts::PI;
 
@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone)]
 pub struct GalerkinString {
     /// String parameters.
-    pub params: StringParams,
+    pub params: StringConfig,
     /// Axial speed `v` \[m/s\].
     pub speed: f64,
     /// Gyroscopic matrix `A` (4.28), skew-symmetric \[1/s\].
@@ -24,7 +24,7 @@ impl GalerkinString {
     /// Builds (4.28):
     /// `A_mn = (2vn/L)[(1 − cos((m+n)π))/(m+n) + (1 − cos((m−n)π))/(m−n)]` (m ≠ n), `A_mm = 0`;
     /// `B_mm = (c² − v²)(πm/L)²`.
-    pub fn new(params: StringParams, speed: f64, n_terms: usize) -> Result<Self, FlowError> {
+    pub fn new(params: StringConfig, speed: f64, n_terms: usize) -> Result<Self, FlowError> {
         params.validate()?;
         if n_terms == 0 {
             return Err(invalid(

@@ -33,7 +33,7 @@ pub mod string_fe;
 pub mod tire;
 pub mod travelling;
 
-pub use contact::{ContactSettings, ContactString, HarmonicLoad, simulate_contact};
+pub use contact::{ContactConfig, ContactString, HarmonicLoad, simulate_contact};
 pub use derivative::{
     DerivativeMethod, FlowLine, LineOperator, ModeDerivatives, mode_shape_derivatives,
 };
@@ -42,7 +42,7 @@ pub use galerkin::GalerkinString;
 pub use grid::{End, FlowGrid, Topology};
 pub use gyroscopic::{GyroscopicSystem, StateEigen};
 pub use modal::ModalBasis;
-pub use params::StringParams;
+pub use params::StringConfig;
 pub use pulley::Pulley;
 pub use string_fe::StringMesh;
 pub use travelling::{AxialMotion, FlowingString, TimeHistory, simulate_rk4, triangular_pluck};

@@ -8,7 +8,7 @@ use crate::error::{FlowError, invalid};
 /// A₀ = 7.854e-5 m² (10 mm steel wire), T₀ = 1000 N.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct StringParams {
+pub struct StringConfig {
     /// Length between the boundaries `L` \[m\].
     pub length: f64,
     /// Density `ρ₀` \[kg/m³\].
@@ -19,7 +19,7 @@ pub struct StringParams {
     pub tension: f64,
 }
 
-impl Default for StringParams {
+impl Default for StringConfig {
     fn default() -> Self {
         Self {
             length: 1.0,
@@ -30,7 +30,7 @@ impl Default for StringParams {
     }
 }
 
-impl StringParams {
+impl StringConfig {
     /// Checks that all parameters are finite and positive.
     pub fn validate(&self) -> Result<(), FlowError> {
         for (name, v) in [

@@ -5,7 +5,7 @@ use crate::derivative::FlowLine;
 use crate::error::{FlowError, invalid};
 use crate::grid::{End, FlowGrid, Topology};
 use crate::modal::ModalBasis;
-use crate::params::StringParams;
+use crate::params::StringConfig;
 use faer::Mat;
 use fe_model::element::string::StringElement;
 use fe_model::{Element, MassKind, MatrixKind, assemble, dense_modes};
@@ -22,13 +22,13 @@ pub struct StringMesh {
     /// Stiffness matrix of the interior DOFs \[N/m\].
     pub stiffness: Mat<f64>,
     /// String parameters (`length` is ignored; the grid's ends define the span).
-    pub params: StringParams,
+    pub params: StringConfig,
 }
 
 impl StringMesh {
     /// Assembles fe-model [`StringElement`]s between consecutive nodes of `grid` (which must be
     /// open with two zero-value ends) and keeps the interior block (fixed ends, Ribaric (4.4)).
-    pub fn new(params: StringParams, grid: FlowGrid, mass: MassKind) -> Result<Self, FlowError> {
+    pub fn new(params: StringConfig, grid: FlowGrid, mass: MassKind) -> Result<Self, FlowError> {
         params.validate()?;
         let Topology::Open {
             start: End::Zero(a),
@@ -66,7 +66,7 @@ impl StringMesh {
     }
 
     /// Ribaric's uniform string (4.1): `n` interior nodes, `h = L/(n+1)`, lumped mass.
-    pub fn uniform(params: StringParams, n: usize) -> Result<Self, FlowError> {
+    pub fn uniform(params: StringConfig, n: usize) -> Result<Self, FlowError> {
         params.validate()?;
         let grid = FlowGrid::uniform_fixed(0.0, params.length, n)?;
         Self::new(params, grid, MassKind::Lumped)

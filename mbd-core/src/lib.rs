@@ -36,7 +36,7 @@
 //! use mbd_core::constraints::Revolute;
 //! use mbd_core::marker::Marker;
 //! use mbd_core::forces::Gravity;
-//! use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
+//! use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 //! use mbd_core::{BodyState, MultibodySystem, RigidBody};
 //! use nalgebra::{Vector3, Vector4};
 //!
@@ -50,7 +50,7 @@
 //! sys.add_force(Gravity { g: Vector3::new(0.0, -9.81, 0.0) })?;
 //! let p = Vector4::new(1.0, 0.0, 0.0, 0.0);
 //! let s0 = sys.state(0.0, &[BodyState::at_rest(Vector3::new(0.5, 0.0, 0.0), p)])?;
-//! let alpha = GeneralizedAlpha::new(AlphaParams { h: 1e-3, rho_inf: 0.8, ..Default::default() });
+//! let alpha = GeneralizedAlpha::new(AlphaConfig { h: 1e-3, rho_inf: 0.8, ..Default::default() });
 //! let sol = alpha.integrate(&sys, s0, 0.5, |_| {})?;
 //! // the hinge keeps the bar end at the origin; energy is nearly conserved
 //! let r = Vector3::new(sol.state.q[0], sol.state.q[1], sol.state.q[2]);
@@ -69,7 +69,7 @@ pub mod validate;
 
 pub use error::MbdError;
 pub use integrators::{
-    AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Observer, Recorder, Rk4, Solution,
+    AlphaConfig, DormandPrince, GeneralizedAlpha, Integrator, Observer, Recorder, Rk4, Solution,
     State, Stats, StepCorrection, Stepper,
 };
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};

@@ -4,7 +4,7 @@
 use mbd_core::body::{BodyKin, BodyState};
 use mbd_core::constraints::{Revolute, Spherical};
 use mbd_core::forces::Gravity;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
 use mbd_core::kinematics::tilde::{get3, get4};
 use mbd_core::marker::{Carrier, Marker, Term};
 use mbd_core::{
@@ -113,7 +113,7 @@ fn composite_matches_single_model() {
     );
     assert!(comp.constraint_name(2).contains("hinge"));
 
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         h: 1e-3,
         rho_inf: 0.8,
         ..Default::default()

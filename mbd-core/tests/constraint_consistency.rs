@@ -369,10 +369,10 @@ fn invalid_joint_and_force_parameters_are_rejected() {
 
 #[test]
 fn non_unit_euler_parameters_in_a_raw_state_are_rejected_with_time() {
-    use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
+    use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
     let (sys, mut s) = two_bodies();
     s.q[7 + 3] *= 1.1; // body "b"
-    let e = GeneralizedAlpha::new(AlphaParams::default())
+    let e = GeneralizedAlpha::new(AlphaConfig::default())
         .integrate(&sys, s, 1.0, |_| {})
         .unwrap_err();
     let msg = e.to_string();

@@ -12,7 +12,7 @@ use mbd_core::body::BodyState;
 use mbd_core::constraints::*;
 use mbd_core::floating::{AxisCondition, FlexBody, FlexState, FloatingSystem};
 use mbd_core::forces::Gravity;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
 use mbd_core::kinematics::euler::from_axis_angle;
 use mbd_core::marker::Marker;
 use mbd_core::{MultibodySystem, RigidBody, SecondOrderSystem};
@@ -349,7 +349,7 @@ fn stiff_flexible_bar_on_a_rigid_link_matches_the_rigid_model() {
     let p0 = Vector4::new(1.0, 0.0, 0.0, 0.0);
     let link_state = BodyState::at_rest(Vector3::new(0.5 * link_len, 0.0, 0.0), p0);
     let tip = Vector3::new(link_len, 0.0, 0.0);
-    let alpha = GeneralizedAlpha::new(AlphaParams {
+    let alpha = GeneralizedAlpha::new(AlphaConfig {
         h: 1e-3,
         rho_inf: 0.6,
         ..Default::default()

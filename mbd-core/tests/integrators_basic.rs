@@ -2,7 +2,7 @@
 
 use faer::Mat;
 use mbd_core::integrators::{
-    AlphaParams, DormandPrince, Event, GeneralizedAlpha, JacobianMode, NewtonUpdate, Rk4, State,
+    AlphaConfig, DormandPrince, Event, GeneralizedAlpha, JacobianMode, NewtonUpdate, Rk4, State,
 };
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 use std::f64::consts::PI;
@@ -185,7 +185,7 @@ fn generalized_alpha_sdof_second_order() {
                 k: (2.0 * PI).powi(2),
                 analytic_tangent: analytic,
             };
-            let ga = GeneralizedAlpha::new(AlphaParams {
+            let ga = GeneralizedAlpha::new(AlphaConfig {
                 h,
                 rho_inf: 0.9,
                 ..Default::default()
@@ -258,7 +258,7 @@ fn pendulum_all_integrators_match_minimal_coordinates() {
 
     for jac in [JacobianMode::Analytic, JacobianMode::FiniteDifference] {
         for update in [NewtonUpdate::EveryIteration, NewtonUpdate::EveryStep] {
-            let ga = GeneralizedAlpha::new(AlphaParams {
+            let ga = GeneralizedAlpha::new(AlphaConfig {
                 h: 2e-4,
                 rho_inf: 0.9,
                 jacobian: jac,

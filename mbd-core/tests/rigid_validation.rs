@@ -4,7 +4,7 @@ use mbd_core::body::BodyState;
 use mbd_core::constraints::*;
 use mbd_core::forces::{AppliedForce, Gravity};
 use mbd_core::integrators::{
-    AlphaParams, DormandPrince, Event, GeneralizedAlpha, Rk4, Stabilization, State, accelerations,
+    AlphaConfig, DormandPrince, Event, GeneralizedAlpha, Rk4, Stabilization, State, accelerations,
     project_velocities,
 };
 use mbd_core::kinematics::euler::{a_matrix, from_axis_angle};
@@ -71,7 +71,7 @@ fn torque_free_body_conserves_momentum_and_energy_and_flips() {
     let dh = (sys.angular_momentum(&rk.state) - h0).norm() / h0.norm();
     let de = (sys.kinetic_energy(&rk.state) - e0).abs() / e0;
     assert!(dh < 1e-7 && de < 1e-7, "rk4 dH {dh:e} dE {de:e}");
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         h: 2e-3,
         rho_inf: 1.0,
         ..Default::default()
@@ -184,7 +184,7 @@ fn heavy_top_steady_precession() {
     assert!((e1 - e0).abs() / e0.abs() < 1e-8, "energy {e0} -> {e1}");
 
     // generalized-α (index 3): constraint satisfied to the Newton tolerance
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         h: 1e-3,
         rho_inf: 0.9,
         ..Default::default()
@@ -336,7 +336,7 @@ fn planar_slider_crank_with_planar_revolute_and_redundant_variant() {
     let (sys, s0) = slider_crank_with(omega, theta0, Wrist::PlanarRevolute).unwrap();
     assert_eq!(sys.n_c(), 18);
     let mut max_err = 0.0f64;
-    GeneralizedAlpha::new(AlphaParams {
+    GeneralizedAlpha::new(AlphaConfig {
         h: 2e-3,
         rho_inf: 0.5,
         ..Default::default()
@@ -364,7 +364,7 @@ fn slider_crank_matches_closed_form_kinematics() {
     assert_eq!(sys.n_c(), 18);
     // slider position vs x = a cos θ + sqrt(b² − a² sin² θ)
     let mut max_err = 0.0f64;
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         h: 2e-3,
         rho_inf: 0.8,
         ..Default::default()
@@ -570,7 +570,7 @@ fn nan_in_state_or_forces_is_reported_with_time() {
         Rk4::new(0.01)
             .integrate(&sys, s0.clone(), 1.0, |_| {})
             .unwrap_err(),
-        GeneralizedAlpha::new(AlphaParams {
+        GeneralizedAlpha::new(AlphaConfig {
             h: 0.01,
             ..Default::default()
         })

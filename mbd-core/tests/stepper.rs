@@ -4,7 +4,7 @@
 
 use faer::Mat;
 use mbd_core::integrators::{
-    AlphaCorrection, AlphaParams, DormandPrince, GeneralizedAlpha, Integrator, Recorder, Rk4,
+    AlphaConfig, AlphaCorrection, DormandPrince, GeneralizedAlpha, Integrator, Recorder, Rk4,
     State, StepCorrection, Stepper, observe_fn,
 };
 use mbd_core::{ForceTangent, History, MbdError, Probe, SecondOrderSystem, SysMatrix};
@@ -83,7 +83,7 @@ fn three_methods_converge_at_their_orders_on_the_oscillator() {
     assert!((p - 5.0).abs() < 0.3, "DOPRI5 order {p}");
     // generalized-α: order 2
     let ga = |h: f64| {
-        Box::new(GeneralizedAlpha::new(AlphaParams {
+        Box::new(GeneralizedAlpha::new(AlphaConfig {
             h,
             rho_inf: 0.8,
             ..Default::default()
@@ -272,7 +272,7 @@ impl StepCorrection<Block> for ImpactFloor {
 fn mass_falls_onto_a_rigid_floor_and_rests() {
     let (m, g, y0, h) = (2.0, 9.81, 0.5, 1e-3);
     let sys = Block { m, g };
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         h,
         rho_inf: 0.5,
         ..Default::default()
@@ -318,7 +318,7 @@ fn mass_falls_onto_a_rigid_floor_and_rests() {
 fn block_slides_with_coulomb_friction_at_mu_g() {
     let (m, g, mu, v0, h) = (3.0, 9.81, 0.3, 2.0, 1e-3);
     let sys = Block { m, g };
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         h,
         rho_inf: 0.5,
         ..Default::default()

@@ -8,7 +8,7 @@
 //! dumbbell, `ω ≈ sqrt(2 k_s / m)`.
 
 use faer::sparse::{SparseColMat, Triplet};
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, Rk4, State};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Rk4, State};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 use std::f64::consts::PI;
 
@@ -112,7 +112,7 @@ fn low_mode_within_one_percent_at_100x_explicit_limit() {
     let s0 = State::new(0.0, shape.clone(), vec![0.0; 2 * n]);
     let period = 2.0 * PI / w1;
     for rho in [0.0, 0.5, 0.9, 1.0] {
-        let ga = GeneralizedAlpha::new(AlphaParams {
+        let ga = GeneralizedAlpha::new(AlphaConfig {
             h,
             rho_inf: rho,
             ..Default::default()
@@ -184,7 +184,7 @@ fn high_frequency_damping_is_governed_by_rho_inf() {
     let h = 100.0 * 2.785 / (sys.k / sys.m).sqrt();
     let s0 = State::new(0.0, vec![1e-3], vec![0.0]);
     for rho in [0.0, 0.3, 0.6, 0.9, 1.0] {
-        let ga = GeneralizedAlpha::new(AlphaParams {
+        let ga = GeneralizedAlpha::new(AlphaConfig {
             h,
             rho_inf: rho,
             ..Default::default()
@@ -220,7 +220,7 @@ fn high_frequency_damping_is_governed_by_rho_inf() {
     q0[5] = 1e-3;
     let s0 = State::new(0.0, q0, vec![0.0; n]);
     for (rho, lo, hi) in [(0.0, 0.0, 1e-8), (0.5, 0.0, 1e-7), (1.0, 0.5e-3, 4e-2)] {
-        let ga = GeneralizedAlpha::new(AlphaParams {
+        let ga = GeneralizedAlpha::new(AlphaConfig {
             h,
             rho_inf: rho,
             ..Default::default()
@@ -240,7 +240,7 @@ fn sparse_newton_matrix_reuses_its_symbolic_factorisation() {
     let c = chain();
     let n = 2 * c.pairs;
     let s0 = State::new(0.0, vec![1e-3; n], vec![0.0; n]);
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         h: 0.05,
         ..Default::default()
     });

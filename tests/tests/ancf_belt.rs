@@ -315,7 +315,7 @@ fn belt_pretension_on_two_pulleys() {
 // along until it co-rotates (no load ⇒ no creep): the belt's mean angular velocity → ω.
 #[test]
 fn hoop_is_dragged_to_pulley_speed_by_friction() {
-    use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, State};
+    use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
     let (mat, sec) = belt_material();
     let r = 0.08125;
     let l0 = 0.99 * 2.0 * std::f64::consts::PI * r;
@@ -347,7 +347,7 @@ fn hoop_is_dragged_to_pulley_speed_by_friction() {
         },
     };
     let sys = AncfSystem::new(mesh).with_force(Box::new(pc));
-    let ga = GeneralizedAlpha::new(AlphaParams {
+    let ga = GeneralizedAlpha::new(AlphaConfig {
         rho_inf: 0.5,
         h: 1e-4,
         ..Default::default()

@@ -199,7 +199,7 @@ fn run(
     let j = d.pulley_dof(1).unwrap();
     let mut hist = Vec::new();
     let mut next = 0.0;
-    let opts = SimulationOptions {
+    let opts = SimulationConfig {
         h,
         ..Default::default()
     };
@@ -237,7 +237,7 @@ fn contact_quadrature_5_7_11_points_agree() {
         let v0 = d.travelling_velocity(&init.q, 12.0 * 0.08125);
         let j = d.pulley_dof(1).unwrap();
         let state = mbd_core::integrators::State::new(0.0, init.q.clone(), v0);
-        let opts = SimulationOptions::default();
+        let opts = SimulationConfig::default();
         let (mut sum, mut n) = ([0.0; 2], 0.0);
         let sol = mbd_core::integrators::GeneralizedAlpha::new(opts.alpha_params())
             .integrate(&d, state, 0.03, |s| {

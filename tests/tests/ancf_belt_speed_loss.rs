@@ -5,8 +5,8 @@
 //! `cargo test --release -p flowmbd-validation --test ancf_belt_speed_loss -- --ignored --nocapture`.
 
 use ancf::belt_drive::post;
-use drives::ancf_drive_model::{AncfDrive, AncfSettings};
-use drives::{DriveModel, SpeedLossSettings, analytical_speed_loss, speed_loss_sweep};
+use drives::ancf_drive_model::{AncfConfig, AncfDrive};
+use drives::{DriveModel, SpeedLossConfig, analytical_speed_loss, speed_loss_sweep};
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 
 // Reference: Ribaric §6.4 (T0 = 310 N) and the penalty law (6.1): after the length correction of
@@ -17,7 +17,7 @@ use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 #[test]
 fn mounted_ancf_belt_has_ribaric_pretension() {
     let cfg = BeltDriveConfig::default();
-    let model = AncfDrive::new(&cfg, &AncfSettings::default()).unwrap();
+    let model = AncfDrive::new(&cfg, &AncfConfig::default()).unwrap();
     let m = *model.mapping();
     let s0 = model.initial_state().unwrap();
     let d = model.drive();
@@ -46,7 +46,7 @@ fn mounted_ancf_belt_has_ribaric_pretension() {
     assert!((mean_pen - m.penetration[0]).abs() < 0.1 * m.penetration[0]);
 }
 
-fn sweep<M: DriveModel>(model: &mut M, settings: &SpeedLossSettings) -> Vec<(f64, f64)> {
+fn sweep<M: DriveModel>(model: &mut M, settings: &SpeedLossConfig) -> Vec<(f64, f64)> {
     let start = std::time::Instant::now();
     let (points, stats) = speed_loss_sweep(model, settings, |_, _| {}).unwrap();
     println!(
@@ -71,7 +71,7 @@ fn sweep<M: DriveModel>(model: &mut M, settings: &SpeedLossSettings) -> Vec<(f64
 #[ignore = "two speed-loss sweeps, the ANCF one ~1 s simulated (minutes in release mode)"]
 fn ancf_and_flowing_speed_loss_agree() {
     let cfg = BeltDriveConfig::default();
-    let settings = SpeedLossSettings {
+    let settings = SpeedLossConfig {
         omega_driver: 62.8,
         torques: vec![0.0, 10.0],
         ..Default::default()
@@ -82,11 +82,11 @@ fn ancf_and_flowing_speed_loss_agree() {
         FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).unwrap();
     let fl = sweep(&mut flowing, &settings);
     println!("ANCF:");
-    let a = AncfSettings::default();
+    let a = AncfConfig::default();
     let mut ancf = AncfDrive::new(&cfg, &a).unwrap();
     let an = sweep(
         &mut ancf,
-        &SpeedLossSettings {
+        &SpeedLossConfig {
             step: a.step,
             ..settings.clone()
         },

@@ -361,7 +361,7 @@ fn disk_contact_large_deflection_matches_penalty_limit() {
 #[test]
 fn dropped_beam_lands_and_rests_with_static_contact_forces() {
     use ancf::{AncfSystem, integrate_unilateral};
-    use mbd_core::integrators::{AlphaParams, State};
+    use mbd_core::integrators::{AlphaConfig, State};
     let n = 4;
     let (len, drop, g) = (1.0, 0.01, 9.81);
     let mat = Material::new(1.0e9, 0.3, 1000.0).unwrap();
@@ -372,7 +372,7 @@ fn dropped_beam_lands_and_rests_with_static_contact_forces() {
     let sys = AncfSystem::new(mesh).with_gravity([0.0, -g]);
     let nodes: Vec<usize> = (0..=n).collect();
     let ground = HalfPlane::ground(0.0);
-    let params = AlphaParams {
+    let params = AlphaConfig {
         h: 5e-4,
         rho_inf: 0.6,
         ..Default::default()
@@ -439,7 +439,7 @@ fn dropped_beam_lands_and_rests_with_static_contact_forces() {
 #[test]
 fn dynamic_contact_keeps_static_equilibrium() {
     use ancf::{AncfSystem, Prescribed, integrate_unilateral};
-    use mbd_core::integrators::{AlphaParams, State};
+    use mbd_core::integrators::{AlphaConfig, State};
     let q = 0.5 * q_star();
     let n = 16;
     let b = beam(n, q, ProposedBeam::new);
@@ -462,7 +462,7 @@ fn dynamic_contact_keeps_static_equilibrium() {
         .with_gravity([0.0, -q / (RHO * W * H)])
         .with_prescribed(clamp)
         .unwrap();
-    let params = AlphaParams {
+    let params = AlphaConfig {
         h: 1e-3,
         ..Default::default()
     };

@@ -2,7 +2,7 @@
 //! example B0): `flowing::belt::wave`.
 
 use flowing::belt::BeltDriveConfig;
-use flowing::belt::wave::{WaveSettings, dominant_frequency, wave_run, wave_speed};
+use flowing::belt::wave::{WaveConfig, dominant_frequency, wave_run, wave_speed};
 
 fn config() -> BeltDriveConfig {
     let mut c = BeltDriveConfig::default();
@@ -30,7 +30,7 @@ fn slope(t: &[f64], y: &[f64]) -> f64 {
 fn wave_splits_at_rest_and_is_advected_when_running() {
     let cfg = config();
     let c = wave_speed(&cfg);
-    let s = WaveSettings {
+    let s = WaveConfig {
         t_end: 2e-3,
         samples: 40,
         step: 1e-5,
@@ -96,7 +96,7 @@ fn wave_splits_at_rest_and_is_advected_when_running() {
 fn span_frequency_falls_with_belt_speed() {
     let cfg = config();
     let c = wave_speed(&cfg);
-    let s = WaveSettings {
+    let s = WaveConfig {
         half_width: 0.4,
         t_end: 0.12,
         samples: 600,

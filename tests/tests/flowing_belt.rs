@@ -2,7 +2,7 @@
 //! analytical speed loss of Bechtel et al. (6.3), physical invariants and a second (untruncated)
 //! formulation.
 
-use drives::{SpeedLossPoint, SpeedLossSettings, analytical_speed_loss, speed_loss_sweep};
+use drives::{SpeedLossConfig, SpeedLossPoint, analytical_speed_loss, speed_loss_sweep};
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 
 fn sweep(
@@ -13,7 +13,7 @@ fn sweep(
 ) -> (Vec<SpeedLossPoint>, Vec<(f64, f64)>) {
     let fe = BeltFe::new(cfg).unwrap();
     let mut belt = FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).unwrap();
-    let settings = SpeedLossSettings {
+    let settings = SpeedLossConfig {
         omega_driver: omega,
         torques: torques.to_vec(),
         tolerance: tol,

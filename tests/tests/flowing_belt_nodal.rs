@@ -4,11 +4,11 @@
 //! puts into the driven pulley's speed.
 
 use drives::speed_loss::{MAX_HALVINGS, robust_step};
-use drives::{DriveModel, SpeedLossPoint, SpeedLossSettings, speed_loss_sweep};
+use drives::{DriveModel, SpeedLossConfig, SpeedLossPoint, speed_loss_sweep};
 use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 use flowing::spectrum::amplitude_spectrum;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 
 /// A uniform loop: `span` elements per span, `arc` per arc (Table 6-1 geometry: 0.45 m spans,
 /// 0.157 m arcs; 20/7 and 80/28 give equal element lengths to 0.3 %).
@@ -21,7 +21,7 @@ fn uniform(span: usize, arc: usize) -> BeltDriveConfig {
 
 fn sweep<M: DriveModel>(model: &mut M, torques: &[f64]) -> Vec<SpeedLossPoint> {
     // windows of 0.1 s: the rotating mesh's ripple averages out over several element passings
-    let settings = SpeedLossSettings {
+    let settings = SpeedLossConfig {
         torques: torques.to_vec(),
         window: 0.1,
         tolerance: 1e-3,
@@ -41,7 +41,7 @@ fn driven_speed_history<M: DriveModel>(model: &mut M, t_from: f64, t_to: f64, h:
     });
     *model.load_mut() = Schedule::constant(0.0);
     let s0 = model.initial_state().unwrap();
-    let alpha = GeneralizedAlpha::new(AlphaParams {
+    let alpha = GeneralizedAlpha::new(AlphaConfig {
         h,
         rho_inf: 0.6,
         ..Default::default()

@@ -4,8 +4,8 @@
 
 use flowing::contact::{ContactEvent, candidates};
 use flowing::{
-    AxialMotion, ContactSettings, ContactString, DerivativeMethod, Pulley, StringMesh,
-    StringParams, simulate_contact,
+    AxialMotion, ContactConfig, ContactString, DerivativeMethod, Pulley, StringConfig, StringMesh,
+    simulate_contact,
 };
 use mbd_core::integrators::State;
 
@@ -13,9 +13,9 @@ const TOP: f64 = 0.015;
 const R: f64 = 0.25;
 
 fn mesh(n: usize) -> StringMesh {
-    let p = StringParams {
+    let p = StringConfig {
         length: 1.2,
-        ..StringParams::default()
+        ..StringConfig::default()
     };
     StringMesh::uniform(p, n).unwrap()
 }
@@ -119,7 +119,7 @@ fn wrapped_string_conserves_energy_and_keeps_active_nodes_on_pulley() {
         &mut s,
         state0,
         0.06,
-        &ContactSettings::default(),
+        &ContactConfig::default(),
         |sys, st| {
             for c in 0..sys.candidates.len() {
                 if sys.active[c] {
@@ -207,7 +207,7 @@ fn craig_bampton_with_all_modes_equals_nodal_model() {
     assert_eq!(nod.active, cb.active);
     let u0 = pluck(&nod, &yn, 0.03);
     let y0c = flowing::contact::coordinates_of(&cb, m.mass.as_ref(), &u0).unwrap();
-    let s = ContactSettings::default();
+    let s = ContactConfig::default();
     let rn = simulate_contact(
         &mut nod,
         State::new(0.0, u0, vec![0.0; 39]),
@@ -268,7 +268,7 @@ fn travelling_wrapped_string_energy_balance() {
         &mut s,
         State::new(0.0, y, v0),
         0.04,
-        &ContactSettings::default(),
+        &ContactConfig::default(),
         |sys, st| {
             samples.push((st.t, sys.energy(&st.q, &st.v, v)));
         },

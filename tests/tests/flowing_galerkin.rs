@@ -1,12 +1,12 @@
 //! The analytical moving string (Ribaric (4.26)–(4.30)).
 #![allow(clippy::needless_range_loop)] // index loops mirror the matrix equations
 
-use flowing::{GalerkinString, StringParams};
+use flowing::{GalerkinString, StringConfig};
 
 // Reference: notes §1.4.4 [DER] values of (4.28) for v = 10 m/s, L = 1 m.
 #[test]
 fn gyroscopic_matrix_entries_and_skew_symmetry() {
-    let g = GalerkinString::new(StringParams::default(), 10.0, 6).unwrap();
+    let g = GalerkinString::new(StringConfig::default(), 10.0, 6).unwrap();
     assert!((g.a[(0, 1)] + 53.333_333).abs() < 1e-3);
     assert!((g.a[(1, 2)] + 96.0).abs() < 1e-9);
     assert!((g.a[(0, 3)] + 21.333_333).abs() < 1e-3);
@@ -21,7 +21,7 @@ fn gyroscopic_matrix_entries_and_skew_symmetry() {
 // N ≥ 20 terms, and the error decreases with N (convergence of the Galerkin model).
 #[test]
 fn galerkin_frequencies_converge_to_exact_moving_string() {
-    let p = StringParams::default();
+    let p = StringConfig::default();
     // Notes §2.1 table, v = 20 m/s.
     let table = [15.171, 30.341, 45.512, 60.683, 75.854];
     for (n, f) in table.iter().enumerate() {
@@ -57,7 +57,7 @@ fn galerkin_frequencies_converge_to_exact_moving_string() {
 // Reference: at v = 0, f_n = n c/(2L) = 20.137 n Hz (notes STR-1/§2.1).
 #[test]
 fn galerkin_at_rest_is_the_fixed_string() {
-    let f = GalerkinString::new(StringParams::default(), 0.0, 8)
+    let f = GalerkinString::new(StringConfig::default(), 0.0, 8)
         .unwrap()
         .system()
         .state_eigen()
@@ -75,7 +75,7 @@ fn galerkin_at_rest_is_the_fixed_string() {
 // notes STR-5): an eigenvalue with positive real part.
 #[test]
 fn galerkin_is_unstable_above_critical_speed() {
-    let p = StringParams::default();
+    let p = StringConfig::default();
     let c = p.wave_speed();
     assert!((c - 40.2735).abs() < 1e-3);
     let below = GalerkinString::new(p, 0.95 * c, 20)
@@ -102,7 +102,7 @@ fn galerkin_is_unstable_above_critical_speed() {
 // (central difference in time), and H = ½ȧᵀȧ + ½aᵀBa is conserved because A is skew.
 #[test]
 fn matrix_exponential_response_satisfies_ode_and_conserves_energy() {
-    let g = GalerkinString::new(StringParams::default(), 20.0, 12).unwrap();
+    let g = GalerkinString::new(StringConfig::default(), 20.0, 12).unwrap();
     let sys = g.system();
     let x = sys.state_matrix().unwrap();
     let n = 12;
@@ -144,7 +144,7 @@ fn matrix_exponential_response_satisfies_ode_and_conserves_energy() {
 #[test]
 fn matrix_exponential_equals_dormand_prince_integration() {
     use mbd_core::{DormandPrince, State};
-    let g = GalerkinString::new(StringParams::default(), 15.0, 8).unwrap();
+    let g = GalerkinString::new(StringConfig::default(), 15.0, 8).unwrap();
     let sys = g.system();
     let n = 8;
     let q0: Vec<f64> = (0..n).map(|i| 1e-3 / (i + 1) as f64).collect();

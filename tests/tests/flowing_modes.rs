@@ -6,7 +6,7 @@ use faer::Mat;
 use fe_model::MassKind;
 use flowing::derivative::{MassKind as OpMass, line_fe_matrices};
 use flowing::{
-    AxialMotion, DerivativeMethod, End, FlowGrid, FlowingString, StringMesh, StringParams, Topology,
+    AxialMotion, DerivativeMethod, End, FlowGrid, FlowingString, StringConfig, StringMesh, Topology,
 };
 use proptest::prelude::*;
 
@@ -50,7 +50,7 @@ proptest! {
         consistent in any::<bool>(),
         tension in 10.0f64..2000.0,
     ) {
-        let p = StringParams { tension, ..StringParams::default() };
+        let p = StringConfig { tension, ..StringConfig::default() };
         let grid = random_grid(&gaps);
         let n = grid.len();
         let mesh = StringMesh::new(p, grid, if consistent { MassKind::Consistent } else { MassKind::Lumped }).unwrap();
@@ -83,7 +83,7 @@ proptest! {
         gaps in proptest::collection::vec(0.2f64..1.0, 6..30),
         consistent in any::<bool>(),
     ) {
-        let p = StringParams::default();
+        let p = StringConfig::default();
         let grid = random_grid(&gaps);
         let (fe_mass, op_mass) = if consistent { (MassKind::Consistent, OpMass::Consistent) } else { (MassKind::Lumped, OpMass::Lumped) };
         let mesh = StringMesh::new(p, grid.clone(), fe_mass).unwrap();

@@ -8,13 +8,13 @@
 use faer::Mat;
 use flowing::derivative::{FdScheme, FirstDifference, MassKind, SecondDifference};
 use flowing::{
-    AxialMotion, DerivativeMethod, FlowGrid, FlowLine, FlowingString, ModalBasis, StringParams,
+    AxialMotion, DerivativeMethod, FlowGrid, FlowLine, FlowingString, ModalBasis, StringConfig,
 };
 use mbd_core::SysMatrix;
 use std::f64::consts::PI;
 
 fn string_model(
-    p: &StringParams,
+    p: &StringConfig,
     n: usize,
     modes: usize,
 ) -> (SysMatrix, ModalBasis, Vec<FlowLine>) {
@@ -39,13 +39,13 @@ fn string_model(
 }
 
 fn flowing(n: usize, modes: usize, method: DerivativeMethod, speed: f64) -> FlowingString {
-    let p = StringParams::default();
+    let p = StringConfig::default();
     let (m, b, l) = string_model(&p, n, modes);
     FlowingString::new(&m, b, &l, method, AxialMotion::Constant { speed }).unwrap()
 }
 
 fn max_rel_err(f: &[f64], v: f64, count: usize) -> f64 {
-    let p = StringParams::default();
+    let p = StringConfig::default();
     (0..count)
         .map(|i| {
             (f[i] - p.exact_moving_frequency_hz(i + 1, v)).abs()
@@ -135,7 +135,7 @@ fn flowing_frequencies_converge_with_nodes_and_modes() {
 // unstable; below it all eigenvalues are on the imaginary axis (FE-consistent operators).
 #[test]
 fn unstable_above_critical_speed_only() {
-    let c = StringParams::default().wave_speed();
+    let c = StringConfig::default().wave_speed();
     let s = flowing(49, 20, DerivativeMethod::default(), 0.0);
     let below = s.frozen(0.9 * c, 0.0).state_eigen().unwrap();
     assert!(
@@ -201,7 +201,7 @@ fn repeated_central_difference_bias_matches_notes() {
 // design rule), also with the consistent-mass variant producing the same matrices for lumped M.
 #[test]
 fn consistent_operator_gives_skew_coriolis_and_scaled_lambda() {
-    let p = StringParams::default();
+    let p = StringConfig::default();
     let s = flowing(40, 15, DerivativeMethod::Consistent(MassKind::Lumped), 10.0);
     let c2 = p.wave_speed().powi(2);
     for i in 0..15 {
@@ -221,7 +221,7 @@ fn consistent_operator_gives_skew_coriolis_and_scaled_lambda() {
 #[test]
 fn dynamic_axial_motion_forces_match_prescribed() {
     use mbd_core::SecondOrderSystem;
-    let p = StringParams::default();
+    let p = StringConfig::default();
     let (m, b, l) = string_model(&p, 30, 8);
     let dynm = FlowingString::new(
         &m,
@@ -271,7 +271,7 @@ fn dynamic_axial_motion_forces_match_prescribed() {
 fn pluck_transient_spectra_show_coupled_frequencies() {
     use flowing::spectrum::amplitude_spectrum;
     use flowing::{StringMesh, simulate_rk4, triangular_pluck};
-    let p = StringParams::default();
+    let p = StringConfig::default();
     let v = 20.0;
     let mesh = StringMesh::uniform(p, 99).unwrap();
     let basis = mesh.modes(10).unwrap();
@@ -335,7 +335,7 @@ fn pluck_transient_spectra_show_coupled_frequencies() {
 #[test]
 fn dynamic_axial_speed_follows_its_ode() {
     use flowing::simulate_rk4;
-    let p = StringParams::default();
+    let p = StringConfig::default();
     let (m, b, l) = string_model(&p, 30, 6);
     let (mass, damping, force) = (3.0, 1.5, 30.0);
     let sys = FlowingString::new(

@@ -9,7 +9,7 @@
 //! contact point).
 
 use contact::FrictionSpec;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 
 mod common;
 
@@ -49,7 +49,7 @@ fn flowing_run(law: FrictionSpec) -> (f64, bool) {
     .unwrap();
     let s0 = belt.initial_state().unwrap();
     let h = 2.5e-4;
-    let mut st = GeneralizedAlpha::new(AlphaParams {
+    let mut st = GeneralizedAlpha::new(AlphaConfig {
         h,
         rho_inf: 0.8,
         ..Default::default()
@@ -73,7 +73,7 @@ fn flowing_run(law: FrictionSpec) -> (f64, bool) {
 /// point of the final state.
 fn ancf_run(law: FrictionSpec) -> (f64, bool) {
     use ancf::belt_drive::{
-        BeltDrive, BeltDriveSpec, InitialOptions, PulleyDrive, SimulationOptions, SpeedProfile,
+        BeltDrive, BeltDriveSpec, InitialOptions, PulleyDrive, SimulationConfig, SpeedProfile,
     };
     let mut spec = BeltDriveSpec::default();
     spec.contact.friction = law;
@@ -84,7 +84,7 @@ fn ancf_run(law: FrictionSpec) -> (f64, bool) {
     let init = d.initial_state(&InitialOptions::default()).unwrap();
     let v0 = d.travelling_velocity(&init.q, 12.0 * 0.08125);
     let state = mbd_core::integrators::State::new(0.0, init.q.clone(), v0);
-    let sol = GeneralizedAlpha::new(SimulationOptions::default().alpha_params())
+    let sol = GeneralizedAlpha::new(SimulationConfig::default().alpha_params())
         .integrate(&d, state, 0.01, |_| {})
         .unwrap();
     let s = &sol.state;

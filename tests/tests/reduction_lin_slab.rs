@@ -7,7 +7,7 @@
 #![allow(clippy::needless_range_loop)] // index loops mirror the printed tables
 
 use flowmbd_cases::lin::slab::{self, SlabMethod, node_dofs, node_position};
-use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use flowmbd_cases::lin::slab_sim::{SlabSimConfig, SlabSimulation, simulate};
 use reduction::axes::check_mean_axes_preconditions;
 use reduction::basis::{Method, ModeSelection, build_basis, fixed_interface_modes};
 use reduction::linalg::eig_to_hz;
@@ -139,7 +139,7 @@ fn simulation1_statics_table() {
     }
 }
 
-fn history(sim: SlabSimulation, m: SlabMethod, p: &SlabSimParams) -> Vec<[f64; 3]> {
+fn history(sim: SlabSimulation, m: SlabMethod, p: &SlabSimConfig) -> Vec<[f64; 3]> {
     let s = slab::appendix_b_slab().unwrap();
     let mut h = Vec::new();
     let drift = simulate(&s, m, sim, p, |_, d| h.push(d)).unwrap();
@@ -151,7 +151,7 @@ fn history(sim: SlabSimulation, m: SlabMethod, p: &SlabSimParams) -> Vec<[f64; 3
 fn simulation1_cb_equals_mc_and_oscillates_about_the_statics() {
     // Lin §7.2.2: CB and MC identical and close to NR; MT amplitude "quite insufficient";
     // undamped step loading oscillates about the statics (companion §14.6).
-    let p = SlabSimParams {
+    let p = SlabSimConfig {
         duration_s: 1.0,
         ..Default::default()
     };
@@ -189,7 +189,7 @@ fn simulation1_cb_equals_mc_and_oscillates_about_the_statics() {
 #[test]
 fn simulation2_cb_equals_mc() {
     // Lin §7.2.3: CB = MC; reasonably close to NR; MT poorest.
-    let p = SlabSimParams {
+    let p = SlabSimConfig {
         duration_s: 0.5,
         ..Default::default()
     };

@@ -9,7 +9,7 @@
 //! poorer).
 
 use flowmbd_cases::lin::slab::{self, SlabMethod};
-use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use flowmbd_cases::lin::slab_sim::{SlabSimConfig, SlabSimulation, simulate};
 use flowmbd_cases::lin::slab_sim3::{AccelTable, record_source, simulate_emulated, source_system};
 use mbd_core::marker::Marker;
 use nalgebra::Vector3;
@@ -61,7 +61,7 @@ fn table_interpolant_integrates_a_linear_acceleration_exactly() {
 fn source_starts_inclined_at_rest_with_the_links_along_x() {
     // Lin §7.2.4 set-up: node 18 on the hinge line, node 16 swung 45° towards −y and down.
     let s = slab::appendix_b_slab().unwrap();
-    let p = SlabSimParams::default();
+    let p = SlabSimConfig::default();
     let (sys, st) = source_system(&s, &p).unwrap();
     let pos = |j: usize| sys.point_position(&st, &Marker::node(0, j - 1));
     let h = std::f64::consts::FRAC_1_SQRT_2;
@@ -82,7 +82,7 @@ fn source_run_conserves_energy() {
     // and constant point forces with potential −F·x), so T + V_strain + V_gravity − Σ F·x stays
     // constant along the run; RK4 at 1 ms keeps it to a small fraction of the kinetic energy.
     let s = slab::appendix_b_slab().unwrap();
-    let p = SlabSimParams {
+    let p = SlabSimConfig {
         duration_s: 0.5,
         ..Default::default()
     };
@@ -112,7 +112,7 @@ fn source_run_conserves_energy() {
 #[test]
 fn nr_emulation_reproduces_the_source_and_converges_with_the_table_interval() {
     let s = slab::appendix_b_slab().unwrap();
-    let mut p = SlabSimParams {
+    let mut p = SlabSimConfig {
         duration_s: 0.5,
         ..Default::default()
     };
@@ -166,7 +166,7 @@ fn cb_equals_mc_and_the_ranking_of_lin_7_2_4() {
     // Lin §7.2.4: CB = MC (same column space, §6.5.4: agreement to integrator tolerance), close
     // to NR; MT and GR poorer than CB/MC.
     let s = slab::appendix_b_slab().unwrap();
-    let p = SlabSimParams {
+    let p = SlabSimConfig {
         duration_s: 0.5,
         ..Default::default()
     };

@@ -9,7 +9,7 @@
 
 use contact::{Coulomb, SlipRegularized};
 use flowing::tire::TireFriction;
-use flowing::tire::contact_solve::{ContactSolver, DenseProblem, SolveReport, SolveSettings};
+use flowing::tire::contact_solve::{ContactSolver, DenseProblem, SolveOptions, SolveReport};
 use proptest::prelude::*;
 use std::sync::Arc;
 
@@ -37,7 +37,7 @@ fn diag_of(d: &[f64], m: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
-fn solve(d: &[f64], b: &[f64], warm: &[f64], s: &SolveSettings) -> (Vec<f64>, SolveReport) {
+fn solve(d: &[f64], b: &[f64], warm: &[f64], s: &SolveOptions) -> (Vec<f64>, SolveReport) {
     let m = b.len() / 3;
     let mut solver = ContactSolver::default();
     solver.reset(warm);
@@ -54,10 +54,10 @@ fn outputs(d: &[f64], b: &[f64], x: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-fn coulomb(mu: f64) -> SolveSettings {
-    SolveSettings {
+fn coulomb(mu: f64) -> SolveOptions {
+    SolveOptions {
         law: Arc::new(Coulomb { mu }),
-        ..SolveSettings::default()
+        ..SolveOptions::default()
     }
 }
 
@@ -466,7 +466,7 @@ proptest! {
         eps in 0.05f64..1.0,
     ) {
         let (d, b) = random_problem(m, &seed, &gaps, &slips);
-        let s = SolveSettings { law: Arc::new(SlipRegularized { mu, epsilon: eps }), ..SolveSettings::default() };
+        let s = SolveOptions { law: Arc::new(SlipRegularized { mu, epsilon: eps }), ..SolveOptions::default() };
         let (x, rep) = solve(&d, &b, &vec![0.0; 3 * m], &s);
         prop_assert!(rep.converged, "{rep:?}");
         let y = outputs(&d, &b, &x);

@@ -47,7 +47,7 @@ fn substeps_over_the_whole_run_equal_the_small_step() {
     let red = tire();
     let mut fine = plain_rig(0.02);
     let mut coarse = fine.clone();
-    coarse.impact = ImpactSteps {
+    coarse.impact = ImpactConfig {
         substeps: 4,
         lead: 10.0,
         trail: 10.0,
@@ -75,7 +75,7 @@ fn substeps_are_used_only_around_the_cleat() {
     let red = tire();
     let plain = plain_rig(0.03);
     let mut sub = plain.clone();
-    sub.impact = ImpactSteps {
+    sub.impact = ImpactConfig {
         substeps: 4,
         // off the step grid (0.1 m / v and 0.01 s are whole steps), so no step starts on an edge
         lead: 0.1003,
@@ -105,7 +105,7 @@ fn substeps_are_used_only_around_the_cleat() {
         }
     }
     let bad = RigConfig {
-        impact: ImpactSteps {
+        impact: ImpactConfig {
             substeps: 0,
             ..Default::default()
         },

@@ -30,5 +30,5 @@ pub use initial::{InitialOptions, InitialState};
 pub use model::{BeltDrive, PointRecord};
 pub use profile::{SpeedProfile, TorqueProfile};
 pub use pulley::{Pulley, PulleyDrive};
-pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationOptions, simulate};
+pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationConfig, simulate};
 pub use spec::{BeltDriveSpec, BeltSpec, ContactSpec};

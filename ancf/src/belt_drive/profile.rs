@@ -1,6 +1,7 @@
 //! Time histories of the pulley inputs: prescribed driver speeds (Kerkkänen (3.29)) and load
 //! torques on free pulleys (Kerkkänen (3.30)).
 
+use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -63,23 +64,30 @@ impl SpeedProfile {
             SpeedProfile::Constant { omega } | SpeedProfile::Ramp { omega, .. } => omega,
         }
     }
+}
 
-    /// Check the parameters; `Err` names the offending field.
-    pub fn validate(&self) -> Result<(), String> {
+impl Validate for SpeedProfile {
+    /// Check the parameters; the error names the offending field (relative path).
+    fn validate(&self) -> Result<(), InvalidField> {
         match *self {
-            SpeedProfile::Constant { omega } if !omega.is_finite() => {
-                Err(format!("omega: must be finite, got {omega}"))
-            }
+            SpeedProfile::Constant { omega } if !omega.is_finite() => Err(InvalidField::new(
+                "omega",
+                format!("must be finite, got {omega}"),
+            )),
             SpeedProfile::Ramp {
                 t_start,
                 t_end,
                 omega,
             } => {
                 if !omega.is_finite() {
-                    Err(format!("omega: must be finite, got {omega}"))
+                    Err(InvalidField::new(
+                        "omega",
+                        format!("must be finite, got {omega}"),
+                    ))
                 } else if !(t_start.is_finite() && t_end.is_finite() && t_end > t_start) {
-                    Err(format!(
-                        "t_end: must exceed t_start ({t_start} s), got {t_end} s"
+                    Err(InvalidField::new(
+                        "t_end",
+                        format!("must exceed t_start ({t_start} s), got {t_end} s"),
                     ))
                 } else {
                     Ok(())
@@ -153,16 +161,21 @@ impl TorqueProfile {
             TorqueProfile::Constant { torque } | TorqueProfile::Cosine { torque, .. } => torque,
         }
     }
+}
 
-    /// Check the parameters; `Err` names the offending field.
-    pub fn validate(&self) -> Result<(), String> {
+impl Validate for TorqueProfile {
+    /// Check the parameters; the error names the offending field (relative path).
+    fn validate(&self) -> Result<(), InvalidField> {
         match *self {
             TorqueProfile::None => Ok(()),
             TorqueProfile::Constant { torque } => {
                 if torque.is_finite() {
                     Ok(())
                 } else {
-                    Err(format!("torque: must be finite, got {torque}"))
+                    Err(InvalidField::new(
+                        "torque",
+                        format!("must be finite, got {torque}"),
+                    ))
                 }
             }
             TorqueProfile::Cosine {
@@ -171,10 +184,14 @@ impl TorqueProfile {
                 torque,
             } => {
                 if !torque.is_finite() {
-                    Err(format!("torque: must be finite, got {torque}"))
+                    Err(InvalidField::new(
+                        "torque",
+                        format!("must be finite, got {torque}"),
+                    ))
                 } else if !(t_start.is_finite() && t_end.is_finite() && t_end > t_start) {
-                    Err(format!(
-                        "t_end: must exceed t_start ({t_start} s), got {t_end} s"
+                    Err(InvalidField::new(
+                        "t_end",
+                        format!("must exceed t_start ({t_start} s), got {t_end} s"),
                     ))
                 } else {
                     Ok(())

@@ -4,6 +4,7 @@
 
 use super::profile::{SpeedProfile, TorqueProfile};
 use fe_model::generate::belt_path::WrapSide;
+use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
 /// How a pulley moves.
@@ -61,26 +62,33 @@ impl Pulley {
     pub fn is_free(&self) -> bool {
         matches!(self.drive, PulleyDrive::Free { .. })
     }
+}
 
-    /// Check the parameters; `Err` is `(field, reason)`.
-    pub fn validate(&self) -> Result<(), (String, String)> {
+impl Validate for Pulley {
+    /// Every field checked; the error names the field (path relative to this struct).
+    fn validate(&self) -> Result<(), InvalidField> {
         let f = |x: &str| format!("pulley \"{}\": {x}", self.name);
         if !(self.center[0].is_finite() && self.center[1].is_finite()) {
-            return Err((f("center"), "must be finite".into()));
+            return Err(InvalidField::new(f("center"), "must be finite"));
         }
         if !(self.radius.is_finite() && self.radius > 0.0) {
-            return Err((f("radius"), format!("must be > 0 m, got {}", self.radius)));
+            return Err(InvalidField::new(
+                f("radius"),
+                format!("must be > 0 m, got {}", self.radius),
+            ));
         }
         match &self.drive {
-            PulleyDrive::Speed { speed } => speed.validate().map_err(|r| (f("drive.speed"), r)),
+            PulleyDrive::Speed { speed } => {
+                speed.validate().map_err(|e| e.within(&f("drive.speed")))
+            }
             PulleyDrive::Free { inertia, load } => {
                 if !(inertia.is_finite() && *inertia > 0.0) {
-                    return Err((
+                    return Err(InvalidField::new(
                         f("drive.inertia"),
                         format!("must be > 0 kg·m², got {inertia}"),
                     ));
                 }
-                load.validate().map_err(|r| (f("drive.load"), r))
+                load.validate().map_err(|e| e.within(&f("drive.load")))
             }
         }
     }

@@ -4,7 +4,7 @@
 
 use super::model::BeltDrive;
 use crate::error::{AncfError, invalid};
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, JacobianMode, NewtonUpdate, Rk4};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, JacobianMode, NewtonUpdate, Rk4};
 use mbd_core::integrators::{Solution, State};
 use serde::{Deserialize, Serialize};
 
@@ -21,7 +21,7 @@ pub enum IntegratorKind {
 /// Integration options.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct SimulationOptions {
+pub struct SimulationConfig {
     /// Integrator.
     pub integrator: IntegratorKind,
     /// Step size \[s\].
@@ -38,7 +38,7 @@ pub struct SimulationOptions {
     pub full_newton: bool,
 }
 
-impl Default for SimulationOptions {
+impl Default for SimulationConfig {
     fn default() -> Self {
         Self {
             integrator: IntegratorKind::GeneralizedAlpha,
@@ -51,7 +51,7 @@ impl Default for SimulationOptions {
     }
 }
 
-impl SimulationOptions {
+impl SimulationConfig {
     /// Check the parameters; the error names the field.
     pub fn validate(&self) -> Result<(), AncfError> {
         if !(self.h.is_finite() && self.h > 0.0) {
@@ -79,8 +79,8 @@ impl SimulationOptions {
     }
 
     /// The generalized-α parameters.
-    pub fn alpha_params(&self) -> AlphaParams {
-        AlphaParams {
+    pub fn alpha_params(&self) -> AlphaConfig {
+        AlphaConfig {
             rho_inf: self.rho_inf,
             h: self.h,
             newton_atol: self.newton_atol,
@@ -104,7 +104,7 @@ pub fn simulate(
     drive: &BeltDrive,
     q0: &[f64],
     t_end: f64,
-    opts: &SimulationOptions,
+    opts: &SimulationConfig,
     observer: impl FnMut(&State),
 ) -> Result<Solution, AncfError> {
     opts.validate()?;

@@ -5,6 +5,7 @@ use super::profile::{SpeedProfile, TorqueProfile};
 use super::pulley::{Pulley, PulleyDrive};
 use crate::error::{AncfError, invalid};
 use fe_model::generate::belt_path::WrapSide;
+use mbd_core::Validate;
 use serde::{Deserialize, Serialize};
 
 /// The belt: ANCF belt elements (Kerkkänen §3.1) in a closed loop.
@@ -156,7 +157,7 @@ impl BeltDriveSpec {
             ));
         }
         for (i, p) in self.pulleys.iter().enumerate() {
-            p.validate().map_err(|(f, r)| invalid(f, r))?;
+            p.validate()?;
             if self.pulleys[..i].iter().any(|o| o.name == p.name) {
                 return Err(invalid(
                     format!("pulley \"{}\": name", p.name),
@@ -229,9 +230,7 @@ impl BeltDriveSpec {
                 format!("must lie in 1..=20, got {}", c.points),
             ));
         }
-        c.friction
-            .validate()
-            .map_err(|e| invalid(format!("contact.friction.{}", e.field), e.reason))?;
+        c.friction.validate_within("contact.friction")?;
         Ok(())
     }
 }

@@ -14,7 +14,7 @@ use crate::element::Element;
 use crate::error::{AncfError, invalid};
 use contact::{Surface, unilateral_row};
 use faer::sparse::{SparseColMat, Triplet};
-use mbd_core::integrators::{AlphaParams, AlphaStepper, State};
+use mbd_core::integrators::{AlphaConfig, AlphaStepper, State};
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 
@@ -173,7 +173,7 @@ pub fn integrate_unilateral<E: Element, S: Surface + ?Sized>(
     surface: &S,
     nodes: &[usize],
     state0: State,
-    params: AlphaParams,
+    params: AlphaConfig,
     t_end: f64,
     observer: &mut dyn FnMut(&ContactStep),
 ) -> Result<(), AncfError> {

@@ -271,9 +271,7 @@ impl Default for CantileverConfig {
 
 impl Validate for CantileverConfig {
     fn validate(&self) -> Result<(), InputError> {
-        self.beam
-            .validate()
-            .map_err(|e| InputError::new(format!("beam.{}", e.field), e.reason))?;
+        self.beam.validate_within("beam")?;
         at_least_one("shape_segments", self.shape_segments)
     }
 }

@@ -9,7 +9,7 @@
 //! `output.points_per_element` points per element, which resolves the inlet and exit zones),
 //! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtk` + `belt.vtk.series`).
 
-use ancf::belt_drive::{BeltDrive, BeltDriveSpec, InitialOptions, SimulationOptions, post};
+use ancf::belt_drive::{BeltDrive, BeltDriveSpec, InitialOptions, SimulationConfig, post};
 use drives::ancf_run::{Due, Sampling, closure_on_path, roles, run_drive, tight_slack};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
@@ -77,7 +77,7 @@ pub struct Config {
     /// The drive: pulleys (travel order), belt, contact.
     pub drive: BeltDriveSpec,
     /// Integrator.
-    pub integrator: SimulationOptions,
+    pub integrator: SimulationConfig,
     /// Output.
     pub output: OutputConfig,
 }
@@ -90,7 +90,7 @@ impl Default for Config {
             t_end: 1.0,
             tangent_refresh: 0.02,
             drive: BeltDriveSpec::default(),
-            integrator: SimulationOptions::default(),
+            integrator: SimulationConfig::default(),
             output: OutputConfig::default(),
         }
     }

@@ -6,7 +6,7 @@
 use flowmbd_cases::slider_crank::SliderCrank;
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 
@@ -153,7 +153,7 @@ impl Study for Demo {
         let mut max_err = 0.0f64;
         let (mut xs, mut refs) = (Vec::new(), Vec::new());
         let mut io_error = None;
-        let alpha = GeneralizedAlpha::new(AlphaParams {
+        let alpha = GeneralizedAlpha::new(AlphaConfig {
             h: c.step,
             rho_inf: c.rho_inf,
             ..Default::default()

@@ -5,11 +5,11 @@
 //! the results.
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
-use drives::ancf_drive_model::AncfSettings;
+use drives::ancf_drive_model::AncfConfig;
 use drives::speed_loss::{Sample, SweepStats};
 use drives::study::case_inputs;
-use drives::{DriveError, ModelKind, NodalOptions, SpeedLossCase, SpeedLossModel};
-use drives::{SpeedLossSettings, speed_loss::SweepFailure};
+use drives::{DriveError, ModelKind, NodalConfig, SpeedLossCase, SpeedLossModel};
+use drives::{SpeedLossConfig, speed_loss::SweepFailure};
 use flowing::belt::BeltDriveConfig;
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
@@ -53,14 +53,14 @@ pub struct Config {
     pub drive: BeltDriveConfig,
     /// The procedure (torques, ramps, steady-state detection, integrator). Its `omega_driver`
     /// is replaced by each entry of `omegas`.
-    pub procedure: SpeedLossSettings,
+    pub procedure: SpeedLossConfig,
     /// Write every n-th integration step to the history CSV files.
     pub history_every: usize,
     /// Discretisation of the ANCF belt (`model = "ancf"` only).
-    pub ancf: AncfSettings,
+    pub ancf: AncfConfig,
     /// Settings used instead of `drive.mesh` and the procedure's steady-state window when
     /// `model = "nodal"`.
-    pub nodal: NodalOptions,
+    pub nodal: NodalConfig,
 }
 
 impl Default for Config {
@@ -69,10 +69,10 @@ impl Default for Config {
             model: ModelKind::Flowing,
             omegas: vec![62.8, 22.6],
             drive: BeltDriveConfig::default(),
-            procedure: SpeedLossSettings::default(),
+            procedure: SpeedLossConfig::default(),
             history_every: 20,
             ancf: Default::default(),
-            nodal: NodalOptions::default(),
+            nodal: NodalConfig::default(),
         }
     }
 }
@@ -95,30 +95,22 @@ impl Validate for Config {
         if self.history_every == 0 {
             return Err(InputError::new("history_every", "must be at least 1"));
         }
-        self.drive
-            .validate()
-            .map_err(|(f, r)| InputError::new(format!("drive.{f}"), r))?;
-        self.ancf
-            .validate()
-            .map_err(|(f, r)| InputError::new(format!("ancf.{f}"), r))?;
+        self.drive.validate_within("drive")?;
+        self.ancf.validate_within("ancf")?;
         if self.model == ModelKind::Nodal {
             BeltDriveConfig {
                 mesh: self.nodal.mesh,
                 ..self.drive
             }
-            .validate()
-            .map_err(|(f, r)| InputError::new(format!("nodal.{f}"), r))?;
-            SpeedLossSettings {
+            .validate_within("nodal")?;
+            SpeedLossConfig {
                 window: self.nodal.window,
                 tolerance: self.nodal.tolerance,
                 ..self.procedure.clone()
             }
-            .validate()
-            .map_err(|(f, r)| InputError::new(format!("nodal.{f}"), r))?;
+            .validate_within("nodal")?;
         }
-        self.procedure
-            .validate()
-            .map_err(|(f, r)| InputError::new(format!("procedure.{f}"), r))
+        self.procedure.validate_within("procedure")
     }
 }
 

@@ -10,7 +10,7 @@
 
 use drives::wave::{RunSummary, summarize};
 use flowing::belt::BeltDriveConfig;
-use flowing::belt::wave::{WaveRun, WaveSettings, wave_run};
+use flowing::belt::wave::{WaveConfig, WaveRun, wave_run};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -40,7 +40,7 @@ pub struct Config {
     /// the wave packet needs the short wavelengths).
     pub drive: BeltDriveConfig,
     /// The demonstration.
-    pub wave: WaveSettings,
+    pub wave: WaveConfig,
     /// Number of VTK frames per run.
     pub vtk_frames: usize,
     /// Scale of the deflection in the VTK files.
@@ -54,7 +54,7 @@ impl Default for Config {
         drive.mesh.span_elements = 40;
         Self {
             drive,
-            wave: WaveSettings::default(),
+            wave: WaveConfig::default(),
             vtk_frames: 100,
             vtk_scale: 10.0,
         }
@@ -63,12 +63,8 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        self.drive
-            .validate()
-            .map_err(|(f, r)| InputError::new(format!("drive.{f}"), r))?;
-        self.wave
-            .validate()
-            .map_err(|(f, r)| InputError::new(format!("wave.{f}"), r))?;
+        self.drive.validate_within("drive")?;
+        self.wave.validate_within("wave")?;
         if self.vtk_frames == 0 {
             return Err(InputError::new("vtk_frames", "must be at least 1"));
         }

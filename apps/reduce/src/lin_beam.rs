@@ -1,6 +1,6 @@
 //! `flowmbd-reduce lin-beam`: Lin (2005) ch. 6.2, 6.3, 7.1 and 8.5 on the Appendix A beam.
 
-use flowmbd_cases::lin::beam::{self, BeamParams, LinBeamSummary, PROFILE_DELTA};
+use flowmbd_cases::lin::beam::{self, LinBeamConfig, LinBeamSummary, PROFILE_DELTA};
 use flowmbd_cli::args::CommonArgs;
 use flowmbd_cli::config::Validate;
 use flowmbd_cli::error::InputError;
@@ -21,7 +21,7 @@ pub struct Args {
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// The beam (Appendix A).
-    pub beam: BeamParams,
+    pub beam: LinBeamConfig,
     /// Assumed deformation of the profile tests, DOF order ξ1, η1, …, ξ5, η5 \[m\] (Lin (7.1)).
     pub profile_delta_m: [f64; 10],
 }
@@ -29,7 +29,7 @@ pub struct Config {
 impl Default for Config {
     fn default() -> Self {
         Self {
-            beam: BeamParams::default(),
+            beam: LinBeamConfig::default(),
             profile_delta_m: PROFILE_DELTA,
         }
     }

@@ -6,7 +6,7 @@
 //! `sim3_tables.csv`.
 
 use flowmbd_cases::lin::slab::{self, SlabMethod};
-use flowmbd_cases::lin::slab_sim::{SlabSimParams, SlabSimulation, simulate};
+use flowmbd_cases::lin::slab_sim::{SlabSimConfig, SlabSimulation, simulate};
 use flowmbd_cases::lin::slab_sim3::{DRIVEN_NODES, record_source, simulate_emulated};
 use flowmbd_cli::args::CommonArgs;
 use flowmbd_cli::config::Validate;
@@ -35,7 +35,7 @@ pub struct Config {
     /// Models to compare (NR must be present: it is the reference).
     pub methods: Vec<SlabMethod>,
     /// Duration, step, kept modes, orbit parameters.
-    pub params: SlabSimParams,
+    pub params: SlabSimConfig,
 }
 
 impl Default for Config {
@@ -47,7 +47,7 @@ impl Default for Config {
                 SlabSimulation::Emulated,
             ],
             methods: SlabMethod::ALL.to_vec(),
-            params: SlabSimParams::default(),
+            params: SlabSimConfig::default(),
         }
     }
 }

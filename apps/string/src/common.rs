@@ -1,7 +1,7 @@
 //! Pieces shared by the studies: error mapping, validation helpers, model building.
 
 use flowing::{AxialMotion, DerivativeMethod};
-use flowing::{FlowError, FlowingString, GalerkinString, StringMesh, StringParams};
+use flowing::{FlowError, FlowingString, GalerkinString, StringConfig, StringMesh};
 use flowmbd_cli::{InputError, StudyError};
 
 /// Maps library errors to the app's exit-code classes (bad input: 2, numerical: 1).
@@ -18,7 +18,7 @@ pub fn study_error(e: FlowError) -> StudyError {
 }
 
 /// Checks the string parameters, naming the offending field.
-pub fn check_string(p: &StringParams, prefix: &str) -> Result<(), InputError> {
+pub fn check_string(p: &StringConfig, prefix: &str) -> Result<(), InputError> {
     for (name, v) in [
         ("length", p.length),
         ("density", p.density),
@@ -68,7 +68,7 @@ pub fn check_nodes_modes(nodes: usize, modes: usize) -> Result<(), InputError> {
 
 /// The string mesh of `nodes` interior nodes and its flowing-material model with `modes` modes.
 pub fn flowing_model(
-    p: StringParams,
+    p: StringConfig,
     nodes: usize,
     modes: usize,
     method: DerivativeMethod,
@@ -89,7 +89,7 @@ pub fn flowing_model(
 
 /// Eigen analysis of the Galerkin model: (damped frequencies \[Hz\], max real part \[1/s\]).
 pub fn galerkin_frequencies(
-    p: StringParams,
+    p: StringConfig,
     speed: f64,
     terms: usize,
 ) -> Result<(Vec<f64>, f64), StudyError> {

@@ -1,7 +1,7 @@
 //! `modes`: damped natural frequencies of the analytical and the flowing-material models.
 
 use crate::common::*;
-use flowing::{DerivativeMethod, StringParams};
+use flowing::{DerivativeMethod, StringConfig};
 use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
 
@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 #[serde(default, deny_unknown_fields)]
 pub struct ModesConfig {
     /// String parameters.
-    pub string: StringParams,
+    pub string: StringConfig,
     /// Axial speed \[m/s\].
     pub speed: f64,
     /// Interior FE nodes (Ribaric (4.1)).
@@ -28,7 +28,7 @@ pub struct ModesConfig {
 impl Default for ModesConfig {
     fn default() -> Self {
         Self {
-            string: StringParams::default(),
+            string: StringConfig::default(),
             speed: 20.0,
             nodes: 99,
             modes: 20,

@@ -3,7 +3,7 @@
 
 use crate::common::*;
 use flowing::spectrum::amplitude_spectrum;
-use flowing::{DerivativeMethod, StringParams, simulate_rk4, triangular_pluck};
+use flowing::{DerivativeMethod, StringConfig, simulate_rk4, triangular_pluck};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
@@ -24,7 +24,7 @@ pub struct Pluck {
 #[serde(default, deny_unknown_fields)]
 pub struct SimulateConfig {
     /// String parameters.
-    pub string: StringParams,
+    pub string: StringConfig,
     /// Axial speed \[m/s\].
     pub speed: f64,
     /// Interior FE nodes.
@@ -48,7 +48,7 @@ pub struct SimulateConfig {
 impl Default for SimulateConfig {
     fn default() -> Self {
         Self {
-            string: StringParams::default(),
+            string: StringConfig::default(),
             speed: 20.0,
             nodes: 99,
             modes: 10,

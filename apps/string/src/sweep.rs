@@ -1,7 +1,7 @@
 //! `sweep`: frequencies against axial speed from 0 to past the critical speed.
 
 use crate::common::*;
-use flowing::{DerivativeMethod, StringParams};
+use flowing::{DerivativeMethod, StringConfig};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 #[serde(default, deny_unknown_fields)]
 pub struct SweepConfig {
     /// String parameters.
-    pub string: StringParams,
+    pub string: StringConfig,
     /// Interior FE nodes.
     pub nodes: usize,
     /// Retained modes of the flowing-material model.
@@ -32,7 +32,7 @@ pub struct SweepConfig {
 impl Default for SweepConfig {
     fn default() -> Self {
         Self {
-            string: StringParams::default(),
+            string: StringConfig::default(),
             nodes: 99,
             modes: 20,
             galerkin_terms: 40,

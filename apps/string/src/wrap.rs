@@ -5,7 +5,7 @@
 use crate::common::*;
 use flowing::contact::{ContactString, HarmonicLoad, candidates};
 use flowing::{
-    AxialMotion, ContactSettings, DerivativeMethod, Pulley, StringMesh, StringParams,
+    AxialMotion, ContactConfig, DerivativeMethod, Pulley, StringConfig, StringMesh,
     simulate_contact,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
@@ -29,7 +29,7 @@ pub enum Formulation {
 #[serde(default, deny_unknown_fields)]
 pub struct WrapConfig {
     /// String parameters (`length`: anchor to anchor) \[SI\].
-    pub string: StringParams,
+    pub string: StringConfig,
     /// Interior FE nodes.
     pub nodes: usize,
     /// Pulleys.
@@ -51,7 +51,7 @@ pub struct WrapConfig {
     /// Mode-shape derivative operator.
     pub derivative: DerivativeMethod,
     /// Contact and integrator settings.
-    pub contact: ContactSettings,
+    pub contact: ContactConfig,
     /// Number of VTK snapshots (`wrap_NNN.vtu`: deformed string, pulleys, contact forces).
     pub vtk_snapshots: usize,
 }
@@ -59,9 +59,9 @@ pub struct WrapConfig {
 impl Default for WrapConfig {
     fn default() -> Self {
         Self {
-            string: StringParams {
+            string: StringConfig {
                 length: 1.2,
-                ..StringParams::default()
+                ..StringConfig::default()
             },
             nodes: 119,
             pulleys: vec![
@@ -88,7 +88,7 @@ impl Default for WrapConfig {
             duration: 0.3,
             sample: 5e-4,
             derivative: DerivativeMethod::default(),
-            contact: ContactSettings::default(),
+            contact: ContactConfig::default(),
             vtk_snapshots: 20,
         }
     }

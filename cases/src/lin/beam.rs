@@ -39,7 +39,7 @@ pub struct LinBeam {
 /// Parameters of the Appendix A beam; `Default` is Lin's model.
 #[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct BeamParams {
+pub struct LinBeamConfig {
     /// Young's modulus E \[Pa\].
     pub young_modulus_pa: f64,
     /// Cross-section area A \[m²\].
@@ -52,7 +52,7 @@ pub struct BeamParams {
     pub node_masses_kg: [f64; 5],
 }
 
-impl Default for BeamParams {
+impl Default for LinBeamConfig {
     fn default() -> Self {
         Self {
             young_modulus_pa: E,
@@ -69,11 +69,11 @@ impl Default for BeamParams {
 /// static condensation (Guyan with the translations as masters, `K = K_tt − K_tθ K_θθ⁻¹ K_θt`),
 /// as Lin did with the FElt model; lumped masses 0.1/0.2/0.2/0.2/0.1 kg.
 pub fn appendix_a_beam() -> Result<LinBeam> {
-    beam_from(&BeamParams::default())
+    beam_from(&LinBeamConfig::default())
 }
 
 /// The Appendix A beam with other parameters (same topology: 5 nodes, 4 elements).
-pub fn beam_from(p: &BeamParams) -> Result<LinBeam> {
+pub fn beam_from(p: &LinBeamConfig) -> Result<LinBeam> {
     let nn = 5;
     for (name, v) in [
         ("young_modulus_pa", p.young_modulus_pa),

@@ -3,7 +3,7 @@
 //! built on mbd-core's floating-frame bodies and integrated with mbd-core's RK4.
 
 use super::slab::{G, LinSlab, SlabMethod, slab_basis};
-use super::slab_sim3::{Sim3Params, emulation_system, record_source, simulate_emulated};
+use super::slab_sim3::{Sim3Config, emulation_system, record_source, simulate_emulated};
 use mbd_core::constraints::{DriverLaw, PointDriver};
 use mbd_core::floating::{AxisCondition, FlexBody, FlexState, FloatingSystem};
 use mbd_core::integrators::{Rk4, State};
@@ -33,7 +33,7 @@ pub enum SlabSimulation {
 /// Parameters of a slab simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct SlabSimParams {
+pub struct SlabSimConfig {
     /// End time \[s\] (not given by Lin; companion §13.2).
     pub duration_s: f64,
     /// RK4 step \[s\] (highest slab frequency ≈ 73 Hz: 1 ms is well inside stability).
@@ -45,10 +45,10 @@ pub struct SlabSimParams {
     /// Orbit period T of simulation 2 \[s\] (Lin: 1).
     pub orbit_period_s: f64,
     /// The previous simulation of simulation 3 (links, forces, table interval).
-    pub sim3: Sim3Params,
+    pub sim3: Sim3Config,
 }
 
-impl Default for SlabSimParams {
+impl Default for SlabSimConfig {
     fn default() -> Self {
         Self {
             duration_s: 1.0,
@@ -56,7 +56,7 @@ impl Default for SlabSimParams {
             n_modes: 6,
             orbit_radius_m: 4.0,
             orbit_period_s: 1.0,
-            sim3: Sim3Params::default(),
+            sim3: Sim3Config::default(),
         }
     }
 }
@@ -93,7 +93,7 @@ pub fn build(
     slab: &LinSlab,
     method: SlabMethod,
     sim: SlabSimulation,
-    p: &SlabSimParams,
+    p: &SlabSimConfig,
 ) -> Result<(FloatingSystem, State)> {
     if sim == SlabSimulation::Emulated {
         let table = std::sync::Arc::new(record_source(slab, p)?.table);
@@ -191,7 +191,7 @@ pub fn simulate(
     slab: &LinSlab,
     method: SlabMethod,
     sim: SlabSimulation,
-    p: &SlabSimParams,
+    p: &SlabSimConfig,
     observer: impl FnMut(f64, [f64; 3]),
 ) -> Result<f64> {
     if sim == SlabSimulation::Emulated {

@@ -15,7 +15,7 @@
 //!   gravity; released from rest.
 //!
 //! **Assumptions** (the items the companion lists as missing, §16 item 14), each a field of
-//! [`Sim3Params`]:
+//! [`Sim3Config`]:
 //! * link joints: spherical at both ends (Lin uses spherical joints throughout ch. 5);
 //! * link direction: both links point from the slab towards **+x** (ground ends at x = 2 and
 //!   x = 7 m). Opposite directions (outwards) would put both ground points and both
@@ -26,7 +26,7 @@
 //! * inclination: +45° about +x (right-handed), so that the edge 16–28 goes to −y and down;
 //! * model that produced the tables: NR with the nodal-fixed frame 16/28/18 (the reference model
 //!   of ch. 7), integrated with RK4 at a step that divides the table interval;
-//! * duration: `SlabSimParams::duration_s` (1 s). There is **no floor**: the "hits the bottom"
+//! * duration: `SlabSimConfig::duration_s` (1 s). There is **no floor**: the "hits the bottom"
 //!   impact of Lin's run is not modelled, the tables cover the motion without it.
 //!
 //! The emulation ([`simulate_emulated`]) then runs Lin (7.9) for each basis with the twelve
@@ -38,7 +38,7 @@
 //! they are applied anyway, as Lin does.
 
 use super::slab::{LinSlab, SlabMethod, node_position};
-use super::slab_sim::{SlabSimParams, run_observed, slab_system};
+use super::slab_sim::{SlabSimConfig, run_observed, slab_system};
 use mbd_core::constraints::{DriverLaw, PointDriver, Spherical};
 use mbd_core::floating::{FlexState, FloatingSystem, NodeLoad};
 use mbd_core::integrators::{Rk4, Stabilization, State, accelerations};
@@ -75,7 +75,7 @@ impl LinkDirection {
 /// Parameters of the previous simulation of Lin Fig. 7-12(b) that produces the tables.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct Sim3Params {
+pub struct Sim3Config {
     /// Length of the link at node 18 \[m\] (Lin: 2).
     pub short_link_m: f64,
     /// Length of the link at node 30 \[m\] (Lin: 3).
@@ -97,7 +97,7 @@ pub struct Sim3Params {
     pub table_interval_s: f64,
 }
 
-impl Default for Sim3Params {
+impl Default for Sim3Config {
     fn default() -> Self {
         Self {
             short_link_m: 2.0,
@@ -246,7 +246,7 @@ fn slab_at_rest(r0: Vector3<f64>, e0: Vector4<f64>, nz: usize) -> FlexState {
 
 /// Initial frame of the slab: origin (node 16) and Euler parameters, from the inclination
 /// about the x axis through nodes 18 and 30.
-fn initial_frame(p: &Sim3Params) -> (Vector3<f64>, Vector4<f64>) {
+fn initial_frame(p: &Sim3Config) -> (Vector3<f64>, Vector4<f64>) {
     let e = from_axis_angle(&Vector3::x(), p.inclination_deg.to_radians());
     let a = a_matrix(&e);
     let s18 = Vector3::from(node_position(18));
@@ -254,7 +254,7 @@ fn initial_frame(p: &Sim3Params) -> (Vector3<f64>, Vector4<f64>) {
     (s18 - a * s18, e)
 }
 
-fn check(p: &SlabSimParams) -> Result<()> {
+fn check(p: &SlabSimConfig) -> Result<()> {
     let s = &p.sim3;
     let bad = |name: &str, reason: String| {
         Err(ReductionError::InvalidParameter {
@@ -300,7 +300,7 @@ fn mbd_err(what: &str) -> impl Fn(mbd_core::MbdError) -> ReductionError + '_ {
     }
 }
 
-fn add_forces(sys: &mut FloatingSystem, fb: usize, p: &Sim3Params) -> Result<()> {
+fn add_forces(sys: &mut FloatingSystem, fb: usize, p: &Sim3Config) -> Result<()> {
     for (j, f) in [(16usize, p.force_node16_n), (28, p.force_node28_n)] {
         let f = Vector3::from(f);
         sys.add_load(NodeLoad {
@@ -315,7 +315,7 @@ fn add_forces(sys: &mut FloatingSystem, fb: usize, p: &Sim3Params) -> Result<()>
 
 /// The previous simulation of Lin Fig. 7-12(b) (see the module docs for every assumption):
 /// the NR slab on two rigid links, and its initial state at rest.
-pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSystem, State)> {
+pub fn source_system(slab: &LinSlab, p: &SlabSimConfig) -> Result<(FloatingSystem, State)> {
     check(p)?;
     let s3 = &p.sim3;
     let err = mbd_err("simulation-3 source system");
@@ -363,7 +363,7 @@ pub fn source_system(slab: &LinSlab, p: &SlabSimParams) -> Result<(FloatingSyste
 /// Runs the previous simulation and records the acceleration tables of nodes 16, 18, 28, 30
 /// every `sim3.table_interval_s` up to `duration_s` (plus one sample to cover the end). The
 /// RK4 step is the largest divisor of the interval not above `step_s`.
-pub fn record_source(slab: &LinSlab, p: &SlabSimParams) -> Result<SourceRun> {
+pub fn record_source(slab: &LinSlab, p: &SlabSimConfig) -> Result<SourceRun> {
     let (sys, st) = source_system(slab, p)?;
     let fb = 0; // the only flexible body
     let interval = p.sim3.table_interval_s;
@@ -429,7 +429,7 @@ pub fn emulation_system(
     slab: &LinSlab,
     method: SlabMethod,
     table: &Arc<AccelTable>,
-    p: &SlabSimParams,
+    p: &SlabSimConfig,
 ) -> Result<(FloatingSystem, State)> {
     check(p)?;
     if table.nodes != DRIVEN_NODES {
@@ -471,7 +471,7 @@ pub fn simulate_emulated(
     slab: &LinSlab,
     method: SlabMethod,
     table: &Arc<AccelTable>,
-    p: &SlabSimParams,
+    p: &SlabSimConfig,
     observer: impl FnMut(f64, [f64; 3]),
 ) -> Result<f64> {
     let (sys, st) = emulation_system(slab, method, table, p)?;

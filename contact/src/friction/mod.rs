@@ -28,7 +28,7 @@ pub use coulomb_tanh::CoulombTanh;
 pub use creep_rate::CreepRate;
 pub use frictionless::Frictionless;
 pub use slip_regularized::SlipRegularized;
-pub use spec::{FrictionSpec, FrictionSpecError};
+pub use spec::FrictionSpec;
 pub use stribeck::Stribeck;
 
 /// Tangential force of a planar contact and its partial derivatives.

@@ -5,6 +5,7 @@ use super::{
     Augmented, Coulomb, CoulombTanh, CreepRate, FrictionForce, FrictionLaw, Frictionless,
     SlipRegularized, Stribeck, TangentFriction,
 };
+use mbd_core::validate::{InvalidField, Validate};
 use nalgebra::{Matrix2, Vector2};
 use serde::{Deserialize, Serialize};
 
@@ -53,16 +54,6 @@ pub enum FrictionSpec {
     Frictionless,
 }
 
-/// An invalid parameter of a [`FrictionSpec`], named by its field.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("friction.{field}: {reason}")]
-pub struct FrictionSpecError {
-    /// Field name within the friction table (e.g. `mu`).
-    pub field: &'static str,
-    /// What is wrong.
-    pub reason: String,
-}
-
 macro_rules! dispatch {
     ($s:expr, $l:ident => $e:expr) => {
         match *$s {
@@ -109,27 +100,24 @@ impl FrictionSpec {
     pub fn mu(&self) -> f64 {
         self.coefficient()
     }
+}
 
-    /// Check the parameters: coefficients finite and `≥ 0`, rates and velocities `> 0`.
-    pub fn validate(&self) -> Result<(), FrictionSpecError> {
-        let nonneg = |field, v: f64| {
+impl Validate for FrictionSpec {
+    /// Check the parameters: coefficients finite and `≥ 0`, rates and velocities `> 0` (field
+    /// paths relative to the friction table, e.g. `mu`).
+    fn validate(&self) -> Result<(), InvalidField> {
+        let nonneg = |field: &str, v: f64| {
             if v.is_finite() && v >= 0.0 {
                 Ok(())
             } else {
-                Err(FrictionSpecError {
-                    field,
-                    reason: format!("must be ≥ 0, got {v}"),
-                })
+                Err(InvalidField::new(field, format!("must be ≥ 0, got {v}")))
             }
         };
-        let pos = |field, v: f64| {
+        let pos = |field: &str, v: f64| {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(FrictionSpecError {
-                    field,
-                    reason: format!("must be > 0, got {v}"),
-                })
+                Err(InvalidField::new(field, format!("must be > 0, got {v}")))
             }
         };
         match *self {

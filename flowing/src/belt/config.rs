@@ -1,6 +1,7 @@
 //! Parameters of a two-pulley belt drive (defaults: Ribaric Table 6-1).
 
 use contact::friction::FrictionSpec;
+use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
 /// Geometry of the drive: pulley 1 (driver) at (0, 0), pulley 2 (driven) at (`center_distance`, 0).
@@ -221,9 +222,9 @@ impl Default for BeltDriveConfig {
     }
 }
 
-impl BeltDriveConfig {
-    /// Check every field; the error names the field.
-    pub fn validate(&self) -> Result<(), (String, String)> {
+impl Validate for BeltDriveConfig {
+    /// Every field checked; the error names the field (path relative to this struct).
+    fn validate(&self) -> Result<(), InvalidField> {
         let pos = [
             ("geometry.center_distance", self.geometry.center_distance),
             ("geometry.radius_driver", self.geometry.radius_driver),
@@ -237,7 +238,10 @@ impl BeltDriveConfig {
         ];
         for (name, v) in pos {
             if !(v.is_finite() && v > 0.0) {
-                return Err((name.into(), format!("must be finite and > 0 (got {v})")));
+                return Err(InvalidField::new(
+                    name,
+                    format!("must be finite and > 0 (got {v})"),
+                ));
             }
         }
         let nonneg = [
@@ -249,31 +253,36 @@ impl BeltDriveConfig {
         ];
         for (name, v) in nonneg {
             if !(v.is_finite() && v >= 0.0) {
-                return Err((name.into(), format!("must be finite and >= 0 (got {v})")));
+                return Err(InvalidField::new(
+                    name,
+                    format!("must be finite and >= 0 (got {v})"),
+                ));
             }
         }
         if let Some(f) = self.contact.friction {
-            f.validate()
-                .map_err(|e| (format!("contact.friction.{}", e.field), e.reason))?;
+            f.validate_within("contact.friction")?;
         }
         if self.mesh.span_elements < 2 {
-            return Err(("mesh.span_elements".into(), "must be at least 2".into()));
+            return Err(InvalidField::new(
+                "mesh.span_elements",
+                "must be at least 2",
+            ));
         }
         if self.mesh.arc_elements < 2 {
-            return Err(("mesh.arc_elements".into(), "must be at least 2".into()));
+            return Err(InvalidField::new("mesh.arc_elements", "must be at least 2"));
         }
         if 2 * self.mesh.contact_margin_nodes + 1 >= self.mesh.span_elements {
-            return Err((
-                "mesh.contact_margin_nodes".into(),
-                "leaves no free node on the spans".into(),
+            return Err(InvalidField::new(
+                "mesh.contact_margin_nodes",
+                "leaves no free node on the spans",
             ));
         }
         if self.geometry.center_distance
             <= (self.geometry.radius_driven - self.geometry.radius_driver).abs()
         {
-            return Err((
-                "geometry.center_distance".into(),
-                "pulleys overlap: no open-belt path".into(),
+            return Err(InvalidField::new(
+                "geometry.center_distance",
+                "pulleys overlap: no open-belt path",
             ));
         }
         Ok(())

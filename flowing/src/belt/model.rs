@@ -28,6 +28,7 @@ use crate::{FlowLine, mode_shape_derivatives};
 use faer::Mat;
 use fe_model::element::{Element, Frame2d, Frame2dSection, MassKind, MatrixKind};
 use fe_model::generate::belt_path::{BeltPath, tributary_lengths};
+use mbd_core::Validate;
 use reduction::{DofPartition, Method, ModeSelection, build_basis};
 
 /// DOFs per belt node (u, v, θ).
@@ -75,9 +76,7 @@ pub struct BeltFe {
 impl BeltFe {
     /// Build the loop from `config` (validated first).
     pub fn new(config: &BeltDriveConfig) -> Result<Self, FlowError> {
-        config
-            .validate()
-            .map_err(|(field, reason)| invalid(format!("belt drive: {field}"), reason))?;
+        config.validate_within("belt drive")?;
         let g = &config.geometry;
         let path = BeltPath::two_pulleys(g.center_distance, g.radius_driver, g.radius_driven)?;
         // element lengths: each piece divided into the configured number of elements

@@ -1,5 +1,6 @@
 //! Time histories of prescribed quantities (driver speed, load torque).
 
+use mbd_core::validate::InvalidField;
 use serde::{Deserialize, Serialize};
 
 /// A scalar history through knots `(t_k, y_k)` \[s, unit\], joined by smooth C¹ steps
@@ -41,13 +42,14 @@ impl Schedule {
         self.eval(t).0
     }
 
-    /// Checks that the knot times are finite and strictly increasing.
-    pub fn validate(&self, name: &str) -> Result<(), (String, String)> {
+    /// Checks that the knot times are finite and strictly increasing; the error names the knot
+    /// (`knots[i]`, relative to the schedule).
+    pub fn validate(&self) -> Result<(), InvalidField> {
         for (i, w) in self.knots.windows(2).enumerate() {
             if w[1].0.partial_cmp(&w[0].0) != Some(std::cmp::Ordering::Greater) {
-                return Err((
-                    format!("{name}.knots[{}]", i + 1),
-                    "times must increase strictly".into(),
+                return Err(InvalidField::new(
+                    format!("knots[{}]", i + 1),
+                    "times must increase strictly",
                 ));
             }
         }
@@ -56,7 +58,7 @@ impl Schedule {
             .iter()
             .any(|(t, y)| !t.is_finite() || !y.is_finite())
         {
-            return Err((format!("{name}.knots"), "values must be finite".into()));
+            return Err(InvalidField::new("knots", "values must be finite"));
         }
         Ok(())
     }

@@ -24,13 +24,14 @@ use super::schedule::Schedule;
 use crate::error::{FlowError, invalid};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
-use mbd_core::integrators::{AlphaParams, GeneralizedAlpha, Recorder, State, observe_fn};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Recorder, State, observe_fn};
+use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
 /// Settings of the demonstration (SI units).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct WaveSettings {
+pub struct WaveConfig {
     /// Belt speed of the running case \[m/s\] (default 28.4 m/s = c/2 for Table 6-1, an
     /// "exaggerated" speed at which `1 − v²/c² = 0.75`).
     pub belt_speed: f64,
@@ -48,7 +49,7 @@ pub struct WaveSettings {
     pub samples: usize,
 }
 
-impl Default for WaveSettings {
+impl Default for WaveConfig {
     fn default() -> Self {
         Self {
             belt_speed: 28.4,
@@ -62,9 +63,9 @@ impl Default for WaveSettings {
     }
 }
 
-impl WaveSettings {
-    /// Check every field; `Err` is `(field, reason)`.
-    pub fn validate(&self) -> Result<(), (String, String)> {
+impl Validate for WaveConfig {
+    /// Every field checked; the error names the field (path relative to this struct).
+    fn validate(&self) -> Result<(), InvalidField> {
         for (name, v) in [
             ("amplitude", self.amplitude),
             ("half_width", self.half_width),
@@ -72,28 +73,31 @@ impl WaveSettings {
             ("step", self.step),
         ] {
             if !(v.is_finite() && v > 0.0) {
-                return Err((name.into(), format!("must be finite and > 0 (got {v})")));
+                return Err(InvalidField::new(
+                    name,
+                    format!("must be finite and > 0 (got {v})"),
+                ));
             }
         }
         if !(self.belt_speed.is_finite() && self.belt_speed >= 0.0) {
-            return Err(("belt_speed".into(), "must be finite and ≥ 0".into()));
+            return Err(InvalidField::new("belt_speed", "must be finite and ≥ 0"));
         }
         if self.half_width >= 0.5 {
-            return Err((
-                "half_width".into(),
+            return Err(InvalidField::new(
+                "half_width",
                 format!("must be < 0.5 of the span (got {})", self.half_width),
             ));
         }
         if !(0.0..=1.0).contains(&self.rho_inf) {
-            return Err(("rho_inf".into(), "must lie in [0, 1]".into()));
+            return Err(InvalidField::new("rho_inf", "must lie in [0, 1]"));
         }
         if self.samples < 2 {
-            return Err(("samples".into(), "must be at least 2".into()));
+            return Err(InvalidField::new("samples", "must be at least 2"));
         }
         if self.step > self.t_end / self.samples as f64 {
-            return Err((
-                "step".into(),
-                "must not exceed t_end / samples (one step per sample at least)".into(),
+            return Err(InvalidField::new(
+                "step",
+                "must not exceed t_end / samples (one step per sample at least)",
             ));
         }
         Ok(())
@@ -148,12 +152,10 @@ fn project(t: &Mat<f64>, w: &[f64], d: &[f64]) -> Result<Vec<f64>, FlowError> {
 /// when `running` is false, at `settings.belt_speed` otherwise.
 pub fn wave_run(
     config: &BeltDriveConfig,
-    settings: &WaveSettings,
+    settings: &WaveConfig,
     running: bool,
 ) -> Result<WaveRun, FlowError> {
-    settings
-        .validate()
-        .map_err(|(f, r)| invalid(format!("wave.{f}"), r))?;
+    settings.validate_within("wave")?;
     let v = if running { settings.belt_speed } else { 0.0 };
     let fe = BeltFe::new(config)?;
     let g = config.geometry;
@@ -281,7 +283,7 @@ pub fn wave_run(
                 .collect(),
         );
     };
-    let alpha = GeneralizedAlpha::new(AlphaParams {
+    let alpha = GeneralizedAlpha::new(AlphaConfig {
         h: settings.step,
         rho_inf: settings.rho_inf,
         ..Default::default()

@@ -51,7 +51,7 @@ use std::sync::Arc;
 
 /// Settings of [`ContactSolver::solve`].
 #[derive(Debug, Clone)]
-pub struct SolveSettings {
+pub struct SolveOptions {
     /// Friction law of the contact nodes, any [`FrictionLaw`] (Ribaric §7.3, §8.4.3: set-valued
     /// [`Coulomb`]; seed note U20: [`contact::SlipRegularized`]). Its tangential equation is
     /// the Alart–Curnier `Φ_T = f − p(f, u, λ̂)` of [`FrictionLaw::augmented`].
@@ -64,7 +64,7 @@ pub struct SolveSettings {
     pub max_rounds: usize,
 }
 
-impl Default for SolveSettings {
+impl Default for SolveOptions {
     fn default() -> Self {
         Self {
             law: Arc::new(Coulomb { mu: 0.0 }),
@@ -337,7 +337,7 @@ impl ContactSolver {
     /// Alart–Curnier residual `Φ(x)` for `y = D x + b`; returns `‖Φ‖∞`. Contacts that are
     /// pressed get their free velocity and column through `src` first (their `y` then
     /// changes; the caller recomputes `y` if this returns `None`).
-    fn residual(&self, s: &SolveSettings, x: &[f64], y: &[f64], phi: &mut [f64]) -> f64 {
+    fn residual(&self, s: &SolveOptions, x: &[f64], y: &[f64], phi: &mut [f64]) -> f64 {
         let mut norm = 0.0f64;
         for k in 0..self.m {
             let (lam, f) = (x[3 * k], [x[3 * k + 1], x[3 * k + 2]]);
@@ -391,7 +391,7 @@ impl ContactSolver {
     }
 
     /// `y = D x + b` with the needed columns, and `Φ`; returns `‖Φ‖∞`.
-    fn evaluate(&mut self, src: &mut dyn DelassusSource, s: &SolveSettings) -> f64 {
+    fn evaluate(&mut self, src: &mut dyn DelassusSource, s: &SolveOptions) -> f64 {
         for l in 0..self.m {
             if self.x[3 * l..3 * l + 3] != [0.0; 3] {
                 self.ensure_col(src, l);
@@ -422,7 +422,7 @@ impl ContactSolver {
         &mut self,
         src: &mut dyn DelassusSource,
         diag: &[[f64; 2]],
-        s: &SolveSettings,
+        s: &SolveOptions,
         reuse: bool,
         alts: &[&[f64]],
     ) -> SolveReport {
@@ -588,7 +588,7 @@ impl ContactSolver {
     fn newton_direction(
         &mut self,
         src: &mut dyn DelassusSource,
-        s: &SolveSettings,
+        s: &SolveOptions,
         chord: bool,
     ) -> Option<bool> {
         let m = self.m;
@@ -787,7 +787,7 @@ impl ContactSolver {
         &mut self,
         src: &mut dyn DelassusSource,
         diag: &[[f64; 2]],
-        s: &SolveSettings,
+        s: &SolveOptions,
         rep: &mut SolveReport,
     ) -> f64 {
         let m = self.m;
@@ -914,9 +914,9 @@ mod tests {
             let mut s = ContactSolver::default();
             s.reset(&[0.0; 3]);
             s.set_gaps([g]);
-            let set = SolveSettings {
+            let set = SolveOptions {
                 law: Arc::new(contact::SlipRegularized { mu, epsilon: eps }),
-                ..SolveSettings::default()
+                ..SolveOptions::default()
             };
             let rep = s.solve(
                 &mut DenseProblem { d: &d, b: &b },

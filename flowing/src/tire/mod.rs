@@ -44,7 +44,7 @@ pub use model::{
 pub mod rig;
 pub mod spectrum;
 pub use rig::{
-    DampingConfig, ImpactSteps, RigConfig, RigResult, RigStart, Sample, run_cleat,
+    DampingConfig, ImpactConfig, RigConfig, RigResult, RigStart, Sample, run_cleat,
     run_cleat_observed, start_rolling,
 };
 pub use spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};

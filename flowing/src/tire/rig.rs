@@ -81,7 +81,7 @@ impl DampingConfig {
 /// the normal step (BENCHMARKS.md, tire: convergence in h).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct ImpactSteps {
+pub struct ImpactConfig {
     /// Sub-steps per time step inside the window (1 = off).
     pub substeps: usize,
     /// Start of the window: the cleat this far ahead of the patch centre, along the ground \[m\].
@@ -90,7 +90,7 @@ pub struct ImpactSteps {
     pub trail: f64,
 }
 
-impl Default for ImpactSteps {
+impl Default for ImpactConfig {
     fn default() -> Self {
         Self {
             substeps: 4,
@@ -100,7 +100,7 @@ impl Default for ImpactSteps {
     }
 }
 
-impl ImpactSteps {
+impl ImpactConfig {
     /// Whether the step starting at `t` lies in the window of `ground`.
     fn active(&self, ground: &Ground, t: f64) -> bool {
         self.substeps > 1
@@ -129,7 +129,7 @@ pub struct RigConfig {
     /// Integration and contact.
     pub rolling: RollingConfig,
     /// Sub-stepping through the cleat impact.
-    pub impact: ImpactSteps,
+    pub impact: ImpactConfig,
 }
 
 impl Default for RigConfig {
@@ -142,7 +142,7 @@ impl Default for RigConfig {
             ground: GroundConfig::default(),
             damping: DampingConfig::default(),
             rolling: RollingConfig::default(),
-            impact: ImpactSteps::default(),
+            impact: ImpactConfig::default(),
         }
     }
 }

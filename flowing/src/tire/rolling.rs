@@ -68,7 +68,7 @@
 //! gap is below `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the
 //! surface speed); [`StepStats::late_contacts`] counts impacts begun within one step.
 
-use super::contact_solve::{ContactSolver, DelassusSource, SolveSettings};
+use super::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
 use super::error::{TireError, invalid};
 use super::friction::TireFriction;
 use super::ground::{Ground, GroundPoint};
@@ -76,6 +76,7 @@ use super::reduced::ReducedTire;
 use faer::linalg::matmul::matmul;
 use faer::prelude::*;
 use faer::{Accum, Mat, Par};
+use mbd_core::Validate;
 use serde::{Deserialize, Serialize};
 
 /// Normal contact law.
@@ -259,8 +260,7 @@ impl RollingConfig {
             pos("normal.stiffness", stiffness)?;
         }
         if let TireFriction::Law(spec) = self.friction_law {
-            spec.validate()
-                .map_err(|e| invalid(format!("rolling.friction_law.{}", e.field), e.reason))?;
+            spec.validate_within("rolling.friction_law")?;
         }
         Ok(())
     }
@@ -1165,10 +1165,10 @@ impl<'a> RollingTire<'a> {
         }
         w.solver.reset(&w.x0);
         w.solver.set_gaps(w.gp.iter().map(|g| g.gap));
-        let settings = SolveSettings {
+        let settings = SolveOptions {
             law,
             tol: self.cfg.contact_tolerance,
-            ..SolveSettings::default()
+            ..SolveOptions::default()
         };
         // same candidates as in the last step: its Newton matrix may serve for chord steps
         let same = w.cand.iter().all(|&i| w.was_cand[i])

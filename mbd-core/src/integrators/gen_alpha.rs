@@ -58,7 +58,7 @@ pub enum NewtonUpdate {
 /// Parameters of the generalized-α integrator.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct AlphaParams {
+pub struct AlphaConfig {
     /// Spectral radius at infinite frequency ρ∞ ∈ \[0, 1\] (1: no numerical damping).
     pub rho_inf: f64,
     /// Nominal step size \[s\].
@@ -80,7 +80,7 @@ pub struct AlphaParams {
     pub project_velocities: bool,
 }
 
-impl Default for AlphaParams {
+impl Default for AlphaConfig {
     fn default() -> Self {
         Self {
             rho_inf: 0.8,
@@ -110,12 +110,12 @@ pub fn alpha_coefficients(rho_inf: f64) -> (f64, f64, f64, f64) {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct GeneralizedAlpha {
     /// Parameters.
-    pub params: AlphaParams,
+    pub params: AlphaConfig,
 }
 
 impl GeneralizedAlpha {
     /// Integrator with the given parameters.
-    pub fn new(params: AlphaParams) -> Self {
+    pub fn new(params: AlphaConfig) -> Self {
         Self { params }
     }
 
@@ -217,7 +217,7 @@ impl Work {
 /// Newton iteration of every step (nonsmooth contact; [`NoCorrection`] by default).
 pub struct AlphaStepper<C = NoCorrection> {
     /// Parameters.
-    pub params: AlphaParams,
+    pub params: AlphaConfig,
     state: State,
     vdot: Vec<f64>,
     a: Vec<f64>,
@@ -238,7 +238,7 @@ impl AlphaStepper<NoCorrection> {
     pub fn new<S: SecondOrderSystem + ?Sized>(
         sys: &S,
         state0: State,
-        params: AlphaParams,
+        params: AlphaConfig,
     ) -> Result<Self, MbdError> {
         check_step(params.h, "generalized-alpha step h")?;
         if !(0.0..=1.0).contains(&params.rho_inf) {

@@ -28,7 +28,7 @@ pub use accel::{
 pub use correction::{AlphaCorrection, NoCorrection, StepCorrection};
 pub use dopri::{DopriStepper, DormandPrince, Event, EventAction, EventRecord};
 pub use gen_alpha::{
-    AlphaParams, AlphaStepper, GeneralizedAlpha, JacobianMode, NewtonUpdate, alpha_coefficients,
+    AlphaConfig, AlphaStepper, GeneralizedAlpha, JacobianMode, NewtonUpdate, alpha_coefficients,
 };
 pub use recorder::Recorder;
 pub use rk4::{Rk4, Rk4Stepper};
