@@ -76,7 +76,7 @@ pub struct DriveRun {
 /// sampled states with what each is [`Due`] for and may stop the run with an error:
 /// generalized-α advances ([`mbd_core::integrators::AlphaStepper::advance_to`]) one history
 /// interval at a time and the observer sees the end of each interval (the last one is always a
-/// history sample); RK4 ([`simulate`]) shows it every step. A failed integration is reported in
+/// history sample); RK4 ([`simulate()`]) shows it every step. A failed integration is reported in
 /// [`DriveRun::failure`] with the state reached.
 pub fn run_drive<E>(
     drive: &BeltDrive,
