@@ -14,7 +14,8 @@
 //! * [`point`]: nodal contact with exact derivatives;
 //! * [`distributed`]: Gauss-quadrature contact along elements (Kerkkänen (3.26)–(3.27));
 //! * [`spatial`]: 3D contact — [`spatial::Cylinder`] (optionally crowned), [`spatial::HalfSpace`],
-//!   [`spatial::point_contact_3d`] with the slip 2-vector of the same friction laws;
+//!   [`spatial::point_contact_3d`] with the slip 2-vector of the same friction laws,
+//!   [`spatial::SurfaceContact`] for quadrature contact over surface elements;
 //! * [`lagrange`]: unilateral constraints with an active set (used by the ancf crate's static
 //!   and generalized-α contact solvers).
 

@@ -5,10 +5,14 @@
 //!
 //! * [`geometry`]: [`Surface3`] with [`Cylinder`] (pulley or drum, optionally crowned, for the
 //!   3D belt of Kerkkänen ch. 4) and [`HalfSpace`] (flat road);
-//! * [`point`]: [`point_contact_3d`], the spatial counterpart of [`crate::point_contact`].
+//! * [`point`]: [`point_contact_3d`], the spatial counterpart of [`crate::point_contact`];
+//! * [`distributed`]: [`SurfaceContact`], quadrature contact over surface elements (the spatial
+//!   Kerkkänen (3.26)–(3.27), for the plate belt of his ch. 4).
 
+pub mod distributed;
 pub mod geometry;
 pub mod point;
 
+pub use distributed::{ContactRecord3, ElementContact3, SurfaceContact, SurfaceQuadPoint};
 pub use geometry::{Cylinder, HalfSpace, Surface3, SurfacePoint3};
 pub use point::{PointContact3, point_contact_3d};
