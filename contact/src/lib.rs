@@ -13,7 +13,9 @@
 //!   [`SlipRegularized`] (Ribaric U20), [`Stribeck`], and [`FrictionSpec`] for configuration;
 //! * [`point`]: nodal contact with exact derivatives;
 //! * [`distributed`]: Gauss-quadrature contact along elements (Kerkkänen (3.26)–(3.27));
-//! * [`spatial`]: 3D contact — [`spatial::Cylinder`] (optionally crowned), [`spatial::HalfSpace`],
+//! * [`spatial`]: 3D contact — [`spatial::Cylinder`] (optionally crowned),
+//!   [`spatial::FlangedCylinder`], [`spatial::CleatedDrum3`], [`spatial::CleatedRoad3`],
+//!   [`spatial::HalfSpace`],
 //!   [`spatial::point_contact_3d`] with the slip 2-vector of the same friction laws,
 //!   [`spatial::SurfaceContact`] for quadrature contact over surface elements;
 //! * [`lagrange`]: unilateral constraints with an active set (used by the ancf crate's static
