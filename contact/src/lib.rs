@@ -6,7 +6,7 @@
 //!
 //! * [`geometry`]: [`Surface`] with [`Disk`], [`HalfPlane`], [`CleatedDrum`], [`CleatedRoad`];
 //! * [`normal`]: [`NormalLaw`] with [`LinearPenalty`] (Kerkkänen (3.20)) and
-//!   [`PolynomialPenalty`] (Ribaric (6.1));
+//!   [`PolynomialPenalty`] (Ribaric (6.1)), and [`NormalSpec`] for configuration;
 //! * [`friction`]: the one [`FrictionLaw`] trait (planar and spatial slip, smooth or
 //!   set-valued with the Alart–Curnier projection) with [`CoulombTanh`] (Ribaric (6.2)),
 //!   [`CreepRate`] (Kerkkänen Fig. 3.3), [`Coulomb`] (Ribaric §7.3, §8.4.3),
@@ -40,6 +40,8 @@ pub use friction::{
 };
 pub use geometry::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface, SurfacePoint};
 pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};
-pub use normal::{LinearPenalty, NormalForce, NormalLaw, PolynomialPenalty};
+pub use normal::{
+    LinearPenalty, NormalForce, NormalLaw, NormalSpec, NormalSpecError, PolynomialPenalty,
+};
 pub use point::{PointContact, point_contact};
 pub use quadrature::GaussRule;
