@@ -1,6 +1,8 @@
 //! Spatial drums and roads with a cleat: the planar [`crate::CleatedDrum`] and
 //! [`crate::CleatedRoad`] (Ribaric ch. 8) extruded along the cleat axis, as the union of the
-//! drum cylinder (or the road half-space) and a cleat cylinder.
+//! drum cylinder (or the road half-space) and a cleat cylinder; the closest point of the union
+//! is the closer of the members' closest-point projections (Wriggers *Computational Contact
+//! Mechanics*).
 
 use super::geometry::{Cylinder, HalfSpace, Surface3, SurfacePoint3};
 use nalgebra::{Point3, Vector3};

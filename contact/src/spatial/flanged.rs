@@ -10,7 +10,9 @@ use serde::{Deserialize, Serialize};
 /// flange material fills `ζ ≤ ζ_lo` and `ζ ≥ ζ_hi` (side planes of unbounded radius, turning
 /// with the pulley). The obstacle is the union of the three solids, so the signed distance is
 /// the smallest of the cylinder gap and the flange gaps `g_lo = ζ − ζ_lo` (normal `+a`) and
-/// `g_hi = ζ_hi − ζ` (normal `−a`) — the union rule of the planar [`crate::CleatedDrum`].
+/// `g_hi = ζ_hi − ζ` (normal `−a`), each the closest-point projection onto that solid's surface
+/// (Wriggers *Computational Contact Mechanics*) — the union rule of the planar
+/// [`crate::CleatedDrum`].
 /// On a flange the surface moves rigidly with the pulley, `u_s = ṙ_o + ω a × (p − r_o)`
 /// (the closest point differs from `p` only along `a`), so `∂u_s/∂p = ω [a]×`,
 /// `∂u_s/∂ω = a × (p − r_o)`, and `∂n/∂p = 0`.
