@@ -6,15 +6,18 @@
 //!
 //! * [`geometry`]: [`Surface`] with [`Disk`], [`HalfPlane`], [`CleatedDrum`], [`CleatedRoad`];
 //! * [`normal`]: [`NormalLaw`] with [`LinearPenalty`] (Kerkkänen (3.20)) and
-//!   [`PolynomialPenalty`] (Ribaric (6.1));
+//!   [`PolynomialPenalty`] (Ribaric (6.1)), and [`NormalSpec`] for configuration;
 //! * [`friction`]: the one [`FrictionLaw`] trait (planar and spatial slip, smooth or
 //!   set-valued with the Alart–Curnier projection) with [`CoulombTanh`] (Ribaric (6.2)),
 //!   [`CreepRate`] (Kerkkänen Fig. 3.3), [`Coulomb`] (Ribaric §7.3, §8.4.3),
 //!   [`SlipRegularized`] (Ribaric U20), [`Stribeck`], and [`FrictionSpec`] for configuration;
 //! * [`point`]: nodal contact with exact derivatives;
 //! * [`distributed`]: Gauss-quadrature contact along elements (Kerkkänen (3.26)–(3.27));
-//! * [`spatial`]: 3D contact — [`spatial::Cylinder`] (optionally crowned), [`spatial::HalfSpace`],
-//!   [`spatial::point_contact_3d`] with the slip 2-vector of the same friction laws;
+//! * [`spatial`]: 3D contact — [`spatial::Cylinder`] (optionally crowned),
+//!   [`spatial::FlangedCylinder`], [`spatial::CleatedDrum3`], [`spatial::CleatedRoad3`],
+//!   [`spatial::HalfSpace`],
+//!   [`spatial::point_contact_3d`] with the slip 2-vector of the same friction laws,
+//!   [`spatial::SurfaceContact`] for quadrature contact over surface elements;
 //! * [`lagrange`]: unilateral constraints with an active set (used by the ancf crate's static
 //!   and generalized-α contact solvers).
 
@@ -37,6 +40,6 @@ pub use friction::{
 };
 pub use geometry::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface, SurfacePoint};
 pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};
-pub use normal::{LinearPenalty, NormalForce, NormalLaw, PolynomialPenalty};
+pub use normal::{LinearPenalty, NormalForce, NormalLaw, NormalSpec, PolynomialPenalty};
 pub use point::{PointContact, point_contact};
 pub use quadrature::GaussRule;

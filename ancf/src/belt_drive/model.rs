@@ -143,11 +143,7 @@ impl BeltDrive {
         }
         let line = LineContact {
             surface: Disk::fixed([0.0, 0.0], 1.0),
-            normal: BeltNormal {
-                stiffness: spec.contact.stiffness,
-                quadratic: spec.contact.quadratic,
-                damping: spec.contact.damping,
-            },
+            normal: spec.contact.normal_law(),
             friction: spec.contact.friction,
             rule: GaussRule::new(spec.contact.points),
         };

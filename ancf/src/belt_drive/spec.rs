@@ -1,6 +1,6 @@
 //! Plain-data description of a planar belt drive (Kerkkänen §3.3, Table 3.1).
 
-use super::friction::BeltFriction;
+use super::friction::{BeltFriction, BeltNormal};
 use super::profile::{SpeedProfile, TorqueProfile};
 use super::pulley::{Pulley, PulleyDrive};
 use crate::error::{AncfError, invalid};
@@ -78,6 +78,14 @@ pub struct ContactSpec {
     pub friction: BeltFriction,
     /// Gauss points per element for the contact integral (3.27) (Kerkkänen: 5, 7, 11 agree).
     pub points: usize,
+}
+
+impl ContactSpec {
+    /// The normal law of the `stiffness`, `quadratic` and `damping` keys,
+    /// [`BeltNormal::penalty`] (Kerkkänen (3.20), Ribaric (6.1)).
+    pub fn normal_law(&self) -> BeltNormal {
+        BeltNormal::penalty(self.stiffness, self.quadratic, self.damping)
+    }
 }
 
 impl Default for ContactSpec {

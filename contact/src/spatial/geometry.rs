@@ -29,6 +29,9 @@ pub struct SurfacePoint3 {
     pub dus_dp: Matrix3<f64>,
     /// `∂u_s/∂ω` \[m\] (per unit angular velocity of the obstacle about its axis).
     pub dus_domega: Vector3<f64>,
+    /// Index of the primitive that produced the point (0 for simple shapes; for unions the
+    /// member index, e.g. 1 and 2 for the flanges of a [`super::FlangedCylinder`]).
+    pub part: usize,
 }
 
 /// A rigid obstacle surface in space.
@@ -105,6 +108,7 @@ impl Surface3 for Cylinder {
             dn_dp: dn,
             dus_dp: dus,
             dus_domega: circ * r,
+            part: 0,
         }
     }
     fn center(&self) -> Point3<f64> {
@@ -140,6 +144,7 @@ impl Surface3 for HalfSpace {
             dn_dp: Matrix3::zeros(),
             dus_dp: Matrix3::zeros(),
             dus_domega: Vector3::zeros(),
+            part: 0,
         }
     }
     fn center(&self) -> Point3<f64> {
@@ -148,7 +153,7 @@ impl Surface3 for HalfSpace {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::geometry::{Disk, Surface};
 
@@ -163,11 +168,9 @@ mod tests {
         }
     }
 
-    // Reference: central differences of the gap, normal and surface velocity.
-    #[test]
-    fn cylinder_derivatives() {
-        let c = crowned();
-        let p = Point3::new(0.17, -0.16, 0.08);
+    /// Central differences of the gap, normal and surface velocity of `c` at `p` against the
+    /// closest-point derivatives; the gap gradient lies along the normal.
+    pub(crate) fn fd_check3(c: &dyn Surface3, p: Point3<f64>) {
         let s = c.closest(&p);
         let h = 1e-7;
         let mut grad = Vector3::zeros();
@@ -175,6 +178,7 @@ mod tests {
             let mut e = Vector3::zeros();
             e[j] = h;
             let (a, b) = (c.closest(&(p + e)), c.closest(&(p - e)));
+            assert_eq!((a.part, b.part), (s.part, s.part), "part switch within h");
             grad[j] = (a.gap - b.gap) / (2.0 * h);
             let dn = (a.normal - b.normal) / (2.0 * h);
             let du = (a.surface_velocity - b.surface_velocity) / (2.0 * h);
@@ -186,6 +190,12 @@ mod tests {
         // the gap gradient, along the normal
         assert!((grad - s.gap_gradient).amax() < 1e-6);
         assert!((s.gap_gradient.normalize() - s.normal).amax() < 1e-15);
+    }
+
+    // Reference: central differences of the gap, normal and surface velocity.
+    #[test]
+    fn cylinder_derivatives() {
+        fd_check3(&crowned(), Point3::new(0.17, -0.16, 0.08));
     }
 
     // Reference: a straight cylinder about z is the planar disk in every cross-section.

@@ -1,7 +1,11 @@
 //! Normal contact laws (penalty): force as a function of penetration `d ≥ 0` and its rate,
-//! with derivatives for implicit integration.
+//! with derivatives for implicit integration; [`NormalSpec`] maps configuration tables to them.
 
 use serde::{Deserialize, Serialize};
+
+pub mod spec;
+
+pub use spec::NormalSpec;
 
 /// Normal force and its partial derivatives.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

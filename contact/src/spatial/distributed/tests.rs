@@ -1,0 +1,315 @@
+use super::*;
+use crate::distributed::{ElementContact, LineContact};
+use crate::friction::{CoulombTanh, Frictionless, Stribeck};
+use crate::geometry::Disk;
+use crate::normal::LinearPenalty;
+use crate::quadrature::GaussRule;
+use crate::spatial::{Cylinder, HalfSpace};
+
+/// Bilinear 4-node surface element (3 coordinates per node, node `i + 2j` at `(ξ_i, η_j)`):
+/// quadrature points of the tensor Gauss rule with a constant area Jacobian `area`.
+fn bilinear_points(
+    e: &SVector<f64, 12>,
+    edot: &SVector<f64, 12>,
+    rule_xi: &GaussRule,
+    rule_eta: &GaussRule,
+    area: f64,
+) -> Vec<SurfaceQuadPoint<12>> {
+    let mut out = Vec::new();
+    for (eta, we) in rule_eta.iter() {
+        for (xi, wx) in rule_xi.iter() {
+            let n = [
+                (1.0 - xi) * (1.0 - eta),
+                xi * (1.0 - eta),
+                (1.0 - xi) * eta,
+                xi * eta,
+            ];
+            let mut s = SMatrix::<f64, 3, 12>::zeros();
+            for k in 0..4 {
+                for a in 0..3 {
+                    s[(a, 3 * k + a)] = n[k];
+                }
+            }
+            out.push(SurfaceQuadPoint {
+                position: Point3::from(s * e),
+                velocity: s * edot,
+                shape: s,
+                weight: wx * we * area,
+            });
+        }
+    }
+    out
+}
+
+fn pulley(omega: f64) -> Cylinder {
+    Cylinder {
+        center: Point3::new(0.0, 0.0, 0.0),
+        axis: Vector3::new(0.1, 0.0, 1.0).normalize(),
+        radius: 0.1,
+        crown: 0.5,
+        velocity: Vector3::new(0.02, -0.01, 0.0),
+        omega,
+    }
+}
+
+// Reference (second formulation): central differences of the element force and moment in the
+// coordinates, the velocities and the pulley's angular velocity.
+#[test]
+fn tangent_matches_finite_differences() {
+    let pair = SurfaceContact {
+        surface: pulley(20.0),
+        normal: LinearPenalty {
+            stiffness: 1e9,
+            damping: 1e3,
+        },
+        friction: Stribeck {
+            mu_static: 0.6,
+            mu_kinetic: 0.4,
+            stribeck_velocity: 0.05,
+            kappa: 40.0,
+        },
+    };
+    let r = 0.098;
+    let (th0, th1, z0, z1): (f64, f64, f64, f64) = (0.05, 0.35, -0.01, 0.015);
+    let mut e = SVector::<f64, 12>::zeros();
+    let mut edot = SVector::<f64, 12>::zeros();
+    for (k, (th, z)) in [(th0, z0), (th1, z0), (th0, z1), (th1, z1)]
+        .into_iter()
+        .enumerate()
+    {
+        let rr = r + 1e-4 * k as f64;
+        e.fixed_rows_mut::<3>(3 * k)
+            .copy_from(&Vector3::new(rr * th.cos(), rr * th.sin(), z));
+        // near the surface speed ωR = 2 m/s with some slip and out-of-plane motion
+        edot.fixed_rows_mut::<3>(3 * k).copy_from(&Vector3::new(
+            -1.97 * th.sin() + 0.01 * k as f64,
+            1.97 * th.cos(),
+            0.03 - 0.02 * k as f64,
+        ));
+    }
+    let rule = GaussRule::new(3);
+    let eval = |e: &SVector<f64, 12>, edot: &SVector<f64, 12>, w: f64| {
+        let mut out = ElementContact3::<12>::default();
+        let pts = bilinear_points(e, edot, &rule, &rule, 0.03 * 0.025);
+        pair.element_on(&pulley(w), pts, true, &mut out, None);
+        out
+    };
+    let c = eval(&e, &edot, 20.0);
+    assert_eq!(c.active_points, 9);
+    let tol = |m: f64| 1e-6 * m;
+    let (sk, sc, smk, smc) = (
+        c.dq_de.amax(),
+        c.dq_dedot.amax(),
+        c.dmoment_de.amax(),
+        c.dmoment_dedot.amax(),
+    );
+    for j in 0..12 {
+        let h = 1e-8;
+        let mut d = SVector::<f64, 12>::zeros();
+        d[j] = h;
+        let (p, m) = (eval(&(e + d), &edot, 20.0), eval(&(e - d), &edot, 20.0));
+        let (pv, mv) = (eval(&e, &(edot + d), 20.0), eval(&e, &(edot - d), 20.0));
+        for i in 0..12 {
+            let fd = (p.q[i] - m.q[i]) / (2.0 * h);
+            assert!((fd - c.dq_de[(i, j)]).abs() < tol(sk), "dQ{i}/de{j}");
+            let fd = (pv.q[i] - mv.q[i]) / (2.0 * h);
+            assert!((fd - c.dq_dedot[(i, j)]).abs() < tol(sc), "dQ{i}/dedot{j}");
+        }
+        for i in 0..3 {
+            let fd = (p.moment[i] - m.moment[i]) / (2.0 * h);
+            assert!((fd - c.dmoment_de[(i, j)]).abs() < tol(smk), "dM{i}/de{j}");
+            let fd = (pv.moment[i] - mv.moment[i]) / (2.0 * h);
+            assert!(
+                (fd - c.dmoment_dedot[(i, j)]).abs() < tol(smc),
+                "dM{i}/dedot{j}"
+            );
+        }
+    }
+    let h = 1e-6;
+    let (p, m) = (eval(&e, &edot, 20.0 + h), eval(&e, &edot, 20.0 - h));
+    let fd = (p.q - m.q) / (2.0 * h);
+    assert!((fd - c.dq_domega).amax() < tol(c.dq_domega.amax()));
+    let fd = (p.moment - m.moment) / (2.0 * h);
+    assert!((fd - c.dmoment_domega).amax() < tol(c.dmoment_domega.amax()));
+    // the generalized forces carry the resultant: Σ over nodes of Q = −F (partition of unity)
+    let mut sum = Vector3::zeros();
+    for k in 0..4 {
+        sum += c.q.fixed_rows::<3>(3 * k);
+    }
+    assert!((sum + c.reaction).amax() < 1e-12 * c.reaction.amax());
+}
+
+// Reference: analytical — a flat plate at uniform penetration δ in a half-space carries
+// F = k δ A, with the centre of pressure at the plate centroid.
+#[test]
+fn flat_plate_in_half_space() {
+    let (k, delta, a, b) = (2.5e8, 3e-4, 0.04, 0.015);
+    let pair = SurfaceContact {
+        surface: HalfSpace {
+            origin: Point3::new(0.0, 0.0, 0.0),
+            normal: Vector3::z(),
+            tangent: Vector3::x(),
+            velocity: Vector3::zeros(),
+        },
+        normal: LinearPenalty {
+            stiffness: k,
+            damping: 50.0,
+        },
+        friction: Frictionless,
+    };
+    let (x0, y0) = (0.3, -0.2);
+    let mut e = SVector::<f64, 12>::zeros();
+    for (kk, (x, y)) in [(x0, y0), (x0 + a, y0), (x0, y0 + b), (x0 + a, y0 + b)]
+        .into_iter()
+        .enumerate()
+    {
+        e.fixed_rows_mut::<3>(3 * kk)
+            .copy_from(&Vector3::new(x, y, -delta));
+    }
+    let rule = GaussRule::new(9);
+    let mut out = ElementContact3::<12>::default();
+    let mut rec = Vec::new();
+    pair.element(
+        bilinear_points(&e, &SVector::zeros(), &rule, &rule, a * b),
+        true,
+        &mut out,
+        Some(&mut rec),
+    );
+    assert_eq!(out.active_points, 81);
+    assert_eq!(rec.len(), 81);
+    let total = k * delta * a * b;
+    assert!((out.reaction.z + total).abs() < 1e-12 * total);
+    assert!(out.reaction.xy().amax() < 1e-12 * total);
+    let mut fz = 0.0;
+    for kk in 0..4 {
+        // uniform pressure: a quarter of the load per node
+        assert!((out.q[3 * kk + 2] - 0.25 * total).abs() < 1e-12 * total);
+        fz += out.q[3 * kk + 2];
+    }
+    assert!((fz - total).abs() < 1e-12 * total);
+    let centroid = Vector3::new(x0 + 0.5 * a, y0 + 0.5 * b, -delta);
+    let m = centroid.cross(&out.reaction);
+    assert!((m - out.moment).amax() < 1e-12 * total);
+    assert!(
+        rec.iter()
+            .all(|r| (r.normal_force - k * delta).abs() < 1e-9)
+    );
+}
+
+// Reference (second formulation): the planar line contact on a disk (Kerkkänen (3.27)) and
+// the spatial contact of the same element extruded over a width `b` on a straight cylinder,
+// with no out-of-plane motion, give the same force and torque per unit width.
+#[test]
+fn planar_line_contact_equals_extruded_plate() {
+    let (k, c) = (1e7, 10.0);
+    let fl = CoulombTanh {
+        mu: 1.2,
+        kappa: 40.0,
+    };
+    let omega = 20.0;
+    let disk = Disk {
+        center: [0.01, -0.02],
+        radius: 0.1,
+        velocity: [0.0, 0.0],
+        omega,
+    };
+    let rule = GaussRule::new(5);
+    let planar = LineContact {
+        surface: disk,
+        normal: LinearPenalty {
+            stiffness: k,
+            damping: c,
+        },
+        friction: fl,
+        rule: rule.clone(),
+    };
+    let spatial = SurfaceContact {
+        surface: Cylinder {
+            center: Point3::new(0.01, -0.02, 0.0),
+            axis: Vector3::z(),
+            radius: 0.1,
+            crown: 0.0,
+            velocity: Vector3::zeros(),
+            omega,
+        },
+        normal: LinearPenalty {
+            stiffness: k,
+            damping: c,
+        },
+        friction: fl,
+    };
+    let nodes: [[f64; 2]; 2] = [
+        [0.01 + 0.0996, -0.02 + 0.004],
+        [0.01 + 0.088, -0.02 + 0.047],
+    ];
+    let vels = [[-0.09, 1.99], [-0.93, 1.77]];
+    let e2 = [nodes[0][0], nodes[0][1], nodes[1][0], nodes[1][1]];
+    let v2 = [vels[0][0], vels[0][1], vels[1][0], vels[1][1]];
+    let length = ((nodes[1][0] - nodes[0][0]).powi(2) + (nodes[1][1] - nodes[0][1]).powi(2)).sqrt();
+    let mut out2 = ElementContact::new(4);
+    planar.element(
+        length,
+        2,
+        |xi, s| {
+            s[0] = 1.0 - xi;
+            s[1] = xi;
+        },
+        &e2,
+        &v2,
+        true,
+        &mut out2,
+        None,
+    );
+    assert!(out2.active_points > 0);
+    let b = 0.6;
+    let mut e3 = SVector::<f64, 12>::zeros();
+    let mut v3 = SVector::<f64, 12>::zeros();
+    for j in 0..2 {
+        for i in 0..2 {
+            let kk = i + 2 * j;
+            let z = (j as f64 - 0.5) * b;
+            e3.fixed_rows_mut::<3>(3 * kk)
+                .copy_from(&Vector3::new(nodes[i][0], nodes[i][1], z));
+            v3.fixed_rows_mut::<3>(3 * kk)
+                .copy_from(&Vector3::new(vels[i][0], vels[i][1], 0.0));
+        }
+    }
+    let mut out3 = ElementContact3::<12>::default();
+    spatial.element(
+        bilinear_points(&e3, &v3, &rule, &GaussRule::new(2), length * b),
+        true,
+        &mut out3,
+        None,
+    );
+    assert_eq!(out3.active_points, 2 * out2.active_points);
+    let scale = out2.q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for i in 0..2 {
+        for a in 0..2 {
+            let per_width = (out3.q[3 * i + a] + out3.q[3 * (i + 2) + a]) / b;
+            assert!(
+                (per_width - out2.q[2 * i + a]).abs() < 1e-12 * scale,
+                "Q[{i}][{a}]: {per_width} vs {}",
+                out2.q[2 * i + a]
+            );
+        }
+        assert!(out3.q[3 * i + 2].abs() < 1e-12 * scale);
+    }
+    assert!((out3.moment.z / b - out2.torque).abs() < 1e-12 * out2.torque.abs());
+    assert!((out3.reaction.x / b - out2.reaction[0]).abs() < 1e-12 * scale);
+    assert!((out3.reaction.y / b - out2.reaction[1]).abs() < 1e-12 * scale);
+    // the in-plane stiffness per width, node block (0,0)
+    let sk = out2.dq_de.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for a in 0..2 {
+        for bb in 0..2 {
+            let k3 = (0..2)
+                .map(|j| {
+                    (0..2)
+                        .map(|l| out3.dq_de[(3 * 2 * j + a, 3 * 2 * l + bb)])
+                        .sum::<f64>()
+                })
+                .sum::<f64>()
+                / b;
+            assert!((k3 - out2.dq_de[a + bb * 4]).abs() < 1e-12 * sk);
+        }
+    }
+}
