@@ -114,15 +114,19 @@ pub trait NewtonProblem {
 }
 
 /// Convergence test of one iteration: converged when the applied correction satisfies
-/// `‖Δx‖ ≤ correction · (1 + ‖x‖)` (relative) or `‖Δx‖ ≤ correction` (absolute), or when the
-/// residual at the start of the iteration satisfies `‖R‖ < residual` from iteration
-/// `residual_from_iteration` on.
+/// `‖Δx‖ ≤ correction · (1 + ‖x‖)` (relative), `‖Δx‖ ≤ correction + per_scale · ‖x‖` (mixed,
+/// e.g. `atol + rtol ‖x‖`) or `‖Δx‖ ≤ correction` (absolute), or when the residual at the start
+/// of the iteration satisfies `‖R‖ < residual` from iteration `residual_from_iteration` on.
+/// `‖x‖` is [`NewtonProblem::scale`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerances {
     /// Tolerance on the correction \[units of x\] or \[-\] when relative.
     pub correction: f64,
     /// Scale the correction tolerance by `1 + ‖x‖` ([`NewtonProblem::scale`]).
     pub relative: bool,
+    /// Relative part of the mixed test `‖Δx‖ ≤ correction + per_scale · ‖x‖` \[-\]; used when
+    /// `relative` is false, `0` gives the absolute test.
+    pub per_scale: f64,
     /// Residual tolerance \[units of R\]; `0` disables the residual test.
     pub residual: f64,
     /// First iteration (1-based) at which the residual test applies.
@@ -135,6 +139,7 @@ impl Tolerances {
         Self {
             correction: tol,
             relative: false,
+            per_scale: 0.0,
             residual: 0.0,
             residual_from_iteration: 1,
         }
@@ -145,6 +150,14 @@ impl Tolerances {
         Self {
             relative: true,
             ..Self::absolute(tol)
+        }
+    }
+
+    /// `‖Δx‖ ≤ atol + rtol ‖x‖`.
+    pub fn mixed(atol: f64, rtol: f64) -> Self {
+        Self {
+            per_scale: rtol,
+            ..Self::absolute(atol)
         }
     }
 
@@ -514,6 +527,8 @@ fn increment<P: NewtonProblem + ?Sized>(
             let scale = problem.scale(x, &ws.trial);
             let threshold = if tol.relative {
                 tol.correction * (1.0 + scale)
+            } else if tol.per_scale != 0.0 {
+                tol.correction + tol.per_scale * scale
             } else {
                 tol.correction
             };

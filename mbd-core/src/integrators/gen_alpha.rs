@@ -22,15 +22,21 @@
 //! ```
 //!
 //! which stays well conditioned as `h → 0` (the scaling of Arnold & Brüls / Bottasso et al.).
+//! The iteration runs on the workspace's Newton solver [`crate::newton::solve`] (problem in
+//! the private `newton` submodule).
 
 use super::accel::{AccelSolver, Stabilization};
 use super::{
     AlphaCorrection, Integrator, NoCorrection, Solution, State, Stats, StepCorrection, Stepper,
-    check_step, explain_singular, observe_fn,
+    check_step, observe_fn,
 };
 use crate::linalg::KktSolver;
+use crate::newton::{self, NewtonError, NewtonOptions, NewtonWorkspace, Tolerances};
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
+
+mod newton_step;
+use newton_step::StepProblem;
 
 /// How the Newton matrix is obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -184,29 +190,24 @@ impl Integrator for GeneralizedAlpha {
 /// Per-step vectors of [`AlphaStepper`], allocated once.
 #[derive(Default)]
 struct Work {
-    vdot1: Vec<f64>,
-    lam1: Vec<f64>,
-    dq: Vec<f64>,
+    /// Newton unknown `[Δq; v_{n+1}; v̇_{n+1}; λ_{n+1}]`.
+    x: Vec<f64>,
     v1: Vec<f64>,
     q1: Vec<f64>,
-    r: Vec<f64>,
-    phi: Vec<f64>,
     rhs: Vec<f64>,
     f: Vec<f64>,
+    newton: NewtonWorkspace,
 }
 
 impl Work {
     fn new(nq: usize, n: usize, nc: usize) -> Self {
         Self {
-            vdot1: vec![0.0; n],
-            lam1: vec![0.0; nc],
-            dq: vec![0.0; n],
+            x: vec![0.0; 3 * n + nc],
             v1: vec![0.0; n],
             q1: vec![0.0; nq],
-            r: vec![0.0; n],
-            phi: vec![0.0; nc],
             rhs: vec![0.0; n + nc],
             f: vec![0.0; n],
+            newton: NewtonWorkspace::new(),
         }
     }
 }
@@ -399,89 +400,80 @@ impl<C> AlphaStepper<C> {
         let bp = (1.0 - am) / (h * h * beta * (1.0 - af));
         let gp = gamma / (h * beta);
         let Work {
-            vdot1,
-            lam1,
-            dq,
-            v1,
+            x,
+            v1: v1_state,
             q1,
-            r,
-            phi,
             rhs,
             f,
+            newton: newton_ws,
         } = w;
 
         // predictor: v̇_{n+1} = v̇_n, λ_{n+1} = λ_n
-        vdot1.copy_from_slice(&self.vdot);
-        lam1.copy_from_slice(&self.lambda);
-        for i in 0..n {
-            let a1 = (af * self.vdot[i] - am * self.a[i] + (1.0 - af) * vdot1[i]) / (1.0 - am);
-            dq[i] = h * self.state.v[i] + h * h * ((0.5 - beta) * self.a[i] + beta * a1);
-            v1[i] = self.state.v[i] + h * ((1.0 - gamma) * self.a[i] + gamma * a1);
-        }
-        sys.integrate_position(&self.state.q, dq, q1);
-
-        let mut converged = false;
-        let mut last = f64::INFINITY;
-        let mut it = 0;
-        while it < p.max_newton_iterations {
-            it += 1;
-            self.stats.newton_iterations += 1;
-            self.residual(sys, t1, q1, v1, vdot1, lam1, r, phi, f)?;
-            let fill_rhs = |rhs: &mut [f64]| {
-                for i in 0..n {
-                    rhs[i] = -r[i] / bp;
-                }
-                for i in 0..nc {
-                    rhs[n + i] = -phi[i];
-                }
-            };
-            // From the second iteration on, first try the correction with the factorisation of
-            // the previous iteration: if it is already below the tolerance the step has
-            // converged and no new factorisation is needed.
-            let mut have_solution = false;
-            if it > 1 && self.kkt.is_factored() {
-                fill_rhs(rhs);
-                self.kkt.solve(rhs, t1)?;
-                let dqn = dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-                let dxn = rhs[..n].iter().fold(0.0f64, |a, x| a.max(x.abs()));
-                have_solution =
-                    update == NewtonUpdate::EveryStep || dxn <= p.newton_atol + p.newton_rtol * dqn;
-            }
-            if !have_solution {
-                self.newton_matrix(sys, t1, q1, v1, vdot1, lam1, r, phi, bp, gp, f)
-                    .map_err(|e| explain_singular(sys, t1, q1, e))?;
-                fill_rhs(rhs);
-                self.kkt.solve(rhs, t1)?;
-            }
-            let mut dx_norm = 0.0f64;
+        {
+            let (dq, rest) = x.split_at_mut(n);
+            let (v1, rest) = rest.split_at_mut(n);
+            let (vdot1, lam1) = rest.split_at_mut(n);
+            vdot1.copy_from_slice(&self.vdot);
+            lam1.copy_from_slice(&self.lambda);
             for i in 0..n {
-                let dx = rhs[i];
-                dx_norm = dx_norm.max(dx.abs());
-                dq[i] += dx;
-                v1[i] += gp * dx;
-                vdot1[i] += bp * dx;
-            }
-            for i in 0..nc {
-                lam1[i] += bp * rhs[n + i];
-            }
-            sys.integrate_position(&self.state.q, dq, q1);
-            last = dx_norm;
-            let dq_norm = dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-            if !dx_norm.is_finite() {
-                break;
-            }
-            if dx_norm <= p.newton_atol + p.newton_rtol * dq_norm {
-                converged = true;
-                break;
+                let a1 = (af * self.vdot[i] - am * self.a[i] + (1.0 - af) * vdot1[i]) / (1.0 - am);
+                dq[i] = h * self.state.v[i] + h * h * ((0.5 - beta) * self.a[i] + beta * a1);
+                v1[i] = self.state.v[i] + h * ((1.0 - gamma) * self.a[i] + gamma * a1);
             }
         }
-        if !converged {
-            return Err(MbdError::NoConvergence {
-                t: t1,
-                iterations: it,
-                residual: last,
-            });
+
+        let opts = NewtonOptions {
+            max_iterations: p.max_newton_iterations,
+            tolerances: Tolerances::mixed(p.newton_atol, p.newton_rtol),
+            ..Default::default()
+        };
+        let mut problem = StepProblem {
+            stepper: self,
+            sys,
+            t1,
+            bp,
+            gp,
+            update,
+            q1,
+            f,
+            trial: rhs,
+            it: 0,
+            reuse: false,
+        };
+        match newton::solve(&mut problem, x, &opts, newton_ws) {
+            Ok(_) => {}
+            Err(NewtonError::Problem(e)) => return Err(e),
+            // the step is halved by the caller
+            Err(NewtonError::NoConvergence {
+                iterations,
+                correction,
+                ..
+            }) => {
+                return Err(MbdError::NoConvergence {
+                    t: t1,
+                    iterations,
+                    residual: correction,
+                });
+            }
+            Err(NewtonError::NonFinite {
+                what, iteration, ..
+            }) => {
+                return Err(MbdError::NoConvergence {
+                    t: t1,
+                    iterations: iteration,
+                    residual: if what == "correction" {
+                        f64::INFINITY
+                    } else {
+                        f64::NAN
+                    },
+                });
+            }
+            Err(e) => return Err(e.into_mbd(t1)),
         }
+        let (dq, rest) = x.split_at_mut(n);
+        let (v1, rest) = rest.split_at_mut(n);
+        let (vdot1, lam1) = rest.split_at_mut(n);
+        sys.integrate_position(&self.state.q, dq, q1);
         // nonsmooth correction with the factored iteration matrix
         {
             let integrate =
@@ -504,6 +496,8 @@ impl<C> AlphaStepper<C> {
             };
             self.correction.correct(sys, &mut ctx)?;
         }
+        v1_state.copy_from_slice(v1);
+        let v1 = v1_state;
         // accept
         sys.normalize(q1);
         let mut new_state = State::new(t1, std::mem::take(q1), std::mem::take(v1));
@@ -524,8 +518,8 @@ impl<C> AlphaStepper<C> {
         let old = std::mem::replace(&mut self.state, new_state);
         *q1 = old.q;
         *v1 = old.v;
-        std::mem::swap(&mut self.vdot, vdot1);
-        std::mem::swap(&mut self.lambda, lam1);
+        self.vdot.copy_from_slice(vdot1);
+        self.lambda.copy_from_slice(lam1);
         self.stats.steps += 1;
         Ok(())
     }
