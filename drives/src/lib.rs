@@ -12,6 +12,8 @@
 //! * [`ancf_drive_model`]: the Table 6-1 → ANCF adapter (Kerkkänen ch. 3 elements on Ribaric's
 //!   drive);
 //! * [`study`]: the speed-loss study per model and driver speed;
+//! * [`speed_loss_study`]: the study's configuration and summary (shared by the app and the
+//!   Python package);
 //! * [`ancf_run`]: the ANCF belt drive's time loop with sampled outputs, and its closure;
 //! * [`wave`]: the measurements of the rotating vs non-rotating belt demonstration (Fig. 6-3).
 //!
@@ -24,6 +26,7 @@ pub mod ancf_run;
 pub mod error;
 pub mod model;
 pub mod speed_loss;
+pub mod speed_loss_study;
 pub mod study;
 pub mod wave;
 
@@ -32,4 +35,5 @@ pub use error::DriveError;
 pub use flowing::belt::Schedule;
 pub use model::DriveModel;
 pub use speed_loss::{SpeedLossConfig, SpeedLossPoint, speed_loss_sweep};
+pub use speed_loss_study::{SpeedLossStudyConfig, SpeedLossSummary};
 pub use study::{ModelKind, NodalConfig, SpeedLossCase, SpeedLossModel};

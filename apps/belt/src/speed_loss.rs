@@ -5,16 +5,13 @@
 //! the results.
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
-use drives::ancf_drive_model::AncfConfig;
-use drives::speed_loss::{Sample, SweepStats};
+use drives::speed_loss::{Sample, SweepFailure};
+use drives::speed_loss_study::{SpeedLossStudyConfig, SummaryCase as Case, drive_input_error};
 use drives::study::case_inputs;
-use drives::{DriveError, ModelKind, NodalConfig, SpeedLossCase, SpeedLossModel};
-use drives::{SpeedLossConfig, speed_loss::SweepFailure};
-use flowing::belt::BeltDriveConfig;
+use drives::{DriveError, ModelKind, SpeedLossCase, SpeedLossModel, SpeedLossSummary as Summary};
 use flowmbd_cli::plot::{LinePlot, Series, Style};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -41,134 +38,17 @@ pub struct Args {
     pub model: Option<ModelKind>,
 }
 
-/// Study configuration.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct Config {
-    /// Belt model.
-    pub model: ModelKind,
-    /// Driver speeds \[rad/s\] (Figs. 6-6 and 6-7: 62.8 and 22.6).
-    pub omegas: Vec<f64>,
-    /// The drive (Table 6-1).
-    pub drive: BeltDriveConfig,
-    /// The procedure (torques, ramps, steady-state detection, integrator). Its `omega_driver`
-    /// is replaced by each entry of `omegas`.
-    pub procedure: SpeedLossConfig,
-    /// Write every n-th integration step to the history CSV files.
-    pub history_every: usize,
-    /// Discretisation of the ANCF belt (`model = "ancf"` only).
-    pub ancf: AncfConfig,
-    /// Settings used instead of `drive.mesh` and the procedure's steady-state window when
-    /// `model = "nodal"`.
-    pub nodal: NodalConfig,
-}
-
-impl Default for Config {
-    fn default() -> Self {
-        Self {
-            model: ModelKind::Flowing,
-            omegas: vec![62.8, 22.6],
-            drive: BeltDriveConfig::default(),
-            procedure: SpeedLossConfig::default(),
-            history_every: 20,
-            ancf: Default::default(),
-            nodal: NodalConfig::default(),
-        }
-    }
-}
-
-impl Validate for Config {
-    fn validate(&self) -> Result<(), InputError> {
-        if self.omegas.is_empty() {
-            return Err(InputError::new("omegas", "give at least one driver speed"));
-        }
-        if let Some(i) = self
-            .omegas
-            .iter()
-            .position(|w| !(w.is_finite() && *w > 0.0))
-        {
-            return Err(InputError::new(
-                format!("omegas[{i}]"),
-                "must be finite and > 0 [rad/s]",
-            ));
-        }
-        if self.history_every == 0 {
-            return Err(InputError::new("history_every", "must be at least 1"));
-        }
-        self.drive.validate_within("drive")?;
-        self.ancf.validate_within("ancf")?;
-        if self.model == ModelKind::Nodal {
-            BeltDriveConfig {
-                mesh: self.nodal.mesh,
-                ..self.drive
-            }
-            .validate_within("nodal")?;
-            SpeedLossConfig {
-                window: self.nodal.window,
-                tolerance: self.nodal.tolerance,
-                ..self.procedure.clone()
-            }
-            .validate_within("nodal")?;
-        }
-        self.procedure.validate_within("procedure")
-    }
-}
-
-/// One driver speed's result.
-#[derive(Debug, Clone, Serialize)]
-pub struct Case {
-    /// Driver speed \[rad/s\].
-    pub omega_driver: f64,
-    /// Steady points.
-    pub points: Vec<Point>,
-    /// Bechtel's Δω (6.3) at the same torques \[rad/s\].
-    pub analytical: Vec<f64>,
-    /// Integration statistics.
-    pub stats: SweepStats,
-    /// Wall time of this case \[s\].
-    pub wall_time_s: f64,
-}
-
-/// One point of the summary.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct Point {
-    /// Load torque \[N m\].
-    pub torque: f64,
-    /// Steady speed loss \[rad/s\].
-    pub delta_omega: f64,
-}
-
-/// Summary: the first speed's case at the top level (the `--omega` contract), all cases below.
-#[derive(Debug, Clone, Serialize)]
-pub struct Summary {
-    /// Driver speed of the first case \[rad/s\].
-    pub omega_driver: f64,
-    /// Model.
-    pub model: ModelKind,
-    /// Points of the first case.
-    pub points: Vec<Point>,
-    /// Analytical Δω of the first case \[rad/s\].
-    pub analytical: Vec<f64>,
-    /// Every driver speed.
-    pub cases: Vec<Case>,
-    /// Number of coordinates of the model (modal + belt + pulley for the flowing model,
-    /// nodal + belt + pulley for the nodal model).
-    pub modal_coordinates: usize,
-    /// Total wall time \[s\].
-    pub wall_time_s: f64,
-}
+/// Study configuration (defined in `drives`, shared with the Python package).
+pub type Config = SpeedLossStudyConfig;
 
 struct SpeedLoss {
     args: Args,
 }
 
 fn drive_error(e: DriveError) -> StudyError {
-    match e {
-        DriveError::Ancf(ancf::AncfError::InvalidInput { item, reason }) => {
-            StudyError::Input(InputError::new(format!("ancf: {item}"), reason))
-        }
-        DriveError::Ancf(other) => StudyError::numerical(other),
-        DriveError::Flowing(e) => StudyError::numerical(e),
+    match drive_input_error(&e) {
+        Some(field) => StudyError::Input(field),
+        None => StudyError::numerical(e),
     }
 }
 
@@ -236,20 +116,7 @@ fn run_case(
     let extra = case.points.len().saturating_sub(found);
     report(done.fetch_add(extra, Ordering::Relaxed) + extra);
     Ok((
-        Case {
-            omega_driver: case.omega_driver,
-            points: case
-                .points
-                .iter()
-                .map(|p| Point {
-                    torque: p.torque,
-                    delta_omega: p.delta_omega,
-                })
-                .collect(),
-            analytical: case.analytical,
-            stats: case.stats,
-            wall_time_s: start.elapsed().as_secs_f64(),
-        },
+        Case::new(case, start.elapsed().as_secs_f64()),
         model.coordinates(),
     ))
 }
@@ -331,16 +198,12 @@ impl Study for SpeedLoss {
         }
         table.finish()?;
         plot.save(&ctx.out.path("speed_loss"))?;
-        let first = &cases[0];
-        Ok(Summary {
-            omega_driver: first.omega_driver,
-            model: c.model,
-            points: first.points.clone(),
-            analytical: first.analytical.clone(),
-            modal_coordinates: modes,
+        Ok(Summary::new(
+            c.model,
             cases,
-            wall_time_s: start.elapsed().as_secs_f64(),
-        })
+            modes,
+            start.elapsed().as_secs_f64(),
+        ))
     }
 }
 

@@ -1,0 +1,214 @@
+//! The speed-loss study's configuration and summary (Ribaric §6.4–6.5, Figs. 6-6 and 6-7):
+//! what `flowmbd-belt speed-loss` reads from its TOML file and writes to `summary.json`, shared
+//! with the Python package (`flowmbd.belt.speed_loss`) so that both accept the same keys, reject
+//! the same fields with the same messages and report the same numbers. Each case is the
+//! procedure of [`crate::speed_loss`] run by [`SpeedLossModel`](crate::SpeedLossModel), with
+//! Bechtel's line (6.3) at the same torques.
+
+use crate::ancf_drive_model::AncfConfig;
+use crate::error::DriveError;
+use crate::speed_loss::{SpeedLossConfig, SweepStats};
+use crate::study::{ModelKind, NodalConfig, SpeedLossCase};
+use flowing::belt::BeltDriveConfig;
+use mbd_core::validate::{InvalidField, Validate};
+use serde::{Deserialize, Serialize};
+
+/// Configuration of the speed-loss study (the `flowmbd-belt speed-loss` TOML file).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SpeedLossStudyConfig {
+    /// Belt model.
+    pub model: ModelKind,
+    /// Driver speeds \[rad/s\] (Figs. 6-6 and 6-7: 62.8 and 22.6).
+    pub omegas: Vec<f64>,
+    /// The drive (Table 6-1).
+    pub drive: BeltDriveConfig,
+    /// The procedure (torques, ramps, steady-state detection, integrator). Its `omega_driver`
+    /// is replaced by each entry of `omegas`.
+    pub procedure: SpeedLossConfig,
+    /// Write every n-th integration step to the history CSV files.
+    pub history_every: usize,
+    /// Discretisation of the ANCF belt (`model = "ancf"` only).
+    pub ancf: AncfConfig,
+    /// Settings used instead of `drive.mesh` and the procedure's steady-state window when
+    /// `model = "nodal"`.
+    pub nodal: NodalConfig,
+}
+
+impl Default for SpeedLossStudyConfig {
+    fn default() -> Self {
+        Self {
+            model: ModelKind::Flowing,
+            omegas: vec![62.8, 22.6],
+            drive: BeltDriveConfig::default(),
+            procedure: SpeedLossConfig::default(),
+            history_every: 20,
+            ancf: Default::default(),
+            nodal: NodalConfig::default(),
+        }
+    }
+}
+
+impl Validate for SpeedLossStudyConfig {
+    fn validate(&self) -> Result<(), InvalidField> {
+        if self.omegas.is_empty() {
+            return Err(InvalidField::new(
+                "omegas",
+                "give at least one driver speed",
+            ));
+        }
+        if let Some(i) = self
+            .omegas
+            .iter()
+            .position(|w| !(w.is_finite() && *w > 0.0))
+        {
+            return Err(InvalidField::new(
+                format!("omegas[{i}]"),
+                "must be finite and > 0 [rad/s]",
+            ));
+        }
+        if self.history_every == 0 {
+            return Err(InvalidField::new("history_every", "must be at least 1"));
+        }
+        self.drive.validate_within("drive")?;
+        self.ancf.validate_within("ancf")?;
+        if self.model == ModelKind::Nodal {
+            BeltDriveConfig {
+                mesh: self.nodal.mesh,
+                ..self.drive
+            }
+            .validate_within("nodal")?;
+            SpeedLossConfig {
+                window: self.nodal.window,
+                tolerance: self.nodal.tolerance,
+                ..self.procedure.clone()
+            }
+            .validate_within("nodal")?;
+        }
+        self.procedure.validate_within("procedure")
+    }
+}
+
+/// The input error hidden in a model-building failure: the ANCF drive's rejection of its
+/// derived inputs (named `ancf: <item>`); `None` for a numerical failure.
+pub fn drive_input_error(e: &DriveError) -> Option<InvalidField> {
+    match e {
+        DriveError::Ancf(ancf::AncfError::InvalidInput { item, reason }) => {
+            Some(InvalidField::new(format!("ancf: {item}"), reason.clone()))
+        }
+        _ => None,
+    }
+}
+
+/// One point of the summary.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SummaryPoint {
+    /// Load torque \[N m\].
+    pub torque: f64,
+    /// Steady speed loss ω₁ − ω₂ \[rad/s\].
+    pub delta_omega: f64,
+}
+
+/// One driver speed's result in the summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct SummaryCase {
+    /// Driver speed \[rad/s\].
+    pub omega_driver: f64,
+    /// Steady points.
+    pub points: Vec<SummaryPoint>,
+    /// Bechtel's Δω (6.3) at the same torques \[rad/s\].
+    pub analytical: Vec<f64>,
+    /// Integration statistics.
+    pub stats: SweepStats,
+    /// Wall time of this case \[s\].
+    pub wall_time_s: f64,
+}
+
+impl SummaryCase {
+    /// The summary of `case`, which took `wall_time_s` \[s\].
+    pub fn new(case: SpeedLossCase, wall_time_s: f64) -> Self {
+        Self {
+            omega_driver: case.omega_driver,
+            points: case
+                .points
+                .iter()
+                .map(|p| SummaryPoint {
+                    torque: p.torque,
+                    delta_omega: p.delta_omega,
+                })
+                .collect(),
+            analytical: case.analytical,
+            stats: case.stats,
+            wall_time_s,
+        }
+    }
+}
+
+/// Summary: the first speed's case at the top level (the `--omega` contract), all cases below.
+#[derive(Debug, Clone, Serialize)]
+pub struct SpeedLossSummary {
+    /// Driver speed of the first case \[rad/s\].
+    pub omega_driver: f64,
+    /// Model.
+    pub model: ModelKind,
+    /// Points of the first case.
+    pub points: Vec<SummaryPoint>,
+    /// Analytical Δω of the first case \[rad/s\].
+    pub analytical: Vec<f64>,
+    /// Every driver speed.
+    pub cases: Vec<SummaryCase>,
+    /// Number of coordinates of the model (modal + belt + pulley for the flowing model,
+    /// nodal + belt + pulley for the nodal model).
+    pub modal_coordinates: usize,
+    /// Total wall time \[s\].
+    pub wall_time_s: f64,
+}
+
+impl SpeedLossSummary {
+    /// The summary of `cases` (in the configured order of speeds, at least one) of `model`
+    /// with `coordinates` coordinates, which took `wall_time_s` \[s\] in all.
+    pub fn new(
+        model: ModelKind,
+        cases: Vec<SummaryCase>,
+        coordinates: usize,
+        wall_time_s: f64,
+    ) -> Self {
+        let (omega_driver, points, analytical) = cases
+            .first()
+            .map(|c| (c.omega_driver, c.points.clone(), c.analytical.clone()))
+            .unwrap_or_default();
+        Self {
+            omega_driver,
+            model,
+            points,
+            analytical,
+            modal_coordinates: coordinates,
+            cases,
+            wall_time_s,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // the defaults are Ribaric's Figs. 6-6 and 6-7 (62.8 and 22.6 rad/s) and pass validation
+    #[test]
+    fn defaults_are_the_papers_speeds_and_valid() {
+        let c = SpeedLossStudyConfig::default();
+        assert_eq!(c.omegas, vec![62.8, 22.6]);
+        assert!(c.validate().is_ok());
+    }
+
+    // a bad speed is named by its index (definition of the message)
+    #[test]
+    fn bad_speed_is_named() {
+        let c = SpeedLossStudyConfig {
+            omegas: vec![62.8, -1.0],
+            ..Default::default()
+        };
+        let e = c.validate().unwrap_err();
+        assert_eq!(e.field, "omegas[1]");
+    }
+}
