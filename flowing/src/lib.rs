@@ -30,6 +30,7 @@ pub mod params;
 pub mod pulley;
 pub mod spectrum;
 pub mod string_fe;
+pub mod string_study;
 pub mod tire;
 pub mod travelling;
 

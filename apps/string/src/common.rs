@@ -1,7 +1,7 @@
 //! Pieces shared by the studies: error mapping, validation helpers, model building.
 
-use flowing::{AxialMotion, DerivativeMethod};
-use flowing::{FlowError, FlowingString, GalerkinString, StringConfig, StringMesh};
+use flowing::string_study;
+use flowing::{DerivativeMethod, FlowError, FlowingString, StringConfig, StringMesh};
 use flowmbd_cli::{InputError, StudyError};
 
 /// Maps library errors to the app's exit-code classes (bad input: 2, numerical: 1).
@@ -17,56 +17,11 @@ pub fn study_error(e: FlowError) -> StudyError {
     }
 }
 
-/// Checks the string parameters, naming the offending field.
-pub fn check_string(p: &StringConfig, prefix: &str) -> Result<(), InputError> {
-    for (name, v) in [
-        ("length", p.length),
-        ("density", p.density),
-        ("area", p.area),
-        ("tension", p.tension),
-    ] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(InputError::new(
-                format!("{prefix}.{name}"),
-                format!("must be a positive number, got {v}"),
-            ));
-        }
-    }
-    Ok(())
-}
+/// The shared checks, defined with the modes study in `flowing` (one set of messages).
+pub use flowing::string_study::{check_nodes_modes, check_number, check_string};
 
-/// Checks that `v` is finite (and non-negative if `non_negative`).
-pub fn check_number(field: &str, v: f64, non_negative: bool) -> Result<(), InputError> {
-    if !v.is_finite() || (non_negative && v < 0.0) {
-        return Err(InputError::new(
-            field,
-            format!(
-                "must be a finite{} number, got {v}",
-                if non_negative { " non-negative" } else { "" }
-            ),
-        ));
-    }
-    Ok(())
-}
-
-/// Checks `nodes ≥ 3` and `1 ≤ modes ≤ nodes`.
-pub fn check_nodes_modes(nodes: usize, modes: usize) -> Result<(), InputError> {
-    if nodes < 3 {
-        return Err(InputError::new(
-            "nodes",
-            format!("needs at least 3 interior nodes, got {nodes}"),
-        ));
-    }
-    if modes == 0 || modes > nodes {
-        return Err(InputError::new(
-            "modes",
-            format!("must be between 1 and nodes = {nodes}, got {modes}"),
-        ));
-    }
-    Ok(())
-}
-
-/// The string mesh of `nodes` interior nodes and its flowing-material model with `modes` modes.
+/// The string mesh of `nodes` interior nodes and its flowing-material model with `modes` modes
+/// ([`flowing::string_study::flowing_model`]).
 pub fn flowing_model(
     p: StringConfig,
     nodes: usize,
@@ -74,17 +29,7 @@ pub fn flowing_model(
     method: DerivativeMethod,
     speed: f64,
 ) -> Result<(StringMesh, FlowingString), StudyError> {
-    let mesh = StringMesh::uniform(p, nodes).map_err(study_error)?;
-    let basis = mesh.modes(modes).map_err(study_error)?;
-    let sys = FlowingString::new(
-        &mesh.mass_sys(),
-        basis,
-        &[mesh.flow_line()],
-        method,
-        AxialMotion::Constant { speed },
-    )
-    .map_err(study_error)?;
-    Ok((mesh, sys))
+    string_study::flowing_model(p, nodes, modes, method, speed).map_err(study_error)
 }
 
 /// Eigen analysis of the Galerkin model: (damped frequencies \[Hz\], max real part \[1/s\]).
@@ -93,13 +38,10 @@ pub fn galerkin_frequencies(
     speed: f64,
     terms: usize,
 ) -> Result<(Vec<f64>, f64), StudyError> {
-    let g = GalerkinString::new(p, speed, terms).map_err(study_error)?;
-    let e = g.system().state_eigen().map_err(study_error)?;
-    Ok((e.damped_frequencies_hz(), e.max_real_part()))
+    string_study::galerkin_frequencies(p, speed, terms).map_err(study_error)
 }
 
 /// Eigen analysis of the flowing model frozen at `speed`.
 pub fn flowing_frequencies(sys: &FlowingString, speed: f64) -> Result<(Vec<f64>, f64), StudyError> {
-    let e = sys.frozen(speed, 0.0).state_eigen().map_err(study_error)?;
-    Ok((e.damped_frequencies_hz(), e.max_real_part()))
+    string_study::flowing_frequencies(sys, speed).map_err(study_error)
 }
