@@ -1,0 +1,21 @@
+"""flowmbd: flexible multibody dynamics of belts, strings and tires.
+
+The Python API over the flowmbd Rust crates (the same engine, configuration keys, checks and
+results as the ``flowmbd-*`` command-line studies):
+
+- :mod:`flowmbd.belt`: ``speed_loss`` (Ribaric §6.4–6.5);
+- :mod:`flowmbd.string`: ``modes`` (Ribaric §4.2.3);
+- :mod:`flowmbd.reduce`: ``modes`` and ``craig_bampton`` of scipy.sparse matrices (Lin ch. 6);
+- :func:`flowmbd.sweep`: parameter sweeps on Dask distributed.
+
+Studies take their configuration as a dict with the keys of the TOML file (``--print-config``
+of the CLI) and return the content of the CLI's ``summary.json`` as a dict with numpy arrays
+for number series. Bad input raises ``ValueError`` (the CLI's message); a numerical failure
+raises :class:`NumericalError` with the partial results attached. Long runs release the GIL.
+"""
+
+from . import belt, reduce, string
+from ._errors import NumericalError
+from .sweep import points, sweep
+
+__all__ = ["belt", "string", "reduce", "sweep", "points", "NumericalError"]

@@ -1,0 +1,18 @@
+"""Type stub of the public ``flowmbd`` API."""
+
+from typing import Any, Callable, Iterable, List, Mapping, Optional, Sequence, Union
+
+from . import belt as belt
+from . import reduce as reduce
+from . import string as string
+
+Grid = Union[Mapping[str, Sequence[Any]], Iterable[Mapping[str, Any]]]
+
+class NumericalError(RuntimeError):
+    partial: Optional[Any]
+    def __init__(self, message: str, partial: Optional[Any] = ...) -> None: ...
+
+def points(grid: Grid) -> List[dict]: ...
+def sweep(
+    fn: Callable[..., Any], grid: Grid, client: Any = ..., *, progress: bool = ...
+) -> Any: ...  # pandas.DataFrame

@@ -1,0 +1,25 @@
+"""Errors raised by flowmbd."""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Optional
+
+
+class NumericalError(RuntimeError):
+    """A computation failed (the CLI's exit code 1).
+
+    ``partial`` holds the results computed before the failure (the ``partial`` object of the
+    CLI's ``summary.json``) as a dict, or ``None`` when nothing was computed.
+    """
+
+    def __init__(self, message: str, partial: Optional[Any] = None) -> None:
+        super().__init__(message)
+        if isinstance(partial, str):
+            from ._results import to_result
+
+            partial = to_result(json.loads(partial))
+        self.partial = partial
+
+    def __reduce__(self):  # picklable, so that Dask can send it back from a worker
+        return (type(self), (str(self), self.partial))

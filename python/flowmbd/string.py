@@ -1,0 +1,54 @@
+"""Travelling string: the modes study of Ribaric §4.2.3 (``flowmbd-string modes``)."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping, Optional
+
+from . import _native
+from ._results import config_json, from_json
+
+
+def modes(
+    speed: Optional[float] = 20.0,
+    nodes: Optional[int] = 99,
+    modes: Optional[int] = 40,
+    config: Optional[Mapping[str, Any]] = None,
+) -> dict:
+    """Damped natural frequencies of the Galerkin model (4.29) and of the discrete
+    flowing-material model (4.20) of the travelling string at one axial speed.
+
+    Parameters
+    ----------
+    speed : axial speed [m/s] (replaces ``config["speed"]``; ``None`` keeps it).
+    nodes : interior FE nodes, Ribaric (4.1) (``None`` keeps ``config["nodes"]``).
+    modes : retained modes of the flowing model (``None`` keeps ``config["modes"]``, 20 by
+        default in the CLI; this function's default is 40).
+    config : dict with the keys of ``flowmbd-string modes --print-config``.
+
+    Returns
+    -------
+    dict
+        ``speed``, ``critical_speed``, ``analytical_hz`` and ``flowing_hz`` (numpy arrays), as in
+        the CLI's ``summary.json``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        An eigen solve failed.
+    """
+    return from_json(
+        _native.string_modes(
+            config_json(config),
+            None if speed is None else float(speed),
+            None if nodes is None else _count("nodes", nodes),
+            None if modes is None else _count("modes", modes),
+        )
+    )
+
+
+def _count(name: str, value: Any) -> int:
+    if isinstance(value, bool) or int(value) != value or value < 0:
+        raise ValueError(f"{name}: must be a non-negative integer, got {value}")
+    return int(value)

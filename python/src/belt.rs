@@ -1,0 +1,80 @@
+//! `flowmbd.belt`: the speed-loss study of Ribaric §6.4–6.5 (Figs. 6-6, 6-7) through
+//! [`drives::SpeedLossModel`], with the configuration and summary of
+//! [`drives::speed_loss_study`] (the same as `flowmbd-belt speed-loss`).
+
+use crate::{input_error, numerical_error, read_config, to_json};
+use drives::speed_loss_study::{SummaryCase, drive_input_error};
+use drives::study::case_inputs;
+use drives::{ModelKind, SpeedLossModel, SpeedLossStudyConfig, SpeedLossSummary};
+use mbd_core::{InvalidField, Validate};
+use pyo3::prelude::*;
+use std::time::Instant;
+
+/// Why a run stopped: bad input or a numerical failure with partial results.
+enum Failure {
+    Input(InvalidField),
+    Numerical(String, Option<serde_json::Value>),
+}
+
+/// Run every driver speed of `c` (validated) in the configured order.
+fn run(c: &SpeedLossStudyConfig) -> Result<SpeedLossSummary, Failure> {
+    let start = Instant::now();
+    let mut cases = Vec::with_capacity(c.omegas.len());
+    let mut coordinates = 0;
+    for &omega in &c.omegas {
+        let t0 = Instant::now();
+        let (drive, settings) = case_inputs(c.model, &c.drive, &c.procedure, &c.nodal, omega);
+        let mut model = SpeedLossModel::new(c.model, &drive, &c.ancf).map_err(|e| {
+            match drive_input_error(&e) {
+                Some(field) => Failure::Input(field),
+                None => Failure::Numerical(e.to_string(), None),
+            }
+        })?;
+        let case = model.sweep(&drive, &settings, |_, _| {}).map_err(|f| {
+            Failure::Numerical(
+                format!("ω₁ = {omega} rad/s: {}", f.error),
+                Some(serde_json::json!({ "omega_driver": omega, "points": f.points })),
+            )
+        })?;
+        coordinates = model.coordinates();
+        cases.push(SummaryCase::new(case, t0.elapsed().as_secs_f64()));
+    }
+    Ok(SpeedLossSummary::new(
+        c.model,
+        cases,
+        coordinates,
+        start.elapsed().as_secs_f64(),
+    ))
+}
+
+/// Speed loss against load torque; returns the JSON text of the summary. `omega`, `torques`
+/// and `model` replace `omegas`, `procedure.torques` and `model` of the configuration (like
+/// the CLI's `--omega`, `--torques`, `--model`).
+#[pyfunction]
+#[pyo3(signature = (config=None, omega=None, torques=None, model=None))]
+pub fn speed_loss(
+    py: Python<'_>,
+    config: Option<&str>,
+    omega: Option<f64>,
+    torques: Option<Vec<f64>>,
+    model: Option<&str>,
+) -> PyResult<String> {
+    let mut c: SpeedLossStudyConfig = read_config(config)?;
+    if let Some(w) = omega {
+        c.omegas = vec![w];
+    }
+    if let Some(t) = torques {
+        c.procedure.torques = t;
+    }
+    if let Some(m) = model {
+        c.model = m
+            .parse::<ModelKind>()
+            .map_err(|reason| input_error(InvalidField::new("model", reason)))?;
+    }
+    c.validate().map_err(input_error)?;
+    match py.detach(|| run(&c)) {
+        Ok(summary) => to_json(&summary),
+        Err(Failure::Input(field)) => Err(input_error(field)),
+        Err(Failure::Numerical(message, partial)) => Err(numerical_error(py, message, partial)),
+    }
+}

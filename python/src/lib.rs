@@ -1,0 +1,73 @@
+//! # flowmbd-python
+//!
+//! The native part (`flowmbd._native`) of the `flowmbd` Python package: thin pyo3 wrappers
+//! over the library crates (`drives`, `flowing`, `reduction`, `fe-model`). Configurations come
+//! in as JSON text of the Python dicts (the same keys as the TOML files) and are read into the
+//! study's configuration struct, checked with the same [`mbd_core::Validate`] as the apps (so
+//! bad input raises `ValueError` with the CLI's `field: reason` message) and run with the GIL
+//! released. Study results go back as the JSON text of the study's summary (the content of its
+//! `summary.json`); the Python layer turns number series into numpy arrays. Matrices cross as
+//! numpy arrays (rust-numpy).
+//!
+//! The crate is a workspace member built as `cdylib` (by maturin) and `rlib` (so that
+//! `cargo test --workspace` and `cargo clippy --workspace` build it like any crate; pyo3 only
+//! drops the libpython link when maturin sets `PYO3_BUILD_EXTENSION_MODULE`).
+
+use mbd_core::InvalidField;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use serde::de::DeserializeOwned;
+
+mod belt;
+mod reduce;
+mod string;
+
+/// `ValueError` carrying the CLI's one-line message for a rejected field (`field: reason`).
+pub(crate) fn input_error(e: InvalidField) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// `flowmbd.NumericalError(message, partial)` (defined in `flowmbd/_errors.py`) with the results
+/// computed before the failure attached as JSON text (the `partial` of the CLI's
+/// `summary.json`).
+pub(crate) fn numerical_error(
+    py: Python<'_>,
+    message: String,
+    partial: Option<serde_json::Value>,
+) -> PyErr {
+    let partial = partial.map(|p| p.to_string());
+    match py
+        .import("flowmbd._errors")
+        .and_then(|m| m.getattr("NumericalError"))
+        .and_then(|cls| cls.call1((message, partial)))
+    {
+        Ok(err) => PyErr::from_value(err),
+        Err(e) => e,
+    }
+}
+
+/// The configuration `C`: its defaults, or the JSON object `json` read over them (missing keys
+/// keep their defaults; unknown keys and wrong types raise `ValueError`). Not yet validated.
+pub(crate) fn read_config<C: DeserializeOwned + Default>(json: Option<&str>) -> PyResult<C> {
+    match json {
+        None => Ok(C::default()),
+        Some(text) => serde_json::from_str(text)
+            .map_err(|e| PyValueError::new_err(format!("config: {e}"))),
+    }
+}
+
+/// JSON text of a summary (infallible for the plain summary structs).
+pub(crate) fn to_json<S: serde::Serialize>(summary: &S) -> PyResult<String> {
+    serde_json::to_string(summary)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
+}
+
+/// The native module `flowmbd._native`.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(belt::speed_loss, m)?)?;
+    m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;
+    Ok(())
+}

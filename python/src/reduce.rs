@@ -1,0 +1,139 @@
+//! `flowmbd.reduce`: clamped normal modes and the partitioned Craig–Bampton reduction
+//! (Lin (6.3), (6.11), (6.19)–(6.25)) of sparse mass and stiffness matrices, through
+//! [`reduction::sparse`] (the engine of `flowmbd-reduce` and the tire reduction). Matrices come
+//! in as coordinate triplets (scipy.sparse `tocoo()`, duplicates summed) and go out as numpy
+//! arrays.
+
+use crate::numerical_error;
+use faer::Mat;
+use faer::sparse::{SparseColMat, Triplet};
+use fe_model::eigen::SparseEigenOptions;
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse, fixed_interface_modes_sparse};
+use reduction::{DofPartition, ReductionError};
+
+/// A sparse `n × n` matrix from triplets, named `name` in errors (indices in range, values
+/// finite, the three arrays of equal length).
+fn sparse(
+    name: &str,
+    n: usize,
+    rows: PyReadonlyArray1<'_, i64>,
+    cols: PyReadonlyArray1<'_, i64>,
+    vals: PyReadonlyArray1<'_, f64>,
+) -> PyResult<SparseColMat<usize, f64>> {
+    let (r, c, v) = (rows.as_slice()?, cols.as_slice()?, vals.as_slice()?);
+    if r.len() != c.len() || r.len() != v.len() {
+        return Err(PyValueError::new_err(format!(
+            "{name}: row, column and value arrays differ in length"
+        )));
+    }
+    let mut t = Vec::with_capacity(v.len());
+    for k in 0..v.len() {
+        let (i, j, x) = (r[k], c[k], v[k]);
+        if i < 0 || j < 0 || i as usize >= n || j as usize >= n {
+            return Err(PyValueError::new_err(format!(
+                "{name}: entry ({i}, {j}) is outside the {n}x{n} matrix"
+            )));
+        }
+        if !x.is_finite() {
+            return Err(PyValueError::new_err(format!(
+                "{name}[{i},{j}] = {x} is not finite"
+            )));
+        }
+        t.push(Triplet::new(i as usize, j as usize, x));
+    }
+    SparseColMat::try_new_from_triplets(n, n, &t)
+        .map_err(|e| PyValueError::new_err(format!("{name}: {e:?}")))
+}
+
+/// Bad input (shape, DOF sets, parameters, a singular `K_ii`) raises `ValueError`; a failed
+/// solve raises `flowmbd.NumericalError`.
+fn reduction_error(py: Python<'_>, e: ReductionError) -> PyErr {
+    match e {
+        ReductionError::Numerical { .. } => numerical_error(py, e.to_string(), None),
+        other => PyValueError::new_err(other.to_string()),
+    }
+}
+
+fn to_numpy<'py>(py: Python<'py>, a: &Mat<f64>) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((a.nrows(), a.ncols()), |(i, j)| a[(i, j)]).into_pyarray(py)
+}
+
+type Triplets<'py> = (
+    PyReadonlyArray1<'py, i64>,
+    PyReadonlyArray1<'py, i64>,
+    PyReadonlyArray1<'py, f64>,
+);
+
+/// The lowest `count` modes of `K φ = λ M φ` with the `fixed` DOFs clamped (Lin (6.11) with an
+/// empty boundary set): `(eigenvalues [rad²/s²], frequencies [Hz], n × count M-normalised
+/// vectors with zero rows at the fixed DOFs)`.
+#[pyfunction]
+pub fn modes<'py>(
+    py: Python<'py>,
+    n: usize,
+    m: Triplets<'py>,
+    k: Triplets<'py>,
+    count: usize,
+    fixed: Vec<usize>,
+) -> PyResult<(Vec<f64>, Vec<f64>, Bound<'py, PyArray2<f64>>)> {
+    let m = sparse("M", n, m.0, m.1, m.2)?;
+    let k = sparse("K", n, k.0, k.1, k.2)?;
+    let part = DofPartition::new(n, &[], &fixed).map_err(|e| reduction_error(py, e))?;
+    let result = py.detach(|| {
+        fixed_interface_modes_sparse(
+            k.as_ref(),
+            m.as_ref(),
+            &part,
+            count,
+            &SparseEigenOptions::default(),
+        )
+    });
+    let (modes, _) = result.map_err(|e| reduction_error(py, e))?;
+    let interior = part.interior();
+    let mut full = Mat::<f64>::zeros(n, modes.values.len());
+    for (r, &dof) in interior.iter().enumerate() {
+        for j in 0..modes.values.len() {
+            full[(dof, j)] = modes.vectors[(r, j)];
+        }
+    }
+    Ok((modes.values, modes.frequencies_hz, to_numpy(py, &full)))
+}
+
+/// Craig–Bampton reduction (Lin (6.19)–(6.25)) keeping the `boundary` DOFs and `n_modes`
+/// fixed-interface modes: `(M_r, K_r, Ψ, natural frequencies of the reduced model [Hz])`.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+pub fn craig_bampton<'py>(
+    py: Python<'py>,
+    n: usize,
+    m: Triplets<'py>,
+    k: Triplets<'py>,
+    boundary: Vec<usize>,
+    n_modes: usize,
+) -> PyResult<(
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+)> {
+    let m = sparse("M", n, m.0, m.1, m.2)?;
+    let k = sparse("K", n, k.0, k.1, k.2)?;
+    let part = DofPartition::from_boundary_dofs(n, &boundary).map_err(|e| reduction_error(py, e))?;
+    let opts = CraigBamptonOptions::with_modes(n_modes);
+    let result = py.detach(|| {
+        let (red, _) = craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, 1)?;
+        let hz = red.natural_frequencies_hz()?;
+        Ok::<_, ReductionError>((red, hz))
+    });
+    let (red, hz) = result.map_err(|e| reduction_error(py, e))?;
+    Ok((
+        to_numpy(py, &red.mass),
+        to_numpy(py, &red.stiffness),
+        to_numpy(py, &red.psi),
+        hz.into_pyarray(py),
+    ))
+}

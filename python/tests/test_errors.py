@@ -1,0 +1,62 @@
+"""Bad input raises ValueError with the CLI's message (reference: the CLI's one-line error on
+stderr, exit code 2); numerical failures raise flowmbd.NumericalError with partial results."""
+
+import pickle
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import flowmbd
+
+
+def test_bad_speed_same_message_as_cli(cli):
+    code, _, err = cli("belt", "speed-loss", "--omega=-1", "--torques", "0")
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.belt.speed_loss(omega=-1.0, torques=[0.0])
+    assert str(e.value) == "omegas[0]: must be finite and > 0 [rad/s]"
+    assert str(e.value) in err
+
+
+def test_bad_nodes_same_message_as_cli(cli):
+    code, _, err = cli("string", "modes", "--nodes", "2")
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.string.modes(nodes=2)
+    assert str(e.value) == "nodes: needs at least 3 interior nodes, got 2"
+    assert str(e.value) in err
+
+
+def test_bad_config_key_and_model():
+    with pytest.raises(ValueError, match="unknown field `omega`"):
+        flowmbd.belt.speed_loss(config={"omega": 3.0})
+    with pytest.raises(ValueError, match="model"):
+        flowmbd.belt.speed_loss(model="tire")
+    with pytest.raises(ValueError, match="config"):
+        flowmbd.string.modes(config=[1, 2])
+    with pytest.raises(ValueError, match=r"procedure\.torques"):
+        flowmbd.belt.speed_loss(torques=[])
+
+
+def test_bad_matrices():
+    k = sp.identity(4, format="csr")
+    with pytest.raises(ValueError, match="DOF 7 is out of range"):
+        flowmbd.reduce.modes(k, k, count=2, fixed=[7])
+    with pytest.raises(ValueError, match="K: expected a 3x3 matrix, got 4x4"):
+        flowmbd.reduce.modes(sp.identity(3), k, count=2)
+    bad = k.copy().astype(float)
+    bad[1, 1] = np.nan
+    with pytest.raises(ValueError, match="not finite"):
+        flowmbd.reduce.craig_bampton(k, bad, boundary=[0], modes=1)
+    with pytest.raises(ValueError, match="listed twice"):
+        flowmbd.reduce.craig_bampton(k, k, boundary=[0, 0], modes=1)
+
+
+def test_numerical_error_carries_partial_results_and_pickles():
+    # the native layer hands the partial summary over as JSON text (its CLI summary.json form)
+    e = flowmbd.NumericalError("step failed", '{"omega_driver": 62.8, "points": [1.0, 2.0]}')
+    assert isinstance(e, RuntimeError)
+    np.testing.assert_array_equal(e.partial["points"], [1.0, 2.0])
+    back = pickle.loads(pickle.dumps(e))
+    assert str(back) == "step failed" and back.partial["omega_driver"] == 62.8

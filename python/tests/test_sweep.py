@@ -1,0 +1,87 @@
+"""flowmbd.sweep on a 2-worker Dask LocalCluster against the serial loop (reference: the
+same function called point by point in this process)."""
+
+import sys
+
+import cloudpickle
+import numpy as np
+import pandas as pd
+import pytest
+from dask.distributed import Client, LocalCluster
+
+import flowmbd
+import sweep_points
+
+# the workers cannot import the test folder: ship the point functions by value
+cloudpickle.register_pickle_by_value(sweep_points)
+
+SPEEDS = [0.0, 5.0, 10.0, 15.0, 20.0, 25.0]
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                           dashboard_address=":0")
+    c = Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+def serial():
+    return pd.DataFrame(
+        [{"speed": s, **sweep_points.string_point(s), "error": None} for s in SPEEDS]
+    )
+
+
+def test_points_of_a_grid():
+    assert flowmbd.points({"a": [1, 2], "b": ["x", "y", "z"]})[1] == {"a": 1, "b": "y"}
+    assert len(flowmbd.points({"a": [1, 2], "b": ["x", "y", "z"]})) == 6
+    assert flowmbd.points([{"a": 1}, {"a": 5}]) == [{"a": 1}, {"a": 5}]
+    with pytest.raises(ValueError):
+        flowmbd.points({"a": 3})
+
+
+def test_local_cluster_equals_serial(client):
+    df = flowmbd.sweep(sweep_points.string_point, {"speed": SPEEDS}, client=client,
+                       progress=False)
+    ref = serial()
+    assert list(df.columns) == list(ref.columns)
+    assert len(df) == len(SPEEDS)
+    pd.testing.assert_frame_equal(df, ref, check_exact=True)
+    # and the in-process mode of sweep itself
+    pd.testing.assert_frame_equal(
+        flowmbd.sweep(sweep_points.string_point, [{"speed": s} for s in SPEEDS], client=False,
+                      progress=False),
+        ref, check_exact=True)
+
+
+def test_failed_point_is_recorded(client):
+    df = flowmbd.sweep(sweep_points.string_point, {"speed": [5.0, float("nan")], "nodes": [30, 2]},
+                       client=client, progress=False)
+    assert len(df) == 4
+    ok = df["error"].isna()
+    assert ok.tolist() == [True, False, False, False]
+    assert df.loc[1, "error"] == "ValueError: nodes: needs at least 3 interior nodes, got 2"
+    assert "speed: must be a finite number" in df.loc[2, "error"]
+    assert np.isnan(df.loc[1, "f1_hz"])
+
+
+def test_worker_killed_mid_sweep_loses_no_point(client, tmp_path):
+    before = set(client.scheduler_info()["workers"])
+    df = flowmbd.sweep(sweep_points.dying_point,
+                       [{"speed": s, "marker_dir": str(tmp_path)} for s in SPEEDS],
+                       client=client, progress=False)
+    assert (tmp_path / "died-10.0").exists(), "the worker did die"
+    assert df["error"].isna().all(), df["error"].tolist()
+    ref = serial()
+    pd.testing.assert_frame_equal(df.drop(columns="marker_dir"), ref, check_exact=True)
+    # the dead worker was replaced by its nanny (the sweep did not need it to finish)
+    client.wait_for_workers(2, timeout=60)
+    assert set(client.scheduler_info()["workers"]) != before
+
+
+def test_default_local_cluster_returns_one_row_per_point():
+    df = flowmbd.sweep(sweep_points.string_point, {"speed": [0.0, 20.0]}, progress=False)
+    assert len(df) == 2 and df["error"].isna().all()
+    assert df["f1_hz"].iloc[1] < df["f1_hz"].iloc[0]  # the axial speed lowers f1 (Ribaric 4.2.3)
