@@ -15,6 +15,8 @@
 //! * [`speed_loss_study`]: the study's configuration and summary (shared by the app and the
 //!   Python package);
 //! * [`ancf_run`]: the ANCF belt drive's time loop with sampled outputs, and its closure;
+//! * [`ancf_study`]: the ANCF belt-drive study's configuration, summary and runs (shared by the
+//!   app and the Python package);
 //! * [`wave`]: the measurements of the rotating vs non-rotating belt demonstration (Fig. 6-3).
 //!
 //! Layering: `drives` depends on `flowing`, `ancf`, `fe-model` and `mbd-core`; nothing below
@@ -23,6 +25,7 @@
 pub mod analytical;
 pub mod ancf_drive_model;
 pub mod ancf_run;
+pub mod ancf_study;
 pub mod error;
 pub mod model;
 pub mod speed_loss;

@@ -3,7 +3,7 @@
 The Python API over the flowmbd Rust crates (the same engine, configuration keys, checks and
 results as the ``flowmbd-*`` command-line studies):
 
-- :mod:`flowmbd.belt`: ``speed_loss`` (Ribaric §6.4–6.5);
+- :mod:`flowmbd.belt`: ``speed_loss`` (Ribaric §6.4–6.5) and ``ancf`` (Kerkkänen ch. 3);
 - :mod:`flowmbd.string`: ``modes`` (Ribaric §4.2.3);
 - :mod:`flowmbd.reduce`: ``modes`` and ``craig_bampton`` of scipy.sparse matrices (Lin ch. 6);
 - :func:`flowmbd.sweep`: parameter sweeps on Dask distributed.

@@ -16,6 +16,9 @@ def speed_loss(
 ) -> str:
     """JSON text of the speed-loss summary (``summary.json`` of ``flowmbd-belt speed-loss``)."""
 
+def ancf(config: Optional[str] = None, t_end: Optional[float] = None) -> str:
+    """JSON text of the ANCF belt-drive summary (``summary.json`` of ``flowmbd-belt ancf``)."""
+
 def string_modes(
     config: Optional[str] = None,
     speed: Optional[float] = None,

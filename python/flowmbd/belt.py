@@ -49,3 +49,32 @@ def speed_loss(
             model,
         )
     )
+
+
+def ancf(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = None) -> dict:
+    """The planar ANCF belt drive of Kerkkänen ch. 3 (``flowmbd-belt ancf``): by default
+    example 3.3-B (Table 3.1, 20 elements, driver ramp (3.29) to 12 rad/s, 1 s);
+    ``config={"analysis": "static_closure"}`` is example 3.3-A.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-belt ancf --print-config`` (``analysis``,
+        ``t_end``, ``tangent_refresh``, ``drive``, ``integrator``, ``output``).
+    t_end : end time [s] (replaces ``config["t_end"]``; the CLI's ``--t-end``).
+
+    Returns
+    -------
+    dict
+        The CLI's ``summary.json``: end speeds of driver and driven pulley [rad/s], tight and
+        slack span tensions [N], ``speed_ratio``, ``initial_tension``, ``steps``,
+        ``newton_iterations``, ``t_end``, ``wall_time_s`` (closure: ``closure_radius`` and
+        ``closure_radius_variation``).
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's message).
+    flowmbd.NumericalError
+        The integration failed; ``err.partial`` is the summary at the state reached.
+    """
+    return from_json(_native.ancf(config_json(config), None if t_end is None else float(t_end)))

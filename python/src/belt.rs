@@ -1,8 +1,10 @@
 //! `flowmbd.belt`: the speed-loss study of Ribaric §6.4–6.5 (Figs. 6-6, 6-7) through
 //! [`drives::SpeedLossModel`], with the configuration and summary of
-//! [`drives::speed_loss_study`] (the same as `flowmbd-belt speed-loss`).
+//! [`drives::speed_loss_study`] (the same as `flowmbd-belt speed-loss`), and the ANCF drive of
+//! Kerkkänen ch. 3 through [`drives::ancf_study`] (the same as `flowmbd-belt ancf`).
 
 use crate::{input_error, numerical_error, read_config, to_json};
+use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
 use drives::speed_loss_study::{SummaryCase, drive_input_error};
 use drives::study::case_inputs;
 use drives::{ModelKind, SpeedLossModel, SpeedLossStudyConfig, SpeedLossSummary};
@@ -76,5 +78,54 @@ pub fn speed_loss(
         Ok(summary) => to_json(&summary),
         Err(Failure::Input(field)) => Err(input_error(field)),
         Err(Failure::Numerical(message, partial)) => Err(numerical_error(py, message, partial)),
+    }
+}
+
+/// The ANCF drive's failures as the app classifies them (`apps/belt/src/ancf.rs`): rejected
+/// input names `drive: <item>`.
+fn ancf_error(py: Python<'_>, e: ::ancf::AncfError) -> PyErr {
+    match e {
+        ::ancf::AncfError::InvalidInput { item, reason } => {
+            input_error(InvalidField::new(format!("drive: {item}"), reason))
+        }
+        other => numerical_error(py, other.to_string(), None),
+    }
+}
+
+/// The planar ANCF belt drive of Kerkkänen ch. 3 (defaults: example 3.3-B, Table 3.1);
+/// returns the JSON text of the summary. `t_end` replaces the configuration's end time (the
+/// CLI's `--t-end`).
+#[pyfunction]
+#[pyo3(signature = (config=None, t_end=None))]
+pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResult<String> {
+    let mut c: AncfStudyConfig = read_config(config)?;
+    if let Some(t) = t_end {
+        c.t_end = t;
+    }
+    c.validate().map_err(input_error)?;
+    match c.analysis {
+        Analysis::StaticClosure => {
+            let result = py.detach(|| closure_study(&c));
+            let (_, _, summary) = result.map_err(|e| ancf_error(py, e))?;
+            to_json(&summary)
+        }
+        Analysis::Dynamic => {
+            let start = Instant::now();
+            let result = py.detach(|| {
+                let (drive, init) = dynamic_setup(&c)?;
+                dynamic_run(&c, &drive, &init, start, |_, _| {
+                    Ok::<(), ::ancf::AncfError>(())
+                })
+            });
+            let end = result.map_err(|e| ancf_error(py, e))?;
+            match end.failure {
+                None => to_json(&end.summary),
+                Some(msg) => Err(numerical_error(
+                    py,
+                    format!("integration failed: {msg}"),
+                    serde_json::to_value(&end.summary).ok(),
+                )),
+            }
+        }
     }
 }

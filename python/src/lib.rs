@@ -51,8 +51,9 @@ pub(crate) fn numerical_error(
 pub(crate) fn read_config<C: DeserializeOwned + Default>(json: Option<&str>) -> PyResult<C> {
     match json {
         None => Ok(C::default()),
-        Some(text) => serde_json::from_str(text)
-            .map_err(|e| PyValueError::new_err(format!("config: {e}"))),
+        Some(text) => {
+            serde_json::from_str(text).map_err(|e| PyValueError::new_err(format!("config: {e}")))
+        }
     }
 }
 
@@ -66,6 +67,7 @@ pub(crate) fn to_json<S: serde::Serialize>(summary: &S) -> PyResult<String> {
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(belt::speed_loss, m)?)?;
+    m.add_function(wrap_pyfunction!(belt::ancf, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;

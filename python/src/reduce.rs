@@ -68,6 +68,17 @@ type Triplets<'py> = (
     PyReadonlyArray1<'py, f64>,
 );
 
+/// `(eigenvalues, frequencies, vectors)` of [`modes`].
+type ModesOut<'py> = (Vec<f64>, Vec<f64>, Bound<'py, PyArray2<f64>>);
+
+/// `(M_r, K_r, Ψ, frequencies)` of [`craig_bampton`].
+type CbOut<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+);
+
 /// The lowest `count` modes of `K φ = λ M φ` with the `fixed` DOFs clamped (Lin (6.11) with an
 /// empty boundary set): `(eigenvalues [rad²/s²], frequencies [Hz], n × count M-normalised
 /// vectors with zero rows at the fixed DOFs)`.
@@ -79,7 +90,7 @@ pub fn modes<'py>(
     k: Triplets<'py>,
     count: usize,
     fixed: Vec<usize>,
-) -> PyResult<(Vec<f64>, Vec<f64>, Bound<'py, PyArray2<f64>>)> {
+) -> PyResult<ModesOut<'py>> {
     let m = sparse("M", n, m.0, m.1, m.2)?;
     let k = sparse("K", n, k.0, k.1, k.2)?;
     let part = DofPartition::new(n, &[], &fixed).map_err(|e| reduction_error(py, e))?;
@@ -106,7 +117,6 @@ pub fn modes<'py>(
 /// Craig–Bampton reduction (Lin (6.19)–(6.25)) keeping the `boundary` DOFs and `n_modes`
 /// fixed-interface modes: `(M_r, K_r, Ψ, natural frequencies of the reduced model [Hz])`.
 #[pyfunction]
-#[allow(clippy::type_complexity)]
 pub fn craig_bampton<'py>(
     py: Python<'py>,
     n: usize,
@@ -114,15 +124,11 @@ pub fn craig_bampton<'py>(
     k: Triplets<'py>,
     boundary: Vec<usize>,
     n_modes: usize,
-) -> PyResult<(
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray1<f64>>,
-)> {
+) -> PyResult<CbOut<'py>> {
     let m = sparse("M", n, m.0, m.1, m.2)?;
     let k = sparse("K", n, k.0, k.1, k.2)?;
-    let part = DofPartition::from_boundary_dofs(n, &boundary).map_err(|e| reduction_error(py, e))?;
+    let part =
+        DofPartition::from_boundary_dofs(n, &boundary).map_err(|e| reduction_error(py, e))?;
     let opts = CraigBamptonOptions::with_modes(n_modes);
     let result = py.detach(|| {
         let (red, _) = craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, 1)?;

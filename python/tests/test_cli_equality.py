@@ -34,3 +34,20 @@ def test_string_modes_equals_cli(cli):
     py = flowmbd.string.modes(speed=20.0, nodes=99, modes=40)
     assert py["flowing_hz"].dtype == float
     assert_same(py, ref)
+
+
+def test_ancf_dynamic_equals_cli(cli):
+    # Kerkkänen example 3.3-B, shortened to 0.15 s (the driver ramp has started)
+    code, ref, err = cli("belt", "ancf", "--t-end", "0.15")
+    assert code == 0, err
+    py = flowmbd.belt.ancf(t_end=0.15)
+    assert_same(py, ref)
+    assert py["omega_driver_end"] > 0 and py["steps"] > 0
+
+
+def test_ancf_closure_equals_cli(cli, tmp_path):
+    # Kerkkänen example 3.3-A
+    (tmp_path / "c.toml").write_text('analysis = "static_closure"\n')
+    code, ref, err = cli("belt", "ancf", "--config", str(tmp_path / "c.toml"))
+    assert code == 0, err
+    assert_same(flowmbd.belt.ancf(config={"analysis": "static_closure"}), ref)

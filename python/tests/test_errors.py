@@ -1,6 +1,7 @@
 """Bad input raises ValueError with the CLI's message (reference: the CLI's one-line error on
 stderr, exit code 2); numerical failures raise flowmbd.NumericalError with partial results."""
 
+import json
 import pickle
 
 import numpy as np
@@ -8,6 +9,7 @@ import pytest
 import scipy.sparse as sp
 
 import flowmbd
+from compare import assert_same
 
 
 def test_bad_speed_same_message_as_cli(cli):
@@ -51,6 +53,24 @@ def test_bad_matrices():
         flowmbd.reduce.craig_bampton(k, bad, boundary=[0], modes=1)
     with pytest.raises(ValueError, match="listed twice"):
         flowmbd.reduce.craig_bampton(k, k, boundary=[0, 0], modes=1)
+
+
+def test_numerical_failure_has_the_clis_partial_results(cli, tmp_path):
+    # 60 N m is beyond the drive's traction (Ribaric Table 6-1: gross slip): the integration
+    # fails after the 0 N m point; reference: the CLI's failed summary.json (exit code 1)
+    (tmp_path / "slip.toml").write_text(
+        "omegas = [62.8]\n[procedure]\ntorques = [0.0, 60.0]\nmax_hold = 0.5\n"
+    )
+    code, _, err = cli("belt", "speed-loss", "--config", str(tmp_path / "slip.toml"))
+    assert code == 1, err
+    ref = json.loads((tmp_path / "belt" / "summary.json").read_text())
+    assert ref["status"] == "failed"
+    with pytest.raises(flowmbd.NumericalError) as e:
+        flowmbd.belt.speed_loss(omega=None, torques=None, config={
+            "omegas": [62.8], "procedure": {"torques": [0.0, 60.0], "max_hold": 0.5}})
+    assert str(e.value) == ref["error"]
+    assert_same(e.value.partial, ref["partial"])
+    assert len(e.value.partial["points"]) == 1
 
 
 def test_numerical_error_carries_partial_results_and_pickles():

@@ -9,12 +9,14 @@
 //! `output.points_per_element` points per element, which resolves the inlet and exit zones),
 //! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtk` + `belt.vtk.series`).
 
-use ancf::belt_drive::{BeltDrive, BeltDriveSpec, InitialOptions, SimulationConfig, post};
-use drives::ancf_run::{Due, Sampling, closure_on_path, roles, run_drive, tight_slack};
+use ancf::belt_drive::{BeltDrive, post};
+use drives::ancf_run::Due;
+use drives::ancf_study::{
+    Analysis, AncfStudyConfig, AncfStudySummary, closure_study, dynamic_run, dynamic_setup,
+};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, run_study};
 use mbd_core::integrators::State;
-use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -31,140 +33,10 @@ pub struct Args {
     pub t_end: Option<f64>,
 }
 
-/// What the study computes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Analysis {
-    /// Example 3.3-A: static closure of the free belt (no pulleys in the analysis; the belt
-    /// length is set to the path length).
-    StaticClosure,
-    /// Dynamic simulation of the drive.
-    Dynamic,
-}
-
-/// Output options.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct OutputConfig {
-    /// Sampling interval of `history.csv` \[s\].
-    pub history_interval: f64,
-    /// Interval between VTK frames of the belt \[s\].
-    pub vtk_interval: f64,
-    /// Points per element in the VTK polyline and `tension.csv`.
-    pub points_per_element: usize,
-}
-
-impl Default for OutputConfig {
-    fn default() -> Self {
-        Self {
-            history_interval: 1e-3,
-            vtk_interval: 0.02,
-            points_per_element: 20,
-        }
-    }
-}
-
-/// Configuration of the `ancf` study (SI units).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct Config {
-    /// Static closure (3.3-A) or dynamic run.
-    pub analysis: Analysis,
-    /// End time \[s\].
-    pub t_end: f64,
-    /// Reuse tolerance of the elastic tangent (see `BeltDrive::with_tangent_refresh`).
-    pub tangent_refresh: f64,
-    /// The drive: pulleys (travel order), belt, contact.
-    pub drive: BeltDriveSpec,
-    /// Integrator.
-    pub integrator: SimulationConfig,
-    /// Output.
-    pub output: OutputConfig,
-}
-
-impl Default for Config {
-    /// Kerkkänen example 3.3-B: Table 3.1, 20 elements, driver ramp (3.29) to 12 rad/s.
-    fn default() -> Self {
-        Self {
-            analysis: Analysis::Dynamic,
-            t_end: 1.0,
-            tangent_refresh: 0.02,
-            drive: BeltDriveSpec::default(),
-            integrator: SimulationConfig::default(),
-            output: OutputConfig::default(),
-        }
-    }
-}
-
-impl Validate for Config {
-    fn validate(&self) -> Result<(), InputError> {
-        let input = |e: ancf::AncfError| match e {
-            ancf::AncfError::InvalidInput { item, reason } => {
-                InputError::new(format!("drive: {item}"), reason)
-            }
-            other => InputError::new("drive", other.to_string()),
-        };
-        self.drive.validate().map_err(input)?;
-        self.integrator.validate().map_err(|e| match e {
-            ancf::AncfError::InvalidInput { item, reason } => InputError::new(item, reason),
-            other => InputError::new("integrator", other.to_string()),
-        })?;
-        if !(self.t_end.is_finite() && self.t_end > 0.0) {
-            return Err(InputError::new(
-                "t_end",
-                format!("must be > 0 s, got {}", self.t_end),
-            ));
-        }
-        if !(self.tangent_refresh.is_finite() && self.tangent_refresh >= 0.0) {
-            return Err(InputError::new("tangent_refresh", "must be ≥ 0"));
-        }
-        let o = &self.output;
-        if !(o.history_interval.is_finite() && o.history_interval > 0.0) {
-            return Err(InputError::new("output.history_interval", "must be > 0 s"));
-        }
-        if !(o.vtk_interval.is_finite() && o.vtk_interval > 0.0) {
-            return Err(InputError::new("output.vtk_interval", "must be > 0 s"));
-        }
-        if o.points_per_element == 0 || o.points_per_element > 100 {
-            return Err(InputError::new(
-                "output.points_per_element",
-                "must lie in 1..=100",
-            ));
-        }
-        Ok(())
-    }
-}
-
+/// Configuration of the `ancf` study (defined in `drives`, shared with the Python package).
+pub type Config = AncfStudyConfig;
 /// Summary of a run (`summary.json`, `--json`).
-#[derive(Debug, Clone, Serialize, Default)]
-pub struct Summary {
-    /// Driver pulley speed at the end \[rad/s\] (travel sense).
-    pub omega_driver_end: f64,
-    /// Driven (first free) pulley speed at the end \[rad/s\] (travel sense).
-    pub omega_driven_end: f64,
-    /// Tension of the span running into the driver at the end \[N\].
-    pub tension_tight: f64,
-    /// Tension of the span leaving the driver at the end \[N\].
-    pub tension_slack: f64,
-    /// Wall time of the whole study \[s\].
-    pub wall_time_s: f64,
-    /// End time reached \[s\].
-    pub t_end: f64,
-    /// Integration steps.
-    pub steps: usize,
-    /// Newton iterations.
-    pub newton_iterations: usize,
-    /// Pre-tension after the initial static solve (mean over the belt) \[N\].
-    pub initial_tension: f64,
-    /// Speed ratio driven/driver at the end.
-    pub speed_ratio: f64,
-    /// Static closure only: mean radius of the closed belt \[m\].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub closure_radius: Option<f64>,
-    /// Static closure only: relative radius variation (max − min)/mean.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub closure_radius_variation: Option<f64>,
-}
+pub type Summary = AncfStudySummary;
 
 struct AncfStudy {
     t_end: Option<f64>,
@@ -219,7 +91,7 @@ impl AncfStudy {
     fn closure(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let start = Instant::now();
         // the belt is stress-free on the path length (Kerkkänen: 1.276 m on the 1.276273 m path)
-        let (drive, r) = closure_on_path(&c.drive).map_err(to_study_error)?;
+        let (drive, r, mut summary) = closure_study(c).map_err(to_study_error)?;
         let samples = post::tension_samples(&drive, &r.q, c.output.points_per_element);
         ctx.out.write_csv(
             "closure.csv",
@@ -253,26 +125,14 @@ impl AncfStudy {
             c.output.points_per_element,
             &ctx.out.path("vtk/belt_0000.vtk"),
         )?;
-        Ok(Summary {
-            wall_time_s: start.elapsed().as_secs_f64(),
-            newton_iterations: r.iterations,
-            closure_radius: Some(r.mean_radius),
-            closure_radius_variation: Some((r.radius_range[1] - r.radius_range[0]) / r.mean_radius),
-            ..Default::default()
-        })
+        summary.wall_time_s = start.elapsed().as_secs_f64();
+        Ok(summary)
     }
 
     fn dynamic(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let start = Instant::now();
-        let drive = BeltDrive::new(c.drive.clone())
-            .map_err(to_study_error)?
-            .with_tangent_refresh(c.tangent_refresh);
-        let init = drive
-            .initial_state(&InitialOptions::default())
-            .map_err(to_study_error)?;
-        let (driver, driven) = roles(&drive);
+        let (drive, init) = dynamic_setup(c).map_err(to_study_error)?;
         let spans = post::spans(&drive);
-        let (tight, slack) = tight_slack(&spans, driver);
         let np = drive.pulleys().len();
 
         let mut header: Vec<String> = vec!["t".into()];
@@ -303,7 +163,7 @@ impl AncfStudy {
         let mut record = |s: &State,
                           csv: &mut flowmbd_cli::output::CsvSink,
                           speeds: &mut Vec<Vec<(f64, f64)>>|
-         -> Result<Vec<f64>, StudyError> {
+         -> Result<(), StudyError> {
             let mut row = vec![s.t];
             for (p, sp) in speeds.iter_mut().enumerate() {
                 let w = drive.pulley_speed(p, s.t, &s.v);
@@ -327,11 +187,11 @@ impl AncfStudy {
                 }
             }
             csv.row(&row)?;
-            Ok(t)
+            Ok(())
         };
 
         let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
-        let mut last_tensions = record(&s0, &mut csv, &mut speeds)?;
+        record(&s0, &mut csv, &mut speeds)?;
         write_vtk(
             &drive,
             &s0.q,
@@ -341,20 +201,15 @@ impl AncfStudy {
         vtk_frames.push(("vtk/belt_0000.vtk".into(), 0.0));
 
         let progress = ctx.progress(c.t_end, "ANCF belt drive");
-        let sampling = Sampling {
-            history: c.output.history_interval,
-            frame: c.output.vtk_interval,
-        };
         let out = &ctx.out;
-        let run = run_drive(
+        let end = dynamic_run(
+            c,
             &drive,
-            &init.q,
-            c.t_end,
-            &c.integrator,
-            sampling,
+            &init,
+            start,
             |s, due: Due| -> Result<(), StudyError> {
                 if due.history {
-                    last_tensions = record(s, &mut csv, &mut speeds)?;
+                    record(s, &mut csv, &mut speeds)?;
                 }
                 if due.frame {
                     let name = format!("vtk/belt_{:04}.vtk", vtk_frames.len());
@@ -365,11 +220,9 @@ impl AncfStudy {
                 Ok(())
             },
         )?;
-        let (final_state, steps, newton, failure) =
-            (run.state, run.steps, run.newton_iterations, run.failure);
         progress.finish();
         csv.finish()?;
-        let s = &final_state;
+        let s = &end.state;
 
         // VTK series index (ParaView ".series" JSON)
         let series = serde_json::json!({
@@ -505,25 +358,11 @@ impl AncfStudy {
             .save(&ctx.out.path(&format!("relative_velocity_{}", pulley.name)))?;
         }
 
-        let w_driver = drive.pulley_speed(driver, s.t, &s.v);
-        let w_driven = driven
-            .map(|p| drive.pulley_speed(p, s.t, &s.v))
-            .unwrap_or(f64::NAN);
         let summary = Summary {
-            omega_driver_end: w_driver,
-            omega_driven_end: w_driven,
-            tension_tight: tight.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
-            tension_slack: slack.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
             wall_time_s: start.elapsed().as_secs_f64(),
-            t_end: s.t,
-            steps,
-            newton_iterations: newton,
-            initial_tension: init.mean_tension,
-            speed_ratio: w_driven / w_driver,
-            closure_radius: None,
-            closure_radius_variation: None,
+            ..end.summary
         };
-        if let Some(msg) = failure {
+        if let Some(msg) = end.failure {
             return Err(StudyError::Numerical {
                 message: format!("integration failed: {msg}"),
                 partial: serde_json::to_value(&summary).ok(),
