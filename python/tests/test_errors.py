@@ -3,6 +3,8 @@ stderr, exit code 2); numerical failures raise flowmbd.NumericalError with parti
 
 import json
 import pickle
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -80,3 +82,24 @@ def test_numerical_error_carries_partial_results_and_pickles():
     np.testing.assert_array_equal(e.partial["points"], [1.0, 2.0])
     back = pickle.loads(pickle.dumps(e))
     assert str(back) == "step failed" and back.partial["omega_driver"] == 62.8
+
+
+def test_long_run_releases_the_gil():
+    # reference: the main thread keeps running while a study runs in another thread; if the
+    # native call held the GIL, the loop below would not tick until the study returned
+    done = threading.Event()
+
+    def run():
+        flowmbd.belt.speed_loss(omega=62.8, torques=[0.0, 2.0])
+        done.set()
+
+    ticks = 0
+    t = threading.Thread(target=run)
+    start = time.perf_counter()
+    t.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.002)
+    t.join()
+    elapsed = time.perf_counter() - start
+    assert elapsed > 0.2 and ticks > 0.25 * elapsed / 0.002, (ticks, elapsed)
