@@ -26,7 +26,8 @@ pub mod harmonics;
 pub mod rotating;
 pub use harmonics::{Harmonic, WaveDirection};
 pub use rotating::{
-    FlowingMatrices, RotatingMode, RotatingOptions, rotating_modes, spinning_modes,
+    FlowingMatrices, RotatingMode, RotatingOptions, SpeedModes, modes_at_speed, rotating_modes,
+    spinning_modes,
 };
 pub mod contact_solve;
 pub mod friction;

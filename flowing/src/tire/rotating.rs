@@ -34,6 +34,9 @@
 //! damping: `|λ| = ω`), i.e. the frequencies of `flowmbd-tire modes`.
 
 use super::error::{TireError, invalid, linalg};
+use super::ground::GroundConfig;
+use super::loaded::held_nodes;
+use super::statics::{preload, preload_rolling};
 use super::harmonics::{Harmonic, WaveDirection};
 use super::reduced::{ReducedTire, TreadBasis};
 use crate::gyroscopic::GyroscopicSystem;
@@ -244,4 +247,54 @@ pub fn spinning_modes(
     }
     out.sort_by(|a, b| a.hz.total_cmp(&b.hz));
     Ok(out)
+}
+
+/// The modes of the rotating tire at one rolling speed, free and loaded.
+#[derive(Debug, Clone, Serialize)]
+pub struct SpeedModes {
+    /// Rolling speed \[km/h\].
+    pub speed_kmh: f64,
+    /// Spin rate `Ω = v / R_e` with the effective rolling radius `R_e = R₀ − d/3` of the rig
+    /// ([`super::rig::start_rolling`]) \[rad/s\].
+    pub spin: f64,
+    /// Contact nodes held in the loaded tire (positive multiplier of the rolling preload).
+    pub held_nodes: usize,
+    /// Modes of the free tire (rim fixed, nothing held).
+    pub free: Vec<RotatingMode>,
+    /// Modes of the loaded tire (the rolling preload's patch held).
+    pub loaded: Vec<RotatingMode>,
+}
+
+/// The free and loaded modes of the tire rolling at `speed_kmh` on `ground` under the vertical
+/// `load` \[N\]: spin rate as in the cleat rig, `Ω = v/(R₀ − d/3)` with the static preload's
+/// deflection `d`; the loaded tire holds the contact nodes that carry the rolling preload
+/// ([`preload_rolling`], spin `Ω`, Rayleigh `β`). `alpha`, `beta`, `max_hz` as in
+/// [`RotatingOptions`].
+pub fn modes_at_speed(
+    red: &ReducedTire,
+    ground: &GroundConfig,
+    load: f64,
+    speed_kmh: f64,
+    (alpha, beta): (f64, f64),
+    max_hz: f64,
+) -> Result<SpeedModes, TireError> {
+    if !(speed_kmh.is_finite() && speed_kmh >= 0.0) {
+        return Err(invalid("speed", format!("{speed_kmh} km/h is not ≥ 0")));
+    }
+    let d = preload(red, ground, load)?.patch.deflection;
+    let spin = speed_kmh / 3.6 / (red.outer_radius - d / 3.0);
+    let held = held_nodes(&preload_rolling(red, ground, load, spin, beta)?.patch);
+    let opt = RotatingOptions {
+        spin,
+        alpha,
+        beta,
+        max_hz,
+    };
+    Ok(SpeedModes {
+        speed_kmh,
+        spin,
+        held_nodes: held.len(),
+        free: rotating_modes(red, &[], &opt)?,
+        loaded: rotating_modes(red, &held, &opt)?,
+    })
 }
