@@ -23,6 +23,8 @@ pub use mesh::{Ring, TireFe};
 pub use reduce::{ReductionConfig, ReductionTimings, full_frequencies_hz, reduce};
 pub use reduced::{ReducedTire, TreadBasis, VizBasis};
 pub mod harmonics;
+pub mod lines;
+pub use lines::{LineMode, SpindleComponent, line_modes};
 pub mod rotating;
 pub use harmonics::{Harmonic, WaveDirection};
 pub use rotating::{

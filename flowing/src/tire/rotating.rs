@@ -109,7 +109,7 @@ pub struct RotatingOptions {
     pub alpha: f64,
     /// Rayleigh β \[s\].
     pub beta: f64,
-    /// Modes up to this damped frequency are returned \[Hz\].
+    /// Modes whose undamped frequency `|λ|/2π` is at most this are returned \[Hz\].
     pub max_hz: f64,
 }
 
@@ -145,8 +145,8 @@ pub fn rotating_modes(
 
 /// The complex modes of the flowing-material equations given by `mats` (module docs) under
 /// the linear constraints `a z = 0` (`a` with no rows: none), labelled with the tread rows
-/// `tread` (whose columns are the coordinates of `mats`); ascending in frequency, up to
-/// `opt.max_hz`.
+/// `tread` (whose columns are the coordinates of `mats`); ascending in frequency, undamped
+/// frequencies up to `opt.max_hz`.
 pub fn spinning_modes(
     mats: FlowingMatrices<'_>,
     tread: &TreadBasis,
@@ -176,6 +176,34 @@ pub fn spinning_modes(
             ),
         ));
     }
+    let st = state_eigen(mats, a, opt)?;
+    let scale = st.eig.values.iter().fold(0.0f64, |s, l| s.max(l.norm()));
+    let mut out = Vec::new();
+    for (col, &lam) in st.eig.values.iter().enumerate() {
+        // oscillating modes whose undamped frequency is in range (not the overdamped high
+        // modes, which the gyroscopic term gives a small imaginary part at speed)
+        if lam.im <= 1e-9 * scale || lam.norm() / (2.0 * PI) > opt.max_hz {
+            continue;
+        }
+        out.push(st.mode(mats, tread, col, opt.spin));
+    }
+    out.sort_by(|a, b| a.hz.total_cmp(&b.hz));
+    Ok(out)
+}
+
+/// The state-space eigen decomposition of the constrained flowing-material equations.
+pub(crate) struct StateModes {
+    /// Null-space basis `N` of the constraints (`z = N y`).
+    pub n: Mat<f64>,
+    /// The system on `y` (`M_y = NᵀM N`, `C_y`, `K_y`).
+    pub sys: GyroscopicSystem,
+    /// Eigenvalues and right eigenvectors of its state matrix.
+    pub eig: crate::gyroscopic::StateEigen,
+}
+
+/// `C_Ω = 2ΩG₁ + αM + βK` and `K_Ω = K + Ω²G₂ + βΩK₁` (module docs).
+pub(crate) fn spin_matrices(mats: FlowingMatrices<'_>, opt: &RotatingOptions) -> (Mat<f64>, Mat<f64>) {
+    let nz = mats.m.nrows();
     let (w, al, be) = (opt.spin, opt.alpha, opt.beta);
     let c = Mat::from_fn(nz, nz, |i, j| {
         2.0 * w * mats.g1[(i, j)] + al * mats.m[(i, j)] + be * mats.k[(i, j)]
@@ -183,6 +211,17 @@ pub fn spinning_modes(
     let k = Mat::from_fn(nz, nz, |i, j| {
         mats.k[(i, j)] + w * w * mats.g2[(i, j)] + be * w * mats.k1[(i, j)]
     });
+    (c, k)
+}
+
+/// Solve the state-space eigenproblem of the equations on the null space of `a`.
+pub(crate) fn state_eigen(
+    mats: FlowingMatrices<'_>,
+    a: MatRef<'_, f64>,
+    opt: &RotatingOptions,
+) -> Result<StateModes, TireError> {
+    let nz = mats.m.nrows();
+    let (c, k) = spin_matrices(mats, opt);
     let n = if a.nrows() == 0 {
         Mat::<f64>::identity(nz, nz)
     } else {
@@ -195,18 +234,26 @@ pub fn spinning_modes(
     let eig = sys
         .state_eigen()
         .map_err(|e| linalg("rotating tire eigenproblem", e))?;
-    let ny = n.ncols();
-    let scale = eig.values.iter().fold(0.0f64, |s, l| s.max(l.norm()));
-    let mut out = Vec::new();
-    for (col, &lam) in eig.values.iter().enumerate() {
-        if lam.im <= 1e-9 * scale || lam.im / (2.0 * PI) > opt.max_hz {
-            continue;
-        }
+    Ok(StateModes { n, sys, eig })
+}
+
+impl StateModes {
+    /// The labelled mode of the eigenvalue `col` (module docs).
+    pub fn mode(
+        &self,
+        mats: FlowingMatrices<'_>,
+        tread: &TreadBasis,
+        col: usize,
+        spin: f64,
+    ) -> RotatingMode {
+        let nz = mats.m.nrows();
+        let ny = self.n.ncols();
+        let lam = self.eig.values[col];
         // z = N y, normalised to φᴴ M φ = 1
         let mut z = vec![c64::new(0.0, 0.0); nz];
         for (i, zi) in z.iter_mut().enumerate() {
             for j in 0..ny {
-                *zi += eig.vectors[(j, col)] * n[(i, j)];
+                *zi += self.eig.vectors[(j, col)] * self.n[(i, j)];
             }
         }
         let mut mass = 0.0;
@@ -230,9 +277,9 @@ pub fn spinning_modes(
             travelling,
             direction,
             parts,
-        } = tread.harmonic(&d, opt.spin);
+        } = tread.harmonic(&d, spin);
         let mag = lam.norm();
-        out.push(RotatingMode {
+        RotatingMode {
             hz: lam.im / (2.0 * PI),
             natural_hz: mag / (2.0 * PI),
             growth_rate: lam.re,
@@ -243,10 +290,8 @@ pub fn spinning_modes(
             order_share,
             parts,
             shape: z,
-        });
+        }
     }
-    out.sort_by(|a, b| a.hz.total_cmp(&b.hz));
-    Ok(out)
 }
 
 /// The modes of the rotating tire at one rolling speed, free and loaded.
