@@ -239,3 +239,75 @@ fn full_flowing_fe_model_and_untruncated_reduction_agree() {
     }
     assert!(travelling > 10);
 }
+
+#[test]
+fn line_participations_sum_to_the_direct_frequency_response() {
+    // Second formulation: the modal expansion of tire::lines against a direct complex solve of
+    // (−ω²M_y + iωC_y + K_y) Y = −Nᵀ(−ω²M + iωC_Ω + K_Ω) z_s, F = −K_r N Y, written here from
+    // the reduced matrices (undamped, so every eigenvalue is an oscillating mode and the listed
+    // contributions hold the whole sum). Rolling at 30 rad/s, vertical and longitudinal lines
+    // at 70 Hz, patch held.
+    use faer::c64;
+    use faer::linalg::solvers::Solve;
+    let red = coarse_reduced_tire();
+    let held = held_nodes(
+        &preload_rolling(red, &GroundConfig::default(), 4448.2, 30.0, 0.0)
+            .unwrap()
+            .patch,
+    );
+    let o = RotatingOptions {
+        spin: 30.0,
+        alpha: 0.0,
+        beta: 0.0,
+        max_hz: 1e5,
+    };
+    let nz = red.n_z();
+    let a = Mat::from_fn(3 * held.len(), nz, |r, j| {
+        red.tc[(3 * held[r / 3] + r % 3, j)]
+    });
+    let n = reduction::linalg::null_space(a.as_ref(), 1e-12).unwrap();
+    let w = 2.0 * PI * 70.0;
+    let c = Mat::from_fn(nz, nz, |i, j| 2.0 * o.spin * red.g1[(i, j)]);
+    let k = Mat::from_fn(nz, nz, |i, j| red.k[(i, j)] + o.spin.powi(2) * red.g2[(i, j)]);
+    let dz = Mat::from_fn(nz, nz, |i, j| {
+        c64::new(-w * w * red.m[(i, j)] + k[(i, j)], w * c[(i, j)])
+    });
+    let nc = Mat::from_fn(nz, n.ncols(), |i, j| c64::new(n[(i, j)], 0.0));
+    let dy = nc.transpose() * &dz * &nc;
+    // z_s: the held nodes moved rigidly by a unit vertical (col 0) or longitudinal (col 1)
+    // displacement with the least strain energy, K z_s = Aᵀμ, A z_s = d
+    let kinv_at = red
+        .k
+        .llt(faer::Side::Lower)
+        .unwrap()
+        .solve(a.transpose().to_owned());
+    let flex = &a * &kinv_at;
+    for (col, comp, row) in [
+        (0, SpindleComponent::Vertical, 2),
+        (1, SpindleComponent::Longitudinal, 0),
+    ] {
+        let d = Mat::from_fn(3 * held.len(), 1, |r, _| {
+            f64::from(r % 3 == if col == 0 { 2 } else { 0 })
+        });
+        let mu = flex.llt(faer::Side::Lower).unwrap().solve(d);
+        let zs = &kinv_at * &mu;
+        let zsc = Mat::from_fn(nz, 1, |i, _| c64::new(zs[(i, 0)], 0.0));
+        let f = -(nc.transpose() * &dz * &zsc);
+        let y = dy.partial_piv_lu().solve(&f);
+        let zy = &nc * &y;
+        let mut direct = c64::new(0.0, 0.0);
+        for j in 0..nz {
+            direct -= zy[(j, 0)] * red.kr[(row, j)];
+        }
+        let modes = line_modes(red, &held, &o, comp, 70.0).unwrap();
+        let sum = modes.iter().fold(c64::new(0.0, 0.0), |s, m| {
+            s + c64::new(m.contribution[0], m.contribution[1])
+        });
+        assert!(
+            (sum - direct).norm() < 1e-6 * direct.norm(),
+            "{comp:?}: modal sum {sum:?} vs direct {direct:?}"
+        );
+        let shares: f64 = modes.iter().map(|m| m.share).sum();
+        assert!((shares - 1.0).abs() < 1e-9);
+    }
+}

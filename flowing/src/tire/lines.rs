@@ -61,9 +61,9 @@ pub struct LineMode {
     pub lateral_share: f64,
     /// Share of the line's modal sum `Σ_k |F_k|` (0..1).
     pub share: f64,
-    /// Magnitude of the mode's contribution to the spindle force per unit ground acceleration
-    /// amplitude at the line, `|F_k| / ω²` \[N/(m/s²)\] = \[kg\].
-    pub spindle_kg: f64,
+    /// The mode's complex contribution (real, imaginary) to the dynamic spindle force
+    /// `F_c(ω)` per unit amplitude of the ground motion `u = e^{iωt}` \[N/m\].
+    pub contribution: [f64; 2],
 }
 
 /// The participation of every oscillating mode of the loaded tire (contact nodes `held`
@@ -167,7 +167,7 @@ pub fn line_modes(
         }
         used[kk] = true;
         total += f.norm();
-        terms.push((kk, f.norm()));
+        terms.push((kk, f));
     }
     // overdamped (real) eigenvalues count in the sum
     total += (0..2 * ny)
@@ -185,8 +185,8 @@ pub fn line_modes(
                 direction: m.direction,
                 damping_ratio: m.damping_ratio,
                 lateral_share: m.parts[2],
-                share: if total > 0.0 { f / total } else { 0.0 },
-                spindle_kg: f / (w * w),
+                share: if total > 0.0 { f.norm() / total } else { 0.0 },
+                contribution: [f.re, f.im],
             }
         })
         .collect();
