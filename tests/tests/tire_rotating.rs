@@ -169,7 +169,11 @@ fn forward_backward_split_grows_linearly_and_matches_thin_ring_theory() {
         if a.lateral {
             lateral += 1;
         } else {
-            assert!((s1 / ring - 1.0).abs() < 0.10, "n={}: split/Ω {s1} vs {ring}", a.n);
+            assert!(
+                (s1 / ring - 1.0).abs() < 0.10,
+                "n={}: split/Ω {s1} vs {ring}",
+                a.n
+            );
             in_plane += 1;
         }
     }
@@ -268,7 +272,9 @@ fn line_participations_sum_to_the_direct_frequency_response() {
     let n = reduction::linalg::null_space(a.as_ref(), 1e-12).unwrap();
     let w = 2.0 * PI * 70.0;
     let c = Mat::from_fn(nz, nz, |i, j| 2.0 * o.spin * red.g1[(i, j)]);
-    let k = Mat::from_fn(nz, nz, |i, j| red.k[(i, j)] + o.spin.powi(2) * red.g2[(i, j)]);
+    let k = Mat::from_fn(nz, nz, |i, j| {
+        red.k[(i, j)] + o.spin.powi(2) * red.g2[(i, j)]
+    });
     let dz = Mat::from_fn(nz, nz, |i, j| {
         c64::new(-w * w * red.m[(i, j)] + k[(i, j)], w * c[(i, j)])
     });

@@ -66,7 +66,10 @@ impl Default for Config {
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         if self.speeds_kmh.is_empty() {
-            return Err(InputError::new("speeds_kmh", "must list at least one speed"));
+            return Err(InputError::new(
+                "speeds_kmh",
+                "must list at least one speed",
+            ));
         }
         if let Some(v) = self
             .speeds_kmh
@@ -336,8 +339,7 @@ impl Study for Rotating {
         let bar = ctx.progress(c.speeds_kmh.len() as f64, "rotating modes");
         for (k, &v) in c.speeds_kmh.iter().enumerate() {
             runs.push(
-                modes_at_speed(&red, &c.ground, c.load, v, rayleigh, c.max_hz)
-                    .map_err(tire_err)?,
+                modes_at_speed(&red, &c.ground, c.load, v, rayleigh, c.max_hz).map_err(tire_err)?,
             );
             bar.set((k + 1) as f64);
         }

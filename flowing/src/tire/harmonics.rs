@@ -74,7 +74,10 @@ impl TreadBasis {
     /// Energies `E_k` for `k = −K..=K` (index `k + K`, `K` = [`TreadBasis::max_order`]) of the
     /// complex nodal displacements `d` (3 per tread node, Cartesian).
     pub fn spectrum(&self, d: &[c64]) -> Vec<f64> {
-        self.part_spectrum(d).iter().map(|p| p.iter().sum()).collect()
+        self.part_spectrum(d)
+            .iter()
+            .map(|p| p.iter().sum())
+            .collect()
     }
 
     /// [`TreadBasis::spectrum`] split into the radial, tangential and lateral parts.

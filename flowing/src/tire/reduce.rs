@@ -431,11 +431,7 @@ fn tread_basis(fe: &TireFe, rings: &[super::mesh::Ring], t: &Mat<f64>) -> Option
     let pick = |key: &dyn Fn(&super::mesh::Ring) -> f64| {
         (0..tread.len()).min_by(|&a, &b| key(tread[a]).total_cmp(&key(tread[b])))
     };
-    let mut chosen = vec![
-        pick(&|r| y(r).abs())?,
-        pick(&|r| y(r))?,
-        pick(&|r| -y(r))?,
-    ];
+    let mut chosen = vec![pick(&|r| y(r).abs())?, pick(&|r| y(r))?, pick(&|r| -y(r))?];
     chosen.sort_unstable();
     chosen.dedup();
     let (mut nodes, mut theta, mut ring) = (Vec::new(), Vec::new(), Vec::new());

@@ -35,10 +35,10 @@
 
 use super::error::{TireError, invalid, linalg};
 use super::ground::GroundConfig;
-use super::loaded::held_nodes;
-use super::statics::{preload, preload_rolling};
 use super::harmonics::{Harmonic, WaveDirection};
+use super::loaded::held_nodes;
 use super::reduced::{ReducedTire, TreadBasis};
+use super::statics::{preload, preload_rolling};
 use crate::gyroscopic::GyroscopicSystem;
 use faer::{Mat, MatRef, c64};
 use serde::Serialize;
@@ -153,11 +153,7 @@ pub fn spinning_modes(
     a: MatRef<'_, f64>,
     opt: &RotatingOptions,
 ) -> Result<Vec<RotatingMode>, TireError> {
-    for (name, v) in [
-        ("spin", opt.spin),
-        ("alpha", opt.alpha),
-        ("beta", opt.beta),
-    ] {
+    for (name, v) in [("spin", opt.spin), ("alpha", opt.alpha), ("beta", opt.beta)] {
         if !v.is_finite() {
             return Err(invalid(name, format!("{v} is not finite")));
         }
@@ -202,7 +198,10 @@ pub(crate) struct StateModes {
 }
 
 /// `C_Ω = 2ΩG₁ + αM + βK` and `K_Ω = K + Ω²G₂ + βΩK₁` (module docs).
-pub(crate) fn spin_matrices(mats: FlowingMatrices<'_>, opt: &RotatingOptions) -> (Mat<f64>, Mat<f64>) {
+pub(crate) fn spin_matrices(
+    mats: FlowingMatrices<'_>,
+    opt: &RotatingOptions,
+) -> (Mat<f64>, Mat<f64>) {
     let nz = mats.m.nrows();
     let (w, al, be) = (opt.spin, opt.alpha, opt.beta);
     let c = Mat::from_fn(nz, nz, |i, j| {
@@ -265,11 +264,7 @@ impl StateModes {
         let s = if mass > 0.0 { 1.0 / mass.sqrt() } else { 1.0 };
         z.iter_mut().for_each(|v| *v *= s);
         let d: Vec<c64> = (0..tread.rows.nrows())
-            .map(|r| {
-                (0..nz).fold(c64::new(0.0, 0.0), |acc, j| {
-                    acc + z[j] * tread.rows[(r, j)]
-                })
-            })
+            .map(|r| (0..nz).fold(c64::new(0.0, 0.0), |acc, j| acc + z[j] * tread.rows[(r, j)]))
             .collect();
         let Harmonic {
             order,
