@@ -158,7 +158,7 @@ pub fn spinning_modes(
             return Err(invalid(name, format!("{v} is not finite")));
         }
     }
-    if !(opt.max_hz > 0.0) {
+    if opt.max_hz.is_nan() || opt.max_hz <= 0.0 {
         return Err(invalid("max_hz", format!("{} is not positive", opt.max_hz)));
     }
     let nz = mats.m.nrows();
