@@ -256,7 +256,10 @@ fn cleat_json_contract_and_outputs() {
     // issue 21: each line names the loaded mode at the rolling speed that carries it, a mode
     // within the line's half-power band (3 % damping: ±3 % of its frequency, plus the
     // spectral resolution)
-    for (line, key) in [("fx_peak_hz", "fx_line_mode"), ("fy_peak_hz", "fy_line_mode")] {
+    for (line, key) in [
+        ("fx_peak_hz", "fx_line_mode"),
+        ("fy_peak_hz", "fy_line_mode"),
+    ] {
         let m = &s[key];
         assert_eq!(f(&m["line_hz"]), f(&s[line]), "{key}: {m}");
         let (hz, share) = (f(&m["hz"]), f(&m["share"]));
