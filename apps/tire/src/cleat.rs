@@ -4,7 +4,10 @@
 use crate::common::{RigFlags, TireSource, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
-use flowing::tire::{RigConfig, RigResult, RollingTire, TireError, run_cleat_observed};
+use flowing::tire::{
+    LineMode, ReducedTire, RigConfig, RigResult, RollingTire, RotatingOptions, SpindleComponent,
+    TireError, held_nodes, line_modes, run_cleat_observed,
+};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{
     CliError, CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study,
@@ -122,6 +125,36 @@ pub struct Summary {
     /// Frequency of the loaded tire's mode with the largest effective longitudinal spindle
     /// mass \[Hz\].
     pub loaded_longitudinal_mode_hz: Option<f64>,
+    /// The mode that carries the `F_x` line (`fx_peak_hz`): the complex mode of the loaded
+    /// tire rolling at the test speed (rolling preload's patch held, rig damping;
+    /// `flowing::tire::lines`) with the largest participation in the longitudinal spindle
+    /// force's response to longitudinal ground motion at the line frequency (`cleat` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fx_line_mode: Option<LineMode>,
+    /// The mode that carries the `F_y` line (`fy_peak_hz`), likewise for vertical motion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fy_line_mode: Option<LineMode>,
+}
+
+/// The loaded mode at the rolling speed that carries the `component` line at `hz`
+/// (`flowing::tire::line_modes`: largest participation); `None` when that solve fails (the
+/// run's results do not depend on it).
+pub fn line_mode(
+    red: &ReducedTire,
+    r: &RigResult,
+    component: SpindleComponent,
+    hz: f64,
+) -> Option<LineMode> {
+    let opt = RotatingOptions {
+        spin: r.samples.first()?.spin,
+        alpha: r.rayleigh.alpha,
+        beta: r.rayleigh.beta,
+        max_hz: 1e3,
+    };
+    line_modes(red, &held_nodes(&r.preload), &opt, component, hz)
+        .ok()?
+        .into_iter()
+        .next()
 }
 
 /// Summary of a rig result.
@@ -151,6 +184,8 @@ pub fn summarize(r: &RigResult) -> Summary {
         stats: r.stats,
         loaded_vertical_mode_hz: r.loaded_vertical_mode.as_ref().map(|m| m.hz),
         loaded_longitudinal_mode_hz: r.loaded_longitudinal_mode.as_ref().map(|m| m.hz),
+        fx_line_mode: None,
+        fy_line_mode: None,
     }
 }
 
@@ -168,11 +203,15 @@ const FORCE_COLUMNS: [&str; 7] = [
 /// Write the spectra and plots of a rig result under `prefix`, and its force history
 /// `{prefix}forces.csv` too when `history` is set (the `cleat` study streams that file while it
 /// runs instead, so that a failed run keeps it).
+///
+/// `lines` (e.g. [`line_mode`]'s) are marked on the spectrum plot as vertical lines at the
+/// modes' frequencies, labelled with the mode.
 pub fn write_outputs(
     ctx: &StudyContext,
     r: &RigResult,
     prefix: &str,
     history: bool,
+    lines: &[(&str, &LineMode)],
 ) -> Result<(), StudyError> {
     if history {
         ctx.out.write_csv(
@@ -207,14 +246,35 @@ pub fn write_outputs(
             .map(|(f, a)| (*f, *a))
             .collect()
     };
-    LinePlot::new(
+    let top = lim(&sx)
+        .iter()
+        .chain(lim(&sy).iter())
+        .fold(0.0f64, |a, p| a.max(p.1));
+    let mut plot = LinePlot::new(
         format!("Spectra at {} km/h", r.speed_kmh),
         "f [Hz]",
         "amplitude [N]",
     )
     .with(Series::line("Fx", lim(&sx)))
-    .with(Series::line("Fy", lim(&sy)))
-    .save(&ctx.out.path(&format!("{prefix}spectra")))?;
+    .with(Series::line("Fy", lim(&sy)));
+    for (name, m) in lines {
+        let dir = match m.direction {
+            flowing::tire::WaveDirection::Forward => "fwd",
+            flowing::tire::WaveDirection::Backward => "bwd",
+            flowing::tire::WaveDirection::Standing => "standing",
+        };
+        plot = plot.with(Series::line(
+            format!(
+                "{name} line {:.1} Hz: loaded mode {:.1} Hz, n={} {dir}, {:.0} %",
+                m.line_hz,
+                m.hz,
+                m.n,
+                100.0 * m.share
+            ),
+            vec![(m.hz, 0.0), (m.hz, top)],
+        ));
+    }
+    plot.save(&ctx.out.path(&format!("{prefix}spectra")))?;
     Ok(())
 }
 
@@ -381,8 +441,15 @@ impl Study for Cleat {
             }
         };
         bar.finish();
-        write_outputs(ctx, &r, "", false)?;
-        Ok(summarize(&r))
+        let mut s = summarize(&r);
+        s.fx_line_mode = line_mode(&red, &r, SpindleComponent::Longitudinal, s.fx_peak_hz);
+        s.fy_line_mode = line_mode(&red, &r, SpindleComponent::Vertical, s.fy_peak_hz);
+        let lines: Vec<(&str, &LineMode)> = [("Fx", &s.fx_line_mode), ("Fy", &s.fy_line_mode)]
+            .into_iter()
+            .filter_map(|(n, m)| m.as_ref().map(|m| (n, m)))
+            .collect();
+        write_outputs(ctx, &r, "", false, &lines)?;
+        Ok(s)
     }
 }
 

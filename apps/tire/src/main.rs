@@ -5,7 +5,9 @@
 //! - `reduce`: the reduction of §8.2, saved as a reduced-tire file and timed;
 //! - `cleat`: the cleat test of §8.3 at one speed (`--speed 60 --json`);
 //! - `sweep`: the speed sweep 20-100 km/h (Figs. 8-7, 8-8, 8-14);
-//! - `pressure`: the patch force distribution on the drum and on a flat road (Fig. 8-12).
+//! - `pressure`: the patch force distribution on the drum and on a flat road (Fig. 8-12);
+//! - `rotating-modes`: complex modes of the rolling tire in the ground frame at several speeds
+//!   (forward/backward waves, Campbell diagram).
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -16,6 +18,7 @@ mod maps;
 mod modes;
 mod pressure;
 mod reduce;
+mod rotating;
 mod sweep;
 
 /// Reduced FE tire studies of the flowmbd toolkit.
@@ -38,6 +41,9 @@ enum Study {
     Sweep(sweep::Args),
     /// Patch force distribution on the drum and on a flat road (Ribaric Fig. 8-12).
     Pressure(pressure::Args),
+    /// Complex modes of the rolling tire in the ground frame: forward/backward waves of each
+    /// circumferential order vs speed (Campbell diagram), free and loaded.
+    RotatingModes(rotating::Args),
 }
 
 fn main() -> ExitCode {
@@ -48,6 +54,7 @@ fn main() -> ExitCode {
         Some(Study::Cleat(a)) => cleat::run(&a),
         Some(Study::Sweep(a)) => sweep::run(&a),
         Some(Study::Pressure(a)) => pressure::run(&a),
+        Some(Study::RotatingModes(a)) => rotating::run(&a),
         None => cleat::run(&cleat::Args::default()),
     }
 }

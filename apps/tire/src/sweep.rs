@@ -145,7 +145,7 @@ impl Study for Sweep {
                     grid_rows.push(vec![v, sy.freq_hz[i], sx.amplitude[i], sy.amplitude[i]]);
                 }
             }
-            crate::cleat::write_outputs(ctx, &r, &format!("v{v:03.0}_"), true)?;
+            crate::cleat::write_outputs(ctx, &r, &format!("v{v:03.0}_"), true, &[])?;
             runs.push(summarize(&r));
         }
         bar.finish();

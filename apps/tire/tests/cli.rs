@@ -1,5 +1,5 @@
 //! End-to-end tests of the `flowmbd-tire` binary (issue 9, app conventions of DEVELOPERS.md):
-//! every subcommand (`modes`, `reduce`, `cleat`, `sweep`, `pressure`) on a small generated tire
+//! every subcommand (`modes`, `reduce`, `cleat`, `sweep`, `pressure`, `rotating-modes`) on a small generated tire
 //! given through `--config`, the embedded defaults against the issue text, the JSON contract of
 //! `cleat --speed 60 --json`, the output files, and the exit codes (2 for bad input naming the
 //! field, 1 for a numerical failure with the results so far kept).
@@ -253,6 +253,19 @@ fn cleat_json_contract_and_outputs() {
     );
     let fx_pk = f(&s["fx_peak_hz"]);
     assert!((10.0..=500.0).contains(&fx_pk), "fx_peak_hz = {fx_pk}");
+    // issue 21: each line names the loaded mode at the rolling speed that carries it, a mode
+    // within the line's half-power band (3 % damping: ±3 % of its frequency, plus the
+    // spectral resolution)
+    for (line, key) in [
+        ("fx_peak_hz", "fx_line_mode"),
+        ("fy_peak_hz", "fy_line_mode"),
+    ] {
+        let m = &s[key];
+        assert_eq!(f(&m["line_hz"]), f(&s[line]), "{key}: {m}");
+        let (hz, share) = (f(&m["hz"]), f(&m["share"]));
+        assert!((hz - f(&s[line])).abs() <= 0.1 * hz + res, "{key}: {m}");
+        assert!(share > 0.3 && share <= 1.0, "{key}: {m}");
+    }
 
     // summary.json is what --json printed; config.toml is the effective configuration
     let saved: Value =
@@ -715,4 +728,55 @@ fn missing_reduced_file_is_reduced_once_then_reused() {
     assert_eq!(a["dof"], b["dof"]);
     assert!((f(&a["fy_rms"]) - f(&b["fy_rms"])).abs() <= 1e-9 * f(&a["fy_rms"]));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `rotating-modes --speeds 0,60,120 --json` (issue 21, "checked by"): for each speed labelled
+/// modes `{hz, n, direction, damping_ratio}`; zero speed equals `modes` (reduced); the
+/// forward/backward split of each in-plane order n = 1..4 grows with speed (linearly: the split
+/// at 120 km/h is twice that at 60 within 10 %); Campbell plots and the CSV are written.
+#[test]
+fn rotating_modes_json_contract_and_split() {
+    let (file, _) = shared_reduced();
+    let dir = tmp("rotating");
+    let cfg = config(&dir, "rm.toml", "", file, "");
+    let out_dir = dir.join("r");
+    let s = json_of(&run_study(
+        "rotating-modes",
+        &["--speeds", "0,60,120", "--json"],
+        &cfg,
+        &out_dir,
+    ));
+    let speeds = s["speeds"].as_array().unwrap();
+    assert_eq!(speeds.len(), 3);
+    for (sp, v) in speeds.iter().zip([0.0, 60.0, 120.0]) {
+        assert_eq!(f(&sp["speed_kmh"]), v);
+        for case in ["free", "loaded"] {
+            let modes = sp[case].as_array().unwrap();
+            assert!(modes.len() > 10, "{case} at {v} km/h: {modes:?}");
+            for m in modes {
+                assert!(f(&m["hz"]) > 0.0 && m["n"].is_u64(), "{m}");
+                let d = m["direction"].as_str().unwrap();
+                assert!(["forward", "backward", "standing"].contains(&d), "{m}");
+                assert!(f(&m["damping_ratio"]) > 0.0, "rig damping: {m}");
+                if v == 0.0 {
+                    assert_eq!(d, "standing");
+                }
+            }
+        }
+    }
+    assert!(f(&s["zero_speed_max_rel_diff_vs_modes"]) < 1e-6, "{s}");
+    let splits = s["splits"].as_array().unwrap();
+    for n in 1..=4u64 {
+        let sp = splits
+            .iter()
+            .find(|x| x["n"] == n && x["plane"] == "in_plane")
+            .unwrap_or_else(|| panic!("no in-plane n = {n}: {splits:?}"));
+        let d = floats(&sp["split_hz"]);
+        assert_eq!(d[0], 0.0);
+        assert!(d[1] > 0.0 && d[2] > d[1], "n = {n}: {d:?}");
+        assert!((d[2] / d[1] - 2.0).abs() < 0.2, "n = {n}: {d:?}");
+    }
+    assert_plot(&out_dir, "campbell_free");
+    assert_plot(&out_dir, "campbell_loaded");
+    assert!(!csv_column(&out_dir.join("rotating_modes.csv"), "hz").is_empty());
 }

@@ -58,9 +58,9 @@ impl LoadedMode {
 }
 
 /// Wheel-frame component index of the vertical direction (the spindle force's `Fy`).
-const VERTICAL: usize = 2;
+pub(crate) const VERTICAL: usize = 2;
 /// Wheel-frame component index of the longitudinal direction (`Fx`).
-const LONGITUDINAL: usize = 0;
+pub(crate) const LONGITUDINAL: usize = 0;
 /// Wheel-frame component index of the lateral (axle) direction (`Fz`).
 const LATERAL: usize = 1;
 
@@ -117,7 +117,7 @@ pub fn loaded_modes(red: &ReducedTire, held: &[usize]) -> Result<Vec<LoadedMode>
 
 /// Static influence vectors `z_s = K_z⁻¹Aᵀ(A K_z⁻¹Aᵀ)⁻¹ d` (columns: vertical, longitudinal
 /// unit motion of the `h` held nodes). Zero columns when nothing is held.
-fn influence(red: &ReducedTire, a: &Mat<f64>, h: usize) -> Result<Mat<f64>, TireError> {
+pub(crate) fn influence(red: &ReducedTire, a: &Mat<f64>, h: usize) -> Result<Mat<f64>, TireError> {
     let nz = red.n_z();
     if h == 0 {
         return Ok(Mat::zeros(nz, 2));

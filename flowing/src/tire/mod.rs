@@ -8,7 +8,10 @@
 //! * [`statics`]: the preload (static contact with Lagrange multipliers, Ribaric §7.3);
 //! * [`rolling`]: the wheel–tire equations (7.10)/(7.17) with the notes' corrections E15, E16,
 //!   U15–U17, integrated with Lagrange contact and Coulomb slip friction;
-//! * [`rig`]: the cleat-test sequence of §8.3 and its outputs; [`spectrum`]: amplitude spectra.
+//! * [`rig`]: the cleat-test sequence of §8.3 and its outputs; [`spectrum`]: amplitude spectra;
+//! * [`rotating`]: complex modes of the rotating tire in the ground frame (gyroscopic and
+//!   convective terms of (7.17)), labelled by [`harmonics`] with circumferential order and
+//!   forward/backward direction.
 
 pub mod error;
 pub mod mesh;
@@ -18,7 +21,16 @@ pub mod reduced;
 pub use error::TireError;
 pub use mesh::{Ring, TireFe};
 pub use reduce::{ReductionConfig, ReductionTimings, full_frequencies_hz, reduce};
-pub use reduced::{ReducedTire, VizBasis};
+pub use reduced::{ReducedTire, TreadBasis, VizBasis};
+pub mod harmonics;
+pub mod lines;
+pub use lines::{LineMode, SpindleComponent, line_modes};
+pub mod rotating;
+pub use harmonics::{Harmonic, WaveDirection};
+pub use rotating::{
+    FlowingMatrices, RotatingMode, RotatingOptions, SpeedModes, modes_at_speed, rotating_modes,
+    spinning_modes,
+};
 pub mod contact_solve;
 pub mod friction;
 pub mod ground;

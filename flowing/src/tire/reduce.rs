@@ -19,7 +19,7 @@
 
 use super::error::{TireError, invalid, linalg};
 use super::mesh::{TireFe, node_angle};
-use super::reduced::{ReducedTire, VizBasis};
+use super::reduced::{ReducedTire, TreadBasis, VizBasis};
 use crate::derivative::{DerivativeMethod, FdScheme, FlowLine, mode_shape_derivatives};
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::sparse::{SparseColMat, Triplet};
@@ -273,6 +273,7 @@ pub fn reduce(
             nodes,
         }
     });
+    let tread = tread_basis(fe, &rings, &t);
 
     // projections (step 6)
     let ts = Instant::now();
@@ -407,10 +408,46 @@ pub fn reduce(
                 [p_s[(0, 1)], p_s[(1, 1)], p_s[(2, 1)]],
             ],
             viz,
+            tread,
             source: String::new(),
         },
         tim,
     ))
+}
+
+/// The rows of `T` at the tread's crown ring (the candidate-patch ring of smallest `|y|`) and
+/// its two edge rings (smallest and largest `y`), see [`TreadBasis`]; `None` when no ring holds
+/// a candidate node.
+fn tread_basis(fe: &TireFe, rings: &[super::mesh::Ring], t: &Mat<f64>) -> Option<TreadBasis> {
+    let mut cand = vec![false; fe.n_nodes()];
+    for &c in &fe.candidates {
+        cand[c] = true;
+    }
+    let y = |r: &super::mesh::Ring| fe.nodes[r.nodes[0]][1];
+    let tread: Vec<&super::mesh::Ring> = rings
+        .iter()
+        .filter(|r| r.nodes.iter().any(|&i| cand[i]))
+        .collect();
+    let pick = |key: &dyn Fn(&super::mesh::Ring) -> f64| {
+        (0..tread.len()).min_by(|&a, &b| key(tread[a]).total_cmp(&key(tread[b])))
+    };
+    let mut chosen = vec![pick(&|r| y(r).abs())?, pick(&|r| y(r))?, pick(&|r| -y(r))?];
+    chosen.sort_unstable();
+    chosen.dedup();
+    let (mut nodes, mut theta, mut ring) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, &c) in chosen.iter().enumerate() {
+        nodes.extend(&tread[c].nodes);
+        theta.extend(&tread[c].theta);
+        ring.extend(std::iter::repeat_n(k, tread[c].nodes.len()));
+    }
+    Some(TreadBasis {
+        rows: Mat::from_fn(3 * nodes.len(), t.ncols(), |i, j| {
+            t[(3 * nodes[i / 3] + i % 3, j)]
+        }),
+        nodes,
+        theta,
+        ring,
+    })
 }
 
 /// Eigenfrequencies of the full FE tire with the rim fixed, `K φ = ω² M φ` on all non-rim DOFs

@@ -88,6 +88,9 @@ pub struct ReducedTire {
     pub p_s: [[f64; 3]; 2],
     /// Rows of `T` for visualising the whole deforming tire (optional).
     pub viz: Option<VizBasis>,
+    /// Rows of `T` at every node of the tread's crown and edge rings, for the circumferential
+    /// order of a mode ([`super::harmonics`]); `None` in files written before it existed.
+    pub tread: Option<TreadBasis>,
     /// Description of the FE model and reduction settings the tire was made from (e.g. the
     /// generator and reduction configuration as JSON), so that a saved file is not reused for
     /// another tire; empty when unknown (files of older versions).
@@ -126,6 +129,31 @@ impl VizBasis {
             })
             .collect()
     }
+}
+
+/// Rows of the basis `T` at all nodes of a few whole circumferential rings of the tread (the
+/// crown ring and the two edge rings of the candidate patch), `d = T_t z`: the displacement
+/// over the full circumference from which [`super::harmonics`] takes a mode's circumferential
+/// order `n` and travelling direction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TreadBasis {
+    /// FE node indices (ring after ring, each in increasing θ).
+    pub nodes: Vec<usize>,
+    /// Circumferential angle θ of each node (`atan2(x, z)`, [`super::mesh::node_angle`]) \[rad\].
+    pub theta: Vec<f64>,
+    /// Ring number of each node (0, 1, …).
+    pub ring: Vec<usize>,
+    /// Rows of `T` (3 n_t × n_z, Cartesian x, y, z per node).
+    pub rows: Mat<f64>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TreadFile {
+    nodes: Vec<usize>,
+    theta: Vec<f64>,
+    ring: Vec<usize>,
+    rows: Dense,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -209,6 +237,8 @@ struct FileV1 {
     p_s: [[f64; 3]; 2],
     #[serde(default, skip_serializing_if = "Option::is_none")]
     viz: Option<VizFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    tread: Option<TreadFile>,
     #[serde(default)]
     source: String,
 }
@@ -275,6 +305,12 @@ impl ReducedTire {
                 lines: v.lines.clone(),
                 rows: Dense::from(&v.rows),
             }),
+            tread: self.tread.as_ref().map(|t| TreadFile {
+                nodes: t.nodes.clone(),
+                theta: t.theta.clone(),
+                ring: t.ring.clone(),
+                rows: Dense::from(&t.rows),
+            }),
             source: self.source.clone(),
         };
         serde_json::to_string(&f).map_err(|e| invalid("reduced tire", e.to_string()))
@@ -328,6 +364,21 @@ impl ReducedTire {
                 })
             }
         };
+        let tread = match f.tread {
+            None => None,
+            Some(t) => {
+                let nt = t.nodes.len();
+                if t.theta.len() != nt || t.ring.len() != nt {
+                    return Err(file_err("inconsistent tread basis `tread`".into()));
+                }
+                Some(TreadBasis {
+                    rows: t.rows.to("tread.rows", 3 * nt, nz)?,
+                    nodes: t.nodes,
+                    theta: t.theta,
+                    ring: t.ring,
+                })
+            }
+        };
         Ok(Self {
             n_free_modes: f.n_free_modes,
             contact_positions: f.contact_positions,
@@ -356,6 +407,7 @@ impl ReducedTire {
             p_e2: f.p_e2.to("p_e2", 3, nz)?,
             p_s: f.p_s,
             viz,
+            tread,
             contact_nodes: f.contact_nodes,
             source: f.source,
         })
