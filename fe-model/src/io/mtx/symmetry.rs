@@ -62,14 +62,18 @@ pub(super) fn expand(
     file: &str,
 ) -> Result<Entries, FeError> {
     if !any_upper {
-        let mut out = Vec::with_capacity(2 * entries.len());
-        for &(r, c, v) in &entries {
-            out.push((r, c, v));
+        // mirrors appended in place: no second copy of the entries
+        let mut entries = entries;
+        let len = entries.len();
+        let off = entries.iter().filter(|e| e.0 != e.1).count();
+        entries.reserve_exact(off);
+        for k in 0..len {
+            let (r, c, v) = entries[k];
             if r != c {
-                out.push((c, r, v));
+                entries.push((c, r, v));
             }
         }
-        return Ok(out);
+        return Ok(entries);
     }
     let (pairs, diagonal) = pairs(&entries);
     let mut out = Vec::with_capacity(2 * pairs.len() + diagonal.len());
