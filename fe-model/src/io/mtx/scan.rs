@@ -10,6 +10,9 @@ use crate::error::MatrixFileError as E;
 use crate::io::err;
 use rayon::prelude::*;
 
+/// 0-based `(row, col, value)` entries in file order.
+pub(super) type Entries = Vec<(usize, usize, f64)>;
+
 /// Data sections larger than this many bytes are parsed in parallel chunks.
 const PARALLEL_BYTES: usize = 1 << 22;
 
@@ -204,7 +207,7 @@ pub(super) fn coordinate(
     ncols: usize,
     nnz: usize,
     file: &str,
-) -> Result<(Vec<(usize, usize, f64)>, bool), FeError> {
+) -> Result<(Entries, bool), FeError> {
     let bounds = chunks(data);
     let parsed: Vec<Chunk> = bounds
         .par_iter()

@@ -8,7 +8,10 @@ use crate::FeError;
 use crate::error::MatrixFileError as E;
 use crate::io::{check_mirror, err};
 
-type Entries = Vec<(usize, usize, f64)>;
+use super::scan::Entries;
+
+/// Off-diagonal positions `(max, min)` with their two sides.
+type Pairs = Vec<((usize, usize), Pair)>;
 
 /// Sums of one position's entries stored below and above the diagonal, with the index (file
 /// order) of the first entry of each side.
@@ -21,7 +24,7 @@ struct Pair {
 /// Group the off-diagonal entries of `entries` by position `(max, min)`: for each, the sums of
 /// the entries stored below and above the diagonal. Diagonal entries are returned apart with
 /// their index. Sorted by column, then row, of the lower-triangle position.
-fn pairs(entries: &[(usize, usize, f64)]) -> (Vec<((usize, usize), Pair)>, Vec<usize>) {
+fn pairs(entries: &[(usize, usize, f64)]) -> (Pairs, Vec<usize>) {
     let mut keyed: Vec<(usize, usize, usize)> = Vec::with_capacity(entries.len());
     let mut diagonal = Vec::new();
     for (k, &(r, c, _)) in entries.iter().enumerate() {
@@ -32,7 +35,7 @@ fn pairs(entries: &[(usize, usize, f64)]) -> (Vec<((usize, usize), Pair)>, Vec<u
         }
     }
     keyed.sort_unstable();
-    let mut out: Vec<((usize, usize), Pair)> = Vec::new();
+    let mut out: Pairs = Vec::new();
     for (lo, hi, k) in keyed {
         let (r, c, v) = entries[k];
         if out.last().is_none_or(|(key, _)| *key != (hi, lo)) {
