@@ -95,6 +95,15 @@ pub enum FeError {
         /// Known names.
         known: String,
     },
+    /// A matrix read from a file is physically implausible (see
+    /// [`crate::plausibility::check_stiffness_mass`]).
+    #[error("matrix `{matrix}`: {reason}")]
+    Implausible {
+        /// `K` or `M`.
+        matrix: String,
+        /// What is wrong, with the offending DOFs (1-based rows).
+        reason: String,
+    },
     /// A faer sparse structure could not be created.
     #[error("sparse matrix creation failed in {0}")]
     Sparse(String),
@@ -170,6 +179,31 @@ pub enum MatrixFileError {
     /// A value is NaN or infinite.
     #[error("non-finite value `{0}`")]
     NonFinite(String),
+    /// A size in the size line exceeds the reader's ceiling (checked before allocating).
+    #[error(
+        "{what} = {value} exceeds the ceiling of {limit}{}",
+        if *raisable { " (raise it with --allow-large)" } else { "" }
+    )]
+    TooLarge {
+        /// `rows` or `columns`.
+        what: String,
+        /// Declared size.
+        value: usize,
+        /// The ceiling in force.
+        limit: usize,
+        /// Whether a larger ceiling could be requested.
+        raisable: bool,
+    },
+    /// A `general` file of a matrix that must be symmetric stores only one triangle.
+    #[error(
+        "the header says `general` but only the {stored} triangle is stored ({count} off-diagonal entries, none mirrored); a stiffness or mass matrix is symmetric: write `symmetric` in the header (line 1) if the other triangle is its mirror"
+    )]
+    OneTriangle {
+        /// `lower` or `upper`.
+        stored: &'static str,
+        /// Non-zero off-diagonal entries stored.
+        count: usize,
+    },
     /// A matrix declared symmetric is not: `a(i,j) ≠ a(j,i)`.
     #[error(
         "matrix declared symmetric but a({row},{col}) = {value} differs from a({col},{row}) = {mirror}"

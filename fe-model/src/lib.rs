@@ -16,6 +16,7 @@ pub mod io;
 pub mod mesh;
 pub mod model;
 pub mod partition;
+pub mod plausibility;
 pub mod sparse;
 
 pub use assembly::{Assembler, assemble};

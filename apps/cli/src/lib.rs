@@ -10,19 +10,25 @@
 //!   the results so far kept in `summary.json`);
 //! - [`OutputDir`]: the study's output folder (`summary.json`, CSV tables);
 //! - [`plot`]: line plots written as PNG and SVG;
-//! - [`Progress`]: a progress bar on stderr, hidden with `--quiet` or without a terminal.
+//! - [`Progress`]: a progress bar on stderr, hidden with `--quiet` or without a terminal;
+//! - [`print_stdout`]: `--json` / `--print-config` output that exits quietly into a closed pipe;
+//! - [`check_input_file`]: input paths reported as missing, a directory or unreadable.
 
 pub mod args;
 pub mod config;
 pub mod error;
+pub mod files;
 pub mod output;
 pub mod plot;
 pub mod progress;
+pub mod stdout;
 pub mod study;
 
 pub use args::CommonArgs;
 pub use config::{Validate, load_config, read_config};
 pub use error::{CliError, InputError};
+pub use files::check_input_file;
 pub use output::OutputDir;
 pub use progress::Progress;
+pub use stdout::print_stdout;
 pub use study::{Study, StudyContext, StudyError, run_study};

@@ -112,7 +112,10 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
     })?;
     let config_text = to_toml(&config);
     if args.print_config {
-        print!("{config_text}");
+        crate::stdout::print_stdout(&config_text).map_err(|e| CliError::Write {
+            path: "<stdout>".into(),
+            message: e.to_string(),
+        })?;
         return Ok(());
     }
     let out = OutputDir::create(args.out_dir(S::APP, S::NAME))?;
@@ -132,7 +135,10 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
                     path: path.clone(),
                     message: e.to_string(),
                 })?;
-                println!("{text}");
+                crate::stdout::print_stdout(&(text + "\n")).map_err(|e| CliError::Write {
+                    path: "<stdout>".into(),
+                    message: e.to_string(),
+                })?;
             } else if !args.quiet {
                 eprintln!("results written to {}", out.root().display());
             }

@@ -6,6 +6,7 @@
 
 use fe_model::eigen::{SparseEigenOptions, sparse_modes};
 use fe_model::io::{mtx, vtk};
+use fe_model::plausibility::check_stiffness_mass;
 use fe_model::{DofPartition, FeError, Mesh};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -32,6 +33,9 @@ pub struct Args {
     /// Mesh (mesh.json as written by `tire-mesh`) for the VTK export of the modes.
     #[arg(long, value_name = "mesh.json")]
     mesh: Option<PathBuf>,
+    /// Accept matrices above the reader's size ceiling (10^7 rows or columns).
+    #[arg(long)]
+    allow_large: bool,
 }
 
 /// Configuration of the `modes` study.
@@ -174,8 +178,9 @@ impl Study for ModesStudy<'_> {
             ));
         }
         let bar = ctx.progress(4.0, "modes");
+        let opts = mtx::ReadOptions::symmetric().allow_large(self.args.allow_large);
         let read = |field: &str, p: &str| -> Result<_, StudyError> {
-            mtx::read(p)
+            mtx::read_with(p, &opts)
                 .and_then(|m| m.to_sparse())
                 .map_err(|e: FeError| input(field, e))
         };
@@ -207,6 +212,25 @@ impl Study for ModesStudy<'_> {
         let mff = part
             .block(m.as_ref(), false, false)
             .map_err(|e| input("mass", e))?;
+        // M positive definite, K positive semi-definite (Géradin & Rixen §2.3)
+        let warnings = check_stiffness_mass(kff.as_ref(), mff.as_ref(), &Default::default())
+            .map_err(|e| {
+                let numbering = if fixed.is_empty() {
+                    ""
+                } else {
+                    " (DOFs numbered among the free DOFs)"
+                };
+                let field = match &e {
+                    FeError::Implausible { matrix, .. } if matrix == "M" => "mass",
+                    _ => "stiffness",
+                };
+                input(field, format!("{e}{numbering}"))
+            })?;
+        if !ctx.quiet {
+            for w in warnings {
+                eprintln!("flowmbd-reduce modes: warning: {w}");
+            }
+        }
         if c.count > kff.nrows() {
             return Err(input(
                 "count",

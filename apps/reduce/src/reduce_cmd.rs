@@ -12,6 +12,8 @@
 //! a Sturm check for the fixed-interface modes). The other methods use the dense bases of
 //! `reduction::basis`, limited to [`DENSE_LIMIT`] DOFs.
 
+use fe_model::io::mtx::{self, ReadOptions};
+use fe_model::plausibility::{PairCheckOptions, check_stiffness_mass};
 use reduction::basis::{Method, ModeSelection, build_basis};
 use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse};
 use reduction::{DofPartition, ReducedModel};
@@ -85,6 +87,9 @@ pub struct Args {
     /// No messages on stderr.
     #[arg(long)]
     quiet: bool,
+    /// Accept matrices above the reader's size ceiling (10^7 rows or columns).
+    #[arg(long)]
+    allow_large: bool,
 }
 
 /// Summary of a `reduce` run.
@@ -108,29 +113,41 @@ pub struct Summary {
     pub file: String,
 }
 
-fn parse_nodes(text: &str, flag: &str) -> Result<Vec<usize>, String> {
+/// Node ranges `a..=b` (1-based) of a `1,5,10-12` list; nothing is expanded here, so a huge
+/// range costs nothing until it is checked against the model ([`expand_nodes`]).
+fn parse_nodes(text: &str, flag: &str) -> Result<Vec<(usize, usize)>, String> {
     let mut out = Vec::new();
     for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
         let bad = || format!("{flag}: \"{part}\" is not a node number or range a-b (1-based)");
-        if let Some((a, b)) = part.split_once('-') {
-            let a: usize = a.trim().parse().map_err(|_| bad())?;
-            let b: usize = b.trim().parse().map_err(|_| bad())?;
-            if a == 0 || b < a {
-                return Err(bad());
-            }
-            out.extend(a..=b);
-        } else {
-            let a: usize = part.parse().map_err(|_| bad())?;
-            if a == 0 {
-                return Err(bad());
-            }
-            out.push(a);
+        let (a, b) = match part.split_once('-') {
+            Some((a, b)) => (a.trim(), b.trim()),
+            None => (part, part),
+        };
+        let a: usize = a.parse().map_err(|_| bad())?;
+        let b: usize = b.parse().map_err(|_| bad())?;
+        if a == 0 || b < a {
+            return Err(bad());
         }
+        out.push((a, b));
     }
     if out.is_empty() {
         return Err(format!("{flag}: no nodes given"));
     }
     Ok(out)
+}
+
+/// The 0-based nodes of `ranges`, each checked against the model's `n_nodes` first.
+fn expand_nodes(
+    ranges: &[(usize, usize)],
+    flag: &str,
+    n_nodes: usize,
+) -> Result<Vec<usize>, String> {
+    if let Some(&(_, b)) = ranges.iter().find(|r| r.1 > n_nodes) {
+        return Err(format!(
+            "{flag}: node {b} is out of range (1-based; the model has {n_nodes} nodes)"
+        ));
+    }
+    Ok(ranges.iter().flat_map(|&(a, b)| a - 1..b).collect())
 }
 
 enum Failure {
@@ -148,8 +165,9 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
     if a.dofs_per_node == 0 {
         return Err(Failure::Input("--dofs-per-node: must be at least 1".into()));
     }
+    let opts = ReadOptions::symmetric().allow_large(a.allow_large);
     let read = |p: &PathBuf, what: &str| {
-        fe_model::io::mtx::read(p)
+        mtx::read_with(p, &opts)
             .and_then(|m| m.to_sparse())
             .map_err(|e| Failure::Input(format!("--{what} {}: {e}", p.display())))
     };
@@ -172,17 +190,26 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
         )));
     }
     let n_nodes = n / a.dofs_per_node;
-    for (flag, list) in [("--boundary", &nodes), ("--fixed", &fixed)] {
-        if let Some(j) = list.iter().find(|&&j| j > n_nodes) {
-            return Err(Failure::Input(format!(
-                "{flag}: node {j} is out of range (1-based; the model has {n_nodes} nodes)"
-            )));
+    let nodes = expand_nodes(&nodes, "--boundary", n_nodes).map_err(input)?;
+    let fixed = expand_nodes(&fixed, "--fixed", n_nodes).map_err(input)?;
+    // K positive semi-definite, M positive semi-definite (massless DOFs are condensed)
+    let checks = PairCheckOptions {
+        massless_dofs_allowed: true,
+    };
+    let warnings = check_stiffness_mass(k.as_ref(), m.as_ref(), &checks).map_err(|e| {
+        Failure::Input(format!(
+            "--stiffness {} / --mass {}: {e}",
+            a.stiffness.display(),
+            a.mass.display()
+        ))
+    })?;
+    if !a.quiet {
+        for w in warnings {
+            eprintln!("flowmbd-reduce reduce: warning: {w}");
         }
     }
-    let zero_based = |v: &[usize]| v.iter().map(|j| j - 1).collect::<Vec<_>>();
-    let part =
-        DofPartition::from_nodes(n, a.dofs_per_node, &zero_based(&nodes), &zero_based(&fixed))
-            .map_err(|e| Failure::Input(format!("--boundary/--fixed: {e}")))?;
+    let part = DofPartition::from_nodes(n, a.dofs_per_node, &nodes, &fixed)
+        .map_err(|e| Failure::Input(format!("--boundary/--fixed: {e}")))?;
     let method = a.method.method();
     let t0 = Instant::now();
     let num = |e: reduction::ReductionError| Failure::Numerical(e.to_string());
@@ -240,7 +267,12 @@ pub fn run(a: Args) -> ExitCode {
         Ok(s) => {
             if a.json {
                 match serde_json::to_string_pretty(&s) {
-                    Ok(t) => println!("{t}"),
+                    Ok(t) => {
+                        if let Err(e) = flowmbd_cli::print_stdout(&(t + "\n")) {
+                            eprintln!("flowmbd-reduce reduce: error: <stdout>: {e}");
+                            return ExitCode::from(1);
+                        }
+                    }
                     Err(e) => {
                         eprintln!("flowmbd-reduce reduce: error: {e}");
                         return ExitCode::from(1);

@@ -1,6 +1,7 @@
 //! Shared pieces of the tire studies: the tire source (generated truck tire, reduced and saved,
 //! or a saved reduced tire reused) and error mapping.
 
+use fe_model::FeError;
 use fe_model::generate::TireConfig;
 use flowing::tire::{
     GroundKind, ImportFiles, ReducedTire, ReductionConfig, RigConfig, TireError, TireFe,
@@ -49,6 +50,10 @@ pub fn tire_err(e: TireError) -> StudyError {
             format!("tire.reduced_file `{path}`"),
             reason,
         )),
+        // imported matrix files: syntax, size and symmetry errors name file and line (exit 2)
+        TireError::Fe(
+            e @ (FeError::Matrix { .. } | FeError::Io { .. } | FeError::Parse { .. }),
+        ) => StudyError::Input(InputError::new("tire.import", e.to_string())),
         other => StudyError::numerical(other),
     }
 }
@@ -97,12 +102,10 @@ impl TireSource {
                 ("rim_nodes", &files.rim_nodes),
                 ("patch_nodes", &files.patch_nodes),
             ] {
-                if !std::path::Path::new(path).is_file() {
-                    return Err(InputError::new(
-                        format!("tire.import.{field}"),
-                        format!("file `{path}` does not exist"),
-                    ));
-                }
+                flowmbd_cli::check_input_file(
+                    &format!("tire.import.{field}"),
+                    std::path::Path::new(path),
+                )?;
             }
         }
         if self.reduction.contact_nodes == 0 {

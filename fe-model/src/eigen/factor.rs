@@ -104,7 +104,13 @@ impl Analysis {
             )
             .map_err(|e| FeError::NotPositiveDefinite {
                 name: name.to_string(),
-                detail: format!(" ({e:?})"),
+                detail: {
+                    let faer::linalg::solvers::LltError::NonPositivePivot { index } = e;
+                    format!(
+                        " (non-positive pivot at DOF {}, 1-based)",
+                        self.original_dof(index) + 1
+                    )
+                },
             })?;
         Ok(Llt {
             symbolic: self.symbolic.clone(),
@@ -112,9 +118,27 @@ impl Analysis {
         })
     }
 
+    /// The original (unpermuted) index of the `j`-th pivot of the factorization.
+    fn original_dof(&self, j: usize) -> usize {
+        match self.symbolic.perm() {
+            Some(p) => p.arrays().0.get(j).copied().unwrap_or(j),
+            None => j,
+        }
+    }
+
     /// Number of negative pivots of `L D Lᵀ = P a Pᵀ` (Sylvester's law of inertia: the number
     /// of negative eigenvalues of `a`). Errors on a zero pivot.
     pub fn negative_pivots(&self, a: SparseColMatRef<'_, usize, f64>) -> Result<usize, FeError> {
+        Ok(self.negative_pivot_dofs(a)?.len())
+    }
+
+    /// The DOFs (0-based, original order) whose pivots of `L D Lᵀ = P a Pᵀ` are negative,
+    /// ascending; their number is the number of negative eigenvalues of `a` (Sylvester's law
+    /// of inertia). Errors on a zero pivot.
+    pub fn negative_pivot_dofs(
+        &self,
+        a: SparseColMatRef<'_, usize, f64>,
+    ) -> Result<Vec<usize>, FeError> {
         let mut values = vec![0.0; self.symbolic.len_val()];
         let par = Par::rayon(0);
         let mut mem = MemBuffer::new(
@@ -132,7 +156,7 @@ impl Analysis {
                 Default::default(),
             )
             .map_err(|e| FeError::Eigen(format!("LDLᵀ for the Sturm count failed ({e:?})")))?;
-        let mut neg = 0usize;
+        let mut neg = Vec::new();
         match self.symbolic.raw() {
             SymbolicCholeskyRaw::Simplicial(s) => {
                 // D is stored as the first (diagonal) entry of each column of L
@@ -143,13 +167,14 @@ impl Analysis {
                         return Err(FeError::Eigen(format!("LDLᵀ: zero pivot in column {j}")));
                     }
                     if d < 0.0 {
-                        neg += 1;
+                        neg.push(self.original_dof(j));
                     }
                 }
             }
             SymbolicCholeskyRaw::Supernodal(s) => {
                 let l = SupernodalLdltRef::new(s, &values);
                 for sn in 0..s.n_supernodes() {
+                    let begin = s.supernode_begin()[sn];
                     let v = l.supernode(sn).val();
                     for i in 0..v.ncols() {
                         let d = v[(i, i)];
@@ -159,12 +184,13 @@ impl Analysis {
                             )));
                         }
                         if d < 0.0 {
-                            neg += 1;
+                            neg.push(self.original_dof(begin + i));
                         }
                     }
                 }
             }
         }
+        neg.sort_unstable();
         Ok(neg)
     }
 }

@@ -9,12 +9,27 @@ pub mod vtk;
 /// Read a whole text file; returns its display name (for the file/line errors of the parsers)
 /// and its text, or [`crate::FeError::Io`] naming the file.
 pub(crate) fn read_text(path: &std::path::Path) -> Result<(String, String), crate::FeError> {
-    let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| crate::FeError::Io {
+    let (name, data) = read_bytes(path)?;
+    let text = String::from_utf8(data).map_err(|e| crate::FeError::Io {
         file: name.clone(),
-        source,
+        source: std::io::Error::new(std::io::ErrorKind::InvalidData, e.utf8_error()),
     })?;
     Ok((name, text))
+}
+
+/// Read a whole file as bytes, with its display name; a directory or unreadable path is
+/// [`crate::FeError::Io`] naming it (a directory is reported as such, not as missing).
+pub(crate) fn read_bytes(path: &std::path::Path) -> Result<(String, Vec<u8>), crate::FeError> {
+    let name = path.display().to_string();
+    let io = |source| crate::FeError::Io {
+        file: name.clone(),
+        source,
+    };
+    if path.is_dir() {
+        return Err(io(std::io::Error::other("is a directory, expected a file")));
+    }
+    let data = std::fs::read(path).map_err(io)?;
+    Ok((name, data))
 }
 
 /// A matrix-file error at `line` of `file`.

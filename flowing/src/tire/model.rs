@@ -147,19 +147,11 @@ fn read_nodes_labelled(path: &str, labelled: bool) -> Result<(Vec<u64>, Vec<[f64
     Ok((labels, out))
 }
 
+/// A stiffness or mass matrix from Matrix Market: square and symmetric (a `general` file
+/// storing one triangle is refused, see `fe_model::io::mtx`), default size ceiling.
 fn read_mtx(path: &str) -> Result<faer::sparse::SparseColMat<usize, f64>, TireError> {
-    let m = fe_model::io::mtx::read(path)?;
-    let t: Vec<faer::sparse::Triplet<usize, usize, f64>> = m
-        .entries
-        .iter()
-        .map(|&(i, j, v)| faer::sparse::Triplet::new(i, j, v))
-        .collect();
-    faer::sparse::SparseColMat::try_new_from_triplets(m.nrows, m.ncols, &t).map_err(|e| {
-        TireError::File {
-            path: path.to_string(),
-            reason: format!("cannot build the sparse matrix: {e:?}"),
-        }
-    })
+    let opts = fe_model::io::mtx::ReadOptions::symmetric();
+    Ok(fe_model::io::mtx::read_with(path, &opts)?.to_sparse()?)
 }
 
 type Sparse = faer::sparse::SparseColMat<usize, f64>;

@@ -1,0 +1,57 @@
+//! Checks of input paths named in a configuration or on the command line, with messages that
+//! say what is wrong: missing, a directory, or unreadable.
+
+use crate::error::InputError;
+use std::path::Path;
+
+/// `Ok` when `path` is a readable regular file; otherwise an [`InputError`] for `field`
+/// saying whether the path does not exist, is a directory, or cannot be inspected.
+pub fn check_input_file(field: &str, path: &Path) -> Result<(), InputError> {
+    let shown = path.display();
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_dir() => Err(InputError::new(
+            field,
+            format!("`{shown}` is a directory, expected a file"),
+        )),
+        Ok(m) if m.is_file() => match std::fs::File::open(path) {
+            Ok(_) => Ok(()),
+            Err(e) => Err(InputError::new(
+                field,
+                format!("cannot read `{shown}`: {e}"),
+            )),
+        },
+        Ok(_) => Err(InputError::new(
+            field,
+            format!("`{shown}` is not a regular file"),
+        )),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(InputError::new(
+            field,
+            format!("file `{shown}` does not exist"),
+        )),
+        Err(e) => Err(InputError::new(
+            field,
+            format!("cannot read `{shown}`: {e}"),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The three cases a user meets, told apart (issue #20: a directory was "does not exist").
+    #[test]
+    fn missing_directory_and_file_are_told_apart() {
+        let dir = std::env::temp_dir().join(format!("flowmbd-cli-files-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let e = check_input_file("tire.import.mass", &dir).unwrap_err();
+        assert!(e.to_string().contains("is a directory"), "{e}");
+        assert!(e.to_string().starts_with("tire.import.mass"), "{e}");
+        let e = check_input_file("x", &dir.join("none.mtx")).unwrap_err();
+        assert!(e.to_string().contains("does not exist"), "{e}");
+        let f = dir.join("K.mtx");
+        std::fs::write(&f, "x").unwrap();
+        assert!(check_input_file("x", &f).is_ok());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
