@@ -417,24 +417,9 @@ impl KktSolver {
             });
         }
         let mut b = Mat::<f64>::from_fn(dim, 1, |i, _| rhs[i]);
-        match &self.factor {
-            Some(Factor::Dense(lu)) => lu.solve_in_place(b.as_mut()),
-            Some(Factor::Sparse(lu)) => lu.solve_in_place(b.as_mut()),
-            None => {
-                return Err(MbdError::Model {
-                    t,
-                    message: "augmented matrix was not factored".into(),
-                });
-            }
-        }
+        self.solve_columns(b.as_mut(), t)?;
         for (i, r) in rhs.iter_mut().enumerate() {
             *r = b[(i, 0)];
-        }
-        if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(MbdError::Singular {
-                t,
-                detail: "augmented matrix is singular (non-finite solution)".into(),
-            });
         }
         Ok(())
     }

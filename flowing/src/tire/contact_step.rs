@@ -67,7 +67,7 @@ pub struct TireContact {
 struct Work {
     /// Contact-node displacements `T_c z` (3 n_c).
     dc: Vec<f64>,
-    /// Acceleration increment `X Σ fⱼ` (n) and (empty) multiplier increment.
+    /// Acceleration increment `X Σ fⱼ` (n).
     dvdot: Vec<f64>,
     cand: Vec<usize>,
     /// Whether each contact node was a candidate in the previous step.
