@@ -117,8 +117,8 @@ impl AlphaCorrection<'_> {
     /// Identity of the factorisation [`solve`](Self::solve) uses: results of earlier solves
     /// (e.g. cached columns `S⁻¹ Jᵀ`) stay valid while it is unchanged. Unlike
     /// [`factorizations`](Self::factorizations) it also changes when the stepper swaps in the
-    /// kept factorisation of another step size ([`NewtonUpdate::Frozen`]
-    /// (super::NewtonUpdate::Frozen)).
+    /// kept factorisation of another step size
+    /// ([`NewtonUpdate::Frozen`](super::NewtonUpdate::Frozen)).
     pub fn factor_id(&self) -> usize {
         self.factor_id
     }

@@ -1,12 +1,12 @@
 //! The factored iteration matrix of [`AlphaStepper`](super::AlphaStepper): the augmented
 //! matrix `[S Dᵀ; D 0]` of Arnold & Brüls (2007) (`S = M + (γ'/β') C_t + K_t/β'`, module
-//! [`gen_alpha`](super)), as an LU factorisation or, with [`AlphaConfig::explicit_inverse`]
-//! (super::AlphaConfig::explicit_inverse), as the explicit inverse (stored transposed, so that
+//! [`gen_alpha`](super)), as an LU factorisation or, with
+//! [`AlphaConfig::explicit_inverse`](super::AlphaConfig::explicit_inverse), as the explicit inverse (stored transposed, so that
 //! a solve is one product over contiguous rows).
 //!
 //! The explicit inverse pays `O(n³)` once per factorisation and makes every solve a
 //! matrix–vector product (no pivoting, no allocation): the choice for small dense models
-//! stepped with a frozen matrix ([`NewtonUpdate::Frozen`](super::NewtonUpdate::Frozen)) whose
+//! stepped with a frozen matrix ([`NewtonUpdate::Frozen`](super::NewtonUpdate::Frozen)), whose
 //! step correction needs many solves (e.g. the contact responses `S⁻¹ Jᵀ` of all contact
 //! points of the rolling tire).
 
