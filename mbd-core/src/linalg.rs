@@ -377,6 +377,35 @@ impl KktSolver {
             .map_err(|e| err(format!("{e:?}")))
     }
 
+    /// Solves for several right-hand sides at once: the columns of `rhs` (`(n + n_c) × k`) hold
+    /// `[b; c]` on input and `[x; μ]` on output (e.g. the explicit inverse from the identity).
+    pub fn solve_columns(&self, mut rhs: faer::MatMut<'_, f64>, t: f64) -> Result<(), MbdError> {
+        let dim = self.n + self.n_c;
+        if rhs.nrows() != dim {
+            return Err(MbdError::Model {
+                t,
+                message: format!("right-hand side has {} rows, expected {dim}", rhs.nrows()),
+            });
+        }
+        match &self.factor {
+            Some(Factor::Dense(lu)) => lu.solve_in_place(rhs.as_mut()),
+            Some(Factor::Sparse(lu)) => lu.solve_in_place(rhs.as_mut()),
+            None => {
+                return Err(MbdError::Model {
+                    t,
+                    message: "augmented matrix was not factored".into(),
+                });
+            }
+        }
+        if !rhs.as_ref().is_all_finite() {
+            return Err(MbdError::Singular {
+                t,
+                detail: "augmented matrix is singular (non-finite solution)".into(),
+            });
+        }
+        Ok(())
+    }
+
     /// Solves with the current factorisation: `rhs` holds `[b; c]` on input (length
     /// `n + n_c`) and `[x; μ]` on output.
     pub fn solve(&self, rhs: &mut [f64], t: f64) -> Result<(), MbdError> {
@@ -388,24 +417,9 @@ impl KktSolver {
             });
         }
         let mut b = Mat::<f64>::from_fn(dim, 1, |i, _| rhs[i]);
-        match &self.factor {
-            Some(Factor::Dense(lu)) => lu.solve_in_place(b.as_mut()),
-            Some(Factor::Sparse(lu)) => lu.solve_in_place(b.as_mut()),
-            None => {
-                return Err(MbdError::Model {
-                    t,
-                    message: "augmented matrix was not factored".into(),
-                });
-            }
-        }
+        self.solve_columns(b.as_mut(), t)?;
         for (i, r) in rhs.iter_mut().enumerate() {
             *r = b[(i, 0)];
-        }
-        if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(MbdError::Singular {
-                t,
-                detail: "augmented matrix is singular (non-finite solution)".into(),
-            });
         }
         Ok(())
     }

@@ -141,6 +141,22 @@ pub trait SecondOrderSystem {
     /// Generalized forces `f(t, q, v)` (length `n_v`), written into `f` (overwrite, not add).
     fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError>;
 
+    /// The dynamic residual `r = M(q) v̇ − f(t, q, v)` (length `n_v`, constraint forces
+    /// excluded) of the implicit integrators' equations of motion, written into `r`; `Ok(false)`
+    /// (the default) if the model does not provide it, and the integrator then forms `M` and
+    /// `f` itself. A model overrides it when one fused product is cheaper than forming `M(q)`
+    /// (e.g. a mass with a configuration-dependent coupling, as the rolling tire's `G₁ z θ̈`).
+    fn dynamic_residual(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _v: &[f64],
+        _vdot: &[f64],
+        _r: &mut [f64],
+    ) -> Result<bool, MbdError> {
+        Ok(false)
+    }
+
     /// Analytic tangent of the forces, or `None` to request finite differences.
     fn force_tangent(
         &self,

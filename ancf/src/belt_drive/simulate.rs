@@ -94,6 +94,7 @@ impl SimulationConfig {
             },
             max_halvings: 10,
             project_velocities: false,
+            ..AlphaConfig::default()
         }
     }
 }

@@ -44,7 +44,11 @@ pub use loaded::{
     loaded_modes_at_preload,
 };
 pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
+pub mod contact_step;
+pub mod dynamics;
 pub mod rolling;
+pub use contact_step::TireContact;
+pub use dynamics::TireDynamics;
 pub use rolling::{
     NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce, SpindleForceMethod,
     StepStats,

@@ -392,7 +392,7 @@ pub fn run_cleat_observed(
     let c0 = thread_cpu_s();
     let (mut obs_wall, mut obs_cpu) = (0.0, 0.0);
     for k in 0..steps {
-        let n = if cfg.impact.active(&sim.ground, sim.state.t) {
+        let n = if cfg.impact.active(sim.ground(), sim.state.t) {
             cfg.impact.substeps
         } else {
             1

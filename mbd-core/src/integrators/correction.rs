@@ -33,8 +33,9 @@
 //! not enter `v̇` and `a`.
 
 use super::State;
-use crate::linalg::KktSolver;
+use super::gen_alpha::IterationMatrix;
 use crate::{MbdError, SecondOrderSystem};
+use faer::{MatMut, MatRef};
 
 /// A correction of the converged generalized-α step (extension point for nonsmooth contact:
 /// implement [`correct`](StepCorrection::correct), compute gaps and Jacobians from
@@ -71,10 +72,13 @@ pub struct AlphaCorrection<'a> {
     pub(crate) v: &'a mut [f64],
     pub(crate) vdot: &'a mut [f64],
     pub(crate) lambda: &'a mut [f64],
-    pub(crate) kkt: &'a KktSolver,
+    pub(crate) matrix: &'a IterationMatrix,
     pub(crate) rhs: &'a mut [f64],
+    /// Solve scratch of the explicit inverse (`n_v + n_c`).
+    pub(crate) scratch: &'a mut [f64],
     pub(crate) integrate_position: PositionUpdate<'a>,
     pub(crate) factorizations: usize,
+    pub(crate) factor_id: usize,
 }
 
 impl AlphaCorrection<'_> {
@@ -108,6 +112,34 @@ impl AlphaCorrection<'_> {
     /// are still valid and may be cached.
     pub fn factorizations(&self) -> usize {
         self.factorizations
+    }
+
+    /// Identity of the factorisation [`solve`](Self::solve) uses: results of earlier solves
+    /// (e.g. cached columns `S⁻¹ Jᵀ`) stay valid while it is unchanged. Unlike
+    /// [`factorizations`](Self::factorizations) it also changes when the stepper swaps in the
+    /// kept factorisation of another step size
+    /// ([`NewtonUpdate::Frozen`](super::NewtonUpdate::Frozen)).
+    pub fn factor_id(&self) -> usize {
+        self.factor_id
+    }
+
+    /// `out = S⁻¹ f` (on the bilateral constraints) for the columns of `f` (`n_v × k`; `out`
+    /// is `(n_v + n_c) × k`, its last `n_c` rows the multipliers): many solves at once, one
+    /// matrix product with [`AlphaConfig::explicit_inverse`](super::AlphaConfig::explicit_inverse).
+    pub fn solve_columns(&self, f: MatRef<'_, f64>, out: MatMut<'_, f64>) -> Result<(), MbdError> {
+        if f.nrows() != self.v.len() || out.nrows() != self.v.len() + self.lambda.len() {
+            return Err(MbdError::InvalidInput {
+                item: "step correction solve".into(),
+                reason: format!(
+                    "f has {} rows (expected n_v = {}), out {} (expected n_v + n_c = {})",
+                    f.nrows(),
+                    self.v.len(),
+                    out.nrows(),
+                    self.v.len() + self.lambda.len()
+                ),
+            });
+        }
+        self.matrix.solve_columns(f, out, self.t1)
     }
 
     /// End-of-step positions `q_{n+1}` (not yet normalised).
@@ -154,7 +186,7 @@ impl AlphaCorrection<'_> {
         }
         self.rhs[..n].copy_from_slice(f);
         self.rhs[n..].iter_mut().for_each(|x| *x = 0.0);
-        self.kkt.solve(self.rhs, self.t1)?;
+        self.matrix.solve(self.rhs, self.scratch, self.t1)?;
         dvdot.copy_from_slice(&self.rhs[..n]);
         dlambda.copy_from_slice(&self.rhs[n..]);
         Ok(())

@@ -30,12 +30,13 @@ use super::{
     AlphaCorrection, Integrator, NoCorrection, Solution, State, Stats, StepCorrection, Stepper,
     check_step, observe_fn,
 };
-use crate::linalg::KktSolver;
-use crate::newton::{self, NewtonError, NewtonOptions, NewtonWorkspace, Tolerances};
+use crate::newton::{self, NewtonError, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances};
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
 
+pub(crate) mod iteration_matrix;
 mod newton_step;
+pub(crate) use iteration_matrix::IterationMatrix;
 use newton_step::StepProblem;
 
 /// How the Newton matrix is obtained.
@@ -59,6 +60,42 @@ pub enum NewtonUpdate {
     EveryIteration,
     /// Modified Newton: once per step (falls back to full Newton if a step fails).
     EveryStep,
+    /// Frozen iteration matrix: factored once and kept across steps; re-factored when the step
+    /// size changes (the factorisation of the previous step size is kept as a spare, so that
+    /// alternating between two step sizes factors each once), when the
+    /// [`AlphaConfig::refactor_drift`] trigger fires, when the caller asks
+    /// ([`AlphaStepper::refactor`]) and after a step that failed with it (the step is then
+    /// retaken with full Newton). Exact for linear models with constant matrices; for weakly
+    /// nonlinear ones a chord (W-) method whose Newton iterations converge linearly.
+    Frozen,
+}
+
+/// Re-factor trigger of [`NewtonUpdate::Frozen`]: the predicted velocity `v_j` of one
+/// coordinate `j` has drifted from its value `v_j,F` at the factorisation,
+/// `|v_j − v_j,F| > tolerance · max(|v_j,F|, 1)` (e.g. the spin rate of a rotating model whose
+/// gyroscopic matrices scale with it).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DriftTrigger {
+    /// Velocity coordinate `j` watched.
+    pub dof: usize,
+    /// Relative drift that triggers a factorisation.
+    pub tolerance: f64,
+}
+
+/// Explicit generalized-α coefficients `(α_m, α_f, β, γ)` (Chung & Hulbert 1993), e.g. plain
+/// Newmark with `α_m = α_f = 0`; [`AlphaConfig::rho_inf`] is then unused.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AlphaCoefficients {
+    /// Weight α_m of the algorithmic acceleration, in (−1, 1).
+    pub alpha_m: f64,
+    /// Weight α_f of the true acceleration, in (−1, 1).
+    pub alpha_f: f64,
+    /// Newmark β (positive).
+    pub beta: f64,
+    /// Newmark γ (positive).
+    pub gamma: f64,
 }
 
 /// Parameters of the generalized-α integrator.
@@ -84,6 +121,24 @@ pub struct AlphaConfig {
     /// Project the velocities onto `D v = ν` after each step (the index-3 form satisfies the
     /// constraints at position level only).
     pub project_velocities: bool,
+    /// Explicit coefficients instead of those of `rho_inf`.
+    pub coefficients: Option<AlphaCoefficients>,
+    /// Linearly implicit step: one Newton iteration from the predictor, accepted without a
+    /// convergence test (exact for linear models with the exact iteration matrix; with
+    /// [`NewtonUpdate::Frozen`] a linearly implicit W-method whose matrix error enters as the
+    /// defect `(S(xₙ) − S_F) v̇ₙ` of the predictor, a lag of one step).
+    pub linearly_implicit: bool,
+    /// Predict `v̇ₙ₊₁ = 0` instead of `v̇ₙ` (the unknown of a linearly implicit step is then
+    /// the end-of-step acceleration itself, as in Newmark's acceleration form; the predictor
+    /// does not change the step of a linear model with the exact matrix, but with a frozen one
+    /// the matrix error no longer enters through `v̇ₙ`).
+    pub zero_predictor: bool,
+    /// Keep the iteration matrix as its explicit inverse (module `iteration_matrix`): solves
+    /// become matrix–vector products; for small dense models.
+    pub explicit_inverse: bool,
+    /// Re-factor trigger of [`NewtonUpdate::Frozen`] (`None`: only step-size changes, failures
+    /// and [`AlphaStepper::refactor`]).
+    pub refactor_drift: Option<DriftTrigger>,
 }
 
 impl Default for AlphaConfig {
@@ -98,6 +153,11 @@ impl Default for AlphaConfig {
             update: NewtonUpdate::EveryIteration,
             max_halvings: 8,
             project_velocities: false,
+            coefficients: None,
+            linearly_implicit: false,
+            zero_predictor: false,
+            explicit_inverse: false,
+            refactor_drift: None,
         }
     }
 }
@@ -110,6 +170,17 @@ pub fn alpha_coefficients(rho_inf: f64) -> (f64, f64, f64, f64) {
     let g = 0.5 + af - am;
     let b = 0.25 * (g + 0.5) * (g + 0.5);
     (am, af, b, g)
+}
+
+impl AlphaConfig {
+    /// `(α_m, α_f, β, γ)`: [`coefficients`](Self::coefficients) if set, else those of
+    /// `rho_inf` ([`alpha_coefficients`]).
+    pub fn alpha_coefficients(&self) -> (f64, f64, f64, f64) {
+        match self.coefficients {
+            Some(c) => (c.alpha_m, c.alpha_f, c.beta, c.gamma),
+            None => alpha_coefficients(self.rho_inf),
+        }
+    }
 }
 
 /// Generalized-α integrator (see the module documentation).
@@ -196,6 +267,10 @@ struct Work {
     q1: Vec<f64>,
     rhs: Vec<f64>,
     f: Vec<f64>,
+    /// Residual, correction and updated unknown of the linearly implicit step.
+    r: Vec<f64>,
+    dx: Vec<f64>,
+    x_new: Vec<f64>,
     newton: NewtonWorkspace,
 }
 
@@ -207,6 +282,9 @@ impl Work {
             q1: vec![0.0; nq],
             rhs: vec![0.0; n + nc],
             f: vec![0.0; n],
+            r: vec![0.0; n + nc],
+            dx: vec![0.0; n + nc],
+            x_new: vec![0.0; 3 * n + nc],
             newton: NewtonWorkspace::new(),
         }
     }
@@ -225,7 +303,11 @@ pub struct AlphaStepper<C = NoCorrection> {
     lambda: Vec<f64>,
     /// Statistics so far.
     pub stats: Stats,
-    kkt: KktSolver,
+    matrix: IterationMatrix,
+    /// The factorisation of the previous step size ([`NewtonUpdate::Frozen`]).
+    spare: Option<IterationMatrix>,
+    /// Solve scratch of the explicit inverse (`n_v + n_c`).
+    scratch: Vec<f64>,
     mass_cache: Option<SysMatrix>,
     work: Work,
     /// Current step of [`Stepper::step_until`] (halved after Newton failures).
@@ -242,7 +324,20 @@ impl AlphaStepper<NoCorrection> {
         params: AlphaConfig,
     ) -> Result<Self, MbdError> {
         check_step(params.h, "generalized-alpha step h")?;
-        if !(0.0..=1.0).contains(&params.rho_inf) {
+        if let Some(c) = params.coefficients {
+            let ok = c.alpha_m.abs() < 1.0
+                && c.alpha_f.abs() < 1.0
+                && c.beta > 0.0
+                && c.beta.is_finite()
+                && c.gamma > 0.0
+                && c.gamma.is_finite();
+            if !ok {
+                return Err(MbdError::InvalidInput {
+                    item: "generalized-alpha coefficients".into(),
+                    reason: format!("need |alpha_m|, |alpha_f| < 1 and beta, gamma > 0, got {c:?}"),
+                });
+            }
+        } else if !(0.0..=1.0).contains(&params.rho_inf) {
             return Err(MbdError::InvalidInput {
                 item: "generalized-alpha rho_inf".into(),
                 reason: format!("must lie in [0, 1], got {}", params.rho_inf),
@@ -276,7 +371,9 @@ impl AlphaStepper<NoCorrection> {
             a,
             lambda,
             stats,
-            kkt: KktSolver::new(),
+            matrix: IterationMatrix::new(),
+            spare: None,
+            scratch: vec![0.0; sys.n_v() + sys.n_c()],
             mass_cache: None,
             work: Work::new(sys.n_q(), sys.n_v(), sys.n_c()),
             h_cur: params.h,
@@ -296,7 +393,9 @@ impl<C> AlphaStepper<C> {
             a: self.a,
             lambda: self.lambda,
             stats: self.stats,
-            kkt: self.kkt,
+            matrix: self.matrix,
+            spare: self.spare,
+            scratch: self.scratch,
             mass_cache: self.mass_cache,
             work: self.work,
             h_cur: self.h_cur,
@@ -325,6 +424,31 @@ impl<C> AlphaStepper<C> {
         &self.vdot
     }
 
+    /// Current algorithmic (pseudo-) accelerations `a` of the update formulas.
+    pub fn algorithmic_acceleration(&self) -> &[f64] {
+        &self.a
+    }
+
+    /// Replaces the start accelerations `v̇₀ = a₀` (default: the index-1 equations), e.g. by
+    /// those of a known steady state whose contact forces the smooth equations do not see.
+    /// Only before the first step; errors on a length other than `n_v`.
+    pub fn set_initial_acceleration(&mut self, vdot: &[f64]) -> Result<(), MbdError> {
+        if vdot.len() != self.vdot.len() || self.stats.steps > 0 {
+            return Err(MbdError::InvalidInput {
+                item: "generalized-alpha initial acceleration".into(),
+                reason: format!(
+                    "{} values for n_v = {} (only before the first step; {} steps taken)",
+                    vdot.len(),
+                    self.vdot.len(),
+                    self.stats.steps
+                ),
+            });
+        }
+        self.vdot.copy_from_slice(vdot);
+        self.a.copy_from_slice(vdot);
+        Ok(())
+    }
+
     /// Current Lagrange multipliers `λ` (generalized reactions `−Dᵀλ`).
     pub fn lambda(&self) -> &[f64] {
         &self.lambda
@@ -332,7 +456,29 @@ impl<C> AlphaStepper<C> {
 
     /// Symbolic sparse analyses performed so far (sparse models).
     pub fn symbolic_factorizations(&self) -> usize {
-        self.kkt.symbolic_factorizations
+        self.matrix.kkt.symbolic_factorizations
+            + self
+                .spare
+                .as_ref()
+                .map_or(0, |m| m.kkt.symbolic_factorizations)
+    }
+
+    /// Drops the current factored iteration matrix: the next step factors again (the
+    /// caller's re-factor trigger of [`NewtonUpdate::Frozen`], e.g. after changing the model's
+    /// matrices; the spare of the other step size is kept).
+    pub fn refactor(&mut self) {
+        self.matrix.invalidate();
+    }
+
+    /// [`NewtonUpdate::Frozen`]: the velocity of the [`AlphaConfig::refactor_drift`] coordinate
+    /// at the factorisation kept for the step size `h` \[s\] (current or spare), `None` if
+    /// none is kept (the next step of size `h` factors).
+    pub fn frozen_reference(&self, h: f64) -> Option<f64> {
+        [Some(&self.matrix), self.spare.as_ref()]
+            .into_iter()
+            .flatten()
+            .find(|m| m.is_factored() && m.h == h)
+            .map(|m| m.v_ref)
     }
 
     /// Integrates up to `t_end` with the nominal step, halving after Newton failures
@@ -373,7 +519,7 @@ impl<C> AlphaStepper<C> {
         let mut w = std::mem::take(&mut self.work);
         let mut r = self.step_impl(sys, h, t1, p.update, &mut w);
         if let Err(MbdError::NoConvergence { .. }) = r
-            && p.update == NewtonUpdate::EveryStep
+            && matches!(p.update, NewtonUpdate::EveryStep | NewtonUpdate::Frozen)
         {
             self.stats.rejected_steps += 1;
             r = self.step_impl(sys, h, t1, NewtonUpdate::EveryIteration, &mut w);
@@ -394,7 +540,7 @@ impl<C> AlphaStepper<C> {
         C: StepCorrection<S>,
     {
         let p = self.params;
-        let (am, af, beta, gamma) = alpha_coefficients(p.rho_inf);
+        let (am, af, beta, gamma) = p.alpha_coefficients();
         let n = sys.n_v();
         let nc = sys.n_c();
         let bp = (1.0 - am) / (h * h * beta * (1.0 - af));
@@ -405,6 +551,9 @@ impl<C> AlphaStepper<C> {
             q1,
             rhs,
             f,
+            r: r_lin,
+            dx: dx_lin,
+            x_new: x_lin,
             newton: newton_ws,
         } = w;
 
@@ -413,7 +562,11 @@ impl<C> AlphaStepper<C> {
             let (dq, rest) = x.split_at_mut(n);
             let (v1, rest) = rest.split_at_mut(n);
             let (vdot1, lam1) = rest.split_at_mut(n);
-            vdot1.copy_from_slice(&self.vdot);
+            if p.zero_predictor {
+                vdot1.iter_mut().for_each(|x| *x = 0.0);
+            } else {
+                vdot1.copy_from_slice(&self.vdot);
+            }
             lam1.copy_from_slice(&self.lambda);
             for i in 0..n {
                 let a1 = (af * self.vdot[i] - am * self.a[i] + (1.0 - af) * vdot1[i]) / (1.0 - am);
@@ -422,6 +575,9 @@ impl<C> AlphaStepper<C> {
             }
         }
 
+        if update == NewtonUpdate::Frozen {
+            self.select_frozen_matrix(h, &x[n..2 * n]);
+        }
         let opts = NewtonOptions {
             max_iterations: p.max_newton_iterations,
             tolerances: Tolerances::mixed(p.newton_atol, p.newton_rtol),
@@ -431,6 +587,7 @@ impl<C> AlphaStepper<C> {
             stepper: self,
             sys,
             t1,
+            h,
             bp,
             gp,
             update,
@@ -440,8 +597,19 @@ impl<C> AlphaStepper<C> {
             it: 0,
             reuse: false,
         };
-        match newton::solve(&mut problem, x, &opts, newton_ws) {
-            Ok(_) => {}
+        let solved = if p.linearly_implicit {
+            // one iteration from the predictor, no convergence test
+            problem
+                .linearize(x, 1.0, r_lin)
+                .and_then(|()| problem.solve(r_lin, dx_lin))
+                .and_then(|()| problem.update(x, dx_lin, x_lin))
+                .map(|()| x.copy_from_slice(x_lin))
+                .map_err(NewtonError::Problem)
+        } else {
+            newton::solve(&mut problem, x, &opts, newton_ws).map(|_| ())
+        };
+        match solved {
+            Ok(()) => {}
             Err(NewtonError::Problem(e)) => return Err(e),
             // the step is halved by the caller
             Err(NewtonError::NoConvergence {
@@ -489,10 +657,12 @@ impl<C> AlphaStepper<C> {
                 v: v1,
                 vdot: vdot1,
                 lambda: lam1,
-                kkt: &self.kkt,
+                matrix: &self.matrix,
                 rhs,
+                scratch: &mut self.scratch,
                 integrate_position: &integrate,
                 factorizations: self.stats.factorizations,
+                factor_id: self.matrix.id,
             };
             self.correction.correct(sys, &mut ctx)?;
         }
@@ -538,26 +708,71 @@ impl<C> AlphaStepper<C> {
         phi: &mut [f64],
         f: &mut [f64],
     ) -> Result<(), MbdError> {
-        let n = sys.n_v();
-        sys.forces(t, q, v, f)?;
         self.stats.force_evaluations += 1;
-        if let Some(i) = f.iter().position(|x| !x.is_finite()) {
-            return Err(MbdError::NonFinite {
-                what: format!("force on {}", sys.dof_name(i)),
-                t,
-            });
+        if sys.dynamic_residual(t, q, v, vdot, r)? {
+            if let Some(i) = r.iter().position(|x| !x.is_finite()) {
+                return Err(MbdError::NonFinite {
+                    what: format!("dynamic residual of {}", sys.dof_name(i)),
+                    t,
+                });
+            }
+        } else {
+            sys.forces(t, q, v, f)?;
+            if let Some(i) = f.iter().position(|x| !x.is_finite()) {
+                return Err(MbdError::NonFinite {
+                    what: format!("force on {}", sys.dof_name(i)),
+                    t,
+                });
+            }
+            if sys.mass_is_constant() {
+                if self.mass_cache.is_none() {
+                    self.mass_cache = Some(sys.mass(t, q)?);
+                }
+                if let Some(m) = &self.mass_cache {
+                    m.mul_vec(vdot, r);
+                }
+            } else {
+                sys.mass(t, q)?.mul_vec(vdot, r);
+            }
+            for (ri, fi) in r.iter_mut().zip(f.iter()) {
+                *ri -= fi;
+            }
         }
-        let m = self.mass(sys, t, q)?;
-        m.mul_vec(vdot, r);
         if !phi.is_empty() {
             let d = sys.constraint_jacobian(t, q)?;
             d.tmul_vec_add(1.0, lam, r);
             sys.constraint_residual(t, q, phi)?;
         }
-        for i in 0..n {
-            r[i] -= f[i];
-        }
         Ok(())
+    }
+
+    /// [`NewtonUpdate::Frozen`]: keeps the factored matrix unless the step size `h` \[s\]
+    /// changed (then swaps in the spare of that size, or keeps the current one as the spare)
+    /// or the drift trigger fires on the predicted velocities `v1`.
+    fn select_frozen_matrix(&mut self, h: f64, v1: &[f64]) {
+        if self.matrix.is_factored() && self.matrix.h != h {
+            if self
+                .spare
+                .as_ref()
+                .is_some_and(|m| m.is_factored() && m.h == h)
+            {
+                if let Some(spare) = self.spare.as_mut() {
+                    std::mem::swap(&mut self.matrix, spare);
+                }
+            } else {
+                let old = std::mem::replace(&mut self.matrix, IterationMatrix::new());
+                self.spare = Some(old);
+            }
+        }
+        if let Some(trig) = self.params.refactor_drift
+            && self.matrix.is_factored()
+            && let Some(&v) = v1.get(trig.dof)
+        {
+            let v_ref = self.matrix.v_ref;
+            if (v - v_ref).abs() > trig.tolerance * v_ref.abs().max(1.0) {
+                self.matrix.invalidate();
+            }
+        }
     }
 
     fn mass<S: SecondOrderSystem + ?Sized>(
@@ -591,12 +806,21 @@ impl<C> AlphaStepper<C> {
         phi0: &[f64],
         bp: f64,
         gp: f64,
+        h: f64,
         f: &mut [f64],
     ) -> Result<(), MbdError> {
         let n = sys.n_v();
         let nc = sys.n_c();
         self.stats.jacobian_evaluations += 1;
         self.stats.factorizations += 1;
+        let explicit = self.params.explicit_inverse;
+        self.matrix.h = h;
+        self.matrix.id = self.stats.factorizations;
+        self.matrix.v_ref = self
+            .params
+            .refactor_drift
+            .and_then(|d| v.get(d.dof).copied())
+            .unwrap_or(0.0);
         match self.params.jacobian {
             JacobianMode::Analytic => {
                 let m = self.mass(sys, t, q)?;
@@ -618,7 +842,7 @@ impl<C> AlphaStepper<C> {
                 if let Some(kc) = &kc {
                     blocks.push((1.0 / bp, kc));
                 }
-                self.kkt.factor(&blocks, d.as_ref(), t)
+                self.matrix.factor(&blocks, d.as_ref(), t, explicit)
             }
             JacobianMode::FiniteDifference => {
                 // column j: perturb the Newton unknown Δx_j by ε:
@@ -650,8 +874,12 @@ impl<C> AlphaStepper<C> {
                 }
                 let sm = SysMatrix::Dense(s);
                 let dm = SysMatrix::Dense(dmat);
-                self.kkt
-                    .factor(&[(1.0, &sm)], if nc > 0 { Some(&dm) } else { None }, t)
+                self.matrix.factor(
+                    &[(1.0, &sm)],
+                    if nc > 0 { Some(&dm) } else { None },
+                    t,
+                    explicit,
+                )
             }
         }
     }

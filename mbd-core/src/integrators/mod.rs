@@ -28,7 +28,8 @@ pub use accel::{
 pub use correction::{AlphaCorrection, NoCorrection, StepCorrection};
 pub use dopri::{DopriStepper, DormandPrince, Event, EventAction, EventRecord};
 pub use gen_alpha::{
-    AlphaConfig, AlphaStepper, GeneralizedAlpha, JacobianMode, NewtonUpdate, alpha_coefficients,
+    AlphaCoefficients, AlphaConfig, AlphaStepper, DriftTrigger, GeneralizedAlpha, JacobianMode,
+    NewtonUpdate, alpha_coefficients,
 };
 pub use recorder::Recorder;
 pub use rk4::{Rk4, Rk4Stepper};

@@ -30,6 +30,8 @@ pub(super) struct StepProblem<'a, S: ?Sized, C> {
     pub sys: &'a S,
     /// End of the step \[s\].
     pub t1: f64,
+    /// Step size \[s\].
+    pub h: f64,
     /// `β'` \[1/s²\].
     pub bp: f64,
     /// `γ'` \[1/s\].
@@ -81,17 +83,22 @@ impl<S: SecondOrderSystem + ?Sized, C> NewtonProblem for StepProblem<'_, S, C> {
         self.stepper
             .residual(sys, t1, self.q1, v1, vdot1, lam1, rr, phi, self.f)?;
         self.reuse = false;
-        if self.it > 1 && self.stepper.kkt.is_factored() {
+        let frozen = self.update == NewtonUpdate::Frozen;
+        if (self.it > 1 || frozen) && self.stepper.matrix.is_factored() {
             fill_rhs(self.trial, rr, phi, bp);
-            self.stepper.kkt.solve(self.trial, t1)?;
+            let st = &mut *self.stepper;
+            st.matrix.solve(self.trial, &mut st.scratch, t1)?;
             let p = &self.stepper.params;
             let dxn = max_abs(&self.trial[..n]);
-            self.reuse = self.update == NewtonUpdate::EveryStep
+            self.reuse = frozen
+                || self.update == NewtonUpdate::EveryStep
                 || dxn <= p.newton_atol + p.newton_rtol * max_abs(dq);
         }
         if !self.reuse {
             self.stepper
-                .newton_matrix(sys, t1, self.q1, v1, vdot1, lam1, rr, phi, bp, gp, self.f)
+                .newton_matrix(
+                    sys, t1, self.q1, v1, vdot1, lam1, rr, phi, bp, gp, self.h, self.f,
+                )
                 .map_err(|e| explain_singular(sys, t1, self.q1, e))?;
         }
         Ok(())
@@ -104,7 +111,8 @@ impl<S: SecondOrderSystem + ?Sized, C> NewtonProblem for StepProblem<'_, S, C> {
         }
         let n = self.sys.n_v();
         fill_rhs(dx, &r[..n], &r[n..], self.bp);
-        self.stepper.kkt.solve(dx, self.t1)
+        let st = &mut *self.stepper;
+        st.matrix.solve(dx, &mut st.scratch, self.t1)
     }
 
     fn update(&mut self, x: &[f64], dx: &[f64], x_new: &mut [f64]) -> Result<(), MbdError> {

@@ -1,0 +1,605 @@
+//! The rolling tire's contact (seed note E15: unilateral gaps with Lagrange multipliers and
+//! friction) as the [`StepCorrection`] of mbd-core's generalized-α stepper.
+//!
+//! After the smooth end-of-step solution (`[θ̈; z̈]` free of contact, [`super::dynamics`]) a
+//! contact node `i` at `xᵢ = sᵢ + (T_c z)ᵢ` is a candidate when its gap on the ground is below
+//! `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the surface
+//! speed). Contact forces `fⱼ` (wheel frame) on the candidates change the end-of-step
+//! accelerations by `Δv̇ = X Σ fⱼ` with the responses `X = S⁻¹ [0; T_cᵀ]` of all contact nodes
+//! to unit forces and the node displacements by `Y = T_c X_z / β'` ([`AlphaCorrection`]: the
+//! Delassus operator `W = J S⁻¹ Jᵀ`). `X` and `Y` are computed with the stepper's factored
+//! iteration matrix ([`AlphaCorrection::solve_columns`]) once per factorisation and cached by
+//! [`AlphaCorrection::factor_id`] (two entries: the rig alternates between two step sizes).
+//! The normal and friction problems are solved together by the semismooth Newton method of
+//! [`ContactSolver`] on the Alart–Curnier equations in the local frames, warm-started from the
+//! forces of the last two steps; the result is applied with [`AlphaCorrection::apply`].
+
+use super::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
+use super::dynamics::TireDynamics;
+use super::ground::{Ground, GroundPoint};
+use super::reduced::ReducedTire;
+use super::rolling::{NormalContact, RollingConfig, StepStats};
+use faer::linalg::matmul::matmul;
+use faer::prelude::*;
+use faer::{Accum, Mat, Par};
+use mbd_core::MbdError;
+use mbd_core::integrators::{AlphaCorrection, StepCorrection};
+
+/// The contact-node responses of one factorisation of the iteration matrix.
+pub(super) struct Responses {
+    /// [`AlphaCorrection::factor_id`] of the factorisation.
+    id: usize,
+    /// `X = S⁻¹ [0; T_cᵀ]`: response of `[θ̈; z̈]` to unit forces on the contact-node DOF
+    /// (n × 3 n_c).
+    x: Mat<f64>,
+    /// `Y = T_c X_z`: contact-node displacement response (3 n_c × 3 n_c, columns of node j at
+    /// 3j..3j+3).
+    y: Mat<f64>,
+}
+
+/// The contact of the rolling tire with the ground: the step correction and the contact state
+/// (forces of the last two steps, candidates), see the module documentation.
+pub struct TireContact {
+    /// The ground.
+    pub ground: Ground,
+    cfg: RollingConfig,
+    /// `[0; T_cᵀ]` (n × 3 n_c), the right-hand sides of the responses.
+    load: Mat<f64>,
+    /// `T_cᵀ` and `T_c,θᵀ` (n_z × 3 n_c): contiguous rows of the contact-node maps.
+    tct: Mat<f64>,
+    tct_theta: Mat<f64>,
+    /// Responses of the current and of the other step size's factorisation.
+    responses: [Option<Responses>; 2],
+    /// Normal multiplier per contact node \[N\] (last step).
+    pub lambda: Vec<f64>,
+    /// Friction force per contact node (wheel frame) \[N\] (last step).
+    pub friction: Vec<[f64; 3]>,
+    /// Net force of the ground on the tire (wheel frame) \[N\] (last step).
+    pub contact_force: [f64; 3],
+    /// Contact nodes pressed onto the cleat in the last step.
+    pub cleat_contacts: usize,
+    /// Work counters (contact part).
+    pub stats: StepStats,
+    work: Work,
+}
+
+/// Per-step work arrays, allocated once.
+struct Work {
+    /// Contact-node displacements `T_c z` (3 n_c).
+    dc: Vec<f64>,
+    /// Acceleration increment `X Σ fⱼ` (n).
+    dvdot: Vec<f64>,
+    cand: Vec<usize>,
+    /// Whether each contact node was a candidate in the previous step.
+    was_cand: Vec<bool>,
+    gp: Vec<GroundPoint>,
+    lambda: Vec<f64>,
+    ft: Vec<[f64; 3]>,
+    forces: Vec<[f64; 3]>,
+    /// Warm starts `(λ, f1, f2)` per candidate (3m; from the last step, the one before and
+    /// their extrapolation).
+    x0: Vec<f64>,
+    x1: Vec<f64>,
+    x2: Vec<f64>,
+    /// Normal and friction forces per contact node two steps back \[N\].
+    lambda2: Vec<f64>,
+    friction2: Vec<[f64; 3]>,
+    diag: Vec<[f64; 2]>,
+    /// Scaled local frames and rigid-spin coefficients of the candidates ([`TireDelassus`]).
+    frames: Vec<[[f64; 3]; 3]>,
+    rig_t1: Vec<f64>,
+    /// The coupled normal + friction solver (buffers reused).
+    solver: ContactSolver,
+}
+
+impl TireContact {
+    /// The contact of `red` with `ground` under the settings `cfg` (friction law, tolerances,
+    /// margins), no contact forces yet.
+    pub fn new(red: &ReducedTire, cfg: RollingConfig, ground: Ground) -> Self {
+        let nz = red.n_z();
+        let nc = red.n_contact();
+        let tct = red.tc.transpose().to_owned();
+        let mut load = Mat::<f64>::zeros(nz + 1, 3 * nc);
+        load.as_mut().subrows_mut(1, nz).copy_from(&tct);
+        Self {
+            ground,
+            cfg,
+            load,
+            tct,
+            tct_theta: red.tc_theta.transpose().to_owned(),
+            responses: [None, None],
+            lambda: vec![0.0; nc],
+            friction: vec![[0.0; 3]; nc],
+            contact_force: [0.0; 3],
+            cleat_contacts: 0,
+            stats: StepStats::default(),
+            work: Work {
+                dc: vec![0.0; 3 * nc],
+                dvdot: vec![0.0; nz + 1],
+                cand: Vec::with_capacity(nc),
+                was_cand: vec![true; nc],
+                gp: Vec::with_capacity(nc),
+                lambda: Vec::with_capacity(nc),
+                ft: Vec::with_capacity(nc),
+                forces: Vec::with_capacity(nc),
+                x0: Vec::with_capacity(3 * nc),
+                x1: Vec::with_capacity(3 * nc),
+                x2: Vec::with_capacity(3 * nc),
+                lambda2: vec![0.0; nc],
+                friction2: vec![[0.0; 3]; nc],
+                diag: Vec::with_capacity(nc),
+                frames: Vec::with_capacity(nc),
+                rig_t1: Vec::with_capacity(nc),
+                solver: ContactSolver::default(),
+            },
+        }
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &RollingConfig {
+        &self.cfg
+    }
+
+    /// Makes the responses of the factorisation `step.factor_id()` the current entry (computed
+    /// once per factorisation; the entry of the other step size is kept).
+    fn ensure_responses(
+        &mut self,
+        red: &ReducedTire,
+        step: &AlphaCorrection<'_>,
+    ) -> Result<(), MbdError> {
+        let id = step.factor_id();
+        if self.responses[0].as_ref().is_some_and(|r| r.id == id) {
+            return Ok(());
+        }
+        self.responses.swap(0, 1);
+        if self.responses[0].as_ref().is_some_and(|r| r.id == id) {
+            return Ok(());
+        }
+        let (n, nc3) = (self.load.nrows(), self.load.ncols());
+        let nz = n - 1;
+        let mut r = self.responses[0].take().unwrap_or_else(|| Responses {
+            id,
+            x: Mat::zeros(n, nc3),
+            y: Mat::zeros(nc3, nc3),
+        });
+        r.id = id;
+        step.solve_columns(self.load.as_ref(), r.x.as_mut())?;
+        matmul(
+            r.y.as_mut(),
+            Accum::Replace,
+            red.tc.as_ref(),
+            r.x.as_ref().subrows(1, nz),
+            1.0,
+            Par::Seq,
+        );
+        self.responses[0] = Some(r);
+        self.stats.columns += red.n_contact();
+        Ok(())
+    }
+}
+
+impl StepCorrection<TireDynamics<'_>> for TireContact {
+    /// Candidates from the free end-of-step gaps, the coupled normal and friction problem on
+    /// the local Delassus matrix, and `Δv̇ = X Σ fⱼ` applied to the step.
+    fn correct(
+        &mut self,
+        sys: &TireDynamics<'_>,
+        step: &mut AlphaCorrection<'_>,
+    ) -> Result<(), MbdError> {
+        let red = sys.reduced();
+        let nc = red.n_contact();
+        let t1 = step.t();
+        let h = step.h();
+        let clk = std::time::Instant::now();
+        self.ensure_responses(red, step)?;
+        let c0 = clk.elapsed().as_secs_f64();
+        let w = &mut self.work;
+        let z_free = &step.q()[1..];
+        matvec(self.tct.as_ref().transpose(), z_free, &mut w.dc);
+        // candidates
+        w.cand.clear();
+        w.gp.clear();
+        for i in 0..nc {
+            let s = red.contact_positions[i];
+            let p = [
+                s[0] + w.dc[3 * i],
+                s[1] + w.dc[3 * i + 1],
+                s[2] + w.dc[3 * i + 2],
+            ];
+            let g = self.ground.query(t1, p);
+            // the cleat's faces approach the nodes at up to the surface speed
+            let margin = if g.on_cleat {
+                self.cfg.contact_margin + h * self.ground.speed.abs()
+            } else {
+                self.cfg.contact_margin
+            };
+            if g.gap < margin {
+                if g.gap < -self.cfg.contact_margin && !w.was_cand[i] {
+                    self.stats.late_contacts += 1;
+                }
+                w.cand.push(i);
+                w.gp.push(g);
+            }
+        }
+        let c1 = clk.elapsed().as_secs_f64();
+        self.solve_contact(red, step)?;
+        let c2 = clk.elapsed().as_secs_f64();
+        self.stats.seconds[1] += c1 - c0;
+        self.stats.seconds[3] += c2 - c1;
+        self.stats.seconds[4] += c0;
+        let w = &mut self.work;
+        let Some(fac) = self.responses[0].as_ref() else {
+            return Err(MbdError::Model {
+                t: t1,
+                message: "no contact responses".into(),
+            });
+        };
+        // contact correction Δv̇ = X Σ fⱼ
+        w.dvdot.iter_mut().for_each(|x| *x = 0.0);
+        for (k, &j) in w.cand.iter().enumerate() {
+            for b in 0..3 {
+                let c = w.forces[k][b];
+                if c == 0.0 {
+                    continue;
+                }
+                axpy(c, col_slice(&fac.x, 3 * j + b), &mut w.dvdot);
+            }
+        }
+        step.apply(&w.dvdot, &[]);
+        self.lambda.iter_mut().for_each(|l| *l = 0.0);
+        self.friction.iter_mut().for_each(|f| *f = [0.0; 3]);
+        self.contact_force = [0.0; 3];
+        for f in &w.forces {
+            for b in 0..3 {
+                self.contact_force[b] += f[b];
+            }
+        }
+        w.was_cand.iter_mut().for_each(|c| *c = false);
+        for &i in &w.cand {
+            w.was_cand[i] = true;
+        }
+        for (k, &i) in w.cand.iter().enumerate() {
+            self.lambda[i] = w.lambda[k];
+            self.friction[i] = w.ft[k];
+        }
+        self.stats.steps += 1;
+        self.stats.candidates += w.cand.len();
+        self.stats.active += w.lambda.iter().filter(|&&l| l > 0.0).count();
+        self.cleat_contacts = (0..w.cand.len())
+            .filter(|&k| w.lambda[k] > 0.0 && w.gp[k].on_cleat)
+            .count();
+        Ok(())
+    }
+}
+
+impl TireContact {
+    /// The contact problem of the candidates in `work`: normal contact and friction coupled,
+    /// solved by the semismooth Newton method of [`ContactSolver`] on the local Delassus
+    /// matrix (gathered lazily from the cached `Y`, `X`), warm-started from the previous
+    /// steps' forces; leaves the contact forces in `work.forces`.
+    fn solve_contact(
+        &mut self,
+        red: &ReducedTire,
+        step: &AlphaCorrection<'_>,
+    ) -> Result<(), MbdError> {
+        let t1 = step.t();
+        // Δq = Δv̇/β', Δv = (γ'/β') Δv̇
+        let (c2, c1) = (
+            1.0 / step.beta_prime(),
+            step.gamma_prime() / step.beta_prime(),
+        );
+        let Some(fac) = self.responses[0].as_ref() else {
+            return Ok(());
+        };
+        let w = &mut self.work;
+        let m = w.cand.len();
+        let law = self
+            .cfg
+            .friction_law
+            .law(self.cfg.friction, self.cfg.slip_regularization);
+        let mu = law.coefficient();
+        w.lambda.clear();
+        w.ft.clear();
+        w.forces.clear();
+        if m == 0 {
+            return Ok(());
+        }
+        // warm starts: the forces of the last step and of the one before (contact nodes at the
+        // patch edges chatter with period two), in the local frames (n, t1, t2)
+        w.x0.clear();
+        w.x1.clear();
+        for (k, &i) in w.cand.iter().enumerate() {
+            let (t1v, t2v) = tangents(&w.gp[k].normal);
+            for (x, lam, f) in [
+                (&mut w.x0, self.lambda[i], self.friction[i]),
+                (&mut w.x1, w.lambda2[i], w.friction2[i]),
+            ] {
+                let f = if mu > 0.0 { f } else { [0.0; 3] };
+                x.extend([lam, dot3(&t1v, &f), dot3(&t2v, &f)]);
+            }
+        }
+        // and the linear extrapolation of the last two
+        w.x2.clear();
+        w.x2.extend(w.x0.iter().zip(&w.x1).map(|(a, b)| 2.0 * a - b));
+        w.lambda2.copy_from_slice(&self.lambda);
+        w.friction2.copy_from_slice(&self.friction);
+        let penalty = match self.cfg.normal {
+            NormalContact::Penalty { stiffness } => 1.0 / stiffness,
+            NormalContact::Lagrange => 0.0,
+        };
+        candidate_frames(red, &w.cand, &w.gp, c1, c2, &mut w.frames, &mut w.rig_t1);
+        let v = step.v();
+        let mut src = TireDelassus {
+            fac,
+            red,
+            cand: &w.cand,
+            gp: &w.gp,
+            frames: &w.frames,
+            rig_t1: &w.rig_t1,
+            penalty,
+            tct: &self.tct,
+            tct_theta: &self.tct_theta,
+            z_free: &step.q()[1..],
+            zd_free: &v[1..],
+            spin_free: v[0],
+        };
+        w.diag.clear();
+        for k in 0..m {
+            w.diag.push(src.diagonal(k));
+        }
+        w.solver.reset(&w.x0);
+        w.solver.set_gaps(w.gp.iter().map(|g| g.gap));
+        let settings = SolveOptions {
+            law,
+            tol: self.cfg.contact_tolerance,
+            ..SolveOptions::default()
+        };
+        // same candidates as in the last step: its Newton matrix may serve for chord steps
+        let same = w.cand.iter().all(|&i| w.was_cand[i])
+            && w.cand.len() == w.was_cand.iter().filter(|&&c| c).count();
+        let alts = [&w.x1[..], &w.x2[..]];
+        let rep = w.solver.solve(
+            &mut src,
+            &w.diag,
+            &settings,
+            same,
+            if same { &alts[..] } else { &[] },
+        );
+        self.stats.contact_newton += rep.newton_iterations;
+        self.stats.contact_chord += rep.chord_iterations;
+        self.stats.lcp_solves += rep.lcp_solves;
+        self.stats.friction_sweeps += rep.sweeps;
+        if rep.fallback {
+            self.stats.contact_fallbacks += 1;
+        }
+        if !rep.converged {
+            self.stats.contact_unconverged += 1;
+        }
+        let x = w.solver.x();
+        if !x.iter().all(|v| v.is_finite()) {
+            return Err(MbdError::NonFinite {
+                what: "tire contact forces".into(),
+                t: t1,
+            });
+        }
+        for k in 0..m {
+            let n = w.gp[k].normal;
+            let (t1v, t2v) = tangents(&n);
+            let (l, f1, f2) = (x[3 * k], x[3 * k + 1], x[3 * k + 2]);
+            let ft = [
+                f1 * t1v[0] + f2 * t2v[0],
+                f1 * t1v[1] + f2 * t2v[1],
+                f1 * t1v[2] + f2 * t2v[2],
+            ];
+            w.lambda.push(l);
+            w.ft.push(ft);
+            w.forces
+                .push([n[0] * l + ft[0], n[1] * l + ft[1], n[2] * l + ft[2]]);
+        }
+        Ok(())
+    }
+}
+
+pub(super) fn matvec(a: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
+    let xv = MatRef::from_column_major_slice(x, x.len(), 1);
+    let ov = MatMut::from_column_major_slice_mut(out, a.nrows(), 1);
+    matmul(ov, Accum::Replace, a, xv, 1.0, Par::Seq);
+}
+
+/// Dot product with four partial sums (vectorisable).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// `y += c x` (vectorisable).
+fn axpy(c: f64, x: &[f64], y: &mut [f64]) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi += c * xi;
+    }
+}
+
+/// The contiguous storage of a column of a (column-major) `Mat`.
+fn col_slice(m: &Mat<f64>, j: usize) -> &[f64] {
+    m.col(j)
+        .try_as_col_major()
+        .map_or(&[][..], |c| c.as_slice())
+}
+
+fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Tangent basis `t1 = [n_z, 0, −n_x]`, `t2 = ŷ` of a ground normal in the wheel's `(x, z)`
+/// plane (the ground is extruded along the axis `y`, so `n_y = 0`).
+fn tangents(n: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
+    ([n[2], 0.0, -n[0]], [0.0, 1.0, 0.0])
+}
+
+/// The local Delassus matrix of the candidates, gathered lazily from the cached columns:
+/// rows `(g_k, u1_k, u2_k)`, columns `(λ_l, f1_l, f2_l)`,
+///
+/// ```text
+///   D_N,kl = β_N h² n_kᵀ Y_kl R_l (+ 1/k_penalty on the diagonal),
+///   D_T,kl = γ_N h t_kᵀ (Y_kl + (η × s_k) X_θ,l) R_l,     R_l = [n_l t1_l t2_l],
+/// ```
+///
+/// where `Y_kl` moves contact node k under a unit force on node l (end-of-step displacement per
+/// unit `Δz̈`) and `(η × s_k) X_θ,l` is the rigid spin part of the material velocity (E15).
+struct TireDelassus<'b> {
+    fac: &'b Responses,
+    red: &'b ReducedTire,
+    cand: &'b [usize],
+    gp: &'b [GroundPoint],
+    /// Local frames `[n, t1, t2]` of the candidates, scaled by `β_N h²` (row n) and `γ_N h`
+    /// (rows t1, t2).
+    frames: &'b [[[f64; 3]; 3]],
+    /// `γ_N h t1ᵀ(η × s)` per candidate (`t2ᵀ(η × s) = 0`).
+    rig_t1: &'b [f64],
+    penalty: f64,
+    tct: &'b Mat<f64>,
+    tct_theta: &'b Mat<f64>,
+    z_free: &'b [f64],
+    zd_free: &'b [f64],
+    spin_free: f64,
+}
+
+/// The scaled frames and rigid-spin coefficients of the candidates for [`TireDelassus`].
+fn candidate_frames(
+    red: &ReducedTire,
+    cand: &[usize],
+    gp: &[GroundPoint],
+    c1: f64,
+    c2: f64,
+    frames: &mut Vec<[[f64; 3]; 3]>,
+    rig_t1: &mut Vec<f64>,
+) {
+    frames.clear();
+    rig_t1.clear();
+    for (k, &i) in cand.iter().enumerate() {
+        let n = gp[k].normal;
+        let (t1, t2) = tangents(&n);
+        frames.push([
+            [c2 * n[0], c2 * n[1], c2 * n[2]],
+            [c1 * t1[0], c1 * t1[1], c1 * t1[2]],
+            [c1 * t2[0], c1 * t2[1], c1 * t2[2]],
+        ]);
+        let s = red.contact_positions[i];
+        rig_t1.push(c1 * (t1[0] * s[2] - t1[2] * s[0]));
+    }
+}
+
+impl TireDelassus<'_> {
+    /// Unit force directions `[n, t1, t2]` of candidate `l`.
+    fn directions(&self, l: usize) -> [[f64; 3]; 3] {
+        let n = self.gp[l].normal;
+        let (t1, t2) = tangents(&n);
+        [n, t1, t2]
+    }
+
+    /// Local outputs of node `k` for a unit force `e` (wheel frame) on node `l`.
+    fn response(&self, k: usize, l: usize, e: &[f64; 3]) -> [f64; 3] {
+        let (i, j) = (self.cand[k], self.cand[l]);
+        let mut v = [0.0; 3];
+        let mut xth = 0.0;
+        for (r, er) in e.iter().enumerate() {
+            let col = col_slice(&self.fac.y, 3 * j + r);
+            v[0] += er * col[3 * i];
+            v[1] += er * col[3 * i + 1];
+            v[2] += er * col[3 * i + 2];
+            xth += er * self.fac.x[(0, 3 * j + r)];
+        }
+        let f = &self.frames[k];
+        [
+            dot3(&f[0], &v),
+            dot3(&f[1], &v) + self.rig_t1[k] * xth,
+            dot3(&f[2], &v),
+        ]
+    }
+
+    /// The diagonal compliances `[D_N,kk, (D_T,kk,11 + D_T,kk,22)/2]` of node `k`.
+    fn diagonal(&self, k: usize) -> [f64; 2] {
+        let e = self.directions(k);
+        let dn = self.response(k, k, &e[0])[0] + self.penalty;
+        let d1 = self.response(k, k, &e[1])[1];
+        let d2 = self.response(k, k, &e[2])[2];
+        [dn, 0.5 * (d1 + d2)]
+    }
+}
+
+impl DelassusSource for TireDelassus<'_> {
+    fn columns(&mut self, l: usize, cols: &mut [f64]) {
+        let ld = 3 * self.cand.len();
+        let e = self.directions(l);
+        let j = self.cand[l];
+        // the three Y columns of node l combined along the unit force directions:
+        // Y e_c = Σ_r e_c[r] Y[:, 3j + r], and X_θ e_c
+        let (y0, y1, y2) = (
+            col_slice(&self.fac.y, 3 * j),
+            col_slice(&self.fac.y, 3 * j + 1),
+            col_slice(&self.fac.y, 3 * j + 2),
+        );
+        let mut xth = [0.0; 3];
+        for (c, ec) in e.iter().enumerate() {
+            for (r, er) in ec.iter().enumerate() {
+                xth[c] += er * self.fac.x[(0, 3 * j + r)];
+            }
+        }
+        // planar ground (n_y = 0): n and t1 lie in the (x, z) plane, t2 = ŷ, so each frame
+        // vector has two (n, t1) or one (t2) nonzero component
+        let (nx, nz) = (e[0][0], e[0][2]);
+        for (k, &i) in self.cand.iter().enumerate() {
+            let a = &y0[3 * i..3 * i + 3];
+            let b = &y1[3 * i..3 * i + 3];
+            let c3 = &y2[3 * i..3 * i + 3];
+            let f = &self.frames[k];
+            let (fnx, fnz, ftx, ftz, fy) = (f[0][0], f[0][2], f[1][0], f[1][2], f[2][1]);
+            let rig = self.rig_t1[k];
+            // unit force along n, t1 (combinations of Y columns 0 and 2) and ŷ (column 1)
+            let vs = [
+                [
+                    nx * a[0] + nz * c3[0],
+                    nx * a[1] + nz * c3[1],
+                    nx * a[2] + nz * c3[2],
+                ],
+                [
+                    nz * a[0] - nx * c3[0],
+                    nz * a[1] - nx * c3[1],
+                    nz * a[2] - nx * c3[2],
+                ],
+                [b[0], b[1], b[2]],
+            ];
+            for (c, v) in vs.iter().enumerate() {
+                let o = &mut cols[c * ld + 3 * k..c * ld + 3 * k + 3];
+                o[0] = fnx * v[0] + fnz * v[2];
+                o[1] = ftx * v[0] + ftz * v[2] + rig * xth[c];
+                o[2] = fy * v[1];
+            }
+        }
+        cols[3 * l] += self.penalty;
+    }
+
+    fn free_slip(&mut self, k: usize) -> [f64; 2] {
+        let i = self.cand[k];
+        let s = self.red.contact_positions[i];
+        let sf = self.spin_free;
+        let rig = [sf * s[2], 0.0, -sf * s[0]];
+        let mut v = [0.0; 3];
+        for (a, va) in v.iter_mut().enumerate() {
+            let c = 3 * i + a;
+            let vc = dot(col_slice(self.tct, c), self.zd_free);
+            let vt = dot(col_slice(self.tct_theta, c), self.z_free);
+            *va = rig[a] + vc + sf * vt - self.gp[k].velocity[a];
+        }
+        let (t1, t2) = tangents(&self.gp[k].normal);
+        [dot3(&t1, &v), dot3(&t2, &v)]
+    }
+}
