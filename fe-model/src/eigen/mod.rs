@@ -12,7 +12,7 @@ pub mod factor;
 pub mod sparse;
 pub mod sturm;
 
-pub use dense::{dense_modes, dense_modes_shifted};
+pub use dense::{DenseEigenReport, dense_modes, dense_modes_report, dense_modes_shifted};
 pub use sparse::{SparseEigenOptions, SparseEigenReport, sparse_modes};
 pub use sturm::sturm_count;
 
