@@ -1,6 +1,6 @@
 //! `flowmbd-reduce modes`: the lowest modes of `K φ = λ M φ` for Matrix Market `M` and `K`,
 //! optional fixed DOFs (eliminated), dense or sparse shift-invert solver chosen by size
-//! (fe-model `sparse_modes`, with the Sturm check). Writes `summary.json`
+//! (fe-model `sparse_modes`: shift-invert block Lanczos with the Sturm check). Writes `summary.json`
 //! (`{"dof": n, "frequencies_hz": [...]}`), `frequencies.csv`, `report.json` (solver
 //! diagnostics) and, with `--mesh mesh.json`, `modes.vtu` with the mode shapes.
 

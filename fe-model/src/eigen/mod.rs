@@ -7,6 +7,7 @@
 use faer::{Mat, MatMut};
 use serde::Serialize;
 
+mod block_lanczos;
 pub mod dense;
 pub mod factor;
 pub mod sparse;

@@ -2,33 +2,30 @@
 //!
 //! With `A = K − σM = Pᵀ L Lᵀ P` (σ below the wanted spectrum, negative for free–free models
 //! with rigid modes), the symmetric operator `T = L⁻¹ (P M Pᵀ) L⁻ᵀ` has eigenvalues
-//! `θ = 1/(λ − σ)`: the lowest λ become the largest θ, which faer's thick-restart
-//! Krylov–Schur Lanczos (`faer::matrix_free::eigen::partial_self_adjoint_eigen`) finds
-//! (Ericsson & Ruhe 1980, the ARPACK/eigsh shift-invert mode 3 with a Cholesky-symmetrised
-//! operator). `φ = Pᵀ L⁻ᵀ y / √θ` is M-normalised.
+//! `θ = 1/(λ − σ)`: the lowest λ become the largest θ (Ericsson & Ruhe 1980, the ARPACK/eigsh
+//! shift-invert mode 3 with a Cholesky-symmetrised operator), found here by a thick-restart
+//! **block** Lanczos ([`super::block_lanczos`]): the operator runs on blocks of
+//! [`SparseEigenOptions::block_size`] vectors, where faer's supernodal triangular solves cost
+//! a fraction per vector of single-vector solves (the single-vector Krylov–Schur of
+//! `faer::matrix_free` spent 80 % of the 60 480-DOF tire's time in one-vector solves).
+//! `φ = Pᵀ L⁻ᵀ y / √θ` is M-normalised (Ritz vectors of `T` are T-orthogonal, so the φ are
+//! M-orthonormal to round-off).
 //!
-//! Safeguards (shared/notes/rust-ecosystem.md §1.3): subspace `max_dim = max(4·nev, nev+150)` (the note's
-//! minimum max(3·nev, nev+100) produced a ghost duplicate on the 60 480-DOF tire);
-//! `extra` modes beyond the requested count so that a multiplet at the cut is not split; a
-//! non-symmetric deterministic start vector; M-orthogonality check (catches ghost duplicates);
-//! a Sturm count by LDLᵀ of `K − cM` proving no mode below the cut was missed; retries with a
-//! larger subspace; and a wall-clock timeout around the Lanczos iteration (faer-rs#262).
+//! Safeguards (shared/notes/rust-ecosystem.md §1.3): `extra` modes beyond the requested count
+//! so that a multiplet at the cut is not split; a deterministic pseudo-random start block;
+//! M-orthogonality check (catches ghost duplicates); a Sturm count by LDLᵀ of `K − cM` proving
+//! no mode below the cut was missed; retries with a larger basis; a wall-clock limit.
 
 use super::dense::dense_modes;
-use super::factor::{Analysis, Llt, shifted};
+use super::factor::{Analysis, shifted};
 use super::{Modes, frequency_hz};
 use crate::FeError;
 use crate::sparse::triplets;
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::matrix_free::LinOp;
-use faer::matrix_free::eigen::{
-    PartialEigenParams, partial_self_adjoint_eigen, partial_self_adjoint_eigen_scratch,
-};
-use faer::sparse::linalg::matmul::sparse_dense_matmul;
+use super::block_lanczos::{BlockKsOptions, block_krylov_schur};
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use faer::{Accum, Col, Mat, MatMut, MatRef, Par};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
 use serde::Serialize;
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Options of [`sparse_modes`].
@@ -39,10 +36,14 @@ pub struct SparseEigenOptions {
     pub shift: Option<f64>,
     /// Extra modes computed beyond the requested count (multiplets at the cut).
     pub extra: usize,
-    /// Krylov subspace size; `None` = `max(4·nev, nev + 150)`.
+    /// Krylov basis size before a thick restart; `None` = `max(2·nev, nev + 4·block)`
+    /// (rounded up to a multiple of the block size).
     pub max_dim: Option<usize>,
-    /// Convergence tolerance on the Ritz residual of the scaled operator (largest θ ≈ 1).
+    /// Convergence tolerance: Ritz residual `‖T y − θ y‖ ≤ tolerance · θ_max` of the
+    /// shift-invert operator T.
     pub tolerance: f64,
+    /// Block width of the block Lanczos (right-hand sides per triangular solve).
+    pub block_size: usize,
     /// Maximum Krylov–Schur restarts per attempt.
     pub max_restarts: usize,
     /// Largest allowed |φᵢᵀ M φⱼ − δᵢⱼ|.
@@ -64,6 +65,7 @@ impl Default for SparseEigenOptions {
             extra: 4,
             max_dim: None,
             tolerance: 1e-12,
+            block_size: 24,
             max_restarts: 500,
             orthogonality_tol: 1e-6,
             sturm_check: true,
@@ -81,8 +83,14 @@ pub struct SparseEigenReport {
     pub dof: usize,
     /// Shift σ used \[rad²/s²\].
     pub shift: f64,
-    /// Krylov subspace size of the accepted attempt.
+    /// Krylov basis size of the accepted attempt.
     pub max_dim: usize,
+    /// Block width of the block Lanczos.
+    pub block_size: usize,
+    /// Thick restarts of the accepted attempt.
+    pub restarts: usize,
+    /// Operator applications (vectors through `L⁻ᵀ`, M, `L⁻¹`), all attempts.
+    pub operator_applications: usize,
     /// Attempts made.
     pub attempts: usize,
     /// Converged Ritz pairs of the accepted attempt.
@@ -105,71 +113,28 @@ pub struct SparseEigenReport {
     pub rejected_attempts: Vec<String>,
     /// Wall-clock seconds: symbolic + numeric Cholesky of `K − σM`.
     pub seconds_factor: f64,
-    /// Wall-clock seconds in Krylov–Schur (all attempts).
+    /// Wall-clock seconds in the block Lanczos (all attempts).
     pub seconds_lanczos: f64,
     /// Wall-clock seconds of the Sturm-count LDLᵀ factorizations.
     pub seconds_sturm: f64,
 }
 
-/// Shift-invert operator `T/θ_scale` (see the module documentation).
-#[derive(Debug)]
-struct ShiftInvert {
-    llt: Llt,
-    m_perm: SparseColMat<usize, f64>,
-    scale: f64,
-}
-
-impl LinOp<f64> for ShiftInvert {
-    fn apply_scratch(&self, rhs_ncols: usize, par: Par) -> StackReq {
-        self.llt.scratch(rhs_ncols, par)
-    }
-    fn nrows(&self) -> usize {
-        self.m_perm.nrows()
-    }
-    fn ncols(&self) -> usize {
-        self.m_perm.ncols()
-    }
-    fn apply(
-        &self,
-        mut out: MatMut<'_, f64>,
-        rhs: MatRef<'_, f64>,
-        par: Par,
-        stack: &mut MemStack,
-    ) {
-        let mut tmp = rhs.to_owned();
-        self.llt.lt_solve(tmp.as_mut(), par, stack);
-        sparse_dense_matmul(
-            out.as_mut(),
-            Accum::Replace,
-            self.m_perm.as_ref(),
-            tmp.as_ref(),
-            self.scale,
-            par,
-        );
-        self.llt.l_solve(out, par, stack);
-    }
-    fn conj_apply(
-        &self,
-        out: MatMut<'_, f64>,
-        rhs: MatRef<'_, f64>,
-        par: Par,
-        stack: &mut MemStack,
-    ) {
-        self.apply(out, rhs, par, stack)
-    }
-}
-
-/// Deterministic, non-symmetric start vector (a fixed linear congruential sequence).
-fn start_vector(n: usize, seed: u64) -> Col<f64> {
+/// Deterministic pseudo-random start block (a fixed linear congruential sequence; no
+/// symmetry, so that modes of every symmetry class are reached).
+fn start_block(n: usize, b: usize, seed: u64) -> Mat<f64> {
     let mut s = seed
         .wrapping_mul(6364136223846793005)
         .wrapping_add(1442695040888963407);
-    Col::from_fn(n, |_| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 11) as f64 / (1u64 << 53) as f64) - 0.5
-    })
+    let mut x = Mat::zeros(n, b);
+    for j in 0..b {
+        for i in 0..n {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            x[(i, j)] = ((s >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
+        }
+    }
+    x
 }
 
 /// The `count` lowest eigenpairs of `K φ = λ M φ` for sparse symmetric K (semi-definite allowed
@@ -206,14 +171,21 @@ pub fn sparse_modes(
     }
     let count = count.min(n);
     let nev = (count + opts.extra).min(n);
-    let base_dim = opts.max_dim.unwrap_or((4 * nev).max(nev + 150));
+    let block = opts.block_size.max(1);
+    let base_dim = opts
+        .max_dim
+        .unwrap_or((2 * nev).max(nev + 4 * block))
+        .max(nev + 2 * block);
 
-    if n <= opts.dense_below || n <= base_dim + 2 {
+    if n <= opts.dense_below || n <= base_dim + 4 * block {
         let modes = dense_modes(k.to_dense().as_ref(), m.to_dense().as_ref(), count)?;
         let report = SparseEigenReport {
             dof: n,
             shift: 0.0,
             max_dim: n,
+            block_size: 0,
+            restarts: 0,
+            operator_applications: 0,
             attempts: 1,
             converged: n,
             factor_nnz: 0,
@@ -266,44 +238,43 @@ pub fn sparse_modes(
     }
     let m_perm = SparseColMat::try_new_from_triplets(n, n, &t)
         .map_err(|e| FeError::Sparse(format!("P M Pᵀ: {e:?}")))?;
-    let par = Par::rayon(0);
-
-    // scale so that the largest θ ≈ 1 (a few power iterations)
-    let mut op = ShiftInvert {
-        llt,
-        m_perm,
-        scale: 1.0,
-    };
-    {
-        let mut mem = MemBuffer::new(op.apply_scratch(1, par));
-        let stack = MemStack::new(&mut mem);
-        let mut x = start_vector(n, 7).as_mat().to_owned();
-        let mut y = Mat::zeros(n, 1);
-        let mut est = 1.0;
-        for _ in 0..6 {
-            let nx = x.norm_l2();
-            op.apply(y.as_mut(), x.as_ref(), par, stack);
-            est = y.norm_l2() / nx;
-            std::mem::swap(&mut x, &mut y);
-        }
-        if !(est.is_finite() && est > 0.0) {
-            return Err(FeError::Eigen(
-                "shift-invert operator is zero or not finite".into(),
-            ));
-        }
-        op.scale = 1.0 / est;
-    }
-    let mut op = Arc::new(op);
-
-    let mut dim = base_dim.min(n - 2);
+    let par = Par::Seq;
+    let mut dim = base_dim;
     let mut rejected = Vec::new();
     let (mut seconds_lanczos, mut seconds_sturm) = (0.0, 0.0);
+    let mut applications = 0usize;
     let mut last_err = FeError::Eigen("no attempt made".into());
+    let deadline = Instant::now() + opts.timeout;
     for attempt in 1..=opts.attempts.max(1) {
         let t_l = Instant::now();
-        let (vals, vecs, op_back) = run_lanczos(op, nev, dim, opts, par)?;
+        // shift-invert operator T x = L⁻¹ P M Pᵀ L⁻ᵀ x on a block, scratch allocated once
+        let mut mem = MemBuffer::new(llt.scratch(block, par));
+        let mut tmp = Mat::<f64>::zeros(n, block);
+        let mut work = BlockProductWork::default();
+        let mut apply = |mut out: MatMut<'_, f64>, x: MatRef<'_, f64>| {
+            let stack = MemStack::new(&mut mem);
+            tmp.copy_from(x);
+            llt.lt_solve(tmp.as_mut(), par, stack);
+            csc_times_block(m_perm.as_ref(), tmp.as_ref(), out.as_mut(), &mut work);
+            llt.l_solve(out, par, stack);
+        };
+        let ks = block_krylov_schur(
+            n,
+            &mut apply,
+            start_block(n, block, 12345 + attempt as u64).as_ref(),
+            &BlockKsOptions {
+                nev,
+                block,
+                max_dim: dim,
+                tol: opts.tolerance,
+                max_restarts: opts.max_restarts,
+                deadline,
+                par,
+            },
+        )?;
         seconds_lanczos += t_l.elapsed().as_secs_f64();
-        op = op_back;
+        applications += ks.applies;
+        let (vals, vecs, restarts) = (ks.values, ks.vectors, ks.restarts);
         let conv = vals.len();
         let result = (|| -> Result<(Modes, SparseEigenReport), FeError> {
             if conv < count {
@@ -313,12 +284,12 @@ pub fn sparse_modes(
             }
             // back-transform: θ = scale_inv · θ', λ = σ + 1/θ, φ = Pᵀ L⁻ᵀ y / √θ
             let mut y = vecs;
-            let mut mem = MemBuffer::new(op.llt.scratch(conv, par));
-            op.llt.lt_solve(y.as_mut(), par, MemStack::new(&mut mem));
+            let mut mem = MemBuffer::new(llt.scratch(conv, par));
+            llt.lt_solve(y.as_mut(), par, MemStack::new(&mut mem));
             let mut lambdas = Vec::with_capacity(conv);
             let mut phi = Mat::zeros(n, conv);
             for j in 0..conv {
-                let theta = vals[j] / op.scale;
+                let theta = vals[j];
                 if theta.is_nan() || theta <= 0.0 {
                     return Err(FeError::Eigen(format!(
                         "non-positive Ritz value {theta:e}: shift σ = {sigma:e} is not below the spectrum"
@@ -372,6 +343,9 @@ pub fn sparse_modes(
                 dof: n,
                 shift: sigma,
                 max_dim: dim,
+                block_size: block,
+                restarts,
+                operator_applications: applications,
                 attempts: attempt,
                 converged: conv,
                 factor_nnz: analysis.factor_nnz(),
@@ -393,71 +367,75 @@ pub fn sparse_modes(
             Err(e) => {
                 rejected.push(format!("attempt {attempt} (subspace {dim}): {e}"));
                 last_err = e;
-                dim = ((dim * 3) / 2).min(n - 2);
+                dim = ((dim * 3) / 2).min(n.saturating_sub(2 * block));
             }
         }
     }
     Err(last_err)
 }
 
-type LanczosOut = (Vec<f64>, Mat<f64>, Arc<ShiftInvert>);
+/// Row-major scratch of [`csc_times_block`].
+#[derive(Debug, Default)]
+struct BlockProductWork {
+    xt: Vec<f64>,
+    ot: Vec<f64>,
+}
 
-/// One Krylov–Schur run on a worker thread with a wall-clock limit.
-fn run_lanczos(
-    op: Arc<ShiftInvert>,
-    nev: usize,
-    dim: usize,
-    opts: &SparseEigenOptions,
-    par: Par,
-) -> Result<LanczosOut, FeError> {
-    let n = op.nrows();
-    let tol = opts.tolerance;
-    let max_restarts = opts.max_restarts;
-    let (tx, rx) = std::sync::mpsc::channel();
-    let op2 = op.clone();
-    std::thread::Builder::new()
-        .name("fe-model-lanczos".into())
-        .spawn(move || {
-            let params = PartialEigenParams {
-                max_dim: dim,
-                max_restarts,
-                ..Default::default()
-            };
-            let mut vecs = Mat::zeros(n, nev);
-            let mut vals = vec![0.0; nev];
-            let v0 = start_vector(n, 12345);
-            let mut mem =
-                MemBuffer::new(partial_self_adjoint_eigen_scratch(&*op2, nev, par, params));
-            let info = partial_self_adjoint_eigen(
-                vecs.as_mut(),
-                &mut vals,
-                &*op2,
-                v0.as_ref(),
-                tol,
-                par,
-                MemStack::new(&mut mem),
-                params,
-            );
-            let conv = info.n_converged_eigen.min(nev);
-            vals.truncate(conv);
-            let vecs = vecs.subcols(0, conv).to_owned();
-            let _ = tx.send((vals, vecs));
-        })
-        .map_err(|e| FeError::Eigen(format!("cannot start the Lanczos thread: {e}")))?;
-    match rx.recv_timeout(opts.timeout) {
-        Ok((vals, vecs)) => Ok((vals, vecs, op)),
-        Err(_) => Err(FeError::Eigen(format!(
-            "Krylov–Schur did not finish within {:?} (nev {nev}, subspace {dim}); see faer-rs#262",
-            opts.timeout
-        ))),
+/// `out = A X` for a sparse `A` (CSC) and a dense block `X` (`n × b`), streaming A once: the
+/// block is transposed into row-major scratch so that every stored entry `a_rc` updates the
+/// `b` contiguous values of row r (faer's `sparse_dense_matmul` streams A once per column of
+/// X, which made the mass product the costliest part of the block operator).
+fn csc_times_block(
+    a: SparseColMatRef<'_, usize, f64>,
+    x: MatRef<'_, f64>,
+    mut out: MatMut<'_, f64>,
+    work: &mut BlockProductWork,
+) {
+    let (n, b) = (x.nrows(), x.ncols());
+    work.xt.clear();
+    work.xt.resize(n * b, 0.0);
+    work.ot.clear();
+    work.ot.resize(a.nrows() * b, 0.0);
+    for k in 0..b {
+        for r in 0..n {
+            work.xt[r * b + k] = x[(r, k)];
+        }
+    }
+    let (cp, ri, vals) = (
+        a.symbolic().col_ptr(),
+        a.symbolic().row_idx(),
+        a.val(),
+    );
+    for c in 0..a.ncols() {
+        let xc = &work.xt[c * b..(c + 1) * b];
+        for p in cp[c]..cp[c + 1] {
+            let (r, v) = (ri[p], vals[p]);
+            let oc = &mut work.ot[r * b..(r + 1) * b];
+            for (o, &xv) in oc.iter_mut().zip(xc) {
+                *o += v * xv;
+            }
+        }
+    }
+    for k in 0..b {
+        for r in 0..a.nrows() {
+            out[(r, k)] = work.ot[r * b + k];
+        }
     }
 }
 
 /// `max |φᵢᵀ M φⱼ − δᵢⱼ|`.
 pub fn orthogonality_error(m: SparseColMatRef<'_, usize, f64>, phi: MatRef<'_, f64>) -> f64 {
     let mut mp = Mat::zeros(phi.nrows(), phi.ncols());
-    sparse_dense_matmul(mp.as_mut(), Accum::Replace, m, phi, 1.0, Par::rayon(0));
-    let g = phi.transpose() * &mp;
+    csc_times_block(m, phi, mp.as_mut(), &mut BlockProductWork::default());
+    let mut g = Mat::zeros(phi.ncols(), phi.ncols());
+    faer::linalg::matmul::matmul(
+        g.as_mut(),
+        Accum::Replace,
+        phi.transpose(),
+        mp.as_ref(),
+        1.0,
+        Par::Seq,
+    );
     let mut e: f64 = 0.0;
     for i in 0..g.nrows() {
         for j in 0..g.ncols() {
@@ -477,8 +455,9 @@ pub fn max_residual(
     let phi = modes.vectors.as_ref();
     let mut kp = Mat::zeros(phi.nrows(), phi.ncols());
     let mut mp = Mat::zeros(phi.nrows(), phi.ncols());
-    sparse_dense_matmul(kp.as_mut(), Accum::Replace, k, phi, 1.0, Par::rayon(0));
-    sparse_dense_matmul(mp.as_mut(), Accum::Replace, m, phi, 1.0, Par::rayon(0));
+    let mut work = BlockProductWork::default();
+    csc_times_block(k, phi, kp.as_mut(), &mut work);
+    csc_times_block(m, phi, mp.as_mut(), &mut work);
     let mut worst: f64 = 0.0;
     for j in 0..phi.ncols() {
         let l = modes.values[j];
