@@ -141,31 +141,46 @@ impl MtxMatrix {
         for j in 0..n {
             col_ptr[j + 1] += col_ptr[j];
         }
+        // counting sort straight into the row and value arrays (file order within a column)
+        let nnz = col_ptr[n];
         let mut next = col_ptr.clone();
-        let mut pairs = vec![(0usize, 0.0f64); col_ptr[n]];
+        let mut rows = vec![0usize; nnz];
+        let mut vals = vec![0.0f64; nnz];
         for &(r, c, v) in &self.entries {
-            pairs[next[c]] = (r, v);
+            rows[next[c]] = r;
+            vals[next[c]] = v;
             next[c] += 1;
         }
-        let mut rows = Vec::with_capacity(pairs.len());
-        let mut vals = Vec::with_capacity(pairs.len());
+        drop(next);
+        // rows ascending within each column (stable: duplicates keep file order), then
+        // duplicates summed in place
+        let mut scratch: Vec<(usize, f64)> = Vec::new();
         let mut ptr = vec![0usize; n + 1];
+        let mut w = 0usize;
         for j in 0..n {
-            let col = &mut pairs[col_ptr[j]..col_ptr[j + 1]];
-            if !col.is_sorted_by_key(|p| p.0) {
-                col.sort_by_key(|p| p.0); // stable: duplicates summed in file order
-            }
-            for &(r, v) in col.iter() {
-                match (rows.last(), vals.last_mut()) {
-                    (Some(&last), Some(sum)) if rows.len() > ptr[j] && last == r => *sum += v,
-                    _ => {
-                        rows.push(r);
-                        vals.push(v);
-                    }
+            let (a, b) = (col_ptr[j], col_ptr[j + 1]);
+            if !rows[a..b].is_sorted() {
+                scratch.clear();
+                scratch.extend(rows[a..b].iter().copied().zip(vals[a..b].iter().copied()));
+                scratch.sort_by_key(|p| p.0);
+                for (k, &(r, v)) in scratch.iter().enumerate() {
+                    rows[a + k] = r;
+                    vals[a + k] = v;
                 }
             }
-            ptr[j + 1] = rows.len();
+            for q in a..b {
+                if w > ptr[j] && rows[w - 1] == rows[q] {
+                    vals[w - 1] += vals[q];
+                } else {
+                    rows[w] = rows[q];
+                    vals[w] = vals[q];
+                    w += 1;
+                }
+            }
+            ptr[j + 1] = w;
         }
+        rows.truncate(w);
+        vals.truncate(w);
         let symbolic = SymbolicSparseColMat::new_checked(m, n, ptr, None, rows);
         Ok(SparseColMat::new(symbolic, vals))
     }
@@ -201,6 +216,7 @@ pub fn parse_with(data: &[u8], file: &str, opts: &ReadOptions) -> Result<MtxMatr
                 h.ncols,
                 h.nnz,
                 file,
+                h.symmetry == Symmetry::Symmetric,
             )?;
             match h.symmetry {
                 Symmetry::General => entries,

@@ -81,12 +81,11 @@ fn integer(tok: &[u8]) -> Option<i64> {
     Some(if neg { -v } else { v })
 }
 
-/// A finite value.
+/// A finite value (`fast-float2`, the Eisel–Lemire parser on the bytes: no UTF-8 pass; the
+/// whole token must be the number).
 fn value(tok: &[u8]) -> Result<f64, E> {
-    let v: f64 = std::str::from_utf8(tok)
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .ok_or_else(|| E::Syntax(format!("`{}` is not a number", show(tok))))?;
+    let v: f64 = fast_float2::parse(tok)
+        .map_err(|_| E::Syntax(format!("`{}` is not a number", show(tok))))?;
     if v.is_finite() {
         Ok(v)
     } else {
@@ -198,7 +197,10 @@ fn chunks(data: &[u8]) -> Vec<(usize, usize)> {
 
 /// Parse the triplets of a coordinate file (`data` starts at line `first_line`, after the
 /// size line `size_line`) and compare their number with the declared `nnz`. Returns the
-/// entries in file order and whether any lies above the diagonal.
+/// entries in file order and whether any lies above the diagonal. With `mirror_room` the
+/// result has capacity for twice the entries (a symmetric file's mirrors are appended in
+/// place without reallocating).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn coordinate(
     data: &[u8],
     first_line: usize,
@@ -207,6 +209,7 @@ pub(super) fn coordinate(
     ncols: usize,
     nnz: usize,
     file: &str,
+    mirror_room: bool,
 ) -> Result<(Entries, bool), FeError> {
     let bounds = chunks(data);
     let parsed: Vec<Chunk> = bounds
@@ -260,7 +263,8 @@ pub(super) fn coordinate(
             .map(|c| c.entries)
             .unwrap_or_default()
     } else {
-        let mut all = Vec::with_capacity(total);
+        // `total` entries were parsed (not a count from the header)
+        let mut all = Vec::with_capacity(if mirror_room { 2 * total } else { total });
         for c in parsed {
             all.extend(c.entries);
         }
