@@ -24,8 +24,12 @@ fn arg(name: &str) -> Option<String> {
 
 /// The peer's printed `key = value` line.
 fn field(out: &str, key: &str) -> Option<String> {
-    out.lines()
-        .find_map(|l| l.strip_prefix(key)?.trim().strip_prefix('=').map(|v| v.trim().to_string()))
+    out.lines().find_map(|l| {
+        l.strip_prefix(key)?
+            .trim()
+            .strip_prefix('=')
+            .map(|v| v.trim().to_string())
+    })
 }
 
 fn main() {
@@ -36,7 +40,11 @@ fn main() {
     let divisions: Vec<usize> = arg("--divisions")
         .unwrap_or_else(|| "96,192,288".into())
         .split(',')
-        .map(|d| d.trim().parse().expect("--divisions: comma-separated integers"))
+        .map(|d| {
+            d.trim()
+                .parse()
+                .expect("--divisions: comma-separated integers")
+        })
         .collect();
     let base = PathBuf::from(arg("--dir").unwrap_or_else(|| {
         std::env::temp_dir()

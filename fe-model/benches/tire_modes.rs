@@ -2,7 +2,8 @@
 //! Lanczos with Sturm check. Prints DOF, timings and the safeguard results.
 //!
 //! Run: `cargo bench -p fe-model --bench tire_modes` (optionally `-- --export DIR` to write
-//! M.mtx, K.mtx (free DOFs) for a comparison with scipy's eigsh).
+//! M.mtx, K.mtx (free DOFs)). The side-by-side comparison with scipy's eigsh at three sizes is
+//! `benches/eigen_vs_scipy.rs`.
 
 use fe_model::eigen::{SparseEigenOptions, sparse_modes};
 use fe_model::generate::{TireConfig, tire};
@@ -77,7 +78,7 @@ fn main() {
         rep.max_relative_residual
     );
     println!(
-        "eigen breakdown: factor {:.3} s, Krylov-Schur {:.3} s, Sturm LDLT {:.3} s; rejected attempts: {:?}",
+        "eigen breakdown: factor {:.3} s, block Lanczos {:.3} s, Sturm LDLT {:.3} s; rejected attempts: {:?}",
         rep.seconds_factor, rep.seconds_lanczos, rep.seconds_sturm, rep.rejected_attempts
     );
     let f: Vec<String> = modes

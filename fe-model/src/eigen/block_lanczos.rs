@@ -87,15 +87,15 @@ pub(crate) fn block_krylov_schur(
             let mut c = Mat::<f64>::zeros(p, b);
             let mut ci = Mat::<f64>::zeros(p, b);
             for _ in 0..2 {
-                matmul(ci.as_mut(), Accum::Replace, basis.transpose(), w.as_ref(), 1.0, par);
                 matmul(
-                    w.as_mut(),
-                    Accum::Add,
-                    basis,
-                    ci.as_ref(),
-                    -1.0,
+                    ci.as_mut(),
+                    Accum::Replace,
+                    basis.transpose(),
+                    w.as_ref(),
+                    1.0,
                     par,
                 );
+                matmul(w.as_mut(), Accum::Add, basis, ci.as_ref(), -1.0, par);
                 c += &ci;
             }
             h.as_mut().submatrix_mut(0, q_done, p, b).copy_from(&c);
@@ -130,16 +130,7 @@ pub(crate) fn block_krylov_schur(
         let done = converged == nev || restart == opts.max_restarts;
         if done {
             let keep = converged;
-            let ysel = Mat::from_fn(m, keep, |i, j| y[(i, order[j])]);
-            let mut x = Mat::<f64>::zeros(n, keep);
-            matmul(
-                x.as_mut(),
-                Accum::Replace,
-                v.as_ref().subcols(0, m),
-                ysel.as_ref(),
-                1.0,
-                par,
-            );
+            let (x, _) = ritz_vectors(v.as_ref().subcols(0, m), y.as_ref(), &order[..keep], par);
             return Ok(BlockKsResult {
                 values: order[..keep].iter().map(|&i| theta[i]).collect(),
                 vectors: x,
@@ -151,16 +142,7 @@ pub(crate) fn block_krylov_schur(
         // that the expansion ends exactly at m (k = m − j·b ≥ nev + 1 since m ≥ nev + 2b)
         let k_target = (nev + (m - nev) / 2).min(m - b);
         let k = m - (m - k_target).div_ceil(b) * b;
-        let ysel = Mat::from_fn(m, k, |i, j| y[(i, order[j])]);
-        let mut x = Mat::<f64>::zeros(n, k);
-        matmul(
-            x.as_mut(),
-            Accum::Replace,
-            v.as_ref().subcols(0, m),
-            ysel.as_ref(),
-            1.0,
-            par,
-        );
+        let (x, ysel) = ritz_vectors(v.as_ref().subcols(0, m), y.as_ref(), &order[..k], par);
         let resid = v.as_ref().subcols(m, b).to_owned();
         let new_coupling = coupling * &ysel; // b × k
         v.as_mut().subcols_mut(0, k).copy_from(&x);
@@ -169,7 +151,9 @@ pub(crate) fn block_krylov_schur(
         for j in 0..k {
             h[(j, j)] = theta[order[j]];
         }
-        h.as_mut().submatrix_mut(k, 0, b, k).copy_from(&new_coupling);
+        h.as_mut()
+            .submatrix_mut(k, 0, b, k)
+            .copy_from(&new_coupling);
         h.as_mut()
             .submatrix_mut(0, k, k, b)
             .copy_from(new_coupling.transpose());
@@ -177,6 +161,20 @@ pub(crate) fn block_krylov_schur(
         p = k + b;
     }
     Err(FeError::Eigen("block Lanczos: no restart left".into()))
+}
+
+/// Ritz vectors `V Y_sel` of the columns `cols` of `y` (the eigenvectors of `H_m`), with
+/// `Y_sel`.
+fn ritz_vectors(
+    v: MatRef<'_, f64>,
+    y: MatRef<'_, f64>,
+    cols: &[usize],
+    par: Par,
+) -> (Mat<f64>, Mat<f64>) {
+    let ysel = Mat::from_fn(y.nrows(), cols.len(), |i, j| y[(i, cols[j])]);
+    let mut x = Mat::<f64>::zeros(v.nrows(), cols.len());
+    matmul(x.as_mut(), Accum::Replace, v, ysel.as_ref(), 1.0, par);
+    (x, ysel)
 }
 
 /// Orthonormal basis `Q` of the block `w` (already orthogonalised against `basis`), `w = Q R`,
@@ -237,19 +235,28 @@ fn cholesky_qr2(w: MatRef<'_, f64>, par: Par) -> Option<(Mat<f64>, Mat<f64>)> {
     let mut q = w.to_owned();
     let mut r_total = Mat::<f64>::identity(b, b);
     let mut g = Mat::<f64>::zeros(b, b);
-    for pass in 0..2 {
-        matmul(g.as_mut(), Accum::Replace, q.transpose(), q.as_ref(), 1.0, par);
+    for _ in 0..2 {
+        matmul(
+            g.as_mut(),
+            Accum::Replace,
+            q.transpose(),
+            q.as_ref(),
+            1.0,
+            par,
+        );
         let gmax = (0..b).fold(0.0f64, |a, i| a.max(g[(i, i)]));
         let gmin = (0..b).fold(f64::INFINITY, |a, i| a.min(g[(i, i)]));
         // first pass: the block must not be close to rank deficient (cond(W)² < 1e-12·…)
-        if !(gmin > 1e-20 * gmax) || (pass == 0 && gmax == 0.0) {
+        let well_scaled = gmin > 1e-20 * gmax; // false for NaN as well
+        if !well_scaled || gmax == 0.0 {
             return None;
         }
         let l = g.llt(Side::Lower).ok()?;
         let rt = l.L(); // G = L Lᵀ, R = Lᵀ
         let rmin = (0..b).fold(f64::INFINITY, |a, i| a.min(rt[(i, i)].abs()));
         let rmax = (0..b).fold(0.0f64, |a, i| a.max(rt[(i, i)].abs()));
-        if !(rmin > 1e-7 * rmax) {
+        let well_conditioned = rmin > 1e-7 * rmax; // false for NaN as well
+        if !well_conditioned {
             return None;
         }
         // Q ← Q R⁻¹  (solve Q Lᵀ = W row-wise: (L Qᵀ = Wᵀ))
@@ -258,7 +265,14 @@ fn cholesky_qr2(w: MatRef<'_, f64>, par: Par) -> Option<(Mat<f64>, Mat<f64>)> {
         q = qt.transpose().to_owned();
         // R_total ← Lᵀ R_total
         let mut rn = Mat::<f64>::zeros(b, b);
-        matmul(rn.as_mut(), Accum::Replace, rt.transpose(), r_total.as_ref(), 1.0, par);
+        matmul(
+            rn.as_mut(),
+            Accum::Replace,
+            rt.transpose(),
+            r_total.as_ref(),
+            1.0,
+            par,
+        );
         r_total = rn;
     }
     Some((q, r_total))

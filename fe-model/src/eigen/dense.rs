@@ -163,12 +163,15 @@ pub fn dense_modes_report(
                     let tr_k: f64 = (0..n).map(|i| ks[(i, i)]).sum();
                     let tr_m: f64 = (0..n).map(|i| ms[(i, i)]).sum();
                     let s = -1e-3 * tr_k.abs().max(f64::MIN_POSITIVE) / tr_m;
-                    let l = shifted(s).llt(Side::Lower).map_err(|e| {
-                        FeError::NotPositiveDefinite {
-                            name: "K - sigma M".into(),
-                            detail: format!(" (automatic sigma = {s:e}; K is indefinite? {e:?})"),
-                        }
-                    })?;
+                    let l =
+                        shifted(s)
+                            .llt(Side::Lower)
+                            .map_err(|e| FeError::NotPositiveDefinite {
+                                name: "K - sigma M".into(),
+                                detail: format!(
+                                    " (automatic sigma = {s:e}; K is indefinite? {e:?})"
+                                ),
+                            })?;
                     (s, l)
                 }
             }

@@ -4,7 +4,7 @@
 //! with rigid modes), the symmetric operator `T = L⁻¹ (P M Pᵀ) L⁻ᵀ` has eigenvalues
 //! `θ = 1/(λ − σ)`: the lowest λ become the largest θ (Ericsson & Ruhe 1980, the ARPACK/eigsh
 //! shift-invert mode 3 with a Cholesky-symmetrised operator), found here by a thick-restart
-//! **block** Lanczos ([`super::block_lanczos`]): the operator runs on blocks of
+//! **block** Lanczos (module `block_lanczos`): the operator runs on blocks of
 //! [`SparseEigenOptions::block_size`] vectors, where faer's supernodal triangular solves cost
 //! a fraction per vector of single-vector solves (the single-vector Krylov–Schur of
 //! `faer::matrix_free` spent 80 % of the 60 480-DOF tire's time in one-vector solves).
@@ -16,12 +16,12 @@
 //! M-orthogonality check (catches ghost duplicates); a Sturm count by LDLᵀ of `K − cM` proving
 //! no mode below the cut was missed; retries with a larger basis; a wall-clock limit.
 
+use super::block_lanczos::{BlockKsOptions, block_krylov_schur};
 use super::dense::dense_modes;
 use super::factor::{Analysis, shifted};
 use super::{Modes, frequency_hz};
 use crate::FeError;
 use crate::sparse::triplets;
-use super::block_lanczos::{BlockKsOptions, block_krylov_schur};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
@@ -401,11 +401,7 @@ fn csc_times_block(
             work.xt[r * b + k] = x[(r, k)];
         }
     }
-    let (cp, ri, vals) = (
-        a.symbolic().col_ptr(),
-        a.symbolic().row_idx(),
-        a.val(),
-    );
+    let (cp, ri, vals) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
     for c in 0..a.ncols() {
         let xc = &work.xt[c * b..(c + 1) * b];
         for p in cp[c]..cp[c + 1] {
