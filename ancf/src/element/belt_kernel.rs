@@ -134,10 +134,10 @@ fn density(cst: &Constants, x: [f64; 5], hessian: bool) -> Density {
     // ∂W over u = (a, k, sin γ, (sin γ)_x, ε_yy)
     let w_a = 2.0 * c1 * am1 + c2 * (s * s + 0.5 * c) + c4 * sg * sg;
     let w_k = 2.0 * c2 * a * s + 0.5 * c2 * am1 * c_k + 2.0 * c3 * c * c_k;
-    let w_sg = 0.5 * c2 * am1 * c_sg + 2.0 * c3 * c * c_sg + 2.0 * c4 * a * sg
-        + 2.0 * c5 * sg * sgx * sgx;
-    let w_sgx = 2.0 * c2 * a * s + 0.5 * c2 * am1 * c_sgx + 2.0 * c3 * c * c_sgx
-        + 2.0 * c5 * sg * sg * sgx;
+    let w_sg =
+        0.5 * c2 * am1 * c_sg + 2.0 * c3 * c * c_sg + 2.0 * c4 * a * sg + 2.0 * c5 * sg * sgx * sgx;
+    let w_sgx =
+        2.0 * c2 * a * s + 0.5 * c2 * am1 * c_sgx + 2.0 * c3 * c * c_sgx + 2.0 * c5 * sg * sg * sgx;
     let w_eyy = 2.0 * c6 * eyy;
     // chain k = z/a
     let (ia, k_a) = (1.0 / a, -k / a);
@@ -201,10 +201,12 @@ pub(crate) fn evaluate(
     q: &mut [f64],
     k: Option<&mut [f64]>,
 ) -> f64 {
-    let hessian = k.is_some();
+    let Some(kout) = k else {
+        return forces(cst, length, points, e, q);
+    };
     let nodes = [
-        NodeScalars::new([e[2], e[3]], [e[4], e[5]], hessian),
-        NodeScalars::new([e[8], e[9]], [e[10], e[11]], hessian),
+        NodeScalars::new([e[2], e[3]], [e[4], e[5]], true),
+        NodeScalars::new([e[8], e[9]], [e[10], e[11]], true),
     ];
     let il = 1.0 / length;
     let mut energy = 0.0;
@@ -232,7 +234,7 @@ pub(crate) fn evaluate(
         let sg = (1.0 - xi) * nodes[0].sg + xi * nodes[1].sg;
         let sgx = (nodes[1].sg - nodes[0].sg) * il;
         let eyy = (1.0 - xi) * nodes[0].ny + xi * nodes[1].ny - 1.0;
-        let d = density(cst, [a, z, sg, sgx, eyy], hessian);
+        let d = density(cst, [a, z, sg, sgx, eyy], true);
         let w = p.w;
         energy += w * d.w;
         // gradients of a and z
@@ -256,7 +258,7 @@ pub(crate) fn evaluate(
         for nd in 0..4 {
             du_nodal[nd] += w * (d.g[2] * m[0][nd] + d.g[3] * m[1][nd] + d.g[4] * m[2][nd]);
         }
-        if hessian {
+        {
             let hd = &d.h;
             // rank-two part in (a, z)
             for r in 0..N {
@@ -311,7 +313,7 @@ pub(crate) fn evaluate(
     for c in 0..N {
         q[c] = -grad[c];
     }
-    if let Some(kout) = k {
+    {
         for i in 0..CUBIC_BLOCKS {
             for j in 0..CUBIC_BLOCKS {
                 h[2 * i][2 * j] += ka[i][j];
@@ -360,6 +362,62 @@ pub(crate) fn evaluate(
                 kout[r + c * N] = h[r][c];
             }
         }
+    }
+    energy
+}
+
+/// Energy and forces only (the [`evaluate`] gradient without the tangent's accumulators).
+fn forces(cst: &Constants, length: f64, points: &[KernelPoint], e: &[f64], q: &mut [f64]) -> f64 {
+    let nodes = [
+        NodeScalars::new([e[2], e[3]], [e[4], e[5]], false),
+        NodeScalars::new([e[8], e[9]], [e[10], e[11]], false),
+    ];
+    let il = 1.0 / length;
+    let mut energy = 0.0;
+    let mut grad = [0.0; N];
+    let mut du_nodal = [0.0; 4];
+    for p in points {
+        let xi = p.xi;
+        let mut rcx = [0.0; 2];
+        let mut rcxx = [0.0; 2];
+        for &b in &CENTRE_BLOCKS {
+            rcx[0] += p.sx[b] * e[2 * b];
+            rcx[1] += p.sx[b] * e[2 * b + 1];
+            rcxx[0] += p.sxx[b] * e[2 * b];
+            rcxx[1] += p.sxx[b] * e[2 * b + 1];
+        }
+        let a = rcx[0] * rcx[0] + rcx[1] * rcx[1];
+        let z = rcx[0] * rcxx[1] - rcx[1] * rcxx[0];
+        let sg = (1.0 - xi) * nodes[0].sg + xi * nodes[1].sg;
+        let sgx = (nodes[1].sg - nodes[0].sg) * il;
+        let eyy = (1.0 - xi) * nodes[0].ny + xi * nodes[1].ny - 1.0;
+        let d = density(cst, [a, z, sg, sgx, eyy], false);
+        let w = p.w;
+        energy += w * d.w;
+        // w (∂W/∂a ∂a/∂e + ∂W/∂z ∂z/∂e)
+        let (wa, wz) = (w * d.g[0], w * d.g[1]);
+        for &b in &CENTRE_BLOCKS {
+            grad[2 * b] +=
+                wa * 2.0 * p.sx[b] * rcx[0] + wz * (p.sx[b] * rcxx[1] - p.sxx[b] * rcx[1]);
+            grad[2 * b + 1] +=
+                wa * 2.0 * p.sx[b] * rcx[1] + wz * (-p.sx[b] * rcxx[0] + p.sxx[b] * rcx[0]);
+        }
+        let (gsg, gsgx, geyy) = (w * d.g[2], w * d.g[3], w * d.g[4]);
+        du_nodal[0] += gsg * (1.0 - xi) - gsgx * il;
+        du_nodal[1] += gsg * xi + gsgx * il;
+        du_nodal[2] += geyy * (1.0 - xi);
+        du_nodal[3] += geyy * xi;
+    }
+    for (node, off) in [(0usize, 2usize), (1, 8)] {
+        for i in 0..4 {
+            grad[off + i] += du_nodal[node] * nodes[node].dsg[i];
+        }
+        for i in 0..2 {
+            grad[off + 2 + i] += du_nodal[2 + node] * nodes[node].dny[i];
+        }
+    }
+    for c in 0..N {
+        q[c] = -grad[c];
     }
     energy
 }
