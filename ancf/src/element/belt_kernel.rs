@@ -221,20 +221,8 @@ pub(crate) fn evaluate(
     let mut y = [[0.0; 4]; 4];
     for p in points {
         let xi = p.xi;
-        let mut rcx = [0.0; 2];
-        let mut rcxx = [0.0; 2];
-        for &b in &CENTRE_BLOCKS {
-            rcx[0] += p.sx[b] * e[2 * b];
-            rcx[1] += p.sx[b] * e[2 * b + 1];
-            rcxx[0] += p.sxx[b] * e[2 * b];
-            rcxx[1] += p.sxx[b] * e[2 * b + 1];
-        }
-        let a = rcx[0] * rcx[0] + rcx[1] * rcx[1];
-        let z = rcx[0] * rcxx[1] - rcx[1] * rcxx[0];
-        let sg = (1.0 - xi) * nodes[0].sg + xi * nodes[1].sg;
-        let sgx = (nodes[1].sg - nodes[0].sg) * il;
-        let eyy = (1.0 - xi) * nodes[0].ny + xi * nodes[1].ny - 1.0;
-        let d = density(cst, [a, z, sg, sgx, eyy], true);
+        let (rcx, rcxx, x) = point_scalars(p, e, &nodes, il);
+        let d = density(cst, x, true);
         let w = p.w;
         energy += w * d.w;
         // gradients of a and z
@@ -366,6 +354,30 @@ pub(crate) fn evaluate(
     energy
 }
 
+/// `r_{c,x}`, `r_{c,xx}` and the five scalars `(a, z, sin γ, (sin γ)_x, ε_yy)` at a point.
+fn point_scalars(
+    p: &KernelPoint,
+    e: &[f64],
+    nodes: &[NodeScalars; 2],
+    il: f64,
+) -> ([f64; 2], [f64; 2], [f64; 5]) {
+    let xi = p.xi;
+    let mut rcx = [0.0; 2];
+    let mut rcxx = [0.0; 2];
+    for &b in &CENTRE_BLOCKS {
+        rcx[0] += p.sx[b] * e[2 * b];
+        rcx[1] += p.sx[b] * e[2 * b + 1];
+        rcxx[0] += p.sxx[b] * e[2 * b];
+        rcxx[1] += p.sxx[b] * e[2 * b + 1];
+    }
+    let a = rcx[0] * rcx[0] + rcx[1] * rcx[1];
+    let z = rcx[0] * rcxx[1] - rcx[1] * rcxx[0];
+    let sg = (1.0 - xi) * nodes[0].sg + xi * nodes[1].sg;
+    let sgx = (nodes[1].sg - nodes[0].sg) * il;
+    let eyy = (1.0 - xi) * nodes[0].ny + xi * nodes[1].ny - 1.0;
+    (rcx, rcxx, [a, z, sg, sgx, eyy])
+}
+
 /// Energy and forces only (the [`evaluate`] gradient without the tangent's accumulators).
 fn forces(cst: &Constants, length: f64, points: &[KernelPoint], e: &[f64], q: &mut [f64]) -> f64 {
     let nodes = [
@@ -378,20 +390,8 @@ fn forces(cst: &Constants, length: f64, points: &[KernelPoint], e: &[f64], q: &m
     let mut du_nodal = [0.0; 4];
     for p in points {
         let xi = p.xi;
-        let mut rcx = [0.0; 2];
-        let mut rcxx = [0.0; 2];
-        for &b in &CENTRE_BLOCKS {
-            rcx[0] += p.sx[b] * e[2 * b];
-            rcx[1] += p.sx[b] * e[2 * b + 1];
-            rcxx[0] += p.sxx[b] * e[2 * b];
-            rcxx[1] += p.sxx[b] * e[2 * b + 1];
-        }
-        let a = rcx[0] * rcx[0] + rcx[1] * rcx[1];
-        let z = rcx[0] * rcxx[1] - rcx[1] * rcxx[0];
-        let sg = (1.0 - xi) * nodes[0].sg + xi * nodes[1].sg;
-        let sgx = (nodes[1].sg - nodes[0].sg) * il;
-        let eyy = (1.0 - xi) * nodes[0].ny + xi * nodes[1].ny - 1.0;
-        let d = density(cst, [a, z, sg, sgx, eyy], false);
+        let (rcx, rcxx, x) = point_scalars(p, e, &nodes, il);
+        let d = density(cst, x, false);
         let w = p.w;
         energy += w * d.w;
         // w (∂W/∂a ∂a/∂e + ∂W/∂z ∂z/∂e)
