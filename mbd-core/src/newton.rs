@@ -448,7 +448,7 @@ pub fn solve<P: NewtonProblem + ?Sized>(
         });
     }
     if let Some(st) = &opts.stall
-        && (st.iterations == 0 || !(st.ratio > 0.0))
+        && (st.iterations == 0 || st.ratio.is_nan() || st.ratio <= 0.0)
     {
         return Err(NewtonError::InvalidOption {
             field: "stall",

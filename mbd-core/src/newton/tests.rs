@@ -518,7 +518,7 @@ fn stall_exit_and_backtracking_at_a_saturating_law() {
         ..base
     };
     assert!(matches!(
-        solve(&mut saturating(), &mut vec![1.0], &bad, &mut ws),
+        solve(&mut saturating(), &mut [1.0], &bad, &mut ws),
         Err(NewtonError::InvalidOption { field: "stall", .. })
     ));
 }
