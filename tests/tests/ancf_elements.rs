@@ -331,8 +331,18 @@ fn belt_closed_form_matches_full_ad() {
         let ks = k2.iter().map(|v| v.abs()).fold(0.0, f64::max);
         let qs = q2.iter().map(|v| v.abs()).fold(0.0, f64::max);
         for i in 0..12 {
-            assert!((q1[i] - q2[i]).abs() < 1e-10 * qs, "q[{i}]: {} vs {}", q1[i], q2[i]);
-            assert!((q3[i] - q4[i]).abs() < 1e-10 * qs, "q[{i}]: {} vs {}", q3[i], q4[i]);
+            assert!(
+                (q1[i] - q2[i]).abs() < 1e-10 * qs,
+                "q[{i}]: {} vs {}",
+                q1[i],
+                q2[i]
+            );
+            assert!(
+                (q3[i] - q4[i]).abs() < 1e-10 * qs,
+                "q[{i}]: {} vs {}",
+                q3[i],
+                q4[i]
+            );
         }
         for i in 0..144 {
             assert!(
