@@ -11,7 +11,7 @@
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, InitialOptions, PulleyDrive, SimulationConfig, SpeedProfile,
 };
-use mbd_core::integrators::{GeneralizedAlpha, Rk4, State};
+use mbd_core::integrators::{GeneralizedAlpha, NewtonUpdate, Rk4, State};
 use std::time::Instant;
 
 fn drive() -> BeltDrive {
@@ -44,7 +44,12 @@ fn main() {
     let mut per_s_implicit = f64::INFINITY;
     for full in [true, false] {
         let opts = SimulationConfig {
-            full_newton: full,
+            h: 1e-4,
+            newton_update: if full {
+                NewtonUpdate::EveryIteration
+            } else {
+                NewtonUpdate::EveryStep
+            },
             ..Default::default()
         };
         let before = d.elastic_tangent_evaluations();

@@ -8,15 +8,22 @@
 //! ```
 //!
 //! is factored densely (faer partial-pivoting LU) when every block is dense, and with faer's
-//! sparse LU otherwise. The sparse path keeps the symbolic factorisation and reuses it as long
-//! as the sparsity pattern of the assembled matrix does not change (Newton iterations, time
-//! steps of a model with a fixed pattern).
+//! sparse LU otherwise. The sparse path builds, once per combination of block patterns, the
+//! union pattern of `[S Dᵀ; D 0]` with a scatter map from every block's stored entries into it
+//! and the symbolic factorisation (fill-reducing ordering); a refactorisation with new values
+//! (Newton iterations, time steps of a model with a fixed pattern) is then a scatter of the
+//! values and a numeric factorisation into reused storage, without triplets, sorting or
+//! allocation.
 
 use crate::{MbdError, SysMatrix};
-use faer::Mat;
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::{PartialPivLu, Solve};
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, Triplet};
+use faer::sparse::linalg::lu::{
+    LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, Mat, MatMut, Par};
+use std::sync::Mutex;
 
 impl SysMatrix {
     /// `y = A x` (overwrites `y`).
@@ -94,11 +101,11 @@ impl SysMatrix {
                 }
             }
             SysMatrix::Sparse(m) => {
-                let cp = m.symbolic().col_ptr();
-                let ri = m.symbolic().row_idx();
+                let sym = m.symbolic();
+                let ri = sym.row_idx();
                 let val = m.val();
                 for j in 0..m.ncols() {
-                    for k in cp[j]..cp[j + 1] {
+                    for k in sym.col_range(j) {
                         f(ri[k], j, val[k]);
                     }
                 }
@@ -125,32 +132,257 @@ pub type ScaledBlock<'a> = (f64, &'a SysMatrix);
 /// The factored augmented matrix.
 enum Factor {
     Dense(PartialPivLu<f64>),
-    Sparse(Lu<usize, f64>),
+    /// Numeric factors in [`SparsePath::numeric`].
+    Sparse,
 }
 
-/// Cached assembly order (triplet indices → CSC) of the last sparse matrix.
-struct AssemblyCache {
-    indices: Vec<(usize, usize)>,
-    symbolic: SymbolicSparseColMat<usize>,
-    argsort: Argsort<usize>,
+/// Stored pattern of one block of the augmented matrix, to recognise a repeated structure.
+enum BlockKey {
+    Dense {
+        nrows: usize,
+        ncols: usize,
+    },
+    Sparse {
+        col_ptr: Vec<usize>,
+        row_idx: Vec<usize>,
+    },
 }
 
-/// Cached sparse symbolic analysis together with the pattern it was computed for.
-struct SymbolicCache {
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
+impl BlockKey {
+    fn of(m: &SysMatrix) -> Self {
+        match m {
+            SysMatrix::Dense(d) => BlockKey::Dense {
+                nrows: d.nrows(),
+                ncols: d.ncols(),
+            },
+            SysMatrix::Sparse(sp) => {
+                let sym = sp.symbolic();
+                let mut col_ptr = Vec::with_capacity(sym.ncols() + 1);
+                let mut row_idx = Vec::new();
+                col_ptr.push(0);
+                for j in 0..sym.ncols() {
+                    row_idx.extend_from_slice(&sym.row_idx()[sym.col_range(j)]);
+                    col_ptr.push(row_idx.len());
+                }
+                BlockKey::Sparse { col_ptr, row_idx }
+            }
+        }
+    }
+
+    fn matches(&self, m: &SysMatrix) -> bool {
+        match (self, m) {
+            (BlockKey::Dense { nrows, ncols }, SysMatrix::Dense(d)) => {
+                *nrows == d.nrows() && *ncols == d.ncols()
+            }
+            (BlockKey::Sparse { col_ptr, row_idx }, SysMatrix::Sparse(sp)) => {
+                let sym = sp.symbolic();
+                let ri = sym.row_idx();
+                col_ptr.len() == sym.ncols() + 1
+                    && (0..sym.ncols())
+                        .all(|j| ri[sym.col_range(j)] == row_idx[col_ptr[j]..col_ptr[j + 1]])
+            }
+            _ => false,
+        }
+    }
+}
+
+/// The sparse path: union pattern, scatter maps, symbolic and numeric factors, scratch.
+struct SparsePath {
+    /// Patterns of the blocks (and of `D`, last) this path was built for.
+    keys: Vec<BlockKey>,
+    /// Dimension `n + n_c`.
+    dim: usize,
+    symbolic_pattern: SymbolicSparseColMat<usize>,
+    /// Per block, the position in `vals` of each stored entry (column-major order of the
+    /// block's storage; every entry of a dense block).
+    maps: Vec<Vec<usize>>,
+    /// Positions of `D` (rows `n..`) and `Dᵀ` (columns `n..`) entries, in `D`'s storage order.
+    d_map: Vec<(usize, usize)>,
+    vals: Vec<f64>,
     symbolic: SymbolicLu<usize>,
+    numeric: NumericLu<usize, f64>,
+    /// Scratch of the numeric factorisation.
+    factor_mem: MemBuffer,
+    /// Scratch of the solves (one right-hand side; more allocate).
+    solve_mem: Mutex<MemBuffer>,
+}
+
+impl SparsePath {
+    /// Union pattern of `[Σ Aₖ, Dᵀ; D, 0]` plus the diagonal, maps and symbolic factorisation.
+    fn build(
+        blocks: &[ScaledBlock<'_>],
+        d: Option<&SysMatrix>,
+        n: usize,
+        n_c: usize,
+        t: f64,
+    ) -> Result<Self, MbdError> {
+        let dim = n + n_c;
+        let mut cols: Vec<Vec<usize>> = (0..dim).map(|j| vec![j]).collect();
+        let mut push_all = |m: &SysMatrix, off_r: usize, off_c: usize, transpose: bool| {
+            m.for_each_entry(|i, j, _| {
+                let (r, c) = if transpose {
+                    (j + off_c, i + off_r)
+                } else {
+                    (i + off_r, j + off_c)
+                };
+                cols[c].push(r);
+            })
+        };
+        for (_, b) in blocks {
+            push_all(b, 0, 0, false);
+        }
+        if let Some(d) = d {
+            push_all(d, n, 0, false);
+            push_all(d, n, 0, true);
+        }
+        let mut col_ptr = Vec::with_capacity(dim + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for c in &mut cols {
+            c.sort_unstable();
+            c.dedup();
+            row_idx.extend_from_slice(c);
+            col_ptr.push(row_idx.len());
+        }
+        let pos = |r: usize, c: usize| -> usize {
+            let col = &row_idx[col_ptr[c]..col_ptr[c + 1]];
+            // the entry exists by construction
+            col_ptr[c] + col.binary_search(&r).unwrap_or(0)
+        };
+        let maps: Vec<Vec<usize>> = blocks
+            .iter()
+            .map(|(_, b)| {
+                let mut m = Vec::new();
+                b.for_each_entry(|i, j, _| m.push(pos(i, j)));
+                m
+            })
+            .collect();
+        let mut d_map = Vec::new();
+        if let Some(d) = d {
+            d.for_each_entry(|i, j, _| d_map.push((pos(n + i, j), pos(j, n + i))));
+        }
+        let nnz = row_idx.len();
+        let symbolic_pattern = SymbolicSparseColMat::new_checked(dim, dim, col_ptr, None, row_idx);
+        let symbolic =
+            factorize_symbolic_lu(symbolic_pattern.as_ref(), LuSymbolicParams::default()).map_err(
+                |e| MbdError::Singular {
+                    t,
+                    detail: format!("symbolic LU failed: {e:?}"),
+                },
+            )?;
+        let factor_mem = MemBuffer::new(
+            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
+        );
+        let solve_mem = Mutex::new(MemBuffer::new(
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        ));
+        let mut keys: Vec<BlockKey> = blocks.iter().map(|(_, b)| BlockKey::of(b)).collect();
+        if let Some(d) = d {
+            keys.push(BlockKey::of(d));
+        }
+        Ok(Self {
+            keys,
+            dim,
+            symbolic_pattern,
+            maps,
+            d_map,
+            vals: vec![0.0; nnz],
+            symbolic,
+            numeric: NumericLu::new(),
+            factor_mem,
+            solve_mem,
+        })
+    }
+
+    /// Whether the blocks have the patterns this path was built for.
+    fn matches(&self, blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>, dim: usize) -> bool {
+        let nk = blocks.len() + usize::from(d.is_some());
+        self.dim == dim
+            && self.keys.len() == nk
+            && blocks
+                .iter()
+                .zip(&self.keys)
+                .all(|((_, b), k)| k.matches(b))
+            && d.is_none_or(|d| self.keys.last().is_some_and(|k| k.matches(d)))
+    }
+
+    /// Scatters `Σ sₖ Aₖ` and `D` into the values and factors them numerically.
+    fn factor(
+        &mut self,
+        blocks: &[ScaledBlock<'_>],
+        d: Option<&SysMatrix>,
+        t: f64,
+    ) -> Result<(), MbdError> {
+        self.vals.fill(0.0);
+        for ((s, b), map) in blocks.iter().zip(&self.maps) {
+            if *s == 0.0 {
+                continue;
+            }
+            let vals = &mut self.vals;
+            let mut k = 0;
+            b.for_each_entry(|_, _, v| {
+                vals[map[k]] += s * v;
+                k += 1;
+            });
+        }
+        if let Some(d) = d {
+            let mut k = 0;
+            let d_map = &self.d_map;
+            let vals = &mut self.vals;
+            d.for_each_entry(|_, _, v| {
+                let (a, b) = d_map[k];
+                vals[a] += v;
+                vals[b] += v;
+                k += 1;
+            });
+        }
+        if self.vals.iter().any(|v| !v.is_finite()) {
+            return Err(MbdError::NonFinite {
+                what: "system matrix (mass, tangent or constraint Jacobian)".into(),
+                t,
+            });
+        }
+        let a = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.vals);
+        self.symbolic
+            .factorize_numeric_lu(
+                &mut self.numeric,
+                a,
+                Par::Seq,
+                MemStack::new(&mut self.factor_mem),
+                Default::default(),
+            )
+            .map(|_| ())
+            .map_err(|e| MbdError::Singular {
+                t,
+                detail: format!("sparse LU of the augmented matrix failed: {e:?}"),
+            })
+    }
+
+    fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+        let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
+        let ncols = rhs.ncols();
+        match self.solve_mem.try_lock() {
+            Ok(mut mem) if ncols == 1 => {
+                lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem))
+            }
+            _ => {
+                let mut mem =
+                    MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(ncols, Par::Seq));
+                lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem))
+            }
+        }
+    }
 }
 
 /// Factoriser/solver of the augmented matrix `[S Dᵀ; D 0]` (Ribaric (2.16), Lin (2.27)).
 ///
 /// `S = Σ sₖ Aₖ` is given as a list of scaled blocks (mass, damping and stiffness in the
-/// generalized-α iteration matrix). The sparse path reuses its symbolic LU while the pattern
-/// is unchanged; [`KktSolver::symbolic_factorizations`] counts how often it had to be redone.
+/// generalized-α iteration matrix). The sparse path reuses its union pattern, scatter maps and
+/// symbolic LU while the blocks' patterns are unchanged; [`KktSolver::symbolic_factorizations`]
+/// counts how often it had to be rebuilt.
 pub struct KktSolver {
     factor: Option<Factor>,
-    cache: Option<SymbolicCache>,
-    assembly: Option<AssemblyCache>,
+    sparse: Option<SparsePath>,
     n: usize,
     n_c: usize,
     /// Number of numeric factorisations performed.
@@ -173,8 +405,7 @@ impl KktSolver {
     pub fn new() -> Self {
         Self {
             factor: None,
-            cache: None,
-            assembly: None,
+            sparse: None,
             n: 0,
             n_c: 0,
             factorizations: 0,
@@ -281,100 +512,24 @@ impl KktSolver {
             }
             self.factor = Some(Factor::Dense(lu));
         } else {
-            let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::new();
-            for (s, b) in blocks {
-                b.for_each_entry(|i, j, v| trip.push(Triplet::new(i, j, s * v)));
-            }
-            if let Some(d) = d {
-                d.for_each_entry(|i, j, v| {
-                    trip.push(Triplet::new(n + i, j, v));
-                    trip.push(Triplet::new(j, n + i, v));
-                });
-            }
-            // explicit diagonal so that the pattern always contains it
-            for i in 0..dim {
-                trip.push(Triplet::new(i, i, 0.0));
-            }
-            if trip.iter().any(|t| !t.val.is_finite()) {
-                return Err(MbdError::NonFinite {
-                    what: "system matrix (mass, tangent or constraint Jacobian)".into(),
-                    t,
-                });
-            }
-            let a = self.assemble(dim, &trip, t)?;
-            let same = self.cache.as_ref().is_some_and(|c| {
-                c.col_ptr == a.symbolic().col_ptr() && c.row_idx == a.symbolic().row_idx()
-            });
-            if !same {
-                let symbolic =
-                    SymbolicLu::try_new(a.symbolic()).map_err(|e| MbdError::Singular {
-                        t,
-                        detail: format!("symbolic LU failed: {e:?}"),
-                    })?;
-                self.symbolic_factorizations += 1;
-                self.cache = Some(SymbolicCache {
-                    col_ptr: a.symbolic().col_ptr().to_vec(),
-                    row_idx: a.symbolic().row_idx().to_vec(),
-                    symbolic,
-                });
-            }
-            let sym = self
-                .cache
+            if !self
+                .sparse
                 .as_ref()
-                .map(|c| c.symbolic.clone())
-                .ok_or_else(|| MbdError::Model {
-                    t,
-                    message: "missing symbolic factorisation".into(),
-                })?;
-            let lu =
-                Lu::try_new_with_symbolic(sym, a.as_ref()).map_err(|e| MbdError::Singular {
-                    t,
-                    detail: format!("sparse LU of the augmented matrix failed: {e:?}"),
-                })?;
-            self.factor = Some(Factor::Sparse(lu));
+                .is_some_and(|p| p.matches(blocks, d, dim))
+            {
+                self.sparse = None;
+                self.sparse = Some(SparsePath::build(blocks, d, n, n_c, t)?);
+                self.symbolic_factorizations += 1;
+            }
+            let path = self.sparse.as_mut().ok_or_else(|| MbdError::Model {
+                t,
+                message: "missing sparse assembly".into(),
+            })?;
+            path.factor(blocks, d, t)?;
+            self.factor = Some(Factor::Sparse);
         }
         self.factorizations += 1;
         Ok(())
-    }
-
-    /// CSC matrix from triplets, reusing the sorting of the previous call when the triplet
-    /// indices are identical (same model, new values).
-    fn assemble(
-        &mut self,
-        dim: usize,
-        trip: &[Triplet<usize, usize, f64>],
-        t: f64,
-    ) -> Result<SparseColMat<usize, f64>, MbdError> {
-        let err = |e: String| MbdError::Model {
-            t,
-            message: format!("sparse assembly failed: {e}"),
-        };
-        let same = self.assembly.as_ref().is_some_and(|c| {
-            c.symbolic.nrows() == dim
-                && c.indices.len() == trip.len()
-                && c.indices
-                    .iter()
-                    .zip(trip)
-                    .all(|(&(r, cc), tr)| r == tr.row && cc == tr.col)
-        });
-        if !same {
-            let pairs: Vec<Pair<usize, usize>> =
-                trip.iter().map(|tr| Pair::new(tr.row, tr.col)).collect();
-            let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(dim, dim, &pairs)
-                .map_err(|e| err(format!("{e:?}")))?;
-            self.assembly = Some(AssemblyCache {
-                indices: trip.iter().map(|tr| (tr.row, tr.col)).collect(),
-                symbolic,
-                argsort,
-            });
-        }
-        let c = self
-            .assembly
-            .as_ref()
-            .ok_or_else(|| err("missing assembly cache".into()))?;
-        let vals: Vec<f64> = trip.iter().map(|tr| tr.val).collect();
-        SparseColMat::new_from_argsort(c.symbolic.clone(), &c.argsort, &vals)
-            .map_err(|e| err(format!("{e:?}")))
     }
 
     /// Solves for several right-hand sides at once: the columns of `rhs` (`(n + n_c) × k`) hold
@@ -387,10 +542,10 @@ impl KktSolver {
                 message: format!("right-hand side has {} rows, expected {dim}", rhs.nrows()),
             });
         }
-        match &self.factor {
-            Some(Factor::Dense(lu)) => lu.solve_in_place(rhs.as_mut()),
-            Some(Factor::Sparse(lu)) => lu.solve_in_place(rhs.as_mut()),
-            None => {
+        match (&self.factor, &self.sparse) {
+            (Some(Factor::Dense(lu)), _) => lu.solve_in_place(rhs.as_mut()),
+            (Some(Factor::Sparse), Some(path)) => path.solve_in_place(rhs.as_mut()),
+            _ => {
                 return Err(MbdError::Model {
                     t,
                     message: "augmented matrix was not factored".into(),
@@ -416,12 +571,7 @@ impl KktSolver {
                 message: format!("right-hand side has length {}, expected {dim}", rhs.len()),
             });
         }
-        let mut b = Mat::<f64>::from_fn(dim, 1, |i, _| rhs[i]);
-        self.solve_columns(b.as_mut(), t)?;
-        for (i, r) in rhs.iter_mut().enumerate() {
-            *r = b[(i, 0)];
-        }
-        Ok(())
+        self.solve_columns(MatMut::from_column_major_slice_mut(rhs, dim, 1), t)
     }
 }
 

@@ -232,6 +232,26 @@ impl Default for LoadStepping {
     }
 }
 
+/// Treatment of an iteration that does not contract. An iteration stalls when its Newton
+/// correction (before damping or line search) exceeds `ratio` times the previous one. Newton on
+/// a piecewise-smooth residual (the kink of a saturating friction or contact law) may cycle
+/// between the linearizations of two pieces with corrections of constant size and never
+/// converge. With `backtrack`, the iterations after the first stall use the Armijo line
+/// search ([`NewtonOptions::line_search`], or [`LineSearch::default`] when that is `None`),
+/// which breaks such cycles; after `iterations` consecutive stalls [`solve`] stops with
+/// [`NewtonError::NoConvergence`] instead of running to `max_iterations`, so that the caller
+/// (e.g. a time stepper that halves the step) can react at once.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Stall {
+    /// Contraction below which an iteration counts as progress \[-\] (e.g. 0.9).
+    pub ratio: f64,
+    /// Consecutive stalled iterations that end the iteration (≥ 1).
+    pub iterations: usize,
+    /// Switch the line search on after the first stall.
+    pub backtrack: bool,
+}
+
 /// Options of [`solve`]. The default is plain full-step Newton, one increment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {
@@ -249,6 +269,8 @@ pub struct NewtonOptions {
     /// Largest number of Newton passes per increment when [`NewtonProblem::settle`] reports
     /// changes.
     pub max_passes: usize,
+    /// Early exit of a non-contracting iteration (`None`: run to `max_iterations`).
+    pub stall: Option<Stall>,
 }
 
 impl Default for NewtonOptions {
@@ -260,6 +282,7 @@ impl Default for NewtonOptions {
             line_search: None,
             load: LoadStepping::default(),
             max_passes: 100,
+            stall: None,
         }
     }
 }
@@ -424,6 +447,14 @@ pub fn solve<P: NewtonProblem + ?Sized>(
             reason: "must be ≥ 1".into(),
         });
     }
+    if let Some(st) = &opts.stall
+        && (st.iterations == 0 || st.ratio.is_nan() || st.ratio <= 0.0)
+    {
+        return Err(NewtonError::InvalidOption {
+            field: "stall",
+            reason: format!("needs iterations ≥ 1 and ratio > 0, got {st:?}"),
+        });
+    }
     if let Some(ls) = &opts.line_search
         && ls.max_trials == 0
     {
@@ -481,6 +512,9 @@ fn increment<P: NewtonProblem + ?Sized>(
         let mut converged = false;
         let mut it = 0;
         let (mut res, mut corr) = (f64::INFINITY, f64::INFINITY);
+        let mut stalled = 0;
+        let mut prev_full = f64::INFINITY;
+        let mut backtracking = false;
         while it < opts.max_iterations {
             it += 1;
             inc.iterations += 1;
@@ -499,6 +533,15 @@ fn increment<P: NewtonProblem + ?Sized>(
                 .solve(&ws.r, &mut ws.dx)
                 .map_err(NewtonError::Problem)?;
             let norm = problem.correction_norm(&ws.dx);
+            if let Some(st) = &opts.stall {
+                if it > 1 && norm > st.ratio * prev_full {
+                    stalled += 1;
+                    backtracking |= st.backtrack;
+                } else {
+                    stalled = 0;
+                }
+            }
+            prev_full = norm;
             let damp = if norm > opts.max_step {
                 opts.max_step / norm
             } else {
@@ -507,15 +550,21 @@ fn increment<P: NewtonProblem + ?Sized>(
             for d in ws.dx.iter_mut() {
                 *d *= damp;
             }
-            match &opts.line_search {
+            let default_ls = LineSearch::default();
+            let ls = opts
+                .line_search
+                .as_ref()
+                .or(backtracking.then_some(&default_ls));
+            let full = match ls {
                 Some(ls) => line_search(problem, x, load, res, ls, ws)?,
                 None => {
                     ws.step.copy_from_slice(&ws.dx);
                     problem
                         .update(x, &ws.step, &mut ws.trial)
                         .map_err(NewtonError::Problem)?;
+                    true
                 }
-            }
+            };
             corr = problem.correction_norm(&ws.step);
             if !corr.is_finite() {
                 return Err(NewtonError::NonFinite {
@@ -532,12 +581,17 @@ fn increment<P: NewtonProblem + ?Sized>(
             } else {
                 tol.correction
             };
+            // a backtracked step (after a stall) is no evidence of convergence
             let test = damp == 1.0
+                && (full || !backtracking)
                 && (corr <= threshold || (it >= tol.residual_from_iteration && res < tol.residual))
                 && problem.converged(x, &ws.trial, &ws.step);
             x.copy_from_slice(&ws.trial);
             if test {
                 converged = true;
+                break;
+            }
+            if opts.stall.is_some_and(|st| stalled >= st.iterations) {
                 break;
             }
         }
@@ -565,7 +619,7 @@ fn increment<P: NewtonProblem + ?Sized>(
 }
 
 /// Armijo backtracking along `ws.dx` from `x`; leaves the accepted step in `ws.step` and the
-/// new iterate in `ws.trial`.
+/// new iterate in `ws.trial`. Returns whether the full step was taken.
 fn line_search<P: NewtonProblem + ?Sized>(
     problem: &mut P,
     x: &[f64],
@@ -573,7 +627,7 @@ fn line_search<P: NewtonProblem + ?Sized>(
     res: f64,
     ls: &LineSearch,
     ws: &mut NewtonWorkspace,
-) -> Result<(), NewtonError<P::Error>> {
+) -> Result<bool, NewtonError<P::Error>> {
     let err = NewtonError::Problem;
     let potential = problem.potential(x, load).map_err(err)?;
     // φ(0) and the sufficient-decrease bound at α
@@ -607,14 +661,15 @@ fn line_search<P: NewtonProblem + ?Sized>(
             }
         };
         if accept {
-            return Ok(());
+            return Ok(trial == 0);
         }
     }
     if ls.fallback == Fallback::FullStep {
         ws.step.copy_from_slice(&ws.dx);
         problem.update(x, &ws.step, &mut ws.trial).map_err(err)?;
+        return Ok(true);
     }
-    Ok(())
+    Ok(false)
 }
 
 #[cfg(test)]

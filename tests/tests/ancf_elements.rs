@@ -284,29 +284,73 @@ fn belt_element_bending_energy_of_an_arc() {
     );
 }
 
-// Second formulation: the belt element's chain-rule tangent equals the tangent from
-// second-order AD over all 12 coordinates (both exact), in a strongly deformed, sheared state.
+// Second formulation: the belt element's closed-form energy, forces and tangent (a polynomial
+// in five scalars per Gauss point) equal the energy (3.18)–(3.19) written term by term with
+// first- and second-order AD over all 12 coordinates, to 1e-10, in strongly deformed, sheared
+// states (stretched, compressed, bent both ways, slopes of unequal length) and in the belt
+// drive's pre-strained wrap.
 #[test]
-fn belt_chain_rule_tangent_matches_full_ad() {
+fn belt_closed_form_matches_full_ad() {
     let sec = Section::rectangle(0.01, 0.01).unwrap();
     let mat = Material::new(1e8, 0.3, 1036.0).unwrap();
     let el = BeltElement::new(0.13, mat, sec, 1.0, 0.01, 5).unwrap();
-    let e = perturbed(&el, 0.08);
-    let (mut q1, mut q2) = (vec![0.0; 12], vec![0.0; 12]);
-    let (mut k1, mut k2) = (vec![0.0; 144], vec![0.0; 144]);
-    el.elastic_tangent(&e, &mut q1, &mut k1);
-    el.elastic_tangent_reference(&e, &mut q2, &mut k2);
-    let ks = k2.iter().map(|v| v.abs()).fold(0.0, f64::max);
-    let qs = q2.iter().map(|v| v.abs()).fold(0.0, f64::max);
-    for i in 0..12 {
-        assert!((q1[i] - q2[i]).abs() < 1e-10 * qs);
-    }
-    for i in 0..144 {
-        assert!(
-            (k1[i] - k2[i]).abs() < 1e-10 * ks,
-            "K[{i}]: {} vs {}",
-            k1[i],
-            k2[i]
-        );
+    let el7 = BeltElement::new(0.064, mat, sec, 1.0, 0.001, 7).unwrap();
+    let mut states = vec![
+        (el.clone(), perturbed(&el, 0.08)),
+        (el.clone(), perturbed(&el, -0.2)),
+        (el7.clone(), perturbed(&el7, 0.03)),
+    ];
+    // a wrapped, pre-stretched element on a pulley of radius 0.08125 m (Table 3.1)
+    let (r, l, lam): (f64, f64, f64) = (0.08125, 0.064, 1.0028);
+    let phi = lam * l / r;
+    let e_arc = vec![
+        0.0,
+        r,
+        lam,
+        0.0,
+        0.0,
+        1.0,
+        r * phi.sin(),
+        r * phi.cos(),
+        lam * phi.cos(),
+        -lam * phi.sin(),
+        phi.sin(),
+        phi.cos(),
+    ];
+    states.push((el7.clone(), e_arc));
+    for (el, e) in &states {
+        let (mut q1, mut q2, mut q3) = (vec![0.0; 12], vec![0.0; 12], vec![0.0; 12]);
+        let (mut k1, mut k2) = (vec![0.0; 144], vec![0.0; 144]);
+        el.elastic_tangent(e, &mut q1, &mut k1);
+        el.elastic_tangent_reference(e, &mut q2, &mut k2);
+        el.elastic_forces(e, &mut q3);
+        let mut q4 = vec![0.0; 12];
+        el.elastic_forces_reference(e, &mut q4);
+        let (u1, u2) = (el.strain_energy(e), el.strain_energy_reference(e));
+        assert!((u1 - u2).abs() < 1e-10 * u2.abs(), "U {u1} vs {u2}");
+        let ks = k2.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        let qs = q2.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        for i in 0..12 {
+            assert!(
+                (q1[i] - q2[i]).abs() < 1e-10 * qs,
+                "q[{i}]: {} vs {}",
+                q1[i],
+                q2[i]
+            );
+            assert!(
+                (q3[i] - q4[i]).abs() < 1e-10 * qs,
+                "q[{i}]: {} vs {}",
+                q3[i],
+                q4[i]
+            );
+        }
+        for i in 0..144 {
+            assert!(
+                (k1[i] - k2[i]).abs() < 1e-10 * ks,
+                "K[{i}]: {} vs {}",
+                k1[i],
+                k2[i]
+            );
+        }
     }
 }

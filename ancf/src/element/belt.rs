@@ -1,6 +1,7 @@
 //! The planar belt element of Kerkkänen §3.1: the Dufva–Sopanen–Mikkola shear-deformable ANCF
 //! beam (12 coordinates) with axial and bending stiffness multipliers `α₁`, `α₂`.
 
+use super::belt_kernel::{self, Constants, KernelPoint};
 use super::{Element, NodeLayout};
 use crate::autodiff::{Dual, Hyper, Real};
 use crate::error::{AncfError, check_positive, invalid};
@@ -25,6 +26,11 @@ const N: usize = 12;
 /// * energy (3.18) + (3.19) integrated exactly over the section and with `gauss_x` Gauss points
 ///   along `x` (5 by default); `k_s` from the material;
 /// * mass matrix (2.26) with the full shape functions (3.11), including the `r_y` rotary terms.
+///
+/// Forces and tangent are evaluated in closed form (module `belt_kernel`: the energy density is
+/// a polynomial in five scalars per Gauss point); the energy written out term by term as in
+/// (3.18)–(3.19) with automatic differentiation is kept as the reference
+/// ([`BeltElement::elastic_forces_reference`], [`BeltElement::elastic_tangent_reference`]).
 #[derive(Debug, Clone)]
 pub struct BeltElement {
     length: f64,
@@ -33,6 +39,8 @@ pub struct BeltElement {
     alpha1: f64,
     alpha2: f64,
     points: Vec<BeltPoint>,
+    kernel_points: Vec<KernelPoint>,
+    constants: Constants,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -69,7 +77,7 @@ impl BeltElement {
         }
         material.validate()?;
         let rule = GaussRule::new(gauss_x);
-        let points = rule
+        let points: Vec<BeltPoint> = rule
             .iter()
             .map(|(xi, w)| BeltPoint {
                 xi,
@@ -78,6 +86,27 @@ impl BeltElement {
                 sxx: shape::cubic_xx(length, xi * length),
             })
             .collect();
+        let kernel_points = points
+            .iter()
+            .map(|p| KernelPoint {
+                xi: p.xi,
+                w: p.w,
+                sx: p.sx,
+                sxx: p.sxx,
+            })
+            .collect();
+        let e = material.young;
+        let g = material.shear_factor * material.shear_modulus() * alpha2;
+        let constants = Constants {
+            c: [
+                e * alpha1 * section.area / 8.0,
+                0.5 * e * alpha2 * section.i2,
+                e * alpha2 * section.i4 / 8.0,
+                0.5 * g * section.area,
+                0.5 * g * section.i2,
+                0.5 * e * section.area,
+            ],
+        };
         Ok(Self {
             length,
             material,
@@ -85,6 +114,8 @@ impl BeltElement {
             alpha1,
             alpha2,
             points,
+            kernel_points,
+            constants,
         })
     }
 
@@ -174,7 +205,7 @@ impl BeltElement {
     }
 
     /// Tangent by second-order AD over all 12 coordinates at once (slow; the reference for the
-    /// chain-rule tangent of [`Element::elastic_tangent`]).
+    /// closed-form tangent of [`Element::elastic_tangent`]).
     pub fn elastic_tangent_reference(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
         let v: [Hyper<N>; N] = std::array::from_fn(|i| Hyper::linear(e[i], &[(i, 1.0)]));
         let u = self.energy_generic(&v);
@@ -186,96 +217,22 @@ impl BeltElement {
         }
     }
 
-    /// Chain-rule tangent: second-order AD over the 4 coordinates `(r_x, r_y)` of each node for
-    /// the nodal shear angle and slope norm, and over the 7 primary quantities at each Gauss
-    /// point; `H_e = Σ w (Jᵀ H_p J) + Σ (∂U/∂s) ∂²s/∂e²` for the nodal functions `s`.
-    fn tangent_chain(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
-        let node = |off: usize| {
-            let v: [Hyper<4>; 4] = std::array::from_fn(|i| Hyper::linear(e[off + i], &[(i, 1.0)]));
-            let nx = (v[0] * v[0] + v[1] * v[1]).sqrt();
-            let ny = (v[2] * v[2] + v[3] * v[3]).sqrt();
-            let sg = -((v[0] * v[2] + v[1] * v[3]) * (nx * ny).recip());
-            (sg, ny)
-        };
-        let (sgi, nyi) = node(2);
-        let (sgj, nyj) = node(8);
-        let l = self.length;
-        let mut grad = [0.0; N];
-        let mut h = [[0.0; N]; N];
-        let mut coef = [0.0; 4]; // ∂U/∂(sg_i, ny_i, sg_j, ny_j)
-        for pt in &self.points {
-            let xi = pt.xi;
-            let mut pv = [0.0; 7];
-            for kk in 0..CUBIC_BLOCKS {
-                pv[0] += pt.sx[kk] * e[2 * kk];
-                pv[1] += pt.sx[kk] * e[2 * kk + 1];
-                pv[2] += pt.sxx[kk] * e[2 * kk];
-                pv[3] += pt.sxx[kk] * e[2 * kk + 1];
-            }
-            pv[4] = (1.0 - xi) * sgi.v + xi * sgj.v;
-            pv[5] = (sgj.v - sgi.v) / l;
-            pv[6] = (1.0 - xi) * nyi.v + xi * nyj.v - 1.0;
-            let vars: [Hyper<7>; 7] = std::array::from_fn(|i| Hyper::linear(pv[i], &[(i, 1.0)]));
-            let d = self.density_primary(&vars);
-            // J = ∂p/∂e (7 × 12)
-            let mut jac = [[0.0; N]; 7];
-            for kk in 0..CUBIC_BLOCKS {
-                jac[0][2 * kk] = pt.sx[kk];
-                jac[1][2 * kk + 1] = pt.sx[kk];
-                jac[2][2 * kk] = pt.sxx[kk];
-                jac[3][2 * kk + 1] = pt.sxx[kk];
-            }
-            for i in 0..4 {
-                jac[4][2 + i] = (1.0 - xi) * sgi.g[i];
-                jac[4][8 + i] = xi * sgj.g[i];
-                jac[5][2 + i] = -sgi.g[i] / l;
-                jac[5][8 + i] = sgj.g[i] / l;
-                jac[6][2 + i] = (1.0 - xi) * nyi.g[i];
-                jac[6][8 + i] = xi * nyj.g[i];
-            }
-            let w = pt.w;
-            // grad += w Jᵀ g ; hj = H_p J (7 × 12) ; h += w Jᵀ hj
-            let mut hj = [[0.0; N]; 7];
-            for a in 0..7 {
-                for c in 0..N {
-                    let mut acc = 0.0;
-                    for b in 0..7 {
-                        acc += d.h[a][b] * jac[b][c];
-                    }
-                    hj[a][c] = acc;
-                }
-            }
-            for c in 0..N {
-                let mut gacc = 0.0;
-                for a in 0..7 {
-                    gacc += jac[a][c] * d.g[a];
-                }
-                grad[c] += w * gacc;
-                for r in 0..N {
-                    let mut acc = 0.0;
-                    for a in 0..7 {
-                        acc += jac[a][r] * hj[a][c];
-                    }
-                    h[r][c] += w * acc;
-                }
-            }
-            coef[0] += w * ((1.0 - xi) * d.g[4] - d.g[5] / l);
-            coef[2] += w * (xi * d.g[4] + d.g[5] / l);
-            coef[1] += w * (1.0 - xi) * d.g[6];
-            coef[3] += w * xi * d.g[6];
+    /// Forces `q = −∂U/∂e` by first-order AD of the energy (3.18)–(3.19) written term by term
+    /// (the reference of the closed-form forces of [`Element::elastic_forces`]).
+    pub fn elastic_forces_reference(&self, e: &[f64], q: &mut [f64]) {
+        let v: [Dual<N>; N] = std::array::from_fn(|k| Dual::var(e[k], k));
+        let u = self.energy_generic(&v);
+        for k in 0..N {
+            q[k] = -u.g[k];
         }
-        for i in 0..4 {
-            for j in 0..4 {
-                h[2 + i][2 + j] += coef[0] * sgi.h[i][j] + coef[1] * nyi.h[i][j];
-                h[8 + i][8 + j] += coef[2] * sgj.h[i][j] + coef[3] * nyj.h[i][j];
-            }
-        }
-        for i in 0..N {
-            q[i] = -grad[i];
-            for j in 0..N {
-                k[i + j * N] = h[i][j];
-            }
-        }
+    }
+
+    /// Strain energy from the terms of (3.18)–(3.19) as written (reference of
+    /// [`Element::strain_energy`]) \[J\].
+    pub fn strain_energy_reference(&self, e: &[f64]) -> f64 {
+        let mut v = [0.0; N];
+        v.copy_from_slice(&e[..N]);
+        self.energy_generic(&v)
     }
 
     fn energy_generic<T: Real>(&self, e: &[T; N]) -> T {
@@ -305,18 +262,34 @@ impl Element for BeltElement {
         s[..CUBIC_BLOCKS].copy_from_slice(&shape::cubic(self.length, x, y).s);
     }
     fn strain_energy(&self, e: &[f64]) -> f64 {
-        let mut v = [0.0; N];
-        v.copy_from_slice(&e[..N]);
-        self.energy_generic(&v)
+        let mut q = [0.0; N];
+        belt_kernel::evaluate(
+            &self.constants,
+            self.length,
+            &self.kernel_points,
+            e,
+            &mut q,
+            None,
+        )
     }
     fn elastic_forces(&self, e: &[f64], q: &mut [f64]) {
-        let v: [Dual<N>; N] = std::array::from_fn(|k| Dual::var(e[k], k));
-        let u = self.energy_generic(&v);
-        for k in 0..N {
-            q[k] = -u.g[k];
-        }
+        belt_kernel::evaluate(
+            &self.constants,
+            self.length,
+            &self.kernel_points,
+            e,
+            q,
+            None,
+        );
     }
     fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
-        self.tangent_chain(e, q, k)
+        belt_kernel::evaluate(
+            &self.constants,
+            self.length,
+            &self.kernel_points,
+            e,
+            q,
+            Some(k),
+        );
     }
 }

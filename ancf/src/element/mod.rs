@@ -2,6 +2,7 @@
 //! matrix, elastic forces `Q_e = −(∂U/∂e)ᵀ` (2.20) and their tangent `∂²U/∂e²`.
 
 mod belt;
+mod belt_kernel;
 mod kernel;
 mod omar_shabana;
 mod proposed;

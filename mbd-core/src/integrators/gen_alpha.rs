@@ -30,7 +30,9 @@ use super::{
     AlphaCorrection, Integrator, NoCorrection, Solution, State, Stats, StepCorrection, Stepper,
     check_step, observe_fn,
 };
-use crate::newton::{self, NewtonError, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances};
+use crate::newton::{
+    self, LineSearch, NewtonError, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances,
+};
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
 use faer::Mat;
 
@@ -139,6 +141,30 @@ pub struct AlphaConfig {
     /// Re-factor trigger of [`NewtonUpdate::Frozen`] (`None`: only step-size changes, failures
     /// and [`AlphaStepper::refactor`]).
     pub refactor_drift: Option<DriftTrigger>,
+    /// Contraction trigger of [`NewtonUpdate::Frozen`] and [`NewtonUpdate::EveryStep`]: when a
+    /// correction solved with the kept factorisation exceeds this fraction of the previous
+    /// correction of the step, the iteration matrix is re-evaluated and re-factored at the
+    /// current iterate and the correction recomputed with it (`None`: never; the modified
+    /// Newton of Exudyn's implicit solvers uses 0.5). With a frozen matrix a chord iteration
+    /// converges linearly at the rate of the matrix error; the trigger renews the matrix as
+    /// soon as that rate is poor (after contact or friction states changed) and keeps it
+    /// while it is good.
+    pub refactor_contraction: Option<f64>,
+    /// Treatment of a Newton iteration whose corrections stop contracting
+    /// ([`crate::newton::Stall`]: Armijo backtracking on the residual norm after the first
+    /// stall, early exit after repeated stalls; the step is then retaken as after any Newton
+    /// failure, halved or with full Newton after a failure with a kept matrix). At a
+    /// saturating friction law (slope ν_s inside, 0 outside) the corrections can jump between
+    /// the two flat branches forever, a two-cycle of constant size that the step would
+    /// otherwise have to be halved to escape. The residual of an accepted line-search trial is
+    /// reused by the next iteration. `None`: plain Newton up to `max_newton_iterations`.
+    pub newton_stall: Option<crate::newton::Stall>,
+    /// Armijo backtracking on the residual norm in every Newton iteration
+    /// ([`crate::newton::LineSearch`] with trial steps 1, ½, ¼, ⅛, 1/16 and the full step when
+    /// none decreases `‖r‖`): a globalised Newton that does not cycle at the kinks of
+    /// piecewise-smooth forces. The residual of an accepted trial is reused by the next
+    /// iteration, so an accepted full step costs nothing extra.
+    pub newton_line_search: bool,
 }
 
 impl Default for AlphaConfig {
@@ -158,6 +184,9 @@ impl Default for AlphaConfig {
             zero_predictor: false,
             explicit_inverse: false,
             refactor_drift: None,
+            refactor_contraction: None,
+            newton_stall: None,
+            newton_line_search: false,
         }
     }
 }
@@ -271,6 +300,9 @@ struct Work {
     r: Vec<f64>,
     dx: Vec<f64>,
     x_new: Vec<f64>,
+    /// Last residual evaluated by a line-search trial and its unknowns.
+    cache_x: Vec<f64>,
+    cache_r: Vec<f64>,
     newton: NewtonWorkspace,
 }
 
@@ -285,6 +317,8 @@ impl Work {
             r: vec![0.0; n + nc],
             dx: vec![0.0; n + nc],
             x_new: vec![0.0; 3 * n + nc],
+            cache_x: vec![0.0; 3 * n + nc],
+            cache_r: vec![0.0; n + nc],
             newton: NewtonWorkspace::new(),
         }
     }
@@ -554,6 +588,8 @@ impl<C> AlphaStepper<C> {
             r: r_lin,
             dx: dx_lin,
             x_new: x_lin,
+            cache_x,
+            cache_r,
             newton: newton_ws,
         } = w;
 
@@ -581,6 +617,11 @@ impl<C> AlphaStepper<C> {
         let opts = NewtonOptions {
             max_iterations: p.max_newton_iterations,
             tolerances: Tolerances::mixed(p.newton_atol, p.newton_rtol),
+            stall: p.newton_stall,
+            line_search: p.newton_line_search.then_some(LineSearch {
+                max_trials: 5,
+                ..Default::default()
+            }),
             ..Default::default()
         };
         let mut problem = StepProblem {
@@ -596,6 +637,10 @@ impl<C> AlphaStepper<C> {
             trial: rhs,
             it: 0,
             reuse: false,
+            prev_norm: f64::INFINITY,
+            cache_x,
+            cache_r,
+            cached: false,
         };
         let solved = if p.linearly_implicit {
             // one iteration from the predictor, no convergence test

@@ -450,3 +450,75 @@ fn errors_are_typed() {
         }
     );
 }
+
+/// `R(x) = x + sat(100 x) − ½`, `sat` clipped at ±1 (the S-shaped residual of a mass with a
+/// saturating creep-rate friction force, Kerkkänen Fig. 3.3): monotone, one root `½/101`.
+fn saturating() -> Dense {
+    let sat = |x: f64| (100.0 * x).clamp(-1.0, 1.0);
+    let slope = |x: f64| if (100.0 * x).abs() <= 1.0 { 101.0 } else { 1.0 };
+    Dense::new(
+        1,
+        move |x, _, r| r[0] = x[0] + sat(x[0]) - 0.5,
+        move |x, _| [[slope(x[0]), 0.0], [0.0, 1.0]],
+    )
+}
+
+// Reference: from x₀ = 10 plain Newton jumps between the two flat branches (x = −½ ↔ 1.5, a
+// two-cycle of constant corrections) and never converges; the stall exit stops it after the
+// given number of non-contracting iterations, and with backtracking after the first stall it
+// converges to the analytic root ½/101.
+#[test]
+fn stall_exit_and_backtracking_at_a_saturating_law() {
+    let base = NewtonOptions {
+        max_iterations: 40,
+        tolerances: Tolerances::absolute(1e-12),
+        ..Default::default()
+    };
+    let mut ws = NewtonWorkspace::new();
+    let mut x = vec![10.0];
+    let r = solve(&mut saturating(), &mut x, &base, &mut ws);
+    assert!(matches!(
+        r,
+        Err(NewtonError::NoConvergence { iterations: 40, .. })
+    ));
+    assert!(
+        (x[0] + 0.5).abs() < 1e-12 || (x[0] - 1.5).abs() < 1e-12,
+        "{x:?}"
+    );
+    let stall = Stall {
+        ratio: 0.9,
+        iterations: 3,
+        backtrack: false,
+    };
+    let mut x = vec![10.0];
+    let opts = NewtonOptions {
+        stall: Some(stall),
+        ..base
+    };
+    match solve(&mut saturating(), &mut x, &opts, &mut ws) {
+        Err(NewtonError::NoConvergence { iterations, .. }) => assert!(iterations <= 6),
+        other => panic!("expected an early exit, got {other:?}"),
+    }
+    let mut x = vec![10.0];
+    let opts = NewtonOptions {
+        stall: Some(Stall {
+            backtrack: true,
+            ..stall
+        }),
+        ..base
+    };
+    let rep = solve(&mut saturating(), &mut x, &opts, &mut ws).unwrap();
+    assert!((x[0] - 0.5 / 101.0).abs() < 1e-12, "{x:?}");
+    assert!(rep.iterations() < 15, "{rep:?}");
+    let bad = NewtonOptions {
+        stall: Some(Stall {
+            iterations: 0,
+            ..stall
+        }),
+        ..base
+    };
+    assert!(matches!(
+        solve(&mut saturating(), &mut [1.0], &bad, &mut ws),
+        Err(NewtonError::InvalidOption { field: "stall", .. })
+    ));
+}

@@ -15,8 +15,10 @@
 //!
 //! Modified Newton lives in [`NewtonProblem::linearize`]: from the second iteration on it
 //! first solves with the factorisation of the previous iteration and re-factors only when that
-//! correction is not yet below the tolerance (always keeps it for
-//! [`NewtonUpdate::EveryStep`]).
+//! correction is not yet below the tolerance (for [`NewtonUpdate::EveryStep`] and
+//! [`NewtonUpdate::Frozen`]: keeps it unless the correction exceeds
+//! [`AlphaConfig::refactor_contraction`](super::AlphaConfig::refactor_contraction) times the
+//! previous one).
 
 use super::{AlphaStepper, NewtonUpdate};
 use crate::integrators::explain_singular;
@@ -47,6 +49,13 @@ pub(super) struct StepProblem<'a, S: ?Sized, C> {
     pub it: usize,
     /// Whether `trial` is the correction of this iteration.
     pub reuse: bool,
+    /// Norm `‖Δx‖∞` of the previous correction of the step (contraction trigger).
+    pub prev_norm: f64,
+    /// Unknowns and residual of the last [`NewtonProblem::residual`] (line-search trial).
+    pub cache_x: &'a mut [f64],
+    pub cache_r: &'a mut [f64],
+    /// Whether the cache holds an evaluation of this step.
+    pub cached: bool,
 }
 
 /// `rhs = [−r/β'; −Φ]`.
@@ -79,9 +88,14 @@ impl<S: SecondOrderSystem + ?Sized, C> NewtonProblem for StepProblem<'_, S, C> {
         let (v1, rest) = rest.split_at(n);
         let (vdot1, lam1) = rest.split_at(n);
         sys.integrate_position(&self.stepper.state.q, dq, self.q1);
+        if self.cached && *self.cache_x == *x {
+            r.copy_from_slice(self.cache_r);
+        } else {
+            let (rr, phi) = r.split_at_mut(n);
+            self.stepper
+                .residual(sys, t1, self.q1, v1, vdot1, lam1, rr, phi, self.f)?;
+        }
         let (rr, phi) = r.split_at_mut(n);
-        self.stepper
-            .residual(sys, t1, self.q1, v1, vdot1, lam1, rr, phi, self.f)?;
         self.reuse = false;
         let frozen = self.update == NewtonUpdate::Frozen;
         if (self.it > 1 || frozen) && self.stepper.matrix.is_factored() {
@@ -90,9 +104,12 @@ impl<S: SecondOrderSystem + ?Sized, C> NewtonProblem for StepProblem<'_, S, C> {
             st.matrix.solve(self.trial, &mut st.scratch, t1)?;
             let p = &self.stepper.params;
             let dxn = max_abs(&self.trial[..n]);
-            self.reuse = frozen
-                || self.update == NewtonUpdate::EveryStep
-                || dxn <= p.newton_atol + p.newton_rtol * max_abs(dq);
+            self.reuse = match self.update {
+                NewtonUpdate::EveryIteration => dxn <= p.newton_atol + p.newton_rtol * max_abs(dq),
+                NewtonUpdate::EveryStep | NewtonUpdate::Frozen => p
+                    .refactor_contraction
+                    .is_none_or(|theta| self.it == 1 || dxn <= theta * self.prev_norm),
+            };
         }
         if !self.reuse {
             self.stepper
@@ -104,15 +121,35 @@ impl<S: SecondOrderSystem + ?Sized, C> NewtonProblem for StepProblem<'_, S, C> {
         Ok(())
     }
 
+    /// `r` at `x` without touching the iteration matrix; kept for the next
+    /// [`NewtonProblem::linearize`] at the same `x` (an accepted line-search trial).
+    fn residual(&mut self, x: &[f64], _load: f64, r: &mut [f64]) -> Result<(), MbdError> {
+        let sys = self.sys;
+        let n = sys.n_v();
+        let (dq, rest) = x.split_at(n);
+        let (v1, rest) = rest.split_at(n);
+        let (vdot1, lam1) = rest.split_at(n);
+        sys.integrate_position(&self.stepper.state.q, dq, self.q1);
+        let (rr, phi) = r.split_at_mut(n);
+        self.stepper
+            .residual(sys, self.t1, self.q1, v1, vdot1, lam1, rr, phi, self.f)?;
+        self.cache_x.copy_from_slice(x);
+        self.cache_r.copy_from_slice(r);
+        self.cached = true;
+        Ok(())
+    }
+
     fn solve(&mut self, r: &[f64], dx: &mut [f64]) -> Result<(), MbdError> {
+        let n = self.sys.n_v();
         if self.reuse {
             dx.copy_from_slice(self.trial);
-            return Ok(());
+        } else {
+            fill_rhs(dx, &r[..n], &r[n..], self.bp);
+            let st = &mut *self.stepper;
+            st.matrix.solve(dx, &mut st.scratch, self.t1)?;
         }
-        let n = self.sys.n_v();
-        fill_rhs(dx, &r[..n], &r[n..], self.bp);
-        let st = &mut *self.stepper;
-        st.matrix.solve(dx, &mut st.scratch, self.t1)
+        self.prev_norm = max_abs(&dx[..n]);
+        Ok(())
     }
 
     fn update(&mut self, x: &[f64], dx: &[f64], x_new: &mut [f64]) -> Result<(), MbdError> {

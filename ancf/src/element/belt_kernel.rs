@@ -1,0 +1,423 @@
+//! Closed-form elastic forces and tangent of the belt element (Kerkkänen §3.1).
+//!
+//! With `t = r_{c,x}/‖r_{c,x}‖`, `n = Ĩ t` and the curvature-like scalar
+//! `k = (r_{c,x} × r_{c,xx})/a`, `a = r_{c,x}ᵀr_{c,x}`, the derivative of the unit tangent is
+//! `t_x = k n` and `n_x = −k t`, so the vectors of (3.8)–(3.10) reduce to
+//! `r_s = n − sin γ t` and `r_{s,x} = −(k + (sin γ)_x) t − sin γ k n`. The four products of
+//! (3.18)–(3.19) are then
+//!
+//! ```text
+//!   b = r_{c,x}ᵀ r_{s,x} = −√a s,    c = r_{s,x}ᵀ r_{s,x} = s² + sin²γ k²,
+//!   d = r_{c,x}ᵀ r_s     = −√a sin γ, f = r_{s,x}ᵀ r_s     = sin γ (sin γ)_x,   s = k + (sin γ)_x,
+//! ```
+//!
+//! and the energy per unit length
+//!
+//! ```text
+//!   W = C₁(a − 1)² + C₂(a s² + ½(a − 1)c) + C₃c² + C₄ a sin²γ + C₅ sin²γ (sin γ)_x² + C₆ ε_yy²
+//! ```
+//!
+//! (`C₁ = Eα₁A/8`, `C₂ = Eα₂I₂/2`, `C₃ = Eα₂I₄/8`, `C₄ = k_sGα₂A/2`, `C₅ = k_sGα₂I₂/2`,
+//! `C₆ = EA/2`) is a polynomial in `(a, k, sin γ, (sin γ)_x, ε_yy)`. At a Gauss point `a` and
+//! `z = r_{c,x} × r_{c,xx}` are quadratic forms of the element coordinates with constant
+//! shape-function products, and `sin γ`, `(sin γ)_x`, `ε_yy` are linear in the four nodal
+//! scalars `sin γᴵ, sin γᴶ, ‖r_yᴵ‖, ‖r_yᴶ‖` (3.12), (4.36). Forces and the exact tangent are
+//! therefore the chain rule through these few scalars: rank-two updates with the gradients of
+//! `a` and `z`, constant matrices scaled by `∂W/∂a`, `∂W/∂z`, and the nodal functions' own
+//! second derivatives — a few small dense contractions instead of automatic differentiation.
+//! The automatic-differentiation energy of [`super::BeltElement`] is the reference it is tested
+//! against (to 1e-10).
+
+use crate::shape::CUBIC_BLOCKS;
+
+/// Element coordinates.
+pub(crate) const N: usize = 12;
+
+/// Blocks of the centreline shape functions that do not vanish at `y = 0` (`r` and `r_x` of
+/// both nodes; the `r_y` blocks carry a factor `y`).
+const CENTRE_BLOCKS: [usize; 4] = [0, 1, 3, 4];
+
+/// Energy constants `C₁ … C₆` of the module documentation.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Constants {
+    pub c: [f64; 6],
+}
+
+/// One Gauss point along the element: `ξ`, weight (times `l`), `S_x` and `S_xx` on `y = 0`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct KernelPoint {
+    pub xi: f64,
+    pub w: f64,
+    pub sx: [f64; CUBIC_BLOCKS],
+    pub sxx: [f64; CUBIC_BLOCKS],
+}
+
+/// Nodal shear angle `sin γ = −r_xᵀr_y/(‖r_x‖‖r_y‖)` and slope norm `‖r_y‖` of one node with
+/// their derivatives with respect to `(r_x, r_y)` (4 coordinates) and `r_y` (2).
+#[derive(Debug, Clone, Copy, Default)]
+struct NodeScalars {
+    sg: f64,
+    ny: f64,
+    dsg: [f64; 4],
+    dny: [f64; 2],
+    hsg: [[f64; 4]; 4],
+    hny: [[f64; 2]; 2],
+}
+
+impl NodeScalars {
+    fn new(u: [f64; 2], v: [f64; 2], hessian: bool) -> Self {
+        let p = u[0] * v[0] + u[1] * v[1];
+        let aa = (u[0] * u[0] + u[1] * u[1]).sqrt();
+        let bb = (v[0] * v[0] + v[1] * v[1]).sqrt();
+        let (ia, ib) = (1.0 / aa, 1.0 / bb);
+        let c0 = p * ia * ib;
+        let mut s = NodeScalars {
+            sg: -c0,
+            ny: bb,
+            ..Default::default()
+        };
+        // ∂c₀/∂u = v/(AB) − c₀ u/A², ∂c₀/∂v = u/(AB) − c₀ v/B²
+        for i in 0..2 {
+            s.dsg[i] = -(v[i] * ia * ib - c0 * u[i] * ia * ia);
+            s.dsg[2 + i] = -(u[i] * ia * ib - c0 * v[i] * ib * ib);
+            s.dny[i] = v[i] * ib;
+        }
+        if hessian {
+            let (ia3, ib3) = (ia * ia * ia, ib * ib * ib);
+            for i in 0..2 {
+                for j in 0..2 {
+                    let d = if i == j { 1.0 } else { 0.0 };
+                    // second derivatives of c₀ = p A⁻¹ B⁻¹
+                    let uu = -(v[i] * u[j] + v[j] * u[i]) * ia3 * ib - p * d * ia3 * ib
+                        + 3.0 * p * u[i] * u[j] * ia3 * ia * ia * ib;
+                    let vv = -(u[i] * v[j] + u[j] * v[i]) * ia * ib3 - p * d * ia * ib3
+                        + 3.0 * p * v[i] * v[j] * ia * ib3 * ib * ib;
+                    let uv = d * ia * ib - v[i] * v[j] * ia * ib3 - u[i] * u[j] * ia3 * ib
+                        + p * u[i] * v[j] * ia3 * ib3;
+                    s.hsg[i][j] = -uu;
+                    s.hsg[2 + i][2 + j] = -vv;
+                    s.hsg[i][2 + j] = -uv;
+                    s.hsg[2 + j][i] = -uv;
+                    s.hny[i][j] = (d - v[i] * v[j] * ib * ib) * ib;
+                }
+            }
+        }
+        s
+    }
+}
+
+/// Energy per unit length `W` and its first and second derivatives with respect to
+/// `x = (a, z, sin γ, (sin γ)_x, ε_yy)` (module documentation).
+struct Density {
+    w: f64,
+    g: [f64; 5],
+    h: [[f64; 5]; 5],
+}
+
+fn density(cst: &Constants, x: [f64; 5], hessian: bool) -> Density {
+    let [c1, c2, c3, c4, c5, c6] = cst.c;
+    let [a, z, sg, sgx, eyy] = x;
+    let k = z / a;
+    let s = k + sgx;
+    let c = s * s + sg * sg * k * k;
+    let am1 = a - 1.0;
+    let w = c1 * am1 * am1
+        + c2 * (a * s * s + 0.5 * am1 * c)
+        + c3 * c * c
+        + c4 * a * sg * sg
+        + c5 * sg * sg * sgx * sgx
+        + c6 * eyy * eyy;
+    // derivatives of c with respect to (k, sin γ, (sin γ)_x)
+    let c_k = 2.0 * s + 2.0 * sg * sg * k;
+    let c_sg = 2.0 * sg * k * k;
+    let c_sgx = 2.0 * s;
+    // ∂W over u = (a, k, sin γ, (sin γ)_x, ε_yy)
+    let w_a = 2.0 * c1 * am1 + c2 * (s * s + 0.5 * c) + c4 * sg * sg;
+    let w_k = 2.0 * c2 * a * s + 0.5 * c2 * am1 * c_k + 2.0 * c3 * c * c_k;
+    let w_sg =
+        0.5 * c2 * am1 * c_sg + 2.0 * c3 * c * c_sg + 2.0 * c4 * a * sg + 2.0 * c5 * sg * sgx * sgx;
+    let w_sgx =
+        2.0 * c2 * a * s + 0.5 * c2 * am1 * c_sgx + 2.0 * c3 * c * c_sgx + 2.0 * c5 * sg * sg * sgx;
+    let w_eyy = 2.0 * c6 * eyy;
+    // chain k = z/a
+    let (ia, k_a) = (1.0 / a, -k / a);
+    let mut out = Density {
+        w,
+        g: [w_a + w_k * k_a, w_k * ia, w_sg, w_sgx, w_eyy],
+        h: [[0.0; 5]; 5],
+    };
+    if hessian {
+        let c_kk = 2.0 + 2.0 * sg * sg;
+        let c_ksg = 4.0 * sg * k;
+        let c_ksgx = 2.0;
+        let c_sgsg = 2.0 * k * k;
+        let c_sgxsgx = 2.0;
+        let w_aa = 2.0 * c1;
+        let w_ak = 2.0 * c2 * s + 0.5 * c2 * c_k;
+        let w_asg = 0.5 * c2 * c_sg + 2.0 * c4 * sg;
+        let w_asgx = 2.0 * c2 * s + 0.5 * c2 * c_sgx;
+        let w_kk = 2.0 * c2 * a + 0.5 * c2 * am1 * c_kk + 2.0 * c3 * (c_k * c_k + c * c_kk);
+        let w_ksg = 0.5 * c2 * am1 * c_ksg + 2.0 * c3 * (c_k * c_sg + c * c_ksg);
+        let w_ksgx = 2.0 * c2 * a + 0.5 * c2 * am1 * c_ksgx + 2.0 * c3 * (c_k * c_sgx + c * c_ksgx);
+        let w_sgsg = 0.5 * c2 * am1 * c_sgsg
+            + 2.0 * c3 * (c_sg * c_sg + c * c_sgsg)
+            + 2.0 * c4 * a
+            + 2.0 * c5 * sgx * sgx;
+        let w_sgsgx = 2.0 * c3 * c_sg * c_sgx + 4.0 * c5 * sg * sgx;
+        let w_sgxsgx = 2.0 * c2 * a
+            + 0.5 * c2 * am1 * c_sgxsgx
+            + 2.0 * c3 * (c_sgx * c_sgx + c * c_sgxsgx)
+            + 2.0 * c5 * sg * sg;
+        let (k_z, k_aa, k_az) = (ia, 2.0 * k * ia * ia, -ia * ia);
+        let h = &mut out.h;
+        h[0][0] = w_aa + 2.0 * w_ak * k_a + w_kk * k_a * k_a + w_k * k_aa;
+        h[0][1] = w_ak * k_z + w_kk * k_a * k_z + w_k * k_az;
+        h[1][1] = w_kk * k_z * k_z;
+        h[0][2] = w_asg + w_ksg * k_a;
+        h[0][3] = w_asgx + w_ksgx * k_a;
+        h[1][2] = w_ksg * k_z;
+        h[1][3] = w_ksgx * k_z;
+        h[2][2] = w_sgsg;
+        h[2][3] = w_sgsgx;
+        h[3][3] = w_sgxsgx;
+        h[4][4] = 2.0 * c6;
+        for i in 0..5 {
+            for j in 0..i {
+                h[i][j] = h[j][i];
+            }
+        }
+    }
+    out
+}
+
+/// Strain energy `U = Σ w W` \[J\], elastic forces `q = −∂U/∂e` and, with `k = Some`, the
+/// tangent `∂²U/∂e²` (column-major 12 × 12) of the belt element with coordinates `e`
+/// (module documentation).
+pub(crate) fn evaluate(
+    cst: &Constants,
+    length: f64,
+    points: &[KernelPoint],
+    e: &[f64],
+    q: &mut [f64],
+    k: Option<&mut [f64]>,
+) -> f64 {
+    let Some(kout) = k else {
+        return forces(cst, length, points, e, q);
+    };
+    let nodes = [
+        NodeScalars::new([e[2], e[3]], [e[4], e[5]], true),
+        NodeScalars::new([e[8], e[9]], [e[10], e[11]], true),
+    ];
+    let il = 1.0 / length;
+    let mut energy = 0.0;
+    let mut grad = [0.0; N];
+    // ∂U/∂(sin γᴵ, sin γᴶ, ‖r_yᴵ‖, ‖r_yᴶ‖)
+    let mut du_nodal = [0.0; 4];
+    // tangent accumulators
+    let mut h = [[0.0; N]; N];
+    let mut ka = [[0.0; CUBIC_BLOCKS]; CUBIC_BLOCKS];
+    let mut kz = [[0.0; CUBIC_BLOCKS]; CUBIC_BLOCKS];
+    let mut cross = [[0.0; N]; 4];
+    let mut y = [[0.0; 4]; 4];
+    for p in points {
+        let xi = p.xi;
+        let (rcx, rcxx, x) = point_scalars(p, e, &nodes, il);
+        let d = density(cst, x, true);
+        let w = p.w;
+        energy += w * d.w;
+        // gradients of a and z
+        let mut ga = [0.0; N];
+        let mut gz = [0.0; N];
+        for &b in &CENTRE_BLOCKS {
+            ga[2 * b] = 2.0 * p.sx[b] * rcx[0];
+            ga[2 * b + 1] = 2.0 * p.sx[b] * rcx[1];
+            gz[2 * b] = p.sx[b] * rcxx[1] - p.sxx[b] * rcx[1];
+            gz[2 * b + 1] = -p.sx[b] * rcxx[0] + p.sxx[b] * rcx[0];
+        }
+        for c in 0..N {
+            grad[c] += w * (d.g[0] * ga[c] + d.g[1] * gz[c]);
+        }
+        // point scalars (sin γ, (sin γ)_x, ε_yy) as rows over the nodal scalars
+        let m = [
+            [1.0 - xi, xi, 0.0, 0.0],
+            [-il, il, 0.0, 0.0],
+            [0.0, 0.0, 1.0 - xi, xi],
+        ];
+        for nd in 0..4 {
+            du_nodal[nd] += w * (d.g[2] * m[0][nd] + d.g[3] * m[1][nd] + d.g[4] * m[2][nd]);
+        }
+        {
+            let hd = &d.h;
+            // rank-two part in (a, z)
+            for r in 0..N {
+                let (gar, gzr) = (ga[r], gz[r]);
+                if gar == 0.0 && gzr == 0.0 {
+                    continue;
+                }
+                let ua = w * (hd[0][0] * gar + hd[0][1] * gzr);
+                let uz = w * (hd[0][1] * gar + hd[1][1] * gzr);
+                for c in 0..N {
+                    h[r][c] += ua * ga[c] + uz * gz[c];
+                }
+            }
+            // ∂W/∂a ∂²a + ∂W/∂z ∂²z (block coefficients)
+            let (wa, wz) = (w * d.g[0], w * d.g[1]);
+            for &i in &CENTRE_BLOCKS {
+                for &j in &CENTRE_BLOCKS {
+                    ka[i][j] += 2.0 * wa * p.sx[i] * p.sx[j];
+                    kz[i][j] += wz * (p.sx[i] * p.sxx[j] - p.sx[j] * p.sxx[i]);
+                }
+            }
+            // cross terms (a, z) × nodal scalars and nodal × nodal
+            for nd in 0..4 {
+                let xa = (2..5).map(|s| hd[0][s] * m[s - 2][nd]).sum::<f64>();
+                let xz = (2..5).map(|s| hd[1][s] * m[s - 2][nd]).sum::<f64>();
+                for c in 0..N {
+                    cross[nd][c] += w * (xa * ga[c] + xz * gz[c]);
+                }
+                for md in 0..4 {
+                    let mut acc = 0.0;
+                    for s in 0..3 {
+                        for t in 0..3 {
+                            acc += m[s][nd] * hd[2 + s][2 + t] * m[t][md];
+                        }
+                    }
+                    y[nd][md] += w * acc;
+                }
+            }
+        }
+    }
+    // nodal scalars as 12-vectors: sin γᴵ on (r_xᴵ, r_yᴵ) = e[2..6], ‖r_yᴵ‖ on e[4..6]
+    let mut gn = [[0.0; N]; 4];
+    for (node, off) in [(0usize, 2usize), (1, 8)] {
+        gn[node][off..off + 4].copy_from_slice(&nodes[node].dsg);
+        gn[2 + node][off + 2..off + 4].copy_from_slice(&nodes[node].dny);
+    }
+    for (nd, g) in gn.iter().enumerate() {
+        for c in 0..N {
+            grad[c] += du_nodal[nd] * g[c];
+        }
+    }
+    for c in 0..N {
+        q[c] = -grad[c];
+    }
+    {
+        for i in 0..CUBIC_BLOCKS {
+            for j in 0..CUBIC_BLOCKS {
+                h[2 * i][2 * j] += ka[i][j];
+                h[2 * i + 1][2 * j + 1] += ka[i][j];
+                h[2 * i][2 * j + 1] += kz[i][j];
+                h[2 * i + 1][2 * j] -= kz[i][j];
+            }
+        }
+        for nd in 0..4 {
+            for r in 0..N {
+                for c in 0..N {
+                    h[r][c] += cross[nd][r] * gn[nd][c] + gn[nd][r] * cross[nd][c];
+                }
+            }
+            for md in 0..4 {
+                let ynm = y[nd][md];
+                if ynm == 0.0 {
+                    continue;
+                }
+                for r in 0..N {
+                    if gn[nd][r] == 0.0 {
+                        continue;
+                    }
+                    for c in 0..N {
+                        h[r][c] += ynm * gn[nd][r] * gn[md][c];
+                    }
+                }
+            }
+        }
+        // the nodal functions' own second derivatives
+        for (node, off) in [(0usize, 2usize), (1, 8)] {
+            let (fs, fy) = (du_nodal[node], du_nodal[2 + node]);
+            for i in 0..4 {
+                for j in 0..4 {
+                    h[off + i][off + j] += fs * nodes[node].hsg[i][j];
+                }
+            }
+            for i in 0..2 {
+                for j in 0..2 {
+                    h[off + 2 + i][off + 2 + j] += fy * nodes[node].hny[i][j];
+                }
+            }
+        }
+        for r in 0..N {
+            for c in 0..N {
+                kout[r + c * N] = h[r][c];
+            }
+        }
+    }
+    energy
+}
+
+/// `r_{c,x}`, `r_{c,xx}` and the five scalars `(a, z, sin γ, (sin γ)_x, ε_yy)` at a point.
+fn point_scalars(
+    p: &KernelPoint,
+    e: &[f64],
+    nodes: &[NodeScalars; 2],
+    il: f64,
+) -> ([f64; 2], [f64; 2], [f64; 5]) {
+    let xi = p.xi;
+    let mut rcx = [0.0; 2];
+    let mut rcxx = [0.0; 2];
+    for &b in &CENTRE_BLOCKS {
+        rcx[0] += p.sx[b] * e[2 * b];
+        rcx[1] += p.sx[b] * e[2 * b + 1];
+        rcxx[0] += p.sxx[b] * e[2 * b];
+        rcxx[1] += p.sxx[b] * e[2 * b + 1];
+    }
+    let a = rcx[0] * rcx[0] + rcx[1] * rcx[1];
+    let z = rcx[0] * rcxx[1] - rcx[1] * rcxx[0];
+    let sg = (1.0 - xi) * nodes[0].sg + xi * nodes[1].sg;
+    let sgx = (nodes[1].sg - nodes[0].sg) * il;
+    let eyy = (1.0 - xi) * nodes[0].ny + xi * nodes[1].ny - 1.0;
+    (rcx, rcxx, [a, z, sg, sgx, eyy])
+}
+
+/// Energy and forces only (the [`evaluate`] gradient without the tangent's accumulators).
+fn forces(cst: &Constants, length: f64, points: &[KernelPoint], e: &[f64], q: &mut [f64]) -> f64 {
+    let nodes = [
+        NodeScalars::new([e[2], e[3]], [e[4], e[5]], false),
+        NodeScalars::new([e[8], e[9]], [e[10], e[11]], false),
+    ];
+    let il = 1.0 / length;
+    let mut energy = 0.0;
+    let mut grad = [0.0; N];
+    let mut du_nodal = [0.0; 4];
+    for p in points {
+        let xi = p.xi;
+        let (rcx, rcxx, x) = point_scalars(p, e, &nodes, il);
+        let d = density(cst, x, false);
+        let w = p.w;
+        energy += w * d.w;
+        // w (∂W/∂a ∂a/∂e + ∂W/∂z ∂z/∂e)
+        let (wa, wz) = (w * d.g[0], w * d.g[1]);
+        for &b in &CENTRE_BLOCKS {
+            grad[2 * b] +=
+                wa * 2.0 * p.sx[b] * rcx[0] + wz * (p.sx[b] * rcxx[1] - p.sxx[b] * rcx[1]);
+            grad[2 * b + 1] +=
+                wa * 2.0 * p.sx[b] * rcx[1] + wz * (-p.sx[b] * rcxx[0] + p.sxx[b] * rcx[0]);
+        }
+        let (gsg, gsgx, geyy) = (w * d.g[2], w * d.g[3], w * d.g[4]);
+        du_nodal[0] += gsg * (1.0 - xi) - gsgx * il;
+        du_nodal[1] += gsg * xi + gsgx * il;
+        du_nodal[2] += geyy * (1.0 - xi);
+        du_nodal[3] += geyy * xi;
+    }
+    for (node, off) in [(0usize, 2usize), (1, 8)] {
+        for i in 0..4 {
+            grad[off + i] += du_nodal[node] * nodes[node].dsg[i];
+        }
+        for i in 0..2 {
+            grad[off + 2 + i] += du_nodal[2 + node] * nodes[node].dny[i];
+        }
+    }
+    for c in 0..N {
+        q[c] = -grad[c];
+    }
+    energy
+}
