@@ -17,22 +17,23 @@ use faer::sparse::{SparseColMat, Triplet};
 use mbd_core::integrators::{AlphaConfig, AlphaStepper, State};
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
+use nalgebra::{Point2, Vector2};
 
 /// An [`AncfSystem`] with the contact rows of the active nodes appended to its constraints.
-struct WithContacts<'a, E: Element, S: Surface + ?Sized> {
+struct WithContacts<'a, E: Element, S: Surface<2> + ?Sized> {
     base: &'a AncfSystem<E>,
     surface: &'a S,
     /// Active contact nodes (mesh node indices).
     active: Vec<usize>,
 }
 
-impl<E: Element, S: Surface + ?Sized> WithContacts<'_, E, S> {
-    fn node_r(&self, q: &[f64], node: usize) -> [f64; 2] {
-        self.base.mesh.node_position(q, node)
+impl<E: Element, S: Surface<2> + ?Sized> WithContacts<'_, E, S> {
+    fn node_r(&self, q: &[f64], node: usize) -> Point2<f64> {
+        Point2::from(self.base.mesh.node_position(q, node))
     }
 }
 
-impl<E: Element, S: Surface + ?Sized> SecondOrderSystem for WithContacts<'_, E, S> {
+impl<E: Element, S: Surface<2> + ?Sized> SecondOrderSystem for WithContacts<'_, E, S> {
     fn n_q(&self) -> usize {
         self.base.n_q()
     }
@@ -77,11 +78,15 @@ impl<E: Element, S: Surface + ?Sized> SecondOrderSystem for WithContacts<'_, E, 
         let nb = self.base.n_c();
         let mut trip = Vec::new();
         for (i, &nd) in self.active.iter().enumerate() {
-            let sp = self.surface.closest(self.node_r(q, nd));
+            let sp = self.surface.closest(&self.node_r(q, nd));
             let k = self.base.mesh.node_dof(nd, 0);
             for a in 0..2 {
                 for b in 0..2 {
-                    trip.push(Triplet::new(k + a, k + b, lambda[nb + i] * sp.dn_dp[a][b]));
+                    trip.push(Triplet::new(
+                        k + a,
+                        k + b,
+                        lambda[nb + i] * sp.dn_dp[(a, b)],
+                    ));
                 }
             }
         }
@@ -98,7 +103,7 @@ impl<E: Element, S: Surface + ?Sized> SecondOrderSystem for WithContacts<'_, E, 
         let nb = self.base.n_c();
         self.base.constraint_residual(t, q, &mut phi[..nb])?;
         for (i, &nd) in self.active.iter().enumerate() {
-            phi[nb + i] = self.surface.closest(self.node_r(q, nd)).gap;
+            phi[nb + i] = self.surface.closest(&self.node_r(q, nd)).gap;
         }
         Ok(())
     }
@@ -112,7 +117,7 @@ impl<E: Element, S: Surface + ?Sized> SecondOrderSystem for WithContacts<'_, E, 
             .map(|(i, p)| Triplet::new(i, p.dof, 1.0))
             .collect();
         for (i, &nd) in self.active.iter().enumerate() {
-            let n = self.surface.closest(self.node_r(q, nd)).normal;
+            let n = self.surface.closest(&self.node_r(q, nd)).normal;
             let k = self.base.mesh.node_dof(nd, 0);
             trip.push(Triplet::new(nb + i, k, n[0]));
             trip.push(Triplet::new(nb + i, k + 1, n[1]));
@@ -130,7 +135,7 @@ impl<E: Element, S: Surface + ?Sized> SecondOrderSystem for WithContacts<'_, E, 
         let nb = self.base.n_c();
         self.base.constraint_velocity_rhs(t, q, &mut nu[..nb])?;
         for (i, &nd) in self.active.iter().enumerate() {
-            let sp = self.surface.closest(self.node_r(q, nd));
+            let sp = self.surface.closest(&self.node_r(q, nd));
             let (n, u) = (sp.normal, sp.surface_velocity);
             nu[nb + i] = n[0] * u[0] + n[1] * u[1];
         }
@@ -147,7 +152,11 @@ impl<E: Element, S: Surface + ?Sized> SecondOrderSystem for WithContacts<'_, E, 
         self.base.constraint_gamma(t, q, v, &mut gamma[..nb])?;
         for (i, &nd) in self.active.iter().enumerate() {
             let k = self.base.mesh.node_dof(nd, 0);
-            let row = unilateral_row(self.surface, self.node_r(q, nd), [v[k], v[k + 1]]);
+            let row = unilateral_row(
+                self.surface,
+                &self.node_r(q, nd),
+                &Vector2::new(v[k], v[k + 1]),
+            );
             gamma[nb + i] = row.gamma;
         }
         Ok(())
@@ -168,7 +177,7 @@ pub struct ContactStep {
 /// Integrate `system` from `state0` to `t_end` \[s\] with generalized-α (`params`) and the
 /// frictionless unilateral contact of `nodes` against `surface`; `observer` sees every
 /// accepted step. The nodes must start outside the obstacle.
-pub fn integrate_unilateral<E: Element, S: Surface + ?Sized>(
+pub fn integrate_unilateral<E: Element, S: Surface<2> + ?Sized>(
     system: &AncfSystem<E>,
     surface: &S,
     nodes: &[usize],
@@ -185,7 +194,9 @@ pub fn integrate_unilateral<E: Element, S: Surface + ?Sized>(
                 format!("node {nd} out of range 0..{}", mesh.n_nodes()),
             ));
         }
-        let g = surface.closest(mesh.node_position(&state0.q, nd)).gap;
+        let g = surface
+            .closest(&Point2::from(mesh.node_position(&state0.q, nd)))
+            .gap;
         if g < 0.0 {
             return Err(invalid(
                 format!("unilateral dynamics: contact node {nd}"),
@@ -217,7 +228,7 @@ pub fn integrate_unilateral<E: Element, S: Surface + ?Sized>(
                 (
                     nd,
                     surface
-                        .closest(mesh.node_position(&stepper.state().q, nd))
+                        .closest(&Point2::from(mesh.node_position(&stepper.state().q, nd)))
                         .gap,
                 )
             })

@@ -2,7 +2,8 @@
 //! the axis, that keep the belt from running off axially (Kerkkänen ch. 4 discusses crowned and
 //! flanged pulleys as the means of lateral belt guidance).
 
-use super::geometry::{Cylinder, Surface3, SurfacePoint3};
+use super::geometry::Cylinder;
+use crate::geometry::{Surface, SurfacePoint};
 use nalgebra::{Matrix3, Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -26,7 +27,7 @@ pub struct FlangedCylinder {
 
 impl FlangedCylinder {
     /// Contact data of flange `k` (0: `ζ_lo`, 1: `ζ_hi`) for the point `p`.
-    fn flange(&self, k: usize, p: &Point3<f64>) -> SurfacePoint3 {
+    fn flange(&self, k: usize, p: &Point3<f64>) -> SurfacePoint<3> {
         let c = &self.cylinder;
         let a = c.axis;
         let d = p - c.center;
@@ -42,7 +43,7 @@ impl FlangedCylinder {
                 .try_normalize(0.0)
                 .unwrap_or(Vector3::y())
         });
-        SurfacePoint3 {
+        SurfacePoint {
             gap,
             normal: n,
             gap_gradient: n,
@@ -57,10 +58,10 @@ impl FlangedCylinder {
     }
 }
 
-impl Surface3 for FlangedCylinder {
+impl Surface<3> for FlangedCylinder {
     /// The closest of the cylinder (part 0), the lower flange (part 1) and the upper flange
     /// (part 2); ties go to the lower part index.
-    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3 {
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
         let mut best = self.cylinder.closest(p);
         for k in 0..2 {
             let f = self.flange(k, p);
