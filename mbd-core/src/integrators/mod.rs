@@ -12,9 +12,11 @@
 //! statistics; outputs through an [`Observer`] or a fixed-interval [`Recorder`]); their
 //! `integrate` functions are thin loops over it. All implement [`Integrator`] (a stepper
 //! factory) so that applications can pick one at run time. The generalized-α stepper takes a
-//! [`StepCorrection`] (nonsmooth contact impulses solved with its iteration matrix).
+//! [`StepCorrection`] (nonsmooth contact impulses solved with its iteration matrix);
+//! [`ActiveSetStepper`] runs it on a model with unilateral constraints by an active set.
 
 mod accel;
+mod active_set;
 mod correction;
 mod dopri;
 mod gen_alpha;
@@ -24,6 +26,9 @@ mod stepper;
 
 pub use accel::{
     Acceleration, Stabilization, accelerations, project_positions, project_velocities,
+};
+pub use active_set::{
+    ActiveSetStep, ActiveSetStepper, ActiveSetSystem, UnilateralConstraints, UnilateralEval,
 };
 pub use correction::{AlphaCorrection, NoCorrection, StepCorrection};
 pub use dopri::{DopriStepper, DormandPrince, Event, EventAction, EventRecord};
