@@ -4,51 +4,24 @@
 //! rests with the contact force `m g`), and the release when a growing upward force exceeds the
 //! weight (lift-off at `F(t*) = m g`, then `y = (g/3T)(t − t*)³` for `F = 2 m g t/T`).
 
-use faer::Mat;
+use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::{
     ActiveSetStepper, ActiveSetSystem, AlphaConfig, State, UnilateralConstraints, UnilateralEval,
 };
-use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
+
+mod support;
+use support::PointMasses;
 
 const G: f64 = 9.81;
 
 /// Point masses moving vertically (`q = y`), gravity and an upward force `2 m g t/lift` on each
 /// (none when `lift = ∞`).
-struct Masses {
-    m: Vec<f64>,
-    lift: f64,
-}
-
-impl SecondOrderSystem for Masses {
-    fn n_q(&self) -> usize {
-        self.m.len()
-    }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
-        let n = self.m.len();
-        Ok(SysMatrix::Dense(Mat::from_fn(n, n, |i, j| {
-            if i == j { self.m[i] } else { 0.0 }
-        })))
-    }
-    fn forces(&self, t: f64, _q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
-        for (fi, m) in f.iter_mut().zip(&self.m) {
-            *fi = -m * G + 2.0 * m * G * t / self.lift;
-        }
-        Ok(())
-    }
-    fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        let n = self.m.len();
-        Ok(Some(ForceTangent {
-            stiffness: SysMatrix::Dense(Mat::zeros(n, n)),
-            damping: SysMatrix::Dense(Mat::zeros(n, n)),
-        }))
+fn masses(m: Vec<f64>, lift: f64) -> PointMasses {
+    PointMasses {
+        m,
+        dim: 1,
+        g: G,
+        lift,
     }
 }
 
@@ -83,10 +56,7 @@ fn params() -> AlphaConfig {
 // (each mass stays on the floor, at rest) and the resting contact forces m g.
 #[test]
 fn falling_masses_land_in_order_and_rest_on_the_floor() {
-    let sys = Masses {
-        m: vec![2.0, 0.5],
-        lift: f64::INFINITY,
-    };
+    let sys = masses(vec![2.0, 0.5], f64::INFINITY);
     let floor = Floor(2);
     let heights = [0.02, 0.01];
     let state0 = State::new(0.0, heights.to_vec(), vec![0.0; 2]);
@@ -142,7 +112,7 @@ fn falling_masses_land_in_order_and_rest_on_the_floor() {
 #[test]
 fn lifted_mass_is_released_when_the_force_turns_tensile() {
     let lift = 0.2;
-    let sys = Masses { m: vec![1.5], lift };
+    let sys = masses(vec![1.5], lift);
     let floor = Floor(1);
     // resting on the floor: the floor is active before the first step's end
     let state0 = State::new(0.0, vec![0.0], vec![0.0]);
@@ -177,10 +147,7 @@ fn lifted_mass_is_released_when_the_force_turns_tensile() {
 // A candidate that starts penetrated is rejected with its name.
 #[test]
 fn penetrated_start_is_rejected() {
-    let sys = Masses {
-        m: vec![1.0],
-        lift: f64::INFINITY,
-    };
+    let sys = masses(vec![1.0], f64::INFINITY);
     let floor = Floor(1);
     let err = ActiveSetStepper::new(
         &sys,

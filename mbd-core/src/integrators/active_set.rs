@@ -293,7 +293,8 @@ impl<'a, S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized>
         state0.check(base)?;
         for c in 0..set.n_candidates() {
             let g = set.gap(state0.t, &state0.q, c);
-            if !(g >= 0.0) {
+            // a NaN gap is rejected too
+            if g.is_nan() || g < 0.0 {
                 return Err(MbdError::InvalidInput {
                     item: format!("unilateral constraint {}", set.candidate_name(c)),
                     reason: format!("starts penetrated (gap {g:e} m at t = {} s)", state0.t),

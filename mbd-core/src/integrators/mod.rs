@@ -160,6 +160,53 @@ pub trait Integrator {
     ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError>;
 }
 
+/// Runs `stepper` to `t_end` \[s\], `observer` seeing the initial state and every accepted
+/// step: the `integrate` function of the fixed-step methods.
+pub(crate) fn integrate_stepper<S: SecondOrderSystem + ?Sized, St: Stepper<S>>(
+    mut stepper: St,
+    sys: &S,
+    t_end: f64,
+    mut observer: impl FnMut(&State),
+) -> Result<Solution, MbdError> {
+    observer(stepper.state());
+    stepper.advance_to(sys, t_end, &mut observe_fn(observer))?;
+    Ok(Solution {
+        state: stepper.state().clone(),
+        stats: *stepper.stats(),
+        events: Vec::new(),
+    })
+}
+
+/// [`Integrator`] for a method with inherent `integrate` and `stepper` functions generic over
+/// the system (one definition for [`Rk4`], [`DormandPrince`] and [`GeneralizedAlpha`]).
+macro_rules! impl_integrator {
+    ($method:ty) => {
+        impl $crate::integrators::Integrator for $method {
+            fn integrate_dyn(
+                &mut self,
+                sys: &dyn $crate::SecondOrderSystem,
+                state0: $crate::integrators::State,
+                t_end: f64,
+                observer: &mut dyn FnMut(&$crate::integrators::State),
+            ) -> Result<$crate::integrators::Solution, $crate::MbdError> {
+                self.integrate(sys, state0, t_end, observer)
+            }
+
+            fn stepper_dyn<'a>(
+                &self,
+                sys: &(dyn $crate::SecondOrderSystem + 'a),
+                state0: $crate::integrators::State,
+            ) -> Result<
+                Box<dyn $crate::integrators::Stepper<dyn $crate::SecondOrderSystem + 'a>>,
+                $crate::MbdError,
+            > {
+                Ok(Box::new(self.stepper(sys, state0)?))
+            }
+        }
+    };
+}
+pub(crate) use impl_integrator;
+
 pub(crate) fn check_step(h: f64, what: &str) -> Result<(), MbdError> {
     if !(h.is_finite() && h > 0.0) {
         return Err(MbdError::InvalidInput {
