@@ -16,6 +16,7 @@
 
 use crate::friction::{FrictionForce, FrictionLaw, TangentFriction};
 use crate::geometry::SurfacePoint;
+use crate::spatial::geometry::perpendicular;
 use nalgebra::{Matrix3, Matrix3x2, SMatrix, SVector, Vector2, Vector3};
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Mul, Neg, SubAssign};
@@ -151,11 +152,7 @@ impl ContactDim<3> for Dim<3> {
         let proj = Matrix3::identity() - n * n.transpose();
         let t1 = (proj * sp.tangent)
             .try_normalize(1e-300)
-            .unwrap_or_else(|| {
-                n.cross(&Vector3::x())
-                    .try_normalize(0.0)
-                    .unwrap_or(Vector3::y())
-            });
+            .unwrap_or_else(|| perpendicular(&n));
         let t2 = n.cross(&t1);
         Matrix3x2::from_columns(&[t1, t2])
     }

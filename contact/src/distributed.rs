@@ -408,7 +408,8 @@ pub struct SurfaceContact<S, NL, FL> {
 
 impl<S, NL: NormalLaw, FL: FrictionLaw> SurfaceContact<S, NL, FL> {
     /// Contact of one element given by its quadrature `points` against `self.surface`; see
-    /// [`element_contact`].
+    /// [`element_contact`] (which takes the obstacle separately, for an obstacle whose state
+    /// changes between calls).
     pub fn element<const D: usize, Sh: ShapeMatrix<D>>(
         &self,
         points: impl IntoIterator<Item = QuadPoint<D, Sh>>,
@@ -419,24 +420,8 @@ impl<S, NL: NormalLaw, FL: FrictionLaw> SurfaceContact<S, NL, FL> {
         Dim<D>: ContactDim<D>,
         S: Surface<D>,
     {
-        self.element_on(&self.surface, points, jacobian, out, records);
-    }
-
-    /// Contact of one element against `surface` (an obstacle whose state changes between
-    /// calls); see [`element_contact`].
-    pub fn element_on<const D: usize, Sh: ShapeMatrix<D>>(
-        &self,
-        surface: &S,
-        points: impl IntoIterator<Item = QuadPoint<D, Sh>>,
-        jacobian: bool,
-        out: &mut ElementContact<D>,
-        records: Option<&mut Vec<ContactRecord<D>>>,
-    ) where
-        Dim<D>: ContactDim<D>,
-        S: Surface<D>,
-    {
         element_contact(
-            surface,
+            &self.surface,
             &self.normal,
             &self.friction,
             points,

@@ -170,6 +170,31 @@ mod tests {
         assert!((dw - c.df_domega).amax() < 1e-5 * c.df_domega.amax().max(1e-300));
     }
 
+    /// Linear penalty of Kerkkänen (3.20).
+    fn penalty() -> LinearPenalty {
+        LinearPenalty {
+            stiffness: 1e7,
+            damping: 10.0,
+        }
+    }
+
+    /// Regularised Coulomb law of Ribaric (6.2).
+    fn tanh() -> CoulombTanh {
+        CoulombTanh {
+            mu: 1.2,
+            kappa: 40.0,
+        }
+    }
+
+    fn stribeck() -> Stribeck {
+        Stribeck {
+            mu_static: 0.6,
+            mu_kinetic: 0.4,
+            stribeck_velocity: 0.05,
+            kappa: 40.0,
+        }
+    }
+
     fn pulley() -> Cylinder {
         Cylinder {
             center: Point3::new(0.0, 0.0, 0.0),
@@ -185,16 +210,7 @@ mod tests {
     // pulley, Stribeck law).
     #[test]
     fn spatial_derivatives_match_finite_differences() {
-        let nl = LinearPenalty {
-            stiffness: 1e7,
-            damping: 10.0,
-        };
-        let fl = Stribeck {
-            mu_static: 0.6,
-            mu_kinetic: 0.4,
-            stribeck_velocity: 0.05,
-            kappa: 40.0,
-        };
+        let (nl, fl) = (penalty(), stribeck());
         let f = |p: &Point3<f64>, v: &Vector3<f64>, w: f64| {
             let mut c = pulley();
             c.omega = w;
@@ -239,12 +255,7 @@ mod tests {
         };
         let tip = drum(15.0).cleat().center;
         let pl = PolynomialPenalty::ribaric(0.01);
-        let st = Stribeck {
-            mu_static: 0.6,
-            mu_kinetic: 0.4,
-            stribeck_velocity: 0.05,
-            kappa: 40.0,
-        };
+        let st = stribeck();
         let g = |p: &Point2<f64>, v: &Vector2<f64>, w: f64| {
             point_contact(&drum(w), &pl, &st, p, v).unwrap()
         };
@@ -261,14 +272,7 @@ mod tests {
     // the formula of the planar contact before it became dimension-generic.
     #[test]
     fn planar_contact_matches_the_rotated_tangent_formula() {
-        let nl = LinearPenalty {
-            stiffness: 1e7,
-            damping: 10.0,
-        };
-        let fl = CoulombTanh {
-            mu: 1.2,
-            kappa: 40.0,
-        };
+        let (nl, fl) = (penalty(), tanh());
         let disk = Disk {
             center: Point2::new(0.02, -0.01),
             radius: 0.1,
@@ -309,14 +313,7 @@ mod tests {
     // spatial contact is the planar one (Kerkkänen (3.20)–(3.25)): force and derivatives.
     #[test]
     fn planar_motion_matches_planar_contact() {
-        let nl = LinearPenalty {
-            stiffness: 1e7,
-            damping: 10.0,
-        };
-        let fl = CoulombTanh {
-            mu: 1.2,
-            kappa: 40.0,
-        };
+        let (nl, fl) = (penalty(), tanh());
         let disk = Disk {
             center: Point2::new(0.0, 0.0),
             radius: 0.1,

@@ -101,7 +101,15 @@ fn tangent_matches_finite_differences() {
     let eval = |e: &SVector<f64, 12>, edot: &SVector<f64, 12>, w: f64| {
         let mut out = ElementContact::<3>::new(12);
         let pts = bilinear_points(e, edot, &rule, &rule, 0.03 * 0.025);
-        pair.element_on(&pulley(w), pts, true, &mut out, None);
+        element_contact(
+            &pulley(w),
+            &pair.normal,
+            &pair.friction,
+            pts,
+            true,
+            &mut out,
+            None,
+        );
         out
     };
     let c = eval(&e, &edot, 20.0);

@@ -2,9 +2,9 @@
 //! the axis, that keep the belt from running off axially (Kerkkänen ch. 4 discusses crowned and
 //! flanged pulleys as the means of lateral belt guidance).
 
-use super::geometry::Cylinder;
+use super::geometry::{Cylinder, perpendicular};
 use crate::geometry::{Surface, SurfacePoint};
-use nalgebra::{Matrix3, Point3, Vector3};
+use nalgebra::{Matrix3, Point3};
 use serde::{Deserialize, Serialize};
 
 /// A [`Cylinder`] with flanges at the axial positions `ζ_lo < ζ_hi` (`ζ = aᵀ(p − r_o)`): the
@@ -38,11 +38,7 @@ impl FlangedCylinder {
             (self.flanges[1] - zeta, -a)
         };
         let circ = a.cross(&d);
-        let tangent = circ.try_normalize(0.0).unwrap_or_else(|| {
-            a.cross(&Vector3::x())
-                .try_normalize(0.0)
-                .unwrap_or(Vector3::y())
-        });
+        let tangent = circ.try_normalize(0.0).unwrap_or_else(|| perpendicular(&a));
         SurfacePoint {
             gap,
             normal: n,
@@ -80,6 +76,7 @@ impl Surface<3> for FlangedCylinder {
 mod tests {
     use super::*;
     use crate::spatial::geometry::tests::fd_check3;
+    use nalgebra::Vector3;
 
     fn pulley() -> FlangedCylinder {
         FlangedCylinder {

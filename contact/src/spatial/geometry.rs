@@ -11,6 +11,15 @@ use serde::{Deserialize, Serialize};
 /// Contact data of a query point against a spatial surface.
 pub type SurfacePoint3 = SurfacePoint<3>;
 
+/// A unit vector normal to the unit vector `a` (`a × x`, or `y` when `a` is along `x`): the
+/// fallback direction where the geometry leaves one undefined (a point on a cylinder's axis, a
+/// reference tangent along the normal).
+pub fn perpendicular(a: &Vector3<f64>) -> Vector3<f64> {
+    a.cross(&Vector3::x())
+        .try_normalize(0.0)
+        .unwrap_or(Vector3::y())
+}
+
 /// A rigid cylinder (pulley, drum) about the unit `axis` through `center`, turning at `omega`
 /// \[rad/s\] (right-handed about `axis`), its centre moving with `velocity`. With `crown = c > 0`
 /// the radius is parabolic along the axis, `R(ζ) = R − c ζ²` (a crowned pulley, Kerkkänen
@@ -44,12 +53,7 @@ impl Surface<3> for Cylinder {
         let (er, inv) = if rho > 0.0 {
             (radial / rho, 1.0 / rho)
         } else {
-            (
-                a.cross(&Vector3::x())
-                    .try_normalize(0.0)
-                    .unwrap_or(Vector3::y()),
-                0.0,
-            )
+            (perpendicular(&a), 0.0)
         };
         let r = self.radius - self.crown * zeta * zeta;
         let drdz = -2.0 * self.crown * zeta;
