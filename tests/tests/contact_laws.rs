@@ -17,15 +17,17 @@ fn pressed_node(law: &dyn contact::NormalLaw, push: f64) -> (f64, [f64; 2]) {
     let dir = [0.6, 0.8];
     let load = [-push * dir[0], -push * dir[1]];
     let mut p = [0.1 + 0.08125 * dir[0], -0.2 + 0.08125 * dir[1]];
-    for _ in 0..50 {
-        let pc = point_contact(
+    let at = |p: [f64; 2]| {
+        point_contact(
             &disk,
             law,
             &Frictionless,
             &Point2::from(p),
             &Vector2::zeros(),
-        );
-        let (f, k) = match pc {
+        )
+    };
+    for _ in 0..50 {
+        let (f, k) = match at(p) {
             Some(c) => (c.force, c.df_dp),
             None => (Vector2::zeros(), nalgebra::Matrix2::zeros()),
         };
@@ -45,14 +47,7 @@ fn pressed_node(law: &dyn contact::NormalLaw, push: f64) -> (f64, [f64; 2]) {
             break;
         }
     }
-    let pc = point_contact(
-        &disk,
-        law,
-        &Frictionless,
-        &Point2::from(p),
-        &Vector2::zeros(),
-    )
-    .expect("in contact");
+    let pc = at(p).expect("in contact");
     (pc.penetration, pc.surface.normal.into())
 }
 
