@@ -71,9 +71,9 @@ fn belt_assembly(c: &mut Criterion) {
         .map(|&c| PulleyContact {
             contact: LineContact {
                 surface: Disk {
-                    center: c,
+                    center: nalgebra::Point2::from(c),
                     radius: path.pulleys()[0].radius,
-                    velocity: [0.0; 2],
+                    velocity: nalgebra::Vector2::zeros(),
                     omega: 12.0,
                 },
                 normal: LinearPenalty {

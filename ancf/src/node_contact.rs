@@ -7,6 +7,7 @@ use crate::element::Element;
 use crate::mesh::Mesh;
 use crate::system::MeshForce;
 use contact::{FrictionLaw, NormalLaw, PointContact, Surface, point_contact};
+use nalgebra::{Point2, Vector2};
 
 /// Penalty contact of the nodes `nodes` (their position `r`) with `surface`.
 #[derive(Debug, Clone)]
@@ -21,14 +22,14 @@ pub struct NodalContact<S, NL, FL> {
     pub nodes: Vec<usize>,
 }
 
-impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> NodalContact<S, NL, FL> {
+impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> NodalContact<S, NL, FL> {
     /// Contact state of every candidate node (`None` when separated).
     pub fn states<E: Element>(
         &self,
         mesh: &Mesh<E>,
         q: &[f64],
         v: &[f64],
-    ) -> Vec<Option<PointContact>> {
+    ) -> Vec<Option<PointContact<2>>> {
         self.nodes
             .iter()
             .map(|&nd| {
@@ -37,8 +38,8 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> NodalContact<S, NL, FL> {
                     &self.surface,
                     &self.normal,
                     &self.friction,
-                    [q[k], q[k + 1]],
-                    [v[k], v[k + 1]],
+                    &Point2::new(q[k], q[k + 1]),
+                    &Vector2::new(v[k], v[k + 1]),
                 )
             })
             .collect()
@@ -48,7 +49,7 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> NodalContact<S, NL, FL> {
 impl<E, S, NL, FL> MeshForce<E> for NodalContact<S, NL, FL>
 where
     E: Element,
-    S: Surface + Send + Sync,
+    S: Surface<2> + Send + Sync,
     NL: NormalLaw + Send + Sync,
     FL: FrictionLaw + Send + Sync,
 {
@@ -79,8 +80,8 @@ where
                 for j in 0..2 {
                     // the two position coordinates of a node share an element block
                     if let Some(p) = pat.position(k + i, k + j) {
-                        k_vals[p] -= c.df_dp[i][j];
-                        c_vals[p] -= c.df_dv[i][j];
+                        k_vals[p] -= c.df_dp[(i, j)];
+                        c_vals[p] -= c.df_dv[(i, j)];
                     }
                 }
             }
@@ -116,9 +117,9 @@ mod tests {
             .collect();
         let contact = NodalContact {
             surface: Disk {
-                center: [0.15, -0.5],
+                center: Point2::new(0.15, -0.5),
                 radius: 0.499,
-                velocity: [0.0, 0.0],
+                velocity: Vector2::zeros(),
                 omega: 2.0,
             },
             normal: LinearPenalty {

@@ -6,6 +6,7 @@ use crate::element::{Element, MAX_NDOF};
 use crate::mesh::Mesh;
 use crate::system::MeshForce;
 use contact::{ContactRecord, ElementContact, FrictionLaw, LineContact, NormalLaw, Surface};
+use nalgebra::Vector2;
 
 /// Contact of the mesh centreline with one obstacle (Kerkkänen (3.20)–(3.27)).
 #[derive(Debug, Clone)]
@@ -20,7 +21,7 @@ pub struct ElementRecord {
     /// Element index.
     pub element: usize,
     /// Point data.
-    pub record: ContactRecord,
+    pub record: ContactRecord<2>,
 }
 
 /// Contact output of one obstacle: point records, torque and resultant force on the obstacle.
@@ -31,17 +32,17 @@ pub struct ContactDistribution {
     /// Torque on the obstacle about its centre \[N·m\], Kerkkänen (3.26).
     pub torque: f64,
     /// Resultant force on the obstacle \[N\].
-    pub reaction: [f64; 2],
+    pub reaction: Vector2<f64>,
 }
 
-impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
+impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
     fn each<E: Element>(
         &self,
         mesh: &Mesh<E>,
         q: &[f64],
         v: &[f64],
         jacobian: bool,
-        mut sink: impl FnMut(usize, &ElementContact),
+        mut sink: impl FnMut(usize, &ElementContact<2>),
         mut records: Option<&mut Vec<ElementRecord>>,
     ) {
         let mut e = [0.0; MAX_NDOF];
@@ -89,16 +90,15 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
     ) -> ContactDistribution {
         let mut records = Vec::new();
         let mut torque = 0.0;
-        let mut reaction = [0.0; 2];
+        let mut reaction = Vector2::zeros();
         self.each(
             mesh,
             q,
             v,
             false,
             |_, o| {
-                torque += o.torque;
-                reaction[0] += o.reaction[0];
-                reaction[1] += o.reaction[1];
+                torque += o.moment;
+                reaction += o.reaction;
             },
             Some(&mut records),
         );
@@ -113,7 +113,7 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
 impl<E, S, NL, FL> MeshForce<E> for PulleyContact<S, NL, FL>
 where
     E: Element,
-    S: Surface + Send + Sync,
+    S: Surface<2> + Send + Sync,
     NL: NormalLaw + Send + Sync,
     FL: FrictionLaw + Send + Sync,
 {

@@ -12,7 +12,7 @@ use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use std::sync::Arc;
 
 mod unilateral;
-pub use unilateral::{ContactStep, integrate_unilateral};
+pub use unilateral::{ContactStep, NodeContacts, integrate_unilateral};
 
 /// Prescribed value `g(t)` \[m or -\] and its first two time derivatives.
 pub type MotionFn = Arc<dyn Fn(f64) -> [f64; 3] + Send + Sync>;

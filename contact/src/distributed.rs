@@ -1,40 +1,168 @@
-//! Distributed contact along an element by Gauss quadrature: generalized forces
-//! `Q_c = ∫₀ˡ S₀ᵀ (f_n + f_t) dx` (Kerkkänen (3.27)), their Jacobians with respect to the element
-//! coordinates, velocities and the obstacle's angular velocity, the reaction torque on the
-//! obstacle (Kerkkänen (3.26)), and per-point records of pressure and friction for output.
+//! Distributed contact over an element by quadrature, in the plane or in space: the generalized
+//! contact force `Q_c = ∫ Sᵀ (f_n n + T f_t) ≈ Σ_q w_q S_qᵀ f_q` (Kerkkänen (3.27) along a line
+//! element; its surface form over the thin-plate belt elements of his ch. 4, 81 points per
+//! element, §4.5), its exact Jacobians with respect to the element coordinates `e`, velocities
+//! `ė` and the obstacle's angular velocity `ω`, the reaction force and moment on the obstacle
+//! (Kerkkänen (3.26): in the plane the torque about the pulley centre), and per-point records of
+//! pressure, friction and slip for output.
 //!
-//! The element enters only through its centreline shape functions `S₀(x) = [N₁I, N₂I, …]`
-//! (2-vector blocks), so any ANCF (or other) line element can use it.
+//! The element enters only through its quadrature points ([`QuadPoint`]): position `r = S e`,
+//! velocity `ṙ = S ė`, the shape-function matrix `S = ∂r/∂e` ([`ShapeMatrix`]: a full
+//! `D × N` matrix, or the blocks `S₀ = [N₁I, N₂I, …]` of a line element's centreline,
+//! [`BlockShape`]) and the weight `w_q` (Gauss weight × length or area Jacobian). The point
+//! forces and their derivatives are those of [`point_contact`], so the laws are the crate's
+//! [`NormalLaw`] and [`FrictionLaw`] per unit length or area. One implementation,
+//! [`element_contact`], serves [`LineContact`] (a Gauss rule along line elements) and
+//! [`SurfaceContact`] (quadrature points supplied by the caller).
 
+use crate::dim::{ContactDim, Dim, Moment, Slip};
 use crate::friction::FrictionLaw;
 use crate::geometry::Surface;
 use crate::normal::NormalLaw;
 use crate::point::point_contact;
 use crate::quadrature::GaussRule;
+use nalgebra::{Point, SMatrix, SVector};
+use std::ops::{AddAssign, Mul};
 
-/// Largest number of 2-vector blocks per element supported by the stack buffers.
+/// Largest number of blocks of a [`BlockShape`].
 pub const MAX_BLOCKS: usize = 8;
 
-/// Contact state at one quadrature point, for output (force distributions, slip zones).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactRecord {
-    /// Element-local coordinate `ξ = x/l`.
-    pub xi: f64,
-    /// Position of the point \[m\].
-    pub position: [f64; 2],
-    /// Penetration \[m\].
-    pub penetration: f64,
-    /// Normal force per unit length \[N/m\] (pressure × width).
-    pub normal_force: f64,
-    /// Friction force per unit length along `t` \[N/m\].
-    pub friction_force: f64,
-    /// Slip velocity \[m/s\].
-    pub slip: f64,
+/// The shape-function matrix `S = ∂r/∂e` (`D × ndof`) of an element at one quadrature point.
+pub trait ShapeMatrix<const D: usize> {
+    /// Number of element coordinates.
+    fn ndof(&self) -> usize;
+    /// `out += w Sᵀ x` for the `D` values `x` (force components, or moment columns).
+    fn add_transposed<M: Copy + AddAssign + Mul<f64, Output = M>>(
+        &self,
+        x: &[M; D],
+        w: f64,
+        out: &mut [M],
+    );
+    /// `k += w Sᵀ A S` (`k` column-major `ndof × ndof`).
+    fn add_congruence(&self, a: &SMatrix<f64, D, D>, w: f64, k: &mut [f64]);
 }
 
-/// Reusable output buffers of [`LineContact::element`] for an element with `ndof` coordinates.
-#[derive(Debug, Clone)]
-pub struct ElementContact {
+/// Block shape functions of a line element's centreline, `S = [s₁ I, s₂ I, …]`: coordinate
+/// `D b + i` is component `i` of block `b`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockShape {
+    /// Values `s_b` (the first `blocks` are used).
+    pub values: [f64; MAX_BLOCKS],
+    /// Number of blocks.
+    pub blocks: usize,
+}
+
+impl<const D: usize> ShapeMatrix<D> for BlockShape {
+    fn ndof(&self) -> usize {
+        D * self.blocks
+    }
+    #[inline]
+    fn add_transposed<M: Copy + AddAssign + Mul<f64, Output = M>>(
+        &self,
+        x: &[M; D],
+        w: f64,
+        out: &mut [M],
+    ) {
+        for (b, &s) in self.values[..self.blocks].iter().enumerate() {
+            let ws = w * s;
+            for i in 0..D {
+                out[D * b + i] += x[i] * ws;
+            }
+        }
+    }
+    #[inline]
+    fn add_congruence(&self, a: &SMatrix<f64, D, D>, w: f64, k: &mut [f64]) {
+        let ndof = D * self.blocks;
+        let s = &self.values[..self.blocks];
+        for j in 0..self.blocks {
+            for b in 0..D {
+                let col = D * j + b;
+                for i in 0..self.blocks {
+                    let sij = w * s[i] * s[j];
+                    for r in 0..D {
+                        k[D * i + r + col * ndof] += sij * a[(r, b)];
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl<const D: usize, const N: usize> ShapeMatrix<D> for SMatrix<f64, D, N> {
+    fn ndof(&self) -> usize {
+        N
+    }
+    fn add_transposed<M: Copy + AddAssign + Mul<f64, Output = M>>(
+        &self,
+        x: &[M; D],
+        w: f64,
+        out: &mut [M],
+    ) {
+        for k in 0..N {
+            for i in 0..D {
+                let s = self[(i, k)];
+                if s != 0.0 {
+                    out[k] += x[i] * (w * s);
+                }
+            }
+        }
+    }
+    fn add_congruence(&self, a: &SMatrix<f64, D, D>, w: f64, k: &mut [f64]) {
+        let as_ = (a * self) * w;
+        for col in 0..N {
+            for row in 0..N {
+                let mut sum = 0.0;
+                for i in 0..D {
+                    sum += self[(i, row)] * as_[(i, col)];
+                }
+                k[row + col * N] += sum;
+            }
+        }
+    }
+}
+
+/// One quadrature point of an element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QuadPoint<const D: usize, Sh> {
+    /// Position `r = S e` \[m\].
+    pub position: Point<f64, D>,
+    /// Velocity `ṙ = S ė` \[m/s\].
+    pub velocity: SVector<f64, D>,
+    /// Shape-function matrix `S = ∂r/∂e`.
+    pub shape: Sh,
+    /// Quadrature weight × length or area Jacobian `w_q` \[m or m²\].
+    pub weight: f64,
+}
+
+/// Contact state at one quadrature point in contact, for output (force distributions, slip
+/// zones).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRecord<const D: usize>
+where
+    Dim<D>: ContactDim<D>,
+{
+    /// Index of the quadrature point in the element's sequence (for a [`LineContact`], in its
+    /// Gauss rule: the point sits at `ξ = rule.points[index]`).
+    pub index: usize,
+    /// Position of the point \[m\].
+    pub position: Point<f64, D>,
+    /// Penetration \[m\].
+    pub penetration: f64,
+    /// Normal force per unit length or area \[N/m or N/m²\].
+    pub normal_force: f64,
+    /// Friction force per unit length or area in the tangent basis (in the plane along
+    /// `t = Ĩ n`) \[N/m or N/m²\].
+    pub friction_force: Slip<D>,
+    /// Slip velocity in the tangent basis \[m/s\].
+    pub slip: Slip<D>,
+}
+
+/// Reusable output buffers of the distributed contact of an element with `ndof` coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElementContact<const D: usize>
+where
+    Dim<D>: ContactDim<D>,
+{
     /// Number of element coordinates.
     pub ndof: usize,
     /// Generalized contact force `Q_c` \[N\].
@@ -45,21 +173,26 @@ pub struct ElementContact {
     pub dq_dedot: Vec<f64>,
     /// `∂Q_c/∂ω` \[N·s\].
     pub dq_domega: Vec<f64>,
-    /// Torque of the contact forces on the obstacle about its centre \[N·m\], Kerkkänen (3.26).
-    pub torque: f64,
-    /// `∂τ/∂e`.
-    pub dtorque_de: Vec<f64>,
-    /// `∂τ/∂ė`.
-    pub dtorque_dedot: Vec<f64>,
-    /// `∂τ/∂ω`.
-    pub dtorque_domega: f64,
-    /// Resultant force on the obstacle \[N\].
-    pub reaction: [f64; 2],
+    /// Moment of the contact forces on the obstacle about its [`Surface::center`],
+    /// `M = Σ w (r − r_o) × (−f)` \[N·m\]: in the plane the counter-clockwise torque of
+    /// Kerkkänen (3.26), in space a vector (its component along a pulley axis is that torque).
+    pub moment: Moment<D>,
+    /// `∂M/∂e` (one moment per coordinate).
+    pub dmoment_de: Vec<Moment<D>>,
+    /// `∂M/∂ė`.
+    pub dmoment_dedot: Vec<Moment<D>>,
+    /// `∂M/∂ω`.
+    pub dmoment_domega: Moment<D>,
+    /// Resultant force on the obstacle `F = −Σ w f` \[N\].
+    pub reaction: SVector<f64, D>,
     /// Number of quadrature points in contact.
     pub active_points: usize,
 }
 
-impl ElementContact {
+impl<const D: usize> ElementContact<D>
+where
+    Dim<D>: ContactDim<D>,
+{
     /// Zeroed buffers for an element with `ndof` coordinates.
     pub fn new(ndof: usize) -> Self {
         Self {
@@ -68,11 +201,11 @@ impl ElementContact {
             dq_de: vec![0.0; ndof * ndof],
             dq_dedot: vec![0.0; ndof * ndof],
             dq_domega: vec![0.0; ndof],
-            torque: 0.0,
-            dtorque_de: vec![0.0; ndof],
-            dtorque_dedot: vec![0.0; ndof],
-            dtorque_domega: 0.0,
-            reaction: [0.0; 2],
+            moment: Moment::<D>::default(),
+            dmoment_de: vec![Moment::<D>::default(); ndof],
+            dmoment_dedot: vec![Moment::<D>::default(); ndof],
+            dmoment_domega: Moment::<D>::default(),
+            reaction: SVector::zeros(),
             active_points: 0,
         }
     }
@@ -83,17 +216,86 @@ impl ElementContact {
             self.dq_de.fill(0.0);
             self.dq_dedot.fill(0.0);
             self.dq_domega.fill(0.0);
-            self.dtorque_de.fill(0.0);
-            self.dtorque_dedot.fill(0.0);
+            self.dmoment_de.fill(Moment::<D>::default());
+            self.dmoment_dedot.fill(Moment::<D>::default());
         }
-        self.torque = 0.0;
-        self.dtorque_domega = 0.0;
-        self.reaction = [0.0; 2];
+        self.moment = Moment::<D>::default();
+        self.dmoment_domega = Moment::<D>::default();
+        self.reaction.fill(0.0);
         self.active_points = 0;
     }
 }
 
-/// A distributed contact pairing: obstacle, laws and quadrature rule.
+/// Contact of one element given by its quadrature `points` against `surface` with the laws
+/// `normal` and `friction` (per unit length or area). Fills `out` (forces always; Jacobians when
+/// `jacobian`) and appends point records to `records` when given. With `f` the point force
+/// ([`point_contact`]) and `S` the shape matrix: `Q_c = Σ w Sᵀ f`,
+/// `∂Q_c/∂e = Σ w Sᵀ (∂f/∂r) S`, `∂Q_c/∂ė = Σ w Sᵀ (∂f/∂ṙ) S`, `∂Q_c/∂ω = Σ w Sᵀ ∂f/∂ω`; with the
+/// arm `a = r − r_o`, `∂M/∂r_b = −(e_b × f + a × ∂f/∂r_b)` (Kerkkänen (3.26)–(3.27)).
+#[allow(clippy::too_many_arguments)]
+pub fn element_contact<const D: usize, S, NL, FL, Sh>(
+    surface: &S,
+    normal: &NL,
+    friction: &FL,
+    points: impl IntoIterator<Item = QuadPoint<D, Sh>>,
+    jacobian: bool,
+    out: &mut ElementContact<D>,
+    mut records: Option<&mut Vec<ContactRecord<D>>>,
+) where
+    Dim<D>: ContactDim<D>,
+    S: Surface<D> + ?Sized,
+    NL: NormalLaw + ?Sized,
+    FL: FrictionLaw + ?Sized,
+    Sh: ShapeMatrix<D>,
+{
+    out.clear(jacobian);
+    let c = surface.center();
+    for (index, qp) in points.into_iter().enumerate() {
+        debug_assert_eq!(qp.shape.ndof(), out.ndof);
+        let Some(pc) = point_contact(surface, normal, friction, &qp.position, &qp.velocity) else {
+            continue;
+        };
+        out.active_points += 1;
+        let w = qp.weight;
+        let f = pc.force;
+        let arm = qp.position - c;
+        qp.shape.add_transposed(&f.into(), w, &mut out.q);
+        out.reaction -= f * w;
+        out.moment -= <Dim<D>>::cross(&arm, &f) * w;
+        if jacobian {
+            qp.shape.add_congruence(&pc.df_dp, w, &mut out.dq_de);
+            qp.shape.add_congruence(&pc.df_dv, w, &mut out.dq_dedot);
+            qp.shape
+                .add_transposed(&pc.df_domega.into(), w, &mut out.dq_domega);
+            let mut dm_dp = [Moment::<D>::default(); D];
+            let mut dm_dv = [Moment::<D>::default(); D];
+            for b in 0..D {
+                let mut e_b = SVector::<f64, D>::zeros();
+                e_b[b] = 1.0;
+                let dfp: SVector<f64, D> = pc.df_dp.column(b).into_owned();
+                let dfv: SVector<f64, D> = pc.df_dv.column(b).into_owned();
+                dm_dp[b] = -(<Dim<D>>::cross(&arm, &dfp) + <Dim<D>>::cross(&e_b, &f));
+                dm_dv[b] = -<Dim<D>>::cross(&arm, &dfv);
+            }
+            qp.shape.add_transposed(&dm_dp, w, &mut out.dmoment_de);
+            qp.shape.add_transposed(&dm_dv, w, &mut out.dmoment_dedot);
+            out.dmoment_domega -= <Dim<D>>::cross(&arm, &pc.df_domega) * w;
+        }
+        if let Some(r) = records.as_deref_mut() {
+            r.push(ContactRecord {
+                index,
+                position: qp.position,
+                penetration: pc.penetration,
+                normal_force: pc.normal.force,
+                friction_force: <Dim<D>>::friction_force(&pc.friction),
+                slip: pc.slip,
+            });
+        }
+    }
+}
+
+/// A distributed contact pairing along line elements: obstacle, laws (per unit length) and
+/// Gauss rule.
 #[derive(Debug, Clone)]
 pub struct LineContact<S, NL, FL> {
     /// Obstacle.
@@ -106,13 +308,13 @@ pub struct LineContact<S, NL, FL> {
     pub rule: GaussRule,
 }
 
-impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
-    /// Contact of one element of length `length` \[m\] whose centreline shape functions are
-    /// `shape(ξ, N)` (`blocks` values), with coordinates `e` and velocities `edot`.
-    /// Fills `out` (forces always; Jacobians when `jacobian`), appends point records to
-    /// `records` when given.
+impl<S, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
+    /// Contact of one line element of length `length` \[m\] whose centreline shape functions are
+    /// `shape(ξ, N)` (`blocks` values, `ξ = x/l`), with coordinates `e` and velocities `edot`
+    /// (`D` per block). Fills `out` (forces always; Jacobians when `jacobian`), appends point
+    /// records to `records` when given.
     #[allow(clippy::too_many_arguments)]
-    pub fn element(
+    pub fn element<const D: usize>(
         &self,
         length: f64,
         blocks: usize,
@@ -120,9 +322,12 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
         e: &[f64],
         edot: &[f64],
         jacobian: bool,
-        out: &mut ElementContact,
-        records: Option<&mut Vec<ContactRecord>>,
-    ) {
+        out: &mut ElementContact<D>,
+        records: Option<&mut Vec<ContactRecord<D>>>,
+    ) where
+        Dim<D>: ContactDim<D>,
+        S: Surface<D>,
+    {
         self.element_on(
             &self.surface,
             length,
@@ -140,7 +345,7 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
     /// whose state — e.g. a pulley's angular velocity — changes between calls, without
     /// rebuilding the pairing).
     #[allow(clippy::too_many_arguments)]
-    pub fn element_on(
+    pub fn element_on<const D: usize>(
         &self,
         surface: &S,
         length: f64,
@@ -149,73 +354,83 @@ impl<S: Surface, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
         e: &[f64],
         edot: &[f64],
         jacobian: bool,
-        out: &mut ElementContact,
-        mut records: Option<&mut Vec<ContactRecord>>,
-    ) {
-        let ndof = 2 * blocks;
-        debug_assert!(blocks <= MAX_BLOCKS && out.ndof == ndof);
-        out.clear(jacobian);
-        let c = surface.center();
-        let mut s = [0.0; MAX_BLOCKS];
-        for (xi, wq) in self.rule.iter() {
-            shape(xi, &mut s[..blocks]);
-            let mut p = [0.0; 2];
-            let mut v = [0.0; 2];
-            for k in 0..blocks {
-                p[0] += s[k] * e[2 * k];
-                p[1] += s[k] * e[2 * k + 1];
-                v[0] += s[k] * edot[2 * k];
-                v[1] += s[k] * edot[2 * k + 1];
-            }
-            let Some(pc) = point_contact(surface, &self.normal, &self.friction, p, v) else {
-                continue;
+        out: &mut ElementContact<D>,
+        records: Option<&mut Vec<ContactRecord<D>>>,
+    ) where
+        Dim<D>: ContactDim<D>,
+        S: Surface<D>,
+    {
+        debug_assert!(blocks <= MAX_BLOCKS && out.ndof == D * blocks);
+        let points = self.rule.iter().map(|(xi, wq)| {
+            let mut s = BlockShape {
+                values: [0.0; MAX_BLOCKS],
+                blocks,
             };
-            out.active_points += 1;
-            let w = wq * length;
-            let f = pc.force;
-            let arm = [p[0] - c[0], p[1] - c[1]];
+            shape(xi, &mut s.values[..blocks]);
+            let mut p = Point::<f64, D>::origin();
+            let mut v = SVector::<f64, D>::zeros();
             for k in 0..blocks {
-                out.q[2 * k] += w * s[k] * f[0];
-                out.q[2 * k + 1] += w * s[k] * f[1];
-            }
-            out.reaction[0] -= w * f[0];
-            out.reaction[1] -= w * f[1];
-            // τ = arm × (−f)
-            out.torque -= w * (arm[0] * f[1] - arm[1] * f[0]);
-            if jacobian {
-                for j in 0..blocks {
-                    for b in 0..2 {
-                        let col = 2 * j + b;
-                        for i in 0..blocks {
-                            let sij = w * s[i] * s[j];
-                            for a in 0..2 {
-                                let row = 2 * i + a;
-                                out.dq_de[row + col * ndof] += sij * pc.df_dp[a][b];
-                                out.dq_dedot[row + col * ndof] += sij * pc.df_dv[a][b];
-                            }
-                        }
-                        // ∂τ/∂p_b = −[δ_0b f_y − δ_1b f_x + arm_x ∂f_y/∂p_b − arm_y ∂f_x/∂p_b]
-                        let dfp = (arm[0] * pc.df_dp[1][b] - arm[1] * pc.df_dp[0][b])
-                            + if b == 0 { f[1] } else { -f[0] };
-                        let dfv = arm[0] * pc.df_dv[1][b] - arm[1] * pc.df_dv[0][b];
-                        out.dtorque_de[col] -= w * s[j] * dfp;
-                        out.dtorque_dedot[col] -= w * s[j] * dfv;
-                    }
-                    out.dq_domega[2 * j] += w * s[j] * pc.df_domega[0];
-                    out.dq_domega[2 * j + 1] += w * s[j] * pc.df_domega[1];
+                for i in 0..D {
+                    p[i] += s.values[k] * e[D * k + i];
+                    v[i] += s.values[k] * edot[D * k + i];
                 }
-                out.dtorque_domega -= w * (arm[0] * pc.df_domega[1] - arm[1] * pc.df_domega[0]);
             }
-            if let Some(r) = records.as_deref_mut() {
-                r.push(ContactRecord {
-                    xi,
-                    position: p,
-                    penetration: pc.penetration,
-                    normal_force: pc.normal.force,
-                    friction_force: pc.friction.force,
-                    slip: pc.slip,
-                });
+            QuadPoint {
+                position: p,
+                velocity: v,
+                shape: s,
+                weight: wq * length,
             }
-        }
+        });
+        element_contact(
+            surface,
+            &self.normal,
+            &self.friction,
+            points,
+            jacobian,
+            out,
+            records,
+        );
     }
 }
+
+/// A distributed contact pairing whose quadrature points the caller supplies (surface elements,
+/// e.g. the thin-plate belt of Kerkkänen ch. 4): obstacle and laws (per unit area).
+#[derive(Debug, Clone)]
+pub struct SurfaceContact<S, NL, FL> {
+    /// Obstacle.
+    pub surface: S,
+    /// Normal law (pressure: penalty \[N/m³\], damping \[N·s/m³\]).
+    pub normal: NL,
+    /// Friction law (traction per unit area).
+    pub friction: FL,
+}
+
+impl<S, NL: NormalLaw, FL: FrictionLaw> SurfaceContact<S, NL, FL> {
+    /// Contact of one element given by its quadrature `points` against `self.surface`; see
+    /// [`element_contact`] (which takes the obstacle separately, for an obstacle whose state
+    /// changes between calls).
+    pub fn element<const D: usize, Sh: ShapeMatrix<D>>(
+        &self,
+        points: impl IntoIterator<Item = QuadPoint<D, Sh>>,
+        jacobian: bool,
+        out: &mut ElementContact<D>,
+        records: Option<&mut Vec<ContactRecord<D>>>,
+    ) where
+        Dim<D>: ContactDim<D>,
+        S: Surface<D>,
+    {
+        element_contact(
+            &self.surface,
+            &self.normal,
+            &self.friction,
+            points,
+            jacobian,
+            out,
+            records,
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests;

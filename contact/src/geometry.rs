@@ -1,51 +1,66 @@
-//! Planar contact geometry: disks (pulleys, drums; moving and rotating), half-planes (flat
-//! road) and unions of them (a drum or a road with a semicircular cleat, Ribaric ch. 8).
+//! Contact geometry in `D = 2` or `3` dimensions: the closest-point data [`SurfacePoint`] that
+//! every obstacle answers through [`Surface::closest`], and the planar shapes — disks (pulleys,
+//! drums; moving and rotating), half-planes (flat road) and unions of them (a drum or a road
+//! with a semicircular cleat, Ribaric ch. 8). The spatial shapes are in [`crate::spatial`].
 //!
 //! Every shape answers [`Surface::closest`]: the signed distance (gap, negative when the point
 //! penetrates), the outward unit normal at the closest surface point, the velocity of the
 //! surface material there, and the derivatives of normal and surface velocity with respect to
 //! the query point (needed for contact Jacobians).
 
+use nalgebra::{Matrix2, Point, Point2, SMatrix, SVector, Vector2};
 use serde::{Deserialize, Serialize};
 
-/// 90° rotation `Ĩ = [[0, −1], [1, 0]]`, Kerkkänen (3.6).
-#[inline]
-pub fn rot90(v: [f64; 2]) -> [f64; 2] {
-    [-v[1], v[0]]
-}
+pub use crate::dim::rot90;
 
-/// 2×2 matrix, row-major.
-pub type Mat2 = [[f64; 2]; 2];
-
-/// Closest-point data of a query point `p`.
+/// Closest-point data of a query point `p` against a `D`-dimensional obstacle.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SurfacePoint {
-    /// Signed distance \[m\] (> 0 separated, < 0 penetrating; penetration `d = −gap`).
+pub struct SurfacePoint<const D: usize> {
+    /// Signed gap \[m\] (> 0 separated, < 0 penetrating; penetration `d = −gap`).
     pub gap: f64,
     /// Outward unit normal `n` of the obstacle at the closest point.
-    pub normal: [f64; 2],
+    pub normal: SVector<f64, D>,
+    /// `∂g/∂p` (parallel to `n`; `n` itself for an exact distance).
+    pub gap_gradient: SVector<f64, D>,
+    /// Reference unit tangent: in space the first tangent-plane axis `t₁` before projection
+    /// (`t₂ = n × t₁`), e.g. the circumferential direction of a cylinder; in the plane always
+    /// `t = Ĩ n` (Kerkkänen (3.6)).
+    pub tangent: SVector<f64, D>,
     /// Closest point on the surface \[m\].
-    pub point: [f64; 2],
+    pub point: Point<f64, D>,
     /// Velocity of the obstacle's surface material at the closest point \[m/s\].
-    pub surface_velocity: [f64; 2],
-    /// `∂n/∂p` \[1/m\] (row-major).
-    pub dn_dp: Mat2,
-    /// `∂u_s/∂p` \[1/s\] (row-major).
-    pub dus_dp: Mat2,
+    pub surface_velocity: SVector<f64, D>,
+    /// `∂n/∂p` \[1/m\].
+    pub dn_dp: SMatrix<f64, D, D>,
+    /// `∂u_s/∂p` \[1/s\].
+    pub dus_dp: SMatrix<f64, D, D>,
     /// `∂u_s/∂ω` \[m\] (surface velocity per unit angular velocity of the obstacle).
-    pub dus_domega: [f64; 2],
+    pub dus_domega: SVector<f64, D>,
     /// Index of the primitive that produced the point (0 for simple shapes; for unions the
-    /// member index).
+    /// member index, e.g. 1 for a cleat, 1 and 2 for the flanges of a
+    /// [`crate::spatial::FlangedCylinder`]).
     pub part: usize,
 }
 
-/// A rigid obstacle surface in the plane.
-pub trait Surface {
+/// A rigid obstacle surface in `D` dimensions.
+pub trait Surface<const D: usize> {
     /// Closest-point query for the point `p` \[m\].
-    fn closest(&self, p: [f64; 2]) -> SurfacePoint;
-    /// Centre of the body for torque output (pulley axis) \[m\].
-    fn center(&self) -> [f64; 2];
+    fn closest(&self, p: &Point<f64, D>) -> SurfacePoint<D>;
+    /// Reference point of the body for moments (pulley axis) \[m\].
+    fn center(&self) -> Point<f64, D>;
 }
+
+impl<const D: usize, S: Surface<D> + ?Sized> Surface<D> for &S {
+    fn closest(&self, p: &Point<f64, D>) -> SurfacePoint<D> {
+        (**self).closest(p)
+    }
+    fn center(&self) -> Point<f64, D> {
+        (**self).center()
+    }
+}
+
+/// Closest-point data of a planar obstacle.
+pub type SurfacePoint2 = SurfacePoint<2>;
 
 /// A rigid disk (pulley, drum) with centre `center` \[m\], radius `radius` \[m\], translational
 /// velocity `velocity` \[m/s\] and angular velocity `omega` \[rad/s\] (counter-clockwise positive).
@@ -53,66 +68,75 @@ pub trait Surface {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Disk {
     /// Centre `r_o` \[m\].
-    pub center: [f64; 2],
+    pub center: Point2<f64>,
     /// Radius `R` \[m\].
     pub radius: f64,
     /// Velocity of the centre `ṙ_o` \[m/s\].
-    pub velocity: [f64; 2],
+    pub velocity: Vector2<f64>,
     /// Angular velocity `ω` \[rad/s\].
     pub omega: f64,
 }
 
 impl Disk {
     /// A fixed, non-rotating disk.
-    pub fn fixed(center: [f64; 2], radius: f64) -> Self {
+    pub fn fixed(center: Point2<f64>, radius: f64) -> Self {
         Self {
             center,
             radius,
-            velocity: [0.0, 0.0],
+            velocity: Vector2::zeros(),
             omega: 0.0,
         }
     }
 }
 
-impl Surface for Disk {
+impl Surface<2> for Disk {
     /// Kerkkänen (3.21)–(3.22): `d = R − ‖r − r_o‖`, `n = (r − r_o)/‖r − r_o‖`; the surface
     /// velocity is `ṙ_o + ω R t` with `t = Ĩ n` (3.24)–(3.25) (nominal radius `R`).
-    fn closest(&self, p: [f64; 2]) -> SurfacePoint {
+    fn closest(&self, p: &Point2<f64>) -> SurfacePoint<2> {
         let d = [p[0] - self.center[0], p[1] - self.center[1]];
         let rho = (d[0] * d[0] + d[1] * d[1]).sqrt();
         // at the centre any direction is a normal; pick +y to stay finite
         let (n, inv) = if rho > 0.0 {
-            ([d[0] / rho, d[1] / rho], 1.0 / rho)
+            (Vector2::new(d[0] / rho, d[1] / rho), 1.0 / rho)
         } else {
-            ([0.0, 1.0], 0.0)
+            (Vector2::new(0.0, 1.0), 0.0)
         };
         let t = rot90(n);
         // ∂n/∂p = (I − n nᵀ)/ρ = t tᵀ/ρ
-        let dn = [
-            [t[0] * t[0] * inv, t[0] * t[1] * inv],
-            [t[1] * t[0] * inv, t[1] * t[1] * inv],
-        ];
+        let dn = Matrix2::new(
+            t[0] * t[0] * inv,
+            t[0] * t[1] * inv,
+            t[1] * t[0] * inv,
+            t[1] * t[1] * inv,
+        );
         // u_s = ṙ_o + ω R Ĩ n  ⇒ ∂u_s/∂p = ω R Ĩ ∂n/∂p
         let wr = self.omega * self.radius;
-        let dus = [
-            [-wr * dn[1][0], -wr * dn[1][1]],
-            [wr * dn[0][0], wr * dn[0][1]],
-        ];
+        let dus = Matrix2::new(
+            -wr * dn[(1, 0)],
+            -wr * dn[(1, 1)],
+            wr * dn[(0, 0)],
+            wr * dn[(0, 1)],
+        );
         SurfacePoint {
             gap: rho - self.radius,
             normal: n,
-            point: [
+            gap_gradient: n,
+            tangent: t,
+            point: Point2::new(
                 self.center[0] + self.radius * n[0],
                 self.center[1] + self.radius * n[1],
-            ],
-            surface_velocity: [self.velocity[0] + wr * t[0], self.velocity[1] + wr * t[1]],
+            ),
+            surface_velocity: Vector2::new(
+                self.velocity[0] + wr * t[0],
+                self.velocity[1] + wr * t[1],
+            ),
             dn_dp: dn,
             dus_dp: dus,
-            dus_domega: [self.radius * t[0], self.radius * t[1]],
+            dus_domega: Vector2::new(self.radius * t[0], self.radius * t[1]),
             part: 0,
         }
     }
-    fn center(&self) -> [f64; 2] {
+    fn center(&self) -> Point2<f64> {
         self.center
     }
 }
@@ -122,40 +146,42 @@ impl Surface for Disk {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct HalfPlane {
     /// A point of the surface \[m\].
-    pub origin: [f64; 2],
+    pub origin: Point2<f64>,
     /// Outward unit normal.
-    pub normal: [f64; 2],
+    pub normal: Vector2<f64>,
     /// Surface material velocity \[m/s\].
-    pub velocity: [f64; 2],
+    pub velocity: Vector2<f64>,
 }
 
 impl HalfPlane {
     /// Fixed ground `y = height` with normal `+y`.
     pub fn ground(height: f64) -> Self {
         Self {
-            origin: [0.0, height],
-            normal: [0.0, 1.0],
-            velocity: [0.0, 0.0],
+            origin: Point2::new(0.0, height),
+            normal: Vector2::new(0.0, 1.0),
+            velocity: Vector2::zeros(),
         }
     }
 }
 
-impl Surface for HalfPlane {
-    fn closest(&self, p: [f64; 2]) -> SurfacePoint {
+impl Surface<2> for HalfPlane {
+    fn closest(&self, p: &Point2<f64>) -> SurfacePoint<2> {
         let n = self.normal;
         let g = (p[0] - self.origin[0]) * n[0] + (p[1] - self.origin[1]) * n[1];
         SurfacePoint {
             gap: g,
             normal: n,
-            point: [p[0] - g * n[0], p[1] - g * n[1]],
+            gap_gradient: n,
+            tangent: rot90(n),
+            point: Point2::new(p[0] - g * n[0], p[1] - g * n[1]),
             surface_velocity: self.velocity,
-            dn_dp: [[0.0; 2]; 2],
-            dus_dp: [[0.0; 2]; 2],
-            dus_domega: [0.0, 0.0],
+            dn_dp: Matrix2::zeros(),
+            dus_dp: Matrix2::zeros(),
+            dus_domega: Vector2::zeros(),
             part: 0,
         }
     }
-    fn center(&self) -> [f64; 2] {
+    fn center(&self) -> Point2<f64> {
         self.origin
     }
 }
@@ -181,35 +207,32 @@ impl CleatedDrum {
         let r = self.drum.radius;
         let w = self.drum.omega;
         Disk {
-            center: [self.drum.center[0] + r * c, self.drum.center[1] + r * s],
+            center: Point2::new(self.drum.center[0] + r * c, self.drum.center[1] + r * s),
             radius: self.cleat_radius,
             // cleat centre velocity ṙ_o + ω Ĩ (R e)
-            velocity: [
+            velocity: Vector2::new(
                 self.drum.velocity[0] - w * r * s,
                 self.drum.velocity[1] + w * r * c,
-            ],
+            ),
             omega: w,
         }
     }
 }
 
-impl Surface for CleatedDrum {
-    fn closest(&self, p: [f64; 2]) -> SurfacePoint {
+impl Surface<2> for CleatedDrum {
+    fn closest(&self, p: &Point2<f64>) -> SurfacePoint<2> {
         let a = self.drum.closest(p);
         let mut b = self.cleat().closest(p);
         if b.gap < a.gap {
             b.part = 1;
             // the cleat surface moves with the drum: u_s = ṙ_o + ω Ĩ (x_s − r_o)
-            b.dus_domega = rot90([
-                b.point[0] - self.drum.center[0],
-                b.point[1] - self.drum.center[1],
-            ]);
+            b.dus_domega = rot90(b.point - self.drum.center);
             b
         } else {
             a
         }
     }
-    fn center(&self) -> [f64; 2] {
+    fn center(&self) -> Point2<f64> {
         self.drum.center
     }
 }
@@ -226,10 +249,11 @@ pub struct CleatedRoad {
     pub cleat_x: f64,
 }
 
-impl Surface for CleatedRoad {
-    fn closest(&self, p: [f64; 2]) -> SurfacePoint {
+impl Surface<2> for CleatedRoad {
+    fn closest(&self, p: &Point2<f64>) -> SurfacePoint<2> {
         let a = HalfPlane::ground(self.height).closest(p);
-        let mut b = Disk::fixed([self.cleat_x, self.height], self.cleat_radius).closest(p);
+        let mut b =
+            Disk::fixed(Point2::new(self.cleat_x, self.height), self.cleat_radius).closest(p);
         if b.gap < a.gap {
             b.part = 1;
             b
@@ -237,8 +261,8 @@ impl Surface for CleatedRoad {
             a
         }
     }
-    fn center(&self) -> [f64; 2] {
-        [self.cleat_x, self.height]
+    fn center(&self) -> Point2<f64> {
+        Point2::new(self.cleat_x, self.height)
     }
 }
 
@@ -246,43 +270,46 @@ impl Surface for CleatedRoad {
 mod tests {
     use super::*;
 
-    fn fd_check(s: &dyn Surface, p: [f64; 2]) {
-        let c = s.closest(p);
+    fn fd_check(s: &dyn Surface<2>, p: Point2<f64>) {
+        let c = s.closest(&p);
         let h = 1e-7;
         for j in 0..2 {
             let mut pp = p;
             let mut pm = p;
             pp[j] += h;
             pm[j] -= h;
-            let (a, b) = (s.closest(pp), s.closest(pm));
+            let (a, b) = (s.closest(&pp), s.closest(&pm));
             // ∂gap/∂p = n
             assert!(((a.gap - b.gap) / (2.0 * h) - c.normal[j]).abs() < 1e-6);
             for i in 0..2 {
                 let dn = (a.normal[i] - b.normal[i]) / (2.0 * h);
-                assert!((dn - c.dn_dp[i][j]).abs() < 1e-5, "dn[{i}][{j}]");
+                assert!((dn - c.dn_dp[(i, j)]).abs() < 1e-5, "dn[{i}][{j}]");
                 let du = (a.surface_velocity[i] - b.surface_velocity[i]) / (2.0 * h);
-                assert!((du - c.dus_dp[i][j]).abs() < 1e-5, "dus[{i}][{j}]");
+                assert!((du - c.dus_dp[(i, j)]).abs() < 1e-5, "dus[{i}][{j}]");
             }
         }
+        assert_eq!(c.gap_gradient, c.normal);
+        assert_eq!(c.tangent, rot90(c.normal));
     }
 
     // Reference: finite differences of the closest-point map, and the analytic distance.
     #[test]
     fn disk_closest_point_and_derivatives() {
         let d = Disk {
-            center: [0.2, -0.1],
+            center: Point2::new(0.2, -0.1),
             radius: 0.08125,
-            velocity: [0.1, 0.0],
+            velocity: Vector2::new(0.1, 0.0),
             omega: 12.0,
         };
-        let p = [0.25, -0.03];
-        let c = d.closest(p);
+        let p = Point2::new(0.25, -0.03);
+        let c = d.closest(&p);
         let rho = ((0.05f64).powi(2) + (0.07f64).powi(2)).sqrt();
         assert!((c.gap - (rho - 0.08125)).abs() < 1e-15);
         // surface speed ω R along t, plus the centre velocity
         let t = rot90(c.normal);
         let us = [0.1 + 12.0 * 0.08125 * t[0], 12.0 * 0.08125 * t[1]];
         assert!((c.surface_velocity[0] - us[0]).abs() < 1e-15);
+        assert!((c.surface_velocity[1] - us[1]).abs() < 1e-15);
         fd_check(&d, p);
     }
 
@@ -290,24 +317,24 @@ mod tests {
     #[test]
     fn cleated_drum_and_road() {
         let drum = CleatedDrum {
-            drum: Disk::fixed([0.0, 0.0], 1.25),
+            drum: Disk::fixed(Point2::new(0.0, 0.0), 1.25),
             cleat_radius: 0.01,
             cleat_angle: std::f64::consts::FRAC_PI_2,
         };
-        let top = drum.closest([0.0, 1.27]);
+        let top = drum.closest(&Point2::new(0.0, 1.27));
         assert_eq!(top.part, 1);
         assert!((top.gap - 0.01).abs() < 1e-12);
-        let side = drum.closest([1.27, 0.0]);
+        let side = drum.closest(&Point2::new(1.27, 0.0));
         assert_eq!(side.part, 0);
         assert!((side.gap - 0.02).abs() < 1e-12);
-        fd_check(&drum, [0.003, 1.262]);
+        fd_check(&drum, Point2::new(0.003, 1.262));
         let road = CleatedRoad {
             height: 0.0,
             cleat_radius: 0.01,
             cleat_x: 1.0,
         };
-        assert!((road.closest([1.0, 0.015]).gap - 0.005).abs() < 1e-15);
-        assert!((road.closest([0.5, 0.015]).gap - 0.015).abs() < 1e-15);
-        fd_check(&road, [1.004, 0.012]);
+        assert!((road.closest(&Point2::new(1.0, 0.015)).gap - 0.005).abs() < 1e-15);
+        assert!((road.closest(&Point2::new(0.5, 0.015)).gap - 0.015).abs() < 1e-15);
+        fd_check(&road, Point2::new(1.004, 0.012));
     }
 }

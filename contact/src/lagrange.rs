@@ -2,35 +2,37 @@
 //! a contact node is constrained to the surface, `g(r) = 0`, while active.
 
 use crate::geometry::Surface;
+use nalgebra::{Point, SVector};
 
 /// Constraint data of one node against an obstacle: residual, Jacobian row and acceleration
 /// right-hand side of `D r̈ = γ`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct UnilateralRow {
+pub struct UnilateralRow<const D: usize> {
     /// Gap `g` (signed distance) \[m\].
     pub gap: f64,
     /// Gap rate `ġ = nᵀ(ṙ − u_s)` \[m/s\].
     pub gap_rate: f64,
     /// Jacobian row `∂g/∂r = nᵀ` (acts on the node's position coordinates).
-    pub normal: [f64; 2],
+    pub normal: SVector<f64, D>,
     /// `γ = −(ṙ − u_s)ᵀ (∂n/∂r) (ṙ − u_s)`: the curvature term of `g̈` for an obstacle moving
     /// with constant velocity (zero for a flat road).
     pub gamma: f64,
 }
 
-/// Constraint row of a node at `p` moving with `v` against `surface`.
-pub fn unilateral_row<S: Surface + ?Sized>(surface: &S, p: [f64; 2], v: [f64; 2]) -> UnilateralRow {
+/// Constraint row of a node at `p` moving with `v` against `surface` (plane or space).
+pub fn unilateral_row<const D: usize, S: Surface<D> + ?Sized>(
+    surface: &S,
+    p: &Point<f64, D>,
+    v: &SVector<f64, D>,
+) -> UnilateralRow<D> {
     let sp = surface.closest(p);
     let n = sp.normal;
-    let w = [v[0] - sp.surface_velocity[0], v[1] - sp.surface_velocity[1]];
-    let dn = sp.dn_dp;
-    let wdw =
-        w[0] * (dn[0][0] * w[0] + dn[0][1] * w[1]) + w[1] * (dn[1][0] * w[0] + dn[1][1] * w[1]);
+    let w = v - sp.surface_velocity;
     UnilateralRow {
         gap: sp.gap,
-        gap_rate: n[0] * w[0] + n[1] * w[1],
+        gap_rate: n.dot(&w),
         normal: n,
-        gamma: -wdw,
+        gamma: -w.dot(&(sp.dn_dp * w)),
     }
 }
 

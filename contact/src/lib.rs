@@ -1,29 +1,37 @@
 //! # contact
 //!
-//! Contact geometry (circles, drums with cleats, planes), normal laws (linear and polynomial
-//! penalty, unilateral Lagrange constraints) and friction laws (Coulomb–tanh, creep-rate, Coulomb
-//! slip) behind small traits, with distributed contact along elements by Gauss quadrature.
+//! Contact in the plane and in space from one implementation: obstacle geometry, normal laws
+//! (linear and polynomial penalty, unilateral Lagrange constraints) and friction laws
+//! (Coulomb–tanh, creep-rate, Coulomb slip, …) behind small traits, the contact of one point
+//! with exact derivatives and distributed contact over elements by quadrature, all generic over
+//! the dimension `D = 2, 3` with nalgebra points, vectors and matrices.
 //!
-//! * [`geometry`]: [`Surface`] with [`Disk`], [`HalfPlane`], [`CleatedDrum`], [`CleatedRoad`];
+//! * [`dim`]: [`ContactDim`] — what differs between the plane and space (the tangent basis,
+//!   `t = Ĩ n` of Kerkkänen (3.6) or the projected reference tangent; the friction law's slip
+//!   argument; the moment of a force), implemented by [`Dim<2>`] and [`Dim<3>`];
+//! * [`geometry`]: [`Surface`] and its closest-point data [`SurfacePoint`], with the planar
+//!   [`Disk`], [`HalfPlane`], [`CleatedDrum`], [`CleatedRoad`]; [`spatial`] holds the spatial
+//!   shapes ([`spatial::Cylinder`] (optionally crowned), [`spatial::FlangedCylinder`],
+//!   [`spatial::CleatedDrum3`], [`spatial::CleatedRoad3`], [`spatial::HalfSpace`]);
 //! * [`normal`]: [`NormalLaw`] with [`LinearPenalty`] (Kerkkänen (3.20)) and
 //!   [`PolynomialPenalty`] (Ribaric (6.1)), and [`NormalSpec`] for configuration;
 //! * [`friction`]: the one [`FrictionLaw`] trait (planar and spatial slip, smooth or
 //!   set-valued with the Alart–Curnier projection) with [`CoulombTanh`] (Ribaric (6.2)),
 //!   [`CreepRate`] (Kerkkänen Fig. 3.3), [`Coulomb`] (Ribaric §7.3, §8.4.3),
 //!   [`SlipRegularized`] (Ribaric U20), [`Stribeck`], and [`FrictionSpec`] for configuration;
-//! * [`point`]: nodal contact with exact derivatives;
-//! * [`distributed`]: Gauss-quadrature contact along elements (Kerkkänen (3.26)–(3.27));
-//! * [`spatial`]: 3D contact — [`spatial::Cylinder`] (optionally crowned),
-//!   [`spatial::FlangedCylinder`], [`spatial::CleatedDrum3`], [`spatial::CleatedRoad3`],
-//!   [`spatial::HalfSpace`],
-//!   [`spatial::point_contact_3d`] with the slip 2-vector of the same friction laws,
-//!   [`spatial::SurfaceContact`] for quadrature contact over surface elements;
-//! * [`lagrange`]: unilateral constraints with an active set (used by the ancf crate's static
+//! * [`point`]: [`point_contact`], the contact of one material point with exact derivatives
+//!   (Kerkkänen (3.20)–(3.25) and their spatial form);
+//! * [`distributed`]: [`element_contact`], quadrature contact over an element (Kerkkänen
+//!   (3.26)–(3.27)), with [`LineContact`] (a Gauss rule along line elements) and
+//!   [`SurfaceContact`] (quadrature points of surface elements, the plate belt of Kerkkänen
+//!   ch. 4);
+//! * [`lagrange`]: unilateral constraint rows and an active set (used by the ancf crate's static
 //!   and generalized-α contact solvers).
 
 // Index loops mirror the element and quadrature formulas (several arrays per index).
 #![allow(clippy::needless_range_loop)]
 
+pub mod dim;
 pub mod distributed;
 pub mod friction;
 pub mod geometry;
@@ -33,13 +41,19 @@ pub mod point;
 pub mod quadrature;
 pub mod spatial;
 
-pub use distributed::{ContactRecord, ElementContact, LineContact};
+pub use dim::{ContactDim, Dim, TangentialForce};
+pub use distributed::{
+    BlockShape, ContactRecord, ElementContact, LineContact, QuadPoint, ShapeMatrix, SurfaceContact,
+    element_contact,
+};
 pub use friction::{
     Augmented, Coulomb, CoulombTanh, CreepRate, FrictionForce, FrictionLaw, FrictionSpec,
     Frictionless, SlipRegularized, Stribeck, TangentFriction,
 };
-pub use geometry::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface, SurfacePoint};
+pub use geometry::{
+    CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface, SurfacePoint, SurfacePoint2, rot90,
+};
 pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};
 pub use normal::{LinearPenalty, NormalForce, NormalLaw, NormalSpec, PolynomialPenalty};
-pub use point::{PointContact, point_contact};
+pub use point::{PointContact, PointContact2, PointContact3, point_contact};
 pub use quadrature::GaussRule;

@@ -8,8 +8,7 @@
 //! which act on the global vectors.
 
 use crate::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
-use faer::Mat;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::Triplet;
 
 /// Output of a [`Coupling`]: residuals, Jacobian entries (local row, global velocity column,
 /// value), `ν` and `γ`, each of length `n_eq` (entries: any number).
@@ -174,7 +173,8 @@ impl<'a> CompositeSystem<'a> {
         Ok(())
     }
 
-    /// Block-diagonal assembly (rows/columns offset per part), sparse if any block is.
+    /// Block-diagonal assembly (rows/columns offset per part), sparse if any block is or the
+    /// matrix is large ([`SysMatrix::assemble`]).
     fn block_diag(
         &self,
         blocks: Vec<(usize, usize, SysMatrix)>,
@@ -183,28 +183,7 @@ impl<'a> CompositeSystem<'a> {
         nc: usize,
         t: f64,
     ) -> Result<SysMatrix, MbdError> {
-        let sparse = blocks.iter().any(|b| b.2.is_sparse()) || nr.max(nc) > 600;
-        if sparse {
-            let mut trip = extra;
-            for (r0, c0, b) in &blocks {
-                b.for_each_entry(|i, j, v| trip.push(Triplet::new(r0 + i, c0 + j, v)));
-            }
-            SparseColMat::try_new_from_triplets(nr, nc, &trip)
-                .map(SysMatrix::Sparse)
-                .map_err(|e| MbdError::Model {
-                    t,
-                    message: format!("sparse assembly failed: {e:?}"),
-                })
-        } else {
-            let mut m = Mat::<f64>::zeros(nr, nc);
-            for (r0, c0, b) in &blocks {
-                b.for_each_entry(|i, j, v| m[(r0 + i, c0 + j)] += v);
-            }
-            for tr in extra {
-                m[(tr.row, tr.col)] += tr.val;
-            }
-            Ok(SysMatrix::Dense(m))
-        }
+        SysMatrix::assemble(&blocks, extra, nr, nc, nr.max(nc) > 600, t)
     }
 
     fn part_of_v(&self, dof: usize) -> usize {

@@ -60,6 +60,17 @@ pub enum MbdError {
         /// Underlying error.
         message: String,
     },
+    /// The active set of unilateral constraints did not settle within a step
+    /// ([`crate::integrators::ActiveSetStepper`]).
+    #[error(
+        "active set of the unilateral constraints did not settle in the step from t = {t} s after {retakes} retakes"
+    )]
+    ActiveSet {
+        /// Start time of the step \[s\].
+        t: f64,
+        /// Retakes of the step.
+        retakes: usize,
+    },
     /// A model (implementor of [`crate::SecondOrderSystem`]) reported a failure.
     #[error("model error at t = {t} s: {message}")]
     Model {

@@ -124,6 +124,60 @@ impl SysMatrix {
         self.for_each_entry(|_, _, v| ok &= v.is_finite());
         ok
     }
+
+    /// An `nr × nc` matrix from `entries` (duplicates summed), sparse when `sparse`, dense
+    /// otherwise; `t` \[s\] names the time of a failed sparse assembly.
+    pub fn from_triplets(
+        nr: usize,
+        nc: usize,
+        entries: &[Triplet<usize, usize, f64>],
+        sparse: bool,
+        t: f64,
+    ) -> Result<SysMatrix, MbdError> {
+        if sparse {
+            SparseColMat::try_new_from_triplets(nr, nc, entries)
+                .map(SysMatrix::Sparse)
+                .map_err(|e| MbdError::Model {
+                    t,
+                    message: format!("sparse assembly failed: {e:?}"),
+                })
+        } else {
+            let mut m = Mat::<f64>::zeros(nr, nc);
+            for tr in entries {
+                m[(tr.row, tr.col)] += tr.val;
+            }
+            Ok(SysMatrix::Dense(m))
+        }
+    }
+
+    /// Assembles `blocks` (each `(row offset, column offset, block)`) and the single `entries`
+    /// into an `nr × nc` matrix (overlaps summed): the assembly of stacked constraint rows and
+    /// block-diagonal composites. Sparse when `sparse` or any block is sparse (dense blocks
+    /// then contribute every entry, zeros included), dense otherwise.
+    pub fn assemble(
+        blocks: &[(usize, usize, SysMatrix)],
+        mut entries: Vec<Triplet<usize, usize, f64>>,
+        nr: usize,
+        nc: usize,
+        sparse: bool,
+        t: f64,
+    ) -> Result<SysMatrix, MbdError> {
+        if sparse || blocks.iter().any(|b| b.2.is_sparse()) {
+            for (r0, c0, b) in blocks {
+                b.for_each_entry(|i, j, v| entries.push(Triplet::new(r0 + i, c0 + j, v)));
+            }
+            Self::from_triplets(nr, nc, &entries, true, t)
+        } else {
+            let mut m = Mat::<f64>::zeros(nr, nc);
+            for (r0, c0, b) in blocks {
+                b.for_each_entry(|i, j, v| m[(r0 + i, c0 + j)] += v);
+            }
+            for tr in entries {
+                m[(tr.row, tr.col)] += tr.val;
+            }
+            Ok(SysMatrix::Dense(m))
+        }
+    }
 }
 
 /// A term `scale · A` of the (1,1) block `S` of the augmented matrix.

@@ -18,8 +18,7 @@ use crate::kinematics::tilde::{get3, get4, put3, put4};
 use crate::marker::{Carrier, Marker};
 use crate::system::ForceTangent;
 use crate::{MbdError, SecondOrderSystem, SysMatrix};
-use faer::Mat;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::Triplet;
 use nalgebra::Vector3;
 
 /// Number of bodies above which matrices are returned sparse.
@@ -311,20 +310,7 @@ impl MultibodySystem {
         trip: Vec<Triplet<usize, usize, f64>>,
         t: f64,
     ) -> Result<SysMatrix, MbdError> {
-        if self.use_sparse() {
-            SparseColMat::try_new_from_triplets(nr, nc, &trip)
-                .map(SysMatrix::Sparse)
-                .map_err(|e| MbdError::Model {
-                    t,
-                    message: format!("sparse assembly failed: {e:?}"),
-                })
-        } else {
-            let mut m = Mat::<f64>::zeros(nr, nc);
-            for tr in trip {
-                m[(tr.row, tr.col)] += tr.val;
-            }
-            Ok(SysMatrix::Dense(m))
-        }
+        SysMatrix::from_triplets(nr, nc, &trip, self.use_sparse(), t)
     }
 }
 

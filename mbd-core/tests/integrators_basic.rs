@@ -4,45 +4,11 @@ use faer::Mat;
 use mbd_core::integrators::{
     AlphaConfig, DormandPrince, Event, GeneralizedAlpha, JacobianMode, NewtonUpdate, Rk4, State,
 };
-use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
+use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use std::f64::consts::PI;
 
-/// Undamped oscillator m ẍ + k x = 0.
-struct Sdof {
-    m: f64,
-    k: f64,
-    analytic_tangent: bool,
-}
-
-impl SecondOrderSystem for Sdof {
-    fn n_q(&self) -> usize {
-        1
-    }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
-        Ok(SysMatrix::Dense(Mat::from_fn(1, 1, |_, _| self.m)))
-    }
-    fn forces(&self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
-        f[0] = -self.k * q[0];
-        Ok(())
-    }
-    fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        if !self.analytic_tangent {
-            return Ok(None);
-        }
-        Ok(Some(ForceTangent {
-            stiffness: SysMatrix::Dense(Mat::from_fn(1, 1, |_, _| self.k)),
-            damping: SysMatrix::Dense(Mat::zeros(1, 1)),
-        }))
-    }
-}
+mod support;
+use support::Oscillator;
 
 /// Planar pendulum, point mass in Cartesian coordinates, Φ = (x² + y² − L²)/2, gravity −y.
 struct CartPendulum {
@@ -114,10 +80,10 @@ fn sdof_state() -> State {
 #[test]
 fn rk4_sdof_matches_cosine() {
     // analytic: x = cos(ω t)
-    let sys = Sdof {
+    let sys = Oscillator {
         m: 2.0,
         k: 2.0 * (2.0 * PI).powi(2),
-        analytic_tangent: true,
+        tangent: true,
     };
     let sol = Rk4::new(1e-3)
         .integrate(&sys, sdof_state(), 1.3, |_| {})
@@ -136,10 +102,10 @@ fn rk4_sdof_matches_cosine() {
 #[test]
 fn dopri_sdof_matches_cosine() {
     // analytic: x = cos(ω t)
-    let sys = Sdof {
+    let sys = Oscillator {
         m: 1.0,
         k: (2.0 * PI).powi(2),
-        analytic_tangent: true,
+        tangent: true,
     };
     let sol = DormandPrince::new(1e-10, 1e-12)
         .integrate(&sys, sdof_state(), 3.0, |_| {})
@@ -157,10 +123,10 @@ fn dopri_sdof_matches_cosine() {
 fn dopri_dense_output_event_is_4th_order() {
     // x = cos(ω t) crosses zero at t = 1/4 s (ω = 2π); loose tolerances so the dense output
     // matters; the located time must agree to the integration accuracy.
-    let sys = Sdof {
+    let sys = Oscillator {
         m: 1.0,
         k: (2.0 * PI).powi(2),
-        analytic_tangent: true,
+        tangent: true,
     };
     let ev = [Event::stop("zero", |s: &State| s.q[0])];
     let sol = DormandPrince::new(1e-9, 1e-11)
@@ -180,10 +146,10 @@ fn generalized_alpha_sdof_second_order() {
     let mut errs = vec![];
     for &h in &[4e-3, 2e-3, 1e-3] {
         for analytic in [true, false] {
-            let sys = Sdof {
+            let sys = Oscillator {
                 m: 1.0,
                 k: (2.0 * PI).powi(2),
-                analytic_tangent: analytic,
+                tangent: analytic,
             };
             let ga = GeneralizedAlpha::new(AlphaConfig {
                 h,
@@ -282,10 +248,10 @@ fn pendulum_all_integrators_match_minimal_coordinates() {
 #[test]
 fn dopri_dense_output_at_requested_times() {
     // analytic x = cos(ω t) at 101 requested times; 4th-order interpolant between steps
-    let sys = Sdof {
+    let sys = Oscillator {
         m: 1.0,
         k: (2.0 * PI).powi(2),
-        analytic_tangent: true,
+        tangent: true,
     };
     let times: Vec<f64> = (0..=100).map(|k| 0.0137 * k as f64).collect();
     let mut seen = Vec::new();

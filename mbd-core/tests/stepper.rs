@@ -2,48 +2,18 @@
 //! (orders of convergence against the analytical solution), the fixed-interval [`Recorder`],
 //! and the generalized-α step correction for nonsmooth contact (rigid floor, Coulomb friction).
 
-use faer::Mat;
 use mbd_core::integrators::{
     AlphaConfig, AlphaCorrection, DormandPrince, GeneralizedAlpha, Integrator, Recorder, Rk4,
     State, StepCorrection, Stepper, observe_fn,
 };
-use mbd_core::{ForceTangent, History, MbdError, Probe, SecondOrderSystem, SysMatrix};
+use mbd_core::{History, MbdError, Probe};
 
-/// Undamped oscillator ẍ + ω² x = 0, x(0) = 1, ẋ(0) = 0: x = cos ωt.
-struct Oscillator {
-    omega: f64,
-}
-
-impl SecondOrderSystem for Oscillator {
-    fn n_q(&self) -> usize {
-        1
-    }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
-        Ok(SysMatrix::Dense(Mat::from_fn(1, 1, |_, _| 1.0)))
-    }
-    fn forces(&self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
-        f[0] = -self.omega * self.omega * q[0];
-        Ok(())
-    }
-    fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        Ok(Some(ForceTangent {
-            stiffness: SysMatrix::Dense(Mat::from_fn(1, 1, |_, _| self.omega * self.omega)),
-            damping: SysMatrix::Dense(Mat::zeros(1, 1)),
-        }))
-    }
-}
+mod support;
+use support::{Oscillator, PointMasses};
 
 /// Error at t = 1 s of the method built by `make(h)` through the boxed `Stepper` factory.
 fn error_at_1s(make: &dyn Fn(f64) -> Box<dyn Integrator>, h: f64) -> f64 {
-    let sys = Oscillator { omega: 2.0 };
+    let sys = Oscillator::unit(2.0);
     let integ = make(h);
     let mut st = integ
         .stepper_dyn(&sys, State::new(0.0, vec![1.0], vec![0.0]))
@@ -96,7 +66,7 @@ fn three_methods_converge_at_their_orders_on_the_oscillator() {
 #[test]
 fn stepper_runs_match_the_integrate_wrappers() {
     // the wrappers are loops over the stepper: same steps, same end state
-    let sys = Oscillator { omega: 3.0 };
+    let sys = Oscillator::unit(3.0);
     let s0 = State::new(0.0, vec![1.0], vec![0.5]);
     let dp = DormandPrince::new(1e-9, 1e-12);
     let sol = dp.integrate(&sys, s0.clone(), 2.0, |_| {}).unwrap();
@@ -119,7 +89,7 @@ fn stepper_runs_match_the_integrate_wrappers() {
 #[test]
 fn recorder_samples_at_exact_times_with_dense_output() {
     let omega = 2.0;
-    let sys = Oscillator { omega };
+    let sys = Oscillator::unit(omega);
     let s0 = State::new(0.0, vec![1.0], vec![0.0]);
     let dt = 0.07;
     let t_end = 2.0;
@@ -171,39 +141,15 @@ fn recorder_samples_at_exact_times_with_dense_output() {
     assert_eq!(String::from_utf8(csv).unwrap().lines().count(), n + 1);
 }
 
-/// Point mass `m` in the plane (x, y) under gravity −g y.
-struct Block {
-    m: f64,
-    g: f64,
-}
+/// A point mass `m` in the plane (x, y) under gravity −g y.
+type Block = PointMasses;
 
-impl SecondOrderSystem for Block {
-    fn n_q(&self) -> usize {
-        2
-    }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
-        Ok(SysMatrix::Dense(Mat::from_fn(2, 2, |i, j| {
-            if i == j { self.m } else { 0.0 }
-        })))
-    }
-    fn forces(&self, _t: f64, _q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
-        f[0] = 0.0;
-        f[1] = -self.m * self.g;
-        Ok(())
-    }
-    fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        Ok(Some(ForceTangent {
-            stiffness: SysMatrix::Dense(Mat::zeros(2, 2)),
-            damping: SysMatrix::Dense(Mat::zeros(2, 2)),
-        }))
+fn block(m: f64, g: f64) -> Block {
+    PointMasses {
+        m: vec![m],
+        dim: 2,
+        g,
+        lift: f64::INFINITY,
     }
 }
 
@@ -271,7 +217,7 @@ impl StepCorrection<Block> for ImpactFloor {
 #[test]
 fn mass_falls_onto_a_rigid_floor_and_rests() {
     let (m, g, y0, h) = (2.0, 9.81, 0.5, 1e-3);
-    let sys = Block { m, g };
+    let sys = block(m, g);
     let ga = GeneralizedAlpha::new(AlphaConfig {
         h,
         rho_inf: 0.5,
@@ -317,7 +263,7 @@ fn mass_falls_onto_a_rigid_floor_and_rests() {
 #[test]
 fn block_slides_with_coulomb_friction_at_mu_g() {
     let (m, g, mu, v0, h) = (3.0, 9.81, 0.3, 2.0, 1e-3);
-    let sys = Block { m, g };
+    let sys = block(m, g);
     let ga = GeneralizedAlpha::new(AlphaConfig {
         h,
         rho_inf: 0.5,

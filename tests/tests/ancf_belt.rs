@@ -9,6 +9,7 @@ use ancf::system::MeshForce;
 use ancf::{AncfSystem, Element, Material, PulleyContact, Section};
 use contact::{CreepRate, Disk, Frictionless, GaussRule, LineContact, LinearPenalty};
 use mbd_core::SecondOrderSystem;
+use nalgebra::{Point2, Vector2};
 
 fn belt_material() -> (Material, Section) {
     (
@@ -100,7 +101,7 @@ fn belt_hoop_on_pulley_matches_analytical_penetration() {
     let k = 1e7;
     let pc = PulleyContact {
         contact: LineContact {
-            surface: Disk::fixed([0.0, 0.0], r),
+            surface: Disk::fixed(Point2::origin(), r),
             normal: LinearPenalty {
                 stiffness: k,
                 damping: 0.0,
@@ -161,9 +162,9 @@ fn system_tangent_with_contact_matches_finite_differences() {
     let pc = PulleyContact {
         contact: LineContact {
             surface: Disk {
-                center: [0.0, 0.0],
+                center: Point2::origin(),
                 radius: r,
-                velocity: [0.0, 0.0],
+                velocity: Vector2::zeros(),
                 omega: 0.3,
             },
             normal: LinearPenalty {
@@ -239,7 +240,7 @@ fn belt_pretension_on_two_pulleys() {
     let k = 1e7;
     let mk = |c: [f64; 2]| PulleyContact {
         contact: LineContact {
-            surface: Disk::fixed(c, path.pulleys()[0].radius),
+            surface: Disk::fixed(Point2::from(c), path.pulleys()[0].radius),
             normal: LinearPenalty {
                 stiffness: k,
                 damping: 10.0,
@@ -330,9 +331,9 @@ fn hoop_is_dragged_to_pulley_speed_by_friction() {
     let pc = PulleyContact {
         contact: LineContact {
             surface: Disk {
-                center: [0.0, 0.0],
+                center: Point2::origin(),
                 radius: r,
-                velocity: [0.0, 0.0],
+                velocity: Vector2::zeros(),
                 omega,
             },
             normal: LinearPenalty {

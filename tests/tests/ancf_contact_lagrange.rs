@@ -69,7 +69,7 @@ fn beam<El: Element>(
     }
 }
 
-fn lagrange<El: Element, S: Surface>(b: &Beam<El>, s: &S) -> ancf::UnilateralSolution {
+fn lagrange<El: Element, S: Surface<2>>(b: &Beam<El>, s: &S) -> ancf::UnilateralSolution {
     // 5 increments: with 4, the first one of the q = 4q* case lands on the degenerate load q*
     // (tip contact at zero slope), where the active set needs ~50 passes instead of ~10
     let opts = UnilateralOptions {
@@ -286,7 +286,7 @@ fn disk_contact_large_deflection_matches_penalty_limit() {
     let mut b = beam(n, 0.0, ProposedBeam::new);
     let f_tip = -2500.0;
     b.load[b.mesh.node_dof(n, 1)] = f_tip;
-    let disk = Disk::fixed([0.5 * L, -0.1], 0.05);
+    let disk = Disk::fixed(nalgebra::Point2::new(0.5 * L, -0.1), 0.05);
     let opts = UnilateralOptions {
         newton: StaticOptions {
             increments: 10,

@@ -8,23 +8,35 @@ use contact::{
     ActiveSet, Coulomb, CoulombTanh, CreepRate, Disk, ElementContact, FrictionLaw, Frictionless,
     GaussRule, LineContact, LinearPenalty, PolynomialPenalty, point_contact, unilateral_row,
 };
+use nalgebra::{Point2, Vector2};
 
 /// Newton solve of a node pushed onto a disk by `push` \[N\] (towards the centre along −n₀):
 /// returns the equilibrium penetration.
 fn pressed_node(law: &dyn contact::NormalLaw, push: f64) -> (f64, [f64; 2]) {
-    let disk = Disk::fixed([0.1, -0.2], 0.08125);
+    let disk = Disk::fixed(Point2::new(0.1, -0.2), 0.08125);
     let dir = [0.6, 0.8];
     let load = [-push * dir[0], -push * dir[1]];
     let mut p = [0.1 + 0.08125 * dir[0], -0.2 + 0.08125 * dir[1]];
+    let at = |p: [f64; 2]| {
+        point_contact(
+            &disk,
+            law,
+            &Frictionless,
+            &Point2::from(p),
+            &Vector2::zeros(),
+        )
+    };
     for _ in 0..50 {
-        let pc = point_contact(&disk, law, &Frictionless, p, [0.0, 0.0]);
-        let (f, k) = match pc {
+        let (f, k) = match at(p) {
             Some(c) => (c.force, c.df_dp),
-            None => ([0.0; 2], [[0.0; 2]; 2]),
+            None => (Vector2::zeros(), nalgebra::Matrix2::zeros()),
         };
         let r = [f[0] + load[0], f[1] + load[1]];
         // Newton: (−∂f/∂p) Δp = r ; add tiny regularisation for the tangential direction
-        let a = [[-k[0][0] + 1e-3, -k[0][1]], [-k[1][0], -k[1][1] + 1e-3]];
+        let a = [
+            [-k[(0, 0)] + 1e-3, -k[(0, 1)]],
+            [-k[(1, 0)], -k[(1, 1)] + 1e-3],
+        ];
         let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
         let dp = [
             (r[0] * a[1][1] - r[1] * a[0][1]) / det,
@@ -35,8 +47,8 @@ fn pressed_node(law: &dyn contact::NormalLaw, push: f64) -> (f64, [f64; 2]) {
             break;
         }
     }
-    let pc = point_contact(&disk, law, &Frictionless, p, [0.0, 0.0]).expect("in contact");
-    (pc.penetration, pc.surface.normal)
+    let pc = at(p).expect("in contact");
+    (pc.penetration, pc.surface.normal.into())
 }
 
 // Reference: a linear penalty node pressed on a circle carries F = k d (Kerkkänen (3.20)).
@@ -118,9 +130,9 @@ fn wrapped_state(r: f64, delta: f64, speed: f64, l: f64) -> (Vec<f64>, Vec<f64>)
 fn contact_with(points: usize, friction: CreepRate) -> LineContact<Disk, LinearPenalty, CreepRate> {
     LineContact {
         surface: Disk {
-            center: [0.0, 0.0],
+            center: Point2::origin(),
             radius: 0.08125,
-            velocity: [0.0, 0.0],
+            velocity: Vector2::zeros(),
             omega: 12.0,
         },
         normal: LinearPenalty {
@@ -149,10 +161,10 @@ fn quadrature_5_7_11_points_agree_for_smooth_loads() {
                 creep: 1e5,
             },
         );
-        let mut out = ElementContact::new(12);
+        let mut out = ElementContact::<2>::new(12);
         c.element(el.length(), 6, shape, &e, &ed, false, &mut out, None);
         assert_eq!(out.active_points, n);
-        results.push((out.q.clone(), out.torque));
+        results.push((out.q.clone(), out.moment));
     }
     let scale = results[2].0.iter().map(|v| v.abs()).fold(0.0, f64::max);
     for (q, tau) in &results[..2] {
@@ -184,15 +196,15 @@ fn distributed_contact_jacobians_match_finite_differences() {
             creep: 1e3,
         },
     );
-    let mut out = ElementContact::new(12);
+    let mut out = ElementContact::<2>::new(12);
     c.element(el.length(), 6, shape, &e, &ed, true, &mut out, None);
-    let mut tmp = ElementContact::new(12);
+    let mut tmp = ElementContact::<2>::new(12);
     let eval = |c: &LineContact<Disk, LinearPenalty, CreepRate>,
                 e: &[f64],
                 ed: &[f64],
-                tmp: &mut ElementContact| {
+                tmp: &mut ElementContact<2>| {
         c.element(el.length(), 6, shape, e, ed, false, tmp, None);
-        (tmp.q.clone(), tmp.torque)
+        (tmp.q.clone(), tmp.moment)
     };
     let qs = out.q.iter().map(|v| v.abs()).fold(0.0, f64::max);
     let js = out.dq_de.iter().map(|v| v.abs()).fold(0.0, f64::max);
@@ -213,9 +225,9 @@ fn distributed_contact_jacobians_match_finite_differences() {
         }
         let fdt = (tp - tm) / (2.0 * h);
         assert!(
-            (fdt - out.dtorque_de[j]).abs() < 1e-5 * js * 0.1,
+            (fdt - out.dmoment_de[j]).abs() < 1e-5 * js * 0.1,
             "dtau/de{j}: {fdt} vs {}",
-            out.dtorque_de[j]
+            out.dmoment_de[j]
         );
         let hv = 1e-6;
         let (mut vp, mut vm) = (ed.clone(), ed.clone());
@@ -231,8 +243,8 @@ fn distributed_contact_jacobians_match_finite_differences() {
             );
         }
         assert!(
-            ((tp - tm) / (2.0 * hv) - out.dtorque_dedot[j]).abs()
-                < 1e-6 * (1.0 + out.dtorque_dedot[j].abs())
+            ((tp - tm) / (2.0 * hv) - out.dmoment_dedot[j]).abs()
+                < 1e-6 * (1.0 + out.dmoment_dedot[j].abs())
         );
     }
     let hw = 1e-6;
@@ -247,8 +259,8 @@ fn distributed_contact_jacobians_match_finite_differences() {
         assert!((fd - out.dq_domega[i]).abs() < 1e-6 * (1.0 + fd.abs()));
     }
     assert!(
-        ((tp - tm) / (2.0 * hw) - out.dtorque_domega).abs()
-            < 1e-6 * (1.0 + out.dtorque_domega.abs())
+        ((tp - tm) / (2.0 * hw) - out.dmoment_domega).abs()
+            < 1e-6 * (1.0 + out.dmoment_domega.abs())
     );
     assert!(qs > 0.0);
 }
@@ -267,7 +279,7 @@ fn torque_matches_kerkkanen_3_26_and_records() {
             creep: 1e4,
         },
     );
-    let mut out = ElementContact::new(12);
+    let mut out = ElementContact::<2>::new(12);
     let mut rec = Vec::new();
     c.element(
         el.length(),
@@ -287,25 +299,25 @@ fn torque_matches_kerkkanen_3_26_and_records() {
         .map(|(r, w)| -w * el.length() * (0.08125 - r.penetration) * r.friction_force)
         .sum();
     assert!(
-        (tau - out.torque).abs() < 1e-12 * tau.abs(),
+        (tau - out.moment).abs() < 1e-12 * tau.abs(),
         "{tau} vs {}",
-        out.torque
+        out.moment
     );
     // belt slower than the pulley surface (0.8 < 12·0.08125 m/s): friction drives the belt
     // forward (+t) and brakes the pulley (negative torque)
     assert!(rec.iter().all(|r| r.slip < 0.0 && r.friction_force > 0.0));
-    assert!(out.torque < 0.0);
+    assert!(out.moment < 0.0);
 }
 
 // Active-set rule of the unilateral constraints and the flat-road constraint row.
 #[test]
 fn unilateral_active_set_rule() {
     let road = contact::HalfPlane::ground(0.0);
-    let row = unilateral_row(&road, [0.3, -1e-4], [1.0, -0.5]);
+    let row = unilateral_row(&road, &Point2::new(0.3, -1e-4), &Vector2::new(1.0, -0.5));
     assert!((row.gap + 1e-4).abs() < 1e-18 && row.gap_rate == -0.5 && row.gamma == 0.0);
     // circle: γ = −|w_t|²/ρ for a node sliding on a fixed disk
-    let disk = Disk::fixed([0.0, 0.0], 1.0);
-    let row = unilateral_row(&disk, [0.0, 1.0], [2.0, 0.0]);
+    let disk = Disk::fixed(Point2::origin(), 1.0);
+    let row = unilateral_row(&disk, &Point2::new(0.0, 1.0), &Vector2::new(2.0, 0.0));
     assert!((row.gamma + 4.0).abs() < 1e-12);
     let mut set = ActiveSet::new(3);
     assert!(set.update(&[-1e-6, 1e-3, 0.0], &[-0.1, -0.1, 0.2], &[0.0; 3], 0.0));

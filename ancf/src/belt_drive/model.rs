@@ -16,6 +16,7 @@ use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact};
 use fe_model::generate::belt_path::{BeltPath, PathPulley};
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
+use nalgebra::{Point2, Vector2};
 use std::sync::Mutex;
 
 /// Coordinates of one element.
@@ -26,7 +27,7 @@ const MAX_PULLEYS: usize = 16;
 
 /// Per-call work buffers (kept so that the force and tangent loops do not allocate).
 struct Scratch {
-    contact: ElementContact,
+    contact: ElementContact<2>,
     k_local: Vec<f64>,
     c_local: Vec<f64>,
 }
@@ -142,7 +143,7 @@ impl BeltDrive {
             }
         }
         let line = LineContact {
-            surface: Disk::fixed([0.0, 0.0], 1.0),
+            surface: Disk::fixed(Point2::origin(), 1.0),
             normal: spec.contact.normal_law(),
             friction: spec.contact.friction,
             rule: GaussRule::new(spec.contact.points),
@@ -269,9 +270,9 @@ impl BeltDrive {
     fn disk(&self, p: usize, omega: f64) -> Disk {
         let pl = &self.spec.pulleys[p];
         Disk {
-            center: pl.center,
+            center: Point2::from(pl.center),
             radius: pl.radius,
-            velocity: [0.0, 0.0],
+            velocity: Vector2::zeros(),
             omega: pl.ccw_sign() * omega,
         }
     }
@@ -297,7 +298,7 @@ impl BeltDrive {
         omegas: &[f64],
         jacobian: bool,
         scratch: &mut Scratch,
-        mut sink: impl FnMut(usize, usize, &ElementContact, &mut Scratch),
+        mut sink: impl FnMut(usize, usize, &ElementContact<2>, &mut Scratch),
     ) {
         let l = self.element_length();
         let mut e = [0.0; NE];
@@ -360,7 +361,7 @@ impl BeltDrive {
         let mut scratch = self.lock();
         self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
             self.mesh.scatter_add(f, el, &ec.q, 1.0);
-            torques[p] += self.spec.pulleys[p].ccw_sign() * ec.torque;
+            torques[p] += self.spec.pulleys[p].ccw_sign() * ec.moment;
         });
     }
 
@@ -431,7 +432,7 @@ impl BeltDrive {
         let omegas = self.speeds(t, v);
         let l = self.element_length();
         let mut out = Vec::new();
-        let mut recs: Vec<ContactRecord> = Vec::new();
+        let mut recs: Vec<ContactRecord<2>> = Vec::new();
         let mut ec = ElementContact::new(NE);
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
@@ -460,8 +461,8 @@ impl BeltDrive {
                     out.push(PointRecord {
                         pulley: p,
                         element: el,
-                        s_material: (el as f64 + r.xi) * l,
-                        position: r.position,
+                        s_material: (el as f64 + line.rule.points[r.index]) * l,
+                        position: r.position.into(),
                         penetration: r.penetration,
                         normal_force: r.normal_force,
                         friction_force: sgn * r.friction_force,
@@ -563,7 +564,7 @@ impl BeltDrive {
         self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
             self.mesh.scatter_add(f, el, &ec.q, 1.0);
             if let Some(j) = self.pulley_dof[p] {
-                f[j] += self.spec.pulleys[p].ccw_sign() * ec.torque;
+                f[j] += self.spec.pulleys[p].ccw_sign() * ec.moment;
             }
         });
         for &p in &self.free {
@@ -616,10 +617,10 @@ impl BeltDrive {
                     // f_belt depends on ω_ccw = s θ̇
                     s.c_local[a + col * m] = -sg * ec.dq_domega[a];
                     // pulley row: s τ
-                    s.k_local[col + a * m] = -sg * ec.dtorque_de[a];
-                    s.c_local[col + a * m] = -sg * ec.dtorque_dedot[a];
+                    s.k_local[col + a * m] = -sg * ec.dmoment_de[a];
+                    s.c_local[col + a * m] = -sg * ec.dmoment_dedot[a];
                 }
-                s.c_local[col + col * m] = -ec.dtorque_domega;
+                s.c_local[col + col * m] = -ec.dmoment_domega;
             }
             pat.add_element(&mut k, n_el + el, &s.k_local, 1.0);
             pat.add_element(&mut c, n_el + el, &s.c_local, 1.0);

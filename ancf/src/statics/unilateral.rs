@@ -26,6 +26,7 @@ use faer::prelude::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
 use mbd_core::newton::{self, NewtonOptions, NewtonProblem, Settle};
+use nalgebra::{Point2, Vector2};
 
 /// Options of the unilateral static solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -77,7 +78,7 @@ impl UnilateralSolution {
 /// unilaterally constrained to stay outside `surface` (`g_i ≥ 0`, `λ_i ≥ 0`, `λ_i g_i = 0`),
 /// keeping the coordinates `fixed` at their `q0` values. `q0` must be admissible (no node
 /// penetrating by more than the tolerance).
-pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
+pub fn solve_static_unilateral<E: Element, S: Surface<2> + ?Sized>(
     mesh: &Mesh<E>,
     q0: &[f64],
     fixed: &[usize],
@@ -162,7 +163,7 @@ pub fn solve_static_unilateral<E: Element, S: Surface + ?Sized>(
 /// The KKT system of the module documentation: unknowns `x = (q, λ)` (all coordinates and
 /// all candidate multipliers; fixed coordinates and inactive multipliers are never corrected),
 /// residual `R = −(Q_e + λ_F F + Σ λ_i n_i)` on the free rows and `−g_i` on the active rows.
-struct Unilateral<'a, E: Element, S: Surface + ?Sized> {
+struct Unilateral<'a, E: Element, S: Surface<2> + ?Sized> {
     mesh: &'a Mesh<E>,
     load: &'a [f64],
     surface: &'a S,
@@ -181,11 +182,15 @@ struct Unilateral<'a, E: Element, S: Surface + ?Sized> {
     lam: f64,
 }
 
-impl<E: Element, S: Surface + ?Sized> Unilateral<'_, E, S> {
+impl<E: Element, S: Surface<2> + ?Sized> Unilateral<'_, E, S> {
     fn gaps(&self, q: &[f64]) -> Vec<f64> {
         self.nodes
             .iter()
-            .map(|&nd| self.surface.closest(self.mesh.node_position(q, nd)).gap)
+            .map(|&nd| {
+                self.surface
+                    .closest(&Point2::from(self.mesh.node_position(q, nd)))
+                    .gap
+            })
             .collect()
     }
 
@@ -194,7 +199,7 @@ impl<E: Element, S: Surface + ?Sized> Unilateral<'_, E, S> {
     }
 }
 
-impl<E: Element, S: Surface + ?Sized> NewtonProblem for Unilateral<'_, E, S> {
+impl<E: Element, S: Surface<2> + ?Sized> NewtonProblem for Unilateral<'_, E, S> {
     type Error = AncfError;
 
     fn tangent_dim(&self) -> usize {
@@ -219,9 +224,9 @@ impl<E: Element, S: Surface + ?Sized> NewtonProblem for Unilateral<'_, E, S> {
         r.fill(0.0);
         for (row, &c) in self.act.iter().enumerate() {
             let nd = self.nodes[c];
-            let p = mesh.node_position(q, nd);
-            let crow = unilateral_row(self.surface, p, [0.0; 2]);
-            let sp = self.surface.closest(p);
+            let p = Point2::from(mesh.node_position(q, nd));
+            let crow = unilateral_row(self.surface, &p, &Vector2::zeros());
+            let sp = self.surface.closest(&p);
             let d = [mesh.node_dof(nd, 0), mesh.node_dof(nd, 1)];
             for a in 0..2 {
                 self.f[d[a]] += lambda[c] * crow.normal[a];
@@ -231,7 +236,7 @@ impl<E: Element, S: Surface + ?Sized> NewtonProblem for Unilateral<'_, E, S> {
                     for b in 0..2 {
                         if let Some(ib) = self.map[d[b]] {
                             self.trip
-                                .push(Triplet::new(ia, ib, -lambda[c] * sp.dn_dp[a][b]));
+                                .push(Triplet::new(ia, ib, -lambda[c] * sp.dn_dp[(a, b)]));
                         }
                     }
                 }

@@ -4,7 +4,8 @@
 //! is the closer of the members' closest-point projections (Wriggers *Computational Contact
 //! Mechanics*).
 
-use super::geometry::{Cylinder, HalfSpace, Surface3, SurfacePoint3};
+use super::geometry::{Cylinder, HalfSpace};
+use crate::geometry::{Surface, SurfacePoint};
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -48,11 +49,11 @@ impl CleatedDrum3 {
     }
 }
 
-impl Surface3 for CleatedDrum3 {
+impl Surface<3> for CleatedDrum3 {
     /// The closer of the drum (part 0) and the cleat (part 1). On the cleat the surface moves
     /// rigidly with the drum, `u_s = ṙ_o + ω a × (x_s − r_o)`, so `∂u_s/∂ω = a × (x_s − r_o)`
     /// (the cleat axis moves with `ω` too).
-    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3 {
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
         let a = self.drum.closest(p);
         let mut b = self.cleat().closest(p);
         if b.gap < a.gap {
@@ -98,10 +99,10 @@ impl CleatedRoad3 {
     }
 }
 
-impl Surface3 for CleatedRoad3 {
+impl Surface<3> for CleatedRoad3 {
     /// The closer of the road (part 0) and the cleat (part 1); neither turns, so
     /// `∂u_s/∂ω = 0`.
-    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3 {
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
         let a = self.road.closest(p);
         let mut b = self.cleat().closest(p);
         if b.gap < a.gap {
@@ -120,11 +121,12 @@ impl Surface3 for CleatedRoad3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{CleatedDrum, CleatedRoad, Disk, Surface, SurfacePoint};
+    use crate::geometry::{CleatedDrum, CleatedRoad, Disk};
     use crate::spatial::geometry::tests::fd_check3;
+    use nalgebra::{Point2, Vector2};
 
     /// The planar and spatial closest points agree in the cross-section.
-    fn same(a: &SurfacePoint, b: &SurfacePoint3, omega_too: bool) {
+    fn same(a: &SurfacePoint<2>, b: &SurfacePoint<3>, omega_too: bool) {
         assert_eq!(a.part, b.part);
         assert!((a.gap - b.gap).abs() < 1e-14, "{} vs {}", a.gap, b.gap);
         for i in 0..2 {
@@ -135,8 +137,8 @@ mod tests {
                 assert!((a.dus_domega[i] - b.dus_domega[i]).abs() < 1e-14);
             }
             for j in 0..2 {
-                assert!((a.dn_dp[i][j] - b.dn_dp[(i, j)]).abs() < 1e-10);
-                assert!((a.dus_dp[i][j] - b.dus_dp[(i, j)]).abs() < 1e-10);
+                assert!((a.dn_dp[(i, j)] - b.dn_dp[(i, j)]).abs() < 1e-10);
+                assert!((a.dus_dp[(i, j)] - b.dus_dp[(i, j)]).abs() < 1e-10);
             }
         }
         assert!(b.normal.z.abs() < 1e-15 && b.surface_velocity.z.abs() < 1e-15);
@@ -148,9 +150,9 @@ mod tests {
     fn cleated_drum_is_the_extruded_planar_drum() {
         let planar = CleatedDrum {
             drum: Disk {
-                center: [0.1, -0.05],
+                center: Point2::new(0.1, -0.05),
                 radius: 1.25,
-                velocity: [0.2, 0.1],
+                velocity: Vector2::new(0.2, 0.1),
                 omega: 3.0,
             },
             cleat_radius: 0.01,
@@ -175,7 +177,7 @@ mod tests {
             [tip[0] - 0.003, tip[1] + 0.0],
             [0.1 + 1.2, -0.05 + 0.3],
         ] {
-            let a = planar.closest(p);
+            let a = planar.closest(&Point2::from(p));
             let b = spatial.closest(&Point3::new(p[0], p[1], 0.7));
             same(&a, &b, true);
             fd_check3(&spatial, Point3::new(p[0], p[1], -0.2));
@@ -229,7 +231,7 @@ mod tests {
             cleat_offset: 0.6,
         };
         for p in [[1.004, 0.032], [0.998, 0.025], [0.5, 0.019], [1.2, 0.021]] {
-            let a = planar.closest(p);
+            let a = planar.closest(&Point2::from(p));
             let b = spatial.closest(&Point3::new(p[0], p[1], -0.3));
             // the planar road's cleat is a fixed disk whose ∂u_s/∂ω is never used
             same(&a, &b, false);

@@ -2,8 +2,9 @@
 //! the axis, that keep the belt from running off axially (Kerkkänen ch. 4 discusses crowned and
 //! flanged pulleys as the means of lateral belt guidance).
 
-use super::geometry::{Cylinder, Surface3, SurfacePoint3};
-use nalgebra::{Matrix3, Point3, Vector3};
+use super::geometry::{Cylinder, perpendicular};
+use crate::geometry::{Surface, SurfacePoint};
+use nalgebra::{Matrix3, Point3};
 use serde::{Deserialize, Serialize};
 
 /// A [`Cylinder`] with flanges at the axial positions `ζ_lo < ζ_hi` (`ζ = aᵀ(p − r_o)`): the
@@ -26,7 +27,7 @@ pub struct FlangedCylinder {
 
 impl FlangedCylinder {
     /// Contact data of flange `k` (0: `ζ_lo`, 1: `ζ_hi`) for the point `p`.
-    fn flange(&self, k: usize, p: &Point3<f64>) -> SurfacePoint3 {
+    fn flange(&self, k: usize, p: &Point3<f64>) -> SurfacePoint<3> {
         let c = &self.cylinder;
         let a = c.axis;
         let d = p - c.center;
@@ -37,12 +38,8 @@ impl FlangedCylinder {
             (self.flanges[1] - zeta, -a)
         };
         let circ = a.cross(&d);
-        let tangent = circ.try_normalize(0.0).unwrap_or_else(|| {
-            a.cross(&Vector3::x())
-                .try_normalize(0.0)
-                .unwrap_or(Vector3::y())
-        });
-        SurfacePoint3 {
+        let tangent = circ.try_normalize(0.0).unwrap_or_else(|| perpendicular(&a));
+        SurfacePoint {
             gap,
             normal: n,
             gap_gradient: n,
@@ -57,10 +54,10 @@ impl FlangedCylinder {
     }
 }
 
-impl Surface3 for FlangedCylinder {
+impl Surface<3> for FlangedCylinder {
     /// The closest of the cylinder (part 0), the lower flange (part 1) and the upper flange
     /// (part 2); ties go to the lower part index.
-    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3 {
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
         let mut best = self.cylinder.closest(p);
         for k in 0..2 {
             let f = self.flange(k, p);
@@ -79,6 +76,7 @@ impl Surface3 for FlangedCylinder {
 mod tests {
     use super::*;
     use crate::spatial::geometry::tests::fd_check3;
+    use nalgebra::Vector3;
 
     fn pulley() -> FlangedCylinder {
         FlangedCylinder {

@@ -1,45 +1,23 @@
 //! Spatial obstacle surfaces: a rotating, optionally crowned cylinder and a half-space.
 //!
-//! Every shape answers [`Surface3::closest`]: the signed gap (negative when penetrating), the
-//! outward unit normal, the surface material velocity, a reference tangent, and the
-//! derivatives of normal and surface velocity with respect to the query point.
+//! Every shape answers [`Surface::closest`] (`D = 3`): the signed gap (negative when
+//! penetrating), the outward unit normal, the surface material velocity, a reference tangent,
+//! and the derivatives of normal and surface velocity with respect to the query point.
 
+use crate::geometry::{Surface, SurfacePoint};
 use nalgebra::{Matrix3, Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
-/// Contact data of a query point `p` against a spatial surface.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SurfacePoint3 {
-    /// Signed gap \[m\] (> 0 separated, < 0 penetrating).
-    pub gap: f64,
-    /// Outward unit normal `n`.
-    pub normal: Vector3<f64>,
-    /// `∂g/∂p` (parallel to `n`; `n` itself for an exact distance).
-    pub gap_gradient: Vector3<f64>,
-    /// Reference unit tangent (first tangent-plane axis `t₁`; `t₂ = n × t₁`), e.g. the
-    /// circumferential direction of a cylinder.
-    pub tangent: Vector3<f64>,
-    /// Surface point \[m\].
-    pub point: Point3<f64>,
-    /// Velocity of the obstacle's surface material there \[m/s\].
-    pub surface_velocity: Vector3<f64>,
-    /// `∂n/∂p` \[1/m\].
-    pub dn_dp: Matrix3<f64>,
-    /// `∂u_s/∂p` \[1/s\].
-    pub dus_dp: Matrix3<f64>,
-    /// `∂u_s/∂ω` \[m\] (per unit angular velocity of the obstacle about its axis).
-    pub dus_domega: Vector3<f64>,
-    /// Index of the primitive that produced the point (0 for simple shapes; for unions the
-    /// member index, e.g. 1 and 2 for the flanges of a [`super::FlangedCylinder`]).
-    pub part: usize,
-}
+/// Contact data of a query point against a spatial surface.
+pub type SurfacePoint3 = SurfacePoint<3>;
 
-/// A rigid obstacle surface in space.
-pub trait Surface3 {
-    /// Contact data of the point `p` \[m\].
-    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3;
-    /// Reference point of the body (axis point of a pulley) \[m\].
-    fn center(&self) -> Point3<f64>;
+/// A unit vector normal to the unit vector `a` (`a × x`, or `y` when `a` is along `x`): the
+/// fallback direction where the geometry leaves one undefined (a point on a cylinder's axis, a
+/// reference tangent along the normal).
+pub fn perpendicular(a: &Vector3<f64>) -> Vector3<f64> {
+    a.cross(&Vector3::x())
+        .try_normalize(0.0)
+        .unwrap_or(Vector3::y())
 }
 
 /// A rigid cylinder (pulley, drum) about the unit `axis` through `center`, turning at `omega`
@@ -64,9 +42,9 @@ pub struct Cylinder {
     pub omega: f64,
 }
 
-impl Surface3 for Cylinder {
+impl Surface<3> for Cylinder {
     /// `u_s = ṙ_o + ω R(ζ) (a × e_r)` (nominal radius, as Kerkkänen (3.24)–(3.25)).
-    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3 {
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
         let a = self.axis;
         let d = p - self.center;
         let zeta = a.dot(&d);
@@ -75,12 +53,7 @@ impl Surface3 for Cylinder {
         let (er, inv) = if rho > 0.0 {
             (radial / rho, 1.0 / rho)
         } else {
-            (
-                a.cross(&Vector3::x())
-                    .try_normalize(0.0)
-                    .unwrap_or(Vector3::y()),
-                0.0,
-            )
+            (perpendicular(&a), 0.0)
         };
         let r = self.radius - self.crown * zeta * zeta;
         let drdz = -2.0 * self.crown * zeta;
@@ -98,7 +71,7 @@ impl Surface3 for Cylinder {
         let w = self.omega;
         // u_s = ṙ_o + ω R(ζ) a × e_r ⇒ ∂u_s/∂p = ω [(a × e_r) R' aᵀ + R [a]× ∂e_r/∂p]
         let dus = (circ * a.transpose() * drdz + cross_a * der * r) * w;
-        SurfacePoint3 {
+        SurfacePoint {
             gap: rho - r,
             normal: n,
             gap_gradient: m,
@@ -131,10 +104,10 @@ pub struct HalfSpace {
     pub velocity: Vector3<f64>,
 }
 
-impl Surface3 for HalfSpace {
-    fn closest(&self, p: &Point3<f64>) -> SurfacePoint3 {
+impl Surface<3> for HalfSpace {
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
         let g = (p - self.origin).dot(&self.normal);
-        SurfacePoint3 {
+        SurfacePoint {
             gap: g,
             normal: self.normal,
             gap_gradient: self.normal,
@@ -155,7 +128,8 @@ impl Surface3 for HalfSpace {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::geometry::{Disk, Surface};
+    use crate::geometry::Disk;
+    use nalgebra::{Point2, Vector2};
 
     fn crowned() -> Cylinder {
         Cylinder {
@@ -170,7 +144,7 @@ pub(crate) mod tests {
 
     /// Central differences of the gap, normal and surface velocity of `c` at `p` against the
     /// closest-point derivatives; the gap gradient lies along the normal.
-    pub(crate) fn fd_check3(c: &dyn Surface3, p: Point3<f64>) {
+    pub(crate) fn fd_check3(c: &dyn Surface<3>, p: Point3<f64>) {
         let s = c.closest(&p);
         let h = 1e-7;
         let mut grad = Vector3::zeros();
@@ -202,9 +176,9 @@ pub(crate) mod tests {
     #[test]
     fn straight_cylinder_is_the_disk() {
         let disk = Disk {
-            center: [0.2, -0.1],
+            center: Point2::new(0.2, -0.1),
             radius: 0.08125,
-            velocity: [0.1, 0.0],
+            velocity: Vector2::new(0.1, 0.0),
             omega: 12.0,
         };
         let cyl = Cylinder {
@@ -215,15 +189,15 @@ pub(crate) mod tests {
             velocity: Vector3::new(0.1, 0.0, 0.0),
             omega: 12.0,
         };
-        let a = disk.closest([0.25, -0.03]);
+        let a = disk.closest(&Point2::new(0.25, -0.03));
         let b = cyl.closest(&Point3::new(0.25, -0.03, 0.4));
         assert!((a.gap - b.gap).abs() < 1e-15);
         for i in 0..2 {
             assert!((a.normal[i] - b.normal[i]).abs() < 1e-15);
             assert!((a.surface_velocity[i] - b.surface_velocity[i]).abs() < 1e-15);
             for j in 0..2 {
-                assert!((a.dn_dp[i][j] - b.dn_dp[(i, j)]).abs() < 1e-12);
-                assert!((a.dus_dp[i][j] - b.dus_dp[(i, j)]).abs() < 1e-12);
+                assert!((a.dn_dp[(i, j)] - b.dn_dp[(i, j)]).abs() < 1e-12);
+                assert!((a.dus_dp[(i, j)] - b.dus_dp[(i, j)]).abs() < 1e-12);
             }
         }
     }

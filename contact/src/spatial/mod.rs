@@ -1,25 +1,31 @@
-//! Spatial (3D) contact: obstacle geometry with nalgebra points and vectors, and the contact of
-//! one material point with exact derivatives. The normal laws ([`crate::normal`]) and friction
-//! laws ([`crate::friction`]) are the planar ones: the friction law takes the slip 2-vector in
-//! the tangent plane ([`crate::FrictionLaw::friction_tangent`]).
+//! Spatial (3D) obstacle geometry with nalgebra points and vectors. The contact itself — point
+//! contact ([`crate::point_contact`]), distributed contact ([`crate::distributed`]) and
+//! unilateral rows ([`crate::unilateral_row`]) — is the crate's dimension-generic one with
+//! `D = 3`; the friction laws take the slip 2-vector in the tangent plane
+//! ([`crate::FrictionLaw::friction_tangent`]).
 //!
-//! * [`geometry`]: [`Surface3`] with [`Cylinder`] (pulley or drum, optionally crowned, for the
-//!   3D belt of Kerkkänen ch. 4) and [`HalfSpace`] (flat road);
+//! * [`geometry`]: [`Cylinder`] (pulley or drum, optionally crowned, for the 3D belt of
+//!   Kerkkänen ch. 4) and [`HalfSpace`] (flat road);
 //! * [`flanged`]: [`FlangedCylinder`] (side planes as flanges);
 //! * [`cleated`]: [`CleatedDrum3`], [`CleatedRoad3`] (the planar cleated drum and road
-//!   extruded along the cleat axis);
-//! * [`point`]: [`point_contact_3d`], the spatial counterpart of [`crate::point_contact`];
-//! * [`distributed`]: [`SurfaceContact`], quadrature contact over surface elements (the spatial
-//!   Kerkkänen (3.26)–(3.27), for the plate belt of his ch. 4).
+//!   extruded along the cleat axis).
+//!
+//! The aliases [`SurfacePoint3`], [`PointContact3`], [`ElementContact3`], [`ContactRecord3`]
+//! and [`SurfaceQuadPoint`] name the generic types at `D = 3`.
 
 pub mod cleated;
-pub mod distributed;
 pub mod flanged;
 pub mod geometry;
-pub mod point;
 
+pub use crate::point::PointContact3;
 pub use cleated::{CleatedDrum3, CleatedRoad3};
-pub use distributed::{ContactRecord3, ElementContact3, SurfaceContact, SurfaceQuadPoint};
 pub use flanged::FlangedCylinder;
-pub use geometry::{Cylinder, HalfSpace, Surface3, SurfacePoint3};
-pub use point::{PointContact3, point_contact_3d};
+pub use geometry::{Cylinder, HalfSpace, SurfacePoint3};
+
+/// Distributed contact output in space.
+pub type ElementContact3 = crate::distributed::ElementContact<3>;
+/// A contact record in space.
+pub type ContactRecord3 = crate::distributed::ContactRecord<3>;
+/// A quadrature point of a spatial element with `N` coordinates and a full `3 × N` shape matrix.
+pub type SurfaceQuadPoint<const N: usize> =
+    crate::distributed::QuadPoint<3, nalgebra::SMatrix<f64, 3, N>>;

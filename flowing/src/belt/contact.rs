@@ -15,6 +15,7 @@ use contact::friction::FrictionLaw;
 use contact::geometry::{Disk, rot90};
 use contact::normal::NormalLaw;
 use contact::point::point_contact;
+use nalgebra::{Point2, Vector2};
 
 /// A rigid pulley seen by the belt nodes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,12 +74,18 @@ pub fn node_contact(
 ) -> NodeContact {
     let sgn = -pulley.turn;
     let disk = Disk {
-        center: pulley.center,
+        center: Point2::from(pulley.center),
         radius: pulley.radius,
-        velocity: [0.0, 0.0],
+        velocity: Vector2::zeros(),
         omega: sgn * omega,
     };
-    let Some(c) = point_contact(&disk, normal_law, friction_law, d, vel) else {
+    let Some(c) = point_contact(
+        &disk,
+        normal_law,
+        friction_law,
+        &Point2::from(d),
+        &Vector2::from(vel),
+    ) else {
         let rel = [d[0] - pulley.center[0], d[1] - pulley.center[1]];
         return NodeContact {
             penetration: pulley.radius - rel[0].hypot(rel[1]),
@@ -88,7 +95,7 @@ pub fn node_contact(
     let n = c.surface.normal;
     let tc = rot90(n);
     let dn = c.surface.dn_dp;
-    let dtc = [[-dn[1][0], -dn[1][1]], [dn[0][0], dn[0][1]]];
+    let dtc = [[-dn[(1, 0)], -dn[(1, 1)]], [dn[(0, 0)], dn[(0, 1)]]];
     let r = pulley.radius;
     let f = c.force;
     // friction along the travel tangent: F_T = sgn·(t_ccw · f); torque τ = −R F_T
@@ -99,18 +106,21 @@ pub fn node_contact(
     for j in 0..2 {
         dt_dd[j] = -r
             * sgn
-            * (tc[0] * c.df_dp[0][j] + tc[1] * c.df_dp[1][j] + f[0] * dtc[0][j] + f[1] * dtc[1][j]);
-        dt_dv[j] = -r * sgn * (tc[0] * c.df_dv[0][j] + tc[1] * c.df_dv[1][j]);
+            * (tc[0] * c.df_dp[(0, j)]
+                + tc[1] * c.df_dp[(1, j)]
+                + f[0] * dtc[0][j]
+                + f[1] * dtc[1][j]);
+        dt_dv[j] = -r * sgn * (tc[0] * c.df_dv[(0, j)] + tc[1] * c.df_dv[(1, j)]);
     }
     NodeContact {
         penetration: c.penetration,
         normal: c.normal.force,
         friction: ft,
         slip: sgn * c.slip,
-        force: f,
+        force: f.into(),
         torque: -ft * r,
-        df_dd: c.df_dp,
-        df_dv: c.df_dv,
+        df_dd: c.df_dp.transpose().into(),
+        df_dv: c.df_dv.transpose().into(),
         df_dw,
         dt_dd,
         dt_dv,

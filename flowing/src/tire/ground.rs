@@ -9,6 +9,7 @@
 
 use super::error::{TireError, invalid};
 use contact::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface};
+use nalgebra::{Point2, Vector2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::FRAC_PI_2;
 
@@ -114,15 +115,15 @@ impl Ground {
 
     /// Closest-point query of the wheel-frame point `p` at time `t`.
     pub fn query(&self, t: f64, p: [f64; 3]) -> GroundPoint {
-        let q = [p[0], p[2]];
+        let q = Point2::new(p[0], p[2]);
         let sp = match self.cfg.kind {
             GroundKind::Drum => {
                 let r = self.cfg.drum_radius;
                 let w = self.speed / r; // counter-clockwise in (x, z): apex moves to −x
                 let drum = Disk {
-                    center: [0.0, self.top - r],
+                    center: Point2::new(0.0, self.top - r),
                     radius: r,
-                    velocity: [0.0, 0.0],
+                    velocity: Vector2::zeros(),
                     omega: w,
                 };
                 if self.cfg.cleat {
@@ -131,9 +132,9 @@ impl Ground {
                         cleat_radius: self.cfg.cleat_radius,
                         cleat_angle: FRAC_PI_2 + w * (t - self.cleat_time),
                     }
-                    .closest(q)
+                    .closest(&q)
                 } else {
-                    drum.closest(q)
+                    drum.closest(&q)
                 }
             }
             GroundKind::Road => {
@@ -143,11 +144,11 @@ impl Ground {
                         cleat_radius: self.cfg.cleat_radius,
                         cleat_x: -self.speed * (t - self.cleat_time),
                     }
-                    .closest(q)
+                    .closest(&q)
                 } else {
-                    HalfPlane::ground(self.top).closest(q)
+                    HalfPlane::ground(self.top).closest(&q)
                 };
-                s.surface_velocity = [-self.speed, 0.0];
+                s.surface_velocity = Vector2::new(-self.speed, 0.0);
                 s
             }
         };

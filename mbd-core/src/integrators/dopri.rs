@@ -3,7 +3,7 @@
 //! *Solving ODEs I*, II.5 and II.6).
 
 use super::accel::{AccelSolver, Stabilization};
-use super::{Integrator, Solution, State, Stats, Stepper};
+use super::{Solution, State, Stats, Stepper, impl_integrator};
 use crate::{MbdError, SecondOrderSystem};
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
@@ -819,22 +819,4 @@ fn locate(
     b
 }
 
-impl Integrator for DormandPrince {
-    fn integrate_dyn(
-        &mut self,
-        sys: &dyn SecondOrderSystem,
-        state0: State,
-        t_end: f64,
-        observer: &mut dyn FnMut(&State),
-    ) -> Result<Solution, MbdError> {
-        self.integrate(sys, state0, t_end, observer)
-    }
-
-    fn stepper_dyn<'a>(
-        &self,
-        sys: &(dyn SecondOrderSystem + 'a),
-        state0: State,
-    ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError> {
-        Ok(Box::new(self.stepper(sys, state0)?))
-    }
-}
+impl_integrator!(DormandPrince);

@@ -27,8 +27,8 @@
 
 use super::accel::{AccelSolver, Stabilization};
 use super::{
-    AlphaCorrection, Integrator, NoCorrection, Solution, State, Stats, StepCorrection, Stepper,
-    check_step, observe_fn,
+    AlphaCorrection, NoCorrection, Solution, State, Stats, StepCorrection, Stepper, check_step,
+    impl_integrator, integrate_stepper, observe_fn,
 };
 use crate::newton::{
     self, LineSearch, NewtonError, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances,
@@ -254,38 +254,13 @@ impl GeneralizedAlpha {
         sys: &S,
         state0: State,
         t_end: f64,
-        mut observer: impl FnMut(&State),
+        observer: impl FnMut(&State),
     ) -> Result<Solution, MbdError> {
-        let mut st = self.stepper(sys, state0)?;
-        observer(st.state());
-        Stepper::advance_to(&mut st, sys, t_end, &mut observe_fn(observer))?;
-        Ok(Solution {
-            state: st.state().clone(),
-            stats: st.stats,
-            events: Vec::new(),
-        })
+        integrate_stepper(self.stepper(sys, state0)?, sys, t_end, observer)
     }
 }
 
-impl Integrator for GeneralizedAlpha {
-    fn integrate_dyn(
-        &mut self,
-        sys: &dyn SecondOrderSystem,
-        state0: State,
-        t_end: f64,
-        observer: &mut dyn FnMut(&State),
-    ) -> Result<Solution, MbdError> {
-        self.integrate(sys, state0, t_end, observer)
-    }
-
-    fn stepper_dyn<'a>(
-        &self,
-        sys: &(dyn SecondOrderSystem + 'a),
-        state0: State,
-    ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError> {
-        Ok(Box::new(self.stepper(sys, state0)?))
-    }
-}
+impl_integrator!(GeneralizedAlpha);
 
 /// Per-step vectors of [`AlphaStepper`], allocated once.
 #[derive(Default)]

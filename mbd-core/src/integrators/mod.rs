@@ -12,9 +12,11 @@
 //! statistics; outputs through an [`Observer`] or a fixed-interval [`Recorder`]); their
 //! `integrate` functions are thin loops over it. All implement [`Integrator`] (a stepper
 //! factory) so that applications can pick one at run time. The generalized-α stepper takes a
-//! [`StepCorrection`] (nonsmooth contact impulses solved with its iteration matrix).
+//! [`StepCorrection`] (nonsmooth contact impulses solved with its iteration matrix);
+//! [`ActiveSetStepper`] runs it on a model with unilateral constraints by an active set.
 
 mod accel;
+mod active_set;
 mod correction;
 mod dopri;
 mod gen_alpha;
@@ -24,6 +26,9 @@ mod stepper;
 
 pub use accel::{
     Acceleration, Stabilization, accelerations, project_positions, project_velocities,
+};
+pub use active_set::{
+    ActiveSetStep, ActiveSetStepper, ActiveSetSystem, UnilateralConstraints, UnilateralEval,
 };
 pub use correction::{AlphaCorrection, NoCorrection, StepCorrection};
 pub use dopri::{DopriStepper, DormandPrince, Event, EventAction, EventRecord};
@@ -154,6 +159,53 @@ pub trait Integrator {
         state0: State,
     ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError>;
 }
+
+/// Runs `stepper` to `t_end` \[s\], `observer` seeing the initial state and every accepted
+/// step: the `integrate` function of the fixed-step methods.
+pub(crate) fn integrate_stepper<S: SecondOrderSystem + ?Sized, St: Stepper<S>>(
+    mut stepper: St,
+    sys: &S,
+    t_end: f64,
+    mut observer: impl FnMut(&State),
+) -> Result<Solution, MbdError> {
+    observer(stepper.state());
+    stepper.advance_to(sys, t_end, &mut observe_fn(observer))?;
+    Ok(Solution {
+        state: stepper.state().clone(),
+        stats: *stepper.stats(),
+        events: Vec::new(),
+    })
+}
+
+/// [`Integrator`] for a method with inherent `integrate` and `stepper` functions generic over
+/// the system (one definition for [`Rk4`], [`DormandPrince`] and [`GeneralizedAlpha`]).
+macro_rules! impl_integrator {
+    ($method:ty) => {
+        impl $crate::integrators::Integrator for $method {
+            fn integrate_dyn(
+                &mut self,
+                sys: &dyn $crate::SecondOrderSystem,
+                state0: $crate::integrators::State,
+                t_end: f64,
+                observer: &mut dyn FnMut(&$crate::integrators::State),
+            ) -> Result<$crate::integrators::Solution, $crate::MbdError> {
+                self.integrate(sys, state0, t_end, observer)
+            }
+
+            fn stepper_dyn<'a>(
+                &self,
+                sys: &(dyn $crate::SecondOrderSystem + 'a),
+                state0: $crate::integrators::State,
+            ) -> Result<
+                Box<dyn $crate::integrators::Stepper<dyn $crate::SecondOrderSystem + 'a>>,
+                $crate::MbdError,
+            > {
+                Ok(Box::new(self.stepper(sys, state0)?))
+            }
+        }
+    };
+}
+pub(crate) use impl_integrator;
 
 pub(crate) fn check_step(h: f64, what: &str) -> Result<(), MbdError> {
     if !(h.is_finite() && h > 0.0) {

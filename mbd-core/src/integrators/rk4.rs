@@ -1,7 +1,7 @@
 //! Classical fixed-step Runge–Kutta 4 on the index-1 equations of motion.
 
 use super::accel::{AccelSolver, Stabilization};
-use super::{Integrator, Solution, State, Stats, Stepper, check_step, observe_fn};
+use super::{Solution, State, Stats, Stepper, check_step, impl_integrator, integrate_stepper};
 use crate::{MbdError, SecondOrderSystem};
 
 /// Fixed-step classical RK4 for `q̇ = H(q) v`, `v̇ = a(t, q, v)` where `a` solves the
@@ -50,16 +50,9 @@ impl Rk4 {
         sys: &S,
         state0: State,
         t_end: f64,
-        mut observer: impl FnMut(&State),
+        observer: impl FnMut(&State),
     ) -> Result<Solution, MbdError> {
-        let mut st = self.stepper(sys, state0)?;
-        observer(&st.state);
-        Stepper::advance_to(&mut st, sys, t_end, &mut observe_fn(observer))?;
-        Ok(Solution {
-            state: st.state,
-            stats: st.stats,
-            events: Vec::new(),
-        })
+        integrate_stepper(self.stepper(sys, state0)?, sys, t_end, observer)
     }
 }
 
@@ -225,22 +218,4 @@ impl<S: SecondOrderSystem + ?Sized> Stepper<S> for Rk4Stepper {
     }
 }
 
-impl Integrator for Rk4 {
-    fn integrate_dyn(
-        &mut self,
-        sys: &dyn SecondOrderSystem,
-        state0: State,
-        t_end: f64,
-        observer: &mut dyn FnMut(&State),
-    ) -> Result<Solution, MbdError> {
-        self.integrate(sys, state0, t_end, observer)
-    }
-
-    fn stepper_dyn<'a>(
-        &self,
-        sys: &(dyn SecondOrderSystem + 'a),
-        state0: State,
-    ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError> {
-        Ok(Box::new(self.stepper(sys, state0)?))
-    }
-}
+impl_integrator!(Rk4);

@@ -1,10 +1,20 @@
 use super::*;
-use crate::distributed::{ElementContact, LineContact};
 use crate::friction::{CoulombTanh, Frictionless, Stribeck};
 use crate::geometry::Disk;
 use crate::normal::LinearPenalty;
 use crate::quadrature::GaussRule;
 use crate::spatial::{Cylinder, HalfSpace};
+use nalgebra::{Point2, Point3, Vector2, Vector3};
+
+/// Largest absolute entry.
+fn amax(x: &[f64]) -> f64 {
+    x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// Largest absolute component of a list of moments.
+fn amax3(x: &[Vector3<f64>]) -> f64 {
+    x.iter().fold(0.0f64, |m, v| m.max(v.amax()))
+}
 
 /// Bilinear 4-node surface element (3 coordinates per node, node `i + 2j` at `(ξ_i, η_j)`):
 /// quadrature points of the tensor Gauss rule with a constant area Jacobian `area`.
@@ -14,7 +24,7 @@ fn bilinear_points(
     rule_xi: &GaussRule,
     rule_eta: &GaussRule,
     area: f64,
-) -> Vec<SurfaceQuadPoint<12>> {
+) -> Vec<QuadPoint<3, SMatrix<f64, 3, 12>>> {
     let mut out = Vec::new();
     for (eta, we) in rule_eta.iter() {
         for (xi, wx) in rule_xi.iter() {
@@ -30,7 +40,7 @@ fn bilinear_points(
                     s[(a, 3 * k + a)] = n[k];
                 }
             }
-            out.push(SurfaceQuadPoint {
+            out.push(QuadPoint {
                 position: Point3::from(s * e),
                 velocity: s * edot,
                 shape: s,
@@ -89,19 +99,27 @@ fn tangent_matches_finite_differences() {
     }
     let rule = GaussRule::new(3);
     let eval = |e: &SVector<f64, 12>, edot: &SVector<f64, 12>, w: f64| {
-        let mut out = ElementContact3::<12>::default();
+        let mut out = ElementContact::<3>::new(12);
         let pts = bilinear_points(e, edot, &rule, &rule, 0.03 * 0.025);
-        pair.element_on(&pulley(w), pts, true, &mut out, None);
+        element_contact(
+            &pulley(w),
+            &pair.normal,
+            &pair.friction,
+            pts,
+            true,
+            &mut out,
+            None,
+        );
         out
     };
     let c = eval(&e, &edot, 20.0);
     assert_eq!(c.active_points, 9);
     let tol = |m: f64| 1e-6 * m;
     let (sk, sc, smk, smc) = (
-        c.dq_de.amax(),
-        c.dq_dedot.amax(),
-        c.dmoment_de.amax(),
-        c.dmoment_dedot.amax(),
+        amax(&c.dq_de),
+        amax(&c.dq_dedot),
+        amax3(&c.dmoment_de),
+        amax3(&c.dmoment_dedot),
     );
     for j in 0..12 {
         let h = 1e-8;
@@ -111,30 +129,35 @@ fn tangent_matches_finite_differences() {
         let (pv, mv) = (eval(&e, &(edot + d), 20.0), eval(&e, &(edot - d), 20.0));
         for i in 0..12 {
             let fd = (p.q[i] - m.q[i]) / (2.0 * h);
-            assert!((fd - c.dq_de[(i, j)]).abs() < tol(sk), "dQ{i}/de{j}");
+            assert!((fd - c.dq_de[i + 12 * j]).abs() < tol(sk), "dQ{i}/de{j}");
             let fd = (pv.q[i] - mv.q[i]) / (2.0 * h);
-            assert!((fd - c.dq_dedot[(i, j)]).abs() < tol(sc), "dQ{i}/dedot{j}");
+            assert!(
+                (fd - c.dq_dedot[i + 12 * j]).abs() < tol(sc),
+                "dQ{i}/dedot{j}"
+            );
         }
         for i in 0..3 {
             let fd = (p.moment[i] - m.moment[i]) / (2.0 * h);
-            assert!((fd - c.dmoment_de[(i, j)]).abs() < tol(smk), "dM{i}/de{j}");
+            assert!((fd - c.dmoment_de[j][i]).abs() < tol(smk), "dM{i}/de{j}");
             let fd = (pv.moment[i] - mv.moment[i]) / (2.0 * h);
             assert!(
-                (fd - c.dmoment_dedot[(i, j)]).abs() < tol(smc),
+                (fd - c.dmoment_dedot[j][i]).abs() < tol(smc),
                 "dM{i}/dedot{j}"
             );
         }
     }
     let h = 1e-6;
     let (p, m) = (eval(&e, &edot, 20.0 + h), eval(&e, &edot, 20.0 - h));
-    let fd = (p.q - m.q) / (2.0 * h);
-    assert!((fd - c.dq_domega).amax() < tol(c.dq_domega.amax()));
+    for i in 0..12 {
+        let fd = (p.q[i] - m.q[i]) / (2.0 * h);
+        assert!((fd - c.dq_domega[i]).abs() < tol(amax(&c.dq_domega)));
+    }
     let fd = (p.moment - m.moment) / (2.0 * h);
     assert!((fd - c.dmoment_domega).amax() < tol(c.dmoment_domega.amax()));
     // the generalized forces carry the resultant: Σ over nodes of Q = −F (partition of unity)
     let mut sum = Vector3::zeros();
     for k in 0..4 {
-        sum += c.q.fixed_rows::<3>(3 * k);
+        sum += Vector3::from_column_slice(&c.q[3 * k..3 * k + 3]);
     }
     assert!((sum + c.reaction).amax() < 1e-12 * c.reaction.amax());
 }
@@ -167,7 +190,7 @@ fn flat_plate_in_half_space() {
             .copy_from(&Vector3::new(x, y, -delta));
     }
     let rule = GaussRule::new(9);
-    let mut out = ElementContact3::<12>::default();
+    let mut out = ElementContact::<3>::new(12);
     let mut rec = Vec::new();
     pair.element(
         bilinear_points(&e, &SVector::zeros(), &rule, &rule, a * b),
@@ -208,9 +231,9 @@ fn planar_line_contact_equals_extruded_plate() {
     };
     let omega = 20.0;
     let disk = Disk {
-        center: [0.01, -0.02],
+        center: Point2::new(0.01, -0.02),
         radius: 0.1,
-        velocity: [0.0, 0.0],
+        velocity: Vector2::zeros(),
         omega,
     };
     let rule = GaussRule::new(5);
@@ -246,7 +269,7 @@ fn planar_line_contact_equals_extruded_plate() {
     let e2 = [nodes[0][0], nodes[0][1], nodes[1][0], nodes[1][1]];
     let v2 = [vels[0][0], vels[0][1], vels[1][0], vels[1][1]];
     let length = ((nodes[1][0] - nodes[0][0]).powi(2) + (nodes[1][1] - nodes[0][1]).powi(2)).sqrt();
-    let mut out2 = ElementContact::new(4);
+    let mut out2 = ElementContact::<2>::new(4);
     planar.element(
         length,
         2,
@@ -274,7 +297,7 @@ fn planar_line_contact_equals_extruded_plate() {
                 .copy_from(&Vector3::new(vels[i][0], vels[i][1], 0.0));
         }
     }
-    let mut out3 = ElementContact3::<12>::default();
+    let mut out3 = ElementContact::<3>::new(12);
     spatial.element(
         bilinear_points(&e3, &v3, &rule, &GaussRule::new(2), length * b),
         true,
@@ -282,7 +305,7 @@ fn planar_line_contact_equals_extruded_plate() {
         None,
     );
     assert_eq!(out3.active_points, 2 * out2.active_points);
-    let scale = out2.q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let scale = amax(&out2.q);
     for i in 0..2 {
         for a in 0..2 {
             let per_width = (out3.q[3 * i + a] + out3.q[3 * (i + 2) + a]) / b;
@@ -294,17 +317,17 @@ fn planar_line_contact_equals_extruded_plate() {
         }
         assert!(out3.q[3 * i + 2].abs() < 1e-12 * scale);
     }
-    assert!((out3.moment.z / b - out2.torque).abs() < 1e-12 * out2.torque.abs());
+    assert!((out3.moment.z / b - out2.moment).abs() < 1e-12 * out2.moment.abs());
     assert!((out3.reaction.x / b - out2.reaction[0]).abs() < 1e-12 * scale);
     assert!((out3.reaction.y / b - out2.reaction[1]).abs() < 1e-12 * scale);
     // the in-plane stiffness per width, node block (0,0)
-    let sk = out2.dq_de.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let sk = amax(&out2.dq_de);
     for a in 0..2 {
         for bb in 0..2 {
             let k3 = (0..2)
                 .map(|j| {
                     (0..2)
-                        .map(|l| out3.dq_de[(3 * 2 * j + a, 3 * 2 * l + bb)])
+                        .map(|l| out3.dq_de[(3 * 2 * j + a) + 12 * (3 * 2 * l + bb)])
                         .sum::<f64>()
                 })
                 .sum::<f64>()
