@@ -10,7 +10,7 @@ use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, InitialOptions, InitialState, SimulationConfig, post,
 };
 use mbd_core::integrators::State;
-use mbd_core::validate::{InvalidField, Validate};
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -46,6 +46,17 @@ impl Default for OutputConfig {
         }
     }
 }
+
+/// Most integration steps `t_end / integrator.h` of one run: 10⁴ times the 10⁴ steps of
+/// Kerkkänen's example 3.3-B (1 s at 0.1 ms), days of computing already.
+pub const MAX_STEPS: f64 = 1e8;
+
+/// Most rows of `history.csv`, `t_end / output.history_interval` (about 2 GB of text).
+pub const MAX_HISTORY_ROWS: f64 = 1e7;
+
+/// Most VTK frames of the belt, `t_end / output.vtk_interval` (`--t-end 1e300` wrote frames
+/// until it was killed, issue 20).
+pub const MAX_VTK_FRAMES: f64 = 1e5;
 
 /// Configuration of the ANCF belt-drive study (the `flowmbd-belt ancf` TOML file, SI units).
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -92,24 +103,41 @@ impl Validate for AncfStudyConfig {
             ancf::AncfError::InvalidInput { item, reason } => InvalidField::new(item, reason),
             other => InvalidField::new("integrator", other.to_string()),
         })?;
-        if !(self.t_end.is_finite() && self.t_end > 0.0) {
-            return Err(InvalidField::new(
-                "t_end",
-                format!("must be > 0 s, got {}", self.t_end),
-            ));
-        }
+        check::positive("t_end", self.t_end, "s")?;
         if !(self.tangent_refresh.is_finite() && self.tangent_refresh >= 0.0) {
             return Err(InvalidField::new("tangent_refresh", "must be ≥ 0"));
         }
         let o = &self.output;
-        if !(o.history_interval.is_finite() && o.history_interval > 0.0) {
-            return Err(InvalidField::new(
+        check::positive("output.history_interval", o.history_interval, "s")?;
+        check::positive("output.vtk_interval", o.vtk_interval, "s")?;
+        // sizes of the run and its output, checked before anything runs or is written
+        for (field, interval, what, max) in [
+            ("integrator.h", self.integrator.h, "steps", MAX_STEPS),
+            (
                 "output.history_interval",
-                "must be > 0 s",
-            ));
-        }
-        if !(o.vtk_interval.is_finite() && o.vtk_interval > 0.0) {
-            return Err(InvalidField::new("output.vtk_interval", "must be > 0 s"));
+                o.history_interval,
+                "history rows",
+                MAX_HISTORY_ROWS,
+            ),
+            (
+                "output.vtk_interval",
+                o.vtk_interval,
+                "VTK frames",
+                MAX_VTK_FRAMES,
+            ),
+        ] {
+            let n = self.t_end / interval;
+            if n > max {
+                return Err(InvalidField::new(
+                    "t_end",
+                    format!(
+                        "{} s at {field} = {} s is {n:.3e} {what}, more than the {max:e} a run \
+                         may take (raise {field} or shorten t_end)",
+                        check::show(self.t_end),
+                        check::show(interval)
+                    ),
+                ));
+            }
         }
         if o.points_per_element == 0 || o.points_per_element > 100 {
             return Err(InvalidField::new(
@@ -260,5 +288,33 @@ mod tests {
             ..Default::default()
         };
         assert_eq!(bad.validate().unwrap_err().field, "t_end");
+    }
+
+    // issue 20: `flowmbd-belt ancf --t-end 1e300` wrote VTK frames until killed; the run's
+    // size is checked first (1e300 s / 0.1 ms steps exceeds MAX_STEPS = 1e8)
+    #[test]
+    fn absurd_end_times_are_refused_before_running() {
+        let bad = AncfStudyConfig {
+            t_end: 1e300,
+            ..Default::default()
+        };
+        let e = bad.validate().unwrap_err();
+        assert_eq!(e.field, "t_end");
+        assert!(
+            e.reason.contains("1e300 s") && e.reason.contains("steps"),
+            "{e}"
+        );
+        // fine steps but frames every 1 ms for 10^3 s: 10^6 frames > MAX_VTK_FRAMES
+        let mut c = AncfStudyConfig {
+            t_end: 1e3,
+            ..Default::default()
+        };
+        c.output.vtk_interval = 1e-3;
+        c.output.history_interval = 1.0;
+        let e = c.validate().unwrap_err();
+        assert!(e.reason.contains("VTK frames"), "{e}");
+        // 5·10⁴ frames (half the ceiling) pass
+        c.output.vtk_interval = 0.02;
+        assert!(c.validate().is_ok());
     }
 }

@@ -8,7 +8,7 @@ use crate::error::FlowError;
 use crate::{
     AxialMotion, DerivativeMethod, FlowingString, GalerkinString, StringConfig, StringMesh,
 };
-use mbd_core::validate::{InvalidField, Validate};
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
 /// Checks the string parameters (finite and positive), naming the field `prefix.name`.
@@ -43,7 +43,17 @@ pub fn check_number(field: &str, v: f64, non_negative: bool) -> Result<(), Inval
     Ok(())
 }
 
-/// Checks `nodes ≥ 3` and `1 ≤ modes ≤ nodes`.
+/// Most interior nodes of a string model: its mass and stiffness matrices and the modal
+/// eigen problem are dense (`nodes²` entries, `O(nodes³)` work: about a second at 2000), so
+/// larger counts are refused before anything is allocated (`--nodes 1e9` aborted on the
+/// allocation, issue 20). Ribaric's string has 99.
+pub const MAX_STRING_NODES: usize = 2000;
+
+/// Most sine terms of the Galerkin model (4.24) (dense `2N × 2N` state matrix, as
+/// [`MAX_STRING_NODES`]).
+pub const MAX_GALERKIN_TERMS: usize = 2000;
+
+/// Checks `3 ≤ nodes ≤` [`MAX_STRING_NODES`] and `1 ≤ modes ≤ nodes`.
 pub fn check_nodes_modes(nodes: usize, modes: usize) -> Result<(), InvalidField> {
     if nodes < 3 {
         return Err(InvalidField::new(
@@ -51,10 +61,34 @@ pub fn check_nodes_modes(nodes: usize, modes: usize) -> Result<(), InvalidField>
             format!("needs at least 3 interior nodes, got {nodes}"),
         ));
     }
+    check::count("nodes", nodes, 3, MAX_STRING_NODES)?;
     if modes == 0 || modes > nodes {
         return Err(InvalidField::new(
             "modes",
             format!("must be between 1 and nodes = {nodes}, got {modes}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that `duration / step` (both \[s\], positive) is at most `max` steps or samples, naming
+/// `field` (the run's length is bounded before it starts).
+pub fn check_steps(
+    field: &str,
+    duration: f64,
+    step: f64,
+    max: f64,
+    what: &str,
+) -> Result<(), InvalidField> {
+    let n = duration / step;
+    if n > max {
+        return Err(InvalidField::new(
+            field,
+            format!(
+                "{} s in steps of {} s is {n:.3e} {what}, more than the {max:e} a run may take",
+                check::show(duration),
+                check::show(step)
+            ),
         ));
     }
     Ok(())
@@ -140,9 +174,7 @@ impl Validate for ModesConfig {
         check_string(&self.string, "string")?;
         check_number("speed", self.speed, false)?;
         check_nodes_modes(self.nodes, self.modes)?;
-        if self.galerkin_terms == 0 {
-            return Err(InvalidField::new("galerkin_terms", "must be at least 1"));
-        }
+        check::count("galerkin_terms", self.galerkin_terms, 1, MAX_GALERKIN_TERMS)?;
         if self.report == 0 {
             return Err(InvalidField::new("report", "must be at least 1"));
         }

@@ -20,40 +20,6 @@ fn study_error(e: AncfError) -> StudyError {
     }
 }
 
-fn positive(field: &str, v: f64) -> Result<(), InputError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(InputError::new(
-            field,
-            format!("must be a positive number, got {v}"),
-        ))
-    }
-}
-
-fn poisson(v: f64) -> Result<(), InputError> {
-    if v.is_finite() && (-1.0..0.5).contains(&v) && v > -1.0 {
-        Ok(())
-    } else {
-        Err(InputError::new(
-            "nu",
-            format!("must lie in (-1, 0.5), got {v}"),
-        ))
-    }
-}
-
-/// Generalized-α spectral radius at infinity: must lie in \[0, 1\].
-fn rho_inf(v: f64) -> Result<(), InputError> {
-    if (0.0..=1.0).contains(&v) {
-        Ok(())
-    } else {
-        Err(InputError::new(
-            "rho_inf",
-            format!("must lie in [0, 1], got {v}"),
-        ))
-    }
-}
-
 /// Run a time integration from 0 to `t_end` with step `h` \[s\] behind a progress bar
 /// labelled `label`, keeping every `every`-th step so that about `samples` samples are kept:
 /// `run(every, bar)` is the library call (the pendulum's and the spinning beam's histories).
@@ -97,14 +63,6 @@ fn write_history<const N: usize>(
 /// The plot series `(t, value(sample))` of a history.
 fn series(s: &[Sample], value: impl Fn(&Sample) -> f64) -> Vec<(f64, f64)> {
     s.iter().map(|x| (x.t, value(x))).collect()
-}
-
-fn at_least_one(field: &str, v: usize) -> Result<(), InputError> {
-    if v >= 1 {
-        Ok(())
-    } else {
-        Err(InputError::new(field, "must be at least 1"))
-    }
 }
 
 /// Static beam configuration (Kerkkänen §2.4: `L = 2 m`, width 0.1 m, `E = 2.07·10¹¹ Pa`,
@@ -179,18 +137,9 @@ impl Default for StaticConfig {
 }
 
 impl Validate for StaticConfig {
+    /// The library case's checks ([`StaticBeamCase`]'s `Validate`).
     fn validate(&self) -> Result<(), InputError> {
-        at_least_one("elements", self.elements)?;
-        at_least_one("increments", self.increments)?;
-        poisson(self.nu)?;
-        positive("height", self.height)?;
-        positive("width", self.width)?;
-        positive("length", self.length)?;
-        positive("young", self.young)?;
-        if !(self.density.is_finite() && self.density >= 0.0) {
-            return Err(InputError::new("density", "must be ≥ 0"));
-        }
-        Ok(())
+        self.case().validate()
     }
 }
 
@@ -272,7 +221,7 @@ impl Default for CantileverConfig {
 impl Validate for CantileverConfig {
     fn validate(&self) -> Result<(), InputError> {
         self.beam.validate_within("beam")?;
-        at_least_one("shape_segments", self.shape_segments)
+        mbd_core::validate::check::count("shape_segments", self.shape_segments, 1, 10_000)
     }
 }
 
@@ -344,20 +293,9 @@ impl Study for Cantilever {
 pub struct PendulumConfig(pub PendulumCase);
 
 impl Validate for PendulumConfig {
+    /// The library case's checks.
     fn validate(&self) -> Result<(), InputError> {
-        let c = &self.0;
-        at_least_one("elements", c.elements)?;
-        for (f, v) in [
-            ("length", c.length),
-            ("side", c.side),
-            ("young", c.young),
-            ("t_end", c.t_end),
-            ("h", c.h),
-        ] {
-            positive(f, v)?;
-        }
-        poisson(c.nu)?;
-        rho_inf(c.rho_inf)
+        self.0.validate()
     }
 }
 
@@ -457,26 +395,9 @@ impl Study for Pendulum {
 pub struct SpinningConfig(pub SpinningCase);
 
 impl Validate for SpinningConfig {
+    /// The library case's checks.
     fn validate(&self) -> Result<(), InputError> {
-        let c = &self.0;
-        at_least_one("elements", c.elements)?;
-        for (f, v) in [
-            ("length", c.length),
-            ("width", c.width),
-            ("height", c.height),
-            ("young", c.young),
-            ("density", c.density),
-            ("spin_up", c.spin_up),
-            ("t_end", c.t_end),
-            ("h", c.h),
-        ] {
-            positive(f, v)?;
-        }
-        poisson(c.nu)?;
-        if !c.omega.is_finite() {
-            return Err(InputError::new("omega", "must be finite"));
-        }
-        rho_inf(c.rho_inf)
+        self.0.validate()
     }
 }
 
@@ -572,21 +493,9 @@ impl Study for Spinning {
 pub struct GroundContactConfig(pub GroundContactCase);
 
 impl Validate for GroundContactConfig {
+    /// The library case's checks.
     fn validate(&self) -> Result<(), InputError> {
-        let c = &self.0;
-        at_least_one("elements", c.elements)?;
-        at_least_one("increments", c.increments)?;
-        for (f, v) in [
-            ("length", c.length),
-            ("height", c.height),
-            ("width", c.width),
-            ("young", c.young),
-            ("gap", c.gap),
-            ("load_factor", c.load_factor),
-        ] {
-            positive(f, v)?;
-        }
-        poisson(c.nu)
+        self.0.validate()
     }
 }
 

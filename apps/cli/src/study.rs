@@ -77,6 +77,13 @@ pub trait Study {
     /// Apply command-line overrides (such as `--speed`) to the loaded configuration.
     fn apply_overrides(&self, _config: &mut Self::Config) {}
 
+    /// TOML comments appended to the printed configuration (`--print-config`, `config.toml`):
+    /// e.g. a commented example of an optional table that `config` leaves out (TOML has no
+    /// null, so an absent optional table would not show otherwise).
+    fn config_notes(&self, _config: &Self::Config) -> String {
+        String::new()
+    }
+
     /// Run the study. Write histories into `ctx.out` as they are computed.
     fn run(
         &self,
@@ -110,7 +117,7 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
         origin: format!("{origin} with command-line options"),
         error,
     })?;
-    let config_text = to_toml(&config);
+    let config_text = to_toml(&config) + &study.config_notes(&config);
     if args.print_config {
         crate::stdout::print_stdout(&config_text).map_err(|e| CliError::Write {
             path: "<stdout>".into(),

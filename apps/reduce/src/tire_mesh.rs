@@ -43,14 +43,7 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        self.tire.validate().map_err(|e| match e {
-            FeError::InvalidParameter {
-                name,
-                value,
-                reason,
-            } => InputError::new(format!("tire.{name}"), format!("{value}: {reason}")),
-            other => InputError::new("tire", other.to_string()),
-        })
+        self.tire.validate_within("tire")
     }
 }
 

@@ -92,6 +92,8 @@ impl Validate for SimulateConfig {
         if !(self.peak_threshold > 0.0 && self.peak_threshold < 1.0) {
             return Err(InputError::new("peak_threshold", "must lie in (0, 1)"));
         }
+        // RK4 steps of the run (each a few matrix-vector products of the modal size)
+        check_steps("duration", self.duration, self.step, 1e8, "RK4 steps")?;
         if (self.duration / (self.step * self.sample_every as f64)) < 8.0 {
             return Err(InputError::new("duration", "gives fewer than 8 samples"));
         }

@@ -57,9 +57,14 @@ impl Validate for SweepConfig {
                 ),
             ));
         }
-        if self.steps < 2 {
-            return Err(InputError::new("steps", "needs at least 2 speeds"));
-        }
+        // one Galerkin and one flowing eigen problem per speed
+        mbd_core::validate::check::count("steps", self.steps, 2, 100_000)?;
+        mbd_core::validate::check::count(
+            "galerkin_terms",
+            self.galerkin_terms,
+            1,
+            MAX_GALERKIN_TERMS,
+        )?;
         if self.tracked == 0 || self.tracked > self.modes {
             return Err(InputError::new(
                 "tracked",

@@ -97,9 +97,7 @@ impl Default for WrapConfig {
 impl Validate for WrapConfig {
     fn validate(&self) -> Result<(), InputError> {
         check_string(&self.string, "string")?;
-        if self.nodes < 5 {
-            return Err(InputError::new("nodes", "needs at least 5 interior nodes"));
-        }
+        mbd_core::validate::check::count("nodes", self.nodes, 5, MAX_STRING_NODES)?;
         if self.pulleys.is_empty() {
             return Err(InputError::new("pulleys", "at least one pulley is needed"));
         }
@@ -145,6 +143,8 @@ impl Validate for WrapConfig {
                 "must be positive and at most the duration",
             ));
         }
+        check_steps("duration", self.duration, self.sample, 1e7, "samples")?;
+        mbd_core::validate::check::count("vtk_snapshots", self.vtk_snapshots, 0, 100_000)?;
         if self.formulation == Formulation::CraigBampton && self.free_modes == 0 {
             return Err(InputError::new("free_modes", "must be at least 1"));
         }

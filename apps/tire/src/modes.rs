@@ -54,8 +54,7 @@ impl Validate for Config {
         if !(self.load > 0.0 && self.load.is_finite()) {
             return Err(InputError::new("load", "must be positive"));
         }
-        // the ground's errors already name `ground.…`
-        self.ground.validate().map_err(crate::common::input)?;
+        self.ground.validate_within("ground")?;
         self.tire.validate()
     }
 }
@@ -88,6 +87,10 @@ impl Study for Modes {
     type Summary = Summary;
     const APP: &'static str = "tire";
     const NAME: &'static str = "modes";
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let fe = c.tire.fe_model()?;

@@ -80,6 +80,10 @@ impl Study for Pressure {
     const APP: &'static str = "tire";
     const NAME: &'static str = "pressure";
 
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
+
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let red = c.tire.reduced(ctx.quiet)?;
         let mut out = Vec::new();

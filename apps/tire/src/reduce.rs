@@ -62,6 +62,10 @@ impl Study for Reduce {
     const APP: &'static str = "tire";
     const NAME: &'static str = "reduce";
 
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
+
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let t = Instant::now();
         let fe = c.tire.fe_model()?;

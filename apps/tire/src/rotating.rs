@@ -4,7 +4,7 @@
 //! wave. Free tire (rim fixed) and loaded tire (rolling preload's patch held); Campbell
 //! diagrams, a CSV of every mode and the forward/backward splits.
 
-use crate::common::{TireSource, input, tire_err};
+use crate::common::{TireSource, tire_err};
 use flowing::tire::{
     DampingConfig, GroundConfig, RotatingMode, SpeedModes, WaveDirection, modes_at_speed,
 };
@@ -84,7 +84,8 @@ impl Validate for Config {
         if !(self.load > 0.0 && self.load.is_finite()) {
             return Err(InputError::new("load", "must be positive"));
         }
-        self.ground.validate().map_err(input)?;
+        self.ground.validate_within("ground")?;
+        self.damping.validate_within("damping")?;
         self.tire.validate()
     }
 }
@@ -312,6 +313,10 @@ impl Study for Rotating {
     type Summary = Summary;
     const APP: &'static str = "tire";
     const NAME: &'static str = "rotating-modes";
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
 
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(s) = &self.speeds {
