@@ -178,7 +178,22 @@ pub struct AncfStudySummary {
     /// Static closure only: relative radius variation (max − min)/mean.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub closure_radius_variation: Option<f64>,
+    /// What the numbers mean ([`ANCF_MEANING`]).
+    pub meaning: String,
 }
+
+/// The ANCF study's "what the numbers mean" paragraph (`meaning` in the summary).
+pub const ANCF_MEANING: &str = "The planar belt drive of Kerkkanen ch. 3 with ANCF beam \
+elements and distributed penalty contact (3.20)-(3.25). Dynamic run (example 3.3-B): the \
+driver follows the speed ramp (3.29) to its final speed; omega_driver_end and \
+omega_driven_end are the pulley speeds at t_end [rad/s] (travel sense) and speed_ratio their \
+ratio (below 1 by the creep of the belt on the driven pulley); tension_tight / tension_slack \
+are the span tensions [N] entering / leaving the driver, their difference times the radius \
+being the torque the belt carries; initial_tension is the pre-tension of the static \
+initial state [N]; steps and newton_iterations the integrator's work. Static closure \
+(example 3.3-A): the free belt closed into a ring, closure_radius its mean radius [m] \
+(L / 2 pi for an inextensible ring) and closure_radius_variation (max - min) / mean, which \
+measures how round the ANCF elements keep it (0 for a perfect circle).";
 
 /// Example 3.3-A: the closure of the free belt ([`closure_on_path`]) and its summary
 /// (wall time of the closure only).
@@ -192,6 +207,7 @@ pub fn closure_study(
         newton_iterations: r.iterations,
         closure_radius: Some(r.mean_radius),
         closure_radius_variation: Some((r.radius_range[1] - r.radius_range[0]) / r.mean_radius),
+        meaning: ANCF_MEANING.to_string(),
         ..Default::default()
     };
     Ok((drive, r, summary))
@@ -264,6 +280,7 @@ pub fn dynamic_run<E>(
         speed_ratio: w_driven / w_driver,
         closure_radius: None,
         closure_radius_variation: None,
+        meaning: ANCF_MEANING.to_string(),
     };
     Ok(DynamicEnd {
         state: run.state,

@@ -78,6 +78,12 @@ impl Study for TireMesh {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "tire-mesh";
 
+    fn meaning(&self) -> &'static str {
+        "The generated truck-tire carcass: the nodes, hexahedra and DOFs of the mesh written \
+         as mesh.json, M and K (Matrix Market) and the node sets (rim, contact patch), for \
+         flowmbd-reduce and other FE tools."
+    }
+
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let bar = ctx.progress(4.0, "tire-mesh");
         let t =

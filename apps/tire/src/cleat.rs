@@ -187,7 +187,7 @@ const FORCE_COLUMNS: [&str; 7] = [
     "fy_n",
     "f_lateral_n",
     "spin_rad_s",
-    "active_nodes",
+    "active_nodes_count",
     "normal_sum_n",
 ];
 
@@ -335,6 +335,19 @@ impl Study for Cleat {
     type Summary = Summary;
     const APP: &'static str = "tire";
     const NAME: &'static str = "cleat";
+
+    fn meaning(&self) -> &'static str {
+        "The cleat test of Ribaric 8.3: the preloaded tire rolls at speed_kmh over a \
+         semicircular cleat on the drum (or road) and the spindle forces are recorded. \
+         fy_peak_hz and fx_peak_hz are the frequencies of the largest spectral peaks of the \
+         vertical and longitudinal force after the hit (sought in 10-500 Hz): the loaded \
+         tire's vertical and longitudinal modes rolling at that speed \
+         (loaded_vertical_mode_hz, fx_line_mode and fy_line_mode name the modes that carry \
+         them); fy_rms and fx_rms are the force fluctuations [N]; fy_mean_before_n equals the \
+         load when the rolling tire is in equilibrium and fx_mean_before_n is the rolling \
+         resistance [N]; preload_deflection_m is the static deflection. wall_ and \
+         cpu_per_simulated_s say how fast the model runs (1 = real time)."
+    }
 
     fn config_notes(&self, c: &Config) -> String {
         crate::common::import_notes(&c.tire)

@@ -314,6 +314,17 @@ impl Study for Rotating {
     const APP: &'static str = "tire";
     const NAME: &'static str = "rotating-modes";
 
+    fn meaning(&self) -> &'static str {
+        "Complex modes of the rolling tire seen from the ground at every speed (Campbell \
+         diagram): each mode's frequency [Hz], circumferential order n, direction (forward or \
+         backward travelling wave), damping ratio and growth rate [1/s]. At rest the modes of \
+         order n >= 1 come in pairs of equal frequency; rolling splits each pair into a \
+         forward and a backward wave (splits: the split grows linearly with speed, as for a \
+         spinning ring). zero_speed_max_rel_diff_vs_modes compares the speed-0 frequencies \
+         with the modes study (a second path to the same numbers); rayleigh holds the damping \
+         used (alpha [1/s], beta [s])."
+    }
+
     fn config_notes(&self, c: &Config) -> String {
         crate::common::import_notes(&c.tire)
     }
@@ -353,14 +364,14 @@ impl Study for Rotating {
             "rotating_modes.csv",
             &[
                 "speed_kmh",
-                "loaded",
-                "hz",
+                "loaded_flag",
+                "f_hz",
                 "n",
-                "direction",
+                "direction_code",
                 "damping_ratio",
-                "growth_rate",
+                "growth_rate_1_s",
                 "natural_hz",
-                "travelling",
+                "travelling_share",
                 "lateral_share",
             ],
             runs.iter().flat_map(|r| {

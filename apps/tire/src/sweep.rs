@@ -92,6 +92,17 @@ impl Study for Sweep {
     const APP: &'static str = "tire";
     const NAME: &'static str = "sweep";
 
+    fn meaning(&self) -> &'static str {
+        "The cleat test at every speed of speeds_kmh (Ribaric Figs. 8-7, 8-8, 8-14): per \
+         speed the summary of the cleat study (runs), the largest spectral amplitudes of F_y \
+         and F_x [N] and the frequency of the F_y peak [Hz]. fy_matrix.csv and fx_matrix.csv \
+         hold the spectra as a speed x frequency table (every run resampled onto the first \
+         run's frequency grid) behind the contour and waterfall plots. fy_amplitude_dips_kmh \
+         lists the speeds at which the vertical amplitude has a local minimum (Ribaric: 40-50 \
+         km/h on the drum), where the cleat excitation and the tire's vertical mode \
+         interfere."
+    }
+
     fn config_notes(&self, c: &Config) -> String {
         crate::common::import_notes(&c.tire)
     }
@@ -160,7 +171,7 @@ impl Study for Sweep {
         )?;
         // the speed x frequency matrices (rows: speeds, columns: frequencies)
         let header: Vec<String> = std::iter::once("speed_kmh".to_string())
-            .chain(freqs.iter().map(|f| format!("{f:.3}")))
+            .chain(freqs.iter().map(|f| format!("f{f:.3}hz_amp_n")))
             .collect();
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
         for (name, m) in [("fy", &my), ("fx", &mx)] {

@@ -778,5 +778,5 @@ fn rotating_modes_json_contract_and_split() {
     }
     assert_plot(&out_dir, "campbell_free");
     assert_plot(&out_dir, "campbell_loaded");
-    assert!(!csv_column(&out_dir.join("rotating_modes.csv"), "hz").is_empty());
+    assert!(!csv_column(&out_dir.join("rotating_modes.csv"), "f_hz").is_empty());
 }
