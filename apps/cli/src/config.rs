@@ -98,14 +98,22 @@ pub fn unknown_key_variants(text: &str) -> Result<Vec<(String, String)>, toml::d
 /// [`unknown_key_variants`] (of `config` written as TOML) that still parse as `C`. Empty when
 /// every table rejects unknown keys.
 pub fn tables_accepting_unknown_keys<C: Serialize + DeserializeOwned>(config: &C) -> Vec<String> {
-    let text = to_toml(config);
-    match unknown_key_variants(&text) {
+    tables_accepting_unknown_keys_by(&to_toml(config), |t| toml::from_str::<C>(t).is_ok())
+}
+
+/// The tables of the configuration `text` whose [`unknown_key_variants`] `accepts` (e.g. an
+/// app run with `--config variant --print-config` that exits 0): their dotted paths.
+pub fn tables_accepting_unknown_keys_by(
+    text: &str,
+    mut accepts: impl FnMut(&str) -> bool,
+) -> Vec<String> {
+    match unknown_key_variants(text) {
         Ok(variants) => variants
             .into_iter()
-            .filter(|(_, t)| toml::from_str::<C>(t).is_ok())
+            .filter(|(_, t)| accepts(t))
             .map(|(path, _)| path)
             .collect(),
-        Err(e) => vec![format!("<the configuration does not print as TOML: {e}>")],
+        Err(e) => vec![format!("<the configuration is not TOML: {e}>")],
     }
 }
 
