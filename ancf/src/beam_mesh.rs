@@ -16,14 +16,22 @@ pub enum BeamElementKind {
     OmarShabana,
 }
 
+/// Most elements of a generated beam: 10⁴ times the 8–32 elements of Kerkkänen's §2.4 cases
+/// (the static and dynamic solvers assemble `6 (n + 1)` coordinates); a larger count is refused
+/// before the mesh is allocated (`--elements 1e9` aborted on the allocation, issue 20).
+pub const MAX_BEAM_ELEMENTS: usize = 100_000;
+
 /// Build a straight chain of `n_el` equal elements with `make(element_length)`.
 pub fn beam_mesh<E, F>(length: f64, n_el: usize, make: F) -> Result<Mesh<E>, AncfError>
 where
     E: Element,
     F: Fn(f64) -> Result<E, AncfError>,
 {
-    if n_el == 0 {
-        return Err(invalid("elements", "must be ≥ 1"));
+    if n_el == 0 || n_el > MAX_BEAM_ELEMENTS {
+        return Err(invalid(
+            "elements",
+            format!("must lie in [1, {MAX_BEAM_ELEMENTS}], got {n_el}"),
+        ));
     }
     if !(length.is_finite() && length > 0.0) {
         return Err(invalid("length", format!("must be > 0 m, got {length}")));

@@ -1,13 +1,14 @@
 //! The static test set-ups of Kerkkänen §2.4 (Tables 2.1–2.4), shared by the validation tests
 //! and the `flowmbd-beam` app.
 
-use ancf::beam_mesh::{BeamElementKind, beam_mesh};
+use ancf::beam_mesh::{BeamElementKind, MAX_BEAM_ELEMENTS, beam_mesh};
 use ancf::element::{Element, OmarShabanaBeam, ProposedBeam};
 use ancf::error::AncfError;
 use ancf::material::Material;
 use ancf::mesh::{Mesh, straight_coordinates};
 use ancf::section::Section;
 use ancf::statics::{StaticOptions, solve_static};
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
 /// The typed input error of the ANCF crate for the field `item`.
@@ -65,6 +66,85 @@ impl StaticBeamCase {
 
     fn section(&self) -> Result<Section, AncfError> {
         Section::rectangle(self.width, self.height)
+    }
+}
+
+/// Most time steps `t_end / h` of a dynamic case (the pendulum's default takes 10⁴).
+pub const MAX_TIME_STEPS: f64 = 1e8;
+
+/// Most load increments of a static Newton solve.
+pub const MAX_INCREMENTS: usize = 1_000_000;
+
+/// `−1 < ν < 0.5` (positive definite isotropic elasticity).
+pub(crate) fn check_poisson(nu: f64) -> Result<(), InvalidField> {
+    if nu.is_finite() && nu > -1.0 && nu < 0.5 {
+        Ok(())
+    } else {
+        Err(check::reject("nu", "in (-1, 0.5)", nu))
+    }
+}
+
+/// `0 ≤ ρ∞ ≤ 1` (generalized-α spectral radius at infinity).
+pub(crate) fn check_rho_inf(rho: f64) -> Result<(), InvalidField> {
+    check::within("rho_inf", rho, 0.0, 1.0, "")
+}
+
+/// `1 ≤ elements ≤` [`MAX_BEAM_ELEMENTS`].
+pub(crate) fn check_elements(n: usize) -> Result<(), InvalidField> {
+    check::count("elements", n, 1, MAX_BEAM_ELEMENTS)
+}
+
+/// `t_end / h ≤` [`MAX_TIME_STEPS`] (both positive).
+pub(crate) fn check_time(t_end: f64, h: f64) -> Result<(), InvalidField> {
+    check::positive("t_end", t_end, "s")?;
+    check::positive("h", h, "s")?;
+    if t_end / h > MAX_TIME_STEPS {
+        return Err(InvalidField::new(
+            "t_end",
+            format!(
+                "{} s in steps h = {} s is {:.3e} steps, more than the {MAX_TIME_STEPS:e} a run \
+                 may take",
+                check::show(t_end),
+                check::show(h),
+                t_end / h
+            ),
+        ));
+    }
+    Ok(())
+}
+
+impl Validate for StaticBeamCase {
+    /// `1 ≤ elements ≤` [`MAX_BEAM_ELEMENTS`], `1 ≤ increments ≤` [`MAX_INCREMENTS`],
+    /// `−1 < ν < 0.5`, positive dimensions and modulus, non-negative density.
+    fn validate(&self) -> Result<(), InvalidField> {
+        check_elements(self.elements)?;
+        check::count("increments", self.increments, 1, MAX_INCREMENTS)?;
+        check_poisson(self.nu)?;
+        check::positive("height", self.height, "m")?;
+        check::positive("width", self.width, "m")?;
+        check::positive("length", self.length, "m")?;
+        check::positive("young", self.young, "Pa")?;
+        check::non_negative("density", self.density, "kg/m³")
+    }
+}
+
+impl Validate for GroundContactCase {
+    /// Element and increment counts as [`StaticBeamCase`], `−1 < ν < 0.5`, positive
+    /// dimensions, modulus, gap and load factor.
+    fn validate(&self) -> Result<(), InvalidField> {
+        check_elements(self.elements)?;
+        check::count("increments", self.increments, 1, MAX_INCREMENTS)?;
+        for (f, v, unit) in [
+            ("length", self.length, "m"),
+            ("height", self.height, "m"),
+            ("width", self.width, "m"),
+            ("young", self.young, "Pa"),
+            ("gap", self.gap, "m"),
+            ("load_factor", self.load_factor, ""),
+        ] {
+            check::positive(f, v, unit)?;
+        }
+        check_poisson(self.nu)
     }
 }
 

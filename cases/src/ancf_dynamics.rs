@@ -2,7 +2,7 @@
 //! and the spinning beam with centrifugal stiffening (Figs 2.9–2.11, Wu & Haug) — integrated by
 //! mbd-core's generalized-α method.
 
-use crate::ancf_beams::invalid;
+use crate::ancf_beams::{check_elements, check_poisson, check_rho_inf, check_time, invalid};
 use ancf::AncfError;
 use ancf::beam_mesh::{BeamElementKind, beam_mesh};
 use ancf::element::{Element, OmarShabanaBeam, ProposedBeam};
@@ -12,6 +12,7 @@ use ancf::mesh::straight_coordinates;
 use ancf::section::Section;
 use ancf::system::{AncfSystem, Energies, Prescribed};
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -60,6 +61,21 @@ impl Default for PendulumCase {
             h: 5e-5,
             rho_inf: 1.0,
         }
+    }
+}
+
+impl Validate for PendulumCase {
+    /// `1 ≤ elements ≤` [`ancf::beam_mesh::MAX_BEAM_ELEMENTS`], positive dimensions, modulus,
+    /// end time and step with at most [`crate::ancf_beams::MAX_TIME_STEPS`] steps,
+    /// `−1 < ν < 0.5`, `0 ≤ ρ∞ ≤ 1`.
+    fn validate(&self) -> Result<(), InvalidField> {
+        check_elements(self.elements)?;
+        check::positive("length", self.length, "m")?;
+        check::positive("side", self.side, "m")?;
+        check::positive("young", self.young, "Pa")?;
+        check_time(self.t_end, self.h)?;
+        check_poisson(self.nu)?;
+        check_rho_inf(self.rho_inf)
     }
 }
 
@@ -217,6 +233,27 @@ impl Default for SpinningCase {
             h: 2e-3,
             rho_inf: 0.6,
         }
+    }
+}
+
+impl Validate for SpinningCase {
+    /// As [`PendulumCase`], plus positive density and spin-up time and a finite hub speed.
+    fn validate(&self) -> Result<(), InvalidField> {
+        check_elements(self.elements)?;
+        for (f, v, unit) in [
+            ("length", self.length, "m"),
+            ("width", self.width, "m"),
+            ("height", self.height, "m"),
+            ("young", self.young, "Pa"),
+            ("density", self.density, "kg/m³"),
+            ("spin_up", self.spin_up, "s"),
+        ] {
+            check::positive(f, v, unit)?;
+        }
+        check_time(self.t_end, self.h)?;
+        check_poisson(self.nu)?;
+        check::finite("omega", self.omega)?;
+        check_rho_inf(self.rho_inf)
     }
 }
 

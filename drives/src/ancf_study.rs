@@ -10,7 +10,7 @@ use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, InitialOptions, InitialState, SimulationConfig, post,
 };
 use mbd_core::integrators::State;
-use mbd_core::validate::{InvalidField, Validate};
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -46,6 +46,17 @@ impl Default for OutputConfig {
         }
     }
 }
+
+/// Most integration steps `t_end / integrator.h` of one run: 10⁴ times the 10⁴ steps of
+/// Kerkkänen's example 3.3-B (1 s at 0.1 ms), days of computing already.
+pub const MAX_STEPS: f64 = 1e8;
+
+/// Most rows of `history.csv`, `t_end / output.history_interval` (about 2 GB of text).
+pub const MAX_HISTORY_ROWS: f64 = 1e7;
+
+/// Most VTK frames of the belt, `t_end / output.vtk_interval` (`--t-end 1e300` wrote frames
+/// until it was killed, issue 20).
+pub const MAX_VTK_FRAMES: f64 = 1e5;
 
 /// Configuration of the ANCF belt-drive study (the `flowmbd-belt ancf` TOML file, SI units).
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -92,24 +103,41 @@ impl Validate for AncfStudyConfig {
             ancf::AncfError::InvalidInput { item, reason } => InvalidField::new(item, reason),
             other => InvalidField::new("integrator", other.to_string()),
         })?;
-        if !(self.t_end.is_finite() && self.t_end > 0.0) {
-            return Err(InvalidField::new(
-                "t_end",
-                format!("must be > 0 s, got {}", self.t_end),
-            ));
-        }
+        check::positive("t_end", self.t_end, "s")?;
         if !(self.tangent_refresh.is_finite() && self.tangent_refresh >= 0.0) {
             return Err(InvalidField::new("tangent_refresh", "must be ≥ 0"));
         }
         let o = &self.output;
-        if !(o.history_interval.is_finite() && o.history_interval > 0.0) {
-            return Err(InvalidField::new(
+        check::positive("output.history_interval", o.history_interval, "s")?;
+        check::positive("output.vtk_interval", o.vtk_interval, "s")?;
+        // sizes of the run and its output, checked before anything runs or is written
+        for (field, interval, what, max) in [
+            ("integrator.h", self.integrator.h, "steps", MAX_STEPS),
+            (
                 "output.history_interval",
-                "must be > 0 s",
-            ));
-        }
-        if !(o.vtk_interval.is_finite() && o.vtk_interval > 0.0) {
-            return Err(InvalidField::new("output.vtk_interval", "must be > 0 s"));
+                o.history_interval,
+                "history rows",
+                MAX_HISTORY_ROWS,
+            ),
+            (
+                "output.vtk_interval",
+                o.vtk_interval,
+                "VTK frames",
+                MAX_VTK_FRAMES,
+            ),
+        ] {
+            let n = self.t_end / interval;
+            if n > max {
+                return Err(InvalidField::new(
+                    "t_end",
+                    format!(
+                        "{} s at {field} = {} s is {n:.3e} {what}, more than the {max:e} a run \
+                         may take (raise {field} or shorten t_end)",
+                        check::show(self.t_end),
+                        check::show(interval)
+                    ),
+                ));
+            }
         }
         if o.points_per_element == 0 || o.points_per_element > 100 {
             return Err(InvalidField::new(
@@ -150,7 +178,22 @@ pub struct AncfStudySummary {
     /// Static closure only: relative radius variation (max − min)/mean.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub closure_radius_variation: Option<f64>,
+    /// What the numbers mean ([`ANCF_MEANING`]).
+    pub meaning: String,
 }
+
+/// The ANCF study's "what the numbers mean" paragraph (`meaning` in the summary).
+pub const ANCF_MEANING: &str = "The planar belt drive of Kerkkanen ch. 3 with ANCF beam \
+elements and distributed penalty contact (3.20)-(3.25). Dynamic run (example 3.3-B): the \
+driver follows the speed ramp (3.29) to its final speed; omega_driver_end and \
+omega_driven_end are the pulley speeds at t_end [rad/s] (travel sense) and speed_ratio their \
+ratio (below 1 by the creep of the belt on the driven pulley); tension_tight / tension_slack \
+are the span tensions [N] entering / leaving the driver, their difference times the radius \
+being the torque the belt carries; initial_tension is the pre-tension of the static \
+initial state [N]; steps and newton_iterations the integrator's work. Static closure \
+(example 3.3-A): the free belt closed into a ring, closure_radius its mean radius [m] \
+(L / 2 pi for an inextensible ring) and closure_radius_variation (max - min) / mean, which \
+measures how round the ANCF elements keep it (0 for a perfect circle).";
 
 /// Example 3.3-A: the closure of the free belt ([`closure_on_path`]) and its summary
 /// (wall time of the closure only).
@@ -164,6 +207,7 @@ pub fn closure_study(
         newton_iterations: r.iterations,
         closure_radius: Some(r.mean_radius),
         closure_radius_variation: Some((r.radius_range[1] - r.radius_range[0]) / r.mean_radius),
+        meaning: ANCF_MEANING.to_string(),
         ..Default::default()
     };
     Ok((drive, r, summary))
@@ -236,6 +280,7 @@ pub fn dynamic_run<E>(
         speed_ratio: w_driven / w_driver,
         closure_radius: None,
         closure_radius_variation: None,
+        meaning: ANCF_MEANING.to_string(),
     };
     Ok(DynamicEnd {
         state: run.state,
@@ -260,5 +305,33 @@ mod tests {
             ..Default::default()
         };
         assert_eq!(bad.validate().unwrap_err().field, "t_end");
+    }
+
+    // issue 20: `flowmbd-belt ancf --t-end 1e300` wrote VTK frames until killed; the run's
+    // size is checked first (1e300 s / 0.1 ms steps exceeds MAX_STEPS = 1e8)
+    #[test]
+    fn absurd_end_times_are_refused_before_running() {
+        let bad = AncfStudyConfig {
+            t_end: 1e300,
+            ..Default::default()
+        };
+        let e = bad.validate().unwrap_err();
+        assert_eq!(e.field, "t_end");
+        assert!(
+            e.reason.contains("1e300 s") && e.reason.contains("steps"),
+            "{e}"
+        );
+        // fine steps but frames every 1 ms for 10^3 s: 10^6 frames > MAX_VTK_FRAMES
+        let mut c = AncfStudyConfig {
+            t_end: 1e3,
+            ..Default::default()
+        };
+        c.output.vtk_interval = 1e-3;
+        c.output.history_interval = 1.0;
+        let e = c.validate().unwrap_err();
+        assert!(e.reason.contains("VTK frames"), "{e}");
+        // 5·10⁴ frames (half the ceiling) pass
+        c.output.vtk_interval = 0.02;
+        assert!(c.validate().is_ok());
     }
 }

@@ -162,7 +162,27 @@ pub struct SpeedLossSummary {
     pub modal_coordinates: usize,
     /// Total wall time \[s\].
     pub wall_time_s: f64,
+    /// What the numbers mean ([`SPEED_LOSS_MEANING`]).
+    pub meaning: String,
 }
+
+/// The speed-loss study's "what the numbers mean" paragraph (`meaning` in the summary).
+pub const SPEED_LOSS_MEANING: &str = "points: the steady angular speed loss \
+delta_omega = omega_driver - omega_driven [rad/s] of the two-pulley belt drive of Ribaric \
+Table 6-1 at each load torque [N m] on the driven pulley (the driver held at omega_driver); \
+analytical: Bechtel's line (6.3) at the same torques, 2 M omega / (2R(T0 + EA) + M). Bechtel \
+counts only the elastic creep of an extensible belt on rigid pulleys: the belt stretches by \
+the tension change T1 - T2 = M/R along the contact arc. The FE model (flowing material, or \
+nodal / ANCF belt) loses more speed, about 2.9 times Bechtel's at 10 N m and 62.8 rad/s \
+(BENCHMARKS.md), because it adds what (6.3) leaves out (Ribaric ch. 6, section 6.3: creep, \
+shear and radial compliance): the radial contact compliance of the penalty law (6.1), which \
+lets the belt sink into the pulley and the tight and slack spans run on different effective \
+radii; the slip of the regularised friction law (6.2), whose force needs a relative velocity \
+everywhere on the arc (no true stick, so the whole arc creeps); and the radius at which the \
+speeds are compared (the belt centreline in contact lies at the penetrated radius, not at R). \
+Shear of the belt section is not modelled (beam elements), so the FE figures still lie below \
+Ribaric's measurements. The speed loss grows about linearly with the torque and with the \
+driver speed.";
 
 impl SpeedLossSummary {
     /// The summary of `cases` (in the configured order of speeds, at least one) of `model`
@@ -185,6 +205,7 @@ impl SpeedLossSummary {
             modal_coordinates: coordinates,
             cases,
             wall_time_s,
+            meaning: SPEED_LOSS_MEANING.to_string(),
         }
     }
 }

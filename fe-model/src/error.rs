@@ -107,6 +107,9 @@ pub enum FeError {
     /// A faer sparse structure could not be created.
     #[error("sparse matrix creation failed in {0}")]
     Sparse(String),
+    /// A configuration field is rejected ([`mbd_core::Validate`]: dotted path and reason).
+    #[error(transparent)]
+    Invalid(#[from] mbd_core::InvalidField),
 }
 
 impl FeError {

@@ -143,6 +143,44 @@ impl StateEigen {
         f
     }
 
+    /// Real parts below this are round-off \[1/s\]: `10⁻⁷ max |λ|` (the eigenvalues of an
+    /// undamped gyroscopic system lie on the imaginary axis while it is stable).
+    pub fn stability_tolerance(&self) -> f64 {
+        1e-7 * self.values.iter().fold(0.0f64, |a, z| a.max(z.norm()))
+    }
+
+    /// The eigenvalues with positive real part (beyond [`Self::stability_tolerance`]), one per
+    /// complex-conjugate pair: `(growth rate Re λ \[1/s\], frequency Im λ/2π \[Hz\] ≥ 0)`, the
+    /// fastest growth first. Empty while the system is stable.
+    pub fn growth_rates(&self) -> Vec<(f64, f64)> {
+        let tol = self.stability_tolerance();
+        let mut g: Vec<(f64, f64)> = self
+            .values
+            .iter()
+            .filter(|z| z.re > tol && z.im >= -tol)
+            .map(|z| (z.re, z.im.max(0.0) / (2.0 * std::f64::consts::PI)))
+            .collect();
+        g.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.total_cmp(&b.1)));
+        g
+    }
+
+    /// Frequencies `Im λ/2π` \[Hz\] of the oscillating eigenvalues that neither grow nor decay
+    /// (`|Re λ|` within [`Self::stability_tolerance`]), ascending: the natural frequencies of a
+    /// stable undamped system, and what is left of them in an unstable one (whose growing
+    /// and decaying flutter pairs are not natural frequencies).
+    pub fn neutral_frequencies_hz(&self) -> Vec<f64> {
+        let tol = self.stability_tolerance();
+        let scale = self.values.iter().fold(0.0f64, |a, z| a.max(z.norm()));
+        let mut f: Vec<f64> = self
+            .values
+            .iter()
+            .filter(|z| z.im > 1e-9 * scale && z.re.abs() <= tol)
+            .map(|z| z.im / (2.0 * std::f64::consts::PI))
+            .collect();
+        f.sort_by(f64::total_cmp);
+        f
+    }
+
     /// Largest real part of the eigenvalues \[1/s\] (> 0: unstable).
     pub fn max_real_part(&self) -> f64 {
         self.values

@@ -1,8 +1,14 @@
-//! TOML configuration reader of the apps (`flowmbd_cli::config::parse_config`) on two real
-//! configurations (belt drive, tire rig): a configuration or a one-line error naming a line
-//! inside the file; parsed configurations are validated.
+//! TOML configuration reader of the apps (`flowmbd_cli::config::parse_config`) on the real
+//! configurations (belt drive, tire rig, generated tire, the library study configurations of
+//! the ANCF drive, speed loss and string modes): a configuration or a one-line error naming a
+//! line inside the file; parsed configurations are validated without panicking. The same
+//! bodies run as property tests in `apps/cli/tests/config_fuzz.rs`.
 #![no_main]
+use drives::ancf_study::AncfStudyConfig;
+use drives::speed_loss_study::SpeedLossStudyConfig;
+use fe_model::generate::TireConfig;
 use flowing::belt::BeltDriveConfig;
+use flowing::string_study::ModesConfig;
 use flowing::tire::RigConfig;
 use flowmbd_cli::Validate;
 use flowmbd_cli::config::parse_config;
@@ -22,5 +28,9 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(text) = std::str::from_utf8(data) {
         check::<RigConfig>(text);
         check::<BeltDriveConfig>(text);
+        check::<TireConfig>(text);
+        check::<AncfStudyConfig>(text);
+        check::<SpeedLossStudyConfig>(text);
+        check::<ModesConfig>(text);
     }
 });

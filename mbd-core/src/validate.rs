@@ -59,19 +59,58 @@ pub trait Validate {
     }
 }
 
+/// Deserializes a unit variant of an internally tagged enum as a table with no other keys:
+/// `#[serde(deserialize_with = "mbd_core::validate::unit_variant")]` on the variant.
+///
+/// serde's `deny_unknown_fields` does not reach unit variants of internally tagged enums:
+/// without this, `{ kind = "none", torque = 5 }` reads as `None` and the misplaced `torque`
+/// is silently dropped (issue 20). With it, any key besides the tag is an "unknown field" error.
+pub fn unit_variant<'de, D: serde::Deserializer<'de>>(d: D) -> Result<(), D::Error> {
+    /// A table that must be empty.
+    #[derive(serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct NoFields {}
+    <NoFields as serde::Deserialize>::deserialize(d).map(|_| ())
+}
+
 /// The shared range checks. Each returns the [`InvalidField`] for `field` when `value` fails.
+///
+/// Messages say what was expected and what was given; a NaN is called "not a number" (never
+/// "negative" or "not positive"), and very large or small values are written with an exponent
+/// (`1e300`, not 301 digits).
 pub mod check {
     use super::InvalidField;
+
+    /// `value` written for a message: `NaN (not a number)`, `inf`, an exponent form for
+    /// magnitudes at or above 10⁶ or below 10⁻⁴, else the shortest decimal form.
+    pub fn show(value: f64) -> String {
+        if value.is_nan() {
+            "NaN (not a number)".to_string()
+        } else if value.is_infinite() || value == 0.0 {
+            format!("{value}")
+        } else if value.abs() >= 1e6 || value.abs() < 1e-4 {
+            format!("{value:e}")
+        } else {
+            format!("{value}")
+        }
+    }
+
+    /// The rejection of `value` for `field`, which was expected to be `expected`: a NaN is
+    /// reported as not a number, anything else as "must be `expected`, got `value`".
+    pub fn reject(field: &str, expected: &str, value: f64) -> InvalidField {
+        if value.is_nan() {
+            InvalidField::new(field, format!("is not a number (NaN); expected {expected}"))
+        } else {
+            InvalidField::new(field, format!("must be {expected}, got {}", show(value)))
+        }
+    }
 
     /// `value` is finite.
     pub fn finite(field: &str, value: f64) -> Result<(), InvalidField> {
         if value.is_finite() {
             Ok(())
         } else {
-            Err(InvalidField::new(
-                field,
-                format!("must be finite, got {value}"),
-            ))
+            Err(reject(field, "finite", value))
         }
     }
 
@@ -80,9 +119,10 @@ pub mod check {
         if value.is_finite() && value > 0.0 {
             Ok(())
         } else {
-            Err(InvalidField::new(
+            Err(reject(
                 field,
-                format!("must be finite and > 0{}, got {value}", with_unit(unit)),
+                &format!("finite and > 0{}", with_unit(unit)),
+                value,
             ))
         }
     }
@@ -92,9 +132,10 @@ pub mod check {
         if value.is_finite() && value >= 0.0 {
             Ok(())
         } else {
-            Err(InvalidField::new(
+            Err(reject(
                 field,
-                format!("must be finite and >= 0{}, got {value}", with_unit(unit)),
+                &format!("finite and >= 0{}", with_unit(unit)),
+                value,
             ))
         }
     }
@@ -110,9 +151,10 @@ pub mod check {
         if value.is_finite() && (lo..=hi).contains(&value) {
             Ok(())
         } else {
-            Err(InvalidField::new(
+            Err(reject(
                 field,
-                format!("must lie in [{lo}, {hi}]{}, got {value}", with_unit(unit)),
+                &format!("in [{}, {}]{}", show(lo), show(hi), with_unit(unit)),
+                value,
             ))
         }
     }
@@ -172,7 +214,7 @@ mod tests {
         assert_eq!(e.field, "pulleys[1].radius");
         assert_eq!(
             e.to_string(),
-            "pulleys[1].radius: must be finite and > 0 m, got NaN"
+            "pulleys[1].radius: is not a number (NaN); expected finite and > 0 m"
         );
         assert_eq!(e.clone().within("drive").field, "drive.pulleys[1].radius");
         assert!(
@@ -197,5 +239,21 @@ mod tests {
             "must lie in [1, 1000], got 1000000000"
         );
         assert!(check::finite("t", f64::NEG_INFINITY).is_err());
+    }
+
+    // issue 20: `lead = nan` said "NaN s is negative"; 1e300 was printed with 301 digits
+    #[test]
+    fn nan_is_called_not_a_number_and_huge_values_use_an_exponent() {
+        let e = check::non_negative("impact.lead", f64::NAN, "m").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "impact.lead: is not a number (NaN); expected finite and >= 0 m"
+        );
+        assert!(!e.reason.contains("negative"), "{e}");
+        let e = check::within("record_time", 1e300, 0.0, 10.0, "s").unwrap_err();
+        assert_eq!(e.reason, "must be in [0, 10] s, got 1e300");
+        assert_eq!(check::show(-2.5e-7), "-2.5e-7");
+        assert_eq!(check::show(0.85), "0.85");
+        assert_eq!(check::show(f64::INFINITY), "inf");
     }
 }

@@ -533,6 +533,8 @@ fn reuse_of_newton_matrices_gives_the_fresh_solution() {
 #[test]
 fn rolling_config_friction_law_parses() {
     use flowing::tire::RollingConfig;
+    // the rolling settings' checks are the workspace's one validation trait (issue 20)
+    use mbd_core::Validate;
     let old: RollingConfig =
         toml::from_str("friction = 0.85\nslip_regularization = 0.05\n").unwrap();
     assert_eq!(old.friction_law, TireFriction::Coulomb);

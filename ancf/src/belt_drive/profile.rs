@@ -104,6 +104,7 @@ impl Validate for SpeedProfile {
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum TorqueProfile {
     /// No load.
+    #[serde(deserialize_with = "mbd_core::validate::unit_variant")]
     None,
     /// `T_a(t) = torque` \[N·m\].
     Constant {

@@ -95,7 +95,7 @@ impl AncfStudy {
         let samples = post::tension_samples(&drive, &r.q, c.output.points_per_element);
         ctx.out.write_csv(
             "closure.csv",
-            &["s_material", "x", "y"],
+            &["s_material_m", "x_m", "y_m"],
             samples
                 .iter()
                 .map(|s| [s.s_material, s.position[0], s.position[1]]),
@@ -135,16 +135,16 @@ impl AncfStudy {
         let spans = post::spans(&drive);
         let np = drive.pulleys().len();
 
-        let mut header: Vec<String> = vec!["t".into()];
+        let mut header: Vec<String> = vec!["t_s".into()];
         for p in drive.pulleys() {
-            header.push(format!("omega_{}", p.name));
+            header.push(format!("omega_{}_rad_s", p.name));
         }
         for k in 0..spans.len() {
-            header.push(format!("span{k}_mid_x"));
-            header.push(format!("span{k}_mid_y"));
+            header.push(format!("span{k}_mid_x_m"));
+            header.push(format!("span{k}_mid_y_m"));
         }
         for k in 0..spans.len() {
-            header.push(format!("span{k}_tension"));
+            header.push(format!("span{k}_tension_n"));
         }
         let hdr: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
         let mut csv = ctx.out.csv("history.csv", &hdr)?;
@@ -235,7 +235,7 @@ impl AncfStudy {
         let samples = post::tension_samples(&drive, &s.q, c.output.points_per_element);
         ctx.out.write_csv(
             "tension.csv",
-            &["s_material", "x", "y", "strain", "tension"],
+            &["s_material_m", "x_m", "y_m", "strain", "tension_n"],
             samples.iter().map(|p| {
                 [
                     p.s_material,
@@ -250,15 +250,15 @@ impl AncfStudy {
         ctx.out.write_csv(
             "contact.csv",
             &[
-                "pulley",
-                "s_material",
-                "arc",
-                "x",
-                "y",
-                "penetration",
-                "normal_force",
-                "friction_force",
-                "relative_velocity",
+                "pulley_index",
+                "s_material_m",
+                "arc_m",
+                "x_m",
+                "y_m",
+                "penetration_m",
+                "normal_force_n_m",
+                "friction_force_n_m",
+                "relative_velocity_m_s",
             ],
             recs.iter().map(|r| {
                 [
@@ -281,11 +281,11 @@ impl AncfStudy {
         ctx.out.write_csv(
             "relative_velocity.csv",
             &[
-                "pulley",
-                "s_material",
-                "arc",
-                "penetration",
-                "relative_velocity",
+                "pulley_index",
+                "s_material_m",
+                "arc_m",
+                "penetration_m",
+                "relative_velocity_m_s",
             ],
             fine.iter().map(|r| {
                 [
@@ -377,6 +377,10 @@ impl Study for AncfStudy {
     type Summary = Summary;
     const APP: &'static str = "belt";
     const NAME: &'static str = "ancf";
+
+    fn meaning(&self) -> &'static str {
+        drives::ancf_study::ANCF_MEANING
+    }
 
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(t) = self.t_end {

@@ -38,7 +38,7 @@ enum Study {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = flowmbd_cli::parse_args::<Cli>();
     match cli.study {
         Some(Study::Demo(args)) => demo::run(&args),
         Some(Study::Ancf(args)) => ancf::run(&args),

@@ -82,11 +82,11 @@ fn run_case(
     let name = format!("history_omega_{omega:.1}.csv");
     // the flowing and nodal models carry the belt speed as their first velocity
     let columns = [
-        "t",
-        "omega_driver",
-        "omega_driven",
-        "load_torque",
-        "belt_speed",
+        "t_s",
+        "omega_driver_rad_s",
+        "omega_driven_rad_s",
+        "load_torque_Nm",
+        "belt_speed_m_s",
     ];
     let n_col = if model.has_belt_speed() { 5 } else { 4 };
     let mut csv = ctx.out.csv(&name, &columns[..n_col])?;
@@ -127,6 +127,10 @@ impl Study for SpeedLoss {
     const APP: &'static str = "belt";
     const NAME: &'static str = "speed-loss";
 
+    fn meaning(&self) -> &'static str {
+        drives::speed_loss_study::SPEED_LOSS_MEANING
+    }
+
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(w) = self.args.omega {
             c.omegas = vec![w];
@@ -163,10 +167,10 @@ impl Study for SpeedLoss {
         let mut table = ctx.out.csv(
             "speed_loss.csv",
             &[
-                "omega_driver",
-                "torque",
-                "delta_omega",
-                "delta_omega_analytical",
+                "omega_driver_rad_s",
+                "torque_Nm",
+                "delta_omega_rad_s",
+                "delta_omega_bechtel_rad_s",
             ],
         )?;
         let mut plot = LinePlot::new(

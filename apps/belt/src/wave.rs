@@ -161,6 +161,16 @@ impl Study for Wave {
     const APP: &'static str = "belt";
     const NAME: &'static str = "wave";
 
+    fn meaning(&self) -> &'static str {
+        "The flowing-material belt drive of Ribaric Fig. 6-3 with one span deflected and let \
+         go, once at rest and once running at the belt speed. wave_speed is the transverse \
+         wave speed c = sqrt(T0/(rho A)) [m/s]; rest and running hold the span's measured \
+         vibration in each case; frequency_ratio is the running span's lowest frequency over \
+         the resting one, and frequency_ratio_string the travelling-string prediction 1 - \
+         v^2/c^2 (Wickert and Mote): the axial motion lowers the span's frequencies, and the \
+         two ratios agree when the span behaves like a travelling string."
+    }
+
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(v) = self.args.speed {
             c.wave.belt_speed = v;
@@ -193,11 +203,11 @@ impl Study for Wave {
         ctx.out.write_csv(
             "wave.csv",
             &[
-                "t",
-                "midspan_rest",
-                "midspan_running",
-                "centroid_rest",
-                "centroid_running",
+                "t_s",
+                "midspan_rest_m",
+                "midspan_running_m",
+                "centroid_rest_m",
+                "centroid_running_m",
             ],
             (0..rest.times.len()).map(|k| {
                 [

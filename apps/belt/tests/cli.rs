@@ -57,6 +57,14 @@ fn speed_loss_json_contract() {
     for f in ["summary.json", "speed_loss.csv", "config.toml"] {
         assert!(out.join(f).exists(), "{f} missing");
     }
+    // issue 20, item 5: units in the CSV headers, and why Δω exceeds Bechtel's line
+    let bad = flowmbd_cli::output::columns_without_unit(&out);
+    assert!(bad.is_empty(), "columns without unit: {bad:?}");
+    let meaning = v["meaning"].as_str().unwrap();
+    assert!(
+        meaning.contains("Bechtel") && meaning.contains("(6.1)"),
+        "{meaning}"
+    );
     let _ = std::fs::remove_dir_all(out);
 }
 

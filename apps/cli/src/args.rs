@@ -32,3 +32,23 @@ impl CommonArgs {
             .unwrap_or_else(|| Path::new("out").join(app).join(study))
     }
 }
+
+/// Parse the command line of an app like `C::parse()`, with negative numbers accepted as
+/// option values everywhere (`--speed -20`, not only `--speed=-20`): the value then reaches the
+/// configuration check, which names the field if it is out of range (issue 20). clap's setting
+/// is per command, so it is applied to every subcommand.
+pub fn parse_args<C: clap::Parser>() -> C {
+    fn allow(cmd: clap::Command) -> clap::Command {
+        let names: Vec<String> = cmd
+            .get_subcommands()
+            .map(|s| s.get_name().to_string())
+            .collect();
+        let mut cmd = cmd.allow_negative_numbers(true);
+        for n in names {
+            cmd = cmd.mut_subcommand(n, allow);
+        }
+        cmd
+    }
+    let matches = allow(C::command()).get_matches();
+    C::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+}

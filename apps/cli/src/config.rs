@@ -66,6 +66,115 @@ pub fn to_toml<C: Serialize>(config: &C) -> String {
         .unwrap_or_else(|e| format!("# cannot serialise configuration: {e}\n"))
 }
 
+/// The key [`unknown_key_variants`] adds to every table.
+pub const UNKNOWN_KEY: &str = "zz_unknown_key";
+
+/// One variant of the configuration `text` (TOML, e.g. what `--print-config` prints) per table
+/// — the root, every nested table, every table inside an array of tables — with the key
+/// [`UNKNOWN_KEY`] added to that table: `(dotted path of the table, the modified text)`.
+///
+/// Every table of a configuration must reject the key (`#[serde(deny_unknown_fields)]`), but
+/// serde's attribute does not reach everywhere: unit variants of internally tagged enums
+/// (`{ kind = "none", typo = 1 }`), structs inside newtype variants, `#[serde(flatten)]` and
+/// untagged enums ignore unknown keys. Feeding each variant back through the configuration
+/// reader finds such holes (issue 20).
+pub fn unknown_key_variants(text: &str) -> Result<Vec<(String, String)>, toml::de::Error> {
+    let root: toml::Table = toml::from_str(text)?;
+    let mut paths = Vec::new();
+    collect_tables(&root, &mut Vec::new(), &mut paths);
+    Ok(paths
+        .into_iter()
+        .map(|path| {
+            let mut t = root.clone();
+            if let Some(table) = table_at(&mut t, &path) {
+                table.insert(UNKNOWN_KEY.to_string(), toml::Value::Integer(0));
+            }
+            (path_name(&path), toml::to_string(&t).unwrap_or_default())
+        })
+        .collect())
+}
+
+/// The tables of `config` that accept an unknown key: the dotted paths of the variants of
+/// [`unknown_key_variants`] (of `config` written as TOML) that still parse as `C`. Empty when
+/// every table rejects unknown keys.
+pub fn tables_accepting_unknown_keys<C: Serialize + DeserializeOwned>(config: &C) -> Vec<String> {
+    tables_accepting_unknown_keys_by(&to_toml(config), |t| toml::from_str::<C>(t).is_ok())
+}
+
+/// The tables of the configuration `text` whose [`unknown_key_variants`] `accepts` (e.g. an
+/// app run with `--config variant --print-config` that exits 0): their dotted paths.
+pub fn tables_accepting_unknown_keys_by(
+    text: &str,
+    mut accepts: impl FnMut(&str) -> bool,
+) -> Vec<String> {
+    match unknown_key_variants(text) {
+        Ok(variants) => variants
+            .into_iter()
+            .filter(|(_, t)| accepts(t))
+            .map(|(path, _)| path)
+            .collect(),
+        Err(e) => vec![format!("<the configuration is not TOML: {e}>")],
+    }
+}
+
+/// A step of a path into a TOML document: a key or an array index.
+#[derive(Clone)]
+enum Step {
+    Key(String),
+    Index(usize),
+}
+
+fn collect_tables(t: &toml::Table, here: &mut Vec<Step>, out: &mut Vec<Vec<Step>>) {
+    out.push(here.clone());
+    for (k, v) in t {
+        here.push(Step::Key(k.clone()));
+        match v {
+            toml::Value::Table(sub) => collect_tables(sub, here, out),
+            toml::Value::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    if let toml::Value::Table(sub) = item {
+                        here.push(Step::Index(i));
+                        collect_tables(sub, here, out);
+                        here.pop();
+                    }
+                }
+            }
+            _ => {}
+        }
+        here.pop();
+    }
+}
+
+fn table_at<'a>(t: &'a mut toml::Table, path: &[Step]) -> Option<&'a mut toml::Table> {
+    let Some((first, rest)) = path.split_first() else {
+        return Some(t);
+    };
+    let Step::Key(k) = first else { return None };
+    let mut v = t.get_mut(k)?;
+    let mut rest = rest;
+    while let Some(Step::Index(i)) = rest.first() {
+        v = v.as_array_mut()?.get_mut(*i)?;
+        rest = &rest[1..];
+    }
+    table_at(v.as_table_mut()?, rest)
+}
+
+fn path_name(path: &[Step]) -> String {
+    let mut s = String::new();
+    for step in path {
+        match step {
+            Step::Key(k) => {
+                if !s.is_empty() {
+                    s.push('.');
+                }
+                s.push_str(k);
+            }
+            Step::Index(i) => s.push_str(&format!("[{i}]")),
+        }
+    }
+    if s.is_empty() { "<root>".into() } else { s }
+}
+
 /// 1-based line and column of byte `offset` in `text`.
 fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
@@ -176,6 +285,81 @@ mod tests {
         let text = to_toml(&Demo::default());
         let back: Demo = parse_config(&text, Path::new("x.toml")).unwrap();
         assert_eq!(back, Demo::default());
+    }
+
+    /// A configuration with the holes of issue 20: a unit variant of an internally tagged
+    /// enum and a struct without `deny_unknown_fields` inside a newtype variant.
+    mod holes {
+        use serde::{Deserialize, Serialize};
+        #[derive(Debug, Serialize, Deserialize)]
+        #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+        pub enum Load {
+            None,
+            Constant { torque: f64 },
+        }
+        #[derive(Debug, Serialize, Deserialize)]
+        pub struct Scheme {
+            pub first: String,
+        }
+        #[derive(Debug, Serialize, Deserialize)]
+        pub enum Method {
+            FiniteDifference(Scheme),
+        }
+        #[derive(Debug, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct Pulley {
+            pub name: String,
+            pub load: Load,
+        }
+        #[derive(Debug, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct Drive {
+            pub pulleys: Vec<Pulley>,
+            pub derivative: Method,
+        }
+    }
+
+    // the walker visits the root, nested tables and tables inside arrays, and finds exactly
+    // the two holes (definition: serde's documented behaviour for these shapes)
+    #[test]
+    fn unknown_key_walker_finds_the_holes() {
+        use holes::*;
+        let d = Drive {
+            pulleys: vec![
+                Pulley {
+                    name: "a".into(),
+                    load: Load::Constant { torque: 1.0 },
+                },
+                Pulley {
+                    name: "b".into(),
+                    load: Load::None,
+                },
+            ],
+            derivative: Method::FiniteDifference(Scheme { first: "c".into() }),
+        };
+        let paths: Vec<String> = unknown_key_variants(&to_toml(&d))
+            .unwrap()
+            .into_iter()
+            .map(|(p, _)| p)
+            .collect();
+        for p in [
+            "<root>",
+            "pulleys[0]",
+            "pulleys[0].load",
+            "pulleys[1].load",
+            "derivative.FiniteDifference",
+        ] {
+            assert!(paths.iter().any(|q| q == p), "{p} not visited: {paths:?}");
+        }
+        assert_eq!(
+            tables_accepting_unknown_keys(&d),
+            // (tables in key order)
+            vec![
+                "derivative.FiniteDifference".to_string(),
+                "pulleys[1].load".to_string()
+            ]
+        );
+        assert!(tables_accepting_unknown_keys(&Demo::default()).is_empty());
     }
 
     #[test]

@@ -24,7 +24,7 @@ pub mod progress;
 pub mod stdout;
 pub mod study;
 
-pub use args::CommonArgs;
+pub use args::{CommonArgs, parse_args};
 pub use config::{Validate, load_config, read_config};
 pub use error::{CliError, InputError};
 pub use files::check_input_file;

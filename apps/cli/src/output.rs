@@ -71,6 +71,80 @@ impl OutputDir {
     }
 }
 
+/// Unit suffixes a CSV column name may end with (`torque_Nm`, `delta_omega_rad_s`, `t_s`):
+/// `_s`, `_m`, `_n` (newton), `_n_m` (N/m), `_Nm` (N·m), `_hz`, `_kmh`, `_rad`, `_rad_s`,
+/// `_rad_s2`, `_rad2_s2`, `_1_s`, `_m_s`, `_m_s2`, `_j`, `_kg`, `_kg_m2`, `_pa`, `_deg`,
+/// `_n_sqrtkg` (N/√kg) and `_sqrtkg_m` (√kg·m, mass-normalised modal coordinates).
+pub const UNIT_SUFFIXES: &[&str] = &[
+    "_s",
+    "_m",
+    "_n",
+    "_n_m",
+    "_Nm",
+    "_hz",
+    "_kmh",
+    "_rad",
+    "_rad_s",
+    "_rad_s2",
+    "_rad2_s2",
+    "_1_s",
+    "_m_s",
+    "_m_s2",
+    "_j",
+    "_kg",
+    "_kg_m2",
+    "_pa",
+    "_deg",
+    "_n_sqrtkg",
+    "_sqrtkg_m",
+];
+
+/// Suffixes of dimensionless columns (`damping_ratio`, `lateral_share`, `loaded_flag`,
+/// `pulley_index`, `direction_code`, `active_count`) and names that are dimensionless by
+/// definition (`mode`, `n`, `strain`).
+pub const DIMENSIONLESS: &[&str] = &[
+    "_ratio", "_share", "_flag", "_index", "_code", "_count", "_strain",
+];
+
+/// Column names that are counts or indices by definition.
+pub const DIMENSIONLESS_NAMES: &[&str] = &["mode", "n", "strain", "index"];
+
+/// Whether the CSV column `name` says its unit (ends with one of [`UNIT_SUFFIXES`]) or that
+/// it is dimensionless ([`DIMENSIONLESS`], [`DIMENSIONLESS_NAMES`]).
+pub fn column_has_unit(name: &str) -> bool {
+    DIMENSIONLESS_NAMES.contains(&name)
+        || UNIT_SUFFIXES
+            .iter()
+            .chain(DIMENSIONLESS)
+            .any(|u| name.ends_with(u) && name.len() > u.len())
+}
+
+/// The columns without a unit in the headers of the CSV files in `dir` (recursively), as
+/// `file: column` (empty when every column says its unit; issue 20's convention).
+pub fn columns_without_unit(dir: &Path) -> Vec<String> {
+    let mut out = Vec::new();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return out;
+    };
+    let mut entries: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            out.extend(columns_without_unit(&p));
+        } else if p.extension().is_some_and(|e| e == "csv")
+            && let Ok(text) = std::fs::read_to_string(&p)
+            && let Some(header) = text.lines().next()
+        {
+            for col in header.split(',') {
+                if !column_has_unit(col) {
+                    out.push(format!("{}: {col}", p.display()));
+                }
+            }
+        }
+    }
+    out
+}
+
 /// A CSV file being written row by row.
 pub struct CsvSink {
     path: PathBuf,
@@ -118,6 +192,28 @@ fn write_error(path: &Path, e: impl std::fmt::Display) -> CliError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // definition of the convention: a unit suffix or a dimensionless marker
+    #[test]
+    fn columns_say_their_units() {
+        for ok in [
+            "t_s",
+            "torque_Nm",
+            "delta_omega_rad_s",
+            "fy_amp_n",
+            "speed_kmh",
+            "damping_ratio",
+            "mode",
+            "pulley_index",
+            "normal_force_n_m",
+            "growth_rate_1_s",
+        ] {
+            assert!(column_has_unit(ok), "{ok}");
+        }
+        for bad in ["t", "torque", "hz", "delta_omega", "tension", "_s", "x"] {
+            assert!(!column_has_unit(bad), "{bad}");
+        }
+    }
 
     #[test]
     fn csv_round_trip_and_row_length_check() {

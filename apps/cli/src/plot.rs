@@ -49,6 +49,15 @@ impl Series {
     }
 }
 
+/// A shaded interval of the x axis (e.g. an unstable speed range), drawn behind the series.
+#[derive(Debug, Clone)]
+pub struct Band {
+    /// Legend label.
+    pub name: String,
+    /// From `x.0` to `x.1` (clipped to the plotted range).
+    pub x: (f64, f64),
+}
+
 /// A 2D plot with axis labels and a legend.
 #[derive(Debug, Clone)]
 pub struct LinePlot {
@@ -60,6 +69,8 @@ pub struct LinePlot {
     pub y_label: String,
     /// The series.
     pub series: Vec<Series>,
+    /// Shaded x intervals.
+    pub bands: Vec<Band>,
 }
 
 /// Font family name of the embedded font (after [`register_font`]).
@@ -88,7 +99,17 @@ impl LinePlot {
             x_label: x_label.into(),
             y_label: y_label.into(),
             series: Vec::new(),
+            bands: Vec::new(),
         }
+    }
+
+    /// Shade the x interval `[x0, x1]` behind the series, labelled `name` (builder style).
+    pub fn with_band(mut self, name: impl Into<String>, x0: f64, x1: f64) -> Self {
+        self.bands.push(Band {
+            name: name.into(),
+            x: (x0.min(x1), x0.max(x1)),
+        });
+        self
     }
 
     /// Add a series (builder style).
@@ -168,6 +189,22 @@ impl LinePlot {
             .axis_desc_style((FONT, 17))
             .draw()
             .map_err(e)?;
+        let shade = RGBColor(230, 80, 60).mix(0.18);
+        for b in &self.bands {
+            let (a, z) = (b.x.0.max(x0), b.x.1.min(x1));
+            if a < z {
+                chart
+                    .draw_series(std::iter::once(Rectangle::new(
+                        [(a, y0), (z, y1)],
+                        shade.filled(),
+                    )))
+                    .map_err(e)?
+                    .label(b.name.clone())
+                    .legend(move |(x, y)| {
+                        Rectangle::new([(x, y - 6), (x + 20, y + 6)], shade.filled())
+                    });
+            }
+        }
         for (i, s) in self.series.iter().enumerate() {
             let color = Palette99::pick(i).to_rgba();
             let pts = s
@@ -190,7 +227,7 @@ impl LinePlot {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
             });
         }
-        if self.series.iter().any(|s| !s.name.is_empty()) {
+        if self.series.iter().any(|s| !s.name.is_empty()) || !self.bands.is_empty() {
             chart
                 .configure_series_labels()
                 .label_font((FONT, 15))
@@ -233,6 +270,25 @@ mod tests {
         assert!(
             svg.contains("<svg") && svg.contains("sin"),
             "legend text present in SVG"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    // a shaded band is drawn and labelled (its legend text is in the SVG)
+    #[test]
+    fn bands_are_shaded_and_labelled() {
+        let dir = std::env::temp_dir().join(format!("flowmbd-cli-band-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let plot = LinePlot::new("f", "v [m/s]", "f [Hz]")
+            .with(Series::line("f1", vec![(0.0, 20.0), (50.0, 0.0)]))
+            .with_band("unstable (v > c)", 40.0, 60.0);
+        let files = plot.save(&dir.join("b")).unwrap();
+        let svg = std::fs::read_to_string(&files[1]).unwrap();
+        assert!(svg.contains("unstable (v &gt; c)") || svg.contains("unstable (v > c)"));
+        // the band's fill colour (230, 80, 60): the band and its legend swatch
+        assert!(
+            svg.to_uppercase().matches("E6503C").count() >= 2,
+            "a shaded rectangle and its legend entry"
         );
         std::fs::remove_dir_all(&dir).unwrap();
     }

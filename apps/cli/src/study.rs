@@ -74,8 +74,21 @@ pub trait Study {
     /// Study name, e.g. `"speed-loss"`.
     const NAME: &'static str;
 
+    /// One paragraph on what the summary's numbers mean (what is computed, the reference it
+    /// is compared with, how to read the result); written as `"meaning"` into
+    /// `summary.json` and `--json` unless the summary has a `meaning` of its own (the studies
+    /// whose summary is defined in a library crate, shared with Python).
+    fn meaning(&self) -> &'static str;
+
     /// Apply command-line overrides (such as `--speed`) to the loaded configuration.
     fn apply_overrides(&self, _config: &mut Self::Config) {}
+
+    /// TOML comments appended to the printed configuration (`--print-config`, `config.toml`):
+    /// e.g. a commented example of an optional table that `config` leaves out (TOML has no
+    /// null, so an absent optional table would not show otherwise).
+    fn config_notes(&self, _config: &Self::Config) -> String {
+        String::new()
+    }
 
     /// Run the study. Write histories into `ctx.out` as they are computed.
     fn run(
@@ -110,7 +123,7 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
         origin: format!("{origin} with command-line options"),
         error,
     })?;
-    let config_text = to_toml(&config);
+    let config_text = to_toml(&config) + &study.config_notes(&config);
     if args.print_config {
         crate::stdout::print_stdout(&config_text).map_err(|e| CliError::Write {
             path: "<stdout>".into(),
@@ -129,6 +142,10 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
     };
     match study.run(&config, &mut ctx) {
         Ok(summary) => {
+            let summary = with_meaning(&summary, study.meaning()).map_err(|e| CliError::Write {
+                path: out.path("summary.json"),
+                message: e.to_string(),
+            })?;
             let path = out.write_json("summary.json", &summary)?;
             if args.json {
                 let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Write {
@@ -155,6 +172,21 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
         }
         Err(e) => Err(e),
     }
+}
+
+/// `summary` as JSON with `"meaning": meaning` added (a summary object without one).
+fn with_meaning<T: Serialize>(
+    summary: &T,
+    meaning: &str,
+) -> Result<serde_json::Value, serde_json::Error> {
+    let mut v = serde_json::to_value(summary)?;
+    if let serde_json::Value::Object(m) = &mut v
+        && !meaning.is_empty()
+        && !m.contains_key("meaning")
+    {
+        m.insert("meaning".into(), meaning.into());
+    }
+    Ok(v)
 }
 
 #[cfg(test)]
@@ -191,6 +223,9 @@ mod tests {
         type Summary = serde_json::Value;
         const APP: &'static str = "test";
         const NAME: &'static str = "sum";
+        fn meaning(&self) -> &'static str {
+            "total: the sum 0 + 1 + ... + (steps - 1)"
+        }
         fn apply_overrides(&self, c: &mut Cfg) {
             if let Some(s) = self.steps {
                 c.steps = s;
@@ -236,6 +271,10 @@ mod tests {
             serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
                 .unwrap();
         assert_eq!(summary["total"], 10);
+        assert_eq!(
+            summary["meaning"].as_str(),
+            Some("total: the sum 0 + 1 + ... + (steps - 1)")
+        );
 
         let bad = try_run(
             &Sum {

@@ -1,9 +1,16 @@
 //! Property tests of the TOML configuration reader (issue #20): arbitrary text and mutated
-//! real configurations (the belt drive and the tire rig, whose `Default` is the seed's case)
-//! give a configuration or a one-line error with a line inside the file, never a panic; what
-//! parses is validated without panicking either. A few thousand cases per run.
+//! real configurations (the belt drive, the tire rig, the generated tire and the library
+//! study configurations shared with Python: ANCF drive, speed loss, string modes; each
+//! `Default` is the seed's case) give a configuration or a one-line error with a line inside
+//! the file, never a panic; what parses is validated without panicking either. These are the
+//! bodies of the cargo-fuzz target `fuzz/fuzz_targets/toml_config.rs` run as ordinary tests,
+//! a few thousand cases per run.
 
+use drives::ancf_study::AncfStudyConfig;
+use drives::speed_loss_study::SpeedLossStudyConfig;
+use fe_model::generate::TireConfig;
 use flowing::belt::BeltDriveConfig;
+use flowing::string_study::ModesConfig;
 use flowing::tire::RigConfig;
 use flowmbd_cli::config::{parse_config, to_toml};
 use flowmbd_cli::{CliError, Validate};
@@ -77,5 +84,50 @@ proptest! {
     fn mutated_defaults_never_panic(pick in any::<prop::sample::Index>(), value in odd_value()) {
         check::<RigConfig>(&mutate(&to_toml(&RigConfig::default()), pick, &value))?;
         check::<BeltDriveConfig>(&mutate(&to_toml(&BeltDriveConfig::default()), pick, &value))?;
+        check::<TireConfig>(&mutate(&to_toml(&TireConfig::default()), pick, &value))?;
+        check::<AncfStudyConfig>(&mutate(&to_toml(&AncfStudyConfig::default()), pick, &value))?;
+        check::<SpeedLossStudyConfig>(
+            &mutate(&to_toml(&SpeedLossStudyConfig::default()), pick, &value),
+        )?;
+        check::<ModesConfig>(&mutate(&to_toml(&ModesConfig::default()), pick, &value))?;
     }
+}
+
+// Issue 20: every table of the library configurations rejects an unknown key (their defaults
+// and, for the ANCF drive, the non-default torque and speed profiles); definition: each table
+// is `deny_unknown_fields`, which serde does not apply to unit variants of internally tagged
+// enums nor to structs in newtype variants unless asked
+#[test]
+fn library_configurations_reject_unknown_keys_everywhere() {
+    use flowmbd_cli::config::tables_accepting_unknown_keys;
+    assert_eq!(
+        tables_accepting_unknown_keys(&RigConfig::default()),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        tables_accepting_unknown_keys(&BeltDriveConfig::default()),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        tables_accepting_unknown_keys(&TireConfig::default()),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        tables_accepting_unknown_keys(&AncfStudyConfig::default()),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        tables_accepting_unknown_keys(&SpeedLossStudyConfig::default()),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        tables_accepting_unknown_keys(&ModesConfig::default()),
+        Vec::<String>::new()
+    );
+    // the other variants of the tire's normal law and friction law
+    let mut rig = RigConfig::default();
+    rig.rolling.normal = flowing::tire::NormalContact::Penalty { stiffness: 1e7 };
+    rig.rolling.friction_law =
+        flowing::tire::TireFriction::Law(contact::FrictionSpec::Frictionless);
+    assert_eq!(tables_accepting_unknown_keys(&rig), Vec::<String>::new());
 }

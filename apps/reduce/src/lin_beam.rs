@@ -85,6 +85,13 @@ impl Study for LinBeamStudy {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "lin-beam";
 
+    fn meaning(&self) -> &'static str {
+        "Lin ch. 6-8 on the Appendix A beam: the frequencies of the full model and of the \
+         reduced models (Guyan, modal truncation, Craig-Bampton, mode condensation) compared \
+         with Lin's tables, the deflection profiles of the profile tests [m] and the \
+         mean-axis frame: how well each reduction reproduces the full model."
+    }
+
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<LinBeamSummary, StudyError> {
         let b = beam::beam_from(&c.beam).map_err(StudyError::numerical)?;
         let summary = beam::summary_with(&b, &c.profile_delta_m).map_err(StudyError::numerical)?;
@@ -92,14 +99,14 @@ impl Study for LinBeamStudy {
             beam::profile_study_with(&b, &c.profile_delta_m).map_err(StudyError::numerical)?;
         // profiles: one row per DOF
         let header = [
-            "dof",
-            "reference",
-            "p1_mt",
-            "p1_cb",
-            "p1_mc",
-            "p2_mt",
-            "p2_cb",
-            "p2_mc",
+            "dof_index",
+            "reference_m",
+            "p1_mt_m",
+            "p1_cb_m",
+            "p1_mc_m",
+            "p2_mt_m",
+            "p2_cb_m",
+            "p2_mc_m",
         ];
         let rows: Vec<Vec<f64>> = (0..10)
             .map(|i| {
@@ -113,7 +120,7 @@ impl Study for LinBeamStudy {
             .write_csv("profiles.csv", &header, rows.iter().map(|r| r.as_slice()))?;
         let mut fr = ctx
             .out
-            .csv("frequencies.csv", &["set", "index", "frequency_hz"])?;
+            .csv("frequencies.csv", &["set_index", "index", "frequency_hz"])?;
         for (set, v) in [
             (0.0, &summary.free_free_hz),
             (1.0, &summary.guyan_a_hz),

@@ -40,7 +40,7 @@ enum Study {
 }
 
 fn main() -> ExitCode {
-    match Cli::parse().study {
+    match flowmbd_cli::parse_args::<Cli>().study {
         Study::Modes(args) => modes::run(&args),
         Study::TireMesh(args) => tire_mesh::run(&args),
         Study::LinBeam(args) => lin_beam::run(args),

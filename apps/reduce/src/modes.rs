@@ -144,6 +144,13 @@ impl Study for ModesStudy<'_> {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "modes";
 
+    fn meaning(&self) -> &'static str {
+        "Natural frequencies [Hz] of the Matrix Market model K phi = lambda M phi (lambda = \
+         omega^2 in rad^2/s^2), lowest first, with the fixed DOFs removed; the eigen solver \
+         checks its result (Sturm count, M-orthogonality): a missed or ghost mode is \
+         reported, not printed."
+    }
+
     fn apply_overrides(&self, c: &mut Config) {
         let a = self.args;
         let s = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());

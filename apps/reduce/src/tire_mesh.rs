@@ -43,14 +43,7 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        self.tire.validate().map_err(|e| match e {
-            FeError::InvalidParameter {
-                name,
-                value,
-                reason,
-            } => InputError::new(format!("tire.{name}"), format!("{value}: {reason}")),
-            other => InputError::new("tire", other.to_string()),
-        })
+        self.tire.validate_within("tire")
     }
 }
 
@@ -84,6 +77,12 @@ impl Study for TireMesh {
     type Summary = Summary;
     const APP: &'static str = "reduce";
     const NAME: &'static str = "tire-mesh";
+
+    fn meaning(&self) -> &'static str {
+        "The generated truck-tire carcass: the nodes, hexahedra and DOFs of the mesh written \
+         as mesh.json, M and K (Matrix Market) and the node sets (rim, contact patch), for \
+         flowmbd-reduce and other FE tools."
+    }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let bar = ctx.progress(4.0, "tire-mesh");

@@ -51,10 +51,17 @@ fn tire_mesh_then_modes() {
         .output()
         .unwrap();
     let s = common::json_of(&out);
+    // exactly dof and frequencies_hz, and (issue 20) what the numbers mean
     assert_eq!(
         s.as_object().unwrap().len(),
-        2,
-        "exactly dof and frequencies_hz"
+        3,
+        "exactly dof, frequencies_hz and meaning: {s}"
+    );
+    assert!(
+        s["meaning"]
+            .as_str()
+            .unwrap()
+            .contains("Natural frequencies")
     );
     assert_eq!(s["dof"], 3 * 16 * 11 * 2);
     let f: Vec<f64> = s["frequencies_hz"]

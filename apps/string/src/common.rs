@@ -18,7 +18,10 @@ pub fn study_error(e: FlowError) -> StudyError {
 }
 
 /// The shared checks, defined with the modes study in `flowing` (one set of messages).
-pub use flowing::string_study::{check_nodes_modes, check_number, check_string};
+pub use flowing::string_study::{
+    MAX_GALERKIN_TERMS, MAX_STRING_NODES, check_nodes_modes, check_number, check_steps,
+    check_string,
+};
 
 /// The string mesh of `nodes` interior nodes and its flowing-material model with `modes` modes
 /// ([`flowing::string_study::flowing_model`]).

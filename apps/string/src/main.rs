@@ -72,7 +72,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = flowmbd_cli::parse_args::<Cli>();
     match cli.study {
         Command::Modes {
             speed,

@@ -92,6 +92,8 @@ impl Validate for SimulateConfig {
         if !(self.peak_threshold > 0.0 && self.peak_threshold < 1.0) {
             return Err(InputError::new("peak_threshold", "must lie in (0, 1)"));
         }
+        // RK4 steps of the run (each a few matrix-vector products of the modal size)
+        check_steps("duration", self.duration, self.step, 1e8, "RK4 steps")?;
         if (self.duration / (self.step * self.sample_every as f64)) < 8.0 {
             return Err(InputError::new("duration", "gives fewer than 8 samples"));
         }
@@ -136,6 +138,19 @@ impl Study for SimulateStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "simulate";
 
+    fn meaning(&self) -> &'static str {
+        "The travelling string (Ribaric Fig. 4-6 right) plucked into a triangle and let go: \
+         the flowing-material model (4.20) integrated in time (RK4). history.csv holds the \
+         modal coordinates z_i [sqrt(kg) m, mass-normalised modes], spectra.csv their \
+         amplitude spectra. model_hz are the model's natural frequencies (eigenvalues) and \
+         exact_hz the travelling string's n(c^2 - v^2)/(2cL) [Hz]; peaks lists the spectral \
+         peaks of every coordinate: because the axial motion couples the modes (Coriolis \
+         term), each coordinate vibrates at several of these frequencies, not one. \
+         resolution_hz is the spectra's bin width; hamiltonian_drift is the relative drift of \
+         the conserved energy-like invariant H over the run, a check of the time integration \
+         (near 0)."
+    }
+
     fn apply_overrides(&self, c: &mut SimulateConfig) {
         if let Some(v) = self.speed {
             c.speed = v;
@@ -171,8 +186,9 @@ impl Study for SimulateStudy {
         )
         .map_err(study_error)?;
         bar.finish();
-        let mut header = vec!["t".to_string()];
-        header.extend((1..=k).map(|i| format!("z{i}")));
+        // mass-normalised modes: the modal coordinates carry √kg·m
+        let mut header = vec!["t_s".to_string()];
+        header.extend((1..=k).map(|i| format!("z{i}_sqrtkg_m")));
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         ctx.out.write_csv(
             "modal_history.csv",
@@ -197,7 +213,7 @@ impl Study for SimulateStudy {
         }
         let nf = spectra[0].frequencies.len();
         let mut header = vec!["f_hz".to_string()];
-        header.extend((1..=k).map(|i| format!("amp_z{i}")));
+        header.extend((1..=k).map(|i| format!("amp_z{i}_sqrtkg_m")));
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         ctx.out.write_csv(
             "spectra.csv",

@@ -57,9 +57,14 @@ impl Validate for SweepConfig {
                 ),
             ));
         }
-        if self.steps < 2 {
-            return Err(InputError::new("steps", "needs at least 2 speeds"));
-        }
+        // one Galerkin and one flowing eigen problem per speed
+        mbd_core::validate::check::count("steps", self.steps, 2, 100_000)?;
+        mbd_core::validate::check::count(
+            "galerkin_terms",
+            self.galerkin_terms,
+            1,
+            MAX_GALERKIN_TERMS,
+        )?;
         if self.tracked == 0 || self.tracked > self.modes {
             return Err(InputError::new(
                 "tracked",
@@ -101,6 +106,19 @@ impl Study for SweepStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "sweep";
 
+    fn meaning(&self) -> &'static str {
+        "Natural frequencies of the travelling string (Ribaric ch. 4) against the axial speed \
+         from 0 to max_speed_ratio times the critical speed c = sqrt(T/(rho A)) = \
+         critical_speed [m/s] (sweep.csv, sweep.png): the Galerkin model (4.29), the \
+         flowing-material model (4.20) and the exact f_n = n(c^2 - v^2)/(2cL). Every \
+         frequency falls with the speed and the lowest reaches 0 Hz at v = c. \
+         analytical_unstable_from / flowing_unstable_from are the lowest swept speeds at \
+         which a model has a growing solution (an eigenvalue with positive real part, max_re \
+         in sweep.csv [1/s]): the string is unstable from c on (shaded on the plot). \
+         max_rel_error_below_0_9c is the flowing model's largest deviation from the exact \
+         frequencies below 0.9 c; near c its modal basis converges slowly."
+    }
+
     fn apply_overrides(&self, c: &mut SweepConfig) {
         if let Some(n) = self.nodes {
             c.nodes = n;
@@ -113,14 +131,14 @@ impl Study for SweepStudy {
     fn run(&self, c: &SweepConfig, ctx: &mut StudyContext) -> Result<SweepSummary, StudyError> {
         let crit = c.string.wave_speed();
         let (_, sys) = flowing_model(c.string, c.nodes, c.modes, c.derivative, 0.0)?;
-        let mut header = vec!["speed".to_string()];
+        let mut header = vec!["speed_m_s".to_string()];
         for kind in ["analytical", "flowing", "exact"] {
             for n in 1..=c.tracked {
                 header.push(format!("{kind}_f{n}_hz"));
             }
         }
-        header.push("analytical_max_re".into());
-        header.push("flowing_max_re".into());
+        header.push("analytical_max_re_1_s".into());
+        header.push("flowing_max_re_1_s".into());
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         let mut csv = ctx.out.csv("sweep.csv", &hdr)?;
         let bar = ctx.progress(c.steps as f64, "speed sweep");
@@ -181,6 +199,15 @@ impl Study for SweepStudy {
                 format!("flowing f{}", n + 1),
                 series[c.tracked + n].clone(),
             ));
+        }
+        // the speeds at which either model has a growing solution (Ribaric §4.2.3: v > c)
+        let from = match (a_unst, f_unst) {
+            (Some(a), Some(f)) => Some(a.min(f)),
+            (a, f) => a.or(f),
+        };
+        if let Some(v0) = from {
+            let v_max = c.max_speed_ratio * crit;
+            plot = plot.with_band(format!("unstable (from {v0:.2} m/s)"), v0, v_max);
         }
         plot.save(&ctx.out.path("sweep"))?;
         Ok(SweepSummary {

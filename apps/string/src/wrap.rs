@@ -97,9 +97,7 @@ impl Default for WrapConfig {
 impl Validate for WrapConfig {
     fn validate(&self) -> Result<(), InputError> {
         check_string(&self.string, "string")?;
-        if self.nodes < 5 {
-            return Err(InputError::new("nodes", "needs at least 5 interior nodes"));
-        }
+        mbd_core::validate::check::count("nodes", self.nodes, 5, MAX_STRING_NODES)?;
         if self.pulleys.is_empty() {
             return Err(InputError::new("pulleys", "at least one pulley is needed"));
         }
@@ -145,6 +143,8 @@ impl Validate for WrapConfig {
                 "must be positive and at most the duration",
             ));
         }
+        check_steps("duration", self.duration, self.sample, 1e7, "samples")?;
+        mbd_core::validate::check::count("vtk_snapshots", self.vtk_snapshots, 0, 100_000)?;
         if self.formulation == Formulation::CraigBampton && self.free_modes == 0 {
             return Err(InputError::new("free_modes", "must be at least 1"));
         }
@@ -303,6 +303,18 @@ impl Study for WrapStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "wrap";
 
+    fn meaning(&self) -> &'static str {
+        "A string partly wrapped on two pulleys under a harmonic load (Ribaric (4.10), \
+         (4.11), (4.40)): contact nodes lift off and land again as the load shakes the free \
+         span. coordinates is the model size; candidates_, initial_active_ and \
+         initial_force_per_pulley [N] describe the static wrap; min_active_per_pulley is the \
+         fewest nodes in contact during the run; releases and contacts count lift-off and \
+         landing events; impact_loss [J] is the kinetic energy removed by the plastic \
+         landings; max_free_span [m] the longest free span reached (the wrap shrinks when \
+         nodes lift off); max_active_gap [m] the largest gap of a node held in contact \
+         (constraint drift, near 0 for a sound integration)."
+    }
+
     fn apply_overrides(&self, c: &mut WrapConfig) {
         if let Some(v) = self.speed {
             c.speed = v;
@@ -342,13 +354,13 @@ impl Study for WrapStudy {
         let force_pp = per_pulley(&sys, np, |c| p0[c]);
         let load_node = sys.load.map(|l| l.0).unwrap_or(0);
         let mut header = vec![
-            "t".to_string(),
-            "midload_deflection".into(),
-            "free_span".into(),
-            "energy".into(),
+            "t_s".to_string(),
+            "midload_deflection_m".into(),
+            "free_span_m".into(),
+            "energy_j".into(),
         ];
-        header.extend((0..np).map(|p| format!("active_pulley{p}")));
-        header.extend((0..np).map(|p| format!("force_pulley{p}")));
+        header.extend((0..np).map(|p| format!("pulley{p}_active_count")));
+        header.extend((0..np).map(|p| format!("pulley{p}_force_n")));
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         let mut csv = ctx.out.csv("history.csv", &hdr)?;
         let bar = ctx.progress(c.duration, "contact simulation");
@@ -413,7 +425,13 @@ impl Study for WrapStudy {
         })?;
         ctx.out.write_csv(
             "events.csv",
-            &["t", "candidate", "node", "activated", "impact_loss"],
+            &[
+                "t_s",
+                "candidate_index",
+                "node_index",
+                "activated_flag",
+                "impact_loss_j",
+            ],
             run.events.iter().map(|e| {
                 [
                     e.t,

@@ -31,10 +31,26 @@ fn modes_json_matches_exact_moving_string() {
     let obj = v.as_object().unwrap();
     let mut keys: Vec<&str> = obj.keys().map(String::as_str).collect();
     keys.sort();
+    // the issue's keys, plus those of issue 20 (stability, the exact reference, warnings and
+    // what the numbers mean)
     assert_eq!(
         keys,
-        ["analytical_hz", "critical_speed", "flowing_hz", "speed"]
+        [
+            "analytical_growth",
+            "analytical_hz",
+            "critical_speed",
+            "exact_hz",
+            "flowing_growth",
+            "flowing_hz",
+            "flowing_max_rel_error",
+            "meaning",
+            "speed",
+            "unstable",
+            "warnings"
+        ]
     );
+    assert_eq!(v["unstable"].as_bool(), Some(false));
+    assert!(v["warnings"].as_array().unwrap().is_empty());
     assert_eq!(v["speed"].as_f64().unwrap(), 20.0);
     assert!((v["critical_speed"].as_f64().unwrap() - 40.2735).abs() < 1e-3);
     let exact = [15.171, 30.341, 45.512, 60.683, 75.854];

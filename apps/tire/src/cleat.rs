@@ -5,8 +5,8 @@ use crate::common::{RigFlags, TireSource, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowing::tire::{
-    LineMode, ReducedTire, RigConfig, RigResult, RollingTire, RotatingOptions, SpindleComponent,
-    TireError, held_nodes, line_modes, run_cleat_observed,
+    LineMode, PEAK_BAND_HZ, ReducedTire, RigConfig, RigResult, RollingTire, RotatingOptions,
+    SpindleComponent, TireError, held_nodes, line_modes, run_cleat_observed,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{
@@ -63,22 +63,12 @@ impl Validate for Config {
     }
 }
 
-/// Validate rig settings: the library's checks ([`RigConfig`]'s `Validate`), fields named by
-/// their configuration path (`rig.…`), and what the study's spectra need: a recording of at
-/// least two steps.
+/// Validate rig settings: the library's checks ([`RigConfig`]'s `Validate` and
+/// [`RigConfig::validate_spectrum`], what the study's spectra need), fields named by their
+/// configuration path (`rig.…`).
 pub fn validate_rig(rig: &RigConfig) -> Result<(), InputError> {
     rig.validate_within("rig")?;
-    let h = rig.rolling.time_step;
-    if 2.0 * h > rig.record_time {
-        return Err(InputError::new(
-            "rig.rolling.time_step",
-            format!(
-                "{h} s leaves fewer than 2 steps in rig.record_time = {} s",
-                rig.record_time
-            ),
-        ));
-    }
-    Ok(())
+    rig.validate_spectrum().map_err(|e| e.within("rig"))
 }
 
 /// Summary (the issue's JSON keys first).
@@ -159,6 +149,7 @@ pub fn line_mode(
 
 /// Summary of a rig result.
 pub fn summarize(r: &RigResult) -> Summary {
+    let band = PEAK_BAND_HZ;
     let (sx, sy) = r.spectra();
     let (rx, ry) = r.rms();
     // the steadily rolling tire: the last 50 ms before the first node touches the cleat (the
@@ -167,8 +158,8 @@ pub fn summarize(r: &RigResult) -> Summary {
     Summary {
         speed_kmh: r.speed_kmh,
         dof: r.dof,
-        fy_peak_hz: sy.peak(10.0, 500.0).map_or(0.0, |p| p.0),
-        fx_peak_hz: sx.peak(10.0, 500.0).map_or(0.0, |p| p.0),
+        fy_peak_hz: sy.peak(band[0], band[1]).map_or(0.0, |p| p.0),
+        fx_peak_hz: sx.peak(band[0], band[1]).map_or(0.0, |p| p.0),
         fy_rms: ry,
         fx_rms: rx,
         wall_time_s: r.wall_time_s,
@@ -196,7 +187,7 @@ const FORCE_COLUMNS: [&str; 7] = [
     "fy_n",
     "f_lateral_n",
     "spin_rad_s",
-    "active_nodes",
+    "active_nodes_count",
     "normal_sum_n",
 ];
 
@@ -344,6 +335,23 @@ impl Study for Cleat {
     type Summary = Summary;
     const APP: &'static str = "tire";
     const NAME: &'static str = "cleat";
+
+    fn meaning(&self) -> &'static str {
+        "The cleat test of Ribaric 8.3: the preloaded tire rolls at speed_kmh over a \
+         semicircular cleat on the drum (or road) and the spindle forces are recorded. \
+         fy_peak_hz and fx_peak_hz are the frequencies of the largest spectral peaks of the \
+         vertical and longitudinal force after the hit (sought in 10-500 Hz): the loaded \
+         tire's vertical and longitudinal modes rolling at that speed \
+         (loaded_vertical_mode_hz, fx_line_mode and fy_line_mode name the modes that carry \
+         them); fy_rms and fx_rms are the force fluctuations [N]; fy_mean_before_n equals the \
+         load when the rolling tire is in equilibrium and fx_mean_before_n is the rolling \
+         resistance [N]; preload_deflection_m is the static deflection. wall_ and \
+         cpu_per_simulated_s say how fast the model runs (1 = real time)."
+    }
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
 
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(v) = self.speed {

@@ -7,25 +7,29 @@ use flowing::tire::{
     GroundKind, ImportFiles, ReducedTire, ReductionConfig, RigConfig, TireError, TireFe,
     generated_tire, imported_tire, reduce,
 };
-use flowmbd_cli::{InputError, StudyError};
+use flowmbd_cli::{InputError, StudyError, Validate};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+
+/// The `reduced_file` value that keeps reduced tires in the OS cache folder.
+pub const CACHE: &str = "cache";
 
 /// Where the reduced tire comes from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct TireSource {
-    /// Reduced tire file: loaded when it exists, otherwise written after reducing the generated
-    /// tire (empty = always reduce, never save).
+    /// Reduced tire file: loaded when it exists, otherwise written after reducing the tire.
+    /// `"cache"` (default): a file in the OS cache folder (`$XDG_CACHE_HOME/flowmbd/tire`,
+    /// `~/.cache/flowmbd/tire` on Linux) named by what the tire is made from, so that every
+    /// tire and reduction has a file of its own and nothing is written under the working
+    /// folder; `""`: always reduce, never save; any other path: that file.
     pub reduced_file: String,
     /// Generated tire (fe-model generator; default: 295/80 R22.5 truck tire at 38 psi).
     pub generator: TireConfig,
     /// Imported tire (ABAQUS `*MATRIX GENERATE` or Matrix Market M and K, node coordinates,
-    /// rim and candidate patch node sets; see `flowing::tire::ImportFiles`); replaces the
-    /// generated one when given. Example:
-    /// `[tire.import]` `format = "abaqus"`, `stiffness = "job_STIF1.mtx"`,
-    /// `mass = "job_MASS1.mtx"`, `nodes = "nodes.inp"`, `rim_nodes = "rim.inp"`,
-    /// `patch_nodes = "patch.inp"`.
+    /// rim and candidate patch node sets; see `flowing::tire::ImportFiles` and the README);
+    /// replaces the generated one when given. `--print-config` shows it as a commented
+    /// example.
     pub import: Option<ImportFiles>,
     /// Reduction (Ribaric §8.2: 95 contact nodes, 50 free-node modes).
     pub reduction: ReductionConfig,
@@ -34,7 +38,7 @@ pub struct TireSource {
 impl Default for TireSource {
     fn default() -> Self {
         Self {
-            reduced_file: "out/tire/reduced-truck-95c-50m.json".into(),
+            reduced_file: CACHE.into(),
             generator: TireConfig::default(),
             import: None,
             reduction: ReductionConfig::default(),
@@ -42,15 +46,43 @@ impl Default for TireSource {
     }
 }
 
+/// The commented `[tire.import]` example that `--print-config` appends (TOML has no null, so
+/// an absent import would not show otherwise).
+pub const IMPORT_EXAMPLE: &str = "\n\
+# An imported tire replaces the generated one (uncomment and give the files; README, \"Imported tire\"):\n\
+# [tire.import]\n\
+# format = \"abaqus\"          # or \"matrix_market\" (3n x 3n, node-major x, y, z)\n\
+# stiffness = \"job_STIF1.mtx\" # K with the inflation prestress (ABAQUS *MATRIX GENERATE)\n\
+# mass = \"job_MASS1.mtx\"      # M\n\
+# nodes = \"nodes.inp\"         # `label, x, y, z` per line [m] (Matrix Market: `x, y, z`)\n\
+# rim_nodes = \"rim.inp\"       # node labels bonded to the rim (Matrix Market: 0-based indices)\n\
+# patch_nodes = \"patch.inp\"   # candidate contact-patch node labels\n";
+
+/// [`IMPORT_EXAMPLE`] when `tire` has no import (the studies' `config_notes`).
+pub fn import_notes(tire: &TireSource) -> String {
+    if tire.import.is_none() {
+        IMPORT_EXAMPLE.to_string()
+    } else {
+        String::new()
+    }
+}
+
 /// Map a library error: invalid input → exit 2 naming the item, otherwise numerical (exit 1).
 pub fn tire_err(e: TireError) -> StudyError {
     match e {
         TireError::Invalid { item, reason } => StudyError::Input(InputError::new(item, reason)),
+        TireError::Import { field, reason } => {
+            StudyError::Input(InputError::new(format!("tire.import.{field}"), reason))
+        }
         TireError::File { path, reason } => StudyError::Input(InputError::new(
             format!("tire.reduced_file `{path}`"),
             reason,
         )),
-        // imported matrix files: syntax, size and symmetry errors name file and line (exit 2)
+        // configuration and matrix-file errors of the FE layer are bad input (exit 2)
+        TireError::Fe(FeError::Invalid(f)) => StudyError::Input(f.within("tire.generator")),
+        TireError::Fe(e @ FeError::InvalidParameter { .. }) => {
+            StudyError::Input(InputError::new("tire.generator", e.to_string()))
+        }
         TireError::Fe(
             e @ (FeError::Matrix { .. } | FeError::Io { .. } | FeError::Parse { .. }),
         ) => StudyError::Input(InputError::new("tire.import", e.to_string())),
@@ -69,30 +101,41 @@ pub fn rig_err(e: TireError) -> StudyError {
     }
 }
 
-/// Map a library validation error to an input error.
-pub fn input(e: TireError) -> InputError {
-    match e {
-        TireError::Invalid { item, reason } => InputError::new(item, reason),
-        other => InputError::new("config", other.to_string()),
-    }
-}
-
 impl TireSource {
-    /// The reduced-tire file actually used: with an imported tire and the default (generated
-    /// tire's) file name, a name of its own, so that the generated tire's file is never reused
-    /// for an imported model.
+    /// The reduced-tire file actually used: for [`CACHE`], the file of this tire and reduction
+    /// in the OS cache folder (`<cache>/flowmbd/tire/reduced-<nc>c-<nf>m-<hash>.json`, the hash
+    /// of [`TireSource::fingerprint`]; without a cache folder, the system's temporary folder);
+    /// otherwise `reduced_file` itself (empty: none).
     pub fn reduced_path(&self) -> String {
-        if self.import.is_some() && self.reduced_file == TireSource::default().reduced_file {
-            format!(
-                "out/tire/reduced-imported-{}c-{}m.json",
-                self.reduction.contact_nodes, self.reduction.free_modes
-            )
-        } else {
-            self.reduced_file.clone()
+        if self.reduced_file != CACHE {
+            return self.reduced_file.clone();
         }
+        let dir = dirs::cache_dir()
+            .unwrap_or_else(std::env::temp_dir)
+            .join("flowmbd")
+            .join("tire");
+        // the name only spreads tires over files; the stored fingerprint is what is compared
+        // (a Rust release that changes `DefaultHasher` leaves old files unused, never misread)
+        let mut h = std::hash::DefaultHasher::new();
+        std::hash::Hash::hash(&self.fingerprint(), &mut h);
+        let kind = if self.import.is_some() {
+            "imported"
+        } else {
+            "truck"
+        };
+        dir.join(format!(
+            "reduced-{kind}-{}c-{}m-{:016x}.json",
+            self.reduction.contact_nodes,
+            self.reduction.free_modes,
+            std::hash::Hasher::finish(&h)
+        ))
+        .display()
+        .to_string()
     }
 
-    /// Basic checks.
+    /// The tire's own checks (paths from the configuration root): the import files exist and
+    /// are files, or the generator's fields ([`TireConfig`]'s `Validate`); the reduction's
+    /// fields.
     pub fn validate(&self) -> Result<(), InputError> {
         if let Some(files) = &self.import {
             for (field, path) in [
@@ -107,20 +150,10 @@ impl TireSource {
                     std::path::Path::new(path),
                 )?;
             }
+        } else {
+            self.generator.validate_within("tire.generator")?;
         }
-        if self.reduction.contact_nodes == 0 {
-            return Err(InputError::new(
-                "tire.reduction.contact_nodes",
-                "must be positive",
-            ));
-        }
-        if self.reduction.free_modes == 0 {
-            return Err(InputError::new(
-                "tire.reduction.free_modes",
-                "must be positive",
-            ));
-        }
-        Ok(())
+        self.reduction.validate_within("tire.reduction")
     }
 
     /// What the reduced tire is made from: the generated tire's configuration (or the imported
@@ -142,7 +175,7 @@ impl TireSource {
         }
     }
 
-    /// Load the saved reduced tire, or reduce the generated one (and save it).
+    /// Load the saved reduced tire, or reduce the tire (and save it).
     pub fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError> {
         let file = self.reduced_path();
         let path = Path::new(&file);
@@ -183,7 +216,11 @@ impl TireSource {
             } else {
                 "generated"
             };
-            eprintln!("reducing the {what} tire (saved to `{file}`)");
+            if file.is_empty() {
+                eprintln!("reducing the {what} tire (not saved: tire.reduced_file is empty)");
+            } else {
+                eprintln!("reducing the {what} tire (saved to `{file}`)");
+            }
         }
         let fe = self.fe_model()?;
         let (mut red, _) = reduce(&fe, &self.reduction).map_err(tire_err)?;
@@ -226,8 +263,8 @@ pub struct RigFlags {
     #[arg(long)]
     pub substeps: Option<usize>,
     /// Contact nodes of the reduction (overrides `tire.reduction.contact_nodes`; §8.4.2: 95 or
-    /// 252). With the default reduced-tire file name, the file name follows the count; the
-    /// generated tire's candidate patch is widened when needed.
+    /// 252). The cached reduced tire follows the count; the generated tire's candidate patch
+    /// is widened when needed.
     #[arg(long)]
     pub contact_nodes: Option<usize>,
 }
@@ -259,13 +296,7 @@ impl RigFlags {
             rig.impact.substeps = n;
         }
         if let Some(n) = self.contact_nodes {
-            let default_file = TireSource::default().reduced_file;
-            if tire.reduced_file == default_file {
-                tire.reduced_file = format!(
-                    "out/tire/reduced-truck-{n}c-{}m.json",
-                    tire.reduction.free_modes
-                );
-            }
+            // (the cached file's name follows the reduction, see `TireSource::reduced_path`)
             tire.reduction.contact_nodes = n;
             // the generator's candidate set grows about linearly with the patch angle (99 nodes
             // at the default ±8°): widen it so that n nodes exist (252 nodes: ±25.5°)

@@ -47,7 +47,7 @@ enum Study {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = flowmbd_cli::parse_args::<Cli>();
     match cli.study {
         Some(Study::Modes(a)) => modes::run(&a),
         Some(Study::Reduce(a)) => reduce::run(&a),

@@ -54,8 +54,7 @@ impl Validate for Config {
         if !(self.load > 0.0 && self.load.is_finite()) {
             return Err(InputError::new("load", "must be positive"));
         }
-        // the ground's errors already name `ground.…`
-        self.ground.validate().map_err(crate::common::input)?;
+        self.ground.validate_within("ground")?;
         self.tire.validate()
     }
 }
@@ -88,6 +87,22 @@ impl Study for Modes {
     type Summary = Summary;
     const APP: &'static str = "tire";
     const NAME: &'static str = "modes";
+
+    fn meaning(&self) -> &'static str {
+        "Natural frequencies of the tire with the rim fixed: full_hz of the full FE model and \
+         reduced_hz of the reduced model (Ribaric 8.2: contact-node modes, free-node modes \
+         and static modes); max_rel_error_below_240hz is the reduced model's largest relative \
+         error in the band Ribaric keeps (the reduction is Rayleigh-Ritz, so reduced >= \
+         full). loaded_hz are the frequencies of the tire pressed onto the ground by the \
+         preload (its loaded_held_nodes contact nodes held); loaded_vertical_mode_hz and \
+         loaded_longitudinal_mode_hz are the loaded modes with the largest effective vertical \
+         and longitudinal spindle mass [kg]: the modes that carry the cleat test's F_y and \
+         F_x lines."
+    }
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let fe = c.tire.fe_model()?;
@@ -129,9 +144,9 @@ impl Study for Modes {
             &[
                 "mode",
                 "f_hz",
-                "spindle_fx",
-                "spindle_fy",
-                "spindle_lateral",
+                "spindle_fx_n_sqrtkg",
+                "spindle_fy_n_sqrtkg",
+                "spindle_lateral_n_sqrtkg",
                 "vertical_mass_kg",
                 "longitudinal_mass_kg",
             ],

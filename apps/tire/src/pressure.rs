@@ -80,6 +80,18 @@ impl Study for Pressure {
     const APP: &'static str = "tire";
     const NAME: &'static str = "pressure";
 
+    fn meaning(&self) -> &'static str {
+        "The preloaded contact patch on the drum and on the flat road (Ribaric Fig. 8-12): \
+         per ground the deflection [m] of the tire under the load, the contact nodes in \
+         contact, the largest node force [N] and the patch length [m] along the rolling \
+         direction. The node forces in patch_*.csv add up to the load; the convex drum needs \
+         a larger deflection and gives a shorter patch with higher peak forces than the road."
+    }
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
+
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let red = c.tire.reduced(ctx.quiet)?;
         let mut out = Vec::new();

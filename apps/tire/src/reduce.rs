@@ -62,6 +62,19 @@ impl Study for Reduce {
     const APP: &'static str = "tire";
     const NAME: &'static str = "reduce";
 
+    fn meaning(&self) -> &'static str {
+        "The reduction of Ribaric 8.2: the FE tire (fe_dof DOFs) reduced to dof coordinates \
+         (6 wheel DOFs, 3 per contact node, free_modes free-node modes) and saved to file. \
+         free_mode_max_hz and contact_mode_max_hz are the highest kept free-node and \
+         contact-node modes [Hz] (the band the reduced tire resolves); tire_mass_kg is the \
+         tire's mass; the timings [s] are the stages of the reduction (modes, static modes, \
+         derivatives, projection)."
+    }
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
+
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let t = Instant::now();
         let fe = c.tire.fe_model()?;

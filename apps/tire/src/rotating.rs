@@ -4,7 +4,7 @@
 //! wave. Free tire (rim fixed) and loaded tire (rolling preload's patch held); Campbell
 //! diagrams, a CSV of every mode and the forward/backward splits.
 
-use crate::common::{TireSource, input, tire_err};
+use crate::common::{TireSource, tire_err};
 use flowing::tire::{
     DampingConfig, GroundConfig, RotatingMode, SpeedModes, WaveDirection, modes_at_speed,
 };
@@ -84,7 +84,8 @@ impl Validate for Config {
         if !(self.load > 0.0 && self.load.is_finite()) {
             return Err(InputError::new("load", "must be positive"));
         }
-        self.ground.validate().map_err(input)?;
+        self.ground.validate_within("ground")?;
+        self.damping.validate_within("damping")?;
         self.tire.validate()
     }
 }
@@ -313,6 +314,21 @@ impl Study for Rotating {
     const APP: &'static str = "tire";
     const NAME: &'static str = "rotating-modes";
 
+    fn meaning(&self) -> &'static str {
+        "Complex modes of the rolling tire seen from the ground at every speed (Campbell \
+         diagram): each mode's frequency [Hz], circumferential order n, direction (forward or \
+         backward travelling wave), damping ratio and growth rate [1/s]. At rest the modes of \
+         order n >= 1 come in pairs of equal frequency; rolling splits each pair into a \
+         forward and a backward wave (splits: the split grows linearly with speed, as for a \
+         spinning ring). zero_speed_max_rel_diff_vs_modes compares the speed-0 frequencies \
+         with the modes study (a second path to the same numbers); rayleigh holds the damping \
+         used (alpha [1/s], beta [s])."
+    }
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
+
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(s) = &self.speeds {
             c.speeds_kmh = s.clone();
@@ -348,14 +364,14 @@ impl Study for Rotating {
             "rotating_modes.csv",
             &[
                 "speed_kmh",
-                "loaded",
-                "hz",
+                "loaded_flag",
+                "f_hz",
                 "n",
-                "direction",
+                "direction_code",
                 "damping_ratio",
-                "growth_rate",
+                "growth_rate_1_s",
                 "natural_hz",
-                "travelling",
+                "travelling_share",
                 "lateral_share",
             ],
             runs.iter().flat_map(|r| {

@@ -5,7 +5,7 @@
 use crate::cleat::{Summary as CleatSummary, summarize, validate_rig};
 use crate::common::{RigFlags, TireSource, rig_err};
 use crate::maps::SpectrumMap;
-use flowing::tire::{RigConfig, run_cleat};
+use flowing::tire::{PEAK_BAND_HZ, RigConfig, run_cleat, spectrum_grid};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -79,6 +79,9 @@ pub struct Summary {
     pub fy_amplitude_dips_kmh: Vec<f64>,
 }
 
+/// Highest frequency of the speed × frequency maps and the waterfall table \[Hz\].
+const MAP_MAX_HZ: f64 = 300.0;
+
 struct Sweep {
     rig: RigFlags,
 }
@@ -88,6 +91,21 @@ impl Study for Sweep {
     type Summary = Summary;
     const APP: &'static str = "tire";
     const NAME: &'static str = "sweep";
+
+    fn meaning(&self) -> &'static str {
+        "The cleat test at every speed of speeds_kmh (Ribaric Figs. 8-7, 8-8, 8-14): per \
+         speed the summary of the cleat study (runs), the largest spectral amplitudes of F_y \
+         and F_x [N] and the frequency of the F_y peak [Hz]. fy_matrix.csv and fx_matrix.csv \
+         hold the spectra as a speed x frequency table (every run resampled onto the first \
+         run's frequency grid) behind the contour and waterfall plots. fy_amplitude_dips_kmh \
+         lists the speeds at which the vertical amplitude has a local minimum (Ribaric: 40-50 \
+         km/h on the drum), where the cleat excitation and the tire's vertical mode \
+         interfere."
+    }
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
 
     fn apply_overrides(&self, c: &mut Config) {
         self.rig.apply(&mut c.tire, &mut c.rig);
@@ -99,8 +117,8 @@ impl Study for Sweep {
         let mut runs = Vec::new();
         let (mut ay, mut ax) = (Vec::new(), Vec::new());
         let mut grid_rows = Vec::new();
-        let (mut fpk, mut freqs) = (Vec::new(), Vec::new());
-        let (mut mx, mut my) = (Vec::new(), Vec::new());
+        let mut fpk = Vec::new();
+        let mut spectra = Vec::new();
         for (k, &v) in c.speeds_kmh.iter().enumerate() {
             let mut rig = c.rig.clone();
             rig.speed_kmh = v;
@@ -118,36 +136,33 @@ impl Study for Sweep {
                 }
             };
             let (sx, sy) = r.spectra();
-            let py = sy.peak(10.0, 500.0).unwrap_or((0.0, 0.0));
+            let band = PEAK_BAND_HZ;
+            let py = sy.peak(band[0], band[1]).unwrap_or((0.0, 0.0));
             ay.push(py.1);
             fpk.push(py.0);
-            ax.push(sx.peak(10.0, 500.0).map_or(0.0, |p| p.1));
-            // the map on the frequency grid of the first run (all runs share the record length
-            // and step, hence the grid)
-            if k == 0 {
-                freqs = sy.freq_hz.iter().copied().filter(|f| *f <= 300.0).collect();
-            }
-            let row = |s: &flowing::tire::Spectrum| -> Vec<f64> {
-                freqs
-                    .iter()
-                    .map(|f| {
-                        s.freq_hz
-                            .iter()
-                            .position(|g| (g - f).abs() < 1e-9 * f.max(1.0))
-                            .map_or(0.0, |i| s.amplitude[i])
-                    })
-                    .collect()
-            };
-            mx.push(row(&sx));
-            my.push(row(&sy));
+            ax.push(sx.peak(band[0], band[1]).map_or(0.0, |p| p.1));
             for i in 0..sy.freq_hz.len() {
-                if sy.freq_hz[i] <= 300.0 {
+                if sy.freq_hz[i] <= MAP_MAX_HZ {
                     grid_rows.push(vec![v, sy.freq_hz[i], sx.amplitude[i], sy.amplitude[i]]);
                 }
             }
             crate::cleat::write_outputs(ctx, &r, &format!("v{v:03.0}_"), true, &[])?;
             runs.push(summarize(&r));
+            spectra.push((sx, sy));
         }
+        // the speed × frequency matrices (rows: speeds, columns: frequencies) on the first
+        // run's frequency grid, every run's spectrum resampled onto it (records differ by a
+        // sample between speeds, so their bins differ: `flowing::tire::Spectrum::resample`)
+        let mx = spectrum_grid(
+            &spectra.iter().map(|s| &s.0).collect::<Vec<_>>(),
+            MAP_MAX_HZ,
+        );
+        let my = spectrum_grid(
+            &spectra.iter().map(|s| &s.1).collect::<Vec<_>>(),
+            MAP_MAX_HZ,
+        );
+        let freqs = my.freq_hz.clone();
+        let (mx, my) = (mx.rows, my.rows);
         bar.finish();
         ctx.out.write_csv(
             "waterfall.csv",
@@ -156,7 +171,7 @@ impl Study for Sweep {
         )?;
         // the speed x frequency matrices (rows: speeds, columns: frequencies)
         let header: Vec<String> = std::iter::once("speed_kmh".to_string())
-            .chain(freqs.iter().map(|f| format!("{f:.3}")))
+            .chain(freqs.iter().map(|f| format!("f{f:.3}hz_amp_n")))
             .collect();
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
         for (name, m) in [("fy", &my), ("fx", &mx)] {

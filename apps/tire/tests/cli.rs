@@ -182,6 +182,7 @@ fn reduce_writes_the_file_and_modes_reuses_it() {
             .all(|(a, b)| (a - b).abs() < 1e-9 * b)
     );
     assert_plot(&dir.join("m"), "modes");
+    assert!(flowmbd_cli::output::columns_without_unit(&dir.join("m")).is_empty());
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -325,6 +326,10 @@ fn cleat_json_contract_and_outputs() {
     );
     let tire = std::fs::read_to_string(vtk.join("tire_00003.vtu")).unwrap();
     assert!(tire.contains("<VTKFile") && tire.contains("displacement_m"));
+    // issue 20, item 5: units in every CSV header, and what the numbers mean
+    let bad = flowmbd_cli::output::columns_without_unit(&out_dir);
+    assert!(bad.is_empty(), "columns without unit: {bad:?}");
+    assert!(s["meaning"].as_str().unwrap().contains("cleat"));
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -505,6 +510,7 @@ fn pressure_patch_forces_carry_the_load() {
     assert!(f(&s["drum"]["deflection_m"]) >= f(&s["road"]["deflection_m"]));
     assert!(f(&s["drum"]["length_m"]) <= f(&s["road"]["length_m"]) + 1e-12);
     assert_plot(&out, "patch_forces");
+    assert!(flowmbd_cli::output::columns_without_unit(&out).is_empty());
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -778,5 +784,6 @@ fn rotating_modes_json_contract_and_split() {
     }
     assert_plot(&out_dir, "campbell_free");
     assert_plot(&out_dir, "campbell_loaded");
-    assert!(!csv_column(&out_dir.join("rotating_modes.csv"), "hz").is_empty());
+    assert!(!csv_column(&out_dir.join("rotating_modes.csv"), "f_hz").is_empty());
+    assert!(flowmbd_cli::output::columns_without_unit(&out_dir).is_empty());
 }

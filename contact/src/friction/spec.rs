@@ -51,6 +51,7 @@ pub enum FrictionSpec {
         kappa: f64,
     },
     /// [`Frictionless`].
+    #[serde(deserialize_with = "mbd_core::validate::unit_variant")]
     Frictionless,
 }
 
@@ -102,40 +103,41 @@ impl FrictionSpec {
     }
 }
 
+/// Largest friction coefficient a configuration may give. Dry friction of engineering
+/// materials stays below μ ≈ 2 (rubber on dry asphalt about 1, racing slicks up to 1.8,
+/// Kerkkänen's belt 1.2); a larger number is an input error (e.g. `friction = 1e300`, issue 20),
+/// not a contact law.
+pub const MAX_FRICTION_COEFFICIENT: f64 = 5.0;
+
+/// Checks a friction coefficient `μ`: finite, in \[0, [`MAX_FRICTION_COEFFICIENT`]\].
+pub fn check_coefficient(field: &str, mu: f64) -> Result<(), InvalidField> {
+    mbd_core::validate::check::within(field, mu, 0.0, MAX_FRICTION_COEFFICIENT, "")
+}
+
 impl Validate for FrictionSpec {
-    /// Check the parameters: coefficients finite and `≥ 0`, rates and velocities `> 0` (field
-    /// paths relative to the friction table, e.g. `mu`).
+    /// Check the parameters: coefficients in \[0, [`MAX_FRICTION_COEFFICIENT`]\], rates and
+    /// velocities finite and `> 0` (field paths relative to the friction table, e.g. `mu`).
     fn validate(&self) -> Result<(), InvalidField> {
-        let nonneg = |field: &str, v: f64| {
-            if v.is_finite() && v >= 0.0 {
-                Ok(())
-            } else {
-                Err(InvalidField::new(field, format!("must be ≥ 0, got {v}")))
-            }
-        };
-        let pos = |field: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(InvalidField::new(field, format!("must be > 0, got {v}")))
-            }
-        };
+        use mbd_core::validate::check::positive as pos;
+        let mu = check_coefficient;
         match *self {
-            FrictionSpec::CreepRate { mu, creep } => nonneg("mu", mu).and(pos("creep", creep)),
-            FrictionSpec::Tanh { mu, kappa } => nonneg("mu", mu).and(pos("kappa", kappa)),
-            FrictionSpec::Coulomb { mu } => nonneg("mu", mu),
-            FrictionSpec::Regularized { mu, epsilon } => {
-                nonneg("mu", mu).and(pos("epsilon", epsilon))
+            FrictionSpec::CreepRate { mu: m, creep } => {
+                mu("mu", m).and(pos("creep", creep, "kg/(m·s)"))
+            }
+            FrictionSpec::Tanh { mu: m, kappa } => mu("mu", m).and(pos("kappa", kappa, "s/m")),
+            FrictionSpec::Coulomb { mu: m } => mu("mu", m),
+            FrictionSpec::Regularized { mu: m, epsilon } => {
+                mu("mu", m).and(pos("epsilon", epsilon, "m/s"))
             }
             FrictionSpec::Stribeck {
                 mu_static,
                 mu_kinetic,
                 stribeck_velocity,
                 kappa,
-            } => nonneg("mu_static", mu_static)
-                .and(nonneg("mu_kinetic", mu_kinetic))
-                .and(pos("stribeck_velocity", stribeck_velocity))
-                .and(pos("kappa", kappa)),
+            } => mu("mu_static", mu_static)
+                .and(mu("mu_kinetic", mu_kinetic))
+                .and(pos("stribeck_velocity", stribeck_velocity, "m/s"))
+                .and(pos("kappa", kappa, "s/m")),
             FrictionSpec::Frictionless => Ok(()),
         }
     }

@@ -61,21 +61,21 @@ pub struct Elastic {
     pub density: f64,
 }
 
-impl Elastic {
-    /// Validate ranges.
-    pub fn validate(&self) -> Result<(), FeError> {
-        FeError::check_positive("young", self.young)?;
-        FeError::check_non_negative("density", self.density)?;
+impl mbd_core::Validate for Elastic {
+    /// `young > 0` \[Pa\], `density ≥ 0` \[kg/m³\], `−1 < poisson < 0.5` (positive definite
+    /// isotropic elasticity).
+    fn validate(&self) -> Result<(), mbd_core::InvalidField> {
+        use mbd_core::validate::check;
+        check::positive("young", self.young, "Pa")?;
+        check::non_negative("density", self.density, "kg/m³")?;
         if !(self.poisson > -1.0 && self.poisson < 0.5) {
-            return Err(FeError::param(
-                "poisson",
-                self.poisson,
-                "must be in (-1, 0.5)",
-            ));
+            return Err(check::reject("poisson", "in (-1, 0.5)", self.poisson));
         }
         Ok(())
     }
+}
 
+impl Elastic {
     /// Lamé constants (λ, μ) \[Pa\].
     pub fn lame(&self) -> (f64, f64) {
         let (e, nu) = (self.young, self.poisson);
@@ -145,7 +145,7 @@ impl Hex8 {
         integration: Hex8Integration,
         prestress: Option<[[f64; 3]; 3]>,
     ) -> Result<Self, FeError> {
-        material.validate()?;
+        mbd_core::Validate::validate(&material)?;
         let e = Self {
             dofs,
             x,

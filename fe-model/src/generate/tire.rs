@@ -26,6 +26,7 @@ use crate::FeError;
 use crate::element::{Elastic, Fibre, Hex8, Hex8Integration};
 use crate::mesh::{Cell, CellKind, Mesh};
 use crate::model::FeModel;
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -97,20 +98,16 @@ pub struct CordLayer {
     pub angle_deg: f64,
 }
 
-impl CordLayer {
-    fn validate(&self, name: &str) -> Result<(), FeError> {
-        FeError::check_non_negative(&format!("{name}.modulus"), self.modulus)?;
-        FeError::check_non_negative(&format!("{name}.density"), self.density)?;
-        if !(self.angle_deg.is_finite() && self.angle_deg.abs() <= 90.0) {
-            return Err(FeError::param(
-                &format!("{name}.angle_deg"),
-                self.angle_deg,
-                "must be in [-90, 90]",
-            ));
-        }
-        Ok(())
+impl mbd_core::Validate for CordLayer {
+    /// `modulus, density ≥ 0`, `|angle_deg| ≤ 90`.
+    fn validate(&self) -> Result<(), InvalidField> {
+        check::non_negative("modulus", self.modulus, "Pa")?;
+        check::non_negative("density", self.density, "kg/m³")?;
+        check::within("angle_deg", self.angle_deg, -90.0, 90.0, "deg")
     }
+}
 
+impl CordLayer {
     /// The fibre families of this layer with main direction `p` and in-surface direction `q`
     /// (both unit, orthogonal): `cos α p ± sin α q`.
     fn fibres(&self, p: [f64; 3], q: [f64; 3]) -> Result<Vec<Fibre>, FeError> {
@@ -179,71 +176,97 @@ impl Default for TireConfig {
     }
 }
 
-impl TireConfig {
-    /// Check every field; the error names the offending field.
-    pub fn validate(&self) -> Result<(), FeError> {
+/// Most hexahedra a generated tire may have (`circumferential × section × thickness
+/// divisions`): 18 times the default tire (13 824). Each element adds 576 stiffness entries to
+/// the assembly, so the ceiling keeps the assembly below about 4 GB; a larger count is refused
+/// before anything is allocated.
+pub const MAX_TIRE_ELEMENTS: usize = 250_000;
+
+impl mbd_core::Validate for TireConfig {
+    /// Every field, the first offending one named by its path (`tread.young`,
+    /// `circumferential_divisions`): positive dimensions with room for the walls, materials
+    /// ([`Elastic`]), cord layers, non-negative pressure, a patch half angle in \[0, 180\]°, mesh
+    /// divisions at least 8 × 4 × 1 and at most [`MAX_TIRE_ELEMENTS`] elements in all.
+    fn validate(&self) -> Result<(), InvalidField> {
         for (zone, m) in [
             ("tread", &self.tread),
             ("sidewall", &self.sidewall),
             ("bead", &self.bead),
         ] {
-            m.validate().map_err(|e| match e {
-                FeError::InvalidParameter {
-                    name,
-                    value,
-                    reason,
-                } => FeError::InvalidParameter {
-                    name: format!("{zone}.{name}"),
-                    value,
-                    reason,
-                },
-                other => other,
-            })?;
+            m.validate_within(zone)?;
         }
         if let Some(b) = &self.belt {
-            b.validate("belt")?;
+            b.validate_within("belt")?;
         }
         if let Some(c) = &self.carcass {
-            c.validate("carcass")?;
+            c.validate_within("carcass")?;
         }
-        FeError::check_positive("rim_diameter", self.rim_diameter)?;
-        FeError::check_positive("width", self.width)?;
-        FeError::check_positive("tread_thickness", self.tread_thickness)?;
-        FeError::check_positive("sidewall_thickness", self.sidewall_thickness)?;
-        FeError::check_non_negative("inflation_pressure", self.inflation_pressure)?;
-        FeError::check_non_negative("patch_half_angle_deg", self.patch_half_angle_deg)?;
+        check::positive("rim_diameter", self.rim_diameter, "m")?;
+        check::positive("outer_diameter", self.outer_diameter, "m")?;
+        check::positive("width", self.width, "m")?;
+        check::positive("tread_thickness", self.tread_thickness, "m")?;
+        check::positive("sidewall_thickness", self.sidewall_thickness, "m")?;
+        check::non_negative("inflation_pressure", self.inflation_pressure, "Pa")?;
+        check::within(
+            "patch_half_angle_deg",
+            self.patch_half_angle_deg,
+            0.0,
+            180.0,
+            "deg",
+        )?;
         if self.outer_diameter <= self.rim_diameter + 2.0 * self.tread_thickness {
-            return Err(FeError::param(
+            return Err(InvalidField::new(
                 "outer_diameter",
-                self.outer_diameter,
-                "must exceed rim_diameter + 2·tread_thickness",
+                format!(
+                    "must exceed rim_diameter + 2·tread_thickness = {} m, got {} m",
+                    check::show(self.rim_diameter + 2.0 * self.tread_thickness),
+                    check::show(self.outer_diameter)
+                ),
             ));
         }
         if self.width <= 2.0 * self.sidewall_thickness {
-            return Err(FeError::param(
+            return Err(InvalidField::new(
                 "width",
-                self.width,
-                "must exceed 2·sidewall_thickness",
+                format!(
+                    "must exceed 2·sidewall_thickness = {} m, got {} m",
+                    check::show(2.0 * self.sidewall_thickness),
+                    check::show(self.width)
+                ),
             ));
         }
-        for (name, v, min) in [
-            (
+        let max = MAX_TIRE_ELEMENTS;
+        check::count(
+            "circumferential_divisions",
+            self.circumferential_divisions,
+            8,
+            max,
+        )?;
+        check::count("section_divisions", self.section_divisions, 4, max)?;
+        check::count("thickness_divisions", self.thickness_divisions, 1, max)?;
+        // each factor is at most 250 000, so the product fits in a u128 without overflow
+        let elements = self.circumferential_divisions as u128
+            * self.section_divisions as u128
+            * self.thickness_divisions as u128;
+        if elements > max as u128 {
+            return Err(InvalidField::new(
                 "circumferential_divisions",
-                self.circumferential_divisions,
-                8,
-            ),
-            ("section_divisions", self.section_divisions, 4),
-            ("thickness_divisions", self.thickness_divisions, 1),
-        ] {
-            if v < min {
-                return Err(FeError::param(name, v as f64, &format!("must be >= {min}")));
-            }
+                format!(
+                    "{} × {} × {} divisions (circumferential × section × thickness) are {elements} \
+                     elements, more than the {max} a generated tire may have",
+                    self.circumferential_divisions,
+                    self.section_divisions,
+                    self.thickness_divisions
+                ),
+            ));
         }
-        if 2 * self.bead_elements >= self.section_divisions {
-            return Err(FeError::param(
+        if self.bead_elements >= self.section_divisions / 2 + self.section_divisions % 2 {
+            return Err(InvalidField::new(
                 "bead_elements",
-                self.bead_elements as f64,
-                "must be < section_divisions / 2",
+                format!(
+                    "must be < section_divisions / 2 = {}, got {}",
+                    self.section_divisions as f64 / 2.0,
+                    self.bead_elements
+                ),
             ));
         }
         Ok(())

@@ -31,6 +31,7 @@ pub enum SecondDifference {
 
 /// A finite-difference scheme (first and second derivative stencils).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct FdScheme {
     /// First-derivative stencil.
     pub first: FirstDifference,

@@ -27,6 +27,7 @@ use faer::{Accum, Mat, MatRef, Par};
 
 /// How mode-shape derivatives are computed.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum DerivativeMethod {
     /// Finite differences on non-uniform grids (Ribaric (A.1)–(A.4)).
     FiniteDifference(FdScheme),

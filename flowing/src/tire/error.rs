@@ -40,6 +40,16 @@ pub enum TireError {
         /// What was wrong.
         reason: String,
     },
+    /// A file of an imported tire ([`super::ImportFiles`]) is unreadable or malformed:
+    /// `field` is the import field naming it (`stiffness`, `nodes`, ...), `reason` starts with
+    /// the file (and line).
+    #[error("import.{field}: {reason}")]
+    Import {
+        /// The field of [`super::ImportFiles`] that names the file.
+        field: &'static str,
+        /// What is wrong, with the file and line.
+        reason: String,
+    },
     /// Error of the finite-element layer.
     #[error(transparent)]
     Fe(#[from] fe_model::FeError),

@@ -7,9 +7,9 @@
 //! spindle with speed `v` opposite to the travel direction (`−x` at the patch), so the tire rolls
 //! forwards in `+x`; the cleat reaches the bottom of the wheel (`x = 0`) at `cleat_time`.
 
-use super::error::{TireError, invalid};
 use contact::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface};
 use nalgebra::{Point2, Vector2};
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::FRAC_PI_2;
 
@@ -48,22 +48,25 @@ impl Default for GroundConfig {
     }
 }
 
-impl GroundConfig {
-    /// Check the parameters (field names in the messages).
-    pub fn validate(&self) -> Result<(), TireError> {
-        if self.kind == GroundKind::Drum
-            && !(self.drum_radius > 0.0 && self.drum_radius.is_finite())
-        {
-            return Err(invalid(
-                "ground.drum_radius",
-                format!("{} is not positive", self.drum_radius),
-            ));
+impl Validate for GroundConfig {
+    /// Positive drum radius (drum) and cleat radius (with a cleat) \[m\], and a cleat smaller
+    /// than the drum.
+    fn validate(&self) -> Result<(), InvalidField> {
+        if self.kind == GroundKind::Drum {
+            check::positive("drum_radius", self.drum_radius, "m")?;
         }
-        if self.cleat && !(self.cleat_radius > 0.0 && self.cleat_radius.is_finite()) {
-            return Err(invalid(
-                "ground.cleat_radius",
-                format!("{} is not positive", self.cleat_radius),
-            ));
+        if self.cleat {
+            check::positive("cleat_radius", self.cleat_radius, "m")?;
+            if self.kind == GroundKind::Drum && self.cleat_radius >= self.drum_radius {
+                return Err(InvalidField::new(
+                    "cleat_radius",
+                    format!(
+                        "must be smaller than drum_radius = {} m, got {} m",
+                        check::show(self.drum_radius),
+                        check::show(self.cleat_radius)
+                    ),
+                ));
+            }
         }
         Ok(())
     }

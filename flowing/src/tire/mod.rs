@@ -63,4 +63,6 @@ pub use rig::{
     DampingConfig, ImpactConfig, RigConfig, RigResult, RigStart, Sample, run_cleat,
     run_cleat_observed, start_rolling,
 };
-pub use spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};
+pub use spectrum::{
+    PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation, spectrum_grid,
+};

@@ -73,15 +73,20 @@ pub struct ImportFiles {
     pub patch_nodes: String,
 }
 
-fn read_text(path: &str) -> Result<String, TireError> {
-    std::fs::read_to_string(path).map_err(|e| TireError::File {
-        path: path.to_string(),
-        reason: e.to_string(),
-    })
+/// An [`TireError::Import`] error of the file named by `field`.
+fn import_err(field: &'static str, reason: impl Into<String>) -> TireError {
+    TireError::Import {
+        field,
+        reason: reason.into(),
+    }
 }
 
-fn read_indices(path: &str) -> Result<Vec<usize>, TireError> {
-    let text = read_text(path)?;
+fn read_text(field: &'static str, path: &str) -> Result<String, TireError> {
+    std::fs::read_to_string(path).map_err(|e| import_err(field, format!("{path}: {e}")))
+}
+
+fn read_indices(field: &'static str, path: &str) -> Result<Vec<usize>, TireError> {
+    let text = read_text(field, path)?;
     let mut out = Vec::new();
     for (ln, line) in text.lines().enumerate() {
         let line = line.trim();
@@ -92,9 +97,11 @@ fn read_indices(path: &str) -> Result<Vec<usize>, TireError> {
             .split(|c: char| c == ',' || c.is_whitespace())
             .filter(|t| !t.is_empty())
         {
-            out.push(tok.parse::<usize>().map_err(|_| TireError::File {
-                path: format!("{path}:{}", ln + 1),
-                reason: format!("`{tok}` is not a node index"),
+            out.push(tok.parse::<usize>().map_err(|_| {
+                import_err(
+                    field,
+                    format!("{path}:{}: `{tok}` is not a node index", ln + 1),
+                )
             })?);
         }
     }
@@ -103,7 +110,7 @@ fn read_indices(path: &str) -> Result<Vec<usize>, TireError> {
 
 /// Node coordinates; with `labelled`, each line starts with the node label (returned too).
 fn read_nodes_labelled(path: &str, labelled: bool) -> Result<(Vec<u64>, Vec<[f64; 3]>), TireError> {
-    let text = read_text(path)?;
+    let text = read_text("nodes", path)?;
     let mut out = Vec::new();
     let mut labels = Vec::new();
     for (ln, line) in text.lines().enumerate() {
@@ -123,10 +130,10 @@ fn read_nodes_labelled(path: &str, labelled: bool) -> Result<(Vec<u64>, Vec<[f64
                     v.remove(0);
                 }
                 None => {
-                    return Err(TireError::File {
-                        path: format!("{path}:{}", ln + 1),
-                        reason: format!("expected `label, x, y, z`, got `{line}`"),
-                    });
+                    return Err(import_err(
+                        "nodes",
+                        format!("{path}:{}: expected `label, x, y, z`, got `{line}`", ln + 1),
+                    ));
                 }
             }
         }
@@ -137,21 +144,29 @@ fn read_nodes_labelled(path: &str, labelled: bool) -> Result<(Vec<u64>, Vec<[f64
         ) {
             (3, Some(x)) => out.push([x[0], x[1], x[2]]),
             _ => {
-                return Err(TireError::File {
-                    path: format!("{path}:{}", ln + 1),
-                    reason: format!("expected three finite coordinates, got `{line}`"),
-                });
+                return Err(import_err(
+                    "nodes",
+                    format!(
+                        "{path}:{}: expected three finite coordinates, got `{line}`",
+                        ln + 1
+                    ),
+                ));
             }
         }
     }
     Ok((labels, out))
 }
 
-/// A stiffness or mass matrix from Matrix Market: square and symmetric (a `general` file
-/// storing one triangle is refused, see `fe_model::io::mtx`), default size ceiling.
-fn read_mtx(path: &str) -> Result<faer::sparse::SparseColMat<usize, f64>, TireError> {
+/// A stiffness or mass matrix (`field`) from Matrix Market: square and symmetric (a `general`
+/// file storing one triangle is refused, see `fe_model::io::mtx`), default size ceiling.
+fn read_mtx(
+    field: &'static str,
+    path: &str,
+) -> Result<faer::sparse::SparseColMat<usize, f64>, TireError> {
     let opts = fe_model::io::mtx::ReadOptions::symmetric();
-    Ok(fe_model::io::mtx::read_with(path, &opts)?.to_sparse()?)
+    fe_model::io::mtx::read_with(path, &opts)
+        .and_then(|m| m.to_sparse())
+        .map_err(|e| import_err(field, e.to_string()))
 }
 
 type Sparse = faer::sparse::SparseColMat<usize, f64>;
@@ -159,32 +174,43 @@ type Sparse = faer::sparse::SparseColMat<usize, f64>;
 /// ABAQUS matrices reordered to the node order of the node file (DOF `3 i + d − 1` for node
 /// `i`, DOF `d` = 1..3).
 fn read_abaqus(files: &ImportFiles, labels: &[u64]) -> Result<(Sparse, Sparse), TireError> {
-    let ke = fe_model::io::abaqus::read(&files.stiffness)?;
-    let me = fe_model::io::abaqus::read(&files.mass)?;
-    let (map, mats) = fe_model::io::abaqus::assemble(&[&ke, &me])?;
+    let ke = fe_model::io::abaqus::read(&files.stiffness)
+        .map_err(|e| import_err("stiffness", e.to_string()))?;
+    let me =
+        fe_model::io::abaqus::read(&files.mass).map_err(|e| import_err("mass", e.to_string()))?;
+    let (map, mats) = fe_model::io::abaqus::assemble(&[&ke, &me])
+        .map_err(|e| import_err("stiffness", e.to_string()))?;
     let pos: std::collections::HashMap<u64, usize> =
         labels.iter().enumerate().map(|(i, &l)| (l, i)).collect();
     let mut new_index = Vec::with_capacity(map.len());
     for &(node, dof) in &map.dofs {
         let Some(&i) = pos.get(&node) else {
-            return Err(TireError::File {
-                path: files.nodes.clone(),
-                reason: format!("node {node} of the ABAQUS matrices has no coordinates"),
-            });
+            return Err(import_err(
+                "nodes",
+                format!(
+                    "{}: node {node} of the ABAQUS matrices has no coordinates",
+                    files.nodes
+                ),
+            ));
         };
         if !(1..=3).contains(&dof) {
-            return Err(TireError::File {
-                path: files.stiffness.clone(),
-                reason: format!(
-                    "node {node} has DOF {dof}; only translational DOFs 1-3 (solid elements) are supported"
+            return Err(import_err(
+                "stiffness",
+                format!(
+                    "{}: node {node} has DOF {dof}; only translational DOFs 1-3 (solid \
+                     elements) are supported",
+                    files.stiffness
                 ),
-            });
+            ));
         }
         new_index.push(3 * i + dof as usize - 1);
     }
     let n = 3 * labels.len();
     let mut out = Vec::with_capacity(2);
-    for (a, name) in mats.iter().zip([&files.stiffness, &files.mass]) {
+    for (a, (field, name)) in mats
+        .iter()
+        .zip([("stiffness", &files.stiffness), ("mass", &files.mass)])
+    {
         let t: Vec<faer::sparse::Triplet<usize, usize, f64>> = a
             .as_ref()
             .triplet_iter()
@@ -192,36 +218,43 @@ fn read_abaqus(files: &ImportFiles, labels: &[u64]) -> Result<(Sparse, Sparse), 
             .collect();
         out.push(
             faer::sparse::SparseColMat::try_new_from_triplets(n, n, &t).map_err(|e| {
-                TireError::File {
-                    path: name.clone(),
-                    reason: format!("cannot build the sparse matrix: {e:?}"),
-                }
+                import_err(
+                    field,
+                    format!("{name}: cannot build the sparse matrix: {e:?}"),
+                )
             })?,
         );
     }
-    let m = out.pop().ok_or_else(|| TireError::File {
-        path: files.mass.clone(),
-        reason: "no mass matrix".into(),
-    })?;
-    let k = out.pop().ok_or_else(|| TireError::File {
-        path: files.stiffness.clone(),
-        reason: "no stiffness matrix".into(),
+    let m = out
+        .pop()
+        .ok_or_else(|| import_err("mass", format!("{}: no mass matrix", files.mass)))?;
+    let k = out.pop().ok_or_else(|| {
+        import_err(
+            "stiffness",
+            format!("{}: no stiffness matrix", files.stiffness),
+        )
     })?;
     Ok((k, m))
 }
 
-/// Node labels → 0-based indices in the node file's order.
-fn labels_to_indices(path: &str, set: &[usize], labels: &[u64]) -> Result<Vec<usize>, TireError> {
+/// Node labels of the set named by `field` (file `path`) → 0-based indices in the node file's
+/// order.
+fn labels_to_indices(
+    field: &'static str,
+    path: &str,
+    set: &[usize],
+    labels: &[u64],
+) -> Result<Vec<usize>, TireError> {
     let pos: std::collections::HashMap<u64, usize> =
         labels.iter().enumerate().map(|(i, &l)| (l, i)).collect();
     set.iter()
         .map(|&l| {
-            pos.get(&(l as u64))
-                .copied()
-                .ok_or_else(|| TireError::File {
-                    path: path.to_string(),
-                    reason: format!("node label {l} is not in the node file"),
-                })
+            pos.get(&(l as u64)).copied().ok_or_else(|| {
+                import_err(
+                    field,
+                    format!("{path}: node label {l} is not in the node file"),
+                )
+            })
         })
         .collect()
 }
@@ -230,21 +263,26 @@ fn labels_to_indices(path: &str, set: &[usize], labels: &[u64]) -> Result<Vec<us
 pub fn imported_tire(files: &ImportFiles) -> Result<TireFe, TireError> {
     match files.format {
         ImportFormat::MatrixMarket => {
-            let k = read_mtx(&files.stiffness)?;
-            let m = read_mtx(&files.mass)?;
+            let k = read_mtx("stiffness", &files.stiffness)?;
+            let m = read_mtx("mass", &files.mass)?;
             let (_, nodes) = read_nodes_labelled(&files.nodes, false)?;
-            let rim = read_indices(&files.rim_nodes)?;
-            let patch = read_indices(&files.patch_nodes)?;
+            let rim = read_indices("rim_nodes", &files.rim_nodes)?;
+            let patch = read_indices("patch_nodes", &files.patch_nodes)?;
             TireFe::from_matrices(nodes, k, &m, rim, patch)
         }
         ImportFormat::Abaqus => {
             let (labels, nodes) = read_nodes_labelled(&files.nodes, true)?;
             let (k, m) = read_abaqus(files, &labels)?;
-            let rim =
-                labels_to_indices(&files.rim_nodes, &read_indices(&files.rim_nodes)?, &labels)?;
+            let rim = labels_to_indices(
+                "rim_nodes",
+                &files.rim_nodes,
+                &read_indices("rim_nodes", &files.rim_nodes)?,
+                &labels,
+            )?;
             let patch = labels_to_indices(
+                "patch_nodes",
                 &files.patch_nodes,
-                &read_indices(&files.patch_nodes)?,
+                &read_indices("patch_nodes", &files.patch_nodes)?,
                 &labels,
             )?;
             TireFe::from_matrices(nodes, k, &m, rim, patch)

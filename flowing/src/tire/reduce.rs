@@ -26,6 +26,7 @@ use faer::sparse::{SparseColMat, Triplet};
 use faer::{Accum, Mat, Par};
 use fe_model::SparseEigenOptions;
 use fe_model::sparse::submatrix;
+use mbd_core::validate::{InvalidField, Validate, check};
 use reduction::DofPartition;
 use reduction::sparse::{CraigBamptonOptions, craig_bampton_modes, fixed_interface_modes_sparse};
 use serde::{Deserialize, Serialize};
@@ -60,6 +61,16 @@ impl Default for ReductionConfig {
             ring_tolerance: 1e-6,
             viz_stations: 16,
         }
+    }
+}
+
+impl Validate for ReductionConfig {
+    /// At least one contact node and one free-node mode (their upper bounds are the tire's
+    /// candidate patch and mode count, checked by [`reduce`]), a positive ring tolerance.
+    fn validate(&self) -> Result<(), InvalidField> {
+        check::count("contact_nodes", self.contact_nodes, 1, usize::MAX)?;
+        check::count("free_modes", self.free_modes, 1, usize::MAX)?;
+        check::positive("ring_tolerance", self.ring_tolerance, "m")
     }
 }
 
@@ -186,9 +197,7 @@ pub fn reduce(
 ) -> Result<(ReducedTire, ReductionTimings), TireError> {
     let t0 = Instant::now();
     fe.validate()?;
-    if cfg.ring_tolerance.is_nan() || cfg.ring_tolerance <= 0.0 {
-        return Err(invalid("ring_tolerance", "must be positive"));
-    }
+    cfg.validate()?;
     let contact = select_contact_nodes(fe, cfg.contact_nodes)?;
     let part = TirePartition::new(fe, contact.clone());
     let (nf_dofs, nc3) = (part.f.len(), part.c.len());

@@ -15,7 +15,7 @@ use super::loaded::{
 };
 use super::reduced::ReducedTire;
 use super::rolling::{RollingConfig, RollingTire, StepStats};
-use super::spectrum::{Spectrum, amplitude_spectrum, rms_fluctuation};
+use super::spectrum::{PEAK_BAND_HZ, Spectrum, amplitude_spectrum, rms_fluctuation};
 use super::statics::{PatchSolution, Preload, preload, preload_rolling};
 use fe_model::Rayleigh;
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -45,6 +45,18 @@ impl Default for DampingConfig {
             mode2: 12,
             zeta2: 0.03,
         }
+    }
+}
+
+impl Validate for DampingConfig {
+    /// Mode numbers at least 1 (their upper bound is the reduced tire's mode count, checked by
+    /// [`DampingConfig::rayleigh`]) and damping ratios in \[0, 1\] (Rayleigh damping above
+    /// critical at a target mode is no longer the light damping of Ribaric §8.4.1).
+    fn validate(&self) -> Result<(), InvalidField> {
+        check::count("mode1", self.mode1, 1, usize::MAX)?;
+        check::count("mode2", self.mode2, 1, usize::MAX)?;
+        check::within("zeta1", self.zeta1, 0.0, 1.0, "")?;
+        check::within("zeta2", self.zeta2, 0.0, 1.0, "")
     }
 }
 
@@ -155,16 +167,14 @@ pub const MAX_RIG_STEPS: f64 = 2e7;
 pub const MAX_IMPACT_SUBSTEPS: usize = 1000;
 
 impl Validate for RigConfig {
-    /// The rig's own fields and its nested `rolling.…` and `ground.…` settings (paths relative
-    /// to the rig): positive load and speed, non-negative times (`record_time = 0` runs to the
-    /// cleat only), at most [`MAX_RIG_STEPS`] steps and [`MAX_IMPACT_SUBSTEPS`] sub-steps.
+    /// The rig's own fields and its nested `rolling.…`, `ground.…`, `damping.…` and
+    /// `impact.…` settings (paths relative to the rig): positive load and speed, non-negative
+    /// times (`record_time = 0` runs to the cleat only), at most [`MAX_RIG_STEPS`] steps and
+    /// [`MAX_IMPACT_SUBSTEPS`] sub-steps.
     fn validate(&self) -> Result<(), InvalidField> {
-        let nested = |e: TireError| match e {
-            TireError::Invalid { item, reason } => InvalidField::new(item, reason),
-            other => InvalidField::new("", other.to_string()),
-        };
-        self.rolling.validate().map_err(nested)?;
-        self.ground.validate().map_err(nested)?;
+        self.rolling.validate_within("rolling")?;
+        self.ground.validate_within("ground")?;
+        self.damping.validate_within("damping")?;
         check::positive("speed_kmh", self.speed_kmh, "km/h")?;
         check::positive("load", self.load, "N")?;
         check::non_negative("settle_time", self.settle_time, "s")?;
@@ -183,9 +193,46 @@ impl Validate for RigConfig {
             return Err(InvalidField::new(
                 "record_time",
                 format!(
-                    "settle_time + record_time = {} s at rolling.time_step = {h} s is {steps:.3e} \
+                    "settle_time + record_time = {} s at rolling.time_step = {} s is {steps:.3e} \
                      steps, more than the {MAX_RIG_STEPS:e} a run may record",
-                    self.settle_time + self.record_time
+                    check::show(self.settle_time + self.record_time),
+                    check::show(h)
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl RigConfig {
+    /// What the spindle-force spectra of a cleat test need ([`RigResult::spectra`], peaks
+    /// searched in [`PEAK_BAND_HZ`]), beyond [`Validate`]: a Nyquist frequency `1/(2h)` at or
+    /// above the band's upper end (a step of 0.05 s resolves nothing above 10 Hz: the peak
+    /// search of 8 samples found "0 Hz", issue 20) and a recording of at least 2 steps.
+    /// Field paths relative to the rig.
+    pub fn validate_spectrum(&self) -> Result<(), InvalidField> {
+        let h = self.rolling.time_step;
+        let f_hi = PEAK_BAND_HZ[1];
+        if 1.0 / (2.0 * h) < f_hi {
+            return Err(InvalidField::new(
+                "rolling.time_step",
+                format!(
+                    "{} s cannot resolve the spindle-force spectrum: its Nyquist frequency \
+                     1/(2h) = {} Hz is below the {f_hi} Hz up to which peaks are sought \
+                     (use a step of at most {} s)",
+                    check::show(h),
+                    check::show(1.0 / (2.0 * h)),
+                    check::show(1.0 / (2.0 * f_hi))
+                ),
+            ));
+        }
+        if 2.0 * h > self.record_time {
+            return Err(InvalidField::new(
+                "rolling.time_step",
+                format!(
+                    "{} s leaves fewer than 2 steps in record_time = {} s",
+                    check::show(h),
+                    check::show(self.record_time)
                 ),
             ));
         }

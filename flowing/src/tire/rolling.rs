@@ -83,10 +83,12 @@ use super::error::{TireError, invalid};
 use super::friction::TireFriction;
 use super::ground::Ground;
 use super::reduced::ReducedTire;
+use contact::friction::spec::check_coefficient;
 use mbd_core::Validate;
 use mbd_core::integrators::{
     AlphaCoefficients, AlphaConfig, AlphaStepper, DriftTrigger, NewtonUpdate, State, Stepper,
 };
+use mbd_core::validate::{InvalidField, check};
 use serde::{Deserialize, Serialize};
 
 /// Normal contact law.
@@ -94,6 +96,7 @@ use serde::{Deserialize, Serialize};
 #[serde(rename_all = "snake_case", tag = "law", deny_unknown_fields)]
 pub enum NormalContact {
     /// Rigid unilateral constraint with Lagrange multipliers (Ribaric §7.3).
+    #[serde(deserialize_with = "mbd_core::validate::unit_variant")]
     Lagrange,
     /// Linear penalty `λ = k · penetration` \[N/m\].
     Penalty {
@@ -256,47 +259,43 @@ impl RollingConfig {
             ..AlphaConfig::default()
         }
     }
+}
 
-    /// Check the parameters (field names in the messages).
-    pub fn validate(&self) -> Result<(), TireError> {
-        let pos = |name: &str, v: f64| {
-            if v > 0.0 && v.is_finite() {
-                Ok(())
-            } else {
-                Err(invalid(
-                    format!("rolling.{name}"),
-                    format!("{v} is not positive"),
-                ))
-            }
-        };
-        pos("time_step", self.time_step)?;
-        pos("newmark_beta", self.newmark_beta)?;
-        pos("newmark_gamma", self.newmark_gamma)?;
-        for (name, v) in [("alpha_m", self.alpha_m), ("alpha_f", self.alpha_f)] {
-            if !(v.is_finite() && v < 1.0 && v > -1.0) {
-                return Err(invalid(
-                    format!("rolling.{name}"),
-                    format!("{v} is outside (−1, 1)"),
-                ));
-            }
+impl Validate for RollingConfig {
+    /// Every field, named relative to the rolling settings (`time_step`, `normal.stiffness`):
+    /// positive step, tolerances and inertia; the generalized-α coefficients within the ranges
+    /// of [`AlphaCoefficients`]'s check (β ∈ (0, 1], γ ∈ \[½, 3/2\], |α| < 1); the friction
+    /// coefficient within \[0, [`contact::friction::spec::MAX_FRICTION_COEFFICIENT`]\]; the
+    /// friction law and the penalty stiffness.
+    fn validate(&self) -> Result<(), InvalidField> {
+        check::positive("time_step", self.time_step, "s")?;
+        AlphaCoefficients {
+            alpha_m: self.alpha_m,
+            alpha_f: self.alpha_f,
+            beta: self.newmark_beta,
+            gamma: self.newmark_gamma,
         }
-        pos("slip_regularization", self.slip_regularization)?;
-        pos("contact_tolerance", self.contact_tolerance)?;
-        pos("wheel_spin_inertia", self.wheel_spin_inertia)?;
-        pos("spin_tolerance", self.spin_tolerance)?;
-        pos("matrix_tolerance", self.matrix_tolerance)?;
-        pos("contact_margin", self.contact_margin)?;
-        if !(self.friction >= 0.0 && self.friction.is_finite()) {
-            return Err(invalid(
-                "rolling.friction",
-                format!("{} is negative", self.friction),
-            ));
-        }
+        .validate()
+        .map_err(|e| {
+            let field = match e.field.as_str() {
+                "beta" => "newmark_beta",
+                "gamma" => "newmark_gamma",
+                other => other,
+            };
+            InvalidField::new(field, e.reason)
+        })?;
+        check::positive("slip_regularization", self.slip_regularization, "m/s")?;
+        check::positive("contact_tolerance", self.contact_tolerance, "")?;
+        check::positive("wheel_spin_inertia", self.wheel_spin_inertia, "kg·m²")?;
+        check::positive("spin_tolerance", self.spin_tolerance, "")?;
+        check::positive("matrix_tolerance", self.matrix_tolerance, "")?;
+        check::positive("contact_margin", self.contact_margin, "m")?;
+        check_coefficient("friction", self.friction)?;
         if let NormalContact::Penalty { stiffness } = self.normal {
-            pos("normal.stiffness", stiffness)?;
+            check::positive("normal.stiffness", stiffness, "N/m")?;
         }
         if let TireFriction::Law(spec) = self.friction_law {
-            spec.validate_within("rolling.friction_law")?;
+            spec.validate_within("friction_law")?;
         }
         Ok(())
     }
@@ -415,8 +414,8 @@ impl<'a> RollingTire<'a> {
         z0: Vec<f64>,
         spin: f64,
     ) -> Result<Self, TireError> {
-        cfg.validate()?;
-        ground.cfg.validate()?;
+        cfg.validate_within("rolling")?;
+        ground.cfg.validate_within("ground")?;
         let nz = red.n_z();
         if z0.len() != nz {
             return Err(invalid(

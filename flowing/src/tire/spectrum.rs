@@ -4,6 +4,11 @@ use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 use serde::Serialize;
 
+/// Frequency band \[Hz\] in which the cleat test's spectral peaks (`fx_peak_hz`,
+/// `fy_peak_hz`) are sought: above the rolling and drum-revolution orders, below the
+/// reduced tire's highest resolved modes (Ribaric §8.3, Figs. 8-5 to 8-8: lines at 40-250 Hz).
+pub const PEAK_BAND_HZ: [f64; 2] = [10.0, 500.0];
+
 /// One-sided amplitude spectrum of a uniformly sampled signal.
 #[derive(Debug, Clone, Serialize)]
 pub struct Spectrum {
@@ -53,6 +58,55 @@ impl Spectrum {
     }
 }
 
+impl Spectrum {
+    /// The amplitude spectrum on the frequencies `grid` \[Hz\]: linear interpolation between
+    /// the two bins around each frequency (a grid frequency on a bin takes that bin's value
+    /// exactly), 0 outside the spectrum's range.
+    ///
+    /// Spectra of records of different length have different bins (`k/(N h)`): a sweep's runs
+    /// differ by a sample when the hit falls between steps differently, and 1001 samples at
+    /// h = 0.2 ms put the bins 4.995 Hz apart instead of 5 Hz. Looking the other runs' bins up
+    /// on the first run's grid by equality found only 0 Hz and wrote zero rows into the
+    /// speed × frequency map (issue 20); resampling puts every run on the common grid.
+    pub fn resample(&self, grid: &[f64]) -> Vec<f64> {
+        let f = &self.freq_hz;
+        grid.iter()
+            .map(|&x| {
+                // first bin at or above x
+                let j = f.partition_point(|&g| g < x);
+                match (j, f.get(j)) {
+                    (_, Some(&g)) if g == x => self.amplitude[j],
+                    (0, _) | (_, None) => 0.0,
+                    (j, Some(&g)) => {
+                        let (g0, a0, a1) = (f[j - 1], self.amplitude[j - 1], self.amplitude[j]);
+                        a0 + (a1 - a0) * (x - g0) / (g - g0)
+                    }
+                }
+            })
+            .collect()
+    }
+}
+
+/// Spectra of several runs on one frequency grid (rows: runs, columns: frequencies), the table
+/// behind the speed × frequency contour and waterfall maps (Ribaric Figs. 8-7, 8-8).
+#[derive(Debug, Clone, Serialize)]
+pub struct SpectrumGrid {
+    /// The common frequencies \[Hz\]: the bins of the first spectrum up to `f_max`.
+    pub freq_hz: Vec<f64>,
+    /// One row per spectrum: its amplitudes resampled on `freq_hz` ([`Spectrum::resample`]).
+    pub rows: Vec<Vec<f64>>,
+}
+
+/// The spectra on the bins of the first one up to `f_max` \[Hz\] ([`SpectrumGrid`]).
+pub fn spectrum_grid(spectra: &[&Spectrum], f_max: f64) -> SpectrumGrid {
+    let freq_hz: Vec<f64> = spectra
+        .first()
+        .map(|s| s.freq_hz.iter().copied().filter(|f| *f <= f_max).collect())
+        .unwrap_or_default();
+    let rows = spectra.iter().map(|s| s.resample(&freq_hz)).collect();
+    SpectrumGrid { freq_hz, rows }
+}
+
 /// Root mean square of the fluctuation of `x` about its mean.
 pub fn rms_fluctuation(x: &[f64]) -> f64 {
     if x.is_empty() {
@@ -61,4 +115,48 @@ pub fn rms_fluctuation(x: &[f64]) -> f64 {
     let n = x.len() as f64;
     let m = x.iter().sum::<f64>() / n;
     (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / n).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    // issue 20 reproducer: 1000 and 1001 samples at h = 0.2 ms have bins 5 Hz and 4.995 Hz
+    // apart; a 74.9 Hz sine of amplitude 1344 N (the 90 km/h line) sampled 1001 times must
+    // keep its peak near 74.9 Hz on the 5 Hz grid of the 1000-sample run. Reference: the
+    // sine's own frequency and the Hann window's peak amplitude (coherent gain 0.5; the
+    // off-bin loss of a Hann window is at most 1 − sinc-type 15 %, Harris 1978)
+    #[test]
+    fn resampling_keeps_an_off_grid_line_on_the_common_grid() {
+        let h = 2e-4;
+        let line = |n: usize, f: f64, a: f64| -> Vec<f64> {
+            (0..n)
+                .map(|i| a * (2.0 * PI * f * i as f64 * h).sin())
+                .collect()
+        };
+        let s1000 = amplitude_spectrum(&line(1000, 60.0, 500.0), h);
+        let s1001 = amplitude_spectrum(&line(1001, 74.9, 1344.0), h);
+        assert!((s1000.freq_hz[1] - 5.0).abs() < 1e-9);
+        assert!((s1001.freq_hz[1] - 4.995_004_995).abs() < 1e-6);
+        let g = spectrum_grid(&[&s1000, &s1001], 300.0);
+        assert_eq!(g.freq_hz.len(), 61);
+        // the first row is the first spectrum itself, bin for bin
+        assert_eq!(g.rows[0], s1000.amplitude[..61].to_vec());
+        // the 90 km/h row: its peak where the run's own spectrum peaks, amplitude kept
+        let (fp, ap) = s1001.peak(10.0, 300.0).unwrap();
+        let row = &g.rows[1];
+        let k = (0..row.len())
+            .max_by(|&a, &b| row[a].total_cmp(&row[b]))
+            .unwrap();
+        assert!((g.freq_hz[k] - fp).abs() <= 5.0, "{} vs {fp}", g.freq_hz[k]);
+        assert!((g.freq_hz[k] - 74.9).abs() <= 2.5, "{}", g.freq_hz[k]);
+        assert!(
+            row[k] > 0.85 * ap && row[k] <= ap * (1.0 + 1e-12),
+            "{} vs {ap}",
+            row[k]
+        );
+        // outside the spectrum's range: zero
+        assert_eq!(s1001.resample(&[-1.0, 1e6]), vec![0.0, 0.0]);
+    }
 }

@@ -18,6 +18,7 @@ use super::reduce::TirePartition;
 use super::reduced::ReducedTire;
 use faer::prelude::*;
 use faer::{Mat, Side};
+use mbd_core::validate::{Validate, check};
 use serde::Serialize;
 
 /// Static contact solution of the patch.
@@ -107,10 +108,8 @@ pub fn solve_patch(
     ground_cfg: &GroundConfig,
     load: f64,
 ) -> Result<PatchSolution, TireError> {
-    if !(load > 0.0 && load.is_finite()) {
-        return Err(invalid("load", format!("{load} N is not positive")));
-    }
-    ground_cfg.validate()?;
+    check::positive("load", load, "N")?;
+    ground_cfg.validate_within("ground")?;
     let mut cfg = ground_cfg.clone();
     cfg.cleat = false;
     // first touch: the lowest contact node on the ground

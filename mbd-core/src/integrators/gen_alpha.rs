@@ -100,6 +100,33 @@ pub struct AlphaCoefficients {
     pub gamma: f64,
 }
 
+impl crate::Validate for AlphaCoefficients {
+    /// `|α_m|, |α_f| < 1`, `0 < β ≤ 1` and `½ ≤ γ ≤ 3/2`: the ranges of β and γ spanned by
+    /// the generalized-α schemes of Chung & Hulbert (1993) with ρ∞ ∈ \[0, 1\]
+    /// (`γ = ½ − α_m + α_f`, `β = (γ + ½)²/4`: ρ∞ = 1 gives β = ¼, γ = ½; ρ∞ = 0 gives β = 1,
+    /// γ = 3/2). γ < ½ amplifies every mode (negative numerical damping); β beyond 1 adds
+    /// period error of order β (ω h)² and no damping that ρ∞ = 0 does not already give
+    /// (β = 10⁹ "ran" the tire to the end with a meaningless answer, issue 20). β below
+    /// `(γ + ½)²/4` is accepted: only conditionally stable, and a step too large for it fails
+    /// as a numerical error, not as bad input.
+    fn validate(&self) -> Result<(), crate::InvalidField> {
+        use crate::validate::check;
+        for (name, v) in [("alpha_m", self.alpha_m), ("alpha_f", self.alpha_f)] {
+            if !(v.is_finite() && v.abs() < 1.0) {
+                return Err(check::reject(name, "in (-1, 1)", v));
+            }
+        }
+        if !(self.beta.is_finite() && self.beta > 0.0 && self.beta <= 1.0) {
+            return Err(check::reject(
+                "beta",
+                "in (0, 1] (the generalized-alpha family spans 1/4 to 1)",
+                self.beta,
+            ));
+        }
+        check::within("gamma", self.gamma, 0.5, 1.5, "")
+    }
+}
+
 /// Parameters of the generalized-α integrator.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -334,18 +361,10 @@ impl AlphaStepper<NoCorrection> {
     ) -> Result<Self, MbdError> {
         check_step(params.h, "generalized-alpha step h")?;
         if let Some(c) = params.coefficients {
-            let ok = c.alpha_m.abs() < 1.0
-                && c.alpha_f.abs() < 1.0
-                && c.beta > 0.0
-                && c.beta.is_finite()
-                && c.gamma > 0.0
-                && c.gamma.is_finite();
-            if !ok {
-                return Err(MbdError::InvalidInput {
-                    item: "generalized-alpha coefficients".into(),
-                    reason: format!("need |alpha_m|, |alpha_f| < 1 and beta, gamma > 0, got {c:?}"),
-                });
-            }
+            crate::Validate::validate(&c).map_err(|e| MbdError::InvalidInput {
+                item: format!("generalized-alpha coefficients: {}", e.field),
+                reason: e.reason,
+            })?;
         } else if !(0.0..=1.0).contains(&params.rho_inf) {
             return Err(MbdError::InvalidInput {
                 item: "generalized-alpha rho_inf".into(),

@@ -1,0 +1,146 @@
+//! Issue 20 reproducers for `flowmbd-belt`: every table of every study's configuration (the
+//! defaults and the shipped Kerkkänen examples, which use the other load and speed profiles)
+//! rejects an unknown key; `ancf --t-end 1e300` is refused before it writes anything; every
+//! CSV header says its unit and every summary says what its numbers mean.
+
+use flowmbd_cli::config::{UNKNOWN_KEY, tables_accepting_unknown_keys_by};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_flowmbd-belt"))
+        .args(args)
+        .output()
+        .expect("binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("flowmbd-belt-hard-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The tables of `text` (a configuration of `study`) that the binary accepts with an unknown
+/// key; every rejection must be exit 2, one line, naming the key.
+fn holes(study: &str, text: &str, dir: &Path) -> Vec<String> {
+    let file = dir.join(format!("{study}-variant.toml"));
+    tables_accepting_unknown_keys_by(text, |variant| {
+        std::fs::write(&file, variant).unwrap();
+        let (code, _, err) = run(&[study, "--config", file.to_str().unwrap(), "--print-config"]);
+        if code != 0 {
+            assert_eq!(code, 2, "{study}: {err}");
+            assert!(err.contains(UNKNOWN_KEY), "{study}: {err}");
+            assert_eq!(err.trim().lines().count(), 1, "{study}: {err}");
+        }
+        code == 0
+    })
+}
+
+// Issue 20: unknown keys were accepted in `[drive.pulleys.drive.load]` (a unit variant of an
+// internally tagged enum: `kind = "none"`); every table now rejects them (definition: each
+// configuration table is `deny_unknown_fields`)
+#[test]
+fn every_table_rejects_an_unknown_key() {
+    let dir = tmp("keys");
+    for study in ["speed-loss", "ancf", "wave", "demo"] {
+        let (code, text, err) = run(&[study, "--print-config"]);
+        assert_eq!(code, 0, "{err}");
+        let h = holes(study, &text, &dir);
+        assert!(
+            h.is_empty(),
+            "{study}: tables accepting unknown keys: {h:?}"
+        );
+    }
+    // the shipped examples use constant and cosine loads, constant speeds, other friction laws
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&examples)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 6);
+    for p in names {
+        let (code, text, err) = run(&["ancf", "--config", p.to_str().unwrap(), "--print-config"]);
+        assert_eq!(code, 0, "{err}");
+        let h = holes("ancf", &text, &dir);
+        assert!(h.is_empty(), "{}: {h:?}", p.display());
+    }
+    // the issue's reproducer, verbatim: `torque` under `kind = "none"` is refused by name
+    let (_, text, _) = run(&["ancf", "--print-config"]);
+    let bad = text.replacen(
+        "[drive.pulleys.drive.load]\nkind = \"none\"\n",
+        "[drive.pulleys.drive.load]\nkind = \"none\"\ntorque = 5.0\n",
+        1,
+    );
+    assert_ne!(bad, text);
+    let f = dir.join("load.toml");
+    std::fs::write(&f, bad).unwrap();
+    let (code, _, err) = run(&["ancf", "--config", f.to_str().unwrap(), "--print-config"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("unknown field `torque`"), "{err}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+// Issue 20: `belt ancf --t-end 1e300` wrote VTK files until killed; it is refused at once
+// (exit 2, one line naming t_end, nothing written), and `-1` reaches the check as a number
+#[test]
+fn absurd_end_time_is_refused_before_anything_is_written() {
+    let dir = tmp("tend");
+    let out = dir.join("o");
+    let t0 = std::time::Instant::now();
+    let (code, _, err) = run(&[
+        "ancf",
+        "--t-end",
+        "1e300",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("t_end") && err.contains("1e300 s"), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(!out.exists(), "nothing is written");
+    assert!(t0.elapsed().as_secs() < 30);
+    let (code, _, err) = run(&[
+        "ancf",
+        "--t-end",
+        "-1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("t_end") && err.contains("got -1"), "{err}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+// Item 5 of issue 20: the CSV headers say their units and the summary says what the numbers
+// mean (a short ANCF run, the slider-crank demo and the span-wave study)
+#[test]
+fn csv_headers_carry_units_and_summaries_a_meaning() {
+    let dir = tmp("units");
+    for (study, extra) in [
+        ("ancf", vec!["--t-end", "0.05"]),
+        ("demo", vec![]),
+        ("wave", vec!["--t-end", "0.05"]),
+    ] {
+        let out = dir.join(study);
+        let mut args = vec![study, "--quiet", "--json", "--out", out.to_str().unwrap()];
+        args.extend(extra);
+        let (code, json, err) = run(&args);
+        assert_eq!(code, 0, "{study}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        let meaning = v["meaning"].as_str().unwrap_or_default();
+        assert!(meaning.len() > 100, "{study}: meaning `{meaning}`");
+        let bad = flowmbd_cli::output::columns_without_unit(&out);
+        assert!(bad.is_empty(), "{study}: columns without unit: {bad:?}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
