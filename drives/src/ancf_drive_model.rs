@@ -15,7 +15,7 @@
 //! | pre-tension T0 on the path of L_c and R (note U8) | unstretched length `L_b = L_path / (1 + T0/EA)` (the flowing model's choice, 1.2117 m for Table 6-1), then corrected by secant steps `L_b ← L_b (1 + (T − T0)/EA)` until the mean span tension `T` of the static solve ([`BeltDrive::initial_state`]) is T0 within 0.1 % (the role of Ribaric §6.4 step 1, "move the pulleys apart until T0"). The first estimate lands 4 % high (323 N): the belt element's bending–stretching coupling (Kerkkänen (3.18), the `(a − 1) c` term) lowers the axial force on the arcs, where the contact pressure gives `f_n R ≈ 303 N`, relative to the spans |
 //! | penalty (6.1) `F_N = L_ele (k₂ δ² + k₁ δ)` per contact node | the same law per unit length, distributed: `f_n = k₂ d² + k₁ d + c_p ḋ` (Kerkkänen (3.20) with the quadratic term), integrated by Gauss quadrature (3.27) |
 //! | the mounted belt's line on the path (flowing: contact radius `R + p₀`, `p₀` the penetration under `T0/R`, 72 µm) | the same: pulley radius `R + p₀`, so that the belt centreline sinks by `p₀` onto the path of radius R |
-//! | tanh friction (6.2) `μ`, `κ` per node | [`BeltFriction::Tanh`] per unit length, same `μ`, `κ` |
+//! | tanh friction (6.2) `μ`, `κ` per node (or the `contact.friction` law) | the same law per unit length ([`BeltConfig::friction_law`](flowing::belt::config::BeltContact::friction_law)) |
 //! | Rayleigh damping `αM + βK_e` of the deflection (β on the material rate) | the stiffness-proportional part as Kelvin–Voigt damping of the axial strain rate with the same β ([`BeltSpec::axial_damping`]: axial force `EA(ε + β ε̇)`; without it the driven pulley's torsional vibration against the spans, ≈57 Hz, decayed with ζ ≈ 0.003 and the steady-state detection never triggered); bending undamped; the mass-proportional part `αM` is dropped (on the absolute velocities of a Lagrangian mesh it would brake the moving belt); generalized-α's numerical damping (ρ∞ of the procedure) damps the contact vibrations; penalty damping `c_p` ([`AncfConfig::contact_damping`]) is 0 by default, as in (6.1) |
 //! | driven inertia `I` | the free pulley's inertia |
 //! | driver speed and load schedules of the procedure | supplied at every evaluation through [`BeltDrive::forces_with`] / [`BeltDrive::force_tangent_with`] |
@@ -24,11 +24,13 @@
 //! radius (Kerkkänen (3.25), nominal radius); the belt line runs at `R`, so a sticking belt
 //! sees a small negative slip `−ω p₀` on both pulleys alike. It cancels in Δω at zero load.
 
-use crate::model::DriveModel;
+use crate::ancf_run::snapshot;
+use crate::model::{BeltData, DriveModel};
+use crate::report::{DriveSnapshot, PulleyRole};
 use ancf::AncfError;
 use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec, InitialOptions, Pulley,
-    PulleyDrive, SpeedProfile, TorqueProfile, post,
+    BeltDrive, BeltDriveSpec, BeltSpec, ContactSpec, InitialOptions, Pulley, PulleyDrive,
+    SpeedProfile, TorqueProfile, post,
 };
 use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
 use flowing::belt::model::mounting_penetration;
@@ -204,10 +206,7 @@ pub fn ancf_spec(
             stiffness: cfg.contact.penalty_linear,
             quadratic: cfg.contact.penalty_quadratic,
             damping: contact_damping,
-            friction: BeltFriction::Tanh {
-                mu: cfg.contact.mu,
-                kappa: cfg.contact.kappa,
-            },
+            friction: cfg.contact.friction_law(),
             points: s.contact_points,
         },
     };
@@ -233,6 +232,7 @@ pub struct AncfDrive {
     load: Schedule,
     driven_dof: usize,
     mapping: AncfMapping,
+    belt: BeltData,
 }
 
 impl AncfDrive {
@@ -259,6 +259,13 @@ impl AncfDrive {
             .pulley_dof(1)
             .ok_or_else(|| invalid("pulleys".into(), "the driven pulley is not free".into()))?;
         Ok(Self {
+            belt: BeltData {
+                pretension: t0,
+                ea: cfg.belt.ea,
+                driven_radius: cfg.geometry.radius_driven,
+                friction: drive.spec().contact.friction,
+                linearised: false,
+            },
             drive,
             driver: Schedule::constant(0.0),
             load: Schedule::constant(0.0),
@@ -337,5 +344,30 @@ impl DriveModel for AncfDrive {
     }
     fn load_mut(&mut self) -> &mut Schedule {
         &mut self.load
+    }
+
+    fn belt_data(&self) -> BeltData {
+        self.belt
+    }
+
+    /// [`crate::ancf_run::snapshot`] with the scheduled driver speed, the driven pulley's
+    /// speed coordinate, and the belt-line radii `R` (the contact radii less `p₀`).
+    fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DriveSnapshot, MbdError> {
+        let radii: Vec<f64> = (0..2)
+            .map(|k| self.drive.pulleys()[k].radius - self.mapping.penetration[k])
+            .collect();
+        Ok(snapshot(
+            &self.drive,
+            t,
+            q,
+            v,
+            &self.omegas(t, v),
+            &[PulleyRole::Driver, PulleyRole::Driven],
+            &radii,
+        ))
+    }
+
+    fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+        Ok(post::span_transverse(&self.drive, q))
     }
 }

@@ -2,10 +2,11 @@
 //! with sampled outputs, the free-belt closure on the path (example 3.3-A) and the roles of
 //! the pulleys and spans in a summary.
 
+use crate::report::{DriveSnapshot, PulleyRole, PulleyState, SpanState, WrapPoint};
 use ancf::AncfError;
 use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, SimulationConfig, free_belt_closure,
-    post, simulate,
+    BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, PulleyDrive, SimulationConfig,
+    TorqueProfile, free_belt_closure, post, simulate,
 };
 use mbd_core::integrators::{GeneralizedAlpha, State};
 
@@ -19,6 +20,84 @@ pub fn roles(drive: &BeltDrive) -> (usize, Option<usize>) {
         .unwrap_or(0);
     let driven = drive.pulleys().iter().position(|p| p.is_free());
     (driver, driven)
+}
+
+/// Role of each pulley of `drive`: speed-driven pulleys drive, free pulleys with a load are
+/// driven, free pulleys without load are idlers.
+pub fn pulley_roles(drive: &BeltDrive) -> Vec<PulleyRole> {
+    drive
+        .pulleys()
+        .iter()
+        .map(|p| match &p.drive {
+            PulleyDrive::Speed { .. } => PulleyRole::Driver,
+            PulleyDrive::Free {
+                load: TorqueProfile::None,
+                ..
+            } => PulleyRole::Idler,
+            PulleyDrive::Free { .. } => PulleyRole::Driven,
+        })
+        .collect()
+}
+
+/// The snapshot ([`crate::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
+/// at the travel-sense speeds `omegas` \[rad/s\], their roles `roles` and belt-line radii
+/// `radii` \[m\]: the contact quadrature points of every wrap ([`post::wrap_records`]), hub
+/// loads and torques ([`BeltDrive::pulley_loads_with`]), span tensions
+/// ([`post::span_tensions`]) and mid-point offsets ([`post::span_transverse`]).
+pub fn snapshot(
+    drive: &BeltDrive,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    omegas: &[f64],
+    roles: &[PulleyRole],
+    radii: &[f64],
+) -> DriveSnapshot {
+    let loads = drive.pulley_loads_with(q, v, omegas);
+    let pulleys = drive
+        .pulleys()
+        .iter()
+        .enumerate()
+        .map(|(k, p)| PulleyState {
+            name: p.name.clone(),
+            role: roles[k],
+            radius: radii[k],
+            omega: omegas[k],
+            hub_load: loads[k].force,
+            torque: loads[k].torque,
+        })
+        .collect();
+    let wrap = post::wrap_records(drive, q, v, omegas)
+        .into_iter()
+        .filter(|w| w.contact.normal_force > 0.0)
+        .map(|w| WrapPoint {
+            pulley: w.contact.pulley,
+            angle: w.angle,
+            length: w.contact.weight,
+            tension: w.tension,
+            pressure: w.contact.normal_force,
+            friction: w.contact.friction_force,
+            slip: w.contact.slip,
+        })
+        .collect();
+    let tensions = post::span_tensions(drive, q);
+    let offsets = post::span_transverse(drive, q);
+    let spans = post::spans(drive)
+        .iter()
+        .enumerate()
+        .map(|(k, sp)| SpanState {
+            from: sp.from,
+            to: sp.to,
+            tension: tensions[k],
+            transverse: offsets[k],
+        })
+        .collect();
+    DriveSnapshot {
+        time: t,
+        pulleys,
+        spans,
+        wrap,
+    }
 }
 
 /// The spans running into and out of the pulley `driver`: (tight, slack) indices into `spans`.

@@ -4,11 +4,15 @@
 //! (`flowmbd.belt.ancf`). The time loop is [`run_drive`]; the summary's end speeds and the
 //! tight/slack span tensions follow [`roles`] and [`tight_slack`].
 
-use crate::ancf_run::{Due, Sampling, closure_on_path, roles, run_drive, tight_slack};
+use crate::ancf_run::{
+    Due, Sampling, closure_on_path, pulley_roles, roles, run_drive, snapshot, tight_slack,
+};
+use crate::report::{DriveReport, HubLoad, PulleyReport, PulleyRole, SpanReport, WrapPoint};
 use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, InitialOptions, InitialState, SimulationConfig, post,
 };
+use contact::friction::FrictionLaw;
 use mbd_core::integrators::State;
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
@@ -149,6 +153,10 @@ impl Validate for AncfStudyConfig {
     }
 }
 
+/// Fraction of the run at its end over which the span vibration amplitudes of the summary
+/// are taken (half the peak-to-peak of the mid-point offsets at the history samples).
+pub const VIBRATION_WINDOW: f64 = 0.2;
+
 /// Summary of a run (`summary.json` of `flowmbd-belt ancf`).
 #[derive(Debug, Clone, Serialize, Default)]
 pub struct AncfStudySummary {
@@ -172,6 +180,26 @@ pub struct AncfStudySummary {
     pub initial_tension: f64,
     /// Speed ratio driven/driver at the end.
     pub speed_ratio: f64,
+    /// Dynamic run only: whether a wrap slides as a whole at the end
+    /// ([`DriveReport::gross_slip`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gross_slip: Option<bool>,
+    /// Dynamic run only: slip arc of the driver at the end \[rad\] ([`crate::report`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slip_arc_driver_rad: Option<f64>,
+    /// Dynamic run only: slip arc of the driven (first loaded) pulley at the end \[rad\].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slip_arc_driven_rad: Option<f64>,
+    /// Force of the belt on every pulley at the end.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub hub_loads: Vec<HubLoad>,
+    /// Per pulley at the end: arcs, slip velocity, hub load, torque, sliding loss.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pulleys: Vec<PulleyReport>,
+    /// Per span at the end: tension, mid-point offset and its vibration amplitude over the
+    /// last [`VIBRATION_WINDOW`] of the run.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub spans: Vec<SpanReport>,
     /// Static closure only: mean radius of the closed belt \[m\].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub closure_radius: Option<f64>,
@@ -230,6 +258,10 @@ pub struct DynamicEnd {
     /// Why the integration stopped early, if it did (the summary then holds the state
     /// reached).
     pub failure: Option<String>,
+    /// The contact points of every wrap at the last state ([`crate::report::WrapPoint`]).
+    pub wrap: Vec<WrapPoint>,
+    /// Coefficient μ of the friction law (for the points' utilisation).
+    pub friction_coefficient: f64,
 }
 
 /// Run the drive from `init` to `c.t_end` ([`run_drive`] with the configured sampling).
@@ -245,6 +277,9 @@ pub fn dynamic_run<E>(
     let (driver, driven) = roles(drive);
     let (tight, slack) = tight_slack(&post::spans(drive), driver);
     let mut last_tensions = post::span_tensions(drive, &init.q);
+    let n_spans = post::spans(drive).len();
+    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); n_spans];
+    let window_start = (1.0 - VIBRATION_WINDOW) * c.t_end;
     let sampling = Sampling {
         history: c.output.history_interval,
         frame: c.output.vtk_interval,
@@ -258,6 +293,13 @@ pub fn dynamic_run<E>(
         |s, due| {
             if due.history {
                 last_tensions = post::span_tensions(drive, &s.q);
+                if s.t >= window_start {
+                    for (r, x) in range.iter_mut().zip(post::span_transverse(drive, &s.q)) {
+                        if x.is_finite() {
+                            *r = (r.0.min(x), r.1.max(x));
+                        }
+                    }
+                }
             }
             observer(s, due)
         },
@@ -267,7 +309,26 @@ pub fn dynamic_run<E>(
     let w_driven = driven
         .map(|p| drive.pulley_speed(p, s.t, &s.v))
         .unwrap_or(f64::NAN);
+    let omegas: Vec<f64> = (0..drive.pulleys().len())
+        .map(|p| drive.pulley_speed(p, s.t, &s.v))
+        .collect();
+    let radii: Vec<f64> = drive.pulleys().iter().map(|p| p.radius).collect();
+    let roles = pulley_roles(drive);
+    let snap = snapshot(drive, s.t, &s.q, &s.v, &omegas, &roles, &radii);
+    let mu = drive.spec().contact.friction.coefficient();
+    let mut report = DriveReport::new(&snap, mu);
+    for (sp, r) in report.spans.iter_mut().zip(&range) {
+        if r.1 >= r.0 {
+            sp.vibration_amplitude = 0.5 * (r.1 - r.0);
+        }
+    }
     let summary = AncfStudySummary {
+        gross_slip: Some(report.gross_slip().is_some()),
+        slip_arc_driver_rad: Some(report.slip_arc(PulleyRole::Driver)),
+        slip_arc_driven_rad: Some(report.slip_arc(PulleyRole::Driven)),
+        hub_loads: report.hub_loads(),
+        pulleys: report.pulleys,
+        spans: report.spans,
         omega_driver_end: w_driver,
         omega_driven_end: w_driven,
         tension_tight: tight.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
@@ -286,6 +347,8 @@ pub fn dynamic_run<E>(
         state: run.state,
         summary,
         failure: run.failure,
+        wrap: snap.wrap,
+        friction_coefficient: mu,
     })
 }
 

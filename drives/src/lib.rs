@@ -8,7 +8,9 @@
 //! * [`Schedule`]: the smooth driver-speed and load-torque histories (defined in
 //!   `flowing::belt`, whose models carry them; re-exported here);
 //! * [`speed_loss`]: the procedure ([`speed_loss_sweep`]);
-//! * [`analytical`]: Bechtel's line (6.3);
+//! * [`analytical`]: Bechtel's line (6.3) and the Euler–Eytelwein capacity;
+//! * [`report`]: span tensions, wrap distributions, adhesion and slip arcs, hub loads and
+//!   torques of a drive state, for any model and any number of pulleys;
 //! * [`ancf_drive_model`]: the Table 6-1 → ANCF adapter (Kerkkänen ch. 3 elements on Ribaric's
 //!   drive);
 //! * [`study`]: the speed-loss study per model and driver speed;
@@ -28,15 +30,17 @@ pub mod ancf_run;
 pub mod ancf_study;
 pub mod error;
 pub mod model;
+pub mod report;
 pub mod speed_loss;
 pub mod speed_loss_study;
 pub mod study;
 pub mod wave;
 
-pub use analytical::{analytical_speed_loss, bechtel};
+pub use analytical::{analytical_speed_loss, bechtel, euler_eytelwein_capacity};
 pub use error::DriveError;
 pub use flowing::belt::Schedule;
-pub use model::DriveModel;
+pub use model::{BeltData, DriveModel};
+pub use report::{DriveReport, DriveSnapshot, PulleyRole};
 pub use speed_loss::{SpeedLossConfig, SpeedLossPoint, speed_loss_sweep};
 pub use speed_loss_study::{SpeedLossStudyConfig, SpeedLossSummary};
 pub use study::{ModelKind, NodalConfig, SpeedLossCase, SpeedLossModel};

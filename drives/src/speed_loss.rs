@@ -10,7 +10,9 @@
 //! The load schedule is extended while integrating, so each torque is held only as long as it
 //! needs. A failure keeps the points already found ([`SweepFailure`]).
 
-use crate::model::DriveModel;
+use crate::model::{BeltData, DriveModel};
+use crate::report::{DriveReport, WrapPoint, sliding_speed};
+use contact::friction::FrictionLaw;
 use flowing::belt::Schedule;
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
@@ -98,19 +100,90 @@ impl Validate for SpeedLossConfig {
     }
 }
 
-/// One steady operating point.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// Where and when a pulley slipped as a whole (gross slip): the load exceeded what friction
+/// can transmit ([`crate::report`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GrossSlip {
+    /// Pulley index (travel order).
+    pub pulley: usize,
+    /// Pulley name.
+    pub name: String,
+    /// Simulation time of the detection \[s\].
+    pub time: f64,
+    /// The criterion that fired, with its figures.
+    pub criterion: String,
+}
+
+/// One operating point: a steady state, or the gross slip that prevented it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SpeedLossPoint {
     /// Load torque \[N m\].
     pub torque: f64,
-    /// Steady speed loss ω₁ − ω₂ \[rad/s\] (mean over the last window).
+    /// Steady speed loss ω₁ − ω₂ \[rad/s\] (mean over the last window); at a gross slip
+    /// detected while the driven pulley runs away, the (unsteady) value at detection.
     pub delta_omega: f64,
     /// Steady driven speed \[rad/s\].
     pub omega_driven: f64,
-    /// Difference of the last two window means \[rad/s\] (steady-state residual).
+    /// Difference of the last two window means \[rad/s\] (steady-state residual; `NaN` when
+    /// the point ended in a runaway gross slip).
     pub drift: f64,
     /// Simulation time at which the point was taken \[s\].
     pub time: f64,
+    /// The gross slip, if the load exceeded the capacity.
+    pub gross_slip: Option<GrossSlip>,
+    /// Why the results of a model linearised about T0 ([`BeltData::linearised`]) do not hold
+    /// at this point (`None`: they hold, or the model is not linearised).
+    pub linearisation: Option<String>,
+    /// Spans and pulleys at the point (vibration amplitudes over the last window).
+    pub report: DriveReport,
+    /// The contact points of every wrap at the point.
+    #[serde(skip)]
+    pub wrap: Vec<WrapPoint>,
+}
+
+/// Slack-span tension below which a model linearised about T0 no longer describes the belt,
+/// as a fraction of T0: the slack span's transverse stiffness `T/L` is then below a tenth of
+/// the linearised `T0/L` built into `K_g(T0)`, and a little more load makes the linear tension
+/// `T0 + EA Δl/l` negative — a compressed belt, which a real belt cannot carry.
+pub const LINEAR_MIN_SLACK: f64 = 0.1;
+
+/// Utilisation of the friction law at which the runaway bound of [`gross_slip_bound`] is set.
+pub const RUNAWAY_UTILISATION: f64 = 0.999;
+
+/// Speed loss \[rad/s\] above which the driven pulley has left every steady state the belt can
+/// hold at driver speed `omega` \[rad/s\] (runaway gross slip): the elastic creep of a belt
+/// transmitting its largest tension difference `2 T0` (slack span at zero),
+/// `ω · 2T0/EA`, plus sliding on both wraps at the speed where the friction law reaches
+/// [`RUNAWAY_UTILISATION`] of μ ([`sliding_speed`]), over the driven radius.
+pub fn gross_slip_bound(belt: &BeltData, omega: f64) -> f64 {
+    let creep = omega.abs() * 2.0 * belt.pretension / belt.ea;
+    creep + 2.0 * sliding_speed(&belt.friction, RUNAWAY_UTILISATION) / belt.driven_radius
+}
+
+/// The linearisation check of a model linearised about T0 ([`BeltData::linearised`]): `None`
+/// while the slack span keeps [`LINEAR_MIN_SLACK`] of T0 and no wrap slides as a whole.
+pub fn linearisation_issue(belt: &BeltData, report: &DriveReport) -> Option<String> {
+    if !belt.linearised {
+        return None;
+    }
+    let slack = report.tension_slack();
+    let t0 = belt.pretension;
+    if !(slack >= LINEAR_MIN_SLACK * t0) {
+        return Some(format!(
+            "slack-span tension {slack:.1} N is below {:.0} % of T0 = {t0} N: the model's \
+             stiffness K_e + K_g(T0) and tension T0 + EA·Δl/l assume taut spans",
+            100.0 * LINEAR_MIN_SLACK
+        ));
+    }
+    if let Some(p) = report.gross_slip() {
+        let r = &report.pulleys[p];
+        return Some(format!(
+            "friction saturated over the whole wrap of pulley '{}' (adhesion arc {:.3} of \
+             {:.3} rad): the belt slides, outside the linearised creep regime",
+            r.name, r.adhesion_arc_rad, r.contact_arc_rad
+        ));
+    }
+    None
 }
 
 /// Integration statistics of a sweep.
@@ -124,6 +197,14 @@ pub struct SweepStats {
     pub newton_iterations: usize,
     /// Force evaluations.
     pub force_evaluations: usize,
+}
+
+impl SweepStats {
+    fn add(&mut self, s: &mbd_core::integrators::Stats) {
+        self.steps += s.steps;
+        self.newton_iterations += s.newton_iterations;
+        self.force_evaluations += s.force_evaluations;
+    }
 }
 
 /// A failed sweep with the points found before the failure.
@@ -171,14 +252,78 @@ pub fn robust_step<M: DriveModel>(
     }
 }
 
+/// Reports sampled per averaging window ([`DriveReport::mean`]).
+pub const REPORTS_PER_WINDOW: usize = 10;
+
+/// What is observed over one averaging window: the running minimum and maximum of each span's
+/// mid-point displacement, and the drive's reports at [`REPORTS_PER_WINDOW`] instants.
+#[derive(Debug, Clone, Default)]
+struct Window {
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    reports: Vec<DriveReport>,
+}
+
+impl Window {
+    fn add(&mut self, x: &[f64]) {
+        if self.lo.len() != x.len() {
+            self.lo = vec![f64::INFINITY; x.len()];
+            self.hi = vec![f64::NEG_INFINITY; x.len()];
+        }
+        for (k, &v) in x.iter().enumerate() {
+            if v.is_finite() {
+                self.lo[k] = self.lo[k].min(v);
+                self.hi[k] = self.hi[k].max(v);
+            }
+        }
+    }
+
+    /// Half the peak-to-peak of span `k` (`NaN` if never observed).
+    fn amplitude(&self, k: usize) -> f64 {
+        match (self.lo.get(k), self.hi.get(k)) {
+            (Some(lo), Some(hi)) if hi >= lo => 0.5 * (hi - lo),
+            _ => f64::NAN,
+        }
+    }
+}
+
+/// The report of `model` at `state` ([`DriveModel::snapshot`]) averaged with the reports
+/// sampled over `window`, with the span amplitudes of `window`; and the wrap points at `state`.
+fn report_of<M: DriveModel>(
+    model: &M,
+    state: &State,
+    window: &Window,
+) -> Result<(DriveReport, Vec<WrapPoint>), MbdError> {
+    let snap = model.snapshot(state.t, &state.q, &state.v)?;
+    let now = DriveReport::new(&snap, model.belt_data().friction.coefficient());
+    let mut all = window.reports.clone();
+    all.push(now);
+    let mut report = DriveReport::mean(&all).unwrap_or_else(|| all[0].clone());
+    for (k, s) in report.spans.iter_mut().enumerate() {
+        s.vibration_amplitude = window.amplitude(k);
+    }
+    Ok((report, snap.wrap))
+}
+
 /// Run the procedure on `model` (its driver and load schedules are overwritten). `observer`
 /// sees every step (e.g. to write histories or update a progress bar).
+///
+/// Each point carries the drive's report ([`DriveReport`]: span tensions, per-pulley arcs,
+/// hub loads and torques averaged over the last window ([`REPORTS_PER_WINDOW`] samples and the
+/// end state), span vibration amplitudes over it) and its wrap distributions at the end. **Gross slip is a result**: when the speed loss exceeds
+/// [`gross_slip_bound`] (the driven pulley runs away: the load exceeds what friction can
+/// transmit), or a steady state has a wrap without adhesion arc
+/// ([`DriveReport::gross_slip`]: the belt slides over the whole wrap), the point is marked
+/// ([`SpeedLossPoint::gross_slip`]), the drive is put back into the last steady state (load
+/// and all) and the next torque is ramped from there. A Newton failure, or a torque that never
+/// becomes steady within `max_hold` (reported as such, not as a Newton failure), stays an
+/// error ([`SweepFailure`]).
 pub fn speed_loss_sweep<M: DriveModel>(
     model: &mut M,
     settings: &SpeedLossConfig,
     mut observer: impl FnMut(&State, Sample),
 ) -> Result<(Vec<SpeedLossPoint>, SweepStats), SweepFailure> {
-    let mut points = Vec::new();
+    let mut points: Vec<SpeedLossPoint> = Vec::new();
     let fail = |error: MbdError, points: &Vec<SpeedLossPoint>| SweepFailure {
         error,
         points: points.clone(),
@@ -187,6 +332,8 @@ pub fn speed_loss_sweep<M: DriveModel>(
         knots: vec![(0.0, 0.0), (settings.spin_up, settings.omega_driver)],
     });
     *model.load_mut() = Schedule::constant(0.0);
+    let belt = model.belt_data();
+    let bound = gross_slip_bound(&belt, settings.omega_driver);
     let s0 = model.initial_state().map_err(|e| fail(e, &points))?;
     let alpha = GeneralizedAlpha::new(AlphaConfig {
         h: settings.step,
@@ -194,11 +341,15 @@ pub fn speed_loss_sweep<M: DriveModel>(
         ..Default::default()
     });
     let mut stepper: AlphaStepper = alpha.stepper(&*model, s0).map_err(|e| fail(e, &points))?;
+    let mut stats = SweepStats::default();
     let h = settings.step;
     let per_window = (settings.window / h).round().max(1.0) as usize;
     let mut current = 0.0;
     // the first level starts after the spin-up
     let mut level_start = settings.spin_up;
+    // the last sound state to return to after a gross slip, with its load (set at the end of
+    // the spin-up, then at every steady point without gross slip)
+    let mut anchor: Option<(State, f64)> = None;
     for &target in &settings.torques {
         if target != current {
             let t0 = level_start;
@@ -213,9 +364,13 @@ pub fn speed_loss_sweep<M: DriveModel>(
         // step to the end of the ramp, then average windows until steady
         let mut means: Vec<f64> = Vec::new();
         let (mut sum, mut count) = (0.0, 0usize);
-        loop {
+        let mut window = Window::default();
+        let slipped: Option<(State, String)> = loop {
             robust_step(&mut stepper, &*model, h, MAX_HALVINGS).map_err(|e| fail(e, &points))?;
             let st = stepper.state();
+            if anchor.is_none() && st.t >= settings.spin_up - 0.5 * h {
+                anchor = Some((st.clone(), 0.0));
+            }
             let sample = Sample {
                 t: st.t,
                 omega_driver: model.driver_speed(st.t),
@@ -224,50 +379,136 @@ pub fn speed_loss_sweep<M: DriveModel>(
                 points: points.len(),
             };
             observer(st, sample);
+            let dw = sample.omega_driver - sample.omega_driven;
+            if st.t >= settings.spin_up && dw > bound {
+                break Some((
+                    st.clone(),
+                    format!(
+                        "speed loss {dw:.3} rad/s above {bound:.3} rad/s, the most any \
+                         steady creep and sliding allow (the driven pulley runs away)"
+                    ),
+                ));
+            }
             if st.t < level_start - 0.5 * h {
                 continue;
             }
-            sum += sample.omega_driver - sample.omega_driven;
+            window.add(&model.span_transverse(&st.q).map_err(|e| fail(e, &points))?);
+            sum += dw;
             count += 1;
+            if count % (per_window / REPORTS_PER_WINDOW).max(1) == 0 && count < per_window {
+                let snap = model
+                    .snapshot(st.t, &st.q, &st.v)
+                    .map_err(|e| fail(e, &points))?;
+                window
+                    .reports
+                    .push(DriveReport::new(&snap, belt.friction.coefficient()));
+            }
             if count == per_window {
                 means.push(sum / count as f64);
                 sum = 0.0;
                 count = 0;
+                let last_window = std::mem::take(&mut window);
                 let k = means.len();
                 if k >= 2 && (means[k - 1] - means[k - 2]).abs() < settings.tolerance {
-                    let st = stepper.state();
+                    let st = stepper.state().clone();
+                    let (report, wrap) =
+                        report_of(&*model, &st, &last_window).map_err(|e| fail(e, &points))?;
+                    let gross = report.gross_slip().map(|p| {
+                        let r = &report.pulleys[p];
+                        GrossSlip {
+                            pulley: p,
+                            name: r.name.clone(),
+                            time: st.t,
+                            criterion: format!(
+                                "steady sliding over the whole wrap: adhesion arc {:.3} rad \
+                                 of a {:.3} rad contact arc",
+                                r.adhesion_arc_rad, r.contact_arc_rad
+                            ),
+                        }
+                    });
+                    let steady = gross.is_none();
                     points.push(SpeedLossPoint {
                         torque: target,
                         delta_omega: means[k - 1],
                         omega_driven: model.driver_speed(st.t) - means[k - 1],
                         drift: means[k - 1] - means[k - 2],
                         time: st.t,
+                        gross_slip: gross,
+                        linearisation: linearisation_issue(&belt, &report),
+                        report,
+                        wrap,
                     });
                     level_start = st.t;
-                    break;
+                    if steady {
+                        anchor = Some((st, target));
+                        break None;
+                    }
+                    break Some((st, String::new()));
                 }
-                if st.t - level_start > settings.max_hold {
+                if stepper.state().t - level_start > settings.max_hold {
                     return Err(fail(
-                        MbdError::NoConvergence {
-                            t: st.t,
-                            iterations: k,
-                            residual: (means[k - 1] - means[k - 2]).abs(),
+                        MbdError::Model {
+                            t: stepper.state().t,
+                            message: format!(
+                                "no steady state at {target} N m within max_hold = {} s: the \
+                                 last window means of the speed loss differ by {:.3e} rad/s \
+                                 (tolerance {:.1e} rad/s)",
+                                settings.max_hold,
+                                (means[k - 1] - means[k - 2]).abs(),
+                                settings.tolerance
+                            ),
                         },
                         &points,
                     ));
                 }
             }
+        };
+        let Some((st, criterion)) = slipped else {
+            continue;
+        };
+        if !criterion.is_empty() {
+            // runaway: report the pulley whose wrap has the least adhesion left
+            let (report, wrap) = report_of(&*model, &st, &window).map_err(|e| fail(e, &points))?;
+            let p = (0..report.pulleys.len())
+                .min_by(|&a, &b| {
+                    let f = |k: usize| {
+                        let r = &report.pulleys[k];
+                        r.adhesion_arc_rad / r.contact_arc_rad.max(f64::MIN_POSITIVE)
+                    };
+                    f(a).total_cmp(&f(b))
+                })
+                .unwrap_or(0);
+            let dw = model.driver_speed(st.t) - model.driven_speed(&st.v);
+            points.push(SpeedLossPoint {
+                torque: target,
+                delta_omega: dw,
+                omega_driven: model.driven_speed(&st.v),
+                drift: f64::NAN,
+                time: st.t,
+                gross_slip: Some(GrossSlip {
+                    pulley: p,
+                    name: report.pulleys[p].name.clone(),
+                    time: st.t,
+                    criterion,
+                }),
+                linearisation: linearisation_issue(&belt, &report),
+                report,
+                wrap,
+            });
         }
+        // back to the last sound state, at the present time, with its load
+        let (sound, load) = anchor.clone().unwrap_or_else(|| (st.clone(), 0.0));
+        let knots = &mut model.load_mut().knots;
+        knots.retain(|k| k.0 < st.t);
+        knots.push((st.t, load));
+        current = load;
+        level_start = st.t;
+        stats.add(&stepper.stats);
+        stepper = alpha
+            .stepper(&*model, State::new(st.t, sound.q, sound.v))
+            .map_err(|e| fail(e, &points))?;
     }
-    let st = stepper.state();
-    let s = &stepper.stats;
-    Ok((
-        points,
-        SweepStats {
-            simulated_time: st.t,
-            steps: s.steps,
-            newton_iterations: s.newton_iterations,
-            force_evaluations: s.force_evaluations,
-        },
-    ))
+    stats.add(&stepper.stats);
+    stats.simulated_time = stepper.state().t;
+    Ok((points, stats))
 }

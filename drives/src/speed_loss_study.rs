@@ -7,7 +7,8 @@
 
 use crate::ancf_drive_model::AncfConfig;
 use crate::error::DriveError;
-use crate::speed_loss::{SpeedLossConfig, SweepStats};
+use crate::report::{HubLoad, PulleyReport, PulleyRole, SpanReport};
+use crate::speed_loss::{GrossSlip, SpeedLossConfig, SpeedLossPoint, SweepStats};
 use crate::study::{ModelKind, NodalConfig, SpeedLossCase};
 use flowing::belt::BeltDriveConfig;
 use mbd_core::validate::{InvalidField, Validate};
@@ -100,13 +101,72 @@ pub fn drive_input_error(e: &DriveError) -> Option<InvalidField> {
     }
 }
 
-/// One point of the summary.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// One point of the summary: the issue-17 keys per load torque. Where the results of a model
+/// linearised about T0 do not hold ([`SummaryPoint::linearisation`]), the numbers are `null`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SummaryPoint {
     /// Load torque \[N m\].
     pub torque: f64,
-    /// Steady speed loss ω₁ − ω₂ \[rad/s\].
-    pub delta_omega: f64,
+    /// Steady speed loss ω₁ − ω₂ \[rad/s\] (`null` after a runaway gross slip or where the
+    /// linearisation does not hold).
+    pub delta_omega: Option<f64>,
+    /// Tension of the tight span (running onto the driver) \[N\].
+    pub tension_tight: Option<f64>,
+    /// Tension of the slack span (leaving the driver) \[N\].
+    pub tension_slack: Option<f64>,
+    /// Whether the load exceeded what friction can transmit ([`GrossSlip`]).
+    pub gross_slip: bool,
+    /// Where and when it slipped.
+    pub gross_slip_at: Option<GrossSlip>,
+    /// Slip arc of the driver (saturated friction, [`crate::report`]) \[rad\].
+    pub slip_arc_driver_rad: Option<f64>,
+    /// Slip arc of the driven pulley \[rad\].
+    pub slip_arc_driven_rad: Option<f64>,
+    /// Force of the belt on every pulley.
+    pub hub_loads: Option<Vec<HubLoad>>,
+    /// Whether the model's results hold at this point (always for the ANCF belt; for the
+    /// flowing and nodal belts, linearised about T0, while the spans stay taut and no wrap
+    /// slides as a whole).
+    pub linearisation_valid: bool,
+    /// Why they do not.
+    pub linearisation: Option<String>,
+    /// Per pulley: arcs, slip velocity, hub load, torque, sliding loss.
+    pub pulleys: Option<Vec<PulleyReport>>,
+    /// Per span: tension and transverse vibration amplitude.
+    pub spans: Option<Vec<SpanReport>>,
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl SummaryPoint {
+    /// The summary of the procedure's point `p`.
+    pub fn new(p: &SpeedLossPoint) -> Self {
+        let valid = p.linearisation.is_none();
+        let r = &p.report;
+        let runaway = p.gross_slip.is_some() && !p.drift.is_finite();
+        let arc = |role| {
+            r.find(role)
+                .and_then(|k| finite(r.pulleys[k].slip_arc_rad))
+                .filter(|_| valid)
+        };
+        Self {
+            torque: p.torque,
+            delta_omega: finite(p.delta_omega).filter(|_| valid && !runaway),
+            tension_tight: finite(r.tension_tight()).filter(|_| valid),
+            tension_slack: finite(r.tension_slack()).filter(|_| valid),
+            gross_slip: p.gross_slip.is_some(),
+            gross_slip_at: p.gross_slip.clone(),
+            slip_arc_driver_rad: arc(PulleyRole::Driver),
+            slip_arc_driven_rad: arc(PulleyRole::Driven),
+            hub_loads: valid.then(|| r.hub_loads()),
+            linearisation_valid: valid,
+            linearisation: p.linearisation.clone(),
+            pulleys: valid.then(|| r.pulleys.clone()),
+            spans: valid.then(|| r.spans.clone()),
+        }
+    }
 }
 
 /// One driver speed's result in the summary.
@@ -114,10 +174,13 @@ pub struct SummaryPoint {
 pub struct SummaryCase {
     /// Driver speed \[rad/s\].
     pub omega_driver: f64,
-    /// Steady points.
+    /// Operating points.
     pub points: Vec<SummaryPoint>,
     /// Bechtel's Δω (6.3) at the same torques \[rad/s\].
     pub analytical: Vec<f64>,
+    /// Euler–Eytelwein capacity of the drive at this speed \[N·m\]
+    /// ([`crate::euler_eytelwein_capacity`]).
+    pub capacity_euler_eytelwein: f64,
     /// Integration statistics.
     pub stats: SweepStats,
     /// Wall time of this case \[s\].
@@ -129,15 +192,9 @@ impl SummaryCase {
     pub fn new(case: SpeedLossCase, wall_time_s: f64) -> Self {
         Self {
             omega_driver: case.omega_driver,
-            points: case
-                .points
-                .iter()
-                .map(|p| SummaryPoint {
-                    torque: p.torque,
-                    delta_omega: p.delta_omega,
-                })
-                .collect(),
+            points: case.points.iter().map(SummaryPoint::new).collect(),
             analytical: case.analytical,
+            capacity_euler_eytelwein: case.capacity,
             stats: case.stats,
             wall_time_s,
         }

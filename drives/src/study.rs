@@ -3,11 +3,12 @@
 //! Bechtel's line (6.3) at the same torques. The app only reads the configuration, calls
 //! [`SpeedLossModel::new`] and [`SpeedLossModel::sweep`] per speed, and writes the results.
 
-use crate::analytical::bechtel;
+use crate::analytical::{bechtel, euler_eytelwein_capacity};
 use crate::ancf_drive_model::{AncfConfig, AncfDrive, AncfMapping};
 use crate::error::DriveError;
 use crate::speed_loss::speed_loss_sweep;
 use crate::speed_loss::{Sample, SpeedLossConfig, SpeedLossPoint, SweepFailure, SweepStats};
+use contact::friction::FrictionLaw;
 use flowing::belt::config::BeltMesh;
 use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
@@ -116,6 +117,11 @@ pub struct SpeedLossCase {
     pub points: Vec<SpeedLossPoint>,
     /// Bechtel's Δω (6.3) at the same torques \[rad/s\].
     pub analytical: Vec<f64>,
+    /// Euler–Eytelwein capacity of the drive at this speed \[N·m\]
+    /// ([`crate::euler_eytelwein_capacity`]).
+    pub capacity: f64,
+    /// Coefficient μ of the belt–pulley friction law.
+    pub friction_coefficient: f64,
     /// Integration statistics.
     pub stats: SweepStats,
 }
@@ -206,6 +212,8 @@ impl SpeedLossModel {
         }?;
         Ok(SpeedLossCase {
             omega_driver: settings.omega_driver,
+            capacity: euler_eytelwein_capacity(drive, settings.omega_driver),
+            friction_coefficient: drive.contact.friction_law().coefficient(),
             analytical: points
                 .iter()
                 .map(|p| bechtel(drive, p.torque, settings.omega_driver))

@@ -30,9 +30,18 @@ def speed_loss(
     Returns
     -------
     dict
-        The content of the CLI's ``summary.json`` (``omega_driver``, ``model``, ``points``
-        (list of ``{"torque", "delta_omega"}``), ``analytical`` (array), ``cases``,
-        ``modal_coordinates``, ``wall_time_s``).
+        The content of the CLI's ``summary.json`` (``omega_driver``, ``model``, ``points``,
+        ``analytical`` (array), ``cases``, ``modal_coordinates``, ``wall_time_s``). Each point
+        holds ``torque`` [N m], ``delta_omega`` [rad/s], ``tension_tight`` and
+        ``tension_slack`` [N], ``gross_slip`` (bool) with ``gross_slip_at`` (pulley, time,
+        criterion), ``slip_arc_driver_rad`` and ``slip_arc_driven_rad``, ``hub_loads`` (list of
+        ``{"name", "force", "magnitude"}`` [N]), ``pulleys`` (arcs, slip velocities, hub load,
+        torque, sliding loss per pulley), ``spans`` (tension and transverse vibration
+        amplitude per span), and ``linearisation_valid`` / ``linearisation``: for the flowing
+        and nodal models, linearised about the pre-tension, the numbers are ``None`` where the
+        slack span goes nearly slack or a wrap slides as a whole. Each case adds
+        ``capacity_euler_eytelwein`` [N m]. A load beyond what friction can transmit is a point
+        with ``gross_slip = True``, not an error.
 
     Raises
     ------
@@ -67,7 +76,9 @@ def ancf(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = No
     dict
         The CLI's ``summary.json``: end speeds of driver and driven pulley [rad/s], tight and
         slack span tensions [N], ``speed_ratio``, ``initial_tension``, ``steps``,
-        ``newton_iterations``, ``t_end``, ``wall_time_s`` (closure: ``closure_radius`` and
+        ``newton_iterations``, ``t_end``, ``wall_time_s``; for a dynamic run also
+        ``gross_slip``, ``slip_arc_driver_rad``, ``slip_arc_driven_rad``, ``hub_loads``,
+        ``pulleys`` and ``spans`` at the end (closure: ``closure_radius`` and
         ``closure_radius_variation``).
 
     Raises

@@ -5,7 +5,7 @@
 
 use crate::{input_error, numerical_error, read_config, to_json};
 use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
-use drives::speed_loss_study::{SummaryCase, drive_input_error};
+use drives::speed_loss_study::{SummaryCase, SummaryPoint, drive_input_error};
 use drives::study::case_inputs;
 use drives::{ModelKind, SpeedLossModel, SpeedLossStudyConfig, SpeedLossSummary};
 use mbd_core::{InvalidField, Validate};
@@ -35,7 +35,10 @@ fn run(c: &SpeedLossStudyConfig) -> Result<SpeedLossSummary, Failure> {
         let case = model.sweep(&drive, &settings, |_, _| {}).map_err(|f| {
             Failure::Numerical(
                 format!("ω₁ = {omega} rad/s: {}", f.error),
-                Some(serde_json::json!({ "omega_driver": omega, "points": f.points })),
+                Some(serde_json::json!({
+                    "omega_driver": omega,
+                    "points": f.points.iter().map(SummaryPoint::new).collect::<Vec<_>>(),
+                })),
             )
         })?;
         coordinates = model.coordinates();

@@ -388,10 +388,36 @@ impl BeltDrive {
         });
     }
 
+    /// Force of the belt on every pulley (the hub load, the resultant of the contact forces
+    /// (3.20)–(3.23) integrated by (3.27)) \[N\] and its torque about the pulley centre in the
+    /// pulley's travel sense \[N·m\] (Kerkkänen (3.26)), at `(t, q, v)`.
+    pub fn pulley_loads(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<PulleyLoad> {
+        self.pulley_loads_with(q, v, &self.speeds(t, v))
+    }
+
+    /// [`Self::pulley_loads`] with the pulleys spinning at the travel-sense speeds `omegas`
+    /// \[rad/s\] (one per pulley; see [`Self::forces_with`]).
+    pub fn pulley_loads_with(&self, q: &[f64], v: &[f64], omegas: &[f64]) -> Vec<PulleyLoad> {
+        let mut out = vec![PulleyLoad::default(); self.spec.pulleys.len()];
+        let mut scratch = self.lock();
+        self.contact_pass(q, v, omegas, false, &mut scratch, |_, p, ec, _| {
+            out[p].force[0] += ec.reaction[0];
+            out[p].force[1] += ec.reaction[1];
+            out[p].torque += self.spec.pulleys[p].ccw_sign() * ec.torque;
+        });
+        out
+    }
+
     /// Contact state at every active quadrature point, for output (force distributions and
     /// belt–pulley relative velocity, Kerkkänen Figs 3.13–3.20).
     pub fn contact_records(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<PointRecord> {
-        self.records_on(&self.line, t, q, v)
+        self.records_on(&self.line, q, v, &self.speeds(t, v))
+    }
+
+    /// [`Self::contact_records`] with the pulleys spinning at the travel-sense speeds `omegas`
+    /// \[rad/s\] (one per pulley; see [`Self::forces_with`]).
+    pub fn contact_records_with(&self, q: &[f64], v: &[f64], omegas: &[f64]) -> Vec<PointRecord> {
+        self.records_on(&self.line, q, v, omegas)
     }
 
     /// Contact state sampled at `per_element` equally spaced points of every element (at
@@ -419,17 +445,16 @@ impl BeltDrive {
                 weights: vec![1.0 / n as f64; n],
             },
         };
-        self.records_on(&line, t, q, v)
+        self.records_on(&line, q, v, &self.speeds(t, v))
     }
 
     fn records_on(
         &self,
         line: &LineContact<Disk, BeltNormal, BeltFriction>,
-        t: f64,
         q: &[f64],
         v: &[f64],
+        omegas: &[f64],
     ) -> Vec<PointRecord> {
-        let omegas = self.speeds(t, v);
         let l = self.element_length();
         let mut out = Vec::new();
         let mut recs: Vec<ContactRecord<2>> = Vec::new();
@@ -458,7 +483,14 @@ impl BeltDrive {
                 );
                 let sgn = self.spec.pulleys[p].ccw_sign();
                 for r in &recs {
+                    let k = line
+                        .rule
+                        .points
+                        .iter()
+                        .position(|x| (x - r.xi).abs() <= 1e-12)
+                        .unwrap_or(0);
                     out.push(PointRecord {
+                        weight: line.rule.weights.get(k).copied().unwrap_or(0.0) * l,
                         pulley: p,
                         element: el,
                         s_material: (el as f64 + line.rule.points[r.index]) * l,
@@ -475,6 +507,15 @@ impl BeltDrive {
     }
 }
 
+/// The belt's load on one pulley ([`BeltDrive::pulley_loads`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct PulleyLoad {
+    /// Resultant force of the belt on the pulley (hub load) \[N\].
+    pub force: [f64; 2],
+    /// Torque of the belt's contact forces on the pulley in its travel sense \[N·m\].
+    pub torque: f64,
+}
+
 /// Contact state at one quadrature point, in the travel sense of the pulley.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PointRecord {
@@ -484,6 +525,9 @@ pub struct PointRecord {
     pub element: usize,
     /// Material (unstretched) arc length along the belt from node 0 \[m\].
     pub s_material: f64,
+    /// Quadrature weight of the point times the element length \[m\]: the belt length the
+    /// point's force densities stand for (3.27).
+    pub weight: f64,
     /// Position \[m\].
     pub position: [f64; 2],
     /// Penetration `d` (3.21) \[m\].

@@ -2,10 +2,9 @@
 //! tensions and mid-span positions (Figs 3.10–3.12), pulley arc coordinates of contact points
 //! (Fig. 3.17).
 
-use super::model::BeltDrive;
+use super::model::{BeltDrive, PointRecord};
 use crate::element::Element;
 use crate::shape;
-use fe_model::generate::belt_path::Segment;
 
 /// Axial state at one material point of the belt.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -21,99 +20,112 @@ pub struct TensionSample {
     pub tension: f64,
 }
 
-/// Tension at `per_element` equally spaced interior points of every element.
-pub fn tension_samples(drive: &BeltDrive, q: &[f64], per_element: usize) -> Vec<TensionSample> {
-    let mesh = drive.mesh();
+/// Axial stiffness `α₁ E A` of the belt \[N\] (Kerkkänen §4.2).
+fn axial_stiffness(drive: &BeltDrive) -> f64 {
     let b = &drive.spec().belt;
-    let ea = b.alpha1 * b.young * b.width * b.thickness;
+    b.alpha1 * b.young * b.width * b.thickness
+}
+
+/// Centreline position \[m\] and slope `r_x` at `ξ` of an element with coordinates `e`.
+fn centreline(e: &[f64; 12], l: f64, xi: f64) -> ([f64; 2], [f64; 2]) {
+    let sh = shape::cubic(l, xi * l, 0.0);
+    let mut r = [0.0; 2];
+    let mut rx = [0.0; 2];
+    for a in 0..6 {
+        r[0] += sh.s[a] * e[2 * a];
+        r[1] += sh.s[a] * e[2 * a + 1];
+        rx[0] += sh.sx[a] * e[2 * a];
+        rx[1] += sh.sx[a] * e[2 * a + 1];
+    }
+    (r, rx)
+}
+
+/// The [`TensionSample`] of element `el` at `ξ = x/l`.
+pub fn tension_at(drive: &BeltDrive, q: &[f64], el: usize, xi: f64) -> TensionSample {
     let l = drive.element_length();
     let mut e = [0.0; 12];
-    let mut out = Vec::with_capacity(mesh.elements().len() * per_element);
-    for el in 0..mesh.elements().len() {
-        mesh.gather(q, el, &mut e);
+    drive.mesh().gather(q, el, &mut e);
+    let (r, rx) = centreline(&e, l, xi);
+    let strain = (rx[0] * rx[0] + rx[1] * rx[1]).sqrt() - 1.0;
+    TensionSample {
+        s_material: (el as f64 + xi) * l,
+        position: r,
+        strain,
+        tension: axial_stiffness(drive) * strain,
+    }
+}
+
+/// Tension at `per_element` equally spaced interior points of every element.
+pub fn tension_samples(drive: &BeltDrive, q: &[f64], per_element: usize) -> Vec<TensionSample> {
+    let n_el = drive.mesh().elements().len();
+    let mut out = Vec::with_capacity(n_el * per_element);
+    for el in 0..n_el {
         for k in 0..per_element {
             let xi = (k as f64 + 0.5) / per_element as f64;
-            let sh = shape::cubic(l, xi * l, 0.0);
-            let mut r = [0.0; 2];
-            let mut rx = [0.0; 2];
-            for a in 0..6 {
-                r[0] += sh.s[a] * e[2 * a];
-                r[1] += sh.s[a] * e[2 * a + 1];
-                rx[0] += sh.sx[a] * e[2 * a];
-                rx[1] += sh.sx[a] * e[2 * a + 1];
-            }
-            let strain = (rx[0] * rx[0] + rx[1] * rx[1]).sqrt() - 1.0;
-            out.push(TensionSample {
-                s_material: (el as f64 + xi) * l,
-                position: r,
-                strain,
-                tension: ea * strain,
-            });
+            out.push(tension_at(drive, q, el, xi));
         }
     }
     out
 }
 
-/// Geometry of span `k` of the undeformed path: start \[m\], unit direction, length \[m\], and the
-/// pulleys it leaves and reaches.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpanLine {
-    /// Start point \[m\].
-    pub start: [f64; 2],
-    /// Unit travel direction.
-    pub direction: [f64; 2],
-    /// Length \[m\].
-    pub length: f64,
-    /// Pulley the span leaves.
-    pub from: usize,
-    /// Pulley the span reaches.
-    pub to: usize,
+/// One contact quadrature point on a wrap with the belt tension there.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct WrapRecord {
+    /// The contact state (force densities, relative velocity, quadrature weight).
+    pub contact: PointRecord,
+    /// Angle \[rad\] from the inlet of the pulley's wrap in the travel direction
+    /// ([`fe_model::generate::belt_path::BeltPath::angle_from_inlet`]).
+    pub angle: f64,
+    /// Belt tension at the point \[N\] ([`tension_at`]).
+    pub tension: f64,
 }
 
-/// The straight spans of the drive's path in travel order.
-pub fn spans(drive: &BeltDrive) -> Vec<SpanLine> {
-    let np = drive.pulleys().len();
+/// Every active contact quadrature point of `(q, v)` with the pulleys at the travel-sense
+/// speeds `omegas` \[rad/s\] ([`BeltDrive::contact_records_with`]), with its angle on the pulley
+/// and the belt tension there: the tension, pressure and friction along every wrap, at the
+/// points where the contact forces are integrated (3.27).
+pub fn wrap_records(drive: &BeltDrive, q: &[f64], v: &[f64], omegas: &[f64]) -> Vec<WrapRecord> {
+    let l = drive.element_length();
     drive
-        .path()
-        .pieces()
-        .iter()
-        .filter_map(|pc| match pc.segment {
-            Segment::Span {
-                from,
-                start,
-                direction,
-            } => Some(SpanLine {
-                start,
-                direction,
-                length: pc.length,
-                from,
-                to: (from + 1) % np,
-            }),
-            _ => None,
+        .contact_records_with(q, v, omegas)
+        .into_iter()
+        .map(|c| {
+            let xi = c.s_material / l - c.element as f64;
+            WrapRecord {
+                angle: drive
+                    .path()
+                    .angle_from_inlet(c.pulley, c.position)
+                    .unwrap_or(f64::NAN),
+                tension: tension_at(drive, q, c.element, xi).tension,
+                contact: c,
+            }
         })
         .collect()
 }
 
+use fe_model::generate::belt_path::BeltPath;
+pub use fe_model::generate::belt_path::SpanLine;
+
+/// The straight spans of the drive's path in travel order.
+pub fn spans(drive: &BeltDrive) -> Vec<SpanLine> {
+    drive.path().spans()
+}
+
 /// Mean tension \[N\] of the belt points that currently lie over the middle half of each span
-/// (within a quarter span length of the undeformed span line), in span order; `NaN` when no
-/// sample lies there.
+/// (within a quarter span length of the undeformed span line, assigned to the nearest span:
+/// [`BeltPath::span_middle_of`]), in span order; `NaN` when no sample lies there.
 pub fn span_tensions(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
     let samples = tension_samples(drive, q, 4);
-    spans(drive)
-        .iter()
-        .map(|sp| {
-            let (mut sum, mut n) = (0.0, 0usize);
-            for s in &samples {
-                let d = [s.position[0] - sp.start[0], s.position[1] - sp.start[1]];
-                let u = d[0] * sp.direction[0] + d[1] * sp.direction[1];
-                let w = -d[0] * sp.direction[1] + d[1] * sp.direction[0];
-                if u > 0.25 * sp.length && u < 0.75 * sp.length && w.abs() < 0.25 * sp.length {
-                    sum += s.tension;
-                    n += 1;
-                }
-            }
-            if n == 0 { f64::NAN } else { sum / n as f64 }
-        })
+    let spans = spans(drive);
+    let mut sum = vec![(0.0, 0usize); spans.len()];
+    for s in &samples {
+        if let Some(k) = BeltPath::span_middle_of(&spans, s.position) {
+            sum[k].0 += s.tension;
+            sum[k].1 += 1;
+        }
+    }
+    sum.iter()
+        .map(|&(t, n)| if n == 0 { f64::NAN } else { t / n as f64 })
         .collect()
 }
 
@@ -168,27 +180,26 @@ pub fn span_midpoints(drive: &BeltDrive, q: &[f64]) -> Vec<Option<[f64; 2]>> {
         .collect()
 }
 
+/// Transverse displacement \[m\] of each span's mid-point ([`span_midpoints`]) from the
+/// undeformed span line, positive to the left of the travel direction; `NaN` where the belt
+/// does not cross the span's bisector.
+pub fn span_transverse(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
+    spans(drive)
+        .iter()
+        .zip(span_midpoints(drive, q))
+        .map(|(sp, m)| m.map_or(f64::NAN, |p| sp.local(p).1))
+        .collect()
+}
+
 /// Arc coordinate \[m\] of `position` on pulley `p`, measured in the travel direction from the
 /// point where the undeformed path arrives on the pulley (the inlet; Kerkkänen Fig. 3.17
-/// measures from the inlet contact point), in `[−πR/2, 2πR − πR/2)`.
+/// measures from the inlet contact point), in `[−πR/2, 2πR − πR/2)`: `R` times
+/// [`BeltPath::angle_from_inlet`](fe_model::generate::belt_path::BeltPath::angle_from_inlet).
 pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) -> f64 {
     let pl = &drive.pulleys()[p];
-    let c = pl.center;
-    let arrival = match drive.path().arc_of(p) {
-        Some((s, _)) => drive.path().point(s).position,
-        None => [c[0] + pl.radius, c[1]],
-    };
-    let a = [arrival[0] - c[0], arrival[1] - c[1]];
-    let b = [position[0] - c[0], position[1] - c[1]];
-    let ccw = (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1]);
-    // travel sense: clockwise for pulleys inside the loop
-    let mut ang = ccw * pl.ccw_sign();
-    let lo = -0.25 * std::f64::consts::TAU;
-    while ang < lo {
-        ang += std::f64::consts::TAU;
-    }
-    while ang >= lo + std::f64::consts::TAU {
-        ang -= std::f64::consts::TAU;
-    }
-    pl.radius * ang
+    pl.radius
+        * drive
+            .path()
+            .angle_from_inlet(p, position)
+            .unwrap_or(f64::NAN)
 }

@@ -7,7 +7,12 @@
 //! per unit length and belt–pulley relative velocity at every active contact quadrature point at
 //! the end), `relative_velocity.csv` (the relative velocity (3.25) sampled at
 //! `output.points_per_element` points per element, which resolves the inlet and exit zones),
+//! `wrap.csv` (tension, contact pressure, friction, slip velocity and friction utilisation at
+//! every contact quadrature point of every wrap at the end, by angle from the wrap's inlet),
 //! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtk` + `belt.vtk.series`).
+//! `summary.json` adds per pulley the contact, slip and adhesion arcs, slip velocities, hub
+//! load and torque, and per span the tension and the transverse vibration amplitude
+//! ([`drives::report`]).
 
 use ancf::belt_drive::{BeltDrive, post};
 use drives::ancf_run::Due;
@@ -294,6 +299,34 @@ impl AncfStudy {
                     post::pulley_arc_coordinate(&drive, r.pulley, r.position),
                     r.penetration,
                     r.slip,
+                ]
+            }),
+        )?;
+
+        // tension, pressure, friction and slip along every wrap at the end
+        let mu = end.friction_coefficient;
+        ctx.out.write_csv(
+            "wrap.csv",
+            &[
+                "pulley",
+                "angle_from_inlet_rad",
+                "length_m",
+                "tension_N",
+                "pressure_N_per_m",
+                "friction_N_per_m",
+                "slip_velocity_m_per_s",
+                "friction_utilisation",
+            ],
+            end.wrap.iter().map(|w| {
+                [
+                    w.pulley as f64,
+                    w.angle,
+                    w.length,
+                    w.tension,
+                    w.pressure,
+                    w.friction,
+                    w.slip,
+                    w.utilisation(mu),
                 ]
             }),
         )?;

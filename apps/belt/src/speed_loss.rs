@@ -6,7 +6,9 @@
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use drives::speed_loss::{Sample, SweepFailure};
-use drives::speed_loss_study::{SpeedLossStudyConfig, SummaryCase as Case, drive_input_error};
+use drives::speed_loss_study::{
+    SpeedLossStudyConfig, SummaryCase as Case, SummaryPoint, drive_input_error,
+};
 use drives::study::case_inputs;
 use drives::{DriveError, ModelKind, SpeedLossCase, SpeedLossModel, SpeedLossSummary as Summary};
 use flowmbd_cli::plot::{LinePlot, Series, Style};
@@ -57,8 +59,73 @@ fn sweep_error(omega: f64, f: SweepFailure) -> StudyError {
         message: format!("ω₁ = {omega} rad/s: {}", f.error),
         partial: Some(serde_json::json!({
             "omega_driver": omega,
-            "points": f.points,
+            "points": f.points.iter().map(SummaryPoint::new).collect::<Vec<_>>(),
         })),
+    }
+}
+
+/// The contact points of every wrap at every operating point of `case` (`wrap_omega_*.csv`).
+fn write_wrap(ctx: &StudyContext, case: &SpeedLossCase) -> Result<(), StudyError> {
+    let mut csv = ctx.out.csv(
+        &format!("wrap_omega_{:.1}.csv", case.omega_driver),
+        &[
+            "torque_N_m",
+            "pulley",
+            "angle_from_inlet_rad",
+            "length_m",
+            "tension_N",
+            "pressure_N_per_m",
+            "friction_N_per_m",
+            "slip_velocity_m_per_s",
+            "friction_utilisation",
+        ],
+    )?;
+    for p in &case.points {
+        let mu = case.friction_coefficient;
+        for w in &p.wrap {
+            csv.row(&[
+                p.torque,
+                w.pulley as f64,
+                w.angle,
+                w.length,
+                w.tension,
+                w.pressure,
+                w.friction,
+                w.slip,
+                w.utilisation(mu),
+            ])?;
+        }
+    }
+    csv.finish()?;
+    Ok(())
+}
+
+/// Say on stderr where friction could not hold the load and where the linearised models stop
+/// holding (the points are results; the study goes on).
+fn report_slips(model: ModelKind, case: &SpeedLossCase) {
+    for p in &case.points {
+        if let Some(g) = &p.gross_slip {
+            eprintln!(
+                "flowmbd-belt speed-loss: {} belt, ω₁ = {} rad/s, load {} N m: gross slip at \
+                 pulley '{}' (index {}) at t = {:.4} s: {}",
+                model.name(),
+                case.omega_driver,
+                p.torque,
+                g.name,
+                g.pulley,
+                g.time,
+                g.criterion
+            );
+        }
+        if let Some(why) = &p.linearisation {
+            eprintln!(
+                "flowmbd-belt speed-loss: {} belt, ω₁ = {} rad/s, load {} N m: results not \
+                 reported, the linearisation about T0 does not hold: {why}",
+                model.name(),
+                case.omega_driver,
+                p.torque
+            );
+        }
     }
 }
 
@@ -112,6 +179,8 @@ fn run_case(
         return Err(e.into());
     }
     let case: SpeedLossCase = result.map_err(|f| sweep_error(omega, f))?;
+    write_wrap(ctx, &case)?;
+    report_slips(c.model, &case);
     // the last point ends the sweep, after the last observer call
     let extra = case.points.len().saturating_sub(found);
     report(done.fetch_add(extra, Ordering::Relaxed) + extra);
@@ -178,16 +247,78 @@ impl Study for SpeedLoss {
             "load torque [N m]",
             "Δω = ω₁ − ω₂ [rad/s]",
         );
+        let mut ops = ctx.out.csv(
+            "operating_points.csv",
+            &[
+                "omega_driver_rad_per_s",
+                "torque_N_m",
+                "delta_omega_rad_per_s",
+                "tension_tight_N",
+                "tension_slack_N",
+                "gross_slip",
+                "slip_arc_driver_rad",
+                "slip_arc_driven_rad",
+                "adhesion_arc_driver_rad",
+                "adhesion_arc_driven_rad",
+                "slip_velocity_max_driven_m_per_s",
+                "hub_load_driver_x_N",
+                "hub_load_driver_y_N",
+                "hub_load_driven_x_N",
+                "hub_load_driven_y_N",
+                "torque_driver_N_m",
+                "torque_driven_N_m",
+                "span0_vibration_amplitude_m",
+                "span1_vibration_amplitude_m",
+                "linearisation_valid",
+            ],
+        )?;
+        let nan = f64::NAN;
         for case in &cases {
             for (p, a) in case.points.iter().zip(&case.analytical) {
-                table.row(&[case.omega_driver, p.torque, p.delta_omega, *a])?;
+                table.row(&[
+                    case.omega_driver,
+                    p.torque,
+                    p.delta_omega.unwrap_or(nan),
+                    *a,
+                ])?;
+                let pl = |k: usize| p.pulleys.as_ref().and_then(|v| v.get(k));
+                let sp = |k: usize| {
+                    p.spans
+                        .as_ref()
+                        .and_then(|v| v.get(k))
+                        .map_or(nan, |s| s.vibration_amplitude)
+                };
+                ops.row(&[
+                    case.omega_driver,
+                    p.torque,
+                    p.delta_omega.unwrap_or(nan),
+                    p.tension_tight.unwrap_or(nan),
+                    p.tension_slack.unwrap_or(nan),
+                    f64::from(u8::from(p.gross_slip)),
+                    p.slip_arc_driver_rad.unwrap_or(nan),
+                    p.slip_arc_driven_rad.unwrap_or(nan),
+                    pl(0).map_or(nan, |q| q.adhesion_arc_rad),
+                    pl(1).map_or(nan, |q| q.adhesion_arc_rad),
+                    pl(1).map_or(nan, |q| q.slip_velocity_max),
+                    pl(0).map_or(nan, |q| q.hub_load[0]),
+                    pl(0).map_or(nan, |q| q.hub_load[1]),
+                    pl(1).map_or(nan, |q| q.hub_load[0]),
+                    pl(1).map_or(nan, |q| q.hub_load[1]),
+                    pl(0).map_or(nan, |q| q.torque),
+                    pl(1).map_or(nan, |q| q.torque),
+                    sp(0),
+                    sp(1),
+                    f64::from(u8::from(p.linearisation_valid)),
+                ])?;
             }
+            let shown = |p: &&SummaryPoint| p.delta_omega.is_some();
             plot.series.push(Series {
                 name: format!("{}, ω₁ = {} rad/s", c.model.name(), case.omega_driver),
                 points: case
                     .points
                     .iter()
-                    .map(|p| (p.torque, p.delta_omega))
+                    .filter(shown)
+                    .map(|p| (p.torque, p.delta_omega.unwrap_or(nan)))
                     .collect(),
                 style: Style::LinePoints,
             });
@@ -201,6 +332,7 @@ impl Study for SpeedLoss {
             ));
         }
         table.finish()?;
+        ops.finish()?;
         plot.save(&ctx.out.path("speed_loss"))?;
         Ok(Summary::new(
             c.model,

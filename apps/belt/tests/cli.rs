@@ -121,3 +121,58 @@ fn bad_input_exits_2_naming_the_field() {
     let (code, _, _) = run(&["speed-loss", "--torques", "0,abc"]);
     assert_eq!(code, 2);
 }
+
+// Issue 17: gross slip is a result. 38 N m exceeds the Euler–Eytelwein capacity of Table 6-1's
+// fixed-centre drive (33.8 N m at 62.8 rad/s): the point is marked, stderr names the pulley and
+// the time, the study goes on with the next torque and exits 0; every point carries the
+// engineer's keys, and the new CSV files carry units in their headers.
+#[test]
+fn gross_slip_is_reported_and_the_study_exits_0() {
+    let out = tmp("slip");
+    let (code, stdout, stderr) = run(&[
+        "speed-loss",
+        "--omega",
+        "62.8",
+        "--torques",
+        "0,38,10",
+        "--json",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("gross slip at pulley 'driven'") && stderr.contains("at t = "),
+        "{stderr}"
+    );
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let points = v["points"].as_array().unwrap();
+    assert_eq!(points.len(), 3);
+    let flags: Vec<bool> = points
+        .iter()
+        .map(|p| p["gross_slip"].as_bool().unwrap())
+        .collect();
+    assert_eq!(flags, [false, true, false]);
+    for key in [
+        "tension_tight",
+        "tension_slack",
+        "gross_slip",
+        "slip_arc_driver_rad",
+        "slip_arc_driven_rad",
+        "hub_loads",
+    ] {
+        assert!(points.iter().all(|p| p.get(key).is_some()), "{key} missing");
+    }
+    let last = &points[2];
+    assert!(last["tension_tight"].as_f64().unwrap() > last["tension_slack"].as_f64().unwrap());
+    assert_eq!(last["hub_loads"].as_array().unwrap().len(), 2);
+    assert!(v["cases"][0]["capacity_euler_eytelwein"].as_f64().unwrap() < 38.0);
+    for (f, unit) in [
+        ("operating_points.csv", "tension_tight_N"),
+        ("wrap_omega_62.8.csv", "pressure_N_per_m"),
+    ] {
+        let text = std::fs::read_to_string(out.join(f)).unwrap();
+        assert!(text.lines().next().unwrap().contains(unit), "{f}");
+    }
+    let _ = std::fs::remove_dir_all(out);
+}

@@ -97,6 +97,64 @@ pub struct PathPoint {
     pub pulley: Option<usize>,
 }
 
+/// A straight span of the path: start, unit travel direction, length and the pulleys it joins.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpanLine {
+    /// Start point (where the span leaves pulley `from`) \[m\].
+    pub start: [f64; 2],
+    /// Unit travel direction.
+    pub direction: [f64; 2],
+    /// Length \[m\].
+    pub length: f64,
+    /// Pulley the span leaves.
+    pub from: usize,
+    /// Pulley the span reaches.
+    pub to: usize,
+}
+
+impl SpanLine {
+    /// Coordinates of `p` in the span's frame: `(u, w)` \[m\], `u` along the travel direction
+    /// from the start, `w` to its left.
+    pub fn local(&self, p: [f64; 2]) -> (f64, f64) {
+        let d = sub(p, self.start);
+        (
+            d[0] * self.direction[0] + d[1] * self.direction[1],
+            -d[0] * self.direction[1] + d[1] * self.direction[0],
+        )
+    }
+
+    /// Whether `p` lies over the middle half of the span (a quarter length from either end)
+    /// and within a quarter length of its line: the part of a span away from the pulleys
+    /// where a belt's tension is the span tension.
+    pub fn middle_half_contains(&self, p: [f64; 2]) -> bool {
+        let (u, w) = self.local(p);
+        u > 0.25 * self.length && u < 0.75 * self.length && w.abs() < 0.25 * self.length
+    }
+
+    /// Where the closed polyline `points` crosses the span's perpendicular bisector, closest
+    /// to the span's mid-point and within half a span length of it (linear interpolation
+    /// between consecutive points); `None` if it does not.
+    pub fn bisector_crossing(&self, points: &[[f64; 2]]) -> Option<[f64; 2]> {
+        let n = points.len();
+        let g = |p: [f64; 2]| self.local(p).0 - 0.5 * self.length;
+        let mut best: Option<([f64; 2], f64)> = None;
+        for i in 0..n {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            let (ga, gb) = (g(a), g(b));
+            if ga * gb > 0.0 || ga == gb {
+                continue;
+            }
+            let f = ga / (ga - gb);
+            let p = [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])];
+            let off = self.local(p).1.abs();
+            if off < 0.5 * self.length && best.is_none_or(|(_, o)| off < o) {
+                best = Some((p, off));
+            }
+        }
+        best.map(|(p, _)| p)
+    }
+}
+
 /// A closed belt path over pulleys listed in travel order (see the module documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeltPath {
@@ -262,6 +320,41 @@ impl BeltPath {
         &self.pieces
     }
 
+    /// The straight spans in travel order (span `k` leaves pulley `k`).
+    pub fn spans(&self) -> Vec<SpanLine> {
+        let np = self.pulleys.len();
+        self.pieces
+            .iter()
+            .filter_map(|pc| match pc.segment {
+                Segment::Span {
+                    from,
+                    start,
+                    direction,
+                } => Some(SpanLine {
+                    start,
+                    direction,
+                    length: pc.length,
+                    from,
+                    to: (from + 1) % np,
+                }),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Index into [`Self::spans`] of the span over whose middle half `p` lies
+    /// ([`SpanLine::middle_half_contains`]), the one whose line is nearest when several do
+    /// (the two spans of a two-pulley drive with small pulleys lie closer to each other than a
+    /// quarter span length); `None` off every span's middle.
+    pub fn span_middle_of(spans: &[SpanLine], p: [f64; 2]) -> Option<usize> {
+        spans
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.middle_half_contains(p))
+            .min_by(|a, b| a.1.local(p).1.abs().total_cmp(&b.1.local(p).1.abs()))
+            .map(|(k, _)| k)
+    }
+
     /// The arc on pulley `k`: (s at arrival, wrap length) \[m\].
     pub fn arc_of(&self, pulley: usize) -> Option<(f64, f64)> {
         self.pieces.iter().find_map(|p| match p.segment {
@@ -274,6 +367,25 @@ impl BeltPath {
     pub fn wrap_angle(&self, pulley: usize) -> Option<f64> {
         self.arc_of(pulley)
             .map(|(_, l)| l / self.pulleys[pulley].radius)
+    }
+
+    /// Angle \[rad\] of `position` about the centre of `pulley`, measured in the travel
+    /// direction from the point where the path arrives on the pulley (the inlet of its wrap), in
+    /// `[−π/2, 3π/2)`: `turn·(θ_arrival − θ)` with `θ` the polar angle of `position` and `turn`
+    /// the pulley's sense of wrap ([`Segment::Arc`]). `None` if the pulley index has no arc.
+    pub fn angle_from_inlet(&self, pulley: usize, position: [f64; 2]) -> Option<f64> {
+        let (theta_start, turn) = self.pieces.iter().find_map(|p| match p.segment {
+            Segment::Arc {
+                pulley: k,
+                theta_start,
+                turn,
+            } if k == pulley => Some((theta_start, turn)),
+            _ => None,
+        })?;
+        let c = self.pulleys[pulley].center;
+        let th = (position[1] - c[1]).atan2(position[0] - c[0]);
+        let lo = -0.5 * PI;
+        Some((turn * (theta_start - th) - lo).rem_euclid(2.0 * PI) + lo)
     }
 
     /// `s` reduced to `[0, L)`.
@@ -396,6 +508,79 @@ pub fn tributary_lengths(s_nodes: &[f64], loop_length: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // the span frame: the mid-point of each span is (L/2, 0) and the straight path's polyline
+    // crosses the bisector there (definition of the span geometry)
+    #[test]
+    fn span_lines_and_bisector_crossing() {
+        let path = BeltPath::two_pulleys(0.45, 0.05, 0.08).unwrap();
+        let spans = path.spans();
+        assert_eq!(spans.len(), 2);
+        assert_eq!(
+            (spans[0].from, spans[0].to, spans[1].from, spans[1].to),
+            (0, 1, 1, 0)
+        );
+        let pts: Vec<[f64; 2]> = (0..400)
+            .map(|k| path.point(path.length() * k as f64 / 400.0).position)
+            .collect();
+        for sp in &spans {
+            let m = [
+                sp.start[0] + 0.5 * sp.length * sp.direction[0],
+                sp.start[1] + 0.5 * sp.length * sp.direction[1],
+            ];
+            let (u, w) = sp.local(m);
+            assert!((u - 0.5 * sp.length).abs() < 1e-12 && w.abs() < 1e-12);
+            assert!(sp.middle_half_contains(m));
+            let c = sp.bisector_crossing(&pts).unwrap();
+            assert!((c[0] - m[0]).hypot(c[1] - m[1]) < 1e-12);
+        }
+        // the spans of this drive lie 0.13 m apart, closer than a quarter span (0.11 m) from
+        // each other's middle band: each mid-point is still assigned to its own span
+        for (k, sp) in spans.iter().enumerate() {
+            let m = [
+                sp.start[0] + 0.5 * sp.length * sp.direction[0],
+                sp.start[1] + 0.5 * sp.length * sp.direction[1],
+            ];
+            assert_eq!(BeltPath::span_middle_of(&spans, m), Some(k));
+        }
+    }
+
+    // the angle from the inlet of a point on the arc is its path length from the arrival point
+    // over R (definition of the path's arcs), on an inside and a back-side pulley
+    #[test]
+    fn angle_from_inlet_follows_the_arc_length() {
+        let pulleys = [
+            PathPulley {
+                center: [0.0, 0.0],
+                radius: 0.05,
+                side: WrapSide::Inside,
+            },
+            PathPulley {
+                center: [0.3, 0.12],
+                radius: 0.03,
+                side: WrapSide::Outside,
+            },
+            PathPulley {
+                center: [0.5, 0.0],
+                radius: 0.07,
+                side: WrapSide::Inside,
+            },
+        ];
+        let path = BeltPath::new(&pulleys).unwrap();
+        for k in 0..3 {
+            let (a, len) = path.arc_of(k).unwrap();
+            for f in [0.0, 0.3, 0.9] {
+                let p = path.point(a + f * len).position;
+                let phi = path.angle_from_inlet(k, p).unwrap();
+                let expect = f * len / pulleys[k].radius;
+                assert!(
+                    (phi - expect).abs() < 1e-12,
+                    "pulley {k}: {phi} vs {expect}"
+                );
+            }
+        }
+        assert!(path.angle_from_inlet(3, [0.0, 0.0]).is_none());
+    }
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol

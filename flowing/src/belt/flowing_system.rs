@@ -26,12 +26,15 @@
 //! projected with the whole basis `Tᵀ` (Galerkin) instead of (5.14)'s mixed projection (`Ψ^fᵀ` on
 //! free rows, nodal contact rows) — both coincide when all modes are kept (T square), and the
 //! Galerkin form keeps the truncated model's energy balance (cf. U15 for the tire); the damping
-//! `β K_e` acts on the material deflection rate `δ̇_m = T ż + v T_,s z` (note U10: the
-//! viscoelastic strain rate follows the material) and `α M` on the Eulerian rate `T ż` (no drag
-//! in the steady state; the same choice as the tire model).
+//! `β K_e` acts on the co-rotated material deflection rate `δ̇_m − v ψ' J δ` with
+//! `δ̇_m = T ż + v T_,s z` (note U10: the viscoelastic strain rate follows the material; the
+//! `− v ψ' J δ` term removes the turning of the element frames the material passes through,
+//! [`super::BeltFe::frame_turn`] — Ribaric (5.5)'s `C δ̇` on global components is not
+//! frame-invariant) and `α M` on the Eulerian rate `T ż` (no drag in the steady state; the same
+//! choice as the tire model).
 
 use super::contact::{NodeContact, PulleyFrame, node_contact};
-use super::model::{BeltFe, FlowingBasis, NODE_DOFS};
+use super::model::{BeltFe, FlowingBasis, NODE_DOFS, chord_tensions};
 use super::schedule::Schedule;
 use super::statics::dense_equilibrium;
 use contact::friction::FrictionSpec;
@@ -162,7 +165,15 @@ impl FlowingBelt {
         let beta_k = Mat::from_fn(n, n, |i, j| {
             fe.damping[(i, j)] - if i == j { alpha * mdiag[i] } else { 0.0 }
         });
-        let a_cs = project(&et, &basis.t, &(&beta_k * &basis.ts));
+        // the frame-invariant material strain rate (BeltFe::frame_turn): β K_e (v T_,s z) minus
+        // the co-rotation β v Σ ψ'_e K_e J T z of the elements the material passes through
+        let beta = fe.config.damping.beta;
+        let turn = Mat::from_fn(n, n, |i, j| beta * fe.frame_turn[(i, j)]);
+        let a_cs = project(
+            &et,
+            &basis.t,
+            &(&(&beta_k * &basis.ts) - &(&turn * &basis.t)),
+        );
         let men: Vec<f64> = (0..n).map(|i| mdiag[i] * en[i]).collect();
         let p_en = project_vec(&et, &basis.t, &men);
         let p_f0 = project_vec(&et, &basis.t, &fe.pretension);
@@ -288,20 +299,21 @@ impl FlowingBelt {
         tq
     }
 
-    /// Axial tension of the belt element starting at each node \[N\]: `T0 + EA Δl/l`.
+    /// Axial tension of the belt element starting at each node \[N\]: `T0 + EA Δl/l`
+    /// ([`chord_tensions`] on the stationary mesh).
     pub fn element_tensions(&self, z: &[f64]) -> Vec<f64> {
-        let d = self.deflection(z);
-        let nn = self.fe.n_nodes();
-        (0..nn)
-            .map(|i| {
-                let j = (i + 1) % nn;
-                let (a, b) = (self.fe.position[i], self.fe.position[j]);
-                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-                let l = dx.hypot(dy);
-                let dl = (dx * (d[3 * j] - d[3 * i]) + dy * (d[3 * j + 1] - d[3 * i + 1])) / l;
-                self.fe.config.belt.tension + self.fe.config.belt.ea * dl / l
-            })
-            .collect()
+        let b = &self.fe.config.belt;
+        chord_tensions(&self.fe.position, &self.deflection(z), b.tension, b.ea)
+    }
+
+    /// Index of the driven pulley's speed in the velocities.
+    pub fn driven_dof(&self) -> usize {
+        self.m + 1
+    }
+
+    /// The friction law of the belt–pulley contact.
+    pub fn friction_law(&self) -> &FrictionSpec {
+        &self.friction
     }
 
     /// Static equilibrium of the belt on the resting pulleys (`v = 0`, `ż = 0`): Newton on the

@@ -41,9 +41,12 @@
 //!   path curvature (`1/R` on arcs, 0 on spans) jumps when a node crosses a tangent point, a
 //!   force discontinuous in `s_b` on which the Newton iterations of the implicit integrator
 //!   stall. Rotational entries of `e_t`, `ε_n` are zero (note U6).
-//! - Damping: `C δ̇` with the nodal rate δ̇, which is the material rate here (note U10: the
-//!   flowing form applies `α M` to the Eulerian rate; the difference, `α M v δ_,s`, is a drag of
-//!   order 10⁻³ N for Table 6-1).
+//! - Damping: `β K_e` on the co-rotated rate `δ̇ − ψ̇_e J δ` of each element
+//!   ([`BeltFe::frame_turn`]: δ̇, the nodal rate, is the material rate here, but of global
+//!   components; the element frames turn at `ψ̇_e = v ψ'_e` as they pass over a pulley, and
+//!   `β K_e δ̇` alone would count that turning of an unchanged deflection as a strain rate) and
+//!   `α M δ̇` (note U10: the flowing form applies `α M` to the Eulerian rate; the difference,
+//!   `α M v δ_,s`, is a drag of order 10⁻³ N for Table 6-1).
 //! - Every node can touch either pulley: the penalty law is evaluated for all node–pulley
 //!   pairs (the contact set changes as the nodes move); [`node_contact`] returns no force for an
 //!   open pair.
@@ -58,7 +61,7 @@
 //! 1.7 % (216).
 
 use super::contact::{NodeContact, PulleyFrame, node_contact};
-use super::model::{BeltFe, NODE_DOFS};
+use super::model::{BeltFe, NODE_DOFS, chord_tensions, chord_turn_rate, corotational_rate_block};
 use super::schedule::Schedule;
 use super::statics::dense_equilibrium;
 use contact::friction::FrictionSpec;
@@ -85,6 +88,10 @@ struct Mesh {
     k: Vec<Block>,
     /// `K_e` of each element (for the β part of the damping).
     ke: Vec<Block>,
+    /// `ψ'_e K_e J` of each element \[N/m²\] ([`BeltFe::frame_turn`]: the chord's turn rate
+    /// [`chord_turn_rate`] along the path times the co-rotation block
+    /// [`corotational_rate_block`]).
+    kj: Vec<Block>,
     /// Pre-tension force `f0` (`3N`) \[N\].
     f0: Vec<f64>,
 }
@@ -263,6 +270,7 @@ impl NodalBelt {
         let t0 = self.fe.config.belt.tension;
         let mut k = Vec::with_capacity(n);
         let mut ke = Vec::with_capacity(n);
+        let mut kj = Vec::with_capacity(n);
         let mut chords = Vec::with_capacity(n);
         for e in 0..n {
             let j = (e + 1) % n;
@@ -286,6 +294,15 @@ impl NodalBelt {
                 }
             }
             k.push(kt);
+            let turn = chord_turn_rate(
+                pts[e].position,
+                pts[j].position,
+                pts[e].tangent,
+                pts[j].tangent,
+            );
+            let mut b = corotational_rate_block(&kel);
+            b.iter_mut().flatten().for_each(|x| *x *= turn);
+            kj.push(b);
             ke.push(kel);
             chords.push([el.c, el.s]);
         }
@@ -304,6 +321,7 @@ impl NodalBelt {
             eps_n,
             k,
             ke,
+            kj,
             f0,
         })
     }
@@ -371,6 +389,28 @@ impl NodalBelt {
             .collect())
     }
 
+    /// Axial tension of the belt element starting at each material node \[N\]: `T0 + EA Δl/l`
+    /// ([`chord_tensions`] on the reference polygon at `s_b = q[0]`).
+    pub fn element_tensions(&self, q: &[f64]) -> Vec<f64> {
+        let b = &self.fe.config.belt;
+        chord_tensions(
+            &self.reference_positions(q[0]),
+            &q[1..=self.n_nodal()],
+            b.tension,
+            b.ea,
+        )
+    }
+
+    /// Index of the driven pulley's speed in the velocities.
+    pub fn driven_dof(&self) -> usize {
+        self.i_pulley()
+    }
+
+    /// The friction law of the belt–pulley contact.
+    pub fn friction_law(&self) -> &FrictionSpec {
+        &self.friction
+    }
+
     /// Torques of the contact forces on the pulleys in their travel sense \[N m\].
     pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> Result<[f64; 2], MbdError> {
         let mesh = self.mesh(q[0])?;
@@ -390,11 +430,13 @@ impl NodalBelt {
         g.copy_from_slice(&mesh.f0);
         for e in 0..n {
             let dofs = self.element_dofs(e);
-            let (k, ke) = (&mesh.k[e], &mesh.ke[e]);
+            let (k, ke, kj) = (&mesh.k[e], &mesh.ke[e], &mesh.kj[e]);
             for a in 0..6 {
                 let mut acc = 0.0;
                 for b in 0..6 {
-                    acc += k[a][b] * d[dofs[b]] + beta * ke[a][b] * dd[dofs[b]];
+                    // β K_e on the co-rotated rate δ̇ − v ψ' J δ (BeltFe::frame_turn)
+                    acc += k[a][b] * d[dofs[b]]
+                        + beta * (ke[a][b] * dd[dofs[b]] - vb * kj[a][b] * d[dofs[b]]);
                 }
                 g[dofs[a]] -= acc;
             }
@@ -457,13 +499,18 @@ impl NodalBelt {
         let (alpha, beta) = (self.fe.config.damping.alpha, self.fe.config.damping.beta);
         let mut kq = Tangent::new(nv, &mesh.tan);
         let mut cv = Tangent::new(nv, &mesh.tan);
+        let d = &q[1..=nd];
         for e in 0..n {
             let dofs = self.element_dofs(e);
             for a in 0..6 {
+                let mut kjd = 0.0;
                 for b in 0..6 {
-                    kq.add(1 + dofs[a], 1 + dofs[b], mesh.k[e][a][b]);
+                    let kj = mesh.kj[e][a][b];
+                    kq.add(1 + dofs[a], 1 + dofs[b], mesh.k[e][a][b] - beta * vb * kj);
                     cv.add(1 + dofs[a], 1 + dofs[b], beta * mesh.ke[e][a][b]);
+                    kjd += kj * d[dofs[b]];
                 }
+                cv.add(1 + dofs[a], 0, -beta * kjd);
             }
         }
         for i in 0..nd {
@@ -785,6 +832,46 @@ mod tests {
             }
         }
         assert!(worst < 1e-6, "K error {worst}");
+    }
+
+    // Frame invariance of the β damping (BeltFe::frame_turn) in the rotating mesh: at s_b = 0,
+    // a rigid rotation of the belt about any point, carried by the moving material nodes
+    // (δ̇ = v φ J t_i), has no strain rate: the β part of the nodal forces (the difference of
+    // the models with and without β at the same state) vanishes.
+    #[test]
+    fn damping_of_a_carried_rigid_rotation_vanishes() {
+        let b = belt();
+        let mut cfg = b.fe.config;
+        cfg.damping.beta = 0.0;
+        let b0 = NodalBelt::new(
+            BeltFe::new(&cfg).unwrap(),
+            Schedule::constant(60.0),
+            Schedule::constant(3.0),
+        )
+        .unwrap();
+        let nv = b.n_q();
+        let v_belt = 3.0;
+        for c in [[0.0, 0.0], [0.45, 0.0], [0.17, -0.3]] {
+            let (delta, rate) =
+                crate::belt::model::tests::rigid_rotation(&b.fe.position, &b.fe.tangent, c, 1e-3);
+            let mut q = vec![0.0; nv];
+            let mut v = vec![0.0; nv];
+            q[1..=b.n_nodal()].copy_from_slice(&delta);
+            v[0] = v_belt;
+            for (x, r) in v[1..=b.n_nodal()].iter_mut().zip(&rate) {
+                *x = v_belt * r;
+            }
+            v[nv - 1] = 59.0;
+            let (mut f, mut f0) = (vec![0.0; nv], vec![0.0; nv]);
+            b.forces(0.5, &q, &v, &mut f).unwrap();
+            b0.forces(0.5, &q, &v, &mut f0).unwrap();
+            let diff = f
+                .iter()
+                .zip(&f0)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            // β EA v φ / R ≈ 16 N is the scale of the global-component form's error
+            assert!(diff < 1e-8, "β forces of a rigid rotation: {diff} N");
+        }
     }
 
     // At rest the nodal and the untruncated flowing models describe the same structure on the
