@@ -5,7 +5,7 @@
 use super::model::BeltDrive;
 use crate::element::Element;
 use crate::shape;
-use fe_model::generate::belt_path::Segment;
+use fe_model::generate::belt_path::{BeltPath, Segment};
 
 /// Axial state at one material point of the belt.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -70,12 +70,27 @@ pub struct SpanLine {
     pub to: usize,
 }
 
+impl SpanLine {
+    /// Whether `position` \[m\] lies over the middle half of the span (within a quarter span
+    /// length of the span line): the region where span tensions are averaged.
+    pub fn middle_half_contains(&self, position: [f64; 2]) -> bool {
+        let d = [position[0] - self.start[0], position[1] - self.start[1]];
+        let u = d[0] * self.direction[0] + d[1] * self.direction[1];
+        let w = -d[0] * self.direction[1] + d[1] * self.direction[0];
+        u > 0.25 * self.length && u < 0.75 * self.length && w.abs() < 0.25 * self.length
+    }
+}
+
 /// The straight spans of the drive's path in travel order.
 pub fn spans(drive: &BeltDrive) -> Vec<SpanLine> {
-    let np = drive.pulleys().len();
-    drive
-        .path()
-        .pieces()
+    path_spans(drive.path())
+}
+
+/// The straight spans of a belt path in travel order (shared with the plate-belt drive,
+/// [`crate::plate::belt_drive`]).
+pub fn path_spans(path: &BeltPath) -> Vec<SpanLine> {
+    let np = path.pulleys().len();
+    path.pieces()
         .iter()
         .filter_map(|pc| match pc.segment {
             Segment::Span {
@@ -104,10 +119,7 @@ pub fn span_tensions(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
         .map(|sp| {
             let (mut sum, mut n) = (0.0, 0usize);
             for s in &samples {
-                let d = [s.position[0] - sp.start[0], s.position[1] - sp.start[1]];
-                let u = d[0] * sp.direction[0] + d[1] * sp.direction[1];
-                let w = -d[0] * sp.direction[1] + d[1] * sp.direction[0];
-                if u > 0.25 * sp.length && u < 0.75 * sp.length && w.abs() < 0.25 * sp.length {
+                if sp.middle_half_contains(s.position) {
                     sum += s.tension;
                     n += 1;
                 }
