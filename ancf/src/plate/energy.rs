@@ -146,11 +146,9 @@ fn curvature(u: &[f64; NU], o: usize, alpha: f64, beta: f64) -> Curvature {
     let mut gp = [0.0; NU];
     let gx = cross(&ry, &ra);
     let gy = cross(&ra, &rx);
-    for c in 0..3 {
-        gp[o + c] = n[c];
-        gp[RX + c] = gx[c];
-        gp[RY + c] = gy[c];
-    }
+    gp[o..o + 3].copy_from_slice(&n);
+    gp[RX..RX + 3].copy_from_slice(&gx);
+    gp[RY..RY + 3].copy_from_slice(&gy);
     // ∂n/∂r_x = −[r_y]×, ∂n/∂r_y = [r_x]×, ∂(r_y × r_a)/∂r_y = −[r_a]×
     let (sy, sx, sa) = (skew(&ry), skew(&rx), skew(&ra));
     let mut hp = [[0.0; NU]; NU];

@@ -354,26 +354,28 @@ impl PlateBeltDrive {
             })
     }
 
-    /// Runs the distributed contact of every element against every pulley at time `t` with the
-    /// travel-sense pulley speeds `omegas` and hands each element–pulley pair with active
-    /// points to `sink` (with the pulley's rotation axis).
+    /// The pulley surfaces at time `t` with the travel-sense speeds `omegas`.
+    fn surfaces(&self, t: f64, omegas: &[f64]) -> Vec<PulleySurface> {
+        omegas
+            .iter()
+            .enumerate()
+            .map(|(p, &w)| self.surface(p, t, w))
+            .collect()
+    }
+
+    /// Runs the distributed contact of every element against every pulley surface and hands
+    /// each element–pulley pair with active points to `sink` (with the pulley's rotation axis).
     fn contact_pass(
         &self,
-        t: f64,
+        surfaces: &[PulleySurface],
         q: &[f64],
         v: &[f64],
-        omegas: &[f64],
         jacobian: bool,
         ec: &mut ElementContact3<NE>,
         mut sink: impl FnMut(usize, usize, &Vector3<f64>, &ElementContact3<NE>),
     ) {
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
-        let surfaces: Vec<PulleySurface> = omegas
-            .iter()
-            .enumerate()
-            .map(|(p, &w)| self.surface(p, t, w))
-            .collect();
         for el in 0..self.n_elements() {
             self.gather(q, el, &mut e);
             let mut gathered_v = false;
@@ -432,10 +434,17 @@ impl PlateBeltDrive {
         self.elastic_forces_into(q, f, s);
         torques.fill(0.0);
         let mut ec = std::mem::take(&mut s.ec);
-        self.contact_pass(t, q, v, omegas, false, &mut ec, |el, p, axis, c| {
-            self.scatter_add(f, el, c.q.as_slice(), 1.0);
-            torques[p] += c.moment.dot(axis);
-        });
+        self.contact_pass(
+            &self.surfaces(t, omegas),
+            q,
+            v,
+            false,
+            &mut ec,
+            |el, p, axis, c| {
+                self.scatter_add(f, el, c.q.as_slice(), 1.0);
+                torques[p] += c.moment.dot(axis);
+            },
+        );
         s.ec = ec;
     }
 
@@ -445,12 +454,19 @@ impl PlateBeltDrive {
         let omegas = self.speeds(t, v);
         let mut out = vec![([0.0; 3], 0.0); omegas.len()];
         let mut ec = Box::<ElementContact3<NE>>::default();
-        self.contact_pass(t, q, v, &omegas, false, &mut ec, |_, p, axis, c| {
-            for k in 0..3 {
-                out[p].0[k] += c.reaction[k];
-            }
-            out[p].1 += c.moment.dot(axis);
-        });
+        self.contact_pass(
+            &self.surfaces(t, &omegas),
+            q,
+            v,
+            false,
+            &mut ec,
+            |_, p, axis, c| {
+                for k in 0..3 {
+                    out[p].0[k] += c.reaction[k];
+                }
+                out[p].1 += c.moment.dot(axis);
+            },
+        );
         out
     }
 
@@ -470,11 +486,18 @@ impl PlateBeltDrive {
         k_vals.fill(0.0);
         self.elastic_tangent_into(q, f, k_vals, s);
         let mut ec = std::mem::take(&mut s.ec);
-        self.contact_pass(t, q, v, omegas, true, &mut ec, |el, _, _, c| {
-            self.scatter_add(f, el, c.q.as_slice(), 1.0);
-            self.pattern
-                .add_element(k_vals, el, c.dq_de.as_slice(), -1.0);
-        });
+        self.contact_pass(
+            &self.surfaces(t, omegas),
+            q,
+            v,
+            true,
+            &mut ec,
+            |el, _, _, c| {
+                self.scatter_add(f, el, c.q.as_slice(), 1.0);
+                self.pattern
+                    .add_element(k_vals, el, c.dq_de.as_slice(), -1.0);
+            },
+        );
         s.ec = ec;
     }
 
@@ -593,12 +616,19 @@ impl PlateBeltDrive {
         self.elastic_forces_into(q, f, s);
         f[nb..].fill(0.0);
         let mut ec = std::mem::take(&mut s.ec);
-        self.contact_pass(t, q, v, omegas, false, &mut ec, |el, p, axis, c| {
-            self.scatter_add(f, el, c.q.as_slice(), 1.0);
-            if let Some(j) = self.pulley_dof[p] {
-                f[j] += c.moment.dot(axis);
-            }
-        });
+        self.contact_pass(
+            &self.surfaces(t, omegas),
+            q,
+            v,
+            false,
+            &mut ec,
+            |el, p, axis, c| {
+                self.scatter_add(f, el, c.q.as_slice(), 1.0);
+                if let Some(j) = self.pulley_dof[p] {
+                    f[j] += c.moment.dot(axis);
+                }
+            },
+        );
         s.ec = ec;
         for &p in &self.free {
             if let Some(j) = self.pulley_dof[p] {
@@ -735,31 +765,38 @@ impl PlateBeltDrive {
         let m = NE + nf;
         let mut ec = std::mem::take(&mut s.ec);
         let (k_local, c_local) = (&mut s.k_local, &mut s.c_local);
-        self.contact_pass(t, q, v, omegas, true, &mut ec, |el, p, axis, ec| {
-            k_local.fill(0.0);
-            c_local.fill(0.0);
-            for b in 0..NE {
-                for a in 0..NE {
-                    k_local[a + b * m] = -ec.dq_de[(a, b)];
-                    c_local[a + b * m] = -ec.dq_dedot[(a, b)];
+        self.contact_pass(
+            &self.surfaces(t, omegas),
+            q,
+            v,
+            true,
+            &mut ec,
+            |el, p, axis, ec| {
+                k_local.fill(0.0);
+                c_local.fill(0.0);
+                for b in 0..NE {
+                    for a in 0..NE {
+                        k_local[a + b * m] = -ec.dq_de[(a, b)];
+                        c_local[a + b * m] = -ec.dq_dedot[(a, b)];
+                    }
                 }
-            }
-            if let Some(j) = self.pulley_dof[p] {
-                let col = NE + (j - nb);
-                let dmde = axis.transpose() * ec.dmoment_de;
-                let dmdv = axis.transpose() * ec.dmoment_dedot;
-                for a in 0..NE {
-                    // the belt forces depend on the pulley speed θ̇
-                    c_local[a + col * m] = -ec.dq_domega[a];
-                    // pulley row: τ = aᵀ M
-                    k_local[col + a * m] = -dmde[a];
-                    c_local[col + a * m] = -dmdv[a];
+                if let Some(j) = self.pulley_dof[p] {
+                    let col = NE + (j - nb);
+                    let dmde = axis.transpose() * ec.dmoment_de;
+                    let dmdv = axis.transpose() * ec.dmoment_dedot;
+                    for a in 0..NE {
+                        // the belt forces depend on the pulley speed θ̇
+                        c_local[a + col * m] = -ec.dq_domega[a];
+                        // pulley row: τ = aᵀ M
+                        k_local[col + a * m] = -dmde[a];
+                        c_local[col + a * m] = -dmdv[a];
+                    }
+                    c_local[col + col * m] = -axis.dot(&ec.dmoment_domega);
                 }
-                c_local[col + col * m] = -axis.dot(&ec.dmoment_domega);
-            }
-            pat.add_element(&mut k, n_el + el, k_local, 1.0);
-            pat.add_element(&mut c, n_el + el, c_local, 1.0);
-        });
+                pat.add_element(&mut k, n_el + el, k_local, 1.0);
+                pat.add_element(&mut c, n_el + el, c_local, 1.0);
+            },
+        );
         s.ec = ec;
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),

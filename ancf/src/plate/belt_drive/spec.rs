@@ -144,7 +144,7 @@ impl Validate for PlatePulley {
 /// The belt: one row of thin-plate elements across the width, closed into a loop along the
 /// length (Kerkkänen §4.6: 16 elements, 288 coordinates, Model 1; 20 elements, 360, Model 2).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct PlateBeltSpec {
     /// Unstretched belt length \[m\] (the reference, stress-free element configuration).
     pub length: f64,
@@ -181,7 +181,7 @@ impl PlateBeltSpec {
 /// Distributed penalty contact with friction per unit (reference) area, Kerkkänen (3.20),
 /// (3.23), (4.43)–(4.45).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct PlateContactSpec {
     /// Penalty stiffness per unit area `k_p` \[N/m³\].
     pub stiffness: f64,
@@ -200,7 +200,7 @@ pub struct PlateContactSpec {
 
 /// A complete three-dimensional plate-belt drive.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct PlateDriveSpec {
     /// Pulleys in travel order (the belt runs from pulley 0 to pulley 1, …).
     pub pulleys: Vec<PlatePulley>,
@@ -208,6 +208,20 @@ pub struct PlateDriveSpec {
     pub belt: PlateBeltSpec,
     /// Contact.
     pub contact: PlateContactSpec,
+}
+
+impl Default for PlateBeltSpec {
+    /// Kerkkänen Model 2's belt.
+    fn default() -> Self {
+        PlateDriveSpec::kerkkanen_model2().belt
+    }
+}
+
+impl Default for PlateContactSpec {
+    /// Kerkkänen Model 2's contact.
+    fn default() -> Self {
+        PlateDriveSpec::kerkkanen_model2().contact
+    }
 }
 
 impl Default for PlateDriveSpec {
