@@ -4,24 +4,21 @@
 //! - Model 2 in steady operation (driver 500 rad/s, 2 N·m, belt started at the driver's surface
 //!   speed), generalized-α `h = 5·10⁻⁵ s` (the study's step);
 //! - Model 1 during the start (centre shift (4.46), ramp (3.29)), `h = 10⁻⁴ s`;
-//! - the wide-pulley case of `tests/tests/ancf_plate_belt.rs` (Model 2's geometry, contact and
-//!   section, k = 2 kN, 50 N pre-tension, ramp to 100 rad/s, 0.5 N·m) with the plate belt and
-//!   with the planar belt (per-length contact = per-area × width), both at `h = 10⁻⁴ s`, run
-//!   alternately so that both see the same load; `ratio = plate / planar`.
+//! - the wide-pulley case (`drives::plate_study::wide_pulley_case`: Model 2's geometry, contact
+//!   and section, k = 2 kN, 50 N pre-tension, ramp to 100 rad/s, 0.5 N·m) with the plate belt and
+//!   with its planar equivalent (`PlateDriveSpec::planar_equivalent`: per-length contact =
+//!   per-area × width), both at `h = 10⁻⁴ s`, run alternately so that both see the same load;
+//!   `ratio = plate / planar`.
 //!
 //! The planar drive cannot take Model 2 itself (its belt is 20 % shorter than the path; the
 //! planar drive accepts 10 %), hence the wide-pulley case as the common ground.
 //! Run: `cargo bench -p drives --bench plate_belt` (about two minutes on a free core).
 
-use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec, InitialOptions, Pulley,
-    PulleyDrive, SpeedProfile, TorqueProfile,
-};
+use ancf::belt_drive::{BeltDrive, InitialOptions, PulleyDrive, SpeedProfile, TorqueProfile};
 use ancf::plate::belt_drive::{PlateBeltDrive, PlateDriveSpec};
-use fe_model::generate::belt_path::WrapSide;
+use drives::plate_study::wide_pulley_case;
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
-use std::f64::consts::PI;
 use std::time::Instant;
 
 fn alpha(h: f64) -> AlphaConfig {
@@ -49,69 +46,6 @@ fn timed<S: SecondOrderSystem>(sys: &S, s0: State, t: f64, h: f64) -> (f64, usiz
         st.stats.steps,
         st.stats.newton_iterations,
     )
-}
-
-fn wide_case() -> (PlateDriveSpec, BeltDriveSpec) {
-    let mut p = PlateDriveSpec::kerkkanen_model2();
-    p.belt.young = 1.6667e7;
-    p.belt.length = 4.0 * PI * 0.05 / (1.0 + 50.0 / p.belt.axial_stiffness());
-    p.pulleys[0].drive = PulleyDrive::Speed {
-        speed: SpeedProfile::Ramp {
-            t_start: 0.02,
-            t_end: 0.2,
-            omega: 100.0,
-        },
-    };
-    p.pulleys[1].drive = PulleyDrive::Free {
-        inertia: 0.00025,
-        load: TorqueProfile::Cosine {
-            t_start: 0.02,
-            t_end: 0.2,
-            torque: 0.5,
-        },
-    };
-    let (w, c) = (p.belt.width, p.contact);
-    let BeltFriction::CreepRate { mu, creep } = c.friction else {
-        unreachable!("Model 2 has the creep-rate law")
-    };
-    let planar = BeltDriveSpec {
-        pulleys: p
-            .pulleys
-            .iter()
-            .map(|pl| Pulley {
-                name: pl.name.clone(),
-                center: pl.center,
-                radius: pl.radius,
-                side: WrapSide::Inside,
-                drive: pl.drive,
-            })
-            .collect(),
-        belt: BeltSpec {
-            length: p.belt.length,
-            elements: p.belt.elements,
-            width: w,
-            thickness: p.belt.thickness,
-            young: p.belt.young,
-            poisson: p.belt.poisson,
-            density: p.belt.density,
-            shear_factor: 5.0 / 6.0,
-            alpha1: 1.0,
-            alpha2: 0.01,
-            gauss_points: 5,
-            axial_damping: 0.0,
-        },
-        contact: ContactSpec {
-            stiffness: c.stiffness * w,
-            quadratic: 0.0,
-            damping: c.damping * w,
-            friction: BeltFriction::CreepRate {
-                mu,
-                creep: creep * w,
-            },
-            points: c.points,
-        },
-    };
-    (p, planar)
 }
 
 fn main() {
@@ -142,7 +76,10 @@ fn main() {
     );
 
     // wide-pulley case, plate vs planar, alternately
-    let (p, planar) = wide_case();
+    let p = wide_pulley_case(100.0, 0.5);
+    let planar = p
+        .planar_equivalent(0.01)
+        .expect("no crown, flanges or shift");
     let d3 = PlateBeltDrive::new(p).expect("plate");
     let i3 = d3.initial_state(100, 1e-11).expect("initial state");
     let d2 = BeltDrive::new(planar).expect("planar");

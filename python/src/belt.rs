@@ -121,14 +121,7 @@ pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResul
                 })
             });
             let end = result.map_err(|e| ancf_error(py, e))?;
-            match end.failure {
-                None => to_json(&end.summary),
-                Some(msg) => Err(numerical_error(
-                    py,
-                    format!("integration failed: {msg}"),
-                    serde_json::to_value(&end.summary).ok(),
-                )),
-            }
+            summary_or_failure(py, end.failure, &end.summary)
         }
     }
 }
@@ -152,12 +145,22 @@ pub fn plate(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResu
         })
     });
     let end = result.map_err(|e| ancf_error(py, e))?;
-    match end.failure {
-        None => to_json(&end.summary),
+    summary_or_failure(py, end.failure, &end.summary)
+}
+
+/// The JSON text of `summary`, or the integration failure with the summary as its partial
+/// result (the apps' exit-1 convention).
+fn summary_or_failure<S: serde::Serialize>(
+    py: Python<'_>,
+    failure: Option<String>,
+    summary: &S,
+) -> PyResult<String> {
+    match failure {
+        None => to_json(summary),
         Some(msg) => Err(numerical_error(
             py,
             format!("integration failed: {msg}"),
-            serde_json::to_value(&end.summary).ok(),
+            serde_json::to_value(summary).ok(),
         )),
     }
 }

@@ -4,13 +4,12 @@
 //! `cargo test --release -p flowmbd-validation --test ancf_plate_belt -- --ignored`).
 
 use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec, InitialOptions, Pulley,
-    PulleyDrive, SpeedProfile, TorqueProfile, post as post2d,
+    BeltDrive, BeltDriveSpec, BeltFriction, InitialOptions, PulleyDrive, SpeedProfile,
+    TorqueProfile, post as post2d,
 };
 use ancf::plate::belt_drive::post::{line_samples, span_states};
 use ancf::plate::belt_drive::{PlateBeltDrive, PlateDriveSpec};
-use drives::plate_study::{PlateStudyConfig, plate_run, plate_setup};
-use fe_model::generate::belt_path::WrapSide;
+use drives::plate_study::{PlateStudyConfig, plate_run, plate_setup, wide_pulley_case};
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, JacobianMode, NewtonUpdate, State};
 use std::f64::consts::PI;
@@ -145,74 +144,11 @@ fn model_2_initial_state_is_the_uniaxial_membrane() {
     }
 }
 
-/// The wide-pulley case of the 2D–3D comparison: Model 2's geometry, contact and belt section
-/// with a ten times stiffer belt (k = 2 kN) 50 N pre-tensioned (2.4 % shorter than the path:
-/// within the planar drive's 10 % limit), driver ramped to `omega` between 0.02 and 0.2 s, load
-/// `torque` ramped by (3.30)'s shape over the same interval.
+/// The wide-pulley case (drives::plate_study::wide_pulley_case) and its planar equivalent
+/// (per-length contact = per-area × width, planar bending scaled by α₂ = 0.01).
 fn wide_case(omega: f64, torque: f64) -> (PlateDriveSpec, BeltDriveSpec) {
-    let mut p = PlateDriveSpec::kerkkanen_model2();
-    let r = 0.05;
-    p.belt.young = 1.6667e7;
-    let k = p.belt.axial_stiffness();
-    p.belt.length = 4.0 * PI * r / (1.0 + 50.0 / k);
-    p.pulleys[0].drive = PulleyDrive::Speed {
-        speed: SpeedProfile::Ramp {
-            t_start: 0.02,
-            t_end: 0.2,
-            omega,
-        },
-    };
-    p.pulleys[1].drive = PulleyDrive::Free {
-        inertia: 0.00025,
-        load: TorqueProfile::Cosine {
-            t_start: 0.02,
-            t_end: 0.2,
-            torque,
-        },
-    };
-    let (w, c) = (p.belt.width, &p.contact);
-    let BeltFriction::CreepRate { mu, creep } = c.friction else {
-        unreachable!("Model 2 has the creep-rate law")
-    };
-    let pulleys = p
-        .pulleys
-        .iter()
-        .map(|pl| Pulley {
-            name: pl.name.clone(),
-            center: pl.center,
-            radius: pl.radius,
-            side: WrapSide::Inside,
-            drive: pl.drive,
-        })
-        .collect();
-    // per unit length = per unit area × width
-    let planar = BeltDriveSpec {
-        pulleys,
-        belt: BeltSpec {
-            length: p.belt.length,
-            elements: p.belt.elements,
-            width: w,
-            thickness: p.belt.thickness,
-            young: p.belt.young,
-            poisson: p.belt.poisson,
-            density: p.belt.density,
-            shear_factor: 5.0 / 6.0,
-            alpha1: 1.0,
-            alpha2: 0.01,
-            gauss_points: 5,
-            axial_damping: 0.0,
-        },
-        contact: ContactSpec {
-            stiffness: c.stiffness * w,
-            quadratic: 0.0,
-            damping: c.damping * w,
-            friction: BeltFriction::CreepRate {
-                mu,
-                creep: creep * w,
-            },
-            points: c.points,
-        },
-    };
+    let p = wide_pulley_case(omega, torque);
+    let planar = p.planar_equivalent(0.01).unwrap();
     (p, planar)
 }
 

@@ -337,21 +337,7 @@ impl PlateBeltDrive {
             .iter()
             .zip(&self.quad_s)
             .zip(&self.quad_shape)
-            .map(move |((&(_, _, w), s), shape)| {
-                let (mut r, mut v) = (Vector3::zeros(), Vector3::zeros());
-                for k in 0..12 {
-                    for c in 0..3 {
-                        r[c] += s[k] * e[3 * k + c];
-                        v[c] += s[k] * ed[3 * k + c];
-                    }
-                }
-                SurfaceQuadPoint {
-                    position: Point3::from(r),
-                    velocity: v,
-                    shape: *shape,
-                    weight: w,
-                }
-            })
+            .map(move |((&(_, _, w), s), shape)| quad_point(s, *shape, w, e, ed))
     }
 
     /// The pulley surfaces at time `t` with the travel-sense speeds `omegas`.
@@ -557,21 +543,10 @@ impl PlateBeltDrive {
                     continue;
                 }
                 recs.clear();
-                let pts = local.iter().zip(&shapes).map(|(&(_, _, w), s)| {
-                    let (mut r, mut vv) = (Vector3::zeros(), Vector3::zeros());
-                    for k in 0..12 {
-                        for c in 0..3 {
-                            r[c] += s[k] * e[3 * k + c];
-                            vv[c] += s[k] * ed[3 * k + c];
-                        }
-                    }
-                    SurfaceQuadPoint {
-                        position: Point3::from(r),
-                        velocity: vv,
-                        shape: shape_matrix(s),
-                        weight: w,
-                    }
-                });
+                let pts = local
+                    .iter()
+                    .zip(&shapes)
+                    .map(|(&(_, _, w), s)| quad_point(s, shape_matrix(s), w, &e, &ed));
                 self.contact
                     .element_on(&surf, pts, false, &mut ec, Some(&mut recs));
                 for r in &recs {
@@ -661,6 +636,30 @@ pub struct PlateContactRecord {
     /// Slip velocity of the belt relative to the pulley surface, circumferential (positive
     /// when the belt is faster in the travel direction) and axial \[m/s\].
     pub slip: [f64; 2],
+}
+
+/// The quadrature point with shape values `s` (matrix `shape`) and weight `w` of an element with
+/// coordinates `e` and velocities `ed`: `r = S e`, `ṙ = S ė`.
+fn quad_point(
+    s: &[f64; 12],
+    shape: SMatrix<f64, 3, NE>,
+    w: f64,
+    e: &[f64; NE],
+    ed: &[f64; NE],
+) -> SurfaceQuadPoint<NE> {
+    let (mut r, mut v) = (Vector3::zeros(), Vector3::zeros());
+    for k in 0..12 {
+        for c in 0..3 {
+            r[c] += s[k] * e[3 * k + c];
+            v[c] += s[k] * ed[3 * k + c];
+        }
+    }
+    SurfaceQuadPoint {
+        position: Point3::from(r),
+        velocity: v,
+        shape,
+        weight: w,
+    }
 }
 
 /// The 3 × 36 shape matrix `[S_k I₃]` of the shape values `s`.

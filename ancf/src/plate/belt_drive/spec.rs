@@ -1,7 +1,10 @@
 //! Plain-data description of a three-dimensional plate-belt drive (Kerkkänen §4.6, Table 4.1).
 
-use crate::belt_drive::{BeltFriction, PulleyDrive, SpeedProfile, TorqueProfile};
-use crate::error::AncfError;
+use crate::belt_drive::{
+    BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec, Pulley, PulleyDrive, SpeedProfile,
+    TorqueProfile,
+};
+use crate::error::{AncfError, invalid};
 use fe_model::generate::belt_path::WrapSide;
 use mbd_core::Validate;
 use mbd_core::validate::InvalidField;
@@ -69,32 +72,29 @@ pub struct PlatePulley {
 
 impl PlatePulley {
     /// `+1` if a positive travel-sense speed is counter-clockwise about `+z`, `−1` if clockwise
-    /// (as [`crate::belt_drive::Pulley::ccw_sign`]).
+    /// ([`crate::belt_drive::pulley::ccw_sign`]).
     pub fn ccw_sign(&self) -> f64 {
-        match self.side {
-            WrapSide::Inside => -1.0,
-            WrapSide::Outside => 1.0,
-        }
+        crate::belt_drive::pulley::ccw_sign(self.side)
     }
 
     /// Whether the pulley has its own rotation coordinate.
     pub fn is_free(&self) -> bool {
-        matches!(self.drive, PulleyDrive::Free { .. })
+        self.drive.is_free()
     }
 }
 
 impl Validate for PlatePulley {
     fn validate(&self) -> Result<(), InvalidField> {
+        // centre, radius and drive: the planar pulley's checks
+        let planar = crate::belt_drive::Pulley {
+            name: self.name.clone(),
+            center: self.center,
+            radius: self.radius,
+            side: self.side,
+            drive: self.drive,
+        };
+        planar.validate()?;
         let f = |x: &str| format!("pulley \"{}\": {x}", self.name);
-        if !(self.center[0].is_finite() && self.center[1].is_finite()) {
-            return Err(InvalidField::new(f("center"), "must be finite"));
-        }
-        if !(self.radius.is_finite() && self.radius > 0.0) {
-            return Err(InvalidField::new(
-                f("radius"),
-                format!("must be > 0 m, got {}", self.radius),
-            ));
-        }
         if !(self.crown.is_finite() && self.crown >= 0.0) {
             return Err(InvalidField::new(
                 f("crown"),
@@ -130,14 +130,7 @@ impl Validate for PlatePulley {
                 ));
             }
         }
-        let drive = crate::belt_drive::Pulley {
-            name: self.name.clone(),
-            center: self.center,
-            radius: self.radius,
-            side: self.side,
-            drive: self.drive,
-        };
-        drive.validate()
+        Ok(())
     }
 }
 
@@ -373,6 +366,65 @@ impl PlateDriveSpec {
     /// Check every parameter; the error names the field.
     pub fn validate(&self) -> Result<(), AncfError> {
         Validate::validate(self).map_err(AncfError::from)
+    }
+
+    /// The planar ANCF belt drive (Kerkkänen ch. 3, [`crate::belt_drive`]) that this drive is
+    /// when nothing moves out of the drive plane: the same pulleys, belt length, material and
+    /// section (thickness in the plane, width out of it), the contact laws per unit length =
+    /// per unit area × width (penalty, damping and the creep-rate slope `ν_s`; the other friction
+    /// laws have no per-area parameter), the planar element's bending and shear scaled by
+    /// `alpha2` (Kerkkänen (3.18)–(3.19)) and its axial stiffness unscaled. Errors: crowned or
+    /// flanged pulleys or a centre shift (the planar drive has none).
+    pub fn planar_equivalent(&self, alpha2: f64) -> Result<BeltDriveSpec, AncfError> {
+        let mut pulleys = Vec::with_capacity(self.pulleys.len());
+        for p in &self.pulleys {
+            if p.crown != 0.0 || p.flanges.is_some() || p.shift.is_some() {
+                return Err(invalid(
+                    format!("pulley \"{}\"", p.name),
+                    "a crowned, flanged or shifted pulley has no planar equivalent",
+                ));
+            }
+            pulleys.push(Pulley {
+                name: p.name.clone(),
+                center: p.center,
+                radius: p.radius,
+                side: p.side,
+                drive: p.drive,
+            });
+        }
+        let (b, c) = (&self.belt, &self.contact);
+        let w = b.width;
+        let friction = match c.friction {
+            BeltFriction::CreepRate { mu, creep } => BeltFriction::CreepRate {
+                mu,
+                creep: creep * w,
+            },
+            other => other,
+        };
+        Ok(BeltDriveSpec {
+            pulleys,
+            belt: BeltSpec {
+                length: b.length,
+                elements: b.elements,
+                width: w,
+                thickness: b.thickness,
+                young: b.young,
+                poisson: b.poisson,
+                density: b.density,
+                shear_factor: 5.0 / 6.0,
+                alpha1: 1.0,
+                alpha2,
+                gauss_points: b.gauss_points,
+                axial_damping: 0.0,
+            },
+            contact: ContactSpec {
+                stiffness: c.stiffness * w,
+                quadratic: 0.0,
+                damping: c.damping * w,
+                friction,
+                points: c.points,
+            },
+        })
     }
 }
 
