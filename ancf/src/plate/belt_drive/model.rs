@@ -60,7 +60,9 @@ impl Surface3 for PulleySurface {
 
 /// Per-call work buffers.
 struct Scratch {
-    ec: Box<ElementContact3<NE>>,
+    /// The element contact buffer (taken during a contact pass; kept between calls so that
+    /// the 20 kB buffer is not reallocated).
+    ec: Option<Box<ElementContact3<NE>>>,
     k_local: Vec<f64>,
     c_local: Vec<f64>,
     fe: [f64; NE],
@@ -215,7 +217,7 @@ impl PlateBeltDrive {
         let mm = NE + free.len();
         Ok(Self {
             scratch: Mutex::new(Scratch {
-                ec: Box::default(),
+                ec: Some(Box::default()),
                 k_local: vec![0.0; mm * mm],
                 c_local: vec![0.0; mm * mm],
                 fe: [0.0; NE],
@@ -419,7 +421,7 @@ impl PlateBeltDrive {
         let s = &mut *guard;
         self.elastic_forces_into(q, f, s);
         torques.fill(0.0);
-        let mut ec = std::mem::take(&mut s.ec);
+        let mut ec = s.ec.take().unwrap_or_default();
         self.contact_pass(
             &self.surfaces(t, omegas),
             q,
@@ -431,7 +433,7 @@ impl PlateBeltDrive {
                 torques[p] += c.moment.dot(axis);
             },
         );
-        s.ec = ec;
+        s.ec = Some(ec);
     }
 
     /// Resultant contact force on every pulley \[N\] and travel-sense contact torque \[N·m\]
@@ -471,7 +473,7 @@ impl PlateBeltDrive {
         let s = &mut *guard;
         k_vals.fill(0.0);
         self.elastic_tangent_into(q, f, k_vals, s);
-        let mut ec = std::mem::take(&mut s.ec);
+        let mut ec = s.ec.take().unwrap_or_default();
         self.contact_pass(
             &self.surfaces(t, omegas),
             q,
@@ -484,7 +486,7 @@ impl PlateBeltDrive {
                     .add_element(k_vals, el, c.dq_de.as_slice(), -1.0);
             },
         );
-        s.ec = ec;
+        s.ec = Some(ec);
     }
 
     /// Elastic forces into `f[..n_belt]` (overwritten) and the elastic tangent added to the
@@ -590,7 +592,7 @@ impl PlateBeltDrive {
         let s = &mut *guard;
         self.elastic_forces_into(q, f, s);
         f[nb..].fill(0.0);
-        let mut ec = std::mem::take(&mut s.ec);
+        let mut ec = s.ec.take().unwrap_or_default();
         self.contact_pass(
             &self.surfaces(t, omegas),
             q,
@@ -604,7 +606,7 @@ impl PlateBeltDrive {
                 }
             },
         );
-        s.ec = ec;
+        s.ec = Some(ec);
         for &p in &self.free {
             if let Some(j) = self.pulley_dof[p] {
                 f[j] -= loads[p];
@@ -762,7 +764,7 @@ impl PlateBeltDrive {
         let n_el = self.n_elements();
         let nf = self.free.len();
         let m = NE + nf;
-        let mut ec = std::mem::take(&mut s.ec);
+        let mut ec = s.ec.take().unwrap_or_default();
         let (k_local, c_local) = (&mut s.k_local, &mut s.c_local);
         self.contact_pass(
             &self.surfaces(t, omegas),
@@ -796,7 +798,7 @@ impl PlateBeltDrive {
                 pat.add_element(&mut c, n_el + el, c_local, 1.0);
             },
         );
-        s.ec = ec;
+        s.ec = Some(ec);
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),
