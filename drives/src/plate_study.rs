@@ -40,6 +40,10 @@ pub struct PlateOutputConfig {
     pub force_line: Option<f64>,
     /// Length of the final window over which steady values are averaged \[s\].
     pub average_window: f64,
+    /// Strain measure of the summary's `tension_tight`/`tension_slack` and of the VTK tension
+    /// field: `green` (4.9), `true` (4.10) or `almansi` (4.11) (the distributions and
+    /// `span_tensions` always carry all three).
+    pub strain_measure: StrainMeasure,
 }
 
 impl Default for PlateOutputConfig {
@@ -51,6 +55,7 @@ impl Default for PlateOutputConfig {
             strain_line: 0.0,
             force_line: None,
             average_window: 0.1,
+            strain_measure: StrainMeasure::Green,
         }
     }
 }
@@ -202,10 +207,11 @@ pub struct PlateStudySummary {
     /// point (4.48) \[rad/s\] (NaN when the drive has no single driver and driven pulley or the
     /// model has no steady solution).
     pub analytical_omega_driven: f64,
-    /// Tension of the span running into the driver (tight) at the end, Green measure (4.9),
-    /// centreline mean over the middle half of the span \[N\].
+    /// Tension of the span running into the driver (tight) at the end by
+    /// `output.strain_measure` (default Green (4.9)), centreline mean over the middle half of
+    /// the span \[N\].
     pub tension_tight: f64,
-    /// Tension of the span leaving the driver (slack) at the end, Green measure \[N\].
+    /// Tension of the span leaving the driver (slack) at the end \[N\] (as `tension_tight`).
     pub tension_slack: f64,
     /// Wall time of the whole study \[s\].
     pub wall_time_s: f64,
@@ -543,8 +549,8 @@ fn summarize(
             .map(|p| drive.pulley_speed(p, s.t, &s.v))
             .unwrap_or(f64::NAN),
         analytical_omega_driven: full.map_or(f64::NAN, |a| a.omega_driven),
-        tension_tight: st.tension[0],
-        tension_slack: ss.tension[0],
+        tension_tight: st.tension[c.output.strain_measure as usize],
+        tension_slack: ss.tension[c.output.strain_measure as usize],
         wall_time_s: start.elapsed().as_secs_f64(),
         t_end: s.t,
         steps: stats.steps,

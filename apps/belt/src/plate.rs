@@ -64,15 +64,15 @@ fn write_error(path: &std::path::Path, message: String) -> StudyError {
     })
 }
 
-/// The belt surface at `(q, v)` as a `.vtu` file of quadrilaterals with the tension (Green
-/// measure (4.9)) and velocity fields.
+/// The belt surface at `(q, v)` as a `.vtu` file of quadrilaterals (4 per element) with the
+/// tension (by `measure`) and velocity fields.
 fn write_surface(
     drive: &PlateBeltDrive,
     s: &State,
-    per_element: usize,
+    measure: StrainMeasure,
     path: &std::path::Path,
 ) -> Result<(), StudyError> {
-    let g = surface_grid(drive, &s.q, &s.v, per_element);
+    let g = surface_grid(drive, &s.q, &s.v, 4, measure);
     let mut mesh = Mesh::new(3);
     for p in &g.points {
         mesh.add_node(*p);
@@ -85,7 +85,7 @@ fn write_surface(
     }
     let fields = [
         PointField {
-            name: "tension_green_N".into(),
+            name: format!("tension_{}_N", measure.name()),
             components: 1,
             values: g.tension.clone(),
         },
@@ -160,7 +160,12 @@ impl PlateStudy {
 
         let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
         record(&s0, &mut csv, &mut speeds)?;
-        write_surface(&drive, &s0, 4, &vtk_dir.join("belt_0000.vtu"))?;
+        write_surface(
+            &drive,
+            &s0,
+            c.output.strain_measure,
+            &vtk_dir.join("belt_0000.vtu"),
+        )?;
         frames.push(("vtk/belt_0000.vtu".into(), 0.0));
 
         let progress = ctx.progress(c.t_end, "plate belt drive");
@@ -176,7 +181,7 @@ impl PlateStudy {
                 }
                 if due.frame {
                     let name = format!("vtk/belt_{:04}.vtu", frames.len());
-                    write_surface(&drive, s, 4, &out.path(&name))?;
+                    write_surface(&drive, s, c.output.strain_measure, &out.path(&name))?;
                     frames.push((name, s.t));
                 }
                 progress.set(s.t);

@@ -174,7 +174,28 @@ fn plate_json_contract() {
     ] {
         assert!(out.join(f).exists(), "{f} missing");
     }
+    let _ = std::fs::remove_dir_all(&out);
+    // the strain measure of the summary's tensions is selectable: the true strain (4.10) of
+    // the same state, 1 − 1/λ = 0.1955 against λ − 1 = 0.2430 (Green (4.9))
+    let file = tmp("plate-true.toml");
+    std::fs::write(&file, "[output]\nstrain_measure = \"true\"\n").unwrap();
+    let (code, stdout, stderr) = run(&[
+        "plate",
+        "--config",
+        file.to_str().unwrap(),
+        "--t-end",
+        "0.001",
+        "--json",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let t = v["tension_tight"].as_f64().unwrap();
+    assert!((t - 39.1).abs() < 0.5, "true-strain tension {t}");
     let _ = std::fs::remove_dir_all(out);
+    let _ = std::fs::remove_file(file);
 }
 
 // Bad plate input: exit 2 with one line naming the field.

@@ -204,24 +204,25 @@ pub fn path_coordinate(path: &BeltPath, position: [f64; 2]) -> f64 {
 
 /// The deformed belt surface as a grid of `(per_element + 1) × 2` points per element
 /// (element-wise, shared edges duplicated) and its quadrilaterals, with the point fields
-/// (Green-measure tension \[N\], speed \[m/s\]), for VTK output.
+/// (tension \[N\] by a strain measure, velocity \[m/s\]), for VTK output.
 pub struct SurfaceGrid {
     /// Points \[m\].
     pub points: Vec<[f64; 3]>,
     /// Quadrilaterals (point indices, counter-clockwise in the material plane).
     pub quads: Vec<[usize; 4]>,
-    /// Tension `k ε` with the strain (4.9) at each point \[N\].
+    /// Tension `k ε` at each point \[N\].
     pub tension: Vec<f64>,
     /// Velocity at each point \[m/s\].
     pub velocity: Vec<[f64; 3]>,
 }
 
-/// See [`SurfaceGrid`].
+/// See [`SurfaceGrid`]; the tension with the strain `measure`.
 pub fn surface_grid(
     drive: &PlateBeltDrive,
     q: &[f64],
     v: &[f64],
     per_element: usize,
+    measure: StrainMeasure,
 ) -> SurfaceGrid {
     let n = per_element.max(1);
     let a = drive.element_length();
@@ -244,8 +245,7 @@ pub fn surface_grid(
             for y in [0.0, w] {
                 let [r, rx, ry] = plate.kinematics(&e, x, y);
                 g.points.push(r);
-                g.tension
-                    .push(k_axial * StrainMeasure::Green.fibre_strain(rx, ry));
+                g.tension.push(k_axial * measure.fibre_strain(rx, ry));
                 g.velocity.push(plate.kinematics(&ed, x, y)[0]);
             }
         }
