@@ -12,7 +12,8 @@
 //! spans `l_s = √(C² − (R₂ − R₁)²)`).
 //!
 //! * **Constitutive law (4.1)** with the unstretched belt as the reference state:
-//!   `T = k (dl/dl_o − 1)`. Mass conservation in steady flow makes the mass flux
+//!   `T = k (dl/dl_o − 1)` (`T` is the belt tension; the thesis calls it the "axial strain", a
+//!   slip of the pen, seed note §11 item 28). Mass conservation in steady flow makes the mass flux
 //!   `G = ρA v_o` constant (`ρA` per unstretched length, `v_o` the speed the belt would have
 //!   unstretched), and the local speed is `v = v_o (1 + T/k)`, i.e. (4.1) with
 //!   `T_o = 0`. (The printed (4.4) has a spurious `T_o`; the correct form `T = (k/v_o) v − k`

@@ -5,8 +5,8 @@
 //! It is the building block of Kerkkänen's three-dimensional belt models (§4.6).
 //!
 //! * [`shape`]: the incomplete-cubic shape functions and their derivatives;
-//! * [`element`]: [`ThinPlate`], its mass matrix, energies, forces and exact analytic tangent
-//!   (the energy derivatives are in the private `energy` module);
+//! * [`element`]: [`ThinPlate`], its mass matrix, energies, forces and exact analytic tangent;
+//! * [`energy`]: the analytic derivatives of the energy density behind them;
 //! * [`mesh`]: [`PlateMesh`], shared nodes and sparse assembly;
 //! * [`statics`]: Newton–Raphson equilibrium with load increments;
 //! * [`dynamics`]: [`PlateDynamics`], a plate mesh with supports and gravity as an mbd-core
@@ -17,7 +17,7 @@
 pub mod belt_drive;
 pub mod dynamics;
 pub mod element;
-mod energy;
+pub mod energy;
 pub mod mesh;
 pub mod shape;
 pub mod statics;

@@ -78,7 +78,8 @@ struct Scratch {
 /// shared first cross-section, Kerkkänen §2.3 option (b)), `θ` the travel-sense rotation
 /// angles of the free pulleys in pulley order. Equations: `M ë = Q_e + Q_c` (2.27), (4.45), and
 /// for each free pulley `I θ̈ = τ − T_a(t)` with `τ` the travel-sense contact torque, the
-/// spatial (3.26).
+/// spatial (3.26). No gravity: the thesis never mentions it for its belt drives (seed note §11
+/// item 27).
 pub struct PlateBeltDrive {
     spec: PlateDriveSpec,
     path: BeltPath,
