@@ -2,6 +2,9 @@
 //! precomputed scatter map into the value array, so refilling a tangent or mass matrix is an
 //! allocation-free loop.
 
+use faer::Mat;
+use faer::prelude::Solve;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 
 /// Sentinel for an element entry that is not assembled (a fixed/eliminated DOF).
@@ -128,6 +131,29 @@ impl Pattern {
             None,
             self.row_idx.clone(),
         )
+    }
+
+    /// Newton correction `dx = −A⁻¹ r` on the first `n` rows (the rest of `dx` zeroed) for the
+    /// values `vals` in this pattern, by sparse LU with the reused symbolic factorisation
+    /// `symbolic` (of [`Pattern::symbolic`]); the error carries faer's message.
+    pub fn lu_correction(
+        &self,
+        symbolic: &SymbolicLu<usize>,
+        vals: &[f64],
+        r: &[f64],
+        dx: &mut [f64],
+    ) -> Result<(), String> {
+        let n = self.n;
+        let rhs = Mat::<f64>::from_fn(n, 1, |i, _| -r[i]);
+        let kmat = self.to_matrix(vals.to_vec());
+        let lu = Lu::try_new_with_symbolic(symbolic.clone(), kmat.as_ref())
+            .map_err(|e| format!("{e:?}"))?;
+        let d = lu.solve(&rhs);
+        dx.fill(0.0);
+        for i in 0..n {
+            dx[i] = d[(i, 0)];
+        }
+        Ok(())
     }
 
     /// `y = A x` for values `vals` in this pattern (overwrites `y`).

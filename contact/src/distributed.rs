@@ -24,8 +24,9 @@ use crate::quadrature::GaussRule;
 use nalgebra::{Point, SMatrix, SVector};
 use std::ops::{AddAssign, Mul};
 
-/// Largest number of blocks of a [`BlockShape`].
-pub const MAX_BLOCKS: usize = 8;
+/// Largest number of blocks of a [`BlockShape`] (12: the nodal position blocks of the ANCF
+/// thin-plate element, Kerkkänen (4.1)).
+pub const MAX_BLOCKS: usize = 12;
 
 /// The shape-function matrix `S = ∂r/∂e` (`D × ndof`) of an element at one quadrature point.
 pub trait ShapeMatrix<const D: usize> {
@@ -42,7 +43,8 @@ pub trait ShapeMatrix<const D: usize> {
     fn add_congruence(&self, a: &SMatrix<f64, D, D>, w: f64, k: &mut [f64]);
 }
 
-/// Block shape functions of a line element's centreline, `S = [s₁ I, s₂ I, …]`: coordinate
+/// Block shape functions `S = [s₁ I, s₂ I, …]` (a line element's centreline, or the mid-surface
+/// of an ANCF plate): coordinate
 /// `D b + i` is component `i` of block `b`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BlockShape {

@@ -83,7 +83,7 @@ mod tests {
         assert!((euler_eytelwein_capacity(&d, 0.0) / m - 1.0).abs() < 1e-12);
         // the centrifugal tension ρA v² (0.95 N at 62.8 rad/s) lowers it by 0.3 %
         let fast = euler_eytelwein_capacity(&d, 62.8);
-        assert!((fast / m - (310.0 - 0.096 * 3.14f64.powi(2)) / 310.0).abs() < 1e-12);
+        assert!((fast / m - (310.0 - 0.096 * (62.8f64 * 0.05).powi(2)) / 310.0).abs() < 1e-12);
     }
 
     // seed-000 note §2.3 table: Δω = 2 M_p ω / (15231 + M_p) for Table 6-1

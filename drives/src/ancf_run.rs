@@ -13,13 +13,17 @@ use mbd_core::integrators::{GeneralizedAlpha, State};
 /// Which pulleys play driver and driven in a summary: the first speed-driven pulley (0 if
 /// none) and the first free one.
 pub fn roles(drive: &BeltDrive) -> (usize, Option<usize>) {
-    let driver = drive
-        .pulleys()
-        .iter()
-        .position(|p| !p.is_free())
-        .unwrap_or(0);
-    let driven = drive.pulleys().iter().position(|p| p.is_free());
-    (driver, driven)
+    roles_of(drive.pulleys().iter().map(|p| p.is_free()))
+}
+
+/// The roles of [`roles`] from whether each pulley (in order) is free: the first speed-driven
+/// pulley (0 if none) and the first free one.
+pub fn roles_of(free: impl IntoIterator<Item = bool>) -> (usize, Option<usize>) {
+    let free: Vec<bool> = free.into_iter().collect();
+    (
+        free.iter().position(|f| !f).unwrap_or(0),
+        free.iter().position(|f| *f),
+    )
 }
 
 /// Role of each pulley of `drive`: speed-driven pulleys drive, free pulleys with a load are

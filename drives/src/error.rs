@@ -11,4 +11,10 @@ pub enum DriveError {
     /// The ANCF belt drive (`ancf`) rejected its input or failed.
     #[error(transparent)]
     Ancf(#[from] ancf::AncfError),
+    /// An analytical model rejected its input (the message names the field).
+    #[error("{0}")]
+    Invalid(String),
+    /// An analytical model has no solution at the requested operating point.
+    #[error("{0}")]
+    Numerical(String),
 }

@@ -11,6 +11,8 @@
 //! * [`analytical`]: Bechtel's line (6.3) and the Euler–Eytelwein capacity;
 //! * [`report`]: span tensions, wrap distributions, adhesion and slip arcs, hub loads and
 //!   torques of a drive state, for any model and any number of pulleys;
+//! * [`bechtel_steady`]: Bechtel's steady belt-drive model with belt inertia (Kerkkänen §4.1):
+//!   tension, speed, friction and normal force along the belt, full and capstan forms;
 //! * [`ancf_drive_model`]: the Table 6-1 → ANCF adapter (Kerkkänen ch. 3 elements on Ribaric's
 //!   drive);
 //! * [`study`]: the speed-loss study per model and driver speed;
@@ -19,6 +21,8 @@
 //! * [`ancf_run`]: the ANCF belt drive's time loop with sampled outputs, and its closure;
 //! * [`ancf_study`]: the ANCF belt-drive study's configuration, summary and runs (shared by the
 //!   app and the Python package);
+//! * [`plate_study`]: the three-dimensional plate-belt study of Kerkkänen §4.6 (Models 1 and 2)
+//!   with the comparison against [`bechtel_steady`];
 //! * [`wave`]: the measurements of the rotating vs non-rotating belt demonstration (Fig. 6-3).
 //!
 //! Layering: `drives` depends on `flowing`, `ancf`, `fe-model` and `mbd-core`; nothing below
@@ -28,8 +32,10 @@ pub mod analytical;
 pub mod ancf_drive_model;
 pub mod ancf_run;
 pub mod ancf_study;
+pub mod bechtel_steady;
 pub mod error;
 pub mod model;
+pub mod plate_study;
 pub mod report;
 pub mod speed_loss;
 pub mod speed_loss_study;

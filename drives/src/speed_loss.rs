@@ -168,7 +168,8 @@ pub fn linearisation_issue(belt: &BeltData, report: &DriveReport) -> Option<Stri
     }
     let slack = report.tension_slack();
     let t0 = belt.pretension;
-    if !(slack >= LINEAR_MIN_SLACK * t0) {
+    // NaN (no sample over a span) also counts as "not taut".
+    if slack.is_nan() || slack < LINEAR_MIN_SLACK * t0 {
         return Some(format!(
             "slack-span tension {slack:.1} N is below {:.0} % of T0 = {t0} N: the model's \
              stiffness K_e + K_g(T0) and tension T0 + EA·Δl/l assume taut spans",

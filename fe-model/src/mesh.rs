@@ -16,6 +16,8 @@ pub enum CellKind {
     Vertex,
     /// Two-node line (string, bar, frame).
     Line,
+    /// Four-node quadrilateral (surface output, e.g. the plate belt of Kerkkänen ch. 4).
+    Quad,
     /// Eight-node hexahedron (VTK node order).
     Hexahedron,
 }
@@ -26,6 +28,7 @@ impl CellKind {
         match self {
             CellKind::Vertex => 1,
             CellKind::Line => 3,
+            CellKind::Quad => 9,
             CellKind::Hexahedron => 12,
         }
     }
@@ -35,6 +38,7 @@ impl CellKind {
         match self {
             CellKind::Vertex => 1,
             CellKind::Line => 2,
+            CellKind::Quad => 4,
             CellKind::Hexahedron => 8,
         }
     }

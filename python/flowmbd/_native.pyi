@@ -19,6 +19,9 @@ def speed_loss(
 def ancf(config: Optional[str] = None, t_end: Optional[float] = None) -> str:
     """JSON text of the ANCF belt-drive summary (``summary.json`` of ``flowmbd-belt ancf``)."""
 
+def plate(config: Optional[str] = None, t_end: Optional[float] = None) -> str:
+    """JSON text of the plate-belt summary (``summary.json`` of ``flowmbd-belt plate``)."""
+
 def string_modes(
     config: Optional[str] = None,
     speed: Optional[float] = None,

@@ -1,4 +1,6 @@
-"""Belt drives: the speed-loss study of Ribaric §6.4–6.5 (``flowmbd-belt speed-loss``)."""
+"""Belt drives: the speed-loss study of Ribaric §6.4–6.5 (``flowmbd-belt speed-loss``), the
+planar ANCF drive of Kerkkänen ch. 3 (``flowmbd-belt ancf``) and his three-dimensional plate-belt
+drive of ch. 4 (``flowmbd-belt plate``)."""
 
 from __future__ import annotations
 
@@ -89,3 +91,35 @@ def ancf(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = No
         The integration failed; ``err.partial`` is the summary at the state reached.
     """
     return from_json(_native.ancf(config_json(config), None if t_end is None else float(t_end)))
+
+
+def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = None) -> dict:
+    """The three-dimensional plate-belt drive of Kerkkänen ch. 4 (``flowmbd-belt plate``): by
+    default Model 2 of Table 4.1 (20 thin-plate elements, driver ramp (3.29) to 500 rad/s, load
+    (4.47) to 2 N m, 1.3 s; about 10 min on a free core), compared with Bechtel's steady
+    analytical model; ``config`` with the keys of ``apps/belt/examples/kerkkanen-4-6-model1.toml``
+    gives Model 1.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-belt plate --print-config`` (``t_end``, ``drive``,
+        ``integrator``, ``output``).
+    t_end : end time [s] (replaces ``config["t_end"]``; the CLI's ``--t-end``).
+
+    Returns
+    -------
+    dict
+        The CLI's ``summary.json``: ``omega_driver_end``, ``omega_driven_end`` and the window
+        means [rad/s], ``analytical_omega_driven`` and ``capstan_omega_driven`` [rad/s],
+        ``tension_tight``, ``tension_slack`` (strain (4.9)) and ``span_tensions`` by the three
+        strain measures [N], ``contact_torque_driven``, ``tension_torque``, ``membrane_torque``
+        [N m], ``steps``, ``newton_iterations``, ``t_end``, ``wall_time_s``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's message).
+    flowmbd.NumericalError
+        The integration failed; ``err.partial`` is the summary at the state reached.
+    """
+    return from_json(_native.plate(config_json(config), None if t_end is None else float(t_end)))

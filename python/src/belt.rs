@@ -1,10 +1,13 @@
 //! `flowmbd.belt`: the speed-loss study of Ribaric §6.4–6.5 (Figs. 6-6, 6-7) through
 //! [`drives::SpeedLossModel`], with the configuration and summary of
 //! [`drives::speed_loss_study`] (the same as `flowmbd-belt speed-loss`), and the ANCF drive of
-//! Kerkkänen ch. 3 through [`drives::ancf_study`] (the same as `flowmbd-belt ancf`).
+//! Kerkkänen ch. 3 through [`drives::ancf_study`] (the same as `flowmbd-belt ancf`), and the
+//! plate-belt drive of Kerkkänen ch. 4 through [`drives::plate_study`] (the same as
+//! `flowmbd-belt plate`).
 
 use crate::{input_error, numerical_error, read_config, to_json};
 use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
+use drives::plate_study::{PlateStudyConfig, plate_run, plate_setup};
 use drives::speed_loss_study::{SummaryCase, SummaryPoint, drive_input_error};
 use drives::study::case_inputs;
 use drives::{ModelKind, SpeedLossModel, SpeedLossStudyConfig, SpeedLossSummary};
@@ -121,14 +124,46 @@ pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResul
                 })
             });
             let end = result.map_err(|e| ancf_error(py, e))?;
-            match end.failure {
-                None => to_json(&end.summary),
-                Some(msg) => Err(numerical_error(
-                    py,
-                    format!("integration failed: {msg}"),
-                    serde_json::to_value(&end.summary).ok(),
-                )),
-            }
+            summary_or_failure(py, end.failure, &end.summary)
         }
+    }
+}
+
+/// The three-dimensional plate-belt drive of Kerkkänen ch. 4 (defaults: Model 2 of Table 4.1);
+/// returns the JSON text of the summary. `t_end` replaces the configuration's end time (the
+/// CLI's `--t-end`).
+#[pyfunction]
+#[pyo3(signature = (config=None, t_end=None))]
+pub fn plate(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResult<String> {
+    let mut c: PlateStudyConfig = read_config(config)?;
+    if let Some(t) = t_end {
+        c.t_end = t;
+    }
+    c.validate().map_err(input_error)?;
+    let start = Instant::now();
+    let result = py.detach(|| {
+        let (drive, init) = plate_setup(&c)?;
+        plate_run(&c, &drive, &init, start, |_, _| {
+            Ok::<(), ::ancf::AncfError>(())
+        })
+    });
+    let end = result.map_err(|e| ancf_error(py, e))?;
+    summary_or_failure(py, end.failure, &end.summary)
+}
+
+/// The JSON text of `summary`, or the integration failure with the summary as its partial
+/// result (the apps' exit-1 convention).
+fn summary_or_failure<S: serde::Serialize>(
+    py: Python<'_>,
+    failure: Option<String>,
+    summary: &S,
+) -> PyResult<String> {
+    match failure {
+        None => to_json(summary),
+        Some(msg) => Err(numerical_error(
+            py,
+            format!("integration failed: {msg}"),
+            serde_json::to_value(summary).ok(),
+        )),
     }
 }

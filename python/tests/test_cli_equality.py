@@ -51,3 +51,12 @@ def test_ancf_closure_equals_cli(cli, tmp_path):
     code, ref, err = cli("belt", "ancf", "--config", str(tmp_path / "c.toml"))
     assert code == 0, err
     assert_same(flowmbd.belt.ancf(config={"analysis": "static_closure"}), ref)
+
+
+def test_plate_equals_cli(cli):
+    # Kerkkänen §4.6 Model 2, shortened to 5 ms (initial static state and the first steps)
+    code, ref, err = cli("belt", "plate", "--t-end", "0.005")
+    assert code == 0, err
+    py = flowmbd.belt.plate(t_end=0.005)
+    assert_same(py, ref)
+    assert py["steps"] > 0 and abs(py["analytical_omega_driven"] / 500.0 - 0.848) < 2e-3

@@ -20,9 +20,7 @@ use super::model::BeltDrive;
 use crate::error::AncfError;
 use crate::sparse::Pattern;
 use crate::statics::run_newton;
-use faer::Mat;
-use faer::prelude::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::linalg::solvers::SymbolicLu;
 use mbd_core::SecondOrderSystem;
 use mbd_core::newton::{Fallback, LineSearch, NewtonOptions, NewtonProblem, Tolerances};
 
@@ -221,24 +219,15 @@ impl NewtonProblem for Initial<'_> {
     }
 
     fn solve(&mut self, r: &[f64], dx: &mut [f64]) -> Result<(), AncfError> {
-        let nb = self.drive.n_belt();
-        let rhs = Mat::<f64>::from_fn(nb, 1, |i, _| -r[i]);
-        let kmat = self.pattern.to_matrix(self.kv.clone());
-        let lu = Lu::try_new_with_symbolic(self.symbolic.clone(), kmat.as_ref()).map_err(|e| {
-            AncfError::Singular {
+        self.pattern
+            .lu_correction(&self.symbolic, &self.kv, r, dx)
+            .map_err(|e| AncfError::Singular {
                 load_factor: 1.0,
                 detail: format!(
-                    "belt tangent stiffness at iteration {}: {e:?}",
+                    "belt tangent stiffness at iteration {}: {e}",
                     self.iteration
                 ),
-            }
-        })?;
-        let d = lu.solve(&rhs);
-        dx.fill(0.0);
-        for i in 0..nb {
-            dx[i] = d[(i, 0)];
-        }
-        Ok(())
+            })
     }
 }
 

@@ -403,7 +403,7 @@ impl BeltDrive {
         self.contact_pass(q, v, omegas, false, &mut scratch, |_, p, ec, _| {
             out[p].force[0] += ec.reaction[0];
             out[p].force[1] += ec.reaction[1];
-            out[p].torque += self.spec.pulleys[p].ccw_sign() * ec.torque;
+            out[p].torque += self.spec.pulleys[p].ccw_sign() * ec.moment;
         });
         out
     }
@@ -483,12 +483,7 @@ impl BeltDrive {
                 );
                 let sgn = self.spec.pulleys[p].ccw_sign();
                 for r in &recs {
-                    let k = line
-                        .rule
-                        .points
-                        .iter()
-                        .position(|x| (x - r.xi).abs() <= 1e-12)
-                        .unwrap_or(0);
+                    let k = r.index;
                     out.push(PointRecord {
                         weight: line.rule.weights.get(k).copied().unwrap_or(0.0) * l,
                         pulley: p,

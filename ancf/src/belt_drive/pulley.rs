@@ -48,19 +48,31 @@ pub struct Pulley {
     pub drive: PulleyDrive,
 }
 
+impl PulleyDrive {
+    /// Whether a pulley with this drive has its own rotation coordinate.
+    pub fn is_free(&self) -> bool {
+        matches!(self, PulleyDrive::Free { .. })
+    }
+}
+
+/// `+1` if a positive travel-sense speed of a pulley wrapped on `side` is counter-clockwise,
+/// `−1` if clockwise: the belt path runs clockwise around pulleys inside the loop.
+pub fn ccw_sign(side: WrapSide) -> f64 {
+    match side {
+        WrapSide::Inside => -1.0,
+        WrapSide::Outside => 1.0,
+    }
+}
+
 impl Pulley {
-    /// `+1` if a positive travel-sense speed is counter-clockwise, `−1` if clockwise: the belt
-    /// path runs clockwise around pulleys inside the loop.
+    /// [`ccw_sign`] of the pulley's wrap side.
     pub fn ccw_sign(&self) -> f64 {
-        match self.side {
-            WrapSide::Inside => -1.0,
-            WrapSide::Outside => 1.0,
-        }
+        ccw_sign(self.side)
     }
 
     /// Whether the pulley has its own rotation coordinate.
     pub fn is_free(&self) -> bool {
-        matches!(self.drive, PulleyDrive::Free { .. })
+        self.drive.is_free()
     }
 }
 

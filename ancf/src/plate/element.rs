@@ -1,8 +1,9 @@
 //! The ANCF thin (Kirchhoff) plate element: constant mass matrix, membrane and bending strain
 //! energy with exact forces and tangent (Kerkkänen §4.3, (4.14)-(4.19)).
 
+use super::energy::{self, LocalDerivatives, NU};
 use super::shape::{PlateShape, ShapeValues};
-use crate::autodiff::{Dual, Hyper, Real};
+use crate::autodiff::{Hyper, Real};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
 use contact::GaussRule;
@@ -10,10 +11,6 @@ use faer::Mat;
 
 /// Number of element coordinates: 4 nodes × `[r, r_x, r_y]` × 3 components (Kerkkänen (4.15)).
 pub const PLATE_NDOF: usize = 36;
-
-/// Number of local kinematic quantities the energy density depends on:
-/// `r_x, r_y, r_xx, r_xy, r_yy` (3 components each).
-const NU: usize = 15;
 
 /// A rectangular four-node ANCF thin-plate element of size `a × b` \[m\], reference state flat and
 /// stress-free in the element's `x, y` plane.
@@ -159,22 +156,83 @@ impl ThinPlate {
         u
     }
 
-    /// Elastic forces `Q_e = −(∂U/∂e)ᵀ` \[N\] (Kerkkänen (2.20)) into `q` (36 entries).
+    /// Elastic forces `Q_e = −(∂U/∂e)ᵀ` \[N\] (Kerkkänen (2.20)) into `q` (36 entries), from the
+    /// analytic gradient of the energy density ([`super::energy`]).
     pub fn elastic_forces(&self, e: &[f64], q: &mut [f64]) {
         q[..PLATE_NDOF].fill(0.0);
+        let mut ld = LocalDerivatives::zero();
         for (sv, w) in &self.points {
-            let k: [f64; NU] = gather(sv, e);
-            let vars: [Dual<NU>; NU] = std::array::from_fn(|i| Dual::var(k[i], i));
-            let d = self.density(&vars);
-            scatter_gradient(sv, -w, &d.g, q);
+            let u: [f64; NU] = gather(sv, e);
+            ld.g = [0.0; NU];
+            self.local_derivatives(&u, false, &mut ld);
+            scatter_gradient(sv, -w, &ld.g, q);
         }
     }
 
     /// Elastic forces into `q` and the tangent stiffness `K = ∂²U/∂e²` \[N/m\] into `k`
-    /// (36 × 36), exact through second-order automatic differentiation of the energy density
-    /// with respect to the 15 local kinematic quantities (chain rule through the constant
-    /// shape-function derivatives).
+    /// (36 × 36), exact: analytic gradient and Hessian of the energy density with respect to
+    /// the 15 local kinematic quantities ([`super::energy`]), chained through the constant
+    /// shape-function derivatives, `K = Σ_g w_g Bᵀ H B` with `B = [S_x; S_y; S_xx; S_xy; S_yy] ⊗ I₃`
+    /// (only `S_x`, `S_y` without bending).
     pub fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut Mat<f64>) {
+        q[..PLATE_NDOF].fill(0.0);
+        k.fill(0.0);
+        let blocks = if self.bending { 5 } else { 2 };
+        let nr = 3 * blocks;
+        let mut ld = LocalDerivatives::zero();
+        let mut kl = [[0.0; PLATE_NDOF]; PLATE_NDOF];
+        // A_l = Σ_q d_q[l] H[:, 3q..3q+3] for one shape function l (nr × 3)
+        let mut al = [[0.0; 3]; NU];
+        for (sv, w) in &self.points {
+            let u: [f64; NU] = gather(sv, e);
+            ld.g = [0.0; NU];
+            for row in ld.h.iter_mut().take(nr) {
+                row[..nr].fill(0.0);
+            }
+            self.local_derivatives(&u, true, &mut ld);
+            scatter_gradient(sv, -w, &ld.g, q);
+            let d = [&sv.sx, &sv.sy, &sv.sxx, &sv.sxy, &sv.syy];
+            for l in 0..12 {
+                for (r, a) in al.iter_mut().enumerate().take(nr) {
+                    *a = [0.0; 3];
+                    for (qq, dq) in d.iter().enumerate().take(blocks) {
+                        let f = dq[l];
+                        if f == 0.0 {
+                            continue;
+                        }
+                        for dd in 0..3 {
+                            a[dd] += f * ld.h[r][3 * qq + dd];
+                        }
+                    }
+                }
+                for kk in 0..12 {
+                    for (p, dp) in d.iter().enumerate().take(blocks) {
+                        let f = w * dp[kk];
+                        if f == 0.0 {
+                            continue;
+                        }
+                        for c in 0..3 {
+                            let a = &al[3 * p + c];
+                            let row = &mut kl[3 * kk + c];
+                            for dd in 0..3 {
+                                row[3 * l + dd] += f * a[dd];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        for (i, row) in kl.iter().enumerate() {
+            for (j, v) in row.iter().enumerate() {
+                k[(i, j)] = *v;
+            }
+        }
+    }
+
+    /// The tangent of [`ThinPlate::elastic_tangent`] by second-order automatic differentiation
+    /// of the energy density ([`crate::autodiff::Hyper`]): the independent reference the
+    /// analytic derivatives are tested against (not used on the simulation path).
+    pub fn elastic_tangent_autodiff(&self, e: &[f64], q: &mut [f64], k: &mut Mat<f64>) {
         q[..PLATE_NDOF].fill(0.0);
         k.fill(0.0);
         let mut d = [[0.0; 12]; 5];
@@ -214,6 +272,59 @@ impl ThinPlate {
                 }
             }
         }
+    }
+
+    /// Analytic derivatives of the energy density at the local kinematics `u` added into `out`
+    /// (gradient; Hessian when `jac`).
+    fn local_derivatives(&self, u: &[f64; NU], jac: bool, out: &mut LocalDerivatives) {
+        let (e, nu, h) = (self.material.young, self.material.poisson, self.thickness);
+        energy::membrane(u, e * h / (2.0 * (1.0 - nu * nu)), nu, jac, out);
+        if self.bending {
+            energy::bending(u, self.rigidity(), nu, jac, out);
+        }
+    }
+
+    /// Bending rigidity `D = E h³ / (12 (1 − ν²))` \[N·m\] (see the type documentation).
+    pub fn rigidity(&self) -> f64 {
+        let (e, nu, h) = (self.material.young, self.material.poisson, self.thickness);
+        e * h * h * h / (12.0 * (1.0 - nu * nu))
+    }
+
+    /// Membrane section force \[N\] transmitted across the material line `x = const` of the
+    /// element, `F = ∫_0^b ∂W_m/∂r_x dy` (the first Piola–Kirchhoff membrane resultant times the
+    /// reference width, `W_m` the membrane density of (4.16)), by `points`-point Gauss
+    /// quadrature over the width. Its component along the belt tangent is the axial force the
+    /// belt actually carries, which the strain-based tensions (4.9)–(4.11) approximate.
+    pub fn membrane_section_force(&self, e: &[f64], x: f64, points: usize) -> [f64; 3] {
+        let (ym, nu, h) = (self.material.young, self.material.poisson, self.thickness);
+        let cm = ym * h / (2.0 * (1.0 - nu * nu));
+        let b = self.shape.b();
+        let mut f = [0.0; 3];
+        let mut ld = LocalDerivatives::zero();
+        for (eta, w) in GaussRule::new(points.max(1)).iter() {
+            let sv = self.shape.eval(x, eta * b);
+            let u: [f64; NU] = gather(&sv, e);
+            ld.g = [0.0; NU];
+            energy::membrane(&u, cm, nu, false, &mut ld);
+            for c in 0..3 {
+                f[c] += w * b * ld.g[c];
+            }
+        }
+        f
+    }
+
+    /// The local gradients `(r, r_x, r_y)` at `(x, y)` \[m, -, -\].
+    pub fn kinematics(&self, e: &[f64], x: f64, y: f64) -> [[f64; 3]; 3] {
+        let sv = self.shape.eval(x, y);
+        let mut out = [[0.0; 3]; 3];
+        for k in 0..12 {
+            for c in 0..3 {
+                out[0][c] += sv.s[k] * e[3 * k + c];
+                out[1][c] += sv.sx[k] * e[3 * k + c];
+                out[2][c] += sv.sy[k] * e[3 * k + c];
+            }
+        }
+        out
     }
 
     /// Strain-energy density per unit area \[J/m²\] from `u = [r_x, r_y, r_xx, r_xy, r_yy]`:
@@ -285,6 +396,66 @@ fn scatter_gradient(sv: &ShapeValues, scale: f64, g: &[f64; NU], q: &mut [f64]) 
         for k in 0..12 {
             for c in 0..3 {
                 q[3 * k + c] += scale * dp[k] * g[3 * p + c];
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A strongly deformed, doubly curved state of an `a × b` element.
+    fn deformed(a: f64, b: f64) -> [f64; PLATE_NDOF] {
+        let mut e = [0.0; PLATE_NDOF];
+        for (n, (x, y)) in [(0.0, 0.0), (a, 0.0), (a, b), (0.0, b)].iter().enumerate() {
+            e[9 * n] = *x;
+            e[9 * n + 1] = *y;
+            e[9 * n + 3] = 1.0;
+            e[9 * n + 7] = 1.0;
+        }
+        for (i, v) in e.iter_mut().enumerate() {
+            *v += 0.05 * ((1.3 * i as f64).sin() + 0.5 * (0.7 * i as f64).cos());
+        }
+        e
+    }
+
+    // Second formulation: the analytic forces and tangent equal the automatic-differentiation
+    // derivatives of the same energy density (membrane only and with bending).
+    #[test]
+    fn analytic_tangent_equals_automatic_differentiation() {
+        for bending in [false, true] {
+            let m = Material::new(2.1e9, 0.3, 1000.0).unwrap();
+            let el = ThinPlate::new(0.3, 0.2, 0.01, m, bending, 4).unwrap();
+            let e = deformed(0.3, 0.2);
+            let (mut qa, mut qd) = ([0.0; PLATE_NDOF], [0.0; PLATE_NDOF]);
+            let mut ka = Mat::<f64>::zeros(PLATE_NDOF, PLATE_NDOF);
+            let mut kd = Mat::<f64>::zeros(PLATE_NDOF, PLATE_NDOF);
+            el.elastic_tangent(&e, &mut qa, &mut ka);
+            el.elastic_tangent_autodiff(&e, &mut qd, &mut kd);
+            let mut qf = [0.0; PLATE_NDOF];
+            el.elastic_forces(&e, &mut qf);
+            let qmax = qd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let kmax = (0..PLATE_NDOF * PLATE_NDOF).fold(0.0f64, |m, k| {
+                m.max(kd[(k % PLATE_NDOF, k / PLATE_NDOF)].abs())
+            });
+            for i in 0..PLATE_NDOF {
+                assert!(
+                    (qa[i] - qd[i]).abs() < 1e-11 * qmax,
+                    "bending {bending}: Q[{i}]"
+                );
+                assert!(
+                    (qf[i] - qd[i]).abs() < 1e-11 * qmax,
+                    "bending {bending}: Q[{i}]"
+                );
+                for j in 0..PLATE_NDOF {
+                    assert!(
+                        (ka[(i, j)] - kd[(i, j)]).abs() < 1e-11 * kmax,
+                        "bending {bending}: K[{i},{j}] = {} vs {}",
+                        ka[(i, j)],
+                        kd[(i, j)]
+                    );
+                }
             }
         }
     }

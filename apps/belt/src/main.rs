@@ -4,6 +4,8 @@
 //! - `speed-loss` (the default): angular speed loss against load torque of the flowing-material
 //!   belt drive (Ribaric ch. 5–6, Table 6-1) with Bechtel's analytical line;
 //! - `ancf`: the planar ANCF belt drive of Kerkkänen ch. 3;
+//! - `plate`: the three-dimensional plate-belt drive of Kerkkänen ch. 4 with Bechtel's steady
+//!   analytical model;
 //! - `wave`: rotating vs non-rotating flowing belt with a deflected span (Ribaric Fig. 6-3);
 //! - `demo`: rigid-body slider-crank driven at constant speed (mbd-core demonstration).
 //!
@@ -14,6 +16,7 @@ use std::process::ExitCode;
 
 mod ancf;
 mod demo;
+mod plate;
 mod speed_loss;
 mod wave;
 
@@ -33,6 +36,8 @@ enum Study {
     Demo(demo::Args),
     /// Planar ANCF belt drive (Kerkkänen ch. 3).
     Ancf(ancf::Args),
+    /// Three-dimensional plate-belt drive vs Bechtel's steady model (Kerkkänen ch. 4).
+    Plate(plate::Args),
     /// Rotating vs non-rotating flowing belt with a deflected span (Ribaric Fig. 6-3).
     Wave(wave::Args),
 }
@@ -42,6 +47,7 @@ fn main() -> ExitCode {
     match cli.study {
         Some(Study::Demo(args)) => demo::run(&args),
         Some(Study::Ancf(args)) => ancf::run(&args),
+        Some(Study::Plate(args)) => plate::run(&args),
         Some(Study::SpeedLoss(args)) => speed_loss::run(&args),
         Some(Study::Wave(args)) => wave::run(&args),
         None => speed_loss::run(&speed_loss::Args::default()),

@@ -567,12 +567,12 @@ mod tests {
             },
         ];
         let path = BeltPath::new(&pulleys).unwrap();
-        for k in 0..3 {
+        for (k, pulley) in pulleys.iter().enumerate() {
             let (a, len) = path.arc_of(k).unwrap();
             for f in [0.0, 0.3, 0.9] {
                 let p = path.point(a + f * len).position;
                 let phi = path.angle_from_inlet(k, p).unwrap();
-                let expect = f * len / pulleys[k].radius;
+                let expect = f * len / pulley.radius;
                 assert!(
                     (phi - expect).abs() < 1e-12,
                     "pulley {k}: {phi} vs {expect}"

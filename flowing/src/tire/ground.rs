@@ -8,8 +8,8 @@
 //! forwards in `+x`; the cleat reaches the bottom of the wheel (`x = 0`) at `cleat_time`.
 
 use contact::{CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface};
-use nalgebra::{Point2, Vector2};
 use mbd_core::validate::{InvalidField, Validate, check};
+use nalgebra::{Point2, Vector2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::FRAC_PI_2;
 
