@@ -556,7 +556,7 @@ mod tests {
                 side: WrapSide::Inside,
             },
             PathPulley {
-                center: [0.3, 0.12],
+                center: [0.25, 0.08],
                 radius: 0.03,
                 side: WrapSide::Outside,
             },
