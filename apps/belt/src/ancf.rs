@@ -308,14 +308,14 @@ impl AncfStudy {
         ctx.out.write_csv(
             "wrap.csv",
             &[
-                "pulley",
+                "pulley_index",
                 "angle_from_inlet_rad",
                 "length_m",
                 "tension_N",
                 "pressure_N_per_m",
                 "friction_N_per_m",
                 "slip_velocity_m_per_s",
-                "friction_utilisation",
+                "friction_utilisation_ratio",
             ],
             end.wrap.iter().map(|w| {
                 [

@@ -112,18 +112,18 @@ impl PlateStudy {
         let (drive, init) = plate_setup(c).map_err(to_study_error)?;
         let (_, driven) = plate_roles(&drive);
         let names: Vec<String> = drive.pulleys().iter().map(|p| p.name.clone()).collect();
-        let mut header: Vec<String> = vec!["t".into()];
+        let mut header: Vec<String> = vec!["t_s".into()];
         for n in &names {
-            header.push(format!("omega_{n}"));
+            header.push(format!("omega_{n}_rad_s"));
         }
-        header.push("torque_driven".into());
-        header.push("load_driven".into());
+        header.push("torque_driven_Nm".into());
+        header.push("load_driven_Nm".into());
         let nspans = drive.path().pulleys().len();
         for k in 0..nspans {
             for m in StrainMeasure::ALL {
-                header.push(format!("span{k}_tension_{}", m.name()));
+                header.push(format!("span{k}_tension_{}_N", m.name()));
             }
-            header.push(format!("span{k}_membrane_force"));
+            header.push(format!("span{k}_membrane_force_N"));
         }
         let hdr: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
         let mut csv = ctx.out.csv("history.csv", &hdr)?;
@@ -202,18 +202,18 @@ impl PlateStudy {
         ctx.out.write_csv(
             "tension.csv",
             &[
-                "s_path",
-                "s_material",
-                "x",
-                "y",
-                "z",
-                "strain_green",
-                "strain_true",
-                "strain_almansi",
-                "tension_green",
-                "tension_true",
-                "tension_almansi",
-                "speed",
+                "s_path_m",
+                "s_material_m",
+                "x_m",
+                "y_m",
+                "z_m",
+                "green_strain",
+                "true_strain",
+                "almansi_strain",
+                "tension_green_N",
+                "tension_true_N",
+                "tension_almansi_N",
+                "speed_m_s",
                 "area_ratio",
             ],
             d.belt.iter().map(|p| {
@@ -240,15 +240,15 @@ impl PlateStudy {
             ctx.out.write_csv(
                 "analytical.csv",
                 &[
-                    "s",
-                    "tension",
-                    "speed",
-                    "normal",
-                    "friction",
-                    "capstan_tension",
-                    "capstan_speed",
-                    "capstan_normal",
-                    "capstan_friction",
+                    "s_m",
+                    "tension_N",
+                    "speed_m_s",
+                    "normal_N_per_m",
+                    "friction_N_per_m",
+                    "capstan_tension_N",
+                    "capstan_speed_m_s",
+                    "capstan_normal_N_per_m",
+                    "capstan_friction_N_per_m",
                 ],
                 full.iter().enumerate().map(|(i, p)| {
                     let q = capstan.get(i);
@@ -269,19 +269,19 @@ impl PlateStudy {
         ctx.out.write_csv(
             "contact.csv",
             &[
-                "pulley",
-                "s_path",
-                "s_material",
-                "y_material",
-                "x",
-                "y",
-                "z",
-                "penetration",
-                "pressure",
-                "friction_circumferential",
-                "friction_axial",
-                "slip_circumferential",
-                "slip_axial",
+                "pulley_index",
+                "s_path_m",
+                "s_material_m",
+                "y_material_m",
+                "x_m",
+                "y_m",
+                "z_m",
+                "penetration_m",
+                "pressure_pa",
+                "friction_circumferential_pa",
+                "friction_axial_pa",
+                "slip_circumferential_m_s",
+                "slip_axial_m_s",
             ],
             d.contact.iter().map(|p| {
                 let r = &p.record;

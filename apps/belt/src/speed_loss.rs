@@ -70,14 +70,14 @@ fn write_wrap(ctx: &StudyContext, case: &SpeedLossCase) -> Result<(), StudyError
         &format!("wrap_omega_{:.1}.csv", case.omega_driver),
         &[
             "torque_N_m",
-            "pulley",
+            "pulley_index",
             "angle_from_inlet_rad",
             "length_m",
             "tension_N",
             "pressure_N_per_m",
             "friction_N_per_m",
             "slip_velocity_m_per_s",
-            "friction_utilisation",
+            "friction_utilisation_ratio",
         ],
     )?;
     for p in &case.points {
@@ -255,7 +255,7 @@ impl Study for SpeedLoss {
                 "delta_omega_rad_per_s",
                 "tension_tight_N",
                 "tension_slack_N",
-                "gross_slip",
+                "gross_slip_flag",
                 "slip_arc_driver_rad",
                 "slip_arc_driven_rad",
                 "adhesion_arc_driver_rad",
@@ -269,7 +269,7 @@ impl Study for SpeedLoss {
                 "torque_driven_N_m",
                 "span0_vibration_amplitude_m",
                 "span1_vibration_amplitude_m",
-                "linearisation_valid",
+                "linearisation_valid_flag",
             ],
         )?;
         let nan = f64::NAN;

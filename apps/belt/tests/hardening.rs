@@ -48,7 +48,7 @@ fn holes(study: &str, text: &str, dir: &Path) -> Vec<String> {
 #[test]
 fn every_table_rejects_an_unknown_key() {
     let dir = tmp("keys");
-    for study in ["speed-loss", "ancf", "wave", "demo"] {
+    for study in ["speed-loss", "ancf", "wave", "demo", "plate"] {
         let (code, text, err) = run(&[study, "--print-config"]);
         assert_eq!(code, 0, "{err}");
         let h = holes(study, &text, &dir);
@@ -65,11 +65,21 @@ fn every_table_rejects_an_unknown_key() {
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     names.sort();
-    assert_eq!(names.len(), 6);
+    assert_eq!(
+        names.len(),
+        8,
+        "kerkkanen-3-3-a … f (ancf), kerkkanen-4-6-model1, -2 (plate)"
+    );
     for p in names {
-        let (code, text, err) = run(&["ancf", "--config", p.to_str().unwrap(), "--print-config"]);
+        let name = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
+        let study = if name.starts_with("kerkkanen-4-6") {
+            "plate"
+        } else {
+            "ancf"
+        };
+        let (code, text, err) = run(&[study, "--config", p.to_str().unwrap(), "--print-config"]);
         assert_eq!(code, 0, "{err}");
-        let h = holes("ancf", &text, &dir);
+        let h = holes(study, &text, &dir);
         assert!(h.is_empty(), "{}: {h:?}", p.display());
     }
     // the reproducer, verbatim: `torque` under `kind = "none"` is refused by name
@@ -130,6 +140,7 @@ fn csv_headers_carry_units_and_summaries_a_meaning() {
         ("ancf", vec!["--t-end", "0.05"]),
         ("demo", vec![]),
         ("wave", vec!["--t-end", "0.05"]),
+        ("plate", vec!["--t-end", "0.002"]),
     ] {
         let out = dir.join(study);
         let mut args = vec![study, "--quiet", "--json", "--out", out.to_str().unwrap()];

@@ -111,12 +111,14 @@ pub const DIMENSIONLESS_NAMES: &[&str] = &["mode", "n", "strain", "index"];
 
 /// Whether the CSV column `name` says its unit (ends with one of [`UNIT_SUFFIXES`]) or that
 /// it is dimensionless ([`DIMENSIONLESS`], [`DIMENSIONLESS_NAMES`]).
+/// The suffixes compare without case: `tension_N` and `tension_n` both say newtons.
 pub fn column_has_unit(name: &str) -> bool {
-    DIMENSIONLESS_NAMES.contains(&name)
+    let lower = name.to_ascii_lowercase();
+    DIMENSIONLESS_NAMES.contains(&lower.as_str())
         || UNIT_SUFFIXES
             .iter()
             .chain(DIMENSIONLESS)
-            .any(|u| name.ends_with(u) && name.len() > u.len())
+            .any(|u| lower.ends_with(&u.to_ascii_lowercase()) && lower.len() > u.len())
 }
 
 /// The columns without a unit in the headers of the CSV files in `dir` (recursively), as
