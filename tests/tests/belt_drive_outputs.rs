@@ -190,8 +190,11 @@ fn flowing_gross_slip_is_a_result_and_the_sweep_goes_on() {
 }
 
 // The rotating-mesh nodal belt (Ribaric (5.7), a second formulation on the uniform 54-element
-// loop) follows Euler–Eytelwein on its slip arcs at 20 N m within 3 % in the exponent (the
-// report is the mean over the last window: the element-passing ripple averages out).
+// loop) follows Euler–Eytelwein on its slip arcs at 20 N m within 5 % in the exponent, the
+// flowing model's bound and for the same reason (the penalty pressure is not T/R near the
+// tangent points; the report is the mean over the last window, so the element-passing ripple
+// averages out). Measured: driver 0.5 %, driven 3.7 % (54 elements); 3.8 % and 1.5 % on the
+// 108-element loop, so the deviation is that pressure effect, not mesh resolution.
 #[test]
 fn nodal_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
     let mut cfg = BeltDriveConfig::default();
@@ -213,7 +216,7 @@ fn nodal_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
             ..Default::default()
         },
     );
-    assert_capstan(&points[0], cfg.contact.friction_law().coefficient(), 0.03);
+    assert_capstan(&points[0], cfg.contact.friction_law().coefficient(), 0.05);
 }
 
 // Gross slip of the nodal belt (216 uniform elements, the accurate rotating mesh): steady at
