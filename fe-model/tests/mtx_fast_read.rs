@@ -158,3 +158,35 @@ fn malformed_lines_in_a_big_file_keep_their_errors_and_lines() {
         assert!(ok(&k), "`{}`: {k}", line.trim());
     }
 }
+
+/// A file of mostly blank and comment lines (parsed in parallel chunks, the slots sized by
+/// bytes per entry, not lines) reads its few entries, in file order, with the declared count
+/// checked.
+#[test]
+fn blank_line_padding_reads_the_entries() {
+    let mut text = String::from("%%MatrixMarket matrix coordinate real general\n4 4 3\n");
+    let pad = "\n".repeat(3 << 20) + &"%\n".repeat(1 << 19);
+    for (r, c, v) in [(1, 1, 2.5), (4, 2, -1.0), (3, 3, 7.0)] {
+        text += &pad;
+        text += &format!("{r} {c} {v}\n");
+    }
+    assert!(text.len() > 1 << 22);
+    let m = mtx::parse_with(text.as_bytes(), "pad.mtx", &ReadOptions::default()).unwrap();
+    assert_eq!(m.entries, vec![(0, 0, 2.5), (3, 1, -1.0), (2, 2, 7.0)]);
+    let short = text.replacen("4 4 3", "4 4 4", 1);
+    let (_, k) = kind(mtx::parse_with(
+        short.as_bytes(),
+        "pad.mtx",
+        &ReadOptions::default(),
+    ));
+    assert!(
+        matches!(
+            k,
+            E::Truncated {
+                expected: 4,
+                found: 3
+            }
+        ),
+        "{k}"
+    );
+}

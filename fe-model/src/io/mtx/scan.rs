@@ -231,7 +231,8 @@ fn line_bound(data: &[u8]) -> usize {
     newlines + usize::from(data.last().is_some_and(|&b| b != b'\n'))
 }
 
-/// Parse the lines of `data` into the front of `slot` (of [`line_bound`] entries).
+/// Parse the lines of `data` into the front of `slot` (of `min(line_bound, len / 6 + 1)`
+/// entries: one per line, each line of an entry at least 6 bytes with its newline).
 fn parse_chunk(data: &[u8], slot: &mut [(usize, usize, f64)], nrows: usize, ncols: usize) -> Chunk {
     let mut out = Chunk {
         count: 0,
@@ -268,7 +269,7 @@ fn parse_chunk(data: &[u8], slot: &mut [(usize, usize, f64)], nrows: usize, ncol
             }
         };
         line += 1;
-        // one entry per line: `slot` has `line_bound(data)` places
+        // one entry per line of at least 6 bytes: `slot` has room for all of them
         let Some(s) = slot.get_mut(out.count) else {
             break;
         };
@@ -313,7 +314,7 @@ fn chunks(data: &[u8]) -> Vec<(usize, usize)> {
 /// result has capacity for twice the entries (a symmetric file's mirrors are appended in
 /// place without reallocating).
 ///
-/// The entries are parsed straight into one array sized by the file's lines (not by the
+/// The entries are parsed straight into one array sized by the file (its lines, not the
 /// header's count): each chunk fills its own part in parallel, and the parts are then closed
 /// up in place (they have gaps only where a chunk had comments or blank lines).
 #[allow(clippy::too_many_arguments)]
@@ -328,9 +329,11 @@ pub(super) fn coordinate(
     mirror_room: bool,
 ) -> Result<(Entries, bool), FeError> {
     let bounds = chunks(data);
+    // a chunk's entries: at most one per line, and each takes at least `1 1 1` and a newline
+    // (6 bytes), so memory stays proportional to the file even for one of blank lines
     let caps: Vec<usize> = bounds
         .par_iter()
-        .map(|&(a, b)| line_bound(&data[a..b]))
+        .map(|&(a, b)| line_bound(&data[a..b]).min((b - a) / 6 + 1))
         .collect();
     let lines: usize = caps.iter().sum();
     let mut all: Entries = Vec::with_capacity(if mirror_room { 2 * lines } else { lines });
