@@ -19,7 +19,8 @@
 //! (default 3) alternated runs; the static pre-tension solve is not timed in either code.
 //!
 //! Run: `cargo bench -p drives --bench belt_vs_exudyn` (a few minutes). Prints
-//! `ratio = ours / peer` per modulus.
+//! `ratio = ours / peer` per modulus. `BELT_VS_EXUDYN_E=1e9` runs one modulus only;
+//! `BELT_VS_EXUDYN_H_OURS=4e-4` replaces our default step \[s\] (the scan of BENCHMARKS.md).
 
 use drives::ancf_run::roles;
 use drives::ancf_study::{AncfStudyConfig, dynamic_run, dynamic_setup};
@@ -221,8 +222,22 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(3);
     let with_ref = std::env::var("BELT_VS_EXUDYN_REFERENCE").map_or(true, |v| v != "0");
-    for (young, h_peer) in [(1e8, 1e-4), (1e9, 4e-4)] {
-        println!("== E = {young:e} Pa (peer step {h_peer:e} s)");
+    // one modulus only (`BELT_VS_EXUDYN_E=1e9`), our step overridden (`BELT_VS_EXUDYN_H_OURS`)
+    let only: Option<f64> = std::env::var("BELT_VS_EXUDYN_E")
+        .ok()
+        .and_then(|s| s.parse().ok());
+    let h_env: Option<f64> = std::env::var("BELT_VS_EXUDYN_H_OURS")
+        .ok()
+        .and_then(|s| s.parse().ok());
+    for (young, h_ours, h_peer) in [(1e8, None, 1e-4), (1e9, None, 4e-4)] {
+        if only.is_some_and(|e| e != young) {
+            continue;
+        }
+        let h_ours: Option<f64> = h_env.or(h_ours);
+        println!(
+            "== E = {young:e} Pa (our step {}, peer step {h_peer:e} s)",
+            h_ours.map_or("default".to_string(), |h| format!("{h:e} s"))
+        );
         let refs = with_ref.then(|| {
             let o = ours(young, Some(H_REF));
             println!("{}", describe("ours, reference", &o, None));
@@ -237,7 +252,7 @@ fn main() {
         let (mut wo, mut wp, mut ao, mut ap) = (vec![], vec![], vec![], vec![]);
         let (mut co, mut cp) = (vec![], vec![]);
         for k in 0..reps {
-            let o = ours(young, None);
+            let o = ours(young, h_ours);
             println!(
                 "{}",
                 describe(&format!("ours #{k}"), &o, refs.as_ref().map(|r| &r.0))

@@ -3,10 +3,13 @@
 //! `scipy.io.mmread` in the same run (issue #16: "Matrix Market reading at least as fast as
 //! scipy `mmread`").
 //!
-//! Run: `cargo bench -p fe-model --bench mtx_read -- [--python PY] [--dir DIR] [--repeat N]`
+//! Run: `cargo bench -p fe-model --bench mtx_read -- [--python PY] [--dir DIR] [--repeat N]
+//! [--rounds R]`
 //! (PY: a Python with scipy, default `python3`; DIR: scratch folder for the two files, default
-//! the system temp folder). Prints the best of N timings of both readers, alone (entries /
-//! COO) and including the conversion to a CSC matrix, and `ratio = ours / peer` for each.
+//! the system temp folder). R rounds (default 3), each reading N times (default 3) with ours in
+//! this process and then N times with the peer in a fresh Python process, so that both see the
+//! same machine load; prints the best timings of both readers, alone (entries / COO) and
+//! including the conversion to a CSC matrix, and `ratio = ours / peer` for each.
 
 use fe_model::generate::{TireConfig, tire};
 use fe_model::io::mtx;
@@ -22,6 +25,7 @@ fn arg(name: &str) -> Option<String> {
 fn main() {
     let python = arg("--python").unwrap_or_else(|| "python3".into());
     let repeat: usize = arg("--repeat").and_then(|r| r.parse().ok()).unwrap_or(3);
+    let rounds: usize = arg("--rounds").and_then(|r| r.parse().ok()).unwrap_or(3);
     let dir = PathBuf::from(arg("--dir").unwrap_or_else(|| {
         std::env::temp_dir()
             .join("flowmbd-mtx-bench")
@@ -45,20 +49,57 @@ fn main() {
     }
     let bytes = std::fs::metadata(&kp).map(|m| m.len()).unwrap_or(0)
         + std::fs::metadata(&mp).map(|m| m.len()).unwrap_or(0);
+    // ours and the peer alternate, so both see the same machine load
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/mmread.py");
     let (mut read, mut csc) = (f64::INFINITY, f64::INFINITY);
+    let (mut pr, mut pc) = (f64::INFINITY, f64::INFINITY);
+    let mut peer = String::new();
     let mut nnz = 0;
     let mut n = 0;
-    for _ in 0..repeat {
-        let t0 = Instant::now();
-        let k = mtx::read_with(&kp, &mtx::ReadOptions::symmetric()).expect("K");
-        let m = mtx::read_with(&mp, &mtx::ReadOptions::symmetric()).expect("M");
-        let t1 = t0.elapsed().as_secs_f64();
-        let (ks, ms) = (k.to_sparse().expect("K csc"), m.to_sparse().expect("M csc"));
-        let t2 = t0.elapsed().as_secs_f64();
-        read = read.min(t1);
-        csc = csc.min(t2);
-        nnz = ks.compute_nnz() + ms.compute_nnz();
-        n = ks.nrows();
+    for _ in 0..rounds {
+        for _ in 0..repeat {
+            let t0 = Instant::now();
+            let k = mtx::read_with(&kp, &mtx::ReadOptions::symmetric()).expect("K");
+            let m = mtx::read_with(&mp, &mtx::ReadOptions::symmetric()).expect("M");
+            let t1 = t0.elapsed().as_secs_f64();
+            let (ks, ms) = (k.to_sparse().expect("K csc"), m.to_sparse().expect("M csc"));
+            let t2 = t0.elapsed().as_secs_f64();
+            read = read.min(t1);
+            csc = csc.min(t2);
+            nnz = ks.compute_nnz() + ms.compute_nnz();
+            n = ks.nrows();
+            drop((k, m, ks, ms));
+        }
+        let out = Command::new(&python)
+            .arg(script)
+            .arg(&dir)
+            .arg(repeat.to_string())
+            .output();
+        let line = match out {
+            Ok(o) if o.status.success() => String::from_utf8_lossy(&o.stdout).trim().to_string(),
+            Ok(o) => {
+                println!(
+                    "peer: {python} failed: {}",
+                    String::from_utf8_lossy(&o.stderr).trim()
+                );
+                continue;
+            }
+            Err(e) => {
+                println!("peer: cannot run {python}: {e}");
+                continue;
+            }
+        };
+        let f: Vec<&str> = line.split_whitespace().collect();
+        let (Some(a), Some(b)) = (
+            f.get(3).and_then(|s| s.parse::<f64>().ok()),
+            f.get(5).and_then(|s| s.parse::<f64>().ok()),
+        ) else {
+            println!("peer: unexpected output `{line}`");
+            continue;
+        };
+        pr = pr.min(a);
+        pc = pc.min(b);
+        peer = format!("{} {}", f[0], f[1]);
     }
     println!(
         "files: {} and {} ({:.1} MB), n = {n}, nnz(K) + nnz(M) = {nnz}",
@@ -66,38 +107,14 @@ fn main() {
         mp.display(),
         bytes as f64 / 1e6
     );
-    println!("fe-model mtx: read {read:.3} s, read + CSC {csc:.3} s (best of {repeat})");
-    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/mmread.py");
-    let out = Command::new(&python)
-        .arg(script)
-        .arg(&dir)
-        .arg(repeat.to_string())
-        .output();
-    let line = match out {
-        Ok(o) if o.status.success() => String::from_utf8_lossy(&o.stdout).trim().to_string(),
-        Ok(o) => {
-            println!(
-                "peer: {python} failed: {}",
-                String::from_utf8_lossy(&o.stderr).trim()
-            );
-            return;
-        }
-        Err(e) => {
-            println!("peer: cannot run {python}: {e}");
-            return;
-        }
-    };
-    let f: Vec<&str> = line.split_whitespace().collect();
-    let (Some(pr), Some(pc)) = (
-        f.get(3).and_then(|s| s.parse::<f64>().ok()),
-        f.get(5).and_then(|s| s.parse::<f64>().ok()),
-    ) else {
-        println!("peer: unexpected output `{line}`");
-        return;
-    };
     println!(
-        "peer {} {}: mmread {pr:.3} s, mmread + tocsc {pc:.3} s",
-        f[0], f[1]
+        "fe-model mtx: read {read:.3} s, read + CSC {csc:.3} s (best of {rounds} rounds of {repeat}, alternated with the peer)"
+    );
+    if peer.is_empty() {
+        return;
+    }
+    println!(
+        "peer {peer}: mmread {pr:.3} s, mmread + tocsc {pc:.3} s (best of {rounds} rounds of {repeat})"
     );
     println!("ratio = ours / peer = {:.2} (read)", read / pr);
     println!("ratio = ours / peer = {:.2} (read + CSC)", csc / pc);

@@ -41,6 +41,7 @@ pub use write::{dense_to_string, sparse_to_string, write_dense, write_sparse};
 use crate::FeError;
 use faer::Mat;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use rayon::prelude::*;
 use std::path::Path;
 
 /// Default ceiling on the rows and columns of a matrix read from a file: 10⁷ (the column
@@ -124,11 +125,21 @@ pub struct MtxMatrix {
 
 impl MtxMatrix {
     /// Sparse CSC matrix (duplicate coordinates summed, in file order). Built directly by a
-    /// counting sort over the columns and a per-column sort of the rows, O(nnz + n).
+    /// counting sort over the columns and a per-column merge or sort of the rows, O(nnz + n);
+    /// large matrices are filled in parallel, one range of columns per thread (each thread
+    /// scans all entries and keeps its columns', so the result is that of a sequential fill).
     pub fn to_sparse(&self) -> Result<SparseColMat<usize, f64>, FeError> {
         let (m, n) = (self.nrows, self.ncols);
         let mut col_ptr = vec![0usize; n + 1];
-        for &(r, c, _) in &self.entries {
+        // whether the entries are all those on or below the diagonal, then all those above (a
+        // symmetric file's lower triangle and its mirrors), and where the second part starts
+        let (mut upper_from, mut partitioned) = (None, true);
+        for (k, &(r, c, _)) in self.entries.iter().enumerate() {
+            if r < c {
+                upper_from.get_or_insert(k);
+            } else if upper_from.is_some() {
+                partitioned = false;
+            }
             if r >= m || c >= n {
                 return Err(FeError::Index {
                     context: format!("Matrix Market entry ({}, {})", r + 1, c + 1),
@@ -141,42 +152,60 @@ impl MtxMatrix {
         for j in 0..n {
             col_ptr[j + 1] += col_ptr[j];
         }
-        // counting sort straight into the row and value arrays (file order within a column)
         let nnz = col_ptr[n];
-        let mut next = col_ptr.clone();
         let mut rows = vec![0usize; nnz];
         let mut vals = vec![0.0f64; nnz];
-        for &(r, c, v) in &self.entries {
-            rows[next[c]] = r;
-            vals[next[c]] = v;
-            next[c] += 1;
+        // distinct rows per column after summing duplicates, at the front of its block
+        let mut kept = vec![0usize; n];
+        // column ranges with about the same number of entries, one per thread
+        let parts = if nnz >= 1 << 20 {
+            rayon::current_num_threads().clamp(1, 16)
+        } else {
+            1
+        };
+        let mut cuts = vec![0usize];
+        for t in 1..parts {
+            let j = col_ptr.partition_point(|&p| p < nnz * t / parts).min(n);
+            cuts.push(j.max(cuts[t - 1]));
         }
-        drop(next);
-        // rows ascending within each column (stable: duplicates keep file order), then
-        // duplicates summed in place
-        let mut scratch: Vec<(usize, f64)> = Vec::new();
+        cuts.push(n);
+        let mut tasks = Vec::with_capacity(parts);
+        let (mut rr, mut vr, mut kr) = (
+            rows.as_mut_slice(),
+            vals.as_mut_slice(),
+            kept.as_mut_slice(),
+        );
+        for w in cuts.windows(2) {
+            let (lo, hi) = (w[0], w[1]);
+            let len = col_ptr[hi] - col_ptr[lo];
+            let (r0, r1) = rr.split_at_mut(len);
+            let (v0, v1) = vr.split_at_mut(len);
+            let (k0, k1) = kr.split_at_mut(hi - lo);
+            tasks.push((lo, hi, r0, v0, k0));
+            (rr, vr, kr) = (r1, v1, k1);
+        }
+        // Filling the upper part first gives each column its rows above the diagonal, then
+        // those below: already ascending when the file lists its lower triangle column by
+        // column, so no sort. Entries at one position all lie in one part, so their order,
+        // and the order of their sum, is the file's either way.
+        let e = self.entries.as_slice();
+        let parts_in_order: [&[(usize, usize, f64)]; 2] = match upper_from {
+            Some(h) if partitioned => [&e[h..], &e[..h]],
+            _ => [e, &[]],
+        };
+        tasks.into_par_iter().for_each(|(lo, hi, r, v, k)| {
+            fill_columns(parts_in_order, &col_ptr, lo..hi, r, v, k);
+        });
+        // close up the columns (moves only where duplicates were summed)
         let mut ptr = vec![0usize; n + 1];
         let mut w = 0usize;
         for j in 0..n {
-            let (a, b) = (col_ptr[j], col_ptr[j + 1]);
-            if !rows[a..b].is_sorted() {
-                scratch.clear();
-                scratch.extend(rows[a..b].iter().copied().zip(vals[a..b].iter().copied()));
-                scratch.sort_by_key(|p| p.0);
-                for (k, &(r, v)) in scratch.iter().enumerate() {
-                    rows[a + k] = r;
-                    vals[a + k] = v;
-                }
+            let (a, k) = (col_ptr[j], kept[j]);
+            if a != w {
+                rows.copy_within(a..a + k, w);
+                vals.copy_within(a..a + k, w);
             }
-            for q in a..b {
-                if w > ptr[j] && rows[w - 1] == rows[q] {
-                    vals[w - 1] += vals[q];
-                } else {
-                    rows[w] = rows[q];
-                    vals[w] = vals[q];
-                    w += 1;
-                }
-            }
+            w += k;
             ptr[j + 1] = w;
         }
         rows.truncate(w);
@@ -192,6 +221,83 @@ impl MtxMatrix {
             m[(r, c)] += v;
         }
         m
+    }
+}
+
+/// Fill the columns `cols` of a CSC matrix from `entries` (two slices, all in range): `rows`,
+/// `vals` are the columns' blocks (`col_ptr[cols.start]..col_ptr[cols.end]`), filled in entry
+/// order, then
+/// each column's rows put in ascending order (stable: duplicates keep entry order) and
+/// duplicates summed at the front of the block, their number in `kept`.
+fn fill_columns(
+    entries: [&[(usize, usize, f64)]; 2],
+    col_ptr: &[usize],
+    cols: std::ops::Range<usize>,
+    rows: &mut [usize],
+    vals: &mut [f64],
+    kept: &mut [usize],
+) {
+    let base = col_ptr[cols.start];
+    let mut next: Vec<usize> = col_ptr[cols.clone()].iter().map(|p| p - base).collect();
+    for part in entries {
+        for &(r, c, v) in part {
+            if cols.contains(&c) {
+                let q = &mut next[c - cols.start];
+                rows[*q] = r;
+                vals[*q] = v;
+                *q += 1;
+            }
+        }
+    }
+    drop(next);
+    let mut scratch: Vec<(usize, f64)> = Vec::new();
+    for j in cols.clone() {
+        let (a, b) = (col_ptr[j] - base, col_ptr[j + 1] - base);
+        if let Some(d) = rows[a..b].windows(2).position(|w| w[0] > w[1]) {
+            if rows[a + d + 1..b].is_sorted() {
+                // two ascending runs (a symmetric file's column: its lower entries, then the
+                // mirrors): a stable merge, the same order as the stable sort below
+                merge_runs(&mut rows[a..b], &mut vals[a..b], d + 1, &mut scratch);
+            } else {
+                scratch.clear();
+                scratch.extend(rows[a..b].iter().copied().zip(vals[a..b].iter().copied()));
+                scratch.sort_by_key(|p| p.0);
+                for (k, &(r, v)) in scratch.iter().enumerate() {
+                    rows[a + k] = r;
+                    vals[a + k] = v;
+                }
+            }
+        }
+        let mut w = a;
+        for q in a..b {
+            if w > a && rows[w - 1] == rows[q] {
+                vals[w - 1] += vals[q];
+            } else {
+                rows[w] = rows[q];
+                vals[w] = vals[q];
+                w += 1;
+            }
+        }
+        kept[j - cols.start] = w - a;
+    }
+}
+
+/// Stable merge of the ascending runs `rows[..mid]` and `rows[mid..]` (with their `vals`):
+/// on equal rows the first run's entry comes first.
+fn merge_runs(rows: &mut [usize], vals: &mut [f64], mid: usize, scratch: &mut Vec<(usize, f64)>) {
+    scratch.clear();
+    scratch.extend(rows[..mid].iter().copied().zip(vals[..mid].iter().copied()));
+    let (mut i, mut k, mut w) = (0usize, mid, 0usize);
+    while i < scratch.len() {
+        if k < rows.len() && rows[k] < scratch[i].0 {
+            rows[w] = rows[k];
+            vals[w] = vals[k];
+            k += 1;
+        } else {
+            (rows[w], vals[w]) = scratch[i];
+            i += 1;
+        }
+        w += 1;
     }
 }
 

@@ -138,35 +138,144 @@ fn entry(line: &[u8], nrows: usize, ncols: usize) -> Result<(usize, usize, f64),
     Ok((r as usize - 1, c as usize - 1, v))
 }
 
-/// What one chunk yields: its entries up to its first error, whether any lies above the
-/// diagonal, and the error with its 0-based line index within the chunk.
+/// Decimal digits `[0-9]+` at `*pos` (at most 18, so no overflow), advancing `*pos`.
+#[inline]
+fn digits(data: &[u8], pos: &mut usize) -> Option<u64> {
+    let start = *pos;
+    let mut i = start;
+    let mut v = 0u64;
+    while let Some(&b) = data.get(i) {
+        let d = b.wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        v = v * 10 + u64::from(d);
+        i += 1;
+        if i - start > 18 {
+            return None;
+        }
+    }
+    if i == start {
+        return None;
+    }
+    *pos = i;
+    Some(v)
+}
+
+/// Skip spaces and tabs at `*pos`; whether there was at least one.
+#[inline]
+fn blanks(data: &[u8], pos: &mut usize) -> bool {
+    let start = *pos;
+    while matches!(data.get(*pos), Some(b' ' | b'\t')) {
+        *pos += 1;
+    }
+    *pos > start
+}
+
+/// The reader's hot loop: a well-formed `row col value` line starting at `p` (digits, blanks,
+/// digits, blanks, a finite number, optional trailing blanks, then `\n` or the end). Returns
+/// the 0-based entry and the position after the line, or `None` for anything else (a
+/// comment, a blank line, a malformed or out-of-range line), which the line-based
+/// [`entry`] then handles with its typed error: both accept the same well-formed lines.
+#[inline]
+fn fast_entry(
+    data: &[u8],
+    mut p: usize,
+    nrows: u64,
+    ncols: u64,
+) -> Option<((usize, usize, f64), usize)> {
+    let r = digits(data, &mut p)?;
+    if !blanks(data, &mut p) {
+        return None;
+    }
+    let c = digits(data, &mut p)?;
+    if !blanks(data, &mut p) {
+        return None;
+    }
+    let (v, n) = fast_float2::parse_partial::<f64, _>(data.get(p..)?).ok()?;
+    p += n;
+    while matches!(data.get(p), Some(b' ' | b'\t' | b'\r')) {
+        p += 1;
+    }
+    match data.get(p) {
+        None => {}
+        Some(b'\n') => p += 1,
+        Some(_) => return None,
+    }
+    if r == 0 || c == 0 || r > nrows || c > ncols || !v.is_finite() {
+        return None;
+    }
+    Some(((r as usize - 1, c as usize - 1, v), p))
+}
+
+/// What one chunk yields: the number of entries it wrote to the front of its slot (up to its
+/// first error), whether any lies above the diagonal, and the error with its 0-based line
+/// index within the chunk.
 struct Chunk {
-    entries: Vec<(usize, usize, f64)>,
+    count: usize,
     any_upper: bool,
     error: Option<(usize, E)>,
 }
 
-fn parse_chunk(data: &[u8], nrows: usize, ncols: usize) -> Chunk {
-    // about 30 bytes per `row col value` line; never more than the chunk can hold
+/// Lines of `data` that can hold an entry: its newlines, plus an unterminated last line. A
+/// chunk never yields more entries than this (one per line).
+fn line_bound(data: &[u8]) -> usize {
+    // byte counts summed in blocks that cannot overflow a u8 (vectorised by the compiler)
+    let newlines: usize = data
+        .chunks(192)
+        .map(|b| {
+            b.iter()
+                .fold(0u8, |n, &x| n.wrapping_add(u8::from(x == b'\n'))) as usize
+        })
+        .sum();
+    newlines + usize::from(data.last().is_some_and(|&b| b != b'\n'))
+}
+
+/// Parse the lines of `data` into the front of `slot` (of `min(line_bound, len / 6 + 1)`
+/// entries: one per line, each line of an entry at least 6 bytes with its newline).
+fn parse_chunk(data: &[u8], slot: &mut [(usize, usize, f64)], nrows: usize, ncols: usize) -> Chunk {
     let mut out = Chunk {
-        entries: Vec::with_capacity(data.len() / 24),
+        count: 0,
         any_upper: false,
         error: None,
     };
-    for (i, l) in lines(data).enumerate() {
-        if skipped(l) {
-            continue;
-        }
-        match entry(l, nrows, ncols) {
-            Ok(e) => {
-                out.any_upper |= e.0 < e.1;
-                out.entries.push(e);
+    let (nr, nc) = (nrows as u64, ncols as u64);
+    let mut p = 0usize;
+    let mut line = 0usize;
+    while p < data.len() {
+        let e = match fast_entry(data, p, nr, nc) {
+            Some((e, next)) => {
+                p = next;
+                e
             }
-            Err(e) => {
-                out.error = Some((i, e));
-                break;
+            None => {
+                let end = data[p..]
+                    .iter()
+                    .position(|&b| b == b'\n')
+                    .map_or(data.len(), |k| p + k);
+                let l = &data[p..end];
+                p = end + 1;
+                if skipped(l) {
+                    line += 1;
+                    continue;
+                }
+                match entry(l, nrows, ncols) {
+                    Ok(e) => e,
+                    Err(e) => {
+                        out.error = Some((line, e));
+                        break;
+                    }
+                }
             }
-        }
+        };
+        line += 1;
+        // one entry per line of at least 6 bytes: `slot` has room for all of them
+        let Some(s) = slot.get_mut(out.count) else {
+            break;
+        };
+        *s = e;
+        out.count += 1;
+        out.any_upper |= e.0 < e.1;
     }
     out
 }
@@ -174,7 +283,11 @@ fn parse_chunk(data: &[u8], nrows: usize, ncols: usize) -> Chunk {
 /// Newline-aligned chunk boundaries of `data`.
 fn chunks(data: &[u8]) -> Vec<(usize, usize)> {
     let n = if data.len() > PARALLEL_BYTES {
-        (2 * rayon::current_num_threads()).max(2)
+        // chunks of about 1 MiB, at least two per thread: small enough that a thread left
+        // waiting on a busy machine takes over the others' work
+        (2 * rayon::current_num_threads())
+            .max(2)
+            .max(data.len() >> 20)
     } else {
         1
     };
@@ -200,6 +313,10 @@ fn chunks(data: &[u8]) -> Vec<(usize, usize)> {
 /// entries in file order and whether any lies above the diagonal. With `mirror_room` the
 /// result has capacity for twice the entries (a symmetric file's mirrors are appended in
 /// place without reallocating).
+///
+/// The entries are parsed straight into one array sized by the file (its lines, not the
+/// header's count): each chunk fills its own part in parallel, and the parts are then closed
+/// up in place (they have gaps only where a chunk had comments or blank lines).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn coordinate(
     data: &[u8],
@@ -212,14 +329,31 @@ pub(super) fn coordinate(
     mirror_room: bool,
 ) -> Result<(Entries, bool), FeError> {
     let bounds = chunks(data);
+    // a chunk's entries: at most one per line, and each takes at least `1 1 1` and a newline
+    // (6 bytes), so memory stays proportional to the file even for one of blank lines
+    let caps: Vec<usize> = bounds
+        .par_iter()
+        .map(|&(a, b)| line_bound(&data[a..b]).min((b - a) / 6 + 1))
+        .collect();
+    let lines: usize = caps.iter().sum();
+    let mut all: Entries = Vec::with_capacity(if mirror_room { 2 * lines } else { lines });
+    all.resize(lines, (0, 0, 0.0));
+    let mut slots = Vec::with_capacity(caps.len());
+    let mut rest = all.as_mut_slice();
+    for &c in &caps {
+        let (s, r) = rest.split_at_mut(c);
+        slots.push(s);
+        rest = r;
+    }
     let parsed: Vec<Chunk> = bounds
         .par_iter()
-        .map(|&(a, b)| parse_chunk(&data[a..b], nrows, ncols))
+        .zip(slots.into_par_iter())
+        .map(|(&(a, b), slot)| parse_chunk(&data[a..b], slot, nrows, ncols))
         .collect();
     let mut total = 0usize;
     let mut any_upper = false;
     for (chunk, &(start, _)) in parsed.iter().zip(&bounds) {
-        total += chunk.entries.len();
+        total += chunk.count;
         any_upper |= chunk.any_upper;
         if total > nnz {
             break;
@@ -256,21 +390,17 @@ pub(super) fn coordinate(
             },
         ));
     }
-    let entries = if parsed.len() == 1 {
-        parsed
-            .into_iter()
-            .next()
-            .map(|c| c.entries)
-            .unwrap_or_default()
-    } else {
-        // `total` entries were parsed (not a count from the header)
-        let mut all = Vec::with_capacity(if mirror_room { 2 * total } else { total });
-        for c in parsed {
-            all.extend(c.entries);
+    // close up the chunks' parts (in place, front to back)
+    let (mut w, mut off) = (0usize, 0usize);
+    for (chunk, &cap) in parsed.iter().zip(&caps) {
+        if off != w {
+            all.copy_within(off..off + chunk.count, w);
         }
-        all
-    };
-    Ok((entries, any_upper))
+        w += chunk.count;
+        off += cap;
+    }
+    all.truncate(w);
+    Ok((all, any_upper))
 }
 
 /// Parse the values of an array file (column-major; symmetric: lower triangle column by

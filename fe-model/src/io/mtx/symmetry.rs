@@ -7,6 +7,7 @@ use super::{SYMMETRY_RTOL, Symmetry};
 use crate::FeError;
 use crate::error::MatrixFileError as E;
 use crate::io::{check_mirror, err};
+use rayon::prelude::*;
 
 use super::scan::Entries;
 
@@ -65,17 +66,29 @@ pub(super) fn expand(
     file: &str,
 ) -> Result<Entries, FeError> {
     if !any_upper {
-        // mirrors appended in place: no second copy of the entries
+        // mirrors appended in place (no second copy of the entries), in file order; large
+        // files in parallel blocks, each writing its mirrors at its offset
         let mut entries = entries;
         let len = entries.len();
-        let off = entries.iter().filter(|e| e.0 != e.1).count();
-        entries.reserve_exact(off);
-        for k in 0..len {
-            let (r, c, v) = entries[k];
-            if r != c {
-                entries.push((c, r, v));
-            }
+        let block = (len / (4 * rayon::current_num_threads()).max(1)).max(1 << 16);
+        let counts: Vec<usize> = entries
+            .par_chunks(block)
+            .map(|b| b.iter().filter(|e| e.0 != e.1).count())
+            .collect();
+        let off: usize = counts.iter().sum();
+        entries.resize(len + off, (0, 0, 0.0));
+        let (lower, mut upper) = entries.split_at_mut(len);
+        let mut tasks = Vec::with_capacity(counts.len());
+        for (b, &k) in lower.chunks(block).zip(&counts) {
+            let (u0, u1) = upper.split_at_mut(k);
+            tasks.push((b, u0));
+            upper = u1;
         }
+        tasks.into_par_iter().for_each(|(b, u)| {
+            for (slot, &(r, c, v)) in u.iter_mut().zip(b.iter().filter(|e| e.0 != e.1)) {
+                *slot = (c, r, v);
+            }
+        });
         return Ok(entries);
     }
     let (pairs, diagonal) = pairs(&entries);
