@@ -5,7 +5,7 @@
 
 use crate::cleat::validate_rig;
 use crate::common::{RigFlags, TireSource, rig_err};
-use flowing::tire::{DipConfig, GroundDips, GroundKind, RigConfig, ground_dips};
+use flowing::tire::{DipConfig, GroundDips, GroundKind, PulseShape, RigConfig, ground_dips};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -24,6 +24,10 @@ pub struct Args {
     /// Only this ground (`drum` or `road`; default both).
     #[arg(long, value_parser = ["drum", "road"])]
     only: Option<String>,
+    /// Pulse shape of the prediction: `half_sine` over the profile's support (default) or
+    /// the `profile` itself (overrides `dips.pulse`).
+    #[arg(long, value_parser = ["half_sine", "profile"])]
+    pulse: Option<String>,
     /// Block the modes below this frequency in the enveloping profile (overrides
     /// `dips.blocked_below_hz`; 0 = quasi-static profile).
     #[arg(long)]
@@ -114,6 +118,7 @@ struct Dips {
     no_sweep: bool,
     only: Option<String>,
     blocked_below_hz: Option<f64>,
+    pulse: Option<String>,
 }
 
 fn name(k: GroundKind) -> &'static str {
@@ -143,8 +148,9 @@ impl Study for Dips {
          cleat passes (profile_<ground>.csv; its extent is the enveloping length [m], against \
          the undeformed tire's geometric one), the loaded vertical mode [Hz] and its damping \
          ratio, the predicted ring-down amplitude of that mode after the cleat against speed \
-         (prediction_<ground>.csv, dips where the pulse's spectrum has a zero at the mode: \
-         v_k ~ f L/(k+1/2)) and the measured amplitude of the vertical line in a cleat sweep \
+         for a pulse over the enveloping length (dips.pulse: a half sine by default, or the \
+         profile itself; prediction_<ground>.csv, dips where the pulse's spectrum has a zero \
+         at the mode: v_k ~ f L/(k+1/2) for the half sine) and the measured amplitude of the vertical line in a cleat sweep \
          (sweep_<ground>.csv) with its local minima."
     }
 
@@ -156,6 +162,13 @@ impl Study for Dips {
         self.rig.apply(&mut c.tire, &mut c.rig);
         if self.no_sweep {
             c.dips.sweep_speeds_kmh.clear();
+        }
+        if let Some(p) = &self.pulse {
+            c.dips.pulse = if p == "profile" {
+                PulseShape::Profile
+            } else {
+                PulseShape::HalfSine
+            };
         }
         if let Some(b) = self.blocked_below_hz {
             c.dips.blocked_below_hz = b;
@@ -292,6 +305,7 @@ pub fn run(args: &Args) -> ExitCode {
             no_sweep: args.no_sweep,
             only: args.only.clone(),
             blocked_below_hz: args.blocked_below_hz,
+            pulse: args.pulse.clone(),
         },
         &args.common,
     )

@@ -31,6 +31,12 @@
 //! envelopes the cleat over a longer stretch than the convex drum
 //! ([`geometric_envelope_half_length`]), so its dips lie higher, as in Ribaric.
 //!
+//! Which pulse: the quasi-static profile of the generated tire is a comb of peaks (the cleat
+//! meets the 17 mm-spaced node rows one by one) with an M-shaped envelope, and its zeros put
+//! the dips 1.7–1.9 times too high; the spindle force of the simulated passage is a single
+//! hump over the same stretch, and a half sine over the profile's support
+//! ([`PulseShape::HalfSine`]) predicts the sweep's dips (BENCHMARKS.md, "speed dips").
+//!
 //! The coincidence of the line with harmonics of the wheel rotation is no mechanism for one
 //! cleat passage: the rotation frequency (2.8–14 Hz at 20–100 km/h on this tire) is below the
 //! line's half-power bandwidth `2ζf` (4.5 Hz at 75 Hz, ζ = 3 %) for most speeds, and a single
@@ -277,6 +283,43 @@ pub fn line_amplitude(spectrum: &Spectrum, f_hz: f64, half_band: f64) -> f64 {
     (e / 1.5).sqrt()
 }
 
+/// Shape of the force pulse whose spectrum filters the vertical mode in [`ground_dips`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PulseShape {
+    /// A half sine over the profile's support `L` (a smooth single hump, the shape of the
+    /// enveloping models' basic function; dips at `v ≈ f L / (k + ½)`). Default: it predicts
+    /// the sweep's dips of the generated tire (BENCHMARKS.md, "speed dips"), where the spiky
+    /// quasi-static profile of the discrete node rows does not.
+    HalfSine,
+    /// The quasi-static (or blocked) profile itself.
+    Profile,
+}
+
+impl PulseShape {
+    /// The pulse on the profile's positions: the profile, or a half sine of the profile's
+    /// peak over its support.
+    pub fn pulse(self, p: &EnvelopingProfile) -> Vec<f64> {
+        match self {
+            Self::Profile => p.dfy.clone(),
+            Self::HalfSine => {
+                let peak = p.dfy.iter().copied().fold(0.0, f64::max);
+                let [a, b] = p.support;
+                p.cleat_x
+                    .iter()
+                    .map(|&x| {
+                        if b > a && x >= a && x <= b {
+                            peak * (PI * (x - a) / (b - a)).sin()
+                        } else {
+                            0.0
+                        }
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
 /// Settings of [`ground_dips`].
 #[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -286,6 +329,8 @@ pub struct DipConfig {
     /// Modes of the rim-fixed reduced tire below this frequency are blocked in the profile
     /// ([`enveloping_profile`]) \[Hz\]; 0 = quasi-static profile.
     pub blocked_below_hz: f64,
+    /// Pulse shape of the prediction.
+    pub pulse: PulseShape,
     /// Speeds of the predicted amplitude curve \[km/h\].
     pub predict_speeds_kmh: Vec<f64>,
     /// Speeds of the cleat sweep \[km/h\] (empty: prediction only).
@@ -300,6 +345,7 @@ impl Default for DipConfig {
         Self {
             profile_step: 1e-3,
             blocked_below_hz: 0.0,
+            pulse: PulseShape::HalfSine,
             predict_speeds_kmh: (0..=220).map(|k| 10.0 + 0.5 * k as f64).collect(),
             sweep_speeds_kmh: (0..=16).map(|k| 20.0 + 5.0 * k as f64).collect(),
             line_half_band_hz: 12.0,
@@ -351,7 +397,7 @@ pub struct GroundDips {
     pub vertical_mode_hz: f64,
     /// Its Rayleigh damping ratio in the rig.
     pub zeta: f64,
-    /// Predicted amplitude against speed and its dips.
+    /// Predicted amplitude against speed (of the pulse [`DipConfig::pulse`]) and its dips.
     pub prediction: DipPrediction,
     /// Sweep speeds \[km/h\].
     pub sweep_speeds_kmh: Vec<f64>,
@@ -391,7 +437,11 @@ pub fn ground_dips(
         .rayleigh(red)?
         .ratio(2.0 * PI * mode.hz)
         .clamp(0.0, 0.99);
-    let prediction = predict_dips(&profile, mode.hz, zeta, &cfg.predict_speeds_kmh)?;
+    let pulse = EnvelopingProfile {
+        dfy: cfg.pulse.pulse(&profile),
+        ..profile.clone()
+    };
+    let prediction = predict_dips(&pulse, mode.hz, zeta, &cfg.predict_speeds_kmh)?;
     let n = cfg.sweep_speeds_kmh.len();
     let mut line_amplitude_n = Vec::with_capacity(n);
     for (k, &v) in cfg.sweep_speeds_kmh.iter().enumerate() {

@@ -36,7 +36,7 @@ pub use rotating::{
 pub mod contact_solve;
 pub mod dips;
 pub use dips::{
-    DipConfig, DipPrediction, EnvelopingProfile, GroundDips, enveloping_profile,
+    DipConfig, DipPrediction, EnvelopingProfile, GroundDips, PulseShape, enveloping_profile,
     geometric_envelope_half_length, ground_dips, line_amplitude, local_minima, predict_dips,
 };
 pub mod friction;
