@@ -84,8 +84,7 @@ fn predicted_dips_match_the_cleat_sweep_on_drum_and_road() {
             .prediction
             .dips_kmh
             .iter()
-            .filter(|v| (25.0..=55.0).contains(*v))
-            .last()
+            .rfind(|v| (25.0..=55.0).contains(*v))
             .expect("a predicted dip in 25-55 km/h");
         // the deepest local minimum of the sweep
         let a = &d.line_amplitude_n;
