@@ -38,9 +38,10 @@
 //! ([`PulseShape::HalfSine`]) predicts the sweep's dips (BENCHMARKS.md, "speed dips").
 //!
 //! The coincidence of the line with harmonics of the wheel rotation is no mechanism for one
-//! cleat passage: the rotation frequency (2.8–14 Hz at 20–100 km/h on this tire) is below the
-//! line's half-power bandwidth `2ζf` (4.5 Hz at 75 Hz, ζ = 3 %) for most speeds, and a single
-//! pulse has no periodic excitation whose harmonics could meet the mode.
+//! cleat passage: a single pulse has no periodic excitation whose harmonics could meet the
+//! mode, and the rotation frequency `v / 2πR` (1.7–8.5 Hz at 20–100 km/h on this tire) is of
+//! the order of the line's half-power bandwidth `2ζf` (4.4 Hz at 76 Hz, ζ = 2.9 %), so some
+//! harmonic lies within the line at every speed.
 
 use super::error::{TireError, invalid};
 use super::ground::{Ground, GroundConfig, GroundKind};
