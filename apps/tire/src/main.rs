@@ -7,13 +7,16 @@
 //! - `sweep`: the speed sweep 20-100 km/h (Figs. 8-7, 8-8, 8-14);
 //! - `pressure`: the patch force distribution on the drum and on a flat road (Fig. 8-12);
 //! - `rotating-modes`: complex modes of the rolling tire in the ground frame at several speeds
-//!   (forward/backward waves, Campbell diagram).
+//!   (forward/backward waves, Campbell diagram);
+//! - `dips`: the speed dips of the cleat test, predicted from the enveloping profile and the
+//!   loaded vertical mode, and measured by a sweep (drum and road).
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod cleat;
 mod common;
+mod dips;
 mod maps;
 mod modes;
 mod pressure;
@@ -44,6 +47,9 @@ enum Study {
     /// Complex modes of the rolling tire in the ground frame: forward/backward waves of each
     /// circumferential order vs speed (Campbell diagram), free and loaded.
     RotatingModes(rotating::Args),
+    /// Speed dips of the cleat test: enveloping-filter prediction and cleat sweep, drum and
+    /// road (Ribaric §8.3, §8.5).
+    Dips(dips::Args),
 }
 
 fn main() -> ExitCode {
@@ -55,6 +61,7 @@ fn main() -> ExitCode {
         Some(Study::Sweep(a)) => sweep::run(&a),
         Some(Study::Pressure(a)) => pressure::run(&a),
         Some(Study::RotatingModes(a)) => rotating::run(&a),
+        Some(Study::Dips(a)) => dips::run(&a),
         None => cleat::run(&cleat::Args::default()),
     }
 }

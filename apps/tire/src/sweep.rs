@@ -5,7 +5,7 @@
 use crate::cleat::{Summary as CleatSummary, summarize, validate_rig};
 use crate::common::{RigFlags, TireSource, rig_err};
 use crate::maps::SpectrumMap;
-use flowing::tire::{PEAK_BAND_HZ, RigConfig, run_cleat, spectrum_grid};
+use flowing::tire::{PEAK_BAND_HZ, RigConfig, local_minima, run_cleat, spectrum_grid};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -214,10 +214,7 @@ impl Study for Sweep {
         .save(&ctx.out.path("peak_vs_speed"))?;
         let incr = ay.windows(2).any(|w| w[1] > w[0]);
         let decr = ay.windows(2).any(|w| w[1] < w[0]);
-        let dips = (1..ay.len().saturating_sub(1))
-            .filter(|&i| ay[i] < ay[i - 1] && ay[i] < ay[i + 1])
-            .map(|i| c.speeds_kmh[i])
-            .collect();
+        let dips = local_minima(&c.speeds_kmh, &ay);
         Ok(Summary {
             runs,
             fy_peak_amplitude_n: ay,

@@ -787,3 +787,59 @@ fn rotating_modes_json_contract_and_split() {
     assert!(!csv_column(&out_dir.join("rotating_modes.csv"), "f_hz").is_empty());
     assert!(flowmbd_cli::output::columns_without_unit(&out_dir).is_empty());
 }
+
+/// `dips --no-sweep --json` (issue 21 item 4): per ground the enveloping length lies within
+/// the contact nodes' extent widened by the cleat (the cleat acts only through contact nodes)
+/// and near the undeformed tire's geometric stretch; the road's is the longer (Ribaric §8.5);
+/// the predicted dips are local minima of `prediction_<ground>.csv`; a negative profile step
+/// is refused with exit 2 naming the field.
+#[test]
+fn dips_prediction_contract() {
+    let (file, _) = shared_reduced();
+    let dir = tmp("dips");
+    let cfg = config(&dir, "d.toml", "", file, "");
+    let out = dir.join("d");
+    let s = json_of(&run_study(
+        "dips",
+        &["--quiet", "--json", "--no-sweep"],
+        &cfg,
+        &out,
+    ));
+    let g = s["grounds"].as_array().expect("grounds");
+    assert_eq!(g.len(), 2);
+    for (k, name) in ["drum", "road"].iter().enumerate() {
+        let span = floats(&g[k]["contact_node_span_m"]);
+        let l = f(&g[k]["envelope_length_m"]);
+        assert!(
+            l > 0.0 && l <= span[1] - span[0] + 0.04 + 1e-9,
+            "{name}: L = {l}"
+        );
+        let lg = f(&g[k]["geometric_envelope_length_m"]);
+        assert!((l - lg).abs() < 0.08, "{name}: L = {l} vs geometric {lg}");
+        let v = csv_column(&out.join(format!("prediction_{name}.csv")), "speed_kmh");
+        let a = csv_column(&out.join(format!("prediction_{name}.csv")), "amplitude_n");
+        for d in floats(&g[k]["predicted_dips_kmh"]) {
+            let i = v.iter().position(|x| *x == d).expect("dip on the grid");
+            assert!(
+                a[i] < a[i - 1] && a[i] < a[i + 1],
+                "{name}: {d} km/h is no minimum"
+            );
+        }
+        assert!(
+            g[k]["sweep_speeds_kmh"]
+                .as_array()
+                .expect("speeds")
+                .is_empty()
+        );
+    }
+    assert!(f(&g[1]["envelope_length_m"]) > f(&g[0]["envelope_length_m"]));
+    let bad = config(&dir, "bad.toml", "[dips]\nprofile_step = -1.0", file, "");
+    let (code, _, err) = outcome(&run_study(
+        "dips",
+        &["--quiet", "--no-sweep"],
+        &bad,
+        &dir.join("b"),
+    ));
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("profile_step"), "{err}");
+}

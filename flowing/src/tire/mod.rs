@@ -11,7 +11,9 @@
 //! * [`rig`]: the cleat-test sequence of §8.3 and its outputs; [`spectrum`]: amplitude spectra;
 //! * [`rotating`]: complex modes of the rotating tire in the ground frame (gyroscopic and
 //!   convective terms of (7.17)), labelled by [`harmonics`] with circumferential order and
-//!   forward/backward direction.
+//!   forward/backward direction;
+//! * [`dips`]: the speed dips of the cleat test from the cleat's enveloping profile and the
+//!   loaded vertical mode.
 
 pub mod error;
 pub mod mesh;
@@ -32,6 +34,11 @@ pub use rotating::{
     spinning_modes,
 };
 pub mod contact_solve;
+pub mod dips;
+pub use dips::{
+    DipConfig, DipPrediction, EnvelopingProfile, GroundDips, PulseShape, enveloping_profile,
+    geometric_envelope_half_length, ground_dips, line_amplitude, local_minima, predict_dips,
+};
 pub mod friction;
 pub mod ground;
 pub mod lcp;

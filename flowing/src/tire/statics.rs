@@ -40,10 +40,14 @@ pub struct PatchSolution {
 }
 
 /// Multipliers λ, contact-node forces f^c and deflections δ^c of one contact state.
-type ContactState = (Vec<f64>, Vec<f64>, Vec<f64>);
+pub(crate) type ContactState = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// Contact state for a fixed ground height: returns (λ, f^c, δ^c).
-fn contact_at(y: &Mat<f64>, s_c: &[[f64; 3]], ground: &Ground) -> Result<ContactState, TireError> {
+pub(crate) fn contact_at(
+    y: &Mat<f64>,
+    s_c: &[[f64; 3]],
+    ground: &Ground,
+) -> Result<ContactState, TireError> {
     let nc = s_c.len();
     let mut delta = vec![0.0; 3 * nc];
     let mut lambda = vec![0.0; nc];
