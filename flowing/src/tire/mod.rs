@@ -11,7 +11,9 @@
 //! * [`rig`]: the cleat-test sequence of §8.3 and its outputs; [`spectrum`]: amplitude spectra;
 //! * [`rotating`]: complex modes of the rotating tire in the ground frame (gyroscopic and
 //!   convective terms of (7.17)), labelled by [`harmonics`] with circumferential order and
-//!   forward/backward direction.
+//!   forward/backward direction;
+//! * [`study`]: the tire source (generated or imported tire and its reduction), the cleat
+//!   study's configuration and summary, shared by `flowmbd-tire` and the Python package.
 
 pub mod error;
 pub mod mesh;
@@ -59,10 +61,14 @@ pub use model::{
 };
 pub mod rig;
 pub mod spectrum;
+pub mod study;
 pub use rig::{
     DampingConfig, ImpactConfig, RigConfig, RigResult, RigStart, Sample, run_cleat,
     run_cleat_observed, start_rolling,
 };
 pub use spectrum::{
     PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation, spectrum_grid,
+};
+pub use study::{
+    CleatStudyConfig, CleatSummary, TireSource, cleat_summary, rig_input_error, tire_input_error,
 };
