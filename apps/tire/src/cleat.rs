@@ -4,6 +4,7 @@
 use crate::common::{RigFlags, TireSourceExt, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
+use flowing::tire::study::CLEAT_MEANING;
 use flowing::tire::{
     LineMode, RigResult, RollingTire, TireError, cleat_summary, run_cleat_observed,
 };
