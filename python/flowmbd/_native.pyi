@@ -51,6 +51,9 @@ _Array = npt.NDArray[np.float64]
 _Index = npt.NDArray[np.uintp]
 _Fe = Tuple[_Array, Tuple[_Index, _Index, _Array], _Array, _Index, _Index]
 
+CLEAT_FORCE_COLUMNS: List[str]
+"""Columns of the cleat test's force history (``forces.csv``)."""
+
 class ReducedTire:
     """The reduced flowing-material tire of Ribaric §8.2 (immutable, picklable)."""
 

@@ -28,8 +28,7 @@ from ._results import config_json, from_json
 ReducedTire = _native.ReducedTire
 
 #: Columns of the force history (``forces.csv`` of ``flowmbd-tire cleat``).
-FORCE_COLUMNS = ("t_s", "fx_n", "fy_n", "f_lateral_n", "spin_rad_s", "active_nodes_count",
-                 "normal_sum_n")
+FORCE_COLUMNS = tuple(_native.CLEAT_FORCE_COLUMNS)
 
 
 def _reduced_tire_from_bytes(data: bytes) -> "ReducedTire":

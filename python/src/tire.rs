@@ -7,6 +7,7 @@
 use crate::{input_error, numerical_error, read_config, to_json};
 use faer::Mat;
 use fe_model::generate::TireConfig;
+use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
 use flowing::tire::{
     CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
     TireSource, cleat_summary, imported_tire, rig_input_error, run_cleat_observed,
@@ -355,10 +356,7 @@ type History = [Vec<f64>; 7];
 fn history_of(r: &RigResult) -> History {
     let mut h: History = Default::default();
     for s in &r.samples {
-        for (col, x) in
-            h.iter_mut()
-                .zip([s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum])
-        {
+        for (col, x) in h.iter_mut().zip(sample_row(s)) {
             col.push(x);
         }
     }
@@ -400,16 +398,7 @@ pub fn tire_cleat(
     let mut seen: History = Default::default();
     let result = py.detach(|| {
         let mut observer = |_k: usize, sim: &RollingTire| -> Result<(), TireError> {
-            let f = sim.spindle_force();
-            for (col, x) in seen.iter_mut().zip([
-                sim.state.t - settle,
-                f.fx,
-                f.fy,
-                f.fz,
-                sim.state.theta_d,
-                sim.active_count() as f64,
-                sim.total_normal_force(),
-            ]) {
+            for (col, x) in seen.iter_mut().zip(force_row(sim, settle)) {
                 col.push(x);
             }
             Ok(())
@@ -428,16 +417,7 @@ pub fn tire_cleat(
         Err(e) => match rig_input_error(e) {
             Ok(field) => Err(input_error(field)),
             Err(other) => {
-                let names = [
-                    "t_s",
-                    "fx_n",
-                    "fy_n",
-                    "f_lateral_n",
-                    "spin_rad_s",
-                    "active_nodes_count",
-                    "normal_sum_n",
-                ];
-                let forces: serde_json::Map<String, serde_json::Value> = names
+                let forces: serde_json::Map<String, serde_json::Value> = FORCE_COLUMNS
                     .iter()
                     .zip(&seen)
                     .map(|(n, col)| (n.to_string(), serde_json::json!(col)))

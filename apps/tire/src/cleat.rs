@@ -28,17 +28,7 @@ pub struct Args {
 pub use flowing::tire::study::{
     CleatStudyConfig as Config, CleatSummary as Summary, summarize, validate_rig,
 };
-
-/// Columns of the force history `forces.csv`.
-const FORCE_COLUMNS: [&str; 7] = [
-    "t_s",
-    "fx_n",
-    "fy_n",
-    "f_lateral_n",
-    "spin_rad_s",
-    "active_nodes_count",
-    "normal_sum_n",
-];
+use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
 
 /// Write the spectra and plots of a rig result under `prefix`, and its force history
 /// `{prefix}forces.csv` too when `history` is set (the `cleat` study streams that file while it
@@ -57,9 +47,7 @@ pub fn write_outputs(
         ctx.out.write_csv(
             &format!("{prefix}forces.csv"),
             &FORCE_COLUMNS,
-            r.samples
-                .iter()
-                .map(|s| vec![s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]),
+            r.samples.iter().map(|s| sample_row(s).to_vec()),
         )?;
     }
     let (sx, sy) = r.spectra();
@@ -228,17 +216,8 @@ impl Study for Cleat {
         let mut history_err: Option<CliError> = None;
         let mut done = (0usize, f64::NAN);
         let mut observer = |k: usize, sim: &RollingTire| -> Result<(), TireError> {
-            let f = sim.spindle_force();
-            let t = sim.state.t - settle;
-            let row = [
-                t,
-                f.fx,
-                f.fy,
-                f.fz,
-                sim.state.theta_d,
-                sim.active_count() as f64,
-                sim.total_normal_force(),
-            ];
+            let row = force_row(sim, settle);
+            let t = row[0];
             if let Err(e) = history.row(&row) {
                 let reason = e.to_string();
                 history_err = Some(e);

@@ -12,8 +12,8 @@ use super::mesh::TireFe;
 use super::model::{ImportFiles, generated_tire, imported_tire};
 use super::reduce::{ReductionConfig, ReductionTimings, reduce};
 use super::reduced::ReducedTire;
-use super::rig::{RigConfig, RigResult};
-use super::rolling::StepStats;
+use super::rig::{RigConfig, RigResult, Sample};
+use super::rolling::{RollingTire, StepStats};
 use super::rotating::RotatingOptions;
 use super::spectrum::PEAK_BAND_HZ;
 use fe_model::FeError;
@@ -321,4 +321,39 @@ pub fn cleat_summary(red: &ReducedTire, r: &RigResult) -> CleatSummary {
     s.fx_line_mode = line_mode(red, r, SpindleComponent::Longitudinal, s.fx_peak_hz);
     s.fy_line_mode = line_mode(red, r, SpindleComponent::Vertical, s.fy_peak_hz);
     s
+}
+
+/// Columns of the cleat test's force history (`forces.csv` of `flowmbd-tire cleat`, the
+/// `forces` of `flowmbd.tire.cleat`): time from the cleat hit \[s\], the spindle forces
+/// `F_x`, `F_y`, `F_lateral` \[N\], the spin rate \[rad/s\], the active contact nodes and
+/// their total normal force \[N\].
+pub const FORCE_COLUMNS: [&str; 7] = [
+    "t_s",
+    "fx_n",
+    "fy_n",
+    "f_lateral_n",
+    "spin_rad_s",
+    "active_nodes_count",
+    "normal_sum_n",
+];
+
+/// The [`FORCE_COLUMNS`] row of the rolling tire after a step (a run's observer; `settle` is
+/// the rig's `settle_time`, so that the cleat hits at `t = 0`): the same numbers as the step's
+/// [`Sample`].
+pub fn force_row(sim: &RollingTire, settle: f64) -> [f64; 7] {
+    let f = sim.spindle_force();
+    [
+        sim.state.t - settle,
+        f.fx,
+        f.fy,
+        f.fz,
+        sim.state.theta_d,
+        sim.active_count() as f64,
+        sim.total_normal_force(),
+    ]
+}
+
+/// The [`FORCE_COLUMNS`] row of a recorded sample.
+pub fn sample_row(s: &Sample) -> [f64; 7] {
+    [s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]
 }
