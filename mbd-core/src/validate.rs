@@ -171,6 +171,38 @@ pub mod check {
         }
     }
 
+    /// `Ok` when `path` is a readable regular file; otherwise the [`InvalidField`] for `field`
+    /// saying whether the path does not exist, is a directory, or cannot be inspected (input
+    /// files named in a configuration: the apps and the Python package check them alike).
+    pub fn input_file(field: &str, path: &std::path::Path) -> Result<(), InvalidField> {
+        let shown = path.display();
+        match std::fs::metadata(path) {
+            Ok(m) if m.is_dir() => Err(InvalidField::new(
+                field,
+                format!("`{shown}` is a directory, expected a file"),
+            )),
+            Ok(m) if m.is_file() => match std::fs::File::open(path) {
+                Ok(_) => Ok(()),
+                Err(e) => Err(InvalidField::new(
+                    field,
+                    format!("cannot read `{shown}`: {e}"),
+                )),
+            },
+            Ok(_) => Err(InvalidField::new(
+                field,
+                format!("`{shown}` is not a regular file"),
+            )),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(InvalidField::new(
+                field,
+                format!("file `{shown}` does not exist"),
+            )),
+            Err(e) => Err(InvalidField::new(
+                field,
+                format!("cannot read `{shown}`: {e}"),
+            )),
+        }
+    }
+
     fn with_unit(unit: &str) -> String {
         if unit.is_empty() {
             String::new()

@@ -5,6 +5,8 @@ results as the ``flowmbd-*`` command-line studies):
 
 - :mod:`flowmbd.belt`: ``speed_loss`` (Ribaric §6.4–6.5) and ``ancf`` (Kerkkänen ch. 3);
 - :mod:`flowmbd.string`: ``modes`` (Ribaric §4.2.3);
+- :mod:`flowmbd.tire`: the reduced FE tire (generate, import, ``reduce`` once into a picklable
+  ``ReducedTire``) and ``cleat`` (Ribaric ch. 7–8);
 - :mod:`flowmbd.reduce`: ``modes`` and ``craig_bampton`` of scipy.sparse matrices (Lin ch. 6);
 - :func:`flowmbd.sweep`: parameter sweeps on Dask distributed.
 
@@ -14,8 +16,8 @@ for number series. Bad input raises ``ValueError`` (the CLI's message); a numeri
 raises :class:`NumericalError` with the partial results attached. Long runs release the GIL.
 """
 
-from . import belt, reduce, string
+from . import belt, reduce, string, tire
 from ._errors import NumericalError
 from .sweep import points, sweep
 
-__all__ = ["belt", "string", "reduce", "sweep", "points", "NumericalError"]
+__all__ = ["belt", "string", "tire", "reduce", "sweep", "points", "NumericalError"]

@@ -5,6 +5,7 @@ from typing import Any, Callable, Iterable, List, Mapping, Optional, Sequence, U
 from . import belt as belt
 from . import reduce as reduce
 from . import string as string
+from . import tire as tire
 
 Grid = Union[Mapping[str, Sequence[Any]], Iterable[Mapping[str, Any]]]
 

@@ -1,7 +1,9 @@
 """Type stub of the native module ``flowmbd._native`` (Rust, pyo3). Use the public wrappers in
-:mod:`flowmbd.belt`, :mod:`flowmbd.string` and :mod:`flowmbd.reduce` instead."""
+:mod:`flowmbd.belt`, :mod:`flowmbd.string`, :mod:`flowmbd.tire` and :mod:`flowmbd.reduce`
+instead (``ReducedTire`` is public as ``flowmbd.tire.ReducedTire``)."""
 
-from typing import List, Optional, Sequence, Tuple
+import os
+from typing import List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -44,3 +46,85 @@ def craig_bampton(
     npt.NDArray[np.float64],
 ]:
     """(M_r, K_r, Ψ, frequencies [Hz]) of the Craig–Bampton reduction."""
+
+_Array = npt.NDArray[np.float64]
+_Index = npt.NDArray[np.uintp]
+_Fe = Tuple[_Array, Tuple[_Index, _Index, _Array], _Array, _Index, _Index]
+
+CLEAT_FORCE_COLUMNS: List[str]
+"""Columns of the cleat test's force history (``forces.csv``)."""
+
+class ReducedTire:
+    """The reduced flowing-material tire of Ribaric §8.2 (immutable, picklable)."""
+
+    m: _Array
+    """``M_z = TᵀMT`` [kg] (n_z × n_z)."""
+    k: _Array
+    """``K_z = TᵀKT`` [N/m]."""
+    g1: _Array
+    """``G₁ = TᵀMT_,θ`` [kg/rad]."""
+    g2: _Array
+    """``G₂ = TᵀMT_,θθ`` [kg/rad²]."""
+    k1: _Array
+    """``K₁ = TᵀKT_,θ`` [N/(m rad)]."""
+    kr: _Array
+    """Rim force per coordinate (3 × n_z) [N/m], Ribaric (7.2)."""
+    kr1: _Array
+    kt: _Array
+    """Rim moment per coordinate (3 × n_z) [N], Ribaric (7.2)."""
+    kt1: _Array
+    tc: _Array
+    """Contact-node rows of ``T`` (3 n_c × n_z)."""
+    tc_theta: _Array
+    """Contact-node rows of ``T_,θ`` (3 n_c × n_z) [1/rad]."""
+    p_e: _Array
+    """Translational momentum per coordinate ``eᵀMT`` (3 × n_z) [kg]."""
+    p_e1: _Array
+    p_e2: _Array
+    m_theta: _Array
+    """``m_θ = TᵀM s_,θ`` [kg m/rad]."""
+    c_s: _Array
+    """``c_s = TᵀM s_,θθ`` [kg m/rad²]."""
+    n_free_modes: int
+    n_contact: int
+    n_z: int
+    dof: int
+    """Wheel–tire DOF ``6 + n_z``."""
+    contact_nodes: _Index
+    contact_positions: _Array
+    """Undeformed contact-node positions (n_c × 3) [m]."""
+    free_mode_hz: _Array
+    contact_mode_hz: _Array
+    tire_mass: float
+    """[kg] without the rim nodes."""
+    rim_mass: float
+    rim_spin_inertia: float
+    outer_radius: float
+    source: str
+    """What the tire was made from (generator or import and reduction, JSON)."""
+    def frequencies_hz(self) -> _Array:
+        """Eigenfrequencies of the reduced tire, wheel fixed, not rolling [Hz]."""
+    def to_json(self) -> str:
+        """The versioned JSON text (the ``flowmbd-tire reduce`` file)."""
+    @staticmethod
+    def from_json(text: str) -> "ReducedTire": ...
+    def save(self, path: Union[str, os.PathLike]) -> None: ...
+    @staticmethod
+    def load(path: Union[str, os.PathLike]) -> "ReducedTire": ...
+    def __reduce__(self) -> tuple: ...
+
+def tire_generate(config: Optional[str] = None) -> _Fe:
+    """(nodes, K triplets, lumped mass per DOF, rim nodes, patch nodes) of the generated tire."""
+
+def tire_import(config: str) -> _Fe:
+    """The same for the imported tire (``[tire.import]`` as JSON text)."""
+
+def tire_reduce(config: Optional[str] = None) -> ReducedTire:
+    """The reduced tire of the ``[tire]`` table (JSON text)."""
+
+def tire_cleat(
+    config: Optional[str] = None,
+    speed_kmh: Optional[float] = None,
+    tire: Optional[ReducedTire] = None,
+) -> Tuple[str, List[List[float]], List[List[float]]]:
+    """(JSON text of the cleat summary, force history columns, spectra columns)."""

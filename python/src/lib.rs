@@ -1,7 +1,7 @@
 //! # flowmbd-python
 //!
 //! The native part (`flowmbd._native`) of the `flowmbd` Python package: thin pyo3 wrappers
-//! over the library crates (`drives`, `flowing`, `reduction`, `fe-model`). Configurations come
+//! over the library crates (`drives`, `flowing`, `reduction`, `fe-model`; the reduced tire as the class `ReducedTire`). Configurations come
 //! in as JSON text of the Python dicts (the same keys as the TOML files) and are read into the
 //! study's configuration struct, checked with the same [`mbd_core::Validate`] as the apps (so
 //! bad input raises `ValueError` with the CLI's `field: reason` message) and run with the GIL
@@ -21,6 +21,7 @@ use serde::de::DeserializeOwned;
 mod belt;
 mod reduce;
 mod string;
+mod tire;
 
 /// `ValueError` carrying the CLI's one-line message for a rejected field (`field: reason`).
 pub(crate) fn input_error(e: InvalidField) -> PyErr {
@@ -72,5 +73,14 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;
+    m.add_class::<tire::PyReducedTire>()?;
+    m.add_function(wrap_pyfunction!(tire::tire_generate, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_import, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_reduce, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_cleat, m)?)?;
+    m.add(
+        "CLEAT_FORCE_COLUMNS",
+        flowing::tire::study::FORCE_COLUMNS.to_vec(),
+    )?;
     Ok(())
 }

@@ -3,7 +3,7 @@
 import numpy as np
 
 # timings differ from run to run by nature
-SKIP = ("wall_time_s", "wall_per_simulated_s", "cpu_per_simulated_s")
+SKIP = ("wall_time_s", "wall_per_simulated_s", "cpu_per_simulated_s", "seconds")
 
 
 def assert_same(py, ref, rtol=1e-12, path="summary"):
@@ -17,7 +17,7 @@ def assert_same(py, ref, rtol=1e-12, path="summary"):
         assert len(py) == len(ref), path
         for i, (a, b) in enumerate(zip(py, ref)):
             assert_same(a, b, rtol, f"{path}[{i}]")
-    elif isinstance(ref, list) or isinstance(ref, float):
+    elif isinstance(ref, (list, float, np.ndarray)):
         b = np.array([np.nan if x is None else x for x in np.atleast_1d(ref).tolist()], float)
         a = np.atleast_1d(np.asarray(py, dtype=float))
         assert a.shape == b.shape, path

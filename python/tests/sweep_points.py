@@ -21,3 +21,10 @@ def dying_point(speed, marker_dir):
         marker.write_text(str(os.getpid()))
         os._exit(1)
     return string_point(speed)
+
+
+def cleat_point(speed_kmh, tire):
+    """Cleat summary scalars of a short run with a reduced tire (shipped by Dask)."""
+    r = flowmbd.tire.cleat(speed_kmh=speed_kmh, config={"rig": {"settle_time": 0.05,
+                                                              "record_time": 0.05}}, tire=tire)
+    return {k: v for k, v in r.items() if k in ("fy_rms", "fx_rms", "fy_peak_hz", "steps")}

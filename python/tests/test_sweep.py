@@ -85,3 +85,17 @@ def test_default_local_cluster_returns_one_row_per_point():
     df = flowmbd.sweep(sweep_points.string_point, {"speed": [0.0, 20.0]}, progress=False)
     assert len(df) == 2 and df["error"].isna().all()
     assert df["f1_hz"].iloc[1] < df["f1_hz"].iloc[0]  # the axial speed lowers f1 (Ribaric 4.2.3)
+
+
+def test_reduced_tire_reduced_on_a_worker_is_shipped_to_the_sweep(client):
+    # reference: the same points run in this process with a tire reduced here
+    from test_tire import TIRE
+
+    fut = client.submit(flowmbd.tire.reduce, TIRE, pure=False)
+    grid = [{"speed_kmh": v, "tire": fut} for v in (40.0, 60.0)]
+    df = flowmbd.sweep(sweep_points.cleat_point, grid, client=client, progress=False)
+    assert df["error"].isna().all(), df["error"].tolist()
+    local = flowmbd.tire.reduce(TIRE)
+    ref = pd.DataFrame([{"speed_kmh": v, **sweep_points.cleat_point(v, local), "error": None}
+                        for v in (40.0, 60.0)])
+    pd.testing.assert_frame_equal(df.drop(columns="tire"), ref, check_exact=False, rtol=1e-12)

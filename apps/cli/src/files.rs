@@ -5,34 +5,10 @@ use crate::error::InputError;
 use std::path::Path;
 
 /// `Ok` when `path` is a readable regular file; otherwise an [`InputError`] for `field`
-/// saying whether the path does not exist, is a directory, or cannot be inspected.
+/// saying whether the path does not exist, is a directory, or cannot be inspected
+/// ([`mbd_core::validate::check::input_file`], shared with the library configurations).
 pub fn check_input_file(field: &str, path: &Path) -> Result<(), InputError> {
-    let shown = path.display();
-    match std::fs::metadata(path) {
-        Ok(m) if m.is_dir() => Err(InputError::new(
-            field,
-            format!("`{shown}` is a directory, expected a file"),
-        )),
-        Ok(m) if m.is_file() => match std::fs::File::open(path) {
-            Ok(_) => Ok(()),
-            Err(e) => Err(InputError::new(
-                field,
-                format!("cannot read `{shown}`: {e}"),
-            )),
-        },
-        Ok(_) => Err(InputError::new(
-            field,
-            format!("`{shown}` is not a regular file"),
-        )),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(InputError::new(
-            field,
-            format!("file `{shown}` does not exist"),
-        )),
-        Err(e) => Err(InputError::new(
-            field,
-            format!("cannot read `{shown}`: {e}"),
-        )),
-    }
+    mbd_core::validate::check::input_file(field, path)
 }
 
 #[cfg(test)]

@@ -1,18 +1,15 @@
 //! `flowmbd-tire cleat`: the cleat test of Ribaric §8.3 at one speed (drum or flat road):
 //! spindle forces `F_x`, `F_y` against time, their spectra, and the patch VTK series.
 
-use crate::common::{RigFlags, TireSource, rig_err};
+use crate::common::{RigFlags, TireSourceExt, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
+use flowing::tire::study::CLEAT_MEANING;
 use flowing::tire::{
-    LineMode, PEAK_BAND_HZ, ReducedTire, RigConfig, RigResult, RollingTire, RotatingOptions,
-    SpindleComponent, TireError, held_nodes, line_modes, run_cleat_observed,
+    LineMode, RigResult, RollingTire, TireError, cleat_summary, run_cleat_observed,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{
-    CliError, CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study,
-};
-use serde::{Deserialize, Serialize};
+use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError, run_study};
 use std::process::ExitCode;
 
 /// Command-line arguments.
@@ -27,175 +24,17 @@ pub struct Args {
     rig: RigFlags,
 }
 
-/// Configuration.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct Config {
-    /// The tire.
-    pub tire: TireSource,
-    /// The rig.
-    pub rig: RigConfig,
-    /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many steps
-    /// (0 = none) into `vtk/`.
-    pub vtk_every: usize,
-    /// Write a VTK (`.vtu`) snapshot of the whole deforming tire (every ring at the
-    /// reduction's visualisation stations, as closed polylines, with the displacement field)
-    /// every this many steps (0 = none) into `vtk/` (needs a reduced tire made with
-    /// `tire.reduction.viz_stations > 0`).
-    pub vtk_tire_every: usize,
-}
-
-impl Default for Config {
-    fn default() -> Self {
-        Self {
-            tire: TireSource::default(),
-            rig: RigConfig::default(),
-            vtk_every: 25,
-            vtk_tire_every: 50,
-        }
-    }
-}
-
-impl Validate for Config {
-    fn validate(&self) -> Result<(), InputError> {
-        self.tire.validate()?;
-        validate_rig(&self.rig)
-    }
-}
-
-/// Validate rig settings: the library's checks ([`RigConfig`]'s `Validate` and
-/// [`RigConfig::validate_spectrum`], what the study's spectra need), fields named by their
-/// configuration path (`rig.…`).
-pub fn validate_rig(rig: &RigConfig) -> Result<(), InputError> {
-    rig.validate_within("rig")?;
-    rig.validate_spectrum().map_err(|e| e.within("rig"))
-}
-
-/// Summary (the issue's JSON keys first).
-#[derive(Debug, Serialize)]
-pub struct Summary {
-    /// Speed \[km/h\].
-    pub speed_kmh: f64,
-    /// Wheel–tire DOF.
-    pub dof: usize,
-    /// Dominant frequency of the vertical force \[Hz\].
-    pub fy_peak_hz: f64,
-    /// Dominant frequency of the longitudinal force \[Hz\].
-    pub fx_peak_hz: f64,
-    /// RMS of the vertical force fluctuation after the hit \[N\].
-    pub fy_rms: f64,
-    /// RMS of the longitudinal force fluctuation after the hit \[N\].
-    pub fx_rms: f64,
-    /// Wall time of the time integration \[s\].
-    pub wall_time_s: f64,
-    /// Wall time per simulated second.
-    pub wall_per_simulated_s: f64,
-    /// CPU time of the integration per simulated second (independent of the machine load).
-    pub cpu_per_simulated_s: Option<f64>,
-    /// Preload deflection \[m\].
-    pub preload_deflection_m: f64,
-    /// Mean vertical spindle force of the steadily rolling tire before the cleat \[N\].
-    pub fy_mean_before_n: f64,
-    /// Mean longitudinal spindle force before the cleat (rolling resistance) \[N\].
-    pub fx_mean_before_n: f64,
-    /// Preload \[N\].
-    pub load_n: f64,
-    /// Rayleigh α \[1/s\], β \[s\].
-    pub rayleigh: [f64; 2],
-    /// Time steps and refactorisations of the iteration matrix.
-    pub steps: usize,
-    /// Refactorisations (spin-rate drift).
-    pub refactors: usize,
-    /// Work counters of the integration.
-    pub stats: flowing::tire::StepStats,
-    /// Frequency of the loaded tire's vertical in-plane mode \[Hz\] (largest effective vertical
-    /// spindle mass, wheel fixed, preloaded patch held; `flowing::tire::loaded`): the
-    /// reference for `fy_peak_hz`.
-    pub loaded_vertical_mode_hz: Option<f64>,
-    /// Frequency of the loaded tire's mode with the largest effective longitudinal spindle
-    /// mass \[Hz\].
-    pub loaded_longitudinal_mode_hz: Option<f64>,
-    /// The mode that carries the `F_x` line (`fx_peak_hz`): the complex mode of the loaded
-    /// tire rolling at the test speed (rolling preload's patch held, rig damping;
-    /// `flowing::tire::lines`) with the largest participation in the longitudinal spindle
-    /// force's response to longitudinal ground motion at the line frequency (`cleat` only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub fx_line_mode: Option<LineMode>,
-    /// The mode that carries the `F_y` line (`fy_peak_hz`), likewise for vertical motion.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub fy_line_mode: Option<LineMode>,
-}
-
-/// The loaded mode at the rolling speed that carries the `component` line at `hz`
-/// (`flowing::tire::line_modes`: largest participation); `None` when that solve fails (the
-/// run's results do not depend on it).
-pub fn line_mode(
-    red: &ReducedTire,
-    r: &RigResult,
-    component: SpindleComponent,
-    hz: f64,
-) -> Option<LineMode> {
-    let opt = RotatingOptions {
-        spin: r.samples.first()?.spin,
-        alpha: r.rayleigh.alpha,
-        beta: r.rayleigh.beta,
-        max_hz: 1e3,
-    };
-    line_modes(red, &held_nodes(&r.preload), &opt, component, hz)
-        .ok()?
-        .into_iter()
-        .next()
-}
-
-/// Summary of a rig result.
-pub fn summarize(r: &RigResult) -> Summary {
-    let band = PEAK_BAND_HZ;
-    let (sx, sy) = r.spectra();
-    let (rx, ry) = r.rms();
-    // the steadily rolling tire: the last 50 ms before the first node touches the cleat (the
-    // cleat enters the patch (L/2 + r)/v before it reaches the patch centre at t = 0)
-    let before = r.mean_before_cleat(0.05).unwrap_or((0.0, 0.0));
-    Summary {
-        speed_kmh: r.speed_kmh,
-        dof: r.dof,
-        fy_peak_hz: sy.peak(band[0], band[1]).map_or(0.0, |p| p.0),
-        fx_peak_hz: sx.peak(band[0], band[1]).map_or(0.0, |p| p.0),
-        fy_rms: ry,
-        fx_rms: rx,
-        wall_time_s: r.wall_time_s,
-        wall_per_simulated_s: r.wall_time_s / r.simulated_s.max(1e-12),
-        cpu_per_simulated_s: r.cpu_time_s.map(|c| c / r.simulated_s.max(1e-12)),
-        preload_deflection_m: r.preload.deflection,
-        fy_mean_before_n: before.1,
-        fx_mean_before_n: before.0,
-        load_n: r.load,
-        rayleigh: [r.rayleigh.alpha, r.rayleigh.beta],
-        steps: r.samples.len(),
-        refactors: r.refactors,
-        stats: r.stats,
-        loaded_vertical_mode_hz: r.loaded_vertical_mode.as_ref().map(|m| m.hz),
-        loaded_longitudinal_mode_hz: r.loaded_longitudinal_mode.as_ref().map(|m| m.hz),
-        fx_line_mode: None,
-        fy_line_mode: None,
-    }
-}
-
-/// Columns of the force history `forces.csv`.
-const FORCE_COLUMNS: [&str; 7] = [
-    "t_s",
-    "fx_n",
-    "fy_n",
-    "f_lateral_n",
-    "spin_rad_s",
-    "active_nodes_count",
-    "normal_sum_n",
-];
+/// Configuration and summary of the study: in the library, shared with the Python package.
+pub use flowing::tire::study::{
+    CleatStudyConfig as Config, CleatSummary as Summary, summarize, validate_rig,
+};
+use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
 
 /// Write the spectra and plots of a rig result under `prefix`, and its force history
 /// `{prefix}forces.csv` too when `history` is set (the `cleat` study streams that file while it
 /// runs instead, so that a failed run keeps it).
 ///
-/// `lines` (e.g. [`line_mode`]'s) are marked on the spectrum plot as vertical lines at the
+/// `lines` (e.g. [`flowing::tire::study::line_mode`]'s) are marked on the spectrum plot as vertical lines at the
 /// modes' frequencies, labelled with the mode.
 pub fn write_outputs(
     ctx: &StudyContext,
@@ -208,9 +47,7 @@ pub fn write_outputs(
         ctx.out.write_csv(
             &format!("{prefix}forces.csv"),
             &FORCE_COLUMNS,
-            r.samples
-                .iter()
-                .map(|s| vec![s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]),
+            r.samples.iter().map(|s| sample_row(s).to_vec()),
         )?;
     }
     let (sx, sy) = r.spectra();
@@ -337,16 +174,7 @@ impl Study for Cleat {
     const NAME: &'static str = "cleat";
 
     fn meaning(&self) -> &'static str {
-        "The cleat test of Ribaric 8.3: the preloaded tire rolls at speed_kmh over a \
-         semicircular cleat on the drum (or road) and the spindle forces are recorded. \
-         fy_peak_hz and fx_peak_hz are the frequencies of the largest spectral peaks of the \
-         vertical and longitudinal force after the hit (sought in 10-500 Hz): the loaded \
-         tire's vertical and longitudinal modes rolling at that speed \
-         (loaded_vertical_mode_hz, fx_line_mode and fy_line_mode name the modes that carry \
-         them); fy_rms and fx_rms are the force fluctuations [N]; fy_mean_before_n equals the \
-         load when the rolling tire is in equilibrium and fx_mean_before_n is the rolling \
-         resistance [N]; preload_deflection_m is the static deflection. wall_ and \
-         cpu_per_simulated_s say how fast the model runs (1 = real time)."
+        CLEAT_MEANING
     }
 
     fn config_notes(&self, c: &Config) -> String {
@@ -388,17 +216,8 @@ impl Study for Cleat {
         let mut history_err: Option<CliError> = None;
         let mut done = (0usize, f64::NAN);
         let mut observer = |k: usize, sim: &RollingTire| -> Result<(), TireError> {
-            let f = sim.spindle_force();
-            let t = sim.state.t - settle;
-            let row = [
-                t,
-                f.fx,
-                f.fy,
-                f.fz,
-                sim.state.theta_d,
-                sim.active_count() as f64,
-                sim.total_normal_force(),
-            ];
+            let row = force_row(sim, settle);
+            let t = row[0];
             if let Err(e) = history.row(&row) {
                 let reason = e.to_string();
                 history_err = Some(e);
@@ -449,9 +268,7 @@ impl Study for Cleat {
             }
         };
         bar.finish();
-        let mut s = summarize(&r);
-        s.fx_line_mode = line_mode(&red, &r, SpindleComponent::Longitudinal, s.fx_peak_hz);
-        s.fy_line_mode = line_mode(&red, &r, SpindleComponent::Vertical, s.fy_peak_hz);
+        let s = cleat_summary(&red, &r);
         let lines: Vec<(&str, &LineMode)> = [("Fx", &s.fx_line_mode), ("Fy", &s.fy_line_mode)]
             .into_iter()
             .filter_map(|(n, m)| m.as_ref().map(|m| (n, m)))

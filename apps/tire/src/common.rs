@@ -1,50 +1,14 @@
 //! Shared pieces of the tire studies: the tire source (generated truck tire, reduced and saved,
 //! or a saved reduced tire reused) and error mapping.
 
-use fe_model::FeError;
-use fe_model::generate::TireConfig;
 use flowing::tire::{
-    GroundKind, ImportFiles, ReducedTire, ReductionConfig, RigConfig, TireError, TireFe,
-    generated_tire, imported_tire, reduce,
+    GroundKind, ReducedTire, RigConfig, TireError, rig_input_error, tire_input_error,
 };
-use flowmbd_cli::{InputError, StudyError, Validate};
-use serde::{Deserialize, Serialize};
+use flowmbd_cli::{InputError, StudyError};
 use std::path::Path;
 
-/// The `reduced_file` value that keeps reduced tires in the OS cache folder.
-pub const CACHE: &str = "cache";
-
-/// Where the reduced tire comes from.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct TireSource {
-    /// Reduced tire file: loaded when it exists, otherwise written after reducing the tire.
-    /// `"cache"` (default): a file in the OS cache folder (`$XDG_CACHE_HOME/flowmbd/tire`,
-    /// `~/.cache/flowmbd/tire` on Linux) named by what the tire is made from, so that every
-    /// tire and reduction has a file of its own and nothing is written under the working
-    /// folder; `""`: always reduce, never save; any other path: that file.
-    pub reduced_file: String,
-    /// Generated tire (fe-model generator; default: 295/80 R22.5 truck tire at 38 psi).
-    pub generator: TireConfig,
-    /// Imported tire (ABAQUS `*MATRIX GENERATE` or Matrix Market M and K, node coordinates,
-    /// rim and candidate patch node sets; see `flowing::tire::ImportFiles` and the README);
-    /// replaces the generated one when given. `--print-config` shows it as a commented
-    /// example.
-    pub import: Option<ImportFiles>,
-    /// Reduction (Ribaric §8.2: 95 contact nodes, 50 free-node modes).
-    pub reduction: ReductionConfig,
-}
-
-impl Default for TireSource {
-    fn default() -> Self {
-        Self {
-            reduced_file: CACHE.into(),
-            generator: TireConfig::default(),
-            import: None,
-            reduction: ReductionConfig::default(),
-        }
-    }
-}
+pub use flowing::tire::TireSource;
+pub use flowing::tire::study::CACHE;
 
 /// The commented `[tire.import]` example that `--print-config` appends (TOML has no null, so
 /// an absent import would not show otherwise).
@@ -67,46 +31,41 @@ pub fn import_notes(tire: &TireSource) -> String {
     }
 }
 
-/// Map a library error: invalid input → exit 2 naming the item, otherwise numerical (exit 1).
+/// Map a library error: invalid input → exit 2 naming the item
+/// ([`flowing::tire::tire_input_error`]), otherwise numerical (exit 1).
 pub fn tire_err(e: TireError) -> StudyError {
-    match e {
-        TireError::Invalid { item, reason } => StudyError::Input(InputError::new(item, reason)),
-        TireError::Import { field, reason } => {
-            StudyError::Input(InputError::new(format!("tire.import.{field}"), reason))
-        }
-        TireError::File { path, reason } => StudyError::Input(InputError::new(
-            format!("tire.reduced_file `{path}`"),
-            reason,
-        )),
-        // configuration and matrix-file errors of the FE layer are bad input (exit 2)
-        TireError::Fe(FeError::Invalid(f)) => StudyError::Input(f.within("tire.generator")),
-        TireError::Fe(e @ FeError::InvalidParameter { .. }) => {
-            StudyError::Input(InputError::new("tire.generator", e.to_string()))
-        }
-        TireError::Fe(
-            e @ (FeError::Matrix { .. } | FeError::Io { .. } | FeError::Parse { .. }),
-        ) => StudyError::Input(InputError::new("tire.import", e.to_string())),
-        other => StudyError::numerical(other),
+    match tire_input_error(e) {
+        Ok(field) => StudyError::Input(field),
+        Err(other) => StudyError::numerical(other),
     }
 }
 
 /// Map an error of the rig (cleat test): like [`tire_err`], with the rig's invalid items named
 /// by their configuration path (`rig.damping.mode1`, not `damping.mode1`).
 pub fn rig_err(e: TireError) -> StudyError {
-    match e {
-        TireError::Invalid { item, reason } => {
-            StudyError::Input(InputError::new(format!("rig.{item}"), reason))
-        }
-        other => tire_err(other),
+    match rig_input_error(e) {
+        Ok(field) => StudyError::Input(field),
+        Err(other) => StudyError::numerical(other),
     }
 }
 
-impl TireSource {
+/// The app's side of [`TireSource`]: the reduced-tire file (cache) and the FE model with the
+/// app's error mapping.
+pub trait TireSourceExt {
+    /// The reduced-tire file actually used (see the implementation).
+    fn reduced_path(&self) -> String;
+    /// The FE model (imported or generated), errors mapped by [`tire_err`].
+    fn fe_model_or_err(&self) -> Result<flowing::tire::TireFe, StudyError>;
+    /// Load the saved reduced tire, or reduce the tire (and save it).
+    fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError>;
+}
+
+impl TireSourceExt for TireSource {
     /// The reduced-tire file actually used: for [`CACHE`], the file of this tire and reduction
     /// in the OS cache folder (`<cache>/flowmbd/tire/reduced-<nc>c-<nf>m-<hash>.json`, the hash
     /// of [`TireSource::fingerprint`]; without a cache folder, the system's temporary folder);
     /// otherwise `reduced_file` itself (empty: none).
-    pub fn reduced_path(&self) -> String {
+    fn reduced_path(&self) -> String {
         if self.reduced_file != CACHE {
             return self.reduced_file.clone();
         }
@@ -133,50 +92,11 @@ impl TireSource {
         .to_string()
     }
 
-    /// The tire's own checks (paths from the configuration root): the import files exist and
-    /// are files, or the generator's fields ([`TireConfig`]'s `Validate`); the reduction's
-    /// fields.
-    pub fn validate(&self) -> Result<(), InputError> {
-        if let Some(files) = &self.import {
-            for (field, path) in [
-                ("stiffness", &files.stiffness),
-                ("mass", &files.mass),
-                ("nodes", &files.nodes),
-                ("rim_nodes", &files.rim_nodes),
-                ("patch_nodes", &files.patch_nodes),
-            ] {
-                flowmbd_cli::check_input_file(
-                    &format!("tire.import.{field}"),
-                    std::path::Path::new(path),
-                )?;
-            }
-        } else {
-            self.generator.validate_within("tire.generator")?;
-        }
-        self.reduction.validate_within("tire.reduction")
+    fn fe_model_or_err(&self) -> Result<flowing::tire::TireFe, StudyError> {
+        self.fe_model().map_err(tire_err)
     }
 
-    /// What the reduced tire is made from: the generated tire's configuration (or the imported
-    /// tire's files) and the reduction settings, as JSON; stored in the reduced file
-    /// ([`ReducedTire::source`]) and compared when the file is reused.
-    pub fn fingerprint(&self) -> String {
-        let model = match &self.import {
-            Some(files) => serde_json::json!({ "import": files }),
-            None => serde_json::json!({ "generator": self.generator }),
-        };
-        serde_json::json!({ "model": model, "reduction": self.reduction }).to_string()
-    }
-
-    /// The FE model: imported when `import` is given, otherwise generated.
-    pub fn fe_model(&self) -> Result<TireFe, StudyError> {
-        match &self.import {
-            Some(files) => imported_tire(files).map_err(tire_err),
-            None => generated_tire(&self.generator).map_err(tire_err),
-        }
-    }
-
-    /// Load the saved reduced tire, or reduce the tire (and save it).
-    pub fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError> {
+    fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError> {
         let file = self.reduced_path();
         let path = Path::new(&file);
         if !file.is_empty() && path.exists() {
@@ -222,9 +142,8 @@ impl TireSource {
                 eprintln!("reducing the {what} tire (saved to `{file}`)");
             }
         }
-        let fe = self.fe_model()?;
-        let (mut red, _) = reduce(&fe, &self.reduction).map_err(tire_err)?;
-        red.source = self.fingerprint();
+        let fe = self.fe_model_or_err()?;
+        let (red, _) = self.reduce_fe(&fe).map_err(tire_err)?;
         if !file.is_empty() {
             if let Some(dir) = path.parent() {
                 let _ = std::fs::create_dir_all(dir);

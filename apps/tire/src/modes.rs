@@ -4,7 +4,7 @@
 //! effective spindle masses (`flowing::tire::loaded`): the vertical in-plane mode the cleat test
 //! should show (Ribaric §8.3).
 
-use crate::common::{TireSource, tire_err};
+use crate::common::{TireSource, TireSourceExt, tire_err};
 use flowing::tire::{
     GroundConfig, dominant_longitudinal_mode, dominant_vertical_mode, full_frequencies_hz,
     held_nodes, loaded_modes_at_preload,
@@ -55,7 +55,7 @@ impl Validate for Config {
             return Err(InputError::new("load", "must be positive"));
         }
         self.ground.validate_within("ground")?;
-        self.tire.validate()
+        self.tire.validate_within("tire")
     }
 }
 
@@ -105,7 +105,7 @@ impl Study for Modes {
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let fe = c.tire.fe_model()?;
+        let fe = c.tire.fe_model_or_err()?;
         let full = full_frequencies_hz(&fe, c.count).map_err(tire_err)?;
         let red = c.tire.reduced(ctx.quiet)?;
         let mut reduced = red.frequencies_hz().map_err(tire_err)?;

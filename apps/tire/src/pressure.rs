@@ -1,7 +1,7 @@
 //! `flowmbd-tire pressure`: the preloaded patch on the drum (R = 1.25 m) and on a flat road
 //! (Ribaric Fig. 8-12, 4448 N): contact-node forces and patch extent.
 
-use crate::common::{TireSource, tire_err};
+use crate::common::{TireSource, TireSourceExt, tire_err};
 use flowing::tire::{GroundConfig, GroundKind, preload};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
@@ -39,7 +39,7 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        self.tire.validate()?;
+        self.tire.validate_within("tire")?;
         if !(self.load > 0.0 && self.load.is_finite()) {
             return Err(InputError::new("load", "must be positive"));
         }

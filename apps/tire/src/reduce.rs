@@ -1,8 +1,8 @@
 //! `flowmbd-tire reduce`: generate the tire, reduce it (Ribaric §8.2) and save the reduced-tire
 //! file; the stage times are the benchmark record of the 60 000-DOF reduction.
 
-use crate::common::{TireSource, tire_err};
-use flowing::tire::{ReductionTimings, reduce};
+use crate::common::{TireSource, TireSourceExt, tire_err};
+use flowing::tire::ReductionTimings;
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
@@ -25,7 +25,7 @@ pub struct Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        self.tire.validate()
+        self.tire.validate_within("tire")
     }
 }
 
@@ -77,10 +77,9 @@ impl Study for Reduce {
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let t = Instant::now();
-        let fe = c.tire.fe_model()?;
+        let fe = c.tire.fe_model_or_err()?;
         let assembly_s = t.elapsed().as_secs_f64();
-        let (mut red, timings) = reduce(&fe, &c.tire.reduction).map_err(tire_err)?;
-        red.source = c.tire.fingerprint();
+        let (red, timings) = c.tire.reduce_fe(&fe).map_err(tire_err)?;
         let file = if c.tire.reduced_file.is_empty() {
             ctx.out.path("reduced-tire.json").display().to_string()
         } else {

@@ -4,7 +4,7 @@
 //! wave. Free tire (rim fixed) and loaded tire (rolling preload's patch held); Campbell
 //! diagrams, a CSV of every mode and the forward/backward splits.
 
-use crate::common::{TireSource, tire_err};
+use crate::common::{TireSource, TireSourceExt, tire_err};
 use flowing::tire::{
     DampingConfig, GroundConfig, RotatingMode, SpeedModes, WaveDirection, modes_at_speed,
 };
@@ -86,7 +86,7 @@ impl Validate for Config {
         }
         self.ground.validate_within("ground")?;
         self.damping.validate_within("damping")?;
-        self.tire.validate()
+        self.tire.validate_within("tire")
     }
 }
 

@@ -3,7 +3,7 @@
 //! speed × frequency table for contour/waterfall plots.
 
 use crate::cleat::{Summary as CleatSummary, summarize, validate_rig};
-use crate::common::{RigFlags, TireSource, rig_err};
+use crate::common::{RigFlags, TireSource, TireSourceExt, rig_err};
 use crate::maps::SpectrumMap;
 use flowing::tire::{PEAK_BAND_HZ, RigConfig, local_minima, run_cleat, spectrum_grid};
 use flowmbd_cli::plot::{LinePlot, Series};
@@ -44,7 +44,7 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        self.tire.validate()?;
+        self.tire.validate_within("tire")?;
         validate_rig(&self.rig)?;
         if self.speeds_kmh.is_empty() {
             return Err(InputError::new("speeds_kmh", "is empty"));

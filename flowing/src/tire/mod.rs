@@ -13,7 +13,9 @@
 //!   convective terms of (7.17)), labelled by [`harmonics`] with circumferential order and
 //!   forward/backward direction;
 //! * [`dips`]: the speed dips of the cleat test from the cleat's enveloping profile and the
-//!   loaded vertical mode.
+//!   loaded vertical mode;
+//! * [`study`]: the tire source (generated or imported tire and its reduction), the cleat
+//!   study's configuration and summary, shared by `flowmbd-tire` and the Python package.
 
 pub mod error;
 pub mod mesh;
@@ -66,10 +68,14 @@ pub use model::{
 };
 pub mod rig;
 pub mod spectrum;
+pub mod study;
 pub use rig::{
     DampingConfig, ImpactConfig, RigConfig, RigResult, RigStart, Sample, run_cleat,
     run_cleat_observed, start_rolling,
 };
 pub use spectrum::{
     PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation, spectrum_grid,
+};
+pub use study::{
+    CleatStudyConfig, CleatSummary, TireSource, cleat_summary, rig_input_error, tire_input_error,
 };

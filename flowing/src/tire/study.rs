@@ -1,0 +1,359 @@
+//! The tire studies' configuration pieces and results shared by `flowmbd-tire` and the Python
+//! package (`flowmbd.tire`): where the reduced tire comes from ([`TireSource`]: the generated or
+//! imported FE tire and the reduction of Ribaric §8.2), the cleat test of §8.3 at one speed
+//! ([`CleatStudyConfig`], [`CleatSummary`]) and the classification of [`TireError`]s into bad
+//! input and numerical failures. Kept here so that both front ends accept the same keys, reject
+//! the same fields with the same messages and return the same numbers.
+
+use super::error::TireError;
+use super::lines::{LineMode, SpindleComponent, line_modes};
+use super::loaded::held_nodes;
+use super::mesh::TireFe;
+use super::model::{ImportFiles, generated_tire, imported_tire};
+use super::reduce::{ReductionConfig, ReductionTimings, reduce};
+use super::reduced::ReducedTire;
+use super::rig::{RigConfig, RigResult, Sample};
+use super::rolling::{RollingTire, StepStats};
+use super::rotating::RotatingOptions;
+use super::spectrum::PEAK_BAND_HZ;
+use fe_model::FeError;
+use fe_model::generate::TireConfig;
+use mbd_core::validate::{InvalidField, Validate, check};
+use serde::{Deserialize, Serialize};
+
+/// The `reduced_file` value that keeps reduced tires in the OS cache folder (`flowmbd-tire`).
+pub const CACHE: &str = "cache";
+
+/// Where the reduced tire comes from (the `[tire]` table of the tire studies).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TireSource {
+    /// Reduced tire file of `flowmbd-tire`: loaded when it exists, otherwise written after
+    /// reducing the tire. `"cache"` (default): a file in the OS cache folder
+    /// (`$XDG_CACHE_HOME/flowmbd/tire`, `~/.cache/flowmbd/tire` on Linux) named by what the
+    /// tire is made from, so that every tire and reduction has a file of its own and nothing is
+    /// written under the working folder; `""`: always reduce, never save; any other path: that
+    /// file. (The Python package keeps the reduced tire as an object instead and ignores it.)
+    pub reduced_file: String,
+    /// Generated tire (fe-model generator; default: 295/80 R22.5 truck tire at 38 psi).
+    pub generator: TireConfig,
+    /// Imported tire (ABAQUS `*MATRIX GENERATE` or Matrix Market M and K, node coordinates,
+    /// rim and candidate patch node sets; see [`ImportFiles`] and the README); replaces the
+    /// generated one when given.
+    pub import: Option<ImportFiles>,
+    /// Reduction (Ribaric §8.2: 95 contact nodes, 50 free-node modes).
+    pub reduction: ReductionConfig,
+}
+
+impl Default for TireSource {
+    fn default() -> Self {
+        Self {
+            reduced_file: CACHE.into(),
+            generator: TireConfig::default(),
+            import: None,
+            reduction: ReductionConfig::default(),
+        }
+    }
+}
+
+impl Validate for TireSource {
+    /// The import files exist and are readable files (or the generator's fields, [`TireConfig`]'s
+    /// `Validate`); the reduction's fields. Paths relative to the tire table (`import.mass`,
+    /// `generator.…`, `reduction.…`).
+    fn validate(&self) -> Result<(), InvalidField> {
+        if let Some(files) = &self.import {
+            for (field, path) in [
+                ("stiffness", &files.stiffness),
+                ("mass", &files.mass),
+                ("nodes", &files.nodes),
+                ("rim_nodes", &files.rim_nodes),
+                ("patch_nodes", &files.patch_nodes),
+            ] {
+                check::input_file(&format!("import.{field}"), std::path::Path::new(path))?;
+            }
+        } else {
+            self.generator.validate_within("generator")?;
+        }
+        self.reduction.validate_within("reduction")
+    }
+}
+
+impl TireSource {
+    /// What the reduced tire is made from: the generated tire's configuration (or the imported
+    /// tire's files) and the reduction settings, as JSON; stored in the reduced tire
+    /// ([`ReducedTire::source`]) and compared when a saved file is reused.
+    pub fn fingerprint(&self) -> String {
+        let model = match &self.import {
+            Some(files) => serde_json::json!({ "import": files }),
+            None => serde_json::json!({ "generator": self.generator }),
+        };
+        serde_json::json!({ "model": model, "reduction": self.reduction }).to_string()
+    }
+
+    /// The FE model: imported when `import` is given ([`imported_tire`]), otherwise generated
+    /// ([`generated_tire`]).
+    pub fn fe_model(&self) -> Result<TireFe, TireError> {
+        match &self.import {
+            Some(files) => imported_tire(files),
+            None => generated_tire(&self.generator),
+        }
+    }
+
+    /// Reduce `fe` (this source's FE model) with this source's reduction settings (Ribaric
+    /// §8.2, [`reduce`]) and record the [`TireSource::fingerprint`] in the reduced tire.
+    pub fn reduce_fe(&self, fe: &TireFe) -> Result<(ReducedTire, ReductionTimings), TireError> {
+        let (mut red, timings) = reduce(fe, &self.reduction)?;
+        red.source = self.fingerprint();
+        Ok((red, timings))
+    }
+}
+
+/// Whether a tire error is bad input: `Ok` with the offending field (paths from the root of a
+/// study configuration whose tire table is `tire`: `tire.import.mass`, `tire.generator.…`,
+/// `tire.reduced_file …`), `Err` with the error itself for a numerical failure.
+pub fn tire_input_error(e: TireError) -> Result<InvalidField, TireError> {
+    match e {
+        TireError::Invalid { item, reason } => Ok(InvalidField::new(item, reason)),
+        TireError::Import { field, reason } => {
+            Ok(InvalidField::new(format!("tire.import.{field}"), reason))
+        }
+        TireError::File { path, reason } => Ok(InvalidField::new(
+            format!("tire.reduced_file `{path}`"),
+            reason,
+        )),
+        // configuration and matrix-file errors of the FE layer are bad input
+        TireError::Fe(FeError::Invalid(f)) => Ok(f.within("tire.generator")),
+        TireError::Fe(e @ FeError::InvalidParameter { .. }) => {
+            Ok(InvalidField::new("tire.generator", e.to_string()))
+        }
+        TireError::Fe(
+            e @ (FeError::Matrix { .. } | FeError::Io { .. } | FeError::Parse { .. }),
+        ) => Ok(InvalidField::new("tire.import", e.to_string())),
+        other => Err(other),
+    }
+}
+
+/// [`tire_input_error`] for an error of the rig (cleat test): the rig's invalid items are named
+/// by their configuration path (`rig.damping.mode1`, not `damping.mode1`).
+pub fn rig_input_error(e: TireError) -> Result<InvalidField, TireError> {
+    match e {
+        TireError::Invalid { item, reason } => Ok(InvalidField::new(format!("rig.{item}"), reason)),
+        other => tire_input_error(other),
+    }
+}
+
+/// Configuration of the cleat test at one speed (`flowmbd-tire cleat`, `flowmbd.tire.cleat`).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CleatStudyConfig {
+    /// The tire.
+    pub tire: TireSource,
+    /// The rig.
+    pub rig: RigConfig,
+    /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many steps
+    /// (0 = none) into `vtk/` (`flowmbd-tire` only).
+    pub vtk_every: usize,
+    /// Write a VTK (`.vtu`) snapshot of the whole deforming tire (every ring at the
+    /// reduction's visualisation stations, as closed polylines, with the displacement field)
+    /// every this many steps (0 = none) into `vtk/` (needs a reduced tire made with
+    /// `tire.reduction.viz_stations > 0`; `flowmbd-tire` only).
+    pub vtk_tire_every: usize,
+}
+
+impl Default for CleatStudyConfig {
+    fn default() -> Self {
+        Self {
+            tire: TireSource::default(),
+            rig: RigConfig::default(),
+            vtk_every: 25,
+            vtk_tire_every: 50,
+        }
+    }
+}
+
+impl Validate for CleatStudyConfig {
+    fn validate(&self) -> Result<(), InvalidField> {
+        self.tire.validate_within("tire")?;
+        validate_rig(&self.rig)
+    }
+}
+
+/// Validate rig settings: the library's checks ([`RigConfig`]'s `Validate` and
+/// [`RigConfig::validate_spectrum`], what the study's spectra need), fields named by their
+/// configuration path (`rig.…`).
+pub fn validate_rig(rig: &RigConfig) -> Result<(), InvalidField> {
+    rig.validate_within("rig")?;
+    rig.validate_spectrum().map_err(|e| e.within("rig"))
+}
+
+/// Summary of a cleat test (the `summary.json` of `flowmbd-tire cleat`; the issue's JSON keys
+/// first).
+#[derive(Debug, Serialize)]
+pub struct CleatSummary {
+    /// Speed \[km/h\].
+    pub speed_kmh: f64,
+    /// Wheel–tire DOF.
+    pub dof: usize,
+    /// Dominant frequency of the vertical force \[Hz\].
+    pub fy_peak_hz: f64,
+    /// Dominant frequency of the longitudinal force \[Hz\].
+    pub fx_peak_hz: f64,
+    /// RMS of the vertical force fluctuation after the hit \[N\].
+    pub fy_rms: f64,
+    /// RMS of the longitudinal force fluctuation after the hit \[N\].
+    pub fx_rms: f64,
+    /// Wall time of the time integration \[s\].
+    pub wall_time_s: f64,
+    /// Wall time per simulated second.
+    pub wall_per_simulated_s: f64,
+    /// CPU time of the integration per simulated second (independent of the machine load).
+    pub cpu_per_simulated_s: Option<f64>,
+    /// Preload deflection \[m\].
+    pub preload_deflection_m: f64,
+    /// Mean vertical spindle force of the steadily rolling tire before the cleat \[N\].
+    pub fy_mean_before_n: f64,
+    /// Mean longitudinal spindle force before the cleat (rolling resistance) \[N\].
+    pub fx_mean_before_n: f64,
+    /// Preload \[N\].
+    pub load_n: f64,
+    /// Rayleigh α \[1/s\], β \[s\].
+    pub rayleigh: [f64; 2],
+    /// Time steps and refactorisations of the iteration matrix.
+    pub steps: usize,
+    /// Refactorisations (spin-rate drift).
+    pub refactors: usize,
+    /// Work counters of the integration.
+    pub stats: StepStats,
+    /// Frequency of the loaded tire's vertical in-plane mode \[Hz\] (largest effective vertical
+    /// spindle mass, wheel fixed, preloaded patch held; [`super::loaded`]): the reference for
+    /// `fy_peak_hz`.
+    pub loaded_vertical_mode_hz: Option<f64>,
+    /// Frequency of the loaded tire's mode with the largest effective longitudinal spindle
+    /// mass \[Hz\].
+    pub loaded_longitudinal_mode_hz: Option<f64>,
+    /// The mode that carries the `F_x` line (`fx_peak_hz`): the complex mode of the loaded
+    /// tire rolling at the test speed (rolling preload's patch held, rig damping;
+    /// [`super::lines`]) with the largest participation in the longitudinal spindle force's
+    /// response to longitudinal ground motion at the line frequency (`cleat` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fx_line_mode: Option<LineMode>,
+    /// The mode that carries the `F_y` line (`fy_peak_hz`), likewise for vertical motion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fy_line_mode: Option<LineMode>,
+    /// What the numbers mean ([`CLEAT_MEANING`]; empty, and not written, in the runs of a
+    /// speed sweep).
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub meaning: String,
+}
+
+/// The cleat study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
+pub const CLEAT_MEANING: &str = "The cleat test of Ribaric 8.3: the preloaded tire rolls at speed_kmh over a \
+         semicircular cleat on the drum (or road) and the spindle forces are recorded. \
+         fy_peak_hz and fx_peak_hz are the frequencies of the largest spectral peaks of the \
+         vertical and longitudinal force after the hit (sought in 10-500 Hz): the loaded \
+         tire's vertical and longitudinal modes rolling at that speed \
+         (loaded_vertical_mode_hz, fx_line_mode and fy_line_mode name the modes that carry \
+         them); fy_rms and fx_rms are the force fluctuations [N]; fy_mean_before_n equals the \
+         load when the rolling tire is in equilibrium and fx_mean_before_n is the rolling \
+         resistance [N]; preload_deflection_m is the static deflection. wall_ and \
+         cpu_per_simulated_s say how fast the model runs (1 = real time).";
+
+/// The loaded mode at the rolling speed that carries the `component` line at `hz`
+/// ([`line_modes`]: largest participation); `None` when that solve fails (the run's results do
+/// not depend on it).
+pub fn line_mode(
+    red: &ReducedTire,
+    r: &RigResult,
+    component: SpindleComponent,
+    hz: f64,
+) -> Option<LineMode> {
+    let opt = RotatingOptions {
+        spin: r.samples.first()?.spin,
+        alpha: r.rayleigh.alpha,
+        beta: r.rayleigh.beta,
+        max_hz: 1e3,
+    };
+    line_modes(red, &held_nodes(&r.preload), &opt, component, hz)
+        .ok()?
+        .into_iter()
+        .next()
+}
+
+/// Summary of a rig result (without the line modes: [`cleat_summary`] adds them).
+pub fn summarize(r: &RigResult) -> CleatSummary {
+    let band = PEAK_BAND_HZ;
+    let (sx, sy) = r.spectra();
+    let (rx, ry) = r.rms();
+    // the steadily rolling tire: the last 50 ms before the first node touches the cleat (the
+    // cleat enters the patch (L/2 + r)/v before it reaches the patch centre at t = 0)
+    let before = r.mean_before_cleat(0.05).unwrap_or((0.0, 0.0));
+    CleatSummary {
+        speed_kmh: r.speed_kmh,
+        dof: r.dof,
+        fy_peak_hz: sy.peak(band[0], band[1]).map_or(0.0, |p| p.0),
+        fx_peak_hz: sx.peak(band[0], band[1]).map_or(0.0, |p| p.0),
+        fy_rms: ry,
+        fx_rms: rx,
+        wall_time_s: r.wall_time_s,
+        wall_per_simulated_s: r.wall_time_s / r.simulated_s.max(1e-12),
+        cpu_per_simulated_s: r.cpu_time_s.map(|c| c / r.simulated_s.max(1e-12)),
+        preload_deflection_m: r.preload.deflection,
+        fy_mean_before_n: before.1,
+        fx_mean_before_n: before.0,
+        load_n: r.load,
+        rayleigh: [r.rayleigh.alpha, r.rayleigh.beta],
+        steps: r.samples.len(),
+        refactors: r.refactors,
+        stats: r.stats,
+        loaded_vertical_mode_hz: r.loaded_vertical_mode.as_ref().map(|m| m.hz),
+        loaded_longitudinal_mode_hz: r.loaded_longitudinal_mode.as_ref().map(|m| m.hz),
+        fx_line_mode: None,
+        fy_line_mode: None,
+        meaning: String::new(),
+    }
+}
+
+/// The cleat study's summary of a rig result: [`summarize`] with the modes that carry the
+/// `F_x` and `F_y` lines ([`line_mode`]) and its [`CLEAT_MEANING`].
+pub fn cleat_summary(red: &ReducedTire, r: &RigResult) -> CleatSummary {
+    let mut s = summarize(r);
+    s.meaning = CLEAT_MEANING.to_string();
+    s.fx_line_mode = line_mode(red, r, SpindleComponent::Longitudinal, s.fx_peak_hz);
+    s.fy_line_mode = line_mode(red, r, SpindleComponent::Vertical, s.fy_peak_hz);
+    s
+}
+
+/// Columns of the cleat test's force history (`forces.csv` of `flowmbd-tire cleat`, the
+/// `forces` of `flowmbd.tire.cleat`): time from the cleat hit \[s\], the spindle forces
+/// `F_x`, `F_y`, `F_lateral` \[N\], the spin rate \[rad/s\], the active contact nodes and
+/// their total normal force \[N\].
+pub const FORCE_COLUMNS: [&str; 7] = [
+    "t_s",
+    "fx_n",
+    "fy_n",
+    "f_lateral_n",
+    "spin_rad_s",
+    "active_nodes_count",
+    "normal_sum_n",
+];
+
+/// The [`FORCE_COLUMNS`] row of the rolling tire after a step (a run's observer; `settle` is
+/// the rig's `settle_time`, so that the cleat hits at `t = 0`): the same numbers as the step's
+/// [`Sample`].
+pub fn force_row(sim: &RollingTire, settle: f64) -> [f64; 7] {
+    let f = sim.spindle_force();
+    [
+        sim.state.t - settle,
+        f.fx,
+        f.fy,
+        f.fz,
+        sim.state.theta_d,
+        sim.active_count() as f64,
+        sim.total_normal_force(),
+    ]
+}
+
+/// The [`FORCE_COLUMNS`] row of a recorded sample.
+pub fn sample_row(s: &Sample) -> [f64; 7] {
+    [s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]
+}

@@ -1,0 +1,177 @@
+"""The reduced FE truck tire with flowing material (Ribaric ch. 7–8; ``flowmbd-tire``).
+
+Make the tire once and reuse it: :func:`reduce` returns a :class:`ReducedTire` (the reduction of
+Ribaric §8.2 of the generated or imported FE tire) that every tire study here takes as
+``tire=``, so that a speed sweep reduces each tire variant once. A ``ReducedTire`` pickles (its
+versioned JSON form, bit-identical), so it can be shipped to Dask workers, and saves to / loads
+from the file that ``flowmbd-tire`` uses as ``tire.reduced_file``.
+
+- :func:`generate`, :func:`import_model`: the FE tire (``M``, ``K`` as scipy.sparse matrices,
+  node coordinates, rim and candidate patch node sets), e.g. for :mod:`flowmbd.reduce`;
+- :func:`reduce`: the reduced tire;
+- :func:`cleat`: the cleat test of §8.3 at one speed (``flowmbd-tire cleat``).
+
+Configurations are dicts with the keys of the TOML files (``flowmbd-tire cleat
+--print-config``): the ``tire`` table has ``generator`` (or ``import``) and ``reduction``.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Mapping, Optional
+
+import numpy as np
+import scipy.sparse as sp
+
+from . import _native
+from ._results import config_json, from_json
+
+ReducedTire = _native.ReducedTire
+
+#: Columns of the force history (``forces.csv`` of ``flowmbd-tire cleat``).
+FORCE_COLUMNS = tuple(_native.CLEAT_FORCE_COLUMNS)
+
+
+def _reduced_tire_from_bytes(data: bytes) -> "ReducedTire":
+    """Unpickle a :class:`ReducedTire` (its versioned JSON text as UTF-8 bytes)."""
+    return ReducedTire.from_json(bytes(data).decode("utf-8"))
+
+
+def _fe_dict(out) -> dict:
+    nodes, (rows, cols, vals), mass, rim, patch = out
+    n = mass.shape[0]
+    K = sp.csc_matrix((vals, (rows.astype(np.int64), cols.astype(np.int64))), shape=(n, n))
+    return {
+        "nodes": nodes,
+        "K": K,
+        "M": sp.diags(mass, 0, format="csc"),
+        "mass": mass,
+        "rim_nodes": rim.astype(np.int64),
+        "patch_nodes": patch.astype(np.int64),
+    }
+
+
+def generate(config: Optional[Mapping[str, Any]] = None) -> dict:
+    """Generate the FE tire (fe-model's truck-tire generator: 295/80 R22.5 at 38 psi by default)
+    with the inflation prestress in ``K`` (Ribaric §8.1) and the lumped mass (§7.2).
+
+    Parameters
+    ----------
+    config : the ``[tire.generator]`` table as a dict (missing keys keep their defaults).
+
+    Returns
+    -------
+    dict
+        ``nodes`` (n × 3, wheel frame [m]: x forward, y the wheel axis, z up), ``K``
+        (scipy.sparse 3n × 3n [N/m], node-major DOFs x, y, z), ``M`` (diagonal scipy.sparse
+        [kg]) and ``mass`` (its diagonal), ``rim_nodes`` and ``patch_nodes`` (0-based node
+        indices).
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``tire.generator.…: reason`` message).
+    """
+    return _fe_dict(_native.tire_generate(config_json(config)))
+
+
+def import_model(config: Mapping[str, Any]) -> dict:
+    """Import an FE tire from files (``[tire.import]``: ``format`` = ``"abaqus"`` for ABAQUS
+    ``*MATRIX GENERATE`` output or ``"matrix_market"``, ``stiffness``, ``mass``, ``nodes``,
+    ``rim_nodes``, ``patch_nodes``; see the README, "Imported tire"). A consistent mass is
+    lumped by row sums. Returns the dict of :func:`generate`.
+
+    Raises
+    ------
+    ValueError
+        A missing, unreadable or malformed file (``tire.import.<field>: …``, the CLI's message).
+    """
+    if not isinstance(config, Mapping):
+        raise ValueError(f"tire.import: expected a dict with the TOML keys, got {type(config).__name__}")
+    return _fe_dict(_native.tire_import(config_json(config)))
+
+
+def reduce(config: Optional[Mapping[str, Any]] = None) -> "ReducedTire":
+    """Reduce the tire (Ribaric §8.2: contact-node modes, free-node modes and static modes,
+    circumferential mode-shape derivatives) once, for reuse in the studies.
+
+    Parameters
+    ----------
+    config : the ``[tire]`` table as a dict: ``generator`` (the generated tire, default the
+        truck tire) or ``import`` (an imported tire, see :func:`import_model`), and
+        ``reduction`` (``contact_nodes``, 95, and ``free_modes``, 50, by default). Its
+        ``reduced_file`` is not used: the returned object is the cache (``.save(path)`` writes
+        the file ``flowmbd-tire`` reuses).
+
+    Returns
+    -------
+    ReducedTire
+        Matrices ``m``, ``k``, ``g1``, ``g2``, ``k1``, ``kr``, ``kr1``, ``kt``, ``kt1``,
+        ``tc``, ``tc_theta``, ``p_e``, ``p_e1``, ``p_e2`` and vectors ``m_theta``, ``c_s`` as
+        numpy arrays; ``n_contact``, ``n_free_modes``, ``n_z``, ``dof``, ``contact_nodes``,
+        ``contact_positions``, ``free_mode_hz``, ``contact_mode_hz``, ``tire_mass``,
+        ``rim_mass``, ``rim_spin_inertia``, ``outer_radius``, ``source``; ``frequencies_hz()``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``tire.…: reason`` message).
+    flowmbd.NumericalError
+        An eigen solve or factorisation failed.
+    """
+    return _native.tire_reduce(config_json(config))
+
+
+def cleat(
+    speed_kmh: Optional[float] = 60.0,
+    config: Optional[Mapping[str, Any]] = None,
+    tire: Optional["ReducedTire"] = None,
+    series: bool = False,
+) -> dict:
+    """The cleat test of Ribaric §8.3 at one speed (``flowmbd-tire cleat --speed``): the
+    preloaded tire rolls over a semicircular cleat on the drum (or road) and the spindle forces
+    are recorded.
+
+    Parameters
+    ----------
+    speed_kmh : speed [km/h] (replaces ``config["rig"]["speed_kmh"]``; ``None`` keeps it).
+    config : dict with the keys of ``flowmbd-tire cleat --print-config`` (``tire``, ``rig``;
+        ``vtk_every`` and ``vtk_tire_every`` are accepted and not used).
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]`` (which must then be absent): reduce once, run many.
+    series : also return the force history (``"forces"``: the columns of ``forces.csv``,
+        :data:`FORCE_COLUMNS`, numpy arrays) and the amplitude spectra (``"spectra"``:
+        ``f_hz``, ``fx_amp_n``, ``fy_amp_n``).
+
+    Returns
+    -------
+    dict
+        The CLI's ``summary.json``: ``speed_kmh``, ``dof``, ``fy_peak_hz``, ``fx_peak_hz``
+        [Hz], ``fy_rms``, ``fx_rms`` [N], ``preload_deflection_m``, ``fy_mean_before_n``,
+        ``fx_mean_before_n``, ``load_n``, ``rayleigh`` (α [1/s], β [s]), ``steps``,
+        ``refactors``, ``stats``, ``loaded_vertical_mode_hz``, ``loaded_longitudinal_mode_hz``,
+        ``fx_line_mode``, ``fy_line_mode``, ``wall_time_s``, ``wall_per_simulated_s``,
+        ``cpu_per_simulated_s``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message), or ``tire`` given with
+        ``config["tire"]``.
+    flowmbd.NumericalError
+        The rolling simulation failed; ``err.partial`` holds ``speed_kmh``, ``steps_done``,
+        ``t_last_s`` and the force history up to the failure (``"forces"``).
+    """
+    if tire is not None:
+        if not isinstance(tire, ReducedTire):
+            raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
+        if isinstance(config, Mapping) and "tire" in config:
+            raise ValueError("tire: given both as tire= and as config[\"tire\"]; pass one of them")
+    text, forces, spectra = _native.tire_cleat(
+        config_json(config), None if speed_kmh is None else float(speed_kmh), tire
+    )
+    out = from_json(text)
+    if series:
+        out["forces"] = {n: np.asarray(c, dtype=float) for n, c in zip(FORCE_COLUMNS, forces)}
+        out["spectra"] = {n: np.asarray(c, dtype=float)
+                          for n, c in zip(("f_hz", "fx_amp_n", "fy_amp_n"), spectra)}
+    return out

@@ -1,0 +1,435 @@
+//! `flowmbd.tire`: the reduced FE truck tire of Ribaric ch. 7–8. The FE tire generated
+//! ([`fe_model::generate::tire`]) or imported (ABAQUS / Matrix Market,
+//! [`flowing::tire::imported_tire`]), its reduction of §8.2 ([`flowing::tire::reduce`]) as a
+//! reusable, picklable [`PyReducedTire`], and the cleat test of §8.3 with the configuration and
+//! summary of [`flowing::tire::study`] (the same as `flowmbd-tire cleat`).
+
+use crate::{input_error, numerical_error, read_config, to_json};
+use faer::Mat;
+use fe_model::generate::TireConfig;
+use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
+use flowing::tire::{
+    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
+    TireSource, cleat_summary, imported_tire, rig_input_error, run_cleat_observed,
+    tire_input_error,
+};
+use mbd_core::Validate;
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+use std::sync::Arc;
+
+/// Bad input (`ValueError` with the CLI's `field: reason`) or a numerical failure
+/// (`flowmbd.NumericalError` with `partial`), classified like `flowmbd-tire`
+/// ([`tire_input_error`]).
+fn tire_error(py: Python<'_>, e: TireError, partial: Option<serde_json::Value>) -> PyErr {
+    match tire_input_error(e) {
+        Ok(field) => input_error(field),
+        Err(other) => numerical_error(py, other.to_string(), partial),
+    }
+}
+
+/// Errors of reading or writing a reduced tire (not a configuration field): `ValueError` with
+/// the library's message (`reduced tire file <path>: <reason>`).
+fn file_error(py: Python<'_>, e: TireError) -> PyErr {
+    match e {
+        TireError::File { .. } => PyValueError::new_err(e.to_string()),
+        other => tire_error(py, other, None),
+    }
+}
+
+fn to_numpy<'py>(py: Python<'py>, a: &Mat<f64>) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((a.nrows(), a.ncols()), |(i, j)| a[(i, j)]).into_pyarray(py)
+}
+
+fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((v.len(), 3), |(i, j)| v[i][j]).into_pyarray(py)
+}
+
+/// The reduced flowing-material tire of Ribaric §8.2 ([`ReducedTire`]): made once by
+/// `flowmbd.tire.reduce` (or loaded from a `flowmbd-tire reduce` file) and passed to the tire
+/// studies. Immutable; pickles through its versioned JSON form (bit-identical round trip), so
+/// that it can be shipped to Dask workers.
+#[pyclass(name = "ReducedTire", module = "flowmbd.tire", frozen)]
+pub struct PyReducedTire {
+    pub(crate) inner: Arc<ReducedTire>,
+}
+
+#[pymethods]
+impl PyReducedTire {
+    /// `M_z = TᵀMT` \[kg\], a numpy copy.
+    #[getter]
+    fn m<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.m)
+    }
+    /// `K_z = TᵀKT` \[N/m\], a numpy copy.
+    #[getter]
+    fn k<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.k)
+    }
+    /// `G₁ = TᵀMT_,θ` \[kg/rad\], a numpy copy.
+    #[getter]
+    fn g1<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.g1)
+    }
+    /// `G₂ = TᵀMT_,θθ` \[kg/rad²\], a numpy copy.
+    #[getter]
+    fn g2<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.g2)
+    }
+    /// `K₁ = TᵀKT_,θ` \[N/(m·rad)\], a numpy copy.
+    #[getter]
+    fn k1<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.k1)
+    }
+    /// Rim force per coordinate `K_r` (3 × n_z) \[N/m\], Ribaric (7.2), a numpy copy.
+    #[getter]
+    fn kr<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.kr)
+    }
+    /// `Σ_rim K T_,θ` (3 × n_z), a numpy copy.
+    #[getter]
+    fn kr1<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.kr1)
+    }
+    /// Rim moment per coordinate `K_θ` (3 × n_z) \[N\], Ribaric (7.2), a numpy copy.
+    #[getter]
+    fn kt<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.kt)
+    }
+    /// `Σ_rim s̃ K T_,θ` (3 × n_z), a numpy copy.
+    #[getter]
+    fn kt1<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.kt1)
+    }
+    /// Contact-node rows of `T` (3 n_c × n_z), a numpy copy.
+    #[getter]
+    fn tc<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.tc)
+    }
+    /// Contact-node rows of `T_,θ` (3 n_c × n_z) \[1/rad\], a numpy copy.
+    #[getter]
+    fn tc_theta<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.tc_theta)
+    }
+    /// Translational momentum per coordinate `P = eᵀM T` (3 × n_z) \[kg\], a numpy copy.
+    #[getter]
+    fn p_e<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.p_e)
+    }
+    /// `P₁ = eᵀM T_,θ` (3 × n_z) \[kg/rad\], a numpy copy.
+    #[getter]
+    fn p_e1<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.p_e1)
+    }
+    /// `P₂ = eᵀM T_,θθ` (3 × n_z) \[kg/rad²\], a numpy copy.
+    #[getter]
+    fn p_e2<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_numpy(py, &self.inner.p_e2)
+    }
+    /// Kept free-node modes `n_f`.
+    #[getter]
+    fn n_free_modes(&self) -> usize {
+        self.inner.n_free_modes
+    }
+    /// Contact nodes `n_c`.
+    #[getter]
+    fn n_contact(&self) -> usize {
+        self.inner.n_contact()
+    }
+    /// Tire coordinates `n_z = n_f + 3 n_c`.
+    #[getter]
+    fn n_z(&self) -> usize {
+        self.inner.n_z()
+    }
+    /// Wheel–tire DOF `6 + n_z`.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.inner.dof()
+    }
+    /// FE node index of each contact node.
+    #[getter]
+    fn contact_nodes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<usize>> {
+        self.inner.contact_nodes.clone().into_pyarray(py)
+    }
+    /// Undeformed contact-node positions `s^c` (n_c × 3) \[m\].
+    #[getter]
+    fn contact_positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        rows3(py, &self.inner.contact_positions)
+    }
+    /// Frequencies of the kept free-node modes \[Hz\].
+    #[getter]
+    fn free_mode_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.free_mode_hz.clone().into_pyarray(py)
+    }
+    /// Frequencies of the contact-node modes \[Hz\].
+    #[getter]
+    fn contact_mode_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.contact_mode_hz.clone().into_pyarray(py)
+    }
+    /// `m_θ = TᵀM s_,θ` \[kg·m/rad\].
+    #[getter]
+    fn m_theta<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.m_theta.clone().into_pyarray(py)
+    }
+    /// `c_s = TᵀM s_,θθ` \[kg·m/rad²\].
+    #[getter]
+    fn c_s<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.c_s.clone().into_pyarray(py)
+    }
+    /// Tire mass without the rim nodes \[kg\].
+    #[getter]
+    fn tire_mass(&self) -> f64 {
+        self.inner.tire_mass
+    }
+    /// Rim-node mass \[kg\].
+    #[getter]
+    fn rim_mass(&self) -> f64 {
+        self.inner.rim_mass
+    }
+    /// Rim-node spin inertia \[kg m²\].
+    #[getter]
+    fn rim_spin_inertia(&self) -> f64 {
+        self.inner.rim_spin_inertia
+    }
+    /// Unloaded outer radius \[m\].
+    #[getter]
+    fn outer_radius(&self) -> f64 {
+        self.inner.outer_radius
+    }
+    /// What the tire was made from (generator or import and reduction, JSON).
+    #[getter]
+    fn source(&self) -> String {
+        self.inner.source.clone()
+    }
+    /// Eigenfrequencies of the reduced tire, wheel fixed, not rolling \[Hz\].
+    fn frequencies_hz<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let red = Arc::clone(&self.inner);
+        let f = py
+            .detach(move || red.frequencies_hz())
+            .map_err(|e| tire_error(py, e, None))?;
+        Ok(f.into_pyarray(py))
+    }
+    /// The versioned JSON text (the `flowmbd-tire reduce` file).
+    fn to_json(&self, py: Python<'_>) -> PyResult<String> {
+        let red = Arc::clone(&self.inner);
+        py.detach(move || red.to_json())
+            .map_err(|e| tire_error(py, e, None))
+    }
+    /// From the versioned JSON text.
+    #[staticmethod]
+    fn from_json(py: Python<'_>, text: &str) -> PyResult<Self> {
+        let red = py
+            .detach(|| ReducedTire::from_json(text, "JSON text"))
+            .map_err(|e| file_error(py, e))?;
+        Ok(Self {
+            inner: Arc::new(red),
+        })
+    }
+    /// Save to `path` (the file `flowmbd-tire` reuses as `tire.reduced_file`).
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+        let red = Arc::clone(&self.inner);
+        py.detach(move || red.save(&path))
+            .map_err(|e| file_error(py, e))
+    }
+    /// Load a saved reduced tire (e.g. written by `flowmbd-tire reduce`).
+    #[staticmethod]
+    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let red = py
+            .detach(|| ReducedTire::load(&path))
+            .map_err(|e| file_error(py, e))?;
+        Ok(Self {
+            inner: Arc::new(red),
+        })
+    }
+    /// Pickle support: `flowmbd.tire._reduced_tire_from_bytes(<versioned JSON as bytes>)`.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        let text = self.to_json(py)?;
+        let f = py
+            .import("flowmbd.tire")?
+            .getattr("_reduced_tire_from_bytes")?;
+        Ok((f, (PyBytes::new(py, text.as_bytes()),)))
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "ReducedTire(contact nodes {}, free-node modes {}, {} wheel-tire DOF, tire mass {:.3} kg)",
+            self.inner.n_contact(),
+            self.inner.n_free_modes,
+            self.inner.dof(),
+            self.inner.tire_mass
+        )
+    }
+}
+
+/// The FE tire as arrays: `(nodes n × 3 [m], K triplets (rows, cols, values) [N/m] of the
+/// 3n × 3n stiffness with the inflation prestress, lumped mass per DOF [kg], rim nodes,
+/// candidate patch nodes)`.
+type FeOut<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    (
+        Bound<'py, PyArray1<usize>>,
+        Bound<'py, PyArray1<usize>>,
+        Bound<'py, PyArray1<f64>>,
+    ),
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<usize>>,
+    Bound<'py, PyArray1<usize>>,
+);
+
+fn fe_out<'py>(py: Python<'py>, fe: TireFe) -> FeOut<'py> {
+    let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+    for (i, j, x) in fe_model::sparse::triplets(fe.stiffness.as_ref()) {
+        r.push(i);
+        c.push(j);
+        v.push(x);
+    }
+    (
+        rows3(py, &fe.nodes),
+        (r.into_pyarray(py), c.into_pyarray(py), v.into_pyarray(py)),
+        fe.mass.into_pyarray(py),
+        fe.rim.into_pyarray(py),
+        fe.candidates.into_pyarray(py),
+    )
+}
+
+/// The generated FE tire ([`fe_model::generate::tire`], `TireSource::fe_model`); `config` is
+/// the `[tire.generator]` table as JSON.
+#[pyfunction]
+#[pyo3(signature = (config=None))]
+pub fn tire_generate<'py>(py: Python<'py>, config: Option<&str>) -> PyResult<FeOut<'py>> {
+    let generator: TireConfig = read_config(config)?;
+    let source = TireSource {
+        generator,
+        ..TireSource::default()
+    };
+    source.validate_within("tire").map_err(input_error)?;
+    let fe = py
+        .detach(|| source.fe_model())
+        .map_err(|e| tire_error(py, e, None))?;
+    Ok(fe_out(py, fe))
+}
+
+/// The imported FE tire ([`imported_tire`]); `config` is the `[tire.import]` table as JSON.
+#[pyfunction]
+pub fn tire_import<'py>(py: Python<'py>, config: &str) -> PyResult<FeOut<'py>> {
+    let files: ImportFiles = serde_json::from_str(config)
+        .map_err(|e| PyValueError::new_err(format!("tire.import: {e}")))?;
+    let source = TireSource {
+        import: Some(files),
+        ..TireSource::default()
+    };
+    source.validate_within("tire").map_err(input_error)?;
+    let files = source.import.as_ref().expect("set above");
+    let fe = py
+        .detach(|| imported_tire(files))
+        .map_err(|e| tire_error(py, e, None))?;
+    Ok(fe_out(py, fe))
+}
+
+/// Reduce the tire described by `config` (the `[tire]` table as JSON: `generator` or
+/// `import`, and `reduction`; `reduced_file` is not used) with Ribaric §8.2.
+#[pyfunction]
+#[pyo3(signature = (config=None))]
+pub fn tire_reduce(py: Python<'_>, config: Option<&str>) -> PyResult<PyReducedTire> {
+    let source: TireSource = read_config(config)?;
+    source.validate_within("tire").map_err(input_error)?;
+    let red = py
+        .detach(|| {
+            let fe = source.fe_model()?;
+            source.reduce_fe(&fe).map(|(red, _)| red)
+        })
+        .map_err(|e| tire_error(py, e, None))?;
+    Ok(PyReducedTire {
+        inner: Arc::new(red),
+    })
+}
+
+/// The force history (the columns of `forces.csv`: t [s], F_x, F_y, F_lateral [N], spin
+/// [rad/s], active contact nodes, Σ normal force [N]) as 7 columns.
+type History = [Vec<f64>; 7];
+
+fn history_of(r: &RigResult) -> History {
+    let mut h: History = Default::default();
+    for s in &r.samples {
+        for (col, x) in h.iter_mut().zip(sample_row(s)) {
+            col.push(x);
+        }
+    }
+    h
+}
+
+/// The cleat test (Ribaric §8.3) at one speed: `(summary JSON text, force history columns,
+/// spectra columns (f [Hz], |F_x|, |F_y| [N]))`. `tire` replaces the reduction of
+/// `config.tire`; `speed_kmh` replaces `rig.speed_kmh` (the CLI's `--speed`). A numerical
+/// failure carries the history up to the failure as `partial`.
+#[pyfunction]
+#[pyo3(signature = (config=None, speed_kmh=None, tire=None))]
+pub fn tire_cleat(
+    py: Python<'_>,
+    config: Option<&str>,
+    speed_kmh: Option<f64>,
+    tire: Option<PyRef<'_, PyReducedTire>>,
+) -> PyResult<(String, History, [Vec<f64>; 3])> {
+    let mut c: CleatStudyConfig = read_config(config)?;
+    if let Some(v) = speed_kmh {
+        c.rig.speed_kmh = v;
+    }
+    c.validate().map_err(input_error)?;
+    let given = tire.map(|t| Arc::clone(&t.inner));
+    let red = match given {
+        Some(red) => red,
+        None => {
+            let source = c.tire.clone();
+            let red = py
+                .detach(|| {
+                    let fe = source.fe_model()?;
+                    source.reduce_fe(&fe).map(|(red, _)| red)
+                })
+                .map_err(|e| tire_error(py, e, None))?;
+            Arc::new(red)
+        }
+    };
+    let settle = c.rig.settle_time;
+    let mut seen: History = Default::default();
+    let result = py.detach(|| {
+        let mut observer = |_k: usize, sim: &RollingTire| -> Result<(), TireError> {
+            for (col, x) in seen.iter_mut().zip(force_row(sim, settle)) {
+                col.push(x);
+            }
+            Ok(())
+        };
+        let r = run_cleat_observed(&red, &c.rig, &mut |_| {}, &mut observer)?;
+        let summary = cleat_summary(&red, &r);
+        let (sx, sy) = r.spectra();
+        Ok::<_, TireError>((
+            summary,
+            history_of(&r),
+            [sx.freq_hz, sx.amplitude, sy.amplitude],
+        ))
+    });
+    match result {
+        Ok((summary, history, spectra)) => Ok((to_json(&summary)?, history, spectra)),
+        Err(e) => match rig_input_error(e) {
+            Ok(field) => Err(input_error(field)),
+            Err(other) => {
+                let forces: serde_json::Map<String, serde_json::Value> = FORCE_COLUMNS
+                    .iter()
+                    .zip(&seen)
+                    .map(|(n, col)| (n.to_string(), serde_json::json!(col)))
+                    .collect();
+                let partial = serde_json::json!({
+                    "speed_kmh": c.rig.speed_kmh,
+                    "steps_done": seen[0].len(),
+                    "t_last_s": seen[0].last().copied().unwrap_or(f64::NAN),
+                    "forces": forces,
+                });
+                Err(numerical_error(py, other.to_string(), Some(partial)))
+            }
+        },
+    }
+}
