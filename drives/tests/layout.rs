@@ -415,3 +415,74 @@ fn bad_layouts_name_the_field() {
         "{e}"
     );
 }
+
+// The FEAD study on its defaults: every point completes; the accessories' contact torques
+// balance their loads (steady mean over the window, within 3 %); span tensions stay positive;
+// the tensioner arm stays within its travel.
+#[test]
+#[ignore = "heavy: the default engine-speed sweep (≈ 1 min in release on a loaded machine)"]
+fn fead_default_sweep_runs() {
+    let cfg = drives::fead::FeadConfig::default();
+    let t = std::time::Instant::now();
+    let s = drives::fead::run_fead(&cfg, |_| {}).unwrap();
+    eprintln!(
+        "{} steps, {} dofs, {:.1} s",
+        s.steps,
+        s.dofs,
+        t.elapsed().as_secs_f64()
+    );
+    let travel = s.arm_travel.unwrap();
+    for p in &s.points {
+        eprintln!(
+            "{} rpm: v {:.2} m/s arm {:.4}..{:.4} rad; spans {:?}; slip {:?}; torques {:?}; f1 {:?}",
+            p.engine_rpm,
+            p.belt_speed,
+            p.arm_angle.min,
+            p.arm_angle.max,
+            p.spans
+                .iter()
+                .map(|x| (x.tension.min.round(), x.tension.max.round()))
+                .collect::<Vec<_>>(),
+            p.pulleys
+                .iter()
+                .map(|x| (x.slip_percent * 100.0).round() / 100.0)
+                .collect::<Vec<_>>(),
+            p.pulleys
+                .iter()
+                .map(|x| (x.torque_mean * 100.0).round() / 100.0)
+                .collect::<Vec<_>>(),
+            p.spans
+                .iter()
+                .map(|x| x.frequency_1_hz.round())
+                .collect::<Vec<_>>(),
+        );
+        assert!(p.arm_angle.min > travel[0] && p.arm_angle.max < travel[1]);
+        for sp in &p.spans {
+            assert!(
+                sp.tension.min > 0.0,
+                "{} rpm: span {}→{} slack",
+                p.engine_rpm,
+                sp.from,
+                sp.to
+            );
+        }
+        // J ω̇ = τ − M: over a window that is not a whole number of fluctuation periods the
+        // mean of τ − M is bounded by J (ω_max − ω_min)/window
+        for (k, load, j) in [
+            (1, 2.0, 1e-3),
+            (2, 3.0, 3e-3),
+            (4, 1.5, 8e-4),
+            (5, 5.0, 2e-3),
+        ] {
+            let pl = &p.pulleys[k];
+            let bound = j * (pl.omega.max - pl.omega.min) / cfg.run.window + 0.02 * load;
+            assert!(
+                (pl.torque_mean - load).abs() < bound,
+                "{} rpm, {}: {} vs {load} ± {bound}",
+                p.engine_rpm,
+                pl.name,
+                pl.torque_mean
+            );
+        }
+    }
+}
