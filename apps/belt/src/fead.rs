@@ -83,7 +83,7 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
         "arm_angle_min_rad".into(),
         "arm_angle_mean_rad".into(),
         "arm_angle_max_rad".into(),
-        "gross_slip".into(),
+        "gross_slip_flag".into(),
     ];
     for k in 0..first.spans.len() {
         header.push(format!("span{k}_tension_min_N"));

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 /// A scalar history through knots `(t_k, y_k)` \[s, unit\], joined by smooth C¹ steps
 /// (`y = y_k + (y_{k+1} − y_k)(3τ² − 2τ³)`), constant before the first and after the last knot.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
 pub struct Schedule {
     /// Knots, times strictly increasing.
     pub knots: Vec<(f64, f64)>,
