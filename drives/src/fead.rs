@@ -280,7 +280,7 @@ impl Validate for FeadConfig {
         check::positive("run.window", self.run.window, "s")?;
         let per_point = self.run.ramp + self.run.settle + self.run.window;
         let steps = per_point / self.run.step * self.engine.speeds_rpm.len() as f64;
-        if !(steps <= MAX_STEPS as f64) {
+        if steps.is_nan() || steps > MAX_STEPS as f64 {
             return Err(InvalidField::new(
                 "run.step",
                 format!("the sweep would take {steps:.3e} steps (max {MAX_STEPS})"),
@@ -572,7 +572,7 @@ pub fn run_fead(
                 slip[k].add(100.0 * (1.0 - w * radii[k] / wc));
             }
             // span tensions and torques every other step
-            if summary.steps % 2 == 0 {
+            if summary.steps.is_multiple_of(2) {
                 let snap = flowing_layout_snapshot(&model, &roles, st.t, &st.q, &st.v);
                 for (a, s) in tens.iter_mut().zip(&snap.spans) {
                     if s.tension.is_finite() {

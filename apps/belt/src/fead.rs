@@ -58,7 +58,7 @@ impl Study for Fead {
             Ok(s) => s,
             Err(e) => {
                 return Err(match *e {
-                    FeadFailureOrInvalid::Invalid(f) => StudyError::Input(f.into()),
+                    FeadFailureOrInvalid::Invalid(f) => StudyError::Input(f),
                     FeadFailureOrInvalid::Build(b) => StudyError::numerical(b),
                     FeadFailureOrInvalid::Numerical(f) => StudyError::Numerical {
                         message: format!("fead sweep: {}", f.error),
