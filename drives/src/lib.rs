@@ -34,6 +34,8 @@ pub mod ancf_run;
 pub mod ancf_study;
 pub mod bechtel_steady;
 pub mod error;
+pub mod fead;
+pub mod layout;
 pub mod model;
 pub mod plate_study;
 pub mod report;

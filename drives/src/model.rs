@@ -112,18 +112,63 @@ fn nodal_snapshot(
     contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
     omegas: [f64; 2],
 ) -> DriveSnapshot {
-    let path = &fe.path;
-    let nn = nodes.len();
-    let mut pulleys: Vec<PulleyState> = (0..2)
+    let pulleys: Vec<PulleyState> = (0..2)
         .map(|k| PulleyState {
             name: ["driver", "driven"][k].into(),
             role: [PulleyRole::Driver, PulleyRole::Driven][k],
-            radius: path.pulleys()[k].radius,
+            radius: fe.path.pulleys()[k].radius,
             omega: omegas[k],
             hub_load: [0.0; 2],
             torque: 0.0,
         })
         .collect();
+    snapshot_with(fe, t, nodes, tensions, contacts, pulleys)
+}
+
+/// The snapshot of a flowing-material belt of any layout ([`FlowingBelt::with_layout`]) at
+/// `(t, q, v)`; `pulleys` names each pulley and gives its role (speeds, hub loads and torques
+/// are filled in).
+pub fn flowing_layout_snapshot(
+    belt: &FlowingBelt,
+    pulleys: &[(String, PulleyRole)],
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+) -> DriveSnapshot {
+    let z = &q[1..=belt.n_modes()];
+    let nodes = deformed(&belt.fe.position, &belt.deflection(z));
+    let tensions = belt.element_tensions(z);
+    let contacts = belt
+        .contact_report(t, q, v)
+        .into_iter()
+        .map(|r| (r.node, r.pulley, r.contact));
+    let states = pulleys
+        .iter()
+        .enumerate()
+        .map(|(k, (name, role))| PulleyState {
+            name: name.clone(),
+            role: *role,
+            radius: belt.fe.path.pulleys()[k].radius,
+            omega: belt.pulley_speed(k, t, v),
+            hub_load: [0.0; 2],
+            torque: 0.0,
+        })
+        .collect();
+    snapshot_with(&belt.fe, t, &nodes, &tensions, contacts, states)
+}
+
+/// The snapshot of a belt of frame elements with nodal contact on `pulleys` (speeds set;
+/// hub loads and torques summed here from the contacts).
+fn snapshot_with(
+    fe: &BeltFe,
+    t: f64,
+    nodes: &[[f64; 2]],
+    tensions: &[f64],
+    contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
+    mut pulleys: Vec<PulleyState>,
+) -> DriveSnapshot {
+    let path = &fe.path;
+    let nn = nodes.len();
     let mut wrap = Vec::new();
     for (i, p, c) in contacts {
         let pl = &mut pulleys[p];
@@ -170,27 +215,39 @@ fn linear_belt_data(fe: &BeltFe, friction: FrictionSpec) -> BeltData {
 /// Coordinates `(s_b, z, θ₂)`: belt travel, the `m` reduced coordinates and the driven pulley.
 impl DriveModel for FlowingBelt {
     fn driven_speed(&self, v: &[f64]) -> f64 {
-        v[self.n_modes() + 1]
+        v[self.driven_dof()]
     }
 
+    /// Pulley 0's prescribed speed (NaN when pulley 0 is free: no driver speed to report).
     fn driver_speed(&self, t: f64) -> f64 {
-        self.driver_speed.value(t)
+        match &self.motions[0] {
+            flowing::belt::flowing_system::PulleyMotion::Speed(s) => s.value(t),
+            _ => f64::NAN,
+        }
     }
 
     fn initial_state(&self) -> Result<State, MbdError> {
-        let m = self.n_modes();
-        let z = self.static_equilibrium()?;
-        let mut q = vec![0.0; m + 2];
-        q[1..=m].copy_from_slice(&z);
-        Ok(State::new(0.0, q, vec![0.0; m + 2]))
+        let q = self.static_state()?;
+        let n = q.len();
+        Ok(State::new(0.0, q, vec![0.0; n]))
     }
 
+    /// Pulley 0's speed (a speed-driven pulley in every drive the procedure runs).
     fn set_driver_speed(&mut self, s: Schedule) {
-        self.driver_speed = s;
+        if let Some(d) = self.driver_speed_mut() {
+            *d = s.into();
+        }
     }
 
+    /// The load of the driven pulley ([`FlowingBelt::driven_dof`]'s pulley).
     fn load_mut(&mut self) -> &mut Schedule {
-        &mut self.load_torque
+        let p = (0..self.fe.path.pulleys().len())
+            .find(|&p| self.pulley_dof(p) == Some(self.driven_dof()))
+            .unwrap_or(1);
+        &mut self
+            .load_mut(p)
+            .expect("the driven pulley of a flowing drive is free")
+            .schedule
     }
 
     fn belt_data(&self) -> BeltData {

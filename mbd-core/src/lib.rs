@@ -25,6 +25,8 @@
 //!   reactions, projections;
 //! * [`newton`]: the one Newton–Raphson solver (line search, load stepping, active-set passes,
 //!   report) behind every static solve of the workspace, extension point [`newton::NewtonProblem`];
+//! * [`tensioner`]: the pivoted-arm belt tensioner (spring with preload, damper, dry
+//!   friction) shared by the belt models;
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
 //!   [`history`]: CSV time histories;
 //! * [`validate`]: the one validation shape ([`Validate`], [`InvalidField`] with the field path)
@@ -85,6 +87,7 @@ pub mod marker;
 pub mod multibody;
 pub mod newton;
 pub mod statics;
+pub mod tensioner;
 
 pub use body::{BodyState, RigidBody};
 pub use composite::{CompositeSystem, Coupling, CouplingEval};

@@ -6,6 +6,8 @@
 //! - `ancf`: the planar ANCF belt drive of Kerkkänen ch. 3;
 //! - `plate`: the three-dimensional plate-belt drive of Kerkkänen ch. 4 with Bechtel's steady
 //!   analytical model;
+//! - `fead`: a passenger-car front-end accessory drive with an automatic tensioner over an
+//!   engine-speed sweep (issue 17);
 //! - `wave`: rotating vs non-rotating flowing belt with a deflected span (Ribaric Fig. 6-3);
 //! - `demo`: rigid-body slider-crank driven at constant speed (mbd-core demonstration).
 //!
@@ -16,6 +18,7 @@ use std::process::ExitCode;
 
 mod ancf;
 mod demo;
+mod fead;
 mod plate;
 mod speed_loss;
 mod wave;
@@ -38,6 +41,8 @@ enum Study {
     Ancf(ancf::Args),
     /// Three-dimensional plate-belt drive vs Bechtel's steady model (Kerkkänen ch. 4).
     Plate(plate::Args),
+    /// Front-end accessory drive with a tensioner over an engine-speed sweep.
+    Fead(fead::Args),
     /// Rotating vs non-rotating flowing belt with a deflected span (Ribaric Fig. 6-3).
     Wave(wave::Args),
 }
@@ -50,6 +55,7 @@ fn main() -> ExitCode {
         Some(Study::Plate(args)) => plate::run(&args),
         Some(Study::SpeedLoss(args)) => speed_loss::run(&args),
         Some(Study::Wave(args)) => wave::run(&args),
+        Some(Study::Fead(args)) => fead::run(&args),
         None => speed_loss::run(&speed_loss::Args::default()),
     }
 }

@@ -71,7 +71,7 @@ fn speed_loss_json_contract() {
 // App conventions: `--print-config` output is a complete configuration that reads back to itself.
 #[test]
 fn printed_configuration_round_trips() {
-    for study in ["speed-loss", "ancf", "wave", "plate"] {
+    for study in ["speed-loss", "ancf", "wave", "plate", "fead"] {
         let (code, printed, stderr) = run(&[study, "--print-config"]);
         assert_eq!(code, 0, "{study}: {stderr}");
         let file = tmp(&format!("{study}.toml"));
@@ -271,4 +271,68 @@ fn gross_slip_is_reported_and_the_study_exits_0() {
         assert!(text.lines().next().unwrap().contains(unit), "{f}");
     }
     let _ = std::fs::remove_dir_all(out);
+}
+
+// Issue 17 bad input for any layout: overlapping pulleys, a belt too short for the layout, a
+// tensioner outside its travel, a wrap below 10°: exit 2 with one line naming the pulley or
+// field (the checks: drives::layout, tested on their own in drives/tests/layout.rs).
+#[test]
+fn fead_bad_layout_exits_2_naming_the_field() {
+    use drives::fead::FeadConfig;
+    let check = |name: &str, edit: &dyn Fn(&mut FeadConfig), want: &str| {
+        let mut c = FeadConfig::default();
+        edit(&mut c);
+        let file = tmp(&format!("fead_{name}.toml"));
+        std::fs::write(&file, toml::to_string(&c).unwrap()).unwrap();
+        let (code, _, stderr) = run(&["fead", "--config", file.to_str().unwrap()]);
+        assert_eq!(code, 2, "{name}: {stderr}");
+        assert!(
+            stderr.contains(want) && stderr.trim().lines().count() == 1,
+            "{name}: {stderr}"
+        );
+        let _ = std::fs::remove_file(file);
+    };
+    // the water pump moved onto the tensioner idler
+    check(
+        "overlap",
+        &|c| c.drive.pulleys[4].center = [0.15, 0.29],
+        "drive.pulleys[4]",
+    );
+    // 12 cm of belt missing (a mounting strain above 5 % over the whole arm travel)
+    check(
+        "short",
+        &|c| c.drive.belt_length = Some(1.40),
+        "drive.belt_length",
+    );
+    // a spring that pushes the arm off its travel
+    check(
+        "travel",
+        &|c| c.drive.tensioner.as_mut().unwrap().preload = -200.0,
+        "drive.tensioner",
+    );
+    // the tensioner idler placed to deflect the alternator–water pump span by 2 mm from
+    // outside: a wrap of ≈ 2 (2 mm / 85 mm) rad ≈ 3°, below 10°
+    check(
+        "wrap",
+        &|c| {
+            use fe_model::generate::belt_path::{BeltPath, PathPulley};
+            c.drive.tensioner = None;
+            let others: Vec<PathPulley> = [0, 1, 2, 4, 5]
+                .iter()
+                .map(|&k| PathPulley {
+                    center: c.drive.pulleys[k].center,
+                    radius: c.drive.pulleys[k].radius,
+                    side: c.drive.pulleys[k].side,
+                })
+                .collect();
+            let span = BeltPath::new(&others).unwrap().spans()[2];
+            // the loop runs clockwise: outside is to the left of the travel direction
+            let (d, off) = (span.direction, c.drive.pulleys[3].radius - 0.002);
+            c.drive.pulleys[3].center = [
+                span.start[0] + 0.5 * span.length * d[0] - off * d[1],
+                span.start[1] + 0.5 * span.length * d[1] + off * d[0],
+            ];
+        },
+        "drive.pulleys[3]",
+    );
 }

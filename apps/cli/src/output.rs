@@ -74,7 +74,8 @@ impl OutputDir {
 /// Unit suffixes a CSV column name may end with (`torque_Nm`, `delta_omega_rad_s`, `t_s`):
 /// `_s`, `_m`, `_n` (newton), `_n_m` (N/m), `_Nm` (N·m), `_hz`, `_kmh`, `_rad`, `_rad_s`,
 /// `_rad_s2`, `_rad2_s2`, `_1_s`, `_m_s`, `_m_s2`, `_j`, `_kg`, `_kg_m2`, `_pa`, `_deg`,
-/// `_n_sqrtkg` (N/√kg) and `_sqrtkg_m` (√kg·m, mass-normalised modal coordinates).
+/// `_n_sqrtkg` (N/√kg), `_sqrtkg_m` (√kg·m, mass-normalised modal coordinates), `_rpm`
+/// (revolutions per minute) and `_percent`.
 pub const UNIT_SUFFIXES: &[&str] = &[
     "_s",
     "_m",
@@ -97,6 +98,8 @@ pub const UNIT_SUFFIXES: &[&str] = &[
     "_deg",
     "_n_sqrtkg",
     "_sqrtkg_m",
+    "_rpm",
+    "_percent",
 ];
 
 /// Suffixes of dimensionless columns (`damping_ratio`, `lateral_share`, `loaded_flag`,

@@ -1,9 +1,20 @@
 //! The flowing-material belt drive: Ribaric (5.14) with penalty contact (6.1), (6.2).
 //!
-//! Coordinates `q = [s_b, z, φ₂]`, velocities `v = [v, ż, ω₂]`: the belt's travel `s_b` and
-//! speed `v` (the material speed at the reference node, [`super::FlowingBasis`]), the modal
-//! coordinates `z` of the deflection `δ = T z` of the stationary mesh, and the driven pulley's
-//! angle and speed (positive in the belt's travel sense). The driver's speed `ω₁(t)` is prescribed.
+//! Coordinates `q = [s_b, z, φ_k…, Δθ]`, velocities `v = [v, ż, ω_k…, Δθ̇]`: the belt's travel
+//! `s_b` and speed `v` (the material speed at the reference node, [`super::FlowingBasis`]), the
+//! modal coordinates `z` of the deflection `δ = T z` of the stationary mesh, the angle and speed
+//! of every pulley that is not speed-driven (positive in the belt's travel sense, in pulley
+//! order; [`PulleyMotion`]) and, with a tensioner ([`ArmModel`]), the arm's rotation `Δθ` from
+//! the angle at which the path (and so the mesh) was laid out. The two-pulley drive of
+//! [`FlowingBelt::new`] has `q = [s_b, z, φ₂]`: the driver's speed `ω₁(t)` is prescribed.
+//!
+//! Any layout (issue 17): the mesh stays fixed in space along the path of the layout (Ribaric's
+//! flowing material), and a tensioner's idler moves with its arm, `c(θ) = p + L(cos θ, sin θ)`
+//! ([`mbd_core::tensioner`]): its contact sees the node at `d − c(θ)` with the relative velocity
+//! `V − ċ` (a translating rigid disk), its speed DOF the reaction torque, and the arm the moment
+//! `(c − p) × (−F)` of the contact forces `F` on the belt, with the spring, damper and dry
+//! friction of [`TensionerSpec`]. The belt's deflections follow the idler's displacement
+//! (linearised about the laid-out path: valid while the arm turns by a few degrees).
 //!
 //! Kinematics (Ribaric (5.10)–(5.13), with erratum E11):
 //!
@@ -18,7 +29,8 @@
 //! ```text
 //!   [ e_tᵀM(e_t + b)   e_tᵀ M T ] [a ]   [ e_tᵀ (g − M (v² ε_n + c)) ]
 //!   [ Tᵀ M(e_t + b)    Tᵀ M T   ] [z̈] = [ Tᵀ  (g − M (v² ε_n + c)) ]
-//!   J₂ ω̇₂ = τ_contact,2 − M_load(t)
+//!   J_k ω̇_k = τ_contact,k − M_load,k(t)                (free pulleys)
+//!   J_a Δθ̈  = (c − p) × F_hub + M_s + M_d + M_f          (tensioner arm)
 //! ```
 //!
 //! Choices (documented per the seed-000 note): the unknown vector is `[a; z̈]` (erratum E13);
@@ -35,12 +47,51 @@
 
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, FlowingBasis, NODE_DOFS, chord_tensions};
-use super::schedule::Schedule;
+use super::schedule::{Schedule, Signal};
 use super::statics::dense_equilibrium;
-use contact::friction::FrictionSpec;
+use contact::friction::{CoulombTanh, FrictionLaw, FrictionSpec};
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
+use mbd_core::tensioner::{TensionerSpec, cross};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
+
+/// How a pulley of the drive turns.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PulleyMotion {
+    /// Speed prescribed \[rad/s\], positive in the travel sense (the crankshaft).
+    Speed(Signal),
+    /// Free to turn with moment of inertia `inertia` \[kg m²\] against the load torque `load`
+    /// \[N m\] (opposing the travel sense; negative drives the belt). An idler has zero load.
+    Free {
+        /// Moment of inertia about the axle \[kg m²\].
+        inertia: f64,
+        /// Load torque history \[N m\].
+        load: Signal,
+    },
+}
+
+/// A tensioner in a flowing-belt drive: the spec, its arm length and the arm angle at which
+/// the path was laid out (Δθ = 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArmModel {
+    /// The tensioner.
+    pub spec: TensionerSpec,
+    /// Arm length `L` \[m\].
+    pub length: f64,
+    /// Arm angle of the laid-out path \[rad\].
+    pub angle: f64,
+}
+
+/// The idler's kinematics at an arm state: centre, `c'`, centre velocity, `c − p`.
+#[derive(Debug, Clone, Copy)]
+struct ArmState {
+    center: [f64; 2],
+    dc: [f64; 2],
+    vel: [f64; 2],
+    arm: [f64; 2],
+    angle: f64,
+    rate: f64,
+}
 
 /// A contact node with its rows of the basis.
 #[derive(Debug, Clone)]
@@ -61,11 +112,15 @@ pub struct FlowingBelt {
     pub fe: BeltFe,
     /// The reduction basis.
     pub basis: FlowingBasis,
-    /// Driver pulley speed ω₁(t) \[rad/s\], positive in the travel sense.
-    pub driver_speed: Schedule,
-    /// Load torque on the driven pulley \[N m\], opposing its rotation.
-    pub load_torque: Schedule,
-    pulleys: [PulleyFrame; 2],
+    /// How each pulley turns (pulley order of the path).
+    pub motions: Vec<PulleyMotion>,
+    /// The tensioner, if any.
+    pub tensioner: Option<ArmModel>,
+    pulleys: Vec<PulleyFrame>,
+    /// Velocity index of each pulley's speed (`None`: prescribed).
+    pulley_dof: Vec<Option<usize>>,
+    /// Velocity index of the tensioner arm.
+    arm_dof: Option<usize>,
     friction: FrictionSpec,
     m: usize,
     a_mass: Mat<f64>,
@@ -77,7 +132,7 @@ pub struct FlowingBelt {
     p_en: Vec<f64>,
     p_f0: Vec<f64>,
     rows: Vec<ContactRow>,
-    inertia: f64,
+    n_v: usize,
 }
 
 /// Contact state of one node (for output).
@@ -131,13 +186,51 @@ fn gemv(y: &mut [f64], a: &Mat<f64>, x: &[f64], s: f64) {
 }
 
 impl FlowingBelt {
-    /// Build the model: basis with `fe.config.reduction.free_modes` free-node modes, all
-    /// projections precomputed.
+    /// The two-pulley drive (Ribaric Table 6-1): pulley 0 turns at `driver_speed`, pulley 1
+    /// is free with the inertia `fe.config.driven_inertia` against `load_torque`. Basis with
+    /// `fe.config.reduction.free_modes` free-node modes, all projections precomputed.
     pub fn new(
         fe: BeltFe,
         driver_speed: Schedule,
         load_torque: Schedule,
     ) -> Result<Self, crate::FlowError> {
+        let inertia = fe.config.driven_inertia;
+        Self::with_layout(
+            fe,
+            vec![
+                PulleyMotion::Speed(driver_speed.into()),
+                PulleyMotion::Free {
+                    inertia,
+                    load: load_torque.into(),
+                },
+            ],
+            None,
+        )
+    }
+
+    /// Any layout: `fe` built on the layout's path ([`BeltFe::on_path`]), one motion per
+    /// pulley, and an optional tensioner whose idler is one of the pulleys (`tensioner.spec.
+    /// pulley`, free or speed-driven) with its arm at `tensioner.angle` on the laid-out path.
+    pub fn with_layout(
+        fe: BeltFe,
+        motions: Vec<PulleyMotion>,
+        tensioner: Option<ArmModel>,
+    ) -> Result<Self, crate::FlowError> {
+        let np = fe.path.pulleys().len();
+        if motions.len() != np {
+            return Err(crate::error::invalid(
+                "pulleys",
+                format!("{} motions for {np} pulleys", motions.len()),
+            ));
+        }
+        if let Some(a) = &tensioner
+            && a.spec.pulley >= np
+        {
+            return Err(crate::error::invalid(
+                "tensioner.pulley",
+                format!("no pulley {} (the layout has {np})", a.spec.pulley),
+            ));
+        }
         let basis = FlowingBasis::new(&fe, fe.config.reduction.free_modes)?;
         let n = fe.n_dofs();
         let m = basis.len();
@@ -196,19 +289,41 @@ impl FlowingBelt {
             }
         }
         let pp = fe.path.pulleys();
-        let pulleys = [0, 1].map(|k| PulleyFrame {
-            center: pp[k].center,
-            radius: fe.contact_radius[k],
-            turn: 1.0,
+        let pulleys = (0..np)
+            .map(|k| PulleyFrame {
+                center: pp[k].center,
+                radius: fe.contact_radius[k],
+                turn: match pp[k].side {
+                    fe_model::generate::belt_path::WrapSide::Inside => 1.0,
+                    fe_model::generate::belt_path::WrapSide::Outside => -1.0,
+                },
+            })
+            .collect();
+        let mut n_v = m + 1;
+        let pulley_dof = motions
+            .iter()
+            .map(|mo| match mo {
+                PulleyMotion::Speed(_) => None,
+                PulleyMotion::Free { .. } => {
+                    n_v += 1;
+                    Some(n_v - 1)
+                }
+            })
+            .collect();
+        let arm_dof = tensioner.map(|_| {
+            n_v += 1;
+            n_v - 1
         });
         Ok(Self {
             friction: cfg.contact.friction_law(),
-            inertia: cfg.driven_inertia,
             fe,
             basis,
-            driver_speed,
-            load_torque,
+            motions,
+            tensioner,
             pulleys,
+            pulley_dof,
+            arm_dof,
+            n_v,
             m,
             a_mass,
             mts,
@@ -257,42 +372,109 @@ impl FlowingBelt {
         (d, vel, bs)
     }
 
-    fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        if p == 0 {
-            self.driver_speed.value(t)
-        } else {
-            v[self.m + 1]
+    /// Speed of pulley `p` \[rad/s\] at `(t, v)`.
+    pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
+        match (&self.motions[p], self.pulley_dof[p]) {
+            (_, Some(k)) => v[k],
+            (PulleyMotion::Speed(s), None) => s.value(t),
+            (PulleyMotion::Free { .. }, None) => 0.0,
         }
+    }
+
+    /// Velocity index of pulley `p`'s speed (`None`: prescribed).
+    pub fn pulley_dof(&self, p: usize) -> Option<usize> {
+        self.pulley_dof[p]
+    }
+
+    /// Velocity index of the tensioner arm's rotation `Δθ` (`None`: no tensioner).
+    pub fn arm_dof(&self) -> Option<usize> {
+        self.arm_dof
+    }
+
+    /// Arm angle θ \[rad\] at `q` (`None`: no tensioner).
+    pub fn arm_angle(&self, q: &[f64]) -> Option<f64> {
+        Some(self.tensioner?.angle + q[self.arm_dof?])
+    }
+
+    /// Speed schedule of pulley 0 (the driver) when it is speed-driven.
+    pub fn driver_speed_mut(&mut self) -> Option<&mut Signal> {
+        match self.motions.first_mut() {
+            Some(PulleyMotion::Speed(s)) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// Load history of pulley `p` when it is free.
+    pub fn load_mut(&mut self, p: usize) -> Option<&mut Signal> {
+        match self.motions.get_mut(p) {
+            Some(PulleyMotion::Free { load, .. }) => Some(load),
+            _ => None,
+        }
+    }
+
+    fn arm_state(&self, q: &[f64], v: &[f64]) -> Option<ArmState> {
+        let (a, k) = (self.tensioner?, self.arm_dof?);
+        let angle = a.angle + q[k];
+        let (center, dc) = a.spec.center(a.length, angle);
+        let rate = v[k];
+        Some(ArmState {
+            center,
+            dc,
+            vel: [dc[0] * rate, dc[1] * rate],
+            arm: [center[0] - a.spec.pivot[0], center[1] - a.spec.pivot[1]],
+            angle,
+            rate,
+        })
+    }
+
+    /// Contact of one row at a state; the idler's frame and the relative velocity when the
+    /// row's pulley is the tensioner's.
+    fn row_contact(
+        &self,
+        r: &ContactRow,
+        arm: Option<&ArmState>,
+        t: f64,
+        z: &[f64],
+        zd: &[f64],
+        v: &[f64],
+    ) -> (NodeContact, [f64; 2], bool) {
+        let (d, mut vel, bs) = self.node_state(r, z, zd, v[0]);
+        let w = self.pulley_speed(r.pulley, t, v);
+        let mut frame = self.pulleys[r.pulley];
+        let idler = match (arm, self.tensioner) {
+            (Some(a), Some(tm)) if tm.spec.pulley == r.pulley => {
+                frame.center = a.center;
+                vel[0] -= a.vel[0];
+                vel[1] -= a.vel[1];
+                true
+            }
+            _ => false,
+        };
+        (
+            node_contact(&frame, w, d, vel, &r.law, &self.friction),
+            bs,
+            idler,
+        )
     }
 
     /// Contact state of every contact node at `(t, q, v)`.
     pub fn contact_report(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<NodeReport> {
-        let (z, zd, vb) = (&q[1..=self.m], &v[1..=self.m], v[0]);
+        let (z, zd) = (&q[1..=self.m], &v[1..=self.m]);
+        let arm = self.arm_state(q, v);
         self.rows
             .iter()
-            .map(|r| {
-                let (d, vel, _) = self.node_state(r, z, zd, vb);
-                let w = self.pulley_speed(r.pulley, t, v);
-                NodeReport {
-                    node: r.node,
-                    pulley: r.pulley,
-                    s: self.fe.s[r.node],
-                    contact: node_contact(
-                        &self.pulleys[r.pulley],
-                        w,
-                        d,
-                        vel,
-                        &r.law,
-                        &self.friction,
-                    ),
-                }
+            .map(|r| NodeReport {
+                node: r.node,
+                pulley: r.pulley,
+                s: self.fe.s[r.node],
+                contact: self.row_contact(r, arm.as_ref(), t, z, zd, v).0,
             })
             .collect()
     }
 
     /// Torques of the contact forces on the pulleys in their travel sense \[N m\].
-    pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> [f64; 2] {
-        let mut tq = [0.0; 2];
+    pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<f64> {
+        let mut tq = vec![0.0; self.pulleys.len()];
         for r in self.contact_report(t, q, v) {
             tq[r.pulley] += r.contact.torque;
         }
@@ -306,9 +488,12 @@ impl FlowingBelt {
         chord_tensions(&self.fe.position, &self.deflection(z), b.tension, b.ea)
     }
 
-    /// Index of the driven pulley's speed in the velocities.
+    /// Index of the driven pulley's speed in the velocities (pulley 1 of the two-pulley drive;
+    /// the first free pulley of a layout).
     pub fn driven_dof(&self) -> usize {
-        self.m + 1
+        self.pulley_dof[1]
+            .or_else(|| self.pulley_dof.iter().flatten().next().copied())
+            .unwrap_or(self.m + 1)
     }
 
     /// The friction law of the belt–pulley contact.
@@ -316,34 +501,63 @@ impl FlowingBelt {
         &self.friction
     }
 
-    /// Static equilibrium of the belt on the resting pulleys (`v = 0`, `ż = 0`): Newton on the
-    /// modal rows with the analytic tangent (the shared [`mbd_core::newton`] solver). Returns `z`.
+    /// Static equilibrium of the belt on the resting pulleys (`v = 0`, `ż = 0`): the modal
+    /// coordinates `z` of [`Self::static_state`].
     pub fn static_equilibrium(&self) -> Result<Vec<f64>, MbdError> {
+        Ok(self.static_state()?[1..=self.m].to_vec())
+    }
+
+    /// Static equilibrium of the belt on the resting pulleys (`v = 0`, `ż = 0`, every pulley
+    /// at rest) and of the tensioner arm: Newton on the modal rows (and the arm's row) with the
+    /// analytic tangent (the shared [`mbd_core::newton`] solver). Returns `q` (travel and pulley
+    /// angles zero).
+    pub fn static_state(&self) -> Result<Vec<f64>, MbdError> {
         let m = self.m;
-        let mut q = vec![0.0; m + 2];
-        let v = vec![0.0; m + 2];
-        let mut f = vec![0.0; m + 2];
+        let nv = self.n_v;
+        let mut q = vec![0.0; nv];
+        let v = vec![0.0; nv];
+        let mut f = vec![0.0; nv];
         let still = Self {
-            driver_speed: Schedule::constant(0.0),
+            motions: self
+                .motions
+                .iter()
+                .map(|mo| match mo {
+                    PulleyMotion::Speed(_) => PulleyMotion::Speed(Signal::constant(0.0)),
+                    PulleyMotion::Free { inertia, .. } => PulleyMotion::Free {
+                        inertia: *inertia,
+                        load: Signal::constant(0.0),
+                    },
+                })
+                .collect(),
             ..self.clone()
         };
-        // R = −f over the modal rows, J = K_t restricted to them
-        dense_equilibrium("belt", m, m, 1, |z, r| {
-            q[1..=m].copy_from_slice(z);
+        // unknowns: z and the arm rotation; R = −f over their rows, J = K_t restricted to them
+        let mut idx: Vec<usize> = (1..=m).collect();
+        idx.extend(self.arm_dof);
+        let n = idx.len();
+        let x = dense_equilibrium("belt", n, n, 1, |x, r| {
+            for (k, &i) in idx.iter().enumerate() {
+                q[i] = x[k];
+            }
             still.forces(0.0, &q, &v, &mut f)?;
-            for i in 0..m {
-                r[i] = -f[i + 1];
+            for (k, &i) in idx.iter().enumerate() {
+                r[k] = -f[i];
             }
             let tan = still.tangent(0.0, &q, &v);
-            Ok(Mat::from_fn(m, m, |i, j| tan.0[(i + 1, j + 1)]))
-        })
+            Ok(Mat::from_fn(n, n, |a, b| tan.0[(idx[a], idx[b])]))
+        })?;
+        let mut out = vec![0.0; nv];
+        for (k, &i) in idx.iter().enumerate() {
+            out[i] = x[k];
+        }
+        Ok(out)
     }
 
     /// `(K_t, C_t)` as dense matrices: `−∂f/∂q`, `−∂f/∂v`.
     fn tangent(&self, t: f64, q: &[f64], v: &[f64]) -> (Mat<f64>, Mat<f64>) {
         let m = self.m;
         let (z, zd, vb) = (&q[1..=m], &v[1..=m], v[0]);
-        let nv = m + 2;
+        let nv = self.n_v;
         let mut kq = Mat::<f64>::zeros(nv, nv);
         let mut cv = Mat::<f64>::zeros(nv, nv);
         for i in 0..=m {
@@ -361,11 +575,10 @@ impl FlowingBelt {
         for i in 0..=m {
             cv[(i, 0)] = col[i] + 2.0 * vb * self.p_en[i];
         }
-        // contact: f[0..=m] += Pᵢᵀ F, f[m+1] += τ (driven pulley)
+        let arm = self.arm_state(q, v);
+        // contact: f[0..=m] += Pᵢᵀ F, f[spin] += τ, f[arm] += −(c − p) × F
         for r in &self.rows {
-            let (d, vel, bs) = self.node_state(r, z, zd, vb);
-            let w = self.pulley_speed(r.pulley, t, v);
-            let c = node_contact(&self.pulleys[r.pulley], w, d, vel, &r.law, &self.friction);
+            let (c, bs, idler) = self.row_contact(r, arm.as_ref(), t, z, zd, v);
             if c.normal == 0.0 && c.friction == 0.0 {
                 continue;
             }
@@ -373,18 +586,47 @@ impl FlowingBelt {
             // dF/dz = F_d T + v F_V T_s (2 × m), dF/dż = F_V T, dF/dv = F_V b_s
             let mut dfz = [vec![0.0; m], vec![0.0; m]];
             let mut dfzd = [vec![0.0; m], vec![0.0; m]];
-            let mut dfv = [0.0; 2];
-            for a in 0..2 {
-                for j in 0..m {
-                    for b in 0..2 {
+            let mut tz = vec![0.0; m];
+            let mut tzd = vec![0.0; m];
+            for j in 0..m {
+                for b in 0..2 {
+                    for a in 0..2 {
                         dfz[a][j] +=
                             c.df_dd[a][b] * r.t[(b, j)] + vb * c.df_dv[a][b] * r.ts[(b, j)];
                         dfzd[a][j] += c.df_dv[a][b] * r.t[(b, j)];
                     }
+                    tz[j] += c.dt_dd[b] * r.t[(b, j)] + vb * c.dt_dv[b] * r.ts[(b, j)];
+                    tzd[j] += c.dt_dv[b] * r.t[(b, j)];
                 }
-                dfv[a] = c.df_dv[a][0] * bs[0] + c.df_dv[a][1] * bs[1];
             }
-            // row 0 (e_tᵀ) and rows 1..=m (Tᵀ)
+            // the few other columns: (column, in q (true) or v, ∂F, ∂τ)
+            let mut extra: Vec<(usize, bool, [f64; 2], f64)> = Vec::with_capacity(4);
+            let mv = |mtx: &[[f64; 2]; 2], x: [f64; 2]| {
+                [
+                    mtx[0][0] * x[0] + mtx[0][1] * x[1],
+                    mtx[1][0] * x[0] + mtx[1][1] * x[1],
+                ]
+            };
+            let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+            extra.push((0, false, mv(&c.df_dv, bs), dot(c.dt_dv, bs)));
+            if let Some(k) = self.pulley_dof[r.pulley] {
+                extra.push((k, false, c.df_dw, c.dt_dw));
+            }
+            if let (true, Some(a), Some(k)) = (idler, arm.as_ref(), self.arm_dof) {
+                // F(d − c(θ), V − c'θ̇, ω): ∂/∂θ = −F_d c' + F_V (c − p) θ̇ (c'' = −(c − p)),
+                // ∂/∂θ̇ = −F_V c'
+                let w = [a.arm[0] * a.rate, a.arm[1] * a.rate];
+                let (fd, fv) = (mv(&c.df_dd, a.dc), mv(&c.df_dv, w));
+                extra.push((
+                    k,
+                    true,
+                    [fv[0] - fd[0], fv[1] - fd[1]],
+                    dot(c.dt_dv, w) - dot(c.dt_dd, a.dc),
+                ));
+                let fv = mv(&c.df_dv, a.dc);
+                extra.push((k, false, [-fv[0], -fv[1]], -dot(c.dt_dv, a.dc)));
+            }
+            // belt rows 0 (e_tᵀ) and 1..=m (Tᵀ)
             for i in 0..=m {
                 let p = if i == 0 {
                     et
@@ -398,38 +640,60 @@ impl FlowingBelt {
                     kq[(i, j + 1)] -= p[0] * dfz[0][j] + p[1] * dfz[1][j];
                     cv[(i, j + 1)] -= p[0] * dfzd[0][j] + p[1] * dfzd[1][j];
                 }
-                cv[(i, 0)] -= p[0] * dfv[0] + p[1] * dfv[1];
-                if r.pulley == 1 {
-                    cv[(i, m + 1)] -= p[0] * c.df_dw[0] + p[1] * c.df_dw[1];
+                for &(col, in_q, df, _) in &extra {
+                    let target = if in_q { &mut kq } else { &mut cv };
+                    target[(i, col)] -= dot(p, df);
                 }
             }
-            if r.pulley == 1 {
+            // the pulley's spin row: τ
+            if let Some(k) = self.pulley_dof[r.pulley] {
                 for j in 0..m {
-                    let mut tz = 0.0;
-                    let mut tzd = 0.0;
-                    for b in 0..2 {
-                        tz += c.dt_dd[b] * r.t[(b, j)] + vb * c.dt_dv[b] * r.ts[(b, j)];
-                        tzd += c.dt_dv[b] * r.t[(b, j)];
-                    }
-                    kq[(m + 1, j + 1)] -= tz;
-                    cv[(m + 1, j + 1)] -= tzd;
+                    kq[(k, j + 1)] -= tz[j];
+                    cv[(k, j + 1)] -= tzd[j];
                 }
-                cv[(m + 1, 0)] -= c.dt_dv[0] * bs[0] + c.dt_dv[1] * bs[1];
-                cv[(m + 1, m + 1)] -= c.dt_dw;
+                for &(col, in_q, _, dt) in &extra {
+                    let target = if in_q { &mut kq } else { &mut cv };
+                    target[(k, col)] -= dt;
+                }
             }
+            // the arm's row: M = −(c − p) × F
+            if let (true, Some(a), Some(k)) = (idler, arm.as_ref(), self.arm_dof) {
+                for j in 0..m {
+                    kq[(k, j + 1)] += cross(a.arm, [dfz[0][j], dfz[1][j]]);
+                    cv[(k, j + 1)] += cross(a.arm, [dfzd[0][j], dfzd[1][j]]);
+                }
+                for &(col, in_q, df, _) in &extra {
+                    let target = if in_q { &mut kq } else { &mut cv };
+                    target[(k, col)] += cross(a.arm, df);
+                }
+                // the lever turns with the arm: ∂(c − p)/∂θ = c'
+                kq[(k, k)] += cross(a.dc, c.force);
+            }
+        }
+        if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
+            kq[(k, k)] -= tm.spec.spring_moment(a.angle).1;
+            cv[(k, k)] -= tm.spec.damper_moment(a.rate).1;
+            cv[(k, k)] -= dry_friction(&tm.spec, a.rate).d_slip;
         }
         (kq, cv)
     }
 }
 
+/// Dry friction moment at the tensioner pivot through the contact crate's law
+/// ([`TensionerSpec::dry_friction_law`]).
+fn dry_friction(spec: &TensionerSpec, rate: f64) -> contact::friction::FrictionForce {
+    let (mu, kappa, normal) = spec.dry_friction_law();
+    CoulombTanh { mu, kappa }.friction(rate, normal)
+}
+
 impl SecondOrderSystem for FlowingBelt {
     fn n_q(&self) -> usize {
-        self.m + 2
+        self.n_v
     }
 
     fn mass(&self, _t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         let m = self.m;
-        let mut mm = Mat::<f64>::zeros(m + 2, m + 2);
+        let mut mm = Mat::<f64>::zeros(self.n_v, self.n_v);
         for i in 0..=m {
             for j in 0..=m {
                 mm[(i, j)] = self.a_mass[(i, j)];
@@ -441,7 +705,14 @@ impl SecondOrderSystem for FlowingBelt {
         for (i, c) in col.iter().enumerate() {
             mm[(i, 0)] += c;
         }
-        mm[(m + 1, m + 1)] = self.inertia;
+        for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
+            if let (PulleyMotion::Free { inertia, .. }, Some(k)) = (mo, k) {
+                mm[(*k, *k)] = *inertia;
+            }
+        }
+        if let (Some(a), Some(k)) = (self.tensioner, self.arm_dof) {
+            mm[(k, k)] = a.spec.inertia;
+        }
         Ok(SysMatrix::Dense(mm))
     }
 
@@ -457,11 +728,10 @@ impl SecondOrderSystem for FlowingBelt {
         gemv(head, &self.a_cs, z, -vb);
         gemv(head, &self.a_mss, z, -vb * vb);
         gemv(head, &self.mts, zd, -2.0 * vb);
-        let mut torque = 0.0;
+        tail.fill(0.0);
+        let arm = self.arm_state(q, v);
         for r in &self.rows {
-            let (d, vel, _) = self.node_state(r, z, zd, vb);
-            let w = self.pulley_speed(r.pulley, t, v);
-            let c = node_contact(&self.pulleys[r.pulley], w, d, vel, &r.law, &self.friction);
+            let (c, _, idler) = self.row_contact(r, arm.as_ref(), t, z, zd, v);
             if c.normal == 0.0 && c.friction == 0.0 {
                 continue;
             }
@@ -470,11 +740,23 @@ impl SecondOrderSystem for FlowingBelt {
             for j in 0..m {
                 head[j + 1] += r.t[(0, j)] * c.force[0] + r.t[(1, j)] * c.force[1];
             }
-            if r.pulley == 1 {
-                torque += c.torque;
+            if let Some(k) = self.pulley_dof[r.pulley] {
+                tail[k - m - 1] += c.torque;
+            }
+            if let (true, Some(a), Some(k)) = (idler, arm.as_ref(), self.arm_dof) {
+                tail[k - m - 1] -= cross(a.arm, c.force);
             }
         }
-        tail[0] = torque - self.load_torque.value(t);
+        for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
+            if let (PulleyMotion::Free { load, .. }, Some(k)) = (mo, k) {
+                tail[k - m - 1] -= load.value(t);
+            }
+        }
+        if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
+            tail[k - m - 1] += tm.spec.spring_moment(a.angle).0
+                + tm.spec.damper_moment(a.rate).0
+                + dry_friction(&tm.spec, a.rate).force;
+        }
         if let Some(i) = f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {
                 what: format!("belt generalized force {i}"),
@@ -495,5 +777,123 @@ impl SecondOrderSystem for FlowingBelt {
             stiffness: SysMatrix::Dense(k),
             damping: SysMatrix::Dense(c),
         }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::belt::BeltDriveConfig;
+    use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
+
+    /// A four-pulley drive with a back-side idler on a tensioner arm (pulley 2).
+    pub(crate) fn layout_belt() -> FlowingBelt {
+        let pulleys = [
+            ([0.0, 0.0], 0.06, WrapSide::Inside),
+            ([0.30, 0.05], 0.05, WrapSide::Inside),
+            ([0.18, -0.02], 0.035, WrapSide::Outside),
+            ([0.12, -0.20], 0.04, WrapSide::Inside),
+        ];
+        let pp: Vec<PathPulley> = pulleys
+            .iter()
+            .map(|&(center, radius, side)| PathPulley {
+                center,
+                radius,
+                side,
+            })
+            .collect();
+        let path = BeltPath::new(&pp).unwrap();
+        let counts: Vec<usize> = path
+            .pieces()
+            .iter()
+            .enumerate()
+            .map(|(k, _)| if k % 2 == 0 { 6 } else { 8 })
+            .collect();
+        let mut cfg = BeltDriveConfig::default();
+        cfg.reduction.free_modes = Some(10);
+        let fe = BeltFe::on_path(&cfg, path, &counts).unwrap();
+        let spec = TensionerSpec {
+            pulley: 2,
+            pivot: [0.14, 0.04],
+            stiffness: 30.0,
+            preload: 12.0,
+            preload_angle: -1.0,
+            damping: 0.3,
+            dry_friction: 0.5,
+            friction_rate: 0.05,
+            inertia: 2e-3,
+            travel: [-2.0, 0.0],
+        };
+        let (length, angle) = spec.arm([0.18, -0.02]);
+        let free = |j| PulleyMotion::Free {
+            inertia: j,
+            load: Signal::constant(1.5),
+        };
+        FlowingBelt::with_layout(
+            fe,
+            vec![
+                PulleyMotion::Speed(Signal::constant(50.0)),
+                free(0.01),
+                free(1e-4),
+                free(0.005),
+            ],
+            Some(ArmModel {
+                spec,
+                length,
+                angle,
+            }),
+        )
+        .unwrap()
+    }
+
+    // The analytic tangent of the layout model (pulley spins, moving idler, arm moment,
+    // spring, damper, dry friction) against central differences of the forces (an independent
+    // evaluation of the same equations).
+    #[test]
+    fn layout_tangent_matches_finite_differences() {
+        let belt = layout_belt();
+        let n = belt.n_q();
+        let k = belt.arm_dof().unwrap();
+        let mut q = vec![0.0; n];
+        let mut v = vec![0.0; n];
+        for i in 1..=belt.n_modes() {
+            q[i] = 1e-5 * ((i as f64) * 0.7).sin();
+            v[i] = 1e-3 * ((i as f64) * 1.3).cos();
+        }
+        v[0] = 3.0;
+        for p in 1..4 {
+            v[belt.pulley_dof(p).unwrap()] = 3.0 / [0.06, 0.05, 0.035, 0.04][p] * 0.99;
+        }
+        q[k] = 2e-3;
+        v[k] = 0.03;
+        let (kt, ct) = belt.tangent(0.1, &q, &v);
+        let f = |q: &[f64], v: &[f64]| {
+            let mut out = vec![0.0; n];
+            belt.forces(0.1, q, v, &mut out).unwrap();
+            out
+        };
+        let mut worst: f64 = 0.0;
+        let scale = kt.norm_max().max(ct.norm_max());
+        for (j, h) in [(k, 1e-7), (1, 1e-9), (belt.pulley_dof(2).unwrap(), 1e-6)] {
+            for in_q in [true, false] {
+                let (mut qp, mut qm, mut vp, mut vm) = (q.clone(), q.clone(), v.clone(), v.clone());
+                if in_q {
+                    qp[j] += h;
+                    qm[j] -= h;
+                } else {
+                    vp[j] += h;
+                    vm[j] -= h;
+                }
+                let (a, b) = (f(&qp, &vp), f(&qm, &vm));
+                for i in 0..n {
+                    let fd = -(a[i] - b[i]) / (2.0 * h);
+                    let an = if in_q { kt[(i, j)] } else { ct[(i, j)] };
+                    let err = (fd - an).abs() / (fd.abs().max(1e-3 * scale));
+                    worst = worst.max(err);
+                    assert!(err < 1e-4, "row {i} col {j} q={in_q}: fd {fd} vs {an}");
+                }
+            }
+        }
+        assert!(worst < 1e-4);
     }
 }

@@ -20,6 +20,6 @@ mod statics;
 pub mod wave;
 
 pub use config::BeltDriveConfig;
-pub use flowing_system::{FlowingBelt, NodeReport};
+pub use flowing_system::{ArmModel, FlowingBelt, NodeReport, PulleyMotion};
 pub use model::{BeltFe, FlowingBasis};
-pub use schedule::Schedule;
+pub use schedule::{Harmonic, Schedule, Signal};

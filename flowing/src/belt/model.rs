@@ -81,7 +81,7 @@ pub struct BeltFe {
     pub frame_turn: Mat<f64>,
     /// Pre-tension force of the reference state (`3N`) \[N\].
     pub pretension: Vec<f64>,
-    /// Contact nodes of each pulley (pulley 0 = driver, 1 = driven).
+    /// Contact nodes of each pulley (two-pulley drive: pulley 0 = driver, 1 = driven).
     pub contact_nodes: Vec<Vec<usize>>,
     /// Radius of each pulley's contact surface \[m\]: the path radius plus the penalty
     /// penetration `p0` under the mounting pressure `T0/R`, so that the belt mounted with
@@ -97,12 +97,35 @@ impl BeltFe {
         let g = &config.geometry;
         let path = BeltPath::two_pulleys(g.center_distance, g.radius_driver, g.radius_driven)?;
         // element lengths: each piece divided into the configured number of elements
-        let mut s = Vec::new();
-        for piece in path.pieces() {
-            let n = match piece.segment {
+        let counts: Vec<usize> = path
+            .pieces()
+            .iter()
+            .map(|piece| match piece.segment {
                 fe_model::generate::belt_path::Segment::Span { .. } => config.mesh.span_elements,
                 fe_model::generate::belt_path::Segment::Arc { .. } => config.mesh.arc_elements,
-            };
+            })
+            .collect();
+        Self::on_path(config, path, &counts)
+    }
+
+    /// Build the loop on any open-belt `path` (N pulleys, either wrap side), piece `k` of
+    /// [`BeltPath::pieces`] divided into `elements[k]` equal elements. The section, pre-tension,
+    /// mesh margin, contact and damping come from `config`; its `geometry` and
+    /// `driven_inertia` are not used (the layout's path and pulleys replace them), and the
+    /// caller validates the rest of `config`.
+    pub fn on_path(
+        config: &BeltDriveConfig,
+        path: BeltPath,
+        elements: &[usize],
+    ) -> Result<Self, FlowError> {
+        if elements.len() != path.pieces().len() || elements.iter().any(|&n| n < 1) {
+            return Err(invalid(
+                "belt mesh",
+                "one element count (≥ 1) per path piece is needed",
+            ));
+        }
+        let mut s = Vec::new();
+        for (piece, &n) in path.pieces().iter().zip(elements) {
             for k in 0..n {
                 s.push(piece.s_start + piece.length * k as f64 / n as f64);
             }
@@ -169,7 +192,7 @@ impl BeltFe {
             beta * elastic[(i, j)] + if i == j { alpha * mass[i] } else { 0.0 }
         });
         let margin = config.mesh.contact_margin_nodes;
-        let contact_nodes = (0..2)
+        let contact_nodes = (0..path.pulleys().len())
             .map(|p| {
                 let (a, len) = path.arc_of(p).unwrap_or((0.0, 0.0));
                 // nodes on the arc (both ends) plus `margin` nodes beyond each end

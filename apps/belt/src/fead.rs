@@ -1,0 +1,202 @@
+//! `flowmbd-belt fead`: a passenger-car front-end accessory drive with an automatic tensioner
+//! over an engine-speed sweep (issue 17 item 5). The drive, the model and the sweep live in
+//! `drives::fead`; this module reads the configuration, runs it and writes the results.
+
+use drives::fead::{FeadConfig, FeadFailureOrInvalid, FeadSummary, run_fead};
+use flowmbd_cli::plot::{LinePlot, Series, Style};
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
+use std::process::ExitCode;
+
+/// Command-line arguments.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Engine speeds [rpm], comma separated (replaces the configured sweep).
+    #[arg(long, value_delimiter = ',')]
+    pub rpm: Option<Vec<f64>>,
+}
+
+struct Fead {
+    args: Args,
+}
+
+const MEANING: &str = "A serpentine front-end accessory drive (six pulleys: crankshaft, power \
+steering, alternator, tensioner idler on a spring-loaded arm, water pump, a/c compressor) run on \
+the flowing-material belt model over an engine-speed sweep. The crank turns at the mean speed \
+plus its firing-order fluctuation; each accessory carries its load torque. Per engine speed, \
+after a ramp and a settling time, a window is observed: the tensioner arm angle (min/mean/max, \
+rad), every span's tension extremes (N), each pulley's speed loss against the crank (%, creep \
+and slip), the drive report at the window's end (slip arcs, hub loads, gross slip) and every \
+span's first transverse natural frequency from the travelling-string formula with the computed \
+span tension and belt speed, to be read against the engine orders (the Campbell diagram: a \
+span resonates where an order line crosses its frequency). The defaults are a plausible drive, \
+not one published engine (see drives::fead).";
+
+impl Study for Fead {
+    type Config = FeadConfig;
+    type Summary = FeadSummary;
+    const APP: &'static str = "belt";
+    const NAME: &'static str = "fead";
+
+    fn meaning(&self) -> &'static str {
+        MEANING
+    }
+
+    fn apply_overrides(&self, c: &mut FeadConfig) {
+        if let Some(r) = &self.args.rpm {
+            c.engine.speeds_rpm = r.clone();
+        }
+    }
+
+    fn run(&self, c: &FeadConfig, ctx: &mut StudyContext) -> Result<FeadSummary, StudyError> {
+        let n = c.engine.speeds_rpm.len();
+        let progress = ctx.progress(n as f64, "engine speeds");
+        let result = run_fead(c, |p| progress.set(p.point as f64 + p.t / p.duration));
+        progress.finish();
+        let s = match result {
+            Ok(s) => s,
+            Err(e) => {
+                return Err(match *e {
+                    FeadFailureOrInvalid::Invalid(f) => StudyError::Input(f),
+                    FeadFailureOrInvalid::Build(b) => StudyError::numerical(b),
+                    FeadFailureOrInvalid::Numerical(f) => StudyError::Numerical {
+                        message: format!("fead sweep: {}", f.error),
+                        partial: serde_json::to_value(&f.partial).ok(),
+                    },
+                });
+            }
+        };
+        write_outputs(ctx, &s)?;
+        Ok(s)
+    }
+}
+
+/// CSV table and plots of the sweep.
+fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> {
+    let Some(first) = s.points.first() else {
+        return Ok(());
+    };
+    let mut header: Vec<String> = vec![
+        "engine_speed_rpm".into(),
+        "belt_speed_m_per_s".into(),
+        "arm_angle_min_rad".into(),
+        "arm_angle_mean_rad".into(),
+        "arm_angle_max_rad".into(),
+        "gross_slip_flag".into(),
+    ];
+    for k in 0..first.spans.len() {
+        header.push(format!("span{k}_tension_min_N"));
+        header.push(format!("span{k}_tension_max_N"));
+        header.push(format!("span{k}_frequency1_Hz"));
+    }
+    for k in 0..first.pulleys.len() {
+        header.push(format!("pulley{k}_slip_percent"));
+        header.push(format!("pulley{k}_torque_N_m"));
+        header.push(format!("pulley{k}_hub_load_x_N"));
+        header.push(format!("pulley{k}_hub_load_y_N"));
+    }
+    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut csv = ctx.out.csv("fead_sweep.csv", &refs)?;
+    for p in &s.points {
+        let mut row = vec![
+            p.engine_rpm,
+            p.belt_speed,
+            p.arm_angle.min,
+            p.arm_angle.mean,
+            p.arm_angle.max,
+            f64::from(u8::from(p.gross_slip)),
+        ];
+        for sp in &p.spans {
+            row.extend([sp.tension.min, sp.tension.max, sp.frequency_1_hz]);
+        }
+        for (k, pl) in p.pulleys.iter().enumerate() {
+            let hub = p
+                .report
+                .pulleys
+                .get(k)
+                .map_or([f64::NAN; 2], |q| q.hub_load);
+            row.extend([pl.slip_percent, pl.torque_mean, hub[0], hub[1]]);
+        }
+        csv.row(&row)?;
+    }
+    csv.finish()?;
+    let rpm: Vec<f64> = s.points.iter().map(|p| p.engine_rpm).collect();
+    let series = |name: String, y: Vec<f64>| Series {
+        name,
+        points: rpm.iter().copied().zip(y).collect(),
+        style: Style::LinePoints,
+    };
+    // tensioner arm motion
+    let mut arm = LinePlot::new(
+        "Tensioner arm angle",
+        "engine speed [rpm]",
+        "arm angle [deg]",
+    );
+    for (name, f) in [
+        (
+            "min",
+            (|p: &drives::fead::FeadPoint| p.arm_angle.min) as fn(&drives::fead::FeadPoint) -> f64,
+        ),
+        ("mean", |p| p.arm_angle.mean),
+        ("max", |p| p.arm_angle.max),
+    ] {
+        arm.series.push(series(
+            name.into(),
+            s.points.iter().map(|p| f(p).to_degrees()).collect(),
+        ));
+    }
+    arm.save(&ctx.out.path("arm_angle"))?;
+    // span tension extremes
+    let mut ten = LinePlot::new("Span tension extremes", "engine speed [rpm]", "tension [N]");
+    for (k, sp) in first.spans.iter().enumerate() {
+        let name = format!("{} → {}", sp.from, sp.to);
+        ten.series.push(series(
+            format!("{name} min"),
+            s.points.iter().map(|p| p.spans[k].tension.min).collect(),
+        ));
+        ten.series.push(series(
+            format!("{name} max"),
+            s.points.iter().map(|p| p.spans[k].tension.max).collect(),
+        ));
+    }
+    ten.save(&ctx.out.path("span_tension"))?;
+    // slip per pulley
+    let mut slip = LinePlot::new(
+        "Speed loss against the crank",
+        "engine speed [rpm]",
+        "1 − ωR/(ω_c R_c) [%]",
+    );
+    for (k, pl) in first.pulleys.iter().enumerate().skip(1) {
+        slip.series.push(series(
+            pl.name.clone(),
+            s.points.iter().map(|p| p.pulleys[k].slip_percent).collect(),
+        ));
+    }
+    slip.save(&ctx.out.path("slip"))?;
+    // Campbell diagram: span frequencies and engine orders
+    let mut camp = LinePlot::new(
+        "Campbell diagram: span first transverse frequency and engine orders",
+        "engine speed [rpm]",
+        "frequency [Hz]",
+    );
+    for (k, sp) in first.spans.iter().enumerate() {
+        camp.series.push(series(
+            format!("span {} → {}", sp.from, sp.to),
+            s.points.iter().map(|p| p.spans[k].frequency_1_hz).collect(),
+        ));
+    }
+    for &o in &s.orders {
+        camp.series.push(Series::line(
+            format!("order {o}"),
+            rpm.iter().map(|&r| (r, o * r / 60.0)).collect(),
+        ));
+    }
+    camp.save(&ctx.out.path("campbell"))?;
+    Ok(())
+}
+
+/// Run the study under the app conventions.
+pub fn run(args: &Args) -> ExitCode {
+    run_study(&Fead { args: args.clone() }, &args.common)
+}
