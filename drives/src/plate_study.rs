@@ -278,6 +278,8 @@ pub struct PlateStudySummary {
     pub initial_tension: ByMeasure,
     /// Mean span membrane force after the initial static solve \[N\].
     pub initial_membrane_force: f64,
+    /// What the numbers mean ([`PLATE_MEANING`]).
+    pub meaning: String,
 }
 
 /// The wide-pulley case of the comparison between the plate belt and the planar ANCF belt
@@ -597,6 +599,7 @@ fn summarize(
             mean(&|x| x.tension[2]),
         ]),
         initial_membrane_force: mean(&|x| x.membrane_force),
+        meaning: PLATE_MEANING.to_string(),
     }
 }
 

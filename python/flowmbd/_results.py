@@ -13,11 +13,20 @@ def _is_number(x: Any) -> bool:
     return (isinstance(x, (int, float)) and not isinstance(x, bool)) or x is None
 
 
+#: Keys of small geometric vectors (a force or a position with 2 or 3 components): they stay
+#: plain lists, so that a summary's per-point objects compare with ``==`` like the CLI's JSON.
+VECTOR_KEYS = frozenset({"force", "hub_load", "position", "center"})
+
+
 def to_result(value: Any) -> Any:
     """Convert decoded JSON: numeric lists (``null`` = NaN) become float arrays, nested
-    numeric lists become 2-D arrays, everything else is kept."""
+    numeric lists become 2-D arrays, geometric vectors under :data:`VECTOR_KEYS` stay lists,
+    everything else is kept."""
     if isinstance(value, dict):
-        return {k: to_result(v) for k, v in value.items()}
+        return {
+            k: v if k in VECTOR_KEYS and isinstance(v, list) and len(v) <= 3 else to_result(v)
+            for k, v in value.items()
+        }
     if isinstance(value, list):
         if value and all(_is_number(x) for x in value):
             return np.array([np.nan if x is None else x for x in value], dtype=float)

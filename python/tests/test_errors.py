@@ -58,10 +58,12 @@ def test_bad_matrices():
 
 
 def test_numerical_failure_has_the_clis_partial_results(cli, tmp_path):
-    # 60 N m is beyond the drive's traction (Ribaric Table 6-1: gross slip): the integration
-    # fails after the 0 N m point; reference: the CLI's failed summary.json (exit code 1)
+    # 10 N m cannot settle within max_hold = 0.06 s (its ramp alone takes 0.1 s), while the
+    # 0 N m point is steady after the long spin-up: the study fails after one point (gross slip
+    # is a result, not a failure, since issue 17); reference: the CLI's failed summary.json
+    # (exit code 1)
     (tmp_path / "slip.toml").write_text(
-        "omegas = [62.8]\n[procedure]\ntorques = [0.0, 60.0]\nmax_hold = 0.5\n"
+        "omegas = [62.8]\n[procedure]\ntorques = [0.0, 10.0]\nmax_hold = 0.06\nspin_up = 1.5\n"
     )
     code, _, err = cli("belt", "speed-loss", "--config", str(tmp_path / "slip.toml"))
     assert code == 1, err
@@ -69,7 +71,8 @@ def test_numerical_failure_has_the_clis_partial_results(cli, tmp_path):
     assert ref["status"] == "failed"
     with pytest.raises(flowmbd.NumericalError) as e:
         flowmbd.belt.speed_loss(omega=None, torques=None, config={
-            "omegas": [62.8], "procedure": {"torques": [0.0, 60.0], "max_hold": 0.5}})
+            "omegas": [62.8],
+            "procedure": {"torques": [0.0, 10.0], "max_hold": 0.06, "spin_up": 1.5}})
     assert str(e.value) == ref["error"]
     assert_same(e.value.partial, ref["partial"])
     assert len(e.value.partial["points"]) == 1

@@ -48,7 +48,7 @@ fn holes(study: &str, text: &str, dir: &Path) -> Vec<String> {
 #[test]
 fn every_table_rejects_an_unknown_key() {
     let dir = tmp("keys");
-    for study in ["speed-loss", "ancf", "wave", "demo", "plate"] {
+    for study in ["speed-loss", "ancf", "wave", "demo", "plate", "fead"] {
         let (code, text, err) = run(&[study, "--print-config"]);
         assert_eq!(code, 0, "{err}");
         let h = holes(study, &text, &dir);

@@ -177,6 +177,7 @@ fn every_table_rejects_an_unknown_key() {
         "sweep",
         "pressure",
         "rotating-modes",
+        "dips",
     ] {
         let (code, text, err) = outcome(&run(&[study, "--print-config"]));
         assert_eq!(code, 0, "{err}");
