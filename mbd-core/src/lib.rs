@@ -25,6 +25,7 @@
 //!   reactions, projections;
 //! * [`newton`]: the one Newton–Raphson solver (line search, load stepping, active-set passes,
 //!   report) behind every static solve of the workspace, extension point [`newton::NewtonProblem`];
+//! * [`workspace`]: [`Workspace`], the caller-owned scratch of a model's hot methods;
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
 //!   [`history`]: CSV time histories;
 //! * [`validate`]: the one validation shape ([`Validate`], [`InvalidField`] with the field path)
@@ -66,6 +67,7 @@ pub mod integrators;
 pub mod linalg;
 pub mod system;
 pub mod validate;
+pub mod workspace;
 
 pub use error::MbdError;
 pub use integrators::{
@@ -74,6 +76,7 @@ pub use integrators::{
 };
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub use validate::{InvalidField, Validate};
+pub use workspace::Workspace;
 pub mod body;
 pub mod composite;
 pub mod constraints;

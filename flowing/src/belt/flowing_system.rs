@@ -40,6 +40,7 @@ use super::statics::dense_equilibrium;
 use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
+use mbd_core::Workspace;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
 /// A contact node with its rows of the basis.
@@ -330,7 +331,7 @@ impl FlowingBelt {
         // R = −f over the modal rows, J = K_t restricted to them
         dense_equilibrium("belt", m, m, 1, |z, r| {
             q[1..=m].copy_from_slice(z);
-            still.forces(0.0, &q, &v, &mut f)?;
+            still.forces(0.0, &q, &v, &mut f, &mut mbd_core::Workspace::new())?;
             for i in 0..m {
                 r[i] = -f[i + 1];
             }
@@ -445,7 +446,14 @@ impl SecondOrderSystem for FlowingBelt {
         Ok(SysMatrix::Dense(mm))
     }
 
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let m = self.m;
         let (z, zd, vb) = (&q[1..=m], &v[1..=m], v[0]);
         let (head, tail) = f.split_at_mut(m + 1);
@@ -489,6 +497,7 @@ impl SecondOrderSystem for FlowingBelt {
         t: f64,
         q: &[f64],
         v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let (k, c) = self.tangent(t, q, v);
         Ok(Some(ForceTangent {
