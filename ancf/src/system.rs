@@ -7,6 +7,7 @@ use crate::element::Element;
 use crate::error::{AncfError, invalid};
 use crate::mesh::Mesh;
 use faer::sparse::{SparseColMat, Triplet};
+use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use std::sync::Arc;
@@ -235,7 +236,14 @@ impl<E: Element> SecondOrderSystem for AncfSystem<E> {
     fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
         Ok(SysMatrix::Sparse(self.mesh.mass_matrix()))
     }
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         self.mesh.elastic_forces(q, f);
         for ((fi, g), l) in f.iter_mut().zip(&self.gravity_forces).zip(&self.load) {
             *fi += g + l;
@@ -250,6 +258,7 @@ impl<E: Element> SecondOrderSystem for AncfSystem<E> {
         t: f64,
         q: &[f64],
         v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let pat = self.mesh.pattern();
         let mut k = pat.zeros();

@@ -35,6 +35,7 @@ use ancf::belt_drive::{
 use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
 use flowing::belt::model::mounting_penetration;
 use flowing::belt::{BeltDriveConfig, Schedule};
+use mbd_core::Workspace;
 use mbd_core::integrators::State;
 use mbd_core::system::ForceTangent;
 use mbd_core::validate::{InvalidField, Validate};
@@ -302,10 +303,17 @@ impl SecondOrderSystem for AncfDrive {
     fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         self.drive.mass(t, q)
     }
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let omegas = self.omegas(t, v);
         let loads = [0.0, self.load.value(t)];
-        self.drive.forces_with(q, v, &omegas, &loads, f);
+        self.drive.forces_with(q, v, &omegas, &loads, f, ws);
         Ok(())
     }
     fn force_tangent(
@@ -313,9 +321,10 @@ impl SecondOrderSystem for AncfDrive {
         t: f64,
         q: &[f64],
         v: &[f64],
+        ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let omegas = self.omegas(t, v);
-        Ok(Some(self.drive.force_tangent_with(q, v, &omegas)))
+        Ok(Some(self.drive.force_tangent_with(q, v, &omegas, ws)))
     }
 }
 

@@ -172,8 +172,11 @@ fn two_pulley_layout_is_the_table_6_1_model() {
     v[0] = 3.1;
     v[n - 1] = 61.0;
     let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
-    layout.forces(0.3, &q, &v, &mut fa).unwrap();
-    two.forces(0.3, &q, &v, &mut fb).unwrap();
+    layout
+        .forces(0.3, &q, &v, &mut fa, &mut mbd_core::Workspace::new())
+        .unwrap();
+    two.forces(0.3, &q, &v, &mut fb, &mut mbd_core::Workspace::new())
+        .unwrap();
     let scale = fb.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     for i in 0..n {
         assert!(

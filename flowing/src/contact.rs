@@ -38,6 +38,7 @@ use crate::travelling::AxialMotion;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, MatRef};
 use fe_model::dense_modes;
+use mbd_core::Workspace;
 use mbd_core::integrators::{
     DormandPrince, Event, EventAction, Stabilization, State, accelerations, project_positions,
     project_velocities,
@@ -434,7 +435,14 @@ impl SecondOrderSystem for ContactString {
         Ok(SysMatrix::Dense(self.m_r.clone()))
     }
 
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let (s, a) = self.motion.prescribed(t).ok_or_else(|| MbdError::Model {
             t,
             message: "axial motion must be prescribed".into(),

@@ -4,6 +4,7 @@
 use crate::error::{FlowError, invalid};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, c64};
+use mbd_core::Workspace;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 
 /// `M q̈ + G q̇ + K q = 0` with constant dense matrices (`M` symmetric positive definite).
@@ -203,7 +204,14 @@ impl SecondOrderSystem for GyroscopicSystem {
         Ok(SysMatrix::Dense(self.mass.clone()))
     }
 
-    fn forces(&self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        _t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let n = self.dim();
         for i in 0..n {
             let mut s = 0.0;

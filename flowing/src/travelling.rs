@@ -18,6 +18,7 @@ use crate::error::{FlowError, invalid};
 use crate::gyroscopic::GyroscopicSystem;
 use crate::modal::{ModalBasis, sys_mul};
 use faer::Mat;
+use mbd_core::Workspace;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use std::f64::consts::PI;
 
@@ -310,7 +311,14 @@ impl SecondOrderSystem for FlowingString {
         })))
     }
 
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let k = self.n_modes();
         let (s, a) = self.axial_state(t, v);
         if !(s.is_finite() && a.is_finite()) {

@@ -7,7 +7,7 @@
 //! constraint blocks are assembled block-diagonally, followed by the rows of the couplings,
 //! which act on the global vectors.
 
-use crate::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
+use crate::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix, Workspace};
 use faer::sparse::Triplet;
 
 /// Output of a [`Coupling`]: residuals, Jacobian entries (local row, global velocity column,
@@ -246,11 +246,26 @@ impl SecondOrderSystem for CompositeSystem<'_> {
         self.block_diag(blocks, Vec::new(), self.n_v, self.n_v, t)
     }
 
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    /// The parts' forces, each with its own workspace ([`Workspace::parts`]).
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
+        let part_ws = ws.parts(self.parts.len());
         for (k, p) in self.parts.iter().enumerate() {
             let o = self.v_off[k];
-            p.forces(t, self.qs(k, q), self.vs(k, v), &mut f[o..o + p.n_v()])
-                .map_err(|e| prefix(&self.names[k], e))?;
+            p.forces(
+                t,
+                self.qs(k, q),
+                self.vs(k, v),
+                &mut f[o..o + p.n_v()],
+                &mut part_ws[k],
+            )
+            .map_err(|e| prefix(&self.names[k], e))?;
         }
         Ok(())
     }
@@ -262,14 +277,16 @@ impl SecondOrderSystem for CompositeSystem<'_> {
         t: f64,
         q: &[f64],
         v: &[f64],
+        ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let mut kb = Vec::new();
         let mut cb = Vec::new();
+        let part_ws = ws.parts(self.parts.len());
         for (k, p) in self.parts.iter().enumerate() {
             let (qk, vk) = (self.qs(k, q), self.vs(k, v));
-            let tg = match p.force_tangent(t, qk, vk)? {
+            let tg = match p.force_tangent(t, qk, vk, &mut part_ws[k])? {
                 Some(tg) => tg,
-                None => fd_tangent(p.as_ref(), t, qk, vk)?,
+                None => fd_tangent(p.as_ref(), t, qk, vk, &mut part_ws[k])?,
             };
             kb.push((self.v_off[k], self.v_off[k], tg.stiffness));
             cb.push((self.v_off[k], self.v_off[k], tg.damping));
@@ -419,6 +436,7 @@ fn fd_tangent(
     t: f64,
     q: &[f64],
     v: &[f64],
+    ws: &mut Workspace,
 ) -> Result<ForceTangent, MbdError> {
-    crate::system::finite_difference_tangent(p, t, q, v)
+    crate::system::finite_difference_tangent(p, t, q, v, ws)
 }

@@ -27,6 +27,7 @@
 //!   report) behind every static solve of the workspace, extension point [`newton::NewtonProblem`];
 //! * [`tensioner`]: the pivoted-arm belt tensioner (spring with preload, damper, dry
 //!   friction) shared by the belt models;
+//! * [`workspace`]: [`Workspace`], the caller-owned scratch of a model's hot methods;
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
 //!   [`history`]: CSV time histories;
 //! * [`validate`]: the one validation shape ([`Validate`], [`InvalidField`] with the field path)
@@ -68,6 +69,7 @@ pub mod integrators;
 pub mod linalg;
 pub mod system;
 pub mod validate;
+pub mod workspace;
 
 pub use error::MbdError;
 pub use integrators::{
@@ -76,6 +78,7 @@ pub use integrators::{
 };
 pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
 pub use validate::{InvalidField, Validate};
+pub use workspace::Workspace;
 pub mod body;
 pub mod composite;
 pub mod constraints;

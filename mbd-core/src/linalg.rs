@@ -23,7 +23,6 @@ use faer::sparse::linalg::lu::{
 };
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Mat, MatMut, Par};
-use std::sync::Mutex;
 
 impl SysMatrix {
     /// `y = A x` (overwrites `y`).
@@ -257,8 +256,9 @@ struct SparsePath {
     numeric: NumericLu<usize, f64>,
     /// Scratch of the numeric factorisation.
     factor_mem: MemBuffer,
-    /// Scratch of the solves (one right-hand side; more allocate).
-    solve_mem: Mutex<MemBuffer>,
+    /// Scratch of the one-column solves of [`KktSolver::solve`] (`&mut self`; taken out while
+    /// a solve runs). Several columns ([`KktSolver::solve_columns`]) allocate their own.
+    solve_mem: Option<MemBuffer>,
 }
 
 impl SparsePath {
@@ -327,7 +327,7 @@ impl SparsePath {
         let factor_mem = MemBuffer::new(
             symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
         );
-        let solve_mem = Mutex::new(MemBuffer::new(
+        let solve_mem = Some(MemBuffer::new(
             symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
         ));
         let mut keys: Vec<BlockKey> = blocks.iter().map(|(_, b)| BlockKey::of(b)).collect();
@@ -412,12 +412,14 @@ impl SparsePath {
             })
     }
 
-    fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+    /// Solves in place with the scratch `mem` (sized for one column) when given and `rhs` has
+    /// one column, with a scratch allocated here otherwise.
+    fn solve_in_place(&self, rhs: MatMut<'_, f64>, mem: Option<&mut MemBuffer>) {
         let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
         let ncols = rhs.ncols();
-        match self.solve_mem.try_lock() {
-            Ok(mut mem) if ncols == 1 => {
-                lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem))
+        match mem {
+            Some(mem) if ncols == 1 => {
+                lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(mem))
             }
             _ => {
                 let mut mem =
@@ -587,8 +589,20 @@ impl KktSolver {
     }
 
     /// Solves for several right-hand sides at once: the columns of `rhs` (`(n + n_c) × k`) hold
-    /// `[b; c]` on input and `[x; μ]` on output (e.g. the explicit inverse from the identity).
-    pub fn solve_columns(&self, mut rhs: faer::MatMut<'_, f64>, t: f64) -> Result<(), MbdError> {
+    /// `[b; c]` on input and `[x; μ]` on output (e.g. the explicit inverse from the identity);
+    /// the sparse path allocates the solve scratch for `k` columns.
+    pub fn solve_columns(&self, rhs: faer::MatMut<'_, f64>, t: f64) -> Result<(), MbdError> {
+        self.solve_with(rhs, t, None)
+    }
+
+    /// [`solve_columns`](Self::solve_columns) with the one-column scratch `mem` of the sparse
+    /// path.
+    fn solve_with(
+        &self,
+        mut rhs: faer::MatMut<'_, f64>,
+        t: f64,
+        mem: Option<&mut MemBuffer>,
+    ) -> Result<(), MbdError> {
         let dim = self.n + self.n_c;
         if rhs.nrows() != dim {
             return Err(MbdError::Model {
@@ -598,7 +612,7 @@ impl KktSolver {
         }
         match (&self.factor, &self.sparse) {
             (Some(Factor::Dense(lu)), _) => lu.solve_in_place(rhs.as_mut()),
-            (Some(Factor::Sparse), Some(path)) => path.solve_in_place(rhs.as_mut()),
+            (Some(Factor::Sparse), Some(path)) => path.solve_in_place(rhs.as_mut(), mem),
             _ => {
                 return Err(MbdError::Model {
                     t,
@@ -616,8 +630,10 @@ impl KktSolver {
     }
 
     /// Solves with the current factorisation: `rhs` holds `[b; c]` on input (length
-    /// `n + n_c`) and `[x; μ]` on output.
-    pub fn solve(&self, rhs: &mut [f64], t: f64) -> Result<(), MbdError> {
+    /// `n + n_c`) and `[x; μ]` on output. `&mut self`: the sparse path solves with the
+    /// solver's own scratch (allocated with the symbolic factorisation), so repeated solves
+    /// do not allocate.
+    pub fn solve(&mut self, rhs: &mut [f64], t: f64) -> Result<(), MbdError> {
         let dim = self.n + self.n_c;
         if rhs.len() != dim {
             return Err(MbdError::Model {
@@ -625,7 +641,16 @@ impl KktSolver {
                 message: format!("right-hand side has length {}, expected {dim}", rhs.len()),
             });
         }
-        self.solve_columns(MatMut::from_column_major_slice_mut(rhs, dim, 1), t)
+        let mut mem = self.sparse.as_mut().and_then(|p| p.solve_mem.take());
+        let solved = self.solve_with(
+            MatMut::from_column_major_slice_mut(rhs, dim, 1),
+            t,
+            mem.as_mut(),
+        );
+        if let Some(p) = self.sparse.as_mut() {
+            p.solve_mem = mem;
+        }
+        solved
     }
 }
 

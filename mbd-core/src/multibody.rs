@@ -17,7 +17,7 @@ use crate::kinematics::tilde::tilde;
 use crate::kinematics::tilde::{get3, get4, put3, put4};
 use crate::marker::{Carrier, Marker};
 use crate::system::ForceTangent;
-use crate::{MbdError, SecondOrderSystem, SysMatrix};
+use crate::{MbdError, SecondOrderSystem, SysMatrix, Workspace};
 use faer::sparse::Triplet;
 use nalgebra::Vector3;
 
@@ -366,7 +366,14 @@ impl SecondOrderSystem for MultibodySystem {
         self.matrix_from_triplets(n, n, trip, t)
     }
 
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         f.fill(0.0);
         let kin = self.kinematics(q, Some(v));
         for (k, b) in self.bodies.iter().enumerate() {
@@ -394,6 +401,7 @@ impl SecondOrderSystem for MultibodySystem {
         t: f64,
         q: &[f64],
         v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let n = self.n_v();
         let kin = self.kinematics(q, Some(v));

@@ -5,7 +5,7 @@ use crate::integrators::State;
 use crate::linalg::KktSolver;
 use crate::newton::{self, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances};
 use crate::system::finite_difference_tangent;
-use crate::{MbdError, SecondOrderSystem};
+use crate::{MbdError, SecondOrderSystem, Workspace};
 
 /// Options of [`static_equilibrium`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,6 +60,7 @@ pub fn static_equilibrium<S: SecondOrderSystem + ?Sized>(
         kkt: KktSolver::new(),
         f: vec![0.0; n],
         phi: vec![0.0; nc],
+        ws: Workspace::new(),
     };
     let mut x = q0.to_vec();
     x.resize(q0.len() + nc, 0.0);
@@ -89,6 +90,8 @@ struct Statics<'a, S: ?Sized> {
     kkt: KktSolver,
     f: Vec<f64>,
     phi: Vec<f64>,
+    /// The model's scratch.
+    ws: Workspace,
 }
 
 impl<S: SecondOrderSystem + ?Sized> NewtonProblem for Statics<'_, S> {
@@ -103,7 +106,7 @@ impl<S: SecondOrderSystem + ?Sized> NewtonProblem for Statics<'_, S> {
         let (n, nc) = (self.f.len(), self.phi.len());
         let (q, lambda) = x.split_at(x.len() - nc);
         let v0 = &self.state.v;
-        sys.forces(t, q, v0, &mut self.f)?;
+        sys.forces(t, q, v0, &mut self.f, &mut self.ws)?;
         // rhs = [f − Dᵀλ; −Φ] = −R
         r[..n].copy_from_slice(&self.f);
         let d = if nc > 0 {
@@ -120,9 +123,9 @@ impl<S: SecondOrderSystem + ?Sized> NewtonProblem for Statics<'_, S> {
         for ri in r.iter_mut() {
             *ri = -*ri;
         }
-        let kt = match sys.force_tangent(t, q, v0)? {
+        let kt = match sys.force_tangent(t, q, v0, &mut self.ws)? {
             Some(tg) => tg.stiffness,
-            None => finite_difference_tangent(sys, t, q, v0)?.stiffness,
+            None => finite_difference_tangent(sys, t, q, v0, &mut self.ws)?.stiffness,
         };
         let kc = if nc > 0 {
             sys.constraint_force_tangent(t, q, lambda)?

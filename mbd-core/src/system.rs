@@ -14,7 +14,7 @@
 //! bodies and flowing-material models have `q̇ = v`. The integrators of [`crate`] only see this
 //! trait, so models of different crates couple in one system by composition.
 
-use crate::MbdError;
+use crate::{MbdError, Workspace};
 use faer::Mat;
 use faer::sparse::SparseColMat;
 
@@ -65,6 +65,11 @@ pub struct ForceTangent {
 }
 
 /// A constrained second-order system (see the module documentation for the equations).
+///
+/// The hot methods ([`forces`](Self::forces), [`force_tangent`](Self::force_tangent),
+/// [`dynamic_residual`](Self::dynamic_residual)) take a [`Workspace`] owned by the caller (the
+/// stepper, Newton problem or study, one per model): a model keeps its work buffers and caches
+/// there ([`Workspace::get_or_insert_with`]), never in hidden interior-mutable fields.
 ///
 /// Only the sizes, [`mass`](Self::mass) and [`forces`](Self::forces) are required; a model
 /// without constraints keeps the default constraint methods, and a model without an analytic
@@ -138,8 +143,16 @@ pub trait SecondOrderSystem {
     /// Mass matrix `M(q)` (`n_v × n_v`, symmetric positive (semi)definite).
     fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError>;
 
-    /// Generalized forces `f(t, q, v)` (length `n_v`), written into `f` (overwrite, not add).
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError>;
+    /// Generalized forces `f(t, q, v)` (length `n_v`), written into `f` (overwrite, not add);
+    /// `ws` is the caller's scratch for this model.
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), MbdError>;
 
     /// The dynamic residual `r = M(q) v̇ − f(t, q, v)` (length `n_v`, constraint forces
     /// excluded) of the implicit integrators' equations of motion, written into `r`; `Ok(false)`
@@ -153,16 +166,19 @@ pub trait SecondOrderSystem {
         _v: &[f64],
         _vdot: &[f64],
         _r: &mut [f64],
+        _ws: &mut Workspace,
     ) -> Result<bool, MbdError> {
         Ok(false)
     }
 
-    /// Analytic tangent of the forces, or `None` to request finite differences.
+    /// Analytic tangent of the forces, or `None` to request finite differences; `ws` is the
+    /// caller's scratch for this model (the same as for [`forces`](Self::forces)).
     fn force_tangent(
         &self,
         _t: f64,
         _q: &[f64],
         _v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         Ok(None)
     }
@@ -210,17 +226,18 @@ pub trait SecondOrderSystem {
 
 /// Dense forward-difference tangent of a model's forces: `K = −∂f/∂q` (perturbing `q` through
 /// [`SecondOrderSystem::integrate_position`], so rotations stay on their manifold) and
-/// `C = −∂f/∂v`; `2 n_v + 1` force evaluations. The fallback of the implicit integrators for
-/// models without [`SecondOrderSystem::force_tangent`].
+/// `C = −∂f/∂v`; `2 n_v + 1` force evaluations with the model's workspace `ws`. The fallback
+/// of the implicit integrators for models without [`SecondOrderSystem::force_tangent`].
 pub fn finite_difference_tangent<S: SecondOrderSystem + ?Sized>(
     sys: &S,
     t: f64,
     q: &[f64],
     v: &[f64],
+    ws: &mut Workspace,
 ) -> Result<ForceTangent, MbdError> {
     let n = sys.n_v();
     let mut f0 = vec![0.0; n];
-    sys.forces(t, q, v, &mut f0)?;
+    sys.forces(t, q, v, &mut f0, ws)?;
     let mut k = Mat::<f64>::zeros(n, n);
     let mut c = Mat::<f64>::zeros(n, n);
     let mut fp = vec![0.0; n];
@@ -232,13 +249,13 @@ pub fn finite_difference_tangent<S: SecondOrderSystem + ?Sized>(
         e[j] = eps;
         sys.integrate_position(q, &e, &mut qp);
         e[j] = 0.0;
-        sys.forces(t, &qp, v, &mut fp)?;
+        sys.forces(t, &qp, v, &mut fp, ws)?;
         for i in 0..n {
             k[(i, j)] = -(fp[i] - f0[i]) / eps;
         }
         let ev = 1e-7 * (1.0 + v[j].abs());
         vp[j] = v[j] + ev;
-        sys.forces(t, q, &vp, &mut fp)?;
+        sys.forces(t, q, &vp, &mut fp, ws)?;
         vp[j] = v[j];
         for i in 0..n {
             c[(i, j)] = -(fp[i] - f0[i]) / ev;

@@ -206,7 +206,8 @@ fn force_elements_derive_from_their_potential() {
     .unwrap();
     let zero_v = vec![0.0; 12];
     let mut f = vec![0.0; 12];
-    sys.forces(s.t, &s.q, &zero_v, &mut f).unwrap();
+    sys.forces(s.t, &s.q, &zero_v, &mut f, &mut mbd_core::Workspace::new())
+        .unwrap();
     for dof in 0..12 {
         let mut dq = vec![0.0; 12];
         let h = 1e-6;

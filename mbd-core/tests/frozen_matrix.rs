@@ -5,6 +5,7 @@
 //! exact matrix solves the step exactly, whatever the predictor and the solver).
 
 use faer::Mat;
+use mbd_core::Workspace;
 use mbd_core::integrators::{
     AlphaCoefficients, AlphaConfig, AlphaCorrection, AlphaStepper, DriftTrigger, NewtonUpdate,
     State, StepCorrection, Stepper,
@@ -32,7 +33,14 @@ impl SecondOrderSystem for Chain {
     fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
         Ok(dense(M))
     }
-    fn forces(&self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        _t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         for i in 0..2 {
             f[i] = -(0..2).map(|j| K[i][j] * q[j] + C[i][j] * v[j]).sum::<f64>();
         }
@@ -43,6 +51,7 @@ impl SecondOrderSystem for Chain {
         _t: f64,
         _q: &[f64],
         _v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         Ok(Some(ForceTangent {
             stiffness: dense(K),
@@ -265,7 +274,14 @@ impl SecondOrderSystem for StickSlip {
     fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
         Ok(SysMatrix::Dense(Mat::from_fn(1, 1, |_, _| 1.0)))
     }
-    fn forces(&self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        _t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         f[0] = -100.0 * q[0] + Self::friction(v[0]).0;
         Ok(())
     }
@@ -274,6 +290,7 @@ impl SecondOrderSystem for StickSlip {
         _t: f64,
         _q: &[f64],
         v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let d = Self::friction(v[0]).1;
         Ok(Some(ForceTangent {

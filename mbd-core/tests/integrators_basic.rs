@@ -1,6 +1,7 @@
 //! Basic checks of the integrators on tiny hand-written systems with analytic references.
 
 use faer::Mat;
+use mbd_core::Workspace;
 use mbd_core::integrators::{
     AlphaConfig, DormandPrince, Event, GeneralizedAlpha, JacobianMode, NewtonUpdate, Rk4, State,
 };
@@ -32,7 +33,14 @@ impl SecondOrderSystem for CartPendulum {
             if i == j { self.m } else { 0.0 }
         })))
     }
-    fn forces(&self, _t: f64, _q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         f[0] = 0.0;
         f[1] = -self.m * self.g;
         Ok(())

@@ -8,6 +8,7 @@
 //! dumbbell, `ω ≈ sqrt(2 k_s / m)`.
 
 use faer::sparse::{SparseColMat, Triplet};
+use mbd_core::Workspace;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Rk4, State};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 use std::f64::consts::PI;
@@ -70,7 +71,14 @@ impl SecondOrderSystem for Chain {
             SparseColMat::try_new_from_triplets(n, n, &t).unwrap(),
         ))
     }
-    fn forces(&self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        _t: f64,
+        q: &[f64],
+        _v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         SysMatrix::Sparse(self.stiffness()).mul_vec(q, f);
         f.iter_mut().for_each(|x| *x = -*x);
         Ok(())
@@ -80,6 +88,7 @@ impl SecondOrderSystem for Chain {
         _t: f64,
         _q: &[f64],
         _v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let n = self.n_q();
         Ok(Some(ForceTangent {

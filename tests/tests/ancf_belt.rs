@@ -180,7 +180,10 @@ fn system_tangent_with_contact_matches_finite_differences() {
     };
     let sys = AncfSystem::new(mesh).with_force(Box::new(pc));
     let nd = sys.n_q();
-    let tg = sys.force_tangent(0.0, &q, &v).unwrap().unwrap();
+    let tg = sys
+        .force_tangent(0.0, &q, &v, &mut mbd_core::Workspace::new())
+        .unwrap()
+        .unwrap();
     let (k, c) = (tg.stiffness.to_dense(), tg.damping.to_dense());
     let kmax = (0..nd)
         .flat_map(|i| (0..nd).map(move |j| (i, j)))
@@ -197,8 +200,10 @@ fn system_tangent_with_contact_matches_finite_differences() {
         let (mut qp, mut qm) = (q.clone(), q.clone());
         qp[j] += h;
         qm[j] -= h;
-        sys.forces(0.0, &qp, &v, &mut fp).unwrap();
-        sys.forces(0.0, &qm, &v, &mut fm).unwrap();
+        sys.forces(0.0, &qp, &v, &mut fp, &mut mbd_core::Workspace::new())
+            .unwrap();
+        sys.forces(0.0, &qm, &v, &mut fm, &mut mbd_core::Workspace::new())
+            .unwrap();
         for i in 0..nd {
             let fd = -(fp[i] - fm[i]) / (2.0 * h);
             assert!(
@@ -211,8 +216,10 @@ fn system_tangent_with_contact_matches_finite_differences() {
         let (mut vp, mut vm) = (v.clone(), v.clone());
         vp[j] += hv;
         vm[j] -= hv;
-        sys.forces(0.0, &q, &vp, &mut fp).unwrap();
-        sys.forces(0.0, &q, &vm, &mut fm).unwrap();
+        sys.forces(0.0, &q, &vp, &mut fp, &mut mbd_core::Workspace::new())
+            .unwrap();
+        sys.forces(0.0, &q, &vm, &mut fm, &mut mbd_core::Workspace::new())
+            .unwrap();
         for i in 0..nd {
             let fd = -(fp[i] - fm[i]) / (2.0 * hv);
             assert!(

@@ -61,8 +61,16 @@ fn damped_tangent_matches_finite_differences_and_rigid_rotation_is_undamped() {
         }
     }
     let (mut f0, mut f1) = (vec![0.0; q.len()], vec![0.0; q.len()]);
-    d.forces(0.0, &q, &vec![0.0; q.len()], &mut f0).unwrap();
-    d.forces(0.0, &q, &v, &mut f1).unwrap();
+    d.forces(
+        0.0,
+        &q,
+        &vec![0.0; q.len()],
+        &mut f0,
+        &mut mbd_core::Workspace::new(),
+    )
+    .unwrap();
+    d.forces(0.0, &q, &v, &mut f1, &mut mbd_core::Workspace::new())
+        .unwrap();
     let diff = f0
         .iter()
         .zip(&f1)
@@ -78,7 +86,10 @@ fn check_tangent(spec: BeltDriveSpec) {
     let (q, v) = moving_state(&d, 0.9);
     let t = 0.5;
     let n = d.n_q();
-    let tg = d.force_tangent(t, &q, &v).unwrap().unwrap();
+    let tg = d
+        .force_tangent(t, &q, &v, &mut mbd_core::Workspace::new())
+        .unwrap()
+        .unwrap();
     let k = tg.stiffness.to_dense();
     let c = tg.damping.to_dense();
     let mut fp = vec![0.0; n];
@@ -91,9 +102,11 @@ fn check_tangent(spec: BeltDriveSpec) {
         let h = 1e-8;
         let mut qp = q.clone();
         qp[j] += h;
-        d.forces(t, &qp, &v, &mut fp).unwrap();
+        d.forces(t, &qp, &v, &mut fp, &mut mbd_core::Workspace::new())
+            .unwrap();
         qp[j] -= 2.0 * h;
-        d.forces(t, &qp, &v, &mut fm).unwrap();
+        d.forces(t, &qp, &v, &mut fm, &mut mbd_core::Workspace::new())
+            .unwrap();
         for i in 0..n {
             let fd = -(fp[i] - fm[i]) / (2.0 * h);
             worst_k = worst_k.max((fd - k[(i, j)]).abs());
@@ -101,9 +114,11 @@ fn check_tangent(spec: BeltDriveSpec) {
         let hv = 1e-7;
         let mut vp = v.clone();
         vp[j] += hv;
-        d.forces(t, &q, &vp, &mut fp).unwrap();
+        d.forces(t, &q, &vp, &mut fp, &mut mbd_core::Workspace::new())
+            .unwrap();
         vp[j] -= 2.0 * hv;
-        d.forces(t, &q, &vp, &mut fm).unwrap();
+        d.forces(t, &q, &vp, &mut fm, &mut mbd_core::Workspace::new())
+            .unwrap();
         for i in 0..n {
             let fd = -(fp[i] - fm[i]) / (2.0 * hv);
             worst_c = worst_c.max((fd - c[(i, j)]).abs());

@@ -374,7 +374,7 @@ fn clamped_strip_vibrates_at_the_euler_bernoulli_frequency() {
     let v0 = vec![0.0; sys.n_q()];
     let m = sys.mass(0.0, &qf).unwrap().to_dense();
     let k = sys
-        .force_tangent(0.0, &qf, &v0)
+        .force_tangent(0.0, &qf, &v0, &mut mbd_core::Workspace::new())
         .unwrap()
         .unwrap()
         .stiffness

@@ -17,7 +17,10 @@ use std::f64::consts::PI;
 /// Central differences of the forces against the analytic tangent at `(t, q, v)`.
 fn check_tangent(d: &PlateBeltDrive, t: f64, q: &[f64], v: &[f64]) {
     let n = d.n_q();
-    let tg = d.force_tangent(t, q, v).unwrap().unwrap();
+    let tg = d
+        .force_tangent(t, q, v, &mut mbd_core::Workspace::new())
+        .unwrap()
+        .unwrap();
     let k = tg.stiffness.to_dense();
     let c = tg.damping.to_dense();
     let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
@@ -28,18 +31,22 @@ fn check_tangent(d: &PlateBeltDrive, t: f64, q: &[f64], v: &[f64]) {
         let h = 1e-8;
         let mut qp = q.to_vec();
         qp[j] += h;
-        d.forces(t, &qp, v, &mut fp).unwrap();
+        d.forces(t, &qp, v, &mut fp, &mut mbd_core::Workspace::new())
+            .unwrap();
         qp[j] -= 2.0 * h;
-        d.forces(t, &qp, v, &mut fm).unwrap();
+        d.forces(t, &qp, v, &mut fm, &mut mbd_core::Workspace::new())
+            .unwrap();
         for i in 0..n {
             worst_k = worst_k.max((-(fp[i] - fm[i]) / (2.0 * h) - k[(i, j)]).abs());
         }
         let hv = 1e-7;
         let mut vp = v.to_vec();
         vp[j] += hv;
-        d.forces(t, q, &vp, &mut fp).unwrap();
+        d.forces(t, q, &vp, &mut fp, &mut mbd_core::Workspace::new())
+            .unwrap();
         vp[j] -= 2.0 * hv;
-        d.forces(t, q, &vp, &mut fm).unwrap();
+        d.forces(t, q, &vp, &mut fm, &mut mbd_core::Workspace::new())
+            .unwrap();
         for i in 0..n {
             worst_c = worst_c.max((-(fp[i] - fm[i]) / (2.0 * hv) - c[(i, j)]).abs());
         }

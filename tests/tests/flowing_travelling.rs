@@ -240,7 +240,8 @@ fn dynamic_axial_motion_forces_match_prescribed() {
     let mut v: Vec<f64> = (0..9).map(|i| 1e-2 * (i as f64 * 0.7).cos()).collect();
     v[8] = 12.0;
     let mut f = vec![0.0; 9];
-    dynm.forces(0.0, &q, &v, &mut f).unwrap();
+    dynm.forces(0.0, &q, &v, &mut f, &mut mbd_core::Workspace::new())
+        .unwrap();
     assert!((f[8] - (3.0 - 0.5 * 12.0)).abs() < 1e-12);
     let accel = (3.0 - 0.5 * 12.0) / 2.0;
     let pres = FlowingString::new(
@@ -255,7 +256,14 @@ fn dynamic_axial_motion_forces_match_prescribed() {
     )
     .unwrap();
     let mut g = vec![0.0; 8];
-    pres.forces(0.0, &q[..8], &v[..8], &mut g).unwrap();
+    pres.forces(
+        0.0,
+        &q[..8],
+        &v[..8],
+        &mut g,
+        &mut mbd_core::Workspace::new(),
+    )
+    .unwrap();
     for i in 0..8 {
         assert!((f[i] - g[i]).abs() < 1e-12 * (1.0 + g[i].abs()));
     }

@@ -22,6 +22,7 @@ use crate::sparse::Pattern;
 use crate::statics::run_newton;
 use faer::sparse::linalg::solvers::SymbolicLu;
 use mbd_core::SecondOrderSystem;
+use mbd_core::Workspace;
 use mbd_core::newton::{Fallback, LineSearch, NewtonOptions, NewtonProblem, Tolerances};
 
 /// Result of the initial-configuration solve.
@@ -122,6 +123,7 @@ impl BeltDrive {
             torques: vec![0.0; self.pulleys().len()],
             zero_v: vec![0.0; self.n_q()],
             iteration: 0,
+            ws: Workspace::new(),
         };
         let newton = NewtonOptions {
             max_iterations: opts.max_iterations,
@@ -169,6 +171,8 @@ struct Initial<'a> {
     f: Vec<f64>,
     torques: Vec<f64>,
     zero_v: Vec<f64>,
+    /// The drive's scratch ([`mbd_core::Workspace`]).
+    ws: Workspace,
     /// Linearisations so far (named in errors).
     iteration: usize,
 }
@@ -197,8 +201,14 @@ impl NewtonProblem for Initial<'_> {
 
     fn linearize(&mut self, q: &[f64], _load: f64, r: &mut [f64]) -> Result<(), AncfError> {
         self.iteration += 1;
-        self.drive
-            .belt_stiffness(q, &self.omegas, &self.pattern, &mut self.f, &mut self.kv);
+        self.drive.belt_stiffness(
+            q,
+            &self.omegas,
+            &self.pattern,
+            &mut self.f,
+            &mut self.kv,
+            &mut self.ws,
+        );
         let n_el = self.drive.mesh().elements().len();
         self.pattern
             .add_element(&mut self.kv, n_el, &self.hold, 1.0);
@@ -213,6 +223,7 @@ impl NewtonProblem for Initial<'_> {
             &self.omegas,
             &mut self.f,
             &mut self.torques,
+            &mut self.ws,
         );
         self.hold_and_scatter(q, r);
         Ok(())

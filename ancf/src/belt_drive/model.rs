@@ -14,10 +14,11 @@ use crate::shape;
 use crate::sparse::Pattern;
 use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact};
 use fe_model::generate::belt_path::{BeltPath, PathPulley};
+use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use nalgebra::{Point2, Vector2};
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Coordinates of one element.
 const NE: usize = 12;
@@ -25,11 +26,14 @@ const NE: usize = 12;
 /// Largest number of pulleys of one drive.
 const MAX_PULLEYS: usize = 16;
 
-/// Per-call work buffers (kept so that the force and tangent loops do not allocate).
+/// Work buffers (kept so that the force and tangent loops do not allocate) and the elastic
+/// tangent reused by [`BeltDrive::with_tangent_refresh`], in the caller's [`Workspace`] (see
+/// [`BeltDrive::scratch`]).
 struct Scratch {
     contact: ElementContact<2>,
     k_local: Vec<f64>,
     c_local: Vec<f64>,
+    elastic: ElasticCache,
 }
 
 /// A planar belt drive (see the module documentation of [`super`]).
@@ -50,9 +54,9 @@ pub struct BeltDrive {
     line: LineContact<Disk, BeltNormal, BeltFriction>,
     pattern: Pattern,
     mass_values: Vec<f64>,
-    scratch: Mutex<Scratch>,
-    elastic_cache: Mutex<ElasticCache>,
     tangent_refresh: f64,
+    /// Elastic tangent evaluations so far, over all workspaces (a statistic).
+    elastic_evaluations: AtomicUsize,
 }
 
 /// The last elastic tangent and the coordinates it was evaluated at.
@@ -60,7 +64,6 @@ struct ElasticCache {
     q: Vec<f64>,
     k: Vec<f64>,
     valid: bool,
-    evaluations: usize,
 }
 
 impl std::fmt::Debug for BeltDrive {
@@ -148,12 +151,6 @@ impl BeltDrive {
             friction: spec.contact.friction,
             rule: GaussRule::new(spec.contact.points),
         };
-        let m = NE + free.len();
-        let scratch = Mutex::new(Scratch {
-            contact: ElementContact::new(NE),
-            k_local: vec![0.0; m * m],
-            c_local: vec![0.0; m * m],
-        });
         Ok(Self {
             spec,
             path,
@@ -164,14 +161,8 @@ impl BeltDrive {
             line,
             pattern,
             mass_values,
-            scratch,
-            elastic_cache: Mutex::new(ElasticCache {
-                q: Vec::new(),
-                k: Vec::new(),
-                valid: false,
-                evaluations: 0,
-            }),
             tangent_refresh: 0.02,
+            elastic_evaluations: AtomicUsize::new(0),
         })
     }
 
@@ -217,10 +208,7 @@ impl BeltDrive {
 
     /// Number of elastic tangent evaluations so far (for statistics).
     pub fn elastic_tangent_evaluations(&self) -> usize {
-        self.elastic_cache
-            .lock()
-            .map(|c| c.evaluations)
-            .unwrap_or_else(|e| e.into_inner().evaluations)
+        self.elastic_evaluations.load(Ordering::Relaxed)
     }
 
     /// Whether the cached elastic tangent at `q_ref` may be reused at `q`.
@@ -341,8 +329,25 @@ impl BeltDrive {
             .collect()
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, Scratch> {
-        self.scratch.lock().unwrap_or_else(|e| e.into_inner())
+    /// The drive's work buffers and tangent cache in the caller's workspace `ws`, created on
+    /// first use (and anew if `ws` held those of a drive with other sizes).
+    fn scratch<'w>(&self, ws: &'w mut Workspace) -> &'w mut Scratch {
+        let m = NE + self.free.len();
+        let fresh = || Scratch {
+            contact: ElementContact::new(NE),
+            k_local: vec![0.0; m * m],
+            c_local: vec![0.0; m * m],
+            elastic: ElasticCache {
+                q: Vec::new(),
+                k: Vec::new(),
+                valid: false,
+            },
+        };
+        let s = ws.get_or_insert_with(fresh);
+        if s.k_local.len() != m * m {
+            *s = fresh();
+        }
+        s
     }
 
     /// Belt forces `Q_e + Q_c` (length `n_belt`) and the travel-sense contact torques on every
@@ -354,12 +359,13 @@ impl BeltDrive {
         omegas: &[f64],
         f: &mut [f64],
         torques: &mut [f64],
+        ws: &mut Workspace,
     ) {
         let nb = self.n_belt;
         self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
         torques.fill(0.0);
-        let mut scratch = self.lock();
-        self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
+        let scratch = self.scratch(ws);
+        self.contact_pass(q, v, omegas, false, scratch, |el, p, ec, _| {
             self.mesh.scatter_add(f, el, &ec.q, 1.0);
             torques[p] += self.spec.pulleys[p].ccw_sign() * ec.moment;
         });
@@ -375,14 +381,15 @@ impl BeltDrive {
         pat: &Pattern,
         f: &mut [f64],
         k_vals: &mut [f64],
+        ws: &mut Workspace,
     ) {
         let nb = self.n_belt;
         k_vals.fill(0.0);
         self.mesh
             .elastic_tangent_into(&q[..nb], &mut f[..nb], pat, k_vals, 1.0);
         let zero = vec![0.0; q.len()];
-        let mut scratch = self.lock();
-        self.contact_pass(q, &zero, omegas, true, &mut scratch, |el, _, ec, _| {
+        let scratch = self.scratch(ws);
+        self.contact_pass(q, &zero, omegas, true, scratch, |el, _, ec, _| {
             self.mesh.scatter_add(f, el, &ec.q, 1.0);
             pat.add_element(k_vals, el, &ec.dq_de, -1.0);
         });
@@ -399,8 +406,10 @@ impl BeltDrive {
     /// \[rad/s\] (one per pulley; see [`Self::forces_with`]).
     pub fn pulley_loads_with(&self, q: &[f64], v: &[f64], omegas: &[f64]) -> Vec<PulleyLoad> {
         let mut out = vec![PulleyLoad::default(); self.spec.pulleys.len()];
-        let mut scratch = self.lock();
-        self.contact_pass(q, v, omegas, false, &mut scratch, |_, p, ec, _| {
+        // an output (sampled, not per step): a scratch of its own
+        let mut ws = Workspace::new();
+        let scratch = self.scratch(&mut ws);
+        self.contact_pass(q, v, omegas, false, scratch, |_, p, ec, _| {
             out[p].force[0] += ec.reaction[0];
             out[p].force[1] += ec.reaction[1];
             out[p].torque += self.spec.pulleys[p].ccw_sign() * ec.moment;
@@ -558,7 +567,14 @@ impl SecondOrderSystem for BeltDrive {
             self.pattern.to_matrix(self.mass_values.clone()),
         ))
     }
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let np = self.spec.pulleys.len();
         if np > MAX_PULLEYS {
             return Err(MbdError::InvalidInput {
@@ -574,7 +590,7 @@ impl SecondOrderSystem for BeltDrive {
                 loads[p] = load.eval(t);
             }
         }
-        self.forces_with(q, v, &omegas[..np], &loads[..np], f);
+        self.forces_with(q, v, &omegas[..np], &loads[..np], f, ws);
         Ok(())
     }
     fn force_tangent(
@@ -582,9 +598,10 @@ impl SecondOrderSystem for BeltDrive {
         t: f64,
         q: &[f64],
         v: &[f64],
+        ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let omegas = self.speeds(t, v);
-        Ok(Some(self.force_tangent_with(q, v, &omegas)))
+        Ok(Some(self.force_tangent_with(q, v, &omegas, ws)))
     }
 }
 
@@ -593,14 +610,23 @@ impl BeltDrive {
     /// `s τ − T_a` (3.26) with the pulleys spinning at the travel-sense speeds `omegas`
     /// \[rad/s\] and load torques `loads` \[N·m\] (one per pulley; ignored for speed-driven
     /// pulleys): the [`SecondOrderSystem::forces`] of the drive with externally supplied inputs
-    /// (used by adapters that schedule the driver speed and the load themselves).
-    pub fn forces_with(&self, q: &[f64], v: &[f64], omegas: &[f64], loads: &[f64], f: &mut [f64]) {
+    /// (used by adapters that schedule the driver speed and the load themselves); `ws` is the
+    /// caller's scratch for this drive.
+    pub fn forces_with(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        omegas: &[f64],
+        loads: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) {
         let nb = self.n_belt;
         self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
         f[nb..].fill(0.0);
         self.axial_damping(q, v, f, None);
-        let mut scratch = self.lock();
-        self.contact_pass(q, v, omegas, false, &mut scratch, |el, p, ec, _| {
+        let scratch = self.scratch(ws);
+        self.contact_pass(q, v, omegas, false, scratch, |el, p, ec, _| {
             self.mesh.scatter_add(f, el, &ec.q, 1.0);
             if let Some(j) = self.pulley_dof[p] {
                 f[j] += self.spec.pulleys[p].ccw_sign() * ec.moment;
@@ -615,13 +641,21 @@ impl BeltDrive {
 
     /// [`SecondOrderSystem::force_tangent`] with the pulleys spinning at the travel-sense
     /// speeds `omegas` \[rad/s\] (one per pulley; for a free pulley it must equal its velocity
-    /// coordinate, whose column receives the speed coupling).
-    pub fn force_tangent_with(&self, q: &[f64], v: &[f64], omegas: &[f64]) -> ForceTangent {
+    /// coordinate, whose column receives the speed coupling); `ws` is the caller's scratch for
+    /// this drive (it keeps the reused elastic tangent).
+    pub fn force_tangent_with(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        omegas: &[f64],
+        ws: &mut Workspace,
+    ) -> ForceTangent {
         let nb = self.n_belt;
         let pat = &self.pattern;
+        let scratch = self.scratch(ws);
         let mut k = {
-            let mut cache = self.elastic_cache.lock().unwrap_or_else(|e| e.into_inner());
-            if !(cache.valid && self.tangent_still_valid(&cache.q, q)) {
+            let cache = &mut scratch.elastic;
+            if !(cache.valid && cache.q.len() == q.len() && self.tangent_still_valid(&cache.q, q)) {
                 let mut fbuf = vec![0.0; nb];
                 let mut kv = pat.zeros();
                 self.mesh
@@ -629,7 +663,7 @@ impl BeltDrive {
                 cache.k = kv;
                 cache.q = q.to_vec();
                 cache.valid = true;
-                cache.evaluations += 1;
+                self.elastic_evaluations.fetch_add(1, Ordering::Relaxed);
             }
             cache.k.clone()
         };
@@ -638,8 +672,7 @@ impl BeltDrive {
         let n_el = self.mesh.elements().len();
         let nf = self.free.len();
         let m = NE + nf;
-        let mut scratch = self.lock();
-        self.contact_pass(q, v, omegas, true, &mut scratch, |el, p, ec, s| {
+        self.contact_pass(q, v, omegas, true, scratch, |el, p, ec, s| {
             s.k_local.fill(0.0);
             s.c_local.fill(0.0);
             for b in 0..NE {

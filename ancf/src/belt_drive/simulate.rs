@@ -228,7 +228,7 @@ impl BeltDrive {
         };
         let m = self.mass(t, q).map_err(num)?.to_dense();
         let tg = self
-            .force_tangent(t, q, v)
+            .force_tangent(t, q, v, &mut mbd_core::Workspace::new())
             .map_err(num)?
             .ok_or_else(|| AncfError::NonFinite {
                 what: "belt drive tangent".into(),

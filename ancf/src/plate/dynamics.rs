@@ -9,9 +9,9 @@ use crate::error::{AncfError, invalid};
 use crate::plate::PLATE_NDOF;
 use crate::sparse::Pattern;
 use faer::Mat;
+use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
-use std::sync::Mutex;
 
 /// A plate mesh with supports (coordinates held at their initial values) and gravity.
 ///
@@ -27,9 +27,11 @@ pub struct PlateDynamics {
     gravity_forces: Vec<f64>,
     pattern: Pattern,
     mass_values: Vec<f64>,
-    scratch: Mutex<Scratch>,
 }
 
+/// Work buffers of [`PlateDynamics`]'s force and tangent evaluations, kept in the caller's
+/// [`Workspace`]: the full mesh coordinates (fixed entries at their held values) and one
+/// element's forces and tangent.
 struct Scratch {
     q: Vec<f64>,
     f: Vec<f64>,
@@ -97,11 +99,6 @@ impl PlateDynamics {
         }
         let gravity_forces = mesh.gravity_forces(gravity);
         Ok(Self {
-            scratch: Mutex::new(Scratch {
-                q: q0.to_vec(),
-                f: vec![0.0; PLATE_NDOF],
-                k: Mat::zeros(PLATE_NDOF, PLATE_NDOF),
-            }),
             held: q0.to_vec(),
             mesh,
             map,
@@ -143,8 +140,19 @@ impl PlateDynamics {
         }
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, Scratch> {
-        self.scratch.lock().unwrap_or_else(|e| e.into_inner())
+    /// The work buffers in the caller's workspace `ws`, created on first use (the full
+    /// coordinates start at the held values, which [`Self::fill_full`] keeps).
+    fn scratch<'w>(&self, ws: &'w mut Workspace) -> &'w mut Scratch {
+        let fresh = || Scratch {
+            q: self.held.clone(),
+            f: vec![0.0; PLATE_NDOF],
+            k: Mat::zeros(PLATE_NDOF, PLATE_NDOF),
+        };
+        let s = ws.get_or_insert_with(fresh);
+        if s.q.len() != self.held.len() {
+            *s = fresh();
+        }
+        s
     }
 
     /// Mesh coordinates of element `el` from the full coordinates.
@@ -198,11 +206,17 @@ impl SecondOrderSystem for PlateDynamics {
         ))
     }
     /// `Q_e + Q_g` on the free coordinates.
-    fn forces(&self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
-        let mut s = self.lock();
+    fn forces(
+        &self,
+        _t: f64,
+        q: &[f64],
+        _v: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let Scratch {
             q: q_all, f: fe, ..
-        } = &mut *s;
+        } = self.scratch(ws);
         self.fill_full(q, q_all);
         for (i, m) in self.map.iter().enumerate() {
             if let Some(r) = m {
@@ -226,13 +240,13 @@ impl SecondOrderSystem for PlateDynamics {
         _t: f64,
         q: &[f64],
         _v: &[f64],
+        ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
-        let mut s = self.lock();
         let Scratch {
             q: q_all,
             f: fe,
             k: ke,
-        } = &mut *s;
+        } = self.scratch(ws);
         self.fill_full(q, q_all);
         let mut kv = self.pattern.zeros();
         let mut kl = vec![0.0; PLATE_NDOF * PLATE_NDOF];

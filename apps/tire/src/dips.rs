@@ -4,7 +4,7 @@
 //! on the drum and on the flat road.
 
 use crate::cleat::validate_rig;
-use crate::common::{RigFlags, TireSource, rig_err};
+use crate::common::{RigFlags, TireSource, TireSourceExt, rig_err};
 use flowing::tire::{DipConfig, GroundDips, GroundKind, PulseShape, RigConfig, ground_dips};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};

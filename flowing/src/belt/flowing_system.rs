@@ -52,6 +52,7 @@ use super::statics::dense_equilibrium;
 use contact::friction::{CoulombTanh, FrictionLaw, FrictionSpec};
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
+use mbd_core::Workspace;
 use mbd_core::tensioner::{TensionerSpec, cross};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
@@ -535,11 +536,12 @@ impl FlowingBelt {
         let mut idx: Vec<usize> = (1..=m).collect();
         idx.extend(self.arm_dof);
         let n = idx.len();
+        let mut ws = Workspace::new();
         let x = dense_equilibrium("belt", n, n, 1, |x, r| {
             for (k, &i) in idx.iter().enumerate() {
                 q[i] = x[k];
             }
-            still.forces(0.0, &q, &v, &mut f)?;
+            still.forces(0.0, &q, &v, &mut f, &mut ws)?;
             for (k, &i) in idx.iter().enumerate() {
                 r[k] = -f[i];
             }
@@ -716,7 +718,14 @@ impl SecondOrderSystem for FlowingBelt {
         Ok(SysMatrix::Dense(mm))
     }
 
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let m = self.m;
         let (z, zd, vb) = (&q[1..=m], &v[1..=m], v[0]);
         let (head, tail) = f.split_at_mut(m + 1);
@@ -771,6 +780,7 @@ impl SecondOrderSystem for FlowingBelt {
         t: f64,
         q: &[f64],
         v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let (k, c) = self.tangent(t, q, v);
         Ok(Some(ForceTangent {
@@ -869,7 +879,8 @@ mod tests {
         let (kt, ct) = belt.tangent(0.1, &q, &v);
         let f = |q: &[f64], v: &[f64]| {
             let mut out = vec![0.0; n];
-            belt.forces(0.1, q, v, &mut out).unwrap();
+            belt.forces(0.1, q, v, &mut out, &mut Workspace::new())
+                .unwrap();
             out
         };
         let mut worst: f64 = 0.0;

@@ -69,6 +69,7 @@ use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use faer::sparse::{SparseColMat, Triplet};
 use fe_model::element::{Frame2d, Frame2dSection};
+use mbd_core::Workspace;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
 /// 6×6 element matrix in global axes.
@@ -683,7 +684,14 @@ impl SecondOrderSystem for NodalBelt {
             })
     }
 
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let mesh = self.mesh(q[0])?;
         self.forces_on(&mesh, t, q, v, f)
     }
@@ -693,6 +701,7 @@ impl SecondOrderSystem for NodalBelt {
         t: f64,
         q: &[f64],
         v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let (k, c) = self.tangent(t, q, v)?;
         Ok(Some(ForceTangent {
@@ -808,8 +817,10 @@ mod tests {
             let (mut qp, mut qm) = (q.clone(), q.clone());
             qp[j] += h;
             qm[j] -= h;
-            b.forces(0.5, &qp, &v, &mut fp).unwrap();
-            b.forces(0.5, &qm, &v, &mut fm).unwrap();
+            b.forces(0.5, &qp, &v, &mut fp, &mut mbd_core::Workspace::new())
+                .unwrap();
+            b.forces(0.5, &qm, &v, &mut fm, &mut mbd_core::Workspace::new())
+                .unwrap();
             for i in 0..nv {
                 let fd = -(fp[i] - fm[i]) / (2.0 * h);
                 worst = worst.max((fd - kt[(i, j)]).abs() / kt.norm_max());
@@ -820,8 +831,10 @@ mod tests {
             let (mut vp, mut vm) = (v.clone(), v.clone());
             vp[j] += h;
             vm[j] -= h;
-            b.forces(0.5, &q, &vp, &mut fp).unwrap();
-            b.forces(0.5, &q, &vm, &mut fm).unwrap();
+            b.forces(0.5, &q, &vp, &mut fp, &mut mbd_core::Workspace::new())
+                .unwrap();
+            b.forces(0.5, &q, &vm, &mut fm, &mut mbd_core::Workspace::new())
+                .unwrap();
             for i in 0..nv {
                 let fd = -(fp[i] - fm[i]) / (2.0 * h);
                 assert!(
@@ -863,8 +876,10 @@ mod tests {
             }
             v[nv - 1] = 59.0;
             let (mut f, mut f0) = (vec![0.0; nv], vec![0.0; nv]);
-            b.forces(0.5, &q, &v, &mut f).unwrap();
-            b0.forces(0.5, &q, &v, &mut f0).unwrap();
+            b.forces(0.5, &q, &v, &mut f, &mut mbd_core::Workspace::new())
+                .unwrap();
+            b0.forces(0.5, &q, &v, &mut f0, &mut mbd_core::Workspace::new())
+                .unwrap();
             let diff = f
                 .iter()
                 .zip(&f0)

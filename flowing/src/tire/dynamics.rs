@@ -26,6 +26,7 @@
 use super::reduced::ReducedTire;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
+use mbd_core::Workspace;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
 /// The rolling tire's smooth dynamics (module documentation).
@@ -184,7 +185,14 @@ impl SecondOrderSystem for TireDynamics<'_> {
     }
 
     /// `f = [τ − β k_θᵀ ż − (k_θ + β θ̇_R k_θ,θ)ᵀ z; −θ̇² c_s − C_eff ż − K_eff z − G₁ w]`.
-    fn forces(&self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        _t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         self.block(0, -1.0, &v[1..], f, Accum::Replace);
         self.block(1, -1.0, &q[1..], f, Accum::Add);
         self.block(2, -1.0, &self.lagged, f, Accum::Add);
@@ -204,6 +212,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
         v: &[f64],
         vdot: &[f64],
         r: &mut [f64],
+        _ws: &mut Workspace,
     ) -> Result<bool, MbdError> {
         // Q [ż; z; w; z̈] (one product with the stacked [ż; z; w]), plus the J θ̈ and m_θ θ̈
         // columns
@@ -241,6 +250,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
         _t: f64,
         _q: &[f64],
         _v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let nz = self.red.n_z();
         let n = nz + 1;

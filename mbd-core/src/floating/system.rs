@@ -11,7 +11,7 @@ use crate::constraints::{Constraint, ConstraintSet, Equation};
 use crate::integrators::State;
 use crate::kinematics::tilde::{get3, get4, put3, put4, tilde};
 use crate::marker::{Carrier, FlexNodes, Marker, NodeRotations, Term};
-use crate::{MbdError, SecondOrderSystem, SysMatrix};
+use crate::{MbdError, SecondOrderSystem, SysMatrix, Workspace};
 use faer::Mat;
 use nalgebra::{Matrix3, Vector3, Vector4};
 
@@ -664,7 +664,14 @@ impl SecondOrderSystem for FloatingSystem {
     /// Elastic forces act on the elastic coordinates only (the strain energy `½zᵀK_r z` does not
     /// depend on the frame motion), so the system is conservative; Lin's `−b~ᵀ(−Kδ)` rotational
     /// row is zero to first order and is omitted (the energy-consistent choice).
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        out: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         out.fill(0.0);
         let (rk, fk) = self.kinematics(q, Some(v));
         for (k, (b, kin)) in self.rigid.iter().zip(&rk).enumerate() {

@@ -3,7 +3,7 @@
 
 use super::{State, Stats, explain_singular};
 use crate::linalg::KktSolver;
-use crate::{MbdError, SecondOrderSystem};
+use crate::{MbdError, SecondOrderSystem, Workspace};
 
 /// Constraint stabilisation for the explicit (index-1) integrators.
 ///
@@ -49,10 +49,12 @@ pub struct Acceleration {
 }
 
 /// Reusable solver of the index-1 equations (keeps the factorisation of a constant mass
-/// matrix of an unconstrained system).
+/// matrix of an unconstrained system) and the model's workspace of the explicit steppers.
 #[derive(Default)]
 pub(crate) struct AccelSolver {
     kkt: KktSolver,
+    /// Scratch of the model's force evaluations ([`SecondOrderSystem::forces`]).
+    pub(crate) ws: Workspace,
     constant_factored: bool,
     f: Vec<f64>,
     rhs: Vec<f64>,
@@ -73,7 +75,7 @@ impl AccelSolver {
         let n = sys.n_v();
         let nc = sys.n_c();
         self.f.resize(n, 0.0);
-        sys.forces(t, q, v, &mut self.f)?;
+        sys.forces(t, q, v, &mut self.f, &mut self.ws)?;
         stats.force_evaluations += 1;
         if let Some(i) = self.f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {

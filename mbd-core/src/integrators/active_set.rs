@@ -15,7 +15,7 @@
 //! row of an active candidate); the ancf crate's node contact against a rigid obstacle is one.
 
 use super::{AlphaConfig, AlphaStepper, State, Stats};
-use crate::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
+use crate::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix, Workspace};
 use faer::sparse::Triplet;
 
 /// The constraint row of an active unilateral candidate at `(t, q, v)`: `g = 0` with the
@@ -152,8 +152,15 @@ impl<S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized> SecondOrd
     fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         self.base.mass(t, q)
     }
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
-        self.base.forces(t, q, v, f)
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
+        self.base.forces(t, q, v, f, ws)
     }
     fn dynamic_residual(
         &self,
@@ -162,16 +169,18 @@ impl<S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized> SecondOrd
         v: &[f64],
         vdot: &[f64],
         r: &mut [f64],
+        ws: &mut Workspace,
     ) -> Result<bool, MbdError> {
-        self.base.dynamic_residual(t, q, v, vdot, r)
+        self.base.dynamic_residual(t, q, v, vdot, r, ws)
     }
     fn force_tangent(
         &self,
         t: f64,
         q: &[f64],
         v: &[f64],
+        ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
-        self.base.force_tangent(t, q, v)
+        self.base.force_tangent(t, q, v, ws)
     }
     /// The model's tangent plus `Σ λ_c ∂²g_c/∂q²` of the active rows.
     fn constraint_force_tangent(

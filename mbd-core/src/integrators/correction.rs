@@ -72,7 +72,7 @@ pub struct AlphaCorrection<'a> {
     pub(crate) v: &'a mut [f64],
     pub(crate) vdot: &'a mut [f64],
     pub(crate) lambda: &'a mut [f64],
-    pub(crate) matrix: &'a IterationMatrix,
+    pub(crate) matrix: &'a mut IterationMatrix,
     pub(crate) rhs: &'a mut [f64],
     /// Solve scratch of the explicit inverse (`n_v + n_c`).
     pub(crate) scratch: &'a mut [f64],

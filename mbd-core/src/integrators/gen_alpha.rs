@@ -33,7 +33,7 @@ use super::{
 use crate::newton::{
     self, LineSearch, NewtonError, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances,
 };
-use crate::{MbdError, SecondOrderSystem, SysMatrix};
+use crate::{MbdError, SecondOrderSystem, SysMatrix, Workspace};
 use faer::Mat;
 
 pub(crate) mod iteration_matrix;
@@ -346,6 +346,8 @@ pub struct AlphaStepper<C = NoCorrection> {
     scratch: Vec<f64>,
     mass_cache: Option<SysMatrix>,
     work: Work,
+    /// The model's scratch ([`SecondOrderSystem::forces`], kept for the stepper's lifetime).
+    ws: Workspace,
     /// Current step of [`Stepper::step_until`] (halved after Newton failures).
     h_cur: f64,
     halvings: usize,
@@ -381,7 +383,8 @@ impl AlphaStepper<NoCorrection> {
         let mut stats = Stats::default();
         let mut vdot = vec![0.0; sys.n_v()];
         let mut lambda = vec![0.0; sys.n_c()];
-        AccelSolver::default().solve(
+        let mut accel = AccelSolver::default();
+        accel.solve(
             sys,
             state0.t,
             &state0.q,
@@ -404,6 +407,7 @@ impl AlphaStepper<NoCorrection> {
             scratch: vec![0.0; sys.n_v() + sys.n_c()],
             mass_cache: None,
             work: Work::new(sys.n_q(), sys.n_v(), sys.n_c()),
+            ws: std::mem::take(&mut accel.ws),
             h_cur: params.h,
             halvings: 0,
             correction: NoCorrection,
@@ -426,10 +430,17 @@ impl<C> AlphaStepper<C> {
             scratch: self.scratch,
             mass_cache: self.mass_cache,
             work: self.work,
+            ws: self.ws,
             h_cur: self.h_cur,
             halvings: self.halvings,
             correction,
         }
+    }
+
+    /// The model's workspace this stepper passes to its hot methods (e.g. to read
+    /// statistics a model keeps there).
+    pub fn workspace(&self) -> &Workspace {
+        &self.ws
     }
 
     /// The step correction.
@@ -685,6 +696,7 @@ impl<C> AlphaStepper<C> {
         {
             let integrate =
                 |q: &[f64], d: &[f64], out: &mut [f64]| sys.integrate_position(q, d, out);
+            let factor_id = self.matrix.id;
             let mut ctx = AlphaCorrection {
                 h,
                 beta_prime: bp,
@@ -696,12 +708,12 @@ impl<C> AlphaStepper<C> {
                 v: v1,
                 vdot: vdot1,
                 lambda: lam1,
-                matrix: &self.matrix,
+                matrix: &mut self.matrix,
                 rhs,
                 scratch: &mut self.scratch,
                 integrate_position: &integrate,
                 factorizations: self.stats.factorizations,
-                factor_id: self.matrix.id,
+                factor_id,
             };
             self.correction.correct(sys, &mut ctx)?;
         }
@@ -748,7 +760,7 @@ impl<C> AlphaStepper<C> {
         f: &mut [f64],
     ) -> Result<(), MbdError> {
         self.stats.force_evaluations += 1;
-        if sys.dynamic_residual(t, q, v, vdot, r)? {
+        if sys.dynamic_residual(t, q, v, vdot, r, &mut self.ws)? {
             if let Some(i) = r.iter().position(|x| !x.is_finite()) {
                 return Err(MbdError::NonFinite {
                     what: format!("dynamic residual of {}", sys.dof_name(i)),
@@ -756,7 +768,7 @@ impl<C> AlphaStepper<C> {
                 });
             }
         } else {
-            sys.forces(t, q, v, f)?;
+            sys.forces(t, q, v, f, &mut self.ws)?;
             if let Some(i) = f.iter().position(|x| !x.is_finite()) {
                 return Err(MbdError::NonFinite {
                     what: format!("force on {}", sys.dof_name(i)),
@@ -868,7 +880,7 @@ impl<C> AlphaStepper<C> {
                 } else {
                     None
                 };
-                let tangent = match sys.force_tangent(t, q, v)? {
+                let tangent = match sys.force_tangent(t, q, v, &mut self.ws)? {
                     Some(tg) => (tg.stiffness, tg.damping),
                     None => self.fd_force_tangent(sys, t, q, v)?,
                 };
@@ -931,7 +943,7 @@ impl<C> AlphaStepper<C> {
         q: &[f64],
         v: &[f64],
     ) -> Result<(SysMatrix, SysMatrix), MbdError> {
-        let tan = crate::system::finite_difference_tangent(sys, t, q, v)?;
+        let tan = crate::system::finite_difference_tangent(sys, t, q, v, &mut self.ws)?;
         self.stats.force_evaluations += 2 * sys.n_v() + 1;
         Ok((tan.stiffness, tan.damping))
     }

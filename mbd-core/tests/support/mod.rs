@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 use faer::Mat;
+use mbd_core::Workspace;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
 /// Diagonal dense matrix.
@@ -43,7 +44,14 @@ impl SecondOrderSystem for Oscillator {
     fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
         Ok(diagonal(&[self.m]))
     }
-    fn forces(&self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        _t: f64,
+        q: &[f64],
+        _v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         f[0] = -self.k * q[0];
         Ok(())
     }
@@ -52,6 +60,7 @@ impl SecondOrderSystem for Oscillator {
         _t: f64,
         _q: &[f64],
         _v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         if !self.tangent {
             return Ok(None);
@@ -91,7 +100,14 @@ impl SecondOrderSystem for PointMasses {
             .collect();
         Ok(diagonal(&d))
     }
-    fn forces(&self, t: f64, _q: &[f64], _v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        _q: &[f64],
+        _v: &[f64],
+        f: &mut [f64],
+        _ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         f.fill(0.0);
         for (i, m) in self.m.iter().enumerate() {
             f[self.dim * i + self.dim - 1] = -m * self.g + 2.0 * m * self.g * t / self.lift;
@@ -103,6 +119,7 @@ impl SecondOrderSystem for PointMasses {
         _t: f64,
         _q: &[f64],
         _v: &[f64],
+        _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let n = self.n_q();
         Ok(Some(ForceTangent {

@@ -23,6 +23,7 @@ use crate::sparse::Pattern;
 use crate::statics::run_newton;
 use faer::sparse::linalg::solvers::SymbolicLu;
 use mbd_core::SecondOrderSystem;
+use mbd_core::Workspace;
 use mbd_core::newton::{Fallback, LineSearch, NewtonOptions, NewtonProblem, Tolerances};
 
 /// Result of the initial-configuration solve.
@@ -112,6 +113,7 @@ impl PlateBeltDrive {
             torques: vec![0.0; self.pulleys().len()],
             zero_v: vec![0.0; self.n_q()],
             iteration: 0,
+            ws: Workspace::new(),
         };
         let newton = NewtonOptions {
             max_iterations,
@@ -161,6 +163,8 @@ struct Initial<'a> {
     f: Vec<f64>,
     torques: Vec<f64>,
     zero_v: Vec<f64>,
+    /// The drive's scratch ([`mbd_core::Workspace`]).
+    ws: Workspace,
     iteration: usize,
 }
 
@@ -203,6 +207,7 @@ impl NewtonProblem for Initial<'_> {
             &self.omegas,
             &mut self.f,
             &mut self.full,
+            &mut self.ws,
         );
         // the belt block of the drive's pattern → this pattern
         self.kv.fill(0.0);
@@ -232,6 +237,7 @@ impl NewtonProblem for Initial<'_> {
             &self.omegas,
             &mut self.f,
             &mut self.torques,
+            &mut self.ws,
         );
         self.hold_and_scatter(q, r);
         Ok(())

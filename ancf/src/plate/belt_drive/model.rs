@@ -16,10 +16,10 @@ use contact::spatial::{ContactRecord3, Cylinder, ElementContact3, FlangedCylinde
 use contact::{BlockShape, GaussRule, QuadPoint, Surface};
 use faer::Mat;
 use fe_model::generate::belt_path::{BeltPath, PathPulley};
+use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use nalgebra::{Point3, Vector3};
-use std::sync::Mutex;
 
 /// Element coordinates.
 const NE: usize = PLATE_NDOF;
@@ -55,7 +55,8 @@ impl Surface<3> for PulleySurface {
     }
 }
 
-/// Per-call work buffers.
+/// Per-call work buffers, kept in the caller's [`Workspace`] (see
+/// [`PlateBeltDrive::scratch`]).
 struct Scratch {
     /// The element contact buffer (taken during a contact pass; kept between calls so that
     /// the 20 kB buffer is not reallocated).
@@ -96,7 +97,6 @@ pub struct PlateBeltDrive {
     quad_shape: Vec<BlockShape>,
     pattern: Pattern,
     mass_values: Vec<f64>,
-    scratch: Mutex<Scratch>,
 }
 
 impl std::fmt::Debug for PlateBeltDrive {
@@ -212,16 +212,7 @@ impl PlateBeltDrive {
         }
         let normal = BeltNormal::penalty(spec.contact.stiffness, 0.0, spec.contact.damping);
         let friction = spec.contact.friction;
-        let mm = NE + free.len();
         Ok(Self {
-            scratch: Mutex::new(Scratch {
-                ec: Some(ElementContact3::new(NE)),
-                k_local: vec![0.0; mm * mm],
-                c_local: vec![0.0; mm * mm],
-                fe: [0.0; NE],
-                ke: Mat::zeros(NE, NE),
-                kl: vec![0.0; NE * NE],
-            }),
             spec,
             path,
             mesh,
@@ -396,8 +387,23 @@ impl PlateBeltDrive {
             .collect()
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, Scratch> {
-        self.scratch.lock().unwrap_or_else(|e| e.into_inner())
+    /// The drive's work buffers in the caller's workspace `ws`, created on first use (and
+    /// anew if `ws` held the buffers of a drive with another number of free pulleys).
+    fn scratch<'w>(&self, ws: &'w mut Workspace) -> &'w mut Scratch {
+        let mm = NE + self.free.len();
+        let fresh = || Scratch {
+            ec: Some(ElementContact3::new(NE)),
+            k_local: vec![0.0; mm * mm],
+            c_local: vec![0.0; mm * mm],
+            fe: [0.0; NE],
+            ke: Mat::zeros(NE, NE),
+            kl: vec![0.0; NE * NE],
+        };
+        let s = ws.get_or_insert_with(fresh);
+        if s.k_local.len() != mm * mm {
+            *s = fresh();
+        }
+        s
     }
 
     /// Elastic forces `Q_e` (2.20) of the belt into `f[..n_belt]` (overwritten).
@@ -422,9 +428,9 @@ impl PlateBeltDrive {
         omegas: &[f64],
         f: &mut [f64],
         torques: &mut [f64],
+        ws: &mut Workspace,
     ) {
-        let mut guard = self.lock();
-        let s = &mut *guard;
+        let s = self.scratch(ws);
         self.elastic_forces_into(q, f, s);
         torques.fill(0.0);
         let mut ec = s.ec.take().unwrap_or_else(|| ElementContact3::new(NE));
@@ -474,9 +480,9 @@ impl PlateBeltDrive {
         omegas: &[f64],
         f: &mut [f64],
         k_vals: &mut [f64],
+        ws: &mut Workspace,
     ) {
-        let mut guard = self.lock();
-        let s = &mut *guard;
+        let s = self.scratch(ws);
         k_vals.fill(0.0);
         self.elastic_tangent_into(q, f, k_vals, s);
         let mut ec = s.ec.take().unwrap_or_else(|| ElementContact3::new(NE));
@@ -599,10 +605,10 @@ impl PlateBeltDrive {
         omegas: &[f64],
         loads: &[f64],
         f: &mut [f64],
+        ws: &mut Workspace,
     ) {
         let nb = self.n_belt;
-        let mut guard = self.lock();
-        let s = &mut *guard;
+        let s = self.scratch(ws);
         self.elastic_forces_into(q, f, s);
         f[nb..].fill(0.0);
         let mut ec = s.ec.take().unwrap_or_else(|| ElementContact3::new(NE));
@@ -738,11 +744,18 @@ impl SecondOrderSystem for PlateBeltDrive {
             self.pattern.to_matrix(self.mass_values.clone()),
         ))
     }
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) -> Result<(), MbdError> {
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
         let np = self.spec.pulleys.len();
         let omegas = self.speeds(t, v);
         let loads: Vec<f64> = (0..np).map(|p| self.load_torque(p, t)).collect();
-        self.forces_with(t, q, v, &omegas, &loads, f);
+        self.forces_with(t, q, v, &omegas, &loads, f, ws);
         Ok(())
     }
     fn force_tangent(
@@ -750,9 +763,10 @@ impl SecondOrderSystem for PlateBeltDrive {
         t: f64,
         q: &[f64],
         v: &[f64],
+        ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let omegas = self.speeds(t, v);
-        Ok(Some(self.force_tangent_with(t, q, v, &omegas)))
+        Ok(Some(self.force_tangent_with(t, q, v, &omegas, ws)))
     }
 }
 
@@ -761,14 +775,20 @@ impl PlateBeltDrive {
     /// `omegas` (for a free pulley equal to its velocity coordinate, whose column receives the
     /// speed coupling): `K = −∂f/∂q`, `C = −∂f/∂v` with the analytic elastic tangent and the
     /// exact contact Jacobians of [`contact::element_contact`].
-    pub fn force_tangent_with(&self, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> ForceTangent {
+    pub fn force_tangent_with(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        omegas: &[f64],
+        ws: &mut Workspace,
+    ) -> ForceTangent {
         let nb = self.n_belt;
         let pat = &self.pattern;
         let mut k = pat.zeros();
         let mut c = pat.zeros();
         let mut fbuf = vec![0.0; nb];
-        let mut guard = self.lock();
-        let s = &mut *guard;
+        let s = self.scratch(ws);
         self.elastic_tangent_into(q, &mut fbuf, &mut k, s);
         let n_el = self.n_elements();
         let nf = self.free.len();

@@ -71,7 +71,7 @@ impl IterationMatrix {
     /// Solves in place: `rhs = [b; c]` on input, `[x; μ]` on output; `scratch` (same length)
     /// receives the product with the explicit inverse.
     pub(crate) fn solve(
-        &self,
+        &mut self,
         rhs: &mut [f64],
         scratch: &mut [f64],
         t: f64,
