@@ -87,7 +87,8 @@ pub struct Args {
     /// No messages on stderr.
     #[arg(long)]
     quiet: bool,
-    /// Accept matrices above the reader's size ceiling (10^7 rows or columns).
+    /// Accept matrices above the reader's size ceiling (10^7 rows or columns), as every
+    /// study's --allow-large.
     #[arg(long)]
     allow_large: bool,
 }
@@ -156,6 +157,7 @@ enum Failure {
 }
 
 fn run_inner(a: &Args) -> Result<Summary, Failure> {
+    flowmbd_cli::limits::set_allow_large(a.allow_large);
     let input = |e: String| Failure::Input(e);
     let nodes = parse_nodes(&a.boundary, "--boundary").map_err(input)?;
     let fixed = match &a.fixed {
