@@ -167,6 +167,12 @@ fn allow_large_raises_the_run_length_ceilings() {
     let (code, out, err) = run(&["ancf", "--t-end", "2e4", "--print-config", "--allow-large"]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("t_end = 20000.0"), "{out}");
-    let (code, _, err) = run(&["ancf", "--t-end", "1e300", "--print-config", "--allow-large"]);
+    let (code, _, err) = run(&[
+        "ancf",
+        "--t-end",
+        "1e300",
+        "--print-config",
+        "--allow-large",
+    ]);
     assert_eq!(code, 2, "{err}");
 }

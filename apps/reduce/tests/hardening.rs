@@ -203,7 +203,10 @@ fn every_summary_says_what_its_numbers_mean() {
     assert_eq!(lb.status.code(), Some(0));
     let s: serde_json::Value = serde_json::from_slice(&lb.stdout).unwrap();
     assert!(
-        s["meaning"].as_str().unwrap_or_default().contains("Appendix A"),
+        s["meaning"]
+            .as_str()
+            .unwrap_or_default()
+            .contains("Appendix A"),
         "{s}"
     );
     let summary: serde_json::Value =
@@ -230,10 +233,18 @@ fn every_summary_says_what_its_numbers_mean() {
         "--modes",
         "1",
     ]);
-    assert_eq!(r.status.code(), Some(0), "{}", String::from_utf8_lossy(&r.stderr));
+    assert_eq!(
+        r.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&r.stderr)
+    );
     let s: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
     assert!(
-        s["meaning"].as_str().unwrap_or_default().contains("n_reduced"),
+        s["meaning"]
+            .as_str()
+            .unwrap_or_default()
+            .contains("n_reduced"),
         "{s}"
     );
     let f: Vec<f64> = s["frequencies_hz"]
@@ -261,8 +272,19 @@ fn allow_large_raises_the_tire_element_ceiling() {
         &run(&["tire-mesh", "--config", &cfg, "--print-config"]),
         &["tire.circumferential_divisions", "576000", "--allow-large"],
     );
-    let ok = run(&["tire-mesh", "--config", &cfg, "--print-config", "--allow-large"]);
-    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+    let ok = run(&[
+        "tire-mesh",
+        "--config",
+        &cfg,
+        "--print-config",
+        "--allow-large",
+    ]);
+    assert_eq!(
+        ok.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
     assert!(String::from_utf8_lossy(&ok.stdout).contains("circumferential_divisions = 8000"));
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -221,7 +221,13 @@ fn allow_large_raises_the_node_ceiling_1000_fold() {
         err.contains("nodes: must lie in [3, 2000], got 2001") && err.contains("--allow-large"),
         "{err}"
     );
-    let (code, out, err) = run(&["modes", "--nodes", "2001", "--print-config", "--allow-large"]);
+    let (code, out, err) = run(&[
+        "modes",
+        "--nodes",
+        "2001",
+        "--print-config",
+        "--allow-large",
+    ]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("nodes = 2001"), "{out}");
     let (code, _, err) = run(&[

@@ -396,7 +396,12 @@ fn allow_large_raises_the_rig_step_ceiling() {
     let (code, err) = check("cleat", text, &["--allow-large"], &dir);
     assert_eq!(code, 0, "{err}");
     // 10^300 s stay refused with the flag
-    let (code, err) = check("cleat", "[rig]\nrecord_time = 1e300\n", &["--allow-large"], &dir);
+    let (code, err) = check(
+        "cleat",
+        "[rig]\nrecord_time = 1e300\n",
+        &["--allow-large"],
+        &dir,
+    );
     assert_eq!(code, 2, "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -28,6 +28,22 @@ fn abaqus_files(dir: &Path, stiffness: &str) -> String {
     )
 }
 
+/// M = I (6 DOFs, Matrix Market) and the node files without labels of the Matrix Market
+/// import (2 nodes, rim node 0, patch node 1); returns the path of M.
+fn matrix_market_files(dir: &Path) -> std::path::PathBuf {
+    let m = dir.join("M.mtx");
+    std::fs::write(
+        &m,
+        "%%MatrixMarket matrix coordinate real symmetric\n6 6 6\n1 1 1\n2 2 1\n3 3 1\n\
+         4 4 1\n5 5 1\n6 6 1\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("nodes.inp"), "0.5 0 0\n0 0.5 0\n").unwrap();
+    std::fs::write(dir.join("rim.inp"), "0\n").unwrap();
+    std::fs::write(dir.join("patch.inp"), "1\n").unwrap();
+    m
+}
+
 fn import_table(dir: &Path, format: &str, k: &Path, m: &Path) -> String {
     format!(
         "[tire]\nreduced_file = \"\"\n[tire.import]\nformat = {format:?}\nstiffness = {:?}\n\
@@ -83,17 +99,7 @@ fn one_triangle_general_and_directory_are_refused() {
          4 4 2\n5 5 2\n6 6 2\n4 1 -1\n",
     )
     .unwrap();
-    let m = dir.join("M.mtx");
-    std::fs::write(
-        &m,
-        "%%MatrixMarket matrix coordinate real symmetric\n6 6 6\n1 1 1\n2 2 1\n3 3 1\n\
-         4 4 1\n5 5 1\n6 6 1\n",
-    )
-    .unwrap();
-    // node files without labels for Matrix Market input
-    std::fs::write(dir.join("nodes.inp"), "0.5 0 0\n0 0.5 0\n").unwrap();
-    std::fs::write(dir.join("rim.inp"), "0\n").unwrap();
-    std::fs::write(dir.join("patch.inp"), "1\n").unwrap();
+    let m = matrix_market_files(&dir);
     let (code, err) = reduce_with(&dir, "k.toml", &import_table(&dir, "matrix_market", &k, &m));
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("K.mtx:1:"), "{err}");
@@ -118,17 +124,7 @@ fn one_triangle_general_and_directory_are_refused() {
 #[test]
 fn indefinite_and_zero_stiffness_are_refused_with_their_dofs() {
     let dir = tmp("mtx-indefinite");
-    abaqus_files(&dir, "");
-    let m = dir.join("M.mtx");
-    std::fs::write(
-        &m,
-        "%%MatrixMarket matrix coordinate real symmetric\n6 6 6\n1 1 1\n2 2 1\n3 3 1\n\
-         4 4 1\n5 5 1\n6 6 1\n",
-    )
-    .unwrap();
-    std::fs::write(dir.join("nodes.inp"), "0.5 0 0\n0 0.5 0\n").unwrap();
-    std::fs::write(dir.join("rim.inp"), "0\n").unwrap();
-    std::fs::write(dir.join("patch.inp"), "1\n").unwrap();
+    let m = matrix_market_files(&dir);
     let k = dir.join("K.mtx");
     std::fs::write(
         &k,
@@ -147,7 +143,11 @@ fn indefinite_and_zero_stiffness_are_refused_with_their_dofs() {
         "%%MatrixMarket matrix coordinate real symmetric\n6 6 1\n1 1 0\n",
     )
     .unwrap();
-    let (code, err) = reduce_with(&dir, "z.toml", &import_table(&dir, "matrix_market", &k0, &m));
+    let (code, err) = reduce_with(
+        &dir,
+        "z.toml",
+        &import_table(&dir, "matrix_market", &k0, &m),
+    );
     assert_eq!(code, 2, "{err}");
     assert!(
         err.contains("tire.import.stiffness") && err.contains("every entry is zero"),
