@@ -27,12 +27,8 @@ where
     E: Element,
     F: Fn(f64) -> Result<E, AncfError>,
 {
-    if n_el == 0 || n_el > MAX_BEAM_ELEMENTS {
-        return Err(invalid(
-            "elements",
-            format!("must lie in [1, {MAX_BEAM_ELEMENTS}], got {n_el}"),
-        ));
-    }
+    mbd_core::validate::check::size("elements", n_el, 1, MAX_BEAM_ELEMENTS)
+        .map_err(|e| invalid("elements", e.reason))?;
     if !(length.is_finite() && length > 0.0) {
         return Err(invalid("length", format!("must be > 0 m, got {length}")));
     }

@@ -91,22 +91,24 @@ pub(crate) fn check_rho_inf(rho: f64) -> Result<(), InvalidField> {
 
 /// `1 ≤ elements ≤` [`MAX_BEAM_ELEMENTS`].
 pub(crate) fn check_elements(n: usize) -> Result<(), InvalidField> {
-    check::count("elements", n, 1, MAX_BEAM_ELEMENTS)
+    check::size("elements", n, 1, MAX_BEAM_ELEMENTS)
 }
 
 /// `t_end / h ≤` [`MAX_TIME_STEPS`] (both positive).
 pub(crate) fn check_time(t_end: f64, h: f64) -> Result<(), InvalidField> {
     check::positive("t_end", t_end, "s")?;
     check::positive("h", h, "s")?;
-    if t_end / h > MAX_TIME_STEPS {
+    let max = mbd_core::validate::limits::ceiling(MAX_TIME_STEPS);
+    if t_end / h > max {
         return Err(InvalidField::new(
             "t_end",
             format!(
-                "{} s in steps h = {} s is {:.3e} steps, more than the {MAX_TIME_STEPS:e} a run \
-                 may take",
+                "{} s in steps h = {} s is {:.3e} steps, more than the {max:e} a run may \
+                 take{}",
                 check::show(t_end),
                 check::show(h),
-                t_end / h
+                t_end / h,
+                mbd_core::validate::limits::raise_hint()
             ),
         ));
     }
@@ -118,7 +120,7 @@ impl Validate for StaticBeamCase {
     /// `−1 < ν < 0.5`, positive dimensions and modulus, non-negative density.
     fn validate(&self) -> Result<(), InvalidField> {
         check_elements(self.elements)?;
-        check::count("increments", self.increments, 1, MAX_INCREMENTS)?;
+        check::size("increments", self.increments, 1, MAX_INCREMENTS)?;
         check_poisson(self.nu)?;
         check::positive("height", self.height, "m")?;
         check::positive("width", self.width, "m")?;
@@ -133,7 +135,7 @@ impl Validate for GroundContactCase {
     /// dimensions, modulus, gap and load factor.
     fn validate(&self) -> Result<(), InvalidField> {
         check_elements(self.elements)?;
-        check::count("increments", self.increments, 1, MAX_INCREMENTS)?;
+        check::size("increments", self.increments, 1, MAX_INCREMENTS)?;
         for (f, v, unit) in [
             ("length", self.length, "m"),
             ("height", self.height, "m"),

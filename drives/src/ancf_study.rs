@@ -131,14 +131,16 @@ impl Validate for AncfStudyConfig {
             ),
         ] {
             let n = self.t_end / interval;
+            let max = mbd_core::validate::limits::ceiling(max);
             if n > max {
                 return Err(InvalidField::new(
                     "t_end",
                     format!(
                         "{} s at {field} = {} s is {n:.3e} {what}, more than the {max:e} a run \
-                         may take (raise {field} or shorten t_end)",
+                         may take (raise {field} or shorten t_end){}",
                         check::show(self.t_end),
-                        check::show(interval)
+                        check::show(interval),
+                        mbd_core::validate::limits::raise_hint()
                     ),
                 ));
             }

@@ -61,7 +61,7 @@ pub fn check_nodes_modes(nodes: usize, modes: usize) -> Result<(), InvalidField>
             format!("needs at least 3 interior nodes, got {nodes}"),
         ));
     }
-    check::count("nodes", nodes, 3, MAX_STRING_NODES)?;
+    check::size("nodes", nodes, 3, MAX_STRING_NODES)?;
     if modes == 0 || modes > nodes {
         return Err(InvalidField::new(
             "modes",
@@ -81,13 +81,15 @@ pub fn check_steps(
     what: &str,
 ) -> Result<(), InvalidField> {
     let n = duration / step;
+    let max = mbd_core::validate::limits::ceiling(max);
     if n > max {
         return Err(InvalidField::new(
             field,
             format!(
-                "{} s in steps of {} s is {n:.3e} {what}, more than the {max:e} a run may take",
+                "{} s in steps of {} s is {n:.3e} {what}, more than the {max:e} a run may take{}",
                 check::show(duration),
-                check::show(step)
+                check::show(step),
+                mbd_core::validate::limits::raise_hint()
             ),
         ));
     }
@@ -174,7 +176,7 @@ impl Validate for ModesConfig {
         check_string(&self.string, "string")?;
         check_number("speed", self.speed, false)?;
         check_nodes_modes(self.nodes, self.modes)?;
-        check::count("galerkin_terms", self.galerkin_terms, 1, MAX_GALERKIN_TERMS)?;
+        check::size("galerkin_terms", self.galerkin_terms, 1, MAX_GALERKIN_TERMS)?;
         if self.report == 0 {
             return Err(InvalidField::new("report", "must be at least 1"));
         }

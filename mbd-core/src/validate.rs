@@ -73,6 +73,65 @@ pub fn unit_variant<'de, D: serde::Deserializer<'de>>(d: D) -> Result<(), D::Err
     <NoFields as serde::Deserialize>::deserialize(d).map(|_| ())
 }
 
+/// The documented ceilings on sizes and run lengths taken from input, and the one switch that
+/// raises them (issue 20, item 2).
+///
+/// Every size a run allocates from (nodes, elements, divisions, time steps, recorded samples,
+/// output frames) is checked against a documented constant of its crate before anything is
+/// allocated or run (`flowing::string_study::MAX_STRING_NODES`, `MAX_RIG_STEPS`, ...), so
+/// absurd input (`--nodes 1e9`, `record_time = 1e300`) is a one-line error naming the field
+/// instead of an allocation abort or a run that never ends. A user who really wants a larger
+/// model raises every ceiling [`LARGE_FACTOR`]-fold: `--allow-large` on any `flowmbd-*`
+/// study, or [`set_allow_large`] from library code. The raised ceilings are still finite, so
+/// sizes such as `1e300` s stay refused (no overflow of a count, no endless run).
+pub mod limits {
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    static ALLOW_LARGE: AtomicBool = AtomicBool::new(false);
+
+    /// How much [`set_allow_large`] raises every ceiling.
+    pub const LARGE_FACTOR: f64 = 1000.0;
+
+    /// Raise (`true`) or restore (`false`) every ceiling, process-wide (the apps'
+    /// `--allow-large`; set it before validating a configuration).
+    pub fn set_allow_large(yes: bool) {
+        ALLOW_LARGE.store(yes, Ordering::Relaxed);
+    }
+
+    /// Whether the ceilings are raised.
+    pub fn large_allowed() -> bool {
+        ALLOW_LARGE.load(Ordering::Relaxed)
+    }
+
+    /// The ceiling in force for a documented ceiling `default` (a run length or sample count):
+    /// `default`, or [`LARGE_FACTOR`] × `default` when raised.
+    pub fn ceiling(default: f64) -> f64 {
+        if large_allowed() {
+            default * LARGE_FACTOR
+        } else {
+            default
+        }
+    }
+
+    /// [`ceiling`] for a count (nodes, elements, divisions).
+    pub fn ceiling_count(default: usize) -> usize {
+        if large_allowed() {
+            default.saturating_mul(LARGE_FACTOR as usize)
+        } else {
+            default
+        }
+    }
+
+    /// What a refusal at a ceiling ends with: how to raise it (empty once raised).
+    pub fn raise_hint() -> &'static str {
+        if large_allowed() {
+            ""
+        } else {
+            " (a documented ceiling: --allow-large raises it 1000-fold)"
+        }
+    }
+}
+
 /// The shared range checks. Each returns the [`InvalidField`] for `field` when `value` fails.
 ///
 /// Messages say what was expected and what was given; a NaN is called "not a number" (never
@@ -201,6 +260,25 @@ pub mod check {
                 format!("cannot read `{shown}`: {e}"),
             )),
         }
+    }
+
+    /// A size from input `lo ≤ n ≤` the ceiling in force for the documented ceiling `max`
+    /// ([`super::limits::ceiling_count`]); the refusal says how to raise the ceiling.
+    pub fn size(field: &str, n: usize, lo: usize, max: usize) -> Result<(), InvalidField> {
+        let hi = super::limits::ceiling_count(max);
+        if n < lo {
+            return count(field, n, lo, hi);
+        }
+        if n > hi {
+            return Err(InvalidField::new(
+                field,
+                format!(
+                    "must lie in [{lo}, {hi}], got {n}{}",
+                    super::limits::raise_hint()
+                ),
+            ));
+        }
+        Ok(())
     }
 
     fn with_unit(unit: &str) -> String {

@@ -229,7 +229,7 @@ impl Default for CantileverConfig {
 impl Validate for CantileverConfig {
     fn validate(&self) -> Result<(), InputError> {
         self.beam.validate_within("beam")?;
-        mbd_core::validate::check::count("shape_segments", self.shape_segments, 1, 10_000)
+        mbd_core::validate::check::size("shape_segments", self.shape_segments, 1, 10_000)
     }
 }
 

@@ -126,3 +126,24 @@ fn summaries_say_what_the_numbers_mean() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+// Issue 20 item 2: `--allow-large` raises the element ceiling (MAX_BEAM_ELEMENTS = 10^5)
+// 1000-fold: 100 001 elements are refused without it and accepted with it (`--print-config`
+// validates and computes nothing).
+#[test]
+fn allow_large_raises_the_element_ceiling() {
+    for study in STUDIES {
+        let (code, _, err) = run(&[study, "--elements", "100001", "--print-config"]);
+        assert_eq!(code, 2, "{study}: {err}");
+        assert!(err.contains("--allow-large"), "{study}: {err}");
+        let (code, out, err) = run(&[
+            study,
+            "--elements",
+            "100001",
+            "--print-config",
+            "--allow-large",
+        ]);
+        assert_eq!(code, 0, "{study}: {err}");
+        assert!(out.contains("elements = 100001"), "{study}: {out}");
+    }
+}

@@ -58,6 +58,7 @@ fn every_table_rejects_an_unknown_key() {
         );
     }
     // the shipped examples use constant and cosine loads, constant speeds, other friction laws
+    // (Kerkkänen §3.3 for `ancf`, §4.6 for `plate`)
     let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let mut names: Vec<PathBuf> = std::fs::read_dir(&examples)
         .unwrap()
@@ -154,4 +155,29 @@ fn csv_headers_carry_units_and_summaries_a_meaning() {
         assert!(bad.is_empty(), "{study}: columns without unit: {bad:?}");
     }
     let _ = std::fs::remove_dir_all(dir);
+}
+
+// Issue 20 item 2: `--allow-large` raises the run-length ceilings 1000-fold: 2·10^4 s of the
+// ANCF drive are 2·10^7 history rows at the default 1 ms interval, above MAX_HISTORY_ROWS =
+// 10^7 (refused, naming t_end), within 10^10 with the flag (`--print-config` computes nothing);
+// 10^300 s stay refused.
+#[test]
+fn allow_large_raises_the_run_length_ceilings() {
+    let (code, _, err) = run(&["ancf", "--t-end", "2e4", "--print-config"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("t_end") && err.contains("--allow-large"),
+        "{err}"
+    );
+    let (code, out, err) = run(&["ancf", "--t-end", "2e4", "--print-config", "--allow-large"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("t_end = 20000.0"), "{out}");
+    let (code, _, err) = run(&[
+        "ancf",
+        "--t-end",
+        "1e300",
+        "--print-config",
+        "--allow-large",
+    ]);
+    assert_eq!(code, 2, "{err}");
 }

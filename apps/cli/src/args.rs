@@ -22,6 +22,10 @@ pub struct CommonArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Raise every documented size ceiling (nodes, elements, time steps, samples, matrix
+    /// sizes) 1000-fold (Matrix Market files: up to what a sparse matrix can index).
+    #[arg(long)]
+    pub allow_large: bool,
 }
 
 impl CommonArgs {

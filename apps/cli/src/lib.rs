@@ -12,7 +12,8 @@
 //! - [`plot`]: line plots written as PNG and SVG;
 //! - [`Progress`]: a progress bar on stderr, hidden with `--quiet` or without a terminal;
 //! - [`print_stdout`]: `--json` / `--print-config` output that exits quietly into a closed pipe;
-//! - [`check_input_file`]: input paths reported as missing, a directory or unreadable.
+//! - [`check_input_file`]: input paths reported as missing, a directory or unreadable;
+//! - [`limits`]: the documented size ceilings, raised by every study's `--allow-large`.
 
 pub mod args;
 pub mod config;
@@ -28,6 +29,7 @@ pub use args::{CommonArgs, parse_args};
 pub use config::{Validate, load_config, read_config};
 pub use error::{CliError, InputError};
 pub use files::check_input_file;
+pub use mbd_core::validate::limits;
 pub use output::OutputDir;
 pub use progress::Progress;
 pub use stdout::print_stdout;

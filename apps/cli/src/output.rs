@@ -75,7 +75,9 @@ impl OutputDir {
 /// `_s`, `_m`, `_n` (newton), `_n_m` (N/m), `_Nm` (N·m), `_hz`, `_kmh`, `_rad`, `_rad_s`,
 /// `_rad_s2`, `_rad2_s2`, `_1_s`, `_m_s`, `_m_s2`, `_j`, `_kg`, `_kg_m2`, `_pa`, `_deg`,
 /// `_n_sqrtkg` (N/√kg), `_sqrtkg_m` (√kg·m, mass-normalised modal coordinates), `_rpm`
-/// (revolutions per minute) and `_percent`.
+/// (revolutions per minute) and `_percent`; the SI symbols spelled out are accepted too
+/// (`tension_N`, `torque_N_m`, `pressure_N_per_m`, `slip_velocity_m_per_s`). Suffixes
+/// compare without case ([`column_has_unit`]).
 pub const UNIT_SUFFIXES: &[&str] = &[
     "_s",
     "_m",
@@ -100,17 +102,29 @@ pub const UNIT_SUFFIXES: &[&str] = &[
     "_sqrtkg_m",
     "_rpm",
     "_percent",
+    "_N",
+    "_N_m",
+    "_N_per_m",
+    "_m_per_s",
 ];
 
 /// Suffixes of dimensionless columns (`damping_ratio`, `lateral_share`, `loaded_flag`,
-/// `pulley_index`, `direction_code`, `active_count`) and names that are dimensionless by
-/// definition (`mode`, `n`, `strain`).
+/// `pulley_index`, `direction_code`, `active_count`, `friction_utilisation` = |f_t| / (μ f_n))
+/// and names that are dimensionless by definition (`mode`, `n`, `strain`).
 pub const DIMENSIONLESS: &[&str] = &[
-    "_ratio", "_share", "_flag", "_index", "_code", "_count", "_strain",
+    "_ratio",
+    "_share",
+    "_flag",
+    "_index",
+    "_code",
+    "_count",
+    "_strain",
+    "_utilisation",
 ];
 
-/// Column names that are counts or indices by definition.
-pub const DIMENSIONLESS_NAMES: &[&str] = &["mode", "n", "strain", "index"];
+/// Column names that are counts or indices by definition (`pulley`: the pulley's index in
+/// travel order).
+pub const DIMENSIONLESS_NAMES: &[&str] = &["mode", "n", "strain", "index", "pulley"];
 
 /// Whether the CSV column `name` says its unit (ends with one of [`UNIT_SUFFIXES`]) or that
 /// it is dimensionless ([`DIMENSIONLESS`], [`DIMENSIONLESS_NAMES`]).
@@ -212,6 +226,11 @@ mod tests {
             "pulley_index",
             "normal_force_n_m",
             "growth_rate_1_s",
+            "tension_N",
+            "pressure_N_per_m",
+            "slip_velocity_m_per_s",
+            "friction_utilisation",
+            "pulley",
         ] {
             assert!(column_has_unit(ok), "{ok}");
         }

@@ -116,6 +116,8 @@ pub fn run_study<S: Study>(study: &S, args: &CommonArgs) -> ExitCode {
 }
 
 fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
+    // before any check: the ceilings of sizes and run lengths (`--allow-large`, issue 20)
+    mbd_core::validate::limits::set_allow_large(args.allow_large);
     // overrides first, then one validation of the effective configuration
     let (mut config, origin) = read_config::<S::Config>(args.config.as_deref())?;
     study.apply_overrides(&mut config);

@@ -33,9 +33,6 @@ pub struct Args {
     /// Mesh (mesh.json as written by `tire-mesh`) for the VTK export of the modes.
     #[arg(long, value_name = "mesh.json")]
     mesh: Option<PathBuf>,
-    /// Accept matrices above the reader's size ceiling (10^7 rows or columns).
-    #[arg(long)]
-    allow_large: bool,
 }
 
 /// Configuration of the `modes` study.
@@ -185,7 +182,7 @@ impl Study for ModesStudy<'_> {
             ));
         }
         let bar = ctx.progress(4.0, "modes");
-        let opts = mtx::ReadOptions::symmetric().allow_large(self.args.allow_large);
+        let opts = mtx::ReadOptions::symmetric().allow_large(self.args.common.allow_large);
         let read = |field: &str, p: &str| -> Result<_, StudyError> {
             mtx::read_with(p, &opts)
                 .and_then(|m| m.to_sparse())

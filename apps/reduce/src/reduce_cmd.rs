@@ -87,7 +87,8 @@ pub struct Args {
     /// No messages on stderr.
     #[arg(long)]
     quiet: bool,
-    /// Accept matrices above the reader's size ceiling (10^7 rows or columns).
+    /// Accept matrices above the reader's size ceiling (10^7 rows or columns), as every
+    /// study's --allow-large.
     #[arg(long)]
     allow_large: bool,
 }
@@ -111,7 +112,19 @@ pub struct Summary {
     pub reduction_s: f64,
     /// Written file.
     pub file: String,
+    /// What the numbers mean (issue 20: every study's summary says it), [`MEANING`].
+    pub meaning: &'static str,
 }
+
+/// What the summary of `reduce` means.
+pub const MEANING: &str = "The user's Matrix Market model (n_full DOFs) reduced to n_reduced \
+     coordinates: the boundary DOFs kept physical (n_boundary; n_fixed clamped DOFs removed) plus, \
+     for cb/mc/fixed-interface-mt/free-free-mt, the requested normal modes. frequencies_hz are \
+     the lowest natural frequencies of the reduced pair K_r q = lambda M_r q [Hz] (at most 20); \
+     the reduction is a Rayleigh-Ritz projection, so each lies at or above the matching \
+     frequency of the full model, and Craig-Bampton converges to it from above as modes are \
+     added (Lin ch. 6). reduction_s is the wall time of the reduction [s]; file holds the \
+     reduced model (versioned JSON) for the flexible body of a multibody model.";
 
 /// Node ranges `a..=b` (1-based) of a `1,5,10-12` list; nothing is expanded here, so a huge
 /// range costs nothing until it is checked against the model ([`expand_nodes`]).
@@ -156,6 +169,7 @@ enum Failure {
 }
 
 fn run_inner(a: &Args) -> Result<Summary, Failure> {
+    flowmbd_cli::limits::set_allow_large(a.allow_large);
     let input = |e: String| Failure::Input(e);
     let nodes = parse_nodes(&a.boundary, "--boundary").map_err(input)?;
     let fixed = match &a.fixed {
@@ -258,6 +272,7 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
         frequencies_hz: f.into_iter().take(20).collect(),
         reduction_s,
         file: a.out.display().to_string(),
+        meaning: MEANING,
     })
 }
 

@@ -25,6 +25,8 @@ fn tire_mesh_then_modes() {
         .unwrap();
     let s = common::json_of(&out);
     assert_eq!(s["dof"], 3 * 16 * 11 * 2);
+    // issue 20: the summary says what its numbers mean
+    assert!(s["meaning"].as_str().unwrap().contains("carcass"), "{s}");
     for f in [
         "K.mtx",
         "M.mtx",

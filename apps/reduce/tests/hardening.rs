@@ -190,3 +190,101 @@ fn closed_stdout_exits_quietly() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Issue 20 item 5: every study's summary says what its numbers mean (`tire-mesh`, `modes` and
+/// `lin-slab` are checked in their end-to-end tests, `lin-beam` and `reduce` here). The
+/// reduced pair of the 2-DOF chain with DOF 1 kept and one mode (Craig–Bampton spans the whole
+/// space) has the full model's ω² = 1, 3 rad²/s² (analytical).
+#[test]
+fn every_summary_says_what_its_numbers_mean() {
+    let dir = tmp("hard", "meaning");
+    let out = dir.join("lb").display().to_string();
+    let lb = run(&["lin-beam", "--quiet", "--json", "--out", &out]);
+    assert_eq!(lb.status.code(), Some(0));
+    let s: serde_json::Value = serde_json::from_slice(&lb.stdout).unwrap();
+    assert!(
+        s["meaning"]
+            .as_str()
+            .unwrap_or_default()
+            .contains("Appendix A"),
+        "{s}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("lb/summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["meaning"], s["meaning"]);
+    let k = write(&dir, "K.mtx", K);
+    let m = write(&dir, "M.mtx", M);
+    let o = dir.join("o.json").display().to_string();
+    let r = run(&[
+        "reduce",
+        "--quiet",
+        "--json",
+        "--mass",
+        &m,
+        "--stiffness",
+        &k,
+        "--out",
+        &o,
+        "--dofs-per-node",
+        "1",
+        "--boundary",
+        "1",
+        "--modes",
+        "1",
+    ]);
+    assert_eq!(
+        r.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&r.stderr)
+    );
+    let s: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
+    assert!(
+        s["meaning"]
+            .as_str()
+            .unwrap_or_default()
+            .contains("n_reduced"),
+        "{s}"
+    );
+    let f: Vec<f64> = s["frequencies_hz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let two_pi = 2.0 * std::f64::consts::PI;
+    assert_eq!(f.len(), 2, "{f:?}");
+    assert!((f[0] - 1.0 / two_pi).abs() < 1e-9, "{f:?}");
+    assert!((f[1] - 3f64.sqrt() / two_pi).abs() < 1e-9, "{f:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 20 item 2: `--allow-large` is a flag of every study and raises the documented ceilings
+/// 1000-fold: a generated tire of 8000 × 36 × 2 = 576 000 hexahedra exceeds MAX_TIRE_ELEMENTS =
+/// 250 000 (refused, naming the field) and is accepted with the flag (`--print-config`
+/// validates and computes nothing).
+#[test]
+fn allow_large_raises_the_tire_element_ceiling() {
+    let dir = tmp("hard", "large");
+    let cfg = write(&dir, "t.toml", "[tire]\ncircumferential_divisions = 8000\n");
+    expect_2(
+        &run(&["tire-mesh", "--config", &cfg, "--print-config"]),
+        &["tire.circumferential_divisions", "576000", "--allow-large"],
+    );
+    let ok = run(&[
+        "tire-mesh",
+        "--config",
+        &cfg,
+        "--print-config",
+        "--allow-large",
+    ]);
+    assert_eq!(
+        ok.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    assert!(String::from_utf8_lossy(&ok.stdout).contains("circumferential_divisions = 8000"));
+    std::fs::remove_dir_all(&dir).ok();
+}

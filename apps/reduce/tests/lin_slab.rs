@@ -24,6 +24,8 @@ fn simulation3_writes_tables_and_cb_equals_mc() {
         .output()
         .unwrap();
     let s = common::json_of(&out);
+    // issue 20: the summary says what its numbers mean
+    assert!(s["meaning"].as_str().unwrap().contains("Appendix B"), "{s}");
     let cbmc = s["cb_mc_max_difference_m"]["sim3"].as_f64().unwrap();
     assert!(cbmc < 1e-9, "CB vs MC {cbmc}");
     let src = &s["sim3_source"];

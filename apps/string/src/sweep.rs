@@ -58,8 +58,8 @@ impl Validate for SweepConfig {
             ));
         }
         // one Galerkin and one flowing eigen problem per speed
-        mbd_core::validate::check::count("steps", self.steps, 2, 100_000)?;
-        mbd_core::validate::check::count(
+        mbd_core::validate::check::size("steps", self.steps, 2, 100_000)?;
+        mbd_core::validate::check::size(
             "galerkin_terms",
             self.galerkin_terms,
             1,

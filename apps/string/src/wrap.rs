@@ -97,7 +97,7 @@ impl Default for WrapConfig {
 impl Validate for WrapConfig {
     fn validate(&self) -> Result<(), InputError> {
         check_string(&self.string, "string")?;
-        mbd_core::validate::check::count("nodes", self.nodes, 5, MAX_STRING_NODES)?;
+        mbd_core::validate::check::size("nodes", self.nodes, 5, MAX_STRING_NODES)?;
         if self.pulleys.is_empty() {
             return Err(InputError::new("pulleys", "at least one pulley is needed"));
         }
@@ -144,7 +144,7 @@ impl Validate for WrapConfig {
             ));
         }
         check_steps("duration", self.duration, self.sample, 1e7, "samples")?;
-        mbd_core::validate::check::count("vtk_snapshots", self.vtk_snapshots, 0, 100_000)?;
+        mbd_core::validate::check::size("vtk_snapshots", self.vtk_snapshots, 0, 100_000)?;
         if self.formulation == Formulation::CraigBampton && self.free_modes == 0 {
             return Err(InputError::new("free_modes", "must be at least 1"));
         }

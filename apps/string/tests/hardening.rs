@@ -208,3 +208,35 @@ fn csv_units_meaning_and_the_shaded_sweep() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+// Issue 20 item 2: the documented ceilings are raised by `--allow-large` (1000-fold, see
+// mbd_core::validate::limits): one node above MAX_STRING_NODES = 2000 is refused without the
+// flag, naming it, and accepted with it; 10^9 nodes stay refused (2000 × 1000 = 2·10^6).
+// `--print-config` validates first and computes nothing, so the test is cheap.
+#[test]
+fn allow_large_raises_the_node_ceiling_1000_fold() {
+    let (code, _, err) = run(&["modes", "--nodes", "2001", "--print-config"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("nodes: must lie in [3, 2000], got 2001") && err.contains("--allow-large"),
+        "{err}"
+    );
+    let (code, out, err) = run(&[
+        "modes",
+        "--nodes",
+        "2001",
+        "--print-config",
+        "--allow-large",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("nodes = 2001"), "{out}");
+    let (code, _, err) = run(&[
+        "modes",
+        "--nodes",
+        "1000000000",
+        "--print-config",
+        "--allow-large",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("must lie in [3, 2000000]"), "{err}");
+}

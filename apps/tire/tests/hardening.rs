@@ -379,3 +379,30 @@ fn sweep_map_rows_follow_each_speeds_spectrum() {
     assert!(flowmbd_cli::output::columns_without_unit(&sw).is_empty());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+// Issue 20 item 2: `--allow-large` raises the documented ceilings 1000-fold: 3·10^4 s at the
+// default 0.2 ms step are 1.5·10^8 rig steps, above MAX_RIG_STEPS = 2·10^7 (refused, naming
+// rig.record_time), within 2·10^10 with the flag; `--print-config` validates and computes
+// nothing.
+#[test]
+fn allow_large_raises_the_rig_step_ceiling() {
+    let dir = tmp("allow-large");
+    let text = "[rig]\nrecord_time = 30000\n";
+    let (code, err) = check("cleat", text, &[], &dir);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("rig.record_time") && err.contains("--allow-large"),
+        "{err}"
+    );
+    let (code, err) = check("cleat", text, &["--allow-large"], &dir);
+    assert_eq!(code, 0, "{err}");
+    // 10^300 s stay refused with the flag
+    let (code, err) = check(
+        "cleat",
+        "[rig]\nrecord_time = 1e300\n",
+        &["--allow-large"],
+        &dir,
+    );
+    assert_eq!(code, 2, "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

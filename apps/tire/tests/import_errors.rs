@@ -28,6 +28,22 @@ fn abaqus_files(dir: &Path, stiffness: &str) -> String {
     )
 }
 
+/// M = I (6 DOFs, Matrix Market) and the node files without labels of the Matrix Market
+/// import (2 nodes, rim node 0, patch node 1); returns the path of M.
+fn matrix_market_files(dir: &Path) -> std::path::PathBuf {
+    let m = dir.join("M.mtx");
+    std::fs::write(
+        &m,
+        "%%MatrixMarket matrix coordinate real symmetric\n6 6 6\n1 1 1\n2 2 1\n3 3 1\n\
+         4 4 1\n5 5 1\n6 6 1\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("nodes.inp"), "0.5 0 0\n0 0.5 0\n").unwrap();
+    std::fs::write(dir.join("rim.inp"), "0\n").unwrap();
+    std::fs::write(dir.join("patch.inp"), "1\n").unwrap();
+    m
+}
+
 fn import_table(dir: &Path, format: &str, k: &Path, m: &Path) -> String {
     format!(
         "[tire]\nreduced_file = \"\"\n[tire.import]\nformat = {format:?}\nstiffness = {:?}\n\
@@ -83,17 +99,7 @@ fn one_triangle_general_and_directory_are_refused() {
          4 4 2\n5 5 2\n6 6 2\n4 1 -1\n",
     )
     .unwrap();
-    let m = dir.join("M.mtx");
-    std::fs::write(
-        &m,
-        "%%MatrixMarket matrix coordinate real symmetric\n6 6 6\n1 1 1\n2 2 1\n3 3 1\n\
-         4 4 1\n5 5 1\n6 6 1\n",
-    )
-    .unwrap();
-    // node files without labels for Matrix Market input
-    std::fs::write(dir.join("nodes.inp"), "0.5 0 0\n0 0.5 0\n").unwrap();
-    std::fs::write(dir.join("rim.inp"), "0\n").unwrap();
-    std::fs::write(dir.join("patch.inp"), "1\n").unwrap();
+    let m = matrix_market_files(&dir);
     let (code, err) = reduce_with(&dir, "k.toml", &import_table(&dir, "matrix_market", &k, &m));
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("K.mtx:1:"), "{err}");
@@ -108,5 +114,44 @@ fn one_triangle_general_and_directory_are_refused() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("tire.import.mass"), "{err}");
     assert!(err.contains("is a directory"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Item 3 of issue #20 for the tire import: an indefinite or all-zero K is refused (exit 2)
+/// naming the field, the file and the offending DOFs instead of reducing a model with
+/// imaginary or zero frequencies. Reference: K = 2 I (6 DOFs) with K₁₄ = K₄₁ = −3 has the
+/// eigenvalues 2 ∓ 3 on DOFs 1 and 4 (−1 < 0: indefinite).
+#[test]
+fn indefinite_and_zero_stiffness_are_refused_with_their_dofs() {
+    let dir = tmp("mtx-indefinite");
+    let m = matrix_market_files(&dir);
+    let k = dir.join("K.mtx");
+    std::fs::write(
+        &k,
+        "%%MatrixMarket matrix coordinate real symmetric\n6 6 7\n1 1 2\n2 2 2\n3 3 2\n\
+         4 4 2\n5 5 2\n6 6 2\n4 1 -3\n",
+    )
+    .unwrap();
+    let (code, err) = reduce_with(&dir, "i.toml", &import_table(&dir, "matrix_market", &k, &m));
+    assert_eq!(code, 2, "{err}");
+    for needle in ["tire.import.stiffness", "K.mtx", "indefinite", "DOFs"] {
+        assert!(err.contains(needle), "`{needle}` not in {err}");
+    }
+    let k0 = dir.join("K0.mtx");
+    std::fs::write(
+        &k0,
+        "%%MatrixMarket matrix coordinate real symmetric\n6 6 1\n1 1 0\n",
+    )
+    .unwrap();
+    let (code, err) = reduce_with(
+        &dir,
+        "z.toml",
+        &import_table(&dir, "matrix_market", &k0, &m),
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("tire.import.stiffness") && err.contains("every entry is zero"),
+        "{err}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -235,15 +235,16 @@ impl mbd_core::Validate for TireConfig {
             ));
         }
         let max = MAX_TIRE_ELEMENTS;
-        check::count(
+        check::size(
             "circumferential_divisions",
             self.circumferential_divisions,
             8,
             max,
         )?;
-        check::count("section_divisions", self.section_divisions, 4, max)?;
-        check::count("thickness_divisions", self.thickness_divisions, 1, max)?;
-        // each factor is at most 250 000, so the product fits in a u128 without overflow
+        check::size("section_divisions", self.section_divisions, 4, max)?;
+        check::size("thickness_divisions", self.thickness_divisions, 1, max)?;
+        let max = mbd_core::validate::limits::ceiling_count(max);
+        // each factor is at most 2.5·10⁸ (the raised ceiling), so the product fits in a u128
         let elements = self.circumferential_divisions as u128
             * self.section_divisions as u128
             * self.thickness_divisions as u128;
@@ -252,10 +253,11 @@ impl mbd_core::Validate for TireConfig {
                 "circumferential_divisions",
                 format!(
                     "{} × {} × {} divisions (circumferential × section × thickness) are {elements} \
-                     elements, more than the {max} a generated tire may have",
+                     elements, more than the {max} a generated tire may have{}",
                     self.circumferential_divisions,
                     self.section_divisions,
-                    self.thickness_divisions
+                    self.thickness_divisions,
+                    mbd_core::validate::limits::raise_hint()
                 ),
             ));
         }

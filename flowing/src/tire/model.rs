@@ -158,12 +158,15 @@ fn read_nodes_labelled(path: &str, labelled: bool) -> Result<(Vec<u64>, Vec<[f64
 }
 
 /// A stiffness or mass matrix (`field`) from Matrix Market: square and symmetric (a `general`
-/// file storing one triangle is refused, see `fe_model::io::mtx`), default size ceiling.
+/// file storing one triangle is refused, see `fe_model::io::mtx`), default size ceiling unless
+/// raised (`mbd_core::validate::limits`).
 fn read_mtx(
     field: &'static str,
     path: &str,
 ) -> Result<faer::sparse::SparseColMat<usize, f64>, TireError> {
-    let opts = fe_model::io::mtx::ReadOptions::symmetric();
+    // `--allow-large` (mbd_core::validate::limits) lifts the reader's size ceiling too
+    let opts = fe_model::io::mtx::ReadOptions::symmetric()
+        .allow_large(mbd_core::validate::limits::large_allowed());
     fe_model::io::mtx::read_with(path, &opts)
         .and_then(|m| m.to_sparse())
         .map_err(|e| import_err(field, e.to_string()))
@@ -259,12 +262,37 @@ fn labels_to_indices(
         .collect()
 }
 
+/// The physical plausibility of imported K and M (issue #20, item 3): K symmetric positive
+/// semi-definite (the free tire's rigid-body modes are allowed), M positive semi-definite
+/// (massless DOFs are condensed by the Craig–Bampton reduction), entries finite
+/// ([`fe_model::plausibility::check_stiffness_mass`], Géradin & Rixen §2.3). An all-zero or
+/// indefinite K is refused with the offending DOFs (1-based rows) instead of giving nonsense
+/// frequencies; warnings (DOFs without stiffness or mass) are not errors and are dropped here.
+fn check_pair(files: &ImportFiles, k: &Sparse, m: &Sparse) -> Result<(), TireError> {
+    let opts = fe_model::plausibility::PairCheckOptions {
+        massless_dofs_allowed: true,
+    };
+    fe_model::plausibility::check_stiffness_mass(k.as_ref(), m.as_ref(), &opts)
+        .map(|_warnings| ())
+        .map_err(|e| {
+            let (field, path) = match &e {
+                fe_model::FeError::Implausible { matrix, .. } if matrix == "K" => {
+                    ("stiffness", &files.stiffness)
+                }
+                fe_model::FeError::Dimension { .. } => ("stiffness", &files.stiffness),
+                _ => ("mass", &files.mass),
+            };
+            import_err(field, format!("{path}: {e}"))
+        })
+}
+
 /// Import a tire FE model from files (see [`ImportFiles`]).
 pub fn imported_tire(files: &ImportFiles) -> Result<TireFe, TireError> {
     match files.format {
         ImportFormat::MatrixMarket => {
             let k = read_mtx("stiffness", &files.stiffness)?;
             let m = read_mtx("mass", &files.mass)?;
+            check_pair(files, &k, &m)?;
             let (_, nodes) = read_nodes_labelled(&files.nodes, false)?;
             let rim = read_indices("rim_nodes", &files.rim_nodes)?;
             let patch = read_indices("patch_nodes", &files.patch_nodes)?;
@@ -273,6 +301,7 @@ pub fn imported_tire(files: &ImportFiles) -> Result<TireFe, TireError> {
         ImportFormat::Abaqus => {
             let (labels, nodes) = read_nodes_labelled(&files.nodes, true)?;
             let (k, m) = read_abaqus(files, &labels)?;
+            check_pair(files, &k, &m)?;
             let rim = labels_to_indices(
                 "rim_nodes",
                 &files.rim_nodes,

@@ -179,7 +179,7 @@ impl Validate for RigConfig {
         check::positive("load", self.load, "N")?;
         check::non_negative("settle_time", self.settle_time, "s")?;
         check::non_negative("record_time", self.record_time, "s")?;
-        check::count(
+        check::size(
             "impact.substeps",
             self.impact.substeps,
             1,
@@ -189,14 +189,16 @@ impl Validate for RigConfig {
         check::non_negative("impact.trail", self.impact.trail, "s")?;
         let h = self.rolling.time_step;
         let steps = (self.settle_time + self.record_time) / h;
-        if steps > MAX_RIG_STEPS {
+        let max = mbd_core::validate::limits::ceiling(MAX_RIG_STEPS);
+        if steps > max {
             return Err(InvalidField::new(
                 "record_time",
                 format!(
                     "settle_time + record_time = {} s at rolling.time_step = {} s is {steps:.3e} \
-                     steps, more than the {MAX_RIG_STEPS:e} a run may record",
+                     steps, more than the {max:e} a run may record{}",
                     check::show(self.settle_time + self.record_time),
-                    check::show(h)
+                    check::show(h),
+                    mbd_core::validate::limits::raise_hint()
                 ),
             ));
         }
