@@ -420,6 +420,7 @@ impl PlateBeltDrive {
 
     /// Belt forces `Q_e + Q_c` (length `n_belt`) and the travel-sense contact torques on every
     /// pulley \[N·m\] at time `t` with the pulleys turning at `omegas` (travel sense, rad/s).
+    #[allow(clippy::too_many_arguments)] // the state, the pulley speeds, outputs, and the workspace
     pub fn belt_forces(
         &self,
         t: f64,
@@ -472,6 +473,7 @@ impl PlateBeltDrive {
 
     /// Belt tangent `K = −∂(Q_e + Q_c)/∂e` (contact velocities and pulley speeds held) into the
     /// value array `k_vals` of [`PlateBeltDrive::pattern`] (belt rows only), forces into `f`.
+    #[allow(clippy::too_many_arguments)] // the state, the pulley speeds, outputs, and the workspace
     pub(crate) fn belt_stiffness(
         &self,
         t: f64,
@@ -597,6 +599,7 @@ impl PlateBeltDrive {
     /// [`SecondOrderSystem::forces`] with externally supplied pulley speeds `omegas` (travel
     /// sense; for a free pulley equal to its velocity coordinate) and load torques `loads`
     /// (one per pulley).
+    #[allow(clippy::too_many_arguments)] // the state, the pulley speeds, outputs, and the workspace
     pub fn forces_with(
         &self,
         t: f64,
