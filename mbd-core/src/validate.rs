@@ -81,8 +81,8 @@ pub fn unit_variant<'de, D: serde::Deserializer<'de>>(d: D) -> Result<(), D::Err
 /// allocated or run (`flowing::string_study::MAX_STRING_NODES`, `MAX_RIG_STEPS`, ...), so
 /// absurd input (`--nodes 1e9`, `record_time = 1e300`) is a one-line error naming the field
 /// instead of an allocation abort or a run that never ends. A user who really wants a larger
-/// model raises every ceiling [`LARGE_FACTOR`]-fold: `--allow-large` on any `flowmbd-*`
-/// study, or [`set_allow_large`] from library code. The raised ceilings are still finite, so
+/// model raises every ceiling [`LARGE_FACTOR`](limits::LARGE_FACTOR)-fold: `--allow-large` on any `flowmbd-*`
+/// study, or [`set_allow_large`](limits::set_allow_large) from library code. The raised ceilings are still finite, so
 /// sizes such as `1e300` s stay refused (no overflow of a count, no endless run).
 pub mod limits {
     use std::sync::atomic::{AtomicBool, Ordering};
