@@ -411,7 +411,22 @@ pub struct FeadSummary {
     pub dofs: usize,
     /// Steps taken.
     pub steps: usize,
+    /// What the numbers mean ([`FEAD_MEANING`]).
+    pub meaning: String,
 }
+
+/// The FEAD study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
+pub const FEAD_MEANING: &str = "A serpentine front-end accessory drive (six pulleys: crankshaft, \
+power steering, alternator, tensioner idler on a spring-loaded arm, water pump, a/c compressor) \
+run on the flowing-material belt model over an engine-speed sweep. The crank turns at the mean \
+speed plus its firing-order fluctuation; each accessory carries its load torque. Per engine \
+speed, after a ramp and a settling time, a window is observed: the tensioner arm angle \
+(min/mean/max, rad), every span's tension extremes (N), each pulley's speed loss against the \
+crank (%, creep and slip), the drive report at the window's end (slip arcs, hub loads, gross \
+slip) and every span's first transverse natural frequency from the travelling-string formula \
+with the computed span tension and belt speed, to be read against the engine orders (the \
+Campbell diagram: a span resonates where an order line crosses its frequency). The defaults are \
+a plausible drive, not one published engine (see drives::fead).";
 
 /// A sweep that stopped on a numerical failure, with the points completed before it.
 #[derive(Debug)]
@@ -500,6 +515,7 @@ pub fn run_fead(
         points: Vec::new(),
         dofs: base.n_q(),
         steps: 0,
+        meaning: FEAD_MEANING.to_string(),
     };
     let fail = |error: MbdError, summary: &FeadSummary| {
         Box::new(FeadFailureOrInvalid::Numerical(FeadFailure {

@@ -24,6 +24,9 @@ def ancf(config: Optional[str] = None, t_end: Optional[float] = None) -> str:
 def plate(config: Optional[str] = None, t_end: Optional[float] = None) -> str:
     """JSON text of the plate-belt summary (``summary.json`` of ``flowmbd-belt plate``)."""
 
+def fead(config: Optional[str] = None, rpm: Optional[List[float]] = None) -> str:
+    """JSON text of the FEAD sweep summary (``summary.json`` of ``flowmbd-belt fead``)."""
+
 def string_modes(
     config: Optional[str] = None,
     speed: Optional[float] = None,

@@ -123,3 +123,33 @@ def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = N
         The integration failed; ``err.partial`` is the summary at the state reached.
     """
     return from_json(_native.plate(config_json(config), None if t_end is None else float(t_end)))
+
+
+def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[float]] = None) -> dict:
+    """The front-end accessory drive sweep (``flowmbd-belt fead``): a six-pulley passenger-car
+    drive with an automatic tensioner on the flowing-material belt model, run over engine speeds
+    with the crank's firing-order speed fluctuation and the accessory loads.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-belt fead --print-config`` (``drive``, ``engine``,
+        ``run``).
+    rpm : engine speeds [rpm] (replaces ``config["engine"]["speeds_rpm"]``; the CLI's ``--rpm``).
+
+    Returns
+    -------
+    dict
+        The CLI's ``summary.json``: installed tension [N], belt length [m], the tensioner's static
+        arm angle [rad], wrap angles [deg], and per engine speed the arm angle range, span
+        tension extremes, speed loss per pulley, the drive report and the spans' transverse
+        frequencies [Hz].
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's message).
+    flowmbd.NumericalError
+        The sweep failed; ``err.partial`` holds the engine speeds completed.
+    """
+    speeds = None if rpm is None else [float(r) for r in rpm]
+    return from_json(_native.fead(config_json(config), speeds))

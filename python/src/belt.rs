@@ -7,6 +7,7 @@
 
 use crate::{input_error, numerical_error, read_config, to_json};
 use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
+use drives::fead::{FeadConfig, FeadFailureOrInvalid, run_fead};
 use drives::plate_study::{PlateStudyConfig, plate_run, plate_setup};
 use drives::speed_loss_study::{SummaryCase, SummaryPoint, drive_input_error};
 use drives::study::case_inputs;
@@ -149,6 +150,32 @@ pub fn plate(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResu
     });
     let end = result.map_err(|e| ancf_error(py, e))?;
     summary_or_failure(py, end.failure, &end.summary)
+}
+
+/// The front-end accessory drive with an automatic tensioner over an engine-speed sweep
+/// (`drives::fead`, issue 17 item 5; defaults: the six-pulley passenger-car drive); returns the
+/// JSON text of the summary. `rpm` replaces the configured engine speeds \[rpm\] (the CLI's
+/// `--rpm`).
+#[pyfunction]
+#[pyo3(signature = (config=None, rpm=None))]
+pub fn fead(py: Python<'_>, config: Option<&str>, rpm: Option<Vec<f64>>) -> PyResult<String> {
+    let mut c: FeadConfig = read_config(config)?;
+    if let Some(r) = rpm {
+        c.engine.speeds_rpm = r;
+    }
+    c.validate().map_err(input_error)?;
+    match py.detach(|| run_fead(&c, |_| {})) {
+        Ok(summary) => to_json(&summary),
+        Err(e) => Err(match *e {
+            FeadFailureOrInvalid::Invalid(f) => input_error(f),
+            FeadFailureOrInvalid::Build(b) => numerical_error(py, b.to_string(), None),
+            FeadFailureOrInvalid::Numerical(f) => numerical_error(
+                py,
+                format!("fead sweep: {}", f.error),
+                serde_json::to_value(&f.partial).ok(),
+            ),
+        }),
+    }
 }
 
 /// The JSON text of `summary`, or the integration failure with the summary as its partial

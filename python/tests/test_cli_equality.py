@@ -60,3 +60,19 @@ def test_plate_equals_cli(cli):
     py = flowmbd.belt.plate(t_end=0.005)
     assert_same(py, ref)
     assert py["steps"] > 0 and abs(py["analytical_omega_driven"] / 500.0 - 0.848) < 2e-3
+
+
+def test_fead_equals_cli(cli):
+    # the accessory drive at one engine speed (issue 17 item 5; the CLI's --rpm)
+    code, ref, err = cli("belt", "fead", "--rpm", "1500")
+    assert code == 0, err
+    py = flowmbd.belt.fead(rpm=[1500.0])
+    assert_same(py, ref)
+    assert len(py["points"]) == 1 and py["meaning"] == ref["meaning"]
+
+
+def test_fead_bad_input_is_a_value_error():
+    import pytest
+
+    with pytest.raises(ValueError, match="speeds_rpm"):
+        flowmbd.belt.fead(rpm=[-100.0])

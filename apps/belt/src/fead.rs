@@ -22,17 +22,6 @@ struct Fead {
     args: Args,
 }
 
-const MEANING: &str = "A serpentine front-end accessory drive (six pulleys: crankshaft, power \
-steering, alternator, tensioner idler on a spring-loaded arm, water pump, a/c compressor) run on \
-the flowing-material belt model over an engine-speed sweep. The crank turns at the mean speed \
-plus its firing-order fluctuation; each accessory carries its load torque. Per engine speed, \
-after a ramp and a settling time, a window is observed: the tensioner arm angle (min/mean/max, \
-rad), every span's tension extremes (N), each pulley's speed loss against the crank (%, creep \
-and slip), the drive report at the window's end (slip arcs, hub loads, gross slip) and every \
-span's first transverse natural frequency from the travelling-string formula with the computed \
-span tension and belt speed, to be read against the engine orders (the Campbell diagram: a \
-span resonates where an order line crosses its frequency). The defaults are a plausible drive, \
-not one published engine (see drives::fead).";
 
 impl Study for Fead {
     type Config = FeadConfig;
@@ -41,7 +30,7 @@ impl Study for Fead {
     const NAME: &'static str = "fead";
 
     fn meaning(&self) -> &'static str {
-        MEANING
+        drives::fead::FEAD_MEANING
     }
 
     fn apply_overrides(&self, c: &mut FeadConfig) {
