@@ -22,7 +22,6 @@ struct Fead {
     args: Args,
 }
 
-
 impl Study for Fead {
     type Config = FeadConfig;
     type Summary = FeadSummary;
