@@ -130,22 +130,6 @@ pub struct FeadConfig {
     pub run: FeadRun,
 }
 
-fn pulley(
-    name: &str,
-    center: [f64; 2],
-    radius: f64,
-    side: WrapSide,
-    motion: MotionSpec,
-) -> LayoutPulley {
-    LayoutPulley {
-        name: name.into(),
-        center,
-        radius,
-        side,
-        motion,
-    }
-}
-
 fn load(inertia: f64, torque: f64) -> MotionSpec {
     MotionSpec::Load {
         inertia,
@@ -168,7 +152,7 @@ impl Default for FeadConfig {
         Self {
             drive: LayoutConfig {
                 pulleys: vec![
-                    pulley(
+                    LayoutPulley::new(
                         "crankshaft",
                         [0.0, 0.0],
                         0.075,
@@ -177,35 +161,35 @@ impl Default for FeadConfig {
                             speed: Signal::constant(0.0),
                         },
                     ),
-                    pulley(
+                    LayoutPulley::new(
                         "power steering",
                         [-0.05, 0.22],
                         0.065,
                         WrapSide::Inside,
                         load(1e-3, 2.0),
                     ),
-                    pulley(
+                    LayoutPulley::new(
                         "alternator",
                         [0.05, 0.36],
                         0.028,
                         WrapSide::Inside,
                         load(3e-3, 3.0),
                     ),
-                    pulley(
+                    LayoutPulley::new(
                         "tensioner",
                         [0.13, 0.29],
                         0.035,
                         WrapSide::Outside,
                         MotionSpec::Idler { inertia: 5e-5 },
                     ),
-                    pulley(
+                    LayoutPulley::new(
                         "water pump",
                         [0.24, 0.28],
                         0.055,
                         WrapSide::Inside,
                         load(8e-4, 1.5),
                     ),
-                    pulley(
+                    LayoutPulley::new(
                         "a/c compressor",
                         [0.25, 0.05],
                         0.06,

@@ -83,6 +83,25 @@ pub struct LayoutPulley {
     pub motion: MotionSpec,
 }
 
+impl LayoutPulley {
+    /// A pulley named `name` at `center` \[m\] with belt-line radius `radius` \[m\].
+    pub fn new(
+        name: &str,
+        center: [f64; 2],
+        radius: f64,
+        side: WrapSide,
+        motion: MotionSpec,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            center,
+            radius,
+            side,
+            motion,
+        }
+    }
+}
+
 /// Target element lengths of the layout's mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]

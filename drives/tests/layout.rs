@@ -11,22 +11,6 @@ use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
 use mbd_core::tensioner::TensionerSpec;
 use mbd_core::{SecondOrderSystem, Validate};
 
-fn pulley(
-    name: &str,
-    center: [f64; 2],
-    radius: f64,
-    side: WrapSide,
-    motion: MotionSpec,
-) -> LayoutPulley {
-    LayoutPulley {
-        name: name.into(),
-        center,
-        radius,
-        side,
-        motion,
-    }
-}
-
 /// Crank, alternator, back-side idler on a tensioner arm, water pump.
 fn four_pulleys(load: f64) -> LayoutConfig {
     let load = |j: f64| MotionSpec::Load {
@@ -40,7 +24,7 @@ fn four_pulleys(load: f64) -> LayoutConfig {
     };
     LayoutConfig {
         pulleys: vec![
-            pulley(
+            LayoutPulley::new(
                 "crank",
                 [0.0, 0.0],
                 0.075,
@@ -54,21 +38,21 @@ fn four_pulleys(load: f64) -> LayoutConfig {
                     },
                 },
             ),
-            pulley(
+            LayoutPulley::new(
                 "alternator",
                 [0.12, 0.28],
                 0.03,
                 WrapSide::Inside,
                 load(0.003),
             ),
-            pulley(
+            LayoutPulley::new(
                 "tensioner",
                 [0.16, 0.10],
                 0.035,
                 WrapSide::Outside,
                 MotionSpec::Idler { inertia: 1e-4 },
             ),
-            pulley(
+            LayoutPulley::new(
                 "water pump",
                 [0.25, -0.05],
                 0.05,
@@ -124,7 +108,7 @@ fn two_pulley_layout_is_the_table_6_1_model() {
     let base = BeltDriveConfig::default();
     let cfg = LayoutConfig {
         pulleys: vec![
-            pulley(
+            LayoutPulley::new(
                 "driver",
                 [0.0, 0.0],
                 0.05,
@@ -133,7 +117,7 @@ fn two_pulley_layout_is_the_table_6_1_model() {
                     speed: Signal::constant(62.8),
                 },
             ),
-            pulley(
+            LayoutPulley::new(
                 "driven",
                 [0.45, 0.0],
                 0.05,

@@ -6,7 +6,6 @@
 
 use flowmbd_cli::config::{UNKNOWN_KEY, tables_accepting_unknown_keys_by};
 use std::path::PathBuf;
-use std::process::Command;
 
 const STUDIES: [&str; 5] = [
     "simply-supported",
@@ -17,22 +16,11 @@ const STUDIES: [&str; 5] = [
 ];
 
 fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_flowmbd-beam"))
-        .args(args)
-        .output()
-        .expect("binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    flowmbd_cli::testing::run_binary(env!("CARGO_BIN_EXE_flowmbd-beam"), args)
 }
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("flowmbd-beam-hard-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    flowmbd_cli::testing::fresh_dir("flowmbd-beam-hard", name)
 }
 
 #[test]

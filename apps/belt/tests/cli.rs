@@ -2,18 +2,9 @@
 //! configuration round trip, the shipped example configurations and the exit-code conventions.
 
 use std::path::PathBuf;
-use std::process::Command;
 
 fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_flowmbd-belt"))
-        .args(args)
-        .output()
-        .expect("binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    flowmbd_cli::testing::run_binary(env!("CARGO_BIN_EXE_flowmbd-belt"), args)
 }
 
 fn tmp(name: &str) -> PathBuf {

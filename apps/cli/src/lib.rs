@@ -24,6 +24,7 @@ pub mod plot;
 pub mod progress;
 pub mod stdout;
 pub mod study;
+pub mod testing;
 
 pub use args::{CommonArgs, parse_args};
 pub use config::{Validate, load_config, read_config};

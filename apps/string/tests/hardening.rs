@@ -6,25 +6,13 @@
 use flowmbd_cli::config::{UNKNOWN_KEY, tables_accepting_unknown_keys_by};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_flowmbd-string"))
-        .args(args)
-        .output()
-        .expect("binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    flowmbd_cli::testing::run_binary(env!("CARGO_BIN_EXE_flowmbd-string"), args)
 }
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("flowmbd-string-hard-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    flowmbd_cli::testing::fresh_dir("flowmbd-string-hard", name)
 }
 
 fn modes(speed: &str, dir: &Path) -> (Value, String) {
