@@ -294,18 +294,11 @@ fn tensioner_static_angle_matches_hand_statics() {
     );
 }
 
-// Torque balance (issue 17 item 6) in a steady run: each free accessory's contact torque
-// equals its load (mean over the last 0.2 s), and the power the crank puts in exceeds the
-// power the loads take by the losses (positive and a few per cent: belt hysteresis, creep).
-//
-// Fails today: the crank gives 15.73 N m where Σ τ_k R_crank/R_k = 16 N m is needed, so the
-// loads take 1.3 % more power than the crank puts in (a net tangential force of ≈ 3.6 N on the
-// belt from the linearised model's own terms: e_tᵀ(f0 − K δ) of the chord polygon does not vanish
-// at the arc ends of an unsymmetric layout). Not resolved in this session.
-#[test]
-#[ignore = "known defect (issue 17 follow-up): the linearised flowing model on an unsymmetric layout creates 1.3 % power"]
-fn steady_torques_balance_the_loads() {
-    let cfg = four_pulleys(4.0);
+/// Steady running of the four-pulley layout with `load` \[N m\] on each accessory: the mean
+/// contact torque on every pulley over the last 0.2 s of 1 s, the crank's power and the
+/// loads' power \[W\].
+fn steady_power(load: f64) -> (Vec<f64>, f64, f64) {
+    let cfg = four_pulleys(load);
     let (belt, _) = cfg.flowing_model().unwrap();
     let q = belt.static_state().unwrap();
     let n = q.len();
@@ -329,20 +322,53 @@ fn steady_torques_balance_the_loads() {
                 acc[k] += tq[k];
             }
             p_in += -tq[0] * belt.pulley_speed(0, s.t, &s.v);
-            p_out += 4.0 * (belt.pulley_speed(1, s.t, &s.v) + belt.pulley_speed(3, s.t, &s.v));
+            p_out += load * (belt.pulley_speed(1, s.t, &s.v) + belt.pulley_speed(3, s.t, &s.v));
             count += 1;
         }
     }
     let mean: Vec<f64> = acc.iter().map(|a| a / count as f64).collect();
-    let sp: Vec<f64> = (0..4)
-        .map(|k| belt.pulley_speed(k, st.state().t, &st.state().v))
-        .collect();
-    eprintln!("speeds {sp:?}, arm {:?}", belt.arm_angle(&st.state().q));
+    let (p_in, p_out) = (p_in / count as f64, p_out / count as f64);
     eprintln!(
-        "mean contact torques {mean:?} N m, P_in {:.1} W, P_loads {:.1} W",
-        p_in / count as f64,
-        p_out / count as f64
+        "load {load} N m: mean contact torques {mean:?} N m, P_in {p_in:.1} W, P_loads {p_out:.1} W, \
+         loss {:.2} %",
+        100.0 * (p_in - p_out) / p_in
     );
+    (mean, p_in, p_out)
+}
+
+// Torque balance (issue 17 item 6) in a steady run at a light load (1 N m on each accessory,
+// where the linearisation about T0 holds): each free accessory's
+// contact torque equals its load, the idler carries none, and the crank puts in more power
+// than the loads take, by the losses (belt hysteresis and creep: positive, below 2 %).
+// Measured: crank 4.0087 N m against Σ τ_k R_crank/R_k = 4 N m, loss 0.48 %.
+#[test]
+fn steady_torques_balance_the_loads() {
+    let (mean, p_in, p_out) = steady_power(1.0);
+    for k in [1, 3] {
+        assert!(
+            (mean[k] - 1.0).abs() < 0.02,
+            "pulley {k}: {} N m vs load 1",
+            mean[k]
+        );
+    }
+    assert!(mean[2].abs() < 0.05, "idler torque {}", mean[2]);
+    let loss = (p_in - p_out) / p_in;
+    assert!(loss > 0.0 && loss < 0.02, "loss fraction {loss}");
+}
+
+// The same at 4 N m per accessory fails: the crank gives 15.73 N m where 16 N m is needed,
+// so the loads take 1.3 % more power than the crank puts in. Measured breakdown of the flow
+// row at the end of the run: −e_tᵀKδ = +15.95 N against the tilt of the contact normal
+// forces −12.0 N and friction −3.17 N; the b = T_,s z terms cancel (−11.41 vs +11.40 N), so
+// projecting the flow row on e_t + b (tried) changes nothing. The defect grows faster than
+// the load (+0.5 % loss at 1 N m, −0.9 % at 2 N m, −1.3 % at 4 N m): a second-order error
+// of the model linearised about T0 (geometric stiffness K_g(T0) while the tight and slack
+// spans carry T0 ± 107 N), cancelled by symmetry on a two-pulley drive. Not resolved: the
+// nonlinear models carry the tension into their stiffness.
+#[test]
+#[ignore = "known limit (issue 17): the linearised flowing model on an unsymmetric layout at 4 N m creates 1.3 % power (second order in the load)"]
+fn steady_torques_balance_the_loads_at_high_load() {
+    let (mean, p_in, p_out) = steady_power(4.0);
     for k in [1, 3] {
         assert!(
             (mean[k] - 4.0).abs() < 0.08,
@@ -350,7 +376,6 @@ fn steady_torques_balance_the_loads() {
             mean[k]
         );
     }
-    assert!(mean[2].abs() < 0.05, "idler torque {}", mean[2]);
     let loss = (p_in - p_out) / p_in;
     assert!(loss > 0.0 && loss < 0.05, "loss fraction {loss}");
 }
