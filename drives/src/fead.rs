@@ -368,6 +368,12 @@ pub struct FeadPoint {
     pub gross_slip: bool,
     /// The pulley that slips, if any.
     pub gross_slip_pulley: Option<String>,
+    /// Why the flowing model, linearised about the installed tension, does not describe the
+    /// drive at this engine speed (`None`: it does): a span whose tension dips below
+    /// [`crate::speed_loss::LINEAR_MIN_SLACK`] of the installed tension during the window
+    /// (a slack or resonating span, which the linear model would let carry compression), or
+    /// gross slip. The point's numbers are kept, flagged: they show how the limit was left.
+    pub linearisation: Option<String>,
     /// The drive report at the end of the window (slip arcs, hub loads, torques).
     pub report: DriveReport,
 }
@@ -409,8 +415,10 @@ speed, after a ramp and a settling time, a window is observed: the tensioner arm
 crank (%, creep and slip), the drive report at the window's end (slip arcs, hub loads, gross \
 slip) and every span's first transverse natural frequency from the travelling-string formula \
 with the computed span tension and belt speed, to be read against the engine orders (the \
-Campbell diagram: a span resonates where an order line crosses its frequency). The defaults are \
-a plausible drive, not one published engine (see drives::fead).";
+Campbell diagram: a span resonates where an order line crosses its frequency). A point where a \
+span's tension dips below 10 % of the installed tension, or a wrap slips as a whole, leaves the \
+linearised model's range: its `linearisation` says why and its numbers only show how the limit \
+was left. The defaults are a plausible drive, not one published engine (see drives::fead).";
 
 /// A sweep that stopped on a numerical failure, with the points completed before it.
 #[derive(Debug)]
@@ -589,6 +597,31 @@ pub fn run_fead(
         let report = DriveReport::new(&snap, mu);
         let slipping = report.gross_slip();
         let v = vbelt.get().mean;
+        let t_min = crate::speed_loss::LINEAR_MIN_SLACK * summary.installed_tension;
+        let slack = spans
+            .iter()
+            .zip(&tens)
+            .map(|(sp, a)| (sp, a.get().min))
+            .filter(|(_, t)| !(*t >= t_min))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        let linearisation = match (slack, slipping) {
+            (Some((sp, t)), _) => Some(format!(
+                "span {}→{} tension falls to {t:.1} N, below {:.0} % of the installed {:.1} N: \
+                 the linear model's stiffness K_e + K_g(T0) assumes taut spans",
+                names[sp.from],
+                names[sp.to],
+                100.0 * crate::speed_loss::LINEAR_MIN_SLACK,
+                summary.installed_tension
+            )),
+            (None, Some(k)) => Some(format!(
+                "gross slip on pulley '{}': outside the linearised creep regime",
+                names[k]
+            )),
+            (None, None) => None,
+        };
+        if let Some(why) = &linearisation {
+            eprintln!("fead: {rpm} rpm is outside the model's range: {why}");
+        }
         summary.points.push(FeadPoint {
             engine_rpm: rpm,
             belt_speed: v,
@@ -622,6 +655,7 @@ pub fn run_fead(
                 .collect(),
             gross_slip: slipping.is_some(),
             gross_slip_pulley: slipping.map(|k| names[k].clone()),
+            linearisation,
             report,
         });
         if let Some(k) = slipping {

@@ -429,8 +429,11 @@ fn bad_layouts_name_the_field() {
 }
 
 // The FEAD study on its defaults: every point completes; the accessories' contact torques
-// balance their loads (steady mean over the window, within 3 %); span tensions stay positive;
-// the tensioner arm stays within its travel.
+// balance their loads (steady mean over the window, within 3 %); the tensioner arm stays
+// within its travel; a point flags `linearisation` exactly when a span's tension dips below
+// 10 % of the installed tension. Up to 2500 rpm every span stays taut; at 3500 rpm the power
+// steering → alternator span (≈ 108 Hz) meets the second firing order (116.7 Hz) and its
+// tension swings from −88 to 619 N (measured 2026-11-26): the point is flagged.
 #[test]
 #[ignore = "heavy: the default engine-speed sweep (≈ 1 min in release on a loaded machine)"]
 fn fead_default_sweep_runs() {
@@ -469,14 +472,19 @@ fn fead_default_sweep_runs() {
                 .collect::<Vec<_>>(),
         );
         assert!(p.arm_angle.min > travel[0] && p.arm_angle.max < travel[1]);
-        for sp in &p.spans {
-            assert!(
-                sp.tension.min > 0.0,
-                "{} rpm: span {}→{} slack",
-                p.engine_rpm,
-                sp.from,
-                sp.to
-            );
+        // every span taut, or the point says it left the linearised model's range
+        let t_min = drives::speed_loss::LINEAR_MIN_SLACK * s.installed_tension;
+        let slack = p.spans.iter().any(|sp| sp.tension.min < t_min);
+        assert_eq!(
+            slack,
+            p.linearisation.is_some(),
+            "{} rpm: spans {:?}, flag {:?}",
+            p.engine_rpm,
+            p.spans.iter().map(|sp| sp.tension.min).collect::<Vec<_>>(),
+            p.linearisation
+        );
+        if p.engine_rpm <= 2500.0 {
+            assert!(!slack, "{} rpm: a span goes slack", p.engine_rpm);
         }
         // J ω̇ = τ − M: over a window that is not a whole number of fluctuation periods the
         // mean of τ − M is bounded by J (ω_max − ω_min)/window

@@ -73,6 +73,7 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
         "arm_angle_mean_rad".into(),
         "arm_angle_max_rad".into(),
         "gross_slip_flag".into(),
+        "linearisation_valid_flag".into(),
     ];
     for k in 0..first.spans.len() {
         header.push(format!("span{k}_tension_min_N"));
@@ -95,6 +96,7 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
             p.arm_angle.mean,
             p.arm_angle.max,
             f64::from(u8::from(p.gross_slip)),
+            f64::from(u8::from(p.linearisation.is_none())),
         ];
         for sp in &p.spans {
             row.extend([sp.tension.min, sp.tension.max, sp.frequency_1_hz]);

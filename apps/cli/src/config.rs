@@ -62,8 +62,7 @@ pub fn parse_config<C: DeserializeOwned>(text: &str, path: &Path) -> Result<C, C
 
 /// The configuration as TOML text (what `--print-config` prints).
 pub fn to_toml<C: Serialize>(config: &C) -> String {
-    toml::to_string(config)
-        .unwrap_or_else(|e| format!("# cannot serialise configuration: {e}\n"))
+    toml::to_string(config).unwrap_or_else(|e| format!("# cannot serialise configuration: {e}\n"))
 }
 
 /// The key [`unknown_key_variants`] adds to every table.
