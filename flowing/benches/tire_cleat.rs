@@ -11,7 +11,12 @@
 //! * a penalty normal law (1e9 N/m) instead of Lagrange multipliers;
 //! * no friction (μ = 0).
 //!
-//! Run: `cargo bench -p flowing --bench tire_cleat` (the reduction takes about 30 s first).
+//! * the converged reference step h = 0.05 ms without sub-steps (issue #16: real time there).
+//!
+//! Run: `cargo bench --profile release --workspace --bench tire_cleat` (the reduction takes about
+//! 30 s first). With `FLOWMBD_REDUCED_TIRE=<file>` a saved reduced tire (e.g. the cache file of
+//! `flowmbd-tire cleat`) is loaded instead of reducing; `FLOWMBD_CLEAT_VARIANTS=a,b` runs only the
+//! variants whose names start with one of the given prefixes.
 
 use fe_model::generate::TireConfig;
 use flowing::tire::*;
@@ -19,20 +24,33 @@ use std::time::Instant;
 
 fn main() {
     let t0 = Instant::now();
-    let fe = generated_tire(&TireConfig::default()).expect("generated tire");
-    let (red, tim) = reduce(&fe, &ReductionConfig::default()).expect("reduction");
-    println!(
-        "reduction of the {}-DOF tire to {} DOF: {:.1} s (modes {:.1} s, static modes {:.1} s, \
-         derivatives {:.1} s, projections {:.1} s); setup total {:.1} s",
-        fe.n_dofs(),
-        red.dof(),
-        tim.total_s,
-        tim.modes_s,
-        tim.static_modes_s,
-        tim.derivatives_s,
-        tim.projection_s,
-        t0.elapsed().as_secs_f64()
-    );
+    let red = match std::env::var("FLOWMBD_REDUCED_TIRE") {
+        Ok(file) => {
+            let red = ReducedTire::load(std::path::Path::new(&file)).expect("reduced tire file");
+            println!("reduced tire {file} ({} DOF) loaded", red.dof());
+            red
+        }
+        Err(_) => {
+            let fe = generated_tire(&TireConfig::default()).expect("generated tire");
+            let (red, tim) = reduce(&fe, &ReductionConfig::default()).expect("reduction");
+            println!(
+                "reduction of the {}-DOF tire to {} DOF: {:.1} s (modes {:.1} s, static modes \
+                 {:.1} s, derivatives {:.1} s, projections {:.1} s); setup total {:.1} s",
+                fe.n_dofs(),
+                red.dof(),
+                tim.total_s,
+                tim.modes_s,
+                tim.static_modes_s,
+                tim.derivatives_s,
+                tim.projection_s,
+                t0.elapsed().as_secs_f64()
+            );
+            red
+        }
+    };
+    let only: Vec<String> = std::env::var("FLOWMBD_CLEAT_VARIANTS")
+        .map(|v| v.split(',').map(str::to_owned).collect())
+        .unwrap_or_default();
     let base = RigConfig::default();
     let variants: Vec<(&str, RigConfig)> = vec![
         ("default (gen-alpha 0.5, S once)", base.clone()),
@@ -66,6 +84,12 @@ fn main() {
             c.rolling.friction = 0.0;
             c
         }),
+        ("h 0.05 ms, no sub-steps (reference)", {
+            let mut c = base.clone();
+            c.rolling.time_step = 5e-5;
+            c.impact.substeps = 1;
+            c
+        }),
     ];
     println!(
         "{:<34} {:>10} {:>10} {:>8} {:>10} {:>10}",
@@ -73,6 +97,9 @@ fn main() {
     );
     let mut first = None;
     for (name, cfg) in &variants {
+        if !only.is_empty() && !only.iter().any(|p| name.starts_with(p.as_str())) {
+            continue;
+        }
         let r = run_cleat(&red, cfg, &mut |_| {}).expect("cleat run");
         let wall = r.wall_time_s / r.simulated_s;
         let cpu = r.cpu_time_s.map_or(f64::NAN, |c| c / r.simulated_s);
@@ -81,6 +108,20 @@ fn main() {
         println!(
             "{name:<34} {wall:>10.3} {cpu:>10.3} {:>8.2} {fy:>10.1} {fx:>10.1}",
             wall / f
+        );
+        let us = |k: usize| 1e6 * r.stats.seconds[k] / r.stats.steps as f64;
+        println!(
+            "    per step [us]: free {:.1}, candidates {:.1}, R {:.1}, contact {:.1}, inversion \
+             {:.1}; {:.1} candidates, {:.1} contacts, {:.2} Newton + {:.2} chord iterations",
+            us(0),
+            us(1),
+            us(2),
+            us(3),
+            us(4),
+            r.stats.candidates as f64 / r.stats.steps as f64,
+            r.stats.active as f64 / r.stats.steps as f64,
+            r.stats.contact_newton as f64 / r.stats.steps as f64,
+            r.stats.contact_chord as f64 / r.stats.steps as f64,
         );
     }
 }

@@ -146,7 +146,8 @@ def cleat(
     -------
     dict
         The CLI's ``summary.json``: ``speed_kmh``, ``dof``, ``fy_peak_hz``, ``fx_peak_hz``
-        [Hz], ``fy_rms``, ``fx_rms`` [N], ``preload_deflection_m``, ``fy_mean_before_n``,
+        [Hz], ``fy_rms``, ``fx_rms``, ``fy_band_rms_n``, ``fx_band_rms_n`` (rms of the dominant
+        lines) [N], ``preload_deflection_m``, ``fy_mean_before_n``,
         ``fx_mean_before_n``, ``load_n``, ``rayleigh`` (α [1/s], β [s]), ``steps``,
         ``refactors``, ``stats``, ``loaded_vertical_mode_hz``, ``loaded_longitudinal_mode_hz``,
         ``fx_line_mode``, ``fy_line_mode``, ``wall_time_s``, ``wall_per_simulated_s``,

@@ -267,3 +267,44 @@ fn steady_rolling_with_friction_does_not_chatter() {
         "trapezoidal {trap_chatter} N vs {chatter} N"
     );
 }
+
+#[test]
+fn spin_dependent_matrices_follow_their_definitions() {
+    // Second formulation: `TireDynamics` forms `C_eff = 2θ̇G₁ + αM + βK` and
+    // `K_eff = K + θ̇²G₂ + βθ̇K₁` (Ribaric (7.17) with U15–U17) from transposed copies of the
+    // reduced matrices; its force tangent must equal the definitions evaluated entry by entry
+    // on the reduced tire's own matrices, after the first forming and after re-forming at
+    // another spin rate.
+    use mbd_core::{SecondOrderSystem, SysMatrix, Workspace};
+    let red = tire();
+    let (alpha, beta) = (12.5, 4e-5);
+    let mut sys = TireDynamics::new(red, alpha, beta, 2.0, 60.0);
+    let nz = red.n_z();
+    for spin in [60.0, 47.3] {
+        sys.set_spin(spin);
+        let n = nz + 1;
+        let (q, v) = (vec![0.0; n], vec![0.0; n]);
+        let tan = sys
+            .force_tangent(0.0, &q, &v, &mut Workspace::default())
+            .unwrap()
+            .unwrap();
+        let (SysMatrix::Dense(k), SysMatrix::Dense(c)) = (tan.stiffness, tan.damping) else {
+            panic!("dense tangent expected");
+        };
+        let mut worst = 0.0f64;
+        for i in 0..nz {
+            for j in 0..nz {
+                let ce = 2.0 * spin * red.g1[(i, j)] + alpha * red.m[(i, j)] + beta * red.k[(i, j)];
+                let ke =
+                    red.k[(i, j)] + spin * spin * red.g2[(i, j)] + beta * spin * red.k1[(i, j)];
+                worst = worst
+                    .max((c[(1 + i, 1 + j)] - ce).abs() / ce.abs().max(1e-300))
+                    .max((k[(1 + i, 1 + j)] - ke).abs() / ke.abs().max(1e-300));
+            }
+        }
+        assert!(
+            worst == 0.0,
+            "spin {spin}: largest relative difference {worst}"
+        );
+    }
+}

@@ -74,7 +74,8 @@ pub use rig::{
     run_cleat_observed, start_rolling,
 };
 pub use spectrum::{
-    PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation, spectrum_grid,
+    LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation,
+    spectrum_grid,
 };
 pub use study::{
     CleatStudyConfig, CleatSummary, TireSource, cleat_summary, rig_input_error, tire_input_error,

@@ -46,7 +46,32 @@ pub fn amplitude_spectrum(x: &[f64], dt: f64) -> Spectrum {
     }
 }
 
+/// Half-width \[Hz\] of the band around a spectral line over which [`Spectrum::band_rms`] sums
+/// for the cleat summary's `fy_band_rms_n` and `fx_band_rms_n`: wide enough for the
+/// line's Hann main lobe (±2 bins at the 3.3 Hz resolution of a 0.3 s record) and for the
+/// line moving by a bin or two between runs, narrow enough to exclude the next lines
+/// (BENCHMARKS.md: Fy 73–77 Hz, Fx 23 and 90 Hz).
+pub const LINE_BAND_HZ: f64 = 10.0;
+
 impl Spectrum {
+    /// RMS \[signal unit\] of the lines within `[f_lo, f_hi]` \[Hz\] (Parseval over the band):
+    /// `√(Σ aₖ² / 3)`, each bin's amplitude `aₖ` a sine of rms `aₖ/√2` and the Hann window's
+    /// equivalent noise bandwidth of 1.5 bins removed, so that a sine of amplitude `A` whose
+    /// main lobe lies in the band gives `A/√2`. It sums the energy of a line spread over
+    /// several bins (the main lobe, a line between two bins), so it compares runs more steadily
+    /// than the peak bin. (The converged-step tables of BENCHMARKS.md before issue #16's
+    /// real-time work gave `√(Σ aₖ²/2)`, √1.5 times this.) 0 for an empty band.
+    pub fn band_rms(&self, f_lo: f64, f_hi: f64) -> f64 {
+        let s: f64 = self
+            .freq_hz
+            .iter()
+            .zip(&self.amplitude)
+            .filter(|(f, _)| **f >= f_lo && **f <= f_hi)
+            .map(|(_, a)| a * a)
+            .sum();
+        (s / 3.0).sqrt()
+    }
+
     /// Frequency of the largest amplitude within `[f_lo, f_hi]` \[Hz\] (`None` if empty).
     pub fn peak(&self, f_lo: f64, f_hi: f64) -> Option<(f64, f64)> {
         self.freq_hz
@@ -121,6 +146,35 @@ pub fn rms_fluctuation(x: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    // Reference: a sine of amplitude A has rms A/√2 (analytical), on a bin and between two
+    // bins (where the peak bin alone loses up to 15 %, Harris 1978, but the band keeps the
+    // line's energy); a second line outside the band does not enter.
+    #[test]
+    fn band_rms_of_a_sine_is_its_rms() {
+        let h = 5e-5;
+        let n = 6000; // 0.3 s: 3.33 Hz bins
+        for f in [75.0, 76.0 + 2.0 / 3.0, 75.0 + 5.0 / 3.0] {
+            let a = 800.0;
+            let x: Vec<f64> = (0..n)
+                .map(|i| {
+                    let t = i as f64 * h;
+                    a * (2.0 * PI * f * t).sin() + 300.0 * (2.0 * PI * 23.3 * t).cos()
+                })
+                .collect();
+            let s = amplitude_spectrum(&x, h);
+            let rms = s.band_rms(f - LINE_BAND_HZ, f + LINE_BAND_HZ);
+            let want = a / 2f64.sqrt();
+            assert!(
+                (rms - want).abs() < 0.01 * want,
+                "{f} Hz: band rms {rms} vs {want}"
+            );
+        }
+        assert_eq!(
+            amplitude_spectrum(&[1.0; 10], h).band_rms(600.0, 700.0),
+            0.0
+        );
+    }
 
     // issue 20 reproducer: 1000 and 1001 samples at h = 0.2 ms have bins 5 Hz and 4.995 Hz
     // apart; a 74.9 Hz sine of amplitude 1344 N (the 90 km/h line) sampled 1001 times must

@@ -15,7 +15,7 @@ use super::reduced::ReducedTire;
 use super::rig::{RigConfig, RigResult, Sample};
 use super::rolling::{RollingTire, StepStats};
 use super::rotating::RotatingOptions;
-use super::spectrum::PEAK_BAND_HZ;
+use super::spectrum::{LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum};
 use fe_model::FeError;
 use fe_model::generate::TireConfig;
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -202,6 +202,12 @@ pub struct CleatSummary {
     pub fy_rms: f64,
     /// RMS of the longitudinal force fluctuation after the hit \[N\].
     pub fx_rms: f64,
+    /// RMS of the vertical force's dominant line \[N\]: [`Spectrum::band_rms`] over
+    /// `fy_peak_hz ± LINE_BAND_HZ` (10 Hz; [`super::spectrum::LINE_BAND_HZ`]), the measure by
+    /// which a time step's accuracy is judged against the converged step (BENCHMARKS.md).
+    pub fy_band_rms_n: f64,
+    /// RMS of the longitudinal force's dominant line \[N\]: over `fx_peak_hz ± LINE_BAND_HZ`.
+    pub fx_band_rms_n: f64,
     /// Wall time of the time integration \[s\].
     pub wall_time_s: f64,
     /// Wall time per simulated second.
@@ -250,8 +256,9 @@ pub struct CleatSummary {
 pub const CLEAT_MEANING: &str = "The cleat test of Ribaric 8.3: the preloaded tire rolls at speed_kmh over a \
          semicircular cleat on the drum (or road) and the spindle forces are recorded. \
          fy_peak_hz and fx_peak_hz are the frequencies of the largest spectral peaks of the \
-         vertical and longitudinal force after the hit (sought in 10-500 Hz): the loaded \
-         tire's vertical and longitudinal modes rolling at that speed \
+         vertical and longitudinal force after the hit (sought in 10-500 Hz) and \
+         fy_band_rms_n, fx_band_rms_n the rms of these lines (spectrum within 10 Hz of the \
+         peak) [N]: the loaded tire's vertical and longitudinal modes rolling at that speed \
          (loaded_vertical_mode_hz, fx_line_mode and fy_line_mode name the modes that carry \
          them); fy_rms and fx_rms are the force fluctuations [N]; fy_mean_before_n equals the \
          load when the rolling tire is in equilibrium and fx_mean_before_n is the rolling \
@@ -287,13 +294,18 @@ pub fn summarize(r: &RigResult) -> CleatSummary {
     // the steadily rolling tire: the last 50 ms before the first node touches the cleat (the
     // cleat enters the patch (L/2 + r)/v before it reaches the patch centre at t = 0)
     let before = r.mean_before_cleat(0.05).unwrap_or((0.0, 0.0));
+    let fy_peak_hz = sy.peak(band[0], band[1]).map_or(0.0, |p| p.0);
+    let fx_peak_hz = sx.peak(band[0], band[1]).map_or(0.0, |p| p.0);
+    let line = |s: &Spectrum, f: f64| s.band_rms(f - LINE_BAND_HZ, f + LINE_BAND_HZ);
     CleatSummary {
         speed_kmh: r.speed_kmh,
         dof: r.dof,
-        fy_peak_hz: sy.peak(band[0], band[1]).map_or(0.0, |p| p.0),
-        fx_peak_hz: sx.peak(band[0], band[1]).map_or(0.0, |p| p.0),
+        fy_peak_hz,
+        fx_peak_hz,
         fy_rms: ry,
         fx_rms: rx,
+        fy_band_rms_n: line(&sy, fy_peak_hz),
+        fx_band_rms_n: line(&sx, fx_peak_hz),
         wall_time_s: r.wall_time_s,
         wall_per_simulated_s: r.wall_time_s / r.simulated_s.max(1e-12),
         cpu_per_simulated_s: r.cpu_time_s.map(|c| c / r.simulated_s.max(1e-12)),
