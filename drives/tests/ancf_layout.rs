@@ -252,3 +252,70 @@ fn ancf_layout_capstan_on_the_slip_arcs() {
         assert!((idler.tension_out / idler.tension_in - 1.0).abs() < 0.01);
     }
 }
+
+// The tensioner arm in the shared stepper (generalized-α, one engine): the four-pulley drive
+// running (crank 40 rad/s, alternator 2 N m, water pump 3 N m). At steady running the arm is
+// at rest, so its spring balances the belt: M_s(θ) + (c − p) × F = 0 with F the hub force
+// rebuilt from the computed span tensions on the idler's two spans along the spans' directions
+// (hand statics of mbd_core::tensioner, independent of the contact sums the model's arm equation
+// uses); within 3 % of the spring moment (the bending boundary layer turns the spans by a few
+// mrad, see the static test). The arm stays in its travel and the loaded pulleys carry their loads.
+#[test]
+fn ancf_tensioner_arm_balances_the_running_span_tensions() {
+    use contact::friction::FrictionLaw;
+    use drives::report::DriveReport;
+    use mbd_core::integrators::GeneralizedAlpha;
+    use mbd_core::tensioner::cross;
+    let mut cfg = four_pulleys();
+    cfg.pulleys[0].motion = MotionSpec::Speed {
+        speed: ramp(40.0, 0.1),
+    };
+    for (k, load) in [(1, 2.0), (3, 3.0)] {
+        if let MotionSpec::Load { torque, .. } = &mut cfg.pulleys[k].motion {
+            *torque = ramp(load, 0.1);
+        }
+    }
+    let m = cfg.ancf_model(&ancf()).unwrap();
+    let mu = cfg.friction_law().coefficient();
+    let sim = ancf::belt_drive::SimulationConfig::default();
+    let t_end = 0.4;
+    let mut reports = Vec::new();
+    let mut arm = Vec::new();
+    let mut next = t_end - 0.05;
+    let a = *m.drive().arm().unwrap();
+    GeneralizedAlpha::new(sim.alpha_params())
+        .integrate(&m, m.initial_state(), t_end, |s| {
+            if s.t >= next {
+                next += 0.005;
+                reports.push(DriveReport::new(&m.snapshot(s.t, &s.q, &s.v), mu));
+                arm.push(s.q[a.dof]);
+            }
+        })
+        .unwrap();
+    let r = DriveReport::mean(&reports).unwrap();
+    let theta = arm.iter().sum::<f64>() / arm.len() as f64;
+    assert!(a.spec.within_travel(theta));
+    let spans = ancf::belt_drive::post::spans(m.drive());
+    let k = a.spec.pulley;
+    let (sin, sout) = (
+        spans.iter().position(|s| s.to == k).unwrap(),
+        spans.iter().position(|s| s.from == k).unwrap(),
+    );
+    let (tin, tout) = (r.spans[sin].tension, r.spans[sout].tension);
+    let (din, dout) = (spans[sin].direction, spans[sout].direction);
+    let f = [tout * dout[0] - tin * din[0], tout * dout[1] - tin * din[1]];
+    let (c, _) = a.spec.center(a.length, theta);
+    let belt = cross([c[0] - a.spec.pivot[0], c[1] - a.spec.pivot[1]], f);
+    let spring = a.spec.spring_moment(theta).0;
+    eprintln!(
+        "arm {theta:.5} rad (static {:.5}), spans at the idler {tin:.1} / {tout:.1} N, spring {spring:.3} N m, belt {belt:.3} N m, torques {:?}",
+        m.static_arm_angle().unwrap(),
+        r.pulleys.iter().map(|p| p.torque).collect::<Vec<_>>()
+    );
+    assert!(
+        (spring + belt).abs() < 0.03 * spring.abs(),
+        "arm moment balance {spring} + {belt} N m"
+    );
+    assert!((r.pulleys[1].torque - 2.0).abs() < 0.1);
+    assert!((r.pulleys[3].torque - 3.0).abs() < 0.1);
+}

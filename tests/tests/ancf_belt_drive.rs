@@ -134,6 +134,9 @@ fn tensioner_arm_tangent_matches_finite_differences() {
     assert!((a.installed_angle - std::f64::consts::PI).abs() < 1e-12);
     let (q, mut v) = moving_state(&d, 0.9);
     v[a.dof] = 0.5;
+    // the idler is in contact (else the arm's contact terms would not be checked)
+    let hub = d.pulley_loads(0.5, &q, &v)[1].force;
+    assert!(hub[0].hypot(hub[1]) > 50.0, "idler hub load {hub:?} N");
     check_tangent_at(&d, &q, &v);
 }
 
