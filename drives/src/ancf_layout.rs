@@ -39,10 +39,9 @@ use ancf::belt_drive::{
 };
 use flowing::belt::Signal;
 use flowing::belt::model::mounting_penetration;
+use mbd_core::Workspace;
 use mbd_core::integrators::State;
-use mbd_core::system::ForceTangent;
 use mbd_core::validate::Validate;
-use mbd_core::{MbdError, SecondOrderSystem, SysMatrix, Workspace};
 
 /// Relative tolerance of the mounted mean span tension against the target `T0` \[-\].
 pub const TENSION_TOLERANCE: f64 = 1e-3;
@@ -336,43 +335,4 @@ impl AncfLayoutDrive {
     }
 }
 
-impl SecondOrderSystem for AncfLayoutDrive {
-    fn n_q(&self) -> usize {
-        self.drive.n_q()
-    }
-    fn dof_name(&self, dof: usize) -> String {
-        self.drive.dof_name(dof)
-    }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
-        self.drive.mass(t, q)
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
-    ) -> Result<(), MbdError> {
-        self.drive
-            .forces_with(q, v, &self.omegas(t, v), &self.loads(t), f, ws);
-        Ok(())
-    }
-    fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        Ok(Some(self.drive.force_tangent_with(
-            q,
-            v,
-            &self.omegas(t, v),
-            ws,
-        )))
-    }
-}
+crate::ancf_drive_model::scheduled_belt_system!(AncfLayoutDrive);

@@ -617,7 +617,8 @@ impl BeltDrive {
 
 /// The tangent entries of one element's contact with the tensioner's idler that the arm adds
 /// (local columns/rows `NE + nf` for the arm, `NE + kp` for the idler's spin, `m` the local
-/// size), written into `s.k_local = −∂f/∂q` and `s.c_local = −∂f/∂v`.
+/// size), written into `s.k_local = −∂f/∂q` and `s.c_local = −∂f/∂v`, at the arm angle and
+/// rate `(θ, θ̇)` \[rad, rad/s\].
 ///
 /// The contact forces depend on the disk's centre `c` only through `r − c` and `ṙ − ċ`, so
 /// moving the centre by `δ` equals moving the element by `−δ`: with the cubic shape functions'
@@ -629,8 +630,7 @@ impl BeltDrive {
 fn arm_contact_tangent(
     a: &BeltArm,
     lever: [f64; 2],
-    q: &[f64],
-    v: &[f64],
+    (angle, rate): (f64, f64),
     ec: &ElementContact<2>,
     spin: Option<(usize, f64)>,
     nf: usize,
@@ -638,8 +638,7 @@ fn arm_contact_tangent(
 ) {
     let m = NE + nf + 1;
     let ca = NE + nf;
-    let rate = v[a.dof];
-    let (_, dc) = a.spec.center(a.length, q[a.dof]);
+    let (_, dc) = a.spec.center(a.length, angle);
     let cdd = [-lever[0], -lever[1]];
     // (∂X/∂θ, ∂X/∂θ̇) of a quantity X with element derivatives d(b) = ∂X/∂e_b, dd(b) = ∂X/∂ė_b
     let chain = |d: &dyn Fn(usize) -> f64, dd: &dyn Fn(usize) -> f64| {
@@ -903,8 +902,7 @@ impl BeltDrive {
                 arm_contact_tangent(
                     &a,
                     lever,
-                    q,
-                    v,
+                    (q[a.dof], v[a.dof]),
                     ec,
                     self.pulley_dof[p].map(|j| (j - nb, self.spec.pulleys[p].ccw_sign())),
                     nf,
