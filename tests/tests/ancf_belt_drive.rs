@@ -82,8 +82,8 @@ fn damped_tangent_matches_finite_differences_and_rigid_rotation_is_undamped() {
 }
 
 // Reference: central finite differences of the generalized forces of a drive with a tensioner
-// (BeltDrive::with_tensioner): Table 3.1's drive with a back-side idler pressed 10 mm into the
-// upper span, carried by an arm (spring, damper, regularised dry friction), the arm turning at
+// (BeltDrive::with_tensioner): Table 3.1's drive with a back-side idler pressed 30 mm into the
+// upper span (belt 1 % shorter than the path), carried by an arm (spring, damper, regularised dry friction), the arm turning at
 // 0.5 rad/s: the tangent includes the moving idler's contact (∂/∂θ, ∂/∂θ̇ by translation
 // invariance), its spin row and the arm's moment row.
 #[test]
@@ -95,7 +95,7 @@ fn tensioner_arm_tangent_matches_finite_differences() {
         1,
         Pulley {
             name: "idler".into(),
-            center: [0.0, 0.08125 + 0.03 - 0.01],
+            center: [0.0, 0.08125],
             radius: 0.03,
             side: WrapSide::Outside,
             drive: PulleyDrive::Free {
@@ -113,10 +113,10 @@ fn tensioner_arm_tangent_matches_finite_differences() {
             side: p.side,
         })
         .collect();
-    spec.belt.length = BeltPath::new(&pp).unwrap().length() / 1.003;
+    spec.belt.length = BeltPath::new(&pp).unwrap().length() / 1.01;
     let arm = TensionerSpec {
         pulley: 1,
-        pivot: [0.06, 0.10125],
+        pivot: [0.06, 0.08125],
         stiffness: 30.0,
         preload: 5.0,
         preload_angle: 3.0,
@@ -136,7 +136,8 @@ fn tensioner_arm_tangent_matches_finite_differences() {
     v[a.dof] = 0.5;
     // the idler is in contact (else the arm's contact terms would not be checked)
     let hub = d.pulley_loads(0.5, &q, &v)[1].force;
-    assert!(hub[0].hypot(hub[1]) > 50.0, "idler hub load {hub:?} N");
+    assert!(hub[0].hypot(hub[1]) > 20.0, "idler hub load {hub:?} N");
+    println!("idler hub load {hub:?} N");
     check_tangent_at(&d, &q, &v);
 }
 
