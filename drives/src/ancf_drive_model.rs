@@ -35,11 +35,9 @@ use ancf::belt_drive::{
 use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
 use flowing::belt::model::mounting_penetration;
 use flowing::belt::{BeltDriveConfig, Schedule};
-use mbd_core::Workspace;
+use mbd_core::MbdError;
 use mbd_core::integrators::State;
-use mbd_core::system::ForceTangent;
 use mbd_core::validate::{InvalidField, Validate};
-use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use serde::{Deserialize, Serialize};
 
 fn invalid(item: String, reason: String) -> AncfError {
@@ -288,45 +286,60 @@ impl AncfDrive {
     fn omegas(&self, t: f64, v: &[f64]) -> [f64; 2] {
         [self.driver.value(t), v[self.driven_dof]]
     }
+
+    fn loads(&self, t: f64) -> [f64; 2] {
+        [0.0, self.load.value(t)]
+    }
 }
 
-impl SecondOrderSystem for AncfDrive {
-    fn n_q(&self) -> usize {
-        self.drive.n_q()
-    }
-    fn dof_name(&self, dof: usize) -> String {
-        self.drive.dof_name(dof)
-    }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
-        self.drive.mass(t, q)
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
-    ) -> Result<(), MbdError> {
-        let omegas = self.omegas(t, v);
-        let loads = [0.0, self.load.value(t)];
-        self.drive.forces_with(q, v, &omegas, &loads, f, ws);
-        Ok(())
-    }
-    fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        let omegas = self.omegas(t, v);
-        Ok(Some(self.drive.force_tangent_with(q, v, &omegas, ws)))
-    }
+/// [`SecondOrderSystem`] of a wrapper of a [`BeltDrive`] (field `drive`) that supplies the
+/// pulley speeds `self.omegas(t, v)` \[rad/s\] and load torques `self.loads(t)` \[N·m\] at every
+/// evaluation through [`BeltDrive::forces_with`] / [`BeltDrive::force_tangent_with`]
+/// (Kerkkänen (2.27), (3.26), (3.27)); shared by the two-pulley and the layout adapters.
+macro_rules! scheduled_belt_system {
+    ($ty:ty) => {
+        impl mbd_core::SecondOrderSystem for $ty {
+            fn n_q(&self) -> usize {
+                self.drive.n_q()
+            }
+            fn dof_name(&self, dof: usize) -> String {
+                self.drive.dof_name(dof)
+            }
+            fn mass_is_constant(&self) -> bool {
+                true
+            }
+            fn mass(&self, t: f64, q: &[f64]) -> Result<mbd_core::SysMatrix, mbd_core::MbdError> {
+                self.drive.mass(t, q)
+            }
+            fn forces(
+                &self,
+                t: f64,
+                q: &[f64],
+                v: &[f64],
+                f: &mut [f64],
+                ws: &mut mbd_core::Workspace,
+            ) -> Result<(), mbd_core::MbdError> {
+                let omegas = self.omegas(t, v);
+                let loads = self.loads(t);
+                self.drive.forces_with(q, v, &omegas, &loads, f, ws);
+                Ok(())
+            }
+            fn force_tangent(
+                &self,
+                t: f64,
+                q: &[f64],
+                v: &[f64],
+                ws: &mut mbd_core::Workspace,
+            ) -> Result<Option<mbd_core::system::ForceTangent>, mbd_core::MbdError> {
+                let omegas = self.omegas(t, v);
+                Ok(Some(self.drive.force_tangent_with(q, v, &omegas, ws)))
+            }
+        }
+    };
 }
+pub(crate) use scheduled_belt_system;
+
+scheduled_belt_system!(AncfDrive);
 
 impl DriveModel for AncfDrive {
     fn driven_speed(&self, v: &[f64]) -> f64 {

@@ -30,6 +30,7 @@
 
 pub mod analytical;
 pub mod ancf_drive_model;
+pub mod ancf_layout;
 pub mod ancf_run;
 pub mod ancf_study;
 pub mod bechtel_steady;

@@ -81,9 +81,74 @@ fn damped_tangent_matches_finite_differences_and_rigid_rotation_is_undamped() {
     assert!(diff < 1e-9 * scale.max(1.0));
 }
 
+// Reference: central finite differences of the generalized forces of a drive with a tensioner
+// (BeltDrive::with_tensioner): Table 3.1's drive with a back-side idler pressed 30 mm into the
+// upper span (belt 1 % shorter than the path), carried by an arm (spring, damper, regularised dry friction), the arm turning at
+// 0.5 rad/s: the tangent includes the moving idler's contact (∂/∂θ, ∂/∂θ̇ by translation
+// invariance), its spin row and the arm's moment row.
+#[test]
+fn tensioner_arm_tangent_matches_finite_differences() {
+    use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
+    use mbd_core::tensioner::TensionerSpec;
+    let mut spec = BeltDriveSpec::default();
+    spec.pulleys.insert(
+        1,
+        Pulley {
+            name: "idler".into(),
+            center: [0.0, 0.08125],
+            radius: 0.03,
+            side: WrapSide::Outside,
+            drive: PulleyDrive::Free {
+                inertia: 1e-4,
+                load: TorqueProfile::None,
+            },
+        },
+    );
+    let pp: Vec<PathPulley> = spec
+        .pulleys
+        .iter()
+        .map(|p| PathPulley {
+            center: p.center,
+            radius: p.radius,
+            side: p.side,
+        })
+        .collect();
+    spec.belt.length = BeltPath::new(&pp).unwrap().length() / 1.01;
+    let arm = TensionerSpec {
+        pulley: 1,
+        pivot: [0.06, 0.08125],
+        stiffness: 30.0,
+        preload: 5.0,
+        preload_angle: 3.0,
+        damping: 0.5,
+        dry_friction: 1.0,
+        friction_rate: 0.5,
+        inertia: 2e-3,
+        travel: [2.8, 3.5],
+    };
+    let d = BeltDrive::with_tensioner(spec, arm)
+        .unwrap()
+        .with_tangent_refresh(0.0);
+    let a = d.arm().unwrap();
+    assert_eq!(a.dof, d.n_q() - 1);
+    assert!((a.installed_angle - std::f64::consts::PI).abs() < 1e-12);
+    let (q, mut v) = moving_state(&d, 0.9);
+    v[a.dof] = 0.5;
+    // the idler is in contact (else the arm's contact terms would not be checked)
+    let hub = d.pulley_loads(0.5, &q, &v)[1].force;
+    assert!(hub[0].hypot(hub[1]) > 20.0, "idler hub load {hub:?} N");
+    println!("idler hub load {hub:?} N");
+    check_tangent_at(&d, &q, &v);
+}
+
 fn check_tangent(spec: BeltDriveSpec) {
     let d = BeltDrive::new(spec).unwrap().with_tangent_refresh(0.0);
     let (q, v) = moving_state(&d, 0.9);
+    check_tangent_at(&d, &q, &v);
+}
+
+fn check_tangent_at(d: &BeltDrive, q: &[f64], v: &[f64]) {
+    let (q, v) = (q.to_vec(), v.to_vec());
     let t = 0.5;
     let n = d.n_q();
     let tg = d

@@ -77,12 +77,25 @@ impl BeltDrive {
             q[k + 4] = -t[1];
             q[k + 5] = t[0];
         }
+        if let Some(a) = self.arm() {
+            q[a.dof] = a.installed_angle;
+        }
         q
     }
 
     /// Step 2 of the module documentation: static equilibrium from the placed coordinates.
     pub fn initial_state(&self, opts: &InitialOptions) -> Result<InitialState, AncfError> {
-        let q0 = self.placed_coordinates();
+        self.initial_state_from(self.placed_coordinates(), opts)
+    }
+
+    /// [`Self::initial_state`] from the start `q0` (e.g. a previous equilibrium); the
+    /// coordinates beyond the belt's (pulley angles, a tensioner arm's angle, which places
+    /// its idler) are held at their values in `q0`.
+    pub fn initial_state_from(
+        &self,
+        q0: Vec<f64>,
+        opts: &InitialOptions,
+    ) -> Result<InitialState, AncfError> {
         let nb = self.n_belt();
         let mesh = self.mesh();
         let n_el = mesh.elements().len();

@@ -16,6 +16,8 @@ use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact};
 use fe_model::generate::belt_path::{BeltPath, PathPulley};
 use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
+use mbd_core::tensioner::{TensionerSpec, cross};
+use mbd_core::validate::Validate;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use nalgebra::{Point2, Vector2};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -57,6 +59,23 @@ pub struct BeltDrive {
     tangent_refresh: f64,
     /// Elastic tangent evaluations so far, over all workspaces (a statistic).
     elastic_evaluations: AtomicUsize,
+    /// The tensioner arm, if any ([`BeltDrive::with_tensioner`]).
+    arm: Option<BeltArm>,
+}
+
+/// A tensioner arm of a belt drive ([`BeltDrive::with_tensioner`], [`mbd_core::tensioner`]):
+/// its idler's centre is `c(θ) = p + L (cos θ, sin θ)` with the arm angle `θ` \[rad\] a
+/// coordinate of the system, after the free pulleys' angles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BeltArm {
+    /// The tensioner (spring, damper, dry friction, travel; `spec.pulley` is the idler).
+    pub spec: TensionerSpec,
+    /// Arm length `L` \[m\].
+    pub length: f64,
+    /// Arm angle of the installed idler centre (the spec's pulley centre) \[rad\].
+    pub installed_angle: f64,
+    /// Coordinate index of the arm angle.
+    pub dof: usize,
 }
 
 /// The last elastic tangent and the coordinates it was evaluated at.
@@ -82,7 +101,55 @@ impl BeltDrive {
     /// the sparse pattern (element blocks and element–pulley coupling blocks) and the constant
     /// mass matrix (2.26) plus the pulley inertias.
     pub fn new(spec: BeltDriveSpec) -> Result<Self, AncfError> {
+        Self::build(spec, None)
+    }
+
+    /// [`BeltDrive::new`] with an automatic tensioner (issue 17): pulley `tensioner.pulley`
+    /// (free, an idler) rides on a pivoted arm whose angle `θ` \[rad\] is one more
+    /// coordinate (the last), with the equation (counter-clockwise moments, [`mbd_core::tensioner`])
+    ///
+    /// `J θ̈ = (c − p) × F_hub + M_s(θ) + M_d(θ̇) + M_f(θ̇)`,
+    ///
+    /// `F_hub` the resultant of the idler's contact forces (Kerkkänen (3.27) on a disk whose
+    /// centre moves: the relative velocity (3.25) includes `ċ = c'(θ) θ̇`). The arm length and
+    /// the installed angle follow from the idler's centre in `spec` and the pivot; the belt is
+    /// placed on the path through that centre ([`BeltDrive::placed_coordinates`] starts the
+    /// arm at the installed angle). The dry friction is the contact crate's law
+    /// ([`contact::friction::coulomb_tanh::tensioner_dry_friction`]).
+    pub fn with_tensioner(
+        spec: BeltDriveSpec,
+        tensioner: TensionerSpec,
+    ) -> Result<Self, AncfError> {
+        Self::build(spec, Some(tensioner))
+    }
+
+    fn build(spec: BeltDriveSpec, tensioner: Option<TensionerSpec>) -> Result<Self, AncfError> {
         spec.validate()?;
+        if let Some(t) = &tensioner {
+            t.validate_within("tensioner")?;
+            match spec.pulleys.get(t.pulley) {
+                Some(p) if p.is_free() => {}
+                Some(p) => {
+                    return Err(invalid(
+                        "tensioner.pulley",
+                        format!(
+                            "the tensioner's idler \"{}\" must be free (not speed-driven)",
+                            p.name
+                        ),
+                    ));
+                }
+                None => {
+                    return Err(invalid(
+                        "tensioner.pulley",
+                        format!(
+                            "no pulley {} (the drive has {})",
+                            t.pulley,
+                            spec.pulleys.len()
+                        ),
+                    ));
+                }
+            }
+        }
         let path_pulleys: Vec<PathPulley> = spec
             .pulleys
             .iter()
@@ -125,7 +192,16 @@ impl BeltDrive {
                 pulley_dof.push(None);
             }
         }
-        let n = n_belt + free.len();
+        let arm = tensioner.map(|t| {
+            let (length, installed_angle) = t.arm(spec.pulleys[t.pulley].center);
+            BeltArm {
+                spec: t,
+                length,
+                installed_angle,
+                dof: n_belt + free.len(),
+            }
+        });
+        let n = n_belt + free.len() + usize::from(arm.is_some());
         let n_el = mesh.elements().len();
         let mut groups: Vec<Vec<Option<usize>>> = (0..n_el)
             .map(|e| (0..NE).map(|k| Some(mesh.global_dof(e, k))).collect())
@@ -133,6 +209,9 @@ impl BeltDrive {
         for e in 0..n_el {
             let mut g: Vec<Option<usize>> = (0..NE).map(|k| Some(mesh.global_dof(e, k))).collect();
             g.extend((0..free.len()).map(|k| Some(n_belt + k)));
+            if let Some(a) = &arm {
+                g.push(Some(a.dof));
+            }
             groups.push(g);
         }
         let pattern = Pattern::new(n, &groups);
@@ -144,6 +223,9 @@ impl BeltDrive {
             if let PulleyDrive::Free { inertia, .. } = spec.pulleys[pi].drive {
                 mass_values[pattern.diagonal_position(n_belt + k)] += inertia;
             }
+        }
+        if let Some(a) = &arm {
+            mass_values[pattern.diagonal_position(a.dof)] += a.spec.inertia;
         }
         let line = LineContact {
             surface: Disk::fixed(Point2::origin(), 1.0),
@@ -163,6 +245,7 @@ impl BeltDrive {
             mass_values,
             tangent_refresh: 0.02,
             elastic_evaluations: AtomicUsize::new(0),
+            arm,
         })
     }
 
@@ -190,6 +273,25 @@ impl BeltDrive {
     pub fn pulley_dof(&self, p: usize) -> Option<usize> {
         self.pulley_dof.get(p).copied().flatten()
     }
+    /// The tensioner arm, if any ([`BeltDrive::with_tensioner`]).
+    pub fn arm(&self) -> Option<&BeltArm> {
+        self.arm.as_ref()
+    }
+
+    /// Centre \[m\] and centre velocity \[m/s\] of pulley `p` at `(q, v)`: the spec's centre at
+    /// rest, or for the tensioner's idler `c(θ)` and `c'(θ) θ̇` ([`mbd_core::tensioner`]).
+    pub fn pulley_center(&self, p: usize, q: &[f64], v: &[f64]) -> ([f64; 2], [f64; 2]) {
+        match &self.arm {
+            Some(a) if a.spec.pulley == p => {
+                let th = q.get(a.dof).copied().unwrap_or(a.installed_angle);
+                let rate = v.get(a.dof).copied().unwrap_or(0.0);
+                let (c, dc) = a.spec.center(a.length, th);
+                (c, [dc[0] * rate, dc[1] * rate])
+            }
+            _ => (self.spec.pulleys[p].center, [0.0, 0.0]),
+        }
+    }
+
     /// Reference element length `l` \[m\].
     pub fn element_length(&self) -> f64 {
         self.mesh.elements()[0].length()
@@ -254,13 +356,15 @@ impl BeltDrive {
         }
     }
 
-    /// Disk of pulley `p` spinning with travel-sense speed `omega` \[rad/s\].
-    fn disk(&self, p: usize, omega: f64) -> Disk {
+    /// Disk of pulley `p` spinning with travel-sense speed `omega` \[rad/s\] at `(q, v)`
+    /// (centre and its velocity: [`Self::pulley_center`]).
+    fn disk(&self, p: usize, omega: f64, q: &[f64], v: &[f64]) -> Disk {
         let pl = &self.spec.pulleys[p];
+        let (c, cd) = self.pulley_center(p, q, v);
         Disk {
-            center: Point2::from(pl.center),
+            center: Point2::from(c),
             radius: pl.radius,
-            velocity: Vector2::zeros(),
+            velocity: Vector2::from(cd),
             omega: pl.ccw_sign() * omega,
         }
     }
@@ -269,9 +373,9 @@ impl BeltDrive {
     /// within one chord length of a node, so the element is skipped when both nodes are
     /// farther than that from the pulley surface (Kerkkänen §3.2's pre-check).
     #[inline]
-    fn may_touch(&self, e: &[f64], p: usize) -> bool {
+    fn may_touch(&self, e: &[f64], p: usize, center: [f64; 2]) -> bool {
         let pl = &self.spec.pulleys[p];
-        let d = |x: f64, y: f64| ((x - pl.center[0]).powi(2) + (y - pl.center[1]).powi(2)).sqrt();
+        let d = |x: f64, y: f64| ((x - center[0]).powi(2) + (y - center[1]).powi(2)).sqrt();
         let chord = ((e[6] - e[0]).powi(2) + (e[7] - e[1]).powi(2)).sqrt();
         let gap = d(e[0], e[1]).min(d(e[6], e[7])) - pl.radius;
         gap <= chord
@@ -295,14 +399,14 @@ impl BeltDrive {
             self.mesh.gather(q, el, &mut e);
             let mut gathered_v = false;
             for (p, &omega) in omegas.iter().enumerate() {
-                if !self.may_touch(&e, p) {
+                let disk = self.disk(p, omega, q, v);
+                if !self.may_touch(&e, p, [disk.center.x, disk.center.y]) {
                     continue;
                 }
                 if !gathered_v {
                     self.mesh.gather(v, el, &mut ed);
                     gathered_v = true;
                 }
-                let disk = self.disk(p, omega);
                 let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
                 self.line.element_on(
                     &disk,
@@ -332,7 +436,7 @@ impl BeltDrive {
     /// The drive's work buffers and tangent cache in the caller's workspace `ws`, created on
     /// first use (and anew if `ws` held those of a drive with other sizes).
     fn scratch<'w>(&self, ws: &'w mut Workspace) -> &'w mut Scratch {
-        let m = NE + self.free.len();
+        let m = NE + self.free.len() + usize::from(self.arm.is_some());
         let fresh = || Scratch {
             contact: ElementContact::new(NE),
             k_local: vec![0.0; m * m],
@@ -474,11 +578,11 @@ impl BeltDrive {
             self.mesh.gather(q, el, &mut e);
             self.mesh.gather(v, el, &mut ed);
             for (p, &omega) in omegas.iter().enumerate() {
-                if !self.may_touch(&e, p) {
+                let disk = self.disk(p, omega, q, v);
+                if !self.may_touch(&e, p, [disk.center.x, disk.center.y]) {
                     continue;
                 }
                 recs.clear();
-                let disk = self.disk(p, omega);
                 line.element_on(
                     &disk,
                     l,
@@ -509,6 +613,77 @@ impl BeltDrive {
         }
         out
     }
+}
+
+/// The tangent entries of one element's contact with the tensioner's idler that the arm adds
+/// (local columns/rows `NE + nf` for the arm, `NE + kp` for the idler's spin, `m` the local
+/// size), written into `s.k_local = −∂f/∂q` and `s.c_local = −∂f/∂v`, at the arm angle and
+/// rate `(θ, θ̇)` \[rad, rad/s\].
+///
+/// The contact forces depend on the disk's centre `c` only through `r − c` and `ṙ − ċ`, so
+/// moving the centre by `δ` equals moving the element by `−δ`: with the cubic shape functions'
+/// partition of unity on the nodal positions (`S₁ + S₄ = 1`, element coordinates 0, 6 for x
+/// and 1, 7 for y), `∂X/∂c_x = −(∂X/∂e₀ + ∂X/∂e₆)` and likewise for `ċ` with `ė`. With
+/// `c = c(θ)`, `ċ = c'θ̇` and `c'' = −(c − p)`: `∂X/∂θ = ∂X/∂c·c' + ∂X/∂ċ·c''θ̇`,
+/// `∂X/∂θ̇ = ∂X/∂ċ·c'`. The arm's moment is `(c − p) × F` with `F` = `ec.reaction`
+/// `= −(Q₀ + Q₆, Q₁ + Q₇)` (the same partition of unity), so `∂F/∂e` follows from `∂Q/∂e`.
+fn arm_contact_tangent(
+    a: &BeltArm,
+    lever: [f64; 2],
+    (angle, rate): (f64, f64),
+    ec: &ElementContact<2>,
+    spin: Option<(usize, f64)>,
+    nf: usize,
+    s: &mut Scratch,
+) {
+    let m = NE + nf + 1;
+    let ca = NE + nf;
+    let (_, dc) = a.spec.center(a.length, angle);
+    let cdd = [-lever[0], -lever[1]];
+    // (∂X/∂θ, ∂X/∂θ̇) of a quantity X with element derivatives d(b) = ∂X/∂e_b, dd(b) = ∂X/∂ė_b
+    let chain = |d: &dyn Fn(usize) -> f64, dd: &dyn Fn(usize) -> f64| {
+        let dcx = -(d(0) + d(6));
+        let dcy = -(d(1) + d(7));
+        let dvx = -(dd(0) + dd(6));
+        let dvy = -(dd(1) + dd(7));
+        (
+            dcx * dc[0] + dcy * dc[1] + (dvx * cdd[0] + dvy * cdd[1]) * rate,
+            dvx * dc[0] + dvy * dc[1],
+        )
+    };
+    // belt rows
+    for r in 0..NE {
+        let (kt, ct) = chain(&|b| ec.dq_de[r + b * NE], &|b| ec.dq_dedot[r + b * NE]);
+        s.k_local[r + ca * m] = -kt;
+        s.c_local[r + ca * m] = -ct;
+    }
+    // the idler's spin row: s τ
+    if let Some((kp, sg)) = spin {
+        let row = NE + kp;
+        let (kt, ct) = chain(&|b| sg * ec.dmoment_de[b], &|b| sg * ec.dmoment_dedot[b]);
+        s.k_local[row + ca * m] = -kt;
+        s.c_local[row + ca * m] = -ct;
+    }
+    // the arm's row: (c − p) × F, F = −(Q₀ + Q₆, Q₁ + Q₇)
+    let df_de = |c: usize, b: usize| -(ec.dq_de[c + b * NE] + ec.dq_de[c + 6 + b * NE]);
+    let df_dedot = |c: usize, b: usize| -(ec.dq_dedot[c + b * NE] + ec.dq_dedot[c + 6 + b * NE]);
+    for b in 0..NE {
+        s.k_local[ca + b * m] = -cross(lever, [df_de(0, b), df_de(1, b)]);
+        s.c_local[ca + b * m] = -cross(lever, [df_dedot(0, b), df_dedot(1, b)]);
+    }
+    if let Some((kp, sg)) = spin {
+        let col = NE + kp;
+        let dw = [
+            -(ec.dq_domega[0] + ec.dq_domega[6]),
+            -(ec.dq_domega[1] + ec.dq_domega[7]),
+        ];
+        s.c_local[ca + col * m] = -sg * cross(lever, dw);
+    }
+    let (kx, cx) = chain(&|b| df_de(0, b), &|b| df_dedot(0, b));
+    let (ky, cy) = chain(&|b| df_de(1, b), &|b| df_dedot(1, b));
+    let f = [ec.reaction[0], ec.reaction[1]];
+    s.k_local[ca + ca * m] = -(cross(dc, f) + cross(lever, [kx, ky]));
+    s.c_local[ca + ca * m] = -cross(lever, [cx, cy]);
 }
 
 /// The belt's load on one pulley ([`BeltDrive::pulley_loads`]).
@@ -547,7 +722,7 @@ pub struct PointRecord {
 
 impl SecondOrderSystem for BeltDrive {
     fn n_q(&self) -> usize {
-        self.n_belt + self.free.len()
+        self.n_belt + self.free.len() + usize::from(self.arm.is_some())
     }
     fn dof_name(&self, dof: usize) -> String {
         if dof < self.n_belt {
@@ -555,6 +730,8 @@ impl SecondOrderSystem for BeltDrive {
             format!("belt node {} {}", dof / 6, names[dof % 6])
         } else if let Some(&p) = self.free.get(dof - self.n_belt) {
             format!("pulley \"{}\" angle", self.spec.pulleys[p].name)
+        } else if self.arm.is_some_and(|a| a.dof == dof) {
+            "tensioner arm angle".into()
         } else {
             format!("coordinate {dof}")
         }
@@ -626,10 +803,16 @@ impl BeltDrive {
         f[nb..].fill(0.0);
         self.axial_damping(q, v, f, None);
         let scratch = self.scratch(ws);
+        let arm = self.arm.map(|a| (a, self.arm_lever(&a, q)));
         self.contact_pass(q, v, omegas, false, scratch, |el, p, ec, _| {
             self.mesh.scatter_add(f, el, &ec.q, 1.0);
             if let Some(j) = self.pulley_dof[p] {
                 f[j] += self.spec.pulleys[p].ccw_sign() * ec.moment;
+            }
+            if let Some((a, lever)) = arm
+                && a.spec.pulley == p
+            {
+                f[a.dof] += cross(lever, [ec.reaction[0], ec.reaction[1]]);
             }
         });
         for &p in &self.free {
@@ -637,6 +820,24 @@ impl BeltDrive {
                 f[j] -= loads[p];
             }
         }
+        if let Some(a) = &self.arm {
+            f[a.dof] += self.arm_moment(a, q, v);
+        }
+    }
+
+    /// Lever `c(θ) − p` \[m\] of the arm at `q`.
+    fn arm_lever(&self, a: &BeltArm, q: &[f64]) -> [f64; 2] {
+        let (c, _) = self.pulley_center(a.spec.pulley, q, &[]);
+        [c[0] - a.spec.pivot[0], c[1] - a.spec.pivot[1]]
+    }
+
+    /// Spring, damper and dry-friction moments on the arm `M_s + M_d + M_f` \[N·m\]
+    /// ([`mbd_core::tensioner`]).
+    fn arm_moment(&self, a: &BeltArm, q: &[f64], v: &[f64]) -> f64 {
+        let (th, rate) = (q[a.dof], v[a.dof]);
+        a.spec.spring_moment(th).0
+            + a.spec.damper_moment(rate).0
+            + contact::friction::coulomb_tanh::tensioner_dry_friction(&a.spec, rate).force
     }
 
     /// [`SecondOrderSystem::force_tangent`] with the pulleys spinning at the travel-sense
@@ -671,7 +872,8 @@ impl BeltDrive {
         self.axial_damping(q, v, &mut [], Some((&mut k, &mut c)));
         let n_el = self.mesh.elements().len();
         let nf = self.free.len();
-        let m = NE + nf;
+        let m = NE + nf + usize::from(self.arm.is_some());
+        let arm = self.arm.map(|a| (a, self.arm_lever(&a, q)));
         self.contact_pass(q, v, omegas, true, scratch, |el, p, ec, s| {
             s.k_local.fill(0.0);
             s.c_local.fill(0.0);
@@ -694,9 +896,29 @@ impl BeltDrive {
                 }
                 s.c_local[col + col * m] = -ec.dmoment_domega;
             }
+            if let Some((a, lever)) = arm
+                && a.spec.pulley == p
+            {
+                arm_contact_tangent(
+                    &a,
+                    lever,
+                    (q[a.dof], v[a.dof]),
+                    ec,
+                    self.pulley_dof[p].map(|j| (j - nb, self.spec.pulleys[p].ccw_sign())),
+                    nf,
+                    s,
+                );
+            }
             pat.add_element(&mut k, n_el + el, &s.k_local, 1.0);
             pat.add_element(&mut c, n_el + el, &s.c_local, 1.0);
         });
+        if let Some(a) = &self.arm {
+            let (th, rate) = (q[a.dof], v[a.dof]);
+            let d = pat.diagonal_position(a.dof);
+            k[d] -= a.spec.spring_moment(th).1;
+            c[d] -= a.spec.damper_moment(rate).1
+                + contact::friction::coulomb_tanh::tensioner_dry_friction(&a.spec, rate).d_slip;
+        }
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),

@@ -49,7 +49,7 @@ use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, FlowingBasis, NODE_DOFS, chord_tensions};
 use super::schedule::{Schedule, Signal};
 use super::statics::dense_equilibrium;
-use contact::friction::{CoulombTanh, FrictionLaw, FrictionSpec};
+use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use mbd_core::Workspace;
@@ -682,10 +682,9 @@ impl FlowingBelt {
 }
 
 /// Dry friction moment at the tensioner pivot through the contact crate's law
-/// ([`TensionerSpec::dry_friction_law`]).
+/// ([`contact::friction::coulomb_tanh::tensioner_dry_friction`]).
 fn dry_friction(spec: &TensionerSpec, rate: f64) -> contact::friction::FrictionForce {
-    let (mu, kappa, normal) = spec.dry_friction_law();
-    CoulombTanh { mu, kappa }.friction(rate, normal)
+    contact::friction::coulomb_tanh::tensioner_dry_friction(spec, rate)
 }
 
 impl SecondOrderSystem for FlowingBelt {
