@@ -71,6 +71,100 @@ pub enum PulleyMotion {
     },
 }
 
+impl PulleyMotion {
+    /// The same pulley at rest: speed zero, or free with its inertia and no load (for the
+    /// static equilibrium of the mounted belt).
+    pub fn at_rest(&self) -> Self {
+        match self {
+            Self::Speed(_) => Self::Speed(Signal::constant(0.0)),
+            Self::Free { inertia, .. } => Self::Free {
+                inertia: *inertia,
+                load: Signal::constant(0.0),
+            },
+        }
+    }
+}
+
+/// Velocity index of each pulley's speed (`None`: prescribed), the free pulleys numbered from
+/// `*next` in pulley order (`*next` is advanced past them). Shared by the flowing and the nodal
+/// belt.
+pub(crate) fn pulley_dofs(motions: &[PulleyMotion], next: &mut usize) -> Vec<Option<usize>> {
+    motions
+        .iter()
+        .map(|mo| match mo {
+            PulleyMotion::Speed(_) => None,
+            PulleyMotion::Free { .. } => {
+                *next += 1;
+                Some(*next - 1)
+            }
+        })
+        .collect()
+}
+
+/// Speed \[rad/s\] of a pulley with `motion` and velocity index `dof` at `(t, v)`.
+pub(crate) fn motion_speed(motion: &PulleyMotion, dof: Option<usize>, t: f64, v: &[f64]) -> f64 {
+    match (motion, dof) {
+        (_, Some(k)) => v[k],
+        (PulleyMotion::Speed(s), None) => s.value(t),
+        (PulleyMotion::Free { .. }, None) => 0.0,
+    }
+}
+
+/// The rigid pulleys of the path as the nodes see them: centre, contact radius
+/// ([`BeltFe::contact_radius`]) and wrap sense (`+1` grooved side inside the loop, `−1` back
+/// side).
+pub(crate) fn pulley_frames(fe: &BeltFe) -> Vec<PulleyFrame> {
+    fe.path
+        .pulleys()
+        .iter()
+        .zip(&fe.contact_radius)
+        .map(|(p, &radius)| PulleyFrame {
+            center: p.center,
+            radius,
+            turn: match p.side {
+                fe_model::generate::belt_path::WrapSide::Inside => 1.0,
+                fe_model::generate::belt_path::WrapSide::Outside => -1.0,
+            },
+        })
+        .collect()
+}
+
+/// Speed history of pulley 0 (the driver) when it is speed-driven.
+pub(crate) fn driver_speed_of(motions: &mut [PulleyMotion]) -> Option<&mut Signal> {
+    match motions.first_mut() {
+        Some(PulleyMotion::Speed(s)) => Some(s),
+        _ => None,
+    }
+}
+
+/// Load history of pulley `p` when it is free.
+pub(crate) fn load_of(motions: &mut [PulleyMotion], p: usize) -> Option<&mut Signal> {
+    match motions.get_mut(p) {
+        Some(PulleyMotion::Free { load, .. }) => Some(load),
+        _ => None,
+    }
+}
+
+/// Pulley 1's speed DOF when it is free, else the first free pulley's (the driven pulley of
+/// the speed-loss procedure); `fallback` when no pulley is free.
+pub(crate) fn driven_of(pulley_dof: &[Option<usize>], fallback: usize) -> usize {
+    pulley_dof
+        .get(1)
+        .copied()
+        .flatten()
+        .or_else(|| pulley_dof.iter().flatten().next().copied())
+        .unwrap_or(fallback)
+}
+
+/// The pulley whose speed DOF is [`driven_of`]'s (1 when no pulley is free).
+pub(crate) fn driven_pulley_of(pulley_dof: &[Option<usize>]) -> usize {
+    let d = driven_of(pulley_dof, usize::MAX);
+    pulley_dof
+        .iter()
+        .position(|&k| k == Some(d))
+        .unwrap_or(1)
+}
+
 /// A tensioner in a flowing-belt drive: the spec, its arm length and the arm angle at which
 /// the path was laid out (Δθ = 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -289,28 +383,9 @@ impl FlowingBelt {
                 });
             }
         }
-        let pp = fe.path.pulleys();
-        let pulleys = (0..np)
-            .map(|k| PulleyFrame {
-                center: pp[k].center,
-                radius: fe.contact_radius[k],
-                turn: match pp[k].side {
-                    fe_model::generate::belt_path::WrapSide::Inside => 1.0,
-                    fe_model::generate::belt_path::WrapSide::Outside => -1.0,
-                },
-            })
-            .collect();
+        let pulleys = pulley_frames(&fe);
         let mut n_v = m + 1;
-        let pulley_dof = motions
-            .iter()
-            .map(|mo| match mo {
-                PulleyMotion::Speed(_) => None,
-                PulleyMotion::Free { .. } => {
-                    n_v += 1;
-                    Some(n_v - 1)
-                }
-            })
-            .collect();
+        let pulley_dof = pulley_dofs(&motions, &mut n_v);
         let arm_dof = tensioner.map(|_| {
             n_v += 1;
             n_v - 1
@@ -375,11 +450,7 @@ impl FlowingBelt {
 
     /// Speed of pulley `p` \[rad/s\] at `(t, v)`.
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        match (&self.motions[p], self.pulley_dof[p]) {
-            (_, Some(k)) => v[k],
-            (PulleyMotion::Speed(s), None) => s.value(t),
-            (PulleyMotion::Free { .. }, None) => 0.0,
-        }
+        motion_speed(&self.motions[p], self.pulley_dof[p], t, v)
     }
 
     /// Velocity index of pulley `p`'s speed (`None`: prescribed).
@@ -399,18 +470,12 @@ impl FlowingBelt {
 
     /// Speed schedule of pulley 0 (the driver) when it is speed-driven.
     pub fn driver_speed_mut(&mut self) -> Option<&mut Signal> {
-        match self.motions.first_mut() {
-            Some(PulleyMotion::Speed(s)) => Some(s),
-            _ => None,
-        }
+        driver_speed_of(&mut self.motions)
     }
 
     /// Load history of pulley `p` when it is free.
     pub fn load_mut(&mut self, p: usize) -> Option<&mut Signal> {
-        match self.motions.get_mut(p) {
-            Some(PulleyMotion::Free { load, .. }) => Some(load),
-            _ => None,
-        }
+        load_of(&mut self.motions, p)
     }
 
     fn arm_state(&self, q: &[f64], v: &[f64]) -> Option<ArmState> {
@@ -492,9 +557,12 @@ impl FlowingBelt {
     /// Index of the driven pulley's speed in the velocities (pulley 1 of the two-pulley drive;
     /// the first free pulley of a layout).
     pub fn driven_dof(&self) -> usize {
-        self.pulley_dof[1]
-            .or_else(|| self.pulley_dof.iter().flatten().next().copied())
-            .unwrap_or(self.m + 1)
+        driven_of(&self.pulley_dof, self.m + 1)
+    }
+
+    /// The driven pulley: pulley 1 of the two-pulley drive, the first free pulley of a layout.
+    pub fn driven_pulley(&self) -> usize {
+        driven_pulley_of(&self.pulley_dof)
     }
 
     /// The friction law of the belt–pulley contact.
@@ -519,17 +587,7 @@ impl FlowingBelt {
         let v = vec![0.0; nv];
         let mut f = vec![0.0; nv];
         let still = Self {
-            motions: self
-                .motions
-                .iter()
-                .map(|mo| match mo {
-                    PulleyMotion::Speed(_) => PulleyMotion::Speed(Signal::constant(0.0)),
-                    PulleyMotion::Free { inertia, .. } => PulleyMotion::Free {
-                        inertia: *inertia,
-                        load: Signal::constant(0.0),
-                    },
-                })
-                .collect(),
+            motions: self.motions.iter().map(PulleyMotion::at_rest).collect(),
             ..self.clone()
         };
         // unknowns: z and the arm rotation; R = −f over their rows, J = K_t restricted to them

@@ -7,9 +7,15 @@
 //! of the exact path and curvature vector `ε_n^i = e_n^i/ρ^i` (Ribaric (5.3); see the choices
 //! below).
 //!
-//! Coordinates `q = [s_b, δ, φ₂]`, velocities `v = [v, δ̇, ω₂]`: the belt's travel `s_b` and speed
-//! `v = ṡ_b`, the global nodal deflections `δ` (`3N`: x, y, θ per node; `d^i = r^i(s_i) + δ^i`,
-//! (5.1)) and the driven pulley's angle and speed. The driver's speed `ω₁(t)` is prescribed.
+//! Coordinates `q = [s_b, δ, φ_k…]`, velocities `v = [v, δ̇, ω_k…]`: the belt's travel `s_b`
+//! and speed `v = ṡ_b`, the global nodal deflections `δ` (`3N`: x, y, θ per node;
+//! `d^i = r^i(s_i) + δ^i`, (5.1)) and the angle and speed of every pulley that is not
+//! speed-driven (pulley order, [`PulleyMotion`]). The two-pulley drive of [`NodalBelt::new`]
+//! has `q = [s_b, δ, φ₂]`: the driver's speed `ω₁(t)` is prescribed.
+//!
+//! Any layout (issue 17): [`NodalBelt::with_layout`] takes the loop of [`BeltFe::on_path`] over
+//! N pulleys (grooved or back side) and one [`PulleyMotion`] per pulley, the same inputs as
+//! [`super::FlowingBelt::with_layout`]; the material nodes travel along that path.
 //!
 //! ```text
 //!   d̈ = a e_t + v² ε_n + δ̈                                          (5.3), (5.4)
@@ -17,7 +23,7 @@
 //!   [ M e_t        M      ] [δ̈] = [ g − v² M ε_n    ] − [ Dᵀλ ]      (5.6)
 //!   g = f0 + f_contact − K δ − C δ̇                                  (5.8)
 //!   Φ = e_t^k(s_k)ᵀ δ^k = 0     (reference condition, note U5)
-//!   J₂ ω̇₂ = τ_contact,2 − M_load(t)
+//!   J_k ω̇_k = τ_contact,k − M_load,k(t)                            (free pulleys)
 //! ```
 //!
 //! (5.6) is singular along `[1; −e_t]` (a uniform slide of the deflections along the path is a
@@ -61,6 +67,11 @@
 //! 1.7 % (216).
 
 use super::contact::{NodeContact, PulleyFrame, node_contact};
+use super::flowing_system::{
+    ArmModel, PulleyMotion, driven_of, driven_pulley_of, driver_speed_of, load_of, motion_speed, pulley_dofs,
+    pulley_frames,
+};
+use super::schedule::Signal;
 use super::model::{BeltFe, NODE_DOFS, chord_tensions, chord_turn_rate, corotational_rate_block};
 use super::schedule::Schedule;
 use super::statics::dense_equilibrium;
@@ -103,18 +114,19 @@ pub struct NodalBelt {
     /// The belt loop (its `s`, masses and tributary lengths are those of the material nodes at
     /// `s_b = 0`).
     pub fe: BeltFe,
-    /// Driver pulley speed ω₁(t) \[rad/s\], positive in the travel sense.
-    pub driver_speed: Schedule,
-    /// Load torque on the driven pulley \[N m\], opposing its rotation.
-    pub load_torque: Schedule,
+    /// How each pulley turns (pulley order of the path): speed-driven, or free with an
+    /// inertia \[kg m²\] against a load torque \[N m\].
+    pub motions: Vec<PulleyMotion>,
     /// Material node whose tangential deflection is zero (reference condition).
     pub reference_node: usize,
     section: Frame2dSection,
-    pulleys: [PulleyFrame; 2],
+    pulleys: Vec<PulleyFrame>,
+    /// Velocity index of each pulley's speed (`None`: prescribed).
+    pulley_dof: Vec<Option<usize>>,
     friction: FrictionSpec,
     laws: Vec<PolynomialPenalty>,
-    inertia: f64,
     mass_total: f64,
+    n_v: usize,
 }
 
 /// Rotate a local 6×6 element matrix to global axes: `Tᵀ k T`, `T = diag(R, 1, R, 1)` with
@@ -188,12 +200,51 @@ impl<'a> Tangent<'a> {
 }
 
 impl NodalBelt {
-    /// Build the model on the loop `fe`.
+    /// The two-pulley drive (Ribaric Table 6-1) on the loop `fe`: pulley 0 turns at
+    /// `driver_speed` \[rad/s\], pulley 1 is free with the inertia `fe.config.driven_inertia`
+    /// against `load_torque` \[N m\].
     pub fn new(
         fe: BeltFe,
         driver_speed: Schedule,
         load_torque: Schedule,
     ) -> Result<Self, crate::FlowError> {
+        let inertia = fe.config.driven_inertia;
+        Self::with_layout(
+            fe,
+            vec![
+                PulleyMotion::Speed(driver_speed.into()),
+                PulleyMotion::Free {
+                    inertia,
+                    load: load_torque.into(),
+                },
+            ],
+            None,
+        )
+    }
+
+    /// Any layout (issue 17): `fe` built on the layout's path ([`BeltFe::on_path`]) and one
+    /// motion per pulley, as for [`super::FlowingBelt::with_layout`]. Every node can touch
+    /// every pulley (Ribaric (6.1), (6.2) against each rigid pulley, grooved or back side).
+    /// A tensioner arm is not modelled by the rotating-mesh belt: `tensioner` must be `None`
+    /// (an error names the field otherwise).
+    pub fn with_layout(
+        fe: BeltFe,
+        motions: Vec<PulleyMotion>,
+        tensioner: Option<ArmModel>,
+    ) -> Result<Self, crate::FlowError> {
+        let np = fe.path.pulleys().len();
+        if motions.len() != np {
+            return Err(crate::error::invalid(
+                "pulleys",
+                format!("{} motions for {np} pulleys", motions.len()),
+            ));
+        }
+        if tensioner.is_some() {
+            return Err(crate::error::invalid(
+                "tensioner",
+                "the nodal (rotating-mesh) belt has no tensioner arm; use the flowing model",
+            ));
+        }
         let cfg = fe.config;
         let section = Frame2dSection {
             ea: cfg.belt.ea,
@@ -209,24 +260,21 @@ impl NodalBelt {
                 length: l,
             })
             .collect();
-        let pp = fe.path.pulleys();
-        let pulleys = [0, 1].map(|k| PulleyFrame {
-            center: pp[k].center,
-            radius: fe.contact_radius[k],
-            turn: 1.0,
-        });
+        let pulleys = pulley_frames(&fe);
         let mass_total = fe.mass.chunks(NODE_DOFS).map(|m| m[0]).sum::<f64>();
+        let mut n_v = fe.n_dofs() + 1;
+        let pulley_dof = pulley_dofs(&motions, &mut n_v);
         let belt = Self {
             section,
             pulleys,
+            pulley_dof,
             friction: cfg.contact.friction_law(),
             laws,
-            inertia: cfg.driven_inertia,
             mass_total,
             fe,
-            driver_speed,
-            load_torque,
+            motions,
             reference_node: 0,
+            n_v,
         };
         // fail early on a degenerate polygon
         belt.mesh(0.0)
@@ -237,7 +285,8 @@ impl NodalBelt {
         Ok(belt)
     }
 
-    /// Number of nodal DOFs `3N` (the system has `3N + 2` coordinates and one constraint).
+    /// Number of nodal DOFs `3N` (the system has `3N + 1` coordinates, one per free pulley
+    /// and one constraint).
     pub fn n_nodal(&self) -> usize {
         self.fe.n_dofs()
     }
@@ -246,9 +295,33 @@ impl NodalBelt {
         self.fe.n_nodes()
     }
 
-    /// Index of the driven pulley's coordinate.
-    fn i_pulley(&self) -> usize {
-        self.fe.n_dofs() + 1
+    /// Velocity index of pulley `p`'s speed (`None`: prescribed).
+    pub fn pulley_dof(&self, p: usize) -> Option<usize> {
+        self.pulley_dof[p]
+    }
+
+    /// Speed of pulley `p` \[rad/s\] at `(t, v)`, positive in the travel sense.
+    pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
+        motion_speed(&self.motions[p], self.pulley_dof[p], t, v)
+    }
+
+    /// Speed history of pulley 0 (the driver) when it is speed-driven.
+    pub fn driver_speed_mut(&mut self) -> Option<&mut Signal> {
+        driver_speed_of(&mut self.motions)
+    }
+
+    /// Load history of pulley `p` when it is free.
+    pub fn load_mut(&mut self, p: usize) -> Option<&mut Signal> {
+        load_of(&mut self.motions, p)
+    }
+
+    /// The free pulleys: `(pulley, velocity index)`.
+    fn free_pulleys(&self) -> Vec<(usize, usize)> {
+        self.pulley_dof
+            .iter()
+            .enumerate()
+            .filter_map(|(p, d)| d.map(|d| (p, d)))
+            .collect()
     }
 
     /// Reference positions `r^i(s_i0 + s_b)` of the material nodes \[m\].
@@ -327,14 +400,6 @@ impl NodalBelt {
         })
     }
 
-    fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        if p == 0 {
-            self.driver_speed.value(t)
-        } else {
-            v[self.i_pulley()]
-        }
-    }
-
     fn element_dofs(&self, e: usize) -> [usize; 6] {
         let j = (e + 1) % self.n();
         [3 * e, 3 * e + 1, 3 * e + 2, 3 * j, 3 * j + 1, 3 * j + 2]
@@ -402,9 +467,15 @@ impl NodalBelt {
         )
     }
 
-    /// Index of the driven pulley's speed in the velocities.
+    /// Index of the driven pulley's speed in the velocities (pulley 1 of the two-pulley drive;
+    /// the first free pulley of a layout).
     pub fn driven_dof(&self) -> usize {
-        self.i_pulley()
+        driven_of(&self.pulley_dof, self.n_nodal() + 1)
+    }
+
+    /// The driven pulley: pulley 1 of the two-pulley drive, the first free pulley of a layout.
+    pub fn driven_pulley(&self) -> usize {
+        driven_pulley_of(&self.pulley_dof)
     }
 
     /// The friction law of the belt–pulley contact.
@@ -412,18 +483,19 @@ impl NodalBelt {
         &self.friction
     }
 
-    /// Torques of the contact forces on the pulleys in their travel sense \[N m\].
-    pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> Result<[f64; 2], MbdError> {
+    /// Torques of the contact forces on the pulleys in their travel sense \[N m\] (pulley
+    /// order).
+    pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Vec<f64>, MbdError> {
         let mesh = self.mesh(q[0])?;
-        let mut tq = [0.0; 2];
+        let mut tq = vec![0.0; self.pulleys.len()];
         for (_, p, c) in self.contacts(&mesh, t, q, v) {
             tq[p] += c.torque;
         }
         Ok(tq)
     }
 
-    /// Nodal forces `g − v² M ε_n` (`3N`) and the driven pulley's contact torque.
-    fn nodal_forces(&self, mesh: &Mesh, t: f64, q: &[f64], v: &[f64], g: &mut [f64]) -> f64 {
+    /// Nodal forces `g − v² M ε_n` (`3N`) and the contact torque on each pulley \[N m\].
+    fn nodal_forces(&self, mesh: &Mesh, t: f64, q: &[f64], v: &[f64], g: &mut [f64]) -> Vec<f64> {
         let n = self.n();
         let nd = self.n_nodal();
         let (d, dd, vb) = (&q[1..=nd], &v[1..=nd], v[0]);
@@ -451,13 +523,11 @@ impl NodalBelt {
                 g[NODE_DOFS * i + a] -= c * mesh.eps_n[i][a];
             }
         }
-        let mut torque = 0.0;
+        let mut torque = vec![0.0; self.pulleys.len()];
         for (i, p, c) in self.contacts(mesh, t, q, v) {
             g[NODE_DOFS * i] += c.force[0];
             g[NODE_DOFS * i + 1] += c.force[1];
-            if p == 1 {
-                torque += c.torque;
-            }
+            torque[p] += c.torque;
         }
         torque
     }
@@ -476,7 +546,11 @@ impl NodalBelt {
         f[0] = (0..self.n())
             .map(|i| mesh.tan[i][0] * g[NODE_DOFS * i] + mesh.tan[i][1] * g[NODE_DOFS * i + 1])
             .sum();
-        f[nd + 1] = torque - self.load_torque.value(t);
+        for (p, mo) in self.motions.iter().enumerate() {
+            if let (PulleyMotion::Free { load, .. }, Some(k)) = (mo, self.pulley_dof[p]) {
+                f[k] = torque[p] - load.value(t);
+            }
+        }
         if let Some(i) = f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {
                 what: format!("nodal belt generalized force {i}"),
@@ -493,8 +567,8 @@ impl NodalBelt {
     fn tangent(&self, t: f64, q: &[f64], v: &[f64]) -> Result<(Sparse, Sparse), MbdError> {
         let n = self.n();
         let nd = self.n_nodal();
-        let nv = nd + 2;
-        let ip = nd + 1;
+        let nv = self.n_v;
+        let free = self.free_pulleys();
         let mesh = self.mesh(q[0])?;
         let vb = v[0];
         let (alpha, beta) = (self.fe.config.damping.alpha, self.fe.config.damping.beta);
@@ -523,47 +597,43 @@ impl NodalBelt {
                 cv.add(1 + NODE_DOFS * i + a, 0, c * mesh.eps_n[i][a]);
             }
         }
-        let mut touching = vec![[None::<NodeContact>; 2]; n];
+        let mut touching = vec![vec![None::<NodeContact>; self.pulleys.len()]; n];
         for (i, p, c) in self.contacts(&mesh, t, q, v) {
             touching[i][p] = Some(c);
         }
-        // every node's contact entries, zero when open (fixed pattern)
+        // every node's contact entries with every pulley, zero when open (fixed pattern)
         for (i, pair) in touching.iter().enumerate() {
             let r = 1 + NODE_DOFS * i;
             let et = mesh.tan[i];
             let mut dd = [[0.0; 2]; 2];
             let mut dv = [[0.0; 2]; 2];
-            let mut dw = [0.0; 2];
-            let (mut tdd, mut tdv, mut tdw) = ([0.0; 2], [0.0; 2], 0.0);
-            for (p, c) in pair.iter().enumerate() {
-                let Some(c) = c else { continue };
+            for c in pair.iter().flatten() {
                 for a in 0..2 {
                     for b in 0..2 {
                         dd[a][b] += c.df_dd[a][b];
                         dv[a][b] += c.df_dv[a][b];
                     }
-                    if p == 1 {
-                        dw[a] += c.df_dw[a];
-                        tdd[a] += c.dt_dd[a];
-                        tdv[a] += c.dt_dv[a];
-                    }
-                }
-                if p == 1 {
-                    tdw += c.dt_dw;
                 }
             }
+            let of = |p: usize| pair[p].unwrap_or_default();
             for a in 0..2 {
                 for b in 0..2 {
                     kq.add(r + a, r + b, -dd[a][b]);
                     cv.add(r + a, r + b, -dv[a][b]);
                 }
                 cv.add(r + a, 0, -(dv[a][0] * et[0] + dv[a][1] * et[1]));
-                cv.add(r + a, ip, -dw[a]);
-                kq.add(ip, r + a, -tdd[a]);
-                cv.add(ip, r + a, -tdv[a]);
+                for &(p, ip) in &free {
+                    let c = of(p);
+                    cv.add(r + a, ip, -c.df_dw[a]);
+                    kq.add(ip, r + a, -c.dt_dd[a]);
+                    cv.add(ip, r + a, -c.dt_dv[a]);
+                }
             }
-            cv.add(ip, 0, -(tdv[0] * et[0] + tdv[1] * et[1]));
-            cv.add(ip, ip, -tdw);
+            for &(p, ip) in &free {
+                let c = of(p);
+                cv.add(ip, 0, -(c.dt_dv[0] * et[0] + c.dt_dv[1] * et[1]));
+                cv.add(ip, ip, -c.dt_dw);
+            }
         }
         // s_b column: forward difference of the forces (rows 1.. here; row 0 below)
         let eps = 1e-7;
@@ -586,10 +656,9 @@ impl NodalBelt {
     /// solver). Returns `δ` (`3N`).
     pub fn static_equilibrium(&self) -> Result<Vec<f64>, MbdError> {
         let nd = self.n_nodal();
-        let nv = nd + 2;
+        let nv = self.n_v;
         let still = Self {
-            driver_speed: Schedule::constant(0.0),
-            load_torque: Schedule::constant(0.0),
+            motions: self.motions.iter().map(PulleyMotion::at_rest).collect(),
             ..self.clone()
         };
         let mut q = vec![0.0; nv];
@@ -630,7 +699,7 @@ impl NodalBelt {
 
 impl SecondOrderSystem for NodalBelt {
     fn n_q(&self) -> usize {
-        self.n_nodal() + 2
+        self.n_v
     }
 
     fn n_c(&self) -> usize {
@@ -648,7 +717,10 @@ impl SecondOrderSystem for NodalBelt {
         let nd = self.n_nodal();
         match dof {
             0 => "belt travel s_b".into(),
-            d if d == nd + 1 => "driven pulley angle".into(),
+            d if d > nd => match self.pulley_dof.iter().position(|&k| k == Some(d)) {
+                Some(p) => format!("pulley {p} angle"),
+                None => format!("dof {d}"),
+            },
             d => format!(
                 "node {} {}",
                 (d - 1) / NODE_DOFS,
@@ -657,10 +729,10 @@ impl SecondOrderSystem for NodalBelt {
         }
     }
 
-    /// Sparse: `[[m, (M e_t)ᵀ, 0], [M e_t, M, 0], [0, 0, J₂]]` (Ribaric (5.6)).
+    /// Sparse: `[[m, (M e_t)ᵀ, 0], [M e_t, M, 0], [0, 0, diag J_k]]` (Ribaric (5.6)).
     fn mass(&self, _t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         let nd = self.n_nodal();
-        let nv = nd + 2;
+        let nv = self.n_v;
         let mut trip = Vec::with_capacity(3 * nv);
         trip.push(Triplet::new(0, 0, self.mass_total));
         for i in 0..self.n() {
@@ -675,7 +747,11 @@ impl SecondOrderSystem for NodalBelt {
         for i in 0..nd {
             trip.push(Triplet::new(1 + i, 1 + i, self.fe.mass[i]));
         }
-        trip.push(Triplet::new(nd + 1, nd + 1, self.inertia));
+        for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
+            if let (PulleyMotion::Free { inertia, .. }, Some(k)) = (mo, k) {
+                trip.push(Triplet::new(*k, *k, *inertia));
+            }
+        }
         SparseColMat::try_new_from_triplets(nv, nv, &trip)
             .map(SysMatrix::Sparse)
             .map_err(|e| MbdError::Model {
