@@ -360,21 +360,11 @@ impl LayoutConfig {
 
     /// The rotating-mesh nodal model of the layout (Ribaric (5.7), [`NodalBelt::with_layout`];
     /// validated first), with the resolved layout: the same mesh, pulleys and motions as
-    /// [`Self::flowing_model`], so one TOML layout runs with either model. The nodal model has
-    /// no tensioner arm: a layout with a tensioner is rejected naming `tensioner`. Its material
-    /// nodes travel over spans and wraps, so give it near-uniform elements
+    /// [`Self::flowing_model`] (tensioner included), so one TOML layout runs with either
+    /// model. Its material nodes travel over spans and wraps, so give it near-uniform elements
     /// (`mesh.span_element ≈ mesh.arc_element`): long span elements landing on a wrap excite
     /// it at the element-passing frequency.
     pub fn nodal_model(&self) -> Result<(NodalBelt, ResolvedLayout), crate::DriveError> {
-        if self.tensioner.is_some() {
-            return Err(crate::DriveError::Invalid(
-                InvalidField::new(
-                    "tensioner",
-                    "the nodal (rotating-mesh) model has no tensioner arm; use the flowing model",
-                )
-                .to_string(),
-            ));
-        }
         let (fe, motions, arm, res) = self.model_parts()?;
         let belt = NodalBelt::with_layout(fe, motions, arm)?;
         Ok((belt, res))

@@ -309,11 +309,9 @@ impl DriveModel for NodalBelt {
     }
 
     fn initial_state(&self) -> Result<State, MbdError> {
-        let d = self.static_equilibrium()?;
-        let nd = self.n_nodal();
-        let mut q = vec![0.0; self.n_q()];
-        q[1..=nd].copy_from_slice(&d);
-        Ok(State::new(0.0, q, vec![0.0; self.n_q()]))
+        let q = self.static_state()?;
+        let n = q.len();
+        Ok(State::new(0.0, q, vec![0.0; n]))
     }
 
     /// Pulley 0's speed (a speed-driven pulley in every drive the procedure runs).

@@ -234,10 +234,38 @@ fn static_span_tensions_are_equal_on_frictionless_pulleys() {
 // compliance the hand statics give a 20 % smaller change.
 #[test]
 fn tensioner_static_angle_matches_hand_statics() {
-    use drives::layout::arm_lever;
-    use fe_model::generate::belt_path::{BeltPath, PathPulley};
     let cfg = four_pulleys(0.0);
     let (mut belt, res) = cfg.flowing_model().unwrap();
+    let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
+    belt.tensioner.as_mut().unwrap().spec.preload -= 6.0;
+    let theta_m = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
+    check_arm_change(&cfg, &res, theta_m0, theta_m, "flowing");
+}
+
+// The same for the rotating-mesh nodal model's tensioner (issue 17: the nodal belt on any
+// layout, its arm with spring, preload and damper): the change of its static arm angle (belt,
+// reference condition and arm solved together) against the hand statics, within 3 %.
+#[test]
+fn nodal_tensioner_static_angle_matches_hand_statics() {
+    let cfg = four_pulleys(0.0);
+    let (mut belt, res) = cfg.nodal_model().unwrap();
+    let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
+    belt.tensioner.as_mut().unwrap().spec.preload -= 6.0;
+    let theta_m = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
+    check_arm_change(&cfg, &res, theta_m0, theta_m, "nodal");
+}
+
+/// The hand statics of the test above for the preload 6 N m stronger, against a model's arm
+/// angles `theta_m0 → theta_m` before and after.
+fn check_arm_change(
+    cfg: &LayoutConfig,
+    res: &drives::layout::ResolvedLayout,
+    theta_m0: f64,
+    theta_m: f64,
+    model: &str,
+) {
+    use drives::layout::arm_lever;
+    use fe_model::generate::belt_path::{BeltPath, PathPulley};
     let theta_a = res.arm.unwrap().1;
     let mut spec = cfg.tensioner.unwrap();
     spec.preload -= 6.0;
@@ -278,18 +306,14 @@ fn tensioner_static_angle_matches_hand_statics() {
         (theta_b - theta_a).abs() > 2e-3,
         "test needs the arm to move"
     );
-    let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
-    belt.tensioner.as_mut().unwrap().spec.preload -= 6.0;
-    let q = belt.static_state().unwrap();
-    let theta_m = belt.arm_angle(&q).unwrap();
     let err = ((theta_m - theta_m0) - (theta_b - theta_a)).abs() / (theta_b - theta_a).abs();
     eprintln!(
-        "hand θ {theta_a:.5} → {theta_b:.5} (T {:.1} N), model {theta_m0:.5} → {theta_m:.5} rad; rel. err {err:.2e}",
+        "{model}: hand θ {theta_a:.5} → {theta_b:.5} (T {:.1} N), model {theta_m0:.5} → {theta_m:.5} rad; rel. err {err:.2e}",
         tension_at(theta_b).0
     );
     assert!(
         err < 0.03,
-        "model arm angle change off the hand statics by {:.1} %",
+        "{model} model arm angle change off the hand statics by {:.1} %",
         100.0 * err
     );
 }

@@ -161,26 +161,6 @@ fn nodal_static_span_tensions_are_equal_on_frictionless_pulleys() {
     assert!((mean / res.tension - 1.0).abs() < 0.05, "mean {mean} N");
 }
 
-// A layout with a tensioner is rejected by the nodal model, naming the field.
-#[test]
-fn nodal_model_names_the_tensioner_it_lacks() {
-    let mut cfg = triangle(0.01);
-    cfg.tensioner = Some(mbd_core::tensioner::TensionerSpec {
-        pulley: 2,
-        pivot: [0.15, -0.3],
-        stiffness: 30.0,
-        preload: -10.0,
-        preload_angle: 0.0,
-        damping: 0.5,
-        dry_friction: 0.0,
-        friction_rate: 0.01,
-        inertia: 2e-3,
-        travel: [1.0, 2.0],
-    });
-    let e = cfg.nodal_model().unwrap_err().to_string();
-    assert!(e.contains("tensioner"), "{e}");
-}
-
 /// Window means of one steady run: the report (mean of snapshots) and the power terms.
 #[derive(Debug)]
 struct Steady {
@@ -335,10 +315,14 @@ fn both_models(h: f64, load: f64, t_end: f64) -> (Steady, Steady, f64) {
 //     the tangent points — does not depend on the layout;
 // (d) power balance of the nodal model in the steady state: the belt's power on the pulleys
 //     Σ τ_k ω_k plus the sliding and damping losses vanishes (energy conservation of the
-//     rotating mesh), within 1 % of the input power; the load torque is balanced on the
+//     rotating mesh), within 0.5 % of the input power; the load torque is balanced on the
 //     driven pulley and the idler transmits nothing (within 2 % of the load).
+// Measured (183 elements of 6 mm): (a) Δω +1.25 %, spans within 0.7 %; (b) 0.9 % and 0.5 %;
+// (d) nodal residual 0.20 % of P_in = 502 W, while the flowing model's Σ τω + P_slide alone
+// is +0.51 % (power created before its damping losses: the linearisation artefact of the
+// ignored `steady_torques_balance_the_loads` in tests/layout.rs, 1.3 % on four pulleys).
+// About 30 s of CPU.
 #[test]
-#[ignore = "heavy: the ~150-element nodal model and the flowing model for 0.9 s each"]
 fn nodal_and_flowing_agree_on_a_three_pulley_drive() {
     let load = 8.0;
     let (sn, sf, mu) = both_models(0.006, load, 0.9);
@@ -375,44 +359,9 @@ fn nodal_and_flowing_agree_on_a_three_pulley_drive() {
         100.0 * (sf.pulley_power + sf.sliding_power)
             / (-sf.report.pulleys[0].torque * sf.report.pulleys[0].omega)
     );
-    assert!(residual.abs() < 0.01 * p_in, "power residual {residual} W");
+    assert!(residual.abs() < 0.005 * p_in, "power residual {residual} W");
     assert!((sn.report.pulleys[1].torque - load).abs() < 0.02 * load);
     assert!(sn.report.pulleys[2].torque.abs() < 0.02 * load);
-}
-
-// The same checks on a coarse uniform mesh (12 mm, ≈ 75 elements) that runs in the suite: the
-// rotating mesh's polygonal excitation biases its speed loss upward there (+17 % on the
-// two-pulley 54-element loop, tests/tests/flowing_belt_nodal.rs), so (a) bounds Δω between
-// the flowing value and 1.3 times it; span tensions, capstan and power balance as above.
-#[test]
-fn nodal_layout_on_a_coarse_mesh_follows_capstan_and_balances_power() {
-    let load = 8.0;
-    let (sn, sf, mu) = both_models(0.012, load, 0.8);
-    assert!(
-        sn.delta_omega > sf.delta_omega && sn.delta_omega < 1.3 * sf.delta_omega,
-        "Δω nodal {} vs flowing {}",
-        sn.delta_omega,
-        sf.delta_omega
-    );
-    for (a, b) in sn.report.spans.iter().zip(&sf.report.spans) {
-        assert!(
-            (a.tension / b.tension - 1.0).abs() < 0.02,
-            "span {}→{}: nodal {} vs flowing {} N",
-            a.from,
-            a.to,
-            a.tension,
-            b.tension
-        );
-    }
-    for k in [0, 1] {
-        let p = &sn.report.pulleys[k];
-        let ln = (p.tension_in / p.tension_out).ln().abs();
-        let capstan = mu * p.slip_arc_rad;
-        assert!((ln - capstan).abs() <= 0.05 * ln, "{}: {ln} vs {capstan}", p.name);
-    }
-    let p_in = -sn.report.pulleys[0].torque * sn.report.pulleys[0].omega;
-    let residual = sn.pulley_power + sn.sliding_power + sn.damping_power;
-    assert!(residual.abs() < 0.01 * p_in, "power residual {residual} W");
 }
 
 // The speed-loss procedure runs the nodal layout model through `DriveModel` (driven pulley,

@@ -165,6 +165,61 @@ pub(crate) fn driven_pulley_of(pulley_dof: &[Option<usize>]) -> usize {
         .unwrap_or(1)
 }
 
+impl ArmState {
+    /// The idler's kinematics with the arm `a` at rotation `q[k]`, rate `v[k]`:
+    /// `c(θ) = p + L(cos θ, sin θ)` ([`mbd_core::tensioner`]).
+    pub(crate) fn at(a: ArmModel, k: usize, q: &[f64], v: &[f64]) -> Option<Self> {
+        let angle = a.angle + q[k];
+        let (center, dc) = a.spec.center(a.length, angle);
+        let rate = v[k];
+        Some(Self {
+            center,
+            dc,
+            vel: [dc[0] * rate, dc[1] * rate],
+            arm: [center[0] - a.spec.pivot[0], center[1] - a.spec.pivot[1]],
+            angle,
+            rate,
+        })
+    }
+
+    /// Derivatives of a node's contact force `F` and the idler's torque `τ` with respect to
+    /// the arm rotation and its rate, `((∂F/∂θ, ∂τ/∂θ), (∂F/∂θ̇, ∂τ/∂θ̇))`: the contact sees
+    /// `F(d − c(θ), V − c'θ̇, ω)`, so `∂/∂θ = −F_d c' + F_V (c − p) θ̇` (`c'' = −(c − p)`) and
+    /// `∂/∂θ̇ = −F_V c'`.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn contact_derivatives(&self, c: &NodeContact) -> (([f64; 2], f64), ([f64; 2], f64)) {
+        let mv = |m: &[[f64; 2]; 2], x: [f64; 2]| {
+            [
+                m[0][0] * x[0] + m[0][1] * x[1],
+                m[1][0] * x[0] + m[1][1] * x[1],
+            ]
+        };
+        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        let w = [self.arm[0] * self.rate, self.arm[1] * self.rate];
+        let (fd, fv) = (mv(&c.df_dd, self.dc), mv(&c.df_dv, w));
+        let fq = [fv[0] - fd[0], fv[1] - fd[1]];
+        let tq = dot(c.dt_dv, w) - dot(c.dt_dd, self.dc);
+        let fv = mv(&c.df_dv, self.dc);
+        ((fq, tq), ([-fv[0], -fv[1]], -dot(c.dt_dv, self.dc)))
+    }
+
+    /// Moment about the pivot of the contact force `f` on the belt: `−(c − p) × f` (the force
+    /// on the idler is `−f`).
+    pub(crate) fn moment(&self, f: [f64; 2]) -> f64 {
+        -cross(self.arm, f)
+    }
+}
+
+/// Spring, damper and dry-friction moment on the tensioner arm at `a` \[N m\]
+/// ([`TensionerSpec::spring_moment`], [`TensionerSpec::damper_moment`], [`dry_friction`]) and
+/// its derivatives `(∂/∂θ, ∂/∂θ̇)`.
+pub(crate) fn arm_moment(spec: &TensionerSpec, a: &ArmState) -> (f64, f64, f64) {
+    let (ms, ks) = spec.spring_moment(a.angle);
+    let (md, cd) = spec.damper_moment(a.rate);
+    let fr = dry_friction(spec, a.rate);
+    (ms + md + fr.force, ks, cd + fr.d_slip)
+}
+
 /// A tensioner in a flowing-belt drive: the spec, its arm length and the arm angle at which
 /// the path was laid out (Δθ = 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -179,13 +234,13 @@ pub struct ArmModel {
 
 /// The idler's kinematics at an arm state: centre, `c'`, centre velocity, `c − p`.
 #[derive(Debug, Clone, Copy)]
-struct ArmState {
-    center: [f64; 2],
-    dc: [f64; 2],
-    vel: [f64; 2],
-    arm: [f64; 2],
-    angle: f64,
-    rate: f64,
+pub(crate) struct ArmState {
+    pub(crate) center: [f64; 2],
+    pub(crate) dc: [f64; 2],
+    pub(crate) vel: [f64; 2],
+    pub(crate) arm: [f64; 2],
+    pub(crate) angle: f64,
+    pub(crate) rate: f64,
 }
 
 /// A contact node with its rows of the basis.
@@ -479,18 +534,7 @@ impl FlowingBelt {
     }
 
     fn arm_state(&self, q: &[f64], v: &[f64]) -> Option<ArmState> {
-        let (a, k) = (self.tensioner?, self.arm_dof?);
-        let angle = a.angle + q[k];
-        let (center, dc) = a.spec.center(a.length, angle);
-        let rate = v[k];
-        Some(ArmState {
-            center,
-            dc,
-            vel: [dc[0] * rate, dc[1] * rate],
-            arm: [center[0] - a.spec.pivot[0], center[1] - a.spec.pivot[1]],
-            angle,
-            rate,
-        })
+        ArmState::at(self.tensioner?, self.arm_dof?, q, v)
     }
 
     /// Contact of one row at a state; the idler's frame and the relative velocity when the
@@ -673,18 +717,9 @@ impl FlowingBelt {
                 extra.push((k, false, c.df_dw, c.dt_dw));
             }
             if let (true, Some(a), Some(k)) = (idler, arm.as_ref(), self.arm_dof) {
-                // F(d − c(θ), V − c'θ̇, ω): ∂/∂θ = −F_d c' + F_V (c − p) θ̇ (c'' = −(c − p)),
-                // ∂/∂θ̇ = −F_V c'
-                let w = [a.arm[0] * a.rate, a.arm[1] * a.rate];
-                let (fd, fv) = (mv(&c.df_dd, a.dc), mv(&c.df_dv, w));
-                extra.push((
-                    k,
-                    true,
-                    [fv[0] - fd[0], fv[1] - fd[1]],
-                    dot(c.dt_dv, w) - dot(c.dt_dd, a.dc),
-                ));
-                let fv = mv(&c.df_dv, a.dc);
-                extra.push((k, false, [-fv[0], -fv[1]], -dot(c.dt_dv, a.dc)));
+                let ((f_q, t_q), (f_v, t_v)) = a.contact_derivatives(&c);
+                extra.push((k, true, f_q, t_q));
+                extra.push((k, false, f_v, t_v));
             }
             // belt rows 0 (e_tᵀ) and 1..=m (Tᵀ)
             for i in 0..=m {
@@ -731,9 +766,9 @@ impl FlowingBelt {
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
-            kq[(k, k)] -= tm.spec.spring_moment(a.angle).1;
-            cv[(k, k)] -= tm.spec.damper_moment(a.rate).1;
-            cv[(k, k)] -= dry_friction(&tm.spec, a.rate).d_slip;
+            let (_, ks, cs) = arm_moment(&tm.spec, a);
+            kq[(k, k)] -= ks;
+            cv[(k, k)] -= cs;
         }
         (kq, cv)
     }
@@ -811,7 +846,7 @@ impl SecondOrderSystem for FlowingBelt {
                 tail[k - m - 1] += c.torque;
             }
             if let (true, Some(a), Some(k)) = (idler, arm.as_ref(), self.arm_dof) {
-                tail[k - m - 1] -= cross(a.arm, c.force);
+                tail[k - m - 1] += a.moment(c.force);
             }
         }
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
@@ -820,9 +855,7 @@ impl SecondOrderSystem for FlowingBelt {
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
-            tail[k - m - 1] += tm.spec.spring_moment(a.angle).0
-                + tm.spec.damper_moment(a.rate).0
-                + dry_friction(&tm.spec, a.rate).force;
+            tail[k - m - 1] += arm_moment(&tm.spec, a).0;
         }
         if let Some(i) = f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {
@@ -849,7 +882,7 @@ impl SecondOrderSystem for FlowingBelt {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::belt::BeltDriveConfig;
     use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
