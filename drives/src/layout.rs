@@ -410,6 +410,23 @@ impl LayoutConfig {
         Ok((fe, motions, arm, res))
     }
 
+    /// Each pulley's name and role for the reports ([`crate::report`]): speed-driven the
+    /// driver, loaded driven, idler an idler.
+    pub fn roles(&self) -> Vec<(String, crate::report::PulleyRole)> {
+        use crate::report::PulleyRole;
+        self.pulleys
+            .iter()
+            .map(|p| {
+                let role = match p.motion {
+                    MotionSpec::Speed { .. } => PulleyRole::Driver,
+                    MotionSpec::Load { .. } => PulleyRole::Driven,
+                    MotionSpec::Idler { .. } => PulleyRole::Idler,
+                };
+                (p.name.clone(), role)
+            })
+            .collect()
+    }
+
     /// The friction law of the belt–pulley contact.
     pub fn friction_law(&self) -> FrictionSpec {
         self.contact.friction_law()

@@ -3,7 +3,6 @@
 
 use drives::layout::{LayoutConfig, LayoutMesh, LayoutPulley, MotionSpec};
 use drives::model::flowing_layout_snapshot;
-use drives::report::PulleyRole;
 use fe_model::generate::belt_path::WrapSide;
 use flowing::belt::config::{BeltContact, BeltDamping, BeltReduction, BeltSection};
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule, Signal};
@@ -85,20 +84,6 @@ fn four_pulleys(load: f64) -> LayoutConfig {
             free_modes: Some(12),
         },
     }
-}
-
-fn roles(cfg: &LayoutConfig) -> Vec<(String, PulleyRole)> {
-    cfg.pulleys
-        .iter()
-        .map(|p| {
-            let role = match p.motion {
-                MotionSpec::Speed { .. } => PulleyRole::Driver,
-                MotionSpec::Load { .. } => PulleyRole::Driven,
-                MotionSpec::Idler { .. } => PulleyRole::Idler,
-            };
-            (p.name.clone(), role)
-        })
-        .collect()
 }
 
 // Two-pulley case unchanged: the Table 6-1 drive given as a layout builds the same model as
@@ -194,7 +179,7 @@ fn static_span_tensions_are_equal_on_frictionless_pulleys() {
     let q = belt.static_state().unwrap();
     let k = belt.arm_dof().unwrap();
     let v = vec![0.0; q.len()];
-    let snap = flowing_layout_snapshot(&belt, &roles(&cfg), 0.0, &q, &v);
+    let snap = flowing_layout_snapshot(&belt, &cfg.roles(), 0.0, &q, &v);
     assert_eq!(snap.spans.len(), 4);
     let tensions: Vec<f64> = snap.spans.iter().map(|s| s.tension).collect();
     eprintln!(

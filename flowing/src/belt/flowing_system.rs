@@ -159,10 +159,7 @@ pub(crate) fn driven_of(pulley_dof: &[Option<usize>], fallback: usize) -> usize 
 /// The pulley whose speed DOF is [`driven_of`]'s (1 when no pulley is free).
 pub(crate) fn driven_pulley_of(pulley_dof: &[Option<usize>]) -> usize {
     let d = driven_of(pulley_dof, usize::MAX);
-    pulley_dof
-        .iter()
-        .position(|&k| k == Some(d))
-        .unwrap_or(1)
+    pulley_dof.iter().position(|&k| k == Some(d)).unwrap_or(1)
 }
 
 impl ArmState {
@@ -187,7 +184,10 @@ impl ArmState {
     /// `F(d − c(θ), V − c'θ̇, ω)`, so `∂/∂θ = −F_d c' + F_V (c − p) θ̇` (`c'' = −(c − p)`) and
     /// `∂/∂θ̇ = −F_V c'`.
     #[allow(clippy::type_complexity)]
-    pub(crate) fn contact_derivatives(&self, c: &NodeContact) -> (([f64; 2], f64), ([f64; 2], f64)) {
+    pub(crate) fn contact_derivatives(
+        &self,
+        c: &NodeContact,
+    ) -> (([f64; 2], f64), ([f64; 2], f64)) {
         let mv = |m: &[[f64; 2]; 2], x: [f64; 2]| {
             [
                 m[0][0] * x[0] + m[0][1] * x[1],

@@ -68,12 +68,12 @@
 
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::flowing_system::{
-    ArmModel, ArmState, PulleyMotion, arm_moment, driven_of, driven_pulley_of, driver_speed_of, load_of, motion_speed, pulley_dofs,
-    pulley_frames,
+    ArmModel, ArmState, PulleyMotion, arm_moment, driven_of, driven_pulley_of, driver_speed_of,
+    load_of, motion_speed, pulley_dofs, pulley_frames,
 };
-use super::schedule::Signal;
 use super::model::{BeltFe, NODE_DOFS, chord_tensions, chord_turn_rate, corotational_rate_block};
 use super::schedule::Schedule;
+use super::schedule::Signal;
 use super::statics::dense_equilibrium;
 use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
@@ -811,11 +811,13 @@ impl NodalBelt {
                 Some(1) => et[1],
                 _ => 0.0,
             };
-            Ok(Mat::from_fn(nx + 1, nx + 1, |a, b| match (a < nx, b < nx) {
-                (true, true) => kt[(idx[a], idx[b])],
-                (true, false) => e(a),
-                (false, true) => e(b),
-                (false, false) => 0.0,
+            Ok(Mat::from_fn(nx + 1, nx + 1, |a, b| {
+                match (a < nx, b < nx) {
+                    (true, true) => kt[(idx[a], idx[b])],
+                    (true, false) => e(a),
+                    (false, true) => e(b),
+                    (false, false) => 0.0,
+                }
             }))
         })?;
         let mut out = vec![0.0; nv];
