@@ -161,47 +161,40 @@ trait LayoutModel: DriveModel + Clone {
     ) -> Result<DriveSnapshot, MbdError>;
 }
 
-impl LayoutModel for FlowingBelt {
-    fn motions_mut(&mut self) -> &mut [PulleyMotion] {
-        &mut self.motions
-    }
-    fn arm(&self, q: &[f64]) -> Option<f64> {
-        self.arm_angle(q)
-    }
-    fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        self.pulley_speed(k, t, v)
-    }
-    fn named_snapshot(
-        &self,
-        roles: &[(String, PulleyRole)],
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-    ) -> Result<DriveSnapshot, MbdError> {
-        Ok(flowing_layout_snapshot(self, roles, t, q, v))
-    }
+/// [`LayoutModel`] for a belt type with the inherent `motions`, `arm_angle`, `pulley_speed`
+/// and a snapshot function.
+macro_rules! layout_model {
+    ($belt:ty, |$m:ident, $roles:ident, $t:ident, $q:ident, $v:ident| $snap:expr) => {
+        impl LayoutModel for $belt {
+            fn motions_mut(&mut self) -> &mut [PulleyMotion] {
+                &mut self.motions
+            }
+            fn arm(&self, q: &[f64]) -> Option<f64> {
+                self.arm_angle(q)
+            }
+            fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+                self.pulley_speed(k, t, v)
+            }
+            fn named_snapshot(
+                &self,
+                $roles: &[(String, PulleyRole)],
+                $t: f64,
+                $q: &[f64],
+                $v: &[f64],
+            ) -> Result<DriveSnapshot, MbdError> {
+                let $m = self;
+                $snap
+            }
+        }
+    };
 }
 
-impl LayoutModel for NodalBelt {
-    fn motions_mut(&mut self) -> &mut [PulleyMotion] {
-        &mut self.motions
-    }
-    fn arm(&self, q: &[f64]) -> Option<f64> {
-        self.arm_angle(q)
-    }
-    fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        self.pulley_speed(k, t, v)
-    }
-    fn named_snapshot(
-        &self,
-        roles: &[(String, PulleyRole)],
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-    ) -> Result<DriveSnapshot, MbdError> {
-        nodal_layout_snapshot(self, roles, t, q, v)
-    }
-}
+layout_model!(FlowingBelt, |m, roles, t, q, v| Ok(
+    flowing_layout_snapshot(m, roles, t, q, v)
+));
+layout_model!(NodalBelt, |m, roles, t, q, v| nodal_layout_snapshot(
+    m, roles, t, q, v
+));
 
 fn load(inertia: f64, torque: f64) -> MotionSpec {
     MotionSpec::Load {

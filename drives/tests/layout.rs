@@ -87,7 +87,9 @@ fn four_pulleys(load: f64) -> LayoutConfig {
 }
 
 // Two-pulley case unchanged: the Table 6-1 drive given as a layout builds the same model as
-// the two-pulley configuration (same path, mesh, tension; forces equal at a random state).
+// the two-pulley configuration (same path, mesh, tension; forces equal at a random state),
+// for the flowing and for the nodal model (whose two-pulley constructor is the layout one
+// with the Table 6-1 motions).
 #[test]
 fn two_pulley_layout_is_the_table_6_1_model() {
     let base = BeltDriveConfig::default();
@@ -134,6 +136,21 @@ fn two_pulley_layout_is_the_table_6_1_model() {
         Schedule::constant(5.0),
     )
     .unwrap();
+    assert_same_forces(&layout, &two);
+    // the nodal model (Ribaric (5.7)) of the same layout and of the two-pulley constructor
+    let (layout, _) = cfg.nodal_model().unwrap();
+    let two = flowing::belt::nodal::NodalBelt::new(
+        BeltFe::new(&base).unwrap(),
+        Schedule::constant(62.8),
+        Schedule::constant(5.0),
+    )
+    .unwrap();
+    assert_same_forces(&layout, &two);
+}
+
+/// Same number of coordinates and the same forces (to 1e-9 of the largest) at a random moving
+/// state.
+fn assert_same_forces<S: SecondOrderSystem>(layout: &S, two: &S) {
     assert_eq!(layout.n_q(), two.n_q());
     let n = two.n_q();
     let q: Vec<f64> = (0..n).map(|i| 1e-5 * (0.37 * i as f64).sin()).collect();

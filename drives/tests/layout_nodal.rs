@@ -65,59 +65,6 @@ fn triangle(h: f64) -> LayoutConfig {
     }
 }
 
-// The two-pulley constructor is the layout constructor with the Table 6-1 motions: the
-// Table 6-1 drive given as a layout builds the same nodal model as `NodalBelt::new` (same
-// coordinates, forces equal at a random moving state). The nodal capstan and speed-loss tests
-// (tests/tests) keep their numbers through this path.
-#[test]
-fn two_pulley_nodal_layout_is_the_table_6_1_model() {
-    let base = BeltDriveConfig::default();
-    let mut cfg = triangle(0.01);
-    cfg.pulleys.truncate(2);
-    cfg.pulleys[1].center = [0.45, 0.0];
-    cfg.mesh = LayoutMesh {
-        span_element: 0.045 * (1.0 + 1e-9),
-        arc_element: std::f64::consts::PI * 0.05 / 18.0 * (1.0 + 1e-9),
-        contact_margin_nodes: 1,
-    };
-    cfg.pulleys[0].motion = MotionSpec::Speed {
-        speed: Signal::constant(62.8),
-    };
-    cfg.pulleys[1].motion = MotionSpec::Load {
-        inertia: base.driven_inertia,
-        torque: Signal::constant(5.0),
-    };
-    let (layout, res) = cfg.nodal_model().unwrap();
-    assert_eq!(res.tension, 310.0);
-    let two = NodalBelt::new(
-        flowing::belt::BeltFe::new(&base).unwrap(),
-        Schedule::constant(62.8),
-        Schedule::constant(5.0),
-    )
-    .unwrap();
-    assert_eq!(layout.n_q(), two.n_q());
-    let n = two.n_q();
-    let q: Vec<f64> = (0..n).map(|i| 1e-5 * (0.37 * i as f64).sin()).collect();
-    let mut v: Vec<f64> = (0..n).map(|i| 1e-3 * (0.91 * i as f64).cos()).collect();
-    v[0] = 3.1;
-    v[n - 1] = 61.0;
-    let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
-    layout
-        .forces(0.3, &q, &v, &mut fa, &mut Workspace::new())
-        .unwrap();
-    two.forces(0.3, &q, &v, &mut fb, &mut Workspace::new())
-        .unwrap();
-    let scale = fb.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    for i in 0..n {
-        assert!(
-            (fa[i] - fb[i]).abs() <= 1e-9 * scale,
-            "force {i}: {} vs {}",
-            fa[i],
-            fb[i]
-        );
-    }
-}
-
 // Static tension equal in all spans at zero load on frictionless pulleys (issue 17 item 6) for
 // the nodal model: the mounted belt at rest with μ = 0 carries the same tension in every span,
 // within 0.2 % (the flowing model's bound on the four-pulley layout, tests/layout.rs), and

@@ -71,7 +71,45 @@ pub enum PulleyMotion {
     },
 }
 
+/// One motion per pulley of `fe`'s path and a tensioner on one of them, or the error naming
+/// the field.
+pub(crate) fn check_layout(
+    fe: &BeltFe,
+    motions: &[PulleyMotion],
+    tensioner: Option<&ArmModel>,
+) -> Result<(), crate::FlowError> {
+    let np = fe.path.pulleys().len();
+    if motions.len() != np {
+        return Err(crate::error::invalid(
+            "pulleys",
+            format!("{} motions for {np} pulleys", motions.len()),
+        ));
+    }
+    if let Some(a) = tensioner
+        && a.spec.pulley >= np
+    {
+        return Err(crate::error::invalid(
+            "tensioner.pulley",
+            format!("no pulley {} (the layout has {np})", a.spec.pulley),
+        ));
+    }
+    Ok(())
+}
+
 impl PulleyMotion {
+    /// The two-pulley drive's motions (Ribaric Table 6-1): pulley 0 at `driver_speed`
+    /// \[rad/s\], pulley 1 free with `fe.config.driven_inertia` \[kg m²\] against
+    /// `load_torque` \[N m\].
+    pub fn table_6_1(fe: &BeltFe, driver_speed: Schedule, load_torque: Schedule) -> Vec<Self> {
+        vec![
+            Self::Speed(driver_speed.into()),
+            Self::Free {
+                inertia: fe.config.driven_inertia,
+                load: load_torque.into(),
+            },
+        ]
+    }
+
     /// The same pulley at rest: speed zero, or free with its inertia and no load (for the
     /// static equilibrium of the mounted belt).
     pub fn at_rest(&self) -> Self {
@@ -344,18 +382,8 @@ impl FlowingBelt {
         driver_speed: Schedule,
         load_torque: Schedule,
     ) -> Result<Self, crate::FlowError> {
-        let inertia = fe.config.driven_inertia;
-        Self::with_layout(
-            fe,
-            vec![
-                PulleyMotion::Speed(driver_speed.into()),
-                PulleyMotion::Free {
-                    inertia,
-                    load: load_torque.into(),
-                },
-            ],
-            None,
-        )
+        let motions = PulleyMotion::table_6_1(&fe, driver_speed, load_torque);
+        Self::with_layout(fe, motions, None)
     }
 
     /// Any layout: `fe` built on the layout's path ([`BeltFe::on_path`]), one motion per
@@ -366,21 +394,7 @@ impl FlowingBelt {
         motions: Vec<PulleyMotion>,
         tensioner: Option<ArmModel>,
     ) -> Result<Self, crate::FlowError> {
-        let np = fe.path.pulleys().len();
-        if motions.len() != np {
-            return Err(crate::error::invalid(
-                "pulleys",
-                format!("{} motions for {np} pulleys", motions.len()),
-            ));
-        }
-        if let Some(a) = &tensioner
-            && a.spec.pulley >= np
-        {
-            return Err(crate::error::invalid(
-                "tensioner.pulley",
-                format!("no pulley {} (the layout has {np})", a.spec.pulley),
-            ));
-        }
+        check_layout(&fe, &motions, tensioner.as_ref())?;
         let basis = FlowingBasis::new(&fe, fe.config.reduction.free_modes)?;
         let n = fe.n_dofs();
         let m = basis.len();

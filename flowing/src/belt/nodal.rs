@@ -68,8 +68,8 @@
 
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::flowing_system::{
-    ArmModel, ArmState, PulleyMotion, arm_moment, driven_of, driven_pulley_of, driver_speed_of,
-    load_of, motion_speed, pulley_dofs, pulley_frames,
+    ArmModel, ArmState, PulleyMotion, arm_moment, check_layout, driven_of, driven_pulley_of,
+    driver_speed_of, load_of, motion_speed, pulley_dofs, pulley_frames,
 };
 use super::model::{BeltFe, NODE_DOFS, chord_tensions, chord_turn_rate, corotational_rate_block};
 use super::schedule::Schedule;
@@ -213,18 +213,8 @@ impl NodalBelt {
         driver_speed: Schedule,
         load_torque: Schedule,
     ) -> Result<Self, crate::FlowError> {
-        let inertia = fe.config.driven_inertia;
-        Self::with_layout(
-            fe,
-            vec![
-                PulleyMotion::Speed(driver_speed.into()),
-                PulleyMotion::Free {
-                    inertia,
-                    load: load_torque.into(),
-                },
-            ],
-            None,
-        )
+        let motions = PulleyMotion::table_6_1(&fe, driver_speed, load_torque);
+        Self::with_layout(fe, motions, None)
     }
 
     /// Any layout (issue 17): `fe` built on the layout's path ([`BeltFe::on_path`]), one
@@ -241,21 +231,7 @@ impl NodalBelt {
         motions: Vec<PulleyMotion>,
         tensioner: Option<ArmModel>,
     ) -> Result<Self, crate::FlowError> {
-        let np = fe.path.pulleys().len();
-        if motions.len() != np {
-            return Err(crate::error::invalid(
-                "pulleys",
-                format!("{} motions for {np} pulleys", motions.len()),
-            ));
-        }
-        if let Some(a) = &tensioner
-            && a.spec.pulley >= np
-        {
-            return Err(crate::error::invalid(
-                "tensioner.pulley",
-                format!("no pulley {} (the layout has {np})", a.spec.pulley),
-            ));
-        }
+        check_layout(&fe, &motions, tensioner.as_ref())?;
         let cfg = fe.config;
         let section = Frame2dSection {
             ea: cfg.belt.ea,
