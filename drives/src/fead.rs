@@ -1,5 +1,6 @@
 //! Front-end accessory drive (FEAD) study (issue 17 item 5): a passenger-car serpentine drive
-//! of six pulleys with an automatic tensioner, run on the flowing-material belt
+//! of six pulleys with an automatic tensioner, run on the flowing-material belt (or, with
+//! `model = "nodal"`, on the rotating-mesh nodal belt: [`FeadModel`])
 //! ([`crate::layout`]) over an engine-speed sweep with the crankshaft's firing-order speed
 //! fluctuation and the accessories' load torques.
 //!
@@ -25,18 +26,20 @@
 //! and Kong & Parker (J. Mech. Des. 127, 2005); the 2nd-order crank speed fluctuation of 2 %
 //! (4th: 0.5 %) is a plausible four-cylinder value, held constant over the sweep.
 
+use crate::DriveModel;
 use crate::layout::{LayoutConfig, LayoutMesh, LayoutPulley, MotionSpec, ResolvedLayout};
-use crate::model::flowing_layout_snapshot;
-use crate::report::{DriveReport, PulleyRole};
+use crate::model::{flowing_layout_snapshot, nodal_layout_snapshot};
+use crate::report::{DriveReport, DriveSnapshot, PulleyRole};
 use crate::speed_loss::{MAX_HALVINGS, robust_step};
 use contact::friction::FrictionLaw;
 use fe_model::generate::belt_path::WrapSide;
 use flowing::belt::config::{BeltContact, BeltDamping, BeltReduction, BeltSection};
+use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{FlowingBelt, Harmonic, PulleyMotion, Schedule, Signal};
+use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
 use mbd_core::tensioner::TensionerSpec;
 use mbd_core::validate::{InvalidField, Validate, check};
-use mbd_core::{MbdError, SecondOrderSystem};
 use serde::{Deserialize, Serialize};
 
 /// Most engine speeds of a sweep.
@@ -128,7 +131,70 @@ pub struct FeadConfig {
     pub engine: EngineConfig,
     /// Time stepping.
     pub run: FeadRun,
+    /// The belt model: `flowing` (Ribaric (5.14), the default) or `nodal` (the rotating mesh,
+    /// Ribaric (5.7); give it near-uniform elements, [`LayoutConfig::nodal_model`]).
+    pub model: FeadModel,
 }
+
+/// Which belt model the FEAD study runs (same layout, same outputs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FeadModel {
+    /// The flowing-material belt ([`LayoutConfig::flowing_model`]).
+    #[default]
+    Flowing,
+    /// The rotating-mesh nodal belt ([`LayoutConfig::nodal_model`]).
+    Nodal,
+}
+
+/// What the study needs of a layout model beyond [`DriveModel`]: both belt models have it.
+trait LayoutModel: DriveModel + Clone {
+    fn motions_mut(&mut self) -> &mut [PulleyMotion];
+    fn arm(&self, q: &[f64]) -> Option<f64>;
+    fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64;
+    fn named_snapshot(
+        &self,
+        roles: &[(String, PulleyRole)],
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<DriveSnapshot, MbdError>;
+}
+
+/// [`LayoutModel`] for a belt type with the inherent `motions`, `arm_angle`, `pulley_speed`
+/// and a snapshot function.
+macro_rules! layout_model {
+    ($belt:ty, |$m:ident, $roles:ident, $t:ident, $q:ident, $v:ident| $snap:expr) => {
+        impl LayoutModel for $belt {
+            fn motions_mut(&mut self) -> &mut [PulleyMotion] {
+                &mut self.motions
+            }
+            fn arm(&self, q: &[f64]) -> Option<f64> {
+                self.arm_angle(q)
+            }
+            fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+                self.pulley_speed(k, t, v)
+            }
+            fn named_snapshot(
+                &self,
+                $roles: &[(String, PulleyRole)],
+                $t: f64,
+                $q: &[f64],
+                $v: &[f64],
+            ) -> Result<DriveSnapshot, MbdError> {
+                let $m = self;
+                $snap
+            }
+        }
+    };
+}
+
+layout_model!(FlowingBelt, |m, roles, t, q, v| Ok(
+    flowing_layout_snapshot(m, roles, t, q, v)
+));
+layout_model!(NodalBelt, |m, roles, t, q, v| nodal_layout_snapshot(
+    m, roles, t, q, v
+));
 
 fn load(inertia: f64, torque: f64) -> MotionSpec {
     MotionSpec::Load {
@@ -224,6 +290,7 @@ impl Default for FeadConfig {
             },
             engine: EngineConfig::default(),
             run: FeadRun::default(),
+            model: FeadModel::default(),
         }
     }
 }
@@ -408,7 +475,7 @@ pub struct FeadSummary {
 /// The FEAD study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
 pub const FEAD_MEANING: &str = "A serpentine front-end accessory drive (six pulleys: crankshaft, \
 power steering, alternator, tensioner idler on a spring-loaded arm, water pump, a/c compressor) \
-run on the flowing-material belt model over an engine-speed sweep. The crank turns at the mean \
+run on the flowing-material belt model (or, with model = \"nodal\", the rotating-mesh nodal model) over an engine-speed sweep. The crank turns at the mean \
 speed plus its firing-order fluctuation; each accessory carries its load torque. Per engine \
 speed, after a ramp and a settling time, a window is observed: the tensioner arm angle \
 (min/mean/max, rad), every span's tension extremes (N), each pulley's speed loss against the \
@@ -440,20 +507,6 @@ pub struct FeadProgress {
     pub duration: f64,
 }
 
-fn roles(cfg: &LayoutConfig) -> Vec<(String, PulleyRole)> {
-    cfg.pulleys
-        .iter()
-        .map(|p| {
-            let role = match p.motion {
-                MotionSpec::Speed { .. } => PulleyRole::Driver,
-                MotionSpec::Load { .. } => PulleyRole::Driven,
-                MotionSpec::Idler { .. } => PulleyRole::Idler,
-            };
-            (p.name.clone(), role)
-        })
-        .collect()
-}
-
 /// The crank speed signal of one sweep point: from `from` to `to` \[rad/s\] over `ramp`, with
 /// the engine orders at `to` faded in over the ramp.
 pub fn crank_signal(engine: &EngineConfig, from: f64, to: f64, ramp: f64) -> Signal {
@@ -482,16 +535,32 @@ pub fn crank_signal(engine: &EngineConfig, from: f64, to: f64, ramp: f64) -> Sig
 /// `Validate` before this is called by the apps).
 pub fn run_fead(
     cfg: &FeadConfig,
-    mut observer: impl FnMut(FeadProgress),
+    observer: impl FnMut(FeadProgress),
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     cfg.validate()
         .map_err(|e| Box::new(FeadFailureOrInvalid::Invalid(e)))?;
-    let (base, res): (FlowingBelt, ResolvedLayout) = cfg
-        .drive
-        .flowing_model()
-        .map_err(|e| Box::new(FeadFailureOrInvalid::Build(e)))?;
+    let build = |e| Box::new(FeadFailureOrInvalid::Build(e));
+    match cfg.model {
+        FeadModel::Flowing => {
+            let (base, res) = cfg.drive.flowing_model().map_err(build)?;
+            sweep(cfg, base, res, observer)
+        }
+        FeadModel::Nodal => {
+            let (base, res) = cfg.drive.nodal_model().map_err(build)?;
+            sweep(cfg, base, res, observer)
+        }
+    }
+}
+
+/// The engine-speed sweep of [`run_fead`] on the built model `base`.
+fn sweep<M: LayoutModel>(
+    cfg: &FeadConfig,
+    base: M,
+    res: ResolvedLayout,
+    mut observer: impl FnMut(FeadProgress),
+) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     let names: Vec<String> = cfg.drive.pulleys.iter().map(|p| p.name.clone()).collect();
-    let roles = roles(&cfg.drive);
+    let roles = cfg.drive.roles();
     let mu = cfg.drive.friction_law().coefficient();
     let spans = res.path.spans();
     let rho = cfg.drive.belt.mass_per_length;
@@ -529,7 +598,7 @@ pub fn run_fead(
         let mut model = base.clone();
         // the crank's speed; the loads at their final values after the first point (time
         // restarts at 0 at every point)
-        for (k, mo) in model.motions.iter_mut().enumerate() {
+        for (k, mo) in model.motions_mut().iter_mut().enumerate() {
             match mo {
                 PulleyMotion::Speed(s) if k == 0 => {
                     *s = crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp)
@@ -543,11 +612,7 @@ pub fn run_fead(
         }
         let s0 = match state.take() {
             Some(s) => State::new(0.0, s.q, s.v),
-            None => {
-                let q = model.static_state().map_err(|e| fail(e, &summary))?;
-                let n = q.len();
-                State::new(0.0, q, vec![0.0; n])
-            }
+            None => model.initial_state().map_err(|e| fail(e, &summary))?,
         };
         let mut stepper: AlphaStepper = alpha.stepper(&model, s0).map_err(|e| fail(e, &summary))?;
         let mut arm = Acc::default();
@@ -569,19 +634,21 @@ pub fn run_fead(
             if st.t < start {
                 continue;
             }
-            if let Some(a) = model.arm_angle(&st.q) {
+            if let Some(a) = model.arm(&st.q) {
                 arm.add(a);
             }
             vbelt.add(st.v[0]);
-            let wc = model.pulley_speed(0, st.t, &st.v) * radii[0];
+            let wc = model.speed(0, st.t, &st.v) * radii[0];
             for k in 0..names.len() {
-                let w = model.pulley_speed(k, st.t, &st.v);
+                let w = model.speed(k, st.t, &st.v);
                 speed[k].add(w);
                 slip[k].add(100.0 * (1.0 - w * radii[k] / wc));
             }
             // span tensions and torques every other step
             if summary.steps.is_multiple_of(2) {
-                let snap = flowing_layout_snapshot(&model, &roles, st.t, &st.q, &st.v);
+                let snap = model
+                    .named_snapshot(&roles, st.t, &st.q, &st.v)
+                    .map_err(|e| fail(e, &summary))?;
                 for (a, s) in tens.iter_mut().zip(&snap.spans) {
                     if s.tension.is_finite() {
                         a.add(s.tension);
@@ -593,7 +660,9 @@ pub fn run_fead(
             }
         }
         let st = stepper.state().clone();
-        let snap = flowing_layout_snapshot(&model, &roles, st.t, &st.q, &st.v);
+        let snap = model
+            .named_snapshot(&roles, st.t, &st.q, &st.v)
+            .map_err(|e| fail(e, &summary))?;
         let report = DriveReport::new(&snap, mu);
         let slipping = report.gross_slip();
         let v = vbelt.get().mean;

@@ -25,6 +25,7 @@
 use contact::friction::FrictionSpec;
 use fe_model::generate::belt_path::{BeltPath, PathPulley, Segment, WrapSide};
 use flowing::belt::config::{BeltContact, BeltDamping, BeltReduction, BeltSection};
+use flowing::belt::nodal::NodalBelt;
 use flowing::belt::{ArmModel, BeltDriveConfig, BeltFe, FlowingBelt, PulleyMotion, Signal};
 use mbd_core::tensioner::{TensionerSpec, cross};
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -352,6 +353,30 @@ impl LayoutConfig {
 
     /// The flowing-material model of the layout (validated first), with the resolved layout.
     pub fn flowing_model(&self) -> Result<(FlowingBelt, ResolvedLayout), crate::DriveError> {
+        let (fe, motions, arm, res) = self.model_parts()?;
+        let belt = FlowingBelt::with_layout(fe, motions, arm)?;
+        Ok((belt, res))
+    }
+
+    /// The rotating-mesh nodal model of the layout (Ribaric (5.7), [`NodalBelt::with_layout`];
+    /// validated first), with the resolved layout: the same mesh, pulleys and motions as
+    /// [`Self::flowing_model`] (tensioner included), so one TOML layout runs with either
+    /// model. Its material nodes travel over spans and wraps, so give it near-uniform elements
+    /// (`mesh.span_element ≈ mesh.arc_element`): long span elements landing on a wrap excite
+    /// it at the element-passing frequency.
+    pub fn nodal_model(&self) -> Result<(NodalBelt, ResolvedLayout), crate::DriveError> {
+        let (fe, motions, arm, res) = self.model_parts()?;
+        let belt = NodalBelt::with_layout(fe, motions, arm)?;
+        Ok((belt, res))
+    }
+
+    /// The loop on the resolved path, one motion per pulley and the tensioner arm: what both
+    /// models are built from (validated first).
+    #[allow(clippy::type_complexity)]
+    fn model_parts(
+        &self,
+    ) -> Result<(BeltFe, Vec<PulleyMotion>, Option<ArmModel>, ResolvedLayout), crate::DriveError>
+    {
         self.validate()
             .map_err(|e| crate::DriveError::Invalid(e.to_string()))?;
         let res = self
@@ -382,8 +407,24 @@ impl LayoutConfig {
             }),
             _ => None,
         };
-        let belt = FlowingBelt::with_layout(fe, motions, arm)?;
-        Ok((belt, res))
+        Ok((fe, motions, arm, res))
+    }
+
+    /// Each pulley's name and role for the reports ([`crate::report`]): speed-driven the
+    /// driver, loaded driven, idler an idler.
+    pub fn roles(&self) -> Vec<(String, crate::report::PulleyRole)> {
+        use crate::report::PulleyRole;
+        self.pulleys
+            .iter()
+            .map(|p| {
+                let role = match p.motion {
+                    MotionSpec::Speed { .. } => PulleyRole::Driver,
+                    MotionSpec::Load { .. } => PulleyRole::Driven,
+                    MotionSpec::Idler { .. } => PulleyRole::Idler,
+                };
+                (p.name.clone(), role)
+            })
+            .collect()
     }
 
     /// The friction law of the belt–pulley contact.

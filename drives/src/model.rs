@@ -101,28 +101,17 @@ fn deformed(reference: &[[f64; 2]], d: &[f64]) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// The snapshot of a two-pulley belt of frame elements with nodal contact (flowing and nodal
-/// models): `nodes` the deformed node positions, `tensions` the element tensions,
-/// `contacts` the `(node, pulley, contact)` evaluations, `omegas` the pulley speeds.
-fn nodal_snapshot(
-    fe: &BeltFe,
-    t: f64,
-    nodes: &[[f64; 2]],
-    tensions: &[f64],
-    contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
-    omegas: [f64; 2],
-) -> DriveSnapshot {
-    let pulleys: Vec<PulleyState> = (0..2)
-        .map(|k| PulleyState {
-            name: ["driver", "driven"][k].into(),
-            role: [PulleyRole::Driver, PulleyRole::Driven][k],
-            radius: fe.path.pulleys()[k].radius,
-            omega: omegas[k],
-            hub_load: [0.0; 2],
-            torque: 0.0,
+/// Names and roles of the pulleys for the speed-loss procedure: pulley 0 the driver,
+/// `driven` the driven pulley, any other an idler (`"idler k"`); the two-pulley drive is
+/// `["driver", "driven"]`.
+fn procedure_roles(n_pulleys: usize, driven: usize) -> Vec<(String, PulleyRole)> {
+    (0..n_pulleys)
+        .map(|k| match k {
+            0 => ("driver".to_string(), PulleyRole::Driver),
+            k if k == driven => ("driven".to_string(), PulleyRole::Driven),
+            k => (format!("idler {k}"), PulleyRole::Idler),
         })
-        .collect();
-    snapshot_with(fe, t, nodes, tensions, contacts, pulleys)
+        .collect()
 }
 
 /// The snapshot of a flowing-material belt of any layout ([`FlowingBelt::with_layout`]) at
@@ -142,19 +131,51 @@ pub fn flowing_layout_snapshot(
         .contact_report(t, q, v)
         .into_iter()
         .map(|r| (r.node, r.pulley, r.contact));
-    let states = pulleys
+    let states = named_pulleys(&belt.fe, pulleys, |k| belt.pulley_speed(k, t, v));
+    snapshot_with(&belt.fe, t, &nodes, &tensions, contacts, states)
+}
+
+/// The snapshot of a rotating-mesh nodal belt of any layout ([`NodalBelt::with_layout`],
+/// Ribaric (5.7)) at `(t, q, v)`: the material nodes on the reference polygon at `s_b`,
+/// tensions `T0 + EA Δl/l`; `pulleys` as for [`flowing_layout_snapshot`].
+pub fn nodal_layout_snapshot(
+    belt: &NodalBelt,
+    pulleys: &[(String, PulleyRole)],
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+) -> Result<DriveSnapshot, MbdError> {
+    let nodes = deformed(&belt.reference_positions(q[0]), &q[1..=belt.n_nodal()]);
+    let tensions = belt.element_tensions(q);
+    let contacts = belt
+        .contact_report(t, q, v)?
+        .into_iter()
+        .map(|(i, p, _, c)| (i, p, c));
+    let states = named_pulleys(&belt.fe, pulleys, |k| belt.pulley_speed(k, t, v));
+    Ok(snapshot_with(
+        &belt.fe, t, &nodes, &tensions, contacts, states,
+    ))
+}
+
+/// Pulley states named and given their roles by `pulleys`, speeds from `omega(k)` \[rad/s\]
+/// (hub loads and torques zero, summed later by `snapshot_with`).
+fn named_pulleys(
+    fe: &BeltFe,
+    pulleys: &[(String, PulleyRole)],
+    omega: impl Fn(usize) -> f64,
+) -> Vec<PulleyState> {
+    pulleys
         .iter()
         .enumerate()
         .map(|(k, (name, role))| PulleyState {
             name: name.clone(),
             role: *role,
-            radius: belt.fe.path.pulleys()[k].radius,
-            omega: belt.pulley_speed(k, t, v),
+            radius: fe.path.pulleys()[k].radius,
+            omega: omega(k),
             hub_load: [0.0; 2],
             torque: 0.0,
         })
-        .collect();
-    snapshot_with(&belt.fe, t, &nodes, &tensions, contacts, states)
+        .collect()
 }
 
 /// The snapshot of a belt of frame elements with nodal contact on `pulleys` (speeds set;
@@ -241,9 +262,7 @@ impl DriveModel for FlowingBelt {
 
     /// The load of the driven pulley ([`FlowingBelt::driven_dof`]'s pulley).
     fn load_mut(&mut self) -> &mut Schedule {
-        let p = (0..self.fe.path.pulleys().len())
-            .find(|&p| self.pulley_dof(p) == Some(self.driven_dof()))
-            .unwrap_or(1);
+        let p = self.driven_pulley();
         &mut self
             .load_mut(p)
             .expect("the driven pulley of a flowing drive is free")
@@ -256,16 +275,14 @@ impl DriveModel for FlowingBelt {
 
     /// Contact nodes of the stationary mesh, tensions `T0 + EA Δl/l` of its elements.
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DriveSnapshot, MbdError> {
-        let z = &q[1..=self.n_modes()];
-        let nodes = deformed(&self.fe.position, &self.deflection(z));
-        let tensions = self.element_tensions(z);
-        let contacts = self
-            .contact_report(t, q, v)
-            .into_iter()
-            .map(|r| (r.node, r.pulley, r.contact));
-        let omegas = [self.driver_speed(t), v[self.driven_dof()]];
-        Ok(nodal_snapshot(
-            &self.fe, t, &nodes, &tensions, contacts, omegas,
+        let np = self.fe.path.pulleys().len();
+        let driven = self.driven_pulley();
+        Ok(flowing_layout_snapshot(
+            self,
+            &procedure_roles(np, driven),
+            t,
+            q,
+            v,
         ))
     }
 
@@ -276,30 +293,41 @@ impl DriveModel for FlowingBelt {
     }
 }
 
-/// Coordinates `(s_b, d, θ₂)`: belt travel, the nodal deflections and the driven pulley.
+/// Coordinates `(s_b, d, θ_k…)`: belt travel, the nodal deflections and the free pulleys
+/// (`(s_b, d, θ₂)` for the two-pulley drive).
 impl DriveModel for NodalBelt {
     fn driven_speed(&self, v: &[f64]) -> f64 {
-        v[self.n_nodal() + 1]
+        v[self.driven_dof()]
     }
 
+    /// Pulley 0's prescribed speed (NaN when pulley 0 is free: no driver speed to report).
     fn driver_speed(&self, t: f64) -> f64 {
-        self.driver_speed.value(t)
+        match &self.motions[0] {
+            flowing::belt::flowing_system::PulleyMotion::Speed(s) => s.value(t),
+            _ => f64::NAN,
+        }
     }
 
     fn initial_state(&self) -> Result<State, MbdError> {
-        let d = self.static_equilibrium()?;
-        let nd = self.n_nodal();
-        let mut q = vec![0.0; nd + 2];
-        q[1..=nd].copy_from_slice(&d);
-        Ok(State::new(0.0, q, vec![0.0; nd + 2]))
+        let q = self.static_state()?;
+        let n = q.len();
+        Ok(State::new(0.0, q, vec![0.0; n]))
     }
 
+    /// Pulley 0's speed (a speed-driven pulley in every drive the procedure runs).
     fn set_driver_speed(&mut self, s: Schedule) {
-        self.driver_speed = s;
+        if let Some(d) = self.driver_speed_mut() {
+            *d = s.into();
+        }
     }
 
+    /// The load of the driven pulley ([`NodalBelt::driven_dof`]'s pulley).
     fn load_mut(&mut self) -> &mut Schedule {
-        &mut self.load_torque
+        let p = self.driven_pulley();
+        &mut self
+            .load_mut(p)
+            .expect("the driven pulley of a nodal drive is free")
+            .schedule
     }
 
     fn belt_data(&self) -> BeltData {
@@ -308,16 +336,9 @@ impl DriveModel for NodalBelt {
 
     /// Material nodes on the reference polygon at `s_b`, tensions `T0 + EA Δl/l`.
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DriveSnapshot, MbdError> {
-        let nodes = deformed(&self.reference_positions(q[0]), &q[1..=self.n_nodal()]);
-        let tensions = self.element_tensions(q);
-        let contacts = self
-            .contact_report(t, q, v)?
-            .into_iter()
-            .map(|(i, p, _, c)| (i, p, c));
-        let omegas = [self.driver_speed(t), v[self.driven_dof()]];
-        Ok(nodal_snapshot(
-            &self.fe, t, &nodes, &tensions, contacts, omegas,
-        ))
+        let np = self.fe.path.pulleys().len();
+        let driven = self.driven_pulley();
+        nodal_layout_snapshot(self, &procedure_roles(np, driven), t, q, v)
     }
 
     fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {

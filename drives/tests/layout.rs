@@ -3,7 +3,6 @@
 
 use drives::layout::{LayoutConfig, LayoutMesh, LayoutPulley, MotionSpec};
 use drives::model::flowing_layout_snapshot;
-use drives::report::PulleyRole;
 use fe_model::generate::belt_path::WrapSide;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule, Signal};
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
@@ -12,22 +11,10 @@ use mbd_core::{SecondOrderSystem, Validate};
 mod common;
 use common::four_pulleys;
 
-fn roles(cfg: &LayoutConfig) -> Vec<(String, PulleyRole)> {
-    cfg.pulleys
-        .iter()
-        .map(|p| {
-            let role = match p.motion {
-                MotionSpec::Speed { .. } => PulleyRole::Driver,
-                MotionSpec::Load { .. } => PulleyRole::Driven,
-                MotionSpec::Idler { .. } => PulleyRole::Idler,
-            };
-            (p.name.clone(), role)
-        })
-        .collect()
-}
-
 // Two-pulley case unchanged: the Table 6-1 drive given as a layout builds the same model as
-// the two-pulley configuration (same path, mesh, tension; forces equal at a random state).
+// the two-pulley configuration (same path, mesh, tension; forces equal at a random state),
+// for the flowing and for the nodal model (whose two-pulley constructor is the layout one
+// with the Table 6-1 motions).
 #[test]
 fn two_pulley_layout_is_the_table_6_1_model() {
     let base = BeltDriveConfig::default();
@@ -74,6 +61,21 @@ fn two_pulley_layout_is_the_table_6_1_model() {
         Schedule::constant(5.0),
     )
     .unwrap();
+    assert_same_forces(&layout, &two);
+    // the nodal model (Ribaric (5.7)) of the same layout and of the two-pulley constructor
+    let (layout, _) = cfg.nodal_model().unwrap();
+    let two = flowing::belt::nodal::NodalBelt::new(
+        BeltFe::new(&base).unwrap(),
+        Schedule::constant(62.8),
+        Schedule::constant(5.0),
+    )
+    .unwrap();
+    assert_same_forces(&layout, &two);
+}
+
+/// Same number of coordinates and the same forces (to 1e-9 of the largest) at a random moving
+/// state.
+fn assert_same_forces<S: SecondOrderSystem>(layout: &S, two: &S) {
     assert_eq!(layout.n_q(), two.n_q());
     let n = two.n_q();
     let q: Vec<f64> = (0..n).map(|i| 1e-5 * (0.37 * i as f64).sin()).collect();
@@ -119,7 +121,7 @@ fn static_span_tensions_are_equal_on_frictionless_pulleys() {
     let q = belt.static_state().unwrap();
     let k = belt.arm_dof().unwrap();
     let v = vec![0.0; q.len()];
-    let snap = flowing_layout_snapshot(&belt, &roles(&cfg), 0.0, &q, &v);
+    let snap = flowing_layout_snapshot(&belt, &cfg.roles(), 0.0, &q, &v);
     assert_eq!(snap.spans.len(), 4);
     let tensions: Vec<f64> = snap.spans.iter().map(|s| s.tension).collect();
     eprintln!(
@@ -159,10 +161,38 @@ fn static_span_tensions_are_equal_on_frictionless_pulleys() {
 // compliance the hand statics give a 20 % smaller change.
 #[test]
 fn tensioner_static_angle_matches_hand_statics() {
-    use drives::layout::arm_lever;
-    use fe_model::generate::belt_path::{BeltPath, PathPulley};
     let cfg = four_pulleys(0.0);
     let (mut belt, res) = cfg.flowing_model().unwrap();
+    let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
+    belt.tensioner.as_mut().unwrap().spec.preload -= 6.0;
+    let theta_m = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
+    check_arm_change(&cfg, &res, theta_m0, theta_m, "flowing");
+}
+
+// The same for the rotating-mesh nodal model's tensioner (issue 17: the nodal belt on any
+// layout, its arm with spring, preload and damper): the change of its static arm angle (belt,
+// reference condition and arm solved together) against the hand statics, within 3 %.
+#[test]
+fn nodal_tensioner_static_angle_matches_hand_statics() {
+    let cfg = four_pulleys(0.0);
+    let (mut belt, res) = cfg.nodal_model().unwrap();
+    let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
+    belt.tensioner.as_mut().unwrap().spec.preload -= 6.0;
+    let theta_m = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
+    check_arm_change(&cfg, &res, theta_m0, theta_m, "nodal");
+}
+
+/// The hand statics of the test above for the preload 6 N m stronger, against a model's arm
+/// angles `theta_m0 → theta_m` before and after.
+fn check_arm_change(
+    cfg: &LayoutConfig,
+    res: &drives::layout::ResolvedLayout,
+    theta_m0: f64,
+    theta_m: f64,
+    model: &str,
+) {
+    use drives::layout::arm_lever;
+    use fe_model::generate::belt_path::{BeltPath, PathPulley};
     let theta_a = res.arm.unwrap().1;
     let mut spec = cfg.tensioner.unwrap();
     spec.preload -= 6.0;
@@ -203,18 +233,14 @@ fn tensioner_static_angle_matches_hand_statics() {
         (theta_b - theta_a).abs() > 2e-3,
         "test needs the arm to move"
     );
-    let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
-    belt.tensioner.as_mut().unwrap().spec.preload -= 6.0;
-    let q = belt.static_state().unwrap();
-    let theta_m = belt.arm_angle(&q).unwrap();
     let err = ((theta_m - theta_m0) - (theta_b - theta_a)).abs() / (theta_b - theta_a).abs();
     eprintln!(
-        "hand θ {theta_a:.5} → {theta_b:.5} (T {:.1} N), model {theta_m0:.5} → {theta_m:.5} rad; rel. err {err:.2e}",
+        "{model}: hand θ {theta_a:.5} → {theta_b:.5} (T {:.1} N), model {theta_m0:.5} → {theta_m:.5} rad; rel. err {err:.2e}",
         tension_at(theta_b).0
     );
     assert!(
         err < 0.03,
-        "model arm angle change off the hand statics by {:.1} %",
+        "{model} model arm angle change off the hand statics by {:.1} %",
         100.0 * err
     );
 }

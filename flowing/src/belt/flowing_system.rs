@@ -71,6 +71,193 @@ pub enum PulleyMotion {
     },
 }
 
+/// One motion per pulley of `fe`'s path and a tensioner on one of them, or the error naming
+/// the field.
+pub(crate) fn check_layout(
+    fe: &BeltFe,
+    motions: &[PulleyMotion],
+    tensioner: Option<&ArmModel>,
+) -> Result<(), crate::FlowError> {
+    let np = fe.path.pulleys().len();
+    if motions.len() != np {
+        return Err(crate::error::invalid(
+            "pulleys",
+            format!("{} motions for {np} pulleys", motions.len()),
+        ));
+    }
+    if let Some(a) = tensioner
+        && a.spec.pulley >= np
+    {
+        return Err(crate::error::invalid(
+            "tensioner.pulley",
+            format!("no pulley {} (the layout has {np})", a.spec.pulley),
+        ));
+    }
+    Ok(())
+}
+
+impl PulleyMotion {
+    /// The two-pulley drive's motions (Ribaric Table 6-1): pulley 0 at `driver_speed`
+    /// \[rad/s\], pulley 1 free with `fe.config.driven_inertia` \[kg m²\] against
+    /// `load_torque` \[N m\].
+    pub fn table_6_1(fe: &BeltFe, driver_speed: Schedule, load_torque: Schedule) -> Vec<Self> {
+        vec![
+            Self::Speed(driver_speed.into()),
+            Self::Free {
+                inertia: fe.config.driven_inertia,
+                load: load_torque.into(),
+            },
+        ]
+    }
+
+    /// The same pulley at rest: speed zero, or free with its inertia and no load (for the
+    /// static equilibrium of the mounted belt).
+    pub fn at_rest(&self) -> Self {
+        match self {
+            Self::Speed(_) => Self::Speed(Signal::constant(0.0)),
+            Self::Free { inertia, .. } => Self::Free {
+                inertia: *inertia,
+                load: Signal::constant(0.0),
+            },
+        }
+    }
+}
+
+/// Velocity index of each pulley's speed (`None`: prescribed), the free pulleys numbered from
+/// `*next` in pulley order (`*next` is advanced past them). Shared by the flowing and the nodal
+/// belt.
+pub(crate) fn pulley_dofs(motions: &[PulleyMotion], next: &mut usize) -> Vec<Option<usize>> {
+    motions
+        .iter()
+        .map(|mo| match mo {
+            PulleyMotion::Speed(_) => None,
+            PulleyMotion::Free { .. } => {
+                *next += 1;
+                Some(*next - 1)
+            }
+        })
+        .collect()
+}
+
+/// Speed \[rad/s\] of a pulley with `motion` and velocity index `dof` at `(t, v)`.
+pub(crate) fn motion_speed(motion: &PulleyMotion, dof: Option<usize>, t: f64, v: &[f64]) -> f64 {
+    match (motion, dof) {
+        (_, Some(k)) => v[k],
+        (PulleyMotion::Speed(s), None) => s.value(t),
+        (PulleyMotion::Free { .. }, None) => 0.0,
+    }
+}
+
+/// The rigid pulleys of the path as the nodes see them: centre, contact radius
+/// ([`BeltFe::contact_radius`]) and wrap sense (`+1` grooved side inside the loop, `−1` back
+/// side).
+pub(crate) fn pulley_frames(fe: &BeltFe) -> Vec<PulleyFrame> {
+    fe.path
+        .pulleys()
+        .iter()
+        .zip(&fe.contact_radius)
+        .map(|(p, &radius)| PulleyFrame {
+            center: p.center,
+            radius,
+            turn: match p.side {
+                fe_model::generate::belt_path::WrapSide::Inside => 1.0,
+                fe_model::generate::belt_path::WrapSide::Outside => -1.0,
+            },
+        })
+        .collect()
+}
+
+/// Speed history of pulley 0 (the driver) when it is speed-driven.
+pub(crate) fn driver_speed_of(motions: &mut [PulleyMotion]) -> Option<&mut Signal> {
+    match motions.first_mut() {
+        Some(PulleyMotion::Speed(s)) => Some(s),
+        _ => None,
+    }
+}
+
+/// Load history of pulley `p` when it is free.
+pub(crate) fn load_of(motions: &mut [PulleyMotion], p: usize) -> Option<&mut Signal> {
+    match motions.get_mut(p) {
+        Some(PulleyMotion::Free { load, .. }) => Some(load),
+        _ => None,
+    }
+}
+
+/// Pulley 1's speed DOF when it is free, else the first free pulley's (the driven pulley of
+/// the speed-loss procedure); `fallback` when no pulley is free.
+pub(crate) fn driven_of(pulley_dof: &[Option<usize>], fallback: usize) -> usize {
+    pulley_dof
+        .get(1)
+        .copied()
+        .flatten()
+        .or_else(|| pulley_dof.iter().flatten().next().copied())
+        .unwrap_or(fallback)
+}
+
+/// The pulley whose speed DOF is [`driven_of`]'s (1 when no pulley is free).
+pub(crate) fn driven_pulley_of(pulley_dof: &[Option<usize>]) -> usize {
+    let d = driven_of(pulley_dof, usize::MAX);
+    pulley_dof.iter().position(|&k| k == Some(d)).unwrap_or(1)
+}
+
+impl ArmState {
+    /// The idler's kinematics with the arm `a` at rotation `q[k]`, rate `v[k]`:
+    /// `c(θ) = p + L(cos θ, sin θ)` ([`mbd_core::tensioner`]).
+    pub(crate) fn at(a: ArmModel, k: usize, q: &[f64], v: &[f64]) -> Option<Self> {
+        let angle = a.angle + q[k];
+        let (center, dc) = a.spec.center(a.length, angle);
+        let rate = v[k];
+        Some(Self {
+            center,
+            dc,
+            vel: [dc[0] * rate, dc[1] * rate],
+            arm: [center[0] - a.spec.pivot[0], center[1] - a.spec.pivot[1]],
+            angle,
+            rate,
+        })
+    }
+
+    /// Derivatives of a node's contact force `F` and the idler's torque `τ` with respect to
+    /// the arm rotation and its rate, `((∂F/∂θ, ∂τ/∂θ), (∂F/∂θ̇, ∂τ/∂θ̇))`: the contact sees
+    /// `F(d − c(θ), V − c'θ̇, ω)`, so `∂/∂θ = −F_d c' + F_V (c − p) θ̇` (`c'' = −(c − p)`) and
+    /// `∂/∂θ̇ = −F_V c'`.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn contact_derivatives(
+        &self,
+        c: &NodeContact,
+    ) -> (([f64; 2], f64), ([f64; 2], f64)) {
+        let mv = |m: &[[f64; 2]; 2], x: [f64; 2]| {
+            [
+                m[0][0] * x[0] + m[0][1] * x[1],
+                m[1][0] * x[0] + m[1][1] * x[1],
+            ]
+        };
+        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        let w = [self.arm[0] * self.rate, self.arm[1] * self.rate];
+        let (fd, fv) = (mv(&c.df_dd, self.dc), mv(&c.df_dv, w));
+        let fq = [fv[0] - fd[0], fv[1] - fd[1]];
+        let tq = dot(c.dt_dv, w) - dot(c.dt_dd, self.dc);
+        let fv = mv(&c.df_dv, self.dc);
+        ((fq, tq), ([-fv[0], -fv[1]], -dot(c.dt_dv, self.dc)))
+    }
+
+    /// Moment about the pivot of the contact force `f` on the belt: `−(c − p) × f` (the force
+    /// on the idler is `−f`).
+    pub(crate) fn moment(&self, f: [f64; 2]) -> f64 {
+        -cross(self.arm, f)
+    }
+}
+
+/// Spring, damper and dry-friction moment on the tensioner arm at `a` \[N m\]
+/// ([`TensionerSpec::spring_moment`], [`TensionerSpec::damper_moment`], [`dry_friction`]) and
+/// its derivatives `(∂/∂θ, ∂/∂θ̇)`.
+pub(crate) fn arm_moment(spec: &TensionerSpec, a: &ArmState) -> (f64, f64, f64) {
+    let (ms, ks) = spec.spring_moment(a.angle);
+    let (md, cd) = spec.damper_moment(a.rate);
+    let fr = dry_friction(spec, a.rate);
+    (ms + md + fr.force, ks, cd + fr.d_slip)
+}
+
 /// A tensioner in a flowing-belt drive: the spec, its arm length and the arm angle at which
 /// the path was laid out (Δθ = 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -85,13 +272,13 @@ pub struct ArmModel {
 
 /// The idler's kinematics at an arm state: centre, `c'`, centre velocity, `c − p`.
 #[derive(Debug, Clone, Copy)]
-struct ArmState {
-    center: [f64; 2],
-    dc: [f64; 2],
-    vel: [f64; 2],
-    arm: [f64; 2],
-    angle: f64,
-    rate: f64,
+pub(crate) struct ArmState {
+    pub(crate) center: [f64; 2],
+    pub(crate) dc: [f64; 2],
+    pub(crate) vel: [f64; 2],
+    pub(crate) arm: [f64; 2],
+    pub(crate) angle: f64,
+    pub(crate) rate: f64,
 }
 
 /// A contact node with its rows of the basis.
@@ -195,18 +382,8 @@ impl FlowingBelt {
         driver_speed: Schedule,
         load_torque: Schedule,
     ) -> Result<Self, crate::FlowError> {
-        let inertia = fe.config.driven_inertia;
-        Self::with_layout(
-            fe,
-            vec![
-                PulleyMotion::Speed(driver_speed.into()),
-                PulleyMotion::Free {
-                    inertia,
-                    load: load_torque.into(),
-                },
-            ],
-            None,
-        )
+        let motions = PulleyMotion::table_6_1(&fe, driver_speed, load_torque);
+        Self::with_layout(fe, motions, None)
     }
 
     /// Any layout: `fe` built on the layout's path ([`BeltFe::on_path`]), one motion per
@@ -217,21 +394,7 @@ impl FlowingBelt {
         motions: Vec<PulleyMotion>,
         tensioner: Option<ArmModel>,
     ) -> Result<Self, crate::FlowError> {
-        let np = fe.path.pulleys().len();
-        if motions.len() != np {
-            return Err(crate::error::invalid(
-                "pulleys",
-                format!("{} motions for {np} pulleys", motions.len()),
-            ));
-        }
-        if let Some(a) = &tensioner
-            && a.spec.pulley >= np
-        {
-            return Err(crate::error::invalid(
-                "tensioner.pulley",
-                format!("no pulley {} (the layout has {np})", a.spec.pulley),
-            ));
-        }
+        check_layout(&fe, &motions, tensioner.as_ref())?;
         let basis = FlowingBasis::new(&fe, fe.config.reduction.free_modes)?;
         let n = fe.n_dofs();
         let m = basis.len();
@@ -289,28 +452,9 @@ impl FlowingBelt {
                 });
             }
         }
-        let pp = fe.path.pulleys();
-        let pulleys = (0..np)
-            .map(|k| PulleyFrame {
-                center: pp[k].center,
-                radius: fe.contact_radius[k],
-                turn: match pp[k].side {
-                    fe_model::generate::belt_path::WrapSide::Inside => 1.0,
-                    fe_model::generate::belt_path::WrapSide::Outside => -1.0,
-                },
-            })
-            .collect();
+        let pulleys = pulley_frames(&fe);
         let mut n_v = m + 1;
-        let pulley_dof = motions
-            .iter()
-            .map(|mo| match mo {
-                PulleyMotion::Speed(_) => None,
-                PulleyMotion::Free { .. } => {
-                    n_v += 1;
-                    Some(n_v - 1)
-                }
-            })
-            .collect();
+        let pulley_dof = pulley_dofs(&motions, &mut n_v);
         let arm_dof = tensioner.map(|_| {
             n_v += 1;
             n_v - 1
@@ -375,11 +519,7 @@ impl FlowingBelt {
 
     /// Speed of pulley `p` \[rad/s\] at `(t, v)`.
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        match (&self.motions[p], self.pulley_dof[p]) {
-            (_, Some(k)) => v[k],
-            (PulleyMotion::Speed(s), None) => s.value(t),
-            (PulleyMotion::Free { .. }, None) => 0.0,
-        }
+        motion_speed(&self.motions[p], self.pulley_dof[p], t, v)
     }
 
     /// Velocity index of pulley `p`'s speed (`None`: prescribed).
@@ -399,33 +539,16 @@ impl FlowingBelt {
 
     /// Speed schedule of pulley 0 (the driver) when it is speed-driven.
     pub fn driver_speed_mut(&mut self) -> Option<&mut Signal> {
-        match self.motions.first_mut() {
-            Some(PulleyMotion::Speed(s)) => Some(s),
-            _ => None,
-        }
+        driver_speed_of(&mut self.motions)
     }
 
     /// Load history of pulley `p` when it is free.
     pub fn load_mut(&mut self, p: usize) -> Option<&mut Signal> {
-        match self.motions.get_mut(p) {
-            Some(PulleyMotion::Free { load, .. }) => Some(load),
-            _ => None,
-        }
+        load_of(&mut self.motions, p)
     }
 
     fn arm_state(&self, q: &[f64], v: &[f64]) -> Option<ArmState> {
-        let (a, k) = (self.tensioner?, self.arm_dof?);
-        let angle = a.angle + q[k];
-        let (center, dc) = a.spec.center(a.length, angle);
-        let rate = v[k];
-        Some(ArmState {
-            center,
-            dc,
-            vel: [dc[0] * rate, dc[1] * rate],
-            arm: [center[0] - a.spec.pivot[0], center[1] - a.spec.pivot[1]],
-            angle,
-            rate,
-        })
+        ArmState::at(self.tensioner?, self.arm_dof?, q, v)
     }
 
     /// Contact of one row at a state; the idler's frame and the relative velocity when the
@@ -492,9 +615,12 @@ impl FlowingBelt {
     /// Index of the driven pulley's speed in the velocities (pulley 1 of the two-pulley drive;
     /// the first free pulley of a layout).
     pub fn driven_dof(&self) -> usize {
-        self.pulley_dof[1]
-            .or_else(|| self.pulley_dof.iter().flatten().next().copied())
-            .unwrap_or(self.m + 1)
+        driven_of(&self.pulley_dof, self.m + 1)
+    }
+
+    /// The driven pulley: pulley 1 of the two-pulley drive, the first free pulley of a layout.
+    pub fn driven_pulley(&self) -> usize {
+        driven_pulley_of(&self.pulley_dof)
     }
 
     /// The friction law of the belt–pulley contact.
@@ -519,17 +645,7 @@ impl FlowingBelt {
         let v = vec![0.0; nv];
         let mut f = vec![0.0; nv];
         let still = Self {
-            motions: self
-                .motions
-                .iter()
-                .map(|mo| match mo {
-                    PulleyMotion::Speed(_) => PulleyMotion::Speed(Signal::constant(0.0)),
-                    PulleyMotion::Free { inertia, .. } => PulleyMotion::Free {
-                        inertia: *inertia,
-                        load: Signal::constant(0.0),
-                    },
-                })
-                .collect(),
+            motions: self.motions.iter().map(PulleyMotion::at_rest).collect(),
             ..self.clone()
         };
         // unknowns: z and the arm rotation; R = −f over their rows, J = K_t restricted to them
@@ -615,18 +731,9 @@ impl FlowingBelt {
                 extra.push((k, false, c.df_dw, c.dt_dw));
             }
             if let (true, Some(a), Some(k)) = (idler, arm.as_ref(), self.arm_dof) {
-                // F(d − c(θ), V − c'θ̇, ω): ∂/∂θ = −F_d c' + F_V (c − p) θ̇ (c'' = −(c − p)),
-                // ∂/∂θ̇ = −F_V c'
-                let w = [a.arm[0] * a.rate, a.arm[1] * a.rate];
-                let (fd, fv) = (mv(&c.df_dd, a.dc), mv(&c.df_dv, w));
-                extra.push((
-                    k,
-                    true,
-                    [fv[0] - fd[0], fv[1] - fd[1]],
-                    dot(c.dt_dv, w) - dot(c.dt_dd, a.dc),
-                ));
-                let fv = mv(&c.df_dv, a.dc);
-                extra.push((k, false, [-fv[0], -fv[1]], -dot(c.dt_dv, a.dc)));
+                let ((f_q, t_q), (f_v, t_v)) = a.contact_derivatives(&c);
+                extra.push((k, true, f_q, t_q));
+                extra.push((k, false, f_v, t_v));
             }
             // belt rows 0 (e_tᵀ) and 1..=m (Tᵀ)
             for i in 0..=m {
@@ -673,9 +780,9 @@ impl FlowingBelt {
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
-            kq[(k, k)] -= tm.spec.spring_moment(a.angle).1;
-            cv[(k, k)] -= tm.spec.damper_moment(a.rate).1;
-            cv[(k, k)] -= dry_friction(&tm.spec, a.rate).d_slip;
+            let (_, ks, cs) = arm_moment(&tm.spec, a);
+            kq[(k, k)] -= ks;
+            cv[(k, k)] -= cs;
         }
         (kq, cv)
     }
@@ -752,7 +859,7 @@ impl SecondOrderSystem for FlowingBelt {
                 tail[k - m - 1] += c.torque;
             }
             if let (true, Some(a), Some(k)) = (idler, arm.as_ref(), self.arm_dof) {
-                tail[k - m - 1] -= cross(a.arm, c.force);
+                tail[k - m - 1] += a.moment(c.force);
             }
         }
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
@@ -761,9 +868,7 @@ impl SecondOrderSystem for FlowingBelt {
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
-            tail[k - m - 1] += tm.spec.spring_moment(a.angle).0
-                + tm.spec.damper_moment(a.rate).0
-                + dry_friction(&tm.spec, a.rate).force;
+            tail[k - m - 1] += arm_moment(&tm.spec, a).0;
         }
         if let Some(i) = f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {
@@ -790,7 +895,7 @@ impl SecondOrderSystem for FlowingBelt {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::belt::BeltDriveConfig;
     use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};

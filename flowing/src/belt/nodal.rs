@@ -7,9 +7,15 @@
 //! of the exact path and curvature vector `ε_n^i = e_n^i/ρ^i` (Ribaric (5.3); see the choices
 //! below).
 //!
-//! Coordinates `q = [s_b, δ, φ₂]`, velocities `v = [v, δ̇, ω₂]`: the belt's travel `s_b` and speed
-//! `v = ṡ_b`, the global nodal deflections `δ` (`3N`: x, y, θ per node; `d^i = r^i(s_i) + δ^i`,
-//! (5.1)) and the driven pulley's angle and speed. The driver's speed `ω₁(t)` is prescribed.
+//! Coordinates `q = [s_b, δ, φ_k…]`, velocities `v = [v, δ̇, ω_k…]`: the belt's travel `s_b`
+//! and speed `v = ṡ_b`, the global nodal deflections `δ` (`3N`: x, y, θ per node;
+//! `d^i = r^i(s_i) + δ^i`, (5.1)) and the angle and speed of every pulley that is not
+//! speed-driven (pulley order, [`PulleyMotion`]). The two-pulley drive of [`NodalBelt::new`]
+//! has `q = [s_b, δ, φ₂]`: the driver's speed `ω₁(t)` is prescribed.
+//!
+//! Any layout (issue 17): [`NodalBelt::with_layout`] takes the loop of [`BeltFe::on_path`] over
+//! N pulleys (grooved or back side) and one [`PulleyMotion`] per pulley, the same inputs as
+//! [`super::FlowingBelt::with_layout`]; the material nodes travel along that path.
 //!
 //! ```text
 //!   d̈ = a e_t + v² ε_n + δ̈                                          (5.3), (5.4)
@@ -17,7 +23,7 @@
 //!   [ M e_t        M      ] [δ̈] = [ g − v² M ε_n    ] − [ Dᵀλ ]      (5.6)
 //!   g = f0 + f_contact − K δ − C δ̇                                  (5.8)
 //!   Φ = e_t^k(s_k)ᵀ δ^k = 0     (reference condition, note U5)
-//!   J₂ ω̇₂ = τ_contact,2 − M_load(t)
+//!   J_k ω̇_k = τ_contact,k − M_load,k(t)                            (free pulleys)
 //! ```
 //!
 //! (5.6) is singular along `[1; −e_t]` (a uniform slide of the deflections along the path is a
@@ -61,8 +67,13 @@
 //! 1.7 % (216).
 
 use super::contact::{NodeContact, PulleyFrame, node_contact};
+use super::flowing_system::{
+    ArmModel, ArmState, PulleyMotion, arm_moment, check_layout, driven_of, driven_pulley_of,
+    driver_speed_of, load_of, motion_speed, pulley_dofs, pulley_frames,
+};
 use super::model::{BeltFe, NODE_DOFS, chord_tensions, chord_turn_rate, corotational_rate_block};
 use super::schedule::Schedule;
+use super::schedule::Signal;
 use super::statics::dense_equilibrium;
 use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
@@ -70,6 +81,7 @@ use faer::Mat;
 use faer::sparse::{SparseColMat, Triplet};
 use fe_model::element::{Frame2d, Frame2dSection};
 use mbd_core::Workspace;
+use mbd_core::tensioner::cross;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
 /// 6×6 element matrix in global axes.
@@ -103,18 +115,23 @@ pub struct NodalBelt {
     /// The belt loop (its `s`, masses and tributary lengths are those of the material nodes at
     /// `s_b = 0`).
     pub fe: BeltFe,
-    /// Driver pulley speed ω₁(t) \[rad/s\], positive in the travel sense.
-    pub driver_speed: Schedule,
-    /// Load torque on the driven pulley \[N m\], opposing its rotation.
-    pub load_torque: Schedule,
+    /// How each pulley turns (pulley order of the path): speed-driven, or free with an
+    /// inertia \[kg m²\] against a load torque \[N m\].
+    pub motions: Vec<PulleyMotion>,
+    /// The tensioner, if any: its idler (one of the pulleys) turns on an arm about a pivot.
+    pub tensioner: Option<ArmModel>,
     /// Material node whose tangential deflection is zero (reference condition).
     pub reference_node: usize,
+    /// Velocity index of the tensioner arm.
+    arm_dof: Option<usize>,
     section: Frame2dSection,
-    pulleys: [PulleyFrame; 2],
+    pulleys: Vec<PulleyFrame>,
+    /// Velocity index of each pulley's speed (`None`: prescribed).
+    pulley_dof: Vec<Option<usize>>,
     friction: FrictionSpec,
     laws: Vec<PolynomialPenalty>,
-    inertia: f64,
     mass_total: f64,
+    n_v: usize,
 }
 
 /// Rotate a local 6×6 element matrix to global axes: `Tᵀ k T`, `T = diag(R, 1, R, 1)` with
@@ -188,12 +205,33 @@ impl<'a> Tangent<'a> {
 }
 
 impl NodalBelt {
-    /// Build the model on the loop `fe`.
+    /// The two-pulley drive (Ribaric Table 6-1) on the loop `fe`: pulley 0 turns at
+    /// `driver_speed` \[rad/s\], pulley 1 is free with the inertia `fe.config.driven_inertia`
+    /// against `load_torque` \[N m\].
     pub fn new(
         fe: BeltFe,
         driver_speed: Schedule,
         load_torque: Schedule,
     ) -> Result<Self, crate::FlowError> {
+        let motions = PulleyMotion::table_6_1(&fe, driver_speed, load_torque);
+        Self::with_layout(fe, motions, None)
+    }
+
+    /// Any layout (issue 17): `fe` built on the layout's path ([`BeltFe::on_path`]), one
+    /// motion per pulley and an optional tensioner, as for [`super::FlowingBelt::with_layout`].
+    /// Every node can touch every pulley (Ribaric (6.1), (6.2) against each rigid pulley,
+    /// grooved or back side). The tensioner's idler moves with its arm, `c(θ) = p + L(cos θ,
+    /// sin θ)` ([`mbd_core::tensioner`]): its contact sees the node at `d − c(θ)` with the
+    /// relative velocity `V − ċ`, and the arm the moment `(c − p) × (−F)` of the contact
+    /// forces `F` on the belt, with the spring, damper and dry friction of the
+    /// [`mbd_core::tensioner::TensionerSpec`] (`J_a Δθ̈ = (c − p) × F_hub + M_s + M_d + M_f`);
+    /// the arm rotation `Δθ` from the laid-out angle is the last coordinate.
+    pub fn with_layout(
+        fe: BeltFe,
+        motions: Vec<PulleyMotion>,
+        tensioner: Option<ArmModel>,
+    ) -> Result<Self, crate::FlowError> {
+        check_layout(&fe, &motions, tensioner.as_ref())?;
         let cfg = fe.config;
         let section = Frame2dSection {
             ea: cfg.belt.ea,
@@ -209,24 +247,27 @@ impl NodalBelt {
                 length: l,
             })
             .collect();
-        let pp = fe.path.pulleys();
-        let pulleys = [0, 1].map(|k| PulleyFrame {
-            center: pp[k].center,
-            radius: fe.contact_radius[k],
-            turn: 1.0,
-        });
+        let pulleys = pulley_frames(&fe);
         let mass_total = fe.mass.chunks(NODE_DOFS).map(|m| m[0]).sum::<f64>();
+        let mut n_v = fe.n_dofs() + 1;
+        let pulley_dof = pulley_dofs(&motions, &mut n_v);
+        let arm_dof = tensioner.map(|_| {
+            n_v += 1;
+            n_v - 1
+        });
         let belt = Self {
+            tensioner,
+            arm_dof,
             section,
             pulleys,
+            pulley_dof,
             friction: cfg.contact.friction_law(),
             laws,
-            inertia: cfg.driven_inertia,
             mass_total,
             fe,
-            driver_speed,
-            load_torque,
+            motions,
             reference_node: 0,
+            n_v,
         };
         // fail early on a degenerate polygon
         belt.mesh(0.0)
@@ -237,7 +278,8 @@ impl NodalBelt {
         Ok(belt)
     }
 
-    /// Number of nodal DOFs `3N` (the system has `3N + 2` coordinates and one constraint).
+    /// Number of nodal DOFs `3N` (the system has `3N + 1` coordinates, one per free pulley
+    /// and one constraint).
     pub fn n_nodal(&self) -> usize {
         self.fe.n_dofs()
     }
@@ -246,9 +288,52 @@ impl NodalBelt {
         self.fe.n_nodes()
     }
 
-    /// Index of the driven pulley's coordinate.
-    fn i_pulley(&self) -> usize {
-        self.fe.n_dofs() + 1
+    /// Velocity index of pulley `p`'s speed (`None`: prescribed).
+    pub fn pulley_dof(&self, p: usize) -> Option<usize> {
+        self.pulley_dof[p]
+    }
+
+    /// Speed of pulley `p` \[rad/s\] at `(t, v)`, positive in the travel sense.
+    pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
+        motion_speed(&self.motions[p], self.pulley_dof[p], t, v)
+    }
+
+    /// Speed history of pulley 0 (the driver) when it is speed-driven.
+    pub fn driver_speed_mut(&mut self) -> Option<&mut Signal> {
+        driver_speed_of(&mut self.motions)
+    }
+
+    /// Load history of pulley `p` when it is free.
+    pub fn load_mut(&mut self, p: usize) -> Option<&mut Signal> {
+        load_of(&mut self.motions, p)
+    }
+
+    /// Velocity index of the tensioner arm's rotation `Δθ` (`None`: no tensioner).
+    pub fn arm_dof(&self) -> Option<usize> {
+        self.arm_dof
+    }
+
+    /// Arm angle θ \[rad\] at `q` (`None`: no tensioner).
+    pub fn arm_angle(&self, q: &[f64]) -> Option<f64> {
+        Some(self.tensioner?.angle + q[self.arm_dof?])
+    }
+
+    fn arm_state(&self, q: &[f64], v: &[f64]) -> Option<ArmState> {
+        ArmState::at(self.tensioner?, self.arm_dof?, q, v)
+    }
+
+    /// The tensioner's idler (`None`: no tensioner).
+    fn idler(&self) -> Option<usize> {
+        self.tensioner.map(|a| a.spec.pulley)
+    }
+
+    /// The free pulleys: `(pulley, velocity index)`.
+    fn free_pulleys(&self) -> Vec<(usize, usize)> {
+        self.pulley_dof
+            .iter()
+            .enumerate()
+            .filter_map(|(p, d)| d.map(|d| (p, d)))
+            .collect()
     }
 
     /// Reference positions `r^i(s_i0 + s_b)` of the material nodes \[m\].
@@ -327,14 +412,6 @@ impl NodalBelt {
         })
     }
 
-    fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        if p == 0 {
-            self.driver_speed.value(t)
-        } else {
-            v[self.i_pulley()]
-        }
-    }
-
     fn element_dofs(&self, e: usize) -> [usize; 6] {
         let j = (e + 1) % self.n();
         [3 * e, 3 * e + 1, 3 * e + 2, 3 * j, 3 * j + 1, 3 * j + 2]
@@ -349,6 +426,7 @@ impl NodalBelt {
         v: &[f64],
     ) -> Vec<(usize, usize, NodeContact)> {
         let (d, dd, vb) = (&q[1..], &v[1..], v[0]);
+        let arm = self.arm_state(q, v);
         let mut out = Vec::new();
         for i in 0..self.n() {
             let x = [
@@ -356,16 +434,25 @@ impl NodalBelt {
                 mesh.pos[i][1] + d[NODE_DOFS * i + 1],
             ];
             for (p, pulley) in self.pulleys.iter().enumerate() {
-                let rel = [x[0] - pulley.center[0], x[1] - pulley.center[1]];
-                if rel[0].hypot(rel[1]) >= pulley.radius {
+                // the idler of a tensioner: a rigid disk translating with the arm
+                let mut frame = *pulley;
+                let mut frame_vel = [0.0; 2];
+                if let (Some(a), Some(k)) = (&arm, self.idler())
+                    && k == p
+                {
+                    frame.center = a.center;
+                    frame_vel = a.vel;
+                }
+                let rel = [x[0] - frame.center[0], x[1] - frame.center[1]];
+                if rel[0].hypot(rel[1]) >= frame.radius {
                     continue;
                 }
                 let vel = [
-                    vb * mesh.tan[i][0] + dd[NODE_DOFS * i],
-                    vb * mesh.tan[i][1] + dd[NODE_DOFS * i + 1],
+                    vb * mesh.tan[i][0] + dd[NODE_DOFS * i] - frame_vel[0],
+                    vb * mesh.tan[i][1] + dd[NODE_DOFS * i + 1] - frame_vel[1],
                 ];
                 let w = self.pulley_speed(p, t, v);
-                let c = node_contact(pulley, w, x, vel, &self.laws[i], &self.friction);
+                let c = node_contact(&frame, w, x, vel, &self.laws[i], &self.friction);
                 if c.normal != 0.0 || c.friction != 0.0 {
                     out.push((i, p, c));
                 }
@@ -402,9 +489,15 @@ impl NodalBelt {
         )
     }
 
-    /// Index of the driven pulley's speed in the velocities.
+    /// Index of the driven pulley's speed in the velocities (pulley 1 of the two-pulley drive;
+    /// the first free pulley of a layout).
     pub fn driven_dof(&self) -> usize {
-        self.i_pulley()
+        driven_of(&self.pulley_dof, self.n_nodal() + 1)
+    }
+
+    /// The driven pulley: pulley 1 of the two-pulley drive, the first free pulley of a layout.
+    pub fn driven_pulley(&self) -> usize {
+        driven_pulley_of(&self.pulley_dof)
     }
 
     /// The friction law of the belt–pulley contact.
@@ -412,18 +505,27 @@ impl NodalBelt {
         &self.friction
     }
 
-    /// Torques of the contact forces on the pulleys in their travel sense \[N m\].
-    pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> Result<[f64; 2], MbdError> {
+    /// Torques of the contact forces on the pulleys in their travel sense \[N m\] (pulley
+    /// order).
+    pub fn pulley_torques(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Vec<f64>, MbdError> {
         let mesh = self.mesh(q[0])?;
-        let mut tq = [0.0; 2];
+        let mut tq = vec![0.0; self.pulleys.len()];
         for (_, p, c) in self.contacts(&mesh, t, q, v) {
             tq[p] += c.torque;
         }
         Ok(tq)
     }
 
-    /// Nodal forces `g − v² M ε_n` (`3N`) and the driven pulley's contact torque.
-    fn nodal_forces(&self, mesh: &Mesh, t: f64, q: &[f64], v: &[f64], g: &mut [f64]) -> f64 {
+    /// Nodal forces `g − v² M ε_n` (`3N`), the contact torque on each pulley \[N m\] and the
+    /// moment of the idler's contact forces about the tensioner's pivot \[N m\].
+    fn nodal_forces(
+        &self,
+        mesh: &Mesh,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        g: &mut [f64],
+    ) -> (Vec<f64>, f64) {
         let n = self.n();
         let nd = self.n_nodal();
         let (d, dd, vb) = (&q[1..=nd], &v[1..=nd], v[0]);
@@ -451,15 +553,20 @@ impl NodalBelt {
                 g[NODE_DOFS * i + a] -= c * mesh.eps_n[i][a];
             }
         }
-        let mut torque = 0.0;
+        let mut torque = vec![0.0; self.pulleys.len()];
+        let mut moment = 0.0;
+        let arm = self.arm_state(q, v);
         for (i, p, c) in self.contacts(mesh, t, q, v) {
             g[NODE_DOFS * i] += c.force[0];
             g[NODE_DOFS * i + 1] += c.force[1];
-            if p == 1 {
-                torque += c.torque;
+            torque[p] += c.torque;
+            if let (Some(a), Some(k)) = (&arm, self.idler())
+                && k == p
+            {
+                moment += a.moment(c.force);
             }
         }
-        torque
+        (torque, moment)
     }
 
     fn forces_on(
@@ -471,12 +578,19 @@ impl NodalBelt {
         f: &mut [f64],
     ) -> Result<(), MbdError> {
         let nd = self.n_nodal();
-        let torque = self.nodal_forces(mesh, t, q, v, &mut f[1..=nd]);
+        let (torque, moment) = self.nodal_forces(mesh, t, q, v, &mut f[1..=nd]);
         let g = &f[1..=nd];
         f[0] = (0..self.n())
             .map(|i| mesh.tan[i][0] * g[NODE_DOFS * i] + mesh.tan[i][1] * g[NODE_DOFS * i + 1])
             .sum();
-        f[nd + 1] = torque - self.load_torque.value(t);
+        for (p, mo) in self.motions.iter().enumerate() {
+            if let (PulleyMotion::Free { load, .. }, Some(k)) = (mo, self.pulley_dof[p]) {
+                f[k] = torque[p] - load.value(t);
+            }
+        }
+        if let (Some(a), Some(tm), Some(k)) = (self.arm_state(q, v), self.tensioner, self.arm_dof) {
+            f[k] = moment + arm_moment(&tm.spec, &a).0;
+        }
         if let Some(i) = f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {
                 what: format!("nodal belt generalized force {i}"),
@@ -493,8 +607,9 @@ impl NodalBelt {
     fn tangent(&self, t: f64, q: &[f64], v: &[f64]) -> Result<(Sparse, Sparse), MbdError> {
         let n = self.n();
         let nd = self.n_nodal();
-        let nv = nd + 2;
-        let ip = nd + 1;
+        let nv = self.n_v;
+        let free = self.free_pulleys();
+        let arm = self.arm_state(q, v);
         let mesh = self.mesh(q[0])?;
         let vb = v[0];
         let (alpha, beta) = (self.fe.config.damping.alpha, self.fe.config.damping.beta);
@@ -523,47 +638,51 @@ impl NodalBelt {
                 cv.add(1 + NODE_DOFS * i + a, 0, c * mesh.eps_n[i][a]);
             }
         }
-        let mut touching = vec![[None::<NodeContact>; 2]; n];
+        let mut touching = vec![vec![None::<NodeContact>; self.pulleys.len()]; n];
         for (i, p, c) in self.contacts(&mesh, t, q, v) {
             touching[i][p] = Some(c);
         }
-        // every node's contact entries, zero when open (fixed pattern)
+        // every node's contact entries with every pulley, zero when open (fixed pattern)
         for (i, pair) in touching.iter().enumerate() {
             let r = 1 + NODE_DOFS * i;
             let et = mesh.tan[i];
             let mut dd = [[0.0; 2]; 2];
             let mut dv = [[0.0; 2]; 2];
-            let mut dw = [0.0; 2];
-            let (mut tdd, mut tdv, mut tdw) = ([0.0; 2], [0.0; 2], 0.0);
-            for (p, c) in pair.iter().enumerate() {
-                let Some(c) = c else { continue };
+            for c in pair.iter().flatten() {
                 for a in 0..2 {
                     for b in 0..2 {
                         dd[a][b] += c.df_dd[a][b];
                         dv[a][b] += c.df_dv[a][b];
                     }
-                    if p == 1 {
-                        dw[a] += c.df_dw[a];
-                        tdd[a] += c.dt_dd[a];
-                        tdv[a] += c.dt_dv[a];
-                    }
-                }
-                if p == 1 {
-                    tdw += c.dt_dw;
                 }
             }
+            let of = |p: usize| pair[p].unwrap_or_default();
             for a in 0..2 {
                 for b in 0..2 {
                     kq.add(r + a, r + b, -dd[a][b]);
                     cv.add(r + a, r + b, -dv[a][b]);
                 }
                 cv.add(r + a, 0, -(dv[a][0] * et[0] + dv[a][1] * et[1]));
-                cv.add(r + a, ip, -dw[a]);
-                kq.add(ip, r + a, -tdd[a]);
-                cv.add(ip, r + a, -tdv[a]);
+                for &(p, ip) in &free {
+                    let c = of(p);
+                    cv.add(r + a, ip, -c.df_dw[a]);
+                    kq.add(ip, r + a, -c.dt_dd[a]);
+                    cv.add(ip, r + a, -c.dt_dv[a]);
+                }
             }
-            cv.add(ip, 0, -(tdv[0] * et[0] + tdv[1] * et[1]));
-            cv.add(ip, ip, -tdw);
+            for &(p, ip) in &free {
+                let c = of(p);
+                cv.add(ip, 0, -(c.dt_dv[0] * et[0] + c.dt_dv[1] * et[1]));
+                cv.add(ip, ip, -c.dt_dw);
+            }
+            if let (Some(arm), Some(ia), Some(pi)) = (&arm, self.arm_dof, self.idler()) {
+                self.add_arm_entries(&mut kq, &mut cv, arm, ia, pi, r, et, &of(pi));
+            }
+        }
+        if let (Some(a), Some(tm), Some(k)) = (&arm, self.tensioner, self.arm_dof) {
+            let (_, ks, cs) = arm_moment(&tm.spec, a);
+            kq.add(k, k, -ks);
+            cv.add(k, k, -cs);
         }
         // s_b column: forward difference of the forces (rows 1.. here; row 0 below)
         let eps = 1e-7;
@@ -581,56 +700,113 @@ impl NodalBelt {
         Ok((kq.finish(k00)?, cv.finish_row0()?))
     }
 
+    /// Tangent entries of one node's contact `c` with the tensioner's idler `pi` (zero when
+    /// open: fixed pattern): the node rows and the idler's spin row in the arm's columns
+    /// ([`ArmState::contact_derivatives`]), and the arm's row `M = −(c − p) × F` in the node,
+    /// travel, idler-spin and arm columns (the lever turns with the arm: `∂(c − p)/∂θ = c'`).
+    #[allow(clippy::too_many_arguments)]
+    fn add_arm_entries(
+        &self,
+        kq: &mut Tangent<'_>,
+        cv: &mut Tangent<'_>,
+        arm: &ArmState,
+        ia: usize,
+        pi: usize,
+        r: usize,
+        et: [f64; 2],
+        c: &NodeContact,
+    ) {
+        let ((f_q, t_q), (f_v, t_v)) = arm.contact_derivatives(c);
+        let lever = |f: [f64; 2]| -arm.moment(f);
+        for a in 0..2 {
+            kq.add(r + a, ia, -f_q[a]);
+            cv.add(r + a, ia, -f_v[a]);
+            let (dd, dv) = (
+                [c.df_dd[0][a], c.df_dd[1][a]],
+                [c.df_dv[0][a], c.df_dv[1][a]],
+            );
+            kq.add(ia, r + a, lever(dd));
+            cv.add(ia, r + a, lever(dv));
+        }
+        let dv_s = [
+            c.df_dv[0][0] * et[0] + c.df_dv[0][1] * et[1],
+            c.df_dv[1][0] * et[0] + c.df_dv[1][1] * et[1],
+        ];
+        cv.add(ia, 0, lever(dv_s));
+        if let Some(ip) = self.pulley_dof[pi] {
+            kq.add(ip, ia, -t_q);
+            cv.add(ip, ia, -t_v);
+            cv.add(ia, ip, lever(c.df_dw));
+        }
+        kq.add(ia, ia, lever(f_q) + cross(arm.dc, c.force));
+        cv.add(ia, ia, lever(f_v));
+    }
+
     /// Static equilibrium of the mounted belt on the resting pulleys (`v = 0`, `s_b = 0`) under
-    /// the reference condition: Newton on `[K_t Dᵀ; D 0]` (the shared [`mbd_core::newton`]
-    /// solver). Returns `δ` (`3N`).
+    /// the reference condition: the nodal deflections `δ` (`3N`) of [`Self::static_state`].
     pub fn static_equilibrium(&self) -> Result<Vec<f64>, MbdError> {
         let nd = self.n_nodal();
-        let nv = nd + 2;
+        Ok(self.static_state()?[1..=nd].to_vec())
+    }
+
+    /// Static equilibrium of the mounted belt on the resting pulleys (`v = 0`, `s_b = 0`, every
+    /// pulley at rest) and of the tensioner arm, under the reference condition: Newton on
+    /// `[K_t Dᵀ; D 0]` over the nodal rows and the arm's row (the shared [`mbd_core::newton`]
+    /// solver). Returns `q` (travel and pulley angles zero).
+    pub fn static_state(&self) -> Result<Vec<f64>, MbdError> {
+        let nv = self.n_v;
         let still = Self {
-            driver_speed: Schedule::constant(0.0),
-            load_torque: Schedule::constant(0.0),
+            motions: self.motions.iter().map(PulleyMotion::at_rest).collect(),
             ..self.clone()
         };
         let mut q = vec![0.0; nv];
         let v = vec![0.0; nv];
         let mut f = vec![0.0; nv];
         let k = NODE_DOFS * self.reference_node;
-        // R = [−f; Φ] over the nodal rows and the reference condition, J = [K_t eᵀ; e 0]
-        // (the multiplier is solved for directly); the residual test from the second iteration
-        dense_equilibrium("nodal belt", nd, nd + 1, 2, |d, r| {
-            q[1..=nd].copy_from_slice(d);
+        // unknowns: δ and the arm rotation; R = [−f; Φ] over their rows and the reference
+        // condition, J = [K_t eᵀ; e 0] (the multiplier is solved for directly); the residual
+        // test from the second iteration
+        let mut idx: Vec<usize> = (1..=self.n_nodal()).collect();
+        idx.extend(self.arm_dof);
+        let nx = idx.len();
+        let x = dense_equilibrium("nodal belt", nx, nx + 1, 2, |x, r| {
+            for (a, &i) in idx.iter().enumerate() {
+                q[i] = x[a];
+            }
             let mesh = still.mesh(0.0)?;
             still.forces_on(&mesh, 0.0, &q, &v, &mut f)?;
             let kt = still.tangent(0.0, &q, &v)?.0.to_dense();
             let et = mesh.tan[self.reference_node];
-            for i in 0..nd {
-                r[i] = -f[i + 1];
+            for (a, &i) in idx.iter().enumerate() {
+                r[a] = -f[i];
             }
-            r[nd] = et[0] * q[1 + k] + et[1] * q[2 + k];
-            Ok(Mat::from_fn(nd + 1, nd + 1, |i, j| {
-                match (i < nd, j < nd) {
-                    (true, true) => kt[(i + 1, j + 1)],
-                    (true, false) => match i.checked_sub(k) {
-                        Some(0) => et[0],
-                        Some(1) => et[1],
-                        _ => 0.0,
-                    },
-                    (false, true) => match j.checked_sub(k) {
-                        Some(0) => et[0],
-                        Some(1) => et[1],
-                        _ => 0.0,
-                    },
+            r[nx] = et[0] * q[1 + k] + et[1] * q[2 + k];
+            // the reference condition's row and column: e_t on node k's (x, y) deflections
+            let e = |a: usize| match a.checked_sub(k) {
+                Some(0) => et[0],
+                Some(1) => et[1],
+                _ => 0.0,
+            };
+            Ok(Mat::from_fn(nx + 1, nx + 1, |a, b| {
+                match (a < nx, b < nx) {
+                    (true, true) => kt[(idx[a], idx[b])],
+                    (true, false) => e(a),
+                    (false, true) => e(b),
                     (false, false) => 0.0,
                 }
             }))
-        })
+        })?;
+        let mut out = vec![0.0; nv];
+        for (a, &i) in idx.iter().enumerate() {
+            out[i] = x[a];
+        }
+        Ok(out)
     }
 }
 
 impl SecondOrderSystem for NodalBelt {
     fn n_q(&self) -> usize {
-        self.n_nodal() + 2
+        self.n_v
     }
 
     fn n_c(&self) -> usize {
@@ -648,7 +824,10 @@ impl SecondOrderSystem for NodalBelt {
         let nd = self.n_nodal();
         match dof {
             0 => "belt travel s_b".into(),
-            d if d == nd + 1 => "driven pulley angle".into(),
+            d if d > nd => match self.pulley_dof.iter().position(|&k| k == Some(d)) {
+                Some(p) => format!("pulley {p} angle"),
+                None => "tensioner arm rotation".into(),
+            },
             d => format!(
                 "node {} {}",
                 (d - 1) / NODE_DOFS,
@@ -657,10 +836,10 @@ impl SecondOrderSystem for NodalBelt {
         }
     }
 
-    /// Sparse: `[[m, (M e_t)ᵀ, 0], [M e_t, M, 0], [0, 0, J₂]]` (Ribaric (5.6)).
+    /// Sparse: `[[m, (M e_t)ᵀ, 0], [M e_t, M, 0], [0, 0, diag J_k]]` (Ribaric (5.6)).
     fn mass(&self, _t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         let nd = self.n_nodal();
-        let nv = nd + 2;
+        let nv = self.n_v;
         let mut trip = Vec::with_capacity(3 * nv);
         trip.push(Triplet::new(0, 0, self.mass_total));
         for i in 0..self.n() {
@@ -675,7 +854,14 @@ impl SecondOrderSystem for NodalBelt {
         for i in 0..nd {
             trip.push(Triplet::new(1 + i, 1 + i, self.fe.mass[i]));
         }
-        trip.push(Triplet::new(nd + 1, nd + 1, self.inertia));
+        for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
+            if let (PulleyMotion::Free { inertia, .. }, Some(k)) = (mo, k) {
+                trip.push(Triplet::new(*k, *k, *inertia));
+            }
+        }
+        if let (Some(a), Some(k)) = (self.tensioner, self.arm_dof) {
+            trip.push(Triplet::new(k, k, a.spec.inertia));
+        }
         SparseColMat::try_new_from_triplets(nv, nv, &trip)
             .map(SysMatrix::Sparse)
             .map_err(|e| MbdError::Model {
@@ -886,6 +1072,75 @@ mod tests {
                 .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
             // β EA v φ / R ≈ 16 N is the scale of the global-component form's error
             assert!(diff < 1e-8, "β forces of a rigid rotation: {diff} N");
+        }
+    }
+
+    // Any layout with a tensioner (four pulleys, a back-side idler on the arm): the analytic
+    // tangent (pulley spins, moving idler, arm moment, spring, damper, dry friction) against
+    // central differences of the forces (an independent evaluation of the same equations), at
+    // a moving, deflected state with the arm turned and turning.
+    #[test]
+    fn layout_tangent_with_tensioner_matches_finite_differences() {
+        let fl = crate::belt::flowing_system::tests::layout_belt();
+        let b = NodalBelt::with_layout(fl.fe.clone(), fl.motions.clone(), fl.tensioner).unwrap();
+        let nv = b.n_q();
+        let ka = b.arm_dof().unwrap();
+        let mut q = vec![0.0; nv];
+        let mut v = vec![0.0; nv];
+        q[0] = 0.0071;
+        v[0] = 3.0;
+        for i in 1..=b.n_nodal() {
+            q[i] = 2e-5 * ((i as f64) * 0.7).sin();
+            v[i] = 1e-2 * ((i as f64) * 1.3).cos();
+        }
+        for p in 1..4 {
+            v[b.pulley_dof(p).unwrap()] = 3.0 / [0.06, 0.05, 0.035, 0.04][p] * 0.99;
+        }
+        q[ka] = 2e-3;
+        v[ka] = 0.03;
+        // the idler touches the belt at this state
+        let touching = b
+            .contact_report(0.1, &q, &v)
+            .unwrap()
+            .iter()
+            .filter(|c| c.1 == 2)
+            .count();
+        assert!(touching > 2, "{touching} idler contacts");
+        let (kt, ct) = b.tangent(0.1, &q, &v).unwrap();
+        let (kt, ct) = (kt.to_dense(), ct.to_dense());
+        let scale = kt.norm_max().max(ct.norm_max());
+        let f = |q: &[f64], v: &[f64]| {
+            let mut out = vec![0.0; nv];
+            b.forces(0.1, q, v, &mut out, &mut mbd_core::Workspace::new())
+                .unwrap();
+            out
+        };
+        let mut cols: Vec<(usize, f64)> = vec![(ka, 1e-7), (b.pulley_dof(2).unwrap(), 1e-6)];
+        // the nodes of the idler's wrap
+        for (i, p, _, _) in b.contact_report(0.1, &q, &v).unwrap() {
+            if p == 2 {
+                cols.push((1 + NODE_DOFS * i, 1e-9));
+                cols.push((2 + NODE_DOFS * i, 1e-9));
+            }
+        }
+        for (j, h) in cols {
+            for in_q in [true, false] {
+                let (mut qp, mut qm, mut vp, mut vm) = (q.clone(), q.clone(), v.clone(), v.clone());
+                if in_q {
+                    qp[j] += h;
+                    qm[j] -= h;
+                } else {
+                    vp[j] += h;
+                    vm[j] -= h;
+                }
+                let (a, c) = (f(&qp, &vp), f(&qm, &vm));
+                for i in 0..nv {
+                    let fd = -(a[i] - c[i]) / (2.0 * h);
+                    let an = if in_q { kt[(i, j)] } else { ct[(i, j)] };
+                    let err = (fd - an).abs() / fd.abs().max(1e-4 * scale);
+                    assert!(err < 1e-4, "row {i} col {j} q={in_q}: fd {fd} vs {an}");
+                }
+            }
         }
     }
 
