@@ -3,6 +3,7 @@
 
 use drives::layout::{LayoutConfig, LayoutMesh, LayoutPulley, MotionSpec};
 use drives::model::flowing_layout_snapshot;
+use drives::report::PulleyRole;
 use fe_model::generate::belt_path::WrapSide;
 use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule, Signal};
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
@@ -583,7 +584,7 @@ fn span_transverse_frequency_is_the_travelling_string_one() {
         let mut cfg = four_pulleys(0.0);
         cfg.tensioner = None;
         cfg.belt.ei *= ei_scale;
-        let roles = roles(&cfg);
+        let roles = cfg.roles();
         let (belt, _) = cfg.flowing_model().unwrap();
         (cfg, roles, belt)
     };
