@@ -23,7 +23,7 @@ use super::reduced::{ReducedTire, TreadBasis, VizBasis};
 use crate::derivative::{DerivativeMethod, FdScheme, FlowLine, mode_shape_derivatives};
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::sparse::{SparseColMat, Triplet};
-use faer::{Accum, Mat};
+use faer::{Accum, Mat, Par};
 use fe_model::SparseEigenOptions;
 use fe_model::sparse::{sparse_times_dense, submatrix};
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -335,24 +335,38 @@ fn reduce_with(
     let mtt = mt.transpose();
     let sym =
         |a: Mat<f64>| Mat::from_fn(a.nrows(), a.ncols(), |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
-    // Tᵀ M T is symmetric: its lower triangle only (half the product), mirrored
-    let m_z = {
-        let mut low = Mat::<f64>::zeros(nz, nz);
-        triangular::matmul(
-            low.as_mut(),
-            BlockStructure::TriangularLower,
-            Accum::Replace,
-            mtt,
-            BlockStructure::Rectangular,
-            t.as_ref(),
-            BlockStructure::Rectangular,
-            1.0,
-            faer::get_global_parallelism(),
-        );
-        Mat::from_fn(nz, nz, |i, j| low[(i.max(j), i.min(j))])
+    // The large dense products (n × nz by n × nz) run as two sequential tasks side by side
+    // (coarse-grained: on a busy machine faer's fine-grained parallel products spent much of
+    // their time waiting for each other). Tᵀ M T is symmetric: its lower triangle only (half
+    // the product), mirrored.
+    let product = |a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>| {
+        let mut out = Mat::<f64>::zeros(a.nrows(), b.ncols());
+        faer::linalg::matmul::matmul(out.as_mut(), Accum::Replace, a, b, 1.0, Par::Seq);
+        out
     };
-    let g1 = mtt * &der.d1;
-    let g2 = mtt * &der.d2;
+    let ((m_z, g1), (g2, ktd, k1)) = rayon::join(
+        || {
+            let mut low = Mat::<f64>::zeros(nz, nz);
+            triangular::matmul(
+                low.as_mut(),
+                BlockStructure::TriangularLower,
+                Accum::Replace,
+                mtt,
+                BlockStructure::Rectangular,
+                t.as_ref(),
+                BlockStructure::Rectangular,
+                1.0,
+                Par::Seq,
+            );
+            let m_z = Mat::from_fn(nz, nz, |i, j| low[(i.max(j), i.min(j))]);
+            (m_z, product(mtt, der.d1.as_ref()))
+        },
+        || {
+            let ktd = sparse_times_dense(fe.stiffness.as_ref(), der.d1.as_ref());
+            let k1 = product(t.transpose(), ktd.as_ref());
+            (product(mtt, der.d2.as_ref()), ktd, k1)
+        },
+    );
     let mut s_th = Mat::<f64>::zeros(n, 2);
     for (i, x) in fe.nodes.iter().enumerate() {
         // η = ŷ: η × s = (z, 0, −x); η × (η × s) = (−x, 0, −z)
@@ -394,8 +408,6 @@ fn reduce_with(
             (sparse_times_dense(k_rim.as_ref(), t.as_ref()), k_z)
         }
     };
-    let ktd = sparse_times_dense(fe.stiffness.as_ref(), der.d1.as_ref());
-    let k1 = t.transpose() * &ktd;
     // net force and moment on the rim: sums over the rim nodes of rows (3r, 3r+1, 3r+2),
     // `row(k, c, j)` the entry of the k-th rim node's DOF c
     let rim_sum = |row: &dyn Fn(usize, usize, usize) -> f64| {
