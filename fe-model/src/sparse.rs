@@ -143,6 +143,9 @@ pub fn csc_times_block(
 /// passes over `A` instead of faer's one per column of `X` (`sparse_dense_matmul`), which made
 /// the products `K T` of the reduced tire (60 480 × 335) memory-bound. Each entry of the result
 /// is summed over the columns of `A` in ascending order, as in faer's product.
+///
+/// # Panics
+/// If `x.nrows() != a.ncols()` (a programming error, as for faer's products).
 pub fn sparse_times_dense(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
     assert_eq!(a.ncols(), x.nrows(), "sparse_times_dense: inner dimensions");
     let b = x.ncols();

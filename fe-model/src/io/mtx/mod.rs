@@ -360,29 +360,56 @@ pub fn parse(text: &str, file: &str) -> Result<MtxMatrix, FeError> {
 pub fn parse_with(data: &[u8], file: &str, opts: &ReadOptions) -> Result<MtxMatrix, FeError> {
     let h = header::parse(data, file, opts.max_dim)?;
     let body = &data[h.data_offset..];
-    let entries = match h.format {
+    match h.format {
         Format::Coordinate => {
-            let (entries, any_upper) = scan::coordinate(
-                body,
-                h.data_line,
-                h.size_line,
-                h.nrows,
-                h.ncols,
-                h.nnz,
-                file,
-                h.symmetry == Symmetry::Symmetric,
-            )?;
-            match h.symmetry {
-                Symmetry::General => entries,
-                Symmetry::Symmetric => {
-                    symmetry::expand(entries, any_upper, body, h.data_line, file)?
-                }
-            }
+            let mirror_room = h.symmetry == Symmetry::Symmetric;
+            let (entries, any_upper) = coordinate_entries(body, &h, file, mirror_room)?;
+            finish(entries, any_upper, &h, body, file, opts)
         }
-        Format::Array => scan::array(body, h.data_line, h.size_line, &h, file)?,
+        Format::Array => {
+            let entries = scan::array(body, h.data_line, h.size_line, &h, file)?;
+            finish(entries, false, &h, body, file, opts)
+        }
+    }
+}
+
+/// The triplets of a coordinate file's data `body` ([`scan::coordinate`]).
+fn coordinate_entries<T: Slot>(
+    body: &[u8],
+    h: &header::Header,
+    file: &str,
+    mirror_room: bool,
+) -> Result<(Vec<T>, bool), FeError> {
+    scan::coordinate(
+        body,
+        h.data_line,
+        h.size_line,
+        h.nrows,
+        h.ncols,
+        h.nnz,
+        file,
+        mirror_room,
+    )
+}
+
+/// The matrix of parsed `entries`: a coordinate `symmetric` file's mirrored (arrays come
+/// mirrored from the scanner), then checked when `opts` require symmetry.
+fn finish(
+    entries: scan::Entries,
+    any_upper: bool,
+    h: &header::Header,
+    body: &[u8],
+    file: &str,
+    opts: &ReadOptions,
+) -> Result<MtxMatrix, FeError> {
+    let entries = match (h.format, h.symmetry) {
+        (Format::Coordinate, Symmetry::Symmetric) => {
+            symmetry::expand(entries, any_upper, body, h.data_line, file)?
+        }
+        _ => entries,
     };
     if opts.require_symmetric {
-        symmetry::require(&entries, &h, body, file)?;
+        symmetry::require(&entries, h, body, file)?;
     }
     Ok(MtxMatrix {
         nrows: h.nrows,
@@ -411,16 +438,7 @@ pub fn parse_sparse_with(
         return parse_with(data, file, opts)?.to_sparse();
     }
     let body = &data[h.data_offset..];
-    let (entries, any_upper) = scan::coordinate::<(u32, u32, f64)>(
-        body,
-        h.data_line,
-        h.size_line,
-        h.nrows,
-        h.ncols,
-        h.nnz,
-        file,
-        false,
-    )?;
+    let (entries, any_upper) = coordinate_entries::<(u32, u32, f64)>(body, &h, file, false)?;
     let e = entries.as_slice();
     let parts = match h.symmetry {
         // (a symmetric header is square: checked with the size line)
@@ -435,20 +453,7 @@ pub fn parse_sparse_with(
         _ => {
             let wide: Vec<(usize, usize, f64)> = e.iter().map(|x| x.get()).collect();
             drop(entries);
-            let wide = match h.symmetry {
-                Symmetry::General => wide,
-                Symmetry::Symmetric => symmetry::expand(wide, any_upper, body, h.data_line, file)?,
-            };
-            if opts.require_symmetric {
-                symmetry::require(&wide, &h, body, file)?;
-            }
-            let m = MtxMatrix {
-                nrows: h.nrows,
-                ncols: h.ncols,
-                format: h.format,
-                symmetry: h.symmetry,
-                entries: wide,
-            };
+            let m = finish(wide, any_upper, &h, body, file, opts)?;
             return m.to_sparse();
         }
     };
