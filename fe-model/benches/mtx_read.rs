@@ -3,13 +3,14 @@
 //! `scipy.io.mmread` in the same run (issue #16: "Matrix Market reading at least as fast as
 //! scipy `mmread`").
 //!
-//! Run: `cargo bench -p fe-model --bench mtx_read -- [--python PY] [--dir DIR] [--repeat N]
+//! Run: `cargo bench --profile release --workspace --bench mtx_read -- [--python PY] [--dir DIR] [--repeat N]
 //! [--rounds R]`
 //! (PY: a Python with scipy, default `python3`; DIR: scratch folder for the two files, default
 //! the system temp folder). R rounds (default 3), each reading N times (default 3) with ours in
 //! this process and then N times with the peer in a fresh Python process, so that both see the
 //! same machine load; prints the best timings of both readers, alone (entries / COO) and
-//! including the conversion to a CSC matrix, and `ratio = ours / peer` for each.
+//! including the conversion to a CSC matrix, and `ratio = ours / peer` for each; ours also
+//! straight into CSC (`mtx::read_sparse_with`), against scipy's read + CSC and read alone.
 
 use fe_model::generate::{TireConfig, tire};
 use fe_model::io::mtx;
@@ -51,7 +52,7 @@ fn main() {
         + std::fs::metadata(&mp).map(|m| m.len()).unwrap_or(0);
     // ours and the peer alternate, so both see the same machine load
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/mmread.py");
-    let (mut read, mut csc) = (f64::INFINITY, f64::INFINITY);
+    let (mut read, mut csc, mut direct) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let (mut pr, mut pc) = (f64::INFINITY, f64::INFINITY);
     let mut peer = String::new();
     let mut nnz = 0;
@@ -69,6 +70,12 @@ fn main() {
             nnz = ks.compute_nnz() + ms.compute_nnz();
             n = ks.nrows();
             drop((k, m, ks, ms));
+            let t0 = Instant::now();
+            let ks = mtx::read_sparse_with(&kp, &mtx::ReadOptions::symmetric()).expect("K");
+            let ms = mtx::read_sparse_with(&mp, &mtx::ReadOptions::symmetric()).expect("M");
+            direct = direct.min(t0.elapsed().as_secs_f64());
+            assert_eq!(ks.compute_nnz() + ms.compute_nnz(), nnz);
+            drop((ks, ms));
         }
         let out = Command::new(&python)
             .arg(script)
@@ -108,7 +115,7 @@ fn main() {
         bytes as f64 / 1e6
     );
     println!(
-        "fe-model mtx: read {read:.3} s, read + CSC {csc:.3} s (best of {rounds} rounds of {repeat}, alternated with the peer)"
+        "fe-model mtx: read {read:.3} s, read + CSC {csc:.3} s, read_sparse_with (straight to CSC) {direct:.3} s (best of {rounds} rounds of {repeat}, alternated with the peer)"
     );
     if peer.is_empty() {
         return;
@@ -118,4 +125,12 @@ fn main() {
     );
     println!("ratio = ours / peer = {:.2} (read)", read / pr);
     println!("ratio = ours / peer = {:.2} (read + CSC)", csc / pc);
+    println!(
+        "ratio = ours / peer = {:.2} (read_sparse_with / mmread + tocsc)",
+        direct / pc
+    );
+    println!(
+        "ratio = ours / peer = {:.2} (read_sparse_with / mmread alone)",
+        direct / pr
+    );
 }

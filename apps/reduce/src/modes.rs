@@ -184,9 +184,7 @@ impl Study for ModesStudy<'_> {
         let bar = ctx.progress(4.0, "modes");
         let opts = mtx::ReadOptions::symmetric().allow_large(self.args.common.allow_large);
         let read = |field: &str, p: &str| -> Result<_, StudyError> {
-            mtx::read_with(p, &opts)
-                .and_then(|m| m.to_sparse())
-                .map_err(|e: FeError| input(field, e))
+            mtx::read_sparse_with(p, &opts).map_err(|e: FeError| input(field, e))
         };
         let m = read("mass", &c.mass)?;
         let k = read("stiffness", &c.stiffness)?;

@@ -181,8 +181,7 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
     }
     let opts = ReadOptions::symmetric().allow_large(a.allow_large);
     let read = |p: &PathBuf, what: &str| {
-        mtx::read_with(p, &opts)
-            .and_then(|m| m.to_sparse())
+        mtx::read_sparse_with(p, &opts)
             .map_err(|e| Failure::Input(format!("--{what} {}: {e}", p.display())))
     };
     let m = read(&a.mass, "mass")?;

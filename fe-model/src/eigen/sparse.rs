@@ -21,7 +21,7 @@ use super::dense::dense_modes;
 use super::factor::{Analysis, shifted};
 use super::{Modes, frequency_hz};
 use crate::FeError;
-use crate::sparse::triplets;
+use crate::sparse::{BlockProductWork, csc_times_block, triplets};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
@@ -372,51 +372,6 @@ pub fn sparse_modes(
         }
     }
     Err(last_err)
-}
-
-/// Row-major scratch of [`csc_times_block`].
-#[derive(Debug, Default)]
-struct BlockProductWork {
-    xt: Vec<f64>,
-    ot: Vec<f64>,
-}
-
-/// `out = A X` for a sparse `A` (CSC) and a dense block `X` (`n × b`), streaming A once: the
-/// block is transposed into row-major scratch so that every stored entry `a_rc` updates the
-/// `b` contiguous values of row r (faer's `sparse_dense_matmul` streams A once per column of
-/// X, which made the mass product the costliest part of the block operator).
-fn csc_times_block(
-    a: SparseColMatRef<'_, usize, f64>,
-    x: MatRef<'_, f64>,
-    mut out: MatMut<'_, f64>,
-    work: &mut BlockProductWork,
-) {
-    let (n, b) = (x.nrows(), x.ncols());
-    work.xt.clear();
-    work.xt.resize(n * b, 0.0);
-    work.ot.clear();
-    work.ot.resize(a.nrows() * b, 0.0);
-    for k in 0..b {
-        for r in 0..n {
-            work.xt[r * b + k] = x[(r, k)];
-        }
-    }
-    let (cp, ri, vals) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
-    for c in 0..a.ncols() {
-        let xc = &work.xt[c * b..(c + 1) * b];
-        for p in cp[c]..cp[c + 1] {
-            let (r, v) = (ri[p], vals[p]);
-            let oc = &mut work.ot[r * b..(r + 1) * b];
-            for (o, &xv) in oc.iter_mut().zip(xc) {
-                *o += v * xv;
-            }
-        }
-    }
-    for k in 0..b {
-        for r in 0..a.nrows() {
-            out[(r, k)] = work.ot[r * b + k];
-        }
-    }
 }
 
 /// `max |φᵢᵀ M φⱼ − δᵢⱼ|`.

@@ -32,6 +32,46 @@ pub(crate) fn read_bytes(path: &std::path::Path) -> Result<(String, Vec<u8>), cr
     Ok((name, data))
 }
 
+/// The bytes of a file: memory-mapped, or read into memory where mapping is not possible.
+pub(crate) enum FileBytes {
+    /// The file mapped read-only (no copy into a fresh buffer: for a 50 MB matrix file the
+    /// copy and the page faults of its buffer took about as long as parsing it).
+    Mapped(memmap2::Mmap),
+    /// The file read into memory (an empty file, or one that cannot be mapped, e.g. a pipe).
+    Owned(Vec<u8>),
+}
+
+impl std::ops::Deref for FileBytes {
+    type Target = [u8];
+    fn deref(&self) -> &[u8] {
+        match self {
+            Self::Mapped(m) => m,
+            Self::Owned(v) => v,
+        }
+    }
+}
+
+/// Map a whole file read-only (populated up front), with its display name; files that cannot
+/// be mapped are read ([`read_bytes`], with its errors).
+///
+/// The file must not be truncated by another process while it is parsed: as for any
+/// memory-mapped reader, the operating system would then stop the process (`SIGBUS`).
+/// Writing a matrix file while another program reads it is an error in any case.
+pub(crate) fn map_bytes(path: &std::path::Path) -> Result<(String, FileBytes), crate::FeError> {
+    if let Ok(file) = std::fs::File::open(path)
+        && file.metadata().is_ok_and(|m| m.is_file() && m.len() > 0)
+    {
+        // SAFETY: the map is read-only and private; the documented condition above (the file
+        // is not truncated while mapped) is the caller's, as for every mmap-based reader.
+        let map = unsafe { memmap2::MmapOptions::new().populate().map(&file) };
+        if let Ok(map) = map {
+            return Ok((path.display().to_string(), FileBytes::Mapped(map)));
+        }
+    }
+    let (name, data) = read_bytes(path)?;
+    Ok((name, FileBytes::Owned(data)))
+}
+
 /// A matrix-file error at `line` of `file`.
 pub(crate) fn err(file: &str, line: usize, kind: crate::error::MatrixFileError) -> crate::FeError {
     crate::FeError::Matrix {

@@ -167,9 +167,7 @@ fn read_mtx(
     // `--allow-large` (mbd_core::validate::limits) lifts the reader's size ceiling too
     let opts = fe_model::io::mtx::ReadOptions::symmetric()
         .allow_large(mbd_core::validate::limits::large_allowed());
-    fe_model::io::mtx::read_with(path, &opts)
-        .and_then(|m| m.to_sparse())
-        .map_err(|e| import_err(field, e.to_string()))
+    fe_model::io::mtx::read_sparse_with(path, &opts).map_err(|e| import_err(field, e.to_string()))
 }
 
 type Sparse = faer::sparse::SparseColMat<usize, f64>;

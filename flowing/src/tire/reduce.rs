@@ -21,11 +21,11 @@ use super::error::{TireError, invalid, linalg};
 use super::mesh::{TireFe, node_angle};
 use super::reduced::{ReducedTire, TreadBasis, VizBasis};
 use crate::derivative::{DerivativeMethod, FdScheme, FlowLine, mode_shape_derivatives};
-use faer::sparse::linalg::matmul::sparse_dense_matmul;
+use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Accum, Mat, Par};
 use fe_model::SparseEigenOptions;
-use fe_model::sparse::submatrix;
+use fe_model::sparse::{sparse_times_dense, submatrix};
 use mbd_core::validate::{InvalidField, Validate, check};
 use reduction::DofPartition;
 use reduction::sparse::{CraigBamptonOptions, craig_bampton_modes, fixed_interface_modes_sparse};
@@ -79,7 +79,15 @@ impl Validate for ReductionConfig {
 pub struct ReductionTimings {
     /// Free-node and contact-node eigen problems.
     pub modes_s: f64,
-    /// Static modes (sparse Cholesky of `K^ff` and solves) and their product with `Ψ^c`.
+    /// Of which: the free-node modes' factorisation of `K^ff`, Lanczos iteration and Sturm
+    /// check (0 when solved densely).
+    pub modes_factor_s: f64,
+    /// See [`ReductionTimings::modes_factor_s`].
+    pub modes_lanczos_s: f64,
+    /// See [`ReductionTimings::modes_factor_s`].
+    pub modes_sturm_s: f64,
+    /// Static modes (sparse Cholesky of `K^ff` and solves, computed alongside the free-node
+    /// modes, so the two overlap) and their product with `Ψ^c`.
     pub static_modes_s: f64,
     /// Circumferential derivatives.
     pub derivatives_s: f64,
@@ -195,6 +203,26 @@ pub fn reduce(
     fe: &TireFe,
     cfg: &ReductionConfig,
 ) -> Result<(ReducedTire, ReductionTimings), TireError> {
+    reduce_with(fe, cfg, Projection::Blocks)
+}
+
+/// How the reduced stiffness `Tᵀ K T` is formed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Projection {
+    /// From its analytic blocks (Lin (6.20)): `diag(Λ)` for the mass-normalised free-node
+    /// modes, `Ψ^cᵀ K_G Ψ^c` with the Schur complement `K_G = K^cc + K^cf Ψ_s` for the
+    /// static modes, zero coupling (`K^ff Ψ_s + K^fc = 0`); `K T` only at the rim rows.
+    Blocks,
+    /// The plain product `Tᵀ (K T)` (the reference of the block form in the tests).
+    #[cfg_attr(not(test), allow(dead_code))]
+    Plain,
+}
+
+fn reduce_with(
+    fe: &TireFe,
+    cfg: &ReductionConfig,
+    projection: Projection,
+) -> Result<(ReducedTire, ReductionTimings), TireError> {
     let t0 = Instant::now();
     fe.validate()?;
     cfg.validate()?;
@@ -225,8 +253,19 @@ pub fn reduce(
     let k_cc = submatrix(fe.stiffness.as_ref(), &part.c, &part.c)?.to_dense();
     let cmodes = fe_model::dense_modes(k_cc.as_ref(), diag_block(&fe.mass, &part.c).as_ref(), nc3)?;
     tim.modes_s = cb.report.normal_modes_s + ts.elapsed().as_secs_f64();
+    if let Some(e) = &cb.report.eigen {
+        tim.modes_factor_s = e.seconds_factor;
+        tim.modes_lanczos_s = e.seconds_lanczos;
+        tim.modes_sturm_s = e.seconds_sturm;
+    }
     let ts = Instant::now();
     let psi_sc = &cb.static_modes * &cmodes.vectors;
+    // the static-mode block of Tᵀ K T (Lin (6.20)): Ψ^cᵀ K_G Ψ^c, K_G = K^cc + K^cf Ψ_s
+    let k_static = {
+        let k_cf = submatrix(fe.stiffness.as_ref(), &part.c, &part.f)?;
+        let k_g = k_cc + sparse_times_dense(k_cf.as_ref(), cb.static_modes.as_ref());
+        cmodes.vectors.transpose() * k_g * &cmodes.vectors
+    };
     drop(cb.static_modes);
     tim.static_modes_s = cb.report.static_modes_s + ts.elapsed().as_secs_f64();
 
@@ -296,9 +335,38 @@ pub fn reduce(
     let mtt = mt.transpose();
     let sym =
         |a: Mat<f64>| Mat::from_fn(a.nrows(), a.ncols(), |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
-    let m_z = sym(mtt * &t);
-    let g1 = mtt * &der.d1;
-    let g2 = mtt * &der.d2;
+    // The large dense products (n × nz by n × nz) run as two sequential tasks side by side
+    // (coarse-grained: on a busy machine faer's fine-grained parallel products spent much of
+    // their time waiting for each other). Tᵀ M T is symmetric: its lower triangle only (half
+    // the product), mirrored.
+    let product = |a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>| {
+        let mut out = Mat::<f64>::zeros(a.nrows(), b.ncols());
+        faer::linalg::matmul::matmul(out.as_mut(), Accum::Replace, a, b, 1.0, Par::Seq);
+        out
+    };
+    let ((m_z, g1), (g2, ktd, k1)) = rayon::join(
+        || {
+            let mut low = Mat::<f64>::zeros(nz, nz);
+            triangular::matmul(
+                low.as_mut(),
+                BlockStructure::TriangularLower,
+                Accum::Replace,
+                mtt,
+                BlockStructure::Rectangular,
+                t.as_ref(),
+                BlockStructure::Rectangular,
+                1.0,
+                Par::Seq,
+            );
+            let m_z = Mat::from_fn(nz, nz, |i, j| low[(i.max(j), i.min(j))]);
+            (m_z, product(mtt, der.d1.as_ref()))
+        },
+        || {
+            let ktd = sparse_times_dense(fe.stiffness.as_ref(), der.d1.as_ref());
+            let k1 = product(t.transpose(), ktd.as_ref());
+            (product(mtt, der.d2.as_ref()), ktd, k1)
+        },
+    );
     let mut s_th = Mat::<f64>::zeros(n, 2);
     for (i, x) in fe.nodes.iter().enumerate() {
         // η = ŷ: η × s = (z, 0, −x); η × (η × s) = (−x, 0, −z)
@@ -308,33 +376,47 @@ pub fn reduce(
         s_th[(3 * i + 2, 1)] = -x[2];
     }
     let ms = mtt * &s_th;
-    let mut kt_full = Mat::<f64>::zeros(n, nz);
-    sparse_dense_matmul(
-        kt_full.as_mut(),
-        Accum::Replace,
-        fe.stiffness.as_ref(),
-        t.as_ref(),
-        1.0,
-        Par::rayon(0),
-    );
-    let k_z = sym(t.transpose() * &kt_full);
-    let mut ktd = Mat::<f64>::zeros(n, nz);
-    sparse_dense_matmul(
-        ktd.as_mut(),
-        Accum::Replace,
-        fe.stiffness.as_ref(),
-        der.d1.as_ref(),
-        1.0,
-        Par::rayon(0),
-    );
-    let k1 = t.transpose() * &ktd;
-    let rim_sum = |a: &Mat<f64>| {
+    // K T: all rows for the plain projection, only the rim's for the block form (the rim
+    // reactions below)
+    let rim_dofs: Vec<usize> = fe
+        .rim
+        .iter()
+        .flat_map(|&r| [3 * r, 3 * r + 1, 3 * r + 2])
+        .collect();
+    let (kt_rows, k_z) = match projection {
+        Projection::Plain => {
+            let kt_full = sparse_times_dense(fe.stiffness.as_ref(), t.as_ref());
+            let k_z = sym(t.transpose() * &kt_full);
+            (
+                Mat::from_fn(rim_dofs.len(), nz, |i, j| kt_full[(rim_dofs[i], j)]),
+                k_z,
+            )
+        }
+        Projection::Blocks => {
+            let all: Vec<usize> = (0..n).collect();
+            let k_rim = submatrix(fe.stiffness.as_ref(), &rim_dofs, &all)?;
+            let mut k_z = Mat::<f64>::zeros(nz, nz);
+            for (j, &l) in fmodes.values.iter().enumerate() {
+                k_z[(j, j)] = l;
+            }
+            let ks = sym(k_static);
+            for j in 0..nc3 {
+                for i in 0..nc3 {
+                    k_z[(nfm + i, nfm + j)] = ks[(i, j)];
+                }
+            }
+            (sparse_times_dense(k_rim.as_ref(), t.as_ref()), k_z)
+        }
+    };
+    // net force and moment on the rim: sums over the rim nodes of rows (3r, 3r+1, 3r+2),
+    // `row(k, c, j)` the entry of the k-th rim node's DOF c
+    let rim_sum = |row: &dyn Fn(usize, usize, usize) -> f64| {
         let mut f = Mat::<f64>::zeros(3, nz);
         let mut mo = Mat::<f64>::zeros(3, nz);
-        for &r in &fe.rim {
+        for (k, &r) in fe.rim.iter().enumerate() {
             let s = fe.nodes[r];
             for j in 0..nz {
-                let v = [a[(3 * r, j)], a[(3 * r + 1, j)], a[(3 * r + 2, j)]];
+                let v = [row(k, 0, j), row(k, 1, j), row(k, 2, j)];
                 for c in 0..3 {
                     f[(c, j)] += v[c];
                 }
@@ -345,8 +427,8 @@ pub fn reduce(
         }
         (f, mo)
     };
-    let (kr, kt) = rim_sum(&kt_full);
-    let (kr1, kt1) = rim_sum(&ktd);
+    let (kr, kt) = rim_sum(&|k, c, j| kt_rows[(3 * k + c, j)]);
+    let (kr1, kt1) = rim_sum(&|k, c, j| ktd[(3 * fe.rim[k] + c, j)]);
     let tc = Mat::from_fn(nc3, nz, |i, j| t[(part.c[i], j)]);
     let tc_theta = Mat::from_fn(nc3, nz, |i, j| der.d1[(part.c[i], j)]);
     // translational momentum of the tire (non-rim nodes; the rim's rows of T and its
@@ -475,4 +557,44 @@ pub fn full_frequencies_hz(fe: &TireFe, count: usize) -> Result<Vec<f64>, TireEr
         &eigen_options(),
     )?;
     Ok(modes.frequencies_hz)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tire::model::{coarse_tire_config, generated_tire};
+
+    /// The block form of `Tᵀ K T` (Lin (6.20): `diag(Λ)` for the mass-normalised free-node
+    /// modes, the Schur complement on the static modes, no coupling) against the plain
+    /// product `Tᵀ (K T)` on a coarse tire (second formulation): equal to round-off, and
+    /// every other reduced matrix identical.
+    #[test]
+    fn block_stiffness_projection_matches_the_plain_product() {
+        let fe = generated_tire(&coarse_tire_config(24, 8, 40.0)).unwrap();
+        let cfg = ReductionConfig {
+            contact_nodes: 12,
+            free_modes: 20,
+            ..Default::default()
+        };
+        let (b, _) = reduce_with(&fe, &cfg, Projection::Blocks).unwrap();
+        let (p, _) = reduce_with(&fe, &cfg, Projection::Plain).unwrap();
+        let scale = p.k.norm_max();
+        assert!(scale > 0.0);
+        let dk = (&b.k - &p.k).norm_max();
+        assert!(dk <= 1e-10 * scale, "|ΔK| = {dk:e} of {scale:e}");
+        // the coupling block is exactly zero in the block form, round-off in the plain one
+        let nfm = b.n_free_modes;
+        for i in 0..nfm {
+            for j in nfm..b.k.ncols() {
+                assert_eq!(b.k[(i, j)], 0.0);
+                assert!(p.k[(i, j)].abs() <= 1e-10 * scale);
+            }
+        }
+        for (x, y) in [(&b.m, &p.m), (&b.k1, &p.k1), (&b.kr, &p.kr), (&b.kt, &p.kt)] {
+            assert_eq!(x, y);
+        }
+        for (x, y) in [(&b.kr1, &p.kr1), (&b.kt1, &p.kt1), (&b.g1, &p.g1)] {
+            assert_eq!(x, y);
+        }
+    }
 }

@@ -16,8 +16,7 @@ use crate::partition::DofPartition;
 use crate::reduced::ReducedModel;
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMatRef;
-use faer::sparse::linalg::matmul::sparse_dense_matmul;
-use faer::{Accum, Mat, Par, Side};
+use faer::{Mat, Side};
 
 pub(crate) fn fe_err(what: &str) -> impl Fn(fe_model::FeError) -> ReductionError + '_ {
     move |e| ReductionError::Numerical {
@@ -98,15 +97,7 @@ pub fn static_modes_sparse(
 
 /// `Ψᵀ A Ψ` for sparse `A` and dense `Ψ` (symmetrised).
 pub fn project_sparse(a: SparseColMatRef<'_, usize, f64>, psi: &Mat<f64>) -> Mat<f64> {
-    let mut ap = Mat::<f64>::zeros(a.nrows(), psi.ncols());
-    sparse_dense_matmul(
-        ap.as_mut(),
-        Accum::Replace,
-        a,
-        psi.as_ref(),
-        1.0,
-        Par::rayon(0),
-    );
+    let ap = fe_model::sparse::sparse_times_dense(a, psi.as_ref());
     let r = psi.transpose() * &ap;
     crate::linalg::symmetrize(&r)
 }

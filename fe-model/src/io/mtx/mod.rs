@@ -42,6 +42,7 @@ use crate::FeError;
 use faer::Mat;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
+use scan::Slot;
 use std::path::Path;
 
 /// Default ceiling on the rows and columns of a matrix read from a file: 10⁷ (the column
@@ -152,66 +153,16 @@ impl MtxMatrix {
         for j in 0..n {
             col_ptr[j + 1] += col_ptr[j];
         }
-        let nnz = col_ptr[n];
-        let mut rows = vec![0usize; nnz];
-        let mut vals = vec![0.0f64; nnz];
-        // distinct rows per column after summing duplicates, at the front of its block
-        let mut kept = vec![0usize; n];
-        // column ranges with about the same number of entries, one per thread
-        let parts = if nnz >= 1 << 20 {
-            rayon::current_num_threads().clamp(1, 16)
-        } else {
-            1
-        };
-        let mut cuts = vec![0usize];
-        for t in 1..parts {
-            let j = col_ptr.partition_point(|&p| p < nnz * t / parts).min(n);
-            cuts.push(j.max(cuts[t - 1]));
-        }
-        cuts.push(n);
-        let mut tasks = Vec::with_capacity(parts);
-        let (mut rr, mut vr, mut kr) = (
-            rows.as_mut_slice(),
-            vals.as_mut_slice(),
-            kept.as_mut_slice(),
-        );
-        for w in cuts.windows(2) {
-            let (lo, hi) = (w[0], w[1]);
-            let len = col_ptr[hi] - col_ptr[lo];
-            let (r0, r1) = rr.split_at_mut(len);
-            let (v0, v1) = vr.split_at_mut(len);
-            let (k0, k1) = kr.split_at_mut(hi - lo);
-            tasks.push((lo, hi, r0, v0, k0));
-            (rr, vr, kr) = (r1, v1, k1);
-        }
         // Filling the upper part first gives each column its rows above the diagonal, then
         // those below: already ascending when the file lists its lower triangle column by
         // column, so no sort. Entries at one position all lie in one part, so their order,
         // and the order of their sum, is the file's either way.
         let e = self.entries.as_slice();
-        let parts_in_order: [&[(usize, usize, f64)]; 2] = match upper_from {
-            Some(h) if partitioned => [&e[h..], &e[..h]],
-            _ => [e, &[]],
+        let parts = match upper_from {
+            Some(h) if partitioned => [Part::direct(&e[h..]), Part::direct(&e[..h])],
+            _ => [Part::direct(e), Part::direct(&[])],
         };
-        tasks.into_par_iter().for_each(|(lo, hi, r, v, k)| {
-            fill_columns(parts_in_order, &col_ptr, lo..hi, r, v, k);
-        });
-        // close up the columns (moves only where duplicates were summed)
-        let mut ptr = vec![0usize; n + 1];
-        let mut w = 0usize;
-        for j in 0..n {
-            let (a, k) = (col_ptr[j], kept[j]);
-            if a != w {
-                rows.copy_within(a..a + k, w);
-                vals.copy_within(a..a + k, w);
-            }
-            w += k;
-            ptr[j + 1] = w;
-        }
-        rows.truncate(w);
-        vals.truncate(w);
-        let symbolic = SymbolicSparseColMat::new_checked(m, n, ptr, None, rows);
-        Ok(SparseColMat::new(symbolic, vals))
+        Ok(csc_from_parts(m, n, col_ptr, &parts))
     }
 
     /// Dense matrix (duplicates summed).
@@ -224,13 +175,108 @@ impl MtxMatrix {
     }
 }
 
-/// Fill the columns `cols` of a CSC matrix from `entries` (two slices, all in range): `rows`,
+/// Entries fed to the CSC build: as stored, or mirrored (`(r, c, v)` placed at `(c, r)`,
+/// diagonal entries skipped: the upper triangle of a symmetric file's lower triangle).
+#[derive(Clone, Copy)]
+struct Part<'a, T> {
+    entries: &'a [T],
+    mirror: bool,
+}
+
+impl<'a, T> Part<'a, T> {
+    fn direct(entries: &'a [T]) -> Self {
+        Self {
+            entries,
+            mirror: false,
+        }
+    }
+}
+
+/// The position `(row, col)` and value at which an entry of `part` lands, if any.
+#[inline(always)]
+fn placed<T: Slot>(part: Part<'_, T>, e: T) -> Option<(usize, usize, f64)> {
+    let (r, c, v) = e.get();
+    if !part.mirror {
+        Some((r, c, v))
+    } else if r != c {
+        Some((c, r, v))
+    } else {
+        None
+    }
+}
+
+/// The `m × n` CSC matrix of the entries of `parts` (all in range), duplicates summed in
+/// order: `col_ptr` holds the column starts of all entries placed (`n + 1`, prefix sums). The
+/// columns' rows are scattered in part order, then put in ascending order (a stable merge of
+/// two ascending runs, or a stable sort) and duplicates summed. Large matrices are filled in
+/// parallel, one range of columns per thread (each thread scans all entries and keeps its
+/// columns', so the result is that of a sequential fill).
+fn csc_from_parts<T: Slot>(
+    m: usize,
+    n: usize,
+    col_ptr: Vec<usize>,
+    parts: &[Part<'_, T>],
+) -> SparseColMat<usize, f64> {
+    let nnz = col_ptr[n];
+    let mut rows = vec![0usize; nnz];
+    let mut vals = vec![0.0f64; nnz];
+    // distinct rows per column after summing duplicates, at the front of its block
+    let mut kept = vec![0usize; n];
+    // column ranges with about the same number of entries, one per thread
+    let parts_n = if nnz >= 1 << 20 {
+        rayon::current_num_threads().clamp(1, 16)
+    } else {
+        1
+    };
+    let mut cuts = vec![0usize];
+    for t in 1..parts_n {
+        let j = col_ptr.partition_point(|&p| p < nnz * t / parts_n).min(n);
+        cuts.push(j.max(cuts[t - 1]));
+    }
+    cuts.push(n);
+    let mut tasks = Vec::with_capacity(parts_n);
+    let (mut rr, mut vr, mut kr) = (
+        rows.as_mut_slice(),
+        vals.as_mut_slice(),
+        kept.as_mut_slice(),
+    );
+    for w in cuts.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        let len = col_ptr[hi] - col_ptr[lo];
+        let (r0, r1) = rr.split_at_mut(len);
+        let (v0, v1) = vr.split_at_mut(len);
+        let (k0, k1) = kr.split_at_mut(hi - lo);
+        tasks.push((lo, hi, r0, v0, k0));
+        (rr, vr, kr) = (r1, v1, k1);
+    }
+    tasks.into_par_iter().for_each(|(lo, hi, r, v, k)| {
+        fill_columns(parts, &col_ptr, lo..hi, r, v, k);
+    });
+    // close up the columns (moves only where duplicates were summed)
+    let mut ptr = col_ptr;
+    let mut w = 0usize;
+    for j in 0..n {
+        let (a, k) = (ptr[j], kept[j]);
+        if a != w {
+            rows.copy_within(a..a + k, w);
+            vals.copy_within(a..a + k, w);
+        }
+        ptr[j] = w;
+        w += k;
+    }
+    ptr[n] = w;
+    rows.truncate(w);
+    vals.truncate(w);
+    let symbolic = SymbolicSparseColMat::new_checked(m, n, ptr, None, rows);
+    SparseColMat::new(symbolic, vals)
+}
+
+/// Fill the columns `cols` of a CSC matrix from the entries of `parts` (all in range): `rows`,
 /// `vals` are the columns' blocks (`col_ptr[cols.start]..col_ptr[cols.end]`), filled in entry
-/// order, then
-/// each column's rows put in ascending order (stable: duplicates keep entry order) and
-/// duplicates summed at the front of the block, their number in `kept`.
-fn fill_columns(
-    entries: [&[(usize, usize, f64)]; 2],
+/// order, then each column's rows put in ascending order (stable: duplicates keep entry order)
+/// and duplicates summed at the front of the block, their number in `kept`.
+fn fill_columns<T: Slot>(
+    parts: &[Part<'_, T>],
     col_ptr: &[usize],
     cols: std::ops::Range<usize>,
     rows: &mut [usize],
@@ -239,9 +285,11 @@ fn fill_columns(
 ) {
     let base = col_ptr[cols.start];
     let mut next: Vec<usize> = col_ptr[cols.clone()].iter().map(|p| p - base).collect();
-    for part in entries {
-        for &(r, c, v) in part {
-            if cols.contains(&c) {
+    for &part in parts {
+        for &e in part.entries {
+            if let Some((r, c, v)) = placed(part, e)
+                && cols.contains(&c)
+            {
                 let q = &mut next[c - cols.start];
                 rows[*q] = r;
                 vals[*q] = v;
@@ -312,29 +360,56 @@ pub fn parse(text: &str, file: &str) -> Result<MtxMatrix, FeError> {
 pub fn parse_with(data: &[u8], file: &str, opts: &ReadOptions) -> Result<MtxMatrix, FeError> {
     let h = header::parse(data, file, opts.max_dim)?;
     let body = &data[h.data_offset..];
-    let entries = match h.format {
+    match h.format {
         Format::Coordinate => {
-            let (entries, any_upper) = scan::coordinate(
-                body,
-                h.data_line,
-                h.size_line,
-                h.nrows,
-                h.ncols,
-                h.nnz,
-                file,
-                h.symmetry == Symmetry::Symmetric,
-            )?;
-            match h.symmetry {
-                Symmetry::General => entries,
-                Symmetry::Symmetric => {
-                    symmetry::expand(entries, any_upper, body, h.data_line, file)?
-                }
-            }
+            let mirror_room = h.symmetry == Symmetry::Symmetric;
+            let (entries, any_upper) = coordinate_entries(body, &h, file, mirror_room)?;
+            finish(entries, any_upper, &h, body, file, opts)
         }
-        Format::Array => scan::array(body, h.data_line, h.size_line, &h, file)?,
+        Format::Array => {
+            let entries = scan::array(body, h.data_line, h.size_line, &h, file)?;
+            finish(entries, false, &h, body, file, opts)
+        }
+    }
+}
+
+/// The triplets of a coordinate file's data `body` ([`scan::coordinate`]).
+fn coordinate_entries<T: Slot>(
+    body: &[u8],
+    h: &header::Header,
+    file: &str,
+    mirror_room: bool,
+) -> Result<(Vec<T>, bool), FeError> {
+    scan::coordinate(
+        body,
+        h.data_line,
+        h.size_line,
+        h.nrows,
+        h.ncols,
+        h.nnz,
+        file,
+        mirror_room,
+    )
+}
+
+/// The matrix of parsed `entries`: a coordinate `symmetric` file's mirrored (arrays come
+/// mirrored from the scanner), then checked when `opts` require symmetry.
+fn finish(
+    entries: scan::Entries,
+    any_upper: bool,
+    h: &header::Header,
+    body: &[u8],
+    file: &str,
+    opts: &ReadOptions,
+) -> Result<MtxMatrix, FeError> {
+    let entries = match (h.format, h.symmetry) {
+        (Format::Coordinate, Symmetry::Symmetric) => {
+            symmetry::expand(entries, any_upper, body, h.data_line, file)?
+        }
+        _ => entries,
     };
     if opts.require_symmetric {
-        symmetry::require(&entries, &h, body, file)?;
+        symmetry::require(&entries, h, body, file)?;
     }
     Ok(MtxMatrix {
         nrows: h.nrows,
@@ -345,14 +420,115 @@ pub fn parse_with(data: &[u8], file: &str, opts: &ReadOptions) -> Result<MtxMatr
     })
 }
 
+/// Parse Matrix Market bytes straight into a CSC matrix: the same matrix, bit for bit, and the
+/// same errors as [`parse_with`] followed by [`MtxMatrix::to_sparse`], without the expanded
+/// entries. A coordinate file (the usual sparse export) is scanned into compact
+/// `(u32, u32, f64)` entries (16 bytes, not 24) and a `symmetric` one's lower triangle is
+/// mirrored while filling the columns, not stored twice; other files (arrays, an upper
+/// triangle in a `symmetric` file, a `general` one that must be symmetric, more than
+/// `u32::MAX` rows or columns) take the general path.
+pub fn parse_sparse_with(
+    data: &[u8],
+    file: &str,
+    opts: &ReadOptions,
+) -> Result<SparseColMat<usize, f64>, FeError> {
+    let h = header::parse(data, file, opts.max_dim)?;
+    let fits = |d: usize| u32::try_from(d).is_ok();
+    if h.format != Format::Coordinate || !fits(h.nrows) || !fits(h.ncols) {
+        return parse_with(data, file, opts)?.to_sparse();
+    }
+    let body = &data[h.data_offset..];
+    let (entries, any_upper) = coordinate_entries::<(u32, u32, f64)>(body, &h, file, false)?;
+    let e = entries.as_slice();
+    let parts = match h.symmetry {
+        // (a symmetric header is square: checked with the size line)
+        Symmetry::Symmetric if !any_upper => [
+            Part {
+                entries: e,
+                mirror: true,
+            },
+            Part::direct(e),
+        ],
+        Symmetry::General if !opts.require_symmetric => [Part::direct(e), Part::direct(&[])],
+        _ => {
+            let wide: Vec<(usize, usize, f64)> = e.iter().map(|x| x.get()).collect();
+            drop(entries);
+            let m = finish(wide, any_upper, &h, body, file, opts)?;
+            return m.to_sparse();
+        }
+    };
+    let col_ptr = column_starts(h.ncols, &parts);
+    Ok(csc_from_parts(h.nrows, h.ncols, col_ptr, &parts))
+}
+
+/// Column starts (`n + 1` prefix sums) of the entries placed by `parts`; large inputs counted
+/// in parallel blocks (integer sums: the same counts in any order).
+fn column_starts<T: Slot>(n: usize, parts: &[Part<'_, T>]) -> Vec<usize> {
+    let count = |part: Part<'_, T>, block: &[T], acc: &mut [usize]| {
+        for &e in block {
+            if let Some((_, c, _)) = placed(part, e) {
+                acc[c + 1] += 1;
+            }
+        }
+    };
+    let total: usize = parts.iter().map(|p| p.entries.len()).sum();
+    let threads = rayon::current_num_threads();
+    let mut col_ptr = if total >= 1 << 20 && n.saturating_mul(threads) <= total / 4 {
+        let block = total.div_ceil(2 * threads).max(1);
+        let blocks: Vec<(Part<'_, T>, &[T])> = parts
+            .iter()
+            .flat_map(|&p| p.entries.chunks(block).map(move |b| (p, b)))
+            .collect();
+        blocks
+            .into_par_iter()
+            .fold(
+                || vec![0usize; n + 1],
+                |mut acc, (p, b)| {
+                    count(p, b, &mut acc);
+                    acc
+                },
+            )
+            .reduce(
+                || vec![0usize; n + 1],
+                |mut a, b| {
+                    a.iter_mut().zip(&b).for_each(|(x, y)| *x += y);
+                    a
+                },
+            )
+    } else {
+        let mut acc = vec![0usize; n + 1];
+        for &p in parts {
+            count(p, p.entries, &mut acc);
+        }
+        acc
+    };
+    for j in 0..n {
+        col_ptr[j + 1] += col_ptr[j];
+    }
+    col_ptr
+}
+
+/// Read a Matrix Market file straight into a CSC matrix ([`parse_sparse_with`]): the fastest
+/// way to load a stiffness or mass matrix (about half the time of [`read_with`] followed by
+/// [`MtxMatrix::to_sparse`] for the tire's K and M, `BENCHMARKS.md`). A directory or unreadable
+/// path is a [`FeError::Io`] naming it. The file is memory-mapped (read into memory where it
+/// cannot be): it must not be truncated by another process while it is read.
+pub fn read_sparse_with(
+    path: impl AsRef<Path>,
+    opts: &ReadOptions,
+) -> Result<SparseColMat<usize, f64>, FeError> {
+    let (name, data) = super::map_bytes(path.as_ref())?;
+    parse_sparse_with(&data, &name, opts)
+}
+
 /// Read a Matrix Market file with the default [`ReadOptions`].
 pub fn read(path: impl AsRef<Path>) -> Result<MtxMatrix, FeError> {
     read_with(path, &ReadOptions::default())
 }
 
 /// Read a Matrix Market file with `opts` (a directory or unreadable path is a
-/// [`FeError::Io`] naming it).
+/// [`FeError::Io`] naming it). The file is memory-mapped, as in [`read_sparse_with`].
 pub fn read_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<MtxMatrix, FeError> {
-    let (name, data) = super::read_bytes(path.as_ref())?;
+    let (name, data) = super::map_bytes(path.as_ref())?;
     parse_with(&data, &name, opts)
 }

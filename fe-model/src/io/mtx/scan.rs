@@ -13,6 +13,44 @@ use rayon::prelude::*;
 /// 0-based `(row, col, value)` entries in file order.
 pub(super) type Entries = Vec<(usize, usize, f64)>;
 
+/// One parsed entry as the scanner stores it: the public `(usize, usize, f64)` (24 bytes) or
+/// the compact `(u32, u32, f64)` (16 bytes) of the direct CSC reader (matrices of at most
+/// `u32::MAX` rows and columns).
+pub(super) trait Slot: Copy + Send + Sync {
+    /// The zero entry; `vec![ZERO; n]` of a tuple of primitives is a zeroed allocation (no
+    /// memset pass over the array).
+    const ZERO: Self;
+    /// From a 0-based entry whose indices fit.
+    fn new(r: usize, c: usize, v: f64) -> Self;
+    /// 0-based `(row, col, value)`.
+    fn get(self) -> (usize, usize, f64);
+}
+
+impl Slot for (usize, usize, f64) {
+    const ZERO: Self = (0, 0, 0.0);
+    #[inline]
+    fn new(r: usize, c: usize, v: f64) -> Self {
+        (r, c, v)
+    }
+    #[inline]
+    fn get(self) -> (usize, usize, f64) {
+        self
+    }
+}
+
+impl Slot for (u32, u32, f64) {
+    const ZERO: Self = (0, 0, 0.0);
+    #[inline]
+    fn new(r: usize, c: usize, v: f64) -> Self {
+        // callers read only matrices of at most `u32::MAX` rows and columns
+        (r as u32, c as u32, v)
+    }
+    #[inline]
+    fn get(self) -> (usize, usize, f64) {
+        (self.0 as usize, self.1 as usize, self.2)
+    }
+}
+
 /// Data sections larger than this many bytes are parsed in parallel chunks.
 const PARALLEL_BYTES: usize = 1 << 22;
 
@@ -233,7 +271,7 @@ fn line_bound(data: &[u8]) -> usize {
 
 /// Parse the lines of `data` into the front of `slot` (of `min(line_bound, len / 6 + 1)`
 /// entries: one per line, each line of an entry at least 6 bytes with its newline).
-fn parse_chunk(data: &[u8], slot: &mut [(usize, usize, f64)], nrows: usize, ncols: usize) -> Chunk {
+fn parse_chunk<T: Slot>(data: &[u8], slot: &mut [T], nrows: usize, ncols: usize) -> Chunk {
     let mut out = Chunk {
         count: 0,
         any_upper: false,
@@ -273,7 +311,7 @@ fn parse_chunk(data: &[u8], slot: &mut [(usize, usize, f64)], nrows: usize, ncol
         let Some(s) = slot.get_mut(out.count) else {
             break;
         };
-        *s = e;
+        *s = T::new(e.0, e.1, e.2);
         out.count += 1;
         out.any_upper |= e.0 < e.1;
     }
@@ -318,7 +356,7 @@ fn chunks(data: &[u8]) -> Vec<(usize, usize)> {
 /// header's count): each chunk fills its own part in parallel, and the parts are then closed
 /// up in place (they have gaps only where a chunk had comments or blank lines).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn coordinate(
+pub(super) fn coordinate<T: Slot>(
     data: &[u8],
     first_line: usize,
     size_line: usize,
@@ -327,7 +365,7 @@ pub(super) fn coordinate(
     nnz: usize,
     file: &str,
     mirror_room: bool,
-) -> Result<(Entries, bool), FeError> {
+) -> Result<(Vec<T>, bool), FeError> {
     let bounds = chunks(data);
     // a chunk's entries: at most one per line, and each takes at least `1 1 1` and a newline
     // (6 bytes), so memory stays proportional to the file even for one of blank lines
@@ -336,8 +374,13 @@ pub(super) fn coordinate(
         .map(|&(a, b)| line_bound(&data[a..b]).min((b - a) / 6 + 1))
         .collect();
     let lines: usize = caps.iter().sum();
-    let mut all: Entries = Vec::with_capacity(if mirror_room { 2 * lines } else { lines });
-    all.resize(lines, (0, 0, 0.0));
+    let mut all: Vec<T> = if mirror_room {
+        let mut v = Vec::with_capacity(2 * lines);
+        v.resize(lines, T::ZERO);
+        v
+    } else {
+        vec![T::ZERO; lines]
+    };
     let mut slots = Vec::with_capacity(caps.len());
     let mut rest = all.as_mut_slice();
     for &c in &caps {
