@@ -15,6 +15,8 @@ struct Dense {
     history: Vec<f64>,
     factorisations: usize,
     modified: bool,
+    /// Line-search trial evaluations ([`NewtonProblem::residual`]).
+    trials: usize,
 }
 
 impl Dense {
@@ -31,6 +33,7 @@ impl Dense {
             history: Vec::new(),
             factorisations: 0,
             modified: false,
+            trials: 0,
         }
     }
 }
@@ -53,6 +56,7 @@ impl NewtonProblem for Dense {
     }
 
     fn residual(&mut self, x: &[f64], load: f64, r: &mut [f64]) -> Result<(), String> {
+        self.trials += 1;
         (self.r)(x, load, r);
         Ok(())
     }
@@ -150,6 +154,25 @@ fn line_search_rescues_an_overshooting_newton() {
     let mut x = vec![2.0];
     let rep = solve(&mut atan(), &mut x, &searched, &mut NewtonWorkspace::new()).unwrap();
     assert!(x[0].abs() < 1e-12, "{x:?} {rep:?}");
+}
+
+// Reference: analytical root (√2, √2). With a line search every correction but the last is
+// tried (one residual evaluation each, all full steps near the root); the last one passes the
+// correction test in full and is taken without a trial, whose residual nobody would use.
+#[test]
+fn a_converged_full_correction_needs_no_line_search_trial() {
+    let mut p = circle_line();
+    let mut x = vec![3.0, 1.0];
+    let opts = NewtonOptions {
+        tolerances: Tolerances::absolute(1e-12),
+        line_search: Some(LineSearch::default()),
+        ..Default::default()
+    };
+    let rep = solve(&mut p, &mut x, &opts, &mut NewtonWorkspace::new()).unwrap();
+    let s = 2f64.sqrt();
+    assert!((x[0] - s).abs() < 1e-12 && (x[1] - s).abs() < 1e-12, "{x:?}");
+    assert!(rep.iterations() >= 3, "{rep:?}");
+    assert_eq!(p.trials, rep.iterations() - 1, "{rep:?}");
 }
 
 /// Hardening spring `k u + c u³ = μ F`.
