@@ -576,8 +576,7 @@ fn increment<P: NewtonProblem + ?Sized>(
                 problem
                     .update(x, &ws.dx, &mut ws.trial)
                     .map_err(NewtonError::Problem)?;
-                problem.correction_norm(&ws.dx)
-                    <= tol.threshold(problem.scale(x, &ws.trial))
+                problem.correction_norm(&ws.dx) <= tol.threshold(problem.scale(x, &ws.trial))
                     && problem.converged(x, &ws.trial, &ws.dx)
             };
             let full = match ls {

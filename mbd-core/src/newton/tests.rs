@@ -170,7 +170,10 @@ fn a_converged_full_correction_needs_no_line_search_trial() {
     };
     let rep = solve(&mut p, &mut x, &opts, &mut NewtonWorkspace::new()).unwrap();
     let s = 2f64.sqrt();
-    assert!((x[0] - s).abs() < 1e-12 && (x[1] - s).abs() < 1e-12, "{x:?}");
+    assert!(
+        (x[0] - s).abs() < 1e-12 && (x[1] - s).abs() < 1e-12,
+        "{x:?}"
+    );
     assert!(rep.iterations() >= 3, "{rep:?}");
     assert_eq!(p.trials, rep.iterations() - 1, "{rep:?}");
 }
