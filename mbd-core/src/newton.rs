@@ -134,6 +134,19 @@ pub struct Tolerances {
 }
 
 impl Tolerances {
+    /// The bound of the correction test at the scale `‖x‖` ([`NewtonProblem::scale`]):
+    /// `correction (1 + ‖x‖)` (relative), `correction + per_scale ‖x‖` (mixed) or
+    /// `correction`.
+    pub fn threshold(&self, scale: f64) -> f64 {
+        if self.relative {
+            self.correction * (1.0 + scale)
+        } else if self.per_scale != 0.0 {
+            self.correction + self.per_scale * scale
+        } else {
+            self.correction
+        }
+    }
+
     /// `‖Δx‖ ≤ tol`.
     pub fn absolute(tol: f64) -> Self {
         Self {
@@ -262,7 +275,8 @@ pub struct NewtonOptions {
     /// Largest correction `‖Δx‖` per iteration (damped Newton); a damped iteration never
     /// counts as converged \[units of x\].
     pub max_step: f64,
-    /// Backtracking line search (`None`: full steps).
+    /// Backtracking line search (`None`: full steps). A correction that passes the
+    /// convergence test in full is taken without a trial (the iteration ends with it).
     pub line_search: Option<LineSearch>,
     /// Load increments and step cutting.
     pub load: LoadStepping,
@@ -555,7 +569,21 @@ fn increment<P: NewtonProblem + ?Sized>(
                 .line_search
                 .as_ref()
                 .or(backtracking.then_some(&default_ls));
+            // A full correction that already passes the correction test ends the iteration
+            // whatever its merit: it is taken without a line-search trial, whose residual the
+            // finished iteration would not use (one evaluation saved per solve).
+            let converged_in_full = ls.is_some() && damp == 1.0 && {
+                problem
+                    .update(x, &ws.dx, &mut ws.trial)
+                    .map_err(NewtonError::Problem)?;
+                problem.correction_norm(&ws.dx) <= tol.threshold(problem.scale(x, &ws.trial))
+                    && problem.converged(x, &ws.trial, &ws.dx)
+            };
             let full = match ls {
+                Some(_) if converged_in_full => {
+                    ws.step.copy_from_slice(&ws.dx);
+                    true
+                }
                 Some(ls) => line_search(problem, x, load, res, ls, ws)?,
                 None => {
                     ws.step.copy_from_slice(&ws.dx);
@@ -573,14 +601,7 @@ fn increment<P: NewtonProblem + ?Sized>(
                     iteration: it,
                 });
             }
-            let scale = problem.scale(x, &ws.trial);
-            let threshold = if tol.relative {
-                tol.correction * (1.0 + scale)
-            } else if tol.per_scale != 0.0 {
-                tol.correction + tol.per_scale * scale
-            } else {
-                tol.correction
-            };
+            let threshold = tol.threshold(problem.scale(x, &ws.trial));
             // a backtracked step (after a stall) is no evidence of convergence
             let test = damp == 1.0
                 && (full || !backtracking)

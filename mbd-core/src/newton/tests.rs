@@ -15,6 +15,8 @@ struct Dense {
     history: Vec<f64>,
     factorisations: usize,
     modified: bool,
+    /// Line-search trial evaluations ([`NewtonProblem::residual`]).
+    trials: usize,
 }
 
 impl Dense {
@@ -31,6 +33,7 @@ impl Dense {
             history: Vec::new(),
             factorisations: 0,
             modified: false,
+            trials: 0,
         }
     }
 }
@@ -53,6 +56,7 @@ impl NewtonProblem for Dense {
     }
 
     fn residual(&mut self, x: &[f64], load: f64, r: &mut [f64]) -> Result<(), String> {
+        self.trials += 1;
         (self.r)(x, load, r);
         Ok(())
     }
@@ -90,20 +94,23 @@ fn circle_line() -> Dense {
 
 // Reference: analytical root (√2, √2); Newton–Raphson converges quadratically near a simple
 // root, ‖R_{k+1}‖ ≤ C ‖R_k‖² (Nocedal & Wright Thm. 11.2).
-#[test]
-fn finds_the_analytic_root_quadratically() {
+/// Solves [`circle_line`] from (3, 1) with `opts` and checks the root (√2, √2) to `tol`.
+fn solve_circle_line(opts: &NewtonOptions, tol: f64) -> (Dense, NewtonReport) {
     let mut p = circle_line();
     let mut x = vec![3.0, 1.0];
+    let rep = solve(&mut p, &mut x, opts, &mut NewtonWorkspace::new()).unwrap();
+    let s = 2f64.sqrt();
+    assert!((x[0] - s).abs() < tol && (x[1] - s).abs() < tol, "{x:?}");
+    (p, rep)
+}
+
+#[test]
+fn finds_the_analytic_root_quadratically() {
     let opts = NewtonOptions {
         tolerances: Tolerances::absolute(1e-14),
         ..Default::default()
     };
-    let rep = solve(&mut p, &mut x, &opts, &mut NewtonWorkspace::new()).unwrap();
-    let s = 2f64.sqrt();
-    assert!(
-        (x[0] - s).abs() < 1e-14 && (x[1] - s).abs() < 1e-14,
-        "{x:?}"
-    );
+    let (p, rep) = solve_circle_line(&opts, 1e-14);
     assert!(rep.converged && rep.iterations() <= 7, "{rep:?}");
     // the constant ‖R_{k+1}‖/‖R_k‖² stays bounded while the residual falls from 1 to 1e-12
     let h = &p.history;
@@ -150,6 +157,21 @@ fn line_search_rescues_an_overshooting_newton() {
     let mut x = vec![2.0];
     let rep = solve(&mut atan(), &mut x, &searched, &mut NewtonWorkspace::new()).unwrap();
     assert!(x[0].abs() < 1e-12, "{x:?} {rep:?}");
+}
+
+// Reference: analytical root (√2, √2). With a line search every correction but the last is
+// tried (one residual evaluation each, all full steps near the root); the last one passes the
+// correction test in full and is taken without a trial, whose residual nobody would use.
+#[test]
+fn a_converged_full_correction_needs_no_line_search_trial() {
+    let opts = NewtonOptions {
+        tolerances: Tolerances::absolute(1e-12),
+        line_search: Some(LineSearch::default()),
+        ..Default::default()
+    };
+    let (p, rep) = solve_circle_line(&opts, 1e-12);
+    assert!(rep.iterations() >= 3, "{rep:?}");
+    assert_eq!(p.trials, rep.iterations() - 1, "{rep:?}");
 }
 
 /// Hardening spring `k u + c u³ = μ F`.
