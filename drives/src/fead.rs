@@ -671,7 +671,7 @@ fn sweep<M: LayoutModel>(
             .iter()
             .zip(&tens)
             .map(|(sp, a)| (sp, a.get().min))
-            .filter(|(_, t)| !(*t >= t_min))
+            .filter(|(_, t)| t.is_nan() || *t < t_min)
             .min_by(|a, b| a.1.total_cmp(&b.1));
         let linearisation = match (slack, slipping) {
             (Some((sp, t)), _) => Some(format!(
