@@ -200,7 +200,8 @@ fn ancf_layout_capstan_on_the_slip_arcs() {
 // rebuilt from the computed span tensions on the idler's two spans along the spans' directions
 // (hand statics of mbd_core::tensioner, independent of the contact sums the model's arm equation
 // uses); within 3 % of the spring moment (the bending boundary layer turns the spans by a few
-// mrad, see the static test). The arm stays in its travel and the loaded pulleys carry their loads.
+// mrad, see the static test). The arm stays in its travel and the loaded pulleys carry their loads
+// (with their inertia's share J ω̇ over the window, within 0.02 N m; measured 0.0015).
 #[test]
 fn ancf_tensioner_arm_balances_the_running_span_tensions() {
     use contact::friction::FrictionLaw;
@@ -214,14 +215,16 @@ fn ancf_tensioner_arm_balances_the_running_span_tensions() {
     let t_end = 0.4;
     let mut reports = Vec::new();
     let mut arm = Vec::new();
-    let mut next = t_end - 0.05;
+    let mut times = Vec::new();
+    let next = t_end - 0.05;
     let a = *m.drive().arm().unwrap();
     GeneralizedAlpha::new(sim.alpha_params())
         .integrate(&m, m.initial_state(), t_end, |s| {
+            // every step of the window: the contact torques ring at kHz, 5 ms samples alias
             if s.t >= next {
-                next += 0.005;
                 reports.push(DriveReport::new(&m.snapshot(s.t, &s.q, &s.v), mu));
                 arm.push(s.q[a.dof]);
+                times.push(s.t);
             }
         })
         .unwrap();
@@ -249,6 +252,20 @@ fn ancf_tensioner_arm_balances_the_running_span_tensions() {
         (spring + belt).abs() < 0.03 * spring.abs(),
         "arm moment balance {spring} + {belt} N m"
     );
-    assert!((r.pulleys[1].torque - 2.5).abs() < 0.1);
-    assert!((r.pulleys[3].torque - 2.5).abs() < 0.1);
+    // J ω̇ = τ − M: the loaded pulleys still swing against the belt (less numerical damping at
+    // the default ρ∞ = 0.8), so the window mean of τ carries J (ω_end − ω_start)/window
+    let window = times[times.len() - 1] - times[0];
+    for k in [1, 3] {
+        let j = match cfg.pulleys[k].motion {
+            drives::layout::MotionSpec::Load { inertia, .. } => inertia,
+            _ => unreachable!("pulleys 1 and 3 carry the loads"),
+        };
+        let dw = reports[reports.len() - 1].pulleys[k].omega - reports[0].pulleys[k].omega;
+        let inertial = j * dw / window;
+        assert!(
+            (r.pulleys[k].torque - inertial - 2.5).abs() < 0.02,
+            "pulley {k}: torque {} − J ω̇ {inertial} vs load 2.5 N m",
+            r.pulleys[k].torque
+        );
+    }
 }
