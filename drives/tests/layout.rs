@@ -258,26 +258,23 @@ fn steady_power(load: f64) -> (Vec<f64>, f64, f64) {
         h: 2.5e-4,
         ..Default::default()
     });
-    let mut st = alpha
-        .stepper(&belt, State::new(0.0, q, vec![0.0; n]))
-        .unwrap();
     let mut acc = [0.0f64; 4];
     let mut count = 0usize;
     let mut p_in = 0.0;
     let mut p_out = 0.0;
-    while st.state().t < 1.0 {
-        st.step(&belt, 2.5e-4).unwrap();
-        let s = st.state();
-        if s.t > 0.8 {
-            let tq = belt.pulley_torques(s.t, &s.q, &s.v);
-            for k in 0..4 {
-                acc[k] += tq[k];
+    alpha
+        .integrate(&belt, State::new(0.0, q, vec![0.0; n]), 1.0, |s| {
+            if s.t > 0.8 {
+                let tq = belt.pulley_torques(s.t, &s.q, &s.v);
+                for k in 0..4 {
+                    acc[k] += tq[k];
+                }
+                p_in += -tq[0] * belt.pulley_speed(0, s.t, &s.v);
+                p_out += load * (belt.pulley_speed(1, s.t, &s.v) + belt.pulley_speed(3, s.t, &s.v));
+                count += 1;
             }
-            p_in += -tq[0] * belt.pulley_speed(0, s.t, &s.v);
-            p_out += load * (belt.pulley_speed(1, s.t, &s.v) + belt.pulley_speed(3, s.t, &s.v));
-            count += 1;
-        }
-    }
+        })
+        .unwrap();
     let mean: Vec<f64> = acc.iter().map(|a| a / count as f64).collect();
     let (p_in, p_out) = (p_in / count as f64, p_out / count as f64);
     eprintln!(
@@ -614,13 +611,13 @@ fn span_transverse_frequency_is_the_travelling_string_one() {
         h: 2.5e-4,
         ..Default::default()
     });
-    let mut st = alpha
-        .stepper(&belt, State::new(0.0, q0.clone(), vec![0.0; n]))
+    let mut last = None;
+    alpha
+        .integrate(&belt, State::new(0.0, q0.clone(), vec![0.0; n]), 0.5, |s| {
+            last = Some(s.clone());
+        })
         .unwrap();
-    while st.state().t < 0.5 {
-        st.step(&belt, 2.5e-4).unwrap();
-    }
-    let s = st.state();
+    let s = last.unwrap();
     let speed = s.v[0];
     let (f_run, t_run) = span_mode(&belt, &roles, k, &s.q, &s.v);
     let t0 = cfg.belt.tension;
