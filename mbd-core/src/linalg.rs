@@ -14,6 +14,12 @@
 //! (Newton iterations, time steps of a model with a fixed pattern) is then a scatter of the
 //! values and a numeric factorisation into reused storage, without triplets, sorting or
 //! allocation.
+//!
+//! The numeric factorisation is faer's supernodal LU (dense kernels on groups of columns with
+//! the same structure) whenever the union pattern has at least [`SUPERNODAL_MIN_DENSITY`]
+//! entries per column, i.e. for models whose nodes carry three or more coupled coordinates;
+//! sparser patterns leave the choice to faer's flop-count heuristic. See that constant for
+//! the measurement behind the rule.
 
 use crate::{MbdError, SysMatrix};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -21,6 +27,7 @@ use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::sparse::linalg::lu::{
     LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Mat, MatMut, Par};
 
@@ -317,8 +324,12 @@ impl SparsePath {
         }
         let nnz = row_idx.len();
         let symbolic_pattern = SymbolicSparseColMat::new_checked(dim, dim, col_ptr, None, row_idx);
+        let params = LuSymbolicParams {
+            supernodal_flop_ratio_threshold: lu_variant(nnz, dim),
+            ..Default::default()
+        };
         let symbolic =
-            factorize_symbolic_lu(symbolic_pattern.as_ref(), LuSymbolicParams::default()).map_err(
+            factorize_symbolic_lu(symbolic_pattern.as_ref(), params).map_err(
                 |e| MbdError::Singular {
                     t,
                     detail: format!("symbolic LU failed: {e:?}"),
@@ -427,6 +438,32 @@ impl SparsePath {
                 lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem))
             }
         }
+    }
+}
+
+/// Entries per column of the union pattern from which [`KktSolver`] always takes faer's
+/// supernodal sparse LU \[-\].
+///
+/// faer's own choice (`SupernodalThreshold::AUTO`: supernodal when the estimated flops per
+/// stored entry of `L + U` exceed 40) picks the simplicial (column-by-column) LU for the
+/// block-banded patterns of beam, belt and plate models, whose nodes carry 3–12 coupled
+/// coordinates. Measured with faer 0.24.4 (2026-11-26, numeric factorisation of cyclic
+/// block-tridiagonal patterns, `b` coordinates per node; BENCHMARKS.md, "Against Exudyn"):
+/// `b = 3`, 300 unknowns: simplicial 76 µs, supernodal 61 µs; `b = 6`,
+/// 120: 79 / 38 µs; `b = 6`, 600: 556 / 238 µs; `b = 6`, 2 400: 1 552 / 867 µs; `b = 12`, 600:
+/// 1 050 / 338 µs; the planar ANCF belt of Kerkkänen Table 3.1 (121 unknowns, 2 401 entries):
+/// 107 / 79 µs. With `b = 2` (6 entries per column) the simplicial LU is the faster one
+/// (1 000 unknowns: 144 / 184 µs), so sparser patterns keep faer's heuristic. `b = 3` gives 9
+/// entries per column.
+pub const SUPERNODAL_MIN_DENSITY: f64 = 8.0;
+
+/// The LU variant for a union pattern of `nnz` entries in `dim` columns
+/// ([`SUPERNODAL_MIN_DENSITY`]).
+fn lu_variant(nnz: usize, dim: usize) -> SupernodalThreshold {
+    if dim > 0 && nnz as f64 >= SUPERNODAL_MIN_DENSITY * dim as f64 {
+        SupernodalThreshold::FORCE_SUPERNODAL
+    } else {
+        SupernodalThreshold::AUTO
     }
 }
 
