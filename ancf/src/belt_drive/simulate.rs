@@ -50,6 +50,10 @@ pub struct SimulationConfig {
     pub newton_update: NewtonUpdate,
     /// `every_step` and `frozen`: re-factor at the current iterate when a correction exceeds
     /// this fraction of the previous one (mbd-core `AlphaConfig::refactor_contraction`).
+    /// Default 0.8: on the Table 3.1 drive after the speed ramp (E = 1e9 Pa, h = 2.5e-4 s)
+    /// 0.6, 0.7, 0.8, 0.85, 0.9 gave 0.58, 0.48, 0.35, 0.30, 0.27 factorisations and 4.0, 4.3,
+    /// 4.7, 5.1, 5.5 Newton iterations per step, the least CPU time at 0.8–0.85 (at E = 1e8 Pa
+    /// flat from 0.6 to 0.8, rising beyond; BENCHMARKS.md, "Against Exudyn").
     pub refactor_contraction: f64,
     /// Armijo backtracking on the residual norm in every Newton iteration (mbd-core
     /// `AlphaConfig::newton_line_search`): without it Newton cycles at the kink of the
@@ -67,7 +71,7 @@ impl Default for SimulationConfig {
             newton_atol: 5e-6,
             max_newton_iterations: 25,
             newton_update: NewtonUpdate::Frozen,
-            refactor_contraction: 0.7,
+            refactor_contraction: 0.8,
             line_search: true,
         }
     }
