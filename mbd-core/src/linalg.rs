@@ -24,10 +24,10 @@
 use crate::{MbdError, SysMatrix};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::{PartialPivLu, Solve};
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::lu::{
     LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
 };
-use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Mat, MatMut, Par};
 
@@ -328,13 +328,12 @@ impl SparsePath {
             supernodal_flop_ratio_threshold: lu_variant(nnz, dim),
             ..Default::default()
         };
-        let symbolic =
-            factorize_symbolic_lu(symbolic_pattern.as_ref(), params).map_err(
-                |e| MbdError::Singular {
-                    t,
-                    detail: format!("symbolic LU failed: {e:?}"),
-                },
-            )?;
+        let symbolic = factorize_symbolic_lu(symbolic_pattern.as_ref(), params).map_err(|e| {
+            MbdError::Singular {
+                t,
+                detail: format!("symbolic LU failed: {e:?}"),
+            }
+        })?;
         let factor_mem = MemBuffer::new(
             symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
         );
