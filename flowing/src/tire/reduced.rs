@@ -243,7 +243,96 @@ struct FileV1 {
     source: String,
 }
 
+/// The reduced tire in mass-normalised modal coordinates (see [`ReducedTire::modal`]).
+#[derive(Debug, Clone)]
+pub struct ModalTire {
+    /// The same tire in the coordinates `y` (`z = Φ y`): `M_y = I`, `K_y = Λ` diagonal.
+    pub tire: ReducedTire,
+    /// `Φ` (n_z × n_z): the eigenvectors of `K_z φ = ω² M_z φ`, `ΦᵀM_zΦ = I`.
+    pub phi: Mat<f64>,
+    /// `Φᵀ M_z` = `Φ⁻¹`, the map `y = Φᵀ M_z z` (n_z × n_z).
+    pub phi_inv: Mat<f64>,
+    /// Largest deviation of `ΦᵀM_zΦ` from `I` and of `ΦᵀK_zΦ` from `Λ` relative to the largest
+    /// `ω²` (the round-off of the change of coordinates; the asymmetry of `M_z`, `K_z` counts
+    /// into it).
+    pub deviation: f64,
+}
+
 impl ReducedTire {
+    /// The same tire in the mass-normalised modal coordinates of its zero-spin pencil,
+    /// `z = Φ y` with `K_z Φ = M_z Φ Λ`, `ΦᵀM_zΦ = I` (fe-model's dense generalized eigen
+    /// solver): `M_y = I`, `K_y = Λ` (set exactly; [`ModalTire::deviation`] reports what that
+    /// drops), `G₁`, `G₂`, `K₁` congruent (`ΦᵀAΦ`), `m_θ`, `c_s` projected (`Φᵀ·`), and every
+    /// row map of `z` (`T_c`, `T_c,θ`, `K_r`, `K_θ`, `P`, …) multiplied by `Φ`. An exact change
+    /// of coordinates (Ribaric (7.17) is invariant under it): the rolling tire's products with
+    /// `M` and the stiffness part of `K_eff` become diagonal (issue #16). The visualisation
+    /// and tread bases are dropped (map `y` back with [`ModalTire::phi`]).
+    pub fn modal(&self) -> Result<ModalTire, TireError> {
+        let n = self.n_z();
+        let modes = fe_model::dense_modes(self.k.as_ref(), self.m.as_ref(), n)?;
+        let phi = modes.vectors;
+        let lam = modes.values;
+        let cong = |a: &Mat<f64>| phi.transpose() * a * &phi;
+        let right = |a: &Mat<f64>| a * &phi;
+        let proj = |v: &[f64]| -> Vec<f64> {
+            (0..n)
+                .map(|j| (0..n).map(|i| phi[(i, j)] * v[i]).sum())
+                .collect()
+        };
+        let (my, ky) = (cong(&self.m), cong(&self.k));
+        let lmax = lam.iter().fold(0.0f64, |a, &b| a.max(b.abs())).max(1e-300);
+        let mut deviation = 0.0f64;
+        for j in 0..n {
+            for i in 0..n {
+                let (em, ek) = if i == j {
+                    (my[(i, j)] - 1.0, ky[(i, j)] - lam[i])
+                } else {
+                    (my[(i, j)], ky[(i, j)])
+                };
+                deviation = deviation.max(em.abs()).max(ek.abs() / lmax);
+            }
+        }
+        let tire = ReducedTire {
+            n_free_modes: self.n_free_modes,
+            contact_nodes: self.contact_nodes.clone(),
+            contact_positions: self.contact_positions.clone(),
+            free_mode_hz: self.free_mode_hz.clone(),
+            contact_mode_hz: self.contact_mode_hz.clone(),
+            tire_mass: self.tire_mass,
+            rim_mass: self.rim_mass,
+            rim_spin_inertia: self.rim_spin_inertia,
+            outer_radius: self.outer_radius,
+            derivative: self.derivative,
+            m: Mat::identity(n, n),
+            k: Mat::from_fn(n, n, |i, j| if i == j { lam[i] } else { 0.0 }),
+            g1: cong(&self.g1),
+            g2: cong(&self.g2),
+            k1: cong(&self.k1),
+            m_theta: proj(&self.m_theta),
+            c_s: proj(&self.c_s),
+            kr: right(&self.kr),
+            kr1: right(&self.kr1),
+            kt: right(&self.kt),
+            kt1: right(&self.kt1),
+            tc: right(&self.tc),
+            tc_theta: right(&self.tc_theta),
+            p_e: right(&self.p_e),
+            p_e1: right(&self.p_e1),
+            p_e2: right(&self.p_e2),
+            p_s: self.p_s,
+            viz: None,
+            tread: None,
+            source: self.source.clone(),
+        };
+        let phi_inv = phi.transpose() * &self.m;
+        Ok(ModalTire {
+            tire,
+            phi,
+            phi_inv,
+            deviation,
+        })
+    }
+
     /// Number of contact nodes `n_c`.
     pub fn n_contact(&self) -> usize {
         self.contact_nodes.len()
