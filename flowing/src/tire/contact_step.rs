@@ -223,7 +223,8 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
                 s[2] + w.dc[3 * i + 2],
             ];
             let g = self.ground.query(t1, p);
-            w.bound.record(i, g.gap, t1, dist);
+            w.bound
+                .record(i, g.gap, self.ground.cleat_gap(t1, p), t1, dist);
             // the cleat's faces approach the nodes at up to the surface speed
             let margin = if g.on_cleat {
                 self.cfg.contact_margin + h * self.ground.speed.abs()
@@ -420,18 +421,20 @@ impl TireContact {
 
 /// A lower bound on the free gaps of the contact nodes from their last evaluation, so that the
 /// candidate search evaluates `T_c z` and the ground only for the nodes that may be within the
-/// margin (issue #16: the 3 n_c × n_z product `T_c z` of all nodes was a fixed cost per step).
+/// margin (issue #16: the 3 n_c × n_z product `T_c z` of all nodes and their ground queries
+/// were a fixed cost per step).
 ///
-/// The gap is the distance to the ground (drum, road, cleat: the smallest of distances to
-/// circles and a line, each 1-Lipschitz in the node position; `contact::geometry`), and the
-/// ground moves at most at the surface speed `v` (the drum turns about its centre, the cleat
-/// on its surface moves at `v`). Node `i` evaluated at time `tᵢ` with gap `gᵢ` and reduced
-/// coordinates `zᵢ` moves by `|(T_c)ᵢ (z − zᵢ)| ≤ Lᵢ ‖z − zᵢ‖` (`Lᵢ` the Frobenius norm of its
-/// three rows), and `‖z − zᵢ‖ ≤ ‖z − z_ref‖ + eᵢ` with `eᵢ = ‖zᵢ − z_ref‖` for a common
-/// reference `z_ref`, so
+/// The gap is the smaller of the distances to the drum or road and to the cleat
+/// (`contact::geometry`: distances to circles and a line, each 1-Lipschitz in the node
+/// position); the first does not depend on time (the drum turns about its centre), the second
+/// moves by at most the surface speed `v` per unit time ([`Ground::cleat_gap`]). Node `i`
+/// evaluated at time `tᵢ` with gap `gᵢ`, cleat gap `cᵢ` and reduced coordinates `zᵢ` moves
+/// by `|(T_c)ᵢ (z − zᵢ)| ≤ Lᵢ ‖z − zᵢ‖` (`Lᵢ` the Frobenius norm of its three rows), and
+/// `‖z − zᵢ‖ ≤ ‖z − z_ref‖ + eᵢ` with `eᵢ = ‖zᵢ − z_ref‖` for a common reference `z_ref`, so
+/// with `Δ = Lᵢ (‖z − z_ref‖ + eᵢ)`
 ///
 /// ```text
-///   g(t, z) ≥ gᵢ − Lᵢ (‖z − z_ref‖ + eᵢ) − 1.01 v (t − tᵢ) − 1e-9 m,
+///   g(t, z) ≥ min(gᵢ − Δ, cᵢ − Δ − 1.01 v |t − tᵢ|) − 1e-9 m,
 /// ```
 ///
 /// and the node is skipped when this is at least the largest margin `contact_margin + h v`: its
@@ -444,8 +447,9 @@ struct GapBound {
     l_max: f64,
     z_ref: Vec<f64>,
     valid: bool,
-    /// Per node: last evaluated gap \[m\], its time \[s\] and `eᵢ`.
+    /// Per node: last evaluated gap and cleat gap \[m\], their time \[s\] and `eᵢ`.
     gap: Vec<f64>,
+    cleat: Vec<f64>,
     time: Vec<f64>,
     e: Vec<f64>,
 }
@@ -468,6 +472,7 @@ impl GapBound {
             z_ref: vec![0.0; tct.nrows()],
             valid: false,
             gap: vec![0.0; nc],
+            cleat: vec![0.0; nc],
             time: vec![0.0; nc],
             e: vec![0.0; nc],
         }
@@ -497,17 +502,19 @@ impl GapBound {
     /// Whether node `i`'s free gap at time `t` is certainly at least `margin` \[m\] (`dist` =
     /// [`GapBound::distance`], `speed` the ground's surface speed \[m/s\]).
     fn skip(&self, i: usize, t: f64, dist: f64, speed: f64, margin: f64) -> bool {
-        self.valid
-            && self.gap[i]
-                - self.lip[i] * (dist + self.e[i])
-                - 1.01 * speed * (t - self.time[i]).abs()
-                - 1e-9
-                >= margin
+        if !self.valid {
+            return false;
+        }
+        let moved = self.lip[i] * (dist + self.e[i]);
+        let cleat = self.cleat[i] - moved - 1.01 * speed * (t - self.time[i]).abs();
+        (self.gap[i] - moved).min(cleat) - 1e-9 >= margin
     }
 
-    /// Node `i` evaluated: gap `g` \[m\] at time `t` \[s\], `dist` = [`GapBound::distance`].
-    fn record(&mut self, i: usize, g: f64, t: f64, dist: f64) {
+    /// Node `i` evaluated: gap `g` and cleat gap `cleat` ([`Ground::cleat_gap`]) \[m\] at time
+    /// `t` \[s\], `dist` = [`GapBound::distance`].
+    fn record(&mut self, i: usize, g: f64, cleat: Option<f64>, t: f64, dist: f64) {
         self.gap[i] = g;
+        self.cleat[i] = cleat.unwrap_or(f64::INFINITY);
         self.time[i] = t;
         self.e[i] = dist;
     }
