@@ -205,6 +205,8 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
         let speed = self.ground.speed.abs();
         let margin_max = self.cfg.contact_margin + h * speed;
         let dist = w.bound.distance(z_free);
+        let cleat = self.ground.cleat_center(t1);
+        let cleat_r = self.ground.cfg.cleat_radius;
         w.cand.clear();
         w.gp.clear();
         for i in 0..nc {
@@ -223,8 +225,8 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
                 s[2] + w.dc[3 * i + 2],
             ];
             let g = self.ground.query(t1, p);
-            w.bound
-                .record(i, g.gap, self.ground.cleat_gap(t1, p), t1, dist);
+            let cleat_gap = cleat.map(|c| (p[0] - c[0]).hypot(p[2] - c[1]) - cleat_r);
+            w.bound.record(i, g.gap, cleat_gap, t1, dist);
             // the cleat's faces approach the nodes at up to the surface speed
             let margin = if g.on_cleat {
                 self.cfg.contact_margin + h * self.ground.speed.abs()
@@ -427,7 +429,7 @@ impl TireContact {
 /// The gap is the smaller of the distances to the drum or road and to the cleat
 /// (`contact::geometry`: distances to circles and a line, each 1-Lipschitz in the node
 /// position); the first does not depend on time (the drum turns about its centre), the second
-/// moves by at most the surface speed `v` per unit time ([`Ground::cleat_gap`]). Node `i`
+/// moves by at most the surface speed `v` per unit time ([`Ground::cleat_center`]). Node `i`
 /// evaluated at time `tᵢ` with gap `gᵢ`, cleat gap `cᵢ` and reduced coordinates `zᵢ` moves
 /// by `|(T_c)ᵢ (z − zᵢ)| ≤ Lᵢ ‖z − zᵢ‖` (`Lᵢ` the Frobenius norm of its three rows), and
 /// `‖z − zᵢ‖ ≤ ‖z − z_ref‖ + eᵢ` with `eᵢ = ‖zᵢ − z_ref‖` for a common reference `z_ref`, so
@@ -510,7 +512,7 @@ impl GapBound {
         (self.gap[i] - moved).min(cleat) - 1e-9 >= margin
     }
 
-    /// Node `i` evaluated: gap `g` and cleat gap `cleat` ([`Ground::cleat_gap`]) \[m\] at time
+    /// Node `i` evaluated: gap `g` and cleat gap `cleat` ([`Ground::cleat_center`]) \[m\] at time
     /// `t` \[s\], `dist` = [`GapBound::distance`].
     fn record(&mut self, i: usize, g: f64, cleat: Option<f64>, t: f64, dist: f64) {
         self.gap[i] = g;

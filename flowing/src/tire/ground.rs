@@ -116,16 +116,16 @@ impl Ground {
         })
     }
 
-    /// Distance of the point `p` (wheel frame \[m\]) from the cleat's surface at time `t` \[s\]
-    /// (`|p − c(t)| − r` in the `(x, z)` plane, `c` the cleat's centre; `None` without a
-    /// cleat): the cleat part of [`Ground::query`]'s gap. It is 1-Lipschitz in `p` and moves by
-    /// at most the surface speed `|v|` per unit time (the centre moves at `v`, the drum turning
-    /// at `v/R` about its centre); the rest of the gap (drum, road) does not depend on time.
-    pub fn cleat_gap(&self, t: f64, p: [f64; 3]) -> Option<f64> {
+    /// The cleat's centre `c(t)` in the wheel's `(x, z)` plane at time `t` \[s\] (`None`
+    /// without a cleat). The cleat part of [`Ground::query`]'s gap is `|p − c(t)| − r`: it is
+    /// 1-Lipschitz in the point `p` and moves by at most the surface speed `|v|` per unit time
+    /// (the centre moves at `v`, the drum turning at `v/R` about its centre); the rest of the
+    /// gap (drum, road) does not depend on time.
+    pub fn cleat_center(&self, t: f64) -> Option<[f64; 2]> {
         if !self.cfg.cleat {
             return None;
         }
-        let c = match self.cfg.kind {
+        Some(match self.cfg.kind {
             GroundKind::Drum => {
                 let r = self.cfg.drum_radius;
                 let a = FRAC_PI_2 + self.speed / r * (t - self.cleat_time);
@@ -133,8 +133,7 @@ impl Ground {
                 [r * cs, self.top - r + r * sn]
             }
             GroundKind::Road => [-self.speed * (t - self.cleat_time), self.top],
-        };
-        Some((p[0] - c[0]).hypot(p[2] - c[1]) - self.cfg.cleat_radius)
+        })
     }
 
     /// Closest-point query of the wheel-frame point `p` at time `t`.
