@@ -265,16 +265,7 @@ impl<'a> TireDynamics<'a> {
         let mut u = Vec::with_capacity(2 * nz);
         u.extend(zd.iter().zip(&self.lagged).map(|(d, w)| s2 * d + w));
         u.extend_from_slice(z);
-        let uv = MatRef::from_column_major_slice(&u, u.len(), 1);
-        let rv = MatMut::from_column_major_slice_mut(r, nz + 1, 1);
-        matmul(
-            rv,
-            Accum::Replace,
-            self.qt.as_ref().transpose(),
-            uv,
-            1.0,
-            Par::Seq,
-        );
+        self.qt_product(&u, r);
         let th = vdot.map_or(0.0, |a| a[0]);
         r[0] += self.spin_c.iter().zip(zd).map(|(c, d)| c * d).sum::<f64>()
             + self.spin_inertia * th
@@ -288,6 +279,20 @@ impl<'a> TireDynamics<'a> {
                 + w2 * self.red.c_s[i]
                 + self.red.m_theta[i] * th;
         }
+    }
+
+    /// `r = Q u` (one pass over the stored `Qᵀ`).
+    fn qt_product(&self, u: &[f64], r: &mut [f64]) {
+        let uv = MatRef::from_column_major_slice(u, u.len(), 1);
+        let rv = MatMut::from_column_major_slice_mut(r, self.qt.ncols(), 1);
+        matmul(
+            rv,
+            Accum::Replace,
+            self.qt.as_ref().transpose(),
+            uv,
+            1.0,
+            Par::Seq,
+        );
     }
 
     /// `out (+)= s · Q_k x` for block `k` of `Q` (0: C_eff, 1: K_eff, 2: G₁, 3: M).
@@ -382,16 +387,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
         u.extend_from_slice(&v[1..]);
         u.extend_from_slice(&q[1..]);
         u.extend_from_slice(&self.lagged);
-        let uv = MatRef::from_column_major_slice(&u, u.len(), 1);
-        let rv = MatMut::from_column_major_slice_mut(r, v.len(), 1);
-        matmul(
-            rv,
-            Accum::Replace,
-            self.qt.as_ref().transpose(),
-            uv,
-            1.0,
-            Par::Seq,
-        );
+        self.qt_product(&u, r);
         if vdot[1..].iter().any(|&a| a != 0.0) {
             self.block(3, 1.0, &vdot[1..], r, Accum::Add);
         }

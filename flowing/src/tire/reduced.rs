@@ -292,38 +292,33 @@ impl ReducedTire {
                 deviation = deviation.max(em.abs()).max(ek.abs() / lmax);
             }
         }
-        let tire = ReducedTire {
-            n_free_modes: self.n_free_modes,
-            contact_nodes: self.contact_nodes.clone(),
-            contact_positions: self.contact_positions.clone(),
-            free_mode_hz: self.free_mode_hz.clone(),
-            contact_mode_hz: self.contact_mode_hz.clone(),
-            tire_mass: self.tire_mass,
-            rim_mass: self.rim_mass,
-            rim_spin_inertia: self.rim_spin_inertia,
-            outer_radius: self.outer_radius,
-            derivative: self.derivative,
-            m: Mat::identity(n, n),
-            k: Mat::from_fn(n, n, |i, j| if i == j { lam[i] } else { 0.0 }),
-            g1: cong(&self.g1),
-            g2: cong(&self.g2),
-            k1: cong(&self.k1),
-            m_theta: proj(&self.m_theta),
-            c_s: proj(&self.c_s),
-            kr: right(&self.kr),
-            kr1: right(&self.kr1),
-            kt: right(&self.kt),
-            kt1: right(&self.kt1),
-            tc: right(&self.tc),
-            tc_theta: right(&self.tc_theta),
-            p_e: right(&self.p_e),
-            p_e1: right(&self.p_e1),
-            p_e2: right(&self.p_e2),
-            p_s: self.p_s,
-            viz: None,
-            tread: None,
-            source: self.source.clone(),
-        };
+        let mut tire = self.clone();
+        tire.m = Mat::identity(n, n);
+        tire.k = Mat::from_fn(n, n, |i, j| if i == j { lam[i] } else { 0.0 });
+        for (t, a) in [
+            (&mut tire.g1, &self.g1),
+            (&mut tire.g2, &self.g2),
+            (&mut tire.k1, &self.k1),
+        ] {
+            *t = cong(a);
+        }
+        tire.m_theta = proj(&self.m_theta);
+        tire.c_s = proj(&self.c_s);
+        for (t, a) in [
+            (&mut tire.kr, &self.kr),
+            (&mut tire.kr1, &self.kr1),
+            (&mut tire.kt, &self.kt),
+            (&mut tire.kt1, &self.kt1),
+            (&mut tire.tc, &self.tc),
+            (&mut tire.tc_theta, &self.tc_theta),
+            (&mut tire.p_e, &self.p_e),
+            (&mut tire.p_e1, &self.p_e1),
+            (&mut tire.p_e2, &self.p_e2),
+        ] {
+            *t = right(a);
+        }
+        tire.viz = None;
+        tire.tread = None;
         let phi_inv = phi.transpose() * &self.m;
         Ok(ModalTire {
             tire,
