@@ -4,8 +4,9 @@
 //! After the smooth end-of-step solution (`[θ̈; z̈]` free of contact, [`super::dynamics`]) a
 //! contact node `i` at `xᵢ = sᵢ + (T_c z)ᵢ` is a candidate when its gap on the ground is below
 //! `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the surface
-//! speed). Contact forces `fⱼ` (wheel frame) on the candidates change the end-of-step
-//! accelerations by `Δv̇ = X Σ fⱼ` with the responses `X = S⁻¹ [0; T_cᵀ]` of all contact nodes
+//! speed; nodes whose gap is certainly above that by a lower bound from their last evaluation
+//! are not evaluated, `GapBound`). Contact forces `fⱼ` (wheel frame) on the candidates change
+//! the end-of-step accelerations by `Δv̇ = X Σ fⱼ` with the responses `X = S⁻¹ [0; T_cᵀ]` of all contact nodes
 //! to unit forces and the node displacements by `Y = T_c X_z / β'` ([`AlphaCorrection`]: the
 //! Delassus operator `W = J S⁻¹ Jᵀ`). `X` and `Y` are computed with the stepper's factored
 //! iteration matrix ([`AlphaCorrection::solve_columns`]) once per factorisation and cached by

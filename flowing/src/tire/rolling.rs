@@ -70,9 +70,11 @@
 //! centrifugal and stiffness-damping parts and the coupling `G₁ (z − z_F) θ̈`). The normal and
 //! friction problems are solved together by a semismooth Newton method on the Alart–Curnier
 //! equations in the local contact frames ([`super::contact_solve`]), converged to
-//! `contact_tolerance`. Per step the cost is one product with `Q = [C_eff K_eff G₁ M]`
-//! (n × 4 n_z), one with `S⁻¹` (n × n), `T_c z` for the candidate search, and work on the
-//! candidates only (the local Delassus matrix is a gather from `Y` and `X`). Candidates are the
+//! `contact_tolerance`. The step runs in the mass-normalised modal coordinates of
+//! [`ReducedTire::modal`] (an exact change of coordinates, `M = I`, `K` diagonal), so per step
+//! the cost is one product with `[G₁ H]` (n × 2 n_z, [`super::dynamics`]), one with `S⁻¹`
+//! (n × n), `T_c z` of the nodes that may be near the ground for the candidate search, and work
+//! on the candidates only (the local Delassus matrix is a gather from `Y` and `X`). Candidates are the
 //! nodes whose free gap is below `contact_margin` (plus `h v` in front of the cleat, whose
 //! faces approach at the surface speed); [`StepStats::late_contacts`] counts impacts begun
 //! within one step.
