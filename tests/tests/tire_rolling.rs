@@ -308,3 +308,115 @@ fn spin_dependent_matrices_follow_their_definitions() {
         );
     }
 }
+
+#[test]
+fn modal_coordinates_are_an_exact_change_of_coordinates() {
+    // Second formulation: the rolling step runs in the mass-normalised modal coordinates y of
+    // `ReducedTire::modal` (z = Φ y, ΦᵀMΦ = I, ΦᵀKΦ = Λ). Ribaric (7.17) is invariant under the
+    // change: at the same state the residual in y is Φᵀ times the residual in z (the spin row
+    // unchanged), the force tangent is the congruence ΦᵀAΦ, and the contact-node displacements
+    // T_c z are the same.
+    use mbd_core::{SecondOrderSystem, SysMatrix, Workspace};
+    let red = tire();
+    let modal = red.modal().unwrap();
+    assert!(modal.deviation < 1e-12, "deviation {}", modal.deviation);
+    let (alpha, beta) = (12.5, 4e-5);
+    let nz = red.n_z();
+    let n = nz + 1;
+    let mut sz = TireDynamics::new(red, alpha, beta, 2.0, 60.0);
+    let mut sy = TireDynamics::new(&modal.tire, alpha, beta, 2.0, 60.0);
+    assert!(sy.is_modal() && !sz.is_modal());
+    // a state with every coordinate moving (deterministic pseudo-random values)
+    let val = |i: usize, s: f64| s * ((i as f64 * 0.7361 + s).sin());
+    let z: Vec<f64> = (0..nz).map(|i| 1e-4 * val(i, 1.3)).collect();
+    let zd: Vec<f64> = (0..nz).map(|i| 1e-2 * val(i, 2.1)).collect();
+    let zdd: Vec<f64> = (0..nz).map(|i| 10.0 * val(i, 0.4)).collect();
+    let to_y = |x: &[f64]| -> Vec<f64> {
+        (0..nz)
+            .map(|i| (0..nz).map(|j| modal.phi_inv[(i, j)] * x[j]).sum())
+            .collect()
+    };
+    let (y, yd, ydd) = (to_y(&z), to_y(&zd), to_y(&zdd));
+    let (th, thd, thdd) = (0.3, 58.0, -12.0);
+    let stack =
+        |a: f64, x: &[f64]| -> Vec<f64> { std::iter::once(a).chain(x.iter().copied()).collect() };
+    for spin in [60.0, 47.3] {
+        sz.set_spin(spin);
+        sy.set_spin(spin);
+        sz.set_lagged(thdd, &z, &zdd, 1e-3);
+        sy.set_lagged(thdd, &y, &ydd, 1e-3);
+        let mut rz = vec![0.0; n];
+        let mut ry = vec![0.0; n];
+        let ws = &mut Workspace::default();
+        sz.dynamic_residual(
+            0.0,
+            &stack(th, &z),
+            &stack(thd, &zd),
+            &stack(thdd, &zdd),
+            &mut rz,
+            ws,
+        )
+        .unwrap();
+        sy.dynamic_residual(
+            0.0,
+            &stack(th, &y),
+            &stack(thd, &yd),
+            &stack(thdd, &ydd),
+            &mut ry,
+            ws,
+        )
+        .unwrap();
+        // y-vector = Φᵀ (z-vector) on the reduced coordinates, the spin entry unchanged
+        let check = |az: &[f64], ay: &[f64], what: &str| {
+            let scale = az.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            let mut worst = (ay[0] - az[0]).abs();
+            for i in 0..nz {
+                let p: f64 = (0..nz).map(|j| modal.phi[(j, i)] * az[1 + j]).sum();
+                worst = worst.max((ay[1 + i] - p).abs());
+            }
+            assert!(
+                worst < 1e-9 * scale,
+                "spin {spin}: {what} differs by {worst} of {scale}"
+            );
+        };
+        check(&rz, &ry, "residual");
+        // forces: f = −r at v̇ = 0
+        let mut fz = vec![0.0; n];
+        let mut fy = vec![0.0; n];
+        sz.forces(0.0, &stack(th, &z), &stack(thd, &zd), &mut fz, ws)
+            .unwrap();
+        sy.forces(0.0, &stack(th, &y), &stack(thd, &yd), &mut fy, ws)
+            .unwrap();
+        check(&fz, &fy, "forces");
+        // tangents: the z blocks congruent, the spin row multiplied by Φ
+        let tan = |s: &TireDynamics| {
+            let t = s
+                .force_tangent(0.0, &vec![0.0; n], &vec![0.0; n], &mut Workspace::default())
+                .unwrap()
+                .unwrap();
+            let (SysMatrix::Dense(k), SysMatrix::Dense(c)) = (t.stiffness, t.damping) else {
+                panic!("dense tangent expected");
+            };
+            (k, c)
+        };
+        let ((kz, cz), (ky, cy)) = (tan(&sz), tan(&sy));
+        for (az, ay) in [(&kz, &ky), (&cz, &cy)] {
+            let mut t = faer::Mat::<f64>::zeros(n, n);
+            let mut p = faer::Mat::<f64>::zeros(n, n);
+            p[(0, 0)] = 1.0;
+            p.as_mut().submatrix_mut(1, 1, nz, nz).copy_from(&modal.phi);
+            t.copy_from(p.transpose() * az * &p);
+            let scale = t.norm_max();
+            let diff = (&t - ay).norm_max();
+            assert!(
+                diff < 1e-9 * scale,
+                "spin {spin}: tangent differs by {diff} of {scale}"
+            );
+        }
+    }
+    // contact-node displacements
+    let dz = &red.tc * faer::MatRef::from_column_major_slice(&z, nz, 1);
+    let dy = &modal.tire.tc * faer::MatRef::from_column_major_slice(&y, nz, 1);
+    let diff = (&dz - &dy).norm_max();
+    assert!(diff < 1e-12 * dz.norm_max(), "T_c z differs by {diff}");
+}

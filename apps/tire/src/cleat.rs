@@ -138,7 +138,7 @@ fn write_tire_vtu(
     viz: &flowing::tire::VizBasis,
     sim: &RollingTire,
 ) -> Result<(), TireError> {
-    let x = viz.deformed(&sim.state.z);
+    let x = viz.deformed(&sim.coordinates());
     let mut mesh = Mesh::new(3);
     for p in &x {
         mesh.add_node(*p);

@@ -4,8 +4,9 @@
 //! After the smooth end-of-step solution (`[θ̈; z̈]` free of contact, [`super::dynamics`]) a
 //! contact node `i` at `xᵢ = sᵢ + (T_c z)ᵢ` is a candidate when its gap on the ground is below
 //! `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the surface
-//! speed). Contact forces `fⱼ` (wheel frame) on the candidates change the end-of-step
-//! accelerations by `Δv̇ = X Σ fⱼ` with the responses `X = S⁻¹ [0; T_cᵀ]` of all contact nodes
+//! speed; nodes whose gap is certainly above that by a lower bound from their last evaluation
+//! are not evaluated, `GapBound`). Contact forces `fⱼ` (wheel frame) on the candidates change
+//! the end-of-step accelerations by `Δv̇ = X Σ fⱼ` with the responses `X = S⁻¹ [0; T_cᵀ]` of all contact nodes
 //! to unit forces and the node displacements by `Y = T_c X_z / β'` ([`AlphaCorrection`]: the
 //! Delassus operator `W = J S⁻¹ Jᵀ`). `X` and `Y` are computed with the stepper's factored
 //! iteration matrix ([`AlphaCorrection::solve_columns`]) once per factorisation and cached by
@@ -65,8 +66,11 @@ pub struct TireContact {
 
 /// Per-step work arrays, allocated once.
 struct Work {
-    /// Contact-node displacements `T_c z` (3 n_c).
+    /// Contact-node displacements `T_c z` (3 n_c; only the entries of the nodes evaluated in
+    /// this step are current).
     dc: Vec<f64>,
+    /// The skip bound of the candidate search ([`GapBound`]).
+    bound: GapBound,
     /// Acceleration increment `X Σ fⱼ` (n).
     dvdot: Vec<f64>,
     cand: Vec<usize>,
@@ -99,6 +103,7 @@ impl TireContact {
         let nz = red.n_z();
         let nc = red.n_contact();
         let tct = red.tc.transpose().to_owned();
+        let bound = GapBound::new(&tct);
         let mut load = Mat::<f64>::zeros(nz + 1, 3 * nc);
         load.as_mut().subrows_mut(1, nz).copy_from(&tct);
         Self {
@@ -115,6 +120,7 @@ impl TireContact {
             stats: StepStats::default(),
             work: Work {
                 dc: vec![0.0; 3 * nc],
+                bound,
                 dvdot: vec![0.0; nz + 1],
                 cand: Vec::with_capacity(nc),
                 was_cand: vec![true; nc],
@@ -195,11 +201,24 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
         let c0 = clk.elapsed().as_secs_f64();
         let w = &mut self.work;
         let z_free = &step.q()[1..];
-        matvec(self.tct.as_ref().transpose(), z_free, &mut w.dc);
-        // candidates
+        // candidates: the nodes whose free gap is below the margin; a node whose gap is
+        // certainly above it (by the bound of `GapBound`) is not evaluated
+        let speed = self.ground.speed.abs();
+        let margin_max = self.cfg.contact_margin + h * speed;
+        let dist = w.bound.distance(z_free);
+        let cleat = self.ground.cleat_center(t1);
+        let cleat_r = self.ground.cfg.cleat_radius;
         w.cand.clear();
         w.gp.clear();
         for i in 0..nc {
+            if w.bound.skip(i, t1, dist, speed, margin_max) {
+                continue;
+            }
+            matvec(
+                self.tct.as_ref().subcols(3 * i, 3).transpose(),
+                z_free,
+                &mut w.dc[3 * i..3 * i + 3],
+            );
             let s = red.contact_positions[i];
             let p = [
                 s[0] + w.dc[3 * i],
@@ -207,6 +226,8 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
                 s[2] + w.dc[3 * i + 2],
             ];
             let g = self.ground.query(t1, p);
+            let cleat_gap = cleat.map(|c| (p[0] - c[0]).hypot(p[2] - c[1]) - cleat_r);
+            w.bound.record(i, g.gap, cleat_gap, t1, dist);
             // the cleat's faces approach the nodes at up to the surface speed
             let margin = if g.on_cleat {
                 self.cfg.contact_margin + h * self.ground.speed.abs()
@@ -221,6 +242,7 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
                 w.gp.push(g);
             }
         }
+        w.bound.set_valid();
         let c1 = clk.elapsed().as_secs_f64();
         self.solve_contact(red, step)?;
         let c2 = clk.elapsed().as_secs_f64();
@@ -397,6 +419,112 @@ impl TireContact {
                 .push([n[0] * l + ft[0], n[1] * l + ft[1], n[2] * l + ft[2]]);
         }
         Ok(())
+    }
+}
+
+/// A lower bound on the free gaps of the contact nodes from their last evaluation, so that the
+/// candidate search evaluates `T_c z` and the ground only for the nodes that may be within the
+/// margin (issue #16: the 3 n_c × n_z product `T_c z` of all nodes and their ground queries
+/// were a fixed cost per step).
+///
+/// The gap is the smaller of the distances to the drum or road and to the cleat
+/// (`contact::geometry`: distances to circles and a line, each 1-Lipschitz in the node
+/// position); the first does not depend on time (the drum turns about its centre), the second
+/// moves by at most the surface speed `v` per unit time ([`Ground::cleat_center`]). Node `i`
+/// evaluated at time `tᵢ` with gap `gᵢ`, cleat gap `cᵢ` and reduced coordinates `zᵢ` moves
+/// by `|(T_c)ᵢ (z − zᵢ)| ≤ Lᵢ ‖z − zᵢ‖` (`Lᵢ` the Frobenius norm of its three rows), and
+/// `‖z − zᵢ‖ ≤ ‖z − z_ref‖ + eᵢ` with `eᵢ = ‖zᵢ − z_ref‖` for a common reference `z_ref`, so
+/// with `Δ = Lᵢ (‖z − z_ref‖ + eᵢ)`
+///
+/// ```text
+///   g(t, z) ≥ min(gᵢ − Δ, cᵢ − Δ − 1.01 v |t − tᵢ|) − 1e-9 m,
+/// ```
+///
+/// and the node is skipped when this is at least the largest margin `contact_margin + h v`: its
+/// free gap is then certainly above the margin, so the candidates are exactly those of a
+/// search over all nodes. The reference is reset (all nodes evaluated) when `L_max ‖z − z_ref‖`
+/// exceeds 1 mm.
+struct GapBound {
+    /// `Lᵢ` (with a relative allowance of 1e-12 for the round-off of the norms).
+    lip: Vec<f64>,
+    l_max: f64,
+    z_ref: Vec<f64>,
+    valid: bool,
+    /// Per node: last evaluated gap and cleat gap \[m\], their time \[s\] and `eᵢ`.
+    gap: Vec<f64>,
+    cleat: Vec<f64>,
+    time: Vec<f64>,
+    e: Vec<f64>,
+}
+
+impl GapBound {
+    fn new(tct: &Mat<f64>) -> Self {
+        let nc = tct.ncols() / 3;
+        let lip: Vec<f64> = (0..nc)
+            .map(|i| {
+                let s: f64 = (0..3)
+                    .map(|b| col_slice(tct, 3 * i + b).iter().map(|x| x * x).sum::<f64>())
+                    .sum();
+                s.sqrt() * (1.0 + 1e-12)
+            })
+            .collect();
+        let l_max = lip.iter().fold(0.0f64, |a, &b| a.max(b));
+        Self {
+            lip,
+            l_max,
+            z_ref: vec![0.0; tct.nrows()],
+            valid: false,
+            gap: vec![0.0; nc],
+            cleat: vec![0.0; nc],
+            time: vec![0.0; nc],
+            e: vec![0.0; nc],
+        }
+    }
+
+    /// `‖z − z_ref‖`, resetting the reference to `z` (every node to be evaluated) when there is
+    /// none or `L_max ‖z − z_ref‖` exceeds 1 mm.
+    fn distance(&mut self, z: &[f64]) -> f64 {
+        if self.valid {
+            let d = self
+                .z_ref
+                .iter()
+                .zip(z)
+                .map(|(a, b)| (a - b) * (a - b))
+                .sum::<f64>()
+                .sqrt()
+                * (1.0 + 1e-12);
+            if self.l_max * d <= 1e-3 {
+                return d;
+            }
+        }
+        self.z_ref.copy_from_slice(z);
+        self.valid = false;
+        0.0
+    }
+
+    /// Whether node `i`'s free gap at time `t` is certainly at least `margin` \[m\] (`dist` =
+    /// [`GapBound::distance`], `speed` the ground's surface speed \[m/s\]).
+    fn skip(&self, i: usize, t: f64, dist: f64, speed: f64, margin: f64) -> bool {
+        if !self.valid {
+            return false;
+        }
+        let moved = self.lip[i] * (dist + self.e[i]);
+        let cleat = self.cleat[i] - moved - 1.01 * speed * (t - self.time[i]).abs();
+        (self.gap[i] - moved).min(cleat) - 1e-9 >= margin
+    }
+
+    /// Node `i` evaluated: gap `g` and cleat gap `cleat` ([`Ground::cleat_center`]) \[m\] at time
+    /// `t` \[s\], `dist` = [`GapBound::distance`].
+    fn record(&mut self, i: usize, g: f64, cleat: Option<f64>, t: f64, dist: f64) {
+        self.gap[i] = g;
+        self.cleat[i] = cleat.unwrap_or(f64::INFINITY);
+        self.time[i] = t;
+        self.e[i] = dist;
+    }
+
+    /// All nodes were evaluated in this step: the bound holds from now on.
+    fn set_valid(&mut self) {
+        self.valid = true;
     }
 }
 

@@ -116,6 +116,26 @@ impl Ground {
         })
     }
 
+    /// The cleat's centre `c(t)` in the wheel's `(x, z)` plane at time `t` \[s\] (`None`
+    /// without a cleat). The cleat part of [`Ground::query`]'s gap is `|p − c(t)| − r`: it is
+    /// 1-Lipschitz in the point `p` and moves by at most the surface speed `|v|` per unit time
+    /// (the centre moves at `v`, the drum turning at `v/R` about its centre); the rest of the
+    /// gap (drum, road) does not depend on time.
+    pub fn cleat_center(&self, t: f64) -> Option<[f64; 2]> {
+        if !self.cfg.cleat {
+            return None;
+        }
+        Some(match self.cfg.kind {
+            GroundKind::Drum => {
+                let r = self.cfg.drum_radius;
+                let a = FRAC_PI_2 + self.speed / r * (t - self.cleat_time);
+                let (sn, cs) = a.sin_cos();
+                [r * cs, self.top - r + r * sn]
+            }
+            GroundKind::Road => [-self.speed * (t - self.cleat_time), self.top],
+        })
+    }
+
     /// Closest-point query of the wheel-frame point `p` at time `t`.
     pub fn query(&self, t: f64, p: [f64; 3]) -> GroundPoint {
         let q = Point2::new(p[0], p[2]);

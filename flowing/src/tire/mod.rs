@@ -25,7 +25,7 @@ pub mod reduced;
 pub use error::TireError;
 pub use mesh::{Ring, TireFe};
 pub use reduce::{ReductionConfig, ReductionTimings, full_frequencies_hz, reduce};
-pub use reduced::{ReducedTire, TreadBasis, VizBasis};
+pub use reduced::{ModalTire, ReducedTire, TreadBasis, VizBasis};
 pub mod harmonics;
 pub mod lines;
 pub use lines::{LineMode, SpindleComponent, line_modes};

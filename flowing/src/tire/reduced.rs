@@ -243,7 +243,91 @@ struct FileV1 {
     source: String,
 }
 
+/// The reduced tire in mass-normalised modal coordinates (see [`ReducedTire::modal`]).
+#[derive(Debug, Clone)]
+pub struct ModalTire {
+    /// The same tire in the coordinates `y` (`z = Φ y`): `M_y = I`, `K_y = Λ` diagonal.
+    pub tire: ReducedTire,
+    /// `Φ` (n_z × n_z): the eigenvectors of `K_z φ = ω² M_z φ`, `ΦᵀM_zΦ = I`.
+    pub phi: Mat<f64>,
+    /// `Φᵀ M_z` = `Φ⁻¹`, the map `y = Φᵀ M_z z` (n_z × n_z).
+    pub phi_inv: Mat<f64>,
+    /// Largest deviation of `ΦᵀM_zΦ` from `I` and of `ΦᵀK_zΦ` from `Λ` relative to the largest
+    /// `ω²` (the round-off of the change of coordinates; the asymmetry of `M_z`, `K_z` counts
+    /// into it).
+    pub deviation: f64,
+}
+
 impl ReducedTire {
+    /// The same tire in the mass-normalised modal coordinates of its zero-spin pencil,
+    /// `z = Φ y` with `K_z Φ = M_z Φ Λ`, `ΦᵀM_zΦ = I` (fe-model's dense generalized eigen
+    /// solver): `M_y = I`, `K_y = Λ` (set exactly; [`ModalTire::deviation`] reports what that
+    /// drops), `G₁`, `G₂`, `K₁` congruent (`ΦᵀAΦ`), `m_θ`, `c_s` projected (`Φᵀ·`), and every
+    /// row map of `z` (`T_c`, `T_c,θ`, `K_r`, `K_θ`, `P`, …) multiplied by `Φ`. An exact change
+    /// of coordinates (Ribaric (7.17) is invariant under it): the rolling tire's products with
+    /// `M` and the stiffness part of `K_eff` become diagonal (issue #16). The visualisation
+    /// and tread bases are dropped (map `y` back with [`ModalTire::phi`]).
+    pub fn modal(&self) -> Result<ModalTire, TireError> {
+        let n = self.n_z();
+        let modes = fe_model::dense_modes(self.k.as_ref(), self.m.as_ref(), n)?;
+        let phi = modes.vectors;
+        let lam = modes.values;
+        let cong = |a: &Mat<f64>| phi.transpose() * a * &phi;
+        let right = |a: &Mat<f64>| a * &phi;
+        let proj = |v: &[f64]| -> Vec<f64> {
+            (0..n)
+                .map(|j| (0..n).map(|i| phi[(i, j)] * v[i]).sum())
+                .collect()
+        };
+        let (my, ky) = (cong(&self.m), cong(&self.k));
+        let lmax = lam.iter().fold(0.0f64, |a, &b| a.max(b.abs())).max(1e-300);
+        let mut deviation = 0.0f64;
+        for j in 0..n {
+            for i in 0..n {
+                let (em, ek) = if i == j {
+                    (my[(i, j)] - 1.0, ky[(i, j)] - lam[i])
+                } else {
+                    (my[(i, j)], ky[(i, j)])
+                };
+                deviation = deviation.max(em.abs()).max(ek.abs() / lmax);
+            }
+        }
+        let mut tire = self.clone();
+        tire.m = Mat::identity(n, n);
+        tire.k = Mat::from_fn(n, n, |i, j| if i == j { lam[i] } else { 0.0 });
+        for (t, a) in [
+            (&mut tire.g1, &self.g1),
+            (&mut tire.g2, &self.g2),
+            (&mut tire.k1, &self.k1),
+        ] {
+            *t = cong(a);
+        }
+        tire.m_theta = proj(&self.m_theta);
+        tire.c_s = proj(&self.c_s);
+        for (t, a) in [
+            (&mut tire.kr, &self.kr),
+            (&mut tire.kr1, &self.kr1),
+            (&mut tire.kt, &self.kt),
+            (&mut tire.kt1, &self.kt1),
+            (&mut tire.tc, &self.tc),
+            (&mut tire.tc_theta, &self.tc_theta),
+            (&mut tire.p_e, &self.p_e),
+            (&mut tire.p_e1, &self.p_e1),
+            (&mut tire.p_e2, &self.p_e2),
+        ] {
+            *t = right(a);
+        }
+        tire.viz = None;
+        tire.tread = None;
+        let phi_inv = phi.transpose() * &self.m;
+        Ok(ModalTire {
+            tire,
+            phi,
+            phi_inv,
+            deviation,
+        })
+    }
+
     /// Number of contact nodes `n_c`.
     pub fn n_contact(&self) -> usize {
         self.contact_nodes.len()

@@ -70,9 +70,11 @@
 //! centrifugal and stiffness-damping parts and the coupling `G₁ (z − z_F) θ̈`). The normal and
 //! friction problems are solved together by a semismooth Newton method on the Alart–Curnier
 //! equations in the local contact frames ([`super::contact_solve`]), converged to
-//! `contact_tolerance`. Per step the cost is one product with `Q = [C_eff K_eff G₁ M]`
-//! (n × 4 n_z), one with `S⁻¹` (n × n), `T_c z` for the candidate search, and work on the
-//! candidates only (the local Delassus matrix is a gather from `Y` and `X`). Candidates are the
+//! `contact_tolerance`. The step runs in the mass-normalised modal coordinates of
+//! [`ReducedTire::modal`] (an exact change of coordinates, `M = I`, `K` diagonal), so per step
+//! the cost is one product with `[G₁ H]` (n × 2 n_z, [`super::dynamics`]), one with `S⁻¹`
+//! (n × n), `T_c z` of the nodes that may be near the ground for the candidate search, and work
+//! on the candidates only (the local Delassus matrix is a gather from `Y` and `X`). Candidates are the
 //! nodes whose free gap is below `contact_margin` (plus `h v` in front of the cleat, whose
 //! faces approach at the surface speed); [`StepStats::late_contacts`] counts impacts begun
 //! within one step.
@@ -306,7 +308,8 @@ impl Validate for RollingConfig {
 pub struct RollingState {
     /// Time \[s\].
     pub t: f64,
-    /// Reduced coordinates `z`.
+    /// Reduced coordinates `z` of the simulation's tire ([`RollingTire::reduced`]: the modal
+    /// coordinates `y`; [`RollingTire::coordinates`] gives the input tire's `z`).
     pub z: Vec<f64>,
     /// Their rates `ż`.
     pub zd: Vec<f64>,
@@ -379,8 +382,15 @@ pub struct StepStats {
 
 /// The reduced tire rolling on a ground, with the spindle fixed: [`TireDynamics`] stepped by
 /// mbd-core's [`AlphaStepper`] with the contact [`TireContact`] as its step correction.
+///
+/// The step runs in the mass-normalised modal coordinates of [`ReducedTire::modal`] (an exact
+/// change of coordinates: `M = I`, `K` diagonal, a third less data per step), so the
+/// coordinates of [`RollingTire::state`] are those of [`RollingTire::reduced`];
+/// [`RollingTire::coordinates`] maps them back to the input tire's `z`.
 pub struct RollingTire<'a> {
-    red: &'a ReducedTire,
+    /// The map between the simulation's coordinates and the input tire's, when the simulation
+    /// runs in the modal coordinates of [`ReducedTire::modal`].
+    modal: Option<(faer::Mat<f64>, faer::Mat<f64>)>,
     cfg: RollingConfig,
     /// Rayleigh α \[1/s\].
     pub alpha: f64,
@@ -399,7 +409,15 @@ pub struct RollingTire<'a> {
     pub stats: StepStats,
     /// Contact nodes pressed onto the cleat in the last step.
     pub cleat_contacts: usize,
+    /// The rows of `P`, `P₁`, `P₂` (momentum spindle force) and of `K_r`, `Σ_rim K T_,θ` (rim
+    /// force) as contiguous columns (n_z × 15: column `3k + c` is row `c` of matrix `k`), read
+    /// once per recorded step.
+    force_rows: faer::Mat<f64>,
 }
+
+/// Largest [`super::reduced::ModalTire::deviation`] for which [`RollingTire`] steps in modal
+/// coordinates (round-off of the change of coordinates; else the input coordinates).
+const MODAL_DEVIATION: f64 = 1e-9;
 
 impl<'a> RollingTire<'a> {
     /// A tire at the preload coordinates `z0`, spinning at `spin` \[rad/s\], with Rayleigh
@@ -424,7 +442,22 @@ impl<'a> RollingTire<'a> {
             ));
         }
         let nc = red.n_contact();
-        let sys = TireDynamics::new(red, alpha, beta, cfg.wheel_spin_inertia, spin);
+        // the step in mass-normalised modal coordinates (M = I, K diagonal: a third less data
+        // per step, issue #16); the input tire's coordinates if the change of coordinates is not
+        // exact to round-off (e.g. unsymmetric M or K)
+        let modal = red.modal()?;
+        let (sys, z0, map) = if modal.deviation <= MODAL_DEVIATION {
+            let y0 = (&modal.phi_inv * faer::MatRef::from_column_major_slice(&z0, nz, 1))
+                .col(0)
+                .iter()
+                .copied()
+                .collect::<Vec<f64>>();
+            let sys = TireDynamics::owned(modal.tire, alpha, beta, cfg.wheel_spin_inertia, spin);
+            (sys, y0, Some((modal.phi, modal.phi_inv)))
+        } else {
+            let sys = TireDynamics::new(red, alpha, beta, cfg.wheel_spin_inertia, spin);
+            (sys, z0, None)
+        };
         let mut q0 = vec![0.0; nz + 1];
         q0[1..].copy_from_slice(&z0);
         let mut v0 = vec![0.0; nz + 1];
@@ -435,12 +468,23 @@ impl<'a> RollingTire<'a> {
         };
         let mut stepper = AlphaStepper::new(&sys, State::new(0.0, q0, v0), cfg.alpha_config())
             .map_err(sim_err)?
-            .with_correction(TireContact::new(red, cfg.clone(), ground));
+            .with_correction(TireContact::new(sys.reduced(), cfg.clone(), ground));
         stepper
             .set_initial_acceleration(&vec![0.0; nz + 1])
             .map_err(sim_err)?;
+        let sim_red = sys.reduced();
+        let force_rows = faer::Mat::from_fn(nz, 15, |j, col| {
+            let (k, c) = (col / 3, col % 3);
+            [
+                &sim_red.p_e,
+                &sim_red.p_e1,
+                &sim_red.p_e2,
+                &sim_red.kr,
+                &sim_red.kr1,
+            ][k][(c, j)]
+        });
         Ok(Self {
-            red,
+            modal: map,
             cfg,
             alpha,
             beta,
@@ -464,6 +508,7 @@ impl<'a> RollingTire<'a> {
             refactors: 0,
             stats: StepStats::default(),
             cleat_contacts: 0,
+            force_rows,
         })
     }
 
@@ -585,13 +630,13 @@ impl<'a> RollingTire<'a> {
 
     /// The rim forces (7.2): `F = −K_r (z + β ż) − β θ̇ K_r,θ z` (wheel frame).
     fn spindle_force_rim(&self) -> [f64; 3] {
-        let red = self.red;
+        let red = self.sys.reduced();
         let st = &self.state;
         let b = self.beta;
         let mut f = [0.0; 3];
+        let rows = &self.force_rows;
         for (c, fc) in f.iter_mut().enumerate() {
-            let kr = red.kr.row(c);
-            let kr1 = red.kr1.row(c);
+            let (kr, kr1) = (rows.col(9 + c), rows.col(12 + c));
             let mut s = 0.0;
             for j in 0..red.n_z() {
                 s += kr[j] * (st.z[j] + b * st.zd[j]) + b * st.theta_d * kr1[j] * st.z[j];
@@ -608,12 +653,13 @@ impl<'a> RollingTire<'a> {
     /// turns the elastic and stiffness-damping forces into the rim forces of (7.2), so both
     /// forms agree for the untruncated model.)
     fn spindle_force_momentum(&self) -> [f64; 3] {
-        let red = self.red;
+        let red = self.sys.reduced();
         let st = &self.state;
         let (w, w2) = (st.theta_d, st.theta_d * st.theta_d);
         let mut f = [0.0; 3];
+        let rows = &self.force_rows;
         for (c, fc) in f.iter_mut().enumerate() {
-            let (p, p1, p2) = (red.p_e.row(c), red.p_e1.row(c), red.p_e2.row(c));
+            let (p, p1, p2) = (rows.col(c), rows.col(3 + c), rows.col(6 + c));
             let mut inertia = st.theta_dd * red.p_s[0][c] + w2 * red.p_s[1][c];
             for j in 0..red.n_z() {
                 inertia += p[j] * (st.zdd[j] + self.alpha * st.zd[j])
@@ -627,14 +673,33 @@ impl<'a> RollingTire<'a> {
 
     /// Deformed contact-node positions `sᵢ + (T_c z)ᵢ` \[m\].
     pub fn contact_positions(&self) -> Vec<[f64; 3]> {
-        let mut d = vec![0.0; self.red.tc.nrows()];
-        matvec(self.red.tc.as_ref(), &self.state.z, &mut d);
-        self.red
-            .contact_positions
+        let red = self.sys.reduced();
+        let mut d = vec![0.0; red.tc.nrows()];
+        matvec(red.tc.as_ref(), &self.state.z, &mut d);
+        red.contact_positions
             .iter()
             .enumerate()
             .map(|(i, s)| [s[0] + d[3 * i], s[1] + d[3 * i + 1], s[2] + d[3 * i + 2]])
             .collect()
+    }
+
+    /// The reduced tire the simulation steps: the input tire in the modal coordinates of
+    /// [`ReducedTire::modal`] (or the input tire itself, see [`RollingTire::new`]); the
+    /// coordinates of [`RollingState`] are its own.
+    pub fn reduced(&self) -> &ReducedTire {
+        self.sys.reduced()
+    }
+
+    /// The input tire's reduced coordinates `z` of the current state (`z = Φ y` when the
+    /// simulation runs in modal coordinates `y`).
+    pub fn coordinates(&self) -> Vec<f64> {
+        match &self.modal {
+            Some((phi, _)) => {
+                let y = faer::MatRef::from_column_major_slice(&self.state.z, self.state.z.len(), 1);
+                (phi * y).col(0).iter().copied().collect()
+            }
+            None => self.state.z.clone(),
+        }
     }
 
     /// Total normal contact force vector `Σ λᵢ nᵢ`-weighted vertical component \[N\] (the
