@@ -3,6 +3,9 @@
 //! `drives::fead`; this module reads the configuration, runs it and writes the results.
 
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, FeadSummary, run_fead};
+use drives::speed_loss_study::drive_input_error;
+use drives::{DriveError, ModelKind};
+use mbd_core::validate::InvalidField;
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
 use std::process::ExitCode;
@@ -16,6 +19,9 @@ pub struct Args {
     #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_delimiter = ',')]
     pub rpm: Option<Vec<f64>>,
+    /// Belt model (replaces `model`; `ancf` is slow: minutes per engine speed).
+    #[arg(long, value_parser = crate::speed_loss::model_parser())]
+    pub model: Option<ModelKind>,
 }
 
 struct Fead {
@@ -36,19 +42,35 @@ impl Study for Fead {
         if let Some(r) = &self.args.rpm {
             c.engine.speeds_rpm = r.clone();
         }
+        if let Some(m) = self.args.model {
+            c.model = m;
+        }
     }
 
     fn run(&self, c: &FeadConfig, ctx: &mut StudyContext) -> Result<FeadSummary, StudyError> {
         let n = c.engine.speeds_rpm.len();
-        let progress = ctx.progress(n as f64, "engine speeds");
-        let result = run_fead(c, |p| progress.set(p.point as f64 + p.t / p.duration));
+        let progress = ctx.progress(n as f64, &format!("engine speeds ({})", c.model.name()));
+        // the bar on a terminal; a line per engine speed otherwise (logs of long ANCF runs)
+        let lines = !ctx.quiet && !std::io::IsTerminal::is_terminal(&std::io::stderr());
+        let (start, mut seen) = (std::time::Instant::now(), 0usize);
+        let result = run_fead(c, |p| {
+            progress.set(p.point as f64 + p.t / p.duration);
+            if lines && p.point > seen {
+                seen = p.point;
+                eprintln!(
+                    "fead: {} of {n} engine speeds done ({:.0} s)",
+                    p.point,
+                    start.elapsed().as_secs_f64()
+                );
+            }
+        });
         progress.finish();
         let s = match result {
             Ok(s) => s,
             Err(e) => {
                 return Err(match *e {
                     FeadFailureOrInvalid::Invalid(f) => StudyError::Input(f),
-                    FeadFailureOrInvalid::Build(b) => StudyError::numerical(b),
+                    FeadFailureOrInvalid::Build(b) => build_error(b),
                     FeadFailureOrInvalid::Numerical(f) => StudyError::Numerical {
                         message: format!("fead sweep: {}", f.error),
                         partial: serde_json::to_value(&f.partial).ok(),
@@ -58,6 +80,16 @@ impl Study for Fead {
         };
         write_outputs(ctx, &s)?;
         Ok(s)
+    }
+}
+
+/// A model that could not be built: bad input (exit 2, naming the field) or a numerical
+/// failure of the mounting solve (exit 1).
+fn build_error(e: DriveError) -> StudyError {
+    match (drive_input_error(&e), e) {
+        (Some(field), _) => StudyError::Input(field),
+        (None, DriveError::Invalid(m)) => StudyError::Input(InvalidField::new("drive", m)),
+        (None, e) => StudyError::numerical(e),
     }
 }
 

@@ -301,6 +301,23 @@ fn fead_bad_layout_exits_2_naming_the_field() {
         &|c| c.drive.tensioner.as_mut().unwrap().preload = -200.0,
         "drive.tensioner",
     );
+    // the ANCF belt's own fields (model = "ancf"): too few elements, no step
+    check(
+        "ancf_elements",
+        &|c| {
+            c.model = drives::ModelKind::Ancf;
+            c.ancf.elements = 2;
+        },
+        "ancf.elements",
+    );
+    check(
+        "ancf_step",
+        &|c| {
+            c.model = drives::ModelKind::Ancf;
+            c.ancf.step = 0.0;
+        },
+        "ancf.step",
+    );
     // the tensioner idler placed to deflect the alternator–water pump span by 2 mm from
     // outside: a wrap of ≈ 2 (2 mm / 85 mm) rad ≈ 3°, below 10°
     check(
