@@ -32,11 +32,11 @@
 //! generalized-α stepper.
 
 use crate::ancf_drive_model::AncfConfig;
-use crate::model::{BeltData, DriveModel};
-use crate::{DriveError, Schedule};
 use crate::ancf_run::snapshot;
 use crate::layout::{LayoutConfig, MotionSpec, ResolvedLayout};
+use crate::model::{BeltData, DriveModel};
 use crate::report::{DriveSnapshot, PulleyRole};
+use crate::{DriveError, Schedule};
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, BeltSpec, ContactSpec, InitialOptions, InitialState, Pulley,
     PulleyDrive, SpeedProfile, TorqueProfile, post,
@@ -44,8 +44,8 @@ use ancf::belt_drive::{
 use flowing::belt::Signal;
 use flowing::belt::model::mounting_penetration;
 use mbd_core::integrators::State;
-use mbd_core::{MbdError, Workspace};
 use mbd_core::validate::Validate;
+use mbd_core::{MbdError, Workspace};
 
 /// Relative tolerance of the mounted mean span tension against the target `T0` \[-\].
 pub const TENSION_TOLERANCE: f64 = 1e-3;

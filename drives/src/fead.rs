@@ -579,7 +579,9 @@ pub struct FeadSummary {
 /// The FEAD study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
 pub const FEAD_MEANING: &str = "A serpentine front-end accessory drive (six pulleys: crankshaft, \
 power steering, alternator, tensioner idler on a spring-loaded arm, water pump, a/c compressor) \
-run on the flowing-material belt model (or, with model = \"nodal\", the rotating-mesh nodal model) over an engine-speed sweep. The crank turns at the mean \
+run on the flowing-material belt model (with model = \"nodal\": the rotating-mesh nodal model on \
+a uniform loop; with model = \"ancf\": the ANCF belt, the slow reference; `model_settings` says \
+what was run) over an engine-speed sweep. The crank turns at the mean \
 speed plus its firing-order fluctuation; each accessory carries its load torque. Per engine \
 speed, after a ramp and a settling time, a window is observed: the tensioner arm angle \
 (min/mean/max, rad), every span's tension extremes (N), each pulley's speed loss against the \
@@ -588,8 +590,8 @@ slip) and every span's first transverse natural frequency from the travelling-st
 with the computed span tension and belt speed, to be read against the engine orders (the \
 Campbell diagram: a span resonates where an order line crosses its frequency). A point where a \
 span's tension dips below 10 % of the installed tension, or a wrap slips as a whole, leaves the \
-linearised model's range: its `linearisation` says why and its numbers only show how the limit \
-was left. The defaults are a plausible drive, not one published engine (see drives::fead).";
+linearised (flowing, nodal) model's range: its `linearisation` says why and its numbers only \
+show how the limit was left (the ANCF belt is not linearised: never flagged). The defaults are a plausible drive, not one published engine (see drives::fead).";
 
 /// A sweep that stopped on a numerical failure, with the points completed before it.
 #[derive(Debug)]
@@ -597,7 +599,7 @@ pub struct FeadFailure {
     /// What failed.
     pub error: MbdError,
     /// The summary up to the failure.
-    pub partial: FeadSummary,
+    pub partial: Box<FeadSummary>,
 }
 
 /// Progress seen by the observer at every step: engine-speed index, time within it.
@@ -756,7 +758,7 @@ fn sweep<M: LayoutModel>(
     let fail = |error: MbdError, summary: &FeadSummary| {
         Box::new(FeadFailureOrInvalid::Numerical(FeadFailure {
             error,
-            partial: summary.clone(),
+            partial: Box::new(summary.clone()),
         }))
     };
     let h = alpha.h;

@@ -5,9 +5,9 @@
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, FeadSummary, run_fead};
 use drives::speed_loss_study::drive_input_error;
 use drives::{DriveError, ModelKind};
-use mbd_core::validate::InvalidField;
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
+use mbd_core::validate::InvalidField;
 use std::process::ExitCode;
 
 /// Command-line arguments.

@@ -133,7 +133,6 @@ pub fn triangle(h: f64) -> LayoutConfig {
     }
 }
 
-
 /// The FEAD study on [`triangle`]`(h)`: the driven pulley (J 0.013 kg m²) loaded with 5 N m
 /// (ramped in 0.1 s), the idler on a tensioner arm, one engine speed (1000 rpm) with the
 /// default engine orders and the study's default time stepping (0.25 ms, ρ∞ = 0.8, 0.1 s ramp,
