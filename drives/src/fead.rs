@@ -645,7 +645,17 @@ pub fn run_fead(
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     cfg.validate()
         .map_err(|e| Box::new(FeadFailureOrInvalid::Invalid(e)))?;
-    let build = |e| Box::new(FeadFailureOrInvalid::Build(e));
+    // a model that cannot be built from the input is bad input (naming the field), any other
+    // build failure numerical
+    let build = |e: crate::DriveError| {
+        Box::new(match (crate::speed_loss_study::drive_input_error(&e), e) {
+            (Some(field), _) => FeadFailureOrInvalid::Invalid(field),
+            (None, crate::DriveError::Invalid(m)) => {
+                FeadFailureOrInvalid::Invalid(InvalidField::new("drive", m))
+            }
+            (None, e) => FeadFailureOrInvalid::Build(e),
+        })
+    };
     let h = cfg.run.step;
     let elements = |n: usize, l: f64| format!("{n} elements, {:.1} mm mean", 1e3 * l / n as f64);
     match cfg.model {
@@ -912,7 +922,8 @@ fn sweep<M: LayoutModel>(
 pub enum FeadFailureOrInvalid {
     /// The configuration was rejected (names the field).
     Invalid(InvalidField),
-    /// The model could not be built.
+    /// The model could not be built (a numerical failure of its static solve; input the
+    /// model rejects is [`Self::Invalid`]).
     Build(crate::DriveError),
     /// A numerical failure during the sweep, with the points completed.
     Numerical(FeadFailure),

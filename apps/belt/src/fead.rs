@@ -2,12 +2,10 @@
 //! over an engine-speed sweep (issue 17 item 5). The drive, the model and the sweep live in
 //! `drives::fead`; this module reads the configuration, runs it and writes the results.
 
+use drives::ModelKind;
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, FeadSummary, run_fead};
-use drives::speed_loss_study::drive_input_error;
-use drives::{DriveError, ModelKind};
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use mbd_core::validate::InvalidField;
 use std::process::ExitCode;
 
 /// Command-line arguments.
@@ -70,7 +68,7 @@ impl Study for Fead {
             Err(e) => {
                 return Err(match *e {
                     FeadFailureOrInvalid::Invalid(f) => StudyError::Input(f),
-                    FeadFailureOrInvalid::Build(b) => build_error(b),
+                    FeadFailureOrInvalid::Build(b) => StudyError::numerical(b),
                     FeadFailureOrInvalid::Numerical(f) => StudyError::Numerical {
                         message: format!("fead sweep: {}", f.error),
                         partial: serde_json::to_value(&f.partial).ok(),
@@ -80,16 +78,6 @@ impl Study for Fead {
         };
         write_outputs(ctx, &s)?;
         Ok(s)
-    }
-}
-
-/// A model that could not be built: bad input (exit 2, naming the field) or a numerical
-/// failure of the mounting solve (exit 1).
-fn build_error(e: DriveError) -> StudyError {
-    match (drive_input_error(&e), e) {
-        (Some(field), _) => StudyError::Input(field),
-        (None, DriveError::Invalid(m)) => StudyError::Input(InvalidField::new("drive", m)),
-        (None, e) => StudyError::numerical(e),
     }
 }
 

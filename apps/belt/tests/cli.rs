@@ -302,22 +302,20 @@ fn fead_bad_layout_exits_2_naming_the_field() {
         "drive.tensioner",
     );
     // the ANCF belt's own fields (model = "ancf"): too few elements, no step
-    check(
-        "ancf_elements",
-        &|c| {
-            c.model = drives::ModelKind::Ancf;
-            c.ancf.elements = 2;
-        },
-        "ancf.elements",
-    );
-    check(
-        "ancf_step",
-        &|c| {
-            c.model = drives::ModelKind::Ancf;
-            c.ancf.step = 0.0;
-        },
-        "ancf.step",
-    );
+    let ancf_edits: [(&str, fn(&mut drives::ancf_drive_model::AncfConfig)); 2] = [
+        ("ancf.elements", |a| a.elements = 2),
+        ("ancf.step", |a| a.step = 0.0),
+    ];
+    for (field, edit) in ancf_edits {
+        check(
+            field,
+            &|c| {
+                c.model = drives::ModelKind::Ancf;
+                edit(&mut c.ancf);
+            },
+            field,
+        );
+    }
     // the tensioner idler placed to deflect the alternator–water pump span by 2 mm from
     // outside: a wrap of ≈ 2 (2 mm / 85 mm) rad ≈ 3°, below 10°
     check(
