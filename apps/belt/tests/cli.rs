@@ -302,7 +302,8 @@ fn fead_bad_layout_exits_2_naming_the_field() {
         "drive.tensioner",
     );
     // the ANCF belt's own fields (model = "ancf"): too few elements, no step
-    let ancf_edits: [(&str, fn(&mut drives::ancf_drive_model::AncfConfig)); 2] = [
+    type Edit = fn(&mut drives::ancf_drive_model::AncfConfig);
+    let ancf_edits: [(&str, Edit); 2] = [
         ("ancf.elements", |a| a.elements = 2),
         ("ancf.step", |a| a.step = 0.0),
     ];
