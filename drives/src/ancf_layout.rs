@@ -26,22 +26,26 @@
 //!   [`ARM_ANGLE_TOLERANCE`].
 //!
 //! Pulley speeds and loads are the layout's [`Signal`]s, supplied at every evaluation through
-//! [`BeltDrive::forces_with`] / [`BeltDrive::force_tangent_with`].
+//! [`BeltDrive::forces_with`] / [`BeltDrive::force_tangent_with`]. The drive is a
+//! [`DriveModel`] (driver: pulley 0, driven: the first loaded pulley), so the speed-loss
+//! procedure and the FEAD study ([`crate::fead`], `model = "ancf"`) run it on the shared
+//! generalized-α stepper.
 
-use crate::DriveError;
 use crate::ancf_drive_model::AncfConfig;
 use crate::ancf_run::snapshot;
 use crate::layout::{LayoutConfig, MotionSpec, ResolvedLayout};
+use crate::model::{BeltData, DriveModel};
 use crate::report::{DriveSnapshot, PulleyRole};
+use crate::{DriveError, Schedule};
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, BeltSpec, ContactSpec, InitialOptions, InitialState, Pulley,
     PulleyDrive, SpeedProfile, TorqueProfile, post,
 };
 use flowing::belt::Signal;
 use flowing::belt::model::mounting_penetration;
-use mbd_core::Workspace;
 use mbd_core::integrators::State;
 use mbd_core::validate::Validate;
+use mbd_core::{MbdError, Workspace};
 
 /// Relative tolerance of the mounted mean span tension against the target `T0` \[-\].
 pub const TENSION_TOLERANCE: f64 = 1e-3;
@@ -56,6 +60,8 @@ pub struct AncfLayoutDrive {
     penetration: Vec<f64>,
     initial: InitialState,
     target_tension: f64,
+    ea: f64,
+    friction: contact::friction::FrictionSpec,
 }
 
 fn bad(e: impl std::fmt::Display) -> DriveError {
@@ -230,6 +236,8 @@ impl AncfLayoutDrive {
             penetration,
             initial: init,
             target_tension: t0,
+            ea,
+            friction: cfg.friction_law(),
         })
     }
 
@@ -325,6 +333,31 @@ impl AncfLayoutDrive {
         )
     }
 
+    /// The pulley motions (their signals may be replaced between runs: the FEAD sweep sets the
+    /// crank's speed per engine speed).
+    pub fn motions_mut(&mut self) -> &mut [MotionSpec] {
+        &mut self.motions
+    }
+
+    /// Tensioner arm angle `θ` \[rad\] at `q` (`None`: no tensioner).
+    pub fn arm_angle(&self, q: &[f64]) -> Option<f64> {
+        self.drive.arm().map(|a| q[a.dof])
+    }
+
+    /// Mean belt speed \[m/s\] ([`post::belt_speed`]).
+    pub fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
+        post::belt_speed(&self.drive, q, v)
+    }
+
+    /// Index of the driven pulley of the speed-loss procedure: the first loaded pulley, else
+    /// the first idler, else the last pulley.
+    fn driven_pulley(&self) -> usize {
+        let first = |f: fn(&MotionSpec) -> bool| self.motions.iter().position(f);
+        first(|m| matches!(m, MotionSpec::Load { .. }))
+            .or_else(|| first(|m| matches!(m, MotionSpec::Idler { .. })))
+            .unwrap_or(self.motions.len() - 1)
+    }
+
     /// The pulley signals (for reports).
     pub fn signal(&self, k: usize) -> Option<&Signal> {
         match self.motions.get(k)? {
@@ -336,3 +369,74 @@ impl AncfLayoutDrive {
 }
 
 crate::ancf_drive_model::scheduled_belt_system!(AncfLayoutDrive);
+
+/// The ANCF layout drive in the speed-loss procedure and the FEAD study: pulley 0 is the
+/// driver, the first loaded pulley ([`MotionSpec::Load`]) the driven one.
+impl DriveModel for AncfLayoutDrive {
+    /// Travel-sense speed of the driven pulley \[rad/s\] (`NaN` without a free driven pulley).
+    fn driven_speed(&self, v: &[f64]) -> f64 {
+        self.drive
+            .pulley_dof(self.driven_pulley())
+            .map_or(f64::NAN, |j| v[j])
+    }
+
+    /// Pulley 0's prescribed speed (`NaN` when pulley 0 is not speed-driven).
+    fn driver_speed(&self, t: f64) -> f64 {
+        match &self.motions[0] {
+            MotionSpec::Speed { speed } => speed.value(t),
+            _ => f64::NAN,
+        }
+    }
+
+    /// The mounted static state ([`AncfLayoutDrive::new`]: belt length and arm angle solved).
+    fn initial_state(&self) -> Result<State, MbdError> {
+        Ok(AncfLayoutDrive::initial_state(self))
+    }
+
+    /// Pulley 0's speed (kept when pulley 0 is not speed-driven).
+    fn set_driver_speed(&mut self, s: Schedule) {
+        if let MotionSpec::Speed { speed } = &mut self.motions[0] {
+            *speed = s.into();
+        }
+    }
+
+    /// The driven pulley's load schedule (an idler chosen as the driven pulley is given a
+    /// load: it becomes [`MotionSpec::Load`] with its inertia).
+    ///
+    /// # Panics
+    /// If every pulley is speed-driven (no pulley can carry a load; the FEAD study never asks).
+    fn load_mut(&mut self) -> &mut Schedule {
+        let k = self.driven_pulley();
+        if let MotionSpec::Idler { inertia } = self.motions[k] {
+            self.motions[k] = MotionSpec::Load {
+                inertia,
+                torque: Signal::constant(0.0),
+            };
+        }
+        match &mut self.motions[k] {
+            MotionSpec::Load { torque, .. } => &mut torque.schedule,
+            _ => panic!("the ANCF layout drive has no free pulley to load"),
+        }
+    }
+
+    /// Target pre-tension, `EA`, the driven pulley's belt-line radius and the friction law;
+    /// not linearised (the ANCF belt is geometrically exact, Kerkkänen (3.18)).
+    fn belt_data(&self) -> BeltData {
+        let k = self.driven_pulley();
+        BeltData {
+            pretension: self.target_tension,
+            ea: self.ea,
+            driven_radius: self.drive.pulleys()[k].radius - self.penetration[k],
+            friction: self.friction,
+            linearised: false,
+        }
+    }
+
+    fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<crate::DriveSnapshot, MbdError> {
+        Ok(AncfLayoutDrive::snapshot(self, t, q, v))
+    }
+
+    fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+        Ok(post::span_transverse(&self.drive, q))
+    }
+}

@@ -1,8 +1,38 @@
 //! Front-end accessory drive (FEAD) study (issue 17 item 5): a passenger-car serpentine drive
 //! of six pulleys with an automatic tensioner, run on the flowing-material belt (or, with
-//! `model = "nodal"`, on the rotating-mesh nodal belt: [`FeadModel`])
-//! ([`crate::layout`]) over an engine-speed sweep with the crankshaft's firing-order speed
-//! fluctuation and the accessories' load torques.
+//! `model = "nodal"`, on the rotating-mesh nodal belt, with `model = "ancf"` on the ANCF belt:
+//! [`FeadModel`]) ([`crate::layout`]) over an engine-speed sweep with the crankshaft's
+//! firing-order speed fluctuation and the accessories' load torques. All three models run on
+//! the same loop below (one generalized-α stepper, through the private trait `LayoutModel`).
+//!
+//! Model-appropriate settings (reported in [`FeadSummary::model_settings`]):
+//!
+//! * **nodal**: two causes stalled its Newton iterations at the study's defaults (0.1 s ramp,
+//!   ρ∞ = 0.8), both from the material nodes travelling over the pulleys, and the study
+//!   removes both:
+//!   1. *Element passing.* On the default mesh (50 mm span elements, 12 mm on the wraps) a
+//!      50 mm element arriving on the 28 mm alternator pulley (its chord turning by 1.8 rad)
+//!      stalled Newton at the first element passing (`s_b` ≈ 55 mm, t = 0.042 s of the first
+//!      ramp), and still did with a gentler 0.3 s ramp and ρ∞ = 0.6 (t = 0.13 s). The nodal
+//!      model runs on a uniform loop of the shorter element length everywhere
+//!      ([`LayoutConfig::uniform_mesh`]; default: 133 elements of 11.5 mm).
+//!   2. *Contact kinks.* The penalty law (6.1), `k₂d² + k₁d`, has a slope that jumps from 0 to
+//!      `k₁` at `d = 0`. A material node reaches a wrap tangentially, so near every tangent
+//!      point some node sits within micrometres of the pulley surface and, in a rotating mesh,
+//!      a node crosses it every few steps (the flowing model's nodes stay put). Full Newton
+//!      then cycles across the kink: on the uniform loop the 800 → 1500 rpm ramp stalled at
+//!      t = 0.039 s, residual 5e-5 (with the stall exit alone: 0.041 s; without the uniform
+//!      loop, line search alone: 0.19 s). The nodal model steps with mbd-core's Armijo line
+//!      search (`AlphaConfig::newton_line_search`, the ANCF drive's remedy for the same
+//!      kinks); with both, the default sweep runs.
+//! * **ancf**: the belt is `ancf.elements` equal ANCF elements (default 120: 12.7 mm, about
+//!   five on the smallest wrap) stepped at `ancf.step` (which replaces `run.step`; default
+//!   0.25 ms, the ANCF drive's own step, [`SimulationConfig`]) with the ANCF drive's Newton
+//!   settings ([`SimulationConfig::alpha_params`]). It is the expensive model (README and
+//!   BENCHMARKS.md for measured times). On the default sweep it completes 800 and 1500 rpm;
+//!   in the ramp to 2500 rpm, where a span of the default drive comes near slack (57 N in the
+//!   flowing model), its Newton iterations fail (not resolved: a numerical failure with the
+//!   completed points kept).
 //!
 //! Per engine speed the crank runs at `ω̄ (1 + Σ a_k sin(k_o ω̄ t + φ_k))` (engine orders `k_o`,
 //! relative amplitudes `a_k`), reached from the previous speed by a smooth ramp; after a settling
@@ -27,10 +57,13 @@
 //! (4th: 0.5 %) is a plausible four-cylinder value, held constant over the sweep.
 
 use crate::DriveModel;
+use crate::ancf_drive_model::AncfConfig;
+use crate::ancf_layout::AncfLayoutDrive;
 use crate::layout::{LayoutConfig, LayoutMesh, LayoutPulley, MotionSpec, ResolvedLayout};
 use crate::model::{flowing_layout_snapshot, nodal_layout_snapshot};
 use crate::report::{DriveReport, DriveSnapshot, PulleyRole};
 use crate::speed_loss::{MAX_HALVINGS, robust_step};
+use ancf::belt_drive::SimulationConfig;
 use contact::friction::FrictionLaw;
 use fe_model::generate::belt_path::WrapSide;
 use flowing::belt::config::{BeltContact, BeltDamping, BeltReduction, BeltSection};
@@ -131,27 +164,31 @@ pub struct FeadConfig {
     pub engine: EngineConfig,
     /// Time stepping.
     pub run: FeadRun,
-    /// The belt model: `flowing` (Ribaric (5.14), the default) or `nodal` (the rotating mesh,
-    /// Ribaric (5.7); give it near-uniform elements, [`LayoutConfig::nodal_model`]).
+    /// The belt model: `flowing` (Ribaric (5.14), the default), `nodal` (the rotating mesh,
+    /// Ribaric (5.7), run on a uniform loop: module documentation) or `ancf` (Kerkkänen ch. 3,
+    /// [`LayoutConfig::ancf_model`]; slow).
     pub model: FeadModel,
+    /// The ANCF belt's discretisation and step (read with `model = "ancf"`, always checked).
+    pub ancf: AncfConfig,
 }
 
-/// Which belt model the FEAD study runs (same layout, same outputs).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum FeadModel {
-    /// The flowing-material belt ([`LayoutConfig::flowing_model`]).
-    #[default]
-    Flowing,
-    /// The rotating-mesh nodal belt ([`LayoutConfig::nodal_model`]).
-    Nodal,
-}
+/// Which belt model the FEAD study runs (same layout, same outputs): the speed-loss study's
+/// model kinds ([`crate::ModelKind`]: `flowing`, `nodal`, `ancf`).
+pub type FeadModel = crate::ModelKind;
 
-/// What the study needs of a layout model beyond [`DriveModel`]: both belt models have it.
-trait LayoutModel: DriveModel + Clone {
-    fn motions_mut(&mut self) -> &mut [PulleyMotion];
+/// What the study needs of a layout model beyond [`DriveModel`]: the flowing, nodal and ANCF
+/// belts have it.
+trait LayoutModel: DriveModel {
+    /// Set the crank's (pulley 0's) speed signal.
+    fn set_crank(&mut self, speed: Signal);
+    /// Hold every load torque at its final value (time restarts at every sweep point).
+    fn hold_loads(&mut self);
+    /// Tensioner arm angle \[rad\].
     fn arm(&self, q: &[f64]) -> Option<f64>;
+    /// Travel-sense speed of pulley `k` \[rad/s\].
     fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64;
+    /// Belt speed \[m/s\].
+    fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64;
     fn named_snapshot(
         &self,
         roles: &[(String, PulleyRole)],
@@ -166,8 +203,21 @@ trait LayoutModel: DriveModel + Clone {
 macro_rules! layout_model {
     ($belt:ty, |$m:ident, $roles:ident, $t:ident, $q:ident, $v:ident| $snap:expr) => {
         impl LayoutModel for $belt {
-            fn motions_mut(&mut self) -> &mut [PulleyMotion] {
-                &mut self.motions
+            fn set_crank(&mut self, speed: Signal) {
+                if let Some(PulleyMotion::Speed(s)) = self.motions.first_mut() {
+                    *s = speed;
+                }
+            }
+            fn hold_loads(&mut self) {
+                for mo in &mut self.motions {
+                    if let PulleyMotion::Free { load, .. } = mo {
+                        hold(load);
+                    }
+                }
+            }
+            /// `ṡ_b`, the speed of the travel coordinate.
+            fn belt_speed(&self, _q: &[f64], v: &[f64]) -> f64 {
+                v[0]
             }
             fn arm(&self, q: &[f64]) -> Option<f64> {
                 self.arm_angle(q)
@@ -195,6 +245,47 @@ layout_model!(FlowingBelt, |m, roles, t, q, v| Ok(
 layout_model!(NodalBelt, |m, roles, t, q, v| nodal_layout_snapshot(
     m, roles, t, q, v
 ));
+
+/// Replace a load signal's mean schedule by its final value (harmonics kept).
+fn hold(load: &mut Signal) {
+    let last = load.schedule.knots.last().map_or(0.0, |k| k.1);
+    load.schedule = Schedule::constant(last);
+}
+
+impl LayoutModel for AncfLayoutDrive {
+    fn set_crank(&mut self, speed: Signal) {
+        if let Some(MotionSpec::Speed { speed: s }) = self.motions_mut().first_mut() {
+            *s = speed;
+        }
+    }
+    fn hold_loads(&mut self) {
+        for mo in self.motions_mut() {
+            if let MotionSpec::Load { torque, .. } = mo {
+                hold(torque);
+            }
+        }
+    }
+    fn arm(&self, q: &[f64]) -> Option<f64> {
+        self.arm_angle(q)
+    }
+    fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+        self.omegas(t, v)[k]
+    }
+    /// The mean material speed along the centreline ([`AncfLayoutDrive::belt_speed`]).
+    fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
+        AncfLayoutDrive::belt_speed(self, q, v)
+    }
+    /// [`AncfLayoutDrive::snapshot`]: the pulleys carry their layout names already.
+    fn named_snapshot(
+        &self,
+        _roles: &[(String, PulleyRole)],
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<DriveSnapshot, MbdError> {
+        Ok(self.snapshot(t, q, v))
+    }
+}
 
 fn load(inertia: f64, torque: f64) -> MotionSpec {
     MotionSpec::Load {
@@ -291,6 +382,12 @@ impl Default for FeadConfig {
             engine: EngineConfig::default(),
             run: FeadRun::default(),
             model: FeadModel::default(),
+            // 12.7 mm elements (about five on the alternator's wrap), the study's 0.25 ms step
+            ancf: AncfConfig {
+                elements: 120,
+                step: 2.5e-4,
+                ..Default::default()
+            },
         }
     }
 }
@@ -324,16 +421,21 @@ impl Validate for FeadConfig {
             )?;
             check::finite(&format!("engine.orders[{i}].phase"), o.phase)?;
         }
+        self.ancf.validate_within("ancf")?;
         check::positive("run.step", self.run.step, "s")?;
         check::within("run.rho_inf", self.run.rho_inf, 0.0, 1.0, "")?;
         check::non_negative("run.ramp", self.run.ramp, "s")?;
         check::non_negative("run.settle", self.run.settle, "s")?;
         check::positive("run.window", self.run.window, "s")?;
         let per_point = self.run.ramp + self.run.settle + self.run.window;
-        let steps = per_point / self.run.step * self.engine.speeds_rpm.len() as f64;
+        let (field, step) = match self.model {
+            FeadModel::Ancf => ("ancf.step", self.ancf.step),
+            _ => ("run.step", self.run.step),
+        };
+        let steps = per_point / step * self.engine.speeds_rpm.len() as f64;
         if steps.is_nan() || steps > MAX_STEPS as f64 {
             return Err(InvalidField::new(
-                "run.step",
+                field,
                 format!("the sweep would take {steps:.3e} steps (max {MAX_STEPS})"),
             ));
         }
@@ -464,6 +566,11 @@ pub struct FeadSummary {
     pub orders: Vec<f64>,
     /// One point per engine speed (those completed).
     pub points: Vec<FeadPoint>,
+    /// The belt model run.
+    pub model: FeadModel,
+    /// The model's discretisation and step as run, and what was chosen for it (module
+    /// documentation: the nodal model's uniform loop, the ANCF elements and step).
+    pub model_settings: String,
     /// Degrees of freedom of the model.
     pub dofs: usize,
     /// Steps taken.
@@ -475,7 +582,9 @@ pub struct FeadSummary {
 /// The FEAD study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
 pub const FEAD_MEANING: &str = "A serpentine front-end accessory drive (six pulleys: crankshaft, \
 power steering, alternator, tensioner idler on a spring-loaded arm, water pump, a/c compressor) \
-run on the flowing-material belt model (or, with model = \"nodal\", the rotating-mesh nodal model) over an engine-speed sweep. The crank turns at the mean \
+run on the flowing-material belt model (with model = \"nodal\": the rotating-mesh nodal model on \
+a uniform loop; with model = \"ancf\": the ANCF belt, the slow reference; `model_settings` says \
+what was run) over an engine-speed sweep. The crank turns at the mean \
 speed plus its firing-order fluctuation; each accessory carries its load torque. Per engine \
 speed, after a ramp and a settling time, a window is observed: the tensioner arm angle \
 (min/mean/max, rad), every span's tension extremes (N), each pulley's speed loss against the \
@@ -484,8 +593,8 @@ slip) and every span's first transverse natural frequency from the travelling-st
 with the computed span tension and belt speed, to be read against the engine orders (the \
 Campbell diagram: a span resonates where an order line crosses its frequency). A point where a \
 span's tension dips below 10 % of the installed tension, or a wrap slips as a whole, leaves the \
-linearised model's range: its `linearisation` says why and its numbers only show how the limit \
-was left. The defaults are a plausible drive, not one published engine (see drives::fead).";
+linearised (flowing, nodal) model's range: its `linearisation` says why and its numbers only \
+show how the limit was left (the ANCF belt is not linearised: never flagged). The defaults are a plausible drive, not one published engine (see drives::fead).";
 
 /// A sweep that stopped on a numerical failure, with the points completed before it.
 #[derive(Debug)]
@@ -493,7 +602,7 @@ pub struct FeadFailure {
     /// What failed.
     pub error: MbdError,
     /// The summary up to the failure.
-    pub partial: FeadSummary,
+    pub partial: Box<FeadSummary>,
 }
 
 /// Progress seen by the observer at every step: engine-speed index, time within it.
@@ -539,24 +648,103 @@ pub fn run_fead(
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     cfg.validate()
         .map_err(|e| Box::new(FeadFailureOrInvalid::Invalid(e)))?;
-    let build = |e| Box::new(FeadFailureOrInvalid::Build(e));
+    // a model that cannot be built from the input is bad input (naming the field), any other
+    // build failure numerical
+    let build = |e: crate::DriveError| {
+        Box::new(match (crate::speed_loss_study::drive_input_error(&e), e) {
+            (Some(field), _) => FeadFailureOrInvalid::Invalid(field),
+            (None, crate::DriveError::Invalid(m)) => {
+                FeadFailureOrInvalid::Invalid(InvalidField::new("drive", m))
+            }
+            (None, e) => FeadFailureOrInvalid::Build(e),
+        })
+    };
+    let h = cfg.run.step;
+    let elements = |n: usize, l: f64| format!("{n} elements, {:.1} mm mean", 1e3 * l / n as f64);
     match cfg.model {
         FeadModel::Flowing => {
             let (base, res) = cfg.drive.flowing_model().map_err(build)?;
-            sweep(cfg, base, res, observer)
+            let note = format!(
+                "flowing: {} (spans {:.1} mm, wraps {:.1} mm), {} modes, step {:.3} ms",
+                elements(base.fe.n_nodes(), res.path.length()),
+                1e3 * cfg.drive.mesh.span_element,
+                1e3 * cfg.drive.mesh.arc_element,
+                base.n_modes(),
+                1e3 * h
+            );
+            sweep(cfg, base, res, linear_alpha(cfg), note, observer)
         }
         FeadModel::Nodal => {
-            let (base, res) = cfg.drive.nodal_model().map_err(build)?;
-            sweep(cfg, base, res, observer)
+            let drive = cfg.drive.uniform_mesh();
+            let (base, res) = drive.nodal_model().map_err(build)?;
+            let mut note = format!(
+                "nodal: uniform loop of {} (mesh.arc_element), step {:.3} ms",
+                elements(base.fe.n_nodes(), res.path.length()),
+                1e3 * h
+            );
+            if drive.mesh != cfg.drive.mesh {
+                note.push_str(&format!(
+                    "; the configured mesh (spans {:.1} mm, wraps {:.1} mm) made uniform: the \
+                     rotating mesh's nodes pass from the spans onto the wraps, and a long span \
+                     element landing on a small pulley stalls Newton",
+                    1e3 * cfg.drive.mesh.span_element,
+                    1e3 * cfg.drive.mesh.arc_element,
+                ));
+            }
+            // Armijo line search (module documentation: Newton cycles at the penalty's kink as
+            // nodes cross the pulley surface near the tangent points)
+            let alpha = AlphaConfig {
+                newton_line_search: true,
+                ..linear_alpha(cfg)
+            };
+            note.push_str(", Newton with line search");
+            sweep(cfg, base, res, alpha, note, observer)
+        }
+        FeadModel::Ancf => {
+            let base = cfg.drive.ancf_model(&cfg.ancf).map_err(build)?;
+            let res = base.resolved().clone();
+            let note = format!(
+                "ancf: {} (ancf.elements), {} contact points each, step {:.3} ms (ancf.step \
+                 replaces run.step); belt length {:.5} m mounted at {:.1} N",
+                elements(cfg.ancf.elements, base.belt_length()),
+                cfg.ancf.contact_points,
+                1e3 * cfg.ancf.step,
+                base.belt_length(),
+                base.mounted_tension()
+            );
+            // the ANCF drive's own Newton settings (frozen iteration matrix, line search, stall
+            // detection, 5 µm tolerance: ancf::belt_drive::SimulationConfig); with mbd-core's
+            // defaults (full Newton to 1e-10) the default drive stalled at a contact change
+            // (t = 0.082 s of the first ramp, residual 5e-5)
+            let alpha = SimulationConfig {
+                h: cfg.ancf.step,
+                rho_inf: cfg.run.rho_inf,
+                ..Default::default()
+            }
+            .alpha_params();
+            sweep(cfg, base, res, alpha, note, observer)
         }
     }
 }
 
-/// The engine-speed sweep of [`run_fead`] on the built model `base`.
+/// The generalized-α settings of the flowing and nodal models: `run.step`, `run.rho_inf`,
+/// mbd-core's Newton defaults (as the speed-loss procedure).
+fn linear_alpha(cfg: &FeadConfig) -> AlphaConfig {
+    AlphaConfig {
+        h: cfg.run.step,
+        rho_inf: cfg.run.rho_inf,
+        ..Default::default()
+    }
+}
+
+/// The engine-speed sweep of [`run_fead`] on the built model `model` with the stepping
+/// `alpha`.
 fn sweep<M: LayoutModel>(
     cfg: &FeadConfig,
-    base: M,
+    mut model: M,
     res: ResolvedLayout,
+    alpha: AlphaConfig,
+    model_settings: String,
     mut observer: impl FnMut(FeadProgress),
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     let names: Vec<String> = cfg.drive.pulleys.iter().map(|p| p.name.clone()).collect();
@@ -574,41 +762,32 @@ fn sweep<M: LayoutModel>(
         pulleys: names.clone(),
         orders: cfg.engine.orders.iter().map(|o| o.order).collect(),
         points: Vec::new(),
-        dofs: base.n_q(),
+        model: cfg.model,
+        model_settings,
+        dofs: model.n_q(),
         steps: 0,
         meaning: FEAD_MEANING.to_string(),
     };
     let fail = |error: MbdError, summary: &FeadSummary| {
         Box::new(FeadFailureOrInvalid::Numerical(FeadFailure {
             error,
-            partial: summary.clone(),
+            partial: Box::new(summary.clone()),
         }))
     };
-    let alpha = GeneralizedAlpha::new(AlphaConfig {
-        h: cfg.run.step,
-        rho_inf: cfg.run.rho_inf,
-        ..Default::default()
-    });
-    let h = cfg.run.step;
+    let h = alpha.h;
+    let alpha = GeneralizedAlpha::new(alpha);
+    let linearised = model.belt_data().linearised;
+    eprintln!("fead: {}", summary.model_settings);
     let duration = cfg.run.ramp + cfg.run.settle + cfg.run.window;
     let mut state: Option<State> = None;
     let mut omega_prev = 0.0;
     for (ip, &rpm) in cfg.engine.speeds_rpm.iter().enumerate() {
         let omega = rpm * std::f64::consts::PI / 30.0;
-        let mut model = base.clone();
         // the crank's speed; the loads at their final values after the first point (time
         // restarts at 0 at every point)
-        for (k, mo) in model.motions_mut().iter_mut().enumerate() {
-            match mo {
-                PulleyMotion::Speed(s) if k == 0 => {
-                    *s = crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp)
-                }
-                PulleyMotion::Free { load, .. } if ip > 0 => {
-                    let last = load.schedule.knots.last().map_or(0.0, |k| k.1);
-                    load.schedule = Schedule::constant(last);
-                }
-                _ => {}
-            }
+        model.set_crank(crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp));
+        if ip > 0 {
+            model.hold_loads();
         }
         let s0 = match state.take() {
             Some(s) => State::new(0.0, s.q, s.v),
@@ -637,7 +816,7 @@ fn sweep<M: LayoutModel>(
             if let Some(a) = model.arm(&st.q) {
                 arm.add(a);
             }
-            vbelt.add(st.v[0]);
+            vbelt.add(model.belt_speed(&st.q, &st.v));
             let wc = model.speed(0, st.t, &st.v) * radii[0];
             for k in 0..names.len() {
                 let w = model.speed(k, st.t, &st.v);
@@ -674,6 +853,8 @@ fn sweep<M: LayoutModel>(
             .filter(|(_, t)| t.is_nan() || *t < t_min)
             .min_by(|a, b| a.1.total_cmp(&b.1));
         let linearisation = match (slack, slipping) {
+            // the ANCF belt is not linearised: a slack span or a slipping wrap is a result
+            _ if !linearised => None,
             (Some((sp, t)), _) => Some(format!(
                 "span {}→{} tension falls to {t:.1} N, below {:.0} % of the installed {:.1} N: \
                  the linear model's stiffness K_e + K_g(T0) assumes taut spans",
@@ -744,7 +925,8 @@ fn sweep<M: LayoutModel>(
 pub enum FeadFailureOrInvalid {
     /// The configuration was rejected (names the field).
     Invalid(InvalidField),
-    /// The model could not be built.
+    /// The model could not be built (a numerical failure of its static solve; input the
+    /// model rejects is [`Self::Invalid`]).
     Build(crate::DriveError),
     /// A numerical failure during the sweep, with the points completed.
     Numerical(FeadFailure),

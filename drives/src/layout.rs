@@ -358,6 +358,17 @@ impl LayoutConfig {
         Ok((belt, res))
     }
 
+    /// The layout with a uniform mesh of the shorter of `mesh.span_element` and
+    /// `mesh.arc_element` on spans and wraps: what the rotating-mesh nodal model needs
+    /// ([`Self::nodal_model`]; [`crate::fead`] runs it on this mesh).
+    pub fn uniform_mesh(&self) -> LayoutConfig {
+        let h = self.mesh.span_element.min(self.mesh.arc_element);
+        let mut out = self.clone();
+        out.mesh.span_element = h;
+        out.mesh.arc_element = h;
+        out
+    }
+
     /// The rotating-mesh nodal model of the layout (Ribaric (5.7), [`NodalBelt::with_layout`];
     /// validated first), with the resolved layout: the same mesh, pulleys and motions as
     /// [`Self::flowing_model`] (tensioner included), so one TOML layout runs with either

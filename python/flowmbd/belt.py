@@ -127,13 +127,14 @@ def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = N
 
 def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[float]] = None) -> dict:
     """The front-end accessory drive sweep (``flowmbd-belt fead``): a six-pulley passenger-car
-    drive with an automatic tensioner on the flowing-material belt model, run over engine speeds
-    with the crank's firing-order speed fluctuation and the accessory loads.
+    drive with an automatic tensioner, run over engine speeds with the crank's firing-order speed
+    fluctuation and the accessory loads, on the flowing-material belt model (``model``:
+    ``"flowing"``, ``"nodal"`` or ``"ancf"``, the slow reference).
 
     Parameters
     ----------
     config : dict with the keys of ``flowmbd-belt fead --print-config`` (``drive``, ``engine``,
-        ``run``).
+        ``run``, ``model``, ``ancf``).
     rpm : engine speeds [rpm] (replaces ``config["engine"]["speeds_rpm"]``; the CLI's ``--rpm``).
 
     Returns

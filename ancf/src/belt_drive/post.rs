@@ -55,6 +55,27 @@ pub fn tension_at(drive: &BeltDrive, q: &[f64], el: usize, xi: f64) -> TensionSa
     }
 }
 
+/// Mean material speed of the belt along its centreline \[m/s\]: the velocity `ṙ` at every
+/// element's mid-point projected on the unit tangent `r_x/‖r_x‖` there (`ṙ = S(x) ė`, the
+/// shape functions of Kerkkänen (3.1) applied to the velocities), averaged over the equal
+/// elements. In a steady drive it is the belt speed `v` of the travelling-string formulas
+/// (the speed of the flowing model's travel coordinate `ṡ_b`, Ribaric (5.14)).
+pub fn belt_speed(drive: &BeltDrive, q: &[f64], v: &[f64]) -> f64 {
+    let l = drive.element_length();
+    let n_el = drive.mesh().elements().len();
+    let (mut e, mut ev) = ([0.0; 12], [0.0; 12]);
+    let mut sum = 0.0;
+    for el in 0..n_el {
+        drive.mesh().gather(q, el, &mut e);
+        drive.mesh().gather(v, el, &mut ev);
+        let (_, rx) = centreline(&e, l, 0.5);
+        let (rdot, _) = centreline(&ev, l, 0.5);
+        let norm = (rx[0] * rx[0] + rx[1] * rx[1]).sqrt();
+        sum += (rdot[0] * rx[0] + rdot[1] * rx[1]) / norm;
+    }
+    sum / n_el.max(1) as f64
+}
+
 /// Tension at `per_element` equally spaced interior points of every element.
 pub fn tension_samples(drive: &BeltDrive, q: &[f64], per_element: usize) -> Vec<TensionSample> {
     let n_el = drive.mesh().elements().len();

@@ -2,6 +2,7 @@
 //! over an engine-speed sweep (issue 17 item 5). The drive, the model and the sweep live in
 //! `drives::fead`; this module reads the configuration, runs it and writes the results.
 
+use drives::ModelKind;
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, FeadSummary, run_fead};
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
@@ -16,6 +17,9 @@ pub struct Args {
     #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_delimiter = ',')]
     pub rpm: Option<Vec<f64>>,
+    /// Belt model (replaces `model`; `ancf` is slow: minutes per engine speed).
+    #[arg(long, value_parser = crate::speed_loss::model_parser())]
+    pub model: Option<ModelKind>,
 }
 
 struct Fead {
@@ -36,12 +40,28 @@ impl Study for Fead {
         if let Some(r) = &self.args.rpm {
             c.engine.speeds_rpm = r.clone();
         }
+        if let Some(m) = self.args.model {
+            c.model = m;
+        }
     }
 
     fn run(&self, c: &FeadConfig, ctx: &mut StudyContext) -> Result<FeadSummary, StudyError> {
         let n = c.engine.speeds_rpm.len();
-        let progress = ctx.progress(n as f64, "engine speeds");
-        let result = run_fead(c, |p| progress.set(p.point as f64 + p.t / p.duration));
+        let progress = ctx.progress(n as f64, &format!("engine speeds ({})", c.model.name()));
+        // the bar on a terminal; a line per engine speed otherwise (logs of long ANCF runs)
+        let lines = !ctx.quiet && !std::io::IsTerminal::is_terminal(&std::io::stderr());
+        let (start, mut seen) = (std::time::Instant::now(), 0usize);
+        let result = run_fead(c, |p| {
+            progress.set(p.point as f64 + p.t / p.duration);
+            if lines && p.point > seen {
+                seen = p.point;
+                eprintln!(
+                    "fead: {} of {n} engine speeds done ({:.0} s)",
+                    p.point,
+                    start.elapsed().as_secs_f64()
+                );
+            }
+        });
         progress.finish();
         let s = match result {
             Ok(s) => s,

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-fn model_parser() -> impl TypedValueParser<Value = ModelKind> {
+pub(crate) fn model_parser() -> impl TypedValueParser<Value = ModelKind> {
     PossibleValuesParser::new(ModelKind::ALL.map(ModelKind::name)).map(|s| {
         // the possible values are exactly the names FromStr accepts
         s.parse::<ModelKind>().unwrap_or_default()
