@@ -104,15 +104,7 @@ fn tensioner_arm_tangent_matches_finite_differences() {
             },
         },
     );
-    let pp: Vec<PathPulley> = spec
-        .pulleys
-        .iter()
-        .map(|p| PathPulley {
-            center: p.center,
-            radius: p.radius,
-            side: p.side,
-        })
-        .collect();
+    let pp: Vec<PathPulley> = spec.pulleys.iter().map(|p| p.path_pulley()).collect();
     spec.belt.length = BeltPath::new(&pp).unwrap().length() / 1.01;
     let arm = TensionerSpec {
         pulley: 1,

@@ -150,15 +150,7 @@ impl BeltDrive {
                 }
             }
         }
-        let path_pulleys: Vec<PathPulley> = spec
-            .pulleys
-            .iter()
-            .map(|p| PathPulley {
-                center: p.center,
-                radius: p.radius,
-                side: p.side,
-            })
-            .collect();
+        let path_pulleys: Vec<PathPulley> = spec.pulleys.iter().map(|p| p.path_pulley()).collect();
         let path = BeltPath::new(&path_pulleys).map_err(|e| invalid("pulleys", e.to_string()))?;
         let lp = path.length();
         let lb = spec.belt.length;

@@ -3,7 +3,7 @@
 //! (3.25)–(3.26)).
 
 use super::profile::{SpeedProfile, TorqueProfile};
-use fe_model::generate::belt_path::WrapSide;
+use fe_model::generate::belt_path::{PathPulley, WrapSide};
 use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
@@ -65,6 +65,15 @@ pub fn ccw_sign(side: WrapSide) -> f64 {
 }
 
 impl Pulley {
+    /// The pulley as a circle of the belt path (centre, radius, wrap side), Kerkkänen §3.4.
+    pub fn path_pulley(&self) -> PathPulley {
+        PathPulley {
+            center: self.center,
+            radius: self.radius,
+            side: self.side,
+        }
+    }
+
     /// [`ccw_sign`] of the pulley's wrap side.
     pub fn ccw_sign(&self) -> f64 {
         ccw_sign(self.side)

@@ -121,15 +121,7 @@ impl PlateBeltDrive {
     /// matrix (2.26) with the pulley inertias and the contact quadrature.
     pub fn new(spec: PlateDriveSpec) -> Result<Self, AncfError> {
         spec.validate()?;
-        let path_pulleys: Vec<PathPulley> = spec
-            .pulleys
-            .iter()
-            .map(|p| PathPulley {
-                center: p.center,
-                radius: p.radius,
-                side: p.side,
-            })
-            .collect();
+        let path_pulleys: Vec<PathPulley> = spec.pulleys.iter().map(|p| p.path_pulley()).collect();
         let path = BeltPath::new(&path_pulleys).map_err(|e| invalid("pulleys", e.to_string()))?;
         let (lp, lb) = (path.length(), spec.belt.length);
         if !(0.5 * lp..=1.5 * lp).contains(&lb) {

@@ -5,7 +5,7 @@ use crate::belt_drive::{
     TorqueProfile,
 };
 use crate::error::{AncfError, invalid};
-use fe_model::generate::belt_path::WrapSide;
+use fe_model::generate::belt_path::{PathPulley, WrapSide};
 use mbd_core::Validate;
 use mbd_core::validate::InvalidField;
 use serde::{Deserialize, Serialize};
@@ -71,6 +71,16 @@ pub struct PlatePulley {
 }
 
 impl PlatePulley {
+    /// The pulley as a circle of the belt path in the drive plane (centre, contact radius,
+    /// wrap side; the crown and flanges do not enter the path), Kerkkänen §4.6.
+    pub fn path_pulley(&self) -> PathPulley {
+        PathPulley {
+            center: self.center,
+            radius: self.radius,
+            side: self.side,
+        }
+    }
+
     /// `+1` if a positive travel-sense speed is counter-clockwise about `+z`, `−1` if clockwise
     /// ([`crate::belt_drive::pulley::ccw_sign`]).
     pub fn ccw_sign(&self) -> f64 {
