@@ -28,11 +28,29 @@
 //! * **ancf**: the belt is `ancf.elements` equal ANCF elements (default 120: 12.7 mm, about
 //!   five on the smallest wrap) stepped at `ancf.step` (which replaces `run.step`; default
 //!   0.25 ms, the ANCF drive's own step, [`SimulationConfig`]) with the ANCF drive's Newton
-//!   settings ([`SimulationConfig::alpha_params`]). It is the expensive model (README and
-//!   BENCHMARKS.md for measured times). On the default sweep it completes 800 and 1500 rpm;
-//!   in the ramp to 2500 rpm, where a span of the default drive comes near slack (57 N in the
-//!   flowing model), its Newton iterations fail (not resolved: a numerical failure with the
-//!   completed points kept).
+//!   settings ([`SimulationConfig::alpha_params`]) and ρ∞ = `run.ancf_rho_inf` (default 0.6,
+//!   which replaces `run.rho_inf`). It is the expensive model (README and BENCHMARKS.md for
+//!   measured times).
+//!
+//!   *Gross slip at the crank.* The default drive cannot follow the 1500 → 2500 rpm ramp
+//!   without slipping on the crankshaft: the accessories' inertia seen at the crank,
+//!   `Σ J_k (R_c/R_k)²` ≈ 0.028 kg m², takes ≈ 29 N m at the ramp's mean 1050 rad/s², the
+//!   loads another ≈ 19 N m, against a friction capacity `(T_t − T_s) R_c` of about 36 N m
+//!   (slack span crank → power steering ≈ 100 N, the tensioner sitting after the alternator).
+//!   The ANCF belt then slides over the whole crank wrap (every other pulley 10 → 19 % behind
+//!   at t = 0.04 – 0.07 s of the ramp, crank torque saturated at −36 N m). At ρ∞ = 0.8 the
+//!   sliding wrap chatters: the saturated friction `μ p` follows the penalty pressure and
+//!   couples the belt's contact modes on the crank (`√(k₁/ρA)` ≈ 4 kHz, `ω h` ≈ 6.5 at
+//!   0.25 ms: resolved by no step the study can afford, damped only by the integrator) with
+//!   its axial motion; the contact points on the crank drop from 44 to 11 – 36 per step,
+//!   torques swing by ±40 N m within 2 ms, and the oscillation grows in the accepted steps
+//!   until the tensions reach kilonewtons (a/c → crank span 3.2 kN, crank torque 1.5 kN m at
+//!   t = 0.0716 s) and Newton fails (t = 0.071 s; the same with 10 step halvings instead of
+//!   4: not a step-size limit). At ρ∞ = 0.6 the generalized-α damping at `ω h` ≈ 6.5 removes
+//!   it: the wrap slides smoothly (44 contact points), the slip peaks near 20 % at the end of
+//!   the ramp and the belt re-adheres in the settle (the loads alone need 19 N m). The same
+//!   holds for the 2500 rpm point from rest (fails at 0.8, t = 0.233 s; completes at 0.6 with
+//!   gross slip at the crank, as the nodal model).
 //!
 //! Per engine speed the crank runs at `ω̄ (1 + Σ a_k sin(k_o ω̄ t + φ_k))` (engine orders `k_o`,
 //! relative amplitudes `a_k`), reached from the previous speed by a smooth ramp; after a settling
@@ -130,8 +148,11 @@ impl Default for EngineConfig {
 pub struct FeadRun {
     /// Generalized-α step \[s\].
     pub step: f64,
-    /// Spectral radius at infinity of the generalized-α method.
+    /// Spectral radius at infinity of the generalized-α method (flowing and nodal models).
     pub rho_inf: f64,
+    /// Spectral radius at infinity with `model = "ancf"` (replaces `rho_inf` for that model:
+    /// module documentation, *gross slip at the crank*).
+    pub ancf_rho_inf: f64,
     /// Ramp from one engine speed to the next (and of the fluctuation) \[s\].
     pub ramp: f64,
     /// Settling time after the ramp \[s\].
@@ -142,11 +163,12 @@ pub struct FeadRun {
 
 impl Default for FeadRun {
     /// 0.25 ms steps (the flowing model's step of Ribaric's drive), 0.1 s ramp, settle and
-    /// window.
+    /// window; ρ∞ = 0.8 (0.6 for the ANCF belt: module documentation).
     fn default() -> Self {
         Self {
             step: 2.5e-4,
             rho_inf: 0.8,
+            ancf_rho_inf: 0.6,
             ramp: 0.1,
             settle: 0.1,
             window: 0.1,
@@ -424,6 +446,7 @@ impl Validate for FeadConfig {
         self.ancf.validate_within("ancf")?;
         check::positive("run.step", self.run.step, "s")?;
         check::within("run.rho_inf", self.run.rho_inf, 0.0, 1.0, "")?;
+        check::within("run.ancf_rho_inf", self.run.ancf_rho_inf, 0.0, 1.0, "")?;
         check::non_negative("run.ramp", self.run.ramp, "s")?;
         check::non_negative("run.settle", self.run.settle, "s")?;
         check::positive("run.window", self.run.window, "s")?;
@@ -705,20 +728,23 @@ pub fn run_fead(
             let res = base.resolved().clone();
             let note = format!(
                 "ancf: {} (ancf.elements), {} contact points each, step {:.3} ms (ancf.step \
-                 replaces run.step); belt length {:.5} m mounted at {:.1} N",
+                 replaces run.step), rho_inf {} (run.ancf_rho_inf); belt length {:.5} m mounted \
+                 at {:.1} N",
                 elements(cfg.ancf.elements, base.belt_length()),
                 cfg.ancf.contact_points,
                 1e3 * cfg.ancf.step,
+                cfg.run.ancf_rho_inf,
                 base.belt_length(),
                 base.mounted_tension()
             );
             // the ANCF drive's own Newton settings (frozen iteration matrix, line search, stall
             // detection, 5 µm tolerance: ancf::belt_drive::SimulationConfig); with mbd-core's
             // defaults (full Newton to 1e-10) the default drive stalled at a contact change
-            // (t = 0.082 s of the first ramp, residual 5e-5)
+            // (t = 0.082 s of the first ramp, residual 5e-5); ρ∞ = run.ancf_rho_inf (module
+            // documentation: the sliding crank wrap's contact modes grow at 0.8)
             let alpha = SimulationConfig {
                 h: cfg.ancf.step,
-                rho_inf: cfg.run.rho_inf,
+                rho_inf: cfg.run.ancf_rho_inf,
                 ..Default::default()
             }
             .alpha_params();

@@ -338,3 +338,68 @@ fn fead_runs_the_ancf_model_and_agrees_with_the_flowing_one() {
     // the ANCF belt is not linearised: no linearisation flag
     assert!(a.linearisation.is_none());
 }
+
+// The FEAD study's 2500 rpm point of the default six-pulley drive, from rest (issue 17: the
+// ANCF belt's Newton iteration failed there, t = 0.233 s at ρ∞ = 0.8, as in the default
+// sweep's 1500 → 2500 rpm ramp: drives::fead, *gross slip at the crank*). Thrown from rest to
+// 2500 rpm in 0.1 s the accessories' inertia needs more torque than the crank's friction
+// can transmit, so the belt slides over the whole crank wrap. Reference: the rotating-mesh
+// nodal model on the same drive (second formulation, Ribaric (5.7); it needs no change):
+// - both complete and both report gross slip at the crankshaft;
+// - the crank's mean torque over the window is the wrap's friction capacity `(T_t − T_s) R_c`
+//   in both, within 6 % (the ANCF belt's capstan exponent is 5.6 % off the string's by its
+//   bending boundary layer: tests above);
+// - every other pulley runs more than 20 % behind the crank in both, the ANCF belt's speed
+//   losses within 6 points of the nodal ones (each pulley's loss is the crank's slip plus the
+//   creep on its own wrap).
+// Measured (2026-11-26): see the eprintln. About 80 s of CPU in release (ANCF ≈ 60 s, nodal
+// ≈ 20 s).
+#[test]
+#[ignore = "heavy: the 2500 rpm FEAD point on the ANCF and nodal belts (≈ 80 s CPU in release)"]
+fn fead_ancf_slips_at_the_crank_at_2500_rpm_from_rest_as_the_nodal_model() {
+    use drives::fead::{FeadConfig, FeadModel, run_fead};
+    let mut cfg = FeadConfig::default();
+    cfg.engine.speeds_rpm = vec![2500.0];
+    cfg.model = FeadModel::Ancf;
+    let ancf = run_fead(&cfg, |_| {}).unwrap_or_else(|e| panic!("ANCF: {e}"));
+    cfg.model = FeadModel::Nodal;
+    let nodal = run_fead(&cfg, |_| {}).unwrap_or_else(|e| panic!("nodal: {e}"));
+    let (a, n) = (&ancf.points[0], &nodal.points[0]);
+    let show = |p: &drives::fead::FeadPoint| {
+        p.pulleys
+            .iter()
+            .map(|q| {
+                format!(
+                    "{} {:.2} % {:.2} N m",
+                    q.name, q.slip_percent, q.torque_mean
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    eprintln!(
+        "{}\nANCF {:?} gross slip {:?}\nnodal {:?} gross slip {:?}",
+        ancf.model_settings,
+        show(a),
+        a.gross_slip_pulley,
+        show(n),
+        n.gross_slip_pulley
+    );
+    for p in [a, n] {
+        assert_eq!(p.gross_slip_pulley.as_deref(), Some("crankshaft"));
+    }
+    let (ta, tn) = (a.pulleys[0].torque_mean, n.pulleys[0].torque_mean);
+    assert!(
+        (ta / tn - 1.0).abs() < 0.06,
+        "crank torque ANCF {ta} nodal {tn} N m"
+    );
+    for (x, y) in a.pulleys.iter().zip(&n.pulleys).skip(1) {
+        assert!(x.slip_percent > 20.0 && y.slip_percent > 20.0, "{}", x.name);
+        assert!(
+            (x.slip_percent - y.slip_percent).abs() < 6.0,
+            "{}: ANCF {} % nodal {} %",
+            x.name,
+            x.slip_percent,
+            y.slip_percent
+        );
+    }
+}

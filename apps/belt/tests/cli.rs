@@ -317,6 +317,12 @@ fn fead_bad_layout_exits_2_naming_the_field() {
             field,
         );
     }
+    // the ANCF belt's spectral radius outside [0, 1]
+    check(
+        "ancf_rho",
+        &|c| c.run.ancf_rho_inf = 1.5,
+        "run.ancf_rho_inf",
+    );
     // the tensioner idler placed to deflect the alternator–water pump span by 2 mm from
     // outside: a wrap of ≈ 2 (2 mm / 85 mm) rad ≈ 3°, below 10°
     check(
