@@ -128,3 +128,154 @@ fn supernodal_block_pattern_matches_dense_lu() {
 fn sparse_scalar_pattern_matches_dense_lu() {
     check(2, 40, false);
 }
+
+/// `block_band` plus one border coordinate (last) coupled both ways to every coordinate of the
+/// loop, as a free pulley's angle couples to every belt element that may touch it; with
+/// `isolate = Some(i)` coordinate `i` keeps only its (zero) diagonal and its coupling to the
+/// border, so that the banded part alone is singular.
+fn bordered(
+    b: usize,
+    nodes: usize,
+    seed: usize,
+    isolate: Option<usize>,
+) -> Vec<Triplet<usize, usize, f64>> {
+    let n = b * nodes;
+    let mut t: Vec<_> = block_band(b, nodes, seed)
+        .into_iter()
+        .map(|e| match isolate {
+            Some(i) if e.row == i || e.col == i => Triplet::new(e.row, e.col, 0.0),
+            _ => e,
+        })
+        .collect();
+    for i in 0..n {
+        let v = 0.5 + ((i * 5 + seed) % 7) as f64 / 7.0;
+        t.push(Triplet::new(i, n, v));
+        t.push(Triplet::new(n, i, -0.75 * v));
+    }
+    t.push(Triplet::new(n, n, 3.0 * n as f64));
+    t
+}
+
+/// The banded-plus-border LU (`KktSolver::banded`) against the dense partial-pivoting LU of
+/// the same matrix (an independent factorisation) and the residual of the augmented system:
+/// the closed belt loop with a pulley border (six coordinates per node), with and without
+/// constraint rows (zero diagonal of the multipliers: pivoting within the band), one and
+/// several right-hand sides.
+#[test]
+fn banded_lu_matches_dense_lu() {
+    let (b, nodes) = (6, 20);
+    let n = b * nodes + 1;
+    for with_d in [false, true] {
+        let dt = constraints(b, nodes, 4);
+        let m = if with_d { dt.len() / 3 * 2 } else { 0 };
+        let d_sp =
+            SysMatrix::from_triplets(m, n, if with_d { &dt } else { &[] }, true, 0.0).expect("D");
+        let d_de = SysMatrix::Dense(d_sp.to_dense());
+        let mut banded = KktSolver::new();
+        banded.banded = true;
+        let mut dense = KktSolver::new();
+        for seed in 0..3 {
+            let st = bordered(b, nodes, seed, None);
+            let s_sp = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("S");
+            let s_de = SysMatrix::Dense(s_sp.to_dense());
+            banded
+                .factor(&[(0.5, &s_sp), (0.5, &s_sp)], Some(&d_sp), 0.0)
+                .expect("banded LU");
+            dense
+                .factor(&[(1.0, &s_de)], Some(&d_de), 0.0)
+                .expect("dense LU");
+            let rhs: Vec<f64> = (0..n + m).map(|i| ((i * 3) % 7) as f64 - 3.0).collect();
+            let (mut xb, mut xd) = (rhs.clone(), rhs.clone());
+            banded.solve(&mut xb, 0.0).expect("banded solve");
+            dense.solve(&mut xd, 0.0).expect("dense solve");
+            let scale = xd.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            let diff = xb
+                .iter()
+                .zip(&xd)
+                .fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
+            assert!(
+                diff <= 1e-12 * scale.max(1.0),
+                "D: {with_d}: banded and dense solutions differ by {diff:e} (scale {scale:e})"
+            );
+            let res = residual(&s_sp, &d_sp, &xb, &rhs);
+            assert!(res <= 1e-11, "D: {with_d}: residual {res:e}");
+            // two right-hand sides at once: the second is the first scaled by −2
+            let mut cols = faer::Mat::<f64>::from_fn(n + m, 2, |i, j| {
+                rhs[i] * if j == 0 { 1.0 } else { -2.0 }
+            });
+            banded.solve_columns(cols.as_mut(), 0.0).expect("columns");
+            for i in 0..n + m {
+                assert!((cols[(i, 0)] - xb[i]).abs() <= 1e-14 * scale.max(1.0));
+                assert!((cols[(i, 1)] + 2.0 * xb[i]).abs() <= 1e-14 * scale.max(1.0));
+            }
+        }
+        assert_eq!(banded.symbolic_factorizations, 1);
+        assert_eq!(banded.banded_factorizations, 3, "D: {with_d}");
+    }
+}
+
+/// A matrix whose banded part is singular (one coordinate coupled only to the border) but
+/// which is regular as a whole: the banded LU meets a zero pivot and the factorisation falls
+/// back to faer's sparse LU, whose solution matches the dense LU's.
+#[test]
+fn banded_lu_falls_back_at_a_zero_pivot() {
+    let (b, nodes) = (6, 20);
+    let n = b * nodes + 1;
+    let st = bordered(b, nodes, 1, Some(37));
+    let s_sp = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("S");
+    let s_de = SysMatrix::Dense(s_sp.to_dense());
+    let mut banded = KktSolver::new();
+    banded.banded = true;
+    let mut dense = KktSolver::new();
+    banded
+        .factor(&[(1.0, &s_sp)], None, 0.0)
+        .expect("fallback LU");
+    dense.factor(&[(1.0, &s_de)], None, 0.0).expect("dense LU");
+    assert_eq!(banded.banded_factorizations, 0);
+    let rhs: Vec<f64> = (0..n).map(|i| ((i * 3) % 7) as f64 - 3.0).collect();
+    let (mut xb, mut xd) = (rhs.clone(), rhs.clone());
+    banded.solve(&mut xb, 0.0).expect("solve");
+    dense.solve(&mut xd, 0.0).expect("dense solve");
+    let scale = xd.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let diff = xb
+        .iter()
+        .zip(&xd)
+        .fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
+    assert!(diff <= 1e-12 * scale.max(1.0), "differ by {diff:e}");
+}
+
+/// `SysMatrix::without_zeros` (the stepper's `M v̇` product): the same products `A x` and
+/// `y + s A x` as the dense matrix (an independent product), with fewer stored entries.
+#[test]
+fn product_without_stored_zeros_matches_dense_product() {
+    let st: Vec<_> = bordered(6, 20, 2, None)
+        .into_iter()
+        .map(|e| {
+            // zero half of the entries, as the mass on the tangent's pattern
+            let keep = (e.row + e.col) % 2 == 0;
+            Triplet::new(e.row, e.col, if keep { e.val } else { 0.0 })
+        })
+        .collect();
+    let n = 121;
+    let a = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("A");
+    let c = a.without_zeros();
+    let (mut na, mut nc) = (0, 0);
+    a.for_each_entry(|_, _, _| na += 1);
+    c.for_each_entry(|_, _, _| nc += 1);
+    assert!(nc < na, "{nc} of {na} entries kept");
+    let d = a.to_dense();
+    let x: Vec<f64> = (0..n).map(|i| ((i * 5) % 9) as f64 - 4.0).collect();
+    let mut y = vec![0.0; n];
+    c.mul_vec(&x, &mut y);
+    let mut z: Vec<f64> = (0..n).map(|i| i as f64).collect();
+    let z0 = z.clone();
+    c.mul_vec_add(-0.5, &x, &mut z);
+    for i in 0..n {
+        let exact: f64 = (0..n).map(|j| d[(i, j)] * x[j]).sum();
+        assert!(
+            (y[i] - exact).abs() <= 1e-12 * exact.abs().max(1.0),
+            "row {i}"
+        );
+        assert!((z[i] - (z0[i] - 0.5 * exact)).abs() <= 1e-12 * z0[i].abs().max(1.0));
+    }
+}
