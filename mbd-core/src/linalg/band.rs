@@ -366,18 +366,12 @@ impl BandLu {
             *u = 1.0 / self.ab[kv + j * ld];
         }
         // X = A11^-1 A12, Schur complement S = A22 - A21 X and its LU
-        let band = Band {
-            ab: &self.ab,
-            ld,
-            kl,
-            ku,
-            ipiv: &self.ipiv,
-            u_inv: &self.u_inv,
-        };
-        for b in 0..nb {
-            let (xs, _) = self.x.split_at_mut((b + 1) * n1);
-            band.solve(&mut xs[b * n1..]);
+        let mut x = std::mem::take(&mut self.x);
+        let band = self.band();
+        for xb in x.chunks_exact_mut(n1.max(1)).take(nb) {
+            band.solve(xb);
         }
+        self.x = x;
         for c in 0..nb {
             for r in 0..nb {
                 let mut acc = 0.0;
@@ -390,23 +384,28 @@ impl BandLu {
         dense_lu(&mut self.s, nb, &mut self.s_piv).map_err(|c| BandError::ZeroPivot(n1 + c))
     }
 
+    /// The factors of the banded part.
+    fn band(&self) -> Band<'_> {
+        Band {
+            ab: &self.ab,
+            ld: self.ld,
+            kl: self.plan.kl,
+            ku: self.plan.ku,
+            ipiv: &self.ipiv,
+            u_inv: &self.u_inv,
+        }
+    }
+
     /// Solves `A x = b` in place (`b` in the original numbering); `w` is scratch of the same
     /// length.
     pub(crate) fn solve(&self, b: &mut [f64], w: &mut [f64]) {
-        let (n1, kl, ku, ld) = (self.plan.n1, self.plan.kl, self.plan.ku, self.ld);
+        let n1 = self.plan.n1;
         let nb = self.plan.border();
         for (new, &old) in self.plan.perm.iter().enumerate() {
             w[new] = b[old];
         }
         let (y1, y2) = w.split_at_mut(n1);
-        let band = Band {
-            ab: &self.ab,
-            ld,
-            kl,
-            ku,
-            ipiv: &self.ipiv,
-            u_inv: &self.u_inv,
-        };
+        let band = self.band();
         band.solve(y1);
         if nb > 0 {
             for r in 0..nb {
