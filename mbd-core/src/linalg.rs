@@ -19,7 +19,11 @@
 //! the same structure) whenever the union pattern has at least [`SUPERNODAL_MIN_DENSITY`]
 //! entries per column, i.e. for models whose nodes carry three or more coupled coordinates;
 //! sparser patterns leave the choice to faer's flop-count heuristic. See that constant for
-//! the measurement behind the rule.
+//! the measurement behind the rule. With [`KktSolver::banded`] the union pattern is instead
+//! reordered into a band with a dense border and factored by the banded LU of module `band`
+//! (for closed chains of nodes; faer's sparse LU remains the fallback at a zero pivot).
+
+mod band;
 
 use crate::{MbdError, SysMatrix};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -57,10 +61,10 @@ impl SysMatrix {
                 let cp = m.symbolic().col_ptr();
                 let ri = m.symbolic().row_idx();
                 let val = m.val();
-                for j in 0..m.ncols() {
-                    let xj = s * x[j];
-                    for k in cp[j]..cp[j + 1] {
-                        y[ri[k]] += val[k] * xj;
+                for (w, &xj) in cp.windows(2).zip(x) {
+                    let xj = s * xj;
+                    for (&i, &v) in ri[w[0]..w[1]].iter().zip(&val[w[0]..w[1]]) {
+                        y[i] += v * xj;
                     }
                 }
             }
@@ -115,6 +119,27 @@ impl SysMatrix {
                         f(ri[k], j, val[k]);
                     }
                 }
+            }
+        }
+    }
+
+    /// The same matrix without the stored zeros of a sparse matrix (a dense one is cloned):
+    /// cheaper products with a matrix stored on a wider shared pattern (e.g. a mass matrix
+    /// on the pattern of the tangent). Products are unchanged: the dropped terms are exact
+    /// zeros.
+    pub fn without_zeros(&self) -> SysMatrix {
+        match self {
+            SysMatrix::Dense(m) => SysMatrix::Dense(m.clone()),
+            SysMatrix::Sparse(m) => {
+                let mut t = Vec::new();
+                self.for_each_entry(|i, j, v| {
+                    if v != 0.0 {
+                        t.push(Triplet::new(i, j, v));
+                    }
+                });
+                SparseColMat::try_new_from_triplets(m.nrows(), m.ncols(), &t)
+                    .map(SysMatrix::Sparse)
+                    .unwrap_or_else(|_| self.clone())
             }
         }
     }
@@ -266,6 +291,15 @@ struct SparsePath {
     /// Scratch of the one-column solves of [`KktSolver::solve`] (`&mut self`; taken out while
     /// a solve runs). Several columns ([`KktSolver::solve_columns`]) allocate their own.
     solve_mem: Option<MemBuffer>,
+    /// Whether the banded LU was requested when this path was built.
+    banded_requested: bool,
+    /// The banded-plus-border LU ([`KktSolver::banded`]) when requested and the reordered
+    /// pattern is a band.
+    band: Option<band::BandLu>,
+    /// Whether the last numeric factorisation is the banded one (else faer's).
+    band_active: bool,
+    /// Permuted right-hand side of the banded one-column solves.
+    band_work: Vec<f64>,
 }
 
 impl SparsePath {
@@ -276,6 +310,7 @@ impl SparsePath {
         n: usize,
         n_c: usize,
         t: f64,
+        banded: bool,
     ) -> Result<Self, MbdError> {
         let dim = n + n_c;
         let mut cols: Vec<Vec<usize>> = (0..dim).map(|j| vec![j]).collect();
@@ -323,6 +358,14 @@ impl SparsePath {
             d.for_each_entry(|i, j, _| d_map.push((pos(n + i, j), pos(j, n + i))));
         }
         let nnz = row_idx.len();
+        let band = if banded {
+            let plan = band::BandPlan::new(dim, &col_ptr, &row_idx);
+            let (kl, ku) = plan.bandwidths();
+            // a band as wide as half the matrix is a dense matrix in band storage
+            (2 * (kl + ku + 1) <= dim).then(|| band::BandLu::new(plan))
+        } else {
+            None
+        };
         let symbolic_pattern = SymbolicSparseColMat::new_checked(dim, dim, col_ptr, None, row_idx);
         let params = LuSymbolicParams {
             supernodal_flop_ratio_threshold: lu_variant(nnz, dim),
@@ -355,13 +398,24 @@ impl SparsePath {
             numeric: NumericLu::new(),
             factor_mem,
             solve_mem,
+            banded_requested: banded,
+            band,
+            band_active: false,
+            band_work: vec![0.0; dim],
         })
     }
 
     /// Whether the blocks have the patterns this path was built for.
-    fn matches(&self, blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>, dim: usize) -> bool {
+    fn matches(
+        &self,
+        blocks: &[ScaledBlock<'_>],
+        d: Option<&SysMatrix>,
+        dim: usize,
+        banded: bool,
+    ) -> bool {
         let nk = blocks.len() + usize::from(d.is_some());
         self.dim == dim
+            && self.banded_requested == banded
             && self.keys.len() == nk
             && blocks
                 .iter()
@@ -406,6 +460,18 @@ impl SparsePath {
                 t,
             });
         }
+        self.band_active = false;
+        if let Some(band) = self.band.as_mut() {
+            let pat = self.symbolic_pattern.as_ref();
+            // a zero pivot of the band (pivoting confined to it) falls back to faer's LU
+            if band
+                .factor(pat.col_ptr(), pat.row_idx(), &self.vals)
+                .is_ok()
+            {
+                self.band_active = true;
+                return Ok(());
+            }
+        }
         let a = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.vals);
         self.symbolic
             .factorize_numeric_lu(
@@ -424,7 +490,21 @@ impl SparsePath {
 
     /// Solves in place with the scratch `mem` (sized for one column) when given and `rhs` has
     /// one column, with a scratch allocated here otherwise.
-    fn solve_in_place(&self, rhs: MatMut<'_, f64>, mem: Option<&mut MemBuffer>) {
+    fn solve_in_place(&self, mut rhs: MatMut<'_, f64>, mem: Option<&mut MemBuffer>) {
+        if let (true, Some(band)) = (self.band_active, &self.band) {
+            let mut col = vec![0.0; self.dim];
+            let mut work = vec![0.0; self.dim];
+            for c in 0..rhs.ncols() {
+                for (i, x) in col.iter_mut().enumerate() {
+                    *x = rhs[(i, c)];
+                }
+                band.solve(&mut col, &mut work);
+                for (i, x) in col.iter().enumerate() {
+                    rhs[(i, c)] = *x;
+                }
+            }
+            return;
+        }
         let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
         let ncols = rhs.ncols();
         match mem {
@@ -481,6 +561,15 @@ pub struct KktSolver {
     pub factorizations: usize,
     /// Number of symbolic (sparse) analyses performed.
     pub symbolic_factorizations: usize,
+    /// Factor sparse systems with the banded-plus-border LU (module `band`): the union
+    /// pattern is reordered by reverse Cuthill–McKee after moving coordinates with more than
+    /// four times the average number of couplings (at most 1/16 of them) to a dense border,
+    /// and factored by a banded LU with partial pivoting within the band (LAPACK dgbtf2) and
+    /// the dense LU of the border's Schur complement. Used when the band spans at most half
+    /// the matrix; a zero pivot falls back to faer's sparse LU. Default `false`.
+    pub banded: bool,
+    /// Number of numeric factorisations done by the banded LU.
+    pub banded_factorizations: usize,
 }
 
 impl Default for KktSolver {
@@ -502,6 +591,8 @@ impl KktSolver {
             n_c: 0,
             factorizations: 0,
             symbolic_factorizations: 0,
+            banded: false,
+            banded_factorizations: 0,
         }
     }
 
@@ -607,10 +698,10 @@ impl KktSolver {
             if !self
                 .sparse
                 .as_ref()
-                .is_some_and(|p| p.matches(blocks, d, dim))
+                .is_some_and(|p| p.matches(blocks, d, dim, self.banded))
             {
                 self.sparse = None;
-                self.sparse = Some(SparsePath::build(blocks, d, n, n_c, t)?);
+                self.sparse = Some(SparsePath::build(blocks, d, n, n_c, t, self.banded)?);
                 self.symbolic_factorizations += 1;
             }
             let path = self.sparse.as_mut().ok_or_else(|| MbdError::Model {
@@ -618,6 +709,9 @@ impl KktSolver {
                 message: "missing sparse assembly".into(),
             })?;
             path.factor(blocks, d, t)?;
+            if path.band_active {
+                self.banded_factorizations += 1;
+            }
             self.factor = Some(Factor::Sparse);
         }
         self.factorizations += 1;
@@ -676,6 +770,19 @@ impl KktSolver {
                 t,
                 message: format!("right-hand side has length {}, expected {dim}", rhs.len()),
             });
+        }
+        if let (Some(Factor::Sparse), Some(p)) = (&self.factor, self.sparse.as_mut())
+            && p.band_active
+            && let Some(band) = &p.band
+        {
+            band.solve(rhs, &mut p.band_work);
+            if rhs.iter().any(|v| !v.is_finite()) {
+                return Err(MbdError::Singular {
+                    t,
+                    detail: "augmented matrix is singular (non-finite solution)".into(),
+                });
+            }
+            return Ok(());
         }
         let mut mem = self.sparse.as_mut().and_then(|p| p.solve_mem.take());
         let solved = self.solve_with(

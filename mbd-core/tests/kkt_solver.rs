@@ -68,6 +68,44 @@ fn residual(s: &SysMatrix, d: &SysMatrix, sol: &[f64], rhs: &[f64]) -> f64 {
     worst
 }
 
+/// Factors `S = 0.5 S + 0.5 S` (two scaled blocks, as the generalized-α matrix is assembled)
+/// with `solver` and `S` densely with `dense`, and checks the solutions of one right-hand side
+/// against each other and against the residual of the augmented system; returns the
+/// right-hand side, `solver`'s solution and the solution's size.
+fn compare(
+    solver: &mut KktSolver,
+    dense: &mut KktSolver,
+    s_sp: &SysMatrix,
+    d_sp: &SysMatrix,
+    label: &str,
+) -> (Vec<f64>, Vec<f64>, f64) {
+    let (n, m) = (s_sp.nrows(), d_sp.nrows());
+    let s_de = SysMatrix::Dense(s_sp.to_dense());
+    let d_de = SysMatrix::Dense(d_sp.to_dense());
+    solver
+        .factor(&[(0.5, s_sp), (0.5, s_sp)], Some(d_sp), 0.0)
+        .expect("sparse LU");
+    dense
+        .factor(&[(1.0, &s_de)], Some(&d_de), 0.0)
+        .expect("dense LU");
+    let rhs: Vec<f64> = (0..n + m).map(|i| ((i * 3) % 7) as f64 - 3.0).collect();
+    let (mut xs, mut xd) = (rhs.clone(), rhs.clone());
+    solver.solve(&mut xs, 0.0).expect("sparse solve");
+    dense.solve(&mut xd, 0.0).expect("dense solve");
+    let scale = xd.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let diff = xs
+        .iter()
+        .zip(&xd)
+        .fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
+    assert!(
+        diff <= 1e-12 * scale.max(1.0),
+        "{label}: sparse and dense solutions differ by {diff:e} (scale {scale:e})"
+    );
+    let res = residual(s_sp, d_sp, &xs, &rhs);
+    assert!(res <= 1e-11, "{label}: residual {res:e}");
+    (rhs, xs, scale)
+}
+
 /// `supernodal`: whether the pattern of `S` is meant to lie at or above the threshold.
 fn check(b: usize, nodes: usize, supernodal: bool) {
     let n = b * nodes;
@@ -80,36 +118,13 @@ fn check(b: usize, nodes: usize, supernodal: bool) {
     let dt = constraints(b, nodes, 4);
     let m = dt.len() / 3 * 2;
     let d_sp = SysMatrix::from_triplets(m, n, &dt, true, 0.0).expect("D");
-    let d_de = SysMatrix::Dense(d_sp.to_dense());
     let mut sparse = KktSolver::new();
     let mut dense = KktSolver::new();
     // three value sets on one pattern: the symbolic analysis is made once and reused
     for seed in 0..3 {
         let st = block_band(b, nodes, seed);
         let s_sp = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("S");
-        let s_de = SysMatrix::Dense(s_sp.to_dense());
-        // S = 0.5 A + 0.5 A as two scaled blocks, as the generalized-α matrix is assembled
-        sparse
-            .factor(&[(0.5, &s_sp), (0.5, &s_sp)], Some(&d_sp), 0.0)
-            .expect("sparse LU");
-        dense
-            .factor(&[(1.0, &s_de)], Some(&d_de), 0.0)
-            .expect("dense LU");
-        let rhs: Vec<f64> = (0..n + m).map(|i| ((i * 3) % 7) as f64 - 3.0).collect();
-        let (mut xs, mut xd) = (rhs.clone(), rhs.clone());
-        sparse.solve(&mut xs, 0.0).expect("sparse solve");
-        dense.solve(&mut xd, 0.0).expect("dense solve");
-        let scale = xd.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let diff = xs
-            .iter()
-            .zip(&xd)
-            .fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
-        assert!(
-            diff <= 1e-12 * scale.max(1.0),
-            "b = {b}: sparse and dense solutions differ by {diff:e} (scale {scale:e})"
-        );
-        let res = residual(&s_sp, &d_sp, &xs, &rhs);
-        assert!(res <= 1e-11, "b = {b}: residual {res:e}");
+        compare(&mut sparse, &mut dense, &s_sp, &d_sp, &format!("b = {b}"));
     }
     assert_eq!(sparse.symbolic_factorizations, 1);
     assert_eq!(sparse.factorizations, 3);
@@ -127,4 +142,132 @@ fn supernodal_block_pattern_matches_dense_lu() {
 #[test]
 fn sparse_scalar_pattern_matches_dense_lu() {
     check(2, 40, false);
+}
+
+/// `block_band` plus one border coordinate (last) coupled both ways to every coordinate of the
+/// loop, as a free pulley's angle couples to every belt element that may touch it; the
+/// coordinates in `isolate` keep only their (zero) diagonal and their coupling to the border
+/// (the pattern is unchanged), so that the banded part alone is singular.
+fn bordered(
+    b: usize,
+    nodes: usize,
+    seed: usize,
+    isolate: &[usize],
+) -> Vec<Triplet<usize, usize, f64>> {
+    let n = b * nodes;
+    let mut t: Vec<_> = block_band(b, nodes, seed)
+        .into_iter()
+        .map(|e| {
+            if isolate.contains(&e.row) || isolate.contains(&e.col) {
+                Triplet::new(e.row, e.col, 0.0)
+            } else {
+                e
+            }
+        })
+        .collect();
+    for i in 0..n {
+        let v = 0.5 + ((i * 5 + seed) % 7) as f64 / 7.0;
+        t.push(Triplet::new(i, n, v));
+        t.push(Triplet::new(n, i, -0.75 * v));
+    }
+    t.push(Triplet::new(n, n, 3.0 * n as f64));
+    t
+}
+
+/// The banded-plus-border LU (`KktSolver::banded`) against the dense partial-pivoting LU of
+/// the same matrix (an independent factorisation) and the residual of the augmented system:
+/// the closed belt loop with a pulley border (six coordinates per node), with and without
+/// constraint rows (zero diagonal of the multipliers: pivoting within the band), one and
+/// several right-hand sides.
+#[test]
+fn banded_lu_matches_dense_lu() {
+    let (b, nodes) = (6, 20);
+    let n = b * nodes + 1;
+    for with_d in [false, true] {
+        let dt = constraints(b, nodes, 4);
+        let m = if with_d { dt.len() / 3 * 2 } else { 0 };
+        let d_sp =
+            SysMatrix::from_triplets(m, n, if with_d { &dt } else { &[] }, true, 0.0).expect("D");
+        let mut banded = KktSolver::new();
+        banded.banded = true;
+        let mut dense = KktSolver::new();
+        for seed in 0..3 {
+            let st = bordered(b, nodes, seed, &[]);
+            let s_sp = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("S");
+            let (rhs, xb, scale) = compare(
+                &mut banded,
+                &mut dense,
+                &s_sp,
+                &d_sp,
+                &format!("D: {with_d}"),
+            );
+            // two right-hand sides at once: the second is the first scaled by −2
+            let mut cols = faer::Mat::<f64>::from_fn(n + m, 2, |i, j| {
+                rhs[i] * if j == 0 { 1.0 } else { -2.0 }
+            });
+            banded.solve_columns(cols.as_mut(), 0.0).expect("columns");
+            for i in 0..n + m {
+                assert!((cols[(i, 0)] - xb[i]).abs() <= 1e-14 * scale.max(1.0));
+                assert!((cols[(i, 1)] + 2.0 * xb[i]).abs() <= 1e-14 * scale.max(1.0));
+            }
+        }
+        assert_eq!(banded.symbolic_factorizations, 1);
+        assert_eq!(banded.banded_factorizations, 3, "D: {with_d}");
+    }
+}
+
+/// A matrix whose banded part is singular (coordinates coupled only to the border) but
+/// which is regular as a whole: the banded LU meets a zero pivot and the factorisation falls
+/// back to faer's sparse LU, whose solution matches the dense LU's.
+#[test]
+fn banded_lu_falls_back_at_a_zero_pivot() {
+    let (b, nodes) = (6, 20);
+    let n = b * nodes + 1;
+    // coordinate 37 (node 6) stays in the band: the loop is cut elsewhere (the count of
+    // banded factorisations below checks that the fallback did happen)
+    let st = bordered(b, nodes, 1, &[37]);
+    let s_sp = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("S");
+    let d_sp = SysMatrix::from_triplets(0, n, &[], true, 0.0).expect("no constraints");
+    let mut banded = KktSolver::new();
+    banded.banded = true;
+    let mut dense = KktSolver::new();
+    compare(&mut banded, &mut dense, &s_sp, &d_sp, "fallback");
+    assert_eq!(banded.banded_factorizations, 0);
+    assert_eq!(banded.factorizations, 1);
+}
+
+/// `SysMatrix::without_zeros` (the stepper's `M v̇` product): the same products `A x` and
+/// `y + s A x` as the dense matrix (an independent product), with fewer stored entries.
+#[test]
+fn product_without_stored_zeros_matches_dense_product() {
+    let st: Vec<_> = bordered(6, 20, 2, &[])
+        .into_iter()
+        .map(|e| {
+            // zero half of the entries, as the mass on the tangent's pattern
+            let keep = (e.row + e.col) % 2 == 0;
+            Triplet::new(e.row, e.col, if keep { e.val } else { 0.0 })
+        })
+        .collect();
+    let n = 121;
+    let a = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("A");
+    let c = a.without_zeros();
+    let (mut na, mut nc) = (0, 0);
+    a.for_each_entry(|_, _, _| na += 1);
+    c.for_each_entry(|_, _, _| nc += 1);
+    assert!(nc < na, "{nc} of {na} entries kept");
+    let d = a.to_dense();
+    let x: Vec<f64> = (0..n).map(|i| ((i * 5) % 9) as f64 - 4.0).collect();
+    let mut y = vec![0.0; n];
+    c.mul_vec(&x, &mut y);
+    let mut z: Vec<f64> = (0..n).map(|i| i as f64).collect();
+    let z0 = z.clone();
+    c.mul_vec_add(-0.5, &x, &mut z);
+    for i in 0..n {
+        let exact: f64 = (0..n).map(|j| d[(i, j)] * x[j]).sum();
+        assert!(
+            (y[i] - exact).abs() <= 1e-12 * exact.abs().max(1.0),
+            "row {i}"
+        );
+        assert!((z[i] - (z0[i] - 0.5 * exact)).abs() <= 1e-12 * z0[i].abs().max(1.0));
+    }
 }

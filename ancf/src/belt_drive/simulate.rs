@@ -131,6 +131,7 @@ impl SimulationConfig {
             }),
             max_halvings: 10,
             project_velocities: false,
+            banded_lu: true,
             ..AlphaConfig::default()
         }
     }

@@ -165,6 +165,12 @@ pub struct AlphaConfig {
     /// Keep the iteration matrix as its explicit inverse (module `iteration_matrix`): solves
     /// become matrix–vector products; for small dense models.
     pub explicit_inverse: bool,
+    /// Factor a sparse iteration matrix with the banded-plus-border LU of
+    /// [`KktSolver::banded`](crate::linalg::KktSolver::banded) (reverse Cuthill–McKee band,
+    /// densely coupled coordinates as a border): for closed chains of nodes such as the ANCF
+    /// belt, whose 121 × 121 matrix it factors ≈ 2.7× and solves ≈ 2.5× faster than the
+    /// supernodal sparse LU (BENCHMARKS.md, "ancf: belt drive").
+    pub banded_lu: bool,
     /// Re-factor trigger of [`NewtonUpdate::Frozen`] (`None`: only step-size changes, failures
     /// and [`AlphaStepper::refactor`]).
     pub refactor_drift: Option<DriftTrigger>,
@@ -210,6 +216,7 @@ impl Default for AlphaConfig {
             linearly_implicit: false,
             zero_predictor: false,
             explicit_inverse: false,
+            banded_lu: false,
             refactor_drift: None,
             refactor_contraction: None,
             newton_stall: None,
@@ -345,6 +352,8 @@ pub struct AlphaStepper<C = NoCorrection> {
     /// Solve scratch of the explicit inverse (`n_v + n_c`).
     scratch: Vec<f64>,
     mass_cache: Option<SysMatrix>,
+    /// `mass_cache` without its stored zeros, for the products `M v̇` of the residual.
+    mass_product: Option<SysMatrix>,
     work: Work,
     /// The model's scratch ([`SecondOrderSystem::forces`], kept for the stepper's lifetime).
     ws: Workspace,
@@ -406,6 +415,7 @@ impl AlphaStepper<NoCorrection> {
             spare: None,
             scratch: vec![0.0; sys.n_v() + sys.n_c()],
             mass_cache: None,
+            mass_product: None,
             work: Work::new(sys.n_q(), sys.n_v(), sys.n_c()),
             ws: std::mem::take(&mut accel.ws),
             h_cur: params.h,
@@ -429,6 +439,7 @@ impl<C> AlphaStepper<C> {
             spare: self.spare,
             scratch: self.scratch,
             mass_cache: self.mass_cache,
+            mass_product: self.mass_product,
             work: self.work,
             ws: self.ws,
             h_cur: self.h_cur,
@@ -779,7 +790,10 @@ impl<C> AlphaStepper<C> {
                 if self.mass_cache.is_none() {
                     self.mass_cache = Some(sys.mass(t, q)?);
                 }
-                if let Some(m) = &self.mass_cache {
+                if self.mass_product.is_none() {
+                    self.mass_product = self.mass_cache.as_ref().map(SysMatrix::without_zeros);
+                }
+                if let Some(m) = &self.mass_product {
                     m.mul_vec(vdot, r);
                 }
             } else {
@@ -865,6 +879,7 @@ impl<C> AlphaStepper<C> {
         self.stats.jacobian_evaluations += 1;
         self.stats.factorizations += 1;
         let explicit = self.params.explicit_inverse;
+        self.matrix.kkt.banded = self.params.banded_lu;
         self.matrix.h = h;
         self.matrix.id = self.stats.factorizations;
         self.matrix.v_ref = self

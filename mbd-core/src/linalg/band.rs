@@ -1,0 +1,577 @@
+//! Banded LU with a dense border for the small, chain-like Newton matrices of node-based
+//! models (the closed ANCF belt: a cyclic block-tridiagonal matrix plus the free pulleys'
+//! rows and columns, which couple to every belt element that may touch them).
+//!
+//! The pattern is reordered once ([`BandPlan::new`]): vertices of the symmetrised pattern
+//! graph with many more neighbours than the average (pulley angles, multipliers of global
+//! constraints) form a *border* ordered last; the rest is numbered by reverse Cuthill–McKee
+//! (George & Liu, *Computer Solution of Large Sparse Positive Definite Systems*, 1981, §4.3,
+//! from a pseudo-peripheral vertex), which turns a closed chain into a band of about two
+//! levels. The numeric factorisation of the permuted matrix `[A₁₁ A₁₂; A₂₁ A₂₂]` is
+//!
+//! ```text
+//!   A₁₁ = P L U                 banded LU with partial pivoting (LAPACK dgbtf2; Golub & Van Loan,
+//!                               Matrix Computations, 4th ed., §4.3.5): U gets bandwidth kl + ku
+//!   X   = A₁₁⁻¹ A₁₂             one banded solve per border column
+//!   S   = A₂₂ − A₂₁ X           dense Schur complement, LU with partial pivoting
+//! ```
+//!
+//! and a solve is `y₁ = A₁₁⁻¹ b₁`, `x₂ = S⁻¹ (b₂ − A₂₁ y₁)`, `x₁ = y₁ − X x₂`. Pivoting is
+//! confined to the band and to the Schur complement: a zero pivot of `A₁₁` is reported as
+//! singular (the caller then falls back to the general sparse LU).
+//!
+//! faer (0.24) has no banded factorisation; the kernels here are the textbook column
+//! algorithms with contiguous inner loops.
+
+/// Reordering and band sizes of one pattern (built once per pattern).
+#[derive(Debug, Clone)]
+pub(crate) struct BandPlan {
+    /// `perm[new] = old`.
+    perm: Vec<usize>,
+    /// `inv[old] = new`.
+    inv: Vec<usize>,
+    /// Size of the banded part (the border is `n1..dim`).
+    n1: usize,
+    /// Lower and upper bandwidth of the permuted `A₁₁`.
+    kl: usize,
+    ku: usize,
+}
+
+/// A border vertex has more than this many times the average number of neighbours \[-\].
+const BORDER_DEGREE_FACTOR: f64 = 4.0;
+/// At most this fraction of the vertices may form the border \[-\].
+const BORDER_MAX_FRACTION: f64 = 1.0 / 16.0;
+
+impl BandPlan {
+    /// The plan for the `dim × dim` pattern given column-wise (`col_ptr`, `row_idx`; the
+    /// diagonal need not be stored).
+    pub(crate) fn new(dim: usize, col_ptr: &[usize], row_idx: &[usize]) -> Self {
+        // symmetrised adjacency without the diagonal
+        let mut adj: Vec<Vec<usize>> = vec![Vec::new(); dim];
+        for j in 0..dim {
+            for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
+                if i != j {
+                    adj[i].push(j);
+                    adj[j].push(i);
+                }
+            }
+        }
+        for a in &mut adj {
+            a.sort_unstable();
+            a.dedup();
+        }
+        let total: usize = adj.iter().map(Vec::len).sum();
+        let mean = total as f64 / dim.max(1) as f64;
+        let mut border: Vec<usize> = (0..dim)
+            .filter(|&v| adj[v].len() as f64 > BORDER_DEGREE_FACTOR * mean)
+            .collect();
+        if border.len() as f64 > BORDER_MAX_FRACTION * dim as f64 {
+            border.clear();
+        }
+        let plan = Self::with_border(dim, col_ptr, row_idx, &adj, &border);
+        // A closed chain (a belt loop) numbered from one vertex has levels on both sides of
+        // it, i.e. a band of two levels; moving the start vertex's supervariable (the
+        // vertices with its closed neighbourhood: the coordinates of one node) to the border
+        // cuts the loop into an open chain with half the band. Kept when cheaper.
+        let Some(&root) = plan.perm[..plan.n1].last() else {
+            return plan;
+        };
+        let closed = |v: usize| {
+            let mut c = adj[v].clone();
+            c.push(v);
+            c.sort_unstable();
+            c
+        };
+        let root_closed = closed(root);
+        let mut cut = border.clone();
+        cut.extend(
+            root_closed
+                .iter()
+                .copied()
+                .filter(|&w| !border.contains(&w) && closed(w) == root_closed),
+        );
+        if cut.len() as f64 > BORDER_MAX_FRACTION * dim as f64 {
+            return plan;
+        }
+        let other = Self::with_border(dim, col_ptr, row_idx, &adj, &cut);
+        if other.cost() < plan.cost() {
+            other
+        } else {
+            plan
+        }
+    }
+
+    /// Reverse Cuthill–McKee numbering of the vertices outside `border`, then `border`.
+    fn with_border(
+        dim: usize,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        adj: &[Vec<usize>],
+        border: &[usize],
+    ) -> Self {
+        let mut is_border = vec![false; dim];
+        for &b in border {
+            is_border[b] = true;
+        }
+        let degree = |v: usize, adj: &[Vec<usize>], is_border: &[bool]| {
+            adj[v].iter().filter(|&&w| !is_border[w]).count()
+        };
+        // Cuthill–McKee over every component of the non-border graph
+        let mut order: Vec<usize> = Vec::with_capacity(dim);
+        let mut seen = is_border.clone();
+        let mut level_of = vec![usize::MAX; dim];
+        for root0 in 0..dim {
+            if seen[root0] {
+                continue;
+            }
+            // pseudo-peripheral start: repeat BFS from a minimum-degree vertex of the last level
+            let mut root = root0;
+            let mut ecc = 0;
+            for _ in 0..8 {
+                let (reached, last, depth) = bfs_levels(root, adj, &is_border, &mut level_of);
+                for &v in &reached {
+                    level_of[v] = usize::MAX;
+                }
+                if depth <= ecc && ecc > 0 {
+                    break;
+                }
+                ecc = depth;
+                root = last
+                    .iter()
+                    .copied()
+                    .min_by_key(|&v| degree(v, adj, &is_border))
+                    .unwrap_or(root);
+            }
+            let start = order.len();
+            order.push(root);
+            seen[root] = true;
+            let mut head = start;
+            let mut nb: Vec<usize> = Vec::new();
+            while head < order.len() {
+                let v = order[head];
+                head += 1;
+                nb.clear();
+                nb.extend(adj[v].iter().copied().filter(|&w| !seen[w]));
+                nb.sort_by_key(|&w| degree(w, adj, &is_border));
+                for &w in &nb {
+                    seen[w] = true;
+                    order.push(w);
+                }
+            }
+            order[start..].reverse();
+        }
+        let n1 = order.len();
+        order.extend(border.iter().copied());
+        let mut inv = vec![0; dim];
+        for (new, &old) in order.iter().enumerate() {
+            inv[old] = new;
+        }
+        let (mut kl, mut ku) = (0, 0);
+        for j in 0..dim {
+            for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
+                let (pi, pj) = (inv[i], inv[j]);
+                if pi < n1 && pj < n1 {
+                    if pi > pj {
+                        kl = kl.max(pi - pj);
+                    } else {
+                        ku = ku.max(pj - pi);
+                    }
+                }
+            }
+        }
+        Self {
+            perm: order,
+            inv,
+            n1,
+            kl,
+            ku,
+        }
+    }
+
+    /// Estimated multiply–adds of one factorisation plus ten solves (the frozen Newton
+    /// matrix of a time step is solved several times per factorisation).
+    fn cost(&self) -> f64 {
+        let (n1, nb) = (self.n1 as f64, self.border() as f64);
+        let (kl, ku) = (self.kl as f64, self.ku as f64);
+        let factor = n1 * kl * (kl + ku + 1.0)
+            + nb * n1 * (3.0 * kl + 2.0 * ku + 1.0)
+            + nb * nb * n1
+            + nb.powi(3) / 3.0;
+        let solve = n1 * (2.0 * kl + ku + 1.0) + 2.0 * nb * n1 + nb * nb;
+        factor + 10.0 * solve
+    }
+
+    /// Number of border vertices.
+    pub(crate) fn border(&self) -> usize {
+        self.perm.len() - self.n1
+    }
+
+    /// Lower and upper bandwidth of the banded part.
+    pub(crate) fn bandwidths(&self) -> (usize, usize) {
+        (self.kl, self.ku)
+    }
+}
+
+/// Vertices reached from `root` in breadth-first order (non-border only), the vertices of the
+/// last level and its depth; `level_of` receives the levels (the caller resets it).
+fn bfs_levels(
+    root: usize,
+    adj: &[Vec<usize>],
+    is_border: &[bool],
+    level_of: &mut [usize],
+) -> (Vec<usize>, Vec<usize>, usize) {
+    let mut out = vec![root];
+    level_of[root] = 0;
+    let mut head = 0;
+    while head < out.len() {
+        let v = out[head];
+        head += 1;
+        for &w in &adj[v] {
+            if !is_border[w] && level_of[w] == usize::MAX {
+                level_of[w] = level_of[v] + 1;
+                out.push(w);
+            }
+        }
+    }
+    let last_level = out.last().map_or(0, |&v| level_of[v]);
+    let last = out
+        .iter()
+        .copied()
+        .filter(|&v| level_of[v] == last_level)
+        .collect();
+    (out, last, last_level)
+}
+
+/// The numeric banded-plus-border LU of one matrix.
+#[derive(Debug, Clone)]
+pub(crate) struct BandLu {
+    plan: BandPlan,
+    /// Band storage of `L` and `U` (LAPACK `ab`, leading dimension `2 kl + ku + 1`,
+    /// column-major): `A₁₁(i, j)` at `ab[kl + ku + i − j + j·ld]`.
+    ab: Vec<f64>,
+    ld: usize,
+    ipiv: Vec<usize>,
+    /// `1 / U(j, j)` (a solve multiplies instead of dividing on its serial path).
+    u_inv: Vec<f64>,
+    /// `A₁₂` columns, overwritten by `X = A₁₁⁻¹ A₁₂` (`n1 × nb`, column-major).
+    x: Vec<f64>,
+    /// `A₂₁` (`nb × n1`, column-major).
+    a21: Vec<f64>,
+    /// `A₂₂`, overwritten by the LU of the Schur complement (`nb × nb`, column-major).
+    s: Vec<f64>,
+    s_piv: Vec<usize>,
+}
+
+/// Why a banded factorisation failed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum BandError {
+    /// Zero pivot in column `usize` of the permuted matrix (band part or border).
+    ZeroPivot(usize),
+}
+
+impl BandLu {
+    pub(crate) fn new(plan: BandPlan) -> Self {
+        let n1 = plan.n1;
+        let nb = plan.border();
+        let ld = 2 * plan.kl + plan.ku + 1;
+        Self {
+            ab: vec![0.0; ld * n1],
+            ld,
+            ipiv: vec![0; n1],
+            u_inv: vec![0.0; n1],
+            x: vec![0.0; n1 * nb],
+            a21: vec![0.0; nb * n1],
+            s: vec![0.0; nb * nb],
+            s_piv: vec![0; nb],
+            plan,
+        }
+    }
+
+    /// Factors the matrix with the plan's pattern whose values are `vals` (same column-wise
+    /// storage as given to [`BandPlan::new`]).
+    pub(crate) fn factor(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        vals: &[f64],
+    ) -> Result<(), BandError> {
+        let (n1, kl, ku, ld) = (self.plan.n1, self.plan.kl, self.plan.ku, self.ld);
+        let nb = self.plan.border();
+        let kv = kl + ku;
+        self.ab.fill(0.0);
+        self.x.fill(0.0);
+        self.a21.fill(0.0);
+        self.s.fill(0.0);
+        let dim = n1 + nb;
+        for j in 0..dim {
+            let pj = self.plan.inv[j];
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let pi = self.plan.inv[row_idx[k]];
+                let v = vals[k];
+                match (pi < n1, pj < n1) {
+                    (true, true) => self.ab[kv + pi - pj + pj * ld] += v,
+                    (true, false) => self.x[pi + (pj - n1) * n1] += v,
+                    (false, true) => self.a21[(pi - n1) + pj * nb] += v,
+                    (false, false) => self.s[(pi - n1) + (pj - n1) * nb] += v,
+                }
+            }
+        }
+        // dgbtf2: column j, pivot among rows j..=j+km, U fill up to column ju
+        let ab = &mut self.ab;
+        let mut ju = 0usize;
+        for j in 0..n1 {
+            let km = kl.min(n1 - 1 - j);
+            let col = kv + j * ld;
+            let mut jp = 0;
+            let mut best = ab[col].abs();
+            for i in 1..=km {
+                let a = ab[col + i].abs();
+                if a > best {
+                    best = a;
+                    jp = i;
+                }
+            }
+            self.ipiv[j] = j + jp;
+            if best == 0.0 || !best.is_finite() {
+                return Err(BandError::ZeroPivot(j));
+            }
+            ju = ju.max((j + ku + jp).min(n1 - 1));
+            if jp != 0 {
+                // swap rows j and j + jp in columns j..=ju
+                for c in j..=ju {
+                    let base = kv + c * ld;
+                    ab.swap(base + j - c, base + j + jp - c);
+                }
+            }
+            if km > 0 {
+                let inv = 1.0 / ab[col];
+                for i in 1..=km {
+                    ab[col + i] *= inv;
+                }
+                for c in j + 1..=ju {
+                    // column j (multipliers) lies before column c in the storage
+                    let (lo, hi) = ab.split_at_mut(c * ld);
+                    let l = &lo[col + 1..=col + km];
+                    let top = kv + j - c;
+                    let ujc = hi[top];
+                    if ujc != 0.0 {
+                        for (t, li) in hi[top + 1..=top + km].iter_mut().zip(l) {
+                            *t -= ujc * li;
+                        }
+                    }
+                }
+            }
+        }
+        for (j, u) in self.u_inv.iter_mut().enumerate() {
+            *u = 1.0 / self.ab[kv + j * ld];
+        }
+        // X = A11^-1 A12, Schur complement S = A22 - A21 X and its LU
+        let mut x = std::mem::take(&mut self.x);
+        let band = self.band();
+        for xb in x.chunks_exact_mut(n1.max(1)).take(nb) {
+            band.solve(xb);
+        }
+        self.x = x;
+        for c in 0..nb {
+            for r in 0..nb {
+                let mut acc = 0.0;
+                for k in 0..n1 {
+                    acc += self.a21[r + k * nb] * self.x[k + c * n1];
+                }
+                self.s[r + c * nb] -= acc;
+            }
+        }
+        dense_lu(&mut self.s, nb, &mut self.s_piv).map_err(|c| BandError::ZeroPivot(n1 + c))
+    }
+
+    /// The factors of the banded part.
+    fn band(&self) -> Band<'_> {
+        Band {
+            ab: &self.ab,
+            ld: self.ld,
+            kl: self.plan.kl,
+            ku: self.plan.ku,
+            ipiv: &self.ipiv,
+            u_inv: &self.u_inv,
+        }
+    }
+
+    /// Solves `A x = b` in place (`b` in the original numbering); `w` is scratch of the same
+    /// length.
+    pub(crate) fn solve(&self, b: &mut [f64], w: &mut [f64]) {
+        let n1 = self.plan.n1;
+        let nb = self.plan.border();
+        for (new, &old) in self.plan.perm.iter().enumerate() {
+            w[new] = b[old];
+        }
+        let (y1, y2) = w.split_at_mut(n1);
+        let band = self.band();
+        band.solve(y1);
+        if nb > 0 {
+            for r in 0..nb {
+                let mut acc = 0.0;
+                for k in 0..n1 {
+                    acc += self.a21[r + k * nb] * y1[k];
+                }
+                y2[r] -= acc;
+            }
+            dense_solve(&self.s, nb, &self.s_piv, y2);
+            for c in 0..nb {
+                let xc = &self.x[c * n1..(c + 1) * n1];
+                let v = y2[c];
+                for (y, x) in y1.iter_mut().zip(xc) {
+                    *y -= x * v;
+                }
+            }
+        }
+        for (new, &old) in self.plan.perm.iter().enumerate() {
+            b[old] = w[new];
+        }
+    }
+}
+
+/// The factors of the banded part.
+struct Band<'a> {
+    ab: &'a [f64],
+    ld: usize,
+    kl: usize,
+    ku: usize,
+    ipiv: &'a [usize],
+    u_inv: &'a [f64],
+}
+
+impl Band<'_> {
+    /// Solves with the banded LU (dgbtrs, no transpose) in place; `b` has the band's size.
+    fn solve(&self, b: &mut [f64]) {
+        let (ab, ld, kl) = (self.ab, self.ld, self.kl);
+        let kv = kl + self.ku;
+        let n = b.len();
+        // L y = P b
+        for j in 0..n {
+            let p = self.ipiv[j];
+            if p != j {
+                b.swap(p, j);
+            }
+            let km = kl.min(n - 1 - j);
+            let bj = b[j];
+            if km > 0 && bj != 0.0 {
+                let l = &ab[kv + 1 + j * ld..=kv + km + j * ld];
+                for (t, li) in b[j + 1..=j + km].iter_mut().zip(l) {
+                    *t -= li * bj;
+                }
+            }
+        }
+        // U x = y (U has upper bandwidth kv), column by column from the last
+        for j in (0..n).rev() {
+            let xj = b[j] * self.u_inv[j];
+            b[j] = xj;
+            let top = j.saturating_sub(kv);
+            let len = j - top;
+            if len > 0 && xj != 0.0 {
+                let u = &ab[kv - len + j * ld..kv + j * ld];
+                for (t, ui) in b[top..j].iter_mut().zip(u) {
+                    *t -= ui * xj;
+                }
+            }
+        }
+    }
+}
+
+/// LU with partial pivoting of the dense `n × n` column-major `a` in place; `Err(column)` at
+/// a zero pivot.
+fn dense_lu(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize> {
+    for j in 0..n {
+        let mut p = j;
+        for i in j + 1..n {
+            if a[i + j * n].abs() > a[p + j * n].abs() {
+                p = i;
+            }
+        }
+        piv[j] = p;
+        let d = a[p + j * n];
+        if d == 0.0 || !d.is_finite() {
+            return Err(j);
+        }
+        if p != j {
+            for c in 0..n {
+                a.swap(j + c * n, p + c * n);
+            }
+        }
+        for i in j + 1..n {
+            a[i + j * n] /= d;
+        }
+        for c in j + 1..n {
+            let u = a[j + c * n];
+            for i in j + 1..n {
+                a[i + c * n] -= a[i + j * n] * u;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Solves with the LU of [`dense_lu`] in place.
+fn dense_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
+    for j in 0..n {
+        b.swap(j, piv[j]);
+        for i in j + 1..n {
+            b[i] -= a[i + j * n] * b[j];
+        }
+    }
+    for j in (0..n).rev() {
+        b[j] /= a[j + j * n];
+        for i in 0..j {
+            b[i] -= a[i + j * n] * b[j];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Pattern of a closed loop of `nodes` nodes with `b` coupled coordinates each (node `k`
+    /// couples to `k ± 1` cyclically) plus one coordinate coupled to all: the ANCF belt with
+    /// a free pulley.
+    fn ring(b: usize, nodes: usize) -> (usize, Vec<usize>, Vec<usize>) {
+        let n = b * nodes;
+        let mut col_ptr = vec![0];
+        let mut row_idx = Vec::new();
+        for j in 0..=n {
+            let mut rows: Vec<usize> = if j == n {
+                (0..=n).collect()
+            } else {
+                let node = j / b;
+                let mut r: Vec<usize> = [node + nodes - 1, node, node + 1]
+                    .iter()
+                    .flat_map(|&k| (0..b).map(move |c| (k % nodes) * b + c))
+                    .collect();
+                r.push(n);
+                r
+            };
+            rows.sort_unstable();
+            rows.dedup();
+            row_idx.extend(rows);
+            col_ptr.push(row_idx.len());
+        }
+        (n + 1, col_ptr, row_idx)
+    }
+
+    /// The loop is cut at one node: the pulley and that node's six coordinates form the
+    /// border and the open chain has the band of neighbouring nodes, `2b − 1` on each side
+    /// (against `4b − 2` for the loop numbered from one node outwards on both sides).
+    #[test]
+    fn closed_loop_is_cut_into_a_chain() {
+        let (dim, cp, ri) = ring(6, 20);
+        let plan = BandPlan::new(dim, &cp, &ri);
+        assert_eq!(plan.border(), 7);
+        assert_eq!(plan.bandwidths(), (11, 11));
+        // a permutation of all coordinates
+        let mut seen = vec![false; dim];
+        for &v in &plan.perm {
+            assert!(!seen[v]);
+            seen[v] = true;
+        }
+        assert!(seen.iter().all(|&s| s));
+    }
+}
