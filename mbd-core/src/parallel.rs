@@ -160,7 +160,7 @@ fn worker_loop(s: &Shared) {
                 return;
             }
             spins += 1;
-            if spins % 64 == 0 && since.elapsed() > s.spin {
+            if spins.is_multiple_of(64) && since.elapsed() > s.spin {
                 // a job posted after this check unparks us (park returns at once if the
                 // unpark came first)
                 std::thread::park();
@@ -337,10 +337,10 @@ const OFF_FOR: usize = 2000;
 
 impl Drop for SplitProduct {
     fn drop(&mut self) {
-        if let Some(w) = &self.worker {
-            if let Some(b) = w.shared.lock().blocks.get_mut(self.slot) {
-                *b = None;
-            }
+        if let Some(w) = &self.worker
+            && let Some(b) = w.shared.lock().blocks.get_mut(self.slot)
+        {
+            *b = None;
         }
     }
 }
