@@ -11,7 +11,8 @@
 //! * a penalty normal law (1e9 N/m) instead of Lagrange multipliers;
 //! * no friction (μ = 0).
 //!
-//! * the converged reference step h = 0.05 ms without sub-steps (issue #16: real time there).
+//! * the converged reference step h = 0.05 ms without sub-steps (issue #16: real time there),
+//!   with the default `threads` (2 on a machine with two cores or more) and with one thread.
 //!
 //! Run: `cargo bench --profile release --workspace --bench tire_cleat` (the reduction takes about
 //! 30 s first). With `FLOWMBD_REDUCED_TIRE=<file>` a saved reduced tire (e.g. the cache file of
@@ -88,6 +89,13 @@ fn main() {
             let mut c = base.clone();
             c.rolling.time_step = 5e-5;
             c.impact.substeps = 1;
+            c
+        }),
+        ("h 0.05 ms, no sub-steps, 1 thread", {
+            let mut c = base.clone();
+            c.rolling.time_step = 5e-5;
+            c.impact.substeps = 1;
+            c.rolling.threads = 1;
             c
         }),
     ];

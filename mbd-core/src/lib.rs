@@ -28,6 +28,7 @@
 //! * [`tensioner`]: the pivoted-arm belt tensioner (spring with preload, damper, dry
 //!   friction) shared by the belt models;
 //! * [`workspace`]: [`Workspace`], the caller-owned scratch of a model's hot methods;
+//! * [`parallel`]: matrix–vector products split between two threads ([`parallel::SplitProduct`]);
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
 //!   [`history`]: CSV time histories;
 //! * [`validate`]: the one validation shape ([`Validate`], [`InvalidField`] with the field path)
@@ -89,6 +90,7 @@ pub mod kinematics;
 pub mod marker;
 pub mod multibody;
 pub mod newton;
+pub mod parallel;
 pub mod statics;
 pub mod tensioner;
 

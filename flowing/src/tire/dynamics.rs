@@ -38,8 +38,10 @@ use super::reduced::ReducedTire;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 use mbd_core::Workspace;
+use mbd_core::parallel::{ProductWorker, SplitProduct};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 use std::borrow::Cow;
+use std::sync::Arc;
 
 /// The rolling tire's smooth dynamics (module documentation).
 pub struct TireDynamics<'a> {
@@ -73,6 +75,9 @@ pub struct TireDynamics<'a> {
     /// run when θ̇ oscillates after the cleat; the strided row reads of the column-major
     /// matrices made it the third largest cost of a run at h = 0.05 ms).
     rows: Vec<Mat<f64>>,
+    /// The product with `Qᵀ`, split between two threads after
+    /// [`TireDynamics::set_product_worker`] (bitwise the same result).
+    product: SplitProduct,
 }
 
 impl<'a> TireDynamics<'a> {
@@ -160,9 +165,17 @@ impl<'a> TireDynamics<'a> {
             mt,
             spin_c,
             rows,
+            product: SplitProduct::new(None),
         };
         d.set_spin(spin);
         d
+    }
+
+    /// Splits the per-step product with `Qᵀ` between the calling thread and `worker` (`None`:
+    /// one thread); the results are the same bit for bit ([`mbd_core::parallel`]).
+    pub fn set_product_worker(&mut self, worker: Option<Arc<ProductWorker>>) {
+        self.product = SplitProduct::new(worker);
+        self.product.set(self.qt.as_ref());
     }
 
     /// Whether the tire is in modal coordinates (`M = I`, `K` diagonal; module documentation).
@@ -203,6 +216,7 @@ impl<'a> TireDynamics<'a> {
                     col[nz + j] = spin * spin * g2[j] + b * spin * k1[j];
                 }
             }
+            self.product.set(self.qt.as_ref());
             return;
         }
         for j in 0..nz {
@@ -226,6 +240,7 @@ impl<'a> TireDynamics<'a> {
                 col[nz + j] = k[j] + spin * spin * g2[j] + b * spin * k1[j];
             }
         }
+        self.product.set(self.qt.as_ref());
     }
 
     /// Sets the lagged argument `w = θ̈ₙ zₙ + 2γ'h(θ̇_R − θ̇_S) z̈ₙ` of the coupling `G₁ w`
@@ -281,18 +296,9 @@ impl<'a> TireDynamics<'a> {
         }
     }
 
-    /// `r = Q u` (one pass over the stored `Qᵀ`).
+    /// `r = Q u` (one pass over the stored `Qᵀ`, split between two threads with a worker).
     fn qt_product(&self, u: &[f64], r: &mut [f64]) {
-        let uv = MatRef::from_column_major_slice(u, u.len(), 1);
-        let rv = MatMut::from_column_major_slice_mut(r, self.qt.ncols(), 1);
-        matmul(
-            rv,
-            Accum::Replace,
-            self.qt.as_ref().transpose(),
-            uv,
-            1.0,
-            Par::Seq,
-        );
+        self.product.apply(self.qt.as_ref(), u, r);
     }
 
     /// `out (+)= s · Q_k x` for block `k` of `Q` (0: C_eff, 1: K_eff, 2: G₁, 3: M).

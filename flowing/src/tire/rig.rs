@@ -282,8 +282,10 @@ pub struct RigResult {
     pub dt: f64,
     /// Wall time of the time integration \[s\] (the observer's time excluded).
     pub wall_time_s: f64,
-    /// CPU time of the integrating thread \[s\] (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`; `None`
-    /// elsewhere): the load-independent cost on a shared machine.
+    /// CPU time of the integrating thread and of the split products' worker thread, if any
+    /// \[s\] (`clock_gettime` of their thread CPU clocks; `None` elsewhere): the
+    /// load-independent cost on a shared machine (with a worker it includes the worker's
+    /// spinning between products).
     pub cpu_time_s: Option<f64>,
     /// Simulated time \[s\].
     pub simulated_s: f64,
@@ -438,7 +440,11 @@ pub fn run_cleat_observed(
     let steps = (total / h).round() as usize;
     let mut samples = Vec::with_capacity(steps);
     let t0 = Instant::now();
-    let c0 = thread_cpu_s();
+    // CPU time of this thread and of the products' worker thread, if any
+    let run_cpu = |sim: &RollingTire| {
+        thread_cpu_s().map(|c| c + sim.product_worker().and_then(worker_cpu_s).unwrap_or(0.0))
+    };
+    let c0 = run_cpu(&sim);
     let (mut obs_wall, mut obs_cpu) = (0.0, 0.0);
     for k in 0..steps {
         let n = if cfg.impact.active(sim.ground(), sim.state.t) {
@@ -480,7 +486,7 @@ pub fn run_cleat_observed(
         samples,
         dt: h,
         wall_time_s: t0.elapsed().as_secs_f64() - obs_wall,
-        cpu_time_s: c0.zip(thread_cpu_s()).map(|(a, b)| b - a - obs_cpu),
+        cpu_time_s: c0.zip(run_cpu(&sim)).map(|(a, b)| b - a - obs_cpu),
         simulated_s: steps as f64 * h,
         refactors: sim.refactors,
         stats: sim.stats,
@@ -501,6 +507,32 @@ pub fn thread_cpu_s() -> Option<f64> {
     // SAFETY: `ts` is a valid, writable timespec for the duration of the call.
     let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
     (rc == 0).then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+}
+
+/// CPU time consumed by the worker thread of the split products so far \[s\]
+/// (`pthread_getcpuclockid`); `None` where the clock is not available.
+#[cfg(unix)]
+pub fn worker_cpu_s(w: &mbd_core::parallel::ProductWorker) -> Option<f64> {
+    let thread = w.pthread()?;
+    let mut clock: libc::clockid_t = 0;
+    // SAFETY: `thread` is the handle of a thread that is still running (the worker is joined
+    // only when dropped, and `w` borrows it); `clock` is a valid, writable clockid_t.
+    if unsafe { libc::pthread_getcpuclockid(thread as libc::pthread_t, &mut clock) } != 0 {
+        return None;
+    }
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec for the duration of the call.
+    let rc = unsafe { libc::clock_gettime(clock, &mut ts) };
+    (rc == 0).then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+}
+
+/// CPU time of the worker thread (not available on this platform).
+#[cfg(not(unix))]
+pub fn worker_cpu_s(_w: &mbd_core::parallel::ProductWorker) -> Option<f64> {
+    None
 }
 
 /// CPU time of the calling thread (not available on this platform).

@@ -167,6 +167,17 @@ pub struct RollingConfig {
     pub contact_margin: f64,
     /// Evaluation of the spindle force: `momentum` (default) or `rim` (Ribaric (7.2)).
     pub spindle_force: SpindleForceMethod,
+    /// Threads of the step's two large matrix–vector products (the force matrix `[G₁ H]` and
+    /// the explicit inverse `S⁻¹`): 1 = the calling thread alone; 2 or more = a worker thread
+    /// computes half of the rows of each ([`mbd_core::parallel`]; bitwise the same results).
+    /// Default: 2 when `std::thread::available_parallelism` reports at least 2, else 1.
+    pub threads: usize,
+}
+
+/// The default of [`RollingConfig::threads`]: 2 when the machine runs at least 2 threads in
+/// parallel, else 1.
+pub fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get().min(2))
 }
 
 impl Default for RollingConfig {
@@ -187,6 +198,7 @@ impl Default for RollingConfig {
             matrix_tolerance: 0.1,
             contact_margin: 0.0005,
             spindle_force: SpindleForceMethod::Momentum,
+            threads: default_threads(),
         }
     }
 }
@@ -292,6 +304,7 @@ impl Validate for RollingConfig {
         check::positive("spin_tolerance", self.spin_tolerance, "")?;
         check::positive("matrix_tolerance", self.matrix_tolerance, "")?;
         check::positive("contact_margin", self.contact_margin, "m")?;
+        check::count("threads", self.threads, 1, 1024)?;
         check_coefficient("friction", self.friction)?;
         if let NormalContact::Penalty { stiffness } = self.normal {
             check::positive("normal.stiffness", stiffness, "N/m")?;
@@ -413,6 +426,8 @@ pub struct RollingTire<'a> {
     /// force) as contiguous columns (n_z × 15: column `3k + c` is row `c` of matrix `k`), read
     /// once per recorded step.
     force_rows: faer::Mat<f64>,
+    /// The worker thread of the split products (`threads ≥ 2`).
+    product_worker: Option<std::sync::Arc<mbd_core::parallel::ProductWorker>>,
 }
 
 /// Largest [`super::reduced::ModalTire::deviation`] for which [`RollingTire`] steps in modal
@@ -458,6 +473,12 @@ impl<'a> RollingTire<'a> {
             let sys = TireDynamics::new(red, alpha, beta, cfg.wheel_spin_inertia, spin);
             (sys, z0, None)
         };
+        // one worker thread shared by the products with [G₁ H] and S⁻¹ (applied one after the
+        // other in a step)
+        let worker = mbd_core::parallel::ProductWorker::for_threads(cfg.threads);
+        let mut sys = sys;
+        sys.set_product_worker(worker.clone());
+        let product_worker = worker.clone();
         let mut q0 = vec![0.0; nz + 1];
         q0[1..].copy_from_slice(&z0);
         let mut v0 = vec![0.0; nz + 1];
@@ -469,6 +490,7 @@ impl<'a> RollingTire<'a> {
         let mut stepper = AlphaStepper::new(&sys, State::new(0.0, q0, v0), cfg.alpha_config())
             .map_err(sim_err)?
             .with_correction(TireContact::new(sys.reduced(), cfg.clone(), ground));
+        stepper.set_product_worker(worker);
         stepper
             .set_initial_acceleration(&vec![0.0; nz + 1])
             .map_err(sim_err)?;
@@ -509,6 +531,7 @@ impl<'a> RollingTire<'a> {
             stats: StepStats::default(),
             cleat_contacts: 0,
             force_rows,
+            product_worker,
         })
     }
 
@@ -522,6 +545,12 @@ impl<'a> RollingTire<'a> {
         }
         self.cfg.time_step = h;
         Ok(())
+    }
+
+    /// The worker thread of the split products, if [`RollingConfig::threads`] ≥ 2 (e.g. to
+    /// add its CPU time to the caller's).
+    pub fn product_worker(&self) -> Option<&mbd_core::parallel::ProductWorker> {
+        self.product_worker.as_deref()
     }
 
     /// Settings.

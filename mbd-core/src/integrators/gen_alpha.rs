@@ -361,6 +361,8 @@ pub struct AlphaStepper<C = NoCorrection> {
     h_cur: f64,
     halvings: usize,
     correction: C,
+    /// The worker thread of the explicit inverse's products ([`AlphaStepper::set_product_worker`]).
+    worker: Option<std::sync::Arc<crate::parallel::ProductWorker>>,
 }
 
 impl AlphaStepper<NoCorrection> {
@@ -421,6 +423,7 @@ impl AlphaStepper<NoCorrection> {
             h_cur: params.h,
             halvings: 0,
             correction: NoCorrection,
+            worker: None,
         })
     }
 }
@@ -445,7 +448,19 @@ impl<C> AlphaStepper<C> {
             h_cur: self.h_cur,
             halvings: self.halvings,
             correction,
+            worker: self.worker,
         }
+    }
+
+    /// Splits the products with the explicit inverse of the iteration matrix
+    /// ([`AlphaConfig::explicit_inverse`]) between the calling thread and `worker` (`None`: one
+    /// thread), from the next factorisation on; the results are the same bit for bit
+    /// ([`crate::parallel`]).
+    pub fn set_product_worker(
+        &mut self,
+        worker: Option<std::sync::Arc<crate::parallel::ProductWorker>>,
+    ) {
+        self.worker = worker;
     }
 
     /// The model's workspace this stepper passes to its hot methods (e.g. to read
@@ -908,7 +923,8 @@ impl<C> AlphaStepper<C> {
                 if let Some(kc) = &kc {
                     blocks.push((1.0 / bp, kc));
                 }
-                self.matrix.factor(&blocks, d.as_ref(), t, explicit)
+                self.matrix
+                    .factor(&blocks, d.as_ref(), t, explicit, self.worker.as_ref())
             }
             JacobianMode::FiniteDifference => {
                 // column j: perturb the Newton unknown Δx_j by ε:
@@ -945,6 +961,7 @@ impl<C> AlphaStepper<C> {
                     if nc > 0 { Some(&dm) } else { None },
                     t,
                     explicit,
+                    self.worker.as_ref(),
                 )
             }
         }

@@ -11,15 +11,20 @@
 //! points of the rolling tire).
 
 use crate::linalg::{KktSolver, ScaledBlock};
+use crate::parallel::{ProductWorker, SplitProduct};
 use crate::{MbdError, SysMatrix};
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
+use std::sync::Arc;
 
 /// One factorisation of the iteration matrix with the data of the frozen-matrix policy.
 pub(crate) struct IterationMatrix {
     pub(crate) kkt: KktSolver,
     /// `(S⁻¹)ᵀ` of the augmented matrix when the inverse is explicit.
     inverse_t: Option<Mat<f64>>,
+    /// The product with the explicit inverse, split between two threads when the stepper has
+    /// a [`ProductWorker`].
+    product: Option<SplitProduct>,
     /// Step size \[s\] of the factorisation.
     pub(crate) h: f64,
     /// Velocity of the drift-trigger coordinate at the factorisation.
@@ -33,6 +38,7 @@ impl IterationMatrix {
         Self {
             kkt: KktSolver::new(),
             inverse_t: None,
+            product: None,
             h: 0.0,
             v_ref: 0.0,
             id: 0,
@@ -49,13 +55,15 @@ impl IterationMatrix {
         self.inverse_t = None;
     }
 
-    /// Factors `[Σ sₖ Aₖ, Dᵀ; D, 0]` (and inverts it when `explicit`).
+    /// Factors `[Σ sₖ Aₖ, Dᵀ; D, 0]` (and inverts it when `explicit`, its products then split
+    /// with `worker`, if any).
     pub(crate) fn factor(
         &mut self,
         blocks: &[ScaledBlock<'_>],
         d: Option<&SysMatrix>,
         t: f64,
         explicit: bool,
+        worker: Option<&Arc<ProductWorker>>,
     ) -> Result<(), MbdError> {
         self.inverse_t = None;
         self.kkt.factor(blocks, d, t)?;
@@ -63,7 +71,18 @@ impl IterationMatrix {
             let dim = blocks.first().map_or(0, |b| b.1.nrows()) + d.map_or(0, |d| d.nrows());
             let mut inv = Mat::<f64>::identity(dim, dim);
             self.kkt.solve_columns(inv.as_mut(), t)?;
-            self.inverse_t = Some(inv.transpose().to_owned());
+            let inv_t = inv.transpose().to_owned();
+            let same_worker = match (self.product.as_ref(), worker) {
+                (Some(p), w) => p.is_split() == w.is_some(),
+                (None, _) => false,
+            };
+            if !same_worker {
+                self.product = Some(SplitProduct::new(worker.cloned()));
+            }
+            if let Some(p) = self.product.as_mut() {
+                p.set(inv_t.as_ref());
+            }
+            self.inverse_t = Some(inv_t);
         }
         Ok(())
     }
@@ -89,7 +108,10 @@ impl IterationMatrix {
                         ),
                     });
                 }
-                matvec(inv_t.as_ref().transpose(), rhs, scratch);
+                match &self.product {
+                    Some(p) => p.apply(inv_t.as_ref(), rhs, scratch),
+                    None => matvec(inv_t.as_ref().transpose(), rhs, scratch),
+                }
                 rhs.copy_from_slice(scratch);
                 if rhs.iter().any(|v| !v.is_finite()) {
                     return Err(MbdError::Singular {
