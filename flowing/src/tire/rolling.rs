@@ -170,14 +170,10 @@ pub struct RollingConfig {
     /// Threads of the step's two large matrix–vector products (the force matrix `[G₁ H]` and
     /// the explicit inverse `S⁻¹`): 1 = the calling thread alone; 2 or more = a worker thread
     /// computes half of the rows of each ([`mbd_core::parallel`]; bitwise the same results).
-    /// Default: 2 when `std::thread::available_parallelism` reports at least 2, else 1.
+    /// Default 1: on an idle 2-core machine 2 threads shortened the wall time at h = 0.05 ms
+    /// by only ~4 % for 40–80 % more CPU (BENCHMARKS.md, tire section), and design sweeps
+    /// run one tire per core.
     pub threads: usize,
-}
-
-/// The default of [`RollingConfig::threads`]: 2 when the machine runs at least 2 threads in
-/// parallel, else 1.
-pub fn default_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get().min(2))
 }
 
 impl Default for RollingConfig {
@@ -198,7 +194,7 @@ impl Default for RollingConfig {
             matrix_tolerance: 0.1,
             contact_margin: 0.0005,
             spindle_force: SpindleForceMethod::Momentum,
-            threads: default_threads(),
+            threads: 1,
         }
     }
 }
