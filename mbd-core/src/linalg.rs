@@ -27,13 +27,24 @@ mod band;
 
 use crate::{MbdError, SysMatrix};
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::lu::{
     LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
 };
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat, Triplet};
-use faer::{Conj, Mat, MatMut, Par};
+use faer::{Accum, Conj, Mat, MatMut, MatRef, Par};
+
+/// `out = a x` for a dense matrix view `a` (`out` of length `a.nrows()`): faer's
+/// matrix–vector product on the calling thread. With `a = bᵀ` of a stored `b` it is one
+/// dot product per contiguous column of `b`. The one dense product of the integrators'
+/// explicit inverse, the split products ([`crate::parallel`]) and the rolling tire.
+pub fn matvec(a: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
+    let xv = MatRef::from_column_major_slice(x, x.len(), 1);
+    let ov = MatMut::from_column_major_slice_mut(out, a.nrows(), 1);
+    matmul(ov, Accum::Replace, a, xv, 1.0, Par::Seq);
+}
 
 impl SysMatrix {
     /// `y = A x` (overwrites `y`).

@@ -22,8 +22,7 @@
 //! worker never makes the product slower than on one thread. When the worker has claimed it,
 //! the caller waits by spinning briefly and then yielding.
 
-use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, MatMut, MatRef, Par};
+use faer::{Mat, MatRef};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
@@ -191,9 +190,7 @@ fn worker_loop(s: &Shared) {
 
 /// `out = atᵀ x` (faer's row-major kernel: one dot product per contiguous column of `at`).
 fn product(at: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
-    let xv = MatRef::from_column_major_slice(x, x.len(), 1);
-    let ov = MatMut::from_column_major_slice_mut(out, at.ncols(), 1);
-    matmul(ov, Accum::Replace, at.transpose(), xv, 1.0, Par::Seq);
+    crate::linalg::matvec(at.transpose(), x, out);
 }
 
 /// The product `y = A x` with the stored `Aᵀ` (`n_x × n_y`, column `i` = row `i` of `A`), its

@@ -21,7 +21,6 @@ use super::ground::{Ground, GroundPoint};
 use super::reduced::ReducedTire;
 use super::rolling::{NormalContact, RollingConfig, StepStats};
 use faer::linalg::matmul::matmul;
-use faer::prelude::*;
 use faer::{Accum, Mat, Par};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaCorrection, StepCorrection};
@@ -547,11 +546,7 @@ impl GapBound {
     }
 }
 
-pub(super) fn matvec(a: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
-    let xv = MatRef::from_column_major_slice(x, x.len(), 1);
-    let ov = MatMut::from_column_major_slice_mut(out, a.nrows(), 1);
-    matmul(ov, Accum::Replace, a, xv, 1.0, Par::Seq);
-}
+pub(super) use mbd_core::linalg::matvec;
 
 /// Dot product with four partial sums (vectorisable).
 fn dot(a: &[f64], b: &[f64]) -> f64 {

@@ -500,12 +500,18 @@ pub fn run_cleat_observed(
 /// observer); `None` where the clock is not available.
 #[cfg(unix)]
 pub fn thread_cpu_s() -> Option<f64> {
+    clock_s(libc::CLOCK_THREAD_CPUTIME_ID)
+}
+
+/// The reading of `clock` \[s\] (`clock_gettime`), `None` on failure.
+#[cfg(unix)]
+fn clock_s(clock: libc::clockid_t) -> Option<f64> {
     let mut ts = libc::timespec {
         tv_sec: 0,
         tv_nsec: 0,
     };
     // SAFETY: `ts` is a valid, writable timespec for the duration of the call.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    let rc = unsafe { libc::clock_gettime(clock, &mut ts) };
     (rc == 0).then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
 }
 
@@ -520,13 +526,7 @@ pub fn worker_cpu_s(w: &mbd_core::parallel::ProductWorker) -> Option<f64> {
     if unsafe { libc::pthread_getcpuclockid(thread as libc::pthread_t, &mut clock) } != 0 {
         return None;
     }
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid, writable timespec for the duration of the call.
-    let rc = unsafe { libc::clock_gettime(clock, &mut ts) };
-    (rc == 0).then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+    clock_s(clock)
 }
 
 /// CPU time of the worker thread (not available on this platform).

@@ -10,7 +10,7 @@
 //! step correction needs many solves (e.g. the contact responses `S⁻¹ Jᵀ` of all contact
 //! points of the rolling tire).
 
-use crate::linalg::{KktSolver, ScaledBlock};
+use crate::linalg::{KktSolver, ScaledBlock, matvec};
 use crate::parallel::{ProductWorker, SplitProduct};
 use crate::{MbdError, SysMatrix};
 use faer::linalg::matmul::matmul;
@@ -166,11 +166,4 @@ impl IterationMatrix {
             }
         }
     }
-}
-
-/// `out = a x`.
-pub(crate) fn matvec(a: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
-    let xv = MatRef::from_column_major_slice(x, x.len(), 1);
-    let ov = MatMut::from_column_major_slice_mut(out, a.nrows(), 1);
-    matmul(ov, Accum::Replace, a, xv, 1.0, Par::Seq);
 }
