@@ -9,8 +9,8 @@ use faer::Mat;
 use fe_model::generate::TireConfig;
 use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
 use flowing::tire::{
-    CleatStudyConfig, CleatSummary, ImportFiles, PhaseSpread, ReducedTire, RigResult,
-    RollingTire, TireError, TireFe, TireSource, cleat_summary, imported_tire, rig_input_error,
+    CleatStudyConfig, CleatSummary, ImportFiles, PhaseSpread, ReducedTire, RigResult, RollingTire,
+    TireError, TireFe, TireSource, cleat_summary, imported_tire, rig_input_error,
     run_cleat_observed, run_other_phases, tire_input_error,
 };
 use mbd_core::Validate;

@@ -283,8 +283,8 @@ impl Study for Cleat {
             // there keeps phase 0's outputs
             write_outputs(ctx, &r, "", false, &[])?;
             let bar = ctx.progress(1.0, "cleat phases");
-            let others = run_other_phases(&red, &c.rig, c.cleat_phases, &|f| bar.set(f))
-                .map_err(rig_err)?;
+            let others =
+                run_other_phases(&red, &c.rig, c.cleat_phases, &|f| bar.set(f)).map_err(rig_err)?;
             bar.finish();
             let all: Vec<&Summary> = std::iter::once(&s).chain(&others).collect();
             let spread = PhaseSpread::of(&all);

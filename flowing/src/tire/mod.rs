@@ -79,5 +79,5 @@ pub use spectrum::{
 };
 pub use study::{
     CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, TireSource, cleat_summary,
-    run_other_phases, summarize, rig_input_error, tire_input_error,
+    rig_input_error, run_other_phases, summarize, tire_input_error,
 };

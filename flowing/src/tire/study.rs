@@ -215,7 +215,14 @@ fn mean_sd(x: &[f64]) -> (f64, f64) {
     let n = x.len().max(1) as f64;
     let mean = x.iter().sum::<f64>() / n;
     let ss = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>();
-    (mean, if x.len() > 1 { (ss / (n - 1.0)).sqrt() } else { 0.0 })
+    (
+        mean,
+        if x.len() > 1 {
+            (ss / (n - 1.0)).sqrt()
+        } else {
+            0.0
+        },
+    )
 }
 
 impl PhaseSpread {
