@@ -9,9 +9,9 @@ use faer::Mat;
 use fe_model::generate::TireConfig;
 use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
 use flowing::tire::{
-    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
-    TireSource, cleat_summary, imported_tire, rig_input_error, run_cleat_observed,
-    tire_input_error,
+    CleatStudyConfig, CleatSummary, ImportFiles, PhaseSpread, ReducedTire, RigResult, RollingTire,
+    TireError, TireFe, TireSource, cleat_summary, imported_tire, rig_input_error,
+    run_cleat_observed, run_other_phases, tire_input_error,
 };
 use mbd_core::Validate;
 use numpy::ndarray::Array2;
@@ -404,7 +404,12 @@ pub fn tire_cleat(
             Ok(())
         };
         let r = run_cleat_observed(&red, &c.rig, &mut |_| {}, &mut observer)?;
-        let summary = cleat_summary(&red, &r);
+        let mut summary = cleat_summary(&red, &r);
+        if c.cleat_phases > 1 {
+            let others = run_other_phases(&red, &c.rig, c.cleat_phases, &|_| {})?;
+            let all: Vec<&CleatSummary> = std::iter::once(&summary).chain(&others).collect();
+            summary.phases = Some(PhaseSpread::of(&all));
+        }
         let (sx, sy) = r.spectra();
         Ok::<_, TireError>((
             summary,

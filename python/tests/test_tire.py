@@ -91,6 +91,18 @@ def test_cleat_with_the_reduced_tire_equals_the_cli(cli, tmp_path, reduced):
     assert_same(flowmbd.tire.cleat(speed_kmh=60.0, config={**RIG, "tire": TIRE}), ref)
 
 
+def test_cleat_phases_equal_the_cli(cli, tmp_path, reduced):
+    # `cleat_phases = 2`: the CLI's `phases` (phase 0 = the run itself, phase 1 = the cleat half
+    # an impact step later) to 1e-12
+    cfg = write_config(tmp_path, "")
+    code, ref, err = cli("tire", "cleat", "--speed", "60", "--phases", "2", "--config", str(cfg))
+    assert code == 0, err
+    py = flowmbd.tire.cleat(speed_kmh=60.0, config={**RIG, "cleat_phases": 2}, tire=reduced)
+    assert_same(py, ref)
+    assert py["phases"]["phases"] == 2
+    assert py["phases"]["fy_band_rms_n"][0] == pytest.approx(py["fy_band_rms_n"], rel=1e-12)
+
+
 def test_pickle_round_trip(reduced):
     back = pickle.loads(pickle.dumps(reduced))
     assert isinstance(back, flowmbd.tire.ReducedTire)

@@ -114,3 +114,57 @@ fn substeps_are_used_only_around_the_cleat() {
     let e = run_cleat(red, &bad, &mut |_| {}).unwrap_err().to_string();
     assert!(e.contains("impact.substeps"), "{e}");
 }
+
+#[test]
+fn a_cleat_phase_only_delays_the_cleat() {
+    // `RigConfig::with_cleat_phase`: the settle time grows by the fraction of an impact step;
+    // the tire rolls step for step as before (same forces) until the cleat comes near, and the
+    // samples' t = 0 stays at the cleat hit (invariant of the rig's time axis).
+    let red = tire();
+    let mut base = plain_rig(0.02);
+    base.impact.substeps = 4;
+    let shifted = base.with_cleat_phase(0.5);
+    let dt = 0.5 * base.rolling.time_step / 4.0;
+    assert!((base.impact_step() - base.rolling.time_step / 4.0).abs() < 1e-18);
+    assert!((shifted.settle_time - base.settle_time - dt).abs() < 1e-15);
+    let a = run_cleat(red, &base, &mut |_| {}).unwrap();
+    let b = run_cleat(red, &shifted, &mut |_| {}).unwrap();
+    let v = base.speed_kmh / 3.6;
+    let before = |s: &Sample| s.t < -(base.impact.lead + 0.02) / v;
+    let n = a.samples.iter().filter(|s| before(s)).count();
+    assert!(n > 10, "{n} samples before the cleat");
+    for (s, f) in a.samples.iter().zip(&b.samples).take(n) {
+        assert_eq!((s.fy, s.fx, s.spin), (f.fy, f.fx, f.spin));
+        assert!((s.t - f.t - dt).abs() < 1e-12, "t = {} vs {}", s.t, f.t);
+    }
+    // after the hit the phase matters: the histories differ
+    assert!(
+        a.samples
+            .iter()
+            .zip(&b.samples)
+            .any(|(s, f)| s.cleat_nodes > 0 && (s.fy - f.fy).abs() > 1.0),
+        "the cleat phase changes the impact"
+    );
+}
+
+#[test]
+fn phase_spread_is_the_mean_and_sample_deviation() {
+    // `PhaseSpread::of` against the textbook formulas on three runs whose summaries differ
+    // only in the line amplitudes (analytical: mean 2, sample sd 1 of {1, 2, 3}).
+    let red = tire();
+    let r = run_cleat(red, &plain_rig(0.01), &mut |_| {}).unwrap();
+    let mut s: Vec<CleatSummary> = (0..3).map(|_| summarize(&r)).collect();
+    for (k, x) in s.iter_mut().enumerate() {
+        x.fy_band_rms_n = 1.0 + k as f64;
+        x.fx_band_rms_n = 10.0 * (1.0 + k as f64);
+    }
+    let p = PhaseSpread::of(&s.iter().collect::<Vec<_>>());
+    assert_eq!(p.phases, 3);
+    assert!((p.fy_band_rms_mean_n - 2.0).abs() < 1e-15);
+    assert!((p.fy_band_rms_sd_n - 1.0).abs() < 1e-15);
+    assert!((p.fx_band_rms_mean_n - 20.0).abs() < 1e-13);
+    assert!((p.fx_band_rms_sd_n - 10.0).abs() < 1e-13);
+    assert_eq!(p.fy_band_rms_n, vec![1.0, 2.0, 3.0]);
+    let one = PhaseSpread::of(&[&s[0]]);
+    assert_eq!(one.fy_band_rms_sd_n, 0.0);
+}

@@ -6,7 +6,8 @@ use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowing::tire::study::CLEAT_MEANING;
 use flowing::tire::{
-    LineMode, RigResult, RollingTire, TireError, cleat_summary, run_cleat_observed,
+    LineMode, PhaseSpread, RigResult, RollingTire, TireError, cleat_summary, run_cleat_observed,
+    run_other_phases,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError, run_study};
@@ -20,6 +21,10 @@ pub struct Args {
     /// Speed [km/h] (overrides `rig.speed_kmh`).
     #[arg(long)]
     speed: Option<f64>,
+    /// Cleat phases: repeat the test with the cleat arriving j/N of an impact step later and
+    /// report the mean and spread of the line amplitudes (overrides `cleat_phases`)
+    #[arg(long)]
+    phases: Option<usize>,
     #[command(flatten)]
     rig: RigFlags,
 }
@@ -164,6 +169,7 @@ fn write_tire_vtu(
 
 struct Cleat {
     speed: Option<f64>,
+    phases: Option<usize>,
     rig: RigFlags,
 }
 
@@ -184,6 +190,9 @@ impl Study for Cleat {
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(v) = self.speed {
             c.rig.speed_kmh = v;
+        }
+        if let Some(n) = self.phases {
+            c.cleat_phases = n;
         }
         self.rig.apply(&mut c.tire, &mut c.rig);
     }
@@ -268,7 +277,31 @@ impl Study for Cleat {
             }
         };
         bar.finish();
-        let s = cleat_summary(&red, &r);
+        let mut s = cleat_summary(&red, &r);
+        if c.cleat_phases > 1 {
+            // the other sampling phases of the cleat (phase 0 is the run above); a failure
+            // there keeps phase 0's outputs
+            write_outputs(ctx, &r, "", false, &[])?;
+            let bar = ctx.progress(1.0, "cleat phases");
+            let others =
+                run_other_phases(&red, &c.rig, c.cleat_phases, &|f| bar.set(f)).map_err(rig_err)?;
+            bar.finish();
+            let all: Vec<&Summary> = std::iter::once(&s).chain(&others).collect();
+            let spread = PhaseSpread::of(&all);
+            ctx.out.write_csv(
+                "phases.csv",
+                &["phase", "cleat_delay_s", "fy_band_rms_n", "fx_band_rms_n"],
+                (0..spread.phases).map(|j| {
+                    vec![
+                        j as f64,
+                        j as f64 / spread.phases as f64 * c.rig.impact_step(),
+                        spread.fy_band_rms_n[j],
+                        spread.fx_band_rms_n[j],
+                    ]
+                }),
+            )?;
+            s.phases = Some(spread);
+        }
         let lines: Vec<(&str, &LineMode)> = [("Fx", &s.fx_line_mode), ("Fy", &s.fy_line_mode)]
             .into_iter()
             .filter_map(|(n, m)| m.as_ref().map(|m| (n, m)))
@@ -283,6 +316,7 @@ pub fn run(args: &Args) -> ExitCode {
     run_study(
         &Cleat {
             speed: args.speed,
+            phases: args.phases,
             rig: args.rig.clone(),
         },
         &args.common,

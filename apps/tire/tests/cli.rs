@@ -575,6 +575,12 @@ fn bad_input_exits_2_naming_the_field() {
             "rig.damping.mode2",
         ),
         (
+            "cleat",
+            vec!["--phases=0".into()],
+            tire_tables(file),
+            "cleat_phases",
+        ),
+        (
             "sweep",
             vec![],
             format!("speeds_kmh = [20.0, -30.0]\n{}", tire_tables(file)),
@@ -842,4 +848,57 @@ fn dips_prediction_contract() {
     ));
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("profile_step"), "{err}");
+}
+
+/// `--phases 2`: the summary's `phases` and `phases.csv` hold the run itself (phase 0) and a
+/// run with the cleat half an impact step later, which equals the plain study with
+/// `rig.settle_time` lengthened by that much (second formulation: the shifted run by hand).
+#[test]
+fn cleat_phases_are_runs_with_the_cleat_delayed() {
+    let (file, _) = shared_reduced();
+    let dir = tmp("phases");
+    let top = "vtk_every = 0\nvtk_tire_every = 0";
+    let cfg = config(&dir, "p.toml", top, file, "");
+    let s = json_of(&run_study(
+        "cleat",
+        &["--phases", "2", "--json", "--quiet"],
+        &cfg,
+        &dir.join("p"),
+    ));
+    let p = &s["phases"];
+    assert_eq!(p["phases"], 2);
+    let fy = floats(&p["fy_band_rms_n"]);
+    assert_eq!(fy[0], f(&s["fy_band_rms_n"]));
+    // the default rig: h = 0.2 ms, 4 sub-steps through the impact
+    let delayed = 0.4 + 0.5 * 2e-4 / 4.0;
+    let cfg2 = config(
+        &dir,
+        "q.toml",
+        top,
+        file,
+        &format!("[rig]\nsettle_time = {delayed:e}\n"),
+    );
+    let q = json_of(&run_study(
+        "cleat",
+        &["--json", "--quiet"],
+        &cfg2,
+        &dir.join("q"),
+    ));
+    assert_eq!(fy[1], f(&q["fy_band_rms_n"]));
+    assert_eq!(floats(&p["fx_band_rms_n"])[1], f(&q["fx_band_rms_n"]));
+    let mean = 0.5 * (fy[0] + fy[1]);
+    assert!((f(&p["fy_band_rms_mean_n"]) - mean).abs() <= 1e-12 * mean);
+    let csv = std::fs::read_to_string(dir.join("p/phases.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+    // one run: no `phases` key
+    assert!(
+        json_of(&run_study(
+            "cleat",
+            &["--json", "--quiet"],
+            &cfg,
+            &dir.join("r")
+        ))
+        .get("phases")
+        .is_none()
+    );
 }

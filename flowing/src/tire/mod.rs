@@ -78,5 +78,6 @@ pub use spectrum::{
     spectrum_grid,
 };
 pub use study::{
-    CleatStudyConfig, CleatSummary, TireSource, cleat_summary, rig_input_error, tire_input_error,
+    CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, TireSource, cleat_summary,
+    rig_input_error, run_other_phases, summarize, tire_input_error,
 };
