@@ -548,18 +548,35 @@ impl GapBound {
 
 pub(super) use mbd_core::linalg::matvec;
 
-/// Dot product with four partial sums (vectorisable).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
+/// The dot products `aₖ · b` of three slices with one of equal length in one pass, each with
+/// four partial sums (vectorisable): three independent accumulation chains instead of one, and
+/// per product the same operations in the same order as a single four-partial-sum dot product.
+fn dots3(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
+    let mut acc = [[0.0; 4]; 3];
+    let chunks = a[0]
+        .chunks_exact(4)
+        .zip(a[1].chunks_exact(4))
+        .zip(a[2].chunks_exact(4))
+        .zip(b.chunks_exact(4));
+    for (((x0, x1), x2), y) in chunks {
         for k in 0..4 {
-            acc[k] += x[k] * y[k];
+            acc[0][k] += x0[k] * y[k];
+            acc[1][k] += x1[k] * y[k];
+            acc[2][k] += x2[k] * y[k];
         }
     }
-    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+    let body = b.len() - b.len() % 4;
+    let mut out = [0.0; 3];
+    for (p, o) in out.iter_mut().enumerate() {
+        let tail: f64 = a[p][body..]
+            .iter()
+            .zip(&b[body..])
+            .map(|(x, y)| x * y)
+            .sum();
+        let c = &acc[p];
+        *o = (c[0] + c[1]) + (c[2] + c[3]) + tail;
+    }
+    out
 }
 
 /// `y += c x` (vectorisable).
@@ -734,12 +751,16 @@ impl DelassusSource for TireDelassus<'_> {
         let s = self.red.contact_positions[i];
         let sf = self.spin_free;
         let rig = [sf * s[2], 0.0, -sf * s[0]];
+        // (T_c ż)ᵢ and (T_c,θ z)ᵢ: two passes of three dot products of length n_z
+        let (tc, tt) = (|a| col_slice(self.tct, 3 * i + a), |a| {
+            col_slice(self.tct_theta, 3 * i + a)
+        });
+        let (zd, z) = (self.zd_free, self.z_free);
+        let vc = dots3([tc(0), tc(1), tc(2)], zd);
+        let vt = dots3([tt(0), tt(1), tt(2)], z);
         let mut v = [0.0; 3];
         for (a, va) in v.iter_mut().enumerate() {
-            let c = 3 * i + a;
-            let vc = dot(col_slice(self.tct, c), self.zd_free);
-            let vt = dot(col_slice(self.tct_theta, c), self.z_free);
-            *va = rig[a] + vc + sf * vt - self.gp[k].velocity[a];
+            *va = rig[a] + vc[a] + sf * vt[a] - self.gp[k].velocity[a];
         }
         let (t1, t2) = tangents(&self.gp[k].normal);
         [dot3(&t1, &v), dot3(&t2, &v)]
