@@ -20,10 +20,12 @@ use super::dynamics::TireDynamics;
 use super::ground::{Ground, GroundPoint};
 use super::reduced::ReducedTire;
 use super::rolling::{NormalContact, RollingConfig, StepStats};
+use contact::friction::FrictionLaw;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaCorrection, StepCorrection};
+use std::sync::Arc;
 
 /// The contact-node responses of one factorisation of the iteration matrix.
 pub(super) struct Responses {
@@ -43,6 +45,8 @@ pub struct TireContact {
     /// The ground.
     pub ground: Ground,
     cfg: RollingConfig,
+    /// The friction law of `cfg` (built once).
+    law: Arc<dyn FrictionLaw>,
     /// `[0; T_cᵀ]` (n × 3 n_c), the right-hand sides of the responses.
     load: Mat<f64>,
     /// `T_cᵀ` and `T_c,θᵀ` (n_z × 3 n_c): contiguous rows of the contact-node maps.
@@ -107,9 +111,11 @@ impl TireContact {
         let bound = GapBound::new(&tct);
         let mut load = Mat::<f64>::zeros(nz + 1, 3 * nc);
         load.as_mut().subrows_mut(1, nz).copy_from(&tct);
+        let law = cfg.friction_law.law(cfg.friction, cfg.slip_regularization);
         Self {
             ground,
             cfg,
+            law,
             load,
             tct,
             tct_theta: red.tc_theta.transpose().to_owned(),
@@ -333,10 +339,7 @@ impl TireContact {
         };
         let w = &mut self.work;
         let m = w.cand.len();
-        let law = self
-            .cfg
-            .friction_law
-            .law(self.cfg.friction, self.cfg.slip_regularization);
+        let law = self.law.clone();
         let mu = law.coefficient();
         w.lambda.clear();
         w.ft.clear();
@@ -460,8 +463,11 @@ impl TireContact {
 ///
 /// and the node is skipped when this is at least the largest margin `contact_margin + h v`: its
 /// free gap is then certainly above the margin, so the candidates are exactly those of a
-/// search over all nodes. The reference is reset (all nodes evaluated) when `L_max ‖z − z_ref‖`
-/// exceeds 1 mm.
+/// search over all nodes. The reference moves to the current `z` when `L_max ‖z − z_ref‖`
+/// exceeds 0.1 mm, each `eᵢ` growing by the distance moved ([`GapBound::distance`]), without
+/// evaluating the nodes again (a reset that evaluated every node, at 1 mm, did so in a quarter
+/// of the steps of the cleat run at h = 0.05 ms: 61 nodes evaluated a step on average for 31
+/// candidates, now 50).
 struct GapBound {
     /// `Lᵢ` (with a relative allowance of 1e-12 for the round-off of the norms).
     lip: Vec<f64>,
@@ -499,8 +505,11 @@ impl GapBound {
         }
     }
 
-    /// `‖z − z_ref‖`, resetting the reference to `z` (every node to be evaluated) when there is
-    /// none or `L_max ‖z − z_ref‖` exceeds 1 mm.
+    /// `‖z − z_ref‖`; when `L_max ‖z − z_ref‖` exceeds 0.1 mm the reference moves to `z` and
+    /// every node's `eᵢ` grows by the distance moved (`‖zᵢ − z‖ ≤ ‖zᵢ − z_ref‖ + ‖z_ref − z‖`,
+    /// so the bound still holds without evaluating the nodes again; a node is evaluated again
+    /// when its bound comes within the margin, which resets its `eᵢ`). Without a reference
+    /// yet, `z` becomes it and every node is to be evaluated.
     fn distance(&mut self, z: &[f64]) -> f64 {
         if self.valid {
             let d = self
@@ -511,12 +520,15 @@ impl GapBound {
                 .sum::<f64>()
                 .sqrt()
                 * (1.0 + 1e-12);
-            if self.l_max * d <= 1e-3 {
+            if self.l_max * d <= 1e-4 {
                 return d;
             }
+            // (1 + 1e-12): allowance for the round-off of the sums eᵢ + d
+            self.e
+                .iter_mut()
+                .for_each(|e| *e = (*e + d) * (1.0 + 1e-12));
         }
         self.z_ref.copy_from_slice(z);
-        self.valid = false;
         0.0
     }
 
@@ -752,9 +764,10 @@ impl DelassusSource for TireDelassus<'_> {
         let sf = self.spin_free;
         let rig = [sf * s[2], 0.0, -sf * s[0]];
         // (T_c ż)ᵢ and (T_c,θ z)ᵢ: two passes of three dot products of length n_z
-        let (tc, tt) = (|a| col_slice(self.tct, 3 * i + a), |a| {
-            col_slice(self.tct_theta, 3 * i + a)
-        });
+        let (tc, tt) = (
+            |a| col_slice(self.tct, 3 * i + a),
+            |a| col_slice(self.tct_theta, 3 * i + a),
+        );
         let (zd, z) = (self.zd_free, self.z_free);
         let vc = dots3([tc(0), tc(1), tc(2)], zd);
         let vt = dots3([tt(0), tt(1), tt(2)], z);
@@ -764,5 +777,83 @@ impl DelassusSource for TireDelassus<'_> {
         }
         let (t1, t2) = tangents(&self.gp[k].normal);
         [dot3(&t1, &v), dot3(&t2, &v)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Invariant of [`GapBound`]: a skipped node's gap is at least the margin, so the
+    /// candidates are those of a search over all nodes. Synthetic ground (1-Lipschitz in the
+    /// node position like `contact::geometry`): the smaller of the distance to a plane and to
+    /// a circle moving at `v`; random `T_c` and a random walk of `z` with jumps, small and
+    /// large steps (reference moves and fresh evaluations).
+    #[test]
+    fn skipped_nodes_are_beyond_the_margin() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let (nz, nc) = (40, 30);
+        let tct = Mat::from_fn(nz, 3 * nc, |_, _| 0.2 * rnd());
+        let pos: Vec<[f64; 3]> = (0..nc)
+            .map(|i| {
+                // an arc of ±0.3 rad about the bottom: many nodes near the plane
+                let a = (i as f64 / nc as f64 - 0.5) * 0.6;
+                [0.3 * a.sin(), 0.0, -0.3 * a.cos()]
+            })
+            .collect();
+        let (v, r, margin, h) = (16.7, 0.01, 1e-3, 5e-5);
+        let gaps = |z: &[f64], t: f64| -> Vec<(f64, f64)> {
+            (0..nc)
+                .map(|i| {
+                    let c = |b| col_slice(&tct, 3 * i + b);
+                    let d = dots3([c(0), c(1), c(2)], z);
+                    let p = [pos[i][0] + d[0], pos[i][1] + d[1], pos[i][2] + d[2]];
+                    let plane = p[2] + 0.295;
+                    let c = [-0.05 + v * t, -0.3 - 0.004];
+                    let cleat = (p[0] - c[0]).hypot(p[2] - c[1]) - r;
+                    (plane.min(cleat), cleat)
+                })
+                .collect()
+        };
+        let mut bound = GapBound::new(&tct);
+        let mut z = vec![0.0; nz];
+        // a drift (nodes approach or leave the ground steadily) plus noise
+        let drift: Vec<f64> = (0..nz).map(|_| rnd()).collect();
+        let (mut skipped, mut evaluated) = (0, 0);
+        for step in 0..4000 {
+            let t = step as f64 * h;
+            let size = match step % 500 {
+                0 => 0.02,
+                s if s < 250 => 2e-4,
+                _ => 2e-3,
+            };
+            let sign = if (step / 500) % 2 == 0 { 1.0 } else { -1.0 };
+            for (x, d) in z.iter_mut().zip(&drift) {
+                *x += size * (sign * d + 0.3 * rnd());
+            }
+            let dist = bound.distance(&z);
+            let g = gaps(&z, t);
+            for (i, &(gap, cleat)) in g.iter().enumerate() {
+                if bound.skip(i, t, dist, v, margin + h * v) {
+                    assert!(gap >= margin, "step {step} node {i}: gap {gap} skipped");
+                    skipped += 1;
+                } else {
+                    bound.record(i, gap, Some(cleat), t, dist);
+                    evaluated += 1;
+                }
+            }
+            bound.set_valid();
+        }
+        // the bound must skip something, else the test is vacuous
+        assert!(
+            skipped > evaluated / 4,
+            "{skipped} skipped, {evaluated} evaluated"
+        );
     }
 }
