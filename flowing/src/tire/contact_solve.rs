@@ -37,6 +37,7 @@
 //! The columns of `D` and the tangential free velocities are supplied lazily by the caller
 //! ([`DelassusSource`]): only contacts that carry a force or are pressed need them.
 
+use super::kernels::axpy_cols;
 use super::lcp::LcpWork;
 use contact::friction::{Coulomb, FrictionLaw};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -324,14 +325,7 @@ impl ContactSolver {
         } else {
             out.iter_mut().for_each(|o| *o = 0.0);
         }
-        for (c, &vc) in v.iter().enumerate() {
-            if vc != 0.0 {
-                let col = &self.d[c * n..(c + 1) * n];
-                for (o, &dv) in out.iter_mut().zip(col) {
-                    *o += vc * dv;
-                }
-            }
-        }
+        axpy_cols(|c| &self.d[c * n..(c + 1) * n], v, out);
     }
 
     /// Alart–Curnier residual `Φ(x)` for `y = D x + b`; returns `‖Φ‖∞`. Contacts that are

@@ -18,6 +18,7 @@
 use super::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
 use super::dynamics::TireDynamics;
 use super::ground::{Ground, GroundPoint};
+use super::kernels::{axpy_cols, dots3};
 use super::reduced::ReducedTire;
 use super::rolling::{NormalContact, RollingConfig, StepStats};
 use contact::friction::FrictionLaw;
@@ -78,6 +79,8 @@ struct Work {
     eval: Vec<usize>,
     /// Acceleration increment `X Σ fⱼ` (n).
     dvdot: Vec<f64>,
+    /// The contact forces as coefficients of the columns of `X` (3 n_c, zero between steps).
+    coef: Vec<f64>,
     cand: Vec<usize>,
     /// Whether each contact node was a candidate in the previous step.
     was_cand: Vec<bool>,
@@ -130,6 +133,7 @@ impl TireContact {
                 bound,
                 eval: Vec::with_capacity(nc),
                 dvdot: vec![0.0; nz + 1],
+                coef: vec![0.0; 3 * nc],
                 cand: Vec::with_capacity(nc),
                 was_cand: vec![true; nc],
                 gp: Vec::with_capacity(nc),
@@ -281,15 +285,14 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
             });
         };
         // contact correction Δv̇ = X Σ fⱼ
+        // (the columns in increasing order, as the candidates are)
         w.dvdot.iter_mut().for_each(|x| *x = 0.0);
         for (k, &j) in w.cand.iter().enumerate() {
-            for b in 0..3 {
-                let c = w.forces[k][b];
-                if c == 0.0 {
-                    continue;
-                }
-                axpy(c, col_slice(&fac.x, 3 * j + b), &mut w.dvdot);
-            }
+            w.coef[3 * j..3 * j + 3].copy_from_slice(&w.forces[k]);
+        }
+        axpy_cols(|c| col_slice(&fac.x, c), &w.coef, &mut w.dvdot);
+        for &j in &w.cand {
+            w.coef[3 * j..3 * j + 3].copy_from_slice(&[0.0; 3]);
         }
         step.apply(&w.dvdot, &[]);
         self.lambda.iter_mut().for_each(|l| *l = 0.0);
@@ -559,44 +562,6 @@ impl GapBound {
 }
 
 pub(super) use mbd_core::linalg::matvec;
-
-/// The dot products `aₖ · b` of three slices with one of equal length in one pass, each with
-/// four partial sums (vectorisable): three independent accumulation chains instead of one, and
-/// per product the same operations in the same order as a single four-partial-sum dot product.
-fn dots3(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
-    let mut acc = [[0.0; 4]; 3];
-    let chunks = a[0]
-        .chunks_exact(4)
-        .zip(a[1].chunks_exact(4))
-        .zip(a[2].chunks_exact(4))
-        .zip(b.chunks_exact(4));
-    for (((x0, x1), x2), y) in chunks {
-        for k in 0..4 {
-            acc[0][k] += x0[k] * y[k];
-            acc[1][k] += x1[k] * y[k];
-            acc[2][k] += x2[k] * y[k];
-        }
-    }
-    let body = b.len() - b.len() % 4;
-    let mut out = [0.0; 3];
-    for (p, o) in out.iter_mut().enumerate() {
-        let tail: f64 = a[p][body..]
-            .iter()
-            .zip(&b[body..])
-            .map(|(x, y)| x * y)
-            .sum();
-        let c = &acc[p];
-        *o = (c[0] + c[1]) + (c[2] + c[3]) + tail;
-    }
-    out
-}
-
-/// `y += c x` (vectorisable).
-fn axpy(c: f64, x: &[f64], y: &mut [f64]) {
-    for (yi, xi) in y.iter_mut().zip(x) {
-        *yi += c * xi;
-    }
-}
 
 /// The contiguous storage of a column of a (column-major) `Mat`.
 fn col_slice(m: &Mat<f64>, j: usize) -> &[f64] {
