@@ -375,13 +375,9 @@ impl ContactSolver {
             } else {
                 phi[3 * k] = lam - sig;
                 let u = Vector2::new(y[3 * k + 1], y[3 * k + 2]);
-                let ac = s.law.augmented(
-                    Vector2::new(f[0], f[1]),
-                    u,
-                    sig,
-                    self.rt[k],
-                    lin.is_some(),
-                );
+                let ac =
+                    s.law
+                        .augmented(Vector2::new(f[0], f[1]), u, sig, self.rt[k], lin.is_some());
                 let p = ac.target;
                 phi[3 * k + 1] = f[0] - p[0];
                 phi[3 * k + 2] = f[1] - p[1];

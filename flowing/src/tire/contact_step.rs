@@ -102,6 +102,61 @@ struct Work {
     rig_t1: Vec<f64>,
     /// The coupled normal + friction solver (buffers reused).
     solver: ContactSolver,
+    /// The candidates' blocks of `Y` and `X_θ` gathered so far (kept while the candidates and
+    /// the factorisation are those of the last step).
+    blocks: CandidateBlocks,
+}
+
+/// The blocks of the cached responses that the local Delassus matrix of the candidates reads
+/// ([`TireDelassus`]), gathered once per candidate set and factorisation instead of once per
+/// step: `Y` of candidate `l`'s three unit forces at every candidate `k` (3m × 3m, column
+/// `3l + r`, rows `3k..3k+3`) and `X_θ` (row 0 of `X`). The values are copies, so the matrix
+/// is the same as gathered from `Y` directly.
+#[derive(Default)]
+struct CandidateBlocks {
+    /// [`AlphaCorrection::factor_id`] and the candidates the blocks belong to.
+    id: usize,
+    cand: Vec<usize>,
+    /// Whether the columns of candidate `l` are gathered.
+    have: Vec<bool>,
+    y: Vec<f64>,
+    x_theta: Vec<[f64; 3]>,
+}
+
+impl CandidateBlocks {
+    /// Keeps the blocks if `cand` and `id` are those they were gathered for, else starts
+    /// empty for them.
+    fn prepare(&mut self, id: usize, cand: &[usize]) {
+        if self.id == id && self.cand == cand {
+            return;
+        }
+        let m = cand.len();
+        self.id = id;
+        self.cand.clear();
+        self.cand.extend_from_slice(cand);
+        self.have.clear();
+        self.have.resize(m, false);
+        self.y.resize(9 * m * m, 0.0);
+        self.x_theta.resize(m, [0.0; 3]);
+    }
+
+    /// Gathers the columns of candidate `l` from `fac` if not yet done.
+    fn gather(&mut self, fac: &Responses, l: usize) {
+        if self.have[l] {
+            return;
+        }
+        let ld = 3 * self.cand.len();
+        let j = self.cand[l];
+        for r in 0..3 {
+            let col = col_slice(&fac.y, 3 * j + r);
+            let out = &mut self.y[(3 * l + r) * ld..(3 * l + r + 1) * ld];
+            for (k, &i) in self.cand.iter().enumerate() {
+                out[3 * k..3 * k + 3].copy_from_slice(&col[3 * i..3 * i + 3]);
+            }
+            self.x_theta[l][r] = fac.x[(0, 3 * j + r)];
+        }
+        self.have[l] = true;
+    }
 }
 
 impl TireContact {
@@ -149,6 +204,10 @@ impl TireContact {
                 frames: Vec::with_capacity(nc),
                 rig_t1: Vec::with_capacity(nc),
                 solver: ContactSolver::default(),
+                blocks: CandidateBlocks {
+                    id: usize::MAX,
+                    ..CandidateBlocks::default()
+                },
             },
         }
     }
@@ -375,8 +434,10 @@ impl TireContact {
         };
         candidate_frames(red, &w.cand, &w.gp, c1, c2, &mut w.frames, &mut w.rig_t1);
         let v = step.v();
+        w.blocks.prepare(fac.id, &w.cand);
         let mut src = TireDelassus {
             fac,
+            blocks: &mut w.blocks,
             red,
             cand: &w.cand,
             gp: &w.gp,
@@ -592,6 +653,8 @@ fn tangents(n: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
 /// unit `Δz̈`) and `(η × s_k) X_θ,l` is the rigid spin part of the material velocity (E15).
 struct TireDelassus<'b> {
     fac: &'b Responses,
+    /// The candidates' blocks of `Y` and `X_θ` (gathered on demand).
+    blocks: &'b mut CandidateBlocks,
     red: &'b ReducedTire,
     cand: &'b [usize],
     gp: &'b [GroundPoint],
@@ -675,27 +738,25 @@ impl DelassusSource for TireDelassus<'_> {
     fn columns(&mut self, l: usize, cols: &mut [f64]) {
         let ld = 3 * self.cand.len();
         let e = self.directions(l);
-        let j = self.cand[l];
-        // the three Y columns of node l combined along the unit force directions:
-        // Y e_c = Σ_r e_c[r] Y[:, 3j + r], and X_θ e_c
-        let (y0, y1, y2) = (
-            col_slice(&self.fac.y, 3 * j),
-            col_slice(&self.fac.y, 3 * j + 1),
-            col_slice(&self.fac.y, 3 * j + 2),
-        );
+        self.blocks.gather(self.fac, l);
+        // the three Y columns of node l (rows of the candidates) combined along the unit force
+        // directions: Y e_c = Σ_r e_c[r] Y[:, 3j + r], and X_θ e_c
+        let yb = &self.blocks.y[3 * l * ld..(3 * l + 3) * ld];
+        let (y0, y1, y2) = (&yb[..ld], &yb[ld..2 * ld], &yb[2 * ld..]);
+        let x_theta = self.blocks.x_theta[l];
         let mut xth = [0.0; 3];
         for (c, ec) in e.iter().enumerate() {
             for (r, er) in ec.iter().enumerate() {
-                xth[c] += er * self.fac.x[(0, 3 * j + r)];
+                xth[c] += er * x_theta[r];
             }
         }
         // planar ground (n_y = 0): n and t1 lie in the (x, z) plane, t2 = ŷ, so each frame
         // vector has two (n, t1) or one (t2) nonzero component
         let (nx, nz) = (e[0][0], e[0][2]);
-        for (k, &i) in self.cand.iter().enumerate() {
-            let a = &y0[3 * i..3 * i + 3];
-            let b = &y1[3 * i..3 * i + 3];
-            let c3 = &y2[3 * i..3 * i + 3];
+        for k in 0..self.cand.len() {
+            let a = &y0[3 * k..3 * k + 3];
+            let b = &y1[3 * k..3 * k + 3];
+            let c3 = &y2[3 * k..3 * k + 3];
             let f = &self.frames[k];
             let (fnx, fnz, ftx, ftz, fy) = (f[0][0], f[0][2], f[1][0], f[1][2], f[2][1]);
             let rig = self.rig_t1[k];
