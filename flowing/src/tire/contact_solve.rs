@@ -35,7 +35,10 @@
 //! to the same tolerance.
 //!
 //! The columns of `D` and the tangential free velocities are supplied lazily by the caller
-//! ([`DelassusSource`]): only contacts that carry a force or are pressed need them.
+//! ([`DelassusSource`]): only contacts that carry a force or are pressed need them. The
+//! linearisation of `Φ` (classification, derivatives of the friction law's target) is formed
+//! together with the residual at each evaluated or accepted point and reused by the Newton or
+//! chord direction from there.
 
 use super::kernels::axpy_cols;
 use super::lcp::LcpWork;

@@ -14,6 +14,13 @@
 //! The normal and friction problems are solved together by the semismooth Newton method of
 //! [`ContactSolver`] on the Alart–Curnier equations in the local frames, warm-started from the
 //! forces of the last two steps; the result is applied with [`AlphaCorrection::apply`].
+//!
+//! Per step the work is kept to what changes: `T_c z` only of the nodes the bound does not
+//! skip, the local Delassus matrix from a copy of the candidates' blocks of `Y` and `X_θ` that
+//! is kept while the candidates and the factorisation stay the same (`CandidateBlocks`), the
+//! free slip velocities only of the contacts that are pressed, and the vector loops (`D x`,
+//! `X Σ fⱼ`, the free slip products) with AVX2 when the machine has it (`kernels`: the same
+//! operations in the same order, so the results do not depend on the machine).
 
 use super::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
 use super::dynamics::TireDynamics;
@@ -120,24 +127,38 @@ struct CandidateBlocks {
     /// Whether the columns of candidate `l` are gathered.
     have: Vec<bool>,
     y: Vec<f64>,
+    /// Per candidate (all gathered at once): `X_θ` of its three unit forces and its own block
+    /// of `Y` (`diag[k][r][a]` = row `a`, unit force `r`).
     x_theta: Vec<[f64; 3]>,
+    diag: Vec<[[f64; 3]; 3]>,
 }
 
 impl CandidateBlocks {
     /// Keeps the blocks if `cand` and `id` are those they were gathered for, else starts
     /// empty for them.
-    fn prepare(&mut self, id: usize, cand: &[usize]) {
-        if self.id == id && self.cand == cand {
+    fn prepare(&mut self, fac: &Responses, cand: &[usize]) {
+        if self.id == fac.id && self.cand == cand {
             return;
         }
         let m = cand.len();
-        self.id = id;
+        self.id = fac.id;
         self.cand.clear();
         self.cand.extend_from_slice(cand);
         self.have.clear();
         self.have.resize(m, false);
         self.y.resize(9 * m * m, 0.0);
-        self.x_theta.resize(m, [0.0; 3]);
+        self.x_theta.clear();
+        self.diag.clear();
+        for &i in cand {
+            let mut xth = [0.0; 3];
+            let mut d = [[0.0; 3]; 3];
+            for r in 0..3 {
+                xth[r] = fac.x[(0, 3 * i + r)];
+                d[r].copy_from_slice(&col_slice(&fac.y, 3 * i + r)[3 * i..3 * i + 3]);
+            }
+            self.x_theta.push(xth);
+            self.diag.push(d);
+        }
     }
 
     /// Gathers the columns of candidate `l` from `fac` if not yet done.
@@ -153,7 +174,6 @@ impl CandidateBlocks {
             for (k, &i) in self.cand.iter().enumerate() {
                 out[3 * k..3 * k + 3].copy_from_slice(&col[3 * i..3 * i + 3]);
             }
-            self.x_theta[l][r] = fac.x[(0, 3 * j + r)];
         }
         self.have[l] = true;
     }
@@ -383,7 +403,7 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
 impl TireContact {
     /// The contact problem of the candidates in `work`: normal contact and friction coupled,
     /// solved by the semismooth Newton method of [`ContactSolver`] on the local Delassus
-    /// matrix (gathered lazily from the cached `Y`, `X`), warm-started from the previous
+    /// matrix (gathered lazily from the copied blocks of `Y`, `X`), warm-started from the previous
     /// steps' forces; leaves the contact forces in `work.forces`.
     fn solve_contact(
         &mut self,
@@ -434,7 +454,7 @@ impl TireContact {
         };
         candidate_frames(red, &w.cand, &w.gp, c1, c2, &mut w.frames, &mut w.rig_t1);
         let v = step.v();
-        w.blocks.prepare(fac.id, &w.cand);
+        w.blocks.prepare(fac, &w.cand);
         let mut src = TireDelassus {
             fac,
             blocks: &mut w.blocks,
@@ -704,17 +724,16 @@ impl TireDelassus<'_> {
         [n, t1, t2]
     }
 
-    /// Local outputs of node `k` for a unit force `e` (wheel frame) on node `l`.
-    fn response(&self, k: usize, l: usize, e: &[f64; 3]) -> [f64; 3] {
-        let (i, j) = (self.cand[k], self.cand[l]);
+    /// Local outputs of node `k` for a unit force `e` (wheel frame) on itself.
+    fn response(&self, k: usize, e: &[f64; 3]) -> [f64; 3] {
+        let (d, x_theta) = (&self.blocks.diag[k], &self.blocks.x_theta[k]);
         let mut v = [0.0; 3];
         let mut xth = 0.0;
         for (r, er) in e.iter().enumerate() {
-            let col = col_slice(&self.fac.y, 3 * j + r);
-            v[0] += er * col[3 * i];
-            v[1] += er * col[3 * i + 1];
-            v[2] += er * col[3 * i + 2];
-            xth += er * self.fac.x[(0, 3 * j + r)];
+            v[0] += er * d[r][0];
+            v[1] += er * d[r][1];
+            v[2] += er * d[r][2];
+            xth += er * x_theta[r];
         }
         let f = &self.frames[k];
         [
@@ -727,9 +746,9 @@ impl TireDelassus<'_> {
     /// The diagonal compliances `[D_N,kk, (D_T,kk,11 + D_T,kk,22)/2]` of node `k`.
     fn diagonal(&self, k: usize) -> [f64; 2] {
         let e = self.directions(k);
-        let dn = self.response(k, k, &e[0])[0] + self.penalty;
-        let d1 = self.response(k, k, &e[1])[1];
-        let d2 = self.response(k, k, &e[2])[2];
+        let dn = self.response(k, &e[0])[0] + self.penalty;
+        let d1 = self.response(k, &e[1])[1];
+        let d2 = self.response(k, &e[2])[2];
         [dn, 0.5 * (d1 + d2)]
     }
 }
