@@ -35,8 +35,12 @@
 //! to the same tolerance.
 //!
 //! The columns of `D` and the tangential free velocities are supplied lazily by the caller
-//! ([`DelassusSource`]): only contacts that carry a force or are pressed need them.
+//! ([`DelassusSource`]): only contacts that carry a force or are pressed need them. The
+//! linearisation of `Φ` (classification, derivatives of the friction law's target) is formed
+//! together with the residual at each evaluated or accepted point and reused by the Newton or
+//! chord direction from there.
 
+use super::kernels::axpy_cols;
 use super::lcp::LcpWork;
 use contact::friction::{Coulomb, FrictionLaw};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -132,6 +136,26 @@ enum State {
     Pressed,
 }
 
+/// The linearisation of the Alart–Curnier residual at one point (see
+/// [`ContactSolver::residual`]).
+#[derive(Default)]
+struct Linearization {
+    /// Per pressed contact: 3 × 3 matrices `L_k` (own unknowns) and `G_k` (own outputs) of the
+    /// Jacobian rows `dΦ_k = L_k dx_k + G_k dy_k` (row-major).
+    lk: Vec<[[f64; 3]; 3]>,
+    gk: Vec<[[f64; 3]; 3]>,
+    /// Classification per contact (0 open, 1 pressed/slip, 2 stick).
+    pattern: Vec<u8>,
+}
+
+impl Linearization {
+    fn reset(&mut self, m: usize) {
+        clear_fill(&mut self.lk, m, [[0.0; 3]; 3]);
+        clear_fill(&mut self.gk, m, [[0.0; 3]; 3]);
+        clear_fill(&mut self.pattern, m, 0);
+    }
+}
+
 /// A factorised Newton matrix and the classification of the contacts it was built for.
 struct LuSlot {
     pattern: Vec<u8>,
@@ -163,13 +187,12 @@ pub struct ContactSolver {
     rn: Vec<f64>,
     rt: Vec<f64>,
     state: Vec<State>,
-    /// Per pressed contact: 3 × 3 matrices `L_k` (own unknowns) and `G_k` (own outputs) of the
-    /// Jacobian rows `dΦ_k = L_k dx_k + G_k dy_k` (row-major).
-    lk: Vec<[[f64; 3]; 3]>,
-    gk: Vec<[[f64; 3]; 3]>,
+    /// The linearisation of `Φ` at the current `(x, y)`, formed with its residual (valid iff
+    /// `lin_ok`), and at the line search's trial point.
+    lin: Linearization,
+    lin_trial: Linearization,
+    lin_ok: bool,
     act: Vec<usize>,
-    /// Classification per contact (0 open, 1 pressed/slip, 2 stick).
-    pattern: Vec<u8>,
     /// The last few Newton matrices (LU factors), by classification: chord steps use the one
     /// of the current classification (the patch often alternates between two from step to
     /// step).
@@ -204,10 +227,10 @@ impl Default for ContactSolver {
             rn: Vec::new(),
             rt: Vec::new(),
             state: Vec::new(),
-            lk: Vec::new(),
-            gk: Vec::new(),
+            lin: Linearization::default(),
+            lin_trial: Linearization::default(),
+            lin_ok: false,
             act: Vec::new(),
-            pattern: Vec::new(),
             slots: (0..3)
                 .map(|_| LuSlot {
                     pattern: Vec::new(),
@@ -275,8 +298,9 @@ impl ContactSolver {
         clear_fill(&mut self.rn, m, 0.0);
         clear_fill(&mut self.rt, m, 0.0);
         clear_fill(&mut self.state, m, State::Open);
-        clear_fill(&mut self.lk, m, [[0.0; 3]; 3]);
-        clear_fill(&mut self.gk, m, [[0.0; 3]; 3]);
+        self.lin.reset(m);
+        self.lin_trial.reset(m);
+        self.lin_ok = false;
     }
 
     /// Set the free gaps `b_N` \[m\] (one per contact).
@@ -324,20 +348,22 @@ impl ContactSolver {
         } else {
             out.iter_mut().for_each(|o| *o = 0.0);
         }
-        for (c, &vc) in v.iter().enumerate() {
-            if vc != 0.0 {
-                let col = &self.d[c * n..(c + 1) * n];
-                for (o, &dv) in out.iter_mut().zip(col) {
-                    *o += vc * dv;
-                }
-            }
-        }
+        axpy_cols(|c| &self.d[c * n..(c + 1) * n], v, out);
     }
 
-    /// Alart–Curnier residual `Φ(x)` for `y = D x + b`; returns `‖Φ‖∞`. Contacts that are
-    /// pressed get their free velocity and column through `src` first (their `y` then
-    /// changes; the caller recomputes `y` if this returns `None`).
-    fn residual(&self, s: &SolveOptions, x: &[f64], y: &[f64], phi: &mut [f64]) -> f64 {
+    /// Alart–Curnier residual `Φ(x)` for `y = D x + b`; returns `‖Φ‖∞`. With `lin`, also the
+    /// linearisation of `Φ` at `(x, y)` used by the Newton direction: per contact its
+    /// classification (0 open, 1 pressed/slip, 2 stick) and, if pressed, the 3 × 3 matrices
+    /// `L_k`, `G_k` of `dΦ_k = L_k dx_k + G_k dy_k` (the law's target is the same with or
+    /// without its derivatives).
+    fn residual(
+        &self,
+        s: &SolveOptions,
+        x: &[f64],
+        y: &[f64],
+        phi: &mut [f64],
+        mut lin: Option<&mut Linearization>,
+    ) -> f64 {
         let mut norm = 0.0f64;
         for k in 0..self.m {
             let (lam, f) = (x[3 * k], [x[3 * k + 1], x[3 * k + 2]]);
@@ -346,15 +372,37 @@ impl ContactSolver {
                 phi[3 * k] = lam;
                 phi[3 * k + 1] = f[0];
                 phi[3 * k + 2] = f[1];
+                if let Some(lin) = lin.as_deref_mut() {
+                    lin.pattern[k] = 0;
+                }
             } else {
                 phi[3 * k] = lam - sig;
                 let u = Vector2::new(y[3 * k + 1], y[3 * k + 2]);
-                let p = s
-                    .law
-                    .augmented(Vector2::new(f[0], f[1]), u, sig, self.rt[k], false)
-                    .target;
+                let ac =
+                    s.law
+                        .augmented(Vector2::new(f[0], f[1]), u, sig, self.rt[k], lin.is_some());
+                let p = ac.target;
                 phi[3 * k + 1] = f[0] - p[0];
                 phi[3 * k + 2] = f[1] - p[1];
+                if let Some(lin) = lin.as_deref_mut() {
+                    // dΦ_N = r_N dg; Φ_T = f − p(f, u, λ̂), λ̂ = λ − r_N g:
+                    // dΦ_T = (I − p_f) df − p_u du − p_λ̂ (dλ − r_N dg)
+                    let rn = self.rn[k];
+                    let mut l = [[0.0; 3]; 3];
+                    let mut g = [[0.0; 3]; 3];
+                    g[0][0] = rn;
+                    for r in 0..2 {
+                        l[1 + r][0] = -ac.d_normal[r];
+                        g[1 + r][0] = rn * ac.d_normal[r];
+                        for c in 0..2 {
+                            l[1 + r][1 + c] = if r == c { 1.0 } else { 0.0 } - ac.d_force[(r, c)];
+                            g[1 + r][1 + c] = -ac.d_slip[(r, c)];
+                        }
+                    }
+                    lin.lk[k] = l;
+                    lin.gk[k] = g;
+                    lin.pattern[k] = if ac.stick { 2 } else { 1 };
+                }
             }
             for a in 0..3 {
                 norm = norm.max(phi[3 * k + a].abs());
@@ -402,7 +450,10 @@ impl ContactSolver {
         let x = std::mem::take(&mut self.x);
         self.apply(&x, &mut y, true);
         self.prefetch(src, &x, &mut y, None);
-        let norm = self.residual(s, &x, &y, &mut phi);
+        let mut lin = std::mem::take(&mut self.lin);
+        let norm = self.residual(s, &x, &y, &mut phi, Some(&mut lin));
+        self.lin = lin;
+        self.lin_ok = true;
         self.x = x;
         self.y = y;
         self.phi = phi;
@@ -528,7 +579,9 @@ impl ContactSolver {
                 let mut y = std::mem::take(&mut self.y);
                 self.prefetch(src, &xt, &mut yt, Some(&mut y));
                 self.y = y;
-                let nt = self.residual(s, &xt, &yt, &mut phi_t);
+                let mut lin = std::mem::take(&mut self.lin_trial);
+                let nt = self.residual(s, &xt, &yt, &mut phi_t, Some(&mut lin));
+                self.lin_trial = lin;
                 self.xt = xt;
                 self.yt = yt;
                 let theta: f64 = phi_t.iter().map(|p| p * p).sum();
@@ -542,6 +595,8 @@ impl ContactSolver {
                     std::mem::swap(&mut self.x, &mut self.xt);
                     std::mem::swap(&mut self.y, &mut self.yt);
                     std::mem::swap(&mut self.phi, &mut phi_t);
+                    std::mem::swap(&mut self.lin, &mut self.lin_trial);
+                    self.lin_ok = true;
                     norm = nt;
                     accepted = true;
                     break;
@@ -593,46 +648,24 @@ impl ContactSolver {
     ) -> Option<bool> {
         let m = self.m;
         let n = 3 * m;
+        // the linearisation at (x, y): formed with the residual there (evaluation or line
+        // search), else now
+        if !self.lin_ok {
+            let (x, y) = (std::mem::take(&mut self.x), std::mem::take(&mut self.y));
+            let (mut lin, mut phi) = (std::mem::take(&mut self.lin), std::mem::take(&mut self.tmp));
+            phi.resize(n, 0.0);
+            self.residual(s, &x, &y, &mut phi, Some(&mut lin));
+            (self.x, self.y, self.lin, self.tmp) = (x, y, lin, phi);
+            self.lin_ok = true;
+        }
         self.act.clear();
-        self.pattern.clear();
         for k in 0..m {
-            let sig = self.x[3 * k] - self.rn[k] * self.y[3 * k];
-            if sig <= 0.0 {
+            if self.lin.pattern[k] == 0 {
                 self.state[k] = State::Open;
-                self.pattern.push(0);
-                continue;
+            } else {
+                self.state[k] = State::Pressed;
+                self.act.push(k);
             }
-            self.state[k] = State::Pressed;
-            self.pattern.push(1);
-            self.act.push(k);
-            let (rn, rt) = (self.rn[k], self.rt[k]);
-            let f = [self.x[3 * k + 1], self.x[3 * k + 2]];
-            let u = [self.y[3 * k + 1], self.y[3 * k + 2]];
-            // dΦ_N = r_N dg
-            let mut l = [[0.0; 3]; 3];
-            let mut g = [[0.0; 3]; 3];
-            g[0][0] = rn;
-            // Φ_T = f − p(f, u, λ̂), λ̂ = λ − r_N g: dΦ_T = (I − p_f) df − p_u du − p_λ̂ (dλ − r_N dg)
-            let ac = s.law.augmented(
-                Vector2::new(f[0], f[1]),
-                Vector2::new(u[0], u[1]),
-                sig,
-                rt,
-                true,
-            );
-            if ac.stick {
-                self.pattern[k] = 2;
-            }
-            for r in 0..2 {
-                l[1 + r][0] = -ac.d_normal[r];
-                g[1 + r][0] = rn * ac.d_normal[r];
-                for c in 0..2 {
-                    l[1 + r][1 + c] = if r == c { 1.0 } else { 0.0 } - ac.d_force[(r, c)];
-                    g[1 + r][1 + c] = -ac.d_slip[(r, c)];
-                }
-            }
-            self.lk[k] = l;
-            self.gk[k] = g;
         }
         for i in 0..self.act.len() {
             let k = self.act[i];
@@ -658,7 +691,7 @@ impl ContactSolver {
         let found = self
             .slots
             .iter()
-            .position(|sl| sl.valid && sl.pattern == self.pattern);
+            .position(|sl| sl.valid && sl.pattern == self.lin.pattern);
         let chord = chord && found.is_some();
         self.clock += 1;
         let cur = match found {
@@ -684,7 +717,7 @@ impl ContactSolver {
         }
         self.rhs.clear();
         for &k in self.act.iter() {
-            let g = &self.gk[k];
+            let g = &self.lin.gk[k];
             for r in 0..3 {
                 let mut v = -self.phi[3 * k + r];
                 for c in 0..3 {
@@ -705,14 +738,14 @@ impl ContactSolver {
                     };
                     let jcol = jcol.as_slice_mut();
                     for (ia, &k) in self.act.iter().enumerate() {
-                        let g = &self.gk[k];
+                        let g = &self.lin.gk[k];
                         let d3 = &dcol[3 * k..3 * k + 3];
                         for r in 0..3 {
                             jcol[3 * ia + r] = g[r][0] * d3[0] + g[r][1] * d3[1] + g[r][2] * d3[2];
                         }
                         if k == l {
                             for r in 0..3 {
-                                jcol[3 * ia + r] += self.lk[k][r][c];
+                                jcol[3 * ia + r] += self.lin.lk[k][r][c];
                             }
                         }
                     }
@@ -760,7 +793,7 @@ impl ContactSolver {
             slot.valid = true;
             slot.n = na;
             slot.pattern.clear();
-            slot.pattern.extend_from_slice(&self.pattern);
+            slot.pattern.extend_from_slice(&self.lin.pattern);
         }
         if na > 0 {
             self.tmp.clear();
@@ -790,6 +823,8 @@ impl ContactSolver {
         s: &SolveOptions,
         rep: &mut SolveReport,
     ) -> f64 {
+        // x changes below without a residual: no linearisation at it
+        self.lin_ok = false;
         let m = self.m;
         let n = 3 * m;
         for l in 0..m {

@@ -55,6 +55,7 @@ pub use loaded::{
 pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
 pub mod contact_step;
 pub mod dynamics;
+mod kernels;
 pub mod rolling;
 pub use contact_step::TireContact;
 pub use dynamics::TireDynamics;

@@ -74,7 +74,8 @@
 //! [`ReducedTire::modal`] (an exact change of coordinates, `M = I`, `K` diagonal), so per step
 //! the cost is one product with `[G₁ H]` (n × 2 n_z, [`super::dynamics`]), one with `S⁻¹`
 //! (n × n), `T_c z` of the nodes that may be near the ground for the candidate search, and work
-//! on the candidates only (the local Delassus matrix is a gather from `Y` and `X`). Candidates are the
+//! on the candidates only (the local Delassus matrix is a gather from `Y` and `X`, copied once per
+//! candidate set and factorisation). Candidates are the
 //! nodes whose free gap is below `contact_margin` (plus `h v` in front of the cleat, whose
 //! faces approach at the surface speed); [`StepStats::late_contacts`] counts impacts begun
 //! within one step.

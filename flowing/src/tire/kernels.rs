@@ -1,0 +1,142 @@
+//! The contact step's small vector loops (free slip velocities, `D x`, `Δv̇ = X Σ f`), compiled
+//! twice: for the baseline x86-64 target (SSE2) and with AVX2, chosen at run time
+//! (`is_x86_feature_detected!`, cached by std) like faer's kernels. Neither version fuses a
+//! multiply and an add (Rust does not contract floating-point operations), and each output is
+//! formed by the same operations in the same order in both, so the results are bitwise the
+//! same on any x86-64 machine; the AVX2 version only does four of them at once.
+
+/// Whether the AVX2 versions may run on this machine.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn avx2() -> bool {
+    std::arch::is_x86_feature_detected!("avx2")
+}
+
+/// Runs `$body` (an expression using only `#[inline(always)]` code) compiled with AVX2 when the
+/// machine has it, else for the baseline target.
+macro_rules! dispatch {
+    ($name:ident($($arg:ident: $ty:ty),*) -> $ret:ty $body:block) => {{
+        #[cfg(target_arch = "x86_64")]
+        {
+            #[target_feature(enable = "avx2")]
+            unsafe fn $name($($arg: $ty),*) -> $ret $body
+            if avx2() {
+                // SAFETY: AVX2 is available (checked at run time)
+                return unsafe { $name($($arg),*) };
+            }
+        }
+        $body
+    }};
+}
+
+/// `out += Σ_c v_c a_c` over the columns `a_c = col(c)` (each `out.len()` long) with `v_c ≠ 0`,
+/// in increasing `c`: per entry the same sums in the same order as one axpy per column, but
+/// up to four columns per pass over `out`.
+pub(super) fn axpy_cols<'a>(col: impl Fn(usize) -> &'a [f64], v: &[f64], out: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx2")]
+        unsafe fn avx2_version<'a>(col: impl Fn(usize) -> &'a [f64], v: &[f64], out: &mut [f64]) {
+            axpy_cols_body(col, v, out)
+        }
+        if avx2() {
+            // SAFETY: AVX2 is available (checked at run time)
+            return unsafe { avx2_version(col, v, out) };
+        }
+    }
+    axpy_cols_body(col, v, out)
+}
+
+#[inline(always)]
+fn axpy_cols_body<'a>(col: impl Fn(usize) -> &'a [f64], v: &[f64], out: &mut [f64]) {
+    let mut cols = [0usize; 4];
+    let mut k = 0;
+    for (c, &vc) in v.iter().enumerate() {
+        if vc != 0.0 {
+            cols[k] = c;
+            k += 1;
+            if k == 4 {
+                columns_pass(&col, v, &cols, out);
+                k = 0;
+            }
+        }
+    }
+    columns_pass(&col, v, &cols[..k], out);
+}
+
+/// `out += Σ v_c a_c` over the (at most four) columns `cols` in one pass.
+#[inline(always)]
+fn columns_pass<'a>(col: &impl Fn(usize) -> &'a [f64], v: &[f64], cols: &[usize], out: &mut [f64]) {
+    let n = out.len();
+    match *cols {
+        [c0] => {
+            let (x0, a0) = (v[c0], &col(c0)[..n]);
+            for (o, &p0) in out.iter_mut().zip(a0) {
+                *o += x0 * p0;
+            }
+        }
+        [c0, c1] => {
+            let (x0, a0) = (v[c0], &col(c0)[..n]);
+            let (x1, a1) = (v[c1], &col(c1)[..n]);
+            for ((o, &p0), &p1) in out.iter_mut().zip(a0).zip(a1) {
+                *o = *o + x0 * p0 + x1 * p1;
+            }
+        }
+        [c0, c1, c2] => {
+            let (x0, a0) = (v[c0], &col(c0)[..n]);
+            let (x1, a1) = (v[c1], &col(c1)[..n]);
+            let (x2, a2) = (v[c2], &col(c2)[..n]);
+            for (((o, &p0), &p1), &p2) in out.iter_mut().zip(a0).zip(a1).zip(a2) {
+                *o = *o + x0 * p0 + x1 * p1 + x2 * p2;
+            }
+        }
+        [c0, c1, c2, c3] => {
+            let (x0, a0) = (v[c0], &col(c0)[..n]);
+            let (x1, a1) = (v[c1], &col(c1)[..n]);
+            let (x2, a2) = (v[c2], &col(c2)[..n]);
+            let (x3, a3) = (v[c3], &col(c3)[..n]);
+            for ((((o, &p0), &p1), &p2), &p3) in out.iter_mut().zip(a0).zip(a1).zip(a2).zip(a3) {
+                *o = *o + x0 * p0 + x1 * p1 + x2 * p2 + x3 * p3;
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The dot products `aₖ · b` of three slices with one of equal length in one pass, each with
+/// four partial sums (three independent accumulation chains instead of one; per product the
+/// same operations in the same order as a single four-partial-sum dot product).
+pub(super) fn dots3(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
+    dispatch!(dots3_avx2(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
+        dots3_body(a, b)
+    })
+}
+
+#[inline(always)]
+fn dots3_body(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
+    let mut acc = [[0.0; 4]; 3];
+    let chunks = a[0]
+        .chunks_exact(4)
+        .zip(a[1].chunks_exact(4))
+        .zip(a[2].chunks_exact(4))
+        .zip(b.chunks_exact(4));
+    for (((x0, x1), x2), y) in chunks {
+        for k in 0..4 {
+            acc[0][k] += x0[k] * y[k];
+            acc[1][k] += x1[k] * y[k];
+            acc[2][k] += x2[k] * y[k];
+        }
+    }
+    let body = b.len() - b.len() % 4;
+    let mut out = [0.0; 3];
+    for (p, o) in out.iter_mut().enumerate() {
+        let tail: f64 = a[p][body..]
+            .iter()
+            .zip(&b[body..])
+            .map(|(x, y)| x * y)
+            .sum();
+        let c = &acc[p];
+        *o = (c[0] + c[1]) + (c[2] + c[3]) + tail;
+    }
+    out
+}
