@@ -96,7 +96,7 @@ impl DampingConfig {
 /// line's band rms on the default tire at 60 km/h, the default step (0.2 ms, 4 sub-steps) with
 /// a 20 ms trail came out 4 % below the uniform 0.05 ms and 0.025 ms runs (which agree within
 /// 0.5 %), and the longitudinal line 17 % above; with a 60 ms trail both lines lie within 0.3 %
-/// and 3 % of them, for 8 % more steps (BENCHMARKS.md, tire: convergence over cleat phases).
+/// and 3 % of them, for 15 % more steps (BENCHMARKS.md, tire: convergence over cleat phases).
 /// The switch back to the long step while the patch still rings is what a short trail gets
 /// wrong; a longer lead does not help (0.3 m: −3.4 %).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
