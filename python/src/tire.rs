@@ -9,9 +9,9 @@ use faer::Mat;
 use fe_model::generate::TireConfig;
 use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
 use flowing::tire::{
-    CleatStudyConfig, CleatSummary, ImportFiles, PhaseSpread, ReducedTire, RigResult, RollingTire,
-    TireError, TireFe, TireSource, cleat_summary, imported_tire, rig_input_error,
-    run_cleat_observed, run_other_phases, tire_input_error,
+    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
+    TireSource, cleat_summary, imported_tire, phase_spread, rig_input_error, run_cleat_observed,
+    tire_input_error,
 };
 use mbd_core::Validate;
 use numpy::ndarray::Array2;
@@ -406,9 +406,13 @@ pub fn tire_cleat(
         let r = run_cleat_observed(&red, &c.rig, &mut |_| {}, &mut observer)?;
         let mut summary = cleat_summary(&red, &r);
         if c.cleat_phases > 1 {
-            let others = run_other_phases(&red, &c.rig, c.cleat_phases, &|_| {})?;
-            let all: Vec<&CleatSummary> = std::iter::once(&summary).chain(&others).collect();
-            summary.phases = Some(PhaseSpread::of(&all));
+            summary.phases = Some(phase_spread(
+                &red,
+                &c.rig,
+                c.cleat_phases,
+                &summary,
+                &|_| {},
+            )?);
         }
         let (sx, sy) = r.spectra();
         Ok::<_, TireError>((

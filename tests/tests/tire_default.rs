@@ -83,9 +83,7 @@ fn default_step_is_as_accurate_as_the_fine_step_over_cleat_phases() {
     let (red, _) = reduce(&fe, &ReductionConfig::default()).unwrap();
     let spread = |rc: &RigConfig| {
         let first = summarize(&run_cleat(&red, rc, &mut |_| {}).unwrap());
-        let others = run_other_phases(&red, rc, 8, &|_| {}).unwrap();
-        let all: Vec<&CleatSummary> = std::iter::once(&first).chain(&others).collect();
-        PhaseSpread::of(&all)
+        phase_spread(&red, rc, 8, &first, &|_| {}).unwrap()
     };
     let default = spread(&RigConfig::default());
     let mut fine = RigConfig::default();

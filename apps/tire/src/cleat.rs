@@ -6,8 +6,7 @@ use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowing::tire::study::CLEAT_MEANING;
 use flowing::tire::{
-    LineMode, PhaseSpread, RigResult, RollingTire, TireError, cleat_summary, run_cleat_observed,
-    run_other_phases,
+    LineMode, RigResult, RollingTire, TireError, cleat_summary, phase_spread, run_cleat_observed,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError, run_study};
@@ -278,16 +277,17 @@ impl Study for Cleat {
         };
         bar.finish();
         let mut s = cleat_summary(&red, &r);
+        let lines: Vec<(&str, &LineMode)> = [("Fx", &s.fx_line_mode), ("Fy", &s.fy_line_mode)]
+            .into_iter()
+            .filter_map(|(n, m)| m.as_ref().map(|m| (n, m)))
+            .collect();
+        // phase 0's outputs are written first, so that a failure in the other phases keeps them
+        write_outputs(ctx, &r, "", false, &lines)?;
         if c.cleat_phases > 1 {
-            // the other sampling phases of the cleat (phase 0 is the run above); a failure
-            // there keeps phase 0's outputs
-            write_outputs(ctx, &r, "", false, &[])?;
             let bar = ctx.progress(1.0, "cleat phases");
-            let others =
-                run_other_phases(&red, &c.rig, c.cleat_phases, &|f| bar.set(f)).map_err(rig_err)?;
+            let spread =
+                phase_spread(&red, &c.rig, c.cleat_phases, &s, &|f| bar.set(f)).map_err(rig_err)?;
             bar.finish();
-            let all: Vec<&Summary> = std::iter::once(&s).chain(&others).collect();
-            let spread = PhaseSpread::of(&all);
             ctx.out.write_csv(
                 "phases.csv",
                 &["phase", "cleat_delay_s", "fy_band_rms_n", "fx_band_rms_n"],
@@ -302,11 +302,6 @@ impl Study for Cleat {
             )?;
             s.phases = Some(spread);
         }
-        let lines: Vec<(&str, &LineMode)> = [("Fx", &s.fx_line_mode), ("Fy", &s.fy_line_mode)]
-            .into_iter()
-            .filter_map(|(n, m)| m.as_ref().map(|m| (n, m)))
-            .collect();
-        write_outputs(ctx, &r, "", false, &lines)?;
         Ok(s)
     }
 }

@@ -80,5 +80,5 @@ pub use spectrum::{
 };
 pub use study::{
     CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, TireSource, cleat_summary,
-    rig_input_error, run_other_phases, summarize, tire_input_error,
+    phase_spread, rig_input_error, summarize, tire_input_error,
 };

@@ -244,20 +244,22 @@ impl PhaseSpread {
     }
 }
 
-/// Phases `1 … phases − 1` of the cleat test of `rig` ([`RigConfig::with_cleat_phase`] with
-/// fractions `j/phases`), run in parallel (rayon), each summarised by [`summarize`];
-/// `progress` receives the fraction of these runs done. Phase 0 is the caller's own run (the
-/// one whose histories are written), so that `phases = 1` costs nothing extra.
-pub fn run_other_phases(
+/// The spread of the cleat test of `rig` over `phases` sampling phases
+/// ([`RigConfig::with_cleat_phase`] with fractions `j/phases`): `first` is the summary of the
+/// caller's own run (phase 0, the one whose histories are written), phases `1 … phases − 1`
+/// run in parallel (rayon), each summarised by [`summarize`]; `progress` receives the fraction
+/// of these runs done. `phases = 1` runs nothing.
+pub fn phase_spread(
     red: &ReducedTire,
     rig: &RigConfig,
     phases: usize,
+    first: &CleatSummary,
     progress: &(dyn Fn(f64) + Sync),
-) -> Result<Vec<CleatSummary>, TireError> {
+) -> Result<PhaseSpread, TireError> {
     use rayon::prelude::*;
     let done = std::sync::atomic::AtomicUsize::new(0);
     let others = phases.saturating_sub(1);
-    (1..phases)
+    let rest = (1..phases)
         .into_par_iter()
         .map(|j| {
             let cfg = rig.with_cleat_phase(j as f64 / phases as f64);
@@ -266,7 +268,9 @@ pub fn run_other_phases(
             progress(k as f64 / others as f64);
             Ok(summarize(&r))
         })
-        .collect()
+        .collect::<Result<Vec<CleatSummary>, TireError>>()?;
+    let all: Vec<&CleatSummary> = std::iter::once(first).chain(&rest).collect();
+    Ok(PhaseSpread::of(&all))
 }
 
 /// Validate rig settings: the library's checks ([`RigConfig`]'s `Validate` and
