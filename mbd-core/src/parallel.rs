@@ -5,37 +5,43 @@
 //! generalized-α iteration matrix, the rolling tire's stacked force matrix, issue #16) stream a
 //! few MB per step from the shared L3 cache: the product `y = A x` with `Aᵀ` stored (column `i`
 //! of the stored matrix is row `i` of `A`, contiguous) is split into the rows `0..k` (computed
-//! by the caller from its own matrix) and `k..n` (computed by the worker from its own copy of
-//! those columns), so that each core keeps half of the matrix in its private L2 cache.
+//! by the caller) and `k..n` (computed by the worker), both read from the caller's matrix, so
+//! that each core streams (and keeps in its private L2 cache as far as it fits) half of it.
 //!
 //! Every output entry is the same dot product, over the same contiguous column, with the same
-//! kernel (faer's row-major matrix–vector product, whose reduction order per row does not depend
-//! on the other rows: tested bitwise in this module), so the split product equals the one-thread
-//! product bit for bit.
+//! kernel ([`crate::linalg::matvec`], whose reduction order per row does not depend on the other
+//! rows: tested bitwise in this module), so the split product equals the one-thread product bit
+//! for bit.
 //!
-//! Hand-off: the caller publishes the right-hand side under a mutex and bumps a sequence
-//! number; the worker spins on it for [`ProductWorker::new`]'s `spin` window after its last
-//! job and then parks (`std::thread::park`, woken by the next job), so a machine does not lose
-//! a core to spinning between runs of products. Whoever comes first claims the second half:
-//! the worker, or the caller once its own half is done (the worker descheduled on a loaded
-//! machine, or parked): the caller then computes it itself from the same columns, so a late
-//! worker never makes the product slower than on one thread. When the worker has claimed it,
-//! the caller waits by spinning briefly and then yielding.
+//! Hand-off, without locks or copies: the caller publishes the addresses and shape of the
+//! worker's part (its columns of the matrix, the right-hand side, the output rows) in atomics
+//! and bumps a sequence number (release); the worker spins on it for [`ProductWorker::new`]'s
+//! `spin` window after its last job and then parks (`std::thread::park`, woken by the next
+//! job), so a machine does not lose a core to spinning between runs of products. Whoever comes
+//! first claims the second half (a compare-and-swap): the worker, or the caller once its own
+//! half is done (the worker descheduled on a loaded machine, or parked): the caller then
+//! computes it itself with the same kernel, so a late worker never makes the product slower
+//! than on one thread. When the worker has claimed it, the caller waits (spinning briefly, then
+//! yielding) until the worker has written the rows into the caller's output; the borrowed
+//! matrix, right-hand side and output therefore outlive the worker's use of them.
 
-use faer::{Mat, MatRef};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard};
+use crate::linalg::matvec;
+use faer::MatRef;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicIsize, AtomicPtr, AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-/// The worker's side of the hand-off: its column blocks and the current job.
-#[derive(Default)]
+/// The worker's part of the current job: `out[..m] = Bᵀ x[..k]` with `B` the `k × m` view at
+/// `b` with strides `(rs, cs)` (published before the job's sequence number, read after it).
 struct Job {
-    /// Column blocks by slot (`None`: free slot).
-    blocks: Vec<Option<Mat<f64>>>,
-    slot: usize,
-    x: Vec<f64>,
-    out: Vec<f64>,
+    b: AtomicPtr<f64>,
+    rs: AtomicIsize,
+    cs: AtomicIsize,
+    x: AtomicPtr<f64>,
+    k: AtomicUsize,
+    out: AtomicPtr<f64>,
+    m: AtomicUsize,
 }
 
 struct Shared {
@@ -46,7 +52,7 @@ struct Shared {
     /// Jobs finished by the worker so far.
     done: AtomicUsize,
     stop: AtomicBool,
-    job: Mutex<Job>,
+    job: Job,
     spin: Duration,
     /// Products applied so far, consecutive products in which the worker did not help, and
     /// the product count up to which the products run on the caller alone (see
@@ -54,14 +60,6 @@ struct Shared {
     count: AtomicUsize,
     slow: AtomicUsize,
     off_until: AtomicUsize,
-}
-
-impl Shared {
-    fn lock(&self) -> MutexGuard<'_, Job> {
-        // a panic in the worker's product (none is expected: sizes are checked by the caller)
-        // poisons the mutex; the data stay usable
-        self.job.lock().unwrap_or_else(|e| e.into_inner())
-    }
 }
 
 /// One persistent worker thread that computes the second half of [`SplitProduct`]s (several
@@ -88,12 +86,21 @@ impl ProductWorker {
     /// Starts the worker thread; after each job it spins for `spin` waiting for the next one,
     /// then parks. Errors if the thread cannot be spawned.
     pub fn new(spin: Duration) -> std::io::Result<Arc<Self>> {
+        let null = || AtomicPtr::new(std::ptr::null_mut());
         let shared = Arc::new(Shared {
             seq: AtomicUsize::new(0),
             claimed: AtomicUsize::new(0),
             done: AtomicUsize::new(0),
             stop: AtomicBool::new(false),
-            job: Mutex::new(Job::default()),
+            job: Job {
+                b: null(),
+                rs: AtomicIsize::new(0),
+                cs: AtomicIsize::new(0),
+                x: null(),
+                k: AtomicUsize::new(0),
+                out: null(),
+                m: AtomicUsize::new(0),
+            },
             spin,
             count: AtomicUsize::new(0),
             slow: AtomicUsize::new(0),
@@ -175,22 +182,27 @@ fn worker_loop(s: &Shared) {
         {
             continue;
         }
-        {
-            let mut guard = s.lock();
-            let job = &mut *guard;
-            if let Some(Some(b)) = job.blocks.get(job.slot) {
-                job.out.resize(b.ncols(), 0.0);
-                product(b.as_ref(), &job.x, &mut job.out);
-            }
+        let j = &s.job;
+        let (k, m) = (j.k.load(Ordering::Relaxed), j.m.load(Ordering::Relaxed));
+        // SAFETY: the caller published this job's views before its sequence number (read with
+        // acquire above) and does not return from `SplitProduct::apply`, i.e. keeps the
+        // matrix, the right-hand side and the output borrowed and untouched, until we store
+        // `done` below; we claimed the job, so the caller does not write these output rows
+        unsafe {
+            let b = MatRef::from_raw_parts(
+                j.b.load(Ordering::Relaxed),
+                k,
+                m,
+                j.rs.load(Ordering::Relaxed),
+                j.cs.load(Ordering::Relaxed),
+            );
+            let x = std::slice::from_raw_parts(j.x.load(Ordering::Relaxed), k);
+            let out = std::slice::from_raw_parts_mut(j.out.load(Ordering::Relaxed), m);
+            matvec(b.transpose(), x, out);
         }
         s.done.store(last, Ordering::Release);
         since = Instant::now();
     }
-}
-
-/// `out = atᵀ x` (faer's row-major kernel: one dot product per contiguous column of `at`).
-fn product(at: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
-    crate::linalg::matvec(at.transpose(), x, out);
 }
 
 /// The product `y = A x` with the stored `Aᵀ` (`n_x × n_y`, column `i` = row `i` of `A`), its
@@ -198,7 +210,6 @@ fn product(at: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
 /// Without a worker it is the one-thread product.
 pub struct SplitProduct {
     worker: Option<Arc<ProductWorker>>,
-    slot: usize,
     /// Rows of `A` computed by the caller (`0..split`).
     split: usize,
     /// Shape of `Aᵀ` at the last [`SplitProduct::set`].
@@ -218,22 +229,8 @@ impl std::fmt::Debug for SplitProduct {
 impl SplitProduct {
     /// A product on `worker` (`None`: the calling thread alone); no matrix yet.
     pub fn new(worker: Option<Arc<ProductWorker>>) -> Self {
-        let slot = worker.as_ref().map_or(0, |w| {
-            let mut job = w.shared.lock();
-            let slot = job
-                .blocks
-                .iter()
-                .position(Option::is_none)
-                .unwrap_or(job.blocks.len());
-            if slot == job.blocks.len() {
-                job.blocks.push(None);
-            }
-            job.blocks[slot] = Some(Mat::zeros(0, 0));
-            slot
-        });
         Self {
             worker,
-            slot,
             split: 0,
             shape: (0, 0),
         }
@@ -244,24 +241,18 @@ impl SplitProduct {
         self.worker.is_some()
     }
 
-    /// Takes the matrix `at = Aᵀ` (the worker copies its columns `split..`, the caller's half
-    /// is read from `at` itself in [`SplitProduct::apply`]); call again whenever `at` changes.
+    /// Takes the shape of the matrix `at = Aᵀ` and chooses the split of its columns (both
+    /// threads read `at` itself in [`SplitProduct::apply`]); call again when the shape changes.
     pub fn set(&mut self, at: MatRef<'_, f64>) {
         self.shape = (at.nrows(), at.ncols());
         let n = at.ncols();
-        let Some(w) = &self.worker else {
-            self.split = n;
-            return;
-        };
         // an even split of the rows (the worker's half a little larger when odd: the caller
         // also pays the hand-off)
-        self.split = n / 2;
-        let block = at.subcols(self.split, n - self.split).to_owned();
-        w.shared.lock().blocks[self.slot] = Some(block);
+        self.split = if self.worker.is_some() { n / 2 } else { n };
     }
 
-    /// `out = A x` with `at = Aᵀ` the matrix of the last [`SplitProduct::set`] (the same values:
-    /// the worker uses its copy). Panics if the shapes differ from that matrix's.
+    /// `out = A x` with `at = Aᵀ` of the shape of the last [`SplitProduct::set`]. Panics if the
+    /// shapes differ from that matrix's.
     pub fn apply(&self, at: MatRef<'_, f64>, x: &[f64], out: &mut [f64]) {
         assert_eq!(
             (at.nrows(), at.ncols()),
@@ -269,8 +260,9 @@ impl SplitProduct {
             "SplitProduct::apply on a matrix other than the one set"
         );
         assert!(x.len() == at.nrows() && out.len() == at.ncols());
-        let Some(w) = &self.worker else {
-            product(at, x, out);
+        let n = at.ncols();
+        let Some(w) = self.worker.as_ref().filter(|_| self.split < n) else {
+            matvec(at.transpose(), x, out);
             return;
         };
         let s = &w.shared;
@@ -278,32 +270,36 @@ impl SplitProduct {
         // products run on the caller alone for a while, then the worker is tried again
         let count = s.count.fetch_add(1, Ordering::Relaxed);
         if count < s.off_until.load(Ordering::Relaxed) {
-            product(at, x, out);
+            matvec(at.transpose(), x, out);
             return;
         }
-        {
-            let mut job = s.lock();
-            job.slot = self.slot;
-            job.x.clear();
-            job.x.extend_from_slice(x);
-        }
+        let theirs = at.subcols(self.split, n - self.split);
+        let (head, tail) = out.split_at_mut(self.split);
+        let j = &s.job;
+        j.b.store(theirs.as_ptr().cast_mut(), Ordering::Relaxed);
+        j.rs.store(theirs.row_stride(), Ordering::Relaxed);
+        j.cs.store(theirs.col_stride(), Ordering::Relaxed);
+        j.x.store(x.as_ptr().cast_mut(), Ordering::Relaxed);
+        j.k.store(x.len(), Ordering::Relaxed);
+        j.out.store(tail.as_mut_ptr(), Ordering::Relaxed);
+        j.m.store(tail.len(), Ordering::Relaxed);
         let seq = s.seq.fetch_add(1, Ordering::AcqRel) + 1;
         w.wake();
         let start = Instant::now();
-        let (head, tail) = out.split_at_mut(self.split);
-        product(at.subcols(0, self.split), x, head);
+        matvec(at.subcols(0, self.split).transpose(), x, head);
         let own = start.elapsed();
         // the worker has not taken the job yet (e.g. descheduled on a loaded machine): compute
-        // the second half here, from the same columns with the same kernel
+        // the second half here, with the same kernel
         let helped = if s
             .claimed
             .compare_exchange(seq - 1, seq, Ordering::AcqRel, Ordering::Acquire)
             .is_ok()
         {
-            let n = at.ncols();
-            product(at.subcols(self.split, n - self.split), x, tail);
+            matvec(theirs.transpose(), x, tail);
             false
         } else {
+            // the worker writes `tail` until it stores `done` (acquire: its writes are then
+            // visible here); `out`, `x` and `at` stay borrowed until then
             let mut spins = 0u32;
             while s.done.load(Ordering::Acquire) != seq {
                 spins += 1;
@@ -313,7 +309,6 @@ impl SplitProduct {
                     std::hint::spin_loop();
                 }
             }
-            tail.copy_from_slice(&s.lock().out[..tail.len()]);
             // waiting longer than the own half took: no gain from the worker
             start.elapsed() < 2 * own
         };
@@ -332,19 +327,10 @@ const OFF_AFTER: usize = 8;
 /// See [`OFF_AFTER`] (about 0.1 s of the rolling tire's steps).
 const OFF_FOR: usize = 2000;
 
-impl Drop for SplitProduct {
-    fn drop(&mut self) {
-        if let Some(w) = &self.worker
-            && let Some(b) = w.shared.lock().blocks.get_mut(self.slot)
-        {
-            *b = None;
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use faer::Mat;
 
     /// The split product equals the one-thread product bit for bit (same kernel, same
     /// reduction order per row; module documentation), for shapes around the SIMD widths and
@@ -383,7 +369,7 @@ mod tests {
                 let mut two2 = vec![f64::NAN; ny];
                 let mut one2 = vec![0.0; ny];
                 b.apply(at2.as_ref(), &x, &mut two2);
-                product(at2.as_ref(), &x, &mut one2);
+                matvec(at2.as_ref().transpose(), &x, &mut one2);
                 assert_eq!(one2, two2, "{nx}x{ny} second slot");
             }
             // after the worker has parked
