@@ -149,11 +149,31 @@ struct Linearization {
 }
 
 impl Linearization {
+    /// Becomes a copy of `other` (buffers reused).
+    fn copy_from(&mut self, other: &Self) {
+        self.lk.clone_from(&other.lk);
+        self.gk.clone_from(&other.gk);
+        self.pattern.clone_from(&other.pattern);
+    }
+
     fn reset(&mut self, m: usize) {
         clear_fill(&mut self.lk, m, [[0.0; 3]; 3]);
         clear_fill(&mut self.gk, m, [[0.0; 3]; 3]);
         clear_fill(&mut self.pattern, m, 0);
     }
+}
+
+/// A copy of an evaluation ([`ContactSolver::evaluate`]) and the number of free slip
+/// velocities fetched before it was made. `b` enters `y = D x + b` first for the contacts
+/// fetched before an evaluation, after the columns for those fetched during it, so evaluating
+/// the same `x` again gives bitwise the same `y` only if none was fetched during or since the
+/// first evaluation: then the copy replaces it.
+#[derive(Default)]
+struct Evaluation {
+    y: Vec<f64>,
+    phi: Vec<f64>,
+    lin: Linearization,
+    fetched: usize,
 }
 
 /// A factorised Newton matrix and the classification of the contacts it was built for.
@@ -192,6 +212,8 @@ pub struct ContactSolver {
     lin: Linearization,
     lin_trial: Linearization,
     lin_ok: bool,
+    /// The evaluation (`y`, `Φ`, linearisation) of the best warm start so far.
+    best: Evaluation,
     act: Vec<usize>,
     /// The last few Newton matrices (LU factors), by classification: chord steps use the one
     /// of the current classification (the patch often alternates between two from step to
@@ -230,6 +252,7 @@ impl Default for ContactSolver {
             lin: Linearization::default(),
             lin_trial: Linearization::default(),
             lin_ok: false,
+            best: Evaluation::default(),
             act: Vec::new(),
             slots: (0..3)
                 .map(|_| LuSlot {
@@ -460,6 +483,21 @@ impl ContactSolver {
         norm
     }
 
+    /// The number of free slip velocities fetched so far.
+    fn fetched(&self) -> usize {
+        self.have_b.iter().filter(|&&h| h).count()
+    }
+
+    /// Keeps a copy of the evaluation at the current `x` (made by [`Self::evaluate`] with
+    /// `fetched` free slip velocities fetched before it).
+    fn save_best(&mut self, fetched: usize) {
+        let b = &mut self.best;
+        b.y.clone_from(&self.y);
+        b.phi.clone_from(&self.phi);
+        b.lin.copy_from(&self.lin);
+        b.fetched = fetched;
+    }
+
     fn scale(&self) -> f64 {
         (0..self.m).fold(0.0f64, |a, k| a.max(self.x[3 * k].abs()))
     }
@@ -494,6 +532,7 @@ impl ContactSolver {
         clear_fill(&mut self.xt, n, 0.0);
         clear_fill(&mut self.yt, n, 0.0);
         clear_fill(&mut self.tmp, n, 0.0);
+        let fetched0 = self.fetched();
         let mut norm = self.evaluate(src, s);
         // further warm starts (e.g. the forces two steps back, contact chatter alternating from
         // step to step, or an extrapolation): keep the one with the smallest relative residual
@@ -501,6 +540,7 @@ impl ContactSolver {
             let mut best = norm / self.scale().max(1e-300);
             let mut best_is_current = true;
             self.xt.copy_from_slice(&self.x);
+            self.save_best(fetched0);
             for alt in alts.iter().filter(|a| a.len() == n) {
                 self.x.copy_from_slice(alt);
                 for k in 0..m {
@@ -508,6 +548,7 @@ impl ContactSolver {
                         self.x[3 * k..3 * k + 3].copy_from_slice(&[0.0; 3]);
                     }
                 }
+                let before = self.fetched();
                 let na = self.evaluate(src, s);
                 let rel = na / self.scale().max(1e-300);
                 if rel < best {
@@ -515,13 +556,22 @@ impl ContactSolver {
                     norm = na;
                     best_is_current = true;
                     self.xt.copy_from_slice(&self.x);
+                    self.save_best(before);
                 } else {
                     best_is_current = false;
                 }
             }
             if !best_is_current {
                 std::mem::swap(&mut self.x, &mut self.xt);
-                norm = self.evaluate(src, s);
+                if self.best.fetched == self.fetched() {
+                    // the evaluation of the best again, bitwise (see `Evaluation`)
+                    self.y.copy_from_slice(&self.best.y);
+                    self.phi.copy_from_slice(&self.best.phi);
+                    self.lin.copy_from(&self.best.lin);
+                    self.lin_ok = true;
+                } else {
+                    norm = self.evaluate(src, s);
+                }
             }
         }
         let mut ok = false;

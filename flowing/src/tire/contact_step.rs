@@ -844,7 +844,6 @@ impl DelassusSource for TireDelassus<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::kernels::dots3;
     use super::*;
 
     /// Invariant of [`GapBound`]: a skipped node's gap is at least the margin, so the
@@ -875,7 +874,7 @@ mod tests {
             (0..nc)
                 .map(|i| {
                     let c = |b| col_slice(&tct, 3 * i + b);
-                    let d = dots3([c(0), c(1), c(2)], z);
+                    let [d, _] = dots3x2([c(0), c(1), c(2)], z, [c(0), c(1), c(2)], z);
                     let p = [pos[i][0] + d[0], pos[i][1] + d[1], pos[i][2] + d[2]];
                     let plane = p[2] + 0.295;
                     let c = [-0.05 + v * t, -0.3 - 0.004];

@@ -3,30 +3,14 @@
 //! (`is_x86_feature_detected!`, cached by std) like faer's kernels. Neither version fuses a
 //! multiply and an add (Rust does not contract floating-point operations), and each output is
 //! formed by the same operations in the same order in both, so the results are bitwise the
-//! same on any x86-64 machine; the AVX2 version only does four of them at once.
+//! same on any x86-64 machine; the AVX2 version only does four of them at once (the free slip
+//! products with explicit AVX2 intrinsics: one register of four partial sums per product).
 
 /// Whether the AVX2 versions may run on this machine.
 #[cfg(target_arch = "x86_64")]
 #[inline]
 fn avx2() -> bool {
     std::arch::is_x86_feature_detected!("avx2")
-}
-
-/// Runs `$body` (an expression using only `#[inline(always)]` code) compiled with AVX2 when the
-/// machine has it, else for the baseline target.
-macro_rules! dispatch {
-    ($name:ident($($arg:ident: $ty:ty),*) -> $ret:ty $body:block) => {{
-        #[cfg(target_arch = "x86_64")]
-        {
-            #[target_feature(enable = "avx2")]
-            unsafe fn $name($($arg: $ty),*) -> $ret $body
-            if avx2() {
-                // SAFETY: AVX2 is available (checked at run time)
-                return unsafe { $name($($arg),*) };
-            }
-        }
-        $body
-    }};
 }
 
 /// `out += Σ_c v_c a_c` over the columns `a_c = col(c)` (each `out.len()` long) with `v_c ≠ 0`,
@@ -104,14 +88,7 @@ fn columns_pass<'a>(col: &impl Fn(usize) -> &'a [f64], v: &[f64], cols: &[usize]
 }
 
 /// The dot products `aₖ · b` of three slices with one of equal length in one pass, each with
-/// four partial sums (three independent accumulation chains instead of one; per product the
-/// same operations in the same order as a single four-partial-sum dot product).
-pub(super) fn dots3(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
-    dispatch!(dots3_avx2(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
-        dots3_body(a, b)
-    })
-}
-
+/// four partial sums over the chunks of four (per product: `(s₀ + s₁) + (s₂ + s₃) + tail`).
 #[inline(always)]
 fn dots3_body(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
     let mut acc = [[0.0; 4]; 3];
@@ -142,9 +119,9 @@ fn dots3_body(a: [&[f64]; 3], b: &[f64]) -> [f64; 3] {
 }
 
 /// The two triples of dot products `aₚ · b` and `cₚ · d` (all slices of the length of `b`) in
-/// one pass: six independent accumulation chains instead of three per pass. Per product the
-/// same operations in the same order as [`dots3`] (four partial sums over the chunks of four,
-/// then `(s₀ + s₁) + (s₂ + s₃) + tail`), so each result is bitwise that of [`dots3`]; the AVX2
+/// one pass: six independent accumulation chains. Per product the same operations in the same
+/// order as the earlier three-product kernel (four partial sums over the chunks of four, then
+/// `(s₀ + s₁) + (s₂ + s₃) + tail`), so each result is bitwise the same; the AVX2
 /// version holds each product's four partial sums in one register (a multiply, then an add:
 /// no fused multiply-add).
 pub(super) fn dots3x2(a: [&[f64]; 3], b: &[f64], c: [&[f64]; 3], d: &[f64]) -> [[f64; 3]; 2] {
@@ -205,11 +182,11 @@ unsafe fn dots3x2_avx2(a: [&[f64]; 3], b: &[f64], c: [&[f64]; 3], d: &[f64]) -> 
 mod tests {
     use super::*;
 
-    /// [`dots3x2`] against two [`dots3`] calls (bitwise: same operations in the same order)
-    /// and against plain sequential sums (independent reference, to round-off), for lengths
+    /// [`dots3x2`] (AVX2 when available) against the scalar kernel (bitwise: same operations
+    /// in the same order) and against plain sequential sums (independent reference, to round-off), for lengths
     /// with and without a tail after the chunks of four.
     #[test]
-    fn dots3x2_is_two_dots3() {
+    fn dots3x2_is_the_scalar_kernel() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
         let mut rnd = move || {
             seed ^= seed << 13;
@@ -222,8 +199,8 @@ mod tests {
             let a = [&v[0][..], &v[1][..], &v[2][..]];
             let c = [&v[4][..], &v[5][..], &v[6][..]];
             let [p, q] = dots3x2(a, &v[3], c, &v[7]);
-            assert_eq!(p.map(f64::to_bits), dots3(a, &v[3]).map(f64::to_bits));
-            assert_eq!(q.map(f64::to_bits), dots3(c, &v[7]).map(f64::to_bits));
+            assert_eq!(p.map(f64::to_bits), dots3_body(a, &v[3]).map(f64::to_bits));
+            assert_eq!(q.map(f64::to_bits), dots3_body(c, &v[7]).map(f64::to_bits));
             for (r, (x, y)) in [(p, (a, &v[3])), (q, (c, &v[7]))] {
                 for k in 0..3 {
                     let plain: f64 = x[k].iter().zip(y).map(|(s, t)| s * t).sum();
