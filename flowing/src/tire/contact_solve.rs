@@ -40,14 +40,11 @@
 //! together with the residual at each evaluated or accepted point and reused by the Newton or
 //! chord direction from there.
 
-use super::kernels::axpy_cols;
+use super::kernels::{axpy_cols, lu_solve_in_place};
 use super::lcp::LcpWork;
 use contact::friction::{Coulomb, FrictionLaw};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
-use faer::linalg::triangular_solve::{
-    solve_unit_lower_triangular_in_place, solve_upper_triangular_in_place,
-};
 use faer::prelude::*;
 use faer::{Mat, Par};
 use nalgebra::{Matrix2, Vector2};
@@ -848,9 +845,17 @@ impl ContactSolver {
         if na > 0 {
             self.tmp.clear();
             self.tmp.extend(slot.perm.iter().map(|&p| self.rhs[p]));
-            let mut sol = MatMut::from_column_major_slice_mut(&mut self.tmp[..na], na, 1);
-            solve_unit_lower_triangular_in_place(slot.lu.as_ref(), sol.rb_mut(), Par::Seq);
-            solve_upper_triangular_in_place(slot.lu.as_ref(), sol.rb_mut(), Par::Seq);
+            // (faer's two triangular solves, bitwise, without their per-block dispatch)
+            let lu = &slot.lu;
+            lu_solve_in_place(
+                |j| {
+                    lu.col(j)
+                        .try_as_col_major()
+                        .map_or(&[][..], |c| c.as_slice())
+                },
+                na,
+                &mut self.tmp[..na],
+            );
             for (ia, &k) in self.act.iter().enumerate() {
                 for a in 0..3 {
                     self.dx[3 * k + a] = self.tmp[3 * ia + a];
