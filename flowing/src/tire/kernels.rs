@@ -237,6 +237,54 @@ macro_rules! triangular_solves {
         mod $module {
             use super::tri_block_size;
 
+            /// `dst_i ← fma(a_{r+i, c+k}, −vals_k, dst_i)` for `k` ascending (columns
+            /// `c..c + vals.len()`, rows `r..r + dst.len()`): per entry faer's column-major
+            /// matrix–vector product; rows kept in registers over the columns.
+            #[inline(always)]
+            fn fma_update<'a>(
+                col: impl Fn(usize) -> &'a [f64] + Copy,
+                c: usize,
+                vals: &[f64],
+                r: usize,
+                dst: &mut [f64],
+            ) {
+                // sixteen rows at a time: four independent chains of fused multiply-adds
+                let mut wide = dst.chunks_exact_mut(16);
+                let mut i = r;
+                for d in &mut wide {
+                    let mut acc = [0.0; 16];
+                    acc.copy_from_slice(d);
+                    for (k, &v) in vals.iter().enumerate() {
+                        let a = &col(c + k)[i..i + 16];
+                        for l in 0..16 {
+                            acc[l] = a[l].mul_add(-v, acc[l]);
+                        }
+                    }
+                    d.copy_from_slice(&acc);
+                    i += 16;
+                }
+                let mut blocks = wide.into_remainder().chunks_exact_mut(4);
+                for d in &mut blocks {
+                    let mut acc = [d[0], d[1], d[2], d[3]];
+                    for (k, &v) in vals.iter().enumerate() {
+                        let a = &col(c + k)[i..i + 4];
+                        for l in 0..4 {
+                            acc[l] = a[l].mul_add(-v, acc[l]);
+                        }
+                    }
+                    d.copy_from_slice(&acc);
+                    i += 4;
+                }
+                for d in blocks.into_remainder() {
+                    let mut y = *d;
+                    for (k, &v) in vals.iter().enumerate() {
+                        y = col(c + k)[i].mul_add(-v, y);
+                    }
+                    *d = y;
+                    i += 1;
+                }
+            }
+
             /// Unit lower solve on rows and columns `s..s + len` (faer's
             /// `solve_unit_lower_triangular_in_place_imp`).
             $(#[target_feature(enable = $feature)])?
@@ -261,13 +309,7 @@ macro_rules! triangular_solves {
                 // SAFETY: same target features as this function
                 unsafe { unit_lower_solve(col, s, bs, x) };
                 let (top, bot) = x.split_at_mut(s + bs);
-                let bot = &mut bot[..len - bs];
-                for j in s..s + bs {
-                    let v = -top[j];
-                    for (xi, &l) in bot.iter_mut().zip(&col(j)[s + bs..s + len]) {
-                        *xi = l.mul_add(v, *xi);
-                    }
-                }
+                fma_update(col, s, &top[s..], s + bs, &mut bot[..len - bs]);
                 // SAFETY: as above
                 unsafe { unit_lower_solve(col, s + bs, len - bs, x) };
             }
@@ -303,15 +345,8 @@ macro_rules! triangular_solves {
                 // T rows s + bs..s + len are U rows n − s − len..n − s − bs; faer's kernel
                 // runs over T's columns from the last (its stride normalisation reverses
                 // them): U's columns ascending
-                let rows = n - s - len..n - s - bs;
                 let (head, tail) = x.split_at_mut(n - s - bs);
-                let head = &mut head[rows.start..];
-                for c in n - s - bs..n - s {
-                    let v = -tail[c - (n - s - bs)];
-                    for (xi, &u) in head.iter_mut().zip(&col(c)[rows.clone()]) {
-                        *xi = u.mul_add(v, *xi);
-                    }
-                }
+                fma_update(col, n - s - bs, &tail[..bs], n - s - len, &mut head[n - s - len..]);
                 // SAFETY: as above
                 unsafe { upper_solve(col, n, s + bs, len - bs, x) };
             }
