@@ -29,8 +29,9 @@
 //! `Φ` is piecewise smooth; Newton uses one element of its generalised Jacobian. A contact with
 //! `λ − r_N g ≤ 0` has identity rows (`x_k = 0` after the step), so only the contacts that are
 //! pressed enter the small dense system, which is solved by a faer LU (sequential, buffers
-//! reused). A backtracking (Armijo) line search on `½‖Φ‖²` globalises the method; if it stalls,
-//! the alternation of the normal LCP ([`LcpWork`], friction frozen) and a block Gauss–Seidel on
+//! reused; its triangular solves by faer's algorithm without the per-block dispatch, module
+//! `kernels`). A backtracking (Armijo) line search on `½‖Φ‖²` globalises the method; if it
+//! stalls, the alternation of the normal LCP ([`LcpWork`], friction frozen) and a block Gauss–Seidel on
 //! the friction forces (exact one-contact solve [`FrictionLaw::local_force`] of the law) is run
 //! to the same tolerance.
 //!
