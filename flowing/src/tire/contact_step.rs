@@ -853,13 +853,7 @@ mod tests {
     /// large steps (reference moves and fresh evaluations).
     #[test]
     fn skipped_nodes_are_beyond_the_margin() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rnd = super::super::kernels::uniform(0x2545_f491_4f6c_dd1d);
         let (nz, nc) = (40, 30);
         let tct = Mat::from_fn(nz, 3 * nc, |_, _| 0.2 * rnd());
         let pos: Vec<[f64; 3]> = (0..nc)

@@ -248,41 +248,44 @@ macro_rules! triangular_solves {
                 r: usize,
                 dst: &mut [f64],
             ) {
-                // sixteen rows at a time: four independent chains of fused multiply-adds
+                // sixteen rows at a time (four independent chains of fused multiply-adds),
+                // then four, then one
                 let mut wide = dst.chunks_exact_mut(16);
                 let mut i = r;
                 for d in &mut wide {
-                    let mut acc = [0.0; 16];
-                    acc.copy_from_slice(d);
-                    for (k, &v) in vals.iter().enumerate() {
-                        let a = &col(c + k)[i..i + 16];
-                        for l in 0..16 {
-                            acc[l] = a[l].mul_add(-v, acc[l]);
-                        }
-                    }
-                    d.copy_from_slice(&acc);
+                    fma_rows::<16>(col, c, vals, i, d);
                     i += 16;
                 }
                 let mut blocks = wide.into_remainder().chunks_exact_mut(4);
                 for d in &mut blocks {
-                    let mut acc = [d[0], d[1], d[2], d[3]];
-                    for (k, &v) in vals.iter().enumerate() {
-                        let a = &col(c + k)[i..i + 4];
-                        for l in 0..4 {
-                            acc[l] = a[l].mul_add(-v, acc[l]);
-                        }
-                    }
-                    d.copy_from_slice(&acc);
+                    fma_rows::<4>(col, c, vals, i, d);
                     i += 4;
                 }
-                for d in blocks.into_remainder() {
-                    let mut y = *d;
-                    for (k, &v) in vals.iter().enumerate() {
-                        y = col(c + k)[i].mul_add(-v, y);
-                    }
-                    *d = y;
+                for d in blocks.into_remainder().chunks_exact_mut(1) {
+                    fma_rows::<1>(col, c, vals, i, d);
                     i += 1;
                 }
+            }
+
+            /// `dst_l ← fma(a_{i+l, c+k}, −vals_k, dst_l)` for `k` ascending, `W` rows held
+            /// in registers over the columns.
+            #[inline(always)]
+            fn fma_rows<'a, const W: usize>(
+                col: impl Fn(usize) -> &'a [f64] + Copy,
+                c: usize,
+                vals: &[f64],
+                i: usize,
+                dst: &mut [f64],
+            ) {
+                let mut acc = [0.0; W];
+                acc.copy_from_slice(dst);
+                for (k, &v) in vals.iter().enumerate() {
+                    let a = &col(c + k)[i..i + W];
+                    for l in 0..W {
+                        acc[l] = a[l].mul_add(-v, acc[l]);
+                    }
+                }
+                dst.copy_from_slice(&acc);
             }
 
             /// Unit lower solve on rows and columns `s..s + len` (faer's
@@ -358,22 +361,27 @@ macro_rules! triangular_solves {
 triangular_solves!(tri_fma, "avx2,fma");
 triangular_solves!(tri_base);
 
+/// Test data: a xorshift generator of numbers uniform in `[−0.5, 0.5)` from `seed` (≠ 0).
+#[cfg(test)]
+pub(super) fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     /// [`dots3x2`] (AVX2 when available) against the scalar kernel (bitwise: same operations
-    /// in the same order) and against plain sequential sums (independent reference, to round-off), for lengths
-    /// with and without a tail after the chunks of four.
+    /// in the same order) and against plain sequential sums (independent reference, to
+    /// round-off), for lengths with and without a tail after the chunks of four.
     #[test]
     fn dots3x2_is_the_scalar_kernel() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rnd = uniform(0x9e37_79b9_7f4a_7c15);
         for n in [0, 1, 3, 4, 7, 8, 13, 340] {
             let v: Vec<Vec<f64>> = (0..8).map(|_| (0..n).map(|_| rnd()).collect()).collect();
             let a = [&v[0][..], &v[1][..], &v[2][..]];
@@ -402,13 +410,7 @@ mod tests {
             solve_unit_lower_triangular_in_place, solve_upper_triangular_in_place,
         };
         use faer::{Mat, MatMut, Par};
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rnd = uniform(0x2545_f491_4f6c_dd1d);
         #[cfg(target_arch = "x86_64")]
         let fma = avx2() && std::arch::is_x86_feature_detected!("fma");
         #[cfg(not(target_arch = "x86_64"))]
