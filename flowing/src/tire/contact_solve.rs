@@ -29,8 +29,9 @@
 //! `Φ` is piecewise smooth; Newton uses one element of its generalised Jacobian. A contact with
 //! `λ − r_N g ≤ 0` has identity rows (`x_k = 0` after the step), so only the contacts that are
 //! pressed enter the small dense system, which is solved by a faer LU (sequential, buffers
-//! reused). A backtracking (Armijo) line search on `½‖Φ‖²` globalises the method; if it stalls,
-//! the alternation of the normal LCP ([`LcpWork`], friction frozen) and a block Gauss–Seidel on
+//! reused; its triangular solves by faer's algorithm without the per-block dispatch, module
+//! `kernels`). A backtracking (Armijo) line search on `½‖Φ‖²` globalises the method; if it
+//! stalls, the alternation of the normal LCP ([`LcpWork`], friction frozen) and a block Gauss–Seidel on
 //! the friction forces (exact one-contact solve [`FrictionLaw::local_force`] of the law) is run
 //! to the same tolerance.
 //!
@@ -40,14 +41,11 @@
 //! together with the residual at each evaluated or accepted point and reused by the Newton or
 //! chord direction from there.
 
-use super::kernels::axpy_cols;
+use super::kernels::{axpy_cols, lu_solve_in_place};
 use super::lcp::LcpWork;
 use contact::friction::{Coulomb, FrictionLaw};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
-use faer::linalg::triangular_solve::{
-    solve_unit_lower_triangular_in_place, solve_upper_triangular_in_place,
-};
 use faer::prelude::*;
 use faer::{Mat, Par};
 use nalgebra::{Matrix2, Vector2};
@@ -149,11 +147,31 @@ struct Linearization {
 }
 
 impl Linearization {
+    /// Becomes a copy of `other` (buffers reused).
+    fn copy_from(&mut self, other: &Self) {
+        self.lk.clone_from(&other.lk);
+        self.gk.clone_from(&other.gk);
+        self.pattern.clone_from(&other.pattern);
+    }
+
     fn reset(&mut self, m: usize) {
         clear_fill(&mut self.lk, m, [[0.0; 3]; 3]);
         clear_fill(&mut self.gk, m, [[0.0; 3]; 3]);
         clear_fill(&mut self.pattern, m, 0);
     }
+}
+
+/// A copy of an evaluation ([`ContactSolver::evaluate`]) and the number of free slip
+/// velocities fetched before it was made. `b` enters `y = D x + b` first for the contacts
+/// fetched before an evaluation, after the columns for those fetched during it, so evaluating
+/// the same `x` again gives bitwise the same `y` only if none was fetched during or since the
+/// first evaluation: then the copy replaces it.
+#[derive(Default)]
+struct Evaluation {
+    y: Vec<f64>,
+    phi: Vec<f64>,
+    lin: Linearization,
+    fetched: usize,
 }
 
 /// A factorised Newton matrix and the classification of the contacts it was built for.
@@ -192,6 +210,8 @@ pub struct ContactSolver {
     lin: Linearization,
     lin_trial: Linearization,
     lin_ok: bool,
+    /// The evaluation (`y`, `Φ`, linearisation) of the best warm start so far.
+    best: Evaluation,
     act: Vec<usize>,
     /// The last few Newton matrices (LU factors), by classification: chord steps use the one
     /// of the current classification (the patch often alternates between two from step to
@@ -230,6 +250,7 @@ impl Default for ContactSolver {
             lin: Linearization::default(),
             lin_trial: Linearization::default(),
             lin_ok: false,
+            best: Evaluation::default(),
             act: Vec::new(),
             slots: (0..3)
                 .map(|_| LuSlot {
@@ -460,6 +481,21 @@ impl ContactSolver {
         norm
     }
 
+    /// The number of free slip velocities fetched so far.
+    fn fetched(&self) -> usize {
+        self.have_b.iter().filter(|&&h| h).count()
+    }
+
+    /// Keeps a copy of the evaluation at the current `x` (made by [`Self::evaluate`] with
+    /// `fetched` free slip velocities fetched before it).
+    fn save_best(&mut self, fetched: usize) {
+        let b = &mut self.best;
+        b.y.clone_from(&self.y);
+        b.phi.clone_from(&self.phi);
+        b.lin.copy_from(&self.lin);
+        b.fetched = fetched;
+    }
+
     fn scale(&self) -> f64 {
         (0..self.m).fold(0.0f64, |a, k| a.max(self.x[3 * k].abs()))
     }
@@ -494,6 +530,7 @@ impl ContactSolver {
         clear_fill(&mut self.xt, n, 0.0);
         clear_fill(&mut self.yt, n, 0.0);
         clear_fill(&mut self.tmp, n, 0.0);
+        let fetched0 = self.fetched();
         let mut norm = self.evaluate(src, s);
         // further warm starts (e.g. the forces two steps back, contact chatter alternating from
         // step to step, or an extrapolation): keep the one with the smallest relative residual
@@ -501,6 +538,7 @@ impl ContactSolver {
             let mut best = norm / self.scale().max(1e-300);
             let mut best_is_current = true;
             self.xt.copy_from_slice(&self.x);
+            self.save_best(fetched0);
             for alt in alts.iter().filter(|a| a.len() == n) {
                 self.x.copy_from_slice(alt);
                 for k in 0..m {
@@ -508,6 +546,7 @@ impl ContactSolver {
                         self.x[3 * k..3 * k + 3].copy_from_slice(&[0.0; 3]);
                     }
                 }
+                let before = self.fetched();
                 let na = self.evaluate(src, s);
                 let rel = na / self.scale().max(1e-300);
                 if rel < best {
@@ -515,13 +554,22 @@ impl ContactSolver {
                     norm = na;
                     best_is_current = true;
                     self.xt.copy_from_slice(&self.x);
+                    self.save_best(before);
                 } else {
                     best_is_current = false;
                 }
             }
             if !best_is_current {
                 std::mem::swap(&mut self.x, &mut self.xt);
-                norm = self.evaluate(src, s);
+                if self.best.fetched == self.fetched() {
+                    // the evaluation of the best again, bitwise (see `Evaluation`)
+                    self.y.copy_from_slice(&self.best.y);
+                    self.phi.copy_from_slice(&self.best.phi);
+                    self.lin.copy_from(&self.best.lin);
+                    self.lin_ok = true;
+                } else {
+                    norm = self.evaluate(src, s);
+                }
             }
         }
         let mut ok = false;
@@ -798,9 +846,17 @@ impl ContactSolver {
         if na > 0 {
             self.tmp.clear();
             self.tmp.extend(slot.perm.iter().map(|&p| self.rhs[p]));
-            let mut sol = MatMut::from_column_major_slice_mut(&mut self.tmp[..na], na, 1);
-            solve_unit_lower_triangular_in_place(slot.lu.as_ref(), sol.rb_mut(), Par::Seq);
-            solve_upper_triangular_in_place(slot.lu.as_ref(), sol.rb_mut(), Par::Seq);
+            // (faer's two triangular solves, bitwise, without their per-block dispatch)
+            let lu = &slot.lu;
+            lu_solve_in_place(
+                |j| {
+                    lu.col(j)
+                        .try_as_col_major()
+                        .map_or(&[][..], |c| c.as_slice())
+                },
+                na,
+                &mut self.tmp[..na],
+            );
             for (ia, &k) in self.act.iter().enumerate() {
                 for a in 0..3 {
                     self.dx[3 * k + a] = self.tmp[3 * ia + a];

@@ -25,7 +25,7 @@
 use super::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
 use super::dynamics::TireDynamics;
 use super::ground::{Ground, GroundPoint};
-use super::kernels::{axpy_cols, dots3};
+use super::kernels::{axpy_cols, dots3x2};
 use super::reduced::ReducedTire;
 use super::rolling::{NormalContact, RollingConfig, StepStats};
 use contact::friction::FrictionLaw;
@@ -784,13 +784,20 @@ impl DelassusSource for TireDelassus<'_> {
         // planar ground (n_y = 0): n and t1 lie in the (x, z) plane, t2 = ŷ, so each frame
         // vector has two (n, t1) or one (t2) nonzero component
         let (nx, nz) = (e[0][0], e[0][2]);
-        for k in 0..self.cand.len() {
-            let a = &y0[3 * k..3 * k + 3];
-            let b = &y1[3 * k..3 * k + 3];
-            let c3 = &y2[3 * k..3 * k + 3];
-            let f = &self.frames[k];
+        // (iterators over the candidates' triples: no bounds checks in the loop)
+        let (c0, rest) = cols.split_at_mut(ld);
+        let (c1, c2) = rest.split_at_mut(ld);
+        let rows = y0
+            .chunks_exact(3)
+            .zip(y1.chunks_exact(3))
+            .zip(y2.chunks_exact(3))
+            .zip(self.frames.iter().zip(self.rig_t1));
+        let outs = c0
+            .chunks_exact_mut(3)
+            .zip(c1.chunks_exact_mut(3))
+            .zip(c2.chunks_exact_mut(3));
+        for ((((a, b), c3), (f, &rig)), ((o0, o1), o2)) in rows.zip(outs) {
             let (fnx, fnz, ftx, ftz, fy) = (f[0][0], f[0][2], f[1][0], f[1][2], f[2][1]);
-            let rig = self.rig_t1[k];
             // unit force along n, t1 (combinations of Y columns 0 and 2) and ŷ (column 1)
             let vs = [
                 [
@@ -805,10 +812,9 @@ impl DelassusSource for TireDelassus<'_> {
                 ],
                 [b[0], b[1], b[2]],
             ];
-            for (c, v) in vs.iter().enumerate() {
-                let o = &mut cols[c * ld + 3 * k..c * ld + 3 * k + 3];
+            for ((v, o), xc) in vs.iter().zip([o0, o1, o2]).zip(xth) {
                 o[0] = fnx * v[0] + fnz * v[2];
-                o[1] = ftx * v[0] + ftz * v[2] + rig * xth[c];
+                o[1] = ftx * v[0] + ftz * v[2] + rig * xc;
                 o[2] = fy * v[1];
             }
         }
@@ -820,14 +826,13 @@ impl DelassusSource for TireDelassus<'_> {
         let s = self.red.contact_positions[i];
         let sf = self.spin_free;
         let rig = [sf * s[2], 0.0, -sf * s[0]];
-        // (T_c ż)ᵢ and (T_c,θ z)ᵢ: two passes of three dot products of length n_z
+        // (T_c ż)ᵢ and (T_c,θ z)ᵢ: six dot products of length n_z in one pass
         let (tc, tt) = (
             |a| col_slice(self.tct, 3 * i + a),
             |a| col_slice(self.tct_theta, 3 * i + a),
         );
         let (zd, z) = (self.zd_free, self.z_free);
-        let vc = dots3([tc(0), tc(1), tc(2)], zd);
-        let vt = dots3([tt(0), tt(1), tt(2)], z);
+        let [vc, vt] = dots3x2([tc(0), tc(1), tc(2)], zd, [tt(0), tt(1), tt(2)], z);
         let mut v = [0.0; 3];
         for (a, va) in v.iter_mut().enumerate() {
             *va = rig[a] + vc[a] + sf * vt[a] - self.gp[k].velocity[a];
@@ -848,13 +853,7 @@ mod tests {
     /// large steps (reference moves and fresh evaluations).
     #[test]
     fn skipped_nodes_are_beyond_the_margin() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rnd = super::super::kernels::uniform(0x2545_f491_4f6c_dd1d);
         let (nz, nc) = (40, 30);
         let tct = Mat::from_fn(nz, 3 * nc, |_, _| 0.2 * rnd());
         let pos: Vec<[f64; 3]> = (0..nc)
@@ -869,7 +868,7 @@ mod tests {
             (0..nc)
                 .map(|i| {
                     let c = |b| col_slice(&tct, 3 * i + b);
-                    let d = dots3([c(0), c(1), c(2)], z);
+                    let [d, _] = dots3x2([c(0), c(1), c(2)], z, [c(0), c(1), c(2)], z);
                     let p = [pos[i][0] + d[0], pos[i][1] + d[1], pos[i][2] + d[2]];
                     let plane = p[2] + 0.295;
                     let c = [-0.05 + v * t, -0.3 - 0.004];
