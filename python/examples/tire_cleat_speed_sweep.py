@@ -41,8 +41,10 @@ def tire_config(variant, coarse):
 
 def point(variant, speed_kmh, tire, record_time):
     """One cleat run with the variant's reduced tire."""
-    r = flowmbd.tire.cleat(speed_kmh=speed_kmh, config={"rig": {"record_time": record_time}},
-                           tire=tire)
+    # one tire per Dask worker process: no product worker thread per run (`threads`)
+    r = flowmbd.tire.cleat(speed_kmh=speed_kmh, tire=tire,
+                           config={"rig": {"record_time": record_time,
+                                           "rolling": {"threads": 1}}})
     return {"fy_peak_hz": r["fy_peak_hz"], "fx_peak_hz": r["fx_peak_hz"], "fy_rms": r["fy_rms"],
             "fx_rms": r["fx_rms"], "loaded_vertical_mode_hz": r["loaded_vertical_mode_hz"]}
 

@@ -171,9 +171,13 @@ pub struct RollingConfig {
     /// Threads of the step's two large matrix–vector products (the force matrix `[G₁ H]` and
     /// the explicit inverse `S⁻¹`): 1 = the calling thread alone; 2 or more = a worker thread
     /// computes half of the rows of each ([`mbd_core::parallel`]; bitwise the same results).
-    /// Default 1: on an idle 2-core machine 2 threads shortened the wall time at h = 0.05 ms
-    /// by only ~4 % for 40–80 % more CPU (BENCHMARKS.md, tire section), and design sweeps
-    /// run one tire per core.
+    /// Default 2: with the lock-free hand-off the default cleat run on an idle 2-core machine
+    /// takes 0.73–0.80 wall s per simulated s with 2 threads against 0.87–0.96 with 1, for
+    /// about 1.3–1.6 CPU s per simulated s (the worker spins between products; BENCHMARKS.md,
+    /// tire section). Runs that already fill the cores (the cleat phases of
+    /// [`super::study::phase_spread`], a design sweep with one tire per core) should use 1;
+    /// on a loaded machine the products fall back to the calling thread
+    /// ([`mbd_core::parallel::SplitProduct::apply`]).
     pub threads: usize,
 }
 
@@ -195,7 +199,7 @@ impl Default for RollingConfig {
             matrix_tolerance: 0.1,
             contact_margin: 0.0005,
             spindle_force: SpindleForceMethod::Momentum,
-            threads: 1,
+            threads: 2,
         }
     }
 }

@@ -262,7 +262,10 @@ pub fn phase_spread(
     let rest = (1..phases)
         .into_par_iter()
         .map(|j| {
-            let cfg = rig.with_cleat_phase(j as f64 / phases as f64);
+            let mut cfg = rig.with_cleat_phase(j as f64 / phases as f64);
+            // the phases fill the cores themselves: no product worker per phase (the results
+            // do not depend on it, `RollingConfig::threads`)
+            cfg.rolling.threads = 1;
             let r = super::rig::run_cleat(red, &cfg, &mut |_| {})?;
             let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             progress(k as f64 / others as f64);
