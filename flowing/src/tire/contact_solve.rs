@@ -41,7 +41,7 @@
 //! together with the residual at each evaluated or accepted point and reused by the Newton or
 //! chord direction from there.
 
-use super::kernels::{axpy_cols, lu_solve_in_place};
+use super::kernels::{axpy_cols, col_slice, lu_solve_in_place};
 use super::lcp::LcpWork;
 use contact::friction::{Coulomb, FrictionLaw};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -848,15 +848,7 @@ impl ContactSolver {
             self.tmp.extend(slot.perm.iter().map(|&p| self.rhs[p]));
             // (faer's two triangular solves, bitwise, without their per-block dispatch)
             let lu = &slot.lu;
-            lu_solve_in_place(
-                |j| {
-                    lu.col(j)
-                        .try_as_col_major()
-                        .map_or(&[][..], |c| c.as_slice())
-                },
-                na,
-                &mut self.tmp[..na],
-            );
+            lu_solve_in_place(|j| col_slice(lu, j), na, &mut self.tmp[..na]);
             for (ia, &k) in self.act.iter().enumerate() {
                 for a in 0..3 {
                     self.dx[3 * k + a] = self.tmp[3 * ia + a];

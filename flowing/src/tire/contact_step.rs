@@ -25,7 +25,7 @@
 use super::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
 use super::dynamics::TireDynamics;
 use super::ground::{Ground, GroundPoint};
-use super::kernels::{axpy_cols, dots3x2};
+use super::kernels::{axpy_cols, col_slice, dots3x2};
 use super::reduced::ReducedTire;
 use super::rolling::{NormalContact, RollingConfig, StepStats};
 use contact::friction::FrictionLaw;
@@ -655,13 +655,6 @@ impl GapBound {
 }
 
 pub(super) use mbd_core::linalg::matvec;
-
-/// The contiguous storage of a column of a (column-major) `Mat`.
-fn col_slice(m: &Mat<f64>, j: usize) -> &[f64] {
-    m.col(j)
-        .try_as_col_major()
-        .map_or(&[][..], |c| c.as_slice())
-}
 
 fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]

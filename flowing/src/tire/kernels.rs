@@ -6,6 +6,14 @@
 //! same on any x86-64 machine; the AVX2 version only does four of them at once (the free slip
 //! products with explicit AVX2 intrinsics: one register of four partial sums per product).
 
+/// Column `j` of `m` as a slice (a `Mat`'s columns are contiguous; empty otherwise, which the
+/// kernels' length checks then refuse).
+pub(super) fn col_slice(m: &faer::Mat<f64>, j: usize) -> &[f64] {
+    m.col(j)
+        .try_as_col_major()
+        .map_or(&[][..], |c| c.as_slice())
+}
+
 /// Whether the AVX2 versions may run on this machine.
 #[cfg(target_arch = "x86_64")]
 #[inline]
