@@ -72,6 +72,12 @@ pub struct TireContact {
     pub cleat_contacts: usize,
     /// Work counters (contact part).
     pub stats: StepStats,
+    /// The image of each contact node in the half model of symmetric motion (see
+    /// [`TireContact::new`]).
+    mirror: Option<Vec<usize>>,
+    /// Weight of each contact node's force in the generalised force (1; half model: 2 for a
+    /// pair's representative, 0 for its image).
+    weight: Vec<f64>,
     work: Work,
 }
 
@@ -182,13 +188,41 @@ impl CandidateBlocks {
 impl TireContact {
     /// The contact of `red` with `ground` under the settings `cfg` (friction law, tolerances,
     /// margins), no contact forces yet.
-    pub fn new(red: &ReducedTire, cfg: RollingConfig, ground: Ground) -> Self {
+    ///
+    /// With `mirror` (the image of each contact node, [`super::mirror::MirrorHalf::partner`])
+    /// `red` is the half model of symmetric motion: the contact unknowns are the mid-plane nodes
+    /// (no lateral force) and one representative per mirrored pair, whose force also acts,
+    /// mirrored, on its image (generalised force `2 T_cᵀ f`); the image's force is the mirror
+    /// of the representative's.
+    pub fn new(
+        red: &ReducedTire,
+        cfg: RollingConfig,
+        ground: Ground,
+        mirror: Option<Vec<usize>>,
+    ) -> Self {
         let nz = red.n_z();
         let nc = red.n_contact();
         let tct = red.tc.transpose().to_owned();
         let bound = GapBound::new(&tct);
+        let weight: Vec<f64> = match &mirror {
+            Some(p) => (0..nc)
+                .map(|i| match p[i] {
+                    pi if pi == i => 1.0,
+                    pi if i < pi => 2.0,
+                    _ => 0.0,
+                })
+                .collect(),
+            None => vec![1.0; nc],
+        };
         let mut load = Mat::<f64>::zeros(nz + 1, 3 * nc);
         load.as_mut().subrows_mut(1, nz).copy_from(&tct);
+        for (c, &wc) in weight.iter().enumerate() {
+            if wc != 1.0 {
+                for r in 0..3 {
+                    load.col_mut(3 * c + r).iter_mut().for_each(|v| *v *= wc);
+                }
+            }
+        }
         let law = cfg.friction_law.law(cfg.friction, cfg.slip_regularization);
         Self {
             ground,
@@ -203,6 +237,8 @@ impl TireContact {
             contact_force: [0.0; 3],
             cleat_contacts: 0,
             stats: StepStats::default(),
+            mirror,
+            weight,
             work: Work {
                 dc: vec![0.0; 3 * nc],
                 bound,
@@ -302,8 +338,10 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
         w.cand.clear();
         w.gp.clear();
         w.eval.clear();
-        w.eval
-            .extend((0..nc).filter(|&i| !w.bound.skip(i, t1, dist, speed, margin_max)));
+        let weight = &self.weight;
+        w.eval.extend(
+            (0..nc).filter(|&i| weight[i] > 0.0 && !w.bound.skip(i, t1, dist, speed, margin_max)),
+        );
         // `T_c z` of the evaluated nodes: one product per run of consecutive nodes instead of
         // one three-row product per node (fewer calls; each entry is the same dot product of
         // faer's row-major kernel either way, so the values are unchanged)
@@ -382,9 +420,16 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
         self.lambda.iter_mut().for_each(|l| *l = 0.0);
         self.friction.iter_mut().for_each(|f| *f = [0.0; 3]);
         self.contact_force = [0.0; 3];
-        for f in &w.forces {
-            for b in 0..3 {
-                self.contact_force[b] += f[b];
+        for (f, &i) in w.forces.iter().zip(&w.cand) {
+            // half model: a pair's lateral forces cancel, the others count twice
+            let wi = self.weight[i];
+            if wi == 2.0 {
+                self.contact_force[0] += f[0] + f[0];
+                self.contact_force[2] += f[2] + f[2];
+            } else {
+                for b in 0..3 {
+                    self.contact_force[b] += f[b];
+                }
             }
         }
         w.was_cand.iter_mut().for_each(|c| *c = false);
@@ -394,13 +439,24 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
         for (k, &i) in w.cand.iter().enumerate() {
             self.lambda[i] = w.lambda[k];
             self.friction[i] = w.ft[k];
+            if let Some(p) = self.mirror.as_ref().map(|p| p[i]).filter(|&p| p != i) {
+                let f = w.ft[k];
+                self.lambda[p] = w.lambda[k];
+                self.friction[p] = [f[0], -f[1], f[2]];
+            }
         }
+        // (physical nodes: a pair's representative counts for both)
+        let count = |k: usize| self.weight[w.cand[k]] as usize;
         self.stats.steps += 1;
-        self.stats.candidates += w.cand.len();
-        self.stats.active += w.lambda.iter().filter(|&&l| l > 0.0).count();
+        self.stats.candidates += (0..w.cand.len()).map(count).sum::<usize>();
+        self.stats.active += (0..w.cand.len())
+            .filter(|&k| w.lambda[k] > 0.0)
+            .map(count)
+            .sum::<usize>();
         self.cleat_contacts = (0..w.cand.len())
             .filter(|&k| w.lambda[k] > 0.0 && w.gp[k].on_cleat)
-            .count();
+            .map(count)
+            .sum();
         Ok(())
     }
 }
@@ -469,6 +525,8 @@ impl TireContact {
             frames: &w.frames,
             rig_t1: &w.rig_t1,
             penalty,
+            weight: &self.weight,
+            half: self.mirror.is_some(),
             tct: &self.tct,
             tct_theta: &self.tct_theta,
             z_free: &step.q()[1..],
@@ -689,6 +747,10 @@ struct TireDelassus<'b> {
     /// `γ_N h t1ᵀ(η × s)` per candidate (`t2ᵀ(η × s) = 0`).
     rig_t1: &'b [f64],
     penalty: f64,
+    /// [`TireContact`]'s weight of each contact node (half model: 1 on the mid-plane).
+    weight: &'b [f64],
+    /// Whether this is the half model of symmetric motion.
+    half: bool,
     tct: &'b Mat<f64>,
     tct_theta: &'b Mat<f64>,
     z_free: &'b [f64],
@@ -753,8 +815,21 @@ impl TireDelassus<'_> {
         let e = self.directions(k);
         let dn = self.response(k, &e[0])[0] + self.penalty;
         let d1 = self.response(k, &e[1])[1];
-        let d2 = self.response(k, &e[2])[2];
+        let d2 = self.response(k, &e[2])[2] + self.lateral_compliance(k, d1);
         [dn, 0.5 * (d1 + d2)]
+    }
+
+    /// In the half model, a mid-plane node's lateral force moves nothing (an antisymmetric
+    /// load: its rows of `T_c` are zero), so its Delassus row is zero and the force would be
+    /// undetermined in stick; the symmetric solution has it zero. A compliance `d1` (the node's
+    /// own longitudinal one) on its diagonal makes `u2 = d1 f2 = 0`, i.e. `f2 = 0`, without
+    /// changing anything else. Zero for the other nodes.
+    fn lateral_compliance(&self, k: usize, d1: f64) -> f64 {
+        if self.half && self.weight[self.cand[k]] == 1.0 {
+            d1
+        } else {
+            0.0
+        }
     }
 }
 
@@ -812,6 +887,8 @@ impl DelassusSource for TireDelassus<'_> {
             }
         }
         cols[3 * l] += self.penalty;
+        let d1 = cols[ld + 3 * l + 1];
+        cols[2 * ld + 3 * l + 2] += self.lateral_compliance(l, d1);
     }
 
     fn free_slip(&mut self, k: usize) -> [f64; 2] {

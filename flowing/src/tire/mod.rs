@@ -6,6 +6,8 @@
 //!   modes, circumferential mode-shape derivatives) and the saved reduced tire;
 //! * [`ground`]: drum or flat road with a semicircular cleat (contact crate geometry);
 //! * [`statics`]: the preload (static contact with Lagrange multipliers, Ribaric §7.3);
+//! * [`mirror`]: the half model of mirror-symmetric motion (symmetric modal coordinates, one
+//!   contact unknown per mirrored node pair);
 //! * [`rolling`]: the wheel–tire equations (7.10)/(7.17) with the notes' corrections E15, E16,
 //!   U15–U17, integrated with Lagrange contact and Coulomb slip friction;
 //! * [`rig`]: the cleat-test sequence of §8.3 and its outputs; [`spectrum`]: amplitude spectra;
@@ -45,6 +47,7 @@ pub mod friction;
 pub mod ground;
 pub mod lcp;
 pub mod loaded;
+pub mod mirror;
 pub mod statics;
 pub use friction::TireFriction;
 pub use ground::{Ground, GroundConfig, GroundKind};
@@ -59,9 +62,10 @@ mod kernels;
 pub mod rolling;
 pub use contact_step::TireContact;
 pub use dynamics::TireDynamics;
+pub use mirror::{MirrorHalf, half_tire, mirror_half};
 pub use rolling::{
     NormalContact, RollingConfig, RollingState, RollingTire, SpindleForce, SpindleForceMethod,
-    StepStats,
+    StepStats, Symmetry, SymmetryUse,
 };
 pub mod model;
 pub use model::{

@@ -305,6 +305,9 @@ pub struct RigResult {
     pub load: f64,
     /// DOF of the wheel–tire model (6 + n_z).
     pub dof: usize,
+    /// Whether the half model of symmetric motion was stepped, and why not
+    /// ([`super::rolling::SymmetryUse::describe`]).
+    pub symmetry: String,
     /// Preload solution.
     pub preload: PatchSolution,
     /// Rayleigh coefficients.
@@ -514,6 +517,7 @@ pub fn run_cleat_observed(
         speed_kmh: cfg.speed_kmh,
         load: cfg.load,
         dof: red.dof(),
+        symmetry: sim.symmetry().describe(),
         preload: pre.patch,
         rayleigh: ray,
         samples,

@@ -79,12 +79,26 @@
 //! nodes whose free gap is below `contact_margin` (plus `h v` in front of the cleat, whose
 //! faces approach at the surface speed); [`StepStats::late_contacts`] counts impacts begun
 //! within one step.
+//!
+//! # Mirror symmetry
+//! A tire that is symmetric about its mid-plane, started symmetric on the (axially extruded)
+//! drum or road, moves symmetrically: with [`RollingConfig::symmetry`] = `auto` (default) the
+//! step runs on the half model of [`super::mirror`] — the symmetric modal coordinates (172 of
+//! the default tire's 335) and one contact unknown per mirrored pair of contact nodes (52 of
+//! 95) — which has the full model's symmetric solution at about a quarter of the matrix data
+//! and half the contact problem per step (issue #16: the default cleat run 2.3 times, the
+//! 0.05 ms step 2.2 times faster). The contact forces of every node ([`RollingState::lambda`],
+//! [`RollingState::friction`]: mirrored onto the images), the spindle force and the input
+//! tire's coordinates [`RollingTire::coordinates`] are those of the full model ([`RollingState::z`]
+//! holds the simulated, symmetric modal coordinates); [`RollingTire::symmetry`] says which
+//! model runs and, for the full one, why.
 
 use super::contact_step::{TireContact, matvec};
 use super::dynamics::TireDynamics;
 use super::error::{TireError, invalid};
 use super::friction::TireFriction;
 use super::ground::Ground;
+use super::mirror::MirrorHalf;
 use super::reduced::ReducedTire;
 use contact::friction::spec::check_coefficient;
 use mbd_core::Validate;
@@ -179,6 +193,24 @@ pub struct RollingConfig {
     /// on a loaded machine the products fall back to the calling thread
     /// ([`mbd_core::parallel::SplitProduct::apply`]).
     pub threads: usize,
+    /// Use of the tire's mirror symmetry about its mid-plane: `auto` (default) steps the half
+    /// model of symmetric motion ([`super::mirror`]: the symmetric modal coordinates, one
+    /// contact unknown per mirrored node pair; the same solution as the full model at about a
+    /// quarter of the work per step) when the tire and the initial state are symmetric to
+    /// [`super::mirror::MIRROR_TOLERANCE`], else the full model ([`RollingTire::symmetry`]
+    /// says which and why); `off` always steps the full model.
+    pub symmetry: Symmetry,
+}
+
+/// Use of the tire's mirror symmetry ([`RollingConfig::symmetry`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Symmetry {
+    /// The half model when the tire and the start are mirror-symmetric, else the full model.
+    #[default]
+    Auto,
+    /// Always the full model.
+    Off,
 }
 
 impl Default for RollingConfig {
@@ -200,6 +232,7 @@ impl Default for RollingConfig {
             contact_margin: 0.0005,
             spindle_force: SpindleForceMethod::Momentum,
             threads: 2,
+            symmetry: Symmetry::Auto,
         }
     }
 }
@@ -429,6 +462,54 @@ pub struct RollingTire<'a> {
     force_rows: faer::Mat<f64>,
     /// The worker thread of the split products (`threads ≥ 2`).
     product_worker: Option<std::sync::Arc<mbd_core::parallel::ProductWorker>>,
+    symmetry: SymmetryUse,
+}
+
+/// Whether a [`RollingTire`] steps the half model of symmetric motion
+/// ([`RollingConfig::symmetry`], [`super::mirror`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum SymmetryUse {
+    /// The half model with these symmetric coordinates and contact-node images.
+    Half(MirrorHalf),
+    /// The full model, and why (`symmetry = "off"`, or the test that failed).
+    Full(String),
+}
+
+impl SymmetryUse {
+    /// A one-line description, e.g. for a study's summary.
+    pub fn describe(&self) -> String {
+        match self {
+            SymmetryUse::Half(h) => format!(
+                "mirror half model: {} of {} coordinates, {} contact unknowns of {} nodes",
+                h.kept.len(),
+                h.n_full,
+                (0..h.partner.len()).filter(|&i| h.weight(i) > 0.0).count(),
+                h.partner.len()
+            ),
+            SymmetryUse::Full(why) => format!("full model ({why})"),
+        }
+    }
+}
+
+/// Largest antisymmetric part of the initial coordinates, relative to their largest value,
+/// for which [`RollingTire::new`] starts the half model.
+const START_ASYMMETRY: f64 = 1e-6;
+
+/// The symmetric half of the modal tire `tire` if it exists and the initial modal coordinates
+/// `y0` are symmetric (their antisymmetric part below [`START_ASYMMETRY`]), else the reason.
+fn symmetric_half(tire: &ReducedTire, y0: &[f64]) -> Result<MirrorHalf, String> {
+    let half = super::mirror::mirror_half(tire)?;
+    let top = y0.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let anti = (0..y0.len())
+        .filter(|j| half.kept.binary_search(j).is_err())
+        .fold(0.0f64, |a, j| a.max(y0[j].abs()));
+    if anti > START_ASYMMETRY * top {
+        return Err(format!(
+            "the initial state is not mirror-symmetric (antisymmetric part {:.1e} of {top:.1e})",
+            anti
+        ));
+    }
+    Ok(half)
 }
 
 /// Largest [`super::reduced::ModalTire::deviation`] for which [`RollingTire`] steps in modal
@@ -462,18 +543,46 @@ impl<'a> RollingTire<'a> {
         // per step, issue #16); the input tire's coordinates if the change of coordinates is not
         // exact to round-off (e.g. unsymmetric M or K)
         let modal = red.modal()?;
+        let mut symmetry = SymmetryUse::Full("symmetry = \"off\"".into());
         let (sys, z0, map) = if modal.deviation <= MODAL_DEVIATION {
             let y0 = (&modal.phi_inv * faer::MatRef::from_column_major_slice(&z0, nz, 1))
                 .col(0)
                 .iter()
                 .copied()
                 .collect::<Vec<f64>>();
-            let sys = TireDynamics::owned(modal.tire, alpha, beta, cfg.wheel_spin_inertia, spin);
-            (sys, y0, Some((modal.phi, modal.phi_inv)))
+            let half = match cfg.symmetry {
+                Symmetry::Off => None,
+                Symmetry::Auto => match symmetric_half(&modal.tire, &y0) {
+                    Ok(h) => Some(h),
+                    Err(reason) => {
+                        symmetry = SymmetryUse::Full(reason);
+                        None
+                    }
+                },
+            };
+            if let Some(half) = half {
+                // the half model: the symmetric modal coordinates only (module `mirror`)
+                let tire = super::mirror::half_tire(&modal.tire, &half);
+                let k = &half.kept;
+                let ys = k.iter().map(|&j| y0[j]).collect();
+                let phi = faer::Mat::from_fn(nz, k.len(), |i, j| modal.phi[(i, k[j])]);
+                let phi_inv = faer::Mat::from_fn(k.len(), nz, |i, j| modal.phi_inv[(k[i], j)]);
+                let sys = TireDynamics::owned(tire, alpha, beta, cfg.wheel_spin_inertia, spin);
+                symmetry = SymmetryUse::Half(half);
+                (sys, ys, Some((phi, phi_inv)))
+            } else {
+                let sys =
+                    TireDynamics::owned(modal.tire, alpha, beta, cfg.wheel_spin_inertia, spin);
+                (sys, y0, Some((modal.phi, modal.phi_inv)))
+            }
         } else {
+            symmetry = SymmetryUse::Full(
+                "the modal change of coordinates is not exact to round-off".into(),
+            );
             let sys = TireDynamics::new(red, alpha, beta, cfg.wheel_spin_inertia, spin);
             (sys, z0, None)
         };
+        let nz = sys.reduced().n_z();
         // one worker thread shared by the products with [G₁ H] and S⁻¹ (applied one after the
         // other in a step)
         let worker = mbd_core::parallel::ProductWorker::for_threads(cfg.threads);
@@ -490,7 +599,15 @@ impl<'a> RollingTire<'a> {
         };
         let mut stepper = AlphaStepper::new(&sys, State::new(0.0, q0, v0), cfg.alpha_config())
             .map_err(sim_err)?
-            .with_correction(TireContact::new(sys.reduced(), cfg.clone(), ground));
+            .with_correction(TireContact::new(
+                sys.reduced(),
+                cfg.clone(),
+                ground,
+                match &symmetry {
+                    SymmetryUse::Half(h) => Some(h.partner.clone()),
+                    SymmetryUse::Full(_) => None,
+                },
+            ));
         stepper.set_product_worker(worker);
         stepper
             .set_initial_acceleration(&vec![0.0; nz + 1])
@@ -533,6 +650,7 @@ impl<'a> RollingTire<'a> {
             cleat_contacts: 0,
             force_rows,
             product_worker,
+            symmetry,
         })
     }
 
@@ -741,6 +859,11 @@ impl<'a> RollingTire<'a> {
     /// Number of contact nodes in contact.
     pub fn active_count(&self) -> usize {
         self.state.lambda.iter().filter(|&&l| l > 0.0).count()
+    }
+
+    /// Whether the half model of symmetric motion is stepped ([`RollingConfig::symmetry`]).
+    pub fn symmetry(&self) -> &SymmetryUse {
+        &self.symmetry
     }
 
     /// The spin-row coefficients `[β K_θ; K_θ + β θ̇ K_θ,θ]` of the current spin-dependent matrices

@@ -292,6 +292,10 @@ pub struct CleatSummary {
     pub speed_kmh: f64,
     /// Wheel–tire DOF.
     pub dof: usize,
+    /// The model stepped: the mirror half model of symmetric motion (the same solution at
+    /// about a quarter of the work per step) or the full model and why
+    /// ([`super::RollingConfig::symmetry`]).
+    pub symmetry: String,
     /// Dominant frequency of the vertical force \[Hz\].
     pub fy_peak_hz: f64,
     /// Dominant frequency of the longitudinal force \[Hz\].
@@ -406,6 +410,7 @@ pub fn summarize(r: &RigResult) -> CleatSummary {
     CleatSummary {
         speed_kmh: r.speed_kmh,
         dof: r.dof,
+        symmetry: r.symmetry.clone(),
         fy_peak_hz,
         fx_peak_hz,
         fy_rms: ry,
