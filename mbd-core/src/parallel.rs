@@ -60,6 +60,9 @@ struct Shared {
     count: AtomicUsize,
     slow: AtomicUsize,
     off_until: AtomicUsize,
+    /// Whether the worker is parked (idle longer than its spin window, e.g. while the caller
+    /// writes output between steps): a product it misses then does not count as slow.
+    parked: AtomicBool,
 }
 
 /// One persistent worker thread that computes the second half of [`SplitProduct`]s (several
@@ -105,6 +108,7 @@ impl ProductWorker {
             count: AtomicUsize::new(0),
             slow: AtomicUsize::new(0),
             off_until: AtomicUsize::new(0),
+            parked: AtomicBool::new(false),
         });
         let s = Arc::clone(&shared);
         let handle = std::thread::Builder::new()
@@ -169,7 +173,9 @@ fn worker_loop(s: &Shared) {
             if spins.is_multiple_of(64) && since.elapsed() > s.spin {
                 // a job posted after this check unparks us (park returns at once if the
                 // unpark came first)
+                s.parked.store(true, Ordering::Release);
                 std::thread::park();
+                s.parked.store(false, Ordering::Release);
                 since = Instant::now();
             } else {
                 std::hint::spin_loop();
@@ -283,6 +289,9 @@ impl SplitProduct {
         j.k.store(x.len(), Ordering::Relaxed);
         j.out.store(tail.as_mut_ptr(), Ordering::Relaxed);
         j.m.store(tail.len(), Ordering::Relaxed);
+        // a parked worker (idle beyond its spin window: the caller paused, e.g. for output) is
+        // woken and misses this product without counting as slow
+        let asleep = s.parked.load(Ordering::Acquire);
         let seq = s.seq.fetch_add(1, Ordering::AcqRel) + 1;
         w.wake();
         let start = Instant::now();
@@ -314,6 +323,7 @@ impl SplitProduct {
         };
         if helped {
             s.slow.store(0, Ordering::Relaxed);
+        } else if asleep {
         } else if s.slow.fetch_add(1, Ordering::Relaxed) + 1 >= OFF_AFTER {
             s.slow.store(0, Ordering::Relaxed);
             s.off_until.store(count + OFF_FOR, Ordering::Relaxed);

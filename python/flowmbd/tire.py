@@ -135,7 +135,7 @@ def cleat(
     ----------
     speed_kmh : speed [km/h] (replaces ``config["rig"]["speed_kmh"]``; ``None`` keeps it).
     config : dict with the keys of ``flowmbd-tire cleat --print-config`` (``tire``, ``rig``;
-        ``vtk_every`` and ``vtk_tire_every`` are accepted and not used).
+        ``vtk_interval`` and ``vtk_tire_interval`` are accepted and not used).
     tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
         ``config["tire"]`` (which must then be absent): reduce once, run many.
     series : also return the force history (``"forces"``: the columns of ``forces.csv``,

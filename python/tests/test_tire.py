@@ -38,8 +38,8 @@ contact_nodes = 33
 free_modes = 50
 """
 RIG_TOML = """
-vtk_every = 0
-vtk_tire_every = 0
+vtk_interval = 0
+vtk_tire_interval = 0
 [rig]
 settle_time = 0.05
 record_time = 0.05

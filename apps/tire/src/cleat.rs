@@ -110,6 +110,23 @@ pub fn write_outputs(
     Ok(())
 }
 
+/// The number of the frame due at simulated time `t` \[s\] of a series `(next, interval,
+/// written)` (every `interval` \[s\], the first at the first call; `None` when not due or
+/// `interval = 0`), advancing the series.
+fn due(series: &mut (f64, f64, usize), t: f64) -> Option<usize> {
+    let (next, interval, written) = series;
+    if *interval <= 0.0 || t < *next {
+        return None;
+    }
+    // the next frame one interval on, skipping intervals shorter than a step
+    *next = if next.is_finite() { *next } else { t };
+    while *next <= t {
+        *next += *interval;
+    }
+    *written += 1;
+    Some(*written - 1)
+}
+
 /// The deformed contact nodes as VTK vertices with the normal force and friction force fields.
 fn write_patch_vtu(path: &std::path::Path, sim: &RollingTire) -> Result<(), TireError> {
     let mut mesh = Mesh::new(3);
@@ -200,22 +217,23 @@ impl Study for Cleat {
         let red = c.tire.reduced(ctx.quiet)?;
         let bar = ctx.progress(1.0, "cleat test");
         let vtk_dir = ctx.out.path("vtk");
-        if c.vtk_every > 0 {
+        if c.vtk_interval > 0.0 {
             std::fs::create_dir_all(&vtk_dir)
                 .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
         }
-        if c.vtk_tire_every > 0 && red.viz.is_none() && !ctx.quiet {
+        if c.vtk_tire_interval > 0.0 && red.viz.is_none() && !ctx.quiet {
             eprintln!(
                 "note: the reduced tire has no visualisation rows (reduce again with \
                  tire.reduction.viz_stations > 0 for the whole-tire VTK series)"
             );
         }
-        if c.vtk_tire_every > 0 && red.viz.is_some() {
+        if c.vtk_tire_interval > 0.0 && red.viz.is_some() {
             std::fs::create_dir_all(&vtk_dir)
                 .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
         }
-        let every = c.vtk_every;
-        let tire_every = c.vtk_tire_every;
+        // frames at simulated-time intervals: `(next time, interval, frames written)`
+        let mut patch_frames = (f64::NEG_INFINITY, c.vtk_interval, 0usize);
+        let mut tire_frames = (f64::NEG_INFINITY, c.vtk_tire_interval, 0usize);
         let viz = red.viz.as_ref();
         // the force history is streamed (same rows as `RigResult::samples`), so that a run that
         // fails keeps the history up to the failure
@@ -235,18 +253,14 @@ impl Study for Cleat {
                 });
             }
             done = (k + 1, t);
-            if every > 0 && k.is_multiple_of(every) {
-                write_patch_vtu(&vtk_dir.join(format!("patch_{:05}.vtu", k / every)), sim)?;
+            let now = sim.state.t;
+            if let Some(frame) = due(&mut patch_frames, now) {
+                write_patch_vtu(&vtk_dir.join(format!("patch_{frame:05}.vtu")), sim)?;
             }
             if let Some(v) = viz
-                && tire_every > 0
-                && k.is_multiple_of(tire_every)
+                && let Some(frame) = due(&mut tire_frames, now)
             {
-                write_tire_vtu(
-                    &vtk_dir.join(format!("tire_{:05}.vtu", k / tire_every)),
-                    v,
-                    sim,
-                )?;
+                write_tire_vtu(&vtk_dir.join(format!("tire_{frame:05}.vtu")), v, sim)?;
             }
             Ok(())
         };

@@ -198,7 +198,7 @@ fn cleat_json_contract_and_outputs() {
     let cfg = config(
         &dir,
         "cleat.toml",
-        "vtk_every = 500\nvtk_tire_every = 1000",
+        "vtk_interval = 0.1\nvtk_tire_interval = 0.2",
         file,
         "",
     );
@@ -302,7 +302,8 @@ fn cleat_json_contract_and_outputs() {
         assert_plot(&out_dir, stem);
     }
 
-    // VTK series: patch every 500 steps, whole tire every 1000 (steps 0, 500, …)
+    // VTK series: patch every 0.1 s, whole tire every 0.2 s of simulated time (from the first
+    // step: as many frames as every 500 and 1000 steps of 0.2 ms)
     let vtk = out_dir.join("vtk");
     let count = |prefix: &str| {
         std::fs::read_dir(&vtk)
@@ -343,7 +344,7 @@ fn cleat_spindle_force_before_the_cleat_equals_the_load() {
     let cfg = config(
         &dir,
         "c.toml",
-        "vtk_every = 0\nvtk_tire_every = 0",
+        "vtk_interval = 0\nvtk_tire_interval = 0",
         file,
         "",
     );
@@ -422,7 +423,7 @@ fn sweep_writes_the_maps_and_agrees_with_single_runs() {
     let ccfg = config(
         &dir,
         "c.toml",
-        "vtk_every = 0\nvtk_tire_every = 0",
+        "vtk_interval = 0\nvtk_tire_interval = 0",
         file,
         "",
     );
@@ -661,7 +662,7 @@ fn numerical_failure_exits_1_and_keeps_the_history() {
     let cfg = config(
         &dir,
         "d.toml",
-        "vtk_every = 0\nvtk_tire_every = 0",
+        "vtk_interval = 0\nvtk_tire_interval = 0",
         file,
         "[rig.rolling]\nnewmark_beta = 0.01\n",
     );
@@ -714,7 +715,7 @@ fn missing_reduced_file_is_reduced_once_then_reused() {
     let cfg = config(
         &dir,
         "c.toml",
-        "vtk_every = 0\nvtk_tire_every = 0",
+        "vtk_interval = 0\nvtk_tire_interval = 0",
         &file,
         "[rig]\nsettle_time = 0.05\nrecord_time = 0.05\n",
     );
@@ -857,7 +858,7 @@ fn dips_prediction_contract() {
 fn cleat_phases_are_runs_with_the_cleat_delayed() {
     let (file, _) = shared_reduced();
     let dir = tmp("phases");
-    let top = "vtk_every = 0\nvtk_tire_every = 0";
+    let top = "vtk_interval = 0\nvtk_tire_interval = 0";
     let cfg = config(&dir, "p.toml", top, file, "");
     let s = json_of(&run_study(
         "cleat",

@@ -150,14 +150,16 @@ pub struct CleatStudyConfig {
     pub tire: TireSource,
     /// The rig.
     pub rig: RigConfig,
-    /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many steps
-    /// (0 = none) into `vtk/` (`flowmbd-tire` only).
-    pub vtk_every: usize,
+    /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many simulated
+    /// seconds (0 = none; the first after the first step) into `vtk/` (`flowmbd-tire` only).
+    /// Simulated time, not steps, so that a finer `rig.rolling.time_step` does not multiply
+    /// the files (default 5 ms: 140 frames of the default 0.7 s run).
+    pub vtk_interval: f64,
     /// Write a VTK (`.vtu`) snapshot of the whole deforming tire (every ring at the
     /// reduction's visualisation stations, as closed polylines, with the displacement field)
-    /// every this many steps (0 = none) into `vtk/` (needs a reduced tire made with
-    /// `tire.reduction.viz_stations > 0`; `flowmbd-tire` only).
-    pub vtk_tire_every: usize,
+    /// every this many simulated seconds (0 = none) into `vtk/` (needs a reduced tire made
+    /// with `tire.reduction.viz_stations > 0`; `flowmbd-tire` only; default 10 ms).
+    pub vtk_tire_interval: f64,
     /// Cleat phases: run the test this many times with the cleat arriving `j/cleat_phases` of
     /// an impact step later (`j = 0, 1, …`; [`RigConfig::with_cleat_phase`]) and report the
     /// mean and spread of the dominant lines' rms over the runs ([`PhaseSpread`]; 1 = one
@@ -174,8 +176,8 @@ impl Default for CleatStudyConfig {
         Self {
             tire: TireSource::default(),
             rig: RigConfig::default(),
-            vtk_every: 25,
-            vtk_tire_every: 50,
+            vtk_interval: 0.005,
+            vtk_tire_interval: 0.01,
             cleat_phases: 1,
         }
     }
@@ -184,6 +186,8 @@ impl Default for CleatStudyConfig {
 impl Validate for CleatStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         self.tire.validate_within("tire")?;
+        check::non_negative("vtk_interval", self.vtk_interval, "s")?;
+        check::non_negative("vtk_tire_interval", self.vtk_tire_interval, "s")?;
         check::size("cleat_phases", self.cleat_phases, 1, MAX_CLEAT_PHASES)?;
         validate_rig(&self.rig)
     }
