@@ -12,7 +12,8 @@
 //! * no friction (μ = 0).
 //!
 //! * the converged reference step h = 0.05 ms without sub-steps (issue #16: real time there),
-//!   with the default `threads` (2 on a machine with two cores or more) and with one thread.
+//!   with the default `threads` (1) and with 2, and with the full model (`symmetry = "off"`;
+//!   every other variant steps the default mirror half model).
 //!
 //! Run: `cargo bench --profile release --workspace --bench tire_cleat` (the reduction takes about
 //! 30 s first). With `FLOWMBD_REDUCED_TIRE=<file>` a saved reduced tire (e.g. the cache file of
@@ -91,11 +92,18 @@ fn main() {
             c.impact.substeps = 1;
             c
         }),
-        ("h 0.05 ms, no sub-steps, 1 thread", {
+        ("h 0.05 ms, no sub-steps, 2 threads", {
             let mut c = base.clone();
             c.rolling.time_step = 5e-5;
             c.impact.substeps = 1;
-            c.rolling.threads = 1;
+            c.rolling.threads = 2;
+            c
+        }),
+        ("h 0.05 ms, full model (symmetry off)", {
+            let mut c = base.clone();
+            c.rolling.time_step = 5e-5;
+            c.impact.substeps = 1;
+            c.rolling.symmetry = Symmetry::Off;
             c
         }),
     ];

@@ -185,12 +185,13 @@ pub struct RollingConfig {
     /// Threads of the step's two large matrix–vector products (the force matrix `[G₁ H]` and
     /// the explicit inverse `S⁻¹`): 1 = the calling thread alone; 2 or more = a worker thread
     /// computes half of the rows of each ([`mbd_core::parallel`]; bitwise the same results).
-    /// Default 2: with the lock-free hand-off the default cleat run on an idle 2-core machine
-    /// takes 0.73–0.80 wall s per simulated s with 2 threads against 0.87–0.96 with 1, for
-    /// about 1.3–1.6 CPU s per simulated s (the worker spins between products; BENCHMARKS.md,
-    /// tire section). Runs that already fill the cores (the cleat phases of
-    /// [`super::study::phase_spread`], a design sweep with one tire per core) should use 1;
-    /// on a loaded machine the products fall back to the calling thread
+    /// Default 1: with the mirror half model (`symmetry`) the products fit a core's L2 cache
+    /// and a second thread no longer pays: on an idle 2-core machine the cleat run at
+    /// h = 0.05 ms takes 0.68–0.72 wall s per simulated s with 1 thread against 0.77–0.80 with
+    /// 2 (whose worker spins between products, 1.6 CPU s/s, and slows the caller's contact
+    /// work), the default run 0.33–0.40 against 0.27–0.36 (BENCHMARKS.md, tire section). The
+    /// full model (`symmetry = "off"`) gains from 2 threads (its products stream 2.8 MB a
+    /// step from L3). On a loaded machine the products fall back to the calling thread
     /// ([`mbd_core::parallel::SplitProduct::apply`]).
     pub threads: usize,
     /// Use of the tire's mirror symmetry about its mid-plane: `auto` (default) steps the half
@@ -231,7 +232,7 @@ impl Default for RollingConfig {
             matrix_tolerance: 0.1,
             contact_margin: 0.0005,
             spindle_force: SpindleForceMethod::Momentum,
-            threads: 2,
+            threads: 1,
             symmetry: Symmetry::Auto,
         }
     }

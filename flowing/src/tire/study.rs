@@ -373,8 +373,10 @@ pub const CLEAT_MEANING: &str = "The cleat test of Ribaric 8.3: the preloaded ti
          them); fy_rms and fx_rms are the force fluctuations [N]; fy_mean_before_n equals the \
          load when the rolling tire is in equilibrium and fx_mean_before_n is the rolling \
          resistance [N]; preload_deflection_m is the static deflection. wall_ and \
-         cpu_per_simulated_s say how fast the model runs (1 = real time). The line amplitudes \
-         of one run carry a scatter of about 2 % (standard deviation) from the phase of the \
+         cpu_per_simulated_s say how fast the model runs (1 = real time); symmetry says \
+         whether the mirror half model of the symmetric motion ran (the same solution at a \
+         fraction of the cost) or the full model and why. The line amplitudes \
+         of one run carry a scatter of about 3 % (standard deviation) from the phase of the \
          cleat's hits on the discrete contact nodes relative to the time steps; with \
          cleat_phases > 1 the test is repeated at shifted phases and phases gives the mean and \
          spread (the converging measure).";
