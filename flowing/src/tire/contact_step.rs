@@ -26,6 +26,7 @@ use super::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
 use super::dynamics::TireDynamics;
 use super::ground::{Ground, GroundPoint};
 use super::kernels::{axpy_cols, col_slice, dots3x2};
+use super::mirror::MirrorHalf;
 use super::reduced::ReducedTire;
 use super::rolling::{NormalContact, RollingConfig, StepStats};
 use contact::friction::FrictionLaw;
@@ -189,8 +190,8 @@ impl TireContact {
     /// The contact of `red` with `ground` under the settings `cfg` (friction law, tolerances,
     /// margins), no contact forces yet.
     ///
-    /// With `mirror` (the image of each contact node, [`super::mirror::MirrorHalf::partner`])
-    /// `red` is the half model of symmetric motion: the contact unknowns are the mid-plane nodes
+    /// With `mirror` ([`MirrorHalf`]: the image of each contact node and its weight) `red` is
+    /// the half model of symmetric motion: the contact unknowns are the mid-plane nodes
     /// (no lateral force) and one representative per mirrored pair, whose force also acts,
     /// mirrored, on its image (generalised force `2 T_cᵀ f`); the image's force is the mirror
     /// of the representative's.
@@ -198,22 +199,17 @@ impl TireContact {
         red: &ReducedTire,
         cfg: RollingConfig,
         ground: Ground,
-        mirror: Option<Vec<usize>>,
+        mirror: Option<&MirrorHalf>,
     ) -> Self {
         let nz = red.n_z();
         let nc = red.n_contact();
         let tct = red.tc.transpose().to_owned();
         let bound = GapBound::new(&tct);
-        let weight: Vec<f64> = match &mirror {
-            Some(p) => (0..nc)
-                .map(|i| match p[i] {
-                    pi if pi == i => 1.0,
-                    pi if i < pi => 2.0,
-                    _ => 0.0,
-                })
-                .collect(),
+        let weight: Vec<f64> = match mirror {
+            Some(h) => (0..nc).map(|i| h.weight(i)).collect(),
             None => vec![1.0; nc],
         };
+        let mirror = mirror.map(|h| h.partner.clone());
         let mut load = Mat::<f64>::zeros(nz + 1, 3 * nc);
         load.as_mut().subrows_mut(1, nz).copy_from(&tct);
         for (c, &wc) in weight.iter().enumerate() {

@@ -207,34 +207,12 @@ pub fn half_tire(red: &ReducedTire, half: &MirrorHalf) -> ReducedTire {
     let square = |m: &Mat<f64>| Mat::from_fn(ns, ns, |i, j| m[(k[i], k[j])]);
     let cols = |m: &Mat<f64>| Mat::from_fn(m.nrows(), ns, |i, j| m[(i, k[j])]);
     let sub = |v: &[f64]| k.iter().map(|&j| v[j]).collect::<Vec<f64>>();
-    let mut out = red.clone();
-    out.m = square(&red.m);
-    out.k = square(&red.k);
-    out.g1 = square(&red.g1);
-    out.g2 = square(&red.g2);
-    out.k1 = square(&red.k1);
-    out.m_theta = sub(&red.m_theta);
-    out.c_s = sub(&red.c_s);
-    for (o, m) in [
-        (&mut out.kr, &red.kr),
-        (&mut out.kr1, &red.kr1),
-        (&mut out.kt, &red.kt),
-        (&mut out.kt1, &red.kt1),
-        (&mut out.tc, &red.tc),
-        (&mut out.tc_theta, &red.tc_theta),
-        (&mut out.p_e, &red.p_e),
-        (&mut out.p_e1, &red.p_e1),
-        (&mut out.p_e2, &red.p_e2),
-    ] {
-        *o = cols(m);
-    }
+    let mut out = red.with_coordinates(square, cols, sub);
     for i in (0..red.n_contact()).filter(|&i| half.on_mid_plane(i)) {
         for j in 0..ns {
             out.tc[(3 * i + 1, j)] = 0.0;
             out.tc_theta[(3 * i + 1, j)] = 0.0;
         }
     }
-    out.viz = None;
-    out.tread = None;
     out
 }

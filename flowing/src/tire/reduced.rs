@@ -279,7 +279,8 @@ impl ReducedTire {
                 .map(|j| (0..n).map(|i| phi[(i, j)] * v[i]).sum())
                 .collect()
         };
-        let (my, ky) = (cong(&self.m), cong(&self.k));
+        let mut tire = self.with_coordinates(cong, right, proj);
+        let (my, ky) = (&tire.m, &tire.k);
         let lmax = lam.iter().fold(0.0f64, |a, &b| a.max(b.abs())).max(1e-300);
         let mut deviation = 0.0f64;
         for j in 0..n {
@@ -292,18 +293,41 @@ impl ReducedTire {
                 deviation = deviation.max(em.abs()).max(ek.abs() / lmax);
             }
         }
-        let mut tire = self.clone();
         tire.m = Mat::identity(n, n);
         tire.k = Mat::from_fn(n, n, |i, j| if i == j { lam[i] } else { 0.0 });
+        let phi_inv = phi.transpose() * &self.m;
+        Ok(ModalTire {
+            tire,
+            phi,
+            phi_inv,
+            deviation,
+        })
+    }
+
+    /// The same tire in new coordinates `z = P y` (Ribaric (7.17) is invariant under a change
+    /// of coordinates): `square(A)` = `PᵀAP` for `M`, `K`, `G₁`, `G₂`, `K₁`; `right(A)` = `AP`
+    /// for every row map of `z` (`K_r`, `K_θ`, `T_c`, `T_c,θ`, `P`, …); `vector(v)` = `Pᵀv` for
+    /// `m_θ`, `c_s`. The visualisation and tread bases are dropped (map `y` back with `P`). Used
+    /// by [`ReducedTire::modal`] (`P = Φ`) and the mirror half model
+    /// ([`super::mirror::half_tire`], `P` a selection of coordinates).
+    pub fn with_coordinates(
+        &self,
+        square: impl Fn(&Mat<f64>) -> Mat<f64>,
+        right: impl Fn(&Mat<f64>) -> Mat<f64>,
+        vector: impl Fn(&[f64]) -> Vec<f64>,
+    ) -> ReducedTire {
+        let mut tire = self.clone();
         for (t, a) in [
+            (&mut tire.m, &self.m),
+            (&mut tire.k, &self.k),
             (&mut tire.g1, &self.g1),
             (&mut tire.g2, &self.g2),
             (&mut tire.k1, &self.k1),
         ] {
-            *t = cong(a);
+            *t = square(a);
         }
-        tire.m_theta = proj(&self.m_theta);
-        tire.c_s = proj(&self.c_s);
+        tire.m_theta = vector(&self.m_theta);
+        tire.c_s = vector(&self.c_s);
         for (t, a) in [
             (&mut tire.kr, &self.kr),
             (&mut tire.kr1, &self.kr1),
@@ -319,13 +343,7 @@ impl ReducedTire {
         }
         tire.viz = None;
         tire.tread = None;
-        let phi_inv = phi.transpose() * &self.m;
-        Ok(ModalTire {
-            tire,
-            phi,
-            phi_inv,
-            deviation,
-        })
+        tire
     }
 
     /// Number of contact nodes `n_c`.

@@ -605,7 +605,7 @@ impl<'a> RollingTire<'a> {
                 cfg.clone(),
                 ground,
                 match &symmetry {
-                    SymmetryUse::Half(h) => Some(h.partner.clone()),
+                    SymmetryUse::Half(h) => Some(h),
                     SymmetryUse::Full(_) => None,
                 },
             ));
