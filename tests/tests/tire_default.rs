@@ -99,3 +99,38 @@ fn default_step_is_as_accurate_as_the_fine_step_over_cleat_phases() {
         assert!(cv > 0.005 && cv < 0.05, "phase scatter {cv}");
     }
 }
+
+#[test]
+#[ignore = "the full 63 936-DOF tire: reduction and 16 rig runs, ~60 s"]
+fn mirror_half_model_matches_the_full_model_over_cleat_phases() {
+    // The mirror half model (default `symmetry = "auto"`, `flowing::tire::mirror`) against the
+    // full model (`symmetry = "off"`, second formulation) on the default tire and rig: the
+    // steady forces before the cleat equal, and the dominant lines' means over eight cleat
+    // phases within 2 % (single runs differ within the phase scatter, ~3 % a run).
+    let fe = generated_tire(&TireConfig::default()).unwrap();
+    let (red, _) = reduce(&fe, &ReductionConfig::default()).unwrap();
+    let half_rc = RigConfig::default();
+    let mut full_rc = RigConfig::default();
+    full_rc.rolling.symmetry = Symmetry::Off;
+    let run = |rc: &RigConfig| {
+        let r = run_cleat(&red, rc, &mut |_| {}).unwrap();
+        let before = r.mean_before_cleat(0.05).unwrap();
+        let first = summarize(&r);
+        (
+            before,
+            r.symmetry,
+            phase_spread(&red, rc, 8, &first, &|_| {}).unwrap(),
+        )
+    };
+    let (hb, hs, half) = run(&half_rc);
+    let (fb, fs, full) = run(&full_rc);
+    println!("{hs}: {hb:?} {half:?}\n{fs}: {fb:?} {full:?}");
+    assert!(hs.starts_with("mirror half model: 172 of 335"), "{hs}");
+    assert!(fs.starts_with("full model"), "{fs}");
+    let load = half_rc.load;
+    assert!((hb.0 - fb.0).abs() < 1e-6 * load && (hb.1 - fb.1).abs() < 1e-6 * load);
+    let rel = half.fy_band_rms_mean_n / full.fy_band_rms_mean_n - 1.0;
+    assert!(rel.abs() < 0.02, "Fy line {:+.2} % off", 100.0 * rel);
+    let relx = half.fx_band_rms_mean_n / full.fx_band_rms_mean_n - 1.0;
+    assert!(relx.abs() < 0.05, "Fx line {:+.2} % off", 100.0 * relx);
+}
