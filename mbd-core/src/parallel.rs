@@ -323,8 +323,7 @@ impl SplitProduct {
         };
         if helped {
             s.slow.store(0, Ordering::Relaxed);
-        } else if asleep {
-        } else if s.slow.fetch_add(1, Ordering::Relaxed) + 1 >= OFF_AFTER {
+        } else if !asleep && s.slow.fetch_add(1, Ordering::Relaxed) + 1 >= OFF_AFTER {
             s.slow.store(0, Ordering::Relaxed);
             s.off_until.store(count + OFF_FOR, Ordering::Relaxed);
         }

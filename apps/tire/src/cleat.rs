@@ -110,21 +110,38 @@ pub fn write_outputs(
     Ok(())
 }
 
-/// The number of the frame due at simulated time `t` \[s\] of a series `(next, interval,
-/// written)` (every `interval` \[s\], the first at the first call; `None` when not due or
-/// `interval = 0`), advancing the series.
-fn due(series: &mut (f64, f64, usize), t: f64) -> Option<usize> {
-    let (next, interval, written) = series;
-    if *interval <= 0.0 || t < *next {
-        return None;
+/// A VTK series written every `interval` \[s\] of simulated time (0: none), the first frame at
+/// the first step.
+struct FrameSeries {
+    interval: f64,
+    /// Simulated time of the next frame (`None` before the first).
+    next: Option<f64>,
+    written: usize,
+}
+
+impl FrameSeries {
+    fn new(interval: f64) -> Self {
+        Self {
+            interval,
+            next: None,
+            written: 0,
+        }
     }
-    // the next frame one interval on, skipping intervals shorter than a step
-    *next = if next.is_finite() { *next } else { t };
-    while *next <= t {
-        *next += *interval;
+
+    /// The number of the frame due at simulated time `t` \[s\], if one is.
+    fn due(&mut self, t: f64) -> Option<usize> {
+        if self.interval <= 0.0 || self.next.is_some_and(|n| t < n) {
+            return None;
+        }
+        // the next frame one interval on (intervals shorter than a step are skipped)
+        let mut next = self.next.unwrap_or(t);
+        while next <= t {
+            next += self.interval;
+        }
+        self.next = Some(next);
+        self.written += 1;
+        Some(self.written - 1)
     }
-    *written += 1;
-    Some(*written - 1)
 }
 
 /// The deformed contact nodes as VTK vertices with the normal force and friction force fields.
@@ -231,9 +248,8 @@ impl Study for Cleat {
             std::fs::create_dir_all(&vtk_dir)
                 .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
         }
-        // frames at simulated-time intervals: `(next time, interval, frames written)`
-        let mut patch_frames = (f64::NEG_INFINITY, c.vtk_interval, 0usize);
-        let mut tire_frames = (f64::NEG_INFINITY, c.vtk_tire_interval, 0usize);
+        let mut patch_frames = FrameSeries::new(c.vtk_interval);
+        let mut tire_frames = FrameSeries::new(c.vtk_tire_interval);
         let viz = red.viz.as_ref();
         // the force history is streamed (same rows as `RigResult::samples`), so that a run that
         // fails keeps the history up to the failure
@@ -254,11 +270,11 @@ impl Study for Cleat {
             }
             done = (k + 1, t);
             let now = sim.state.t;
-            if let Some(frame) = due(&mut patch_frames, now) {
+            if let Some(frame) = patch_frames.due(now) {
                 write_patch_vtu(&vtk_dir.join(format!("patch_{frame:05}.vtu")), sim)?;
             }
             if let Some(v) = viz
-                && let Some(frame) = due(&mut tire_frames, now)
+                && let Some(frame) = tire_frames.due(now)
             {
                 write_tire_vtu(&vtk_dir.join(format!("tire_{frame:05}.vtu")), v, sim)?;
             }
