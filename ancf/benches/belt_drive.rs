@@ -8,17 +8,13 @@
 //! Both runs start from the static pre-strained state with the belt travelling at the driver's
 //! surface speed and the driver at a constant 12 rad/s.
 
-use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, InitialOptions, PulleyDrive, SimulationConfig, SpeedProfile,
-};
+use ancf::belt_drive::{BeltDrive, BeltDriveSpec, InitialOptions, SimulationConfig};
 use mbd_core::integrators::{GeneralizedAlpha, NewtonUpdate, Rk4, State};
 use std::time::Instant;
 
 fn drive() -> BeltDrive {
     let mut spec = BeltDriveSpec::default();
-    spec.pulleys[0].drive = PulleyDrive::Speed {
-        speed: SpeedProfile::Constant { omega: 12.0 },
-    };
+    spec.pulleys[0].motion = belt::Motion::speed(belt::Signal::constant(12.0));
     BeltDrive::new(spec).expect("Table 3.1 drive")
 }
 

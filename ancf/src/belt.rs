@@ -1,5 +1,5 @@
 //! Closed planar belts of belt elements (Kerkkänen §3.1, §3.3): the two-pulley belt path of
-//! Table 3.1 (fe-model's [`BeltPath`]), equally spaced nodes along a path, and the closed-loop
+//! Table 3.1 ([`belt::BeltPath`]), equally spaced nodes along a path, and the closed-loop
 //! mesh with a shared first node.
 
 use crate::element::{BeltElement, Element, NodeLayout};
@@ -7,18 +7,22 @@ use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::section::Section;
-use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
+use belt::{BeltPath, Motion, Pulley, WrapSide};
 
 /// Kerkkänen Table 3.1 two-pulley path: `O₁ = (−0.191441, 0)`, `O₂ = (0.191441, 0)`,
 /// `R = 0.08125 m` (path length 1.276273 m), as a [`BeltPath`] (the belt leaves the first
 /// pulley at the start and runs clockwise around both).
 pub fn kerkkanen_path() -> BeltPath {
-    let pulley = |x: f64| PathPulley {
-        center: [x, 0.0],
-        radius: 0.08125,
-        side: WrapSide::Inside,
+    let pulley = |name: &str, x: f64| {
+        Pulley::new(
+            name,
+            [x, 0.0],
+            0.08125,
+            WrapSide::Inside,
+            Motion::idler(0.1),
+        )
     };
-    BeltPath::new(&[pulley(-0.191441), pulley(0.191441)])
+    BeltPath::new(&[pulley("1", -0.191441), pulley("2", 0.191441)])
         .expect("Kerkkänen Table 3.1: two separate pulleys have an open-belt path")
 }
 

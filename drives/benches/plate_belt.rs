@@ -14,8 +14,9 @@
 //! planar drive accepts 10 %), hence the wide-pulley case as the common ground.
 //! Run: `cargo bench -p drives --bench plate_belt` (about two minutes on a free core).
 
-use ancf::belt_drive::{BeltDrive, InitialOptions, PulleyDrive, SpeedProfile, TorqueProfile};
+use ancf::belt_drive::{BeltDrive, InitialOptions};
 use ancf::plate::belt_drive::{PlateBeltDrive, PlateDriveSpec};
+use belt::{Motion, Signal};
 use drives::plate_study::wide_pulley_case;
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
@@ -51,13 +52,8 @@ fn timed<S: SecondOrderSystem>(sys: &S, s0: State, t: f64, h: f64) -> (f64, usiz
 fn main() {
     // Model 2, steady operation
     let mut spec = PlateDriveSpec::kerkkanen_model2();
-    spec.pulleys[0].drive = PulleyDrive::Speed {
-        speed: SpeedProfile::Constant { omega: 500.0 },
-    };
-    spec.pulleys[1].drive = PulleyDrive::Free {
-        inertia: 0.00025,
-        load: TorqueProfile::Constant { torque: 2.0 },
-    };
+    spec.pulleys[0].motion = Motion::speed(Signal::constant(500.0));
+    spec.pulleys[1].motion = Motion::load(0.00025, Signal::constant(2.0));
     let d = PlateBeltDrive::new(spec).expect("Model 2");
     let init = d.initial_state(100, 1e-11).expect("initial state");
     let v = d.travelling_velocity(&init.q, 25.0);

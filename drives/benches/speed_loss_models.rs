@@ -9,14 +9,14 @@
 //!
 //! Run: `cargo bench -p drives --bench speed_loss_models` (several minutes).
 
-use drives::ancf_drive_model::{AncfConfig, AncfDrive};
-use drives::{DriveModel, SpeedLossConfig, speed_loss_sweep};
-use flowing::belt::nodal::NodalBelt;
-use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
+use belt::BeltModel;
+use drives::ancf_model::{AncfBelt, AncfConfig};
+use drives::{NodalConfig, SpeedLossConfig, speed_loss_sweep};
+use flowing::belt::{FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::SecondOrderSystem;
 use std::time::Instant;
 
-fn run<M: DriveModel>(name: &str, dofs: usize, model: &mut M, step: f64) -> Option<(f64, f64)> {
+fn run<M: BeltModel>(name: &str, dofs: usize, model: &mut M, step: f64) -> Option<(f64, f64)> {
     let settings = SpeedLossConfig {
         torques: vec![0.0, 8.0],
         window: 0.1,
@@ -51,22 +51,15 @@ fn main() {
         "{:<34} {:>5} {:>7} {:>8} {:>8} {:>10} {:>11}",
         "model", "DOF", "h [ms]", "sim [s]", "wall [s]", "wall/sim", "dw(8) rad/s"
     );
-    let cfg = BeltDriveConfig::default();
-    let fe = BeltFe::new(&cfg).expect("default drive");
-    let mut flow = FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0))
-        .expect("flowing model");
-    let dofs = flow.n_modes() + 2;
+    let cfg = drives::table_6_1::drive();
+    let mut flow = FlowingBelt::new(&cfg, &FlowingSettings::default()).expect("flowing model");
+    let dofs = flow.n_q();
     let f = run("flowing, 56 el., 20 free modes", dofs, &mut flow, 4e-3);
-    let mut fine = cfg;
-    fine.mesh.span_elements = 80;
-    fine.mesh.arc_elements = 28;
-    let fe = BeltFe::new(&fine).expect("uniform drive");
-    let mut nodal =
-        NodalBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).expect("nodal model");
-    let dofs = nodal.n_nodal() + 2;
+    let mut nodal = NodalBelt::new(&cfg, &NodalConfig::default().mesh).expect("nodal model");
+    let dofs = nodal.n_q();
     let n = run("nodal rotating mesh, 216 el.", dofs, &mut nodal, 5e-4);
     let a = AncfConfig::default();
-    let mut ancf = AncfDrive::new(&cfg, &a).expect("ANCF model");
+    let mut ancf = AncfBelt::new(&cfg, &a).expect("ANCF model");
     let dofs = ancf.n_v();
     let an = run(
         &format!("ANCF belt, {} el.", a.elements),

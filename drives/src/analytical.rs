@@ -1,9 +1,8 @@
 //! Bechtel's analytical speed loss, the reference line of the speed-loss study (Ribaric (6.3)),
 //! and the Euler–Eytelwein capacity of the two-pulley drive.
 
+use belt::Drive;
 use contact::friction::FrictionLaw;
-use fe_model::generate::belt_path::BeltPath;
-use flowing::belt::BeltDriveConfig;
 
 /// Angular speed loss of Bechtel et al., Ribaric (6.3):
 /// `Δω = (1 − (2RT0 − M_p + 2Rk)/(2RT0 + M_p + 2Rk)) ω = 2 M_p ω / (2R(T0 + k) + M_p)` \[rad/s\],
@@ -14,21 +13,25 @@ pub fn analytical_speed_loss(radius: f64, tension: f64, ea: f64, torque: f64, om
     (1.0 - (a - torque) / (a + torque)) * omega
 }
 
-/// Bechtel's line (6.3) for the drive `d` (Ribaric Table 6-1 fields): [`analytical_speed_loss`]
-/// with the driven pulley's radius, the pre-tension and EA of `d`, at load torque `torque`
-/// \[N m\] and driver speed `omega` \[rad/s\].
-pub fn bechtel(d: &BeltDriveConfig, torque: f64, omega: f64) -> f64 {
+/// Bechtel's line (6.3) for the drive `d`: [`analytical_speed_loss`] with the driven pulley's
+/// radius ([`Drive::driven`]), the installation tension and EA of `d`, at load torque `torque`
+/// \[N m\] and driver speed `omega` \[rad/s\] (`NaN` without a driven pulley).
+pub fn bechtel(d: &Drive, torque: f64, omega: f64) -> f64 {
+    let Some(k) = d.driven() else {
+        return f64::NAN;
+    };
     analytical_speed_loss(
-        d.geometry.radius_driven,
-        d.belt.tension,
-        d.belt.ea,
+        d.pulleys()[k].radius,
+        d.tension(),
+        d.belt().ea,
         torque,
         omega,
     )
 }
 
-/// Largest load torque \[N·m\] friction lets the two-pulley drive `d` transmit at driver speed
-/// `omega` \[rad/s\] (Euler–Eytelwein capacity of a fixed-centre drive).
+/// Largest load torque \[N·m\] friction lets the two-pulley drive `d` (driver first) transmit
+/// at driver speed `omega` \[rad/s\] (Euler–Eytelwein capacity of a fixed-centre drive; `NaN`
+/// for other layouts).
 ///
 /// At the capacity the pulley with the smaller wrap `φ_min` slides over its whole wrap:
 /// `T₁ − T_c = e^{μ φ_min} (T₂ − T_c)` (Euler–Eytelwein with the centrifugal tension
@@ -41,27 +44,26 @@ pub fn bechtel(d: &BeltDriveConfig, torque: f64, omega: f64) -> f64 {
 /// `a_k = E` (driver) or 1 (driven); the capacity is `R₂ (T₁ − T₂)`. Table 6-1 (T0 = 310 N,
 /// μ = 1.2, wrap π): 33.9 N·m, T₂ ≈ 16 N, T₁ ≈ 695 N (T₁ + T₂ = 711 N > 2 T0: the exponential
 /// tension profile over the wraps averages below the span tensions).
-pub fn euler_eytelwein_capacity(d: &BeltDriveConfig, omega: f64) -> f64 {
-    let g = &d.geometry;
-    let Ok(path) = BeltPath::two_pulleys(g.center_distance, g.radius_driver, g.radius_driven)
-    else {
+pub fn euler_eytelwein_capacity(d: &Drive, omega: f64) -> f64 {
+    let path = d.path();
+    if path.pulleys().len() != 2 || d.driver() != Some(0) || d.arm().is_some() {
         return f64::NAN;
-    };
-    let mu = d.contact.friction_law().coefficient();
-    let radii = [g.radius_driver, g.radius_driven];
+    }
+    let mu = d.contact().friction.coefficient();
+    let radii = [path.pulleys()[0].radius, path.pulleys()[1].radius];
     let wraps = [0, 1].map(|k| path.wrap_angle(k).unwrap_or(f64::NAN));
     let phi_min = wraps[0].min(wraps[1]);
     let e = (mu * phi_min).exp();
-    let v = omega * g.radius_driver;
-    let tc = d.belt.mass_per_length * v * v;
+    let v = omega * radii[0];
+    let tc = d.belt().mass_per_length * v * v;
     let span = path.spans().first().map_or(f64::NAN, |s| s.length);
     let mut den = span * (e + 1.0);
     for k in 0..2 {
         let a = if k == 0 { e } else { 1.0 };
         den += radii[k] * ((e - 1.0) / mu + (wraps[k] - phi_min) * a);
     }
-    let x = (d.belt.tension - tc) * path.length() / den;
-    g.radius_driven * (e - 1.0) * x
+    let x = (d.tension() - tc) * path.length() / den;
+    radii[1] * (e - 1.0) * x
 }
 
 #[cfg(test)]
@@ -73,7 +75,7 @@ mod tests {
     // M = R (E − 1) T₂ = 33.94 N·m (the limit quoted in issue 17)
     #[test]
     fn capacity_of_table_6_1() {
-        let d = BeltDriveConfig::default();
+        let d = crate::table_6_1::drive();
         let e = (1.2 * std::f64::consts::PI).exp();
         let (ls, r) = (0.45, 0.05);
         let t2 = 310.0 * (2.0 * ls + 2.0 * std::f64::consts::PI * r)
@@ -98,7 +100,7 @@ mod tests {
     // the drive form reads R₂, T0 and EA of Table 6-1 (formula above)
     #[test]
     fn bechtel_reads_the_table_6_1_drive() {
-        let d = BeltDriveConfig::default();
+        let d = crate::table_6_1::drive();
         assert_eq!(
             bechtel(&d, 10.0, 62.8),
             analytical_speed_loss(0.05, 310.0, 152_000.0, 10.0, 62.8)

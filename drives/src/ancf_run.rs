@@ -2,12 +2,12 @@
 //! with sampled outputs, the free-belt closure on the path (example 3.3-A) and the roles of
 //! the pulleys and spans in a summary.
 
-use crate::report::{DriveSnapshot, PulleyRole, PulleyState, SpanState, WrapPoint};
 use ancf::AncfError;
 use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, PulleyDrive, SimulationConfig,
-    TorqueProfile, free_belt_closure, post, simulate,
+    BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, SimulationConfig, free_belt_closure,
+    post, simulate,
 };
+use belt::{PulleyState, Role, Snapshot, SpanState, WrapPoint};
 use mbd_core::integrators::{GeneralizedAlpha, State};
 
 /// Which pulleys play driver and driven in a summary: the first speed-driven pulley (0 if
@@ -26,49 +26,23 @@ pub fn roles_of(free: impl IntoIterator<Item = bool>) -> (usize, Option<usize>) 
     )
 }
 
-/// Role of each pulley of `drive`: speed-driven pulleys drive, free pulleys with a load are
-/// driven, free pulleys without load are idlers.
-pub fn pulley_roles(drive: &BeltDrive) -> Vec<PulleyRole> {
-    drive
-        .pulleys()
-        .iter()
-        .map(|p| match &p.drive {
-            PulleyDrive::Speed { .. } => PulleyRole::Driver,
-            PulleyDrive::Free {
-                load: TorqueProfile::None,
-                ..
-            } => PulleyRole::Idler,
-            PulleyDrive::Free { .. } => PulleyRole::Driven,
-        })
-        .collect()
+/// Role of each pulley of `drive` ([`belt::Motion::role`]).
+pub fn pulley_roles(drive: &BeltDrive) -> Vec<Role> {
+    drive.pulleys().iter().map(|p| p.motion.role()).collect()
 }
 
-/// The snapshot ([`crate::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
-/// at the travel-sense speeds `omegas` \[rad/s\], their roles `roles` and belt-line radii
-/// `radii` \[m\]: the contact quadrature points of every wrap ([`post::wrap_records`]), hub
-/// loads and torques ([`BeltDrive::pulley_loads_with`]), span tensions
-/// ([`post::span_tensions`]) and mid-point offsets ([`post::span_transverse`]).
-pub fn snapshot(
-    drive: &BeltDrive,
-    t: f64,
-    q: &[f64],
-    v: &[f64],
-    omegas: &[f64],
-    roles: &[PulleyRole],
-    radii: &[f64],
-) -> DriveSnapshot {
+/// The snapshot ([`belt::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
+/// at the travel-sense speeds `omegas` \[rad/s\]: the contact quadrature points of every wrap
+/// ([`post::wrap_records`]), hub loads and torques ([`BeltDrive::pulley_loads_with`]), span
+/// forces ([`post::span_tensions`]) and mid-point offsets ([`post::span_transverse`]).
+pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
     let loads = drive.pulley_loads_with(q, v, omegas);
-    let pulleys = drive
-        .pulleys()
-        .iter()
-        .enumerate()
-        .map(|(k, p)| PulleyState {
-            name: p.name.clone(),
-            role: roles[k],
-            radius: radii[k],
+    let pulleys = (0..drive.pulleys().len())
+        .map(|k| PulleyState {
             omega: omegas[k],
             hub_load: loads[k].force,
             torque: loads[k].torque,
+            center_velocity: drive.pulley_center(k, q, v).1,
         })
         .collect();
     let wrap = post::wrap_records(drive, q, v, omegas)
@@ -96,11 +70,12 @@ pub fn snapshot(
             transverse: offsets[k],
         })
         .collect();
-    DriveSnapshot {
+    Snapshot {
         time: t,
         pulleys,
         spans,
         wrap,
+        belt_dissipation: f64::NAN,
     }
 }
 

@@ -4,14 +4,12 @@
 //! (`flowmbd.belt.ancf`). The time loop is [`run_drive`]; the summary's end speeds and the
 //! tight/slack span tensions follow [`roles`] and [`tight_slack`].
 
-use crate::ancf_run::{
-    Due, Sampling, closure_on_path, pulley_roles, roles, run_drive, snapshot, tight_slack,
-};
-use crate::report::{DriveReport, HubLoad, PulleyReport, PulleyRole, SpanReport, WrapPoint};
+use crate::ancf_run::{Due, Sampling, closure_on_path, roles, run_drive, snapshot, tight_slack};
 use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, InitialOptions, InitialState, SimulationConfig, post,
 };
+use belt::{HubLoad, PulleyReport, Report, Role, SpanReport, WrapPoint};
 use contact::friction::FrictionLaw;
 use mbd_core::integrators::State;
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -183,10 +181,10 @@ pub struct AncfStudySummary {
     /// Speed ratio driven/driver at the end.
     pub speed_ratio: f64,
     /// Dynamic run only: whether a wrap slides as a whole at the end
-    /// ([`DriveReport::gross_slip`]).
+    /// ([`Report::gross_slip`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gross_slip: Option<bool>,
-    /// Dynamic run only: slip arc of the driver at the end \[rad\] ([`crate::report`]).
+    /// Dynamic run only: slip arc of the driver at the end \[rad\] ([`belt::report`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub slip_arc_driver_rad: Option<f64>,
     /// Dynamic run only: slip arc of the driven (first loaded) pulley at the end \[rad\].
@@ -260,7 +258,7 @@ pub struct DynamicEnd {
     /// Why the integration stopped early, if it did (the summary then holds the state
     /// reached).
     pub failure: Option<String>,
-    /// The contact points of every wrap at the last state ([`crate::report::WrapPoint`]).
+    /// The contact points of every wrap at the last state ([`belt::WrapPoint`]).
     pub wrap: Vec<WrapPoint>,
     /// Coefficient μ of the friction law (for the points' utilisation).
     pub friction_coefficient: f64,
@@ -314,20 +312,18 @@ pub fn dynamic_run<E>(
     let omegas: Vec<f64> = (0..drive.pulleys().len())
         .map(|p| drive.pulley_speed(p, s.t, &s.v))
         .collect();
-    let radii: Vec<f64> = drive.pulleys().iter().map(|p| p.radius).collect();
-    let roles = pulley_roles(drive);
-    let snap = snapshot(drive, s.t, &s.q, &s.v, &omegas, &roles, &radii);
+    let snap = snapshot(drive, s.t, &s.q, &s.v, &omegas);
     let mu = drive.spec().contact.friction.coefficient();
-    let mut report = DriveReport::new(&snap, mu);
+    let mut report = Report::of(drive.pulleys(), &snap, mu);
     for (sp, r) in report.spans.iter_mut().zip(&range) {
         if r.1 >= r.0 {
-            sp.vibration_amplitude = 0.5 * (r.1 - r.0);
+            sp.vibration_amplitude_m = 0.5 * (r.1 - r.0);
         }
     }
     let summary = AncfStudySummary {
         gross_slip: Some(report.gross_slip().is_some()),
-        slip_arc_driver_rad: Some(report.slip_arc(PulleyRole::Driver)),
-        slip_arc_driven_rad: Some(report.slip_arc(PulleyRole::Driven)),
+        slip_arc_driver_rad: Some(report.slip_arc(Role::Driver)),
+        slip_arc_driven_rad: Some(report.slip_arc(Role::Driven)),
         hub_loads: report.hub_loads(),
         pulleys: report.pulleys,
         spans: report.spans,

@@ -164,7 +164,7 @@ pub enum Zone {
 pub struct SteadyPoint {
     /// Arc length along the undeformed path from the point where the belt leaves the driver
     /// (the start of the slack span, as
-    /// [`BeltPath`](fe_model::generate::belt_path::BeltPath) with the driver first) \[m\].
+    /// [`BeltPath`](belt::BeltPath) with the driver first) \[m\].
     pub s: f64,
     /// Zone.
     pub zone: Zone,

@@ -1,9 +1,9 @@
 //! Front-end accessory drive (FEAD) study (issue 17 item 5): a passenger-car serpentine drive
 //! of six pulleys with an automatic tensioner, run on the flowing-material belt (or, with
 //! `model = "nodal"`, on the rotating-mesh nodal belt, with `model = "ancf"` on the ANCF belt:
-//! [`FeadModel`]) ([`crate::layout`]) over an engine-speed sweep with the crankshaft's
+//! [`FeadModel`]) ([`belt::layout`]) over an engine-speed sweep with the crankshaft's
 //! firing-order speed fluctuation and the accessories' load torques. All three models run on
-//! the same loop below (one generalized-α stepper, through the private trait `LayoutModel`).
+//! the same loop below (one generalized-α stepper, through the public trait [`belt::BeltModel`]).
 //!
 //! Model-appropriate settings (reported in [`FeadSummary::model_settings`]):
 //!
@@ -15,7 +15,7 @@
 //!      stalled Newton at the first element passing (`s_b` ≈ 55 mm, t = 0.042 s of the first
 //!      ramp), and still did with a gentler 0.3 s ramp and ρ∞ = 0.6 (t = 0.13 s). The nodal
 //!      model runs on a uniform loop of the shorter element length everywhere
-//!      ([`LayoutConfig::uniform_mesh`]; default: 133 elements of 11.5 mm).
+//!      (`models.nodal.mesh`; default: 12 mm everywhere).
 //!   2. *Contact kinks.* The penalty law (6.1), `k₂d² + k₁d`, has a slope that jumps from 0 to
 //!      `k₁` at `d = 0`. A material node reaches a wrap tangentially, so near every tangent
 //!      point some node sits within micrometres of the pulley surface and, in a rotating mesh,
@@ -56,7 +56,7 @@
 //! relative amplitudes `a_k`), reached from the previous speed by a smooth ramp; after a settling
 //! time the study observes a window and reports the tensioner arm's motion, every span's
 //! tension extremes, each accessory's speed loss against the crank, the drive report at the end
-//! of the window (slip arcs, hub loads, gross slip: [`crate::report`]) and every span's first
+//! of the window (slip arcs, hub loads, gross slip: [`belt::report`]) and every span's first
 //! transverse natural frequency from the travelling-string formula with the computed mean span
 //! tension `T` and belt speed `v` (Wickert & Mote 1990; Ribaric §3):
 //!
@@ -74,22 +74,18 @@
 //! and Kong & Parker (J. Mech. Des. 127, 2005); the 2nd-order crank speed fluctuation of 2 %
 //! (4th: 0.5 %) is a plausible four-cylinder value, held constant over the sweep.
 
-use crate::DriveModel;
-use crate::ancf_drive_model::AncfConfig;
-use crate::ancf_layout::AncfLayoutDrive;
-use crate::layout::{LayoutConfig, LayoutMesh, LayoutPulley, MotionSpec, ResolvedLayout};
-use crate::model::{flowing_layout_snapshot, nodal_layout_snapshot};
-use crate::report::{DriveReport, DriveSnapshot, PulleyRole};
-use crate::speed_loss::{MAX_HALVINGS, robust_step};
+use crate::ancf_model::{AncfBelt, AncfConfig};
+use crate::speed_loss::{LINEAR_MIN_SLACK, MAX_HALVINGS, robust_step};
+use crate::study::{ModelSettings, NodalConfig};
 use ancf::belt_drive::SimulationConfig;
+use belt::{
+    BeltContact, BeltDamping, BeltModel, Drive, Harmonic, Layout, Motion, Pulley, Report, Section,
+    Shape, Signal, Tensioner, WrapSide,
+};
 use contact::friction::FrictionLaw;
-use fe_model::generate::belt_path::WrapSide;
-use flowing::belt::config::{BeltContact, BeltDamping, BeltReduction, BeltSection};
-use flowing::belt::nodal::NodalBelt;
-use flowing::belt::{FlowingBelt, Harmonic, PulleyMotion, Schedule, Signal};
+use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
-use mbd_core::tensioner::TensionerSpec;
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
@@ -181,194 +177,73 @@ impl Default for FeadRun {
 #[serde(default, deny_unknown_fields)]
 pub struct FeadConfig {
     /// The drive: pulley 0 is the crankshaft (its speed is set by the sweep).
-    pub drive: LayoutConfig,
+    pub drive: Layout,
     /// Engine speeds and fluctuation.
     pub engine: EngineConfig,
     /// Time stepping.
     pub run: FeadRun,
     /// The belt model: `flowing` (Ribaric (5.14), the default), `nodal` (the rotating mesh,
-    /// Ribaric (5.7), run on a uniform loop: module documentation) or `ancf` (Kerkkänen ch. 3,
-    /// [`LayoutConfig::ancf_model`]; slow).
+    /// Ribaric (5.7), on its uniform loop: module documentation) or `ancf` (Kerkkänen ch. 3,
+    /// [`AncfBelt`]; slow).
     pub model: FeadModel,
-    /// The ANCF belt's discretisation and step (read with `model = "ancf"`, always checked).
-    pub ancf: AncfConfig,
+    /// Each model's discretisation (`models.flowing`, `models.nodal`, `models.ancf`; the ANCF
+    /// belt's step replaces `run.step`).
+    pub models: ModelSettings,
 }
 
 /// Which belt model the FEAD study runs (same layout, same outputs): the speed-loss study's
 /// model kinds ([`crate::ModelKind`]: `flowing`, `nodal`, `ancf`).
 pub type FeadModel = crate::ModelKind;
 
-/// What the study needs of a layout model beyond [`DriveModel`]: the flowing, nodal and ANCF
-/// belts have it.
-trait LayoutModel: DriveModel {
-    /// Set the crank's (pulley 0's) speed signal.
-    fn set_crank(&mut self, speed: Signal);
-    /// Hold every load torque at its final value (time restarts at every sweep point).
-    fn hold_loads(&mut self);
-    /// Tensioner arm angle \[rad\].
-    fn arm(&self, q: &[f64]) -> Option<f64>;
-    /// Travel-sense speed of pulley `k` \[rad/s\].
-    fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64;
-    /// Belt speed \[m/s\].
-    fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64;
-    fn named_snapshot(
-        &self,
-        roles: &[(String, PulleyRole)],
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-    ) -> Result<DriveSnapshot, MbdError>;
-}
-
-/// [`LayoutModel`] for a belt type with the inherent `motions`, `arm_angle`, `pulley_speed`
-/// and a snapshot function.
-macro_rules! layout_model {
-    ($belt:ty, |$m:ident, $roles:ident, $t:ident, $q:ident, $v:ident| $snap:expr) => {
-        impl LayoutModel for $belt {
-            fn set_crank(&mut self, speed: Signal) {
-                if let Some(PulleyMotion::Speed(s)) = self.motions.first_mut() {
-                    *s = speed;
-                }
-            }
-            fn hold_loads(&mut self) {
-                for mo in &mut self.motions {
-                    if let PulleyMotion::Free { load, .. } = mo {
-                        hold(load);
-                    }
-                }
-            }
-            /// `ṡ_b`, the speed of the travel coordinate.
-            fn belt_speed(&self, _q: &[f64], v: &[f64]) -> f64 {
-                v[0]
-            }
-            fn arm(&self, q: &[f64]) -> Option<f64> {
-                self.arm_angle(q)
-            }
-            fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-                self.pulley_speed(k, t, v)
-            }
-            fn named_snapshot(
-                &self,
-                $roles: &[(String, PulleyRole)],
-                $t: f64,
-                $q: &[f64],
-                $v: &[f64],
-            ) -> Result<DriveSnapshot, MbdError> {
-                let $m = self;
-                $snap
-            }
-        }
-    };
-}
-
-layout_model!(FlowingBelt, |m, roles, t, q, v| Ok(
-    flowing_layout_snapshot(m, roles, t, q, v)
-));
-layout_model!(NodalBelt, |m, roles, t, q, v| nodal_layout_snapshot(
-    m, roles, t, q, v
-));
-
-/// Replace a load signal's mean schedule by its final value (harmonics kept).
-fn hold(load: &mut Signal) {
-    let last = load.schedule.knots.last().map_or(0.0, |k| k.1);
-    load.schedule = Schedule::constant(last);
-}
-
-impl LayoutModel for AncfLayoutDrive {
-    fn set_crank(&mut self, speed: Signal) {
-        if let Some(MotionSpec::Speed { speed: s }) = self.motions_mut().first_mut() {
-            *s = speed;
-        }
-    }
-    fn hold_loads(&mut self) {
-        for mo in self.motions_mut() {
-            if let MotionSpec::Load { torque, .. } = mo {
-                hold(torque);
-            }
-        }
-    }
-    fn arm(&self, q: &[f64]) -> Option<f64> {
-        self.arm_angle(q)
-    }
-    fn speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        self.omegas(t, v)[k]
-    }
-    /// The mean material speed along the centreline ([`AncfLayoutDrive::belt_speed`]).
-    fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
-        AncfLayoutDrive::belt_speed(self, q, v)
-    }
-    /// [`AncfLayoutDrive::snapshot`]: the pulleys carry their layout names already.
-    fn named_snapshot(
-        &self,
-        _roles: &[(String, PulleyRole)],
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-    ) -> Result<DriveSnapshot, MbdError> {
-        Ok(self.snapshot(t, q, v))
-    }
-}
-
-fn load(inertia: f64, torque: f64) -> MotionSpec {
-    MotionSpec::Load {
-        inertia,
-        torque: Signal {
-            schedule: Schedule {
-                knots: vec![(0.0, 0.0), (0.1, torque)],
-            },
-            ..Default::default()
-        },
-    }
+fn load(inertia: f64, torque: f64) -> Motion {
+    Motion::load(inertia, Signal::schedule(vec![(0.0, 0.0), (0.1, torque)]))
 }
 
 impl Default for FeadConfig {
     /// The plausible passenger-car drive of the module documentation.
     fn default() -> Self {
-        let belt = BeltSection {
-            tension: 400.0,
-            ..Default::default()
+        let pulley = |name: &str, center: [f64; 2], radius: f64, side: WrapSide, motion: Motion| {
+            Pulley::new(name, center, radius, side, motion)
         };
         Self {
-            drive: LayoutConfig {
+            drive: Layout {
                 pulleys: vec![
-                    LayoutPulley::new(
+                    pulley(
                         "crankshaft",
                         [0.0, 0.0],
                         0.075,
                         WrapSide::Inside,
-                        MotionSpec::Speed {
-                            speed: Signal::constant(0.0),
-                        },
+                        Motion::speed(Signal::constant(0.0)),
                     ),
-                    LayoutPulley::new(
+                    pulley(
                         "power steering",
                         [-0.05, 0.22],
                         0.065,
                         WrapSide::Inside,
                         load(1e-3, 2.0),
                     ),
-                    LayoutPulley::new(
+                    pulley(
                         "alternator",
                         [0.05, 0.36],
                         0.028,
                         WrapSide::Inside,
                         load(3e-3, 3.0),
                     ),
-                    LayoutPulley::new(
+                    pulley(
                         "tensioner",
                         [0.13, 0.29],
                         0.035,
                         WrapSide::Outside,
-                        MotionSpec::Idler { inertia: 5e-5 },
+                        Motion::idler(5e-5),
                     ),
-                    LayoutPulley::new(
+                    pulley(
                         "water pump",
                         [0.24, 0.28],
                         0.055,
                         WrapSide::Inside,
                         load(8e-4, 1.5),
                     ),
-                    LayoutPulley::new(
+                    pulley(
                         "a/c compressor",
                         [0.25, 0.05],
                         0.06,
@@ -376,7 +251,7 @@ impl Default for FeadConfig {
                         load(2e-3, 5.0),
                     ),
                 ],
-                tensioner: Some(TensionerSpec {
+                tensioner: Some(Tensioner {
                     pulley: 3,
                     pivot: [0.05, 0.29],
                     stiffness: 30.0,
@@ -388,27 +263,42 @@ impl Default for FeadConfig {
                     inertia: 2e-3,
                     travel: [-0.6, 0.6],
                 }),
-                belt,
+                belt: Section::default(),
+                tension: Some(400.0),
                 belt_length: None,
-                mesh: LayoutMesh {
-                    span_element: 0.05,
-                    arc_element: 0.012,
-                    contact_margin_nodes: 1,
-                },
                 contact: BeltContact::default(),
                 damping: BeltDamping::default(),
-                reduction: BeltReduction {
-                    free_modes: Some(12),
-                },
             },
             engine: EngineConfig::default(),
             run: FeadRun::default(),
             model: FeadModel::default(),
-            // 12.7 mm elements (about five on the alternator's wrap), the study's 0.25 ms step
-            ancf: AncfConfig {
-                elements: 120,
-                step: 2.5e-4,
-                ..Default::default()
+            models: ModelSettings {
+                // 50 mm on the spans, 12 mm on the wraps; 12 free-node modes
+                flowing: FlowingSettings {
+                    mesh: BeltMesh {
+                        span_element: 0.05,
+                        arc_element: 0.012,
+                        contact_margin_nodes: 1,
+                    },
+                    reduction: BeltReduction {
+                        free_modes: Some(12),
+                    },
+                },
+                // the flowing mesh's shorter length everywhere (module documentation)
+                nodal: NodalConfig {
+                    mesh: BeltMesh {
+                        span_element: 0.012,
+                        arc_element: 0.012,
+                        contact_margin_nodes: 1,
+                    },
+                    ..NodalConfig::default()
+                },
+                // 12.7 mm elements (about five on the alternator's wrap), the study's 0.25 ms step
+                ancf: AncfConfig {
+                    elements: 120,
+                    step: 2.5e-4,
+                    ..Default::default()
+                },
             },
         }
     }
@@ -416,8 +306,8 @@ impl Default for FeadConfig {
 
 impl Validate for FeadConfig {
     fn validate(&self) -> Result<(), InvalidField> {
-        self.drive.validate_within("drive")?;
-        if !matches!(self.drive.pulleys[0].motion, MotionSpec::Speed { .. }) {
+        let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
+        if !matches!(self.drive.pulleys[0].motion, Motion::Speed { .. }) {
             return Err(InvalidField::new(
                 "drive.pulleys[0].motion",
                 "pulley 0 is the crankshaft: its motion kind must be speed",
@@ -432,8 +322,9 @@ impl Validate for FeadConfig {
         for (i, &s) in self.engine.speeds_rpm.iter().enumerate() {
             check::within(&format!("engine.speeds_rpm[{i}]"), s, 1.0, 20_000.0, "rpm")?;
         }
+        check::count("engine.orders", self.engine.orders.len(), 0, 100)?;
         for (i, o) in self.engine.orders.iter().enumerate() {
-            check::positive(&format!("engine.orders[{i}].order"), o.order, "")?;
+            check::within(&format!("engine.orders[{i}].order"), o.order, 1e-3, 1e3, "")?;
             check::within(
                 &format!("engine.orders[{i}].amplitude"),
                 o.amplitude,
@@ -443,18 +334,39 @@ impl Validate for FeadConfig {
             )?;
             check::finite(&format!("engine.orders[{i}].phase"), o.phase)?;
         }
-        self.ancf.validate_within("ancf")?;
-        check::positive("run.step", self.run.step, "s")?;
+        self.models.validate_within("models")?;
+        match self.model {
+            FeadModel::Flowing => self
+                .models
+                .flowing
+                .mesh
+                .check_on(drive.path())
+                .map_err(|e| e.within("models.flowing.mesh"))?,
+            FeadModel::Nodal => self
+                .models
+                .nodal
+                .mesh
+                .check_on(drive.path())
+                .map_err(|e| e.within("models.nodal.mesh"))?,
+            FeadModel::Ancf => {}
+        }
+        check::within("run.step", self.run.step, 1e-8, 0.1, "s")?;
         check::within("run.rho_inf", self.run.rho_inf, 0.0, 1.0, "")?;
         check::within("run.ancf_rho_inf", self.run.ancf_rho_inf, 0.0, 1.0, "")?;
-        check::non_negative("run.ramp", self.run.ramp, "s")?;
-        check::non_negative("run.settle", self.run.settle, "s")?;
-        check::positive("run.window", self.run.window, "s")?;
+        check::within("run.ramp", self.run.ramp, 0.0, 1e3, "s")?;
+        check::within("run.settle", self.run.settle, 0.0, 1e3, "s")?;
+        check::within("run.window", self.run.window, 1e-6, 1e3, "s")?;
         let per_point = self.run.ramp + self.run.settle + self.run.window;
         let (field, step) = match self.model {
-            FeadModel::Ancf => ("ancf.step", self.ancf.step),
+            FeadModel::Ancf => ("models.ancf.step", self.models.ancf.step),
             _ => ("run.step", self.run.step),
         };
+        if self.run.window < 10.0 * step {
+            return Err(InvalidField::new(
+                "run.window",
+                format!("must span at least 10 steps of {step} s"),
+            ));
+        }
         let steps = per_point / step * self.engine.speeds_rpm.len() as f64;
         if steps.is_nan() || steps > MAX_STEPS as f64 {
             return Err(InvalidField::new(
@@ -528,20 +440,6 @@ pub struct FeadSpan {
     pub frequency_1_hz: f64,
 }
 
-/// One pulley at one engine speed.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FeadPulley {
-    /// Name.
-    pub name: String,
-    /// Speed over the window \[rad/s\].
-    pub omega: Extremes,
-    /// Speed loss against the crank, `1 − ω R / (ω_c R_c)` averaged over the window \[%\] (belt
-    /// creep and slip between the crank and this pulley).
-    pub slip_percent: f64,
-    /// Mean contact torque on the pulley in the travel sense \[N m\].
-    pub torque_mean: f64,
-}
-
 /// The result at one engine speed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FeadPoint {
@@ -553,10 +451,13 @@ pub struct FeadPoint {
     pub arm_angle: Extremes,
     /// Spans in travel order.
     pub spans: Vec<FeadSpan>,
-    /// Pulleys in travel order.
-    pub pulleys: Vec<FeadPulley>,
-    /// Whether any wrap has (almost) no adhesion arc at the end of the window
-    /// ([`DriveReport::gross_slip`]).
+    /// Speed of every pulley over the window \[rad/s\] (travel order).
+    pub pulley_speed: Vec<Extremes>,
+    /// Speed loss of every pulley against the crank, `1 − ω R / (ω_c R_c)` averaged over the
+    /// window \[%\] (belt creep and slip between the crank and the pulley).
+    pub speed_loss_percent: Vec<f64>,
+    /// Whether any wrap has (almost) no adhesion arc in the window mean
+    /// ([`Report::gross_slip`]).
     pub gross_slip: bool,
     /// The pulley that slips, if any.
     pub gross_slip_pulley: Option<String>,
@@ -566,8 +467,9 @@ pub struct FeadPoint {
     /// (a slack or resonating span, which the linear model would let carry compression), or
     /// gross slip. The point's numbers are kept, flagged: they show how the limit was left.
     pub linearisation: Option<String>,
-    /// The drive report at the end of the window (slip arcs, hub loads, torques).
-    pub report: DriveReport,
+    /// The drive report averaged over the window (span forces, slip arcs, hub loads, torques,
+    /// torque and power balances; [`Report::mean`]).
+    pub report: Report,
 }
 
 /// The study's summary.
@@ -594,6 +496,8 @@ pub struct FeadSummary {
     /// The model's discretisation and step as run, and what was chosen for it (module
     /// documentation: the nodal model's uniform loop, the ANCF elements and step).
     pub model_settings: String,
+    /// The belt force the model reports ([`belt::ModelTraits::force_measure`]).
+    pub force_measure: String,
     /// Degrees of freedom of the model.
     pub dofs: usize,
     /// Steps taken.
@@ -648,7 +552,7 @@ pub fn crank_signal(engine: &EngineConfig, from: f64, to: f64, ramp: f64) -> Sig
         vec![(0.0, to)]
     };
     Signal {
-        schedule: Schedule { knots },
+        shape: Shape::Schedule(knots),
         harmonics: engine
             .orders
             .iter()
@@ -658,7 +562,7 @@ pub fn crank_signal(engine: &EngineConfig, from: f64, to: f64, ramp: f64) -> Sig
                 phase: o.phase,
             })
             .collect(),
-        ramp,
+        fade: ramp,
     }
 }
 
@@ -682,38 +586,33 @@ pub fn run_fead(
             (None, e) => FeadFailureOrInvalid::Build(e),
         })
     };
+    let drive = cfg
+        .drive
+        .resolve()
+        .map_err(|e| Box::new(FeadFailureOrInvalid::Invalid(e.within("drive"))))?;
     let h = cfg.run.step;
     let elements = |n: usize, l: f64| format!("{n} elements, {:.1} mm mean", 1e3 * l / n as f64);
+    let m = &cfg.models;
     match cfg.model {
         FeadModel::Flowing => {
-            let (base, res) = cfg.drive.flowing_model().map_err(build)?;
+            let base = FlowingBelt::new(&drive, &m.flowing).map_err(|e| build(e.into()))?;
             let note = format!(
                 "flowing: {} (spans {:.1} mm, wraps {:.1} mm), {} modes, step {:.3} ms",
-                elements(base.fe.n_nodes(), res.path.length()),
-                1e3 * cfg.drive.mesh.span_element,
-                1e3 * cfg.drive.mesh.arc_element,
+                elements(base.fe.n_nodes(), drive.path().length()),
+                1e3 * m.flowing.mesh.span_element,
+                1e3 * m.flowing.mesh.arc_element,
                 base.n_modes(),
                 1e3 * h
             );
-            sweep(cfg, base, res, linear_alpha(cfg), note, observer)
+            sweep(cfg, base, &drive, linear_alpha(cfg), note, observer)
         }
         FeadModel::Nodal => {
-            let drive = cfg.drive.uniform_mesh();
-            let (base, res) = drive.nodal_model().map_err(build)?;
+            let base = NodalBelt::new(&drive, &m.nodal.mesh).map_err(|e| build(e.into()))?;
             let mut note = format!(
-                "nodal: uniform loop of {} (mesh.arc_element), step {:.3} ms",
-                elements(base.fe.n_nodes(), res.path.length()),
+                "nodal: loop of {} (models.nodal.mesh), step {:.3} ms",
+                elements(base.fe.n_nodes(), drive.path().length()),
                 1e3 * h
             );
-            if drive.mesh != cfg.drive.mesh {
-                note.push_str(&format!(
-                    "; the configured mesh (spans {:.1} mm, wraps {:.1} mm) made uniform: the \
-                     rotating mesh's nodes pass from the spans onto the wraps, and a long span \
-                     element landing on a small pulley stalls Newton",
-                    1e3 * cfg.drive.mesh.span_element,
-                    1e3 * cfg.drive.mesh.arc_element,
-                ));
-            }
             // Armijo line search (module documentation: Newton cycles at the penalty's kink as
             // nodes cross the pulley surface near the tangent points)
             let alpha = AlphaConfig {
@@ -721,34 +620,32 @@ pub fn run_fead(
                 ..linear_alpha(cfg)
             };
             note.push_str(", Newton with line search");
-            sweep(cfg, base, res, alpha, note, observer)
+            sweep(cfg, base, &drive, alpha, note, observer)
         }
         FeadModel::Ancf => {
-            let base = cfg.drive.ancf_model(&cfg.ancf).map_err(build)?;
-            let res = base.resolved().clone();
+            let base = AncfBelt::new(&drive, &m.ancf).map_err(build)?;
             let note = format!(
-                "ancf: {} (ancf.elements), {} contact points each, step {:.3} ms (ancf.step \
-                 replaces run.step), rho_inf {} (run.ancf_rho_inf); belt length {:.5} m mounted \
-                 at {:.1} N",
-                elements(cfg.ancf.elements, base.belt_length()),
-                cfg.ancf.contact_points,
-                1e3 * cfg.ancf.step,
+                "ancf: {} (models.ancf.elements), {} contact points each, step {:.3} ms \
+                 (models.ancf.step replaces run.step), rho_inf {} (run.ancf_rho_inf); belt length \
+                 {:.5} m mounted at {:.1} N",
+                elements(m.ancf.elements, base.mapping().belt_length),
+                m.ancf.contact_points,
+                1e3 * m.ancf.step,
                 cfg.run.ancf_rho_inf,
-                base.belt_length(),
-                base.mounted_tension()
+                base.mapping().belt_length,
+                base.mapping().mounted_tension
             );
             // the ANCF drive's own Newton settings (frozen iteration matrix, line search, stall
-            // detection, 5 µm tolerance: ancf::belt_drive::SimulationConfig); with mbd-core's
-            // defaults (full Newton to 1e-10) the default drive stalled at a contact change
-            // (t = 0.082 s of the first ramp, residual 5e-5); ρ∞ = run.ancf_rho_inf (module
-            // documentation: the sliding crank wrap's contact modes grow at 0.8)
+            // detection, 5 µm tolerance: ancf::belt_drive::SimulationConfig); ρ∞ =
+            // run.ancf_rho_inf (module documentation: the sliding crank wrap's contact modes
+            // grow at 0.8)
             let alpha = SimulationConfig {
-                h: cfg.ancf.step,
+                h: m.ancf.step,
                 rho_inf: cfg.run.ancf_rho_inf,
                 ..Default::default()
             }
             .alpha_params();
-            sweep(cfg, base, res, alpha, note, observer)
+            sweep(cfg, base, &drive, alpha, note, observer)
         }
     }
 }
@@ -765,31 +662,31 @@ fn linear_alpha(cfg: &FeadConfig) -> AlphaConfig {
 
 /// The engine-speed sweep of [`run_fead`] on the built model `model` with the stepping
 /// `alpha`.
-fn sweep<M: LayoutModel>(
+fn sweep<M: BeltModel>(
     cfg: &FeadConfig,
     mut model: M,
-    res: ResolvedLayout,
+    drive: &Drive,
     alpha: AlphaConfig,
     model_settings: String,
     mut observer: impl FnMut(FeadProgress),
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
-    let names: Vec<String> = cfg.drive.pulleys.iter().map(|p| p.name.clone()).collect();
-    let roles = cfg.drive.roles();
-    let mu = cfg.drive.friction_law().coefficient();
-    let spans = res.path.spans();
-    let rho = cfg.drive.belt.mass_per_length;
-    let radii: Vec<f64> = cfg.drive.pulleys.iter().map(|p| p.radius).collect();
+    let names = drive.names();
+    let mu = drive.contact().friction.coefficient();
+    let spans = drive.spans();
+    let rho = drive.belt().mass_per_length;
+    let radii: Vec<f64> = drive.pulleys().iter().map(|p| p.radius).collect();
     let mut summary = FeadSummary {
-        installed_tension: res.tension,
-        belt_length: res.belt_length,
-        arm_static_angle: res.arm.map(|a| a.1),
-        arm_travel: cfg.drive.tensioner.map(|t| t.travel),
-        wraps_deg: res.wraps.iter().map(|w| w.to_degrees()).collect(),
+        installed_tension: drive.tension(),
+        belt_length: drive.belt_length(),
+        arm_static_angle: drive.arm().map(|a| a.angle),
+        arm_travel: drive.arm().map(|a| a.tensioner.travel),
+        wraps_deg: drive.wraps().iter().map(|w| w.to_degrees()).collect(),
         pulleys: names.clone(),
         orders: cfg.engine.orders.iter().map(|o| o.order).collect(),
         points: Vec::new(),
         model: cfg.model,
         model_settings,
+        force_measure: model.traits().force_measure.to_string(),
         dofs: model.n_q(),
         steps: 0,
         meaning: FEAD_MEANING.to_string(),
@@ -800,10 +697,10 @@ fn sweep<M: LayoutModel>(
             partial: Box::new(summary.clone()),
         }))
     };
+    let invalid = |e: InvalidField| Box::new(FeadFailureOrInvalid::Invalid(e));
     let h = alpha.h;
     let alpha = GeneralizedAlpha::new(alpha);
-    let linearised = model.belt_data().linearised;
-    eprintln!("fead: {}", summary.model_settings);
+    let linearised = model.traits().linearised;
     let duration = cfg.run.ramp + cfg.run.settle + cfg.run.window;
     let mut state: Option<State> = None;
     let mut omega_prev = 0.0;
@@ -811,9 +708,19 @@ fn sweep<M: LayoutModel>(
         let omega = rpm * std::f64::consts::PI / 30.0;
         // the crank's speed; the loads at their final values after the first point (time
         // restarts at 0 at every point)
-        model.set_crank(crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp));
+        model
+            .set_signal(
+                0,
+                crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp),
+            )
+            .map_err(invalid)?;
         if ip > 0 {
-            model.hold_loads();
+            for k in 0..names.len() {
+                if let Some(Motion::Load { torque, .. }) = model.motion(k) {
+                    let held = torque.held();
+                    model.set_signal(k, held).map_err(invalid)?;
+                }
+            }
         }
         let s0 = match state.take() {
             Some(s) => State::new(0.0, s.q, s.v),
@@ -824,7 +731,7 @@ fn sweep<M: LayoutModel>(
         let mut tens: Vec<Acc> = vec![Acc::default(); spans.len()];
         let mut speed = vec![Acc::default(); names.len()];
         let mut slip = vec![Acc::default(); names.len()];
-        let mut torque = vec![Acc::default(); names.len()];
+        let mut reports: Vec<Report> = Vec::new();
         let mut vbelt = Acc::default();
         let start = cfg.run.ramp + cfg.run.settle;
         while stepper.state().t < duration - 0.5 * h {
@@ -839,39 +746,40 @@ fn sweep<M: LayoutModel>(
             if st.t < start {
                 continue;
             }
-            if let Some(a) = model.arm(&st.q) {
+            if let Some(a) = model.arm_angle(&st.q) {
                 arm.add(a);
             }
             vbelt.add(model.belt_speed(&st.q, &st.v));
-            let wc = model.speed(0, st.t, &st.v) * radii[0];
+            let wc = model.pulley_speed(0, st.t, &st.v) * radii[0];
             for k in 0..names.len() {
-                let w = model.speed(k, st.t, &st.v);
+                let w = model.pulley_speed(k, st.t, &st.v);
                 speed[k].add(w);
                 slip[k].add(100.0 * (1.0 - w * radii[k] / wc));
             }
-            // span tensions and torques every other step
+            // the report every other step
             if summary.steps.is_multiple_of(2) {
                 let snap = model
-                    .named_snapshot(&roles, st.t, &st.q, &st.v)
+                    .snapshot(st.t, &st.q, &st.v)
                     .map_err(|e| fail(e, &summary))?;
                 for (a, s) in tens.iter_mut().zip(&snap.spans) {
                     if s.tension.is_finite() {
                         a.add(s.tension);
                     }
                 }
-                for (a, p) in torque.iter_mut().zip(&snap.pulleys) {
-                    a.add(p.torque);
-                }
+                reports.push(Report::new(drive, &snap, mu));
             }
         }
         let st = stepper.state().clone();
-        let snap = model
-            .named_snapshot(&roles, st.t, &st.q, &st.v)
-            .map_err(|e| fail(e, &summary))?;
-        let report = DriveReport::new(&snap, mu);
+        if reports.is_empty() {
+            let snap = model
+                .snapshot(st.t, &st.q, &st.v)
+                .map_err(|e| fail(e, &summary))?;
+            reports.push(Report::new(drive, &snap, mu));
+        }
+        let report = Report::mean(&reports).unwrap_or_else(|| reports[0].clone());
         let slipping = report.gross_slip();
         let v = vbelt.get().mean;
-        let t_min = crate::speed_loss::LINEAR_MIN_SLACK * summary.installed_tension;
+        let t_min = LINEAR_MIN_SLACK * summary.installed_tension;
         let slack = spans
             .iter()
             .zip(&tens)
@@ -886,7 +794,7 @@ fn sweep<M: LayoutModel>(
                  the linear model's stiffness K_e + K_g(T0) assumes taut spans",
                 names[sp.from],
                 names[sp.to],
-                100.0 * crate::speed_loss::LINEAR_MIN_SLACK,
+                100.0 * LINEAR_MIN_SLACK,
                 summary.installed_tension
             )),
             (None, Some(k)) => Some(format!(
@@ -895,9 +803,6 @@ fn sweep<M: LayoutModel>(
             )),
             (None, None) => None,
         };
-        if let Some(why) = &linearisation {
-            eprintln!("fead: {rpm} rpm is outside the model's range: {why}");
-        }
         summary.points.push(FeadPoint {
             engine_rpm: rpm,
             belt_speed: v,
@@ -921,25 +826,13 @@ fn sweep<M: LayoutModel>(
                     }
                 })
                 .collect(),
-            pulleys: (0..names.len())
-                .map(|k| FeadPulley {
-                    name: names[k].clone(),
-                    omega: speed[k].get(),
-                    slip_percent: slip[k].get().mean,
-                    torque_mean: torque[k].get().mean,
-                })
-                .collect(),
+            pulley_speed: speed.iter().map(Acc::get).collect(),
+            speed_loss_percent: slip.iter().map(|a| a.get().mean).collect(),
             gross_slip: slipping.is_some(),
             gross_slip_pulley: slipping.map(|k| names[k].clone()),
             linearisation,
             report,
         });
-        if let Some(k) = slipping {
-            eprintln!(
-                "fead: gross slip at {rpm} rpm on pulley '{}' (t = {:.3} s of the point)",
-                names[k], st.t
-            );
-        }
         omega_prev = omega;
         state = Some(st);
     }

@@ -8,7 +8,7 @@
 use crate::ancf_run::{Due, Sampling};
 use crate::bechtel_steady::{SteadyDriveInput, SteadyPoint, SteadySolution, solve_steady};
 use ancf::AncfError;
-use ancf::belt_drive::{IntegratorKind, PulleyDrive, SimulationConfig};
+use ancf::belt_drive::{IntegratorKind, SimulationConfig};
 use ancf::plate::StrainMeasure;
 use ancf::plate::belt_drive::post::{
     BeltSample, SpanState, line_samples, path_coordinate, pulley_torques, span_states, spans,
@@ -16,6 +16,7 @@ use ancf::plate::belt_drive::post::{
 use ancf::plate::belt_drive::{
     PlateBeltDrive, PlateContactRecord, PlateDriveSpec, PlateInitialState,
 };
+use belt::{Motion, Shape};
 use contact::FrictionLaw;
 use mbd_core::integrators::{
     GeneralizedAlpha, NewtonUpdate, Observer, Recorder, Rk4, State, Stats, Stepper,
@@ -300,21 +301,24 @@ pub fn wide_pulley_case(omega: f64, torque: f64) -> PlateDriveSpec {
     p.belt.young = 1.6667e7;
     p.belt.length =
         4.0 * std::f64::consts::PI * p.pulleys[0].radius / (1.0 + 50.0 / p.belt.axial_stiffness());
-    p.pulleys[0].drive = PulleyDrive::Speed {
-        speed: ancf::belt_drive::SpeedProfile::Ramp {
+    p.pulleys[0].motion = Motion::speed(
+        Shape::Ramp {
             t_start: 0.02,
             t_end: 0.2,
-            omega,
-        },
-    };
-    p.pulleys[1].drive = PulleyDrive::Free {
-        inertia: 0.00025,
-        load: ancf::belt_drive::TorqueProfile::Cosine {
+            from: 0.0,
+            value: omega,
+        }
+        .into(),
+    );
+    p.pulleys[1].motion = Motion::load(
+        0.00025,
+        Shape::Cosine {
             t_start: 0.02,
             t_end: 0.2,
-            torque,
-        },
-    };
+            value: torque,
+        }
+        .into(),
+    );
     p
 }
 
@@ -341,13 +345,15 @@ pub fn analytical_input(spec: &PlateDriveSpec, inertia: bool) -> Option<SteadyDr
         return None;
     }
     let (p1, p2) = (&spec.pulleys[0], &spec.pulleys[1]);
-    let PulleyDrive::Speed { speed } = p1.drive else {
+    let Motion::Speed { speed } = &p1.motion else {
         return None;
     };
-    let PulleyDrive::Free { load, .. } = p2.drive else {
-        return None;
+    let torque = match &p2.motion {
+        Motion::Load { torque, .. } => torque.final_value(),
+        Motion::Idler { .. } => 0.0,
+        Motion::Speed { .. } => return None,
     };
-    let centre = |p: &ancf::plate::belt_drive::PlatePulley| {
+    let centre = |p: &belt::Pulley| {
         let [u, _] = p.shift.map(|s| s.eval(f64::INFINITY)).unwrap_or([0.0, 0.0]);
         let d = p.shift.map(|s| s.direction).unwrap_or([0.0, 0.0]);
         [p.center[0] + u * d[0], p.center[1] + u * d[1]]
@@ -361,8 +367,8 @@ pub fn analytical_input(spec: &PlateDriveSpec, inertia: bool) -> Option<SteadyDr
         stiffness: b.axial_stiffness(),
         mass_per_length: b.mass_per_length(),
         mu: spec.contact.friction.coefficient(),
-        omega_driver: speed.final_speed(),
-        torque: load.final_torque(),
+        omega_driver: speed.final_value(),
+        torque,
         unstretched_length: b.length,
         inertia,
     })

@@ -10,10 +10,9 @@
 //! The load schedule is extended while integrating, so each torque is held only as long as it
 //! needs. A failure keeps the points already found ([`SweepFailure`]).
 
-use crate::model::{BeltData, DriveModel};
-use crate::report::{DriveReport, WrapPoint, sliding_speed};
-use contact::friction::FrictionLaw;
-use flowing::belt::Schedule;
+use belt::report::sliding_speed;
+use belt::{BeltModel, Report, Signal, WrapPoint};
+use contact::friction::{FrictionLaw, FrictionSpec};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
 use mbd_core::validate::{InvalidField, Validate};
@@ -96,12 +95,64 @@ impl Validate for SpeedLossConfig {
         if self.window < 10.0 * self.step {
             return Err(InvalidField::new("window", "must span at least 10 steps"));
         }
+        if self.max_hold < 2.0 * self.window {
+            return Err(InvalidField::new(
+                "max_hold",
+                format!(
+                    "must allow at least two averaging windows (2 × window = {} s), got {} s",
+                    2.0 * self.window,
+                    self.max_hold
+                ),
+            ));
+        }
+        let run = self.spin_up + self.torques.len() as f64 * (self.torque_ramp + self.max_hold);
+        if run / self.step > MAX_STEPS as f64 {
+            return Err(InvalidField::new(
+                "step",
+                format!(
+                    "the procedure could take {:.3e} steps (max {MAX_STEPS}): lengthen the step or shorten max_hold",
+                    run / self.step
+                ),
+            ));
+        }
         Ok(())
     }
 }
 
+/// Most steps the procedure may take (spin-up plus every torque held for `max_hold`).
+pub const MAX_STEPS: usize = 20_000_000;
+
+/// What the procedure needs to know about a model's belt.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BeltData {
+    /// Installation tension T0 of the mounted belt \[N\].
+    pub pretension: f64,
+    /// Axial stiffness EA \[N\].
+    pub ea: f64,
+    /// Radius of the driven pulley's belt line \[m\].
+    pub driven_radius: f64,
+    /// The belt–pulley friction law.
+    pub friction: FrictionSpec,
+    /// Whether the model is linearised about the installation tension ([`belt::ModelTraits`]).
+    pub linearised: bool,
+}
+
+impl BeltData {
+    /// The data of `model`'s belt with the driven pulley `driven`.
+    pub fn of(model: &impl BeltModel, driven: usize) -> Self {
+        let d = model.drive();
+        Self {
+            pretension: d.tension(),
+            ea: d.belt().ea,
+            driven_radius: d.pulleys()[driven].radius,
+            friction: d.contact().friction,
+            linearised: model.traits().linearised,
+        }
+    }
+}
+
 /// Where and when a pulley slipped as a whole (gross slip): the load exceeded what friction
-/// can transmit ([`crate::report`]).
+/// can transmit ([`belt::report`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GrossSlip {
     /// Pulley index (travel order).
@@ -135,7 +186,7 @@ pub struct SpeedLossPoint {
     /// at this point (`None`: they hold, or the model is not linearised).
     pub linearisation: Option<String>,
     /// Spans and pulleys at the point (vibration amplitudes over the last window).
-    pub report: DriveReport,
+    pub report: Report,
     /// The contact points of every wrap at the point.
     #[serde(skip)]
     pub wrap: Vec<WrapPoint>,
@@ -162,7 +213,7 @@ pub fn gross_slip_bound(belt: &BeltData, omega: f64) -> f64 {
 
 /// The linearisation check of a model linearised about T0 ([`BeltData::linearised`]): `None`
 /// while the slack span keeps [`LINEAR_MIN_SLACK`] of T0 and no wrap slides as a whole.
-pub fn linearisation_issue(belt: &BeltData, report: &DriveReport) -> Option<String> {
+pub fn linearisation_issue(belt: &BeltData, report: &Report) -> Option<String> {
     if !belt.linearised {
         return None;
     }
@@ -228,6 +279,8 @@ pub struct Sample {
     pub omega_driven: f64,
     /// Load torque \[N m\].
     pub load: f64,
+    /// Belt speed \[m/s\] ([`BeltModel::belt_speed`]).
+    pub belt_speed: f64,
     /// Steady points found so far.
     pub points: usize,
 }
@@ -238,7 +291,7 @@ pub const MAX_HALVINGS: usize = 4;
 /// One step of size `h` \[s\]; if Newton fails, two steps of `h/2` (recursively, `depth`
 /// levels). The rotating-mesh model ([`flowing::belt::nodal::NodalBelt`]) needs it when a coarse
 /// element lands on a pulley.
-pub fn robust_step<M: DriveModel>(
+pub fn robust_step<M: BeltModel>(
     stepper: &mut AlphaStepper,
     model: &M,
     h: f64,
@@ -253,7 +306,7 @@ pub fn robust_step<M: DriveModel>(
     }
 }
 
-/// Reports sampled per averaging window ([`DriveReport::mean`]).
+/// Reports sampled per averaging window ([`Report::mean`]).
 pub const REPORTS_PER_WINDOW: usize = 10;
 
 /// What is observed over one averaging window: the running minimum and maximum of each span's
@@ -262,7 +315,7 @@ pub const REPORTS_PER_WINDOW: usize = 10;
 struct Window {
     lo: Vec<f64>,
     hi: Vec<f64>,
-    reports: Vec<DriveReport>,
+    reports: Vec<Report>,
 }
 
 impl Window {
@@ -288,38 +341,44 @@ impl Window {
     }
 }
 
-/// The report of `model` at `state` ([`DriveModel::snapshot`]) averaged with the reports
+/// The report of `model` at `state` ([`BeltModel::snapshot`]) averaged with the reports
 /// sampled over `window`, with the span amplitudes of `window`; and the wrap points at `state`.
-fn report_of<M: DriveModel>(
+fn report_of<M: BeltModel>(
     model: &M,
     state: &State,
     window: &Window,
-) -> Result<(DriveReport, Vec<WrapPoint>), MbdError> {
+) -> Result<(Report, Vec<WrapPoint>), MbdError> {
     let snap = model.snapshot(state.t, &state.q, &state.v)?;
-    let now = DriveReport::new(&snap, model.belt_data().friction.coefficient());
+    let now = Report::new(
+        model.drive(),
+        &snap,
+        model.drive().contact().friction.coefficient(),
+    );
     let mut all = window.reports.clone();
     all.push(now);
-    let mut report = DriveReport::mean(&all).unwrap_or_else(|| all[0].clone());
+    let mut report = Report::mean(&all).unwrap_or_else(|| all[0].clone());
     for (k, s) in report.spans.iter_mut().enumerate() {
-        s.vibration_amplitude = window.amplitude(k);
+        s.vibration_amplitude_m = window.amplitude(k);
     }
     Ok((report, snap.wrap))
 }
 
-/// Run the procedure on `model` (its driver and load schedules are overwritten). `observer`
+/// Run the procedure on `model`: the driver is the drive's first speed-driven pulley, the
+/// driven pulley its first loaded pulley (else its first idler) ([`belt::Drive::driver`],
+/// [`belt::Drive::driven`]); their speed and load signals are overwritten. `observer`
 /// sees every step (e.g. to write histories or update a progress bar).
 ///
-/// Each point carries the drive's report ([`DriveReport`]: span tensions, per-pulley arcs,
+/// Each point carries the drive's report ([`Report`]: span tensions, per-pulley arcs,
 /// hub loads and torques averaged over the last window ([`REPORTS_PER_WINDOW`] samples and the
 /// end state), span vibration amplitudes over it) and its wrap distributions at the end. **Gross slip is a result**: when the speed loss exceeds
 /// [`gross_slip_bound`] (the driven pulley runs away: the load exceeds what friction can
 /// transmit), or a steady state has a wrap without adhesion arc
-/// ([`DriveReport::gross_slip`]: the belt slides over the whole wrap), the point is marked
+/// ([`Report::gross_slip`]: the belt slides over the whole wrap), the point is marked
 /// ([`SpeedLossPoint::gross_slip`]), the drive is put back into the last steady state (load
 /// and all) and the next torque is ramped from there. A Newton failure, or a torque that never
 /// becomes steady within `max_hold` (reported as such, not as a Newton failure), stays an
 /// error ([`SweepFailure`]).
-pub fn speed_loss_sweep<M: DriveModel>(
+pub fn speed_loss_sweep<M: BeltModel>(
     model: &mut M,
     settings: &SpeedLossConfig,
     mut observer: impl FnMut(&State, Sample),
@@ -329,11 +388,32 @@ pub fn speed_loss_sweep<M: DriveModel>(
         error,
         points: points.clone(),
     };
-    model.set_driver_speed(Schedule {
-        knots: vec![(0.0, 0.0), (settings.spin_up, settings.omega_driver)],
-    });
-    *model.load_mut() = Schedule::constant(0.0);
-    let belt = model.belt_data();
+    let input = |m: String| SweepFailure {
+        error: MbdError::InvalidInput {
+            item: "drive".into(),
+            reason: m,
+        },
+        points: Vec::new(),
+    };
+    let driver = model
+        .drive()
+        .driver()
+        .ok_or_else(|| input("the speed-loss procedure needs a speed-driven pulley".into()))?;
+    let driven = model
+        .drive()
+        .driven()
+        .ok_or_else(|| input("the speed-loss procedure needs a free pulley to load".into()))?;
+    let signal =
+        |m: &mut M, k: usize, s: Signal| m.set_signal(k, s).map_err(|e| input(e.to_string()));
+    signal(
+        model,
+        driver,
+        Signal::schedule(vec![(0.0, 0.0), (settings.spin_up, settings.omega_driver)]),
+    )?;
+    let mut load_knots: Vec<(f64, f64)> = vec![(0.0, 0.0)];
+    signal(model, driven, Signal::schedule(load_knots.clone()))?;
+    let belt = BeltData::of(&*model, driven);
+    let mu = belt.friction.coefficient();
     let bound = gross_slip_bound(&belt, settings.omega_driver);
     let s0 = model.initial_state().map_err(|e| fail(e, &points))?;
     let alpha = GeneralizedAlpha::new(AlphaConfig {
@@ -354,11 +434,12 @@ pub fn speed_loss_sweep<M: DriveModel>(
     for &target in &settings.torques {
         if target != current {
             let t0 = level_start;
-            model.load_mut().knots.push((t0, current));
-            model
-                .load_mut()
-                .knots
-                .push((t0 + settings.torque_ramp, target));
+            // after a gross slip the hold knot (t0, current) is already the last one
+            if load_knots.last().is_none_or(|k| k.0 < t0) {
+                load_knots.push((t0, current));
+            }
+            load_knots.push((t0 + settings.torque_ramp, target));
+            signal(model, driven, Signal::schedule(load_knots.clone()))?;
             level_start = t0 + settings.torque_ramp;
             current = target;
         }
@@ -374,9 +455,10 @@ pub fn speed_loss_sweep<M: DriveModel>(
             }
             let sample = Sample {
                 t: st.t,
-                omega_driver: model.driver_speed(st.t),
-                omega_driven: model.driven_speed(&st.v),
-                load: model.load_mut().value(st.t),
+                omega_driver: model.pulley_speed(driver, st.t, &st.v),
+                omega_driven: model.pulley_speed(driven, st.t, &st.v),
+                load: model.motion(driven).map_or(0.0, |m| m.load_torque(st.t)),
+                belt_speed: model.belt_speed(&st.q, &st.v),
                 points: points.len(),
             };
             observer(st, sample);
@@ -400,9 +482,7 @@ pub fn speed_loss_sweep<M: DriveModel>(
                 let snap = model
                     .snapshot(st.t, &st.q, &st.v)
                     .map_err(|e| fail(e, &points))?;
-                window
-                    .reports
-                    .push(DriveReport::new(&snap, belt.friction.coefficient()));
+                window.reports.push(Report::new(model.drive(), &snap, mu));
             }
             if count == per_window {
                 means.push(sum / count as f64);
@@ -431,7 +511,7 @@ pub fn speed_loss_sweep<M: DriveModel>(
                     points.push(SpeedLossPoint {
                         torque: target,
                         delta_omega: means[k - 1],
-                        omega_driven: model.driver_speed(st.t) - means[k - 1],
+                        omega_driven: model.pulley_speed(driver, st.t, &st.v) - means[k - 1],
                         drift: means[k - 1] - means[k - 2],
                         time: st.t,
                         gross_slip: gross,
@@ -455,7 +535,11 @@ pub fn speed_loss_sweep<M: DriveModel>(
                                  last window means of the speed loss differ by {:.3e} rad/s \
                                  (tolerance {:.1e} rad/s)",
                                 settings.max_hold,
-                                (means[k - 1] - means[k - 2]).abs(),
+                                if k >= 2 {
+                                    (means[k - 1] - means[k - 2]).abs()
+                                } else {
+                                    f64::NAN
+                                },
                                 settings.tolerance
                             ),
                         },
@@ -479,11 +563,12 @@ pub fn speed_loss_sweep<M: DriveModel>(
                     f(a).total_cmp(&f(b))
                 })
                 .unwrap_or(0);
-            let dw = model.driver_speed(st.t) - model.driven_speed(&st.v);
+            let omega_driven = model.pulley_speed(driven, st.t, &st.v);
+            let dw = model.pulley_speed(driver, st.t, &st.v) - omega_driven;
             points.push(SpeedLossPoint {
                 torque: target,
                 delta_omega: dw,
-                omega_driven: model.driven_speed(&st.v),
+                omega_driven,
                 drift: f64::NAN,
                 time: st.t,
                 gross_slip: Some(GrossSlip {
@@ -499,9 +584,9 @@ pub fn speed_loss_sweep<M: DriveModel>(
         }
         // back to the last sound state, at the present time, with its load
         let (sound, load) = anchor.clone().unwrap_or_else(|| (st.clone(), 0.0));
-        let knots = &mut model.load_mut().knots;
-        knots.retain(|k| k.0 < st.t);
-        knots.push((st.t, load));
+        load_knots.retain(|k| k.0 < st.t);
+        load_knots.push((st.t, load));
+        signal(model, driven, Signal::schedule(load_knots.clone()))?;
         current = load;
         level_start = st.t;
         stats.add(&stepper.stats);

@@ -2,16 +2,19 @@
 //! what `flowmbd-belt speed-loss` reads from its TOML file and writes to `summary.json`, shared
 //! with the Python package (`flowmbd.belt.speed_loss`) so that both accept the same keys, reject
 //! the same fields with the same messages and report the same numbers. Each case is the
-//! procedure of [`crate::speed_loss`] run by [`SpeedLossModel`](crate::SpeedLossModel), with
+//! procedure of [`crate::speed_loss`] run by [`run_case`], with
 //! Bechtel's line (6.3) at the same torques.
 
-use crate::ancf_drive_model::AncfConfig;
+use crate::ancf_model::AncfMapping;
 use crate::error::DriveError;
-use crate::report::{HubLoad, PulleyReport, PulleyRole, SpanReport};
 use crate::speed_loss::{GrossSlip, SpeedLossConfig, SpeedLossPoint, SweepStats};
-use crate::study::{ModelKind, NodalConfig, SpeedLossCase};
-use flowing::belt::BeltDriveConfig;
-use mbd_core::validate::{InvalidField, Validate};
+use crate::speed_loss::{Sample, SweepFailure};
+use crate::study::{
+    AnyModel, ModelKind, ModelSettings, SpeedLossCase, procedure_for, speed_loss_case,
+};
+use belt::{Balances, HubLoad, Layout, PulleyReport, Role, SpanReport};
+use mbd_core::integrators::State;
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
 /// Configuration of the speed-loss study (the `flowmbd-belt speed-loss` TOML file).
@@ -22,18 +25,17 @@ pub struct SpeedLossStudyConfig {
     pub model: ModelKind,
     /// Driver speeds \[rad/s\] (Figs. 6-6 and 6-7: 62.8 and 22.6).
     pub omegas: Vec<f64>,
-    /// The drive (Table 6-1).
-    pub drive: BeltDriveConfig,
+    /// The drive (default: Ribaric Table 6-1, [`crate::table_6_1`]): the driver is its first
+    /// speed-driven pulley, the loaded pulley its first free one.
+    pub drive: Layout,
     /// The procedure (torques, ramps, steady-state detection, integrator). Its `omega_driver`
     /// is replaced by each entry of `omegas`.
     pub procedure: SpeedLossConfig,
     /// Write every n-th integration step to the history CSV files.
     pub history_every: usize,
-    /// Discretisation of the ANCF belt (`model = "ancf"` only).
-    pub ancf: AncfConfig,
-    /// Settings used instead of `drive.mesh` and the procedure's steady-state window when
-    /// `model = "nodal"`.
-    pub nodal: NodalConfig,
+    /// Each model's discretisation (`flowing`, `nodal`, `ancf` tables; the nodal model's
+    /// window and tolerance and the ANCF belt's step replace the procedure's).
+    pub models: ModelSettings,
 }
 
 impl Default for SpeedLossStudyConfig {
@@ -41,11 +43,10 @@ impl Default for SpeedLossStudyConfig {
         Self {
             model: ModelKind::Flowing,
             omegas: vec![62.8, 22.6],
-            drive: BeltDriveConfig::default(),
+            drive: crate::table_6_1::layout(),
             procedure: SpeedLossConfig::default(),
             history_every: 20,
-            ancf: Default::default(),
-            nodal: NodalConfig::default(),
+            models: ModelSettings::default(),
         }
     }
 }
@@ -68,37 +69,93 @@ impl Validate for SpeedLossStudyConfig {
                 "must be finite and > 0 [rad/s]",
             ));
         }
-        if self.history_every == 0 {
-            return Err(InvalidField::new("history_every", "must be at least 1"));
+        check::count("omegas", self.omegas.len(), 1, 100)?;
+        check::count("history_every", self.history_every, 1, usize::MAX)?;
+        let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
+        if drive.driver().is_none() {
+            return Err(InvalidField::new(
+                "drive.pulleys",
+                "the speed-loss procedure needs a speed-driven pulley (the driver)",
+            ));
         }
-        self.drive.validate_within("drive")?;
-        self.ancf.validate_within("ancf")?;
-        if self.model == ModelKind::Nodal {
-            BeltDriveConfig {
-                mesh: self.nodal.mesh,
-                ..self.drive
-            }
-            .validate_within("nodal")?;
-            SpeedLossConfig {
-                window: self.nodal.window,
-                tolerance: self.nodal.tolerance,
-                ..self.procedure.clone()
-            }
-            .validate_within("nodal")?;
+        if drive.driven().is_none() {
+            return Err(InvalidField::new(
+                "drive.pulleys",
+                "the speed-loss procedure needs a free pulley to load",
+            ));
         }
-        self.procedure.validate_within("procedure")
+        self.models.validate_within("models")?;
+        match self.model {
+            ModelKind::Flowing => self
+                .models
+                .flowing
+                .mesh
+                .check_on(drive.path())
+                .map_err(|e| e.within("models.flowing.mesh"))?,
+            ModelKind::Nodal => self
+                .models
+                .nodal
+                .mesh
+                .check_on(drive.path())
+                .map_err(|e| e.within("models.nodal.mesh"))?,
+            ModelKind::Ancf => {}
+        }
+        self.procedure.validate_within("procedure")?;
+        procedure_for(self.model, &self.procedure, &self.models).validate_within(&format!(
+            "procedure (with models.{} settings)",
+            self.model.name()
+        ))
     }
 }
 
-/// The input error hidden in a model-building failure: the ANCF drive's rejection of its
-/// derived inputs (named `ancf: <item>`); `None` for a numerical failure.
+/// The input error hidden in a model-building failure: a model's rejection of its derived
+/// inputs (named by the model's item); `None` for a numerical failure.
 pub fn drive_input_error(e: &DriveError) -> Option<InvalidField> {
     match e {
         DriveError::Ancf(ancf::AncfError::InvalidInput { item, reason }) => {
             Some(InvalidField::new(format!("ancf: {item}"), reason.clone()))
         }
+        DriveError::Flowing(flowing::FlowError::InvalidInput { item, reason }) => {
+            Some(InvalidField::new(item.clone(), reason.clone()))
+        }
+        DriveError::Invalid(m) => Some(InvalidField::new("drive", m.clone())),
         _ => None,
     }
+}
+
+/// Why one driver speed of the study did not complete.
+#[derive(Debug)]
+pub enum CaseFailure {
+    /// The input was rejected (names the field).
+    Input(InvalidField),
+    /// The model could not be built (a numerical failure of its static solve).
+    Build(DriveError),
+    /// The procedure failed, with the points found before.
+    Sweep(SweepFailure),
+}
+
+/// One driver speed of the study `c` (validated first): the model `c.model` of `c.drive` with
+/// its settings, the procedure at `omega` \[rad/s\] ([`procedure_for`]). Returns the case, the
+/// number of coordinates and the ANCF mapping (ANCF model only). `observer` sees every step.
+pub fn run_case(
+    c: &SpeedLossStudyConfig,
+    omega: f64,
+    observer: impl FnMut(&State, Sample),
+) -> Result<(SpeedLossCase, usize, Option<AncfMapping>), CaseFailure> {
+    c.validate().map_err(CaseFailure::Input)?;
+    let drive = c
+        .drive
+        .resolve()
+        .map_err(|e| CaseFailure::Input(e.within("drive")))?;
+    let mut model =
+        AnyModel::new(c.model, &drive, &c.models).map_err(|e| match drive_input_error(&e) {
+            Some(field) => CaseFailure::Input(field),
+            None => CaseFailure::Build(e),
+        })?;
+    let mut settings = procedure_for(c.model, &c.procedure, &c.models);
+    settings.omega_driver = omega;
+    let case = speed_loss_case(&mut model, &settings, observer).map_err(CaseFailure::Sweep)?;
+    Ok((case, model.coordinates(), model.ancf_mapping().cloned()))
 }
 
 /// One point of the summary: the issue-17 keys per load torque. Where the results of a model
@@ -118,7 +175,7 @@ pub struct SummaryPoint {
     pub gross_slip: bool,
     /// Where and when it slipped.
     pub gross_slip_at: Option<GrossSlip>,
-    /// Slip arc of the driver (saturated friction, [`crate::report`]) \[rad\].
+    /// Slip arc of the driver (saturated friction, [`belt::report`]) \[rad\].
     pub slip_arc_driver_rad: Option<f64>,
     /// Slip arc of the driven pulley \[rad\].
     pub slip_arc_driven_rad: Option<f64>,
@@ -132,8 +189,10 @@ pub struct SummaryPoint {
     pub linearisation: Option<String>,
     /// Per pulley: arcs, slip velocity, hub load, torque, sliding loss.
     pub pulleys: Option<Vec<PulleyReport>>,
-    /// Per span: tension and transverse vibration amplitude.
+    /// Per span: force and transverse vibration amplitude.
     pub spans: Option<Vec<SpanReport>>,
+    /// Torque and power balances of the report (always given: they hold on any model).
+    pub balances: Balances,
 }
 
 fn finite(x: f64) -> Option<f64> {
@@ -158,13 +217,14 @@ impl SummaryPoint {
             tension_slack: finite(r.tension_slack()).filter(|_| valid),
             gross_slip: p.gross_slip.is_some(),
             gross_slip_at: p.gross_slip.clone(),
-            slip_arc_driver_rad: arc(PulleyRole::Driver),
-            slip_arc_driven_rad: arc(PulleyRole::Driven),
+            slip_arc_driver_rad: arc(Role::Driver),
+            slip_arc_driven_rad: arc(Role::Driven),
             hub_loads: valid.then(|| r.hub_loads()),
             linearisation_valid: valid,
             linearisation: p.linearisation.clone(),
             pulleys: valid.then(|| r.pulleys.clone()),
             spans: valid.then(|| r.spans.clone()),
+            balances: r.balances,
         }
     }
 }

@@ -1,33 +1,33 @@
-//! The speed-loss study of Ribaric §6.4–6.5 (Figs. 6-6, 6-7) for a chosen belt model: one case
+//! The belt models a study can run on one drive ([`ModelKind`]), their settings
+//! ([`ModelSettings`]), and the speed-loss study of Ribaric §6.4–6.5 (Figs. 6-6, 6-7): one case
 //! per driver speed, each the procedure of [`crate::speed_loss`] on a fresh model, with
-//! Bechtel's line (6.3) at the same torques. The app only reads the configuration, calls
-//! [`SpeedLossModel::new`] and [`SpeedLossModel::sweep`] per speed, and writes the results.
+//! Bechtel's line (6.3) at the same torques.
 
 use crate::analytical::{bechtel, euler_eytelwein_capacity};
-use crate::ancf_drive_model::{AncfConfig, AncfDrive, AncfMapping};
+use crate::ancf_model::{AncfBelt, AncfConfig, AncfMapping};
 use crate::error::DriveError;
 use crate::speed_loss::speed_loss_sweep;
 use crate::speed_loss::{Sample, SpeedLossConfig, SpeedLossPoint, SweepFailure, SweepStats};
+use belt::{BeltModel, Drive};
 use contact::friction::FrictionLaw;
-use flowing::belt::config::BeltMesh;
-use flowing::belt::nodal::NodalBelt;
-use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
+use flowing::belt::{BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::State;
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
-/// Belt model used for the study.
+/// Belt model of a study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum ModelKind {
     /// Flowing-material modal model with a stationary mesh (Ribaric (5.14)).
     #[default]
     Flowing,
-    /// ANCF belt elements in a rotating (Lagrangian) mesh, Kerkkänen ch. 3 (the high-fidelity
-    /// reference; [`crate::ancf_drive_model`]).
+    /// ANCF belt elements in a rotating (Lagrangian) mesh, Kerkkänen ch. 3 (the geometrically
+    /// exact reference; [`crate::ancf_model`]).
     Ancf,
     /// Nodal model with a rotating (Lagrangian) mesh (Ribaric (5.7)): the reference the
-    /// flowing form replaces; needs a fine uniform mesh ([`NodalConfig::mesh`]) to be accurate.
+    /// flowing form replaces; needs a fine uniform mesh ([`NodalConfig::mesh`]).
     Nodal,
 }
 
@@ -58,26 +58,27 @@ impl std::str::FromStr for ModelKind {
 
 /// What the rotating-mesh model needs to reach an accurate steady state: a fine uniform loop
 /// (its elements travel over the pulleys, so short arc elements alone do not help) and a
-/// longer averaging window over its element-passing ripple. With the defaults its Δω agrees
-/// with the flowing model's within 2 % (tests/tests/flowing_belt_nodal.rs); on the
-/// 56-element flowing mesh its polygonal ripple (±1 rad/s) prevents any steady state.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+/// longer averaging window over its element-passing ripple.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct NodalConfig {
-    /// Mesh of the rotating loop (default: uniform, 216 elements of 5.6 mm).
+    /// Mesh of the rotating loop (default: 5.6 mm everywhere, 216 elements on Table 6-1).
     pub mesh: BeltMesh,
-    /// Averaging window \[s\].
+    /// Averaging window of the speed-loss procedure \[s\].
     pub window: f64,
-    /// Steady-state tolerance between consecutive windows \[rad/s\].
+    /// Steady-state tolerance between consecutive windows of the speed-loss procedure
+    /// \[rad/s\].
     pub tolerance: f64,
 }
 
 impl Default for NodalConfig {
+    /// 5.625 mm on the spans (80 per 450 mm span), 5.61 mm on the wraps (28 per half-wrap of
+    /// Table 6-1); 0.1 s windows, 10⁻³ rad/s.
     fn default() -> Self {
         Self {
             mesh: BeltMesh {
-                span_elements: 80,
-                arc_elements: 28,
+                span_element: 0.005625,
+                arc_element: 0.00561,
                 contact_margin_nodes: 1,
             },
             window: 0.1,
@@ -86,26 +87,86 @@ impl Default for NodalConfig {
     }
 }
 
-/// The drive and the procedure of the case at driver speed `omega` \[rad/s\]: `procedure` with
-/// `omega_driver = omega`; for the nodal model, its mesh, window and tolerance from `nodal`.
-pub fn case_inputs(
-    model: ModelKind,
-    drive: &BeltDriveConfig,
-    procedure: &SpeedLossConfig,
-    nodal: &NodalConfig,
-    omega: f64,
-) -> (BeltDriveConfig, SpeedLossConfig) {
-    let mut settings = SpeedLossConfig {
-        omega_driver: omega,
-        ..procedure.clone()
-    };
-    let mut drive = *drive;
-    if model == ModelKind::Nodal {
-        drive.mesh = nodal.mesh;
-        settings.window = nodal.window;
-        settings.tolerance = nodal.tolerance;
+impl Validate for NodalConfig {
+    fn validate(&self) -> Result<(), InvalidField> {
+        self.mesh.validate_within("mesh")?;
+        check::within("window", self.window, 1e-6, 100.0, "s")?;
+        check::within("tolerance", self.tolerance, 1e-12, 1e3, "rad/s")
     }
-    (drive, settings)
+}
+
+/// Each model's discretisation settings (one table per model in a study's configuration).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+#[serde(default, deny_unknown_fields)]
+pub struct ModelSettings {
+    /// The flowing-material model's loop and reduction.
+    pub flowing: FlowingSettings,
+    /// The nodal model's loop (and its speed-loss window).
+    pub nodal: NodalConfig,
+    /// The ANCF belt's discretisation and step.
+    pub ancf: AncfConfig,
+}
+
+impl Validate for ModelSettings {
+    fn validate(&self) -> Result<(), InvalidField> {
+        self.flowing.validate_within("flowing")?;
+        self.nodal.validate_within("nodal")?;
+        self.ancf.validate_within("ancf")
+    }
+}
+
+/// A belt model built for a drive: one of the three kinds.
+pub enum AnyModel {
+    /// The flowing-material belt (Ribaric (5.14)).
+    Flowing(Box<FlowingBelt>),
+    /// The rotating-mesh nodal belt (Ribaric (5.7)).
+    Nodal(Box<NodalBelt>),
+    /// The ANCF belt (Kerkkänen ch. 3).
+    Ancf(Box<AncfBelt>),
+}
+
+/// Run a generic function on the model inside an [`AnyModel`].
+#[macro_export]
+macro_rules! with_model {
+    ($any:expr, |$m:ident| $body:expr) => {
+        match $any {
+            $crate::study::AnyModel::Flowing($m) => $body,
+            $crate::study::AnyModel::Nodal($m) => $body,
+            $crate::study::AnyModel::Ancf($m) => $body,
+        }
+    };
+}
+
+impl AnyModel {
+    /// Build the model `kind` of `drive` with its settings from `settings`.
+    pub fn new(
+        kind: ModelKind,
+        drive: &Drive,
+        settings: &ModelSettings,
+    ) -> Result<Self, DriveError> {
+        Ok(match kind {
+            ModelKind::Flowing => {
+                AnyModel::Flowing(Box::new(FlowingBelt::new(drive, &settings.flowing)?))
+            }
+            ModelKind::Nodal => {
+                AnyModel::Nodal(Box::new(NodalBelt::new(drive, &settings.nodal.mesh)?))
+            }
+            ModelKind::Ancf => AnyModel::Ancf(Box::new(AncfBelt::new(drive, &settings.ancf)?)),
+        })
+    }
+
+    /// Number of coordinates of the model.
+    pub fn coordinates(&self) -> usize {
+        with_model!(self, |m| m.n_q())
+    }
+
+    /// The derived parameters of the drive → ANCF mapping (ANCF model only).
+    pub fn ancf_mapping(&self) -> Option<&AncfMapping> {
+        match self {
+            AnyModel::Ancf(a) => Some(a.mapping()),
+            _ => None,
+        }
+    }
 }
 
 /// One driver speed's result.
@@ -117,8 +178,8 @@ pub struct SpeedLossCase {
     pub points: Vec<SpeedLossPoint>,
     /// Bechtel's Δω (6.3) at the same torques \[rad/s\].
     pub analytical: Vec<f64>,
-    /// Euler–Eytelwein capacity of the drive at this speed \[N·m\]
-    /// ([`crate::euler_eytelwein_capacity`]).
+    /// Euler–Eytelwein capacity of the drive at this speed \[N m\]
+    /// ([`crate::euler_eytelwein_capacity`]; `NaN` for drives other than two pulleys).
     pub capacity: f64,
     /// Coefficient μ of the belt–pulley friction law.
     pub friction_coefficient: f64,
@@ -126,102 +187,46 @@ pub struct SpeedLossCase {
     pub stats: SweepStats,
 }
 
-/// A belt model built for the speed-loss procedure.
-pub enum SpeedLossModel {
-    /// The flowing-material belt (Ribaric (5.14)).
-    Flowing(Box<FlowingBelt>),
-    /// The rotating-mesh nodal belt (Ribaric (5.7)).
-    Nodal(Box<NodalBelt>),
-    /// The ANCF belt drive (Kerkkänen ch. 3) with its own generalized-α step \[s\]
-    /// ([`AncfConfig::step`], which replaces the procedure's).
-    Ancf {
-        /// The adapted drive.
-        drive: Box<AncfDrive>,
-        /// Generalized-α step \[s\].
-        step: f64,
-    },
+/// The procedure's settings for the model `kind`: the nodal model's window and tolerance, the
+/// ANCF belt's own step.
+pub fn procedure_for(
+    kind: ModelKind,
+    procedure: &SpeedLossConfig,
+    settings: &ModelSettings,
+) -> SpeedLossConfig {
+    let mut p = procedure.clone();
+    match kind {
+        ModelKind::Nodal => {
+            p.window = settings.nodal.window;
+            p.tolerance = settings.nodal.tolerance;
+        }
+        ModelKind::Ancf => p.step = settings.ancf.step,
+        ModelKind::Flowing => {}
+    }
+    p
 }
 
-impl SpeedLossModel {
-    /// Build `kind` for the drive `drive` (Table 6-1 fields); `ancf` is read by the ANCF model
-    /// only.
-    pub fn new(
-        kind: ModelKind,
-        drive: &BeltDriveConfig,
-        ancf: &AncfConfig,
-    ) -> Result<Self, DriveError> {
-        let (driver, load) = (Schedule::constant(0.0), Schedule::constant(0.0));
-        Ok(match kind {
-            ModelKind::Flowing => SpeedLossModel::Flowing(Box::new(FlowingBelt::new(
-                BeltFe::new(drive)?,
-                driver,
-                load,
-            )?)),
-            ModelKind::Nodal => {
-                SpeedLossModel::Nodal(Box::new(NodalBelt::new(BeltFe::new(drive)?, driver, load)?))
-            }
-            ModelKind::Ancf => SpeedLossModel::Ancf {
-                drive: Box::new(AncfDrive::new(drive, ancf)?),
-                step: ancf.step,
-            },
-        })
-    }
-
-    /// Number of coordinates: modal + belt + pulley (flowing), nodal + belt + pulley (nodal),
-    /// or the ANCF drive's coordinates.
-    pub fn coordinates(&self) -> usize {
-        match self {
-            SpeedLossModel::Flowing(b) => b.n_modes() + 2,
-            SpeedLossModel::Nodal(b) => b.n_nodal() + 2,
-            SpeedLossModel::Ancf { drive, .. } => drive.drive().n_q(),
-        }
-    }
-
-    /// Whether the first velocity is the belt speed \[m/s\] (flowing and nodal models).
-    pub fn has_belt_speed(&self) -> bool {
-        !matches!(self, SpeedLossModel::Ancf { .. })
-    }
-
-    /// The derived parameters of the Table 6-1 → ANCF mapping (ANCF model only).
-    pub fn ancf_mapping(&self) -> Option<&AncfMapping> {
-        match self {
-            SpeedLossModel::Ancf { drive, .. } => Some(drive.mapping()),
-            _ => None,
-        }
-    }
-
-    /// Run the procedure ([`speed_loss_sweep`]) with `settings` (the ANCF model's own step
-    /// replaces `settings.step`) and Bechtel's line for the drive `drive` at the same torques.
-    /// `observer` sees every step.
-    pub fn sweep(
-        &mut self,
-        drive: &BeltDriveConfig,
-        settings: &SpeedLossConfig,
-        observer: impl FnMut(&State, Sample),
-    ) -> Result<SpeedLossCase, SweepFailure> {
-        let (points, stats) = match self {
-            SpeedLossModel::Flowing(b) => speed_loss_sweep(b.as_mut(), settings, observer),
-            SpeedLossModel::Nodal(b) => speed_loss_sweep(b.as_mut(), settings, observer),
-            SpeedLossModel::Ancf { drive, step } => {
-                let settings = SpeedLossConfig {
-                    step: *step,
-                    ..settings.clone()
-                };
-                speed_loss_sweep(drive.as_mut(), &settings, observer)
-            }
-        }?;
-        Ok(SpeedLossCase {
-            omega_driver: settings.omega_driver,
-            capacity: euler_eytelwein_capacity(drive, settings.omega_driver),
-            friction_coefficient: drive.contact.friction_law().coefficient(),
-            analytical: points
-                .iter()
-                .map(|p| bechtel(drive, p.torque, settings.omega_driver))
-                .collect(),
-            points,
-            stats,
-        })
-    }
+/// Run the speed-loss procedure ([`speed_loss_sweep`]) on `model` with `settings` (already
+/// adapted to the model: [`procedure_for`]), with Bechtel's line and the capacity of its drive
+/// at the same torques. `observer` sees every step.
+pub fn speed_loss_case(
+    model: &mut AnyModel,
+    settings: &SpeedLossConfig,
+    observer: impl FnMut(&State, Sample),
+) -> Result<SpeedLossCase, SweepFailure> {
+    let (points, stats) = with_model!(model, |m| speed_loss_sweep(m.as_mut(), settings, observer))?;
+    let drive = with_model!(model, |m| m.drive().clone());
+    Ok(SpeedLossCase {
+        omega_driver: settings.omega_driver,
+        capacity: euler_eytelwein_capacity(&drive, settings.omega_driver),
+        friction_coefficient: drive.contact().friction.coefficient(),
+        analytical: points
+            .iter()
+            .map(|p| bechtel(&drive, p.torque, settings.omega_driver))
+            .collect(),
+        points,
+        stats,
+    })
 }
 
 #[cfg(test)]
@@ -241,21 +246,26 @@ mod tests {
         assert!("tire".parse::<ModelKind>().is_err());
     }
 
-    // the nodal case takes its mesh, window and tolerance from the nodal options; the others
-    // keep the drive and procedure as given (definition of the study)
+    // the nodal procedure takes its window and tolerance from the nodal options, the ANCF one
+    // its step; the flowing one keeps the procedure as given (definition of the study)
     #[test]
-    fn case_inputs_apply_the_nodal_options_to_the_nodal_model_only() {
-        let (d, p, n) = (
-            BeltDriveConfig::default(),
-            SpeedLossConfig::default(),
-            NodalConfig::default(),
+    fn each_model_gets_its_procedure_settings() {
+        let (p, s) = (SpeedLossConfig::default(), ModelSettings::default());
+        assert_eq!(procedure_for(ModelKind::Flowing, &p, &s), p);
+        let n = procedure_for(ModelKind::Nodal, &p, &s);
+        assert_eq!((n.window, n.tolerance), (s.nodal.window, s.nodal.tolerance));
+        assert_eq!(procedure_for(ModelKind::Ancf, &p, &s).step, s.ancf.step);
+    }
+
+    // the nodal default mesh is Table 6-1's former 80 per span and 28 per wrap
+    #[test]
+    fn nodal_default_mesh_counts() {
+        let d = crate::table_6_1::drive();
+        let counts = NodalConfig::default().mesh.counts(d.path());
+        assert_eq!(counts, vec![80, 28, 80, 28]);
+        assert_eq!(
+            FlowingSettings::default().mesh.counts(d.path()),
+            vec![10, 18, 10, 18]
         );
-        let (d1, s1) = case_inputs(ModelKind::Flowing, &d, &p, &n, 22.6);
-        assert_eq!(d1, d);
-        assert_eq!(s1.omega_driver, 22.6);
-        assert_eq!(s1.window, p.window);
-        let (d2, s2) = case_inputs(ModelKind::Nodal, &d, &p, &n, 22.6);
-        assert_eq!(d2.mesh, n.mesh);
-        assert_eq!((s2.window, s2.tolerance), (n.window, n.tolerance));
     }
 }

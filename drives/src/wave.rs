@@ -3,7 +3,7 @@
 //! of each run and the drift speed of its deflection centroid, compared with the axially moving
 //! string's frequency ratio `1 − v²/c²` (Ribaric §4.2).
 
-use flowing::belt::BeltDriveConfig;
+use belt::Drive;
 use flowing::belt::wave::{WaveConfig, WaveRun, dominant_frequency, wave_speed};
 use serde::Serialize;
 
@@ -32,8 +32,8 @@ pub struct WaveSummary {
     /// Moving-string prediction `1 − v²/c²`.
     pub frequency_ratio_string: f64,
     /// Time \[s\] until the faster wave front of the running belt, `v + c`, reaches the driven
-    /// pulley from the edge of the bump: `(1/2 − b) L_c / (v + c)` (`b` the bump's half-width
-    /// fraction, `L_c` the centre distance); the centroid is measured before it.
+    /// pulley from the edge of the bump: `(1/2 − b) L_s / (v + c)` (`b` the bump's half-width
+    /// fraction, `L_s` the length of span 0); the centroid is measured before it.
     pub free_time: f64,
 }
 
@@ -50,16 +50,16 @@ pub fn slope(t: &[f64], y: &[f64]) -> f64 {
 }
 
 /// Measure the runs `rest` and `running` of the drive `drive` with `settings`: the dominant
-/// mid-span frequency searched between 0.2 and 2 times the string's fundamental `c/(2 L_c)`,
+/// mid-span frequency searched between 0.2 and 2 times the string's fundamental `c/(2 L_s)` (`L_s` span 0's length),
 /// and the centroid's drift speed until [`WaveSummary::free_time`].
 pub fn summarize(
-    drive: &BeltDriveConfig,
+    drive: &Drive,
     settings: &WaveConfig,
     rest: &WaveRun,
     running: &WaveRun,
 ) -> WaveSummary {
     let cw = wave_speed(drive);
-    let span = drive.geometry.center_distance;
+    let span = drive.spans().first().map_or(f64::NAN, |s| s.length);
     let t_free = (0.5 - settings.half_width) * span / (settings.belt_speed + cw);
     let f_string = cw / (2.0 * span);
     let measure = |r: &WaveRun| {

@@ -1,104 +1,13 @@
 //! Any-layout belt drives (issue 17 items 4 and 6): the flowing-material model on N pulleys
 //! with a tensioner, against hand statics, the two-pulley model, and invariants.
 
-use drives::layout::{LayoutConfig, LayoutMesh, LayoutPulley, MotionSpec};
-use drives::model::flowing_layout_snapshot;
-use drives::report::PulleyRole;
-use fe_model::generate::belt_path::WrapSide;
-use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule, Signal};
+use belt::{BeltModel, Layout, Motion};
+use contact::friction::FrictionSpec;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
 use mbd_core::{SecondOrderSystem, Validate};
 
 mod common;
-use common::four_pulleys;
-
-// Two-pulley case unchanged: the Table 6-1 drive given as a layout builds the same model as
-// the two-pulley configuration (same path, mesh, tension; forces equal at a random state),
-// for the flowing and for the nodal model (whose two-pulley constructor is the layout one
-// with the Table 6-1 motions).
-#[test]
-fn two_pulley_layout_is_the_table_6_1_model() {
-    let base = BeltDriveConfig::default();
-    let cfg = LayoutConfig {
-        pulleys: vec![
-            LayoutPulley::new(
-                "driver",
-                [0.0, 0.0],
-                0.05,
-                WrapSide::Inside,
-                MotionSpec::Speed {
-                    speed: Signal::constant(62.8),
-                },
-            ),
-            LayoutPulley::new(
-                "driven",
-                [0.45, 0.0],
-                0.05,
-                WrapSide::Inside,
-                MotionSpec::Load {
-                    inertia: base.driven_inertia,
-                    torque: Signal::constant(5.0),
-                },
-            ),
-        ],
-        tensioner: None,
-        belt: base.belt,
-        belt_length: None,
-        mesh: LayoutMesh {
-            span_element: 0.045 * (1.0 + 1e-9),
-            arc_element: std::f64::consts::PI * 0.05 / 18.0 * (1.0 + 1e-9),
-            contact_margin_nodes: 1,
-        },
-        contact: base.contact,
-        damping: base.damping,
-        reduction: base.reduction,
-    };
-    cfg.validate().unwrap();
-    let (layout, res) = cfg.flowing_model().unwrap();
-    assert_eq!(res.tension, 310.0);
-    let two = FlowingBelt::new(
-        BeltFe::new(&base).unwrap(),
-        Schedule::constant(62.8),
-        Schedule::constant(5.0),
-    )
-    .unwrap();
-    assert_same_forces(&layout, &two);
-    // the nodal model (Ribaric (5.7)) of the same layout and of the two-pulley constructor
-    let (layout, _) = cfg.nodal_model().unwrap();
-    let two = flowing::belt::nodal::NodalBelt::new(
-        BeltFe::new(&base).unwrap(),
-        Schedule::constant(62.8),
-        Schedule::constant(5.0),
-    )
-    .unwrap();
-    assert_same_forces(&layout, &two);
-}
-
-/// Same number of coordinates and the same forces (to 1e-9 of the largest) at a random moving
-/// state.
-fn assert_same_forces<S: SecondOrderSystem>(layout: &S, two: &S) {
-    assert_eq!(layout.n_q(), two.n_q());
-    let n = two.n_q();
-    let q: Vec<f64> = (0..n).map(|i| 1e-5 * (0.37 * i as f64).sin()).collect();
-    let mut v: Vec<f64> = (0..n).map(|i| 1e-3 * (0.91 * i as f64).cos()).collect();
-    v[0] = 3.1;
-    v[n - 1] = 61.0;
-    let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
-    layout
-        .forces(0.3, &q, &v, &mut fa, &mut mbd_core::Workspace::new())
-        .unwrap();
-    two.forces(0.3, &q, &v, &mut fb, &mut mbd_core::Workspace::new())
-        .unwrap();
-    let scale = fb.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    for i in 0..n {
-        assert!(
-            (fa[i] - fb[i]).abs() <= 1e-9 * scale,
-            "force {i}: {} vs {}",
-            fa[i],
-            fb[i]
-        );
-    }
-}
+use common::{flowing, four_pulleys, four_pulleys_settings, nodal};
 
 // Static tension equal in all spans at zero load on frictionless idlers (issue 17 item 6):
 // the belt at rest, friction off (μ = 0); every span carries the same tension, within 0.2 %.
@@ -109,25 +18,32 @@ fn assert_same_forces<S: SecondOrderSystem>(layout: &S, two: &S) {
 #[test]
 fn static_span_tensions_are_equal_on_frictionless_pulleys() {
     let mut cfg = four_pulleys(0.0);
-    cfg.contact.mu = 0.0;
+    cfg.contact.friction = FrictionSpec::Tanh {
+        mu: 0.0,
+        kappa: 40.0,
+    };
     cfg.validate().unwrap();
-    let (belt, res) = cfg.flowing_model().unwrap();
+    let (belt, res) = flowing(&cfg, &four_pulleys_settings());
     eprintln!(
         "T0 {} N, arm {:?}, wraps {:?} deg, belt {} m",
-        res.tension,
-        res.arm,
-        res.wraps.iter().map(|w| w.to_degrees()).collect::<Vec<_>>(),
-        res.belt_length
+        res.tension(),
+        res.arm(),
+        res.wraps()
+            .iter()
+            .map(|w| w.to_degrees())
+            .collect::<Vec<_>>(),
+        res.belt_length()
     );
     let q = belt.static_state().unwrap();
     let k = belt.arm_dof().unwrap();
     let v = vec![0.0; q.len()];
-    let snap = flowing_layout_snapshot(&belt, &cfg.roles(), 0.0, &q, &v);
+    let snap = belt.snapshot(0.0, &q, &v).unwrap();
     assert_eq!(snap.spans.len(), 4);
     let tensions: Vec<f64> = snap.spans.iter().map(|s| s.tension).collect();
     eprintln!(
         "span tensions {tensions:?} N (T0 {} N), arm {} rad",
-        res.tension, q[k]
+        res.tension(),
+        q[k]
     );
     let mean = tensions.iter().sum::<f64>() / 4.0;
     for s in &snap.spans {
@@ -140,9 +56,9 @@ fn static_span_tensions_are_equal_on_frictionless_pulleys() {
         );
     }
     assert!(
-        (mean / res.tension - 1.0).abs() < 0.05,
+        (mean / res.tension() - 1.0).abs() < 0.05,
         "mean {mean} vs T0 {}",
-        res.tension
+        res.tension()
     );
     assert!(
         q[k].abs() < 1e-3,
@@ -163,9 +79,9 @@ fn static_span_tensions_are_equal_on_frictionless_pulleys() {
 #[test]
 fn tensioner_static_angle_matches_hand_statics() {
     let cfg = four_pulleys(0.0);
-    let (mut belt, res) = cfg.flowing_model().unwrap();
+    let (mut belt, res) = flowing(&cfg, &four_pulleys_settings());
     let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
-    belt.tensioner.as_mut().unwrap().spec.preload -= 6.0;
+    belt.tensioner.as_mut().unwrap().tensioner.preload -= 6.0;
     let theta_m = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
     check_arm_change(&cfg, &res, theta_m0, theta_m, "flowing");
 }
@@ -176,41 +92,27 @@ fn tensioner_static_angle_matches_hand_statics() {
 #[test]
 fn nodal_tensioner_static_angle_matches_hand_statics() {
     let cfg = four_pulleys(0.0);
-    let (mut belt, res) = cfg.nodal_model().unwrap();
+    let (mut belt, res) = nodal(&cfg, &four_pulleys_settings());
     let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
-    belt.tensioner.as_mut().unwrap().spec.preload -= 6.0;
+    belt.tensioner.as_mut().unwrap().tensioner.preload -= 6.0;
     let theta_m = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
     check_arm_change(&cfg, &res, theta_m0, theta_m, "nodal");
 }
 
 /// The hand statics of the test above for the preload 6 N m stronger, against a model's arm
 /// angles `theta_m0 → theta_m` before and after.
-fn check_arm_change(
-    cfg: &LayoutConfig,
-    res: &drives::layout::ResolvedLayout,
-    theta_m0: f64,
-    theta_m: f64,
-    model: &str,
-) {
-    use drives::layout::arm_lever;
-    use fe_model::generate::belt_path::{BeltPath, PathPulley};
-    let theta_a = res.arm.unwrap().1;
+fn check_arm_change(cfg: &Layout, res: &belt::Drive, theta_m0: f64, theta_m: f64, model: &str) {
+    use belt::BeltPath;
+    use belt::layout::arm_lever;
+    let theta_a = res.arm().unwrap().angle;
     let mut spec = cfg.tensioner.unwrap();
     spec.preload -= 6.0;
     let (k2, k1) = (cfg.contact.penalty_quadratic, cfg.contact.penalty_linear);
     let pen = |t: f64, r: f64| (-k1 + (k1 * k1 + 4.0 * k2 * t.max(0.0) / r).sqrt()) / (2.0 * k2);
-    let (t0, ea, lb) = (res.tension, cfg.belt.ea, res.belt_length);
+    let (t0, ea, lb) = (res.tension(), cfg.belt.ea, res.belt_length());
     let (len, _) = spec.arm(cfg.pulleys[2].center);
     let tension_at = |theta: f64| -> (f64, f64) {
-        let mut pp: Vec<PathPulley> = cfg
-            .pulleys
-            .iter()
-            .map(|p| PathPulley {
-                center: p.center,
-                radius: p.radius,
-                side: p.side,
-            })
-            .collect();
+        let mut pp = cfg.pulleys.clone();
         pp[2].center = spec.center(len, theta).0;
         let path = BeltPath::new(&pp).unwrap();
         let mut t = t0;
@@ -251,7 +153,7 @@ fn check_arm_change(
 /// loads' power \[W\].
 fn steady_power(load: f64) -> (Vec<f64>, f64, f64) {
     let cfg = four_pulleys(load);
-    let (belt, _) = cfg.flowing_model().unwrap();
+    let (belt, _) = flowing(&cfg, &four_pulleys_settings());
     let q = belt.static_state().unwrap();
     let n = q.len();
     let alpha = GeneralizedAlpha::new(AlphaConfig {
@@ -332,7 +234,7 @@ fn steady_torques_balance_the_loads_at_high_load() {
 // Bad input of issue 17: each rejected with the pulley or field named.
 #[test]
 fn bad_layouts_name_the_field() {
-    let field = |c: &LayoutConfig| c.validate().unwrap_err().field;
+    let field = |c: &Layout| c.validate().unwrap_err().field;
     let mut c = four_pulleys(0.0);
     c.pulleys[3].center = [0.12, 0.25];
     assert_eq!(field(&c), "pulleys[3]");
@@ -349,18 +251,9 @@ fn bad_layouts_name_the_field() {
     // ≈ 2 (2 mm / 170 mm) rad ≈ 1.3°, below 10°
     let mut c = four_pulleys(0.0);
     c.tensioner = None;
-    c.pulleys[2].motion = MotionSpec::Idler { inertia: 1e-4 };
-    let three: Vec<_> = [0, 1, 3]
-        .iter()
-        .map(|&k| fe_model::generate::belt_path::PathPulley {
-            center: c.pulleys[k].center,
-            radius: c.pulleys[k].radius,
-            side: c.pulleys[k].side,
-        })
-        .collect();
-    let span = fe_model::generate::belt_path::BeltPath::new(&three)
-        .unwrap()
-        .spans()[1];
+    c.pulleys[2].motion = Motion::idler(1e-4);
+    let three: Vec<_> = [0, 1, 3].iter().map(|&k| c.pulleys[k].clone()).collect();
+    let span = belt::BeltPath::new(&three).unwrap().spans()[1];
     let r = c.pulleys[2].radius;
     // the loop runs clockwise: outside is to the left of the travel direction
     let out = [-span.direction[1], span.direction[0]];
@@ -407,13 +300,14 @@ fn fead_default_sweep_runs() {
                 .iter()
                 .map(|x| (x.tension.min.round(), x.tension.max.round()))
                 .collect::<Vec<_>>(),
-            p.pulleys
+            p.speed_loss_percent
                 .iter()
-                .map(|x| (x.slip_percent * 100.0).round() / 100.0)
+                .map(|x| (x * 100.0).round() / 100.0)
                 .collect::<Vec<_>>(),
-            p.pulleys
+            p.report
+                .pulleys
                 .iter()
-                .map(|x| (x.torque_mean * 100.0).round() / 100.0)
+                .map(|x| (x.torque_n_m * 100.0).round() / 100.0)
                 .collect::<Vec<_>>(),
             p.spans
                 .iter()
@@ -443,14 +337,15 @@ fn fead_default_sweep_runs() {
             (4, 1.5, 8e-4),
             (5, 5.0, 2e-3),
         ] {
-            let pl = &p.pulleys[k];
-            let bound = j * (pl.omega.max - pl.omega.min) / cfg.run.window + 0.02 * load;
+            let pl = &p.report.pulleys[k];
+            let w = &p.pulley_speed[k];
+            let bound = j * (w.max - w.min) / cfg.run.window + 0.02 * load;
             assert!(
-                (pl.torque_mean - load).abs() < bound,
+                (pl.torque_n_m - load).abs() < bound,
                 "{} rpm, {}: {} vs {load} ± {bound}",
                 p.engine_rpm,
                 pl.name,
-                pl.torque_mean
+                pl.torque_n_m
             );
         }
     }
@@ -460,13 +355,7 @@ fn fead_default_sweep_runs() {
 /// state `(q, v)`, and the computed tension of that span \[N\]: the damped frequencies of the
 /// model's tangent (`M`, `C_t`, `K_t`), each mode's share of transverse deflection on the
 /// span's interior nodes (the lowest mode with more than half its transverse motion there).
-fn span_mode(
-    belt: &FlowingBelt,
-    roles: &[(String, PulleyRole)],
-    k: usize,
-    q: &[f64],
-    v: &[f64],
-) -> (f64, f64) {
+fn span_mode(belt: &flowing::belt::FlowingBelt, k: usize, q: &[f64], v: &[f64]) -> (f64, f64) {
     use mbd_core::{SysMatrix, Workspace};
     let t = 1.0;
     let dense = |m: SysMatrix| match m {
@@ -484,15 +373,15 @@ fn span_mode(
     let eig = sys.state_eigen().unwrap();
     let n = sys.dim();
     let m = belt.n_modes();
-    let span = belt.fe.path.spans()[k];
+    let span = belt.fe.path().spans()[k];
     let normal = [-span.direction[1], span.direction[0]];
     // interior nodes of the span (not its end points on the pulleys)
     let piece = belt
         .fe
-        .path
+        .path()
         .pieces()
         .iter()
-        .find(|p| matches!(p.segment, fe_model::generate::belt_path::Segment::Span { from, .. } if from == k))
+        .find(|p| matches!(p.segment, belt::Segment::Span { from, .. } if from == k))
         .copied()
         .unwrap();
     let on_span: Vec<usize> = (0..belt.fe.n_nodes())
@@ -554,7 +443,7 @@ fn span_mode(
             best = Some(f);
         }
     }
-    let snap = flowing_layout_snapshot(belt, roles, t, q, v);
+    let snap = belt.snapshot(t, q, v).unwrap();
     let tension = snap.spans.iter().find(|s| s.from == k).unwrap().tension;
     (best.expect("no transverse mode of the span"), tension)
 }
@@ -581,22 +470,21 @@ fn span_transverse_frequency_is_the_travelling_string_one() {
         let mut cfg = four_pulleys(0.0);
         cfg.tensioner = None;
         cfg.belt.ei *= ei_scale;
-        let roles = cfg.roles();
-        let (belt, _) = cfg.flowing_model().unwrap();
-        (cfg, roles, belt)
+        let (belt, drive) = flowing(&cfg, &four_pulleys_settings());
+        (cfg, drive, belt)
     };
     let k = 0;
     // 1. the string limit
-    let (cfg, roles, belt) = build(0.01);
+    let (cfg, drive, belt) = build(0.01);
     let mass = cfg.belt.mass_per_length;
-    let l = belt.fe.path.spans()[k].length;
+    let l = belt.fe.path().spans()[k].length;
     let string = |t: f64, v: f64| {
         let c = (t / mass).sqrt();
         (1.0 - v * v / (c * c)) * c / (2.0 * l)
     };
     let q0 = belt.static_state().unwrap();
     let n = q0.len();
-    let (f_rest, t_rest) = span_mode(&belt, &roles, k, &q0, &vec![0.0; n]);
+    let (f_rest, t_rest) = span_mode(&belt, k, &q0, &vec![0.0; n]);
     eprintln!(
         "string limit at rest: l = {l:.4} m, T = {t_rest:.2} N, model {f_rest:.3} Hz, formula {:.3} Hz",
         string(t_rest, 0.0)
@@ -619,8 +507,8 @@ fn span_transverse_frequency_is_the_travelling_string_one() {
         .unwrap();
     let s = last.unwrap();
     let speed = s.v[0];
-    let (f_run, t_run) = span_mode(&belt, &roles, k, &s.q, &s.v);
-    let t0 = cfg.belt.tension;
+    let (f_run, t_run) = span_mode(&belt, k, &s.q, &s.v);
+    let t0 = drive.tension();
     let ratio_model = f_run / f_rest;
     let ratio_t0 = string(t0, speed) / string(t0, 0.0);
     eprintln!(
@@ -634,9 +522,9 @@ fn span_transverse_frequency_is_the_travelling_string_one() {
         "f(v)/f(0): model {ratio_model} vs travelling string at T0 {ratio_t0}"
     );
     // 2. the belt's own bending stiffness
-    let (cfg, roles, belt) = build(1.0);
+    let (cfg, _, belt) = build(1.0);
     let q0 = belt.static_state().unwrap();
-    let (f_beam, t) = span_mode(&belt, &roles, k, &q0, &vec![0.0; n]);
+    let (f_beam, t) = span_mode(&belt, k, &q0, &vec![0.0; n]);
     let eps = (cfg.belt.ei / (t * l * l)).sqrt();
     let pi2 = std::f64::consts::PI.powi(2);
     let pinned = string(t, 0.0) * (1.0 + pi2 * eps * eps).sqrt();

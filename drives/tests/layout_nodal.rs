@@ -1,22 +1,19 @@
 //! The rotating-mesh nodal belt (Ribaric (5.1)–(5.8)) on any layout (issue 17 items 4 and 6):
-//! the same TOML layout built into both models ([`LayoutConfig::flowing_model`],
-//! [`LayoutConfig::nodal_model`]) on a three-pulley drive — driver, driven with a load, one
+//! the same layout built into both models ([`flowing::belt::FlowingBelt::new`],
+//! [`flowing::belt::NodalBelt::new`]) on a three-pulley drive — driver, driven with a load, one
 //! idler — with the Table 6-1 belt, against each other (second formulation), Euler–Eytelwein,
 //! equal static span tensions and the power balance.
 
-use contact::friction::FrictionLaw;
-
-use drives::model::{flowing_layout_snapshot, nodal_layout_snapshot};
-use drives::report::{DriveReport, PulleyRole};
+use belt::{BeltModel, Report, Role, Signal};
+use contact::friction::{FrictionLaw, FrictionSpec};
 use drives::speed_loss::{MAX_HALVINGS, robust_step};
-use drives::{DriveModel, SpeedLossConfig, speed_loss_sweep};
-use flowing::belt::nodal::NodalBelt;
-use flowing::belt::{FlowingBelt, Schedule};
+use drives::{SpeedLossConfig, speed_loss_sweep};
+use flowing::belt::NodalBelt;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 use mbd_core::{SecondOrderSystem, Validate, Workspace};
 
 mod common;
-use common::{fead_triangle, triangle};
+use common::{fead_triangle, flowing, nodal, triangle, uniform};
 
 // Static tension equal in all spans at zero load on frictionless pulleys (issue 17 item 6) for
 // the nodal model: the mounted belt at rest with μ = 0 carries the same tension in every span,
@@ -25,14 +22,20 @@ use common::{fead_triangle, triangle};
 // line sink by a few µm).
 #[test]
 fn nodal_static_span_tensions_are_equal_on_frictionless_pulleys() {
-    let mut cfg = triangle(0.01);
-    cfg.contact.mu = 0.0;
+    let mut cfg = triangle();
+    cfg.contact.friction = FrictionSpec::Tanh {
+        mu: 0.0,
+        kappa: 40.0,
+    };
     cfg.validate().unwrap();
-    let (belt, res) = cfg.nodal_model().unwrap();
+    let (belt, res) = nodal(&cfg, &uniform(0.01));
     let s0 = belt.initial_state().unwrap();
-    let snap = nodal_layout_snapshot(&belt, &cfg.roles(), 0.0, &s0.q, &s0.v).unwrap();
+    let snap = belt.snapshot(0.0, &s0.q, &s0.v).unwrap();
     let tensions: Vec<f64> = snap.spans.iter().map(|s| s.tension).collect();
-    eprintln!("nodal span tensions {tensions:?} N (T0 {} N)", res.tension);
+    eprintln!(
+        "nodal span tensions {tensions:?} N (T0 {} N)",
+        res.tension()
+    );
     assert_eq!(tensions.len(), 3);
     let mean = tensions.iter().sum::<f64>() / 3.0;
     for s in &snap.spans {
@@ -44,13 +47,13 @@ fn nodal_static_span_tensions_are_equal_on_frictionless_pulleys() {
             s.tension
         );
     }
-    assert!((mean / res.tension - 1.0).abs() < 0.05, "mean {mean} N");
+    assert!((mean / res.tension() - 1.0).abs() < 0.05, "mean {mean} N");
 }
 
 /// Window means of one steady run: the report (mean of snapshots) and the power terms.
 #[derive(Debug)]
 struct Steady {
-    report: DriveReport,
+    report: Report,
     /// Driver minus driven speed \[rad/s\] (equal radii).
     delta_omega: f64,
     /// Σ τ_k ω_k over the pulleys \[W\] (the belt's power on them).
@@ -64,21 +67,23 @@ struct Steady {
 /// Spin the driver up to 62.8 rad/s over 0.3 s, ramp the driven load to `load` \[N m\] over
 /// 0.3–0.4 s, run to `t_end` and average over its last `window` \[s\] (snapshots every 4
 /// steps). `extra` gives the damping power at a state (the nodal model's).
-fn steady_run<M: DriveModel>(
+fn steady_run<M: BeltModel>(
     model: &mut M,
     load: f64,
     t_end: f64,
     window: f64,
-    snapshot: impl Fn(&M, f64, &[f64], &[f64]) -> drives::report::DriveSnapshot,
     damping_power: impl Fn(&M, f64, &[f64], &[f64]) -> f64,
     mu: f64,
 ) -> Steady {
-    model.set_driver_speed(Schedule {
-        knots: vec![(0.0, 0.0), (0.3, 62.8)],
-    });
-    *model.load_mut() = Schedule {
-        knots: vec![(0.0, 0.0), (0.3, 0.0), (0.4, load)],
-    };
+    model
+        .set_signal(0, Signal::schedule(vec![(0.0, 0.0), (0.3, 62.8)]))
+        .unwrap();
+    model
+        .set_signal(
+            1,
+            Signal::schedule(vec![(0.0, 0.0), (0.3, 0.0), (0.4, load)]),
+        )
+        .unwrap();
     let s0 = model.initial_state().unwrap();
     let h = 2.5e-4;
     let alpha = GeneralizedAlpha::new(AlphaConfig {
@@ -94,15 +99,15 @@ fn steady_run<M: DriveModel>(
         step += 1;
         let s = st.state();
         if s.t >= t_end - window - 0.5 * h && step % 4 == 0 {
-            let snap = snapshot(model, s.t, &s.q, &s.v);
-            reports.push(DriveReport::new(&snap, mu));
-            dw += model.driver_speed(s.t) - model.driven_speed(&s.v);
+            let snap = model.snapshot(s.t, &s.q, &s.v).unwrap();
+            reports.push(Report::new(model.drive(), &snap, mu));
+            dw += model.pulley_speed(0, s.t, &s.v) - model.pulley_speed(1, s.t, &s.v);
             pd += damping_power(model, s.t, &s.q, &s.v);
             count += 1;
         }
     }
-    let report = DriveReport::mean(&reports).unwrap();
-    let pulley_power = report.pulleys.iter().map(|p| p.torque * p.omega).sum();
+    let report = Report::mean(&reports).unwrap();
+    let pulley_power = report.pulleys.iter().map(|p| p.torque_n_m * p.omega).sum();
     let sliding_power = report.pulleys.iter().map(|p| p.sliding_power_w).sum();
     Steady {
         report,
@@ -117,9 +122,11 @@ fn steady_run<M: DriveModel>(
 /// forces `g_d` (the nodal forces with minus without α, β) against the material velocity of
 /// the nodes `ḋ = v e_t + δ̇` (Ribaric (5.3)): `P = −g_dᵀ ḋ`.
 fn nodal_damping_power(belt: &NodalBelt, t: f64, q: &[f64], v: &[f64]) -> f64 {
-    let mut still = belt.clone();
-    still.fe.config.damping.alpha = 0.0;
-    still.fe.config.damping.beta = 0.0;
+    let mut layout = belt.fe.drive.layout().clone();
+    layout.damping.alpha = 0.0;
+    layout.damping.beta = 0.0;
+    let mut still = NodalBelt::new(&layout.resolve().unwrap(), &belt.fe.mesh).unwrap();
+    still.motions = belt.motions.clone();
     let n = belt.n_q();
     let (mut f, mut f0) = (vec![0.0; n], vec![0.0; n]);
     belt.forces(t, q, v, &mut f, &mut Workspace::new()).unwrap();
@@ -128,7 +135,7 @@ fn nodal_damping_power(belt: &NodalBelt, t: f64, q: &[f64], v: &[f64]) -> f64 {
         .unwrap();
     let mut p = 0.0;
     for i in 0..belt.fe.n_nodes() {
-        let et = belt.fe.path.point(belt.fe.s[i] + q[0]).tangent;
+        let et = belt.fe.path().point(belt.fe.s[i] + q[0]).tangent;
         // (x, y, θ): the rotational DOF has no travel part (note U6)
         for (c, e) in [et[0], et[1], 0.0].into_iter().enumerate() {
             let r = 1 + 3 * i + c;
@@ -140,47 +147,37 @@ fn nodal_damping_power(belt: &NodalBelt, t: f64, q: &[f64], v: &[f64]) -> f64 {
 
 /// Both models of the triangle at `load` \[N m\] on elements of `h` \[m\].
 fn both_models(h: f64, load: f64, t_end: f64) -> (Steady, Steady, f64) {
-    let cfg = triangle(h);
-    let mu = cfg.friction_law().coefficient();
-    let rl = cfg.roles();
-    let (mut nodal, res) = cfg.nodal_model().unwrap();
+    let cfg = triangle();
+    let mu = cfg.contact.friction.coefficient();
+    let (mut nodal_belt, res) = nodal(&cfg, &uniform(h));
     eprintln!(
         "triangle: {} elements, T0 {} N, wraps {:?} deg",
-        nodal.fe.n_nodes(),
-        res.tension,
-        res.wraps.iter().map(|w| w.to_degrees()).collect::<Vec<_>>()
+        nodal_belt.fe.n_nodes(),
+        res.tension(),
+        res.wraps()
+            .iter()
+            .map(|w| w.to_degrees())
+            .collect::<Vec<_>>()
     );
     let t = std::time::Instant::now();
-    let sn = steady_run(
-        &mut nodal,
-        load,
-        t_end,
-        0.2,
-        |b, t, q, v| nodal_layout_snapshot(b, &rl, t, q, v).unwrap(),
-        nodal_damping_power,
-        mu,
-    );
+    let sn = steady_run(&mut nodal_belt, load, t_end, 0.2, nodal_damping_power, mu);
     eprintln!("nodal run {:.1} s", t.elapsed().as_secs_f64());
-    let (mut flow, _) = cfg.flowing_model().unwrap();
-    let sf = steady_run(
-        &mut flow,
-        load,
-        t_end,
-        0.2,
-        |b: &FlowingBelt, t, q, v| flowing_layout_snapshot(b, &rl, t, q, v),
-        |_, _, _, _| f64::NAN,
-        mu,
-    );
+    let (mut flow, _) = flowing(&cfg, &uniform(h));
+    let sf = steady_run(&mut flow, load, t_end, 0.2, |_, _, _, _| f64::NAN, mu);
     for (name, s) in [("nodal", &sn), ("flowing", &sf)] {
         eprintln!(
             "{name}: Δω {:.5} rad/s; spans {:?} N; torques {:?} N m; slip arcs {:?} rad; \
              Σ τω {:.3} W, sliding {:.3} W, damping {:.3} W",
             s.delta_omega,
-            s.report.spans.iter().map(|x| x.tension).collect::<Vec<_>>(),
+            s.report
+                .spans
+                .iter()
+                .map(|x| x.tension_n)
+                .collect::<Vec<_>>(),
             s.report
                 .pulleys
                 .iter()
-                .map(|p| p.torque)
+                .map(|p| p.torque_n_m)
                 .collect::<Vec<_>>(),
             s.report
                 .pulleys
@@ -227,18 +224,18 @@ fn nodal_and_flowing_agree_on_a_three_pulley_drive() {
     );
     for (a, b) in sn.report.spans.iter().zip(&sf.report.spans) {
         assert!(
-            (a.tension / b.tension - 1.0).abs() < 0.02,
+            (a.tension_n / b.tension_n - 1.0).abs() < 0.02,
             "span {}→{}: nodal {} vs flowing {} N",
             a.from,
             a.to,
-            a.tension,
-            b.tension
+            a.tension_n,
+            b.tension_n
         );
     }
     // (b)
     for k in [0, 1] {
         let p = &sn.report.pulleys[k];
-        let ln = (p.tension_in / p.tension_out).ln().abs();
+        let ln = (p.tension_in_n / p.tension_out_n).ln().abs();
         let capstan = mu * p.slip_arc_rad;
         eprintln!("(b) {}: ln ratio {ln:.4}, μ φ_slip {capstan:.4}", p.name);
         assert!(
@@ -248,7 +245,7 @@ fn nodal_and_flowing_agree_on_a_three_pulley_drive() {
         );
     }
     // (d)
-    let p_in = -sn.report.pulleys[0].torque * sn.report.pulleys[0].omega;
+    let p_in = -sn.report.pulleys[0].torque_n_m * sn.report.pulleys[0].omega;
     let residual = sn.pulley_power + sn.sliding_power + sn.damping_power;
     eprintln!(
         "(d) nodal: P_in {p_in:.2} W, Σ τω + P_slide + P_damp = {residual:.4} W ({:.3} %); \
@@ -256,20 +253,20 @@ fn nodal_and_flowing_agree_on_a_three_pulley_drive() {
         100.0 * residual / p_in,
         sf.pulley_power + sf.sliding_power,
         100.0 * (sf.pulley_power + sf.sliding_power)
-            / (-sf.report.pulleys[0].torque * sf.report.pulleys[0].omega)
+            / (-sf.report.pulleys[0].torque_n_m * sf.report.pulleys[0].omega)
     );
     assert!(residual.abs() < 0.005 * p_in, "power residual {residual} W");
-    assert!((sn.report.pulleys[1].torque - load).abs() < 0.02 * load);
-    assert!(sn.report.pulleys[2].torque.abs() < 0.02 * load);
+    assert!((sn.report.pulleys[1].torque_n_m - load).abs() < 0.02 * load);
+    assert!(sn.report.pulleys[2].torque_n_m.abs() < 0.02 * load);
 }
 
-// The speed-loss procedure runs the nodal layout model through `DriveModel` (driven pulley,
+// The speed-loss procedure runs the nodal layout model through `BeltModel` (driven pulley,
 // load, snapshot of three pulleys): the unloaded speed loss vanishes (the idler carries no
 // torque, the belt no creep), within 1e-4 relative.
 #[test]
 fn speed_loss_procedure_runs_the_nodal_layout() {
-    let cfg = triangle(0.012);
-    let (mut nodal, _) = cfg.nodal_model().unwrap();
+    let cfg = triangle();
+    let (mut nodal, _) = nodal(&cfg, &uniform(0.012));
     let settings = SpeedLossConfig {
         torques: vec![0.0],
         window: 0.1,
@@ -281,7 +278,7 @@ fn speed_loss_procedure_runs_the_nodal_layout() {
         .unwrap_or_else(|f| panic!("sweep failed: {}", f.error));
     let p = &points[0];
     assert_eq!(p.report.pulleys.len(), 3);
-    assert_eq!(p.report.pulleys[2].role, PulleyRole::Idler);
+    assert_eq!(p.report.pulleys[2].role, Role::Idler);
     assert!(p.delta_omega.abs() / 62.8 < 1e-4, "{}", p.delta_omega);
 }
 
@@ -310,8 +307,8 @@ fn fead_runs_the_nodal_model_and_agrees_with_the_flowing_one() {
         b.arm_angle.mean,
         a.spans.iter().map(|s| s.tension.mean).collect::<Vec<_>>(),
         b.spans.iter().map(|s| s.tension.mean).collect::<Vec<_>>(),
-        a.pulleys[1].slip_percent,
-        b.pulleys[1].slip_percent
+        a.speed_loss_percent[1],
+        b.speed_loss_percent[1]
     );
     assert_eq!(nodal.dofs, 3 * nodal_nodes(&cfg) + 4);
     for (x, y) in a.spans.iter().zip(&b.spans) {
@@ -325,10 +322,14 @@ fn fead_runs_the_nodal_model_and_agrees_with_the_flowing_one() {
         );
     }
     assert!((a.arm_angle.mean - b.arm_angle.mean).abs() < 1e-3);
-    assert!((a.pulleys[1].slip_percent - b.pulleys[1].slip_percent).abs() < 0.05);
+    assert!((a.speed_loss_percent[1] - b.speed_loss_percent[1]).abs() < 0.05);
 }
 
 /// Node count of the nodal model of `cfg.drive`.
 fn nodal_nodes(cfg: &drives::fead::FeadConfig) -> usize {
-    cfg.drive.nodal_model().unwrap().0.fe.n_nodes()
+    let drive = cfg.drive.resolve().unwrap();
+    NodalBelt::new(&drive, &cfg.models.nodal.mesh)
+        .unwrap()
+        .fe
+        .n_nodes()
 }

@@ -7,7 +7,7 @@
 use drives::ancf_study::AncfStudyConfig;
 use drives::speed_loss_study::SpeedLossStudyConfig;
 use fe_model::generate::TireConfig;
-use flowing::belt::BeltDriveConfig;
+use drives::fead::FeadConfig;
 use flowing::string_study::ModesConfig;
 use flowing::tire::RigConfig;
 use flowmbd_cli::Validate;
@@ -27,7 +27,7 @@ fn check<C: serde::de::DeserializeOwned + Validate>(text: &str) {
 fuzz_target!(|data: &[u8]| {
     if let Ok(text) = std::str::from_utf8(data) {
         check::<RigConfig>(text);
-        check::<BeltDriveConfig>(text);
+        check::<FeadConfig>(text);
         check::<TireConfig>(text);
         check::<AncfStudyConfig>(text);
         check::<SpeedLossStudyConfig>(text);

@@ -25,8 +25,6 @@
 //!   reactions, projections;
 //! * [`newton`]: the one Newton–Raphson solver (line search, load stepping, active-set passes,
 //!   report) behind every static solve of the workspace, extension point [`newton::NewtonProblem`];
-//! * [`tensioner`]: the pivoted-arm belt tensioner (spring with preload, damper, dry
-//!   friction) shared by the belt models;
 //! * [`workspace`]: [`Workspace`], the caller-owned scratch of a model's hot methods;
 //! * [`parallel`]: matrix–vector products split between two threads ([`parallel::SplitProduct`]);
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
@@ -92,7 +90,6 @@ pub mod multibody;
 pub mod newton;
 pub mod parallel;
 pub mod statics;
-pub mod tensioner;
 
 pub use body::{BodyState, RigidBody};
 pub use composite::{CompositeSystem, Coupling, CouplingEval};

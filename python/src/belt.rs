@@ -1,5 +1,5 @@
 //! `flowmbd.belt`: the speed-loss study of Ribaric §6.4–6.5 (Figs. 6-6, 6-7) through
-//! [`drives::SpeedLossModel`], with the configuration and summary of
+//! [`drives::speed_loss_study::run_case`], with the configuration and summary of
 //! [`drives::speed_loss_study`] (the same as `flowmbd-belt speed-loss`), and the ANCF drive of
 //! Kerkkänen ch. 3 through [`drives::ancf_study`] (the same as `flowmbd-belt ancf`), and the
 //! plate-belt drive of Kerkkänen ch. 4 through [`drives::plate_study`] (the same as
@@ -9,9 +9,8 @@ use crate::{input_error, numerical_error, read_config, to_json};
 use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, run_fead};
 use drives::plate_study::{PlateStudyConfig, plate_run, plate_setup};
-use drives::speed_loss_study::{SummaryCase, SummaryPoint, drive_input_error};
-use drives::study::case_inputs;
-use drives::{ModelKind, SpeedLossModel, SpeedLossStudyConfig, SpeedLossSummary};
+use drives::speed_loss_study::{CaseFailure, SummaryCase, SummaryPoint, run_case};
+use drives::{ModelKind, SpeedLossStudyConfig, SpeedLossSummary};
 use mbd_core::{InvalidField, Validate};
 use pyo3::prelude::*;
 use std::time::Instant;
@@ -29,23 +28,18 @@ fn run(c: &SpeedLossStudyConfig) -> Result<SpeedLossSummary, Failure> {
     let mut coordinates = 0;
     for &omega in &c.omegas {
         let t0 = Instant::now();
-        let (drive, settings) = case_inputs(c.model, &c.drive, &c.procedure, &c.nodal, omega);
-        let mut model = SpeedLossModel::new(c.model, &drive, &c.ancf).map_err(|e| {
-            match drive_input_error(&e) {
-                Some(field) => Failure::Input(field),
-                None => Failure::Numerical(e.to_string(), None),
-            }
-        })?;
-        let case = model.sweep(&drive, &settings, |_, _| {}).map_err(|f| {
-            Failure::Numerical(
+        let (case, n, _) = run_case(c, omega, |_, _| {}).map_err(|f| match f {
+            CaseFailure::Input(field) => Failure::Input(field),
+            CaseFailure::Build(e) => Failure::Numerical(e.to_string(), None),
+            CaseFailure::Sweep(f) => Failure::Numerical(
                 format!("ω₁ = {omega} rad/s: {}", f.error),
                 Some(serde_json::json!({
                     "omega_driver": omega,
                     "points": f.points.iter().map(SummaryPoint::new).collect::<Vec<_>>(),
                 })),
-            )
+            ),
         })?;
-        coordinates = model.coordinates();
+        coordinates = n;
         cases.push(SummaryCase::new(case, t0.elapsed().as_secs_f64()));
     }
     Ok(SpeedLossSummary::new(

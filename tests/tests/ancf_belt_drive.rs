@@ -88,25 +88,20 @@ fn damped_tangent_matches_finite_differences_and_rigid_rotation_is_undamped() {
 // invariance), its spin row and the arm's moment row.
 #[test]
 fn tensioner_arm_tangent_matches_finite_differences() {
-    use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
-    use mbd_core::tensioner::TensionerSpec;
+    use belt::{BeltPath, Motion, Pulley, Tensioner, WrapSide};
     let mut spec = BeltDriveSpec::default();
     spec.pulleys.insert(
         1,
-        Pulley {
-            name: "idler".into(),
-            center: [0.0, 0.08125],
-            radius: 0.03,
-            side: WrapSide::Outside,
-            drive: PulleyDrive::Free {
-                inertia: 1e-4,
-                load: TorqueProfile::None,
-            },
-        },
+        Pulley::new(
+            "idler",
+            [0.0, 0.08125],
+            0.03,
+            WrapSide::Outside,
+            Motion::idler(1e-4),
+        ),
     );
-    let pp: Vec<PathPulley> = spec.pulleys.iter().map(|p| p.path_pulley()).collect();
-    spec.belt.length = BeltPath::new(&pp).unwrap().length() / 1.01;
-    let arm = TensionerSpec {
+    spec.belt.length = BeltPath::new(&spec.pulleys).unwrap().length() / 1.01;
+    let arm = Tensioner {
         pulley: 1,
         pivot: [0.06, 0.08125],
         stiffness: 30.0,
@@ -247,7 +242,7 @@ fn bad_input_names_the_field() {
     let mut spec = BeltDriveSpec::default();
     spec.pulleys[1].radius = -1.0;
     let e = BeltDrive::new(spec).unwrap_err().to_string();
-    assert!(e.contains("driven") && e.contains("radius"), "{e}");
+    assert!(e.contains("pulleys[1].radius"), "{e}");
     let mut spec = BeltDriveSpec::default();
     spec.belt.length = 2.0;
     let e = BeltDrive::new(spec).unwrap_err().to_string();
@@ -301,9 +296,7 @@ fn contact_quadrature_5_7_11_points_agree() {
     for pts in [5, 7, 11] {
         let mut spec = BeltDriveSpec::default();
         spec.contact.points = pts;
-        spec.pulleys[0].drive = PulleyDrive::Speed {
-            speed: SpeedProfile::Constant { omega: 12.0 },
-        };
+        spec.pulleys[0].motion = belt::Motion::speed(belt::Signal::constant(12.0));
         let d = BeltDrive::new(spec).unwrap();
         let init = d.initial_state(&InitialOptions::default()).unwrap();
         let v0 = d.travelling_velocity(&init.q, 12.0 * 0.08125);
@@ -384,8 +377,8 @@ fn loaded_high_speed_3_3_e() {
     let mut spec = BeltDriveSpec::two_pulley(
         0.08125,
         0.08125,
-        SpeedProfile::kerkkanen(120.0),
-        TorqueProfile::kerkkanen(45.0),
+        belt::Signal::kerkkanen_ramp(120.0),
+        belt::Signal::kerkkanen_cosine(45.0),
     );
     spec.belt.length = 1.24437;
     spec.belt.elements = 30;
@@ -466,8 +459,8 @@ fn unequal_pulleys_3_3_f() {
     let mut spec = BeltDriveSpec::two_pulley(
         0.08125,
         0.1218,
-        SpeedProfile::kerkkanen(12.0),
-        TorqueProfile::None,
+        belt::Signal::kerkkanen_ramp(12.0),
+        belt::Signal::constant(0.0),
     );
     spec.belt.length = 1.40402;
     let (_, hist, _) = run(spec, 1.0, 1e-4, 1e-3);

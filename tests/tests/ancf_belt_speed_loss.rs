@@ -1,13 +1,15 @@
 //! The ANCF belt as the speed-loss model of issue 8 (`flowmbd-belt speed-loss --model ancf`):
 //! the Ribaric Table 6-1 drive mapped onto ANCF belt elements (the adapter in the `drives`
-//! crate, `drives::ancf_drive_model`), compared with the flowing-material model.
+//! crate, `drives::ancf_model`), compared with the flowing-material model.
 //! The long comparison is `#[ignore]`d; run it with
 //! `cargo test --release -p flowmbd-validation --test ancf_belt_speed_loss -- --ignored --nocapture`.
 
 use ancf::belt_drive::post;
-use drives::ancf_drive_model::{AncfConfig, AncfDrive};
-use drives::{DriveModel, SpeedLossConfig, analytical_speed_loss, speed_loss_sweep};
-use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
+use belt::BeltModel;
+use drives::ancf_model::{AncfBelt, AncfConfig};
+use drives::table_6_1;
+use drives::{SpeedLossConfig, analytical_speed_loss, speed_loss_sweep};
+use flowing::belt::{FlowingBelt, FlowingSettings};
 
 // Reference: Ribaric §6.4 (T0 = 310 N) and the penalty law (6.1): after the length correction of
 // the adapter the static span tensions are T0 within 0.5 %, the unstretched length stays within
@@ -16,11 +18,11 @@ use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
 // few per cent less axial force than the spans, see the adapter's documentation).
 #[test]
 fn mounted_ancf_belt_has_ribaric_pretension() {
-    let cfg = BeltDriveConfig::default();
-    let model = AncfDrive::new(&cfg, &AncfConfig::default()).unwrap();
-    let m = *model.mapping();
+    let cfg = table_6_1::drive();
+    let model = AncfBelt::new(&cfg, &AncfConfig::default()).unwrap();
+    let m = model.mapping().clone();
     let s0 = model.initial_state().unwrap();
-    let d = model.drive();
+    let d = model.belt_drive();
     let spans = post::span_tensions(d, &s0.q);
     let recs = d.contact_records(0.0, &s0.q, &s0.v);
     let arc: Vec<f64> = recs
@@ -46,7 +48,7 @@ fn mounted_ancf_belt_has_ribaric_pretension() {
     assert!((mean_pen - m.penetration[0]).abs() < 0.1 * m.penetration[0]);
 }
 
-fn sweep<M: DriveModel>(model: &mut M, settings: &SpeedLossConfig) -> Vec<(f64, f64)> {
+fn sweep<M: BeltModel>(model: &mut M, settings: &SpeedLossConfig) -> Vec<(f64, f64)> {
     let start = std::time::Instant::now();
     let (points, stats) = speed_loss_sweep(model, settings, |_, _| {}).unwrap();
     println!(
@@ -70,20 +72,18 @@ fn sweep<M: DriveModel>(model: &mut M, settings: &SpeedLossConfig) -> Vec<(f64, 
 #[test]
 #[ignore = "two speed-loss sweeps, the ANCF one ~1 s simulated (minutes in release mode)"]
 fn ancf_and_flowing_speed_loss_agree() {
-    let cfg = BeltDriveConfig::default();
+    let cfg = table_6_1::drive();
     let settings = SpeedLossConfig {
         omega_driver: 62.8,
         torques: vec![0.0, 10.0],
         ..Default::default()
     };
     println!("flowing:");
-    let fe = BeltFe::new(&cfg).unwrap();
-    let mut flowing =
-        FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).unwrap();
+    let mut flowing = FlowingBelt::new(&cfg, &FlowingSettings::default()).unwrap();
     let fl = sweep(&mut flowing, &settings);
     println!("ANCF:");
     let a = AncfConfig::default();
-    let mut ancf = AncfDrive::new(&cfg, &a).unwrap();
+    let mut ancf = AncfBelt::new(&cfg, &a).unwrap();
     let an = sweep(
         &mut ancf,
         &SpeedLossConfig {

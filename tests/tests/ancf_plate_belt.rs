@@ -3,12 +3,10 @@
 //! every `cargo test`; the long simulations of the issue are `#[ignore]`d (run them with
 //! `cargo test --release -p flowmbd-validation --test ancf_plate_belt -- --ignored`).
 
-use ancf::belt_drive::{
-    BeltDrive, BeltDriveSpec, BeltFriction, InitialOptions, PulleyDrive, SpeedProfile,
-    TorqueProfile, post as post2d,
-};
+use ancf::belt_drive::{BeltDrive, BeltDriveSpec, BeltFriction, InitialOptions, post as post2d};
 use ancf::plate::belt_drive::post::{line_samples, span_states};
 use ancf::plate::belt_drive::{PlateBeltDrive, PlateDriveSpec};
+use belt::{Motion, Signal};
 use drives::plate_study::{PlateStudyConfig, plate_run, plate_setup, wide_pulley_case};
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, JacobianMode, NewtonUpdate, State};
@@ -195,13 +193,8 @@ fn plate_belt_at_rest_matches_the_planar_belt() {
 /// surface speed (skips the 1 s ramp), run for `t_end` with mbd-core's generalized-α.
 fn model2_constant(t_end: f64) -> (PlateBeltDrive, State) {
     let mut spec = PlateDriveSpec::kerkkanen_model2();
-    spec.pulleys[0].drive = PulleyDrive::Speed {
-        speed: SpeedProfile::Constant { omega: 500.0 },
-    };
-    spec.pulleys[1].drive = PulleyDrive::Free {
-        inertia: 0.00025,
-        load: TorqueProfile::Constant { torque: 2.0 },
-    };
+    spec.pulleys[0].motion = Motion::speed(Signal::constant(500.0));
+    spec.pulleys[1].motion = Motion::load(0.00025, Signal::constant(2.0));
     let d = PlateBeltDrive::new(spec).unwrap();
     let init = d.initial_state(100, 1e-11).unwrap();
     let v = d.travelling_velocity(&init.q, 25.0);

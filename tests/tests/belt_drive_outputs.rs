@@ -4,16 +4,14 @@
 //! gross slip as a result of the study (Ribaric Table 6-1 drive, flowing and nodal belts; the
 //! ANCF belt in `ancf_belt_speed_loss.rs`).
 
+use belt::{BeltModel, Drive, Role};
 use contact::friction::FrictionLaw;
-use drives::report::PulleyRole;
 use drives::speed_loss_study::SummaryPoint;
-use drives::{
-    DriveModel, SpeedLossConfig, SpeedLossPoint, euler_eytelwein_capacity, speed_loss_sweep,
-};
-use flowing::belt::nodal::NodalBelt;
-use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
+use drives::table_6_1;
+use drives::{SpeedLossConfig, SpeedLossPoint, euler_eytelwein_capacity, speed_loss_sweep};
+use flowing::belt::{BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
 
-fn sweep<M: DriveModel>(model: &mut M, settings: &SpeedLossConfig) -> Vec<SpeedLossPoint> {
+fn sweep<M: BeltModel>(model: &mut M, settings: &SpeedLossConfig) -> Vec<SpeedLossPoint> {
     let (points, _) = speed_loss_sweep(model, settings, |_, _| {})
         .unwrap_or_else(|f| panic!("sweep failed: {} (points {:?})", f.error, f.points));
     for p in &points {
@@ -23,8 +21,8 @@ fn sweep<M: DriveModel>(model: &mut M, settings: &SpeedLossConfig) -> Vec<SpeedL
             p.delta_omega,
             p.report.tension_tight(),
             p.report.tension_slack(),
-            p.report.slip_arc(PulleyRole::Driver),
-            p.report.slip_arc(PulleyRole::Driven),
+            p.report.slip_arc(Role::Driver),
+            p.report.slip_arc(Role::Driven),
             p.gross_slip.as_ref().map(|g| &g.criterion),
             p.linearisation
         );
@@ -32,13 +30,19 @@ fn sweep<M: DriveModel>(model: &mut M, settings: &SpeedLossConfig) -> Vec<SpeedL
     points
 }
 
-fn flowing(cfg: &BeltDriveConfig) -> FlowingBelt {
-    FlowingBelt::new(
-        BeltFe::new(cfg).unwrap(),
-        Schedule::constant(0.0),
-        Schedule::constant(0.0),
-    )
-    .unwrap()
+fn flowing(cfg: &Drive) -> FlowingBelt {
+    FlowingBelt::new(cfg, &FlowingSettings::default()).unwrap()
+}
+
+/// The nodal model of Table 6-1 on a uniform loop of `span` elements per span and `arc` per
+/// wrap.
+fn nodal(cfg: &Drive, span: usize, arc: usize) -> NodalBelt {
+    let mesh = BeltMesh {
+        span_element: 0.45 / span as f64,
+        arc_element: std::f64::consts::PI * 0.05 / arc as f64,
+        contact_margin_nodes: 1,
+    };
+    NodalBelt::new(cfg, &mesh).unwrap()
 }
 
 /// Euler–Eytelwein on the computed slip arc of every wrap: the tension ratio across the wrap,
@@ -46,7 +50,7 @@ fn flowing(cfg: &BeltDriveConfig) -> FlowingBelt {
 /// slip arc): `|ln(T_in/T_out)| = μ φ_slip` within `tol` (relative, in the exponent).
 fn assert_capstan(p: &SpeedLossPoint, mu: f64, tol: f64) {
     for q in &p.report.pulleys {
-        let ratio = (q.tension_in / q.tension_out).ln().abs();
+        let ratio = (q.tension_in_n / q.tension_out_n).ln().abs();
         let capstan = mu * q.slip_arc_rad;
         println!(
             "  {}: ln(T_in/T_out) = {ratio:.4}, μ φ_slip = {capstan:.4} (contact arc {:.3} rad)",
@@ -70,7 +74,7 @@ fn assert_capstan(p: &SpeedLossPoint, mu: f64, tol: f64) {
 // has it exactly; the rest is the nodal penalty's pressure ≠ T/R near the tangent points).
 #[test]
 fn flowing_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
-    let cfg = BeltDriveConfig::default();
+    let cfg = table_6_1::drive();
     let points = sweep(
         &mut flowing(&cfg),
         &SpeedLossConfig {
@@ -78,7 +82,7 @@ fn flowing_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
             ..Default::default()
         },
     );
-    let mu = cfg.contact.friction_law().coefficient();
+    let mu = cfg.contact().friction.coefficient();
     for p in &points {
         assert!(p.gross_slip.is_none() && p.linearisation.is_none());
         assert_capstan(p, mu, 0.05);
@@ -86,7 +90,7 @@ fn flowing_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
     }
     let arcs: Vec<f64> = points
         .iter()
-        .map(|p| p.report.slip_arc(PulleyRole::Driven))
+        .map(|p| p.report.slip_arc(Role::Driven))
         .collect();
     assert!(arcs.windows(2).all(|w| w[0] < w[1]), "{arcs:?}");
 }
@@ -100,7 +104,7 @@ fn flowing_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
 // along the line of centres, towards the other pulley).
 #[test]
 fn flowing_torque_balance_and_hub_loads() {
-    let cfg = BeltDriveConfig::default();
+    let cfg = table_6_1::drive();
     let points = sweep(
         &mut flowing(&cfg),
         &SpeedLossConfig {
@@ -108,19 +112,19 @@ fn flowing_torque_balance_and_hub_loads() {
             ..Default::default()
         },
     );
-    let r = cfg.geometry.radius_driver;
+    let r = cfg.pulleys()[0].radius;
     for p in &points {
         let rep = &p.report;
         let (drv, dvn) = (&rep.pulleys[0], &rep.pulleys[1]);
         assert!(
-            (dvn.torque - p.torque).abs() < 1e-3 * p.torque,
+            (dvn.torque_n_m - p.torque).abs() < 1e-3 * p.torque,
             "driven torque {} vs load {}",
-            dvn.torque,
+            dvn.torque_n_m,
             p.torque
         );
         let transmitted = rep.tension_tight() - rep.tension_slack();
         assert!((transmitted * r / p.torque - 1.0).abs() < 0.02);
-        let net = drv.torque / r + dvn.torque / r;
+        let net = drv.torque_n_m / r + dvn.torque_n_m / r;
         assert!(
             net.abs() < 0.01 * transmitted,
             "net tangential force {net} N"
@@ -128,12 +132,12 @@ fn flowing_torque_balance_and_hub_loads() {
         let sum = rep.tension_tight() + rep.tension_slack();
         for (k, q) in rep.pulleys.iter().enumerate() {
             let toward = if k == 0 { 1.0 } else { -1.0 };
-            assert!((q.hub_load_magnitude / sum - 1.0).abs() < 0.01);
-            assert!(q.hub_load[0] * toward > 0.999 * q.hub_load_magnitude);
+            assert!((q.hub_load_magnitude_n / sum - 1.0).abs() < 0.01);
+            assert!(q.hub_load_n[0] * toward > 0.999 * q.hub_load_magnitude_n);
         }
         // the driver delivers the load plus the sliding losses (power P = τ ω)
-        let p_in = -drv.torque * drv.omega;
-        let p_out = dvn.torque * dvn.omega;
+        let p_in = -drv.torque_n_m * drv.omega;
+        let p_out = dvn.torque_n_m * dvn.omega;
         let sliding = drv.sliding_power_w + dvn.sliding_power_w;
         assert!(sliding > 0.0 && sliding < 0.01 * p_in);
         assert!((p_in - p_out).abs() < 0.01 * p_in);
@@ -149,7 +153,7 @@ fn flowing_torque_balance_and_hub_loads() {
 // sweep goes on from the last steady state: the final 20 N m repeats the first.
 #[test]
 fn flowing_gross_slip_is_a_result_and_the_sweep_goes_on() {
-    let cfg = BeltDriveConfig::default();
+    let cfg = table_6_1::drive();
     let omega = 62.8;
     let points = sweep(
         &mut flowing(&cfg),
@@ -197,15 +201,8 @@ fn flowing_gross_slip_is_a_result_and_the_sweep_goes_on() {
 // 108-element loop, so the deviation is that pressure effect, not mesh resolution.
 #[test]
 fn nodal_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
-    let mut cfg = BeltDriveConfig::default();
-    cfg.mesh.span_elements = 20;
-    cfg.mesh.arc_elements = 7;
-    let mut nodal = NodalBelt::new(
-        BeltFe::new(&cfg).unwrap(),
-        Schedule::constant(0.0),
-        Schedule::constant(0.0),
-    )
-    .unwrap();
+    let cfg = table_6_1::drive();
+    let mut nodal = nodal(&cfg, 20, 7);
     let points = sweep(
         &mut nodal,
         &SpeedLossConfig {
@@ -216,7 +213,7 @@ fn nodal_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
             ..Default::default()
         },
     );
-    assert_capstan(&points[0], cfg.contact.friction_law().coefficient(), 0.05);
+    assert_capstan(&points[0], cfg.contact().friction.coefficient(), 0.05);
 }
 
 // Gross slip of the nodal belt (216 uniform elements, the accurate rotating mesh): steady at
@@ -225,15 +222,8 @@ fn nodal_wraps_follow_euler_eytelwein_on_their_slip_arcs() {
 #[test]
 #[ignore = "heavy: the 216-element nodal model for about 2.5 s of simulated time"]
 fn nodal_gross_slip_is_a_result() {
-    let mut cfg = BeltDriveConfig::default();
-    cfg.mesh.span_elements = 80;
-    cfg.mesh.arc_elements = 28;
-    let mut nodal = NodalBelt::new(
-        BeltFe::new(&cfg).unwrap(),
-        Schedule::constant(0.0),
-        Schedule::constant(0.0),
-    )
-    .unwrap();
+    let cfg = table_6_1::drive();
+    let mut nodal = nodal(&cfg, 80, 28);
     let points = sweep(
         &mut nodal,
         &SpeedLossConfig {
@@ -244,7 +234,7 @@ fn nodal_gross_slip_is_a_result() {
             ..Default::default()
         },
     );
-    let mu = cfg.contact.friction_law().coefficient();
+    let mu = cfg.contact().friction.coefficient();
     assert!(points[0].gross_slip.is_none());
     assert_capstan(&points[0], mu, 0.03);
     let e = (mu * std::f64::consts::PI).exp();

@@ -1,15 +1,22 @@
 //! Rotating vs non-rotating flowing-material belt (Ribaric §6.2, Fig. 6-3; seed-000 note §2.2,
 //! example B0): `flowing::belt::wave`.
 
-use flowing::belt::BeltDriveConfig;
 use flowing::belt::wave::{WaveConfig, dominant_frequency, wave_run, wave_speed};
+use flowing::belt::{BeltMesh, BeltReduction, FlowingSettings};
 
-fn config() -> BeltDriveConfig {
-    let mut c = BeltDriveConfig::default();
-    // all free-node modes and 11 mm span elements: the wave packet needs the short wavelengths
-    c.reduction.free_modes = None;
-    c.mesh.span_elements = 40;
-    c
+/// Ribaric Table 6-1 with all free-node modes and 11 mm span elements: the wave packet needs
+/// the short wavelengths.
+fn config() -> (belt::Drive, FlowingSettings) {
+    (
+        drives::table_6_1::drive(),
+        FlowingSettings {
+            mesh: BeltMesh {
+                span_element: 0.45 / 40.0,
+                ..BeltMesh::default()
+            },
+            reduction: BeltReduction { free_modes: None },
+        },
+    )
 }
 
 /// Least-squares slope of `y` against `t`.
@@ -28,7 +35,7 @@ fn slope(t: &[f64], y: &[f64]) -> f64 {
 // about the span middle.
 #[test]
 fn wave_splits_at_rest_and_is_advected_when_running() {
-    let cfg = config();
+    let (cfg, settings) = config();
     let c = wave_speed(&cfg);
     let s = WaveConfig {
         t_end: 2e-3,
@@ -36,11 +43,11 @@ fn wave_splits_at_rest_and_is_advected_when_running() {
         step: 1e-5,
         ..Default::default()
     };
-    let rest = wave_run(&cfg, &s, false).unwrap();
-    let run = wave_run(&cfg, &s, true).unwrap();
+    let rest = wave_run(&cfg, &settings, &s, false).unwrap();
+    let run = wave_run(&cfg, &settings, &s, true).unwrap();
     let v = s.belt_speed;
     // before the faster front reaches a pulley: half a span minus the bump's half width at v + c
-    let span = cfg.geometry.center_distance;
+    let span = 0.45;
     let t_free = (0.5 - s.half_width) * span / (v + c);
     let pick = |r: &flowing::belt::wave::WaveRun| -> (Vec<f64>, Vec<f64>) {
         r.times
@@ -94,7 +101,7 @@ fn wave_splits_at_rest_and_is_advected_when_running() {
 // perturb it: 8 % tolerance).
 #[test]
 fn span_frequency_falls_with_belt_speed() {
-    let cfg = config();
+    let (cfg, settings) = config();
     let c = wave_speed(&cfg);
     let s = WaveConfig {
         half_width: 0.4,
@@ -103,9 +110,9 @@ fn span_frequency_falls_with_belt_speed() {
         step: 1e-4,
         ..Default::default()
     };
-    let rest = wave_run(&cfg, &s, false).unwrap();
-    let run = wave_run(&cfg, &s, true).unwrap();
-    let f_string = c / (2.0 * cfg.geometry.center_distance);
+    let rest = wave_run(&cfg, &settings, &s, false).unwrap();
+    let run = wave_run(&cfg, &settings, &s, true).unwrap();
+    let f_string = c / (2.0 * 0.45);
     let f0 = dominant_frequency(&rest.times, &rest.midspan, 0.4 * f_string, 1.6 * f_string);
     let f1 = dominant_frequency(&run.times, &run.midspan, 0.3 * f_string, 1.6 * f_string);
     let v = s.belt_speed;

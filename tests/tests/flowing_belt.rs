@@ -2,17 +2,19 @@
 //! analytical speed loss of Bechtel et al. (6.3), physical invariants and a second (untruncated)
 //! formulation.
 
+use belt::Layout;
+use contact::friction::FrictionSpec;
+use drives::table_6_1;
 use drives::{SpeedLossConfig, SpeedLossPoint, analytical_speed_loss, speed_loss_sweep};
-use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
+use flowing::belt::{BeltReduction, FlowingBelt, FlowingSettings};
 
 fn sweep(
-    cfg: &BeltDriveConfig,
+    (cfg, settings): &(Layout, FlowingSettings),
     omega: f64,
     torques: &[f64],
     tol: f64,
 ) -> (Vec<SpeedLossPoint>, Vec<(f64, f64)>) {
-    let fe = BeltFe::new(cfg).unwrap();
-    let mut belt = FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).unwrap();
+    let mut belt = FlowingBelt::new(&cfg.resolve().unwrap(), settings).unwrap();
     let settings = SpeedLossConfig {
         omega_driver: omega,
         torques: torques.to_vec(),
@@ -27,13 +29,19 @@ fn sweep(
     (points, history)
 }
 
+/// Ribaric Table 6-1 with the flowing model's default settings (§6.1's 56-element loop, 20
+/// free-node modes).
+fn table_6_1_flowing() -> (Layout, FlowingSettings) {
+    (table_6_1::layout(), FlowingSettings::default())
+}
+
 // Issue 8 / seed-000 note BELT-3, BELT-6: unloaded, the driven pulley turns at the driver's speed
 // (1e-6 relative), and the stationary mesh puts no ripple (no line at the element-passing
 // frequency v/L_e) on the driven speed.
 #[test]
 fn unloaded_drive_has_no_speed_loss_and_no_mesh_ripple() {
     let omega = 62.8;
-    let (points, history) = sweep(&BeltDriveConfig::default(), omega, &[0.0], 1e-7);
+    let (points, history) = sweep(&table_6_1_flowing(), omega, &[0.0], 1e-7);
     let rel = points[0].delta_omega.abs() / omega;
     assert!(rel < 1e-6, "unloaded |Δω|/ω = {rel:e}");
     // last 0.1 s (400 steps of 0.25 ms): peak-to-peak of ω₂
@@ -50,7 +58,7 @@ fn unloaded_drive_has_no_speed_loss_and_no_mesh_ripple() {
 // depend on the speed. Hence Δω(ω) = Aω + B with A, B > 0, checked at three speeds.
 #[test]
 fn speed_loss_is_monotonic_nearly_linear_and_affine_in_speed() {
-    let cfg = BeltDriveConfig::default();
+    let cfg = table_6_1_flowing();
     let (fast, _) = sweep(&cfg, 62.8, &[0.0, 4.0, 8.0], 2e-4);
     let d: Vec<f64> = fast.iter().map(|x| x.delta_omega).collect();
     assert!(d[0] < d[1] && d[1] < d[2], "{d:?}");
@@ -75,9 +83,9 @@ fn speed_loss_is_monotonic_nearly_linear_and_affine_in_speed() {
 // Issue 8: truncated (20 free-node modes) and untruncated flowing models agree within 2 %.
 #[test]
 fn truncated_and_untruncated_models_agree() {
-    let mut cfg = BeltDriveConfig::default();
+    let mut cfg = table_6_1_flowing();
     let (trunc, _) = sweep(&cfg, 62.8, &[0.0, 8.0], 2e-4);
-    cfg.reduction.free_modes = None;
+    cfg.1.reduction = BeltReduction { free_modes: None };
     let (full, _) = sweep(&cfg, 62.8, &[0.0, 8.0], 2e-4);
     let (a, b) = (trunc[1].delta_omega, full[1].delta_omega);
     assert!(
@@ -92,11 +100,14 @@ fn truncated_and_untruncated_models_agree() {
 #[test]
 #[ignore = "heavy: about 4 s of simulated time"]
 fn stiff_elastic_contact_approaches_bechtel() {
-    let mut cfg = BeltDriveConfig::default();
-    cfg.damping.beta = 0.0;
-    cfg.contact.kappa = 4000.0;
-    cfg.contact.penalty_linear *= 1000.0;
-    cfg.contact.penalty_quadratic *= 1000.0;
+    let mut cfg = table_6_1_flowing();
+    cfg.0.damping.beta = 0.0;
+    cfg.0.contact.friction = FrictionSpec::Tanh {
+        mu: 1.2,
+        kappa: 4000.0,
+    };
+    cfg.0.contact.penalty_linear *= 1000.0;
+    cfg.0.contact.penalty_quadratic *= 1000.0;
     let (pts, _) = sweep(&cfg, 62.8, &[0.0, 10.0], 1e-5);
     let exact = analytical_speed_loss(0.05, 310.0, 152_000.0, 10.0, 62.8);
     let err = (pts[1].delta_omega - pts[0].delta_omega) / exact - 1.0;

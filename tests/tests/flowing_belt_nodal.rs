@@ -3,23 +3,33 @@
 //! agree within 2 % at the same mesh", and the element-passing line that only the rotating mesh
 //! puts into the driven pulley's speed.
 
+use belt::{BeltModel, Signal};
 use drives::speed_loss::{MAX_HALVINGS, robust_step};
-use drives::{DriveModel, SpeedLossConfig, SpeedLossPoint, speed_loss_sweep};
-use flowing::belt::nodal::NodalBelt;
-use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
+use drives::{SpeedLossConfig, SpeedLossPoint, speed_loss_sweep};
+use flowing::belt::{BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
 use flowing::spectrum::amplitude_spectrum;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 
-/// A uniform loop: `span` elements per span, `arc` per arc (Table 6-1 geometry: 0.45 m spans,
-/// 0.157 m arcs; 20/7 and 80/28 give equal element lengths to 0.3 %).
-fn uniform(span: usize, arc: usize) -> BeltDriveConfig {
-    let mut cfg = BeltDriveConfig::default();
-    cfg.mesh.span_elements = span;
-    cfg.mesh.arc_elements = arc;
-    cfg
+/// Both models of Ribaric Table 6-1 on a uniform loop: `span` elements per span, `arc` per arc
+/// (0.45 m spans, 0.157 m arcs; 20/7 and 80/28 give equal element lengths to 0.3 %).
+fn uniform(span: usize, arc: usize) -> (NodalBelt, FlowingBelt) {
+    let drive = drives::table_6_1::drive();
+    let mesh = BeltMesh {
+        span_element: 0.45 / span as f64,
+        arc_element: std::f64::consts::PI * 0.05 / arc as f64,
+        contact_margin_nodes: 1,
+    };
+    let settings = FlowingSettings {
+        mesh,
+        ..Default::default()
+    };
+    (
+        NodalBelt::new(&drive, &mesh).unwrap(),
+        FlowingBelt::new(&drive, &settings).unwrap(),
+    )
 }
 
-fn sweep<M: DriveModel>(model: &mut M, torques: &[f64]) -> Vec<SpeedLossPoint> {
+fn sweep<M: BeltModel>(model: &mut M, torques: &[f64]) -> Vec<SpeedLossPoint> {
     // windows of 0.1 s: the rotating mesh's ripple averages out over several element passings
     let settings = SpeedLossConfig {
         torques: torques.to_vec(),
@@ -35,11 +45,11 @@ fn sweep<M: DriveModel>(model: &mut M, torques: &[f64]) -> Vec<SpeedLossPoint> {
 
 /// Driven-pulley speed sampled every step from `t_from` to `t_to` \[s\], unloaded, driver spun up
 /// to 62.8 rad/s over 0.3 s.
-fn driven_speed_history<M: DriveModel>(model: &mut M, t_from: f64, t_to: f64, h: f64) -> Vec<f64> {
-    model.set_driver_speed(Schedule {
-        knots: vec![(0.0, 0.0), (0.3, 62.8)],
-    });
-    *model.load_mut() = Schedule::constant(0.0);
+fn driven_speed_history<M: BeltModel>(model: &mut M, t_from: f64, t_to: f64, h: f64) -> Vec<f64> {
+    model
+        .set_signal(0, Signal::schedule(vec![(0.0, 0.0), (0.3, 62.8)]))
+        .unwrap();
+    model.set_signal(1, Signal::constant(0.0)).unwrap();
     let s0 = model.initial_state().unwrap();
     let alpha = GeneralizedAlpha::new(AlphaConfig {
         h,
@@ -51,7 +61,8 @@ fn driven_speed_history<M: DriveModel>(model: &mut M, t_from: f64, t_to: f64, h:
     while st.state().t < t_to - 0.5 * h {
         robust_step(&mut st, &*model, h, MAX_HALVINGS).unwrap();
         if st.state().t >= t_from - 0.5 * h {
-            out.push(model.driven_speed(&st.state().v));
+            let s = st.state();
+            out.push(model.pulley_speed(1, s.t, &s.v));
         }
     }
     out
@@ -73,15 +84,12 @@ fn line(spec: &flowing::spectrum::Spectrum, f: f64, band: f64) -> f64 {
 // formulation that makes the flowing form's claimed advantage a measurable difference.
 #[test]
 fn only_the_rotating_mesh_has_the_element_passing_line() {
-    let cfg = uniform(20, 7);
-    let fe = BeltFe::new(&cfg).unwrap();
-    let h_e = fe.path.length() / fe.n_nodes() as f64;
+    let (mut nodal, mut flow) = uniform(20, 7);
+    let h_e = nodal.fe.path().length() / nodal.fe.n_nodes() as f64;
     let f_e = 62.8 * 0.05 / h_e;
     let h = 2.5e-4;
     let (t0, t1) = (0.5, 0.9);
-    let mut nodal = NodalBelt::new(fe.clone(), Schedule::default(), Schedule::default()).unwrap();
     let w_nodal = driven_speed_history(&mut nodal, t0, t1, h);
-    let mut flow = FlowingBelt::new(fe, Schedule::default(), Schedule::default()).unwrap();
     let w_flow = driven_speed_history(&mut flow, t0, t1, h);
     let sn = amplitude_spectrum(&w_nodal, h, 4).unwrap();
     let sf = amplitude_spectrum(&w_flow, h, 4).unwrap();
@@ -109,11 +117,8 @@ fn only_the_rotating_mesh_has_the_element_passing_line() {
 // the ignored test below.
 #[test]
 fn nodal_speed_loss_on_a_coarse_uniform_loop() {
-    let cfg = uniform(20, 7);
-    let fe = BeltFe::new(&cfg).unwrap();
-    let mut nodal = NodalBelt::new(fe.clone(), Schedule::default(), Schedule::default()).unwrap();
+    let (mut nodal, mut flow) = uniform(20, 7);
     let pn = sweep(&mut nodal, &[0.0, 8.0]);
-    let mut flow = FlowingBelt::new(fe, Schedule::default(), Schedule::default()).unwrap();
     let pf = sweep(&mut flow, &[0.0, 8.0]);
     println!("nodal {pn:?}\nflowing {pf:?}");
     assert!(
@@ -132,11 +137,8 @@ fn nodal_speed_loss_on_a_coarse_uniform_loop() {
 #[test]
 #[ignore = "heavy: the 216-element nodal model for 1.4 s of simulated time (several minutes)"]
 fn flowing_and_nodal_agree_within_two_percent() {
-    let cfg = uniform(80, 28);
-    let fe = BeltFe::new(&cfg).unwrap();
-    let mut nodal = NodalBelt::new(fe.clone(), Schedule::default(), Schedule::default()).unwrap();
+    let (mut nodal, mut flow) = uniform(80, 28);
     let pn = sweep(&mut nodal, &[0.0, 8.0]);
-    let mut flow = FlowingBelt::new(fe, Schedule::default(), Schedule::default()).unwrap();
     let pf = sweep(&mut flow, &[0.0, 8.0]);
     let (dn, df) = (pn[1].delta_omega, pf[1].delta_omega);
     println!("Δω(8 N m): nodal {dn}, flowing {df}");

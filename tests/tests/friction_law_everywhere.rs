@@ -32,21 +32,13 @@ fn close(a: f64, b: f64) -> bool {
 /// 40 ms of generalized-α; returns the driven speed and whether friction dissipated at every
 /// contact node of the final state.
 fn flowing_run(law: FrictionSpec) -> (f64, bool) {
-    use drives::DriveModel;
-    use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
-    let mut cfg = BeltDriveConfig::default();
-    cfg.contact.friction = Some(law);
-    let fe = BeltFe::new(&cfg).unwrap();
-    let belt = FlowingBelt::new(
-        fe,
-        Schedule {
-            knots: vec![(0.0, 0.0), (0.02, 30.0)],
-        },
-        Schedule {
-            knots: vec![(0.0, 0.0), (0.02, 4.0)],
-        },
-    )
-    .unwrap();
+    use belt::{BeltModel, Motion, Signal};
+    use flowing::belt::{FlowingBelt, FlowingSettings};
+    let mut cfg = drives::table_6_1::layout();
+    cfg.contact.friction = law;
+    cfg.pulleys[0].motion = Motion::speed(Signal::schedule(vec![(0.0, 0.0), (0.02, 30.0)]));
+    cfg.pulleys[1].motion = Motion::load(0.013, Signal::schedule(vec![(0.0, 0.0), (0.02, 4.0)]));
+    let belt = FlowingBelt::new(&cfg.resolve().unwrap(), &FlowingSettings::default()).unwrap();
     let s0 = belt.initial_state().unwrap();
     let h = 2.5e-4;
     let mut st = GeneralizedAlpha::new(AlphaConfig {
@@ -64,7 +56,7 @@ fn flowing_run(law: FrictionSpec) -> (f64, bool) {
         .contact_report(s.t, &s.q, &s.v)
         .iter()
         .all(|r| r.contact.friction * r.contact.slip <= 0.0);
-    (belt.driven_speed(&s.v), dissipative)
+    (belt.pulley_speed(1, s.t, &s.v), dissipative)
 }
 
 /// ANCF belt drive (Kerkkänen Table 3.1 drive): driver at a constant 12 rad/s from the
@@ -72,14 +64,10 @@ fn flowing_run(law: FrictionSpec) -> (f64, bool) {
 /// generalized-α; returns the driven speed and whether friction dissipated at every quadrature
 /// point of the final state.
 fn ancf_run(law: FrictionSpec) -> (f64, bool) {
-    use ancf::belt_drive::{
-        BeltDrive, BeltDriveSpec, InitialOptions, PulleyDrive, SimulationConfig, SpeedProfile,
-    };
+    use ancf::belt_drive::{BeltDrive, BeltDriveSpec, InitialOptions, SimulationConfig};
     let mut spec = BeltDriveSpec::default();
     spec.contact.friction = law;
-    spec.pulleys[0].drive = PulleyDrive::Speed {
-        speed: SpeedProfile::Constant { omega: 12.0 },
-    };
+    spec.pulleys[0].motion = belt::Motion::speed(belt::Signal::constant(12.0));
     let d = BeltDrive::new(spec).unwrap();
     let init = d.initial_state(&InitialOptions::default()).unwrap();
     let v0 = d.travelling_velocity(&init.q, 12.0 * 0.08125);

@@ -3,7 +3,7 @@
 //! The thesis does not describe it (seed note §11 item 19). Procedure used here:
 //!
 //! 1. **Placement.** Node `i` is put on the undeformed belt path (spans and wraps, computed
-//!    from the pulley geometry by [`BeltPath`](fe_model::generate::belt_path::BeltPath)) at arc
+//!    from the pulley geometry by [`BeltPath`](belt::BeltPath)) at arc
 //!    length `s_i = i L_p / n`, with `r_x = (L_p / L_b) e_t` (the uniform stretch that maps the
 //!    unstretched belt length `L_b` onto the path length `L_p`) and `r_y = Ĩ e_t`.
 //! 2. **Static equilibrium.** With all pulleys at rest, Newton–Raphson with a backtracking line

@@ -19,8 +19,6 @@ pub mod friction;
 pub mod initial;
 pub mod model;
 pub mod post;
-pub mod profile;
-pub mod pulley;
 pub mod simulate;
 pub mod spec;
 
@@ -28,7 +26,5 @@ pub use closure::{ClosureResult, free_belt_closure};
 pub use friction::BeltFriction;
 pub use initial::{InitialOptions, InitialState};
 pub use model::{BeltArm, BeltDrive, PointRecord, PulleyLoad};
-pub use profile::{SpeedProfile, TorqueProfile};
-pub use pulley::{Pulley, PulleyDrive};
 pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationConfig, simulate};
 pub use spec::{BeltDriveSpec, BeltSpec, ContactSpec};

@@ -3,7 +3,6 @@
 //! (Kerkkänen (3.20)–(3.27)) and the pulley equations (3.26).
 
 use super::friction::{BeltFriction, BeltNormal};
-use super::pulley::{Pulley, PulleyDrive};
 use super::spec::BeltDriveSpec;
 use crate::element::{BeltElement, Element};
 use crate::error::{AncfError, invalid};
@@ -12,11 +11,11 @@ use crate::mesh::Mesh;
 use crate::section::Section;
 use crate::shape;
 use crate::sparse::Pattern;
+use belt::tensioner::cross;
+use belt::{BeltPath, Pulley, Tensioner};
 use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact};
-use fe_model::generate::belt_path::{BeltPath, PathPulley};
 use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
-use mbd_core::tensioner::{TensionerSpec, cross};
 use mbd_core::validate::Validate;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use nalgebra::{Point2, Vector2};
@@ -63,13 +62,13 @@ pub struct BeltDrive {
     arm: Option<BeltArm>,
 }
 
-/// A tensioner arm of a belt drive ([`BeltDrive::with_tensioner`], [`mbd_core::tensioner`]):
+/// A tensioner arm of a belt drive ([`BeltDrive::with_tensioner`], [`belt::tensioner`]):
 /// its idler's centre is `c(θ) = p + L (cos θ, sin θ)` with the arm angle `θ` \[rad\] a
 /// coordinate of the system, after the free pulleys' angles.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BeltArm {
     /// The tensioner (spring, damper, dry friction, travel; `spec.pulley` is the idler).
-    pub spec: TensionerSpec,
+    pub spec: Tensioner,
     /// Arm length `L` \[m\].
     pub length: f64,
     /// Arm angle of the installed idler centre (the spec's pulley centre) \[rad\].
@@ -106,7 +105,7 @@ impl BeltDrive {
 
     /// [`BeltDrive::new`] with an automatic tensioner (issue 17): pulley `tensioner.pulley`
     /// (free, an idler) rides on a pivoted arm whose angle `θ` \[rad\] is one more
-    /// coordinate (the last), with the equation (counter-clockwise moments, [`mbd_core::tensioner`])
+    /// coordinate (the last), with the equation (counter-clockwise moments, [`belt::tensioner`])
     ///
     /// `J θ̈ = (c − p) × F_hub + M_s(θ) + M_d(θ̇) + M_f(θ̇)`,
     ///
@@ -115,15 +114,12 @@ impl BeltDrive {
     /// the installed angle follow from the idler's centre in `spec` and the pivot; the belt is
     /// placed on the path through that centre ([`BeltDrive::placed_coordinates`] starts the
     /// arm at the installed angle). The dry friction is the contact crate's law
-    /// ([`contact::friction::coulomb_tanh::tensioner_dry_friction`]).
-    pub fn with_tensioner(
-        spec: BeltDriveSpec,
-        tensioner: TensionerSpec,
-    ) -> Result<Self, AncfError> {
+    /// ([`Tensioner::dry_friction`]).
+    pub fn with_tensioner(spec: BeltDriveSpec, tensioner: Tensioner) -> Result<Self, AncfError> {
         Self::build(spec, Some(tensioner))
     }
 
-    fn build(spec: BeltDriveSpec, tensioner: Option<TensionerSpec>) -> Result<Self, AncfError> {
+    fn build(spec: BeltDriveSpec, tensioner: Option<Tensioner>) -> Result<Self, AncfError> {
         spec.validate()?;
         if let Some(t) = &tensioner {
             t.validate_within("tensioner")?;
@@ -150,8 +146,7 @@ impl BeltDrive {
                 }
             }
         }
-        let path_pulleys: Vec<PathPulley> = spec.pulleys.iter().map(|p| p.path_pulley()).collect();
-        let path = BeltPath::new(&path_pulleys).map_err(|e| invalid("pulleys", e.to_string()))?;
+        let path = BeltPath::new(&spec.pulleys)?;
         let lp = path.length();
         let lb = spec.belt.length;
         if !(0.9 * lp..=1.1 * lp).contains(&lb) {
@@ -212,7 +207,7 @@ impl BeltDrive {
             pattern.add_element(&mut mass_values, e, mesh.element_mass(e), 1.0);
         }
         for (k, &pi) in free.iter().enumerate() {
-            if let PulleyDrive::Free { inertia, .. } = spec.pulleys[pi].drive {
+            if let Some(inertia) = spec.pulleys[pi].motion.inertia() {
                 mass_values[pattern.diagonal_position(n_belt + k)] += inertia;
             }
         }
@@ -257,6 +252,12 @@ impl BeltDrive {
     pub fn pulleys(&self) -> &[Pulley] {
         &self.spec.pulleys
     }
+    /// The motion of pulley `p` (its signals may be replaced between runs; its kind must stay
+    /// speed-driven or free: the coordinates depend on it).
+    pub fn motion_mut(&mut self, p: usize) -> Option<&mut belt::Motion> {
+        self.spec.pulleys.get_mut(p).map(|p| &mut p.motion)
+    }
+
     /// Number of belt coordinates.
     pub fn n_belt(&self) -> usize {
         self.n_belt
@@ -271,7 +272,7 @@ impl BeltDrive {
     }
 
     /// Centre \[m\] and centre velocity \[m/s\] of pulley `p` at `(q, v)`: the spec's centre at
-    /// rest, or for the tensioner's idler `c(θ)` and `c'(θ) θ̇` ([`mbd_core::tensioner`]).
+    /// rest, or for the tensioner's idler `c(θ)` and `c'(θ) θ̇` ([`belt::tensioner`]).
     pub fn pulley_center(&self, p: usize, q: &[f64], v: &[f64]) -> ([f64; 2], [f64; 2]) {
         match &self.arm {
             Some(a) if a.spec.pulley == p => {
@@ -341,10 +342,12 @@ impl BeltDrive {
     /// Travel-sense angular speed of pulley `p` at `(t, v)` \[rad/s\]: the prescribed history for
     /// driven pulleys, the velocity coordinate for free ones.
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        match (&self.spec.pulleys[p].drive, self.pulley_dof[p]) {
-            (PulleyDrive::Speed { speed }, _) => speed.eval(t)[0],
-            (PulleyDrive::Free { .. }, Some(j)) => v[j],
-            (PulleyDrive::Free { .. }, None) => 0.0,
+        match self.pulley_dof[p] {
+            Some(j) => v[j],
+            None => self.spec.pulleys[p]
+                .motion
+                .prescribed_speed(t)
+                .unwrap_or(0.0),
         }
     }
 
@@ -755,9 +758,8 @@ impl SecondOrderSystem for BeltDrive {
         let mut loads = [0.0; MAX_PULLEYS];
         for p in 0..np {
             omegas[p] = self.pulley_speed(p, t, v);
-            if let PulleyDrive::Free { load, .. } = &self.spec.pulleys[p].drive {
-                loads[p] = load.eval(t);
-            }
+            // load torque and viscous damper: −T_a(t) − c ω
+            loads[p] = -self.spec.pulleys[p].motion.applied_torque(t, omegas[p]).0;
         }
         self.forces_with(q, v, &omegas[..np], &loads[..np], f, ws);
         Ok(())
@@ -824,12 +826,10 @@ impl BeltDrive {
     }
 
     /// Spring, damper and dry-friction moments on the arm `M_s + M_d + M_f` \[N·m\]
-    /// ([`mbd_core::tensioner`]).
+    /// ([`belt::tensioner`]).
     fn arm_moment(&self, a: &BeltArm, q: &[f64], v: &[f64]) -> f64 {
         let (th, rate) = (q[a.dof], v[a.dof]);
-        a.spec.spring_moment(th).0
-            + a.spec.damper_moment(rate).0
-            + contact::friction::coulomb_tanh::tensioner_dry_friction(&a.spec, rate).force
+        a.spec.moment(th, rate).0
     }
 
     /// [`SecondOrderSystem::force_tangent`] with the pulleys spinning at the travel-sense
@@ -907,9 +907,18 @@ impl BeltDrive {
         if let Some(a) = &self.arm {
             let (th, rate) = (q[a.dof], v[a.dof]);
             let d = pat.diagonal_position(a.dof);
-            k[d] -= a.spec.spring_moment(th).1;
-            c[d] -= a.spec.damper_moment(rate).1
-                + contact::friction::coulomb_tanh::tensioner_dry_friction(&a.spec, rate).d_slip;
+            let (_, ks, cs) = a.spec.moment(th, rate);
+            k[d] -= ks;
+            c[d] -= cs;
+        }
+        // the free pulleys' viscous dampers: −c ω
+        for &p in &self.free {
+            if let Some(j) = self.pulley_dof[p] {
+                let damping = self.spec.pulleys[p].motion.damping();
+                if damping > 0.0 {
+                    c[pat.diagonal_position(j)] += damping;
+                }
+            }
         }
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),

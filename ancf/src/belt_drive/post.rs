@@ -95,7 +95,7 @@ pub struct WrapRecord {
     /// The contact state (force densities, relative velocity, quadrature weight).
     pub contact: PointRecord,
     /// Angle \[rad\] from the inlet of the pulley's wrap in the travel direction
-    /// ([`fe_model::generate::belt_path::BeltPath::angle_from_inlet`]).
+    /// ([`belt::BeltPath::angle_from_inlet`]).
     pub angle: f64,
     /// Belt tension at the point \[N\] ([`tension_at`]).
     pub tension: f64,
@@ -124,8 +124,8 @@ pub fn wrap_records(drive: &BeltDrive, q: &[f64], v: &[f64], omegas: &[f64]) -> 
         .collect()
 }
 
-use fe_model::generate::belt_path::BeltPath;
-pub use fe_model::generate::belt_path::SpanLine;
+use belt::BeltPath;
+pub use belt::SpanLine;
 
 /// The straight spans of the drive's path in travel order.
 pub fn spans(drive: &BeltDrive) -> Vec<SpanLine> {
@@ -215,7 +215,7 @@ pub fn span_transverse(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
 /// Arc coordinate \[m\] of `position` on pulley `p`, measured in the travel direction from the
 /// point where the undeformed path arrives on the pulley (the inlet; Kerkkänen Fig. 3.17
 /// measures from the inlet contact point), in `[−πR/2, 2πR − πR/2)`: `R` times
-/// [`BeltPath::angle_from_inlet`](fe_model::generate::belt_path::BeltPath::angle_from_inlet).
+/// [`BeltPath::angle_from_inlet`](belt::BeltPath::angle_from_inlet).
 pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) -> f64 {
     let pl = &drive.pulleys()[p];
     pl.radius

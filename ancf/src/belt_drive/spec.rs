@@ -1,10 +1,8 @@
 //! Plain-data description of a planar belt drive (Kerkkänen §3.3, Table 3.1).
 
 use super::friction::{BeltFriction, BeltNormal};
-use super::profile::{SpeedProfile, TorqueProfile};
-use super::pulley::{Pulley, PulleyDrive};
 use crate::error::{AncfError, invalid};
-use fe_model::generate::belt_path::WrapSide;
+use belt::{Motion, Pulley, Signal, WrapSide};
 use mbd_core::Validate;
 use serde::{Deserialize, Serialize};
 
@@ -124,8 +122,8 @@ impl Default for BeltDriveSpec {
         Self::two_pulley(
             0.08125,
             0.08125,
-            SpeedProfile::kerkkanen(12.0),
-            TorqueProfile::None,
+            Signal::kerkkanen_ramp(12.0),
+            Signal::constant(0.0),
         )
     }
 }
@@ -133,23 +131,23 @@ impl Default for BeltDriveSpec {
 impl BeltDriveSpec {
     /// Kerkkänen's two-pulley layout (Table 3.1 centres, driver first) with the given radii,
     /// driver speed and driven-pulley load.
-    pub fn two_pulley(r1: f64, r2: f64, speed: SpeedProfile, load: TorqueProfile) -> Self {
+    pub fn two_pulley(r1: f64, r2: f64, speed: Signal, load: Signal) -> Self {
         Self {
             pulleys: vec![
-                Pulley {
-                    name: "driver".into(),
-                    center: [-0.191441, 0.0],
-                    radius: r1,
-                    side: WrapSide::Inside,
-                    drive: PulleyDrive::Speed { speed },
-                },
-                Pulley {
-                    name: "driven".into(),
-                    center: [0.191441, 0.0],
-                    radius: r2,
-                    side: WrapSide::Inside,
-                    drive: PulleyDrive::Free { inertia: 0.1, load },
-                },
+                Pulley::new(
+                    "driver",
+                    [-0.191441, 0.0],
+                    r1,
+                    WrapSide::Inside,
+                    Motion::speed(speed),
+                ),
+                Pulley::new(
+                    "driven",
+                    [0.191441, 0.0],
+                    r2,
+                    WrapSide::Inside,
+                    Motion::load(0.1, load),
+                ),
             ],
             belt: BeltSpec::default(),
             contact: ContactSpec::default(),
@@ -165,7 +163,7 @@ impl BeltDriveSpec {
             ));
         }
         for (i, p) in self.pulleys.iter().enumerate() {
-            p.validate()?;
+            p.validate_within(&format!("pulleys[{i}]"))?;
             if self.pulleys[..i].iter().any(|o| o.name == p.name) {
                 return Err(invalid(
                     format!("pulley \"{}\": name", p.name),

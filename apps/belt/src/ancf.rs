@@ -12,7 +12,7 @@
 //! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtk` + `belt.vtk.series`).
 //! `summary.json` adds per pulley the contact, slip and adhesion arcs, slip velocities, hub
 //! load and torque, and per span the tension and the transverse vibration amplitude
-//! ([`drives::report`]).
+//! ([`belt::report`]).
 
 use ancf::belt_drive::{BeltDrive, post};
 use drives::ancf_run::Due;

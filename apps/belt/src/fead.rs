@@ -76,6 +76,23 @@ impl Study for Fead {
                 });
             }
         };
+        if !ctx.quiet {
+            eprintln!("fead: {}", s.model_settings);
+            for p in &s.points {
+                if let Some(why) = &p.linearisation {
+                    eprintln!(
+                        "fead: {} rpm is outside the model's range: {why}",
+                        p.engine_rpm
+                    );
+                }
+                if let Some(name) = &p.gross_slip_pulley {
+                    eprintln!(
+                        "fead: gross slip at {} rpm on pulley '{name}'",
+                        p.engine_rpm
+                    );
+                }
+            }
+        }
         write_outputs(ctx, &s)?;
         Ok(s)
     }
@@ -100,12 +117,15 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
         header.push(format!("span{k}_tension_max_N"));
         header.push(format!("span{k}_frequency1_Hz"));
     }
-    for k in 0..first.pulleys.len() {
-        header.push(format!("pulley{k}_slip_percent"));
+    for k in 0..first.report.pulleys.len() {
+        header.push(format!("pulley{k}_speed_loss_percent"));
         header.push(format!("pulley{k}_torque_N_m"));
         header.push(format!("pulley{k}_hub_load_x_N"));
         header.push(format!("pulley{k}_hub_load_y_N"));
+        header.push(format!("pulley{k}_torque_residual_N_m"));
     }
+    header.push("torque_residual_ratio".into());
+    header.push("power_residual_ratio".into());
     let refs: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut csv = ctx.out.csv("fead_sweep.csv", &refs)?;
     for p in &s.points {
@@ -121,14 +141,17 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
         for sp in &p.spans {
             row.extend([sp.tension.min, sp.tension.max, sp.frequency_1_hz]);
         }
-        for (k, pl) in p.pulleys.iter().enumerate() {
-            let hub = p
-                .report
-                .pulleys
-                .get(k)
-                .map_or([f64::NAN; 2], |q| q.hub_load);
-            row.extend([pl.slip_percent, pl.torque_mean, hub[0], hub[1]]);
+        for (k, pl) in p.report.pulleys.iter().enumerate() {
+            row.extend([
+                p.speed_loss_percent[k],
+                pl.torque_n_m,
+                pl.hub_load_n[0],
+                pl.hub_load_n[1],
+                pl.torque_residual_n_m,
+            ]);
         }
+        row.push(p.report.balances.torque_residual_rel);
+        row.push(p.report.balances.power_residual_rel);
         csv.row(&row)?;
     }
     csv.finish()?;
@@ -178,10 +201,10 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
         "engine speed [rpm]",
         "1 − ωR/(ω_c R_c) [%]",
     );
-    for (k, pl) in first.pulleys.iter().enumerate().skip(1) {
+    for (k, name) in s.pulleys.iter().enumerate().skip(1) {
         slip.series.push(series(
-            pl.name.clone(),
-            s.points.iter().map(|p| p.pulleys[k].slip_percent).collect(),
+            name.clone(),
+            s.points.iter().map(|p| p.speed_loss_percent[k]).collect(),
         ));
     }
     slip.save(&ctx.out.path("slip"))?;

@@ -1,16 +1,15 @@
 //! `flowmbd-belt speed-loss`: angular speed loss Δω = ω₁ − ω₂ of the two-pulley drive of
 //! Ribaric Table 6-1 against the load torque, at the driver speeds of Figs. 6-6 and 6-7, with
 //! Bechtel's analytical line (6.3). The models, the procedure and the study live in `drives`;
-//! this module reads the configuration, calls [`SpeedLossModel`] per driver speed and writes
-//! the results.
+//! this module reads the configuration, calls [`run_case`] per driver speed and writes the
+//! results.
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use drives::speed_loss::{Sample, SweepFailure};
 use drives::speed_loss_study::{
-    SpeedLossStudyConfig, SummaryCase as Case, SummaryPoint, drive_input_error,
+    CaseFailure, SpeedLossStudyConfig, SummaryCase as Case, SummaryPoint, run_case as study_case,
 };
-use drives::study::case_inputs;
-use drives::{DriveError, ModelKind, SpeedLossCase, SpeedLossModel, SpeedLossSummary as Summary};
+use drives::{ModelKind, SpeedLossCase, SpeedLossSummary as Summary};
 use flowmbd_cli::plot::{LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
 use rayon::prelude::*;
@@ -45,13 +44,6 @@ pub type Config = SpeedLossStudyConfig;
 
 struct SpeedLoss {
     args: Args,
-}
-
-fn drive_error(e: DriveError) -> StudyError {
-    match drive_input_error(&e) {
-        Some(field) => StudyError::Input(field),
-        None => StudyError::numerical(e),
-    }
 }
 
 fn sweep_error(omega: f64, f: SweepFailure) -> StudyError {
@@ -129,8 +121,8 @@ fn report_slips(model: ModelKind, case: &SpeedLossCase) {
     }
 }
 
-/// One driver speed: build the model, write the ANCF mapping (if any) and the history CSV
-/// while [`SpeedLossModel::sweep`] runs. `(case, number of coordinates)`.
+/// One driver speed: run the study's case ([`study_case`]) writing the history CSV, then the
+/// ANCF mapping (if any) and the wrap distributions. `(case, number of coordinates)`.
 fn run_case(
     c: &Config,
     omega: f64,
@@ -138,34 +130,25 @@ fn run_case(
     done: &AtomicUsize,
     report: &(dyn Fn(usize) + Sync),
 ) -> Result<(Case, usize), StudyError> {
-    let (drive, settings) = case_inputs(c.model, &c.drive, &c.procedure, &c.nodal, omega);
-    let mut model = SpeedLossModel::new(c.model, &drive, &c.ancf).map_err(drive_error)?;
-    if let Some(mapping) = model.ancf_mapping() {
-        // the derived parameters of the Table 6-1 → ANCF mapping, for the record
-        ctx.out
-            .write_json(&format!("ancf_mapping_omega_{omega:.1}.json"), mapping)?;
-    }
     let start = std::time::Instant::now();
     let name = format!("history_omega_{omega:.1}.csv");
-    // the flowing and nodal models carry the belt speed as their first velocity
     let columns = [
         "t_s",
         "omega_driver_rad_s",
         "omega_driven_rad_s",
-        "load_torque_Nm",
+        "load_torque_N_m",
         "belt_speed_m_s",
     ];
-    let n_col = if model.has_belt_speed() { 5 } else { 4 };
-    let mut csv = ctx.out.csv(&name, &columns[..n_col])?;
+    let mut csv = ctx.out.csv(&name, &columns)?;
     let mut io_err = None;
     let mut k = 0usize;
     let mut found = 0usize;
     let every = c.history_every;
-    let result = model.sweep(&drive, &settings, |st, s: Sample| {
+    let result = study_case(c, omega, |_st, s: Sample| {
         k += 1;
-        let row = [s.t, s.omega_driver, s.omega_driven, s.load, st.v[0]];
+        let row = [s.t, s.omega_driver, s.omega_driven, s.load, s.belt_speed];
         if k.is_multiple_of(every)
-            && let Err(e) = csv.row(&row[..n_col])
+            && let Err(e) = csv.row(&row)
         {
             io_err.get_or_insert(e);
         }
@@ -178,16 +161,22 @@ fn run_case(
     if let Some(e) = io_err {
         return Err(e.into());
     }
-    let case: SpeedLossCase = result.map_err(|f| sweep_error(omega, f))?;
+    let (case, coordinates, mapping) = result.map_err(|f| match f {
+        CaseFailure::Input(field) => StudyError::Input(field),
+        CaseFailure::Build(e) => StudyError::numerical(e),
+        CaseFailure::Sweep(f) => sweep_error(omega, f),
+    })?;
+    if let Some(mapping) = mapping {
+        // the derived parameters of the drive → ANCF mapping, for the record
+        ctx.out
+            .write_json(&format!("ancf_mapping_omega_{omega:.1}.json"), &mapping)?;
+    }
     write_wrap(ctx, &case)?;
     report_slips(c.model, &case);
     // the last point ends the sweep, after the last observer call
     let extra = case.points.len().saturating_sub(found);
     report(done.fetch_add(extra, Ordering::Relaxed) + extra);
-    Ok((
-        Case::new(case, start.elapsed().as_secs_f64()),
-        model.coordinates(),
-    ))
+    Ok((Case::new(case, start.elapsed().as_secs_f64()), coordinates))
 }
 
 impl Study for SpeedLoss {
@@ -286,7 +275,7 @@ impl Study for SpeedLoss {
                     p.spans
                         .as_ref()
                         .and_then(|v| v.get(k))
-                        .map_or(nan, |s| s.vibration_amplitude)
+                        .map_or(nan, |s| s.vibration_amplitude_m)
                 };
                 ops.row(&[
                     case.omega_driver,
@@ -299,13 +288,13 @@ impl Study for SpeedLoss {
                     p.slip_arc_driven_rad.unwrap_or(nan),
                     pl(0).map_or(nan, |q| q.adhesion_arc_rad),
                     pl(1).map_or(nan, |q| q.adhesion_arc_rad),
-                    pl(1).map_or(nan, |q| q.slip_velocity_max),
-                    pl(0).map_or(nan, |q| q.hub_load[0]),
-                    pl(0).map_or(nan, |q| q.hub_load[1]),
-                    pl(1).map_or(nan, |q| q.hub_load[0]),
-                    pl(1).map_or(nan, |q| q.hub_load[1]),
-                    pl(0).map_or(nan, |q| q.torque),
-                    pl(1).map_or(nan, |q| q.torque),
+                    pl(1).map_or(nan, |q| q.slip_velocity_max_m_s),
+                    pl(0).map_or(nan, |q| q.hub_load_n[0]),
+                    pl(0).map_or(nan, |q| q.hub_load_n[1]),
+                    pl(1).map_or(nan, |q| q.hub_load_n[0]),
+                    pl(1).map_or(nan, |q| q.hub_load_n[1]),
+                    pl(0).map_or(nan, |q| q.torque_n_m),
+                    pl(1).map_or(nan, |q| q.torque_n_m),
                     sp(0),
                     sp(1),
                     f64::from(u8::from(p.linearisation_valid)),

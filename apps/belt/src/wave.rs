@@ -8,9 +8,10 @@
 //! and a VTK series of the belt loop per run (`vtk/<run>_NNNN.vtk` + `<run>.vtk.series`, the
 //! deflection scaled by `vtk_scale` as in the "highly exaggerated" figure).
 
+use belt::Layout;
 use drives::wave::{RunSummary, summarize};
-use flowing::belt::BeltDriveConfig;
 use flowing::belt::wave::{WaveConfig, WaveRun, wave_run};
+use flowing::belt::{BeltMesh, BeltReduction, FlowingSettings};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
@@ -36,9 +37,11 @@ pub struct Args {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
-    /// The drive (Table 6-1, but all free-node modes kept and 40 elements per span by default:
-    /// the wave packet needs the short wavelengths).
-    pub drive: BeltDriveConfig,
+    /// The drive (Ribaric Table 6-1); the bump starts on span 0 (pulley 0 → pulley 1).
+    pub drive: Layout,
+    /// The flowing model's loop and reduction (all free-node modes kept and 40 elements per
+    /// span by default: the wave packet needs the short wavelengths).
+    pub flowing: FlowingSettings,
     /// The demonstration.
     pub wave: WaveConfig,
     /// Number of VTK frames per run.
@@ -49,11 +52,15 @@ pub struct Config {
 
 impl Default for Config {
     fn default() -> Self {
-        let mut drive = BeltDriveConfig::default();
-        drive.reduction.free_modes = None;
-        drive.mesh.span_elements = 40;
         Self {
-            drive,
+            drive: drives::table_6_1::layout(),
+            flowing: FlowingSettings {
+                mesh: BeltMesh {
+                    span_element: 0.45 / 40.0,
+                    ..BeltMesh::default()
+                },
+                reduction: BeltReduction { free_modes: None },
+            },
             wave: WaveConfig::default(),
             vtk_frames: 100,
             vtk_scale: 10.0,
@@ -63,7 +70,12 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        self.drive.validate_within("drive")?;
+        let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
+        self.flowing.validate_within("flowing")?;
+        self.flowing
+            .mesh
+            .check_on(drive.path())
+            .map_err(|e| e.within("flowing.mesh"))?;
         self.wave.validate_within("wave")?;
         if self.vtk_frames == 0 {
             return Err(InputError::new("vtk_frames", "must be at least 1"));
@@ -189,12 +201,16 @@ impl Study for Wave {
             }
             other => StudyError::numerical(other),
         };
-        let rest = wave_run(&c.drive, &c.wave, false).map_err(num)?;
+        let drive = c
+            .drive
+            .resolve()
+            .map_err(|e| StudyError::Input(e.within("drive")))?;
+        let rest = wave_run(&drive, &c.flowing, &c.wave, false).map_err(num)?;
         progress.set(1.0);
-        let running = wave_run(&c.drive, &c.wave, true).map_err(num)?;
+        let running = wave_run(&drive, &c.flowing, &c.wave, true).map_err(num)?;
         progress.finish();
-        let m = summarize(&c.drive, &c.wave, &rest, &running);
-        let base = flowing::belt::BeltFe::new(&c.drive)
+        let m = summarize(&drive, &c.wave, &rest, &running);
+        let base = flowing::belt::BeltFe::new(&drive, &c.flowing.mesh)
             .map_err(num)?
             .position
             .clone();

@@ -266,7 +266,7 @@ fn gross_slip_is_reported_and_the_study_exits_0() {
 
 // Issue 17 bad input for any layout: overlapping pulleys, a belt too short for the layout, a
 // tensioner outside its travel, a wrap below 10°: exit 2 with one line naming the pulley or
-// field (the checks: drives::layout, tested on their own in drives/tests/layout.rs).
+// field (the checks: belt::layout, tested on their own in drives/tests/layout.rs).
 #[test]
 fn fead_bad_layout_exits_2_naming_the_field() {
     use drives::fead::FeadConfig;
@@ -289,10 +289,20 @@ fn fead_bad_layout_exits_2_naming_the_field() {
         &|c| c.drive.pulleys[4].center = [0.15, 0.29],
         "drive.pulleys[4]",
     );
-    // 12 cm of belt missing (a mounting strain above 5 % over the whole arm travel)
+    // a belt 1.25 m long on a ≈ 1.52 m path (a mounting strain above 15 % over the whole arm
+    // travel)
     check(
         "short",
-        &|c| c.drive.belt_length = Some(1.40),
+        &|c| {
+            c.drive.tension = None;
+            c.drive.belt_length = Some(1.25);
+        },
+        "drive.belt_length",
+    );
+    // both the installation tension and the belt length given
+    check(
+        "both",
+        &|c| c.drive.belt_length = Some(1.5),
         "drive.belt_length",
     );
     // a spring that pushes the arm off its travel
@@ -302,17 +312,17 @@ fn fead_bad_layout_exits_2_naming_the_field() {
         "drive.tensioner",
     );
     // the ANCF belt's own fields (model = "ancf"): too few elements, no step
-    type Edit = fn(&mut drives::ancf_drive_model::AncfConfig);
+    type Edit = fn(&mut drives::ancf_model::AncfConfig);
     let ancf_edits: [(&str, Edit); 2] = [
-        ("ancf.elements", |a| a.elements = 2),
-        ("ancf.step", |a| a.step = 0.0),
+        ("models.ancf.elements", |a| a.elements = 2),
+        ("models.ancf.step", |a| a.step = 0.0),
     ];
     for (field, edit) in ancf_edits {
         check(
             field,
             &|c| {
                 c.model = drives::ModelKind::Ancf;
-                edit(&mut c.ancf);
+                edit(&mut c.models.ancf);
             },
             field,
         );
@@ -328,17 +338,12 @@ fn fead_bad_layout_exits_2_naming_the_field() {
     check(
         "wrap",
         &|c| {
-            use fe_model::generate::belt_path::{BeltPath, PathPulley};
             c.drive.tensioner = None;
-            let others: Vec<PathPulley> = [0, 1, 2, 4, 5]
+            let others: Vec<belt::Pulley> = [0, 1, 2, 4, 5]
                 .iter()
-                .map(|&k| PathPulley {
-                    center: c.drive.pulleys[k].center,
-                    radius: c.drive.pulleys[k].radius,
-                    side: c.drive.pulleys[k].side,
-                })
+                .map(|&k| c.drive.pulleys[k].clone())
                 .collect();
-            let span = BeltPath::new(&others).unwrap().spans()[2];
+            let span = belt::BeltPath::new(&others).unwrap().spans()[2];
             // the loop runs clockwise: outside is to the left of the travel direction
             let (d, off) = (span.direction, c.drive.pulleys[3].radius - 0.002);
             c.drive.pulleys[3].center = [
@@ -387,11 +392,11 @@ fn fead_runs_the_ancf_belt() {
     assert_eq!(p["spans"].as_array().unwrap().len(), 6);
     assert_eq!(p["report"]["pulleys"].as_array().unwrap().len(), 6);
     assert_eq!(p["gross_slip"], false);
-    let power: Vec<f64> = p["pulleys"]
+    let power: Vec<f64> = p["report"]["pulleys"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|q| q["torque_mean"].as_f64().unwrap() * q["omega"]["mean"].as_f64().unwrap())
+        .map(|q| q["power_w"].as_f64().unwrap())
         .collect();
     let total: f64 = power.iter().sum();
     eprintln!("pulley powers {power:?} W, sum {total} W");

@@ -71,13 +71,10 @@ fn every_table_rejects_an_unknown_key() {
         let h = holes(study, &text, &dir);
         assert!(h.is_empty(), "{}: {h:?}", p.display());
     }
-    // the reproducer, verbatim: `torque` under `kind = "none"` is refused by name
+    // the reproducer in today's vocabulary: a load `torque` on an idler (which has
+    // none) is refused by name
     let (_, text, _) = run(&["ancf", "--print-config"]);
-    let bad = text.replacen(
-        "[drive.pulleys.drive.load]\nkind = \"none\"\n",
-        "[drive.pulleys.drive.load]\nkind = \"none\"\ntorque = 5.0\n",
-        1,
-    );
+    let bad = text.replacen("kind = \"load\"\n", "kind = \"idler\"\n", 1);
     assert_ne!(bad, text);
     let f = dir.join("load.toml");
     std::fs::write(&f, bad).unwrap();

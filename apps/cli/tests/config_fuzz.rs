@@ -7,9 +7,9 @@
 //! a few thousand cases per run.
 
 use drives::ancf_study::AncfStudyConfig;
+use drives::fead::FeadConfig;
 use drives::speed_loss_study::SpeedLossStudyConfig;
 use fe_model::generate::TireConfig;
-use flowing::belt::BeltDriveConfig;
 use flowing::string_study::ModesConfig;
 use flowing::tire::RigConfig;
 use flowmbd_cli::config::{parse_config, to_toml};
@@ -77,13 +77,13 @@ proptest! {
     #[test]
     fn arbitrary_text_never_panics(text in "[ -~\\n\\té€]{0,120}") {
         check::<RigConfig>(&text)?;
-        check::<BeltDriveConfig>(&text)?;
+        check::<FeadConfig>(&text)?;
     }
 
     #[test]
     fn mutated_defaults_never_panic(pick in any::<prop::sample::Index>(), value in odd_value()) {
         check::<RigConfig>(&mutate(&to_toml(&RigConfig::default()), pick, &value))?;
-        check::<BeltDriveConfig>(&mutate(&to_toml(&BeltDriveConfig::default()), pick, &value))?;
+        check::<FeadConfig>(&mutate(&to_toml(&FeadConfig::default()), pick, &value))?;
         check::<TireConfig>(&mutate(&to_toml(&TireConfig::default()), pick, &value))?;
         check::<AncfStudyConfig>(&mutate(&to_toml(&AncfStudyConfig::default()), pick, &value))?;
         check::<SpeedLossStudyConfig>(
@@ -105,7 +105,7 @@ fn library_configurations_reject_unknown_keys_everywhere() {
         Vec::<String>::new()
     );
     assert_eq!(
-        tables_accepting_unknown_keys(&BeltDriveConfig::default()),
+        tables_accepting_unknown_keys(&FeadConfig::default()),
         Vec::<String>::new()
     );
     assert_eq!(

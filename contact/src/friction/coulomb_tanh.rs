@@ -28,16 +28,3 @@ impl FrictionLaw for CoulombTanh {
         self.mu
     }
 }
-
-/// Dry-friction moment \[N m\] at a belt tensioner's pivot and its derivative with respect to
-/// the arm rate \[N m s/rad\]: this law with `(μ, κ, normal) =`
-/// [`TensionerSpec::dry_friction_law`](mbd_core::tensioner::TensionerSpec::dry_friction_law)
-/// and the arm rate `θ̇` \[rad/s\] as slip, `−M_c tanh(θ̇/ω_f)` (Ribaric (6.2)). Shared by every
-/// belt model that carries a tensioner arm.
-pub fn tensioner_dry_friction(
-    spec: &mbd_core::tensioner::TensionerSpec,
-    rate: f64,
-) -> FrictionForce {
-    let (mu, kappa, normal) = spec.dry_friction_law();
-    CoulombTanh { mu, kappa }.friction(rate, normal)
-}

@@ -4,16 +4,16 @@
 //! `s_b` and speed `v` (the material speed at the reference node, [`super::FlowingBasis`]), the
 //! modal coordinates `z` of the deflection `δ = T z` of the stationary mesh, the angle and speed
 //! of every pulley that is not speed-driven (positive in the belt's travel sense, in pulley
-//! order; [`PulleyMotion`]) and, with a tensioner ([`ArmModel`]), the arm's rotation `Δθ` from
+//! order; [`belt::Motion`]) and, with a tensioner ([`belt::Arm`]), the arm's rotation `Δθ` from
 //! the angle at which the path (and so the mesh) was laid out. The two-pulley drive of
 //! [`FlowingBelt::new`] has `q = [s_b, z, φ₂]`: the driver's speed `ω₁(t)` is prescribed.
 //!
 //! Any layout (issue 17): the mesh stays fixed in space along the path of the layout (Ribaric's
 //! flowing material), and a tensioner's idler moves with its arm, `c(θ) = p + L(cos θ, sin θ)`
-//! ([`mbd_core::tensioner`]): its contact sees the node at `d − c(θ)` with the relative velocity
+//! ([`belt::tensioner`]): its contact sees the node at `d − c(θ)` with the relative velocity
 //! `V − ċ` (a translating rigid disk), its speed DOF the reaction torque, and the arm the moment
 //! `(c − p) × (−F)` of the contact forces `F` on the belt, with the spring, damper and dry
-//! friction of [`TensionerSpec`]. The belt's deflections follow the idler's displacement
+//! friction of [`belt::Tensioner`]. The belt's deflections follow the idler's displacement
 //! (linearised about the laid-out path: valid while the arm turns by a few degrees).
 //!
 //! Kinematics (Ribaric (5.10)–(5.13), with erratum E11):
@@ -45,106 +45,38 @@
 //! frame-invariant) and `α M` on the Eulerian rate `T ż` (no drag in the steady state; the same
 //! choice as the tire model).
 
+use super::config::FlowingSettings;
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, FlowingBasis, NODE_DOFS, chord_tensions};
-use super::schedule::{Schedule, Signal};
 use super::statics::dense_equilibrium;
+use belt::tensioner::cross;
+use belt::{Arm, Drive, Motion};
 use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use mbd_core::Workspace;
-use mbd_core::tensioner::{TensionerSpec, cross};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
-
-/// How a pulley of the drive turns.
-#[derive(Debug, Clone, PartialEq)]
-pub enum PulleyMotion {
-    /// Speed prescribed \[rad/s\], positive in the travel sense (the crankshaft).
-    Speed(Signal),
-    /// Free to turn with moment of inertia `inertia` \[kg m²\] against the load torque `load`
-    /// \[N m\] (opposing the travel sense; negative drives the belt). An idler has zero load.
-    Free {
-        /// Moment of inertia about the axle \[kg m²\].
-        inertia: f64,
-        /// Load torque history \[N m\].
-        load: Signal,
-    },
-}
-
-/// One motion per pulley of `fe`'s path and a tensioner on one of them, or the error naming
-/// the field.
-pub(crate) fn check_layout(
-    fe: &BeltFe,
-    motions: &[PulleyMotion],
-    tensioner: Option<&ArmModel>,
-) -> Result<(), crate::FlowError> {
-    let np = fe.path.pulleys().len();
-    if motions.len() != np {
-        return Err(crate::error::invalid(
-            "pulleys",
-            format!("{} motions for {np} pulleys", motions.len()),
-        ));
-    }
-    if let Some(a) = tensioner
-        && a.spec.pulley >= np
-    {
-        return Err(crate::error::invalid(
-            "tensioner.pulley",
-            format!("no pulley {} (the layout has {np})", a.spec.pulley),
-        ));
-    }
-    Ok(())
-}
-
-impl PulleyMotion {
-    /// The two-pulley drive's motions (Ribaric Table 6-1): pulley 0 at `driver_speed`
-    /// \[rad/s\], pulley 1 free with `fe.config.driven_inertia` \[kg m²\] against
-    /// `load_torque` \[N m\].
-    pub fn table_6_1(fe: &BeltFe, driver_speed: Schedule, load_torque: Schedule) -> Vec<Self> {
-        vec![
-            Self::Speed(driver_speed.into()),
-            Self::Free {
-                inertia: fe.config.driven_inertia,
-                load: load_torque.into(),
-            },
-        ]
-    }
-
-    /// The same pulley at rest: speed zero, or free with its inertia and no load (for the
-    /// static equilibrium of the mounted belt).
-    pub fn at_rest(&self) -> Self {
-        match self {
-            Self::Speed(_) => Self::Speed(Signal::constant(0.0)),
-            Self::Free { inertia, .. } => Self::Free {
-                inertia: *inertia,
-                load: Signal::constant(0.0),
-            },
-        }
-    }
-}
 
 /// Velocity index of each pulley's speed (`None`: prescribed), the free pulleys numbered from
 /// `*next` in pulley order (`*next` is advanced past them). Shared by the flowing and the nodal
 /// belt.
-pub(crate) fn pulley_dofs(motions: &[PulleyMotion], next: &mut usize) -> Vec<Option<usize>> {
+pub(crate) fn pulley_dofs(motions: &[Motion], next: &mut usize) -> Vec<Option<usize>> {
     motions
         .iter()
-        .map(|mo| match mo {
-            PulleyMotion::Speed(_) => None,
-            PulleyMotion::Free { .. } => {
+        .map(|mo| {
+            mo.is_free().then(|| {
                 *next += 1;
-                Some(*next - 1)
-            }
+                *next - 1
+            })
         })
         .collect()
 }
 
 /// Speed \[rad/s\] of a pulley with `motion` and velocity index `dof` at `(t, v)`.
-pub(crate) fn motion_speed(motion: &PulleyMotion, dof: Option<usize>, t: f64, v: &[f64]) -> f64 {
-    match (motion, dof) {
-        (_, Some(k)) => v[k],
-        (PulleyMotion::Speed(s), None) => s.value(t),
-        (PulleyMotion::Free { .. }, None) => 0.0,
+pub(crate) fn motion_speed(motion: &Motion, dof: Option<usize>, t: f64, v: &[f64]) -> f64 {
+    match dof {
+        Some(k) => v[k],
+        None => motion.prescribed_speed(t).unwrap_or(0.0),
     }
 }
 
@@ -152,66 +84,33 @@ pub(crate) fn motion_speed(motion: &PulleyMotion, dof: Option<usize>, t: f64, v:
 /// ([`BeltFe::contact_radius`]) and wrap sense (`+1` grooved side inside the loop, `−1` back
 /// side).
 pub(crate) fn pulley_frames(fe: &BeltFe) -> Vec<PulleyFrame> {
-    fe.path
+    fe.path()
         .pulleys()
         .iter()
         .zip(&fe.contact_radius)
         .map(|(p, &radius)| PulleyFrame {
             center: p.center,
             radius,
-            turn: match p.side {
-                fe_model::generate::belt_path::WrapSide::Inside => 1.0,
-                fe_model::generate::belt_path::WrapSide::Outside => -1.0,
-            },
+            turn: p.side.turn(),
         })
         .collect()
 }
 
-/// Speed history of pulley 0 (the driver) when it is speed-driven.
-pub(crate) fn driver_speed_of(motions: &mut [PulleyMotion]) -> Option<&mut Signal> {
-    match motions.first_mut() {
-        Some(PulleyMotion::Speed(s)) => Some(s),
-        _ => None,
-    }
-}
-
-/// Load history of pulley `p` when it is free.
-pub(crate) fn load_of(motions: &mut [PulleyMotion], p: usize) -> Option<&mut Signal> {
-    match motions.get_mut(p) {
-        Some(PulleyMotion::Free { load, .. }) => Some(load),
-        _ => None,
-    }
-}
-
-/// Pulley 1's speed DOF when it is free, else the first free pulley's (the driven pulley of
-/// the speed-loss procedure); `fallback` when no pulley is free.
-pub(crate) fn driven_of(pulley_dof: &[Option<usize>], fallback: usize) -> usize {
-    pulley_dof
-        .get(1)
-        .copied()
-        .flatten()
-        .or_else(|| pulley_dof.iter().flatten().next().copied())
-        .unwrap_or(fallback)
-}
-
-/// The pulley whose speed DOF is [`driven_of`]'s (1 when no pulley is free).
-pub(crate) fn driven_pulley_of(pulley_dof: &[Option<usize>]) -> usize {
-    let d = driven_of(pulley_dof, usize::MAX);
-    pulley_dof.iter().position(|&k| k == Some(d)).unwrap_or(1)
-}
-
 impl ArmState {
-    /// The idler's kinematics with the arm `a` at rotation `q[k]`, rate `v[k]`:
-    /// `c(θ) = p + L(cos θ, sin θ)` ([`mbd_core::tensioner`]).
-    pub(crate) fn at(a: ArmModel, k: usize, q: &[f64], v: &[f64]) -> Option<Self> {
+    /// The idler's kinematics with the arm `a` at rotation `q[k]` from its static angle, rate
+    /// `v[k]`: `c(θ) = p + L(cos θ, sin θ)` ([`belt::tensioner`]).
+    pub(crate) fn at(a: Arm, k: usize, q: &[f64], v: &[f64]) -> Option<Self> {
         let angle = a.angle + q[k];
-        let (center, dc) = a.spec.center(a.length, angle);
+        let (center, dc) = a.tensioner.center(a.length, angle);
         let rate = v[k];
         Some(Self {
             center,
             dc,
             vel: [dc[0] * rate, dc[1] * rate],
-            arm: [center[0] - a.spec.pivot[0], center[1] - a.spec.pivot[1]],
+            arm: [
+                center[0] - a.tensioner.pivot[0],
+                center[1] - a.tensioner.pivot[1],
+            ],
             angle,
             rate,
         })
@@ -248,28 +147,6 @@ impl ArmState {
     }
 }
 
-/// Spring, damper and dry-friction moment on the tensioner arm at `a` \[N m\]
-/// ([`TensionerSpec::spring_moment`], [`TensionerSpec::damper_moment`], [`dry_friction`]) and
-/// its derivatives `(∂/∂θ, ∂/∂θ̇)`.
-pub(crate) fn arm_moment(spec: &TensionerSpec, a: &ArmState) -> (f64, f64, f64) {
-    let (ms, ks) = spec.spring_moment(a.angle);
-    let (md, cd) = spec.damper_moment(a.rate);
-    let fr = dry_friction(spec, a.rate);
-    (ms + md + fr.force, ks, cd + fr.d_slip)
-}
-
-/// A tensioner in a flowing-belt drive: the spec, its arm length and the arm angle at which
-/// the path was laid out (Δθ = 0).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ArmModel {
-    /// The tensioner.
-    pub spec: TensionerSpec,
-    /// Arm length `L` \[m\].
-    pub length: f64,
-    /// Arm angle of the laid-out path \[rad\].
-    pub angle: f64,
-}
-
 /// The idler's kinematics at an arm state: centre, `c'`, centre velocity, `c − p`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ArmState {
@@ -301,9 +178,9 @@ pub struct FlowingBelt {
     /// The reduction basis.
     pub basis: FlowingBasis,
     /// How each pulley turns (pulley order of the path).
-    pub motions: Vec<PulleyMotion>,
-    /// The tensioner, if any.
-    pub tensioner: Option<ArmModel>,
+    pub motions: Vec<Motion>,
+    /// The tensioner's arm, if any (at its static angle on the laid-out path).
+    pub tensioner: Option<Arm>,
     pulleys: Vec<PulleyFrame>,
     /// Velocity index of each pulley's speed (`None`: prescribed).
     pulley_dof: Vec<Option<usize>>,
@@ -374,28 +251,24 @@ fn gemv(y: &mut [f64], a: &Mat<f64>, x: &[f64], s: f64) {
 }
 
 impl FlowingBelt {
-    /// The two-pulley drive (Ribaric Table 6-1): pulley 0 turns at `driver_speed`, pulley 1
-    /// is free with the inertia `fe.config.driven_inertia` against `load_torque`. Basis with
-    /// `fe.config.reduction.free_modes` free-node modes, all projections precomputed.
-    pub fn new(
-        fe: BeltFe,
-        driver_speed: Schedule,
-        load_torque: Schedule,
-    ) -> Result<Self, crate::FlowError> {
-        let motions = PulleyMotion::table_6_1(&fe, driver_speed, load_torque);
-        Self::with_layout(fe, motions, None)
+    /// The flowing-material model of `drive` (Ribaric (5.14)): the stationary loop of
+    /// `settings.mesh` on the mounted path, the basis of `settings.reduction`, all projections
+    /// precomputed; the pulleys turn by the drive's motions, a tensioner's arm (if any) is a
+    /// coordinate.
+    pub fn new(drive: &Drive, settings: &FlowingSettings) -> Result<Self, crate::FlowError> {
+        use mbd_core::Validate;
+        settings.validate()?;
+        let fe = BeltFe::new(drive, &settings.mesh)?;
+        let basis = FlowingBasis::new(&fe, settings.reduction.free_modes)?;
+        Self::on(fe, basis, drive.motions(), drive.arm().copied())
     }
 
-    /// Any layout: `fe` built on the layout's path ([`BeltFe::on_path`]), one motion per
-    /// pulley, and an optional tensioner whose idler is one of the pulleys (`tensioner.spec.
-    /// pulley`, free or speed-driven) with its arm at `tensioner.angle` on the laid-out path.
-    pub fn with_layout(
+    fn on(
         fe: BeltFe,
-        motions: Vec<PulleyMotion>,
-        tensioner: Option<ArmModel>,
+        basis: FlowingBasis,
+        motions: Vec<Motion>,
+        tensioner: Option<Arm>,
     ) -> Result<Self, crate::FlowError> {
-        check_layout(&fe, &motions, tensioner.as_ref())?;
-        let basis = FlowingBasis::new(&fe, fe.config.reduction.free_modes)?;
         let n = fe.n_dofs();
         let m = basis.len();
         let et = fe.stacked_tangent();
@@ -418,13 +291,13 @@ impl FlowingBelt {
         let a_k = project(&et, &basis.t, &(&fe.stiffness * &basis.t));
         let a_c = project(&et, &basis.t, &(&fe.damping * &basis.t));
         // β K_e acts on the material rate, α M on the Eulerian rate only (module docs)
-        let alpha = fe.config.damping.alpha;
+        let alpha = fe.drive.damping().alpha;
         let beta_k = Mat::from_fn(n, n, |i, j| {
             fe.damping[(i, j)] - if i == j { alpha * mdiag[i] } else { 0.0 }
         });
         // the frame-invariant material strain rate (BeltFe::frame_turn): β K_e (v T_,s z) minus
         // the co-rotation β v Σ ψ'_e K_e J T z of the elements the material passes through
-        let beta = fe.config.damping.beta;
+        let beta = fe.drive.damping().beta;
         let turn = Mat::from_fn(n, n, |i, j| beta * fe.frame_turn[(i, j)]);
         let a_cs = project(
             &et,
@@ -434,7 +307,7 @@ impl FlowingBelt {
         let men: Vec<f64> = (0..n).map(|i| mdiag[i] * en[i]).collect();
         let p_en = project_vec(&et, &basis.t, &men);
         let p_f0 = project_vec(&et, &basis.t, &fe.pretension);
-        let cfg = fe.config;
+        let contact = *fe.drive.contact();
         let mut rows = Vec::new();
         for (p, set) in fe.contact_nodes.iter().enumerate() {
             for &i in set {
@@ -445,8 +318,8 @@ impl FlowingBelt {
                     t: take(&basis.t),
                     ts: take(&basis.ts),
                     law: PolynomialPenalty {
-                        quadratic: cfg.contact.penalty_quadratic,
-                        linear: cfg.contact.penalty_linear,
+                        quadratic: contact.penalty_quadratic,
+                        linear: contact.penalty_linear,
                         length: fe.tributary[i],
                     },
                 });
@@ -460,7 +333,7 @@ impl FlowingBelt {
             n_v - 1
         });
         Ok(Self {
-            friction: cfg.contact.friction_law(),
+            friction: contact.friction,
             fe,
             basis,
             motions,
@@ -537,14 +410,10 @@ impl FlowingBelt {
         Some(self.tensioner?.angle + q[self.arm_dof?])
     }
 
-    /// Speed schedule of pulley 0 (the driver) when it is speed-driven.
-    pub fn driver_speed_mut(&mut self) -> Option<&mut Signal> {
-        driver_speed_of(&mut self.motions)
-    }
-
-    /// Load history of pulley `p` when it is free.
-    pub fn load_mut(&mut self, p: usize) -> Option<&mut Signal> {
-        load_of(&mut self.motions, p)
+    /// The tensioner idler's index and centre velocity \[m/s\] at `(q, v)` (`None`: no
+    /// tensioner).
+    pub(crate) fn idler_velocity(&self, q: &[f64], v: &[f64]) -> Option<(usize, [f64; 2])> {
+        Some((self.tensioner?.tensioner.pulley, self.arm_state(q, v)?.vel))
     }
 
     fn arm_state(&self, q: &[f64], v: &[f64]) -> Option<ArmState> {
@@ -566,7 +435,7 @@ impl FlowingBelt {
         let w = self.pulley_speed(r.pulley, t, v);
         let mut frame = self.pulleys[r.pulley];
         let idler = match (arm, self.tensioner) {
-            (Some(a), Some(tm)) if tm.spec.pulley == r.pulley => {
+            (Some(a), Some(tm)) if tm.tensioner.pulley == r.pulley => {
                 frame.center = a.center;
                 vel[0] -= a.vel[0];
                 vel[1] -= a.vel[1];
@@ -608,19 +477,13 @@ impl FlowingBelt {
     /// Axial tension of the belt element starting at each node \[N\]: `T0 + EA Δl/l`
     /// ([`chord_tensions`] on the stationary mesh).
     pub fn element_tensions(&self, z: &[f64]) -> Vec<f64> {
-        let b = &self.fe.config.belt;
-        chord_tensions(&self.fe.position, &self.deflection(z), b.tension, b.ea)
-    }
-
-    /// Index of the driven pulley's speed in the velocities (pulley 1 of the two-pulley drive;
-    /// the first free pulley of a layout).
-    pub fn driven_dof(&self) -> usize {
-        driven_of(&self.pulley_dof, self.m + 1)
-    }
-
-    /// The driven pulley: pulley 1 of the two-pulley drive, the first free pulley of a layout.
-    pub fn driven_pulley(&self) -> usize {
-        driven_pulley_of(&self.pulley_dof)
+        let d = &self.fe.drive;
+        chord_tensions(
+            &self.fe.position,
+            &self.deflection(z),
+            d.tension(),
+            d.belt().ea,
+        )
     }
 
     /// The friction law of the belt–pulley contact.
@@ -645,7 +508,7 @@ impl FlowingBelt {
         let v = vec![0.0; nv];
         let mut f = vec![0.0; nv];
         let still = Self {
-            motions: self.motions.iter().map(PulleyMotion::at_rest).collect(),
+            motions: self.motions.iter().map(Motion::at_rest).collect(),
             ..self.clone()
         };
         // unknowns: z and the arm rotation; R = −f over their rows, J = K_t restricted to them
@@ -780,18 +643,18 @@ impl FlowingBelt {
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
-            let (_, ks, cs) = arm_moment(&tm.spec, a);
+            let (_, ks, cs) = tm.tensioner.moment(a.angle, a.rate);
             kq[(k, k)] -= ks;
             cv[(k, k)] -= cs;
         }
+        // the free pulleys' dampers: −c ω
+        for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
+            if let Some(k) = k {
+                cv[(*k, *k)] -= mo.applied_torque(t, v[*k]).1;
+            }
+        }
         (kq, cv)
     }
-}
-
-/// Dry friction moment at the tensioner pivot through the contact crate's law
-/// ([`contact::friction::coulomb_tanh::tensioner_dry_friction`]).
-fn dry_friction(spec: &TensionerSpec, rate: f64) -> contact::friction::FrictionForce {
-    contact::friction::coulomb_tanh::tensioner_dry_friction(spec, rate)
 }
 
 impl SecondOrderSystem for FlowingBelt {
@@ -814,12 +677,12 @@ impl SecondOrderSystem for FlowingBelt {
             mm[(i, 0)] += c;
         }
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let (PulleyMotion::Free { inertia, .. }, Some(k)) = (mo, k) {
-                mm[(*k, *k)] = *inertia;
+            if let (Some(inertia), Some(k)) = (mo.inertia(), k) {
+                mm[(*k, *k)] = inertia;
             }
         }
         if let (Some(a), Some(k)) = (self.tensioner, self.arm_dof) {
-            mm[(k, k)] = a.spec.inertia;
+            mm[(k, k)] = a.tensioner.inertia;
         }
         Ok(SysMatrix::Dense(mm))
     }
@@ -863,12 +726,12 @@ impl SecondOrderSystem for FlowingBelt {
             }
         }
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let (PulleyMotion::Free { load, .. }, Some(k)) = (mo, k) {
-                tail[k - m - 1] -= load.value(t);
+            if let Some(k) = k {
+                tail[k - m - 1] += mo.applied_torque(t, v[*k]).0;
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
-            tail[k - m - 1] += arm_moment(&tm.spec, a).0;
+            tail[k - m - 1] += tm.tensioner.moment(a.angle, a.rate).0;
         }
         if let Some(i) = f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {
@@ -897,36 +760,47 @@ impl SecondOrderSystem for FlowingBelt {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::belt::BeltDriveConfig;
-    use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
+    use crate::belt::{BeltMesh, BeltReduction};
+    use belt::{Layout, Pulley, Section, Signal, Tensioner, WrapSide};
 
-    /// A four-pulley drive with a back-side idler on a tensioner arm (pulley 2).
+    /// A four-pulley drive with a back-side idler on a tensioner arm (pulley 2), the idler
+    /// and the last pulley damped.
     pub(crate) fn layout_belt() -> FlowingBelt {
-        let pulleys = [
-            ([0.0, 0.0], 0.06, WrapSide::Inside),
-            ([0.30, 0.05], 0.05, WrapSide::Inside),
-            ([0.18, -0.02], 0.035, WrapSide::Outside),
-            ([0.12, -0.20], 0.04, WrapSide::Inside),
+        let free = |j| Motion::load(j, Signal::constant(1.5));
+        let pulleys = vec![
+            Pulley::new(
+                "a",
+                [0.0, 0.0],
+                0.06,
+                WrapSide::Inside,
+                Motion::speed(Signal::constant(50.0)),
+            ),
+            Pulley::new("b", [0.30, 0.05], 0.05, WrapSide::Inside, free(0.01)),
+            Pulley::new(
+                "c",
+                [0.18, -0.02],
+                0.035,
+                WrapSide::Outside,
+                Motion::Load {
+                    inertia: 1e-4,
+                    torque: Signal::constant(1.5),
+                    damping: 2e-4,
+                },
+            ),
+            Pulley::new(
+                "d",
+                [0.12, -0.20],
+                0.04,
+                WrapSide::Inside,
+                Motion::Load {
+                    inertia: 0.005,
+                    torque: Signal::constant(1.5),
+                    damping: 0.01,
+                },
+            ),
         ];
-        let pp: Vec<PathPulley> = pulleys
-            .iter()
-            .map(|&(center, radius, side)| PathPulley {
-                center,
-                radius,
-                side,
-            })
-            .collect();
-        let path = BeltPath::new(&pp).unwrap();
-        let counts: Vec<usize> = path
-            .pieces()
-            .iter()
-            .enumerate()
-            .map(|(k, _)| if k % 2 == 0 { 6 } else { 8 })
-            .collect();
-        let mut cfg = BeltDriveConfig::default();
-        cfg.reduction.free_modes = Some(10);
-        let fe = BeltFe::on_path(&cfg, path, &counts).unwrap();
-        let spec = TensionerSpec {
+        let mut layout = Layout::new(pulleys, Section::default(), 310.0);
+        layout.tensioner = Some(Tensioner {
             pulley: 2,
             pivot: [0.14, 0.04],
             stiffness: 30.0,
@@ -937,27 +811,19 @@ pub(crate) mod tests {
             friction_rate: 0.05,
             inertia: 2e-3,
             travel: [-2.0, 0.0],
+        });
+        let drive = layout.resolve().unwrap();
+        let settings = FlowingSettings {
+            mesh: BeltMesh {
+                span_element: 0.05,
+                arc_element: 0.01,
+                contact_margin_nodes: 1,
+            },
+            reduction: BeltReduction {
+                free_modes: Some(10),
+            },
         };
-        let (length, angle) = spec.arm([0.18, -0.02]);
-        let free = |j| PulleyMotion::Free {
-            inertia: j,
-            load: Signal::constant(1.5),
-        };
-        FlowingBelt::with_layout(
-            fe,
-            vec![
-                PulleyMotion::Speed(Signal::constant(50.0)),
-                free(0.01),
-                free(1e-4),
-                free(0.005),
-            ],
-            Some(ArmModel {
-                spec,
-                length,
-                angle,
-            }),
-        )
-        .unwrap()
+        FlowingBelt::new(&drive, &settings).unwrap()
     }
 
     // The analytic tangent of the layout model (pulley spins, moving idler, arm moment,

@@ -1,25 +1,46 @@
 //! The flowing-material belt drive (Ribaric ch. 5–6): a belt loop whose FE mesh stays in place
 //! while the material flows through it, reduced to contact-node static modes plus truncated
-//! free-node modes, on two rigid pulleys with penalty contact and tanh friction.
+//! free-node modes, on rigid pulleys with penalty contact and friction; and the rotating-mesh
+//! nodal belt it replaces (Ribaric (5.7)). Both are built from a resolved [`belt::Drive`] and
+//! implement [`belt::BeltModel`].
 //!
-//! - [`BeltDriveConfig`]: Table 6-1 parameters;
+//! - [`FlowingSettings`], [`BeltMesh`]: the models' settings (element lengths, reduction);
 //! - [`BeltFe`], [`FlowingBasis`]: the loop, its matrices and the reduction basis (5.9)–(5.13);
 //! - [`FlowingBelt`]: the flowing-material equations (5.14) as a [`mbd_core::SecondOrderSystem`];
-//! - [`Schedule`]: the driver-speed and load-torque histories the models carry.
+//! - [`nodal::NodalBelt`]: the rotating-mesh nodal equations (5.7).
 //!
-//! The speed-loss procedure, Bechtel's line (6.3) and the `DriveModel` implementations of these
-//! models live in the `drives` crate.
+//! The speed-loss procedure, Bechtel's line (6.3) and the studies live in the `drives` crate.
 
 pub mod config;
 pub mod contact;
 pub mod flowing_system;
 pub mod model;
 pub mod nodal;
-pub mod schedule;
+mod snapshot;
 mod statics;
 pub mod wave;
 
-pub use config::BeltDriveConfig;
-pub use flowing_system::{ArmModel, FlowingBelt, NodeReport, PulleyMotion};
+pub use config::{BeltMesh, BeltReduction, FlowingSettings};
+pub use flowing_system::{FlowingBelt, NodeReport};
 pub use model::{BeltFe, FlowingBasis};
-pub use schedule::{Harmonic, Schedule, Signal};
+pub use nodal::NodalBelt;
+pub use snapshot::LINEAR_FORCE_MEASURE;
+
+/// Ribaric Table 6-1's drive for the tests: driver at 0 (speed `speed` \[rad/s\]), driven
+/// free with 0.013 kg m² against `load` \[N m\], T0 = 310 N.
+#[cfg(test)]
+pub(crate) fn table_6_1(speed: f64, load: f64) -> belt::Drive {
+    use belt::{Layout, Section, Signal};
+    Layout::two_pulley(
+        0.45,
+        0.05,
+        0.05,
+        Signal::constant(speed),
+        0.013,
+        Signal::constant(load),
+        Section::default(),
+        310.0,
+    )
+    .resolve()
+    .unwrap()
+}

@@ -22,15 +22,14 @@
 //! - the reference state is the belt mounted on the path with tension T0 (the printed 1.2 m
 //!   belt length is inconsistent with the path, note U8).
 
-use super::config::BeltDriveConfig;
+use super::config::BeltMesh;
 use crate::derivative::{DerivativeMethod, FdScheme, FirstDifference, SecondDifference};
 use crate::error::{FlowError, invalid};
 use crate::grid::{FlowGrid, Topology};
 use crate::{FlowLine, mode_shape_derivatives};
+use belt::{BeltPath, Drive, tributary_lengths};
 use faer::Mat;
 use fe_model::element::{Element, Frame2d, Frame2dSection, MassKind, MatrixKind};
-use fe_model::generate::belt_path::{BeltPath, tributary_lengths};
-use mbd_core::Validate;
 use reduction::{DofPartition, Method, ModeSelection, build_basis};
 
 /// DOFs per belt node (u, v, θ).
@@ -39,10 +38,10 @@ pub const NODE_DOFS: usize = 3;
 /// The belt loop shared by the nodal and the flowing-material formulations.
 #[derive(Debug, Clone)]
 pub struct BeltFe {
-    /// The configuration it was built from.
-    pub config: BeltDriveConfig,
-    /// Undeformed belt path.
-    pub path: BeltPath,
+    /// The resolved drive it was built on (path, belt, mounting tension `T0`).
+    pub drive: Drive,
+    /// The element lengths it was built with.
+    pub mesh: BeltMesh,
     /// Arc length of each node \[m\] (increasing, in `[0, L)`).
     pub s: Vec<f64>,
     /// Node positions `r_i` \[m\].
@@ -91,41 +90,15 @@ pub struct BeltFe {
 }
 
 impl BeltFe {
-    /// Build the loop from `config` (validated first).
-    pub fn new(config: &BeltDriveConfig) -> Result<Self, FlowError> {
-        config.validate_within("belt drive")?;
-        let g = &config.geometry;
-        let path = BeltPath::two_pulleys(g.center_distance, g.radius_driver, g.radius_driven)?;
-        // element lengths: each piece divided into the configured number of elements
-        let counts: Vec<usize> = path
-            .pieces()
-            .iter()
-            .map(|piece| match piece.segment {
-                fe_model::generate::belt_path::Segment::Span { .. } => config.mesh.span_elements,
-                fe_model::generate::belt_path::Segment::Arc { .. } => config.mesh.arc_elements,
-            })
-            .collect();
-        Self::on_path(config, path, &counts)
-    }
-
-    /// Build the loop on any open-belt `path` (N pulleys, either wrap side), piece `k` of
-    /// [`BeltPath::pieces`] divided into `elements[k]` equal elements. The section, pre-tension,
-    /// mesh margin, contact and damping come from `config`; its `geometry` and
-    /// `driven_inertia` are not used (the layout's path and pulleys replace them), and the
-    /// caller validates the rest of `config`.
-    pub fn on_path(
-        config: &BeltDriveConfig,
-        path: BeltPath,
-        elements: &[usize],
-    ) -> Result<Self, FlowError> {
-        if elements.len() != path.pieces().len() || elements.iter().any(|&n| n < 1) {
-            return Err(invalid(
-                "belt mesh",
-                "one element count (≥ 1) per path piece is needed",
-            ));
-        }
+    /// Build the loop on the mounted path of `drive`, each span and wrap divided into equal
+    /// elements of at most `mesh`'s lengths ([`BeltMesh::counts`]). The section, mounting
+    /// tension `T0`, contact and damping are the drive's.
+    pub fn new(drive: &Drive, mesh: &BeltMesh) -> Result<Self, FlowError> {
+        mesh.check_on(drive.path()).map_err(|e| e.within("mesh"))?;
+        let elements = mesh.counts(drive.path());
+        let path = drive.path();
         let mut s = Vec::new();
-        for (piece, &n) in path.pieces().iter().zip(elements) {
+        for (piece, &n) in path.pieces().iter().zip(&elements) {
             for k in 0..n {
                 s.push(piece.s_start + piece.length * k as f64 / n as f64);
             }
@@ -145,7 +118,7 @@ impl BeltFe {
                 [dx / h, dy / h]
             })
             .collect();
-        let t0 = config.belt.tension;
+        let t0 = drive.tension();
         let mut curvature = vec![[0.0; 2]; n_nodes];
         let mut pretension = vec![0.0; NODE_DOFS * n_nodes];
         for i in 0..n_nodes {
@@ -156,9 +129,9 @@ impl BeltFe {
             }
         }
         let section = Frame2dSection {
-            ea: config.belt.ea,
-            ei: config.belt.ei,
-            mass_per_length: config.belt.mass_per_length,
+            ea: drive.belt().ea,
+            ei: drive.belt().ei,
+            mass_per_length: drive.belt().mass_per_length,
         };
         let ndof = NODE_DOFS * n_nodes;
         let mut stiffness = Mat::<f64>::zeros(ndof, ndof);
@@ -187,11 +160,11 @@ impl BeltFe {
                 }
             }
         }
-        let (alpha, beta) = (config.damping.alpha, config.damping.beta);
+        let (alpha, beta) = (drive.damping().alpha, drive.damping().beta);
         let damping = Mat::from_fn(ndof, ndof, |i, j| {
             beta * elastic[(i, j)] + if i == j { alpha * mass[i] } else { 0.0 }
         });
-        let margin = config.mesh.contact_margin_nodes;
+        let margin = mesh.contact_margin_nodes;
         let contact_nodes = (0..path.pulleys().len())
             .map(|p| {
                 let (a, len) = path.arc_of(p).unwrap_or((0.0, 0.0));
@@ -222,12 +195,12 @@ impl BeltFe {
         let contact_radius = path
             .pulleys()
             .iter()
-            .map(|p| p.radius + mounting_penetration(config, p.radius))
+            .map(|p| p.radius + drive.contact().mounting_penetration(t0, p.radius))
             .collect();
         Ok(Self {
             contact_radius,
-            config: *config,
-            path,
+            drive: drive.clone(),
+            mesh: *mesh,
             s,
             position,
             tangent,
@@ -240,6 +213,16 @@ impl BeltFe {
             pretension,
             contact_nodes,
         })
+    }
+
+    /// The undeformed belt path (the drive's).
+    pub fn path(&self) -> &BeltPath {
+        self.drive.path()
+    }
+
+    /// Mounting tension `T0` of the reference state \[N\].
+    pub fn tension(&self) -> f64 {
+        self.drive.tension()
     }
 
     /// Number of nodes.
@@ -297,7 +280,7 @@ impl BeltFe {
         FlowGrid::new(
             self.s.clone(),
             Topology::Closed {
-                period: self.path.length(),
+                period: self.path().length(),
             },
         )
     }
@@ -346,22 +329,6 @@ pub fn chord_tensions(position: &[[f64; 2]], d: &[f64], t0: f64, ea: f64) -> Vec
             t0 + ea * dl / l
         })
         .collect()
-}
-
-/// Penetration `p0` \[m\] of the penalty law (6.1) under the uniform pressure `T0/R` of a belt
-/// with tension T0 on a pulley of radius R: the root of `k₂ p² + k₁ p = T0/R`
-/// (72 µm for Table 6-1, seed-000 note §2.3).
-pub fn mounting_penetration(config: &BeltDriveConfig, radius: f64) -> f64 {
-    let (k2, k1) = (
-        config.contact.penalty_quadratic,
-        config.contact.penalty_linear,
-    );
-    let q = config.belt.tension / radius;
-    if k2 > 0.0 {
-        (-k1 + (k1 * k1 + 4.0 * k2 * q).sqrt()) / (2.0 * k2)
-    } else {
-        q / k1
-    }
 }
 
 /// The flowing-material basis `δ = T z` with its periodic derivatives along s (Ribaric
@@ -500,9 +467,9 @@ pub(crate) mod tests {
     // components alone does not (≈ 30 N at the arc nodes for φ = 1 mrad at 3 m/s).
     #[test]
     fn damping_of_a_rigid_rotation_vanishes() {
-        let fe = BeltFe::new(&BeltDriveConfig::default()).unwrap();
+        let fe = BeltFe::new(&crate::belt::table_6_1(0.0, 0.0), &BeltMesh::default()).unwrap();
         let n = fe.n_dofs();
-        let (alpha, beta) = (fe.config.damping.alpha, fe.config.damping.beta);
+        let (alpha, beta) = (fe.drive.damping().alpha, fe.drive.damping().beta);
         for c in [[0.0, 0.0], [0.45, 0.0], [0.17, -0.3]] {
             let (delta, rate) = rigid_rotation(&fe.position, &fe.tangent, c, 1e-3);
             let v = 3.0;
@@ -538,7 +505,7 @@ pub(crate) mod tests {
     // seed-000 note BELT-1: e_tᵀ M e_t = m_belt = ρ L_path, e_tᵀ M ε_n ≈ 0, ε_n → e_n/R on arcs.
     #[test]
     fn path_kinematics_with_lumped_mass() {
-        let fe = BeltFe::new(&BeltDriveConfig::default()).unwrap();
+        let fe = BeltFe::new(&crate::belt::table_6_1(0.0, 0.0), &BeltMesh::default()).unwrap();
         assert_eq!(fe.n_nodes(), 56);
         // exact: e_tᵀ M e_t = Σ m_i = ρ Σ chords (lumped, |e_t| = 1); the chord polygon is
         // O(h²) shorter than the path: within 0.05 % for 56 elements

@@ -10,12 +10,12 @@
 //! Coordinates `q = [s_b, δ, φ_k…]`, velocities `v = [v, δ̇, ω_k…]`: the belt's travel `s_b`
 //! and speed `v = ṡ_b`, the global nodal deflections `δ` (`3N`: x, y, θ per node;
 //! `d^i = r^i(s_i) + δ^i`, (5.1)) and the angle and speed of every pulley that is not
-//! speed-driven (pulley order, [`PulleyMotion`]). The two-pulley drive of [`NodalBelt::new`]
+//! speed-driven (pulley order, [`belt::Motion`]). The two-pulley drive of Ribaric Table 6-1
 //! has `q = [s_b, δ, φ₂]`: the driver's speed `ω₁(t)` is prescribed.
 //!
-//! Any layout (issue 17): [`NodalBelt::with_layout`] takes the loop of [`BeltFe::on_path`] over
-//! N pulleys (grooved or back side) and one [`PulleyMotion`] per pulley, the same inputs as
-//! [`super::FlowingBelt::with_layout`]; the material nodes travel along that path.
+//! Any layout (issue 17): [`NodalBelt::new`] takes the resolved drive ([`belt::Drive`]: N
+//! pulleys, grooved or back side, one [`belt::Motion`] each, an optional tensioner), the same
+//! input as [`super::FlowingBelt::new`]; the material nodes travel along its path.
 //!
 //! ```text
 //!   d̈ = a e_t + v² ε_n + δ̈                                          (5.3), (5.4)
@@ -66,22 +66,19 @@
 //! Δω(8 N m) exceeds the flowing form's on the same loop by 17 % (54 elements), 2.1 % (162) and
 //! 1.7 % (216).
 
+use super::config::BeltMesh;
 use super::contact::{NodeContact, PulleyFrame, node_contact};
-use super::flowing_system::{
-    ArmModel, ArmState, PulleyMotion, arm_moment, check_layout, driven_of, driven_pulley_of,
-    driver_speed_of, load_of, motion_speed, pulley_dofs, pulley_frames,
-};
+use super::flowing_system::{ArmState, motion_speed, pulley_dofs, pulley_frames};
 use super::model::{BeltFe, NODE_DOFS, chord_tensions, chord_turn_rate, corotational_rate_block};
-use super::schedule::Schedule;
-use super::schedule::Signal;
 use super::statics::dense_equilibrium;
+use belt::tensioner::cross;
+use belt::{Arm, Drive, Motion};
 use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use faer::sparse::{SparseColMat, Triplet};
 use fe_model::element::{Frame2d, Frame2dSection};
 use mbd_core::Workspace;
-use mbd_core::tensioner::cross;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
 /// 6×6 element matrix in global axes.
@@ -117,9 +114,9 @@ pub struct NodalBelt {
     pub fe: BeltFe,
     /// How each pulley turns (pulley order of the path): speed-driven, or free with an
     /// inertia \[kg m²\] against a load torque \[N m\].
-    pub motions: Vec<PulleyMotion>,
+    pub motions: Vec<Motion>,
     /// The tensioner, if any: its idler (one of the pulleys) turns on an arm about a pivot.
-    pub tensioner: Option<ArmModel>,
+    pub tensioner: Option<Arm>,
     /// Material node whose tangential deflection is zero (reference condition).
     pub reference_node: usize,
     /// Velocity index of the tensioner arm.
@@ -205,45 +202,38 @@ impl<'a> Tangent<'a> {
 }
 
 impl NodalBelt {
-    /// The two-pulley drive (Ribaric Table 6-1) on the loop `fe`: pulley 0 turns at
-    /// `driver_speed` \[rad/s\], pulley 1 is free with the inertia `fe.config.driven_inertia`
-    /// against `load_torque` \[N m\].
-    pub fn new(
-        fe: BeltFe,
-        driver_speed: Schedule,
-        load_torque: Schedule,
-    ) -> Result<Self, crate::FlowError> {
-        let motions = PulleyMotion::table_6_1(&fe, driver_speed, load_torque);
-        Self::with_layout(fe, motions, None)
+    /// The rotating-mesh model of `drive` (Ribaric (5.7)) on the loop of `mesh` over the
+    /// mounted path (give it near-uniform elements, [`BeltMesh::uniform`]: long span elements
+    /// landing on a wrap excite it at the element-passing frequency). Every node can touch
+    /// every pulley (Ribaric (6.1), (6.2) against each rigid pulley, grooved or back side). A
+    /// tensioner's idler moves with its arm, `c(θ) = p + L(cos θ, sin θ)` ([`belt::tensioner`]):
+    /// its contact sees the node at `d − c(θ)` with the relative velocity `V − ċ`, and the arm
+    /// the moment `(c − p) × (−F)` of the contact forces `F` on the belt, with the spring,
+    /// damper and dry friction (`J_a Δθ̈ = (c − p) × F_hub + M_s + M_d + M_f`); the arm rotation
+    /// `Δθ` from the laid-out angle is the last coordinate.
+    pub fn new(drive: &Drive, mesh: &BeltMesh) -> Result<Self, crate::FlowError> {
+        let fe = BeltFe::new(drive, mesh)?;
+        Self::on(fe, drive.motions(), drive.arm().copied())
     }
 
-    /// Any layout (issue 17): `fe` built on the layout's path ([`BeltFe::on_path`]), one
-    /// motion per pulley and an optional tensioner, as for [`super::FlowingBelt::with_layout`].
-    /// Every node can touch every pulley (Ribaric (6.1), (6.2) against each rigid pulley,
-    /// grooved or back side). The tensioner's idler moves with its arm, `c(θ) = p + L(cos θ,
-    /// sin θ)` ([`mbd_core::tensioner`]): its contact sees the node at `d − c(θ)` with the
-    /// relative velocity `V − ċ`, and the arm the moment `(c − p) × (−F)` of the contact
-    /// forces `F` on the belt, with the spring, damper and dry friction of the
-    /// [`mbd_core::tensioner::TensionerSpec`] (`J_a Δθ̈ = (c − p) × F_hub + M_s + M_d + M_f`);
-    /// the arm rotation `Δθ` from the laid-out angle is the last coordinate.
-    pub fn with_layout(
+    pub(crate) fn on(
         fe: BeltFe,
-        motions: Vec<PulleyMotion>,
-        tensioner: Option<ArmModel>,
+        motions: Vec<Motion>,
+        tensioner: Option<Arm>,
     ) -> Result<Self, crate::FlowError> {
-        check_layout(&fe, &motions, tensioner.as_ref())?;
-        let cfg = fe.config;
+        let b = *fe.drive.belt();
+        let contact = *fe.drive.contact();
         let section = Frame2dSection {
-            ea: cfg.belt.ea,
-            ei: cfg.belt.ei,
-            mass_per_length: cfg.belt.mass_per_length,
+            ea: b.ea,
+            ei: b.ei,
+            mass_per_length: b.mass_per_length,
         };
         let laws = fe
             .tributary
             .iter()
             .map(|&l| PolynomialPenalty {
-                quadratic: cfg.contact.penalty_quadratic,
-                linear: cfg.contact.penalty_linear,
+                quadratic: contact.penalty_quadratic,
+                linear: contact.penalty_linear,
                 length: l,
             })
             .collect();
@@ -261,7 +251,7 @@ impl NodalBelt {
             section,
             pulleys,
             pulley_dof,
-            friction: cfg.contact.friction_law(),
+            friction: contact.friction,
             laws,
             mass_total,
             fe,
@@ -298,16 +288,6 @@ impl NodalBelt {
         motion_speed(&self.motions[p], self.pulley_dof[p], t, v)
     }
 
-    /// Speed history of pulley 0 (the driver) when it is speed-driven.
-    pub fn driver_speed_mut(&mut self) -> Option<&mut Signal> {
-        driver_speed_of(&mut self.motions)
-    }
-
-    /// Load history of pulley `p` when it is free.
-    pub fn load_mut(&mut self, p: usize) -> Option<&mut Signal> {
-        load_of(&mut self.motions, p)
-    }
-
     /// Velocity index of the tensioner arm's rotation `Δθ` (`None`: no tensioner).
     pub fn arm_dof(&self) -> Option<usize> {
         self.arm_dof
@@ -318,13 +298,19 @@ impl NodalBelt {
         Some(self.tensioner?.angle + q[self.arm_dof?])
     }
 
+    /// The tensioner idler's index and centre velocity \[m/s\] at `(q, v)` (`None`: no
+    /// tensioner).
+    pub(crate) fn idler_velocity(&self, q: &[f64], v: &[f64]) -> Option<(usize, [f64; 2])> {
+        Some((self.tensioner?.tensioner.pulley, self.arm_state(q, v)?.vel))
+    }
+
     fn arm_state(&self, q: &[f64], v: &[f64]) -> Option<ArmState> {
         ArmState::at(self.tensioner?, self.arm_dof?, q, v)
     }
 
     /// The tensioner's idler (`None`: no tensioner).
     fn idler(&self) -> Option<usize> {
-        self.tensioner.map(|a| a.spec.pulley)
+        self.tensioner.map(|a| a.tensioner.pulley)
     }
 
     /// The free pulleys: `(pulley, velocity index)`.
@@ -341,7 +327,7 @@ impl NodalBelt {
         self.fe
             .s
             .iter()
-            .map(|&s| self.fe.path.point(s + s_b).position)
+            .map(|&s| self.fe.path().point(s + s_b).position)
             .collect()
     }
 
@@ -351,9 +337,9 @@ impl NodalBelt {
             .fe
             .s
             .iter()
-            .map(|&s| self.fe.path.point(s + s_b))
+            .map(|&s| self.fe.path().point(s + s_b))
             .collect();
-        let t0 = self.fe.config.belt.tension;
+        let t0 = self.fe.tension();
         let mut k = Vec::with_capacity(n);
         let mut ke = Vec::with_capacity(n);
         let mut kj = Vec::with_capacity(n);
@@ -473,31 +459,20 @@ impl NodalBelt {
         Ok(self
             .contacts(&mesh, t, q, v)
             .into_iter()
-            .map(|(i, p, c)| (i, p, self.fe.path.wrap_s(self.fe.s[i] + q[0]), c))
+            .map(|(i, p, c)| (i, p, self.fe.path().wrap_s(self.fe.s[i] + q[0]), c))
             .collect())
     }
 
     /// Axial tension of the belt element starting at each material node \[N\]: `T0 + EA Δl/l`
     /// ([`chord_tensions`] on the reference polygon at `s_b = q[0]`).
     pub fn element_tensions(&self, q: &[f64]) -> Vec<f64> {
-        let b = &self.fe.config.belt;
+        let b = &self.fe.drive;
         chord_tensions(
             &self.reference_positions(q[0]),
             &q[1..=self.n_nodal()],
-            b.tension,
-            b.ea,
+            b.tension(),
+            b.belt().ea,
         )
-    }
-
-    /// Index of the driven pulley's speed in the velocities (pulley 1 of the two-pulley drive;
-    /// the first free pulley of a layout).
-    pub fn driven_dof(&self) -> usize {
-        driven_of(&self.pulley_dof, self.n_nodal() + 1)
-    }
-
-    /// The driven pulley: pulley 1 of the two-pulley drive, the first free pulley of a layout.
-    pub fn driven_pulley(&self) -> usize {
-        driven_pulley_of(&self.pulley_dof)
     }
 
     /// The friction law of the belt–pulley contact.
@@ -529,7 +504,7 @@ impl NodalBelt {
         let n = self.n();
         let nd = self.n_nodal();
         let (d, dd, vb) = (&q[1..=nd], &v[1..=nd], v[0]);
-        let (alpha, beta) = (self.fe.config.damping.alpha, self.fe.config.damping.beta);
+        let (alpha, beta) = (self.fe.drive.damping().alpha, self.fe.drive.damping().beta);
         g.copy_from_slice(&mesh.f0);
         for e in 0..n {
             let dofs = self.element_dofs(e);
@@ -584,12 +559,12 @@ impl NodalBelt {
             .map(|i| mesh.tan[i][0] * g[NODE_DOFS * i] + mesh.tan[i][1] * g[NODE_DOFS * i + 1])
             .sum();
         for (p, mo) in self.motions.iter().enumerate() {
-            if let (PulleyMotion::Free { load, .. }, Some(k)) = (mo, self.pulley_dof[p]) {
-                f[k] = torque[p] - load.value(t);
+            if let Some(k) = self.pulley_dof[p] {
+                f[k] = torque[p] + mo.applied_torque(t, v[k]).0;
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (self.arm_state(q, v), self.tensioner, self.arm_dof) {
-            f[k] = moment + arm_moment(&tm.spec, &a).0;
+            f[k] = moment + tm.tensioner.moment(a.angle, a.rate).0;
         }
         if let Some(i) = f.iter().position(|x| !x.is_finite()) {
             return Err(MbdError::NonFinite {
@@ -612,7 +587,7 @@ impl NodalBelt {
         let arm = self.arm_state(q, v);
         let mesh = self.mesh(q[0])?;
         let vb = v[0];
-        let (alpha, beta) = (self.fe.config.damping.alpha, self.fe.config.damping.beta);
+        let (alpha, beta) = (self.fe.drive.damping().alpha, self.fe.drive.damping().beta);
         let mut kq = Tangent::new(nv, &mesh.tan);
         let mut cv = Tangent::new(nv, &mesh.tan);
         let d = &q[1..=nd];
@@ -680,9 +655,15 @@ impl NodalBelt {
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (&arm, self.tensioner, self.arm_dof) {
-            let (_, ks, cs) = arm_moment(&tm.spec, a);
+            let (_, ks, cs) = tm.tensioner.moment(a.angle, a.rate);
             kq.add(k, k, -ks);
             cv.add(k, k, -cs);
+        }
+        // the free pulleys' dampers: −c ω
+        for (p, mo) in self.motions.iter().enumerate() {
+            if let Some(k) = self.pulley_dof[p] {
+                cv.add(k, k, -mo.applied_torque(t, v[k]).1);
+            }
         }
         // s_b column: forward difference of the forces (rows 1.. here; row 0 below)
         let eps = 1e-7;
@@ -756,7 +737,7 @@ impl NodalBelt {
     pub fn static_state(&self) -> Result<Vec<f64>, MbdError> {
         let nv = self.n_v;
         let still = Self {
-            motions: self.motions.iter().map(PulleyMotion::at_rest).collect(),
+            motions: self.motions.iter().map(Motion::at_rest).collect(),
             ..self.clone()
         };
         let mut q = vec![0.0; nv];
@@ -843,7 +824,7 @@ impl SecondOrderSystem for NodalBelt {
         let mut trip = Vec::with_capacity(3 * nv);
         trip.push(Triplet::new(0, 0, self.mass_total));
         for i in 0..self.n() {
-            let tan = self.fe.path.point(self.fe.s[i] + q[0]).tangent;
+            let tan = self.fe.path().point(self.fe.s[i] + q[0]).tangent;
             for a in 0..2 {
                 let r = 1 + NODE_DOFS * i + a;
                 let m = self.fe.mass[NODE_DOFS * i + a] * tan[a];
@@ -855,12 +836,12 @@ impl SecondOrderSystem for NodalBelt {
             trip.push(Triplet::new(1 + i, 1 + i, self.fe.mass[i]));
         }
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let (PulleyMotion::Free { inertia, .. }, Some(k)) = (mo, k) {
-                trip.push(Triplet::new(*k, *k, *inertia));
+            if let (Some(inertia), Some(k)) = (mo.inertia(), k) {
+                trip.push(Triplet::new(*k, *k, inertia));
             }
         }
         if let (Some(a), Some(k)) = (self.tensioner, self.arm_dof) {
-            trip.push(Triplet::new(k, k, a.spec.inertia));
+            trip.push(Triplet::new(k, k, a.tensioner.inertia));
         }
         SparseColMat::try_new_from_triplets(nv, nv, &trip)
             .map(SysMatrix::Sparse)
@@ -898,7 +879,7 @@ impl SecondOrderSystem for NodalBelt {
 
     fn constraint_residual(&self, _t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
         let k = self.reference_node;
-        let p = self.fe.path.point(self.fe.s[k] + q[0]);
+        let p = self.fe.path().point(self.fe.s[k] + q[0]);
         let d = &q[1 + NODE_DOFS * k..];
         phi[0] = p.tangent[0] * d[0] + p.tangent[1] * d[1];
         Ok(())
@@ -907,7 +888,7 @@ impl SecondOrderSystem for NodalBelt {
     /// `D = [κ e_nᵀ δ^k, e_tᵀ (node k), 0]` (`∂e_t/∂s = κ e_n`).
     fn constraint_jacobian(&self, _t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         let k = self.reference_node;
-        let p = self.fe.path.point(self.fe.s[k] + q[0]);
+        let p = self.fe.path().point(self.fe.s[k] + q[0]);
         let d = &q[1 + NODE_DOFS * k..];
         let trip = [
             Triplet::new(
@@ -935,7 +916,7 @@ impl SecondOrderSystem for NodalBelt {
         gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         let k = self.reference_node;
-        let p = self.fe.path.point(self.fe.s[k] + q[0]);
+        let p = self.fe.path().point(self.fe.s[k] + q[0]);
         let (d, dd, vb) = (&q[1 + NODE_DOFS * k..], &v[1 + NODE_DOFS * k..], v[0]);
         let kap = p.curvature;
         gamma[0] = vb * vb * kap * kap * (p.tangent[0] * d[0] + p.tangent[1] * d[1])
@@ -947,11 +928,10 @@ impl SecondOrderSystem for NodalBelt {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::belt::{BeltDriveConfig, FlowingBelt};
+    use crate::belt::{BeltReduction, FlowingBelt, FlowingSettings, table_6_1};
 
     fn belt() -> NodalBelt {
-        let fe = BeltFe::new(&BeltDriveConfig::default()).unwrap();
-        NodalBelt::new(fe, Schedule::constant(60.0), Schedule::constant(3.0)).unwrap()
+        NodalBelt::new(&table_6_1(60.0, 3.0), &BeltMesh::default()).unwrap()
     }
 
     // At s_b = 0 the rebuilt element matrices reproduce BeltFe's assembled K (fe-model's global
@@ -1040,14 +1020,9 @@ mod tests {
     #[test]
     fn damping_of_a_carried_rigid_rotation_vanishes() {
         let b = belt();
-        let mut cfg = b.fe.config;
-        cfg.damping.beta = 0.0;
-        let b0 = NodalBelt::new(
-            BeltFe::new(&cfg).unwrap(),
-            Schedule::constant(60.0),
-            Schedule::constant(3.0),
-        )
-        .unwrap();
+        let mut layout = b.fe.drive.layout().clone();
+        layout.damping.beta = 0.0;
+        let b0 = NodalBelt::new(&layout.resolve().unwrap(), &BeltMesh::default()).unwrap();
         let nv = b.n_q();
         let v_belt = 3.0;
         for c in [[0.0, 0.0], [0.45, 0.0], [0.17, -0.3]] {
@@ -1082,7 +1057,7 @@ mod tests {
     #[test]
     fn layout_tangent_with_tensioner_matches_finite_differences() {
         let fl = crate::belt::flowing_system::tests::layout_belt();
-        let b = NodalBelt::with_layout(fl.fe.clone(), fl.motions.clone(), fl.tensioner).unwrap();
+        let b = NodalBelt::on(fl.fe.clone(), fl.motions.clone(), fl.tensioner).unwrap();
         let nv = b.n_q();
         let ka = b.arm_dof().unwrap();
         let mut q = vec![0.0; nv];
@@ -1148,14 +1123,15 @@ mod tests {
     // same nodes: equal static deflections (second formulation).
     #[test]
     fn static_equilibrium_matches_the_untruncated_flowing_model() {
-        let mut cfg = BeltDriveConfig::default();
-        cfg.reduction.free_modes = None;
-        let fe = BeltFe::new(&cfg).unwrap();
-        let fl =
-            FlowingBelt::new(fe.clone(), Schedule::constant(0.0), Schedule::constant(0.0)).unwrap();
+        let drive = table_6_1(0.0, 0.0);
+        let settings = FlowingSettings {
+            reduction: BeltReduction { free_modes: None },
+            ..Default::default()
+        };
+        let fl = FlowingBelt::new(&drive, &settings).unwrap();
         let z = fl.static_equilibrium().unwrap();
         let d_flow = fl.deflection(&z);
-        let nb = NodalBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).unwrap();
+        let nb = NodalBelt::new(&drive, &settings.mesh).unwrap();
         let d = nb.static_equilibrium().unwrap();
         let scale = d_flow.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         let err = d

@@ -17,11 +17,10 @@
 //! would carry the amplitudes `(c ∓ v)/(2c)` and the deflection centroid would stay put). The belt
 //! speed and both pulley speeds start at `v` (driver held at `v/R₁`), no load.
 
-use super::config::BeltDriveConfig;
+use super::config::FlowingSettings;
 use super::flowing_system::FlowingBelt;
-use super::model::BeltFe;
-use super::schedule::Schedule;
 use crate::error::{FlowError, invalid};
+use belt::{Drive, Motion, Signal};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Recorder, State, observe_fn};
@@ -126,9 +125,9 @@ pub struct WaveRun {
     pub shapes: Vec<Vec<[f64; 2]>>,
 }
 
-/// Transverse wave speed `c = √(T0/ρA)` of the belt \[m/s\].
-pub fn wave_speed(config: &BeltDriveConfig) -> f64 {
-    (config.belt.tension / config.belt.mass_per_length).sqrt()
+/// Transverse wave speed `c = √(T0/ρA)` of the mounted belt of `drive` \[m/s\].
+pub fn wave_speed(drive: &Drive) -> f64 {
+    drive.belt().wave_speed(drive.tension())
 }
 
 /// Mass-weighted least squares `(Tᵀ W T) z = Tᵀ W d` (`W` the lumped mass).
@@ -148,51 +147,60 @@ fn project(t: &Mat<f64>, w: &[f64], d: &[f64]) -> Result<Vec<f64>, FlowError> {
     Ok((0..m).map(|i| x[(i, 0)]).collect())
 }
 
-/// Run the demonstration on the drive `config` (its reduction setting is used as is): at rest
-/// when `running` is false, at `settings.belt_speed` otherwise.
+/// Run the demonstration on `drive` (pulley 0 speed-driven) with the flowing model's
+/// `settings` (its reduction used as is), the bump on span 0 (pulley 0 → pulley 1): at rest
+/// when `running` is false, at `wave.belt_speed` otherwise. Pulley 0 turns at `v/R₀`, every
+/// free pulley starts at `v/R_k` without load.
 pub fn wave_run(
-    config: &BeltDriveConfig,
-    settings: &WaveConfig,
+    drive: &Drive,
+    settings: &FlowingSettings,
+    wave: &WaveConfig,
     running: bool,
 ) -> Result<WaveRun, FlowError> {
-    settings.validate_within("wave")?;
-    let v = if running { settings.belt_speed } else { 0.0 };
-    let fe = BeltFe::new(config)?;
-    let g = config.geometry;
-    let speed1 = v / g.radius_driver;
-    let belt = FlowingBelt::new(fe, Schedule::constant(speed1), Schedule::constant(0.0))?;
+    wave.validate_within("wave")?;
+    let v = if running { wave.belt_speed } else { 0.0 };
+    let radius: Vec<f64> = drive.pulleys().iter().map(|p| p.radius).collect();
+    let motions: Vec<Motion> = drive
+        .motions()
+        .iter()
+        .enumerate()
+        .map(|(k, m)| match m {
+            Motion::Speed { .. } if k == 0 => Motion::speed(Signal::constant(v / radius[0])),
+            Motion::Speed { .. } => Motion::speed(Signal::constant(0.0)),
+            free => free.at_rest(),
+        })
+        .collect();
+    if !matches!(motions[0], Motion::Speed { .. }) {
+        return Err(invalid(
+            "wave: pulleys[0].motion",
+            "pulley 0 must be speed-driven (it holds the belt speed)",
+        ));
+    }
+    let drive = drive.with_motions(motions)?;
+    let belt = FlowingBelt::new(&drive, settings)?;
     let fe = &belt.fe;
     let n_nodes = fe.n_nodes();
-    // the upper span: nodes above the centre line strictly between the pulley centres
-    let r_min = g.radius_driver.min(g.radius_driven);
-    let mut span: Vec<usize> = (0..n_nodes)
+    // span 0's nodes strictly between its tangent points, in travel order
+    let piece = fe.path().pieces()[0];
+    let line = fe.path().spans()[0];
+    let span: Vec<usize> = (0..n_nodes)
         .filter(|&i| {
-            let p = fe.position[i];
-            p[1] > 0.5 * r_min && p[0] > 0.0 && p[0] < g.center_distance
+            let s = fe.s[i] - piece.s_start;
+            s > 1e-9 * piece.length && s < piece.length * (1.0 - 1e-9)
         })
         .collect();
     if span.len() < 5 {
         return Err(invalid(
-            "wave: upper span",
-            format!("only {} nodes between the pulleys", span.len()),
+            "wave: span 0",
+            format!("only {} nodes on the span", span.len()),
         ));
     }
-    // order along the travel direction (the span's tangent at its nodes)
-    let dir = fe.tangent[span[0]];
-    span.sort_by(|&a, &b| {
-        let pa = fe.position[a][0] * dir[0] + fe.position[a][1] * dir[1];
-        let pb = fe.position[b][0] * dir[0] + fe.position[b][1] * dir[1];
-        pa.total_cmp(&pb)
-    });
-    let origin = fe.position[span[0]];
-    let along = |p: [f64; 2]| (p[0] - origin[0]) * dir[0] + (p[1] - origin[1]) * dir[1];
-    // the span between the projections of the pulley centres on its line (the tangent points
-    // for equal pulleys)
-    let (c1, c2) = (along([0.0, 0.0]), along([g.center_distance, 0.0]));
-    let x0 = c1.min(c2);
-    let span_len = (c2 - c1).abs();
+    let dir = line.direction;
+    let along = |p: [f64; 2]| line.local(p).0;
+    let x0 = 0.0;
+    let span_len = line.length;
     let xm = x0 + 0.5 * span_len;
-    let b = settings.half_width * span_len;
+    let b = wave.half_width * span_len;
     let normal = [-dir[1], dir[0]];
     let ndof = fe.n_dofs();
     let mut d0 = vec![0.0; ndof];
@@ -204,9 +212,9 @@ pub fn wave_run(
         let x = along(p) - xm;
         if x.abs() < b {
             let arg = std::f64::consts::PI * x / (2.0 * b);
-            let w = settings.amplitude * arg.cos().powi(2);
+            let w = wave.amplitude * arg.cos().powi(2);
             // slope dw/dx = −A (π/2b) sin(2 arg)
-            let slope = -settings.amplitude * std::f64::consts::PI / (2.0 * b) * (2.0 * arg).sin();
+            let slope = -wave.amplitude * std::f64::consts::PI / (2.0 * b) * (2.0 * arg).sin();
             d0[3 * i] = w * normal[0];
             d0[3 * i + 1] = w * normal[1];
             d0[3 * i + 2] = slope;
@@ -225,12 +233,17 @@ pub fn wave_run(
     } else {
         vec![0.0; m]
     };
-    let mut q = vec![0.0; m + 2];
+    let nq = mbd_core::SecondOrderSystem::n_q(&belt);
+    let mut q = vec![0.0; nq];
     q[1..=m].copy_from_slice(&z0);
-    let mut vel = vec![0.0; m + 2];
+    let mut vel = vec![0.0; nq];
     vel[0] = v;
     vel[1..=m].copy_from_slice(&zd0);
-    vel[m + 1] = v / g.radius_driven;
+    for (k, r) in radius.iter().enumerate() {
+        if let Some(j) = belt.pulley_dof(k) {
+            vel[j] = v / r;
+        }
+    }
     let state = State::new(0.0, q, vel);
 
     let xs: Vec<f64> = span.iter().map(|&i| along(fe.position[i]) - x0).collect();
@@ -284,15 +297,15 @@ pub fn wave_run(
         );
     };
     let alpha = GeneralizedAlpha::new(AlphaConfig {
-        h: settings.step,
-        rho_inf: settings.rho_inf,
+        h: wave.step,
+        rho_inf: wave.rho_inf,
         ..Default::default()
     });
     let mut stepper = alpha.stepper(&belt, state)?;
     // samples at k·Δt, k = 0..=samples (the stepper is advanced to each of them)
-    let dt = settings.t_end / settings.samples as f64;
+    let dt = wave.t_end / wave.samples as f64;
     let mut rec = Recorder::new(observe_fn(&mut sample), 0.0, dt)?;
-    rec.run(&mut stepper, &belt, settings.samples as f64 * dt, &mut ())?;
+    rec.run(&mut stepper, &belt, wave.samples as f64 * dt, &mut ())?;
     Ok(run)
 }
 

@@ -21,4 +21,4 @@ pub mod spec;
 
 pub use initial::PlateInitialState;
 pub use model::{PlateBeltDrive, PlateContactRecord, PulleySurface};
-pub use spec::{CentreShift, PlateBeltSpec, PlateContactSpec, PlateDriveSpec, PlatePulley};
+pub use spec::{PlateBeltSpec, PlateContactSpec, PlateDriveSpec};

@@ -3,19 +3,19 @@
 //! friction over the plate surface (Kerkkänen (4.43)–(4.45), laws (3.20), (3.23)) and the pulley
 //! equations (3.26).
 
-use super::spec::{PlateDriveSpec, PlatePulley};
+use super::spec::PlateDriveSpec;
+use crate::belt_drive::BeltFriction;
 use crate::belt_drive::friction::BeltNormal;
-use crate::belt_drive::{BeltFriction, PulleyDrive};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
 use crate::plate::mesh::{PLATE_NODE_COORDS, PlateCell, PlateMesh};
 use crate::plate::{PLATE_NDOF, ThinPlate};
 use crate::sparse::Pattern;
+use belt::{BeltPath, Pulley};
 use contact::distributed::MAX_BLOCKS;
 use contact::spatial::{ContactRecord3, Cylinder, ElementContact3, FlangedCylinder, SurfacePoint3};
 use contact::{BlockShape, GaussRule, QuadPoint, Surface};
 use faer::Mat;
-use fe_model::generate::belt_path::{BeltPath, PathPulley};
 use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
@@ -121,8 +121,7 @@ impl PlateBeltDrive {
     /// matrix (2.26) with the pulley inertias and the contact quadrature.
     pub fn new(spec: PlateDriveSpec) -> Result<Self, AncfError> {
         spec.validate()?;
-        let path_pulleys: Vec<PathPulley> = spec.pulleys.iter().map(|p| p.path_pulley()).collect();
-        let path = BeltPath::new(&path_pulleys).map_err(|e| invalid("pulleys", e.to_string()))?;
+        let path = BeltPath::new(&spec.pulleys)?;
         let (lp, lb) = (path.length(), spec.belt.length);
         if !(0.5 * lp..=1.5 * lp).contains(&lb) {
             return Err(invalid(
@@ -185,7 +184,7 @@ impl PlateBeltDrive {
             pattern.add_element(&mut mass_values, el, &me, 1.0);
         }
         for (k, &pi) in free.iter().enumerate() {
-            if let PulleyDrive::Free { inertia, .. } = spec.pulleys[pi].drive {
+            if let Some(inertia) = spec.pulleys[pi].motion.inertia() {
                 mass_values[pattern.diagonal_position(n_belt + k)] += inertia;
             }
         }
@@ -234,7 +233,7 @@ impl PlateBeltDrive {
         &self.mesh
     }
     /// The pulleys in travel order.
-    pub fn pulleys(&self) -> &[PlatePulley] {
+    pub fn pulleys(&self) -> &[Pulley] {
         &self.spec.pulleys
     }
     /// Number of belt coordinates.
@@ -260,19 +259,18 @@ impl PlateBeltDrive {
 
     /// Travel-sense angular speed of pulley `p` at `(t, v)` \[rad/s\].
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        match (&self.spec.pulleys[p].drive, self.pulley_dof[p]) {
-            (PulleyDrive::Speed { speed }, _) => speed.eval(t)[0],
-            (PulleyDrive::Free { .. }, Some(j)) => v[j],
-            (PulleyDrive::Free { .. }, None) => 0.0,
+        match self.pulley_dof[p] {
+            Some(j) => v[j],
+            None => self.spec.pulleys[p]
+                .motion
+                .prescribed_speed(t)
+                .unwrap_or(0.0),
         }
     }
 
-    /// Load torque on pulley `p` at `t` \[N·m\] (0 for speed-driven pulleys).
+    /// Load torque on pulley `p` at `t` \[N·m\] (0 for speed-driven pulleys and idlers).
     pub fn load_torque(&self, p: usize, t: f64) -> f64 {
-        match &self.spec.pulleys[p].drive {
-            PulleyDrive::Free { load, .. } => load.eval(t),
-            PulleyDrive::Speed { .. } => 0.0,
-        }
+        self.spec.pulleys[p].motion.load_torque(t)
     }
 
     /// The contact surface of pulley `p` at time `t` \[s\] turning at the travel-sense speed
@@ -687,7 +685,7 @@ fn shape_matrix(s: &[f64; 12]) -> BlockShape {
 
 /// The contact surface of `pl` at `t` turning at the travel-sense speed `omega`: axis
 /// `∓e_z` through the (shifted, (4.46)) centre, so that positive `omega` is the travel sense.
-fn surface_of(pl: &PlatePulley, t: f64, omega: f64) -> PulleySurface {
+fn surface_of(pl: &Pulley, t: f64, omega: f64) -> PulleySurface {
     let [u, ud] = pl.shift.map(|s| s.eval(t)).unwrap_or([0.0, 0.0]);
     let dir = pl.shift.map(|s| s.direction).unwrap_or([0.0, 0.0]);
     let sgn = pl.ccw_sign();
@@ -749,7 +747,10 @@ impl SecondOrderSystem for PlateBeltDrive {
     ) -> Result<(), MbdError> {
         let np = self.spec.pulleys.len();
         let omegas = self.speeds(t, v);
-        let loads: Vec<f64> = (0..np).map(|p| self.load_torque(p, t)).collect();
+        // load torque and viscous damper: −T_a(t) − c ω
+        let loads: Vec<f64> = (0..np)
+            .map(|p| -self.spec.pulleys[p].motion.applied_torque(t, omegas[p]).0)
+            .collect();
         self.forces_with(t, q, v, &omegas, &loads, f, ws);
         Ok(())
     }
@@ -823,6 +824,15 @@ impl PlateBeltDrive {
             },
         );
         s.ec = Some(ec);
+        // the free pulleys' viscous dampers: −c ω
+        for &p in &self.free {
+            if let Some(j) = self.pulley_dof[p] {
+                let damping = self.spec.pulleys[p].motion.damping();
+                if damping > 0.0 {
+                    c[pat.diagonal_position(j)] += damping;
+                }
+            }
+        }
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),

@@ -5,8 +5,7 @@
 
 use super::model::PlateBeltDrive;
 use crate::plate::strain::{StrainMeasure, area_ratio};
-use fe_model::generate::belt_path::SpanLine;
-use fe_model::generate::belt_path::{BeltPath, Segment};
+use belt::{BeltPath, Segment, SpanLine};
 
 /// Kinematics and strain at one material point of the belt.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]

@@ -1,148 +1,12 @@
 //! Plain-data description of a three-dimensional plate-belt drive (Kerkkänen §4.6, Table 4.1).
 
-use crate::belt_drive::{
-    BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec, Pulley, PulleyDrive, SpeedProfile,
-    TorqueProfile,
-};
+use crate::belt_drive::{BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec};
 use crate::error::{AncfError, invalid};
-use fe_model::generate::belt_path::{PathPulley, WrapSide};
+use belt::{CentreShift, Motion, Pulley, Shape, Signal, WrapSide};
 use mbd_core::Validate;
 use mbd_core::validate::InvalidField;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
-
-/// A prescribed translation of a pulley centre in the drive plane, Kerkkänen (4.46):
-/// `u(t) = u₀ t / t₀` for `t < t₀`, `u₀` afterwards (Model 1 tensions its belt this way).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CentreShift {
-    /// Final displacement `u₀` \[m\] (Model 1: 0.0025 m).
-    pub distance: f64,
-    /// Ramp time `t₀` \[s\] (Model 1: not stated, taken as the `t₀ = 0.05 s` of Table 4.1).
-    pub time: f64,
-    /// Unit direction of the displacement in the drive plane (Model 1: along x, away from the
-    /// driven pulley, which tensions the belt).
-    pub direction: [f64; 2],
-}
-
-impl CentreShift {
-    /// `[u(t), u̇(t)]` \[m, m/s\]. (4.46) is the ramp of (3.29) started at `t = 0`, so it is
-    /// evaluated by [`SpeedProfile::Ramp`] with `t_start = 0`.
-    pub fn eval(&self, t: f64) -> [f64; 2] {
-        SpeedProfile::Ramp {
-            t_start: 0.0,
-            t_end: self.time,
-            omega: self.distance,
-        }
-        .eval(t)
-    }
-}
-
-/// A rigid pulley of the plate-belt drive: a cylinder about an axis along global `z` through
-/// `center` (Kerkkänen (4.43)–(4.44) with `p = ±e_z`), optionally crowned and flanged.
-///
-/// Speeds are counted in the travel sense, as for the planar drive
-/// ([`crate::belt_drive::Pulley`]): the rotation axis is `−e_z` for pulleys inside the loop
-/// (the belt runs clockwise around them) and `+e_z` for back-side pulleys.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PlatePulley {
-    /// Name used in messages and output files.
-    pub name: String,
-    /// Centre `(x, y)` in the drive plane `z = 0` \[m\].
-    pub center: [f64; 2],
-    /// Radius `R_p` of the contact surface (the belt mid-surface runs on it; the belt thickness
-    /// is not part of the contact geometry, Kerkkänen §4.5) \[m\].
-    pub radius: f64,
-    /// Wrap side.
-    #[serde(default)]
-    pub side: WrapSide,
-    /// Crown coefficient `c` \[1/m\]: radius `R − c z²` (0: straight cylinder).
-    #[serde(default)]
-    pub crown: f64,
-    /// Axial positions `[z_lo, z_hi]` of the inner flange faces \[m\] (none: no flanges).
-    #[serde(default)]
-    pub flanges: Option<[f64; 2]>,
-    /// Prescribed centre translation (4.46) (none: fixed centre).
-    #[serde(default)]
-    pub shift: Option<CentreShift>,
-    /// Drive: prescribed speed (3.29) or free with inertia and load torque (3.26), (4.47).
-    pub drive: PulleyDrive,
-}
-
-impl PlatePulley {
-    /// The pulley as a circle of the belt path in the drive plane (centre, contact radius,
-    /// wrap side; the crown and flanges do not enter the path), Kerkkänen §4.6.
-    pub fn path_pulley(&self) -> PathPulley {
-        PathPulley {
-            center: self.center,
-            radius: self.radius,
-            side: self.side,
-        }
-    }
-
-    /// `+1` if a positive travel-sense speed is counter-clockwise about `+z`, `−1` if clockwise
-    /// ([`crate::belt_drive::pulley::ccw_sign`]).
-    pub fn ccw_sign(&self) -> f64 {
-        crate::belt_drive::pulley::ccw_sign(self.side)
-    }
-
-    /// Whether the pulley has its own rotation coordinate.
-    pub fn is_free(&self) -> bool {
-        self.drive.is_free()
-    }
-}
-
-impl Validate for PlatePulley {
-    fn validate(&self) -> Result<(), InvalidField> {
-        // centre, radius and drive: the planar pulley's checks
-        let planar = crate::belt_drive::Pulley {
-            name: self.name.clone(),
-            center: self.center,
-            radius: self.radius,
-            side: self.side,
-            drive: self.drive,
-        };
-        planar.validate()?;
-        let f = |x: &str| format!("pulley \"{}\": {x}", self.name);
-        if !(self.crown.is_finite() && self.crown >= 0.0) {
-            return Err(InvalidField::new(
-                f("crown"),
-                format!("must be ≥ 0 1/m, got {}", self.crown),
-            ));
-        }
-        if let Some([lo, hi]) = self.flanges
-            && !(lo.is_finite() && hi.is_finite() && lo < hi)
-        {
-            return Err(InvalidField::new(
-                f("flanges"),
-                format!("needs finite z_lo < z_hi, got [{lo}, {hi}]"),
-            ));
-        }
-        if let Some(s) = &self.shift {
-            if !(s.distance.is_finite() && s.distance >= 0.0) {
-                return Err(InvalidField::new(
-                    f("shift.distance"),
-                    format!("must be ≥ 0 m, got {}", s.distance),
-                ));
-            }
-            if !(s.time.is_finite() && s.time > 0.0) {
-                return Err(InvalidField::new(
-                    f("shift.time"),
-                    format!("must be > 0 s, got {}", s.time),
-                ));
-            }
-            let n = s.direction[0].hypot(s.direction[1]);
-            if !(n.is_finite() && (n - 1.0).abs() < 1e-9) {
-                return Err(InvalidField::new(
-                    f("shift.direction"),
-                    format!("must be a unit vector, got {:?}", s.direction),
-                ));
-            }
-        }
-        Ok(())
-    }
-}
 
 /// The belt: one row of thin-plate elements across the width, closed into a loop along the
 /// length (Kerkkänen §4.6: 16 elements, 288 coordinates, Model 1; 20 elements, 360, Model 2).
@@ -205,8 +69,9 @@ pub struct PlateContactSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlateDriveSpec {
-    /// Pulleys in travel order (the belt runs from pulley 0 to pulley 1, …).
-    pub pulleys: Vec<PlatePulley>,
+    /// Pulleys in travel order (the belt runs from pulley 0 to pulley 1, …), with their
+    /// crowns, flanges and centre shifts (Kerkkänen (4.43)–(4.46)).
+    pub pulleys: Vec<Pulley>,
     /// Belt.
     pub belt: PlateBeltSpec,
     /// Contact.
@@ -235,29 +100,11 @@ impl Default for PlateDriveSpec {
 }
 
 /// Two pulleys of radius `r` at `(∓πr/2, 0)` (span `l_s = πr`, Table 4.1), the driver first.
-fn two_pulleys(r: f64, driver: PulleyDrive, driven: PulleyDrive) -> Vec<PlatePulley> {
+fn two_pulleys(r: f64, driver: Motion, driven: Motion) -> Vec<Pulley> {
     let c = 0.5 * PI * r;
     vec![
-        PlatePulley {
-            name: "driver".into(),
-            center: [-c, 0.0],
-            radius: r,
-            side: WrapSide::Inside,
-            crown: 0.0,
-            flanges: None,
-            shift: None,
-            drive: driver,
-        },
-        PlatePulley {
-            name: "driven".into(),
-            center: [c, 0.0],
-            radius: r,
-            side: WrapSide::Inside,
-            crown: 0.0,
-            flanges: None,
-            shift: None,
-            drive: driven,
-        },
+        Pulley::new("driver", [-c, 0.0], r, WrapSide::Inside, driver),
+        Pulley::new("driven", [c, 0.0], r, WrapSide::Inside, driven),
     ]
 }
 
@@ -272,17 +119,8 @@ impl PlateDriveSpec {
         let r = 0.10;
         let mut pulleys = two_pulleys(
             r,
-            PulleyDrive::Speed {
-                speed: SpeedProfile::Ramp {
-                    t_start: 0.05,
-                    t_end: 0.6,
-                    omega: 12.0,
-                },
-            },
-            PulleyDrive::Free {
-                inertia: 0.25,
-                load: TorqueProfile::None,
-            },
+            Motion::speed(Signal::kerkkanen_ramp(12.0)),
+            Motion::load(0.25, Signal::constant(0.0)),
         );
         pulleys[0].shift = Some(CentreShift {
             distance: 0.0025,
@@ -332,23 +170,26 @@ impl PlateDriveSpec {
         Self {
             pulleys: two_pulleys(
                 r,
-                PulleyDrive::Speed {
-                    speed: SpeedProfile::Ramp {
+                Motion::speed(
+                    Shape::Ramp {
                         t_start: 0.05,
                         t_end: 1.0,
-                        omega: 500.0,
-                    },
-                },
-                PulleyDrive::Free {
-                    inertia: 0.00025,
-                    // (4.47): T_a = 1 − cos(π t / 1.0) for 0.05 < t ≤ 1.0, 2 N·m afterwards
-                    // (the printed last branch "0.6 < t" is read as "1.0 < t", seed note §5)
-                    load: TorqueProfile::Cosine {
+                        from: 0.0,
+                        value: 500.0,
+                    }
+                    .into(),
+                ),
+                // (4.47): T_a = 1 − cos(π t / 1.0) for 0.05 < t ≤ 1.0, 2 N·m afterwards
+                // (the printed last branch "0.6 < t" is read as "1.0 < t", seed note §5)
+                Motion::load(
+                    0.00025,
+                    Shape::Cosine {
                         t_start: 0.05,
                         t_end: 1.0,
-                        torque: 2.0,
-                    },
-                },
+                        value: 2.0,
+                    }
+                    .into(),
+                ),
             ),
             belt: PlateBeltSpec {
                 length: 4.0 * PI * r / (1.0 + 50.0 / k),
@@ -394,13 +235,7 @@ impl PlateDriveSpec {
                     "a crowned, flanged or shifted pulley has no planar equivalent",
                 ));
             }
-            pulleys.push(Pulley {
-                name: p.name.clone(),
-                center: p.center,
-                radius: p.radius,
-                side: p.side,
-                drive: p.drive,
-            });
+            pulleys.push(p.clone());
         }
         let (b, c) = (&self.belt, &self.contact);
         let w = b.width;
@@ -453,11 +288,11 @@ impl Validate for PlateDriveSpec {
             ));
         }
         for (i, p) in self.pulleys.iter().enumerate() {
-            p.validate()?;
+            p.validate_within(&format!("pulleys[{i}]"))?;
             if self.pulleys[..i].iter().any(|o| o.name == p.name) {
                 return Err(InvalidField::new(
-                    format!("pulley \"{}\": name", p.name),
-                    "is used twice",
+                    format!("pulleys[{i}].name"),
+                    format!("'{}' is used twice", p.name),
                 ));
             }
         }

@@ -17,33 +17,9 @@
 //! parametrisation of the seed-000 note §10.1: upper span `y = R` to the right, arc on pulley 2,
 //! lower span back to the left, arc on pulley 1; `L = 2 L_c + 2πR`.
 
-use crate::FeError;
-use serde::{Deserialize, Serialize};
+use crate::pulley::{Pulley, WrapSide};
+use mbd_core::validate::{InvalidField, check};
 use std::f64::consts::PI;
-
-/// How the belt wraps a pulley.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum WrapSide {
-    /// The pulley lies inside the loop (drive and driven pulleys of an open belt).
-    #[default]
-    Inside,
-    /// The belt's back runs over the pulley (back-side idler / tensioner).
-    Outside,
-}
-
-/// A pulley as seen by the belt path: centre \[m\], (pitch) radius \[m\] and wrap side.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PathPulley {
-    /// Centre (x, y) \[m\].
-    pub center: [f64; 2],
-    /// Radius of the belt line on this pulley \[m\].
-    pub radius: f64,
-    /// Wrap side.
-    #[serde(default)]
-    pub side: WrapSide,
-}
 
 /// One piece of the path.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -158,7 +134,7 @@ impl SpanLine {
 /// A closed belt path over pulleys listed in travel order (see the module documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeltPath {
-    pulleys: Vec<PathPulley>,
+    pulleys: Vec<Pulley>,
     pieces: Vec<PathPiece>,
     length: f64,
 }
@@ -177,33 +153,24 @@ impl BeltPath {
     ///
     /// Errors: fewer than two pulleys, a non-positive radius, overlapping pulleys for which no
     /// common tangent exists, or a wrap of zero length.
-    pub fn new(pulleys: &[PathPulley]) -> Result<Self, FeError> {
+    pub fn new(pulleys: &[Pulley]) -> Result<Self, InvalidField> {
         let n = pulleys.len();
         if n < 2 {
-            return Err(FeError::param(
+            return Err(InvalidField::new(
                 "pulleys",
-                n as f64,
-                "a belt needs at least two pulleys",
+                format!("a belt needs at least two pulleys, got {n}"),
             ));
         }
         for (i, p) in pulleys.iter().enumerate() {
-            FeError::check_positive(&format!("pulleys[{i}].radius"), p.radius)?;
-            if !(p.center[0].is_finite() && p.center[1].is_finite()) {
-                return Err(FeError::param(
-                    &format!("pulleys[{i}].center"),
-                    f64::NAN,
-                    "must be finite",
-                ));
-            }
+            check::positive(&format!("pulleys[{i}].radius"), p.radius, "m")?;
+            check::finite(&format!("pulleys[{i}].center[0]"), p.center[0])?;
+            check::finite(&format!("pulleys[{i}].center[1]"), p.center[1])?;
         }
         // Tangent line from pulley i to pulley i+1. With d = +1 for a clockwise wrap, the
         // contact point is p = c + d r m, where m is the left normal of the travel direction t.
         // Collinearity of the two contact points gives m·Δ = d_a r_a − d_b r_b; t·Δ > 0 picks the
         // root.
-        let turn = |p: &PathPulley| match p.side {
-            WrapSide::Inside => 1.0,
-            WrapSide::Outside => -1.0,
-        };
+        let turn = |p: &Pulley| p.side.turn();
         let mut leave = Vec::with_capacity(n); // (departure point on i, arrival point on i+1, t)
         for i in 0..n {
             let (a, b) = (&pulleys[i], &pulleys[(i + 1) % n]);
@@ -211,12 +178,11 @@ impl BeltPath {
             let l = norm(delta);
             let c = turn(a) * a.radius - turn(b) * b.radius;
             if l <= c.abs() || l == 0.0 {
-                return Err(FeError::param(
-                    &format!("pulleys[{}].center", (i + 1) % n),
-                    l,
-                    &format!(
-                        "no common tangent between pulleys {i} and {}: centres too close",
-                        (i + 1) % n
+                return Err(InvalidField::new(
+                    format!("pulleys[{}].center", (i + 1) % n),
+                    format!(
+                        "no common tangent between '{}' and '{}': centres {l:.4} m apart, too close for their radii and wrap sides",
+                        a.name, b.name
                     ),
                 ));
             }
@@ -236,6 +202,9 @@ impl BeltPath {
         }
         let mut pieces = Vec::with_capacity(2 * n);
         let mut s = 0.0;
+        // the travel direction turns clockwise by Σ d·wrap (d = +1 inside, −1 outside): 2π for
+        // a simple closed loop, a multiple otherwise (a path that crosses itself)
+        let mut turning = 0.0;
         for i in 0..n {
             let (pa, pb, t) = leave[i];
             let span = norm(sub(pb, pa));
@@ -259,12 +228,12 @@ impl BeltPath {
             // clockwise: the angle decreases from th0 to th1
             let wrap = (d * (th0 - th1)).rem_euclid(2.0 * PI);
             if wrap <= 1e-12 {
-                return Err(FeError::param(
-                    &format!("pulleys[{j}]"),
-                    wrap,
-                    "the belt does not wrap this pulley (zero wrap angle)",
+                return Err(InvalidField::new(
+                    format!("pulleys[{j}]"),
+                    format!("the belt does not wrap '{}' (zero wrap angle)", pj.name),
                 ));
             }
+            turning += d * wrap;
             let len = wrap * pj.radius;
             pieces.push(PathPiece {
                 s_start: s,
@@ -277,32 +246,20 @@ impl BeltPath {
             });
             s += len;
         }
+        if (turning - 2.0 * PI).abs() > 1e-6 {
+            return Err(InvalidField::new(
+                "pulleys",
+                format!(
+                    "the belt path crosses itself: its direction turns by {:.0}° instead of 360° round the loop (check the pulleys' order and wrap sides)",
+                    turning.to_degrees()
+                ),
+            ));
+        }
         Ok(Self {
             pulleys: pulleys.to_vec(),
             pieces,
             length: s,
         })
-    }
-
-    /// Two pulleys of radius `radius` at (0, 0) and (`center_distance`, 0): the drive of
-    /// Ribaric Table 6-1 and Kerkkänen Table 3.1.
-    pub fn two_pulleys(
-        center_distance: f64,
-        radius_1: f64,
-        radius_2: f64,
-    ) -> Result<Self, FeError> {
-        Self::new(&[
-            PathPulley {
-                center: [0.0, 0.0],
-                radius: radius_1,
-                side: WrapSide::Inside,
-            },
-            PathPulley {
-                center: [center_distance, 0.0],
-                radius: radius_2,
-                side: WrapSide::Inside,
-            },
-        ])
     }
 
     /// Total path length `L` \[m\].
@@ -311,8 +268,13 @@ impl BeltPath {
     }
 
     /// The pulleys, in travel order.
-    pub fn pulleys(&self) -> &[PathPulley] {
+    pub fn pulleys(&self) -> &[Pulley] {
         &self.pulleys
+    }
+
+    /// Replace pulley `k`'s motion (the geometry does not depend on it).
+    pub(crate) fn set_motion(&mut self, k: usize, motion: crate::motion::Motion) {
+        self.pulleys[k].motion = motion;
     }
 
     /// Spans and arcs in travel order (span 0 leaves pulley 0; arc `k` follows span `k`).
@@ -446,9 +408,9 @@ impl BeltPath {
     /// Node positions `s_i` for a mesh with element length close to `span_h` on spans and
     /// `arc_h` on arcs \[m\]; every span and arc end is a node, each piece gets at least one
     /// element. The result is increasing, starts at 0 and excludes `L` (closed loop).
-    pub fn mesh_positions(&self, span_h: f64, arc_h: f64) -> Result<Vec<f64>, FeError> {
-        FeError::check_positive("span_element_length", span_h)?;
-        FeError::check_positive("arc_element_length", arc_h)?;
+    pub fn mesh_positions(&self, span_h: f64, arc_h: f64) -> Result<Vec<f64>, InvalidField> {
+        check::positive("span_element_length", span_h, "m")?;
+        check::positive("arc_element_length", arc_h, "m")?;
         let mut s = Vec::new();
         for piece in &self.pieces {
             let h = match piece.segment {
@@ -508,6 +470,21 @@ pub fn tributary_lengths(s_nodes: &[f64], loop_length: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::motion::Motion;
+
+    fn wheel(center: [f64; 2], radius: f64, side: WrapSide) -> Pulley {
+        Pulley::new("p", center, radius, side, Motion::idler(1e-3))
+    }
+
+    impl BeltPath {
+        /// Two pulleys at (0, 0) and (`center_distance`, 0) (Ribaric Table 6-1's geometry).
+        fn two_pulleys(center_distance: f64, r1: f64, r2: f64) -> Result<Self, InvalidField> {
+            Self::new(&[
+                wheel([0.0, 0.0], r1, WrapSide::Inside),
+                wheel([center_distance, 0.0], r2, WrapSide::Inside),
+            ])
+        }
+    }
 
     // the span frame: the mid-point of each span is (L/2, 0) and the straight path's polyline
     // crosses the bisector there (definition of the span geometry)
@@ -550,21 +527,9 @@ mod tests {
     #[test]
     fn angle_from_inlet_follows_the_arc_length() {
         let pulleys = [
-            PathPulley {
-                center: [0.0, 0.0],
-                radius: 0.05,
-                side: WrapSide::Inside,
-            },
-            PathPulley {
-                center: [0.25, 0.08],
-                radius: 0.03,
-                side: WrapSide::Outside,
-            },
-            PathPulley {
-                center: [0.5, 0.0],
-                radius: 0.07,
-                side: WrapSide::Inside,
-            },
+            wheel([0.0, 0.0], 0.05, WrapSide::Inside),
+            wheel([0.25, 0.08], 0.03, WrapSide::Outside),
+            wheel([0.5, 0.0], 0.07, WrapSide::Inside),
         ];
         let path = BeltPath::new(&pulleys).unwrap();
         for (k, pulley) in pulleys.iter().enumerate() {
@@ -612,21 +577,9 @@ mod tests {
     #[test]
     fn path_is_c1_and_tangent_is_the_derivative() {
         let p = BeltPath::new(&[
-            PathPulley {
-                center: [0.0, 0.0],
-                radius: 0.1,
-                side: WrapSide::Inside,
-            },
-            PathPulley {
-                center: [0.5, 0.1],
-                radius: 0.05,
-                side: WrapSide::Inside,
-            },
-            PathPulley {
-                center: [0.25, -0.05],
-                radius: 0.04,
-                side: WrapSide::Outside,
-            },
+            wheel([0.0, 0.0], 0.1, WrapSide::Inside),
+            wheel([0.5, 0.1], 0.05, WrapSide::Inside),
+            wheel([0.25, -0.05], 0.04, WrapSide::Outside),
         ])
         .unwrap();
         let l = p.length();
@@ -698,5 +651,18 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("pulleys[1].radius"), "{e}");
+    }
+
+    // three collinear pulleys with a smaller middle one, all wrapped inside: the common
+    // tangents make the belt cross itself (wraps summing to 720°) — refused
+    #[test]
+    fn a_self_crossing_path_is_refused() {
+        let p = [
+            wheel([0.0, 0.0], 0.05, WrapSide::Inside),
+            wheel([0.2, 0.0], 0.02, WrapSide::Inside),
+            wheel([0.4, 0.0], 0.05, WrapSide::Inside),
+        ];
+        let e = BeltPath::new(&p).unwrap_err();
+        assert!(e.reason.contains("crosses itself"), "{e}");
     }
 }

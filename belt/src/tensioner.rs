@@ -19,7 +19,7 @@
 //!
 //! with `F_hub` the force of the belt on the idler. A belt model evaluates the dry friction
 //! with the contact crate's friction law (`contact::friction::CoulombTanh` with `μ = 1`,
-//! `κ = 1/ω_f` and normal force `M_c`; see [`TensionerSpec::dry_friction_law`]), so the
+//! `κ = 1/ω_f` and normal force `M_c`; see [`Tensioner::dry_friction`]), so the
 //! regularisation is the one of the belt–pulley contact. The end stops of the arm's travel are
 //! not modelled as impacts: a static arm angle outside the travel is rejected as bad input, and
 //! studies report the arm's excursion against the travel.
@@ -27,9 +27,10 @@
 //! Statics by hand (the validation reference): with equal tension `T` in the two spans at the
 //! idler, arriving along the unit travel direction `d_in` and leaving along `d_out`, the belt
 //! pulls the idler with `F_hub = T (d_out − d_in)`, and the static arm angle solves
-//! `M_s(θ) + (c(θ) − p) × F_hub(θ) = 0` ([`TensionerSpec::static_angle`]).
+//! `M_s(θ) + (c(θ) − p) × F_hub(θ) = 0` ([`Tensioner::static_angle`]).
 
-use crate::validate::{InvalidField, Validate, check};
+use contact::friction::{CoulombTanh, FrictionForce, FrictionLaw};
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
 /// A pivoted-arm tensioner (see the module documentation). The idler is a pulley of the
@@ -37,7 +38,7 @@ use serde::{Deserialize, Serialize};
 /// idler's centre in the layout and the pivot.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct TensionerSpec {
+pub struct Tensioner {
     /// Index of the idler pulley (in the layout's pulley list) carried by the arm.
     pub pulley: usize,
     /// Pivot position (x, y) \[m\].
@@ -67,7 +68,7 @@ fn default_friction_rate() -> f64 {
     0.01
 }
 
-impl Validate for TensionerSpec {
+impl Validate for Tensioner {
     fn validate(&self) -> Result<(), InvalidField> {
         check::finite("pivot[0]", self.pivot[0])?;
         check::finite("pivot[1]", self.pivot[1])?;
@@ -104,7 +105,33 @@ pub fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
-impl TensionerSpec {
+impl Tensioner {
+    /// A tensioner on pulley `pulley` pivoting about `pivot` \[m\] with spring rate
+    /// `stiffness` \[N m/rad\] and moment `preload` \[N m\] at the arm angle `preload_angle`
+    /// \[rad\]; damper 0.5 N m s/rad, no dry friction, arm inertia 2·10⁻³ kg m², travel
+    /// ±0.6 rad about `preload_angle` (a typical automotive tensioner: Beikmann, Perkins &
+    /// Ulsoy 1997).
+    pub fn new(
+        pulley: usize,
+        pivot: [f64; 2],
+        stiffness: f64,
+        preload: f64,
+        preload_angle: f64,
+    ) -> Self {
+        Self {
+            pulley,
+            pivot,
+            stiffness,
+            preload,
+            preload_angle,
+            damping: 0.5,
+            dry_friction: 0.0,
+            friction_rate: default_friction_rate(),
+            inertia: 2e-3,
+            travel: [preload_angle - 0.6, preload_angle + 0.6],
+        }
+    }
+
     /// Arm length `L` \[m\] and angle `θ` \[rad\] of an idler centred at `center`.
     pub fn arm(&self, center: [f64; 2]) -> (f64, f64) {
         let r = [center[0] - self.pivot[0], center[1] - self.pivot[1]];
@@ -133,11 +160,25 @@ impl TensionerSpec {
         (-self.damping * rate, -self.damping)
     }
 
-    /// The dry friction as a planar friction law's arguments: `(μ, κ, normal)` = `(1, 1/ω_f,
-    /// M_c)`, so that `CoulombTanh { mu, kappa }.friction(θ̇, normal)` is `−M_c tanh(θ̇/ω_f)`
-    /// (the contact crate's law, Ribaric (6.2), with the arm rate as slip).
-    pub fn dry_friction_law(&self) -> (f64, f64, f64) {
-        (1.0, 1.0 / self.friction_rate, self.dry_friction)
+    /// Dry-friction moment at the pivot \[N m\] and its derivative with respect to the arm
+    /// rate \[N m s/rad\]: the contact crate's tanh law (Ribaric (6.2)) with `μ = 1`,
+    /// `κ = 1/ω_f`, normal force `M_c` and the arm rate `θ̇` \[rad/s\] as slip, i.e.
+    /// `−M_c tanh(θ̇/ω_f)`. Shared by every belt model that carries a tensioner arm.
+    pub fn dry_friction(&self, rate: f64) -> FrictionForce {
+        CoulombTanh {
+            mu: 1.0,
+            kappa: 1.0 / self.friction_rate,
+        }
+        .friction(rate, self.dry_friction)
+    }
+
+    /// Spring, damper and dry-friction moment on the arm \[N m\] at angle `angle` \[rad\] and
+    /// rate `rate` \[rad/s\], with its derivatives `(∂/∂θ, ∂/∂θ̇)` (module documentation).
+    pub fn moment(&self, angle: f64, rate: f64) -> (f64, f64, f64) {
+        let (ms, ks) = self.spring_moment(angle);
+        let (md, cd) = self.damper_moment(rate);
+        let fr = self.dry_friction(rate);
+        (ms + md + fr.force, ks, cd + fr.d_slip)
     }
 
     /// Whether `angle` \[rad\] lies within the travel.
@@ -178,8 +219,8 @@ impl TensionerSpec {
 mod tests {
     use super::*;
 
-    fn spec() -> TensionerSpec {
-        TensionerSpec {
+    fn spec() -> Tensioner {
+        Tensioner {
             pulley: 2,
             pivot: [0.1, 0.0],
             stiffness: 40.0,

@@ -10,11 +10,11 @@
 //!
 //! A step counts as accurate when its Δω(8 N m) lies within 1 % of the same model's Δω at
 //! 0.25 ms. The printed ratio compares the fastest accurate run of each form.
-//! Run: `cargo bench -p drives --bench belt` (several minutes: the nodal model is slow).
+//! Run: `cargo bench -p drives --bench belt_models` (several minutes: the nodal model is slow).
 
-use drives::{DriveModel, SpeedLossConfig, speed_loss_sweep};
-use flowing::belt::nodal::NodalBelt;
-use flowing::belt::{BeltDriveConfig, BeltFe, FlowingBelt, Schedule};
+use belt::BeltModel;
+use drives::{SpeedLossConfig, speed_loss_sweep};
+use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use std::time::Instant;
 
 struct Run {
@@ -26,7 +26,7 @@ struct Run {
     delta_omega: f64,
 }
 
-fn run<M: DriveModel>(name: &str, dofs: usize, model: &mut M, step: f64) -> Option<Run> {
+fn run<M: BeltModel>(name: &str, dofs: usize, model: &mut M, step: f64) -> Option<Run> {
     let settings = SpeedLossConfig {
         torques: vec![0.0, 8.0],
         window: 0.1,
@@ -53,16 +53,15 @@ fn run<M: DriveModel>(name: &str, dofs: usize, model: &mut M, step: f64) -> Opti
 }
 
 fn flowing(mesh: Option<(usize, usize)>, free_modes: Option<usize>, step: f64) -> Option<Run> {
-    let mut cfg = BeltDriveConfig::default();
-    cfg.reduction.free_modes = free_modes;
+    let mut settings = FlowingSettings {
+        reduction: BeltReduction { free_modes },
+        ..Default::default()
+    };
     if let Some((span, arc)) = mesh {
-        cfg.mesh.span_elements = span;
-        cfg.mesh.arc_elements = arc;
+        settings.mesh = uniform(span, arc);
     }
-    let fe = BeltFe::new(&cfg).expect("default drive");
-    let n_el = fe.n_nodes();
-    let mut belt =
-        FlowingBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).expect("model");
+    let mut belt = FlowingBelt::new(&drives::table_6_1::drive(), &settings).expect("model");
+    let n_el = belt.fe.n_nodes();
     let dofs = belt.n_modes() + 2;
     let name = match free_modes {
         Some(k) => format!("flowing, {n_el} el., {k} free modes"),
@@ -72,13 +71,8 @@ fn flowing(mesh: Option<(usize, usize)>, free_modes: Option<usize>, step: f64) -
 }
 
 fn nodal(span: usize, arc: usize, step: f64) -> Option<Run> {
-    let mut cfg = BeltDriveConfig::default();
-    cfg.mesh.span_elements = span;
-    cfg.mesh.arc_elements = arc;
-    let fe = BeltFe::new(&cfg).expect("uniform drive");
-    let n_el = fe.n_nodes();
-    let mut belt =
-        NodalBelt::new(fe, Schedule::constant(0.0), Schedule::constant(0.0)).expect("model");
+    let mut belt = NodalBelt::new(&drives::table_6_1::drive(), &uniform(span, arc)).expect("model");
+    let n_el = belt.fe.n_nodes();
     let dofs = belt.n_nodal() + 2;
     run(
         &format!("nodal rotating mesh, {n_el} el."),
@@ -86,6 +80,15 @@ fn nodal(span: usize, arc: usize, step: f64) -> Option<Run> {
         &mut belt,
         step,
     )
+}
+
+/// Table 6-1's loop with `span` elements per span and `arc` per wrap.
+fn uniform(span: usize, arc: usize) -> BeltMesh {
+    BeltMesh {
+        span_element: 0.45 / span as f64,
+        arc_element: std::f64::consts::PI * 0.05 / arc as f64,
+        contact_margin_nodes: 1,
+    }
 }
 
 /// The fastest run whose Δω is within 1 % of the first (finest-step) run of its group.

@@ -1,0 +1,619 @@
+//! What a belt-drive engineer reads off a running drive, for every model and any number of
+//! pulleys: span forces, the force, contact pressure and friction along every wrap, adhesion
+//! and slip arcs, slip (creep) velocity, hub loads, the torque and power each pulley receives,
+//! and the balances that hold them together. Computed here, once, from a model's
+//! [`Snapshot`] ([`crate::model::BeltModel::snapshot`]) and its [`Drive`].
+//!
+//! Definitions (one set for all models):
+//!
+//! * **friction utilisation** `u = |f|/(μ p)` at a point (`f` friction, `p` pressure, both per
+//!   unit length, `μ` the law's coefficient, [`FrictionLaw::coefficient`]);
+//! * **contact arc**: from the first to the last point in contact; each point stands for the
+//!   angular cell halfway to its neighbours;
+//! * **slip arc** `φ_slip = ∫ u dθ` over the contact arc: the arc over which a Coulomb belt
+//!   slides (`u = 1`) to build the same tension ratio, with adhesion (`u = 0`) elsewhere. For a
+//!   string on a pulley (`p = T/R`, `dT = ±f R dθ`) the force ratio across the wrap is
+//!   `T_in/T_out = e^{±μ φ_slip}`: Euler–Eytelwein on the slip arc (Grashof's active arc for
+//!   Coulomb friction; the Coulomb-equivalent arc for a regularised law);
+//! * **adhesion arc**: contact arc minus slip arc; **saturated arc**: where `u ≥`
+//!   [`SLIP_UTILISATION`];
+//! * **gross slip** ([`Report::gross_slip`]): the adhesion arc is below
+//!   [`GROSS_SLIP_ADHESION`] of the contact arc: the wrap slides as a whole;
+//! * **torque balance** per pulley: the belt's contact torque `τ` (travel sense) against
+//!   `(T_out − T_in) R` from the forces of the spans leaving and reaching it and the belt-line
+//!   radius `R` (a quasi-static wrap: the belt's inertia on the wrap enters only while its
+//!   speed changes); the residual is stated absolutely and relative to the largest pulley
+//!   torque of the drive;
+//! * **power balance** of the belt: the power the pulleys put into the belt,
+//!   `−Σ (τ ω + F_hub · ċ)` (drivers positive, accessories negative, a tensioner idler's moving
+//!   centre included), against the sliding losses `−∫ f v_slip ds` and the belt's own damping
+//!   ([`Snapshot::belt_dissipation`]); at one instant the difference is the rate of change of
+//!   the belt's energy, over whole periods of a steady state zero ([`Report::mean`]).
+
+use crate::layout::Drive;
+use crate::model::{Snapshot, SpanState, WrapPoint};
+use crate::motion::Role;
+use crate::path::BeltPath;
+use contact::friction::FrictionLaw;
+use serde::Serialize;
+
+/// Friction utilisation `|f|/(μ p)` from which a contact point counts as saturated. For the
+/// tanh law (6.2) this is a slip speed of `atanh(0.95)/κ` (4.6 cm/s at κ = 40 s/m).
+pub const SLIP_UTILISATION: f64 = 0.95;
+
+/// A wrap whose adhesion arc is shorter than this fraction of its contact arc slides as a
+/// whole (gross slip): its mean friction utilisation exceeds 95 %.
+pub const GROSS_SLIP_ADHESION: f64 = 0.05;
+
+/// Per-pulley results.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PulleyReport {
+    /// Name.
+    pub name: String,
+    /// Role.
+    pub role: Role,
+    /// Speed in the travel sense \[rad/s\].
+    pub omega: f64,
+    /// Contact arc \[rad\].
+    pub contact_arc_rad: f64,
+    /// Slip arc `∫ |f|/(μ p) dθ` \[rad\] (module documentation).
+    pub slip_arc_rad: f64,
+    /// Adhesion arc: contact arc minus slip arc \[rad\].
+    pub adhesion_arc_rad: f64,
+    /// Saturated arc: where the utilisation reaches [`SLIP_UTILISATION`] \[rad\].
+    pub saturated_arc_rad: f64,
+    /// Largest slip (creep) speed over the contact arc \[m/s\].
+    pub slip_velocity_max_m_s: f64,
+    /// Mean slip velocity over the contact arc (weighted by angle), signed \[m/s\].
+    pub slip_velocity_mean_m_s: f64,
+    /// Power lost to sliding on this pulley, `−∫ f v_slip ds` \[W\].
+    pub sliding_power_w: f64,
+    /// Force of the belt on the pulley (hub load) \[N\].
+    pub hub_load_n: [f64; 2],
+    /// Magnitude of the hub load \[N\] (of the mean force for a window mean).
+    pub hub_load_magnitude_n: f64,
+    /// Torque the belt exerts on the pulley in its travel sense \[N m\].
+    pub torque_n_m: f64,
+    /// Power the belt delivers to the pulley, `τ ω + F_hub · ċ` \[W\] (negative on a driver).
+    pub power_w: f64,
+    /// Force of the span running onto the pulley \[N\].
+    pub tension_in_n: f64,
+    /// Force of the span leaving the pulley \[N\].
+    pub tension_out_n: f64,
+    /// `(T_out − T_in) R` from the span forces and the belt-line radius \[N m\].
+    pub span_torque_n_m: f64,
+    /// Torque balance residual `τ − (T_out − T_in) R` \[N m\].
+    pub torque_residual_n_m: f64,
+}
+
+/// Per-span results.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SpanReport {
+    /// Pulley the span leaves.
+    pub from: usize,
+    /// Pulley the span reaches.
+    pub to: usize,
+    /// Axial force \[N\] (the model's force measure).
+    pub tension_n: f64,
+    /// Transverse displacement of the mid-point \[m\].
+    pub transverse_m: f64,
+    /// Transverse vibration amplitude of the mid-point, half the peak-to-peak over an
+    /// observation window \[m\] (`NaN` when not observed).
+    pub vibration_amplitude_m: f64,
+}
+
+/// The balances of one report (module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Balances {
+    /// Largest torque-balance residual over the pulleys relative to the largest pulley torque
+    /// \[-\].
+    pub torque_residual_rel: f64,
+    /// Power into the belt from the pulleys `−Σ (τ ω + F_hub · ċ)` \[W\].
+    pub power_in_w: f64,
+    /// Sliding losses over all wraps \[W\].
+    pub sliding_w: f64,
+    /// Dissipation in the belt's own damping \[W\] (`NaN`: not evaluated by the model).
+    pub belt_damping_w: f64,
+    /// Power residual `power_in − sliding − belt_damping` \[W\] (the rate of change of the
+    /// belt's energy; zero on average over whole periods of a steady state).
+    pub power_residual_w: f64,
+    /// Power residual relative to the power the drivers deliver \[-\].
+    pub power_residual_rel: f64,
+    /// Power the speed-driven pulleys deliver to the belt \[W\].
+    pub driver_power_w: f64,
+}
+
+/// The report of one state, or the mean of a window of states ([`Report::mean`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// Time of the snapshot (of the last one for a mean) \[s\].
+    pub time_s: f64,
+    /// Pulleys in travel order.
+    pub pulleys: Vec<PulleyReport>,
+    /// Spans in travel order.
+    pub spans: Vec<SpanReport>,
+    /// Torque and power balances.
+    pub balances: Balances,
+}
+
+/// The belt's force on one pulley (a summary entry).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HubLoad {
+    /// Pulley name.
+    pub name: String,
+    /// Force of the belt on the pulley (x, y) \[N\].
+    pub force_n: [f64; 2],
+    /// Its magnitude \[N\].
+    pub magnitude_n: f64,
+}
+
+/// Arcs, slip and sliding power of the points `on` of one wrap (sorted by angle).
+fn wrap_arcs(on: &[&WrapPoint], mu: f64) -> [f64; 6] {
+    let n = on.len();
+    let (mut arc, mut slip_arc, mut saturated) = (0.0, 0.0, 0.0);
+    let (mut vmax, mut vsum, mut power) = (0.0f64, 0.0, 0.0);
+    for (i, w) in on.iter().enumerate() {
+        // angular cell: halfway to the neighbours, ending at the first and last point
+        let lo = if i == 0 {
+            w.angle
+        } else {
+            0.5 * (on[i - 1].angle + w.angle)
+        };
+        let hi = if i + 1 == n {
+            w.angle
+        } else {
+            0.5 * (w.angle + on[i + 1].angle)
+        };
+        let cell = hi - lo;
+        let u = w.utilisation(mu);
+        arc += cell;
+        slip_arc += u.min(1.0) * cell;
+        if u >= SLIP_UTILISATION {
+            saturated += cell;
+        }
+        vmax = vmax.max(w.slip.abs());
+        vsum += w.slip * cell;
+        power -= w.friction * w.slip * w.length;
+    }
+    let vmean = if arc > 0.0 { vsum / arc } else { 0.0 };
+    [arc, slip_arc, saturated, vmax, vmean, power]
+}
+
+impl Report {
+    /// The report of `snap` of a model of `drive`, with the friction coefficient `mu` of the
+    /// contact law.
+    pub fn new(drive: &Drive, snap: &Snapshot, mu: f64) -> Self {
+        Self::of(drive.pulleys(), snap, mu)
+    }
+
+    /// The report of `snap` of a belt running over `pulleys` (names, roles and belt-line radii
+    /// taken from them), with the friction coefficient `mu` of the contact law.
+    pub fn of(pulleys: &[crate::pulley::Pulley], snap: &Snapshot, mu: f64) -> Self {
+        let names: Vec<String> = pulleys.iter().map(|p| p.name.clone()).collect();
+        let roles: Vec<Role> = pulleys.iter().map(|p| p.motion.role()).collect();
+        let radius: Vec<f64> = pulleys.iter().map(|p| p.radius).collect();
+        let spans: Vec<SpanReport> = snap
+            .spans
+            .iter()
+            .map(|s| SpanReport {
+                from: s.from,
+                to: s.to,
+                tension_n: s.tension,
+                transverse_m: s.transverse,
+                vibration_amplitude_m: f64::NAN,
+            })
+            .collect();
+        let span_t = |f: &dyn Fn(&SpanState) -> bool| {
+            snap.spans
+                .iter()
+                .find(|s| f(s))
+                .map_or(f64::NAN, |s| s.tension)
+        };
+        let pulleys: Vec<PulleyReport> = snap
+            .pulleys
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let mut on: Vec<&WrapPoint> = snap
+                    .wrap
+                    .iter()
+                    .filter(|w| w.pulley == k && w.pressure > 0.0)
+                    .collect();
+                on.sort_by(|a, b| a.angle.total_cmp(&b.angle));
+                let [arc, slip_arc, saturated, vmax, vmean, sliding] = wrap_arcs(&on, mu);
+                let (t_in, t_out) = (span_t(&|s| s.to == k), span_t(&|s| s.from == k));
+                let span_torque = (t_out - t_in) * radius[k];
+                PulleyReport {
+                    name: names[k].clone(),
+                    role: roles[k],
+                    omega: p.omega,
+                    contact_arc_rad: arc,
+                    slip_arc_rad: slip_arc,
+                    adhesion_arc_rad: arc - slip_arc,
+                    saturated_arc_rad: saturated,
+                    slip_velocity_max_m_s: vmax,
+                    slip_velocity_mean_m_s: vmean,
+                    sliding_power_w: sliding,
+                    hub_load_n: p.hub_load,
+                    hub_load_magnitude_n: p.hub_load[0].hypot(p.hub_load[1]),
+                    torque_n_m: p.torque,
+                    power_w: p.torque * p.omega
+                        + p.hub_load[0] * p.center_velocity[0]
+                        + p.hub_load[1] * p.center_velocity[1],
+                    tension_in_n: t_in,
+                    tension_out_n: t_out,
+                    span_torque_n_m: span_torque,
+                    torque_residual_n_m: p.torque - span_torque,
+                }
+            })
+            .collect();
+        let balances = Self::balances(&pulleys, snap.belt_dissipation);
+        Self {
+            time_s: snap.time,
+            pulleys,
+            spans,
+            balances,
+        }
+    }
+
+    fn balances(pulleys: &[PulleyReport], belt_damping: f64) -> Balances {
+        let scale = pulleys
+            .iter()
+            .map(|p| p.torque_n_m.abs())
+            .fold(0.0, f64::max);
+        let torque_residual_rel = pulleys
+            .iter()
+            .map(|p| p.torque_residual_n_m.abs())
+            .fold(0.0, f64::max)
+            / scale;
+        let power_in: f64 = -pulleys.iter().map(|p| p.power_w).sum::<f64>();
+        let sliding: f64 = pulleys.iter().map(|p| p.sliding_power_w).sum();
+        let driver: f64 = -pulleys
+            .iter()
+            .filter(|p| p.role == Role::Driver)
+            .map(|p| p.power_w)
+            .sum::<f64>();
+        let damping = if belt_damping.is_finite() {
+            belt_damping
+        } else {
+            0.0
+        };
+        let residual = power_in - sliding - damping;
+        Balances {
+            torque_residual_rel,
+            power_in_w: power_in,
+            sliding_w: sliding,
+            belt_damping_w: belt_damping,
+            power_residual_w: residual,
+            power_residual_rel: residual / driver.abs(),
+            driver_power_w: driver,
+        }
+    }
+
+    /// The mean of `reports` (same drive, at least one): every number averaged, the time of
+    /// the last; the balances recomputed from the averaged terms. A steady state of a rotating
+    /// mesh (nodal, ANCF) carries the ripple of its element passing: its results are window
+    /// means; averaged over whole periods the power residual (the change of the belt's energy)
+    /// vanishes.
+    pub fn mean(reports: &[Report]) -> Option<Report> {
+        let last = reports.last()?;
+        let n = reports.len() as f64;
+        let avg = |f: &dyn Fn(&Report) -> f64| reports.iter().map(f).sum::<f64>() / n;
+        let pulleys: Vec<PulleyReport> = (0..last.pulleys.len())
+            .map(|k| {
+                let p = |f: fn(&PulleyReport) -> f64| avg(&|r: &Report| f(&r.pulleys[k]));
+                let hub = [p(|q| q.hub_load_n[0]), p(|q| q.hub_load_n[1])];
+                PulleyReport {
+                    name: last.pulleys[k].name.clone(),
+                    role: last.pulleys[k].role,
+                    omega: p(|q| q.omega),
+                    contact_arc_rad: p(|q| q.contact_arc_rad),
+                    slip_arc_rad: p(|q| q.slip_arc_rad),
+                    adhesion_arc_rad: p(|q| q.adhesion_arc_rad),
+                    saturated_arc_rad: p(|q| q.saturated_arc_rad),
+                    slip_velocity_max_m_s: p(|q| q.slip_velocity_max_m_s),
+                    slip_velocity_mean_m_s: p(|q| q.slip_velocity_mean_m_s),
+                    sliding_power_w: p(|q| q.sliding_power_w),
+                    hub_load_n: hub,
+                    hub_load_magnitude_n: hub[0].hypot(hub[1]),
+                    torque_n_m: p(|q| q.torque_n_m),
+                    power_w: p(|q| q.power_w),
+                    tension_in_n: p(|q| q.tension_in_n),
+                    tension_out_n: p(|q| q.tension_out_n),
+                    span_torque_n_m: p(|q| q.span_torque_n_m),
+                    torque_residual_n_m: p(|q| q.torque_residual_n_m),
+                }
+            })
+            .collect();
+        let spans = (0..last.spans.len())
+            .map(|k| {
+                let s = |f: fn(&SpanReport) -> f64| avg(&|r: &Report| f(&r.spans[k]));
+                SpanReport {
+                    from: last.spans[k].from,
+                    to: last.spans[k].to,
+                    tension_n: s(|q| q.tension_n),
+                    transverse_m: s(|q| q.transverse_m),
+                    vibration_amplitude_m: last.spans[k].vibration_amplitude_m,
+                }
+            })
+            .collect();
+        let belt_damping = avg(&|r: &Report| r.balances.belt_damping_w);
+        let balances = Self::balances(&pulleys, belt_damping);
+        Some(Report {
+            time_s: last.time_s,
+            pulleys,
+            spans,
+            balances,
+        })
+    }
+
+    /// The first pulley (travel order) whose adhesion arc has shrunk below
+    /// [`GROSS_SLIP_ADHESION`] of its contact arc (gross slip). `None` while every wrap keeps
+    /// an adhesion arc.
+    pub fn gross_slip(&self) -> Option<usize> {
+        self.pulleys.iter().position(|p| {
+            p.contact_arc_rad > 0.0 && p.adhesion_arc_rad < GROSS_SLIP_ADHESION * p.contact_arc_rad
+        })
+    }
+
+    /// The hub load of every pulley, in travel order.
+    pub fn hub_loads(&self) -> Vec<HubLoad> {
+        self.pulleys
+            .iter()
+            .map(|q| HubLoad {
+                name: q.name.clone(),
+                force_n: q.hub_load_n,
+                magnitude_n: q.hub_load_magnitude_n,
+            })
+            .collect()
+    }
+
+    /// Index of the first pulley with `role`.
+    pub fn find(&self, role: Role) -> Option<usize> {
+        self.pulleys.iter().position(|p| p.role == role)
+    }
+
+    /// Slip arc \[rad\] of the first pulley with `role` (`NaN` if there is none).
+    pub fn slip_arc(&self, role: Role) -> f64 {
+        self.find(role)
+            .map_or(f64::NAN, |k| self.pulleys[k].slip_arc_rad)
+    }
+
+    /// Force of the tight span (running onto the first driver) \[N\].
+    pub fn tension_tight(&self) -> f64 {
+        self.find(Role::Driver)
+            .map_or(f64::NAN, |d| self.pulleys[d].tension_in_n)
+    }
+
+    /// Force of the slack span (leaving the first driver) \[N\].
+    pub fn tension_slack(&self) -> f64 {
+        self.find(Role::Driver)
+            .map_or(f64::NAN, |d| self.pulleys[d].tension_out_n)
+    }
+}
+
+/// Force and transverse mid-point displacement of every span of `path` for a belt whose
+/// deformed nodes are `nodes` (closed polyline) and whose element `i → i+1` carries
+/// `forces[i]` \[N\]: the mean force of the elements whose mid-points lie over the middle half
+/// of the span ([`BeltPath::span_middle_of`]), and the polyline's crossing of the span's
+/// bisector.
+pub fn span_states(path: &BeltPath, nodes: &[[f64; 2]], forces: &[f64]) -> Vec<SpanState> {
+    let n = nodes.len();
+    let spans = path.spans();
+    let mut sum = vec![(0.0, 0usize); spans.len()];
+    for i in 0..n {
+        let (a, b) = (nodes[i], nodes[(i + 1) % n]);
+        let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        if let Some(k) = BeltPath::span_middle_of(&spans, mid) {
+            sum[k].0 += forces[i];
+            sum[k].1 += 1;
+        }
+    }
+    spans
+        .iter()
+        .zip(span_offsets(path, nodes))
+        .zip(sum)
+        .map(|((sp, transverse), (t, k))| SpanState {
+            from: sp.from,
+            to: sp.to,
+            tension: if k == 0 { f64::NAN } else { t / k as f64 },
+            transverse,
+        })
+        .collect()
+}
+
+/// Transverse displacement \[m\] of the mid-point of every span of `path` for the deformed
+/// closed polyline `nodes` ([`SpanState::transverse`]).
+pub fn span_offsets(path: &BeltPath, nodes: &[[f64; 2]]) -> Vec<f64> {
+    path.spans()
+        .iter()
+        .map(|sp| {
+            sp.bisector_crossing(nodes)
+                .map_or(f64::NAN, |p| sp.local(p).1)
+        })
+        .collect()
+}
+
+/// Slip speed \[m/s\] at which the friction law's force reaches the fraction `eta` of `μ|f_n|`
+/// (the sliding branch of the law): `atanh(η)/κ` for the tanh law (6.2). Found by doubling from
+/// 1 µm/s and bisection; infinite if the law never reaches it below 100 m/s.
+pub fn sliding_speed(law: &impl FrictionLaw, eta: f64) -> f64 {
+    let mu = law.coefficient();
+    if mu <= 0.0 {
+        return f64::INFINITY;
+    }
+    let reached = |v: f64| law.friction(v, 1.0).force.abs() >= eta * mu;
+    let mut hi = 1e-6;
+    while !reached(hi) {
+        hi *= 2.0;
+        if hi > 100.0 {
+            return f64::INFINITY;
+        }
+    }
+    let mut lo = 0.0;
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if reached(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::layout::Layout;
+    use crate::model::{PulleyState, SpanState};
+    use crate::section::Section;
+    use crate::signal::Signal;
+    use contact::friction::CoulombTanh;
+
+    // the tanh law (6.2) reaches η μ at atanh(η)/κ (definition of the law)
+    #[test]
+    fn sliding_speed_of_the_tanh_law() {
+        let law = CoulombTanh {
+            mu: 1.2,
+            kappa: 40.0,
+        };
+        let v = sliding_speed(&law, 0.95);
+        assert!((v - 0.95f64.atanh() / 40.0).abs() < 1e-12, "{v}");
+    }
+
+    /// A string on the driven pulley of a two-pulley drive: saturated friction on the last
+    /// `phi_slip` of a π wrap (Coulomb slip arc) and none before; spans, pulley torques and
+    /// hub loads of the string's statics.
+    fn capstan_snapshot(mu: f64, phi_slip: f64) -> (Drive, Snapshot, f64, f64) {
+        let (r, t_out) = (0.05, 100.0);
+        let drive = Layout::two_pulley(
+            0.45,
+            r,
+            r,
+            Signal::constant(10.0),
+            0.01,
+            Signal::constant(1.0),
+            Section::default(),
+            300.0,
+        )
+        .resolve()
+        .unwrap();
+        let n = 2001;
+        let pi = std::f64::consts::PI;
+        let dphi = pi / (n - 1) as f64;
+        let t_in = t_out * (mu * phi_slip).exp();
+        let mut wrap = Vec::new();
+        for i in 0..n {
+            let phi = i as f64 * dphi;
+            // the force rises from the inlet (slack) over the slip arc at the end of the wrap
+            let slipping = phi > pi - phi_slip;
+            let tension = if slipping {
+                t_out * (mu * (phi - (pi - phi_slip))).exp()
+            } else {
+                t_out
+            };
+            wrap.push(WrapPoint {
+                pulley: 1,
+                angle: phi,
+                length: dphi * r,
+                tension,
+                pressure: tension / r,
+                friction: if slipping { mu * tension / r } else { 0.0 },
+                slip: if slipping { -0.1 } else { 0.0 },
+            });
+        }
+        // driven pulley: slack span in, tight span out; τ = (T_out − T_in) R on the driven,
+        // the opposite on the driver
+        let torque = (t_in - t_out) * r;
+        let pulley = |omega: f64, torque: f64, hub: f64| PulleyState {
+            omega,
+            hub_load: [hub, 0.0],
+            torque,
+            center_velocity: [0.0; 2],
+        };
+        let snap = Snapshot {
+            time: 0.0,
+            pulleys: vec![
+                pulley(10.0, -torque, t_in + t_out),
+                pulley(10.0, torque, -(t_in + t_out)),
+            ],
+            spans: vec![
+                SpanState {
+                    from: 0,
+                    to: 1,
+                    tension: t_out,
+                    transverse: 0.0,
+                },
+                SpanState {
+                    from: 1,
+                    to: 0,
+                    tension: t_in,
+                    transverse: 0.0,
+                },
+            ],
+            wrap,
+            belt_dissipation: 0.0,
+        };
+        (drive, snap, t_in, t_out)
+    }
+
+    // Euler–Eytelwein on the slip arc: a string with saturated friction over the last 2 rad
+    // of a π wrap builds the force ratio e^{μ·2}; the report finds slip arc 2 rad (also the
+    // saturated arc), adhesion π − 2, and the sliding power −∫ f v ds = 0.1 (T_in − T_out).
+    // The string's statics close the balances: τ = (T_out − T_in) R on each pulley (torque
+    // residual 0), and the power the driver puts in is the driven pulley's (power residual the
+    // sliding loss, which this snapshot's wrap carries and its pulleys do not).
+    #[test]
+    fn arcs_and_balances_of_a_capstan_wrap() {
+        let (mu, phi_slip) = (0.5, 2.0);
+        let (drive, snap, t_in, t_out) = capstan_snapshot(mu, phi_slip);
+        let rep = Report::new(&drive, &snap, mu);
+        let p = &rep.pulleys[1];
+        let (pi, dphi) = (std::f64::consts::PI, std::f64::consts::PI / 2000.0);
+        assert!((p.contact_arc_rad - pi).abs() < 1e-12);
+        assert!(
+            (p.slip_arc_rad - phi_slip).abs() < 2.0 * dphi,
+            "{}",
+            p.slip_arc_rad
+        );
+        assert!((p.saturated_arc_rad - phi_slip).abs() < 2.0 * dphi);
+        assert!((p.adhesion_arc_rad - (pi - phi_slip)).abs() < 2.0 * dphi);
+        assert!(((t_in / t_out).ln() / mu - p.slip_arc_rad).abs() < 2.0 * dphi);
+        assert_eq!(rep.gross_slip(), None);
+        let expect = 0.1 * (t_in - t_out);
+        assert!(
+            (p.sliding_power_w / expect - 1.0).abs() < 2e-3,
+            "{}",
+            p.sliding_power_w
+        );
+        // torque balance closes on both pulleys
+        for q in &rep.pulleys {
+            assert!(
+                q.torque_residual_n_m.abs() < 1e-9 * q.torque_n_m.abs(),
+                "{q:?}"
+            );
+        }
+        assert!(rep.balances.torque_residual_rel < 1e-12);
+        assert_eq!(rep.tension_tight(), t_in);
+        assert_eq!(rep.tension_slack(), t_out);
+        // power: the driver gives τ ω, the driven pulley takes it; the belt's balance is short
+        // by the sliding power of the wrap
+        let b = rep.balances;
+        assert!((b.driver_power_w - (t_in - t_out) * 0.05 * 10.0).abs() < 1e-9);
+        assert!(b.power_in_w.abs() < 1e-9);
+        assert!((b.power_residual_w + p.sliding_power_w).abs() < 1e-9);
+        // a window mean of two equal reports is the report
+        let m = Report::mean(&[rep.clone(), rep.clone()]).unwrap();
+        assert_eq!(m.pulleys[1].slip_arc_rad, rep.pulleys[1].slip_arc_rad);
+    }
+
+    // a wrap without adhesion is gross slip (definition: adhesion arc below 5 % of the contact
+    // arc)
+    #[test]
+    fn a_fully_sliding_wrap_is_gross_slip() {
+        let (drive, snap, _, _) = capstan_snapshot(0.5, std::f64::consts::PI);
+        let rep = Report::new(&drive, &snap, 0.5);
+        assert_eq!(rep.gross_slip(), Some(1));
+    }
+}

@@ -1,0 +1,228 @@
+//! The flowing-material and nodal belts as [`BeltModel`]s: their snapshots for the one
+//! report ([`belt::report`]) — contact nodes as wrap points, element forces `T0 + EA Δl/l`
+//! as span forces (the force of the models linearised about the mounted state, Ribaric
+//! (5.5)), pulley torques and hub loads summed from the node contacts.
+
+use super::contact::NodeContact;
+use super::flowing_system::FlowingBelt;
+use super::model::BeltFe;
+use super::nodal::NodalBelt;
+use belt::report::{span_offsets, span_states};
+use belt::{BeltModel, Drive, ModelTraits, Motion, PulleyState, Snapshot, WrapPoint};
+use mbd_core::MbdError;
+use mbd_core::integrators::State;
+
+/// What the linearised models report as the belt's force.
+pub const LINEAR_FORCE_MEASURE: &str = "T0 + EA Δl/l: the axial force of the belt linearised about the mounted \
+tension T0 (Ribaric (5.5)), mean over each span's middle half";
+
+/// Deformed node positions: `reference` plus the translations of `d` (3 DOFs per node).
+fn deformed(reference: &[[f64; 2]], d: &[f64]) -> Vec<[f64; 2]> {
+    reference
+        .iter()
+        .enumerate()
+        .map(|(i, r)| [r[0] + d[3 * i], r[1] + d[3 * i + 1]])
+        .collect()
+}
+
+/// The snapshot of a belt of frame elements with nodal contacts: pulley speeds `omega[k]`
+/// \[rad/s\], hub loads and torques summed from the contacts, span forces from the element
+/// forces, wrap points at the contact nodes.
+fn snapshot_with(
+    fe: &BeltFe,
+    t: f64,
+    nodes: &[[f64; 2]],
+    forces: &[f64],
+    contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
+    omega: Vec<f64>,
+    idler_velocity: Option<(usize, [f64; 2])>,
+) -> Snapshot {
+    let path = fe.path();
+    let nn = nodes.len();
+    let mut pulleys: Vec<PulleyState> = omega
+        .into_iter()
+        .map(|omega| PulleyState {
+            omega,
+            hub_load: [0.0; 2],
+            torque: 0.0,
+            center_velocity: [0.0; 2],
+        })
+        .collect();
+    if let Some((k, vel)) = idler_velocity {
+        pulleys[k].center_velocity = vel;
+    }
+    let mut wrap = Vec::new();
+    for (i, p, c) in contacts {
+        let pl = &mut pulleys[p];
+        pl.hub_load[0] -= c.force[0];
+        pl.hub_load[1] -= c.force[1];
+        pl.torque += c.torque;
+        if c.normal <= 0.0 {
+            continue;
+        }
+        let l = fe.tributary[i];
+        wrap.push(WrapPoint {
+            pulley: p,
+            angle: path.angle_from_inlet(p, nodes[i]).unwrap_or(f64::NAN),
+            length: l,
+            tension: 0.5 * (forces[i] + forces[(i + nn - 1) % nn]),
+            pressure: c.normal / l,
+            friction: c.friction / l,
+            slip: c.slip,
+        });
+    }
+    wrap.sort_by(|a, b| {
+        (a.pulley, a.angle)
+            .partial_cmp(&(b.pulley, b.angle))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    Snapshot {
+        time: t,
+        pulleys,
+        spans: span_states(path, nodes, forces),
+        wrap,
+        belt_dissipation: f64::NAN,
+    }
+}
+
+/// Coordinates `(s_b, z, φ_k…, Δθ)`: belt travel, the reduced coordinates, the free pulleys
+/// and the tensioner arm.
+impl BeltModel for FlowingBelt {
+    fn drive(&self) -> &Drive {
+        &self.fe.drive
+    }
+
+    fn traits(&self) -> ModelTraits {
+        ModelTraits {
+            name: "flowing",
+            linearised: true,
+            force_measure: LINEAR_FORCE_MEASURE,
+        }
+    }
+
+    fn initial_state(&self) -> Result<State, MbdError> {
+        let q = self.static_state()?;
+        let n = q.len();
+        Ok(State::new(0.0, q, vec![0.0; n]))
+    }
+
+    fn motion(&self, k: usize) -> Option<&Motion> {
+        self.motions.get(k)
+    }
+
+    fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
+        self.motions.get_mut(k)
+    }
+
+    fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+        FlowingBelt::pulley_speed(self, k, t, v)
+    }
+
+    fn arm_angle(&self, q: &[f64]) -> Option<f64> {
+        FlowingBelt::arm_angle(self, q)
+    }
+
+    /// `ṡ_b`, the material speed at the reference node.
+    fn belt_speed(&self, _q: &[f64], v: &[f64]) -> f64 {
+        v[0]
+    }
+
+    /// Contact nodes of the stationary mesh, element forces `T0 + EA Δl/l`.
+    fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        let z = &q[1..=self.n_modes()];
+        let nodes = deformed(&self.fe.position, &self.deflection(z));
+        let forces = self.element_tensions(z);
+        let contacts = self
+            .contact_report(t, q, v)
+            .into_iter()
+            .map(|r| (r.node, r.pulley, r.contact));
+        let omega = (0..self.motions.len())
+            .map(|k| self.pulley_speed(k, t, v))
+            .collect();
+        Ok(snapshot_with(
+            &self.fe,
+            t,
+            &nodes,
+            &forces,
+            contacts,
+            omega,
+            self.idler_velocity(q, v),
+        ))
+    }
+
+    fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+        let z = &q[1..=self.n_modes()];
+        let nodes = deformed(&self.fe.position, &self.deflection(z));
+        Ok(span_offsets(self.fe.path(), &nodes))
+    }
+}
+
+/// Coordinates `(s_b, δ, φ_k…, Δθ)`: belt travel, the nodal deflections, the free pulleys and
+/// the tensioner arm.
+impl BeltModel for NodalBelt {
+    fn drive(&self) -> &Drive {
+        &self.fe.drive
+    }
+
+    fn traits(&self) -> ModelTraits {
+        ModelTraits {
+            name: "nodal",
+            linearised: true,
+            force_measure: LINEAR_FORCE_MEASURE,
+        }
+    }
+
+    fn initial_state(&self) -> Result<State, MbdError> {
+        let q = self.static_state()?;
+        let n = q.len();
+        Ok(State::new(0.0, q, vec![0.0; n]))
+    }
+
+    fn motion(&self, k: usize) -> Option<&Motion> {
+        self.motions.get(k)
+    }
+
+    fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
+        self.motions.get_mut(k)
+    }
+
+    fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+        NodalBelt::pulley_speed(self, k, t, v)
+    }
+
+    fn arm_angle(&self, q: &[f64]) -> Option<f64> {
+        NodalBelt::arm_angle(self, q)
+    }
+
+    /// `ṡ_b`, the speed of the material nodes along the path.
+    fn belt_speed(&self, _q: &[f64], v: &[f64]) -> f64 {
+        v[0]
+    }
+
+    /// Material nodes on the reference polygon at `s_b`, element forces `T0 + EA Δl/l`.
+    fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        let nodes = deformed(&self.reference_positions(q[0]), &q[1..=self.n_nodal()]);
+        let forces = self.element_tensions(q);
+        let contacts = self
+            .contact_report(t, q, v)?
+            .into_iter()
+            .map(|(i, p, _, c)| (i, p, c));
+        let omega = (0..self.motions.len())
+            .map(|k| self.pulley_speed(k, t, v))
+            .collect();
+        Ok(snapshot_with(
+            &self.fe,
+            t,
+            &nodes,
+            &forces,
+            contacts,
+            omega,
+            self.idler_velocity(q, v),
+        ))
+    }
+
+    fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+        let nodes = deformed(&self.reference_positions(q[0]), &q[1..=self.n_nodal()]);
+        Ok(span_offsets(self.fe.path(), &nodes))
+    }
+}
