@@ -1,18 +1,12 @@
 //! `flowmbd.tire`: the reduced FE truck tire of Ribaric ch. 7–8. The FE tire generated
 //! ([`fe_model::generate::tire`]) or imported (ABAQUS / Matrix Market,
-//! [`flowing::tire::imported_tire`]), its reduction of §8.2 ([`flowing::tire::reduce`]) as a
+//! [`tire::imported_tire`]), its reduction of §8.2 ([`tire::reduce`]) as a
 //! reusable, picklable [`PyReducedTire`], and the cleat test of §8.3 with the configuration and
-//! summary of [`flowing::tire::study`] (the same as `flowmbd-tire cleat`).
+//! summary of [`tire::study`] (the same as `flowmbd-tire cleat`).
 
 use crate::{input_error, numerical_error, read_config, to_json};
 use faer::Mat;
 use fe_model::generate::TireConfig;
-use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
-use flowing::tire::{
-    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
-    TireSource, cleat_summary, imported_tire, phase_spread, rig_input_error, run_cleat_observed,
-    tire_input_error,
-};
 use mbd_core::Validate;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
@@ -20,6 +14,12 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use std::sync::Arc;
+use tire::study::{FORCE_COLUMNS, force_row, sample_row};
+use tire::{
+    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
+    TireSource, cleat_summary, imported_tire, phase_spread, rig_input_error, run_cleat_observed,
+    tire_input_error,
+};
 
 /// Bad input (`ValueError` with the CLI's `field: reason`) or a numerical failure
 /// (`flowmbd.NumericalError` with `partial`), classified like `flowmbd-tire`

@@ -1,4 +1,4 @@
-//! The tire's coupled normal + friction contact solve (`flowing::tire::contact_solve`, issue #9):
+//! The tire's coupled normal + friction contact solve (`tire::contact_solve`, issue #9):
 //! the semismooth Newton method on the Alart–Curnier equations against
 //! * the analytical solution of one node pressed onto a plane and sliding or sticking,
 //! * an independent reference on 2–3 node problems: the alternation of the normal LCP (solved
@@ -8,10 +8,10 @@
 //!   problems (proptest), for the Coulomb and the regularised law (Ribaric seed note U20).
 
 use contact::{Coulomb, SlipRegularized};
-use flowing::tire::TireFriction;
-use flowing::tire::contact_solve::{ContactSolver, DenseProblem, SolveOptions, SolveReport};
 use proptest::prelude::*;
 use std::sync::Arc;
+use tire::TireFriction;
+use tire::contact_solve::{ContactSolver, DenseProblem, SolveOptions, SolveReport};
 
 /// Column-major 3m × 3m matrix from row-major rows.
 fn col_major(rows: &[Vec<f64>]) -> Vec<f64> {
@@ -532,7 +532,7 @@ fn reuse_of_newton_matrices_gives_the_fresh_solution() {
 /// `slip_regularization` (session 2 files) still load; an unknown law is rejected by name.
 #[test]
 fn rolling_config_friction_law_parses() {
-    use flowing::tire::RollingConfig;
+    use tire::RollingConfig;
     // the rolling settings' checks are the workspace's one validation trait (issue 20)
     use mbd_core::Validate;
     let old: RollingConfig =

@@ -1,14 +1,12 @@
 //! Shared pieces of the tire studies: the tire source (generated truck tire, reduced and saved,
 //! or a saved reduced tire reused) and error mapping.
 
-use flowing::tire::{
-    GroundKind, ReducedTire, RigConfig, TireError, rig_input_error, tire_input_error,
-};
 use flowmbd_cli::{InputError, StudyError};
 use std::path::Path;
+use tire::{GroundKind, ReducedTire, RigConfig, TireError, rig_input_error, tire_input_error};
 
-pub use flowing::tire::TireSource;
-pub use flowing::tire::study::CACHE;
+pub use tire::TireSource;
+pub use tire::study::CACHE;
 
 /// The commented `[tire.import]` example that `--print-config` appends (TOML has no null, so
 /// an absent import would not show otherwise).
@@ -32,7 +30,7 @@ pub fn import_notes(tire: &TireSource) -> String {
 }
 
 /// Map a library error: invalid input → exit 2 naming the item
-/// ([`flowing::tire::tire_input_error`]), otherwise numerical (exit 1).
+/// ([`tire::tire_input_error`]), otherwise numerical (exit 1).
 pub fn tire_err(e: TireError) -> StudyError {
     match tire_input_error(e) {
         Ok(field) => StudyError::Input(field),
@@ -55,7 +53,7 @@ pub trait TireSourceExt {
     /// The reduced-tire file actually used (see the implementation).
     fn reduced_path(&self) -> String;
     /// The FE model (imported or generated), errors mapped by [`tire_err`].
-    fn fe_model_or_err(&self) -> Result<flowing::tire::TireFe, StudyError>;
+    fn fe_model_or_err(&self) -> Result<tire::TireFe, StudyError>;
     /// Load the saved reduced tire, or reduce the tire (and save it).
     fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError>;
 }
@@ -92,7 +90,7 @@ impl TireSourceExt for TireSource {
         .to_string()
     }
 
-    fn fe_model_or_err(&self) -> Result<flowing::tire::TireFe, StudyError> {
+    fn fe_model_or_err(&self) -> Result<tire::TireFe, StudyError> {
         self.fe_model().map_err(tire_err)
     }
 

@@ -2,11 +2,11 @@
 //! file; the stage times are the benchmark record of the 60 000-DOF reduction.
 
 use crate::common::{TireSource, TireSourceExt, tire_err};
-use flowing::tire::ReductionTimings;
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 use std::time::Instant;
+use tire::ReductionTimings;
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]

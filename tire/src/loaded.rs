@@ -27,8 +27,8 @@
 //! flexibility `G = N (Nᵀ K_z N)⁻¹ Nᵀ`, which the tests check against a direct constrained
 //! solve. Modes with a large vertical `m_k` are the vertical in-plane modes the cleat excites.
 
-use super::error::{TireError, invalid, linalg};
-use super::reduced::ReducedTire;
+use crate::error::{TireError, invalid, linalg};
+use crate::reduced::ReducedTire;
 use faer::prelude::*;
 use faer::{Mat, Side};
 use serde::Serialize;

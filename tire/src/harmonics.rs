@@ -23,7 +23,7 @@
 //! share `t = (E_fwd − E_bwd)/(E_fwd + E_bwd)` is +1 for a pure forward wave, −1 for a pure
 //! backward wave and 0 for a standing wave.
 
-use super::reduced::TreadBasis;
+use crate::reduced::TreadBasis;
 use faer::c64;
 use serde::Serialize;
 use std::f64::consts::PI;

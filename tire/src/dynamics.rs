@@ -34,7 +34,7 @@
 //! `[G₁ H]` (`H = θ̇_R² G₂ + βθ̇_R K₁`, 2 n_z × n_z) instead of `[C_eff K_eff G₁]`
 //! (3 n_z × n_z), a third less data per step (issue #16: the step is bandwidth-bound).
 
-use super::reduced::ReducedTire;
+use crate::reduced::ReducedTire;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 use mbd_core::Workspace;

@@ -41,8 +41,8 @@
 //! together with the residual at each evaluated or accepted point and reused by the Newton or
 //! chord direction from there.
 
-use super::kernels::{axpy_cols, col_slice, lu_solve_in_place};
-use super::lcp::LcpWork;
+use crate::kernels::{axpy_cols, col_slice, lu_solve_in_place};
+use crate::lcp::LcpWork;
 use contact::friction::{Coulomb, FrictionLaw};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};

@@ -8,15 +8,15 @@
 //! deflection `d`) and rolls freely (no drive torque) for `settle_time` before the cleat reaches
 //! the patch centre; recording continues for `record_time` after the hit.
 
-use super::error::{TireError, invalid};
-use super::ground::{Ground, GroundConfig};
-use super::loaded::{
+use crate::error::{TireError, invalid};
+use crate::ground::{Ground, GroundConfig};
+use crate::loaded::{
     LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, held_nodes, loaded_modes,
 };
-use super::reduced::ReducedTire;
-use super::rolling::{RollingConfig, RollingTire, StepStats};
-use super::spectrum::{PEAK_BAND_HZ, Spectrum, amplitude_spectrum, rms_fluctuation};
-use super::statics::{PatchSolution, Preload, preload, preload_rolling};
+use crate::reduced::ReducedTire;
+use crate::rolling::{RollingConfig, RollingTire, StepStats};
+use crate::spectrum::{PEAK_BAND_HZ, Spectrum, amplitude_spectrum, rms_fluctuation};
+use crate::statics::{PatchSolution, Preload, preload, preload_rolling};
 use fe_model::Rayleigh;
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};

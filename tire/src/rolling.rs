@@ -93,13 +93,13 @@
 //! holds the simulated, symmetric modal coordinates); [`RollingTire::symmetry`] says which
 //! model runs and, for the full one, why.
 
-use super::contact_step::{TireContact, matvec};
-use super::dynamics::TireDynamics;
-use super::error::{TireError, invalid};
-use super::friction::TireFriction;
-use super::ground::Ground;
-use super::mirror::MirrorHalf;
-use super::reduced::ReducedTire;
+use crate::contact_step::{TireContact, matvec};
+use crate::dynamics::TireDynamics;
+use crate::error::{TireError, invalid};
+use crate::friction::TireFriction;
+use crate::ground::Ground;
+use crate::mirror::MirrorHalf;
+use crate::reduced::ReducedTire;
 use contact::friction::spec::check_coefficient;
 use mbd_core::Validate;
 use mbd_core::integrators::{

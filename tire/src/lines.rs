@@ -24,11 +24,11 @@
 //! system. The term of `λ_k` plus that of its conjugate is mode `k`'s contribution to the line;
 //! its share of the sum of the contributions' magnitudes is the mode's participation.
 
-use super::error::{TireError, invalid, linalg};
-use super::harmonics::WaveDirection;
-use super::loaded::{LONGITUDINAL, VERTICAL, influence};
-use super::reduced::ReducedTire;
-use super::rotating::{FlowingMatrices, RotatingOptions, spin_matrices, state_eigen};
+use crate::error::{TireError, invalid, linalg};
+use crate::harmonics::WaveDirection;
+use crate::loaded::{LONGITUDINAL, VERTICAL, influence};
+use crate::reduced::ReducedTire;
+use crate::rotating::{FlowingMatrices, RotatingOptions, spin_matrices, state_eigen};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side, c64};
 use serde::Serialize;

@@ -33,14 +33,14 @@
 //! At `Ω = 0` the eigenvalues are those of `K_z φ = ω² M_z φ` (undamped: `λ = ±iω`; Rayleigh
 //! damping: `|λ| = ω`), i.e. the frequencies of `flowmbd-tire modes`.
 
-use super::error::{TireError, invalid, linalg};
-use super::ground::GroundConfig;
-use super::harmonics::{Harmonic, WaveDirection};
-use super::loaded::held_nodes;
-use super::reduced::{ReducedTire, TreadBasis};
-use super::statics::{preload, preload_rolling};
-use crate::gyroscopic::GyroscopicSystem;
+use crate::error::{TireError, invalid, linalg};
+use crate::ground::GroundConfig;
+use crate::harmonics::{Harmonic, WaveDirection};
+use crate::loaded::held_nodes;
+use crate::reduced::{ReducedTire, TreadBasis};
+use crate::statics::{preload, preload_rolling};
 use faer::{Mat, MatRef, c64};
+use flowing::gyroscopic::GyroscopicSystem;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -194,7 +194,7 @@ pub(crate) struct StateModes {
     /// The system on `y` (`M_y = NᵀM N`, `C_y`, `K_y`).
     pub sys: GyroscopicSystem,
     /// Eigenvalues and right eigenvectors of its state matrix.
-    pub eig: crate::gyroscopic::StateEigen,
+    pub eig: flowing::gyroscopic::StateEigen,
 }
 
 /// `C_Ω = 2ΩG₁ + αM + βK` and `K_Ω = K + Ω²G₂ + βΩK₁` (module docs).

@@ -55,7 +55,7 @@ pub enum TireError {
     Fe(#[from] fe_model::FeError),
     /// Error of the flowing-material layer (derivative operators).
     #[error(transparent)]
-    Flow(#[from] crate::FlowError),
+    Flow(#[from] flowing::FlowError),
     /// Error of the reduction layer (partitioned Craig–Bampton: static and free-node modes).
     #[error(transparent)]
     Reduction(#[from] reduction::ReductionError),

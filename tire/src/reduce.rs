@@ -17,15 +17,15 @@
 //! reproduces the FE model exactly (eigenfrequencies and statics); with truncation the static
 //! modes keep the statics under contact-node loads exact (Craig–Bampton, Ribaric §3.3).
 
-use super::error::{TireError, invalid, linalg};
-use super::mesh::{TireFe, node_angle};
-use super::reduced::{ReducedTire, TreadBasis, VizBasis};
-use crate::derivative::{DerivativeMethod, FdScheme, FlowLine, mode_shape_derivatives};
+use crate::error::{TireError, invalid, linalg};
+use crate::mesh::{TireFe, node_angle};
+use crate::reduced::{ReducedTire, TreadBasis, VizBasis};
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Accum, Mat, Par};
 use fe_model::SparseEigenOptions;
 use fe_model::sparse::{sparse_times_dense, submatrix};
+use flowing::derivative::{DerivativeMethod, FdScheme, FlowLine, mode_shape_derivatives};
 use mbd_core::validate::{InvalidField, Validate, check};
 use reduction::DofPartition;
 use reduction::sparse::{CraigBamptonOptions, craig_bampton_modes, fixed_interface_modes_sparse};
@@ -562,7 +562,7 @@ pub fn full_frequencies_hz(fe: &TireFe, count: usize) -> Result<Vec<f64>, TireEr
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tire::model::{coarse_tire_config, generated_tire};
+    use crate::model::{coarse_tire_config, generated_tire};
 
     /// The block form of `Tᵀ K T` (Lin (6.20): `diag(Λ)` for the mass-normalised free-node
     /// modes, the Schur complement on the static modes, no coupling) against the plain

@@ -1,4 +1,10 @@
-//! The reduced FE tire with flowing material (Ribaric ch. 7–8).
+//! # tire
+//!
+//! The reduced FE tire with flowing material (Ribaric ch. 7–8): a domain crate above the
+//! numerical layers it uses — the flowing-material derivative operators of `flowing`, the
+//! Craig–Bampton reduction of `reduction`, the FE model and readers of `fe-model`, the contact
+//! geometry, friction laws and the shared Alart–Curnier solver of `contact`, and the
+//! generalized-α stepper of `mbd-core`. Nothing below depends on it.
 //!
 //! * [`mesh`]: the tire FE model (lumped M, K with inflation prestress, rim and patch node
 //!   sets, circumferential rings) — Ribaric (7.1), (7.4);
@@ -18,6 +24,10 @@
 //!   loaded vertical mode;
 //! * [`study`]: the tire source (generated or imported tire and its reduction), the cleat
 //!   study's configuration and summary, shared by `flowmbd-tire` and the Python package.
+
+// Dense numerical kernels index several arrays with one loop variable; iterator chains would
+// obscure the equations.
+#![allow(clippy::needless_range_loop)]
 
 pub mod error;
 pub mod mesh;

@@ -21,8 +21,8 @@
 //! variants whose names start with one of the given prefixes.
 
 use fe_model::generate::TireConfig;
-use flowing::tire::*;
 use std::time::Instant;
+use tire::*;
 
 fn main() {
     let t0 = Instant::now();

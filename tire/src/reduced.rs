@@ -16,9 +16,9 @@
 //! `eᵀM s_,θ`, `eᵀM s_,θθ` (e = the three Cartesian directions; tire nodes only) of the
 //! momentum-balance spindle force ([`super::rolling::SpindleForceMethod`]).
 
-use super::error::{TireError, invalid};
-use crate::derivative::DerivativeMethod;
+use crate::error::{TireError, invalid};
 use faer::Mat;
+use flowing::derivative::DerivativeMethod;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

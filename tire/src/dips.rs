@@ -43,11 +43,11 @@
 //! the order of the line's half-power bandwidth `2ζf` (4.4 Hz at 76 Hz, ζ = 2.9 %), so some
 //! harmonic lies within the line at every speed.
 
-use super::error::{TireError, invalid};
-use super::ground::{Ground, GroundConfig, GroundKind};
-use super::reduced::ReducedTire;
-use super::spectrum::Spectrum;
-use super::statics::{contact_at, preload, reduced_flexibility};
+use crate::error::{TireError, invalid};
+use crate::ground::{Ground, GroundConfig, GroundKind};
+use crate::reduced::ReducedTire;
+use crate::spectrum::Spectrum;
+use crate::statics::{contact_at, preload, reduced_flexibility};
 use mbd_core::validate::{Validate, check};
 use serde::Serialize;
 use std::f64::consts::PI;

@@ -10,12 +10,12 @@
 //! contact problem (normals re-linearised at the deformed positions) is a complementarity
 //! problem solved by [`super::lcp::solve_lcp`].
 
-use super::error::{TireError, invalid, linalg};
-use super::ground::{Ground, GroundConfig};
-use super::lcp::solve_lcp;
-use super::mesh::TireFe;
-use super::reduce::TirePartition;
-use super::reduced::ReducedTire;
+use crate::error::{TireError, invalid, linalg};
+use crate::ground::{Ground, GroundConfig};
+use crate::lcp::solve_lcp;
+use crate::mesh::TireFe;
+use crate::reduce::TirePartition;
+use crate::reduced::ReducedTire;
 use faer::prelude::*;
 use faer::{Mat, Side};
 use mbd_core::validate::{Validate, check};

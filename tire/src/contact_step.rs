@@ -22,13 +22,13 @@
 //! `X Σ fⱼ`, the free slip products) with AVX2 when the machine has it (`kernels`: the same
 //! operations in the same order, so the results do not depend on the machine).
 
-use super::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
-use super::dynamics::TireDynamics;
-use super::ground::{Ground, GroundPoint};
-use super::kernels::{axpy_cols, col_slice, dots3x2};
-use super::mirror::MirrorHalf;
-use super::reduced::ReducedTire;
-use super::rolling::{NormalContact, RollingConfig, StepStats};
+use crate::contact_solve::{ContactSolver, DelassusSource, SolveOptions};
+use crate::dynamics::TireDynamics;
+use crate::ground::{Ground, GroundPoint};
+use crate::kernels::{axpy_cols, col_slice, dots3x2};
+use crate::mirror::MirrorHalf;
+use crate::reduced::ReducedTire;
+use crate::rolling::{NormalContact, RollingConfig, StepStats};
 use contact::friction::FrictionLaw;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
@@ -708,7 +708,7 @@ impl GapBound {
     }
 }
 
-pub(super) use mbd_core::linalg::matvec;
+pub(crate) use mbd_core::linalg::matvec;
 
 fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]

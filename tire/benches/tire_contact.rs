@@ -1,4 +1,4 @@
-//! The tire's coupled normal + friction contact solve (`flowing::tire::contact_solve`, issue 9):
+//! The tire's coupled normal + friction contact solve (`tire::contact_solve`, issue 9):
 //! time per solve of a synthetic patch like the 95-node truck tire's (25 candidates, ~16
 //! pressed, μ = 0.85, tire-like normal/tangential compliances coupled by a decaying kernel),
 //! solved as in time stepping (slowly varying free gaps and slips, warm start from the last
@@ -6,8 +6,8 @@
 //! friction Gauss–Seidel, exact local Coulomb) run to the same tolerance.
 //! Run: `cargo bench -p flowing --bench tire_contact`.
 
-use flowing::tire::contact_solve::{ContactSolver, DenseProblem, SolveOptions};
 use std::time::Instant;
+use tire::contact_solve::{ContactSolver, DenseProblem, SolveOptions};
 
 /// A patch of `m` nodes along x: normal compliance ~1e-7 m/N with 60 % coupling to the
 /// neighbours, tangential (velocity level) ~4e-3 m/s/N, weak normal–tangential coupling.

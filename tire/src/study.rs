@@ -5,17 +5,17 @@
 //! input and numerical failures. Kept here so that both front ends accept the same keys, reject
 //! the same fields with the same messages and return the same numbers.
 
-use super::error::TireError;
-use super::lines::{LineMode, SpindleComponent, line_modes};
-use super::loaded::held_nodes;
-use super::mesh::TireFe;
-use super::model::{ImportFiles, generated_tire, imported_tire};
-use super::reduce::{ReductionConfig, ReductionTimings, reduce};
-use super::reduced::ReducedTire;
-use super::rig::{RigConfig, RigResult, Sample};
-use super::rolling::{RollingTire, StepStats};
-use super::rotating::RotatingOptions;
-use super::spectrum::{LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum};
+use crate::error::TireError;
+use crate::lines::{LineMode, SpindleComponent, line_modes};
+use crate::loaded::held_nodes;
+use crate::mesh::TireFe;
+use crate::model::{ImportFiles, generated_tire, imported_tire};
+use crate::reduce::{ReductionConfig, ReductionTimings, reduce};
+use crate::reduced::ReducedTire;
+use crate::rig::{RigConfig, RigResult, Sample};
+use crate::rolling::{RollingTire, StepStats};
+use crate::rotating::RotatingOptions;
+use crate::spectrum::{LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum};
 use fe_model::FeError;
 use fe_model::generate::TireConfig;
 use mbd_core::validate::{InvalidField, Validate, check};

@@ -22,7 +22,7 @@
 //! equals the full model's symmetric solution; the full model itself departs from it only by
 //! the growth of antisymmetric round-off.
 
-use super::reduced::ReducedTire;
+use crate::reduced::ReducedTire;
 use faer::Mat;
 
 /// Relative tolerance of the symmetry tests (the default tire's reduced matrices commute with

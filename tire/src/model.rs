@@ -2,8 +2,8 @@
 //! ([`mod@fe_model::generate::tire`]), with the inflation prestress entering through the geometric
 //! stiffness (Ribaric §8.1: M and K "under load and inflation").
 
-use super::error::TireError;
-use super::mesh::TireFe;
+use crate::error::TireError;
+use crate::mesh::TireFe;
 use fe_model::generate::{TireConfig, tire};
 
 /// The full-size truck tire (295/80 R22.5, 38 psi): fe-model's default generator settings.

@@ -9,10 +9,10 @@
 //! The mass is lumped (diagonal, Ribaric §7.2). Rim (bead) nodes are bonded to the rigid wheel
 //! (U23) and carry no deflection; their stiffness rows give the spindle forces (7.2).
 
-use super::error::{TireError, invalid};
-use crate::grid::{FlowGrid, Topology};
+use crate::error::{TireError, invalid};
 use faer::sparse::SparseColMat;
 use fe_model::{FeModel, MassKind};
+use flowing::grid::{FlowGrid, Topology};
 use std::f64::consts::PI;
 
 /// A tire FE model: node coordinates \[m\], stiffness K (3 DOFs per node, node-major, including the
