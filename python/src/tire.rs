@@ -199,10 +199,16 @@ impl PyReducedTire {
     fn outer_radius(&self) -> f64 {
         self.inner.outer_radius
     }
-    /// What the tire was made from (generator or import and reduction, JSON).
+    /// What the tire was made from (generator, or the imported files' SHA-256 digests, and
+    /// the reduction, JSON).
     #[getter]
     fn source(&self) -> String {
         self.inner.source.clone()
+    }
+    /// The version of the code that reduced it (package version and source digest).
+    #[getter]
+    fn code_version(&self) -> String {
+        self.inner.code_version.clone()
     }
     /// Eigenfrequencies of the reduced tire, wheel fixed, not rolling \[Hz\].
     fn frequencies_hz<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
@@ -234,7 +240,9 @@ impl PyReducedTire {
         py.detach(move || red.save(&path))
             .map_err(|e| file_error(py, e))
     }
-    /// Load a saved reduced tire (e.g. written by `flowmbd-tire reduce`).
+    /// Load a saved reduced tire (e.g. written by `flowmbd-tire reduce`): a regular file within
+    /// the size ceiling whose checksum holds (`ValueError` otherwise, before reading a device
+    /// such as `/dev/zero`).
     #[staticmethod]
     fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
         let red = py

@@ -1,6 +1,6 @@
 //! The rolling tire's `friction_law` setting: a name kept for existing configurations, or any
 //! law of the contact crate as a table. It only selects a [`FrictionLaw`]; the contact solve
-//! ([`super::contact_solve`]) calls the law through the trait.
+//! ([`contact::solver`]) calls the law through the trait.
 
 use contact::friction::{Coulomb, FrictionLaw, FrictionSpec, SlipRegularized};
 use serde::de::{self, MapAccess, Visitor};

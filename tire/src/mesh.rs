@@ -126,7 +126,8 @@ impl TireFe {
         self.mass.iter().step_by(3).sum()
     }
 
-    /// Check sizes, indices, positive masses and that no rim node is a candidate.
+    /// Check sizes, indices (each listed once), positive masses and that no rim node is a
+    /// candidate.
     pub fn validate(&self) -> Result<(), TireError> {
         let nn = self.nodes.len();
         if nn == 0 {
@@ -141,6 +142,15 @@ impl TireFe {
                     format!("{name} node set"),
                     format!("node {b} does not exist ({nn} nodes)"),
                 ));
+            }
+            let mut listed = vec![false; nn];
+            for &i in set.iter() {
+                if std::mem::replace(&mut listed[i], true) {
+                    return Err(invalid(
+                        format!("{name} node set"),
+                        format!("node {i} is listed twice"),
+                    ));
+                }
             }
         }
         let mut is_rim = vec![false; nn];

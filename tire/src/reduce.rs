@@ -501,6 +501,7 @@ fn reduce_with(
             viz,
             tread,
             source: String::new(),
+            code_version: crate::CODE_VERSION.to_string(),
         },
         tim,
     ))

@@ -14,9 +14,11 @@ use crate::loaded::{
     LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, held_nodes, loaded_modes,
 };
 use crate::reduced::ReducedTire;
-use crate::rolling::{RollingConfig, RollingTire, StepStats};
+use crate::rolling::RollingTire;
+use crate::rolling_config::RollingConfig;
 use crate::spectrum::{PEAK_BAND_HZ, Spectrum, amplitude_spectrum, rms_fluctuation};
 use crate::statics::{PatchSolution, Preload, preload, preload_rolling};
+use crate::stats::StepStats;
 use fe_model::Rayleigh;
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};

@@ -12,10 +12,10 @@
 
 use crate::error::{TireError, invalid, linalg};
 use crate::ground::{Ground, GroundConfig};
-use crate::lcp::solve_lcp;
 use crate::mesh::TireFe;
 use crate::reduce::TirePartition;
 use crate::reduced::ReducedTire;
+use contact::solver::solve_lcp;
 use faer::prelude::*;
 use faer::{Mat, Side};
 use mbd_core::validate::{Validate, check};

@@ -1,6 +1,5 @@
 //! The tire studies' configuration pieces and results shared by `flowmbd-tire` and the Python
-//! package (`flowmbd.tire`): where the reduced tire comes from ([`TireSource`]: the generated or
-//! imported FE tire and the reduction of Ribaric §8.2), the cleat test of §8.3 at one speed
+//! package (`flowmbd.tire`): the cleat test of §8.3 at one speed
 //! ([`CleatStudyConfig`], [`CleatSummary`]) and the classification of [`TireError`]s into bad
 //! input and numerical failures. Kept here so that both front ends accept the same keys, reject
 //! the same fields with the same messages and return the same numbers.
@@ -8,105 +7,16 @@
 use crate::error::TireError;
 use crate::lines::{LineMode, SpindleComponent, line_modes};
 use crate::loaded::held_nodes;
-use crate::mesh::TireFe;
-use crate::model::{ImportFiles, generated_tire, imported_tire};
-use crate::reduce::{ReductionConfig, ReductionTimings, reduce};
 use crate::reduced::ReducedTire;
 use crate::rig::{RigConfig, RigResult, Sample};
-use crate::rolling::{RollingTire, StepStats};
+use crate::rolling::RollingTire;
 use crate::rotating::RotatingOptions;
+use crate::source::TireSource;
 use crate::spectrum::{LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum};
+use crate::stats::StepStats;
 use fe_model::FeError;
-use fe_model::generate::TireConfig;
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
-
-/// The `reduced_file` value that keeps reduced tires in the OS cache folder (`flowmbd-tire`).
-pub const CACHE: &str = "cache";
-
-/// Where the reduced tire comes from (the `[tire]` table of the tire studies).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct TireSource {
-    /// Reduced tire file of `flowmbd-tire`: loaded when it exists, otherwise written after
-    /// reducing the tire. `"cache"` (default): a file in the OS cache folder
-    /// (`$XDG_CACHE_HOME/flowmbd/tire`, `~/.cache/flowmbd/tire` on Linux) named by what the
-    /// tire is made from, so that every tire and reduction has a file of its own and nothing is
-    /// written under the working folder; `""`: always reduce, never save; any other path: that
-    /// file. (The Python package keeps the reduced tire as an object instead and ignores it.)
-    pub reduced_file: String,
-    /// Generated tire (fe-model generator; default: 295/80 R22.5 truck tire at 38 psi).
-    pub generator: TireConfig,
-    /// Imported tire (ABAQUS `*MATRIX GENERATE` or Matrix Market M and K, node coordinates,
-    /// rim and candidate patch node sets; see [`ImportFiles`] and the README); replaces the
-    /// generated one when given.
-    pub import: Option<ImportFiles>,
-    /// Reduction (Ribaric §8.2: 95 contact nodes, 50 free-node modes).
-    pub reduction: ReductionConfig,
-}
-
-impl Default for TireSource {
-    fn default() -> Self {
-        Self {
-            reduced_file: CACHE.into(),
-            generator: TireConfig::default(),
-            import: None,
-            reduction: ReductionConfig::default(),
-        }
-    }
-}
-
-impl Validate for TireSource {
-    /// The import files exist and are readable files (or the generator's fields, [`TireConfig`]'s
-    /// `Validate`); the reduction's fields. Paths relative to the tire table (`import.mass`,
-    /// `generator.…`, `reduction.…`).
-    fn validate(&self) -> Result<(), InvalidField> {
-        if let Some(files) = &self.import {
-            for (field, path) in [
-                ("stiffness", &files.stiffness),
-                ("mass", &files.mass),
-                ("nodes", &files.nodes),
-                ("rim_nodes", &files.rim_nodes),
-                ("patch_nodes", &files.patch_nodes),
-            ] {
-                check::input_file(&format!("import.{field}"), std::path::Path::new(path))?;
-            }
-        } else {
-            self.generator.validate_within("generator")?;
-        }
-        self.reduction.validate_within("reduction")
-    }
-}
-
-impl TireSource {
-    /// What the reduced tire is made from: the generated tire's configuration (or the imported
-    /// tire's files) and the reduction settings, as JSON; stored in the reduced tire
-    /// ([`ReducedTire::source`]) and compared when a saved file is reused.
-    pub fn fingerprint(&self) -> String {
-        let model = match &self.import {
-            Some(files) => serde_json::json!({ "import": files }),
-            None => serde_json::json!({ "generator": self.generator }),
-        };
-        serde_json::json!({ "model": model, "reduction": self.reduction }).to_string()
-    }
-
-    /// The FE model: imported when `import` is given ([`imported_tire`]), otherwise generated
-    /// ([`generated_tire`]).
-    pub fn fe_model(&self) -> Result<TireFe, TireError> {
-        match &self.import {
-            Some(files) => imported_tire(files),
-            None => generated_tire(&self.generator),
-        }
-    }
-
-    /// Reduce `fe` (this source's FE model) with this source's reduction settings (Ribaric
-    /// §8.2, [`reduce`]) and record the [`TireSource::fingerprint`] in the reduced tire.
-    pub fn reduce_fe(&self, fe: &TireFe) -> Result<(ReducedTire, ReductionTimings), TireError> {
-        let (mut red, timings) = reduce(fe, &self.reduction)?;
-        red.source = self.fingerprint();
-        Ok((red, timings))
-    }
-}
 
 /// Whether a tire error is bad input: `Ok` with the offending field (paths from the root of a
 /// study configuration whose tire table is `tire`: `tire.import.mass`, `tire.generator.…`,

@@ -1,4 +1,4 @@
-//! Active-set solution of the contact complementarity problem of the Lagrange-multiplier contact
+//! Active-set solution of the contact complementarity problem of Lagrange-multiplier contact
 //! (Ribaric §7.3, seed note U4): find `λ ≥ 0` with `w = q + W λ ≥ 0` and `λᵢ wᵢ = 0`.
 //!
 //! `q` are the free gaps \[m\], `W` the (possibly non-symmetric, with slip friction) Delassus

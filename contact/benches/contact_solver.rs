@@ -1,13 +1,13 @@
-//! The tire's coupled normal + friction contact solve (`tire::contact_solve`, issue 9):
-//! time per solve of a synthetic patch like the 95-node truck tire's (25 candidates, ~16
+//! The shared coupled normal + friction contact solve (`contact::solver`, written for the tire's
+//! patch, issue 9): time per solve of a synthetic patch like the 95-node truck tire's (25 candidates, ~16
 //! pressed, μ = 0.85, tire-like normal/tangential compliances coupled by a decaying kernel),
 //! solved as in time stepping (slowly varying free gaps and slips, warm start from the last
 //! solve, Newton matrices reused) and cold, against the alternation fallback (normal LCP ⇄
 //! friction Gauss–Seidel, exact local Coulomb) run to the same tolerance.
-//! Run: `cargo bench -p flowing --bench tire_contact`.
+//! Run: `cargo bench -p contact --bench contact_solver`.
 
+use contact::{ContactSolver, ContactSolverOptions, DenseProblem};
 use std::time::Instant;
-use tire::contact_solve::{ContactSolver, DenseProblem, SolveOptions};
 
 /// A patch of `m` nodes along x: normal compliance ~1e-7 m/N with 60 % coupling to the
 /// neighbours, tangential (velocity level) ~4e-3 m/s/N, weak normal–tangential coupling.
@@ -38,16 +38,6 @@ fn patch(m: usize, t: f64) -> (Vec<f64>, Vec<f64>) {
     (d, b)
 }
 
-fn diag(d: &[f64], m: usize) -> Vec<[f64; 2]> {
-    let n = 3 * m;
-    (0..m)
-        .map(|k| {
-            let g = |i: usize| d[i * n + i];
-            [g(3 * k), 0.5 * (g(3 * k + 1) + g(3 * k + 2))]
-        })
-        .collect()
-}
-
 fn main() {
     let m = 25;
     let steps = 2000;
@@ -55,27 +45,27 @@ fn main() {
     for (name, settings, warm) in [
         (
             "Newton, warm + reuse",
-            SolveOptions {
+            ContactSolverOptions {
                 law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
-                ..SolveOptions::default()
+                ..ContactSolverOptions::default()
             },
             true,
         ),
         (
             "Newton, cold",
-            SolveOptions {
+            ContactSolverOptions {
                 law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
-                ..SolveOptions::default()
+                ..ContactSolverOptions::default()
             },
             false,
         ),
         (
             "alternation (fallback), warm",
-            SolveOptions {
+            ContactSolverOptions {
                 law: std::sync::Arc::new(contact::Coulomb { mu: 0.85 }),
                 max_newton: 0,
                 max_rounds: 5000,
-                ..SolveOptions::default()
+                ..ContactSolverOptions::default()
             },
             true,
         ),
@@ -87,7 +77,7 @@ fn main() {
         let mut wall = 0.0;
         for step in 0..steps {
             let (d, b) = patch(m, step as f64 * h);
-            let dg = diag(&d, m);
+            let dg = DenseProblem { d: &d, b: &b }.diagonal();
             let start = Instant::now();
             solver.reset(if warm { &prev } else { &[0.0; 75][..] });
             solver.set_gaps((0..m).map(|k| b[3 * k]));

@@ -14,18 +14,15 @@
 //! plus the contact-node rows `T_c`, `T_c,θ`, the undeformed contact-node positions `s^c` and
 //! the translational momentum projections `P = eᵀM T`, `P₁ = eᵀM T_,θ`, `P₂ = eᵀM T_,θθ`,
 //! `eᵀM s_,θ`, `eᵀM s_,θθ` (e = the three Cartesian directions; tire nodes only) of the
-//! momentum-balance spindle force ([`super::rolling::SpindleForceMethod`]).
+//! momentum-balance spindle force ([`crate::SpindleForceMethod`]).
 
-use crate::error::{TireError, invalid};
+mod file;
+
+pub use file::{FORMAT, MAX_REDUCED_TIRE_BYTES, VERSION};
+
+use crate::error::TireError;
 use faer::Mat;
 use flowing::derivative::DerivativeMethod;
-use serde::{Deserialize, Serialize};
-use std::path::Path;
-
-/// File format name of a saved reduced tire.
-pub const FORMAT: &str = "flowmbd-reduced-tire";
-/// Current file format version (2: the momentum projections `p_e`, `p_e1`, `p_e2`, `p_s`).
-pub const VERSION: u32 = 2;
 
 /// The reduced flowing-material tire (see the module documentation for the definitions).
 #[derive(Debug, Clone)]
@@ -91,10 +88,14 @@ pub struct ReducedTire {
     /// Rows of `T` at every node of the tread's crown and edge rings, for the circumferential
     /// order of a mode ([`super::harmonics`]); `None` in files written before it existed.
     pub tread: Option<TreadBasis>,
-    /// Description of the FE model and reduction settings the tire was made from (e.g. the
-    /// generator and reduction configuration as JSON), so that a saved file is not reused for
-    /// another tire; empty when unknown (files of older versions).
+    /// Description of the FE model and reduction settings the tire was made from
+    /// ([`crate::TireSource::fingerprint`]: the generator configuration or the imported files'
+    /// SHA-256 digests, and the reduction settings, as JSON), so that a saved file is not
+    /// reused for another tire; empty when unknown.
     pub source: String,
+    /// The version of the code that reduced the tire ([`crate::CODE_VERSION`] of the build
+    /// that made it; empty when unknown): a cached tire is reused only by the same code.
+    pub code_version: String,
 }
 
 /// Rows of the basis `T` at a subset of the tire's nodes (every ring at equally spaced
@@ -145,102 +146,6 @@ pub struct TreadBasis {
     pub ring: Vec<usize>,
     /// Rows of `T` (3 n_t × n_z, Cartesian x, y, z per node).
     pub rows: Mat<f64>,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct TreadFile {
-    nodes: Vec<usize>,
-    theta: Vec<f64>,
-    ring: Vec<usize>,
-    rows: Dense,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct VizFile {
-    nodes: Vec<usize>,
-    positions: Vec<[f64; 3]>,
-    lines: Vec<[usize; 2]>,
-    rows: Dense,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Dense {
-    rows: usize,
-    cols: usize,
-    data: Vec<f64>,
-}
-
-impl Dense {
-    fn from(m: &Mat<f64>) -> Self {
-        let mut data = Vec::with_capacity(m.nrows() * m.ncols());
-        for j in 0..m.ncols() {
-            for i in 0..m.nrows() {
-                data.push(m[(i, j)]);
-            }
-        }
-        Self {
-            rows: m.nrows(),
-            cols: m.ncols(),
-            data,
-        }
-    }
-    fn to(&self, name: &str, rows: usize, cols: usize) -> Result<Mat<f64>, TireError> {
-        if self.rows != rows || self.cols != cols || self.data.len() != rows * cols {
-            return Err(invalid(
-                format!("reduced tire field `{name}`"),
-                format!(
-                    "is {}×{} with {} values, expected {rows}×{cols}",
-                    self.rows,
-                    self.cols,
-                    self.data.len()
-                ),
-            ));
-        }
-        Ok(Mat::from_fn(rows, cols, |i, j| self.data[j * rows + i]))
-    }
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileV1 {
-    format: String,
-    version: u32,
-    n_free_modes: usize,
-    contact_nodes: Vec<usize>,
-    contact_positions: Vec<[f64; 3]>,
-    free_mode_hz: Vec<f64>,
-    contact_mode_hz: Vec<f64>,
-    tire_mass: f64,
-    rim_mass: f64,
-    rim_spin_inertia: f64,
-    outer_radius: f64,
-    derivative: DerivativeMethod,
-    m: Dense,
-    k: Dense,
-    g1: Dense,
-    g2: Dense,
-    k1: Dense,
-    m_theta: Vec<f64>,
-    c_s: Vec<f64>,
-    kr: Dense,
-    kr1: Dense,
-    kt: Dense,
-    kt1: Dense,
-    tc: Dense,
-    tc_theta: Dense,
-    p_e: Dense,
-    p_e1: Dense,
-    p_e2: Dense,
-    p_s: [[f64; 3]; 2],
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    viz: Option<VizFile>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    tread: Option<TreadFile>,
-    #[serde(default)]
-    source: String,
 }
 
 /// The reduced tire in mass-normalised modal coordinates (see [`ReducedTire::modal`]).
@@ -367,169 +272,5 @@ impl ReducedTire {
     pub fn frequencies_hz(&self) -> Result<Vec<f64>, TireError> {
         let modes = fe_model::dense_modes(self.k.as_ref(), self.m.as_ref(), self.n_z())?;
         Ok(modes.frequencies_hz)
-    }
-
-    /// Serialise to the versioned JSON text.
-    pub fn to_json(&self) -> Result<String, TireError> {
-        let f = FileV1 {
-            format: FORMAT.into(),
-            version: VERSION,
-            n_free_modes: self.n_free_modes,
-            contact_nodes: self.contact_nodes.clone(),
-            contact_positions: self.contact_positions.clone(),
-            free_mode_hz: self.free_mode_hz.clone(),
-            contact_mode_hz: self.contact_mode_hz.clone(),
-            tire_mass: self.tire_mass,
-            rim_mass: self.rim_mass,
-            rim_spin_inertia: self.rim_spin_inertia,
-            outer_radius: self.outer_radius,
-            derivative: self.derivative,
-            m: Dense::from(&self.m),
-            k: Dense::from(&self.k),
-            g1: Dense::from(&self.g1),
-            g2: Dense::from(&self.g2),
-            k1: Dense::from(&self.k1),
-            m_theta: self.m_theta.clone(),
-            c_s: self.c_s.clone(),
-            kr: Dense::from(&self.kr),
-            kr1: Dense::from(&self.kr1),
-            kt: Dense::from(&self.kt),
-            kt1: Dense::from(&self.kt1),
-            tc: Dense::from(&self.tc),
-            tc_theta: Dense::from(&self.tc_theta),
-            p_e: Dense::from(&self.p_e),
-            p_e1: Dense::from(&self.p_e1),
-            p_e2: Dense::from(&self.p_e2),
-            p_s: self.p_s,
-            viz: self.viz.as_ref().map(|v| VizFile {
-                nodes: v.nodes.clone(),
-                positions: v.positions.clone(),
-                lines: v.lines.clone(),
-                rows: Dense::from(&v.rows),
-            }),
-            tread: self.tread.as_ref().map(|t| TreadFile {
-                nodes: t.nodes.clone(),
-                theta: t.theta.clone(),
-                ring: t.ring.clone(),
-                rows: Dense::from(&t.rows),
-            }),
-            source: self.source.clone(),
-        };
-        serde_json::to_string(&f).map_err(|e| invalid("reduced tire", e.to_string()))
-    }
-
-    /// Parse the versioned JSON text; `origin` names the source in errors.
-    pub fn from_json(text: &str, origin: &str) -> Result<Self, TireError> {
-        let file_err = |reason: String| TireError::File {
-            path: origin.to_string(),
-            reason,
-        };
-        let head: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| file_err(format!("not JSON: {e}")))?;
-        let format = head.get("format").and_then(|v| v.as_str()).unwrap_or("");
-        if format != FORMAT {
-            return Err(file_err(format!(
-                "field `format` is `{format}`, expected `{FORMAT}`"
-            )));
-        }
-        let version = head.get("version").and_then(|v| v.as_u64()).unwrap_or(0);
-        if version != u64::from(VERSION) {
-            return Err(file_err(format!(
-                "field `version` is {version}; this build reads version {VERSION}"
-            )));
-        }
-        let f: FileV1 = serde_json::from_value(head).map_err(|e| file_err(e.to_string()))?;
-        let nc = f.contact_nodes.len();
-        let nz = f.m.rows;
-        if nz != f.n_free_modes + 3 * nc {
-            return Err(file_err(format!(
-                "{nz} coordinates but n_free_modes + 3·contact nodes = {}",
-                f.n_free_modes + 3 * nc
-            )));
-        }
-        if f.contact_positions.len() != nc || f.m_theta.len() != nz || f.c_s.len() != nz {
-            return Err(file_err("inconsistent vector lengths".into()));
-        }
-        let sq = |d: &Dense, n: &str| d.to(n, nz, nz);
-        let viz = match f.viz {
-            None => None,
-            Some(v) => {
-                let nv = v.nodes.len();
-                if v.positions.len() != nv || v.lines.iter().flatten().any(|&i| i >= nv) {
-                    return Err(file_err("inconsistent visualisation basis `viz`".into()));
-                }
-                Some(VizBasis {
-                    rows: v.rows.to("viz.rows", 3 * nv, nz)?,
-                    nodes: v.nodes,
-                    positions: v.positions,
-                    lines: v.lines,
-                })
-            }
-        };
-        let tread = match f.tread {
-            None => None,
-            Some(t) => {
-                let nt = t.nodes.len();
-                if t.theta.len() != nt || t.ring.len() != nt {
-                    return Err(file_err("inconsistent tread basis `tread`".into()));
-                }
-                Some(TreadBasis {
-                    rows: t.rows.to("tread.rows", 3 * nt, nz)?,
-                    nodes: t.nodes,
-                    theta: t.theta,
-                    ring: t.ring,
-                })
-            }
-        };
-        Ok(Self {
-            n_free_modes: f.n_free_modes,
-            contact_positions: f.contact_positions,
-            free_mode_hz: f.free_mode_hz,
-            contact_mode_hz: f.contact_mode_hz,
-            tire_mass: f.tire_mass,
-            rim_mass: f.rim_mass,
-            rim_spin_inertia: f.rim_spin_inertia,
-            outer_radius: f.outer_radius,
-            derivative: f.derivative,
-            m: sq(&f.m, "m")?,
-            k: sq(&f.k, "k")?,
-            g1: sq(&f.g1, "g1")?,
-            g2: sq(&f.g2, "g2")?,
-            k1: sq(&f.k1, "k1")?,
-            m_theta: f.m_theta,
-            c_s: f.c_s,
-            kr: f.kr.to("kr", 3, nz)?,
-            kr1: f.kr1.to("kr1", 3, nz)?,
-            kt: f.kt.to("kt", 3, nz)?,
-            kt1: f.kt1.to("kt1", 3, nz)?,
-            tc: f.tc.to("tc", 3 * nc, nz)?,
-            tc_theta: f.tc_theta.to("tc_theta", 3 * nc, nz)?,
-            p_e: f.p_e.to("p_e", 3, nz)?,
-            p_e1: f.p_e1.to("p_e1", 3, nz)?,
-            p_e2: f.p_e2.to("p_e2", 3, nz)?,
-            p_s: f.p_s,
-            viz,
-            tread,
-            contact_nodes: f.contact_nodes,
-            source: f.source,
-        })
-    }
-
-    /// Save to `path` (JSON).
-    pub fn save(&self, path: &Path) -> Result<(), TireError> {
-        let text = self.to_json()?;
-        std::fs::write(path, text).map_err(|e| TireError::File {
-            path: path.display().to_string(),
-            reason: e.to_string(),
-        })
-    }
-
-    /// Load from `path`.
-    pub fn load(path: &Path) -> Result<Self, TireError> {
-        let text = std::fs::read_to_string(path).map_err(|e| TireError::File {
-            path: path.display().to_string(),
-            reason: e.to_string(),
-        })?;
-        Self::from_json(&text, &path.display().to_string())
     }
 }

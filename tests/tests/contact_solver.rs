@@ -1,4 +1,5 @@
-//! The tire's coupled normal + friction contact solve (`tire::contact_solve`, issue #9):
+//! The shared coupled normal + friction contact solve (`contact::solver`, written for the tire's
+//! patch in issue #9):
 //! the semismooth Newton method on the Alart–Curnier equations against
 //! * the analytical solution of one node pressed onto a plane and sliding or sticking,
 //! * an independent reference on 2–3 node problems: the alternation of the normal LCP (solved
@@ -7,11 +8,11 @@
 //! * the complementarity and friction-cone invariants on random positive definite Delassus
 //!   problems (proptest), for the Coulomb and the regularised law (Ribaric seed note U20).
 
+use contact::{ContactSolver, ContactSolverOptions, ContactSolverReport, DenseProblem};
 use contact::{Coulomb, SlipRegularized};
 use proptest::prelude::*;
 use std::sync::Arc;
 use tire::TireFriction;
-use tire::contact_solve::{ContactSolver, DenseProblem, SolveOptions, SolveReport};
 
 /// Column-major 3m × 3m matrix from row-major rows.
 fn col_major(rows: &[Vec<f64>]) -> Vec<f64> {
@@ -37,13 +38,14 @@ fn diag_of(d: &[f64], m: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
-fn solve(d: &[f64], b: &[f64], warm: &[f64], s: &SolveOptions) -> (Vec<f64>, SolveReport) {
-    let m = b.len() / 3;
+fn solve(
+    d: &[f64],
+    b: &[f64],
+    warm: &[f64],
+    s: &ContactSolverOptions,
+) -> (Vec<f64>, ContactSolverReport) {
     let mut solver = ContactSolver::default();
-    solver.reset(warm);
-    solver.set_gaps((0..m).map(|k| b[3 * k]));
-    let mut src = DenseProblem { d, b };
-    let rep = solver.solve(&mut src, &diag_of(d, m), s, false, &[]);
+    let rep = solver.solve_dense(&mut DenseProblem { d, b }, warm, s);
     (solver.x().to_vec(), rep)
 }
 
@@ -54,10 +56,10 @@ fn outputs(d: &[f64], b: &[f64], x: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-fn coulomb(mu: f64) -> SolveOptions {
-    SolveOptions {
+fn coulomb(mu: f64) -> ContactSolverOptions {
+    ContactSolverOptions {
         law: Arc::new(Coulomb { mu }),
-        ..SolveOptions::default()
+        ..ContactSolverOptions::default()
     }
 }
 
@@ -466,7 +468,7 @@ proptest! {
         eps in 0.05f64..1.0,
     ) {
         let (d, b) = random_problem(m, &seed, &gaps, &slips);
-        let s = SolveOptions { law: Arc::new(SlipRegularized { mu, epsilon: eps }), ..SolveOptions::default() };
+        let s = ContactSolverOptions { law: Arc::new(SlipRegularized { mu, epsilon: eps }), ..ContactSolverOptions::default() };
         let (x, rep) = solve(&d, &b, &vec![0.0; 3 * m], &s);
         prop_assert!(rep.converged, "{rep:?}");
         let y = outputs(&d, &b, &x);

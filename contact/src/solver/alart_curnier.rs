@@ -1,133 +1,19 @@
-//! The coupled normal + friction contact problem of one time step, solved by a semismooth
-//! (generalised) Newton method on the Alart–Curnier augmented-Lagrangian equations, with the
-//! alternation of a normal LCP and a friction Gauss–Seidel as the fallback.
-//!
-//! # Problem (local frames)
-//! Contact `k` has the unknowns `x_k = (λ_k, f1_k, f2_k)` (normal multiplier and the two
-//! tangential friction components \[N\]) and the outputs `y_k = (g_k, u1_k, u2_k)` (end-of-step
-//! gap \[m\] and tangential slip velocity \[m/s\]), linear in the forces through the local Delassus
-//! matrix `D` (3m × 3m) and the free values `b`:
-//!
-//! ```text
-//!   y = D x + b,
-//!   0 ≤ λ_k ⊥ g_k ≥ 0                                  (Ribaric §7.3, unilateral contact)
-//!   Coulomb:     |f_k| ≤ μ λ_k,  u_k = −ν f_k with ν ≥ 0 (stick if |f_k| < μλ_k)
-//!   regularised: f_k = −μ λ_k u_k / √(|u_k|² + ε²)      (Ribaric's slip-only law, seed note U20)
-//! ```
-//!
-//! # Alart–Curnier equations
-//! With per-contact augmentation parameters `r_N` \[N/m\] and `r_T` \[N·s/m\] (any positive value:
-//! the solution does not depend on them; they are set to the inverse diagonal compliances so that
-//! Newton is well scaled), the conditions above are the zeros of (Alart & Curnier 1991)
-//!
-//! ```text
-//!   Φ_N = λ − max(0, λ − r_N g)                          = min(λ, r_N g)
-//!   Φ_T = f − proj_{disk(μ λ̂)}(f − r_T u),   λ̂ = max(0, λ − r_N g)        (Coulomb)
-//!   Φ_T = f + μ λ̂ u / √(|u|² + ε²)                                       (regularised)
-//! ```
-//!
-//! `Φ` is piecewise smooth; Newton uses one element of its generalised Jacobian. A contact with
-//! `λ − r_N g ≤ 0` has identity rows (`x_k = 0` after the step), so only the contacts that are
-//! pressed enter the small dense system, which is solved by a faer LU (sequential, buffers
-//! reused; its triangular solves by faer's algorithm without the per-block dispatch, module
-//! `kernels`). A backtracking (Armijo) line search on `½‖Φ‖²` globalises the method; if it
-//! stalls, the alternation of the normal LCP ([`LcpWork`], friction frozen) and a block Gauss–Seidel on
-//! the friction forces (exact one-contact solve [`FrictionLaw::local_force`] of the law) is run
-//! to the same tolerance.
-//!
-//! The columns of `D` and the tangential free velocities are supplied lazily by the caller
-//! ([`DelassusSource`]): only contacts that carry a force or are pressed need them. The
-//! linearisation of `Φ` (classification, derivatives of the friction law's target) is formed
-//! together with the residual at each evaluated or accepted point and reused by the Newton or
-//! chord direction from there.
+//! [`ContactSolver`]: the problem's state, the Alart–Curnier residual and its linearisation,
+//! and the semismooth Newton iteration with line search (module documentation of
+//! [`super`]); the Newton direction is in `newton`, the fallback in `fallback`.
 
-use crate::kernels::{axpy_cols, col_slice, lu_solve_in_place};
-use crate::lcp::LcpWork;
-use contact::friction::{Coulomb, FrictionLaw};
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
-use faer::prelude::*;
-use faer::{Mat, Par};
-use nalgebra::{Matrix2, Vector2};
-use std::sync::Arc;
-
-/// Settings of [`ContactSolver::solve`].
-#[derive(Debug, Clone)]
-pub struct SolveOptions {
-    /// Friction law of the contact nodes, any [`FrictionLaw`] (Ribaric §7.3, §8.4.3: set-valued
-    /// [`Coulomb`]; seed note U20: [`contact::SlipRegularized`]). Its tangential equation is
-    /// the Alart–Curnier `Φ_T = f − p(f, u, λ̂)` of [`FrictionLaw::augmented`].
-    pub law: Arc<dyn FrictionLaw>,
-    /// Relative tolerance on `‖Φ‖∞ / max λ` (forces).
-    pub tol: f64,
-    /// Newton iterations before the fallback.
-    pub max_newton: usize,
-    /// Outer rounds of the fallback alternation.
-    pub max_rounds: usize,
-}
-
-impl Default for SolveOptions {
-    fn default() -> Self {
-        Self {
-            law: Arc::new(Coulomb { mu: 0.0 }),
-            tol: 1e-10,
-            max_newton: 30,
-            max_rounds: 500,
-        }
-    }
-}
-
-/// Outcome of [`ContactSolver::solve`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SolveReport {
-    /// Whether `‖Φ‖∞ ≤ tol · max λ` at the returned forces.
-    pub converged: bool,
-    /// Newton iterations (LU factorisations) used.
-    pub newton_iterations: usize,
-    /// Chord iterations (solves with an earlier LU) used.
-    pub chord_iterations: usize,
-    /// Whether the fallback alternation was run.
-    pub fallback: bool,
-    /// Normal LCP solves of the fallback.
-    pub lcp_solves: usize,
-    /// Friction Gauss–Seidel sweeps of the fallback.
-    pub sweeps: usize,
-    /// Final `‖Φ‖∞` \[N\].
-    pub residual: f64,
-}
-
-/// The caller's lazy source of the local Delassus columns and of the free tangential
-/// velocities.
-pub trait DelassusSource {
-    /// Fill the three columns of contact `l` (`λ_l`, `f1_l`, `f2_l`): `cols` is `3 × 3m`
-    /// (column-major, leading dimension 3m), rows `(g_k, u1_k, u2_k)` of every contact `k`.
-    fn columns(&mut self, l: usize, cols: &mut [f64]);
-    /// The free tangential slip velocity `(u1_k, u2_k)` \[m/s\] of contact `k`.
-    fn free_slip(&mut self, k: usize) -> [f64; 2];
-}
-
-/// A local problem given as a full matrix `D` (column-major, 3m × 3m) and a full `b`.
-#[derive(Debug, Clone)]
-pub struct DenseProblem<'a> {
-    /// Local Delassus matrix, column-major with leading dimension 3m.
-    pub d: &'a [f64],
-    /// Free values `b` (3m).
-    pub b: &'a [f64],
-}
-
-impl DelassusSource for DenseProblem<'_> {
-    fn columns(&mut self, l: usize, cols: &mut [f64]) {
-        let ld = self.b.len();
-        cols.copy_from_slice(&self.d[3 * l * ld..(3 * l + 3) * ld]);
-    }
-    fn free_slip(&mut self, k: usize) -> [f64; 2] {
-        [self.b[3 * k + 1], self.b[3 * k + 2]]
-    }
-}
+use super::lcp::LcpWork;
+use super::newton::LuSlot;
+use super::options::{ContactSolverOptions, ContactSolverReport};
+use super::problem::{DelassusSource, DenseProblem};
+use faer::Mat;
+use faer::dyn_stack::MemBuffer;
+use mbd_core::linalg::axpy_cols;
+use nalgebra::Vector2;
 
 /// Classification of a contact at the current Newton iterate.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum State {
+pub(super) enum State {
     /// `λ − r_N g ≤ 0`: identity rows.
     Open,
     /// Pressed, friction inside the disk (or regularised law).
@@ -137,13 +23,13 @@ enum State {
 /// The linearisation of the Alart–Curnier residual at one point (see
 /// [`ContactSolver::residual`]).
 #[derive(Default)]
-struct Linearization {
+pub(super) struct Linearization {
     /// Per pressed contact: 3 × 3 matrices `L_k` (own unknowns) and `G_k` (own outputs) of the
     /// Jacobian rows `dΦ_k = L_k dx_k + G_k dy_k` (row-major).
-    lk: Vec<[[f64; 3]; 3]>,
-    gk: Vec<[[f64; 3]; 3]>,
+    pub(super) lk: Vec<[[f64; 3]; 3]>,
+    pub(super) gk: Vec<[[f64; 3]; 3]>,
     /// Classification per contact (0 open, 1 pressed/slip, 2 stick).
-    pattern: Vec<u8>,
+    pub(super) pattern: Vec<u8>,
 }
 
 impl Linearization {
@@ -167,69 +53,56 @@ impl Linearization {
 /// the same `x` again gives bitwise the same `y` only if none was fetched during or since the
 /// first evaluation: then the copy replaces it.
 #[derive(Default)]
-struct Evaluation {
+pub(super) struct Evaluation {
     y: Vec<f64>,
     phi: Vec<f64>,
     lin: Linearization,
     fetched: usize,
 }
 
-/// A factorised Newton matrix and the classification of the contacts it was built for.
-struct LuSlot {
-    pattern: Vec<u8>,
-    n: usize,
-    /// Packed LU factors `P J = L U`.
-    lu: Mat<f64>,
-    perm: Vec<usize>,
-    perm_inv: Vec<usize>,
-    valid: bool,
-    /// Clock of the last use (least recently used slot is refactorised).
-    used: u64,
-}
-
 /// Reusable buffers of the contact solve (no allocation once grown).
 pub struct ContactSolver {
-    m: usize,
+    pub(super) m: usize,
     /// Local Delassus matrix (column-major, ld = 3m); column block `l` valid iff `have[l]`.
-    d: Vec<f64>,
-    have: Vec<bool>,
+    pub(super) d: Vec<f64>,
+    pub(super) have: Vec<bool>,
     /// Free values `b` (3m); tangential entries valid iff `have_b[k]`.
-    b: Vec<f64>,
-    have_b: Vec<bool>,
+    pub(super) b: Vec<f64>,
+    pub(super) have_b: Vec<bool>,
     /// Whether the free slip velocities matter (μ > 0).
-    need_slip: bool,
+    pub(super) need_slip: bool,
     /// Unknowns (warm start in, solution out).
-    x: Vec<f64>,
-    y: Vec<f64>,
-    phi: Vec<f64>,
-    rn: Vec<f64>,
-    rt: Vec<f64>,
-    state: Vec<State>,
+    pub(super) x: Vec<f64>,
+    pub(super) y: Vec<f64>,
+    pub(super) phi: Vec<f64>,
+    pub(super) rn: Vec<f64>,
+    pub(super) rt: Vec<f64>,
+    pub(super) state: Vec<State>,
     /// The linearisation of `Φ` at the current `(x, y)`, formed with its residual (valid iff
     /// `lin_ok`), and at the line search's trial point.
-    lin: Linearization,
-    lin_trial: Linearization,
-    lin_ok: bool,
+    pub(super) lin: Linearization,
+    pub(super) lin_trial: Linearization,
+    pub(super) lin_ok: bool,
     /// The evaluation (`y`, `Φ`, linearisation) of the best warm start so far.
-    best: Evaluation,
-    act: Vec<usize>,
+    pub(super) best: Evaluation,
+    pub(super) act: Vec<usize>,
     /// The last few Newton matrices (LU factors), by classification: chord steps use the one
     /// of the current classification (the patch often alternates between two from step to
     /// step).
-    slots: Vec<LuSlot>,
-    clock: u64,
-    rhs: Vec<f64>,
-    tmp: Vec<f64>,
-    dx: Vec<f64>,
-    dy: Vec<f64>,
-    xt: Vec<f64>,
-    yt: Vec<f64>,
-    mem: Option<MemBuffer>,
-    mem_n: usize,
-    lcp: LcpWork,
-    wn: Mat<f64>,
-    q: Vec<f64>,
-    warm: Vec<bool>,
+    pub(super) slots: Vec<LuSlot>,
+    pub(super) clock: u64,
+    pub(super) rhs: Vec<f64>,
+    pub(super) tmp: Vec<f64>,
+    pub(super) dx: Vec<f64>,
+    pub(super) dy: Vec<f64>,
+    pub(super) xt: Vec<f64>,
+    pub(super) yt: Vec<f64>,
+    pub(super) mem: Option<MemBuffer>,
+    pub(super) mem_n: usize,
+    pub(super) lcp: LcpWork,
+    pub(super) wn: Mat<f64>,
+    pub(super) q: Vec<f64>,
+    pub(super) warm: Vec<bool>,
 }
 
 impl Default for ContactSolver {
@@ -252,17 +125,7 @@ impl Default for ContactSolver {
             lin_ok: false,
             best: Evaluation::default(),
             act: Vec::new(),
-            slots: (0..3)
-                .map(|_| LuSlot {
-                    pattern: Vec::new(),
-                    n: 0,
-                    lu: Mat::zeros(0, 0),
-                    perm: Vec::new(),
-                    perm_inv: Vec::new(),
-                    valid: false,
-                    used: 0,
-                })
-                .collect(),
+            slots: (0..3).map(|_| LuSlot::empty()).collect(),
             clock: 0,
             rhs: Vec::new(),
             tmp: Vec::new(),
@@ -289,7 +152,7 @@ impl std::fmt::Debug for ContactSolver {
     }
 }
 
-fn clear_fill<T: Clone>(v: &mut Vec<T>, n: usize, val: T) {
+pub(super) fn clear_fill<T: Clone>(v: &mut Vec<T>, n: usize, val: T) {
     v.clear();
     v.resize(n, val);
 }
@@ -331,6 +194,23 @@ impl ContactSolver {
         }
     }
 
+    /// Solve a problem given as a full matrix ([`DenseProblem`]) from the warm start `x0`
+    /// (3m; zeros for none): [`ContactSolver::reset`], the free gaps of `problem.b`, and
+    /// [`ContactSolver::solve`] with the diagonal compliances of `problem.d`, without reuse of
+    /// earlier Newton matrices. The solution is [`ContactSolver::x`].
+    pub fn solve_dense(
+        &mut self,
+        problem: &mut DenseProblem<'_>,
+        x0: &[f64],
+        options: &ContactSolverOptions,
+    ) -> ContactSolverReport {
+        self.reset(x0);
+        let m = problem.b.len() / 3;
+        self.set_gaps((0..m).map(|k| problem.b[3 * k]));
+        let diag = problem.diagonal();
+        self.solve(problem, &diag, options, false, &[])
+    }
+
     /// The solution (3m: `λ, f1, f2` per contact) \[N\].
     pub fn x(&self) -> &[f64] {
         &self.x
@@ -342,7 +222,7 @@ impl ContactSolver {
         &self.y
     }
 
-    fn ensure_col(&mut self, src: &mut dyn DelassusSource, l: usize) {
+    pub(super) fn ensure_col(&mut self, src: &mut dyn DelassusSource, l: usize) {
         if self.have[l] {
             return;
         }
@@ -351,7 +231,7 @@ impl ContactSolver {
         self.have[l] = true;
     }
 
-    fn ensure_b(&mut self, src: &mut dyn DelassusSource, k: usize) {
+    pub(super) fn ensure_b(&mut self, src: &mut dyn DelassusSource, k: usize) {
         if self.have_b[k] {
             return;
         }
@@ -362,7 +242,7 @@ impl ContactSolver {
     }
 
     /// `out = D v + b` over the column blocks with a nonzero `v` (which must be available).
-    fn apply(&self, v: &[f64], out: &mut [f64], with_b: bool) {
+    pub(super) fn apply(&self, v: &[f64], out: &mut [f64], with_b: bool) {
         let n = 3 * self.m;
         if with_b {
             out.copy_from_slice(&self.b);
@@ -377,9 +257,9 @@ impl ContactSolver {
     /// classification (0 open, 1 pressed/slip, 2 stick) and, if pressed, the 3 × 3 matrices
     /// `L_k`, `G_k` of `dΦ_k = L_k dx_k + G_k dy_k` (the law's target is the same with or
     /// without its derivatives).
-    fn residual(
+    pub(super) fn residual(
         &self,
-        s: &SolveOptions,
+        s: &ContactSolverOptions,
         x: &[f64],
         y: &[f64],
         phi: &mut [f64],
@@ -460,7 +340,11 @@ impl ContactSolver {
     }
 
     /// `y = D x + b` with the needed columns, and `Φ`; returns `‖Φ‖∞`.
-    fn evaluate(&mut self, src: &mut dyn DelassusSource, s: &SolveOptions) -> f64 {
+    pub(super) fn evaluate(
+        &mut self,
+        src: &mut dyn DelassusSource,
+        s: &ContactSolverOptions,
+    ) -> f64 {
         for l in 0..self.m {
             if self.x[3 * l..3 * l + 3] != [0.0; 3] {
                 self.ensure_col(src, l);
@@ -496,7 +380,7 @@ impl ContactSolver {
         b.fetched = fetched;
     }
 
-    fn scale(&self) -> f64 {
+    pub(super) fn scale(&self) -> f64 {
         (0..self.m).fold(0.0f64, |a, k| a.max(self.x[3 * k].abs()))
     }
 
@@ -509,13 +393,13 @@ impl ContactSolver {
         &mut self,
         src: &mut dyn DelassusSource,
         diag: &[[f64; 2]],
-        s: &SolveOptions,
+        s: &ContactSolverOptions,
         reuse: bool,
         alts: &[&[f64]],
-    ) -> SolveReport {
+    ) -> ContactSolverReport {
         let m = self.m;
         let n = 3 * m;
-        let mut rep = SolveReport::default();
+        let mut rep = ContactSolverReport::default();
         if m == 0 {
             rep.converged = true;
             return rep;
@@ -684,303 +568,12 @@ impl ContactSolver {
         rep.residual = norm;
         rep
     }
-
-    /// The Newton direction `dx` (and `dy = D dx`) at `x`; `None` if the Jacobian is singular
-    /// or (`chord`) the classification changed since the last LU, else whether an LU was made.
-    /// With `chord`, the last LU replaces the Jacobian (simplified Newton).
-    fn newton_direction(
-        &mut self,
-        src: &mut dyn DelassusSource,
-        s: &SolveOptions,
-        chord: bool,
-    ) -> Option<bool> {
-        let m = self.m;
-        let n = 3 * m;
-        // the linearisation at (x, y): formed with the residual there (evaluation or line
-        // search), else now
-        if !self.lin_ok {
-            let (x, y) = (std::mem::take(&mut self.x), std::mem::take(&mut self.y));
-            let (mut lin, mut phi) = (std::mem::take(&mut self.lin), std::mem::take(&mut self.tmp));
-            phi.resize(n, 0.0);
-            self.residual(s, &x, &y, &mut phi, Some(&mut lin));
-            (self.x, self.y, self.lin, self.tmp) = (x, y, lin, phi);
-            self.lin_ok = true;
-        }
-        self.act.clear();
-        for k in 0..m {
-            if self.lin.pattern[k] == 0 {
-                self.state[k] = State::Open;
-            } else {
-                self.state[k] = State::Pressed;
-                self.act.push(k);
-            }
-        }
-        for i in 0..self.act.len() {
-            let k = self.act[i];
-            self.ensure_col(src, k);
-        }
-        let na = 3 * self.act.len();
-        // open contacts: dx_k = −x_k; their effect on the pressed rows goes to the rhs
-        for k in 0..m {
-            if self.state[k] == State::Open {
-                for a in 0..3 {
-                    self.dx[3 * k + a] = -self.x[3 * k + a];
-                }
-            } else {
-                for a in 0..3 {
-                    self.dx[3 * k + a] = 0.0;
-                }
-            }
-        }
-        // dy_open = D dx_open (columns available: x_k ≠ 0 had its column)
-        let mut dy = std::mem::take(&mut self.dy);
-        self.apply(&self.dx, &mut dy, false);
-        // a cached LU of the same classification (chord), or the slot to factor into
-        let found = self
-            .slots
-            .iter()
-            .position(|sl| sl.valid && sl.pattern == self.lin.pattern);
-        let chord = chord && found.is_some();
-        self.clock += 1;
-        let cur = match found {
-            Some(i) => i,
-            None => {
-                let mut best = 0;
-                for (i, sl) in self.slots.iter().enumerate() {
-                    if !sl.valid || sl.used < self.slots[best].used {
-                        best = i;
-                        if !sl.valid {
-                            break;
-                        }
-                    }
-                }
-                best
-            }
-        };
-        self.slots[cur].used = self.clock;
-        if !chord {
-            // the slot's old factors are overwritten: valid again only once refactorised
-            self.slots[cur].valid = false;
-            self.slots[cur].lu.resize_with(na, na, |_, _| 0.0);
-        }
-        self.rhs.clear();
-        for &k in self.act.iter() {
-            let g = &self.lin.gk[k];
-            for r in 0..3 {
-                let mut v = -self.phi[3 * k + r];
-                for c in 0..3 {
-                    v -= g[r][c] * dy[3 * k + c];
-                }
-                self.rhs.push(v);
-            }
-        }
-        if !chord {
-            // J_kl = δ_kl L_k + G_k D_kl, column by column
-            for (ja, &l) in self.act.iter().enumerate() {
-                for c in 0..3 {
-                    let dcol = &self.d[(3 * l + c) * n..(3 * l + c + 1) * n];
-                    let mut jc = self.slots[cur].lu.col_mut(3 * ja + c);
-                    let Some(jcol) = jc.rb_mut().try_as_col_major_mut() else {
-                        self.dy = dy;
-                        return None;
-                    };
-                    let jcol = jcol.as_slice_mut();
-                    for (ia, &k) in self.act.iter().enumerate() {
-                        let g = &self.lin.gk[k];
-                        let d3 = &dcol[3 * k..3 * k + 3];
-                        for r in 0..3 {
-                            jcol[3 * ia + r] = g[r][0] * d3[0] + g[r][1] * d3[1] + g[r][2] * d3[2];
-                        }
-                        if k == l {
-                            for r in 0..3 {
-                                jcol[3 * ia + r] += self.lin.lk[k][r][c];
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        let slot = &mut self.slots[cur];
-        if chord && slot.n != na {
-            self.dy = dy;
-            return None;
-        }
-        if na > 0 && !chord {
-            slot.valid = false;
-            if self.mem_n < na {
-                self.mem = Some(MemBuffer::new(lu_in_place_scratch::<usize, f64>(
-                    na,
-                    na,
-                    Par::Seq,
-                    Default::default(),
-                )));
-                self.mem_n = na;
-            }
-            slot.perm.resize(na, 0);
-            slot.perm_inv.resize(na, 0);
-            let Some(mem) = self.mem.as_mut() else {
-                self.dy = dy;
-                return None;
-            };
-            let _ = lu_in_place(
-                slot.lu.as_mut(),
-                &mut slot.perm,
-                &mut slot.perm_inv,
-                Par::Seq,
-                MemStack::new(mem),
-                Default::default(),
-            );
-            let singular = (0..na).any(|i| {
-                let d = slot.lu[(i, i)];
-                !(d.is_finite() && d != 0.0)
-            });
-            if singular {
-                self.dy = dy;
-                return None;
-            }
-            slot.valid = true;
-            slot.n = na;
-            slot.pattern.clear();
-            slot.pattern.extend_from_slice(&self.lin.pattern);
-        }
-        if na > 0 {
-            self.tmp.clear();
-            self.tmp.extend(slot.perm.iter().map(|&p| self.rhs[p]));
-            // (faer's two triangular solves, bitwise, without their per-block dispatch)
-            let lu = &slot.lu;
-            lu_solve_in_place(|j| col_slice(lu, j), na, &mut self.tmp[..na]);
-            for (ia, &k) in self.act.iter().enumerate() {
-                for a in 0..3 {
-                    self.dx[3 * k + a] = self.tmp[3 * ia + a];
-                }
-            }
-            self.tmp.resize(n, 0.0);
-        }
-        self.apply(&self.dx, &mut dy, false);
-        self.dy = dy;
-        self.dx.iter().all(|v| v.is_finite()).then_some(!chord)
-    }
-
-    /// The fallback: normal LCP with the friction frozen, alternated with block Gauss–Seidel
-    /// sweeps on the friction forces (exact local Coulomb / regularised solve per contact),
-    /// until `‖Φ‖∞ ≤ tol · max λ` or `max_rounds`. Returns `‖Φ‖∞`.
-    fn alternation(
-        &mut self,
-        src: &mut dyn DelassusSource,
-        diag: &[[f64; 2]],
-        s: &SolveOptions,
-        rep: &mut SolveReport,
-    ) -> f64 {
-        // x changes below without a residual: no linearisation at it
-        self.lin_ok = false;
-        let m = self.m;
-        let n = 3 * m;
-        for l in 0..m {
-            self.ensure_col(src, l);
-        }
-        let mut norm = f64::INFINITY;
-        for _round in 0..s.max_rounds {
-            // normal problem: W = D_NN, q = b_N + D_NT f
-            self.wn.resize_with(m, m, |_, _| 0.0);
-            self.q.clear();
-            self.warm.clear();
-            for k in 0..m {
-                let mut g = self.b[3 * k];
-                for l in 0..m {
-                    self.wn[(k, l)] = self.d[3 * l * n + 3 * k];
-                    for a in 1..3 {
-                        g += self.d[(3 * l + a) * n + 3 * k] * self.x[3 * l + a];
-                    }
-                }
-                self.q.push(g);
-                self.warm.push(self.x[3 * k] > 0.0);
-            }
-            let tol_gap = 1e-3 * s.tol * diag.iter().fold(0.0f64, |a, d| a.max(d[0])) * {
-                let sc = self.scale();
-                if sc > 0.0 { sc } else { 1.0 }
-            };
-            let _ = self
-                .lcp
-                .solve(self.wn.as_ref(), &self.q, &self.warm, tol_gap);
-            rep.lcp_solves += 1;
-            for k in 0..m {
-                self.x[3 * k] = self.lcp.lambda[k];
-                if self.x[3 * k] <= 0.0 {
-                    self.x[3 * k + 1] = 0.0;
-                    self.x[3 * k + 2] = 0.0;
-                }
-            }
-            for k in 0..m {
-                if self.need_slip && self.x[3 * k] > 0.0 {
-                    self.ensure_b(src, k);
-                }
-            }
-            let mut y = std::mem::take(&mut self.y);
-            self.apply(&self.x, &mut y, true);
-            // friction sweeps
-            if s.law.coefficient() > 0.0 {
-                for _ in 0..50 {
-                    rep.sweeps += 1;
-                    let mut change = 0.0f64;
-                    for k in 0..m {
-                        let lam = self.x[3 * k];
-                        if lam <= 0.0 {
-                            continue;
-                        }
-                        let bt = [
-                            [
-                                self.d[(3 * k + 1) * n + 3 * k + 1],
-                                self.d[(3 * k + 2) * n + 3 * k + 1],
-                            ],
-                            [
-                                self.d[(3 * k + 1) * n + 3 * k + 2],
-                                self.d[(3 * k + 2) * n + 3 * k + 2],
-                            ],
-                        ];
-                        let f = [self.x[3 * k + 1], self.x[3 * k + 2]];
-                        // slip velocity without the contact's own friction
-                        let r = [
-                            y[3 * k + 1] - bt[0][0] * f[0] - bt[0][1] * f[1],
-                            y[3 * k + 2] - bt[1][0] * f[0] - bt[1][1] * f[1],
-                        ];
-                        let new = s.law.local_force(
-                            Matrix2::new(bt[0][0], bt[0][1], bt[1][0], bt[1][1]),
-                            Vector2::new(r[0], r[1]),
-                            lam,
-                        );
-                        let new = [new[0], new[1]];
-                        let d = [new[0] - f[0], new[1] - f[1]];
-                        if d == [0.0, 0.0] {
-                            continue;
-                        }
-                        change = change.max(d[0].abs().max(d[1].abs()));
-                        self.x[3 * k + 1] = new[0];
-                        self.x[3 * k + 2] = new[1];
-                        for a in 0..2 {
-                            let col = &self.d[(3 * k + 1 + a) * n..(3 * k + 2 + a) * n];
-                            for (yi, &c) in y.iter_mut().zip(col) {
-                                *yi += d[a] * c;
-                            }
-                        }
-                    }
-                    if change <= 1e-3 * s.tol * self.scale() {
-                        break;
-                    }
-                }
-            }
-            self.y = y;
-            norm = self.evaluate(src, s);
-            if norm <= s.tol * self.scale() {
-                break;
-            }
-        }
-        norm
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::Arc;
 
     /// One node, regularised law: `λ = −g/d_N`; `u = v + d_T f`, `f = −μλ u/√(u²+ε²)` reduces
     /// to a monotone scalar equation in `u`, solved here by bisection (independent reference).
@@ -997,9 +590,9 @@ mod tests {
             let mut s = ContactSolver::default();
             s.reset(&[0.0; 3]);
             s.set_gaps([g]);
-            let set = SolveOptions {
-                law: Arc::new(contact::SlipRegularized { mu, epsilon: eps }),
-                ..SolveOptions::default()
+            let set = ContactSolverOptions {
+                law: Arc::new(crate::SlipRegularized { mu, epsilon: eps }),
+                ..ContactSolverOptions::default()
             };
             let rep = s.solve(
                 &mut DenseProblem { d: &d, b: &b },
