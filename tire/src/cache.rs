@@ -64,30 +64,37 @@ pub fn cache_dir() -> PathBuf {
 
 impl TireSource {
     /// The reduced-tire file used: for [`CACHE`], the file of this tire, reduction and code
-    /// version in [`cache_dir`], `reduced-<generated|imported>-<n_c>c-<n_f>m-<key>.json` with
+    /// version in [`cache_dir`], `reduced-<truck|imported>-<n_c>c-<n_f>m-<key>.json` with
     /// `key` the first 16 hex digits of the SHA-256 of the [`TireSource::fingerprint`] and
     /// [`crate::CODE_VERSION`]; otherwise `reduced_file` itself; `None` when it is empty.
     /// Errors: an import file that cannot be read (the fingerprint hashes it).
     pub fn reduced_path(&self) -> Result<Option<PathBuf>, TireError> {
-        if self.reduced_file.is_empty() {
-            return Ok(None);
+        if self.reduced_file == CACHE {
+            return Ok(Some(self.cache_path(&self.fingerprint()?)));
         }
-        if self.reduced_file != CACHE {
-            return Ok(Some(PathBuf::from(&self.reduced_file)));
-        }
-        let key =
-            sha256_hex(format!("{}\n{}", self.fingerprint()?, crate::CODE_VERSION).as_bytes());
+        Ok(self.named_path())
+    }
+
+    /// `reduced_file` as a path (`None` when empty or [`CACHE`]).
+    fn named_path(&self) -> Option<PathBuf> {
+        (!self.reduced_file.is_empty() && self.reduced_file != CACHE)
+            .then(|| PathBuf::from(&self.reduced_file))
+    }
+
+    /// The cache file of the tire with this `fingerprint` ([`TireSource::reduced_path`]).
+    fn cache_path(&self, fingerprint: &str) -> PathBuf {
+        let key = sha256_hex(format!("{fingerprint}\n{}", crate::CODE_VERSION).as_bytes());
         let kind = if self.import.is_some() {
             "imported"
         } else {
-            "generated"
+            "truck"
         };
-        Ok(Some(cache_dir().join(format!(
+        cache_dir().join(format!(
             "reduced-{kind}-{}c-{}m-{}.json",
             self.reduction.contact_nodes,
             self.reduction.free_modes,
             &key[..16]
-        ))))
+        ))
     }
 
     /// The reduced tire of this source: loaded from its file ([`TireSource::reduced_path`])
@@ -100,9 +107,14 @@ impl TireSource {
         &self,
         reducing: &mut dyn FnMut(&Reducing<'_>),
     ) -> Result<SourcedTire, TireError> {
-        let file = self.reduced_path()?;
-        let cached = self.reduced_file == CACHE;
+        // (the fingerprint hashes the import files: once per call)
         let fingerprint = self.fingerprint()?;
+        let cached = self.reduced_file == CACHE;
+        let file = if cached {
+            Some(self.cache_path(&fingerprint))
+        } else {
+            self.named_path()
+        };
         let mut replacing = None;
         if let Some(path) = file.as_deref().filter(|p| p.exists()) {
             let found = ReducedTire::load(path)
@@ -125,7 +137,8 @@ impl TireSource {
             replacing: replacing.as_deref(),
         });
         let fe = self.fe_model()?;
-        let (tire, _) = self.reduce_fe(&fe)?;
+        let (mut tire, _) = crate::reduce::reduce(&fe, &self.reduction)?;
+        tire.source = fingerprint;
         let mut cache = match replacing {
             Some(why) => CacheUse::Replaced(why),
             None => CacheUse::Reduced,

@@ -213,7 +213,7 @@ pub(super) fn check_patch_on_tread(
         }
     }
     let height = outer - rim_r;
-    if !(height > 0.0) {
+    if height.is_nan() || height <= 0.0 {
         return Err(import_err(
             "rim_nodes",
             format!(
