@@ -26,7 +26,12 @@
 //!   [`SurfaceContact`] (quadrature points of surface elements, the plate belt of Kerkkänen
 //!   ch. 4);
 //! * [`lagrange`]: unilateral constraint rows and an active set (used by the ancf crate's static
-//!   and generalized-α contact solvers).
+//!   and generalized-α contact solvers);
+//! * [`solver`]: the shared non-smooth solver of many coupled point contacts, [`ContactSolver`]
+//!   (semismooth Newton on the Alart–Curnier equations for any [`FrictionLaw`], over a
+//!   Delassus operator supplied by the model through [`DelassusSource`], with warm starts, a
+//!   tolerance and a [`ContactSolverReport`]; the normal LCP [`solver::LcpWork`] as its
+//!   fallback), used by the rolling tire and by any model that can give its compliance.
 
 // Index loops mirror the element and quadrature formulas (several arrays per index).
 #![allow(clippy::needless_range_loop)]
@@ -39,6 +44,7 @@ pub mod lagrange;
 pub mod normal;
 pub mod point;
 pub mod quadrature;
+pub mod solver;
 pub mod spatial;
 
 pub use dim::{ContactDim, Dim, TangentialForce};
@@ -57,3 +63,6 @@ pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};
 pub use normal::{LinearPenalty, NormalForce, NormalLaw, NormalSpec, PolynomialPenalty};
 pub use point::{PointContact, PointContact2, PointContact3, point_contact};
 pub use quadrature::GaussRule;
+pub use solver::{
+    ContactSolver, ContactSolverOptions, ContactSolverReport, DelassusSource, DenseProblem,
+};

@@ -1,8 +1,9 @@
 //! # flowing
 //!
 //! The Eulerian flowing-material layer (Ribaric 2012 ch. 4–8 and App. A): mode-shape derivative
-//! operators along a flow coordinate, the travelling string, the flowing-material belt drive and
-//! the reduced FE tire whose mesh does not move with the material.
+//! operators along a flow coordinate, the travelling string and the flowing-material belt drive.
+//! The reduced FE tire, whose mesh does not move with the material either, is the `tire` crate
+//! built on these operators.
 //!
 //! * [`grid`], [`derivative`]: nodal values sampled at flow coordinates `s_i` (open or closed),
 //!   finite-difference, FE-consistent, polynomial and spectral derivative operators, applied per
@@ -31,7 +32,6 @@ pub mod pulley;
 pub mod spectrum;
 pub mod string_fe;
 pub mod string_study;
-pub mod tire;
 pub mod travelling;
 
 pub use contact::{ContactConfig, ContactString, HarmonicLoad, simulate_contact};

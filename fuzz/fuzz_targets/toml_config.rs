@@ -9,7 +9,7 @@ use drives::speed_loss_study::SpeedLossStudyConfig;
 use fe_model::generate::TireConfig;
 use drives::fead::FeadConfig;
 use flowing::string_study::ModesConfig;
-use flowing::tire::RigConfig;
+use tire::RigConfig;
 use flowmbd_cli::Validate;
 use flowmbd_cli::config::parse_config;
 use libfuzzer_sys::fuzz_target;

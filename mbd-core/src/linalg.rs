@@ -24,7 +24,10 @@
 //! (for closed chains of nodes; faer's sparse LU remains the fallback at a zero pivot).
 
 mod band;
+mod kernels;
 mod rowmajor;
+
+pub use kernels::{axpy_cols, col_slice, lu_solve_in_place};
 
 use crate::{MbdError, SysMatrix};
 use faer::dyn_stack::{MemBuffer, MemStack};

@@ -104,7 +104,10 @@ class ReducedTire:
     rim_spin_inertia: float
     outer_radius: float
     source: str
-    """What the tire was made from (generator or import and reduction, JSON)."""
+    """What the tire was made from (generator, or the imported files' SHA-256 digests, and the
+    reduction, JSON)."""
+    code_version: str
+    """The version of the code that reduced it (package version and source digest)."""
     def frequencies_hz(self) -> _Array:
         """Eigenfrequencies of the reduced tire, wheel fixed, not rolling [Hz]."""
     def to_json(self) -> str:
@@ -113,7 +116,9 @@ class ReducedTire:
     def from_json(text: str) -> "ReducedTire": ...
     def save(self, path: Union[str, os.PathLike]) -> None: ...
     @staticmethod
-    def load(path: Union[str, os.PathLike]) -> "ReducedTire": ...
+    def load(path: Union[str, os.PathLike]) -> "ReducedTire":
+        """A saved reduced tire: a regular file of at most 1 GiB whose checksum holds
+        (``ValueError`` otherwise)."""
     def __reduce__(self) -> tuple: ...
 
 def tire_generate(config: Optional[str] = None) -> _Fe:

@@ -109,7 +109,8 @@ def reduce(config: Optional[Mapping[str, Any]] = None) -> "ReducedTire":
         ``tc``, ``tc_theta``, ``p_e``, ``p_e1``, ``p_e2`` and vectors ``m_theta``, ``c_s`` as
         numpy arrays; ``n_contact``, ``n_free_modes``, ``n_z``, ``dof``, ``contact_nodes``,
         ``contact_positions``, ``free_mode_hz``, ``contact_mode_hz``, ``tire_mass``,
-        ``rim_mass``, ``rim_spin_inertia``, ``outer_radius``, ``source``; ``frequencies_hz()``.
+        ``rim_mass``, ``rim_spin_inertia``, ``outer_radius``, ``source``, ``code_version``;
+        ``frequencies_hz()``.
 
     Raises
     ------

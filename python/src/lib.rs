@@ -79,9 +79,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tire::tire_import, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_reduce, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_cleat, m)?)?;
-    m.add(
-        "CLEAT_FORCE_COLUMNS",
-        flowing::tire::study::FORCE_COLUMNS.to_vec(),
-    )?;
+    m.add("CLEAT_FORCE_COLUMNS", ::tire::study::FORCE_COLUMNS.to_vec())?;
     Ok(())
 }

@@ -1,18 +1,12 @@
 //! `flowmbd.tire`: the reduced FE truck tire of Ribaric ch. 7–8. The FE tire generated
 //! ([`fe_model::generate::tire`]) or imported (ABAQUS / Matrix Market,
-//! [`flowing::tire::imported_tire`]), its reduction of §8.2 ([`flowing::tire::reduce`]) as a
+//! [`tire::imported_tire`]), its reduction of §8.2 ([`tire::reduce`]) as a
 //! reusable, picklable [`PyReducedTire`], and the cleat test of §8.3 with the configuration and
-//! summary of [`flowing::tire::study`] (the same as `flowmbd-tire cleat`).
+//! summary of [`tire::study`] (the same as `flowmbd-tire cleat`).
 
 use crate::{input_error, numerical_error, read_config, to_json};
 use faer::Mat;
 use fe_model::generate::TireConfig;
-use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
-use flowing::tire::{
-    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
-    TireSource, cleat_summary, imported_tire, phase_spread, rig_input_error, run_cleat_observed,
-    tire_input_error,
-};
 use mbd_core::Validate;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
@@ -20,6 +14,12 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use std::sync::Arc;
+use tire::study::{FORCE_COLUMNS, force_row, sample_row};
+use tire::{
+    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
+    TireSource, cleat_summary, imported_tire, phase_spread, rig_input_error, run_cleat_observed,
+    tire_input_error,
+};
 
 /// Bad input (`ValueError` with the CLI's `field: reason`) or a numerical failure
 /// (`flowmbd.NumericalError` with `partial`), classified like `flowmbd-tire`
@@ -199,10 +199,16 @@ impl PyReducedTire {
     fn outer_radius(&self) -> f64 {
         self.inner.outer_radius
     }
-    /// What the tire was made from (generator or import and reduction, JSON).
+    /// What the tire was made from (generator, or the imported files' SHA-256 digests, and
+    /// the reduction, JSON).
     #[getter]
     fn source(&self) -> String {
         self.inner.source.clone()
+    }
+    /// The version of the code that reduced it (package version and source digest).
+    #[getter]
+    fn code_version(&self) -> String {
+        self.inner.code_version.clone()
     }
     /// Eigenfrequencies of the reduced tire, wheel fixed, not rolling \[Hz\].
     fn frequencies_hz<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
@@ -234,7 +240,9 @@ impl PyReducedTire {
         py.detach(move || red.save(&path))
             .map_err(|e| file_error(py, e))
     }
-    /// Load a saved reduced tire (e.g. written by `flowmbd-tire reduce`).
+    /// Load a saved reduced tire (e.g. written by `flowmbd-tire reduce`): a regular file within
+    /// the size ceiling whose checksum holds (`ValueError` otherwise, before reading a device
+    /// such as `/dev/zero`).
     #[staticmethod]
     fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
         let red = py

@@ -6,6 +6,7 @@ bit-identical round trip); an imported copy of the generated tire (Matrix Market
 files written here from the generated matrices), whose reduction must give the generated
 tire's frequencies (the library test `tests/tests/tire_import.rs` does the same in Rust)."""
 
+import json
 import pickle
 import tomllib
 
@@ -130,6 +131,21 @@ def test_save_and_load(tmp_path, reduced):
     lam = la.eigh(reduced.k, reduced.m, eigvals_only=True)
     np.testing.assert_allclose(reduced.frequencies_hz()[:5], np.sqrt(lam[:5]) / (2 * np.pi),
                                rtol=1e-9)
+
+
+def test_load_refuses_devices_and_changed_files(tmp_path, reduced):
+    # issue #35: `ReducedTire.load('/dev/zero')` read without end; a file whose `k` was doubled
+    # (valid JSON) was used. Reference: the saved file itself loads bit-identically.
+    with pytest.raises(ValueError, match="not a regular file"):
+        flowmbd.tire.ReducedTire.load("/dev/zero")
+    reduced.save(tmp_path / "r.json")
+    np.testing.assert_array_equal(flowmbd.tire.ReducedTire.load(tmp_path / "r.json").k, reduced.k)
+    doc = json.loads((tmp_path / "r.json").read_text())
+    doc["tire"]["k"]["data"] = [2.0 * v for v in doc["tire"]["k"]["data"]]
+    (tmp_path / "k2.json").write_text(json.dumps(doc))
+    with pytest.raises(ValueError, match="checksum mismatch"):
+        flowmbd.tire.ReducedTire.load(tmp_path / "k2.json")
+    assert reduced.code_version.startswith("flowmbd ")
 
 
 def test_generate_and_import_give_the_same_reduced_tire(tmp_path, reduced):

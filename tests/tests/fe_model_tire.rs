@@ -321,8 +321,8 @@ fn cord_reinforced_tire_reaches_ribaric_spectrum() {
             })
         )
     );
-    let fe = flowing::tire::generated_tire(&cfg).unwrap();
-    let f = flowing::tire::full_frequencies_hz(&fe, 52).unwrap();
+    let fe = ::tire::generated_tire(&cfg).unwrap();
+    let f = ::tire::full_frequencies_hz(&fe, 52).unwrap();
     let below = f.iter().filter(|&&x| x < 240.0).count();
     assert!((60.0..70.0).contains(&f[4]), "f5 = {} Hz", f[4]);
     assert!(
@@ -338,7 +338,6 @@ fn cord_reinforced_tire_reaches_ribaric_spectrum() {
         ..TireConfig::default()
     };
     iso.tread.young = 150e6;
-    let f0 = flowing::tire::full_frequencies_hz(&flowing::tire::generated_tire(&iso).unwrap(), 52)
-        .unwrap();
+    let f0 = ::tire::full_frequencies_hz(&::tire::generated_tire(&iso).unwrap(), 52).unwrap();
     assert!(f0[49] < 200.0, "isotropic f50 = {}", f0[49]);
 }

@@ -86,7 +86,7 @@ fn ancf_run(law: FrictionSpec) -> (f64, bool) {
 /// Rolling tire (coarse generated tire on a flat road, 60 km/h): 40 ms settling and 10 ms
 /// record; returns the last longitudinal and vertical spindle forces \[N\].
 fn tire_run(law: FrictionSpec) -> (f64, f64) {
-    use flowing::tire::{GroundKind, TireFriction, run_cleat};
+    use tire::{GroundKind, TireFriction, run_cleat};
     let mut rc = common::rig(GroundKind::Road, false, law.mu());
     rc.rolling.friction_law = TireFriction::Law(law);
     rc.settle_time = 0.04;

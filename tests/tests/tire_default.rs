@@ -4,7 +4,7 @@
 //! --ignored`.
 
 use fe_model::generate::TireConfig;
-use flowing::tire::*;
+use tire::*;
 
 #[test]
 #[ignore = "the full 63 936-DOF tire: reduction and six rig runs, ~40 s"]
@@ -103,7 +103,7 @@ fn default_step_is_as_accurate_as_the_fine_step_over_cleat_phases() {
 #[test]
 #[ignore = "the full 63 936-DOF tire: reduction and 16 rig runs, ~60 s"]
 fn mirror_half_model_matches_the_full_model_over_cleat_phases() {
-    // The mirror half model (default `symmetry = "auto"`, `flowing::tire::mirror`) against the
+    // The mirror half model (default `symmetry = "auto"`, `tire::mirror`) against the
     // full model (`symmetry = "off"`, second formulation) on the default tire and rig: the
     // steady forces before the cleat equal, and the dominant lines' means over eight cleat
     // phases within 2 % (single runs differ within the phase scatter, ~3 % a run).

@@ -1,9 +1,9 @@
-//! The speed dips of the cleat test (issue 21 item 4; `flowing::tire::dips`): the cleat's
+//! The speed dips of the cleat test (issue 21 item 4; `tire::dips`): the cleat's
 //! enveloping profile against the tire's geometry, and the predicted dip speeds against a
 //! cleat sweep.
 
 use fe_model::generate::TireConfig;
-use flowing::tire::*;
+use tire::*;
 
 mod common;
 use common::coarse_reduced_tire as tire;

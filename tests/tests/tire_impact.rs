@@ -1,7 +1,7 @@
 //! Sub-stepping through the cleat impact (`RigConfig::impact`, `RollingTire::set_time_step`)
 //! and the cleat's position along the ground (`Ground::cleat_ahead`).
 
-use flowing::tire::*;
+use tire::*;
 
 mod common;
 use common::{coarse_reduced_tire as tire, rig};

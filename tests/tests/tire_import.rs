@@ -3,7 +3,7 @@
 //! `*NODE` and `*NSET` style node and set files) and read back; the reduced model must be the
 //! same as the one of the generated tire.
 
-use flowing::tire::*;
+use tire::*;
 
 mod common;
 use std::fmt::Write as _;

@@ -1,4 +1,4 @@
-//! Modes of the loaded tire (flowing::tire::loaded): the reduced tire with the preloaded patch
+//! Modes of the loaded tire (tire::loaded): the reduced tire with the preloaded patch
 //! held, wheel fixed, and the effective spindle masses that single out its vertical in-plane
 //! mode (issue 9: "the dominant vertical spindle frequency of the cleat response is a vertical
 //! in-plane mode of the loaded tire").
@@ -8,7 +8,7 @@ mod common;
 use common::{coarse_reduced_tire, rig};
 use faer::prelude::*;
 use faer::{Mat, Side};
-use flowing::tire::*;
+use tire::*;
 
 /// Contact nodes carrying the static preload on the drum.
 fn held(red: &ReducedTire) -> Vec<usize> {

@@ -1,9 +1,9 @@
-//! The half model of mirror-symmetric motion (`flowing::tire::mirror`) against the full model
+//! The half model of mirror-symmetric motion (`tire::mirror`) against the full model
 //! (second formulation: `symmetry = "off"`) on the coarse generated tire rolling on the drum
 //! with friction: the same spindle forces, spin rate and normal forces step by step, through
 //! the cleat impact; and the fallback to the full model for an unsymmetric tire or start.
 
-use flowing::tire::*;
+use tire::*;
 
 mod common;
 use common::{coarse_reduced_tire as tire, rig};

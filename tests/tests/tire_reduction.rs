@@ -1,8 +1,8 @@
 //! Reduced FE tire (Ribaric §8.2): exactness of the untruncated reduction against the full FE
 //! model, truncation accuracy, statics of the preload, and the reduced-tire file.
 
-use flowing::tire::statics::{full_flexibility, reduced_flexibility};
-use flowing::tire::*;
+use tire::statics::{full_flexibility, reduced_flexibility};
+use tire::*;
 
 mod common;
 

@@ -2,7 +2,7 @@
 //! rolling without ripple, the cleat response and the friction sensitivity, on a coarse
 //! generated truck tire (96 x 8 elements, 33 contact nodes, 50 free-node modes).
 
-use flowing::tire::*;
+use tire::*;
 
 mod common;
 use common::{coarse_reduced_tire as tire, rig};

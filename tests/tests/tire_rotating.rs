@@ -1,4 +1,4 @@
-//! Complex modes of the rotating tire in the ground frame (flowing::tire::rotating, issue 21):
+//! Complex modes of the rotating tire in the ground frame (tire::rotating, issue 21):
 //! zero-speed limit, the forward/backward split of the circumferential modes against thin-ring
 //! theory, and the full (untruncated) flowing FE model against the reduced one.
 
@@ -7,8 +7,8 @@ mod common;
 use common::coarse_reduced_tire;
 use faer::Mat;
 use flowing::derivative::{FlowLine, mode_shape_derivatives};
-use flowing::tire::*;
 use std::f64::consts::PI;
+use tire::*;
 
 fn opts(spin: f64) -> RotatingOptions {
     RotatingOptions {

@@ -2,7 +2,7 @@
 //! rolling tire before the cleat, on the coarse generated truck tire (96 x 8 elements, 33 contact
 //! nodes, 50 free-node modes).
 
-use flowing::tire::*;
+use tire::*;
 
 mod common;
 use common::{coarse_reduced_tire as tire, rig};

@@ -1,7 +1,7 @@
 //! The spindle force of the rolling reduced tire: Newton's second law for the tire (the default,
 //! `SpindleForceMethod::Momentum`) against the rim forces of Ribaric (7.2) (`Rim`).
 
-use flowing::tire::*;
+use tire::*;
 
 mod common;
 

@@ -3,7 +3,7 @@
 //! contact nodes they must equal the stored contact rows `T_c`, and at the rim they vanish (the
 //! rim carries no deflection, Ribaric (7.11)); they survive the file round trip.
 
-use flowing::tire::*;
+use tire::*;
 
 #[test]
 fn visualisation_rows_are_the_basis_rows() {

@@ -11,11 +11,11 @@ use drives::fead::FeadConfig;
 use drives::speed_loss_study::SpeedLossStudyConfig;
 use fe_model::generate::TireConfig;
 use flowing::string_study::ModesConfig;
-use flowing::tire::RigConfig;
 use flowmbd_cli::config::{parse_config, to_toml};
 use flowmbd_cli::{CliError, Validate};
 use proptest::prelude::*;
 use std::path::Path;
+use tire::RigConfig;
 
 /// Parse and validate `text` as `C`; errors must be one line and point into the text.
 fn check<C: serde::de::DeserializeOwned + Validate>(text: &str) -> Result<(), TestCaseError> {
@@ -126,8 +126,7 @@ fn library_configurations_reject_unknown_keys_everywhere() {
     );
     // the other variants of the tire's normal law and friction law
     let mut rig = RigConfig::default();
-    rig.rolling.normal = flowing::tire::NormalContact::Penalty { stiffness: 1e7 };
-    rig.rolling.friction_law =
-        flowing::tire::TireFriction::Law(contact::FrictionSpec::Frictionless);
+    rig.rolling.normal = tire::NormalContact::Penalty { stiffness: 1e7 };
+    rig.rolling.friction_law = tire::TireFriction::Law(contact::FrictionSpec::Frictionless);
     assert_eq!(tables_accepting_unknown_keys(&rig), Vec::<String>::new());
 }

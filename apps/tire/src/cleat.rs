@@ -4,13 +4,13 @@
 use crate::common::{RigFlags, TireSourceExt, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
-use flowing::tire::study::CLEAT_MEANING;
-use flowing::tire::{
-    LineMode, RigResult, RollingTire, TireError, cleat_summary, phase_spread, run_cleat_observed,
-};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError, run_study};
 use std::process::ExitCode;
+use tire::study::CLEAT_MEANING;
+use tire::{
+    LineMode, RigResult, RollingTire, TireError, cleat_summary, phase_spread, run_cleat_observed,
+};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -29,16 +29,16 @@ pub struct Args {
 }
 
 /// Configuration and summary of the study: in the library, shared with the Python package.
-pub use flowing::tire::study::{
+pub use tire::study::{
     CleatStudyConfig as Config, CleatSummary as Summary, summarize, validate_rig,
 };
-use flowing::tire::study::{FORCE_COLUMNS, force_row, sample_row};
+use tire::study::{FORCE_COLUMNS, force_row, sample_row};
 
 /// Write the spectra and plots of a rig result under `prefix`, and its force history
 /// `{prefix}forces.csv` too when `history` is set (the `cleat` study streams that file while it
 /// runs instead, so that a failed run keeps it).
 ///
-/// `lines` (e.g. [`flowing::tire::study::line_mode`]'s) are marked on the spectrum plot as vertical lines at the
+/// `lines` (e.g. [`tire::study::line_mode`]'s) are marked on the spectrum plot as vertical lines at the
 /// modes' frequencies, labelled with the mode.
 pub fn write_outputs(
     ctx: &StudyContext,
@@ -70,7 +70,7 @@ pub fn write_outputs(
     .with(Series::line("Fx (longitudinal)", fx))
     .with(Series::line("Fy (vertical)", fy))
     .save(&ctx.out.path(&format!("{prefix}forces")))?;
-    let lim = |s: &flowing::tire::Spectrum| -> Vec<(f64, f64)> {
+    let lim = |s: &tire::Spectrum| -> Vec<(f64, f64)> {
         s.freq_hz
             .iter()
             .zip(&s.amplitude)
@@ -91,9 +91,9 @@ pub fn write_outputs(
     .with(Series::line("Fy", lim(&sy)));
     for (name, m) in lines {
         let dir = match m.direction {
-            flowing::tire::WaveDirection::Forward => "fwd",
-            flowing::tire::WaveDirection::Backward => "bwd",
-            flowing::tire::WaveDirection::Standing => "standing",
+            tire::WaveDirection::Forward => "fwd",
+            tire::WaveDirection::Backward => "bwd",
+            tire::WaveDirection::Standing => "standing",
         };
         plot = plot.with(Series::line(
             format!(
@@ -173,7 +173,7 @@ fn write_patch_vtu(path: &std::path::Path, sim: &RollingTire) -> Result<(), Tire
 /// displacement field.
 fn write_tire_vtu(
     path: &std::path::Path,
-    viz: &flowing::tire::VizBasis,
+    viz: &tire::VizBasis,
     sim: &RollingTire,
 ) -> Result<(), TireError> {
     let x = viz.deformed(&sim.coordinates());

@@ -1,14 +1,13 @@
 //! Shared pieces of the tire studies: the tire source (generated truck tire, reduced and saved,
 //! or a saved reduced tire reused) and error mapping.
 
-use flowing::tire::{
-    GroundKind, ReducedTire, RigConfig, TireError, rig_input_error, tire_input_error,
+use flowmbd_cli::StudyError;
+use tire::{
+    CacheUse, GroundKind, ReducedTire, Reducing, RigConfig, TireError, rig_input_error,
+    tire_input_error,
 };
-use flowmbd_cli::{InputError, StudyError};
-use std::path::Path;
 
-pub use flowing::tire::TireSource;
-pub use flowing::tire::study::CACHE;
+pub use tire::TireSource;
 
 /// The commented `[tire.import]` example that `--print-config` appends (TOML has no null, so
 /// an absent import would not show otherwise).
@@ -32,7 +31,7 @@ pub fn import_notes(tire: &TireSource) -> String {
 }
 
 /// Map a library error: invalid input → exit 2 naming the item
-/// ([`flowing::tire::tire_input_error`]), otherwise numerical (exit 1).
+/// ([`tire::tire_input_error`]), otherwise numerical (exit 1).
 pub fn tire_err(e: TireError) -> StudyError {
     match tire_input_error(e) {
         Ok(field) => StudyError::Input(field),
@@ -49,108 +48,46 @@ pub fn rig_err(e: TireError) -> StudyError {
     }
 }
 
-/// The app's side of [`TireSource`]: the reduced-tire file (cache) and the FE model with the
-/// app's error mapping.
+/// The app's side of [`TireSource`]: the reduced tire with the app's error mapping and
+/// progress line.
 pub trait TireSourceExt {
-    /// The reduced-tire file actually used (see the implementation).
-    fn reduced_path(&self) -> String;
     /// The FE model (imported or generated), errors mapped by [`tire_err`].
-    fn fe_model_or_err(&self) -> Result<flowing::tire::TireFe, StudyError>;
-    /// Load the saved reduced tire, or reduce the tire (and save it).
+    fn fe_model_or_err(&self) -> Result<tire::TireFe, StudyError>;
+    /// The reduced tire: loaded from its file or cache, or reduced and saved
+    /// ([`TireSource::reduced_tire`]); unless `quiet`, a line on stderr says when the tire is
+    /// reduced and why.
     fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError>;
 }
 
 impl TireSourceExt for TireSource {
-    /// The reduced-tire file actually used: for [`CACHE`], the file of this tire and reduction
-    /// in the OS cache folder (`<cache>/flowmbd/tire/reduced-<nc>c-<nf>m-<hash>.json`, the hash
-    /// of [`TireSource::fingerprint`]; without a cache folder, the system's temporary folder);
-    /// otherwise `reduced_file` itself (empty: none).
-    fn reduced_path(&self) -> String {
-        if self.reduced_file != CACHE {
-            return self.reduced_file.clone();
-        }
-        let dir = dirs::cache_dir()
-            .unwrap_or_else(std::env::temp_dir)
-            .join("flowmbd")
-            .join("tire");
-        // the name only spreads tires over files; the stored fingerprint is what is compared
-        // (a Rust release that changes `DefaultHasher` leaves old files unused, never misread)
-        let mut h = std::hash::DefaultHasher::new();
-        std::hash::Hash::hash(&self.fingerprint(), &mut h);
-        let kind = if self.import.is_some() {
-            "imported"
-        } else {
-            "truck"
-        };
-        dir.join(format!(
-            "reduced-{kind}-{}c-{}m-{:016x}.json",
-            self.reduction.contact_nodes,
-            self.reduction.free_modes,
-            std::hash::Hasher::finish(&h)
-        ))
-        .display()
-        .to_string()
-    }
-
-    fn fe_model_or_err(&self) -> Result<flowing::tire::TireFe, StudyError> {
+    fn fe_model_or_err(&self) -> Result<tire::TireFe, StudyError> {
         self.fe_model().map_err(tire_err)
     }
 
     fn reduced(&self, quiet: bool) -> Result<ReducedTire, StudyError> {
-        let file = self.reduced_path();
-        let path = Path::new(&file);
-        if !file.is_empty() && path.exists() {
-            let red = ReducedTire::load(path).map_err(tire_err)?;
-            // a file made with another reduction would silently answer a different question
-            let (nc, nf) = (red.n_contact(), red.n_free_modes);
-            let want = &self.reduction;
-            // the specific diagnosis first (counts), then any other difference (fingerprint)
-            if nc != want.contact_nodes || nf != want.free_modes {
-                return Err(StudyError::Input(InputError::new(
-                    format!("tire.reduced_file `{file}`"),
-                    format!(
-                        "holds {nc} contact nodes and {nf} free-node modes but \
-                         tire.reduction asks for {} and {} (delete the file or name another)",
-                        want.contact_nodes, want.free_modes
-                    ),
-                )));
+        let mut notice = |r: &Reducing<'_>| {
+            if quiet {
+                return;
             }
-            let source = self.fingerprint();
-            if red.source != source {
-                let why = if red.source.is_empty() {
-                    "does not record the tire it was made from (an older flowmbd wrote it)"
-                } else {
-                    "was made from another tire model or reduction than tire.generator / \
-                     tire.import and tire.reduction describe"
-                };
-                return Err(StudyError::Input(InputError::new(
-                    format!("tire.reduced_file `{file}`"),
-                    format!("{why} (delete the file or name another)"),
-                )));
+            let what = if r.imported { "imported" } else { "generated" };
+            match (r.file, r.replacing) {
+                (None, _) => {
+                    eprintln!("reducing the {what} tire (not saved: tire.reduced_file is empty)")
+                }
+                (Some(f), None) => {
+                    eprintln!("reducing the {what} tire (saved to `{}`)", f.display())
+                }
+                (Some(f), Some(why)) => eprintln!(
+                    "reducing the {what} tire again: the cached `{}` {why}; it is replaced",
+                    f.display()
+                ),
             }
-            return Ok(red);
+        };
+        let got = self.reduced_tire(&mut notice).map_err(tire_err)?;
+        if let (CacheUse::NotSaved(why), false) = (&got.cache, quiet) {
+            eprintln!("warning: the reduced tire was not cached ({why})");
         }
-        if !quiet {
-            let what = if self.import.is_some() {
-                "imported"
-            } else {
-                "generated"
-            };
-            if file.is_empty() {
-                eprintln!("reducing the {what} tire (not saved: tire.reduced_file is empty)");
-            } else {
-                eprintln!("reducing the {what} tire (saved to `{file}`)");
-            }
-        }
-        let fe = self.fe_model_or_err()?;
-        let (red, _) = self.reduce_fe(&fe).map_err(tire_err)?;
-        if !file.is_empty() {
-            if let Some(dir) = path.parent() {
-                let _ = std::fs::create_dir_all(dir);
-            }
-            red.save(path).map_err(tire_err)?;
-        }
-        Ok(red)
+        Ok(got.tire)
     }
 }
 

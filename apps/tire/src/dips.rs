@@ -1,15 +1,15 @@
 //! `flowmbd-tire dips`: the speed dips of the cleat test (Ribaric §8.3/§8.5: 40–50 km/h on
 //! the drum, 45–55 km/h on the road), predicted from the cleat's quasi-static enveloping
-//! profile and the loaded vertical mode (`flowing::tire::dips`) and measured by a cleat sweep,
+//! profile and the loaded vertical mode (`tire::dips`) and measured by a cleat sweep,
 //! on the drum and on the flat road.
 
 use crate::cleat::validate_rig;
 use crate::common::{RigFlags, TireSource, TireSourceExt, rig_err};
-use flowing::tire::{DipConfig, GroundDips, GroundKind, PulseShape, RigConfig, ground_dips};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
+use tire::{DipConfig, GroundDips, GroundKind, PulseShape, RigConfig, ground_dips};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]

@@ -1,18 +1,18 @@
 //! `flowmbd-tire modes`: eigenfrequencies of the generated tire with the rim fixed, full FE model
 //! (sparse shift-invert) against the reduced model (Ribaric §8.2 validation), and the modes of
 //! the loaded tire (reduced, preloaded patch held on the ground, wheel fixed) with their
-//! effective spindle masses (`flowing::tire::loaded`): the vertical in-plane mode the cleat test
+//! effective spindle masses (`tire::loaded`): the vertical in-plane mode the cleat test
 //! should show (Ribaric §8.3).
 
 use crate::common::{TireSource, TireSourceExt, tire_err};
-use flowing::tire::{
-    GroundConfig, dominant_longitudinal_mode, dominant_vertical_mode, full_frequencies_hz,
-    held_nodes, loaded_modes_at_preload,
-};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
+use tire::{
+    GroundConfig, dominant_longitudinal_mode, dominant_vertical_mode, full_frequencies_hz,
+    held_nodes, loaded_modes_at_preload,
+};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]

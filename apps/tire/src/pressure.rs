@@ -2,11 +2,11 @@
 //! (Ribaric Fig. 8-12, 4448 N): contact-node forces and patch extent.
 
 use crate::common::{TireSource, TireSourceExt, tire_err};
-use flowing::tire::{GroundConfig, GroundKind, preload};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
+use tire::{GroundConfig, GroundKind, preload};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]

@@ -2,11 +2,11 @@
 //! file; the stage times are the benchmark record of the 60 000-DOF reduction.
 
 use crate::common::{TireSource, TireSourceExt, tire_err};
-use flowing::tire::ReductionTimings;
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 use std::time::Instant;
+use tire::ReductionTimings;
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -80,16 +80,13 @@ impl Study for Reduce {
         let fe = c.tire.fe_model_or_err()?;
         let assembly_s = t.elapsed().as_secs_f64();
         let (red, timings) = c.tire.reduce_fe(&fe).map_err(tire_err)?;
-        let file = if c.tire.reduced_file.is_empty() {
-            ctx.out.path("reduced-tire.json").display().to_string()
-        } else {
-            c.tire.reduced_path()
+        let path = match c.tire.reduced_path().map_err(tire_err)? {
+            Some(p) => p,
+            None => ctx.out.path("reduced-tire.json"),
         };
-        let p = std::path::Path::new(&file);
-        if let Some(d) = p.parent() {
-            let _ = std::fs::create_dir_all(d);
-        }
-        red.save(p).map_err(tire_err)?;
+        // (a temporary file renamed onto `path` when complete, `ReducedTire::save`)
+        red.save(&path).map_err(tire_err)?;
+        let file = path.display().to_string();
         ctx.out.write_csv(
             "free_modes.csv",
             &["mode", "f_hz"],

@@ -1,17 +1,15 @@
 //! `flowmbd-tire rotating-modes`: complex modes of the rolling tire in the ground-fixed frame at
-//! several speeds (`flowing::tire::rotating`): the flowing-material gyroscopic and convective
+//! several speeds (`tire::rotating`): the flowing-material gyroscopic and convective
 //! terms of Ribaric (7.17) split each circumferential order `n` into a forward and a backward
 //! wave. Free tire (rim fixed) and loaded tire (rolling preload's patch held); Campbell
 //! diagrams, a CSV of every mode and the forward/backward splits.
 
 use crate::common::{TireSource, TireSourceExt, tire_err};
-use flowing::tire::{
-    DampingConfig, GroundConfig, RotatingMode, SpeedModes, WaveDirection, modes_at_speed,
-};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
+use tire::{DampingConfig, GroundConfig, RotatingMode, SpeedModes, WaveDirection, modes_at_speed};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -342,7 +340,7 @@ impl Study for Rotating {
         let red = c.tire.reduced(ctx.quiet)?;
         let rayleigh = if c.damped {
             let r = c.damping.rayleigh(&red).map_err(|e| match e {
-                flowing::tire::TireError::Invalid { item, reason } => {
+                tire::TireError::Invalid { item, reason } => {
                     StudyError::Input(InputError::new(item, reason))
                 }
                 other => tire_err(other),

@@ -5,11 +5,11 @@
 use crate::cleat::{Summary as CleatSummary, summarize, validate_rig};
 use crate::common::{RigFlags, TireSource, TireSourceExt, rig_err};
 use crate::maps::SpectrumMap;
-use flowing::tire::{PEAK_BAND_HZ, RigConfig, local_minima, run_cleat, spectrum_grid};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
+use tire::{PEAK_BAND_HZ, RigConfig, local_minima, run_cleat, spectrum_grid};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -152,7 +152,7 @@ impl Study for Sweep {
         }
         // the speed × frequency matrices (rows: speeds, columns: frequencies) on the first
         // run's frequency grid, every run's spectrum resampled onto it (records differ by a
-        // sample between speeds, so their bins differ: `flowing::tire::Spectrum::resample`)
+        // sample between speeds, so their bins differ: `tire::Spectrum::resample`)
         let mx = spectrum_grid(
             &spectra.iter().map(|s| &s.0).collect::<Vec<_>>(),
             MAP_MAX_HZ,

@@ -1,11 +1,11 @@
 //! Set-up shared by the validation test binaries (each binary uses part of it).
 #![allow(dead_code)]
 
-use flowing::tire::{
+use std::sync::OnceLock;
+use tire::{
     GroundKind, ReducedTire, ReductionConfig, RigConfig, TireFe, coarse_tire_config,
     generated_tire, reduce,
 };
-use std::sync::OnceLock;
 
 /// The coarse generated truck tire (96 × 8 elements, one element through the wall, 5 184 DOF)
 /// with the isotropic materials of earlier versions (tread 150 MPa, no carcass cords), reduced

@@ -1,0 +1,209 @@
+//! The local Delassus matrix of the candidates ([`TireDelassus`]): the tire's side of the
+//! shared contact solver ([`contact::DelassusSource`]), gathered lazily from the cached
+//! contact-node responses, with the free slip velocities of the pressed nodes.
+
+use super::blocks::{CandidateBlocks, Responses};
+use super::kernels::dots3x2;
+use crate::ground::GroundPoint;
+use crate::reduced::ReducedTire;
+use contact::DelassusSource;
+use faer::Mat;
+use mbd_core::linalg::col_slice;
+
+pub(super) fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Tangent basis `t1 = [n_z, 0, −n_x]`, `t2 = ŷ` of a ground normal in the wheel's `(x, z)`
+/// plane (the ground is extruded along the axis `y`, so `n_y = 0`).
+pub(super) fn tangents(n: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
+    ([n[2], 0.0, -n[0]], [0.0, 1.0, 0.0])
+}
+
+/// The local Delassus matrix of the candidates, gathered lazily from the cached columns:
+/// rows `(g_k, u1_k, u2_k)`, columns `(λ_l, f1_l, f2_l)`,
+///
+/// ```text
+///   D_N,kl = β_N h² n_kᵀ Y_kl R_l (+ 1/k_penalty on the diagonal),
+///   D_T,kl = γ_N h t_kᵀ (Y_kl + (η × s_k) X_θ,l) R_l,     R_l = [n_l t1_l t2_l],
+/// ```
+///
+/// where `Y_kl` moves contact node k under a unit force on node l (end-of-step displacement per
+/// unit `Δz̈`) and `(η × s_k) X_θ,l` is the rigid spin part of the material velocity (E15).
+pub(super) struct TireDelassus<'b> {
+    pub(super) fac: &'b Responses,
+    /// The candidates' blocks of `Y` and `X_θ` (gathered on demand).
+    pub(super) blocks: &'b mut CandidateBlocks,
+    pub(super) red: &'b ReducedTire,
+    pub(super) cand: &'b [usize],
+    pub(super) gp: &'b [GroundPoint],
+    /// Local frames `[n, t1, t2]` of the candidates, scaled by `β_N h²` (row n) and `γ_N h`
+    /// (rows t1, t2).
+    pub(super) frames: &'b [[[f64; 3]; 3]],
+    /// `γ_N h t1ᵀ(η × s)` per candidate (`t2ᵀ(η × s) = 0`).
+    pub(super) rig_t1: &'b [f64],
+    pub(super) penalty: f64,
+    /// [`TireContact`]'s weight of each contact node (half model: 1 on the mid-plane).
+    pub(super) weight: &'b [f64],
+    /// Whether this is the half model of symmetric motion.
+    pub(super) half: bool,
+    pub(super) tct: &'b Mat<f64>,
+    pub(super) tct_theta: &'b Mat<f64>,
+    pub(super) z_free: &'b [f64],
+    pub(super) zd_free: &'b [f64],
+    pub(super) spin_free: f64,
+}
+
+/// The scaled frames and rigid-spin coefficients of the candidates for [`TireDelassus`].
+pub(super) fn candidate_frames(
+    red: &ReducedTire,
+    cand: &[usize],
+    gp: &[GroundPoint],
+    c1: f64,
+    c2: f64,
+    frames: &mut Vec<[[f64; 3]; 3]>,
+    rig_t1: &mut Vec<f64>,
+) {
+    frames.clear();
+    rig_t1.clear();
+    for (k, &i) in cand.iter().enumerate() {
+        let n = gp[k].normal;
+        let (t1, t2) = tangents(&n);
+        frames.push([
+            [c2 * n[0], c2 * n[1], c2 * n[2]],
+            [c1 * t1[0], c1 * t1[1], c1 * t1[2]],
+            [c1 * t2[0], c1 * t2[1], c1 * t2[2]],
+        ]);
+        let s = red.contact_positions[i];
+        rig_t1.push(c1 * (t1[0] * s[2] - t1[2] * s[0]));
+    }
+}
+
+impl TireDelassus<'_> {
+    /// Unit force directions `[n, t1, t2]` of candidate `l`.
+    fn directions(&self, l: usize) -> [[f64; 3]; 3] {
+        let n = self.gp[l].normal;
+        let (t1, t2) = tangents(&n);
+        [n, t1, t2]
+    }
+
+    /// Local outputs of node `k` for a unit force `e` (wheel frame) on itself.
+    fn response(&self, k: usize, e: &[f64; 3]) -> [f64; 3] {
+        let (d, x_theta) = (&self.blocks.diag[k], &self.blocks.x_theta[k]);
+        let mut v = [0.0; 3];
+        let mut xth = 0.0;
+        for (r, er) in e.iter().enumerate() {
+            v[0] += er * d[r][0];
+            v[1] += er * d[r][1];
+            v[2] += er * d[r][2];
+            xth += er * x_theta[r];
+        }
+        let f = &self.frames[k];
+        [
+            dot3(&f[0], &v),
+            dot3(&f[1], &v) + self.rig_t1[k] * xth,
+            dot3(&f[2], &v),
+        ]
+    }
+
+    /// The diagonal compliances `[D_N,kk, (D_T,kk,11 + D_T,kk,22)/2]` of node `k`.
+    pub(super) fn diagonal(&self, k: usize) -> [f64; 2] {
+        let e = self.directions(k);
+        let dn = self.response(k, &e[0])[0] + self.penalty;
+        let d1 = self.response(k, &e[1])[1];
+        let d2 = self.response(k, &e[2])[2] + self.lateral_compliance(k, d1);
+        [dn, 0.5 * (d1 + d2)]
+    }
+
+    /// In the half model, a mid-plane node's lateral force moves nothing (an antisymmetric
+    /// load: its rows of `T_c` are zero), so its Delassus row is zero and the force would be
+    /// undetermined in stick; the symmetric solution has it zero. A compliance `d1` (the node's
+    /// own longitudinal one) on its diagonal makes `u2 = d1 f2 = 0`, i.e. `f2 = 0`, without
+    /// changing anything else. Zero for the other nodes.
+    fn lateral_compliance(&self, k: usize, d1: f64) -> f64 {
+        if self.half && self.weight[self.cand[k]] == 1.0 {
+            d1
+        } else {
+            0.0
+        }
+    }
+}
+
+impl DelassusSource for TireDelassus<'_> {
+    fn columns(&mut self, l: usize, cols: &mut [f64]) {
+        let ld = 3 * self.cand.len();
+        let e = self.directions(l);
+        self.blocks.gather(self.fac, l);
+        // the three Y columns of node l (rows of the candidates) combined along the unit force
+        // directions: Y e_c = Σ_r e_c[r] Y[:, 3j + r], and X_θ e_c
+        let yb = &self.blocks.y[3 * l * ld..(3 * l + 3) * ld];
+        let (y0, y1, y2) = (&yb[..ld], &yb[ld..2 * ld], &yb[2 * ld..]);
+        let x_theta = self.blocks.x_theta[l];
+        let mut xth = [0.0; 3];
+        for (c, ec) in e.iter().enumerate() {
+            for (r, er) in ec.iter().enumerate() {
+                xth[c] += er * x_theta[r];
+            }
+        }
+        // planar ground (n_y = 0): n and t1 lie in the (x, z) plane, t2 = ŷ, so each frame
+        // vector has two (n, t1) or one (t2) nonzero component
+        let (nx, nz) = (e[0][0], e[0][2]);
+        // (iterators over the candidates' triples: no bounds checks in the loop)
+        let (c0, rest) = cols.split_at_mut(ld);
+        let (c1, c2) = rest.split_at_mut(ld);
+        let rows = y0
+            .chunks_exact(3)
+            .zip(y1.chunks_exact(3))
+            .zip(y2.chunks_exact(3))
+            .zip(self.frames.iter().zip(self.rig_t1));
+        let outs = c0
+            .chunks_exact_mut(3)
+            .zip(c1.chunks_exact_mut(3))
+            .zip(c2.chunks_exact_mut(3));
+        for ((((a, b), c3), (f, &rig)), ((o0, o1), o2)) in rows.zip(outs) {
+            let (fnx, fnz, ftx, ftz, fy) = (f[0][0], f[0][2], f[1][0], f[1][2], f[2][1]);
+            // unit force along n, t1 (combinations of Y columns 0 and 2) and ŷ (column 1)
+            let vs = [
+                [
+                    nx * a[0] + nz * c3[0],
+                    nx * a[1] + nz * c3[1],
+                    nx * a[2] + nz * c3[2],
+                ],
+                [
+                    nz * a[0] - nx * c3[0],
+                    nz * a[1] - nx * c3[1],
+                    nz * a[2] - nx * c3[2],
+                ],
+                [b[0], b[1], b[2]],
+            ];
+            for ((v, o), xc) in vs.iter().zip([o0, o1, o2]).zip(xth) {
+                o[0] = fnx * v[0] + fnz * v[2];
+                o[1] = ftx * v[0] + ftz * v[2] + rig * xc;
+                o[2] = fy * v[1];
+            }
+        }
+        cols[3 * l] += self.penalty;
+        let d1 = cols[ld + 3 * l + 1];
+        cols[2 * ld + 3 * l + 2] += self.lateral_compliance(l, d1);
+    }
+
+    fn free_slip(&mut self, k: usize) -> [f64; 2] {
+        let i = self.cand[k];
+        let s = self.red.contact_positions[i];
+        let sf = self.spin_free;
+        let rig = [sf * s[2], 0.0, -sf * s[0]];
+        // (T_c ż)ᵢ and (T_c,θ z)ᵢ: six dot products of length n_z in one pass
+        let (tc, tt) = (
+            |a| col_slice(self.tct, 3 * i + a),
+            |a| col_slice(self.tct_theta, 3 * i + a),
+        );
+        let (zd, z) = (self.zd_free, self.z_free);
+        let [vc, vt] = dots3x2([tc(0), tc(1), tc(2)], zd, [tt(0), tt(1), tt(2)], z);
+        let mut v = [0.0; 3];
+        for (a, va) in v.iter_mut().enumerate() {
+            *va = rig[a] + vc[a] + sf * vt[a] - self.gp[k].velocity[a];
+        }
+        let (t1, t2) = tangents(&self.gp[k].normal);
+        [dot3(&t1, &v), dot3(&t2, &v)]
+    }
+}
