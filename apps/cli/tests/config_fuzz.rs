@@ -9,6 +9,9 @@
 use drives::ancf_study::AncfStudyConfig;
 use drives::speed_loss_study::SpeedLossStudyConfig;
 use fe_model::generate::TireConfig;
+use flowmbd_cases::ancf_dynamics::{PendulumCase, SpinningCase};
+use flowmbd_cases::lin::beam::LinBeamConfig;
+use flowmbd_cases::lin::slab_sim::SlabSimConfig;
 use flowing::belt::BeltDriveConfig;
 use flowing::string_study::ModesConfig;
 use flowing::tire::RigConfig;
@@ -90,6 +93,11 @@ proptest! {
             &mutate(&to_toml(&SpeedLossStudyConfig::default()), pick, &value),
         )?;
         check::<ModesConfig>(&mutate(&to_toml(&ModesConfig::default()), pick, &value))?;
+        // issue 35: the beam and reduction cases validated in their library crate
+        check::<PendulumCase>(&mutate(&to_toml(&PendulumCase::default()), pick, &value))?;
+        check::<SpinningCase>(&mutate(&to_toml(&SpinningCase::default()), pick, &value))?;
+        check::<LinBeamConfig>(&mutate(&to_toml(&LinBeamConfig::default()), pick, &value))?;
+        check::<SlabSimConfig>(&mutate(&to_toml(&SlabSimConfig::default()), pick, &value))?;
     }
 }
 

@@ -133,12 +133,10 @@ impl Study for TireMesh {
             .node_set_dofs("rim", None)
             .map_err(|e| numerical("rim set", e))?;
         let text: String = rim.iter().map(|d| format!("{d}\n")).collect();
-        let p = ctx.out.path("rim_dofs.txt");
-        std::fs::write(
-            &p,
-            format!("# 0-based DOFs of the rim node set (bonded to the wheel)\n{text}"),
-        )
-        .map_err(|e| StudyError::numerical(format!("{}: {e}", p.display())))?;
+        ctx.out.write_text(
+            "rim_dofs.txt",
+            &format!("# 0-based DOFs of the rim node set (bonded to the wheel)\n{text}"),
+        )?;
         files.push("rim_dofs.txt".into());
         bar.set(4.0);
         bar.finish();

@@ -182,7 +182,7 @@ impl Study for SimulateStudy {
             c.duration,
             c.step,
             c.sample_every,
-            |t| bar.set(t),
+            |t| ctx.tick(&bar, t),
         )
         .map_err(study_error)?;
         bar.finish();

@@ -181,7 +181,10 @@ impl Study for SweepStudy {
             row.push(ra);
             row.push(rf);
             csv.row(&row)?;
-            bar.set((i + 1) as f64);
+            if ctx.tick(&bar, (i + 1) as f64).is_break() {
+                // interrupted: the speeds swept so far make the summary
+                break;
+            }
         }
         csv.finish()?;
         bar.finish();

@@ -413,6 +413,7 @@ impl Study for WrapStudy {
                 rows.push(row);
                 bar.set(st.t);
             }
+            ctx.cancel.check()
         });
         bar.finish();
         csv.finish()?;

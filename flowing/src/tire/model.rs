@@ -86,26 +86,13 @@ fn read_text(field: &'static str, path: &str) -> Result<String, TireError> {
 }
 
 fn read_indices(field: &'static str, path: &str) -> Result<Vec<usize>, TireError> {
-    let text = read_text(field, path)?;
-    let mut out = Vec::new();
-    for (ln, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') || line.starts_with('*') {
-            continue;
-        }
-        for tok in line
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|t| !t.is_empty())
-        {
-            out.push(tok.parse::<usize>().map_err(|_| {
-                import_err(
-                    field,
-                    format!("{path}:{}: `{tok}` is not a node index", ln + 1),
-                )
-            })?);
-        }
-    }
-    Ok(out)
+    // plain lists and ABAQUS `*NSET ... GENERATE` blocks, bounded (fe-model, issue 35)
+    let labels = fe_model::io::abaqus::read_node_set(path)
+        .map_err(|e| import_err(field, e.to_string()))?;
+    labels
+        .into_iter()
+        .map(|l| usize::try_from(l).map_err(|_| import_err(field, format!("{path}: label {l} too large"))))
+        .collect()
 }
 
 /// Node coordinates; with `labelled`, each line starts with the node label (returned too).
