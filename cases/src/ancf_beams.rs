@@ -114,6 +114,16 @@ pub(crate) fn check_section(length: f64, dims: &[(&str, f64)]) -> Result<(), Inv
     Ok(())
 }
 
+/// Range of Young's modulus \[Pa\] of the beam cases: from soft foams (kPa) to diamond
+/// (1.2·10¹² Pa) with margin (issue 35: `young = 1e-300` ran into a non-finite Newton
+/// residual, exit 1, instead of an input error).
+pub const YOUNG_RANGE: (f64, f64) = (1e3, 1e13);
+
+/// Young's modulus within [`YOUNG_RANGE`].
+pub(crate) fn check_young(young: f64) -> Result<(), InvalidField> {
+    check::within("young", young, YOUNG_RANGE.0, YOUNG_RANGE.1, "Pa")
+}
+
 /// `t_end / h ≤` [`MAX_TIME_STEPS`] (both positive), `h ≤ t_end`.
 pub(crate) fn check_time(t_end: f64, h: f64) -> Result<(), InvalidField> {
     check::positive("t_end", t_end, "s")?;
@@ -146,8 +156,11 @@ impl Validate for StaticBeamCase {
         check::positive("height", self.height, "m")?;
         check::positive("width", self.width, "m")?;
         check::positive("length", self.length, "m")?;
-        check_section(self.length, &[("height", self.height), ("width", self.width)])?;
-        check::positive("young", self.young, "Pa")?;
+        check_section(
+            self.length,
+            &[("height", self.height), ("width", self.width)],
+        )?;
+        check_young(self.young)?;
         check::non_negative("density", self.density, "kg/m³")
     }
 }
@@ -168,7 +181,11 @@ impl Validate for GroundContactCase {
         ] {
             check::positive(f, v, unit)?;
         }
-        check_section(self.length, &[("height", self.height), ("width", self.width)])?;
+        check_section(
+            self.length,
+            &[("height", self.height), ("width", self.width)],
+        )?;
+        check_young(self.young)?;
         check_poisson(self.nu)
     }
 }

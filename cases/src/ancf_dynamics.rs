@@ -3,7 +3,7 @@
 //! mbd-core's generalized-α method.
 
 use crate::ancf_beams::{
-    check_elements, check_poisson, check_rho_inf, check_section, check_time, invalid,
+    check_elements, check_poisson, check_rho_inf, check_section, check_time, check_young, invalid,
 };
 use ancf::AncfError;
 use ancf::beam_mesh::{BeamElementKind, beam_mesh};
@@ -14,9 +14,9 @@ use ancf::mesh::straight_coordinates;
 use ancf::section::Section;
 use ancf::system::{AncfSystem, Energies, Prescribed};
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Proceed, State};
-use std::ops::ControlFlow;
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
 /// Falling flexible pendulum (Kerkkänen §2.4, Fig. 2.5): `L = 2 m`, 0.1 m square section,
@@ -76,7 +76,7 @@ impl Validate for PendulumCase {
         check::positive("length", self.length, "m")?;
         check::positive("side", self.side, "m")?;
         check_section(self.length, &[("side", self.side)])?;
-        check::positive("young", self.young, "Pa")?;
+        check_young(self.young)?;
         // a massless pendulum has no dynamics: the mass matrix is singular (issue 35)
         check::positive("density", self.density, "kg/m³")?;
         check::finite("gravity", self.gravity)?;
@@ -274,6 +274,7 @@ impl Validate for SpinningCase {
             self.length,
             &[("width", self.width), ("height", self.height)],
         )?;
+        check_young(self.young)?;
         check_time(self.t_end, self.h)?;
         check_poisson(self.nu)?;
         check::finite("omega", self.omega)?;

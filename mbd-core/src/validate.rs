@@ -288,7 +288,12 @@ pub mod plausible {
         }
 
         /// Every value of `values` is finite and `≥ 0`.
-        pub fn all_non_negative(&mut self, quantity: &str, values: &[f64], what: &str) -> &mut Self {
+        pub fn all_non_negative(
+            &mut self,
+            quantity: &str,
+            values: &[f64],
+            what: &str,
+        ) -> &mut Self {
             for (i, v) in values.iter().enumerate() {
                 self.non_negative(&format!("{quantity}[{i}]"), *v, what);
             }
@@ -483,12 +488,7 @@ pub mod check {
     /// A time step `h` \[s\] (field `h_field`) no longer than the run `run` \[s\] (field
     /// `run_field`) it divides (issue 35: `h = 30` s with `t_end = 20` s ran one step past the
     /// end). Both are expected positive and finite (checked before).
-    pub fn step_fits(
-        h_field: &str,
-        h: f64,
-        run_field: &str,
-        run: f64,
-    ) -> Result<(), InvalidField> {
+    pub fn step_fits(h_field: &str, h: f64, run_field: &str, run: f64) -> Result<(), InvalidField> {
         if h <= run {
             Ok(())
         } else {

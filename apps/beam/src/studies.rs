@@ -9,8 +9,8 @@ use flowmbd_cases::ancf_dynamics::{self as dynamics, PendulumCase, Sample, Spinn
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use mbd_core::validate::plausible::Checks;
-use std::ops::ControlFlow;
 use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
 
 /// Library errors: invalid input → exit code 2, anything else → numerical failure (exit 1).
 fn study_error(e: AncfError) -> StudyError {
@@ -321,10 +321,8 @@ impl Study for Cantilever {
             &["x_m", "y_m"],
             line.iter().map(|p| [p[0], p[1]]),
         )?;
-        ctx.out.write_text(
-            "shape.vtk",
-            &vtk::polyline("cantilever centreline", &line),
-        )?;
+        ctx.out
+            .write_text("shape.vtk", &vtk::polyline("cantilever centreline", &line))?;
         LinePlot::new("Deformed cantilever (Kerkkänen Fig. 2.4)", "x [m]", "y [m]")
             .with(Series::line(
                 "centreline",
@@ -403,9 +401,14 @@ impl Study for Pendulum {
         ctx: &mut StudyContext,
     ) -> Result<PendulumSummary, StudyError> {
         let case = c.0;
-        let s = sampled_history(ctx, "pendulum", case.t_end, case.h, 2000.0, |every, tick| {
-            dynamics::pendulum(&case, every, tick)
-        })?;
+        let s = sampled_history(
+            ctx,
+            "pendulum",
+            case.t_end,
+            case.h,
+            2000.0,
+            |every, tick| dynamics::pendulum(&case, every, tick),
+        )?;
         write_history(
             ctx,
             &s,
@@ -592,12 +595,7 @@ impl Study for Spinning {
                     case.length,
                     "the beam's length",
                 )
-                .magnitude_at_most(
-                    "max_tip_offset_m",
-                    offset,
-                    case.length,
-                    "the beam's length",
-                );
+                .magnitude_at_most("max_tip_offset_m", offset, case.length, "the beam's length");
         })
     }
 }

@@ -13,7 +13,13 @@ use std::time::Duration;
 const EXE: &str = env!("CARGO_BIN_EXE_flowmbd-beam");
 
 /// The studies of the app.
-const STUDIES: &[&str] = &["simply-supported", "cantilever", "pendulum", "spinning", "ground-contact"];
+const STUDIES: &[&str] = &[
+    "simply-supported",
+    "cantilever",
+    "pendulum",
+    "spinning",
+    "ground-contact",
+];
 
 /// The mutations of `study`'s default configuration.
 fn study_mutations(study: &str) -> Vec<Mutation> {
@@ -85,5 +91,10 @@ fn mutated_configs_run_within_bounds() {
             let _ = std::fs::remove_dir_all(&dir);
         }
     }
-    assert!(report.is_empty(), "{} findings:\n{}", report.len(), report.join("\n"));
+    assert!(
+        report.is_empty(),
+        "{} findings:\n{}",
+        report.len(),
+        report.join("\n")
+    );
 }

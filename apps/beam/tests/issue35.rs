@@ -47,7 +47,10 @@ fn refused(study: &str, key: &str, value: &str, field: &str) {
     let (code, _, err) = run(&[study, "--config", f.to_str().unwrap(), "--print-config"]);
     assert_eq!(code, 2, "{study} {key} = {value}: {err}");
     assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(err.contains(&format!("{field}: ")), "{study} {key} = {value}: {err}");
+    assert!(
+        err.contains(&format!("{field}: ")),
+        "{study} {key} = {value}: {err}"
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -191,12 +194,14 @@ fn a_new_run_clears_the_previous_runs_outputs() {
     let (code, _, err) = run(&["simply-supported", "--quiet", "--out", o]);
     assert_eq!(code, 0, "{err}");
     for stale in ["shape.vtk", "shape.png", "shape.svg", "shape.csv"] {
-        assert!(!out.join(stale).exists(), "{stale} left from the earlier run");
+        assert!(
+            !out.join(stale).exists(),
+            "{stale} left from the earlier run"
+        );
     }
     assert!(out.join("notes.txt").exists(), "files of others are kept");
     let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["complete"], true);
     let files: Vec<&str> = summary["outputs"]
         .as_array()

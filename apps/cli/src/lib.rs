@@ -18,11 +18,11 @@
 //!   marked incomplete (exit 130 / 143).
 
 pub mod args;
-pub mod mutation;
 pub mod cancel;
 pub mod config;
 pub mod error;
 pub mod files;
+pub mod mutation;
 pub mod output;
 pub mod plot;
 pub mod progress;

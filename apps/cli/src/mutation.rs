@@ -60,7 +60,11 @@ pub fn mutations(text: &str) -> Vec<Mutation> {
         return Vec::new();
     };
     let mut leaves = Vec::new();
-    collect(&toml::Value::Table(root.clone()), &mut Vec::new(), &mut leaves);
+    collect(
+        &toml::Value::Table(root.clone()),
+        &mut Vec::new(),
+        &mut leaves,
+    );
     let mut out = Vec::new();
     for (path, value) in leaves {
         let mut edit = |what: String, new: Option<toml::Value>| {
@@ -91,7 +95,10 @@ pub fn mutations(text: &str) -> Vec<Mutation> {
                 for v in STRINGS {
                     edit(v.to_string(), literal(v));
                 }
-                edit("long string".into(), Some(toml::Value::String(s.repeat(200))));
+                edit(
+                    "long string".into(),
+                    Some(toml::Value::String(s.repeat(200))),
+                );
             }
             toml::Value::Boolean(_) => edit("1".into(), literal("1")),
             toml::Value::Array(a) => {
@@ -246,7 +253,9 @@ pub fn run_case(exe: &str, study: &str, text: &str, scratch: &Path, mode: Mode) 
     let start = Instant::now();
     let child = Command::new("sh")
         .arg("-c")
-        .arg(format!("ulimit -v {MEMORY_LIMIT_KIB} 2>/dev/null; exec \"$0\" \"$@\""))
+        .arg(format!(
+            "ulimit -v {MEMORY_LIMIT_KIB} 2>/dev/null; exec \"$0\" \"$@\""
+        ))
         .arg(exe)
         .args(&args)
         .stdin(Stdio::null())
@@ -329,10 +338,22 @@ mod tests {
     fn mutations_change_one_thing_each() {
         let base = "a = 1.5\nname = \"x\"\nlist = [1, 2]\n[t]\nn = 3\n";
         let m = mutations(base);
-        assert!(m.iter().any(|x| x.what == "a: nan" && x.text.contains("a = nan")));
-        assert!(m.iter().any(|x| x.what == "t.n: dropped" && !x.text.contains("n = ")));
-        assert!(m.iter().any(|x| x.what == "list: []" && x.text.contains("list = []")));
-        assert!(m.iter().any(|x| x.what == "t: a number" && x.text.contains("t = 1")));
+        assert!(
+            m.iter()
+                .any(|x| x.what == "a: nan" && x.text.contains("a = nan"))
+        );
+        assert!(
+            m.iter()
+                .any(|x| x.what == "t.n: dropped" && !x.text.contains("n = "))
+        );
+        assert!(
+            m.iter()
+                .any(|x| x.what == "list: []" && x.text.contains("list = []"))
+        );
+        assert!(
+            m.iter()
+                .any(|x| x.what == "t: a number" && x.text.contains("t = 1"))
+        );
         for x in &m {
             assert!(toml::from_str::<toml::Table>(&x.text).is_ok(), "{}", x.what);
         }

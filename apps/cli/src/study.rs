@@ -514,7 +514,10 @@ mod tests {
             .iter()
             .filter_map(|f| f.as_str())
             .collect();
-        assert!(files.contains(&"h.csv") && files.contains(&"config.toml"), "{files:?}");
+        assert!(
+            files.contains(&"h.csv") && files.contains(&"config.toml"),
+            "{files:?}"
+        );
         // no temporary file left behind
         let parts: Vec<_> = std::fs::read_dir(&dir)
             .unwrap()

@@ -9,12 +9,12 @@
 use drives::ancf_study::AncfStudyConfig;
 use drives::speed_loss_study::SpeedLossStudyConfig;
 use fe_model::generate::TireConfig;
-use flowmbd_cases::ancf_dynamics::{PendulumCase, SpinningCase};
-use flowmbd_cases::lin::beam::LinBeamConfig;
-use flowmbd_cases::lin::slab_sim::SlabSimConfig;
 use flowing::belt::BeltDriveConfig;
 use flowing::string_study::ModesConfig;
 use flowing::tire::RigConfig;
+use flowmbd_cases::ancf_dynamics::{PendulumCase, SpinningCase};
+use flowmbd_cases::lin::beam::LinBeamConfig;
+use flowmbd_cases::lin::slab_sim::SlabSimConfig;
 use flowmbd_cli::config::{parse_config, to_toml};
 use flowmbd_cli::{CliError, Validate};
 use proptest::prelude::*;

@@ -310,7 +310,10 @@ fn run_inner(a: &Args, c: &ReduceConfig) -> Result<Summary, Failure> {
         massless_dofs_allowed: true,
     };
     let warnings = check_stiffness_mass(k.as_ref(), m.as_ref(), &checks).map_err(|e| {
-        Failure::Input(format!("--stiffness {} / --mass {}: {e}", c.stiffness, c.mass))
+        Failure::Input(format!(
+            "--stiffness {} / --mass {}: {e}",
+            c.stiffness, c.mass
+        ))
     })?;
     if !a.quiet {
         for w in warnings {

@@ -85,5 +85,10 @@ fn mutated_configs_run_within_bounds() {
             let _ = std::fs::remove_dir_all(&dir);
         }
     }
-    assert!(report.is_empty(), "{} findings:\n{}", report.len(), report.join("\n"));
+    assert!(
+        report.is_empty(),
+        "{} findings:\n{}",
+        report.len(),
+        report.join("\n")
+    );
 }

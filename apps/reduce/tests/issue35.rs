@@ -78,13 +78,23 @@ fn lin_slab_refuses_endless_runs() {
     let f = config_with(&dir, "lin-slab", "step_s", "1e-15");
     let t0 = Instant::now();
     let o = bin()
-        .args(["lin-slab", "--config", f.to_str().unwrap(), "--print-config"])
+        .args([
+            "lin-slab",
+            "--config",
+            f.to_str().unwrap(),
+            "--print-config",
+        ])
         .output()
         .unwrap();
     bad_input(&o, t0, &["params.step_s", "--allow-large"]);
     let f = config_with(&dir, "lin-slab", "step_s", "2.0");
     let o = bin()
-        .args(["lin-slab", "--config", f.to_str().unwrap(), "--print-config"])
+        .args([
+            "lin-slab",
+            "--config",
+            f.to_str().unwrap(),
+            "--print-config",
+        ])
         .output()
         .unwrap();
     bad_input(&o, t0, &["params.step_s", "longer than the run"]);
@@ -112,7 +122,14 @@ fn huge_mode_counts_are_refused_before_reading() {
 fn reduce_prints_and_reads_its_configuration() {
     let dir = tmp("i35", "printcfg");
     let o = bin()
-        .args(["reduce", "--method", "guyan", "--boundary", "1-3", "--print-config"])
+        .args([
+            "reduce",
+            "--method",
+            "guyan",
+            "--boundary",
+            "1-3",
+            "--print-config",
+        ])
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
@@ -166,7 +183,14 @@ fn matrix_files_are_bounded_before_reading() {
     mtx(&huge, "3000000000 3000000000 1", "1 1 1.0");
     let t0 = Instant::now();
     let o = bin()
-        .args(["reduce", "--boundary", "1", "--dofs-per-node", "1", "--allow-large"])
+        .args([
+            "reduce",
+            "--boundary",
+            "1",
+            "--dofs-per-node",
+            "1",
+            "--allow-large",
+        ])
         .arg("--mass")
         .arg(&good)
         .arg("--stiffness")

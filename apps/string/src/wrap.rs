@@ -115,6 +115,15 @@ impl Validate for WrapConfig {
                 ));
             }
             check_number(&format!("pulleys[{i}].top"), p.top, false)?;
+            // the string model is one of small deflections (issue 35: top = 1e300 m ran into a
+            // step size underflow, exit 1)
+            mbd_core::validate::check::within(
+                &format!("pulleys[{i}].top"),
+                p.top,
+                -self.string.length,
+                self.string.length,
+                "m (within the string's length of its line: small deflections)",
+            )?;
             if !(self.candidate_half_width > 0.0 && self.candidate_half_width < p.radius) {
                 return Err(InputError::new(
                     "candidate_half_width",

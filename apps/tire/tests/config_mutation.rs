@@ -13,7 +13,15 @@ use std::time::Duration;
 const EXE: &str = env!("CARGO_BIN_EXE_flowmbd-tire");
 
 /// The studies of the app.
-const STUDIES: &[&str] = &["modes", "reduce", "cleat", "sweep", "pressure", "rotating-modes", "dips"];
+const STUDIES: &[&str] = &[
+    "modes",
+    "reduce",
+    "cleat",
+    "sweep",
+    "pressure",
+    "rotating-modes",
+    "dips",
+];
 
 /// The mutations of `study`'s default configuration.
 fn study_mutations(study: &str) -> Vec<Mutation> {
@@ -85,5 +93,10 @@ fn mutated_configs_run_within_bounds() {
             let _ = std::fs::remove_dir_all(&dir);
         }
     }
-    assert!(report.is_empty(), "{} findings:\n{}", report.len(), report.join("\n"));
+    assert!(
+        report.is_empty(),
+        "{} findings:\n{}",
+        report.len(),
+        report.join("\n")
+    );
 }

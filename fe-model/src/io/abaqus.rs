@@ -74,21 +74,43 @@ pub fn parse(text: &str, file: &str) -> Result<AbaqusEntries, FeError> {
             ));
         }
         let node = |s: &str| -> Result<u64, FeError> {
-            s.parse()
-                .map_err(|_| err(file, ln, E::Syntax(format!("`{}` is not a node label", mbd_core::validate::escape(s)))))
+            s.parse().map_err(|_| {
+                err(
+                    file,
+                    ln,
+                    E::Syntax(format!(
+                        "`{}` is not a node label",
+                        mbd_core::validate::escape(s)
+                    )),
+                )
+            })
         };
         let dof = |s: &str| -> Result<u32, FeError> {
-            let d: u32 = s
-                .parse()
-                .map_err(|_| err(file, ln, E::Syntax(format!("`{}` is not a DOF number", mbd_core::validate::escape(s)))))?;
+            let d: u32 = s.parse().map_err(|_| {
+                err(
+                    file,
+                    ln,
+                    E::Syntax(format!(
+                        "`{}` is not a DOF number",
+                        mbd_core::validate::escape(s)
+                    )),
+                )
+            })?;
             if d == 0 {
                 return Err(err(file, ln, E::Syntax("DOF numbers start at 1".into())));
             }
             Ok(d)
         };
-        let v: f64 = f[4]
-            .parse()
-            .map_err(|_| err(file, ln, E::Syntax(format!("`{}` is not a number", mbd_core::validate::escape(f[4])))))?;
+        let v: f64 = f[4].parse().map_err(|_| {
+            err(
+                file,
+                ln,
+                E::Syntax(format!(
+                    "`{}` is not a number",
+                    mbd_core::validate::escape(f[4])
+                )),
+            )
+        })?;
         if !v.is_finite() {
             return Err(err(
                 file,

@@ -87,11 +87,14 @@ fn read_text(field: &'static str, path: &str) -> Result<String, TireError> {
 
 fn read_indices(field: &'static str, path: &str) -> Result<Vec<usize>, TireError> {
     // plain lists and ABAQUS `*NSET ... GENERATE` blocks, bounded (fe-model, issue 35)
-    let labels = fe_model::io::abaqus::read_node_set(path)
-        .map_err(|e| import_err(field, e.to_string()))?;
+    let labels =
+        fe_model::io::abaqus::read_node_set(path).map_err(|e| import_err(field, e.to_string()))?;
     labels
         .into_iter()
-        .map(|l| usize::try_from(l).map_err(|_| import_err(field, format!("{path}: label {l} too large"))))
+        .map(|l| {
+            usize::try_from(l)
+                .map_err(|_| import_err(field, format!("{path}: label {l} too large")))
+        })
         .collect()
 }
 

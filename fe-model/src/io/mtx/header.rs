@@ -171,7 +171,11 @@ pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, F
     let bytes = match format {
         Format::Coordinate => {
             let entries = (d[2] as f64).min(body / 6.0 + 1.0);
-            let mirror = if symmetry == Symmetry::Symmetric { 2.0 } else { 1.0 };
+            let mirror = if symmetry == Symmetry::Symmetric {
+                2.0
+            } else {
+                1.0
+            };
             8.0 * (ncols as f64 + 1.0) + entries * mirror * 40.0
         }
         Format::Array => {
@@ -183,7 +187,10 @@ pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, F
         err(
             file,
             ln,
-            E::Size(format!("{nrows}×{ncols} with {} entries {}", d[2], e.reason)),
+            E::Size(format!(
+                "{nrows}×{ncols} with {} entries {}",
+                d[2], e.reason
+            )),
         )
     })?;
     Ok(Header {
