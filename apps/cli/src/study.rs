@@ -114,6 +114,15 @@ pub trait Study {
         String::new()
     }
 
+    /// Whether every number of the summary must be finite: the runner then turns a NaN or an
+    /// infinity anywhere in it ([`non_finite_fields`]) into a numerical failure (exit 1,
+    /// `implausible result FIELD`, the summary kept as `"partial"`) instead of writing it as
+    /// `null` (issue 35, item 5). On in `flowmbd-beam`, `-string` and `-reduce`; a study whose
+    /// summary holds NaN on purpose (a quantity that does not apply) keeps the default `false`.
+    fn results_must_be_finite(&self) -> bool {
+        false
+    }
+
     /// Run the study. Write histories into `ctx.out` as they are computed.
     fn run(
         &self,
@@ -230,7 +239,11 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
         out.write_json("summary.json", &v)
     };
     let result = study.run(&config, &mut ctx).and_then(|summary| {
-        let bad = non_finite_fields(&summary);
+        let bad = if study.results_must_be_finite() {
+            non_finite_fields(&summary)
+        } else {
+            Vec::new()
+        };
         if !cancel.is_cancelled()
             && let Some(first) = bad.first()
         {
@@ -250,11 +263,10 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
     });
     match result {
         Ok(summary) => {
-            let mut summary =
-                with_meaning(&summary, study.meaning()).map_err(|e| CliError::Write {
-                    path: out.path("summary.json"),
-                    message: e.to_string(),
-                })?;
+            let summary = with_meaning(&summary, study.meaning()).map_err(|e| CliError::Write {
+                path: out.path("summary.json"),
+                message: e.to_string(),
+            })?;
             if cancel.is_cancelled() {
                 unfinished(
                     "interrupted",
@@ -265,7 +277,10 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
                     out: out.root().to_path_buf(),
                 });
             }
-            if let serde_json::Value::Object(m) = &mut summary {
+            // summary.json says the run completed and lists its files; `--json` prints the
+            // study's summary alone
+            let mut file_summary = summary.clone();
+            if let serde_json::Value::Object(m) = &mut file_summary {
                 m.insert("complete".into(), true.into());
                 m.insert("status".into(), "complete".into());
                 let mut files = out.files();
@@ -274,7 +289,7 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
                 }
                 m.insert("outputs".into(), files.into());
             }
-            let path = out.write_json("summary.json", &summary)?;
+            let path = out.write_json("summary.json", &file_summary)?;
             if args.json {
                 let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Write {
                     path: path.clone(),
