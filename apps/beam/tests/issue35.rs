@@ -119,7 +119,7 @@ fn device_configs_are_refused_before_reading() {
 /// Start `args`, wait until `ready` exists (the run is stepping), send `signal`, and return
 /// the exit code and stderr.
 fn interrupt(args: &[&str], ready: &Path, signal: &str) -> (i32, String) {
-    let mut child = Command::new(EXE)
+    let child = Command::new(EXE)
         .args(args)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())

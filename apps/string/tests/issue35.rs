@@ -44,7 +44,7 @@ fn an_interrupted_simulation_is_marked_incomplete() {
     let cfg = dir.join("long.toml");
     std::fs::write(&cfg, text).unwrap();
     let out = dir.join("out");
-    let mut child = Command::new(EXE)
+    let child = Command::new(EXE)
         .args(["simulate", "--quiet", "--config", cfg.to_str().unwrap()])
         .arg("--out")
         .arg(&out)
