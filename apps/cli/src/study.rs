@@ -161,6 +161,7 @@ pub fn run_study<S: Study>(study: &S, args: &CommonArgs) -> ExitCode {
 }
 
 /// How a run ended without error.
+#[derive(Debug)]
 enum Outcome {
     Done,
     Interrupted { out: std::path::PathBuf },
