@@ -234,7 +234,8 @@ pub fn parse_node_set(text: &str, file: &str) -> Result<Vec<u64>, FeError> {
     Ok(out)
 }
 
-/// Read a node-set file ([`parse_node_set`]; a bounded read, [`super::read_text`]).
+/// Read a node-set file ([`parse_node_set`]; a bounded read: a regular file within
+/// [`super::MAX_INPUT_BYTES`]).
 pub fn read_node_set(path: impl AsRef<Path>) -> Result<Vec<u64>, FeError> {
     let (name, text) = super::read_text(path.as_ref())?;
     parse_node_set(&text, &name)
