@@ -94,10 +94,41 @@ pub(crate) fn check_elements(n: usize) -> Result<(), InvalidField> {
     check::size("elements", n, 1, MAX_BEAM_ELEMENTS)
 }
 
-/// `t_end / h ≤` [`MAX_TIME_STEPS`] (both positive).
+/// Smallest section dimension of a beam relative to its length: `10⁻⁶ L` (issue 35: a width
+/// of `1e-300` m made the stiffness underflow against the load, and the deflection came back
+/// as NaN).
+pub const MIN_SECTION_RATIO: f64 = 1e-6;
+
+/// Section dimensions `dims` (field, value \[m\]) of a beam of `length` \[m\] within
+/// `[`[`MIN_SECTION_RATIO`]` L, L]`: a slender body, the assumption of the beam elements.
+pub(crate) fn check_section(length: f64, dims: &[(&str, f64)]) -> Result<(), InvalidField> {
+    for &(field, v) in dims {
+        check::within(
+            field,
+            v,
+            MIN_SECTION_RATIO * length,
+            length,
+            "m (a beam section between 1e-6 and 1 times its length)",
+        )?;
+    }
+    Ok(())
+}
+
+/// Range of Young's modulus \[Pa\] of the beam cases: from soft foams (kPa) to diamond
+/// (1.2·10¹² Pa) with margin (issue 35: `young = 1e-300` ran into a non-finite Newton
+/// residual, exit 1, instead of an input error).
+pub const YOUNG_RANGE: (f64, f64) = (1e3, 1e13);
+
+/// Young's modulus within [`YOUNG_RANGE`].
+pub(crate) fn check_young(young: f64) -> Result<(), InvalidField> {
+    check::within("young", young, YOUNG_RANGE.0, YOUNG_RANGE.1, "Pa")
+}
+
+/// `t_end / h ≤` [`MAX_TIME_STEPS`] (both positive), `h ≤ t_end`.
 pub(crate) fn check_time(t_end: f64, h: f64) -> Result<(), InvalidField> {
     check::positive("t_end", t_end, "s")?;
     check::positive("h", h, "s")?;
+    check::step_fits("h", h, "t_end", t_end)?;
     let max = mbd_core::validate::limits::ceiling(MAX_TIME_STEPS);
     if t_end / h > max {
         return Err(InvalidField::new(
@@ -125,7 +156,11 @@ impl Validate for StaticBeamCase {
         check::positive("height", self.height, "m")?;
         check::positive("width", self.width, "m")?;
         check::positive("length", self.length, "m")?;
-        check::positive("young", self.young, "Pa")?;
+        check_section(
+            self.length,
+            &[("height", self.height), ("width", self.width)],
+        )?;
+        check_young(self.young)?;
         check::non_negative("density", self.density, "kg/m³")
     }
 }
@@ -146,6 +181,11 @@ impl Validate for GroundContactCase {
         ] {
             check::positive(f, v, unit)?;
         }
+        check_section(
+            self.length,
+            &[("height", self.height), ("width", self.width)],
+        )?;
+        check_young(self.young)?;
         check_poisson(self.nu)
     }
 }

@@ -2,7 +2,9 @@
 //! and the spinning beam with centrifugal stiffening (Figs 2.9–2.11, Wu & Haug) — integrated by
 //! mbd-core's generalized-α method.
 
-use crate::ancf_beams::{check_elements, check_poisson, check_rho_inf, check_time, invalid};
+use crate::ancf_beams::{
+    check_elements, check_poisson, check_rho_inf, check_section, check_time, check_young, invalid,
+};
 use ancf::AncfError;
 use ancf::beam_mesh::{BeamElementKind, beam_mesh};
 use ancf::element::{Element, OmarShabanaBeam, ProposedBeam};
@@ -11,9 +13,10 @@ use ancf::mesh::Mesh;
 use ancf::mesh::straight_coordinates;
 use ancf::section::Section;
 use ancf::system::{AncfSystem, Energies, Prescribed};
-use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Proceed, State};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
 /// Falling flexible pendulum (Kerkkänen §2.4, Fig. 2.5): `L = 2 m`, 0.1 m square section,
@@ -72,7 +75,11 @@ impl Validate for PendulumCase {
         check_elements(self.elements)?;
         check::positive("length", self.length, "m")?;
         check::positive("side", self.side, "m")?;
-        check::positive("young", self.young, "Pa")?;
+        check_section(self.length, &[("side", self.side)])?;
+        check_young(self.young)?;
+        // a massless pendulum has no dynamics: the mass matrix is singular (issue 35)
+        check::positive("density", self.density, "kg/m³")?;
+        check::finite("gravity", self.gravity)?;
         check_time(self.t_end, self.h)?;
         check_poisson(self.nu)?;
         check_rho_inf(self.rho_inf)
@@ -107,6 +114,15 @@ fn alpha(h: f64, rho_inf: f64) -> GeneralizedAlpha {
     })
 }
 
+/// `Continue` or `Break` for an observer.
+fn flow(go_on: bool) -> ControlFlow<()> {
+    if go_on {
+        ControlFlow::Continue(())
+    } else {
+        ControlFlow::Break(())
+    }
+}
+
 fn check_run(h: f64, t_end: f64, every: usize) -> Result<(), AncfError> {
     if !(h.is_finite() && h > 0.0) {
         return Err(invalid("h", format!("step must be > 0 s, got {h}")));
@@ -121,10 +137,12 @@ fn check_run(h: f64, t_end: f64, every: usize) -> Result<(), AncfError> {
 }
 
 /// Run the falling pendulum; `every`-th step is recorded (the initial state always).
-pub fn pendulum(
+/// `progress` gets the fraction done at every sample; answering `ControlFlow::Break(())`
+/// ([`mbd_core::integrators::Proceed`]) stops the run there, returning the samples so far.
+pub fn pendulum<R: Proceed>(
     case: &PendulumCase,
     every: usize,
-    progress: impl FnMut(f64),
+    progress: impl FnMut(f64) -> R,
 ) -> Result<Vec<Sample>, AncfError> {
     check_run(case.h, case.t_end, every)?;
     let mat = Material::new(case.young, case.nu, case.density)?;
@@ -145,11 +163,11 @@ pub fn pendulum(
     }
 }
 
-fn pendulum_run<E: Element>(
+fn pendulum_run<E: Element, R: Proceed>(
     case: &PendulumCase,
     mesh: Mesh<E>,
     every: usize,
-    mut progress: impl FnMut(f64),
+    mut progress: impl FnMut(f64) -> R,
 ) -> Result<Vec<Sample>, AncfError> {
     let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [case.length, 0.0], case.elements);
     let pins = vec![
@@ -175,11 +193,13 @@ fn pendulum_run<E: Element>(
         });
     };
     alpha(case.h, case.rho_inf).integrate(&sys, State::new(0.0, q0, v0), case.t_end, |st| {
+        let mut go_on = true;
         if k.is_multiple_of(every) || st.t >= case.t_end - 1e-12 {
             record(st, &mut out);
-            progress(st.t / case.t_end);
+            go_on = progress(st.t / case.t_end).proceed();
         }
         k += 1;
+        flow(go_on)
     })?;
     Ok(out)
 }
@@ -250,9 +270,30 @@ impl Validate for SpinningCase {
         ] {
             check::positive(f, v, unit)?;
         }
+        check_section(
+            self.length,
+            &[("width", self.width), ("height", self.height)],
+        )?;
+        check_young(self.young)?;
         check_time(self.t_end, self.h)?;
         check_poisson(self.nu)?;
         check::finite("omega", self.omega)?;
+        // (2.37) holds below the first critical speed a L = π/2, where the steady extension
+        // grows without bound; above it the linear bar has no steady state (issue 35: omega =
+        // 1e5 gave an extension of -8 m)
+        let critical = spinning_critical_speed(self.length, self.density, self.young);
+        if self.omega.abs() >= critical {
+            return Err(InvalidField::new(
+                "omega",
+                format!(
+                    "{} rad/s is at or above the critical speed {} rad/s \
+                     (pi/(2L) sqrt(E/rho), Kerkkanen (2.37)), where the centrifugal \
+                     extension grows without bound",
+                    check::show(self.omega),
+                    check::show(critical)
+                ),
+            ));
+        }
         check_rho_inf(self.rho_inf)
     }
 }
@@ -272,6 +313,12 @@ pub fn hub_angle(t: f64, omega: f64, ts: f64) -> [f64; 3] {
     }
 }
 
+/// The speed \[rad/s\] at which the steady extension (2.37) of a bar spinning about one end
+/// grows without bound: `a L = π/2`, `ω_c = π/(2L) √(E/ρ)` (Kerkkänen (2.36)–(2.37)).
+pub fn spinning_critical_speed(length: f64, density: f64, young: f64) -> f64 {
+    std::f64::consts::FRAC_PI_2 / length * (young / density).sqrt()
+}
+
 /// Steady axial extension of a bar spinning at `ω` \[rad/s\], Kerkkänen (2.36)–(2.37):
 /// `u_x = l (tan(al)/(al) − 1)`, `a = ω √(ρA/EA)`.
 pub fn spinning_extension(length: f64, density: f64, young: f64, omega: f64) -> f64 {
@@ -281,10 +328,11 @@ pub fn spinning_extension(length: f64, density: f64, young: f64, omega: f64) -> 
 
 /// Run the spinning beam; `value` of each sample is the axial extension (sum of the nodal chord
 /// lengths minus `L`) \[m\], `value2` the tip's transverse offset from the rigid shadow beam \[m\].
-pub fn spinning(
+/// `progress` as for [`pendulum`] (a `Break` stops the run, keeping the samples so far).
+pub fn spinning<R: Proceed>(
     case: &SpinningCase,
     every: usize,
-    mut progress: impl FnMut(f64),
+    mut progress: impl FnMut(f64) -> R,
 ) -> Result<Vec<Sample>, AncfError> {
     check_run(case.h, case.t_end, every)?;
     if case.spin_up.is_nan() || case.spin_up <= 0.0 {
@@ -331,6 +379,7 @@ pub fn spinning(
     let mut k = 0usize;
     let l = case.length;
     alpha(case.h, case.rho_inf).integrate(&sys, State::new(0.0, q0, v0), case.t_end, |st| {
+        let mut go_on = true;
         if k.is_multiple_of(every) || st.t >= case.t_end - 1e-12 {
             let m = sys.mesh();
             let chord: f64 = (0..n)
@@ -350,9 +399,10 @@ pub fn spinning(
                 value: chord - l,
                 value2: -s * tip[0] + c * tip[1],
             });
-            progress(st.t / case.t_end);
+            go_on = progress(st.t / case.t_end).proceed();
         }
         k += 1;
+        flow(go_on)
     })?;
     Ok(out)
 }

@@ -48,6 +48,53 @@ fn implausible(matrix: &str, reason: String) -> FeError {
     }
 }
 
+/// Relative tolerance of [`check_symmetric`]: `|a_ij − a_ji| ≤ 10⁻⁸ max|A|` (the
+/// rounding of an exported matrix, far below any physical asymmetry).
+pub const SYMMETRY_TOL: f64 = 1e-8;
+
+/// `Ok` when `a` (named `matrix` in the error) is symmetric to [`SYMMETRY_TOL`]; otherwise
+/// [`FeError::Implausible`] naming the first pair of mirrored entries that differ (1-based).
+/// A stiffness or mass matrix is symmetric (Maxwell–Betti reciprocity; Géradin & Rixen §2.3);
+/// a reduction of a non-symmetric one is silently wrong (issue 35).
+pub fn check_symmetric(matrix: &str, a: SparseColMatRef<'_, usize, f64>) -> Result<(), FeError> {
+    use std::collections::HashMap;
+    let mut entries: HashMap<(usize, usize), f64> = HashMap::new();
+    let mut max = 0.0f64;
+    for (r, c, v) in triplets(a) {
+        *entries.entry((r, c)).or_insert(0.0) += v;
+        max = max.max(v.abs());
+    }
+    let tol = SYMMETRY_TOL * max;
+    let mut worst: Option<(usize, usize, f64, f64)> = None;
+    for (&(r, c), &v) in &entries {
+        if r < c {
+            continue;
+        }
+        let w = entries.get(&(c, r)).copied().unwrap_or(0.0);
+        if (v - w).abs() > tol && worst.is_none_or(|x| (v - w).abs() > (x.2 - x.3).abs()) {
+            worst = Some((r, c, v, w));
+        }
+    }
+    for (&(r, c), &v) in &entries {
+        if r < c && !entries.contains_key(&(c, r)) && v.abs() > tol && worst.is_none() {
+            worst = Some((r, c, v, 0.0));
+        }
+    }
+    match worst {
+        None => Ok(()),
+        Some((r, c, v, w)) => Err(implausible(
+            matrix,
+            format!(
+                "not symmetric: entry ({}, {}) = {v:e} but ({}, {}) = {w:e}",
+                r + 1,
+                c + 1,
+                c + 1,
+                r + 1
+            ),
+        )),
+    }
+}
+
 /// Check K and M (module documentation); returns warnings (one line each) or the first error
 /// as [`FeError::Implausible`] naming the matrix and the DOFs (1-based rows).
 pub fn check_stiffness_mass(

@@ -552,13 +552,15 @@ fn kinetic(sys: &ContactString, v: &[f64]) -> f64 {
 /// Integrates the wrapped string from `state0` to `t_end` \[s\] with Dormand–Prince and event
 /// location (mbd-core), switching the active set at every located event (activation with a
 /// plastic impact, release on a tensile multiplier). `observer` sees every accepted step and
-/// event state together with the active set in force.
-pub fn simulate_contact(
+/// event state together with the active set in force; it may answer `ControlFlow::Break(())`
+/// ([`mbd_core::integrators::Proceed`]) to stop the run there (a cancelled run: the run so far
+/// is returned).
+pub fn simulate_contact<R: mbd_core::integrators::Proceed>(
     sys: &mut ContactString,
     state0: State,
     t_end: f64,
     settings: &ContactConfig,
-    mut observer: impl FnMut(&ContactString, &State),
+    mut observer: impl FnMut(&ContactString, &State) -> R,
 ) -> Result<ContactRun, FlowError> {
     let stab = Stabilization {
         project: true,
@@ -619,12 +621,22 @@ pub fn simulate_contact(
                 }
             })
             .collect();
+        let mut stop = false;
         let sol = dopri.integrate_with_events(&snapshot, state.clone(), t_end, &evs, |st| {
-            observer(&snapshot, st)
+            let go_on = observer(&snapshot, st).proceed();
+            stop |= !go_on;
+            if go_on {
+                std::ops::ControlFlow::Continue(())
+            } else {
+                std::ops::ControlFlow::Break(())
+            }
         })?;
         drop(evs);
         stats.accumulate(&sol.stats);
         state = sol.state;
+        if stop {
+            break;
+        }
         let Some(rec) = sol.events.first() else { break };
         if events.len() >= settings.max_events {
             return Err(FlowError::Mbd(MbdError::Model {

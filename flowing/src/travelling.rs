@@ -387,15 +387,16 @@ pub struct TimeHistory {
 
 /// Integrates `sys` from `(q0, v0)` at t = 0 to `t_end` \[s\] with mbd-core's fixed-step RK4 of
 /// step `h` \[s\], keeping every `every`-th step (sampling period `every · h`). `progress` sees the
-/// current time.
-pub fn simulate_rk4(
+/// current time at every kept sample; answering `ControlFlow::Break(())` stops the run there,
+/// returning the samples so far (a cancelled run).
+pub fn simulate_rk4<R: mbd_core::integrators::Proceed>(
     sys: &FlowingString,
     q0: Vec<f64>,
     v0: Vec<f64>,
     t_end: f64,
     h: f64,
     every: usize,
-    mut progress: impl FnMut(f64),
+    mut progress: impl FnMut(f64) -> R,
 ) -> Result<TimeHistory, FlowError> {
     if every == 0 {
         return Err(invalid("sampling", "every must be at least 1"));
@@ -403,13 +404,19 @@ pub fn simulate_rk4(
     let mut hist = TimeHistory::default();
     let mut count = 0usize;
     mbd_core::Rk4::new(h).integrate(sys, mbd_core::State::new(0.0, q0, v0), t_end, |s| {
+        let mut go_on = true;
         if count.is_multiple_of(every) {
             hist.t.push(s.t);
             hist.q.push(s.q.clone());
             hist.v.push(s.v.clone());
-            progress(s.t);
+            go_on = progress(s.t).proceed();
         }
         count += 1;
+        if go_on {
+            std::ops::ControlFlow::Continue(())
+        } else {
+            std::ops::ControlFlow::Break(())
+        }
     })?;
     Ok(hist)
 }

@@ -1,6 +1,7 @@
 //! TOML configuration reader of the apps (`flowmbd_cli::config::parse_config`) on the real
 //! configurations (belt drive, tire rig, generated tire, the library study configurations of
-//! the ANCF drive, speed loss and string modes): a configuration or a one-line error naming a
+//! the ANCF drive, speed loss and string modes; Kerkkänen's dynamic beam cases and Lin's beam
+//! and slab of `flowmbd-beam` / `flowmbd-reduce`, issue 35): a configuration or a one-line error naming a
 //! line inside the file; parsed configurations are validated without panicking. The same
 //! bodies run as property tests in `apps/cli/tests/config_fuzz.rs`.
 #![no_main]
@@ -8,6 +9,9 @@ use drives::ancf_study::AncfStudyConfig;
 use drives::speed_loss_study::SpeedLossStudyConfig;
 use fe_model::generate::TireConfig;
 use drives::fead::FeadConfig;
+use flowmbd_cases::ancf_dynamics::{PendulumCase, SpinningCase};
+use flowmbd_cases::lin::beam::LinBeamConfig;
+use flowmbd_cases::lin::slab_sim::SlabSimConfig;
 use flowing::string_study::ModesConfig;
 use tire::RigConfig;
 use flowmbd_cli::Validate;
@@ -32,5 +36,9 @@ fuzz_target!(|data: &[u8]| {
         check::<AncfStudyConfig>(text);
         check::<SpeedLossStudyConfig>(text);
         check::<ModesConfig>(text);
+        check::<PendulumCase>(text);
+        check::<SpinningCase>(text);
+        check::<LinBeamConfig>(text);
+        check::<SlabSimConfig>(text);
     }
 });

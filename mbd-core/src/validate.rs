@@ -122,12 +122,216 @@ pub mod limits {
         }
     }
 
+    /// Bytes of memory the machine has available now (Linux: `MemAvailable` of
+    /// `/proc/meminfo`), `None` where it cannot be told.
+    pub fn available_memory() -> Option<f64> {
+        let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+        let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+        let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+        Some(kib * 1024.0)
+    }
+
+    /// `Ok` when an allocation of about `bytes` (estimated from input before allocating)
+    /// fits in the memory available now ([`available_memory`]); `--allow-large` raises the
+    /// ceilings but never removes this check (issue 35: a Matrix Market header of 3e9 × 3e9
+    /// with `--allow-large` grew until the machine ran out of memory). Where the available
+    /// memory cannot be told, only the ceilings apply.
+    pub fn check_memory(what: &str, bytes: f64) -> Result<(), super::InvalidField> {
+        match available_memory() {
+            Some(avail) if bytes > avail => Err(super::InvalidField::new(
+                what,
+                format!(
+                    "needs about {} of memory, more than the {} this machine has available",
+                    show_bytes(bytes),
+                    show_bytes(avail)
+                ),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// `bytes` in GB or MB for messages.
+    fn show_bytes(bytes: f64) -> String {
+        if bytes >= 1e9 {
+            format!("{:.1} GB", bytes / 1e9)
+        } else {
+            format!("{:.1} MB", bytes / 1e6)
+        }
+    }
+
     /// What a refusal at a ceiling ends with: how to raise it (empty once raised).
     pub fn raise_hint() -> &'static str {
         if large_allowed() {
             ""
         } else {
             " (a documented ceiling: --allow-large raises it 1000-fold)"
+        }
+    }
+}
+
+/// Text taken from input (a token of a file, a key, a path) made safe to quote in a one-line
+/// message (issue 35, item 7): control characters (newlines, tabs, ESC of terminal escape
+/// sequences, DEL, C1 controls) and Unicode format characters (bidirectional overrides) are
+/// written as Rust escapes (`\n`, `\u{1b}`), and text longer than [`ESCAPE_MAX_CHARS`]
+/// characters is cut with `…`. Printable text, including non-ASCII letters, is unchanged.
+/// Every error message that quotes input goes through this one function.
+pub fn escape(text: &str) -> String {
+    escape_chars(text, Some(ESCAPE_MAX_CHARS))
+}
+
+/// A whole message made safe for one terminal line: as [`escape`], without the cut, and
+/// with line breaks written as spaces (the apps' last line on stderr).
+pub fn escape_message(text: &str) -> String {
+    escape_chars(&text.replace(['\n', '\r'], " "), None)
+}
+
+fn escape_chars(text: &str, max: Option<usize>) -> String {
+    let mut out = String::with_capacity(text.len().min(4096));
+    for (i, c) in text.chars().enumerate() {
+        if Some(i) == max {
+            out.push('…');
+            break;
+        }
+        let unsafe_char = c.is_control()
+            || matches!(
+                c,
+                '\u{200b}'..='\u{200f}'
+                    | '\u{202a}'..='\u{202e}'
+                    | '\u{2066}'..='\u{2069}'
+                    | '\u{feff}'
+            );
+        if unsafe_char {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// How many characters of an input text [`escape`] keeps.
+pub const ESCAPE_MAX_CHARS: usize = 200;
+
+/// Plausibility of results (issue 35, item 5): a non-finite or physically impossible result
+/// (a negative frequency, an extension longer than the body) is reported, never passed on as
+/// `null` or as a number.
+///
+/// A study collects its checks in a [`plausible::Checks`] and turns the first failure into
+/// an error ([`plausible::Implausible`], which names the quantity and why); the apps write
+/// the summary so far with `"complete": false` and exit 1 (`flowmbd_cli::StudyError::implausible`).
+pub mod plausible {
+    use super::check::show;
+    use thiserror::Error;
+
+    /// A result that cannot be right: the quantity and why.
+    #[derive(Debug, Error, Clone, PartialEq)]
+    #[error("implausible result {quantity}: {reason}")]
+    pub struct Implausible {
+        /// Name of the result (a summary field, `frequencies_hz[3]`).
+        pub quantity: String,
+        /// What is wrong with it.
+        pub reason: String,
+    }
+
+    /// The checks of one result set; the first failure is kept.
+    #[derive(Debug, Default)]
+    pub struct Checks {
+        first: Option<Implausible>,
+    }
+
+    impl Checks {
+        /// No checks yet.
+        pub fn new() -> Self {
+            Self::default()
+        }
+
+        fn fail(&mut self, quantity: &str, reason: String) {
+            if self.first.is_none() {
+                self.first = Some(Implausible {
+                    quantity: quantity.to_string(),
+                    reason,
+                });
+            }
+        }
+
+        /// `value` is finite (not NaN, not infinite).
+        pub fn finite(&mut self, quantity: &str, value: f64) -> &mut Self {
+            if !value.is_finite() {
+                let what = if value.is_nan() {
+                    "is not a number (NaN)".to_string()
+                } else {
+                    format!("is {}", show(value))
+                };
+                self.fail(quantity, what);
+            }
+            self
+        }
+
+        /// Every value of `values` is finite (`quantity[i]` names the first that is not).
+        pub fn all_finite(&mut self, quantity: &str, values: &[f64]) -> &mut Self {
+            for (i, v) in values.iter().enumerate() {
+                self.finite(&format!("{quantity}[{i}]"), *v);
+            }
+            self
+        }
+
+        /// `value` is finite and `≥ 0` (`what` says why it must be, e.g. "a frequency").
+        pub fn non_negative(&mut self, quantity: &str, value: f64, what: &str) -> &mut Self {
+            self.finite(quantity, value);
+            if value < 0.0 {
+                self.fail(
+                    quantity,
+                    format!("is {} but {what} cannot be negative", show(value)),
+                );
+            }
+            self
+        }
+
+        /// Every value of `values` is finite and `≥ 0`.
+        pub fn all_non_negative(
+            &mut self,
+            quantity: &str,
+            values: &[f64],
+            what: &str,
+        ) -> &mut Self {
+            for (i, v) in values.iter().enumerate() {
+                self.non_negative(&format!("{quantity}[{i}]"), *v, what);
+            }
+            self
+        }
+
+        /// `|value| ≤ bound` (`why` names the bound, e.g. "the beam's length 8 m").
+        pub fn magnitude_at_most(
+            &mut self,
+            quantity: &str,
+            value: f64,
+            bound: f64,
+            why: &str,
+        ) -> &mut Self {
+            self.finite(quantity, value);
+            if value.abs() > bound {
+                self.fail(
+                    quantity,
+                    format!("|{}| exceeds {why} ({})", show(value), show(bound)),
+                );
+            }
+            self
+        }
+
+        /// A condition stated by the caller (`reason` is used when `ok` is false).
+        pub fn require(&mut self, quantity: &str, ok: bool, reason: &str) -> &mut Self {
+            if !ok {
+                self.fail(quantity, reason.to_string());
+            }
+            self
+        }
+
+        /// `Ok` when every check passed, else the first failure.
+        pub fn result(&self) -> Result<(), Implausible> {
+            match &self.first {
+                None => Ok(()),
+                Some(e) => Err(e.clone()),
+            }
         }
     }
 }
@@ -281,6 +485,24 @@ pub mod check {
         Ok(())
     }
 
+    /// A time step `h` \[s\] (field `h_field`) no longer than the run `run` \[s\] (field
+    /// `run_field`) it divides (issue 35: `h = 30` s with `t_end = 20` s ran one step past the
+    /// end). Both are expected positive and finite (checked before).
+    pub fn step_fits(h_field: &str, h: f64, run_field: &str, run: f64) -> Result<(), InvalidField> {
+        if h <= run {
+            Ok(())
+        } else {
+            Err(InvalidField::new(
+                h_field,
+                format!(
+                    "a step of {} s is longer than the run ({run_field} = {} s)",
+                    show(h),
+                    show(run)
+                ),
+            ))
+        }
+    }
+
     fn with_unit(unit: &str) -> String {
         if unit.is_empty() {
             String::new()
@@ -349,6 +571,47 @@ mod tests {
             "must lie in [1, 1000], got 1000000000"
         );
         assert!(check::finite("t", f64::NEG_INFINITY).is_err());
+    }
+
+    // issue 35 item 7: a terminal escape sequence in a file must not reach the terminal
+    #[test]
+    fn escape_neutralises_control_characters_and_cuts_long_text() {
+        assert_eq!(escape("1.0e\u{1b}[31mred"), "1.0e\\u{1b}[31mred");
+        assert_eq!(escape("a\nb\tc"), "a\\nb\\tc");
+        assert_eq!(escape("Kerkkänen"), "Kerkkänen");
+        assert_eq!(escape("x\u{202e}y"), "x\\u{202e}y");
+        let long = "x".repeat(1000);
+        assert_eq!(escape(&long).chars().count(), ESCAPE_MAX_CHARS + 1);
+    }
+
+    // issue 35 item 2: an allocation larger than the machine is refused even with the
+    // ceilings raised (definition: more than any machine's memory)
+    #[test]
+    fn allocations_beyond_the_machine_are_refused() {
+        limits::set_allow_large(true);
+        let e = limits::check_memory("matrix", 1e30);
+        limits::set_allow_large(false);
+        if limits::available_memory().is_some() {
+            assert!(e.unwrap_err().reason.contains("available"));
+        }
+        assert!(limits::check_memory("x", 1.0).is_ok());
+    }
+
+    // issue 35 item 5: the first failing check is reported with its quantity
+    #[test]
+    fn plausibility_checks_report_the_first_failure() {
+        let mut c = plausible::Checks::new();
+        c.finite("a", 1.0).non_negative("f_hz", 3.0, "a frequency");
+        assert!(c.result().is_ok());
+        c.all_non_negative("exact_hz", &[1.0, -9.34], "a frequency")
+            .finite("b", f64::NAN);
+        let e = c.result().unwrap_err();
+        assert_eq!(e.quantity, "exact_hz[1]");
+        assert!(e.reason.contains("-9.34"), "{e}");
+        let mut c = plausible::Checks::new();
+        c.magnitude_at_most("extension_m", -8.0, 8.0, "the length")
+            .finite("w", f64::INFINITY);
+        assert_eq!(c.result().unwrap_err().quantity, "w");
     }
 
     // issue 20: `lead = nan` said "NaN s is negative"; 1e300 was printed with 301 digits

@@ -52,15 +52,21 @@ def config_json(config: Optional[Mapping[str, Any]]) -> Optional[str]:
     if not isinstance(config, Mapping):
         raise ValueError(f"config: expected a dict with the TOML keys, got {type(config).__name__}")
 
-    def plain(v: Any) -> Any:
+    def plain(v: Any, depth: int = 0) -> Any:
+        if depth > 64:
+            raise ValueError("nested more than 64 levels deep")
         if isinstance(v, np.ndarray):
             return v.tolist()
         if isinstance(v, np.generic):
             return v.item()
         if isinstance(v, Mapping):
-            return {str(k): plain(x) for k, x in v.items()}
+            return {str(k): plain(x, depth + 1) for k, x in v.items()}
         if isinstance(v, (list, tuple)):
-            return [plain(x) for x in v]
+            return [plain(x, depth + 1) for x in v]
         return v
 
-    return json.dumps(plain(config), allow_nan=True)
+    try:
+        return json.dumps(plain(config), allow_nan=True)
+    except (TypeError, ValueError, OverflowError, RecursionError) as e:
+        # a value JSON cannot hold, a circular or absurdly deep dict (issue 35)
+        raise ValueError(f"config: cannot be read as a configuration: {type(e).__name__}: {e}") from e

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping, Optional, Sequence
 
-from . import _native
+from . import _args, _native
 from ._results import config_json, from_json
 
 
@@ -55,8 +55,8 @@ def speed_loss(
     return from_json(
         _native.speed_loss(
             config_json(config),
-            None if omega is None else float(omega),
-            None if torques is None else [float(t) for t in torques],
+            _args.optional_number("omega", omega),
+            None if torques is None else _args.numbers_list("torques", torques),
             model,
         )
     )
@@ -90,7 +90,7 @@ def ancf(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = No
     flowmbd.NumericalError
         The integration failed; ``err.partial`` is the summary at the state reached.
     """
-    return from_json(_native.ancf(config_json(config), None if t_end is None else float(t_end)))
+    return from_json(_native.ancf(config_json(config), _args.optional_number("t_end", t_end)))
 
 
 def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = None) -> dict:
@@ -122,7 +122,7 @@ def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = N
     flowmbd.NumericalError
         The integration failed; ``err.partial`` is the summary at the state reached.
     """
-    return from_json(_native.plate(config_json(config), None if t_end is None else float(t_end)))
+    return from_json(_native.plate(config_json(config), _args.optional_number("t_end", t_end)))
 
 
 def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[float]] = None) -> dict:
@@ -152,5 +152,5 @@ def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[floa
     flowmbd.NumericalError
         The sweep failed; ``err.partial`` holds the engine speeds completed.
     """
-    speeds = None if rpm is None else [float(r) for r in rpm]
+    speeds = None if rpm is None else _args.numbers_list("rpm", rpm)
     return from_json(_native.fead(config_json(config), speeds))

@@ -9,11 +9,18 @@ from typing import Any, Optional, Sequence
 import numpy as np
 import scipy.sparse as sp
 
-from . import _native
+from . import _args, _native
 
 
 def _triplets(name: str, a: Any, n: Optional[int] = None):
-    a = sp.coo_matrix(a)
+    if isinstance(a, (str, bytes, bool)) or a is None:
+        raise ValueError(f"{name}: expected a matrix (scipy.sparse or numpy), got {type(a).__name__}")
+    try:
+        a = sp.coo_matrix(a)
+        if a.ndim != 2 or not np.issubdtype(a.dtype, np.number) or np.iscomplexobj(a.data):
+            raise ValueError("not a real matrix")
+    except (TypeError, ValueError, OverflowError, RecursionError) as e:
+        raise ValueError(f"{name}: expected a real matrix (scipy.sparse or numpy): {e}") from e
     if a.shape[0] != a.shape[1]:
         raise ValueError(f"{name}: expected a square matrix, got {a.shape[0]}x{a.shape[1]}")
     if n is not None and a.shape[0] != n:
@@ -31,12 +38,13 @@ def _triplets(name: str, a: Any, n: Optional[int] = None):
 def _dofs(name: str, dofs: Optional[Sequence[int]]) -> list:
     if dofs is None:
         return []
-    out = []
-    for d in np.asarray(dofs).ravel().tolist():
-        if isinstance(d, bool) or int(d) != d or d < 0:
-            raise ValueError(f"{name}: DOF {d} is not a non-negative integer")
-        out.append(int(d))
-    return out
+    if isinstance(dofs, (str, bytes)):
+        raise ValueError(f"{name}: expected a list of DOF indices, got a string")
+    try:
+        items = np.asarray(dofs, dtype=object).ravel().tolist()
+    except (TypeError, ValueError, OverflowError, RecursionError) as e:
+        raise ValueError(f"{name}: expected a list of DOF indices ({e})") from e
+    return [_args.count(f"{name}[{i}]", d) for i, d in enumerate(items)]
 
 
 def modes(M: Any, K: Any, count: int = 50, fixed: Optional[Sequence[int]] = None) -> dict:
@@ -47,13 +55,13 @@ def modes(M: Any, K: Any, count: int = 50, fixed: Optional[Sequence[int]] = None
     "vectors": (n, count)}``: vectors M-normalised (``φᵀMφ = 1``), zero at the fixed DOFs,
     each signed so that its largest component is positive.
 
-    Raises ``ValueError`` for bad input (shapes, DOF indices, non-finite entries).
+    Raises ``ValueError`` for bad input (shapes, DOF indices, non-finite entries, a
+    non-symmetric matrix, more modes than the model has free DOFs).
     """
     n, m = _triplets("M", M)
     _, k = _triplets("K", K, n)
-    if isinstance(count, bool) or int(count) != count or count < 0:
-        raise ValueError(f"count: must be a non-negative integer, got {count}")
-    values, hz, vectors = _native.modes(n, m, k, int(count), _dofs("fixed", fixed))
+    count = _args.count("count", count)
+    values, hz, vectors = _native.modes(n, m, k, count, _dofs("fixed", fixed))
     return {
         "eigenvalues": np.asarray(values, dtype=float),
         "frequencies_hz": np.asarray(hz, dtype=float),
@@ -69,12 +77,11 @@ def craig_bampton(M: Any, K: Any, boundary: Sequence[int], modes: int) -> dict:
     ``M_r = ΨᵀMΨ``, ``K_r = ΨᵀKΨ``; the columns of ``Ψ`` are the boundary DOFs (in the given
     order, ``Ψ = I`` on them), then the modes.
 
-    Raises ``ValueError`` for bad input (shapes, repeated or out-of-range DOFs, a singular
-    ``K_ii``).
+    Raises ``ValueError`` for bad input (shapes, repeated or out-of-range DOFs, a
+    non-symmetric matrix, a singular ``K_ii``).
     """
     n, m = _triplets("M", M)
     _, k = _triplets("K", K, n)
-    if isinstance(modes, bool) or int(modes) != modes or modes < 0:
-        raise ValueError(f"modes: must be a non-negative integer, got {modes}")
-    mr, kr, psi, hz = _native.craig_bampton(n, m, k, _dofs("boundary", boundary), int(modes))
+    modes = _args.count("modes", modes)
+    mr, kr, psi, hz = _native.craig_bampton(n, m, k, _dofs("boundary", boundary), modes)
     return {"M": mr, "K": kr, "basis": psi, "frequencies_hz": hz}

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping, Optional
 
-from . import _native
+from . import _args, _native
 from ._results import config_json, from_json
 
 
@@ -41,14 +41,9 @@ def modes(
     return from_json(
         _native.string_modes(
             config_json(config),
-            None if speed is None else float(speed),
-            None if nodes is None else _count("nodes", nodes),
-            None if modes is None else _count("modes", modes),
+            _args.optional_number("speed", speed),
+            None if nodes is None else _args.count("nodes", nodes),
+            None if modes is None else _args.count("modes", modes),
         )
     )
 
-
-def _count(name: str, value: Any) -> int:
-    if isinstance(value, bool) or int(value) != value or value < 0:
-        raise ValueError(f"{name}: must be a non-negative integer, got {value}")
-    return int(value)

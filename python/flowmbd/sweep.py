@@ -54,7 +54,11 @@ def _run_point(fn: Callable[..., Any], params: dict):
     failing point is recorded instead of aborting the sweep)."""
     try:
         return "ok", fn(**params)
-    except Exception as e:  # recorded per point, by design
+    except (KeyboardInterrupt, SystemExit, GeneratorExit):
+        raise
+    except BaseException as e:  # recorded per point, by design
+        # BaseException: a Rust panic reaches Python as pyo3's PanicException, which is not
+        # an Exception; it is recorded like any failure (issue 35), never left hanging
         return "error", f"{type(e).__name__}: {e}"
 
 
@@ -143,7 +147,9 @@ def _distributed(fn, pts, client, rows, bar):
             i = index[fut.key]
             try:
                 status, value = fut.result()
-            except Exception as e:  # the task itself failed (e.g. KilledWorker)
+            except (KeyboardInterrupt, SystemExit, GeneratorExit):
+                raise
+            except BaseException as e:  # the task itself failed (e.g. KilledWorker)
                 status, value = "error", f"{type(e).__name__}: {e}"
             rows[i] = _row(pts[i], value if status == "ok" else None,
                            None if status == "ok" else value)

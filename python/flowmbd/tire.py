@@ -22,7 +22,7 @@ from typing import Any, Mapping, Optional
 import numpy as np
 import scipy.sparse as sp
 
-from . import _native
+from . import _args, _native
 from ._results import config_json, from_json
 
 ReducedTire = _native.ReducedTire
@@ -172,7 +172,7 @@ def cleat(
         if isinstance(config, Mapping) and "tire" in config:
             raise ValueError("tire: given both as tire= and as config[\"tire\"]; pass one of them")
     text, forces, spectra = _native.tire_cleat(
-        config_json(config), None if speed_kmh is None else float(speed_kmh), tire
+        config_json(config), _args.optional_number("speed_kmh", speed_kmh), tire
     )
     out = from_json(text)
     if series:

@@ -45,8 +45,12 @@ fn sparse(
         }
         t.push(Triplet::new(i as usize, j as usize, x));
     }
-    SparseColMat::try_new_from_triplets(n, n, &t)
-        .map_err(|e| PyValueError::new_err(format!("{name}: {e:?}")))
+    let a = SparseColMat::try_new_from_triplets(n, n, &t)
+        .map_err(|e| PyValueError::new_err(format!("{name}: {e:?}")))?;
+    // a stiffness or mass matrix is symmetric (issue 35: a non-symmetric K was reduced)
+    fe_model::plausibility::check_symmetric(name, a.as_ref())
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(a)
 }
 
 /// Bad input (shape, DOF sets, parameters, a singular `K_ii`) raises `ValueError`; a failed
@@ -94,6 +98,14 @@ pub fn modes<'py>(
     let m = sparse("M", n, m.0, m.1, m.2)?;
     let k = sparse("K", n, k.0, k.1, k.2)?;
     let part = DofPartition::new(n, &[], &fixed).map_err(|e| reduction_error(py, e))?;
+    // fewer modes than asked would come back silently (issue 35)
+    if count > part.interior().len() {
+        return Err(PyValueError::new_err(format!(
+            "count: {count} modes asked, but the model has only {} free DOFs ({n} DOFs, {} fixed)",
+            part.interior().len(),
+            part.fixed().len()
+        )));
+    }
     let result = py.detach(|| {
         fixed_interface_modes_sparse(
             k.as_ref(),
@@ -104,6 +116,16 @@ pub fn modes<'py>(
         )
     });
     let (modes, _) = result.map_err(|e| reduction_error(py, e))?;
+    if modes.values.len() < count {
+        return Err(numerical_error(
+            py,
+            format!(
+                "count: {count} modes asked, the eigen solver found {}",
+                modes.values.len()
+            ),
+            None,
+        ));
+    }
     let interior = part.interior();
     let mut full = Mat::<f64>::zeros(n, modes.values.len());
     for (r, &dof) in interior.iter().enumerate() {

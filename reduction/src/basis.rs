@@ -67,8 +67,18 @@ pub enum ModeSelection {
 }
 
 impl ModeSelection {
+    /// The kept indices, each below `available`; a count is checked before anything is
+    /// allocated from it (issue 35: `--modes 99999999999` allocated 800 GB here).
     fn resolve(&self, available: usize) -> Result<Vec<usize>> {
         let idx: Vec<usize> = match self {
+            ModeSelection::Lowest(n) if *n > available => {
+                return Err(ReductionError::InvalidParameter {
+                    name: "modes".into(),
+                    reason: format!(
+                        "{n} modes requested but only {available} normal modes exist for this partition"
+                    ),
+                });
+            }
             ModeSelection::Lowest(n) => (0..*n).collect(),
             ModeSelection::Indices(v) => v.clone(),
         };
@@ -173,6 +183,8 @@ pub fn build_basis(
         }
         Method::FreeFreeModalTruncation => {
             let free = part.unfixed();
+            // the request is checked before the eigen solve
+            modes.resolve(free.len())?;
             let (lam, phi) = if part.fixed().is_empty() {
                 sym_gen_eig("free-free problem (K, M)", k, m)?
             } else {
@@ -200,6 +212,7 @@ pub fn build_basis(
             })
         }
         Method::FixedInterfaceModalTruncation | Method::CraigBampton | Method::ModeCondensation => {
+            modes.resolve(part.interior().len())?;
             let (lam, phi) = fixed_interface_modes(k, m, part)?;
             let idx = modes.resolve(lam.len())?;
             let coupling = match method {

@@ -231,7 +231,7 @@ impl ReducedModel {
     /// Writes the model to `path` (versioned JSON).
     pub fn save(&self, path: &Path) -> Result<()> {
         let text = self.to_json()?;
-        std::fs::write(path, text).map_err(|e| ReductionError::File {
+        fe_model::io::write_atomic(path, text.as_bytes()).map_err(|e| ReductionError::File {
             path: path.display().to_string(),
             reason: e.to_string(),
         })

@@ -7,8 +7,10 @@ use ancf::beam_mesh::BeamElementKind;
 use flowmbd_cases::ancf_beams::{self as studies, GroundContactCase, StaticBeamCase};
 use flowmbd_cases::ancf_dynamics::{self as dynamics, PendulumCase, Sample, SpinningCase};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{InputError, Progress, Study, StudyContext, StudyError, Validate};
+use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
+use mbd_core::validate::plausible::Checks;
 use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
 
 /// Library errors: invalid input → exit code 2, anything else → numerical failure (exit 1).
 fn study_error(e: AncfError) -> StudyError {
@@ -23,19 +25,39 @@ fn study_error(e: AncfError) -> StudyError {
 /// Run a time integration from 0 to `t_end` with step `h` \[s\] behind a progress bar
 /// labelled `label`, keeping every `every`-th step so that about `samples` samples are kept:
 /// `run(every, bar)` is the library call (the pendulum's and the spinning beam's histories).
+///
+/// `run` gets the progress callback to hand to the library loop: it moves the bar and answers
+/// `Break` once SIGINT/SIGTERM arrived, so the loop stops and the samples so far are kept.
 fn sampled_history(
     ctx: &StudyContext,
     label: &str,
     t_end: f64,
     h: f64,
     samples: f64,
-    run: impl FnOnce(usize, &Progress) -> Result<Vec<Sample>, AncfError>,
+    run: impl FnOnce(usize, &mut dyn FnMut(f64) -> ControlFlow<()>) -> Result<Vec<Sample>, AncfError>,
 ) -> Result<Vec<Sample>, StudyError> {
     let bar = ctx.progress(1.0, label);
     let every = ((t_end / h) / samples).ceil().max(1.0) as usize;
-    let s = run(every, &bar).map_err(study_error)?;
+    let s = run(every, &mut |f| ctx.tick(&bar, f)).map_err(study_error)?;
     bar.finish();
     Ok(s)
+}
+
+/// The plausibility checks of a summary as the study's error (skipped when the run was
+/// interrupted: its summary is partial and marked so).
+fn plausible<T: Serialize>(
+    ctx: &StudyContext,
+    summary: T,
+    checks: impl FnOnce(&mut Checks),
+) -> Result<T, StudyError> {
+    if ctx.cancel.is_cancelled() {
+        return Ok(summary);
+    }
+    let mut c = Checks::new();
+    checks(&mut c);
+    c.result()
+        .map_err(|e| StudyError::implausible(e, &summary))?;
+    Ok(summary)
 }
 
 /// Write `history.csv`: time \[s\], tip position \[m\], then the study's `N` columns
@@ -163,6 +185,10 @@ impl Study for SimplySupported {
     const APP: &'static str = "beam";
     const NAME: &'static str = "simply-supported";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "The simply supported ANCF beam of Kerkkanen 2.4 under a 1000 N mid-point load: \
          midpoint_deflection_mm is the vertical position of the mid-point [mm], compared in \
@@ -186,7 +212,7 @@ impl Study for SimplySupported {
     fn run(
         &self,
         c: &StaticConfig,
-        _ctx: &mut StudyContext,
+        ctx: &mut StudyContext,
     ) -> Result<DeflectionSummary, StudyError> {
         if !c.elements.is_multiple_of(2) {
             return Err(
@@ -194,9 +220,21 @@ impl Study for SimplySupported {
             );
         }
         let d = studies::simply_supported_deflection(&c.case()).map_err(study_error)?;
-        Ok(DeflectionSummary {
-            midpoint_deflection_mm: d * 1e3,
-        })
+        plausible(
+            ctx,
+            DeflectionSummary {
+                midpoint_deflection_mm: d * 1e3,
+            },
+            |k| {
+                // the mid-point of a pinned beam cannot move further than its half length
+                k.magnitude_at_most(
+                    "midpoint_deflection_mm",
+                    d * 1e3,
+                    0.5 * c.length * 1e3,
+                    "half the beam's length [mm]",
+                );
+            },
+        )
     }
 }
 
@@ -254,6 +292,10 @@ impl Study for Cantilever {
     const APP: &'static str = "beam";
     const NAME: &'static str = "cantilever";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "The large-deflection cantilever of Kerkkanen 2.4 under the tip force -5e8 h^3 N: tip \
          is the deformed tip position (x, y) [m] (Kerkkanen Tables 2.3/2.4), compared with \
@@ -287,18 +329,24 @@ impl Study for Cantilever {
             &["x_m", "y_m"],
             line.iter().map(|p| [p[0], p[1]]),
         )?;
-        std::fs::write(
-            ctx.out.path("shape.vtk"),
-            vtk::polyline("cantilever centreline", &line),
-        )
-        .map_err(|e| StudyError::numerical(format!("cannot write shape.vtk: {e}")))?;
+        ctx.out
+            .write_text("shape.vtk", &vtk::polyline("cantilever centreline", &line))?;
         LinePlot::new("Deformed cantilever (Kerkkänen Fig. 2.4)", "x [m]", "y [m]")
             .with(Series::line(
                 "centreline",
                 line.iter().map(|p| (p[0], p[1])).collect(),
             ))
             .save(&ctx.out.path("shape"))?;
-        Ok(TipSummary { tip })
+        let length = c.beam.length;
+        plausible(ctx, TipSummary { tip }, |k| {
+            // a clamped beam's tip stays within its length (with stretch: twice) of the clamp
+            k.all_finite("tip", &tip).magnitude_at_most(
+                "tip",
+                tip[0].hypot(tip[1]),
+                2.0 * length,
+                "twice the beam's length",
+            );
+        })
     }
 }
 
@@ -340,6 +388,10 @@ impl Study for Pendulum {
     const APP: &'static str = "beam";
     const NAME: &'static str = "pendulum";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "The falling flexible pendulum of Kerkkanen Figs. 2.6/2.7, pinned at one end and \
          released horizontally under gravity. max_energy_deviation_j is the largest deviation \
@@ -361,9 +413,14 @@ impl Study for Pendulum {
         ctx: &mut StudyContext,
     ) -> Result<PendulumSummary, StudyError> {
         let case = c.0;
-        let s = sampled_history(ctx, "pendulum", case.t_end, case.h, 2000.0, |every, bar| {
-            dynamics::pendulum(&case, every, |f| bar.set(f))
-        })?;
+        let s = sampled_history(
+            ctx,
+            "pendulum",
+            case.t_end,
+            case.h,
+            2000.0,
+            |every, tick| dynamics::pendulum(&case, every, tick),
+        )?;
         write_history(
             ctx,
             &s,
@@ -403,12 +460,29 @@ impl Study for Pendulum {
         let last = s
             .last()
             .ok_or_else(|| StudyError::numerical("no samples"))?;
-        Ok(PendulumSummary {
+        let summary = PendulumSummary {
             elements: case.elements,
             max_energy_deviation_j: dynamics::energy_drift(&s),
             min_tip_y_m: s.iter().map(|x| x.tip[1]).fold(f64::INFINITY, f64::min),
             final_tip: last.tip,
             max_kinetic_j: s.iter().map(|x| x.energy.kinetic).fold(0.0, f64::max),
+        };
+        let (tip, min_y, ke) = (last.tip, summary.min_tip_y_m, summary.max_kinetic_j);
+        plausible(ctx, summary, |k| {
+            // the tip of a pendulum pinned at the origin stays within twice its length
+            k.magnitude_at_most(
+                "final_tip",
+                tip[0].hypot(tip[1]),
+                2.0 * case.length,
+                "twice the pendulum's length",
+            )
+            .magnitude_at_most(
+                "min_tip_y_m",
+                min_y,
+                2.0 * case.length,
+                "twice the pendulum's length",
+            )
+            .non_negative("max_kinetic_j", ke, "a kinetic energy");
         })
     }
 }
@@ -451,6 +525,10 @@ impl Study for Spinning {
     const APP: &'static str = "beam";
     const NAME: &'static str = "spinning";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "The spinning beam of Kerkkanen Figs. 2.10/2.11: the hub spins up to omega and the \
          beam stretches under the centrifugal load. steady_extension_m is the mean axial \
@@ -479,7 +557,7 @@ impl Study for Spinning {
             case.t_end,
             case.h,
             4000.0,
-            |every, bar| dynamics::spinning(&case, every, |f| bar.set(f)),
+            |every, tick| dynamics::spinning(&case, every, tick),
         )?;
         write_history(
             ctx,
@@ -510,12 +588,30 @@ impl Study for Spinning {
         let tail: Vec<f64> = s.iter().filter(|x| x.t >= t0).map(|x| x.value).collect();
         let steady = tail.iter().sum::<f64>() / tail.len().max(1) as f64;
         let printed = 1.09545e-4;
-        Ok(SpinningSummary {
+        let summary = SpinningSummary {
             steady_extension_m: steady,
             analytical_extension_m: exact,
             printed_extension_m: printed,
             relative_error: (steady - printed) / printed,
             max_tip_offset_m: s.iter().map(|x| x.value2.abs()).fold(0.0, f64::max),
+        };
+        let offset = summary.max_tip_offset_m;
+        plausible(ctx, summary, |k| {
+            // a spinning bar stretches (positive extension), by less than its own length
+            k.non_negative("analytical_extension_m", exact, "a centrifugal extension")
+                .magnitude_at_most(
+                    "analytical_extension_m",
+                    exact,
+                    case.length,
+                    "the beam's length",
+                )
+                .magnitude_at_most(
+                    "steady_extension_m",
+                    steady,
+                    case.length,
+                    "the beam's length",
+                )
+                .magnitude_at_most("max_tip_offset_m", offset, case.length, "the beam's length");
         })
     }
 }
@@ -559,6 +655,10 @@ impl Study for GroundContact {
     type Summary = GroundContactSummary;
     const APP: &'static str = "beam";
     const NAME: &'static str = "ground-contact";
+
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
 
     fn meaning(&self) -> &'static str {
         "A cantilever pressed onto rigid ground by a line load q = load_factor q* with \
@@ -606,13 +706,20 @@ impl Study for GroundContact {
                     .collect(),
             ))
             .save(&ctx.out.path("contact"))?;
-        Ok(GroundContactSummary {
+        let forces = r.forces.clone();
+        let summary = GroundContactSummary {
             line_load: r.line_load,
             critical_load: r.critical_load,
             total_force: r.total_force,
             euler_bernoulli_total_force: r.euler_bernoulli_total_force,
             first_contact_x: r.first_contact_x,
             euler_bernoulli_contact_start: r.euler_bernoulli_contact_start,
+        };
+        let total = summary.total_force;
+        plausible(ctx, summary, |k| {
+            // the ground only pushes: unilateral contact forces are compressive
+            k.all_non_negative("contact_force_n", &forces, "a contact force")
+                .non_negative("total_force", total, "a contact force");
         })
     }
 }

@@ -47,7 +47,16 @@ pub fn parse_args<C: clap::Parser>() -> C {
             .get_subcommands()
             .map(|s| s.get_name().to_string())
             .collect();
-        let mut cmd = cmd.allow_negative_numbers(true);
+        // `--speed -inf`, `--speed -nan`, `--speed -1e3`: numeric options take any value
+        // beginning with a hyphen (clap's negative-number test knows digits only), so the
+        // value reaches the check that names the field (issue 35)
+        let mut cmd = cmd.allow_negative_numbers(true).mut_args(|a| {
+            if takes_number(&a) {
+                a.allow_hyphen_values(true)
+            } else {
+                a
+            }
+        });
         for n in names {
             cmd = cmd.mut_subcommand(n, allow);
         }
@@ -55,4 +64,63 @@ pub fn parse_args<C: clap::Parser>() -> C {
     }
     let matches = allow(C::command()).get_matches();
     C::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+}
+
+/// Whether the option `a` takes a numeric value (its value parser yields a float or an
+/// integer).
+fn takes_number(a: &clap::Arg) -> bool {
+    use std::any::TypeId;
+    let id = a.get_value_parser().type_id();
+    [
+        TypeId::of::<f64>(),
+        TypeId::of::<f32>(),
+        TypeId::of::<usize>(),
+        TypeId::of::<u64>(),
+        TypeId::of::<u32>(),
+        TypeId::of::<i64>(),
+        TypeId::of::<i32>(),
+        TypeId::of::<isize>(),
+    ]
+    .iter()
+    .any(|t| id == *t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::{CommandFactory, FromArgMatches, Parser};
+
+    #[derive(Parser, Debug)]
+    struct Demo {
+        #[arg(long)]
+        speed: Option<f64>,
+        #[arg(long)]
+        name: Option<String>,
+        #[arg(long)]
+        quiet: bool,
+    }
+
+    // issue 35: `--speed -inf` was taken as an unknown flag
+    #[test]
+    fn numeric_options_take_hyphen_values() {
+        let cmd = Demo::command().mut_args(|a| {
+            if takes_number(&a) {
+                a.allow_hyphen_values(true)
+            } else {
+                a
+            }
+        });
+        let m = cmd
+            .clone()
+            .try_get_matches_from(["demo", "--speed", "-inf", "--quiet"])
+            .unwrap();
+        let d = Demo::from_arg_matches(&m).unwrap();
+        assert_eq!(d.speed, Some(f64::NEG_INFINITY));
+        assert!(d.quiet);
+        // a string option still refuses a flag as its value
+        assert!(
+            cmd.try_get_matches_from(["demo", "--name", "--quiet"])
+                .is_err()
+        );
+    }
 }

@@ -35,12 +35,64 @@ where
     Ok(match path {
         None => (C::default(), "defaults".to_string()),
         Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|source| CliError::ReadConfig {
-                path: p.to_path_buf(),
-                source,
-            })?;
+            let text = read_config_text(p)?;
             (parse_config(&text, p)?, p.display().to_string())
         }
+    })
+}
+
+/// Largest configuration file read: 1 MiB (the largest default configuration is a few
+/// kilobytes; a larger file is refused before it is read).
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// The text of the configuration file `path`: a regular file (not a folder, FIFO or device
+/// such as `/dev/zero`) of at most [`MAX_CONFIG_BYTES`], read through a bounded reader (a
+/// file growing while it is read stops at the ceiling too), UTF-8.
+pub fn read_config_text(path: &Path) -> Result<String, CliError> {
+    use std::io::Read;
+    let bad = |message: String| CliError::ConfigFile {
+        path: path.to_path_buf(),
+        message,
+    };
+    let meta = std::fs::metadata(path).map_err(|source| CliError::ReadConfig {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    if meta.is_dir() {
+        return Err(bad("is a directory, expected a TOML file".into()));
+    }
+    if !meta.is_file() {
+        return Err(bad(
+            "is not a regular file (a device, FIFO or socket); expected a TOML file".into(),
+        ));
+    }
+    let too_big = || {
+        bad(format!(
+            "is larger than {MAX_CONFIG_BYTES} bytes, the most a configuration may have"
+        ))
+    };
+    if meta.len() > MAX_CONFIG_BYTES {
+        return Err(too_big());
+    }
+    let file = std::fs::File::open(path).map_err(|source| CliError::ReadConfig {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let mut bytes = Vec::new();
+    file.take(MAX_CONFIG_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|source| CliError::ReadConfig {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    if bytes.len() as u64 > MAX_CONFIG_BYTES {
+        return Err(too_big());
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        bad(format!(
+            "is not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        ))
     })
 }
 
@@ -55,7 +107,7 @@ pub fn parse_config<C: DeserializeOwned>(text: &str, path: &Path) -> Result<C, C
             path: path.to_path_buf(),
             line,
             column,
-            message: e.message().replace('\n', " ").trim().to_string(),
+            message: mbd_core::validate::escape_message(e.message().trim()),
         }
     })
 }
@@ -359,6 +411,22 @@ mod tests {
             ]
         );
         assert!(tables_accepting_unknown_keys(&Demo::default()).is_empty());
+    }
+
+    // issue 35 item 2: devices and oversized files are refused before they are read
+    #[test]
+    fn non_regular_and_oversized_files_are_refused() {
+        #[cfg(unix)]
+        for dev in ["/dev/zero", "/dev/urandom"] {
+            let e = read_config::<Demo>(Some(Path::new(dev))).unwrap_err();
+            assert_eq!(e.exit_code(), 2);
+            assert!(e.to_string().contains("not a regular file"), "{e}");
+        }
+        let f = write(&"# x\n".repeat((MAX_CONFIG_BYTES / 4 + 1) as usize));
+        let e = read_config::<Demo>(Some(&f.0)).unwrap_err();
+        assert!(e.to_string().contains("larger than"), "{e}");
+        let e = read_config::<Demo>(Some(Path::new("/"))).unwrap_err();
+        assert!(e.to_string().contains("is a directory"), "{e}");
     }
 
     #[test]

@@ -39,6 +39,23 @@ pub enum CliError {
         /// The field and reason.
         error: InputError,
     },
+    /// The configuration file is not a regular file or is larger than
+    /// [`MAX_CONFIG_BYTES`](crate::config::MAX_CONFIG_BYTES).
+    #[error("{path}: {message}")]
+    ConfigFile {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// The output folder (`--out`) exists as a file, or cannot be created or written.
+    #[error("--out {path}: {message}")]
+    OutDir {
+        /// The folder given.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
     /// An output file could not be written.
     #[error("{path}: cannot write: {message}")]
     Write {
@@ -55,7 +72,9 @@ impl CliError {
         match self {
             CliError::ReadConfig { .. }
             | CliError::ParseConfig { .. }
-            | CliError::Invalid { .. } => 2,
+            | CliError::Invalid { .. }
+            | CliError::ConfigFile { .. }
+            | CliError::OutDir { .. } => 2,
             CliError::Write { .. } => 1,
         }
     }

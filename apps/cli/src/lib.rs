@@ -13,12 +13,16 @@
 //! - [`Progress`]: a progress bar on stderr, hidden with `--quiet` or without a terminal;
 //! - [`print_stdout`]: `--json` / `--print-config` output that exits quietly into a closed pipe;
 //! - [`check_input_file`]: input paths reported as missing, a directory or unreadable;
-//! - [`limits`]: the documented size ceilings, raised by every study's `--allow-large`.
+//! - [`limits`]: the documented size ceilings, raised by every study's `--allow-large`;
+//! - [`Cancel`]: SIGINT / SIGTERM stop a study at its next step, results so far kept and
+//!   marked incomplete (exit 130 / 143).
 
 pub mod args;
+pub mod cancel;
 pub mod config;
 pub mod error;
 pub mod files;
+pub mod mutation;
 pub mod output;
 pub mod plot;
 pub mod progress;
@@ -27,6 +31,7 @@ pub mod study;
 pub mod testing;
 
 pub use args::{CommonArgs, parse_args};
+pub use cancel::Cancel;
 pub use config::{Validate, load_config, read_config};
 pub use error::{CliError, InputError};
 pub use files::check_input_file;

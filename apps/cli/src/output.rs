@@ -1,26 +1,89 @@
 //! The output folder of a study.
+//!
+//! Files are written through a temporary name in the same folder and renamed when complete
+//! ([`write_atomic`]), so a file under its final name is never half written (a killed run
+//! leaves at most a hidden `.NAME.part`). Every name a study writes is recorded (the
+//! manifest, [`OutputDir::files`]); the runner lists it in `summary.json` (`"outputs"`), and a
+//! new run in the same folder first removes the files the previous run listed
+//! ([`OutputDir::begin_run`]), so stale outputs of an earlier run never stand beside new ones
+//! unmarked (issue 35, item 3).
 
 use crate::error::CliError;
 use serde::Serialize;
+use std::collections::BTreeSet;
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
-/// A study's output folder (created on demand).
+/// A study's output folder (created on demand) and the names written into it.
 #[derive(Debug, Clone)]
 pub struct OutputDir {
     root: PathBuf,
+    written: Arc<Mutex<BTreeSet<String>>>,
+}
+
+/// The temporary name of `path` while it is written: `.NAME.part` beside it; with `keep_ext`
+/// the extension stays last (`.NAME.part.png`: the plot backends pick the format from it).
+pub fn part_path(path: &Path, keep_ext: bool) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = match (keep_ext, path.extension()) {
+        (true, Some(ext)) => {
+            let stem = path
+                .file_stem()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            format!(".{stem}.part.{}", ext.to_string_lossy())
+        }
+        _ => format!(".{name}.part"),
+    };
+    path.with_file_name(tmp)
+}
+
+/// Write `bytes` to `path` through a temporary file in the same folder, renamed over `path`
+/// when complete (atomic on one file system: readers see the old file or the whole new one).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let tmp = part_path(path, false);
+    let result = (|| {
+        let mut f = File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
 }
 
 impl OutputDir {
-    /// Create (if needed) the folder `root`.
+    /// Create (if needed) the folder `root`. A path that exists and is not a folder, or a
+    /// folder that cannot be created or written, is bad input (exit code 2) naming `--out`.
     pub fn create(root: impl Into<PathBuf>) -> Result<Self, CliError> {
         let root = root.into();
-        std::fs::create_dir_all(&root).map_err(|e| CliError::Write {
+        let bad = |message: String| CliError::OutDir {
             path: root.clone(),
-            message: e.to_string(),
-        })?;
-        Ok(Self { root })
+            message,
+        };
+        if let Ok(m) = std::fs::metadata(&root)
+            && !m.is_dir()
+        {
+            return Err(bad("exists and is not a folder".into()));
+        }
+        std::fs::create_dir_all(&root).map_err(|e| bad(format!("cannot create folder: {e}")))?;
+        // a folder we cannot write into is found now, not after the run
+        let probe = root.join(".flowmbd-write-test.part");
+        File::create(&probe)
+            .and_then(|mut f| f.write_all(b"x").and_then(|_| f.sync_all()))
+            .map_err(|e| bad(format!("cannot write into the folder: {e}")))?;
+        let _ = std::fs::remove_file(&probe);
+        Ok(Self {
+            root,
+            written: Arc::default(),
+        })
     }
 
     /// The folder.
@@ -28,16 +91,74 @@ impl OutputDir {
         &self.root
     }
 
-    /// Path of a file `name` inside the folder.
+    /// Path of a file `name` inside the folder, recorded in the manifest (for writers outside
+    /// this type: plots, VTK; `name` may be a stem whose extensions the writer adds).
     pub fn path(&self, name: &str) -> PathBuf {
+        if let Ok(mut w) = self.written.lock() {
+            w.insert(name.to_string());
+        }
         self.root.join(name)
     }
 
-    /// Write `value` as pretty JSON to `name`.
+    /// The files of this run that exist in the folder: every recorded name, and every
+    /// `name.ext` of a recorded stem (sorted).
+    pub fn files(&self) -> Vec<String> {
+        let names: BTreeSet<String> = self.written.lock().map(|w| w.clone()).unwrap_or_default();
+        let mut out = BTreeSet::new();
+        if let Ok(entries) = std::fs::read_dir(&self.root) {
+            for e in entries.flatten() {
+                let f = e.file_name().to_string_lossy().into_owned();
+                if names.contains(&f)
+                    || names.iter().any(|n| {
+                        f.strip_prefix(n.as_str())
+                            .and_then(|r| r.strip_prefix('.'))
+                            .is_some_and(|ext| !ext.is_empty() && !ext.contains('.'))
+                    })
+                {
+                    out.insert(f);
+                }
+            }
+        }
+        out.into_iter().collect()
+    }
+
+    /// Start a run in this folder: remove the files the previous run listed in its
+    /// `summary.json` (`"outputs"`; plain names inside the folder only), then mark the folder
+    /// as holding an unfinished run (`summary.json` with `"complete": false`).
+    pub fn begin_run(&self) -> Result<(), CliError> {
+        let summary = self.root.join("summary.json");
+        if let Ok(text) = std::fs::read_to_string(&summary)
+            && let Ok(v) = serde_json::from_str::<serde_json::Value>(&text)
+            && let Some(files) = v.get("outputs").and_then(|f| f.as_array())
+        {
+            for f in files.iter().filter_map(|f| f.as_str()) {
+                let plain = !f.is_empty()
+                    && !f.contains(['/', '\\'])
+                    && f != "."
+                    && f != ".."
+                    && Path::new(f).file_name().is_some_and(|n| n == f);
+                if plain && f != "summary.json" {
+                    let _ = std::fs::remove_file(self.root.join(f));
+                }
+            }
+        }
+        self.write_json(
+            "summary.json",
+            &serde_json::json!({ "complete": false, "status": "running" }),
+        )?;
+        Ok(())
+    }
+
+    /// Write `value` as pretty JSON to `name` (atomically).
     pub fn write_json<T: Serialize>(&self, name: &str, value: &T) -> Result<PathBuf, CliError> {
+        let text = serde_json::to_string_pretty(value).map_err(|e| write_error(&self.root, e))?;
+        self.write_text(name, &(text + "\n"))
+    }
+
+    /// Write `text` to `name` (atomically).
+    pub fn write_text(&self, name: &str, text: &str) -> Result<PathBuf, CliError> {
         let path = self.path(name);
-        let text = serde_json::to_string_pretty(value).map_err(|e| write_error(&path, e))?;
-        std::fs::write(&path, text + "\n").map_err(|e| write_error(&path, e))?;
+        write_atomic(&path, text.as_bytes()).map_err(|e| write_error(&path, e))?;
         Ok(path)
     }
 
@@ -55,17 +176,21 @@ impl OutputDir {
     }
 
     /// Open a CSV file for streaming rows (histories are written as they are computed, so a
-    /// failed run keeps what it had).
+    /// failed run keeps what it had): rows go to `.NAME.part`, renamed to `NAME` by
+    /// [`CsvSink::finish`] or when the sink is dropped (a failed or interrupted run keeps its
+    /// rows under the final name; `summary.json` says the run is incomplete).
     pub fn csv(&self, name: &str, header: &[&str]) -> Result<CsvSink, CliError> {
         let path = self.path(name);
-        let file = File::create(&path).map_err(|e| write_error(&path, e))?;
+        let part = part_path(&path, false);
+        let file = File::create(&part).map_err(|e| write_error(&path, e))?;
         let mut writer = csv::Writer::from_writer(BufWriter::new(file));
         writer
             .write_record(header)
             .map_err(|e| write_error(&path, e))?;
         Ok(CsvSink {
             path,
-            writer,
+            part,
+            writer: Some(writer),
             columns: header.len(),
         })
     }
@@ -164,10 +289,11 @@ pub fn columns_without_unit(dir: &Path) -> Vec<String> {
     out
 }
 
-/// A CSV file being written row by row.
+/// A CSV file being written row by row (under a temporary name until finished or dropped).
 pub struct CsvSink {
     path: PathBuf,
-    writer: csv::Writer<BufWriter<File>>,
+    part: PathBuf,
+    writer: Option<csv::Writer<BufWriter<File>>>,
     columns: usize,
 }
 
@@ -184,20 +310,40 @@ impl CsvSink {
                 ),
             });
         }
-        self.writer
-            .write_record(values.iter().map(|v| format!("{v:.10e}")))
+        let Some(w) = self.writer.as_mut() else {
+            return Err(write_error(&self.path, "already finished"));
+        };
+        w.write_record(values.iter().map(|v| format!("{v:.10e}")))
             .map_err(|e| write_error(&self.path, e))
     }
 
     /// Flush to disk (also done on drop, silently).
     pub fn flush(&mut self) -> Result<(), CliError> {
-        self.writer.flush().map_err(|e| write_error(&self.path, e))
+        match self.writer.as_mut() {
+            Some(w) => w.flush().map_err(|e| write_error(&self.path, e)),
+            None => Ok(()),
+        }
     }
 
-    /// Flush and return the file's path.
+    /// Flush, move the file to its final name and return that path.
     pub fn finish(mut self) -> Result<PathBuf, CliError> {
-        self.flush()?;
+        self.close()?;
         Ok(self.path.clone())
+    }
+
+    fn close(&mut self) -> Result<(), CliError> {
+        if let Some(mut w) = self.writer.take() {
+            w.flush().map_err(|e| write_error(&self.path, e))?;
+            drop(w);
+            std::fs::rename(&self.part, &self.path).map_err(|e| write_error(&self.path, e))?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for CsvSink {
+    fn drop(&mut self) {
+        let _ = self.close();
     }
 }
 

@@ -2,6 +2,7 @@
 //! no system font is needed).
 
 use crate::error::CliError;
+use crate::output::part_path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -123,16 +124,20 @@ impl LinePlot {
         register_font();
         let png = stem.with_extension("png");
         let svg = stem.with_extension("svg");
+        // drawn under a temporary name, renamed when complete (crate::output::write_atomic)
+        let (png_part, svg_part) = (part_path(&png, true), part_path(&svg, true));
         {
-            let root = BitMapBackend::new(&png, (960, 640)).into_drawing_area();
+            let root = BitMapBackend::new(&png_part, (960, 640)).into_drawing_area();
             self.draw(&root).map_err(|m| err(&png, m))?;
             root.present().map_err(|e| err(&png, e.to_string()))?;
         }
+        std::fs::rename(&png_part, &png).map_err(|e| err(&png, e.to_string()))?;
         {
-            let root = SVGBackend::new(&svg, (960, 640)).into_drawing_area();
+            let root = SVGBackend::new(&svg_part, (960, 640)).into_drawing_area();
             self.draw(&root).map_err(|m| err(&svg, m))?;
             root.present().map_err(|e| err(&svg, e.to_string()))?;
         }
+        std::fs::rename(&svg_part, &svg).map_err(|e| err(&svg, e.to_string()))?;
         Ok(vec![png, svg])
     }
 

@@ -1,6 +1,7 @@
 //! A study (one subcommand of an app) and the runner that applies the app conventions.
 
 use crate::args::CommonArgs;
+use crate::cancel::Cancel;
 use crate::config::{Validate, read_config, to_toml};
 use crate::error::{CliError, InputError};
 use crate::output::OutputDir;
@@ -30,6 +31,18 @@ pub enum StudyError {
 }
 
 impl StudyError {
+    /// An implausible result ([`mbd_core::validate::plausible`]): a numerical failure whose
+    /// partial results are the summary that failed the check.
+    pub fn implausible<T: Serialize>(
+        e: mbd_core::validate::plausible::Implausible,
+        summary: &T,
+    ) -> Self {
+        StudyError::Numerical {
+            message: e.to_string(),
+            partial: serde_json::to_value(summary).ok(),
+        }
+    }
+
     /// A numerical failure without partial results.
     pub fn numerical(message: impl std::fmt::Display) -> Self {
         StudyError::Numerical {
@@ -54,9 +67,20 @@ pub struct StudyContext {
     pub out: OutputDir,
     /// `--quiet` was given.
     pub quiet: bool,
+    /// Set when SIGINT or SIGTERM arrived: pass [`Cancel::check`] back from the progress or
+    /// observer callbacks of library loops; they stop at the next step and return what they
+    /// have, the study returns its summary so far, and the runner marks it incomplete.
+    pub cancel: Cancel,
 }
 
 impl StudyContext {
+    /// Update `bar` to `done` and answer the library loop whether to go on (the progress
+    /// callback of a cancellable loop: `|t| ctx.tick(&bar, t)`).
+    pub fn tick(&self, bar: &Progress, done: f64) -> std::ops::ControlFlow<()> {
+        bar.set(done);
+        self.cancel.check()
+    }
+
     /// A progress bar over `total` units of work (hidden when quiet or not on a terminal).
     pub fn progress(&self, total: f64, message: &str) -> Progress {
         Progress::new(total, message, self.quiet)
@@ -90,6 +114,15 @@ pub trait Study {
         String::new()
     }
 
+    /// Whether every number of the summary must be finite: the runner then turns a NaN or an
+    /// infinity anywhere in it ([`non_finite_fields`]) into a numerical failure (exit 1,
+    /// `implausible result FIELD`, the summary kept as `"partial"`) instead of writing it as
+    /// `null` (issue 35, item 5). On in `flowmbd-beam`, `-string` and `-reduce`; a study whose
+    /// summary holds NaN on purpose (a quantity that does not apply) keeps the default `false`.
+    fn results_must_be_finite(&self) -> bool {
+        false
+    }
+
     /// Run the study. Write histories into `ctx.out` as they are computed.
     fn run(
         &self,
@@ -99,23 +132,74 @@ pub trait Study {
 }
 
 /// Run `study` under the app conventions and return the process exit code:
-/// 0 success, 2 bad input (one line naming the field), 1 numerical failure (partial results kept).
+/// 0 success, 2 bad input (one line naming the field), 1 numerical failure (partial results
+/// kept), 130 / 143 interrupted by SIGINT / SIGTERM (results so far kept, marked incomplete).
 pub fn run_study<S: Study>(study: &S, args: &CommonArgs) -> ExitCode {
-    match try_run(study, args) {
-        Ok(()) => ExitCode::SUCCESS,
+    let cancel = Cancel::install();
+    match try_run(study, args, &cancel) {
+        Ok(Outcome::Done) => ExitCode::SUCCESS,
+        Ok(Outcome::Interrupted { out }) => {
+            eprintln!(
+                "flowmbd-{} {}: interrupted by {}; results so far in {} (marked \"complete\": false)",
+                S::APP,
+                S::NAME,
+                cancel.signal_name(),
+                mbd_core::validate::escape_message(&out.display().to_string())
+            );
+            ExitCode::from(cancel.exit_code())
+        }
         Err(e) => {
             eprintln!(
                 "flowmbd-{} {}: error: {}",
                 S::APP,
                 S::NAME,
-                e.to_string().replace('\n', " ")
+                mbd_core::validate::escape_message(&e.to_string())
             );
             ExitCode::from(e.exit_code())
         }
     }
 }
 
-fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
+/// How a run ended without error.
+#[derive(Debug)]
+enum Outcome {
+    Done,
+    Interrupted { out: std::path::PathBuf },
+}
+
+/// The names of the non-finite numbers in `summary` (dotted paths), found through its TOML
+/// form, which keeps NaN and infinities (JSON would write them as `null`). Empty when the
+/// summary has none or cannot be written as TOML.
+pub fn non_finite_fields<T: Serialize>(summary: &T) -> Vec<String> {
+    fn walk(v: &toml::Value, path: String, out: &mut Vec<String>) {
+        match v {
+            toml::Value::Float(f) if !f.is_finite() => out.push(path),
+            toml::Value::Array(a) => {
+                for (i, x) in a.iter().enumerate() {
+                    walk(x, format!("{path}[{i}]"), out);
+                }
+            }
+            toml::Value::Table(t) => {
+                for (k, x) in t {
+                    let p = if path.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{path}.{k}")
+                    };
+                    walk(x, p, out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    if let Ok(v) = toml::Value::try_from(summary) {
+        walk(&v, String::new(), &mut out);
+    }
+    out
+}
+
+fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Outcome, StudyError> {
     // before any check: the ceilings of sizes and run lengths (`--allow-large`, issue 20)
     mbd_core::validate::limits::set_allow_large(args.allow_large);
     // overrides first, then one validation of the effective configuration
@@ -131,24 +215,82 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
             path: "<stdout>".into(),
             message: e.to_string(),
         })?;
-        return Ok(());
+        return Ok(Outcome::Done);
     }
     let out = OutputDir::create(args.out_dir(S::APP, S::NAME))?;
-    std::fs::write(out.path("config.toml"), &config_text).map_err(|e| CliError::Write {
-        path: out.path("config.toml"),
-        message: e.to_string(),
-    })?;
+    // the previous run's files go; until the end summary.json says "complete": false
+    out.begin_run()?;
+    out.write_text("config.toml", &config_text)?;
     let mut ctx = StudyContext {
         out: out.clone(),
         quiet: args.quiet,
+        cancel: cancel.clone(),
     };
-    match study.run(&config, &mut ctx) {
+    // what a run that did not finish leaves in summary.json
+    let unfinished = |status: &str, error: Option<String>, partial: Option<serde_json::Value>| {
+        let mut v = serde_json::json!({
+            "complete": false,
+            "status": status,
+            "partial": partial,
+        });
+        if let Some(e) = error {
+            v["error"] = e.into();
+        }
+        v["outputs"] = out.files().into();
+        out.write_json("summary.json", &v)
+    };
+    let result = study.run(&config, &mut ctx).and_then(|summary| {
+        let bad = if study.results_must_be_finite() {
+            non_finite_fields(&summary)
+        } else {
+            Vec::new()
+        };
+        if !cancel.is_cancelled()
+            && let Some(first) = bad.first()
+        {
+            return Err(StudyError::Numerical {
+                message: format!(
+                    "implausible result {first}: not a finite number{}",
+                    if bad.len() > 1 {
+                        format!(" (and {} more)", bad.len() - 1)
+                    } else {
+                        String::new()
+                    }
+                ),
+                partial: serde_json::to_value(&summary).ok(),
+            });
+        }
+        Ok(summary)
+    });
+    match result {
         Ok(summary) => {
             let summary = with_meaning(&summary, study.meaning()).map_err(|e| CliError::Write {
                 path: out.path("summary.json"),
                 message: e.to_string(),
             })?;
-            let path = out.write_json("summary.json", &summary)?;
+            if cancel.is_cancelled() {
+                unfinished(
+                    "interrupted",
+                    Some(format!("interrupted by {}", cancel.signal_name())),
+                    Some(summary),
+                )?;
+                return Ok(Outcome::Interrupted {
+                    out: out.root().to_path_buf(),
+                });
+            }
+            // summary.json says the run completed and lists its files; `--json` prints the
+            // study's summary alone
+            let mut file_summary = summary.clone();
+            if let serde_json::Value::Object(m) = &mut file_summary {
+                m.insert("complete".into(), true.into());
+                m.insert("status".into(), "complete".into());
+                let mut files = out.files();
+                if !files.iter().any(|f| f == "summary.json") {
+                    files.push("summary.json".into());
+                }
+                m.insert("outputs".into(), files.into());
+            }
+            let path = out.write_json("summary.json", &file_summary)?;
             if args.json {
                 let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Write {
                     path: path.clone(),
@@ -161,18 +303,29 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs) -> Result<(), StudyError> {
             } else if !args.quiet {
                 eprintln!("results written to {}", out.root().display());
             }
-            Ok(())
+            Ok(Outcome::Done)
         }
         Err(StudyError::Numerical { message, partial }) => {
-            let failed =
-                serde_json::json!({ "status": "failed", "error": message, "partial": partial });
-            out.write_json("summary.json", &failed)?;
+            if cancel.is_cancelled() {
+                unfinished(
+                    "interrupted",
+                    Some(format!("interrupted by {}", cancel.signal_name())),
+                    partial,
+                )?;
+                return Ok(Outcome::Interrupted {
+                    out: out.root().to_path_buf(),
+                });
+            }
+            unfinished("failed", Some(message.clone()), partial.clone())?;
             Err(StudyError::Numerical {
                 message: format!("{message} (results so far in {})", out.root().display()),
                 partial,
             })
         }
-        Err(e) => Err(e),
+        Err(e) => {
+            let _ = unfinished("failed", Some(e.to_string()), None);
+            Err(e)
+        }
     }
 }
 
@@ -267,6 +420,7 @@ mod tests {
                 fail_after: None,
             },
             &args(&dir),
+            &Cancel::new(),
         );
         assert!(ok.is_ok());
         let summary: serde_json::Value =
@@ -284,6 +438,7 @@ mod tests {
                 fail_after: None,
             },
             &args(&dir),
+            &Cancel::new(),
         )
         .unwrap_err();
         assert_eq!(bad.exit_code(), 2);
@@ -295,6 +450,7 @@ mod tests {
                 fail_after: Some(2),
             },
             &args(&dir),
+            &Cancel::new(),
         )
         .unwrap_err();
         assert_eq!(failed.exit_code(), 1);
@@ -304,6 +460,129 @@ mod tests {
             serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
                 .unwrap();
         assert_eq!(summary["partial"]["done"], 2);
+        assert_eq!(summary["complete"], false);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A study that stops at its loop's next step when cancelled and returns its sum so far.
+    struct Interruptible {
+        cancel_at: usize,
+    }
+    impl Study for Interruptible {
+        type Config = Cfg;
+        type Summary = serde_json::Value;
+        const APP: &'static str = "test";
+        const NAME: &'static str = "interruptible";
+        fn meaning(&self) -> &'static str {
+            "done: steps taken"
+        }
+        fn run(&self, c: &Cfg, ctx: &mut StudyContext) -> Result<serde_json::Value, StudyError> {
+            let mut sink = ctx.out.csv("h.csv", &["i"])?;
+            let mut done = 0;
+            for i in 0..c.steps {
+                if i == self.cancel_at {
+                    // what the signal handler does
+                    ctx.cancel.request(crate::cancel::SIGINT);
+                }
+                if ctx.cancel.check().is_break() {
+                    break;
+                }
+                sink.row(&[i as f64])?;
+                done += 1;
+            }
+            sink.finish()?;
+            Ok(serde_json::json!({ "done": done }))
+        }
+    }
+
+    // issue 35 item 3: an interrupted run keeps what it had, marked incomplete; a new run
+    // removes the files the previous run listed and never leaves them unmarked
+    #[test]
+    fn interrupted_runs_are_marked_and_stale_outputs_removed() {
+        let dir = std::env::temp_dir().join(format!("flowmbd-cli-int-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        // a complete earlier run that wrote an extra file
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("old.csv"), "x\n").unwrap();
+        std::fs::write(dir.join("mine.txt"), "user's own file\n").unwrap();
+        std::fs::write(
+            dir.join("summary.json"),
+            r#"{"complete": true, "outputs": ["old.csv", "summary.json", "../escape.txt"]}"#,
+        )
+        .unwrap();
+        let cancel = Cancel::new();
+        let r = try_run(&Interruptible { cancel_at: 2 }, &args(&dir), &cancel).unwrap();
+        assert!(matches!(r, Outcome::Interrupted { .. }));
+        assert_eq!(cancel.exit_code(), 130);
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["complete"], false);
+        assert_eq!(summary["status"], "interrupted");
+        assert_eq!(summary["partial"]["done"], 2);
+        assert!(!dir.join("old.csv").exists(), "stale output removed");
+        assert!(dir.join("mine.txt").exists(), "files not listed are kept");
+        let kept = std::fs::read_to_string(dir.join("h.csv")).unwrap();
+        assert_eq!(kept.lines().count(), 3, "header + 2 rows: {kept}");
+        let files: Vec<&str> = summary["outputs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(|f| f.as_str())
+            .collect();
+        assert!(
+            files.contains(&"h.csv") && files.contains(&"config.toml"),
+            "{files:?}"
+        );
+        // no temporary file left behind
+        let parts: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().ends_with(".part"))
+            .collect();
+        assert!(parts.is_empty());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    // issue 35 item 5: a NaN in a summary is an error, not `null`
+    #[test]
+    fn non_finite_summary_values_are_found() {
+        #[derive(Serialize)]
+        struct S {
+            a: f64,
+            b: Vec<f64>,
+            c: Option<f64>,
+        }
+        let s = S {
+            a: 1.0,
+            b: vec![0.0, f64::NAN],
+            c: None,
+        };
+        assert_eq!(non_finite_fields(&s), vec!["b[1]".to_string()]);
+        let t = S {
+            a: f64::INFINITY,
+            b: vec![],
+            c: Some(2.0),
+        };
+        assert_eq!(non_finite_fields(&t), vec!["a".to_string()]);
+    }
+
+    // issue 35 item 5: an `--out` that is a file is bad input naming --out
+    #[test]
+    fn out_that_is_a_file_is_bad_input() {
+        let f = std::env::temp_dir().join(format!("flowmbd-cli-outfile-{}", std::process::id()));
+        std::fs::write(&f, "x").unwrap();
+        let e = try_run(
+            &Sum {
+                steps: None,
+                fail_after: None,
+            },
+            &args(&f),
+            &Cancel::new(),
+        )
+        .unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.to_string().starts_with("--out "), "{e}");
+        std::fs::remove_file(&f).unwrap();
     }
 }

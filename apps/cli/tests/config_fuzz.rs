@@ -11,6 +11,9 @@ use drives::fead::FeadConfig;
 use drives::speed_loss_study::SpeedLossStudyConfig;
 use fe_model::generate::TireConfig;
 use flowing::string_study::ModesConfig;
+use flowmbd_cases::ancf_dynamics::{PendulumCase, SpinningCase};
+use flowmbd_cases::lin::beam::LinBeamConfig;
+use flowmbd_cases::lin::slab_sim::SlabSimConfig;
 use flowmbd_cli::config::{parse_config, to_toml};
 use flowmbd_cli::{CliError, Validate};
 use proptest::prelude::*;
@@ -90,6 +93,11 @@ proptest! {
             &mutate(&to_toml(&SpeedLossStudyConfig::default()), pick, &value),
         )?;
         check::<ModesConfig>(&mutate(&to_toml(&ModesConfig::default()), pick, &value))?;
+        // issue 35: the beam and reduction cases validated in their library crate
+        check::<PendulumCase>(&mutate(&to_toml(&PendulumCase::default()), pick, &value))?;
+        check::<SpinningCase>(&mutate(&to_toml(&SpinningCase::default()), pick, &value))?;
+        check::<LinBeamConfig>(&mutate(&to_toml(&LinBeamConfig::default()), pick, &value))?;
+        check::<SlabSimConfig>(&mutate(&to_toml(&SlabSimConfig::default()), pick, &value))?;
     }
 }
 

@@ -37,31 +37,7 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        let b = &self.beam;
-        for (name, v) in [
-            ("beam.young_modulus_pa", b.young_modulus_pa),
-            ("beam.area_m2", b.area_m2),
-            ("beam.second_moment_m4", b.second_moment_m4),
-            ("beam.length_m", b.length_m),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(InputError::new(
-                    name,
-                    format!("must be positive and finite, got {v}"),
-                ));
-            }
-        }
-        if let Some((i, m)) = b
-            .node_masses_kg
-            .iter()
-            .enumerate()
-            .find(|(_, m)| !(m.is_finite() && **m > 0.0))
-        {
-            return Err(InputError::new(
-                format!("beam.node_masses_kg[{i}]"),
-                format!("must be positive and finite, got {m}"),
-            ));
-        }
+        self.beam.validate_within("beam")?;
         if let Some((i, d)) = self
             .profile_delta_m
             .iter()
@@ -84,6 +60,10 @@ impl Study for LinBeamStudy {
     type Summary = LinBeamSummary;
     const APP: &'static str = "reduce";
     const NAME: &'static str = "lin-beam";
+
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
 
     fn meaning(&self) -> &'static str {
         "Lin ch. 6-8 on the Appendix A beam: the frequencies of the full model and of the \

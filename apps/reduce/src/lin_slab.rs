@@ -54,65 +54,7 @@ impl Default for Config {
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
-        let p = &self.params;
-        if !(p.duration_s.is_finite() && p.duration_s > 0.0) {
-            return Err(InputError::new(
-                "params.duration_s",
-                format!("must be positive, got {}", p.duration_s),
-            ));
-        }
-        if !(p.step_s.is_finite() && p.step_s > 0.0 && p.step_s <= p.duration_s) {
-            return Err(InputError::new(
-                "params.step_s",
-                format!("must be in (0, duration_s], got {}", p.step_s),
-            ));
-        }
-        if p.n_modes == 0 || p.n_modes > 66 {
-            return Err(InputError::new(
-                "params.n_modes",
-                format!(
-                    "must be 1..=66 (interior DOFs 78 minus 12), got {}",
-                    p.n_modes
-                ),
-            ));
-        }
-        for (name, v) in [
-            ("params.orbit_radius_m", p.orbit_radius_m),
-            ("params.orbit_period_s", p.orbit_period_s),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(InputError::new(name, format!("must be positive, got {v}")));
-            }
-        }
-        let s3 = &p.sim3;
-        for (name, v) in [
-            ("params.sim3.short_link_m", s3.short_link_m),
-            ("params.sim3.long_link_m", s3.long_link_m),
-            (
-                "params.sim3.link_mass_per_length_kg_m",
-                s3.link_mass_per_length_kg_m,
-            ),
-            ("params.sim3.link_radius_m", s3.link_radius_m),
-            ("params.sim3.table_interval_s", s3.table_interval_s),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(InputError::new(name, format!("must be positive, got {v}")));
-            }
-        }
-        if !s3.inclination_deg.is_finite() {
-            return Err(InputError::new(
-                "params.sim3.inclination_deg",
-                "must be finite",
-            ));
-        }
-        for (name, f) in [
-            ("params.sim3.force_node16_n", s3.force_node16_n),
-            ("params.sim3.force_node28_n", s3.force_node28_n),
-        ] {
-            if !f.iter().all(|x| x.is_finite()) {
-                return Err(InputError::new(name, "must have finite components"));
-            }
-        }
+        self.params.validate_within("params")?;
         if !self.methods.contains(&SlabMethod::NoReduction) {
             return Err(InputError::new(
                 "methods",
@@ -181,6 +123,10 @@ impl Study for LinSlabStudy {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "lin-slab";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "Lin 7.2 simulations 1-3 on the Appendix B slab: the local deflections of node 8 [m] \
          in the floating frame for every reduction method (Newton-Raphson on the full model, \
@@ -219,9 +165,11 @@ impl Study for LinSlabStudy {
             for &m in &c.methods {
                 let mut t = Vec::new();
                 let mut h = Vec::new();
+                let cancel = ctx.cancel.clone();
                 let obs = |ti: f64, d: [f64; 3]| {
                     t.push(ti);
                     h.push(d);
+                    cancel.check()
                 };
                 let res = match &table {
                     Some(tab) => simulate_emulated(&s, m, tab, &c.params, obs),
@@ -235,6 +183,13 @@ impl Study for LinSlabStudy {
                 hist.push((m, t, h));
                 done += 1.0;
                 bar.set(done);
+                if ctx.cancel.is_cancelled() {
+                    break;
+                }
+            }
+            if ctx.cancel.is_cancelled() {
+                // interrupted: the summary holds the simulations completed before
+                break;
             }
             let name = sim_name(sim);
             // CSV: t, then ξ, η, ζ per method

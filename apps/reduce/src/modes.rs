@@ -141,6 +141,10 @@ impl Study for ModesStudy<'_> {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "modes";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "Natural frequencies [Hz] of the Matrix Market model K phi = lambda M phi (lambda = \
          omega^2 in rad^2/s^2), lowest first, with the fixed DOFs removed; the eigen solver \

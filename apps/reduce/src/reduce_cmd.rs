@@ -17,7 +17,7 @@ use fe_model::plausibility::{PairCheckOptions, check_stiffness_mass};
 use reduction::basis::{Method, ModeSelection, build_basis};
 use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse};
 use reduction::{DofPartition, ReducedModel};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -26,7 +26,8 @@ use std::time::Instant;
 pub const DENSE_LIMIT: usize = 3000;
 
 /// Reduction method on the command line.
-#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum MethodArg {
     /// Static condensation (Guyan).
     Guyan,
@@ -52,35 +53,42 @@ impl MethodArg {
     }
 }
 
-/// Command-line arguments of `reduce`.
+/// Command-line arguments of `reduce`; each overrides the configuration (`--config`, or the
+/// defaults of [`ReduceConfig`]).
 #[derive(clap::Args, Debug)]
 pub struct Args {
+    /// TOML configuration (keys as printed by --print-config); flags override it.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Print the effective configuration as TOML and exit.
+    #[arg(long)]
+    print_config: bool,
     // `[kg]` stays unescaped: clap prints this doc comment as the --help text.
     /// Mass matrix (Matrix Market, symmetric positive definite) [kg].
     #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_name = "M.mtx")]
-    mass: PathBuf,
+    mass: Option<PathBuf>,
     /// Stiffness matrix (Matrix Market, symmetric) [N/m].
     #[arg(long, value_name = "K.mtx")]
-    stiffness: PathBuf,
+    stiffness: Option<PathBuf>,
     /// Boundary (interface) nodes, 1-based, comma-separated, ranges allowed: `1,5,10-12`.
     #[arg(long, value_name = "NODES")]
-    boundary: String,
+    boundary: Option<String>,
     /// Fixed (clamped) nodes, 1-based, same syntax as --boundary; their DOFs are removed.
     #[arg(long, value_name = "NODES")]
     fixed: Option<String>,
-    /// Reduction method.
-    #[arg(long, value_enum, default_value = "cb")]
-    method: MethodArg,
-    /// Number of kept normal modes (ignored by guyan).
-    #[arg(long, default_value_t = 10)]
-    modes: usize,
-    /// DOFs per node (node j owns DOFs dofs_per_node·(j−1) .. dofs_per_node·j − 1).
-    #[arg(long, default_value_t = 3)]
-    dofs_per_node: usize,
+    /// Reduction method [default: cb].
+    #[arg(long, value_enum)]
+    method: Option<MethodArg>,
+    /// Number of kept normal modes (ignored by guyan) [default: 10].
+    #[arg(long)]
+    modes: Option<usize>,
+    /// DOFs per node (node j owns DOFs dofs_per_node·(j−1) .. dofs_per_node·j − 1) [default: 3].
+    #[arg(long)]
+    dofs_per_node: Option<usize>,
     /// Output file of the reduced model (versioned JSON).
     #[arg(long, value_name = "FILE")]
-    out: PathBuf,
+    out: Option<PathBuf>,
     /// Print the summary as JSON on stdout.
     #[arg(long)]
     json: bool,
@@ -91,6 +99,81 @@ pub struct Args {
     /// study's --allow-large.
     #[arg(long)]
     allow_large: bool,
+}
+
+/// The configuration of `reduce` (a TOML file given with `--config`; every flag overrides its
+/// key). Paths are as given (relative to the working directory).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct ReduceConfig {
+    /// Mass matrix (Matrix Market).
+    pub mass: String,
+    /// Stiffness matrix (Matrix Market).
+    pub stiffness: String,
+    /// Boundary nodes (`1,5,10-12`).
+    pub boundary: String,
+    /// Fixed nodes (same syntax; empty: none).
+    pub fixed: String,
+    /// Reduction method.
+    pub method: MethodArg,
+    /// Kept normal modes (ignored by guyan).
+    pub modes: usize,
+    /// DOFs per node.
+    pub dofs_per_node: usize,
+}
+
+impl Default for ReduceConfig {
+    fn default() -> Self {
+        Self {
+            mass: String::new(),
+            stiffness: String::new(),
+            boundary: String::new(),
+            fixed: String::new(),
+            method: MethodArg::Cb,
+            modes: 10,
+            dofs_per_node: 3,
+        }
+    }
+}
+
+/// Most kept modes a reduction may ask for (raised 1000-fold by `--allow-large`); the
+/// library refuses more modes than the model has in any case.
+pub const MAX_MODES: usize = 100_000;
+
+/// The configuration from `--config` (or the defaults) with the flags applied.
+fn effective_config(a: &Args) -> Result<ReduceConfig, Failure> {
+    let mut c: ReduceConfig = match &a.config {
+        Some(p) => {
+            let text = flowmbd_cli::config::read_config_text(p)
+                .map_err(|e| Failure::Input(format!("--config {e}")))?;
+            flowmbd_cli::config::parse_config(&text, p)
+                .map_err(|e| Failure::Input(format!("--config {e}")))?
+        }
+        None => ReduceConfig::default(),
+    };
+    let path = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
+    if let Some(v) = path(&a.mass) {
+        c.mass = v;
+    }
+    if let Some(v) = path(&a.stiffness) {
+        c.stiffness = v;
+    }
+    if let Some(v) = &a.boundary {
+        c.boundary = v.clone();
+    }
+    if let Some(v) = &a.fixed {
+        c.fixed = v.clone();
+    }
+    if let Some(v) = a.method {
+        c.method = v;
+    }
+    if let Some(v) = a.modes {
+        c.modes = v;
+    }
+    if let Some(v) = a.dofs_per_node {
+        c.dofs_per_node = v;
+    }
+    Ok(c)
 }
 
 /// Summary of a `reduce` run.
@@ -168,24 +251,41 @@ enum Failure {
     Numerical(String),
 }
 
-fn run_inner(a: &Args) -> Result<Summary, Failure> {
-    flowmbd_cli::limits::set_allow_large(a.allow_large);
+fn run_inner(a: &Args, c: &ReduceConfig) -> Result<Summary, Failure> {
     let input = |e: String| Failure::Input(e);
-    let nodes = parse_nodes(&a.boundary, "--boundary").map_err(input)?;
-    let fixed = match &a.fixed {
-        Some(t) => parse_nodes(t, "--fixed").map_err(input)?,
-        None => Vec::new(),
+    let Some(out) = &a.out else {
+        return Err(Failure::Input(
+            "--out: the output file of the reduced model is required".into(),
+        ));
     };
-    if a.dofs_per_node == 0 {
+    for (flag, v) in [
+        ("--mass", &c.mass),
+        ("--stiffness", &c.stiffness),
+        ("--boundary", &c.boundary),
+    ] {
+        if v.is_empty() {
+            return Err(Failure::Input(format!(
+                "{flag}: required (on the command line or in --config)"
+            )));
+        }
+    }
+    let nodes = parse_nodes(&c.boundary, "--boundary").map_err(input)?;
+    let fixed = if c.fixed.trim().is_empty() {
+        Vec::new()
+    } else {
+        parse_nodes(&c.fixed, "--fixed").map_err(input)?
+    };
+    if c.dofs_per_node == 0 {
         return Err(Failure::Input("--dofs-per-node: must be at least 1".into()));
     }
+    mbd_core::validate::check::size("--modes", c.modes, 0, MAX_MODES)
+        .map_err(|e| Failure::Input(e.to_string()))?;
     let opts = ReadOptions::symmetric().allow_large(a.allow_large);
-    let read = |p: &PathBuf, what: &str| {
-        mtx::read_sparse_with(p, &opts)
-            .map_err(|e| Failure::Input(format!("--{what} {}: {e}", p.display())))
+    let read = |p: &str, what: &str| {
+        mtx::read_sparse_with(p, &opts).map_err(|e| Failure::Input(format!("--{what} {p}: {e}")))
     };
-    let m = read(&a.mass, "mass")?;
-    let k = read(&a.stiffness, "stiffness")?;
+    let m = read(&c.mass, "mass")?;
+    let k = read(&c.stiffness, "stiffness")?;
     let n = k.nrows();
     if k.ncols() != n || m.nrows() != n || m.ncols() != n {
         return Err(Failure::Input(format!(
@@ -196,13 +296,13 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
             k.ncols()
         )));
     }
-    if !n.is_multiple_of(a.dofs_per_node) {
+    if !n.is_multiple_of(c.dofs_per_node) {
         return Err(Failure::Input(format!(
             "--dofs-per-node: {} does not divide the matrix size {n}",
-            a.dofs_per_node
+            c.dofs_per_node
         )));
     }
-    let n_nodes = n / a.dofs_per_node;
+    let n_nodes = n / c.dofs_per_node;
     let nodes = expand_nodes(&nodes, "--boundary", n_nodes).map_err(input)?;
     let fixed = expand_nodes(&fixed, "--fixed", n_nodes).map_err(input)?;
     // K positive semi-definite, M positive semi-definite (massless DOFs are condensed)
@@ -212,8 +312,7 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
     let warnings = check_stiffness_mass(k.as_ref(), m.as_ref(), &checks).map_err(|e| {
         Failure::Input(format!(
             "--stiffness {} / --mass {}: {e}",
-            a.stiffness.display(),
-            a.mass.display()
+            c.stiffness, c.mass
         ))
     })?;
     if !a.quiet {
@@ -221,16 +320,16 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
             eprintln!("flowmbd-reduce reduce: warning: {w}");
         }
     }
-    let part = DofPartition::from_nodes(n, a.dofs_per_node, &nodes, &fixed)
+    let part = DofPartition::from_nodes(n, c.dofs_per_node, &nodes, &fixed)
         .map_err(|e| Failure::Input(format!("--boundary/--fixed: {e}")))?;
-    let method = a.method.method();
+    let method = c.method.method();
     let t0 = Instant::now();
     let num = |e: reduction::ReductionError| Failure::Numerical(e.to_string());
     let red = match method {
         Method::Guyan | Method::CraigBampton => {
-            let modes = if method == Method::Guyan { 0 } else { a.modes };
+            let modes = if method == Method::Guyan { 0 } else { c.modes };
             let opts = CraigBamptonOptions::with_modes(modes);
-            craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, a.dofs_per_node)
+            craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, c.dofs_per_node)
                 .map_err(num)?
                 .0
         }
@@ -241,14 +340,14 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
                 md.as_ref(),
                 &part,
                 other,
-                &ModeSelection::Lowest(a.modes),
+                &ModeSelection::Lowest(c.modes),
             )
             .map_err(|e| match e {
                 reduction::ReductionError::InvalidParameter { .. }
                 | reduction::ReductionError::InvalidDofs { .. } => Failure::Input(e.to_string()),
                 other => Failure::Numerical(other.to_string()),
             })?;
-            ReducedModel::from_basis(basis, kd.as_ref(), md.as_ref(), None, a.dofs_per_node)
+            ReducedModel::from_basis(basis, kd.as_ref(), md.as_ref(), None, c.dofs_per_node)
                 .map_err(num)?
         }
         other => {
@@ -259,7 +358,7 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
         }
     };
     let reduction_s = t0.elapsed().as_secs_f64();
-    red.save(&a.out)
+    red.save(out)
         .map_err(|e| Failure::Input(format!("--out: {e}")))?;
     let f = red.natural_frequencies_hz().map_err(num)?;
     Ok(Summary {
@@ -270,43 +369,56 @@ fn run_inner(a: &Args) -> Result<Summary, Failure> {
         n_reduced: red.n_reduced(),
         frequencies_hz: f.into_iter().take(20).collect(),
         reduction_s,
-        file: a.out.display().to_string(),
+        file: out.display().to_string(),
         meaning: MEANING,
     })
 }
 
 /// Runs `reduce`: exit 0 on success, 2 on bad input, 1 on numerical failure.
 pub fn run(a: Args) -> ExitCode {
-    match run_inner(&a) {
-        Ok(s) => {
-            if a.json {
-                match serde_json::to_string_pretty(&s) {
-                    Ok(t) => {
-                        if let Err(e) = flowmbd_cli::print_stdout(&(t + "\n")) {
-                            eprintln!("flowmbd-reduce reduce: error: <stdout>: {e}");
-                            return ExitCode::from(1);
-                        }
-                    }
-                    Err(e) => {
-                        eprintln!("flowmbd-reduce reduce: error: {e}");
-                        return ExitCode::from(1);
-                    }
-                }
-            } else if !a.quiet {
-                eprintln!(
-                    "reduced {} DOFs to {} coordinates ({}) in {:.2} s; written to {}",
-                    s.n_full, s.n_reduced, s.method, s.reduction_s, s.file
-                );
-            }
-            ExitCode::SUCCESS
+    flowmbd_cli::limits::set_allow_large(a.allow_large);
+    let result = effective_config(&a).and_then(|c| {
+        if a.print_config {
+            flowmbd_cli::print_stdout(&flowmbd_cli::config::to_toml(&c))
+                .map_err(|e| Failure::Numerical(format!("<stdout>: {e}")))?;
+            return Ok(None);
         }
+        run_inner(&a, &c).map(Some)
+    });
+    let escape = mbd_core::validate::escape_message;
+    match result {
+        Ok(None) => ExitCode::SUCCESS,
+        Ok(Some(s)) => report(&a, s),
         Err(Failure::Input(m)) => {
-            eprintln!("flowmbd-reduce reduce: error: {}", m.replace('\n', " "));
+            eprintln!("flowmbd-reduce reduce: error: {}", escape(&m));
             ExitCode::from(2)
         }
         Err(Failure::Numerical(m)) => {
-            eprintln!("flowmbd-reduce reduce: error: {}", m.replace('\n', " "));
+            eprintln!("flowmbd-reduce reduce: error: {}", escape(&m));
             ExitCode::from(1)
         }
     }
+}
+
+/// Print the summary of a successful run (`--json`, or one line unless `--quiet`).
+fn report(a: &Args, s: Summary) -> ExitCode {
+    if a.json {
+        let text = match serde_json::to_string_pretty(&s) {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("flowmbd-reduce reduce: error: {e}");
+                return ExitCode::from(1);
+            }
+        };
+        if let Err(e) = flowmbd_cli::print_stdout(&(text + "\n")) {
+            eprintln!("flowmbd-reduce reduce: error: <stdout>: {e}");
+            return ExitCode::from(1);
+        }
+    } else if !a.quiet {
+        eprintln!(
+            "reduced {} DOFs to {} coordinates ({}) in {:.2} s; written to {}",
+            s.n_full, s.n_reduced, s.method, s.reduction_s, s.file
+        );
+    }
+    ExitCode::SUCCESS
 }

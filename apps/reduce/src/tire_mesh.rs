@@ -78,6 +78,10 @@ impl Study for TireMesh {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "tire-mesh";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "The generated truck-tire carcass: the nodes, hexahedra and DOFs of the mesh written \
          as mesh.json, M and K (Matrix Market) and the node sets (rim, contact patch), for \
@@ -133,12 +137,10 @@ impl Study for TireMesh {
             .node_set_dofs("rim", None)
             .map_err(|e| numerical("rim set", e))?;
         let text: String = rim.iter().map(|d| format!("{d}\n")).collect();
-        let p = ctx.out.path("rim_dofs.txt");
-        std::fs::write(
-            &p,
-            format!("# 0-based DOFs of the rim node set (bonded to the wheel)\n{text}"),
-        )
-        .map_err(|e| StudyError::numerical(format!("{}: {e}", p.display())))?;
+        ctx.out.write_text(
+            "rim_dofs.txt",
+            &format!("# 0-based DOFs of the rim node set (bonded to the wheel)\n{text}"),
+        )?;
         files.push("rim_dofs.txt".into());
         bar.set(4.0);
         bar.finish();

@@ -138,6 +138,10 @@ impl Study for SimulateStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "simulate";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "The travelling string (Ribaric Fig. 4-6 right) plucked into a triangle and let go: \
          the flowing-material model (4.20) integrated in time (RK4). history.csv holds the \
@@ -182,10 +186,17 @@ impl Study for SimulateStudy {
             c.duration,
             c.step,
             c.sample_every,
-            |t| bar.set(t),
+            |t| ctx.tick(&bar, t),
         )
         .map_err(study_error)?;
         bar.finish();
+        if hist.t.len() < 8 {
+            // interrupted before the spectra have samples to work on
+            return Err(StudyError::Numerical {
+                message: format!("only {} samples computed", hist.t.len()),
+                partial: None,
+            });
+        }
         // mass-normalised modes: the modal coordinates carry √kg·m
         let mut header = vec!["t_s".to_string()];
         header.extend((1..=k).map(|i| format!("z{i}_sqrtkg_m")));
@@ -262,7 +273,7 @@ impl Study for SimulateStudy {
                 .map(|n| c.string.exact_moving_frequency_hz(n, c.speed))
                 .collect(),
             model_hz,
-            resolution_hz: spectra[0].frequencies[1],
+            resolution_hz: spectra[0].frequencies.get(1).copied().unwrap_or(f64::NAN),
             peaks,
             hamiltonian_drift: if h0 != 0.0 { (h1 - h0) / h0 } else { 0.0 },
         })

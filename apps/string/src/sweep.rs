@@ -106,6 +106,10 @@ impl Study for SweepStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "sweep";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "Natural frequencies of the travelling string (Ribaric ch. 4) against the axial speed \
          from 0 to max_speed_ratio times the critical speed c = sqrt(T/(rho A)) = \
@@ -181,7 +185,10 @@ impl Study for SweepStudy {
             row.push(ra);
             row.push(rf);
             csv.row(&row)?;
-            bar.set((i + 1) as f64);
+            if ctx.tick(&bar, (i + 1) as f64).is_break() {
+                // interrupted: the speeds swept so far make the summary
+                break;
+            }
         }
         csv.finish()?;
         bar.finish();

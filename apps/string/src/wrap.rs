@@ -115,6 +115,15 @@ impl Validate for WrapConfig {
                 ));
             }
             check_number(&format!("pulleys[{i}].top"), p.top, false)?;
+            // the string model is one of small deflections (issue 35: top = 1e300 m ran into a
+            // step size underflow, exit 1)
+            mbd_core::validate::check::within(
+                &format!("pulleys[{i}].top"),
+                p.top,
+                -self.string.length,
+                self.string.length,
+                "m (within the string's length of its line: small deflections)",
+            )?;
             if !(self.candidate_half_width > 0.0 && self.candidate_half_width < p.radius) {
                 return Err(InputError::new(
                     "candidate_half_width",
@@ -303,6 +312,10 @@ impl Study for WrapStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "wrap";
 
+    fn results_must_be_finite(&self) -> bool {
+        true
+    }
+
     fn meaning(&self) -> &'static str {
         "A string partly wrapped on two pulleys under a harmonic load (Ribaric (4.10), \
          (4.11), (4.40)): contact nodes lift off and land again as the load shakes the free \
@@ -413,6 +426,7 @@ impl Study for WrapStudy {
                 rows.push(row);
                 bar.set(st.t);
             }
+            ctx.cancel.check()
         });
         bar.finish();
         csv.finish()?;

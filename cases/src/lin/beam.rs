@@ -72,8 +72,50 @@ pub fn appendix_a_beam() -> Result<LinBeam> {
     beam_from(&LinBeamConfig::default())
 }
 
+/// Range of the beam's squared slenderness `A L² / I` (axial over bending stiffness of the
+/// whole beam; Lin's beam: 4.8·10³). Outside `[10⁻⁶, 10¹²]` the condensed stiffness matrix's
+/// condition number nears `1/ε` and its eigen solution loses every digit (issue 35:
+/// `length_m = 1e9` or `area_m2 = 1e-300` came back with fewer modes than DOFs and failed
+/// an index check deep in the basis).
+pub const SLENDERNESS_RANGE: (f64, f64) = (1e-6, 1e12);
+
+impl mbd_core::Validate for LinBeamConfig {
+    /// Positive finite E, A, I, L and node masses; `A L² / I` within [`SLENDERNESS_RANGE`].
+    fn validate(&self) -> std::result::Result<(), mbd_core::InvalidField> {
+        use mbd_core::validate::check;
+        check::positive("young_modulus_pa", self.young_modulus_pa, "Pa")?;
+        check::positive("area_m2", self.area_m2, "m²")?;
+        check::positive("second_moment_m4", self.second_moment_m4, "m⁴")?;
+        check::positive("length_m", self.length_m, "m")?;
+        for (i, m) in self.node_masses_kg.iter().enumerate() {
+            check::positive(&format!("node_masses_kg[{i}]"), *m, "kg")?;
+        }
+        let ratio = self.area_m2 * self.length_m * self.length_m / self.second_moment_m4;
+        let (lo, hi) = SLENDERNESS_RANGE;
+        if !(lo..=hi).contains(&ratio) {
+            // too slender: a long beam; too stocky: a tiny area (the message gives the ratio)
+            let field = if ratio > hi { "length_m" } else { "area_m2" };
+            return Err(mbd_core::InvalidField::new(
+                field,
+                format!(
+                    "A L^2 / I = {} is outside [{}, {}] (axial against bending stiffness: \
+                     the eigen solution would lose every digit)",
+                    check::show(ratio),
+                    check::show(lo),
+                    check::show(hi)
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The Appendix A beam with other parameters (same topology: 5 nodes, 4 elements).
 pub fn beam_from(p: &LinBeamConfig) -> Result<LinBeam> {
+    mbd_core::Validate::validate(p).map_err(|e| reduction::ReductionError::InvalidParameter {
+        name: e.field,
+        reason: e.reason,
+    })?;
     let nn = 5;
     for (name, v) in [
         ("young_modulus_pa", p.young_modulus_pa),
@@ -152,6 +194,12 @@ pub fn simply_supported_basis(beam: &LinBeam) -> Result<Mat<f64>> {
         kuu.as_ref(),
         muu.as_ref(),
     )?;
+    if psiu.ncols() < 7 {
+        return Err(reduction::ReductionError::Numerical {
+            what: "simply supported beam (K_uu, M_uu)".into(),
+            detail: format!("{} of its 7 modes found", psiu.ncols()),
+        });
+    }
     let mut psi_ss = Mat::<f64>::zeros(10, 10);
     for (c, &d) in o.iter().enumerate() {
         psi_ss[(d, c)] = 1.0;

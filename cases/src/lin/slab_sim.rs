@@ -6,7 +6,7 @@ use super::slab::{G, LinSlab, SlabMethod, slab_basis};
 use super::slab_sim3::{Sim3Config, emulation_system, record_source, simulate_emulated};
 use mbd_core::constraints::{DriverLaw, PointDriver};
 use mbd_core::floating::{AxisCondition, FlexBody, FlexState, FloatingSystem};
-use mbd_core::integrators::{Rk4, State};
+use mbd_core::integrators::{Proceed, Rk4, State};
 use mbd_core::marker::Marker;
 use nalgebra::{Vector3, Vector4};
 use reduction::error::{ReductionError, Result};
@@ -59,6 +59,85 @@ impl Default for SlabSimConfig {
             sim3: Sim3Config::default(),
         }
     }
+}
+
+/// Most RK4 steps `duration_s / step_s` of one slab simulation (the default takes 10³; issue
+/// 35: `step_s = 1e-15` was accepted and would have run for years). Raised by
+/// `--allow-large` ([`mbd_core::validate::limits`]).
+pub const MAX_SLAB_STEPS: f64 = 1e7;
+
+impl mbd_core::Validate for SlabSimConfig {
+    /// Positive finite duration, step (at most the duration and at most
+    /// [`MAX_SLAB_STEPS`] steps), orbit data and simulation-3 data; `1 ≤ n_modes ≤ 66`.
+    fn validate(&self) -> std::result::Result<(), mbd_core::InvalidField> {
+        use mbd_core::validate::{check, limits};
+        check::positive("duration_s", self.duration_s, "s")?;
+        check::positive("step_s", self.step_s, "s")?;
+        check::step_fits("step_s", self.step_s, "duration_s", self.duration_s)?;
+        let max = limits::ceiling(MAX_SLAB_STEPS);
+        let steps = self.duration_s / self.step_s;
+        if steps > max {
+            return Err(mbd_core::InvalidField::new(
+                "step_s",
+                format!(
+                    "{} s over {} s is {} RK4 steps, more than the {max:e} a run may take{}",
+                    check::show(self.step_s),
+                    check::show(self.duration_s),
+                    check::show(steps),
+                    limits::raise_hint()
+                ),
+            ));
+        }
+        // interior DOFs 78 minus the 12 of the boundary nodes
+        check::count("n_modes", self.n_modes, 1, 66)?;
+        check::positive("orbit_radius_m", self.orbit_radius_m, "m")?;
+        check::positive("orbit_period_s", self.orbit_period_s, "s")?;
+        let s3 = &self.sim3;
+        for (name, v, unit) in [
+            ("sim3.short_link_m", s3.short_link_m, "m"),
+            ("sim3.long_link_m", s3.long_link_m, "m"),
+            (
+                "sim3.link_mass_per_length_kg_m",
+                s3.link_mass_per_length_kg_m,
+                "kg/m",
+            ),
+            ("sim3.link_radius_m", s3.link_radius_m, "m"),
+            ("sim3.table_interval_s", s3.table_interval_s, "s"),
+        ] {
+            check::positive(name, v, unit)?;
+        }
+        // the recorded tables have duration / interval samples
+        let samples = self.duration_s / s3.table_interval_s;
+        if samples > max {
+            return Err(mbd_core::InvalidField::new(
+                "sim3.table_interval_s",
+                format!(
+                    "{} table samples over {} s, more than the {max:e} a run may record{}",
+                    check::show(samples),
+                    check::show(self.duration_s),
+                    limits::raise_hint()
+                ),
+            ));
+        }
+        check::finite("sim3.inclination_deg", s3.inclination_deg)?;
+        for (name, f) in [
+            ("sim3.force_node16_n", s3.force_node16_n),
+            ("sim3.force_node28_n", s3.force_node28_n),
+        ] {
+            for (i, x) in f.iter().enumerate() {
+                check::finite(&format!("{name}[{i}]"), *x)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The configuration's checks as the crate's error.
+pub(super) fn validated(p: &SlabSimConfig) -> Result<()> {
+    mbd_core::Validate::validate(p).map_err(|e| ReductionError::InvalidParameter {
+        name: e.field,
+        reason: e.reason,
+    })
 }
 
 /// The floating-frame system of the slab shared by simulations 1–3: the slab as one
@@ -187,13 +266,16 @@ pub fn build(
 
 /// Runs one simulation; `observer(t, δ'_8)` receives the local deflection of node 8 \[m\] at the
 /// start and after every step. Returns the largest position-level constraint residual \[m\].
-pub fn simulate(
+/// The observer may answer `ControlFlow::Break(())` ([`Proceed`]) to stop the run there (a
+/// cancelled run; the residual so far is returned).
+pub fn simulate<R: Proceed>(
     slab: &LinSlab,
     method: SlabMethod,
     sim: SlabSimulation,
     p: &SlabSimConfig,
-    observer: impl FnMut(f64, [f64; 3]),
+    observer: impl FnMut(f64, [f64; 3]) -> R,
 ) -> Result<f64> {
+    validated(p)?;
     if sim == SlabSimulation::Emulated {
         // callers comparing several methods should record the tables once and call
         // `slab_sim3::simulate_emulated` directly
@@ -209,12 +291,12 @@ pub fn simulate(
 /// \[s\]; `observer(t, δ'_8)` receives the local deflection of node 8 \[m\] at the start and
 /// after every step. Returns the largest position-level constraint residual \[m\]; `what`
 /// names the simulation in errors. Shared by simulations 1–3.
-pub(super) fn run_observed(
+pub(super) fn run_observed<R: Proceed>(
     sys: &FloatingSystem,
     st: State,
     step: f64,
     duration: f64,
-    mut observer: impl FnMut(f64, [f64; 3]),
+    mut observer: impl FnMut(f64, [f64; 3]) -> R,
     what: String,
 ) -> Result<f64> {
     let mut drift = 0.0f64;
@@ -223,11 +305,16 @@ pub(super) fn run_observed(
     Rk4::new(step)
         .integrate(sys, st, duration, |x| {
             let d = sys.node_deflection(x, 0, 7);
-            observer(x.t, [d.x, d.y, d.z]);
+            let go_on = observer(x.t, [d.x, d.y, d.z]).proceed();
             if mbd_core::SecondOrderSystem::constraint_residual(sys, x.t, &x.q, &mut phi).is_ok() {
                 drift = drift.max(phi.iter().fold(0.0, |a: f64, b| a.max(b.abs())));
             } else {
                 failed = Some(x.t);
+            }
+            if go_on {
+                std::ops::ControlFlow::Continue(())
+            } else {
+                std::ops::ControlFlow::Break(())
             }
         })
         .map_err(|e| ReductionError::Numerical {

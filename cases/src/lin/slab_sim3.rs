@@ -255,6 +255,7 @@ fn initial_frame(p: &Sim3Config) -> (Vector3<f64>, Vector4<f64>) {
 }
 
 fn check(p: &SlabSimConfig) -> Result<()> {
+    super::slab_sim::validated(p)?;
     let s = &p.sim3;
     let bad = |name: &str, reason: String| {
         Err(ReductionError::InvalidParameter {
@@ -467,13 +468,14 @@ pub fn emulation_system(
 /// Runs the emulation for `method`; `observer(t, δ'_8)` receives the local deflection of node 8
 /// \[m\] at the start and after every RK4 step of `step_s`. Returns the largest position-level
 /// constraint residual \[m\].
-pub fn simulate_emulated(
+pub fn simulate_emulated<R: mbd_core::integrators::Proceed>(
     slab: &LinSlab,
     method: SlabMethod,
     table: &Arc<AccelTable>,
     p: &SlabSimConfig,
-    observer: impl FnMut(f64, [f64; 3]),
+    observer: impl FnMut(f64, [f64; 3]) -> R,
 ) -> Result<f64> {
+    super::slab_sim::validated(p)?;
     let (sys, st) = emulation_system(slab, method, table, p)?;
     let what = format!("simulation-3 emulation ({})", method.label());
     // the step divides the table interval so that the kinks of the interpolant fall on steps

@@ -68,28 +68,55 @@ pub fn parse(text: &str, file: &str) -> Result<AbaqusEntries, FeError> {
                 file,
                 ln,
                 E::Syntax(format!(
-                    "expected `node, dof, node, dof, value`, found `{t}`"
+                    "expected `node, dof, node, dof, value`, found `{}`",
+                    mbd_core::validate::escape(t)
                 )),
             ));
         }
         let node = |s: &str| -> Result<u64, FeError> {
-            s.parse()
-                .map_err(|_| err(file, ln, E::Syntax(format!("`{s}` is not a node label"))))
+            s.parse().map_err(|_| {
+                err(
+                    file,
+                    ln,
+                    E::Syntax(format!(
+                        "`{}` is not a node label",
+                        mbd_core::validate::escape(s)
+                    )),
+                )
+            })
         };
         let dof = |s: &str| -> Result<u32, FeError> {
-            let d: u32 = s
-                .parse()
-                .map_err(|_| err(file, ln, E::Syntax(format!("`{s}` is not a DOF number"))))?;
+            let d: u32 = s.parse().map_err(|_| {
+                err(
+                    file,
+                    ln,
+                    E::Syntax(format!(
+                        "`{}` is not a DOF number",
+                        mbd_core::validate::escape(s)
+                    )),
+                )
+            })?;
             if d == 0 {
                 return Err(err(file, ln, E::Syntax("DOF numbers start at 1".into())));
             }
             Ok(d)
         };
-        let v: f64 = f[4]
-            .parse()
-            .map_err(|_| err(file, ln, E::Syntax(format!("`{}` is not a number", f[4]))))?;
+        let v: f64 = f[4].parse().map_err(|_| {
+            err(
+                file,
+                ln,
+                E::Syntax(format!(
+                    "`{}` is not a number",
+                    mbd_core::validate::escape(f[4])
+                )),
+            )
+        })?;
         if !v.is_finite() {
-            return Err(err(file, ln, E::NonFinite(f[4].to_string())));
+            return Err(err(
+                file,
+                ln,
+                E::NonFinite(mbd_core::validate::escape(f[4])),
+            ));
         }
         entries.push((node(f[0])?, dof(f[1])?, node(f[2])?, dof(f[3])?, v, ln));
     }
@@ -97,6 +124,121 @@ pub fn parse(text: &str, file: &str) -> Result<AbaqusEntries, FeError> {
         file: file.to_string(),
         entries,
     })
+}
+
+/// Most node labels a node-set file may list or generate: 10⁸ (raised 1000-fold by
+/// `--allow-large`, [`mbd_core::validate::limits`]); a `GENERATE` line is counted before
+/// anything is expanded.
+pub const MAX_SET_LABELS: usize = 100_000_000;
+
+/// Node labels of a node-set file: plain lists (labels separated by commas or white space,
+/// `#` comment lines), or ABAQUS `*NSET` / `*ELSET` data lines. After a keyword line with the
+/// `GENERATE` parameter (`*NSET, NSET=RIM, GENERATE`), each data line is `first, last[,
+/// increment]` and stands for `first, first + increment, …, last` (Abaqus Keywords Reference,
+/// `*NSET`: "GENERATE: … first node, last node, increment in node numbers between nodes in the
+/// set", increment 1 by default; issue 35: the line `1, 432, 1` had been read as the three
+/// labels 1, 432, 1). Other keyword lines end a `GENERATE` block. Errors name `file` and line.
+pub fn parse_node_set(text: &str, file: &str) -> Result<Vec<u64>, FeError> {
+    let max = mbd_core::validate::limits::ceiling_count(MAX_SET_LABELS);
+    let mut out: Vec<u64> = Vec::new();
+    let mut generate = false;
+    let too_many = |ln: usize, n: u128| {
+        err(
+            file,
+            ln,
+            E::Syntax(format!(
+                "the set has {n} labels, more than the {max} a node set may have{}",
+                mbd_core::validate::limits::raise_hint()
+            )),
+        )
+    };
+    for (i, l) in text.lines().enumerate() {
+        let ln = i + 1;
+        let t = l.trim();
+        if t.is_empty() || t.starts_with('#') || t.starts_with("**") {
+            continue;
+        }
+        if let Some(keyword) = t.strip_prefix('*') {
+            generate = keyword
+                .split(',')
+                .skip(1)
+                .any(|p| p.trim().eq_ignore_ascii_case("generate"));
+            continue;
+        }
+        let fields: Vec<&str> = t
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|s| !s.is_empty())
+            .collect();
+        let label = |s: &str| -> Result<u64, FeError> {
+            s.parse().map_err(|_| {
+                err(
+                    file,
+                    ln,
+                    E::Syntax(format!(
+                        "`{}` is not a node label (a non-negative integer)",
+                        mbd_core::validate::escape(s)
+                    )),
+                )
+            })
+        };
+        if generate {
+            if !(2..=3).contains(&fields.len()) {
+                return Err(err(
+                    file,
+                    ln,
+                    E::Syntax(format!(
+                        "a GENERATE line is `first, last[, increment]`, found `{}`",
+                        mbd_core::validate::escape(t)
+                    )),
+                ));
+            }
+            let (first, last) = (label(fields[0])?, label(fields[1])?);
+            let inc = match fields.get(2) {
+                Some(s) => label(s)?,
+                None => 1,
+            };
+            if inc == 0 || last < first {
+                return Err(err(
+                    file,
+                    ln,
+                    E::Syntax(format!(
+                        "GENERATE {first}, {last}, {inc}: needs last >= first and an \
+                         increment >= 1"
+                    )),
+                ));
+            }
+            if (last - first) % inc != 0 {
+                return Err(err(
+                    file,
+                    ln,
+                    E::Syntax(format!(
+                        "GENERATE {first}, {last}, {inc}: last - first is not a multiple of \
+                         the increment"
+                    )),
+                ));
+            }
+            let n = u128::from((last - first) / inc) + 1;
+            if out.len() as u128 + n > max as u128 {
+                return Err(too_many(ln, out.len() as u128 + n));
+            }
+            out.extend((0..n as u64).map(|k| first + k * inc));
+        } else {
+            if out.len() + fields.len() > max {
+                return Err(too_many(ln, (out.len() + fields.len()) as u128));
+            }
+            for f in fields {
+                out.push(label(f)?);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Read a node-set file ([`parse_node_set`]; a bounded read: a regular file within
+/// [`super::MAX_INPUT_BYTES`]).
+pub fn read_node_set(path: impl AsRef<Path>) -> Result<Vec<u64>, FeError> {
+    let (name, text) = super::read_text(path.as_ref())?;
+    parse_node_set(&text, &name)
 }
 
 /// Read one ABAQUS matrix file.

@@ -17,19 +17,79 @@ pub(crate) fn read_text(path: &std::path::Path) -> Result<(String, String), crat
     Ok((name, text))
 }
 
-/// Read a whole file as bytes, with its display name; a directory or unreadable path is
-/// [`crate::FeError::Io`] naming it (a directory is reported as such, not as missing).
-pub(crate) fn read_bytes(path: &std::path::Path) -> Result<(String, Vec<u8>), crate::FeError> {
+/// Largest input file read whole (Matrix Market, ABAQUS, node sets): 16 GiB, raised 1000-fold
+/// by `--allow-large` ([`mbd_core::validate::limits`]). A file's size is checked before it
+/// is read; its contents must also fit in the memory the machine has available
+/// ([`mbd_core::validate::limits::check_memory`]).
+pub const MAX_INPUT_BYTES: u64 = 16 << 30;
+
+/// The metadata of an input file that may be read whole: a regular file (not a directory,
+/// FIFO, socket or device such as `/dev/zero`) no larger than [`MAX_INPUT_BYTES`] (issue 35).
+pub(crate) fn check_input(path: &std::path::Path) -> Result<(String, u64), crate::FeError> {
     let name = path.display().to_string();
     let io = |source| crate::FeError::Io {
-        file: name.clone(),
+        file: mbd_core::validate::escape(&name),
         source,
     };
-    if path.is_dir() {
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if meta.is_dir() {
         return Err(io(std::io::Error::other("is a directory, expected a file")));
     }
-    let data = std::fs::read(path).map_err(io)?;
+    if !meta.is_file() {
+        return Err(io(std::io::Error::other(
+            "is not a regular file (a device, FIFO or socket), expected a file",
+        )));
+    }
+    let max = mbd_core::validate::limits::ceiling(MAX_INPUT_BYTES as f64);
+    if meta.len() as f64 > max {
+        return Err(io(std::io::Error::other(format!(
+            "has {} bytes, more than the {max:e} an input file may have{}",
+            meta.len(),
+            mbd_core::validate::limits::raise_hint()
+        ))));
+    }
+    Ok((name, meta.len()))
+}
+
+/// Read a whole file as bytes, with its display name; a directory, a non-regular or
+/// oversized file ([`check_input`]) or an unreadable path is [`crate::FeError::Io`] naming it
+/// (a directory is reported as such, not as missing). The read is bounded by the size seen
+/// before reading (a file that grows meanwhile is cut there) and must fit in memory.
+pub(crate) fn read_bytes(path: &std::path::Path) -> Result<(String, Vec<u8>), crate::FeError> {
+    use std::io::Read;
+    let (name, len) = check_input(path)?;
+    let io = |source| crate::FeError::Io {
+        file: mbd_core::validate::escape(&name),
+        source,
+    };
+    mbd_core::validate::limits::check_memory(&name, len as f64)
+        .map_err(|e| io(std::io::Error::other(e.reason)))?;
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut data = Vec::with_capacity(len as usize);
+    file.take(len).read_to_end(&mut data).map_err(io)?;
     Ok((name, data))
+}
+
+/// Write `bytes` to `path` through a temporary file beside it (`.NAME.part`), renamed over
+/// `path` when complete: a reader never sees half a file, and a killed writer leaves the old
+/// file or none (issue 35, item 3). Used by every writer of this crate.
+pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{name}.part"));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
 }
 
 /// The bytes of a file: memory-mapped, or read into memory where mapping is not possible.
@@ -58,6 +118,7 @@ impl std::ops::Deref for FileBytes {
 /// memory-mapped reader, the operating system would then stop the process (`SIGBUS`).
 /// Writing a matrix file while another program reads it is an error in any case.
 pub(crate) fn map_bytes(path: &std::path::Path) -> Result<(String, FileBytes), crate::FeError> {
+    check_input(path)?;
     if let Ok(file) = std::fs::File::open(path)
         && file.metadata().is_ok_and(|m| m.is_file() && m.len() > 0)
     {

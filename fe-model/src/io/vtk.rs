@@ -175,7 +175,7 @@ pub fn write_vtu(
 ) -> Result<(), FeError> {
     let path = path.as_ref();
     let text = vtu_string(mesh, fields)?;
-    std::fs::write(path, text).map_err(|source| FeError::Io {
+    crate::io::write_atomic(path, text.as_bytes()).map_err(|source| FeError::Io {
         file: path.display().to_string(),
         source,
     })

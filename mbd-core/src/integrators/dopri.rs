@@ -188,12 +188,12 @@ impl DormandPrince {
     }
 
     /// Integrates without events.
-    pub fn integrate<S: SecondOrderSystem + ?Sized>(
+    pub fn integrate<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
         &self,
         sys: &S,
         state0: State,
         t_end: f64,
-        observer: impl FnMut(&State),
+        observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         self.integrate_with_events(sys, state0, t_end, &[], observer)
     }
@@ -201,13 +201,13 @@ impl DormandPrince {
     /// Integrates from `state0` to `t_end` \[s\], locating the zero crossings of `events`
     /// (on the dense output, Illinois regula falsi to `event_tol`). `observer` sees the initial
     /// state, every accepted step and every located event.
-    pub fn integrate_with_events<S: SecondOrderSystem + ?Sized>(
+    pub fn integrate_with_events<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
         &self,
         sys: &S,
         state0: State,
         t_end: f64,
         events: &[Event<'_>],
-        observer: impl FnMut(&State),
+        observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         self.run(sys, state0, t_end, events, None, observer)
     }
@@ -215,13 +215,13 @@ impl DormandPrince {
     /// Integrates up to the last of `times` \[s\] (strictly increasing, not before the initial
     /// time) and calls `observer` exactly at these times, from the 4th-order dense output
     /// (Hairer's `contd5`), plus at a stopping event.
-    pub fn integrate_dense<S: SecondOrderSystem + ?Sized>(
+    pub fn integrate_dense<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
         &self,
         sys: &S,
         state0: State,
         times: &[f64],
         events: &[Event<'_>],
-        observer: impl FnMut(&State),
+        observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         let bad = |reason: String| MbdError::InvalidInput {
             item: "Dormand-Prince output times".into(),
@@ -257,27 +257,30 @@ impl DormandPrince {
         DopriStepper::new(sys, state0, *self)
     }
 
-    fn run<S: SecondOrderSystem + ?Sized>(
+    fn run<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
         &self,
         sys: &S,
         state0: State,
         t_end: f64,
         events: &[Event<'_>],
         output: Option<&[f64]>,
-        mut observer: impl FnMut(&State),
+        mut observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         let mut st = DopriStepper::new(sys, state0, *self)?;
         let state0 = &st.state;
         let mut next_out = 0usize;
+        // a `Break` from the observer stops the run after the current step (cancelled)
+        let mut go_on = true;
         match output {
-            None => observer(state0),
+            None => go_on = observer(state0).proceed(),
             Some(times) => {
                 while next_out < times.len() && times[next_out] <= state0.t {
-                    observer(&State::new(
+                    go_on &= observer(&State::new(
                         times[next_out],
                         state0.q.clone(),
                         state0.v.clone(),
-                    ));
+                    ))
+                    .proceed();
                     next_out += 1;
                 }
             }
@@ -285,7 +288,7 @@ impl DormandPrince {
         let mut records = Vec::new();
         let mut g_prev: Vec<f64> = events.iter().map(|e| (e.g)(state0)).collect();
         let mut stepped = false;
-        while st.attempt(sys, t_end)? {
+        while go_on && st.attempt(sys, t_end)? {
             stepped = true;
             let (t, t_new) = (st.t_prev, st.t);
             let Some(st_new) = &st.raw_end else {
@@ -322,7 +325,7 @@ impl DormandPrince {
                     } else {
                         st.interpolate(sys, to)
                     };
-                    observer(&so);
+                    go_on &= observer(&so).proceed();
                     next_out += 1;
                 }
             }
@@ -347,7 +350,7 @@ impl DormandPrince {
             g_prev = g_new;
             st.finish(sys)?;
             if output.is_none() {
-                observer(&st.state);
+                go_on &= observer(&st.state).proceed();
             }
         }
         let mut state = st.state;

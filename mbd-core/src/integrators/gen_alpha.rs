@@ -283,12 +283,12 @@ impl GeneralizedAlpha {
     /// Integrates from `state0` to `t_end` \[s\] with the nominal step `params.h` (the last step
     /// is shortened; failed Newton iterations halve the step). `observer` sees the initial state
     /// and every accepted step.
-    pub fn integrate<S: SecondOrderSystem + ?Sized>(
+    pub fn integrate<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
         &self,
         sys: &S,
         state0: State,
         t_end: f64,
-        observer: impl FnMut(&State),
+        observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         integrate_stepper(self.stepper(sys, state0)?, sys, t_end, observer)
     }
@@ -1038,6 +1038,9 @@ impl<S: SecondOrderSystem + ?Sized, C: StepCorrection<S>> Stepper<S> for AlphaSt
         self.halvings = 0;
         while Stepper::step_until(self, sys, t_stop)? {
             observer.observe(&self.state, &self.stats);
+            if observer.stop_requested() {
+                break;
+            }
         }
         Ok(())
     }

@@ -38,7 +38,7 @@ pub use gen_alpha::{
 };
 pub use recorder::Recorder;
 pub use rk4::{Rk4, Rk4Stepper};
-pub use stepper::{FnObserver, Observer, Stepper, observe_fn};
+pub use stepper::{FnObserver, Observer, Proceed, Stepper, observe_fn};
 
 use crate::{MbdError, SecondOrderSystem};
 
@@ -162,14 +162,18 @@ pub trait Integrator {
 
 /// Runs `stepper` to `t_end` \[s\], `observer` seeing the initial state and every accepted
 /// step: the `integrate` function of the fixed-step methods.
-pub(crate) fn integrate_stepper<S: SecondOrderSystem + ?Sized, St: Stepper<S>>(
+///
+/// The observer may return `()` or a [`Proceed`] answer: `ControlFlow::Break(())` ends the
+/// run after that step with `Ok` and the state reached (a cancelled run; the caller knows).
+pub(crate) fn integrate_stepper<S: SecondOrderSystem + ?Sized, St: Stepper<S>, R: Proceed>(
     mut stepper: St,
     sys: &S,
     t_end: f64,
-    mut observer: impl FnMut(&State),
+    mut observer: impl FnMut(&State) -> R,
 ) -> Result<Solution, MbdError> {
-    observer(stepper.state());
-    stepper.advance_to(sys, t_end, &mut observe_fn(observer))?;
+    if observer(stepper.state()).proceed() {
+        stepper.advance_to(sys, t_end, &mut observe_fn(observer))?;
+    }
     Ok(Solution {
         state: stepper.state().clone(),
         stats: *stepper.stats(),

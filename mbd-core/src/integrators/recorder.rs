@@ -75,17 +75,26 @@ impl<O: Observer> Recorder<O> {
                     }
                     self.next += 1;
                 }
-                if !stepper.step_until(sys, t_end)? {
+                if self.sink.stop_requested() || !stepper.step_until(sys, t_end)? {
                     break;
                 }
                 observer.observe(stepper.state(), stepper.stats());
+                if observer.stop_requested() {
+                    break;
+                }
             }
         } else {
             while self.next_time() <= t_end + tol {
                 let tk = self.next_time().min(t_end);
                 stepper.advance_to(sys, tk, observer)?;
+                if observer.stop_requested() {
+                    return Ok(());
+                }
                 self.sample(stepper.state(), self.next_time(), stepper);
                 self.next += 1;
+                if self.sink.stop_requested() {
+                    return Ok(());
+                }
             }
             stepper.advance_to(sys, t_end, observer)?;
         }

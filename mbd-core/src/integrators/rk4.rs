@@ -45,12 +45,12 @@ impl Rk4 {
 
     /// Integrates from `state0` to `t_end` \[s\]; `observer` sees the initial state and every
     /// step's end state.
-    pub fn integrate<S: SecondOrderSystem + ?Sized>(
+    pub fn integrate<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
         &self,
         sys: &S,
         state0: State,
         t_end: f64,
-        observer: impl FnMut(&State),
+        observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         integrate_stepper(self.stepper(sys, state0)?, sys, t_end, observer)
     }

@@ -15,6 +15,36 @@ use crate::{MbdError, SecondOrderSystem};
 pub trait Observer {
     /// Called with the state and the run statistics after an accepted step.
     fn observe(&mut self, state: &State, stats: &Stats);
+
+    /// Whether the run should stop after the step just observed (a cancelled run, e.g. on
+    /// Ctrl-C in an app): [`Stepper::advance_to`] and [`Recorder::run`](super::Recorder::run)
+    /// then return `Ok` at the state reached. The caller that asked for the stop knows the run
+    /// is incomplete. Default: never.
+    fn stop_requested(&self) -> bool {
+        false
+    }
+}
+
+/// What an observer or progress callback returns to the loop that called it: `()` (go on) or
+/// [`std::ops::ControlFlow`] (`Break(())` stops the loop after the current step, keeping
+/// what was computed). Lets a caller cancel a long run through the callback it already
+/// passes, without any global flag: the apps' Ctrl-C handling answers `Break` once a signal
+/// arrived (`flowmbd_cli::Cancel`).
+pub trait Proceed {
+    /// `true` to continue, `false` to stop after the current step.
+    fn proceed(&self) -> bool;
+}
+
+impl Proceed for () {
+    fn proceed(&self) -> bool {
+        true
+    }
+}
+
+impl Proceed for std::ops::ControlFlow<()> {
+    fn proceed(&self) -> bool {
+        self.is_continue()
+    }
 }
 
 /// The no-op observer.
@@ -22,18 +52,36 @@ impl Observer for () {
     fn observe(&mut self, _state: &State, _stats: &Stats) {}
 }
 
-/// A closure `FnMut(&State)` as an [`Observer`] (build it with [`observe_fn`]).
-pub struct FnObserver<F: FnMut(&State)>(pub F);
+/// A closure `FnMut(&State) -> R` as an [`Observer`] (build it with [`observe_fn`]); `R` is
+/// `()` or a [`Proceed`] answer such as `ControlFlow<()>` that can stop the run.
+pub struct FnObserver<F> {
+    f: F,
+    stop: bool,
+}
 
-impl<F: FnMut(&State)> Observer for FnObserver<F> {
+impl<F, R> Observer for FnObserver<F>
+where
+    F: FnMut(&State) -> R,
+    R: Proceed,
+{
     fn observe(&mut self, state: &State, _stats: &Stats) {
-        (self.0)(state)
+        if !(self.f)(state).proceed() {
+            self.stop = true;
+        }
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.stop
     }
 }
 
 /// Wraps a closure as an [`Observer`]: `stepper.advance_to(&sys, t, &mut observe_fn(|s| ..))`.
-pub fn observe_fn<F: FnMut(&State)>(f: F) -> FnObserver<F> {
-    FnObserver(f)
+pub fn observe_fn<F, R>(f: F) -> FnObserver<F>
+where
+    F: FnMut(&State) -> R,
+    R: Proceed,
+{
+    FnObserver { f, stop: false }
 }
 
 impl Observer for crate::History<'_> {
@@ -67,7 +115,8 @@ pub trait Stepper<S: SecondOrderSystem + ?Sized> {
     fn step_until(&mut self, sys: &S, t_stop: f64) -> Result<bool, MbdError>;
 
     /// Steps until the state is at `t_stop` \[s\] (hit exactly), calling `observer` after
-    /// every accepted step.
+    /// every accepted step; returns early when the observer asks to stop
+    /// ([`Observer::stop_requested`]).
     fn advance_to(
         &mut self,
         sys: &S,
@@ -76,6 +125,9 @@ pub trait Stepper<S: SecondOrderSystem + ?Sized> {
     ) -> Result<(), MbdError> {
         while self.step_until(sys, t_stop)? {
             observer.observe(self.state(), self.stats());
+            if observer.stop_requested() {
+                break;
+            }
         }
         Ok(())
     }

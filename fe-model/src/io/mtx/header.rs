@@ -31,13 +31,13 @@ pub(super) struct Header {
 pub(super) fn show(line: &[u8]) -> String {
     let s = String::from_utf8_lossy(line);
     let s = s.trim();
+    // control characters escaped (issue 35 item 7: no escape sequence reaches a terminal)
     match s.char_indices().nth(60) {
-        Some((i, _)) => format!("{}…", &s[..i]),
-        None => s.to_string(),
+        Some((i, _)) => format!("{}…", mbd_core::validate::escape(&s[..i])),
+        None => mbd_core::validate::escape(s),
     }
 }
 
-/// Whether a line is blank or a `%` comment (skipped everywhere after the banner).
 pub(super) fn skipped(line: &[u8]) -> bool {
     match line.iter().position(|b| !b.is_ascii_whitespace()) {
         None => true,
@@ -72,17 +72,28 @@ pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, F
         ));
     }
     if b[1] != "matrix" {
-        return Err(header(format!("unsupported object `{}`", b[1])));
+        return Err(header(format!(
+            "unsupported object `{}`",
+            mbd_core::validate::escape(&b[1])
+        )));
     }
     let format = match b[2].as_str() {
         "coordinate" => Format::Coordinate,
         "array" => Format::Array,
-        f => return Err(header(format!("unsupported format `{f}`"))),
+        f => {
+            return Err(header(format!(
+                "unsupported format `{}`",
+                mbd_core::validate::escape(f)
+            )));
+        }
     };
     match b[3].as_str() {
         "real" | "integer" | "double" => {}
         f => {
-            return Err(header(format!("unsupported field `{f}` (real or integer)")));
+            return Err(header(format!(
+                "unsupported field `{}` (real or integer)",
+                mbd_core::validate::escape(f)
+            )));
         }
     }
     let symmetry = match b[4].as_str() {
@@ -90,7 +101,8 @@ pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, F
         "symmetric" => Symmetry::Symmetric,
         s => {
             return Err(header(format!(
-                "unsupported symmetry `{s}` (general or symmetric)"
+                "unsupported symmetry `{}` (general or symmetric)",
+                mbd_core::validate::escape(s)
             )));
         }
     };
@@ -120,7 +132,10 @@ pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, F
             err(
                 file,
                 ln,
-                E::Size(format!("`{t}` is not a non-negative integer below 2⁶⁴")),
+                E::Size(format!(
+                    "`{}` is not a non-negative integer below 2⁶⁴",
+                    mbd_core::validate::escape(t)
+                )),
             )
         })?;
     }
@@ -149,6 +164,35 @@ pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, F
             )),
         ));
     }
+    // what reading will allocate at most, from the header and the data actually present (an
+    // entry line has at least 6 bytes, an array value 2): compared with the memory available
+    // before anything is allocated, even with the ceiling lifted (issue 35)
+    let body = (data.len() - pos.min(data.len())) as f64;
+    let bytes = match format {
+        Format::Coordinate => {
+            let entries = (d[2] as f64).min(body / 6.0 + 1.0);
+            let mirror = if symmetry == Symmetry::Symmetric {
+                2.0
+            } else {
+                1.0
+            };
+            8.0 * (ncols as f64 + 1.0) + entries * mirror * 40.0
+        }
+        Format::Array => {
+            let values = (nrows as f64 * ncols as f64).min(body / 2.0 + 1.0);
+            8.0 * (ncols as f64 + 1.0) + values * 2.0 * 40.0
+        }
+    };
+    mbd_core::validate::limits::check_memory("matrix", bytes).map_err(|e| {
+        err(
+            file,
+            ln,
+            E::Size(format!(
+                "{nrows}×{ncols} with {} entries {}",
+                d[2], e.reason
+            )),
+        )
+    })?;
     Ok(Header {
         format,
         symmetry,

@@ -121,7 +121,7 @@ pub fn dense_to_string(a: MatRef<'_, f64>, symmetry: Symmetry) -> Result<String,
 }
 
 fn write_text(path: &Path, text: &str) -> Result<(), FeError> {
-    std::fs::write(path, text).map_err(|source| FeError::Io {
+    crate::io::write_atomic(path, text.as_bytes()).map_err(|source| FeError::Io {
         file: path.display().to_string(),
         source,
     })
