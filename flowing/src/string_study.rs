@@ -722,7 +722,10 @@ second discretisation's rate in analytical_truncation_growth / flowing_truncatio
 not counted as instability (above c every truncation has them, with rates that rise without \
 bound as it is refined). analytical_ and flowing_max_rel_error are the largest deviations \
 from exact_hz; near and above c the modal basis (the fixed string's modes) converges slowly \
-and a warning says when more modes or nodes are needed.";
+and a warning says when more modes or nodes are needed. The app's frequencies.csv lists the \
+three side by side (NaN where a model has fewer neutral frequencies than report) and \
+growth.csv every growing eigenvalue (truncation_flag 1: truncation-dependent; check_rate 0: \
+the second discretisation does not grow).";
 
 #[cfg(test)]
 mod tests {
