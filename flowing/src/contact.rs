@@ -512,6 +512,25 @@ impl Default for ContactConfig {
     }
 }
 
+/// Most contact events of one run (`max_events` is bounded by it before the run).
+pub const MAX_CONTACT_EVENTS: usize = 10_000_000;
+
+/// Loosest relative tolerance of Dormand–Prince (looser is no integration) and the tightest
+/// (below it the step control chases round-off: mbd-core's minimum step stops the run).
+pub const RTOL_RANGE: (f64, f64) = (1e-13, 0.1);
+
+impl mbd_core::validate::Validate for ContactConfig {
+    fn validate(&self) -> Result<(), mbd_core::validate::InvalidField> {
+        use mbd_core::validate::check;
+        check::non_negative("gap_tol", self.gap_tol, "m")?;
+        check::non_negative("force_tol", self.force_tol, "N")?;
+        check::within("rtol", self.rtol, RTOL_RANGE.0, RTOL_RANGE.1, "")?;
+        check::non_negative("atol", self.atol, "")?;
+        check::size("max_events", self.max_events, 1, MAX_CONTACT_EVENTS)?;
+        Ok(())
+    }
+}
+
 /// One contact switch.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ContactEvent {

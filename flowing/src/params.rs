@@ -59,11 +59,25 @@ impl StringConfig {
         (self.tension / self.mu()).sqrt()
     }
 
-    /// Exact damped natural frequency of mode `n` of the axially moving fixed–fixed string,
-    /// `f_n = n (c² − v²) / (2 c L)` \[Hz\] (classical result, notes §1.4.4 / erratum E25; the
-    /// eigenvalues of Ribaric's (4.29) converge to it).
+    /// Exact natural frequency of mode `n` of the axially moving fixed–fixed string at any
+    /// speed, `f_n = n |c² − v²| / (2 c L)` \[Hz\] (0 at `|v| = c`).
+    ///
+    /// The eigenvalues of (4.23) with `u(0) = u(L) = 0` are `λ_n = iπn(c² − v²)/(cL)`
+    /// (Wickert & Mote 1990 for `|v| < c`; notes §1.4.4 / erratum E25; the eigenvalues of
+    /// Ribaric's (4.29) converge to them): with `u = e^{λt}(e^{ik₁x} − e^{ik₂x})` and the two
+    /// wave numbers `k₁ = −iλ/(c − v)`, `k₂ = iλ/(c + v)` the end conditions give
+    /// `(k₁ − k₂)L = 2πn`. The same algebra holds for `|v| > c`, where `λ_n` changes sign and
+    /// stays imaginary: the characteristic time `τ = t + v x/(c² − v²)` turns (4.23) into the
+    /// fixed string `u_ττ = c'² u_xx` with `c' = |c² − v²|/c`, whose frequencies are
+    /// `n c'/(2L)` (see [`crate::string_study`]).
     pub fn exact_moving_frequency_hz(&self, n: usize, speed: f64) -> f64 {
+        n as f64 * self.characteristic_wave_speed(speed) / (2.0 * self.length)
+    }
+
+    /// Wave speed of the string travelling at `speed` seen in its characteristic time
+    /// `τ = t + v x/(c² − v²)`: `c' = |c² − v²|/c` \[m/s\] (0 at the critical speed).
+    pub fn characteristic_wave_speed(&self, speed: f64) -> f64 {
         let c = self.wave_speed();
-        n as f64 * (c * c - speed * speed) / (2.0 * c * self.length)
+        (c * c - speed * speed).abs() / c
     }
 }

@@ -28,8 +28,15 @@ def modes(
     Returns
     -------
     dict
-        ``speed``, ``critical_speed``, ``analytical_hz`` and ``flowing_hz`` (numpy arrays), as in
-        the CLI's ``summary.json``.
+        The CLI's ``summary.json``: ``speed``, ``critical_speed``, ``regime``
+        (``"subcritical"``, ``"critical"`` or ``"supercritical"``), ``analytical_hz`` and
+        ``flowing_hz`` (the models' neutral frequencies, numpy arrays), ``exact_hz`` (the
+        closed form n|c² − v²|/(2cL) at every speed), ``unstable`` (true at the critical speed,
+        divergence, and for growth that a second discretisation reproduces), the reproduced
+        growth ``analytical_growth`` / ``flowing_growth`` and the truncation-dependent growth
+        ``analytical_truncation_growth`` / ``flowing_truncation_growth`` (lists of dicts; above
+        the critical speed every truncation has some, the string stays neutrally stable),
+        ``growth_check``, the largest relative errors, ``warnings`` and ``meaning``.
 
     Raises
     ------

@@ -1,6 +1,6 @@
 //! Pieces shared by the studies: error mapping, validation helpers, model building.
 
-use flowing::string_study;
+use flowing::string_study::{self, Spectrum};
 use flowing::{DerivativeMethod, FlowError, FlowingString, StringConfig, StringMesh};
 use flowmbd_cli::{InputError, StudyError};
 
@@ -19,8 +19,8 @@ pub fn study_error(e: FlowError) -> StudyError {
 
 /// The shared checks, defined with the modes study in `flowing` (one set of messages).
 pub use flowing::string_study::{
-    MAX_GALERKIN_TERMS, MAX_STRING_NODES, check_nodes_modes, check_number, check_steps,
-    check_string,
+    MAX_GALERKIN_TERMS, MAX_STRING_NODES, Regime, check_nodes_modes, check_number, check_scales,
+    check_steps, check_string,
 };
 
 /// The string mesh of `nodes` interior nodes and its flowing-material model with `modes` modes
@@ -35,16 +35,17 @@ pub fn flowing_model(
     string_study::flowing_model(p, nodes, modes, method, speed).map_err(study_error)
 }
 
-/// Eigen analysis of the Galerkin model: (damped frequencies \[Hz\], max real part \[1/s\]).
-pub fn galerkin_frequencies(
+/// Eigen analysis of the Galerkin model (4.29) ([`flowing::string_study::galerkin_spectrum`]).
+pub fn galerkin_spectrum(
     p: StringConfig,
     speed: f64,
     terms: usize,
-) -> Result<(Vec<f64>, f64), StudyError> {
-    string_study::galerkin_frequencies(p, speed, terms).map_err(study_error)
+) -> Result<Spectrum, StudyError> {
+    string_study::galerkin_spectrum(p, speed, terms).map_err(study_error)
 }
 
-/// Eigen analysis of the flowing model frozen at `speed`.
-pub fn flowing_frequencies(sys: &FlowingString, speed: f64) -> Result<(Vec<f64>, f64), StudyError> {
-    string_study::flowing_frequencies(sys, speed).map_err(study_error)
+/// Eigen analysis of the flowing model frozen at `speed`
+/// ([`flowing::string_study::flowing_spectrum`]).
+pub fn flowing_spectrum(sys: &FlowingString, speed: f64) -> Result<Spectrum, StudyError> {
+    string_study::flowing_spectrum(sys, speed).map_err(study_error)
 }

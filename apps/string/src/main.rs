@@ -27,8 +27,9 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Damped natural frequencies of the analytical Galerkin model and the discrete
-    /// flowing-material model at one axial speed.
+    /// Natural frequencies of the analytical Galerkin model and the discrete flowing-material
+    /// model at one axial speed, with the exact ones and the models' growth checked by a second
+    /// discretisation.
     Modes {
         /// Axial speed [m/s].
         #[arg(long)]
@@ -53,7 +54,8 @@ enum Command {
         #[command(flatten)]
         common: CommonArgs,
     },
-    /// Transient after a pluck: modal coordinates and their spectra (Ribaric Fig. 4-6 right).
+    /// Transient after a pluck below the critical speed: modal coordinates and their spectra
+    /// (Ribaric Fig. 4-6 right).
     Simulate {
         /// Axial speed [m/s].
         #[arg(long)]

@@ -54,21 +54,57 @@ impl Study for ModesStudy {
             &["n", "analytical_hz", "flowing_hz", "exact_hz"],
             rows,
         )?;
-        if !summary.flowing_growth.is_empty() || !summary.analytical_growth.is_empty() {
-            let rows = summary
-                .analytical_growth
-                .iter()
-                .map(|g| [0.0, g.rate_per_s, g.frequency_hz])
-                .chain(
-                    summary
-                        .flowing_growth
-                        .iter()
-                        .map(|g| [1.0, g.rate_per_s, g.frequency_hz]),
-                );
+        // every growing eigenvalue of either model: reproduced by the second discretisation
+        // (truncation_flag 0) or truncation-dependent (1); check_rate 0: the check does not grow
+        let rows: Vec<[f64; 6]> = [
+            (
+                0.0,
+                &summary.analytical_growth,
+                &summary.analytical_truncation_growth,
+            ),
+            (
+                1.0,
+                &summary.flowing_growth,
+                &summary.flowing_truncation_growth,
+            ),
+        ]
+        .into_iter()
+        .flat_map(|(code, kept, trunc)| {
+            kept.iter()
+                .map(move |g| {
+                    [
+                        code,
+                        0.0,
+                        g.rate_per_s,
+                        g.frequency_hz,
+                        g.rate_per_s,
+                        g.frequency_hz,
+                    ]
+                })
+                .chain(trunc.iter().map(move |g| {
+                    [
+                        code,
+                        1.0,
+                        g.rate_per_s,
+                        g.frequency_hz,
+                        g.check_rate_per_s,
+                        g.check_frequency_hz,
+                    ]
+                }))
+        })
+        .collect();
+        if !rows.is_empty() {
             // model_code: 0 Galerkin (4.29), 1 flowing material (4.20)
             ctx.out.write_csv(
                 "growth.csv",
-                &["model_code", "rate_1_s", "frequency_hz"],
+                &[
+                    "model_code",
+                    "truncation_flag",
+                    "rate_1_s",
+                    "frequency_hz",
+                    "check_rate_1_s",
+                    "check_frequency_hz",
+                ],
                 rows,
             )?;
         }

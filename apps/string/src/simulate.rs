@@ -65,11 +65,41 @@ impl Default for SimulateConfig {
     }
 }
 
+/// Most values of the recorded history, `samples × modes` (positions and velocities are kept
+/// for every sample: 2·10⁷ values, 320 MB; the default run records 4·10⁴).
+pub const MAX_HISTORY_VALUES: f64 = 1e7;
+
+/// Most RK4 work, `steps × modes²` (one modal force evaluation is `modes²` multiply-adds, four
+/// per step: 10¹¹ is a few minutes; the default run is 8·10⁶).
+pub const MAX_RK4_WORK: f64 = 1e11;
+
+/// RK4's stability limit on the imaginary axis, `|hλ| ≤ 2√2`.
+pub const RK4_STABILITY_LIMIT: f64 = 2.0 * std::f64::consts::SQRT_2;
+
 impl Validate for SimulateConfig {
     fn validate(&self) -> Result<(), InputError> {
         check_string(&self.string, "string")?;
         check_number("speed", self.speed, false)?;
         check_nodes_modes(self.nodes, self.modes)?;
+        check_scales(&self.string, "string", "speed", self.speed, self.nodes)?;
+        // issue 35: above the critical speed the fixed–fixed string is no initial-value problem
+        // (both waves travel downstream) and every truncation grows spuriously (issue 34,
+        // flowing::string_study module docs); at it the stiffness vanishes
+        let crit = self.string.wave_speed();
+        if Regime::of(&self.string, self.speed) != Regime::Subcritical {
+            return Err(InputError::new(
+                "speed",
+                format!(
+                    "|speed| = {} m/s is at or above the critical speed c = √(T/ρA) = {crit:.4} \
+                     m/s of this string (tension {} N): the pluck transient of the string \
+                     between fixed guides exists only below c (above it both waves travel \
+                     downstream and the truncated model grows without bound); `modes` gives \
+                     the frequencies n|c² − v²|/(2cL) at any speed",
+                    mbd_core::validate::check::show(self.speed.abs()),
+                    mbd_core::validate::check::show(self.string.tension)
+                ),
+            ));
+        }
         if !(self.pluck.x > 0.0 && self.pluck.x < self.string.length) {
             return Err(InputError::new(
                 "pluck.x",
@@ -77,6 +107,17 @@ impl Validate for SimulateConfig {
             ));
         }
         check_number("pluck.amplitude", self.pluck.amplitude, false)?;
+        if self.pluck.amplitude.abs() > self.string.length {
+            return Err(InputError::new(
+                "pluck.amplitude",
+                format!(
+                    "|{}| m exceeds the string's length {} m (the linear string model needs a \
+                     deflection small against its length)",
+                    mbd_core::validate::check::show(self.pluck.amplitude),
+                    mbd_core::validate::check::show(self.string.length)
+                ),
+            ));
+        }
         if !(self.duration.is_finite() && self.duration > 0.0) {
             return Err(InputError::new("duration", "must be positive"));
         }
@@ -94,9 +135,25 @@ impl Validate for SimulateConfig {
         }
         // RK4 steps of the run (each a few matrix-vector products of the modal size)
         check_steps("duration", self.duration, self.step, 1e8, "RK4 steps")?;
-        if (self.duration / (self.step * self.sample_every as f64)) < 8.0 {
+        let period = self.step * self.sample_every as f64;
+        if (self.duration / period) < 8.0 {
             return Err(InputError::new("duration", "gives fewer than 8 samples"));
         }
+        let k = self.modes as f64;
+        check_steps(
+            "duration",
+            self.duration * k,
+            period,
+            MAX_HISTORY_VALUES,
+            "recorded values (samples × modes)",
+        )?;
+        check_steps(
+            "duration",
+            self.duration * k * k,
+            self.step,
+            MAX_RK4_WORK,
+            "units of RK4 work (steps × modes²)",
+        )?;
         Ok(())
     }
 }
@@ -167,7 +224,36 @@ impl Study for SimulateStudy {
         ctx: &mut StudyContext,
     ) -> Result<SimulateSummary, StudyError> {
         let (mesh, sys) = flowing_model(c.string, c.nodes, c.modes, c.derivative, c.speed)?;
-        let (model_hz, _) = flowing_frequencies(&sys, c.speed)?;
+        let spectrum = flowing_spectrum(&sys, c.speed)?;
+        // below c the FE-consistent model cannot grow (its energy is positive definite);
+        // another derivative operator can (notes STR-6), and then its response is an artefact
+        if let Some(g) = spectrum.growth.first() {
+            return Err(StudyError::Input(InputError::new(
+                "derivative",
+                format!(
+                    "the model with this derivative operator grows at {:.4e} 1/s ({:.4} Hz) \
+                     although the string is below its critical speed: the operator is not \
+                     FE-consistent (Ribaric App. A, notes STR-6) and the response would grow \
+                     without bound; use Consistent or fewer modes",
+                    g.rate_per_s, g.frequency_hz
+                ),
+            )));
+        }
+        let h_max = RK4_STABILITY_LIMIT / spectrum.max_modulus;
+        if c.step > h_max {
+            return Err(StudyError::Input(InputError::new(
+                "step",
+                format!(
+                    "{} s is beyond RK4's stability limit 2√2/|λ|max = {} s for this model \
+                     (|λ|max = {:.4e} 1/s with {} modes)",
+                    mbd_core::validate::check::show(c.step),
+                    mbd_core::validate::check::show(h_max),
+                    spectrum.max_modulus,
+                    c.modes
+                ),
+            )));
+        }
+        let model_hz = spectrum.neutral_hz;
         let u0 = triangular_pluck(
             mesh.grid.positions(),
             0.0,
@@ -196,6 +282,16 @@ impl Study for SimulateStudy {
                 message: format!("only {} samples computed", hist.t.len()),
                 partial: None,
             });
+        }
+        if let Some((t, _)) = hist
+            .t
+            .iter()
+            .zip(hist.q.iter().zip(&hist.v))
+            .find(|(_, (q, v))| q.iter().chain(v.iter()).any(|x| !x.is_finite()))
+        {
+            return Err(StudyError::numerical(format!(
+                "the modal response is not finite at t = {t} s"
+            )));
         }
         // mass-normalised modes: the modal coordinates carry √kg·m
         let mut header = vec!["t_s".to_string()];
@@ -267,6 +363,12 @@ impl Study for SimulateStudy {
         let h0 = sys.hamiltonian(&z0, &vec![0.0; k], c.speed);
         let last = hist.q.len() - 1;
         let h1 = sys.hamiltonian(&hist.q[last], &hist.v[last], c.speed);
+        let drift = if h0 != 0.0 { (h1 - h0) / h0 } else { 0.0 };
+        if !drift.is_finite() {
+            return Err(StudyError::numerical(format!(
+                "the energy-like invariant H is not finite (H(0) = {h0:e}, H(end) = {h1:e})"
+            )));
+        }
         Ok(SimulateSummary {
             speed: c.speed,
             exact_hz: (1..=k)
@@ -275,7 +377,7 @@ impl Study for SimulateStudy {
             model_hz,
             resolution_hz: spectra[0].frequencies.get(1).copied().unwrap_or(f64::NAN),
             peaks,
-            hamiltonian_drift: if h0 != 0.0 { (h1 - h0) / h0 } else { 0.0 },
+            hamiltonian_drift: drift,
         })
     }
 }

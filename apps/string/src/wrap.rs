@@ -94,18 +94,27 @@ impl Default for WrapConfig {
     }
 }
 
+/// Most periods of the model's fastest motion in one run, `duration × max(c(n+1)/(πL),
+/// load.frequency)` (the FE mesh's highest natural frequency or the load's): Dormand–Prince
+/// takes about 40 steps per period at the default tolerances, so 2.5·10⁵ periods are about 10⁷
+/// steps; the default run is 385 periods.
+pub const MAX_WRAP_PERIODS: f64 = 2.5e5;
+
+/// Most pulleys of the wrapped string.
+pub const MAX_WRAP_PULLEYS: usize = 64;
+
 impl Validate for WrapConfig {
     fn validate(&self) -> Result<(), InputError> {
+        use mbd_core::validate::check::show;
         check_string(&self.string, "string")?;
         mbd_core::validate::check::size("nodes", self.nodes, 5, MAX_STRING_NODES)?;
-        if self.pulleys.is_empty() {
-            return Err(InputError::new("pulleys", "at least one pulley is needed"));
-        }
+        check_scales(&self.string, "string", "speed", self.speed, self.nodes)?;
+        mbd_core::validate::check::size("pulleys", self.pulleys.len(), 1, MAX_WRAP_PULLEYS)?;
         for (i, p) in self.pulleys.iter().enumerate() {
             if !(p.radius.is_finite() && p.radius > 0.0) {
                 return Err(InputError::new(
                     format!("pulleys[{i}].radius"),
-                    format!("must be positive, got {}", p.radius),
+                    format!("must be positive, got {}", show(p.radius)),
                 ));
             }
             if !(p.center_x > 0.0 && p.center_x < self.string.length) {
@@ -132,10 +141,16 @@ impl Validate for WrapConfig {
             }
         }
         check_number("speed", self.speed, false)?;
-        if self.speed.abs() >= self.string.wave_speed() {
+        let crit = self.string.wave_speed();
+        if Regime::of(&self.string, self.speed) != Regime::Subcritical {
             return Err(InputError::new(
                 "speed",
-                "must be below the critical speed √(T/ρA)",
+                format!(
+                    "|speed| = {} m/s must be below the critical speed c = √(T/ρA) = {crit:.4} \
+                     m/s of this string (above it the travelling string between fixed \
+                     supports is no initial-value problem: both waves travel downstream)",
+                    show(self.speed.abs())
+                ),
             ));
         }
         check_number("load.amplitude", self.load.amplitude, false)?;
@@ -153,10 +168,29 @@ impl Validate for WrapConfig {
             ));
         }
         check_steps("duration", self.duration, self.sample, 1e7, "samples")?;
+        let f_top = (crit * (self.nodes + 1) as f64 / (std::f64::consts::PI * self.string.length))
+            .max(self.load.frequency);
+        check_steps(
+            "duration",
+            self.duration,
+            1.0 / f_top,
+            MAX_WRAP_PERIODS,
+            "periods of the fastest motion (the FE mesh's highest frequency or the load's)",
+        )?;
         mbd_core::validate::check::size("vtk_snapshots", self.vtk_snapshots, 0, 100_000)?;
         if self.formulation == Formulation::CraigBampton && self.free_modes == 0 {
             return Err(InputError::new("free_modes", "must be at least 1"));
         }
+        if self.formulation == Formulation::CraigBampton && self.free_modes > self.nodes {
+            return Err(InputError::new(
+                "free_modes",
+                format!(
+                    "must be at most nodes = {}, got {}",
+                    self.nodes, self.free_modes
+                ),
+            ));
+        }
+        self.contact.validate_within("contact")?;
         Ok(())
     }
 }
@@ -383,6 +417,7 @@ impl Study for WrapStudy {
         let mut max_gap: f64 = 0.0;
         let mut rows: Vec<Vec<f64>> = Vec::new();
         let mut io_err = None;
+        let mut num_err: Option<String> = None;
         let positions = mesh.grid.positions().to_vec();
         let vtk_dt = if c.vtk_snapshots > 0 {
             c.duration / c.vtk_snapshots as f64
@@ -413,9 +448,13 @@ impl Study for WrapStudy {
             }
             if st.t + 1e-12 >= next {
                 next += c.sample;
-                let p = s
-                    .contact_forces(st)
-                    .unwrap_or_else(|_| vec![f64::NAN; s.candidates.len()]);
+                let p = match s.contact_forces(st) {
+                    Ok(p) => p,
+                    Err(e) => {
+                        num_err.get_or_insert(format!("contact forces at t = {} s: {e}", st.t));
+                        vec![0.0; s.candidates.len()]
+                    }
+                };
                 let u = s.deflection(&st.q);
                 let mut row = vec![st.t, u[load_node], span, s.energy(&st.q, &st.v, c.speed)];
                 row.extend(act.iter());
@@ -432,6 +471,12 @@ impl Study for WrapStudy {
         csv.finish()?;
         if let Some(e) = io_err {
             return Err(e);
+        }
+        if let Some(message) = num_err {
+            return Err(StudyError::Numerical {
+                message,
+                partial: Some(serde_json::json!({ "samples": rows.len() })),
+            });
         }
         let run = run.map_err(|e| StudyError::Numerical {
             message: format!("contact simulation failed: {e}"),
@@ -472,7 +517,7 @@ impl Study for WrapStudy {
             Series::line("u(load)", rows.iter().map(|r| (r[0], r[1])).collect()),
         );
         plot.save(&ctx.out.path("deflection"))?;
-        Ok(WrapSummary {
+        let summary = WrapSummary {
             coordinates: sys.dim(),
             candidates_per_pulley: cand_pp,
             initial_active_per_pulley: act_pp,
@@ -484,6 +529,17 @@ impl Study for WrapStudy {
             max_free_span: max_span,
             max_active_gap: max_gap,
             steps: run.stats.steps,
-        })
+        };
+        let numbers = summary.initial_force_per_pulley.iter().chain([
+            &summary.impact_loss,
+            &summary.max_free_span,
+            &summary.max_active_gap,
+        ]);
+        if numbers.into_iter().any(|x| !x.is_finite()) {
+            return Err(StudyError::numerical(format!(
+                "the contact simulation gave non-finite results: {summary:?}"
+            )));
+        }
+        Ok(summary)
     }
 }

@@ -32,18 +32,23 @@ fn modes_json_matches_exact_moving_string() {
     let mut keys: Vec<&str> = obj.keys().map(String::as_str).collect();
     keys.sort();
     // the issue's keys, plus those of issue 20 (stability, the exact reference, warnings and
-    // what the numbers mean)
+    // what the numbers mean) and issue 34 (regime, truncation growth and its check)
     assert_eq!(
         keys,
         [
             "analytical_growth",
             "analytical_hz",
+            "analytical_max_rel_error",
+            "analytical_truncation_growth",
             "critical_speed",
             "exact_hz",
             "flowing_growth",
             "flowing_hz",
             "flowing_max_rel_error",
+            "flowing_truncation_growth",
+            "growth_check",
             "meaning",
+            "regime",
             "speed",
             "unstable",
             "warnings"

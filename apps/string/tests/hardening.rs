@@ -1,5 +1,6 @@
-//! Issue 20 reproducers for `flowmbd-string`: `modes` at and above the critical speed reports
-//! `"unstable": true` with growth rates, near it warns about unconverged frequencies; negative
+//! Issue 20, 34 and 35 reproducers for `flowmbd-string`: `modes` above the critical speed is
+//! neutral with truncation growth labelled as such (issue 34), at it divergence, near it warns
+//! about unconverged frequencies; bad input is exit 2 naming the field (issue 35); negative
 //! speeds are numbers, not flags; `--nodes 1e9` is refused before allocating; every
 //! configuration table rejects unknown keys; CSV headers carry units and summaries a meaning.
 
@@ -37,29 +38,71 @@ fn floats(v: &Value) -> Vec<f64> {
         .collect()
 }
 
-// Issue 20 ("checked by": `modes --speed 45 --json` reports "unstable": true). Reference:
-// Ribaric §4.2.3 (the string is unstable for v > c = √(T/ρA) = 40.27 m/s) and the seed note's
-// STR-5 (a growing solution); below c the undamped gyroscopic system has no growing solution.
+// Issue 34 item 9 ("checked by": `modes --speed 45 --json`): above c = √(T/ρA) = 40.27 m/s
+// the travelling string between fixed guides is neutrally stable with the exact frequencies
+// f_n = n(v² − c²)/(2cL) (Wickert & Mote 1990; the characteristic time τ = t + vx/(c² − v²)
+// makes it a fixed string): "unstable" is false, exact_hz is the closed form, and the truncated
+// models' growth is listed as truncation growth, whose rate the refined model does not
+// reproduce (it grows faster). At c itself the stiffness vanishes: divergence, unstable.
 #[test]
-fn modes_at_and_above_the_critical_speed_report_instability() {
+fn modes_above_the_critical_speed_are_neutral_with_labelled_truncation_growth() {
     let dir = tmp("crit");
     for speed in ["41", "45", "60"] {
         let (v, err) = modes(speed, &dir);
-        assert_eq!(v["unstable"].as_bool(), Some(true), "{speed}");
+        let s: f64 = speed.parse().unwrap();
+        assert_eq!(v["unstable"].as_bool(), Some(false), "{speed}");
+        assert_eq!(v["regime"].as_str(), Some("supercritical"), "{speed}");
+        let c = v["critical_speed"].as_f64().unwrap();
+        let exact = floats(&v["exact_hz"]);
+        assert_eq!(exact.len(), 10);
+        for (n, f) in exact.iter().enumerate() {
+            let want = (n + 1) as f64 * (s * s - c * c) / (2.0 * c);
+            assert!(
+                *f > 0.0 && (f - want).abs() < 1e-12 * want,
+                "{speed}: {f} vs {want}"
+            );
+        }
         for key in ["flowing_growth", "analytical_growth"] {
+            assert!(v[key].as_array().unwrap().is_empty(), "{speed}: {key}");
+        }
+        for key in ["flowing_truncation_growth", "analytical_truncation_growth"] {
             let g = v[key].as_array().unwrap();
             assert!(!g.is_empty(), "{speed}: {key}");
-            assert!(g.iter().all(|x| x["rate_per_s"].as_f64().unwrap() > 0.0));
+            for x in g {
+                let (r, r2) = (
+                    x["rate_per_s"].as_f64().unwrap(),
+                    x["check_rate_per_s"].as_f64().unwrap(),
+                );
+                assert!(r > 0.0 && r2 > 1.1 * r, "{speed}: {key} {x}");
+            }
         }
-        assert!(v["exact_hz"].as_array().unwrap().is_empty());
+        // the Galerkin model's neutral frequencies are the exact ones (40 terms)
+        let a = floats(&v["analytical_hz"]);
+        for n in 0..8 {
+            assert!((a[n] - exact[n]).abs() < 2e-3 * exact[n], "{speed}: {a:?}");
+        }
         assert!(
-            err.contains("warning:") && err.contains("unstable"),
+            err.contains("warning:") && err.contains("truncation artefacts"),
             "{err}"
         );
-        assert!(dir.join(format!("m{speed}/growth.csv")).is_file());
+        assert!(!err.contains("the model is unstable"), "{err}");
+        let growth = std::fs::read_to_string(dir.join(format!("m{speed}/growth.csv"))).unwrap();
+        assert!(
+            growth.starts_with("model_code,truncation_flag,"),
+            "{growth}"
+        );
+        // no JSON null anywhere in the supercritical summary
+        assert!(!v.to_string().contains("null"), "{v}");
     }
     let (v, _) = modes("39", &dir);
     assert_eq!(v["unstable"].as_bool(), Some(false));
+    assert_eq!(v["regime"].as_str(), Some("subcritical"));
+    // the critical speed of the default string, as printed by `modes` (f64 shortest form)
+    let (v, err) = modes("40.27353238346881", &dir);
+    assert_eq!(v["regime"].as_str(), Some("critical"));
+    assert_eq!(v["unstable"].as_bool(), Some(true));
+    assert!(floats(&v["exact_hz"]).iter().all(|f| *f == 0.0));
+    assert!(err.contains("divergence"), "{err}");
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -187,11 +230,22 @@ fn csv_units_meaning_and_the_shaded_sweep() {
         let bad = flowmbd_cli::output::columns_without_unit(&out);
         assert!(bad.is_empty(), "{study}: {bad:?}");
         if study == "sweep" {
-            let from = v["flowing_unstable_from"].as_f64().unwrap();
+            // issue 34 item 9: above c the truncated models grow, the string does not; the
+            // Galerkin model's neutral frequencies follow the exact n(v² − c²)/(2cL)
+            assert!(v["unstable_from"].is_null(), "{v}");
+            let from = v["flowing_truncation_growth_from"].as_f64().unwrap();
             let c = v["critical_speed"].as_f64().unwrap();
             assert!(from >= c * (1.0 - 1e-9) && from < 1.1 * c, "{from} vs {c}");
+            assert!(
+                v["analytical_max_rel_error_above_1_1c"].as_f64().unwrap() < 2e-3,
+                "{v}"
+            );
             let svg = std::fs::read_to_string(out.join("sweep.svg")).unwrap();
-            assert!(svg.contains("unstable (from"), "the shaded band's legend");
+            assert!(
+                svg.contains("truncation growth only"),
+                "the shaded band's legend"
+            );
+            assert!(!svg.contains("unstable (from"));
         }
     }
     let _ = std::fs::remove_dir_all(dir);
@@ -227,4 +281,154 @@ fn allow_large_raises_the_node_ceiling_1000_fold() {
     ]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("must lie in [3, 2000000]"), "{err}");
+}
+
+/// Runs `study` with the configuration `toml` (and `extra` arguments) and asserts exit 2 with
+/// one line naming `field`; returns the line.
+fn refused(study: &str, toml: &str, extra: &[&str], field: &str) -> String {
+    let dir = tmp(&format!("refuse-{study}-{field}"));
+    let file = dir.join("c.toml");
+    std::fs::write(&file, toml).unwrap();
+    let out = dir.join("out");
+    let mut args = vec![
+        study,
+        "--quiet",
+        "--config",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    let (code, _, err) = run(&args);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(code, 2, "{study} {toml:?}: {err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains(&format!("{field}: ")), "{field}: {err}");
+    err
+}
+
+// Issue 35: `simulate` with tension = 100 N (c = 12.74 m/s, below the 20 m/s speed) exited 0
+// with exact_hz = −9.34, −18.67 … Hz and a null energy drift. Above c the fixed–fixed string is
+// no initial-value problem (issue 34: both waves travel downstream, the truncation grows
+// without bound), so the pluck transient is refused, naming the speed and the critical speed
+// √(100/(7850·7.854e-5)) = 12.7356 m/s; at c the same (divergence).
+#[test]
+fn simulate_above_or_at_the_critical_speed_is_refused() {
+    let err = refused(
+        "simulate",
+        "[string]\nlength = 1.0\ndensity = 7850.0\narea = 7.854e-5\ntension = 100.0\n",
+        &[],
+        "speed",
+    );
+    assert!(
+        err.contains("12.7356") && err.contains("critical speed"),
+        "{err}"
+    );
+    refused("simulate", "speed = 40.27353238346881\n", &[], "speed");
+    refused("simulate", "speed = -45.0\n", &[], "speed");
+}
+
+// Issue 35: `wrap` with contact.rtol = -1e9 exited 1 "numerical failure"; every contact setting
+// is checked before the run (exit 2 naming it), as are the run's length in periods of its fastest
+// motion and the pulley count
+#[test]
+fn wrap_settings_and_run_length_are_checked() {
+    for (toml, field) in [
+        ("[contact]\nrtol = -1e9\n", "contact.rtol"),
+        ("[contact]\nrtol = 0.0\natol = 0.0\n", "contact.rtol"),
+        ("[contact]\natol = -1.0\n", "contact.atol"),
+        ("[contact]\ngap_tol = nan\n", "contact.gap_tol"),
+        ("[contact]\nforce_tol = inf\n", "contact.force_tol"),
+        ("[contact]\nmax_events = 0\n", "contact.max_events"),
+        // 10⁹ s in samples of 10³ s: 10⁶ samples, but 1.3·10¹² periods of the FE mesh's top
+        // frequency c(n+1)/(πL) = 1282 Hz
+        ("duration = 1e9\nsample = 1e3\n", "duration"),
+        // a load of 1 THz for the default 0.3 s
+        (
+            "[load]\nx = 0.6\namplitude = 15.0\nfrequency = 1e12\n",
+            "duration",
+        ),
+        ("sample = 0.5\n", "sample"),
+        ("speed = 41.0\n", "speed"),
+        ("free_modes = 1000000\n", "free_modes"),
+    ] {
+        refused("wrap", toml, &[], field);
+    }
+    let mut many = String::new();
+    for i in 0..65 {
+        many.push_str(&format!(
+            "[[pulleys]]\ncenter_x = {}\ntop = 0.015\nradius = 0.25\n",
+            0.01 + 0.015 * i as f64
+        ));
+    }
+    refused("wrap", &many, &[], "pulleys");
+}
+
+// Issue 35: run lengths and counts of `simulate` are bounded before the run (a step longer than
+// the run, the recorded history samples × modes, the RK4 work steps × modes²), a step beyond
+// RK4's stability limit 2√2/|λ|max and a model that grows (a derivative operator that is not
+// FE-consistent, notes STR-6: spectral derivatives with all 49 modes at 30 m/s grow at
+// ≈ 144 1/s) are refused, naming the field, instead of printing non-finite numbers
+#[test]
+fn simulate_run_lengths_steps_and_growing_models_are_refused() {
+    for (toml, field) in [
+        ("duration = 20.0\nstep = 30.0\n", "step"),
+        // 2·10⁶ samples of 10 modes: 2·10⁷ recorded values > 10⁷
+        ("duration = 100.0\nsample_every = 1\n", "duration"),
+        // 8·10⁴ steps × 2000² = 3.2·10¹¹ > 10¹¹
+        ("nodes = 2000\nmodes = 2000\n", "duration"),
+        ("[pluck]\nx = 0.3\namplitude = 1e300\n", "pluck.amplitude"),
+    ] {
+        refused("simulate", toml, &["--print-config"], field);
+    }
+    // |λ|max ≈ 2c(n+1)/L = 8.05·10³ 1/s for 99 modes: the limit is 3.5·10⁻⁴ s
+    let err = refused("simulate", "modes = 99\nstep = 1e-3\n", &[], "step");
+    assert!(err.contains("stability limit"), "{err}");
+    let err = refused(
+        "simulate",
+        "speed = 30.0\nnodes = 49\nmodes = 49\nderivative = \"Spectral\"\n",
+        &[],
+        "derivative",
+    );
+    assert!(err.contains("grows at 1.4"), "{err}");
+}
+
+// Issue 35: `modes` and `sweep` bound what they allocate and compute by the input (`report`
+// made `exact_hz` of 10¹⁸ entries; the eigen work of a sweep; absurd lengths, densities and
+// speeds gave infinite matrices)
+#[test]
+fn modes_and_sweep_sizes_and_scales_are_refused() {
+    for (study, toml, extra, field) in [
+        ("modes", "report = 1000000000000000000\n", vec![], "report"),
+        ("modes", "report = 41\n", vec![], "report"),
+        (
+            "modes",
+            "[string]\nlength = 1e-300\ndensity = 7850.0\narea = 7.854e-5\ntension = 1000.0\n",
+            vec![],
+            "string.length",
+        ),
+        (
+            "modes",
+            "[string]\nlength = 1.0\ndensity = 1e-200\narea = 1e-200\ntension = 1000.0\n",
+            vec![],
+            "string.density",
+        ),
+        ("modes", "", vec!["--speed", "1e200"], "speed"),
+        (
+            "sweep",
+            "max_speed_ratio = 1e300\n",
+            vec![],
+            "max_speed_ratio",
+        ),
+        (
+            "sweep",
+            "galerkin_terms = 2000\nsteps = 1000\n",
+            vec![],
+            "steps",
+        ),
+    ] {
+        let mut args = extra.clone();
+        args.push("--print-config");
+        refused(study, toml, &args, field);
+    }
 }
