@@ -8,9 +8,9 @@ The drive of Exudyn's public example `Examples/beltDriveReevingSystem.py` with
 * belt: closed loop of `n` `ObjectANCFCable2D` elements (default 120, the example's comment
   "120 works well"; the example file itself runs 240) on the path at radius r + hc/2 over both
   pulleys (r = radiusPulley = 0.09995 m, hc = 0.01·0.01 m, so the centreline radius is 0.1 m;
-  centre distance positionPulley2x = 0.1π m; path length 0.4π m, node 0 at (0, 0.1) m where
-  the upper span leaves the left pulley, nodes ordered clockwise as CreateReevingCurve lays
-  them). Reference element length = path length / n, unit slopes: the belt is laid stress-free
+  centre distance positionPulley2x = 0.1π m; path length 0.4π m, node 0 at (0, 0.1) m, the
+  upper tangent point of the left pulley, nodes ordered clockwise as CreateReevingCurve lays
+  them; the belt travels counter-clockwise). Reference element length = path length / n, unit slopes: the belt is laid stress-free
   in the reference sense and its pre-tension comes from physicsReferenceAxialStrain
   ε0 = preStretch = −0.05;
 * material (Exudyn's cable, its only built-in law): axial force N = EA·(|r'| − 1 − ε0) + dEA·ε̇
@@ -21,8 +21,10 @@ The drive of Exudyn's public example `Examples/beltDriveReevingSystem.py` with
   N is linear in the engineering strain |r'| − 1 of the reference length: "pre-strain −5 %"
   means N = 400 N at the reference length, i.e. the unstretched length is 0.95·0.4π m and the
   stiffness against the unstretched length is 0.95·EA = 7600 N. `--material svk` replaces the
-  law (axialForceUserFunction) by the St Venant–Kirchhoff force of the same unstretched length
-  and small-strain stiffness: N = 0.95·EA·λ(λ² − 1)/2, λ = |r'|/0.95 (a Python callback: slow);
+  law (axialForceUserFunction, a Python callback) by the St Venant–Kirchhoff force
+  N = EA0·λ(λ² − 1)/2 with EA0 = 7600 N and λ = |r'|/0.9533, the unstretched length for which
+  the laid belt carries the same 400 N (with the linear law's unstretched length 0.95·L it
+  would carry 432 N);
 * pulleys: `ObjectRigidBody2D` (mass 50 kg, I = 0.25 kg m², wheelMass/wheelInertia), centres
   held by coordinate constraints. Pulley 0 (left) is driven by a velocity-level coordinate
   constraint: ω = 0 until 0.05 s, linear ramp to 12 rad/s at 0.6 s (tAccStart, tAccEnd,
@@ -59,11 +61,16 @@ tensions (ForceLocal of the cables: the element's own axial force N above, the f
 virtual work, at the element nodes and midpoints whose position lies in the middle half of a
 span), the contact torque on each pulley r·Σ f_t (the circle torque of the contact item), the
 driver torque from the velocity constraint, (T1 − T2)·r with the centreline radius 0.1 m and
-with r, and the applied torque on the driven pulley (load + damper, mean of 25 + 2ω).
+with r, the applied torque on the driven pulley (load + damper, mean of 25 + 2ω), the belt's
+speed along each span (mean ẋ) and its transverse rms speed, and two creep estimates of the
+speed loss: 1 − λ_s/λ_t from the span tensions (λ = |r'| of the material law at that force)
+and 1 − v_s/v_t from the span speeds. `--wrap-profile` adds the contact along both wraps in the
+final state (pressure, friction per metre, relative velocity, axial force by angle).
 
-Prints one JSON object on stdout. Usage:
-  exudyn_pechstein_gerstmayr.py [--elements 120] [--h 1e-4] [--t-end 2.45] [--window 0.45]
-      [--friction bristle|velocity] [--friction-scale 1] [--material linear|svk]
+Prints one JSON object on stdout. Usage (figures and convergence: PECHSTEIN_GERSTMAYR.md):
+  exudyn_pechstein_gerstmayr.py [--elements 120] [--segments 2] [--h 1e-4] [--t-end 2.45]
+      [--window 0.45] [--friction bristle|velocity] [--friction-scale 1]
+      [--material linear|svk] [--damping 2] [--wrap-profile]
 """
 
 import argparse
@@ -202,13 +209,13 @@ def build(a):
         p, t = path_point(i * l_el)
         nodes.append(mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[p[0], p[1], t[0], t[1]])))
 
-    ref_scale = 1.0 + PRE_STRAIN  # unstretched / reference length
+    ea0, c_svk = svk_parameters()
 
     def svk_force(mbs_, t, item, x_norm, eps, eps_t, eps_ref, ea, d_ea, kap, kap_t, kap_ref):
-        # St Venant–Kirchhoff nominal force of the unstretched length ref_scale·L, same
-        # small-strain stiffness ref_scale·EA as the linear law; |r'| = 1 + eps
-        lam = (1.0 + eps) / ref_scale
-        return ref_scale * ea * lam * (lam * lam - 1.0) * 0.5 + d_ea * eps_t
+        # St Venant–Kirchhoff nominal force N = EA0 λ(λ² − 1)/2 of the unstretched length
+        # c_svk·L (λ = |r'|/c_svk, |r'| = 1 + eps), plus the same axial damping
+        lam = (1.0 + eps) / c_svk
+        return ea0 * lam * (lam * lam - 1.0) * 0.5 + d_ea * eps_t
 
     cables = []
     for i in range(n_el):
@@ -320,17 +327,29 @@ def build(a):
     }
 
 
+def svk_parameters():
+    """St Venant–Kirchhoff variant: the small-strain stiffness of the unstretched section
+    EA0 = (1 + ε0)·EA = 7600 N (the linear law's, E·A of the unstretched belt) and the unstretched
+    length c·L_ref for which the laid belt (|r'| = 1) carries the same −ε0·EA = 400 N:
+    EA0·λ(λ² − 1)/2 = 400 with λ = 1/c (λ = 1.0490, c = 0.9533)."""
+    ea0 = (1.0 + PRE_STRAIN) * EA
+    t0 = -PRE_STRAIN * EA
+    lam = 1.0 + t0 / ea0
+    for _ in range(50):
+        lam -= (ea0 * lam * (lam * lam - 1.0) * 0.5 - t0) / (ea0 * (1.5 * lam * lam - 0.5))
+    return ea0, 1.0 / lam
+
+
 def stretch(force, material):
     """|r'| of the reference length at the axial force `force` [N] (quasi-static, no damping):
     the inverse of the material law."""
     if material == "linear":
         return 1.0 + PRE_STRAIN + force / EA
-    # SVK: N = 0.95·EA·λ(λ²−1)/2, |r'| = 0.95 λ; Newton from λ = 1
-    c = 1.0 + PRE_STRAIN
+    # SVK: N = EA0·λ(λ²−1)/2, |r'| = c λ; Newton from λ = 1
+    ea0, c = svk_parameters()
     lam = 1.0
     for _ in range(50):
-        f = c * EA * lam * (lam * lam - 1.0) * 0.5 - force
-        lam -= f / (c * EA * (1.5 * lam * lam - 0.5))
+        lam -= (ea0 * lam * (lam * lam - 1.0) * 0.5 - force) / (ea0 * (1.5 * lam * lam - 0.5))
     return c * lam
 
 
