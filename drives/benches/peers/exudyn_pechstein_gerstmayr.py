@@ -217,11 +217,20 @@ def build(a):
         lam = (1.0 + eps) / c_svk
         return ea0 * lam * (lam * lam - 1.0) * 0.5 + d_ea * eps_t
 
+    def linear_moment(mbs_, t, item, x_norm, kap, kap_t, kap_ref, ei, d_ei, eps, eps_t, eps_ref):
+        # Exudyn's own bending law EI (K − K0) + d_EI K̇, as a user function only because
+        # Exudyn 1.13.6 (and its master at e44aca1b) uses the axial-force user function in the
+        # residual only when a bending-moment user function is set too (CObjectANCFCable2D.cpp
+        # ComputeODE2LHS tests HasTorqueUserFunction() on the axial branch); without it the
+        # dynamics keep the linear law while ForceLocal reports the user function's force
+        return ei * (kap - kap_ref) + d_ei * kap_t
+
     cables = []
     for i in range(n_el):
         kw = {}
         if a.material == "svk":
             kw["axialForceUserFunction"] = svk_force
+            kw["bendingMomentUserFunction"] = linear_moment
         cab = mbs.AddObject(
             ObjectANCFCable2D(
                 length=l_el,
