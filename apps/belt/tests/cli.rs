@@ -76,7 +76,7 @@ fn printed_configuration_round_trips() {
 }
 
 // The shipped Kerkkänen 3.3 example configurations are valid input for `ancf`, the 4.6 ones
-// for `plate`.
+// for `plate`, the Pechstein–Gerstmayr drive (issue 34) for `fead`.
 #[test]
 fn shipped_examples_are_valid() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
@@ -89,6 +89,8 @@ fn shipped_examples_are_valid() {
         let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
         let study = if name.starts_with("kerkkanen-4-6") {
             "plate"
+        } else if name.starts_with("pechstein-gerstmayr") {
+            "fead"
         } else {
             "ancf"
         };
@@ -96,7 +98,10 @@ fn shipped_examples_are_valid() {
         assert_eq!(code, 0, "{}: {stderr}", path.display());
         n += 1;
     }
-    assert_eq!(n, 8, "kerkkanen-3-3-a … f, kerkkanen-4-6-model1, -model2");
+    assert_eq!(
+        n, 9,
+        "kerkkanen-3-3-a … f, kerkkanen-4-6-model1, -model2, pechstein-gerstmayr"
+    );
 }
 
 // Bad input: exit 2 with one line naming the field (file and line for TOML errors).

@@ -46,7 +46,7 @@ fn every_table_rejects_an_unknown_key() {
         );
     }
     // the shipped examples use constant and cosine loads, constant speeds, other friction laws
-    // (Kerkkänen §3.3 for `ancf`, §4.6 for `plate`)
+    // (Kerkkänen §3.3 for `ancf`, §4.6 for `plate`, Pechstein–Gerstmayr for `fead`)
     let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let mut names: Vec<PathBuf> = std::fs::read_dir(&examples)
         .unwrap()
@@ -56,13 +56,15 @@ fn every_table_rejects_an_unknown_key() {
     names.sort();
     assert_eq!(
         names.len(),
-        8,
-        "kerkkanen-3-3-a … f (ancf), kerkkanen-4-6-model1, -2 (plate)"
+        9,
+        "kerkkanen-3-3-a … f (ancf), kerkkanen-4-6-model1, -2 (plate), pechstein-gerstmayr (fead)"
     );
     for p in names {
         let name = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
         let study = if name.starts_with("kerkkanen-4-6") {
             "plate"
+        } else if name.starts_with("pechstein-gerstmayr") {
+            "fead"
         } else {
             "ancf"
         };
