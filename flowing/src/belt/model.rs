@@ -348,6 +348,93 @@ pub fn chord_tensions(position: &[[f64; 2]], d: &[f64], t0: f64, ea: f64) -> Vec
         .collect()
 }
 
+/// The chord of one element `i → j` of a closed loop, for the co-rotated axial force (issue 34):
+/// `N = T0 + EA (l − l0)/l0` along the deformed chord `û = (l0 u + Δd)/l`, `Δd = d_j − d_i`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bar {
+    /// First node.
+    pub i: usize,
+    /// Second node.
+    pub j: usize,
+    /// Unit reference chord.
+    pub u: [f64; 2],
+    /// Reference chord length `l0` \[m\].
+    pub l: f64,
+}
+
+impl Bar {
+    /// The elements of the closed loop of nodes at `position` \[m\].
+    pub fn loop_of(position: &[[f64; 2]]) -> Vec<Self> {
+        let n = position.len();
+        (0..n)
+            .map(|i| {
+                let j = (i + 1) % n;
+                let (a, b) = (position[i], position[j]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let l = dx.hypot(dy);
+                Self {
+                    i,
+                    j,
+                    u: [dx / l, dy / l],
+                    l,
+                }
+            })
+            .collect()
+    }
+
+    /// Deformed chord `(û, l)` under the deflections `d` (3 per node).
+    fn chord(&self, d: &[f64]) -> ([f64; 2], f64) {
+        let a = [
+            self.l * self.u[0] + d[3 * self.j] - d[3 * self.i],
+            self.l * self.u[1] + d[3 * self.j + 1] - d[3 * self.i + 1],
+        ];
+        let l = a[0].hypot(a[1]);
+        ([a[0] / l, a[1] / l], l)
+    }
+
+    /// Axial force `N = T0 + EA (l − l0)/l0` \[N\] of the deformed chord.
+    pub fn force(&self, d: &[f64], t0: f64, ea: f64) -> f64 {
+        t0 + ea * (self.chord(d).1 - self.l) / self.l
+    }
+
+    /// The co-rotated bar force on node `j` minus its linearisation about the reference chord
+    /// (the axial `K_e` and string `K_g(T0)` parts of the linear model):
+    /// `c_j = −N û + T0 u + (EA/l0)(u·Δd) u + (T0/l0)(Δd − (u·Δd) u)` (on node `i`: `−c_j`),
+    /// and, with `tangent`, `G = K(δ) − K(0)`, `K(δ) = (EA/l0) û ûᵀ + (N/l)(I − û ûᵀ)`, so that
+    /// `∂c_j/∂Δd = −G`.
+    pub fn correction(
+        &self,
+        d: &[f64],
+        t0: f64,
+        ea: f64,
+        tangent: bool,
+    ) -> ([f64; 2], [[f64; 2]; 2]) {
+        let (uh, l) = self.chord(d);
+        let n = t0 + ea * (l - self.l) / self.l;
+        let u = self.u;
+        let dd = [
+            d[3 * self.j] - d[3 * self.i],
+            d[3 * self.j + 1] - d[3 * self.i + 1],
+        ];
+        let ud = u[0] * dd[0] + u[1] * dd[1];
+        let (ka, kg) = (ea / self.l, t0 / self.l);
+        let c = std::array::from_fn(|a| {
+            -n * uh[a] + t0 * u[a] + ka * ud * u[a] + kg * (dd[a] - ud * u[a])
+        });
+        let mut g = [[0.0; 2]; 2];
+        if tangent {
+            for (a, row) in g.iter_mut().enumerate() {
+                for (b, x) in row.iter_mut().enumerate() {
+                    let id = if a == b { 1.0 } else { 0.0 };
+                    *x = ka * uh[a] * uh[b] + n / l * (id - uh[a] * uh[b])
+                        - (ka * u[a] * u[b] + kg * (id - u[a] * u[b]));
+                }
+            }
+        }
+        (c, g)
+    }
+}
+
 /// Penetration `p0` \[m\] of the penalty law (6.1) under the uniform pressure `T0/R` of a belt
 /// with tension T0 on a pulley of radius R: the root of `k₂ p² + k₁ p = T0/R`
 /// (72 µm for Table 6-1, seed-000 note §2.3).
@@ -533,6 +620,57 @@ pub(crate) mod tests {
                 "co-rotated damping {small} N vs {big} N"
             );
         }
+    }
+
+    // Issue 34: the co-rotated bar force on node j, the linear model's axial + string force plus
+    // Bar::correction, lies along the deformed chord (no moment about any point: the element
+    // balances angular momentum at finite rotation) with the magnitude N = T0 + EA (l − l0)/l0
+    // (invariant); the linear force alone has the moment ≈ N1·Δv about node i.
+    #[test]
+    fn co_rotated_bar_force_is_along_the_deformed_chord() {
+        let (t0, ea) = (400.0, 8000.0);
+        let pos = [[0.0, 0.0], [0.012, 0.003], [0.02, 0.01]];
+        let bars = Bar::loop_of(&pos);
+        let bar = bars[0];
+        let d = [0.0, 0.0, 0.0, 1e-3, 1.5e-3, 0.0, 0.0, 0.0, 0.0];
+        let (u, l) = (bar.u, bar.l);
+        let dd = [d[3] - d[0], d[4] - d[1]];
+        let ud = u[0] * dd[0] + u[1] * dd[1];
+        let lin: [f64; 2] = std::array::from_fn(|a| {
+            -(t0 * u[a] + ea / l * ud * u[a] + t0 / l * (dd[a] - ud * u[a]))
+        });
+        let (c, g) = bar.correction(&d, t0, ea, true);
+        let f = [lin[0] + c[0], lin[1] + c[1]];
+        let chord = [l * u[0] + dd[0], l * u[1] + dd[1]];
+        let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+        let n = bar.force(&d, t0, ea);
+        assert!(cross(chord, f).abs() < 1e-9 * n * l, "{}", cross(chord, f));
+        assert!((f[0].hypot(f[1]) - n).abs() < 1e-9 * n);
+        // the linear force is off the chord: its moment about node i is Δv Δa (EA − T0)/l
+        // (Δa = u·Δd, Δv = (Ju)·Δd): N1·Δv (1 − T0/EA), second order
+        let dv = -u[1] * dd[0] + u[0] * dd[1];
+        let m = dv * ud * (ea - t0) / l;
+        assert!(m.abs() > 1e-3 && (cross(chord, lin) - m).abs() < 1e-9 * m.abs());
+        // G = ∂(−c_j)/∂Δd by central differences
+        for b in 0..2 {
+            let h = 1e-8;
+            let (mut dp, mut dm) = (d, d);
+            dp[3 + b] += h;
+            dm[3 + b] -= h;
+            let (cp, _) = bar.correction(&dp, t0, ea, false);
+            let (cm, _) = bar.correction(&dm, t0, ea, false);
+            for a in 0..2 {
+                let fd = -(cp[a] - cm[a]) / (2.0 * h);
+                assert!(
+                    (fd - g[a][b]).abs() < 1e-5 * ea / l,
+                    "G[{a}][{b}] {fd} vs {}",
+                    g[a][b]
+                );
+            }
+        }
+        // at δ = 0 the correction and its derivative vanish
+        let (c0, g0) = bar.correction(&[0.0; 9], t0, ea, true);
+        assert!(c0.iter().chain(g0.iter().flatten()).all(|x| x.abs() < 1e-9));
     }
 
     // seed-000 note BELT-1: e_tᵀ M e_t = m_belt = ρ L_path, e_tᵀ M ε_n ≈ 0, ε_n → e_n/R on arcs.

@@ -132,6 +132,9 @@ pub struct NodalBelt {
     laws: Vec<PolynomialPenalty>,
     mass_total: f64,
     n_v: usize,
+    /// Apply each element's axial force `N = T0 + EA (l − l0)/l0` along its deformed chord
+    /// (issue 34, [`super::model::Bar`]); `false`: the linear model of Ribaric (5.5).
+    pub exact_axial: bool,
 }
 
 /// Rotate a local 6×6 element matrix to global axes: `Tᵀ k T`, `T = diag(R, 1, R, 1)` with
@@ -268,6 +271,7 @@ impl NodalBelt {
             motions,
             reference_node: 0,
             n_v,
+            exact_axial: false,
         };
         // fail early on a degenerate polygon
         belt.mesh(0.0)
@@ -481,6 +485,13 @@ impl NodalBelt {
     /// ([`chord_tensions`] on the reference polygon at `s_b = q[0]`).
     pub fn element_tensions(&self, q: &[f64]) -> Vec<f64> {
         let b = &self.fe.config.belt;
+        if self.exact_axial {
+            let d = &q[1..=self.n_nodal()];
+            return super::model::Bar::loop_of(&self.reference_positions(q[0]))
+                .iter()
+                .map(|e| e.force(d, b.tension, b.ea))
+                .collect();
+        }
         chord_tensions(
             &self.reference_positions(q[0]),
             &q[1..=self.n_nodal()],
@@ -542,6 +553,16 @@ impl NodalBelt {
                         + beta * (ke[a][b] * dd[dofs[b]] - vb * kj[a][b] * d[dofs[b]]);
                 }
                 g[dofs[a]] -= acc;
+            }
+        }
+        if self.exact_axial {
+            let b = &self.fe.config.belt;
+            for bar in super::model::Bar::loop_of(&mesh.pos) {
+                let (c, _) = bar.correction(d, b.tension, b.ea, false);
+                for a in 0..2 {
+                    g[NODE_DOFS * bar.j + a] += c[a];
+                    g[NODE_DOFS * bar.i + a] -= c[a];
+                }
             }
         }
         for (gi, (mi, di)) in g.iter_mut().zip(self.fe.mass.iter().zip(dd)) {
@@ -627,6 +648,21 @@ impl NodalBelt {
                     kjd += kj * d[dofs[b]];
                 }
                 cv.add(1 + dofs[a], 0, -beta * kjd);
+            }
+        }
+        if self.exact_axial {
+            let b = &self.fe.config.belt;
+            for bar in super::model::Bar::loop_of(&mesh.pos) {
+                let (_, gm) = bar.correction(d, b.tension, b.ea, true);
+                let (ri, rj) = (1 + NODE_DOFS * bar.i, 1 + NODE_DOFS * bar.j);
+                for a in 0..2 {
+                    for c in 0..2 {
+                        kq.add(rj + a, rj + c, gm[a][c]);
+                        kq.add(rj + a, ri + c, -gm[a][c]);
+                        kq.add(ri + a, rj + c, -gm[a][c]);
+                        kq.add(ri + a, ri + c, gm[a][c]);
+                    }
+                }
             }
         }
         for i in 0..nd {
@@ -982,7 +1018,18 @@ mod tests {
     // same model) at a deflected, moving, sliding state with nodes in contact.
     #[test]
     fn tangent_matches_finite_differences() {
-        let b = belt();
+        check_tangent(belt());
+    }
+
+    // The same with the co-rotated axial force (issue 34, model::Bar).
+    #[test]
+    fn tangent_with_co_rotated_axial_force_matches_finite_differences() {
+        let mut b = belt();
+        b.exact_axial = true;
+        check_tangent(b);
+    }
+
+    fn check_tangent(b: NodalBelt) {
         let nv = b.n_q();
         let mut q = vec![0.0; nv];
         let mut v = vec![0.0; nv];
