@@ -75,7 +75,7 @@
 //! (4th: 0.5 %) is a plausible four-cylinder value, held constant over the sweep.
 
 use crate::ancf_model::{AncfBelt, AncfConfig};
-use crate::speed_loss::{LINEAR_MIN_SLACK, MAX_HALVINGS, robust_step};
+use crate::speed_loss::{LINEAR_MIN_SLACK, MAX_HALVINGS, robust_step, tension_range_issue};
 use crate::study::{ModelSettings, NodalConfig};
 use ancf::belt_drive::SimulationConfig;
 use belt::{
@@ -151,10 +151,20 @@ pub struct FeadRun {
     pub ancf_rho_inf: f64,
     /// Ramp from one engine speed to the next (and of the fluctuation) \[s\].
     pub ramp: f64,
-    /// Settling time after the ramp \[s\].
+    /// Shortest settling time after the ramp \[s\].
     pub settle: f64,
-    /// Observation window \[s\].
+    /// Observation window \[s\], lengthened to a whole number of periods of the lowest
+    /// engine order ([`steady_window`]).
     pub window: f64,
+    /// Longest settling time after the ramp \[s\]: windows follow each other from `settle`
+    /// on until two consecutive ones agree ([`FeadRun::steady_tolerance`]); a point that has
+    /// not converged by then is flagged (`FeadPoint::steady`).
+    pub max_settle: f64,
+    /// Steady-state criterion between consecutive windows \[-\]: every pulley's mean speed
+    /// within this fraction of the crank's mean belt speed (as a speed-loss percentage:
+    /// 100 × this), and every span's mean tension within 10 × this fraction of the
+    /// installed tension.
+    pub steady_tolerance: f64,
 }
 
 impl Default for FeadRun {
@@ -168,6 +178,8 @@ impl Default for FeadRun {
             ramp: 0.1,
             settle: 0.1,
             window: 0.1,
+            max_settle: 2.0,
+            steady_tolerance: 5e-4,
         }
     }
 }
@@ -283,6 +295,7 @@ impl Default for FeadConfig {
                     reduction: BeltReduction {
                         free_modes: Some(12),
                     },
+                    ..FlowingSettings::default()
                 },
                 // the flowing mesh's shorter length everywhere (module documentation)
                 nodal: NodalConfig {
@@ -356,7 +369,23 @@ impl Validate for FeadConfig {
         check::within("run.ramp", self.run.ramp, 0.0, 1e3, "s")?;
         check::within("run.settle", self.run.settle, 0.0, 1e3, "s")?;
         check::within("run.window", self.run.window, 1e-6, 1e3, "s")?;
-        let per_point = self.run.ramp + self.run.settle + self.run.window;
+        check::within(
+            "run.max_settle",
+            self.run.max_settle,
+            self.run.settle,
+            1e3,
+            "s",
+        )?;
+        check::within(
+            "run.steady_tolerance",
+            self.run.steady_tolerance,
+            1e-8,
+            0.1,
+            "",
+        )?;
+        // the longest run of a point: the last window starts at ramp + max_settle and is at
+        // most one order period (≤ window at the slowest speed checked below) longer
+        let per_point = self.run.ramp + self.run.max_settle + 2.0 * self.run.window;
         let (field, step) = match self.model {
             FeadModel::Ancf => ("models.ancf.step", self.models.ancf.step),
             _ => ("run.step", self.run.step),
@@ -470,6 +499,96 @@ pub struct FeadPoint {
     /// The drive report averaged over the window (span forces, slip arcs, hub loads, torques,
     /// torque and power balances; [`Report::mean`]).
     pub report: Report,
+    /// Whether the window is steady: its means agree with the previous window's within
+    /// [`FeadRun::steady_tolerance`] (`false`: `run.max_settle` ran out first; the numbers
+    /// are those of the last window, not of a steady state).
+    pub steady: bool,
+    /// Time from the end of the ramp to the start of the reported window \[s\].
+    pub settled_s: f64,
+    /// Length of the reported window \[s\]: whole periods of the lowest engine order
+    /// ([`steady_window`]).
+    pub window_s: f64,
+}
+
+/// The observation window at the crank speed `omega` \[rad/s\] with the step `h` \[s\]:
+/// `window` \[s\] lengthened to a whole number of periods `2π/(k ω)` of the lowest engine
+/// order `k` with a non-zero amplitude (the window mean of a periodic steady state is then
+/// its period mean, whatever the phase), and its number of steps. Without an order (or at
+/// rest) the window as given.
+pub fn steady_window(engine: &EngineConfig, window: f64, omega: f64, h: f64) -> (f64, usize) {
+    let lowest = engine
+        .orders
+        .iter()
+        .filter(|o| o.amplitude != 0.0 && o.order > 0.0)
+        .map(|o| o.order)
+        .fold(f64::INFINITY, f64::min);
+    let w = if lowest.is_finite() && omega > 0.0 {
+        let period = 2.0 * std::f64::consts::PI / (lowest * omega);
+        (window / period - 1e-9).ceil().max(1.0) * period
+    } else {
+        window
+    };
+    let steps = (w / h).round().max(1.0) as usize;
+    (steps as f64 * h, steps)
+}
+
+/// Samples of one observation window.
+struct WindowAcc {
+    arm: Acc,
+    tens: Vec<Acc>,
+    speed: Vec<Acc>,
+    slip: Vec<Acc>,
+    reports: Vec<Report>,
+    vbelt: Acc,
+}
+
+/// The means by which consecutive windows are compared.
+struct WindowMeans {
+    speed: Vec<f64>,
+    tension: Vec<f64>,
+    crank_belt_speed: f64,
+}
+
+impl WindowAcc {
+    fn new(pulleys: usize, spans: usize) -> Self {
+        Self {
+            arm: Acc::default(),
+            tens: vec![Acc::default(); spans],
+            speed: vec![Acc::default(); pulleys],
+            slip: vec![Acc::default(); pulleys],
+            reports: Vec::new(),
+            vbelt: Acc::default(),
+        }
+    }
+
+    fn means(&self) -> WindowMeans {
+        WindowMeans {
+            speed: self.speed.iter().map(|a| a.get().mean).collect(),
+            tension: self.tens.iter().map(|a| a.get().mean).collect(),
+            crank_belt_speed: self.vbelt.get().mean,
+        }
+    }
+}
+
+impl WindowMeans {
+    /// [`FeadRun::steady_tolerance`]: every pulley's mean belt-line speed `ω R` within `tol`
+    /// of the mean belt speed, every span's mean tension within `10 tol` of the installed
+    /// tension `t0` \[N\].
+    fn agrees(&self, other: &Self, radii: &[f64], tol: f64, t0: f64) -> bool {
+        let v = self.crank_belt_speed.abs().max(1e-9);
+        let speeds = self
+            .speed
+            .iter()
+            .zip(&other.speed)
+            .zip(radii)
+            .all(|((a, b), r)| ((a - b) * r).abs() <= tol * v);
+        let tensions = self
+            .tension
+            .iter()
+            .zip(&other.tension)
+            .all(|(a, b)| (a.is_nan() && b.is_nan()) || (a - b).abs() <= 10.0 * tol * t0);
+        speeds && tensions
+    }
 }
 
 /// The study's summary.
@@ -513,10 +632,16 @@ run on the flowing-material belt model (with model = \"nodal\": the rotating-mes
 a uniform loop; with model = \"ancf\": the ANCF belt, the slow reference; `model_settings` says \
 what was run) over an engine-speed sweep. The crank turns at the mean \
 speed plus its firing-order fluctuation; each accessory carries its load torque. Per engine \
-speed, after a ramp and a settling time, a window is observed: the tensioner arm angle \
+speed, after a ramp and the shortest settling time (run.settle), windows of whole periods of the \
+lowest engine order (window_s) follow each other until two consecutive ones agree (every \
+pulley's mean belt-line speed within run.steady_tolerance of the belt speed, every span's mean \
+tension within 10 x that fraction of the installed tension; steady = false when run.max_settle \
+ran out first, settled_s = time from the end of the ramp to the reported window). The last \
+window gives: the tensioner arm angle \
 (min/mean/max, rad), every span's tension extremes (N), each pulley's speed loss against the \
-crank (%, creep and slip), the drive report at the window's end (slip arcs, hub loads, gross \
-slip) and every span's first transverse natural frequency from the travelling-string formula \
+crank (%, creep and slip), the drive report averaged over the window (slip arcs, hub loads, \
+gross slip, per-pulley torque residual between the pulley's torque and the spans' \
+(T_in - T_out) r, the power balance: power in = sliding losses + belt damping) and every span's first transverse natural frequency from the travelling-string formula \
 with the computed span tension and belt speed, to be read against the engine orders (the \
 Campbell diagram: a span resonates where an order line crosses its frequency). A point where a \
 span's tension dips below 10 % of the installed tension, or a wrap slips as a whole, leaves the \
@@ -607,7 +732,9 @@ pub fn run_fead(
             sweep(cfg, base, &drive, linear_alpha(cfg), note, observer)
         }
         FeadModel::Nodal => {
-            let base = NodalBelt::new(&drive, &m.nodal.mesh).map_err(|e| build(e.into()))?;
+            let base = NodalBelt::new(&drive, &m.nodal.mesh)
+                .map_err(|e| build(e.into()))?
+                .with_axial_force(m.nodal.axial_force);
             let mut note = format!(
                 "nodal: loop of {} (models.nodal.mesh), step {:.3} ms",
                 elements(base.fe.n_nodes(), drive.path().length()),
@@ -701,7 +828,6 @@ fn sweep<M: BeltModel>(
     let h = alpha.h;
     let alpha = GeneralizedAlpha::new(alpha);
     let linearised = model.traits().linearised;
-    let duration = cfg.run.ramp + cfg.run.settle + cfg.run.window;
     let mut state: Option<State> = None;
     let mut omega_prev = 0.0;
     for (ip, &rpm) in cfg.engine.speeds_rpm.iter().enumerate() {
@@ -727,48 +853,80 @@ fn sweep<M: BeltModel>(
             None => model.initial_state().map_err(|e| fail(e, &summary))?,
         };
         let mut stepper: AlphaStepper = alpha.stepper(&model, s0).map_err(|e| fail(e, &summary))?;
-        let mut arm = Acc::default();
-        let mut tens: Vec<Acc> = vec![Acc::default(); spans.len()];
-        let mut speed = vec![Acc::default(); names.len()];
-        let mut slip = vec![Acc::default(); names.len()];
-        let mut reports: Vec<Report> = Vec::new();
-        let mut vbelt = Acc::default();
-        let start = cfg.run.ramp + cfg.run.settle;
-        while stepper.state().t < duration - 0.5 * h {
+        let (window_s, per_window) = steady_window(&cfg.engine, cfg.run.window, omega, h);
+        let t_min = cfg.run.ramp + cfg.run.settle;
+        let t_last = cfg.run.ramp + cfg.run.max_settle;
+        let duration = t_last + window_s;
+        // ramp and the shortest settling time
+        while stepper.state().t < t_min - 0.5 * h {
             robust_step(&mut stepper, &model, h, MAX_HALVINGS).map_err(|e| fail(e, &summary))?;
             summary.steps += 1;
-            let st = stepper.state();
             observer(FeadProgress {
                 point: ip,
-                t: st.t,
+                t: stepper.state().t,
                 duration,
             });
-            if st.t < start {
-                continue;
-            }
-            if let Some(a) = model.arm_angle(&st.q) {
-                arm.add(a);
-            }
-            vbelt.add(model.belt_speed(&st.q, &st.v));
-            let wc = model.pulley_speed(0, st.t, &st.v) * radii[0];
-            for k in 0..names.len() {
-                let w = model.pulley_speed(k, st.t, &st.v);
-                speed[k].add(w);
-                slip[k].add(100.0 * (1.0 - w * radii[k] / wc));
-            }
-            // the report every other step
-            if summary.steps.is_multiple_of(2) {
-                let snap = model
-                    .snapshot(st.t, &st.q, &st.v)
-                    .map_err(|e| fail(e, &summary))?;
-                for (a, s) in tens.iter_mut().zip(&snap.spans) {
-                    if s.tension.is_finite() {
-                        a.add(s.tension);
-                    }
-                }
-                reports.push(Report::new(drive, &snap, mu));
-            }
         }
+        // windows of whole periods until two consecutive ones agree (FeadRun::steady_tolerance)
+        let mut previous: Option<WindowMeans> = None;
+        let (w, steady, window_start) = loop {
+            let window_start = stepper.state().t;
+            let mut w = WindowAcc::new(names.len(), spans.len());
+            for i in 0..per_window {
+                robust_step(&mut stepper, &model, h, MAX_HALVINGS)
+                    .map_err(|e| fail(e, &summary))?;
+                summary.steps += 1;
+                let st = stepper.state();
+                observer(FeadProgress {
+                    point: ip,
+                    t: st.t,
+                    duration,
+                });
+                if let Some(a) = model.arm_angle(&st.q) {
+                    w.arm.add(a);
+                }
+                w.vbelt.add(model.belt_speed(&st.q, &st.v));
+                let wc = model.pulley_speed(0, st.t, &st.v) * radii[0];
+                for k in 0..names.len() {
+                    let s = model.pulley_speed(k, st.t, &st.v);
+                    w.speed[k].add(s);
+                    w.slip[k].add(100.0 * (1.0 - s * radii[k] / wc));
+                }
+                // the report every other step
+                if i % 2 == 0 {
+                    let snap = model
+                        .snapshot(st.t, &st.q, &st.v)
+                        .map_err(|e| fail(e, &summary))?;
+                    for (a, s) in w.tens.iter_mut().zip(&snap.spans) {
+                        if s.tension.is_finite() {
+                            a.add(s.tension);
+                        }
+                    }
+                    w.reports.push(Report::new(drive, &snap, mu));
+                }
+            }
+            let means = w.means();
+            let agree = previous.as_ref().is_some_and(|p| {
+                p.agrees(
+                    &means,
+                    &radii,
+                    cfg.run.steady_tolerance,
+                    summary.installed_tension,
+                )
+            });
+            if agree || stepper.state().t >= t_last - 0.5 * h {
+                break (w, agree, window_start);
+            }
+            previous = Some(means);
+        };
+        let WindowAcc {
+            arm,
+            tens,
+            speed,
+            slip,
+            mut reports,
+            vbelt,
+        } = w;
         let st = stepper.state().clone();
         if reports.is_empty() {
             let snap = model
@@ -786,10 +944,12 @@ fn sweep<M: BeltModel>(
             .map(|(sp, a)| (sp, a.get().min))
             .filter(|(_, t)| t.is_nan() || *t < t_min)
             .min_by(|a, b| a.1.total_cmp(&b.1));
-        let linearisation = match (slack, slipping) {
+        let tight = tens.iter().map(|a| a.get().max).fold(f64::NAN, f64::max);
+        let range = tension_range_issue(tight, summary.installed_tension, drive.belt().ea);
+        let linearisation = match (slack, slipping, range) {
             // the ANCF belt is not linearised: a slack span or a slipping wrap is a result
             _ if !linearised => None,
-            (Some((sp, t)), _) => Some(format!(
+            (Some((sp, t)), _, _) => Some(format!(
                 "span {}→{} tension falls to {t:.1} N, below {:.0} % of the installed {:.1} N: \
                  the linear model's stiffness K_e + K_g(T0) assumes taut spans",
                 names[sp.from],
@@ -797,11 +957,11 @@ fn sweep<M: BeltModel>(
                 100.0 * LINEAR_MIN_SLACK,
                 summary.installed_tension
             )),
-            (None, Some(k)) => Some(format!(
+            (None, Some(k), _) => Some(format!(
                 "gross slip on pulley '{}': outside the linearised creep regime",
                 names[k]
             )),
-            (None, None) => None,
+            (None, None, range) => range,
         };
         summary.points.push(FeadPoint {
             engine_rpm: rpm,
@@ -832,6 +992,9 @@ fn sweep<M: BeltModel>(
             gross_slip_pulley: slipping.map(|k| names[k].clone()),
             linearisation,
             report,
+            steady,
+            settled_s: window_start - cfg.run.ramp,
+            window_s,
         });
         omega_prev = omega;
         state = Some(st);

@@ -10,7 +10,7 @@ use crate::speed_loss::speed_loss_sweep;
 use crate::speed_loss::{Sample, SpeedLossConfig, SpeedLossPoint, SweepFailure, SweepStats};
 use belt::{BeltModel, Drive};
 use contact::friction::FrictionLaw;
-use flowing::belt::{BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
+use flowing::belt::{AxialForce, BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::State;
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -69,6 +69,8 @@ pub struct NodalConfig {
     /// Steady-state tolerance between consecutive windows of the speed-loss procedure
     /// \[rad/s\].
     pub tolerance: f64,
+    /// The elements' axial force (default: co-rotated).
+    pub axial_force: AxialForce,
 }
 
 impl Default for NodalConfig {
@@ -83,6 +85,7 @@ impl Default for NodalConfig {
             },
             window: 0.1,
             tolerance: 1e-3,
+            axial_force: AxialForce::default(),
         }
     }
 }
@@ -148,9 +151,10 @@ impl AnyModel {
             ModelKind::Flowing => {
                 AnyModel::Flowing(Box::new(FlowingBelt::new(drive, &settings.flowing)?))
             }
-            ModelKind::Nodal => {
-                AnyModel::Nodal(Box::new(NodalBelt::new(drive, &settings.nodal.mesh)?))
-            }
+            ModelKind::Nodal => AnyModel::Nodal(Box::new(
+                NodalBelt::new(drive, &settings.nodal.mesh)?
+                    .with_axial_force(settings.nodal.axial_force),
+            )),
             ModelKind::Ancf => AnyModel::Ancf(Box::new(AncfBelt::new(drive, &settings.ancf)?)),
         })
     }

@@ -15,6 +15,7 @@ fn config() -> (belt::Drive, FlowingSettings) {
                 ..BeltMesh::default()
             },
             reduction: BeltReduction { free_modes: None },
+            ..FlowingSettings::default()
         },
     )
 }

@@ -60,6 +60,7 @@ impl Default for Config {
                     ..BeltMesh::default()
                 },
                 reduction: BeltReduction { free_modes: None },
+                ..FlowingSettings::default()
             },
             wave: WaveConfig::default(),
             vtk_frames: 100,

@@ -27,6 +27,17 @@ pub enum FrictionSpec {
         /// Slope parameter `κ` \[s/m\].
         kappa: f64,
     },
+    /// [`CoulombTanh`] stated by its slip-velocity scale: `f_t = −μ tanh(v_t / v_s) |f_n|`
+    /// (`κ = 1/v_s`; issue 34). The law's sharpness is a property of the contact, not of the
+    /// drive's speed: the friction reaches 76 % of μ|f_n| at `v_t = v_s` on any drive, and
+    /// the speed loss approaches its Coulomb limit as `v_s → 0` (BENCHMARKS.md, "friction
+    /// regularisation").
+    TanhSlip {
+        /// Friction coefficient `μ`.
+        mu: f64,
+        /// Slip-velocity scale `v_s` \[m/s\].
+        slip_velocity: f64,
+    },
     /// [`Coulomb`]: set-valued, with stick (Ribaric §7.3, §8.4.3).
     Coulomb {
         /// Friction coefficient `μ`.
@@ -64,6 +75,13 @@ macro_rules! dispatch {
             }
             FrictionSpec::Tanh { mu, kappa } => {
                 let $l = CoulombTanh { mu, kappa };
+                $e
+            }
+            FrictionSpec::TanhSlip { mu, slip_velocity } => {
+                let $l = CoulombTanh {
+                    mu,
+                    kappa: 1.0 / slip_velocity,
+                };
                 $e
             }
             FrictionSpec::Coulomb { mu } => {
@@ -125,6 +143,16 @@ impl Validate for FrictionSpec {
                 mu("mu", m).and(pos("creep", creep, "kg/(m·s)"))
             }
             FrictionSpec::Tanh { mu: m, kappa } => mu("mu", m).and(pos("kappa", kappa, "s/m")),
+            FrictionSpec::TanhSlip {
+                mu: m,
+                slip_velocity,
+            } => mu("mu", m).and(mbd_core::validate::check::within(
+                "slip_velocity",
+                slip_velocity,
+                1e-7,
+                10.0,
+                "m/s",
+            )),
             FrictionSpec::Coulomb { mu: m } => mu("mu", m),
             FrictionSpec::Regularized { mu: m, epsilon } => {
                 mu("mu", m).and(pos("epsilon", epsilon, "m/s"))
@@ -186,6 +214,14 @@ mod tests {
             kappa: 40.0,
         };
         assert_eq!(s.friction(0.01, 50.0), t.friction(0.01, 50.0));
+        // the same law by its slip-velocity scale v_s = 1/κ = 25 mm/s
+        let s: FrictionSpec =
+            serde_json::from_str(r#"{"law":"tanh_slip","mu":1.2,"slip_velocity":0.025}"#).unwrap();
+        let (a, b) = (s.friction(0.01, 50.0), t.friction(0.01, 50.0));
+        assert!(
+            (a.force - b.force).abs() < 1e-12 * b.force.abs(),
+            "{a:?} {b:?}"
+        );
         let bad = FrictionSpec::Stribeck {
             mu_static: 0.5,
             mu_kinetic: 0.4,

@@ -74,6 +74,7 @@ pub fn four_pulleys_settings() -> FlowingSettings {
         reduction: BeltReduction {
             free_modes: Some(12),
         },
+        ..FlowingSettings::default()
     }
 }
 
@@ -119,6 +120,7 @@ pub fn uniform(h: f64) -> FlowingSettings {
             contact_margin_nodes: 1,
         },
         reduction: BeltReduction::default(),
+        ..FlowingSettings::default()
     }
 }
 

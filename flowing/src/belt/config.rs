@@ -154,6 +154,22 @@ impl Default for BeltReduction {
     }
 }
 
+/// How the belt elements of the flowing and nodal models carry their axial force.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum AxialForce {
+    /// The linear model of Ribaric (5.5): `f0 − (K_e + K_g(T0)) δ`, the increment `EA Δl/l`
+    /// along the reference chord. Its elements do not balance moments once the wraps' nodes
+    /// turn by `u_t/R` (a torque error of order `Σ N₁ Δv`, 4–5 % of the transmitted torque on
+    /// the Pechstein–Gerstmayr drive, issue 34); kept to reproduce Ribaric's tables.
+    Linear,
+    /// Each element's force `N = F(λ₀ l/l₀)` of the belt's material law (`belt::Section::law`,
+    /// mounted at `F(λ₀) = T0`) along its deformed chord (co-rotated
+    /// bar, [`super::model::Bar`]): the belt balances angular momentum at finite rotation.
+    #[default]
+    CoRotated,
+}
+
 /// The flowing-material model's settings (Ribaric (5.14)).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
 #[serde(default, deny_unknown_fields)]
@@ -162,6 +178,8 @@ pub struct FlowingSettings {
     pub mesh: BeltMesh,
     /// Reduction of the deflection field.
     pub reduction: BeltReduction,
+    /// The elements' axial force (default: co-rotated).
+    pub axial_force: AxialForce,
 }
 
 impl Validate for FlowingSettings {

@@ -45,7 +45,7 @@
 //! frame-invariant) and `α M` on the Eulerian rate `T ż` (no drag in the steady state; the same
 //! choice as the tire model).
 
-use super::config::FlowingSettings;
+use super::config::{AxialForce, FlowingSettings};
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::model::{BeltFe, FlowingBasis, NODE_DOFS, chord_tensions};
 use super::statics::dense_equilibrium;
@@ -198,6 +198,14 @@ pub struct FlowingBelt {
     p_f0: Vec<f64>,
     rows: Vec<ContactRow>,
     n_v: usize,
+    /// The elements' chords for the co-rotated axial force ([`Self::exact_axial`]).
+    bars: Vec<super::model::Bar>,
+    /// Apply each element's axial force `N = F(λ₀ l/l₀)` of the material law ([`super::model::BarLaw`]) along its deformed chord
+    /// (issue 34): the linear model (`f0 − (K_e + K_g(T0)) δ`) keeps the increment
+    /// `EA Δl/l` along the reference chord, and its elements then do not balance moments once
+    /// the belt's tangential displacement `u_t` turns the arc elements by `u_t/R` (a torque
+    /// error `Σ N1 Δv` on the wraps). `false`: the linear model of Ribaric (5.5).
+    pub exact_axial: bool,
 }
 
 /// Contact state of one node (for output).
@@ -260,7 +268,9 @@ impl FlowingBelt {
         settings.validate()?;
         let fe = BeltFe::new(drive, &settings.mesh)?;
         let basis = FlowingBasis::new(&fe, settings.reduction.free_modes)?;
-        Self::on(fe, basis, drive.motions(), drive.arm().copied())
+        let mut belt = Self::on(fe, basis, drive.motions(), drive.arm().copied())?;
+        belt.exact_axial = settings.axial_force == AxialForce::CoRotated;
+        Ok(belt)
     }
 
     fn on(
@@ -326,6 +336,7 @@ impl FlowingBelt {
             }
         }
         let pulleys = pulley_frames(&fe);
+        let fe_pos = fe.position.clone();
         let mut n_v = m + 1;
         let pulley_dof = pulley_dofs(&motions, &mut n_v);
         let arm_dof = tensioner.map(|_| {
@@ -352,6 +363,8 @@ impl FlowingBelt {
             p_en,
             p_f0,
             rows,
+            bars: super::model::Bar::loop_of(&fe_pos),
+            exact_axial: false,
         })
     }
 
@@ -474,16 +487,17 @@ impl FlowingBelt {
         tq
     }
 
-    /// Axial tension of the belt element starting at each node \[N\]: `T0 + EA Δl/l`
+    /// Axial tension of the belt element starting at each node \[N\]: `T0 + EA Δl/l`, or with
+    /// the co-rotated axial force the material law's ([`super::model::BarLaw`])
     /// ([`chord_tensions`] on the stationary mesh).
     pub fn element_tensions(&self, z: &[f64]) -> Vec<f64> {
-        let d = &self.fe.drive;
-        chord_tensions(
-            &self.fe.position,
-            &self.deflection(z),
-            d.tension(),
-            d.belt().ea,
-        )
+        let dr = &self.fe.drive;
+        let d = self.deflection(z);
+        if self.exact_axial {
+            let law = super::model::BarLaw::of(dr);
+            return self.bars.iter().map(|e| e.force(&d, &law)).collect();
+        }
+        chord_tensions(&self.fe.position, &d, dr.tension(), dr.belt().ea)
     }
 
     /// The friction law of the belt–pulley contact.
@@ -555,6 +569,42 @@ impl FlowingBelt {
         gemv(&mut col, &self.mts, zd, 2.0);
         for i in 0..=m {
             cv[(i, 0)] = col[i] + 2.0 * vb * self.p_en[i];
+        }
+        if self.exact_axial {
+            // −∂/∂z of (P_j − P_i)ᵀ c_j with ∂c_j/∂z = −G (T_j − T_i)
+            let d = self.deflection(z);
+            let law = super::model::BarLaw::of(&self.fe.drive);
+            let t = &self.basis.t;
+            let mut dm = [vec![0.0; m], vec![0.0; m]];
+            let mut gd = [vec![0.0; m], vec![0.0; m]];
+            for bar in &self.bars {
+                let (_, g) = bar.correction(&d, &law, true);
+                let (i, j) = (bar.i, bar.j);
+                for a in 0..2 {
+                    for k in 0..m {
+                        dm[a][k] = t[(3 * j + a, k)] - t[(3 * i + a, k)];
+                    }
+                }
+                for a in 0..2 {
+                    for k in 0..m {
+                        gd[a][k] = g[a][0] * dm[0][k] + g[a][1] * dm[1][k];
+                    }
+                }
+                let (ti, tj) = (self.fe.tangent[i], self.fe.tangent[j]);
+                let de = [tj[0] - ti[0], tj[1] - ti[1]];
+                for k in 0..m {
+                    kq[(0, k + 1)] += de[0] * gd[0][k] + de[1] * gd[1][k];
+                }
+                for r in 0..m {
+                    let (p0, p1) = (dm[0][r], dm[1][r]);
+                    if p0 == 0.0 && p1 == 0.0 {
+                        continue;
+                    }
+                    for k in 0..m {
+                        kq[(r + 1, k + 1)] += p0 * gd[0][k] + p1 * gd[1][k];
+                    }
+                }
+            }
         }
         let arm = self.arm_state(q, v);
         // contact: f[0..=m] += Pᵢᵀ F, f[spin] += τ, f[arm] += −(c − p) × F
@@ -706,6 +756,21 @@ impl SecondOrderSystem for FlowingBelt {
         gemv(head, &self.a_cs, z, -vb);
         gemv(head, &self.a_mss, z, -vb * vb);
         gemv(head, &self.mts, zd, -2.0 * vb);
+        if self.exact_axial {
+            let d = self.deflection(z);
+            let law = super::model::BarLaw::of(&self.fe.drive);
+            for bar in &self.bars {
+                let (c, _) = bar.correction(&d, &law, false);
+                let (i, j) = (bar.i, bar.j);
+                let (ti, tj) = (self.fe.tangent[i], self.fe.tangent[j]);
+                head[0] += (tj[0] - ti[0]) * c[0] + (tj[1] - ti[1]) * c[1];
+                let t = &self.basis.t;
+                for k in 0..m {
+                    head[k + 1] += (t[(3 * j, k)] - t[(3 * i, k)]) * c[0]
+                        + (t[(3 * j + 1, k)] - t[(3 * i + 1, k)]) * c[1];
+                }
+            }
+        }
         tail.fill(0.0);
         let arm = self.arm_state(q, v);
         for r in &self.rows {
@@ -822,6 +887,7 @@ pub(crate) mod tests {
             reduction: BeltReduction {
                 free_modes: Some(10),
             },
+            ..FlowingSettings::default()
         };
         FlowingBelt::new(&drive, &settings).unwrap()
     }
@@ -831,7 +897,18 @@ pub(crate) mod tests {
     // evaluation of the same equations).
     #[test]
     fn layout_tangent_matches_finite_differences() {
-        let belt = layout_belt();
+        check_layout_tangent(layout_belt());
+    }
+
+    // The same with the co-rotated axial force (issue 34, model::Bar).
+    #[test]
+    fn layout_tangent_with_co_rotated_axial_force_matches_finite_differences() {
+        let mut belt = layout_belt();
+        belt.exact_axial = true;
+        check_layout_tangent(belt);
+    }
+
+    fn check_layout_tangent(belt: FlowingBelt) {
         let n = belt.n_q();
         let k = belt.arm_dof().unwrap();
         let mut q = vec![0.0; n];

@@ -20,7 +20,7 @@ mod snapshot;
 mod statics;
 pub mod wave;
 
-pub use config::{BeltMesh, BeltReduction, FlowingSettings};
+pub use config::{AxialForce, BeltMesh, BeltReduction, FlowingSettings};
 pub use flowing_system::{FlowingBelt, NodeReport};
 pub use model::{BeltFe, FlowingBasis};
 pub use nodal::NodalBelt;

@@ -331,6 +331,126 @@ pub fn chord_tensions(position: &[[f64; 2]], d: &[f64], t0: f64, ea: f64) -> Vec
         .collect()
 }
 
+/// The axial force of a co-rotated belt element (issue 34) as a function of its length ratio
+/// `r = l/l₀` to its mounted length `l₀`: `N(r) = F(λ₀ r)`, with `F` the belt's
+/// [`belt::MaterialLaw`] (stretch measured from the unstretched belt, as the ANCF element's)
+/// and `λ₀ = F⁻¹(T₀)` the mounted stretch, so `N(1) = T₀`. `ea` is also the stiffness of the
+/// linear model `K_e` whose linearisation the correction replaces.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BarLaw {
+    /// Mounting tension `T₀` \[N\].
+    pub t0: f64,
+    /// Axial stiffness `EA` \[N\].
+    pub ea: f64,
+    /// The material law.
+    pub law: belt::MaterialLaw,
+    /// Mounted stretch `λ₀` \[-\].
+    pub lambda0: f64,
+}
+
+impl BarLaw {
+    /// The law of `drive`'s belt at its mounting tension.
+    pub fn of(drive: &belt::Drive) -> Self {
+        let s = drive.belt();
+        let t0 = drive.tension();
+        Self {
+            t0,
+            ea: s.ea,
+            law: s.law,
+            lambda0: s.stretch(t0),
+        }
+    }
+
+    /// `(N, dN/dr)` \[N\] at the length ratio `r`.
+    pub fn force(&self, r: f64) -> (f64, f64) {
+        let (n, k) = self.law.force(self.ea, self.lambda0 * r);
+        (n, k * self.lambda0)
+    }
+}
+
+/// The chord of one element `i → j` of a closed loop, for the co-rotated axial force (issue 34):
+/// the force `N` of [`BarLaw`] along the deformed chord `û = (l0 u + Δd)/l`, `Δd = d_j − d_i`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bar {
+    /// First node.
+    pub i: usize,
+    /// Second node.
+    pub j: usize,
+    /// Unit reference chord.
+    pub u: [f64; 2],
+    /// Reference chord length `l0` \[m\].
+    pub l: f64,
+}
+
+impl Bar {
+    /// The elements of the closed loop of nodes at `position` \[m\].
+    pub fn loop_of(position: &[[f64; 2]]) -> Vec<Self> {
+        let n = position.len();
+        (0..n)
+            .map(|i| {
+                let j = (i + 1) % n;
+                let (a, b) = (position[i], position[j]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let l = dx.hypot(dy);
+                Self {
+                    i,
+                    j,
+                    u: [dx / l, dy / l],
+                    l,
+                }
+            })
+            .collect()
+    }
+
+    /// Deformed chord `(û, l)` under the deflections `d` (3 per node).
+    fn chord(&self, d: &[f64]) -> ([f64; 2], f64) {
+        let a = [
+            self.l * self.u[0] + d[3 * self.j] - d[3 * self.i],
+            self.l * self.u[1] + d[3 * self.j + 1] - d[3 * self.i + 1],
+        ];
+        let l = a[0].hypot(a[1]);
+        ([a[0] / l, a[1] / l], l)
+    }
+
+    /// Axial force `N(l/l0)` \[N\] of the deformed chord ([`BarLaw`]).
+    pub fn force(&self, d: &[f64], law: &BarLaw) -> f64 {
+        law.force(self.chord(d).1 / self.l).0
+    }
+
+    /// The co-rotated bar force on node `j` minus its linearisation about the reference chord
+    /// (the axial `K_e` and string `K_g(T0)` parts of the linear model, Ribaric (5.5)):
+    /// `c_j = −N û + T0 u + (EA/l0)(u·Δd) u + (T0/l0)(Δd − (u·Δd) u)` (on node `i`: `−c_j`),
+    /// and, with `tangent`, `G = K(δ) − K(0)`, `K(δ) = N′ û ûᵀ + (N/l)(I − û ûᵀ)`
+    /// (`N′ = dN/dl`), so that `∂c_j/∂Δd = −G`.
+    pub fn correction(&self, d: &[f64], law: &BarLaw, tangent: bool) -> ([f64; 2], [[f64; 2]; 2]) {
+        let (uh, l) = self.chord(d);
+        let (n, dn) = law.force(l / self.l);
+        let dn = dn / self.l;
+        let t0 = law.t0;
+        let u = self.u;
+        let dd = [
+            d[3 * self.j] - d[3 * self.i],
+            d[3 * self.j + 1] - d[3 * self.i + 1],
+        ];
+        let ud = u[0] * dd[0] + u[1] * dd[1];
+        let (ka, kg) = (law.ea / self.l, t0 / self.l);
+        let c = std::array::from_fn(|a| {
+            -n * uh[a] + t0 * u[a] + ka * ud * u[a] + kg * (dd[a] - ud * u[a])
+        });
+        let mut g = [[0.0; 2]; 2];
+        if tangent {
+            for (a, row) in g.iter_mut().enumerate() {
+                for (b, x) in row.iter_mut().enumerate() {
+                    let id = if a == b { 1.0 } else { 0.0 };
+                    *x = dn * uh[a] * uh[b] + n / l * (id - uh[a] * uh[b])
+                        - (ka * u[a] * u[b] + kg * (id - u[a] * u[b]));
+                }
+            }
+        }
+        (c, g)
+    }
+}
+
 /// The flowing-material basis `δ = T z` with its periodic derivatives along s (Ribaric
 /// (5.9)–(5.13)).
 ///
@@ -499,6 +619,81 @@ pub(crate) mod tests {
                 small < 1e-9 * big,
                 "co-rotated damping {small} N vs {big} N"
             );
+        }
+    }
+
+    // Issue 34: the co-rotated bar force on node j, the linear model's axial + string force plus
+    // Bar::correction, lies along the deformed chord (no moment about any point: the element
+    // balances angular momentum at finite rotation) with the magnitude N of the material law (BarLaw)
+    // (invariant); the linear force alone has the moment ≈ N1·Δv about node i.
+    #[test]
+    fn co_rotated_bar_force_is_along_the_deformed_chord() {
+        let (t0, ea) = (400.0, 8000.0);
+        for law in [
+            belt::MaterialLaw::Linear,
+            belt::MaterialLaw::StVenantKirchhoff,
+        ] {
+            let bl = BarLaw {
+                t0,
+                ea,
+                law,
+                lambda0: law.stretch(ea, t0),
+            };
+            // N(1) = T0: the mounted bar carries the mounting tension
+            assert!((bl.force(1.0).0 - t0).abs() < 1e-9 * t0);
+            let pos = [[0.0, 0.0], [0.012, 0.003], [0.02, 0.01]];
+            let bars = Bar::loop_of(&pos);
+            let bar = bars[0];
+            let d = [0.0, 0.0, 0.0, 1e-3, 1.5e-3, 0.0, 0.0, 0.0, 0.0];
+            let (u, l) = (bar.u, bar.l);
+            let dd = [d[3] - d[0], d[4] - d[1]];
+            let ud = u[0] * dd[0] + u[1] * dd[1];
+            let lin: [f64; 2] = std::array::from_fn(|a| {
+                -(t0 * u[a] + ea / l * ud * u[a] + t0 / l * (dd[a] - ud * u[a]))
+            });
+            let (c, g) = bar.correction(&d, &bl, true);
+            let f = [lin[0] + c[0], lin[1] + c[1]];
+            let chord = [l * u[0] + dd[0], l * u[1] + dd[1]];
+            let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+            let n = bar.force(&d, &bl);
+            // the material law's force at the chord's stretch, along the chord
+            let lc = chord[0].hypot(chord[1]);
+            let expect = law.force(ea, bl.lambda0 * lc / l).0;
+            assert!((n - expect).abs() < 1e-9 * n);
+            assert!(cross(chord, f).abs() < 1e-9 * n * l, "{}", cross(chord, f));
+            assert!((f[0].hypot(f[1]) - n).abs() < 1e-9 * n);
+            // the linear force is off the chord: its moment about node i is Δv Δa (EA − T0)/l
+            // (Δa = u·Δd, Δv = (Ju)·Δd): N1·Δv (1 − T0/EA), second order
+            let dv = -u[1] * dd[0] + u[0] * dd[1];
+            let m = dv * ud * (ea - t0) / l;
+            assert!(m.abs() > 1e-3 && (cross(chord, lin) - m).abs() < 1e-9 * m.abs());
+            // G = ∂(−c_j)/∂Δd by central differences
+            for b in 0..2 {
+                let h = 1e-8;
+                let (mut dp, mut dm) = (d, d);
+                dp[3 + b] += h;
+                dm[3 + b] -= h;
+                let (cp, _) = bar.correction(&dp, &bl, false);
+                let (cm, _) = bar.correction(&dm, &bl, false);
+                for a in 0..2 {
+                    let fd = -(cp[a] - cm[a]) / (2.0 * h);
+                    assert!(
+                        (fd - g[a][b]).abs() < 1e-5 * ea / l,
+                        "G[{a}][{b}] {fd} vs {}",
+                        g[a][b]
+                    );
+                }
+            }
+            // at δ = 0 the correction vanishes; its derivative is the law's stiffness at the
+            // mounted stretch minus the linear model's EA, along the chord
+            let (c0, g0) = bar.correction(&[0.0; 9], &bl, true);
+            assert!(c0.iter().all(|x| x.abs() < 1e-9));
+            let k = (bl.force(1.0).1 - ea) / l;
+            for (a, row) in g0.iter().enumerate() {
+                for (b, x) in row.iter().enumerate() {
+                    assert!((x - k * u[a] * u[b]).abs() < 1e-9 * ea / l);
+                }
+            }
         }
     }
 

@@ -129,6 +129,9 @@ pub struct NodalBelt {
     laws: Vec<PolynomialPenalty>,
     mass_total: f64,
     n_v: usize,
+    /// Apply each element's axial force `N = F(λ₀ l/l₀)` of the material law ([`super::model::BarLaw`]) along its deformed chord
+    /// (issue 34, [`super::model::Bar`]); `false`: the linear model of Ribaric (5.5).
+    pub exact_axial: bool,
 }
 
 /// Rotate a local 6×6 element matrix to global axes: `Tᵀ k T`, `T = diag(R, 1, R, 1)` with
@@ -258,6 +261,7 @@ impl NodalBelt {
             motions,
             reference_node: 0,
             n_v,
+            exact_axial: true,
         };
         // fail early on a degenerate polygon
         belt.mesh(0.0)
@@ -463,10 +467,24 @@ impl NodalBelt {
             .collect())
     }
 
+    /// The same belt with the elements' axial force `axial` (default: co-rotated).
+    pub fn with_axial_force(mut self, axial: super::config::AxialForce) -> Self {
+        self.exact_axial = axial == super::config::AxialForce::CoRotated;
+        self
+    }
+
     /// Axial tension of the belt element starting at each material node \[N\]: `T0 + EA Δl/l`
     /// ([`chord_tensions`] on the reference polygon at `s_b = q[0]`).
     pub fn element_tensions(&self, q: &[f64]) -> Vec<f64> {
         let b = &self.fe.drive;
+        if self.exact_axial {
+            let law = super::model::BarLaw::of(b);
+            let d = &q[1..=self.n_nodal()];
+            return super::model::Bar::loop_of(&self.reference_positions(q[0]))
+                .iter()
+                .map(|e| e.force(d, &law))
+                .collect();
+        }
         chord_tensions(
             &self.reference_positions(q[0]),
             &q[1..=self.n_nodal()],
@@ -489,6 +507,32 @@ impl NodalBelt {
             tq[p] += c.torque;
         }
         Ok(tq)
+    }
+
+    /// Power dissipated by the belt's Rayleigh damping at `(q, v)` \[W\]: `−Q_dᵀ δ̇` with the
+    /// damping forces `Q_d = −α M δ̇ − β K_e (δ̇ − v ψ′ J δ)` of [`Self::nodal_forces`] (the
+    /// only non-conservative forces of the belt besides the contact; issue 34 power balance).
+    pub fn damping_dissipation(&self, q: &[f64], v: &[f64]) -> Result<f64, MbdError> {
+        let mesh = self.mesh(q[0])?;
+        let nd = self.n_nodal();
+        let (d, dd, vb) = (&q[1..=nd], &v[1..=nd], v[0]);
+        let (alpha, beta) = (self.fe.drive.damping().alpha, self.fe.drive.damping().beta);
+        let mut p = 0.0;
+        for e in 0..self.n() {
+            let dofs = self.element_dofs(e);
+            let (ke, kj) = (&mesh.ke[e], &mesh.kj[e]);
+            for a in 0..6 {
+                let mut acc = 0.0;
+                for b in 0..6 {
+                    acc += ke[a][b] * dd[dofs[b]] - vb * kj[a][b] * d[dofs[b]];
+                }
+                p += beta * acc * dd[dofs[a]];
+            }
+        }
+        for (mi, di) in self.fe.mass.iter().zip(dd) {
+            p += alpha * mi * di * di;
+        }
+        Ok(p)
     }
 
     /// Nodal forces `g − v² M ε_n` (`3N`), the contact torque on each pulley \[N m\] and the
@@ -517,6 +561,16 @@ impl NodalBelt {
                         + beta * (ke[a][b] * dd[dofs[b]] - vb * kj[a][b] * d[dofs[b]]);
                 }
                 g[dofs[a]] -= acc;
+            }
+        }
+        if self.exact_axial {
+            let law = super::model::BarLaw::of(&self.fe.drive);
+            for bar in super::model::Bar::loop_of(&mesh.pos) {
+                let (c, _) = bar.correction(d, &law, false);
+                for a in 0..2 {
+                    g[NODE_DOFS * bar.j + a] += c[a];
+                    g[NODE_DOFS * bar.i + a] -= c[a];
+                }
             }
         }
         for (gi, (mi, di)) in g.iter_mut().zip(self.fe.mass.iter().zip(dd)) {
@@ -602,6 +656,21 @@ impl NodalBelt {
                     kjd += kj * d[dofs[b]];
                 }
                 cv.add(1 + dofs[a], 0, -beta * kjd);
+            }
+        }
+        if self.exact_axial {
+            let law = super::model::BarLaw::of(&self.fe.drive);
+            for bar in super::model::Bar::loop_of(&mesh.pos) {
+                let (_, gm) = bar.correction(d, &law, true);
+                let (ri, rj) = (1 + NODE_DOFS * bar.i, 1 + NODE_DOFS * bar.j);
+                for a in 0..2 {
+                    for c in 0..2 {
+                        kq.add(rj + a, rj + c, gm[a][c]);
+                        kq.add(rj + a, ri + c, -gm[a][c]);
+                        kq.add(ri + a, rj + c, -gm[a][c]);
+                        kq.add(ri + a, ri + c, gm[a][c]);
+                    }
+                }
             }
         }
         for i in 0..nd {
@@ -962,7 +1031,18 @@ mod tests {
     // same model) at a deflected, moving, sliding state with nodes in contact.
     #[test]
     fn tangent_matches_finite_differences() {
-        let b = belt();
+        check_tangent(belt());
+    }
+
+    // The same with the co-rotated axial force (issue 34, model::Bar).
+    #[test]
+    fn tangent_with_co_rotated_axial_force_matches_finite_differences() {
+        let mut b = belt();
+        b.exact_axial = true;
+        check_tangent(b);
+    }
+
+    fn check_tangent(b: NodalBelt) {
         let nv = b.n_q();
         let mut q = vec![0.0; nv];
         let mut v = vec![0.0; nv];

@@ -13,8 +13,11 @@ use mbd_core::MbdError;
 use mbd_core::integrators::State;
 
 /// What the linearised models report as the belt's force.
-pub const LINEAR_FORCE_MEASURE: &str = "T0 + EA Δl/l: the axial force of the belt linearised about the mounted \
-tension T0 (Ribaric (5.5)), mean over each span's middle half";
+pub const LINEAR_FORCE_MEASURE: &str = "the axial force each element carries: with \
+axial_force = \"co_rotated\" (default) the belt's material law (drive.belt.law, stretch from the \
+unstretched belt, mounted at T0) at the element's chord length, along the chord; with \
+\"linear\" T0 + EA Δl/l linearised about the mounted tension T0 (Ribaric (5.5)); mean over \
+each span's middle half";
 
 /// Deformed node positions: `reference` plus the translations of `d` (3 DOFs per node).
 fn deformed(reference: &[[f64; 2]], d: &[f64]) -> Vec<[f64; 2]> {
@@ -210,7 +213,7 @@ impl BeltModel for NodalBelt {
         let omega = (0..self.motions.len())
             .map(|k| self.pulley_speed(k, t, v))
             .collect();
-        Ok(snapshot_with(
+        let mut snap = snapshot_with(
             &self.fe,
             t,
             &nodes,
@@ -218,7 +221,9 @@ impl BeltModel for NodalBelt {
             contacts,
             omega,
             self.idler_velocity(q, v),
-        ))
+        );
+        snap.belt_dissipation = self.damping_dissipation(q, v)?;
+        Ok(snap)
     }
 
     fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
