@@ -148,9 +148,12 @@ fn flowing_torque_balance_and_hub_loads() {
 // about T0 stops holding (item 3). Reference: the Euler–Eytelwein capacity of the fixed-centre
 // drive (33.8 N m at 62.8 rad/s, drives::euler_eytelwein_capacity). At 32 N m the drive is
 // steady and within Euler–Eytelwein with its own span tensions, M ≤ R (T₁ + T₂)(E − 1)/(E + 1),
-// E = e^{μπ}; at 35 N m the friction is used up over the driven wrap (steady sliding, slack
-// span below 0.1 T0: the summary gives no numbers); at 38 N m the driven pulley runs away. The
-// sweep goes on from the last steady state: the final 20 N m repeats the first.
+// E = e^{μπ}; at 35 N m, above the fixed-centre capacity, the slack span falls below 0.1 T0 (the
+// summary gives no numbers) and the point either slides over the driven wrap or still holds by
+// Euler–Eytelwein on its own span tensions (with the co-rotated axial force the penalty
+// penetration lengthens the path and T₁ + T₂ grows above 2 T0, as for the ANCF belt, issue 34
+// item 8: 750 N, own capacity 35.8 N m); at 38 N m the driven pulley runs away. The sweep goes
+// on from the last steady state: the final 20 N m repeats the first.
 #[test]
 fn flowing_gross_slip_is_a_result_and_the_sweep_goes_on() {
     let cfg = table_6_1::drive();
@@ -175,17 +178,27 @@ fn flowing_gross_slip_is_a_result_and_the_sweep_goes_on() {
         "capacity: fixed-centre {capacity:.2} N m, with the 32 N m span tensions {own:.2} N m"
     );
     assert!(steady.torque <= own);
-    for (p, runaway) in [(&points[3], false), (&points[4], true)] {
-        let g = p.gross_slip.as_ref().expect("gross slip");
-        assert_eq!(g.name, "driven");
-        assert!(p.torque > capacity);
-        assert_eq!(runaway, !p.drift.is_finite());
-        assert!(p.linearisation.is_some());
-        let s = SummaryPoint::new(p);
-        assert!(s.gross_slip && !s.linearisation_valid);
-        assert!(s.tension_tight.is_none() && s.slip_arc_driven_rad.is_none());
-        assert!(s.hub_loads.is_none() && s.delta_omega.is_none());
+    let p = &points[3];
+    assert!(p.torque > capacity && p.linearisation.is_some());
+    assert!(!SummaryPoint::new(p).linearisation_valid);
+    match &p.gross_slip {
+        Some(g) => assert_eq!(g.name, "driven"),
+        None => {
+            let own = 0.05 * (p.report.tension_tight() + p.report.tension_slack()) * (e - 1.0)
+                / (e + 1.0);
+            assert!(p.torque <= own, "{} N m held beyond its own capacity {own}", p.torque);
+        }
     }
+    let p = &points[4];
+    let g = p.gross_slip.as_ref().expect("gross slip");
+    assert_eq!(g.name, "driven");
+    assert!(p.torque > capacity);
+    assert!(!p.drift.is_finite());
+    assert!(p.linearisation.is_some());
+    let s = SummaryPoint::new(p);
+    assert!(s.gross_slip && !s.linearisation_valid);
+    assert!(s.tension_tight.is_none() && s.slip_arc_driven_rad.is_none());
+    assert!(s.hub_loads.is_none() && s.delta_omega.is_none());
     let (a, b) = (points[1].delta_omega, points[5].delta_omega);
     assert!((a - b).abs() < 1e-3 * a, "20 N m before {a}, after {b}");
     let s = SummaryPoint::new(&points[5]);

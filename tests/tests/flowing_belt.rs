@@ -36,14 +36,15 @@ fn table_6_1_flowing() -> (Layout, FlowingSettings) {
 }
 
 // Issue 8 / seed-000 note BELT-3, BELT-6: unloaded, the driven pulley turns at the driver's speed
-// (1e-6 relative), and the stationary mesh puts no ripple (no line at the element-passing
+// (to 5e-6 relative: 1.4e-6 with the co-rotated axial force of issue 34, below 1e-7 with the
+// linear model of (5.5)), and the stationary mesh puts no ripple (no line at the element-passing
 // frequency v/L_e) on the driven speed.
 #[test]
 fn unloaded_drive_has_no_speed_loss_and_no_mesh_ripple() {
     let omega = 62.8;
     let (points, history) = sweep(&table_6_1_flowing(), omega, &[0.0], 1e-7);
     let rel = points[0].delta_omega.abs() / omega;
-    assert!(rel < 1e-6, "unloaded |Δω|/ω = {rel:e}");
+    assert!(rel < 5e-6, "unloaded |Δω|/ω = {rel:e}");
     // last 0.1 s (400 steps of 0.25 ms): peak-to-peak of ω₂
     let tail: Vec<f64> = history.iter().rev().take(400).map(|h| h.1).collect();
     let (lo, hi) = tail
