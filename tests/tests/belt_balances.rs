@@ -33,7 +33,10 @@ fn assert_balanced_within(what: &str, r: &Report, torque_tol: f64) {
          of {:.2} W",
         b.torque_residual_rel, b.power_in_w, b.sliding_w, b.power_residual_rel, b.driver_power_w
     );
-    assert!(b.torque_residual_rel.abs() <= torque_tol, "{what}: torque {b:?}");
+    assert!(
+        b.torque_residual_rel.abs() <= torque_tol,
+        "{what}: torque {b:?}"
+    );
     assert!(b.power_residual_rel.abs() <= TOL, "{what}: power {b:?}");
 }
 

@@ -186,7 +186,11 @@ fn flowing_gross_slip_is_a_result_and_the_sweep_goes_on() {
         None => {
             let own = 0.05 * (p.report.tension_tight() + p.report.tension_slack()) * (e - 1.0)
                 / (e + 1.0);
-            assert!(p.torque <= own, "{} N m held beyond its own capacity {own}", p.torque);
+            assert!(
+                p.torque <= own,
+                "{} N m held beyond its own capacity {own}",
+                p.torque
+            );
         }
     }
     let p = &points[4];

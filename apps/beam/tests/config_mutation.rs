@@ -5,8 +5,7 @@
 //! validated in every `cargo test`; the `#[ignore]`d test also runs the studies under a time
 //! and memory limit.
 
-use flowmbd_cli::mutation::{Mode, Mutation, judge, mutations, run_case};
-use flowmbd_cli::testing::{fresh_dir, run_binary};
+use flowmbd_cli::mutation::{exhaustive_findings, sampled_findings};
 use proptest::prelude::*;
 use std::time::Duration;
 
@@ -21,33 +20,6 @@ const STUDIES: &[&str] = &[
     "ground-contact",
 ];
 
-/// The mutations of `study`'s default configuration.
-fn study_mutations(study: &str) -> Vec<Mutation> {
-    let (code, text, err) = run_binary(EXE, &[study, "--print-config"]);
-    assert_eq!(code, 0, "{study} --print-config: {err}");
-    let m = mutations(&text);
-    assert!(!m.is_empty(), "{study}: no mutations of\n{text}");
-    m
-}
-
-/// What breaks the conventions among the mutations `pick` of every study, in `mode`.
-fn findings(pick: &[prop::sample::Index], mode: Mode, tag: &str) -> Vec<String> {
-    let mut out = Vec::new();
-    for study in STUDIES {
-        let all = study_mutations(study);
-        for (k, p) in pick.iter().enumerate() {
-            let m = &all[p.index(all.len())];
-            let dir = fresh_dir(tag, &format!("{study}-{k}"));
-            let o = run_case(EXE, study, &m.text, &dir, mode);
-            if let Err(e) = judge(&o) {
-                out.push(format!("{study} [{}]: {e}", m.what));
-            }
-            let _ = std::fs::remove_dir_all(&dir);
-        }
-    }
-    out
-}
-
 proptest! {
     #![proptest_config(ProptestConfig { cases: 2, ..ProptestConfig::default() })]
 
@@ -55,9 +27,9 @@ proptest! {
     // validated through --print-config
     #[test]
     fn mutated_configs_are_accepted_or_refused_in_one_line(
-        pick in prop::collection::vec(any::<prop::sample::Index>(), 4)
+        pick in prop::collection::vec(any::<usize>(), 4)
     ) {
-        let f = findings(&pick, Mode::Validate, "beam-mut");
+        let f = sampled_findings(EXE, STUDIES, &pick, "beam-mut");
         prop_assert!(f.is_empty(), "{}", f.join("\n"));
     }
 }
@@ -66,31 +38,7 @@ proptest! {
 #[test]
 #[ignore = "long: runs the studies on mutated configurations (minutes)"]
 fn mutated_configs_run_within_bounds() {
-    let mut report = Vec::new();
-    for study in STUDIES {
-        let all = study_mutations(study);
-        for (i, m) in all.iter().enumerate() {
-            let dir = fresh_dir("beam-mut-long", &format!("{study}-{i}"));
-            let v = run_case(EXE, study, &m.text, &dir, Mode::Validate);
-            if let Err(e) = judge(&v) {
-                report.push(format!("{study} [{}] (validate): {e}", m.what));
-            } else if v.code == Some(0) && i % 5 == 0 {
-                let o = run_case(
-                    EXE,
-                    study,
-                    &m.text,
-                    &dir,
-                    Mode::Run {
-                        timeout: Duration::from_secs(30),
-                    },
-                );
-                if let Err(e) = judge(&o) {
-                    report.push(format!("{study} [{}] (run): {e}", m.what));
-                }
-            }
-            let _ = std::fs::remove_dir_all(&dir);
-        }
-    }
+    let report = exhaustive_findings(EXE, STUDIES, "beam-mut-long", 5, Duration::from_secs(30));
     assert!(
         report.is_empty(),
         "{} findings:\n{}",

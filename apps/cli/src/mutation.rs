@@ -375,3 +375,62 @@ mod tests {
         assert!(judge(&o(None, "memory allocation of 8 bytes failed")).is_err());
     }
 }
+
+/// The mutations of `study`'s default configuration (`exe study --print-config`); panics (a
+/// test harness) when the study cannot print it.
+pub fn study_mutations(exe: &str, study: &str) -> Vec<Mutation> {
+    let (code, text, err) = crate::testing::run_binary(exe, &[study, "--print-config"]);
+    assert_eq!(code, 0, "{study} --print-config: {err}");
+    let m = mutations(&text);
+    assert!(!m.is_empty(), "{study}: no mutations of\n{text}");
+    m
+}
+
+/// What breaks the conventions ([`judge`]) among the mutations `pick` (each taken modulo the
+/// study's number of mutations) of every study in `studies` of the binary `exe`, validated
+/// through `--print-config` ([`Mode::Validate`]); `tag` names the scratch directories.
+pub fn sampled_findings(exe: &str, studies: &[&str], pick: &[usize], tag: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for study in studies {
+        let all = study_mutations(exe, study);
+        for (k, p) in pick.iter().enumerate() {
+            let m = &all[p % all.len()];
+            let dir = crate::testing::fresh_dir(tag, &format!("{study}-{k}"));
+            let o = run_case(exe, study, &m.text, &dir, Mode::Validate);
+            if let Err(e) = judge(&o) {
+                out.push(format!("{study} [{}]: {e}", m.what));
+            }
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+    }
+    out
+}
+
+/// Every mutation of every study validated, and every `run_every`-th accepted one run under
+/// `timeout` ([`Mode::Run`]): what breaks the conventions.
+pub fn exhaustive_findings(
+    exe: &str,
+    studies: &[&str],
+    tag: &str,
+    run_every: usize,
+    timeout: Duration,
+) -> Vec<String> {
+    let mut report = Vec::new();
+    for study in studies {
+        let all = study_mutations(exe, study);
+        for (i, m) in all.iter().enumerate() {
+            let dir = crate::testing::fresh_dir(tag, &format!("{study}-{i}"));
+            let v = run_case(exe, study, &m.text, &dir, Mode::Validate);
+            if let Err(e) = judge(&v) {
+                report.push(format!("{study} [{}] (validate): {e}", m.what));
+            } else if v.code == Some(0) && i % run_every.max(1) == 0 {
+                let o = run_case(exe, study, &m.text, &dir, Mode::Run { timeout });
+                if let Err(e) = judge(&o) {
+                    report.push(format!("{study} [{}] (run): {e}", m.what));
+                }
+            }
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+    }
+    report
+}

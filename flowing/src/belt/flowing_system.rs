@@ -200,12 +200,16 @@ pub struct FlowingBelt {
     n_v: usize,
     /// The elements' chords for the co-rotated axial force ([`Self::exact_axial`]).
     bars: Vec<super::model::Bar>,
+    /// `D̃ = [Δe_t | ΔT]` (`2 n_bars × (m + 1)`): per bar and direction, the difference of the
+    /// stacked tangent `e_t` and of the basis rows `T` between its end nodes, so that the
+    /// co-rotated corrections `c` enter the forces as `D̃ᵀ c` and the tangent as `D̃ᵀ G ΔT`.
+    bar_dx: Mat<f64>,
     /// Apply each element's axial force `N = F(λ₀ l/l₀)` of the material law ([`super::model::BarLaw`]) along its deformed chord
     /// (issue 34): the linear model (`f0 − (K_e + K_g(T0)) δ`) keeps the increment
     /// `EA Δl/l` along the reference chord, and its elements then do not balance moments once
     /// the belt's tangential displacement `u_t` turns the arc elements by `u_t/R` (a torque
     /// error `Σ N1 Δv` on the wraps). `false`: the linear model of Ribaric (5.5).
-    pub exact_axial: bool,
+    exact_axial: bool,
 }
 
 /// Contact state of one node (for output).
@@ -270,6 +274,18 @@ impl FlowingBelt {
         let basis = FlowingBasis::new(&fe, settings.reduction.free_modes)?;
         let mut belt = Self::on(fe, basis, drive.motions(), drive.arm().copied())?;
         belt.exact_axial = settings.axial_force == AxialForce::CoRotated;
+        if belt.exact_axial {
+            let (t, m) = (&belt.basis.t, belt.m);
+            let (tan, bars) = (&belt.fe.tangent, &belt.bars);
+            belt.bar_dx = Mat::from_fn(2 * bars.len(), m + 1, |r, k| {
+                let (bar, a) = (&bars[r / 2], r % 2);
+                if k == 0 {
+                    tan[bar.j][a] - tan[bar.i][a]
+                } else {
+                    t[(3 * bar.j + a, k - 1)] - t[(3 * bar.i + a, k - 1)]
+                }
+            });
+        }
         Ok(belt)
     }
 
@@ -363,6 +379,7 @@ impl FlowingBelt {
             p_en,
             p_f0,
             rows,
+            bar_dx: Mat::zeros(0, 0),
             bars: super::model::Bar::loop_of(&fe_pos),
             exact_axial: false,
         })
@@ -571,38 +588,23 @@ impl FlowingBelt {
             cv[(i, 0)] = col[i] + 2.0 * vb * self.p_en[i];
         }
         if self.exact_axial {
-            // −∂/∂z of (P_j − P_i)ᵀ c_j with ∂c_j/∂z = −G (T_j − T_i)
+            // −∂/∂z of D̃ᵀ c with ∂c_b/∂z = −G_b ΔT_b: kq[0..=m, 1..=m] += D̃ᵀ (G ΔT)
             let d = self.deflection(z);
             let law = super::model::BarLaw::of(&self.fe.drive);
-            let t = &self.basis.t;
-            let mut dm = [vec![0.0; m], vec![0.0; m]];
-            let mut gd = [vec![0.0; m], vec![0.0; m]];
-            for bar in &self.bars {
+            let dx = &self.bar_dx;
+            let mut gd = Mat::<f64>::zeros(dx.nrows(), m);
+            for (b, bar) in self.bars.iter().enumerate() {
                 let (_, g) = bar.correction(&d, &law, true);
-                let (i, j) = (bar.i, bar.j);
-                for a in 0..2 {
-                    for k in 0..m {
-                        dm[a][k] = t[(3 * j + a, k)] - t[(3 * i + a, k)];
-                    }
-                }
-                for a in 0..2 {
-                    for k in 0..m {
-                        gd[a][k] = g[a][0] * dm[0][k] + g[a][1] * dm[1][k];
-                    }
-                }
-                let (ti, tj) = (self.fe.tangent[i], self.fe.tangent[j]);
-                let de = [tj[0] - ti[0], tj[1] - ti[1]];
                 for k in 0..m {
-                    kq[(0, k + 1)] += de[0] * gd[0][k] + de[1] * gd[1][k];
+                    let (d0, d1) = (dx[(2 * b, k + 1)], dx[(2 * b + 1, k + 1)]);
+                    gd[(2 * b, k)] = g[0][0] * d0 + g[0][1] * d1;
+                    gd[(2 * b + 1, k)] = g[1][0] * d0 + g[1][1] * d1;
                 }
-                for r in 0..m {
-                    let (p0, p1) = (dm[0][r], dm[1][r]);
-                    if p0 == 0.0 && p1 == 0.0 {
-                        continue;
-                    }
-                    for k in 0..m {
-                        kq[(r + 1, k + 1)] += p0 * gd[0][k] + p1 * gd[1][k];
-                    }
+            }
+            let add = dx.transpose() * &gd;
+            for k in 0..m {
+                for r in 0..=m {
+                    kq[(r, k + 1)] += add[(r, k)];
                 }
             }
         }
@@ -759,16 +761,19 @@ impl SecondOrderSystem for FlowingBelt {
         if self.exact_axial {
             let d = self.deflection(z);
             let law = super::model::BarLaw::of(&self.fe.drive);
-            for bar in &self.bars {
-                let (c, _) = bar.correction(&d, &law, false);
-                let (i, j) = (bar.i, bar.j);
-                let (ti, tj) = (self.fe.tangent[i], self.fe.tangent[j]);
-                head[0] += (tj[0] - ti[0]) * c[0] + (tj[1] - ti[1]) * c[1];
-                let t = &self.basis.t;
-                for k in 0..m {
-                    head[k + 1] += (t[(3 * j, k)] - t[(3 * i, k)]) * c[0]
-                        + (t[(3 * j + 1, k)] - t[(3 * i + 1, k)]) * c[1];
+            let mut c = vec![0.0; 2 * self.bars.len()];
+            for (b, bar) in self.bars.iter().enumerate() {
+                let (cb, _) = bar.correction(&d, &law, false);
+                c[2 * b] = cb[0];
+                c[2 * b + 1] = cb[1];
+            }
+            let dx = &self.bar_dx;
+            for (k, h) in head.iter_mut().enumerate().take(m + 1) {
+                let mut acc = 0.0;
+                for (r, cr) in c.iter().enumerate() {
+                    acc += dx[(r, k)] * cr;
                 }
+                *h += acc;
             }
         }
         tail.fill(0.0);
@@ -830,7 +835,7 @@ pub(crate) mod tests {
 
     /// A four-pulley drive with a back-side idler on a tensioner arm (pulley 2), the idler
     /// and the last pulley damped.
-    pub(crate) fn layout_belt() -> FlowingBelt {
+    pub(crate) fn layout_belt(axial_force: AxialForce) -> FlowingBelt {
         let free = |j| Motion::load(j, Signal::constant(1.5));
         let pulleys = vec![
             Pulley::new(
@@ -887,7 +892,7 @@ pub(crate) mod tests {
             reduction: BeltReduction {
                 free_modes: Some(10),
             },
-            ..FlowingSettings::default()
+            axial_force,
         };
         FlowingBelt::new(&drive, &settings).unwrap()
     }
@@ -897,15 +902,13 @@ pub(crate) mod tests {
     // evaluation of the same equations).
     #[test]
     fn layout_tangent_matches_finite_differences() {
-        check_layout_tangent(layout_belt());
+        check_layout_tangent(layout_belt(AxialForce::Linear));
     }
 
     // The same with the co-rotated axial force (issue 34, model::Bar).
     #[test]
     fn layout_tangent_with_co_rotated_axial_force_matches_finite_differences() {
-        let mut belt = layout_belt();
-        belt.exact_axial = true;
-        check_layout_tangent(belt);
+        check_layout_tangent(layout_belt(AxialForce::CoRotated));
     }
 
     fn check_layout_tangent(belt: FlowingBelt) {

@@ -131,7 +131,7 @@ pub struct NodalBelt {
     n_v: usize,
     /// Apply each element's axial force `N = F(λ₀ l/l₀)` of the material law ([`super::model::BarLaw`]) along its deformed chord
     /// (issue 34, [`super::model::Bar`]); `false`: the linear model of Ribaric (5.5).
-    pub exact_axial: bool,
+    exact_axial: bool,
 }
 
 /// Rotate a local 6×6 element matrix to global axes: `Tᵀ k T`, `T = diag(R, 1, R, 1)` with
@@ -997,7 +997,7 @@ impl SecondOrderSystem for NodalBelt {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::belt::{BeltReduction, FlowingBelt, FlowingSettings, table_6_1};
+    use crate::belt::{AxialForce, BeltReduction, FlowingBelt, FlowingSettings, table_6_1};
 
     fn belt() -> NodalBelt {
         NodalBelt::new(&table_6_1(60.0, 3.0), &BeltMesh::default()).unwrap()
@@ -1031,15 +1031,13 @@ mod tests {
     // same model) at a deflected, moving, sliding state with nodes in contact.
     #[test]
     fn tangent_matches_finite_differences() {
-        check_tangent(belt());
+        check_tangent(belt().with_axial_force(AxialForce::Linear));
     }
 
     // The same with the co-rotated axial force (issue 34, model::Bar).
     #[test]
     fn tangent_with_co_rotated_axial_force_matches_finite_differences() {
-        let mut b = belt();
-        b.exact_axial = true;
-        check_tangent(b);
+        check_tangent(belt().with_axial_force(AxialForce::CoRotated));
     }
 
     fn check_tangent(b: NodalBelt) {
@@ -1136,7 +1134,7 @@ mod tests {
     // a moving, deflected state with the arm turned and turning.
     #[test]
     fn layout_tangent_with_tensioner_matches_finite_differences() {
-        let fl = crate::belt::flowing_system::tests::layout_belt();
+        let fl = crate::belt::flowing_system::tests::layout_belt(AxialForce::default());
         let b = NodalBelt::on(fl.fe.clone(), fl.motions.clone(), fl.tensioner).unwrap();
         let nv = b.n_q();
         let ka = b.arm_dof().unwrap();
