@@ -37,7 +37,7 @@ pub mod sparse;
 pub mod statics;
 pub mod system;
 
-pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBeam};
+pub use element::{BeltElement, BeltLaw, Element, NodeLayout, OmarShabanaBeam, ProposedBeam};
 pub use error::AncfError;
 pub use material::Material;
 pub use mesh::Mesh;

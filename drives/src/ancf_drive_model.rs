@@ -27,11 +27,11 @@
 use crate::ancf_run::snapshot;
 use crate::model::{BeltData, DriveModel};
 use crate::report::{DriveSnapshot, PulleyRole};
-use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, BeltSpec, ContactSpec, InitialOptions, Pulley, PulleyDrive,
     SpeedProfile, TorqueProfile, post,
 };
+use ancf::{AncfError, BeltLaw};
 use fe_model::generate::belt_path::{BeltPath, PathPulley, WrapSide};
 use flowing::belt::model::mounting_penetration;
 use flowing::belt::{BeltDriveConfig, Schedule};
@@ -65,6 +65,10 @@ pub struct AncfConfig {
     /// Table 6-1 belt (EA = 152 kN) a lagging tangent (0.02) stalled Newton at 6e-6 m during
     /// the spin-up.
     pub tangent_refresh: f64,
+    /// Material law of the belt ([`BeltLaw`]): `"st_venant_kirchhoff"` (Kerkkänen (3.18), the
+    /// default) or `"linear"` (axial force `EA(‖r_x‖ − 1)`, as datasheets and Exudyn's cable).
+    /// Span tensions, wrap tensions and the mounted tension are the axial force of this law.
+    pub law: BeltLaw,
 }
 
 impl Default for AncfConfig {
@@ -76,6 +80,7 @@ impl Default for AncfConfig {
             contact_damping: 0.0,
             step: 1e-4,
             tangent_refresh: 0.0,
+            law: BeltLaw::StVenantKirchhoff,
         }
     }
 }
@@ -200,6 +205,7 @@ pub fn ancf_spec(
             alpha2: 1.0,
             gauss_points: 5,
             axial_damping: cfg.damping.beta,
+            law: s.law,
         },
         contact: ContactSpec {
             stiffness: cfg.contact.penalty_linear,

@@ -128,6 +128,7 @@ impl LayoutConfig {
                 alpha2: 1.0,
                 gauss_points: 5,
                 axial_damping: self.damping.beta,
+                law: s.law,
             },
             contact: ContactSpec {
                 stiffness: self.contact.penalty_linear,

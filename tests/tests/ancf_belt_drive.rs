@@ -81,6 +81,17 @@ fn damped_tangent_matches_finite_differences_and_rigid_rotation_is_undamped() {
     assert!(diff < 1e-9 * scale.max(1.0));
 }
 
+// Reference: central finite differences of the generalized forces with the linear material law
+// (BeltSpec::law, issue 34): its elastic forces and the axial damping in the engineering strain
+// rate λ̇ (viscous force β α₁EA λ̇) have exact Jacobians too.
+#[test]
+fn linear_law_tangent_with_axial_damping_matches_finite_differences() {
+    let mut spec = BeltDriveSpec::default();
+    spec.belt.law = ancf::BeltLaw::Linear;
+    spec.belt.axial_damping = 1.8e-3;
+    check_tangent(spec);
+}
+
 // Reference: central finite differences of the generalized forces of a drive with a tensioner
 // (BeltDrive::with_tensioner): Table 3.1's drive with a back-side idler pressed 30 mm into the
 // upper span (belt 1 % shorter than the path), carried by an arm (spring, damper, regularised dry friction), the arm turning at

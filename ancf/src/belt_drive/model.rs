@@ -171,7 +171,8 @@ impl BeltDrive {
         };
         let section = Section::rectangle(b.width, b.thickness)?;
         let l = b.length / b.elements as f64;
-        let el = BeltElement::new(l, material, section, b.alpha1, b.alpha2, b.gauss_points)?;
+        let el = BeltElement::new(l, material, section, b.alpha1, b.alpha2, b.gauss_points)?
+            .with_law(b.law);
         let mesh = Mesh::closed_loop(vec![el; b.elements])?;
         let n_belt = mesh.n_dof();
         let mut pulley_dof = Vec::with_capacity(spec.pulleys.len());
@@ -917,10 +918,14 @@ impl BeltDrive {
         }
     }
 
-    /// Kelvin–Voigt damping of the axial strain rate ([`super::BeltSpec::axial_damping`]):
-    /// `Q_d = −β α₁EA ∫ S_xᵀ r_x (r_xᵀ ṙ_x) dx` added to `f` (when not empty), and with
-    /// `tangent = Some((k, c))` its Jacobians `−∂Q_d/∂e = β α₁EA ∫ S_xᵀ((r_xᵀṙ_x) I + r_x ṙ_xᵀ) S_x dx`
-    /// and `−∂Q_d/∂ė = β α₁EA ∫ S_xᵀ r_x r_xᵀ S_x dx` added to the element blocks.
+    /// Kelvin–Voigt damping of the axial strain rate ([`super::BeltSpec::axial_damping`]) in the
+    /// strain measure of the material law ([`super::BeltSpec::law`]): the viscous axial force
+    /// is `N_d = β α₁EA λ ε̇_G` (St Venant–Kirchhoff, `ε_G = (a − 1)/2`, `ε̇_G = r_xᵀṙ_x`) or
+    /// `β α₁EA λ̇` (linear, `λ̇ = r_xᵀṙ_x/λ`), i.e. `Q_d = −β α₁EA ∫ S_xᵀ r_x (r_xᵀ ṙ_x) g dx`
+    /// with `g = 1` or `g = 1/a`, added to `f` (when not empty). With `tangent = Some((k, c))`
+    /// its Jacobians `−∂Q_d/∂e = β α₁EA ∫ S_xᵀ g((r_xᵀṙ_x) I + r_x ṙ_xᵀ + (g'/g)(r_xᵀṙ_x) r_x 2r_xᵀ) S_x dx`
+    /// (`g'/g = 0` or `−1/a`) and `−∂Q_d/∂ė = β α₁EA ∫ S_xᵀ g r_x r_xᵀ S_x dx` are added to the
+    /// element blocks.
     fn axial_damping(
         &self,
         q: &[f64],
@@ -956,7 +961,15 @@ impl BeltDrive {
                     }
                 }
                 let rate = rx[0] * rxd[0] + rx[1] * rxd[1];
-                let wl = w * l * coef;
+                // g = 1/a and g'/g = −1/a for the linear law (module doc of this function)
+                let (g, dlog) = match b.law {
+                    crate::element::BeltLaw::StVenantKirchhoff => (1.0, 0.0),
+                    crate::element::BeltLaw::Linear => {
+                        let a = rx[0] * rx[0] + rx[1] * rx[1];
+                        (1.0 / a, -1.0 / a)
+                    }
+                };
+                let wl = w * l * coef * g;
                 for a in 0..6 {
                     for c in 0..2 {
                         qd[2 * a + c] -= wl * sx[a] * rx[c] * rate;
@@ -971,7 +984,10 @@ impl BeltDrive {
                                     let row = 2 * a + c;
                                     let ss = wl * sx[a] * sx[bb];
                                     let delta = if c == d { rate } else { 0.0 };
-                                    kl[row + col * NE] += ss * (delta + rx[c] * rxd[d]);
+                                    kl[row + col * NE] += ss
+                                        * (delta
+                                            + rx[c] * rxd[d]
+                                            + 2.0 * dlog * rate * rx[c] * rx[d]);
                                     cl[row + col * NE] += ss * rx[c] * rx[d];
                                 }
                             }

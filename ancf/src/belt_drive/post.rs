@@ -16,14 +16,12 @@ pub struct TensionSample {
     /// Engineering strain of the centreline `ε = ‖r_x‖ − 1`, Kerkkänen (4.9) (the reference
     /// elements are straight with `J₀ = I`, so `α = 2 t₀ᵀ ε^m t₀ = r_xᵀ r_x − 1`).
     pub strain: f64,
-    /// Tension `α₁ E A ε` \[N\] (longitudinal stiffness times strain, Kerkkänen §4.2).
+    /// Axial force the element carries at the point \[N\]: `N = ∂W/∂λ` of its material law
+    /// ([`BeltElement::axial_force`](crate::element::BeltElement::axial_force); St Venant–Kirchhoff
+    /// (3.18): `α₁EA λ(λ² − 1)/2` plus the bending–stretching coupling; linear:
+    /// `α₁EA(λ − 1)`), the force that balances the contact forces (`dN/ds = −f_t`,
+    /// `N κ = f_n`) and the pulley torques.
     pub tension: f64,
-}
-
-/// Axial stiffness `α₁ E A` of the belt \[N\] (Kerkkänen §4.2).
-fn axial_stiffness(drive: &BeltDrive) -> f64 {
-    let b = &drive.spec().belt;
-    b.alpha1 * b.young * b.width * b.thickness
 }
 
 /// Centreline position \[m\] and slope `r_x` at `ξ` of an element with coordinates `e`.
@@ -51,7 +49,7 @@ pub fn tension_at(drive: &BeltDrive, q: &[f64], el: usize, xi: f64) -> TensionSa
         s_material: (el as f64 + xi) * l,
         position: r,
         strain,
-        tension: axial_stiffness(drive) * strain,
+        tension: drive.mesh().elements()[el].axial_force(&e, xi),
     }
 }
 

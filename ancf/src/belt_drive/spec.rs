@@ -3,6 +3,7 @@
 use super::friction::{BeltFriction, BeltNormal};
 use super::profile::{SpeedProfile, TorqueProfile};
 use super::pulley::{Pulley, PulleyDrive};
+use crate::element::BeltLaw;
 use crate::error::{AncfError, invalid};
 use fe_model::generate::belt_path::WrapSide;
 use mbd_core::Validate;
@@ -41,6 +42,11 @@ pub struct BeltSpec {
     /// counterpart of Ribaric's `β K_e` Rayleigh damping on the material deflection rate; rigid
     /// motions (the belt wrapping a pulley) have `ε̇ = 0` and are not damped.
     pub axial_damping: f64,
+    /// Material law of the belt ([`BeltLaw`]): `"st_venant_kirchhoff"` (Kerkkänen (3.18),
+    /// the default) or `"linear"` (axial force `α₁EA(‖r_x‖ − 1)`, as datasheets and Exudyn's
+    /// cable). Reported tensions are always the axial force of this law
+    /// ([`BeltElement::axial_force`](crate::element::BeltElement::axial_force)).
+    pub law: BeltLaw,
 }
 
 impl Default for BeltSpec {
@@ -59,6 +65,7 @@ impl Default for BeltSpec {
             alpha2: 0.01,
             gauss_points: 5,
             axial_damping: 0.0,
+            law: BeltLaw::StVenantKirchhoff,
         }
     }
 }

@@ -7,7 +7,7 @@ mod kernel;
 mod omar_shabana;
 mod proposed;
 
-pub use belt::BeltElement;
+pub use belt::{BeltElement, BeltLaw};
 pub use omar_shabana::OmarShabanaBeam;
 pub use proposed::ProposedBeam;
 

@@ -426,6 +426,7 @@ impl PlateDriveSpec {
                 alpha2,
                 gauss_points: b.gauss_points,
                 axial_damping: 0.0,
+                law: crate::element::BeltLaw::StVenantKirchhoff,
             },
             contact: ContactSpec {
                 stiffness: c.stiffness * w,
