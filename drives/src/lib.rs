@@ -45,7 +45,10 @@ pub mod speed_loss_study;
 pub mod study;
 pub mod wave;
 
-pub use analytical::{analytical_speed_loss, bechtel, euler_eytelwein_capacity};
+pub use analytical::{
+    PenetratingString, analytical_speed_loss, bechtel, euler_eytelwein_capacity,
+    penetrating_string, penetrating_string_capacity,
+};
 pub use error::DriveError;
 pub use flowing::belt::Schedule;
 pub use model::{BeltData, DriveModel};

@@ -27,7 +27,7 @@ pub mod spec;
 pub use closure::{ClosureResult, free_belt_closure};
 pub use friction::BeltFriction;
 pub use initial::{InitialOptions, InitialState};
-pub use model::{BeltArm, BeltDrive, PointRecord, PulleyLoad};
+pub use model::{BeltArm, BeltDrive, PointRecord, PulleyLoad, SECTION_CELLS, SectionForces};
 pub use profile::{SpeedProfile, TorqueProfile};
 pub use pulley::{Pulley, PulleyDrive};
 pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationConfig, simulate};

@@ -95,16 +95,23 @@ pub struct WrapRecord {
     /// Angle \[rad\] from the inlet of the pulley's wrap in the travel direction
     /// ([`fe_model::generate::belt_path::BeltPath::angle_from_inlet`]).
     pub angle: f64,
-    /// Belt tension at the point \[N\] ([`tension_at`]).
+    /// Axial force at the point recovered from equilibrium \[N\]
+    /// ([`BeltDrive::section_forces`](super::BeltDrive::section_forces): smooth along the wrap,
+    /// `dN/ds = −f_t` pointwise).
     pub tension: f64,
+    /// The element's own axial force at the point \[N\] ([`tension_at`]: the force of its
+    /// material law at the local strain, which ripples within the elements on a wrap).
+    pub element_tension: f64,
 }
 
 /// Every active contact quadrature point of `(q, v)` with the pulleys at the travel-sense
 /// speeds `omegas` \[rad/s\] ([`BeltDrive::contact_records_with`]), with its angle on the pulley
-/// and the belt tension there: the tension, pressure and friction along every wrap, at the
-/// points where the contact forces are integrated (3.27).
+/// and the belt tension there (recovered from equilibrium, and the element's own): the
+/// tension, pressure and friction along every wrap, at the points where the contact forces are
+/// integrated (3.27).
 pub fn wrap_records(drive: &BeltDrive, q: &[f64], v: &[f64], omegas: &[f64]) -> Vec<WrapRecord> {
     let l = drive.element_length();
+    let sections = drive.section_forces(q, v, omegas);
     drive
         .contact_records_with(q, v, omegas)
         .into_iter()
@@ -115,7 +122,8 @@ pub fn wrap_records(drive: &BeltDrive, q: &[f64], v: &[f64], omegas: &[f64]) -> 
                     .path()
                     .angle_from_inlet(c.pulley, c.position)
                     .unwrap_or(f64::NAN),
-                tension: tension_at(drive, q, c.element, xi).tension,
+                tension: sections.axial(c.element, xi),
+                element_tension: tension_at(drive, q, c.element, xi).tension,
                 contact: c,
             }
         })
