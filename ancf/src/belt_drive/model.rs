@@ -1034,6 +1034,40 @@ impl BeltDrive {
         }
     }
 
+    /// Viscous axial force \[N\] of the Kelvin–Voigt axial damping
+    /// ([`super::BeltSpec::axial_damping`], [`Self::axial_damping`]) at `ξ` of element `el` at
+    /// `(q, v)`: `N_d = β α₁EA λ ε̇_G = β α₁EA λ (r_xᵀṙ_x)` (St Venant–Kirchhoff) or
+    /// `β α₁EA λ̇ = β α₁EA (r_xᵀṙ_x)/λ` (linear law). It adds to the elastic force
+    /// ([`crate::element::BeltElement::axial_force`]) wherever the belt's strain changes in time:
+    /// in a steady drive along the slip arcs (`ε̇ = v dε/ds`, ≈ 45 N on Table 6-1's driver wrap
+    /// at 42 N·m with β = 1.8 ms), not in the spans.
+    pub fn viscous_axial_force(&self, q: &[f64], v: &[f64], el: usize, xi: f64) -> f64 {
+        let b = &self.spec.belt;
+        if b.axial_damping <= 0.0 {
+            return 0.0;
+        }
+        let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
+        let l = self.element_length();
+        let sx = shape::cubic(l, xi * l, 0.0).sx;
+        let mut e = [0.0; NE];
+        let mut ed = [0.0; NE];
+        self.mesh.gather(q, el, &mut e);
+        self.mesh.gather(v, el, &mut ed);
+        let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
+        for a in 0..6 {
+            for c in 0..2 {
+                rx[c] += sx[a] * e[2 * a + c];
+                rxd[c] += sx[a] * ed[2 * a + c];
+            }
+        }
+        let lam = rx[0].hypot(rx[1]);
+        let rate = rx[0] * rxd[0] + rx[1] * rxd[1];
+        match b.law {
+            crate::element::BeltLaw::StVenantKirchhoff => coef * lam * rate,
+            crate::element::BeltLaw::Linear => coef * rate / lam,
+        }
+    }
+
     /// Generalized contact force `Q_c` (3.27) of element `el` (coordinates `e`, rates `ed`) on
     /// every pulley, at the pulleys' travel-sense speeds `omegas`, integrated with `line`'s
     /// rule (summed over the pulleys into `out`).

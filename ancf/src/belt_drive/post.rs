@@ -99,8 +99,11 @@ pub struct WrapRecord {
     /// ([`BeltDrive::section_forces`](super::BeltDrive::section_forces): smooth along the wrap,
     /// `dN/ds = −f_t` pointwise).
     pub tension: f64,
-    /// The element's own axial force at the point \[N\] ([`tension_at`]: the force of its
-    /// material law at the local strain, which ripples within the elements on a wrap).
+    /// The element's own axial force at the point \[N\]: the force of its material law at the
+    /// local strain ([`tension_at`]) plus the viscous force of the axial damping
+    /// ([`BeltDrive::viscous_axial_force`](super::BeltDrive::viscous_axial_force)). It ripples
+    /// within the elements on a wrap (the axial strain of the cubic elements oscillates under
+    /// the penalty contact) and converges slowly with the element count.
     pub element_tension: f64,
 }
 
@@ -123,7 +126,8 @@ pub fn wrap_records(drive: &BeltDrive, q: &[f64], v: &[f64], omegas: &[f64]) -> 
                     .angle_from_inlet(c.pulley, c.position)
                     .unwrap_or(f64::NAN),
                 tension: sections.axial(c.element, xi),
-                element_tension: tension_at(drive, q, c.element, xi).tension,
+                element_tension: tension_at(drive, q, c.element, xi).tension
+                    + drive.viscous_axial_force(q, v, c.element, xi),
                 contact: c,
             }
         })
