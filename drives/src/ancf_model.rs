@@ -9,8 +9,8 @@
 //! | drive ([`belt::Drive`]) | ANCF ([`BeltDriveSpec`]) |
 //! |---|---|
 //! | pulleys at their mounted centres (a tensioner's idler at its hand-statics arm angle), belt-line radii `R` | the same pulleys with contact radius `R + p₀`, `p₀` the penalty penetration under the mounting pressure `T0/R` ([`belt::BeltContact::mounting_penetration`]), so that the belt centreline sinks by `p₀` onto the path of radius `R` |
-//! | section EA, EI, ρA | rectangular section of thickness `h = √(12 EI/EA)` and width `b` ([`AncfConfig::width`]); `E = EA/(b h)`, `ρ = ρA/(b h)`, `α₁ = α₂ = 1` (Kerkkänen (3.18)) |
-//! | installation tension `T0` | unstretched length `L_b = L_path/λ(T0)` ([`belt::Section::stretch`]), corrected by secant steps `L_b ← L_b (1 + (T̄ − T0)/EA)` until the mean static span force `T̄` of the ANCF belt ([`BeltDrive::initial_state`]) is `T0` within [`TENSION_TOLERANCE`] (the element's bending–stretching coupling on the arcs, the `(a − 1) c` term of (3.18), lowers the axial force on the wraps); a given belt length is used as is |
+//! | section EA, EI, ρA, material law | rectangular section of thickness `h = √(12 EI/EA)` and width `b` ([`AncfConfig::width`]); `E = EA/(b h)`, `ρ = ρA/(b h)`, `α₁ = α₂ = 1` (Kerkkänen (3.18)); the section's [`belt::MaterialLaw`] is the element's law ([`BeltSpec::law`]), so the reported and mounted forces are the axial force the elements carry ([`ancf::BeltElement::axial_force`]) |
+//! | installation tension `T0` | unstretched length `L_b = L_path/λ(T0)` ([`belt::Section::stretch`]), corrected by secant steps `L_b ← L_b (1 + (T̄ − T0)/EA)` until the mean static span force `T̄` of the ANCF belt ([`BeltDrive::initial_state`]) is `T0` within [`TENSION_TOLERANCE`], `T̄` the axial force of the belt's law; the first estimate lands a few per cent off: at rest the axial force on a wrap is the span's less `EI/(2R²)` (beam statics, 5.2 N on Table 6-1), and the contact pressure and penetration follow it; a given belt length is used as is |
 //! | penalty (6.1) `k₂ d² + k₁ d` per unit length | the same law, distributed: `f_n = k₂ d² + k₁ d + c_p ḋ` (Kerkkänen (3.20) with the quadratic term), Gauss quadrature (3.27); `c_p` = [`AncfConfig::contact_damping`] |
 //! | friction law | the same law per unit length |
 //! | Rayleigh `β` | Kelvin–Voigt damping of the axial strain rate, axial force `EA(ε + β ε̇)` ([`BeltSpec::axial_damping`]); the mass-proportional `α M` is dropped (on the absolute velocities of a Lagrangian mesh it would brake the moving belt); generalized-α's numerical damping damps the contact vibrations |
@@ -37,8 +37,9 @@ pub const ARM_ANGLE_TOLERANCE: f64 = 1e-7;
 pub const MAX_ELEMENTS: usize = 2000;
 
 /// What the ANCF belt reports as the belt's force.
-pub const ANCF_FORCE_MEASURE: &str = "α₁EA(|r_x| − 1) at the element's Gauss points, mean over each span's \
-middle half";
+pub const ANCF_FORCE_MEASURE: &str = "axial force of the belt's material law (St Venant–Kirchhoff \
+α₁EA λ(λ²−1)/2 with the bending–stretching coupling of Kerkkänen (3.18), or linear α₁EA(λ−1)) \
+carried by the elements, with the Kelvin–Voigt viscous part; spans: mean over each span's middle half";
 
 /// Discretisation choices of the ANCF belt that the drive does not fix.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -161,6 +162,7 @@ pub fn ancf_spec(
             alpha2: 1.0,
             gauss_points: 5,
             axial_damping: drive.damping().beta,
+            law: b.law,
         },
         contact: ContactSpec {
             stiffness: contact.penalty_linear,

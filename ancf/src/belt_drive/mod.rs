@@ -25,6 +25,6 @@ pub mod spec;
 pub use closure::{ClosureResult, free_belt_closure};
 pub use friction::BeltFriction;
 pub use initial::{InitialOptions, InitialState};
-pub use model::{BeltArm, BeltDrive, PointRecord, PulleyLoad};
+pub use model::{BeltArm, BeltDrive, PointRecord, PulleyLoad, SECTION_CELLS, SectionForces};
 pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationConfig, simulate};
 pub use spec::{BeltDriveSpec, BeltSpec, ContactSpec};

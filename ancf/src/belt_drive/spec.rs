@@ -2,7 +2,7 @@
 
 use super::friction::{BeltFriction, BeltNormal};
 use crate::error::{AncfError, invalid};
-use belt::{Motion, Pulley, Signal, WrapSide};
+use belt::{MaterialLaw, Motion, Pulley, Signal, WrapSide};
 use mbd_core::Validate;
 use serde::{Deserialize, Serialize};
 
@@ -39,6 +39,11 @@ pub struct BeltSpec {
     /// counterpart of Ribaric's `β K_e` Rayleigh damping on the material deflection rate; rigid
     /// motions (the belt wrapping a pulley) have `ε̇ = 0` and are not damped.
     pub axial_damping: f64,
+    /// Material law of the belt ([`MaterialLaw`]): `"st_venant_kirchhoff"` (Kerkkänen (3.18),
+    /// the default) or `"linear"` (axial force `α₁EA(‖r_x‖ − 1)`, as datasheets and Exudyn's
+    /// cable). Reported tensions are always the axial force of this law
+    /// ([`BeltElement::axial_force`](crate::element::BeltElement::axial_force)).
+    pub law: MaterialLaw,
 }
 
 impl Default for BeltSpec {
@@ -57,6 +62,7 @@ impl Default for BeltSpec {
             alpha2: 0.01,
             gauss_points: 5,
             axial_damping: 0.0,
+            law: MaterialLaw::StVenantKirchhoff,
         }
     }
 }
