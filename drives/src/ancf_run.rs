@@ -7,7 +7,7 @@ use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, SimulationConfig, free_belt_closure,
     post, simulate,
 };
-use belt::{PulleyState, Role, Snapshot, SpanState, WrapPoint};
+use belt::Role;
 use mbd_core::integrators::{GeneralizedAlpha, State};
 
 /// Which pulleys play driver and driven in a summary: the first speed-driven pulley (0 if
@@ -31,53 +31,8 @@ pub fn pulley_roles(drive: &BeltDrive) -> Vec<Role> {
     drive.pulleys().iter().map(|p| p.motion.role()).collect()
 }
 
-/// The snapshot ([`belt::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
-/// at the travel-sense speeds `omegas` \[rad/s\]: the contact quadrature points of every wrap
-/// ([`post::wrap_records`]), hub loads and torques ([`BeltDrive::pulley_loads_with`]), span
-/// forces ([`post::span_tensions`]) and mid-point offsets ([`post::span_transverse`]).
-pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
-    let loads = drive.pulley_loads_with(q, v, omegas);
-    let pulleys = (0..drive.pulleys().len())
-        .map(|k| PulleyState {
-            omega: omegas[k],
-            hub_load: loads[k].force,
-            torque: loads[k].torque,
-            center_velocity: drive.pulley_center(k, q, v).1,
-        })
-        .collect();
-    let wrap = post::wrap_records(drive, q, v, omegas)
-        .into_iter()
-        .filter(|w| w.contact.normal_force > 0.0)
-        .map(|w| WrapPoint {
-            pulley: w.contact.pulley,
-            angle: w.angle,
-            length: w.contact.weight,
-            tension: w.tension,
-            pressure: w.contact.normal_force,
-            friction: w.contact.friction_force,
-            slip: w.contact.slip,
-        })
-        .collect();
-    let tensions = post::span_tensions(drive, q);
-    let offsets = post::span_transverse(drive, q);
-    let spans = post::spans(drive)
-        .iter()
-        .enumerate()
-        .map(|(k, sp)| SpanState {
-            from: sp.from,
-            to: sp.to,
-            tension: tensions[k],
-            transverse: offsets[k],
-        })
-        .collect();
-    Snapshot {
-        time: t,
-        pulleys,
-        spans,
-        wrap,
-        belt_dissipation: f64::NAN,
-    }
-}
+/// The snapshot of the ANCF drive ([`post::snapshot`], re-exported).
+pub use ancf::belt_drive::post::snapshot;
 
 /// The spans running into and out of the pulley `driver`: (tight, slack) indices into `spans`.
 pub fn tight_slack(spans: &[post::SpanLine], driver: usize) -> (Option<usize>, Option<usize>) {

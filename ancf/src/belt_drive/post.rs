@@ -5,6 +5,7 @@
 use super::model::{BeltDrive, PointRecord};
 use crate::element::Element;
 use crate::shape;
+use belt::{PulleyState, Snapshot, SpanState, WrapPoint};
 
 /// Axial state at one material point of the belt.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -233,4 +234,52 @@ pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) ->
             .path()
             .angle_from_inlet(p, position)
             .unwrap_or(f64::NAN)
+}
+
+/// The snapshot ([`belt::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
+/// at the travel-sense speeds `omegas` \[rad/s\]: the contact quadrature points of every wrap
+/// ([`wrap_records`]), hub loads and torques ([`BeltDrive::pulley_loads_with`]), span
+/// forces ([`span_tensions`]) and mid-point offsets ([`span_transverse`]).
+pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
+    let loads = drive.pulley_loads_with(q, v, omegas);
+    let pulleys = (0..drive.pulleys().len())
+        .map(|k| PulleyState {
+            omega: omegas[k],
+            hub_load: loads[k].force,
+            torque: loads[k].torque,
+            center_velocity: drive.pulley_center(k, q, v).1,
+        })
+        .collect();
+    let wrap = wrap_records(drive, q, v, omegas)
+        .into_iter()
+        .filter(|w| w.contact.normal_force > 0.0)
+        .map(|w| WrapPoint {
+            pulley: w.contact.pulley,
+            angle: w.angle,
+            length: w.contact.weight,
+            tension: w.tension,
+            pressure: w.contact.normal_force,
+            friction: w.contact.friction_force,
+            slip: w.contact.slip,
+        })
+        .collect();
+    let tensions = span_tensions(drive, q);
+    let offsets = span_transverse(drive, q);
+    let spans = spans(drive)
+        .iter()
+        .enumerate()
+        .map(|(k, sp)| SpanState {
+            from: sp.from,
+            to: sp.to,
+            tension: tensions[k],
+            transverse: offsets[k],
+        })
+        .collect();
+    Snapshot {
+        time: t,
+        pulleys,
+        spans,
+        wrap,
+        belt_dissipation: f64::NAN,
+    }
 }
