@@ -3,7 +3,7 @@
 //! closed-form forces and tangents, and the axial force the element carries at a point
 //! ([`BeltElement::axial_force`]).
 
-use ancf::element::{BeltElement, Element};
+use ancf::element::{AncfElement, BeltElement};
 use ancf::mesh::straight_coordinates;
 use ancf::shape;
 use ancf::{Material, Section};

@@ -4,10 +4,10 @@
 
 use super::friction::{BeltFriction, BeltNormal};
 use super::spec::BeltDriveSpec;
-use crate::element::{BeltElement, Element};
+use crate::element::{AncfElement, BeltElement};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
-use crate::mesh::Mesh;
+use crate::mesh::AncfMesh;
 use crate::section::Section;
 use crate::shape;
 use crate::sparse::Pattern;
@@ -48,7 +48,7 @@ struct Scratch {
 pub struct BeltDrive {
     spec: BeltDriveSpec,
     path: BeltPath,
-    mesh: Mesh<BeltElement>,
+    mesh: AncfMesh<BeltElement>,
     n_belt: usize,
     pulley_dof: Vec<Option<usize>>,
     free: Vec<usize>,
@@ -168,7 +168,7 @@ impl BeltDrive {
         let l = b.length / b.elements as f64;
         let el = BeltElement::new(l, material, section, b.alpha1, b.alpha2, b.gauss_points)?
             .with_law(b.law);
-        let mesh = Mesh::closed_loop(vec![el; b.elements])?;
+        let mesh = AncfMesh::closed_loop(vec![el; b.elements])?;
         let n_belt = mesh.n_dof();
         let mut pulley_dof = Vec::with_capacity(spec.pulleys.len());
         let mut free = Vec::new();
@@ -246,7 +246,7 @@ impl BeltDrive {
         &self.path
     }
     /// The belt mesh.
-    pub fn mesh(&self) -> &Mesh<BeltElement> {
+    pub fn mesh(&self) -> &AncfMesh<BeltElement> {
         &self.mesh
     }
     /// The pulleys in travel order.

@@ -3,7 +3,7 @@
 //! (Fig. 3.17).
 
 use super::model::{BeltDrive, PointRecord};
-use crate::element::Element;
+use crate::element::AncfElement;
 use crate::shape;
 use belt::{PulleyState, Snapshot, SpanState, WrapPoint};
 

@@ -2,7 +2,7 @@
 //! beam (12 coordinates) with axial and bending stiffness multipliers `α₁`, `α₂`.
 
 use super::belt_kernel::{self, Constants, KernelPoint};
-use super::{Element, NodeLayout};
+use super::{AncfElement, NodeLayout};
 use crate::autodiff::{Dual, Hyper, Real};
 use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
@@ -339,7 +339,7 @@ impl BeltElement {
     }
 }
 
-impl Element for BeltElement {
+impl AncfElement for BeltElement {
     fn layout(&self) -> NodeLayout {
         NodeLayout::PositionBothSlopes
     }
