@@ -2,7 +2,7 @@
 //! loop of implicit belt-drive integration, Kerkkänen ch. 3).
 
 use ancf::belt::{belt_loop, coordinates_on_belt_path, kerkkanen_path};
-use ancf::element::{BeltElement, Element, OmarShabanaBeam, ProposedBeam};
+use ancf::element::{AncfElement, BeltElement, OmarShabanaBeam, ProposedBeam};
 use ancf::mesh::straight_coordinates;
 use ancf::system::MeshForce;
 use ancf::{Material, PulleyContact, Section};
@@ -10,7 +10,7 @@ use contact::{CreepRate, Disk, GaussRule, LineContact, LinearPenalty};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
-fn deformed(el: &dyn Element) -> Vec<f64> {
+fn deformed(el: &dyn AncfElement) -> Vec<f64> {
     let mut e = straight_coordinates(el.layout(), [0.0, 0.0], [el.length(), 0.0], 1);
     for (k, v) in e.iter_mut().enumerate() {
         *v += 0.01 * (k as f64).sin();
@@ -21,7 +21,7 @@ fn deformed(el: &dyn Element) -> Vec<f64> {
 fn element_kernels(c: &mut Criterion) {
     let mat = Material::new(1e8, 0.3, 1036.0).unwrap();
     let sec = Section::rectangle(0.01, 0.01).unwrap();
-    let els: Vec<(&str, Box<dyn Element>)> = vec![
+    let els: Vec<(&str, Box<dyn AncfElement>)> = vec![
         (
             "proposed",
             Box::new(ProposedBeam::new(0.06, mat, sec).unwrap()),

@@ -1,9 +1,9 @@
 //! Straight beam meshes of the chapter-2 elements (Kerkkänen §2.1), used by the dynamics module
 //! and the paper cases (`flowmbd-cases`).
 
-use crate::element::Element;
+use crate::element::AncfElement;
 use crate::error::{AncfError, invalid};
-use crate::mesh::Mesh;
+use crate::mesh::AncfMesh;
 use serde::{Deserialize, Serialize};
 
 /// Which beam element a study uses.
@@ -22,9 +22,9 @@ pub enum BeamElementKind {
 pub const MAX_BEAM_ELEMENTS: usize = 100_000;
 
 /// Build a straight chain of `n_el` equal elements with `make(element_length)`.
-pub fn beam_mesh<E, F>(length: f64, n_el: usize, make: F) -> Result<Mesh<E>, AncfError>
+pub fn beam_mesh<E, F>(length: f64, n_el: usize, make: F) -> Result<AncfMesh<E>, AncfError>
 where
-    E: Element,
+    E: AncfElement,
     F: Fn(f64) -> Result<E, AncfError>,
 {
     mbd_core::validate::check::size("elements", n_el, 1, MAX_BEAM_ELEMENTS)
@@ -34,5 +34,5 @@ where
     }
     let le = length / n_el as f64;
     let els = (0..n_el).map(|_| make(le)).collect::<Result<Vec<_>, _>>()?;
-    Mesh::chain(els)
+    AncfMesh::chain(els)
 }

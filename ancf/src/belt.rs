@@ -2,10 +2,10 @@
 //! Table 3.1 ([`belt::BeltPath`]), equally spaced nodes along a path, and the closed-loop
 //! mesh with a shared first node.
 
-use crate::element::{BeltElement, Element, NodeLayout};
+use crate::element::{AncfElement, BeltElement, NodeLayout};
 use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
-use crate::mesh::Mesh;
+use crate::mesh::AncfMesh;
 use crate::section::Section;
 use belt::{BeltPath, Motion, Pulley, WrapSide};
 
@@ -27,7 +27,7 @@ pub fn kerkkanen_path() -> BeltPath {
 }
 
 /// [`coordinates_on_path`] along a [`BeltPath`].
-pub fn coordinates_on_belt_path<E: Element>(mesh: &Mesh<E>, path: &BeltPath) -> Vec<f64> {
+pub fn coordinates_on_belt_path<E: AncfElement>(mesh: &AncfMesh<E>, path: &BeltPath) -> Vec<f64> {
     coordinates_on_path(mesh, path.length(), |s| {
         let p = path.point(s);
         (p.position, p.tangent)
@@ -44,7 +44,7 @@ pub fn belt_loop(
     alpha1: f64,
     alpha2: f64,
     gauss_x: usize,
-) -> Result<Mesh<BeltElement>, AncfError> {
+) -> Result<AncfMesh<BeltElement>, AncfError> {
     if n < 3 {
         return Err(invalid(
             "belt: elements",
@@ -56,14 +56,14 @@ pub fn belt_loop(
     let els = (0..n)
         .map(|_| BeltElement::new(le, material, section, alpha1, alpha2, gauss_x))
         .collect::<Result<Vec<_>, _>>()?;
-    Mesh::closed_loop(els)
+    AncfMesh::closed_loop(els)
 }
 
 /// Initial coordinates of a closed loop placed on a path `point(s)` of length `path_length`:
 /// nodes equally spaced, `r_x = (path_length / belt_length) t` (uniform stretch), `r_y = Ĩ t`
 /// (seed note §9, initial conditions).
-pub fn coordinates_on_path<E: Element>(
-    mesh: &Mesh<E>,
+pub fn coordinates_on_path<E: AncfElement>(
+    mesh: &AncfMesh<E>,
     path_length: f64,
     point: impl Fn(f64) -> ([f64; 2], [f64; 2]),
 ) -> Vec<f64> {

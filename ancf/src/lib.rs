@@ -3,7 +3,7 @@
 //! Absolute nodal coordinate formulation elements (Kerkkänen 2006): the 2D shear-deformable
 //! linear beam, the Omar–Shabana beam, the 2D belt element, planar belt drives built from them, and the thin plate element.
 //!
-//! * [`element`]: the [`Element`] trait and the three planar elements;
+//! * [`element`]: the [`AncfElement`] trait and the three planar elements;
 //! * [`mesh`]: meshes with shared nodes (closed loops), sparse constant mass, assembled forces
 //!   and tangents, energies;
 //! * [`plate`]: the 36-coordinate thin plate element of Kerkkänen §4.3 and plate meshes;
@@ -37,15 +37,15 @@ pub mod sparse;
 pub mod statics;
 pub mod system;
 
-pub use element::{BeltElement, Element, NodeLayout, OmarShabanaBeam, ProposedBeam};
+pub use element::{AncfElement, BeltElement, NodeLayout, OmarShabanaBeam, ProposedBeam};
 pub use error::AncfError;
 pub use material::Material;
-pub use mesh::Mesh;
+pub use mesh::AncfMesh;
 pub use node_contact::NodalContact;
 pub use pulley::{ContactDistribution, PulleyContact};
 pub use section::Section;
 pub use statics::{
-    StaticOptions, StaticSolution, UnilateralOptions, UnilateralSolution, solve_static,
+    AncfStaticOptions, AncfStaticSolution, UnilateralOptions, UnilateralSolution, solve_static,
     solve_static_unilateral, solve_static_with,
 };
 pub use system::{AncfSystem, ContactStep, Energies, MeshForce, Prescribed, integrate_unilateral};

@@ -2,7 +2,7 @@
 //! constant sparse mass matrix, assembled elastic and gravity forces and tangent stiffness,
 //! and the energies of Kerkkänen (2.34).
 
-use crate::element::{Element, MAX_NDOF, NodeLayout};
+use crate::element::{AncfElement, MAX_NDOF, NodeLayout};
 use crate::error::{AncfError, invalid};
 use crate::sparse::Pattern;
 use faer::sparse::SparseColMat;
@@ -10,7 +10,7 @@ use faer::sparse::SparseColMat;
 /// A mesh of one element type. Global coordinates are ordered node by node
 /// (`node · coords_per_node + k`).
 #[derive(Debug, Clone)]
-pub struct Mesh<E: Element> {
+pub struct AncfMesh<E: AncfElement> {
     layout: NodeLayout,
     n_nodes: usize,
     elements: Vec<E>,
@@ -20,7 +20,7 @@ pub struct Mesh<E: Element> {
     element_mass: Vec<Vec<f64>>,
 }
 
-impl<E: Element> Mesh<E> {
+impl<E: AncfElement> AncfMesh<E> {
     /// Mesh of `elements` with `connectivity[i] = [node_I, node_J]` over `n_nodes` nodes.
     pub fn new(
         elements: Vec<E>,

@@ -3,8 +3,8 @@
 //! exact derivatives). The penalty counterpart of the unilateral Lagrange contact of
 //! [`crate::statics::solve_static_unilateral`] (Ribaric (6.1) is a nodal law of this kind).
 
-use crate::element::Element;
-use crate::mesh::Mesh;
+use crate::element::AncfElement;
+use crate::mesh::AncfMesh;
 use crate::system::MeshForce;
 use contact::{FrictionLaw, NormalLaw, PointContact, Surface, point_contact};
 use nalgebra::{Point2, Vector2};
@@ -24,9 +24,9 @@ pub struct NodalContact<S, NL, FL> {
 
 impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> NodalContact<S, NL, FL> {
     /// Contact state of every candidate node (`None` when separated).
-    pub fn states<E: Element>(
+    pub fn states<E: AncfElement>(
         &self,
-        mesh: &Mesh<E>,
+        mesh: &AncfMesh<E>,
         q: &[f64],
         v: &[f64],
     ) -> Vec<Option<PointContact<2>>> {
@@ -48,12 +48,12 @@ impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> NodalContact<S, NL, FL> {
 
 impl<E, S, NL, FL> MeshForce<E> for NodalContact<S, NL, FL>
 where
-    E: Element,
+    E: AncfElement,
     S: Surface<2> + Send + Sync,
     NL: NormalLaw + Send + Sync,
     FL: FrictionLaw + Send + Sync,
 {
-    fn add_forces(&self, mesh: &Mesh<E>, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
+    fn add_forces(&self, mesh: &AncfMesh<E>, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
         for (&nd, c) in self.nodes.iter().zip(self.states(mesh, q, v)) {
             if let Some(c) = c {
                 let k = mesh.node_dof(nd, 0);
@@ -65,7 +65,7 @@ where
 
     fn add_tangent(
         &self,
-        mesh: &Mesh<E>,
+        mesh: &AncfMesh<E>,
         _t: f64,
         q: &[f64],
         v: &[f64],
@@ -107,7 +107,7 @@ mod tests {
             .map(|_| ProposedBeam::new(0.1, mat, sec))
             .collect::<Result<Vec<_>, _>>()
             .unwrap();
-        let mesh = Mesh::chain(els).unwrap();
+        let mesh = AncfMesh::chain(els).unwrap();
         let mut q = straight_coordinates(mesh.layout(), [0.0, 0.0], [0.3, 0.0], 3);
         // nodes 1 and 2 pushed into a rotating disk below the beam, node 3 outside
         q[mesh.node_dof(1, 1)] = -0.004;

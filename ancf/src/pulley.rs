@@ -2,8 +2,8 @@
 //! integrated with the contact crate's Gauss-quadrature [`LineContact`], forces and exact
 //! Jacobians are scattered into the mesh vectors and sparse pattern.
 
-use crate::element::{Element, MAX_NDOF};
-use crate::mesh::Mesh;
+use crate::element::{AncfElement, MAX_NDOF};
+use crate::mesh::AncfMesh;
 use crate::system::MeshForce;
 use contact::{ContactRecord, ElementContact, FrictionLaw, LineContact, NormalLaw, Surface};
 use nalgebra::Vector2;
@@ -36,9 +36,9 @@ pub struct ContactDistribution {
 }
 
 impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
-    fn each<E: Element>(
+    fn each<E: AncfElement>(
         &self,
-        mesh: &Mesh<E>,
+        mesh: &AncfMesh<E>,
         q: &[f64],
         v: &[f64],
         jacobian: bool,
@@ -82,9 +82,9 @@ impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
 
     /// Contact records (pressure, friction, slip at every quadrature point in contact), torque
     /// and resultant force on the obstacle.
-    pub fn distribution<E: Element>(
+    pub fn distribution<E: AncfElement>(
         &self,
-        mesh: &Mesh<E>,
+        mesh: &AncfMesh<E>,
         q: &[f64],
         v: &[f64],
     ) -> ContactDistribution {
@@ -112,12 +112,12 @@ impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
 
 impl<E, S, NL, FL> MeshForce<E> for PulleyContact<S, NL, FL>
 where
-    E: Element,
+    E: AncfElement,
     S: Surface<2> + Send + Sync,
     NL: NormalLaw + Send + Sync,
     FL: FrictionLaw + Send + Sync,
 {
-    fn add_forces(&self, mesh: &Mesh<E>, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
+    fn add_forces(&self, mesh: &AncfMesh<E>, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
         self.each(
             mesh,
             q,
@@ -130,7 +130,7 @@ where
 
     fn add_tangent(
         &self,
-        mesh: &Mesh<E>,
+        mesh: &AncfMesh<E>,
         _t: f64,
         q: &[f64],
         v: &[f64],

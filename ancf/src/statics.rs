@@ -3,9 +3,9 @@
 //! increments and the line search are the seed note's §8.3 recommendation), all on the shared
 //! [`mbd_core::newton`] solver.
 
-use crate::element::Element;
+use crate::element::AncfElement;
 use crate::error::{AncfError, invalid};
-use crate::mesh::Mesh;
+use crate::mesh::AncfMesh;
 use crate::sparse::Pattern;
 use crate::system::MeshForce;
 use faer::Mat;
@@ -21,7 +21,7 @@ pub use unilateral::{UnilateralOptions, UnilateralSolution, solve_static_unilate
 
 /// Options of the static solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StaticOptions {
+pub struct AncfStaticOptions {
     /// Number of equal load increments (≥ 1).
     pub increments: usize,
     /// Maximum Newton iterations per increment.
@@ -32,7 +32,7 @@ pub struct StaticOptions {
     pub line_search: bool,
 }
 
-impl Default for StaticOptions {
+impl Default for AncfStaticOptions {
     fn default() -> Self {
         Self {
             increments: 10,
@@ -45,7 +45,7 @@ impl Default for StaticOptions {
 
 /// Result of a static solve.
 #[derive(Debug, Clone)]
-pub struct StaticSolution {
+pub struct AncfStaticSolution {
     /// Equilibrium coordinates.
     pub q: Vec<f64>,
     /// Newton iterations per increment.
@@ -107,13 +107,13 @@ pub(crate) fn free_coordinates(
 
 /// Solve `Q_e(q) + λ F = 0` for `λ = 1/n, 2/n, …, 1` starting from `q0`, keeping the global
 /// coordinates listed in `fixed` at their `q0` values (supports eliminated from the unknowns).
-pub fn solve_static<E: Element>(
-    mesh: &Mesh<E>,
+pub fn solve_static<E: AncfElement>(
+    mesh: &AncfMesh<E>,
     q0: &[f64],
     fixed: &[usize],
     load: &[f64],
-    opts: &StaticOptions,
-) -> Result<StaticSolution, AncfError> {
+    opts: &AncfStaticOptions,
+) -> Result<AncfStaticSolution, AncfError> {
     solve_static_with(mesh, q0, fixed, load, &[], opts)
 }
 
@@ -125,14 +125,14 @@ pub fn solve_static<E: Element>(
 /// `‖Δq‖∞ ≤ tol (1 + ‖q‖∞)`; with `line_search`, a conservative problem (no extra forces)
 /// backtracks on the total potential `Π = U − λFᵀq` after regularising `K + μI`
 /// (Levenberg–Marquardt) until the step descends, otherwise on `‖R‖₂`.
-pub fn solve_static_with<E: Element>(
-    mesh: &Mesh<E>,
+pub fn solve_static_with<E: AncfElement>(
+    mesh: &AncfMesh<E>,
     q0: &[f64],
     fixed: &[usize],
     load: &[f64],
     extra: &[&dyn MeshForce<E>],
-    opts: &StaticOptions,
-) -> Result<StaticSolution, AncfError> {
+    opts: &AncfStaticOptions,
+) -> Result<AncfStaticSolution, AncfError> {
     let n = mesh.n_dof();
     check_sizes("static solve", n, q0, load)?;
     if opts.increments == 0 {
@@ -199,14 +199,14 @@ pub fn solve_static_with<E: Element>(
     });
     let mut q = q0.to_vec();
     let report = run_newton("static", &mut problem, &mut q, &opts.newton(line_search))?;
-    Ok(StaticSolution {
+    Ok(AncfStaticSolution {
         q,
         iterations: report.increments.iter().map(|i| i.iterations).collect(),
         residual: report.residual,
     })
 }
 
-impl StaticOptions {
+impl AncfStaticOptions {
     /// The shared solver's options: `increments` equal load steps, `max_iterations`, the
     /// relative correction test `‖Δq‖∞ ≤ tolerance (1 + ‖q‖∞)` and the given line search.
     pub(crate) fn newton(&self, line_search: Option<LineSearch>) -> NewtonOptions {
@@ -264,8 +264,8 @@ fn newton_error(context: &str, e: NewtonError<AncfError>) -> AncfError {
 
 /// `Q_e(q) + Q_x(q) + λ F = 0` over the free coordinates: `x = q` (all coordinates, the
 /// fixed ones never corrected), `R = −(Q_e + Q_x + λF)` (zero on fixed rows), `J = K`.
-struct MeshStatics<'a, E: Element> {
-    mesh: &'a Mesh<E>,
+struct MeshStatics<'a, E: AncfElement> {
+    mesh: &'a AncfMesh<E>,
     load: &'a [f64],
     extra: &'a [&'a dyn MeshForce<E>],
     free: Vec<usize>,
@@ -285,7 +285,7 @@ struct MeshStatics<'a, E: Element> {
     lam: f64,
 }
 
-impl<E: Element> MeshStatics<'_, E> {
+impl<E: AncfElement> MeshStatics<'_, E> {
     /// `r = −(f + λF)` on the free rows from the forces in `self.f`.
     fn scatter_residual(&self, lam: f64, r: &mut [f64]) {
         r.fill(0.0);
@@ -303,7 +303,7 @@ impl<E: Element> MeshStatics<'_, E> {
     }
 }
 
-impl<E: Element> NewtonProblem for MeshStatics<'_, E> {
+impl<E: AncfElement> NewtonProblem for MeshStatics<'_, E> {
     type Error = AncfError;
 
     fn tangent_dim(&self) -> usize {

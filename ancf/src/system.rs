@@ -3,9 +3,9 @@
 //! coordinates as constraints `Φ = q_k − g_k(t)` (Kerkkänen (2.29)–(2.32): joints to ground and
 //! hub rotations become linear constraints with `C_e` constant).
 
-use crate::element::Element;
+use crate::element::AncfElement;
 use crate::error::{AncfError, invalid};
-use crate::mesh::Mesh;
+use crate::mesh::AncfMesh;
 use faer::sparse::{SparseColMat, Triplet};
 use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
@@ -51,13 +51,13 @@ impl Prescribed {
 
 /// An additional force on the mesh (contact, point loads, …): the extension point through
 /// which contact enters an ANCF model.
-pub trait MeshForce<E: Element>: Send + Sync {
+pub trait MeshForce<E: AncfElement>: Send + Sync {
     /// `f += Q(t, q, v)`.
-    fn add_forces(&self, mesh: &Mesh<E>, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
+    fn add_forces(&self, mesh: &AncfMesh<E>, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
     /// `k_vals += −∂Q/∂q`, `c_vals += −∂Q/∂v` in the mesh pattern ([`Mesh::pattern`]).
     fn add_tangent(
         &self,
-        mesh: &Mesh<E>,
+        mesh: &AncfMesh<E>,
         t: f64,
         q: &[f64],
         v: &[f64],
@@ -80,8 +80,8 @@ pub struct Energies {
 }
 
 /// An ANCF mesh with gravity, constant loads, extra forces and prescribed coordinates.
-pub struct AncfSystem<E: Element> {
-    mesh: Mesh<E>,
+pub struct AncfSystem<E: AncfElement> {
+    mesh: AncfMesh<E>,
     gravity: [f64; 2],
     gravity_forces: Vec<f64>,
     load: Vec<f64>,
@@ -90,9 +90,9 @@ pub struct AncfSystem<E: Element> {
     constraint_jacobian: SparseColMat<usize, f64>,
 }
 
-impl<E: Element> AncfSystem<E> {
+impl<E: AncfElement> AncfSystem<E> {
     /// System of `mesh` without gravity, loads or constraints.
-    pub fn new(mesh: Mesh<E>) -> Self {
+    pub fn new(mesh: AncfMesh<E>) -> Self {
         let n = mesh.n_dof();
         let mut s = Self {
             gravity_forces: vec![0.0; n],
@@ -171,7 +171,7 @@ impl<E: Element> AncfSystem<E> {
     }
 
     /// The mesh.
-    pub fn mesh(&self) -> &Mesh<E> {
+    pub fn mesh(&self) -> &AncfMesh<E> {
         &self.mesh
     }
 
@@ -209,7 +209,7 @@ impl<E: Element> AncfSystem<E> {
     }
 }
 
-impl<E: Element> SecondOrderSystem for AncfSystem<E> {
+impl<E: AncfElement> SecondOrderSystem for AncfSystem<E> {
     fn n_q(&self) -> usize {
         self.mesh.n_dof()
     }

@@ -2,12 +2,12 @@
 //! and the `flowmbd-beam` app.
 
 use ancf::beam_mesh::{BeamElementKind, MAX_BEAM_ELEMENTS, beam_mesh};
-use ancf::element::{Element, OmarShabanaBeam, ProposedBeam};
+use ancf::element::{AncfElement, OmarShabanaBeam, ProposedBeam};
 use ancf::error::AncfError;
 use ancf::material::Material;
-use ancf::mesh::{Mesh, straight_coordinates};
+use ancf::mesh::{AncfMesh, straight_coordinates};
 use ancf::section::Section;
-use ancf::statics::{StaticOptions, solve_static};
+use ancf::statics::{AncfStaticOptions, solve_static};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
@@ -193,9 +193,9 @@ impl Validate for GroundContactCase {
 /// Supports and load of a static study, expressed on a chain mesh.
 trait Study {
     type Output;
-    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError>;
-    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64>;
-    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> Self::Output;
+    fn fixed<E: AncfElement>(&self, mesh: &AncfMesh<E>) -> Result<Vec<usize>, AncfError>;
+    fn load<E: AncfElement>(&self, mesh: &AncfMesh<E>) -> Vec<f64>;
+    fn output<E: AncfElement>(&self, mesh: &AncfMesh<E>, q: &[f64]) -> Self::Output;
 }
 
 fn run_study<S: Study>(case: &StaticBeamCase, study: &S) -> Result<S::Output, AncfError> {
@@ -216,13 +216,13 @@ fn run_study<S: Study>(case: &StaticBeamCase, study: &S) -> Result<S::Output, An
     }
 }
 
-fn solve_study<E: Element, S: Study>(
+fn solve_study<E: AncfElement, S: Study>(
     case: &StaticBeamCase,
-    mesh: &Mesh<E>,
+    mesh: &AncfMesh<E>,
     study: &S,
 ) -> Result<S::Output, AncfError> {
     let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [case.length, 0.0], case.elements);
-    let opts = StaticOptions {
+    let opts = AncfStaticOptions {
         increments: case.increments,
         ..Default::default()
     };
@@ -240,7 +240,7 @@ pub struct SimplySupported {
 
 impl Study for SimplySupported {
     type Output = f64;
-    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
+    fn fixed<E: AncfElement>(&self, mesh: &AncfMesh<E>) -> Result<Vec<usize>, AncfError> {
         let n_el = mesh.elements().len();
         if !n_el.is_multiple_of(2) {
             return Err(invalid(
@@ -254,12 +254,12 @@ impl Study for SimplySupported {
             mesh.node_dof(n_el, 1),
         ])
     }
-    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64> {
+    fn load<E: AncfElement>(&self, mesh: &AncfMesh<E>) -> Vec<f64> {
         let mut f = vec![0.0; mesh.n_dof()];
         f[mesh.node_dof(mesh.elements().len() / 2, 1)] = self.force;
         f
     }
-    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> f64 {
+    fn output<E: AncfElement>(&self, mesh: &AncfMesh<E>, q: &[f64]) -> f64 {
         mesh.node_position(q, mesh.elements().len() / 2)[1]
     }
 }
@@ -282,18 +282,18 @@ pub struct Cantilever {
 
 impl Study for Cantilever {
     type Output = [f64; 2];
-    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
+    fn fixed<E: AncfElement>(&self, mesh: &AncfMesh<E>) -> Result<Vec<usize>, AncfError> {
         // every nodal coordinate of the root node: r, (r_x,) r_y
         Ok((0..mesh.coords_per_node())
             .map(|k| mesh.node_dof(0, k))
             .collect())
     }
-    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64> {
+    fn load<E: AncfElement>(&self, mesh: &AncfMesh<E>) -> Vec<f64> {
         let mut f = vec![0.0; mesh.n_dof()];
         f[mesh.node_dof(mesh.elements().len(), 1)] = self.force;
         f
     }
-    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> [f64; 2] {
+    fn output<E: AncfElement>(&self, mesh: &AncfMesh<E>, q: &[f64]) -> [f64; 2] {
         mesh.node_position(q, mesh.elements().len())
     }
 }
@@ -320,13 +320,13 @@ struct CantileverLine {
 
 impl Study for CantileverLine {
     type Output = Vec<[f64; 2]>;
-    fn fixed<E: Element>(&self, mesh: &Mesh<E>) -> Result<Vec<usize>, AncfError> {
+    fn fixed<E: AncfElement>(&self, mesh: &AncfMesh<E>) -> Result<Vec<usize>, AncfError> {
         Cantilever { force: self.force }.fixed(mesh)
     }
-    fn load<E: Element>(&self, mesh: &Mesh<E>) -> Vec<f64> {
+    fn load<E: AncfElement>(&self, mesh: &AncfMesh<E>) -> Vec<f64> {
         Cantilever { force: self.force }.load(mesh)
     }
-    fn output<E: Element>(&self, mesh: &Mesh<E>, q: &[f64]) -> Vec<[f64; 2]> {
+    fn output<E: AncfElement>(&self, mesh: &AncfMesh<E>, q: &[f64]) -> Vec<[f64; 2]> {
         let mut pts = Vec::new();
         for (i, el) in mesh.elements().iter().enumerate() {
             let start = if i == 0 { 0 } else { 1 };
@@ -457,9 +457,9 @@ pub fn ground_contact(case: &GroundContactCase) -> Result<GroundContactResult, A
     }
 }
 
-fn solve_ground<E: Element>(
+fn solve_ground<E: AncfElement>(
     case: &GroundContactCase,
-    mesh: &Mesh<E>,
+    mesh: &AncfMesh<E>,
     g_eff: [f64; 2],
     q: f64,
     q_star: f64,
@@ -474,7 +474,7 @@ fn solve_ground<E: Element>(
     let load = mesh.gravity_forces(g_eff);
     let nodes: Vec<usize> = (1..=n).collect();
     let opts = ancf::statics::UnilateralOptions {
-        newton: StaticOptions {
+        newton: AncfStaticOptions {
             increments: case.increments,
             ..Default::default()
         },

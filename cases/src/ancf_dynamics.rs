@@ -7,9 +7,9 @@ use crate::ancf_beams::{
 };
 use ancf::AncfError;
 use ancf::beam_mesh::{BeamElementKind, beam_mesh};
-use ancf::element::{Element, OmarShabanaBeam, ProposedBeam};
+use ancf::element::{AncfElement, OmarShabanaBeam, ProposedBeam};
 use ancf::material::Material;
-use ancf::mesh::Mesh;
+use ancf::mesh::AncfMesh;
 use ancf::mesh::straight_coordinates;
 use ancf::section::Section;
 use ancf::system::{AncfSystem, Energies, Prescribed};
@@ -163,9 +163,9 @@ pub fn pendulum<R: Proceed>(
     }
 }
 
-fn pendulum_run<E: Element, R: Proceed>(
+fn pendulum_run<E: AncfElement, R: Proceed>(
     case: &PendulumCase,
-    mesh: Mesh<E>,
+    mesh: AncfMesh<E>,
     every: usize,
     mut progress: impl FnMut(f64) -> R,
 ) -> Result<Vec<Sample>, AncfError> {

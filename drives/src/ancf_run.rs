@@ -1,14 +1,16 @@
-//! Runs of the planar ANCF belt drive (Kerkkänen ch. 3, [`ancf::belt_drive`]): the time loop
-//! with sampled outputs, the free-belt closure on the path (example 3.3-A) and the roles of
-//! the pulleys and spans in a summary.
+//! Runs of the ANCF belt drives: the one time loop with sampled outputs of the planar
+//! (Kerkkänen ch. 3, [`ancf::belt_drive`]) and plate (ch. 4) drives ([`run_drive`]), the
+//! free-belt closure on the path (example 3.3-A) and the roles of the pulleys and spans in a
+//! summary.
 
 use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, SimulationConfig, free_belt_closure,
-    post, simulate,
+    post,
 };
-use belt::{PulleyState, Role, Snapshot, SpanState, WrapPoint};
-use mbd_core::integrators::{GeneralizedAlpha, State};
+use belt::Role;
+use mbd_core::SecondOrderSystem;
+use mbd_core::integrators::{GeneralizedAlpha, Observer, Recorder, Rk4, State, Stats, Stepper};
 
 /// Which pulleys play driver and driven in a summary: the first speed-driven pulley (0 if
 /// none) and the first free one.
@@ -31,53 +33,8 @@ pub fn pulley_roles(drive: &BeltDrive) -> Vec<Role> {
     drive.pulleys().iter().map(|p| p.motion.role()).collect()
 }
 
-/// The snapshot ([`belt::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
-/// at the travel-sense speeds `omegas` \[rad/s\]: the contact quadrature points of every wrap
-/// ([`post::wrap_records`]), hub loads and torques ([`BeltDrive::pulley_loads_with`]), span
-/// forces ([`post::span_tensions`]) and mid-point offsets ([`post::span_transverse`]).
-pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
-    let loads = drive.pulley_loads_with(q, v, omegas);
-    let pulleys = (0..drive.pulleys().len())
-        .map(|k| PulleyState {
-            omega: omegas[k],
-            hub_load: loads[k].force,
-            torque: loads[k].torque,
-            center_velocity: drive.pulley_center(k, q, v).1,
-        })
-        .collect();
-    let wrap = post::wrap_records(drive, q, v, omegas)
-        .into_iter()
-        .filter(|w| w.contact.normal_force > 0.0)
-        .map(|w| WrapPoint {
-            pulley: w.contact.pulley,
-            angle: w.angle,
-            length: w.contact.weight,
-            tension: w.tension,
-            pressure: w.contact.normal_force,
-            friction: w.contact.friction_force,
-            slip: w.contact.slip,
-        })
-        .collect();
-    let tensions = post::span_tensions(drive, q);
-    let offsets = post::span_transverse(drive, q);
-    let spans = post::spans(drive)
-        .iter()
-        .enumerate()
-        .map(|(k, sp)| SpanState {
-            from: sp.from,
-            to: sp.to,
-            tension: tensions[k],
-            transverse: offsets[k],
-        })
-        .collect();
-    Snapshot {
-        time: t,
-        pulleys,
-        spans,
-        wrap,
-        belt_dissipation: f64::NAN,
-    }
-}
+/// The snapshot of the ANCF drive ([`post::snapshot`], re-exported).
+pub use ancf::belt_drive::post::snapshot;
 
 /// The spans running into and out of the pulley `driver`: (tight, slack) indices into `spans`.
 pub fn tight_slack(spans: &[post::SpanLine], driver: usize) -> (Option<usize>, Option<usize>) {
@@ -128,95 +85,126 @@ pub struct DriveRun {
     pub newton_iterations: usize,
     /// Why the integration stopped early, if it did.
     pub failure: Option<String>,
+    /// The stepper's counters.
+    pub stats: Stats,
 }
 
-/// Integrate `drive` from rest at `q0` to `t_end` \[s\] with `opts`. `observer` sees the
-/// sampled states with what each is [`Due`] for and may stop the run with an error:
-/// generalized-α advances ([`mbd_core::integrators::AlphaStepper::advance_to`]) one history
-/// interval at a time and the observer sees the end of each interval (the last one is always a
-/// history sample); RK4 ([`simulate()`]) shows it every step. A failed integration is reported in
-/// [`DriveRun::failure`] with the state reached.
-pub fn run_drive<E>(
-    drive: &BeltDrive,
+/// The sink of the [`Recorder`]: forwards each sample with what it is due for and keeps the
+/// last sample and the first observer error.
+struct Sink<F, E> {
+    observer: F,
+    frame_interval: f64,
+    next_frame: f64,
+    last: Option<State>,
+    error: Option<E>,
+}
+
+impl<F: FnMut(&State, Due) -> Result<(), E>, E> Observer for Sink<F, E> {
+    fn observe(&mut self, s: &State, _stats: &Stats) {
+        if self.error.is_some() {
+            return;
+        }
+        let frame = s.t >= self.next_frame - 1e-12;
+        if frame {
+            self.next_frame += self.frame_interval;
+        }
+        if let Err(e) = (self.observer)(
+            s,
+            Due {
+                history: true,
+                frame,
+            },
+        ) {
+            self.error = Some(e);
+        }
+        self.last = Some(s.clone());
+    }
+}
+
+/// The one time loop of the ANCF belt drives, planar ([`BeltDrive`]) and plate
+/// ([`ancf::plate::belt_drive::PlateBeltDrive`]): integrate `system` from rest at `q0` (t = 0)
+/// to `t_end` \[s\] with the configured mbd-core stepper (generalized-α with the analytic
+/// tangent, or RK4, [`SimulationConfig`]) driven by mbd-core's [`Recorder`], which stops the
+/// stepper at every history time `k · sampling.history` (and at `t_end`). `observer` sees each
+/// sampled state (every one a history sample; one every `sampling.frame` also a frame) and may
+/// stop the run with an error. A failed integration is reported in [`DriveRun::failure`] with
+/// the last sampled state.
+pub fn run_drive<S: SecondOrderSystem, E>(
+    system: &S,
     q0: &[f64],
     t_end: f64,
     opts: &SimulationConfig,
     sampling: Sampling,
-    mut observer: impl FnMut(&State, Due) -> Result<(), E>,
+    observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<DriveRun, E> {
     let s0 = State::new(0.0, q0.to_vec(), vec![0.0; q0.len()]);
-    let mut next_hist = sampling.history;
-    let mut next_frame = sampling.frame;
     let mut run = DriveRun {
         state: s0.clone(),
         steps: 0,
         newton_iterations: 0,
         failure: None,
+        stats: Stats::default(),
     };
-    match opts.integrator {
-        IntegratorKind::GeneralizedAlpha => {
-            let ga = GeneralizedAlpha::new(opts.alpha_params());
-            match ga.stepper(drive, s0) {
-                Err(e) => run.failure = Some(e.to_string()),
-                Ok(mut st) => {
-                    while st.state().t < t_end - 1e-12 {
-                        let t_next = (st.state().t + sampling.history).min(t_end);
-                        if let Err(e) = st.advance_to(drive, t_next, &mut |_| {}) {
-                            run.failure = Some(e.to_string());
-                            break;
-                        }
-                        let s = st.state().clone();
-                        let history = s.t >= next_hist - 1e-12 || s.t >= t_end - 1e-12;
-                        if history {
-                            next_hist += sampling.history;
-                        }
-                        let frame = s.t >= next_frame - 1e-12;
-                        if frame {
-                            next_frame += sampling.frame;
-                        }
-                        observer(&s, Due { history, frame })?;
-                        run.state = s;
-                    }
-                    run.steps = st.stats.steps;
-                    run.newton_iterations = st.stats.newton_iterations;
-                }
-            }
+    if let Err(e) = opts.validate() {
+        run.failure = Some(e.to_string());
+        return Ok(run);
+    }
+    let sink = Sink {
+        observer,
+        frame_interval: sampling.frame,
+        next_frame: sampling.frame,
+        last: None,
+        error: None,
+    };
+    let mut rec = match Recorder::new(sink, sampling.history, sampling.history) {
+        Ok(r) => r,
+        Err(e) => {
+            run.failure = Some(e.to_string());
+            return Ok(run);
         }
-        IntegratorKind::Rk4 => {
-            let mut stop: Option<E> = None;
-            let mut last_history: Option<State> = None;
-            let r = simulate(drive, q0, t_end, opts, |s| {
-                let history = s.t >= next_hist - 1e-12;
-                if history {
-                    next_hist += sampling.history;
-                    last_history = Some(s.clone());
-                }
-                let frame = s.t >= next_frame - 1e-12;
-                if frame {
-                    next_frame += sampling.frame;
-                }
-                if stop.is_none()
-                    && let Err(e) = observer(s, Due { history, frame })
-                {
-                    stop = Some(e);
-                }
-            });
-            if let Some(e) = stop {
-                return Err(e);
-            }
-            match r {
-                Ok(sol) => {
-                    run.steps = sol.stats.steps;
-                    run.state = sol.state;
-                }
-                Err(e) => {
-                    if let Some(s) = last_history {
-                        run.state = s;
-                    }
+    };
+    let stepper: Result<Box<dyn Stepper<S>>, _> = match opts.integrator {
+        IntegratorKind::GeneralizedAlpha => GeneralizedAlpha::new(opts.alpha_params())
+            .stepper(system, s0.clone())
+            .map(|s| Box::new(s) as Box<dyn Stepper<S>>),
+        IntegratorKind::Rk4 => Rk4::new(opts.h)
+            .stepper(system, s0.clone())
+            .map(|s| Box::new(s) as Box<dyn Stepper<S>>),
+    };
+    match stepper {
+        Err(e) => run.failure = Some(e.to_string()),
+        Ok(mut st) => {
+            // chunks of 50 samples, so that an observer error stops the run
+            let chunk = 50.0 * sampling.history;
+            let mut t_stop = 0.0;
+            while st.state().t < t_end - 1e-12 {
+                t_stop = (t_stop + chunk).min(t_end);
+                if let Err(e) = rec.run(st.as_mut(), system, t_stop, &mut ()) {
                     run.failure = Some(e.to_string());
+                    break;
+                }
+                if rec.sink.error.is_some() {
+                    break;
                 }
             }
+            // the end time is always a sample, on the history grid or not
+            let end = st.state().clone();
+            let sampled = rec.sink.last.as_ref().is_some_and(|l| l.t >= end.t - 1e-12);
+            if run.failure.is_none() && rec.sink.error.is_none() && !sampled && end.t > 0.0 {
+                let stats = *st.stats();
+                rec.sink.observe(&end, &stats);
+            }
+            run.stats = *st.stats();
+            run.steps = run.stats.steps;
+            run.newton_iterations = run.stats.newton_iterations;
         }
+    }
+    let mut sink = rec.sink;
+    if let Some(e) = sink.error.take() {
+        return Err(e);
+    }
+    if let Some(last) = sink.last {
+        run.state = last;
     }
     Ok(run)
 }

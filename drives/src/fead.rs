@@ -750,7 +750,7 @@ pub fn run_fead(
             sweep(cfg, base, &drive, alpha, note, observer)
         }
         FeadModel::Ancf => {
-            let base = AncfBelt::new(&drive, &m.ancf).map_err(build)?;
+            let base = AncfBelt::new(&drive, &m.ancf).map_err(|e| build(e.into()))?;
             let note = format!(
                 "ancf: {} (models.ancf.elements), {} contact points each, step {:.3} ms \
                  (models.ancf.step replaces run.step), rho_inf {} (run.ancf_rho_inf); belt length \

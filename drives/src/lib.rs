@@ -35,7 +35,10 @@ pub mod study;
 pub mod table_6_1;
 pub mod wave;
 
-pub use analytical::{analytical_speed_loss, bechtel, euler_eytelwein_capacity};
+pub use analytical::{
+    PenetratingString, analytical_speed_loss, bechtel, euler_eytelwein_capacity,
+    penetrating_string, penetrating_string_capacity,
+};
 /// The belt drive's vocabulary (re-exported: one crate's API builds and runs any drive).
 pub use belt;
 pub use error::DriveError;

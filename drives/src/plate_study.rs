@@ -1,14 +1,15 @@
 //! The three-dimensional plate-belt study of Kerkkänen §4.6 (Models 1 and 2 of Table 4.1):
 //! its configuration, run, summary and end-of-run distributions, shared by
 //! `flowmbd-belt plate` (which writes the files) and the Python package
-//! (`flowmbd.belt.plate`). The model is [`ancf::plate::belt_drive`]; the run is mbd-core's
-//! stepper driven by its [`Recorder`]; the comparison is Bechtel's steady model
-//! ([`crate::bechtel_steady`]) for the same belt.
+//! (`flowmbd.belt.plate`). The model is [`ancf::plate::belt_drive`]; the run is the one ANCF
+//! time loop ([`run_drive`](crate::ancf_run::run_drive): mbd-core's stepper driven by its
+//! [`Recorder`](mbd_core::integrators::Recorder)), shared with the planar drive; the comparison
+//! is Bechtel's steady model ([`crate::bechtel_steady`]) for the same belt.
 
-use crate::ancf_run::{Due, Sampling};
+use crate::ancf_run::{Due, Sampling, run_drive};
 use crate::bechtel_steady::{SteadyDriveInput, SteadyPoint, SteadySolution, solve_steady};
 use ancf::AncfError;
-use ancf::belt_drive::{IntegratorKind, SimulationConfig};
+use ancf::belt_drive::SimulationConfig;
 use ancf::plate::StrainMeasure;
 use ancf::plate::belt_drive::post::{
     BeltSample, SpanState, line_samples, path_coordinate, pulley_torques, span_states, spans,
@@ -18,9 +19,7 @@ use ancf::plate::belt_drive::{
 };
 use belt::{Motion, Shape};
 use contact::FrictionLaw;
-use mbd_core::integrators::{
-    GeneralizedAlpha, NewtonUpdate, Observer, Recorder, Rk4, State, Stats, Stepper,
-};
+use mbd_core::integrators::{NewtonUpdate, State, Stats};
 use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -400,128 +399,49 @@ pub struct PlateEnd {
     pub failure: Option<String>,
 }
 
-/// The sink of the [`Recorder`]: forwards each sample with what it is due for, keeps the
-/// speed/torque history and the first observer error.
-struct Sink<'a, F, E> {
-    drive: &'a PlateBeltDrive,
-    driver: usize,
-    driven: Option<usize>,
-    observer: F,
-    frame_interval: f64,
-    next_frame: f64,
-    last: Option<State>,
-    history: Vec<[f64; 4]>,
-    error: Option<E>,
-}
-
-impl<F: FnMut(&State, Due) -> Result<(), E>, E> Observer for Sink<'_, F, E> {
-    fn observe(&mut self, s: &State, _stats: &Stats) {
-        if self.error.is_some() {
-            return;
-        }
-        let frame = s.t >= self.next_frame - 1e-12;
-        if frame {
-            self.next_frame += self.frame_interval;
-        }
-        let wd = self.drive.pulley_speed(self.driver, s.t, &s.v);
-        let (wn, tau) = match self.driven {
-            Some(p) => (
-                self.drive.pulley_speed(p, s.t, &s.v),
-                pulley_torques(self.drive, s.t, &s.q, &s.v)[p],
-            ),
-            None => (f64::NAN, f64::NAN),
-        };
-        self.history.push([s.t, wd, wn, tau]);
-        if let Err(e) = (self.observer)(
-            s,
-            Due {
-                history: true,
-                frame,
-            },
-        ) {
-            self.error = Some(e);
-        }
-        self.last = Some(s.clone());
-    }
-}
-
-/// Run the drive from `init` (at rest) to `c.t_end` with mbd-core's stepper and [`Recorder`]
-/// (samples every `output.history_interval`). `observer` sees every sample (each is a history
+/// Run the drive from `init` (at rest) to `c.t_end` with the one ANCF time loop
+/// ([`run_drive`]; samples every `output.history_interval`). `observer` sees every sample (each is a history
 /// sample; every `output.vtk_interval` one is also a frame) and may stop the run with an error.
 pub fn plate_run<E>(
     c: &PlateStudyConfig,
     drive: &PlateBeltDrive,
     init: &PlateInitialState,
     start: Instant,
-    observer: impl FnMut(&State, Due) -> Result<(), E>,
+    mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<PlateEnd, E> {
     let (driver, driven) = plate_roles(drive);
-    let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
     let sampling = Sampling {
         history: c.output.history_interval,
         frame: c.output.vtk_interval,
     };
-    let sink = Sink {
+    let mut history: Vec<[f64; 4]> = Vec::new();
+    let run = run_drive(
         drive,
-        driver,
-        driven,
-        observer,
-        frame_interval: sampling.frame,
-        next_frame: sampling.frame,
-        last: None,
-        history: Vec::new(),
-        error: None,
-    };
-    let mut failure = None;
-    let mut stats = Stats::default();
-    let stepper: Result<Box<dyn Stepper<PlateBeltDrive>>, _> = match c.integrator.integrator {
-        IntegratorKind::GeneralizedAlpha => GeneralizedAlpha::new(c.integrator.alpha_params())
-            .stepper(drive, s0.clone())
-            .map(|s| Box::new(s) as Box<dyn Stepper<PlateBeltDrive>>),
-        IntegratorKind::Rk4 => Rk4::new(c.integrator.h)
-            .stepper(drive, s0.clone())
-            .map(|s| Box::new(s) as Box<dyn Stepper<PlateBeltDrive>>),
-    };
-    let mut rec = match Recorder::new(sink, sampling.history, sampling.history) {
-        Ok(r) => r,
-        Err(e) => {
-            return Ok(PlateEnd {
-                summary: summarize(c, drive, init, &s0, &[], stats, start),
-                state: s0,
-                history: Vec::new(),
-                failure: Some(e.to_string()),
-            });
-        }
-    };
-    match stepper {
-        Err(e) => failure = Some(e.to_string()),
-        Ok(mut st) => {
-            // chunks of 50 samples, so that an observer error stops the run
-            let chunk = 50.0 * sampling.history;
-            let mut t_stop = 0.0;
-            while st.state().t < c.t_end - 1e-12 {
-                t_stop = (t_stop + chunk).min(c.t_end);
-                if let Err(e) = rec.run(st.as_mut(), drive, t_stop, &mut ()) {
-                    failure = Some(e.to_string());
-                    break;
-                }
-                if rec.sink.error.is_some() {
-                    break;
-                }
-            }
-            stats = *st.stats();
-        }
-    }
-    let mut sink = rec.sink;
-    if let Some(e) = sink.error.take() {
-        return Err(e);
-    }
-    let state = sink.last.clone().unwrap_or(s0);
-    let summary = summarize(c, drive, init, &state, &sink.history, stats, start);
+        &init.q,
+        c.t_end,
+        &c.integrator,
+        sampling,
+        |s, due| {
+            let wd = drive.pulley_speed(driver, s.t, &s.v);
+            let (wn, tau) = match driven {
+                Some(p) => (
+                    drive.pulley_speed(p, s.t, &s.v),
+                    pulley_torques(drive, s.t, &s.q, &s.v)[p],
+                ),
+                None => (f64::NAN, f64::NAN),
+            };
+            history.push([s.t, wd, wn, tau]);
+            observer(s, due)
+        },
+    )?;
+    let stats = run.stats;
+    let state = run.state;
+    let failure = run.failure;
+    let summary = summarize(c, drive, init, &state, &history, stats, start);
     Ok(PlateEnd {
         state,
         summary,
-        history: sink.history,
+        history,
         failure,
     })
 }

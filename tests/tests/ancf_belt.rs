@@ -4,9 +4,9 @@
 //! tangent inside an `AncfSystem`.
 
 use ancf::belt::{belt_loop, coordinates_on_belt_path, coordinates_on_path, kerkkanen_path};
-use ancf::statics::{StaticOptions, solve_static, solve_static_with};
+use ancf::statics::{AncfStaticOptions, solve_static, solve_static_with};
 use ancf::system::MeshForce;
-use ancf::{AncfSystem, Element, Material, PulleyContact, Section};
+use ancf::{AncfElement, AncfSystem, Material, PulleyContact, Section};
 use contact::{CreepRate, Disk, Frictionless, GaussRule, LineContact, LinearPenalty};
 use mbd_core::SecondOrderSystem;
 use nalgebra::{Point2, Vector2};
@@ -32,7 +32,7 @@ fn free_belt_closes_to_a_circle() {
         mesh.node_dof(0, 1),
         mesh.node_dof(5, 1),
     ];
-    let opts = StaticOptions {
+    let opts = AncfStaticOptions {
         increments: 1,
         max_iterations: 200,
         tolerance: 1e-10,
@@ -112,7 +112,7 @@ fn belt_hoop_on_pulley_matches_analytical_penetration() {
     };
     // node 0 sits at the top: fixing its x removes the free rotation about the pulley
     let fixed = [mesh.node_dof(0, 0)];
-    let opts = StaticOptions {
+    let opts = AncfStaticOptions {
         increments: 1,
         max_iterations: 100,
         tolerance: 1e-12,
@@ -260,7 +260,7 @@ fn belt_pretension_on_two_pulleys() {
     // node 0 is at the top of the left pulley (where the path leaves it), travelling along +x:
     // fix its x
     let fixed = [mesh.node_dof(0, 0)];
-    let opts = StaticOptions {
+    let opts = AncfStaticOptions {
         increments: 1,
         max_iterations: 100,
         tolerance: 1e-11,

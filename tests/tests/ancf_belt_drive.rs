@@ -81,6 +81,69 @@ fn damped_tangent_matches_finite_differences_and_rigid_rotation_is_undamped() {
     assert!(diff < 1e-9 * scale.max(1.0));
 }
 
+// Reference: central finite differences of the generalized forces with the linear material law
+// (BeltSpec::law, issue 34): its elastic forces and the axial damping in the engineering strain
+// rate λ̇ (viscous force β α₁EA λ̇) have exact Jacobians too.
+#[test]
+fn linear_law_tangent_with_axial_damping_matches_finite_differences() {
+    let mut spec = BeltDriveSpec::default();
+    spec.belt.law = belt::MaterialLaw::Linear;
+    spec.belt.axial_damping = 1.8e-3;
+    check_tangent(spec);
+}
+
+// Power balance (reference: the viscous axial force N_d is the force whose power is the
+// damping's, P = −∫ N_d λ̇ dx with λ̇ = r_xᵀṙ_x/λ): the generalized damping forces
+// Q_d = f(β) − f(0) do the power Q_d·ė = −Σ w l N_d λ̇ at the Gauss points of the elements, for
+// both material laws, in a moving state with strain rates (BeltDrive::viscous_axial_force).
+#[test]
+fn viscous_axial_force_does_the_damping_power() {
+    for law in [
+        belt::MaterialLaw::StVenantKirchhoff,
+        belt::MaterialLaw::Linear,
+    ] {
+        let mut spec = BeltDriveSpec::default();
+        spec.belt.law = law;
+        spec.belt.axial_damping = 1.8e-3;
+        let damped = BeltDrive::new(spec.clone()).unwrap();
+        spec.belt.axial_damping = 0.0;
+        let plain = BeltDrive::new(spec.clone()).unwrap();
+        let (q, v) = moving_state(&damped, 0.9);
+        let n = q.len();
+        let (mut f1, mut f0) = (vec![0.0; n], vec![0.0; n]);
+        let mut ws = mbd_core::Workspace::new();
+        damped.forces(0.5, &q, &v, &mut f1, &mut ws).unwrap();
+        plain
+            .forces(0.5, &q, &v, &mut f0, &mut mbd_core::Workspace::new())
+            .unwrap();
+        let p_q: f64 = (0..n).map(|i| (f1[i] - f0[i]) * v[i]).sum();
+        let l = damped.element_length();
+        let rule = contact::GaussRule::new(spec.belt.gauss_points);
+        let (mut e, mut ed) = ([0.0; 12], [0.0; 12]);
+        let mut p_n = 0.0;
+        for el in 0..damped.mesh().elements().len() {
+            damped.mesh().gather(&q, el, &mut e);
+            damped.mesh().gather(&v, el, &mut ed);
+            for (xi, w) in rule.iter() {
+                let sx = ancf::shape::cubic(l, xi * l, 0.0).sx;
+                let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
+                for a in 0..6 {
+                    for c in 0..2 {
+                        rx[c] += sx[a] * e[2 * a + c];
+                        rxd[c] += sx[a] * ed[2 * a + c];
+                    }
+                }
+                let lam = rx[0].hypot(rx[1]);
+                let lam_dot = (rx[0] * rxd[0] + rx[1] * rxd[1]) / lam;
+                p_n -= w * l * damped.viscous_axial_force(&q, &v, el, xi) * lam_dot;
+            }
+        }
+        println!("{law:?}: damping power {p_q:.6e} W, −∫N_d λ̇ {p_n:.6e} W");
+        assert!(p_q < 0.0);
+        assert!((p_q - p_n).abs() < 1e-9 * p_q.abs(), "{p_q} vs {p_n}");
+    }
+}
+
 // Reference: central finite differences of the generalized forces of a drive with a tensioner
 // (BeltDrive::with_tensioner): Table 3.1's drive with a back-side idler pressed 30 mm into the
 // upper span (belt 1 % shorter than the path), carried by an arm (spring, damper, regularised dry friction), the arm turning at

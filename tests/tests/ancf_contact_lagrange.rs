@@ -16,8 +16,9 @@
 use ancf::beam_mesh::beam_mesh;
 use ancf::mesh::straight_coordinates;
 use ancf::{
-    Element, Material, Mesh, NodalContact, OmarShabanaBeam, ProposedBeam, Section, StaticOptions,
-    UnilateralOptions, solve_static, solve_static_unilateral, solve_static_with,
+    AncfElement, AncfMesh, AncfStaticOptions, Material, NodalContact, OmarShabanaBeam,
+    ProposedBeam, Section, UnilateralOptions, solve_static, solve_static_unilateral,
+    solve_static_with,
 };
 use contact::{Disk, Frictionless, HalfPlane, LinearPenalty, Surface};
 
@@ -37,15 +38,15 @@ fn q_star() -> f64 {
     72.0 * ei() * G0 / L.powi(4)
 }
 
-struct Beam<El: Element> {
-    mesh: Mesh<El>,
+struct Beam<El: AncfElement> {
+    mesh: AncfMesh<El>,
     q0: Vec<f64>,
     fixed: Vec<usize>,
     load: Vec<f64>,
     nodes: Vec<usize>,
 }
 
-fn beam<El: Element>(
+fn beam<El: AncfElement>(
     n: usize,
     q_line: f64,
     make: impl Fn(f64, Material, Section) -> Result<El, ancf::AncfError>,
@@ -69,11 +70,11 @@ fn beam<El: Element>(
     }
 }
 
-fn lagrange<El: Element, S: Surface<2>>(b: &Beam<El>, s: &S) -> ancf::UnilateralSolution {
+fn lagrange<El: AncfElement, S: Surface<2>>(b: &Beam<El>, s: &S) -> ancf::UnilateralSolution {
     // 5 increments: with 4, the first one of the q = 4q* case lands on the degenerate load q*
     // (tip contact at zero slope), where the active set needs ~50 passes instead of ~10
     let opts = UnilateralOptions {
-        newton: StaticOptions {
+        newton: AncfStaticOptions {
             increments: 5,
             ..Default::default()
         },
@@ -126,7 +127,7 @@ fn tip_contact_matches_propped_cantilever() {
 
 /// Reactions of the bilateral problem: the y coordinate of every active node is prescribed
 /// to `y` and eliminated; the reaction is minus the residual there.
-fn bilateral<El: Element>(b: &Beam<El>, active: &[bool], y: f64) -> Vec<f64> {
+fn bilateral<El: AncfElement>(b: &Beam<El>, active: &[bool], y: f64) -> Vec<f64> {
     let mut q0 = b.q0.clone();
     let mut fixed = b.fixed.clone();
     let mut dofs = Vec::new();
@@ -138,7 +139,7 @@ fn bilateral<El: Element>(b: &Beam<El>, active: &[bool], y: f64) -> Vec<f64> {
             dofs.push(k);
         }
     }
-    let opts = StaticOptions {
+    let opts = AncfStaticOptions {
         increments: 1,
         ..Default::default()
     };
@@ -239,7 +240,7 @@ fn penalty_tends_to_lagrange_as_stiffness_grows() {
             // Newton on a stiff penalty chatters between contact states when started from the
             // unloaded beam; the penalty equilibrium is unique, so start it from the Lagrange
             // state (the clamp coordinates are the same), full load in one increment
-            let opts = StaticOptions {
+            let opts = AncfStaticOptions {
                 increments: 1,
                 ..Default::default()
             };
@@ -288,7 +289,7 @@ fn disk_contact_large_deflection_matches_penalty_limit() {
     b.load[b.mesh.node_dof(n, 1)] = f_tip;
     let disk = Disk::fixed(nalgebra::Point2::new(0.5 * L, -0.1), 0.05);
     let opts = UnilateralOptions {
-        newton: StaticOptions {
+        newton: AncfStaticOptions {
             increments: 10,
             ..Default::default()
         },
@@ -333,7 +334,7 @@ fn disk_contact_large_deflection_matches_penalty_limit() {
             friction: Frictionless,
             nodes: b.nodes.clone(),
         };
-        let o = StaticOptions {
+        let o = AncfStaticOptions {
             increments: 1,
             ..Default::default()
         };

@@ -1,8 +1,8 @@
 //! Element-level validation of the ANCF elements (Kerkkänen ch. 2 and §3.1): rigid-body
 //! invariants, exact kinetic energy, closed-form energies and mass, and tangent consistency.
 
-use ancf::element::{BeltElement, Element, OmarShabanaBeam, ProposedBeam};
-use ancf::mesh::{Mesh, straight_coordinates};
+use ancf::element::{AncfElement, BeltElement, OmarShabanaBeam, ProposedBeam};
+use ancf::mesh::{AncfMesh, straight_coordinates};
 use ancf::{Material, Section};
 
 fn steel() -> Material {
@@ -26,7 +26,7 @@ fn rigid(e: &[f64], positions: &[usize], th: f64, d: [f64; 2]) -> Vec<f64> {
     out
 }
 
-fn elements() -> Vec<(Box<dyn Element>, Vec<usize>)> {
+fn elements() -> Vec<(Box<dyn AncfElement>, Vec<usize>)> {
     let sec = Section::rectangle(0.1, 0.05).unwrap();
     vec![
         (
@@ -44,11 +44,11 @@ fn elements() -> Vec<(Box<dyn Element>, Vec<usize>)> {
     ]
 }
 
-fn reference(el: &dyn Element) -> Vec<f64> {
+fn reference(el: &dyn AncfElement) -> Vec<f64> {
     straight_coordinates(el.layout(), [0.0, 0.0], [el.length(), 0.0], 1)
 }
 
-fn perturbed(el: &dyn Element, amp: f64) -> Vec<f64> {
+fn perturbed(el: &dyn AncfElement, amp: f64) -> Vec<f64> {
     let mut e = reference(el);
     for (k, v) in e.iter_mut().enumerate() {
         *v += amp * ((k as f64 * 1.7 + 0.3).sin());
@@ -119,21 +119,21 @@ fn rigid_motion_kinetic_energy_is_exact() {
         );
     };
     let le = l / n as f64;
-    let p = Mesh::chain(
+    let p = AncfMesh::chain(
         (0..n)
             .map(|_| ProposedBeam::new(le, steel(), sec).unwrap())
             .collect(),
     )
     .unwrap();
     check(p.layout(), &|v| p.kinetic_energy(v));
-    let o = Mesh::chain(
+    let o = AncfMesh::chain(
         (0..n)
             .map(|_| OmarShabanaBeam::new(le, steel(), sec).unwrap())
             .collect(),
     )
     .unwrap();
     check(o.layout(), &|v| o.kinetic_energy(v));
-    let bl = Mesh::chain(
+    let bl = AncfMesh::chain(
         (0..n)
             .map(|_| BeltElement::new(le, steel(), sec, 1.0, 0.01, 5).unwrap())
             .collect(),

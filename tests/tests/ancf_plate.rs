@@ -296,7 +296,7 @@ fn large_deflection_cantilever_strip_follows_the_elastica() {
     let fixed: Vec<usize> = (0..mesh.n_coords())
         .filter(|&i| (i / 9) % (nx + 1) == 0)
         .collect();
-    let opts = ancf::StaticOptions {
+    let opts = ancf::AncfStaticOptions {
         increments: 8,
         max_iterations: 40,
         tolerance: 1e-10,

@@ -2,7 +2,7 @@
 //! quadrature independence of distributed contact (Kerkkänen §3.3: 5, 7 and 11 points gave
 //! identical results), and the exactness of the contact Jacobians.
 
-use ancf::element::{BeltElement, Element};
+use ancf::element::{AncfElement, BeltElement};
 use ancf::{Material, Section};
 use contact::{
     ActiveSet, Coulomb, CoulombTanh, CreepRate, Disk, ElementContact, FrictionLaw, Frictionless,

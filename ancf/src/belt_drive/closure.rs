@@ -6,7 +6,7 @@
 use super::BeltDrive;
 use super::spec::BeltDriveSpec;
 use crate::error::AncfError;
-use crate::statics::{StaticOptions, solve_static};
+use crate::statics::{AncfStaticOptions, solve_static};
 
 /// Result of the free-belt closure.
 #[derive(Debug, Clone)]
@@ -33,7 +33,7 @@ pub fn free_belt_closure(spec: &BeltDriveSpec) -> Result<ClosureResult, AncfErro
     let nb = drive.n_belt();
     let nn = drive.mesh().n_nodes();
     let fixed = [0, 1, 6 * (nn / 2) + 1];
-    let opts = StaticOptions {
+    let opts = AncfStaticOptions {
         increments: 1,
         max_iterations: 200,
         tolerance: 1e-10,

@@ -12,8 +12,11 @@
 //! * [`initial`]: the pre-strained initial configuration by a static solve;
 //! * [`mod@simulate`]: generalized-α and explicit RK4 runs;
 //! * [`post`]: tension, span and contact post-processing;
-//! * [`closure`]: example 3.3-A (free belt closing to a circle).
+//! * [`closure`]: example 3.3-A (free belt closing to a circle);
+//! * [`belt_model`]: [`AncfBelt`], the ANCF belt on any resolved [`belt::Drive`], a
+//!   [`belt::BeltModel`] (the mounting to the installation tension, the tensioner's static arm).
 
+pub mod belt_model;
 pub mod closure;
 pub mod friction;
 pub mod initial;
@@ -22,9 +25,10 @@ pub mod post;
 pub mod simulate;
 pub mod spec;
 
+pub use belt_model::{AncfBelt, AncfConfig, AncfMapping};
 pub use closure::{ClosureResult, free_belt_closure};
 pub use friction::BeltFriction;
 pub use initial::{InitialOptions, InitialState};
-pub use model::{BeltArm, BeltDrive, PointRecord, PulleyLoad};
+pub use model::{BeltArm, BeltDrive, PointRecord, PulleyLoad, SECTION_CELLS, SectionForces};
 pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationConfig, simulate};
 pub use spec::{BeltDriveSpec, BeltSpec, ContactSpec};

@@ -4,10 +4,10 @@
 
 use super::friction::{BeltFriction, BeltNormal};
 use super::spec::BeltDriveSpec;
-use crate::element::{BeltElement, Element};
+use crate::element::{AncfElement, BeltElement};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
-use crate::mesh::Mesh;
+use crate::mesh::AncfMesh;
 use crate::section::Section;
 use crate::shape;
 use crate::sparse::Pattern;
@@ -48,7 +48,7 @@ struct Scratch {
 pub struct BeltDrive {
     spec: BeltDriveSpec,
     path: BeltPath,
-    mesh: Mesh<BeltElement>,
+    mesh: AncfMesh<BeltElement>,
     n_belt: usize,
     pulley_dof: Vec<Option<usize>>,
     free: Vec<usize>,
@@ -166,8 +166,9 @@ impl BeltDrive {
         };
         let section = Section::rectangle(b.width, b.thickness)?;
         let l = b.length / b.elements as f64;
-        let el = BeltElement::new(l, material, section, b.alpha1, b.alpha2, b.gauss_points)?;
-        let mesh = Mesh::closed_loop(vec![el; b.elements])?;
+        let el = BeltElement::new(l, material, section, b.alpha1, b.alpha2, b.gauss_points)?
+            .with_law(b.law);
+        let mesh = AncfMesh::closed_loop(vec![el; b.elements])?;
         let n_belt = mesh.n_dof();
         let mut pulley_dof = Vec::with_capacity(spec.pulleys.len());
         let mut free = Vec::new();
@@ -245,7 +246,7 @@ impl BeltDrive {
         &self.path
     }
     /// The belt mesh.
-    pub fn mesh(&self) -> &Mesh<BeltElement> {
+    pub fn mesh(&self) -> &AncfMesh<BeltElement> {
         &self.mesh
     }
     /// The pulleys in travel order.
@@ -543,6 +544,18 @@ impl BeltDrive {
         v: &[f64],
         per_element: usize,
     ) -> Vec<PointRecord> {
+        self.contact_records_sampled_with(q, v, &self.speeds(t, v), per_element)
+    }
+
+    /// [`Self::contact_records_sampled`] with the pulleys spinning at the travel-sense speeds
+    /// `omegas` \[rad/s\] (one per pulley; see [`Self::forces_with`]).
+    pub fn contact_records_sampled_with(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        omegas: &[f64],
+        per_element: usize,
+    ) -> Vec<PointRecord> {
         let n = per_element.max(1);
         let line = LineContact {
             surface: self.line.surface,
@@ -553,7 +566,7 @@ impl BeltDrive {
                 weights: vec![1.0 / n as f64; n],
             },
         };
-        self.records_on(&line, q, v, &self.speeds(t, v))
+        self.records_on(&line, q, v, omegas)
     }
 
     fn records_on(
@@ -926,10 +939,14 @@ impl BeltDrive {
         }
     }
 
-    /// Kelvin–Voigt damping of the axial strain rate ([`super::BeltSpec::axial_damping`]):
-    /// `Q_d = −β α₁EA ∫ S_xᵀ r_x (r_xᵀ ṙ_x) dx` added to `f` (when not empty), and with
-    /// `tangent = Some((k, c))` its Jacobians `−∂Q_d/∂e = β α₁EA ∫ S_xᵀ((r_xᵀṙ_x) I + r_x ṙ_xᵀ) S_x dx`
-    /// and `−∂Q_d/∂ė = β α₁EA ∫ S_xᵀ r_x r_xᵀ S_x dx` added to the element blocks.
+    /// Kelvin–Voigt damping of the axial strain rate ([`super::BeltSpec::axial_damping`]) in the
+    /// strain measure of the material law ([`super::BeltSpec::law`]): the viscous axial force
+    /// is `N_d = β α₁EA λ ε̇_G` (St Venant–Kirchhoff, `ε_G = (a − 1)/2`, `ε̇_G = r_xᵀṙ_x`) or
+    /// `β α₁EA λ̇` (linear, `λ̇ = r_xᵀṙ_x/λ`), i.e. `Q_d = −β α₁EA ∫ S_xᵀ r_x (r_xᵀ ṙ_x) g dx`
+    /// with `g = 1` or `g = 1/a`, added to `f` (when not empty). With `tangent = Some((k, c))`
+    /// its Jacobians `−∂Q_d/∂e = β α₁EA ∫ S_xᵀ g((r_xᵀṙ_x) I + r_x ṙ_xᵀ + (g'/g)(r_xᵀṙ_x) r_x 2r_xᵀ) S_x dx`
+    /// (`g'/g = 0` or `−1/a`) and `−∂Q_d/∂ė = β α₁EA ∫ S_xᵀ g r_x r_xᵀ S_x dx` are added to the
+    /// element blocks.
     fn axial_damping(
         &self,
         q: &[f64],
@@ -937,13 +954,9 @@ impl BeltDrive {
         f: &mut [f64],
         mut tangent: Option<(&mut Vec<f64>, &mut Vec<f64>)>,
     ) {
-        let b = &self.spec.belt;
-        if b.axial_damping <= 0.0 {
+        if self.spec.belt.axial_damping <= 0.0 {
             return;
         }
-        let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
-        let l = self.element_length();
-        let rule = GaussRule::new(b.gauss_points);
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
         let mut qd = [0.0; NE];
@@ -952,42 +965,8 @@ impl BeltDrive {
         for el in 0..self.mesh.elements().len() {
             self.mesh.gather(q, el, &mut e);
             self.mesh.gather(v, el, &mut ed);
-            qd.fill(0.0);
-            kl.fill(0.0);
-            cl.fill(0.0);
-            for (xi, w) in rule.iter() {
-                let sx = shape::cubic(l, xi * l, 0.0).sx;
-                let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
-                for a in 0..6 {
-                    for c in 0..2 {
-                        rx[c] += sx[a] * e[2 * a + c];
-                        rxd[c] += sx[a] * ed[2 * a + c];
-                    }
-                }
-                let rate = rx[0] * rxd[0] + rx[1] * rxd[1];
-                let wl = w * l * coef;
-                for a in 0..6 {
-                    for c in 0..2 {
-                        qd[2 * a + c] -= wl * sx[a] * rx[c] * rate;
-                    }
-                }
-                if tangent.is_some() {
-                    for bb in 0..6 {
-                        for d in 0..2 {
-                            let col = 2 * bb + d;
-                            for a in 0..6 {
-                                for c in 0..2 {
-                                    let row = 2 * a + c;
-                                    let ss = wl * sx[a] * sx[bb];
-                                    let delta = if c == d { rate } else { 0.0 };
-                                    kl[row + col * NE] += ss * (delta + rx[c] * rxd[d]);
-                                    cl[row + col * NE] += ss * rx[c] * rx[d];
-                                }
-                            }
-                        }
-                    }
-                }
-            }
+            let local = tangent.is_some().then_some((&mut kl, &mut cl));
+            self.element_damping(&e, &ed, &mut qd, local);
             if !f.is_empty() {
                 self.mesh.scatter_add(f, el, &qd, 1.0);
             }
@@ -996,5 +975,312 @@ impl BeltDrive {
                 self.pattern.add_element(c, el, &cl, 1.0);
             }
         }
+    }
+
+    /// The axial damping forces of one element with coordinates `e` and rates `ed`
+    /// ([`Self::axial_damping`]) written into `qd`, and with `tangent` its local Jacobians
+    /// (both overwritten).
+    fn element_damping(
+        &self,
+        e: &[f64; NE],
+        ed: &[f64; NE],
+        qd: &mut [f64; NE],
+        mut tangent: Option<(&mut [f64; NE * NE], &mut [f64; NE * NE])>,
+    ) {
+        qd.fill(0.0);
+        if let Some((kl, cl)) = tangent.as_mut() {
+            kl.fill(0.0);
+            cl.fill(0.0);
+        }
+        let b = &self.spec.belt;
+        if b.axial_damping <= 0.0 {
+            return;
+        }
+        let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
+        let l = self.element_length();
+        let rule = GaussRule::new(b.gauss_points);
+        for (xi, w) in rule.iter() {
+            let sx = shape::cubic(l, xi * l, 0.0).sx;
+            let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
+            for a in 0..6 {
+                for c in 0..2 {
+                    rx[c] += sx[a] * e[2 * a + c];
+                    rxd[c] += sx[a] * ed[2 * a + c];
+                }
+            }
+            let rate = rx[0] * rxd[0] + rx[1] * rxd[1];
+            // g = 1/a and g'/g = −1/a for the linear law (doc of `axial_damping`)
+            let (g, dlog) = match b.law {
+                ::belt::MaterialLaw::StVenantKirchhoff => (1.0, 0.0),
+                ::belt::MaterialLaw::Linear => {
+                    let a = rx[0] * rx[0] + rx[1] * rx[1];
+                    (1.0 / a, -1.0 / a)
+                }
+            };
+            let wl = w * l * coef * g;
+            for a in 0..6 {
+                for c in 0..2 {
+                    qd[2 * a + c] -= wl * sx[a] * rx[c] * rate;
+                }
+            }
+            if let Some((kl, cl)) = tangent.as_mut() {
+                for bb in 0..6 {
+                    for d in 0..2 {
+                        let col = 2 * bb + d;
+                        for a in 0..6 {
+                            for c in 0..2 {
+                                let row = 2 * a + c;
+                                let ss = wl * sx[a] * sx[bb];
+                                let delta = if c == d { rate } else { 0.0 };
+                                kl[row + col * NE] += ss
+                                    * (delta + rx[c] * rxd[d] + 2.0 * dlog * rate * rx[c] * rx[d]);
+                                cl[row + col * NE] += ss * rx[c] * rx[d];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Viscous axial force \[N\] of the Kelvin–Voigt axial damping
+    /// ([`super::BeltSpec::axial_damping`], [`Self::axial_damping`]) at `ξ` of element `el` at
+    /// `(q, v)`: `N_d = β α₁EA λ ε̇_G = β α₁EA λ (r_xᵀṙ_x)` (St Venant–Kirchhoff) or
+    /// `β α₁EA λ̇ = β α₁EA (r_xᵀṙ_x)/λ` (linear law). It adds to the elastic force
+    /// ([`crate::element::BeltElement::axial_force`]) wherever the belt's strain changes in time:
+    /// in a steady drive along the slip arcs (`ε̇ = v dε/ds`, ≈ 45 N on Table 6-1's driver wrap
+    /// at 42 N·m with β = 1.8 ms), not in the spans.
+    pub fn viscous_axial_force(&self, q: &[f64], v: &[f64], el: usize, xi: f64) -> f64 {
+        let b = &self.spec.belt;
+        if b.axial_damping <= 0.0 {
+            return 0.0;
+        }
+        let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
+        let l = self.element_length();
+        let sx = shape::cubic(l, xi * l, 0.0).sx;
+        let mut e = [0.0; NE];
+        let mut ed = [0.0; NE];
+        self.mesh.gather(q, el, &mut e);
+        self.mesh.gather(v, el, &mut ed);
+        let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
+        for a in 0..6 {
+            for c in 0..2 {
+                rx[c] += sx[a] * e[2 * a + c];
+                rxd[c] += sx[a] * ed[2 * a + c];
+            }
+        }
+        let lam = rx[0].hypot(rx[1]);
+        let rate = rx[0] * rxd[0] + rx[1] * rxd[1];
+        match b.law {
+            ::belt::MaterialLaw::StVenantKirchhoff => coef * lam * rate,
+            ::belt::MaterialLaw::Linear => coef * rate / lam,
+        }
+    }
+
+    /// Generalized contact force `Q_c` (3.27) of element `el` (coordinates `e`, rates `ed`) on
+    /// every pulley, at the pulleys' travel-sense speeds `omegas`, integrated with `line`'s
+    /// rule (summed over the pulleys into `out`).
+    fn element_contact_force(
+        &self,
+        line: &LineContact<Disk, BeltNormal, BeltFriction>,
+        (q, v): (&[f64], &[f64]),
+        omegas: &[f64],
+        (e, ed): (&[f64; NE], &[f64; NE]),
+        ec: &mut ElementContact<2>,
+        out: &mut [f64; NE],
+    ) {
+        let l = self.element_length();
+        out.fill(0.0);
+        for (p, &omega) in omegas.iter().enumerate() {
+            let disk = self.disk(p, omega, q, v);
+            if !self.may_touch(e, p, [disk.center.x, disk.center.y]) {
+                continue;
+            }
+            line.element_on(
+                &disk,
+                l,
+                6,
+                |xi, s| s[..6].copy_from_slice(&shape::cubic(l, xi * l, 0.0).s),
+                e,
+                ed,
+                false,
+                ec,
+                None,
+            );
+            if ec.active_points > 0 {
+                for (o, qc) in out.iter_mut().zip(&ec.q) {
+                    *o += qc;
+                }
+            }
+        }
+    }
+
+    /// The belt's section force recovered from equilibrium at `(q, v)` with the pulleys at the
+    /// travel-sense speeds `omegas` \[rad/s\] ([`SectionForces`]: issue 34, a smooth axial force
+    /// along the wraps).
+    pub fn section_forces<'a>(
+        &'a self,
+        q: &'a [f64],
+        v: &'a [f64],
+        omegas: &[f64],
+    ) -> SectionForces<'a> {
+        SectionForces::new(self, q, v, omegas)
+    }
+}
+
+/// The belt's section force `F(x)` (the force the material ahead of a section exerts on the
+/// material behind it \[N\]; tension is `N = F·t > 0`) recovered from equilibrium, a stress
+/// recovery for the axial force along the wraps (issue 34).
+///
+/// The axial strain of the cubic elements (Kerkkänen (3.11)) oscillates within an element
+/// where the belt wraps a pulley under the penalty contact (3.20): the element cannot follow
+/// the jump of curvature at the inlet and exit of a wrap without stretching, and with an
+/// axially stiff belt (`EA` ≫ `k_p l²`) a few µm of radial ripple mean a few hundred newtons
+/// of axial force. The element's own force ([`crate::element::BeltElement::axial_force`]) at a
+/// point carries that ripple; the forces the element transmits do not, because they are fixed
+/// by equilibrium:
+///
+/// 1. **Nodes.** The section force at the ends of element `k` follows from its weak
+///    equilibrium with the shape functions as virtual displacements (the consistent end forces
+///    of the position rows, as reactions are recovered in finite elements):
+///    `F_k(0) = (Q_e + Q_d + Q_c)_{r_I}`, `F_k(l) = −(Q_e + Q_d + Q_c)_{r_J}` (elastic forces
+///    (2.20), axial damping, contact (3.27) with the model's Gauss rule; the belt's inertia is
+///    neglected: at most `ρA v² κ l` ≈ 0.6 N on Table 6-1, normal to the belt). Where the
+///    equations of motion hold, `F_{k−1}(l) = F_k(0)` up to that inertia; their mean is the
+///    nodal force `F_n`.
+/// 2. **Inside an element.** `F' = −f` (the contact force density on the belt per unit
+///    material length, Kerkkänen (3.20)–(3.23)), integrated from the left node with the
+///    midpoint rule on [`SECTION_CELLS`] cells per element, plus the linear share `ξ Δ_k` of
+///    the element's equilibrium defect `Δ_k = F_n(J) − F_n(I) + ∫₀ˡ f dx` (the difference of
+///    the model's Gauss rule and the fine integral, and the neglected inertia), so that the
+///    field is continuous and takes the nodal values at the nodes.
+///
+/// The axial force is `N = F·t`, `t = r_x/‖r_x‖`. In a straight span without contact it
+/// equals the element's own force; along a wrap it satisfies the tangential equilibrium
+/// `dN/ds = −f_t + Q κ` pointwise (`Q` the shear force, only in the bending boundary layers),
+/// so the capstan law can be checked point by point.
+pub struct SectionForces<'a> {
+    drive: &'a BeltDrive,
+    q: &'a [f64],
+    v: &'a [f64],
+    omegas: Vec<f64>,
+    nodal: Vec<[f64; 2]>,
+    defect: Vec<[f64; 2]>,
+}
+
+/// Midpoint cells per element of the fine integral of the contact force density in
+/// [`SectionForces`].
+pub const SECTION_CELLS: usize = 96;
+
+impl<'a> SectionForces<'a> {
+    fn new(drive: &'a BeltDrive, q: &'a [f64], v: &'a [f64], omegas: &[f64]) -> Self {
+        let n_el = drive.mesh.elements().len();
+        let mut e = [0.0; NE];
+        let mut ed = [0.0; NE];
+        let mut qe = [0.0; NE];
+        let mut qd = [0.0; NE];
+        let mut qc = [0.0; NE];
+        let mut ec = ElementContact::new(NE);
+        let mut ends = vec![[[0.0; 2]; 2]; n_el];
+        for (el, end) in ends.iter_mut().enumerate() {
+            drive.mesh.gather(q, el, &mut e);
+            drive.mesh.gather(v, el, &mut ed);
+            drive.mesh.elements()[el].elastic_forces(&e, &mut qe);
+            drive.element_damping(&e, &ed, &mut qd, None);
+            drive.element_contact_force(&drive.line, (q, v), omegas, (&e, &ed), &mut ec, &mut qc);
+            for c in 0..2 {
+                end[0][c] = qe[c] + qd[c] + qc[c];
+                end[1][c] = -(qe[6 + c] + qd[6 + c] + qc[6 + c]);
+            }
+        }
+        let nodal: Vec<[f64; 2]> = (0..n_el)
+            .map(|k| {
+                let prev = ends[(k + n_el - 1) % n_el][1];
+                let next = ends[k][0];
+                [0.5 * (prev[0] + next[0]), 0.5 * (prev[1] + next[1])]
+            })
+            .collect();
+        let mut out = Self {
+            drive,
+            q,
+            v,
+            omegas: omegas.to_vec(),
+            nodal,
+            defect: vec![[0.0; 2]; n_el],
+        };
+        for k in 0..n_el {
+            let g = out.integral(k, 1.0);
+            let (fi, fj) = (out.nodal[k], out.nodal[(k + 1) % n_el]);
+            out.defect[k] = [fj[0] - fi[0] + g[0], fj[1] - fi[1] + g[1]];
+        }
+        out
+    }
+
+    /// `∫₀^{ξl} f dx` \[N\] over element `el` (midpoint rule, `⌈SECTION_CELLS ξ⌉` cells).
+    fn integral(&self, el: usize, xi: f64) -> [f64; 2] {
+        let d = self.drive;
+        let m = (SECTION_CELLS as f64 * xi).ceil().max(1.0) as usize;
+        let mut e = [0.0; NE];
+        let mut ed = [0.0; NE];
+        d.mesh.gather(self.q, el, &mut e);
+        d.mesh.gather(self.v, el, &mut ed);
+        let line = LineContact {
+            surface: d.line.surface,
+            normal: d.line.normal,
+            friction: d.line.friction,
+            rule: GaussRule {
+                points: (0..m).map(|c| (c as f64 + 0.5) * xi / m as f64).collect(),
+                weights: vec![xi / m as f64; m],
+            },
+        };
+        let mut ec = ElementContact::new(NE);
+        let mut qc = [0.0; NE];
+        d.element_contact_force(
+            &line,
+            (self.q, self.v),
+            &self.omegas,
+            (&e, &ed),
+            &mut ec,
+            &mut qc,
+        );
+        // the cubic shape functions' partition of unity on the positions (S₁ + S₄ = 1 at y = 0)
+        [qc[0] + qc[6], qc[1] + qc[7]]
+    }
+
+    /// Recovered section force `F` \[N\] at `ξ ∈ [0, 1]` of element `el`.
+    pub fn force(&self, el: usize, xi: f64) -> [f64; 2] {
+        let fi = self.nodal[el];
+        let g = self.integral(el, xi);
+        let dk = self.defect[el];
+        [fi[0] - g[0] + xi * dk[0], fi[1] - g[1] + xi * dk[1]]
+    }
+
+    /// Recovered axial force `N = F·t` \[N\] at `ξ` of element `el`.
+    pub fn axial(&self, el: usize, xi: f64) -> f64 {
+        let f = self.force(el, xi);
+        let l = self.drive.element_length();
+        let sx = shape::cubic(l, xi * l, 0.0).sx;
+        let mut e = [0.0; NE];
+        self.drive.mesh.gather(self.q, el, &mut e);
+        let mut rx = [0.0; 2];
+        for a in 0..6 {
+            rx[0] += sx[a] * e[2 * a];
+            rx[1] += sx[a] * e[2 * a + 1];
+        }
+        let n = rx[0].hypot(rx[1]);
+        (f[0] * rx[0] + f[1] * rx[1]) / n
+    }
+
+    /// Section force at every node \[N\] (the mean of the two elements' end forces).
+    pub fn nodal(&self) -> &[[f64; 2]] {
+        &self.nodal
+    }
+
+    /// Largest element equilibrium defect `|Δ_k|` \[N\] (see the type's documentation).
+    pub fn max_defect(&self) -> f64 {
+        self.defect
+            .iter()
+            .map(|d| d[0].hypot(d[1]))
+            .fold(0.0, f64::max)
     }
 }

@@ -3,8 +3,9 @@
 //! (Fig. 3.17).
 
 use super::model::{BeltDrive, PointRecord};
-use crate::element::Element;
+use crate::element::AncfElement;
 use crate::shape;
+use belt::{PulleyState, Snapshot, SpanState, WrapPoint};
 
 /// Axial state at one material point of the belt.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -16,14 +17,12 @@ pub struct TensionSample {
     /// Engineering strain of the centreline `ε = ‖r_x‖ − 1`, Kerkkänen (4.9) (the reference
     /// elements are straight with `J₀ = I`, so `α = 2 t₀ᵀ ε^m t₀ = r_xᵀ r_x − 1`).
     pub strain: f64,
-    /// Tension `α₁ E A ε` \[N\] (longitudinal stiffness times strain, Kerkkänen §4.2).
+    /// Axial force the element carries at the point \[N\]: `N = ∂W/∂λ` of its material law
+    /// ([`BeltElement::axial_force`](crate::element::BeltElement::axial_force); St Venant–Kirchhoff
+    /// (3.18): `α₁EA λ(λ² − 1)/2` plus the bending–stretching coupling; linear:
+    /// `α₁EA(λ − 1)`), the force that balances the contact forces (`dN/ds = −f_t`,
+    /// `N κ = f_n`) and the pulley torques.
     pub tension: f64,
-}
-
-/// Axial stiffness `α₁ E A` of the belt \[N\] (Kerkkänen §4.2).
-fn axial_stiffness(drive: &BeltDrive) -> f64 {
-    let b = &drive.spec().belt;
-    b.alpha1 * b.young * b.width * b.thickness
 }
 
 /// Centreline position \[m\] and slope `r_x` at `ξ` of an element with coordinates `e`.
@@ -51,7 +50,7 @@ pub fn tension_at(drive: &BeltDrive, q: &[f64], el: usize, xi: f64) -> TensionSa
         s_material: (el as f64 + xi) * l,
         position: r,
         strain,
-        tension: axial_stiffness(drive) * strain,
+        tension: drive.mesh().elements()[el].axial_force(&e, xi),
     }
 }
 
@@ -97,16 +96,26 @@ pub struct WrapRecord {
     /// Angle \[rad\] from the inlet of the pulley's wrap in the travel direction
     /// ([`belt::BeltPath::angle_from_inlet`]).
     pub angle: f64,
-    /// Belt tension at the point \[N\] ([`tension_at`]).
+    /// Axial force at the point recovered from equilibrium \[N\]
+    /// ([`BeltDrive::section_forces`](super::BeltDrive::section_forces): smooth along the wrap,
+    /// `dN/ds = −f_t` pointwise).
     pub tension: f64,
+    /// The element's own axial force at the point \[N\]: the force of its material law at the
+    /// local strain ([`tension_at`]) plus the viscous force of the axial damping
+    /// ([`BeltDrive::viscous_axial_force`](super::BeltDrive::viscous_axial_force)). It ripples
+    /// within the elements on a wrap (the axial strain of the cubic elements oscillates under
+    /// the penalty contact) and converges slowly with the element count.
+    pub element_tension: f64,
 }
 
 /// Every active contact quadrature point of `(q, v)` with the pulleys at the travel-sense
 /// speeds `omegas` \[rad/s\] ([`BeltDrive::contact_records_with`]), with its angle on the pulley
-/// and the belt tension there: the tension, pressure and friction along every wrap, at the
-/// points where the contact forces are integrated (3.27).
+/// and the belt tension there (recovered from equilibrium, and the element's own): the
+/// tension, pressure and friction along every wrap, at the points where the contact forces are
+/// integrated (3.27).
 pub fn wrap_records(drive: &BeltDrive, q: &[f64], v: &[f64], omegas: &[f64]) -> Vec<WrapRecord> {
     let l = drive.element_length();
+    let sections = drive.section_forces(q, v, omegas);
     drive
         .contact_records_with(q, v, omegas)
         .into_iter()
@@ -117,7 +126,9 @@ pub fn wrap_records(drive: &BeltDrive, q: &[f64], v: &[f64], omegas: &[f64]) -> 
                     .path()
                     .angle_from_inlet(c.pulley, c.position)
                     .unwrap_or(f64::NAN),
-                tension: tension_at(drive, q, c.element, xi).tension,
+                tension: sections.axial(c.element, xi),
+                element_tension: tension_at(drive, q, c.element, xi).tension
+                    + drive.viscous_axial_force(q, v, c.element, xi),
                 contact: c,
             }
         })
@@ -223,4 +234,52 @@ pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) ->
             .path()
             .angle_from_inlet(p, position)
             .unwrap_or(f64::NAN)
+}
+
+/// The snapshot ([`belt::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
+/// at the travel-sense speeds `omegas` \[rad/s\]: the contact quadrature points of every wrap
+/// ([`wrap_records`]), hub loads and torques ([`BeltDrive::pulley_loads_with`]), span
+/// forces ([`span_tensions`]) and mid-point offsets ([`span_transverse`]).
+pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
+    let loads = drive.pulley_loads_with(q, v, omegas);
+    let pulleys = (0..drive.pulleys().len())
+        .map(|k| PulleyState {
+            omega: omegas[k],
+            hub_load: loads[k].force,
+            torque: loads[k].torque,
+            center_velocity: drive.pulley_center(k, q, v).1,
+        })
+        .collect();
+    let wrap = wrap_records(drive, q, v, omegas)
+        .into_iter()
+        .filter(|w| w.contact.normal_force > 0.0)
+        .map(|w| WrapPoint {
+            pulley: w.contact.pulley,
+            angle: w.angle,
+            length: w.contact.weight,
+            tension: w.tension,
+            pressure: w.contact.normal_force,
+            friction: w.contact.friction_force,
+            slip: w.contact.slip,
+        })
+        .collect();
+    let tensions = span_tensions(drive, q);
+    let offsets = span_transverse(drive, q);
+    let spans = spans(drive)
+        .iter()
+        .enumerate()
+        .map(|(k, sp)| SpanState {
+            from: sp.from,
+            to: sp.to,
+            tension: tensions[k],
+            transverse: offsets[k],
+        })
+        .collect();
+    Snapshot {
+        time: t,
+        pulleys,
+        spans,
+        wrap,
+        belt_dissipation: f64::NAN,
+    }
 }

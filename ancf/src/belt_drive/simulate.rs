@@ -77,6 +77,10 @@ impl Default for SimulationConfig {
     }
 }
 
+/// Smallest spectral radius at infinity `ρ∞` of the ANCF belt drive's generalized-α
+/// (Chung & Hulbert 1993) accepted from input \[-\].
+pub const RHO_INF_MIN: f64 = 0.1;
+
 impl SimulationConfig {
     /// Check the parameters; the error names the field.
     pub fn validate(&self) -> Result<(), AncfError> {
@@ -86,10 +90,15 @@ impl SimulationConfig {
                 format!("must be > 0 s, got {}", self.h),
             ));
         }
-        if !(0.0..=1.0).contains(&self.rho_inf) {
+        // ρ∞ → 0 is the fully annihilating end of Chung–Hulbert (α_m → −1); issue 35 found the
+        // ANCF run ending in NaN there, so input is held to [RHO_INF_MIN, 1] (Kerkkänen uses 0.8)
+        if !(RHO_INF_MIN..=1.0).contains(&self.rho_inf) {
             return Err(invalid(
                 "integrator.rho_inf",
-                format!("must lie in [0, 1], got {}", self.rho_inf),
+                format!(
+                    "must lie in [{RHO_INF_MIN}, 1], got {}",
+                    mbd_core::validate::check::show(self.rho_inf)
+                ),
             ));
         }
         if !(self.newton_atol.is_finite() && self.newton_atol > 0.0) {

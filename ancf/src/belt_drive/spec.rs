@@ -2,7 +2,7 @@
 
 use super::friction::{BeltFriction, BeltNormal};
 use crate::error::{AncfError, invalid};
-use belt::{Motion, Pulley, Signal, WrapSide};
+use belt::{MaterialLaw, Motion, Pulley, Signal, WrapSide};
 use mbd_core::Validate;
 use serde::{Deserialize, Serialize};
 
@@ -39,6 +39,11 @@ pub struct BeltSpec {
     /// counterpart of Ribaric's `β K_e` Rayleigh damping on the material deflection rate; rigid
     /// motions (the belt wrapping a pulley) have `ε̇ = 0` and are not damped.
     pub axial_damping: f64,
+    /// Material law of the belt ([`MaterialLaw`]): `"st_venant_kirchhoff"` (Kerkkänen (3.18),
+    /// the default) or `"linear"` (axial force `α₁EA(‖r_x‖ − 1)`, as datasheets and Exudyn's
+    /// cable). Reported tensions are always the axial force of this law
+    /// ([`BeltElement::axial_force`](crate::element::BeltElement::axial_force)).
+    pub law: MaterialLaw,
 }
 
 impl Default for BeltSpec {
@@ -57,6 +62,7 @@ impl Default for BeltSpec {
             alpha2: 0.01,
             gauss_points: 5,
             axial_damping: 0.0,
+            law: MaterialLaw::StVenantKirchhoff,
         }
     }
 }
@@ -182,14 +188,33 @@ impl BeltDriveSpec {
                 ))
             }
         };
+        // physical ranges (issue 35: 1e300 overflowed the static solve into NaN)
+        let within = |name: &str, v: f64, lo: f64, hi: f64, unit: &str| {
+            if v.is_finite() && (lo..=hi).contains(&v) {
+                Ok(())
+            } else {
+                Err(invalid(
+                    format!("belt.{name}"),
+                    format!(
+                        "must lie in [{lo:e}, {hi:e}]{unit}, got {}",
+                        mbd_core::validate::check::show(v)
+                    ),
+                ))
+            }
+        };
         pos("length", b.length)?;
         pos("width", b.width)?;
         pos("thickness", b.thickness)?;
-        pos("young", b.young)?;
-        pos("density", b.density)?;
-        pos("shear_factor", b.shear_factor)?;
-        pos("alpha1", b.alpha1)?;
-        pos("alpha2", b.alpha2)?;
+        within("length", b.length, 1e-3, 1e3, " m")?;
+        within("width", b.width, 1e-6, 10.0, " m")?;
+        within("thickness", b.thickness, 1e-6, 1.0, " m")?;
+        // from foams (1e3 Pa) to diamond (1.2e12 Pa)
+        within("young", b.young, 1e3, 1e13, " Pa")?;
+        within("density", b.density, 1e-3, 1e5, " kg/m³")?;
+        within("shear_factor", b.shear_factor, 1e-3, 10.0, "")?;
+        // stiffness multipliers of (3.18)–(3.19) (Kerkkänen: α₁ = 1, α₂ = 0.01)
+        within("alpha1", b.alpha1, 1e-6, 1e6, "")?;
+        within("alpha2", b.alpha2, 1e-6, 1e6, "")?;
         if !(b.poisson.is_finite() && b.poisson > -1.0 && b.poisson < 0.5) {
             return Err(invalid(
                 "belt.poisson",

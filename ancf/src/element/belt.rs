@@ -2,12 +2,13 @@
 //! beam (12 coordinates) with axial and bending stiffness multipliers `α₁`, `α₂`.
 
 use super::belt_kernel::{self, Constants, KernelPoint};
-use super::{Element, NodeLayout};
+use super::{AncfElement, NodeLayout};
 use crate::autodiff::{Dual, Hyper, Real};
 use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
 use crate::section::Section;
 use crate::shape::{self, CUBIC_BLOCKS};
+use ::belt::MaterialLaw;
 use contact::GaussRule;
 
 const N: usize = 12;
@@ -41,6 +42,7 @@ pub struct BeltElement {
     points: Vec<BeltPoint>,
     kernel_points: Vec<KernelPoint>,
     constants: Constants,
+    law: MaterialLaw,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -106,6 +108,7 @@ impl BeltElement {
                 0.5 * g * section.i2,
                 0.5 * e * section.area,
             ],
+            law: MaterialLaw::StVenantKirchhoff,
         };
         Ok(Self {
             length,
@@ -116,7 +119,84 @@ impl BeltElement {
             points,
             kernel_points,
             constants,
+            law: MaterialLaw::StVenantKirchhoff,
         })
+    }
+
+    /// The element with the material law `law` ([`MaterialLaw`], the belt's one law type;
+    /// St Venant–Kirchhoff by default). In this element the law fixes how the axial force and
+    /// the bending moment depend on the centreline stretch `λ = ‖r_{c,x}‖`:
+    ///
+    /// * [`MaterialLaw::StVenantKirchhoff`]: Kerkkänen (3.18)–(3.19), the Green strain (3.13)
+    ///   with a constant `E`: axial force `N = α₁EA λ(λ² − 1)/2` in a straight span (12 % above
+    ///   `α₁EA(λ − 1)` at 8 % strain), bending stiffness `α₂EI λ²`, and the bending–stretching
+    ///   coupling `α₂EI λ(s² + ½c)` in the axial force on a curved belt;
+    /// * [`MaterialLaw::Linear`]: linear in the engineering strain, `N = α₁EA(λ − 1)`, with the
+    ///   bending moment `α₂EI s` independent of the stretch: what datasheets quote (`EA` as
+    ///   force per unit strain) and what Exudyn's `ANCFCable2D` uses (its documentation:
+    ///   `N = EA(‖r'‖ − 1)`, `M = EI K`, `K = (r' × r'')/‖r'‖²`, decoupled).
+    ///
+    /// The axial force of either law at a point is [`BeltElement::axial_force`].
+    pub fn with_law(mut self, law: MaterialLaw) -> Self {
+        self.law = law;
+        self.constants.law = law;
+        self
+    }
+
+    /// The material law.
+    pub fn law(&self) -> MaterialLaw {
+        self.law
+    }
+
+    /// Axial force \[N\] the element carries at `ξ = x/l ∈ [0, 1]` with coordinates `e`, from its
+    /// own material law: `N = ∂W/∂λ` with `W` the energy per unit length ((3.18)–(3.19) or the
+    /// linear law, [`MaterialLaw`]) and `λ = ‖r_{c,x}‖`, at fixed material curvature, shear angle
+    /// and transverse strain. St Venant–Kirchhoff:
+    /// `N = α₁EA λ(λ² − 1)/2 + α₂EI₂ λ(s² + ½c) + k_sGα₂A λ sin²γ` (the second term is the
+    /// bending–stretching coupling of (3.18), ≈ 1.5 α₂EI κ² on a wrap of curvature κ; the third
+    /// is second order in the shear angle); linear: `N = α₁EA(λ − 1) + k_sGα₂A λ sin²γ`. It is
+    /// the tangential component of the section force, so `dN/ds = −f_t` and `N κ = f_n` (per
+    /// unit length) hold along a wrap where the shear force is constant.
+    pub fn axial_force(&self, e: &[f64], xi: f64) -> f64 {
+        let x = xi * self.length;
+        let p = KernelPoint {
+            xi,
+            w: 0.0,
+            sx: shape::cubic(self.length, x, 0.0).sx,
+            sxx: shape::cubic_xx(self.length, x),
+        };
+        belt_kernel::axial_force(&self.constants, self.length, &p, e)
+    }
+
+    /// Axial force from the reference energy ([`Self::strain_energy_reference`]'s density, by
+    /// automatic differentiation of `W(μ r_{c,x}, μ r_{c,xx})` in `μ` at `μ = 1`, which
+    /// stretches the section without changing `k`, `sin γ`, `(sin γ)_x`, `ε_yy`): the
+    /// reference of [`Self::axial_force`] \[N\].
+    pub fn axial_force_reference(&self, e: &[f64], xi: f64) -> f64 {
+        let x = xi * self.length;
+        let sx = shape::cubic(self.length, x, 0.0).sx;
+        let sxx = shape::cubic_xx(self.length, x);
+        let mut ev = [0.0; N];
+        ev.copy_from_slice(&e[..N]);
+        let nt = Self::nodal(&ev);
+        let comb = |c: &[f64; CUBIC_BLOCKS], k: usize| -> f64 {
+            (0..CUBIC_BLOCKS).map(|b| c[b] * ev[2 * b + k]).sum()
+        };
+        let mu = Dual::<1>::var(1.0, 0);
+        let cst = |v: f64| Dual::<1>::cst(v);
+        let prim = [
+            mu * cst(comb(&sx, 0)),
+            mu * cst(comb(&sx, 1)),
+            mu * cst(comb(&sxx, 0)),
+            mu * cst(comb(&sxx, 1)),
+            cst(nt.sg_i * (1.0 - xi) + nt.sg_j * xi),
+            cst((nt.sg_j - nt.sg_i) / self.length),
+            cst(nt.ny_i * (1.0 - xi) + nt.ny_j * xi - 1.0),
+        ];
+        let w = self.density_primary(&prim);
+        let lam = (comb(&sx, 0).powi(2) + comb(&sx, 1).powi(2)).sqrt();
+        // dW/dμ = ∂W/∂λ · λ
+        w.g[0] / lam
     }
 
     /// Axial multiplier `α₁`.
@@ -171,7 +251,9 @@ impl BeltElement {
     }
 
     /// Energy per unit length as a function of the seven primary quantities at a point:
-    /// `[r_{c,x}, r_{c,xx}, sin γ, (sin γ)_x, ε_yy]`.
+    /// `[r_{c,x}, r_{c,xx}, sin γ, (sin γ)_x, ε_yy]`, for the element's [`MaterialLaw`]
+    /// (St Venant–Kirchhoff: (3.18)–(3.19) term by term; linear: `½α₁EA(‖r_{c,x}‖ − 1)²`
+    /// and `½α₂EI (r_{c,x}ᵀr_{s,x})²/a` in place of the axial and bending terms).
     fn density_primary<T: Real>(&self, p: &[T; 7]) -> T {
         let rcx = [p[0], p[1]];
         let rcxx = [p[2], p[3]];
@@ -195,9 +277,21 @@ impl BeltElement {
         let (ee, s) = (self.material.young, &self.section);
         let g = self.material.shear_factor * self.material.shear_modulus();
         let am1 = a - T::cst(1.0);
-        let axial = (am1 * am1).scale(self.alpha1 * s.area / 4.0);
-        let bend = (b * b + (am1 * c).scale(0.5)).scale(self.alpha2 * s.i2)
-            + (c * c).scale(self.alpha2 * s.i4 / 4.0);
+        let (axial, bend) = match self.law {
+            MaterialLaw::StVenantKirchhoff => (
+                (am1 * am1).scale(self.alpha1 * s.area / 4.0),
+                (b * b + (am1 * c).scale(0.5)).scale(self.alpha2 * s.i2)
+                    + (c * c).scale(self.alpha2 * s.i4 / 4.0),
+            ),
+            // ½α₁EA(λ − 1)² and ½α₂EI s² with s² = b²/a (b = −√a s)
+            MaterialLaw::Linear => {
+                let lm1 = a.sqrt() - T::cst(1.0);
+                (
+                    (lm1 * lm1).scale(self.alpha1 * s.area),
+                    (b * b * a.recip()).scale(self.alpha2 * s.i2),
+                )
+            }
+        };
         let shear = (d * d).scale(s.area) + (f * f).scale(s.i2);
         (axial + bend).scale(0.5 * ee)
             + shear.scale(0.5 * g * self.alpha2)
@@ -245,7 +339,7 @@ impl BeltElement {
     }
 }
 
-impl Element for BeltElement {
+impl AncfElement for BeltElement {
     fn layout(&self) -> NodeLayout {
         NodeLayout::PositionBothSlopes
     }

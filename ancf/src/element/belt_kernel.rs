@@ -27,8 +27,24 @@
 //! second derivatives — a few small dense contractions instead of automatic differentiation.
 //! The automatic-differentiation energy of [`super::BeltElement`] is the reference it is tested
 //! against (to 1e-10).
+//!
+//! The material law ([`MaterialLaw`]) chooses the energy. St Venant–Kirchhoff is `W` above
+//! ((3.18)–(3.19): the Green strain (3.13) with `E`, integrated over the section). The linear
+//! law replaces the axial and bending parts by those of a rod linear in the engineering strain
+//! `λ − 1` (`λ = √a`) and in the bending strain `s` (the material curvature `k` plus the shear
+//! angle's gradient, the curvature measure of Exudyn's `ANCFCable2D`):
+//!
+//! ```text
+//!   W_lin = 4C₁(√a − 1)² + C₂ s² + C₄ a sin²γ + C₅ sin²γ (sin γ)_x² + C₆ ε_yy²
+//! ```
+//!
+//! (`4C₁ = α₁EA/2`, `C₂ = α₂EI₂/2`), so that the axial force is `α₁EA(λ − 1)` at any curvature
+//! and the bending moment `α₂EI s` at any stretch; the shear and `ε_yy` terms are the same.
+//! Both are written as `W(a, k, sin γ, (sin γ)_x, ε_yy)` ([`density_u`]) and share the chain
+//! rule through `k = z/a`.
 
 use crate::shape::CUBIC_BLOCKS;
+use ::belt::MaterialLaw;
 
 /// Element coordinates.
 pub(crate) const N: usize = 12;
@@ -37,10 +53,11 @@ pub(crate) const N: usize = 12;
 /// both nodes; the `r_y` blocks carry a factor `y`).
 const CENTRE_BLOCKS: [usize; 4] = [0, 1, 3, 4];
 
-/// Energy constants `C₁ … C₆` of the module documentation.
+/// Energy constants `C₁ … C₆` of the module documentation and the material law.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Constants {
     pub c: [f64; 6],
+    pub law: MaterialLaw,
 }
 
 /// One Gauss point along the element: `ξ`, weight (times `l`), `S_x` and `S_xx` on `y = 0`.
@@ -114,73 +131,138 @@ struct Density {
     h: [[f64; 5]; 5],
 }
 
-fn density(cst: &Constants, x: [f64; 5], hessian: bool) -> Density {
+/// `W` and its first and second derivatives with respect to `u = (a, k, sin γ, (sin γ)_x,
+/// ε_yy)` (`k = z/a` held fixed when `a` varies), for the material law of `cst`
+/// ([`MaterialLaw`]); the second derivatives only with `hessian`.
+fn density_u(cst: &Constants, u: [f64; 5], hessian: bool) -> Density {
     let [c1, c2, c3, c4, c5, c6] = cst.c;
+    let [a, k, sg, sgx, eyy] = u;
+    let s = k + sgx;
+    let mut d = Density {
+        w: 0.0,
+        g: [0.0; 5],
+        h: [[0.0; 5]; 5],
+    };
+    match cst.law {
+        MaterialLaw::StVenantKirchhoff => {
+            let c = s * s + sg * sg * k * k;
+            let am1 = a - 1.0;
+            d.w = c1 * am1 * am1
+                + c2 * (a * s * s + 0.5 * am1 * c)
+                + c3 * c * c
+                + c4 * a * sg * sg
+                + c5 * sg * sg * sgx * sgx
+                + c6 * eyy * eyy;
+            // derivatives of c with respect to (k, sin γ, (sin γ)_x)
+            let c_k = 2.0 * s + 2.0 * sg * sg * k;
+            let c_sg = 2.0 * sg * k * k;
+            let c_sgx = 2.0 * s;
+            d.g = [
+                2.0 * c1 * am1 + c2 * (s * s + 0.5 * c) + c4 * sg * sg,
+                2.0 * c2 * a * s + 0.5 * c2 * am1 * c_k + 2.0 * c3 * c * c_k,
+                0.5 * c2 * am1 * c_sg
+                    + 2.0 * c3 * c * c_sg
+                    + 2.0 * c4 * a * sg
+                    + 2.0 * c5 * sg * sgx * sgx,
+                2.0 * c2 * a * s
+                    + 0.5 * c2 * am1 * c_sgx
+                    + 2.0 * c3 * c * c_sgx
+                    + 2.0 * c5 * sg * sg * sgx,
+                2.0 * c6 * eyy,
+            ];
+            if hessian {
+                let c_kk = 2.0 + 2.0 * sg * sg;
+                let c_ksg = 4.0 * sg * k;
+                let c_ksgx = 2.0;
+                let c_sgsg = 2.0 * k * k;
+                let c_sgxsgx = 2.0;
+                let h = &mut d.h;
+                h[0][0] = 2.0 * c1;
+                h[0][1] = 2.0 * c2 * s + 0.5 * c2 * c_k;
+                h[0][2] = 0.5 * c2 * c_sg + 2.0 * c4 * sg;
+                h[0][3] = 2.0 * c2 * s + 0.5 * c2 * c_sgx;
+                h[1][1] = 2.0 * c2 * a + 0.5 * c2 * am1 * c_kk + 2.0 * c3 * (c_k * c_k + c * c_kk);
+                h[1][2] = 0.5 * c2 * am1 * c_ksg + 2.0 * c3 * (c_k * c_sg + c * c_ksg);
+                h[1][3] =
+                    2.0 * c2 * a + 0.5 * c2 * am1 * c_ksgx + 2.0 * c3 * (c_k * c_sgx + c * c_ksgx);
+                h[2][2] = 0.5 * c2 * am1 * c_sgsg
+                    + 2.0 * c3 * (c_sg * c_sg + c * c_sgsg)
+                    + 2.0 * c4 * a
+                    + 2.0 * c5 * sgx * sgx;
+                h[2][3] = 2.0 * c3 * c_sg * c_sgx + 4.0 * c5 * sg * sgx;
+                h[3][3] = 2.0 * c2 * a
+                    + 0.5 * c2 * am1 * c_sgxsgx
+                    + 2.0 * c3 * (c_sgx * c_sgx + c * c_sgxsgx)
+                    + 2.0 * c5 * sg * sg;
+                h[4][4] = 2.0 * c6;
+            }
+        }
+        MaterialLaw::Linear => {
+            // W = ½α₁EA(λ − 1)² + ½α₂EI s² + shear + ε_yy, λ = √a: ½α₁EA = 4C₁
+            let lam = a.sqrt();
+            d.w = 4.0 * c1 * (lam - 1.0) * (lam - 1.0)
+                + c2 * s * s
+                + c4 * a * sg * sg
+                + c5 * sg * sg * sgx * sgx
+                + c6 * eyy * eyy;
+            d.g = [
+                4.0 * c1 * (1.0 - 1.0 / lam) + c4 * sg * sg,
+                2.0 * c2 * s,
+                2.0 * c4 * a * sg + 2.0 * c5 * sg * sgx * sgx,
+                2.0 * c2 * s + 2.0 * c5 * sg * sg * sgx,
+                2.0 * c6 * eyy,
+            ];
+            if hessian {
+                let h = &mut d.h;
+                h[0][0] = 2.0 * c1 / (lam * lam * lam);
+                h[0][2] = 2.0 * c4 * sg;
+                h[1][1] = 2.0 * c2;
+                h[1][3] = 2.0 * c2;
+                h[2][2] = 2.0 * c4 * a + 2.0 * c5 * sgx * sgx;
+                h[2][3] = 4.0 * c5 * sg * sgx;
+                h[3][3] = 2.0 * c2 + 2.0 * c5 * sg * sg;
+                h[4][4] = 2.0 * c6;
+            }
+        }
+    }
+    if hessian {
+        for i in 0..5 {
+            for j in 0..i {
+                d.h[i][j] = d.h[j][i];
+            }
+        }
+    }
+    d
+}
+
+/// [`density_u`] in the variables `x = (a, z, …)` of the element (chain rule through
+/// `k = z/a`).
+fn density(cst: &Constants, x: [f64; 5], hessian: bool) -> Density {
     let [a, z, sg, sgx, eyy] = x;
     let k = z / a;
-    let s = k + sgx;
-    let c = s * s + sg * sg * k * k;
-    let am1 = a - 1.0;
-    let w = c1 * am1 * am1
-        + c2 * (a * s * s + 0.5 * am1 * c)
-        + c3 * c * c
-        + c4 * a * sg * sg
-        + c5 * sg * sg * sgx * sgx
-        + c6 * eyy * eyy;
-    // derivatives of c with respect to (k, sin γ, (sin γ)_x)
-    let c_k = 2.0 * s + 2.0 * sg * sg * k;
-    let c_sg = 2.0 * sg * k * k;
-    let c_sgx = 2.0 * s;
-    // ∂W over u = (a, k, sin γ, (sin γ)_x, ε_yy)
-    let w_a = 2.0 * c1 * am1 + c2 * (s * s + 0.5 * c) + c4 * sg * sg;
-    let w_k = 2.0 * c2 * a * s + 0.5 * c2 * am1 * c_k + 2.0 * c3 * c * c_k;
-    let w_sg =
-        0.5 * c2 * am1 * c_sg + 2.0 * c3 * c * c_sg + 2.0 * c4 * a * sg + 2.0 * c5 * sg * sgx * sgx;
-    let w_sgx =
-        2.0 * c2 * a * s + 0.5 * c2 * am1 * c_sgx + 2.0 * c3 * c * c_sgx + 2.0 * c5 * sg * sg * sgx;
-    let w_eyy = 2.0 * c6 * eyy;
-    // chain k = z/a
+    let du = density_u(cst, [a, k, sg, sgx, eyy], hessian);
     let (ia, k_a) = (1.0 / a, -k / a);
+    let gu = du.g;
     let mut out = Density {
-        w,
-        g: [w_a + w_k * k_a, w_k * ia, w_sg, w_sgx, w_eyy],
+        w: du.w,
+        g: [gu[0] + gu[1] * k_a, gu[1] * ia, gu[2], gu[3], gu[4]],
         h: [[0.0; 5]; 5],
     };
     if hessian {
-        let c_kk = 2.0 + 2.0 * sg * sg;
-        let c_ksg = 4.0 * sg * k;
-        let c_ksgx = 2.0;
-        let c_sgsg = 2.0 * k * k;
-        let c_sgxsgx = 2.0;
-        let w_aa = 2.0 * c1;
-        let w_ak = 2.0 * c2 * s + 0.5 * c2 * c_k;
-        let w_asg = 0.5 * c2 * c_sg + 2.0 * c4 * sg;
-        let w_asgx = 2.0 * c2 * s + 0.5 * c2 * c_sgx;
-        let w_kk = 2.0 * c2 * a + 0.5 * c2 * am1 * c_kk + 2.0 * c3 * (c_k * c_k + c * c_kk);
-        let w_ksg = 0.5 * c2 * am1 * c_ksg + 2.0 * c3 * (c_k * c_sg + c * c_ksg);
-        let w_ksgx = 2.0 * c2 * a + 0.5 * c2 * am1 * c_ksgx + 2.0 * c3 * (c_k * c_sgx + c * c_ksgx);
-        let w_sgsg = 0.5 * c2 * am1 * c_sgsg
-            + 2.0 * c3 * (c_sg * c_sg + c * c_sgsg)
-            + 2.0 * c4 * a
-            + 2.0 * c5 * sgx * sgx;
-        let w_sgsgx = 2.0 * c3 * c_sg * c_sgx + 4.0 * c5 * sg * sgx;
-        let w_sgxsgx = 2.0 * c2 * a
-            + 0.5 * c2 * am1 * c_sgxsgx
-            + 2.0 * c3 * (c_sgx * c_sgx + c * c_sgxsgx)
-            + 2.0 * c5 * sg * sg;
+        let hu = &du.h;
         let (k_z, k_aa, k_az) = (ia, 2.0 * k * ia * ia, -ia * ia);
         let h = &mut out.h;
-        h[0][0] = w_aa + 2.0 * w_ak * k_a + w_kk * k_a * k_a + w_k * k_aa;
-        h[0][1] = w_ak * k_z + w_kk * k_a * k_z + w_k * k_az;
-        h[1][1] = w_kk * k_z * k_z;
-        h[0][2] = w_asg + w_ksg * k_a;
-        h[0][3] = w_asgx + w_ksgx * k_a;
-        h[1][2] = w_ksg * k_z;
-        h[1][3] = w_ksgx * k_z;
-        h[2][2] = w_sgsg;
-        h[2][3] = w_sgsgx;
-        h[3][3] = w_sgxsgx;
-        h[4][4] = 2.0 * c6;
+        h[0][0] = hu[0][0] + 2.0 * hu[0][1] * k_a + hu[1][1] * k_a * k_a + gu[1] * k_aa;
+        h[0][1] = hu[0][1] * k_z + hu[1][1] * k_a * k_z + gu[1] * k_az;
+        h[1][1] = hu[1][1] * k_z * k_z;
+        h[0][2] = hu[0][2] + hu[1][2] * k_a;
+        h[0][3] = hu[0][3] + hu[1][3] * k_a;
+        h[1][2] = hu[1][2] * k_z;
+        h[1][3] = hu[1][3] * k_z;
+        h[2][2] = hu[2][2];
+        h[2][3] = hu[2][3];
+        h[3][3] = hu[3][3];
+        h[4][4] = hu[4][4];
         for i in 0..5 {
             for j in 0..i {
                 h[i][j] = h[j][i];
@@ -188,6 +270,30 @@ fn density(cst: &Constants, x: [f64; 5], hessian: bool) -> Density {
         }
     }
     out
+}
+
+/// Axial force \[N\] the element carries at `ξ` of the point `p` (its `sx`, `sxx` at `ξ`), from
+/// the element's own energy: `N = ∂W/∂λ` at fixed `k`, `sin γ`, `(sin γ)_x`, `ε_yy`, with the
+/// centreline stretch `λ = ‖r_{c,x}‖ = √a`, i.e. `N = 2λ ∂W/∂a|_k` (module documentation).
+///
+/// Holding `k = t_x·n` (the curvature per unit reference length) fixed while `λ` varies is
+/// stretching the section without bending it; `N` is then the tangential component of the
+/// section force `n = ∂W/∂r_x − (∂W/∂r_{xx})_x` of a rod with energy `W(r_x, r_xx)` (the
+/// `(∂W/∂r_{xx})_x` part contributes `∂W/∂z · z/λ`), and for St Venant–Kirchhoff it equals
+/// `∫ S_xx (r_{p,x}·t) dA`, the first Piola–Kirchhoff traction of (3.13) over the section.
+/// St Venant–Kirchhoff (3.18)–(3.19):
+/// `N = α₁EA λ ε_G + α₂EI₂ λ (s² + ½c) + k_sGα₂A λ sin²γ`, `ε_G = (λ² − 1)/2`, `s`, `c` of the
+/// module documentation (the second term is (3.18)'s bending–stretching coupling, ≈ 1.5 EI κ²
+/// on a wrap); linear law: `N = α₁EA(λ − 1) + k_sGα₂A λ sin²γ`.
+pub(crate) fn axial_force(cst: &Constants, length: f64, p: &KernelPoint, e: &[f64]) -> f64 {
+    let nodes = [
+        NodeScalars::new([e[2], e[3]], [e[4], e[5]], false),
+        NodeScalars::new([e[8], e[9]], [e[10], e[11]], false),
+    ];
+    let (_, _, x) = point_scalars(p, e, &nodes, 1.0 / length);
+    let [a, z, sg, sgx, eyy] = x;
+    let d = density_u(cst, [a, z / a, sg, sgx, eyy], false);
+    2.0 * a.sqrt() * d.g[0]
 }
 
 /// Strain energy `U = Σ w W` \[J\], elastic forces `q = −∂U/∂e` and, with `k = Some`, the

@@ -67,7 +67,7 @@ impl NodeLayout {
 ///
 /// Element vectors `e` hold `ndof = 2·blocks` coordinates ordered node by node; matrices are
 /// `ndof × ndof`, column-major.
-pub trait Element: Send + Sync {
+pub trait AncfElement: Send + Sync {
     /// Nodal layout.
     fn layout(&self) -> NodeLayout;
     /// Number of element coordinates.

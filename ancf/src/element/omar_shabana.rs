@@ -1,7 +1,7 @@
 //! The Omar–Shabana planar shear-deformable ANCF beam (12 coordinates), Kerkkänen §2.1.
 
 use super::kernel::{QuadraticStrainKernel, StrainPoint};
-use super::{Element, NodeLayout};
+use super::{AncfElement, NodeLayout};
 use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
 use crate::section::Section;
@@ -66,7 +66,7 @@ impl OmarShabanaBeam {
     }
 }
 
-impl Element for OmarShabanaBeam {
+impl AncfElement for OmarShabanaBeam {
     fn layout(&self) -> NodeLayout {
         NodeLayout::PositionBothSlopes
     }

@@ -1,7 +1,7 @@
 //! Kerkkänen's proposed planar linear shear-deformable ANCF beam (8 coordinates), §2.1.1–2.2.1.
 
 use super::kernel::{QuadraticStrainKernel, StrainPoint};
-use super::{Element, NodeLayout};
+use super::{AncfElement, NodeLayout};
 use crate::error::{AncfError, check_positive};
 use crate::material::Material;
 use crate::section::Section;
@@ -54,7 +54,7 @@ impl ProposedBeam {
     }
 }
 
-impl Element for ProposedBeam {
+impl AncfElement for ProposedBeam {
     fn layout(&self) -> NodeLayout {
         NodeLayout::PositionCrossSlope
     }

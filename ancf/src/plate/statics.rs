@@ -5,7 +5,7 @@
 
 use super::mesh::PlateMesh;
 use crate::error::{AncfError, invalid};
-use crate::statics::{StaticOptions, StaticSolution, check_sizes, run_newton};
+use crate::statics::{AncfStaticOptions, AncfStaticSolution, check_sizes, run_newton};
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::SparseColMat;
@@ -18,8 +18,8 @@ pub fn solve_plate_static(
     q0: &[f64],
     fixed: &[usize],
     load: &[f64],
-    opts: &StaticOptions,
-) -> Result<StaticSolution, AncfError> {
+    opts: &AncfStaticOptions,
+) -> Result<AncfStaticSolution, AncfError> {
     let n_all = mesh.n_coords();
     check_sizes("plate statics", n_all, q0, load)?;
     if opts.increments == 0 || opts.max_iterations == 0 {
@@ -68,7 +68,7 @@ pub fn solve_plate_static(
     )?;
     let mut r = vec![0.0; n_all];
     problem.residual(&q, 1.0, &mut r)?;
-    Ok(StaticSolution {
+    Ok(AncfStaticSolution {
         q,
         iterations: report.increments.iter().map(|i| i.iterations).collect(),
         residual: problem.residual_norm(&r),

@@ -16,10 +16,10 @@
 //! penetrating inactive node is activated; the increment is repeated until the set is stable
 //! (the shared [`mbd_core::newton::solve`] with [`NewtonProblem::settle`]).
 
-use super::{StaticOptions, check_sizes, free_coordinates, run_newton};
-use crate::element::Element;
+use super::{AncfStaticOptions, check_sizes, free_coordinates, run_newton};
+use crate::element::AncfElement;
 use crate::error::{AncfError, invalid};
-use crate::mesh::Mesh;
+use crate::mesh::AncfMesh;
 use contact::{ActiveSet, Surface, unilateral_row};
 use faer::Mat;
 use faer::prelude::Solve;
@@ -33,7 +33,7 @@ use nalgebra::{Point2, Vector2};
 pub struct UnilateralOptions {
     /// Load increments, Newton iterations and tolerance (the line search is not used: the
     /// KKT iteration takes full steps).
-    pub newton: StaticOptions,
+    pub newton: AncfStaticOptions,
     /// An inactive node is activated when its gap is below `−gap_tolerance` \[m\].
     pub gap_tolerance: f64,
     /// Largest number of active-set passes per load increment.
@@ -43,7 +43,7 @@ pub struct UnilateralOptions {
 impl Default for UnilateralOptions {
     fn default() -> Self {
         Self {
-            newton: StaticOptions::default(),
+            newton: AncfStaticOptions::default(),
             gap_tolerance: 1e-12,
             max_passes: 100,
         }
@@ -78,8 +78,8 @@ impl UnilateralSolution {
 /// unilaterally constrained to stay outside `surface` (`g_i ≥ 0`, `λ_i ≥ 0`, `λ_i g_i = 0`),
 /// keeping the coordinates `fixed` at their `q0` values. `q0` must be admissible (no node
 /// penetrating by more than the tolerance).
-pub fn solve_static_unilateral<E: Element, S: Surface<2> + ?Sized>(
-    mesh: &Mesh<E>,
+pub fn solve_static_unilateral<E: AncfElement, S: Surface<2> + ?Sized>(
+    mesh: &AncfMesh<E>,
     q0: &[f64],
     fixed: &[usize],
     load: &[f64],
@@ -163,8 +163,8 @@ pub fn solve_static_unilateral<E: Element, S: Surface<2> + ?Sized>(
 /// The KKT system of the module documentation: unknowns `x = (q, λ)` (all coordinates and
 /// all candidate multipliers; fixed coordinates and inactive multipliers are never corrected),
 /// residual `R = −(Q_e + λ_F F + Σ λ_i n_i)` on the free rows and `−g_i` on the active rows.
-struct Unilateral<'a, E: Element, S: Surface<2> + ?Sized> {
-    mesh: &'a Mesh<E>,
+struct Unilateral<'a, E: AncfElement, S: Surface<2> + ?Sized> {
+    mesh: &'a AncfMesh<E>,
     load: &'a [f64],
     surface: &'a S,
     nodes: &'a [usize],
@@ -182,7 +182,7 @@ struct Unilateral<'a, E: Element, S: Surface<2> + ?Sized> {
     lam: f64,
 }
 
-impl<E: Element, S: Surface<2> + ?Sized> Unilateral<'_, E, S> {
+impl<E: AncfElement, S: Surface<2> + ?Sized> Unilateral<'_, E, S> {
     fn gaps(&self, q: &[f64]) -> Vec<f64> {
         self.nodes
             .iter()
@@ -199,7 +199,7 @@ impl<E: Element, S: Surface<2> + ?Sized> Unilateral<'_, E, S> {
     }
 }
 
-impl<E: Element, S: Surface<2> + ?Sized> NewtonProblem for Unilateral<'_, E, S> {
+impl<E: AncfElement, S: Surface<2> + ?Sized> NewtonProblem for Unilateral<'_, E, S> {
     type Error = AncfError;
 
     fn tangent_dim(&self) -> usize {
@@ -347,14 +347,14 @@ mod tests {
     use crate::section::Section;
     use contact::HalfPlane;
 
-    fn bar() -> (Mesh<ProposedBeam>, Vec<f64>, Vec<usize>) {
+    fn bar() -> (AncfMesh<ProposedBeam>, Vec<f64>, Vec<usize>) {
         let mat = Material::new(2.0e9, 0.0, 1000.0).unwrap();
         let sec = Section::rectangle(0.05, 0.01).unwrap();
         let els = (0..2)
             .map(|_| ProposedBeam::new(0.5, mat, sec))
             .collect::<Result<Vec<_>, _>>()
             .unwrap();
-        let mesh = Mesh::chain(els).unwrap();
+        let mesh = AncfMesh::chain(els).unwrap();
         let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [1.0, 0.0], 2);
         let fixed = (0..4).map(|k| mesh.node_dof(0, k)).collect();
         (mesh, q0, fixed)

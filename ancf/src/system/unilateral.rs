@@ -9,9 +9,9 @@
 //! nodes ([`NodeContacts`]).
 
 use super::AncfSystem;
-use crate::element::Element;
+use crate::element::AncfElement;
 use crate::error::{AncfError, invalid};
-use crate::mesh::Mesh;
+use crate::mesh::AncfMesh;
 use contact::{Surface, unilateral_row};
 use mbd_core::MbdError;
 use mbd_core::integrators::{
@@ -23,15 +23,15 @@ use nalgebra::{Point2, Vector2};
 /// mbd-core's active set: gap `g = ` signed distance of the node position `r`, Jacobian row
 /// `nᵀ` on the node's position coordinates, `ν = nᵀu_s`, `γ = −wᵀ(∂n/∂r)w` (`w = ṙ − u_s`) and
 /// curvature `∂n/∂r` (the contact crate's closest-point data).
-pub struct NodeContacts<'a, E: Element, S: Surface<2> + ?Sized> {
-    mesh: &'a Mesh<E>,
+pub struct NodeContacts<'a, E: AncfElement, S: Surface<2> + ?Sized> {
+    mesh: &'a AncfMesh<E>,
     surface: &'a S,
     nodes: &'a [usize],
 }
 
-impl<'a, E: Element, S: Surface<2> + ?Sized> NodeContacts<'a, E, S> {
+impl<'a, E: AncfElement, S: Surface<2> + ?Sized> NodeContacts<'a, E, S> {
     /// The contact of `nodes` of `mesh` against `surface`.
-    pub fn new(mesh: &'a Mesh<E>, surface: &'a S, nodes: &'a [usize]) -> Self {
+    pub fn new(mesh: &'a AncfMesh<E>, surface: &'a S, nodes: &'a [usize]) -> Self {
         Self {
             mesh,
             surface,
@@ -44,7 +44,7 @@ impl<'a, E: Element, S: Surface<2> + ?Sized> NodeContacts<'a, E, S> {
     }
 }
 
-impl<E: Element, S: Surface<2> + ?Sized> UnilateralConstraints for NodeContacts<'_, E, S> {
+impl<E: AncfElement, S: Surface<2> + ?Sized> UnilateralConstraints for NodeContacts<'_, E, S> {
     fn n_candidates(&self) -> usize {
         self.nodes.len()
     }
@@ -87,7 +87,7 @@ pub struct ContactStep {
 /// frictionless unilateral contact of `nodes` against `surface` (mbd-core's
 /// [`ActiveSetStepper`] with [`NodeContacts`]); `observer` sees every accepted step. The nodes
 /// must start outside the obstacle.
-pub fn integrate_unilateral<E: Element, S: Surface<2> + ?Sized>(
+pub fn integrate_unilateral<E: AncfElement, S: Surface<2> + ?Sized>(
     system: &AncfSystem<E>,
     surface: &S,
     nodes: &[usize],

@@ -168,3 +168,49 @@ fn allow_large_raises_the_run_length_ceilings() {
     ]);
     assert_eq!(code, 2, "{err}");
 }
+
+// Issue 35 reproducers: `drive.belt.alpha1 = 1e300` overflowed the static solve (exit 1,
+// "non-finite value") and `integrator.rho_inf = 0` was reported to end in NaN; both are input
+// outside the physical range (stiffness multiplier of Kerkkänen (3.18) in [1e-6, 1e6], ρ∞ in
+// [ancf::belt_drive::simulate::RHO_INF_MIN, 1]) and are refused up front: exit 2, one line
+// naming the field. The in-range neighbours are accepted (the check is not a blanket refusal).
+#[test]
+fn ancf_stiffness_multiplier_and_spectral_radius_out_of_range_are_refused() {
+    let dir = tmp("ancf-range");
+    let (code, base, err) = run(&["ancf", "--print-config"]);
+    assert_eq!(code, 0, "{err}");
+    let file = dir.join("c.toml");
+    let cases = [
+        ("alpha1 = 1.0", "alpha1 = 1e300", "belt.alpha1", false),
+        ("alpha1 = 1.0", "alpha1 = 0.0", "belt.alpha1", false),
+        ("alpha1 = 1.0", "alpha1 = 2.0", "belt.alpha1", true),
+        ("alpha2 = 0.01", "alpha2 = 1e300", "belt.alpha2", false),
+        ("young = 100000000.0", "young = 1e300", "belt.young", false),
+        (
+            "rho_inf = 0.8",
+            "rho_inf = 0.0",
+            "integrator.rho_inf",
+            false,
+        ),
+        (
+            "rho_inf = 0.8",
+            "rho_inf = 1e-300",
+            "integrator.rho_inf",
+            false,
+        ),
+        ("rho_inf = 0.8", "rho_inf = 0.5", "integrator.rho_inf", true),
+    ];
+    for (from, to, field, ok) in cases {
+        assert!(base.contains(from), "{from} not in the default config");
+        std::fs::write(&file, base.replacen(from, to, 1)).unwrap();
+        let (code, _, err) = run(&["ancf", "--config", file.to_str().unwrap(), "--print-config"]);
+        if ok {
+            assert_eq!(code, 0, "{to}: {err}");
+        } else {
+            assert_eq!(code, 2, "{to}: {err}");
+            assert!(err.contains(field), "{to}: {err}");
+            assert_eq!(err.trim().lines().count(), 1, "{to}: {err}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

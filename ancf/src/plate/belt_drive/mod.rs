@@ -12,13 +12,17 @@
 //! * [`spec`]: plain-data description (Models 1 and 2 of Table 4.1);
 //! * [`model`]: [`PlateBeltDrive`], the system;
 //! * [`initial`]: the initial configuration by a static solve;
-//! * [`post`]: strain measures, tension, speed, span states, torques, VTK surface.
+//! * [`post`]: strain measures, tension, speed, span states, torques, VTK surface;
+//! * [`belt_model`]: [`PlateBelt`], the plate belt on any resolved [`belt::Drive`] without a
+//!   tensioner, a [`belt::BeltModel`].
 
+pub mod belt_model;
 pub mod initial;
 pub mod model;
 pub mod post;
 pub mod spec;
 
+pub use belt_model::{PlateBelt, PlateConfig, PlateMapping};
 pub use initial::PlateInitialState;
 pub use model::{PlateBeltDrive, PlateContactRecord, PulleySurface};
 pub use spec::{PlateBeltSpec, PlateContactSpec, PlateDriveSpec};

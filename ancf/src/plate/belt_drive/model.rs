@@ -236,6 +236,11 @@ impl PlateBeltDrive {
     pub fn pulleys(&self) -> &[Pulley] {
         &self.spec.pulleys
     }
+    /// The motion of pulley `p` (its signals may be replaced between runs; its kind and
+    /// inertia must stay: the coordinates and the mass matrix depend on them).
+    pub fn motion_mut(&mut self, p: usize) -> Option<&mut belt::Motion> {
+        self.spec.pulleys.get_mut(p).map(|p| &mut p.motion)
+    }
     /// Number of belt coordinates.
     pub fn n_belt(&self) -> usize {
         self.n_belt

@@ -261,6 +261,7 @@ impl PlateDriveSpec {
                 alpha2,
                 gauss_points: b.gauss_points,
                 axial_damping: 0.0,
+                law: ::belt::MaterialLaw::StVenantKirchhoff,
             },
             contact: ContactSpec {
                 stiffness: c.stiffness * w,
