@@ -887,10 +887,10 @@ fn sweep<M: BeltModel>(
                 }
                 w.vbelt.add(model.belt_speed(&st.q, &st.v));
                 let wc = model.pulley_speed(0, st.t, &st.v) * radii[0];
-                for k in 0..names.len() {
+                for (k, r) in radii.iter().enumerate() {
                     let s = model.pulley_speed(k, st.t, &st.v);
                     w.speed[k].add(s);
-                    w.slip[k].add(100.0 * (1.0 - s * radii[k] / wc));
+                    w.slip[k].add(100.0 * (1.0 - s * r / wc));
                 }
                 // the report every other step
                 if i % 2 == 0 {

@@ -329,53 +329,6 @@ pub fn judge(o: &Outcome) -> Result<(), String> {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    // definition: one mutation per listed change, each still TOML, the rest unchanged
-    #[test]
-    fn mutations_change_one_thing_each() {
-        let base = "a = 1.5\nname = \"x\"\nlist = [1, 2]\n[t]\nn = 3\n";
-        let m = mutations(base);
-        assert!(
-            m.iter()
-                .any(|x| x.what == "a: nan" && x.text.contains("a = nan"))
-        );
-        assert!(
-            m.iter()
-                .any(|x| x.what == "t.n: dropped" && !x.text.contains("n = "))
-        );
-        assert!(
-            m.iter()
-                .any(|x| x.what == "list: []" && x.text.contains("list = []"))
-        );
-        assert!(
-            m.iter()
-                .any(|x| x.what == "t: a number" && x.text.contains("t = 1"))
-        );
-        for x in &m {
-            assert!(toml::from_str::<toml::Table>(&x.text).is_ok(), "{}", x.what);
-        }
-    }
-
-    // definition of the conventions: 0, or 1/2 with one line; nothing else
-    #[test]
-    fn judge_follows_the_exit_conventions() {
-        let o = |code, stderr: &str| Outcome {
-            code,
-            stderr: stderr.into(),
-            timed_out: false,
-            elapsed: Duration::ZERO,
-        };
-        assert!(judge(&o(Some(0), "")).is_ok());
-        assert!(judge(&o(Some(2), "app: error: x: bad\n")).is_ok());
-        assert!(judge(&o(Some(2), "a\nb\n")).is_err());
-        assert!(judge(&o(Some(101), "thread 'main' panicked at x")).is_err());
-        assert!(judge(&o(None, "memory allocation of 8 bytes failed")).is_err());
-    }
-}
-
 /// The mutations of `study`'s default configuration (`exe study --print-config`); panics (a
 /// test harness) when the study cannot print it.
 pub fn study_mutations(exe: &str, study: &str) -> Vec<Mutation> {
@@ -433,4 +386,51 @@ pub fn exhaustive_findings(
         }
     }
     report
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // definition: one mutation per listed change, each still TOML, the rest unchanged
+    #[test]
+    fn mutations_change_one_thing_each() {
+        let base = "a = 1.5\nname = \"x\"\nlist = [1, 2]\n[t]\nn = 3\n";
+        let m = mutations(base);
+        assert!(
+            m.iter()
+                .any(|x| x.what == "a: nan" && x.text.contains("a = nan"))
+        );
+        assert!(
+            m.iter()
+                .any(|x| x.what == "t.n: dropped" && !x.text.contains("n = "))
+        );
+        assert!(
+            m.iter()
+                .any(|x| x.what == "list: []" && x.text.contains("list = []"))
+        );
+        assert!(
+            m.iter()
+                .any(|x| x.what == "t: a number" && x.text.contains("t = 1"))
+        );
+        for x in &m {
+            assert!(toml::from_str::<toml::Table>(&x.text).is_ok(), "{}", x.what);
+        }
+    }
+
+    // definition of the conventions: 0, or 1/2 with one line; nothing else
+    #[test]
+    fn judge_follows_the_exit_conventions() {
+        let o = |code, stderr: &str| Outcome {
+            code,
+            stderr: stderr.into(),
+            timed_out: false,
+            elapsed: Duration::ZERO,
+        };
+        assert!(judge(&o(Some(0), "")).is_ok());
+        assert!(judge(&o(Some(2), "app: error: x: bad\n")).is_ok());
+        assert!(judge(&o(Some(2), "a\nb\n")).is_err());
+        assert!(judge(&o(Some(101), "thread 'main' panicked at x")).is_err());
+        assert!(judge(&o(None, "memory allocation of 8 bytes failed")).is_err());
+    }
 }
