@@ -161,7 +161,7 @@ impl<E: AncfElement> AncfMesh<E> {
         }
     }
 
-    /// Constant mass matrix values in [`Mesh::pattern`] (Kerkkänen (2.26)).
+    /// Constant mass matrix values in [`AncfMesh::pattern`] (Kerkkänen (2.26)).
     pub fn mass_values(&self) -> &[f64] {
         &self.mass_values
     }

@@ -54,7 +54,7 @@ impl Prescribed {
 pub trait MeshForce<E: AncfElement>: Send + Sync {
     /// `f += Q(t, q, v)`.
     fn add_forces(&self, mesh: &AncfMesh<E>, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
-    /// `k_vals += −∂Q/∂q`, `c_vals += −∂Q/∂v` in the mesh pattern ([`Mesh::pattern`]).
+    /// `k_vals += −∂Q/∂q`, `c_vals += −∂Q/∂v` in the mesh pattern ([`AncfMesh::pattern`]).
     fn add_tangent(
         &self,
         mesh: &AncfMesh<E>,

@@ -2,7 +2,7 @@
 //! its configuration, run, summary and end-of-run distributions, shared by
 //! `flowmbd-belt plate` (which writes the files) and the Python package
 //! (`flowmbd.belt.plate`). The model is [`ancf::plate::belt_drive`]; the run is the one ANCF
-//! time loop ([`run_drive`](crate::ancf_run::run_drive): mbd-core's stepper driven by its
+//! time loop ([`run_drive`]: mbd-core's stepper driven by its
 //! [`Recorder`](mbd_core::integrators::Recorder)), shared with the planar drive; the comparison
 //! is Bechtel's steady model ([`crate::bechtel_steady`]) for the same belt.
 

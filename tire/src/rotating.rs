@@ -25,7 +25,7 @@
 //!
 //! With `z = φ e^{λt}` this is the quadratic eigenproblem
 //! `(λ² M + λ C_Ω + K_Ω) φ = 0`, solved densely through the state matrix of
-//! [`crate::GyroscopicSystem`] (Ribaric (4.29), faer's non-symmetric eigen solver). Each
+//! [`flowing::GyroscopicSystem`] (Ribaric (4.29), faer's non-symmetric eigen solver). Each
 //! eigenvalue `λ = σ + iω` with `ω > 0` is one mode: frequency `ω/2π`, growth rate `σ`, damping
 //! ratio `−σ/|λ|`; [`super::harmonics`] labels its circumferential order `n` and whether it
 //! travels forward (with the rotation) or backward in the ground frame.

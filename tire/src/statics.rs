@@ -8,7 +8,7 @@
 //! "static patch force and deflection within 1 %" validation compares. The ground height is
 //! found by a safeguarded secant iteration on the total vertical force; for a given height the
 //! contact problem (normals re-linearised at the deformed positions) is a complementarity
-//! problem solved by [`super::lcp::solve_lcp`].
+//! problem solved by [`contact::solver::solve_lcp`].
 
 use crate::error::{TireError, invalid, linalg};
 use crate::ground::{Ground, GroundConfig};

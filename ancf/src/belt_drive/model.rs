@@ -1044,7 +1044,7 @@ impl BeltDrive {
     }
 
     /// Viscous axial force \[N\] of the Kelvin–Voigt axial damping
-    /// ([`super::BeltSpec::axial_damping`], [`Self::axial_damping`]) at `ξ` of element `el` at
+    /// ([`super::BeltSpec::axial_damping`]) at `ξ` of element `el` at
     /// `(q, v)`: `N_d = β α₁EA λ ε̇_G = β α₁EA λ (r_xᵀṙ_x)` (St Venant–Kirchhoff) or
     /// `β α₁EA λ̇ = β α₁EA (r_xᵀṙ_x)/λ` (linear law). It adds to the elastic force
     /// ([`crate::element::BeltElement::axial_force`]) wherever the belt's strain changes in time:

@@ -299,7 +299,7 @@ impl BeltElement {
     }
 
     /// Tangent by second-order AD over all 12 coordinates at once (slow; the reference for the
-    /// closed-form tangent of [`Element::elastic_tangent`]).
+    /// closed-form tangent of [`AncfElement::elastic_tangent`]).
     pub fn elastic_tangent_reference(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
         let v: [Hyper<N>; N] = std::array::from_fn(|i| Hyper::linear(e[i], &[(i, 1.0)]));
         let u = self.energy_generic(&v);
@@ -312,7 +312,7 @@ impl BeltElement {
     }
 
     /// Forces `q = −∂U/∂e` by first-order AD of the energy (3.18)–(3.19) written term by term
-    /// (the reference of the closed-form forces of [`Element::elastic_forces`]).
+    /// (the reference of the closed-form forces of [`AncfElement::elastic_forces`]).
     pub fn elastic_forces_reference(&self, e: &[f64], q: &mut [f64]) {
         let v: [Dual<N>; N] = std::array::from_fn(|k| Dual::var(e[k], k));
         let u = self.energy_generic(&v);
@@ -322,7 +322,7 @@ impl BeltElement {
     }
 
     /// Strain energy from the terms of (3.18)–(3.19) as written (reference of
-    /// [`Element::strain_energy`]) \[J\].
+    /// [`AncfElement::strain_energy`]) \[J\].
     pub fn strain_energy_reference(&self, e: &[f64]) -> f64 {
         let mut v = [0.0; N];
         v.copy_from_slice(&e[..N]);

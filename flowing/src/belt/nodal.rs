@@ -510,7 +510,7 @@ impl NodalBelt {
     }
 
     /// Power dissipated by the belt's Rayleigh damping at `(q, v)` \[W\]: `−Q_dᵀ δ̇` with the
-    /// damping forces `Q_d = −α M δ̇ − β K_e (δ̇ − v ψ′ J δ)` of [`Self::nodal_forces`] (the
+    /// damping forces `Q_d = −α M δ̇ − β K_e (δ̇ − v ψ′ J δ)` of the nodal forces (the
     /// only non-conservative forces of the belt besides the contact; issue 34 power balance).
     pub fn damping_dissipation(&self, q: &[f64], v: &[f64]) -> Result<f64, MbdError> {
         let mesh = self.mesh(q[0])?;
