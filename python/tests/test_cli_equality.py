@@ -16,14 +16,14 @@ def test_speed_loss_equals_cli(cli):
 def test_speed_loss_config_dict_equals_cli_config_file(cli, tmp_path):
     # a config dict with the TOML keys gives what the CLI gives for the same TOML file
     (tmp_path / "c.toml").write_text(
-        "omegas = [22.6]\n[procedure]\ntorques = [5.0]\n[drive.belt]\ntension = 300.0\n"
+        "omegas = [22.6]\n[procedure]\ntorques = [5.0]\n[drive]\ntension = 300.0\n"
     )
     code, ref, err = cli("belt", "speed-loss", "--config", str(tmp_path / "c.toml"))
     assert code == 0, err
     py = flowmbd.belt.speed_loss(
         omega=None,
         torques=None,
-        config={"omegas": [22.6], "procedure": {"torques": [5.0]}, "drive": {"belt": {"tension": 300.0}}},
+        config={"omegas": [22.6], "procedure": {"torques": [5.0]}, "drive": {"tension": 300.0}},
     )
     assert_same(py, ref)
 

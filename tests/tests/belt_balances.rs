@@ -4,7 +4,7 @@
 //! (angular-momentum and energy balance of the belt). Checked on Ribaric's Table 6-1 drive
 //! (speed-loss procedure), on the Pechstein–Gerstmayr drive (Exudyn's `beltDriveReevingSystem`,
 //! shipped as `apps/belt/examples/pechstein-gerstmayr.toml`) and on the default `fead` drive,
-//! for the flowing and nodal models where they hold (the gaps are named at each test).
+//! for the flowing, nodal and ANCF models where they hold (the gaps are named at each test).
 
 use belt::Report;
 use drives::fead::{FeadConfig, FeadModel, run_fead};
@@ -98,6 +98,13 @@ fn pechstein_gerstmayr_balances_on_flowing() {
     )
     .unwrap();
     assert_balanced("Pechstein–Gerstmayr flowing", &s.points[0].report);
+}
+
+// The same on the ANCF belt (120 elements of the linear law, the example's 0.1 ms step).
+#[test]
+fn pechstein_gerstmayr_balances_on_ancf() {
+    let s = run_fead(&pechstein_gerstmayr(FeadModel::Ancf, 0.02, 2.5e-4), |_| {}).unwrap();
+    assert_balanced("Pechstein–Gerstmayr ANCF", &s.points[0].report);
 }
 
 // The same on the nodal model with the example's 120 elements and 0.1 ms step (about a minute
