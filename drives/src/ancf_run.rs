@@ -8,7 +8,7 @@ use ancf::belt_drive::{
     post, simulate,
 };
 use belt::{PulleyState, Role, Snapshot, SpanState, WrapPoint};
-use mbd_core::integrators::{GeneralizedAlpha, State};
+use mbd_core::integrators::{GeneralizedAlpha, State, Stepper};
 
 /// Which pulleys play driver and driven in a summary: the first speed-driven pulley (0 if
 /// none) and the first free one.
@@ -75,7 +75,7 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
         pulleys,
         spans,
         wrap,
-        belt_dissipation: f64::NAN,
+        belt_dissipation: None,
     }
 }
 
@@ -161,7 +161,7 @@ pub fn run_drive<E>(
                 Ok(mut st) => {
                     while st.state().t < t_end - 1e-12 {
                         let t_next = (st.state().t + sampling.history).min(t_end);
-                        if let Err(e) = st.advance_to(drive, t_next, &mut |_| {}) {
+                        if let Err(e) = st.advance_to(drive, t_next, &mut ()) {
                             run.failure = Some(e.to_string());
                             break;
                         }

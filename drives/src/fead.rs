@@ -75,7 +75,7 @@
 //! (4th: 0.5 %) is a plausible four-cylinder value, held constant over the sweep.
 
 use crate::ancf_model::{AncfBelt, AncfConfig};
-use crate::speed_loss::{LINEAR_MIN_SLACK, MAX_HALVINGS, robust_step};
+use crate::speed_loss::{LINEAR_MIN_SLACK, STEP_SUBDIVISIONS};
 use crate::study::{ModelSettings, NodalConfig};
 use ancf::belt_drive::SimulationConfig;
 use belt::{
@@ -85,7 +85,7 @@ use belt::{
 use contact::friction::FrictionLaw;
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
-use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stepper};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
@@ -436,8 +436,9 @@ pub struct FeadSpan {
     /// Tension over the window \[N\].
     pub tension: Extremes,
     /// First transverse natural frequency of the travelling string with the mean tension and
-    /// belt speed \[Hz\] (module documentation).
-    pub frequency_1_hz: f64,
+    /// belt speed \[Hz\] (module documentation; `None` when the belt runs at or above the
+    /// span's critical speed, where the string has no such frequency).
+    pub frequency_1_hz: Option<f64>,
 }
 
 /// The result at one engine speed.
@@ -699,7 +700,10 @@ fn sweep<M: BeltModel>(
     };
     let invalid = |e: InvalidField| Box::new(FeadFailureOrInvalid::Invalid(e));
     let h = alpha.h;
-    let alpha = GeneralizedAlpha::new(alpha);
+    let alpha = GeneralizedAlpha::new(AlphaConfig {
+        subdivisions: STEP_SUBDIVISIONS,
+        ..alpha
+    });
     let linearised = model.traits().linearised;
     let duration = cfg.run.ramp + cfg.run.settle + cfg.run.window;
     let mut state: Option<State> = None;
@@ -735,7 +739,9 @@ fn sweep<M: BeltModel>(
         let mut vbelt = Acc::default();
         let start = cfg.run.ramp + cfg.run.settle;
         while stepper.state().t < duration - 0.5 * h {
-            robust_step(&mut stepper, &model, h, MAX_HALVINGS).map_err(|e| fail(e, &summary))?;
+            stepper
+                .step(&model, Some(h))
+                .map_err(|e| fail(e, &summary))?;
             summary.steps += 1;
             let st = stepper.state();
             observer(FeadProgress {
@@ -818,11 +824,8 @@ fn sweep<M: BeltModel>(
                         to: names[sp.to].clone(),
                         length: sp.length,
                         tension: a.get(),
-                        frequency_1_hz: if t > rho * v * v {
-                            (c * c - v * v) / (2.0 * sp.length * c)
-                        } else {
-                            f64::NAN
-                        },
+                        frequency_1_hz: (t > rho * v * v)
+                            .then(|| (c * c - v * v) / (2.0 * sp.length * c)),
                     }
                 })
                 .collect(),
