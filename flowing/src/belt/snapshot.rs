@@ -81,7 +81,7 @@ fn snapshot_with(
         pulleys,
         spans: span_states(path, nodes, forces),
         wrap,
-        belt_dissipation: f64::NAN,
+        belt_dissipation: None,
     }
 }
 
