@@ -91,8 +91,8 @@ pub struct Snapshot {
     /// Every contact point in contact (positive pressure).
     pub wrap: Vec<WrapPoint>,
     /// Power dissipated by the belt's own damping at this state \[W\] (material damping,
-    /// penalty damping; `NaN` where the model does not evaluate it).
-    pub belt_dissipation: f64,
+    /// penalty damping; `None` where the model does not evaluate it).
+    pub belt_dissipation: Option<f64>,
 }
 
 /// What the procedures need to know about a model beyond its drive.

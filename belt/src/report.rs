@@ -98,8 +98,8 @@ pub struct SpanReport {
     /// Transverse displacement of the mid-point \[m\].
     pub transverse_m: f64,
     /// Transverse vibration amplitude of the mid-point, half the peak-to-peak over an
-    /// observation window \[m\] (`NaN` when not observed).
-    pub vibration_amplitude_m: f64,
+    /// observation window \[m\] (`None` when not observed).
+    pub vibration_amplitude_m: Option<f64>,
 }
 
 /// The balances of one report (module documentation).
@@ -112,8 +112,8 @@ pub struct Balances {
     pub power_in_w: f64,
     /// Sliding losses over all wraps \[W\].
     pub sliding_w: f64,
-    /// Dissipation in the belt's own damping \[W\] (`NaN`: not evaluated by the model).
-    pub belt_damping_w: f64,
+    /// Dissipation in the belt's own damping \[W\] (`null`: not evaluated by the model).
+    pub belt_damping_w: Option<f64>,
     /// Power residual `power_in − sliding − belt_damping` \[W\] (the rate of change of the
     /// belt's energy; zero on average over whole periods of a steady state).
     pub power_residual_w: f64,
@@ -200,7 +200,7 @@ impl Report {
                 to: s.to,
                 tension_n: s.tension,
                 transverse_m: s.transverse,
-                vibration_amplitude_m: f64::NAN,
+                vibration_amplitude_m: None,
             })
             .collect();
         let span_t = |f: &dyn Fn(&SpanState) -> bool| {
@@ -256,7 +256,7 @@ impl Report {
         }
     }
 
-    fn balances(pulleys: &[PulleyReport], belt_damping: f64) -> Balances {
+    fn balances(pulleys: &[PulleyReport], belt_damping: Option<f64>) -> Balances {
         let scale = pulleys
             .iter()
             .map(|p| p.torque_n_m.abs())
@@ -273,11 +273,7 @@ impl Report {
             .filter(|p| p.role == Role::Driver)
             .map(|p| p.power_w)
             .sum::<f64>();
-        let damping = if belt_damping.is_finite() {
-            belt_damping
-        } else {
-            0.0
-        };
+        let damping = belt_damping.unwrap_or(0.0);
         let residual = power_in - sliding - damping;
         Balances {
             torque_residual_rel,
@@ -337,7 +333,12 @@ impl Report {
                 }
             })
             .collect();
-        let belt_damping = avg(&|r: &Report| r.balances.belt_damping_w);
+        // the mean where every report has it
+        let belt_damping = reports
+            .iter()
+            .map(|r| r.balances.belt_damping_w)
+            .sum::<Option<f64>>()
+            .map(|s| s / n);
         let balances = Self::balances(&pulleys, belt_damping);
         Some(Report {
             time_s: last.time_s,
@@ -450,16 +451,7 @@ pub fn sliding_speed(law: &impl FrictionLaw, eta: f64) -> f64 {
             return f64::INFINITY;
         }
     }
-    let mut lo = 0.0;
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if reached(mid) {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    hi
+    mbd_core::roots::bisect(0.0, hi, reached, mbd_core::roots::Stop::iterations(60)).1
 }
 
 #[cfg(test)]
@@ -553,7 +545,7 @@ mod tests {
                 },
             ],
             wrap,
-            belt_dissipation: 0.0,
+            belt_dissipation: Some(0.0),
         };
         (drive, snap, t_in, t_out)
     }

@@ -30,6 +30,7 @@
 //! `M_s(θ) + (c(θ) − p) × F_hub(θ) = 0` ([`Tensioner::static_angle`]).
 
 use contact::friction::{CoulombTanh, FrictionForce, FrictionLaw};
+use mbd_core::roots::{Stop, bisect};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
@@ -194,23 +195,18 @@ impl Tensioner {
     /// the travel: the arm would rest on a stop.
     pub fn static_angle(&self, belt_moment: impl Fn(f64) -> f64) -> Option<f64> {
         let g = |a: f64| self.spring_moment(a).0 + belt_moment(a);
-        let (mut lo, mut hi) = (self.travel[0], self.travel[1]);
+        let (lo, hi) = (self.travel[0], self.travel[1]);
         let (glo, ghi) = (g(lo), g(hi));
         if !(glo.is_finite() && ghi.is_finite()) || glo * ghi > 0.0 {
             return None;
         }
         let s = glo.signum();
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if g(mid) * s > 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-            if hi - lo < 1e-14 {
-                break;
-            }
-        }
+        let (lo, hi) = bisect(
+            lo,
+            hi,
+            |a| (g(a) * s).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater),
+            Stop::absolute(200, 1e-14),
+        );
         Some(0.5 * (lo + hi))
     }
 }

@@ -3,7 +3,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use flowmbd_cases::chain::spherical_chain;
-use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Rk4};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Rk4, Stepper};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -23,7 +23,7 @@ fn bench(c: &mut Criterion) {
         let mut st = ga.stepper(&sys, s0.clone()).unwrap();
         g.bench_function(format!("gen_alpha/N={n}"), |b| {
             b.iter(|| {
-                st.step(&sys, h).unwrap();
+                st.step(&sys, Some(h)).unwrap();
                 black_box(st.state().t)
             })
         });

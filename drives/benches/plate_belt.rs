@@ -19,7 +19,7 @@ use ancf::plate::belt_drive::{PlateBeltDrive, PlateDriveSpec};
 use belt::{Motion, Signal};
 use drives::plate_study::wide_pulley_case;
 use mbd_core::SecondOrderSystem;
-use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State, Stepper};
 use std::time::Instant;
 
 fn alpha(h: f64) -> AlphaConfig {
@@ -41,7 +41,7 @@ fn timed<S: SecondOrderSystem>(sys: &S, s0: State, t: f64, h: f64) -> (f64, usiz
         .stepper(sys, s0)
         .expect("initial state");
     let t_end = st.state().t + t;
-    st.advance_to(sys, t_end, &mut |_| {}).expect("run");
+    st.advance_to(sys, t_end, &mut ()).expect("run");
     (
         start.elapsed().as_secs_f64() / t,
         st.stats.steps,

@@ -178,8 +178,8 @@ pub struct AncfStudySummary {
     pub newton_iterations: usize,
     /// Pre-tension after the initial static solve (mean over the belt) \[N\].
     pub initial_tension: f64,
-    /// Speed ratio driven/driver at the end.
-    pub speed_ratio: f64,
+    /// Speed ratio driven/driver at the end (`None` while the driver is at rest).
+    pub speed_ratio: Option<f64>,
     /// Dynamic run only: whether a wrap slides as a whole at the end
     /// ([`Report::gross_slip`]).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -317,7 +317,7 @@ pub fn dynamic_run<E>(
     let mut report = Report::of(drive.pulleys(), &snap, mu);
     for (sp, r) in report.spans.iter_mut().zip(&range) {
         if r.1 >= r.0 {
-            sp.vibration_amplitude_m = 0.5 * (r.1 - r.0);
+            sp.vibration_amplitude_m = Some(0.5 * (r.1 - r.0));
         }
     }
     let summary = AncfStudySummary {
@@ -336,7 +336,7 @@ pub fn dynamic_run<E>(
         steps: run.steps,
         newton_iterations: run.newton_iterations,
         initial_tension: init.mean_tension,
-        speed_ratio: w_driven / w_driver,
+        speed_ratio: Some(w_driven / w_driver).filter(|r| r.is_finite()),
         closure_radius: None,
         closure_radius_variation: None,
         meaning: ANCF_MEANING.to_string(),

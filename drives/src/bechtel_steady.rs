@@ -349,17 +349,12 @@ pub fn solve_steady(input: &SteadyDriveInput) -> Result<SteadySolution, DriveErr
             ));
         }
     }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        match residual(mid) {
-            Some(r) if r > 0.0 => lo = mid,
-            Some(_) => hi = mid,
-            None => lo = mid,
-        }
-        if hi - lo <= 1e-14 * hi {
-            break;
-        }
-    }
+    // T₁ above the root: the residual defined and not positive
+    let above = |t1: f64| {
+        residual(t1).is_some_and(|r| r.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater))
+    };
+    let (lo, hi) =
+        mbd_core::roots::bisect(lo, hi, above, mbd_core::roots::Stop::relative(200, 1e-14));
     let t1 = 0.5 * (lo + hi);
     let Some((_, t2, phi, vo, _)) = state(t1) else {
         return Err(DriveError::Numerical(

@@ -75,7 +75,7 @@
 //! (4th: 0.5 %) is a plausible four-cylinder value, held constant over the sweep.
 
 use crate::ancf_model::{AncfBelt, AncfConfig};
-use crate::speed_loss::{LINEAR_MIN_SLACK, MAX_HALVINGS, robust_step, tension_range_issue};
+use crate::speed_loss::{LINEAR_MIN_SLACK, STEP_SUBDIVISIONS, tension_range_issue};
 use crate::study::{ModelSettings, NodalConfig};
 use ancf::belt_drive::SimulationConfig;
 use belt::{
@@ -85,7 +85,7 @@ use belt::{
 use contact::friction::FrictionLaw;
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
-use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stepper};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
@@ -465,8 +465,9 @@ pub struct FeadSpan {
     /// Tension over the window \[N\].
     pub tension: Extremes,
     /// First transverse natural frequency of the travelling string with the mean tension and
-    /// belt speed \[Hz\] (module documentation).
-    pub frequency_1_hz: f64,
+    /// belt speed \[Hz\] (module documentation; `None` when the belt runs at or above the
+    /// span's critical speed, where the string has no such frequency).
+    pub frequency_1_hz: Option<f64>,
 }
 
 /// The result at one engine speed.
@@ -826,7 +827,10 @@ fn sweep<M: BeltModel>(
     };
     let invalid = |e: InvalidField| Box::new(FeadFailureOrInvalid::Invalid(e));
     let h = alpha.h;
-    let alpha = GeneralizedAlpha::new(alpha);
+    let alpha = GeneralizedAlpha::new(AlphaConfig {
+        subdivisions: STEP_SUBDIVISIONS,
+        ..alpha
+    });
     let linearised = model.traits().linearised;
     let mut state: Option<State> = None;
     let mut omega_prev = 0.0;
@@ -859,7 +863,9 @@ fn sweep<M: BeltModel>(
         let duration = t_last + window_s;
         // ramp and the shortest settling time
         while stepper.state().t < t_min - 0.5 * h {
-            robust_step(&mut stepper, &model, h, MAX_HALVINGS).map_err(|e| fail(e, &summary))?;
+            stepper
+                .step(&model, Some(h))
+                .map_err(|e| fail(e, &summary))?;
             summary.steps += 1;
             observer(FeadProgress {
                 point: ip,
@@ -873,7 +879,8 @@ fn sweep<M: BeltModel>(
             let window_start = stepper.state().t;
             let mut w = WindowAcc::new(names.len(), spans.len());
             for i in 0..per_window {
-                robust_step(&mut stepper, &model, h, MAX_HALVINGS)
+                stepper
+                    .step(&model, Some(h))
                     .map_err(|e| fail(e, &summary))?;
                 summary.steps += 1;
                 let st = stepper.state();
@@ -978,11 +985,8 @@ fn sweep<M: BeltModel>(
                         to: names[sp.to].clone(),
                         length: sp.length,
                         tension: a.get(),
-                        frequency_1_hz: if t > rho * v * v {
-                            (c * c - v * v) / (2.0 * sp.length * c)
-                        } else {
-                            f64::NAN
-                        },
+                        frequency_1_hz: (t > rho * v * v)
+                            .then(|| (c * c - v * v) / (2.0 * sp.length * c)),
                     }
                 })
                 .collect(),

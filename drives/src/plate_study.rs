@@ -253,8 +253,9 @@ pub struct PlateStudySummary {
     pub omega_driver_mean: f64,
     /// Mean driven speed over the final averaging window \[rad/s\].
     pub omega_driven_mean: f64,
-    /// `ω_driven R_driven / (ω_driver R_driver)` of the window means.
-    pub speed_ratio: f64,
+    /// `ω_driven R_driven / (ω_driver R_driver)` of the window means (`None` while the driver
+    /// is at rest, e.g. a run ending within the speed ramp).
+    pub speed_ratio: Option<f64>,
     /// The same of the analytical model (full).
     pub analytical_speed_ratio: f64,
     /// Driven speed of the capstan model (no belt inertia) \[rad/s\].
@@ -513,7 +514,7 @@ fn summarize(
         newton_iterations: stats.newton_iterations,
         omega_driver_mean: wd,
         omega_driven_mean: wn,
-        speed_ratio: wn * r_driven / (wd * r_driver),
+        speed_ratio: Some(wn * r_driven / (wd * r_driver)).filter(|r| r.is_finite()),
         analytical_speed_ratio: full.map_or(f64::NAN, |a| a.speed_ratio),
         capstan_omega_driven: capstan.map_or(f64::NAN, |a| a.omega_driven),
         analytical_tensions: full.map_or([f64::NAN; 2], |a| [a.tension_tight, a.tension_slack]),

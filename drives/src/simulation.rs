@@ -1,7 +1,7 @@
 //! A belt model stepped in time: build a model from a drive, step it, read and set its state,
 //! observe it, and read the one report ([`belt::Report`]) at any state. The procedures of this
-//! crate use the same stepping ([`crate::speed_loss::robust_step`] on mbd-core's
-//! generalized-α stepper).
+//! crate use the same stepping (mbd-core's generalized-α stepper, a failed step subdivided
+//! [`crate::speed_loss::STEP_SUBDIVISIONS`] levels, [`AlphaConfig::subdivisions`]).
 //!
 //! ```
 //! use drives::belt::{Layout, Motion, Pulley, Section, Signal, Tensioner, WrapSide};
@@ -27,12 +27,12 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use crate::speed_loss::{MAX_HALVINGS, robust_step};
+use crate::speed_loss::STEP_SUBDIVISIONS;
 use crate::study::AnyModel;
 use belt::{BeltModel, Report};
 use contact::friction::FrictionLaw;
 use mbd_core::MbdError;
-use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stepper};
 
 /// A belt model and its generalized-α stepper (module documentation).
 pub struct BeltSimulation<M: BeltModel> {
@@ -43,8 +43,13 @@ pub struct BeltSimulation<M: BeltModel> {
 
 impl<M: BeltModel> BeltSimulation<M> {
     /// Start `model` from its mounted static state ([`BeltModel::initial_state`]) with the
-    /// generalized-α settings `alpha` (its step `alpha.h` \[s\] is the simulation's step).
+    /// generalized-α settings `alpha` (its step `alpha.h` \[s\] is the simulation's step; a
+    /// failed step is subdivided at least [`STEP_SUBDIVISIONS`] levels).
     pub fn new(model: M, alpha: AlphaConfig) -> Result<Self, MbdError> {
+        let alpha = AlphaConfig {
+            subdivisions: alpha.subdivisions.max(STEP_SUBDIVISIONS),
+            ..alpha
+        };
         let s0 = model.initial_state()?;
         let stepper = GeneralizedAlpha::new(alpha).stepper(&model, s0)?;
         Ok(Self {
@@ -54,9 +59,10 @@ impl<M: BeltModel> BeltSimulation<M> {
         })
     }
 
-    /// One step (halved up to [`MAX_HALVINGS`] times when Newton fails); the new state.
+    /// One step (split into halves up to [`AlphaConfig::subdivisions`] levels when Newton
+    /// fails); the new state.
     pub fn step(&mut self) -> Result<&State, MbdError> {
-        robust_step(&mut self.stepper, &self.model, self.alpha.h, MAX_HALVINGS)?;
+        self.stepper.step(&self.model, Some(self.alpha.h))?;
         Ok(self.stepper.state())
     }
 

@@ -14,7 +14,7 @@ use belt::report::sliding_speed;
 use belt::{BeltModel, Report, Signal, WrapPoint};
 use contact::friction::{FrictionLaw, FrictionSpec};
 use mbd_core::MbdError;
-use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State};
+use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stepper};
 use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
@@ -175,9 +175,9 @@ pub struct SpeedLossPoint {
     pub delta_omega: f64,
     /// Steady driven speed \[rad/s\].
     pub omega_driven: f64,
-    /// Difference of the last two window means \[rad/s\] (steady-state residual; `NaN` when
+    /// Difference of the last two window means \[rad/s\] (steady-state residual; `None` when
     /// the point ended in a runaway gross slip).
-    pub drift: f64,
+    pub drift: Option<f64>,
     /// Simulation time at which the point was taken \[s\].
     pub time: f64,
     /// Time from the end of the load ramp to the point \[s\]: how long the drive settled
@@ -333,26 +333,11 @@ pub struct Sample {
     pub points: usize,
 }
 
-/// How often a step whose Newton iterations fail is split in two halves (recursively).
-pub const MAX_HALVINGS: usize = 4;
-
-/// One step of size `h` \[s\]; if Newton fails, two steps of `h/2` (recursively, `depth`
-/// levels). The rotating-mesh model ([`flowing::belt::nodal::NodalBelt`]) needs it when a coarse
-/// element lands on a pulley.
-pub fn robust_step<M: BeltModel>(
-    stepper: &mut AlphaStepper,
-    model: &M,
-    h: f64,
-    depth: usize,
-) -> Result<(), MbdError> {
-    match stepper.step(model, h) {
-        Err(MbdError::NoConvergence { .. }) if depth > 0 => {
-            robust_step(stepper, model, 0.5 * h, depth - 1)?;
-            robust_step(stepper, model, 0.5 * h, depth - 1)
-        }
-        other => other,
-    }
-}
+/// Subdivision levels of the belt procedures' steps ([`AlphaConfig::subdivisions`]): a step
+/// whose Newton iteration fails is retaken by mbd-core's stepper as two halves, recursively up
+/// to this many levels, ending on the procedure's time grid. The rotating-mesh model
+/// ([`flowing::belt::nodal::NodalBelt`]) needs it when a coarse element lands on a pulley.
+pub const STEP_SUBDIVISIONS: usize = 4;
 
 /// Steps between the reports sampled over an averaging window ([`Report::mean`]): every other
 /// step, so that the window mean resolves a nodal belt's element-passing ripple (a few steps
@@ -382,11 +367,11 @@ impl Window {
         }
     }
 
-    /// Half the peak-to-peak of span `k` (`NaN` if never observed).
-    fn amplitude(&self, k: usize) -> f64 {
+    /// Half the peak-to-peak of span `k` (`None` if never observed).
+    fn amplitude(&self, k: usize) -> Option<f64> {
         match (self.lo.get(k), self.hi.get(k)) {
-            (Some(lo), Some(hi)) if hi >= lo => 0.5 * (hi - lo),
-            _ => f64::NAN,
+            (Some(lo), Some(hi)) if hi >= lo => Some(0.5 * (hi - lo)),
+            _ => None,
         }
     }
 }
@@ -469,6 +454,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
     let alpha = GeneralizedAlpha::new(AlphaConfig {
         h: settings.step,
         rho_inf: settings.rho_inf,
+        subdivisions: STEP_SUBDIVISIONS,
         ..Default::default()
     });
     let mut stepper: AlphaStepper = alpha.stepper(&*model, s0).map_err(|e| fail(e, &points))?;
@@ -498,7 +484,9 @@ pub fn speed_loss_sweep<M: BeltModel>(
         let (mut sum, mut count) = (0.0, 0usize);
         let mut window = Window::default();
         let slipped: Option<(State, String)> = loop {
-            robust_step(&mut stepper, &*model, h, MAX_HALVINGS).map_err(|e| fail(e, &points))?;
+            stepper
+                .step(&*model, Some(h))
+                .map_err(|e| fail(e, &points))?;
             let st = stepper.state();
             if anchor.is_none() && st.t >= settings.spin_up - 0.5 * h {
                 anchor = Some((st.clone(), 0.0));
@@ -562,7 +550,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                         torque: target,
                         delta_omega: means[k - 1],
                         omega_driven: model.pulley_speed(driver, st.t, &st.v) - means[k - 1],
-                        drift: means[k - 1] - means[k - 2],
+                        drift: Some(means[k - 1] - means[k - 2]),
                         time: st.t,
                         settled_s: st.t - level_start,
                         gross_slip: gross,
@@ -620,7 +608,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                 torque: target,
                 delta_omega: dw,
                 omega_driven,
-                drift: f64::NAN,
+                drift: None,
                 time: st.t,
                 settled_s: st.t - level_start,
                 gross_slip: Some(GrossSlip {

@@ -204,7 +204,7 @@ impl SummaryPoint {
     pub fn new(p: &SpeedLossPoint) -> Self {
         let valid = p.linearisation.is_none();
         let r = &p.report;
-        let runaway = p.gross_slip.is_some() && !p.drift.is_finite();
+        let runaway = p.gross_slip.is_some() && p.drift.is_none();
         let arc = |role| {
             r.find(role)
                 .and_then(|k| finite(r.pulleys[k].slip_arc_rad))

@@ -311,7 +311,7 @@ fn fead_default_sweep_runs() {
                 .collect::<Vec<_>>(),
             p.spans
                 .iter()
-                .map(|x| x.frequency_1_hz.round())
+                .map(|x| x.frequency_1_hz.map(f64::round))
                 .collect::<Vec<_>>(),
         );
         assert!(p.arm_angle.min > travel[0] && p.arm_angle.max < travel[1]);

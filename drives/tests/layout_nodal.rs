@@ -6,10 +6,10 @@
 
 use belt::{BeltModel, Report, Role, Signal};
 use contact::friction::{FrictionLaw, FrictionSpec};
-use drives::speed_loss::{MAX_HALVINGS, robust_step};
+use drives::speed_loss::STEP_SUBDIVISIONS;
 use drives::{SpeedLossConfig, speed_loss_sweep};
 use flowing::belt::NodalBelt;
-use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Stepper};
 use mbd_core::{SecondOrderSystem, Validate, Workspace};
 
 mod common;
@@ -89,13 +89,14 @@ fn steady_run<M: BeltModel>(
     let alpha = GeneralizedAlpha::new(AlphaConfig {
         h,
         rho_inf: 0.6,
+        subdivisions: STEP_SUBDIVISIONS,
         ..Default::default()
     });
     let mut st = alpha.stepper(&*model, s0).unwrap();
     let mut reports = Vec::new();
     let (mut dw, mut pd, mut count, mut step) = (0.0, 0.0, 0usize, 0usize);
     while st.state().t < t_end - 0.5 * h {
-        robust_step(&mut st, &*model, h, MAX_HALVINGS).unwrap();
+        st.step(&*model, Some(h)).unwrap();
         step += 1;
         let s = st.state();
         if s.t >= t_end - window - 0.5 * h && step % 4 == 0 {

@@ -14,7 +14,7 @@
 
 use fe_model::generate::{TireConfig, tire};
 use fe_model::io::mtx;
-use fe_model::{DofPartition, MassKind};
+use fe_model::{DofSplit, MassKind};
 use std::path::PathBuf;
 use std::process::Command;
 use std::time::Instant;
@@ -42,7 +42,7 @@ fn main() {
             .k_and_m(MassKind::Consistent, true)
             .expect("assembly");
         let fixed = t.model.mesh.node_set_dofs("rim", None).expect("rim set");
-        let p = DofPartition::fixed(k.nrows(), &fixed).expect("partition");
+        let p = DofSplit::fixed(k.nrows(), &fixed).expect("partition");
         let kff = p.block(k.as_ref(), false, false).expect("K_ff");
         let mff = p.block(m.as_ref(), false, false).expect("M_ff");
         mtx::write_sparse(&kp, kff.as_ref(), mtx::Symmetry::Symmetric).expect("K.mtx");

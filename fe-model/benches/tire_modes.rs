@@ -8,7 +8,7 @@
 use fe_model::eigen::{SparseEigenOptions, sparse_modes};
 use fe_model::generate::{TireConfig, tire};
 use fe_model::io::mtx;
-use fe_model::{DofPartition, MassKind};
+use fe_model::{DofSplit, MassKind};
 use std::time::Instant;
 
 fn main() {
@@ -24,7 +24,7 @@ fn main() {
         .expect("assembly");
     let t_asm = t1.elapsed();
     let fixed = tire.model.mesh.node_set_dofs("rim", None).expect("rim set");
-    let p = DofPartition::fixed(k.nrows(), &fixed).expect("partition");
+    let p = DofSplit::fixed(k.nrows(), &fixed).expect("partition");
     let kff = p.block(k.as_ref(), false, false).expect("K_ff");
     let mff = p.block(m.as_ref(), false, false).expect("M_ff");
     if let Some(dir) = export {

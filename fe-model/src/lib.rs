@@ -26,4 +26,4 @@ pub use element::{Element, MassKind, MatrixKind};
 pub use error::FeError;
 pub use mesh::{Cell, CellKind, Mesh};
 pub use model::FeModel;
-pub use partition::DofPartition;
+pub use partition::DofSplit;

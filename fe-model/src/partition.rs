@@ -9,7 +9,7 @@ use faer::{Mat, MatRef};
 
 /// An ordered split of `0..n` into a *selected* set `a` and its complement `b`.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct DofPartition {
+pub struct DofSplit {
     n: usize,
     a: Vec<usize>,
     b: Vec<usize>,
@@ -17,7 +17,7 @@ pub struct DofPartition {
     slot: Vec<Result<usize, usize>>,
 }
 
-impl DofPartition {
+impl DofSplit {
     /// Partition with set `a` = `selected` (sorted, de-duplicated) and `b` = the rest
     /// (ascending). Errors if a DOF is ≥ n.
     pub fn new(n: usize, selected: &[usize]) -> Result<Self, FeError> {
@@ -141,7 +141,7 @@ impl DofPartition {
     fn check(&self, r: usize, c: usize) -> Result<(), FeError> {
         if r != self.n || c != self.n {
             return Err(FeError::Dimension {
-                context: "DofPartition block (matrix size)".into(),
+                context: "DofSplit block (matrix size)".into(),
                 expected: self.n,
                 got: if r != self.n { r } else { c },
             });
@@ -170,7 +170,7 @@ mod tests {
             }
         });
         let ks = crate::sparse::from_dense(k.as_ref(), 0.0).unwrap();
-        let p = DofPartition::fixed(n, &[0, 4]).unwrap();
+        let p = DofSplit::fixed(n, &[0, 4]).unwrap();
         assert_eq!(p.rest(), &[1, 2, 3, 5]);
         let kff = p.dense_block(k.as_ref(), false, false).unwrap();
         let f = Mat::from_fn(4, 1, |i, _| 1.0 + i as f64);
@@ -182,6 +182,6 @@ mod tests {
         for i in 0..n {
             assert!((u[(i, 0)] - ue[(i, 0)]).abs() < 1e-14);
         }
-        assert!(DofPartition::fixed(3, &[5]).is_err());
+        assert!(DofSplit::fixed(3, &[5]).is_err());
     }
 }

@@ -46,8 +46,9 @@ use crate::{
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
-/// Checks the string parameters (finite and positive, with a finite positive wave speed),
-/// naming the field `prefix.name`.
+/// Checks the string parameters (finite and positive, with a finite positive wave speed; a
+/// slender string: the side `√area` of its cross-section below its length), naming the field
+/// `prefix.name`.
 pub fn check_string(p: &StringConfig, prefix: &str) -> Result<(), InvalidField> {
     for (name, v) in [
         ("length", p.length),
@@ -61,6 +62,18 @@ pub fn check_string(p: &StringConfig, prefix: &str) -> Result<(), InvalidField> 
                 format!("must be a positive number, got {}", check::show(v)),
             ));
         }
+    }
+    // issue 35: area = 1e300 m² was refused as a speed above the critical one
+    if p.area.sqrt() >= p.length {
+        return Err(InvalidField::new(
+            format!("{prefix}.area"),
+            format!(
+                "{} m² is not the cross-section of a string {} m long (its side √area must be \
+                 below the length: the string model is a slender line)",
+                check::show(p.area),
+                check::show(p.length)
+            ),
+        ));
     }
     let (mu, c) = (p.mu(), p.wave_speed());
     if !(mu.is_normal() && c.is_normal()) {

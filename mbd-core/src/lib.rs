@@ -89,6 +89,7 @@ pub mod marker;
 pub mod multibody;
 pub mod newton;
 pub mod parallel;
+pub mod roots;
 pub mod statics;
 
 pub use body::{BodyState, RigidBody};

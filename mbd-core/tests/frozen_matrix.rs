@@ -330,7 +330,7 @@ fn contraction_trigger_and_line_search_reproduce_full_newton_on_stick_slip() {
             AlphaStepper::new(&StickSlip, State::new(0.0, vec![0.0], vec![1.0]), cfg).unwrap();
         let mut out = Vec::new();
         for _ in 0..1500 {
-            st.step(&StickSlip, 1e-3).unwrap();
+            st.step(&StickSlip, Some(1e-3)).unwrap();
             out.push(st.state().clone());
         }
         (out, st.stats)

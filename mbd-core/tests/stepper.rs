@@ -300,3 +300,92 @@ fn block_slides_with_coulomb_friction_at_mu_g() {
         s.q[0]
     );
 }
+
+/// Hardening spring `ẍ + k₃ x³ = 0` with a finite-difference tangent: Newton needs more
+/// iterations the longer the step, so a step can fail where its halves converge.
+struct Duffing {
+    k3: f64,
+}
+
+impl mbd_core::SecondOrderSystem for Duffing {
+    fn n_q(&self) -> usize {
+        1
+    }
+    fn mass_is_constant(&self) -> bool {
+        true
+    }
+    fn mass(&self, _t: f64, _q: &[f64]) -> Result<mbd_core::SysMatrix, MbdError> {
+        Ok(support::diagonal(&[1.0]))
+    }
+    fn forces(
+        &self,
+        _t: f64,
+        q: &[f64],
+        _v: &[f64],
+        f: &mut [f64],
+        _ws: &mut mbd_core::Workspace,
+    ) -> Result<(), MbdError> {
+        f[0] = -self.k3 * q[0].powi(3);
+        Ok(())
+    }
+}
+
+/// The step split of the drives' former `robust_step`, written against a stepper without
+/// subdivision: one step of `h`, else two halves, recursively `depth` levels.
+fn split_by_hand(
+    st: &mut mbd_core::integrators::AlphaStepper,
+    sys: &Duffing,
+    h: f64,
+    depth: usize,
+) -> Result<(), MbdError> {
+    match st.step(sys, Some(h)) {
+        Err(MbdError::NoConvergence { .. }) if depth > 0 => {
+            split_by_hand(st, sys, 0.5 * h, depth - 1)?;
+            split_by_hand(st, sys, 0.5 * h, depth - 1)
+        }
+        other => other,
+    }
+}
+
+#[test]
+fn alpha_subdivisions_split_a_failed_step_and_keep_the_grid() {
+    let sys = Duffing { k3: 1e4 };
+    let s0 = State::new(0.0, vec![1.0], vec![0.0]);
+    let cfg = AlphaConfig {
+        h: 0.02,
+        max_newton_iterations: 3,
+        ..Default::default()
+    };
+    // without subdivision the step fails (the premise of the test)
+    let mut plain = GeneralizedAlpha::new(cfg)
+        .stepper(&sys, s0.clone())
+        .unwrap();
+    assert!(matches!(
+        plain.step(&sys, Some(0.02)),
+        Err(MbdError::NoConvergence { .. })
+    ));
+    assert_eq!(
+        plain.state().t,
+        0.0,
+        "a failed step leaves the state unchanged"
+    );
+    // with subdivision: ends on t + h exactly, halvings counted, and the same state bit for
+    // bit as the hand-written recursive split (second formulation)
+    let mut split = GeneralizedAlpha::new(AlphaConfig {
+        subdivisions: 6,
+        ..cfg
+    })
+    .stepper(&sys, s0.clone())
+    .unwrap();
+    let mut by_hand = GeneralizedAlpha::new(cfg).stepper(&sys, s0).unwrap();
+    for k in 1..=5 {
+        split.step(&sys, Some(0.02)).unwrap();
+        split_by_hand(&mut by_hand, &sys, 0.02, 6).unwrap();
+        assert_eq!(split.state(), by_hand.state());
+        assert!((split.state().t - 0.02 * k as f64).abs() < 1e-15);
+    }
+    let stats = Stepper::<Duffing>::stats(&split);
+    assert!(stats.halvings > 0);
+    assert_eq!(stats.halvings, stats.rejected_steps);
+    assert!(stats.steps > 5);
+}

@@ -197,7 +197,7 @@ fn flowing_gross_slip_is_a_result_and_the_sweep_goes_on() {
     let g = p.gross_slip.as_ref().expect("gross slip");
     assert_eq!(g.name, "driven");
     assert!(p.torque > capacity);
-    assert!(!p.drift.is_finite());
+    assert!(p.drift.is_none());
     assert!(p.linearisation.is_some());
     let s = SummaryPoint::new(p);
     assert!(s.gross_slip && !s.linearisation_valid);

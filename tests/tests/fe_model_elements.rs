@@ -5,7 +5,7 @@ use faer::{Mat, MatRef};
 use fe_model::element::frame2d::Frame2dSection;
 use fe_model::element::{Element, Frame2d, MassKind, MatrixKind};
 use fe_model::generate::{straight_beam_2d, straight_string};
-use fe_model::{DofPartition, Rayleigh, dense_modes};
+use fe_model::{DofSplit, Rayleigh, dense_modes};
 use std::f64::consts::PI;
 
 fn dense(a: &faer::sparse::SparseColMat<usize, f64>) -> Mat<f64> {
@@ -14,7 +14,7 @@ fn dense(a: &faer::sparse::SparseColMat<usize, f64>) -> Mat<f64> {
 
 /// Lowest `count` modes of (K, M) with DOFs `fixed` eliminated.
 fn fixed_modes(k: MatRef<f64>, m: MatRef<f64>, fixed: &[usize], count: usize) -> fe_model::Modes {
-    let p = DofPartition::fixed(k.nrows(), fixed).unwrap();
+    let p = DofSplit::fixed(k.nrows(), fixed).unwrap();
     let kff = p.dense_block(k, false, false).unwrap();
     let mff = p.dense_block(m, false, false).unwrap();
     dense_modes(kff.as_ref(), mff.as_ref(), count).unwrap()
@@ -32,7 +32,7 @@ fn lin_condensed_k() -> Mat<f64> {
     let k = dense(&model.stiffness().unwrap());
     // θ DOFs = local 2 of every node; masters (ξ, η) in node order
     let theta: Vec<usize> = (0..5).map(|n| model.mesh.dof(n, 2)).collect();
-    let p = DofPartition::new(15, &theta).unwrap();
+    let p = DofSplit::new(15, &theta).unwrap();
     let krr = p.dense_block(k.as_ref(), false, false).unwrap();
     let krt = p.dense_block(k.as_ref(), false, true).unwrap();
     let ktt = p.dense_block(k.as_ref(), true, true).unwrap();
@@ -353,7 +353,7 @@ fn rayleigh_damping_from_two_ratios() {
     assert!((r.ratio(om[0]) - 0.02).abs() < 1e-14);
     assert!((r.ratio(om[2]) - 0.05).abs() < 1e-14);
     let c = r.matrix(&m, &k).unwrap();
-    let p = DofPartition::fixed(k.nrows(), &fixed).unwrap();
+    let p = DofSplit::fixed(k.nrows(), &fixed).unwrap();
     let cff = p.dense_block(c.to_dense().as_ref(), false, false).unwrap();
     let g = modes.vectors.transpose() * &cff * &modes.vectors;
     for i in 0..5 {

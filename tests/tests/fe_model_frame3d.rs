@@ -5,7 +5,7 @@ use faer::linalg::solvers::Solve;
 use fe_model::element::{
     Element, Frame3d, Frame3dSection, MassKind, MatrixKind, PointMass, Spring,
 };
-use fe_model::{DofPartition, assemble, dense_modes};
+use fe_model::{DofSplit, assemble, dense_modes};
 use std::f64::consts::PI;
 
 /// Straight 3D frame along `dir` with `n` elements; returns elements and DOF count.
@@ -58,7 +58,7 @@ fn fixed_modes(
     let m = assemble(n, els, MatrixKind::Mass(MassKind::Consistent))
         .unwrap()
         .to_dense();
-    let p = DofPartition::fixed(n, fixed).unwrap();
+    let p = DofSplit::fixed(n, fixed).unwrap();
     let kff = p.dense_block(k.as_ref(), false, false).unwrap();
     let mff = p.dense_block(m.as_ref(), false, false).unwrap();
     dense_modes(kff.as_ref(), mff.as_ref(), count).unwrap()
@@ -125,7 +125,7 @@ fn timoshenko_cantilever_tip_deflection_is_exact() {
             .unwrap()
             .to_dense();
         let fixed: Vec<usize> = (0..6).collect();
-        let part = DofPartition::fixed(nd, &fixed).unwrap();
+        let part = DofSplit::fixed(nd, &fixed).unwrap();
         let kff = part.dense_block(k.as_ref(), false, false).unwrap();
         // loads P in y and in z at the tip
         let tip = 6 * n;
@@ -163,7 +163,7 @@ fn prestressed_span_3d() {
         .to_dense();
     // pinned: u, v, w, θx at node 0; v, w at the end
     let fixed = [0, 1, 2, 3, 6 * n + 1, 6 * n + 2];
-    let p = DofPartition::fixed(nd, &fixed).unwrap();
+    let p = DofSplit::fixed(nd, &fixed).unwrap();
     let kff = p.dense_block(k.as_ref(), false, false).unwrap();
     let mff = p.dense_block(m.as_ref(), false, false).unwrap();
     let modes = dense_modes(kff.as_ref(), mff.as_ref(), 2).unwrap();

@@ -5,7 +5,7 @@ use faer::Mat;
 use faer::linalg::solvers::Solve;
 use fe_model::element::{Elastic, Hex8Integration};
 use fe_model::generate::hex_block;
-use fe_model::{DofPartition, MassKind, dense_modes};
+use fe_model::{DofSplit, MassKind, dense_modes};
 
 const STEEL: Elastic = Elastic {
     young: 210e9,
@@ -21,7 +21,7 @@ fn solve_static(
     f: &[f64],
 ) -> Vec<f64> {
     let n = k.nrows();
-    let p = DofPartition::fixed(n, fixed).unwrap();
+    let p = DofSplit::fixed(n, fixed).unwrap();
     let kff = p.block(k.as_ref(), false, false).unwrap();
     let kfc = p.block(k.as_ref(), false, true).unwrap();
     // u_fixed is given in the order of `fixed`; map to the sorted selected order
@@ -243,7 +243,7 @@ fn prestressed_hex_bar_matches_tensioned_beam() {
     for set in ["x0", "x1"] {
         fixed.extend(model.mesh.node_set_dofs(set, Some(&[0])).unwrap());
     }
-    let p = DofPartition::fixed(model.n_dofs(), &fixed).unwrap();
+    let p = DofSplit::fixed(model.n_dofs(), &fixed).unwrap();
     let kff = p.dense_block(k.to_dense().as_ref(), false, false).unwrap();
     let mff = p.dense_block(m.to_dense().as_ref(), false, false).unwrap();
     let modes = dense_modes(kff.as_ref(), mff.as_ref(), 2).unwrap();

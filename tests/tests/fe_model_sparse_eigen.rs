@@ -5,7 +5,7 @@ use fe_model::eigen::{SparseEigenOptions, sparse_modes, sturm_count};
 use fe_model::element::frame2d::Frame2dSection;
 use fe_model::generate::{BeltLoopConfig, belt_loop, straight_beam_2d};
 
-use fe_model::{DofPartition, MassKind, dense_modes};
+use fe_model::{DofSplit, MassKind, dense_modes};
 
 /// 3 000-DOF model: a tensioned net of string elements (60 × 50 free interior nodes, fixed
 /// border, lumped mass). The discrete spectrum is known in closed form (separable 5-point
@@ -43,7 +43,7 @@ fn sparse_matches_dense_on_3000_dof_model() {
         .filter(|&(i, j)| i == 0 || j == 0 || i == nx + 1 || j == ny + 1)
         .map(|(i, j)| id(i, j))
         .collect();
-    let p = DofPartition::fixed(nn, &fixed).unwrap();
+    let p = DofSplit::fixed(nn, &fixed).unwrap();
     let kff = p.block(k.as_ref(), false, false).unwrap();
     let mff = p.block(m.as_ref(), false, false).unwrap();
     assert_eq!(kff.nrows(), 3000);

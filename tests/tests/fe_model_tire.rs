@@ -2,7 +2,7 @@
 
 use fe_model::eigen::{SparseEigenOptions, sparse_modes};
 use fe_model::generate::{TireConfig, TireZone, tire};
-use fe_model::{DofPartition, MassKind, dense_modes};
+use fe_model::{DofSplit, MassKind, dense_modes};
 
 fn small() -> TireConfig {
     TireConfig {
@@ -78,7 +78,7 @@ fn tire_rigid_modes_and_axisymmetric_pairs() {
     let t = tire(&cfg).unwrap();
     let (k, m) = t.model.k_and_m(MassKind::Consistent, true).unwrap();
     let fixed = t.model.mesh.node_set_dofs("rim", None).unwrap();
-    let p = DofPartition::fixed(k.nrows(), &fixed).unwrap();
+    let p = DofSplit::fixed(k.nrows(), &fixed).unwrap();
     let kff = p.block(k.as_ref(), false, false).unwrap();
     let mff = p.block(m.as_ref(), false, false).unwrap();
     let opts = SparseEigenOptions {

@@ -4,11 +4,11 @@
 //! puts into the driven pulley's speed.
 
 use belt::{BeltModel, Signal};
-use drives::speed_loss::{MAX_HALVINGS, robust_step};
+use drives::speed_loss::STEP_SUBDIVISIONS;
 use drives::{SpeedLossConfig, SpeedLossPoint, speed_loss_sweep};
 use flowing::belt::{BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
 use flowing::spectrum::amplitude_spectrum;
-use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Stepper};
 
 /// Both models of Ribaric Table 6-1 on a uniform loop: `span` elements per span, `arc` per arc
 /// (0.45 m spans, 0.157 m arcs; 20/7 and 80/28 give equal element lengths to 0.3 %).
@@ -54,12 +54,13 @@ fn driven_speed_history<M: BeltModel>(model: &mut M, t_from: f64, t_to: f64, h: 
     let alpha = GeneralizedAlpha::new(AlphaConfig {
         h,
         rho_inf: 0.6,
+        subdivisions: STEP_SUBDIVISIONS,
         ..Default::default()
     });
     let mut st = alpha.stepper(&*model, s0).unwrap();
     let mut out = Vec::new();
     while st.state().t < t_to - 0.5 * h {
-        robust_step(&mut st, &*model, h, MAX_HALVINGS).unwrap();
+        st.step(&*model, Some(h)).unwrap();
         if st.state().t >= t_from - 0.5 * h {
             let s = st.state();
             out.push(model.pulley_speed(1, s.t, &s.v));

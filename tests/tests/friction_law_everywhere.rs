@@ -9,7 +9,7 @@
 //! contact point).
 
 use contact::FrictionSpec;
-use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
+use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Stepper};
 
 mod common;
 
@@ -49,7 +49,7 @@ fn flowing_run(law: FrictionSpec) -> (f64, bool) {
     .stepper(&belt, s0)
     .unwrap();
     for _ in 0..160 {
-        st.step(&belt, h).unwrap();
+        st.step(&belt, Some(h)).unwrap();
     }
     let s = st.state();
     let dissipative = belt

@@ -18,6 +18,7 @@ use crate::reduced::ReducedTire;
 use contact::solver::solve_lcp;
 use faer::prelude::*;
 use faer::{Mat, Side};
+use mbd_core::roots::{FalsePositionStop, false_position};
 use mbd_core::validate::{Validate, check};
 use serde::Serialize;
 
@@ -146,34 +147,15 @@ pub fn solve_patch(
         }
         f_hi = force(touch + hi)?.0;
     }
-    // Illinois false position
-    let mut side = 0i32;
-    let mut e = hi;
-    for _ in 0..100 {
-        e = (lo * (f_hi - load) - hi * (f_lo - load)) / (f_hi - f_lo);
-        let fe = force(touch + e)?.0;
-        if (fe - load).abs() <= 1e-9 * load {
-            break;
-        }
-        if fe < load {
-            lo = e;
-            f_lo = fe;
-            if side == -1 {
-                f_hi = load + 0.5 * (f_hi - load);
-            }
-            side = -1;
-        } else {
-            hi = e;
-            f_hi = fe;
-            if side == 1 {
-                f_lo = load + 0.5 * (f_lo - load);
-            }
-            side = 1;
-        }
-        if hi - lo < 1e-14 {
-            break;
-        }
-    }
+    // Illinois false position on g(e) = F_z(e) − load, to |g| ≤ 1e-9 load or a bracket of
+    // 1e-14 m (mbd_core::roots)
+    let stop = FalsePositionStop {
+        max_iterations: 100,
+        width: 1e-14,
+        residual: 1e-9 * load,
+    };
+    let g = |e: f64| force(touch + e).map(|(f, _)| f - load);
+    let e = false_position(g, lo, hi, f_lo - load, f_hi - load, stop)?.last;
     let (fz, (lambda, f_c, delta_c)) = force(touch + e)?;
     Ok(PatchSolution {
         top: touch + e,

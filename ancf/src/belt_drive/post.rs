@@ -280,6 +280,6 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
         pulleys,
         spans,
         wrap,
-        belt_dissipation: f64::NAN,
+        belt_dissipation: None,
     }
 }

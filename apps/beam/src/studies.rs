@@ -185,10 +185,6 @@ impl Study for SimplySupported {
     const APP: &'static str = "beam";
     const NAME: &'static str = "simply-supported";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "The simply supported ANCF beam of Kerkkanen 2.4 under a 1000 N mid-point load: \
          midpoint_deflection_mm is the vertical position of the mid-point [mm], compared in \
@@ -292,10 +288,6 @@ impl Study for Cantilever {
     const APP: &'static str = "beam";
     const NAME: &'static str = "cantilever";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "The large-deflection cantilever of Kerkkanen 2.4 under the tip force -5e8 h^3 N: tip \
          is the deformed tip position (x, y) [m] (Kerkkanen Tables 2.3/2.4), compared with \
@@ -387,10 +379,6 @@ impl Study for Pendulum {
     type Summary = PendulumSummary;
     const APP: &'static str = "beam";
     const NAME: &'static str = "pendulum";
-
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
 
     fn meaning(&self) -> &'static str {
         "The falling flexible pendulum of Kerkkanen Figs. 2.6/2.7, pinned at one end and \
@@ -525,10 +513,6 @@ impl Study for Spinning {
     const APP: &'static str = "beam";
     const NAME: &'static str = "spinning";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "The spinning beam of Kerkkanen Figs. 2.10/2.11: the hub spins up to omega and the \
          beam stretches under the centrifugal load. steady_extension_m is the mean axial \
@@ -655,10 +639,6 @@ impl Study for GroundContact {
     type Summary = GroundContactSummary;
     const APP: &'static str = "beam";
     const NAME: &'static str = "ground-contact";
-
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
 
     fn meaning(&self) -> &'static str {
         "A cantilever pressed onto rigid ground by a line load q = load_factor q* with \

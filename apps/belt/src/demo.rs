@@ -59,6 +59,18 @@ impl Default for Config {
     }
 }
 
+/// Most generalized-α steps of a demo run (`t_end / step`; the default run takes 2 000): a
+/// documented ceiling, raised 1000-fold by `--allow-large`
+/// ([`mbd_core::validate::limits`]), checked before anything runs (issue 35).
+pub const MAX_DEMO_STEPS: f64 = 1e6;
+
+/// Fastest crank \[rad/s\] (about 95 000 rpm; the default 2π rad/s).
+pub const MAX_OMEGA: f64 = 1e4;
+
+/// Largest crank turn per step \[rad\]: `|omega|·step` above it leaves the crank's motion
+/// unresolved (the step's Newton iteration fails or the answer is meaningless).
+pub const MAX_TURN_PER_STEP: f64 = 0.5;
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         let positive = [
@@ -87,8 +99,35 @@ impl Validate for Config {
         if !(0.0..=1.0).contains(&self.rho_inf) {
             return Err(InputError::new("rho_inf", "must lie in [0, 1]"));
         }
-        if !self.omega.is_finite() {
-            return Err(InputError::new("omega", "must be finite"));
+        if !(self.omega.is_finite() && self.omega.abs() <= MAX_OMEGA) {
+            return Err(InputError::new(
+                "omega",
+                format!(
+                    "must be finite with |omega| <= {MAX_OMEGA:e} rad/s (got {})",
+                    mbd_core::validate::check::show(self.omega)
+                ),
+            ));
+        }
+        if self.omega.abs() * self.step > MAX_TURN_PER_STEP {
+            return Err(InputError::new(
+                "step",
+                format!(
+                    "the crank turns |omega|·step = {:e} rad per step, more than \
+                     {MAX_TURN_PER_STEP} rad: take a smaller step",
+                    self.omega.abs() * self.step
+                ),
+            ));
+        }
+        let steps = self.t_end / self.step;
+        let max = mbd_core::validate::limits::ceiling(MAX_DEMO_STEPS);
+        if steps > max {
+            return Err(InputError::new(
+                "t_end",
+                format!(
+                    "t_end / step = {steps:e} steps, more than the ceiling of {max:e}{}",
+                    mbd_core::validate::limits::raise_hint()
+                ),
+            ));
         }
         if !self.theta0.is_finite() || self.theta0.sin().abs() < 1e-3 {
             return Err(InputError::new(

@@ -139,7 +139,8 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
             f64::from(u8::from(p.linearisation.is_none())),
         ];
         for sp in &p.spans {
-            row.extend([sp.tension.min, sp.tension.max, sp.frequency_1_hz]);
+            let f1 = sp.frequency_1_hz.unwrap_or(f64::NAN);
+            row.extend([sp.tension.min, sp.tension.max, f1]);
         }
         for (k, pl) in p.report.pulleys.iter().enumerate() {
             row.extend([
@@ -217,7 +218,10 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
     for (k, sp) in first.spans.iter().enumerate() {
         camp.series.push(series(
             format!("span {} → {}", sp.from, sp.to),
-            s.points.iter().map(|p| p.spans[k].frequency_1_hz).collect(),
+            s.points
+                .iter()
+                .map(|p| p.spans[k].frequency_1_hz.unwrap_or(f64::NAN))
+                .collect(),
         ));
     }
     for &o in &s.orders {

@@ -275,7 +275,8 @@ impl Study for SpeedLoss {
                     p.spans
                         .as_ref()
                         .and_then(|v| v.get(k))
-                        .map_or(nan, |s| s.vibration_amplitude_m)
+                        .and_then(|s| s.vibration_amplitude_m)
+                        .unwrap_or(nan)
                 };
                 ops.row(&[
                     case.omega_driver,

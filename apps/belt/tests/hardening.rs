@@ -214,3 +214,77 @@ fn ancf_stiffness_multiplier_and_spectral_radius_out_of_range_are_refused() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+// Issue 35 (previous hardening pass): `demo` accepted omega = 1e300 rad/s and t_end = 1e9 s
+// (2·10¹² steps); both are refused before anything runs (exit 2, one line naming the field:
+// |omega| ≤ 1e4 rad/s, |omega|·step ≤ 0.5 rad, t_end/step ≤ 10⁶ steps), and `--allow-large`
+// raises the step ceiling only
+#[test]
+fn demo_refuses_absurd_crank_speed_and_run_length() {
+    let dir = tmp("demo35");
+    let (code, text, err) = run(&["demo", "--print-config"]);
+    assert_eq!(code, 0, "{err}");
+    let line = |key: &str| {
+        text.lines()
+            .find(|l| l.starts_with(key))
+            .unwrap()
+            .to_string()
+    };
+    let cases = [
+        ("omega", "omega = 1e300", "omega"),
+        ("omega", "omega = -2e4", "omega"),
+        ("omega", "omega = 1000.0", "step"),
+        ("t_end", "t_end = 1e9", "t_end"),
+    ];
+    for (key, new, field) in cases {
+        let file = dir.join("demo.toml");
+        std::fs::write(&file, text.replacen(&line(key), new, 1)).unwrap();
+        let (code, _, err) = run(&["demo", "--config", file.to_str().unwrap(), "--print-config"]);
+        assert_eq!(code, 2, "{new}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(err.contains(field), "{new}: {err}");
+    }
+    // 1e3 s at the default 1 ms step: 10⁶ steps, within the ceiling; 1e4 s needs --allow-large
+    let file = dir.join("demo.toml");
+    std::fs::write(&file, text.replacen(&line("t_end"), "t_end = 1e4", 1)).unwrap();
+    let path = file.to_str().unwrap();
+    let (code, _, err) = run(&["demo", "--config", path, "--print-config"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("t_end") && err.contains("--allow-large"),
+        "{err}"
+    );
+    let (code, _, err) = run(&["demo", "--config", path, "--print-config", "--allow-large"]);
+    assert_eq!(code, 0, "{err}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+// Issue 35 (previous hardening pass): `fead --quiet` printed its model line and its notes on
+// stderr; with `--quiet` a run that succeeds says nothing there (definition of --quiet)
+#[test]
+fn fead_quiet_is_quiet() {
+    use drives::fead::FeadConfig;
+    let mut c = FeadConfig::default();
+    c.engine.orders.clear();
+    c.run.ramp = 0.02;
+    c.run.settle = 0.02;
+    c.run.window = 0.02;
+    let dir = tmp("fead_quiet");
+    let file = dir.join("fead.toml");
+    std::fs::write(&file, toml::to_string(&c).unwrap()).unwrap();
+    let out = dir.join("out");
+    let (code, _, err) = run(&[
+        "fead",
+        "--config",
+        file.to_str().unwrap(),
+        "--rpm",
+        "800",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "--quiet must leave stderr empty");
+    assert!(out.join("summary.json").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}

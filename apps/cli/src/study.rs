@@ -117,10 +117,10 @@ pub trait Study {
     /// Whether every number of the summary must be finite: the runner then turns a NaN or an
     /// infinity anywhere in it ([`non_finite_fields`]) into a numerical failure (exit 1,
     /// `implausible result FIELD`, the summary kept as `"partial"`) instead of writing it as
-    /// `null` (issue 35, item 5). On in `flowmbd-beam`, `-string` and `-reduce`; a study whose
-    /// summary holds NaN on purpose (a quantity that does not apply) keeps the default `false`.
+    /// `null` (issue 35, item 5). On for every study of every app: a quantity that does not
+    /// apply is an `Option` (`null`), never a NaN.
     fn results_must_be_finite(&self) -> bool {
-        false
+        true
     }
 
     /// Run the study. Write histories into `ctx.out` as they are computed.

@@ -61,10 +61,6 @@ impl Study for LinBeamStudy {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "lin-beam";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "Lin ch. 6-8 on the Appendix A beam: the frequencies of the full model and of the \
          reduced models (Guyan, modal truncation, Craig-Bampton, mode condensation) compared \

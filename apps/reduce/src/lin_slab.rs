@@ -123,10 +123,6 @@ impl Study for LinSlabStudy {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "lin-slab";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "Lin 7.2 simulations 1-3 on the Appendix B slab: the local deflections of node 8 [m] \
          in the floating frame for every reduction method (Newton-Raphson on the full model, \

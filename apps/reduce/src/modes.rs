@@ -7,7 +7,7 @@
 use fe_model::eigen::{SparseEigenOptions, sparse_modes};
 use fe_model::io::{mtx, vtk};
 use fe_model::plausibility::check_stiffness_mass;
-use fe_model::{DofPartition, FeError, Mesh};
+use fe_model::{DofSplit, FeError, Mesh};
 use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -141,10 +141,6 @@ impl Study for ModesStudy<'_> {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "modes";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "Natural frequencies [Hz] of the Matrix Market model K phi = lambda M phi (lambda = \
          omega^2 in rad^2/s^2), lowest first, with the fixed DOFs removed; the eigen solver \
@@ -211,7 +207,7 @@ impl Study for ModesStudy<'_> {
         } else {
             read_fixed(Path::new(&c.fixed), n)?
         };
-        let part = DofPartition::fixed(n, &fixed).map_err(|e| input("fixed", e))?;
+        let part = DofSplit::fixed(n, &fixed).map_err(|e| input("fixed", e))?;
         let kff = part
             .block(k.as_ref(), false, false)
             .map_err(|e| input("stiffness", e))?;

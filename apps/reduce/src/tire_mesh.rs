@@ -78,10 +78,6 @@ impl Study for TireMesh {
     const APP: &'static str = "reduce";
     const NAME: &'static str = "tire-mesh";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "The generated truck-tire carcass: the nodes, hexahedra and DOFs of the mesh written \
          as mesh.json, M and K (Matrix Market) and the node sets (rim, contact patch), for \

@@ -18,10 +18,6 @@ impl Study for ModesStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "modes";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         flowing::string_study::MODES_MEANING
     }

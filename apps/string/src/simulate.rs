@@ -195,10 +195,6 @@ impl Study for SimulateStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "simulate";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "The travelling string (Ribaric Fig. 4-6 right) plucked into a triangle and let go: \
          the flowing-material model (4.20) integrated in time (RK4). history.csv holds the \

@@ -153,10 +153,6 @@ impl Study for SweepStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "sweep";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "Natural frequencies of the travelling string (Ribaric ch. 4) against the axial speed \
          from 0 to max_speed_ratio times the critical speed c = sqrt(T/(rho A)) = \

@@ -346,10 +346,6 @@ impl Study for WrapStudy {
     const APP: &'static str = "string";
     const NAME: &'static str = "wrap";
 
-    fn results_must_be_finite(&self) -> bool {
-        true
-    }
-
     fn meaning(&self) -> &'static str {
         "A string partly wrapped on two pulleys under a harmonic load (Ribaric (4.10), \
          (4.11), (4.40)): contact nodes lift off and land again as the load shakes the free \

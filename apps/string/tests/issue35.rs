@@ -90,3 +90,28 @@ fn a_pulley_far_off_the_line_is_bad_input() {
     assert!(err.contains("pulleys[0].top: must be in ["), "{err}");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+// issue 35 (previous hardening pass): `simulate` with `string.area = 1e300` m² was refused as a
+// speed above the critical one (the wave speed √(T/ρA) ≈ 1e-151 m/s); it is refused naming the
+// area (definition: a string's cross-section side √area is below its length)
+#[test]
+fn an_absurd_string_area_is_refused_by_name() {
+    let dir = flowmbd_cli::testing::fresh_dir("flowmbd-string-i35", "area");
+    let (code, text, err) = run(&["simulate", "--print-config"]);
+    assert_eq!(code, 0, "{err}");
+    let area_line = text.lines().find(|l| l.starts_with("area")).unwrap();
+    for v in ["1e300", "1e10"] {
+        let file = dir.join(format!("area-{v}.toml"));
+        std::fs::write(&file, text.replacen(area_line, &format!("area = {v}"), 1)).unwrap();
+        let (code, _, err) = run(&[
+            "simulate",
+            "--config",
+            file.to_str().unwrap(),
+            "--print-config",
+        ]);
+        assert_eq!(code, 2, "area {v}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(err.contains("string.area"), "area {v}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -2,6 +2,7 @@
 //! projection onto the friction disk (Alart & Curnier 1991).
 
 use super::{Augmented, FrictionForce, FrictionLaw};
+use mbd_core::roots::{Stop, bisect};
 use nalgebra::{Matrix2, Vector2};
 use serde::{Deserialize, Serialize};
 
@@ -104,19 +105,18 @@ impl FrictionLaw for Coulomb {
         }
         let bn =
             (b[(0, 0)].powi(2) + b[(0, 1)].powi(2) + b[(1, 0)].powi(2) + b[(1, 1)].powi(2)).sqrt();
-        let (mut lo, mut hi) = (0.0, bn + r[0].hypot(r[1]) / rho);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            let f = solve(mid);
-            if f[0].hypot(f[1]) > rho {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
+        let inside = |s: f64| {
+            let f = solve(s);
+            // not outside the disc (a NaN norm counts as inside, as before)
+            f[0].hypot(f[1]).partial_cmp(&rho) != Some(std::cmp::Ordering::Greater)
+        };
+        let hi = bisect(
+            0.0,
+            bn + r[0].hypot(r[1]) / rho,
+            inside,
+            Stop::iterations(200),
+        )
+        .1;
         let f = solve(hi);
         let nf = f[0].hypot(f[1]);
         if nf > 0.0 {

@@ -139,8 +139,18 @@ pub const MAX_SET_LABELS: usize = 100_000_000;
 /// set", increment 1 by default; issue 35: the line `1, 432, 1` had been read as the three
 /// labels 1, 432, 1). Other keyword lines end a `GENERATE` block. Errors name `file` and line.
 pub fn parse_node_set(text: &str, file: &str) -> Result<Vec<u64>, FeError> {
+    Ok(parse_node_set_lines(text, file)?
+        .into_iter()
+        .map(|(label, _)| label)
+        .collect())
+}
+
+/// The labels of a node-set file as [`parse_node_set`] reads them, each with the 1-based line
+/// it is listed or generated on (for messages that point at the line naming a node; the one
+/// node-set reader of the workspace, also used by the imported tire).
+pub fn parse_node_set_lines(text: &str, file: &str) -> Result<Vec<(u64, usize)>, FeError> {
     let max = mbd_core::validate::limits::ceiling_count(MAX_SET_LABELS);
-    let mut out: Vec<u64> = Vec::new();
+    let mut out: Vec<(u64, usize)> = Vec::new();
     let mut generate = false;
     let too_many = |ln: usize, n: u128| {
         err(
@@ -221,13 +231,13 @@ pub fn parse_node_set(text: &str, file: &str) -> Result<Vec<u64>, FeError> {
             if out.len() as u128 + n > max as u128 {
                 return Err(too_many(ln, out.len() as u128 + n));
             }
-            out.extend((0..n as u64).map(|k| first + k * inc));
+            out.extend((0..n as u64).map(|k| (first + k * inc, ln)));
         } else {
             if out.len() + fields.len() > max {
                 return Err(too_many(ln, (out.len() + fields.len()) as u128));
             }
             for f in fields {
-                out.push(label(f)?);
+                out.push((label(f)?, ln));
             }
         }
     }

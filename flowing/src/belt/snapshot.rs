@@ -84,7 +84,7 @@ fn snapshot_with(
         pulleys,
         spans: span_states(path, nodes, forces),
         wrap,
-        belt_dissipation: f64::NAN,
+        belt_dissipation: None,
     }
 }
 
@@ -222,7 +222,7 @@ impl BeltModel for NodalBelt {
             omega,
             self.idler_velocity(q, v),
         );
-        snap.belt_dissipation = self.damping_dissipation(q, v)?;
+        snap.belt_dissipation = Some(self.damping_dissipation(q, v)?);
         Ok(snap)
     }
 

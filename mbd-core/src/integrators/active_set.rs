@@ -14,7 +14,7 @@
 //! A model provides its candidates through [`UnilateralConstraints`] (gap, and the constraint
 //! row of an active candidate); the ancf crate's node contact against a rigid obstacle is one.
 
-use super::{AlphaConfig, AlphaStepper, State, Stats};
+use super::{AlphaConfig, AlphaStepper, State, Stats, Stepper};
 use crate::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix, Workspace};
 use faer::sparse::Triplet;
 
@@ -376,7 +376,7 @@ impl<'a, S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized>
         let n = self.sys.set.n_candidates();
         let mut retakes = 0usize;
         loop {
-            self.stepper.step(&self.sys, h)?;
+            self.stepper.step(&self.sys, Some(h))?;
             let st = self.stepper.state();
             let deepest = (0..n)
                 .filter(|c| !self.sys.active.contains(c))

@@ -304,7 +304,7 @@ impl DormandPrince {
                 if !crossed {
                     continue;
                 }
-                let te = locate(
+                let te = crate::roots::illinois(
                     |tt| (ev.g)(&st.interpolate(sys, tt)),
                     t,
                     t_new,
@@ -768,58 +768,6 @@ impl<S: SecondOrderSystem + ?Sized> Stepper<S> for DopriStepper {
         }
         Some(self.interpolate(sys, t))
     }
-}
-
-/// Root of `g` in `[a, b]` with `g(a) = ga`, `g(b) = gb` of opposite signs (Illinois variant of
-/// regula falsi; bisection safeguard), to time tolerance `tol`.
-fn locate(
-    g: impl Fn(f64) -> f64,
-    mut a: f64,
-    mut b: f64,
-    mut ga: f64,
-    mut gb: f64,
-    tol: f64,
-) -> f64 {
-    let mut side = 0i8;
-    for _ in 0..200 {
-        if (b - a).abs() <= tol {
-            break;
-        }
-        let mut m = if ga != gb {
-            b - gb * (b - a) / (gb - ga)
-        } else {
-            0.5 * (a + b)
-        };
-        if !(m > a && m < b) {
-            m = 0.5 * (a + b);
-        }
-        let gm = g(m);
-        if gm == 0.0 {
-            // the earliest zero might be left of m: shrink the bracket from the right
-            b = m;
-            gb = gm;
-            if ga == 0.0 {
-                break;
-            }
-            continue;
-        }
-        if (gm > 0.0) == (ga > 0.0) {
-            a = m;
-            ga = gm;
-            if side == -1 {
-                gb *= 0.5;
-            }
-            side = -1;
-        } else {
-            b = m;
-            gb = gm;
-            if side == 1 {
-                ga *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    b
 }
 
 impl_integrator!(DormandPrince);

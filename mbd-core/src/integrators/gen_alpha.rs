@@ -28,7 +28,7 @@
 use super::accel::{AccelSolver, Stabilization};
 use super::{
     AlphaCorrection, NoCorrection, Solution, State, Stats, StepCorrection, Stepper, check_step,
-    impl_integrator, integrate_stepper, observe_fn,
+    impl_integrator, integrate_stepper,
 };
 use crate::newton::{
     self, LineSearch, NewtonError, NewtonOptions, NewtonProblem, NewtonWorkspace, Tolerances,
@@ -145,8 +145,18 @@ pub struct AlphaConfig {
     pub jacobian: JacobianMode,
     /// Newton-matrix update strategy.
     pub update: NewtonUpdate,
-    /// Maximum number of step halvings after a failed Newton iteration.
+    /// Maximum number of step halvings after a failed Newton iteration in
+    /// [`Stepper::step_until`] / [`Stepper::advance_to`] (the step continues from the time
+    /// reached and grows back by doubling).
     pub max_halvings: usize,
+    /// Subdivision levels of a step of prescribed size ([`Stepper::step`] with `Some(h)`)
+    /// whose Newton iteration fails: it is retaken as two steps of `h/2`, each of which may
+    /// be split again, up to this many levels, so that the step still ends on `t + h` (a
+    /// caller's fixed time grid is kept; each split counts in [`Stats::halvings`] and
+    /// [`Stats::rejected_steps`]). `0`: the failure is returned. The rotating-mesh belt
+    /// model (`flowing::belt::nodal::NodalBelt`) needs it when a coarse element lands on a
+    /// pulley; the belt procedures of `drives` use 4 levels.
+    pub subdivisions: usize,
     /// Project the velocities onto `D v = ν` after each step (the index-3 form satisfies the
     /// constraints at position level only).
     pub project_velocities: bool,
@@ -211,6 +221,7 @@ impl Default for AlphaConfig {
             jacobian: JacobianMode::Analytic,
             update: NewtonUpdate::EveryIteration,
             max_halvings: 8,
+            subdivisions: 0,
             project_velocities: false,
             coefficients: None,
             linearly_implicit: false,
@@ -546,27 +557,28 @@ impl<C> AlphaStepper<C> {
             .map(|m| m.v_ref)
     }
 
-    /// Integrates up to `t_end` with the nominal step, halving after Newton failures
-    /// ([`Stepper::advance_to`] with a closure observer).
-    pub fn advance_to<S: SecondOrderSystem + ?Sized>(
+    /// One step of exactly `h` \[s\], split into halves after a Newton failure up to
+    /// [`AlphaConfig::subdivisions`] levels (recursively, ending on `t + h`). On failure the
+    /// state is that reached by the sub-steps already accepted.
+    fn step_subdivided<S: SecondOrderSystem + ?Sized>(
         &mut self,
         sys: &S,
-        t_end: f64,
-        observer: &mut dyn FnMut(&State),
+        h: f64,
+        levels: usize,
     ) -> Result<(), MbdError>
     where
         C: StepCorrection<S>,
     {
-        Stepper::advance_to(self, sys, t_end, &mut observe_fn(observer))
-    }
-
-    /// One step of size `h` \[s\]. On failure the state is unchanged.
-    pub fn step<S: SecondOrderSystem + ?Sized>(&mut self, sys: &S, h: f64) -> Result<(), MbdError>
-    where
-        C: StepCorrection<S>,
-    {
         let t1 = self.state.t + h;
-        self.step_to(sys, h, t1)
+        match self.step_to(sys, h, t1) {
+            Err(MbdError::NoConvergence { .. }) if levels > 0 => {
+                self.stats.rejected_steps += 1;
+                self.stats.halvings += 1;
+                self.step_subdivided(sys, 0.5 * h, levels - 1)?;
+                self.step_subdivided(sys, 0.5 * h, levels - 1)
+            }
+            other => other,
+        }
     }
 
     /// One step of size `h` ending at `t1 ≈ t + h` (`t1` exactly, so that stop times are hit).
@@ -990,8 +1002,11 @@ impl<S: SecondOrderSystem + ?Sized, C: StepCorrection<S>> Stepper<S> for AlphaSt
         &self.stats
     }
 
+    /// A step of `h` (default: the nominal step), subdivided after Newton failures
+    /// ([`AlphaConfig::subdivisions`]); on a failure without subdivision the state is
+    /// unchanged.
     fn step(&mut self, sys: &S, h: Option<f64>) -> Result<(), MbdError> {
-        AlphaStepper::step(self, sys, h.unwrap_or(self.params.h))
+        self.step_subdivided(sys, h.unwrap_or(self.params.h), self.params.subdivisions)
     }
 
     /// Nominal step (shortened to end on `t_stop`), halved after a Newton failure (up to
@@ -1019,6 +1034,7 @@ impl<S: SecondOrderSystem + ?Sized, C: StepCorrection<S>> Stepper<S> for AlphaSt
                 }
                 Err(MbdError::NoConvergence { .. }) if self.halvings < self.params.max_halvings => {
                     self.stats.rejected_steps += 1;
+                    self.stats.halvings += 1;
                     self.halvings += 1;
                     self.h_cur *= 0.5;
                 }

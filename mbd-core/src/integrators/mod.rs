@@ -113,6 +113,9 @@ pub struct Stats {
     pub factorizations: usize,
     /// Located events.
     pub events: usize,
+    /// Steps halved after a Newton failure (generalized-α: [`AlphaConfig::max_halvings`],
+    /// [`AlphaConfig::subdivisions`]); each also counts as a rejected step.
+    pub halvings: usize,
 }
 
 impl Stats {
@@ -125,6 +128,7 @@ impl Stats {
         self.jacobian_evaluations += o.jacobian_evaluations;
         self.factorizations += o.factorizations;
         self.events += o.events;
+        self.halvings += o.halvings;
     }
 }
 

@@ -13,10 +13,6 @@ use std::collections::HashMap;
 /// ([`mbd_core::validate::limits`]).
 pub const MAX_IMPORT_TEXT_BYTES: u64 = 1 << 30;
 
-/// Most node labels one `GENERATE` range of a node-set file may name (a documented ceiling,
-/// raised by `--allow-large`), checked before the range is expanded.
-const MAX_GENERATED_LABELS: usize = 10_000_000;
-
 /// An [`TireError::Import`] error of the file named by `field`.
 pub(super) fn import_err(field: &'static str, reason: impl Into<String>) -> TireError {
     TireError::Import {
@@ -67,20 +63,13 @@ fn read_text(field: &'static str, path: &str) -> Result<String, TireError> {
     })
 }
 
-/// The data lines of a text file with their 1-based numbers and whether an ABAQUS keyword
-/// line with `GENERATE` precedes them (`#` and other `*` lines are comments).
-fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str, bool)> {
-    let mut generate = false;
-    text.lines().enumerate().filter_map(move |(ln, line)| {
+/// The data lines of a text file with their 1-based numbers (`#`, `**` and ABAQUS keyword
+/// lines `*…` are skipped).
+fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    text.lines().enumerate().filter_map(|(ln, line)| {
         let line = line.trim();
-        if line.starts_with("**") {
-            return None;
-        }
-        if line.starts_with('*') {
-            generate = line.to_ascii_uppercase().contains("GENERATE");
-            return None;
-        }
-        (!line.is_empty() && !line.starts_with('#')).then_some((ln + 1, line, generate))
+        (!line.is_empty() && !line.starts_with('#') && !line.starts_with('*'))
+            .then_some((ln + 1, line))
     })
 }
 
@@ -90,66 +79,25 @@ fn tokens(line: &str) -> impl Iterator<Item = &str> {
 }
 
 /// The node indices (Matrix Market) or labels (ABAQUS) of a node-set file, with their lines;
-/// after `*NSET, …, GENERATE` each data line is a range `first, last[, step]` (ABAQUS).
+/// after `*NSET, …, GENERATE` each data line is a range `first, last[, increment]` (ABAQUS):
+/// fe-model's one node-set reader ([`fe_model::io::abaqus::parse_node_set_lines`]), its
+/// errors naming the file and line, prefixed by the import field.
 pub(super) fn read_indices(field: &'static str, path: &str) -> Result<Vec<Listed>, TireError> {
     let text = read_text(field, path)?;
-    let mut out = Vec::new();
-    for (line, data, generate) in data_lines(&text) {
-        let parse = |tok: &str| {
-            tok.parse::<usize>().map_err(|_| {
-                import_err(field, format!("{path}:{line}: `{tok}` is not a node index"))
-            })
-        };
-        if generate {
-            let v = tokens(data).map(parse).collect::<Result<Vec<usize>, _>>()?;
-            let (first, last, step) = match v[..] {
-                [a, b] => (a, b, 1),
-                [a, b, s] => (a, b, s),
-                _ => {
-                    return Err(import_err(
-                        field,
-                        format!(
-                            "{path}:{line}: expected `first, last[, step]` after a GENERATE \
-                             keyword line, got `{data}`"
-                        ),
-                    ));
-                }
-            };
-            if step == 0 || last < first {
-                return Err(import_err(
+    let labels = fe_model::io::abaqus::parse_node_set_lines(&text, path)
+        .map_err(|e| import_err(field, e.to_string()))?;
+    labels
+        .into_iter()
+        .map(|(label, line)| {
+            let node = usize::try_from(label).map_err(|_| {
+                import_err(
                     field,
-                    format!(
-                        "{path}:{line}: the range {first}..{last} by {step} is empty (need \
-                         first <= last and step >= 1)"
-                    ),
-                ));
-            }
-            let count = (last - first) / step + 1;
-            let max = limits::ceiling_count(MAX_GENERATED_LABELS);
-            if count > max {
-                return Err(import_err(
-                    field,
-                    format!(
-                        "{path}:{line}: the range names {count} nodes, more than the ceiling of \
-                         {max}{}",
-                        limits::raise_hint()
-                    ),
-                ));
-            }
-            out.extend((0..count).map(|j| Listed {
-                node: first + j * step,
-                line,
-            }));
-        } else {
-            for tok in tokens(data) {
-                out.push(Listed {
-                    node: parse(tok)?,
-                    line,
-                });
-            }
-        }
-    }
-    Ok(out)
+                    format!("{path}:{line}: node {label} is out of range"),
+                )
+            })?;
+            Ok(Listed { node, line })
+        })
+        .collect()
 }
 
 /// The node file: `x, y, z` per line, or with `labelled` (ABAQUS `*NODE` data lines)
@@ -163,7 +111,7 @@ pub(super) fn read_nodes(path: &str, labelled: bool) -> Result<Nodes, TireError>
         lines: Vec::new(),
     };
     let mut seen: HashMap<u64, usize> = HashMap::new();
-    for (line, data, _) in data_lines(&text) {
+    for (line, data) in data_lines(&text) {
         let mut v: Vec<&str> = tokens(data).collect();
         if labelled {
             let Some(label) = v.first().and_then(|t| t.parse::<u64>().ok()) else {
@@ -366,7 +314,11 @@ mod tests {
         let e = read_indices("rim_nodes", f.to_str().unwrap())
             .unwrap_err()
             .to_string();
-        assert!(e.contains("ceiling"), "{e}");
+        // fe-model's ceiling on the labels of a set (fe_model::io::abaqus::MAX_SET_LABELS)
+        assert!(
+            e.contains("set.inp:2") && e.contains("more than the"),
+            "{e}"
+        );
         std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -384,7 +384,7 @@ impl BeltModel for PlateBelt {
             pulleys,
             spans,
             wrap,
-            belt_dissipation: f64::NAN,
+            belt_dissipation: None,
         })
     }
 
