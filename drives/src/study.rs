@@ -85,7 +85,7 @@ impl Default for NodalConfig {
             },
             window: 0.1,
             tolerance: 1e-3,
-            axial_force: AxialForce::default(),
+            axial_force: AxialForce::CoRotated,
         }
     }
 }

@@ -161,12 +161,15 @@ pub enum AxialForce {
     /// The linear model of Ribaric (5.5): `f0 − (K_e + K_g(T0)) δ`, the increment `EA Δl/l`
     /// along the reference chord. Its elements do not balance moments once the wraps' nodes
     /// turn by `u_t/R` (a torque error of order `Σ N₁ Δv`, 4–5 % of the transmitted torque on
-    /// the Pechstein–Gerstmayr drive, issue 34); kept to reproduce Ribaric's tables.
+    /// the Pechstein–Gerstmayr drive, issue 34). The flowing model's default: with the
+    /// co-rotated force the flowing model still misses the balances on drives with small or
+    /// back-side pulleys (2–4 % on the default fead drive, issue 34, open).
+    #[default]
     Linear,
     /// Each element's force `N = F(λ₀ l/l₀)` of the belt's material law (`belt::Section::law`,
     /// mounted at `F(λ₀) = T0`) along its deformed chord (co-rotated
     /// bar, [`super::model::Bar`]): the belt balances angular momentum at finite rotation.
-    #[default]
+    /// The nodal model's default.
     CoRotated,
 }
 
@@ -178,7 +181,7 @@ pub struct FlowingSettings {
     pub mesh: BeltMesh,
     /// Reduction of the deflection field.
     pub reduction: BeltReduction,
-    /// The elements' axial force (default: co-rotated).
+    /// The elements' axial force (default: linear, Ribaric (5.5)).
     pub axial_force: AxialForce,
 }
 

@@ -467,7 +467,8 @@ impl NodalBelt {
             .collect())
     }
 
-    /// The same belt with the elements' axial force `axial` (default: co-rotated).
+    /// The same belt with the elements' axial force `axial` (the nodal model's default:
+    /// co-rotated).
     pub fn with_axial_force(mut self, axial: super::config::AxialForce) -> Self {
         self.exact_axial = axial == super::config::AxialForce::CoRotated;
         self
@@ -1134,7 +1135,7 @@ mod tests {
     // a moving, deflected state with the arm turned and turning.
     #[test]
     fn layout_tangent_with_tensioner_matches_finite_differences() {
-        let fl = crate::belt::flowing_system::tests::layout_belt(AxialForce::default());
+        let fl = crate::belt::flowing_system::tests::layout_belt(AxialForce::CoRotated);
         let b = NodalBelt::on(fl.fe.clone(), fl.motions.clone(), fl.tensioner).unwrap();
         let nv = b.n_q();
         let ka = b.arm_dof().unwrap();
@@ -1209,7 +1210,9 @@ mod tests {
         let fl = FlowingBelt::new(&drive, &settings).unwrap();
         let z = fl.static_equilibrium().unwrap();
         let d_flow = fl.deflection(&z);
-        let nb = NodalBelt::new(&drive, &settings.mesh).unwrap();
+        let nb = NodalBelt::new(&drive, &settings.mesh)
+            .unwrap()
+            .with_axial_force(settings.axial_force);
         let d = nb.static_equilibrium().unwrap();
         let scale = d_flow.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         let err = d
