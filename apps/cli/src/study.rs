@@ -31,16 +31,22 @@ pub enum StudyError {
 }
 
 impl StudyError {
+    /// A numerical failure `message` whose partial results are `summary` (what the run had when
+    /// it failed).
+    pub fn failed_with<T: Serialize>(message: impl Into<String>, summary: &T) -> Self {
+        StudyError::Numerical {
+            message: message.into(),
+            partial: serde_json::to_value(summary).ok(),
+        }
+    }
+
     /// An implausible result ([`mbd_core::validate::plausible`]): a numerical failure whose
     /// partial results are the summary that failed the check.
     pub fn implausible<T: Serialize>(
         e: mbd_core::validate::plausible::Implausible,
         summary: &T,
     ) -> Self {
-        StudyError::Numerical {
-            message: e.to_string(),
-            partial: serde_json::to_value(summary).ok(),
-        }
+        Self::failed_with(e.to_string(), summary)
     }
 
     /// A numerical failure without partial results.
@@ -248,8 +254,8 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
         if !cancel.is_cancelled()
             && let Some(first) = bad.first()
         {
-            return Err(StudyError::Numerical {
-                message: format!(
+            return Err(StudyError::failed_with(
+                format!(
                     "implausible result {first}: not a finite number{}",
                     if bad.len() > 1 {
                         format!(" (and {} more)", bad.len() - 1)
@@ -257,8 +263,8 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
                         String::new()
                     }
                 ),
-                partial: serde_json::to_value(&summary).ok(),
-            });
+                &summary,
+            ));
         }
         Ok(summary)
     });
