@@ -120,6 +120,13 @@ pub trait Study {
         String::new()
     }
 
+    /// A short plain-text table of the main results, printed on stdout when the study completes
+    /// (not with `--json`, which prints the whole summary): what a user reads first, before
+    /// opening `summary.json`. `None`: nothing printed.
+    fn result_table(&self, _summary: &Self::Summary) -> Option<String> {
+        None
+    }
+
     /// Whether every number of the summary must be finite: the runner then turns a NaN or an
     /// infinity anywhere in it ([`non_finite_fields`]) into a numerical failure (exit 1,
     /// `implausible result FIELD`, the summary kept as `"partial"`) instead of writing it as
@@ -270,6 +277,7 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
     });
     match result {
         Ok(summary) => {
+            let table = study.result_table(&summary);
             let summary = with_meaning(&summary, study.meaning()).map_err(|e| CliError::Write {
                 path: out.path("summary.json"),
                 message: e.to_string(),
@@ -306,8 +314,16 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
                     path: "<stdout>".into(),
                     message: e.to_string(),
                 })?;
-            } else if !args.quiet {
-                eprintln!("results written to {}", out.root().display());
+            } else {
+                if let Some(table) = table {
+                    crate::stdout::print_stdout(&table).map_err(|e| CliError::Write {
+                        path: "<stdout>".into(),
+                        message: e.to_string(),
+                    })?;
+                }
+                if !args.quiet {
+                    eprintln!("results written to {}", out.root().display());
+                }
             }
             Ok(Outcome::Done)
         }
