@@ -434,6 +434,8 @@ pub struct DesignPoint {
     pub spans: Vec<DesignSpan>,
     /// Tightest span, `"from → to"`.
     pub tight_span: String,
+    /// Tension of the tightest span per rib \[N\] (`None`: a flat belt).
+    pub tight_tension_per_rib_n: Option<f64>,
     /// Slackest span, `"from → to"`.
     pub slack_span: String,
     /// Pulleys in travel order.
@@ -516,10 +518,16 @@ pub struct DesignSummary {
     pub meaning: String,
 }
 
-/// Friction coefficient of every wrap of `drive` (the contact law's coefficient).
+/// Friction coefficient of every wrap of `drive`: the contact law's `μ`, for a multi-ribbed
+/// belt `μ/sin(β/2)` on grooved pulleys (wrapped inside the loop) and `μ` on flat back-side
+/// ones ([`belt::Section::friction_factor`]).
 pub fn wrap_friction(drive: &Drive) -> Vec<f64> {
     let mu = drive.contact().friction.coefficient();
-    drive.pulleys().iter().map(|_| mu).collect()
+    drive
+        .pulleys()
+        .iter()
+        .map(|p| mu * drive.belt().friction_factor(p.side))
+        .collect()
 }
 
 /// The steady state of `drive` with its single driver turning at `driver_speed` \[rad/s\]
@@ -584,9 +592,16 @@ pub fn describe(drive: &Drive) -> String {
         )
     });
     let b = drive.belt();
+    let ribs = b.ribs.map_or(String::from("flat"), |r| {
+        format!(
+            "{} ribs of {:.0}° (μ/sin(β/2) on grooved pulleys)",
+            r.count,
+            r.wedge_angle.to_degrees()
+        )
+    });
     format!(
-        "{} pulleys in travel order: {}; {tensioner}; belt EA {:.0} N, ρA {:.4} kg/m, μ {:.2}, \
-         {:.4} m unstretched, mounted at {:.1} N",
+        "{} pulleys in travel order: {}; {tensioner}; belt {ribs}, EA {:.0} N, ρA {:.4} kg/m, \
+         μ {:.2}, {:.4} m unstretched, mounted at {:.1} N",
         drive.pulleys().len(),
         pulleys.join(", "),
         b.ea,
@@ -788,6 +803,7 @@ fn design_point(
             arm,
             spans,
             tight_span: span_name(&names, tight),
+            tight_tension_per_rib_n: section.ribs.map(|r| s.tensions[tight] / r.count as f64),
             slack_span: span_name(&names, slack),
             pulleys,
             rotational_dofs: model.names.clone(),
@@ -1065,6 +1081,33 @@ mod tests {
             "{issues:?}"
         );
         assert!(slipping(0.95 * cap).is_empty());
+    }
+
+    // Ribs (item 3): with 40° ribs the grooved wraps hold μ/sin 20°, the flat back side μ; the
+    // capacity (T_s − T_c)(e^{μ_eff φ} − 1) r of each wrap follows (closed form from the
+    // solved tensions and wraps).
+    #[test]
+    fn ribs_raise_the_capacity_of_grooved_wraps_only() {
+        let mut cfg = DesignConfig::default();
+        cfg.drive.belt.ribs = Some(belt::Ribs {
+            count: 5,
+            wedge_angle: 40f64.to_radians(),
+        });
+        let drive = cfg.drive.resolve().unwrap();
+        let (p, _) = design_point(&drive, 1500.0, &cfg.design).unwrap();
+        let mu = drive.contact().friction.coefficient();
+        for (pl, pulley) in p.pulleys.iter().zip(drive.pulleys()) {
+            let eff = match pulley.side {
+                WrapSide::Inside => mu / 20f64.to_radians().sin(),
+                WrapSide::Outside => mu,
+            };
+            assert!((pl.friction_coefficient - eff).abs() < 1e-12, "{}", pl.name);
+            let ts = pl.tension_in_n.min(pl.tension_out_n) - p.centrifugal_tension_n;
+            let cap = ts * ((eff * pl.wrap_deg.to_radians()).exp() - 1.0) * pulley.radius;
+            assert!((pl.capacity_n_m / cap - 1.0).abs() < 1e-12, "{}", pl.name);
+        }
+        let per_rib = p.tight_tension_per_rib_n.unwrap();
+        assert!((per_rib * 5.0 - p.spans.iter().map(|s| s.tension_n).fold(0.0, f64::max)).abs() < 1e-9);
     }
 
     // Fixed centres: the path and the belt length fix the stretch, so the running belt keeps
