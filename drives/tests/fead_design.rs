@@ -36,7 +36,10 @@ fn design_span_tensions_match_the_flowing_simulation() {
     let sim = run_fead(&cfg, |_| {}).unwrap();
     let t_sim = t.elapsed().as_secs_f64();
     let (d, s) = (&design.points[0], &sim.points[0]);
-    eprintln!("design {t_design:.3} s, simulation {t_sim:.1} s, steady {}", s.steady);
+    eprintln!(
+        "design {t_design:.3} s, simulation {t_sim:.1} s, steady {}",
+        s.steady
+    );
     let mut worst: f64 = 0.0;
     for (a, b) in d.spans.iter().zip(&s.spans) {
         let rel = b.tension.mean / a.tension_n - 1.0;
@@ -56,6 +59,10 @@ fn design_span_tensions_match_the_flowing_simulation() {
         s.arm_angle.mean
     );
     assert!(s.steady, "the simulation did not settle");
-    assert!(worst < 0.02, "span tensions differ by up to {:.2} %", 100.0 * worst);
+    assert!(
+        worst < 0.02,
+        "span tensions differ by up to {:.2} %",
+        100.0 * worst
+    );
     assert!((s.arm_angle.mean - arm).abs() < 1e-3);
 }

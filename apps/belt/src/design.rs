@@ -186,7 +186,11 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary) -> Result<(), StudyError
     csv.finish()?;
     // rotational modes
     let dofs = s.points.first().map_or(0, |p| p.rotational_dofs.len());
-    let mut header: Vec<String> = vec!["engine_speed_rpm".into(), "mode".into(), "frequency_hz".into()];
+    let mut header: Vec<String> = vec![
+        "engine_speed_rpm".into(),
+        "mode".into(),
+        "frequency_hz".into(),
+    ];
     header.extend((0..dofs).map(|i| format!("dof{i}_energy_share")));
     let refs: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut csv = ctx.out.csv("rotational_modes.csv", &refs)?;
@@ -212,10 +216,19 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary) -> Result<(), StudyError
     csv.finish()?;
     let mut csv = ctx.out.csv(
         "crossings.csv",
-        &["curve_index", "engine_order_ratio", "engine_speed_rpm", "frequency_hz"],
+        &[
+            "curve_index",
+            "engine_order_ratio",
+            "engine_speed_rpm",
+            "frequency_hz",
+        ],
     )?;
     for x in &c.crossings {
-        let idx = c.curves.iter().position(|cv| cv.name == x.curve).unwrap_or(0);
+        let idx = c
+            .curves
+            .iter()
+            .position(|cv| cv.name == x.curve)
+            .unwrap_or(0);
         csv.row(&[idx as f64, x.order, x.engine_rpm, x.frequency_hz])?;
     }
     csv.finish()?;
@@ -234,7 +247,10 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary) -> Result<(), StudyError
             .collect();
         let mut ray = vec![(0.0, 0.0)];
         ray.extend(pts.first().copied());
-        hub.series.push(Series::line(format!("{name} ({} rpm)", s.points[0].engine_rpm), ray));
+        hub.series.push(Series::line(
+            format!("{name} ({} rpm)", s.points[0].engine_rpm),
+            ray,
+        ));
         hub.series.push(Series {
             name: format!("{name}, all speeds"),
             points: pts,

@@ -10,10 +10,7 @@ fn run(args: &[&str]) -> (i32, String, String) {
 }
 
 fn tmp(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!(
-        "flowmbd-belt-design-{}-{name}",
-        std::process::id()
-    ))
+    std::env::temp_dir().join(format!("flowmbd-belt-design-{}-{name}", std::process::id()))
 }
 
 // The default drive (the `fead` study's): every engine speed solved, the summary describes the
@@ -35,7 +32,12 @@ fn design_json_names_the_layout_and_writes_the_files() {
     assert_eq!(code, 0, "{stderr}");
     let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     let layout = v["layout"].as_str().unwrap();
-    for name in ["crankshaft", "alternator", "tensioner arm on 'tensioner'", "6 pulleys"] {
+    for name in [
+        "crankshaft",
+        "alternator",
+        "tensioner arm on 'tensioner'",
+        "6 pulleys",
+    ] {
         assert!(layout.contains(name), "{layout}");
     }
     assert!(v["meaning"].as_str().unwrap().contains(layout));
@@ -83,7 +85,12 @@ fn design_config_round_trips_and_bad_input_names_the_field() {
     assert!(printed.contains("[design]") && printed.contains("[engine]"));
     let file = tmp("cfg.toml");
     std::fs::write(&file, &printed).unwrap();
-    let (code, again, stderr) = run(&["design", "--config", file.to_str().unwrap(), "--print-config"]);
+    let (code, again, stderr) = run(&[
+        "design",
+        "--config",
+        file.to_str().unwrap(),
+        "--print-config",
+    ]);
     assert_eq!(code, 0, "{stderr}");
     assert_eq!(printed, again);
     let bad = printed.replace("campbell_points = 61", "campbell_points = 1");
@@ -127,7 +134,9 @@ fn low_installation_tension_is_reported_as_an_error_finding() {
         .filter_map(|f| f["issue"]["kind"].as_str())
         .collect();
     assert!(
-        kinds.iter().any(|k| *k == "gross_slip" || *k == "slack_span"),
+        kinds
+            .iter()
+            .any(|k| *k == "gross_slip" || *k == "slack_span"),
         "{kinds:?}"
     );
     let _ = std::fs::remove_file(file);

@@ -137,7 +137,13 @@ impl Validate for DesignConfig {
             check::finite(&format!("engine.orders[{i}].phase"), o.phase)?;
         }
         let d = &self.design;
-        check::within("design.stop_margin_deg", d.stop_margin_deg, 0.0, 90.0, "deg")?;
+        check::within(
+            "design.stop_margin_deg",
+            d.stop_margin_deg,
+            0.0,
+            90.0,
+            "deg",
+        )?;
         check::within(
             "design.slip_margin_warning",
             d.slip_margin_warning,
@@ -712,7 +718,13 @@ fn design_point(
         (Some(a), Some(th)) => {
             let t = a.tensioner;
             let k = t.pulley;
-            let f = hub_force(&s.geometry, k, s.tensions[(k + n - 1) % n], s.tensions[k], tc);
+            let f = hub_force(
+                &s.geometry,
+                k,
+                s.tensions[(k + n - 1) % n],
+                s.tensions[k],
+                tc,
+            );
             let margin = (th - t.travel[0]).min(t.travel[1] - th).to_degrees();
             let stop = if th - t.travel[0] < t.travel[1] - th {
                 t.travel[0]
@@ -843,9 +855,17 @@ fn campbell(
     first: &DesignPoint,
 ) -> Result<Campbell, InvalidField> {
     let [lo, hi] = settings.campbell_rpm.unwrap_or_else(|| {
-        let lo = engine.speeds_rpm.iter().copied().fold(f64::INFINITY, f64::min);
+        let lo = engine
+            .speeds_rpm
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
         let hi = engine.speeds_rpm.iter().copied().fold(0.0, f64::max);
-        if hi > lo { [lo, hi] } else { [0.5 * lo, 1.5 * hi] }
+        if hi > lo {
+            [lo, hi]
+        } else {
+            [0.5 * lo, 1.5 * hi]
+        }
     });
     let np = settings.campbell_points;
     let rpm: Vec<f64> = (0..np)
@@ -1107,7 +1127,9 @@ mod tests {
             assert!((pl.capacity_n_m / cap - 1.0).abs() < 1e-12, "{}", pl.name);
         }
         let per_rib = p.tight_tension_per_rib_n.unwrap();
-        assert!((per_rib * 5.0 - p.spans.iter().map(|s| s.tension_n).fold(0.0, f64::max)).abs() < 1e-9);
+        assert!(
+            (per_rib * 5.0 - p.spans.iter().map(|s| s.tension_n).fold(0.0, f64::max)).abs() < 1e-9
+        );
     }
 
     // Fixed centres: the path and the belt length fix the stretch, so the running belt keeps

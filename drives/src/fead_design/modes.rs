@@ -141,8 +141,9 @@ pub fn rotational_model(drive: &Drive, s: &SteadyState) -> RotationalModel {
     if let (Some((a, th)), Some(ad)) = (arm, arm_dof) {
         let spec = a.tensioner;
         let moment = |theta: f64| {
-            Geometry::at(drive, Some(theta))
-                .map_or(f64::NAN, |g| belt_moment(&g, &spec, &s.tensions, s.centrifugal))
+            Geometry::at(drive, Some(theta)).map_or(f64::NAN, |g| {
+                belt_moment(&g, &spec, &s.tensions, s.centrifugal)
+            })
         };
         let g = -(moment(th + ARM_STEP) - moment(th - ARM_STEP)) / (2.0 * ARM_STEP);
         let g = if g.is_finite() { g } else { 0.0 };
@@ -173,7 +174,9 @@ impl RotationalModel {
         Ok((0..modes.values.len())
             .map(|c| {
                 let phi: Vec<f64> = (0..m).map(|r| modes.vectors[(r, c)]).collect();
-                let e: Vec<f64> = (0..m).map(|r| self.mass[(r, r)] * phi[r] * phi[r]).collect();
+                let e: Vec<f64> = (0..m)
+                    .map(|r| self.mass[(r, r)] * phi[r] * phi[r])
+                    .collect();
                 let total: f64 = e.iter().sum();
                 let share: Vec<f64> = e.iter().map(|x| x / total).collect();
                 let dom = (0..m)

@@ -352,7 +352,13 @@ pub fn solve(drive: &Drive, loading: Loading, mu: Vec<f64>) -> SteadyState {
     let radii: Vec<f64> = drive.pulleys().iter().map(|p| p.radius).collect();
     let n = radii.len();
     let tc = section.mass_per_length * loading.belt_speed * loading.belt_speed;
-    let scale = drive.tension() + loading.torques.iter().zip(&radii).map(|(q, r)| (q / r).abs()).sum::<f64>();
+    let scale = drive.tension()
+        + loading
+            .torques
+            .iter()
+            .zip(&radii)
+            .map(|(q, r)| (q / r).abs())
+            .sum::<f64>();
     let finish = |geometry: Geometry,
                   arm_angle: Option<f64>,
                   arm_on_stop: Option<f64>,
@@ -362,7 +368,15 @@ pub fn solve(drive: &Drive, loading: Loading, mu: Vec<f64>) -> SteadyState {
                   loading: Loading| {
         let tensions: Vec<f64> = d.iter().map(|x| tref + x).collect();
         let wraps = (0..n)
-            .map(|k| WrapState::new(tensions[(k + n - 1) % n], tensions[k], geometry.wraps[k], tc, mu[k]))
+            .map(|k| {
+                WrapState::new(
+                    tensions[(k + n - 1) % n],
+                    tensions[k],
+                    geometry.wraps[k],
+                    tc,
+                    mu[k],
+                )
+            })
             .collect();
         SteadyState {
             geometry,
