@@ -197,7 +197,8 @@ pub enum DesignIssue {
         /// Length-weighted mean span tension \[N\].
         mean_tension_n: f64,
     },
-    /// The arm's steady angle lies within the stop margin of an end of its travel.
+    /// The arm's steady angle lies within the stop margin of an end of its travel
+    /// (`engine_rpm = 0`: the installed arm at rest, set by the spring's preload).
     #[error(
         "{engine_rpm} rpm: the tensioner arm at {angle_deg:.2}° is {margin_deg:.2}° from its \
          stop at {stop_deg:.2}°"
@@ -554,6 +555,27 @@ pub fn steady_state(drive: &Drive, driver_speed: f64) -> Result<SteadyState, Inv
 
 fn span_name(names: &[String], k: usize) -> String {
     format!("{} → {}", names[k], names[(k + 1) % names.len()])
+}
+
+/// The belt's travel direction and every pulley's sense of rotation in words (the loop runs
+/// clockwise around the pulleys inside it, seen from +z: [`belt::pulley`]).
+pub fn travel_direction(drive: &Drive) -> String {
+    let senses: Vec<String> = drive
+        .pulleys()
+        .iter()
+        .map(|p| {
+            let sense = match p.side {
+                WrapSide::Inside => "clockwise",
+                WrapSide::Outside => "counter-clockwise",
+            };
+            format!("{} {sense}", p.name)
+        })
+        .collect();
+    format!(
+        "the belt runs clockwise round the loop seen from +z, from each pulley to the next in \
+         travel order (span k leaves pulley k); pulleys turn: {}",
+        senses.join(", ")
+    )
 }
 
 /// The layout in words (the summary's `layout`).
@@ -965,6 +987,26 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
     let drive = cfg.drive.resolve().map_err(|e| e.within("drive"))?;
     let mut points = Vec::new();
     let mut findings: Vec<Finding> = Vec::new();
+    // the installed arm (at rest, the mounting's statics): its preload may put it near a stop
+    if let Some(a) = drive.arm() {
+        let [lo, hi] = a.tensioner.travel;
+        let (margin, stop) = if a.angle - lo < hi - a.angle {
+            (a.angle - lo, lo)
+        } else {
+            (hi - a.angle, hi)
+        };
+        if margin.to_degrees() < cfg.design.stop_margin_deg {
+            findings.push(
+                DesignIssue::NearEndStop {
+                    engine_rpm: 0.0,
+                    angle_deg: a.angle.to_degrees(),
+                    stop_deg: stop.to_degrees(),
+                    margin_deg: margin.to_degrees(),
+                }
+                .into(),
+            );
+        }
+    }
     for &rpm in &cfg.engine.speeds_rpm {
         let (p, issues) = design_point(&drive, rpm, &cfg.design)?;
         findings.extend(issues.into_iter().map(Finding::from));
@@ -977,10 +1019,7 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
         .count();
     let warnings = findings.len() - errors;
     let layout = describe(&drive);
-    let travel_direction = "the belt runs clockwise around the pulleys inside the loop \
-        (counter-clockwise over back-side pulleys), seen from +z: the span leaving pulley k \
-        reaches pulley k + 1"
-        .to_string();
+    let travel_direction = travel_direction(&drive);
     let meaning = format!(
         "Steady design of the belt drive without time stepping (drives::fead_design): {layout}. \
          Per engine speed (points): belt speed and centrifugal tension ρA v²; every pulley's \
@@ -1130,6 +1169,47 @@ mod tests {
         assert!(
             (per_rib * 5.0 - p.spans.iter().map(|s| s.tension_n).fold(0.0, f64::max)).abs() < 1e-9
         );
+    }
+
+    // The findings' triggers: the default drive's tensioner follows the alternator, on a
+    // span tighter than the loop's mean (drives::fead's documentation: the slack span is
+    // crank → power steering); with the only load on the pulley before the crank the spans
+    // from the crank to it carry the lower tension and the arm is on the slack side. A travel
+    // ending 2° above the installed angle is flagged near its stop, at rest (rpm 0) and under
+    // load.
+    #[test]
+    fn tight_span_and_end_stop_findings() {
+        let kinds = |cfg: &DesignConfig| -> Vec<DesignIssue> {
+            run_design(cfg)
+                .unwrap()
+                .findings
+                .into_iter()
+                .map(|f| f.issue)
+                .collect()
+        };
+        let mut cfg = DesignConfig::default();
+        cfg.engine.speeds_rpm = vec![1500.0];
+        cfg.design.campbell_points = 2;
+        let tight = |i: &DesignIssue| matches!(i, DesignIssue::TensionerOnTightSpan { .. });
+        assert!(kinds(&cfg).iter().any(tight));
+        let mut slack = cfg.clone();
+        for p in &mut slack.drive.pulleys[1..5] {
+            if let Motion::Load { torque, .. } = &mut p.motion {
+                *torque = belt::Signal::constant(0.0);
+            }
+        }
+        assert!(!kinds(&slack).iter().any(tight), "{:?}", kinds(&slack));
+        let mut near = cfg.clone();
+        let installed = cfg.drive.resolve().unwrap().arm().unwrap().angle;
+        near.drive.tensioner.as_mut().unwrap().travel[1] = installed + 2f64.to_radians();
+        let stops: Vec<f64> = kinds(&near)
+            .iter()
+            .filter_map(|i| match i {
+                DesignIssue::NearEndStop { engine_rpm, .. } => Some(*engine_rpm),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(stops, vec![0.0, 1500.0]);
     }
 
     // Fixed centres: the path and the belt length fix the stretch, so the running belt keeps
