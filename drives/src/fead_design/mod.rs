@@ -856,10 +856,9 @@ fn curve_values(
     settings: &DesignSettings,
 ) -> Result<Vec<Option<f64>>, InvalidField> {
     let (p, _) = design_point(drive, engine_rpm, settings)?;
-    let mut out: Vec<Option<f64>> = p
-        .rotational_modes
-        .iter()
-        .map(|m| Some(m.frequency_hz))
+    // one entry per rotational coordinate (`None` where the eigen solution failed)
+    let mut out: Vec<Option<f64>> = (0..p.rotational_dofs.len())
+        .map(|i| p.rotational_modes.get(i).map(|m| m.frequency_hz))
         .collect();
     for sp in &p.spans {
         out.extend(sp.modes.frequencies_hz.iter().copied());
@@ -893,13 +892,14 @@ fn campbell(
     let rpm: Vec<f64> = (0..np)
         .map(|i| lo + (hi - lo) * i as f64 / (np - 1) as f64)
         .collect();
-    let mut names: Vec<(String, String)> = first
-        .rotational_modes
-        .iter()
-        .enumerate()
-        .map(|(i, m)| {
+    let mut names: Vec<(String, String)> = (0..first.rotational_dofs.len())
+        .map(|i| {
+            let dominant = first
+                .rotational_modes
+                .get(i)
+                .map_or("no solution at the first speed", |m| m.dominant.as_str());
             (
-                format!("rotational mode {} ({})", i + 1, m.dominant),
+                format!("rotational mode {} ({dominant})", i + 1),
                 "rotational".into(),
             )
         })
@@ -1210,6 +1210,45 @@ mod tests {
             })
             .collect();
         assert_eq!(stops, vec![0.0, 1500.0]);
+    }
+
+    // Campbell diagram: every crossing lies on its order line, f = k·rpm/60, and on its curve
+    // recomputed at that speed (to the root finder's 0.01 rpm); the spans' first frequency is
+    // the travelling string's by hand, f₁ = (1 − v²/c²) c/(2L), c = √(T/ρA) (Wickert & Mote
+    // 1990), the second twice it.
+    #[test]
+    fn campbell_crossings_lie_on_both_curves() {
+        let cfg = DesignConfig::default();
+        let drive = cfg.drive.resolve().unwrap();
+        let s = run_design(&cfg).unwrap();
+        assert!(!s.campbell.crossings.is_empty());
+        for x in &s.campbell.crossings {
+            let c = s
+                .campbell
+                .curves
+                .iter()
+                .position(|cv| cv.name == x.curve)
+                .unwrap();
+            assert!((x.frequency_hz - x.order * x.engine_rpm / 60.0).abs() < 1e-9);
+            let f = curve_values(&drive, x.engine_rpm, &cfg.design).unwrap()[c].unwrap();
+            let residual = (f - x.order * x.engine_rpm / 60.0).abs();
+            assert!(
+                slope < 0.01 * x.order / 60.0 + 1e-6,
+                "{}: {f} vs {}",
+                x.curve,
+                x.frequency_hz
+            );
+        }
+        let p = &s.points[0];
+        let rho = drive.belt().mass_per_length;
+        for sp in &p.spans {
+            let c = (sp.tension_n / rho).sqrt();
+            let v = p.belt_speed_m_per_s;
+            let f1 = (1.0 - v * v / (c * c)) * c / (2.0 * sp.length_m);
+            let got = sp.modes.frequencies_hz[0].unwrap();
+            assert!((got / f1 - 1.0).abs() < 1e-12, "{} → {}", sp.from, sp.to);
+            assert!((sp.modes.frequencies_hz[1].unwrap() / got - 2.0).abs() < 1e-12);
+        }
     }
 
     // Fixed centres: the path and the belt length fix the stretch, so the running belt keeps
