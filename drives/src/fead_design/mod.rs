@@ -1233,7 +1233,7 @@ mod tests {
             let f = curve_values(&drive, x.engine_rpm, &cfg.design).unwrap()[c].unwrap();
             let residual = (f - x.order * x.engine_rpm / 60.0).abs();
             assert!(
-                slope < 0.01 * x.order / 60.0 + 1e-6,
+                residual < 0.01 * x.order / 60.0 + 1e-6,
                 "{}: {f} vs {}",
                 x.curve,
                 x.frequency_hz
