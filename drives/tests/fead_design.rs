@@ -13,7 +13,7 @@ use drives::fead::{FeadConfig, run_fead};
 use drives::fead_design::{DesignConfig, run_design};
 
 // Reference: the nodal model's settled window means at 1500 rpm (engine orders removed: a
-// steady operating point; ≈ 40 s in release on the shared 2-core machine). Tolerance: every
+// steady operating point; 38–53 s in release on the shared 2-core machine). Tolerance: every
 // span's mean tension within 2 % of the design study's (the statics neglect the belt's
 // bending stiffness, which takes ≈ 8 N over the 35 mm back-side tensioner idler, and its
 // creep; measured 2026-12-02: −1.15 % to +0.87 %), the tensioner arm angle within 1e-3 rad
