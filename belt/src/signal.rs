@@ -7,6 +7,9 @@
 //!   y(t) = y_shape(t) + h(t/fade) Σ A_k sin(Ω_k t + φ_k),   h(τ) = 3τ² − 2τ³ (τ ≤ 1), 1 after
 //! ```
 //!
+//! (a harmonic marked `fade_out` is weighted by `1 − h` instead: it fades out while the others
+//! fade in)
+//!
 //! (the crankshaft's mean speed plus its firing orders; an accessory's load with its ripple).
 //!
 //! In a configuration file a signal is one table with a `kind`:
@@ -79,6 +82,11 @@ pub struct Harmonic {
     /// Phase `φ` \[rad\].
     #[serde(default)]
     pub phase: f64,
+    /// Faded out instead of in: weighted by `1 − h(t/fade)` (a study that restarts time at an
+    /// operating point carries the previous point's harmonics on, with their phases
+    /// continued, while the new ones fade in, so the signal stays C¹ across the restart).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub fade_out: bool,
 }
 
 /// A prescribed history (module documentation): a [`Shape`] plus harmonics.
@@ -237,9 +245,10 @@ impl Signal {
             (1.0, 0.0)
         };
         for k in &self.harmonics {
+            let (w, dw) = if k.fade_out { (1.0 - h, -dh) } else { (h, dh) };
             let (s, c) = (k.frequency * t + k.phase).sin_cos();
-            y += h * k.amplitude * s;
-            dy += h * k.amplitude * k.frequency * c + dh * k.amplitude * s;
+            y += w * k.amplitude * s;
+            dy += w * k.amplitude * k.frequency * c + dw * k.amplitude * s;
         }
         (y, dy)
     }
@@ -540,6 +549,7 @@ mod tests {
                 amplitude: 2.0,
                 frequency: 40.0,
                 phase: 0.3,
+                fade_out: false,
             }],
             fade: 0.2,
         };
@@ -548,6 +558,35 @@ mod tests {
         assert!((s.value(t) - 20.0 - 2.0 * (40.0 * t + 0.3).sin()).abs() < 1e-12);
         assert_eq!(s.held().value(0.0), 20.0 + 2.0 * 0.3f64.sin() * 0.0);
         assert_eq!(s.lowest_frequency(), Some(40.0));
+    }
+
+    // A harmonic faded out carries a previous signal on: at t = 0 the value and rate are the
+    // faded-out harmonic's alone (reference: its closed form), after the fade it is gone.
+    #[test]
+    fn harmonics_fade_out_while_others_fade_in() {
+        let old = Harmonic {
+            amplitude: 1.5,
+            frequency: 30.0,
+            phase: 0.7,
+            fade_out: true,
+        };
+        let new = Harmonic {
+            amplitude: 2.0,
+            frequency: 55.0,
+            phase: 0.1,
+            fade_out: false,
+        };
+        let s = Signal {
+            shape: Shape::Constant(5.0),
+            harmonics: vec![old, new],
+            fade: 0.2,
+        };
+        let (y, dy) = s.eval(0.0);
+        assert!((y - (5.0 + 1.5 * 0.7f64.sin())).abs() < 1e-14);
+        assert!((dy - 1.5 * 30.0 * 0.7f64.cos()).abs() < 1e-12);
+        rate_matches_differences(&s, &[0.05, 0.1, 0.15, 0.3]);
+        let t = 0.4;
+        assert!((s.value(t) - 5.0 - 2.0 * (55.0 * t + 0.1).sin()).abs() < 1e-12);
     }
 
     // Every kind reads back from its TOML form; unused and missing fields are named.

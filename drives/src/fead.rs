@@ -75,7 +75,7 @@
 //! (4th: 0.5 %) is a plausible four-cylinder value, held constant over the sweep.
 
 use crate::ancf_model::{AncfBelt, AncfConfig};
-use crate::speed_loss::{LINEAR_MIN_SLACK, STEP_SUBDIVISIONS, tension_range_issue};
+use crate::speed_loss::{LINEAR_MIN_SLACK, STEP_SUBDIVISIONS, balance_issue, tension_range_issue};
 use crate::study::{ModelSettings, NodalConfig};
 use ancf::belt_drive::SimulationConfig;
 use belt::{
@@ -670,24 +670,38 @@ pub struct FeadProgress {
 }
 
 /// The crank speed signal of one sweep point: from `from` to `to` \[rad/s\] over `ramp`, with
-/// the engine orders at `to` faded in over the ramp.
-pub fn crank_signal(engine: &EngineConfig, from: f64, to: f64, ramp: f64) -> Signal {
+/// the engine orders at `to` faded in over the ramp. `previous`: the end time \[s\] of the
+/// previous point, whose orders (at `from`) the signal carries on with their phases continued
+/// and fades out over the ramp, so that the crank speed and its rate stay continuous across
+/// the restart of time (a jump of the orders' sum, 2 % of the speed by default, made the first
+/// steps of the next point fail to converge).
+pub fn crank_signal(
+    engine: &EngineConfig,
+    from: f64,
+    to: f64,
+    ramp: f64,
+    previous: Option<f64>,
+) -> Signal {
     let knots = if ramp > 0.0 {
         vec![(0.0, from), (ramp, to)]
     } else {
         vec![(0.0, to)]
     };
+    let orders = |speed: f64, t0: f64, fade_out: bool| {
+        engine.orders.iter().map(move |o| Harmonic {
+            amplitude: o.amplitude * speed,
+            frequency: o.order * speed,
+            phase: o.phase + o.order * speed * t0,
+            fade_out,
+        })
+    };
+    let mut harmonics: Vec<Harmonic> = orders(to, 0.0, false).collect();
+    if let Some(t_end) = previous {
+        harmonics.extend(orders(from, t_end, true));
+    }
     Signal {
         shape: Shape::Schedule(knots),
-        harmonics: engine
-            .orders
-            .iter()
-            .map(|o| Harmonic {
-                amplitude: o.amplitude * to,
-                frequency: o.order * to,
-                phase: o.phase,
-            })
-            .collect(),
+        harmonics,
         fade: ramp,
     }
 }
@@ -836,12 +850,13 @@ fn sweep<M: BeltModel>(
     let mut omega_prev = 0.0;
     for (ip, &rpm) in cfg.engine.speeds_rpm.iter().enumerate() {
         let omega = rpm * std::f64::consts::PI / 30.0;
-        // the crank's speed; the loads at their final values after the first point (time
-        // restarts at 0 at every point)
+        // the crank's speed, continuous across the restart; the loads at their final values
+        // after the first point (time restarts at 0 at every point)
+        let previous_end = state.as_ref().map(|s| s.t);
         model
             .set_signal(
                 0,
-                crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp),
+                crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp, previous_end),
             )
             .map_err(invalid)?;
         if ip > 0 {
@@ -968,7 +983,7 @@ fn sweep<M: BeltModel>(
                 "gross slip on pulley '{}': outside the linearised creep regime",
                 names[k]
             )),
-            (None, None, range) => range,
+            (None, None, range) => range.or_else(|| balance_issue(&report.balances)),
         };
         summary.points.push(FeadPoint {
             engine_rpm: rpm,

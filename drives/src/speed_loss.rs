@@ -286,6 +286,33 @@ pub fn tension_range_issue(tight: f64, t0: f64, ea: f64) -> Option<String> {
     None
 }
 
+/// Largest torque or power balance residual \[-\] ([`belt::Balances`]: the torque each pulley
+/// carries against `Σ(T_in − T_out) r` of its spans, the power the drivers deliver against the
+/// loads, damping and sliding) at which a linearised model's operating point still counts as
+/// valid. The flowing belt misses the balances by a few per cent on drives with small or
+/// back-side pulleys (2.3–2.8 % torque, −3.5 % power on the default `fead` drive; 38 % on a
+/// three-pulley drive with a back-side idler, issue 34); beyond this its tensions do not carry
+/// the pulley torques and the point is flagged.
+pub const BALANCE_LIMIT: f64 = 0.05;
+
+/// Why a linearised model's point is not valid by its balances ([`BALANCE_LIMIT`]), or `None`.
+pub fn balance_issue(b: &belt::Balances) -> Option<String> {
+    let (torque, power) = (b.torque_residual_rel, b.power_residual_rel);
+    (torque.abs() > BALANCE_LIMIT
+        || power.abs() > BALANCE_LIMIT
+        || !(torque.is_finite() && power.is_finite()))
+    .then(|| {
+        format!(
+            "torque balance residual {:.1} %, power balance residual {:.1} % (limit {:.0} %): \
+             the spans' tensions do not carry the pulley torques; the linearised flowing model \
+             misses the balances on small or back-side pulleys: check with the nodal or ANCF model",
+            100.0 * torque,
+            100.0 * power,
+            100.0 * BALANCE_LIMIT
+        )
+    })
+}
+
 /// Integration statistics of a sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct SweepStats {

@@ -538,3 +538,34 @@ fn span_transverse_frequency_is_the_travelling_string_one() {
         "model {f_beam} Hz outside [{pinned}, {clamped}] Hz"
     );
 }
+
+// A sweep restarts time at every engine speed: the crank speed signal of the next point
+// carries the previous point's orders on (phases continued, faded out over the ramp), so the
+// crank speed and its rate are continuous across the restart (reference: the previous point's
+// signal at its end time). Before, the orders' sum (2 % of the speed) jumped to zero and the
+// default flowing sweep failed to converge at the second speed.
+#[test]
+fn fead_sweep_crank_signal_is_continuous_across_points() {
+    use drives::fead::{FeadConfig, crank_signal, run_fead};
+    let c = FeadConfig::default();
+    let (w1, w2, ramp) = (
+        800.0 * std::f64::consts::PI / 30.0,
+        1500.0 * std::f64::consts::PI / 30.0,
+        c.run.ramp,
+    );
+    let first = crank_signal(&c.engine, 0.0, w1, ramp, None);
+    let t_end = 1.2345;
+    let next = crank_signal(&c.engine, w1, w2, ramp, Some(t_end));
+    let (a, b) = (first.eval(t_end), next.eval(0.0));
+    assert!((a.0 - b.0).abs() < 1e-9 * w1, "speed {a:?} vs {b:?}");
+    assert!((a.1 - b.1).abs() < 1e-7 * w1 * w1, "rate {a:?} vs {b:?}");
+    // after the ramp only the new orders remain: the signal of a fresh start at the same time
+    let fresh = crank_signal(&c.engine, w1, w2, ramp, None);
+    let t = ramp + 0.01;
+    assert!((next.value(t) - fresh.value(t)).abs() < 1e-9 * w2);
+    // the default flowing sweep over two speeds runs (it failed at the second)
+    let mut two = FeadConfig::default();
+    two.engine.speeds_rpm = vec![800.0, 1500.0];
+    let s = run_fead(&two, |_| {}).unwrap_or_else(|e| panic!("{e:?}"));
+    assert_eq!(s.points.len(), 2);
+}

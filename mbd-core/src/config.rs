@@ -7,8 +7,8 @@
 //! * a table is merged key by key, at every depth (`[drive] tension = 300` keeps the default
 //!   drive's pulleys, section and contact);
 //! * an array (the pulleys of a drive, a list of torques) and a scalar replace the default whole;
-//! * a table that selects another variant of an enum (a key whose string value differs from the
-//!   default's, e.g. `law = "coulomb"` where the default friction is `law = "creep"`) replaces
+//! * a table that selects another variant of an enum (a [`VARIANT_TAGS`] key whose value differs
+//!   from the default's, e.g. `law = "coulomb"` where the default friction is `law = "creep"`) replaces
 //!   the default table whole when merging it would mix the two variants' keys: the merge is tried
 //!   first and the replacement only when the merged table does not deserialize;
 //! * a key the user gives drops from the defaults the keys that depend on it or exclude it
@@ -31,6 +31,11 @@ pub const DROPPED_BY: &[(&str, &str)] = &[
     ("belt_length", "tension"),
     ("pulleys", "tensioner"),
 ];
+
+/// The keys that name an enum's variant in the workspace's configurations (`#[serde(tag =
+/// ...)]`: a pulley's motion `kind`, a friction `law`): a table whose tag the user changes
+/// switches the variant.
+pub const VARIANT_TAGS: &[&str] = &["kind", "law"];
 
 /// A partial configuration that does not deserialize over the defaults.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -80,7 +85,9 @@ where
         Ok(c) => Ok(c),
         Err(first) if !switches.is_empty() => {
             let replaced = merge(defaults, user, &mut Vec::new(), &mut Vec::new(), &switches);
-            deserialize::<C>(replaced).map_err(|_| first)
+            // both fail: the replaced tables' error is about the keys the user wrote for the
+            // variant chosen
+            deserialize::<C>(replaced)
         }
         Err(first) => Err(first),
     }
@@ -110,7 +117,8 @@ fn merge(
         return user;
     }
     let switches_variant = user.iter().any(|(k, v)| {
-        matches!((v, base.get(k)), (toml::Value::String(a), Some(toml::Value::String(b))) if a != b)
+        VARIANT_TAGS.contains(&k.as_str())
+            && matches!((v, base.get(k)), (toml::Value::String(a), Some(toml::Value::String(b))) if a != b)
     });
     if switches_variant {
         switches.push(here.clone());
@@ -306,6 +314,9 @@ mod tests {
             ]
         );
         let e = read("[drive.friction]\nlaw = \"coulomb\"\n").unwrap_err();
-        assert!(e.message.contains("mu"), "{e}");
+        assert!(e.message.contains("missing field `mu`"), "{e}");
+        // a variant switch with a typo: the typo is named, not the other variant's keys
+        let e = read("[drive.friction]\nlaw = \"coulomb\"\nmu = 0.3\ntypo = 1\n").unwrap_err();
+        assert!(e.message.contains("typo"), "{e}");
     }
 }
