@@ -9,7 +9,14 @@ use mbd_core::validate::Validate;
 // 860 GB; ancf::belt_drive MAX_ELEMENTS = 2000 (×1000 with --allow-large), MAX_GAUSS_POINTS = 20
 #[test]
 fn ancf_drive_sizes_have_ceilings() {
-    for n in [usize::MAX, 9_223_372_036_854_775_807, 4_294_967_297, 100_000, 2001, 2] {
+    for n in [
+        usize::MAX,
+        9_223_372_036_854_775_807,
+        4_294_967_297,
+        100_000,
+        2001,
+        2,
+    ] {
         let mut c = AncfStudyConfig::default();
         c.drive.belt.elements = n;
         let e = c.validate().unwrap_err();
@@ -34,10 +41,7 @@ fn wave_run_length_and_samples_have_ceilings() {
     use flowing::belt::wave::{MAX_WAVE_SAMPLES, MAX_WAVE_STEPS, WaveConfig};
     let ok = WaveConfig::default();
     assert!(ok.validate().is_ok());
-    let long = WaveConfig {
-        t_end: 1e9,
-        ..ok
-    };
+    let long = WaveConfig { t_end: 1e9, ..ok };
     assert_eq!(long.validate().unwrap_err().field, "t_end");
     // exactly at the ceiling is accepted
     let at = WaveConfig {

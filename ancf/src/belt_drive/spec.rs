@@ -226,7 +226,8 @@ impl BeltDriveSpec {
         }
         // bounded before anything is allocated (issue 35: 2^63 - 1 elements overflowed a
         // Vec's capacity, 2^32 + 1 asked for 860 GB)
-        let max_elements = mbd_core::validate::limits::ceiling_count(super::belt_model::MAX_ELEMENTS);
+        let max_elements =
+            mbd_core::validate::limits::ceiling_count(super::belt_model::MAX_ELEMENTS);
         if !(3..=max_elements).contains(&b.elements) {
             return Err(invalid(
                 "belt.elements",

@@ -138,10 +138,7 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
     let refs: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut csv = ctx.out.csv("fead_sweep.csv", &refs)?;
     for p in &s.points {
-        let mut row = vec![
-            p.engine_rpm,
-            p.belt_speed,
-        ];
+        let mut row = vec![p.engine_rpm, p.belt_speed];
         if has_arm {
             let a = p.arm_angle.unwrap_or(drives::fead::Extremes {
                 min: f64::NAN,

@@ -26,8 +26,8 @@ fn config_with(dir: &Path, study: &str, edits: &[(&str, &str)]) -> PathBuf {
     assert_eq!(code, 0, "{err}");
     let mut root: toml::Table = toml::from_str(&text).unwrap();
     for (key, value) in edits {
-        let v: toml::Value = toml::from_str::<toml::Table>(&format!("x = {value}")).unwrap()["x"]
-            .clone();
+        let v: toml::Value =
+            toml::from_str::<toml::Table>(&format!("x = {value}")).unwrap()["x"].clone();
         let parts: Vec<&str> = key.split('.').collect();
         let mut t = &mut root;
         for p in &parts[..parts.len() - 1] {
@@ -88,7 +88,10 @@ fn ancf_belt_sizes_are_bounded_before_allocation() {
     let f = config_with(
         &dir,
         "ancf",
-        &[("drive.belt.elements", "2000"), ("drive.belt.gauss_points", "20")],
+        &[
+            ("drive.belt.elements", "2000"),
+            ("drive.belt.gauss_points", "20"),
+        ],
     );
     let (code, _, err) = run(&["ancf", "--config", f.to_str().unwrap(), "--print-config"]);
     assert_eq!(code, 0, "{err}");
@@ -176,13 +179,22 @@ fn coordinates_of_the_wrong_length_are_refused() {
             assert!(err.contains("exactly two numbers"), "{key}: {err}");
             continue;
         }
-        refused(study, &edits, &["invalid length", "exactly 2 numbers", ".toml:"]);
+        refused(
+            study,
+            &edits,
+            &["invalid length", "exactly 2 numbers", ".toml:"],
+        );
     }
 }
 
 /// Start `args`, wait until `ready` exists, wait `delay` more, send `signal`; the exit code,
 /// stderr and how long the process took to end after the signal.
-fn interrupt(args: &[&str], ready: &Path, delay: Duration, signal: &str) -> (i32, String, Duration) {
+fn interrupt(
+    args: &[&str],
+    ready: &Path,
+    delay: Duration,
+    signal: &str,
+) -> (i32, String, Duration) {
     let child = Command::new(EXE)
         .args(args)
         .stdout(Stdio::null())

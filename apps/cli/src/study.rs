@@ -218,7 +218,8 @@ fn watch_cancel(
     cancel: Cancel,
     finished: std::sync::Arc<std::sync::Mutex<bool>>,
 ) {
-    let lock = |m: &std::sync::Mutex<bool>| -> bool { *m.lock().unwrap_or_else(|e| e.into_inner()) };
+    let lock =
+        |m: &std::sync::Mutex<bool>| -> bool { *m.lock().unwrap_or_else(|e| e.into_inner()) };
     let spawned = std::thread::Builder::new()
         .name("flowmbd-cancel".into())
         .spawn(move || {
@@ -297,7 +298,13 @@ fn try_run<S: Study>(
     };
     let finished = std::sync::Arc::new(std::sync::Mutex::new(false));
     if watch {
-        watch_cancel(S::APP, S::NAME, out.clone(), cancel.clone(), finished.clone());
+        watch_cancel(
+            S::APP,
+            S::NAME,
+            out.clone(),
+            cancel.clone(),
+            finished.clone(),
+        );
     }
     // what a run that did not finish leaves in summary.json
     let unfinished = |status: &str, error: Option<String>, partial: Option<serde_json::Value>| {
