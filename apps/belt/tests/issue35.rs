@@ -143,6 +143,12 @@ fn speed_loss_refuses_a_driver_speed_above_the_critical_speed() {
         &[("procedure.max_hold", "0.04")],
         &["procedure.max_hold", "two averaging windows"],
     );
+    // a step of 1e-15 s: 1.3e16 steps (drives::speed_loss MAX_STEPS = 2e7; fixed before)
+    refused(
+        "speed-loss",
+        &[("procedure.step", "1e-15")],
+        &["procedure.step", "steps (max 20000000)"],
+    );
 }
 
 // issue 35: a pulley centre `[0.0, 0.0, 0.5]` was read as `[0.0, 0.0]` (the TOML reader drops
