@@ -37,6 +37,6 @@ pub use motion::{Motion, Role};
 pub use path::{BeltPath, PathPiece, PathPoint, Segment, SpanLine, tributary_lengths};
 pub use pulley::{CentreShift, Pulley, WrapSide};
 pub use report::{Balances, HubLoad, PulleyReport, Report, SpanReport};
-pub use section::{BeltContact, BeltDamping, MaterialLaw, Section};
+pub use section::{BeltContact, BeltDamping, MaterialLaw, Ribs, Section};
 pub use signal::{Harmonic, Shape, Signal};
 pub use tensioner::Tensioner;

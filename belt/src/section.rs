@@ -14,10 +14,22 @@
 //!                                                                  Kerkkänen (3.18): N = ∂U/∂|r_x|)
 //! ```
 //!
+//! # Ribs
+//!
+//! A multi-ribbed (V-ribbed, "PK") belt runs its ribs in the grooves of the pulleys it wraps
+//! with its inside and its flat back on back-side pulleys. The wedge of included angle `β`
+//! raises the normal force on the flanks by `1/sin(β/2)`, so the belt transmits as a flat belt
+//! of friction coefficient `μ/sin(β/2)` on grooved pulleys and `μ` on flat ones
+//! ([`Section::friction_factor`]; Johnson, *Contact Mechanics* §8.6; ISO 9981 and SAE J1459
+//! give `β = 40°` for the PK profile). The time-stepped belt models contact the belt-line
+//! radius as a flat belt with the contact law's `μ`; the ribs enter the steady design study's
+//! capacity check (`drives::fead_design`).
+//!
 //! Both agree to first order (`N ≈ EA (λ − 1)` at small strain) and differ by `3/2 (λ − 1)`
 //! relative at finite strain: 7.6 % at 5 %. Every model reports, mounts to and plots the force
 //! its elements carry, so the law is part of the belt's definition, not of a report.
 
+use crate::pulley::WrapSide;
 use contact::friction::FrictionSpec;
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
@@ -87,6 +99,35 @@ pub struct Section {
     /// Material law (default St Venant–Kirchhoff).
     #[serde(default)]
     pub law: MaterialLaw,
+    /// Ribs of a multi-ribbed belt (none: a flat belt; module documentation).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ribs: Option<Ribs>,
+}
+
+/// The ribs of a multi-ribbed (V-ribbed) belt (module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Ribs {
+    /// Number of ribs (a 6PK belt has 6).
+    pub count: usize,
+    /// Included wedge angle `β` of a rib \[rad\] (PK profile: 40° = 0.698 rad, ISO 9981).
+    pub wedge_angle: f64,
+}
+
+/// Most ribs of a belt.
+pub const MAX_RIBS: usize = 100;
+
+impl Validate for Ribs {
+    fn validate(&self) -> Result<(), InvalidField> {
+        check::count("count", self.count, 1, MAX_RIBS)?;
+        check::within(
+            "wedge_angle",
+            self.wedge_angle,
+            10f64.to_radians(),
+            120f64.to_radians(),
+            "rad",
+        )
+    }
 }
 
 impl Default for Section {
@@ -97,6 +138,7 @@ impl Default for Section {
             ei: 2.6e-2,
             mass_per_length: 0.096,
             law: MaterialLaw::default(),
+            ribs: None,
         }
     }
 }
@@ -118,6 +160,16 @@ impl Section {
         self.force(self.stretch(force)).1
     }
 
+    /// Factor on the friction coefficient of a wrap on `side` (module documentation):
+    /// `1/sin(β/2)` for the ribs in a grooved pulley ([`WrapSide::Inside`]), 1 on a flat
+    /// back-side pulley or for a flat belt.
+    pub fn friction_factor(&self, side: WrapSide) -> f64 {
+        match (self.ribs, side) {
+            (Some(r), WrapSide::Inside) => 1.0 / (0.5 * r.wedge_angle).sin(),
+            _ => 1.0,
+        }
+    }
+
     /// Transverse wave speed `c = √(T/ρA)` \[m/s\] of a span at tension `tension` \[N\]
     /// (Ribaric §3).
     pub fn wave_speed(&self, tension: f64) -> f64 {
@@ -129,7 +181,11 @@ impl Validate for Section {
     fn validate(&self) -> Result<(), InvalidField> {
         check::within("ea", self.ea, 1e-3, 1e12, "N")?;
         check::within("ei", self.ei, 1e-12, 1e9, "N m²")?;
-        check::within("mass_per_length", self.mass_per_length, 1e-6, 1e4, "kg/m")
+        check::within("mass_per_length", self.mass_per_length, 1e-6, 1e4, "kg/m")?;
+        if let Some(r) = &self.ribs {
+            r.validate_within("ribs")?;
+        }
+        Ok(())
     }
 }
 
@@ -245,6 +301,25 @@ mod tests {
                 assert!((law.force(ea, l).0 - f).abs() < 1e-9 * ea, "{law:?} {f}");
             }
         }
+    }
+
+    // The wedge: a 40° rib (PK) raises the friction of a grooved wrap by 1/sin 20° = 2.924;
+    // back side and flat belt: 1 (closed form).
+    #[test]
+    fn ribs_raise_the_grooved_friction() {
+        let mut s = Section::default();
+        assert_eq!(s.friction_factor(WrapSide::Inside), 1.0);
+        s.ribs = Some(Ribs {
+            count: 6,
+            wedge_angle: 40f64.to_radians(),
+        });
+        assert!((s.friction_factor(WrapSide::Inside) - 2.923_804_400_163_087).abs() < 1e-12);
+        assert_eq!(s.friction_factor(WrapSide::Outside), 1.0);
+        s.ribs = Some(Ribs {
+            count: 0,
+            wedge_angle: 0.7,
+        });
+        assert_eq!(s.validate().unwrap_err().field, "ribs.count");
     }
 
     // 72 µm for Table 6-1 (seed-000 note §2.3).

@@ -154,21 +154,19 @@ pub fn penetrating_string(d: &Drive, omega: f64, torque: f64) -> Option<Penetrat
         }
         (lhs - rhs, phi)
     };
-    let (mut lo, mut hi) = (tc + 1e-9 * t0.max(1.0), t0 + 1.0);
+    let (lo, mut hi) = (tc + 1e-9 * t0.max(1.0), t0 + 1.0);
     while defect(hi).0 < 0.0 {
         hi *= 2.0;
         if hi > 1e3 * t0 {
             return None;
         }
     }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if defect(mid).0 < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let (lo, hi) = mbd_core::roots::bisect(
+        lo,
+        hi,
+        |t| defect(t).0 >= 0.0,
+        mbd_core::roots::Stop::iterations(200),
+    );
     let t2 = 0.5 * (lo + hi);
     let phi = defect(t2).1;
     if phi > wraps[0].min(wraps[1]) {
@@ -187,18 +185,16 @@ pub fn penetrating_string(d: &Drive, omega: f64, torque: f64) -> Option<Penetrat
 /// out of the penalty (d = 10 µm under T₂ ≈ 16 N against p₀ = 72 µm) while the tight ones sink
 /// by ≈ 60 µm, and the quadratic law makes the rise win.
 pub fn penetrating_string_capacity(d: &Drive, omega: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, 2.0 * euler_eytelwein_capacity(d, omega));
+    let hi = 2.0 * euler_eytelwein_capacity(d, omega);
     if penetrating_string(d, omega, hi).is_some() {
         return f64::NAN;
     }
-    while hi - lo > 1e-6 {
-        let mid = 0.5 * (lo + hi);
-        if penetrating_string(d, omega, mid).is_some() {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let (lo, hi) = mbd_core::roots::bisect(
+        0.0,
+        hi,
+        |t| penetrating_string(d, omega, t).is_none(),
+        mbd_core::roots::Stop::absolute(200, 1e-6),
+    );
     0.5 * (lo + hi)
 }
 

@@ -8,6 +8,8 @@
 //! * [`speed_loss_study`]: the study's configuration and summary (shared by the app and the
 //!   Python package);
 //! * [`fead`]: the front-end accessory drive study over an engine-speed sweep;
+//! * [`fead_design`]: the FEAD's steady design without time stepping (span tensions, arm,
+//!   slip arcs, hub loads, slip margins), its modes and Campbell diagram (issue 36);
 //! * [`ancf_model`]: the ANCF belt (Kerkkänen ch. 3) on any drive, a [`belt::BeltModel`];
 //! * [`analytical`]: Bechtel's line (6.3) and the Euler–Eytelwein capacity;
 //! * [`bechtel_steady`]: Bechtel's steady belt-drive model with belt inertia (Kerkkänen §4.1);
@@ -27,6 +29,7 @@ pub mod ancf_study;
 pub mod bechtel_steady;
 pub mod error;
 pub mod fead;
+pub mod fead_design;
 pub mod plate_study;
 pub mod simulation;
 pub mod speed_loss;

@@ -19,7 +19,7 @@ use flowmbd_cli::config::parse_config;
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 
-fn check<C: serde::de::DeserializeOwned + Validate>(text: &str) {
+fn check<C: serde::de::DeserializeOwned + serde::Serialize + Default + Validate>(text: &str) {
     match parse_config::<C>(text, Path::new("fuzz.toml")) {
         Ok(c) => {
             let _ = c.validate();

@@ -29,6 +29,7 @@
 //! * [`parallel`]: matrix–vector products split between two threads ([`parallel::SplitProduct`]);
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
 //!   [`history`]: CSV time histories;
+//! * [`config`]: partial configurations read deeply over the defaults ([`config::from_partial`]);
 //! * [`validate`]: the one validation shape ([`Validate`], [`InvalidField`] with the field path)
 //!   and the shared range checks.
 //!
@@ -63,6 +64,7 @@
 
 #![allow(clippy::needless_range_loop, clippy::too_many_arguments)]
 
+pub mod config;
 pub mod error;
 pub mod integrators;
 pub mod linalg;

@@ -1,6 +1,7 @@
 //! The scalar root finders of the workspace, in one place: bisection of a bracket on a
-//! monotone predicate ([`bisect`]) and the Illinois variant of regula falsi with a bisection
-//! safeguard ([`false_position`], [`illinois`]). No crate writes its own bisection or
+//! monotone predicate ([`bisect`]), the Illinois variant of regula falsi with a bisection
+//! safeguard ([`false_position`], [`illinois`]) and the unbracketed secant method for costly
+//! residuals ([`secant`]: the ANCF tensioner arm's static angle, each residual a static solve). No crate writes its own bisection or
 //! false-position loop on a scalar function: the tensioner's static angle, the sliding speed
 //! of a friction law, Bechtel's steady tension, the Coulomb disc projection, Dormand–Prince's
 //! event location and the tire's static deflection under a load use these. No crate of the
@@ -182,6 +183,65 @@ pub fn illinois(g: impl Fn(f64) -> f64, a: f64, b: f64, ga: f64, gb: f64, tol: f
     }
 }
 
+/// When [`secant`] stops: after `max_iterations` new evaluations, or as soon as a step
+/// `|x_{k+1} − x_k|` is at most `step` (in the unit of the argument).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SecantStop {
+    /// Maximum number of evaluations of `g` (besides the given `g(x0)`).
+    pub max_iterations: usize,
+    /// Step length at which the iteration has converged.
+    pub step: f64,
+}
+
+/// What [`secant`] found: the last point evaluated and whether a step below
+/// [`SecantStop::step`] was reached (`false`: out of iterations, or a zero or non-finite
+/// secant slope).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Secant {
+    /// The last point at which `g` was evaluated.
+    pub x: f64,
+    /// `g` at [`Secant::x`].
+    pub g: f64,
+    /// Whether the last step was at most [`SecantStop::step`].
+    pub converged: bool,
+}
+
+/// Root of `g` by the secant method `x_{k+1} = x_k − g_k (x_k − x_{k−1})/(g_k − g_{k−1})` from
+/// `x0` (with `g(x0) = g0` known) and the first trial `x1`, without a bracket: for a smooth `g`
+/// whose evaluation is costly (superlinear convergence, one evaluation per step). Stops as
+/// [`SecantStop`] says; an error of `g` is returned as is.
+pub fn secant<E>(
+    mut g: impl FnMut(f64) -> Result<f64, E>,
+    mut x0: f64,
+    mut g0: f64,
+    mut x1: f64,
+    stop: SecantStop,
+) -> Result<Secant, E> {
+    let mut last = Secant {
+        x: x0,
+        g: g0,
+        converged: false,
+    };
+    for _ in 0..stop.max_iterations {
+        let g1 = g(x1)?;
+        last = Secant {
+            x: x1,
+            g: g1,
+            converged: (x1 - x0).abs() <= stop.step,
+        };
+        if last.converged {
+            break;
+        }
+        let slope = (g1 - g0) / (x1 - x0);
+        if !(slope.is_finite() && slope != 0.0) {
+            break;
+        }
+        (x0, g0) = (x1, g1);
+        x1 -= g1 / slope;
+    }
+    Ok(last)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -242,5 +302,50 @@ mod tests {
             false_position(fails, 1.0, 2.0, -0.5, 0.5, stop),
             Err("beyond")
         );
+    }
+
+    #[test]
+    fn secant_finds_the_cube_root_superlinearly() {
+        // closed form: the real root 2 of x³ − 8
+        let mut calls = 0;
+        let r = secant(
+            |x| {
+                calls += 1;
+                Ok::<f64, ()>(x * x * x - 8.0)
+            },
+            1.0,
+            -7.0,
+            1.5,
+            SecantStop {
+                max_iterations: 50,
+                step: 1e-13,
+            },
+        )
+        .unwrap();
+        assert!(r.converged && (r.x - 2.0).abs() < 1e-12, "{r:?}");
+        assert!(calls < 15, "{calls} evaluations");
+        // a flat residual stops without converging; an error is passed through
+        let flat = secant(
+            |_| Ok::<f64, ()>(1.0),
+            0.0,
+            1.0,
+            1.0,
+            SecantStop {
+                max_iterations: 9,
+                step: 1e-12,
+            },
+        );
+        assert!(!flat.unwrap().converged);
+        let err = secant(
+            |_| Err::<f64, &str>("boom"),
+            0.0,
+            1.0,
+            1.0,
+            SecantStop {
+                max_iterations: 9,
+                step: 1e-12,
+            },
+        );
+        assert_eq!(err, Err("boom"));
     }
 }

@@ -11,13 +11,22 @@ results as the ``flowmbd-*`` command-line studies):
 - :func:`flowmbd.sweep`: parameter sweeps on Dask distributed.
 
 Studies take their configuration as a dict with the keys of the TOML file (``--print-config``
-of the CLI) and return the content of the CLI's ``summary.json`` as a dict with numpy arrays
+of the CLI), read deeply over the defaults like a partial TOML file (``{"drive": {"tension":
+300.0}}`` changes one number of the default drive), and return the content of the CLI's ``summary.json`` as a dict with numpy arrays
 for number series. Bad input raises ``ValueError`` (the CLI's message); a numerical failure
 raises :class:`NumericalError` with the partial results attached. Long runs release the GIL.
 """
+
+from importlib.metadata import PackageNotFoundError, version
 
 from . import belt, reduce, string, tire
 from ._errors import NumericalError
 from .sweep import points, sweep
 
-__all__ = ["belt", "string", "tire", "reduce", "sweep", "points", "NumericalError"]
+try:
+    #: The installed package's version (the workspace's, set by maturin from Cargo.toml).
+    __version__ = version("flowmbd")
+except PackageNotFoundError:  # imported from a source tree that is not installed
+    __version__ = "0+unknown"
+
+__all__ = ["belt", "string", "tire", "reduce", "sweep", "points", "NumericalError", "__version__"]

@@ -7,6 +7,8 @@ from . import reduce as reduce
 from . import string as string
 from . import tire as tire
 
+__version__: str
+
 Grid = Union[Mapping[str, Sequence[Any]], Iterable[Mapping[str, Any]]]
 
 class NumericalError(RuntimeError):

@@ -1,6 +1,7 @@
 """Belt drives: the speed-loss study of Ribaric §6.4–6.5 (``flowmbd-belt speed-loss``), the
 planar ANCF drive of Kerkkänen ch. 3 (``flowmbd-belt ancf``) and his three-dimensional plate-belt
-drive of ch. 4 (``flowmbd-belt plate``)."""
+drive of ch. 4 (``flowmbd-belt plate``), the FEAD sweep (``flowmbd-belt fead``) and its steady
+design without time stepping (``flowmbd-belt design``)."""
 
 from __future__ import annotations
 
@@ -154,3 +155,30 @@ def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[floa
     """
     speeds = None if rpm is None else _args.numbers_list("rpm", rpm)
     return from_json(_native.fead(config_json(config), speeds))
+
+
+def design(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[float]] = None) -> dict:
+    """The steady FEAD design without time stepping (``flowmbd-belt design``, issue 36): per
+    engine speed the span tensions [N] (centrifugal tension included), the tensioner arm's angle
+    and force, each wrap's adhesion and slip arcs (creep theory), hub loads [N] and slip margins,
+    the drive's rotational modes and the spans' transverse modes [Hz], the Campbell diagram with
+    its crossings, and the findings (warnings and errors before any time stepping).
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-belt design --print-config`` (``drive``,
+        ``engine``, ``design``).
+    rpm : engine speeds [rpm] (replaces ``config["engine"]["speeds_rpm"]``; the CLI's ``--rpm``).
+
+    Returns
+    -------
+    dict
+        The CLI's ``summary.json``; ``layout`` and ``meaning`` name the drive it ran.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's message).
+    """
+    speeds = None if rpm is None else _args.numbers_list("rpm", rpm)
+    return from_json(_native.design(config_json(config), speeds))

@@ -3,11 +3,13 @@
 //! [`drives::speed_loss_study`] (the same as `flowmbd-belt speed-loss`), and the ANCF drive of
 //! Kerkkänen ch. 3 through [`drives::ancf_study`] (the same as `flowmbd-belt ancf`), and the
 //! plate-belt drive of Kerkkänen ch. 4 through [`drives::plate_study`] (the same as
-//! `flowmbd-belt plate`).
+//! `flowmbd-belt plate`), the FEAD sweep (`flowmbd-belt fead`) and its steady design
+//! (`flowmbd-belt design`).
 
 use crate::{input_error, numerical_error, read_config, to_json};
 use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, run_fead};
+use drives::fead_design::{DesignConfig, run_design};
 use drives::plate_study::{PlateStudyConfig, plate_run, plate_setup};
 use drives::speed_loss_study::{CaseFailure, SummaryCase, SummaryPoint, run_case};
 use drives::{ModelKind, SpeedLossStudyConfig, SpeedLossSummary};
@@ -170,6 +172,23 @@ pub fn fead(py: Python<'_>, config: Option<&str>, rpm: Option<Vec<f64>>) -> PyRe
             ),
         }),
     }
+}
+
+/// The steady FEAD design without time stepping (`drives::fead_design`, issue 36; defaults:
+/// the `fead` study's drive and engine): span tensions, tensioner arm, slip arcs, hub loads and
+/// slip margins per engine speed, rotational and span modes, the Campbell diagram and the
+/// findings; returns the JSON text of the summary (the same as `flowmbd-belt design --json`).
+/// `rpm` replaces the configured engine speeds \[rpm\].
+#[pyfunction]
+#[pyo3(signature = (config=None, rpm=None))]
+pub fn design(py: Python<'_>, config: Option<&str>, rpm: Option<Vec<f64>>) -> PyResult<String> {
+    let mut c: DesignConfig = read_config(config)?;
+    if let Some(r) = rpm {
+        c.engine.speeds_rpm = r;
+    }
+    c.validate().map_err(input_error)?;
+    let summary = py.detach(|| run_design(&c)).map_err(input_error)?;
+    to_json(&summary)
 }
 
 /// The JSON text of `summary`, or the integration failure with the summary as its partial

@@ -47,15 +47,39 @@ pub(crate) fn numerical_error(
     }
 }
 
-/// The configuration `C`: its defaults, or the JSON object `json` read over them (missing keys
-/// keep their defaults; unknown keys and wrong types raise `ValueError`). Not yet validated.
-pub(crate) fn read_config<C: DeserializeOwned + Default>(json: Option<&str>) -> PyResult<C> {
-    match json {
-        None => Ok(C::default()),
-        Some(text) => {
-            serde_json::from_str(text).map_err(|e| PyValueError::new_err(format!("config: {e}")))
+/// The configuration `C`: its defaults, or the JSON object `json` read deeply over them as the
+/// CLI reads a TOML file ([`mbd_core::config::from_partial`]: tables merged at every depth,
+/// arrays and scalars replaced; unknown keys and wrong types raise `ValueError` naming the
+/// dictionary path, e.g. `config["drive"]["pulleys"][0]["radius"]`). Not yet validated.
+pub(crate) fn read_config<C>(json: Option<&str>) -> PyResult<C>
+where
+    C: DeserializeOwned + serde::Serialize + Default,
+{
+    let Some(text) = json else {
+        return Ok(C::default());
+    };
+    let value: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| PyValueError::new_err(format!("config: {e}")))?;
+    let table = match toml::Value::try_from(&value) {
+        Ok(toml::Value::Table(t)) => t,
+        Ok(_) => return Err(PyValueError::new_err("config: expected a dict")),
+        // TOML has no null: a None somewhere in the dict
+        Err(e) => {
+            return Err(PyValueError::new_err(format!(
+                "config: {e} (None is not a value; leave the key out for its default)"
+            )));
         }
-    }
+    };
+    mbd_core::config::from_partial(table).map_err(|e| {
+        let mut at = String::from("config");
+        for step in e.steps() {
+            match step {
+                mbd_core::config::PathStep::Key(k) => at.push_str(&format!("[{k:?}]")),
+                mbd_core::config::PathStep::Index(i) => at.push_str(&format!("[{i}]")),
+            }
+        }
+        PyValueError::new_err(format!("{at}: {}", e.message))
+    })
 }
 
 /// JSON text of a summary (infallible for the plain summary structs).
@@ -71,6 +95,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(belt::ancf, m)?)?;
     m.add_function(wrap_pyfunction!(belt::plate, m)?)?;
     m.add_function(wrap_pyfunction!(belt::fead, m)?)?;
+    m.add_function(wrap_pyfunction!(belt::design, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;

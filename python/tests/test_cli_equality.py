@@ -9,12 +9,13 @@ def test_speed_loss_equals_cli(cli):
     code, ref, err = cli("belt", "speed-loss", "--omega", "62.8", "--torques", "0,10")
     assert code == 0, err
     py = flowmbd.belt.speed_loss(omega=62.8, torques=[0.0, 10.0])
-    assert py["points"] == ref["points"]  # the issue's check, exactly
+    assert_same(py["points"], ref["points"], rtol=0)  # the issue's check: exactly equal
     assert_same(py, ref)
 
 
 def test_speed_loss_config_dict_equals_cli_config_file(cli, tmp_path):
-    # a config dict with the TOML keys gives what the CLI gives for the same TOML file
+    # a config dict with the TOML keys gives what the CLI gives for the same TOML file; both are
+    # partial (one number of the default drive), read deeply over the defaults (issue 39)
     (tmp_path / "c.toml").write_text(
         "omegas = [22.6]\n[procedure]\ntorques = [5.0]\n[drive]\ntension = 300.0\n"
     )
@@ -69,6 +70,18 @@ def test_fead_equals_cli(cli):
     py = flowmbd.belt.fead(rpm=[1500.0])
     assert_same(py, ref)
     assert len(py["points"]) == 1 and py["meaning"] == ref["meaning"]
+
+
+def test_design_equals_cli(cli):
+    # the steady FEAD design (issue 36 item 1: "available to Python"), two engine speeds and a
+    # partial config (one number of the default drive) on both sides
+    import json
+
+    code, ref, err = cli("belt", "design", "--rpm", "800,3000")
+    assert code == 0, err
+    py = flowmbd.belt.design(rpm=[800.0, 3000.0])
+    assert_same(py, ref)
+    assert len(py["points"]) == 2 and py["layout"] == ref["layout"]
 
 
 def test_fead_bad_input_is_a_value_error():

@@ -58,12 +58,13 @@ def test_bad_matrices():
 
 
 def test_numerical_failure_has_the_clis_partial_results(cli, tmp_path):
-    # 10 N m cannot settle within max_hold = 0.06 s (its ramp alone takes 0.1 s), while the
+    # 10 N m cannot settle within max_hold = 0.1 s (its ramp alone takes 0.1 s; 0.1 s is the
+    # shortest max_hold accepted, two 0.05 s averaging windows), while the
     # 0 N m point is steady after the long spin-up: the study fails after one point (gross slip
     # is a result, not a failure, since issue 17); reference: the CLI's failed summary.json
     # (exit code 1)
     (tmp_path / "slip.toml").write_text(
-        "omegas = [62.8]\n[procedure]\ntorques = [0.0, 10.0]\nmax_hold = 0.06\nspin_up = 1.5\n"
+        "omegas = [62.8]\n[procedure]\ntorques = [0.0, 10.0]\nmax_hold = 0.1\nspin_up = 1.5\n"
     )
     code, _, err = cli("belt", "speed-loss", "--config", str(tmp_path / "slip.toml"))
     assert code == 1, err
@@ -72,7 +73,7 @@ def test_numerical_failure_has_the_clis_partial_results(cli, tmp_path):
     with pytest.raises(flowmbd.NumericalError) as e:
         flowmbd.belt.speed_loss(omega=None, torques=None, config={
             "omegas": [62.8],
-            "procedure": {"torques": [0.0, 10.0], "max_hold": 0.06, "spin_up": 1.5}})
+            "procedure": {"torques": [0.0, 10.0], "max_hold": 0.1, "spin_up": 1.5}})
     assert str(e.value) == ref["error"]
     assert_same(e.value.partial, ref["partial"])
     assert len(e.value.partial["points"]) == 1
@@ -106,3 +107,18 @@ def test_long_run_releases_the_gil():
     t.join()
     elapsed = time.perf_counter() - start
     assert elapsed > 0.2 and ticks > 0.25 * elapsed / 0.002, (ticks, elapsed)
+
+
+def test_partial_config_errors_name_the_dict_path():
+    # issue 39: a dict config is read deeply over the defaults; a bad value deep inside names
+    # its dict path (reference: the key written here)
+    with pytest.raises(ValueError, match=r'config\["drive"\]\["tension"\]'):
+        flowmbd.belt.speed_loss(omega=None, torques=None, config={"drive": {"tension": "high"}})
+    with pytest.raises(ValueError, match=r'config\["procedure"\]'):
+        flowmbd.belt.speed_loss(omega=None, torques=None, config={"procedure": {"typo": 1}})
+
+
+def test_version_is_the_packages():
+    from importlib.metadata import version
+
+    assert flowmbd.__version__ == version("flowmbd")

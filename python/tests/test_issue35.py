@@ -37,7 +37,7 @@ def test_a_non_symmetric_stiffness_is_refused():
     m, k = chain(4)
     k = k.tolil()
     k[0, 1] = -1.5
-    with pytest.raises(ValueError, match=r"K: not symmetric: entry \(1, 2\)|K: not symmetric: entry \(2, 1\)"):
+    with pytest.raises(ValueError, match=r"K`?: not symmetric: entry \((1, 2|2, 1)\)"):
         flowmbd.reduce.craig_bampton(m, k.tocsr(), boundary=[0], modes=1)
     with pytest.raises(ValueError, match="not symmetric"):
         flowmbd.reduce.modes(m, k.tocsr(), count=1)

@@ -21,10 +21,10 @@
 
 use super::{BeltDrive, BeltDriveSpec, BeltSpec, ContactSpec, InitialOptions, InitialState, post};
 use crate::error::{AncfError, invalid};
-use belt::{BeltModel, Drive, ModelTraits, Motion, Snapshot};
-use mbd_core::integrators::State;
+use crate::mounted::{AncfDrive, MountedBelt};
+use belt::{Drive, ModelTraits, Motion, Snapshot};
 use mbd_core::validate::{InvalidField, Validate, check};
-use mbd_core::{MbdError, SecondOrderSystem, Workspace};
+use mbd_core::{MbdError, Workspace};
 use serde::{Deserialize, Serialize};
 
 /// Relative tolerance of the mounted mean span force against the target `T0` \[-\].
@@ -106,13 +106,9 @@ pub struct AncfMapping {
     pub contact_damping: f64,
 }
 
-/// The ANCF belt model of a drive (module documentation).
-pub struct AncfBelt {
-    drive: BeltDrive,
-    layout: Drive,
-    initial: InitialState,
-    mapping: AncfMapping,
-}
+/// The ANCF belt model of a drive (module documentation): the shared shell
+/// ([`crate::mounted::MountedBelt`]) around the planar [`BeltDrive`].
+pub type AncfBelt = MountedBelt<BeltDrive>;
 
 /// The ANCF belt-drive spec of `drive` (module documentation): pulleys at the mounted centres
 /// with contact radii `R + p₀`, the belt at `L_path/λ(T0)` (or the given length), and the
@@ -185,7 +181,7 @@ fn mean_span_tension(drive: &BeltDrive, q: &[f64]) -> f64 {
     t.iter().sum::<f64>() / t.len().max(1) as f64
 }
 
-impl AncfBelt {
+impl MountedBelt<BeltDrive> {
     /// Build and mount the ANCF belt of `drive` with the discretisation `s` (module
     /// documentation: belt length correction, then the tensioner's static arm angle).
     pub fn new(drive: &Drive, s: &AncfConfig) -> Result<Self, AncfError> {
@@ -230,26 +226,24 @@ impl AncfBelt {
                 );
                 f[a.dof]
             };
-            let (mut th0, mut g0) = (init.q[a.dof], residual(&init.q));
+            let (th0, g0) = (init.q[a.dof], residual(&init.q));
             // first trial: the spring's stiffness alone as the slope
-            let mut th1 = th0 + g0 / a.spec.stiffness;
-            let mut converged = false;
-            for _ in 0..40 {
-                let mut q = init.q.clone();
-                q[a.dof] = th1;
-                init = belt.initial_state_from(q, &opts)?;
-                let g1 = residual(&init.q);
-                if (th1 - th0).abs() <= ARM_ANGLE_TOLERANCE {
-                    converged = true;
-                    break;
-                }
-                let slope = (g1 - g0) / (th1 - th0);
-                if !(slope.is_finite() && slope != 0.0) {
-                    break;
-                }
-                (th0, g0) = (th1, g1);
-                th1 -= g1 / slope;
-            }
+            let converged = mbd_core::roots::secant(
+                |th| {
+                    let mut q = init.q.clone();
+                    q[a.dof] = th;
+                    init = belt.initial_state_from(q, &opts)?;
+                    Ok::<f64, AncfError>(residual(&init.q))
+                },
+                th0,
+                g0,
+                th0 + g0 / a.spec.stiffness,
+                mbd_core::roots::SecantStop {
+                    max_iterations: 40,
+                    step: ARM_ANGLE_TOLERANCE,
+                },
+            )?
+            .converged;
             if !converged || !a.spec.within_travel(init.q[a.dof]) {
                 return Err(invalid(
                     "tensioner",
@@ -265,76 +259,18 @@ impl AncfBelt {
         }
         mapping.belt_length = spec.belt.length;
         mapping.mounted_tension = mean_span_tension(&belt, &init.q);
-        Ok(Self {
-            drive: belt,
-            layout: drive.clone(),
-            initial: init,
-            mapping,
-        })
-    }
-
-    /// The underlying ANCF drive.
-    pub fn belt_drive(&self) -> &BeltDrive {
-        &self.drive
-    }
-
-    /// The derived parameters of the mapping.
-    pub fn mapping(&self) -> &AncfMapping {
-        &self.mapping
-    }
-
-    /// The mounted static state (pulleys at rest, arm at its static angle).
-    pub fn initial(&self) -> &InitialState {
-        &self.initial
-    }
-
-    /// Static arm angle of the tensioner in the ANCF belt \[rad\] (`None`: no tensioner).
-    pub fn static_arm_angle(&self) -> Option<f64> {
-        self.drive.arm().map(|a| self.initial.q[a.dof])
+        Ok(Self::from_parts(belt, drive, init, mapping))
     }
 }
 
-impl SecondOrderSystem for AncfBelt {
-    fn n_q(&self) -> usize {
-        self.drive.n_q()
-    }
-    fn dof_name(&self, dof: usize) -> String {
-        self.drive.dof_name(dof)
-    }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, t: f64, q: &[f64]) -> Result<mbd_core::SysMatrix, MbdError> {
-        self.drive.mass(t, q)
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
-    ) -> Result<(), MbdError> {
-        self.drive.forces(t, q, v, f, ws)
-    }
-    fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
-    ) -> Result<Option<mbd_core::system::ForceTangent>, MbdError> {
-        self.drive.force_tangent(t, q, v, ws)
-    }
-}
-
-impl BeltModel for AncfBelt {
-    fn drive(&self) -> &Drive {
-        &self.layout
-    }
+/// Coordinates: the belt nodes (Kerkkänen (3.1)), the free pulleys' angles and the tensioner
+/// arm angle.
+impl AncfDrive for BeltDrive {
+    type Initial = InitialState;
+    type Mapping = AncfMapping;
 
     /// Not linearised (the ANCF belt is geometrically exact, Kerkkänen (3.18)).
-    fn traits(&self) -> ModelTraits {
+    fn model_traits(&self) -> ModelTraits {
         ModelTraits {
             name: "ancf",
             linearised: false,
@@ -342,43 +278,41 @@ impl BeltModel for AncfBelt {
         }
     }
 
-    /// The mounted static state ([`AncfBelt::new`]: belt length and arm angle solved).
-    fn initial_state(&self) -> Result<State, MbdError> {
-        let n = self.initial.q.len();
-        Ok(State::new(0.0, self.initial.q.clone(), vec![0.0; n]))
+    fn initial_q(initial: &InitialState) -> &[f64] {
+        &initial.q
     }
 
-    fn motion(&self, k: usize) -> Option<&Motion> {
-        self.drive.pulleys().get(k).map(|p| &p.motion)
+    fn pulley_motion(&self, k: usize) -> Option<&Motion> {
+        self.pulleys().get(k).map(|p| &p.motion)
     }
 
-    fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
-        self.drive.motion_mut(k)
+    fn pulley_motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
+        self.motion_mut(k)
     }
 
-    fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        self.drive.pulley_speed(k, t, v)
+    fn travel_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+        self.pulley_speed(k, t, v)
     }
 
-    fn arm_angle(&self, q: &[f64]) -> Option<f64> {
-        self.drive.arm().map(|a| q[a.dof])
+    fn arm_angle_at(&self, q: &[f64]) -> Option<f64> {
+        self.arm().map(|a| q[a.dof])
     }
 
     /// The mean material speed along the centreline ([`post::belt_speed`]).
-    fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
-        post::belt_speed(&self.drive, q, v)
+    fn mean_belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
+        post::belt_speed(self, q, v)
     }
 
     /// [`post::snapshot`] of the drive's state.
-    fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
-        let omegas: Vec<f64> = (0..self.drive.pulleys().len())
-            .map(|k| self.drive.pulley_speed(k, t, v))
+    fn snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        let omegas: Vec<f64> = (0..self.pulleys().len())
+            .map(|k| self.pulley_speed(k, t, v))
             .collect();
-        Ok(post::snapshot(&self.drive, t, q, v, &omegas))
+        Ok(post::snapshot(self, t, q, v, &omegas))
     }
 
-    fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
-        Ok(post::span_transverse(&self.drive, q))
+    fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+        Ok(post::span_transverse(self, q))
     }
 }
 

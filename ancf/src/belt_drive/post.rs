@@ -180,22 +180,16 @@ pub fn span_midpoints(drive: &BeltDrive, q: &[f64]) -> Vec<Option<[f64; 2]>> {
             for el in 0..mesh.elements().len() {
                 mesh.gather(q, el, &mut e);
                 let pos = |xi: f64| mesh.elements()[el].position(&e, xi * l, 0.0);
-                let (mut a, mut b) = (0.0, 1.0);
-                let (ga, gb) = (g(pos(a)), g(pos(b)));
+                let (ga, gb) = (g(pos(0.0)), g(pos(1.0)));
                 if ga * gb > 0.0 || ga == gb {
                     continue;
                 }
-                let mut fa = ga;
-                for _ in 0..60 {
-                    let c = 0.5 * (a + b);
-                    let fc = g(pos(c));
-                    if (fc < 0.0) == (fa < 0.0) {
-                        a = c;
-                        fa = fc;
-                    } else {
-                        b = c;
-                    }
-                }
+                let (a, b) = mbd_core::roots::bisect(
+                    0.0,
+                    1.0,
+                    |c| (g(pos(c)) < 0.0) != (ga < 0.0),
+                    mbd_core::roots::Stop::iterations(60),
+                );
                 let r = pos(0.5 * (a + b));
                 let off = ((r[0] - m[0]).powi(2) + (r[1] - m[1]).powi(2)).sqrt();
                 if off < 0.5 * sp.length {

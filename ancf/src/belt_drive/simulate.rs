@@ -218,15 +218,13 @@ fn rk4_ray_limit(re: f64, im: f64) -> f64 {
     if hi.is_nan() {
         return f64::INFINITY;
     }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if rk4_amplification(mid * re, mid * im) > 1.0 + 1e-12 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    lo
+    mbd_core::roots::bisect(
+        lo,
+        hi,
+        |h| rk4_amplification(h * re, h * im) > 1.0 + 1e-12,
+        mbd_core::roots::Stop::iterations(60),
+    )
+    .0
 }
 
 impl BeltDrive {

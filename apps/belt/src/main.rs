@@ -8,6 +8,8 @@
 //!   analytical model;
 //! - `fead`: a passenger-car front-end accessory drive with an automatic tensioner over an
 //!   engine-speed sweep (issue 17);
+//! - `design`: the FEAD's steady design without time stepping (span tensions, tensioner arm,
+//!   slip arcs, hub loads, slip margins), its modes and Campbell diagram (issue 36);
 //! - `wave`: rotating vs non-rotating flowing belt with a deflected span (Ribaric Fig. 6-3);
 //! - `demo`: rigid-body slider-crank driven at constant speed (mbd-core demonstration).
 //!
@@ -18,6 +20,7 @@ use std::process::ExitCode;
 
 mod ancf;
 mod demo;
+mod design;
 mod fead;
 mod plate;
 mod speed_loss;
@@ -43,6 +46,8 @@ enum Study {
     Plate(plate::Args),
     /// Front-end accessory drive with a tensioner over an engine-speed sweep.
     Fead(fead::Args),
+    /// Steady FEAD design without time stepping: tensions, arm, slip margins, modes, Campbell.
+    Design(design::Args),
     /// Rotating vs non-rotating flowing belt with a deflected span (Ribaric Fig. 6-3).
     Wave(wave::Args),
 }
@@ -56,6 +61,7 @@ fn main() -> ExitCode {
         Some(Study::SpeedLoss(args)) => speed_loss::run(&args),
         Some(Study::Wave(args)) => wave::run(&args),
         Some(Study::Fead(args)) => fead::run(&args),
+        Some(Study::Design(args)) => design::run(&args),
         None => speed_loss::run(&speed_loss::Args::default()),
     }
 }

@@ -421,10 +421,10 @@ impl PlateStudy {
             ..end.summary
         };
         if let Some(msg) = end.failure {
-            return Err(StudyError::Numerical {
-                message: format!("integration failed: {msg}"),
-                partial: serde_json::to_value(&summary).ok(),
-            });
+            return Err(StudyError::failed_with(
+                format!("integration failed: {msg}"),
+                &summary,
+            ));
         }
         Ok(summary)
     }

@@ -189,6 +189,12 @@ impl Study for SpeedLoss {
         drives::speed_loss_study::SPEED_LOSS_MEANING
     }
 
+    /// Per driver speed and load: Δω, Bechtel's Δω (6.3), the span tensions, and the torque
+    /// and power balance residuals (or why a point has no numbers).
+    fn result_table(&self, s: &Summary) -> Option<String> {
+        Some(result_table(s))
+    }
+
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(w) = self.args.omega {
             c.omegas = vec![w];
@@ -336,4 +342,55 @@ impl Study for SpeedLoss {
 /// Run the study under the app conventions.
 pub fn run(args: &Args) -> ExitCode {
     run_study(&SpeedLoss { args: args.clone() }, &args.common)
+}
+
+/// The table [`Study::result_table`] prints.
+fn result_table(s: &Summary) -> String {
+    use std::fmt::Write;
+    let mut t = format!(
+        "speed loss, {} belt ({} driver speed{})\n{:>9} {:>8} {:>11} {:>11} {:>9} {:>9} {:>10} {:>10}\n",
+        s.model.name(),
+        s.cases.len(),
+        if s.cases.len() == 1 { "" } else { "s" },
+        "ω₁ rad/s",
+        "M N m",
+        "Δω rad/s",
+        "Bechtel",
+        "T₁ N",
+        "T₂ N",
+        "torque bal",
+        "power bal",
+    );
+    let num = |x: Option<f64>, prec: usize| x.map_or("-".to_string(), |v| format!("{v:.prec$}"));
+    for c in &s.cases {
+        for (k, p) in c.points.iter().enumerate() {
+            // relative residuals of an unloaded drive divide by nothing: not printed
+            let rel = |x: f64| {
+                if p.torque == 0.0 {
+                    "-".to_string()
+                } else {
+                    format!("{:.2}%", 100.0 * x)
+                }
+            };
+            let _ = write!(
+                t,
+                "{:>9.1} {:>8.2} {:>11} {:>11} {:>9} {:>9} {:>10} {:>10}",
+                c.omega_driver,
+                p.torque,
+                num(p.delta_omega, 5),
+                num(c.analytical.get(k).copied(), 5),
+                num(p.tension_tight, 1),
+                num(p.tension_slack, 1),
+                rel(p.balances.torque_residual_rel),
+                rel(p.balances.power_residual_rel),
+            );
+            if p.gross_slip {
+                t.push_str("  gross slip");
+            } else if let Some(why) = &p.linearisation {
+                let _ = write!(t, "  not valid: {why}");
+            }
+            t.push('\n');
+        }
+    }
+    t
 }

@@ -11,6 +11,35 @@ fn tmp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("flowmbd-belt-{}-{name}", std::process::id()))
 }
 
+// Issue 39, item 3: without --json the study prints a short result table on stdout; its
+// numbers are summary.json's (reference: the summary the same run wrote).
+#[test]
+fn speed_loss_prints_its_result_table() {
+    let out = tmp("table");
+    let (code, stdout, stderr) = run(&[
+        "speed-loss",
+        "--omega",
+        "22.6",
+        "--torques",
+        "0,4",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let rows: Vec<&str> = stdout.lines().skip(2).collect();
+    assert_eq!(rows.len(), 2, "{stdout}");
+    for (row, p) in rows.iter().zip(v["points"].as_array().unwrap()) {
+        let d = format!("{:.5}", p["delta_omega"].as_f64().unwrap());
+        let t1 = format!("{:.1}", p["tension_tight"].as_f64().unwrap());
+        assert!(row.contains(&d) && row.contains(&t1), "{row} vs {p}");
+    }
+    assert!(stdout.starts_with("speed loss, flowing belt"), "{stdout}");
+    let _ = std::fs::remove_dir_all(out);
+}
+
 // Issue 8 contract; physics: unloaded the driven pulley turns at the driver's speed (to the
 // steady-state tolerance of the app's default procedure; the 1e-6 relative check with a tight
 // tolerance is tests/tests/flowing_belt.rs) and under load Δω > 0 next to a positive Bechtel (6.3).
@@ -410,4 +439,46 @@ fn fead_runs_the_ancf_belt() {
     assert!(csv.lines().next().unwrap().contains("span0_tension_min_N"));
     let _ = std::fs::remove_file(file);
     let _ = std::fs::remove_dir_all(out);
+}
+
+// Issue 39, item 2: a partial configuration is read deeply over the defaults (reference: the
+// default configuration with that one number changed, as --print-config prints it), and an
+// error deep inside names the key's dotted path and the file line where it stands.
+#[test]
+fn partial_configs_change_one_number_of_the_default_drive() {
+    let dir = tmp("partial");
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("t.toml");
+    std::fs::write(&f, "[drive]\ntension = 300.0\n").unwrap();
+    let (code, merged, err) = run(&[
+        "speed-loss",
+        "--config",
+        f.to_str().unwrap(),
+        "--print-config",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (_, default, _) = run(&["speed-loss", "--print-config"]);
+    let mut expected: toml::Table = toml::from_str(&default).unwrap();
+    expected["drive"]["tension"] = toml::Value::Float(300.0);
+    assert_ne!(toml::from_str::<toml::Table>(&default).unwrap(), expected);
+    assert_eq!(toml::from_str::<toml::Table>(&merged).unwrap(), expected);
+    // a bad value on line 4, inside an array of tables
+    std::fs::write(
+        &f,
+        "omegas = [22.6]\n\n[[drive.pulleys]]\nradius = \"large\"\n",
+    )
+    .unwrap();
+    let (code, _, err) = run(&[
+        "speed-loss",
+        "--config",
+        f.to_str().unwrap(),
+        "--print-config",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("t.toml:4:") && err.contains("drive.pulleys[0].radius"),
+        "{err}"
+    );
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    let _ = std::fs::remove_dir_all(dir);
 }

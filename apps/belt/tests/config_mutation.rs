@@ -12,7 +12,15 @@ use std::time::Duration;
 const EXE: &str = env!("CARGO_BIN_EXE_flowmbd-belt");
 
 /// The studies of the app.
-const STUDIES: &[&str] = &["speed-loss", "demo", "ancf", "plate", "fead", "wave"];
+const STUDIES: &[&str] = &[
+    "speed-loss",
+    "demo",
+    "ancf",
+    "plate",
+    "fead",
+    "wave",
+    "design",
+];
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 2, ..ProptestConfig::default() })]

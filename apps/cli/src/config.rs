@@ -1,9 +1,11 @@
 //! TOML configuration with embedded defaults.
 //!
 //! A study's configuration is a plain `serde` struct whose `Default` reproduces the seed's case.
-//! A file given with `--config` is merged over the defaults (missing fields keep their default
-//! value when the struct is `#[serde(default)]`); unknown fields are rejected when the struct is
-//! `#[serde(deny_unknown_fields)]`. Errors name the file, line, column and field.
+//! A file given with `--config` is read deeply over the defaults ([`mbd_core::config`]: tables
+//! merged key by key at every depth, arrays and scalars replaced, a table switching an enum's
+//! variant replaced whole), so one number of the default drive can be changed alone; unknown
+//! fields are rejected when the struct is `#[serde(deny_unknown_fields)]`. Errors name the file,
+//! line, column and the field's dotted path.
 
 use crate::error::CliError;
 use serde::Serialize;
@@ -17,7 +19,7 @@ pub use mbd_core::Validate;
 /// Load the configuration: the embedded defaults, or `path` parsed over them, then validated.
 pub fn load_config<C>(path: Option<&Path>) -> Result<C, CliError>
 where
-    C: DeserializeOwned + Default + Validate,
+    C: DeserializeOwned + Serialize + Default + Validate,
 {
     let (config, origin) = read_config::<C>(path)?;
     config
@@ -30,7 +32,7 @@ where
 /// overrides can be applied first), with the origin used in messages.
 pub fn read_config<C>(path: Option<&Path>) -> Result<(C, String), CliError>
 where
-    C: DeserializeOwned + Default,
+    C: DeserializeOwned + Serialize + Default,
 {
     Ok(match path {
         None => (C::default(), "defaults".to_string()),
@@ -96,9 +98,15 @@ pub fn read_config_text(path: &Path) -> Result<String, CliError> {
     })
 }
 
-/// Parse TOML `text` (from `path`, used in messages) into `C`.
-pub fn parse_config<C: DeserializeOwned>(text: &str, path: &Path) -> Result<C, CliError> {
-    toml::from_str(text).map_err(|e| {
+/// Parse TOML `text` (from `path`, used in messages) into `C`, read deeply over `C::default()`
+/// ([`mbd_core::config::from_partial`]). A TOML syntax error is located by the parser; an error
+/// of a field at the line of the deepest key of its path that the file spells (the line of the
+/// table header or key the user wrote), with the field's dotted path in the message.
+pub fn parse_config<C>(text: &str, path: &Path) -> Result<C, CliError>
+where
+    C: DeserializeOwned + Serialize + Default,
+{
+    let user: toml::Table = toml::from_str(text).map_err(|e| {
         let (line, column) = e
             .span()
             .map(|s| line_column(text, s.start))
@@ -109,7 +117,58 @@ pub fn parse_config<C: DeserializeOwned>(text: &str, path: &Path) -> Result<C, C
             column,
             message: mbd_core::validate::escape_message(e.message().trim()),
         }
+    })?;
+    mbd_core::config::from_partial(user).map_err(|e| {
+        let (line, column) = locate(text, &e.steps());
+        CliError::ParseConfig {
+            path: path.to_path_buf(),
+            line,
+            column,
+            message: mbd_core::validate::escape_message(&format!("{}: {}", e.path, e.message)),
+        }
     })
+}
+
+/// 1-based line and column of the deepest key of `steps` that `text` spells ((1, 1) when it
+/// spells none: the error lies in a default the file did not touch).
+fn locate(text: &str, steps: &[mbd_core::config::PathStep]) -> (usize, usize) {
+    use mbd_core::config::PathStep;
+    use toml::de::{DeTable, DeValue};
+    let Ok(root) = DeTable::parse(text) else {
+        return (1, 1);
+    };
+    let mut found = None;
+    let mut table: Option<&DeTable<'_>> = Some(root.get_ref());
+    let mut value: Option<&DeValue<'_>> = None;
+    for step in steps {
+        match step {
+            PathStep::Key(k) => {
+                let Some((key, v)) = table.and_then(|t| {
+                    t.iter()
+                        .find(|(key, _)| key.get_ref().as_ref() == k.as_str())
+                }) else {
+                    break;
+                };
+                found = Some(key.span());
+                value = Some(v.get_ref());
+            }
+            PathStep::Index(i) => {
+                let Some(item) = value.and_then(|v| match v {
+                    DeValue::Array(a) => a.into_iter().nth(*i),
+                    _ => None,
+                }) else {
+                    break;
+                };
+                found = Some(item.span());
+                value = Some(item.get_ref());
+            }
+        }
+        table = match value {
+            Some(DeValue::Table(t)) => Some(t),
+            _ => None,
+        };
+    }
+    found.map_or((1, 1), |s| line_column(text, s.start))
 }
 
 /// The configuration as TOML text (what `--print-config` prints).

@@ -31,16 +31,22 @@ pub enum StudyError {
 }
 
 impl StudyError {
+    /// A numerical failure `message` whose partial results are `summary` (what the run had when
+    /// it failed).
+    pub fn failed_with<T: Serialize>(message: impl Into<String>, summary: &T) -> Self {
+        StudyError::Numerical {
+            message: message.into(),
+            partial: serde_json::to_value(summary).ok(),
+        }
+    }
+
     /// An implausible result ([`mbd_core::validate::plausible`]): a numerical failure whose
     /// partial results are the summary that failed the check.
     pub fn implausible<T: Serialize>(
         e: mbd_core::validate::plausible::Implausible,
         summary: &T,
     ) -> Self {
-        StudyError::Numerical {
-            message: e.to_string(),
-            partial: serde_json::to_value(summary).ok(),
-        }
+        Self::failed_with(e.to_string(), summary)
     }
 
     /// A numerical failure without partial results.
@@ -112,6 +118,13 @@ pub trait Study {
     /// null, so an absent optional table would not show otherwise).
     fn config_notes(&self, _config: &Self::Config) -> String {
         String::new()
+    }
+
+    /// A short plain-text table of the main results, printed on stdout when the study completes
+    /// (not with `--json`, which prints the whole summary): what a user reads first, before
+    /// opening `summary.json`. `None`: nothing printed.
+    fn result_table(&self, _summary: &Self::Summary) -> Option<String> {
+        None
     }
 
     /// Whether every number of the summary must be finite: the runner then turns a NaN or an
@@ -332,8 +345,8 @@ fn try_run<S: Study>(
         if !cancel.is_cancelled()
             && let Some(first) = bad.first()
         {
-            return Err(StudyError::Numerical {
-                message: format!(
+            return Err(StudyError::failed_with(
+                format!(
                     "implausible result {first}: not a finite number{}",
                     if bad.len() > 1 {
                         format!(" (and {} more)", bad.len() - 1)
@@ -341,13 +354,14 @@ fn try_run<S: Study>(
                         String::new()
                     }
                 ),
-                partial: serde_json::to_value(&summary).ok(),
-            });
+                &summary,
+            ));
         }
         Ok(summary)
     });
     match result {
         Ok(summary) => {
+            let table = study.result_table(&summary);
             let summary = with_meaning(&summary, study.meaning()).map_err(|e| CliError::Write {
                 path: out.path("summary.json"),
                 message: e.to_string(),
@@ -384,8 +398,16 @@ fn try_run<S: Study>(
                     path: "<stdout>".into(),
                     message: e.to_string(),
                 })?;
-            } else if !args.quiet {
-                eprintln!("results written to {}", out.root().display());
+            } else {
+                if let Some(table) = table {
+                    crate::stdout::print_stdout(&table).map_err(|e| CliError::Write {
+                        path: "<stdout>".into(),
+                        message: e.to_string(),
+                    })?;
+                }
+                if !args.quiet {
+                    eprintln!("results written to {}", out.root().display());
+                }
             }
             Ok(Outcome::Done)
         }

@@ -21,7 +21,9 @@ use std::path::Path;
 use tire::RigConfig;
 
 /// Parse and validate `text` as `C`; errors must be one line and point into the text.
-fn check<C: serde::de::DeserializeOwned + Validate>(text: &str) -> Result<(), TestCaseError> {
+fn check<C: serde::de::DeserializeOwned + serde::Serialize + Default + Validate>(
+    text: &str,
+) -> Result<(), TestCaseError> {
     match parse_config::<C>(text, Path::new("f.toml")) {
         Ok(c) => {
             let _ = c.validate();

@@ -23,13 +23,12 @@ use super::post;
 use super::{PlateBeltDrive, PlateBeltSpec, PlateContactSpec, PlateDriveSpec, PlateInitialState};
 use crate::belt_drive::BeltFriction;
 use crate::error::{AncfError, invalid};
+use crate::mounted::{AncfDrive, MountedBelt};
 use belt::{
-    BeltModel, BeltPath, Drive, MaterialLaw, ModelTraits, Motion, PulleyState, Snapshot, SpanState,
-    WrapPoint,
+    BeltPath, Drive, MaterialLaw, ModelTraits, Motion, PulleyState, Snapshot, SpanState, WrapPoint,
 };
-use mbd_core::integrators::State;
+use mbd_core::MbdError;
 use mbd_core::validate::{InvalidField, Validate, check};
-use mbd_core::{MbdError, SecondOrderSystem, Workspace};
 use serde::{Deserialize, Serialize};
 
 /// Most plate elements along the belt (sizes from input are bounded before anything is built).
@@ -99,13 +98,9 @@ pub struct PlateMapping {
     pub density: f64,
 }
 
-/// The plate-belt model of a drive (module documentation).
-pub struct PlateBelt {
-    drive: PlateBeltDrive,
-    layout: Drive,
-    initial: PlateInitialState,
-    mapping: PlateMapping,
-}
+/// The plate-belt model of a drive (module documentation): the shared shell
+/// ([`crate::mounted::MountedBelt`]) around the [`PlateBeltDrive`].
+pub type PlateBelt = MountedBelt<PlateBeltDrive>;
 
 /// The plate-belt drive spec of `drive` (module documentation) and the mapping.
 pub fn plate_spec(
@@ -199,7 +194,7 @@ fn mean_membrane_force(drive: &PlateBeltDrive, q: &[f64]) -> f64 {
     t.iter().sum::<f64>() / t.len().max(1) as f64
 }
 
-impl PlateBelt {
+impl MountedBelt<PlateBeltDrive> {
     /// Build the plate belt of `drive` with the discretisation `s` and solve its mounted
     /// static state ([`PlateBeltDrive::initial_state`]).
     pub fn new(drive: &Drive, s: &PlateConfig) -> Result<Self, AncfError> {
@@ -207,61 +202,7 @@ impl PlateBelt {
         let belt = PlateBeltDrive::new(spec)?;
         let initial = belt.initial_state(100, 1e-11)?;
         mapping.mounted_tension = mean_membrane_force(&belt, &initial.q);
-        Ok(Self {
-            drive: belt,
-            layout: drive.clone(),
-            initial,
-            mapping,
-        })
-    }
-
-    /// The underlying plate-belt drive.
-    pub fn plate_drive(&self) -> &PlateBeltDrive {
-        &self.drive
-    }
-
-    /// The derived parameters of the mapping.
-    pub fn mapping(&self) -> &PlateMapping {
-        &self.mapping
-    }
-
-    /// The mounted static state.
-    pub fn initial(&self) -> &PlateInitialState {
-        &self.initial
-    }
-}
-
-impl SecondOrderSystem for PlateBelt {
-    fn n_q(&self) -> usize {
-        self.drive.n_q()
-    }
-    fn dof_name(&self, dof: usize) -> String {
-        self.drive.dof_name(dof)
-    }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, t: f64, q: &[f64]) -> Result<mbd_core::SysMatrix, MbdError> {
-        self.drive.mass(t, q)
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
-    ) -> Result<(), MbdError> {
-        self.drive.forces(t, q, v, f, ws)
-    }
-    fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
-    ) -> Result<Option<mbd_core::system::ForceTangent>, MbdError> {
-        self.drive.force_tangent(t, q, v, ws)
+        Ok(Self::from_parts(belt, drive, initial, mapping))
     }
 }
 
@@ -288,13 +229,13 @@ fn membrane_force_at(drive: &PlateBeltDrive, q: &[f64], el: usize, x: f64) -> f6
     (f[0] * rx[0] + f[1] * rx[1] + f[2] * rx[2]) / lx
 }
 
-impl BeltModel for PlateBelt {
-    fn drive(&self) -> &Drive {
-        &self.layout
-    }
+/// Coordinates: the belt's cross-section nodes (Kerkkänen (4.1)) and the free pulleys' angles.
+impl AncfDrive for PlateBeltDrive {
+    type Initial = PlateInitialState;
+    type Mapping = PlateMapping;
 
     /// Not linearised (geometrically exact membrane and plate, Kerkkänen ch. 4).
-    fn traits(&self) -> ModelTraits {
+    fn model_traits(&self) -> ModelTraits {
         ModelTraits {
             name: "plate",
             linearised: false,
@@ -302,31 +243,31 @@ impl BeltModel for PlateBelt {
         }
     }
 
-    fn initial_state(&self) -> Result<State, MbdError> {
-        let n = self.initial.q.len();
-        Ok(State::new(0.0, self.initial.q.clone(), vec![0.0; n]))
+    fn initial_q(initial: &PlateInitialState) -> &[f64] {
+        &initial.q
     }
 
-    fn motion(&self, k: usize) -> Option<&Motion> {
-        self.drive.pulleys().get(k).map(|p| &p.motion)
+    fn pulley_motion(&self, k: usize) -> Option<&Motion> {
+        self.pulleys().get(k).map(|p| &p.motion)
     }
 
-    fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
-        self.drive.motion_mut(k)
+    fn pulley_motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
+        self.motion_mut(k)
     }
 
-    fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        self.drive.pulley_speed(k, t, v)
+    fn travel_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+        self.pulley_speed(k, t, v)
     }
 
-    fn arm_angle(&self, _q: &[f64]) -> Option<f64> {
+    /// `None`: the plate drive has no tensioner arm.
+    fn arm_angle_at(&self, _q: &[f64]) -> Option<f64> {
         None
     }
 
     /// Mean belt speed (4.12)–(4.13) along the centreline.
-    fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
-        let w = self.drive.spec().belt.width;
-        let s = post::line_samples(&self.drive, q, v, 0.5 * w, 2);
+    fn mean_belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
+        let w = self.spec().belt.width;
+        let s = post::line_samples(self, q, v, 0.5 * w, 2);
         s.iter().map(|p| p.speed).sum::<f64>() / s.len().max(1) as f64
     }
 
@@ -334,8 +275,8 @@ impl BeltModel for PlateBelt {
     /// ([`post::span_states`]) and the contact quadrature points as wrap points (densities per
     /// unit area times the width `b`, tributary length = area weight / `b`; circumferential
     /// friction and slip).
-    fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
-        let d = &self.drive;
+    fn snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        let d = self;
         let loads = d.pulley_loads(t, q, v);
         let pulleys = (0..d.pulleys().len())
             .map(|k| PulleyState {
@@ -346,7 +287,7 @@ impl BeltModel for PlateBelt {
             })
             .collect();
         let states = post::span_states(d, q, v);
-        let offsets = self.span_transverse(q)?;
+        let offsets = self.span_offsets(q)?;
         let spans = post::spans(d)
             .iter()
             .enumerate()
@@ -390,8 +331,8 @@ impl BeltModel for PlateBelt {
 
     /// Offset of the centreline sample nearest each span's mid-point from the span line
     /// (positive to the left of travel) \[m\].
-    fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
-        let d = &self.drive;
+    fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+        let d = self;
         let w = d.spec().belt.width;
         let v = vec![0.0; q.len()];
         let samples = post::line_samples(d, q, &v, 0.5 * w, 4);
@@ -417,6 +358,7 @@ impl BeltModel for PlateBelt {
 mod tests {
     use super::*;
     use crate::belt_drive::{AncfBelt, AncfConfig};
+    use belt::BeltModel;
     use belt::{Layout, Section, Signal};
 
     // Second formulation (reference: the planar ANCF belt, Kerkkänen ch. 3, on the same drive

@@ -1,0 +1,167 @@
+//! The one model shell of the ANCF belt drives: an ANCF discretisation of a resolved drive
+//! ([`belt::Drive`]), mounted (its static state solved), as a [`belt::BeltModel`] and a
+//! [`SecondOrderSystem`] (issue 33: the planar belt of Kerkkänen ch. 3,
+//! [`crate::belt_drive::AncfBelt`], and the plate belt of ch. 4,
+//! [`crate::plate::belt_drive::PlateBelt`], are the same shell around two discretisations).
+//!
+//! What differs between the discretisations — the reported quantities (snapshot, belt speed,
+//! span offsets, the tensioner arm) and the mounted state's type — is the extension point
+//! [`AncfDrive`]; the pulleys' motions and speeds, the equations of motion and the initial state
+//! are the shell's.
+
+use belt::{BeltModel, Drive, ModelTraits, Motion, Snapshot};
+use mbd_core::integrators::State;
+use mbd_core::system::ForceTangent;
+use mbd_core::{MbdError, SecondOrderSystem, SysMatrix, Workspace};
+
+/// An ANCF discretisation of a belt drive that [`MountedBelt`] wraps (module documentation):
+/// its equations of motion ([`SecondOrderSystem`]) and what a [`BeltModel`] reports of it.
+pub trait AncfDrive: SecondOrderSystem {
+    /// The mounted static state.
+    type Initial;
+    /// The derived parameters of the drive → discretisation mapping (for reports).
+    type Mapping;
+
+    /// What the model is ([`BeltModel::traits`]).
+    fn model_traits(&self) -> ModelTraits;
+    /// The coordinates of the mounted static state.
+    fn initial_q(initial: &Self::Initial) -> &[f64];
+    /// How pulley `k` turns.
+    fn pulley_motion(&self, k: usize) -> Option<&Motion>;
+    /// How pulley `k` turns, to change it.
+    fn pulley_motion_mut(&mut self, k: usize) -> Option<&mut Motion>;
+    /// Speed of pulley `k` in its travel sense \[rad/s\].
+    fn travel_speed(&self, k: usize, t: f64, v: &[f64]) -> f64;
+    /// Tensioner arm angle \[rad\] (`None`: no arm).
+    fn arm_angle_at(&self, q: &[f64]) -> Option<f64>;
+    /// Mean belt speed along the centreline \[m/s\].
+    fn mean_belt_speed(&self, q: &[f64], v: &[f64]) -> f64;
+    /// Pulleys, spans and wrap points at the state ([`BeltModel::snapshot`]).
+    fn snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError>;
+    /// Transverse offset of each span's middle from its line \[m\].
+    fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError>;
+}
+
+/// A mounted ANCF belt of a drive (module documentation).
+pub struct MountedBelt<D: AncfDrive> {
+    drive: D,
+    layout: Drive,
+    initial: D::Initial,
+    mapping: D::Mapping,
+}
+
+impl<D: AncfDrive> MountedBelt<D> {
+    /// The shell around the discretisation `drive` of `layout` mounted at `initial`.
+    pub(crate) fn from_parts(
+        drive: D,
+        layout: &Drive,
+        initial: D::Initial,
+        mapping: D::Mapping,
+    ) -> Self {
+        Self {
+            drive,
+            layout: layout.clone(),
+            initial,
+            mapping,
+        }
+    }
+
+    /// The underlying ANCF drive.
+    pub fn belt_drive(&self) -> &D {
+        &self.drive
+    }
+
+    /// The derived parameters of the mapping.
+    pub fn mapping(&self) -> &D::Mapping {
+        &self.mapping
+    }
+
+    /// The mounted static state.
+    pub fn initial(&self) -> &D::Initial {
+        &self.initial
+    }
+
+    /// Static arm angle of the tensioner \[rad\] (`None`: no tensioner).
+    pub fn static_arm_angle(&self) -> Option<f64> {
+        self.drive.arm_angle_at(D::initial_q(&self.initial))
+    }
+}
+
+impl<D: AncfDrive> SecondOrderSystem for MountedBelt<D> {
+    fn n_q(&self) -> usize {
+        self.drive.n_q()
+    }
+    fn dof_name(&self, dof: usize) -> String {
+        self.drive.dof_name(dof)
+    }
+    fn mass_is_constant(&self) -> bool {
+        self.drive.mass_is_constant()
+    }
+    fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
+        self.drive.mass(t, q)
+    }
+    fn forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), MbdError> {
+        self.drive.forces(t, q, v, f, ws)
+    }
+    fn force_tangent(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        ws: &mut Workspace,
+    ) -> Result<Option<ForceTangent>, MbdError> {
+        self.drive.force_tangent(t, q, v, ws)
+    }
+}
+
+impl<D: AncfDrive> BeltModel for MountedBelt<D> {
+    fn drive(&self) -> &Drive {
+        &self.layout
+    }
+
+    fn traits(&self) -> ModelTraits {
+        self.drive.model_traits()
+    }
+
+    /// The mounted static state, at rest.
+    fn initial_state(&self) -> Result<State, MbdError> {
+        let q = D::initial_q(&self.initial).to_vec();
+        let n = q.len();
+        Ok(State::new(0.0, q, vec![0.0; n]))
+    }
+
+    fn motion(&self, k: usize) -> Option<&Motion> {
+        self.drive.pulley_motion(k)
+    }
+
+    fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
+        self.drive.pulley_motion_mut(k)
+    }
+
+    fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+        self.drive.travel_speed(k, t, v)
+    }
+
+    fn arm_angle(&self, q: &[f64]) -> Option<f64> {
+        self.drive.arm_angle_at(q)
+    }
+
+    fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
+        self.drive.mean_belt_speed(q, v)
+    }
+
+    fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        self.drive.snapshot_at(t, q, v)
+    }
+
+    fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+        self.drive.span_offsets(q)
+    }
+}

@@ -1,0 +1,298 @@
+//! `flowmbd-belt design`: the FEAD's steady design without time stepping (issue 36): span
+//! tensions, the tensioner arm, slip arcs, hub loads and slip margins at every engine speed,
+//! the drive's rotational and span modes and its Campbell diagram, with warnings and errors
+//! before any time stepping. The computation lives in `drives::fead_design`; this module reads
+//! the configuration (the `fead` study's `[drive]` and `[engine]` tables plus `[design]`),
+//! runs it and writes the results.
+//!
+//! Output folder: `design_points.csv` (per engine speed), `design_spans.csv` and
+//! `design_pulleys.csv` (one row per engine speed and span or pulley, travel order),
+//! `rotational_modes.csv`, `campbell.csv` (every curve on the grid), `crossings.csv`, and the
+//! plots `hub_loads.png/svg` (hub-load vectors of every pulley over the engine speeds) and
+//! `campbell.png/svg`.
+
+use drives::fead_design::{DesignConfig, DesignSummary, Severity, run_design};
+use flowmbd_cli::plot::{LinePlot, Series, Style};
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
+use std::process::ExitCode;
+
+/// Command-line arguments.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Engine speeds [rpm], comma separated (replaces the configured operating points).
+    #[allow(rustdoc::broken_intra_doc_links)]
+    #[arg(long, value_delimiter = ',')]
+    pub rpm: Option<Vec<f64>>,
+}
+
+struct Design {
+    args: Args,
+}
+
+impl Study for Design {
+    type Config = DesignConfig;
+    type Summary = DesignSummary;
+    const APP: &'static str = "belt";
+    const NAME: &'static str = "design";
+
+    fn meaning(&self) -> &'static str {
+        "Steady design of a belt drive without time stepping (the summary's own `meaning` names \
+         the layout run)."
+    }
+
+    fn apply_overrides(&self, c: &mut DesignConfig) {
+        if let Some(r) = &self.args.rpm {
+            c.engine.speeds_rpm = r.clone();
+        }
+    }
+
+    fn run(&self, c: &DesignConfig, ctx: &mut StudyContext) -> Result<DesignSummary, StudyError> {
+        let s = run_design(c).map_err(StudyError::Input)?;
+        if !ctx.quiet {
+            for f in &s.findings {
+                let tag = match f.severity {
+                    Severity::Error => "error",
+                    Severity::Warning => "warning",
+                };
+                eprintln!("design: {tag}: {}", f.message);
+            }
+        }
+        write_outputs(ctx, &s)?;
+        Ok(s)
+    }
+}
+
+/// CSV tables and plots.
+fn write_outputs(ctx: &StudyContext, s: &DesignSummary) -> Result<(), StudyError> {
+    let flag = |b: bool| f64::from(u8::from(b));
+    let opt = |x: Option<f64>| x.unwrap_or(f64::NAN);
+    // per engine speed
+    let mut csv = ctx.out.csv(
+        "design_points.csv",
+        &[
+            "engine_speed_rpm",
+            "belt_speed_m_per_s",
+            "centrifugal_tension_N",
+            "belt_elongation_m",
+            "arm_angle_deg",
+            "arm_swing_deg",
+            "arm_stop_margin_deg",
+            "arm_spring_moment_N_m",
+            "idler_force_N",
+            "arm_on_stop_flag",
+        ],
+    )?;
+    for p in &s.points {
+        let a = p.arm.as_ref();
+        csv.row(&[
+            p.engine_rpm,
+            p.belt_speed_m_per_s,
+            p.centrifugal_tension_n,
+            p.belt_elongation_m,
+            opt(a.map(|a| a.angle_deg)),
+            opt(a.map(|a| a.swing_deg)),
+            opt(a.map(|a| a.stop_margin_deg)),
+            opt(a.map(|a| a.spring_moment_n_m)),
+            opt(a.map(|a| a.idler_force_magnitude_n)),
+            flag(a.is_some_and(|a| a.on_stop)),
+        ])?;
+    }
+    csv.finish()?;
+    // spans
+    let harmonics = s
+        .points
+        .first()
+        .and_then(|p| p.spans.first())
+        .map_or(0, |sp| sp.modes.frequencies_hz.len());
+    let mut header: Vec<String> = [
+        "engine_speed_rpm",
+        "span_index",
+        "length_m",
+        "tension_N",
+        "effective_tension_N",
+        "tight_flag",
+        "stiffness_N_per_m",
+        "coupled_through_arm_flag",
+    ]
+    .iter()
+    .map(|x| x.to_string())
+    .collect();
+    header.extend((1..=harmonics).map(|n| format!("frequency{n}_hz")));
+    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut csv = ctx.out.csv("design_spans.csv", &refs)?;
+    for p in &s.points {
+        for (k, sp) in p.spans.iter().enumerate() {
+            let mut row = vec![
+                p.engine_rpm,
+                k as f64,
+                sp.length_m,
+                sp.tension_n,
+                sp.effective_tension_n,
+                flag(sp.side == "tight"),
+                sp.stiffness_n_per_m,
+                flag(sp.modes.coupled_through_arm),
+            ];
+            row.extend(sp.modes.frequencies_hz.iter().map(|f| opt(*f)));
+            csv.row(&row)?;
+        }
+    }
+    csv.finish()?;
+    // pulleys
+    let mut csv = ctx.out.csv(
+        "design_pulleys.csv",
+        &[
+            "engine_speed_rpm",
+            "pulley_index",
+            "wrap_deg",
+            "speed_rad_s",
+            "torque_N_m",
+            "tension_in_N",
+            "tension_out_N",
+            "friction_coefficient_ratio",
+            "adhesion_arc_deg",
+            "slip_arc_deg",
+            "capacity_N_m",
+            "slip_margin_ratio",
+            "hub_load_x_N",
+            "hub_load_y_N",
+            "hub_load_N",
+            "hub_load_direction_deg",
+        ],
+    )?;
+    for p in &s.points {
+        for (k, pl) in p.pulleys.iter().enumerate() {
+            csv.row(&[
+                p.engine_rpm,
+                k as f64,
+                pl.wrap_deg,
+                pl.speed_rad_per_s,
+                pl.torque_n_m,
+                pl.tension_in_n,
+                pl.tension_out_n,
+                pl.friction_coefficient,
+                pl.adhesion_arc_deg,
+                pl.slip_arc_deg,
+                pl.capacity_n_m,
+                opt(pl.slip_margin),
+                pl.hub_load_n[0],
+                pl.hub_load_n[1],
+                pl.hub_load_magnitude_n,
+                pl.hub_load_direction_deg,
+            ])?;
+        }
+    }
+    csv.finish()?;
+    // rotational modes
+    let dofs = s.points.first().map_or(0, |p| p.rotational_dofs.len());
+    let mut header: Vec<String> = vec![
+        "engine_speed_rpm".into(),
+        "mode".into(),
+        "frequency_hz".into(),
+    ];
+    header.extend((0..dofs).map(|i| format!("dof{i}_energy_share")));
+    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut csv = ctx.out.csv("rotational_modes.csv", &refs)?;
+    for p in &s.points {
+        for (i, m) in p.rotational_modes.iter().enumerate() {
+            let mut row = vec![p.engine_rpm, (i + 1) as f64, m.frequency_hz];
+            row.extend(m.energy_share.iter().copied());
+            csv.row(&row)?;
+        }
+    }
+    csv.finish()?;
+    // Campbell diagram and crossings
+    let c = &s.campbell;
+    let mut header: Vec<String> = vec!["engine_speed_rpm".into()];
+    header.extend((0..c.curves.len()).map(|i| format!("curve{i}_hz")));
+    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut csv = ctx.out.csv("campbell.csv", &refs)?;
+    for (i, &r) in c.engine_rpm.iter().enumerate() {
+        let mut row = vec![r];
+        row.extend(c.curves.iter().map(|cv| opt(cv.frequencies_hz[i])));
+        csv.row(&row)?;
+    }
+    csv.finish()?;
+    let mut csv = ctx.out.csv(
+        "crossings.csv",
+        &[
+            "curve_index",
+            "engine_order_ratio",
+            "engine_speed_rpm",
+            "frequency_hz",
+        ],
+    )?;
+    for x in &c.crossings {
+        let idx = c
+            .curves
+            .iter()
+            .position(|cv| cv.name == x.curve)
+            .unwrap_or(0);
+        csv.row(&[idx as f64, x.order, x.engine_rpm, x.frequency_hz])?;
+    }
+    csv.finish()?;
+    // hub-load vectors: one marker per engine speed for every pulley, a ray from the origin to
+    // the first operating point's force
+    let mut hub = LinePlot::new(
+        "Hub loads (force of the belt on each pulley)",
+        "F_x [N]",
+        "F_y [N]",
+    );
+    for (k, name) in s.pulleys.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .map(|p| (p.pulleys[k].hub_load_n[0], p.pulleys[k].hub_load_n[1]))
+            .collect();
+        let mut ray = vec![(0.0, 0.0)];
+        ray.extend(pts.first().copied());
+        hub.series.push(Series::line(
+            format!("{name} ({} rpm)", s.points[0].engine_rpm),
+            ray,
+        ));
+        hub.series.push(Series {
+            name: format!("{name}, all speeds"),
+            points: pts,
+            style: Style::Points,
+        });
+    }
+    hub.save(&ctx.out.path("hub_loads"))?;
+    let mut camp = LinePlot::new(
+        "Campbell diagram: rotational and span modes, engine orders",
+        "engine speed [rpm]",
+        "frequency [Hz]",
+    );
+    for cv in &c.curves {
+        camp.series.push(Series::line(
+            cv.name.clone(),
+            c.engine_rpm
+                .iter()
+                .zip(&cv.frequencies_hz)
+                .filter_map(|(&r, f)| f.map(|f| (r, f)))
+                .collect(),
+        ));
+    }
+    for &o in &c.orders {
+        camp.series.push(Series::line(
+            format!("order {o}"),
+            c.engine_rpm.iter().map(|&r| (r, o * r / 60.0)).collect(),
+        ));
+    }
+    if !c.crossings.is_empty() {
+        camp.series.push(Series::points(
+            "crossings",
+            c.crossings
+                .iter()
+                .map(|x| (x.engine_rpm, x.frequency_hz))
+                .collect(),
+        ));
+    }
+    camp.save(&ctx.out.path("campbell"))?;
+    Ok(())
+}
+
+/// Run the study under the app conventions.
+pub fn run(args: &Args) -> ExitCode {
+    run_study(&Design { args: args.clone() }, &args.common)
+}

@@ -1,0 +1,311 @@
+//! Partial configurations read over the defaults, deeply (issue 39).
+//!
+//! A study's configuration is a plain `serde` struct whose `Default` is the seed's case. A user
+//! who changes one number of it — the installation tension of the default drive, one step size —
+//! writes only that key; [`from_partial`] reads it over the defaults:
+//!
+//! * a table is merged key by key, at every depth (`[drive] tension = 300` keeps the default
+//!   drive's pulleys, section and contact);
+//! * an array (the pulleys of a drive, a list of torques) and a scalar replace the default whole;
+//! * a table that selects another variant of an enum (a key whose string value differs from the
+//!   default's, e.g. `law = "coulomb"` where the default friction is `law = "creep"`) replaces
+//!   the default table whole when merging it would mix the two variants' keys: the merge is tried
+//!   first and the replacement only when the merged table does not deserialize;
+//! * a key the user gives drops from the defaults the keys that depend on it or exclude it
+//!   ([`DROPPED_BY`]: a drive's installation `tension` or its `belt_length`; a new list of
+//!   `pulleys` drops the default drive's `tensioner`, whose pulley index referred to the old
+//!   list — a drive with new pulleys has a tensioner only if the file gives one).
+//!
+//! The CLI's TOML reader and the Python package's dictionary configurations both go through
+//! [`from_partial`], so a partial configuration means the same on both.
+
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+
+/// `(given, dropped)`: when a user's table gives the key `given`, the default's key `dropped`
+/// in the same table is left out (module documentation). The belt drive's installation tension
+/// \[N\] and its unstretched length \[m\] exclude each other (`belt::Layout`); its tensioner
+/// names a pulley by its index in the drive's `pulleys`.
+pub const DROPPED_BY: &[(&str, &str)] = &[
+    ("tension", "belt_length"),
+    ("belt_length", "tension"),
+    ("pulleys", "tensioner"),
+];
+
+/// A partial configuration that does not deserialize over the defaults.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{path}: {message}")]
+pub struct PartialConfigError {
+    /// Dotted path of the offending key (`drive.pulleys[2].radius`; `<root>` for the top).
+    pub path: String,
+    /// What the deserializer reported.
+    pub message: String,
+}
+
+impl PartialConfigError {
+    /// The path as its steps (keys and array indices), for locating it in a source text.
+    pub fn steps(&self) -> Vec<PathStep> {
+        parse_path(&self.path)
+    }
+}
+
+/// One step of a path into a configuration tree.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum PathStep {
+    /// A key of a table.
+    Key(String),
+    /// An index of an array.
+    Index(usize),
+}
+
+/// `user` read over `C::default()` (module documentation): merged table by table, arrays and
+/// scalars replaced, a table that switches an enum's variant replaced whole.
+pub fn from_partial<C>(user: toml::Table) -> Result<C, PartialConfigError>
+where
+    C: Serialize + DeserializeOwned + Default,
+{
+    let Ok(defaults) = toml::Table::try_from(C::default()) else {
+        // a default that TOML cannot hold (none in the workspace): the user's table alone
+        return deserialize(user);
+    };
+    let mut switches = Vec::new();
+    let merged = merge(
+        defaults.clone(),
+        user.clone(),
+        &mut Vec::new(),
+        &mut switches,
+        &[],
+    );
+    match deserialize::<C>(merged) {
+        Ok(c) => Ok(c),
+        Err(first) if !switches.is_empty() => {
+            let replaced = merge(defaults, user, &mut Vec::new(), &mut Vec::new(), &switches);
+            deserialize::<C>(replaced).map_err(|_| first)
+        }
+        Err(first) => Err(first),
+    }
+}
+
+fn deserialize<C: DeserializeOwned>(t: toml::Table) -> Result<C, PartialConfigError> {
+    serde_path_to_error::deserialize(toml::Value::Table(t)).map_err(|e| {
+        let path = e.path().to_string();
+        PartialConfigError {
+            path: if path == "." { "<root>".into() } else { path },
+            message: e.into_inner().message().trim().to_string(),
+        }
+    })
+}
+
+/// `user` merged over `base`. `here` is the path of the tables being merged; the paths of
+/// tables that switch a variant are pushed to `switches`; the tables at `replace` are taken from
+/// `user` whole.
+fn merge(
+    mut base: toml::Table,
+    user: toml::Table,
+    here: &mut Vec<PathStep>,
+    switches: &mut Vec<Vec<PathStep>>,
+    replace: &[Vec<PathStep>],
+) -> toml::Table {
+    if replace.iter().any(|r| r == here) {
+        return user;
+    }
+    let switches_variant = user.iter().any(|(k, v)| {
+        matches!((v, base.get(k)), (toml::Value::String(a), Some(toml::Value::String(b))) if a != b)
+    });
+    if switches_variant {
+        switches.push(here.clone());
+    }
+    for &(given, dropped) in DROPPED_BY {
+        if user.contains_key(given) && !user.contains_key(dropped) {
+            base.remove(dropped);
+        }
+    }
+    for (k, v) in user {
+        let merged = match (base.remove(&k), v) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(u)) => {
+                here.push(PathStep::Key(k.clone()));
+                let m = merge(b, u, here, switches, replace);
+                here.pop();
+                toml::Value::Table(m)
+            }
+            (_, v) => v,
+        };
+        base.insert(k, merged);
+    }
+    base
+}
+
+fn parse_path(path: &str) -> Vec<PathStep> {
+    let mut steps = Vec::new();
+    if path == "<root>" {
+        return steps;
+    }
+    for part in path.split('.') {
+        let (key, mut rest) = match part.find('[') {
+            Some(i) => (&part[..i], &part[i..]),
+            None => (part, ""),
+        };
+        if !key.is_empty() {
+            steps.push(PathStep::Key(key.to_string()));
+        }
+        while let Some(end) = rest.find(']') {
+            if let Ok(i) = rest[1..end].parse() {
+                steps.push(PathStep::Index(i));
+            }
+            rest = &rest[end + 1..];
+        }
+    }
+    steps
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde::Deserialize;
+
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
+    enum Friction {
+        Creep { kappa: f64, mu: f64 },
+        Coulomb { mu: f64 },
+    }
+
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Pulley {
+        radius: f64,
+    }
+
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Drive {
+        pulleys: Vec<Pulley>,
+        tension: f64,
+        friction: Friction,
+        name: String,
+    }
+
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Study {
+        drive: Drive,
+        speeds: Vec<f64>,
+    }
+
+    impl Default for Study {
+        fn default() -> Self {
+            Study {
+                drive: Drive {
+                    pulleys: vec![Pulley { radius: 0.1 }, Pulley { radius: 0.2 }],
+                    tension: 400.0,
+                    friction: Friction::Creep {
+                        kappa: 40.0,
+                        mu: 0.5,
+                    },
+                    name: "seed".into(),
+                },
+                speeds: vec![1.0, 2.0],
+            }
+        }
+    }
+
+    fn read(text: &str) -> Result<Study, PartialConfigError> {
+        from_partial(toml::from_str(text).unwrap())
+    }
+
+    #[test]
+    fn one_number_changes_alone() {
+        // reference: the defaults with that one field set by hand
+        let s = read("[drive]\ntension = 300.0\n").unwrap();
+        let mut expected = Study::default();
+        expected.drive.tension = 300.0;
+        assert_eq!(s, expected);
+    }
+
+    #[test]
+    fn a_string_field_that_is_not_a_tag_merges() {
+        let s = read("[drive]\nname = \"mine\"\n").unwrap();
+        assert_eq!(s.drive.name, "mine");
+        assert_eq!(s.drive.pulleys.len(), 2);
+    }
+
+    #[test]
+    fn arrays_replace_whole() {
+        let s = read("speeds = [5.0]\n[[drive.pulleys]]\nradius = 0.3\n").unwrap();
+        assert_eq!(s.speeds, vec![5.0]);
+        assert_eq!(s.drive.pulleys, vec![Pulley { radius: 0.3 }]);
+        assert_eq!(s.drive.tension, 400.0);
+    }
+
+    #[test]
+    fn a_variant_switch_replaces_the_table() {
+        let s = read("[drive.friction]\nlaw = \"coulomb\"\nmu = 0.3\n").unwrap();
+        assert_eq!(s.drive.friction, Friction::Coulomb { mu: 0.3 });
+        // the same variant merges: kappa kept
+        let s = read("[drive.friction]\nmu = 0.3\n").unwrap();
+        assert_eq!(
+            s.drive.friction,
+            Friction::Creep {
+                kappa: 40.0,
+                mu: 0.3
+            }
+        );
+    }
+
+    #[test]
+    fn a_given_key_drops_the_defaults_it_excludes() {
+        #[derive(Debug, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Mount {
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            tension: Option<f64>,
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            belt_length: Option<f64>,
+            pulleys: Vec<f64>,
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            tensioner: Option<usize>,
+        }
+        impl Default for Mount {
+            fn default() -> Self {
+                Mount {
+                    tension: Some(400.0),
+                    belt_length: None,
+                    pulleys: vec![0.1, 0.2, 0.3],
+                    tensioner: Some(2),
+                }
+            }
+        }
+        // new pulleys: the default tensioner (index 2 of the old list) goes
+        let m: Mount = from_partial(toml::from_str("pulleys = [0.1, 0.2]").unwrap()).unwrap();
+        assert_eq!((m.pulleys.len(), m.tensioner), (2, None));
+        let m: Mount =
+            from_partial(toml::from_str("pulleys = [0.1, 0.2]\ntensioner = 1").unwrap()).unwrap();
+        assert_eq!(m.tensioner, Some(1));
+        let m: Mount = from_partial(toml::from_str("belt_length = 1.2").unwrap()).unwrap();
+        assert_eq!((m.tension, m.belt_length), (None, Some(1.2)));
+        // both given by the user: both kept (the layout's validation refuses them)
+        let m: Mount =
+            from_partial(toml::from_str("belt_length = 1.2\ntension = 3.0").unwrap()).unwrap();
+        assert_eq!((m.tension, m.belt_length), (Some(3.0), Some(1.2)));
+    }
+
+    #[test]
+    fn errors_name_the_path() {
+        let e = read("[drive]\ntension = \"high\"\n").unwrap_err();
+        assert_eq!(e.path, "drive.tension");
+        let e = read("[[drive.pulleys]]\nradius = 0.1\ntypo = 1\n").unwrap_err();
+        assert_eq!(e.path, "drive.pulleys[0].typo");
+        assert!(e.message.contains("typo"), "{e}");
+        assert_eq!(
+            e.steps(),
+            vec![
+                PathStep::Key("drive".into()),
+                PathStep::Key("pulleys".into()),
+                PathStep::Index(0),
+                PathStep::Key("typo".into())
+            ]
+        );
+        let e = read("[drive.friction]\nlaw = \"coulomb\"\n").unwrap_err();
+        assert!(e.message.contains("mu"), "{e}");
+    }
+}
