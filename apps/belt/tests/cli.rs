@@ -118,7 +118,7 @@ fn shipped_examples_are_valid() {
         let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
         let study = if name.starts_with("kerkkanen-4-6") {
             "plate"
-        } else if name.starts_with("pechstein-gerstmayr") {
+        } else if name.starts_with("pechstein-gerstmayr") || name.starts_with("fead-") {
             "fead"
         } else {
             "ancf"
