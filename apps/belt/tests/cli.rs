@@ -128,8 +128,8 @@ fn shipped_examples_are_valid() {
         n += 1;
     }
     assert_eq!(
-        n, 9,
-        "kerkkanen-3-3-a … f, kerkkanen-4-6-model1, -model2, pechstein-gerstmayr"
+        n, 10,
+        "kerkkanen-3-3-a … f, kerkkanen-4-6-model1, -model2, pechstein-gerstmayr, fead-three-pulley"
     );
 }
 

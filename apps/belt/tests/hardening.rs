@@ -56,14 +56,15 @@ fn every_table_rejects_an_unknown_key() {
     names.sort();
     assert_eq!(
         names.len(),
-        9,
-        "kerkkanen-3-3-a … f (ancf), kerkkanen-4-6-model1, -2 (plate), pechstein-gerstmayr (fead)"
+        10,
+        "kerkkanen-3-3-a … f (ancf), kerkkanen-4-6-model1, -2 (plate), pechstein-gerstmayr, \
+         fead-three-pulley (fead)"
     );
     for p in names {
         let name = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
         let study = if name.starts_with("kerkkanen-4-6") {
             "plate"
-        } else if name.starts_with("pechstein-gerstmayr") {
+        } else if name.starts_with("pechstein-gerstmayr") || name.starts_with("fead-") {
             "fead"
         } else {
             "ancf"
