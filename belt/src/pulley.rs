@@ -100,6 +100,7 @@ pub struct Pulley {
     pub name: String,
     /// Centre `(x, y)` in the drive plane \[m\] (for a tensioner's idler: its installed
     /// position, which fixes the arm length).
+    #[serde(deserialize_with = "mbd_core::validate::exact_array")]
     pub center: [f64; 2],
     /// Radius of the belt line on the pulley \[m\].
     pub radius: f64,
@@ -114,7 +115,11 @@ pub struct Pulley {
     pub crown: f64,
     /// Axial positions `[z_lo, z_hi]` of the inner flange faces \[m\] (spatial models; none: no
     /// flanges).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "mbd_core::validate::exact_array_opt"
+    )]
     pub flanges: Option<[f64; 2]>,
     /// Prescribed centre translation, Kerkkänen (4.46) (none: fixed centre).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -369,7 +369,11 @@ struct RawSignal {
     t_end: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     from: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "mbd_core::validate::exact_pairs_opt"
+    )]
     knots: Option<Vec<(f64, f64)>>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     harmonics: Vec<Harmonic>,

@@ -43,6 +43,7 @@ pub struct Tensioner {
     /// Index of the idler pulley (in the layout's pulley list) carried by the arm.
     pub pulley: usize,
     /// Pivot position (x, y) \[m\].
+    #[serde(deserialize_with = "mbd_core::validate::exact_array")]
     pub pivot: [f64; 2],
     /// Torsional spring stiffness `k` \[N m/rad\].
     pub stiffness: f64,
@@ -62,6 +63,7 @@ pub struct Tensioner {
     /// Moment of inertia of arm and idler about the pivot \[kg m²\].
     pub inertia: f64,
     /// Allowed arm travel `[θ_min, θ_max]` \[rad\] (counter-clockwise from x).
+    #[serde(deserialize_with = "mbd_core::validate::exact_array")]
     pub travel: [f64; 2],
 }
 

@@ -437,6 +437,10 @@ impl Acc {
         self.sum += x;
         self.n += 1;
     }
+    /// The extremes, `None` when nothing was added.
+    fn get_some(&self) -> Option<Extremes> {
+        (self.n > 0).then(|| self.get())
+    }
     fn get(&self) -> Extremes {
         if self.n == 0 {
             return Extremes {
@@ -477,8 +481,9 @@ pub struct FeadPoint {
     pub engine_rpm: f64,
     /// Mean belt speed \[m/s\].
     pub belt_speed: f64,
-    /// Tensioner arm angle over the window \[rad\].
-    pub arm_angle: Extremes,
+    /// Tensioner arm angle over the window \[rad\] (`None`: the layout has no tensioner;
+    /// issue 35: a layout without one gave NaN here, failing the run as implausible).
+    pub arm_angle: Option<Extremes>,
     /// Spans in travel order.
     pub spans: Vec<FeadSpan>,
     /// Speed of every pulley over the window \[rad/s\] (travel order).
@@ -988,7 +993,7 @@ fn sweep<M: BeltModel>(
         summary.points.push(FeadPoint {
             engine_rpm: rpm,
             belt_speed: v,
-            arm_angle: arm.get(),
+            arm_angle: arm.get_some(),
             spans: spans
                 .iter()
                 .zip(&tens)

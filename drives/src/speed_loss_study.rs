@@ -84,6 +84,26 @@ impl Validate for SpeedLossStudyConfig {
                 "the speed-loss procedure needs a free pulley to load",
             ));
         }
+        // the belt speed ω R of the driver below the critical speed c = √(T0/ρA) of the
+        // mounted belt, where the spans lose their transverse stiffness (T0 − ρAv² = 0) and
+        // the travelling-string models have no steady state (Wickert and Mote; issue 35:
+        // `--omega 1e300` ran and failed writing a file named by the speed)
+        if let Some(k) = drive.driver() {
+            let r = drive.pulleys()[k].radius;
+            let c = drive.belt().wave_speed(drive.tension());
+            if let Some(i) = self.omegas.iter().position(|w| w * r >= c) {
+                return Err(InvalidField::new(
+                    format!("omegas[{i}]"),
+                    format!(
+                        "{} rad/s drives the belt at {} m/s on the driver (radius {r} m), at or \
+                         above the critical speed c = √(T0/ρA) = {c:.4} m/s of the mounted belt, \
+                         where the spans lose their transverse stiffness",
+                        check::show(self.omegas[i]),
+                        check::show(self.omegas[i] * r)
+                    ),
+                ));
+            }
+        }
         self.models.validate_within("models")?;
         match self.model {
             ModelKind::Flowing => self

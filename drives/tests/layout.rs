@@ -294,8 +294,8 @@ fn fead_default_sweep_runs() {
             "{} rpm: v {:.2} m/s arm {:.4}..{:.4} rad; spans {:?}; slip {:?}; torques {:?}; f1 {:?}",
             p.engine_rpm,
             p.belt_speed,
-            p.arm_angle.min,
-            p.arm_angle.max,
+            p.arm_angle.expect("the layout has a tensioner").min,
+            p.arm_angle.expect("the layout has a tensioner").max,
             p.spans
                 .iter()
                 .map(|x| (x.tension.min.round(), x.tension.max.round()))
@@ -314,7 +314,10 @@ fn fead_default_sweep_runs() {
                 .map(|x| x.frequency_1_hz.map(f64::round))
                 .collect::<Vec<_>>(),
         );
-        assert!(p.arm_angle.min > travel[0] && p.arm_angle.max < travel[1]);
+        assert!(
+            p.arm_angle.expect("the layout has a tensioner").min > travel[0]
+                && p.arm_angle.expect("the layout has a tensioner").max < travel[1]
+        );
         // every span taut, or the point says it left the linearised model's range
         let t_min = drives::speed_loss::LINEAR_MIN_SLACK * s.installed_tension;
         let slack = p.spans.iter().any(|sp| sp.tension.min < t_min);

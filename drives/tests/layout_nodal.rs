@@ -304,8 +304,8 @@ fn fead_runs_the_nodal_model_and_agrees_with_the_flowing_one() {
     let (a, b) = (&nodal.points[0], &flow.points[0]);
     eprintln!(
         "arm mean nodal {:.5} flowing {:.5} rad; spans nodal {:?} flowing {:?} N; driven slip nodal {:.4} flowing {:.4} %",
-        a.arm_angle.mean,
-        b.arm_angle.mean,
+        a.arm_angle.expect("the layout has a tensioner").mean,
+        b.arm_angle.expect("the layout has a tensioner").mean,
         a.spans.iter().map(|s| s.tension.mean).collect::<Vec<_>>(),
         b.spans.iter().map(|s| s.tension.mean).collect::<Vec<_>>(),
         a.speed_loss_percent[1],
@@ -322,7 +322,12 @@ fn fead_runs_the_nodal_model_and_agrees_with_the_flowing_one() {
             y.tension
         );
     }
-    assert!((a.arm_angle.mean - b.arm_angle.mean).abs() < 1e-3);
+    assert!(
+        (a.arm_angle.expect("the layout has a tensioner").mean
+            - b.arm_angle.expect("the layout has a tensioner").mean)
+            .abs()
+            < 1e-3
+    );
     assert!((a.speed_loss_percent[1] - b.speed_loss_percent[1]).abs() < 0.05);
 }
 

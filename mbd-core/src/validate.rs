@@ -73,6 +73,51 @@ pub fn unit_variant<'de, D: serde::Deserializer<'de>>(d: D) -> Result<(), D::Err
     <NoFields as serde::Deserialize>::deserialize(d).map(|_| ())
 }
 
+/// Deserializes `[f64; N]` from an array of exactly `N` numbers:
+/// `#[serde(deserialize_with = "mbd_core::validate::exact_array")]`.
+///
+/// The TOML reader fills a fixed-size array from the first `N` elements and drops the rest,
+/// so `center = [0.0, 0.0, 0.5]` read as `[0.0, 0.0]` (issue 35: a pulley centre with three
+/// coordinates was accepted); with this, any other length is an "invalid length" error naming
+/// the field and the line.
+pub fn exact_array<'de, D: serde::Deserializer<'de>, const N: usize>(
+    d: D,
+) -> Result<[f64; N], D::Error> {
+    let v = <Vec<f64> as serde::Deserialize>::deserialize(d)?;
+    let n = v.len();
+    v.try_into().map_err(|_| {
+        <D::Error as serde::de::Error>::invalid_length(
+            n,
+            &format!("an array of exactly {N} numbers").as_str(),
+        )
+    })
+}
+
+/// [`exact_array`] for an optional field (with `#[serde(default)]`).
+pub fn exact_array_opt<'de, D: serde::Deserializer<'de>, const N: usize>(
+    d: D,
+) -> Result<Option<[f64; N]>, D::Error> {
+    exact_array(d).map(Some)
+}
+
+/// [`exact_array`] for an optional list of pairs, such as a schedule's `knots = [[t, v], ...]`
+/// (with `#[serde(default)]`): every element an array of exactly two numbers.
+pub fn exact_pairs_opt<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> Result<Option<Vec<(f64, f64)>>, D::Error> {
+    let v = <Vec<Vec<f64>> as serde::Deserialize>::deserialize(d)?;
+    v.into_iter()
+        .map(|p| match p[..] {
+            [a, b] => Ok((a, b)),
+            _ => Err(<D::Error as serde::de::Error>::invalid_length(
+                p.len(),
+                &"pairs [x, y] of exactly two numbers",
+            )),
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(Some)
+}
+
 /// The documented ceilings on sizes and run lengths taken from input, and the one switch that
 /// raises them (issue 20, item 2).
 ///

@@ -6,6 +6,9 @@ use belt::{MaterialLaw, Motion, Pulley, Signal, WrapSide};
 use mbd_core::Validate;
 use serde::{Deserialize, Serialize};
 
+/// Most Gauss-Legendre points per belt element ([`BeltSpec::gauss_points`]; Kerkkänen uses 5).
+pub const MAX_GAUSS_POINTS: usize = 20;
+
 /// The belt: ANCF belt elements (Kerkkänen §3.1) in a closed loop.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -221,10 +224,22 @@ impl BeltDriveSpec {
                 format!("must lie in (-1, 0.5), got {}", b.poisson),
             ));
         }
-        if b.elements < 3 {
+        // bounded before anything is allocated (issue 35: 2^63 - 1 elements overflowed a
+        // Vec's capacity, 2^32 + 1 asked for 860 GB)
+        let max_elements =
+            mbd_core::validate::limits::ceiling_count(super::belt_model::MAX_ELEMENTS);
+        if !(3..=max_elements).contains(&b.elements) {
             return Err(invalid(
                 "belt.elements",
-                format!("a closed loop needs at least 3, got {}", b.elements),
+                format!(
+                    "a closed loop needs 3 to {max_elements}, got {}{}",
+                    b.elements,
+                    if b.elements > max_elements {
+                        mbd_core::validate::limits::raise_hint()
+                    } else {
+                        ""
+                    }
+                ),
             ));
         }
         if !(b.axial_damping.is_finite() && b.axial_damping >= 0.0) {
@@ -233,8 +248,13 @@ impl BeltDriveSpec {
                 format!("must be ≥ 0 s, got {}", b.axial_damping),
             ));
         }
-        if b.gauss_points == 0 {
-            return Err(invalid("belt.gauss_points", "must be at least 1"));
+        // Gauss-Legendre points per element: the rule is built per element (issue 35:
+        // 2^32 + 1 points asked for 34 GB)
+        if !(1..=MAX_GAUSS_POINTS).contains(&b.gauss_points) {
+            return Err(invalid(
+                "belt.gauss_points",
+                format!("must lie in 1..={MAX_GAUSS_POINTS}, got {}", b.gauss_points),
+            ));
         }
         let c = &self.contact;
         if !(c.stiffness.is_finite() && c.stiffness > 0.0) {

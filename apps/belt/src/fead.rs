@@ -106,12 +106,21 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
     let mut header: Vec<String> = vec![
         "engine_speed_rpm".into(),
         "belt_speed_m_per_s".into(),
-        "arm_angle_min_rad".into(),
-        "arm_angle_mean_rad".into(),
-        "arm_angle_max_rad".into(),
         "gross_slip_flag".into(),
         "linearisation_valid_flag".into(),
     ];
+    // the arm's columns and plot only for a layout with a tensioner (issue 35)
+    let has_arm = first.arm_angle.is_some();
+    if has_arm {
+        header.splice(
+            2..2,
+            [
+                "arm_angle_min_rad".into(),
+                "arm_angle_mean_rad".into(),
+                "arm_angle_max_rad".into(),
+            ],
+        );
+    }
     for k in 0..first.spans.len() {
         header.push(format!("span{k}_tension_min_N"));
         header.push(format!("span{k}_tension_max_N"));
@@ -129,15 +138,19 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
     let refs: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut csv = ctx.out.csv("fead_sweep.csv", &refs)?;
     for p in &s.points {
-        let mut row = vec![
-            p.engine_rpm,
-            p.belt_speed,
-            p.arm_angle.min,
-            p.arm_angle.mean,
-            p.arm_angle.max,
+        let mut row = vec![p.engine_rpm, p.belt_speed];
+        if has_arm {
+            let a = p.arm_angle.unwrap_or(drives::fead::Extremes {
+                min: f64::NAN,
+                mean: f64::NAN,
+                max: f64::NAN,
+            });
+            row.extend([a.min, a.mean, a.max]);
+        }
+        row.extend([
             f64::from(u8::from(p.gross_slip)),
             f64::from(u8::from(p.linearisation.is_none())),
-        ];
+        ]);
         for sp in &p.spans {
             let f1 = sp.frequency_1_hz.unwrap_or(f64::NAN);
             row.extend([sp.tension.min, sp.tension.max, f1]);
@@ -163,25 +176,35 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
         style: Style::LinePoints,
     };
     // tensioner arm motion
-    let mut arm = LinePlot::new(
-        "Tensioner arm angle",
-        "engine speed [rpm]",
-        "arm angle [deg]",
-    );
-    for (name, f) in [
-        (
-            "min",
-            (|p: &drives::fead::FeadPoint| p.arm_angle.min) as fn(&drives::fead::FeadPoint) -> f64,
-        ),
-        ("mean", |p| p.arm_angle.mean),
-        ("max", |p| p.arm_angle.max),
-    ] {
-        arm.series.push(series(
-            name.into(),
-            s.points.iter().map(|p| f(p).to_degrees()).collect(),
-        ));
+    if has_arm {
+        let mut arm = LinePlot::new(
+            "Tensioner arm angle",
+            "engine speed [rpm]",
+            "arm angle [deg]",
+        );
+        let nan = drives::fead::Extremes {
+            min: f64::NAN,
+            mean: f64::NAN,
+            max: f64::NAN,
+        };
+        for (name, f) in [
+            (
+                "min",
+                (|e: &drives::fead::Extremes| e.min) as fn(&drives::fead::Extremes) -> f64,
+            ),
+            ("mean", |e| e.mean),
+            ("max", |e| e.max),
+        ] {
+            arm.series.push(series(
+                name.into(),
+                s.points
+                    .iter()
+                    .map(|p| f(&p.arm_angle.unwrap_or(nan)).to_degrees())
+                    .collect(),
+            ));
+        }
+        arm.save(&ctx.out.path("arm_angle"))?;
     }
-    arm.save(&ctx.out.path("arm_angle"))?;
     // span tension extremes
     let mut ten = LinePlot::new("Span tension extremes", "engine speed [rpm]", "tension [N]");
     for (k, sp) in first.spans.iter().enumerate() {

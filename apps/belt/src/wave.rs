@@ -78,8 +78,16 @@ impl Validate for Config {
             .check_on(drive.path())
             .map_err(|e| e.within("flowing.mesh"))?;
         self.wave.validate_within("wave")?;
-        if self.vtk_frames == 0 {
-            return Err(InputError::new("vtk_frames", "must be at least 1"));
+        // at most one frame per recorded sample (issue 35: `vtk_frames = 1e9` was taken and
+        // silently gave one frame per sample)
+        if !(1..=self.wave.samples).contains(&self.vtk_frames) {
+            return Err(InputError::new(
+                "vtk_frames",
+                format!(
+                    "must lie in [1, wave.samples = {}] (one frame per recorded sample at most), got {}",
+                    self.wave.samples, self.vtk_frames
+                ),
+            ));
         }
         if !(self.vtk_scale.is_finite() && self.vtk_scale > 0.0) {
             return Err(InputError::new("vtk_scale", "must be finite and > 0"));

@@ -59,6 +59,19 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
+/// Whether `name` is a relative path of plain names inside the output folder (`vtk/a.vtk`; no
+/// `..`, root or prefix), written with `/`.
+fn inside(name: &str) -> bool {
+    !name.is_empty()
+        && !name.contains('\\')
+        && name
+            .split('/')
+            .all(|c| !c.is_empty() && c != "." && c != "..")
+        && Path::new(name)
+            .components()
+            .all(|c| matches!(c, std::path::Component::Normal(_)))
+}
+
 impl OutputDir {
     /// Create (if needed) the folder `root`. A path that exists and is not a folder, or a
     /// folder that cannot be created or written, is bad input (exit code 2) naming `--out`.
@@ -119,6 +132,26 @@ impl OutputDir {
                 }
             }
         }
+        // files of this run inside sub-folders (`vtk/rest_0000.vtk`): listed one by one, so
+        // that the next run removes exactly these (issue 35: frames of an earlier, longer run
+        // stayed in `vtk/` unmarked)
+        for n in names.iter().filter(|n| n.contains('/')) {
+            if inside(n) && self.root.join(n).is_file() {
+                out.insert(n.clone());
+            }
+        }
+        // and the files in a recorded sub-folder (`vtk`, written by VTK series writers)
+        for n in names.iter().filter(|n| inside(n)) {
+            let Ok(entries) = std::fs::read_dir(self.root.join(n)) else {
+                continue;
+            };
+            for e in entries.flatten() {
+                let f = e.file_name().to_string_lossy().into_owned();
+                if e.file_type().is_ok_and(|t| t.is_file()) && inside(&f) {
+                    out.insert(format!("{n}/{f}"));
+                }
+            }
+        }
         out.into_iter().collect()
     }
 
@@ -139,6 +172,19 @@ impl OutputDir {
                     && Path::new(f).file_name().is_some_and(|n| n == f);
                 if plain && f != "summary.json" {
                     let _ = std::fs::remove_file(self.root.join(f));
+                } else if inside(f) {
+                    // a file in a sub-folder of the run; the folder goes once empty
+                    let path = self.root.join(f);
+                    if path.is_file() {
+                        let _ = std::fs::remove_file(&path);
+                    }
+                    let mut dir = path.parent();
+                    while let Some(d) = dir
+                        && d != self.root
+                        && std::fs::remove_dir(d).is_ok()
+                    {
+                        dir = d.parent();
+                    }
                 }
             }
         }
@@ -404,6 +450,49 @@ mod tests {
         assert_eq!(second, vec![0.5, -2.0]);
         let mut sink = out.csv("u.csv", &["a", "b"]).unwrap();
         assert!(sink.row(&[1.0]).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    // issue 35 item 3: the files a run wrote into a sub-folder (VTK frames) are listed one by
+    // one and removed by the next run, the folder too once empty; a user's file beside them
+    // and names reaching outside the folder are left alone
+    #[test]
+    fn files_in_sub_folders_are_listed_and_cleared() {
+        let dir = std::env::temp_dir().join(format!("flowmbd-cli-sub-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = OutputDir::create(&dir).unwrap();
+        let vtk = out.path("vtk");
+        std::fs::create_dir_all(&vtk).unwrap();
+        for k in 0..3 {
+            std::fs::write(vtk.join(format!("f_{k}.vtk")), "x").unwrap();
+        }
+        out.write_text("a.csv", "t_s\n").unwrap();
+        let files = out.files();
+        assert_eq!(
+            files,
+            vec!["a.csv", "vtk", "vtk/f_0.vtk", "vtk/f_1.vtk", "vtk/f_2.vtk"],
+            "{files:?}"
+        );
+        out.write_json("summary.json", &serde_json::json!({ "outputs": files }))
+            .unwrap();
+        // the next run starts: the listed files go, the emptied folder with them
+        let next = OutputDir::create(&dir).unwrap();
+        next.begin_run().unwrap();
+        assert!(!dir.join("a.csv").exists());
+        assert!(!vtk.exists(), "emptied vtk/ removed");
+        // a folder holding a file the run did not list stays, with that file
+        std::fs::create_dir_all(&vtk).unwrap();
+        std::fs::write(vtk.join("f_0.vtk"), "x").unwrap();
+        std::fs::write(vtk.join("mine.txt"), "x").unwrap();
+        next.write_json(
+            "summary.json",
+            &serde_json::json!({ "outputs": ["vtk/f_0.vtk", "../escape.txt", "vtk/../../x"] }),
+        )
+        .unwrap();
+        OutputDir::create(&dir).unwrap().begin_run().unwrap();
+        assert!(!vtk.join("f_0.vtk").exists());
+        assert!(vtk.join("mine.txt").exists());
+        assert!(!inside("../escape.txt") && !inside("vtk/../../x") && !inside("/etc/x"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -149,7 +149,7 @@ pub trait Study {
 /// kept), 130 / 143 interrupted by SIGINT / SIGTERM (results so far kept, marked incomplete).
 pub fn run_study<S: Study>(study: &S, args: &CommonArgs) -> ExitCode {
     let cancel = Cancel::install();
-    match try_run(study, args, &cancel) {
+    match try_run(study, args, &cancel, true) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::Interrupted { out }) => {
             eprintln!(
@@ -212,7 +212,77 @@ pub fn non_finite_fields<T: Serialize>(summary: &T) -> Vec<String> {
     out
 }
 
-fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Outcome, StudyError> {
+/// How long a study has after SIGINT / SIGTERM to stop at its next step and return its results
+/// so far before the runner ends the process itself ([`watch_cancel`]).
+pub const CANCEL_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
+
+/// The runner's side of a study that does not poll [`StudyContext::cancel`] (or is inside a
+/// long step, such as an eigen solution): once a signal has been pending for
+/// [`CANCEL_GRACE`] and the study has not returned, mark the output folder interrupted
+/// (`summary.json` with `"complete": false`, `"status": "interrupted"`, the files so far),
+/// say so in one line and exit with 128 + the signal (issue 35: `belt wave` and the tire
+/// studies ran on after SIGTERM until done). `finished` is set by the runner under its lock
+/// once the study returned: from then on the runner writes the summary and the watch stands
+/// down.
+fn watch_cancel(
+    app: &'static str,
+    name: &'static str,
+    out: OutputDir,
+    cancel: Cancel,
+    finished: std::sync::Arc<std::sync::Mutex<bool>>,
+) {
+    let lock =
+        |m: &std::sync::Mutex<bool>| -> bool { *m.lock().unwrap_or_else(|e| e.into_inner()) };
+    let spawned = std::thread::Builder::new()
+        .name("flowmbd-cancel".into())
+        .spawn(move || {
+            let mut since: Option<std::time::Instant> = None;
+            loop {
+                std::thread::sleep(std::time::Duration::from_millis(50));
+                if lock(&finished) {
+                    return;
+                }
+                if !cancel.is_cancelled() {
+                    continue;
+                }
+                if since.get_or_insert_with(std::time::Instant::now).elapsed() < CANCEL_GRACE {
+                    continue;
+                }
+                let done = finished.lock().unwrap_or_else(|e| e.into_inner());
+                if *done {
+                    return;
+                }
+                let signal = cancel.signal_name();
+                let mut v = serde_json::json!({
+                    "complete": false,
+                    "status": "interrupted",
+                    "partial": null,
+                    "error": format!(
+                        "interrupted by {signal}: the study did not stop at a step within {} s; \
+                         its files so far are kept, its summary was not computed",
+                        CANCEL_GRACE.as_secs()
+                    ),
+                });
+                v["outputs"] = out.files().into();
+                let _ = out.write_json("summary.json", &v);
+                eprintln!(
+                    "flowmbd-{app} {name}: interrupted by {signal}; files so far in {} (marked \
+                     \"complete\": false, no summary)",
+                    mbd_core::validate::escape_message(&out.root().display().to_string())
+                );
+                std::process::exit(i32::from(cancel.exit_code()));
+            }
+        });
+    // without the thread a signal ends the run when the study next polls or finishes
+    drop(spawned);
+}
+
+fn try_run<S: Study>(
+    study: &S,
+    args: &CommonArgs,
+    cancel: &Cancel,
+    watch: bool,
+) -> Result<Outcome, StudyError> {
     // before any check: the ceilings of sizes and run lengths (`--allow-large`, issue 20)
     mbd_core::validate::limits::set_allow_large(args.allow_large);
     // overrides first, then one validation of the effective configuration
@@ -239,6 +309,16 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
         quiet: args.quiet,
         cancel: cancel.clone(),
     };
+    let finished = std::sync::Arc::new(std::sync::Mutex::new(false));
+    if watch {
+        watch_cancel(
+            S::APP,
+            S::NAME,
+            out.clone(),
+            cancel.clone(),
+            finished.clone(),
+        );
+    }
     // what a run that did not finish leaves in summary.json
     let unfinished = |status: &str, error: Option<String>, partial: Option<serde_json::Value>| {
         let mut v = serde_json::json!({
@@ -252,7 +332,11 @@ fn try_run<S: Study>(study: &S, args: &CommonArgs, cancel: &Cancel) -> Result<Ou
         v["outputs"] = out.files().into();
         out.write_json("summary.json", &v)
     };
-    let result = study.run(&config, &mut ctx).and_then(|summary| {
+    let result = study.run(&config, &mut ctx);
+    // the study returned: the runner writes the summary, the cancel watch stands down
+    let mut finished_guard = finished.lock().unwrap_or_else(|e| e.into_inner());
+    *finished_guard = true;
+    let result = result.and_then(|summary| {
         let bad = if study.results_must_be_finite() {
             non_finite_fields(&summary)
         } else {
@@ -443,6 +527,7 @@ mod tests {
             },
             &args(&dir),
             &Cancel::new(),
+            false,
         );
         assert!(ok.is_ok());
         let summary: serde_json::Value =
@@ -461,6 +546,7 @@ mod tests {
             },
             &args(&dir),
             &Cancel::new(),
+            false,
         )
         .unwrap_err();
         assert_eq!(bad.exit_code(), 2);
@@ -473,6 +559,7 @@ mod tests {
             },
             &args(&dir),
             &Cancel::new(),
+            false,
         )
         .unwrap_err();
         assert_eq!(failed.exit_code(), 1);
@@ -533,7 +620,7 @@ mod tests {
         )
         .unwrap();
         let cancel = Cancel::new();
-        let r = try_run(&Interruptible { cancel_at: 2 }, &args(&dir), &cancel).unwrap();
+        let r = try_run(&Interruptible { cancel_at: 2 }, &args(&dir), &cancel, false).unwrap();
         assert!(matches!(r, Outcome::Interrupted { .. }));
         assert_eq!(cancel.exit_code(), 130);
         let summary: serde_json::Value =
@@ -601,6 +688,7 @@ mod tests {
             },
             &args(&f),
             &Cancel::new(),
+            false,
         )
         .unwrap_err();
         assert_eq!(e.exit_code(), 2);

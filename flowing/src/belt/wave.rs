@@ -27,6 +27,13 @@ use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Recorder, State, obse
 use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
+/// Most generalized-α steps of one run, `t_end / step` (a documented ceiling,
+/// [`mbd_core::validate::limits`]; the default run takes 2000).
+pub const MAX_WAVE_STEPS: f64 = 1e7;
+/// Most recorded samples of one run (every sample keeps the loop's shape: about 2 kB for
+/// Table 6-1's default mesh; the default records 1000).
+pub const MAX_WAVE_SAMPLES: usize = 100_000;
+
 /// Settings of the demonstration (SI units).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -93,6 +100,28 @@ impl Validate for WaveConfig {
         if self.samples < 2 {
             return Err(InvalidField::new("samples", "must be at least 2"));
         }
+        // run length and recorded samples bounded before anything runs (issue 35:
+        // `t_end = 1e9` ran without end, and ignored SIGTERM)
+        let steps = self.t_end / self.step;
+        let max_steps = mbd_core::validate::limits::ceiling(MAX_WAVE_STEPS);
+        if steps > max_steps {
+            return Err(InvalidField::new(
+                "t_end",
+                format!(
+                    "{} s at step = {} s is {steps:.3e} steps, more than the {max_steps:e} a run \
+                     may take (shorten t_end or lengthen step){}",
+                    mbd_core::validate::check::show(self.t_end),
+                    mbd_core::validate::check::show(self.step),
+                    mbd_core::validate::limits::raise_hint()
+                ),
+            ));
+        }
+        mbd_core::validate::check::count(
+            "samples",
+            self.samples,
+            2,
+            mbd_core::validate::limits::ceiling_count(MAX_WAVE_SAMPLES),
+        )?;
         if self.step > self.t_end / self.samples as f64 {
             return Err(InvalidField::new(
                 "step",
