@@ -83,7 +83,7 @@ where
     );
     match deserialize::<C>(merged) {
         Ok(c) => Ok(c),
-        Err(first) if !switches.is_empty() => {
+        Err(_) if !switches.is_empty() => {
             let replaced = merge(defaults, user, &mut Vec::new(), &mut Vec::new(), &switches);
             // both fail: the replaced tables' error is about the keys the user wrote for the
             // variant chosen
