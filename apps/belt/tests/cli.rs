@@ -450,7 +450,12 @@ fn partial_configs_change_one_number_of_the_default_drive() {
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("t.toml");
     std::fs::write(&f, "[drive]\ntension = 300.0\n").unwrap();
-    let (code, merged, err) = run(&["speed-loss", "--config", f.to_str().unwrap(), "--print-config"]);
+    let (code, merged, err) = run(&[
+        "speed-loss",
+        "--config",
+        f.to_str().unwrap(),
+        "--print-config",
+    ]);
     assert_eq!(code, 0, "{err}");
     let (_, default, _) = run(&["speed-loss", "--print-config"]);
     let mut expected: toml::Table = toml::from_str(&default).unwrap();
@@ -463,9 +468,17 @@ fn partial_configs_change_one_number_of_the_default_drive() {
         "omegas = [22.6]\n\n[[drive.pulleys]]\nradius = \"large\"\n",
     )
     .unwrap();
-    let (code, _, err) = run(&["speed-loss", "--config", f.to_str().unwrap(), "--print-config"]);
+    let (code, _, err) = run(&[
+        "speed-loss",
+        "--config",
+        f.to_str().unwrap(),
+        "--print-config",
+    ]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("t.toml:4:") && err.contains("drive.pulleys[0].radius"), "{err}");
+    assert!(
+        err.contains("t.toml:4:") && err.contains("drive.pulleys[0].radius"),
+        "{err}"
+    );
     assert_eq!(err.trim().lines().count(), 1, "{err}");
     let _ = std::fs::remove_dir_all(dir);
 }
