@@ -24,7 +24,7 @@ fn tmp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("flowmbd-fead-ex-{}-{name}", std::process::id()))
 }
 
-fn summary(args: &[&str], out: &PathBuf) -> serde_json::Value {
+fn summary(args: &[&str], out: &std::path::Path) -> serde_json::Value {
     let mut a = args.to_vec();
     a.extend(["--json", "--quiet", "--out", out.to_str().unwrap()]);
     let (code, stdout, stderr) = run(&a);
