@@ -181,7 +181,7 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
                 "spring_torque_min_N_m",
                 "spring_torque_mean_N_m",
                 "spring_torque_max_N_m",
-                "overrunning_fraction",
+                "overrunning_ratio",
                 "clutch_engaged_at_end_flag",
             ],
         )?;
