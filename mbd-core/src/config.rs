@@ -11,8 +11,10 @@
 //!   default's, e.g. `law = "coulomb"` where the default friction is `law = "creep"`) replaces
 //!   the default table whole when merging it would mix the two variants' keys: the merge is tried
 //!   first and the replacement only when the merged table does not deserialize;
-//! * of two keys that exclude each other ([`EXCLUSIVE_KEYS`]: a drive's installation `tension`
-//!   or its `belt_length`), the one the user gives drops the other from the defaults.
+//! * a key the user gives drops from the defaults the keys that depend on it or exclude it
+//!   ([`DROPPED_BY`]: a drive's installation `tension` or its `belt_length`; a new list of
+//!   `pulleys` drops the default drive's `tensioner`, whose pulley index referred to the old
+//!   list — a drive with new pulleys has a tensioner only if the file gives one).
 //!
 //! The CLI's TOML reader and the Python package's dictionary configurations both go through
 //! [`from_partial`], so a partial configuration means the same on both.
@@ -20,10 +22,15 @@
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-/// Pairs of keys of which a table gives one or the other, never both (the belt drive's
-/// installation tension \[N\] or its unstretched length \[m\], `belt::Layout`): a partial
-/// configuration that gives one drops the other from the defaults.
-pub const EXCLUSIVE_KEYS: &[(&str, &str)] = &[("tension", "belt_length")];
+/// `(given, dropped)`: when a user's table gives the key `given`, the default's key `dropped`
+/// in the same table is left out (module documentation). The belt drive's installation tension
+/// \[N\] and its unstretched length \[m\] exclude each other (`belt::Layout`); its tensioner
+/// names a pulley by its index in the drive's `pulleys`.
+pub const DROPPED_BY: &[(&str, &str)] = &[
+    ("tension", "belt_length"),
+    ("belt_length", "tension"),
+    ("pulleys", "tensioner"),
+];
 
 /// A partial configuration that does not deserialize over the defaults.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -108,12 +115,9 @@ fn merge(
     if switches_variant {
         switches.push(here.clone());
     }
-    for &(a, b) in EXCLUSIVE_KEYS {
-        if user.contains_key(a) && !user.contains_key(b) {
-            base.remove(b);
-        }
-        if user.contains_key(b) && !user.contains_key(a) {
-            base.remove(a);
+    for &(given, dropped) in DROPPED_BY {
+        if user.contains_key(given) && !user.contains_key(dropped) {
+            base.remove(dropped);
         }
     }
     for (k, v) in user {
@@ -249,7 +253,7 @@ mod tests {
     }
 
     #[test]
-    fn an_exclusive_key_drops_its_partner() {
+    fn a_given_key_drops_the_defaults_it_excludes() {
         #[derive(Debug, Serialize, Deserialize)]
         #[serde(deny_unknown_fields)]
         struct Mount {
@@ -257,15 +261,26 @@ mod tests {
             tension: Option<f64>,
             #[serde(default, skip_serializing_if = "Option::is_none")]
             belt_length: Option<f64>,
+            pulleys: Vec<f64>,
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            tensioner: Option<usize>,
         }
         impl Default for Mount {
             fn default() -> Self {
                 Mount {
                     tension: Some(400.0),
                     belt_length: None,
+                    pulleys: vec![0.1, 0.2, 0.3],
+                    tensioner: Some(2),
                 }
             }
         }
+        // new pulleys: the default tensioner (index 2 of the old list) goes
+        let m: Mount = from_partial(toml::from_str("pulleys = [0.1, 0.2]").unwrap()).unwrap();
+        assert_eq!((m.pulleys.len(), m.tensioner), (2, None));
+        let m: Mount =
+            from_partial(toml::from_str("pulleys = [0.1, 0.2]\ntensioner = 1").unwrap()).unwrap();
+        assert_eq!(m.tensioner, Some(1));
         let m: Mount = from_partial(toml::from_str("belt_length = 1.2").unwrap()).unwrap();
         assert_eq!((m.tension, m.belt_length), (None, Some(1.2)));
         // both given by the user: both kept (the layout's validation refuses them)

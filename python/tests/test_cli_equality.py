@@ -72,6 +72,18 @@ def test_fead_equals_cli(cli):
     assert len(py["points"]) == 1 and py["meaning"] == ref["meaning"]
 
 
+def test_design_equals_cli(cli):
+    # the steady FEAD design (issue 36 item 1: "available to Python"), two engine speeds and a
+    # partial config (one number of the default drive) on both sides
+    import json
+
+    code, ref, err = cli("belt", "design", "--rpm", "800,3000")
+    assert code == 0, err
+    py = flowmbd.belt.design(rpm=[800.0, 3000.0])
+    assert_same(py, ref)
+    assert len(py["points"]) == 2 and py["layout"] == ref["layout"]
+
+
 def test_fead_bad_input_is_a_value_error():
     import pytest
 

@@ -364,17 +364,25 @@ fn result_table(s: &Summary) -> String {
     let num = |x: Option<f64>, prec: usize| x.map_or("-".to_string(), |v| format!("{v:.prec$}"));
     for c in &s.cases {
         for (k, p) in c.points.iter().enumerate() {
+            // relative residuals of an unloaded drive divide by nothing: not printed
+            let rel = |x: f64| {
+                if p.torque == 0.0 {
+                    "-".to_string()
+                } else {
+                    format!("{:.2}%", 100.0 * x)
+                }
+            };
             let _ = write!(
                 t,
-                "{:>9.1} {:>8.2} {:>11} {:>11} {:>9} {:>9} {:>9.2}% {:>9.2}%",
+                "{:>9.1} {:>8.2} {:>11} {:>11} {:>9} {:>9} {:>10} {:>10}",
                 c.omega_driver,
                 p.torque,
                 num(p.delta_omega, 5),
                 num(c.analytical.get(k).copied(), 5),
                 num(p.tension_tight, 1),
                 num(p.tension_slack, 1),
-                100.0 * p.balances.torque_residual_rel,
-                100.0 * p.balances.power_residual_rel,
+                rel(p.balances.torque_residual_rel),
+                rel(p.balances.power_residual_rel),
             );
             if p.gross_slip {
                 t.push_str("  gross slip");
