@@ -118,7 +118,7 @@ fn shipped_examples_are_valid() {
         let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
         let study = if name.starts_with("kerkkanen-4-6") {
             "plate"
-        } else if name.starts_with("pechstein-gerstmayr") {
+        } else if name.starts_with("pechstein-gerstmayr") || name.starts_with("fead") {
             "fead"
         } else {
             "ancf"
@@ -128,8 +128,8 @@ fn shipped_examples_are_valid() {
         n += 1;
     }
     assert_eq!(
-        n, 9,
-        "kerkkanen-3-3-a … f, kerkkanen-4-6-model1, -model2, pechstein-gerstmayr"
+        n, 10,
+        "kerkkanen-3-3-a … f, kerkkanen-4-6-model1, -model2, pechstein-gerstmayr, fead-three-pulley"
     );
 }
 
