@@ -310,7 +310,7 @@ fn slip_margin_bars(s: &DesignSummary, warning: f64) -> LinePlot {
         .collect();
     let mut plot = LinePlot::new(
         "Slip margins (capacity / torque)",
-        &format!("pulley ({})", names.join(", ")),
+        format!("pulley ({})", names.join(", ")),
         "slip margin [-]",
     );
     let n = s.points.len().max(1) as f64;
