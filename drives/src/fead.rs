@@ -66,6 +66,11 @@
 //!
 //! against the engine orders' frequencies `k_o · rpm/60`: the Campbell diagram of the drive.
 //!
+//! Instead of the sweep, a measured crank speed record ([`EngineConfig::trace`],
+//! [`crate::crank_trace`]) gives one operating point ([`crank_points`]). A decoupled accessory
+//! ([`belt::decoupler`]; flowing and nodal models) is reported per point in
+//! [`FeadPoint::decouplers`].
+//!
 //! Defaults ([`FeadConfig::default`]): a plausible four-cylinder passenger-car drive, not one
 //! published engine. The belt is Ribaric's Table 6-1 section (a 5PK V-ribbed belt from an
 //! automotive drive: EA = 152 kN, ρA = 0.096 kg/m, μ = 1.2); the pulley sizes, accessory loads
