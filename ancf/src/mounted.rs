@@ -14,6 +14,27 @@ use mbd_core::integrators::State;
 use mbd_core::system::ForceTangent;
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix, Workspace};
 
+/// Refuse a drive with a decoupler ([`belt::decoupler`]) for the ANCF discretisation `model`
+/// (`"ancf"`, `"plate"`): their pulleys are single rigid bodies without the spring, carrier
+/// and accessory coordinates of (D1)–(D3). The error names the field
+/// (`pulleys[k].motion.decoupler`) and the models that do support it (flowing, nodal).
+pub fn refuse_decouplers(drive: &Drive, model: &str) -> Result<(), crate::AncfError> {
+    match drive
+        .pulleys()
+        .iter()
+        .position(|p| p.motion.decoupler().is_some())
+    {
+        Some(k) => Err(crate::error::invalid(
+            format!("pulleys[{k}].motion.decoupler"),
+            format!(
+                "the {model} belt model has no decoupler (spring, one-way clutch): use the \
+                 flowing or nodal model"
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// An ANCF discretisation of a belt drive that [`MountedBelt`] wraps (module documentation):
 /// its equations of motion ([`SecondOrderSystem`]) and what a [`BeltModel`] reports of it.
 pub trait AncfDrive: SecondOrderSystem {

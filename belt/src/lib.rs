@@ -7,6 +7,7 @@
 //!   Kerkkänen's ramps (3.29), (3.30), Ribaric's smooth schedules, measured traces, plus
 //!   harmonics (engine orders);
 //! * [`Motion`] — how a pulley turns: speed-driven, loaded, idler (with a viscous damper);
+//!   a loaded pulley optionally behind a [`Decoupler`] (spring, damper, one-way clutch);
 //! * [`Pulley`] — the one pulley type (centre, belt-line radius, wrap side, motion; crown,
 //!   flanges and centre shift for spatial models);
 //! * [`BeltPath`] — the open belt's path over the pulleys (spans and wraps, Ribaric
@@ -21,6 +22,7 @@
 //!
 //! SI units throughout; speeds and torques of pulleys in the belt's travel sense.
 
+pub mod decoupler;
 pub mod layout;
 pub mod model;
 pub mod motion;
@@ -31,6 +33,7 @@ pub mod section;
 pub mod signal;
 pub mod tensioner;
 
+pub use decoupler::{ClutchState, Decoupler, DecouplerForces, DecouplerState};
 pub use layout::{Arm, Drive, Layout, MAX_MOUNTING_STRAIN, MAX_PULLEYS, MIN_WRAP_DEG};
 pub use model::{BeltModel, ModelTraits, PulleyState, Snapshot, SpanState, WrapPoint};
 pub use motion::{Motion, Role};

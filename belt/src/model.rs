@@ -9,6 +9,7 @@
 //! points and pulley loads. Every span force is the axial force the model's belt actually
 //! carries ([`ModelTraits::force_measure`]), so one report and one set of balances serve all.
 
+use crate::decoupler::DecouplerState;
 use crate::layout::Drive;
 use crate::motion::Motion;
 use crate::signal::Signal;
@@ -124,7 +125,8 @@ pub trait BeltModel: SecondOrderSystem {
     fn motion(&self, k: usize) -> Option<&Motion>;
 
     /// Mutable [`Self::motion`]. A motion's kind must not change between speed-driven and
-    /// free (the coordinates depend on it); use [`Self::set_signal`].
+    /// free, nor its decoupler come or go (the coordinates depend on them); use
+    /// [`Self::set_signal`].
     fn motion_mut(&mut self, k: usize) -> Option<&mut Motion>;
 
     /// Travel-sense speed of pulley `k` \[rad/s\] at `(t, v)`.
@@ -143,6 +145,13 @@ pub trait BeltModel: SecondOrderSystem {
     /// Transverse displacement of each span's mid-point \[m\] (sampled every step for the
     /// vibration amplitude; spans in travel order).
     fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError>;
+
+    /// The decoupler of pulley `k` at `(q, v)` ([`crate::decoupler`]: accessory speed, spring
+    /// and clutch torques, clutch state; `None`: no decoupler on that pulley, or a model
+    /// without decouplers).
+    fn decoupler_state(&self, _k: usize, _q: &[f64], _v: &[f64]) -> Option<DecouplerState> {
+        None
+    }
 
     /// Replace pulley `k`'s signal: the speed of a speed-driven pulley, the load torque of a
     /// free one (an idler becomes a loaded pulley with the same inertia and damping).
@@ -165,6 +174,7 @@ pub trait BeltModel: SecondOrderSystem {
                     inertia: *inertia,
                     torque: signal,
                     damping: *damping,
+                    decoupler: None,
                 }
             }
         }

@@ -10,6 +10,7 @@
 //!   J ω̇ = τ_belt − M_load(t) − c ω        (τ_belt the belt's contact torque, travel sense)
 //! ```
 
+use crate::decoupler::Decoupler;
 use crate::signal::Signal;
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
@@ -35,6 +36,11 @@ pub enum Motion {
         /// Viscous rotational damping `c` \[N m s/rad\] (bearing and accessory losses).
         #[serde(default)]
         damping: f64,
+        /// A decoupler between the pulley and the accessory ([`Decoupler`]; none: the
+        /// accessory is rigid on the pulley). With one, `inertia`, `torque` and `damping` are
+        /// the accessory's and the pulley hub has [`Decoupler::pulley_inertia`].
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        decoupler: Option<Decoupler>,
     },
     /// Free with inertia and no load (an idler), optionally with a viscous damper.
     Idler {
@@ -65,6 +71,25 @@ impl Motion {
             inertia,
             torque,
             damping: 0.0,
+            decoupler: None,
+        }
+    }
+
+    /// The decoupler of a loaded pulley (`None`: none, or not a loaded pulley).
+    pub fn decoupler(&self) -> Option<&Decoupler> {
+        match self {
+            Motion::Load { decoupler, .. } => decoupler.as_ref(),
+            _ => None,
+        }
+    }
+
+    /// Moment of inertia \[kg m²\] on the pulley's own rotation coordinate: the hub's
+    /// [`Decoupler::pulley_inertia`] behind a decoupler, else [`Self::inertia`] (`None`:
+    /// speed-driven).
+    pub fn pulley_inertia(&self) -> Option<f64> {
+        match self.decoupler() {
+            Some(d) => Some(d.pulley_inertia),
+            None => self.inertia(),
         }
     }
 
@@ -95,7 +120,8 @@ impl Motion {
         }
     }
 
-    /// Moment of inertia \[kg m²\] of a free pulley (`None`: speed-driven).
+    /// Moment of inertia \[kg m²\] of a free pulley, the accessory's behind a decoupler
+    /// (`None`: speed-driven).
     pub fn inertia(&self) -> Option<f64> {
         match self {
             Motion::Speed { .. } => None,
@@ -129,7 +155,9 @@ impl Motion {
 
     /// Torque on a free pulley other than the belt's \[N m\], travel sense, at speed `omega`
     /// \[rad/s\]: `−M_load(t) − c ω`, and its derivative with respect to `ω` (module
-    /// documentation).
+    /// documentation). Behind a decoupler this is the torque on the accessory at its speed
+    /// `omega` (the pulley feels it only through the spring: [`Decoupler::forces`]; in a
+    /// steady state, engaged, the two speeds and torques are equal).
     pub fn applied_torque(&self, t: f64, omega: f64) -> (f64, f64) {
         let c = self.damping();
         (-self.load_torque(t) - c * omega, -c)
@@ -141,11 +169,15 @@ impl Motion {
         match self {
             Motion::Speed { .. } => Motion::speed(Signal::constant(0.0)),
             Motion::Load {
-                inertia, damping, ..
+                inertia,
+                damping,
+                decoupler,
+                ..
             } => Motion::Load {
                 inertia: *inertia,
                 torque: Signal::constant(0.0),
                 damping: *damping,
+                decoupler: *decoupler,
             },
             m @ Motion::Idler { .. } => m.clone(),
         }
@@ -179,9 +211,13 @@ impl Validate for Motion {
                 inertia,
                 torque,
                 damping,
+                decoupler,
             } => {
                 check::positive("inertia", *inertia, "kg m²")?;
                 check::non_negative("damping", *damping, "N m s/rad")?;
+                if let Some(d) = decoupler {
+                    d.validate_within("decoupler")?;
+                }
                 torque.validate_within("torque")
             }
             Motion::Idler { inertia, damping } => {

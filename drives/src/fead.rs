@@ -66,6 +66,11 @@
 //!
 //! against the engine orders' frequencies `k_o · rpm/60`: the Campbell diagram of the drive.
 //!
+//! Instead of the sweep, a measured crank speed record ([`EngineConfig::trace`],
+//! [`crate::crank_trace`]) gives one operating point ([`crank_points`]). A decoupled accessory
+//! ([`belt::decoupler`]; flowing and nodal models) is reported per point in
+//! [`FeadPoint::decouplers`].
+//!
 //! Defaults ([`FeadConfig::default`]): a plausible four-cylinder passenger-car drive, not one
 //! published engine. The belt is Ribaric's Table 6-1 section (a 5PK V-ribbed belt from an
 //! automotive drive: EA = 152 kN, ρA = 0.096 kg/m, μ = 1.2); the pulley sizes, accessory loads
@@ -75,6 +80,7 @@
 //! (4th: 0.5 %) is a plausible four-cylinder value, held constant over the sweep.
 
 use crate::ancf_model::{AncfBelt, AncfConfig};
+use crate::crank_trace::CrankTrace;
 use crate::speed_loss::{LINEAR_MIN_SLACK, STEP_SUBDIVISIONS, balance_issue, tension_range_issue};
 use crate::study::{ModelSettings, NodalConfig};
 use ancf::belt_drive::SimulationConfig;
@@ -115,6 +121,13 @@ pub struct EngineConfig {
     pub speeds_rpm: Vec<f64>,
     /// Orders of the crank speed fluctuation.
     pub orders: Vec<EngineOrder>,
+    /// A measured crank speed trace ([`crate::crank_trace`]; none: the mean speeds of
+    /// `speeds_rpm` with the `orders`). With a trace the study has one operating point: the
+    /// crank ramps from rest to the trace's first speed over `run.ramp`, then follows the
+    /// trace (repeated when `periodic`); `speeds_rpm` and `orders` are not used and the point
+    /// reports the trace's time-mean speed as its engine speed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trace: Option<CrankTrace>,
 }
 
 impl Default for EngineConfig {
@@ -134,6 +147,7 @@ impl Default for EngineConfig {
                     phase: 0.0,
                 },
             ],
+            trace: None,
         }
     }
 }
@@ -474,6 +488,22 @@ pub struct FeadSpan {
     pub frequency_1_hz: Option<f64>,
 }
 
+/// A decoupled accessory at one engine speed ([`belt::decoupler`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FeadDecoupler {
+    /// The pulley.
+    pub pulley: String,
+    /// Accessory speed over the window \[rad/s\].
+    pub accessory_speed: Extremes,
+    /// Spring torque over the window \[N m\] (D1).
+    pub spring_torque: Extremes,
+    /// Fraction of the window's steps with the one-way clutch overrunning \[-\] (`None`: no
+    /// clutch).
+    pub overrunning_fraction: Option<f64>,
+    /// The clutch's state at the window's end (`None`: no clutch).
+    pub clutch_at_end: Option<belt::ClutchState>,
+}
+
 /// The result at one engine speed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FeadPoint {
@@ -514,6 +544,9 @@ pub struct FeadPoint {
     /// Length of the reported window \[s\]: whole periods of the lowest engine order
     /// ([`steady_window`]).
     pub window_s: f64,
+    /// Every decoupled accessory (pulley order; empty without decouplers).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub decouplers: Vec<FeadDecoupler>,
 }
 
 /// The observation window at the crank speed `omega` \[rad/s\] with the step `h` \[s\]:
@@ -546,6 +579,16 @@ struct WindowAcc {
     slip: Vec<Acc>,
     reports: Vec<Report>,
     vbelt: Acc,
+    /// Per decoupled pulley: accessory speed, spring torque, overrunning steps, last state.
+    dec: Vec<DecAcc>,
+}
+
+#[derive(Debug, Clone, Default)]
+struct DecAcc {
+    speed: Acc,
+    torque: Acc,
+    overrunning: usize,
+    last: Option<belt::DecouplerState>,
 }
 
 /// The means by which consecutive windows are compared.
@@ -564,6 +607,7 @@ impl WindowAcc {
             slip: vec![Acc::default(); pulleys],
             reports: Vec::new(),
             vbelt: Acc::default(),
+            dec: vec![DecAcc::default(); pulleys],
         }
     }
 
@@ -711,6 +755,108 @@ pub fn crank_signal(
     }
 }
 
+/// One operating point of the sweep ([`crank_points`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CrankPoint {
+    /// The engine speed the point reports \[rpm\].
+    pub rpm: f64,
+    /// The crank's speed from the point's start (`t = 0`) \[rad/s\].
+    pub signal: Signal,
+    /// The observation window \[s\] and its number of steps of `h`.
+    pub window: (f64, usize),
+}
+
+/// The operating points of `cfg` with the step `h` \[s\]: per engine speed, the crank
+/// signal from the previous speed ([`crank_signal`]) and the window ([`steady_window`]); with
+/// a trace ([`EngineConfig::trace`]), its one point: a linear ramp from rest to the trace's
+/// first speed over `run.ramp`, then the trace (repeated when periodic: the period is the time
+/// from the first to the last sample, whose speed starts the next period), the window
+/// lengthened to whole periods, the engine speed the trace's time mean `∫ω dt / T`
+/// (trapezoidal, exact for the linear trace).
+///
+/// # Errors
+/// The trace file ([`crate::crank_trace::TraceError`], as `engine.trace.file`), or a trace
+/// whose run would exceed [`MAX_STEPS`] or [`belt::signal::MAX_KNOTS`] (`engine.trace`).
+pub fn crank_points(cfg: &FeadConfig, h: f64) -> Result<Vec<CrankPoint>, InvalidField> {
+    let run = &cfg.run;
+    let Some(trace) = &cfg.engine.trace else {
+        let mut prev = 0.0;
+        return Ok(cfg
+            .engine
+            .speeds_rpm
+            .iter()
+            .map(|&rpm| {
+                let omega = rpm * std::f64::consts::PI / 30.0;
+                let p = CrankPoint {
+                    rpm,
+                    signal: crank_signal(&cfg.engine, prev, omega, run.ramp, None),
+                    window: steady_window(&cfg.engine, run.window, omega, h),
+                };
+                prev = omega;
+                p
+            })
+            .collect());
+    };
+    let knots = trace.load().map_err(|e| e.within("engine.trace.file"))?;
+    let period = knots[knots.len() - 1].0;
+    let mean = knots
+        .windows(2)
+        .map(|p| 0.5 * (p[0].1 + p[1].1) * (p[1].0 - p[0].0))
+        .sum::<f64>()
+        / period;
+    let window = if trace.periodic {
+        // (a measured period is not exact: a window within 10⁻⁶ of whole periods is whole)
+        (run.window / period - 1e-6).ceil().max(1.0) * period
+    } else {
+        run.window
+    };
+    let steps = (window / h).round().max(1.0) as usize;
+    let window = (steps as f64 * h, steps);
+    let total = run.ramp + run.max_settle + window.0;
+    if total / h > MAX_STEPS as f64 {
+        return Err(InvalidField::new(
+            "engine.trace",
+            format!(
+                "the run would take {:.3e} steps (max {MAX_STEPS})",
+                total / h
+            ),
+        ));
+    }
+    let mut out = Vec::new();
+    if run.ramp > 0.0 {
+        out.push((0.0, 0.0));
+    }
+    let repeats = if trace.periodic {
+        ((total - run.ramp) / period).ceil() as usize + 1
+    } else {
+        1
+    };
+    if repeats.saturating_mul(knots.len()) > belt::signal::MAX_KNOTS {
+        return Err(InvalidField::new(
+            "engine.trace",
+            format!(
+                "{repeats} periods of {} samples exceed {} knots: a longer period or fewer samples",
+                knots.len(),
+                belt::signal::MAX_KNOTS
+            ),
+        ));
+    }
+    for r in 0..repeats {
+        let start = run.ramp + r as f64 * period;
+        out.extend(
+            knots
+                .iter()
+                .skip(usize::from(r > 0))
+                .map(|&(t, w)| (start + t, w)),
+        );
+    }
+    Ok(vec![CrankPoint {
+        rpm: mean * 30.0 / std::f64::consts::PI,
+        signal: Shape::Trace(out).into(),
+        window,
+    }])
+}
+
 /// Run the sweep (configuration validated first; bad input is `Err(FeadFailure)` only for
 /// numerical failures: a bad configuration returns [`crate::DriveError::Invalid`] through
 /// `Validate` before this is called by the apps).
@@ -852,18 +998,25 @@ fn sweep<M: BeltModel>(
     });
     let linearised = model.traits().linearised;
     let mut state: Option<State> = None;
+    let points = crank_points(cfg, h).map_err(invalid)?;
+    if cfg.engine.trace.is_some() {
+        summary.orders.clear();
+    }
     let mut omega_prev = 0.0;
-    for (ip, &rpm) in cfg.engine.speeds_rpm.iter().enumerate() {
+    for (ip, point) in points.into_iter().enumerate() {
+        let rpm = point.rpm;
         let omega = rpm * std::f64::consts::PI / 30.0;
-        // the crank's speed, continuous across the restart; the loads at their final values
-        // after the first point (time restarts at 0 at every point)
-        let previous_end = state.as_ref().map(|s| s.t);
-        model
-            .set_signal(
-                0,
-                crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp, previous_end),
-            )
-            .map_err(invalid)?;
+        // the crank's speed; the loads at their final values after the first point (time
+        // restarts at 0 at every point). After the first engine speed the orders of the
+        // previous one are carried on and faded out ([`crank_signal`]), so the crank speed
+        // stays continuous across the restart.
+        let signal = match state.as_ref().map(|s| s.t) {
+            Some(t_end) if cfg.engine.trace.is_none() => {
+                crank_signal(&cfg.engine, omega_prev, omega, cfg.run.ramp, Some(t_end))
+            }
+            _ => point.signal,
+        };
+        model.set_signal(0, signal).map_err(invalid)?;
         if ip > 0 {
             for k in 0..names.len() {
                 if let Some(Motion::Load { torque, .. }) = model.motion(k) {
@@ -877,7 +1030,7 @@ fn sweep<M: BeltModel>(
             None => model.initial_state().map_err(|e| fail(e, &summary))?,
         };
         let mut stepper: AlphaStepper = alpha.stepper(&model, s0).map_err(|e| fail(e, &summary))?;
-        let (window_s, per_window) = steady_window(&cfg.engine, cfg.run.window, omega, h);
+        let (window_s, per_window) = point.window;
         let t_min = cfg.run.ramp + cfg.run.settle;
         let t_last = cfg.run.ramp + cfg.run.max_settle;
         let duration = t_last + window_s;
@@ -913,6 +1066,15 @@ fn sweep<M: BeltModel>(
                     w.arm.add(a);
                 }
                 w.vbelt.add(model.belt_speed(&st.q, &st.v));
+                for (k, d) in w.dec.iter_mut().enumerate() {
+                    if let Some(s) = model.decoupler_state(k, &st.q, &st.v) {
+                        d.speed.add(s.accessory_speed);
+                        d.torque.add(s.spring_torque);
+                        d.overrunning +=
+                            usize::from(s.clutch == Some(belt::ClutchState::Overrunning));
+                        d.last = Some(s);
+                    }
+                }
                 let wc = model.pulley_speed(0, st.t, &st.v) * radii[0];
                 for (k, r) in radii.iter().enumerate() {
                     let s = model.pulley_speed(k, st.t, &st.v);
@@ -953,6 +1115,7 @@ fn sweep<M: BeltModel>(
             slip,
             mut reports,
             vbelt,
+            dec,
         } = w;
         let st = stepper.state().clone();
         if reports.is_empty() {
@@ -1019,6 +1182,22 @@ fn sweep<M: BeltModel>(
             steady,
             settled_s: window_start - cfg.run.ramp,
             window_s,
+            decouplers: dec
+                .iter()
+                .enumerate()
+                .filter_map(|(k, d)| {
+                    let last = d.last?;
+                    Some(FeadDecoupler {
+                        pulley: names[k].clone(),
+                        accessory_speed: d.speed.get(),
+                        spring_torque: d.torque.get(),
+                        overrunning_fraction: last
+                            .clutch
+                            .map(|_| d.overrunning as f64 / d.speed.n.max(1) as f64),
+                        clutch_at_end: last.clutch,
+                    })
+                })
+                .collect(),
         });
         omega_prev = omega;
         state = Some(st);

@@ -8,6 +8,7 @@
 //! * [`speed_loss_study`]: the study's configuration and summary (shared by the app and the
 //!   Python package);
 //! * [`fead`]: the front-end accessory drive study over an engine-speed sweep;
+//! * [`crank_trace`]: a measured crankshaft speed trace from a CSV file (the FEAD's input);
 //! * [`fead_design`]: the FEAD's steady design without time stepping (span tensions, arm,
 //!   slip arcs, hub loads, slip margins), its modes and Campbell diagram (issue 36);
 //! * [`ancf_model`]: the ANCF belt (Kerkkänen ch. 3) on any drive, a [`belt::BeltModel`];
@@ -27,6 +28,7 @@ pub mod ancf_model;
 pub mod ancf_run;
 pub mod ancf_study;
 pub mod bechtel_steady;
+pub mod crank_trace;
 pub mod error;
 pub mod fead;
 pub mod fead_design;

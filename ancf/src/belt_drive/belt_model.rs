@@ -115,6 +115,7 @@ pub type AncfBelt = MountedBelt<BeltDrive>;
 /// mapping.
 pub fn ancf_spec(drive: &Drive, s: &AncfConfig) -> Result<(BeltDriveSpec, AncfMapping), AncfError> {
     s.validate_within("ancf")?;
+    crate::mounted::refuse_decouplers(drive, "ANCF")?;
     let b = drive.belt();
     let t0 = drive.tension();
     let thickness = (12.0 * b.ei / b.ea).sqrt();

@@ -59,13 +59,13 @@ impl Study for Design {
                 eprintln!("design: {tag}: {}", f.message);
             }
         }
-        write_outputs(ctx, &s)?;
+        write_outputs(ctx, &s, c.design.slip_margin_warning)?;
         Ok(s)
     }
 }
 
 /// CSV tables and plots.
-fn write_outputs(ctx: &StudyContext, s: &DesignSummary) -> Result<(), StudyError> {
+fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<(), StudyError> {
     let flag = |b: bool| f64::from(u8::from(b));
     let opt = |x: Option<f64>| x.unwrap_or(f64::NAN);
     // per engine speed
@@ -258,6 +258,7 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary) -> Result<(), StudyError
         });
     }
     hub.save(&ctx.out.path("hub_loads"))?;
+    slip_margin_bars(s, warning).save(&ctx.out.path("slip_margins"))?;
     let mut camp = LinePlot::new(
         "Campbell diagram: rotational and span modes, engine orders",
         "engine speed [rpm]",
@@ -295,4 +296,42 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary) -> Result<(), StudyError
 /// Run the study under the app conventions.
 pub fn run(args: &Args) -> ExitCode {
     run_study(&Design { args: args.clone() }, &args.common)
+}
+
+/// Bar chart of the slip margins (capacity over torque, `drives::fead_design`) per pulley:
+/// one bar outline per engine speed, side by side at each pulley's index, and the warning
+/// threshold `warning` as a line. Pulleys without a margin (no torque) have no bar.
+fn slip_margin_bars(s: &DesignSummary, warning: f64) -> LinePlot {
+    let names: Vec<String> = s
+        .pulleys
+        .iter()
+        .enumerate()
+        .map(|(k, n)| format!("{k} {n}"))
+        .collect();
+    let mut plot = LinePlot::new(
+        "Slip margins (capacity / torque)",
+        format!("pulley ({})", names.join(", ")),
+        "slip margin [-]",
+    );
+    let n = s.points.len().max(1) as f64;
+    let width = 0.8 / n;
+    for (i, p) in s.points.iter().enumerate() {
+        let mut outline = vec![(-0.5, 0.0)];
+        for (k, pl) in p.pulleys.iter().enumerate() {
+            let Some(m) = pl.slip_margin.filter(|m| m.is_finite()) else {
+                continue;
+            };
+            let x0 = k as f64 - 0.4 + i as f64 * width;
+            outline.extend([(x0, 0.0), (x0, m), (x0 + width, m), (x0 + width, 0.0)]);
+        }
+        outline.push((s.pulleys.len() as f64 - 0.5, 0.0));
+        plot.series
+            .push(Series::line(format!("{} rpm", p.engine_rpm), outline));
+    }
+    plot.series.push(Series {
+        name: format!("warning below {warning}"),
+        points: vec![(-0.5, warning), (s.pulleys.len() as f64 - 0.5, warning)],
+        style: Style::Line,
+    });
+    plot
 }

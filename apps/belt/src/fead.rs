@@ -43,10 +43,22 @@ impl Study for Fead {
         if let Some(m) = self.args.model {
             c.model = m;
         }
+        // a relative trace file is the configuration file's neighbour (drives::crank_trace)
+        if let (Some(t), Some(cfg)) = (&c.engine.trace, &self.args.common.config) {
+            // absolute, so the config.toml written with the results still finds it
+            let dir = cfg.parent().unwrap_or(std::path::Path::new(""));
+            let dir = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+            c.engine.trace = Some(t.resolved_against(&dir));
+        }
     }
 
     fn run(&self, c: &FeadConfig, ctx: &mut StudyContext) -> Result<FeadSummary, StudyError> {
-        let n = c.engine.speeds_rpm.len();
+        // a crank trace is one operating point (drives::fead::EngineConfig::trace)
+        let n = if c.engine.trace.is_some() {
+            1
+        } else {
+            c.engine.speeds_rpm.len()
+        };
         let progress = ctx.progress(n as f64, &format!("engine speeds ({})", c.model.name()));
         // the bar on a terminal; a line per engine speed otherwise (logs of long ANCF runs)
         let lines = !ctx.quiet && !std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -169,6 +181,47 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
         csv.row(&row)?;
     }
     csv.finish()?;
+    // decoupled accessories (belt::decoupler): one row per point and decoupler
+    if s.points.iter().any(|p| !p.decouplers.is_empty()) {
+        let mut dc = ctx.out.csv(
+            "fead_decouplers.csv",
+            &[
+                "engine_speed_rpm",
+                "pulley_index",
+                "accessory_speed_min_rad_per_s",
+                "accessory_speed_mean_rad_per_s",
+                "accessory_speed_max_rad_per_s",
+                "spring_torque_min_N_m",
+                "spring_torque_mean_N_m",
+                "spring_torque_max_N_m",
+                "overrunning_ratio",
+                "clutch_engaged_at_end_flag",
+            ],
+        )?;
+        for p in &s.points {
+            for d in &p.decouplers {
+                let k = s.pulleys.iter().position(|n| *n == d.pulley).unwrap_or(0);
+                let (a, m) = (&d.accessory_speed, &d.spring_torque);
+                dc.row(&[
+                    p.engine_rpm,
+                    k as f64,
+                    a.min,
+                    a.mean,
+                    a.max,
+                    m.min,
+                    m.mean,
+                    m.max,
+                    d.overrunning_fraction.unwrap_or(f64::NAN),
+                    match d.clutch_at_end {
+                        Some(belt::ClutchState::Engaged) => 1.0,
+                        Some(belt::ClutchState::Overrunning) => 0.0,
+                        None => f64::NAN,
+                    },
+                ])?;
+            }
+        }
+        dc.finish()?;
+    }
     let rpm: Vec<f64> = s.points.iter().map(|p| p.engine_rpm).collect();
     let series = |name: String, y: Vec<f64>| Series {
         name,

@@ -69,6 +69,7 @@ fn design_json_names_the_layout_and_writes_the_files() {
         "crossings.csv",
         "campbell.png",
         "hub_loads.svg",
+        "slip_margins.png",
     ] {
         assert!(out.join(f).exists(), "{f} missing");
     }

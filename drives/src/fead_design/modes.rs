@@ -16,7 +16,10 @@
 //! so `K = Σ_k k_k b_k b_kᵀ + (k_t + k_g) e_a e_aᵀ` with `b_k = ∂e_k/∂q`, `k_t` the arm's spring
 //! rate and `k_g = −∂M_belt/∂θ_a` at fixed span tensions (the geometric stiffness of the belt's
 //! pull on the arm: its direction and lever turn with the arm; central difference of
-//! [`super::statics::belt_moment`]). `M = diag(J_k, J_arm)`. The eigenpairs of `K φ = ω² M φ`
+//! [`super::statics::belt_moment`]). `M = diag(J_k, J_arm)`. A decoupled accessory
+//! ([`belt::decoupler`]) adds its own coordinate after the pulleys': the pulley hub `J_p` and the
+//! accessory `J_a` (plus the carrier `J_r`, the clutch taken as engaged) joined by the spring's
+//! `k` in `K`. The eigenpairs of `K φ = ω² M φ`
 //! come from the workspace's dense generalized symmetric solver ([`fe_model::dense_modes`]).
 //!
 //! **Not modelled**: the belt's compliance and creep on the wraps (the belt is fixed to the
@@ -94,10 +97,21 @@ pub fn rotational_model(drive: &Drive, s: &SteadyState) -> RotationalModel {
     let mut names = Vec::new();
     let mut inertia = Vec::new();
     for (k, p) in pulleys.iter().enumerate() {
-        if let Some(j) = p.motion.inertia() {
+        if let Some(j) = p.motion.pulley_inertia() {
             index[k] = Some(names.len());
             names.push(p.name.clone());
             inertia.push(j);
+        }
+    }
+    // a decoupled accessory: its own coordinate on the spring k (clutch engaged: the carrier
+    // turns with the accessory, J_r + J_a; belt::decoupler)
+    let mut springs = Vec::new();
+    for (k, p) in pulleys.iter().enumerate() {
+        if let (Some(d), Some(ja), Some(ip)) = (p.motion.decoupler(), p.motion.inertia(), index[k])
+        {
+            springs.push((ip, names.len(), d.stiffness));
+            names.push(format!("{} accessory", p.name));
+            inertia.push(ja + if d.clutch { d.carrier_inertia } else { 0.0 });
         }
     }
     let arm = drive.arm().zip(s.arm_angle);
@@ -136,6 +150,12 @@ pub fn rotational_model(drive: &Drive, s: &SteadyState) -> RotationalModel {
                 stiffness[(r, c)] += k * b[r] * b[c];
             }
         }
+    }
+    for (ip, ia, k) in springs {
+        stiffness[(ip, ip)] += k;
+        stiffness[(ia, ia)] += k;
+        stiffness[(ip, ia)] -= k;
+        stiffness[(ia, ip)] -= k;
     }
     let mut kg = None;
     if let (Some((a, th)), Some(ad)) = (arm, arm_dof) {

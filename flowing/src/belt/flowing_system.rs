@@ -5,7 +5,10 @@
 //! modal coordinates `z` of the deflection `δ = T z` of the stationary mesh, the angle and speed
 //! of every pulley that is not speed-driven (positive in the belt's travel sense, in pulley
 //! order; [`belt::Motion`]) and, with a tensioner ([`belt::Arm`]), the arm's rotation `Δθ` from
-//! the angle at which the path (and so the mesh) was laid out. The two-pulley drive of
+//! the angle at which the path (and so the mesh) was laid out, then the carrier's and
+//! accessory's angles of every decoupled pulley ([`belt::decoupler`], equations (D1)–(D3); the
+//! pulley's own coordinate then carries the hub's inertia and the spring torque). The
+//! two-pulley drive of
 //! [`FlowingBelt::new`] has `q = [s_b, z, φ₂]`: the driver's speed `ω₁(t)` is prescribed.
 //!
 //! Any layout (issue 17): the mesh stays fixed in space along the path of the layout (Ribaric's
@@ -70,6 +73,89 @@ pub(crate) fn pulley_dofs(motions: &[Motion], next: &mut usize) -> Vec<Option<us
             })
         })
         .collect()
+}
+
+/// The local coordinates of a pulley's decoupler ([`belt::decoupler`]): the pulley's own
+/// velocity index, then the carrier's (with a clutch) and the accessory's.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct DecouplerDofs {
+    /// Pulley index.
+    pub pulley: usize,
+    /// Velocity indices `[φ_p, (φ_r,) φ_a]`.
+    pub dofs: Vec<usize>,
+}
+
+/// The decouplers' coordinates, numbered from `*next` in pulley order (`*next` is advanced
+/// past them). Shared by the flowing and the nodal belt.
+pub(crate) fn decoupler_dofs(
+    motions: &[Motion],
+    pulley_dof: &[Option<usize>],
+    next: &mut usize,
+) -> Vec<DecouplerDofs> {
+    let mut out = Vec::new();
+    for (p, (mo, k)) in motions.iter().zip(pulley_dof).enumerate() {
+        if let (Some(d), Some(k)) = (mo.decoupler(), k) {
+            let mut dofs = vec![*k];
+            dofs.extend(*next..*next + d.n_extra());
+            *next += d.n_extra();
+            out.push(DecouplerDofs { pulley: p, dofs });
+        }
+    }
+    out
+}
+
+/// Forces (D3) of every decoupler at `(t, q, v)` with their local coordinates
+/// ([`belt::Decoupler::forces`]; the accessory's load and damping act on its own coordinate).
+pub(crate) fn decoupler_forces<'a>(
+    motions: &[Motion],
+    decouplers: &'a [DecouplerDofs],
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+) -> Vec<(&'a [usize], belt::DecouplerForces)> {
+    decouplers
+        .iter()
+        .filter_map(|dd| {
+            let mo = &motions[dd.pulley];
+            let d = mo.decoupler()?;
+            let ql: Vec<f64> = dd.dofs.iter().map(|&i| q[i]).collect();
+            let vl: Vec<f64> = dd.dofs.iter().map(|&i| v[i]).collect();
+            let acc = mo.applied_torque(t, vl[vl.len() - 1]);
+            Some((dd.dofs.as_slice(), d.forces(&ql, &vl, acc)))
+        })
+        .collect()
+}
+
+/// The decoupler of pulley `k` at `(q, v)` (`None`: none).
+pub(crate) fn decoupler_state(
+    motions: &[Motion],
+    decouplers: &[DecouplerDofs],
+    k: usize,
+    q: &[f64],
+    v: &[f64],
+) -> Option<belt::DecouplerState> {
+    let dd = decouplers.iter().find(|d| d.pulley == k)?;
+    let d = motions[k].decoupler()?;
+    let ql: Vec<f64> = dd.dofs.iter().map(|&i| q[i]).collect();
+    let vl: Vec<f64> = dd.dofs.iter().map(|&i| v[i]).collect();
+    Some(d.state(&ql, &vl))
+}
+
+/// Moments of inertia of the decouplers' carrier and accessory coordinates: `(index, J)`.
+pub(crate) fn decoupler_inertias(
+    motions: &[Motion],
+    decouplers: &[DecouplerDofs],
+) -> Vec<(usize, f64)> {
+    let mut out = Vec::new();
+    for dd in decouplers {
+        let mo = &motions[dd.pulley];
+        if let (Some(d), Some(j)) = (mo.decoupler(), mo.inertia()) {
+            for (&i, &jj) in dd.dofs.iter().zip(&d.inertias(j)).skip(1) {
+                out.push((i, jj));
+            }
+        }
+    }
+    out
 }
 
 /// Speed \[rad/s\] of a pulley with `motion` and velocity index `dof` at `(t, v)`.
@@ -186,6 +272,8 @@ pub struct FlowingBelt {
     pulley_dof: Vec<Option<usize>>,
     /// Velocity index of the tensioner arm.
     arm_dof: Option<usize>,
+    /// The decouplers' coordinates (after the arm's).
+    decouplers: Vec<DecouplerDofs>,
     friction: FrictionSpec,
     m: usize,
     a_mass: Mat<f64>,
@@ -359,7 +447,9 @@ impl FlowingBelt {
             n_v += 1;
             n_v - 1
         });
+        let decouplers = decoupler_dofs(&motions, &pulley_dof, &mut n_v);
         Ok(Self {
+            decouplers,
             friction: contact.friction,
             fe,
             basis,
@@ -428,6 +518,11 @@ impl FlowingBelt {
     /// Velocity index of pulley `p`'s speed (`None`: prescribed).
     pub fn pulley_dof(&self, p: usize) -> Option<usize> {
         self.pulley_dof[p]
+    }
+
+    /// The decoupler of pulley `k` at `(q, v)` (`None`: none on that pulley).
+    pub fn decoupler_state(&self, k: usize, q: &[f64], v: &[f64]) -> Option<belt::DecouplerState> {
+        decoupler_state(&self.motions, &self.decouplers, k, q, v)
     }
 
     /// Velocity index of the tensioner arm's rotation `Δθ` (`None`: no tensioner).
@@ -699,10 +794,18 @@ impl FlowingBelt {
             kq[(k, k)] -= ks;
             cv[(k, k)] -= cs;
         }
-        // the free pulleys' dampers: −c ω
+        // the free pulleys' dampers: −c ω (behind a decoupler: the chain (D3))
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let Some(k) = k {
+            if let (Some(k), None) = (k, mo.decoupler()) {
                 cv[(*k, *k)] -= mo.applied_torque(t, v[*k]).1;
+            }
+        }
+        for (dofs, d) in decoupler_forces(&self.motions, &self.decouplers, t, q, v) {
+            for (a, &i) in dofs.iter().enumerate() {
+                for (b, &j) in dofs.iter().enumerate() {
+                    kq[(i, j)] -= d.df_dq[a][b];
+                    cv[(i, j)] -= d.df_dv[a][b];
+                }
             }
         }
         (kq, cv)
@@ -729,9 +832,12 @@ impl SecondOrderSystem for FlowingBelt {
             mm[(i, 0)] += c;
         }
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let (Some(inertia), Some(k)) = (mo.inertia(), k) {
+            if let (Some(inertia), Some(k)) = (mo.pulley_inertia(), k) {
                 mm[(*k, *k)] = inertia;
             }
+        }
+        for (k, j) in decoupler_inertias(&self.motions, &self.decouplers) {
+            mm[(k, k)] = j;
         }
         if let (Some(a), Some(k)) = (self.tensioner, self.arm_dof) {
             mm[(k, k)] = a.tensioner.inertia;
@@ -796,8 +902,13 @@ impl SecondOrderSystem for FlowingBelt {
             }
         }
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let Some(k) = k {
+            if let (Some(k), None) = (k, mo.decoupler()) {
                 tail[k - m - 1] += mo.applied_torque(t, v[*k]).0;
+            }
+        }
+        for (dofs, d) in decoupler_forces(&self.motions, &self.decouplers, t, q, v) {
+            for (&i, fi) in dofs.iter().zip(&d.f) {
+                tail[i - m - 1] += fi;
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (arm.as_ref(), self.tensioner, self.arm_dof) {
@@ -855,6 +966,7 @@ pub(crate) mod tests {
                     inertia: 1e-4,
                     torque: Signal::constant(1.5),
                     damping: 2e-4,
+                    decoupler: None,
                 },
             ),
             Pulley::new(
@@ -866,6 +978,7 @@ pub(crate) mod tests {
                     inertia: 0.005,
                     torque: Signal::constant(1.5),
                     damping: 0.01,
+                    decoupler: None,
                 },
             ),
         ];

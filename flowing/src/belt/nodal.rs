@@ -10,7 +10,9 @@
 //! Coordinates `q = [s_b, δ, φ_k…]`, velocities `v = [v, δ̇, ω_k…]`: the belt's travel `s_b`
 //! and speed `v = ṡ_b`, the global nodal deflections `δ` (`3N`: x, y, θ per node;
 //! `d^i = r^i(s_i) + δ^i`, (5.1)) and the angle and speed of every pulley that is not
-//! speed-driven (pulley order, [`belt::Motion`]). The two-pulley drive of Ribaric Table 6-1
+//! speed-driven (pulley order, [`belt::Motion`]), the tensioner arm's rotation, then the
+//! carrier's and accessory's angles of every decoupled pulley ([`belt::decoupler`], (D1)–(D3)).
+//! The two-pulley drive of Ribaric Table 6-1
 //! has `q = [s_b, δ, φ₂]`: the driver's speed `ω₁(t)` is prescribed.
 //!
 //! Any layout (issue 17): [`NodalBelt::new`] takes the resolved drive ([`belt::Drive`]: N
@@ -68,7 +70,10 @@
 
 use super::config::BeltMesh;
 use super::contact::{NodeContact, PulleyFrame, node_contact};
-use super::flowing_system::{ArmState, motion_speed, pulley_dofs, pulley_frames};
+use super::flowing_system::{
+    ArmState, DecouplerDofs, decoupler_dofs, decoupler_forces, decoupler_inertias, motion_speed,
+    pulley_dofs, pulley_frames,
+};
 use super::model::{BeltFe, NODE_DOFS, chord_tensions, chord_turn_rate, corotational_rate_block};
 use super::statics::dense_equilibrium;
 use belt::tensioner::cross;
@@ -121,6 +126,8 @@ pub struct NodalBelt {
     pub reference_node: usize,
     /// Velocity index of the tensioner arm.
     arm_dof: Option<usize>,
+    /// The decouplers' coordinates (after the arm's, [`belt::decoupler`]).
+    decouplers: Vec<DecouplerDofs>,
     section: Frame2dSection,
     pulleys: Vec<PulleyFrame>,
     /// Velocity index of each pulley's speed (`None`: prescribed).
@@ -248,7 +255,9 @@ impl NodalBelt {
             n_v += 1;
             n_v - 1
         });
+        let decouplers = decoupler_dofs(&motions, &pulley_dof, &mut n_v);
         let belt = Self {
+            decouplers,
             tensioner,
             arm_dof,
             section,
@@ -290,6 +299,11 @@ impl NodalBelt {
     /// Speed of pulley `p` \[rad/s\] at `(t, v)`, positive in the travel sense.
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
         motion_speed(&self.motions[p], self.pulley_dof[p], t, v)
+    }
+
+    /// The decoupler of pulley `k` at `(q, v)` (`None`: none on that pulley).
+    pub fn decoupler_state(&self, k: usize, q: &[f64], v: &[f64]) -> Option<belt::DecouplerState> {
+        super::flowing_system::decoupler_state(&self.motions, &self.decouplers, k, q, v)
     }
 
     /// Velocity index of the tensioner arm's rotation `Δθ` (`None`: no tensioner).
@@ -615,7 +629,20 @@ impl NodalBelt {
             .sum();
         for (p, mo) in self.motions.iter().enumerate() {
             if let Some(k) = self.pulley_dof[p] {
-                f[k] = torque[p] + mo.applied_torque(t, v[k]).0;
+                f[k] = torque[p];
+                if mo.decoupler().is_none() {
+                    f[k] += mo.applied_torque(t, v[k]).0;
+                }
+            }
+        }
+        for dd in &self.decouplers {
+            for &i in &dd.dofs[1..] {
+                f[i] = 0.0;
+            }
+        }
+        for (dofs, d) in decoupler_forces(&self.motions, &self.decouplers, t, q, v) {
+            for (&i, fi) in dofs.iter().zip(&d.f) {
+                f[i] += fi;
             }
         }
         if let (Some(a), Some(tm), Some(k)) = (self.arm_state(q, v), self.tensioner, self.arm_dof) {
@@ -729,10 +756,18 @@ impl NodalBelt {
             kq.add(k, k, -ks);
             cv.add(k, k, -cs);
         }
-        // the free pulleys' dampers: −c ω
+        // the free pulleys' dampers: −c ω (behind a decoupler: the chain (D3))
         for (p, mo) in self.motions.iter().enumerate() {
-            if let Some(k) = self.pulley_dof[p] {
+            if let (Some(k), None) = (self.pulley_dof[p], mo.decoupler()) {
                 cv.add(k, k, -mo.applied_torque(t, v[k]).1);
+            }
+        }
+        for (dofs, d) in decoupler_forces(&self.motions, &self.decouplers, t, q, v) {
+            for (a, &i) in dofs.iter().enumerate() {
+                for (b, &j) in dofs.iter().enumerate() {
+                    kq.add(i, j, -d.df_dq[a][b]);
+                    cv.add(i, j, -d.df_dv[a][b]);
+                }
             }
         }
         // s_b column: forward difference of the forces (rows 1.. here; row 0 below)
@@ -877,7 +912,20 @@ impl SecondOrderSystem for NodalBelt {
             0 => "belt travel s_b".into(),
             d if d > nd => match self.pulley_dof.iter().position(|&k| k == Some(d)) {
                 Some(p) => format!("pulley {p} angle"),
-                None => "tensioner arm rotation".into(),
+                None if Some(d) == self.arm_dof => "tensioner arm rotation".into(),
+                None => self
+                    .decouplers
+                    .iter()
+                    .find_map(|dd| {
+                        let a = dd.dofs.iter().position(|&i| i == d)?;
+                        let what = if a + 1 == dd.dofs.len() {
+                            "accessory"
+                        } else {
+                            "decoupler carrier"
+                        };
+                        Some(format!("pulley {} {what} angle", dd.pulley))
+                    })
+                    .unwrap_or_else(|| format!("coordinate {d}")),
             },
             d => format!(
                 "node {} {}",
@@ -906,9 +954,12 @@ impl SecondOrderSystem for NodalBelt {
             trip.push(Triplet::new(1 + i, 1 + i, self.fe.mass[i]));
         }
         for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let (Some(inertia), Some(k)) = (mo.inertia(), k) {
+            if let (Some(inertia), Some(k)) = (mo.pulley_inertia(), k) {
                 trip.push(Triplet::new(*k, *k, inertia));
             }
+        }
+        for (k, j) in decoupler_inertias(&self.motions, &self.decouplers) {
+            trip.push(Triplet::new(k, k, j));
         }
         if let (Some(a), Some(k)) = (self.tensioner, self.arm_dof) {
             trip.push(Triplet::new(k, k, a.tensioner.inertia));

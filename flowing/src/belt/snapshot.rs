@@ -125,6 +125,10 @@ impl BeltModel for FlowingBelt {
         FlowingBelt::arm_angle(self, q)
     }
 
+    fn decoupler_state(&self, k: usize, q: &[f64], v: &[f64]) -> Option<belt::DecouplerState> {
+        FlowingBelt::decoupler_state(self, k, q, v)
+    }
+
     /// `ṡ_b`, the material speed at the reference node.
     fn belt_speed(&self, _q: &[f64], v: &[f64]) -> f64 {
         v[0]
@@ -195,6 +199,10 @@ impl BeltModel for NodalBelt {
 
     fn arm_angle(&self, q: &[f64]) -> Option<f64> {
         NodalBelt::arm_angle(self, q)
+    }
+
+    fn decoupler_state(&self, k: usize, q: &[f64], v: &[f64]) -> Option<belt::DecouplerState> {
+        NodalBelt::decoupler_state(self, k, q, v)
     }
 
     /// `ṡ_b`, the speed of the material nodes along the path.

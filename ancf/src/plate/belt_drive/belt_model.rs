@@ -108,6 +108,7 @@ pub fn plate_spec(
     s: &PlateConfig,
 ) -> Result<(PlateDriveSpec, PlateMapping), AncfError> {
     s.validate_within("plate")?;
+    crate::mounted::refuse_decouplers(drive, "plate")?;
     if drive.arm().is_some() {
         return Err(invalid(
             "tensioner",
