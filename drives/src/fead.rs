@@ -331,6 +331,25 @@ impl Default for FeadConfig {
     }
 }
 
+/// The engine's speeds (1 to 20 000 rpm, at most [`MAX_SPEEDS`]) and orders (order 10⁻³ to
+/// 10³, amplitude 0 to 0.5 of the mean speed, finite phase): shared by `fead` and the steady
+/// design study ([`crate::fead_design`]).
+impl Validate for EngineConfig {
+    fn validate(&self) -> Result<(), InvalidField> {
+        check::count("speeds_rpm", self.speeds_rpm.len(), 1, MAX_SPEEDS)?;
+        for (i, &s) in self.speeds_rpm.iter().enumerate() {
+            check::within(&format!("speeds_rpm[{i}]"), s, 1.0, 20_000.0, "rpm")?;
+        }
+        check::count("orders", self.orders.len(), 0, 100)?;
+        for (i, o) in self.orders.iter().enumerate() {
+            check::within(&format!("orders[{i}].order"), o.order, 1e-3, 1e3, "")?;
+            check::within(&format!("orders[{i}].amplitude"), o.amplitude, 0.0, 0.5, "")?;
+            check::finite(&format!("orders[{i}].phase"), o.phase)?;
+        }
+        Ok(())
+    }
+}
+
 impl Validate for FeadConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
@@ -340,27 +359,7 @@ impl Validate for FeadConfig {
                 "pulley 0 is the crankshaft: its motion kind must be speed",
             ));
         }
-        check::count(
-            "engine.speeds_rpm",
-            self.engine.speeds_rpm.len(),
-            1,
-            MAX_SPEEDS,
-        )?;
-        for (i, &s) in self.engine.speeds_rpm.iter().enumerate() {
-            check::within(&format!("engine.speeds_rpm[{i}]"), s, 1.0, 20_000.0, "rpm")?;
-        }
-        check::count("engine.orders", self.engine.orders.len(), 0, 100)?;
-        for (i, o) in self.engine.orders.iter().enumerate() {
-            check::within(&format!("engine.orders[{i}].order"), o.order, 1e-3, 1e3, "")?;
-            check::within(
-                &format!("engine.orders[{i}].amplitude"),
-                o.amplitude,
-                0.0,
-                0.5,
-                "",
-            )?;
-            check::finite(&format!("engine.orders[{i}].phase"), o.phase)?;
-        }
+        self.engine.validate_within("engine")?;
         self.models.validate_within("models")?;
         match self.model {
             FeadModel::Flowing => self

@@ -312,7 +312,16 @@ fn fead_bad_layout_exits_2_naming_the_field() {
         edit(&mut c);
         let file = tmp(&format!("fead_{name}.toml"));
         std::fs::write(&file, toml::to_string(&c).unwrap()).unwrap();
-        let (code, _, stderr) = run(&["fead", "--config", file.to_str().unwrap()]);
+        // an --out of its own: a case that ran would not write into the working directory
+        let out = tmp(&format!("fead_{name}_out"));
+        let (code, _, stderr) = run(&[
+            "fead",
+            "--config",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let _ = std::fs::remove_dir_all(&out);
         assert_eq!(code, 2, "{name}: {stderr}");
         assert!(
             stderr.contains(want) && stderr.trim().lines().count() == 1,

@@ -115,27 +115,7 @@ impl Validate for DesignConfig {
                  several the torque split between them is not determined by statics",
             ));
         }
-        check::count(
-            "engine.speeds_rpm",
-            self.engine.speeds_rpm.len(),
-            1,
-            crate::fead::MAX_SPEEDS,
-        )?;
-        for (i, &s) in self.engine.speeds_rpm.iter().enumerate() {
-            check::within(&format!("engine.speeds_rpm[{i}]"), s, 1.0, 20_000.0, "rpm")?;
-        }
-        check::count("engine.orders", self.engine.orders.len(), 0, 100)?;
-        for (i, o) in self.engine.orders.iter().enumerate() {
-            check::within(&format!("engine.orders[{i}].order"), o.order, 1e-3, 1e3, "")?;
-            check::within(
-                &format!("engine.orders[{i}].amplitude"),
-                o.amplitude,
-                0.0,
-                0.5,
-                "",
-            )?;
-            check::finite(&format!("engine.orders[{i}].phase"), o.phase)?;
-        }
+        self.engine.validate_within("engine")?;
         let d = &self.design;
         check::within(
             "design.stop_margin_deg",
