@@ -7,7 +7,7 @@
 //! * [`mesh`]: meshes with shared nodes (closed loops), sparse constant mass, assembled forces
 //!   and tangents, energies;
 //! * [`mounted`]: the one model shell of the ANCF belt drives ([`mounted::MountedBelt`]: the
-//!   planar and the plate belt as [`belt::BeltModel`]s);
+//!   planar and the plate belt as [`::belt::BeltModel`]s);
 //! * [`plate`]: the 36-coordinate thin plate element of Kerkkänen §4.3 and plate meshes;
 //! * [`statics`]: Newton–Raphson with load increments and line search, and
 //!   [`solve_static_unilateral`] (frictionless node contact by Lagrange multipliers with an

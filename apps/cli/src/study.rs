@@ -213,7 +213,7 @@ pub fn non_finite_fields<T: Serialize>(summary: &T) -> Vec<String> {
 }
 
 /// How long a study has after SIGINT / SIGTERM to stop at its next step and return its results
-/// so far before the runner ends the process itself ([`watch_cancel`]).
+/// so far before the runner ends the process itself.
 pub const CANCEL_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
 
 /// The runner's side of a study that does not poll [`StudyContext::cancel`] (or is inside a
