@@ -58,13 +58,14 @@ def test_bad_matrices():
 
 
 def test_numerical_failure_has_the_clis_partial_results(cli, tmp_path):
-    # 10 N m cannot settle within max_hold = 0.1 s (its ramp alone takes 0.1 s; 0.1 s is the
-    # shortest max_hold accepted, two 0.05 s averaging windows), while the
-    # 0 N m point is steady after the long spin-up: the study fails after one point (gross slip
-    # is a result, not a failure, since issue 17); reference: the CLI's failed summary.json
-    # (exit code 1)
+    # a steady-state tolerance of 1.2e-7 rad/s: the 0 N m point meets it after the 3 s spin-up
+    # (window means 8.9e-8 rad/s apart), the 10 N m point cannot within max_hold = 0.1 s (the
+    # shortest accepted: two 0.05 s windows; its last means 1.6e-7 apart), so the study fails
+    # after one point (gross slip is a result, not a failure, since issue 17); reference: the
+    # CLI's failed summary.json (exit code 1)
     (tmp_path / "slip.toml").write_text(
-        "omegas = [62.8]\n[procedure]\ntorques = [0.0, 10.0]\nmax_hold = 0.1\nspin_up = 1.5\n"
+        "omegas = [62.8]\n[procedure]\ntorques = [0.0, 10.0]\nmax_hold = 0.1\nspin_up = 3.0\n"
+        "tolerance = 1.2e-7\n"
     )
     code, _, err = cli("belt", "speed-loss", "--config", str(tmp_path / "slip.toml"))
     assert code == 1, err
@@ -73,7 +74,8 @@ def test_numerical_failure_has_the_clis_partial_results(cli, tmp_path):
     with pytest.raises(flowmbd.NumericalError) as e:
         flowmbd.belt.speed_loss(omega=None, torques=None, config={
             "omegas": [62.8],
-            "procedure": {"torques": [0.0, 10.0], "max_hold": 0.1, "spin_up": 1.5}})
+            "procedure": {"torques": [0.0, 10.0], "max_hold": 0.1, "spin_up": 3.0,
+                          "tolerance": 1.2e-7}})
     assert str(e.value) == ref["error"]
     assert_same(e.value.partial, ref["partial"])
     assert len(e.value.partial["points"]) == 1
