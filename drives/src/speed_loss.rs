@@ -290,9 +290,9 @@ pub fn tension_range_issue(tight: f64, t0: f64, ea: f64) -> Option<String> {
 /// carries against `Σ(T_in − T_out) r` of its spans, the power the drivers deliver against the
 /// loads, damping and sliding) at which a linearised model's operating point still counts as
 /// valid. The flowing belt misses the balances by a few per cent on drives with small or
-/// back-side pulleys (2.3–2.8 % torque, −3.5 % power on the default `fead` drive; 38 % on a
-/// three-pulley drive with a back-side idler, issue 34); beyond this its tensions do not carry
-/// the pulley torques and the point is flagged.
+/// back-side pulleys (torque 1.9 %, 4.4 %, 9.8 % at 800, 1500, 2500 rpm on the default `fead`
+/// drive, BENCHMARKS.md; 38 % on a three-pulley drive with a back-side idler, issue 34); beyond
+/// this its tensions do not carry the pulley torques and the point is flagged.
 pub const BALANCE_LIMIT: f64 = 0.05;
 
 /// Why a linearised model's point is not valid by its balances ([`BALANCE_LIMIT`]), or `None`.
