@@ -9,6 +9,13 @@
 //! [`AncfDrive`]; the pulleys' motions and speeds, the equations of motion and the initial state
 //! are the shell's.
 
+mod pulleys;
+mod resting;
+
+pub use pulleys::{MAX_PULLEYS, PulleyCoordinates, validate_pulleys};
+pub use resting::InitialOptions;
+pub(crate) use resting::{RestingBelt, solve_resting};
+
 use belt::{BeltModel, Drive, ModelTraits, Motion, Snapshot};
 use mbd_core::integrators::State;
 use mbd_core::system::ForceTangent;
@@ -35,6 +42,58 @@ pub fn refuse_decouplers(drive: &Drive, model: &str) -> Result<(), crate::AncfEr
     }
 }
 
+/// What both ANCF discretisations take from a resolved drive (the mapping tables of
+/// [`crate::belt_drive::belt_model`] and [`crate::plate::belt_drive::belt_model`]): a
+/// rectangular section of width `b` and thickness `h = √(12 EI/EA)` with `E = EA/(b h)` and
+/// `ρ = ρA/(b h)`, and the pulleys at the contact radius `R + p₀`, `p₀` the penalty
+/// penetration under the mounting pressure `T0/R`
+/// ([`belt::BeltContact::mounting_penetration`]), so that the belt centreline sinks by `p₀`
+/// onto the path of radius `R`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct MappedDrive {
+    /// The pulleys with their contact radii.
+    pub pulleys: Vec<belt::Pulley>,
+    /// `p₀` of each pulley \[m\].
+    pub penetration: Vec<f64>,
+    /// Section thickness `h` \[m\].
+    pub thickness: f64,
+    /// Young's modulus `E` \[Pa\].
+    pub young: f64,
+    /// Density `ρ` \[kg/m³\].
+    pub density: f64,
+}
+
+impl MappedDrive {
+    /// The mapping of `drive` with the section width `width` \[m\].
+    pub fn of(drive: &Drive, width: f64) -> Self {
+        let b = drive.belt();
+        let t0 = drive.tension();
+        let thickness = (12.0 * b.ei / b.ea).sqrt();
+        let area = width * thickness;
+        let penetration: Vec<f64> = drive
+            .pulleys()
+            .iter()
+            .map(|p| drive.contact().mounting_penetration(t0, p.radius))
+            .collect();
+        let pulleys = drive
+            .pulleys()
+            .iter()
+            .zip(&penetration)
+            .map(|(p, &p0)| belt::Pulley {
+                radius: p.radius + p0,
+                ..p.clone()
+            })
+            .collect();
+        Self {
+            pulleys,
+            penetration,
+            thickness,
+            young: b.ea / area,
+            density: b.mass_per_length / area,
+        }
+    }
+}
+
 /// An ANCF discretisation of a belt drive that [`MountedBelt`] wraps (module documentation):
 /// its equations of motion ([`SecondOrderSystem`]) and what a [`BeltModel`] reports of it.
 pub trait AncfDrive: SecondOrderSystem {
@@ -47,12 +106,23 @@ pub trait AncfDrive: SecondOrderSystem {
     fn model_traits(&self) -> ModelTraits;
     /// The coordinates of the mounted static state.
     fn initial_q(initial: &Self::Initial) -> &[f64];
-    /// How pulley `k` turns.
-    fn pulley_motion(&self, k: usize) -> Option<&Motion>;
+    /// The drive's pulleys (travel order).
+    fn drive_pulleys(&self) -> &[belt::Pulley];
+    /// The belt's path over the pulleys (its spans and wraps).
+    fn drive_path(&self) -> &belt::BeltPath;
+    /// Which pulleys have an angle coordinate.
+    fn pulley_coordinates(&self) -> &PulleyCoordinates;
     /// How pulley `k` turns, to change it.
     fn pulley_motion_mut(&mut self, k: usize) -> Option<&mut Motion>;
-    /// Speed of pulley `k` in its travel sense \[rad/s\].
-    fn travel_speed(&self, k: usize, t: f64, v: &[f64]) -> f64;
+    /// How pulley `k` turns.
+    fn pulley_motion(&self, k: usize) -> Option<&Motion> {
+        self.drive_pulleys().get(k).map(|p| &p.motion)
+    }
+    /// Speed of pulley `k` in its travel sense \[rad/s\] ([`PulleyCoordinates::speed`]).
+    fn travel_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+        self.pulley_coordinates()
+            .speed(self.drive_pulleys(), k, t, v)
+    }
     /// Tensioner arm angle \[rad\] (`None`: no arm).
     fn arm_angle_at(&self, q: &[f64]) -> Option<f64>;
     /// Mean belt speed along the centreline \[m/s\].

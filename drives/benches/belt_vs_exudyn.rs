@@ -95,8 +95,8 @@ fn ours(young: f64, h: Option<f64>) -> Run {
         wall_after_ramp: ramp_mark.map_or(f64::NAN, |m| m.elapsed().as_secs_f64()),
         cpu: cpu1 - cpu0,
         cpu_after_ramp: cpu1 - ramp_cpu,
-        steps: end.summary.steps,
-        iterations: end.summary.newton_iterations,
+        steps: end.summary.run.steps,
+        iterations: end.summary.run.newton_iterations,
     }
 }
 

@@ -55,7 +55,9 @@ fn main() {
     spec.pulleys[0].motion = Motion::speed(Signal::constant(500.0));
     spec.pulleys[1].motion = Motion::load(0.00025, Signal::constant(2.0));
     let d = PlateBeltDrive::new(spec).expect("Model 2");
-    let init = d.initial_state(100, 1e-11).expect("initial state");
+    let init = d
+        .initial_state(&InitialOptions::default())
+        .expect("initial state");
     let v = d.travelling_velocity(&init.q, 25.0);
     let (w, steps, it) = timed(&d, State::new(0.0, init.q.clone(), v), 0.02, 5e-5);
     println!(
@@ -64,7 +66,9 @@ fn main() {
 
     // Model 1, start
     let d = PlateBeltDrive::new(PlateDriveSpec::kerkkanen_model1()).expect("Model 1");
-    let init = d.initial_state(100, 1e-11).expect("initial state");
+    let init = d
+        .initial_state(&InitialOptions::default())
+        .expect("initial state");
     let s0 = State::new(0.0, init.q.clone(), vec![0.0; d.n_q()]);
     let (w, steps, it) = timed(&d, s0, 0.1, 1e-4);
     println!(
@@ -77,7 +81,9 @@ fn main() {
         .planar_equivalent(0.01)
         .expect("no crown, flanges or shift");
     let d3 = PlateBeltDrive::new(p).expect("plate");
-    let i3 = d3.initial_state(100, 1e-11).expect("initial state");
+    let i3 = d3
+        .initial_state(&InitialOptions::default())
+        .expect("initial state");
     let d2 = BeltDrive::new(planar).expect("planar");
     let i2 = d2
         .initial_state(&InitialOptions::default())

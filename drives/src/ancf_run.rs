@@ -6,22 +6,18 @@
 use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, IntegratorKind, SimulationConfig, free_belt_closure,
-    post,
 };
-use belt::Role;
+use ancf::mounted::AncfDrive;
+use belt::{HubLoad, PulleyReport, Report, Role, SpanReport, WrapPoint};
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::{GeneralizedAlpha, Observer, Recorder, Rk4, State, Stats, Stepper};
+use mbd_core::validate::{InvalidField, check};
+use serde::Serialize;
 
-/// Which pulleys play driver and driven in a summary: the first speed-driven pulley (0 if
-/// none) and the first free one.
-pub fn roles(drive: &BeltDrive) -> (usize, Option<usize>) {
-    roles_of(drive.pulleys().iter().map(|p| p.is_free()))
-}
-
-/// The roles of [`roles`] from whether each pulley (in order) is free: the first speed-driven
-/// pulley (0 if none) and the first free one.
-pub fn roles_of(free: impl IntoIterator<Item = bool>) -> (usize, Option<usize>) {
-    let free: Vec<bool> = free.into_iter().collect();
+/// Which pulleys play driver and driven in a summary of either ANCF drive: the first
+/// speed-driven pulley (0 if none) and the first free one.
+pub fn roles<D: AncfDrive>(drive: &D) -> (usize, Option<usize>) {
+    let free: Vec<bool> = drive.drive_pulleys().iter().map(|p| p.is_free()).collect();
     (
         free.iter().position(|f| !f).unwrap_or(0),
         free.iter().position(|f| *f),
@@ -29,20 +25,26 @@ pub fn roles_of(free: impl IntoIterator<Item = bool>) -> (usize, Option<usize>) 
 }
 
 /// Role of each pulley of `drive` ([`belt::Motion::role`]).
-pub fn pulley_roles(drive: &BeltDrive) -> Vec<Role> {
-    drive.pulleys().iter().map(|p| p.motion.role()).collect()
+pub fn pulley_roles<D: AncfDrive>(drive: &D) -> Vec<Role> {
+    drive
+        .drive_pulleys()
+        .iter()
+        .map(|p| p.motion.role())
+        .collect()
 }
 
-/// The snapshot of the ANCF drive ([`post::snapshot`], re-exported).
-pub use ancf::belt_drive::post::snapshot;
-
-/// The spans running into and out of the pulley `driver`: (tight, slack) indices into `spans`.
-pub fn tight_slack(spans: &[post::SpanLine], driver: usize) -> (Option<usize>, Option<usize>) {
+/// The spans running into and out of the pulley `driver` of either ANCF drive: (tight, slack)
+/// indices into its spans ([`belt::BeltPath::spans`]).
+pub fn tight_slack<D: AncfDrive>(drive: &D, driver: usize) -> (Option<usize>, Option<usize>) {
+    let spans = drive.drive_path().spans();
     (
         spans.iter().position(|s| s.to == driver),
         spans.iter().position(|s| s.from == driver),
     )
 }
+
+/// The snapshot of the planar ANCF drive ([`ancf::belt_drive::post::snapshot`], re-exported).
+pub use ancf::belt_drive::post::snapshot;
 
 /// Example 3.3-A: the free belt of `spec`, stress-free on the path length (Kerkkänen: 1.276 m
 /// on the 1.276273 m path), closed by [`free_belt_closure`]. Returns the drive with that
@@ -53,6 +55,76 @@ pub fn closure_on_path(spec: &BeltDriveSpec) -> Result<(BeltDrive, ClosureResult
     spec.belt.length = path.path().length();
     let r = free_belt_closure(&spec)?;
     Ok((BeltDrive::new(spec)?, r))
+}
+
+/// Most integration steps `t_end / integrator.h` of one run: 10⁴ times the 10⁴ steps of
+/// Kerkkänen's example 3.3-B (1 s at 0.1 ms), days of computing already.
+pub const MAX_STEPS: f64 = 1e8;
+
+/// Most rows of `history.csv`, `t_end / output.history_interval` (about 2 GB of text).
+pub const MAX_HISTORY_ROWS: f64 = 1e7;
+
+/// Most VTK frames of the belt, `t_end / output.vtk_interval` (`--t-end 1e300` wrote frames
+/// until it was killed, issue 20).
+pub const MAX_VTK_FRAMES: f64 = 1e5;
+
+/// The checks of a run's length and output shared by the ANCF studies, before anything runs
+/// or is written: the integrator's options ([`SimulationConfig::validate`]), `t_end` \[s\] and the output intervals \[s\] positive; the steps
+/// `t_end / h`, history rows `t_end / history_interval` and VTK frames `t_end / vtk_interval`
+/// within [`MAX_STEPS`], [`MAX_HISTORY_ROWS`] and [`MAX_VTK_FRAMES`] (raised by
+/// `--allow-large`, [`mbd_core::validate::limits`]), each refusal naming `t_end` and the
+/// interval to raise; `points_per_element` of the distributions in 1..=100.
+pub fn validate_run(
+    t_end: f64,
+    integrator: &SimulationConfig,
+    history_interval: f64,
+    vtk_interval: f64,
+    points_per_element: usize,
+) -> Result<(), InvalidField> {
+    integrator.validate().map_err(|e| match e {
+        AncfError::InvalidInput { item, reason } => InvalidField::new(item, reason),
+        other => InvalidField::new("integrator", other.to_string()),
+    })?;
+    check::positive("t_end", t_end, "s")?;
+    check::positive("output.history_interval", history_interval, "s")?;
+    check::positive("output.vtk_interval", vtk_interval, "s")?;
+    for (field, interval, what, max) in [
+        ("integrator.h", integrator.h, "steps", MAX_STEPS),
+        (
+            "output.history_interval",
+            history_interval,
+            "history rows",
+            MAX_HISTORY_ROWS,
+        ),
+        (
+            "output.vtk_interval",
+            vtk_interval,
+            "VTK frames",
+            MAX_VTK_FRAMES,
+        ),
+    ] {
+        let n = t_end / interval;
+        let max = mbd_core::validate::limits::ceiling(max);
+        if n > max {
+            return Err(InvalidField::new(
+                "t_end",
+                format!(
+                    "{} s at {field} = {} s is {n:.3e} {what}, more than the {max:e} a run may \
+                     take (raise {field} or shorten t_end){}",
+                    check::show(t_end),
+                    check::show(interval),
+                    mbd_core::validate::limits::raise_hint()
+                ),
+            ));
+        }
+    }
+    if points_per_element == 0 || points_per_element > 100 {
+        return Err(InvalidField::new(
+            "output.points_per_element",
+            "must lie in 1..=100",
+        ));
+    }
+    Ok(())
 }
 
 /// Output intervals of a run \[s\].
@@ -209,6 +281,134 @@ pub fn run_drive<S: SecondOrderSystem, E>(
     Ok(run)
 }
 
+/// The end of a run as both ANCF summaries (`flowmbd-belt ancf`, `plate`) report it,
+/// flattened into them.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct RunEnd {
+    /// Driver (first speed-driven) pulley speed at the end \[rad/s\] (travel sense).
+    pub omega_driver_end: f64,
+    /// Driven (first free) pulley speed at the end \[rad/s\] (travel sense).
+    pub omega_driven_end: f64,
+    /// Tension of the span running into the driver (tight) at the end \[N\] (the planar
+    /// belt's axial force; the plate's by `output.strain_measure`).
+    pub tension_tight: f64,
+    /// Tension of the span leaving the driver (slack) at the end \[N\] (as `tension_tight`).
+    pub tension_slack: f64,
+    /// Wall time of the whole study \[s\].
+    pub wall_time_s: f64,
+    /// End time reached \[s\].
+    pub t_end: f64,
+    /// Integration steps.
+    pub steps: usize,
+    /// Newton iterations.
+    pub newton_iterations: usize,
+}
+
+/// Fraction of the run at its end over which the span vibration amplitudes of the summary
+/// are taken (half the peak-to-peak of the mid-point offsets at the history samples).
+pub const VIBRATION_WINDOW: f64 = 0.2;
+
+/// What a run of either ANCF drive reports of the drive at its end, computed once from the
+/// model's snapshot ([`belt::Report::of`], [`AncfDrive::snapshot_at`]); flattened into the
+/// summaries of `flowmbd-belt ancf` and `plate`.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct EndReport {
+    /// Whether a wrap slides as a whole at the end ([`Report::gross_slip`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gross_slip: Option<bool>,
+    /// Slip arc of the driver at the end \[rad\] ([`belt::report`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slip_arc_driver_rad: Option<f64>,
+    /// Slip arc of the driven (first loaded) pulley at the end \[rad\].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slip_arc_driven_rad: Option<f64>,
+    /// Force of the belt on every pulley at the end.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub hub_loads: Vec<HubLoad>,
+    /// Per pulley at the end: arcs, slip velocity, hub load, torque, sliding loss.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pulleys: Vec<PulleyReport>,
+    /// Per span at the end: tension, mid-point offset and its vibration amplitude over the
+    /// last [`VIBRATION_WINDOW`] of the run.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub spans: Vec<SpanReport>,
+}
+
+/// A run with its end report ([`run_reported`]).
+#[derive(Debug, Clone)]
+pub struct ReportedRun {
+    /// The run.
+    pub run: DriveRun,
+    /// The report at its last state.
+    pub report: EndReport,
+    /// The contact points of every wrap at the last state.
+    pub wrap: Vec<WrapPoint>,
+}
+
+/// [`run_drive`] of either ANCF drive from rest at `q0` to `t_end`, reporting the drive at
+/// the last state ([`EndReport`], friction utilisation against `mu`) with each span's
+/// vibration amplitude, half the peak-to-peak of its mid-point offset
+/// ([`AncfDrive::span_offsets`]) at the history samples of the last [`VIBRATION_WINDOW`].
+/// A snapshot that cannot be taken at the end is reported as the run's failure.
+pub fn run_reported<D: AncfDrive, E>(
+    drive: &D,
+    q0: &[f64],
+    t_end: f64,
+    opts: &SimulationConfig,
+    sampling: Sampling,
+    mu: f64,
+    mut observer: impl FnMut(&State, Due) -> Result<(), E>,
+) -> Result<ReportedRun, E> {
+    let window_start = (1.0 - VIBRATION_WINDOW) * t_end;
+    let n_spans = drive.drive_path().spans().len();
+    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); n_spans];
+    let mut run = run_drive(drive, q0, t_end, opts, sampling, |s, due| {
+        if due.history
+            && s.t >= window_start
+            && let Ok(offsets) = drive.span_offsets(&s.q)
+        {
+            for (r, x) in range.iter_mut().zip(offsets) {
+                if x.is_finite() {
+                    *r = (r.0.min(x), r.1.max(x));
+                }
+            }
+        }
+        observer(s, due)
+    })?;
+    let s = &run.state;
+    let snap = match drive.snapshot_at(s.t, &s.q, &s.v) {
+        Ok(snap) => snap,
+        Err(e) => {
+            run.failure
+                .get_or_insert_with(|| format!("end report: {e}"));
+            return Ok(ReportedRun {
+                run,
+                report: EndReport::default(),
+                wrap: Vec::new(),
+            });
+        }
+    };
+    let mut report = Report::of(drive.drive_pulleys(), &snap, mu);
+    for (sp, r) in report.spans.iter_mut().zip(&range) {
+        if r.1 >= r.0 {
+            sp.vibration_amplitude_m = Some(0.5 * (r.1 - r.0));
+        }
+    }
+    let end = EndReport {
+        gross_slip: Some(report.gross_slip().is_some()),
+        slip_arc_driver_rad: Some(report.slip_arc(Role::Driver)),
+        slip_arc_driven_rad: Some(report.slip_arc(Role::Driven)),
+        hub_loads: report.hub_loads(),
+        pulleys: report.pulleys,
+        spans: report.spans,
+    };
+    Ok(ReportedRun {
+        run,
+        report: end,
+        wrap: snap.wrap,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -254,8 +454,8 @@ mod tests {
         let (driver, driven) = roles(&drive);
         assert!(!drive.pulleys()[driver].is_free());
         assert!(drive.pulleys()[driven.unwrap()].is_free());
-        let spans = post::spans(&drive);
-        let (tight, slack) = tight_slack(&spans, driver);
+        let spans = drive.path().spans();
+        let (tight, slack) = tight_slack(&drive, driver);
         assert_eq!(spans[tight.unwrap()].to, driver);
         assert_eq!(spans[slack.unwrap()].from, driver);
     }

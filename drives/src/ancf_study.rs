@@ -4,15 +4,18 @@
 //! (`flowmbd.belt.ancf`). The time loop is [`run_drive`]; the summary's end speeds and the
 //! tight/slack span tensions follow [`roles`] and [`tight_slack`].
 
-use crate::ancf_run::{Due, Sampling, closure_on_path, roles, run_drive, snapshot, tight_slack};
+use crate::ancf_run::{
+    Due, EndReport, RunEnd, Sampling, closure_on_path, roles, run_reported, tight_slack,
+    validate_run,
+};
 use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, InitialOptions, InitialState, SimulationConfig, post,
 };
-use belt::{HubLoad, PulleyReport, Report, Role, SpanReport, WrapPoint};
+use belt::WrapPoint;
 use contact::friction::FrictionLaw;
 use mbd_core::integrators::State;
-use mbd_core::validate::{InvalidField, Validate, check};
+use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -49,16 +52,7 @@ impl Default for OutputConfig {
     }
 }
 
-/// Most integration steps `t_end / integrator.h` of one run: 10⁴ times the 10⁴ steps of
-/// Kerkkänen's example 3.3-B (1 s at 0.1 ms), days of computing already.
-pub const MAX_STEPS: f64 = 1e8;
-
-/// Most rows of `history.csv`, `t_end / output.history_interval` (about 2 GB of text).
-pub const MAX_HISTORY_ROWS: f64 = 1e7;
-
-/// Most VTK frames of the belt, `t_end / output.vtk_interval` (`--t-end 1e300` wrote frames
-/// until it was killed, issue 20).
-pub const MAX_VTK_FRAMES: f64 = 1e5;
+pub use crate::ancf_run::{MAX_HISTORY_ROWS, MAX_STEPS, MAX_VTK_FRAMES};
 
 /// Configuration of the ANCF belt-drive study (the `flowmbd-belt ancf` TOML file, SI units).
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -101,105 +95,38 @@ impl Validate for AncfStudyConfig {
             other => InvalidField::new("drive", other.to_string()),
         };
         self.drive.validate().map_err(input)?;
-        self.integrator.validate().map_err(|e| match e {
-            ancf::AncfError::InvalidInput { item, reason } => InvalidField::new(item, reason),
-            other => InvalidField::new("integrator", other.to_string()),
-        })?;
-        check::positive("t_end", self.t_end, "s")?;
         if !(self.tangent_refresh.is_finite() && self.tangent_refresh >= 0.0) {
             return Err(InvalidField::new("tangent_refresh", "must be ≥ 0"));
         }
         let o = &self.output;
-        check::positive("output.history_interval", o.history_interval, "s")?;
-        check::positive("output.vtk_interval", o.vtk_interval, "s")?;
-        // sizes of the run and its output, checked before anything runs or is written
-        for (field, interval, what, max) in [
-            ("integrator.h", self.integrator.h, "steps", MAX_STEPS),
-            (
-                "output.history_interval",
-                o.history_interval,
-                "history rows",
-                MAX_HISTORY_ROWS,
-            ),
-            (
-                "output.vtk_interval",
-                o.vtk_interval,
-                "VTK frames",
-                MAX_VTK_FRAMES,
-            ),
-        ] {
-            let n = self.t_end / interval;
-            let max = mbd_core::validate::limits::ceiling(max);
-            if n > max {
-                return Err(InvalidField::new(
-                    "t_end",
-                    format!(
-                        "{} s at {field} = {} s is {n:.3e} {what}, more than the {max:e} a run \
-                         may take (raise {field} or shorten t_end){}",
-                        check::show(self.t_end),
-                        check::show(interval),
-                        mbd_core::validate::limits::raise_hint()
-                    ),
-                ));
-            }
-        }
-        if o.points_per_element == 0 || o.points_per_element > 100 {
-            return Err(InvalidField::new(
-                "output.points_per_element",
-                "must lie in 1..=100",
-            ));
-        }
+        validate_run(
+            self.t_end,
+            &self.integrator,
+            o.history_interval,
+            o.vtk_interval,
+            o.points_per_element,
+        )?;
         Ok(())
     }
 }
 
-/// Fraction of the run at its end over which the span vibration amplitudes of the summary
-/// are taken (half the peak-to-peak of the mid-point offsets at the history samples).
-pub const VIBRATION_WINDOW: f64 = 0.2;
+pub use crate::ancf_run::VIBRATION_WINDOW;
 
 /// Summary of a run (`summary.json` of `flowmbd-belt ancf`).
 #[derive(Debug, Clone, Serialize, Default)]
 pub struct AncfStudySummary {
-    /// Driver pulley speed at the end \[rad/s\] (travel sense).
-    pub omega_driver_end: f64,
-    /// Driven (first free) pulley speed at the end \[rad/s\] (travel sense).
-    pub omega_driven_end: f64,
-    /// Tension of the span running into the driver at the end \[N\].
-    pub tension_tight: f64,
-    /// Tension of the span leaving the driver at the end \[N\].
-    pub tension_slack: f64,
-    /// Wall time of the whole study \[s\].
-    pub wall_time_s: f64,
-    /// End time reached \[s\].
-    pub t_end: f64,
-    /// Integration steps.
-    pub steps: usize,
-    /// Newton iterations.
-    pub newton_iterations: usize,
+    /// End speeds, span tensions, time and work ([`RunEnd`]).
+    #[serde(flatten)]
+    pub run: RunEnd,
     /// Pre-tension after the initial static solve (mean over the belt) \[N\].
     pub initial_tension: f64,
     /// Speed ratio driven/driver at the end (`None` while the driver is at rest).
     pub speed_ratio: Option<f64>,
-    /// Dynamic run only: whether a wrap slides as a whole at the end
-    /// ([`Report::gross_slip`]).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub gross_slip: Option<bool>,
-    /// Dynamic run only: slip arc of the driver at the end \[rad\] ([`belt::report`]).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub slip_arc_driver_rad: Option<f64>,
-    /// Dynamic run only: slip arc of the driven (first loaded) pulley at the end \[rad\].
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub slip_arc_driven_rad: Option<f64>,
-    /// Force of the belt on every pulley at the end.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub hub_loads: Vec<HubLoad>,
-    /// Per pulley at the end: arcs, slip velocity, hub load, torque, sliding loss.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub pulleys: Vec<PulleyReport>,
-    /// Per span at the end: tension, mid-point offset and its vibration amplitude over the
-    /// last [`VIBRATION_WINDOW`] of the run.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub spans: Vec<SpanReport>,
+    /// Dynamic run only: the drive at the end ([`EndReport`]: gross slip, slip arcs, hub
+    /// loads, pulleys, spans with their vibration amplitudes over the last
+    /// [`VIBRATION_WINDOW`] of the run).
+    #[serde(flatten)]
+    pub report: EndReport,
     /// Static closure only: mean radius of the closed belt \[m\].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub closure_radius: Option<f64>,
@@ -231,8 +158,11 @@ pub fn closure_study(
     let start = Instant::now();
     let (drive, r) = closure_on_path(&c.drive)?;
     let summary = AncfStudySummary {
-        wall_time_s: start.elapsed().as_secs_f64(),
-        newton_iterations: r.iterations,
+        run: RunEnd {
+            wall_time_s: start.elapsed().as_secs_f64(),
+            newton_iterations: r.iterations,
+            ..Default::default()
+        },
         closure_radius: Some(r.mean_radius),
         closure_radius_variation: Some((r.radius_range[1] - r.radius_range[0]) / r.mean_radius),
         meaning: ANCF_MEANING.to_string(),
@@ -275,66 +205,45 @@ pub fn dynamic_run<E>(
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<DynamicEnd, E> {
     let (driver, driven) = roles(drive);
-    let (tight, slack) = tight_slack(&post::spans(drive), driver);
+    let (tight, slack) = tight_slack(drive, driver);
     let mut last_tensions = post::span_tensions(drive, &init.q);
-    let n_spans = post::spans(drive).len();
-    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); n_spans];
-    let window_start = (1.0 - VIBRATION_WINDOW) * c.t_end;
     let sampling = Sampling {
         history: c.output.history_interval,
         frame: c.output.vtk_interval,
     };
-    let run = run_drive(
+    let mu = drive.spec().contact.friction.coefficient();
+    let end = run_reported(
         drive,
         &init.q,
         c.t_end,
         &c.integrator,
         sampling,
+        mu,
         |s, due| {
             if due.history {
                 last_tensions = post::span_tensions(drive, &s.q);
-                if s.t >= window_start {
-                    for (r, x) in range.iter_mut().zip(post::span_transverse(drive, &s.q)) {
-                        if x.is_finite() {
-                            *r = (r.0.min(x), r.1.max(x));
-                        }
-                    }
-                }
             }
             observer(s, due)
         },
     )?;
+    let run = end.run;
     let s = &run.state;
     let w_driver = drive.pulley_speed(driver, s.t, &s.v);
     let w_driven = driven
         .map(|p| drive.pulley_speed(p, s.t, &s.v))
         .unwrap_or(f64::NAN);
-    let omegas: Vec<f64> = (0..drive.pulleys().len())
-        .map(|p| drive.pulley_speed(p, s.t, &s.v))
-        .collect();
-    let snap = snapshot(drive, s.t, &s.q, &s.v, &omegas);
-    let mu = drive.spec().contact.friction.coefficient();
-    let mut report = Report::of(drive.pulleys(), &snap, mu);
-    for (sp, r) in report.spans.iter_mut().zip(&range) {
-        if r.1 >= r.0 {
-            sp.vibration_amplitude_m = Some(0.5 * (r.1 - r.0));
-        }
-    }
     let summary = AncfStudySummary {
-        gross_slip: Some(report.gross_slip().is_some()),
-        slip_arc_driver_rad: Some(report.slip_arc(Role::Driver)),
-        slip_arc_driven_rad: Some(report.slip_arc(Role::Driven)),
-        hub_loads: report.hub_loads(),
-        pulleys: report.pulleys,
-        spans: report.spans,
-        omega_driver_end: w_driver,
-        omega_driven_end: w_driven,
-        tension_tight: tight.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
-        tension_slack: slack.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
-        wall_time_s: start.elapsed().as_secs_f64(),
-        t_end: s.t,
-        steps: run.steps,
-        newton_iterations: run.newton_iterations,
+        report: end.report,
+        run: RunEnd {
+            omega_driver_end: w_driver,
+            omega_driven_end: w_driven,
+            tension_tight: tight.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
+            tension_slack: slack.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
+            wall_time_s: start.elapsed().as_secs_f64(),
+            t_end: s.t,
+            steps: run.steps,
+            newton_iterations: run.newton_iterations,
+        },
         initial_tension: init.mean_tension,
         speed_ratio: Some(w_driven / w_driver).filter(|r| r.is_finite()),
         closure_radius: None,
@@ -345,7 +254,7 @@ pub fn dynamic_run<E>(
         state: run.state,
         summary,
         failure: run.failure,
-        wrap: snap.wrap,
+        wrap: end.wrap,
         friction_coefficient: mu,
     })
 }

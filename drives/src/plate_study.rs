@@ -2,17 +2,19 @@
 //! its configuration, run, summary and end-of-run distributions, shared by
 //! `flowmbd-belt plate` (which writes the files) and the Python package
 //! (`flowmbd.belt.plate`). The model is [`ancf::plate::belt_drive`]; the run is the one ANCF
-//! time loop ([`run_drive`]: mbd-core's stepper driven by its
+//! time loop ([`crate::ancf_run::run_drive`]: mbd-core's stepper driven by its
 //! [`Recorder`](mbd_core::integrators::Recorder)), shared with the planar drive; the comparison
 //! is Bechtel's steady model ([`crate::bechtel_steady`]) for the same belt.
 
-use crate::ancf_run::{Due, Sampling, run_drive};
+use crate::ancf_run::{
+    Due, EndReport, RunEnd, Sampling, roles, run_reported, tight_slack, validate_run,
+};
 use crate::bechtel_steady::{SteadyDriveInput, SteadyPoint, SteadySolution, solve_steady};
 use ancf::AncfError;
-use ancf::belt_drive::SimulationConfig;
+use ancf::belt_drive::{InitialOptions, SimulationConfig};
 use ancf::plate::StrainMeasure;
 use ancf::plate::belt_drive::post::{
-    BeltSample, SpanState, line_samples, path_coordinate, pulley_torques, span_states, spans,
+    BeltSample, SpanState, line_samples, path_coordinate, pulley_torques, span_states,
 };
 use ancf::plate::belt_drive::{
     PlateBeltDrive, PlateContactRecord, PlateDriveSpec, PlateInitialState,
@@ -20,7 +22,7 @@ use ancf::plate::belt_drive::{
 use belt::{Motion, Shape};
 use contact::FrictionLaw;
 use mbd_core::integrators::{NewtonUpdate, State, Stats};
-use mbd_core::validate::{InvalidField, Validate};
+use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -128,47 +130,15 @@ impl PlateStudyConfig {
 impl Validate for PlateStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         self.drive.validate_within("drive")?;
-        self.integrator.validate().map_err(|e| match e {
-            AncfError::InvalidInput { item, reason } => InvalidField::new(item, reason),
-            other => InvalidField::new("integrator", other.to_string()),
-        })?;
-        if !(self.t_end.is_finite() && self.t_end > 0.0) {
-            return Err(InvalidField::new(
-                "t_end",
-                format!("must be > 0 s, got {}", self.t_end),
-            ));
-        }
-        if self.t_end / self.integrator.h > 1e8 {
-            return Err(InvalidField::new(
-                "integrator.h",
-                format!(
-                    "{} s needs more than 10⁸ steps to reach t_end = {} s",
-                    self.integrator.h, self.t_end
-                ),
-            ));
-        }
         let o = &self.output;
-        for (name, v) in [
-            ("output.history_interval", o.history_interval),
-            ("output.vtk_interval", o.vtk_interval),
-            ("output.average_window", o.average_window),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(InvalidField::new(name, format!("must be > 0 s, got {v}")));
-            }
-        }
-        if self.t_end / o.history_interval > 1e7 {
-            return Err(InvalidField::new(
-                "output.history_interval",
-                "gives more than 10⁷ samples",
-            ));
-        }
-        if o.points_per_element == 0 || o.points_per_element > 100 {
-            return Err(InvalidField::new(
-                "output.points_per_element",
-                "must lie in 1..=100",
-            ));
-        }
+        validate_run(
+            self.t_end,
+            &self.integrator,
+            o.history_interval,
+            o.vtk_interval,
+            o.points_per_element,
+        )?;
+        check::positive("output.average_window", o.average_window, "s")?;
         let w = self.drive.belt.width;
         if !(o.strain_line.is_finite() && (0.0..=w).contains(&o.strain_line)) {
             return Err(InvalidField::new(
@@ -227,28 +197,14 @@ driven pulley [N m]: in steady operation it equals the load torque.";
 /// Summary of a run (`summary.json` of `flowmbd-belt plate`).
 #[derive(Debug, Clone, Serialize, Default)]
 pub struct PlateStudySummary {
-    /// Driver speed at the end \[rad/s\] (travel sense).
-    pub omega_driver_end: f64,
-    /// Driven speed at the end \[rad/s\].
-    pub omega_driven_end: f64,
+    /// End speeds, span tensions (by `output.strain_measure`, default Green (4.9), centreline
+    /// mean over the middle half of each span), time and work ([`RunEnd`]).
+    #[serde(flatten)]
+    pub run: RunEnd,
     /// Driven speed of Bechtel's steady model (full, with belt inertia) for the final operating
     /// point (4.48) \[rad/s\] (NaN when the drive has no single driver and driven pulley or the
     /// model has no steady solution).
     pub analytical_omega_driven: f64,
-    /// Tension of the span running into the driver (tight) at the end by
-    /// `output.strain_measure` (default Green (4.9)), centreline mean over the middle half of
-    /// the span \[N\].
-    pub tension_tight: f64,
-    /// Tension of the span leaving the driver (slack) at the end \[N\] (as `tension_tight`).
-    pub tension_slack: f64,
-    /// Wall time of the whole study \[s\].
-    pub wall_time_s: f64,
-    /// End time reached \[s\].
-    pub t_end: f64,
-    /// Integration steps.
-    pub steps: usize,
-    /// Newton iterations.
-    pub newton_iterations: usize,
     /// Mean driver speed over the final averaging window \[rad/s\].
     pub omega_driver_mean: f64,
     /// Mean driven speed over the final averaging window \[rad/s\].
@@ -285,6 +241,10 @@ pub struct PlateStudySummary {
     pub initial_tension: ByMeasure,
     /// Mean span membrane force after the initial static solve \[N\].
     pub initial_membrane_force: f64,
+    /// The drive at the end, as every belt model reports it ([`EndReport`]: gross slip, slip
+    /// arcs, hub loads, per pulley and per span, the span forces being the membrane forces).
+    #[serde(flatten)]
+    pub report: EndReport,
     /// What the numbers mean ([`PLATE_MEANING`]).
     pub meaning: String,
 }
@@ -320,20 +280,6 @@ pub fn wide_pulley_case(omega: f64, torque: f64) -> PlateDriveSpec {
         .into(),
     );
     p
-}
-
-/// The driver (first speed-driven pulley) and the driven pulley (first free one).
-pub fn plate_roles(drive: &PlateBeltDrive) -> (usize, Option<usize>) {
-    crate::ancf_run::roles_of(drive.pulleys().iter().map(|p| p.is_free()))
-}
-
-/// Indices of the tight (running into the driver) and slack (leaving it) spans.
-fn tight_slack(drive: &PlateBeltDrive, driver: usize) -> (Option<usize>, Option<usize>) {
-    let sp = spans(drive);
-    (
-        sp.iter().position(|s| s.to == driver),
-        sp.iter().position(|s| s.from == driver),
-    )
 }
 
 /// The input of Bechtel's steady model for the final operating point of the drive: two
@@ -382,7 +328,7 @@ pub fn analytical_solutions(spec: &PlateDriveSpec) -> [Option<SteadySolution>; 2
 /// The drive of a run and its initial state (static equilibrium on the resting pulleys).
 pub fn plate_setup(c: &PlateStudyConfig) -> Result<(PlateBeltDrive, PlateInitialState), AncfError> {
     let drive = PlateBeltDrive::new(c.drive.clone())?;
-    let init = drive.initial_state(100, 1e-11)?;
+    let init = drive.initial_state(&InitialOptions::default())?;
     Ok((drive, init))
 }
 
@@ -401,7 +347,7 @@ pub struct PlateEnd {
 }
 
 /// Run the drive from `init` (at rest) to `c.t_end` with the one ANCF time loop
-/// ([`run_drive`]; samples every `output.history_interval`). `observer` sees every sample (each is a history
+/// ([`crate::ancf_run::run_reported`]; samples every `output.history_interval`). `observer` sees every sample (each is a history
 /// sample; every `output.vtk_interval` one is also a frame) and may stop the run with an error.
 pub fn plate_run<E>(
     c: &PlateStudyConfig,
@@ -410,18 +356,19 @@ pub fn plate_run<E>(
     start: Instant,
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<PlateEnd, E> {
-    let (driver, driven) = plate_roles(drive);
+    let (driver, driven) = roles(drive);
     let sampling = Sampling {
         history: c.output.history_interval,
         frame: c.output.vtk_interval,
     };
     let mut history: Vec<[f64; 4]> = Vec::new();
-    let run = run_drive(
+    let end = run_reported(
         drive,
         &init.q,
         c.t_end,
         &c.integrator,
         sampling,
+        c.drive.contact.friction.coefficient(),
         |s, due| {
             let wd = drive.pulley_speed(driver, s.t, &s.v);
             let (wn, tau) = match driven {
@@ -435,10 +382,10 @@ pub fn plate_run<E>(
             observer(s, due)
         },
     )?;
-    let stats = run.stats;
-    let state = run.state;
-    let failure = run.failure;
-    let summary = summarize(c, drive, init, &state, &history, stats, start);
+    let run = end.run;
+    let (stats, state, failure) = (run.stats, run.state, run.failure);
+    let mut summary = summarize(c, drive, init, &state, &history, stats, start);
+    summary.report = end.report;
     Ok(PlateEnd {
         state,
         summary,
@@ -470,7 +417,7 @@ fn summarize(
     stats: Stats,
     start: Instant,
 ) -> PlateStudySummary {
-    let (driver, driven) = plate_roles(drive);
+    let (driver, driven) = roles(drive);
     let (tight, slack) = tight_slack(drive, driver);
     let nan = SpanState {
         tension: [f64::NAN; 3],
@@ -501,17 +448,19 @@ fn summarize(
     let [full, capstan] = analytical_solutions(&c.drive);
     let torque = |m: usize| (st.tension[m] - ss.tension[m]) * r_driven;
     PlateStudySummary {
-        omega_driver_end: drive.pulley_speed(driver, s.t, &s.v),
-        omega_driven_end: driven
-            .map(|p| drive.pulley_speed(p, s.t, &s.v))
-            .unwrap_or(f64::NAN),
+        run: RunEnd {
+            omega_driver_end: drive.pulley_speed(driver, s.t, &s.v),
+            omega_driven_end: driven
+                .map(|p| drive.pulley_speed(p, s.t, &s.v))
+                .unwrap_or(f64::NAN),
+            tension_tight: st.tension[c.output.strain_measure as usize],
+            tension_slack: ss.tension[c.output.strain_measure as usize],
+            wall_time_s: start.elapsed().as_secs_f64(),
+            t_end: s.t,
+            steps: stats.steps,
+            newton_iterations: stats.newton_iterations,
+        },
         analytical_omega_driven: full.map_or(f64::NAN, |a| a.omega_driven),
-        tension_tight: st.tension[c.output.strain_measure as usize],
-        tension_slack: ss.tension[c.output.strain_measure as usize],
-        wall_time_s: start.elapsed().as_secs_f64(),
-        t_end: s.t,
-        steps: stats.steps,
-        newton_iterations: stats.newton_iterations,
         omega_driver_mean: wd,
         omega_driven_mean: wn,
         speed_ratio: Some(wn * r_driven / (wd * r_driver)).filter(|r| r.is_finite()),
@@ -532,6 +481,7 @@ fn summarize(
             mean(&|x| x.tension[2]),
         ]),
         initial_membrane_force: mean(&|x| x.membrane_force),
+        report: EndReport::default(),
         meaning: PLATE_MEANING.to_string(),
     }
 }

@@ -114,7 +114,10 @@ def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = N
         means [rad/s], ``analytical_omega_driven`` and ``capstan_omega_driven`` [rad/s],
         ``tension_tight``, ``tension_slack`` (strain (4.9)) and ``span_tensions`` by the three
         strain measures [N], ``contact_torque_driven``, ``tension_torque``, ``membrane_torque``
-        [N m], ``steps``, ``newton_iterations``, ``t_end``, ``wall_time_s``.
+        [N m], ``steps``, ``newton_iterations``, ``t_end``, ``wall_time_s``; and the drive at
+        the end as every belt model reports it (the same keys as :func:`ancf`):
+        ``gross_slip``, ``slip_arc_driver_rad``, ``slip_arc_driven_rad``, ``hub_loads``,
+        ``pulleys`` and ``spans`` (span forces: the membrane forces).
 
     Raises
     ------

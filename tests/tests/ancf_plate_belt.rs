@@ -57,7 +57,7 @@ fn check_tangent(d: &PlateBeltDrive, t: f64, q: &[f64], v: &[f64]) {
 /// The equilibrium on the pulleys with the belt travelling at `speed` along its mid-line plus a
 /// 1 % speed variation (some points creep, some slip), pulleys turning.
 fn moving_state(d: &PlateBeltDrive, speed: f64) -> (Vec<f64>, Vec<f64>) {
-    let init = d.initial_state(100, 1e-11).unwrap();
+    let init = d.initial_state(&InitialOptions::default()).unwrap();
     let mut v = d.travelling_velocity(&init.q, speed);
     for (i, x) in v.iter_mut().enumerate().take(d.n_belt()) {
         *x *= 1.0 + 0.01 * ((i / 9) as f64).sin();
@@ -109,7 +109,7 @@ fn tangent_with_bending_shift_crown_and_flanges_matches_finite_differences() {
 #[test]
 fn model_2_initial_state_is_the_uniaxial_membrane() {
     let d = PlateBeltDrive::new(PlateDriveSpec::kerkkanen_model2()).unwrap();
-    let init = d.initial_state(100, 1e-11).unwrap();
+    let init = d.initial_state(&InitialOptions::default()).unwrap();
     assert!(init.residual < 1e-8, "residual {}", init.residual);
     assert!(init.holding_force[0].abs() < 0.05 && init.holding_force[1].abs() < 1e-6);
     let v0 = vec![0.0; d.n_q()];
@@ -167,7 +167,7 @@ fn wide_case(omega: f64, torque: f64) -> (PlateDriveSpec, BeltDriveSpec) {
 fn plate_belt_at_rest_matches_the_planar_belt() {
     let (p, planar) = wide_case(100.0, 0.5);
     let d3 = PlateBeltDrive::new(p).unwrap();
-    let i3 = d3.initial_state(100, 1e-11).unwrap();
+    let i3 = d3.initial_state(&InitialOptions::default()).unwrap();
     let d2 = BeltDrive::new(planar).unwrap();
     let i2 = d2.initial_state(&InitialOptions::default()).unwrap();
     let v0 = vec![0.0; d3.n_q()];
@@ -207,7 +207,7 @@ fn model2_constant(t_end: f64) -> (PlateBeltDrive, State) {
     spec.pulleys[0].motion = Motion::speed(Signal::constant(500.0));
     spec.pulleys[1].motion = Motion::load(0.00025, Signal::constant(2.0));
     let d = PlateBeltDrive::new(spec).unwrap();
-    let init = d.initial_state(100, 1e-11).unwrap();
+    let init = d.initial_state(&InitialOptions::default()).unwrap();
     let v = d.travelling_velocity(&init.q, 25.0);
     let cfg = AlphaConfig {
         rho_inf: 0.6,
@@ -284,11 +284,15 @@ fn model_1_driven_pulley_lags_during_the_ramp() {
     let s = end.summary;
     println!(
         "t = {}: driver {:.3} driven {:.3} rad/s, tensions {:.2} / {:.2} N",
-        s.t_end, s.omega_driver_end, s.omega_driven_end, s.tension_tight, s.tension_slack
+        s.run.t_end,
+        s.run.omega_driver_end,
+        s.run.omega_driven_end,
+        s.run.tension_tight,
+        s.run.tension_slack
     );
-    assert!((s.omega_driver_end - 12.0 * 0.05 / 0.55).abs() < 1e-9);
-    assert!(s.omega_driven_end > 0.0 && s.omega_driven_end < 0.5 * s.omega_driver_end);
-    assert!(s.tension_slack > 5.0 && s.tension_tight > s.tension_slack);
+    assert!((s.run.omega_driver_end - 12.0 * 0.05 / 0.55).abs() < 1e-9);
+    assert!(s.run.omega_driven_end > 0.0 && s.run.omega_driven_end < 0.5 * s.run.omega_driver_end);
+    assert!(s.run.tension_slack > 5.0 && s.run.tension_tight > s.run.tension_slack);
 }
 
 // Kerkkänen §4.6, Model 2 (Table 4.1, Figs 4.12, 4.14–4.18), the whole run of the study
@@ -349,7 +353,7 @@ fn model_2_steady_slip_and_torques() {
 fn plate_and_planar_belts_agree_in_operation() {
     let (p, planar) = wide_case(100.0, 0.5);
     let d3 = PlateBeltDrive::new(p).unwrap();
-    let i3 = d3.initial_state(100, 1e-11).unwrap();
+    let i3 = d3.initial_state(&InitialOptions::default()).unwrap();
     let d2 = BeltDrive::new(planar).unwrap();
     let i2 = d2.initial_state(&InitialOptions::default()).unwrap();
     let cfg = AlphaConfig {

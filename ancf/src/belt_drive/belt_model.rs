@@ -21,7 +21,7 @@
 
 use super::{BeltDrive, BeltDriveSpec, BeltSpec, ContactSpec, InitialOptions, InitialState, post};
 use crate::error::{AncfError, invalid};
-use crate::mounted::{AncfDrive, MountedBelt};
+use crate::mounted::{AncfDrive, MountedBelt, PulleyCoordinates};
 use belt::{Drive, ModelTraits, Motion, Snapshot};
 use mbd_core::validate::{InvalidField, Validate, check};
 use mbd_core::{MbdError, Workspace};
@@ -117,34 +117,18 @@ pub fn ancf_spec(drive: &Drive, s: &AncfConfig) -> Result<(BeltDriveSpec, AncfMa
     s.validate_within("ancf")?;
     crate::mounted::refuse_decouplers(drive, "ANCF")?;
     let b = drive.belt();
-    let t0 = drive.tension();
-    let thickness = (12.0 * b.ei / b.ea).sqrt();
-    let area = s.width * thickness;
-    let penetration: Vec<f64> = drive
-        .pulleys()
-        .iter()
-        .map(|p| drive.contact().mounting_penetration(t0, p.radius))
-        .collect();
-    let pulleys = drive
-        .pulleys()
-        .iter()
-        .zip(&penetration)
-        .map(|(p, &p0)| belt::Pulley {
-            radius: p.radius + p0,
-            ..p.clone()
-        })
-        .collect();
+    let m = crate::mounted::MappedDrive::of(drive, s.width);
     let contact = drive.contact();
     let spec = BeltDriveSpec {
-        pulleys,
+        pulleys: m.pulleys,
         belt: BeltSpec {
             length: drive.belt_length(),
             elements: s.elements,
             width: s.width,
-            thickness,
-            young: b.ea / area,
+            thickness: m.thickness,
+            young: m.young,
             poisson: 0.3,
-            density: b.mass_per_length / area,
+            density: m.density,
             shear_factor: 5.0 / 6.0,
             alpha1: 1.0,
             alpha2: 1.0,
@@ -161,11 +145,11 @@ pub fn ancf_spec(drive: &Drive, s: &AncfConfig) -> Result<(BeltDriveSpec, AncfMa
         },
     };
     let mapping = AncfMapping {
-        penetration,
+        penetration: m.penetration,
         path_length: drive.path().length(),
         belt_length: drive.belt_length(),
         mounted_tension: f64::NAN,
-        thickness,
+        thickness: m.thickness,
         young: spec.belt.young,
         density: spec.belt.density,
         contact_damping: s.contact_damping,
@@ -283,16 +267,20 @@ impl AncfDrive for BeltDrive {
         &initial.q
     }
 
-    fn pulley_motion(&self, k: usize) -> Option<&Motion> {
-        self.pulleys().get(k).map(|p| &p.motion)
+    fn drive_pulleys(&self) -> &[belt::Pulley] {
+        self.pulleys()
+    }
+
+    fn drive_path(&self) -> &belt::BeltPath {
+        self.path()
+    }
+
+    fn pulley_coordinates(&self) -> &PulleyCoordinates {
+        self.pulley_dofs()
     }
 
     fn pulley_motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
         self.motion_mut(k)
-    }
-
-    fn travel_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        self.pulley_speed(k, t, v)
     }
 
     fn arm_angle_at(&self, q: &[f64]) -> Option<f64> {

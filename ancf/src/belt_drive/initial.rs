@@ -7,8 +7,9 @@
 //!    length `s_i = i L_p / n`, with `r_x = (L_p / L_b) e_t` (the uniform stretch that maps the
 //!    unstretched belt length `L_b` onto the path length `L_p`) and `r_y = Ĩ e_t`.
 //! 2. **Static equilibrium.** With all pulleys at rest, Newton–Raphson with a backtracking line
-//!    search (the shared [`mbd_core::newton`] solver) solves `Q_e(e) + Q_c(e) = 0` (elastic forces (2.20) and the normal contact forces
-//!    (3.20); friction vanishes at rest). Frictionless contact leaves the belt free to slide
+//!    search (the shared [`mbd_core::newton`] solver, in the resting problem that the plate
+//!    belt shares, [`crate::mounted`]) solves `Q_e(e) + Q_c(e) = 0` (elastic forces (2.20) and
+//!    the normal contact forces (3.20); friction vanishes at rest). Frictionless contact leaves the belt free to slide
 //!    around the pulleys, so the tangential position of node 0 is held by a penalty spring of
 //!    the axial element stiffness `α₁EA/l`; its force at equilibrium is reported (it vanishes
 //!    up to the discretisation's small preference for certain node positions).
@@ -18,12 +19,12 @@
 
 use super::model::BeltDrive;
 use crate::error::AncfError;
+use crate::mounted::{RestingBelt, solve_resting};
 use crate::sparse::Pattern;
-use crate::statics::run_newton;
-use faer::sparse::linalg::solvers::SymbolicLu;
 use mbd_core::SecondOrderSystem;
 use mbd_core::Workspace;
-use mbd_core::newton::{Fallback, LineSearch, NewtonOptions, NewtonProblem, Tolerances};
+
+pub use crate::mounted::InitialOptions;
 
 /// Result of the initial-configuration solve.
 #[derive(Debug, Clone)]
@@ -38,24 +39,6 @@ pub struct InitialState {
     pub holding_force: f64,
     /// Mean axial tension of the belt at equilibrium \[N\].
     pub mean_tension: f64,
-}
-
-/// Options of the static solve.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InitialOptions {
-    /// Maximum Newton iterations.
-    pub max_iterations: usize,
-    /// Convergence: `‖Δe‖∞ ≤ tol (1 + ‖e‖∞)`.
-    pub tolerance: f64,
-}
-
-impl Default for InitialOptions {
-    fn default() -> Self {
-        Self {
-            max_iterations: 100,
-            tolerance: 1e-11,
-        }
-    }
 }
 
 impl BeltDrive {
@@ -96,162 +79,66 @@ impl BeltDrive {
         q0: Vec<f64>,
         opts: &InitialOptions,
     ) -> Result<InitialState, AncfError> {
-        let nb = self.n_belt();
-        let mesh = self.mesh();
-        let n_el = mesh.elements().len();
-        // belt pattern + a 2×2 group for the holding spring on node 0's position
-        let mut groups: Vec<Vec<Option<usize>>> = (0..n_el)
-            .map(|e| (0..12).map(|k| Some(mesh.global_dof(e, k))).collect())
-            .collect();
-        groups.push(vec![Some(0), Some(1)]);
-        let pattern = Pattern::new(nb, &groups);
-        let symbolic =
-            SymbolicLu::try_new(pattern.symbolic().as_ref()).map_err(|e| AncfError::Singular {
-                load_factor: 1.0,
-                detail: format!("symbolic LU of the belt stiffness: {e:?}"),
-            })?;
-        let b = &self.spec().belt;
-        let k_hold = b.alpha1 * b.young * b.width * b.thickness / self.element_length();
-        let t0 = self.path().point(0.0).tangent;
-        let x0 = [q0[0], q0[1]];
-        let omegas = vec![0.0; self.pulleys().len()];
-        let hold = [
-            k_hold * t0[0] * t0[0],
-            k_hold * t0[1] * t0[0],
-            k_hold * t0[0] * t0[1],
-            k_hold * t0[1] * t0[1],
-        ];
-
-        let mut problem = Initial {
-            drive: self,
-            kv: pattern.zeros(),
-            pattern,
-            symbolic,
-            hold,
-            k_hold,
-            t0,
-            x0,
-            omegas,
-            f: vec![0.0; self.n_q()],
-            torques: vec![0.0; self.pulleys().len()],
-            zero_v: vec![0.0; self.n_q()],
-            iteration: 0,
-            ws: Workspace::new(),
-        };
-        let newton = NewtonOptions {
-            max_iterations: opts.max_iterations,
-            tolerances: Tolerances::relative(opts.tolerance),
-            line_search: Some(LineSearch {
-                armijo: 1e-4,
-                slack: 0.0,
-                accept_below: 1e-9,
-                max_trials: 20,
-                fallback: Fallback::FullStep,
-            }),
-            ..Default::default()
-        };
-        let mut q = q0;
-        let report = run_newton("initial belt equilibrium", &mut problem, &mut q, &newton)?;
-        let mut r = vec![0.0; self.n_q()];
-        problem.residual(&q, 1.0, &mut r)?;
-        let (res, iterations) = (problem.residual_norm(&r), report.iterations());
-        let u = t0[0] * (q[0] - x0[0]) + t0[1] * (q[1] - x0[1]);
-        let tension = super::post::tension_samples(self, &q, 3);
+        let r = solve_resting(self, "initial belt equilibrium", q0, opts)?;
+        let tension = super::post::tension_samples(self, &r.q, 3);
         let mean_tension =
             tension.iter().map(|s| s.tension).sum::<f64>() / tension.len().max(1) as f64;
         Ok(InitialState {
-            q,
-            iterations,
-            residual: res,
-            holding_force: k_hold * u,
+            iterations: r.iterations,
+            residual: r.residual,
+            holding_force: r.holding_forces[0],
             mean_tension,
+            q: r.q,
         })
     }
 }
 
-/// The belt on resting pulleys with node 0 held tangentially: `x = q` (belt and pulley
-/// coordinates; the pulleys are never corrected), `R = −(Q_e + Q_c − k_hold t (t·(x − x0)))`.
-struct Initial<'a> {
-    drive: &'a BeltDrive,
-    pattern: Pattern,
-    symbolic: SymbolicLu<usize>,
-    kv: Vec<f64>,
-    hold: [f64; 4],
-    k_hold: f64,
-    t0: [f64; 2],
-    x0: [f64; 2],
-    omegas: Vec<f64>,
-    f: Vec<f64>,
-    torques: Vec<f64>,
-    zero_v: Vec<f64>,
-    /// The drive's scratch ([`mbd_core::Workspace`]).
-    ws: Workspace,
-    /// Linearisations so far (named in errors).
-    iteration: usize,
-}
+/// The planar belt at rest ([`crate::mounted::solve_resting`]): node 0 held along the path's
+/// tangent at its start by a spring of the axial element stiffness `α₁EA/l`.
+impl RestingBelt for BeltDrive {
+    const LABEL: &'static str = "belt";
 
-impl Initial<'_> {
-    /// Subtract the holding spring force from `self.f` and write `r = −f` on the belt rows.
-    fn hold_and_scatter(&mut self, q: &[f64], r: &mut [f64]) {
-        let (t0, x0) = (self.t0, self.x0);
-        let u = t0[0] * (q[0] - x0[0]) + t0[1] * (q[1] - x0[1]);
-        self.f[0] -= self.k_hold * u * t0[0];
-        self.f[1] -= self.k_hold * u * t0[1];
-        let nb = self.drive.n_belt();
-        r.fill(0.0);
-        for i in 0..nb {
-            r[i] = -self.f[i];
-        }
-    }
-}
-
-impl NewtonProblem for Initial<'_> {
-    type Error = AncfError;
-
-    fn tangent_dim(&self) -> usize {
-        self.f.len()
+    fn system_size(&self) -> usize {
+        self.n_q()
     }
 
-    fn linearize(&mut self, q: &[f64], _load: f64, r: &mut [f64]) -> Result<(), AncfError> {
-        self.iteration += 1;
-        self.drive.belt_stiffness(
-            q,
-            &self.omegas,
-            &self.pattern,
-            &mut self.f,
-            &mut self.kv,
-            &mut self.ws,
-        );
-        let n_el = self.drive.mesh().elements().len();
-        self.pattern
-            .add_element(&mut self.kv, n_el, &self.hold, 1.0);
-        self.hold_and_scatter(q, r);
-        Ok(())
+    fn belt_size(&self) -> usize {
+        self.n_belt()
     }
 
-    fn residual(&mut self, q: &[f64], _load: f64, r: &mut [f64]) -> Result<(), AncfError> {
-        self.drive.belt_forces(
-            q,
-            &self.zero_v,
-            &self.omegas,
-            &mut self.f,
-            &mut self.torques,
-            &mut self.ws,
-        );
-        self.hold_and_scatter(q, r);
-        Ok(())
+    fn pulley_count(&self) -> usize {
+        self.pulleys().len()
     }
 
-    fn solve(&mut self, r: &[f64], dx: &mut [f64]) -> Result<(), AncfError> {
-        self.pattern
-            .lu_correction(&self.symbolic, &self.kv, r, dx)
-            .map_err(|e| AncfError::Singular {
-                load_factor: 1.0,
-                detail: format!(
-                    "belt tangent stiffness at iteration {}: {e}",
-                    self.iteration
-                ),
-            })
+    fn element_dofs(&self) -> Vec<Vec<Option<usize>>> {
+        let mesh = self.mesh();
+        (0..mesh.elements().len())
+            .map(|e| (0..12).map(|k| Some(mesh.global_dof(e, k))).collect())
+            .collect()
+    }
+
+    fn holding(&self) -> (f64, Vec<Vec<f64>>) {
+        let b = &self.spec().belt;
+        let k_hold = b.alpha1 * b.young * b.width * b.thickness / self.element_length();
+        (k_hold, vec![self.path().point(0.0).tangent.to_vec()])
+    }
+
+    fn resting_forces(&self, q: &[f64], f: &mut [f64], torques: &mut [f64], ws: &mut Workspace) {
+        let omegas = vec![0.0; self.pulleys().len()];
+        self.belt_forces(q, &vec![0.0; q.len()], &omegas, f, torques, ws);
+    }
+
+    fn resting_tangent(
+        &self,
+        q: &[f64],
+        pattern: &Pattern,
+        f: &mut [f64],
+        kv: &mut [f64],
+        _scratch: &mut Vec<f64>,
+        ws: &mut Workspace,
+    ) {
+        let omegas = vec![0.0; self.pulleys().len()];
+        self.belt_stiffness(q, &omegas, pattern, f, kv, ws);
     }
 }
 

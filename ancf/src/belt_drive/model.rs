@@ -8,6 +8,7 @@ use crate::element::{AncfElement, BeltElement};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
 use crate::mesh::AncfMesh;
+use crate::mounted::{MAX_PULLEYS, PulleyCoordinates};
 use crate::section::Section;
 use crate::shape;
 use crate::sparse::Pattern;
@@ -23,9 +24,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Coordinates of one element.
 const NE: usize = 12;
-
-/// Largest number of pulleys of one drive.
-const MAX_PULLEYS: usize = 16;
 
 /// Work buffers (kept so that the force and tangent loops do not allocate) and the elastic
 /// tangent reused by [`BeltDrive::with_tangent_refresh`], in the caller's [`Workspace`] (see
@@ -50,8 +48,7 @@ pub struct BeltDrive {
     path: BeltPath,
     mesh: AncfMesh<BeltElement>,
     n_belt: usize,
-    pulley_dof: Vec<Option<usize>>,
-    free: Vec<usize>,
+    pulley_dofs: PulleyCoordinates,
     line: LineContact<Disk, BeltNormal, BeltFriction>,
     pattern: Pattern,
     mass_values: Vec<f64>,
@@ -170,33 +167,25 @@ impl BeltDrive {
             .with_law(b.law);
         let mesh = AncfMesh::closed_loop(vec![el; b.elements])?;
         let n_belt = mesh.n_dof();
-        let mut pulley_dof = Vec::with_capacity(spec.pulleys.len());
-        let mut free = Vec::new();
-        for (i, p) in spec.pulleys.iter().enumerate() {
-            if p.is_free() {
-                pulley_dof.push(Some(n_belt + free.len()));
-                free.push(i);
-            } else {
-                pulley_dof.push(None);
-            }
-        }
+        let pulley_dofs = PulleyCoordinates::new(&spec.pulleys, n_belt);
+        let n_free = pulley_dofs.count();
         let arm = tensioner.map(|t| {
             let (length, installed_angle) = t.arm(spec.pulleys[t.pulley].center);
             BeltArm {
                 spec: t,
                 length,
                 installed_angle,
-                dof: n_belt + free.len(),
+                dof: n_belt + n_free,
             }
         });
-        let n = n_belt + free.len() + usize::from(arm.is_some());
+        let n = n_belt + n_free + usize::from(arm.is_some());
         let n_el = mesh.elements().len();
         let mut groups: Vec<Vec<Option<usize>>> = (0..n_el)
             .map(|e| (0..NE).map(|k| Some(mesh.global_dof(e, k))).collect())
             .collect();
         for e in 0..n_el {
             let mut g: Vec<Option<usize>> = (0..NE).map(|k| Some(mesh.global_dof(e, k))).collect();
-            g.extend((0..free.len()).map(|k| Some(n_belt + k)));
+            g.extend((0..n_free).map(|k| Some(n_belt + k)));
             if let Some(a) = &arm {
                 g.push(Some(a.dof));
             }
@@ -207,11 +196,7 @@ impl BeltDrive {
         for e in 0..n_el {
             pattern.add_element(&mut mass_values, e, mesh.element_mass(e), 1.0);
         }
-        for (k, &pi) in free.iter().enumerate() {
-            if let Some(inertia) = spec.pulleys[pi].motion.inertia() {
-                mass_values[pattern.diagonal_position(n_belt + k)] += inertia;
-            }
-        }
+        pulley_dofs.add_inertias(&spec.pulleys, &pattern, &mut mass_values);
         if let Some(a) = &arm {
             mass_values[pattern.diagonal_position(a.dof)] += a.spec.inertia;
         }
@@ -226,8 +211,7 @@ impl BeltDrive {
             path,
             mesh,
             n_belt,
-            pulley_dof,
-            free,
+            pulley_dofs,
             line,
             pattern,
             mass_values,
@@ -263,9 +247,14 @@ impl BeltDrive {
     pub fn n_belt(&self) -> usize {
         self.n_belt
     }
+    /// The pulleys' angle coordinates.
+    pub fn pulley_dofs(&self) -> &PulleyCoordinates {
+        &self.pulley_dofs
+    }
+
     /// Coordinate index of pulley `p`'s angle, if it is free.
     pub fn pulley_dof(&self, p: usize) -> Option<usize> {
-        self.pulley_dof.get(p).copied().flatten()
+        self.pulley_dofs.dof(p)
     }
     /// The tensioner arm, if any ([`BeltDrive::with_tensioner`]).
     pub fn arm(&self) -> Option<&BeltArm> {
@@ -343,13 +332,7 @@ impl BeltDrive {
     /// Travel-sense angular speed of pulley `p` at `(t, v)` \[rad/s\]: the prescribed history for
     /// driven pulleys, the velocity coordinate for free ones.
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        match self.pulley_dof[p] {
-            Some(j) => v[j],
-            None => self.spec.pulleys[p]
-                .motion
-                .prescribed_speed(t)
-                .unwrap_or(0.0),
-        }
+        self.pulley_dofs.speed(&self.spec.pulleys, p, t, v)
     }
 
     /// Disk of pulley `p` spinning with travel-sense speed `omega` \[rad/s\] at `(q, v)`
@@ -424,15 +407,13 @@ impl BeltDrive {
     }
 
     fn speeds(&self, t: f64, v: &[f64]) -> Vec<f64> {
-        (0..self.spec.pulleys.len())
-            .map(|p| self.pulley_speed(p, t, v))
-            .collect()
+        self.pulley_dofs.speeds(&self.spec.pulleys, t, v)
     }
 
     /// The drive's work buffers and tangent cache in the caller's workspace `ws`, created on
     /// first use (and anew if `ws` held those of a drive with other sizes).
     fn scratch<'w>(&self, ws: &'w mut Workspace) -> &'w mut Scratch {
-        let m = NE + self.free.len() + usize::from(self.arm.is_some());
+        let m = NE + self.pulley_dofs.count() + usize::from(self.arm.is_some());
         let fresh = || Scratch {
             contact: ElementContact::new(NE),
             k_local: vec![0.0; m * m],
@@ -730,14 +711,14 @@ pub struct PointRecord {
 
 impl SecondOrderSystem for BeltDrive {
     fn n_q(&self) -> usize {
-        self.n_belt + self.free.len() + usize::from(self.arm.is_some())
+        self.n_belt + self.pulley_dofs.count() + usize::from(self.arm.is_some())
     }
     fn dof_name(&self, dof: usize) -> String {
         if dof < self.n_belt {
             let names = ["r_x", "r_y", "r,x_x", "r,x_y", "r,y_x", "r,y_y"];
             format!("belt node {} {}", dof / 6, names[dof % 6])
-        } else if let Some(&p) = self.free.get(dof - self.n_belt) {
-            format!("pulley \"{}\" angle", self.spec.pulleys[p].name)
+        } else if let Some(name) = self.pulley_dofs.dof_name(&self.spec.pulleys, dof) {
+            name
         } else if self.arm.is_some_and(|a| a.dof == dof) {
             "tensioner arm angle".into()
         } else {
@@ -813,7 +794,7 @@ impl BeltDrive {
         let arm = self.arm.map(|a| (a, self.arm_lever(&a, q)));
         self.contact_pass(q, v, omegas, false, scratch, |el, p, ec, _| {
             self.mesh.scatter_add(f, el, &ec.q, 1.0);
-            if let Some(j) = self.pulley_dof[p] {
+            if let Some(j) = self.pulley_dofs.dof(p) {
                 f[j] += self.spec.pulleys[p].ccw_sign() * ec.moment;
             }
             if let Some((a, lever)) = arm
@@ -822,11 +803,7 @@ impl BeltDrive {
                 f[a.dof] += cross(lever, [ec.reaction[0], ec.reaction[1]]);
             }
         });
-        for &p in &self.free {
-            if let Some(j) = self.pulley_dof[p] {
-                f[j] -= loads[p];
-            }
-        }
+        self.pulley_dofs.subtract_loads(loads, f);
         if let Some(a) = &self.arm {
             f[a.dof] += self.arm_moment(a, q, v);
         }
@@ -876,7 +853,7 @@ impl BeltDrive {
         let mut c = pat.zeros();
         self.axial_damping(q, v, &mut [], Some((&mut k, &mut c)));
         let n_el = self.mesh.elements().len();
-        let nf = self.free.len();
+        let nf = self.pulley_dofs.count();
         let m = NE + nf + usize::from(self.arm.is_some());
         let arm = self.arm.map(|a| (a, self.arm_lever(&a, q)));
         self.contact_pass(q, v, omegas, true, scratch, |el, p, ec, s| {
@@ -888,7 +865,7 @@ impl BeltDrive {
                     s.c_local[a + b * m] = -ec.dq_dedot[a + b * NE];
                 }
             }
-            if let Some(j) = self.pulley_dof[p] {
+            if let Some(j) = self.pulley_dofs.dof(p) {
                 let kp = j - nb;
                 let sg = self.spec.pulleys[p].ccw_sign();
                 let col = NE + kp;
@@ -909,7 +886,9 @@ impl BeltDrive {
                     lever,
                     (q[a.dof], v[a.dof]),
                     ec,
-                    self.pulley_dof[p].map(|j| (j - nb, self.spec.pulleys[p].ccw_sign())),
+                    self.pulley_dofs
+                        .dof(p)
+                        .map(|j| (j - nb, self.spec.pulleys[p].ccw_sign())),
                     nf,
                     s,
                 );
@@ -925,14 +904,8 @@ impl BeltDrive {
             c[d] -= cs;
         }
         // the free pulleys' viscous dampers: −c ω
-        for &p in &self.free {
-            if let Some(j) = self.pulley_dof[p] {
-                let damping = self.spec.pulleys[p].motion.damping();
-                if damping > 0.0 {
-                    c[pat.diagonal_position(j)] += damping;
-                }
-            }
-        }
+        self.pulley_dofs
+            .add_damping(&self.spec.pulleys, pat, &mut c);
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),

@@ -165,21 +165,7 @@ impl BeltDriveSpec {
 
     /// Check every parameter; the error names the field.
     pub fn validate(&self) -> Result<(), AncfError> {
-        if self.pulleys.len() < 2 {
-            return Err(invalid(
-                "pulleys",
-                format!("need at least 2, got {}", self.pulleys.len()),
-            ));
-        }
-        for (i, p) in self.pulleys.iter().enumerate() {
-            p.validate_within(&format!("pulleys[{i}]"))?;
-            if self.pulleys[..i].iter().any(|o| o.name == p.name) {
-                return Err(invalid(
-                    format!("pulley \"{}\": name", p.name),
-                    "is used twice",
-                ));
-            }
-        }
+        crate::mounted::validate_pulleys(&self.pulleys)?;
         let b = &self.belt;
         let pos = |name: &str, v: f64| {
             if v.is_finite() && v > 0.0 {

@@ -8,7 +8,6 @@
 //!   Euler–Bernoulli (issue 6 validation of the active-set contact).
 
 mod studies;
-mod vtk;
 
 use ancf::beam_mesh::BeamElementKind;
 use clap::{Parser, Subcommand, ValueEnum};

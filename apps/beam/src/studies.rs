@@ -1,9 +1,9 @@
 //! The studies of `flowmbd-beam`: configuration (defaults = Kerkkänen's cases), overrides,
 //! and output. The computations live in `flowmbd_cases::ancf_beams` and `flowmbd_cases::ancf_dynamics`.
 
-use crate::vtk;
 use ancf::AncfError;
 use ancf::beam_mesh::BeamElementKind;
+use fe_model::io::vtk::{polyline, write_vtu};
 use flowmbd_cases::ancf_beams::{self as studies, GroundContactCase, StaticBeamCase};
 use flowmbd_cases::ancf_dynamics::{self as dynamics, PendulumCase, Sample, SpinningCase};
 use flowmbd_cli::plot::{LinePlot, Series};
@@ -321,8 +321,14 @@ impl Study for Cantilever {
             &["x_m", "y_m"],
             line.iter().map(|p| [p[0], p[1]]),
         )?;
-        ctx.out
-            .write_text("shape.vtk", &vtk::polyline("cantilever centreline", &line))?;
+        let points: Vec<[f64; 3]> = line.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        let path = ctx.out.path("shape.vtu");
+        write_vtu(&path, &polyline(&points, false), &[]).map_err(|e| {
+            StudyError::Cli(flowmbd_cli::CliError::Write {
+                path: path.clone(),
+                message: e.to_string(),
+            })
+        })?;
         LinePlot::new("Deformed cantilever (Kerkkänen Fig. 2.4)", "x [m]", "y [m]")
             .with(Series::line(
                 "centreline",

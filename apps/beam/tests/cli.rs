@@ -71,7 +71,7 @@ fn cantilever_json() {
         (tip[0] - 1.86351).abs() < 0.5e-5 && (tip[1] + 0.66320).abs() < 0.5e-5,
         "{tip:?}"
     );
-    assert!(std::path::Path::new(&out).join("shape.vtk").exists());
+    assert!(std::path::Path::new(&out).join("shape.vtu").exists());
     let _ = std::fs::remove_dir_all(out);
 }
 

@@ -189,11 +189,11 @@ fn a_new_run_clears_the_previous_runs_outputs() {
     let o = out.to_str().unwrap();
     let (code, _, err) = run(&["cantilever", "--quiet", "--out", o]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.join("shape.vtk").exists() && out.join("shape.png").exists());
+    assert!(out.join("shape.vtu").exists() && out.join("shape.png").exists());
     std::fs::write(out.join("notes.txt"), "the user's own file").unwrap();
     let (code, _, err) = run(&["simply-supported", "--quiet", "--out", o]);
     assert_eq!(code, 0, "{err}");
-    for stale in ["shape.vtk", "shape.png", "shape.svg", "shape.csv"] {
+    for stale in ["shape.vtu", "shape.png", "shape.svg", "shape.csv"] {
         assert!(
             !out.join(stale).exists(),
             "{stale} left from the earlier run"

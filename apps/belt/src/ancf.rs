@@ -9,7 +9,8 @@
 //! `output.points_per_element` points per element, which resolves the inlet and exit zones),
 //! `wrap.csv` (tension, contact pressure, friction, slip velocity and friction utilisation at
 //! every contact quadrature point of every wrap at the end, by angle from the wrap's inlet),
-//! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtk` + `belt.vtk.series`).
+//! the plots of these, and a VTK series of the belt (`vtk/belt_NNNN.vtu` + `belt.vtu.series`,
+//! [`flowmbd_cli::VtkSeries`]).
 //! `summary.json` adds per pulley the contact, slip and adhesion arcs, slip velocities, hub
 //! load and torque, and per span the tension and the transverse vibration amplitude
 //! ([`belt::report`]).
@@ -19,14 +20,14 @@ use drives::ancf_run::Due;
 use drives::ancf_study::{
     Analysis, AncfStudyConfig, AncfStudySummary, closure_study, dynamic_run, dynamic_setup,
 };
+use fe_model::io::vtk::{PointField, polyline, write_vtu};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, run_study};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, VtkSeries, run_study};
 use mbd_core::integrators::State;
-use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
-/// Command-line arguments of the `ancf` study.
+/// Command-line arguments of the `ancf` and `plate` studies.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Args {
     #[command(flatten)]
@@ -47,7 +48,9 @@ struct AncfStudy {
     t_end: Option<f64>,
 }
 
-fn to_study_error(e: ancf::AncfError) -> StudyError {
+/// An ANCF error as the app reports it: bad input names the drive's field (exit 2), anything
+/// else is numerical (exit 1). Shared with the `plate` study.
+pub(crate) fn to_study_error(e: ancf::AncfError) -> StudyError {
     match e {
         ancf::AncfError::InvalidInput { item, reason } => {
             StudyError::Input(InputError::new(format!("drive: {item}"), reason))
@@ -56,6 +59,22 @@ fn to_study_error(e: ancf::AncfError) -> StudyError {
     }
 }
 
+/// The summary of a run, or the numerical failure that stopped it with the summary at the
+/// state reached as its partial result (shared with the `plate` study).
+pub(crate) fn finish<S: serde::Serialize>(
+    summary: S,
+    failure: Option<String>,
+) -> Result<S, StudyError> {
+    match failure {
+        Some(msg) => Err(StudyError::failed_with(
+            format!("integration failed: {msg}"),
+            &summary,
+        )),
+        None => Ok(summary),
+    }
+}
+
+/// The belt's centreline at `q` as a closed `.vtu` polyline with its tension \[N\].
 fn write_vtk(
     drive: &BeltDrive,
     q: &[f64],
@@ -63,33 +82,21 @@ fn write_vtk(
     path: &std::path::Path,
 ) -> Result<(), StudyError> {
     let samples = post::tension_samples(drive, q, per_el);
-    let werr = |e: std::io::Error| {
+    let points: Vec<[f64; 3]> = samples
+        .iter()
+        .map(|s| [s.position[0], s.position[1], 0.0])
+        .collect();
+    let tension = PointField {
+        name: "tension_N".into(),
+        components: 1,
+        values: samples.iter().map(|s| s.tension).collect(),
+    };
+    write_vtu(path, &polyline(&points, true), &[tension]).map_err(|e| {
         StudyError::Cli(flowmbd_cli::CliError::Write {
             path: path.to_path_buf(),
             message: e.to_string(),
         })
-    };
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path).map_err(werr)?);
-    let n = samples.len();
-    let mut text = String::new();
-    text.push_str("# vtk DataFile Version 3.0\nflowmbd ANCF belt\nASCII\nDATASET POLYDATA\n");
-    text.push_str(&format!("POINTS {n} double\n"));
-    for s in &samples {
-        text.push_str(&format!("{} {} 0\n", s.position[0], s.position[1]));
-    }
-    text.push_str(&format!("LINES 1 {}\n{}", n + 2, n + 1));
-    for i in 0..n {
-        text.push_str(&format!(" {i}"));
-    }
-    text.push_str(" 0\n");
-    text.push_str(&format!(
-        "POINT_DATA {n}\nSCALARS tension double 1\nLOOKUP_TABLE default\n"
-    ));
-    for s in &samples {
-        text.push_str(&format!("{}\n", s.tension));
-    }
-    f.write_all(text.as_bytes()).map_err(werr)?;
-    f.flush().map_err(werr)
+    })
 }
 
 impl AncfStudy {
@@ -118,19 +125,11 @@ impl AncfStudy {
             .with(Series::line("initial guess", pts(&init)))
             .with(Series::line("equilibrium", pts(&samples)))
             .save(&ctx.out.path("closure"))?;
-        std::fs::create_dir_all(ctx.out.path("vtk")).map_err(|e| {
-            StudyError::Cli(flowmbd_cli::CliError::Write {
-                path: ctx.out.path("vtk"),
-                message: e.to_string(),
-            })
-        })?;
-        write_vtk(
-            &drive,
-            &r.q,
-            c.output.points_per_element,
-            &ctx.out.path("vtk/belt_0000.vtk"),
-        )?;
-        summary.wall_time_s = start.elapsed().as_secs_f64();
+        let mut frames = VtkSeries::new("belt", "vtu", 0.0);
+        let path = frames.frame(&ctx.out, 0.0)?;
+        write_vtk(&drive, &r.q, c.output.points_per_element, &path)?;
+        frames.finish(&ctx.out)?;
+        summary.run.wall_time_s = start.elapsed().as_secs_f64();
         Ok(summary)
     }
 
@@ -153,14 +152,7 @@ impl AncfStudy {
         }
         let hdr: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
         let mut csv = ctx.out.csv("history.csv", &hdr)?;
-        let vtk_dir = ctx.out.path("vtk");
-        std::fs::create_dir_all(&vtk_dir).map_err(|e| {
-            StudyError::Cli(flowmbd_cli::CliError::Write {
-                path: vtk_dir.clone(),
-                message: e.to_string(),
-            })
-        })?;
-        let mut vtk_frames: Vec<(String, f64)> = Vec::new();
+        let mut frames = VtkSeries::new("belt", "vtu", c.output.vtk_interval);
         let mut speeds: Vec<Vec<(f64, f64)>> = vec![Vec::new(); np];
         let mut mids: Vec<Vec<(f64, f64)>> = vec![Vec::new(); spans.len()];
         let mut tens: Vec<Vec<(f64, f64)>> = vec![Vec::new(); spans.len()];
@@ -197,13 +189,8 @@ impl AncfStudy {
 
         let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
         record(&s0, &mut csv, &mut speeds)?;
-        write_vtk(
-            &drive,
-            &s0.q,
-            c.output.points_per_element,
-            &vtk_dir.join("belt_0000.vtk"),
-        )?;
-        vtk_frames.push(("vtk/belt_0000.vtk".into(), 0.0));
+        let path = frames.frame(&ctx.out, 0.0)?;
+        write_vtk(&drive, &s0.q, c.output.points_per_element, &path)?;
 
         let progress = ctx.progress(c.t_end, "ANCF belt drive");
         let out = &ctx.out;
@@ -217,9 +204,8 @@ impl AncfStudy {
                     record(s, &mut csv, &mut speeds)?;
                 }
                 if due.frame {
-                    let name = format!("vtk/belt_{:04}.vtk", vtk_frames.len());
-                    write_vtk(&drive, &s.q, c.output.points_per_element, &out.path(&name))?;
-                    vtk_frames.push((name, s.t));
+                    let path = frames.frame(out, s.t)?;
+                    write_vtk(&drive, &s.q, c.output.points_per_element, &path)?;
                 }
                 progress.set(s.t);
                 Ok(())
@@ -229,12 +215,7 @@ impl AncfStudy {
         csv.finish()?;
         let s = &end.state;
 
-        // VTK series index (ParaView ".series" JSON)
-        let series = serde_json::json!({
-            "file-series-version": "1.0",
-            "files": vtk_frames.iter().map(|(n, t)| serde_json::json!({"name": n, "time": t})).collect::<Vec<_>>(),
-        });
-        ctx.out.write_json("belt.vtk.series", &series)?;
+        frames.finish(&ctx.out)?;
 
         // end-of-run distributions
         let samples = post::tension_samples(&drive, &s.q, c.output.points_per_element);
@@ -391,17 +372,9 @@ impl AncfStudy {
             .save(&ctx.out.path(&format!("relative_velocity_{}", pulley.name)))?;
         }
 
-        let summary = Summary {
-            wall_time_s: start.elapsed().as_secs_f64(),
-            ..end.summary
-        };
-        if let Some(msg) = end.failure {
-            return Err(StudyError::failed_with(
-                format!("integration failed: {msg}"),
-                &summary,
-            ));
-        }
-        Ok(summary)
+        let mut summary = end.summary;
+        summary.run.wall_time_s = start.elapsed().as_secs_f64();
+        finish(summary, end.failure)
     }
 }
 

@@ -17,27 +17,18 @@ use ancf::plate::belt_drive::post::{pulley_torques, span_states, surface_grid};
 use drives::ancf_run::Due;
 use drives::bechtel_steady::SteadyPoint;
 use drives::plate_study::{
-    PlateStudyConfig, PlateStudySummary, plate_distributions, plate_roles, plate_run, plate_setup,
+    PlateStudyConfig, PlateStudySummary, plate_distributions, plate_run, plate_setup,
 };
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, run_study};
+use flowmbd_cli::{Study, StudyContext, StudyError, VtkSeries, run_study};
 use mbd_core::integrators::State;
 use std::process::ExitCode;
 use std::time::Instant;
 
-/// Command-line arguments of the `plate` study.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct Args {
-    #[command(flatten)]
-    pub common: CommonArgs,
-    // `[s]` stays unescaped: clap prints this doc comment as the --help text.
-    /// End time [s] (overrides `t_end`).
-    #[allow(rustdoc::broken_intra_doc_links)]
-    #[arg(long)]
-    pub t_end: Option<f64>,
-}
+/// Command-line arguments of the `plate` study (those of `ancf`).
+pub type Args = crate::ancf::Args;
 
 /// Configuration of the `plate` study (defined in `drives`, shared with the Python package).
 pub type Config = PlateStudyConfig;
@@ -46,22 +37,6 @@ pub type Summary = PlateStudySummary;
 
 struct PlateStudy {
     t_end: Option<f64>,
-}
-
-fn to_study_error(e: ancf::AncfError) -> StudyError {
-    match e {
-        ancf::AncfError::InvalidInput { item, reason } => {
-            StudyError::Input(InputError::new(format!("drive: {item}"), reason))
-        }
-        other => StudyError::numerical(other),
-    }
-}
-
-fn write_error(path: &std::path::Path, message: String) -> StudyError {
-    StudyError::Cli(flowmbd_cli::CliError::Write {
-        path: path.to_path_buf(),
-        message,
-    })
 }
 
 /// The belt surface at `(q, v)` as a `.vtu` file of quadrilaterals (4 per element) with the
@@ -95,7 +70,12 @@ fn write_surface(
             values: g.velocity.iter().flatten().copied().collect(),
         },
     ];
-    write_vtu(path, &mesh, &fields).map_err(|e| write_error(path, e.to_string()))
+    write_vtu(path, &mesh, &fields).map_err(|e| {
+        StudyError::Cli(flowmbd_cli::CliError::Write {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    })
 }
 
 fn analytical_series(
@@ -109,8 +89,8 @@ fn analytical_series(
 impl PlateStudy {
     fn dynamic(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let start = Instant::now();
-        let (drive, init) = plate_setup(c).map_err(to_study_error)?;
-        let (_, driven) = plate_roles(&drive);
+        let (drive, init) = plate_setup(c).map_err(crate::ancf::to_study_error)?;
+        let (_, driven) = drives::ancf_run::roles(&drive);
         let names: Vec<String> = drive.pulleys().iter().map(|p| p.name.clone()).collect();
         let mut header: Vec<String> = vec!["t_s".into()];
         for n in &names {
@@ -127,9 +107,7 @@ impl PlateStudy {
         }
         let hdr: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
         let mut csv = ctx.out.csv("history.csv", &hdr)?;
-        let vtk_dir = ctx.out.path("vtk");
-        std::fs::create_dir_all(&vtk_dir).map_err(|e| write_error(&vtk_dir, e.to_string()))?;
-        let mut frames: Vec<(String, f64)> = Vec::new();
+        let mut frames = VtkSeries::new("belt", "vtu", c.output.vtk_interval);
         let np = names.len();
         let mut speeds: Vec<Vec<(f64, f64)>> = vec![Vec::new(); np];
 
@@ -160,13 +138,8 @@ impl PlateStudy {
 
         let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
         record(&s0, &mut csv, &mut speeds)?;
-        write_surface(
-            &drive,
-            &s0,
-            c.output.strain_measure,
-            &vtk_dir.join("belt_0000.vtu"),
-        )?;
-        frames.push(("vtk/belt_0000.vtu".into(), 0.0));
+        let path = frames.frame(&ctx.out, 0.0)?;
+        write_surface(&drive, &s0, c.output.strain_measure, &path)?;
 
         let progress = ctx.progress(c.t_end, "plate belt drive");
         let out = &ctx.out;
@@ -180,9 +153,8 @@ impl PlateStudy {
                     record(s, &mut csv, &mut speeds)?;
                 }
                 if due.frame {
-                    let name = format!("vtk/belt_{:04}.vtu", frames.len());
-                    write_surface(&drive, s, c.output.strain_measure, &out.path(&name))?;
-                    frames.push((name, s.t));
+                    let path = frames.frame(out, s.t)?;
+                    write_surface(&drive, s, c.output.strain_measure, &path)?;
                 }
                 progress.set(s.t);
                 Ok(())
@@ -191,11 +163,7 @@ impl PlateStudy {
         progress.finish();
         csv.finish()?;
         let s = &end.state;
-        let series = serde_json::json!({
-            "file-series-version": "1.0",
-            "files": frames.iter().map(|(n, t)| serde_json::json!({"name": n, "time": t})).collect::<Vec<_>>(),
-        });
-        ctx.out.write_json("belt.vtu.series", &series)?;
+        frames.finish(&ctx.out)?;
 
         // distributions at the end (Figs 4.11–4.18)
         let d = plate_distributions(c, &drive, s);
@@ -416,17 +384,9 @@ impl PlateStudy {
             }
         }
 
-        let summary = Summary {
-            wall_time_s: start.elapsed().as_secs_f64(),
-            ..end.summary
-        };
-        if let Some(msg) = end.failure {
-            return Err(StudyError::failed_with(
-                format!("integration failed: {msg}"),
-                &summary,
-            ));
-        }
-        Ok(summary)
+        let mut summary = end.summary;
+        summary.run.wall_time_s = start.elapsed().as_secs_f64();
+        crate::ancf::finish(summary, end.failure)
     }
 }
 

@@ -5,17 +5,19 @@
 //!
 //! Output folder: `wave.csv` (mid-span deflection and deflection centroid of both runs against
 //! time), `span_deflection.png/svg` (mid-span deflection against time), `centroid.png/svg`,
-//! and a VTK series of the belt loop per run (`vtk/<run>_NNNN.vtk` + `<run>.vtk.series`, the
+//! and a VTK series of the belt loop per run (`vtk/<run>_NNNN.vtu` + `<run>.vtu.series`, the
 //! deflection scaled by `vtk_scale` as in the "highly exaggerated" figure).
 
 use belt::Layout;
 use drives::wave::{RunSummary, summarize};
+use fe_model::io::vtk::{PointField, polyline, write_vtu};
 use flowing::belt::wave::{WaveConfig, WaveRun, wave_run};
 use flowing::belt::{BeltMesh, BeltReduction, FlowingSettings};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use flowmbd_cli::{
+    CommonArgs, InputError, Study, StudyContext, StudyError, Validate, VtkSeries, run_study,
+};
 use serde::{Deserialize, Serialize};
-use std::io::Write;
 use std::process::ExitCode;
 
 /// Command-line arguments of the `wave` study.
@@ -117,6 +119,8 @@ struct Wave {
     args: Args,
 }
 
+/// Every `n/vtk_frames`-th recorded shape of `run` as a closed `.vtu` polyline, its deflection
+/// from `base` scaled by `vtk_scale`, with the true deflection \[m\] as point data.
 fn write_vtk(
     ctx: &StudyContext,
     name: &str,
@@ -124,55 +128,38 @@ fn write_vtk(
     base: &[[f64; 2]],
     c: &Config,
 ) -> Result<(), StudyError> {
-    let dir = ctx.out.path("vtk");
-    let werr = |p: std::path::PathBuf, e: std::io::Error| {
-        StudyError::Cli(flowmbd_cli::CliError::Write {
-            path: p,
-            message: e.to_string(),
-        })
-    };
-    std::fs::create_dir_all(&dir).map_err(|e| werr(dir.clone(), e))?;
-    let n = run.times.len();
-    let every = n.div_ceil(c.vtk_frames).max(1);
-    let mut files = Vec::new();
-    for (k, (t, shape)) in run.times.iter().zip(&run.shapes).enumerate() {
-        if k % every != 0 {
-            continue;
-        }
-        let rel = format!("vtk/{name}_{:04}.vtk", files.len());
-        let path = ctx.out.path(&rel);
-        let mut text = String::new();
-        text.push_str(&format!(
-            "# vtk DataFile Version 3.0\nflowmbd flowing belt ({name}, deflection x{})\nASCII\nDATASET POLYDATA\n",
-            c.vtk_scale
-        ));
-        let m = shape.len();
-        text.push_str(&format!("POINTS {m} double\n"));
-        for (p, b) in shape.iter().zip(base) {
-            let x = b[0] + c.vtk_scale * (p[0] - b[0]);
-            let y = b[1] + c.vtk_scale * (p[1] - b[1]);
-            text.push_str(&format!("{x} {y} 0\n"));
-        }
-        text.push_str(&format!("LINES 1 {}\n{}", m + 2, m + 1));
-        for i in 0..m {
-            text.push_str(&format!(" {i}"));
-        }
-        text.push_str(" 0\n");
-        text.push_str(&format!(
-            "POINT_DATA {m}\nSCALARS deflection double 1\nLOOKUP_TABLE default\n"
-        ));
-        for (p, b) in shape.iter().zip(base) {
-            text.push_str(&format!("{}\n", (p[0] - b[0]).hypot(p[1] - b[1])));
-        }
-        let mut f = std::fs::File::create(&path).map_err(|e| werr(path.clone(), e))?;
-        f.write_all(text.as_bytes())
-            .map_err(|e| werr(path.clone(), e))?;
-        files.push(serde_json::json!({"name": rel, "time": t}));
+    let mut frames = VtkSeries::new(name, "vtu", 0.0);
+    let every = run.times.len().div_ceil(c.vtk_frames).max(1);
+    for (t, shape) in run.times.iter().zip(&run.shapes).step_by(every) {
+        let points: Vec<[f64; 3]> = shape
+            .iter()
+            .zip(base)
+            .map(|(p, b)| {
+                [
+                    b[0] + c.vtk_scale * (p[0] - b[0]),
+                    b[1] + c.vtk_scale * (p[1] - b[1]),
+                    0.0,
+                ]
+            })
+            .collect();
+        let deflection = PointField {
+            name: "deflection_m".into(),
+            components: 1,
+            values: shape
+                .iter()
+                .zip(base)
+                .map(|(p, b)| (p[0] - b[0]).hypot(p[1] - b[1]))
+                .collect(),
+        };
+        let path = frames.frame(&ctx.out, *t)?;
+        write_vtu(&path, &polyline(&points, true), &[deflection]).map_err(|e| {
+            StudyError::Cli(flowmbd_cli::CliError::Write {
+                path: path.clone(),
+                message: e.to_string(),
+            })
+        })?;
     }
-    ctx.out.write_json(
-        &format!("{name}.vtk.series"),
-        &serde_json::json!({"file-series-version": "1.0", "files": files}),
-    )?;
+    frames.finish(&ctx.out)?;
     Ok(())
 }
 

@@ -192,6 +192,36 @@ fn plate_json_contract() {
         let t = v[key].as_f64().unwrap();
         assert!((t - 48.6).abs() < 0.5, "{key} = {t}");
     }
+    // the end report every belt model gives (drives::ancf_run::EndReport): its span forces are
+    // the membrane forces of the summary (tight, slack), and each hub load is the pull of both
+    // spans on a wrap of π, T_tight + T_slack (force balance of the pulley at rest), within 2 %
+    let spans = v["spans"].as_array().expect("spans in the plate summary");
+    assert_eq!(spans.len(), 2);
+    let membrane: Vec<f64> = v["membrane_forces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let mut report: Vec<f64> = spans
+        .iter()
+        .map(|s| s["tension_n"].as_f64().unwrap())
+        .collect();
+    let mut expected = membrane.clone();
+    report.sort_by(f64::total_cmp);
+    expected.sort_by(f64::total_cmp);
+    for (a, b) in report.iter().zip(&expected) {
+        assert!(
+            (a - b).abs() <= 1e-9 * b.abs(),
+            "report {a} N, summary {b} N"
+        );
+    }
+    let pull = membrane[0] + membrane[1];
+    for h in v["hub_loads"].as_array().expect("hub loads") {
+        let m = h["magnitude_n"].as_f64().unwrap();
+        assert!((m - pull).abs() < 0.02 * pull, "hub {m} N vs {pull} N");
+    }
+    assert_eq!(v["gross_slip"].as_bool(), Some(false));
     for f in [
         "summary.json",
         "config.toml",

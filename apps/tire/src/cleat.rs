@@ -5,7 +5,7 @@ use crate::common::{RigFlags, TireSourceExt, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError, run_study};
+use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError, VtkSeries, run_study};
 use std::process::ExitCode;
 use tire::study::CLEAT_MEANING;
 use tire::{
@@ -110,38 +110,19 @@ pub fn write_outputs(
     Ok(())
 }
 
-/// A VTK series written every `interval` \[s\] of simulated time (0: none), the first frame at
-/// the first step.
-struct FrameSeries {
-    interval: f64,
-    /// Simulated time of the next frame (`None` before the first).
-    next: Option<f64>,
-    written: usize,
-}
-
-impl FrameSeries {
-    fn new(interval: f64) -> Self {
-        Self {
-            interval,
-            next: None,
-            written: 0,
-        }
-    }
-
-    /// The number of the frame due at simulated time `t` \[s\], if one is.
-    fn due(&mut self, t: f64) -> Option<usize> {
-        if self.interval <= 0.0 || self.next.is_some_and(|n| t < n) {
-            return None;
-        }
-        // the next frame one interval on (intervals shorter than a step are skipped)
-        let mut next = self.next.unwrap_or(t);
-        while next <= t {
-            next += self.interval;
-        }
-        self.next = Some(next);
-        self.written += 1;
-        Some(self.written - 1)
-    }
+/// The frame of `series` due at simulated time `now` \[s\] ([`VtkSeries::due`]); a write error
+/// is kept in `kept` (the study reports it as such) and stops the run.
+fn due_frame(
+    series: &mut VtkSeries,
+    out: &flowmbd_cli::OutputDir,
+    now: f64,
+    kept: &mut Option<CliError>,
+) -> Result<Option<std::path::PathBuf>, TireError> {
+    series.due(out, now).map_err(|e| {
+        let reason = e.to_string();
+        *kept = Some(e);
+        TireError::Simulation { time: now, reason }
+    })
 }
 
 /// The deformed contact nodes as VTK vertices with the normal force and friction force fields.
@@ -233,23 +214,19 @@ impl Study for Cleat {
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let red = c.tire.reduced(ctx.quiet)?;
         let bar = ctx.progress(1.0, "cleat test");
-        let vtk_dir = ctx.out.path("vtk");
-        if c.vtk_interval > 0.0 {
-            std::fs::create_dir_all(&vtk_dir)
-                .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
-        }
         if c.vtk_tire_interval > 0.0 && red.viz.is_none() && !ctx.quiet {
             eprintln!(
                 "note: the reduced tire has no visualisation rows (reduce again with \
                  tire.reduction.viz_stations > 0 for the whole-tire VTK series)"
             );
         }
-        if c.vtk_tire_interval > 0.0 && red.viz.is_some() {
-            std::fs::create_dir_all(&vtk_dir)
-                .map_err(|e| StudyError::numerical(format!("{}: {e}", vtk_dir.display())))?;
-        }
-        let mut patch_frames = FrameSeries::new(c.vtk_interval);
-        let mut tire_frames = FrameSeries::new(c.vtk_tire_interval);
+        let mut patch_frames = VtkSeries::new("patch", "vtu", c.vtk_interval);
+        let tire_interval = if red.viz.is_some() {
+            c.vtk_tire_interval
+        } else {
+            0.0
+        };
+        let mut tire_frames = VtkSeries::new("tire", "vtu", tire_interval);
         let viz = red.viz.as_ref();
         // the force history is streamed (same rows as `RigResult::samples`), so that a run that
         // fails keeps the history up to the failure
@@ -270,17 +247,20 @@ impl Study for Cleat {
             }
             done = (k + 1, t);
             let now = sim.state.t;
-            if let Some(frame) = patch_frames.due(now) {
-                write_patch_vtu(&vtk_dir.join(format!("patch_{frame:05}.vtu")), sim)?;
+            if let Some(path) = due_frame(&mut patch_frames, &ctx.out, now, &mut history_err)? {
+                write_patch_vtu(&path, sim)?;
             }
             if let Some(v) = viz
-                && let Some(frame) = tire_frames.due(now)
+                && let Some(path) = due_frame(&mut tire_frames, &ctx.out, now, &mut history_err)?
             {
-                write_tire_vtu(&vtk_dir.join(format!("tire_{frame:05}.vtu")), v, sim)?;
+                write_tire_vtu(&path, v, sim)?;
             }
             Ok(())
         };
         let result = run_cleat_observed(&red, &c.rig, &mut |f| bar.set(f), &mut observer);
+        // the frames written so far are indexed whether the run completed or not
+        patch_frames.finish(&ctx.out)?;
+        tire_frames.finish(&ctx.out)?;
         let r = match result {
             Ok(r) => {
                 history.finish()?;

@@ -324,13 +324,18 @@ fn cleat_json_contract_and_outputs() {
     };
     assert_eq!(count("patch_"), steps.div_ceil(500));
     assert_eq!(count("tire_"), steps.div_ceil(1000));
-    let patch = std::fs::read_to_string(vtk.join("patch_00000.vtu")).unwrap();
+    // the ParaView index lists every frame written (flowmbd_cli::VtkSeries)
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("patch.vtu.series")).unwrap())
+            .unwrap();
+    assert_eq!(index["files"].as_array().unwrap().len(), count("patch_"));
+    let patch = std::fs::read_to_string(vtk.join("patch_0000.vtu")).unwrap();
     assert!(patch.contains("<VTKFile") && patch.contains("normal_force_N"));
     assert!(
         patch.contains(&format!("NumberOfPoints=\"{CONTACT}\"")),
         "one VTK point per contact node"
     );
-    let tire = std::fs::read_to_string(vtk.join("tire_00003.vtu")).unwrap();
+    let tire = std::fs::read_to_string(vtk.join("tire_0003.vtu")).unwrap();
     assert!(tire.contains("<VTKFile") && tire.contains("displacement_m"));
     // issue 20, item 5: units in every CSV header, and what the numbers mean
     let bad = flowmbd_cli::output::columns_without_unit(&out_dir);

@@ -2,7 +2,7 @@
 //! node-set masks) for ParaView (VTK file formats, "UnstructuredGrid").
 
 use crate::FeError;
-use crate::mesh::Mesh;
+use crate::mesh::{Cell, CellKind, Mesh};
 use faer::MatRef;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -167,6 +167,28 @@ pub fn vtu_string(mesh: &Mesh, fields: &[PointField]) -> Result<String, FeError>
     Ok(s)
 }
 
+/// A polyline through `points` \[m\] as a mesh of two-node [`CellKind::Line`] cells, the last
+/// point joined to the first when `closed` (a belt's centreline): the geometry of a `.vtu`
+/// curve with point data.
+pub fn polyline(points: &[[f64; 3]], closed: bool) -> Mesh {
+    let mut mesh = Mesh::new(3);
+    for p in points {
+        mesh.add_node(*p);
+    }
+    let n = points.len();
+    let segments = if closed { n } else { n.saturating_sub(1) };
+    for i in 0..segments.min(n) {
+        let j = (i + 1) % n;
+        if j != i {
+            mesh.cells.push(Cell {
+                kind: CellKind::Line,
+                nodes: vec![i, j],
+            });
+        }
+    }
+    mesh
+}
+
 /// Write a `.vtu` file.
 pub fn write_vtu(
     path: impl AsRef<Path>,
@@ -179,4 +201,21 @@ pub fn write_vtu(
         file: path.display().to_string(),
         source,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // definition: n points of a closed loop give n segments, the last back to the first; an
+    // open line gives n − 1
+    #[test]
+    fn polyline_closes_the_loop() {
+        let pts = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]];
+        let closed = polyline(&pts, true);
+        assert_eq!(closed.cells.len(), 3);
+        assert_eq!(closed.cells[2].nodes, vec![2, 0]);
+        assert_eq!(polyline(&pts, false).cells.len(), 2);
+        assert!(polyline(&pts[..1], true).cells.is_empty());
+    }
 }

@@ -23,7 +23,8 @@ use super::post;
 use super::{PlateBeltDrive, PlateBeltSpec, PlateContactSpec, PlateDriveSpec, PlateInitialState};
 use crate::belt_drive::BeltFriction;
 use crate::error::{AncfError, invalid};
-use crate::mounted::{AncfDrive, MountedBelt};
+use crate::mounted::InitialOptions;
+use crate::mounted::{AncfDrive, MountedBelt, PulleyCoordinates};
 use belt::{
     BeltPath, Drive, MaterialLaw, ModelTraits, Motion, PulleyState, Snapshot, SpanState, WrapPoint,
 };
@@ -129,23 +130,7 @@ pub fn plate_spec(
             "the plate belt's penalty is linear (Kerkkänen (3.20)): set it to 0",
         ));
     }
-    let t0 = drive.tension();
-    let thickness = (12.0 * b.ei / b.ea).sqrt();
-    let area = s.width * thickness;
-    let penetration: Vec<f64> = drive
-        .pulleys()
-        .iter()
-        .map(|p| c.mounting_penetration(t0, p.radius))
-        .collect();
-    let pulleys = drive
-        .pulleys()
-        .iter()
-        .zip(&penetration)
-        .map(|(p, &p0)| belt::Pulley {
-            radius: p.radius + p0,
-            ..p.clone()
-        })
-        .collect();
+    let m = crate::mounted::MappedDrive::of(drive, s.width);
     let friction = match c.friction {
         BeltFriction::CreepRate { mu, creep } => BeltFriction::CreepRate {
             mu,
@@ -154,15 +139,15 @@ pub fn plate_spec(
         other => other,
     };
     let spec = PlateDriveSpec {
-        pulleys,
+        pulleys: m.pulleys,
         belt: PlateBeltSpec {
             length: drive.belt_length(),
             elements: s.elements,
             width: s.width,
-            thickness,
-            young: b.ea / area,
+            thickness: m.thickness,
+            young: m.young,
             poisson: s.poisson,
-            density: b.mass_per_length / area,
+            density: m.density,
             bending: s.bending,
             gauss_points: s.gauss_points,
         },
@@ -174,10 +159,10 @@ pub fn plate_spec(
         },
     };
     let mapping = PlateMapping {
-        penetration,
+        penetration: m.penetration,
         belt_length: drive.belt_length(),
         mounted_tension: f64::NAN,
-        thickness,
+        thickness: m.thickness,
         young: spec.belt.young,
         density: spec.belt.density,
     };
@@ -201,7 +186,7 @@ impl MountedBelt<PlateBeltDrive> {
     pub fn new(drive: &Drive, s: &PlateConfig) -> Result<Self, AncfError> {
         let (spec, mut mapping) = plate_spec(drive, s)?;
         let belt = PlateBeltDrive::new(spec)?;
-        let initial = belt.initial_state(100, 1e-11)?;
+        let initial = belt.initial_state(&InitialOptions::default())?;
         mapping.mounted_tension = mean_membrane_force(&belt, &initial.q);
         Ok(Self::from_parts(belt, drive, initial, mapping))
     }
@@ -248,16 +233,20 @@ impl AncfDrive for PlateBeltDrive {
         &initial.q
     }
 
-    fn pulley_motion(&self, k: usize) -> Option<&Motion> {
-        self.pulleys().get(k).map(|p| &p.motion)
+    fn drive_pulleys(&self) -> &[belt::Pulley] {
+        self.pulleys()
+    }
+
+    fn drive_path(&self) -> &belt::BeltPath {
+        self.path()
+    }
+
+    fn pulley_coordinates(&self) -> &PulleyCoordinates {
+        self.pulley_dofs()
     }
 
     fn pulley_motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
         self.motion_mut(k)
-    }
-
-    fn travel_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        self.pulley_speed(k, t, v)
     }
 
     /// `None`: the plate drive has no tensioner arm.

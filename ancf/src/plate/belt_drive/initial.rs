@@ -19,12 +19,10 @@
 
 use super::model::PlateBeltDrive;
 use crate::error::AncfError;
+use crate::mounted::{InitialOptions, RestingBelt, solve_resting};
 use crate::sparse::Pattern;
-use crate::statics::run_newton;
-use faer::sparse::linalg::solvers::SymbolicLu;
 use mbd_core::SecondOrderSystem;
 use mbd_core::Workspace;
-use mbd_core::newton::{Fallback, LineSearch, NewtonOptions, NewtonProblem, Tolerances};
 
 /// Result of the initial-configuration solve.
 #[derive(Debug, Clone)]
@@ -64,195 +62,91 @@ impl PlateBeltDrive {
         q
     }
 
-    /// Step 2 of the module documentation: static equilibrium from the placed coordinates.
-    pub fn initial_state(
-        &self,
-        max_iterations: usize,
-        tolerance: f64,
-    ) -> Result<PlateInitialState, AncfError> {
-        let q0 = self.placed_coordinates();
-        let nb = self.n_belt();
-        let mut groups: Vec<Vec<Option<usize>>> = self
-            .mesh()
-            .cells
-            .iter()
-            .map(|c| self.mesh().cell_dofs(c).iter().map(|&d| Some(d)).collect())
-            .collect();
-        groups.push(vec![Some(0), Some(1), Some(2)]);
-        // same element groups as the system pattern: the belt block of the drive's pattern
-        let pattern = Pattern::new(nb, &groups);
-        let symbolic =
-            SymbolicLu::try_new(pattern.symbolic().as_ref()).map_err(|e| AncfError::Singular {
-                load_factor: 1.0,
-                detail: format!("symbolic LU of the plate belt stiffness: {e:?}"),
-            })?;
-        let b = &self.spec().belt;
-        let k_hold = b.young * b.width * b.thickness / self.element_length();
-        let t0 = self.path().point(0.0).tangent;
-        let dirs = [[t0[0], t0[1], 0.0], [0.0, 0.0, 1.0]];
-        let mut hold = [0.0; 9];
-        for d in &dirs {
-            for i in 0..3 {
-                for j in 0..3 {
-                    hold[i + 3 * j] += k_hold * d[i] * d[j];
-                }
-            }
-        }
-        let mut problem = Initial {
-            drive: self,
-            full: self.pattern().zeros(),
-            kv: pattern.zeros(),
-            pattern,
-            symbolic,
-            hold,
-            k_hold,
-            dirs,
-            x0: [q0[0], q0[1], q0[2]],
-            omegas: vec![0.0; self.pulleys().len()],
-            f: vec![0.0; self.n_q()],
-            torques: vec![0.0; self.pulleys().len()],
-            zero_v: vec![0.0; self.n_q()],
-            iteration: 0,
-            ws: Workspace::new(),
-        };
-        let newton = NewtonOptions {
-            max_iterations,
-            tolerances: Tolerances::relative(tolerance),
-            line_search: Some(LineSearch {
-                armijo: 1e-4,
-                slack: 0.0,
-                accept_below: 1e-9,
-                max_trials: 20,
-                fallback: Fallback::FullStep,
-            }),
-            ..Default::default()
-        };
-        let mut q = q0;
-        let report = run_newton(
+    /// Step 2 of the module documentation: static equilibrium from the placed coordinates
+    /// (the planar drive's problem, [`crate::mounted`]).
+    pub fn initial_state(&self, opts: &InitialOptions) -> Result<PlateInitialState, AncfError> {
+        let r = solve_resting(
+            self,
             "initial plate-belt equilibrium",
-            &mut problem,
-            &mut q,
-            &newton,
+            self.placed_coordinates(),
+            opts,
         )?;
-        let mut r = vec![0.0; self.n_q()];
-        problem.residual(&q, 1.0, &mut r)?;
-        let u = problem.offsets(&q);
         Ok(PlateInitialState {
-            iterations: report.iterations(),
-            residual: problem.residual_norm(&r),
-            holding_force: [k_hold * u[0], k_hold * u[1]],
-            q,
+            iterations: r.iterations,
+            residual: r.residual,
+            holding_force: [r.holding_forces[0], r.holding_forces[1]],
+            q: r.q,
         })
     }
 }
 
-/// The belt on resting pulleys with node 0 held along the path and `z`:
-/// `R = −(Q_e + Q_c − k_hold Σ_d d (d·(x₀ − x₀⁰)))` on the belt rows.
-struct Initial<'a> {
-    drive: &'a PlateBeltDrive,
-    /// Value array in the drive's pattern (tangent of the belt).
-    full: Vec<f64>,
-    pattern: Pattern,
-    symbolic: SymbolicLu<usize>,
-    kv: Vec<f64>,
-    hold: [f64; 9],
-    k_hold: f64,
-    dirs: [[f64; 3]; 2],
-    x0: [f64; 3],
-    omegas: Vec<f64>,
-    f: Vec<f64>,
-    torques: Vec<f64>,
-    zero_v: Vec<f64>,
-    /// The drive's scratch ([`mbd_core::Workspace`]).
-    ws: Workspace,
-    iteration: usize,
-}
+/// The plate belt at rest ([`crate::mounted::solve_resting`]): node 0 held along the path's
+/// tangent at its start and along the pulley axes `z` by springs of the axial element
+/// stiffness `E w h / a`.
+impl RestingBelt for PlateBeltDrive {
+    const LABEL: &'static str = "plate belt";
 
-impl Initial<'_> {
-    fn offsets(&self, q: &[f64]) -> [f64; 2] {
-        let d = [q[0] - self.x0[0], q[1] - self.x0[1], q[2] - self.x0[2]];
-        self.dirs
-            .map(|dir| dir[0] * d[0] + dir[1] * d[1] + dir[2] * d[2])
+    fn system_size(&self) -> usize {
+        self.n_q()
     }
 
-    /// Subtract the holding spring forces from `self.f` and write `r = −f` on the belt rows.
-    fn hold_and_scatter(&mut self, q: &[f64], r: &mut [f64]) {
-        let u = self.offsets(q);
-        for (k, dir) in self.dirs.iter().enumerate() {
-            for i in 0..3 {
-                self.f[i] -= self.k_hold * u[k] * dir[i];
-            }
+    fn belt_size(&self) -> usize {
+        self.n_belt()
+    }
+
+    fn pulley_count(&self) -> usize {
+        self.pulleys().len()
+    }
+
+    /// The same element groups as the drive's pattern.
+    fn element_dofs(&self) -> Vec<Vec<Option<usize>>> {
+        self.mesh()
+            .cells
+            .iter()
+            .map(|c| self.mesh().cell_dofs(c).iter().map(|&d| Some(d)).collect())
+            .collect()
+    }
+
+    fn holding(&self) -> (f64, Vec<Vec<f64>>) {
+        let b = &self.spec().belt;
+        let k_hold = b.young * b.width * b.thickness / self.element_length();
+        let t0 = self.path().point(0.0).tangent;
+        (k_hold, vec![vec![t0[0], t0[1], 0.0], vec![0.0, 0.0, 1.0]])
+    }
+
+    fn resting_forces(&self, q: &[f64], f: &mut [f64], torques: &mut [f64], ws: &mut Workspace) {
+        let omegas = vec![0.0; self.pulleys().len()];
+        self.belt_forces(0.0, q, &vec![0.0; q.len()], &omegas, f, torques, ws);
+    }
+
+    /// The tangent in the drive's pattern (`scratch`), its belt block copied into `pattern`.
+    fn resting_tangent(
+        &self,
+        q: &[f64],
+        pattern: &Pattern,
+        f: &mut [f64],
+        kv: &mut [f64],
+        scratch: &mut Vec<f64>,
+        ws: &mut Workspace,
+    ) {
+        if scratch.is_empty() {
+            *scratch = self.pattern().zeros();
         }
-        let nb = self.drive.n_belt();
-        r.fill(0.0);
-        for i in 0..nb {
-            r[i] = -self.f[i];
-        }
-    }
-}
-
-impl NewtonProblem for Initial<'_> {
-    type Error = AncfError;
-
-    fn tangent_dim(&self) -> usize {
-        self.f.len()
-    }
-
-    fn linearize(&mut self, q: &[f64], _load: f64, r: &mut [f64]) -> Result<(), AncfError> {
-        self.iteration += 1;
-        self.drive.belt_stiffness(
-            0.0,
-            q,
-            &self.zero_v,
-            &self.omegas,
-            &mut self.f,
-            &mut self.full,
-            &mut self.ws,
-        );
-        // the belt block of the drive's pattern → this pattern
-        self.kv.fill(0.0);
-        let nb = self.drive.n_belt();
-        for (i, j, pos) in self.drive.pattern().entries() {
+        let omegas = vec![0.0; self.pulleys().len()];
+        let zero_v = vec![0.0; q.len()];
+        self.belt_stiffness(0.0, q, &zero_v, &omegas, f, scratch, ws);
+        kv.fill(0.0);
+        let nb = self.n_belt();
+        for (i, j, pos) in self.pattern().entries() {
             if i < nb && j < nb {
-                let v = self.full[pos];
+                let v = scratch[pos];
                 if v != 0.0
-                    && let Some(p) = self.pattern.position(i, j)
+                    && let Some(p) = pattern.position(i, j)
                 {
-                    self.kv[p] += v;
+                    kv[p] += v;
                 }
             }
         }
-        let n_el = self.drive.n_elements();
-        self.pattern
-            .add_element(&mut self.kv, n_el, &self.hold, 1.0);
-        self.hold_and_scatter(q, r);
-        Ok(())
-    }
-
-    fn residual(&mut self, q: &[f64], _load: f64, r: &mut [f64]) -> Result<(), AncfError> {
-        self.drive.belt_forces(
-            0.0,
-            q,
-            &self.zero_v,
-            &self.omegas,
-            &mut self.f,
-            &mut self.torques,
-            &mut self.ws,
-        );
-        self.hold_and_scatter(q, r);
-        Ok(())
-    }
-
-    fn solve(&mut self, r: &[f64], dx: &mut [f64]) -> Result<(), AncfError> {
-        self.pattern
-            .lu_correction(&self.symbolic, &self.kv, r, dx)
-            .map_err(|e| AncfError::Singular {
-                load_factor: 1.0,
-                detail: format!(
-                    "plate belt tangent stiffness at iteration {}: {e}",
-                    self.iteration
-                ),
-            })
     }
 }
 

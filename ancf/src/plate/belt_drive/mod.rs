@@ -22,6 +22,7 @@ pub mod model;
 pub mod post;
 pub mod spec;
 
+pub use crate::mounted::InitialOptions;
 pub use belt_model::{PlateBelt, PlateConfig, PlateMapping};
 pub use initial::PlateInitialState;
 pub use model::{PlateBeltDrive, PlateContactRecord, PulleySurface};

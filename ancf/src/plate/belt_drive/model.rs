@@ -8,6 +8,7 @@ use crate::belt_drive::BeltFriction;
 use crate::belt_drive::friction::BeltNormal;
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
+use crate::mounted::PulleyCoordinates;
 use crate::plate::mesh::{PLATE_NODE_COORDS, PlateCell, PlateMesh};
 use crate::plate::{PLATE_NDOF, ThinPlate};
 use crate::sparse::Pattern;
@@ -83,8 +84,7 @@ pub struct PlateBeltDrive {
     path: BeltPath,
     mesh: PlateMesh,
     n_belt: usize,
-    pulley_dof: Vec<Option<usize>>,
-    free: Vec<usize>,
+    pulley_dofs: PulleyCoordinates,
     /// Normal contact law per unit area (penalty (3.20) with damping).
     normal: BeltNormal,
     /// Friction law per unit area (creep-rate, §4.5).
@@ -155,17 +155,9 @@ impl PlateBeltDrive {
             cells,
         };
         let n_belt = mesh.n_coords();
-        let mut pulley_dof = Vec::with_capacity(spec.pulleys.len());
-        let mut free = Vec::new();
-        for (i, p) in spec.pulleys.iter().enumerate() {
-            if p.is_free() {
-                pulley_dof.push(Some(n_belt + free.len()));
-                free.push(i);
-            } else {
-                pulley_dof.push(None);
-            }
-        }
-        let n_q = n_belt + free.len();
+        let pulley_dofs = PulleyCoordinates::new(&spec.pulleys, n_belt);
+        let n_free = pulley_dofs.count();
+        let n_q = n_belt + n_free;
         let mut groups: Vec<Vec<Option<usize>>> = mesh
             .cells
             .iter()
@@ -173,7 +165,7 @@ impl PlateBeltDrive {
             .collect();
         for c in &mesh.cells {
             let mut g: Vec<Option<usize>> = mesh.cell_dofs(c).iter().map(|&d| Some(d)).collect();
-            g.extend((0..free.len()).map(|k| Some(n_belt + k)));
+            g.extend((0..n_free).map(|k| Some(n_belt + k)));
             groups.push(g);
         }
         let pattern = Pattern::new(n_q, &groups);
@@ -183,11 +175,7 @@ impl PlateBeltDrive {
         for el in 0..n {
             pattern.add_element(&mut mass_values, el, &me, 1.0);
         }
-        for (k, &pi) in free.iter().enumerate() {
-            if let Some(inertia) = spec.pulleys[pi].motion.inertia() {
-                mass_values[pattern.diagonal_position(n_belt + k)] += inertia;
-            }
-        }
+        pulley_dofs.add_inertias(&spec.pulleys, &pattern, &mut mass_values);
         let rule = GaussRule::new(spec.contact.points);
         let mut quad = Vec::new();
         let mut quad_s = Vec::new();
@@ -208,8 +196,7 @@ impl PlateBeltDrive {
             path,
             mesh,
             n_belt,
-            pulley_dof,
-            free,
+            pulley_dofs,
             normal,
             friction,
             quad,
@@ -253,9 +240,14 @@ impl PlateBeltDrive {
     pub fn element_length(&self) -> f64 {
         self.mesh.cells[0].plate.shape().a()
     }
+    /// The pulleys' angle coordinates.
+    pub fn pulley_dofs(&self) -> &PulleyCoordinates {
+        &self.pulley_dofs
+    }
+
     /// Coordinate index of pulley `p`'s angle, if it is free.
     pub fn pulley_dof(&self, p: usize) -> Option<usize> {
-        self.pulley_dof.get(p).copied().flatten()
+        self.pulley_dofs.dof(p)
     }
     /// Assembly pattern of the system matrices.
     pub fn pattern(&self) -> &Pattern {
@@ -264,13 +256,7 @@ impl PlateBeltDrive {
 
     /// Travel-sense angular speed of pulley `p` at `(t, v)` \[rad/s\].
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        match self.pulley_dof[p] {
-            Some(j) => v[j],
-            None => self.spec.pulleys[p]
-                .motion
-                .prescribed_speed(t)
-                .unwrap_or(0.0),
-        }
+        self.pulley_dofs.speed(&self.spec.pulleys, p, t, v)
     }
 
     /// Load torque on pulley `p` at `t` \[N·m\] (0 for speed-driven pulleys and idlers).
@@ -377,15 +363,13 @@ impl PlateBeltDrive {
     }
 
     fn speeds(&self, t: f64, v: &[f64]) -> Vec<f64> {
-        (0..self.spec.pulleys.len())
-            .map(|p| self.pulley_speed(p, t, v))
-            .collect()
+        self.pulley_dofs.speeds(&self.spec.pulleys, t, v)
     }
 
     /// The drive's work buffers in the caller's workspace `ws`, created on first use (and
     /// anew if `ws` held the buffers of a drive with another number of free pulleys).
     fn scratch<'w>(&self, ws: &'w mut Workspace) -> &'w mut Scratch {
-        let mm = NE + self.free.len();
+        let mm = NE + self.pulley_dofs.count();
         let fresh = || Scratch {
             ec: Some(ElementContact3::new(NE)),
             k_local: vec![0.0; mm * mm],
@@ -618,17 +602,13 @@ impl PlateBeltDrive {
             &mut ec,
             |el, p, axis, c| {
                 self.scatter_add(f, el, &c.q, 1.0);
-                if let Some(j) = self.pulley_dof[p] {
+                if let Some(j) = self.pulley_dofs.dof(p) {
                     f[j] += c.moment.dot(axis);
                 }
             },
         );
         s.ec = Some(ec);
-        for &p in &self.free {
-            if let Some(j) = self.pulley_dof[p] {
-                f[j] -= loads[p];
-            }
-        }
+        self.pulley_dofs.subtract_loads(loads, f);
     }
 }
 
@@ -714,7 +694,7 @@ fn surface_of(pl: &Pulley, t: f64, omega: f64) -> PulleySurface {
 
 impl SecondOrderSystem for PlateBeltDrive {
     fn n_q(&self) -> usize {
-        self.n_belt + self.free.len()
+        self.n_belt + self.pulley_dofs.count()
     }
     fn dof_name(&self, dof: usize) -> String {
         if dof < self.n_belt {
@@ -728,8 +708,8 @@ impl SecondOrderSystem for PlateBeltDrive {
                 names[local / 3],
                 ["x", "y", "z"][local % 3]
             )
-        } else if let Some(&p) = self.free.get(dof - self.n_belt) {
-            format!("pulley \"{}\" angle", self.spec.pulleys[p].name)
+        } else if let Some(name) = self.pulley_dofs.dof_name(&self.spec.pulleys, dof) {
+            name
         } else {
             format!("coordinate {dof}")
         }
@@ -792,7 +772,7 @@ impl PlateBeltDrive {
         let s = self.scratch(ws);
         self.elastic_tangent_into(q, &mut fbuf, &mut k, s);
         let n_el = self.n_elements();
-        let nf = self.free.len();
+        let nf = self.pulley_dofs.count();
         let m = NE + nf;
         let mut ec = s.ec.take().unwrap_or_else(|| ElementContact3::new(NE));
         let (k_local, c_local) = (&mut s.k_local, &mut s.c_local);
@@ -811,7 +791,7 @@ impl PlateBeltDrive {
                         c_local[a + b * m] = -ec.dq_dedot[a + b * NE];
                     }
                 }
-                if let Some(j) = self.pulley_dof[p] {
+                if let Some(j) = self.pulley_dofs.dof(p) {
                     let col = NE + (j - nb);
                     for a in 0..NE {
                         let (dmde, dmdv) =
@@ -830,14 +810,8 @@ impl PlateBeltDrive {
         );
         s.ec = Some(ec);
         // the free pulleys' viscous dampers: −c ω
-        for &p in &self.free {
-            if let Some(j) = self.pulley_dof[p] {
-                let damping = self.spec.pulleys[p].motion.damping();
-                if damping > 0.0 {
-                    c[pat.diagonal_position(j)] += damping;
-                }
-            }
-        }
+        self.pulley_dofs
+            .add_damping(&self.spec.pulleys, pat, &mut c);
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),

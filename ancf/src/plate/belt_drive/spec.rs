@@ -276,27 +276,7 @@ impl PlateDriveSpec {
 
 impl Validate for PlateDriveSpec {
     fn validate(&self) -> Result<(), InvalidField> {
-        if self.pulleys.len() < 2 {
-            return Err(InvalidField::new(
-                "pulleys",
-                format!("need at least 2, got {}", self.pulleys.len()),
-            ));
-        }
-        if self.pulleys.len() > 16 {
-            return Err(InvalidField::new(
-                "pulleys",
-                format!("at most 16 supported, got {}", self.pulleys.len()),
-            ));
-        }
-        for (i, p) in self.pulleys.iter().enumerate() {
-            p.validate_within(&format!("pulleys[{i}]"))?;
-            if self.pulleys[..i].iter().any(|o| o.name == p.name) {
-                return Err(InvalidField::new(
-                    format!("pulleys[{i}].name"),
-                    format!("'{}' is used twice", p.name),
-                ));
-            }
-        }
+        crate::mounted::validate_pulleys(&self.pulleys)?;
         let b = &self.belt;
         for (name, v, unit) in [
             ("length", b.length, "m"),
