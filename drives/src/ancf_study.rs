@@ -1,8 +1,9 @@
 //! The ANCF belt-drive study of Kerkkänen ch. 3 (Table 3.1; examples 3.3-A closure and
 //! 3.3-B dynamic run with the driver ramp (3.29)): its configuration, summary and runs, shared
 //! by `flowmbd-belt ancf` (which adds the output files) and the Python package
-//! (`flowmbd.belt.ancf`). The time loop is [`run_drive`]; the summary's end speeds and the
-//! tight/slack span tensions follow [`roles`] and [`tight_slack`].
+//! (`flowmbd.belt.ancf`). The time loop is [`run_reported`], shared with the plate belt; the
+//! summary's end speeds and the tight/slack span tensions follow [`roles`] and
+//! [`tight_slack`].
 
 use crate::ancf_run::{
     Due, EndReport, RunEnd, Sampling, closure_on_path, roles, run_reported, tight_slack,
@@ -194,7 +195,8 @@ pub struct DynamicEnd {
     pub friction_coefficient: f64,
 }
 
-/// Run the drive from `init` to `c.t_end` ([`run_drive`] with the configured sampling).
+/// Run the drive from `init` to `c.t_end` ([`run_reported`] with the configured sampling; its
+/// end report in the summary).
 /// `observer` sees every sampled state; the span tensions of the summary are those of the
 /// last history sample (the initial state before the first).
 pub fn dynamic_run<E>(
