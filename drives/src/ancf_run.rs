@@ -319,7 +319,8 @@ pub struct EndReport {
     /// Slip arc of the driver at the end \[rad\] ([`belt::report`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub slip_arc_driver_rad: Option<f64>,
-    /// Slip arc of the driven (first loaded) pulley at the end \[rad\].
+    /// Slip arc of the driven (first loaded) pulley at the end \[rad\] (none without a loaded
+    /// pulley).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub slip_arc_driven_rad: Option<f64>,
     /// Force of the belt on every pulley at the end.
@@ -396,8 +397,10 @@ pub fn run_reported<D: AncfDrive, E>(
     }
     let end = EndReport {
         gross_slip: Some(report.gross_slip().is_some()),
-        slip_arc_driver_rad: Some(report.slip_arc(Role::Driver)),
-        slip_arc_driven_rad: Some(report.slip_arc(Role::Driven)),
+        // a drive without a driver or a loaded pulley (e.g. Kerkkänen's Model 1, idler driven)
+        // has no such arc: the key is left out rather than NaN
+        slip_arc_driver_rad: Some(report.slip_arc(Role::Driver)).filter(|a| a.is_finite()),
+        slip_arc_driven_rad: Some(report.slip_arc(Role::Driven)).filter(|a| a.is_finite()),
         hub_loads: report.hub_loads(),
         pulleys: report.pulleys,
         spans: report.spans,

@@ -136,6 +136,49 @@ fn shipped_examples_are_valid() {
     );
 }
 
+// The shipped Kerkkänen examples run (a few steps each) to a complete summary: Model 1 drives
+// an idler, so its summary has no driven slip arc and no NaN in its place (the runner refuses
+// non-finite results).
+#[test]
+fn kerkkanen_examples_run_a_few_steps() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|f| f.to_str())
+                .is_some_and(|f| f.starts_with("kerkkanen-") && f.ends_with(".toml"))
+        })
+        .collect();
+    names.sort();
+    assert!(names.len() >= 8, "{names:?}");
+    for path in names {
+        let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
+        let (study, t_end) = if name.starts_with("kerkkanen-4-6") {
+            ("plate", "0.002")
+        } else {
+            ("ancf", "0.004")
+        };
+        let out = tmp(&format!("example-{name}"));
+        let (code, stdout, stderr) = run(&[
+            study,
+            "--config",
+            path.to_str().unwrap(),
+            "--t-end",
+            t_end,
+            "--json",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{name}: {stderr}");
+        let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        assert!(v["meaning"].is_string(), "{name}: {v}");
+        let _ = std::fs::remove_dir_all(&out);
+    }
+}
+
 // Bad input: exit 2 with one line naming the field (file and line for TOML errors).
 #[test]
 fn bad_input_exits_2_naming_the_field() {
