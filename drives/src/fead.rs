@@ -350,6 +350,11 @@ impl Validate for EngineConfig {
     }
 }
 
+// the layout's merge rules (`tension` / `belt_length`, `pulleys` / `tensioner`)
+impl mbd_core::config::PartialRules for FeadConfig {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
+}
+
 impl Validate for FeadConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;

@@ -68,6 +68,7 @@ pub mod config;
 pub mod error;
 pub mod integrators;
 pub mod linalg;
+pub mod input;
 pub mod system;
 pub mod validate;
 pub mod workspace;

@@ -158,6 +158,8 @@ impl Default for StaticConfig {
     }
 }
 
+impl flowmbd_cli::PartialRules for StaticConfig {}
+
 impl Validate for StaticConfig {
     /// The library case's checks ([`StaticBeamCase`]'s `Validate`).
     fn validate(&self) -> Result<(), InputError> {
@@ -260,6 +262,8 @@ impl Default for CantileverConfig {
     }
 }
 
+impl flowmbd_cli::PartialRules for CantileverConfig {}
+
 impl Validate for CantileverConfig {
     fn validate(&self) -> Result<(), InputError> {
         self.beam.validate_within("beam")?;
@@ -346,6 +350,8 @@ impl Study for Cantilever {
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(transparent)]
 pub struct PendulumConfig(pub PendulumCase);
+
+impl flowmbd_cli::PartialRules for PendulumConfig {}
 
 impl Validate for PendulumConfig {
     /// The library case's checks.
@@ -480,6 +486,8 @@ impl Study for Pendulum {
 #[serde(transparent)]
 pub struct SpinningConfig(pub SpinningCase);
 
+impl flowmbd_cli::PartialRules for SpinningConfig {}
+
 impl Validate for SpinningConfig {
     /// The library case's checks.
     fn validate(&self) -> Result<(), InputError> {
@@ -605,6 +613,8 @@ impl Study for Spinning {
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(transparent)]
 pub struct GroundContactConfig(pub GroundContactCase);
+
+impl flowmbd_cli::PartialRules for GroundContactConfig {}
 
 impl Validate for GroundContactConfig {
     /// The library case's checks.

@@ -52,6 +52,8 @@ impl Default for Config {
     }
 }
 
+impl flowmbd_cli::PartialRules for Config {}
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         self.params.validate_within("params")?;

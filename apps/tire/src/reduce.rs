@@ -23,6 +23,8 @@ pub struct Config {
     pub tire: TireSource,
 }
 
+impl flowmbd_cli::PartialRules for Config {}
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         self.tire.validate_within("tire")

@@ -99,6 +99,11 @@ impl Default for DesignConfig {
     }
 }
 
+// the layout's merge rules (`tension` / `belt_length`, `pulleys` / `tensioner`)
+impl mbd_core::config::PartialRules for DesignConfig {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
+}
+
 impl Validate for DesignConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
