@@ -147,6 +147,24 @@ fn merge<C: PartialRules>(
     base
 }
 
+/// The dotted text of a path (`drive.pulleys[2].radius`; `<root>` for the empty path), the
+/// inverse of [`PartialConfigError::steps`].
+pub fn path_text(steps: &[PathStep]) -> String {
+    let mut s = String::new();
+    for step in steps {
+        match step {
+            PathStep::Key(k) => {
+                if !s.is_empty() {
+                    s.push('.');
+                }
+                s.push_str(k);
+            }
+            PathStep::Index(i) => s.push_str(&format!("[{i}]")),
+        }
+    }
+    if s.is_empty() { "<root>".into() } else { s }
+}
+
 fn parse_path(path: &str) -> Vec<PathStep> {
     let mut steps = Vec::new();
     if path == "<root>" {
@@ -204,6 +222,8 @@ mod tests {
         speeds: Vec<f64>,
     }
 
+    impl PartialRules for Study {}
+
     impl Default for Study {
         fn default() -> Self {
             Study {
@@ -222,8 +242,6 @@ mod tests {
     }
 
     fn read(text: &str) -> Result<Study, PartialConfigError> {
-    impl PartialRules for Study {}
-
         from_partial(toml::from_str(text).unwrap())
     }
 
@@ -279,6 +297,14 @@ mod tests {
             #[serde(default, skip_serializing_if = "Option::is_none")]
             tensioner: Option<usize>,
         }
+        // the rules of a belt drive's layout (the belt crate's), declared by the type
+        impl PartialRules for Mount {
+            const DROPPED_BY: &'static [(&'static str, &'static str)] = &[
+                ("tension", "belt_length"),
+                ("belt_length", "tension"),
+                ("pulleys", "tensioner"),
+            ];
+        }
         impl Default for Mount {
             fn default() -> Self {
                 Mount {
@@ -297,14 +323,6 @@ mod tests {
         assert_eq!(m.tensioner, Some(1));
         let m: Mount = from_partial(toml::from_str("belt_length = 1.2").unwrap()).unwrap();
         assert_eq!((m.tension, m.belt_length), (None, Some(1.2)));
-        // the rules of a belt drive's layout (the belt crate's), declared by the type
-        impl PartialRules for Mount {
-            const DROPPED_BY: &'static [(&'static str, &'static str)] = &[
-                ("tension", "belt_length"),
-                ("belt_length", "tension"),
-                ("pulleys", "tensioner"),
-            ];
-        }
         // both given by the user: both kept (the layout's validation refuses them)
         let m: Mount =
             from_partial(toml::from_str("belt_length = 1.2\ntension = 3.0").unwrap()).unwrap();
@@ -327,6 +345,8 @@ mod tests {
                 PathStep::Key("typo".into())
             ]
         );
+        assert_eq!(path_text(&e.steps()), e.path);
+        assert_eq!(path_text(&[]), "<root>");
         let e = read("[drive.friction]\nlaw = \"coulomb\"\n").unwrap_err();
         assert!(e.message.contains("missing field `mu`"), "{e}");
         // a variant switch with a typo: the typo is named, not the other variant's keys

@@ -180,7 +180,10 @@ pub fn unknown_key_variants(text: &str) -> Result<Vec<(String, String)>, toml::d
             if let Some(table) = table_at(&mut t, &path) {
                 table.insert(UNKNOWN_KEY.to_string(), toml::Value::Integer(0));
             }
-            (path_name(&path), toml::to_string(&t).unwrap_or_default())
+            (
+                mbd_core::config::path_text(&path),
+                toml::to_string(&t).unwrap_or_default(),
+            )
         })
         .collect())
 }
@@ -208,12 +211,8 @@ pub fn tables_accepting_unknown_keys_by(
     }
 }
 
-/// A step of a path into a TOML document: a key or an array index.
-#[derive(Clone)]
-enum Step {
-    Key(String),
-    Index(usize),
-}
+// a step of a path into a TOML document: a key or an array index
+use mbd_core::config::PathStep as Step;
 
 fn collect_tables(t: &toml::Table, here: &mut Vec<Step>, out: &mut Vec<Vec<Step>>) {
     out.push(here.clone());
@@ -250,22 +249,6 @@ fn table_at<'a>(t: &'a mut toml::Table, path: &[Step]) -> Option<&'a mut toml::T
     table_at(v.as_table_mut()?, rest)
 }
 
-fn path_name(path: &[Step]) -> String {
-    let mut s = String::new();
-    for step in path {
-        match step {
-            Step::Key(k) => {
-                if !s.is_empty() {
-                    s.push('.');
-                }
-                s.push_str(k);
-            }
-            Step::Index(i) => s.push_str(&format!("[{i}]")),
-        }
-    }
-    if s.is_empty() { "<root>".into() } else { s }
-}
-
 /// 1-based line and column of byte `offset` in `text`.
 fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
@@ -280,8 +263,6 @@ mod tests {
     use super::*;
     use crate::error::InputError;
     use serde::Deserialize;
-    impl PartialRules for Demo {}
-
 
     #[derive(Debug, Serialize, Deserialize, PartialEq)]
     #[serde(default, deny_unknown_fields)]
@@ -298,6 +279,8 @@ mod tests {
             }
         }
     }
+
+    impl PartialRules for Demo {}
 
     impl Validate for Demo {
         fn validate(&self) -> Result<(), InputError> {

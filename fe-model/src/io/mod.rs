@@ -69,25 +69,9 @@ pub(crate) fn read_bytes(path: &std::path::Path) -> Result<(String, Vec<u8>), cr
 
 /// Write `bytes` to `path` through a temporary file beside it (`.NAME.part`), renamed over
 /// `path` when complete: a reader never sees half a file, and a killed writer leaves the old
-/// file or none (issue 35, item 3). Used by every writer of this crate.
-pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> std::io::Result<()> {
-    use std::io::Write;
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.part"));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
+/// file or none (issue 35, item 3). Used by every writer of this crate
+/// ([`mbd_core::output::write_atomic`]).
+pub use mbd_core::output::write_atomic;
 
 /// The bytes of a file: memory-mapped, or read into memory where mapping is not possible.
 pub(crate) enum FileBytes {
