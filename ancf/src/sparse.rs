@@ -31,15 +31,7 @@ impl Pattern {
                 }
             }
         }
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::new();
-        col_ptr.push(0);
-        for c in &mut cols {
-            c.sort_unstable();
-            c.dedup();
-            row_idx.extend_from_slice(c);
-            col_ptr.push(row_idx.len());
-        }
+        let (col_ptr, row_idx) = mbd_core::linalg::csc_pattern(cols);
         let scatter = element_dofs
             .iter()
             .map(|dofs| {
@@ -48,10 +40,9 @@ impl Pattern {
                 for (b, dj) in dofs.iter().enumerate() {
                     for (a, di) in dofs.iter().enumerate() {
                         if let (Some(i), Some(j)) = (di, dj) {
-                            let col = &row_idx[col_ptr[*j]..col_ptr[*j + 1]];
                             // the entry exists by construction
-                            let pos = col.binary_search(i).unwrap_or(0);
-                            s[a + b * m] = col_ptr[*j] + pos;
+                            s[a + b * m] =
+                                mbd_core::linalg::csc_position(&col_ptr, &row_idx, *i, *j);
                         }
                     }
                 }

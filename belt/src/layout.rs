@@ -40,6 +40,18 @@ pub const MIN_WRAP_DEG: f64 = 10.0;
 /// Pechstein & Gerstmayr's at about 5 %).
 pub const MAX_MOUNTING_STRAIN: f64 = 0.15;
 
+/// The rules of a [`Layout`] read partially over a default one
+/// ([`mbd_core::config::PartialRules`]), declared by every configuration that holds a layout:
+/// the installation `tension` \[N\] and the unstretched `belt_length` \[m\] exclude each other
+/// (the user's one drops the default's other); a new list of `pulleys` drops the default's
+/// `tensioner`, whose `pulley` indexed the old list (a drive with new pulleys has a tensioner
+/// only if the user gives one).
+pub const PARTIAL_RULES: &[(&str, &str)] = &[
+    ("tension", "belt_length"),
+    ("belt_length", "tension"),
+    ("pulleys", "tensioner"),
+];
+
 /// A belt drive as a user describes it (module documentation).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -65,6 +77,10 @@ pub struct Layout {
     /// Rayleigh damping of the belt.
     #[serde(default)]
     pub damping: BeltDamping,
+}
+
+impl mbd_core::config::PartialRules for Layout {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = PARTIAL_RULES;
 }
 
 /// A tensioner arm of a resolved drive: its length and static angle.

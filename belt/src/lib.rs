@@ -34,7 +34,9 @@ pub mod signal;
 pub mod tensioner;
 
 pub use decoupler::{ClutchState, Decoupler, DecouplerForces, DecouplerState};
-pub use layout::{Arm, Drive, Layout, MAX_MOUNTING_STRAIN, MAX_PULLEYS, MIN_WRAP_DEG};
+pub use layout::{
+    Arm, Drive, Layout, MAX_MOUNTING_STRAIN, MAX_PULLEYS, MIN_WRAP_DEG, PARTIAL_RULES,
+};
 pub use model::{BeltModel, ModelTraits, PulleyState, Snapshot, SpanState, WrapPoint};
 pub use motion::{Motion, Role};
 pub use path::{BeltPath, PathPiece, PathPoint, Segment, SpanLine, tributary_lengths};

@@ -146,6 +146,16 @@ pub(crate) fn check_time(t_end: f64, h: f64) -> Result<(), InvalidField> {
     Ok(())
 }
 
+/// Table 2.1's simply supported beam: 8 proposed elements, `ν = 0`, `h = 0.1 m` (the default
+/// of `flowmbd-beam simply-supported`).
+impl Default for StaticBeamCase {
+    fn default() -> Self {
+        Self::kerkkanen(BeamElementKind::Proposed, 8, 0.0, 0.1)
+    }
+}
+
+impl mbd_core::config::PartialRules for StaticBeamCase {}
+
 impl Validate for StaticBeamCase {
     /// `1 ≤ elements ≤` [`MAX_BEAM_ELEMENTS`], `1 ≤ increments ≤` [`MAX_INCREMENTS`],
     /// `−1 < ν < 0.5`, positive dimensions and modulus, non-negative density.
@@ -381,6 +391,8 @@ pub struct GroundContactCase {
     /// Load increments.
     pub increments: usize,
 }
+
+impl mbd_core::config::PartialRules for GroundContactCase {}
 
 impl Default for GroundContactCase {
     fn default() -> Self {

@@ -67,6 +67,8 @@ impl Default for PendulumCase {
     }
 }
 
+impl mbd_core::config::PartialRules for PendulumCase {}
+
 impl Validate for PendulumCase {
     /// `1 ≤ elements ≤` [`ancf::beam_mesh::MAX_BEAM_ELEMENTS`], positive dimensions, modulus,
     /// end time and step with at most [`crate::ancf_beams::MAX_TIME_STEPS`] steps,
@@ -255,6 +257,8 @@ impl Default for SpinningCase {
         }
     }
 }
+
+impl mbd_core::config::PartialRules for SpinningCase {}
 
 impl Validate for SpinningCase {
     /// As [`PendulumCase`], plus positive density and spin-up time and a finite hub speed.

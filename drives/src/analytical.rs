@@ -139,14 +139,7 @@ pub fn penetrating_string(d: &Drive, omega: f64, torque: f64) -> Option<Penetrat
             let n = 400;
             let hstep = phi / n as f64;
             for i in 0..=n {
-                let w = if i == 0 || i == n {
-                    1.0
-                } else if i % 2 == 1 {
-                    4.0
-                } else {
-                    2.0
-                } * hstep
-                    / 3.0;
+                let w = simpson_weight(i, n) * hstep / 3.0;
                 let t = tc + (t_in - tc) * (sign * mu * i as f64 * hstep).exp();
                 lhs += w * r * (t - t0);
                 rhs += w * ea * (p0[k] - penalty_penetration(d, (t - tc) / r));
@@ -196,6 +189,18 @@ pub fn penetrating_string_capacity(d: &Drive, omega: f64) -> f64 {
         mbd_core::roots::Stop::absolute(200, 1e-6),
     );
     0.5 * (lo + hi)
+}
+
+/// Weight of node `i` of the composite Simpson rule on `n` (even) intervals, before the factor
+/// `h/3`: 1 at the ends, 4 at odd and 2 at even interior nodes.
+pub(crate) fn simpson_weight(i: usize, n: usize) -> f64 {
+    if i == 0 || i == n {
+        1.0
+    } else if i % 2 == 1 {
+        4.0
+    } else {
+        2.0
+    }
 }
 
 #[cfg(test)]

@@ -87,6 +87,8 @@ impl Default for AncfStudyConfig {
     }
 }
 
+impl mbd_core::config::PartialRules for AncfStudyConfig {}
+
 impl Validate for AncfStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         let input = |e: ancf::AncfError| match e {

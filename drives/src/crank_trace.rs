@@ -24,7 +24,6 @@
 
 use mbd_core::validate::InvalidField;
 use serde::{Deserialize, Serialize};
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
@@ -134,36 +133,27 @@ impl CrankTrace {
     /// [`TraceError`]: unreadable, not a regular file, too large, a malformed line (with its
     /// number), fewer than two samples.
     pub fn load(&self) -> Result<Vec<(f64, f64)>, TraceError> {
+        use mbd_core::input::InputError as E;
         let name = self.file.display().to_string();
-        let io = |e: std::io::Error| TraceError::Io {
-            file: name.clone(),
-            reason: e.to_string(),
-        };
-        let meta = std::fs::metadata(&self.file).map_err(io)?;
-        if !meta.is_file() {
-            return Err(TraceError::NotRegular { file: name });
-        }
-        if meta.len() > MAX_TRACE_BYTES {
-            return Err(TraceError::TooLarge {
-                file: name,
-                size: meta.len(),
-                max: MAX_TRACE_BYTES,
-            });
-        }
-        // bounded read: the file may have grown since the metadata
-        let mut text = String::new();
-        std::fs::File::open(&self.file)
-            .map_err(io)?
-            .take(MAX_TRACE_BYTES + 1)
-            .read_to_string(&mut text)
-            .map_err(io)?;
-        if text.len() as u64 > MAX_TRACE_BYTES {
-            return Err(TraceError::TooLarge {
-                file: name,
-                size: text.len() as u64,
-                max: MAX_TRACE_BYTES,
-            });
-        }
+        let text =
+            mbd_core::input::read_text(&self.file, MAX_TRACE_BYTES).map_err(|e| match e {
+                E::Directory { .. } | E::NotRegular { .. } => {
+                    TraceError::NotRegular { file: name.clone() }
+                }
+                E::TooLarge { size, max, .. } => TraceError::TooLarge {
+                    file: name.clone(),
+                    size,
+                    max,
+                },
+                E::NotFound { source, .. } | E::Io { source, .. } => TraceError::Io {
+                    file: name.clone(),
+                    reason: source.to_string(),
+                },
+                E::NotUtf8 { .. } => TraceError::Io {
+                    file: name.clone(),
+                    reason: e.reason(),
+                },
+            })?;
         parse(&text, &name, self.abscissa)
     }
 }

@@ -350,15 +350,28 @@ impl Validate for EngineConfig {
     }
 }
 
+/// The field `drive` of an engine's accessory drive resolved, its pulley 0 the crankshaft
+/// (a speed-driven pulley): shared by `fead` and the steady design study
+/// ([`crate::fead_design`]).
+pub(crate) fn resolve_engine_drive(layout: &Layout) -> Result<belt::Drive, InvalidField> {
+    let drive = layout.resolve().map_err(|e| e.within("drive"))?;
+    if !matches!(layout.pulleys[0].motion, Motion::Speed { .. }) {
+        return Err(InvalidField::new(
+            "drive.pulleys[0].motion",
+            "pulley 0 is the crankshaft: its motion kind must be speed",
+        ));
+    }
+    Ok(drive)
+}
+
+// the layout's merge rules (`tension` / `belt_length`, `pulleys` / `tensioner`)
+impl mbd_core::config::PartialRules for FeadConfig {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
+}
+
 impl Validate for FeadConfig {
     fn validate(&self) -> Result<(), InvalidField> {
-        let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
-        if !matches!(self.drive.pulleys[0].motion, Motion::Speed { .. }) {
-            return Err(InvalidField::new(
-                "drive.pulleys[0].motion",
-                "pulley 0 is the crankshaft: its motion kind must be speed",
-            ));
-        }
+        let drive = resolve_engine_drive(&self.drive)?;
         self.engine.validate_within("engine")?;
         self.models.validate_within("models")?;
         match self.model {

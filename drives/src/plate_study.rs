@@ -127,6 +127,8 @@ impl PlateStudyConfig {
     }
 }
 
+impl mbd_core::config::PartialRules for PlateStudyConfig {}
+
 impl Validate for PlateStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         self.drive.validate_within("drive")?;

@@ -51,6 +51,11 @@ impl Default for SpeedLossStudyConfig {
     }
 }
 
+// the layout's merge rules (`tension` / `belt_length`, `pulleys` / `tensioner`)
+impl mbd_core::config::PartialRules for SpeedLossStudyConfig {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
+}
+
 impl Validate for SpeedLossStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         if self.omegas.is_empty() {

@@ -6,7 +6,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use flowing::contact::candidates;
 use flowing::{
     AxialMotion, ContactConfig, ContactString, DerivativeMethod, FlowingString, GalerkinString,
-    Pulley, StringConfig, StringMesh, simulate_contact,
+    PulleyObstacle, StringConfig, StringMesh, simulate_contact,
 };
 use mbd_core::integrators::State;
 use std::hint::black_box;
@@ -18,12 +18,12 @@ fn wrapped(c: &mut Criterion) {
     };
     let mesh = StringMesh::uniform(p, 119).unwrap();
     let pulleys = [
-        Pulley {
+        PulleyObstacle {
             center_x: 0.1,
             top: 0.015,
             radius: 0.25,
         },
-        Pulley {
+        PulleyObstacle {
             center_x: 1.1,
             top: 0.015,
             radius: 0.25,

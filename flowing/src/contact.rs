@@ -32,7 +32,7 @@
 
 use crate::derivative::{DerivativeMethod, mode_shape_derivatives};
 use crate::error::{FlowError, invalid};
-use crate::pulley::Pulley;
+use crate::pulley::PulleyObstacle;
 use crate::string_fe::StringMesh;
 use crate::travelling::AxialMotion;
 use faer::linalg::solvers::Solve;
@@ -98,7 +98,7 @@ pub struct ContactString {
 /// Candidate nodes: the mesh nodes within `half_width` of a pulley centre \[m\].
 pub fn candidates(
     mesh: &StringMesh,
-    pulleys: &[Pulley],
+    pulleys: &[PulleyObstacle],
     half_width: f64,
 ) -> Result<Vec<Candidate>, FlowError> {
     let mut c = Vec::new();

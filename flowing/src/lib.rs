@@ -44,6 +44,6 @@ pub use grid::{End, FlowGrid, Topology};
 pub use gyroscopic::{GyroscopicSystem, StateEigen};
 pub use modal::ModalBasis;
 pub use params::StringConfig;
-pub use pulley::Pulley;
+pub use pulley::PulleyObstacle;
 pub use string_fe::StringMesh;
 pub use travelling::{AxialMotion, FlowingString, TimeHistory, simulate_rk4, triangular_pluck};

@@ -2,11 +2,12 @@
 
 use crate::error::{FlowError, invalid};
 
-/// A rigid pulley under the string: a circle of radius `radius` whose top point is at
+/// A rigid pulley under Ribaric's travelling string, an obstacle the string wraps (not a
+/// belt-drive pulley, which is `belt::Pulley`): a circle of radius `radius` whose top point is at
 /// `(center_x, top)` in the string's (axial x, transverse u) plane \[m\].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Pulley {
+pub struct PulleyObstacle {
     /// Axial position of the pulley centre \[m\].
     pub center_x: f64,
     /// Transverse coordinate of the top of the pulley \[m\].
@@ -15,7 +16,7 @@ pub struct Pulley {
     pub radius: f64,
 }
 
-impl Pulley {
+impl PulleyObstacle {
     /// Checks the numbers.
     pub fn validate(&self, name: &str) -> Result<(), FlowError> {
         if !(self.radius.is_finite() && self.radius > 0.0) {

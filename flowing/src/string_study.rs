@@ -430,6 +430,8 @@ impl Default for ModesConfig {
     }
 }
 
+impl mbd_core::config::PartialRules for ModesConfig {}
+
 impl Validate for ModesConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         check_string(&self.string, "string")?;

@@ -14,12 +14,15 @@ use flowmbd_cases::lin::beam::LinBeamConfig;
 use flowmbd_cases::lin::slab_sim::SlabSimConfig;
 use flowing::string_study::ModesConfig;
 use tire::RigConfig;
-use flowmbd_cli::Validate;
+use flowmbd_cli::{PartialRules, Validate};
 use flowmbd_cli::config::parse_config;
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 
-fn check<C: serde::de::DeserializeOwned + serde::Serialize + Default + Validate>(text: &str) {
+fn check<C>(text: &str)
+where
+    C: serde::de::DeserializeOwned + serde::Serialize + Default + Validate + PartialRules,
+{
     match parse_config::<C>(text, Path::new("fuzz.toml")) {
         Ok(c) => {
             let _ = c.validate();

@@ -11,10 +11,10 @@
 //!   from the default's, e.g. `law = "coulomb"` where the default friction is `law = "creep"`) replaces
 //!   the default table whole when merging it would mix the two variants' keys: the merge is tried
 //!   first and the replacement only when the merged table does not deserialize;
-//! * a key the user gives drops from the defaults the keys that depend on it or exclude it
-//!   ([`DROPPED_BY`]: a drive's installation `tension` or its `belt_length`; a new list of
-//!   `pulleys` drops the default drive's `tensioner`, whose pulley index referred to the old
-//!   list — a drive with new pulleys has a tensioner only if the file gives one).
+//! * a key the user gives drops from the defaults the keys that depend on it or exclude it, as
+//!   the configuration type declares ([`PartialRules::DROPPED_BY`]; this crate knows no
+//!   domain's keys: the belt drive's rules are `belt::PARTIAL_RULES`, declared by every
+//!   configuration that holds a belt layout).
 //!
 //! The CLI's TOML reader and the Python package's dictionary configurations both go through
 //! [`from_partial`], so a partial configuration means the same on both.
@@ -22,15 +22,18 @@
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-/// `(given, dropped)`: when a user's table gives the key `given`, the default's key `dropped`
-/// in the same table is left out (module documentation). The belt drive's installation tension
-/// \[N\] and its unstretched length \[m\] exclude each other (`belt::Layout`); its tensioner
-/// names a pulley by its index in the drive's `pulleys`.
-pub const DROPPED_BY: &[(&str, &str)] = &[
-    ("tension", "belt_length"),
-    ("belt_length", "tension"),
-    ("pulleys", "tensioner"),
-];
+/// The merge rules a configuration type declares for [`from_partial`] (module documentation).
+///
+/// Every configuration read with [`from_partial`] implements it; a type without keys that
+/// exclude each other takes the default (`impl PartialRules for MyConfig {}`). A type that
+/// holds another type with rules (at any depth) declares them too: the rules apply to every
+/// table of the tree.
+pub trait PartialRules {
+    /// `(given, dropped)`: when a user's table gives the key `given`, the default's key
+    /// `dropped` in the same table is left out (e.g. a length that excludes a tension, a list
+    /// whose indices another key refers to). None by default.
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = &[];
+}
 
 /// The keys that name an enum's variant in the workspace's configurations (`#[serde(tag =
 /// ...)]`: a pulley's motion `kind`, a friction `law`): a table whose tag the user changes
@@ -64,17 +67,18 @@ pub enum PathStep {
 }
 
 /// `user` read over `C::default()` (module documentation): merged table by table, arrays and
-/// scalars replaced, a table that switches an enum's variant replaced whole.
+/// scalars replaced, a table that switches an enum's variant replaced whole, the default keys
+/// that a given key excludes dropped ([`PartialRules::DROPPED_BY`] of `C`).
 pub fn from_partial<C>(user: toml::Table) -> Result<C, PartialConfigError>
 where
-    C: Serialize + DeserializeOwned + Default,
+    C: Serialize + DeserializeOwned + Default + PartialRules,
 {
     let Ok(defaults) = toml::Table::try_from(C::default()) else {
         // a default that TOML cannot hold (none in the workspace): the user's table alone
         return deserialize(user);
     };
     let mut switches = Vec::new();
-    let merged = merge(
+    let merged = merge::<C>(
         defaults.clone(),
         user.clone(),
         &mut Vec::new(),
@@ -84,7 +88,7 @@ where
     match deserialize::<C>(merged) {
         Ok(c) => Ok(c),
         Err(_) if !switches.is_empty() => {
-            let replaced = merge(defaults, user, &mut Vec::new(), &mut Vec::new(), &switches);
+            let replaced = merge::<C>(defaults, user, &mut Vec::new(), &mut Vec::new(), &switches);
             // both fail: the replaced tables' error is about the keys the user wrote for the
             // variant chosen
             deserialize::<C>(replaced)
@@ -105,8 +109,8 @@ fn deserialize<C: DeserializeOwned>(t: toml::Table) -> Result<C, PartialConfigEr
 
 /// `user` merged over `base`. `here` is the path of the tables being merged; the paths of
 /// tables that switch a variant are pushed to `switches`; the tables at `replace` are taken from
-/// `user` whole.
-fn merge(
+/// `user` whole; the default keys that a given key excludes are dropped (`C`'s rules).
+fn merge<C: PartialRules>(
     mut base: toml::Table,
     user: toml::Table,
     here: &mut Vec<PathStep>,
@@ -123,7 +127,7 @@ fn merge(
     if switches_variant {
         switches.push(here.clone());
     }
-    for &(given, dropped) in DROPPED_BY {
+    for &(given, dropped) in C::DROPPED_BY {
         if user.contains_key(given) && !user.contains_key(dropped) {
             base.remove(dropped);
         }
@@ -132,7 +136,7 @@ fn merge(
         let merged = match (base.remove(&k), v) {
             (Some(toml::Value::Table(b)), toml::Value::Table(u)) => {
                 here.push(PathStep::Key(k.clone()));
-                let m = merge(b, u, here, switches, replace);
+                let m = merge::<C>(b, u, here, switches, replace);
                 here.pop();
                 toml::Value::Table(m)
             }
@@ -141,6 +145,24 @@ fn merge(
         base.insert(k, merged);
     }
     base
+}
+
+/// The dotted text of a path (`drive.pulleys[2].radius`; `<root>` for the empty path), the
+/// inverse of [`PartialConfigError::steps`].
+pub fn path_text(steps: &[PathStep]) -> String {
+    let mut s = String::new();
+    for step in steps {
+        match step {
+            PathStep::Key(k) => {
+                if !s.is_empty() {
+                    s.push('.');
+                }
+                s.push_str(k);
+            }
+            PathStep::Index(i) => s.push_str(&format!("[{i}]")),
+        }
+    }
+    if s.is_empty() { "<root>".into() } else { s }
 }
 
 fn parse_path(path: &str) -> Vec<PathStep> {
@@ -199,6 +221,8 @@ mod tests {
         drive: Drive,
         speeds: Vec<f64>,
     }
+
+    impl PartialRules for Study {}
 
     impl Default for Study {
         fn default() -> Self {
@@ -273,6 +297,14 @@ mod tests {
             #[serde(default, skip_serializing_if = "Option::is_none")]
             tensioner: Option<usize>,
         }
+        // the rules of a belt drive's layout (the belt crate's), declared by the type
+        impl PartialRules for Mount {
+            const DROPPED_BY: &'static [(&'static str, &'static str)] = &[
+                ("tension", "belt_length"),
+                ("belt_length", "tension"),
+                ("pulleys", "tensioner"),
+            ];
+        }
         impl Default for Mount {
             fn default() -> Self {
                 Mount {
@@ -313,6 +345,8 @@ mod tests {
                 PathStep::Key("typo".into())
             ]
         );
+        assert_eq!(path_text(&e.steps()), e.path);
+        assert_eq!(path_text(&[]), "<root>");
         let e = read("[drive.friction]\nlaw = \"coulomb\"\n").unwrap_err();
         assert!(e.message.contains("missing field `mu`"), "{e}");
         // a variant switch with a typo: the typo is named, not the other variant's keys

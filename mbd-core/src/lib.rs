@@ -29,6 +29,8 @@
 //! * [`parallel`]: matrix–vector products split between two threads ([`parallel::SplitProduct`]);
 //! * [`linalg`]: the augmented (KKT) solver; [`statics`]: static equilibrium;
 //!   [`history`]: CSV time histories;
+//! * [`input`]: the one bounded reader of input files ([`input::read_bounded`],
+//!   [`input::read_text`], [`input::InputError`]) and writer ([`output::write_atomic`]);
 //! * [`config`]: partial configurations read deeply over the defaults ([`config::from_partial`]);
 //! * [`validate`]: the one validation shape ([`Validate`], [`InvalidField`] with the field path)
 //!   and the shared range checks.
@@ -66,8 +68,10 @@
 
 pub mod config;
 pub mod error;
+pub mod input;
 pub mod integrators;
 pub mod linalg;
+pub mod output;
 pub mod system;
 pub mod validate;
 pub mod workspace;

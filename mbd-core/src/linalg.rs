@@ -357,6 +357,30 @@ struct SparsePath {
     band_work: Vec<f64>,
 }
 
+/// The compressed-column (CSC) pattern of the row lists `cols` (one per column, in any order,
+/// repeats allowed): `(col_ptr, row_idx)`, `col_ptr` of length `cols.len() + 1`, each column's
+/// rows ascending and distinct. The one pattern builder of the sparse assemblies (the KKT
+/// solver here, ANCF's element assembly).
+pub fn csc_pattern(mut cols: Vec<Vec<usize>>) -> (Vec<usize>, Vec<usize>) {
+    let mut col_ptr = Vec::with_capacity(cols.len() + 1);
+    let mut row_idx = Vec::new();
+    col_ptr.push(0);
+    for c in &mut cols {
+        c.sort_unstable();
+        c.dedup();
+        row_idx.extend_from_slice(c);
+        col_ptr.push(row_idx.len());
+    }
+    (col_ptr, row_idx)
+}
+
+/// Index into the value array of the stored entry `(r, c)` of the pattern
+/// `(col_ptr, row_idx)` ([`csc_pattern`]); the entry must be stored (else the column's first).
+pub fn csc_position(col_ptr: &[usize], row_idx: &[usize], r: usize, c: usize) -> usize {
+    let col = &row_idx[col_ptr[c]..col_ptr[c + 1]];
+    col_ptr[c] + col.binary_search(&r).unwrap_or(0)
+}
+
 impl SparsePath {
     /// Union pattern of `[Σ Aₖ, Dᵀ; D, 0]` plus the diagonal, maps and symbolic factorisation.
     fn build(
@@ -386,20 +410,8 @@ impl SparsePath {
             push_all(d, n, 0, false);
             push_all(d, n, 0, true);
         }
-        let mut col_ptr = Vec::with_capacity(dim + 1);
-        let mut row_idx = Vec::new();
-        col_ptr.push(0);
-        for c in &mut cols {
-            c.sort_unstable();
-            c.dedup();
-            row_idx.extend_from_slice(c);
-            col_ptr.push(row_idx.len());
-        }
-        let pos = |r: usize, c: usize| -> usize {
-            let col = &row_idx[col_ptr[c]..col_ptr[c + 1]];
-            // the entry exists by construction
-            col_ptr[c] + col.binary_search(&r).unwrap_or(0)
-        };
+        let (col_ptr, row_idx) = csc_pattern(cols);
+        let pos = |r: usize, c: usize| -> usize { csc_position(&col_ptr, &row_idx, r, c) };
         let maps: Vec<Vec<usize>> = blocks
             .iter()
             .map(|(_, b)| {

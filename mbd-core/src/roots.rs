@@ -325,27 +325,13 @@ mod tests {
         assert!(r.converged && (r.x - 2.0).abs() < 1e-12, "{r:?}");
         assert!(calls < 15, "{calls} evaluations");
         // a flat residual stops without converging; an error is passed through
-        let flat = secant(
-            |_| Ok::<f64, ()>(1.0),
-            0.0,
-            1.0,
-            1.0,
-            SecantStop {
-                max_iterations: 9,
-                step: 1e-12,
-            },
-        );
+        let stop = SecantStop {
+            max_iterations: 9,
+            step: 1e-12,
+        };
+        let flat = secant(|_| Ok::<f64, ()>(1.0), 0.0, 1.0, 1.0, stop);
         assert!(!flat.unwrap().converged);
-        let err = secant(
-            |_| Err::<f64, &str>("boom"),
-            0.0,
-            1.0,
-            1.0,
-            SecantStop {
-                max_iterations: 9,
-                step: 1e-12,
-            },
-        );
+        let err = secant(|_| Err::<f64, &str>("boom"), 0.0, 1.0, 1.0, stop);
         assert_eq!(err, Err("boom"));
     }
 }

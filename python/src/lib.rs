@@ -53,7 +53,7 @@ pub(crate) fn numerical_error(
 /// dictionary path, e.g. `config["drive"]["pulleys"][0]["radius"]`). Not yet validated.
 pub(crate) fn read_config<C>(json: Option<&str>) -> PyResult<C>
 where
-    C: DeserializeOwned + serde::Serialize + Default,
+    C: DeserializeOwned + serde::Serialize + Default + mbd_core::config::PartialRules,
 {
     let Some(text) = json else {
         return Ok(C::default());

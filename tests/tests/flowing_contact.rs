@@ -4,8 +4,8 @@
 
 use flowing::contact::{ContactEvent, candidates};
 use flowing::{
-    AxialMotion, ContactConfig, ContactString, DerivativeMethod, Pulley, StringConfig, StringMesh,
-    simulate_contact,
+    AxialMotion, ContactConfig, ContactString, DerivativeMethod, PulleyObstacle, StringConfig,
+    StringMesh, simulate_contact,
 };
 use mbd_core::integrators::State;
 
@@ -20,14 +20,14 @@ fn mesh(n: usize) -> StringMesh {
     StringMesh::uniform(p, n).unwrap()
 }
 
-fn pulleys() -> [Pulley; 2] {
+fn pulleys() -> [PulleyObstacle; 2] {
     [
-        Pulley {
+        PulleyObstacle {
             center_x: 0.1,
             top: TOP,
             radius: R,
         },
-        Pulley {
+        PulleyObstacle {
             center_x: 1.1,
             top: TOP,
             radius: R,

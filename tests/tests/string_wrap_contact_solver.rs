@@ -19,7 +19,9 @@ use contact::{ContactSolver, ContactSolverOptions, DenseProblem, Frictionless};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 use flowing::contact::candidates;
-use flowing::{AxialMotion, ContactString, DerivativeMethod, Pulley, StringConfig, StringMesh};
+use flowing::{
+    AxialMotion, ContactString, DerivativeMethod, PulleyObstacle, StringConfig, StringMesh,
+};
 use std::sync::Arc;
 
 /// The wrap of `tests/tests/flowing_contact.rs`: a 1.2 m string (1000 N) over two pulleys of
@@ -33,7 +35,7 @@ fn wrapped(n: usize, speed: f64, craig_bampton: bool) -> ContactString {
         n,
     )
     .unwrap();
-    let pulleys = [0.1, 1.1].map(|center_x| Pulley {
+    let pulleys = [0.1, 1.1].map(|center_x| PulleyObstacle {
         center_x,
         top: 0.015,
         radius: 0.25,

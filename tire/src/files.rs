@@ -16,23 +16,13 @@ fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
-/// The open regular file at `path` and its length \[bytes\]: directories, devices, pipes and
-/// sockets are refused (a device such as `/dev/zero` would be read without end).
-fn open_regular(path: &Path) -> Result<(std::fs::File, u64), String> {
-    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
-    if meta.is_dir() {
-        return Err("is a directory, expected a file".into());
-    }
-    if !meta.is_file() {
-        return Err("is not a regular file".into());
-    }
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
-    Ok((file, meta.len()))
-}
-
-/// Lower-case hex SHA-256 of the content of the regular file `path`, read in blocks.
+/// Lower-case hex SHA-256 of the content of the regular file `path`, read in blocks
+/// (directories, devices, pipes and sockets are refused: a device such as `/dev/zero` would be
+/// read without end; [`mbd_core::input::open`] without a ceiling).
 pub fn file_sha256(path: &Path) -> Result<String, String> {
-    let (mut file, _) = open_regular(path)?;
+    let mut file = mbd_core::input::open(path, u64::MAX)
+        .map_err(|e| e.reason())?
+        .into_file();
     let mut hash = Sha256::new();
     let mut buf = vec![0u8; 1 << 16];
     loop {
@@ -46,21 +36,10 @@ pub fn file_sha256(path: &Path) -> Result<String, String> {
 }
 
 /// The UTF-8 text of the regular file `path` if it holds at most `max_bytes` bytes, checked
-/// before reading (the file's size) and while reading (a file that grows meanwhile).
+/// before reading (the file's size) and while reading (a file that grows meanwhile):
+/// [`mbd_core::input::read_text`], its reason without the path (callers name the file).
 pub fn read_text_bounded(path: &Path, max_bytes: u64) -> Result<String, String> {
-    let (file, len) = open_regular(path)?;
-    let too_large = |n: u64| format!("holds {n} bytes, more than the ceiling of {max_bytes} bytes");
-    if len > max_bytes {
-        return Err(too_large(len));
-    }
-    let mut bytes = Vec::with_capacity(len as usize);
-    file.take(max_bytes + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| e.to_string())?;
-    if bytes.len() as u64 > max_bytes {
-        return Err(too_large(bytes.len() as u64));
-    }
-    String::from_utf8(bytes).map_err(|e| format!("is not UTF-8 text: {}", e.utf8_error()))
+    mbd_core::input::read_text(path, max_bytes).map_err(|e| e.reason())
 }
 
 /// Write `bytes` to `path`: into a temporary file in the same folder (created if missing),

@@ -26,7 +26,7 @@
 
 use crate::error::{TireError, invalid, linalg};
 use crate::harmonics::WaveDirection;
-use crate::loaded::{LONGITUDINAL, VERTICAL, influence};
+use crate::loaded::{LONGITUDINAL, VERTICAL, held_rows, influence};
 use crate::reduced::ReducedTire;
 use crate::rotating::{FlowingMatrices, RotatingOptions, spin_matrices, state_eigen};
 use faer::linalg::solvers::Solve;
@@ -82,16 +82,10 @@ pub fn line_modes(
     if !(line_hz > 0.0 && line_hz.is_finite()) {
         return Err(invalid("line_hz", format!("{line_hz} is not positive")));
     }
-    let nc = red.n_contact();
     if held.is_empty() {
         return Err(invalid("held", "no contact node is held: no ground motion"));
     }
-    if let Some(&i) = held.iter().find(|&&i| i >= nc) {
-        return Err(invalid(
-            "held",
-            format!("contact node {i} out of range (the tire has {nc})"),
-        ));
-    }
+    let a = held_rows(red, held)?;
     let tread = red.tread.as_ref().ok_or_else(|| {
         invalid(
             "reduced tire",
@@ -99,9 +93,6 @@ pub fn line_modes(
         )
     })?;
     let nz = red.n_z();
-    let a = Mat::from_fn(3 * held.len(), nz, |r, j| {
-        red.tc[(3 * held[r / 3] + r % 3, j)]
-    });
     let mats = FlowingMatrices::of(red);
     let st = state_eigen(mats, a.as_ref(), opt)?;
     let (c, k) = spin_matrices(mats, opt);

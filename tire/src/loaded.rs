@@ -70,17 +70,7 @@ const LATERAL: usize = 1;
 ///
 /// Errors: a `held` index out of range, a singular stiffness or mass.
 pub fn loaded_modes(red: &ReducedTire, held: &[usize]) -> Result<Vec<LoadedMode>, TireError> {
-    let nz = red.n_z();
-    let nc = red.n_contact();
-    if let Some(&i) = held.iter().find(|&&i| i >= nc) {
-        return Err(invalid(
-            "held",
-            format!("contact node {i} out of range (the tire has {nc})"),
-        ));
-    }
-    let a = Mat::from_fn(3 * held.len(), nz, |r, j| {
-        red.tc[(3 * held[r / 3] + r % 3, j)]
-    });
+    let a = held_rows(red, held)?;
     let n = reduction::linalg::null_space(a.as_ref(), 1e-12)
         .map_err(|e| linalg("null space of the held contact-node rows", e))?;
     let kn = n.transpose() * &red.k * &n;
@@ -117,6 +107,24 @@ pub fn loaded_modes(red: &ReducedTire, held: &[usize]) -> Result<Vec<LoadedMode>
 
 /// Static influence vectors `z_s = K_z⁻¹Aᵀ(A K_z⁻¹Aᵀ)⁻¹ d` (columns: vertical, longitudinal
 /// unit motion of the `h` held nodes). Zero columns when nothing is held.
+/// The rows of the contact-node basis `T_c` at the contact nodes `held` (indices into the
+/// reduced tire's contact nodes; x, y, z rows each): `a` of the constraint `a z = 0` that
+/// holds them on the ground.
+///
+/// Errors: a `held` index out of range.
+pub(crate) fn held_rows(red: &ReducedTire, held: &[usize]) -> Result<Mat<f64>, TireError> {
+    let nc = red.n_contact();
+    if let Some(&i) = held.iter().find(|&&i| i >= nc) {
+        return Err(invalid(
+            "held",
+            format!("contact node {i} out of range (the tire has {nc})"),
+        ));
+    }
+    Ok(Mat::from_fn(3 * held.len(), red.n_z(), |r, j| {
+        red.tc[(3 * held[r / 3] + r % 3, j)]
+    }))
+}
+
 pub(crate) fn influence(red: &ReducedTire, a: &Mat<f64>, h: usize) -> Result<Mat<f64>, TireError> {
     let nz = red.n_z();
     if h == 0 {

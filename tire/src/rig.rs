@@ -176,6 +176,8 @@ pub const MAX_RIG_STEPS: f64 = 2e7;
 /// Most impact sub-steps per time step.
 pub const MAX_IMPACT_SUBSTEPS: usize = 1000;
 
+impl mbd_core::config::PartialRules for RigConfig {}
+
 impl Validate for RigConfig {
     /// The rig's own fields and its nested `rolling.…`, `ground.…`, `damping.…` and
     /// `impact.…` settings (paths relative to the rig): positive load and speed, non-negative

@@ -36,7 +36,7 @@
 use crate::error::{TireError, invalid, linalg};
 use crate::ground::GroundConfig;
 use crate::harmonics::{Harmonic, WaveDirection};
-use crate::loaded::held_nodes;
+use crate::loaded::{held_nodes, held_rows};
 use crate::reduced::{ReducedTire, TreadBasis};
 use crate::statics::{preload, preload_rolling};
 use faer::{Mat, MatRef, c64};
@@ -123,13 +123,7 @@ pub fn rotating_modes(
     held: &[usize],
     opt: &RotatingOptions,
 ) -> Result<Vec<RotatingMode>, TireError> {
-    let nc = red.n_contact();
-    if let Some(&i) = held.iter().find(|&&i| i >= nc) {
-        return Err(invalid(
-            "held",
-            format!("contact node {i} out of range (the tire has {nc})"),
-        ));
-    }
+    let a = held_rows(red, held)?;
     let tread = red.tread.as_ref().ok_or_else(|| {
         invalid(
             "reduced tire",
@@ -137,9 +131,6 @@ pub fn rotating_modes(
              (written by an older flowmbd: reduce the tire again)",
         )
     })?;
-    let a = Mat::from_fn(3 * held.len(), red.n_z(), |r, j| {
-        red.tc[(3 * held[r / 3] + r % 3, j)]
-    });
     spinning_modes(FlowingMatrices::of(red), tread, a.as_ref(), opt)
 }
 

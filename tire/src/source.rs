@@ -52,6 +52,8 @@ impl Default for TireSource {
     }
 }
 
+impl mbd_core::config::PartialRules for TireSource {}
+
 impl Validate for TireSource {
     /// The import files exist and are readable files (or the generator's fields, [`TireConfig`]'s
     /// `Validate`); the reduction's fields. Paths relative to the tire table (`import.mass`,

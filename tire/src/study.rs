@@ -93,6 +93,8 @@ impl Default for CleatStudyConfig {
     }
 }
 
+impl mbd_core::config::PartialRules for CleatStudyConfig {}
+
 impl Validate for CleatStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         self.tire.validate_within("tire")?;

@@ -87,84 +87,6 @@ fn series(s: &[Sample], value: impl Fn(&Sample) -> f64) -> Vec<(f64, f64)> {
     s.iter().map(|x| (x.t, value(x))).collect()
 }
 
-/// Static beam configuration (Kerkkänen §2.4: `L = 2 m`, width 0.1 m, `E = 2.07·10¹¹ Pa`,
-/// `ρ = 7850 kg/m³`).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct StaticConfig {
-    /// `proposed` or `omar-shabana`.
-    pub element: BeamElementKind,
-    /// Number of elements.
-    pub elements: usize,
-    /// Poisson's ratio \[-\].
-    pub nu: f64,
-    /// Section height \[m\].
-    pub height: f64,
-    /// Section width \[m\].
-    pub width: f64,
-    /// Length \[m\].
-    pub length: f64,
-    /// Young's modulus \[Pa\].
-    pub young: f64,
-    /// Density \[kg/m³\].
-    pub density: f64,
-    /// Newton load increments.
-    pub increments: usize,
-}
-
-impl StaticConfig {
-    fn simply_supported() -> Self {
-        Self::from(StaticBeamCase::kerkkanen(
-            BeamElementKind::Proposed,
-            8,
-            0.0,
-            0.1,
-        ))
-    }
-    fn case(&self) -> StaticBeamCase {
-        StaticBeamCase {
-            element: self.element,
-            elements: self.elements,
-            nu: self.nu,
-            height: self.height,
-            width: self.width,
-            length: self.length,
-            young: self.young,
-            density: self.density,
-            increments: self.increments,
-        }
-    }
-}
-
-impl From<StaticBeamCase> for StaticConfig {
-    fn from(c: StaticBeamCase) -> Self {
-        Self {
-            element: c.element,
-            elements: c.elements,
-            nu: c.nu,
-            height: c.height,
-            width: c.width,
-            length: c.length,
-            young: c.young,
-            density: c.density,
-            increments: c.increments,
-        }
-    }
-}
-
-impl Default for StaticConfig {
-    fn default() -> Self {
-        Self::simply_supported()
-    }
-}
-
-impl Validate for StaticConfig {
-    /// The library case's checks ([`StaticBeamCase`]'s `Validate`).
-    fn validate(&self) -> Result<(), InputError> {
-        self.case().validate()
-    }
-}
-
 /// `simply-supported`: Table 2.1 (ν = 0) by default.
 pub struct SimplySupported {
     pub element: Option<BeamElementKind>,
@@ -180,7 +102,7 @@ pub struct DeflectionSummary {
 }
 
 impl Study for SimplySupported {
-    type Config = StaticConfig;
+    type Config = StaticBeamCase;
     type Summary = DeflectionSummary;
     const APP: &'static str = "beam";
     const NAME: &'static str = "simply-supported";
@@ -193,7 +115,7 @@ impl Study for SimplySupported {
          element locks (is too stiff) for thick beams."
     }
 
-    fn apply_overrides(&self, c: &mut StaticConfig) {
+    fn apply_overrides(&self, c: &mut StaticBeamCase) {
         if let Some(e) = self.element {
             c.element = e;
         }
@@ -207,7 +129,7 @@ impl Study for SimplySupported {
 
     fn run(
         &self,
-        c: &StaticConfig,
+        c: &StaticBeamCase,
         ctx: &mut StudyContext,
     ) -> Result<DeflectionSummary, StudyError> {
         if !c.elements.is_multiple_of(2) {
@@ -215,7 +137,7 @@ impl Study for SimplySupported {
                 InputError::new("elements", format!("must be even, got {}", c.elements)).into(),
             );
         }
-        let d = studies::simply_supported_deflection(&c.case()).map_err(study_error)?;
+        let d = studies::simply_supported_deflection(c).map_err(study_error)?;
         plausible(
             ctx,
             DeflectionSummary {
@@ -239,19 +161,14 @@ impl Study for SimplySupported {
 #[serde(default, deny_unknown_fields)]
 pub struct CantileverConfig {
     /// Beam data.
-    pub beam: StaticConfig,
+    pub beam: StaticBeamCase,
     /// Segments per element of the deformed-shape output.
     pub shape_segments: usize,
 }
 
 impl Default for CantileverConfig {
     fn default() -> Self {
-        let mut beam = StaticConfig::from(StaticBeamCase::kerkkanen(
-            BeamElementKind::Proposed,
-            8,
-            0.3,
-            0.1,
-        ));
+        let mut beam = StaticBeamCase::kerkkanen(BeamElementKind::Proposed, 8, 0.3, 0.1);
         beam.increments = 10;
         Self {
             beam,
@@ -259,6 +176,8 @@ impl Default for CantileverConfig {
         }
     }
 }
+
+impl flowmbd_cli::PartialRules for CantileverConfig {}
 
 impl Validate for CantileverConfig {
     fn validate(&self) -> Result<(), InputError> {
@@ -311,7 +230,7 @@ impl Study for Cantilever {
     }
 
     fn run(&self, c: &CantileverConfig, ctx: &mut StudyContext) -> Result<TipSummary, StudyError> {
-        let case = c.beam.case();
+        let case = c.beam;
         let line = studies::cantilever_centreline(&case, c.shape_segments).map_err(study_error)?;
         let tip = *line
             .last()
@@ -348,18 +267,6 @@ impl Study for Cantilever {
     }
 }
 
-/// Pendulum configuration (newtype over the library case).
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct PendulumConfig(pub PendulumCase);
-
-impl Validate for PendulumConfig {
-    /// The library case's checks.
-    fn validate(&self) -> Result<(), InputError> {
-        self.0.validate()
-    }
-}
-
 /// `pendulum`.
 pub struct Pendulum {
     pub elements: Option<usize>,
@@ -381,7 +288,7 @@ pub struct PendulumSummary {
 }
 
 impl Study for Pendulum {
-    type Config = PendulumConfig;
+    type Config = PendulumCase;
     type Summary = PendulumSummary;
     const APP: &'static str = "beam";
     const NAME: &'static str = "pendulum";
@@ -395,18 +302,14 @@ impl Study for Pendulum {
          position at the end [m]."
     }
 
-    fn apply_overrides(&self, c: &mut PendulumConfig) {
+    fn apply_overrides(&self, c: &mut PendulumCase) {
         if let Some(n) = self.elements {
-            c.0.elements = n;
+            c.elements = n;
         }
     }
 
-    fn run(
-        &self,
-        c: &PendulumConfig,
-        ctx: &mut StudyContext,
-    ) -> Result<PendulumSummary, StudyError> {
-        let case = c.0;
+    fn run(&self, c: &PendulumCase, ctx: &mut StudyContext) -> Result<PendulumSummary, StudyError> {
+        let case = *c;
         let s = sampled_history(
             ctx,
             "pendulum",
@@ -481,18 +384,6 @@ impl Study for Pendulum {
     }
 }
 
-/// Spinning-beam configuration (newtype over the library case).
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct SpinningConfig(pub SpinningCase);
-
-impl Validate for SpinningConfig {
-    /// The library case's checks.
-    fn validate(&self) -> Result<(), InputError> {
-        self.0.validate()
-    }
-}
-
 /// `spinning`.
 pub struct Spinning {
     pub elements: Option<usize>,
@@ -514,7 +405,7 @@ pub struct SpinningSummary {
 }
 
 impl Study for Spinning {
-    type Config = SpinningConfig;
+    type Config = SpinningCase;
     type Summary = SpinningSummary;
     const APP: &'static str = "beam";
     const NAME: &'static str = "spinning";
@@ -529,18 +420,14 @@ impl Study for Spinning {
          bending)."
     }
 
-    fn apply_overrides(&self, c: &mut SpinningConfig) {
+    fn apply_overrides(&self, c: &mut SpinningCase) {
         if let Some(n) = self.elements {
-            c.0.elements = n;
+            c.elements = n;
         }
     }
 
-    fn run(
-        &self,
-        c: &SpinningConfig,
-        ctx: &mut StudyContext,
-    ) -> Result<SpinningSummary, StudyError> {
-        let case = c.0;
+    fn run(&self, c: &SpinningCase, ctx: &mut StudyContext) -> Result<SpinningSummary, StudyError> {
+        let case = *c;
         let s = sampled_history(
             ctx,
             "spinning beam",
@@ -607,18 +494,6 @@ impl Study for Spinning {
 }
 
 /// Ground-contact configuration (newtype over the library case; default: proposed element,
-/// 64 elements, `q = 4q*`).
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct GroundContactConfig(pub GroundContactCase);
-
-impl Validate for GroundContactConfig {
-    /// The library case's checks.
-    fn validate(&self) -> Result<(), InputError> {
-        self.0.validate()
-    }
-}
-
 /// `ground-contact`.
 pub struct GroundContact {
     pub element: Option<BeamElementKind>,
@@ -641,7 +516,7 @@ pub struct GroundContactSummary {
 }
 
 impl Study for GroundContact {
-    type Config = GroundContactConfig;
+    type Config = GroundContactCase;
     type Summary = GroundContactSummary;
     const APP: &'static str = "beam";
     const NAME: &'static str = "ground-contact";
@@ -656,24 +531,24 @@ impl Study for GroundContact {
          q)^(1/4) to the tip)."
     }
 
-    fn apply_overrides(&self, c: &mut GroundContactConfig) {
+    fn apply_overrides(&self, c: &mut GroundContactCase) {
         if let Some(e) = self.element {
-            c.0.element = e;
+            c.element = e;
         }
         if let Some(n) = self.elements {
-            c.0.elements = n;
+            c.elements = n;
         }
         if let Some(v) = self.load_factor {
-            c.0.load_factor = v;
+            c.load_factor = v;
         }
     }
 
     fn run(
         &self,
-        c: &GroundContactConfig,
+        c: &GroundContactCase,
         ctx: &mut StudyContext,
     ) -> Result<GroundContactSummary, StudyError> {
-        let r = studies::ground_contact(&c.0).map_err(study_error)?;
+        let r = studies::ground_contact(c).map_err(study_error)?;
         ctx.out.write_csv(
             "contact.csv",
             &["x_m", "y_m", "contact_force_n"],

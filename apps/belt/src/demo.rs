@@ -71,6 +71,8 @@ pub const MAX_OMEGA: f64 = 1e4;
 /// unresolved (the step's Newton iteration fails or the answer is meaningless).
 pub const MAX_TURN_PER_STEP: f64 = 0.5;
 
+impl flowmbd_cli::PartialRules for Config {}
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         let positive = [

@@ -71,6 +71,11 @@ impl Default for Config {
     }
 }
 
+// the layout's merge rules (`tension` / `belt_length`, `pulleys` / `tensioner`)
+impl flowmbd_cli::PartialRules for Config {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
+}
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;

@@ -16,10 +16,15 @@ use std::path::Path;
 /// [`mbd_core::Validate`] (returns the first offending field with its path).
 pub use mbd_core::Validate;
 
+/// The merge rules a configuration declares for being read partially over its defaults
+/// ([`mbd_core::config::PartialRules`]: none by default; a configuration that holds a belt
+/// layout declares `belt::PARTIAL_RULES`).
+pub use mbd_core::config::PartialRules;
+
 /// Load the configuration: the embedded defaults, or `path` parsed over them, then validated.
 pub fn load_config<C>(path: Option<&Path>) -> Result<C, CliError>
 where
-    C: DeserializeOwned + Serialize + Default + Validate,
+    C: DeserializeOwned + Serialize + Default + Validate + PartialRules,
 {
     let (config, origin) = read_config::<C>(path)?;
     config
@@ -32,7 +37,7 @@ where
 /// overrides can be applied first), with the origin used in messages.
 pub fn read_config<C>(path: Option<&Path>) -> Result<(C, String), CliError>
 where
-    C: DeserializeOwned + Serialize + Default,
+    C: DeserializeOwned + Serialize + Default + PartialRules,
 {
     Ok(match path {
         None => (C::default(), "defaults".to_string()),
@@ -51,50 +56,26 @@ pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
 /// such as `/dev/zero`) of at most [`MAX_CONFIG_BYTES`], read through a bounded reader (a
 /// file growing while it is read stops at the ceiling too), UTF-8.
 pub fn read_config_text(path: &Path) -> Result<String, CliError> {
-    use std::io::Read;
+    use mbd_core::input::InputError as E;
     let bad = |message: String| CliError::ConfigFile {
         path: path.to_path_buf(),
         message,
     };
-    let meta = std::fs::metadata(path).map_err(|source| CliError::ReadConfig {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    if meta.is_dir() {
-        return Err(bad("is a directory, expected a TOML file".into()));
-    }
-    if !meta.is_file() {
-        return Err(bad(
-            "is not a regular file (a device, FIFO or socket); expected a TOML file".into(),
-        ));
-    }
-    let too_big = || {
-        bad(format!(
-            "is larger than {MAX_CONFIG_BYTES} bytes, the most a configuration may have"
-        ))
-    };
-    if meta.len() > MAX_CONFIG_BYTES {
-        return Err(too_big());
-    }
-    let file = std::fs::File::open(path).map_err(|source| CliError::ReadConfig {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let mut bytes = Vec::new();
-    file.take(MAX_CONFIG_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|source| CliError::ReadConfig {
+    mbd_core::input::read_text(path, MAX_CONFIG_BYTES).map_err(|e| match e {
+        E::NotFound { source, .. } | E::Io { source, .. } => CliError::ReadConfig {
             path: path.to_path_buf(),
             source,
-        })?;
-    if bytes.len() as u64 > MAX_CONFIG_BYTES {
-        return Err(too_big());
-    }
-    String::from_utf8(bytes).map_err(|e| {
-        bad(format!(
-            "is not UTF-8 text (invalid byte at offset {})",
-            e.utf8_error().valid_up_to()
-        ))
+        },
+        E::Directory { .. } => bad("is a directory, expected a TOML file".into()),
+        E::NotRegular { .. } => {
+            bad("is not a regular file (a device, FIFO or socket); expected a TOML file".into())
+        }
+        E::TooLarge { size, max, .. } => bad(format!(
+            "is larger than {max} bytes ({size} bytes), the most a configuration may have"
+        )),
+        E::NotUtf8 { offset, .. } => bad(format!(
+            "is not UTF-8 text (invalid byte at offset {offset})"
+        )),
     })
 }
 
@@ -104,7 +85,7 @@ pub fn read_config_text(path: &Path) -> Result<String, CliError> {
 /// table header or key the user wrote), with the field's dotted path in the message.
 pub fn parse_config<C>(text: &str, path: &Path) -> Result<C, CliError>
 where
-    C: DeserializeOwned + Serialize + Default,
+    C: DeserializeOwned + Serialize + Default + PartialRules,
 {
     let user: toml::Table = toml::from_str(text).map_err(|e| {
         let (line, column) = e
@@ -199,7 +180,10 @@ pub fn unknown_key_variants(text: &str) -> Result<Vec<(String, String)>, toml::d
             if let Some(table) = table_at(&mut t, &path) {
                 table.insert(UNKNOWN_KEY.to_string(), toml::Value::Integer(0));
             }
-            (path_name(&path), toml::to_string(&t).unwrap_or_default())
+            (
+                mbd_core::config::path_text(&path),
+                toml::to_string(&t).unwrap_or_default(),
+            )
         })
         .collect())
 }
@@ -227,12 +211,8 @@ pub fn tables_accepting_unknown_keys_by(
     }
 }
 
-/// A step of a path into a TOML document: a key or an array index.
-#[derive(Clone)]
-enum Step {
-    Key(String),
-    Index(usize),
-}
+// a step of a path into a TOML document: a key or an array index
+use mbd_core::config::PathStep as Step;
 
 fn collect_tables(t: &toml::Table, here: &mut Vec<Step>, out: &mut Vec<Vec<Step>>) {
     out.push(here.clone());
@@ -269,22 +249,6 @@ fn table_at<'a>(t: &'a mut toml::Table, path: &[Step]) -> Option<&'a mut toml::T
     table_at(v.as_table_mut()?, rest)
 }
 
-fn path_name(path: &[Step]) -> String {
-    let mut s = String::new();
-    for step in path {
-        match step {
-            Step::Key(k) => {
-                if !s.is_empty() {
-                    s.push('.');
-                }
-                s.push_str(k);
-            }
-            Step::Index(i) => s.push_str(&format!("[{i}]")),
-        }
-    }
-    if s.is_empty() { "<root>".into() } else { s }
-}
-
 /// 1-based line and column of byte `offset` in `text`.
 fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
@@ -315,6 +279,8 @@ mod tests {
             }
         }
     }
+
+    impl PartialRules for Demo {}
 
     impl Validate for Demo {
         fn validate(&self) -> Result<(), InputError> {

@@ -33,7 +33,7 @@ pub mod testing;
 
 pub use args::{CommonArgs, parse_args};
 pub use cancel::Cancel;
-pub use config::{Validate, load_config, read_config};
+pub use config::{PartialRules, Validate, load_config, read_config};
 pub use error::{CliError, InputError};
 pub use files::check_input_file;
 pub use mbd_core::validate::limits;

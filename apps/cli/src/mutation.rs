@@ -74,7 +74,7 @@ pub fn mutations(text: &str) -> Vec<Mutation> {
                 && let Ok(text) = toml::to_string(&t)
             {
                 out.push(Mutation {
-                    what: format!("{}: {what}", name(&path)),
+                    what: format!("{}: {what}", mbd_core::config::path_text(&path)),
                     text,
                 });
             }
@@ -120,12 +120,8 @@ pub fn mutations(text: &str) -> Vec<Mutation> {
     out
 }
 
-/// A step into a TOML document: a key or an array index.
-#[derive(Debug, Clone)]
-enum Step {
-    Key(String),
-    Index(usize),
-}
+// a step into a TOML document: a key or an array index
+use mbd_core::config::PathStep as Step;
 
 fn collect(v: &toml::Value, here: &mut Vec<Step>, out: &mut Vec<(Vec<Step>, toml::Value)>) {
     if !here.is_empty() {
@@ -185,22 +181,6 @@ fn set(root: &mut toml::Value, path: &[Step], new: Option<toml::Value>) -> bool 
         }
         _ => false,
     }
-}
-
-fn name(path: &[Step]) -> String {
-    let mut s = String::new();
-    for step in path {
-        match step {
-            Step::Key(k) => {
-                if !s.is_empty() {
-                    s.push('.');
-                }
-                s.push_str(k);
-            }
-            Step::Index(i) => s.push_str(&format!("[{i}]")),
-        }
-    }
-    s
 }
 
 /// How a case is run.

@@ -26,38 +26,22 @@ pub struct OutputDir {
 /// The temporary name of `path` while it is written: `.NAME.part` beside it; with `keep_ext`
 /// the extension stays last (`.NAME.part.png`: the plot backends pick the format from it).
 pub fn part_path(path: &Path, keep_ext: bool) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = match (keep_ext, path.extension()) {
+    match (keep_ext, path.extension()) {
         (true, Some(ext)) => {
             let stem = path
                 .file_stem()
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
-            format!(".{stem}.part.{}", ext.to_string_lossy())
+            path.with_file_name(format!(".{stem}.part.{}", ext.to_string_lossy()))
         }
-        _ => format!(".{name}.part"),
-    };
-    path.with_file_name(tmp)
+        _ => mbd_core::output::part_path(path),
+    }
 }
 
 /// Write `bytes` to `path` through a temporary file in the same folder, renamed over `path`
-/// when complete (atomic on one file system: readers see the old file or the whole new one).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let tmp = part_path(path, false);
-    let result = (|| {
-        let mut f = File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
+/// when complete (atomic on one file system: readers see the old file or the whole new one;
+/// [`mbd_core::output::write_atomic`]).
+pub use mbd_core::output::write_atomic;
 
 /// Whether `name` is a relative path of plain names inside the output folder (`vtk/a.vtk`; no
 /// `..`, root or prefix), written with `/`.

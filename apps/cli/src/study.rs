@@ -2,7 +2,7 @@
 
 use crate::args::CommonArgs;
 use crate::cancel::Cancel;
-use crate::config::{Validate, read_config, to_toml};
+use crate::config::{PartialRules, Validate, read_config, to_toml};
 use crate::error::{CliError, InputError};
 use crate::output::OutputDir;
 use crate::progress::Progress;
@@ -96,7 +96,7 @@ impl StudyContext {
 /// One study of an app: its configuration type, names and computation.
 pub trait Study {
     /// The study's configuration; `Default` reproduces the seed's case.
-    type Config: Serialize + DeserializeOwned + Default + Validate;
+    type Config: Serialize + DeserializeOwned + Default + Validate + PartialRules;
     /// The study's summary (written to `summary.json`, printed by `--json`).
     type Summary: Serialize;
     /// App name, e.g. `"belt"` (default output folder `out/<app>/<study>`).
@@ -465,6 +465,8 @@ mod tests {
             Self { steps: 4 }
         }
     }
+    impl PartialRules for Cfg {}
+
     impl Validate for Cfg {
         fn validate(&self) -> Result<(), InputError> {
             if self.steps == 0 {

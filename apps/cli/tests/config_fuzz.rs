@@ -15,13 +15,13 @@ use flowmbd_cases::ancf_dynamics::{PendulumCase, SpinningCase};
 use flowmbd_cases::lin::beam::LinBeamConfig;
 use flowmbd_cases::lin::slab_sim::SlabSimConfig;
 use flowmbd_cli::config::{parse_config, to_toml};
-use flowmbd_cli::{CliError, Validate};
+use flowmbd_cli::{CliError, PartialRules, Validate};
 use proptest::prelude::*;
 use std::path::Path;
 use tire::RigConfig;
 
 /// Parse and validate `text` as `C`; errors must be one line and point into the text.
-fn check<C: serde::de::DeserializeOwned + serde::Serialize + Default + Validate>(
+fn check<C: serde::de::DeserializeOwned + serde::Serialize + Default + Validate + PartialRules>(
     text: &str,
 ) -> Result<(), TestCaseError> {
     match parse_config::<C>(text, Path::new("f.toml")) {

@@ -9,13 +9,6 @@ use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
 use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 
-/// Command-line arguments of `lin-beam`.
-#[derive(clap::Args, Debug)]
-pub struct Args {
-    #[command(flatten)]
-    common: CommonArgs,
-}
-
 /// Configuration; the defaults are Lin's Appendix A beam and profile (7.1).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -34,6 +27,8 @@ impl Default for Config {
         }
     }
 }
+
+impl flowmbd_cli::PartialRules for Config {}
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
@@ -131,6 +126,6 @@ impl Study for LinBeamStudy {
 }
 
 /// Runs `lin-beam` under the app conventions.
-pub fn run(a: Args) -> ExitCode {
-    run_study(&LinBeamStudy, &a.common)
+pub fn run(args: &CommonArgs) -> ExitCode {
+    run_study(&LinBeamStudy, args)
 }

@@ -18,13 +18,6 @@ use std::collections::BTreeMap;
 use std::process::ExitCode;
 use std::sync::Arc;
 
-/// Command-line arguments of `lin-slab`.
-#[derive(clap::Args, Debug)]
-pub struct Args {
-    #[command(flatten)]
-    common: CommonArgs,
-}
-
 /// Configuration; the defaults reproduce Lin's set-up (6 kept modes, R = 4 m, T = 1 s) with the
 /// companion's integrator choice (RK4, 1 ms, 1 s).
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -51,6 +44,8 @@ impl Default for Config {
         }
     }
 }
+
+impl flowmbd_cli::PartialRules for Config {}
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
@@ -341,6 +336,6 @@ fn write_sim3_tables(
 }
 
 /// Runs `lin-slab` under the app conventions.
-pub fn run(a: Args) -> ExitCode {
-    run_study(&LinSlabStudy, &a.common)
+pub fn run(args: &CommonArgs) -> ExitCode {
+    run_study(&LinSlabStudy, args)
 }

@@ -9,6 +9,7 @@
 //! - `reduce`: reduce user Matrix Market matrices and write the reduced model.
 
 use clap::{Parser, Subcommand};
+use flowmbd_cli::CommonArgs;
 use std::process::ExitCode;
 
 mod lin_beam;
@@ -30,11 +31,11 @@ enum Study {
     /// Lowest natural frequencies and modes of Matrix Market M and K.
     Modes(modes::Args),
     /// Generate the truck-tire carcass mesh and write M, K, mesh and node sets.
-    TireMesh(tire_mesh::Args),
+    TireMesh(CommonArgs),
     /// Lin ch. 6-8 on the Appendix A beam: frequencies, Guyan models, profile tests, mean axes.
-    LinBeam(lin_beam::Args),
+    LinBeam(CommonArgs),
     /// Lin §7.2 simulations 1-3 on the Appendix B slab: NR, Guyan, modal truncation, CB, MC.
-    LinSlab(lin_slab::Args),
+    LinSlab(CommonArgs),
     /// Reduce Matrix Market M and K with a boundary node set; write the reduced model.
     Reduce(reduce_cmd::Args),
 }
@@ -43,8 +44,8 @@ fn main() -> ExitCode {
     match flowmbd_cli::parse_args::<Cli>().study {
         Study::Modes(args) => modes::run(&args),
         Study::TireMesh(args) => tire_mesh::run(&args),
-        Study::LinBeam(args) => lin_beam::run(args),
-        Study::LinSlab(args) => lin_slab::run(args),
+        Study::LinBeam(args) => lin_beam::run(&args),
+        Study::LinSlab(args) => lin_slab::run(&args),
         Study::Reduce(args) => reduce_cmd::run(args),
     }
 }

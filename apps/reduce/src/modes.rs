@@ -70,6 +70,8 @@ impl Default for Config {
     }
 }
 
+impl flowmbd_cli::PartialRules for Config {}
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         // `mass` and `stiffness` are required, but checked in `run`: the defaults are validated

@@ -122,6 +122,8 @@ pub struct ReduceConfig {
     pub dofs_per_node: usize,
 }
 
+impl flowmbd_cli::PartialRules for ReduceConfig {}
+
 impl Default for ReduceConfig {
     fn default() -> Self {
         Self {

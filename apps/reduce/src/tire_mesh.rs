@@ -11,13 +11,6 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::process::ExitCode;
 
-/// Command-line arguments.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct Args {
-    #[command(flatten)]
-    common: CommonArgs,
-}
-
 /// Configuration of the `tire-mesh` study.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -40,6 +33,8 @@ impl Default for Config {
         }
     }
 }
+
+impl flowmbd_cli::PartialRules for Config {}
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
@@ -161,6 +156,6 @@ impl Study for TireMesh {
 }
 
 /// Run the study with the app conventions.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&TireMesh, &args.common)
+pub fn run(args: &CommonArgs) -> ExitCode {
+    run_study(&TireMesh, args)
 }

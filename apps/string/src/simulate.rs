@@ -76,6 +76,8 @@ pub const MAX_RK4_WORK: f64 = 1e11;
 /// RK4's stability limit on the imaginary axis, `|hλ| ≤ 2√2`.
 pub const RK4_STABILITY_LIMIT: f64 = 2.0 * std::f64::consts::SQRT_2;
 
+impl flowmbd_cli::PartialRules for SimulateConfig {}
+
 impl Validate for SimulateConfig {
     fn validate(&self) -> Result<(), InputError> {
         check_string(&self.string, "string")?;

@@ -54,6 +54,8 @@ pub const MAX_SWEEP_EIGEN_WORK: f64 = 1e12;
 /// Highest `max_speed_ratio` (the supercritical branch up to 100 c).
 pub const MAX_SPEED_RATIO: f64 = 100.0;
 
+impl flowmbd_cli::PartialRules for SweepConfig {}
+
 impl Validate for SweepConfig {
     fn validate(&self) -> Result<(), InputError> {
         check_string(&self.string, "string")?;

@@ -5,7 +5,7 @@
 use crate::common::*;
 use flowing::contact::{ContactString, HarmonicLoad, candidates};
 use flowing::{
-    AxialMotion, ContactConfig, DerivativeMethod, Pulley, StringConfig, StringMesh,
+    AxialMotion, ContactConfig, DerivativeMethod, PulleyObstacle, StringConfig, StringMesh,
     simulate_contact,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
@@ -33,7 +33,7 @@ pub struct WrapConfig {
     /// Interior FE nodes.
     pub nodes: usize,
     /// Pulleys.
-    pub pulleys: Vec<Pulley>,
+    pub pulleys: Vec<PulleyObstacle>,
     /// Candidate contact nodes: within this distance of a pulley centre \[m\].
     pub candidate_half_width: f64,
     /// Formulation.
@@ -65,12 +65,12 @@ impl Default for WrapConfig {
             },
             nodes: 119,
             pulleys: vec![
-                Pulley {
+                PulleyObstacle {
                     center_x: 0.1,
                     top: 0.015,
                     radius: 0.25,
                 },
-                Pulley {
+                PulleyObstacle {
                     center_x: 1.1,
                     top: 0.015,
                     radius: 0.25,
@@ -102,6 +102,8 @@ pub const MAX_WRAP_PERIODS: f64 = 2.5e5;
 
 /// Most pulleys of the wrapped string.
 pub const MAX_WRAP_PULLEYS: usize = 64;
+
+impl flowmbd_cli::PartialRules for WrapConfig {}
 
 impl Validate for WrapConfig {
     fn validate(&self) -> Result<(), InputError> {
@@ -228,7 +230,7 @@ fn write_vtk(
     path: &std::path::Path,
     sys: &ContactString,
     st: &State,
-    pulleys: &[Pulley],
+    pulleys: &[PulleyObstacle],
     length: f64,
     positions: &[f64],
 ) -> Result<(), StudyError> {

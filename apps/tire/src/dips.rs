@@ -59,6 +59,8 @@ impl Default for Config {
     }
 }
 
+impl flowmbd_cli::PartialRules for Config {}
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         self.tire.validate()?;

@@ -12,6 +12,7 @@
 //!   loaded vertical mode, and measured by a sweep (drum and road).
 
 use clap::{Parser, Subcommand};
+use flowmbd_cli::CommonArgs;
 use std::process::ExitCode;
 
 mod cleat;
@@ -35,15 +36,15 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Study {
     /// Eigenfrequencies of the tire with the rim fixed: full FE model and reduced model.
-    Modes(modes::Args),
+    Modes(CommonArgs),
     /// Reduce the generated tire (Ribaric §8.2) and save the reduced-tire file.
-    Reduce(reduce::Args),
+    Reduce(CommonArgs),
     /// Cleat test at one speed (Ribaric §8.3).
     Cleat(cleat::Args),
     /// Speed sweep of the cleat test (Ribaric Figs. 8-7, 8-8, 8-14).
     Sweep(sweep::Args),
     /// Patch force distribution on the drum and on a flat road (Ribaric Fig. 8-12).
-    Pressure(pressure::Args),
+    Pressure(CommonArgs),
     /// Complex modes of the rolling tire in the ground frame: forward/backward waves of each
     /// circumferential order vs speed (Campbell diagram), free and loaded.
     RotatingModes(rotating::Args),

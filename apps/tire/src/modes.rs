@@ -14,13 +14,6 @@ use tire::{
     held_nodes, loaded_modes_at_preload,
 };
 
-/// Command-line arguments.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct Args {
-    #[command(flatten)]
-    common: CommonArgs,
-}
-
 /// Configuration.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -45,6 +38,8 @@ impl Default for Config {
         }
     }
 }
+
+impl flowmbd_cli::PartialRules for Config {}
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
@@ -177,6 +172,6 @@ impl Study for Modes {
 }
 
 /// Run the study.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&Modes, &args.common)
+pub fn run(args: &CommonArgs) -> ExitCode {
+    run_study(&Modes, args)
 }

@@ -8,13 +8,6 @@ use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 use tire::{GroundConfig, GroundKind, preload};
 
-/// Command-line arguments.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct Args {
-    #[command(flatten)]
-    common: CommonArgs,
-}
-
 /// Configuration.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -36,6 +29,8 @@ impl Default for Config {
         }
     }
 }
+
+impl flowmbd_cli::PartialRules for Config {}
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
@@ -160,6 +155,6 @@ impl Study for Pressure {
 }
 
 /// Run the study.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&Pressure, &args.common)
+pub fn run(args: &CommonArgs) -> ExitCode {
+    run_study(&Pressure, args)
 }

@@ -8,13 +8,6 @@ use std::process::ExitCode;
 use std::time::Instant;
 use tire::ReductionTimings;
 
-/// Command-line arguments.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct Args {
-    #[command(flatten)]
-    common: CommonArgs,
-}
-
 /// Configuration.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -22,6 +15,8 @@ pub struct Config {
     /// The tire (the reduced file is always recomputed and written).
     pub tire: TireSource,
 }
+
+impl flowmbd_cli::PartialRules for Config {}
 
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
@@ -111,6 +106,6 @@ impl Study for Reduce {
 }
 
 /// Run the study.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&Reduce, &args.common)
+pub fn run(args: &CommonArgs) -> ExitCode {
+    run_study(&Reduce, args)
 }

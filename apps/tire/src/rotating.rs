@@ -61,6 +61,8 @@ impl Default for Config {
     }
 }
 
+impl flowmbd_cli::PartialRules for Config {}
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         if self.speeds_kmh.is_empty() {

@@ -42,6 +42,8 @@ impl Default for Config {
     }
 }
 
+impl flowmbd_cli::PartialRules for Config {}
+
 impl Validate for Config {
     fn validate(&self) -> Result<(), InputError> {
         self.tire.validate_within("tire")?;

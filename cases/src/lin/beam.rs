@@ -79,6 +79,8 @@ pub fn appendix_a_beam() -> Result<LinBeam> {
 /// an index check deep in the basis).
 pub const SLENDERNESS_RANGE: (f64, f64) = (1e-6, 1e12);
 
+impl mbd_core::config::PartialRules for LinBeamConfig {}
+
 impl mbd_core::Validate for LinBeamConfig {
     /// Positive finite E, A, I, L and node masses; `A L² / I` within [`SLENDERNESS_RANGE`].
     fn validate(&self) -> std::result::Result<(), mbd_core::InvalidField> {

@@ -66,6 +66,8 @@ impl Default for SlabSimConfig {
 /// `--allow-large` ([`mbd_core::validate::limits`]).
 pub const MAX_SLAB_STEPS: f64 = 1e7;
 
+impl mbd_core::config::PartialRules for SlabSimConfig {}
+
 impl mbd_core::Validate for SlabSimConfig {
     /// Positive finite duration, step (at most the duration and at most
     /// [`MAX_SLAB_STEPS`] steps), orbit data and simulation-3 data; `1 ≤ n_modes ≤ 66`.

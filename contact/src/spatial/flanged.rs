@@ -75,19 +75,12 @@ impl Surface<3> for FlangedCylinder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spatial::geometry::tests::fd_check3;
+    use crate::spatial::geometry::tests::{crowned, fd_check3};
     use nalgebra::Vector3;
 
     fn pulley() -> FlangedCylinder {
         FlangedCylinder {
-            cylinder: Cylinder {
-                center: Point3::new(0.1, -0.2, 0.05),
-                axis: Vector3::new(0.3, 0.1, 1.0).normalize(),
-                radius: 0.08,
-                crown: 0.8,
-                velocity: Vector3::new(0.1, 0.0, -0.2),
-                omega: 12.0,
-            },
+            cylinder: crowned(),
             flanges: [-0.02, 0.03],
         }
     }

@@ -131,7 +131,9 @@ pub(crate) mod tests {
     use crate::geometry::Disk;
     use nalgebra::{Point2, Vector2};
 
-    fn crowned() -> Cylinder {
+    /// A crowned, moving cylinder in a general position (shared with the flanged pulley's
+    /// tests).
+    pub(crate) fn crowned() -> Cylinder {
         Cylinder {
             center: Point3::new(0.1, -0.2, 0.05),
             axis: Vector3::new(0.3, 0.1, 1.0).normalize(),

@@ -99,15 +99,14 @@ impl Default for DesignConfig {
     }
 }
 
+// the layout's merge rules (`tension` / `belt_length`, `pulleys` / `tensioner`)
+impl mbd_core::config::PartialRules for DesignConfig {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
+}
+
 impl Validate for DesignConfig {
     fn validate(&self) -> Result<(), InvalidField> {
-        let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
-        if !matches!(self.drive.pulleys[0].motion, Motion::Speed { .. }) {
-            return Err(InvalidField::new(
-                "drive.pulleys[0].motion",
-                "pulley 0 is the crankshaft: its motion kind must be speed",
-            ));
-        }
+        let drive = crate::fead::resolve_engine_drive(&self.drive)?;
         if single_driver(&drive).is_none() {
             return Err(InvalidField::new(
                 "drive.pulleys",

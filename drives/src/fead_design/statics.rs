@@ -219,13 +219,7 @@ impl WrapState {
             let h = self.slip_arc / n as f64;
             let mut s = 0.0;
             for i in 0..=n {
-                let w = if i == 0 || i == n {
-                    1.0
-                } else if i % 2 == 1 {
-                    4.0
-                } else {
-                    2.0
-                };
+                let w = crate::analytical::simpson_weight(i, n);
                 let psi = adhesion + i as f64 * h;
                 s += w / section.stretch(self.tension_at(psi, tc));
             }

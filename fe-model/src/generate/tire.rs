@@ -182,6 +182,8 @@ impl Default for TireConfig {
 /// before anything is allocated.
 pub const MAX_TIRE_ELEMENTS: usize = 250_000;
 
+impl mbd_core::config::PartialRules for TireConfig {}
+
 impl mbd_core::Validate for TireConfig {
     /// Every field, the first offending one named by its path (`tread.young`,
     /// `circumferential_divisions`): positive dimensions with room for the walls, materials

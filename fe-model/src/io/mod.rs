@@ -23,74 +23,55 @@ pub(crate) fn read_text(path: &std::path::Path) -> Result<(String, String), crat
 /// ([`mbd_core::validate::limits::check_memory`]).
 pub const MAX_INPUT_BYTES: u64 = 16 << 30;
 
-/// The metadata of an input file that may be read whole: a regular file (not a directory,
-/// FIFO, socket or device such as `/dev/zero`) no larger than [`MAX_INPUT_BYTES`] (issue 35).
-pub(crate) fn check_input(path: &std::path::Path) -> Result<(String, u64), crate::FeError> {
-    let name = path.display().to_string();
-    let io = |source| crate::FeError::Io {
-        file: mbd_core::validate::escape(&name),
-        source,
-    };
-    let meta = std::fs::metadata(path).map_err(io)?;
-    if meta.is_dir() {
-        return Err(io(std::io::Error::other("is a directory, expected a file")));
-    }
-    if !meta.is_file() {
-        return Err(io(std::io::Error::other(
-            "is not a regular file (a device, FIFO or socket), expected a file",
-        )));
-    }
+/// An input file that may be read whole, opened: a regular file (not a directory, FIFO,
+/// socket or device such as `/dev/zero`) no larger than [`MAX_INPUT_BYTES`] (issue 35), with
+/// its display name ([`mbd_core::input::open`]).
+pub(crate) fn check_input(
+    path: &std::path::Path,
+) -> Result<(String, mbd_core::input::BoundedFile), crate::FeError> {
     let max = mbd_core::validate::limits::ceiling(MAX_INPUT_BYTES as f64);
-    if meta.len() as f64 > max {
-        return Err(io(std::io::Error::other(format!(
-            "has {} bytes, more than the {max:e} an input file may have{}",
-            meta.len(),
+    let file = mbd_core::input::open(path, max as u64).map_err(input_error)?;
+    Ok((path.display().to_string(), file))
+}
+
+/// An [`mbd_core::input::InputError`] as [`crate::FeError::Io`] naming the file.
+fn input_error(e: mbd_core::input::InputError) -> crate::FeError {
+    use mbd_core::input::InputError as E;
+    let file = mbd_core::validate::escape(&e.path().display().to_string());
+    let source = match e {
+        E::NotFound { source, .. } | E::Io { source, .. } => source,
+        E::TooLarge { size, max, .. } => std::io::Error::other(format!(
+            "has {size} bytes, more than the {:e} an input file may have{}",
+            max as f64,
             mbd_core::validate::limits::raise_hint()
-        ))));
-    }
-    Ok((name, meta.len()))
+        )),
+        E::NotUtf8 { .. } => std::io::Error::new(std::io::ErrorKind::InvalidData, e.reason()),
+        E::Directory { .. } | E::NotRegular { .. } => std::io::Error::other(e.reason()),
+    };
+    crate::FeError::Io { file, source }
 }
 
 /// Read a whole file as bytes, with its display name; a directory, a non-regular or
 /// oversized file ([`check_input`]) or an unreadable path is [`crate::FeError::Io`] naming it
-/// (a directory is reported as such, not as missing). The read is bounded by the size seen
-/// before reading (a file that grows meanwhile is cut there) and must fit in memory.
+/// (a directory is reported as such, not as missing). The file's size must fit in memory; the
+/// read is bounded by the ceiling (a file that grows past it meanwhile is refused).
 pub(crate) fn read_bytes(path: &std::path::Path) -> Result<(String, Vec<u8>), crate::FeError> {
-    use std::io::Read;
-    let (name, len) = check_input(path)?;
-    let io = |source| crate::FeError::Io {
-        file: mbd_core::validate::escape(&name),
-        source,
-    };
-    mbd_core::validate::limits::check_memory(&name, len as f64)
-        .map_err(|e| io(std::io::Error::other(e.reason)))?;
-    let file = std::fs::File::open(path).map_err(io)?;
-    let mut data = Vec::with_capacity(len as usize);
-    file.take(len).read_to_end(&mut data).map_err(io)?;
+    let (name, file) = check_input(path)?;
+    mbd_core::validate::limits::check_memory(&name, file.len() as f64).map_err(|e| {
+        crate::FeError::Io {
+            file: mbd_core::validate::escape(&name),
+            source: std::io::Error::other(e.reason),
+        }
+    })?;
+    let data = file.read().map_err(input_error)?;
     Ok((name, data))
 }
 
 /// Write `bytes` to `path` through a temporary file beside it (`.NAME.part`), renamed over
 /// `path` when complete: a reader never sees half a file, and a killed writer leaves the old
-/// file or none (issue 35, item 3). Used by every writer of this crate.
-pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> std::io::Result<()> {
-    use std::io::Write;
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.part"));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
+/// file or none (issue 35, item 3). Used by every writer of this crate
+/// ([`mbd_core::output::write_atomic`]).
+pub use mbd_core::output::write_atomic;
 
 /// The bytes of a file: memory-mapped, or read into memory where mapping is not possible.
 pub(crate) enum FileBytes {
@@ -118,10 +99,9 @@ impl std::ops::Deref for FileBytes {
 /// memory-mapped reader, the operating system would then stop the process (`SIGBUS`).
 /// Writing a matrix file while another program reads it is an error in any case.
 pub(crate) fn map_bytes(path: &std::path::Path) -> Result<(String, FileBytes), crate::FeError> {
-    check_input(path)?;
-    if let Ok(file) = std::fs::File::open(path)
-        && file.metadata().is_ok_and(|m| m.is_file() && m.len() > 0)
-    {
+    let (_, input) = check_input(path)?;
+    if !input.is_empty() {
+        let file = input.into_file();
         // SAFETY: the map is read-only and private; the documented condition above (the file
         // is not truncated while mapped) is the caller's, as for every mmap-based reader.
         let map = unsafe { memmap2::MmapOptions::new().populate().map(&file) };

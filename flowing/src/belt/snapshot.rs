@@ -88,51 +88,61 @@ fn snapshot_with(
     }
 }
 
+/// The [`BeltModel`] methods the flowing and nodal belts share: the same fields (`fe`,
+/// `motions`), inherent methods of the same meaning and the belt travel `s_b` as the first
+/// coordinate (`ṡ_b` is the belt speed). A macro because `BeltModel` is the belt crate's trait:
+/// a blanket implementation over a trait of this crate is not allowed (orphan rule).
+macro_rules! shared_belt_model_methods {
+    ($model:ident, $name:literal) => {
+        fn drive(&self) -> &Drive {
+            &self.fe.drive
+        }
+
+        fn traits(&self) -> ModelTraits {
+            ModelTraits {
+                name: $name,
+                linearised: true,
+                force_measure: LINEAR_FORCE_MEASURE,
+            }
+        }
+
+        fn initial_state(&self) -> Result<State, MbdError> {
+            let q = self.static_state()?;
+            let n = q.len();
+            Ok(State::new(0.0, q, vec![0.0; n]))
+        }
+
+        fn motion(&self, k: usize) -> Option<&Motion> {
+            self.motions.get(k)
+        }
+
+        fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
+            self.motions.get_mut(k)
+        }
+
+        fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
+            $model::pulley_speed(self, k, t, v)
+        }
+
+        fn arm_angle(&self, q: &[f64]) -> Option<f64> {
+            $model::arm_angle(self, q)
+        }
+
+        fn decoupler_state(&self, k: usize, q: &[f64], v: &[f64]) -> Option<belt::DecouplerState> {
+            $model::decoupler_state(self, k, q, v)
+        }
+
+        /// `ṡ_b`, the speed of the material along the path.
+        fn belt_speed(&self, _q: &[f64], v: &[f64]) -> f64 {
+            v[0]
+        }
+    };
+}
+
 /// Coordinates `(s_b, z, φ_k…, Δθ)`: belt travel, the reduced coordinates, the free pulleys
 /// and the tensioner arm.
 impl BeltModel for FlowingBelt {
-    fn drive(&self) -> &Drive {
-        &self.fe.drive
-    }
-
-    fn traits(&self) -> ModelTraits {
-        ModelTraits {
-            name: "flowing",
-            linearised: true,
-            force_measure: LINEAR_FORCE_MEASURE,
-        }
-    }
-
-    fn initial_state(&self) -> Result<State, MbdError> {
-        let q = self.static_state()?;
-        let n = q.len();
-        Ok(State::new(0.0, q, vec![0.0; n]))
-    }
-
-    fn motion(&self, k: usize) -> Option<&Motion> {
-        self.motions.get(k)
-    }
-
-    fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
-        self.motions.get_mut(k)
-    }
-
-    fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        FlowingBelt::pulley_speed(self, k, t, v)
-    }
-
-    fn arm_angle(&self, q: &[f64]) -> Option<f64> {
-        FlowingBelt::arm_angle(self, q)
-    }
-
-    fn decoupler_state(&self, k: usize, q: &[f64], v: &[f64]) -> Option<belt::DecouplerState> {
-        FlowingBelt::decoupler_state(self, k, q, v)
-    }
-
-    /// `ṡ_b`, the material speed at the reference node.
-    fn belt_speed(&self, _q: &[f64], v: &[f64]) -> f64 {
-        v[0]
-    }
+    shared_belt_model_methods!(FlowingBelt, "flowing");
 
     /// Contact nodes of the stationary mesh, element forces `T0 + EA Δl/l`.
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
@@ -167,48 +177,7 @@ impl BeltModel for FlowingBelt {
 /// Coordinates `(s_b, δ, φ_k…, Δθ)`: belt travel, the nodal deflections, the free pulleys and
 /// the tensioner arm.
 impl BeltModel for NodalBelt {
-    fn drive(&self) -> &Drive {
-        &self.fe.drive
-    }
-
-    fn traits(&self) -> ModelTraits {
-        ModelTraits {
-            name: "nodal",
-            linearised: true,
-            force_measure: LINEAR_FORCE_MEASURE,
-        }
-    }
-
-    fn initial_state(&self) -> Result<State, MbdError> {
-        let q = self.static_state()?;
-        let n = q.len();
-        Ok(State::new(0.0, q, vec![0.0; n]))
-    }
-
-    fn motion(&self, k: usize) -> Option<&Motion> {
-        self.motions.get(k)
-    }
-
-    fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
-        self.motions.get_mut(k)
-    }
-
-    fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-        NodalBelt::pulley_speed(self, k, t, v)
-    }
-
-    fn arm_angle(&self, q: &[f64]) -> Option<f64> {
-        NodalBelt::arm_angle(self, q)
-    }
-
-    fn decoupler_state(&self, k: usize, q: &[f64], v: &[f64]) -> Option<belt::DecouplerState> {
-        NodalBelt::decoupler_state(self, k, q, v)
-    }
-
-    /// `ṡ_b`, the speed of the material nodes along the path.
-    fn belt_speed(&self, _q: &[f64], v: &[f64]) -> f64 {
-        v[0]
-    }
+    shared_belt_model_methods!(NodalBelt, "nodal");
 
     /// Material nodes on the reference polygon at `s_b`, element forces `T0 + EA Δl/l`.
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
