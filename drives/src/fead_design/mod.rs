@@ -13,8 +13,11 @@
 //! * [`modes`]: the linearised rotational model (pulley inertias, arm inertia and spring, the
 //!   spans as axial springs) solved by the workspace's generalized symmetric eigen solver, with
 //!   each mode's dominant participant, and the spans' transverse travelling-string modes;
-//! * a Campbell diagram ([`Campbell`]): the rotational and span modes against engine speed with
-//!   the engine orders, and their crossings.
+//! * [`coupled`]: the spans' transverse motion coupled with the rotational model through the
+//!   tensioner arm (Beikmann, Perkins & Ulsoy 1996; travelling strings with their gyroscopic
+//!   terms), each coupled mode with its dominant part (a span, the arm or a pulley);
+//! * a Campbell diagram ([`Campbell`]): the rotational, span and coupled modes against engine
+//!   speed with the engine orders, and their crossings.
 //!
 //! Before any time stepping it flags, as typed [`DesignIssue`]s (warnings or errors, never a
 //! panic): a tensioner on a tight span, an arm within [`DesignSettings::stop_margin_deg`] of a
@@ -1059,8 +1062,11 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
          hub loads (magnitude, direction); slip margin = torque to gross slip over torque \
          carried. Modes: the linearised rotational model (free pulleys and the arm; spans as \
          axial springs EA/L, wrap compliance not modelled; the crank held) and every span's \
-         travelling-string frequencies; the Campbell diagram (campbell) with the engine orders \
-         and their crossings. Findings: warnings and errors before any time stepping \
+         travelling-string frequencies; the coupled modes (coupled_modes: the spans' transverse \
+         motion, travelling strings with their gyroscopic terms, coupled with the rotational \
+         model through the tensioner arm, Beikmann, Perkins & Ulsoy 1996; each with its \
+         dominant part); the Campbell diagram (campbell: rotational, separate span and coupled \
+         curves) with the engine orders and their crossings. Findings: warnings and errors before any time stepping \
          (tensioner on a tight span, arm near or on a stop, slack span, gross slip, low slip \
          margin, spans coupled with the arm's mode)."
     );
