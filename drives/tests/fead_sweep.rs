@@ -35,17 +35,19 @@ use drives::fead_design::{DesignConfig, run_design};
 // grid. 9 points of about 0.6 s simulated: 16 s in release (2026-12-02, shared 2-core machine).
 #[test]
 fn two_pulley_order_sweep_peaks_at_the_predicted_mode() {
-    let mut cfg = FeadConfig::default();
-    cfg.drive = belt::Layout::two_pulley(
-        0.45,
-        0.05,
-        0.05,
-        belt::Signal::constant(0.0),
-        0.02,
-        belt::Signal::schedule(vec![(0.0, 0.0), (0.1, 2.0)]),
-        belt::Section::default(),
-        400.0,
-    );
+    let mut cfg = FeadConfig {
+        drive: belt::Layout::two_pulley(
+            0.45,
+            0.05,
+            0.05,
+            belt::Signal::constant(0.0),
+            0.02,
+            belt::Signal::schedule(vec![(0.0, 0.0), (0.1, 2.0)]),
+            belt::Section::default(),
+            400.0,
+        ),
+        ..FeadConfig::default()
+    };
     cfg.drive.damping.beta = 2e-4;
     cfg.drive.contact.friction = contact::friction::FrictionSpec::Tanh {
         mu: 1.2,
