@@ -7,12 +7,15 @@
 //!
 //! Output folder: `design_points.csv` (per engine speed), `design_spans.csv` and
 //! `design_pulleys.csv` (one row per engine speed and span or pulley, travel order),
-//! `rotational_modes.csv`, `campbell.csv` (every curve on the grid), `crossings.csv`, and the
-//! plots `hub_loads.png/svg` (hub-load vectors of every pulley over the engine speeds) and
-//! `campbell.png/svg`.
+//! `rotational_modes.csv`, `coupled_modes.csv` (the spans' transverse motion coupled with the
+//! rotational model through the tensioner arm, `drives::fead_design::coupled`), `campbell.csv`
+//! (every curve on the grid), `crossings.csv`, and the plots `hub_loads.png/svg` (polar plot:
+//! every pulley's hub-load vector in the (F_x, F_y) plane over the engine speeds, equal axis
+//! scales), `slip_margins.png/svg` and `campbell.png/svg` (the coupled modes and the engine
+//! orders with their crossings; legend beside the chart).
 
 use drives::fead_design::{DesignConfig, DesignSummary, Severity, run_design};
-use flowmbd_cli::plot::{LinePlot, Series, Style};
+use flowmbd_cli::plot::{Legend, LinePlot, Series, Style};
 use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
 use std::process::ExitCode;
 
@@ -202,6 +205,30 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
         }
     }
     csv.finish()?;
+    // coupled modes
+    let parts = s.points.first().map_or(0, |p| p.coupled_parts.len());
+    let mut header: Vec<String> = vec![
+        "engine_speed_rpm".into(),
+        "mode".into(),
+        "frequency_hz".into(),
+        "dominant_part_index".into(),
+    ];
+    header.extend((0..parts).map(|i| format!("part{i}_energy_share")));
+    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut csv = ctx.out.csv("coupled_modes.csv", &refs)?;
+    for p in &s.points {
+        for (i, m) in p.coupled_modes.iter().enumerate() {
+            let dom = p
+                .coupled_parts
+                .iter()
+                .position(|x| *x == m.dominant)
+                .map_or(f64::NAN, |k| k as f64);
+            let mut row = vec![p.engine_rpm, (i + 1) as f64, m.frequency_hz, dom];
+            row.extend(m.energy_share.iter().copied());
+            csv.row(&row)?;
+        }
+    }
+    csv.finish()?;
     // Campbell diagram and crossings
     let c = &s.campbell;
     let mut header: Vec<String> = vec!["engine_speed_rpm".into()];
@@ -232,39 +259,17 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
         csv.row(&[idx as f64, x.order, x.engine_rpm, x.frequency_hz])?;
     }
     csv.finish()?;
-    // hub-load vectors: one marker per engine speed for every pulley, a ray from the origin to
-    // the first operating point's force
-    let mut hub = LinePlot::new(
-        "Hub loads (force of the belt on each pulley)",
-        "F_x [N]",
-        "F_y [N]",
-    );
-    for (k, name) in s.pulleys.iter().enumerate() {
-        let pts: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .map(|p| (p.pulleys[k].hub_load_n[0], p.pulleys[k].hub_load_n[1]))
-            .collect();
-        let mut ray = vec![(0.0, 0.0)];
-        ray.extend(pts.first().copied());
-        hub.series.push(Series::line(
-            format!("{name} ({} rpm)", s.points[0].engine_rpm),
-            ray,
-        ));
-        hub.series.push(Series {
-            name: format!("{name}, all speeds"),
-            points: pts,
-            style: Style::Points,
-        });
-    }
-    hub.save(&ctx.out.path("hub_loads"))?;
+    hub_polar(s).save(&ctx.out.path("hub_loads"))?;
     slip_margin_bars(s, warning).save(&ctx.out.path("slip_margins"))?;
+    // the coupled modes (rotational and transverse together; the separate models' curves are
+    // in campbell.csv), the orders and their crossings, the legend beside the chart
     let mut camp = LinePlot::new(
-        "Campbell diagram: rotational and span modes, engine orders",
+        "Campbell diagram: coupled modes, engine orders",
         "engine speed [rpm]",
         "frequency [Hz]",
-    );
-    for cv in &c.curves {
+    )
+    .with_legend(Legend::Outside);
+    for cv in c.curves.iter().filter(|cv| cv.kind == "coupled") {
         camp.series.push(Series::line(
             cv.name.clone(),
             c.engine_rpm
@@ -280,17 +285,58 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
             c.engine_rpm.iter().map(|&r| (r, o * r / 60.0)).collect(),
         ));
     }
-    if !c.crossings.is_empty() {
-        camp.series.push(Series::points(
-            "crossings",
-            c.crossings
-                .iter()
-                .map(|x| (x.engine_rpm, x.frequency_hz))
-                .collect(),
-        ));
+    let coupled: Vec<(f64, f64)> = c
+        .crossings
+        .iter()
+        .filter(|x| x.curve.starts_with("coupled mode"))
+        .map(|x| (x.engine_rpm, x.frequency_hz))
+        .collect();
+    if !coupled.is_empty() {
+        camp.series.push(Series::points("crossings", coupled));
     }
     camp.save(&ctx.out.path("campbell"))?;
     Ok(())
+}
+
+/// Polar plot of the hub loads (`drives::fead_design`: the belt's force on each pulley): per
+/// pulley one curve (one colour) from the origin to its first speed's force vector `(F_x, F_y)`,
+/// then through the vectors of the other engine speeds in order, equal scales on both axes so that
+/// directions and magnitudes read true.
+fn hub_polar(s: &DesignSummary) -> LinePlot {
+    let speeds: Vec<String> = s
+        .points
+        .iter()
+        .map(|p| format!("{}", p.engine_rpm))
+        .collect();
+    let mut hub = LinePlot::new(
+        format!(
+            "Hub loads (force of the belt on each pulley) at {} rpm",
+            speeds.join(", ")
+        ),
+        "F_x [N]",
+        "F_y [N]",
+    )
+    .with_equal_axes()
+    .with_legend(Legend::Outside);
+    for (k, name) in s.pulleys.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .map(|p| (p.pulleys[k].hub_load_n[0], p.pulleys[k].hub_load_n[1]))
+            .collect();
+        // one colour per pulley: the ray from the origin to the first speed's vector, then
+        // the curve through the others
+        let mut line = vec![(0.0, 0.0)];
+        line.extend(pts);
+        hub.series.push(Series {
+            name: name.clone(),
+            points: line,
+            style: Style::LinePoints,
+        });
+    }
+    hub.series
+        .push(Series::points("origin (no load)", vec![(0.0, 0.0)]));
+    hub
 }
 
 /// Run the study under the app conventions.

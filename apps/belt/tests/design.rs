@@ -65,6 +65,7 @@ fn design_json_names_the_layout_and_writes_the_files() {
         "design_spans.csv",
         "design_pulleys.csv",
         "rotational_modes.csv",
+        "coupled_modes.csv",
         "campbell.csv",
         "crossings.csv",
         "campbell.png",

@@ -59,6 +59,22 @@ pub struct Band {
     pub x: (f64, f64),
 }
 
+/// Where the legend goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Legend {
+    /// Inside the plotting area, upper right (plotters' default).
+    #[default]
+    Inside,
+    /// In a panel to the right of the plotting area: it hides no data (the picture is
+    /// widened by [`LEGEND_PANEL`] pixels).
+    Outside,
+}
+
+/// Width of the legend panel of [`Legend::Outside`] \[px\].
+pub const LEGEND_PANEL: u32 = 420;
+/// Size of a plot without a legend panel \[px\].
+const SIZE: (u32, u32) = (960, 640);
+
 /// A 2D plot with axis labels and a legend.
 #[derive(Debug, Clone)]
 pub struct LinePlot {
@@ -72,6 +88,12 @@ pub struct LinePlot {
     pub series: Vec<Series>,
     /// Shaded x intervals.
     pub bands: Vec<Band>,
+    /// Equal scales on both axes (one unit as long on x as on y: a polar or vector plot,
+    /// whose directions and magnitudes must read true); the shorter range is widened about
+    /// its centre.
+    pub equal_axes: bool,
+    /// Where the legend goes.
+    pub legend: Legend,
 }
 
 /// Font family name of the embedded font (after [`register_font`]).
@@ -101,6 +123,28 @@ impl LinePlot {
             y_label: y_label.into(),
             series: Vec::new(),
             bands: Vec::new(),
+            equal_axes: false,
+            legend: Legend::Inside,
+        }
+    }
+
+    /// Equal scales on both axes (builder style; [`LinePlot::equal_axes`]).
+    pub fn with_equal_axes(mut self) -> Self {
+        self.equal_axes = true;
+        self
+    }
+
+    /// Place the legend (builder style).
+    pub fn with_legend(mut self, legend: Legend) -> Self {
+        self.legend = legend;
+        self
+    }
+
+    /// Picture size \[px\].
+    fn size(&self) -> (u32, u32) {
+        match self.legend {
+            Legend::Inside => SIZE,
+            Legend::Outside => (SIZE.0 + LEGEND_PANEL, SIZE.1),
         }
     }
 
@@ -127,13 +171,13 @@ impl LinePlot {
         // drawn under a temporary name, renamed when complete (crate::output::write_atomic)
         let (png_part, svg_part) = (part_path(&png, true), part_path(&svg, true));
         {
-            let root = BitMapBackend::new(&png_part, (960, 640)).into_drawing_area();
+            let root = BitMapBackend::new(&png_part, self.size()).into_drawing_area();
             self.draw(&root).map_err(|m| err(&png, m))?;
             root.present().map_err(|e| err(&png, e.to_string()))?;
         }
         std::fs::rename(&png_part, &png).map_err(|e| err(&png, e.to_string()))?;
         {
-            let root = SVGBackend::new(&svg_part, (960, 640)).into_drawing_area();
+            let root = SVGBackend::new(&svg_part, self.size()).into_drawing_area();
             self.draw(&root).map_err(|m| err(&svg, m))?;
             root.present().map_err(|e| err(&svg, e.to_string()))?;
         }
@@ -175,17 +219,36 @@ impl LinePlot {
         (xr, pad(y0, y1, 0.05))
     }
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, whole: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-        root.fill(&WHITE).map_err(e)?;
-        let ((x0, x1), (y0, y1)) = self.ranges();
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, (FONT, 24))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(e)?;
+        whole.fill(&WHITE).map_err(e)?;
+        let (root, panel) = match self.legend {
+            Legend::Inside => (whole.clone(), None),
+            Legend::Outside => {
+                let (a, b) = whole.split_horizontally(SIZE.0);
+                (a, Some(b))
+            }
+        };
+        let ((mut x0, mut x1), (mut y0, mut y1)) = self.ranges();
+        let build = |x0: f64, x1: f64, y0: f64, y1: f64| {
+            ChartBuilder::on(&root)
+                .caption(&self.title, (FONT, 24))
+                .margin(16)
+                .x_label_area_size(48)
+                .y_label_area_size(80)
+                .build_cartesian_2d(x0..x1, y0..y1)
+        };
+        if self.equal_axes {
+            // the plotting area's size in pixels from a first build, then the shorter range
+            // widened about its centre to the same metres (newtons, ...) per pixel
+            let (w, h) = build(x0, x1, y0, y1)
+                .map_err(e)?
+                .plotting_area()
+                .dim_in_pixel();
+            root.fill(&WHITE).map_err(e)?;
+            ((x0, x1), (y0, y1)) = equalised(((x0, x1), (y0, y1)), (w, h));
+        }
+        let mut chart = build(x0, x1, y0, y1).map_err(e)?;
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
@@ -232,7 +295,57 @@ impl LinePlot {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
             });
         }
-        if self.series.iter().any(|s| !s.name.is_empty()) || !self.bands.is_empty() {
+        if let Some(panel) = panel {
+            // one row per named band and series: its swatch and its name
+            let font = (FONT, 14).into_font();
+            let mut y = 40;
+            let shade = RGBColor(230, 80, 60).mix(0.18);
+            let rows = self
+                .bands
+                .iter()
+                .map(|b| (b.name.as_str(), None))
+                .chain(
+                    self.series
+                        .iter()
+                        .enumerate()
+                        .map(|(i, s)| (s.name.as_str(), Some((i, s.style)))),
+                )
+                .filter(|(name, _)| !name.is_empty());
+            for (name, what) in rows {
+                if y > SIZE.1 as i32 - 20 {
+                    panel
+                        .draw(&Text::new("…", (8, y), font.clone()))
+                        .map_err(e)?;
+                    break;
+                }
+                match what {
+                    None => panel
+                        .draw(&Rectangle::new([(8, y - 6), (32, y + 6)], shade.filled()))
+                        .map_err(e)?,
+                    Some((i, style)) => {
+                        let color = Palette99::pick(i).to_rgba();
+                        if style != Style::Points {
+                            panel
+                                .draw(&PathElement::new(
+                                    vec![(8, y), (32, y)],
+                                    color.stroke_width(2),
+                                ))
+                                .map_err(e)?;
+                        }
+                        if style != Style::Line {
+                            panel
+                                .draw(&Circle::new((20, y), 4, color.filled()))
+                                .map_err(e)?;
+                        }
+                    }
+                }
+                let text: String = name.chars().take(56).collect();
+                panel
+                    .draw(&Text::new(text, (40, y - 8), font.clone()))
+                    .map_err(e)?;
+                y += 20;
+            }
+        } else if self.series.iter().any(|s| !s.name.is_empty()) || !self.bands.is_empty() {
             chart
                 .configure_series_labels()
                 .label_font((FONT, 15))
@@ -243,6 +356,19 @@ impl LinePlot {
         }
         Ok(())
     }
+}
+
+/// The ranges `((x0, x1), (y0, y1))` with the shorter widened about its centre so that both
+/// have the same units per pixel on a plotting area of `px` = (width, height) pixels.
+fn equalised(r: ((f64, f64), (f64, f64)), px: (u32, u32)) -> ((f64, f64), (f64, f64)) {
+    let ((x0, x1), (y0, y1)) = r;
+    let (w, h) = (f64::from(px.0.max(1)), f64::from(px.1.max(1)));
+    let per_px = ((x1 - x0) / w).max((y1 - y0) / h);
+    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    (
+        (cx - 0.5 * per_px * w, cx + 0.5 * per_px * w),
+        (cy - 0.5 * per_px * h, cy + 0.5 * per_px * h),
+    )
 }
 
 fn err(path: &Path, message: String) -> CliError {
@@ -295,6 +421,41 @@ mod tests {
             svg.to_uppercase().matches("E6503C").count() >= 2,
             "a shaded rectangle and its legend entry"
         );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    // Equal axes: the drawn x and y ranges have the same units per pixel (the data of a
+    // 10:1 range are widened in y); an outside legend widens the picture by the panel and
+    // writes every series' name.
+    #[test]
+    fn equal_axes_and_outside_legend() {
+        let dir = std::env::temp_dir().join(format!("flowmbd-cli-eq-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let plot = LinePlot::new("polar", "F_x [N]", "F_y [N]")
+            .with(Series::line("a", vec![(0.0, 0.0), (100.0, 10.0)]))
+            .with(Series::points("b", vec![(50.0, 5.0)]))
+            .with_equal_axes()
+            .with_legend(Legend::Outside);
+        let files = plot.save(&dir.join("e")).unwrap();
+        let svg = std::fs::read_to_string(&files[1]).unwrap();
+        assert!(
+            svg.contains(&format!("width=\"{}\"", SIZE.0 + LEGEND_PANEL)),
+            "panel width"
+        );
+        assert!(
+            svg.contains("\na\n</text>") && svg.contains("\nb\n</text>"),
+            "legend names in the panel"
+        );
+        // equal units per pixel, the data range kept (definition)
+        for (r, px) in [
+            (((0.0, 100.0), (0.0, 10.0)), (800, 500)),
+            (((-1.0, 1.0), (-50.0, 50.0)), (800, 500)),
+        ] {
+            let ((x0, x1), (y0, y1)) = equalised(r, px);
+            let (sx, sy) = ((x1 - x0) / f64::from(px.0), (y1 - y0) / f64::from(px.1));
+            assert!((sx / sy - 1.0).abs() < 1e-12, "{sx} {sy}");
+            assert!(x0 <= r.0.0 && x1 >= r.0.1 && y0 <= r.1.0 && y1 >= r.1.1);
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -13,8 +13,11 @@
 //! * [`modes`]: the linearised rotational model (pulley inertias, arm inertia and spring, the
 //!   spans as axial springs) solved by the workspace's generalized symmetric eigen solver, with
 //!   each mode's dominant participant, and the spans' transverse travelling-string modes;
-//! * a Campbell diagram ([`Campbell`]): the rotational and span modes against engine speed with
-//!   the engine orders, and their crossings.
+//! * [`coupled`]: the spans' transverse motion coupled with the rotational model through the
+//!   tensioner arm (Beikmann, Perkins & Ulsoy 1996; travelling strings with their gyroscopic
+//!   terms), each coupled mode with its dominant part (a span, the arm or a pulley);
+//! * a Campbell diagram ([`Campbell`]): the rotational, span and coupled modes against engine
+//!   speed with the engine orders, and their crossings.
 //!
 //! Before any time stepping it flags, as typed [`DesignIssue`]s (warnings or errors, never a
 //! panic): a tensioner on a tight span, an arm within [`DesignSettings::stop_margin_deg`] of a
@@ -23,12 +26,14 @@
 //! `e^{μφ}`), a slip margin below [`DesignSettings::slip_margin_warning`], and span modes near a
 //! mode of the tensioner arm.
 
+pub mod coupled;
 pub mod modes;
 pub mod statics;
 
 use crate::fead::{EngineConfig, FeadConfig};
 use belt::{Drive, Layout, Motion, Role, WrapSide};
 use contact::friction::FrictionLaw;
+use coupled::{CoupledMode, CoupledOptions, MAX_SPAN_TERMS, coupled_model};
 use mbd_core::roots::illinois;
 use mbd_core::validate::{InvalidField, Validate, check};
 use modes::{RotationalMode, SpanModes, rotational_model, span_modes};
@@ -58,10 +63,13 @@ pub struct DesignSettings {
     /// A span adjacent to the tensioner whose frequency lies within this fraction of a mode in
     /// which the arm takes at least a quarter of the kinetic energy is flagged \[-\].
     pub coupling_band: f64,
+    /// Sine terms per span of the coupled transverse–rotational model ([`coupled`]).
+    pub span_terms: usize,
 }
 
 impl Default for DesignSettings {
-    /// 3° from a stop, slip margin 1.5, two harmonics, 61 Campbell points, 10 % coupling band.
+    /// 3° from a stop, slip margin 1.5, two harmonics, 61 Campbell points, 10 % coupling band,
+    /// 16 sine terms per span.
     fn default() -> Self {
         Self {
             stop_margin_deg: 3.0,
@@ -70,6 +78,7 @@ impl Default for DesignSettings {
             campbell_points: 61,
             campbell_rpm: None,
             coupling_band: 0.1,
+            span_terms: 16,
         }
     }
 }
@@ -141,7 +150,8 @@ impl Validate for DesignConfig {
             check::within("design.campbell_rpm[0]", a, 1.0, 20_000.0, "rpm")?;
             check::within("design.campbell_rpm[1]", b, a, 20_000.0, "rpm")?;
         }
-        check::within("design.coupling_band", d.coupling_band, 0.0, 1.0, "")
+        check::within("design.coupling_band", d.coupling_band, 0.0, 1.0, "")?;
+        check::count("design.span_terms", d.span_terms, 1, MAX_SPAN_TERMS)
     }
 }
 
@@ -432,14 +442,20 @@ pub struct DesignPoint {
     pub arm_geometric_stiffness_n_m_per_rad: Option<f64>,
     /// Rotational modes, ascending.
     pub rotational_modes: Vec<RotationalMode>,
+    /// Parts of the coupled model ([`coupled`]): the rotational coordinates, then the spans.
+    pub coupled_parts: Vec<String>,
+    /// The lowest modes of the coupled model (as many as the rotational modes and the spans'
+    /// harmonics together), ascending, each with its dominant part.
+    pub coupled_modes: Vec<CoupledMode>,
 }
 
 /// One curve of the Campbell diagram.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CampbellCurve {
-    /// `"rotational mode k (dominant)"` or `"span a → b, n = k"`.
+    /// `"rotational mode k (dominant)"`, `"span a → b, n = k"` or `"coupled mode k
+    /// (dominant)"` (dominant part at the grid's first speed).
     pub name: String,
-    /// `"rotational"` or `"transverse"`.
+    /// `"rotational"`, `"transverse"` (a span alone) or `"coupled"` ([`coupled`]).
     pub kind: String,
     /// Frequency at every grid speed \[Hz\] (`None`: none there).
     pub frequencies_hz: Vec<Option<f64>>,
@@ -774,6 +790,26 @@ fn design_point(
             Vec::new()
         }
     };
+    let hybrid = coupled_model(
+        drive,
+        &s,
+        &model,
+        &CoupledOptions {
+            terms: settings.span_terms,
+            hold_arm: false,
+        },
+    );
+    let wanted = model.names.len() + spans.len() * settings.harmonics;
+    let coupled_modes = match hybrid.modes(wanted) {
+        Ok(m) => m,
+        Err(e) => {
+            issues.push(DesignIssue::ModesFailed {
+                engine_rpm,
+                reason: format!("coupled model: {e}"),
+            });
+            Vec::new()
+        }
+    };
     if let Some(arm_dof) = model.names.iter().position(|x| x == "tensioner arm") {
         for sp in spans.iter().filter(|sp| sp.modes.coupled_through_arm) {
             for f in sp.modes.frequencies_hz.iter().flatten() {
@@ -822,13 +858,15 @@ fn design_point(
             rotational_dofs: model.names.clone(),
             arm_geometric_stiffness_n_m_per_rad: model.arm_geometric_stiffness,
             rotational_modes,
+            coupled_parts: hybrid.parts.clone(),
+            coupled_modes,
         },
         issues,
     ))
 }
 
 /// Frequencies of every Campbell curve at `engine_rpm`: the rotational modes ascending, then
-/// every span's harmonics.
+/// every span's harmonics, then the coupled modes ascending.
 fn curve_values(
     drive: &Drive,
     engine_rpm: f64,
@@ -842,6 +880,8 @@ fn curve_values(
     for sp in &p.spans {
         out.extend(sp.modes.frequencies_hz.iter().copied());
     }
+    let coupled = p.rotational_dofs.len() + p.spans.len() * settings.harmonics;
+    out.extend((0..coupled).map(|i| p.coupled_modes.get(i).map(|m| m.frequency_hz)));
     Ok(out)
 }
 
@@ -890,6 +930,17 @@ fn campbell(
                 "transverse".into(),
             ));
         }
+    }
+    let coupled = first.rotational_dofs.len() + first.spans.len() * settings.harmonics;
+    for i in 0..coupled {
+        let dominant = first
+            .coupled_modes
+            .get(i)
+            .map_or("no solution at the first speed", |m| m.dominant.as_str());
+        names.push((
+            format!("coupled mode {} ({dominant})", i + 1),
+            "coupled".into(),
+        ));
     }
     let mut values: Vec<Vec<Option<f64>>> = vec![Vec::with_capacity(np); names.len()];
     for &r in &rpm {
@@ -1010,8 +1061,11 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
          hub loads (magnitude, direction); slip margin = torque to gross slip over torque \
          carried. Modes: the linearised rotational model (free pulleys and the arm; spans as \
          axial springs EA/L, wrap compliance not modelled; the crank held) and every span's \
-         travelling-string frequencies; the Campbell diagram (campbell) with the engine orders \
-         and their crossings. Findings: warnings and errors before any time stepping \
+         travelling-string frequencies; the coupled modes (coupled_modes: the spans' transverse \
+         motion, travelling strings with their gyroscopic terms, coupled with the rotational \
+         model through the tensioner arm, Beikmann, Perkins & Ulsoy 1996; each with its \
+         dominant part); the Campbell diagram (campbell: rotational, separate span and coupled \
+         curves) with the engine orders and their crossings. Findings: warnings and errors before any time stepping \
          (tensioner on a tight span, arm near or on a stop, slack span, gross slip, low slip \
          margin, spans coupled with the arm's mode)."
     );

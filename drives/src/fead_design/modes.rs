@@ -33,9 +33,9 @@
 //! centrifugal part included) and speed `v` between fixed ends (Wickert & Mote 1990):
 //! `f_n = n (c² − v²)/(2 L c)`, `c = √(T/ρA)` ([`flowing::params::StringConfig::exact_moving_frequency_hz`]).
 //! The spans next to the tensioner's idler end on a moving centre: their transverse motion
-//! couples with the arm's rotation (Beikmann, Perkins & Ulsoy 1996), which this model does not
-//! solve; those spans are flagged, and more strongly when their frequency lies near a mode in
-//! which the arm takes part.
+//! couples with the arm's rotation (Beikmann, Perkins & Ulsoy 1996), which this formula does
+//! not hold; those spans are flagged, and more strongly when their frequency lies near a mode
+//! in which the arm takes part. The coupled solution is [`super::coupled`].
 
 use super::statics::{Geometry, SteadyState, belt_moment};
 use belt::Drive;

@@ -1,0 +1,116 @@
+//! The design study's rotational modes against the time simulation (issue 36): an engine-order
+//! sweep on the flowing model (drives::fead::run_fead) through the crossing of the 2nd engine
+//! order with the drive's first rotational mode, as predicted by the design study's Campbell
+//! diagram (drives::fead_design).
+//!
+//! The rotational model holds the belt on the pulleys over the wraps (drives::fead_design::
+//! modes: the spans are the only springs). The flowing model's tanh friction law
+//! `μ p tanh(κ v_slip)` (Ribaric Table 6-1: κ = 40 s/m) couples belt and pulley by a creep
+//! damper of `μ p κ` per length instead: the belt's stretch reaches `δ = √(EA/(ω μ p κ))` into
+//! every wrap (a diffusion length), a compliance in series with the spans. On the two-pulley
+//! drive below at 46 Hz, `p = T/r` = 8 kN/m, δ ≈ 37 mm at κ = 40 s/m and 5 mm at 2000 s/m.
+//! Measured 2026-12-02 (order-2 peak of the driven pulley's speed, 50 rpm grid, predicted
+//! 46.43 Hz at 1392.9 rpm): κ = 40 s/m peak near 1300 rpm (43.3 Hz, −7 %), κ = 400 s/m near
+//! 1355 rpm (45.2 Hz, −2.7 %), κ = 2000 s/m 45.46 Hz (−2.1 %, the test below): the flowing
+//! model approaches the rotational model as the wraps stiffen, which is what the test checks
+//! at κ = 2000 s/m.
+//!
+//! Open (not asserted here): on the default six-pulley drive (tensioner dry friction and
+//! damping removed, β = 2e-4 s) the alternator-dominated first mode, predicted at 49.4 Hz
+//! (order 2 at 1482 rpm), peaks in the flowing model near 1275–1290 rpm (42.5–43 Hz, −13 %)
+//! at κ = 40 and 400 s/m alike; κ = 2000 s/m does not converge there (Newton at the first
+//! step). The wrap creep does not explain it; the cause is not found yet.
+
+use drives::fead::{EngineOrder, FeadConfig, run_fead};
+use drives::fead_design::{DesignConfig, run_design};
+
+// Reference: the design study's predicted crossing of order 2 with rotational mode 1
+// (f = √(2 k r²/J)/(2π), k = EA/L, the closed form checked in drives::fead_design's unit
+// tests). The sweep: 9 engine speeds from −8 % to +8 % of the predicted crossing in 2 % steps,
+// crank speed amplitude 0.2 % of the mean (order 2 only), belt damping β = 2e-4 s (ζ ≈ 0.03 at
+// 46 Hz: the peak of the damped response lies within 0.1 % of the undamped frequency),
+// κ = 2000 s/m (module documentation). The peak of the driven pulley's speed amplitude (max −
+// min over the settled window, over the crank's) located by a parabola through the largest
+// and its neighbours must lie within 5 % of the prediction (measured −2.1 %) and inside the
+// grid. 9 points of about 0.6 s simulated: 16 s in release (2026-12-02, shared 2-core machine).
+#[test]
+fn two_pulley_order_sweep_peaks_at_the_predicted_mode() {
+    let mut cfg = FeadConfig {
+        drive: belt::Layout::two_pulley(
+            0.45,
+            0.05,
+            0.05,
+            belt::Signal::constant(0.0),
+            0.02,
+            belt::Signal::schedule(vec![(0.0, 0.0), (0.1, 2.0)]),
+            belt::Section::default(),
+            400.0,
+        ),
+        ..FeadConfig::default()
+    };
+    cfg.drive.damping.beta = 2e-4;
+    cfg.drive.contact.friction = contact::friction::FrictionSpec::Tanh {
+        mu: 1.2,
+        kappa: 2000.0,
+    };
+    cfg.run.settle = 0.3;
+    let a = 0.002;
+    cfg.engine.orders = vec![EngineOrder {
+        order: 2.0,
+        amplitude: a,
+        phase: 0.0,
+    }];
+    let design = run_design(&DesignConfig {
+        drive: cfg.drive.clone(),
+        engine: cfg.engine.clone(),
+        ..DesignConfig::default()
+    })
+    .unwrap();
+    let crossing = design
+        .campbell
+        .crossings
+        .iter()
+        .find(|x| x.curve.starts_with("rotational mode 1") && x.order == 2.0)
+        .expect("order 2 crosses the first rotational mode in the engine-speed range");
+    let predicted = crossing.frequency_hz;
+    let rpm: Vec<f64> = (-4..=4)
+        .map(|k| crossing.engine_rpm * (1.0 + 0.02 * f64::from(k)))
+        .collect();
+    cfg.engine.speeds_rpm = rpm.clone();
+    let sim = run_fead(&cfg, |_| {}).unwrap();
+    let amp: Vec<f64> = sim
+        .points
+        .iter()
+        .map(|p| {
+            assert!(p.steady, "{} rpm not steady", p.engine_rpm);
+            let w = p.engine_rpm * std::f64::consts::PI / 30.0;
+            let e = &p.pulley_speed[1];
+            0.5 * (e.max - e.min) / (a * w)
+        })
+        .collect();
+    let k = (0..amp.len())
+        .max_by(|&i, &j| amp[i].total_cmp(&amp[j]))
+        .unwrap();
+    assert!(
+        k > 0 && k + 1 < amp.len(),
+        "peak at the grid's end: {amp:?}"
+    );
+    // vertex of the parabola through the three points (equal steps)
+    let (l, c, r) = (amp[k - 1], amp[k], amp[k + 1]);
+    let step = rpm[k + 1] - rpm[k];
+    let peak_rpm = rpm[k] + 0.5 * step * (l - r) / (l - 2.0 * c + r);
+    let peak = 2.0 * peak_rpm / 60.0;
+    eprintln!(
+        "predicted {predicted:.2} Hz ({:.1} rpm); response {:?}; peak {peak:.2} Hz ({:+.2} %)",
+        crossing.engine_rpm,
+        rpm.iter()
+            .zip(&amp)
+            .map(|(r, a)| format!("{r:.0}: {a:.2}"))
+            .collect::<Vec<_>>(),
+        100.0 * (peak / predicted - 1.0)
+    );
+    assert!(
+        (peak / predicted - 1.0).abs() < 0.05,
+        "peak {peak} Hz against {predicted} Hz"
+    );
+}
