@@ -98,16 +98,8 @@ impl BeltDrive {
 impl RestingBelt for BeltDrive {
     const LABEL: &'static str = "belt";
 
-    fn system_size(&self) -> usize {
-        self.n_q()
-    }
-
     fn belt_size(&self) -> usize {
         self.n_belt()
-    }
-
-    fn pulley_count(&self) -> usize {
-        self.pulleys().len()
     }
 
     fn element_dofs(&self) -> Vec<Vec<Option<usize>>> {

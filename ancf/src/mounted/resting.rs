@@ -40,18 +40,14 @@ impl Default for InitialOptions {
 }
 
 /// An ANCF belt discretisation whose resting equilibrium [`solve_resting`] finds (module
-/// documentation). The belt's coordinates are the first [`Self::belt_size`] of the system's
-/// [`Self::system_size`]; node 0's position is their first `dim`, `dim` the length of each
+/// documentation). The belt's coordinates are the first [`Self::belt_size`] of the system's;
+/// node 0's position is their first `dim`, `dim` the length of each
 /// held direction of [`Self::holding`].
-pub(crate) trait RestingBelt {
+pub(crate) trait RestingBelt: super::AncfDrive {
     /// What the errors call the belt (`"belt"`, `"plate belt"`).
     const LABEL: &'static str;
-    /// Coordinates of the whole system.
-    fn system_size(&self) -> usize;
-    /// Coordinates of the belt (the first ones of the system).
+    /// Coordinates of the belt (the first ones of the system's [`mbd_core::SecondOrderSystem::n_q`]).
     fn belt_size(&self) -> usize;
-    /// Number of pulleys.
-    fn pulley_count(&self) -> usize;
     /// The belt coordinates of each element, in element order (the groups of the tangent's
     /// sparsity pattern).
     fn element_dofs(&self) -> Vec<Vec<Option<usize>>>;
@@ -116,7 +112,7 @@ pub(crate) fn solve_resting<B: RestingBelt>(
             }
         }
     }
-    let n = belt.system_size();
+    let n = belt.n_q();
     let mut problem = Problem {
         belt,
         kv: pattern.zeros(),
@@ -128,7 +124,7 @@ pub(crate) fn solve_resting<B: RestingBelt>(
         dirs,
         x0: q0[..dim].to_vec(),
         f: vec![0.0; n],
-        torques: vec![0.0; belt.pulley_count()],
+        torques: vec![0.0; belt.drive_pulleys().len()],
         scratch: Vec::new(),
         iteration: 0,
         ws: Workspace::new(),

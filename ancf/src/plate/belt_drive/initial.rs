@@ -86,16 +86,8 @@ impl PlateBeltDrive {
 impl RestingBelt for PlateBeltDrive {
     const LABEL: &'static str = "plate belt";
 
-    fn system_size(&self) -> usize {
-        self.n_q()
-    }
-
     fn belt_size(&self) -> usize {
         self.n_belt()
-    }
-
-    fn pulley_count(&self) -> usize {
-        self.pulleys().len()
     }
 
     /// The same element groups as the drive's pattern.
