@@ -21,7 +21,8 @@
 //! sparser patterns leave the choice to faer's flop-count heuristic. See that constant for
 //! the measurement behind the rule. With [`KktSolver::banded`] the union pattern is instead
 //! reordered into a band with a dense border and factored by the banded LU of module `band`
-//! (for closed chains of nodes; faer's sparse LU remains the fallback at a zero pivot).
+//! (for closed chains of nodes; faer's sparse LU remains the fallback at a zero pivot or
+//! when a test solve shows the banded factors inaccurate, [`BAND_BACKWARD_ERROR_LIMIT`]).
 
 mod band;
 mod kernels;
@@ -351,6 +352,10 @@ struct SparsePath {
     /// The banded-plus-border LU ([`KktSolver::banded`]) when requested and the reordered
     /// pattern is a band.
     band: Option<band::BandLu>,
+    /// The further band plans (the next one last), taken in turn when the current plan's
+    /// factors fail the backward-error check ([`BAND_BACKWARD_ERROR_LIMIT`]); when none is
+    /// left the pattern keeps faer's LU.
+    band_plans: Vec<band::BandPlan>,
     /// Whether the last numeric factorisation is the banded one (else faer's).
     band_active: bool,
     /// Permuted right-hand side of the banded one-column solves.
@@ -425,14 +430,20 @@ impl SparsePath {
             d.for_each_entry(|i, j, _| d_map.push((pos(n + i, j), pos(j, n + i))));
         }
         let nnz = row_idx.len();
-        let band = if banded {
-            let plan = band::BandPlan::new(dim, &col_ptr, &row_idx);
-            let (kl, ku) = plan.bandwidths();
-            // a band as wide as half the matrix is a dense matrix in band storage
-            (2 * (kl + ku + 1) <= dim).then(|| band::BandLu::new(plan))
+        let mut band_plans: Vec<band::BandPlan> = if banded {
+            band::BandPlan::candidates(dim, &col_ptr, &row_idx)
+                .into_iter()
+                // a band as wide as half the matrix is a dense matrix in band storage
+                .filter(|p| {
+                    let (kl, ku) = p.bandwidths();
+                    2 * (kl + ku + 1) <= dim
+                })
+                .rev()
+                .collect()
         } else {
-            None
+            Vec::new()
         };
+        let band = band_plans.pop().map(band::BandLu::new);
         let symbolic_pattern = SymbolicSparseColMat::new_checked(dim, dim, col_ptr, None, row_idx);
         let params = LuSymbolicParams {
             supernodal_flop_ratio_threshold: lu_variant(nnz, dim),
@@ -467,6 +478,7 @@ impl SparsePath {
             solve_mem,
             banded_requested: banded,
             band,
+            band_plans,
             band_active: false,
             band_work: vec![0.0; dim],
         })
@@ -491,13 +503,14 @@ impl SparsePath {
             && d.is_none_or(|d| self.keys.last().is_some_and(|k| k.matches(d)))
     }
 
-    /// Scatters `Σ sₖ Aₖ` and `D` into the values and factors them numerically.
+    /// Scatters `Σ sₖ Aₖ` and `D` into the values and factors them numerically; returns the
+    /// number of banded factorisations rejected by the backward-error check on the way.
     fn factor(
         &mut self,
         blocks: &[ScaledBlock<'_>],
         d: Option<&SysMatrix>,
         t: f64,
-    ) -> Result<(), MbdError> {
+    ) -> Result<usize, MbdError> {
         self.vals.fill(0.0);
         for ((s, b), map) in blocks.iter().zip(&self.maps) {
             if *s == 0.0 {
@@ -528,16 +541,26 @@ impl SparsePath {
             });
         }
         self.band_active = false;
-        if let Some(band) = self.band.as_mut() {
+        let mut rejected = 0;
+        while let Some(band) = self.band.as_mut() {
             let pat = self.symbolic_pattern.as_ref();
-            // a zero pivot of the band (pivoting confined to it) falls back to faer's LU
+            // a zero pivot of the band (pivoting confined to it) falls back to faer's LU for
+            // this factorisation
             if band
                 .factor(pat.col_ptr(), pat.row_idx(), &self.vals)
-                .is_ok()
+                .is_err()
+            {
+                break;
+            }
+            if band.backward_error(pat.col_ptr(), pat.row_idx(), &self.vals)
+                <= BAND_BACKWARD_ERROR_LIMIT
             {
                 self.band_active = true;
-                return Ok(());
+                return Ok(rejected);
             }
+            // inaccurate factors: the next plan for this pattern from now on (else faer's LU)
+            rejected += 1;
+            self.band = self.band_plans.pop().map(band::BandLu::new);
         }
         let a = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.vals);
         self.symbolic
@@ -548,7 +571,7 @@ impl SparsePath {
                 MemStack::new(&mut self.factor_mem),
                 Default::default(),
             )
-            .map(|_| ())
+            .map(|_| rejected)
             .map_err(|e| MbdError::Singular {
                 t,
                 detail: format!("sparse LU of the augmented matrix failed: {e:?}"),
@@ -633,10 +656,16 @@ pub struct KktSolver {
     /// four times the average number of couplings (at most 1/16 of them) to a dense border,
     /// and factored by a banded LU with partial pivoting within the band (LAPACK dgbtf2) and
     /// the dense LU of the border's Schur complement. Used when the band spans at most half
-    /// the matrix; a zero pivot falls back to faer's sparse LU. Default `false`.
+    /// the matrix; a zero pivot falls back to faer's sparse LU, and factors whose test solve
+    /// has a backward error above [`BAND_BACKWARD_ERROR_LIMIT`] move the pattern to its next
+    /// band plan or to faer's LU. Default `false`.
     pub banded: bool,
     /// Number of numeric factorisations done by the banded LU.
     pub banded_factorizations: usize,
+    /// Number of banded factorisations rejected by the backward-error check
+    /// ([`BAND_BACKWARD_ERROR_LIMIT`]); each rejection moves the pattern to its next band
+    /// plan or, after the last, to faer's sparse LU for good.
+    pub banded_rejections: usize,
 }
 
 impl Default for KktSolver {
@@ -644,6 +673,18 @@ impl Default for KktSolver {
         Self::new()
     }
 }
+
+/// Largest accepted normwise relative backward error of the banded LU \[-\], measured after
+/// every banded factorisation by one test solve (module `band`, `BandLu::backward_error`).
+///
+/// Partial pivoting over the whole matrix (faer's LU) gives a small multiple of the unit
+/// roundoff (2.2e-16) on the Newton matrices of the belt models; the banded LU pivots only
+/// within its band and its border. The plan that cuts a closed chain at one node (6bd31ba)
+/// solved the plate belt's Newton matrix to a residual of 24 against a right-hand side of 0.5,
+/// which tripled the plate's Newton iterations per step (issue 37, bisected). A factorisation
+/// above this limit is discarded and the pattern moves to its next band plan, then to faer's
+/// LU. The margin to roundoff (six orders) keeps ill-conditioned but stable factors.
+pub const BAND_BACKWARD_ERROR_LIMIT: f64 = 1e-10;
 
 /// Relative pivot threshold below which a dense factorisation is reported as singular.
 const PIVOT_TOL: f64 = 1e-13;
@@ -660,6 +701,7 @@ impl KktSolver {
             symbolic_factorizations: 0,
             banded: false,
             banded_factorizations: 0,
+            banded_rejections: 0,
         }
     }
 
@@ -775,7 +817,7 @@ impl KktSolver {
                 t,
                 message: "missing sparse assembly".into(),
             })?;
-            path.factor(blocks, d, t)?;
+            self.banded_rejections += path.factor(blocks, d, t)?;
             if path.band_active {
                 self.banded_factorizations += 1;
             }

@@ -236,6 +236,51 @@ fn banded_lu_falls_back_at_a_zero_pivot() {
     assert_eq!(banded.factorizations, 1);
 }
 
+/// A matrix whose banded part has a tiny but nonzero pivot (a coordinate coupled only to the
+/// border, with diagonal 1e-12): no zero pivot stops the banded LU, but eliminating on it
+/// grows the factors by 1e12 (the 2 × 2 example of Golub & Van Loan, §3.4.1), so its solve
+/// has a backward error near 1e-4. The check (`BAND_BACKWARD_ERROR_LIMIT`) rejects both band
+/// plans at the first factorisation and the pattern keeps faer's LU, whose solution matches
+/// the dense LU's; later factorisations of the pattern do not try the band again. Without
+/// the check this is the failure that tripled the plate belt's Newton iterations (issue 37).
+#[test]
+fn inaccurate_banded_factors_fall_back_for_the_pattern() {
+    let (b, nodes) = (6, 20);
+    let n = b * nodes + 1;
+    let d_sp = SysMatrix::from_triplets(0, n, &[], true, 0.0).expect("no constraints");
+    let mut banded = KktSolver::new();
+    banded.banded = true;
+    let mut dense = KktSolver::new();
+    for seed in 0..3 {
+        let mut st = bordered(b, nodes, seed, &[37]);
+        st.push(Triplet::new(37, 37, 1e-12));
+        let s_sp = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("S");
+        compare(
+            &mut banded,
+            &mut dense,
+            &s_sp,
+            &d_sp,
+            &format!("seed {seed}"),
+        );
+    }
+    assert_eq!(banded.banded_factorizations, 0);
+    assert!(banded.banded_rejections >= 1);
+    let after_first = banded.banded_rejections;
+    assert_eq!(banded.factorizations, 3);
+    // the rejections all happened at the first factorisation (one per band plan)
+    assert!(after_first <= 2, "{after_first} rejections");
+    // the well-conditioned matrix of the same pattern passes the check in a new solver
+    let st = bordered(b, nodes, 0, &[]);
+    let s_sp = SysMatrix::from_triplets(n, n, &st, true, 0.0).expect("S");
+    let mut fresh = KktSolver::new();
+    fresh.banded = true;
+    compare(&mut fresh, &mut dense, &s_sp, &d_sp, "regular");
+    assert_eq!(
+        (fresh.banded_factorizations, fresh.banded_rejections),
+        (1, 0)
+    );
+}
+
 /// `SysMatrix::without_zeros` (the stepper's `M v̇` product): the same products `A x` and
 /// `y + s A x` as the dense matrix (an independent product), with fewer stored entries.
 #[test]
