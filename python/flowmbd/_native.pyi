@@ -57,6 +57,9 @@ _Fe = Tuple[_Array, Tuple[_Index, _Index, _Array], _Array, _Index, _Index]
 CLEAT_FORCE_COLUMNS: List[str]
 """Columns of the cleat test's force history (``forces.csv``)."""
 
+CLEAT_SPECTRUM_COLUMNS: List[str]
+"""Columns of the cleat test's amplitude spectra (``spectra.csv``)."""
+
 class ReducedTire:
     """The reduced flowing-material tire of Ribaric §8.2 (immutable, picklable)."""
 

@@ -30,6 +30,9 @@ ReducedTire = _native.ReducedTire
 #: Columns of the force history (``forces.csv`` of ``flowmbd-tire cleat``).
 FORCE_COLUMNS = tuple(_native.CLEAT_FORCE_COLUMNS)
 
+#: Columns of the amplitude spectra (``spectra.csv`` of ``flowmbd-tire cleat``).
+SPECTRUM_COLUMNS = tuple(_native.CLEAT_SPECTRUM_COLUMNS)
+
 
 def _reduced_tire_from_bytes(data: bytes) -> "ReducedTire":
     """Unpickle a :class:`ReducedTire` (its versioned JSON text as UTF-8 bytes)."""
@@ -141,14 +144,15 @@ def cleat(
         ``config["tire"]`` (which must then be absent): reduce once, run many.
     series : also return the force history (``"forces"``: the columns of ``forces.csv``,
         :data:`FORCE_COLUMNS`, numpy arrays) and the amplitude spectra (``"spectra"``:
-        ``f_hz``, ``fx_amp_n``, ``fy_amp_n``).
+        :data:`SPECTRUM_COLUMNS`: ``f_Hz``, ``fx_amp_N``, ``fy_amp_N``).
 
     Returns
     -------
     dict
         The CLI's ``summary.json``: ``speed_kmh``, ``dof``, ``fy_peak_hz``, ``fx_peak_hz``
-        [Hz], ``fy_rms``, ``fx_rms``, ``fy_band_rms_n``, ``fx_band_rms_n`` (rms of the dominant
-        lines) [N], ``preload_deflection_m``, ``fy_mean_before_n``,
+        [Hz] (interpolated between the spectrum's bins), ``peak_resolution_hz`` (the record's
+        bin spacing) [Hz], ``fy_rms``, ``fx_rms``, ``fy_band_rms_n``, ``fx_band_rms_n`` (rms of
+        the dominant lines) [N], ``preload_deflection_m``, ``fy_mean_before_n``,
         ``fx_mean_before_n``, ``load_n``, ``rayleigh`` (α [1/s], β [s]), ``steps``,
         ``refactors``, ``stats``, ``loaded_vertical_mode_hz``, ``loaded_longitudinal_mode_hz``,
         ``fx_line_mode``, ``fy_line_mode``, ``wall_time_s``, ``wall_per_simulated_s``,
@@ -178,5 +182,5 @@ def cleat(
     if series:
         out["forces"] = {n: np.asarray(c, dtype=float) for n, c in zip(FORCE_COLUMNS, forces)}
         out["spectra"] = {n: np.asarray(c, dtype=float)
-                          for n, c in zip(("f_hz", "fx_amp_n", "fy_amp_n"), spectra)}
+                          for n, c in zip(SPECTRUM_COLUMNS, spectra)}
     return out

@@ -105,5 +105,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tire::tire_reduce, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_cleat, m)?)?;
     m.add("CLEAT_FORCE_COLUMNS", ::tire::study::FORCE_COLUMNS.to_vec())?;
+    m.add(
+        "CLEAT_SPECTRUM_COLUMNS",
+        ::tire::study::SPECTRUM_COLUMNS.to_vec(),
+    )?;
     Ok(())
 }

@@ -114,12 +114,12 @@ def test_pickle_round_trip(reduced):
     a = flowmbd.tire.cleat(60.0, RIG, tire=reduced, series=True)
     b = flowmbd.tire.cleat(60.0, RIG, tire=back, series=True)
     assert_same(b, a)
-    np.testing.assert_allclose(b["forces"]["fy_n"], a["forces"]["fy_n"], rtol=1e-12)
+    np.testing.assert_allclose(b["forces"]["fy_N"], a["forces"]["fy_N"], rtol=1e-12)
     # the history's vertical force before the cleat carries the preload (Ribaric §8.3: the
     # rolling tire is in equilibrium), within 2 %, before the cleat enters the patch
     before = a["forces"]["t_s"] < -0.02
     assert before.sum() > 50
-    assert abs(a["forces"]["fy_n"][before].mean() / a["load_n"] - 1.0) < 0.02
+    assert abs(a["forces"]["fy_N"][before].mean() / a["load_n"] - 1.0) < 0.02
 
 
 def test_save_and_load(tmp_path, reduced):

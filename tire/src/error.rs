@@ -50,6 +50,17 @@ pub enum TireError {
         /// What is wrong, with the file and line.
         reason: String,
     },
+    /// An imported tire that reads well but fails one of the checks of the easy mistakes
+    /// ([`super::ImportCheckError`]: a diagonal or disconnected K, a patch set off the tread):
+    /// `field` is the import field naming the file the check blames.
+    #[error("import.{field}: {check}")]
+    ImportCheck {
+        /// The field of [`super::ImportFiles`] that names the file.
+        field: &'static str,
+        /// The failed check, with the file (and line) and the numbers that fail it.
+        #[source]
+        check: crate::import::ImportCheckError,
+    },
     /// Error of the finite-element layer.
     #[error(transparent)]
     Fe(#[from] fe_model::FeError),

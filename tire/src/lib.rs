@@ -62,7 +62,7 @@ pub mod source;
 
 pub use cache::{CacheUse, Reducing, SourcedTire, cache_dir};
 pub use error::TireError;
-pub use import::{ImportFiles, ImportFormat, imported_tire};
+pub use import::{ImportCheckError, ImportFiles, ImportFormat, imported_tire};
 pub use mesh::{Ring, TireFe};
 pub use model::{coarse_tire_config, generated_tire, truck_tire_config};
 pub use reduce::{ReductionConfig, ReductionTimings, full_frequencies_hz, reduce};

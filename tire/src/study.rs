@@ -27,6 +27,10 @@ pub fn tire_input_error(e: TireError) -> Result<InvalidField, TireError> {
         TireError::Import { field, reason } => {
             Ok(InvalidField::new(format!("tire.import.{field}"), reason))
         }
+        TireError::ImportCheck { field, check } => Ok(InvalidField::new(
+            format!("tire.import.{field}"),
+            check.to_string(),
+        )),
         TireError::File { path, reason } => Ok(InvalidField::new(
             format!("tire.reduced_file `{path}`"),
             reason,
@@ -212,10 +216,15 @@ pub struct CleatSummary {
     /// about a quarter of the work per step) or the full model and why
     /// ([`super::RollingConfig::symmetry`]).
     pub symmetry: String,
-    /// Dominant frequency of the vertical force \[Hz\].
+    /// Dominant frequency of the vertical force \[Hz\]: the largest line of its spectrum in
+    /// [`PEAK_BAND_HZ`], interpolated between the bins ([`Spectrum::interpolated_peak`]).
     pub fy_peak_hz: f64,
-    /// Dominant frequency of the longitudinal force \[Hz\].
+    /// Dominant frequency of the longitudinal force \[Hz\], likewise.
     pub fx_peak_hz: f64,
+    /// Frequency resolution of the record after the hit \[Hz\]: the spectra's bin spacing
+    /// `1/(N Δt)` (3.33 Hz for 0.3 s), from which `fy_peak_hz` and `fx_peak_hz` are
+    /// interpolated.
+    pub peak_resolution_hz: f64,
     /// RMS of the vertical force fluctuation after the hit \[N\].
     pub fy_rms: f64,
     /// RMS of the longitudinal force fluctuation after the hit \[N\].
@@ -278,7 +287,8 @@ pub struct CleatSummary {
 pub const CLEAT_MEANING: &str = "The cleat test of Ribaric 8.3: the preloaded tire rolls at speed_kmh over a \
          semicircular cleat on the drum (or road) and the spindle forces are recorded. \
          fy_peak_hz and fx_peak_hz are the frequencies of the largest spectral peaks of the \
-         vertical and longitudinal force after the hit (sought in 10-500 Hz) and \
+         vertical and longitudinal force after the hit (sought in 10-500 Hz, interpolated \
+         between the bins of the record's spectrum, whose spacing is peak_resolution_hz) and \
          fy_band_rms_n, fx_band_rms_n the rms of these lines (spectrum within 10 Hz of the \
          peak) [N]: the loaded tire's vertical and longitudinal modes rolling at that speed \
          (loaded_vertical_mode_hz, fx_line_mode and fy_line_mode name the modes that carry \
@@ -322,19 +332,25 @@ pub fn summarize(r: &RigResult) -> CleatSummary {
     // the steadily rolling tire: the last 50 ms before the first node touches the cleat (the
     // cleat enters the patch (L/2 + r)/v before it reaches the patch centre at t = 0)
     let before = r.mean_before_cleat(0.05).unwrap_or((0.0, 0.0));
-    let fy_peak_hz = sy.peak(band[0], band[1]).map_or(0.0, |p| p.0);
-    let fx_peak_hz = sx.peak(band[0], band[1]).map_or(0.0, |p| p.0);
-    let line = |s: &Spectrum, f: f64| s.band_rms(f - LINE_BAND_HZ, f + LINE_BAND_HZ);
+    let fy_peak_hz = sy.interpolated_peak(band[0], band[1]).map_or(0.0, |p| p.0);
+    let fx_peak_hz = sx.interpolated_peak(band[0], band[1]).map_or(0.0, |p| p.0);
+    // the line's rms over the band about the peak bin (the band's bins are the same as before
+    // the peak was interpolated)
+    let line = |s: &Spectrum| {
+        let f = s.peak(band[0], band[1]).map_or(0.0, |p| p.0);
+        s.band_rms(f - LINE_BAND_HZ, f + LINE_BAND_HZ)
+    };
     CleatSummary {
         speed_kmh: r.speed_kmh,
         dof: r.dof,
         symmetry: r.symmetry.clone(),
         fy_peak_hz,
         fx_peak_hz,
+        peak_resolution_hz: sy.resolution_hz(),
         fy_rms: ry,
         fx_rms: rx,
-        fy_band_rms_n: line(&sy, fy_peak_hz),
-        fx_band_rms_n: line(&sx, fx_peak_hz),
+        fy_band_rms_n: line(&sy),
+        fx_band_rms_n: line(&sx),
         wall_time_s: r.wall_time_s,
         wall_per_simulated_s: r.wall_time_s / r.simulated_s.max(1e-12),
         cpu_per_simulated_s: r.cpu_time_s.map(|c| c / r.simulated_s.max(1e-12)),
@@ -371,13 +387,18 @@ pub fn cleat_summary(red: &ReducedTire, r: &RigResult) -> CleatSummary {
 /// their total normal force \[N\].
 pub const FORCE_COLUMNS: [&str; 7] = [
     "t_s",
-    "fx_n",
-    "fy_n",
-    "f_lateral_n",
-    "spin_rad_s",
+    "fx_N",
+    "fy_N",
+    "f_lateral_N",
+    "spin_rad_per_s",
     "active_nodes_count",
-    "normal_sum_n",
+    "normal_sum_N",
 ];
+
+/// Columns of the cleat test's amplitude spectra after the hit (`spectra.csv` of
+/// `flowmbd-tire cleat`, the `spectra` of `flowmbd.tire.cleat`): frequency \[Hz\] and the
+/// amplitudes of `F_x` and `F_y` \[N\] ([`RigResult::spectra`]).
+pub const SPECTRUM_COLUMNS: [&str; 3] = ["f_Hz", "fx_amp_N", "fy_amp_N"];
 
 /// The [`FORCE_COLUMNS`] row of the rolling tire after a step (a run's observer; `settle` is
 /// the rig's `settle_time`, so that the cleat hits at `t = 0`): the same numbers as the step's

@@ -321,7 +321,7 @@ impl Study for Pendulum {
         write_history(
             ctx,
             &s,
-            ["kinetic_j", "strain_j", "potential_j", "total_j"],
+            ["kinetic_J", "strain_J", "potential_J", "total_J"],
             |x| {
                 [
                     x.energy.kinetic,
@@ -439,7 +439,7 @@ impl Study for Spinning {
         write_history(
             ctx,
             &s,
-            ["axial_extension_m", "tip_offset_m", "kinetic_j", "strain_j"],
+            ["axial_extension_m", "tip_offset_m", "kinetic_J", "strain_J"],
             |x| [x.value, x.value2, x.energy.kinetic, x.energy.strain],
         )?;
         LinePlot::new(
@@ -551,7 +551,7 @@ impl Study for GroundContact {
         let r = studies::ground_contact(c).map_err(study_error)?;
         ctx.out.write_csv(
             "contact.csv",
-            &["x_m", "y_m", "contact_force_n"],
+            &["x_m", "y_m", "contact_force_N"],
             r.positions
                 .iter()
                 .zip(&r.forces)
@@ -579,7 +579,7 @@ impl Study for GroundContact {
         let total = summary.total_force;
         plausible(ctx, summary, |k| {
             // the ground only pushes: unilateral contact forces are compressive
-            k.all_non_negative("contact_force_n", &forces, "a contact force")
+            k.all_non_negative("contact_force_N", &forces, "a contact force")
                 .non_negative("total_force", total, "a contact force");
         })
     }

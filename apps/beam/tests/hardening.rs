@@ -109,7 +109,7 @@ fn summaries_say_what_the_numbers_mean() {
             v["meaning"].as_str().unwrap_or_default().len() > 100,
             "{study}"
         );
-        let bad = flowmbd_cli::output::columns_without_unit(&out);
+        let bad = flowmbd_cli::output::csv_violations(&out);
         assert!(bad.is_empty(), "{study}: {bad:?}");
     }
     let _ = std::fs::remove_dir_all(dir);

@@ -141,14 +141,14 @@ impl AncfStudy {
 
         let mut header: Vec<String> = vec!["t_s".into()];
         for p in drive.pulleys() {
-            header.push(format!("omega_{}_rad_s", p.name));
+            header.push(format!("omega_{}_rad_per_s", p.name));
         }
         for k in 0..spans.len() {
             header.push(format!("span{k}_mid_x_m"));
             header.push(format!("span{k}_mid_y_m"));
         }
         for k in 0..spans.len() {
-            header.push(format!("span{k}_tension_n"));
+            header.push(format!("span{k}_tension_N"));
         }
         let hdr: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
         let mut csv = ctx.out.csv("history.csv", &hdr)?;
@@ -221,7 +221,13 @@ impl AncfStudy {
         let samples = post::tension_samples(&drive, &s.q, c.output.points_per_element);
         ctx.out.write_csv(
             "tension.csv",
-            &["s_material_m", "x_m", "y_m", "strain", "tension_n"],
+            &[
+                "s_material_m",
+                "x_m",
+                "y_m",
+                "engineering_strain",
+                "tension_N",
+            ],
             samples.iter().map(|p| {
                 [
                     p.s_material,
@@ -242,9 +248,9 @@ impl AncfStudy {
                 "x_m",
                 "y_m",
                 "penetration_m",
-                "normal_force_n_m",
-                "friction_force_n_m",
-                "relative_velocity_m_s",
+                "normal_force_N_per_m",
+                "friction_force_N_per_m",
+                "relative_velocity_m_per_s",
             ],
             recs.iter().map(|r| {
                 [
@@ -271,7 +277,7 @@ impl AncfStudy {
                 "s_material_m",
                 "arc_m",
                 "penetration_m",
-                "relative_velocity_m_s",
+                "relative_velocity_m_per_s",
             ],
             fine.iter().map(|r| {
                 [

@@ -122,7 +122,7 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
     .iter()
     .map(|x| x.to_string())
     .collect();
-    header.extend((1..=harmonics).map(|n| format!("frequency{n}_hz")));
+    header.extend((1..=harmonics).map(|n| format!("frequency{n}_Hz")));
     let refs: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut csv = ctx.out.csv("design_spans.csv", &refs)?;
     for p in &s.points {
@@ -149,7 +149,7 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
             "engine_speed_rpm",
             "pulley_index",
             "wrap_deg",
-            "speed_rad_s",
+            "speed_rad_per_s",
             "torque_N_m",
             "tension_in_N",
             "tension_out_N",
@@ -192,7 +192,7 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
     let mut header: Vec<String> = vec![
         "engine_speed_rpm".into(),
         "mode".into(),
-        "frequency_hz".into(),
+        "frequency_Hz".into(),
     ];
     header.extend((0..dofs).map(|i| format!("dof{i}_energy_share")));
     let refs: Vec<&str> = header.iter().map(String::as_str).collect();
@@ -210,7 +210,7 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
     let mut header: Vec<String> = vec![
         "engine_speed_rpm".into(),
         "mode".into(),
-        "frequency_hz".into(),
+        "frequency_Hz".into(),
         "dominant_part_index".into(),
     ];
     header.extend((0..parts).map(|i| format!("part{i}_energy_share")));
@@ -232,7 +232,7 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
     // Campbell diagram and crossings
     let c = &s.campbell;
     let mut header: Vec<String> = vec!["engine_speed_rpm".into()];
-    header.extend((0..c.curves.len()).map(|i| format!("curve{i}_hz")));
+    header.extend((0..c.curves.len()).map(|i| format!("curve{i}_Hz")));
     let refs: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut csv = ctx.out.csv("campbell.csv", &refs)?;
     for (i, &r) in c.engine_rpm.iter().enumerate() {
@@ -247,7 +247,7 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
             "curve_index",
             "engine_order_ratio",
             "engine_speed_rpm",
-            "frequency_hz",
+            "frequency_Hz",
         ],
     )?;
     for x in &c.crossings {

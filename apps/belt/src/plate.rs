@@ -94,10 +94,10 @@ impl PlateStudy {
         let names: Vec<String> = drive.pulleys().iter().map(|p| p.name.clone()).collect();
         let mut header: Vec<String> = vec!["t_s".into()];
         for n in &names {
-            header.push(format!("omega_{n}_rad_s"));
+            header.push(format!("omega_{n}_rad_per_s"));
         }
-        header.push("torque_driven_Nm".into());
-        header.push("load_driven_Nm".into());
+        header.push("torque_driven_N_m".into());
+        header.push("load_driven_N_m".into());
         let nspans = drive.path().pulleys().len();
         for k in 0..nspans {
             for m in StrainMeasure::ALL {
@@ -181,7 +181,7 @@ impl PlateStudy {
                 "tension_green_N",
                 "tension_true_N",
                 "tension_almansi_N",
-                "speed_m_s",
+                "speed_m_per_s",
                 "area_ratio",
             ],
             d.belt.iter().map(|p| {
@@ -210,11 +210,11 @@ impl PlateStudy {
                 &[
                     "s_m",
                     "tension_N",
-                    "speed_m_s",
+                    "speed_m_per_s",
                     "normal_N_per_m",
                     "friction_N_per_m",
                     "capstan_tension_N",
-                    "capstan_speed_m_s",
+                    "capstan_speed_m_per_s",
                     "capstan_normal_N_per_m",
                     "capstan_friction_N_per_m",
                 ],
@@ -245,11 +245,11 @@ impl PlateStudy {
                 "y_m",
                 "z_m",
                 "penetration_m",
-                "pressure_pa",
-                "friction_circumferential_pa",
-                "friction_axial_pa",
-                "slip_circumferential_m_s",
-                "slip_axial_m_s",
+                "pressure_Pa",
+                "friction_circumferential_Pa",
+                "friction_axial_Pa",
+                "slip_circumferential_m_per_s",
+                "slip_axial_m_per_s",
             ],
             d.contact.iter().map(|p| {
                 let r = &p.record;

@@ -134,10 +134,10 @@ fn run_case(
     let name = format!("history_omega_{omega:.1}.csv");
     let columns = [
         "t_s",
-        "omega_driver_rad_s",
-        "omega_driven_rad_s",
+        "omega_driver_rad_per_s",
+        "omega_driven_rad_per_s",
         "load_torque_N_m",
-        "belt_speed_m_s",
+        "belt_speed_m_per_s",
     ];
     let mut csv = ctx.out.csv(&name, &columns)?;
     let mut io_err = None;
@@ -231,10 +231,10 @@ impl Study for SpeedLoss {
         let mut table = ctx.out.csv(
             "speed_loss.csv",
             &[
-                "omega_driver_rad_s",
-                "torque_Nm",
-                "delta_omega_rad_s",
-                "delta_omega_bechtel_rad_s",
+                "omega_driver_rad_per_s",
+                "torque_N_m",
+                "delta_omega_rad_per_s",
+                "delta_omega_bechtel_rad_per_s",
             ],
         )?;
         let mut plot = LinePlot::new(

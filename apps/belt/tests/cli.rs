@@ -78,7 +78,7 @@ fn speed_loss_json_contract() {
         assert!(out.join(f).exists(), "{f} missing");
     }
     // issue 20, item 5: units in the CSV headers, and why Δω exceeds Bechtel's line
-    let bad = flowmbd_cli::output::columns_without_unit(&out);
+    let bad = flowmbd_cli::output::csv_violations(&out);
     assert!(bad.is_empty(), "columns without unit: {bad:?}");
     let meaning = v["meaning"].as_str().unwrap();
     assert!(

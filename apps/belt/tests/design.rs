@@ -74,7 +74,7 @@ fn design_json_names_the_layout_and_writes_the_files() {
     ] {
         assert!(out.join(f).exists(), "{f} missing");
     }
-    let missing = flowmbd_cli::output::columns_without_unit(&out);
+    let missing = flowmbd_cli::output::csv_violations(&out);
     assert!(missing.is_empty(), "{missing:?}");
     let _ = std::fs::remove_dir_all(out);
 }

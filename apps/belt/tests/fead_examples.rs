@@ -44,7 +44,7 @@ fn decoupler_example_runs_and_reports_the_clutch() {
     assert!((torque - 3.0).abs() < 0.1, "spring torque {torque} N m");
     assert!(d["clutch_at_end"] == "engaged" || d["clutch_at_end"] == "overrunning");
     assert!(out.join("fead_decouplers.csv").is_file());
-    let missing = flowmbd_cli::output::columns_without_unit(&out);
+    let missing = flowmbd_cli::output::csv_violations(&out);
     assert!(missing.is_empty(), "{missing:?}");
     let _ = std::fs::remove_dir_all(out);
     // the ANCF belt has no decoupler: exit 2 naming the field

@@ -140,7 +140,7 @@ fn csv_headers_carry_units_and_summaries_a_meaning() {
         let v: serde_json::Value = serde_json::from_str(&json).unwrap();
         let meaning = v["meaning"].as_str().unwrap_or_default();
         assert!(meaning.len() > 100, "{study}: meaning `{meaning}`");
-        let bad = flowmbd_cli::output::columns_without_unit(&out);
+        let bad = flowmbd_cli::output::csv_violations(&out);
         assert!(bad.is_empty(), "{study}: columns without unit: {bad:?}");
     }
     let _ = std::fs::remove_dir_all(dir);

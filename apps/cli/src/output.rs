@@ -7,6 +7,13 @@
 //! new run in the same folder first removes the files the previous run listed
 //! ([`OutputDir::begin_run`]), so stale outputs of an earlier run never stand beside new ones
 //! unmarked (issue 35, item 3).
+//!
+//! CSV files follow one naming convention (issue 39, item 3), defined in the docs of
+//! [`UNIT_SUFFIXES`]: every column name ends in its unit written from SI symbols in their SI case
+//! (`t_s`, `torque_N_m`, `omega_rad_per_s`, `tension_N`, `frequency_Hz`, `speed_km_per_h`), in a
+//! dimensionless marker (`damping_ratio`) or in an integer marker (`pulley_index`,
+//! `gross_slip_flag`); [`CsvSink::row`] writes the integer columns as integers and
+//! [`csv_violations`] checks a folder of CSV files against the convention.
 
 use crate::error::CliError;
 use serde::Serialize;
@@ -221,81 +228,132 @@ impl OutputDir {
             path,
             part,
             writer: Some(writer),
-            columns: header.len(),
+            names: header.iter().map(|c| c.to_string()).collect(),
+            kinds: header
+                .iter()
+                .map(|c| column_kind(c).unwrap_or(ColumnKind::Real))
+                .collect(),
         })
     }
 }
 
-/// Unit suffixes a CSV column name may end with (`torque_Nm`, `delta_omega_rad_s`, `t_s`):
-/// `_s`, `_m`, `_n` (newton), `_n_m` (N/m), `_Nm` (N·m), `_hz`, `_kmh`, `_rad`, `_rad_s`,
-/// `_rad_s2`, `_rad2_s2`, `_1_s`, `_m_s`, `_m_s2`, `_j`, `_kg`, `_kg_m2`, `_pa`, `_deg`,
-/// `_n_sqrtkg` (N/√kg), `_sqrtkg_m` (√kg·m, mass-normalised modal coordinates), `_rpm`
-/// (revolutions per minute) and `_percent`; the SI symbols spelled out are accepted too
-/// (`tension_N`, `torque_N_m`, `pressure_N_per_m`, `slip_velocity_m_per_s`). Suffixes
-/// compare without case ([`column_has_unit`]).
+/// The unit suffixes of CSV column names (the one convention of every CSV a study writes,
+/// issue 39 item 3). A column is named `quantity_UNIT`, where `UNIT` is written from SI
+/// symbols in their SI case (`s`, `m`, `kg`, `N`, `J`, `W`, `Pa`, `Hz`, `rad`; case matters:
+/// `N` is the newton, `n` a count), a product joined by `_` (`N_m` = N·m, `kg_m2` = kg·m²), a
+/// quotient by `_per_` (`rad_per_s`, `m_per_s2`, `N_per_m`, `1_per_s`), a power as a trailing
+/// digit (`m2`, `s2`) and a square root as `sqrt_` (`N_per_sqrt_kg` = N/√kg, the spindle force
+/// of a mass-normalised mode; `sqrt_kg_m` = √kg·m, a mass-normalised modal coordinate). Three
+/// non-SI units are allowed where the field speaks them: `deg`, `rpm` (revolutions per minute)
+/// and `km_per_h`; `percent` marks a percentage. Examples: `t_s`, `omega_driver_rad_per_s`,
+/// `torque_N_m`, `tension_N`, `pressure_N_per_m`, `frequency_Hz`, `energy_J`, `speed_km_per_h`.
+///
+/// A dimensionless real column ends in [`DIMENSIONLESS`] (`damping_ratio`, `energy_share`,
+/// `green_strain`); an integer column (an index, a count, a flag 0/1, a code) ends in
+/// [`INTEGER_MARKERS`] or is one of [`INTEGER_NAMES`] and is written as an integer
+/// ([`CsvSink::row`]). [`column_kind`] decides a name; [`csv_violations`] checks a folder.
 pub const UNIT_SUFFIXES: &[&str] = &[
-    "_s",
-    "_m",
-    "_n",
-    "_n_m",
-    "_Nm",
-    "_hz",
-    "_kmh",
-    "_rad",
-    "_rad_s",
-    "_rad_s2",
-    "_rad2_s2",
-    "_1_s",
-    "_m_s",
-    "_m_s2",
-    "_j",
-    "_kg",
-    "_kg_m2",
-    "_pa",
-    "_deg",
-    "_n_sqrtkg",
-    "_sqrtkg_m",
-    "_rpm",
-    "_percent",
-    "_N",
-    "_N_m",
-    "_N_per_m",
-    "_m_per_s",
+    "s",
+    "m",
+    "kg",
+    "N",
+    "J",
+    "W",
+    "Pa",
+    "Hz",
+    "rad",
+    "deg",
+    "rpm",
+    "percent",
+    "km_per_h",
+    "m2",
+    "N_m",
+    "N_per_m",
+    "rad_per_s",
+    "rad_per_s2",
+    "rad2_per_s2",
+    "1_per_s",
+    "m_per_s",
+    "m_per_s2",
+    "kg_m2",
+    "N_per_sqrt_kg",
+    "sqrt_kg_m",
 ];
 
-/// Suffixes of dimensionless columns (`damping_ratio`, `lateral_share`, `loaded_flag`,
-/// `pulley_index`, `direction_code`, `active_count`, `friction_utilisation` = |f_t| / (μ f_n))
-/// and names that are dimensionless by definition (`mode`, `n`, `strain`).
-pub const DIMENSIONLESS: &[&str] = &[
-    "_ratio",
-    "_share",
-    "_flag",
-    "_index",
-    "_code",
-    "_count",
-    "_strain",
-    "_utilisation",
+/// Spellings of units that the convention replaced ([`UNIT_SUFFIXES`] gives the one form):
+/// `_rad_s` → `_rad_per_s`, `_m_s` → `_m_per_s`, `_1_s` → `_1_per_s`, `_Nm` and `_n_m` (which
+/// meant N/m in some files) → `_N_m` / `_N_per_m`, `_kmh` → `_km_per_h`, lower-case `_n`,
+/// `_j`, `_pa`, `_hz`, `_w` → `_N`, `_J`, `_Pa`, `_Hz`, `_W`. A name ending in one of these is
+/// outside the convention even where its last part alone would read as a unit (`rad_s` ends in
+/// `_s`).
+pub const LEGACY_SUFFIXES: &[&str] = &[
+    "rad_s", "rad_s2", "rad2_s2", "m_s", "m_s2", "1_s", "Nm", "n_m", "kmh", "n_sqrtkg", "sqrtkg_m",
+    "n", "j", "pa", "hz", "w",
 ];
 
-/// Column names that are counts or indices by definition (`pulley`: the pulley's index in
-/// travel order).
-pub const DIMENSIONLESS_NAMES: &[&str] = &["mode", "n", "strain", "index", "pulley"];
+/// Suffixes of dimensionless real columns (`damping_ratio`, `lateral_share`, `green_strain`).
+pub const DIMENSIONLESS: &[&str] = &["ratio", "share", "strain"];
 
-/// Whether the CSV column `name` says its unit (ends with one of [`UNIT_SUFFIXES`]) or that
-/// it is dimensionless ([`DIMENSIONLESS`], [`DIMENSIONLESS_NAMES`]).
-/// The suffixes compare without case: `tension_N` and `tension_n` both say newtons.
-pub fn column_has_unit(name: &str) -> bool {
-    let lower = name.to_ascii_lowercase();
-    DIMENSIONLESS_NAMES.contains(&lower.as_str())
-        || UNIT_SUFFIXES
-            .iter()
-            .chain(DIMENSIONLESS)
-            .any(|u| lower.ends_with(&u.to_ascii_lowercase()) && lower.len() > u.len())
+/// Suffixes of integer columns: an index (`pulley_index`), a count (`active_nodes_count`), a
+/// flag 0/1 (`gross_slip_flag`), a code (`direction_code`: its meaning in the study's docs).
+pub const INTEGER_MARKERS: &[&str] = &["index", "count", "flag", "code"];
+
+/// Column names that are integers by definition: `mode` (the mode number) and `n` (a wave or
+/// harmonic number).
+pub const INTEGER_NAMES: &[&str] = &["mode", "n"];
+
+/// What a CSV column holds, read from its name ([`column_kind`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ColumnKind {
+    /// A real number with a unit or dimensionless (`{:.10e}`).
+    Real,
+    /// An integer (index, count, flag, code), written without a decimal point.
+    Integer,
 }
 
-/// The columns without a unit in the headers of the CSV files in `dir` (recursively), as
-/// `file: column` (empty when every column says its unit; issue 20's convention).
-pub fn columns_without_unit(dir: &Path) -> Vec<String> {
+/// Whether `name` ends in `_suffix` after a non-empty stem.
+fn ends_in(name: &str, suffix: &str) -> bool {
+    name.len() > suffix.len() + 1
+        && name.ends_with(suffix)
+        && name.as_bytes()[name.len() - suffix.len() - 1] == b'_'
+}
+
+/// The kind of the CSV column `name` under the one convention ([`UNIT_SUFFIXES`]), or `None`
+/// when the name is outside it (no unit, a unit spelled another way, no integer marker).
+/// Suffixes compare with their case: `tension_N` is in newtons, `tension_n` is refused.
+pub fn column_kind(name: &str) -> Option<ColumnKind> {
+    if INTEGER_NAMES.contains(&name) || INTEGER_MARKERS.iter().any(|u| ends_in(name, u)) {
+        return Some(ColumnKind::Integer);
+    }
+    if LEGACY_SUFFIXES.iter().any(|u| ends_in(name, u)) {
+        return None;
+    }
+    UNIT_SUFFIXES
+        .iter()
+        .chain(DIMENSIONLESS)
+        .any(|u| ends_in(name, u))
+        .then_some(ColumnKind::Real)
+}
+
+/// Whether the CSV column `name` follows the convention ([`column_kind`] is `Some`).
+pub fn column_has_unit(name: &str) -> bool {
+    column_kind(name).is_some()
+}
+
+/// Whether `cell` is an integer as [`CsvSink::row`] writes it (`3`, `-1`, `0`; `NaN` for a
+/// missing value).
+pub fn is_integer_cell(cell: &str) -> bool {
+    cell == "NaN" || {
+        let digits = cell.strip_prefix('-').unwrap_or(cell);
+        !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit())
+    }
+}
+
+/// The breaches of the CSV convention in the CSV files in `dir` (recursively), as
+/// `file: column` for a header outside it ([`column_kind`]) and `file:line: column = cell`
+/// for an integer column holding a cell that is not an integer ([`is_integer_cell`]). Empty
+/// when every file follows the convention.
+pub fn csv_violations(dir: &Path) -> Vec<String> {
     let mut out = Vec::new();
     let Ok(entries) = std::fs::read_dir(dir) else {
         return out;
@@ -304,14 +362,27 @@ pub fn columns_without_unit(dir: &Path) -> Vec<String> {
     entries.sort();
     for p in entries {
         if p.is_dir() {
-            out.extend(columns_without_unit(&p));
+            out.extend(csv_violations(&p));
         } else if p.extension().is_some_and(|e| e == "csv")
             && let Ok(text) = std::fs::read_to_string(&p)
-            && let Some(header) = text.lines().next()
         {
-            for col in header.split(',') {
-                if !column_has_unit(col) {
-                    out.push(format!("{}: {col}", p.display()));
+            let mut lines = text.lines();
+            let Some(header) = lines.next() else {
+                continue;
+            };
+            let cols: Vec<&str> = header.split(',').collect();
+            let kinds: Vec<Option<ColumnKind>> = cols.iter().map(|c| column_kind(c)).collect();
+            for (c, k) in cols.iter().zip(&kinds) {
+                if k.is_none() {
+                    out.push(format!("{}: {c}", p.display()));
+                }
+            }
+            for (l, line) in lines.enumerate() {
+                for ((cell, c), k) in line.split(',').zip(&cols).zip(&kinds) {
+                    if *k == Some(ColumnKind::Integer) && !is_integer_cell(cell) {
+                        out.push(format!("{}:{}: {c} = {cell}", p.display(), l + 2));
+                        break;
+                    }
                 }
             }
         }
@@ -319,31 +390,62 @@ pub fn columns_without_unit(dir: &Path) -> Vec<String> {
     out
 }
 
+/// The columns outside the convention in the headers of the CSV files in `dir` and the
+/// integer columns written otherwise ([`csv_violations`]; the name of issue 20's check).
+pub fn columns_without_unit(dir: &Path) -> Vec<String> {
+    csv_violations(dir)
+}
+
 /// A CSV file being written row by row (under a temporary name until finished or dropped).
 pub struct CsvSink {
     path: PathBuf,
     part: PathBuf,
     writer: Option<csv::Writer<BufWriter<File>>>,
-    columns: usize,
+    names: Vec<String>,
+    kinds: Vec<ColumnKind>,
 }
 
 impl CsvSink {
-    /// Append one row (must have as many values as the header has columns).
+    /// Append one row (must have as many values as the header has columns). Real columns are
+    /// written `{:.10e}`; integer columns ([`ColumnKind::Integer`]: names ending in
+    /// [`INTEGER_MARKERS`] or in [`INTEGER_NAMES`]) as integers (`3`, `0`/`1`; `NaN` for a
+    /// missing value), and a value there that is not a whole number of magnitude below 2⁵³ is
+    /// an error naming the column.
     pub fn row(&mut self, values: &[f64]) -> Result<(), CliError> {
-        if values.len() != self.columns {
+        if values.len() != self.kinds.len() {
             return Err(CliError::Write {
                 path: self.path.clone(),
                 message: format!(
                     "row has {} values, header has {}",
                     values.len(),
-                    self.columns
+                    self.kinds.len()
                 ),
+            });
+        }
+        let mut cells = Vec::with_capacity(values.len());
+        for (k, (&v, kind)) in values.iter().zip(&self.kinds).enumerate() {
+            cells.push(match kind {
+                ColumnKind::Real => format!("{v:.10e}"),
+                ColumnKind::Integer if v.is_nan() => "NaN".to_string(),
+                ColumnKind::Integer if v.fract() == 0.0 && v.abs() < 9.007_199_254_740_992e15 => {
+                    format!("{}", v as i64)
+                }
+                ColumnKind::Integer => {
+                    return Err(CliError::Write {
+                        path: self.path.clone(),
+                        message: format!(
+                            "column {} ({}) holds integers, got {v}",
+                            k + 1,
+                            self.names[k]
+                        ),
+                    });
+                }
             });
         }
         let Some(w) = self.writer.as_mut() else {
             return Err(write_error(&self.path, "already finished"));
         };
-        w.write_record(values.iter().map(|v| format!("{v:.10e}")))
+        w.write_record(&cells)
             .map_err(|e| write_error(&self.path, e))
     }
 
@@ -388,31 +490,109 @@ fn write_error(path: &Path, e: impl std::fmt::Display) -> CliError {
 mod tests {
     use super::*;
 
-    // definition of the convention: a unit suffix or a dimensionless marker
+    // definition of the convention (issue 39 item 3): SI symbols in their case, `_per_` for a
+    // quotient, integer markers; the spellings it replaced are refused although their last
+    // part alone reads as a unit (`rad_s` ends in `_s`, `n_m` in `_m`). Reference: the table
+    // in the rustdoc of `UNIT_SUFFIXES` and `LEGACY_SUFFIXES`.
     #[test]
-    fn columns_say_their_units() {
+    fn columns_follow_the_one_convention() {
         for ok in [
             "t_s",
+            "torque_N_m",
+            "delta_omega_rad_per_s",
+            "fy_amp_N",
+            "speed_km_per_h",
+            "frequency_Hz",
+            "energy_J",
+            "pressure_Pa",
+            "eigenvalue_rad2_per_s2",
+            "growth_rate_1_per_s",
+            "spindle_fx_N_per_sqrt_kg",
+            "z1_sqrt_kg_m",
+            "tension_N",
+            "pressure_N_per_m",
+            "slip_velocity_m_per_s",
+            "damping_ratio",
+            "green_strain",
+            "s_m",
+        ] {
+            assert_eq!(column_kind(ok), Some(ColumnKind::Real), "{ok}");
+        }
+        for int in [
+            "mode",
+            "n",
+            "pulley_index",
+            "active_nodes_count",
+            "gross_slip_flag",
+        ] {
+            assert_eq!(column_kind(int), Some(ColumnKind::Integer), "{int}");
+        }
+        for bad in [
+            "t",
+            "torque",
+            "hz",
+            "delta_omega",
+            "tension",
+            "_s",
+            "x",
             "torque_Nm",
             "delta_omega_rad_s",
             "fy_amp_n",
             "speed_kmh",
-            "damping_ratio",
-            "mode",
-            "pulley_index",
             "normal_force_n_m",
             "growth_rate_1_s",
-            "tension_N",
-            "pressure_N_per_m",
-            "slip_velocity_m_per_s",
-            "friction_utilisation",
+            "belt_speed_m_s",
+            "f_hz",
+            "energy_j",
+            "pressure_pa",
             "pulley",
+            "active_nodes",
         ] {
-            assert!(column_has_unit(ok), "{ok}");
+            assert_eq!(column_kind(bad), None, "{bad}");
         }
-        for bad in ["t", "torque", "hz", "delta_omega", "tension", "_s", "x"] {
-            assert!(!column_has_unit(bad), "{bad}");
-        }
+        assert!(is_integer_cell("3") && is_integer_cell("-1") && is_integer_cell("NaN"));
+        assert!(!is_integer_cell("0.0000000000e0") && !is_integer_cell("1.5"));
+        assert!(!is_integer_cell("") && !is_integer_cell("-"));
+    }
+
+    // integer columns are written as integers and checked; a breach of either half of the
+    // convention is reported by `csv_violations` (reference: the cells written by hand below)
+    #[test]
+    fn integer_columns_are_written_and_checked_as_integers() {
+        let dir = std::env::temp_dir().join(format!("flowmbd-cli-int-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = OutputDir::create(&dir).unwrap();
+        let p = out
+            .write_csv(
+                "a.csv",
+                &["pulley_index", "torque_N_m", "slip_flag", "mode"],
+                [[3.0, 0.5, 1.0, f64::NAN], [0.0, -2.0, 0.0, 12.0]],
+            )
+            .unwrap();
+        let text = std::fs::read_to_string(&p).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[1], "3,5.0000000000e-1,1,NaN");
+        assert_eq!(lines[2], "0,-2.0000000000e0,0,12");
+        assert!(
+            csv_violations(&dir).is_empty(),
+            "{:?}",
+            csv_violations(&dir)
+        );
+        // a fraction in an integer column is refused, naming the column
+        let mut sink = out.csv("b.csv", &["node_index"]).unwrap();
+        let e = sink.row(&[2.5]).unwrap_err().to_string();
+        assert!(e.contains("node_index"), "{e}");
+        drop(sink);
+        std::fs::remove_file(dir.join("b.csv")).unwrap();
+        // files written otherwise: a header outside the convention, a flag as a float
+        out.write_text("c.csv", "t_s,speed_kmh\n0,1\n").unwrap();
+        out.write_text("d.csv", "t_s,on_flag\n0,1\n1,0.0000000000e0\n")
+            .unwrap();
+        let v = csv_violations(&dir);
+        assert_eq!(v.len(), 2, "{v:?}");
+        assert!(v[0].ends_with("c.csv: speed_kmh"), "{v:?}");
+        assert!(v[1].ends_with("d.csv:3: on_flag = 0.0000000000e0"), "{v:?}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
@@ -420,11 +600,11 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("flowmbd-cli-out-{}", std::process::id()));
         let out = OutputDir::create(&dir).unwrap();
         let p = out
-            .write_csv("t.csv", &["t", "x"], [[0.0, 1.5], [0.5, -2.0]])
+            .write_csv("t.csv", &["t_s", "x_m"], [[0.0, 1.5], [0.5, -2.0]])
             .unwrap();
         let text = std::fs::read_to_string(&p).unwrap();
         let mut lines = text.lines();
-        assert_eq!(lines.next(), Some("t,x"));
+        assert_eq!(lines.next(), Some("t_s,x_m"));
         let second: Vec<f64> = lines
             .nth(1)
             .unwrap()
@@ -432,7 +612,7 @@ mod tests {
             .map(|v| v.parse().unwrap())
             .collect();
         assert_eq!(second, vec![0.5, -2.0]);
-        let mut sink = out.csv("u.csv", &["a", "b"]).unwrap();
+        let mut sink = out.csv("u.csv", &["a_m", "b_m"]).unwrap();
         assert!(sink.row(&[1.0]).is_err());
         std::fs::remove_dir_all(&dir).unwrap();
     }

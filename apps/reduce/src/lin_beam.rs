@@ -89,9 +89,10 @@ impl Study for LinBeamStudy {
             .collect();
         ctx.out
             .write_csv("profiles.csv", &header, rows.iter().map(|r| r.as_slice()))?;
-        let mut fr = ctx
-            .out
-            .csv("frequencies.csv", &["set_index", "index", "frequency_hz"])?;
+        let mut fr = ctx.out.csv(
+            "frequencies.csv",
+            &["set_index", "mode_index", "frequency_Hz"],
+        )?;
         for (set, v) in [
             (0.0, &summary.free_free_hz),
             (1.0, &summary.guyan_a_hz),

@@ -302,7 +302,7 @@ fn write_sim3_tables(
     let mut header = vec!["t_s".to_string()];
     for j in DRIVEN_NODES {
         for c in ["x", "y", "z"] {
-            header.push(format!("a{c}{j}_m_s2"));
+            header.push(format!("a{c}{j}_m_per_s2"));
         }
     }
     let hdr: Vec<&str> = header.iter().map(|x| x.as_str()).collect();

@@ -281,7 +281,7 @@ impl Study for ModesStudy<'_> {
         ctx.out.write_json("report.json", &report)?;
         ctx.out.write_csv(
             "frequencies.csv",
-            &["mode", "frequency_hz", "eigenvalue_rad2_s2"],
+            &["mode", "frequency_Hz", "eigenvalue_rad2_per_s2"],
             modes
                 .frequencies_hz
                 .iter()

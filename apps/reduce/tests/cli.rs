@@ -76,6 +76,15 @@ fn tire_mesh_then_modes() {
     assert!(f.windows(2).all(|w| w[0] <= w[1]));
     assert!(f[0] > 1.0);
     assert!(md.join("modes.vtu").exists());
+    // issue 39 item 3: `frequencies.csv` follows the one CSV convention, the mode number an
+    // integer (reference: the convention's definition, `flowmbd_cli::output::column_kind`)
+    let csv = std::fs::read_to_string(md.join("frequencies.csv")).unwrap();
+    assert!(
+        csv.starts_with("mode,frequency_Hz,eigenvalue_rad2_per_s2\n1,"),
+        "{csv}"
+    );
+    let bad = flowmbd_cli::output::csv_violations(&md);
+    assert!(bad.is_empty(), "outside the CSV convention: {bad:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -213,6 +213,15 @@ fn every_summary_says_what_its_numbers_mean() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("lb/summary.json")).unwrap())
             .unwrap();
     assert_eq!(summary["meaning"], s["meaning"]);
+    // issue 39 item 3: `profiles.csv` and `frequencies.csv` follow the one CSV convention, the
+    // DOF, set and mode indices written as integers
+    let bad = flowmbd_cli::output::csv_violations(&dir.join("lb"));
+    assert!(bad.is_empty(), "outside the CSV convention: {bad:?}");
+    let freqs = std::fs::read_to_string(dir.join("lb/frequencies.csv")).unwrap();
+    assert!(
+        freqs.starts_with("set_index,mode_index,frequency_Hz\n"),
+        "{freqs}"
+    );
     let k = write(&dir, "K.mtx", K);
     let m = write(&dir, "M.mtx", M);
     let o = dir.join("o.json").display().to_string();

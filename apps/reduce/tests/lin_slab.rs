@@ -49,6 +49,10 @@ fn simulation3_writes_tables_and_cb_equals_mc() {
     for f in ["sim3_node8.csv", "sim3_source_node8.csv", "sim3_eta.png"] {
         assert!(out_dir.join(f).exists(), "{f}");
     }
+    // issue 39 item 3: every header in the one unit convention (accelerations `ax16_m_per_s2`)
+    assert!(header.starts_with("t_s,ax16_m_per_s2,"), "{header}");
+    let bad = flowmbd_cli::output::csv_violations(&out_dir);
+    assert!(bad.is_empty(), "outside the CSV convention: {bad:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

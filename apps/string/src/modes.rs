@@ -47,7 +47,7 @@ impl Study for ModesStudy {
         });
         ctx.out.write_csv(
             "frequencies.csv",
-            &["n", "analytical_hz", "flowing_hz", "exact_hz"],
+            &["n", "analytical_Hz", "flowing_Hz", "exact_Hz"],
             rows,
         )?;
         // every growing eigenvalue of either model: reproduced by the second discretisation
@@ -96,10 +96,10 @@ impl Study for ModesStudy {
                 &[
                     "model_code",
                     "truncation_flag",
-                    "rate_1_s",
-                    "frequency_hz",
-                    "check_rate_1_s",
-                    "check_frequency_hz",
+                    "rate_1_per_s",
+                    "frequency_Hz",
+                    "check_rate_1_per_s",
+                    "check_frequency_Hz",
                 ],
                 rows,
             )?;

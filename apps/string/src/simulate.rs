@@ -165,7 +165,8 @@ impl Validate for SimulateConfig {
 pub struct ModePeaks {
     /// Mode number (1-based).
     pub mode: usize,
-    /// Peak frequencies \[Hz\].
+    /// Peak frequencies \[Hz\], interpolated between the bins
+    /// (`flowing::spectrum::Spectrum::peaks`).
     pub peaks_hz: Vec<f64>,
 }
 
@@ -205,7 +206,8 @@ impl Study for SimulateStudy {
          exact_hz the travelling string's n(c^2 - v^2)/(2cL) [Hz]; peaks lists the spectral \
          peaks of every coordinate: because the axial motion couples the modes (Coriolis \
          term), each coordinate vibrates at several of these frequencies, not one. \
-         resolution_hz is the spectra's bin width; hamiltonian_drift is the relative drift of \
+         resolution_hz is the spectra's bin width (the peaks are interpolated between the \
+         bins); hamiltonian_drift is the relative drift of \
          the conserved energy-like invariant H over the run, a check of the time integration \
          (near 0)."
     }
@@ -293,7 +295,7 @@ impl Study for SimulateStudy {
         }
         // mass-normalised modes: the modal coordinates carry √kg·m
         let mut header = vec!["t_s".to_string()];
-        header.extend((1..=k).map(|i| format!("z{i}_sqrtkg_m")));
+        header.extend((1..=k).map(|i| format!("z{i}_sqrt_kg_m")));
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         ctx.out.write_csv(
             "modal_history.csv",
@@ -317,8 +319,8 @@ impl Study for SimulateStudy {
             spectra.push(s);
         }
         let nf = spectra[0].frequencies.len();
-        let mut header = vec!["f_hz".to_string()];
-        header.extend((1..=k).map(|i| format!("amp_z{i}_sqrtkg_m")));
+        let mut header = vec!["f_Hz".to_string()];
+        header.extend((1..=k).map(|i| format!("amp_z{i}_sqrt_kg_m")));
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         ctx.out.write_csv(
             "spectra.csv",

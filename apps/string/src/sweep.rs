@@ -191,14 +191,14 @@ impl Study for SweepStudy {
         let (_, sys) = flowing_model(c.string, c.nodes, c.modes, c.derivative, 0.0)?;
         // the second discretisation of the flowing model, built when it first grows
         let mut sys_check = None;
-        let mut header = vec!["speed_m_s".to_string()];
+        let mut header = vec!["speed_m_per_s".to_string()];
         for kind in ["analytical", "flowing", "exact"] {
             for n in 1..=c.tracked {
-                header.push(format!("{kind}_f{n}_hz"));
+                header.push(format!("{kind}_f{n}_Hz"));
             }
         }
-        header.push("analytical_max_growth_1_s".into());
-        header.push("flowing_max_growth_1_s".into());
+        header.push("analytical_max_growth_1_per_s".into());
+        header.push("flowing_max_growth_1_per_s".into());
         header.push("string_unstable_flag".into());
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         let mut csv = ctx.out.csv("sweep.csv", &hdr)?;

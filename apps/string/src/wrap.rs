@@ -402,10 +402,10 @@ impl Study for WrapStudy {
             "t_s".to_string(),
             "midload_deflection_m".into(),
             "free_span_m".into(),
-            "energy_j".into(),
+            "energy_J".into(),
         ];
         header.extend((0..np).map(|p| format!("pulley{p}_active_count")));
-        header.extend((0..np).map(|p| format!("pulley{p}_force_n")));
+        header.extend((0..np).map(|p| format!("pulley{p}_force_N")));
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         let mut csv = ctx.out.csv("history.csv", &hdr)?;
         let bar = ctx.progress(c.duration, "contact simulation");
@@ -487,7 +487,7 @@ impl Study for WrapStudy {
                 "candidate_index",
                 "node_index",
                 "activated_flag",
-                "impact_loss_j",
+                "impact_loss_J",
             ],
             run.events.iter().map(|e| {
                 [

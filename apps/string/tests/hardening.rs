@@ -227,7 +227,7 @@ fn csv_units_meaning_and_the_shaded_sweep() {
             v["meaning"].as_str().unwrap_or_default().len() > 100,
             "{study}"
         );
-        let bad = flowmbd_cli::output::columns_without_unit(&out);
+        let bad = flowmbd_cli::output::csv_violations(&out);
         assert!(bad.is_empty(), "{study}: {bad:?}");
         if study == "sweep" {
             // issue 34 item 9: above c the truncated models grow, the string does not; the

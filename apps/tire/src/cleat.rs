@@ -32,7 +32,7 @@ pub struct Args {
 pub use tire::study::{
     CleatStudyConfig as Config, CleatSummary as Summary, summarize, validate_rig,
 };
-use tire::study::{FORCE_COLUMNS, force_row, sample_row};
+use tire::study::{FORCE_COLUMNS, SPECTRUM_COLUMNS, force_row, sample_row};
 
 /// Write the spectra and plots of a rig result under `prefix`, and its force history
 /// `{prefix}forces.csv` too when `history` is set (the `cleat` study streams that file while it
@@ -57,7 +57,7 @@ pub fn write_outputs(
     let (sx, sy) = r.spectra();
     ctx.out.write_csv(
         &format!("{prefix}spectra.csv"),
-        &["f_hz", "fx_amp_n", "fy_amp_n"],
+        &SPECTRUM_COLUMNS,
         (0..sx.freq_hz.len()).map(|k| vec![sx.freq_hz[k], sx.amplitude[k], sy.amplitude[k]]),
     )?;
     let fx: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.fx)).collect();
@@ -300,7 +300,12 @@ impl Study for Cleat {
             bar.finish();
             ctx.out.write_csv(
                 "phases.csv",
-                &["phase", "cleat_delay_s", "fy_band_rms_n", "fx_band_rms_n"],
+                &[
+                    "phase_index",
+                    "cleat_delay_s",
+                    "fy_band_rms_N",
+                    "fx_band_rms_N",
+                ],
                 (0..spread.phases).map(|j| {
                     vec![
                         j as f64,

@@ -220,14 +220,14 @@ impl Study for Dips {
             let p = &d.profile;
             ctx.out.write_csv(
                 &format!("profile_{n}.csv"),
-                &["cleat_x_m", "dfy_n", "fx_n", "active_nodes"],
+                &["cleat_x_m", "dfy_N", "fx_N", "active_nodes_count"],
                 (0..p.cleat_x.len())
                     .map(|i| vec![p.cleat_x[i], p.dfy[i], p.fx[i], p.active[i] as f64]),
             )?;
             let pr = &d.prediction;
             ctx.out.write_csv(
                 &format!("prediction_{n}.csv"),
-                &["speed_kmh", "amplitude_n"],
+                &["speed_km_per_h", "amplitude_N"],
                 pr.speeds_kmh
                     .iter()
                     .zip(&pr.amplitude_n)
@@ -236,7 +236,7 @@ impl Study for Dips {
             if !d.sweep_speeds_kmh.is_empty() {
                 ctx.out.write_csv(
                     &format!("sweep_{n}.csv"),
-                    &["speed_kmh", "line_amplitude_n"],
+                    &["speed_km_per_h", "line_amplitude_N"],
                     d.sweep_speeds_kmh
                         .iter()
                         .zip(&d.line_amplitude_n)

@@ -113,7 +113,7 @@ impl Study for Modes {
             .fold(0.0, f64::max);
         ctx.out.write_csv(
             "modes.csv",
-            &["mode", "full_hz", "reduced_hz"],
+            &["mode", "full_Hz", "reduced_Hz"],
             full.iter()
                 .zip(&reduced)
                 .enumerate()
@@ -138,10 +138,10 @@ impl Study for Modes {
             "loaded_modes.csv",
             &[
                 "mode",
-                "f_hz",
-                "spindle_fx_n_sqrtkg",
-                "spindle_fy_n_sqrtkg",
-                "spindle_lateral_n_sqrtkg",
+                "f_Hz",
+                "spindle_fx_N_per_sqrt_kg",
+                "spindle_fy_N_per_sqrt_kg",
+                "spindle_lateral_N_per_sqrt_kg",
                 "vertical_mass_kg",
                 "longitudinal_mass_kg",
             ],

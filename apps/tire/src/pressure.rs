@@ -112,7 +112,7 @@ impl Study for Pressure {
             };
             ctx.out.write_csv(
                 &format!("patch_{name}.csv"),
-                &["x_m", "y_m", "z_m", "force_n"],
+                &["x_m", "y_m", "z_m", "force_N"],
                 red.contact_positions
                     .iter()
                     .zip(&p.patch.lambda)

@@ -84,7 +84,7 @@ impl Study for Reduce {
         let file = path.display().to_string();
         ctx.out.write_csv(
             "free_modes.csv",
-            &["mode", "f_hz"],
+            &["mode", "f_Hz"],
             red.free_mode_hz
                 .iter()
                 .enumerate()

@@ -363,14 +363,14 @@ impl Study for Rotating {
         ctx.out.write_csv(
             "rotating_modes.csv",
             &[
-                "speed_kmh",
+                "speed_km_per_h",
                 "loaded_flag",
-                "f_hz",
+                "f_Hz",
                 "n",
                 "direction_code",
                 "damping_ratio",
-                "growth_rate_1_s",
-                "natural_hz",
+                "growth_rate_1_per_s",
+                "natural_Hz",
                 "travelling_share",
                 "lateral_share",
             ],

@@ -72,8 +72,12 @@ pub struct Summary {
     pub fy_peak_amplitude_n: Vec<f64>,
     /// Peak longitudinal amplitude per speed \[N\].
     pub fx_peak_amplitude_n: Vec<f64>,
-    /// Frequency of the vertical peak per speed \[Hz\].
+    /// Frequency of the vertical peak per speed \[Hz\], interpolated between the bins
+    /// (`tire::Spectrum::interpolated_peak`; the `fy_peak_hz` of `runs`).
     pub fy_peak_hz: Vec<f64>,
+    /// Frequency resolution of each speed's record \[Hz\] (bin spacing `1/(N Δt)`; the
+    /// `peak_resolution_hz` of `runs`).
+    pub peak_resolution_hz: Vec<f64>,
     /// Whether the vertical amplitude against speed is non-monotonic.
     pub fy_amplitude_non_monotonic: bool,
     /// Speeds at which the vertical peak amplitude has a local minimum (a dip; Ribaric: 40–50
@@ -97,9 +101,10 @@ impl Study for Sweep {
     fn meaning(&self) -> &'static str {
         "The cleat test at every speed of speeds_kmh (Ribaric Figs. 8-7, 8-8, 8-14): per \
          speed the summary of the cleat study (runs), the largest spectral amplitudes of F_y \
-         and F_x [N] and the frequency of the F_y peak [Hz]. fy_matrix.csv and fx_matrix.csv \
-         hold the spectra as a speed x frequency table (every run resampled onto the first \
-         run's frequency grid) behind the contour and waterfall plots. fy_amplitude_dips_kmh \
+         and F_x [N] and the frequency of the F_y peak [Hz] (interpolated between the bins \
+         of the record's spectrum, whose spacing is peak_resolution_hz). fy_matrix.csv and \
+         fx_matrix.csv hold the spectra as a speed x frequency table (every run resampled \
+         onto the first run's frequency grid) behind the contour and waterfall plots. fy_amplitude_dips_kmh \
          lists the speeds at which the vertical amplitude has a local minimum (Ribaric: 40-50 \
          km/h on the drum), where the cleat excitation and the tire's vertical mode \
          interfere."
@@ -120,6 +125,7 @@ impl Study for Sweep {
         let (mut ay, mut ax) = (Vec::new(), Vec::new());
         let mut grid_rows = Vec::new();
         let mut fpk = Vec::new();
+        let mut resolution = Vec::new();
         let mut spectra = Vec::new();
         for (k, &v) in c.speeds_kmh.iter().enumerate() {
             let mut rig = c.rig.clone();
@@ -139,9 +145,10 @@ impl Study for Sweep {
             };
             let (sx, sy) = r.spectra();
             let band = PEAK_BAND_HZ;
-            let py = sy.peak(band[0], band[1]).unwrap_or((0.0, 0.0));
+            let py = sy.interpolated_peak(band[0], band[1]).unwrap_or((0.0, 0.0));
             ay.push(py.1);
             fpk.push(py.0);
+            resolution.push(sy.resolution_hz());
             ax.push(sx.peak(band[0], band[1]).map_or(0.0, |p| p.1));
             for i in 0..sy.freq_hz.len() {
                 if sy.freq_hz[i] <= MAP_MAX_HZ {
@@ -168,12 +175,12 @@ impl Study for Sweep {
         bar.finish();
         ctx.out.write_csv(
             "waterfall.csv",
-            &["speed_kmh", "f_hz", "fx_amp_n", "fy_amp_n"],
+            &["speed_km_per_h", "f_Hz", "fx_amp_N", "fy_amp_N"],
             grid_rows,
         )?;
         // the speed x frequency matrices (rows: speeds, columns: frequencies)
-        let header: Vec<String> = std::iter::once("speed_kmh".to_string())
-            .chain(freqs.iter().map(|f| format!("f{f:.3}hz_amp_n")))
+        let header: Vec<String> = std::iter::once("speed_km_per_h".to_string())
+            .chain(freqs.iter().map(|f| format!("f{f:.3}Hz_amp_N")))
             .collect();
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
         for (name, m) in [("fy", &my), ("fx", &mx)] {
@@ -222,6 +229,7 @@ impl Study for Sweep {
             fy_peak_amplitude_n: ay,
             fx_peak_amplitude_n: ax,
             fy_peak_hz: fpk,
+            peak_resolution_hz: resolution,
             fy_amplitude_non_monotonic: incr && decr,
             fy_amplitude_dips_kmh: dips,
         })

@@ -174,7 +174,7 @@ fn reduce_writes_the_file_and_modes_reuses_it() {
     // Rayleigh–Ritz: the reduced model's frequencies bound the full model's from above
     assert!(full.iter().zip(&red).all(|(a, b)| *b >= *a * (1.0 - 1e-9)));
     // the CSV table holds the same frequencies (10 significant digits)
-    let rows = csv_column(&dir.join("m/modes.csv"), "full_hz");
+    let rows = csv_column(&dir.join("m/modes.csv"), "full_Hz");
     assert_eq!(rows.len(), full.len());
     assert!(
         rows.iter()
@@ -182,7 +182,7 @@ fn reduce_writes_the_file_and_modes_reuses_it() {
             .all(|(a, b)| (a - b).abs() < 1e-9 * b)
     );
     assert_plot(&dir.join("m"), "modes");
-    assert!(flowmbd_cli::output::columns_without_unit(&dir.join("m")).is_empty());
+    assert!(flowmbd_cli::output::csv_violations(&dir.join("m")).is_empty());
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -288,11 +288,13 @@ fn cleat_json_contract_and_outputs() {
     assert_eq!(t.len(), steps);
     assert!((t[steps - 1] - 0.3).abs() < 1e-9, "last t {}", t[steps - 1]);
     assert!(t.windows(2).all(|w| (w[1] - w[0] - 2e-4).abs() < 1e-9));
-    let fy = csv_column(&out_dir.join("forces.csv"), "fy_n");
+    let fy = csv_column(&out_dir.join("forces.csv"), "fy_N");
     assert!(fy.iter().all(|x| x.is_finite()));
-    let fr = csv_column(&out_dir.join("spectra.csv"), "f_hz");
-    let amp = csv_column(&out_dir.join("spectra.csv"), "fy_amp_n");
-    // the printed peak is the largest spectral line in 10–500 Hz
+    let fr = csv_column(&out_dir.join("spectra.csv"), "f_Hz");
+    let amp = csv_column(&out_dir.join("spectra.csv"), "fy_amp_N");
+    // the printed peak is the largest spectral line in 10–500 Hz, interpolated between the
+    // bins: within half a bin of the largest bin, the bin spacing printed as the resolution
+    // (issue 39 item 3)
     let (k, _) = fr
         .iter()
         .zip(&amp)
@@ -302,7 +304,9 @@ fn cleat_json_contract_and_outputs() {
             (0, f64::MIN),
             |b, (i, (_, a))| if *a > b.1 { (i, *a) } else { b },
         );
-    assert!((fr[k] - f(&s["fy_peak_hz"])).abs() < 1e-9);
+    let df = f(&s["peak_resolution_hz"]);
+    assert!((df - (fr[1] - fr[0])).abs() < 1e-9 * df, "{df}");
+    assert!((fr[k] - f(&s["fy_peak_hz"])).abs() <= 0.5 * df + 1e-9);
     for stem in ["forces", "spectra"] {
         assert_plot(&out_dir, stem);
     }
@@ -337,9 +341,27 @@ fn cleat_json_contract_and_outputs() {
     );
     let tire = std::fs::read_to_string(vtk.join("tire_0003.vtu")).unwrap();
     assert!(tire.contains("<VTKFile") && tire.contains("displacement_m"));
-    // issue 20, item 5: units in every CSV header, and what the numbers mean
-    let bad = flowmbd_cli::output::columns_without_unit(&out_dir);
-    assert!(bad.is_empty(), "columns without unit: {bad:?}");
+    // issue 20, item 5 and issue 39, item 3: one unit convention in every CSV header, integer
+    // columns written as integers (the active contact nodes: `3`, not `3.0000000000e0`), and
+    // what the numbers mean
+    let bad = flowmbd_cli::output::csv_violations(&out_dir);
+    assert!(bad.is_empty(), "outside the CSV convention: {bad:?}");
+    let forces = std::fs::read_to_string(out_dir.join("forces.csv")).unwrap();
+    let mut lines = forces.lines();
+    assert_eq!(
+        lines.next(),
+        Some(tire::study::FORCE_COLUMNS.join(",").as_str())
+    );
+    let active: Vec<&str> = lines.map(|l| l.split(',').nth(5).unwrap()).collect();
+    assert!(
+        active.iter().all(|c| c.parse::<u64>().is_ok()),
+        "{:?}",
+        &active[..5]
+    );
+    assert!(
+        active.iter().any(|c| *c != "0"),
+        "the tire touches the ground"
+    );
     assert!(s["meaning"].as_str().unwrap().contains("cleat"));
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -375,7 +397,7 @@ fn cleat_spindle_force_before_the_cleat_equals_the_load() {
     // independent of the summary: the history between 150 ms and 50 ms before the hit (the
     // cleat enters the 33-node patch about 5 ms before t = 0 at 60 km/h)
     let t = csv_column(&out_dir.join("forces.csv"), "t_s");
-    let fy = csv_column(&out_dir.join("forces.csv"), "fy_n");
+    let fy = csv_column(&out_dir.join("forces.csv"), "fy_N");
     let w: Vec<f64> = t
         .iter()
         .zip(&fy)
@@ -426,7 +448,7 @@ fn sweep_writes_the_maps_and_agrees_with_single_runs() {
         }
         assert_plot(&sw, &format!("{v}_forces"));
     }
-    let speed_col = csv_column(&sw.join("fy_matrix.csv"), "speed_kmh");
+    let speed_col = csv_column(&sw.join("fy_matrix.csv"), "speed_km_per_h");
     assert_eq!(speed_col, speeds);
 
     // the single run at 60 km/h
@@ -467,8 +489,8 @@ fn sweep_writes_the_maps_and_agrees_with_single_runs() {
         std::fs::read_to_string(sw.join("v060_forces.csv")).unwrap()
     );
     // the 60 km/h row of the matrix is the single run's spectrum up to 300 Hz
-    let fr = csv_column(&dir.join("c/spectra.csv"), "f_hz");
-    let amp = csv_column(&dir.join("c/spectra.csv"), "fy_amp_n");
+    let fr = csv_column(&dir.join("c/spectra.csv"), "f_Hz");
+    let amp = csv_column(&dir.join("c/spectra.csv"), "fy_amp_N");
     let text = std::fs::read_to_string(sw.join("fy_matrix.csv")).unwrap();
     let row: Vec<f64> = text
         .lines()
@@ -503,7 +525,7 @@ fn pressure_patch_forces_carry_the_load() {
     let out = dir.join("p");
     let s = json_of(&run_study("pressure", &["--quiet", "--json"], &cfg, &out));
     for g in ["drum", "road"] {
-        let force = csv_column(&out.join(format!("patch_{g}.csv")), "force_n");
+        let force = csv_column(&out.join(format!("patch_{g}.csv")), "force_N");
         assert_eq!(force.len(), CONTACT);
         assert!(force.iter().all(|x| *x >= 0.0), "{g}: tension in the patch");
         let total: f64 = force.iter().sum();
@@ -521,7 +543,7 @@ fn pressure_patch_forces_carry_the_load() {
     assert!(f(&s["drum"]["deflection_m"]) >= f(&s["road"]["deflection_m"]));
     assert!(f(&s["drum"]["length_m"]) <= f(&s["road"]["length_m"]) + 1e-12);
     assert_plot(&out, "patch_forces");
-    assert!(flowmbd_cli::output::columns_without_unit(&out).is_empty());
+    assert!(flowmbd_cli::output::csv_violations(&out).is_empty());
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -694,7 +716,7 @@ fn numerical_failure_exits_1_and_keeps_the_history() {
     assert_eq!(t.len(), done, "history rows up to the failure");
     assert!((t[done - 1] - f(&s["partial"]["t_last_s"])).abs() < 1e-12);
     // the history starts like a healthy run's: the preload at the first step
-    let fy = csv_column(&out.join("forces.csv"), "fy_n");
+    let fy = csv_column(&out.join("forces.csv"), "fy_N");
     assert!((fy[0] - 4448.2).abs() < 0.05 * 4448.2, "first Fy {}", fy[0]);
     // the sweep fails the same way at its first speed: exit 1, the speed named, no run kept
     let cfg = config(
@@ -801,8 +823,8 @@ fn rotating_modes_json_contract_and_split() {
     }
     assert_plot(&out_dir, "campbell_free");
     assert_plot(&out_dir, "campbell_loaded");
-    assert!(!csv_column(&out_dir.join("rotating_modes.csv"), "f_hz").is_empty());
-    assert!(flowmbd_cli::output::columns_without_unit(&out_dir).is_empty());
+    assert!(!csv_column(&out_dir.join("rotating_modes.csv"), "f_Hz").is_empty());
+    assert!(flowmbd_cli::output::csv_violations(&out_dir).is_empty());
 }
 
 /// `dips --no-sweep --json` (issue 21 item 4): per ground the enveloping length lies within
@@ -833,8 +855,11 @@ fn dips_prediction_contract() {
         );
         let lg = f(&g[k]["geometric_envelope_length_m"]);
         assert!((l - lg).abs() < 0.08, "{name}: L = {l} vs geometric {lg}");
-        let v = csv_column(&out.join(format!("prediction_{name}.csv")), "speed_kmh");
-        let a = csv_column(&out.join(format!("prediction_{name}.csv")), "amplitude_n");
+        let v = csv_column(
+            &out.join(format!("prediction_{name}.csv")),
+            "speed_km_per_h",
+        );
+        let a = csv_column(&out.join(format!("prediction_{name}.csv")), "amplitude_N");
         for d in floats(&g[k]["predicted_dips_kmh"]) {
             let i = v.iter().position(|x| *x == d).expect("dip on the grid");
             assert!(
@@ -850,6 +875,16 @@ fn dips_prediction_contract() {
         );
     }
     assert!(f(&g[1]["envelope_length_m"]) > f(&g[0]["envelope_length_m"]));
+    // issue 39 item 3: the profile's count of active nodes is an integer column, written as
+    // integers, and every header follows the one unit convention (reference: the convention's
+    // definition, `flowmbd_cli::output::column_kind`)
+    let profile = std::fs::read_to_string(out.join("profile_drum.csv")).unwrap();
+    assert!(
+        profile.starts_with("cleat_x_m,dfy_N,fx_N,active_nodes_count\n"),
+        "{profile}"
+    );
+    let bad = flowmbd_cli::output::csv_violations(&out);
+    assert!(bad.is_empty(), "outside the CSV convention: {bad:?}");
     let bad = config(&dir, "bad.toml", "[dips]\nprofile_step = -1.0", file, "");
     let (code, _, err) = outcome(&run_study(
         "dips",

@@ -343,7 +343,7 @@ fn sweep_map_rows_follow_each_speeds_spectrum() {
         .iter()
         .map(|h| {
             h.trim_start_matches('f')
-                .trim_end_matches("hz_amp_n")
+                .trim_end_matches("Hz_amp_N")
                 .parse()
                 .unwrap()
         })
@@ -352,8 +352,8 @@ fn sweep_map_rows_follow_each_speeds_spectrum() {
     for (line, v) in lines.zip(["030", "060", "090"]) {
         let row: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         let amp = &row[1..];
-        let f = csv_column(&sw.join(format!("v{v}_spectra.csv")), "f_hz");
-        let a = csv_column(&sw.join(format!("v{v}_spectra.csv")), "fy_amp_n");
+        let f = csv_column(&sw.join(format!("v{v}_spectra.csv")), "f_Hz");
+        let a = csv_column(&sw.join(format!("v{v}_spectra.csv")), "fy_amp_N");
         let (kp, _) = (0..f.len())
             .filter(|&k| f[k] >= 10.0 && f[k] <= 300.0)
             .map(|k| (k, a[k]))
@@ -376,7 +376,7 @@ fn sweep_map_rows_follow_each_speeds_spectrum() {
         );
         assert!(amp.iter().skip(1).filter(|x| **x > 0.0).count() > grid.len() / 2);
     }
-    assert!(flowmbd_cli::output::columns_without_unit(&sw).is_empty());
+    assert!(flowmbd_cli::output::csv_violations(&sw).is_empty());
     std::fs::remove_dir_all(&dir).ok();
 }
 

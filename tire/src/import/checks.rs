@@ -19,6 +19,97 @@ pub const TREAD_FRACTION: f64 = 0.25;
 /// keeps the candidates nearest to it, [`crate::reduce::select_contact_nodes`]).
 pub const MAX_PATCH_OFFSET_DEG: f64 = 10.0;
 
+/// A check of an imported tire that failed (issue #39, item 7), carried by
+/// [`TireError::ImportCheck`]: each names the file it blames (and the line or node) and the
+/// numbers that fail the check.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ImportCheckError {
+    /// K holds no entry off its diagonal: no DOF is coupled to another (e.g. only the diagonal
+    /// of a triangle was written).
+    #[error(
+        "{file}: K has no off-diagonal entry, so no DOF is coupled to another (only the \
+         diagonal was written?): export the assembled stiffness with its coupling terms \
+         (Matrix Market `symmetric` with the lower triangle, or `general` with both)"
+    )]
+    DiagonalStiffness {
+        /// The stiffness file.
+        file: String,
+    },
+    /// A node (with the part of the tire it belongs to) that no stiffness entry connects to
+    /// the largest connected part: a node of the node file that belongs to no element.
+    #[error(
+        "{file}: {node} is not connected to the rest of the tire by any stiffness entry (K \
+         couples the {nodes} nodes into {parts} separate parts; this one has {part_nodes} \
+         nodes): every node of the node file must belong to the tire's elements"
+    )]
+    DisconnectedNode {
+        /// The stiffness file.
+        file: String,
+        /// The node as the user wrote it (index or label, with its line in the node file).
+        node: String,
+        /// Nodes of the model.
+        nodes: usize,
+        /// Connected parts K makes of them.
+        parts: usize,
+        /// Nodes of the part that holds `node`.
+        part_nodes: usize,
+    },
+    /// The rim nodes reach at least as far from the wheel axis as the other nodes: the
+    /// coordinates are not in the wheel frame (or the rim set is not the rim).
+    #[error(
+        "{file}: the rim nodes reach the radius {rim_radius_m} m, not inside the tire's outer \
+         radius {outer_radius_m} m (radius about the wheel axis y): the coordinates must be in \
+         the wheel frame (x forward, y along the axle, z up)"
+    )]
+    RimNotInside {
+        /// The rim node-set file.
+        file: String,
+        /// Largest radius of a rim node about the wheel axis \[m\].
+        rim_radius_m: f64,
+        /// Largest radius of a non-rim node \[m\].
+        outer_radius_m: f64,
+    },
+    /// A patch node below the tread band (see [`TREAD_FRACTION`]).
+    #[error(
+        "{file}:{line}: {node} lies at the radius {radius_m:.4} m, below the outer \
+         {percent:.0} % of the section between the rim ({rim_radius_m:.4} m) and the tread \
+         ({outer_radius_m:.4} m): the patch set must be nodes of the tread's outer surface",
+        percent = 100.0 * TREAD_FRACTION
+    )]
+    PatchOffTread {
+        /// The patch node-set file.
+        file: String,
+        /// The line \[1-based\] of the file listing the node.
+        line: usize,
+        /// The node as the user wrote it.
+        node: String,
+        /// Its radius about the wheel axis \[m\].
+        radius_m: f64,
+        /// Largest rim-node radius \[m\].
+        rim_radius_m: f64,
+        /// Largest non-rim radius (the tread's outer surface) \[m\].
+        outer_radius_m: f64,
+    },
+    /// No patch node near the road point θ = π (see [`MAX_PATCH_OFFSET_DEG`]).
+    #[error(
+        "{file}: no node of the patch set lies within {MAX_PATCH_OFFSET_DEG}° of the road \
+         point θ = π (the bottom of the tire, −z; the nearest is {nearest_deg:.1}° from it): \
+         the patch must surround the point where the tire meets the ground, in the wheel \
+         frame x forward, y along the axle, z up"
+    )]
+    PatchAwayFromRoad {
+        /// The patch node-set file.
+        file: String,
+        /// Angle of the patch node nearest to the road point \[deg\].
+        nearest_deg: f64,
+    },
+}
+
+/// The [`TireError`] of a failed check blaming the file of import field `field`.
+fn failed(field: &'static str, check: ImportCheckError) -> TireError {
+    TireError::ImportCheck { field, check }
+}
+
 /// The physical plausibility of imported K and M (issue #20, item 3): K symmetric positive
 /// semi-definite (the free tire's rigid-body modes are allowed), M positive semi-definite
 /// (massless DOFs are condensed by the Craig–Bampton reduction), entries finite
@@ -97,14 +188,11 @@ pub(super) fn check_coupling(
         }
     }
     if !off_diagonal {
-        return Err(import_err(
+        return Err(failed(
             "stiffness",
-            format!(
-                "{}: K has no off-diagonal entry, so no DOF is coupled to another (only the \
-                 diagonal was written?): export the assembled stiffness with its coupling terms \
-                 (Matrix Market `symmetric` with the lower triangle, or `general` with both)",
-                files.stiffness
-            ),
+            ImportCheckError::DiagonalStiffness {
+                file: files.stiffness.clone(),
+            },
         ));
     }
     let mut size = vec![0usize; n];
@@ -116,17 +204,15 @@ pub(super) fn check_coupling(
         .max_by_key(|&r| (size[r], std::cmp::Reverse(r)))
         .unwrap_or(0);
     if let Some(i) = (0..n).find(|&i| roots[i] != body) {
-        let parts = (0..n).filter(|&r| size[r] > 0).count();
-        return Err(import_err(
+        return Err(failed(
             "stiffness",
-            format!(
-                "{}: {} is not connected to the rest of the tire by any stiffness entry (K \
-                 couples the {n} nodes into {parts} separate parts; this one has {} nodes): \
-                 every node of the node file must belong to the tire's elements",
-                files.stiffness,
-                nodes.name(i),
-                size[roots[i]]
-            ),
+            ImportCheckError::DisconnectedNode {
+                file: files.stiffness.clone(),
+                node: nodes.name(i),
+                nodes: n,
+                parts: (0..n).filter(|&r| size[r] > 0).count(),
+                part_nodes: size[roots[i]],
+            },
         ));
     }
     Ok(())
@@ -214,30 +300,27 @@ pub(super) fn check_patch_on_tread(
     }
     let height = outer - rim_r;
     if height.is_nan() || height <= 0.0 {
-        return Err(import_err(
+        return Err(failed(
             "rim_nodes",
-            format!(
-                "{}: the rim nodes reach the radius {rim_r} m, not inside the tire's outer \
-                 radius {outer} m (radius about the wheel axis y): the coordinates must be in \
-                 the wheel frame (x forward, y along the axle, z up)",
-                files.rim_nodes
-            ),
+            ImportCheckError::RimNotInside {
+                file: files.rim_nodes.clone(),
+                rim_radius_m: rim_r,
+                outer_radius_m: outer,
+            },
         ));
     }
     let floor = outer - TREAD_FRACTION * height;
     if let Some(l) = patch.iter().find(|l| rho(l.node) < floor) {
-        return Err(import_err(
+        return Err(failed(
             "patch_nodes",
-            format!(
-                "{}:{}: {} lies at the radius {:.4} m, below the outer {:.0} % of the section \
-                 between the rim ({rim_r:.4} m) and the tread ({outer:.4} m): the patch set must \
-                 be nodes of the tread's outer surface",
-                files.patch_nodes,
-                l.line,
-                nodes.name(l.node),
-                rho(l.node),
-                100.0 * TREAD_FRACTION
-            ),
+            ImportCheckError::PatchOffTread {
+                file: files.patch_nodes.clone(),
+                line: l.line,
+                node: nodes.name(l.node),
+                radius_m: rho(l.node),
+                rim_radius_m: rim_r,
+                outer_radius_m: outer,
+            },
         ));
     }
     let nearest = patch
@@ -245,15 +328,12 @@ pub(super) fn check_patch_on_tread(
         .map(|l| (node_angle(&fe.nodes[l.node]) - PI).abs().to_degrees())
         .fold(f64::INFINITY, f64::min);
     if nearest > MAX_PATCH_OFFSET_DEG {
-        return Err(import_err(
+        return Err(failed(
             "patch_nodes",
-            format!(
-                "{}: no node of the patch set lies within {MAX_PATCH_OFFSET_DEG}° of the road \
-                 point θ = π (the bottom of the tire, −z; the nearest is {nearest:.1}° from \
-                 it): the patch must surround the point where the tire meets the ground, in \
-                 the wheel frame x forward, y along the axle, z up",
-                files.patch_nodes
-            ),
+            ImportCheckError::PatchAwayFromRoad {
+                file: files.patch_nodes.clone(),
+                nearest_deg: nearest,
+            },
         ));
     }
     Ok(())

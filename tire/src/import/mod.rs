@@ -4,11 +4,18 @@
 //! bounded size, errors with file and line) and the model is checked for the easy mistakes
 //! before it is reduced (module `checks`: K physically plausible and coupling the nodes into one
 //! body, distinct node positions, no node listed twice in a set, the patch set on the tread
-//! around the road point), each refusal naming the import field, the file and the line.
+//! around the road point), each refusal naming the import field, the file and the line. A file
+//! that cannot be read or parsed is a [`TireError::Import`]; a model that reads well but fails
+//! a check of the easy mistakes (issue #39, item 7) is a [`TireError::ImportCheck`] with the
+//! typed [`ImportCheckError`]: K without any off-diagonal entry, a node no stiffness entry
+//! connects, rim nodes not inside the tread, a patch node off the tread (the tread is the outer
+//! [`TREAD_FRACTION`] of the section height between the rim and the largest radius about the
+//! wheel axis `y`) and a patch set away from the road point θ = π.
 
 mod checks;
 mod read;
 
+pub use checks::{ImportCheckError, MAX_PATCH_OFFSET_DEG, TREAD_FRACTION};
 pub use read::MAX_IMPORT_TEXT_BYTES;
 
 use crate::error::TireError;
