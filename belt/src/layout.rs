@@ -532,6 +532,22 @@ impl Layout {
             tension,
         )
     }
+
+    /// Ribaric's Table 6-1 drive (§6.1, §6.4) as a [`Layout::two_pulley`]: centres 0.45 m
+    /// apart, both belt-line radii 0.05 m, the driver at rest, the driven pulley of
+    /// 0.013 kg m² without load, the default [`Section`] mounted at T0 = 310 N.
+    pub fn table_6_1() -> Self {
+        Self::two_pulley(
+            0.45,
+            0.05,
+            0.05,
+            crate::signal::Signal::constant(0.0),
+            0.013,
+            crate::signal::Signal::constant(0.0),
+            Section::default(),
+            310.0,
+        )
+    }
 }
 
 #[cfg(test)]
@@ -539,19 +555,9 @@ mod tests {
     use super::*;
     use crate::pulley::WrapSide;
     use crate::section::MaterialLaw;
-    use crate::signal::Signal;
 
     fn table_6_1() -> Layout {
-        Layout::two_pulley(
-            0.45,
-            0.05,
-            0.05,
-            Signal::constant(0.0),
-            0.013,
-            Signal::constant(0.0),
-            Section::default(),
-            310.0,
-        )
+        Layout::table_6_1()
     }
 
     // Mounting by hand: a belt of unstretched length L_b on the path of length L carries the

@@ -8,20 +8,11 @@
 //! β = 1.8·10⁻³ s; the driven pulley's inertia 0.013 kg m². The procedure overwrites the
 //! driver's speed and the driven pulley's load.
 
-use belt::{Drive, Layout, Section, Signal};
+use belt::{Drive, Layout};
 
 /// Table 6-1 as a layout (driver at rest, no load).
 pub fn layout() -> Layout {
-    Layout::two_pulley(
-        0.45,
-        0.05,
-        0.05,
-        Signal::constant(0.0),
-        0.013,
-        Signal::constant(0.0),
-        Section::default(),
-        310.0,
-    )
+    Layout::table_6_1()
 }
 
 /// Table 6-1 resolved.

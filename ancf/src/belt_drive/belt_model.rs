@@ -308,7 +308,7 @@ impl AncfDrive for BeltDrive {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use belt::{Layout, MaterialLaw, Section, Signal};
+    use belt::{Layout, MaterialLaw, Section};
 
     // Issue 34 item 1 (reference: the laws' definitions, belt::MaterialLaw::force): the layout's
     // law reaches the elements, the span forces the model reports are that law's force at the
@@ -322,16 +322,10 @@ mod tests {
                 law,
                 ..Section::default()
             };
-            let drive = Layout::two_pulley(
-                0.45,
-                0.05,
-                0.05,
-                Signal::constant(0.0),
-                0.013,
-                Signal::constant(0.0),
-                section,
-                310.0,
-            )
+            let drive = Layout {
+                belt: section,
+                ..Layout::table_6_1()
+            }
             .resolve()
             .unwrap();
             let m = AncfBelt::new(&drive, &AncfConfig::default()).unwrap();

@@ -349,7 +349,7 @@ mod tests {
     use super::*;
     use crate::belt_drive::{AncfBelt, AncfConfig};
     use belt::BeltModel;
-    use belt::{Layout, Section, Signal};
+    use belt::Layout;
 
     // Second formulation (reference: the planar ANCF belt, Kerkkänen ch. 3, on the same drive
     // and belt length): Table 6-1's drive with a linear penalty (k₂ = 0) and a given belt
@@ -360,16 +360,7 @@ mod tests {
     // of both spans on a wrap of π, 2T (force balance), within 2 %.
     #[test]
     fn plate_belt_model_at_rest_is_the_planar_belt() {
-        let mut layout = Layout::two_pulley(
-            0.45,
-            0.05,
-            0.05,
-            Signal::constant(0.0),
-            0.013,
-            Signal::constant(0.0),
-            Section::default(),
-            310.0,
-        );
+        let mut layout = Layout::table_6_1();
         layout.contact.penalty_quadratic = 0.0;
         let lp = layout.resolve().unwrap().belt_length();
         layout.tension = None;
@@ -412,16 +403,7 @@ mod tests {
     // The drive's features the plate has no counterpart for are refused by name.
     #[test]
     fn quadratic_penalty_and_linear_law_are_refused() {
-        let layout = Layout::two_pulley(
-            0.45,
-            0.05,
-            0.05,
-            Signal::constant(0.0),
-            0.013,
-            Signal::constant(0.0),
-            Section::default(),
-            310.0,
-        );
+        let layout = Layout::table_6_1();
         let e = plate_spec(&layout.resolve().unwrap(), &PlateConfig::default()).unwrap_err();
         assert!(e.to_string().contains("penalty_quadratic"), "{e}");
         let mut l2 = layout.clone();
