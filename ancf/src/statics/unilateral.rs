@@ -366,38 +366,23 @@ mod tests {
         let (mesh, q0, fixed) = bar();
         let load = vec![0.0; mesh.n_dof()];
         let opts = UnilateralOptions::default();
-        let e = solve_static_unilateral(
-            &mesh,
-            &q0,
-            &fixed,
-            &load,
-            &HalfPlane::ground(-1.0),
-            &[7],
-            &opts,
-        )
-        .unwrap_err();
+        let error = |height: f64, nodes: &[usize]| {
+            solve_static_unilateral(
+                &mesh,
+                &q0,
+                &fixed,
+                &load,
+                &HalfPlane::ground(height),
+                nodes,
+                &opts,
+            )
+            .unwrap_err()
+        };
+        let e = error(-1.0, &[7]);
         assert!(e.to_string().contains("contact node 0"), "{e}");
-        let e = solve_static_unilateral(
-            &mesh,
-            &q0,
-            &fixed,
-            &load,
-            &HalfPlane::ground(0.1),
-            &[2],
-            &opts,
-        )
-        .unwrap_err();
+        let e = error(0.1, &[2]);
         assert!(e.to_string().contains("penetrates"), "{e}");
-        let e = solve_static_unilateral(
-            &mesh,
-            &q0,
-            &fixed,
-            &load,
-            &HalfPlane::ground(-1.0),
-            &[0],
-            &opts,
-        )
-        .unwrap_err();
+        let e = error(-1.0, &[0]);
         assert!(
             e.to_string().contains("both position coordinates fixed"),
             "{e}"
