@@ -1,7 +1,7 @@
 //! Pieces shared by the studies: error mapping, validation helpers, model building.
 
 use flowing::string_study::{self, Spectrum};
-use flowing::{DerivativeMethod, FlowError, FlowingString, StringConfig, StringMesh};
+use flowing::{FlowError, FlowingString, StringConfig};
 use flowmbd_cli::{InputError, StudyError};
 
 /// Maps library errors to the app's exit-code classes (bad input: 2, numerical: 1).
@@ -22,18 +22,6 @@ pub use flowing::string_study::{
     MAX_GALERKIN_TERMS, MAX_STRING_NODES, Regime, check_nodes_modes, check_number, check_scales,
     check_steps, check_string,
 };
-
-/// The string mesh of `nodes` interior nodes and its flowing-material model with `modes` modes
-/// ([`flowing::string_study::flowing_model`]).
-pub fn flowing_model(
-    p: StringConfig,
-    nodes: usize,
-    modes: usize,
-    method: DerivativeMethod,
-    speed: f64,
-) -> Result<(StringMesh, FlowingString), StudyError> {
-    string_study::flowing_model(p, nodes, modes, method, speed).map_err(study_error)
-}
 
 /// Eigen analysis of the Galerkin model (4.29) ([`flowing::string_study::galerkin_spectrum`]).
 pub fn galerkin_spectrum(

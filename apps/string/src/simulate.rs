@@ -223,7 +223,9 @@ impl Study for SimulateStudy {
         c: &SimulateConfig,
         ctx: &mut StudyContext,
     ) -> Result<SimulateSummary, StudyError> {
-        let (mesh, sys) = flowing_model(c.string, c.nodes, c.modes, c.derivative, c.speed)?;
+        let (mesh, sys) =
+            flowing::string_study::flowing_model(c.string, c.nodes, c.modes, c.derivative, c.speed)
+                .map_err(study_error)?;
         let spectrum = flowing_spectrum(&sys, c.speed)?;
         // below c the FE-consistent model cannot grow (its energy is positive definite);
         // another derivative operator can (notes STR-6), and then its response is an artefact

@@ -188,7 +188,8 @@ impl Study for SweepStudy {
 
     fn run(&self, c: &SweepConfig, ctx: &mut StudyContext) -> Result<SweepSummary, StudyError> {
         let crit = c.string.wave_speed();
-        let (_, sys) = flowing_model(c.string, c.nodes, c.modes, c.derivative, 0.0)?;
+        let (_, sys) = string_study::flowing_model(c.string, c.nodes, c.modes, c.derivative, 0.0)
+            .map_err(study_error)?;
         // the second discretisation of the flowing model, built when it first grows
         let mut sys_check = None;
         let mut header = vec!["speed_m_per_s".to_string()];
@@ -225,7 +226,11 @@ impl Study for SweepStudy {
             if !f.growth.is_empty() {
                 if sys_check.is_none() {
                     let (n, k) = string_study::check_mesh(c.nodes, c.modes);
-                    sys_check = Some(flowing_model(c.string, n, k, c.derivative, 0.0)?.1);
+                    sys_check = Some(
+                        string_study::flowing_model(c.string, n, k, c.derivative, 0.0)
+                            .map_err(study_error)?
+                            .1,
+                    );
                 }
                 if let Some(s2) = &sys_check {
                     let check = flowing_spectrum(s2, v)?;
