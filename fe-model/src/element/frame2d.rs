@@ -12,7 +12,7 @@
 //!
 //! Global matrices are `Tᵀ k T` with the node rotation `[c s 0; −s c 0; 0 0 1]`.
 
-use super::{Element, MassKind, hermite, transform};
+use super::{MassKind, hermite};
 use crate::FeError;
 use faer::Mat;
 use serde::{Deserialize, Serialize};
@@ -155,23 +155,4 @@ impl Frame2d {
     }
 }
 
-impl Element for Frame2d {
-    fn dofs(&self) -> &[usize] {
-        &self.dofs
-    }
-
-    fn stiffness(&self) -> Mat<f64> {
-        transform(&self.local_stiffness(), &self.rotation())
-    }
-
-    fn mass(&self, kind: MassKind) -> Mat<f64> {
-        transform(&self.local_mass(kind), &self.rotation())
-    }
-
-    fn geometric_stiffness(&self) -> Option<Mat<f64>> {
-        Some(transform(
-            &self.local_geometric_stiffness(),
-            &self.rotation(),
-        ))
-    }
-}
+impl_frame_element!(Frame2d);

@@ -16,7 +16,7 @@
 //! - lumped mass (HRZ): `ρA L/2` per translation, `ρIp L/2` per torsion, `ρA L³/78` per
 //!   bending rotation.
 
-use super::{Element, MassKind, hermite, transform};
+use super::{MassKind, hermite};
 use crate::FeError;
 use faer::Mat;
 use nalgebra::Vector3;
@@ -232,23 +232,4 @@ impl Frame3d {
     }
 }
 
-impl Element for Frame3d {
-    fn dofs(&self) -> &[usize] {
-        &self.dofs
-    }
-
-    fn stiffness(&self) -> Mat<f64> {
-        transform(&self.local_stiffness(), &self.rotation())
-    }
-
-    fn mass(&self, kind: MassKind) -> Mat<f64> {
-        transform(&self.local_mass(kind), &self.rotation())
-    }
-
-    fn geometric_stiffness(&self) -> Option<Mat<f64>> {
-        Some(transform(
-            &self.local_geometric_stiffness(),
-            &self.rotation(),
-        ))
-    }
-}
+impl_frame_element!(Frame3d);

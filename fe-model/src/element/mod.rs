@@ -6,6 +6,35 @@
 
 use faer::Mat;
 
+/// [`Element`] of a frame element formulated in its local axes (the frames' `dofs` field and
+/// inherent `local_stiffness`, `local_mass`, `local_geometric_stiffness` and `rotation`): each
+/// global matrix is the congruence `Tᵀ A_local T` of [`transform`] with the element's rotation
+/// `T` (Przemieniecki, Theory of Matrix Structural Analysis, §6.1).
+macro_rules! impl_frame_element {
+    ($frame:ty) => {
+        impl $crate::element::Element for $frame {
+            fn dofs(&self) -> &[usize] {
+                &self.dofs
+            }
+
+            fn stiffness(&self) -> faer::Mat<f64> {
+                $crate::element::transform(&self.local_stiffness(), &self.rotation())
+            }
+
+            fn mass(&self, kind: $crate::element::MassKind) -> faer::Mat<f64> {
+                $crate::element::transform(&self.local_mass(kind), &self.rotation())
+            }
+
+            fn geometric_stiffness(&self) -> Option<faer::Mat<f64>> {
+                Some($crate::element::transform(
+                    &self.local_geometric_stiffness(),
+                    &self.rotation(),
+                ))
+            }
+        }
+    };
+}
+
 pub mod bar;
 pub mod fibre;
 pub mod frame2d;
