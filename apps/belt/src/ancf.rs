@@ -15,6 +15,7 @@
 //! load and torque, and per span the tension and the transverse vibration amplitude
 //! ([`belt::report`]).
 
+use crate::wrap_csv;
 use ancf::belt_drive::{BeltDrive, post};
 use drives::ancf_run::Due;
 use drives::ancf_study::{
@@ -294,28 +295,8 @@ impl AncfStudy {
         let mu = end.friction_coefficient;
         ctx.out.write_csv(
             "wrap.csv",
-            &[
-                "pulley_index",
-                "angle_from_inlet_rad",
-                "length_m",
-                "tension_N",
-                "pressure_N_per_m",
-                "friction_N_per_m",
-                "slip_velocity_m_per_s",
-                "friction_utilisation_ratio",
-            ],
-            end.wrap.iter().map(|w| {
-                [
-                    w.pulley as f64,
-                    w.angle,
-                    w.length,
-                    w.tension,
-                    w.pressure,
-                    w.friction,
-                    w.slip,
-                    w.utilisation(mu),
-                ]
-            }),
+            &wrap_csv::COLUMNS,
+            end.wrap.iter().map(|w| wrap_csv::row(w, mu)),
         )?;
 
         // plots

@@ -25,6 +25,7 @@ mod fead;
 mod plate;
 mod speed_loss;
 mod wave;
+mod wrap_csv;
 
 /// Belt-drive studies of the flowmbd toolkit.
 #[derive(Debug, Parser)]

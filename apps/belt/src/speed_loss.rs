@@ -4,6 +4,7 @@
 //! this module reads the configuration, calls [`run_case`] per driver speed and writes the
 //! results.
 
+use crate::wrap_csv;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use drives::speed_loss::{Sample, SweepFailure};
 use drives::speed_loss_study::{
@@ -58,34 +59,16 @@ fn sweep_error(omega: f64, f: SweepFailure) -> StudyError {
 
 /// The contact points of every wrap at every operating point of `case` (`wrap_omega_*.csv`).
 fn write_wrap(ctx: &StudyContext, case: &SpeedLossCase) -> Result<(), StudyError> {
-    let mut csv = ctx.out.csv(
-        &format!("wrap_omega_{:.1}.csv", case.omega_driver),
-        &[
-            "torque_N_m",
-            "pulley_index",
-            "angle_from_inlet_rad",
-            "length_m",
-            "tension_N",
-            "pressure_N_per_m",
-            "friction_N_per_m",
-            "slip_velocity_m_per_s",
-            "friction_utilisation_ratio",
-        ],
-    )?;
+    let header: Vec<&str> = std::iter::once("torque_N_m")
+        .chain(wrap_csv::COLUMNS)
+        .collect();
+    let mut csv = ctx
+        .out
+        .csv(&format!("wrap_omega_{:.1}.csv", case.omega_driver), &header)?;
     for p in &case.points {
         let mu = case.friction_coefficient;
         for w in &p.wrap {
-            csv.row(&[
-                p.torque,
-                w.pulley as f64,
-                w.angle,
-                w.length,
-                w.tension,
-                w.pressure,
-                w.friction,
-                w.slip,
-                w.utilisation(mu),
-            ])?;
+            csv.row(&[&[p.torque][..], &wrap_csv::row(w, mu)].concat())?;
         }
     }
     csv.finish()?;
