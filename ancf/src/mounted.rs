@@ -18,8 +18,7 @@ pub(crate) use resting::{RestingBelt, solve_resting};
 
 use belt::{BeltModel, Drive, ModelTraits, Motion, Snapshot};
 use mbd_core::integrators::State;
-use mbd_core::system::ForceTangent;
-use mbd_core::{MbdError, SecondOrderSystem, SysMatrix, Workspace};
+use mbd_core::{MbdError, SecondOrderSystem};
 
 /// Refuse a drive with a decoupler ([`belt::decoupler`]) for the ANCF discretisation `model`
 /// (`"ancf"`, `"plate"`): their pulleys are single rigid bodies without the spring, carrier
@@ -179,37 +178,7 @@ impl<D: AncfDrive> MountedBelt<D> {
 }
 
 impl<D: AncfDrive> SecondOrderSystem for MountedBelt<D> {
-    fn n_q(&self) -> usize {
-        self.drive.n_q()
-    }
-    fn dof_name(&self, dof: usize) -> String {
-        self.drive.dof_name(dof)
-    }
-    fn mass_is_constant(&self) -> bool {
-        self.drive.mass_is_constant()
-    }
-    fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
-        self.drive.mass(t, q)
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
-    ) -> Result<(), MbdError> {
-        self.drive.forces(t, q, v, f, ws)
-    }
-    fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        self.drive.force_tangent(t, q, v, ws)
-    }
+    mbd_core::forward_dynamics!(drive);
 }
 
 impl<D: AncfDrive> BeltModel for MountedBelt<D> {

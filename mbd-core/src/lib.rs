@@ -68,6 +68,7 @@
 
 pub mod config;
 pub mod error;
+mod forward;
 pub mod input;
 pub mod integrators;
 pub mod linalg;

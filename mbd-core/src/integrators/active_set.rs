@@ -15,7 +15,7 @@
 //! row of an active candidate); the ancf crate's node contact against a rigid obstacle is one.
 
 use super::{AlphaConfig, AlphaStepper, State, Stats, Stepper};
-use crate::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix, Workspace};
+use crate::{MbdError, SecondOrderSystem, SysMatrix, Workspace};
 use faer::sparse::Triplet;
 
 /// The constraint row of an active unilateral candidate at `(t, q, v)`: `g = 0` with the
@@ -115,9 +115,7 @@ impl<'a, S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized>
 impl<S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized> SecondOrderSystem
     for ActiveSetSystem<'_, S, U>
 {
-    fn n_q(&self) -> usize {
-        self.base.n_q()
-    }
+    crate::forward_dynamics!(base);
     fn n_v(&self) -> usize {
         self.base.n_v()
     }
@@ -143,25 +141,6 @@ impl<S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized> SecondOrd
             None => self.base.constraint_name(row),
         }
     }
-    fn dof_name(&self, dof: usize) -> String {
-        self.base.dof_name(dof)
-    }
-    fn mass_is_constant(&self) -> bool {
-        self.base.mass_is_constant()
-    }
-    fn mass(&self, t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
-        self.base.mass(t, q)
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
-    ) -> Result<(), MbdError> {
-        self.base.forces(t, q, v, f, ws)
-    }
     fn dynamic_residual(
         &self,
         t: f64,
@@ -172,15 +151,6 @@ impl<S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized> SecondOrd
         ws: &mut Workspace,
     ) -> Result<bool, MbdError> {
         self.base.dynamic_residual(t, q, v, vdot, r, ws)
-    }
-    fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        self.base.force_tangent(t, q, v, ws)
     }
     /// The model's tangent plus `Σ λ_c ∂²g_c/∂q²` of the active rows.
     fn constraint_force_tangent(
