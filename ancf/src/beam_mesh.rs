@@ -7,7 +7,7 @@ use crate::mesh::AncfMesh;
 use serde::{Deserialize, Serialize};
 
 /// Which beam element a study uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum BeamElementKind {
     /// Kerkkänen's proposed 8-DOF linear element (§2.1.1).

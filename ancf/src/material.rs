@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 /// Isotropic material: Young's modulus `E` \[Pa\], Poisson's ratio `ν` \[-\], density `ρ` \[kg/m³\],
 /// shear correction factor `k_s` \[-\] (5/6 in all of Kerkkänen's chapter-2 examples).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Material {
     /// Young's modulus `E` \[Pa\].
     pub young: f64,

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 /// A doubly symmetric cross-section, described by the moments that enter the ANCF energies
 /// (Kerkkänen §2.2.1): `A = ∫dA` \[m²\], `I₂ = ∫y² dA` \[m⁴\], `I₄ = ∫y⁴ dA` \[m⁶\]; `y` is the
 /// in-plane transverse coordinate.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Section {
     /// Area `A` \[m²\].
     pub area: f64,

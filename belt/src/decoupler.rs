@@ -37,7 +37,7 @@ use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
 /// A decoupler between a loaded pulley and its accessory (module documentation).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Decoupler {
     /// Moment of inertia of the pulley hub `J_p` \[kg m²\] (the belt's side of the spring).
@@ -82,7 +82,7 @@ fn default_lock_speed() -> f64 {
 }
 
 /// Whether a one-way clutch transmits (module documentation).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ClutchState {
     /// The carrier drives the accessory (`ω_r > ω_a`).

@@ -53,7 +53,7 @@ pub const PARTIAL_RULES: &[(&str, &str)] = &[
 ];
 
 /// A belt drive as a user describes it (module documentation).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Layout {
     /// Pulleys in travel order (the loop runs clockwise around the `inside` pulleys).

@@ -23,7 +23,9 @@ pub const MAX_RADIUS: f64 = 10.0;
 pub const MIN_RADIUS: f64 = 1e-3;
 
 /// How the belt wraps a pulley.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema, Default,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum WrapSide {
     /// The pulley lies inside the loop (drive and driven pulleys of an open belt).
@@ -52,7 +54,7 @@ impl WrapSide {
 
 /// A prescribed translation of a pulley centre in the drive plane, Kerkkänen (4.46):
 /// `u(t) = u₀ t / t₀` for `t < t₀`, `u₀` afterwards (Model 1 tensions its belt this way).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CentreShift {
     /// Final displacement `u₀` \[m\] (Model 1: 0.0025 m).
@@ -93,7 +95,7 @@ impl Validate for CentreShift {
 }
 
 /// A pulley of a belt drive (module documentation).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Pulley {
     /// Name (used in messages and outputs; unique within a drive).

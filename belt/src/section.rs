@@ -35,7 +35,9 @@ use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
 /// How the belt's axial force follows its stretch (module documentation).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema, Default,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum MaterialLaw {
     /// `N = EA λ (λ² − 1)/2`: Green strain, Kerkkänen (3.18) (the ANCF belt element's law).
@@ -87,7 +89,7 @@ impl MaterialLaw {
 }
 
 /// The belt's section resultants and material law.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Section {
     /// Axial stiffness `EA` \[N\].
@@ -105,7 +107,7 @@ pub struct Section {
 }
 
 /// The ribs of a multi-ribbed (V-ribbed) belt (module documentation).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Ribs {
     /// Number of ribs (a 6PK belt has 6).
@@ -191,7 +193,7 @@ impl Validate for Section {
 
 /// Belt–pulley contact: the penalty law per unit belt length, Ribaric (6.1) distributed
 /// (`f_n = k₂ d² + k₁ d` \[N/m\] at penetration `d` \[m\]), and the friction law.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltContact {
     /// Quadratic penalty coefficient `k₂` \[N/m³\].
@@ -249,7 +251,7 @@ impl Validate for BeltContact {
 /// Rayleigh damping of the belt, `C = α M + β K_e` (Ribaric Table 6-1): `α` on the mass, `β`
 /// on the elastic stiffness acting on the material strain rate (the viscoelastic rubber; the
 /// ANCF belt carries it as Kelvin–Voigt axial damping `EA(ε + β ε̇)`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltDamping {
     /// Mass-proportional coefficient `α` \[1/s\].

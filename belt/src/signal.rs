@@ -72,7 +72,7 @@ pub enum Shape {
 }
 
 /// One harmonic `A sin(Ω t + φ)` of a [`Signal`] (a crankshaft firing order, a load ripple).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Harmonic {
     /// Amplitude `A` \[unit of the signal: rad/s for a speed, N m for a torque\].
@@ -90,7 +90,7 @@ pub struct Harmonic {
 }
 
 /// A prescribed history (module documentation): a [`Shape`] plus harmonics.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(try_from = "RawSignal", into = "RawSignal")]
 pub struct Signal {
     /// The mean part.
@@ -345,38 +345,53 @@ impl Validate for Signal {
 }
 
 /// The kinds of [`Shape`] as named in configuration files.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 enum Kind {
+    /// `y = value`.
     Constant,
+    /// Linear ramp from `from` at `t_start` to `value` at `t_end` (Kerkkänen (3.29)).
     Ramp,
+    /// Kerkkänen's cosine ramp (3.30) to `value` between `t_start` and `t_end`.
     Cosine,
+    /// C¹ smooth steps through `knots`.
     Schedule,
+    /// Linear through `knots` (a measured trace).
     Trace,
 }
 
 /// The configuration-file form of a [`Signal`] (module documentation): one table, the
 /// fields a kind does not use rejected by name.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawSignal {
+    /// The shape of the mean part.
     kind: Kind,
+    /// The constant value, or the final value of a ramp \[rad/s for a speed, N m for a
+    /// torque\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     value: Option<f64>,
+    /// Start of a ramp \[s\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     t_start: Option<f64>,
+    /// End of a ramp \[s\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     t_end: Option<f64>,
+    /// Value before a linear ramp \[rad/s for a speed, N m for a torque\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     from: Option<f64>,
+    /// Knots `[t, y]` of a schedule or trace, times ascending \[s, rad/s for a speed or N m
+    /// for a torque\].
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",
         deserialize_with = "mbd_core::validate::exact_pairs_opt"
     )]
     knots: Option<Vec<(f64, f64)>>,
+    /// Harmonics added to the mean part, faded in over `fade`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     harmonics: Vec<Harmonic>,
+    /// Fade-in time of the harmonics \[s\] (`0`: applied at once).
     #[serde(default, skip_serializing_if = "is_zero")]
     fade: f64,
 }
@@ -596,7 +611,7 @@ mod tests {
     // Every kind reads back from its TOML form; unused and missing fields are named.
     #[test]
     fn toml_round_trip_and_errors() {
-        #[derive(Deserialize, Serialize)]
+        #[derive(Deserialize, schemars::JsonSchema, Serialize)]
         struct W {
             s: Signal,
         }

@@ -37,7 +37,7 @@ use serde::{Deserialize, Serialize};
 /// A pivoted-arm tensioner (see the module documentation). The idler is a pulley of the
 /// layout, named by index; the arm length and the arm's installed angle follow from the
 /// idler's centre in the layout and the pivot.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Tensioner {
     /// Index of the idler pulley (in the layout's pulley list) carried by the arm.

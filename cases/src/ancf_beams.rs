@@ -21,7 +21,7 @@ pub(crate) fn invalid(item: impl Into<String>, reason: impl Into<String>) -> Anc
 
 /// A chapter-2 static beam (Kerkkänen §2.4): `E = 2.07·10¹¹ Pa`, `ρ = 7850 kg/m³`, `L = 2 m`,
 /// width 0.1 m, `k_s = 5/6`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StaticBeamCase {
     /// Element type.
@@ -367,7 +367,7 @@ pub fn cantilever_centreline(
 /// with the Euler–Bernoulli references: critical load `q* = 72 EI g₀/L⁴`; for `q ≤ q*` the tip
 /// alone touches with `R = 3qL/8 − 3EI g₀/L³`; for `q > q*` the beam lies flat on `[a, L]`,
 /// `a = (72 EI g₀/q)^{1/4}`, total contact force `qL − 2qa/3`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct GroundContactCase {
     /// Element type.

@@ -22,7 +22,7 @@ use std::sync::Arc;
 /// Falling flexible pendulum (Kerkkänen §2.4, Fig. 2.5): `L = 2 m`, 0.1 m square section,
 /// `E = 2.07·10⁷ Pa`, `ν = 0`, `ρ = 7850 kg/m³`, `g = 9.81 m/s²`, pinned at one end (nodal
 /// position fixed, slopes free), released from rest in the horizontal position.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct PendulumCase {
     /// Element type (the thesis compares both in Fig. 2.8 and Table 2.5).
@@ -45,7 +45,7 @@ pub struct PendulumCase {
     pub t_end: f64,
     /// Step size \[s\].
     pub h: f64,
-    /// Generalized-α spectral radius ρ∞ (1: no numerical dissipation).
+    /// Generalized-α spectral radius ρ∞ \[-\] (1: no numerical dissipation).
     pub rho_inf: f64,
 }
 
@@ -210,7 +210,7 @@ fn pendulum_run<E: AncfElement, R: Proceed>(
 /// `3.675·10⁻² m`, `E = 6.895·10¹⁰ Pa`, `ρ = 2766.67 kg/m³`, 3 proposed elements, no gravity,
 /// hub angle (2.35) with `ω_s = 4 rad/s`, `T_s = 15 s`, 20 s. `ν` is not stated (0.3 here).
 /// The clamp to the hub prescribes `r = 0` and `r_y = (−sin θ, cos θ)` at node 1.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SpinningCase {
     /// Number of proposed elements.
@@ -235,7 +235,7 @@ pub struct SpinningCase {
     pub t_end: f64,
     /// Step size \[s\].
     pub h: f64,
-    /// Generalized-α spectral radius ρ∞.
+    /// Generalized-α spectral radius ρ∞ \[-\].
     pub rho_inf: f64,
 }
 

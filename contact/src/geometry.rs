@@ -65,13 +65,15 @@ pub type SurfacePoint2 = SurfacePoint<2>;
 /// A rigid disk (pulley, drum) with centre `center` \[m\], radius `radius` \[m\], translational
 /// velocity `velocity` \[m/s\] and angular velocity `omega` \[rad/s\] (counter-clockwise positive).
 /// The contacting body is outside the disk.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Disk {
     /// Centre `r_o` \[m\].
+    #[schemars(with = "[f64; 2]")]
     pub center: Point2<f64>,
     /// Radius `R` \[m\].
     pub radius: f64,
     /// Velocity of the centre `ṙ_o` \[m/s\].
+    #[schemars(with = "[f64; 2]")]
     pub velocity: Vector2<f64>,
     /// Angular velocity `ω` \[rad/s\].
     pub omega: f64,
@@ -143,13 +145,16 @@ impl Surface<2> for Disk {
 
 /// A half-plane (flat road): material on the side opposite to the unit `normal`, surface
 /// through `origin`, moving tangentially with `velocity` \[m/s\] (e.g. a belt-type road).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct HalfPlane {
     /// A point of the surface \[m\].
+    #[schemars(with = "[f64; 2]")]
     pub origin: Point2<f64>,
     /// Outward unit normal.
+    #[schemars(with = "[f64; 2]")]
     pub normal: Vector2<f64>,
     /// Surface material velocity \[m/s\].
+    #[schemars(with = "[f64; 2]")]
     pub velocity: Vector2<f64>,
 }
 
@@ -190,7 +195,7 @@ impl Surface<2> for HalfPlane {
 /// sits on the drum surface at polar angle `cleat_angle` (Ribaric ch. 8: 10 mm cleat on a
 /// 1.25 m drum). The drum rotates with `omega`; advance `cleat_angle` with time.
 /// Geometry: union of the drum disk and the cleat disk (signed distance = minimum).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct CleatedDrum {
     /// The drum.
     pub drum: Disk,
@@ -239,7 +244,7 @@ impl Surface<2> for CleatedDrum {
 
 /// Flat road with a semicircular cleat of radius `cleat_radius` centred on the surface at
 /// abscissa `cleat_x` (Ribaric §8.5). Union of the half-plane `y ≤ height` and the cleat disk.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct CleatedRoad {
     /// Road surface height \[m\].
     pub height: f64,

@@ -21,7 +21,7 @@ use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// What the study computes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Analysis {
     /// Example 3.3-A: static closure of the free belt (no pulleys in the analysis; the belt
@@ -32,7 +32,7 @@ pub enum Analysis {
 }
 
 /// Output options.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct OutputConfig {
     /// Sampling interval of `history.csv` \[s\].
@@ -56,14 +56,14 @@ impl Default for OutputConfig {
 pub use crate::ancf_run::{MAX_HISTORY_ROWS, MAX_STEPS, MAX_VTK_FRAMES};
 
 /// Configuration of the ANCF belt-drive study (the `flowmbd-belt ancf` TOML file, SI units).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct AncfStudyConfig {
     /// Static closure (3.3-A) or dynamic run.
     pub analysis: Analysis,
     /// End time \[s\].
     pub t_end: f64,
-    /// Reuse tolerance of the elastic tangent (see `BeltDrive::with_tangent_refresh`).
+    /// Reuse tolerance of the elastic tangent \[-\] (see `BeltDrive::with_tangent_refresh`).
     pub tangent_refresh: f64,
     /// The drive: pulleys (travel order), belt, contact.
     pub drive: BeltDriveSpec,

@@ -31,7 +31,9 @@ use thiserror::Error;
 pub const MAX_TRACE_BYTES: u64 = 16 * 1024 * 1024;
 
 /// What the first column of a trace is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Abscissa {
     /// Time \[s\].
@@ -42,7 +44,7 @@ pub enum Abscissa {
 }
 
 /// A crankshaft speed trace in a CSV file (module documentation).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CrankTrace {
     /// The CSV file (a relative path is resolved against the configuration file's folder by

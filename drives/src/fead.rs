@@ -101,12 +101,12 @@ pub const MAX_SPEEDS: usize = 200;
 pub const MAX_STEPS: usize = 2_000_000;
 
 /// One engine order of the crank speed fluctuation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct EngineOrder {
-    /// Order (per crank revolution; a four-stroke four-cylinder engine fires at order 2).
+    /// Order \[-\] (cycles per crank revolution; a four-stroke four-cylinder engine fires at order 2).
     pub order: f64,
-    /// Speed amplitude relative to the mean speed.
+    /// Speed amplitude relative to the mean speed \[-\] (0.02: ±2 % of the mean crank speed).
     pub amplitude: f64,
     /// Phase \[rad\].
     #[serde(default)]
@@ -114,7 +114,7 @@ pub struct EngineOrder {
 }
 
 /// The engine: the speed sweep and the crank speed fluctuation.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct EngineConfig {
     /// Engine speeds of the sweep \[rpm\].
@@ -153,14 +153,14 @@ impl Default for EngineConfig {
 }
 
 /// Time stepping of the sweep.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct FeadRun {
     /// Generalized-α step \[s\].
     pub step: f64,
-    /// Spectral radius at infinity of the generalized-α method (flowing and nodal models).
+    /// Spectral radius at infinity of the generalized-α method \[-\] (flowing and nodal models).
     pub rho_inf: f64,
-    /// Spectral radius at infinity with `model = "ancf"` (replaces `rho_inf` for that model:
+    /// Spectral radius at infinity with `model = "ancf"` \[-\] (replaces `rho_inf` for that model:
     /// module documentation, *gross slip at the crank*).
     pub ancf_rho_inf: f64,
     /// Ramp from one engine speed to the next (and of the fluctuation) \[s\].
@@ -199,7 +199,7 @@ impl Default for FeadRun {
 }
 
 /// The FEAD study's configuration.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct FeadConfig {
     /// The drive: pulley 0 is the crankshaft (its speed is set by the sweep).

@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// Output options of the plate study.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct PlateOutputConfig {
     /// Sampling interval of `history.csv` \[s\].
@@ -65,7 +65,7 @@ impl Default for PlateOutputConfig {
 }
 
 /// Configuration of the plate-belt study (the `flowmbd-belt plate` TOML file, SI units).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct PlateStudyConfig {
     /// End time \[s\].

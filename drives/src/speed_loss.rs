@@ -19,7 +19,7 @@ use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
 /// Settings of the procedure (SI units).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct SpeedLossConfig {
     /// Driver speed ω₁ \[rad/s\] (Ribaric Figs. 6-6, 6-7: 62.8 and 22.6).
@@ -38,7 +38,7 @@ pub struct SpeedLossConfig {
     pub max_hold: f64,
     /// Generalized-α step \[s\].
     pub step: f64,
-    /// Generalized-α spectral radius at infinity.
+    /// Generalized-α spectral radius at infinity \[-\].
     pub rho_inf: f64,
 }
 
@@ -314,7 +314,7 @@ pub fn balance_issue(b: &belt::Balances) -> Option<String> {
 }
 
 /// Integration statistics of a sweep.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct SweepStats {
     /// Simulated time \[s\].
     pub simulated_time: f64,

@@ -18,7 +18,7 @@ use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
 /// Configuration of the speed-loss study (the `flowmbd-belt speed-loss` TOML file).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct SpeedLossStudyConfig {
     /// Belt model.

@@ -17,7 +17,9 @@ use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
 /// Belt model of a study.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema, Default,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum ModelKind {
     /// Flowing-material modal model with a stationary mesh (Ribaric (5.14)).
@@ -59,7 +61,7 @@ impl std::str::FromStr for ModelKind {
 /// What the rotating-mesh model needs to reach an accurate steady state: a fine uniform loop
 /// (its elements travel over the pulleys, so short arc elements alone do not help) and a
 /// longer averaging window over its element-passing ripple.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct NodalConfig {
     /// Mesh of the rotating loop (default: 5.6 mm everywhere, 216 elements on Table 6-1).
@@ -99,7 +101,7 @@ impl Validate for NodalConfig {
 }
 
 /// Each model's discretisation settings (one table per model in a study's configuration).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema, Default)]
 #[serde(default, deny_unknown_fields)]
 pub struct ModelSettings {
     /// The flowing-material model's loop and reduction.

@@ -10,7 +10,7 @@ use faer::sparse::SparseColMat;
 use serde::{Deserialize, Serialize};
 
 /// Rayleigh coefficients.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Rayleigh {
     /// Mass-proportional coefficient α \[1/s\].

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// Geometric type of a mesh cell (the VTK cell types used for export).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum CellKind {
     /// Single node (point mass, spring end).
@@ -45,7 +45,7 @@ impl CellKind {
 }
 
 /// A mesh cell: kind and node indices.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Cell {
     /// Cell type.
     pub kind: CellKind,
@@ -54,7 +54,7 @@ pub struct Cell {
 }
 
 /// A finite-element mesh with uniform DOFs per node.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Mesh {
     /// Node coordinates \[m\] (x, y, z; z = 0 for planar models).
     pub nodes: Vec<[f64; 3]>,

@@ -59,7 +59,9 @@ pub struct Candidate {
 }
 
 /// Transverse load `f(t) = amplitude · sin(2π·frequency·t)` at the node nearest to `x`.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct HarmonicLoad {
     /// Axial position of the loaded node \[m\].
@@ -485,16 +487,18 @@ impl SecondOrderSystem for ContactString {
 type CachedForces = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// Settings of the active-set simulation.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields, default)]
 pub struct ContactConfig {
     /// Penetration that activates a contact \[m\].
     pub gap_tol: f64,
     /// Tensile contact force that releases a contact \[N\].
     pub force_tol: f64,
-    /// Relative tolerance of Dormand–Prince.
+    /// Relative tolerance of Dormand–Prince \[-\].
     pub rtol: f64,
-    /// Absolute tolerance of Dormand–Prince.
+    /// Absolute tolerance of Dormand–Prince \[units of the state: m, m/s\].
     pub atol: f64,
     /// Maximum number of contact events.
     pub max_events: usize,

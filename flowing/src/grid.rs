@@ -9,7 +9,9 @@
 use crate::error::{FlowError, invalid};
 
 /// What is known at one end of an open grid.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 pub enum End {
     /// The field is zero at this position (a fixed end, Ribaric (A.2)); the position lies
     /// outside the node range \[m or rad\].
@@ -19,7 +21,9 @@ pub enum End {
 }
 
 /// Topology of a flow grid.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 pub enum Topology {
     /// A line with two ends.
     Open {

@@ -6,7 +6,9 @@ use crate::error::{FlowError, invalid};
 ///
 /// `Default` is Ribaric's example of Sec. 4.2.3: L = 1 m, ρ₀ = 7850 kg/m³,
 /// A₀ = 7.854e-5 m² (10 mm steel wire), T₀ = 1000 N.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct StringConfig {
     /// Length between the boundaries `L` \[m\].

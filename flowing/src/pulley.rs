@@ -5,7 +5,9 @@ use crate::error::{FlowError, invalid};
 /// A rigid pulley under Ribaric's travelling string, an obstacle the string wraps (not a
 /// belt-drive pulley, which is `belt::Pulley`): a circle of radius `radius` whose top point is at
 /// `(center_x, top)` in the string's (axial x, transverse u) plane \[m\].
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct PulleyObstacle {
     /// Axial position of the pulley centre \[m\].

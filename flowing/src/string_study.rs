@@ -397,7 +397,7 @@ pub fn flowing_spectrum(sys: &FlowingString, speed: f64) -> Result<Spectrum, Flo
 
 /// Configuration of the modes study (defaults: Ribaric 4.2.3 string at 20 m/s, 99 nodes,
 /// 20 modes).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct ModesConfig {
     /// String parameters.

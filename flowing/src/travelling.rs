@@ -23,7 +23,9 @@ use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use std::f64::consts::PI;
 
 /// Axial motion of the material through the mesh (Ribaric (4.13): `ẋ`, `ẍ`).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields, tag = "kind", rename_all = "snake_case")]
 pub enum AxialMotion {
     /// Constant speed `ẋ = speed` \[m/s\].

@@ -193,20 +193,20 @@ mod tests {
     use super::*;
     use serde::Deserialize;
 
-    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
     #[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
     enum Friction {
         Creep { kappa: f64, mu: f64 },
         Coulomb { mu: f64 },
     }
 
-    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     struct Pulley {
         radius: f64,
     }
 
-    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     struct Drive {
         pulleys: Vec<Pulley>,
@@ -215,7 +215,7 @@ mod tests {
         name: String,
     }
 
-    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     struct Study {
         drive: Drive,
@@ -286,7 +286,7 @@ mod tests {
 
     #[test]
     fn a_given_key_drops_the_defaults_it_excludes() {
-        #[derive(Debug, Serialize, Deserialize)]
+        #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
         #[serde(deny_unknown_fields)]
         struct Mount {
             #[serde(default, skip_serializing_if = "Option::is_none")]

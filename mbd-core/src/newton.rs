@@ -254,7 +254,9 @@ impl Default for LoadStepping {
 /// which breaks such cycles; after `iterations` consecutive stalls [`solve`] stops with
 /// [`NewtonError::NoConvergence`] instead of running to `max_iterations`, so that the caller
 /// (e.g. a time stepper that halves the step) can react at once.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct Stall {
     /// Contraction below which an iteration counts as progress \[-\] (e.g. 0.9).

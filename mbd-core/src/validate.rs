@@ -67,7 +67,7 @@ pub trait Validate {
 /// is silently dropped (issue 20). With it, any key besides the tag is an "unknown field" error.
 pub fn unit_variant<'de, D: serde::Deserializer<'de>>(d: D) -> Result<(), D::Error> {
     /// A table that must be empty.
-    #[derive(serde::Deserialize)]
+    #[derive(serde::Deserialize, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     struct NoFields {}
     <NoFields as serde::Deserialize>::deserialize(d).map(|_| ())

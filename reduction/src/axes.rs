@@ -11,7 +11,7 @@ use faer::{Mat, MatRef};
 use serde::{Deserialize, Serialize};
 
 /// A body-frame axis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Axis {
     /// ξ (local x).
@@ -38,7 +38,7 @@ impl Axis {
 /// plane spanned by `axis` and `plane_axis` (1 zero: the component normal to that plane).
 ///
 /// Node indices are 0-based; each node has 3 translational DOFs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct NodalFixedFrame {
     /// Origin node.
     pub origin: usize,

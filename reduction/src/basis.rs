@@ -15,7 +15,7 @@ use faer::{Mat, MatRef};
 use serde::{Deserialize, Serialize};
 
 /// Reduction method (Lin Table 7-1 and Table 7-2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// Static condensation, `Ψ = [I; Ψs]`, `Ψs = −K_ii⁻¹K_ib` (Lin (6.3)–(6.5), Ribaric (3.5)).
@@ -57,7 +57,7 @@ impl Method {
 }
 
 /// Which normal modes are kept.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub enum ModeSelection {
     /// The `n` modes of lowest frequency.
     Lowest(usize),
@@ -103,7 +103,7 @@ impl ModeSelection {
 }
 
 /// Meaning of one column of a basis.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Column {
     /// Unit displacement of a boundary DOF (physical coordinate; identity row in Ψ).

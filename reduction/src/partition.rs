@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 /// DOF indices are 0-based positions in the full vector. The boundary order is the order given
 /// by the user (it is the order of the boundary columns of every basis); interior and fixed DOFs
 /// are in ascending order.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct DofPartition {
     n: usize,
     boundary: Vec<usize>,

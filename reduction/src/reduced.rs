@@ -247,13 +247,13 @@ impl ReducedModel {
     }
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, schemars::JsonSchema)]
 struct Header {
     format: String,
     version: u32,
 }
 
-#[derive(Serialize, Deserialize)]
+#[derive(Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct ReducedModelFile {
     format: String,
@@ -269,7 +269,7 @@ struct ReducedModelFile {
 }
 
 /// Dense matrix in the file format: column-major values.
-#[derive(Serialize, Deserialize)]
+#[derive(Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct DenseMatrix {
     rows: usize,

@@ -285,7 +285,9 @@ pub fn line_amplitude(spectrum: &Spectrum, f_hz: f64, half_band: f64) -> f64 {
 }
 
 /// Shape of the force pulse whose spectrum filters the vertical mode in [`ground_dips`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum PulseShape {
     /// A half sine over the profile's support `L` (a smooth single hump, the shape of the
@@ -322,7 +324,7 @@ impl PulseShape {
 }
 
 /// Settings of [`ground_dips`].
-#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct DipConfig {
     /// Spacing of the cleat positions of the enveloping profile \[m\].

@@ -52,6 +52,21 @@ impl Serialize for TireFriction {
     }
 }
 
+impl schemars::JsonSchema for TireFriction {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "TireFriction".into()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        schemars::json_schema!({
+            "anyOf": [
+                { "type": "string", "enum": ["coulomb", "regularized"] },
+                generator.subschema_for::<FrictionSpec>()
+            ]
+        })
+    }
+}
+
 impl<'de> Deserialize<'de> for TireFriction {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         struct V;

@@ -34,7 +34,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// Reduction settings (Ribaric §8.2 defaults: 95 contact nodes, 50 free-node modes).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct ReductionConfig {
     /// Number of contact nodes `n_c` (95 in Ribaric §8.2, 252 in §8.4.2).

@@ -26,16 +26,16 @@ use std::time::Instant;
 
 /// Rayleigh damping from two target modal damping ratios (Ribaric §8.4.1: the 5th and 12th
 /// modes, ≈3 % or ≈1 %), modes of the reduced tire with the wheel fixed (1-based numbers).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct DampingConfig {
     /// First target mode number (1-based).
     pub mode1: usize,
-    /// Damping ratio at the first mode.
+    /// Damping ratio at the first mode \[-\].
     pub zeta1: f64,
     /// Second target mode number (1-based).
     pub mode2: usize,
-    /// Damping ratio at the second mode.
+    /// Damping ratio at the second mode \[-\].
     pub zeta2: f64,
 }
 
@@ -101,7 +101,7 @@ impl DampingConfig {
 /// and 3 % of them, for 15 % more steps (BENCHMARKS.md, tire: convergence over cleat phases).
 /// The switch back to the long step while the patch still rings is what a short trail gets
 /// wrong; a longer lead does not help (0.3 m: −3.4 %).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct ImpactConfig {
     /// Sub-steps per time step inside the window (1 = off).
@@ -133,7 +133,7 @@ impl ImpactConfig {
 }
 
 /// Cleat-test settings (defaults: Ribaric §8.3 at 60 km/h on the drum).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct RigConfig {
     /// Vertical preload \[N\] (1000 lb).

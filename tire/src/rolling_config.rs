@@ -11,7 +11,7 @@ use mbd_core::validate::{InvalidField, check};
 use serde::{Deserialize, Serialize};
 
 /// Normal contact law.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case", tag = "law", deny_unknown_fields)]
 pub enum NormalContact {
     /// Rigid unilateral constraint with Lagrange multipliers (Ribaric §7.3).
@@ -25,7 +25,9 @@ pub enum NormalContact {
 }
 
 /// How the spindle force (the force of the tire on the wheel) is evaluated.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum SpindleForceMethod {
     /// Newton's second law for the tire (default): the ground's force on the tire minus the
@@ -42,21 +44,21 @@ pub enum SpindleForceMethod {
 }
 
 /// Integration and contact settings of the rolling tire.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct RollingConfig {
     /// Time step `h` \[s\].
     pub time_step: f64,
-    /// Newmark β of the generalized-α update (see [`RollingConfig::generalized_alpha`]).
+    /// Newmark β of the generalized-α update \[-\] (see [`RollingConfig::generalized_alpha`]).
     pub newmark_beta: f64,
-    /// Newmark γ of the generalized-α update.
+    /// Newmark γ of the generalized-α update \[-\].
     pub newmark_gamma: f64,
-    /// Generalized-α weight α_m of the pseudo-acceleration (0 with `alpha_f = 0`: plain
+    /// Generalized-α weight α_m of the pseudo-acceleration \[-\] (0 with `alpha_f = 0`: plain
     /// Newmark).
     pub alpha_m: f64,
-    /// Generalized-α weight α_f of the true acceleration.
+    /// Generalized-α weight α_f of the true acceleration \[-\].
     pub alpha_f: f64,
-    /// Coulomb friction coefficient μ (Ribaric §8.4.3: 0.85 nominal, 0 pure slip).
+    /// Coulomb friction coefficient μ \[-\] (Ribaric §8.4.3: 0.85 nominal, 0 pure slip).
     pub friction: f64,
     /// Friction law: `coulomb` (set-valued, with stick; default), `regularized`
     /// (Ribaric's slip-only `f = −μλ u/√(|u|²+ε²)`, seed note U20), or a law table
@@ -65,17 +67,17 @@ pub struct RollingConfig {
     /// Slip-velocity regularisation ε of the `regularized` friction law \[m/s\] (unused by
     /// `coulomb`).
     pub slip_regularization: f64,
-    /// Relative tolerance of the contact solve: Alart–Curnier residual (complementarity and
+    /// Relative tolerance of the contact solve \[-\]: Alart–Curnier residual (complementarity and
     /// friction law, in force units) below this times the largest normal force.
     pub contact_tolerance: f64,
     /// Normal contact law.
     pub normal: NormalContact,
     /// Spin inertia of the wheel (without the rim nodes, which are added) \[kg·m²\].
     pub wheel_spin_inertia: f64,
-    /// Relative drift of θ̇ at which the spin-dependent force matrix `R` (gyroscopic,
+    /// Relative drift of θ̇ \[-\] at which the spin-dependent force matrix `R` (gyroscopic,
     /// centrifugal and damping terms) is re-formed.
     pub spin_tolerance: f64,
-    /// Relative drift of θ̇ at which the iteration matrix `S` is inverted again; between
+    /// Relative drift of θ̇ \[-\] at which the iteration matrix `S` is inverted again; between
     /// inversions its gyroscopic part `2γh(θ̇_R − θ̇_S)G₁` is lagged by one step (see
     /// [`RollingTire::step`](crate::RollingTire::step)).
     pub matrix_tolerance: f64,
@@ -106,7 +108,9 @@ pub struct RollingConfig {
 }
 
 /// Use of the tire's mirror symmetry ([`RollingConfig::symmetry`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Symmetry {
     /// The half model when the tire and the start are mirror-symmetric, else the full model.

@@ -18,7 +18,7 @@ use std::path::Path;
 pub const CACHE: &str = "cache";
 
 /// Where the reduced tire comes from (the `[tire]` table of the tire studies).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct TireSource {
     /// Reduced tire file of `flowmbd-tire`: loaded when it exists, otherwise written after

@@ -57,7 +57,7 @@ pub fn rig_input_error(e: TireError) -> Result<InvalidField, TireError> {
 }
 
 /// Configuration of the cleat test at one speed (`flowmbd-tire cleat`, `flowmbd.tire.cleat`).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct CleatStudyConfig {
     /// The tire.
@@ -65,13 +65,13 @@ pub struct CleatStudyConfig {
     /// The rig.
     pub rig: RigConfig,
     /// Write a VTK (`.vtu`) snapshot of the deformed contact patch every this many simulated
-    /// seconds (0 = none; the first after the first step) into `vtk/` (`flowmbd-tire` only).
+    /// seconds \[s\] (0 = none; the first after the first step) into `vtk/` (`flowmbd-tire` only).
     /// Simulated time, not steps, so that a finer `rig.rolling.time_step` does not multiply
     /// the files (default 5 ms: 140 frames of the default 0.7 s run).
     pub vtk_interval: f64,
     /// Write a VTK (`.vtu`) snapshot of the whole deforming tire (every ring at the
     /// reduction's visualisation stations, as closed polylines, with the displacement field)
-    /// every this many simulated seconds (0 = none) into `vtk/` (needs a reduced tire made
+    /// every this many simulated seconds \[s\] (0 = none) into `vtk/` (needs a reduced tire made
     /// with `tire.reduction.viz_stations > 0`; `flowmbd-tire` only; default 10 ms).
     pub vtk_tire_interval: f64,
     /// Cleat phases: run the test this many times with the cleat arriving `j/cleat_phases` of

@@ -40,7 +40,7 @@ pub const ANCF_FORCE_MEASURE: &str = "axial force of the belt's material law (St
 carried by the elements, with the Kelvin–Voigt viscous part; spans: mean over each span's middle half";
 
 /// Discretisation choices of the ANCF belt that the drive does not fix.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct AncfConfig {
     /// Number of equal belt elements.
@@ -54,7 +54,7 @@ pub struct AncfConfig {
     pub contact_damping: f64,
     /// Generalized-α step \[s\] (replaces the procedure's step for this model).
     pub step: f64,
-    /// Reuse tolerance of the elastic tangent (`BeltDrive::with_tangent_refresh`); `0` (exact
+    /// Reuse tolerance of the elastic tangent \[-\] (`BeltDrive::with_tangent_refresh`); `0` (exact
     /// tangent) by default.
     pub tangent_refresh: f64,
 }

@@ -10,7 +10,7 @@ use mbd_core::newton::Stall;
 use serde::{Deserialize, Serialize};
 
 /// Which integrator runs the drive.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum IntegratorKind {
     /// Implicit generalized-α (Chung–Hulbert) with the analytic tangent.
@@ -20,7 +20,7 @@ pub enum IntegratorKind {
 }
 
 /// Integration options.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SimulationConfig {
     /// Integrator.
@@ -30,7 +30,7 @@ pub struct SimulationConfig {
     /// (E = 1e8 Pa) and 5.1e-3 rad/s (E = 1e9 Pa) of the h = 2.5e-5 s solution, see
     /// BENCHMARKS.md).
     pub h: f64,
-    /// Generalized-α spectral radius at infinite frequency ρ∞ (default 0.8: at h = 2.5e-4 s
+    /// Generalized-α spectral radius at infinite frequency ρ∞ \[-\] (default 0.8: at h = 2.5e-4 s
     /// and E = 1e9 Pa the driven speed is 5.1e-3 rad/s off the h = 2.5e-5 s solution,
     /// against 7.8e-3 rad/s with the stronger numerical damping of ρ∞ = 0.6; ρ∞ = 1 is not
     /// more accurate and needs 1.6× the Newton iterations).
@@ -49,7 +49,7 @@ pub struct SimulationConfig {
     /// by `refactor_contraction`).
     pub newton_update: NewtonUpdate,
     /// `every_step` and `frozen`: re-factor at the current iterate when a correction exceeds
-    /// this fraction of the previous one (mbd-core `AlphaConfig::refactor_contraction`).
+    /// this fraction of the previous one \[-\] (mbd-core `AlphaConfig::refactor_contraction`).
     /// Default 0.8: on the Table 3.1 drive after the speed ramp (E = 1e9 Pa, h = 2.5e-4 s)
     /// 0.6, 0.7, 0.8, 0.85, 0.9 gave 0.58, 0.48, 0.35, 0.30, 0.27 factorisations and 4.0, 4.3,
     /// 4.7, 5.1, 5.5 Newton iterations per step, the least CPU time at 0.8–0.85 (at E = 1e8 Pa

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 pub const MAX_GAUSS_POINTS: usize = 20;
 
 /// The belt: ANCF belt elements (Kerkkänen §3.1) in a closed loop.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BeltSpec {
     /// Unstretched belt length \[m\] (Table 3.1 runs: 1.2727 m, shorter than the 1.276273 m path,
@@ -30,9 +30,9 @@ pub struct BeltSpec {
     pub density: f64,
     /// Shear correction factor `k_s` \[-\] (not stated for the belt; 5/6 as in Ch. 2).
     pub shear_factor: f64,
-    /// Axial stiffness multiplier `α₁` (3.18).
+    /// Axial stiffness multiplier `α₁` \[-\] (3.18).
     pub alpha1: f64,
-    /// Bending/shear stiffness multiplier `α₂` (3.18)–(3.19).
+    /// Bending/shear stiffness multiplier `α₂` \[-\] (3.18)–(3.19).
     pub alpha2: f64,
     /// Gauss points along each element for the strain energy.
     pub gauss_points: usize,
@@ -71,7 +71,7 @@ impl Default for BeltSpec {
 }
 
 /// Distributed penalty contact with friction (Kerkkänen (3.20)–(3.27)).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct ContactSpec {
     /// Penalty stiffness per unit length `k_p` \[N/m²\].
@@ -112,7 +112,7 @@ impl Default for ContactSpec {
 }
 
 /// A complete belt drive: pulleys in travel order, belt and contact.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BeltDriveSpec {
     /// Pulleys in travel order (the belt runs from pulley 0 to pulley 1, …).

@@ -9,7 +9,9 @@
 use serde::{Deserialize, Serialize};
 
 /// The strain measure used for the belt tension (Kerkkänen Fig. 4.12).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema, Default,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum StrainMeasure {
     /// (4.9): `ε = −1 + √(1 + α)`, `α = 2 t_oᵀ ε^m t_o = ‖r_x‖² − 1`, i.e. the engineering

@@ -157,7 +157,7 @@ impl Study for SimplySupported {
 }
 
 /// Cantilever configuration: Table 2.3 (Model 1: h = 0.1 m, ν = 0.3) by default.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct CantileverConfig {
     /// Beam data.

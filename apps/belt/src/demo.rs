@@ -23,7 +23,7 @@ pub struct Args {
 }
 
 /// Demo configuration (SI units).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// Crank length a \[m\].
@@ -40,7 +40,7 @@ pub struct Config {
     pub t_end: f64,
     /// Time step \[s\].
     pub step: f64,
-    /// Generalized-α spectral radius at infinity.
+    /// Generalized-α spectral radius at infinity \[-\].
     pub rho_inf: f64,
 }
 

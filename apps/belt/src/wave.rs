@@ -36,7 +36,7 @@ pub struct Args {
 }
 
 /// Configuration (SI units).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// The drive (Ribaric Table 6-1); the bump starts on span 0 (pulley 0 → pulley 1).
@@ -48,7 +48,7 @@ pub struct Config {
     pub wave: WaveConfig,
     /// Number of VTK frames per run.
     pub vtk_frames: usize,
-    /// Scale of the deflection in the VTK files.
+    /// Scale of the deflection in the VTK files \[-\].
     pub vtk_scale: f64,
 }
 

@@ -104,78 +104,69 @@ fn printed_configuration_round_trips() {
     }
 }
 
-// The shipped Kerkkänen 3.3 example configurations are valid input for `ancf`, the 4.6 ones
-// for `plate`, the Pechstein–Gerstmayr drive (issue 34) for `fead`.
+// The shipped examples are valid input for the studies their first line names
+// (`flowmbd_cli::testing::examples`): Kerkkänen's §3.3 ones for `ancf`, his §4.6 ones for
+// `plate`, the Pechstein–Gerstmayr drive (issue 34) for `fead`, and every study has one.
 #[test]
 fn shipped_examples_are_valid() {
+    let exe = env!("CARGO_BIN_EXE_flowmbd-belt");
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let mut n = 0;
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().and_then(|e| e.to_str()) != Some("toml") {
-            continue;
+    let examples = flowmbd_cli::testing::examples(&dir);
+    for (studies, path) in &examples {
+        assert!(!studies.is_empty(), "{}: names no study", path.display());
+        for study in studies {
+            let (code, _, stderr) =
+                run(&[study, "--config", path.to_str().unwrap(), "--print-config"]);
+            assert_eq!(code, 0, "{}: {stderr}", path.display());
         }
-        let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
-        // Kerkkänen's §3.3 examples are `ancf` runs, his §4.6 ones `plate`; every other
-        // example is a drive layout for `fead` (and `design`)
-        let study = if name.starts_with("kerkkanen-4-6") {
-            "plate"
-        } else if name.starts_with("kerkkanen-3-3") {
-            "ancf"
-        } else {
-            "fead"
-        };
-        let (code, _, stderr) = run(&[study, "--config", path.to_str().unwrap(), "--print-config"]);
-        assert_eq!(code, 0, "{}: {stderr}", path.display());
-        n += 1;
     }
     assert!(
-        n >= 10,
+        examples.len() >= 10,
         "kerkkanen-3-3-a … f, kerkkanen-4-6-model1, -model2, pechstein-gerstmayr, \
-         fead-three-pulley: {n}"
+         fead-three-pulley, …: {examples:?}"
+    );
+    let missing = flowmbd_cli::testing::studies_without_example(exe, &dir);
+    assert!(
+        missing.is_empty(),
+        "studies without an example: {missing:?}"
     );
 }
 
-// The shipped Kerkkänen examples run (a few steps each) to a complete summary: Model 1 drives
-// an idler, so its summary has no driven slip arc and no NaN in its place (the runner refuses
-// non-finite results).
+// Every shipped example runs, shortened by its own run-length keys (or the study's time option),
+// to a complete summary with its `meaning`. Kerkkänen's Model 1 drives an idler, so its summary
+// has no driven slip arc and no NaN in its place (the runner refuses non-finite results).
 #[test]
-fn kerkkanen_examples_run_a_few_steps() {
+fn shipped_examples_run_short() {
+    let exe = env!("CARGO_BIN_EXE_flowmbd-belt");
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let mut names: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            p.file_name()
-                .and_then(|f| f.to_str())
-                .is_some_and(|f| f.starts_with("kerkkanen-") && f.ends_with(".toml"))
-        })
-        .collect();
-    names.sort();
-    assert!(names.len() >= 8, "{names:?}");
-    for path in names {
+    for (studies, path) in flowmbd_cli::testing::examples(&dir) {
+        if path.parent().is_some_and(|p| p.ends_with("fead")) {
+            continue; // examples/fead/ runs in fead_examples.rs, with checks of its own
+        }
         let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
-        let (study, t_end) = if name.starts_with("kerkkanen-4-6") {
-            ("plate", "0.002")
-        } else {
-            ("ancf", "0.004")
-        };
-        let out = tmp(&format!("example-{name}"));
-        let (code, stdout, stderr) = run(&[
-            study,
-            "--config",
-            path.to_str().unwrap(),
-            "--t-end",
-            t_end,
-            "--json",
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!(code, 0, "{name}: {stderr}");
-        let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-        assert!(v["meaning"].is_string(), "{name}: {v}");
-        let _ = std::fs::remove_dir_all(&out);
+        for study in studies {
+            // (overrides merged into the example, command-line options)
+            let (overrides, args): (&str, &[&str]) = match study.as_str() {
+                "ancf" => ("", &["--t-end", "0.004"]),
+                "plate" => ("", &["--t-end", "0.002"]),
+                "speed-loss" => (
+                    "[procedure]\ntorques = [0.0, 1.0]\nspin_up = 0.05\ntorque_ramp = 0.02\n",
+                    &[],
+                ),
+                "wave" => ("[wave]\nt_end = 0.005\nsamples = 20\n", &[]),
+                "demo" => ("t_end = 0.05\n", &[]),
+                "fead" => (
+                    "[run]\nramp = 0.05\nsettle = 0.02\nwindow = 0.02\nmax_settle = 0.04\n",
+                    &[],
+                ),
+                _ => ("", &[]),
+            };
+            let (code, stdout, stderr) =
+                flowmbd_cli::testing::run_example(exe, &study, &path, overrides, args);
+            assert_eq!(code, 0, "{study} {name}: {stderr}");
+            let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+            assert!(v["meaning"].is_string(), "{study} {name}: {v}");
+        }
     }
 }
 
@@ -566,4 +557,24 @@ fn partial_configs_change_one_number_of_the_default_drive() {
     );
     assert_eq!(err.trim().lines().count(), 1, "{err}");
     let _ = std::fs::remove_dir_all(dir);
+}
+
+// Issue 39 item 2: every key and table of every study's printed configuration has a comment
+// (its meaning, from the rustdoc of the configuration types) and every floating-point key's
+// comment states its unit in brackets (`flowmbd_cli::commented`).
+#[test]
+fn printed_configurations_are_commented() {
+    let exe = env!("CARGO_BIN_EXE_flowmbd-belt");
+    let studies = flowmbd_cli::testing::subcommands(exe);
+    assert!(!studies.is_empty(), "no studies in --help");
+    let bad: Vec<String> = studies
+        .iter()
+        .flat_map(|s| flowmbd_cli::testing::print_config_violations(exe, s))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "{} violations:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
 }

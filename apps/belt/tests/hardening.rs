@@ -47,33 +47,23 @@ fn every_table_rejects_an_unknown_key() {
     }
     // the shipped examples use constant and cosine loads, constant speeds, other friction laws
     // (Kerkkänen §3.3 for `ancf`, §4.6 for `plate`, Pechstein–Gerstmayr for `fead`)
-    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&examples)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    names.sort();
+    // (each example's first line names its studies: `flowmbd_cli::testing::examples`)
+    let examples =
+        flowmbd_cli::testing::examples(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples"));
     assert!(
-        names.len() >= 10,
+        examples.len() >= 10,
         "kerkkanen-3-3-a … f (ancf), kerkkanen-4-6-model1, -2 (plate), pechstein-gerstmayr, \
-         fead-three-pulley (fead): {names:?}"
+         fead-three-pulley (fead): {examples:?}"
     );
-    for p in names {
-        let name = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
-        // Kerkkänen's §3.3 examples are `ancf` runs, his §4.6 ones `plate`; every other
-        // example is a drive layout for `fead` (and `design`)
-        let study = if name.starts_with("kerkkanen-4-6") {
-            "plate"
-        } else if name.starts_with("kerkkanen-3-3") {
-            "ancf"
-        } else {
-            "fead"
-        };
-        let (code, text, err) = run(&[study, "--config", p.to_str().unwrap(), "--print-config"]);
-        assert_eq!(code, 0, "{err}");
-        let h = holes(study, &text, &dir);
-        assert!(h.is_empty(), "{}: {h:?}", p.display());
+    for (studies, p) in examples {
+        assert!(!studies.is_empty(), "{}: names no study", p.display());
+        for study in &studies {
+            let (code, text, err) =
+                run(&[study, "--config", p.to_str().unwrap(), "--print-config"]);
+            assert_eq!(code, 0, "{err}");
+            let h = holes(study, &text, &dir);
+            assert!(h.is_empty(), "{}: {h:?}", p.display());
+        }
     }
     // the issue's reproducer in today's vocabulary: a load `torque` on an idler (which has
     // none) is refused by name

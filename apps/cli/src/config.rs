@@ -152,7 +152,8 @@ fn locate(text: &str, steps: &[mbd_core::config::PathStep]) -> (usize, usize) {
     found.map_or((1, 1), |s| line_column(text, s.start))
 }
 
-/// The configuration as TOML text (what `--print-config` prints).
+/// The configuration as bare TOML text (`--print-config` prints it with comments:
+/// [`crate::commented::to_commented_toml`]).
 pub fn to_toml<C: Serialize>(config: &C) -> String {
     toml::to_string(config).unwrap_or_else(|e| format!("# cannot serialise configuration: {e}\n"))
 }
@@ -264,10 +265,12 @@ mod tests {
     use crate::error::InputError;
     use serde::Deserialize;
 
-    #[derive(Debug, Serialize, Deserialize, PartialEq)]
+    #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema, PartialEq)]
     #[serde(default, deny_unknown_fields)]
     struct Demo {
+        /// Radius \[m\].
         radius: f64,
+        /// Count.
         count: usize,
     }
 
@@ -361,33 +364,38 @@ mod tests {
         let text = to_toml(&Demo::default());
         let back: Demo = parse_config(&text, Path::new("x.toml")).unwrap();
         assert_eq!(back, Demo::default());
+        // the commented form (`--print-config`) too
+        let text = crate::commented::to_commented_toml(&Demo::default());
+        assert!(text.contains("# "), "{text}");
+        let back: Demo = parse_config(&text, Path::new("x.toml")).unwrap();
+        assert_eq!(back, Demo::default());
     }
 
     /// A configuration with the holes of issue 20: a unit variant of an internally tagged
     /// enum and a struct without `deny_unknown_fields` inside a newtype variant.
     mod holes {
         use serde::{Deserialize, Serialize};
-        #[derive(Debug, Serialize, Deserialize)]
+        #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
         #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
         pub enum Load {
             None,
             Constant { torque: f64 },
         }
-        #[derive(Debug, Serialize, Deserialize)]
+        #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
         pub struct Scheme {
             pub first: String,
         }
-        #[derive(Debug, Serialize, Deserialize)]
+        #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
         pub enum Method {
             FiniteDifference(Scheme),
         }
-        #[derive(Debug, Serialize, Deserialize)]
+        #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
         #[serde(deny_unknown_fields)]
         pub struct Pulley {
             pub name: String,
             pub load: Load,
         }
-        #[derive(Debug, Serialize, Deserialize)]
+        #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
         #[serde(deny_unknown_fields)]
         pub struct Drive {
             pub pulleys: Vec<Pulley>,

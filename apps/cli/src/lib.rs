@@ -6,6 +6,8 @@
 //! - [`CommonArgs`]: `--config FILE`, `--print-config`, `--out DIR`, `--json`, `--quiet`;
 //! - [`config`]: TOML configuration with embedded defaults, one-line errors naming file, line and
 //!   field, and semantic validation through [`Validate`];
+//! - [`commented`]: the printed configuration with every key commented (unit and meaning) from
+//!   the doc comments of the configuration types;
 //! - [`Study`] / [`run_study`]: the exit-code policy (0 ok, 2 bad input, 1 numerical failure with
 //!   the results so far kept in `summary.json`);
 //! - [`OutputDir`]: the study's output folder (`summary.json`, CSV tables);
@@ -19,6 +21,7 @@
 
 pub mod args;
 pub mod cancel;
+pub mod commented;
 pub mod config;
 pub mod error;
 pub mod files;

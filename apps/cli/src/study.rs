@@ -2,7 +2,8 @@
 
 use crate::args::CommonArgs;
 use crate::cancel::Cancel;
-use crate::config::{PartialRules, Validate, read_config, to_toml};
+use crate::commented::to_commented_toml;
+use crate::config::{PartialRules, Validate, read_config};
 use crate::error::{CliError, InputError};
 use crate::output::OutputDir;
 use crate::progress::Progress;
@@ -95,8 +96,15 @@ impl StudyContext {
 
 /// One study of an app: its configuration type, names and computation.
 pub trait Study {
-    /// The study's configuration; `Default` reproduces the seed's case.
-    type Config: Serialize + DeserializeOwned + Default + Validate + PartialRules;
+    /// The study's configuration; `Default` reproduces the seed's case. Its `JsonSchema` derive
+    /// carries the fields' doc comments into the commented `--print-config`
+    /// ([`crate::commented`]).
+    type Config: Serialize
+        + DeserializeOwned
+        + Default
+        + Validate
+        + PartialRules
+        + schemars::JsonSchema;
     /// The study's summary (written to `summary.json`, printed by `--json`).
     type Summary: Serialize;
     /// App name, e.g. `"belt"` (default output folder `out/<app>/<study>`).
@@ -292,7 +300,7 @@ fn try_run<S: Study>(
         origin: format!("{origin} with command-line options"),
         error,
     })?;
-    let config_text = to_toml(&config) + &study.config_notes(&config);
+    let config_text = to_commented_toml(&config) + &study.config_notes(&config);
     if args.print_config {
         crate::stdout::print_stdout(&config_text).map_err(|e| CliError::Write {
             path: "<stdout>".into(),
@@ -455,7 +463,7 @@ mod tests {
     use super::*;
     use serde::Deserialize;
 
-    #[derive(Debug, Clone, Serialize, Deserialize)]
+    #[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
     #[serde(default, deny_unknown_fields)]
     struct Cfg {
         steps: usize,

@@ -1,5 +1,6 @@
 //! Helpers for the apps' integration tests: run a study binary and read its exit code and
-//! output, and a fresh scratch folder per test.
+//! output, a fresh scratch folder per test, the studies of a binary, the comment check of
+//! their printed configurations, and the shipped examples with the study each is for.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -21,4 +22,165 @@ pub fn fresh_dir(tag: &str, name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).expect("temp folder");
     d
+}
+
+/// The studies (subcommands) of the app binary `exe`, read from its `--help` (the
+/// `Commands:` section, without `help`).
+pub fn subcommands(exe: &str) -> Vec<String> {
+    let (_, help, _) = run_binary(exe, &["--help"]);
+    help.lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|name| *name != "help")
+        .map(str::to_string)
+        .collect()
+}
+
+/// Where `study --print-config` of the app binary `exe` breaks the comment rule of
+/// [`crate::commented`] (keys without a comment, floats without a unit), each prefixed with
+/// the study; also when the study fails to print or prints a text that is not TOML.
+pub fn print_config_violations(exe: &str, study: &str) -> Vec<String> {
+    let (code, text, stderr) = run_binary(exe, &[study, "--print-config"]);
+    if code != 0 {
+        return vec![format!("{study}: --print-config exits {code}: {stderr}")];
+    }
+    match crate::commented::comment_violations(&text) {
+        Ok(v) => v.into_iter().map(|x| format!("{study}: {x}")).collect(),
+        Err(e) => vec![format!("{study}: not TOML: {e}")],
+    }
+}
+
+/// The shipped example configurations under `dir` (and its sub-folders), sorted, each with the
+/// studies it is for: an example's first line names them, `# flowmbd-<app> <study>: <the
+/// case>` or `# flowmbd-<app> <study>, <study>: <the case>`. Examples whose first line does
+/// not are returned with no study.
+pub fn examples(dir: &std::path::Path) -> Vec<(Vec<String>, PathBuf)> {
+    fn walk(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().and_then(|e| e.to_str()) == Some("toml") {
+                out.push(p);
+            }
+        }
+    }
+    let mut paths = Vec::new();
+    walk(dir, &mut paths);
+    paths.sort();
+    paths
+        .into_iter()
+        .map(|p| {
+            let text = std::fs::read_to_string(&p).unwrap_or_default();
+            let first = text.lines().next().unwrap_or("");
+            let studies = first
+                .strip_prefix("# flowmbd-")
+                .and_then(|rest| rest.split_once(':'))
+                .and_then(|(app_studies, _)| app_studies.split_once(' '))
+                .map(|(_, studies)| {
+                    studies
+                        .split(',')
+                        .map(|s| s.trim().to_string())
+                        .filter(|s| !s.is_empty())
+                        .collect()
+                })
+                .unwrap_or_default();
+            (studies, p)
+        })
+        .collect()
+}
+
+/// `text` (a TOML configuration) with the tables and keys of `overrides` (TOML) merged into
+/// it, table by table (e.g. the run-length keys of a short test run of a shipped example).
+pub fn with_overrides(text: &str, overrides: &str) -> String {
+    fn merge(base: &mut toml::Table, over: toml::Table) {
+        for (k, v) in over {
+            match (base.get_mut(&k), v) {
+                (Some(toml::Value::Table(b)), toml::Value::Table(o)) => merge(b, o),
+                (_, v) => {
+                    base.insert(k, v);
+                }
+            }
+        }
+    }
+    let mut base: toml::Table = toml::from_str(text).expect("example is TOML");
+    let over: toml::Table = toml::from_str(overrides).expect("overrides are TOML");
+    merge(&mut base, over);
+    toml::to_string(&base).expect("TOML")
+}
+
+/// Run the shipped example `path` for `study` with the app binary `exe` from the repository
+/// root (`--json --quiet`, output into a scratch folder, removed after), with `overrides` (TOML; e.g. the run-length
+/// keys of a short run; empty: the example as it is) merged in and `args` appended: (exit
+/// code, stdout, stderr). The merged copy is written next to the example, so that the files
+/// it names relative to itself are found, and removed after the run.
+pub fn run_example(
+    exe: &str,
+    study: &str,
+    path: &std::path::Path,
+    overrides: &str,
+    args: &[&str],
+) -> (i32, String, String) {
+    /// A file removed when dropped (also when the test panics).
+    struct Scratch(PathBuf);
+    impl Drop for Scratch {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+    let name = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("example")
+        .to_string();
+    let out = fresh_dir("flowmbd-example", &format!("{study}-{name}"));
+    let mut _scratch = None;
+    let config = if overrides.trim().is_empty() {
+        path.to_path_buf()
+    } else {
+        let text = std::fs::read_to_string(path).expect("example readable");
+        let copy = path.with_file_name(format!(".{name}.{}.test.toml", std::process::id()));
+        std::fs::write(&copy, with_overrides(&text, overrides)).expect("scratch copy");
+        _scratch = Some(Scratch(copy.clone()));
+        copy
+    };
+    let config = config.to_string_lossy().into_owned();
+    let out_s = out.to_string_lossy().into_owned();
+    let mut all = vec![
+        study, "--config", &config, "--json", "--quiet", "--out", &out_s,
+    ];
+    all.extend_from_slice(args);
+    // from the repository root (the folder holding Cargo.lock above the example), as the guide
+    // runs the examples: paths in them are written from there
+    let root = path
+        .ancestors()
+        .find(|d| d.join("Cargo.lock").is_file())
+        .unwrap_or(std::path::Path::new("."));
+    let output = Command::new(exe)
+        .args(&all)
+        .current_dir(root)
+        .output()
+        .expect("binary runs");
+    let result = (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    );
+    let _ = std::fs::remove_dir_all(&out);
+    result
+}
+
+/// The studies of the app binary `exe` ([`subcommands`]) that no example under `dir`
+/// ([`examples`]) is for.
+pub fn studies_without_example(exe: &str, dir: &std::path::Path) -> Vec<String> {
+    let shipped = examples(dir);
+    subcommands(exe)
+        .into_iter()
+        .filter(|s| !shipped.iter().any(|(studies, _)| studies.contains(s)))
+        .collect()
 }

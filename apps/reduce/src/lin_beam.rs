@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 use std::process::ExitCode;
 
 /// Configuration; the defaults are Lin's Appendix A beam and profile (7.1).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// The beam (Appendix A).

@@ -20,7 +20,7 @@ use std::sync::Arc;
 
 /// Configuration; the defaults reproduce Lin's set-up (6 kept modes, R = 4 m, T = 1 s) with the
 /// companion's integrator choice (RK4, 1 ms, 1 s).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// Simulations to run (`no-rigid-motion` = Sim 1, `orbit` = Sim 2, `emulated` = Sim 3).

@@ -36,7 +36,7 @@ pub struct Args {
 }
 
 /// Configuration of the `modes` study.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// Mass matrix file (Matrix Market).

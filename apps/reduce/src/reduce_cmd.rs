@@ -26,7 +26,9 @@ use std::time::Instant;
 pub const DENSE_LIMIT: usize = 3000;
 
 /// Reduction method on the command line.
-#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(
+    clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum MethodArg {
     /// Static condensation (Guyan).
@@ -103,7 +105,7 @@ pub struct Args {
 
 /// The configuration of `reduce` (a TOML file given with `--config`; every flag overrides its
 /// key). Paths are as given (relative to the working directory).
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct ReduceConfig {
     /// Mass matrix (Matrix Market).
@@ -381,7 +383,7 @@ pub fn run(a: Args) -> ExitCode {
     flowmbd_cli::limits::set_allow_large(a.allow_large);
     let result = effective_config(&a).and_then(|c| {
         if a.print_config {
-            flowmbd_cli::print_stdout(&flowmbd_cli::config::to_toml(&c))
+            flowmbd_cli::print_stdout(&flowmbd_cli::commented::to_commented_toml(&c))
                 .map_err(|e| Failure::Numerical(format!("<stdout>: {e}")))?;
             return Ok(None);
         }

@@ -9,7 +9,7 @@ use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
 
 /// Triangular pluck (initial deflection, zero velocity).
-#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Pluck {
     /// Position of the peak \[m\].
@@ -20,7 +20,7 @@ pub struct Pluck {
 
 /// Configuration (defaults: notes §2.1 time-domain check: v = 20 m/s, n = 99, 10 modes, pluck
 /// 1 mm at 0.3 m, 4 s).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct SimulateConfig {
     /// String parameters.
@@ -39,7 +39,7 @@ pub struct SimulateConfig {
     pub step: f64,
     /// Keep every n-th step (sampling period = step · sample_every).
     pub sample_every: usize,
-    /// Spectral peaks below this fraction of the largest amplitude are ignored.
+    /// Spectral peaks below this fraction of the largest amplitude are ignored \[-\].
     pub peak_threshold: f64,
     /// Mode-shape derivative operator.
     pub derivative: DerivativeMethod,

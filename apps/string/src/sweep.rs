@@ -8,7 +8,7 @@ use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
 
 /// Configuration.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct SweepConfig {
     /// String parameters.
@@ -19,7 +19,7 @@ pub struct SweepConfig {
     pub modes: usize,
     /// Sine terms of the Galerkin model.
     pub galerkin_terms: usize,
-    /// Highest speed as a multiple of the critical speed.
+    /// Highest speed as a multiple of the critical speed \[-\].
     pub max_speed_ratio: f64,
     /// Number of speeds (the default avoids hitting v = c exactly, where the stiffness vanishes
     /// and only the gyroscopic eigenvalues remain).

@@ -14,7 +14,7 @@ use mbd_core::integrators::State;
 use serde::{Deserialize, Serialize};
 
 /// Coordinates of the wrapped string.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Formulation {
     /// Nodal deflections (4.10).
@@ -25,7 +25,7 @@ pub enum Formulation {
 
 /// Configuration. The string runs between anchors at 0 and `string.length` (both at u = 0) and
 /// over two pulleys whose tops lie `top` above the anchors (the default wraps ≈ 5 cm on each).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct WrapConfig {
     /// String parameters (`length`: anchor to anchor) \[SI\].

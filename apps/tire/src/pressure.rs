@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use tire::{GroundConfig, GroundKind, preload};
 
 /// Configuration.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// The tire.

@@ -9,7 +9,7 @@ use std::time::Instant;
 use tire::ReductionTimings;
 
 /// Configuration.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// The tire (the reduced file is always recomputed and written).

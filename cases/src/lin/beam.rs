@@ -37,7 +37,7 @@ pub struct LinBeam {
 }
 
 /// Parameters of the Appendix A beam; `Default` is Lin's model.
-#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct LinBeamConfig {
     /// Young's modulus E \[Pa\].

@@ -95,7 +95,7 @@ pub fn appendix_b_slab() -> Result<LinSlab> {
 }
 
 /// The five models compared in Lin ch. 7.2 (Table 7-2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum SlabMethod {
     /// No reduction (NR): all 90 nodal coordinates.

@@ -17,7 +17,7 @@ use std::f64::consts::PI;
 type Motion = std::sync::Arc<dyn Fn(f64) -> (f64, f64, f64) + Send + Sync>;
 
 /// Which simulation of Lin §7.2.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum SlabSimulation {
     /// Simulation 1 (§7.2.2): node 16 fixed, 18 in x, 28 and 30 in z; gravity; from rest.
@@ -31,7 +31,7 @@ pub enum SlabSimulation {
 }
 
 /// Parameters of a slab simulation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct SlabSimConfig {
     /// End time \[s\] (not given by Lin; companion §13.2).

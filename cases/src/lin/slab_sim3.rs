@@ -54,7 +54,7 @@ use std::sync::Arc;
 pub const DRIVEN_NODES: [usize; 4] = [16, 18, 28, 30];
 
 /// Direction of both links from the slab towards their ground points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum LinkDirection {
     /// Along +x (default).
@@ -73,7 +73,7 @@ impl LinkDirection {
 }
 
 /// Parameters of the previous simulation of Lin Fig. 7-12(b) that produces the tables.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Sim3Config {
     /// Length of the link at node 18 \[m\] (Lin: 2).

@@ -10,9 +10,9 @@ use serde::{Deserialize, Serialize};
 /// disk). Its single-valued slip branch ([`FrictionLaw::friction`]) is Ribaric's §8.4.3 node
 /// law `F_T = −μ |F_N| sign(v_t)` with `sign(0) = 0` and `∂F_T/∂v_t = 0`; a semismooth solver
 /// uses the projection [`FrictionLaw::augmented`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Coulomb {
-    /// Friction coefficient `μ` (Ribaric: 0.85 nominal, 0 for pure slip).
+    /// Friction coefficient `μ` \[-\] (Ribaric: 0.85 nominal, 0 for pure slip).
     pub mu: f64,
 }
 

@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 /// Coulomb friction regularised by `tanh`, Ribaric (6.2): `F_T = −μ tanh(κ v_t) |F_N|`
 /// (Ribaric: `μ = 1.2`, `κ = 40 s/m`). Spatially the isotropic extension
 /// `f_t = −μ tanh(κ|v_t|) |F_N| v_t/|v_t|`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct CoulombTanh {
-    /// Friction coefficient `μ`.
+    /// Friction coefficient `μ` \[-\].
     pub mu: f64,
     /// Slope parameter `κ` \[s/m\].
     pub kappa: f64,

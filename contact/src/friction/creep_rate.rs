@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 /// Kerkkänen's tri-linear creep-rate friction law (Fig. 3.3, seed note §4.3):
 /// `|f_t| = min(ν_s |v_t|, μ |f_n|)`, `f_t = −sign(v_t) |f_t|` — a line of slope `ν_s`
 /// \[kg/(m·s) per unit length\] through the origin saturated at the Coulomb bound.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct CreepRate {
-    /// Friction coefficient `μ`.
+    /// Friction coefficient `μ` \[-\].
     pub mu: f64,
     /// Creep-rate factor `ν_s` \[N·s/m per unit length\].
     pub creep: f64,

@@ -4,7 +4,7 @@ use super::{FrictionForce, FrictionLaw};
 use serde::{Deserialize, Serialize};
 
 /// No friction: `f_t = 0`.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Frictionless;
 
 impl FrictionLaw for Frictionless {

@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 
 /// Ribaric's slip-only regularised sign (seed note U20): `f_t = −μ |f_n| v_t/√(|v_t|² + ε²)`,
 /// with `ε` \[m/s\] the slip-velocity regularisation (Ribaric: 0.05 m/s).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct SlipRegularized {
-    /// Friction coefficient `μ`.
+    /// Friction coefficient `μ` \[-\].
     pub mu: f64,
     /// Regularisation `ε` \[m/s\].
     pub epsilon: f64,

@@ -10,19 +10,19 @@ use nalgebra::{Matrix2, Vector2};
 use serde::{Deserialize, Serialize};
 
 /// A friction law chosen in a configuration table, e.g. `{ law = "tanh", mu = 1.2, kappa = 40 }`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
 pub enum FrictionSpec {
     /// [`CreepRate`]: `|f_t| = min(ν_s |v_t|, μ |f_n|)` (Kerkkänen (3.23), Fig. 3.3).
     CreepRate {
-        /// Friction coefficient `μ`.
+        /// Friction coefficient `μ` \[-\].
         mu: f64,
         /// Creep-rate factor `ν_s` \[kg/(m·s)\].
         creep: f64,
     },
     /// [`CoulombTanh`]: `f_t = −μ tanh(κ v_t) |f_n|` (Ribaric (6.2)).
     Tanh {
-        /// Friction coefficient `μ`.
+        /// Friction coefficient `μ` \[-\].
         mu: f64,
         /// Slope parameter `κ` \[s/m\].
         kappa: f64,
@@ -33,19 +33,19 @@ pub enum FrictionSpec {
     /// the speed loss approaches its Coulomb limit as `v_s → 0` (BENCHMARKS.md, "friction
     /// regularisation").
     TanhSlip {
-        /// Friction coefficient `μ`.
+        /// Friction coefficient `μ` \[-\].
         mu: f64,
         /// Slip-velocity scale `v_s` \[m/s\].
         slip_velocity: f64,
     },
     /// [`Coulomb`]: set-valued, with stick (Ribaric §7.3, §8.4.3).
     Coulomb {
-        /// Friction coefficient `μ`.
+        /// Friction coefficient `μ` \[-\].
         mu: f64,
     },
     /// [`SlipRegularized`]: `f_t = −μ|f_n| v_t/√(|v_t|²+ε²)` (Ribaric, seed note U20).
     Regularized {
-        /// Friction coefficient `μ`.
+        /// Friction coefficient `μ` \[-\].
         mu: f64,
         /// Regularisation `ε` \[m/s\].
         epsilon: f64,
@@ -115,7 +115,7 @@ macro_rules! dispatch {
 }
 
 impl FrictionSpec {
-    /// Friction coefficient `μ` (the largest one of a Stribeck law).
+    /// Friction coefficient `μ` \[-\] (the largest one of a Stribeck law).
     pub fn mu(&self) -> f64 {
         self.coefficient()
     }

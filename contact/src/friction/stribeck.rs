@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// With `μ_s = μ_k` it is [`CoulombTanh`](super::CoulombTanh) to the last bit. Dissipative for
 /// `μ_s, μ_k ≥ 0` (`F_T v_t ≤ 0`); spatially the isotropic extension of the trait's default.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Stribeck {
     /// Static friction coefficient `μ_s`.
     pub mu_static: f64,

@@ -27,7 +27,7 @@ pub trait NormalLaw {
 /// Linear penalty with damping, Kerkkänen (3.20): `f_n = k_p d + c_p ḋ` (per unit length:
 /// `k_p` \[N/m²\], `c_p` \[N·s/m²\]). Not clipped: the damping term may make it negative at the
 /// exit of a contact arc, as in the thesis (seed note §4.2).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct LinearPenalty {
     /// Stiffness `k_p`.
     pub stiffness: f64,
@@ -47,7 +47,7 @@ impl NormalLaw for LinearPenalty {
 
 /// Polynomial penalty of Ribaric (6.1), scaled by the tributary length `L_ele` of the contact
 /// node: `F_N = k₂ L δ² + k₁ L δ` (Ribaric: `k₂ = 3025.6·10⁸ N/m³`, `k₁ = 6.5·10⁷ N/m²`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct PolynomialPenalty {
     /// Quadratic coefficient `k₂` \[N/m³ per metre of belt\].
     pub quadratic: f64,

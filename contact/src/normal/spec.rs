@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 /// A penalty law chosen in a configuration table, e.g.
 /// `{ law = "linear", stiffness = 1e7, damping = 10 }`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
 pub enum NormalSpec {
     /// [`LinearPenalty`]: `f_n = k_p d + c_p ḋ` (Kerkkänen (3.20)).

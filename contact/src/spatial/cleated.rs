@@ -14,11 +14,12 @@ use serde::{Deserialize, Serialize};
 /// the unit `reference` direction (normal to the drum axis) towards `axis × reference`. The
 /// drum turns with `omega`; advance `cleat_angle` with time. With `axis = z`,
 /// `reference = x` every cross-section is the planar [`crate::CleatedDrum`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct CleatedDrum3 {
     /// The drum.
     pub drum: Cylinder,
     /// Unit direction of polar angle 0, normal to the drum axis.
+    #[schemars(with = "[f64; 3]")]
     pub reference: Vector3<f64>,
     /// Cleat radius \[m\].
     pub cleat_radius: f64,
@@ -74,7 +75,7 @@ impl Surface<3> for CleatedDrum3 {
 /// road tangent. The cleat moves with the road material (`road.velocity`) and does not turn.
 /// With `normal = y`, `tangent = x` every cross-section is the planar [`crate::CleatedRoad`]
 /// (`cleat_x = origin.x + cleat_offset`, `height = origin.y`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct CleatedRoad3 {
     /// The road.
     pub road: HalfSpace,

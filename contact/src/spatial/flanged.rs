@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 /// On a flange the surface moves rigidly with the pulley, `u_s = ṙ_o + ω a × (p − r_o)`
 /// (the closest point differs from `p` only along `a`), so `∂u_s/∂p = ω [a]×`,
 /// `∂u_s/∂ω = a × (p − r_o)`, and `∂n/∂p = 0`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct FlangedCylinder {
     /// The pulley body.
     pub cylinder: Cylinder,

@@ -26,17 +26,20 @@ pub fn perpendicular(a: &Vector3<f64>) -> Vector3<f64> {
 /// ch. 4), `ζ = aᵀ(p − r_o)`. The gap is the radial one, `g = ρ − R(ζ)` (ρ the distance from the
 /// axis; Kerkkänen (3.21) in each cross-section), with normal `n = ∇g/|∇g|`,
 /// `∇g = e_r + 2cζ a`. For `c = 0` this is the planar [`crate::Disk`] in every cross-section.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Cylinder {
     /// Axis point `r_o` \[m\].
+    #[schemars(with = "[f64; 3]")]
     pub center: Point3<f64>,
     /// Unit axis `a`.
+    #[schemars(with = "[f64; 3]")]
     pub axis: Vector3<f64>,
     /// Radius `R` at `ζ = 0` \[m\].
     pub radius: f64,
     /// Crown coefficient `c` \[1/m\] (0: straight cylinder).
     pub crown: f64,
     /// Velocity of the axis point \[m/s\].
+    #[schemars(with = "[f64; 3]")]
     pub velocity: Vector3<f64>,
     /// Angular velocity about `axis` \[rad/s\].
     pub omega: f64,
@@ -92,15 +95,19 @@ impl Surface<3> for Cylinder {
 /// A half-space (flat road): material opposite to the unit `normal`, surface through `origin`,
 /// moving tangentially with `velocity` \[m/s\]; `tangent` is the first tangent axis (e.g. the
 /// rolling direction).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct HalfSpace {
     /// A point of the surface \[m\].
+    #[schemars(with = "[f64; 3]")]
     pub origin: Point3<f64>,
     /// Outward unit normal.
+    #[schemars(with = "[f64; 3]")]
     pub normal: Vector3<f64>,
     /// Unit tangent `t₁` (orthogonal to `normal`).
+    #[schemars(with = "[f64; 3]")]
     pub tangent: Vector3<f64>,
     /// Surface material velocity \[m/s\].
+    #[schemars(with = "[f64; 3]")]
     pub velocity: Vector3<f64>,
 }
 

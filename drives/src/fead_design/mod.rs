@@ -46,7 +46,7 @@ pub const MAX_CAMPBELL_POINTS: usize = 2000;
 pub const MAX_HARMONICS: usize = 20;
 
 /// Settings of the design study.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct DesignSettings {
     /// An arm angle closer than this to an end of its travel is flagged \[deg\].
@@ -85,7 +85,7 @@ impl Default for DesignSettings {
 
 /// The design study's configuration: the FEAD study's `[drive]` and `[engine]` tables
 /// ([`FeadConfig`]) and the study's `[design]` settings.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct DesignConfig {
     /// The drive: pulley 0 is the crankshaft, the one speed-driven pulley.

@@ -16,7 +16,7 @@ use crate::FeError;
 use serde::{Deserialize, Serialize};
 
 /// One uniaxial fibre family smeared over an element.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Fibre {
     /// Fibre direction `a` (unit vector in global axes, \[-\]).

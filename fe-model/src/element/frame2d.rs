@@ -18,7 +18,7 @@ use faer::Mat;
 use serde::{Deserialize, Serialize};
 
 /// Section and material of a planar frame.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Frame2dSection {
     /// Axial stiffness EA \[N\].

@@ -23,7 +23,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 /// Section and material of a spatial frame.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Frame3dSection {
     /// Axial stiffness EA \[N\].

@@ -38,7 +38,9 @@ pub const NODE_XI: [[f64; 3]; 8] = [
 ];
 
 /// Stiffness integration rule.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Hex8Integration {
     /// 2×2×2 Gauss for the whole stiffness.
@@ -50,7 +52,7 @@ pub enum Hex8Integration {
 }
 
 /// Isotropic linear-elastic material.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Elastic {
     /// Young's modulus E \[Pa\].

@@ -53,7 +53,17 @@ pub use point::{PointMass, Spring};
 pub use string::StringElement;
 
 /// Mass discretisation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum MassKind {
     /// Consistent mass (same shape functions as the stiffness).

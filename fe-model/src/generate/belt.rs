@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Parameters of the belt loop (SI units).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BeltLoopConfig {
     /// Pulley centre distance L_c \[m\] (0 gives a circular ring).

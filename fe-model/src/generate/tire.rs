@@ -31,7 +31,7 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Tire generator parameters (SI units).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct TireConfig {
     /// Rim (bead seat) diameter \[m\].
@@ -76,7 +76,7 @@ pub struct TireConfig {
 }
 
 /// A smeared cord family of the generated tire (see [`Fibre`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CordLayer {
     /// Smeared cord modulus `E_f φ` \[Pa\] (cord Young's modulus × cord volume fraction of the
@@ -278,7 +278,7 @@ impl mbd_core::Validate for TireConfig {
 }
 
 /// Material zone of a tire element.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum TireZone {
     /// Bead (rim contact).

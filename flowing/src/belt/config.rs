@@ -10,7 +10,7 @@ pub const MAX_ELEMENTS: usize = 1500;
 
 /// Element lengths of the belt loop: each span and each wrap of the path is divided into
 /// equal elements no longer than the given length (Ribaric §6.1: shorter elements on the arcs).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltMesh {
     /// Element length on the spans \[m\] (at least 4 elements per span, and two more than twice
@@ -108,18 +108,27 @@ impl Validate for BeltMesh {
 }
 
 /// How the belt's deflection field is reduced.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct BeltReduction {
     /// Fixed-interface (free-node) modes kept; `None` keeps all (no truncation). In TOML a
     /// number, or `"all"` for `None` (so that a printed configuration reads back unchanged).
     #[serde(with = "mode_count")]
+    #[schemars(with = "mode_count::Count")]
     pub free_modes: Option<usize>,
 }
 
 /// `Option<usize>` as a number or the string `"all"` (`None`): TOML has no null.
 mod mode_count {
     use serde::{Deserialize, Deserializer, Serializer, de::Error};
+
+    /// A number of modes, or `"all"`.
+    #[derive(Deserialize, schemars::JsonSchema)]
+    #[serde(untagged)]
+    pub(super) enum Count {
+        N(usize),
+        S(String),
+    }
 
     pub fn serialize<S: Serializer>(v: &Option<usize>, s: S) -> Result<S::Ok, S::Error> {
         match v {
@@ -129,12 +138,6 @@ mod mode_count {
     }
 
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
-        #[derive(Deserialize)]
-        #[serde(untagged)]
-        enum Count {
-            N(usize),
-            S(String),
-        }
         match Count::deserialize(d)? {
             Count::N(n) => Ok(Some(n)),
             Count::S(s) if s == "all" => Ok(None),
@@ -155,7 +158,9 @@ impl Default for BeltReduction {
 }
 
 /// How the belt elements of the flowing and nodal models carry their axial force.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema, Default,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum AxialForce {
     /// The linear model of Ribaric (5.5): `f0 − (K_e + K_g(T0)) δ`, the increment `EA Δl/l`
@@ -174,7 +179,7 @@ pub enum AxialForce {
 }
 
 /// The flowing-material model's settings (Ribaric (5.14)).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema, Default)]
 #[serde(default, deny_unknown_fields)]
 pub struct FlowingSettings {
     /// The stationary loop.

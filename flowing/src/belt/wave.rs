@@ -35,7 +35,7 @@ pub const MAX_WAVE_STEPS: f64 = 1e7;
 pub const MAX_WAVE_SAMPLES: usize = 100_000;
 
 /// Settings of the demonstration (SI units).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct WaveConfig {
     /// Belt speed of the running case \[m/s\] (default 28.4 m/s = c/2 for Table 6-1, an
@@ -43,13 +43,13 @@ pub struct WaveConfig {
     pub belt_speed: f64,
     /// Peak initial deflection \[m\].
     pub amplitude: f64,
-    /// Half-width of the initial bump as a fraction of the upper span length.
+    /// Half-width of the initial bump as a fraction of the upper span length \[-\].
     pub half_width: f64,
     /// Simulated time \[s\].
     pub t_end: f64,
     /// Generalized-α step \[s\].
     pub step: f64,
-    /// Generalized-α spectral radius at infinity.
+    /// Generalized-α spectral radius at infinity \[-\].
     pub rho_inf: f64,
     /// Number of output samples (histories and belt shapes), equally spaced in time.
     pub samples: usize,

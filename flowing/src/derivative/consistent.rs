@@ -17,7 +17,9 @@ use faer::Mat;
 use faer::linalg::solvers::Solve;
 
 /// Mass matrix used in the consistent operator.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 pub enum MassKind {
     /// Row-sum lumped mass (the string of Ribaric (4.1)).
     Lumped,

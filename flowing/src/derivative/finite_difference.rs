@@ -6,7 +6,9 @@ use crate::grid::{FlowGrid, Node};
 use faer::sparse::{SparseColMat, Triplet};
 
 /// First-derivative stencil.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 pub enum FirstDifference {
     /// Ribaric (A.1)/(A.2): `(φ_{j+1} − φ_{j−1}) / (h_j + h_{j+1})`. Second order on uniform
     /// grids, first order on non-uniform ones. Equal to the Galerkin operator `M₁⁻¹G₁` with
@@ -18,7 +20,9 @@ pub enum FirstDifference {
 }
 
 /// Second-derivative stencil.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 pub enum SecondDifference {
     /// The 3-point second difference `2[h_j φ_{j+1} − (h_j+h_{j+1}) φ_j + h_{j+1} φ_{j−1}] / (h_j h_{j+1} (h_j+h_{j+1}))`,
     /// equal to `−M₁⁻¹K₁` for linear string elements with lumped mass (FE-consistent).
@@ -30,7 +34,9 @@ pub enum SecondDifference {
 }
 
 /// A finite-difference scheme (first and second derivative stencils).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct FdScheme {
     /// First-derivative stencil.

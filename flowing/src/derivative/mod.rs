@@ -26,7 +26,9 @@ use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::{Accum, Mat, MatRef, Par};
 
 /// How mode-shape derivatives are computed.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub enum DerivativeMethod {
     /// Finite differences on non-uniform grids (Ribaric (A.1)–(A.4)).

@@ -11,7 +11,9 @@ use crate::{MbdError, SecondOrderSystem, Workspace};
 /// `D v̇ = γ − 2α (D v − ν) − β² Φ`. Projection (optional, after every accepted step) solves
 /// `[M Dᵀ; D 0] [Δq; μ] = [0; −Φ]` (mass-weighted minimum-norm correction, Newton iterations)
 /// and then `[M Dᵀ; D 0] [Δv; μ] = [0; ν − D v]`.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields, default)]
 pub struct Stabilization {
     /// Baumgarte velocity gain α \[1/s\] (0 disables).

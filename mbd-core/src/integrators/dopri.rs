@@ -106,7 +106,9 @@ pub struct EventRecord {
 }
 
 /// Dormand–Prince 5(4) with error control on `y = (q, v)`.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields, default)]
 pub struct DormandPrince {
     /// Relative tolerance.

@@ -42,7 +42,9 @@ pub(crate) use iteration_matrix::IterationMatrix;
 use newton_step::StepProblem;
 
 /// How the Newton matrix is obtained.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum JacobianMode {
     /// `M`, the model's [`SecondOrderSystem::force_tangent`] (finite differences of the forces
@@ -55,7 +57,9 @@ pub enum JacobianMode {
 }
 
 /// When the Newton matrix is re-evaluated and re-factored.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum NewtonUpdate {
     /// Full Newton: every iteration.
@@ -76,7 +80,9 @@ pub enum NewtonUpdate {
 /// coordinate `j` has drifted from its value `v_j,F` at the factorisation,
 /// `|v_j − v_j,F| > tolerance · max(|v_j,F|, 1)` (e.g. the spin rate of a rotating model whose
 /// gyroscopic matrices scale with it).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct DriftTrigger {
     /// Velocity coordinate `j` watched.
@@ -87,7 +93,9 @@ pub struct DriftTrigger {
 
 /// Explicit generalized-α coefficients `(α_m, α_f, β, γ)` (Chung & Hulbert 1993), e.g. plain
 /// Newmark with `α_m = α_f = 0`; [`AlphaConfig::rho_inf`] is then unused.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct AlphaCoefficients {
     /// Weight α_m of the algorithmic acceleration, in (−1, 1).
@@ -128,7 +136,9 @@ impl crate::Validate for AlphaCoefficients {
 }
 
 /// Parameters of the generalized-α integrator.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields, default)]
 pub struct AlphaConfig {
     /// Spectral radius at infinite frequency ρ∞ ∈ \[0, 1\] (1: no numerical damping).

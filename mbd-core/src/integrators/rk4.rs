@@ -9,7 +9,9 @@ use crate::{MbdError, SecondOrderSystem};
 ///
 /// The last step is shortened to end exactly at `t_end`. Positions are normalised
 /// ([`SecondOrderSystem::normalize`]) and, if requested, projected after every step.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct Rk4 {
     /// Step size \[s\].

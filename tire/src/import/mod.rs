@@ -25,7 +25,17 @@ use read::{
 };
 
 /// Format of the matrix files of an imported tire.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum ImportFormat {
     /// Matrix Market (`3n × 3n`, node-major DOFs x, y, z); nodes, rim and patch sets are
@@ -43,7 +53,7 @@ pub enum ImportFormat {
 /// the rim and candidate patch node sets (separated by white space or commas). Lines starting
 /// with `#` and `*` are comments, except that an ABAQUS keyword line with `GENERATE` (e.g.
 /// `*NSET, NSET=RIM, GENERATE`) makes the following data lines `first, last[, step]` ranges.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ImportFiles {
     /// Matrix file format (default: Matrix Market).

@@ -40,7 +40,7 @@ pub const PLATE_FORCE_MEASURE: &str = "membrane force along the belt of the St V
 plate (Kerkkänen (4.17)), integrated over the width; spans: mean over each span's middle half";
 
 /// Discretisation choices of the plate belt that the drive does not fix.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct PlateConfig {
     /// Number of plate elements along the belt.

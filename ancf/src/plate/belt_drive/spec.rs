@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 
 /// The belt: one row of thin-plate elements across the width, closed into a loop along the
 /// length (Kerkkänen §4.6: 16 elements, 288 coordinates, Model 1; 20 elements, 360, Model 2).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlateBeltSpec {
     /// Unstretched belt length \[m\] (the reference, stress-free element configuration).
@@ -47,7 +47,7 @@ impl PlateBeltSpec {
 
 /// Distributed penalty contact with friction per unit (reference) area, Kerkkänen (3.20),
 /// (3.23), (4.43)–(4.45).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlateContactSpec {
     /// Penalty stiffness per unit area `k_p` \[N/m³\].
@@ -66,7 +66,7 @@ pub struct PlateContactSpec {
 }
 
 /// A complete three-dimensional plate-belt drive.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlateDriveSpec {
     /// Pulleys in travel order (the belt runs from pulley 0 to pulley 1, …), with their
