@@ -137,16 +137,17 @@ fn shipped_examples_are_valid() {
 // has no driven slip arc and no NaN in its place (the runner refuses non-finite results).
 #[test]
 fn shipped_examples_run_short() {
-    let exe = env!("CARGO_BIN_EXE_flowmbd-belt");
+    use flowmbd_cli::testing::ExampleRun::{Short, Skip};
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
-    for (studies, path) in flowmbd_cli::testing::examples(&dir) {
-        if path.parent().is_some_and(|p| p.ends_with("fead")) {
-            continue; // examples/fead/ runs in fead_examples.rs, with checks of its own
-        }
-        let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
-        for study in studies {
+    flowmbd_cli::testing::assert_examples_run(
+        env!("CARGO_BIN_EXE_flowmbd-belt"),
+        &dir,
+        |study, path| {
+            if path.parent().is_some_and(|p| p.ends_with("fead")) {
+                return Skip; // examples/fead/ runs in fead_examples.rs, with checks of its own
+            }
             // (overrides merged into the example, command-line options)
-            let (overrides, args): (&str, &[&str]) = match study.as_str() {
+            let (overrides, args): (&'static str, &'static [&'static str]) = match study {
                 "ancf" => ("", &["--t-end", "0.004"]),
                 "plate" => ("", &["--t-end", "0.002"]),
                 "speed-loss" => (
@@ -161,13 +162,9 @@ fn shipped_examples_run_short() {
                 ),
                 _ => ("", &[]),
             };
-            let (code, stdout, stderr) =
-                flowmbd_cli::testing::run_example(exe, &study, &path, overrides, args);
-            assert_eq!(code, 0, "{study} {name}: {stderr}");
-            let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-            assert!(v["meaning"].is_string(), "{study} {name}: {v}");
-        }
-    }
+            Short { overrides, args }
+        },
+    );
 }
 
 // Bad input: exit 2 with one line naming the field (file and line for TOML errors).
@@ -564,17 +561,5 @@ fn partial_configs_change_one_number_of_the_default_drive() {
 // comment states its unit in brackets (`flowmbd_cli::commented`).
 #[test]
 fn printed_configurations_are_commented() {
-    let exe = env!("CARGO_BIN_EXE_flowmbd-belt");
-    let studies = flowmbd_cli::testing::subcommands(exe);
-    assert!(!studies.is_empty(), "no studies in --help");
-    let bad: Vec<String> = studies
-        .iter()
-        .flat_map(|s| flowmbd_cli::testing::print_config_violations(exe, s))
-        .collect();
-    assert!(
-        bad.is_empty(),
-        "{} violations:\n{}",
-        bad.len(),
-        bad.join("\n")
-    );
+    flowmbd_cli::testing::assert_printed_configs_commented(env!("CARGO_BIN_EXE_flowmbd-belt"));
 }

@@ -184,3 +184,63 @@ pub fn studies_without_example(exe: &str, dir: &std::path::Path) -> Vec<String> 
         .filter(|s| !shipped.iter().any(|(studies, _)| studies.contains(s)))
         .collect()
 }
+
+/// Asserts that every study of the app binary `exe` ([`subcommands`]) prints a configuration
+/// that keeps the comment rule ([`print_config_violations`]); the panic lists every violation.
+pub fn assert_printed_configs_commented(exe: &str) {
+    let studies = subcommands(exe);
+    assert!(!studies.is_empty(), "{exe}: no studies in --help");
+    let bad: Vec<String> = studies
+        .iter()
+        .flat_map(|s| print_config_violations(exe, s))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "{} violations:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
+}
+
+/// How a test runs one shipped example: skipped (another test runs it), or with overrides
+/// merged into it and command-line options ([`run_example`]) that keep the run short.
+pub enum ExampleRun {
+    /// Not run here.
+    Skip,
+    /// Run with these overrides (TOML merged into the example) and options.
+    Short {
+        /// TOML merged into the example (its run-length keys).
+        overrides: &'static str,
+        /// Options added to the command line.
+        args: &'static [&'static str],
+    },
+}
+
+/// Asserts that every study of the app binary `exe` has a shipped example under `dir`
+/// ([`studies_without_example`]), that every example names its studies, and that each
+/// (study, example) pair run as `how(study, example)` says exits 0 with a summary holding its
+/// `meaning`.
+pub fn assert_examples_run(
+    exe: &str,
+    dir: &std::path::Path,
+    how: impl Fn(&str, &std::path::Path) -> ExampleRun,
+) {
+    let missing = studies_without_example(exe, dir);
+    assert!(
+        missing.is_empty(),
+        "studies without an example: {missing:?}"
+    );
+    for (studies, path) in examples(dir) {
+        assert!(!studies.is_empty(), "{}: names no study", path.display());
+        for study in studies {
+            let ExampleRun::Short { overrides, args } = how(&study, &path) else {
+                continue;
+            };
+            let (code, stdout, stderr) = run_example(exe, &study, &path, overrides, args);
+            assert_eq!(code, 0, "{study} {}: {stderr}", path.display());
+            let v: serde_json::Value = serde_json::from_str(&stdout)
+                .unwrap_or_else(|e| panic!("{study} {}: summary not JSON: {e}", path.display()));
+            assert!(v["meaning"].is_string(), "{study} {}: {v}", path.display());
+        }
+    }
+}

@@ -136,19 +136,7 @@ fn bad_input_exits_2_naming_the_field() {
 // comment states its unit in brackets (`flowmbd_cli::commented`).
 #[test]
 fn printed_configurations_are_commented() {
-    let exe = env!("CARGO_BIN_EXE_flowmbd-reduce");
-    let studies = flowmbd_cli::testing::subcommands(exe);
-    assert!(!studies.is_empty(), "no studies in --help");
-    let bad: Vec<String> = studies
-        .iter()
-        .flat_map(|s| flowmbd_cli::testing::print_config_violations(exe, s))
-        .collect();
-    assert!(
-        bad.is_empty(),
-        "{} violations:\n{}",
-        bad.len(),
-        bad.join("\n")
-    );
+    flowmbd_cli::testing::assert_printed_configs_commented(env!("CARGO_BIN_EXE_flowmbd-reduce"));
 }
 
 // Issue 39 item 2: every study has a shipped example under `examples/` (its first line names
@@ -156,47 +144,39 @@ fn printed_configurations_are_commented() {
 // keys, to a complete summary with its `meaning`.
 #[test]
 fn shipped_examples_cover_every_study_and_run() {
+    use flowmbd_cli::testing::ExampleRun::{Short, Skip};
     let exe = env!("CARGO_BIN_EXE_flowmbd-reduce");
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let missing = flowmbd_cli::testing::studies_without_example(exe, &dir);
-    assert!(
-        missing.is_empty(),
-        "studies without an example: {missing:?}"
-    );
-    for (studies, path) in flowmbd_cli::testing::examples(&dir) {
-        assert!(!studies.is_empty(), "{}: names no study", path.display());
-        for study in studies {
-            if study == "reduce" {
-                // `reduce` writes one file (`--out FILE`), not a folder
-                let out = std::env::temp_dir().join(format!(
-                    "flowmbd-reduce-{}-example.json",
-                    std::process::id()
-                ));
-                let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-                let run = std::process::Command::new(exe)
-                    .args(["reduce", "--json", "--quiet", "--config"])
-                    .arg(&path)
-                    .arg("--out")
-                    .arg(&out)
-                    .current_dir(root)
-                    .output()
-                    .unwrap();
-                let err = String::from_utf8_lossy(&run.stderr);
-                assert!(run.status.success(), "reduce {}: {err}", path.display());
-                assert!(out.is_file(), "{}", out.display());
-                let _ = std::fs::remove_file(out);
-                continue;
-            }
-            // overrides merged into the example: its run-length keys
-            let overrides = match study.as_str() {
-                "lin-slab" => "[params]\nduration_s = 0.05\n",
-                _ => "",
-            };
-            let (code, stdout, stderr) =
-                flowmbd_cli::testing::run_example(exe, &study, &path, overrides, &[]);
-            assert_eq!(code, 0, "{study} {}: {stderr}", path.display());
-            let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-            assert!(v["meaning"].is_string(), "{study} {}: {v}", path.display());
+    flowmbd_cli::testing::assert_examples_run(exe, &dir, |study, path| {
+        if study == "reduce" {
+            // `reduce` writes one file (`--out FILE`), not a folder: run here
+            let out = std::env::temp_dir().join(format!(
+                "flowmbd-reduce-{}-example.json",
+                std::process::id()
+            ));
+            let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+            let run = std::process::Command::new(exe)
+                .args(["reduce", "--json", "--quiet", "--config"])
+                .arg(path)
+                .arg("--out")
+                .arg(&out)
+                .current_dir(root)
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&run.stderr);
+            assert!(run.status.success(), "reduce {}: {err}", path.display());
+            assert!(out.is_file(), "{}", out.display());
+            let _ = std::fs::remove_file(out);
+            return Skip;
         }
-    }
+        // overrides merged into the example: its run-length keys
+        let overrides = match study {
+            "lin-slab" => "[params]\nduration_s = 0.05\n",
+            _ => "",
+        };
+        Short {
+            overrides,
+            args: &[],
+        }
+    });
 }

@@ -954,19 +954,7 @@ fn cleat_phases_are_runs_with_the_cleat_delayed() {
 // comment states its unit in brackets (`flowmbd_cli::commented`).
 #[test]
 fn printed_configurations_are_commented() {
-    let exe = env!("CARGO_BIN_EXE_flowmbd-tire");
-    let studies = flowmbd_cli::testing::subcommands(exe);
-    assert!(!studies.is_empty(), "no studies in --help");
-    let bad: Vec<String> = studies
-        .iter()
-        .flat_map(|s| flowmbd_cli::testing::print_config_violations(exe, s))
-        .collect();
-    assert!(
-        bad.is_empty(),
-        "{} violations:\n{}",
-        bad.len(),
-        bad.join("\n")
-    );
+    flowmbd_cli::testing::assert_printed_configs_commented(env!("CARGO_BIN_EXE_flowmbd-tire"));
 }
 
 // Issue 39 item 2: every study has a shipped example under `examples/` (its first line names
@@ -974,27 +962,22 @@ fn printed_configurations_are_commented() {
 // keys, or the study's options) to a complete summary with its `meaning`.
 #[test]
 fn shipped_examples_cover_every_study_and_run() {
-    let exe = env!("CARGO_BIN_EXE_flowmbd-tire");
+    use flowmbd_cli::testing::ExampleRun::Short;
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let missing = flowmbd_cli::testing::studies_without_example(exe, &dir);
-    assert!(
-        missing.is_empty(),
-        "studies without an example: {missing:?}"
-    );
-    for (studies, path) in flowmbd_cli::testing::examples(&dir) {
-        assert!(!studies.is_empty(), "{}: names no study", path.display());
-        for study in studies {
-            // the study's options for a short run (the examples are short already)
-            let args: &[&str] = match study.as_str() {
+    // the study's options for a short run (the examples are short already)
+    flowmbd_cli::testing::assert_examples_run(
+        env!("CARGO_BIN_EXE_flowmbd-tire"),
+        &dir,
+        |study, _| {
+            let args: &'static [&'static str] = match study {
                 "dips" => &["--no-sweep"],
                 "rotating-modes" => &["--speeds", "0,60"],
                 _ => &[],
             };
-            let (code, stdout, stderr) =
-                flowmbd_cli::testing::run_example(exe, &study, &path, "", args);
-            assert_eq!(code, 0, "{study} {}: {stderr}", path.display());
-            let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-            assert!(v["meaning"].is_string(), "{study} {}: {v}", path.display());
-        }
-    }
+            Short {
+                overrides: "",
+                args,
+            }
+        },
+    );
 }
