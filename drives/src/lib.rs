@@ -47,7 +47,7 @@ pub use analytical::{
 /// The belt drive's vocabulary (re-exported: one crate's API builds and runs any drive).
 pub use belt;
 pub use error::DriveError;
-pub use simulation::BeltSimulation;
+pub use simulation::{AnySimulation, BeltSimulation, DriveSimulationConfig, SimulationBuildError};
 pub use speed_loss::{BeltData, SpeedLossConfig, SpeedLossPoint, speed_loss_sweep};
 pub use speed_loss_study::{SpeedLossStudyConfig, SpeedLossSummary};
 pub use study::{AnyModel, ModelKind, ModelSettings, NodalConfig, SpeedLossCase};

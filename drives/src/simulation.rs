@@ -27,12 +27,18 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use crate::DriveError;
+use crate::ancf_model::AncfBelt;
 use crate::speed_loss::STEP_SUBDIVISIONS;
-use crate::study::AnyModel;
-use belt::{BeltModel, Report};
+use crate::study::{AnyModel, ModelKind, ModelSettings};
+use belt::{BeltModel, Layout, Motion, Report, Signal};
 use contact::friction::FrictionLaw;
-use mbd_core::MbdError;
+use flowing::belt::{FlowingBelt, NodalBelt};
 use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stepper};
+use mbd_core::validate::{InvalidField, Validate, check};
+use mbd_core::{MbdError, SecondOrderSystem};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
 
 /// A belt model and its generalized-α stepper (module documentation).
 pub struct BeltSimulation<M: BeltModel> {
@@ -84,6 +90,11 @@ impl<M: BeltModel> BeltSimulation<M> {
         self.stepper.state()
     }
 
+    /// The step \[s\] (a failed step is subdivided, the next one tries this size again).
+    pub fn step_size(&self) -> f64 {
+        self.alpha.h
+    }
+
     /// Restart from `state` (same model and step).
     pub fn set_state(&mut self, state: State) -> Result<(), MbdError> {
         self.stepper = GeneralizedAlpha::new(self.alpha).stepper(&self.model, state)?;
@@ -109,31 +120,252 @@ impl<M: BeltModel> BeltSimulation<M> {
     }
 }
 
+/// The generalized-α settings a belt model of `kind` is stepped with at the step `h` \[s\]:
+/// mbd-core's defaults with a line search, the ANCF belt with its own Newton settings
+/// ([`ancf::belt_drive::SimulationConfig::alpha_params`]).
+pub fn alpha_for(kind: ModelKind, h: f64) -> AlphaConfig {
+    match kind {
+        ModelKind::Ancf => ancf::belt_drive::SimulationConfig {
+            h,
+            ..Default::default()
+        }
+        .alpha_params(),
+        ModelKind::Flowing | ModelKind::Nodal => AlphaConfig {
+            h,
+            newton_line_search: true,
+            ..Default::default()
+        },
+    }
+}
+
 impl AnyModel {
-    /// Run the model from its mounted state to `t_end` \[s\] with steps `h` \[s\] (mbd-core's
-    /// generalized-α defaults otherwise; the ANCF belt with its own Newton settings) and return
-    /// the report of the last state.
-    pub fn simulate(self, t_end: f64, h: f64) -> Result<Report, MbdError> {
-        let alpha = |ancf: bool| {
-            if ancf {
-                ancf::belt_drive::SimulationConfig {
-                    h,
-                    ..Default::default()
-                }
-                .alpha_params()
-            } else {
-                AlphaConfig {
-                    h,
-                    newton_line_search: true,
-                    ..Default::default()
-                }
+    /// The kind of the model inside.
+    pub fn kind(&self) -> ModelKind {
+        match self {
+            AnyModel::Flowing(_) => ModelKind::Flowing,
+            AnyModel::Nodal(_) => ModelKind::Nodal,
+            AnyModel::Ancf(_) => ModelKind::Ancf,
+        }
+    }
+
+    /// The model stepped from its mounted state with steps `h` \[s\] ([`alpha_for`]).
+    pub fn into_simulation(self, h: f64) -> Result<AnySimulation, MbdError> {
+        let alpha = alpha_for(self.kind(), h);
+        Ok(match self {
+            AnyModel::Flowing(m) => {
+                AnySimulation::Flowing(Box::new(BeltSimulation::new(*m, alpha)?))
             }
-        };
-        let is_ancf = matches!(self, AnyModel::Ancf(_));
-        crate::with_model!(self, |m| {
-            let mut sim = BeltSimulation::new(*m, alpha(is_ancf))?;
-            sim.run_to(t_end, |_, _| {})?;
-            sim.report()
+            AnyModel::Nodal(m) => AnySimulation::Nodal(Box::new(BeltSimulation::new(*m, alpha)?)),
+            AnyModel::Ancf(m) => AnySimulation::Ancf(Box::new(BeltSimulation::new(*m, alpha)?)),
         })
     }
+
+    /// Run the model from its mounted state to `t_end` \[s\] with steps `h` \[s\]
+    /// ([`alpha_for`]) and return the report of the last state.
+    pub fn simulate(self, t_end: f64, h: f64) -> Result<Report, MbdError> {
+        let mut sim = self.into_simulation(h)?;
+        sim.run_to(t_end, |_| {})?;
+        sim.report()
+    }
+}
+
+/// A [`BeltSimulation`] of any of the three belt models, chosen at run time (the Python
+/// `flowmbd.belt.Simulation`): the same stepping, state and report whatever the model.
+pub enum AnySimulation {
+    /// The flowing-material belt (Ribaric (5.14)).
+    Flowing(Box<BeltSimulation<FlowingBelt>>),
+    /// The rotating-mesh nodal belt (Ribaric (5.7)).
+    Nodal(Box<BeltSimulation<NodalBelt>>),
+    /// The ANCF belt (Kerkkänen ch. 3).
+    Ancf(Box<BeltSimulation<AncfBelt>>),
+}
+
+/// Run `$body` on the [`BeltSimulation`] inside an [`AnySimulation`].
+macro_rules! with_sim {
+    ($any:expr, |$s:ident| $body:expr) => {
+        match $any {
+            AnySimulation::Flowing($s) => $body,
+            AnySimulation::Nodal($s) => $body,
+            AnySimulation::Ancf($s) => $body,
+        }
+    };
+}
+
+impl AnySimulation {
+    /// Build the model of `config` and start it from its mounted static state.
+    ///
+    /// # Errors
+    /// The configuration is invalid ([`DriveSimulationConfig::validate`], the layout's
+    /// [`Layout::resolve`]) or the model cannot be built or mounted.
+    pub fn new(config: &DriveSimulationConfig) -> Result<Self, SimulationBuildError> {
+        config.validate()?;
+        let drive = config.drive.resolve().map_err(|e| e.within("drive"))?;
+        let model = AnyModel::new(config.model, &drive, &config.models)?;
+        Ok(model.into_simulation(config.step)?)
+    }
+
+    /// The kind of the model.
+    pub fn kind(&self) -> ModelKind {
+        match self {
+            AnySimulation::Flowing(_) => ModelKind::Flowing,
+            AnySimulation::Nodal(_) => ModelKind::Nodal,
+            AnySimulation::Ancf(_) => ModelKind::Ancf,
+        }
+    }
+
+    /// One step ([`BeltSimulation::step`]); the new state.
+    pub fn step(&mut self) -> Result<&State, MbdError> {
+        with_sim!(self, |s| s.step())
+    }
+
+    /// Step until `t_end` \[s\], `observer` seeing every new state.
+    pub fn run_to(&mut self, t_end: f64, mut observer: impl FnMut(&State)) -> Result<(), MbdError> {
+        with_sim!(self, |s| s.run_to(t_end, |_, st| observer(st)))
+    }
+
+    /// The step \[s\] ([`BeltSimulation::step_size`]).
+    pub fn step_size(&self) -> f64 {
+        with_sim!(self, |s| s.step_size())
+    }
+
+    /// The current state (time \[s\], coordinates, velocities).
+    pub fn state(&self) -> &State {
+        with_sim!(self, |s| s.state())
+    }
+
+    /// Restart from `state` (same model and step).
+    ///
+    /// # Errors
+    /// `state` does not have the model's sizes, or the stepper cannot start from it.
+    pub fn set_state(&mut self, state: State) -> Result<(), MbdError> {
+        let n = self.coordinates();
+        if state.q.len() != n || state.v.len() != n {
+            return Err(MbdError::InvalidInput {
+                item: "state".into(),
+                reason: format!(
+                    "the model has {n} coordinates, got q of {} and v of {}",
+                    state.q.len(),
+                    state.v.len()
+                ),
+            });
+        }
+        with_sim!(self, |s| s.set_state(state))
+    }
+
+    /// The report of the current state ([`BeltSimulation::report`]).
+    pub fn report(&self) -> Result<Report, MbdError> {
+        with_sim!(self, |s| s.report())
+    }
+
+    /// Number of coordinates.
+    pub fn coordinates(&self) -> usize {
+        with_sim!(self, |s| s.model().n_q())
+    }
+
+    /// The name of coordinate `dof`.
+    pub fn coordinate_name(&self, dof: usize) -> String {
+        with_sim!(self, |s| s.model().dof_name(dof))
+    }
+
+    /// The pulleys' speeds in the travel sense at the current state \[rad/s\].
+    pub fn pulley_speeds(&self) -> Vec<f64> {
+        with_sim!(self, |s| {
+            let st = s.state();
+            (0..s.model().drive().pulleys().len())
+                .map(|k| s.model().pulley_speed(k, st.t, &st.v))
+                .collect()
+        })
+    }
+
+    /// The belt's speed along its path at the current state \[m/s\].
+    pub fn belt_speed(&self) -> f64 {
+        with_sim!(self, |s| {
+            let st = s.state();
+            s.model().belt_speed(&st.q, &st.v)
+        })
+    }
+
+    /// The tensioner arm's angle at the current state \[rad\] (`None` without a tensioner).
+    pub fn arm_angle(&self) -> Option<f64> {
+        with_sim!(self, |s| s.model().arm_angle(&s.state().q))
+    }
+
+    /// Replace the signal of pulley `k` from now on: the speed of a driver, the load torque
+    /// of an accessory (an idler becomes a loaded pulley) ([`BeltModel::set_signal`]).
+    ///
+    /// # Errors
+    /// `k` is not a pulley of the drive, or the signal is invalid.
+    pub fn set_signal(&mut self, k: usize, signal: Signal) -> Result<(), InvalidField> {
+        with_sim!(self, |s| s.model_mut().set_signal(k, signal))
+    }
+
+    /// The motion of pulley `k` (`None` if there is no such pulley).
+    pub fn motion(&self, k: usize) -> Option<Motion> {
+        with_sim!(self, |s| s.model().motion(k).cloned())
+    }
+}
+
+/// Why a [`DriveSimulationConfig`] did not become an [`AnySimulation`].
+#[derive(Debug, Error)]
+pub enum SimulationBuildError {
+    /// A field of the configuration is invalid (the message names it).
+    #[error(transparent)]
+    Input(#[from] InvalidField),
+    /// The belt model rejected the drive or could not be built.
+    #[error(transparent)]
+    Model(#[from] DriveError),
+    /// The mounted static state or the stepper's start failed.
+    #[error("mounting the belt: {0}")]
+    Mount(#[from] MbdError),
+}
+
+/// Limits on a stepped drive's step \[s\].
+const STEP_RANGE: (f64, f64) = (1e-8, 0.1);
+
+/// A belt drive to step in time ([`AnySimulation::new`]; the Python `flowmbd.belt.Simulation`).
+/// The defaults are Ribaric's Table 6-1 drive (§6.4) run as its speed-loss procedure runs it:
+/// the driver ramped to 62.8 rad/s in 0.3 s, then the driven pulley's load ramped to 10 N m in
+/// 0.1 s, the flowing model with a step of 0.25 ms.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct DriveSimulationConfig {
+    /// The belt model: `flowing` (Ribaric (5.14)), `nodal` (Ribaric (5.7)) or `ancf`
+    /// (Kerkkänen ch. 3).
+    pub model: ModelKind,
+    /// The drive: pulleys with their motions, tensioner, belt section, mounting, contact.
+    pub drive: Layout,
+    /// Time step \[s\] (the ANCF belt's Newton settings are its own, [`alpha_for`]).
+    pub step: f64,
+    /// Each model's discretisation (`models.flowing`, `models.nodal`, `models.ancf`).
+    pub models: ModelSettings,
+}
+
+impl Default for DriveSimulationConfig {
+    fn default() -> Self {
+        let mut drive = Layout::table_6_1();
+        drive.pulleys[0].motion = Motion::speed(Signal::schedule(vec![(0.0, 0.0), (0.3, 62.8)]));
+        drive.pulleys[1].motion = Motion::load(
+            0.013,
+            Signal::schedule(vec![(0.0, 0.0), (0.3, 0.0), (0.4, 10.0)]),
+        );
+        Self {
+            model: ModelKind::Flowing,
+            drive,
+            step: 2.5e-4,
+            models: ModelSettings::default(),
+        }
+    }
+}
+
+impl Validate for DriveSimulationConfig {
+    /// The step within [1e-8, 0.1] s and the models' settings (the layout is checked when it
+    /// is resolved, [`Layout::resolve`]).
+    fn validate(&self) -> Result<(), InvalidField> {
+        check::within("step", self.step, STEP_RANGE.0, STEP_RANGE.1, "s")?;
+        self.models.validate_within("models")
+    }
+}
+
+impl mbd_core::config::PartialRules for DriveSimulationConfig {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
 }

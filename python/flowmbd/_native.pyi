@@ -60,6 +60,28 @@ CLEAT_FORCE_COLUMNS: List[str]
 CLEAT_SPECTRUM_COLUMNS: List[str]
 """Columns of the cleat test's amplitude spectra (``spectra.csv``)."""
 
+class BeltSimulation:
+    """A belt drive stepped in time (``drives::AnySimulation``); public as
+    ``flowmbd.belt.Simulation``."""
+
+    model: str
+    step_size: float
+    t: float
+    q: npt.NDArray[np.float64]
+    v: npt.NDArray[np.float64]
+    coordinate_names: List[str]
+    pulley_speeds: npt.NDArray[np.float64]
+    belt_speed: float
+    arm_angle: Optional[float]
+    def __init__(self, config: Optional[str] = None) -> None: ...
+    def step(self, n: int = 1) -> None: ...
+    def run_to(self, t_end: float) -> None: ...
+    def set_state(
+        self, t: float, q: npt.NDArray[np.float64], v: npt.NDArray[np.float64]
+    ) -> None: ...
+    def set_signal(self, k: int, signal: str) -> None: ...
+    def report(self) -> str: ...
+
 class ReducedTire:
     """The reduced flowing-material tire of Ribaric §8.2 (immutable, picklable)."""
 

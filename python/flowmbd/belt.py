@@ -186,3 +186,135 @@ def design(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[fl
     """
     speeds = None if rpm is None else _args.numbers_list("rpm", rpm)
     return from_json(_native.design(config_json(config), speeds))
+
+
+class Simulation:
+    """A belt drive stepped in time: build the model from a layout, step it, read and set its
+    state, change a pulley's speed or load between steps, observe it, and read the report of
+    any state (the same model, generalized-α stepper and report as the studies; Rust:
+    ``drives::AnySimulation``).
+
+    Parameters
+    ----------
+    config : dict with the keys ``model`` (``"flowing"``, ``"nodal"`` or ``"ancf"``),
+        ``drive`` (a layout, as in ``flowmbd-belt fead --print-config``: ``pulleys`` with their
+        ``motion``, ``tensioner``, ``belt``, ``tension``, ``contact``, ``damping``), ``step``
+        [s] and ``models`` (each model's discretisation); missing keys keep their defaults:
+        Ribaric's Table 6-1 drive, the driver ramped to 62.8 rad/s in 0.3 s, then the driven
+        pulley's load ramped to 10 N m in 0.1 s, the flowing model, a step of 0.25 ms.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the message names the field, e.g. ``drive.pulleys[1].radius``).
+    flowmbd.NumericalError
+        The belt could not be mounted.
+
+    Example
+    -------
+    >>> sim = flowmbd.belt.Simulation({"model": "flowing"})
+    >>> sim.run_to(0.5, observer=lambda s: print(s.t, s.pulley_speeds), every=100)
+    >>> sim.report()["balances"]["torque_residual_rel"]
+    """
+
+    def __init__(self, config: Optional[Mapping[str, Any]] = None) -> None:
+        self._sim = _native.BeltSimulation(config_json(config))
+
+    @property
+    def model(self) -> str:
+        """The model kind."""
+        return self._sim.model
+
+    @property
+    def step_size(self) -> float:
+        """The step [s]."""
+        return self._sim.step_size
+
+    @property
+    def t(self) -> float:
+        """Time [s]."""
+        return self._sim.t
+
+    @property
+    def q(self):
+        """Coordinates (numpy copy; names in ``coordinate_names``)."""
+        return self._sim.q
+
+    @property
+    def v(self):
+        """Velocities (numpy copy)."""
+        return self._sim.v
+
+    @property
+    def coordinate_names(self) -> list:
+        """The name of every coordinate."""
+        return self._sim.coordinate_names
+
+    @property
+    def pulley_speeds(self):
+        """Pulley speeds in the belt's travel sense [rad/s], in the layout's order (numpy)."""
+        return self._sim.pulley_speeds
+
+    @property
+    def belt_speed(self) -> float:
+        """Belt speed along its path [m/s]."""
+        return self._sim.belt_speed
+
+    @property
+    def arm_angle(self) -> Optional[float]:
+        """Tensioner arm angle [rad] (``None`` without a tensioner)."""
+        return self._sim.arm_angle
+
+    def state(self) -> tuple:
+        """The state ``(t, q, v)`` (copies), to restart from with ``set_state``."""
+        return (self._sim.t, self._sim.q, self._sim.v)
+
+    def set_state(self, t: float, q: Any, v: Any) -> None:
+        """Restart from the state ``(t, q, v)`` (same model and step)."""
+        import numpy as np
+
+        self._sim.set_state(
+            _args.number("t", t),
+            np.ascontiguousarray(q, dtype=float),
+            np.ascontiguousarray(v, dtype=float),
+        )
+
+    def step(self, n: int = 1) -> None:
+        """Take ``n`` steps (a failed step is subdivided; one that still fails raises
+        ``flowmbd.NumericalError`` and keeps the last good state)."""
+        self._sim.step(_args.count("n", n))
+
+    def run_to(
+        self, t_end: float, observer: Optional[Any] = None, every: int = 1
+    ) -> None:
+        """Step until ``t_end`` [s]; ``observer(sim)`` is called after every ``every``-th step
+        (and at the end). An exception in the observer stops the run and propagates."""
+        t_end = _args.number("t_end", t_end)
+        if observer is None:
+            self._sim.run_to(t_end)
+            return
+        every = _args.count("every", every)
+        if every < 1:
+            raise ValueError("every: must be at least 1")
+        if not callable(observer):
+            raise ValueError(f"observer: expected a callable, got {type(observer).__name__}")
+        h = self._sim.step_size
+        while self._sim.t < t_end - 0.5 * h:
+            left = int(round((t_end - self._sim.t) / h))
+            self._sim.step(max(1, min(every, left)))
+            observer(self)
+
+    def set_signal(self, pulley: int, signal: Mapping[str, Any]) -> None:
+        """Replace the signal of ``pulley`` (index in the layout) from now on: a driver's speed
+        [rad/s] or an accessory's load torque [N m], as a signal dict of a layout (e.g.
+        ``{"kind": "constant", "value": 10.0}`` or ``{"kind": "schedule", "knots": [[0.5, 0],
+        [0.6, 10]]}``); an idler becomes a loaded pulley."""
+        if not isinstance(signal, Mapping):
+            raise ValueError(f"signal: expected a dict, got {type(signal).__name__}")
+        self._sim.set_signal(_args.count("pulley", pulley), config_json(signal))
+
+    def report(self) -> dict:
+        """The report of the current state: ``pulleys`` (speed, arcs, slip velocities, hub
+        load, torque, power, torque residual), ``spans`` (force [N]), ``balances`` (torque
+        and power residuals)."""
+        return from_json(self._sim.report())

@@ -20,6 +20,7 @@ use serde::de::DeserializeOwned;
 
 mod belt;
 mod reduce;
+mod stepping;
 mod string;
 mod tire;
 
@@ -96,6 +97,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(belt::plate, m)?)?;
     m.add_function(wrap_pyfunction!(belt::fead, m)?)?;
     m.add_function(wrap_pyfunction!(belt::design, m)?)?;
+    m.add_class::<stepping::PyBeltSimulation>()?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;
