@@ -17,5 +17,11 @@ class NumericalError(RuntimeError):
 
 def points(grid: Grid) -> List[dict]: ...
 def sweep(
-    fn: Callable[..., Any], grid: Grid, client: Any = ..., *, progress: bool = ...
+    fn: Callable[..., Any],
+    grid: Grid,
+    client: Any = ...,
+    *,
+    progress: bool = ...,
+    select: Optional[Mapping[str, Union[str, Callable[[Any], Any]]]] = ...,
+    explode: Optional[str] = ...,
 ) -> Any: ...  # pandas.DataFrame

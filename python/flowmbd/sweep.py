@@ -37,16 +37,71 @@ def _scalar(v: Any) -> bool:
     return v is None or isinstance(v, (numbers.Number, str, bool, np.generic))
 
 
-def _row(params: dict, result: Any, error: Optional[str]) -> dict:
+#: Result keys left out of the rows unless selected: prose, not data.
+_PROSE_KEYS = ("meaning",)
+
+
+def _path(result: Any, path: str) -> Any:
+    """The value at the dotted ``path`` of a nested result (``"points.1.delta_omega"``: keys of
+    dicts, indices of lists and arrays)."""
+    v = result
+    for step in path.split("."):
+        if isinstance(v, Mapping):
+            if step not in v:
+                raise KeyError(f"select {path!r}: no key {step!r} (keys: {', '.join(map(str, v))})")
+            v = v[step]
+        elif isinstance(v, (list, tuple, np.ndarray)):
+            try:
+                v = v[int(step)]
+            except (ValueError, IndexError):
+                raise KeyError(f"select {path!r}: {step!r} is not an index of a list of {len(v)}")
+        else:
+            raise KeyError(f"select {path!r}: {step!r} reaches into a {type(v).__name__}")
+    return v
+
+
+def _plain(v: Any) -> Any:
+    return v.item() if isinstance(v, (np.ndarray, np.generic)) and np.ndim(v) == 0 else v
+
+
+def _rows(params: dict, result: Any, error: Optional[str], select, explode) -> List[dict]:
+    """The rows of one point: one, or one per element of ``result[explode]``."""
     row = dict(params)
-    if isinstance(result, Mapping):
+    if error is None and isinstance(result, Mapping):
         for k, v in result.items():
-            if _scalar(v) and k not in row:
-                row[k] = v.item() if isinstance(v, (np.ndarray, np.generic)) else v
-    elif _scalar(result) and result is not None:
+            if _scalar(v) and k not in row and k not in _PROSE_KEYS:
+                row[k] = _plain(v)
+        for name, how in (select or {}).items():
+            try:
+                row[name] = _plain(how(result) if callable(how) else _path(result, how))
+            except (KeyboardInterrupt, SystemExit):
+                raise
+            except Exception as e:  # a selection that does not fit this result
+                error = f"{type(e).__name__}: {e}"
+                break
+    elif error is None and _scalar(result) and result is not None:
         row["result"] = result
-    row["error"] = error
-    return row
+    if explode is None or error is not None:
+        row["error"] = error
+        return [row]
+    try:
+        items = _path(result, explode)
+    except KeyError as e:
+        row["error"] = f"KeyError: {e}"
+        return [row]
+    out = []
+    for i, item in enumerate(items):
+        r = dict(row)
+        r[f"{explode}_index"] = i
+        if isinstance(item, Mapping):
+            for k, v in item.items():
+                if _scalar(v) and k not in params:
+                    r[k] = _plain(v)
+        elif _scalar(item):
+            r[explode] = _plain(item)
+        r["error"] = None
+        out.append(r)
+    return out
 
 
 def _run_point(fn: Callable[..., Any], params: dict):
@@ -76,6 +131,8 @@ def sweep(
     client: Any = None,
     *,
     progress: bool = True,
+    select: Optional[Mapping[str, Union[str, Callable[[Any], Any]]]] = None,
+    explode: Optional[str] = None,
 ):
     """Run ``fn(**params)`` for every point of ``grid`` and collect one row per point.
 
@@ -89,6 +146,15 @@ def sweep(
         process per core for this sweep; ``False`` runs the points one after the other in
         this process (no Dask).
     progress : show a progress bar (tqdm) while results stream back.
+    select : extra columns taken from inside each result: ``{"column": "dotted.path"}`` (keys
+        of dicts, indices of lists: ``"points.1.delta_omega"``, ``"cases.0.capacity"``) or
+        ``{"column": callable}`` (called with the result). A path that does not fit a result
+        records the point's ``error``.
+    explode : a dotted path to a list in each result (``"points"``): one row per element,
+        with the element's scalar values as columns and ``<explode>_index``; a point that
+        failed keeps one row with its ``error``.
+
+    The ``meaning`` paragraph of a study's summary is not a column (select it to have it).
 
     A point whose ``fn`` raises is recorded with its error (not retried: the models are
     deterministic). A point whose worker dies is rescheduled on another worker by the Dask
@@ -98,32 +164,41 @@ def sweep(
     Returns
     -------
     pandas.DataFrame
-        One row per point in grid order: the parameters, the scalar results and ``error``
+        One row per point (or per element of ``explode``) in grid order: the parameters, the
+        scalar results, the selected columns and ``error``
         (``None``, or ``"Type: message"`` of a failed point, e.g. ``"ValueError: omegas[0]:
         must be finite and > 0 [rad/s]"`` or a ``KilledWorker`` after repeated worker deaths).
     """
     import pandas as pd
 
     pts = points(grid)
-    rows: List[Optional[dict]] = [None] * len(pts)
+    if select is not None:
+        if not isinstance(select, Mapping):
+            raise ValueError(f"select: expected a dict of column: path or callable, got {type(select).__name__}")
+        for name, how in select.items():
+            if not (callable(how) or isinstance(how, str)):
+                raise ValueError(f"select[{name!r}]: expected a dotted path or a callable, got {how!r}")
+    if explode is not None and not isinstance(explode, str):
+        raise ValueError(f"explode: expected a dotted path, got {explode!r}")
+    rows: List[Optional[List[dict]]] = [None] * len(pts)
     bar = _bar(len(pts), progress)
     try:
         if client is False:
             for i, p in enumerate(pts):
                 status, value = _run_point(fn, p)
-                rows[i] = _row(p, value if status == "ok" else None,
-                               None if status == "ok" else value)
+                rows[i] = _rows(p, value if status == "ok" else None,
+                                None if status == "ok" else value, select, explode)
                 if bar is not None:
                     bar.update(1)
         else:
-            _distributed(fn, pts, client, rows, bar)
+            _distributed(fn, pts, client, rows, bar, select, explode)
     finally:
         if bar is not None:
             bar.close()
-    return pd.DataFrame(rows)
+    return pd.DataFrame([r for point in rows for r in point])
 
 
-def _distributed(fn, pts, client, rows, bar):
+def _distributed(fn, pts, client, rows, bar, select, explode):
     from dask.distributed import Client, LocalCluster, as_completed
 
     own = None
@@ -151,8 +226,8 @@ def _distributed(fn, pts, client, rows, bar):
                 raise
             except BaseException as e:  # the task itself failed (e.g. KilledWorker)
                 status, value = "error", f"{type(e).__name__}: {e}"
-            rows[i] = _row(pts[i], value if status == "ok" else None,
-                           None if status == "ok" else value)
+            rows[i] = _rows(pts[i], value if status == "ok" else None,
+                            None if status == "ok" else value, select, explode)
             fut.release()
             if bar is not None:
                 bar.update(1)

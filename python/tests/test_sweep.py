@@ -99,3 +99,35 @@ def test_reduced_tire_reduced_on_a_worker_is_shipped_to_the_sweep(client):
     ref = pd.DataFrame([{"speed_kmh": v, **sweep_points.cleat_point(v, local), "error": None}
                         for v in (40.0, 60.0)])
     pd.testing.assert_frame_equal(df.drop(columns="tire"), ref, check_exact=False, rtol=1e-12)
+
+
+def _loss_point(torque):
+    # a stand-in for a study's summary: nested per-point results and prose
+    return {
+        "omega_driver": 62.8,
+        "meaning": "a long paragraph",
+        "points": [{"torque": 0.0, "delta_omega": 0.0}, {"torque": torque, "delta_omega": 0.01 * torque}],
+        "analytical": np.array([0.0, 0.004 * torque]),
+    }
+
+
+def test_select_and_explode_flatten_per_point_results():
+    # reference: the same values read by hand from the returned dicts
+    grid = {"torque": [2.0, 4.0]}
+    df = flowmbd.sweep(_loss_point, grid, client=False, progress=False,
+                       select={"dw": "points.1.delta_omega", "bechtel": "analytical.1",
+                               "ratio": lambda r: r["points"][1]["delta_omega"] / r["analytical"][1]})
+    assert "meaning" not in df.columns
+    assert list(df["dw"]) == [0.02, 0.04]
+    assert list(df["bechtel"]) == pytest.approx([0.008, 0.016])
+    assert list(df["ratio"]) == pytest.approx([2.5, 2.5])
+    assert df["error"].isna().all()
+    rows = flowmbd.sweep(_loss_point, grid, client=False, progress=False, explode="points")
+    assert len(rows) == 4
+    assert list(rows["points_index"]) == [0, 1, 0, 1]
+    # the grid's own "torque" wins over the element's key of the same name
+    assert list(rows["delta_omega"]) == [0.0, 0.02, 0.0, 0.04]
+    bad = flowmbd.sweep(_loss_point, grid, client=False, progress=False, select={"x": "points.7.torque"})
+    assert bad["error"].str.contains("not an index").all()
+    with pytest.raises(ValueError, match="select"):
+        flowmbd.sweep(_loss_point, grid, client=False, progress=False, select={"x": 3})
