@@ -50,6 +50,17 @@ def craig_bampton(
 ]:
     """(M_r, K_r, Ψ, frequencies [Hz]) of the Craig–Bampton reduction."""
 
+def eitelberg(
+    n: int, m: _Triplets, k: _Triplets, boundary: List[int], fixed: List[int]
+) -> Tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+]:
+    """(M⁻¹K on the boundary, A_r, B_r, C_r, frequencies [Hz]) of Eitelberg's reduction."""
+
 _Array = npt.NDArray[np.float64]
 _Index = npt.NDArray[np.uintp]
 _Fe = Tuple[_Array, Tuple[_Index, _Index, _Array], _Array, _Index, _Index]

@@ -85,3 +85,25 @@ def craig_bampton(M: Any, K: Any, boundary: Sequence[int], modes: int) -> dict:
     modes = _args.count("modes", modes)
     mr, kr, psi, hz = _native.craig_bampton(n, m, k, _dofs("boundary", boundary), modes)
     return {"M": mr, "K": kr, "basis": psi, "frequencies_hz": hz}
+
+
+def eitelberg(M: Any, K: Any, boundary: Sequence[int], fixed: Sequence[int] = ()) -> dict:
+    """Eitelberg's equation-error reduction (Lin §6.6, Appendix C) of the structure
+    ``M δ̈ + K δ = f`` onto the ``boundary`` DOFs, the ``fixed`` DOFs clamped first (Lin
+    (6.42)–(6.45), with the stabilising output feedback removed afterwards); the CLI's
+    ``flowmbd-reduce reduce --method eitelberg``. Dense: at most 1000 unclamped DOFs.
+
+    Returns ``{"minv_k": (b, b), "A": (2b, 2b), "B": (2b, b), "C": (2b, 2b),
+    "frequencies_hz": (b,)}``: ``M_⁻¹K_`` on the boundary DOFs [1/s²] (Lin §6.6.4's printed
+    matrix; it equals Guyan's ``M_g⁻¹K_g``), the reduced state-space system of
+    ``ξ = {δ_b; δ̇_b}`` and the natural frequencies ``√λ/2π`` of ``M_⁻¹K_``, ascending.
+
+    Raises ``ValueError`` for bad input (shapes, repeated or out-of-range DOFs, a
+    non-symmetric matrix, too many DOFs).
+    """
+    n, m = _triplets("M", M)
+    _, k = _triplets("K", K, n)
+    minv_k, a, b, c, hz = _native.eitelberg(
+        n, m, k, _dofs("boundary", boundary), _dofs("fixed", fixed)
+    )
+    return {"minv_k": minv_k, "A": a, "B": b, "C": c, "frequencies_hz": hz}

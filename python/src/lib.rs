@@ -101,6 +101,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::eitelberg, m)?)?;
     m.add_class::<tire::PyReducedTire>()?;
     m.add_function(wrap_pyfunction!(tire::tire_generate, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_import, m)?)?;

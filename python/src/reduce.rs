@@ -1,5 +1,5 @@
-//! `flowmbd.reduce`: clamped normal modes and the partitioned Craig–Bampton reduction
-//! (Lin (6.3), (6.11), (6.19)–(6.25)) of sparse mass and stiffness matrices, through
+//! `flowmbd.reduce`: clamped normal modes, the partitioned Craig–Bampton reduction
+//! (Lin (6.3), (6.11), (6.19)–(6.25)) and Eitelberg's reduction (Lin §6.6.4) of sparse mass and stiffness matrices, through
 //! [`reduction::sparse`] (the engine of `flowmbd-reduce` and the tire reduction). Matrices come
 //! in as coordinate triplets (scipy.sparse `tocoo()`, duplicates summed) and go out as numpy
 //! arrays.
@@ -13,6 +13,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse, fixed_interface_modes_sparse};
+use reduction::eitelberg_model::EitelbergModel;
 use reduction::{DofPartition, ReductionError};
 
 /// A sparse `n × n` matrix from triplets, named `name` in errors (indices in range, values
@@ -162,6 +163,45 @@ pub fn craig_bampton<'py>(
         to_numpy(py, &red.mass),
         to_numpy(py, &red.stiffness),
         to_numpy(py, &red.psi),
+        hz.into_pyarray(py),
+    ))
+}
+
+/// `(M⁻¹K on the boundary, A_r, B_r, C_r, natural frequencies [Hz])` of [`eitelberg`].
+type EitelbergOut<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+);
+
+/// Eitelberg's reduction of the structure onto the `boundary` DOFs with the `fixed` DOFs
+/// clamped (Lin §6.6.4, [`reduction::eitelberg_model::EitelbergModel`]; dense, at most
+/// [`reduction::eitelberg_model::EITELBERG_LIMIT`] unclamped DOFs).
+#[pyfunction]
+pub fn eitelberg<'py>(
+    py: Python<'py>,
+    n: usize,
+    m: Triplets<'py>,
+    k: Triplets<'py>,
+    boundary: Vec<usize>,
+    fixed: Vec<usize>,
+) -> PyResult<EitelbergOut<'py>> {
+    let m = sparse("M", n, m.0, m.1, m.2)?;
+    let k = sparse("K", n, k.0, k.1, k.2)?;
+    let part = DofPartition::new(n, &boundary, &fixed).map_err(|e| reduction_error(py, e))?;
+    let result = py.detach(|| {
+        let red = EitelbergModel::reduce_sparse(k.as_ref(), m.as_ref(), &part)?;
+        let hz = red.natural_frequencies_hz()?;
+        Ok::<_, ReductionError>((red, hz))
+    });
+    let (red, hz) = result.map_err(|e| reduction_error(py, e))?;
+    Ok((
+        to_numpy(py, &red.minv_k),
+        to_numpy(py, &red.reduction.a_r),
+        to_numpy(py, &red.reduction.b_r),
+        to_numpy(py, &red.reduction.c_r),
         hz.into_pyarray(py),
     ))
 }

@@ -82,3 +82,26 @@ def test_bad_count(count):
     M, K = chain(5)
     with pytest.raises(ValueError, match="count"):
         flowmbd.reduce.modes(M, K, count=count)
+
+
+def test_eitelberg_is_guyan():
+    # Lin §6.6.4: Eitelberg's M⁻¹K on the boundary equals Guyan's; reference: Guyan by numpy,
+    # the Schur complement K_bb − K_bi K_ii⁻¹ K_ib and the projected mass
+    M, K = chain(30)
+    b = [5, 12, 29]
+    r = flowmbd.reduce.eitelberg(M, K, boundary=b, fixed=[0])
+    Kd, Md = K.toarray(), M.toarray()
+    keep = [i for i in range(30) if i != 0]
+    Kd, Md = Kd[np.ix_(keep, keep)], Md[np.ix_(keep, keep)]
+    bb = [keep.index(i) for i in b]
+    ii = [j for j in range(29) if j not in bb]
+    psi = np.zeros((29, 3))
+    psi[bb, :] = np.eye(3)
+    psi[ii, :] = -np.linalg.solve(Kd[np.ix_(ii, ii)], Kd[np.ix_(ii, bb)])
+    kg, mg = psi.T @ Kd @ psi, psi.T @ Md @ psi
+    np.testing.assert_allclose(r["minv_k"], np.linalg.solve(mg, kg), rtol=1e-7, atol=1e-9 * abs(kg).max())
+    lam = la.eigh(kg, mg, eigvals_only=True)
+    np.testing.assert_allclose(r["frequencies_hz"], np.sqrt(lam) / (2 * np.pi), rtol=1e-8)
+    assert r["A"].shape == (6, 6) and r["B"].shape == (6, 3) and r["C"].shape == (6, 6)
+    with pytest.raises(ValueError, match="boundary"):
+        flowmbd.reduce.eitelberg(M, K, boundary="5")

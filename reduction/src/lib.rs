@@ -13,6 +13,7 @@
 pub mod axes;
 pub mod basis;
 pub mod eitelberg;
+pub mod eitelberg_model;
 pub mod error;
 pub mod linalg;
 pub mod lyapunov;

@@ -10,11 +10,13 @@
 //! partitioned Craig–Bampton, `reduction::sparse::craig_bampton_sparse` (fixed / boundary /
 //! interior DOFs, one sparse Cholesky of `K_ii` for the static modes, shift-invert Lanczos with
 //! a Sturm check for the fixed-interface modes). The other methods use the dense bases of
-//! `reduction::basis`, limited to [`DENSE_LIMIT`] DOFs.
+//! `reduction::basis`, limited to [`DENSE_LIMIT`] DOFs; Eitelberg's reduction is
+//! `reduction::eitelberg_model` (dense, at most 1000 unclamped DOFs).
 
 use fe_model::io::mtx::{self, ReadOptions};
 use fe_model::plausibility::{PairCheckOptions, check_stiffness_mass};
 use reduction::basis::{Method, ModeSelection, build_basis};
+use reduction::eitelberg_model::EitelbergModel;
 use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse};
 use reduction::{DofPartition, ReducedModel};
 use serde::{Deserialize, Serialize};
@@ -41,17 +43,23 @@ pub enum MethodArg {
     FixedInterfaceMt,
     /// Free-free modal truncation (the lowest modes of the whole model).
     FreeFreeMt,
+    /// Eitelberg's equation-error reduction of the structure onto the boundary DOFs (Lin
+    /// §6.6.4; the state-space system and `M⁻¹K` on the boundary, no basis; dense, at most
+    /// 1000 unclamped DOFs).
+    Eitelberg,
 }
 
 impl MethodArg {
-    fn method(self) -> Method {
-        match self {
+    /// The basis method (`None`: Eitelberg, which makes no basis).
+    fn method(self) -> Option<Method> {
+        Some(match self {
             MethodArg::Guyan => Method::Guyan,
             MethodArg::Cb => Method::CraigBampton,
             MethodArg::Mc => Method::ModeCondensation,
             MethodArg::FixedInterfaceMt => Method::FixedInterfaceModalTruncation,
             MethodArg::FreeFreeMt => Method::FreeFreeModalTruncation,
-        }
+            MethodArg::Eitelberg => return None,
+        })
     }
 }
 
@@ -210,8 +218,11 @@ pub const MEANING: &str = "The user's Matrix Market model (n_full DOFs) reduced 
      the lowest natural frequencies of the reduced pair K_r q = lambda M_r q [Hz] (at most 20); \
      the reduction is a Rayleigh-Ritz projection, so each lies at or above the matching \
      frequency of the full model, and Craig-Bampton converges to it from above as modes are \
-     added (Lin ch. 6). reduction_s is the wall time of the reduction [s]; file holds the \
-     reduced model (versioned JSON) for the flexible body of a multibody model.";
+     added (Lin ch. 6). With eitelberg (Lin §6.6.4) the reduced model is the state-space system \
+     of the boundary DOFs and their velocities (n_reduced = 2 n_boundary states), and \
+     frequencies_hz come from its M^-1 K on the boundary, which equals Guyan's. reduction_s is \
+     the wall time of the reduction [s]; file holds the reduced model (versioned JSON) for the \
+     flexible body of a multibody model (eitelberg: the matrices minv_k, a_r, b_r, c_r).";
 
 /// Node ranges `a..=b` (1-based) of a `1,5,10-12` list; nothing is expanded here, so a huge
 /// range costs nothing until it is checked against the model ([`expand_nodes`]).
@@ -326,9 +337,19 @@ fn run_inner(a: &Args, c: &ReduceConfig) -> Result<Summary, Failure> {
     }
     let part = DofPartition::from_nodes(n, c.dofs_per_node, &nodes, &fixed)
         .map_err(|e| Failure::Input(format!("--boundary/--fixed: {e}")))?;
-    let method = c.method.method();
     let t0 = Instant::now();
     let num = |e: reduction::ReductionError| Failure::Numerical(e.to_string());
+    let Some(method) = c.method.method() else {
+        let red =
+            EitelbergModel::reduce_sparse(k.as_ref(), m.as_ref(), &part).map_err(|e| match e {
+                reduction::ReductionError::InvalidParameter { .. }
+                | reduction::ReductionError::InvalidDofs { .. } => {
+                    Failure::Input(format!("--method: {e}"))
+                }
+                other => Failure::Numerical(other.to_string()),
+            })?;
+        return eitelberg(red, &part, out, t0);
+    };
     let red = match method {
         Method::Guyan | Method::CraigBampton => {
             let modes = if method == Method::Guyan { 0 } else { c.modes };
@@ -371,6 +392,33 @@ fn run_inner(a: &Args, c: &ReduceConfig) -> Result<Summary, Failure> {
         n_boundary: part.boundary().len(),
         n_fixed: part.fixed().len(),
         n_reduced: red.n_reduced(),
+        frequencies_hz: f.into_iter().take(20).collect(),
+        reduction_s,
+        file: out.display().to_string(),
+        meaning: MEANING,
+    })
+}
+
+/// `--method eitelberg`: the dense Eitelberg reduction (`reduction::eitelberg_model`) written
+/// to `out`, its frequencies in the summary.
+fn eitelberg(
+    red: EitelbergModel,
+    part: &DofPartition,
+    out: &std::path::Path,
+    t0: Instant,
+) -> Result<Summary, Failure> {
+    let reduction_s = t0.elapsed().as_secs_f64();
+    red.save(out)
+        .map_err(|e| Failure::Input(format!("--out: {e}")))?;
+    let f = red
+        .natural_frequencies_hz()
+        .map_err(|e| Failure::Numerical(e.to_string()))?;
+    Ok(Summary {
+        method: "eitelberg".into(),
+        n_full: part.n(),
+        n_boundary: part.boundary().len(),
+        n_fixed: part.fixed().len(),
+        n_reduced: 2 * part.boundary().len(),
         frequencies_hz: f.into_iter().take(20).collect(),
         reduction_s,
         file: out.display().to_string(),

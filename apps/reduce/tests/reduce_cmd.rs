@@ -234,3 +234,56 @@ fn bad_input_exits_2_naming_the_option_file_and_line() {
     assert!(!file.exists(), "no model written on bad input");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn eitelberg_reproduces_guyan_on_the_clamped_slab() {
+    // Lin §6.6.4: Eitelberg's reduction of a structure onto its boundary DOFs gives Guyan's
+    // reduced model; reference: `--method guyan` (static condensation, another algorithm) on
+    // the Lin App. B slab clamped at nodes 1-3 and 19, boundary nodes 16, 18, 28, 30
+    let dir = tmp("cmd", "eitelberg");
+    let s = appendix_b_slab().unwrap();
+    let (m, k) = (dir.join("M.mtx"), dir.join("K.mtx"));
+    write_mtx(&m, &s.m);
+    write_mtx(&k, &s.k);
+    let args = [
+        "--quiet",
+        "--json",
+        "--boundary",
+        "16,18,28,30",
+        "--fixed",
+        "1-3,19",
+    ];
+    let (fe, fg) = (dir.join("eitelberg.json"), dir.join("guyan.json"));
+    let e = common::json_of(&reduce(
+        &[&args[..], &["--method", "eitelberg"]].concat(),
+        &m,
+        &k,
+        &fe,
+    ));
+    let g = common::json_of(&reduce(
+        &[&args[..], &["--method", "guyan"]].concat(),
+        &m,
+        &k,
+        &fg,
+    ));
+    assert_eq!(e["method"], "eitelberg");
+    assert_eq!(e["n_reduced"], 24);
+    let (fe_hz, fg_hz) = (
+        e["frequencies_hz"].as_array().unwrap(),
+        g["frequencies_hz"].as_array().unwrap(),
+    );
+    assert_eq!(fe_hz.len(), 12);
+    for (a, b) in fe_hz.iter().zip(fg_hz) {
+        let (a, b) = (a.as_f64().unwrap(), b.as_f64().unwrap());
+        assert!(
+            (a - b).abs() <= 1e-6 * b,
+            "Eitelberg {a} Hz vs Guyan {b} Hz"
+        );
+    }
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&fe).unwrap()).unwrap();
+    assert_eq!(file["format"], "flowmbd-eitelberg");
+    assert_eq!(file["minv_k"].as_array().unwrap().len(), 12);
+    assert_eq!(file["a_r"].as_array().unwrap().len(), 24);
+    std::fs::remove_dir_all(&dir).ok();
+}
