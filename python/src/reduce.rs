@@ -12,8 +12,8 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse, fixed_interface_modes_sparse};
 use reduction::eitelberg_model::EitelbergModel;
+use reduction::sparse::{CraigBamptonOptions, craig_bampton_sparse, fixed_interface_modes_sparse};
 use reduction::{DofPartition, ReductionError};
 
 /// A sparse `n × n` matrix from triplets, named `name` in errors (indices in range, values
