@@ -133,8 +133,9 @@ impl<const N: usize> QuadraticStrainKernel<N> {
     }
 }
 
-/// A planar element whose strain energy is a [`QuadraticStrainKernel`]: the Omar–Shabana beam
-/// ([`super::OmarShabanaBeam`], `N = 6` cubic blocks, full continuum energy (2.16)–(2.17)) and
+/// A planar element whose strain energy is this module's quadratic-strain kernel: the
+/// Omar–Shabana beam ([`super::OmarShabanaBeam`], `N = 6` cubic blocks, full continuum energy
+/// (2.16)–(2.17)) and
 /// the proposed beam ([`super::ProposedBeam`], `N = 4` linear blocks, Poisson-free energy
 /// (2.18)–(2.19)), with the elastic forces (2.20) and their exact tangent. Each is built by its
 /// own constructor, which fixes the integration points and the material matrix.

@@ -87,7 +87,7 @@ pub trait Element: Send + Sync + std::fmt::Debug {
 
 /// A frame element formulated in its local axes: its DOFs, the rotation `T` from global to
 /// local DOFs and its local matrices. Every frame element is an [`Element`] whose global
-/// matrices are the congruences `Tᵀ A_local T` ([`transform`]) of its local ones
+/// matrices are the congruences `Tᵀ A_local T` of its local ones
 /// (Przemieniecki, Theory of Matrix Structural Analysis, §6.1).
 pub trait FrameElement: Send + Sync + std::fmt::Debug {
     /// Global DOF indices of the element, in the order of its matrices.
