@@ -9,8 +9,11 @@
 //! [`AncfDrive`]; the pulleys' motions and speeds, the equations of motion and the initial state
 //! are the shell's.
 
+mod equations;
 mod pulleys;
 mod resting;
+
+pub(crate) use equations::ancf_equations;
 
 pub use pulleys::{MAX_PULLEYS, PulleyCoordinates, validate_pulleys};
 pub use resting::InitialOptions;

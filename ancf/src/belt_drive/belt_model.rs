@@ -202,6 +202,7 @@ impl MountedBelt<BeltDrive> {
                 let mut f = vec![0.0; n];
                 let omegas = vec![0.0; belt.pulleys().len()];
                 belt.forces_with(
+                    0.0,
                     q,
                     &vec![0.0; n],
                     &omegas,

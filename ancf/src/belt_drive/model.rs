@@ -8,7 +8,7 @@ use crate::element::{AncfElement, BeltElement};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
 use crate::mesh::AncfMesh;
-use crate::mounted::{MAX_PULLEYS, PulleyCoordinates};
+use crate::mounted::PulleyCoordinates;
 use crate::section::Section;
 use crate::shape;
 use crate::sparse::Pattern;
@@ -18,7 +18,7 @@ use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact};
 use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
 use mbd_core::validate::Validate;
-use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
+use mbd_core::{SecondOrderSystem, SysMatrix};
 use nalgebra::{Point2, Vector2};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -725,49 +725,7 @@ impl SecondOrderSystem for BeltDrive {
             format!("coordinate {dof}")
         }
     }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
-        Ok(SysMatrix::Sparse(
-            self.pattern.to_matrix(self.mass_values.clone()),
-        ))
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
-    ) -> Result<(), MbdError> {
-        let np = self.spec.pulleys.len();
-        if np > MAX_PULLEYS {
-            return Err(MbdError::InvalidInput {
-                item: "pulleys".into(),
-                reason: format!("at most {MAX_PULLEYS} supported, got {np}"),
-            });
-        }
-        let mut omegas = [0.0; MAX_PULLEYS];
-        let mut loads = [0.0; MAX_PULLEYS];
-        for p in 0..np {
-            omegas[p] = self.pulley_speed(p, t, v);
-            // load torque and viscous damper: −T_a(t) − c ω
-            loads[p] = -self.spec.pulleys[p].motion.applied_torque(t, omegas[p]).0;
-        }
-        self.forces_with(q, v, &omegas[..np], &loads[..np], f, ws);
-        Ok(())
-    }
-    fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        let omegas = self.speeds(t, v);
-        Ok(Some(self.force_tangent_with(q, v, &omegas, ws)))
-    }
+    crate::mounted::ancf_equations!();
 }
 
 impl BeltDrive {
@@ -776,9 +734,12 @@ impl BeltDrive {
     /// \[rad/s\] and load torques `loads` \[N·m\] (one per pulley; ignored for speed-driven
     /// pulleys): the [`SecondOrderSystem::forces`] of the drive with externally supplied inputs
     /// (used by adapters that schedule the driver speed and the load themselves); `ws` is the
-    /// caller's scratch for this drive.
+    /// caller's scratch for this drive. The time `t` \[s\] is the plate drive's argument
+    /// (its pulley surfaces move); the planar contact does not depend on it.
+    #[allow(clippy::too_many_arguments)] // the state, the pulley inputs, outputs, and the workspace
     pub fn forces_with(
         &self,
+        _t: f64,
         q: &[f64],
         v: &[f64],
         omegas: &[f64],
@@ -825,9 +786,11 @@ impl BeltDrive {
     /// [`SecondOrderSystem::force_tangent`] with the pulleys spinning at the travel-sense
     /// speeds `omegas` \[rad/s\] (one per pulley; for a free pulley it must equal its velocity
     /// coordinate, whose column receives the speed coupling); `ws` is the caller's scratch for
-    /// this drive (it keeps the reused elastic tangent).
+    /// this drive (it keeps the reused elastic tangent). The time `t` \[s\] as in
+    /// [`Self::forces_with`].
     pub fn force_tangent_with(
         &self,
+        _t: f64,
         q: &[f64],
         v: &[f64],
         omegas: &[f64],

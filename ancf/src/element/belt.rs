@@ -2,7 +2,7 @@
 //! beam (12 coordinates) with axial and bending stiffness multipliers `α₁`, `α₂`.
 
 use super::belt_kernel::{self, Constants, KernelPoint};
-use super::{AncfElement, NodeLayout};
+use super::{AncfElement, ElementBody, NodeLayout};
 use crate::autodiff::{Dual, Hyper, Real};
 use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
@@ -34,9 +34,7 @@ const N: usize = 12;
 /// ([`BeltElement::elastic_forces_reference`], [`BeltElement::elastic_tangent_reference`]).
 #[derive(Debug, Clone)]
 pub struct BeltElement {
-    length: f64,
-    material: Material,
-    section: Section,
+    body: ElementBody,
     alpha1: f64,
     alpha2: f64,
     points: Vec<BeltPoint>,
@@ -111,9 +109,12 @@ impl BeltElement {
             law: MaterialLaw::StVenantKirchhoff,
         };
         Ok(Self {
-            length,
-            material,
-            section,
+            body: ElementBody {
+                layout: NodeLayout::PositionBothSlopes,
+                length,
+                material,
+                section,
+            },
             alpha1,
             alpha2,
             points,
@@ -158,14 +159,14 @@ impl BeltElement {
     /// the tangential component of the section force, so `dN/ds = −f_t` and `N κ = f_n` (per
     /// unit length) hold along a wrap where the shear force is constant.
     pub fn axial_force(&self, e: &[f64], xi: f64) -> f64 {
-        let x = xi * self.length;
+        let x = xi * self.body.length;
         let p = KernelPoint {
             xi,
             w: 0.0,
-            sx: shape::cubic(self.length, x, 0.0).sx,
-            sxx: shape::cubic_xx(self.length, x),
+            sx: shape::cubic(self.body.length, x, 0.0).sx,
+            sxx: shape::cubic_xx(self.body.length, x),
         };
-        belt_kernel::axial_force(&self.constants, self.length, &p, e)
+        belt_kernel::axial_force(&self.constants, self.body.length, &p, e)
     }
 
     /// Axial force from the reference energy ([`Self::strain_energy_reference`]'s density, by
@@ -173,9 +174,9 @@ impl BeltElement {
     /// stretches the section without changing `k`, `sin γ`, `(sin γ)_x`, `ε_yy`): the
     /// reference of [`Self::axial_force`] \[N\].
     pub fn axial_force_reference(&self, e: &[f64], xi: f64) -> f64 {
-        let x = xi * self.length;
-        let sx = shape::cubic(self.length, x, 0.0).sx;
-        let sxx = shape::cubic_xx(self.length, x);
+        let x = xi * self.body.length;
+        let sx = shape::cubic(self.body.length, x, 0.0).sx;
+        let sxx = shape::cubic_xx(self.body.length, x);
         let mut ev = [0.0; N];
         ev.copy_from_slice(&e[..N]);
         let nt = Self::nodal(&ev);
@@ -190,7 +191,7 @@ impl BeltElement {
             mu * cst(comb(&sxx, 0)),
             mu * cst(comb(&sxx, 1)),
             cst(nt.sg_i * (1.0 - xi) + nt.sg_j * xi),
-            cst((nt.sg_j - nt.sg_i) / self.length),
+            cst((nt.sg_j - nt.sg_i) / self.body.length),
             cst(nt.ny_i * (1.0 - xi) + nt.ny_j * xi - 1.0),
         ];
         let w = self.density_primary(&prim);
@@ -244,7 +245,7 @@ impl BeltElement {
             comb(&p.sxx, 0),
             comb(&p.sxx, 1),
             nt.sg_i.scale(1.0 - xi) + nt.sg_j.scale(xi),
-            (nt.sg_j - nt.sg_i).scale(1.0 / self.length),
+            (nt.sg_j - nt.sg_i).scale(1.0 / self.body.length),
             nt.ny_i.scale(1.0 - xi) + nt.ny_j.scale(xi) - T::cst(1.0),
         ];
         self.density_primary(&prim)
@@ -274,8 +275,8 @@ impl BeltElement {
         let c = rsx[0] * rsx[0] + rsx[1] * rsx[1];
         let d = rcx[0] * rs[0] + rcx[1] * rs[1];
         let f = rsx[0] * rs[0] + rsx[1] * rs[1];
-        let (ee, s) = (self.material.young, &self.section);
-        let g = self.material.shear_factor * self.material.shear_modulus();
+        let (ee, s) = (self.body.material.young, &self.body.section);
+        let g = self.body.material.shear_factor * self.body.material.shear_modulus();
         let am1 = a - T::cst(1.0);
         let (axial, bend) = match self.law {
             MaterialLaw::StVenantKirchhoff => (
@@ -340,26 +341,14 @@ impl BeltElement {
 }
 
 impl AncfElement for BeltElement {
-    fn layout(&self) -> NodeLayout {
-        NodeLayout::PositionBothSlopes
-    }
-    fn length(&self) -> f64 {
-        self.length
-    }
-    fn density(&self) -> f64 {
-        self.material.density
-    }
-    fn section(&self) -> &Section {
-        &self.section
-    }
-    fn shape(&self, x: f64, y: f64, s: &mut [f64]) {
-        s[..CUBIC_BLOCKS].copy_from_slice(&shape::cubic(self.length, x, y).s);
+    fn body(&self) -> &ElementBody {
+        &self.body
     }
     fn strain_energy(&self, e: &[f64]) -> f64 {
         let mut q = [0.0; N];
         belt_kernel::evaluate(
             &self.constants,
-            self.length,
+            self.body.length,
             &self.kernel_points,
             e,
             &mut q,
@@ -369,7 +358,7 @@ impl AncfElement for BeltElement {
     fn elastic_forces(&self, e: &[f64], q: &mut [f64]) {
         belt_kernel::evaluate(
             &self.constants,
-            self.length,
+            self.body.length,
             &self.kernel_points,
             e,
             q,
@@ -379,7 +368,7 @@ impl AncfElement for BeltElement {
     fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
         belt_kernel::evaluate(
             &self.constants,
-            self.length,
+            self.body.length,
             &self.kernel_points,
             e,
             q,

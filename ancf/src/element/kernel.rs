@@ -6,6 +6,8 @@
 //! Gradient: `∂U/∂e = Σ w σ_k ∂ε_k/∂e`, `σ = Cε`; tangent
 //! `Σ w [ (∂ε/∂e)ᵀ C (∂ε/∂e) + σ_k ∂²ε_k/∂e² ]`, both exact.
 
+use super::{AncfElement, ElementBody};
+
 /// One integration point: weight (including `dx·dA`) and shape derivatives.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct StrainPoint<const N: usize> {
@@ -128,5 +130,32 @@ impl<const N: usize> QuadraticStrainKernel<N> {
                 }
             }
         }
+    }
+}
+
+/// A planar element whose strain energy is this module's quadratic-strain kernel: the
+/// Omar–Shabana beam ([`super::OmarShabanaBeam`], `N = 6` cubic blocks, full continuum energy
+/// (2.16)–(2.17)) and
+/// the proposed beam ([`super::ProposedBeam`], `N = 4` linear blocks, Poisson-free energy
+/// (2.18)–(2.19)), with the elastic forces (2.20) and their exact tangent. Each is built by its
+/// own constructor, which fixes the integration points and the material matrix.
+#[derive(Debug, Clone)]
+pub struct QuadraticStrainBeam<const N: usize> {
+    pub(crate) body: ElementBody,
+    pub(crate) kernel: QuadraticStrainKernel<N>,
+}
+
+impl<const N: usize> AncfElement for QuadraticStrainBeam<N> {
+    fn body(&self) -> &ElementBody {
+        &self.body
+    }
+    fn strain_energy(&self, e: &[f64]) -> f64 {
+        self.kernel.energy(e)
+    }
+    fn elastic_forces(&self, e: &[f64], q: &mut [f64]) {
+        self.kernel.forces(e, q)
+    }
+    fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
+        self.kernel.tangent(e, q, k)
     }
 }

@@ -3,15 +3,19 @@
 
 mod belt;
 mod belt_kernel;
+mod body;
 mod kernel;
 mod omar_shabana;
 mod proposed;
 
 pub use belt::BeltElement;
+pub use body::ElementBody;
+pub use kernel::QuadraticStrainBeam;
 pub use omar_shabana::OmarShabanaBeam;
 pub use proposed::ProposedBeam;
 
 use crate::section::Section;
+use crate::shape::{self, CUBIC_BLOCKS, LINEAR_BLOCKS};
 use contact::GaussRule;
 
 /// Largest number of element coordinates of the planar elements (12).
@@ -52,6 +56,20 @@ impl NodeLayout {
         }
     }
 
+    /// Scalar shape functions `Sₖ(x, y)` of the layout's element family at `x ∈ [0, l]`,
+    /// `y` transverse, into `s[..blocks]`: the linear functions (2.12) of `[r, r_y]` nodes,
+    /// the cubic ones (3.11) with the corrected `S₅` of `[r, r_x, r_y]` nodes.
+    pub fn shape(self, length: f64, x: f64, y: f64, s: &mut [f64]) {
+        match self {
+            NodeLayout::PositionCrossSlope => {
+                s[..LINEAR_BLOCKS].copy_from_slice(&shape::linear(length, x, y).s);
+            }
+            NodeLayout::PositionBothSlopes => {
+                s[..CUBIC_BLOCKS].copy_from_slice(&shape::cubic(length, x, y).s);
+            }
+        }
+    }
+
     /// Offset of the position `r` within a node's coordinates (always 0) and of `r_y`.
     pub fn cross_slope_offset(self) -> usize {
         match self {
@@ -68,20 +86,33 @@ impl NodeLayout {
 /// Element vectors `e` hold `ndof = 2·blocks` coordinates ordered node by node; matrices are
 /// `ndof × ndof`, column-major.
 pub trait AncfElement: Send + Sync {
+    /// Layout, length, material and section of the element.
+    fn body(&self) -> &ElementBody;
     /// Nodal layout.
-    fn layout(&self) -> NodeLayout;
+    fn layout(&self) -> NodeLayout {
+        self.body().layout
+    }
     /// Number of element coordinates.
     fn ndof(&self) -> usize {
         2 * self.layout().coords_per_node()
     }
     /// Reference (stress-free, straight) length `l` \[m\].
-    fn length(&self) -> f64;
+    fn length(&self) -> f64 {
+        self.body().length
+    }
     /// Density \[kg/m³\].
-    fn density(&self) -> f64;
+    fn density(&self) -> f64 {
+        self.body().material.density
+    }
     /// Cross-section.
-    fn section(&self) -> &Section;
-    /// Scalar shape functions `Sₖ(x, y)` (`x ∈ [0, l]`, `y` transverse) into `s[..ndof/2]`.
-    fn shape(&self, x: f64, y: f64, s: &mut [f64]);
+    fn section(&self) -> &Section {
+        &self.body().section
+    }
+    /// Scalar shape functions `Sₖ(x, y)` (`x ∈ [0, l]`, `y` transverse) into `s[..ndof/2]`
+    /// ([`NodeLayout::shape`] of the layout).
+    fn shape(&self, x: f64, y: f64, s: &mut [f64]) {
+        self.layout().shape(self.length(), x, y, s);
+    }
     /// Strain energy `U(e)` \[J\].
     fn strain_energy(&self, e: &[f64]) -> f64;
     /// Elastic forces `Q_e = −(∂U/∂e)ᵀ` (Kerkkänen (2.20)) written into `q` \[N\].

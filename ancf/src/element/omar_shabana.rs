@@ -1,7 +1,7 @@
 //! The Omar–Shabana planar shear-deformable ANCF beam (12 coordinates), Kerkkänen §2.1.
 
-use super::kernel::{QuadraticStrainKernel, StrainPoint};
-use super::{AncfElement, NodeLayout};
+use super::kernel::{QuadraticStrainBeam, QuadraticStrainKernel, StrainPoint};
+use super::{ElementBody, NodeLayout};
 use crate::error::{AncfError, check_positive, invalid};
 use crate::material::Material;
 use crate::section::Section;
@@ -12,13 +12,7 @@ use contact::GaussRule;
 /// functions (3.11) with the corrected `S₅`, full plane continuum energy (2.16)–(2.17) with Lamé
 /// constants (hence Poisson locking for `ν ≠ 0`), closed form over the cross-section and
 /// **four Gauss points along `x`** (Kerkkänen §2.4; seed note §3.1).
-#[derive(Debug, Clone)]
-pub struct OmarShabanaBeam {
-    length: f64,
-    material: Material,
-    section: Section,
-    kernel: QuadraticStrainKernel<CUBIC_BLOCKS>,
-}
+pub type OmarShabanaBeam = QuadraticStrainBeam<CUBIC_BLOCKS>;
 
 impl OmarShabanaBeam {
     /// Element of reference length `length` \[m\] with `gauss_x` points along the axis (4 in the
@@ -49,46 +43,20 @@ impl OmarShabanaBeam {
                 });
             }
         }
+        let c = material.continuum_matrix();
         Ok(Self {
-            length,
-            material,
-            section,
-            kernel: QuadraticStrainKernel {
-                points,
-                c: material.continuum_matrix(),
+            body: ElementBody {
+                layout: NodeLayout::PositionBothSlopes,
+                length,
+                material,
+                section,
             },
+            kernel: QuadraticStrainKernel { points, c },
         })
     }
 
     /// Element with the thesis's 4-point rule along `x`.
     pub fn new(length: f64, material: Material, section: Section) -> Result<Self, AncfError> {
         Self::with_rule(length, material, section, 4)
-    }
-}
-
-impl AncfElement for OmarShabanaBeam {
-    fn layout(&self) -> NodeLayout {
-        NodeLayout::PositionBothSlopes
-    }
-    fn length(&self) -> f64 {
-        self.length
-    }
-    fn density(&self) -> f64 {
-        self.material.density
-    }
-    fn section(&self) -> &Section {
-        &self.section
-    }
-    fn shape(&self, x: f64, y: f64, s: &mut [f64]) {
-        s[..CUBIC_BLOCKS].copy_from_slice(&shape::cubic(self.length, x, y).s);
-    }
-    fn strain_energy(&self, e: &[f64]) -> f64 {
-        self.kernel.energy(e)
-    }
-    fn elastic_forces(&self, e: &[f64], q: &mut [f64]) {
-        self.kernel.forces(e, q)
-    }
-    fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut [f64]) {
-        self.kernel.tangent(e, q, k)
     }
 }

@@ -6,6 +6,7 @@
 
 use crate::sparse::Pattern;
 use belt::Pulley;
+use mbd_core::MbdError;
 use mbd_core::validate::{InvalidField, Validate};
 
 /// Most pulleys of an ANCF belt drive (the contact pass keeps one speed and load per pulley
@@ -96,6 +97,34 @@ impl PulleyCoordinates {
         (0..pulleys.len())
             .map(|p| self.speed(pulleys, p, t, v))
             .collect()
+    }
+
+    /// [`Self::speed`] of every pulley \[rad/s\] and its load `−T_a(t, ω) − c ω` \[N·m\] (the
+    /// applied torque of its [`belt::Motion`], Kerkkänen (3.26)), on the stack: the first
+    /// `pulleys.len()` entries of each array.
+    ///
+    /// # Errors
+    /// [`MbdError::InvalidInput`] for more than [`MAX_PULLEYS`] pulleys.
+    pub fn speeds_and_loads(
+        &self,
+        pulleys: &[Pulley],
+        t: f64,
+        v: &[f64],
+    ) -> Result<([f64; MAX_PULLEYS], [f64; MAX_PULLEYS]), MbdError> {
+        let np = pulleys.len();
+        if np > MAX_PULLEYS {
+            return Err(MbdError::InvalidInput {
+                item: "pulleys".into(),
+                reason: format!("at most {MAX_PULLEYS} supported, got {np}"),
+            });
+        }
+        let mut omegas = [0.0; MAX_PULLEYS];
+        let mut loads = [0.0; MAX_PULLEYS];
+        for (p, pulley) in pulleys.iter().enumerate() {
+            omegas[p] = self.speed(pulleys, p, t, v);
+            loads[p] = -pulley.motion.applied_torque(t, omegas[p]).0;
+        }
+        Ok((omegas, loads))
     }
 
     /// Subtract the load torques `loads` \[N·m\] (one per pulley) from the free pulleys' rows

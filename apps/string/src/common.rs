@@ -4,6 +4,30 @@ use flowing::string_study::{self, Spectrum};
 use flowing::{FlowError, FlowingString, StringConfig};
 use flowmbd_cli::{InputError, StudyError};
 
+/// The flowing-material model's discretisation on the command line of the `modes` and `sweep`
+/// studies (`--nodes`, `--modes`): each given value replaces the configuration's.
+#[derive(clap::Args, Debug, Clone, Copy, Default)]
+pub struct ModelArgs {
+    /// Interior FE nodes.
+    #[arg(long)]
+    pub nodes: Option<usize>,
+    /// Retained modes of the flowing-material model.
+    #[arg(long)]
+    pub modes: Option<usize>,
+}
+
+impl ModelArgs {
+    /// Replace `nodes` and `modes` (a configuration's) by the values given.
+    pub fn apply(&self, nodes: &mut usize, modes: &mut usize) {
+        if let Some(n) = self.nodes {
+            *nodes = n;
+        }
+        if let Some(k) = self.modes {
+            *modes = k;
+        }
+    }
+}
+
 /// Maps library errors to the app's exit-code classes (bad input: 2, numerical: 1).
 pub fn study_error(e: FlowError) -> StudyError {
     match e {

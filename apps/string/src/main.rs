@@ -34,23 +34,15 @@ enum Command {
         /// Axial speed [m/s].
         #[arg(long)]
         speed: Option<f64>,
-        /// Interior FE nodes.
-        #[arg(long)]
-        nodes: Option<usize>,
-        /// Retained modes of the flowing-material model.
-        #[arg(long)]
-        modes: Option<usize>,
+        #[command(flatten)]
+        model: common::ModelArgs,
         #[command(flatten)]
         common: CommonArgs,
     },
     /// Frequencies against axial speed from 0 to past the critical speed (CSV and plot).
     Sweep {
-        /// Interior FE nodes.
-        #[arg(long)]
-        nodes: Option<usize>,
-        /// Retained modes of the flowing-material model.
-        #[arg(long)]
-        modes: Option<usize>,
+        #[command(flatten)]
+        model: common::ModelArgs,
         #[command(flatten)]
         common: CommonArgs,
     },
@@ -78,22 +70,10 @@ fn main() -> ExitCode {
     match cli.study {
         Command::Modes {
             speed,
-            nodes,
-            modes,
+            model,
             common,
-        } => run_study(
-            &modes::ModesStudy {
-                speed,
-                nodes,
-                modes,
-            },
-            &common,
-        ),
-        Command::Sweep {
-            nodes,
-            modes,
-            common,
-        } => run_study(&sweep::SweepStudy { nodes, modes }, &common),
+        } => run_study(&modes::ModesStudy { speed, model }, &common),
+        Command::Sweep { model, common } => run_study(&sweep::SweepStudy { model }, &common),
         Command::Simulate { speed, common } => {
             run_study(&simulate::SimulateStudy { speed }, &common)
         }

@@ -1,15 +1,14 @@
 //! `modes`: damped natural frequencies of the analytical and the flowing-material models
 //! (configuration, summary and computation in [`flowing::string_study`]).
 
-use crate::common::study_error;
+use crate::common::{ModelArgs, study_error};
 use flowing::string_study::{ModesConfig, ModesSummary, string_modes};
 use flowmbd_cli::{Study, StudyContext, StudyError};
 
 /// The `modes` study.
 pub struct ModesStudy {
     pub speed: Option<f64>,
-    pub nodes: Option<usize>,
-    pub modes: Option<usize>,
+    pub model: ModelArgs,
 }
 
 impl Study for ModesStudy {
@@ -26,12 +25,7 @@ impl Study for ModesStudy {
         if let Some(v) = self.speed {
             c.speed = v;
         }
-        if let Some(n) = self.nodes {
-            c.nodes = n;
-        }
-        if let Some(k) = self.modes {
-            c.modes = k;
-        }
+        self.model.apply(&mut c.nodes, &mut c.modes);
     }
 
     fn run(&self, c: &ModesConfig, ctx: &mut StudyContext) -> Result<ModesSummary, StudyError> {

@@ -145,8 +145,7 @@ pub struct SweepSummary {
 
 /// The `sweep` study.
 pub struct SweepStudy {
-    pub nodes: Option<usize>,
-    pub modes: Option<usize>,
+    pub model: ModelArgs,
 }
 
 impl Study for SweepStudy {
@@ -178,12 +177,7 @@ impl Study for SweepStudy {
     }
 
     fn apply_overrides(&self, c: &mut SweepConfig) {
-        if let Some(n) = self.nodes {
-            c.nodes = n;
-        }
-        if let Some(k) = self.modes {
-            c.modes = k;
-        }
+        self.model.apply(&mut c.nodes, &mut c.modes);
     }
 
     fn run(&self, c: &SweepConfig, ctx: &mut StudyContext) -> Result<SweepSummary, StudyError> {

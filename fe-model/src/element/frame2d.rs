@@ -12,7 +12,7 @@
 //!
 //! Global matrices are `Tᵀ k T` with the node rotation `[c s 0; −s c 0; 0 0 1]`.
 
-use super::{MassKind, hermite};
+use super::{FrameElement, MassKind, hermite};
 use crate::FeError;
 use faer::Mat;
 use serde::{Deserialize, Serialize};
@@ -83,20 +83,6 @@ impl Frame2d {
         })
     }
 
-    fn rotation(&self) -> Mat<f64> {
-        let (c, s) = (self.c, self.s);
-        let mut t = Mat::zeros(6, 6);
-        for b in 0..2 {
-            let o = 3 * b;
-            t[(o, o)] = c;
-            t[(o, o + 1)] = s;
-            t[(o + 1, o)] = -s;
-            t[(o + 1, o + 1)] = c;
-            t[(o + 2, o + 2)] = 1.0;
-        }
-        t
-    }
-
     /// Scatter a 2×2 axial block and a 4×4 bending block into local 6×6 order.
     fn local(axial: [[f64; 2]; 2], bend: [[f64; 4]; 4]) -> Mat<f64> {
         let ax = [0usize, 3];
@@ -114,9 +100,28 @@ impl Frame2d {
         }
         k
     }
+}
 
-    /// Local stiffness (element axes).
-    pub fn local_stiffness(&self) -> Mat<f64> {
+impl FrameElement for Frame2d {
+    fn dofs(&self) -> &[usize] {
+        &self.dofs
+    }
+
+    fn rotation(&self) -> Mat<f64> {
+        let (c, s) = (self.c, self.s);
+        let mut t = Mat::zeros(6, 6);
+        for b in 0..2 {
+            let o = 3 * b;
+            t[(o, o)] = c;
+            t[(o, o + 1)] = s;
+            t[(o + 1, o)] = -s;
+            t[(o + 1, o + 1)] = c;
+            t[(o + 2, o + 2)] = 1.0;
+        }
+        t
+    }
+
+    fn local_stiffness(&self) -> Mat<f64> {
         let l = self.length;
         let a = self.section.ea / l;
         Self::local(
@@ -125,16 +130,7 @@ impl Frame2d {
         )
     }
 
-    /// Local geometric stiffness (element axes).
-    pub fn local_geometric_stiffness(&self) -> Mat<f64> {
-        Self::local(
-            [[0.0; 2]; 2],
-            hermite::geometric_stiffness(self.axial_force, self.length),
-        )
-    }
-
-    /// Local mass (element axes).
-    pub fn local_mass(&self, kind: MassKind) -> Mat<f64> {
+    fn local_mass(&self, kind: MassKind) -> Mat<f64> {
         let l = self.length;
         let m = self.section.mass_per_length * l;
         match kind {
@@ -153,6 +149,11 @@ impl Frame2d {
             }
         }
     }
-}
 
-impl_frame_element!(Frame2d);
+    fn local_geometric_stiffness(&self) -> Mat<f64> {
+        Self::local(
+            [[0.0; 2]; 2],
+            hermite::geometric_stiffness(self.axial_force, self.length),
+        )
+    }
+}

@@ -16,7 +16,7 @@
 //! - lumped mass (HRZ): `ρA L/2` per translation, `ρIp L/2` per torsion, `ρA L³/78` per
 //!   bending rotation.
 
-use super::{MassKind, hermite};
+use super::{FrameElement, MassKind, hermite};
 use crate::FeError;
 use faer::Mat;
 use nalgebra::Vector3;
@@ -127,18 +127,6 @@ impl Frame3d {
         })
     }
 
-    fn rotation(&self) -> Mat<f64> {
-        let mut t = Mat::zeros(12, 12);
-        for b in 0..4 {
-            for i in 0..3 {
-                for j in 0..3 {
-                    t[(3 * b + i, 3 * b + j)] = self.axes[i][j];
-                }
-            }
-        }
-        t
-    }
-
     fn put2(k: &mut Mat<f64>, i: usize, j: usize, a: f64) {
         k[(i, i)] += a;
         k[(j, j)] += a;
@@ -153,9 +141,26 @@ impl Frame3d {
             }
         }
     }
+}
 
-    /// Local stiffness (element axes).
-    pub fn local_stiffness(&self) -> Mat<f64> {
+impl FrameElement for Frame3d {
+    fn dofs(&self) -> &[usize] {
+        &self.dofs
+    }
+
+    fn rotation(&self) -> Mat<f64> {
+        let mut t = Mat::zeros(12, 12);
+        for b in 0..4 {
+            for i in 0..3 {
+                for j in 0..3 {
+                    t[(3 * b + i, 3 * b + j)] = self.axes[i][j];
+                }
+            }
+        }
+        t
+    }
+
+    fn local_stiffness(&self) -> Mat<f64> {
         let s = &self.section;
         let l = self.length;
         let mut k = Mat::zeros(12, 12);
@@ -178,18 +183,7 @@ impl Frame3d {
         k
     }
 
-    /// Local geometric stiffness (element axes).
-    pub fn local_geometric_stiffness(&self) -> Mat<f64> {
-        let l = self.length;
-        let b = hermite::geometric_stiffness(self.axial_force, l);
-        let mut k = Mat::zeros(12, 12);
-        Self::put_bend(&mut k, XY, [1.0; 4], b);
-        Self::put_bend(&mut k, XZ, XZ_SIGN, b);
-        k
-    }
-
-    /// Local mass (element axes).
-    pub fn local_mass(&self, kind: MassKind) -> Mat<f64> {
+    fn local_mass(&self, kind: MassKind) -> Mat<f64> {
         let s = &self.section;
         let l = self.length;
         let m = s.mass_per_length * l;
@@ -230,6 +224,13 @@ impl Frame3d {
         }
         k
     }
-}
 
-impl_frame_element!(Frame3d);
+    fn local_geometric_stiffness(&self) -> Mat<f64> {
+        let l = self.length;
+        let b = hermite::geometric_stiffness(self.axial_force, l);
+        let mut k = Mat::zeros(12, 12);
+        Self::put_bend(&mut k, XY, [1.0; 4], b);
+        Self::put_bend(&mut k, XZ, XZ_SIGN, b);
+        k
+    }
+}

@@ -6,35 +6,6 @@
 
 use faer::Mat;
 
-/// [`Element`] of a frame element formulated in its local axes (the frames' `dofs` field and
-/// inherent `local_stiffness`, `local_mass`, `local_geometric_stiffness` and `rotation`): each
-/// global matrix is the congruence `Tᵀ A_local T` of [`transform`] with the element's rotation
-/// `T` (Przemieniecki, Theory of Matrix Structural Analysis, §6.1).
-macro_rules! impl_frame_element {
-    ($frame:ty) => {
-        impl $crate::element::Element for $frame {
-            fn dofs(&self) -> &[usize] {
-                &self.dofs
-            }
-
-            fn stiffness(&self) -> faer::Mat<f64> {
-                $crate::element::transform(&self.local_stiffness(), &self.rotation())
-            }
-
-            fn mass(&self, kind: $crate::element::MassKind) -> faer::Mat<f64> {
-                $crate::element::transform(&self.local_mass(kind), &self.rotation())
-            }
-
-            fn geometric_stiffness(&self) -> Option<faer::Mat<f64>> {
-                Some($crate::element::transform(
-                    &self.local_geometric_stiffness(),
-                    &self.rotation(),
-                ))
-            }
-        }
-    };
-}
-
 pub mod bar;
 pub mod fibre;
 pub mod frame2d;
@@ -111,6 +82,44 @@ pub trait Element: Send + Sync + std::fmt::Debug {
             MatrixKind::Mass(m) => Some(self.mass(m)),
             MatrixKind::Geometric => self.geometric_stiffness(),
         }
+    }
+}
+
+/// A frame element formulated in its local axes: its DOFs, the rotation `T` from global to
+/// local DOFs and its local matrices. Every frame element is an [`Element`] whose global
+/// matrices are the congruences `Tᵀ A_local T` of its local ones
+/// (Przemieniecki, Theory of Matrix Structural Analysis, §6.1).
+pub trait FrameElement: Send + Sync + std::fmt::Debug {
+    /// Global DOF indices of the element, in the order of its matrices.
+    fn dofs(&self) -> &[usize];
+    /// Rotation `T` of the element's DOFs (`u_local = T u_global`).
+    fn rotation(&self) -> Mat<f64>;
+    /// Local elastic stiffness (element axes).
+    fn local_stiffness(&self) -> Mat<f64>;
+    /// Local mass of the requested kind (element axes).
+    fn local_mass(&self, kind: MassKind) -> Mat<f64>;
+    /// Local geometric stiffness of the element's axial force (element axes).
+    fn local_geometric_stiffness(&self) -> Mat<f64>;
+}
+
+impl<F: FrameElement> Element for F {
+    fn dofs(&self) -> &[usize] {
+        FrameElement::dofs(self)
+    }
+
+    fn stiffness(&self) -> Mat<f64> {
+        transform(&self.local_stiffness(), &self.rotation())
+    }
+
+    fn mass(&self, kind: MassKind) -> Mat<f64> {
+        transform(&self.local_mass(kind), &self.rotation())
+    }
+
+    fn geometric_stiffness(&self) -> Option<Mat<f64>> {
+        Some(transform(
+            &self.local_geometric_stiffness(),
+            &self.rotation(),
+        ))
     }
 }
 

@@ -82,7 +82,7 @@ use contact::friction::FrictionSpec;
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use faer::sparse::{SparseColMat, Triplet};
-use fe_model::element::{Frame2d, Frame2dSection};
+use fe_model::element::{Frame2d, Frame2dSection, FrameElement};
 use mbd_core::Workspace;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 

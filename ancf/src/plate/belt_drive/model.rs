@@ -19,7 +19,7 @@ use contact::{BlockShape, GaussRule, QuadPoint, Surface};
 use faer::Mat;
 use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
-use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
+use mbd_core::{SecondOrderSystem, SysMatrix};
 use nalgebra::{Point3, Vector3};
 
 /// Element coordinates.
@@ -714,41 +714,7 @@ impl SecondOrderSystem for PlateBeltDrive {
             format!("coordinate {dof}")
         }
     }
-    fn mass_is_constant(&self) -> bool {
-        true
-    }
-    fn mass(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
-        Ok(SysMatrix::Sparse(
-            self.pattern.to_matrix(self.mass_values.clone()),
-        ))
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
-    ) -> Result<(), MbdError> {
-        let np = self.spec.pulleys.len();
-        let omegas = self.speeds(t, v);
-        // load torque and viscous damper: −T_a(t) − c ω
-        let loads: Vec<f64> = (0..np)
-            .map(|p| -self.spec.pulleys[p].motion.applied_torque(t, omegas[p]).0)
-            .collect();
-        self.forces_with(t, q, v, &omegas, &loads, f, ws);
-        Ok(())
-    }
-    fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
-    ) -> Result<Option<ForceTangent>, MbdError> {
-        let omegas = self.speeds(t, v);
-        Ok(Some(self.force_tangent_with(t, q, v, &omegas, ws)))
-    }
+    crate::mounted::ancf_equations!();
 }
 
 impl PlateBeltDrive {
