@@ -111,6 +111,7 @@ pub use stats::StepStats;
 pub mod dips;
 pub mod rig;
 pub mod spectrum;
+pub mod steady;
 pub mod study;
 
 pub use dips::{
@@ -124,6 +125,10 @@ pub use rig::{
 pub use spectrum::{
     LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation,
     spectrum_grid,
+};
+pub use steady::{
+    SteadyPoint, SteadyResult, SteadyStudyConfig, SteadySummary, cornering_stiffness, run_steady,
+    steady_summary,
 };
 pub use study::{
     CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, cleat_summary, phase_spread,

@@ -350,8 +350,15 @@ pub struct Sample {
     pub fx: f64,
     /// Vertical spindle force `F_y` \[N\].
     pub fy: f64,
-    /// Lateral spindle force \[N\].
+    /// Lateral spindle force \[N\] (along the wheel axis, left positive: ISO 8855 `F_y`).
     pub fz: f64,
+    /// Overturning moment `M_x` of the contact forces about the wheel centre \[N·m\] (ISO 8855
+    /// wheel frame, [`crate::rolling::WheelLoads`]).
+    pub mx: f64,
+    /// Moment `M_y` about the spin axis \[N·m\] (likewise).
+    pub my: f64,
+    /// Aligning moment `M_z` \[N·m\] (likewise).
+    pub mz: f64,
     /// Spin rate \[rad/s\].
     pub spin: f64,
     /// Contact nodes in contact.
@@ -445,6 +452,18 @@ impl RigResult {
             w.iter().map(|s| s.fx).sum::<f64>() / n,
             w.iter().map(|s| s.fy).sum::<f64>() / n,
         ))
+    }
+
+    /// Mean moments `(M_x, M_y, M_z)` of the contact forces about the wheel centre over the
+    /// last `window` seconds before the first cleat contact \[N·m\] (ISO 8855 wheel frame;
+    /// `None` if there are no such samples).
+    pub fn mean_moments_before_cleat(&self, window: f64) -> Option<[f64; 3]> {
+        let b = self.before_cleat();
+        let t_end = b.last()?.t;
+        let w: Vec<&Sample> = b.iter().filter(|s| s.t > t_end - window).collect();
+        let n = w.len() as f64;
+        let m = |f: fn(&Sample) -> f64| w.iter().map(|s| f(s)).sum::<f64>() / n;
+        Some([m(|s| s.mx), m(|s| s.my), m(|s| s.mz)])
     }
 
     /// RMS fluctuations of the recorded `(F_x, F_y)` \[N\].
@@ -565,12 +584,15 @@ pub fn run_cleat_observed(
         observer(k, &sim)?;
         obs_wall += w_obs.elapsed().as_secs_f64();
         obs_cpu += thread_cpu_s().zip(c_obs).map_or(0.0, |(b, a)| b - a);
-        let f = sim.spindle_force();
+        let f = sim.wheel_loads();
         samples.push(Sample {
             t: sim.state.t - cfg.settle_time,
             fx: f.fx,
-            fy: f.fy,
-            fz: f.fz,
+            fy: f.fz,
+            fz: f.fy,
+            mx: f.mx,
+            my: f.my,
+            mz: f.mz,
             spin: sim.state.theta_d,
             active: sim.active_count(),
             normal_sum: sim.total_normal_force(),
