@@ -56,7 +56,7 @@ impl Default for SteadyStudyConfig {
         Self {
             tire: TireSource::default(),
             rig,
-            slip_angles_deg: vec![-1.0, 1.0, 3.0, 8.0],
+            slip_angles_deg: vec![-0.2, 0.2, 1.0, 4.0],
             drive_torques_n_m: vec![-1000.0, 1000.0],
             point_time: 0.3,
             average_time: 0.05,
