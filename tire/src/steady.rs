@@ -38,6 +38,9 @@ pub struct SteadyStudyConfig {
     /// (`point_time`, 0 and the point's input); `ground.cleat` must be off.
     pub rig: RigConfig,
     /// Slip angles of the side-force sweep \[deg\] (each at zero drive torque; within ±45°).
+    /// The cornering stiffness is the secant over the smallest mirrored pair
+    /// ([`cornering_stiffness`]): keep that pair in the linear range (the coarse test tire
+    /// slides nearly over its whole patch at 1°, linear to about 0.2°).
     pub slip_angles_deg: Vec<f64>,
     /// Drive (positive) or brake (negative) torques of the longitudinal sweep \[N·m\] (each at
     /// zero slip angle).
