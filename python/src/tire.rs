@@ -358,8 +358,8 @@ pub fn tire_reduce(py: Python<'_>, config: Option<&str>) -> PyResult<PyReducedTi
 }
 
 /// The force history (the columns of `forces.csv`: t [s], F_x, F_y, F_lateral [N], spin
-/// [rad/s], active contact nodes, Σ normal force [N]) as 7 columns.
-type History = [Vec<f64>; 7];
+/// [rad/s], active contact nodes, Σ normal force [N], M_x, M_y, M_z [N m]) as 10 columns.
+type History = [Vec<f64>; FORCE_COLUMNS.len()];
 
 fn history_of(r: &RigResult) -> History {
     let mut h: History = Default::default();

@@ -24,6 +24,7 @@ fn cleat_position_along_drum_and_road() {
         cfg: GroundConfig::default(),
         top: -0.5,
         speed: 10.0,
+        lateral_speed: 0.0,
         cleat_time: 0.3,
     };
     let period = 2.0 * std::f64::consts::PI * 1.25 / 10.0;

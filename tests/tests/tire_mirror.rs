@@ -125,6 +125,7 @@ fn unsymmetric_tire_or_start_steps_the_full_model() {
         cfg: rc.ground.clone(),
         top: -red.outer_radius,
         speed: 10.0,
+        lateral_speed: 0.0,
         cleat_time: 1.0,
     };
     let sim = RollingTire::new(red, rc.rolling.clone(), ground, 0.0, 0.0, z0, 20.0).unwrap();

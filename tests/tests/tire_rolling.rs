@@ -103,6 +103,7 @@ fn spin_up_with(set: impl Fn(&mut RollingConfig)) -> (Vec<[f64; 3]>, usize) {
         cfg: rc.ground.clone(),
         top: pre.patch.top,
         speed: v,
+        lateral_speed: 0.0,
         cleat_time: 1.0,
     };
     let mut sim = RollingTire::new(

@@ -194,6 +194,7 @@ pub fn enveloping_profile(
             cfg: ground.clone(),
             top: pre.patch.top,
             speed: 1.0,
+            lateral_speed: 0.0,
             cleat_time: x,
         };
         let (lambda, f_c, _) = contact_at(&y, s_c, &g)?;

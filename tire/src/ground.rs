@@ -94,6 +94,14 @@ pub struct Ground {
     pub top: f64,
     /// Surface speed `v` \[m/s\] (material moves towards `−x` at the patch).
     pub speed: f64,
+    /// Lateral velocity of the ground surface along the wheel axis `y` \[m/s\] (0: straight
+    /// ahead). The slip angle α of the wheel over the road (ISO 8855; Pacejka, *Tire and Vehicle
+    /// Dynamics*, §1.2: `tan α = −V_y/|V_x|` with the wheel centre's velocity `V` over the road)
+    /// is set by the road moving at `u = −V = (−v, v tan α, 0)` under the fixed wheel:
+    /// `lateral_speed = v tan α` (see [`crate::rig::WheelInputs`]). It enters the slip velocity
+    /// of the contact nodes only (the geometry is extruded along `y`, so the gaps do not
+    /// depend on it).
+    pub lateral_speed: f64,
     /// Time at which the cleat passes `x = 0` \[s\].
     pub cleat_time: f64,
 }
@@ -178,7 +186,11 @@ impl Ground {
         GroundPoint {
             gap: sp.gap,
             normal: [sp.normal[0], 0.0, sp.normal[1]],
-            velocity: [sp.surface_velocity[0], 0.0, sp.surface_velocity[1]],
+            velocity: [
+                sp.surface_velocity[0],
+                self.lateral_speed,
+                sp.surface_velocity[1],
+            ],
             on_cleat: sp.part == 1,
         }
     }

@@ -102,7 +102,7 @@ pub use dynamics::TireDynamics;
 pub use friction::TireFriction;
 pub use ground::{Ground, GroundConfig, GroundKind};
 pub use mirror::{MirrorHalf, half_tire, mirror_half};
-pub use rolling::{RollingState, RollingTire, SpindleForce, SymmetryUse};
+pub use rolling::{RollingState, RollingTire, SpindleForce, SymmetryUse, WheelLoads};
 pub use rolling_config::{NormalContact, RollingConfig, SpindleForceMethod, Symmetry};
 pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
 pub use stats::StepStats;
@@ -111,6 +111,7 @@ pub use stats::StepStats;
 pub mod dips;
 pub mod rig;
 pub mod spectrum;
+pub mod steady;
 pub mod study;
 
 pub use dips::{
@@ -118,12 +119,16 @@ pub use dips::{
     geometric_envelope_half_length, ground_dips, line_amplitude, local_minima, predict_dips,
 };
 pub use rig::{
-    DampingConfig, ImpactConfig, RigConfig, RigResult, RigStart, Sample, run_cleat,
-    run_cleat_observed, start_rolling,
+    DampingConfig, ImpactConfig, MAX_SLIP_ANGLE_DEG, RigConfig, RigResult, RigStart, Sample,
+    WheelInputs, run_cleat, run_cleat_observed, start_rolling,
 };
 pub use spectrum::{
     LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation,
     spectrum_grid,
+};
+pub use steady::{
+    SteadyPoint, SteadyResult, SteadyStudyConfig, SteadySummary, cornering_stiffness, run_steady,
+    steady_summary,
 };
 pub use study::{
     CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, cleat_summary, phase_spread,

@@ -132,6 +132,64 @@ impl ImpactConfig {
     }
 }
 
+/// Inputs at the wheel (issue 38, item 1): a drive or brake torque on the spin degree of
+/// freedom and a slip angle of the road velocity to the wheel plane. The defaults (zero) are
+/// the free-rolling, straight-ahead wheel of Ribaric §8.3.
+///
+/// Frame and signs: the wheel frame of the rig is the ISO 8855 wheel frame (x forward in the
+/// travel direction, y left along the spin axis, z up), with the wheel centre at its origin.
+/// The wheel rolls forwards with a positive spin rate θ̇ about +y.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct WheelInputs {
+    /// Drive torque on the wheel's spin degree of freedom about +y \[N·m\]: positive drives
+    /// (accelerates the forward spin, `F_x > 0` in the steady state), negative brakes; 0 =
+    /// free rolling. Applied from the start of the run (the tire starts from the free-rolling
+    /// steady state).
+    pub drive_torque: f64,
+    /// Slip angle α \[deg\] (Pacejka, *Tire and Vehicle Dynamics*, §1.2, ISO 8855:
+    /// `tan α = −V_y/|V_x|` with the wheel centre's velocity `V` over the road in the wheel
+    /// frame): the road under the fixed wheel moves at `(−v, v tan α, 0)` (the longitudinal
+    /// speed `v` stays that of `speed_kmh`; [`Ground::lateral_speed`]). A positive α gives a
+    /// positive (leftward) side force `F_y` and, with the pneumatic trail behind the contact
+    /// centre, a negative aligning moment `M_z`. Within ±45°. A non-zero α breaks the mirror
+    /// symmetry: the full model is stepped.
+    pub slip_angle_deg: f64,
+}
+
+impl Default for WheelInputs {
+    fn default() -> Self {
+        Self {
+            drive_torque: 0.0,
+            slip_angle_deg: 0.0,
+        }
+    }
+}
+
+/// Largest slip angle of [`WheelInputs::slip_angle_deg`] \[deg\].
+pub const MAX_SLIP_ANGLE_DEG: f64 = 45.0;
+
+impl Validate for WheelInputs {
+    /// A finite torque and a slip angle within ±[`MAX_SLIP_ANGLE_DEG`].
+    fn validate(&self) -> Result<(), InvalidField> {
+        check::finite("drive_torque", self.drive_torque)?;
+        check::within(
+            "slip_angle_deg",
+            self.slip_angle_deg,
+            -MAX_SLIP_ANGLE_DEG,
+            MAX_SLIP_ANGLE_DEG,
+            "deg",
+        )
+    }
+}
+
+impl WheelInputs {
+    /// The road's lateral velocity `v tan α` \[m/s\] at the longitudinal speed `v` \[m/s\].
+    pub fn lateral_speed(&self, v: f64) -> f64 {
+        v * self.slip_angle_deg.to_radians().tan()
+    }
+}
+
 /// Cleat-test settings (defaults: Ribaric §8.3 at 60 km/h on the drum).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
@@ -152,6 +210,8 @@ pub struct RigConfig {
     pub rolling: RollingConfig,
     /// Sub-stepping through the cleat impact.
     pub impact: ImpactConfig,
+    /// Wheel inputs: drive/brake torque and slip angle (default: free rolling, straight).
+    pub wheel: WheelInputs,
 }
 
 impl Default for RigConfig {
@@ -165,6 +225,7 @@ impl Default for RigConfig {
             damping: DampingConfig::default(),
             rolling: RollingConfig::default(),
             impact: ImpactConfig::default(),
+            wheel: WheelInputs::default(),
         }
     }
 }
@@ -187,6 +248,7 @@ impl Validate for RigConfig {
         self.rolling.validate_within("rolling")?;
         self.ground.validate_within("ground")?;
         self.damping.validate_within("damping")?;
+        self.wheel.validate_within("wheel")?;
         check::positive("speed_kmh", self.speed_kmh, "km/h")?;
         check::positive("load", self.load, "N")?;
         check::non_negative("settle_time", self.settle_time, "s")?;
@@ -288,8 +350,15 @@ pub struct Sample {
     pub fx: f64,
     /// Vertical spindle force `F_y` \[N\].
     pub fy: f64,
-    /// Lateral spindle force \[N\].
+    /// Lateral spindle force \[N\] (along the wheel axis, left positive: ISO 8855 `F_y`).
     pub fz: f64,
+    /// Overturning moment `M_x` of the contact forces about the wheel centre \[N·m\] (ISO 8855
+    /// wheel frame, [`crate::rolling::WheelLoads`]).
+    pub mx: f64,
+    /// Moment `M_y` about the spin axis \[N·m\] (likewise).
+    pub my: f64,
+    /// Aligning moment `M_z` \[N·m\] (likewise).
+    pub mz: f64,
     /// Spin rate \[rad/s\].
     pub spin: f64,
     /// Contact nodes in contact.
@@ -385,6 +454,18 @@ impl RigResult {
         ))
     }
 
+    /// Mean moments `(M_x, M_y, M_z)` of the contact forces about the wheel centre over the
+    /// last `window` seconds before the first cleat contact \[N·m\] (ISO 8855 wheel frame;
+    /// `None` if there are no such samples).
+    pub fn mean_moments_before_cleat(&self, window: f64) -> Option<[f64; 3]> {
+        let b = self.before_cleat();
+        let t_end = b.last()?.t;
+        let w: Vec<&Sample> = b.iter().filter(|s| s.t > t_end - window).collect();
+        let n = w.len() as f64;
+        let m = |f: fn(&Sample) -> f64| w.iter().map(|s| f(s)).sum::<f64>() / n;
+        Some([m(|s| s.mx), m(|s| s.my), m(|s| s.mz)])
+    }
+
     /// RMS fluctuations of the recorded `(F_x, F_y)` \[N\].
     pub fn rms(&self) -> (f64, f64) {
         let r = self.record();
@@ -424,6 +505,7 @@ pub fn start_rolling<'a>(red: &'a ReducedTire, cfg: &RigConfig) -> Result<RigSta
         cfg: cfg.ground.clone(),
         top: pre.patch.top,
         speed: v,
+        lateral_speed: cfg.wheel.lateral_speed(v),
         cleat_time: cfg.settle_time,
     };
     let mut sim = RollingTire::new(
@@ -435,6 +517,7 @@ pub fn start_rolling<'a>(red: &'a ReducedTire, cfg: &RigConfig) -> Result<RigSta
         pre.z.clone(),
         spin,
     )?;
+    sim.drive_torque = cfg.wheel.drive_torque;
     sim.state.lambda = pre.patch.lambda.clone();
     for (k, f) in pre.patch.f_c.iter().enumerate() {
         sim.state.contact_force[k % 3] += f;
@@ -501,12 +584,15 @@ pub fn run_cleat_observed(
         observer(k, &sim)?;
         obs_wall += w_obs.elapsed().as_secs_f64();
         obs_cpu += thread_cpu_s().zip(c_obs).map_or(0.0, |(b, a)| b - a);
-        let f = sim.spindle_force();
+        let f = sim.wheel_loads();
         samples.push(Sample {
             t: sim.state.t - cfg.settle_time,
             fx: f.fx,
-            fy: f.fy,
-            fz: f.fz,
+            fy: f.fz,
+            fz: f.fy,
+            mx: f.mx,
+            my: f.my,
+            mz: f.mz,
             spin: sim.state.theta_d,
             active: sim.active_count(),
             normal_sum: sim.total_normal_force(),

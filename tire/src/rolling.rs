@@ -147,6 +147,40 @@ pub struct SpindleForce {
     pub fz: f64,
 }
 
+/// All six forces and moments on the wheel in the ISO 8855 wheel frame of the rig (x forward
+/// in the travel direction, y left along the spin axis, z up; origin at the wheel centre):
+/// issue 38, item 1.
+///
+/// The forces are today's [`SpindleForce`] (by [`RollingConfig::spindle_force`]) in the ISO
+/// order: `fx` = [`SpindleForce::fx`], `fy` = the lateral [`SpindleForce::fz`], `fz` = the
+/// vertical [`SpindleForce::fy`] (the carried load, positive up). The moments are those of the
+/// contact forces about the wheel centre, `M = Σᵢ xᵢ × (λᵢ nᵢ + fᵢ)` over the contact nodes at
+/// their deformed positions `xᵢ` (normal multiplier `λᵢ` along the ground normal `nᵢ`, friction
+/// force `fᵢ`): the moment of the road on the tire, which in the steady state (constant
+/// angular momentum of the flowing tire) is the moment the tire passes to the wheel; in
+/// transients (the cleat) the tire's rate of angular momentum, not included, adds to it.
+/// `my` includes the moment that balances the drive torque (`my ≈ −drive_torque` plus the
+/// rolling-resistance moment in the steady state). `mz` is the aligning moment; the pneumatic
+/// trail is `t = −M_z/F_y` (Pacejka, *Tire and Vehicle Dynamics*, §1.2: a side force acting
+/// behind the contact centre). Moments about the contact centre (the W-axis system of ISO
+/// 8855, the point of the road below the wheel centre at height `h` below it) follow as
+/// `M_x − h F_y`, `M_y + h F_x`, `M_z`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct WheelLoads {
+    /// Longitudinal force `F_x` (forward positive) \[N\].
+    pub fx: f64,
+    /// Lateral force `F_y` (left positive) \[N\].
+    pub fy: f64,
+    /// Vertical force `F_z` (up positive: the carried load) \[N\].
+    pub fz: f64,
+    /// Overturning moment `M_x` about the wheel centre \[N·m\].
+    pub mx: f64,
+    /// Moment `M_y` about the spin axis at the wheel centre \[N·m\].
+    pub my: f64,
+    /// Aligning moment `M_z` about the vertical through the wheel centre \[N·m\].
+    pub mz: f64,
+}
+
 /// The reduced tire rolling on a ground, with the spindle fixed: [`TireDynamics`] stepped by
 /// mbd-core's [`AlphaStepper`] with the contact [`TireContact`] as its step correction.
 ///
@@ -272,6 +306,13 @@ impl<'a> RollingTire<'a> {
                 .collect::<Vec<f64>>();
             let half = match cfg.symmetry {
                 Symmetry::Off => None,
+                Symmetry::Auto if ground.lateral_speed != 0.0 => {
+                    symmetry = SymmetryUse::Full(
+                        "the road's lateral velocity (slip angle) breaks the mirror symmetry"
+                            .into(),
+                    );
+                    None
+                }
                 Symmetry::Auto => match symmetric_half(&modal.tire, &y0) {
                     Ok(h) => Some(h),
                     Err(reason) => {
@@ -493,6 +534,45 @@ impl<'a> RollingTire<'a> {
             fx: f[0],
             fy: f[2],
             fz: f[1],
+        }
+    }
+
+    /// All six spindle forces and moments in the ISO 8855 wheel frame ([`WheelLoads`]): the
+    /// forces of [`RollingTire::spindle_force`] and the moments of the contact forces about
+    /// the wheel centre (deformed positions of the nodes in contact only).
+    pub fn wheel_loads(&self) -> WheelLoads {
+        let f = self.spindle_force();
+        let red = self.sys.reduced();
+        let st = &self.state;
+        let mut m = [0.0; 3];
+        for (i, &l) in st.lambda.iter().enumerate() {
+            let fr = st.friction[i];
+            if l == 0.0 && fr == [0.0; 3] {
+                continue;
+            }
+            let s = red.contact_positions[i];
+            let mut x = [0.0; 3];
+            for (c, xc) in x.iter_mut().enumerate() {
+                let row = red.tc.row(3 * i + c);
+                let mut d = 0.0;
+                for (j, zj) in st.z.iter().enumerate() {
+                    d += row[j] * zj;
+                }
+                *xc = s[c] + d;
+            }
+            let n = self.ground().query(st.t, x).normal;
+            let g = [l * n[0] + fr[0], l * n[1] + fr[1], l * n[2] + fr[2]];
+            m[0] += x[1] * g[2] - x[2] * g[1];
+            m[1] += x[2] * g[0] - x[0] * g[2];
+            m[2] += x[0] * g[1] - x[1] * g[0];
+        }
+        WheelLoads {
+            fx: f.fx,
+            fy: f.fz,
+            fz: f.fy,
+            mx: m[0],
+            my: m[1],
+            mz: m[2],
         }
     }
 

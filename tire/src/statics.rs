@@ -124,6 +124,7 @@ pub fn solve_patch(
         cfg: cfg.clone(),
         top,
         speed: 0.0,
+        lateral_speed: 0.0,
         cleat_time: 0.0,
     };
     let force = |top: f64| -> Result<(f64, ContactState), TireError> {

@@ -247,6 +247,13 @@ pub struct CleatSummary {
     pub fy_mean_before_n: f64,
     /// Mean longitudinal spindle force before the cleat (rolling resistance) \[N\].
     pub fx_mean_before_n: f64,
+    /// Mean moments of the contact forces about the wheel centre before the cleat, ISO 8855
+    /// wheel frame (x forward, y left, z up): overturning `M_x` \[N·m\].
+    pub mx_mean_before_n_m: f64,
+    /// Mean `M_y` about the spin axis before the cleat (rolling-resistance moment) \[N·m\].
+    pub my_mean_before_n_m: f64,
+    /// Mean aligning moment `M_z` before the cleat \[N·m\].
+    pub mz_mean_before_n_m: f64,
     /// Preload \[N\].
     pub load_n: f64,
     /// Rayleigh α \[1/s\], β \[s\].
@@ -332,6 +339,7 @@ pub fn summarize(r: &RigResult) -> CleatSummary {
     // the steadily rolling tire: the last 50 ms before the first node touches the cleat (the
     // cleat enters the patch (L/2 + r)/v before it reaches the patch centre at t = 0)
     let before = r.mean_before_cleat(0.05).unwrap_or((0.0, 0.0));
+    let moments = r.mean_moments_before_cleat(0.05).unwrap_or([0.0; 3]);
     let fy_peak_hz = sy.interpolated_peak(band[0], band[1]).map_or(0.0, |p| p.0);
     let fx_peak_hz = sx.interpolated_peak(band[0], band[1]).map_or(0.0, |p| p.0);
     // the line's rms over the band about the peak bin (the band's bins are the same as before
@@ -357,6 +365,9 @@ pub fn summarize(r: &RigResult) -> CleatSummary {
         preload_deflection_m: r.preload.deflection,
         fy_mean_before_n: before.1,
         fx_mean_before_n: before.0,
+        mx_mean_before_n_m: moments[0],
+        my_mean_before_n_m: moments[1],
+        mz_mean_before_n_m: moments[2],
         load_n: r.load,
         rayleigh: [r.rayleigh.alpha, r.rayleigh.beta],
         steps: r.samples.len(),
@@ -384,8 +395,11 @@ pub fn cleat_summary(red: &ReducedTire, r: &RigResult) -> CleatSummary {
 /// Columns of the cleat test's force history (`forces.csv` of `flowmbd-tire cleat`, the
 /// `forces` of `flowmbd.tire.cleat`): time from the cleat hit \[s\], the spindle forces
 /// `F_x`, `F_y`, `F_lateral` \[N\], the spin rate \[rad/s\], the active contact nodes and
-/// their total normal force \[N\].
-pub const FORCE_COLUMNS: [&str; 7] = [
+/// their total normal force \[N\], and the moments `M_x`, `M_y`, `M_z` of the contact forces
+/// about the wheel centre \[N·m\] in the ISO 8855 wheel frame (x forward, y left, z up;
+/// [`crate::rolling::WheelLoads`]). (The force columns keep their names: `fy_N` is the
+/// vertical force, ISO `F_z`, and `f_lateral_N` the lateral one, ISO `F_y`.)
+pub const FORCE_COLUMNS: [&str; 10] = [
     "t_s",
     "fx_N",
     "fy_N",
@@ -393,6 +407,9 @@ pub const FORCE_COLUMNS: [&str; 7] = [
     "spin_rad_per_s",
     "active_nodes_count",
     "normal_sum_N",
+    "mx_N_m",
+    "my_N_m",
+    "mz_N_m",
 ];
 
 /// Columns of the cleat test's amplitude spectra after the hit (`spectra.csv` of
@@ -403,20 +420,34 @@ pub const SPECTRUM_COLUMNS: [&str; 3] = ["f_Hz", "fx_amp_N", "fy_amp_N"];
 /// The [`FORCE_COLUMNS`] row of the rolling tire after a step (a run's observer; `settle` is
 /// the rig's `settle_time`, so that the cleat hits at `t = 0`): the same numbers as the step's
 /// [`Sample`].
-pub fn force_row(sim: &RollingTire, settle: f64) -> [f64; 7] {
-    let f = sim.spindle_force();
+pub fn force_row(sim: &RollingTire, settle: f64) -> [f64; 10] {
+    let f = sim.wheel_loads();
     [
         sim.state.t - settle,
         f.fx,
-        f.fy,
         f.fz,
+        f.fy,
         sim.state.theta_d,
         sim.active_count() as f64,
         sim.total_normal_force(),
+        f.mx,
+        f.my,
+        f.mz,
     ]
 }
 
 /// The [`FORCE_COLUMNS`] row of a recorded sample.
-pub fn sample_row(s: &Sample) -> [f64; 7] {
-    [s.t, s.fx, s.fy, s.fz, s.spin, s.active as f64, s.normal_sum]
+pub fn sample_row(s: &Sample) -> [f64; 10] {
+    [
+        s.t,
+        s.fx,
+        s.fy,
+        s.fz,
+        s.spin,
+        s.active as f64,
+        s.normal_sum,
+        s.mx,
+        s.my,
+        s.mz,
+    ]
 }

@@ -8,6 +8,8 @@
 //! - `pressure`: the patch force distribution on the drum and on a flat road (Fig. 8-12);
 //! - `rotating-modes`: complex modes of the rolling tire in the ground frame at several speeds
 //!   (forward/backward waves, Campbell diagram);
+//! - `steady`: steady-state side force, aligning moment and longitudinal force on a flat road
+//!   over slip angle and drive torque (issue 38);
 //! - `dips`: the speed dips of the cleat test, predicted from the enveloping profile and the
 //!   loaded vertical mode, and measured by a sweep (drum and road).
 
@@ -23,6 +25,7 @@ mod modes;
 mod pressure;
 mod reduce;
 mod rotating;
+mod steady;
 mod sweep;
 
 /// Reduced FE tire studies of the flowmbd toolkit.
@@ -51,6 +54,9 @@ enum Study {
     /// Speed dips of the cleat test: enveloping-filter prediction and cleat sweep, drum and
     /// road (Ribaric §8.3, §8.5).
     Dips(dips::Args),
+    /// Steady-state characteristics on a flat road: Fy and Mz against slip angle, cornering
+    /// stiffness, pneumatic trail, Fx against longitudinal slip (issue 38).
+    Steady(steady::Args),
 }
 
 fn main() -> ExitCode {
@@ -63,6 +69,7 @@ fn main() -> ExitCode {
         Some(Study::Pressure(a)) => pressure::run(&a),
         Some(Study::RotatingModes(a)) => rotating::run(&a),
         Some(Study::Dips(a)) => dips::run(&a),
+        Some(Study::Steady(a)) => steady::run(&a),
         None => cleat::run(&cleat::Args::default()),
     }
 }

@@ -20,6 +20,7 @@ const STUDIES: &[&str] = &[
     "pressure",
     "rotating-modes",
     "dips",
+    "steady",
 ];
 
 proptest! {

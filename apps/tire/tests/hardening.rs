@@ -178,6 +178,7 @@ fn every_table_rejects_an_unknown_key() {
         "pressure",
         "rotating-modes",
         "dips",
+        "steady",
     ] {
         let (code, text, err) = outcome(&run(&[study, "--print-config"]));
         assert_eq!(code, 0, "{err}");

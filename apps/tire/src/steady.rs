@@ -1,0 +1,113 @@
+//! `flowmbd-tire steady`: steady-state force and moment characteristics of the rolling tire on
+//! a flat road (issue 38): side force `F_y(α)`, aligning moment `M_z(α)`, cornering stiffness
+//! and pneumatic trail over a slip-angle sweep, `F_x(κ)` over a drive/brake torque sweep
+//! ([`tire::steady`]).
+
+use crate::common::{TireSourceExt, tire_err};
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
+use std::process::ExitCode;
+use tire::steady::{STEADY_COLUMNS, STEADY_MEANING, steady_row};
+use tire::{SteadyStudyConfig as Config, SteadySummary as Summary, run_steady, steady_summary};
+
+/// Command-line arguments.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    common: CommonArgs,
+    /// Coulomb friction coefficient (overrides `rig.rolling.friction`).
+    #[arg(long)]
+    friction: Option<f64>,
+    /// Speed [km/h] (overrides `rig.speed_kmh`).
+    #[allow(rustdoc::broken_intra_doc_links)]
+    #[arg(long)]
+    speed: Option<f64>,
+}
+
+struct Steady {
+    friction: Option<f64>,
+    speed: Option<f64>,
+}
+
+impl Study for Steady {
+    type Config = Config;
+    type Summary = Summary;
+    const APP: &'static str = "tire";
+    const NAME: &'static str = "steady";
+
+    fn meaning(&self) -> &'static str {
+        STEADY_MEANING
+    }
+
+    fn config_notes(&self, c: &Config) -> String {
+        crate::common::import_notes(&c.tire)
+    }
+
+    fn apply_overrides(&self, c: &mut Config) {
+        if let Some(mu) = self.friction {
+            c.rig.rolling.friction = mu;
+        }
+        if let Some(v) = self.speed {
+            c.rig.speed_kmh = v;
+        }
+    }
+
+    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+        let red = c.tire.reduced(ctx.quiet)?;
+        let bar = ctx.progress(1.0, "steady sweep");
+        let r = run_steady(&red, c, &mut |f| bar.set(f)).map_err(tire_err)?;
+        bar.finish();
+        let s = steady_summary(c, &r);
+        ctx.out.write_csv(
+            "points.csv",
+            &STEADY_COLUMNS,
+            s.points.iter().map(|p| steady_row(p).to_vec()),
+        )?;
+        // F_y(α) and M_z(α) with the free-rolling point, in the order of α
+        let mut by_alpha: Vec<(f64, f64, f64)> = std::iter::once(&r.free_rolling)
+            .chain(&r.slip)
+            .map(|p| (p.slip_angle_deg, p.loads.fy, p.loads.mz))
+            .collect();
+        by_alpha.sort_by(|a, b| a.0.total_cmp(&b.0));
+        LinePlot::new("Side force against slip angle", "alpha [deg]", "Fy [N]")
+            .with(Series::line(
+                "Fy",
+                by_alpha.iter().map(|p| (p.0, p.1)).collect(),
+            ))
+            .save(&ctx.out.path("fy_alpha"))?;
+        LinePlot::new(
+            "Aligning moment against slip angle",
+            "alpha [deg]",
+            "Mz [N m]",
+        )
+        .with(Series::line(
+            "Mz",
+            by_alpha.iter().map(|p| (p.0, p.2)).collect(),
+        ))
+        .save(&ctx.out.path("mz_alpha"))?;
+        let mut by_kappa: Vec<(f64, f64)> = std::iter::once(&r.free_rolling)
+            .chain(&r.torque)
+            .map(|p| (p.kappa, p.loads.fx))
+            .collect();
+        by_kappa.sort_by(|a, b| a.0.total_cmp(&b.0));
+        LinePlot::new(
+            "Longitudinal force against longitudinal slip",
+            "kappa [-]",
+            "Fx [N]",
+        )
+        .with(Series::line("Fx", by_kappa))
+        .save(&ctx.out.path("fx_kappa"))?;
+        Ok(s)
+    }
+}
+
+/// Run the study.
+pub fn run(args: &Args) -> ExitCode {
+    run_study(
+        &Steady {
+            friction: args.friction,
+            speed: args.speed,
+        },
+        &args.common,
+    )
+}

@@ -1,0 +1,448 @@
+//! Steady-state force and moment characteristics of the rolling tire on a flat road (issue 38,
+//! items 1 and 5): the side force `F_y(α)` and aligning moment `M_z(α)` over a sweep of slip
+//! angles, and the longitudinal force `F_x(κ)` over a sweep of drive/brake torques, each point
+//! settled on the same rig and time stepper as the cleat test ([`crate::rig::run_cleat`]
+//! without a cleat, [`crate::rig::WheelInputs`] set per point).
+//!
+//! Frame and signs: the ISO 8855 wheel frame of [`WheelLoads`] (x forward, y left, z up, origin
+//! at the wheel centre). Slip definitions of Pacejka, *Tire and Vehicle Dynamics* (§1.2):
+//! slip angle `tan α = −V_y/|V_x|`, longitudinal slip `κ = −(V_x − Ω R_e)/V_x` with the
+//! effective rolling radius `R_e = V_x/Ω₀` of the free-rolling wheel (spin rate `Ω₀` of the
+//! free-rolling point), so `κ = Ω/Ω₀ − 1`. Cornering stiffness `C_Fα = dF_y/dα` at α = 0
+//! \[N/rad\], pneumatic trail `t = −M_z/F_y` \[m\].
+//!
+//! Each point starts from the free-rolling steady state of the preload (`preload_rolling`),
+//! applies its input at `t = 0` and rolls for `point_time`; its loads are the means over the
+//! last `average_time`.
+
+use crate::error::TireError;
+use crate::ground::GroundKind;
+use crate::reduced::ReducedTire;
+use crate::rig::{MAX_RIG_STEPS, RigConfig, run_cleat};
+use crate::rolling::WheelLoads;
+use crate::source::TireSource;
+use mbd_core::validate::{InvalidField, Validate, check};
+use serde::{Deserialize, Serialize};
+
+/// Most points of one steady sweep (slip angles plus torques plus the free-rolling point).
+pub const MAX_STEADY_POINTS: usize = 1000;
+
+/// Configuration of the steady-state study (`flowmbd-tire steady`).
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields)]
+pub struct SteadyStudyConfig {
+    /// The tire.
+    pub tire: TireSource,
+    /// The rig: load, speed, friction, damping and integration (default: flat road without
+    /// cleat at 60 km/h). Its `settle_time`, `record_time` and `wheel` are replaced per point
+    /// (`point_time`, 0 and the point's input); `ground.cleat` must be off.
+    pub rig: RigConfig,
+    /// Slip angles of the side-force sweep \[deg\] (each at zero drive torque; within ±45°).
+    /// The cornering stiffness is the secant over the smallest mirrored pair
+    /// ([`cornering_stiffness`]): keep that pair in the linear range (the coarse test tire
+    /// slides nearly over its whole patch at 1°, linear to about 0.2°).
+    pub slip_angles_deg: Vec<f64>,
+    /// Drive (positive) or brake (negative) torques of the longitudinal sweep \[N·m\] (each at
+    /// zero slip angle).
+    pub drive_torques_n_m: Vec<f64>,
+    /// Simulated time of each point from the free-rolling start \[s\].
+    pub point_time: f64,
+    /// The point's loads are the means over its last `average_time` \[s\].
+    pub average_time: f64,
+}
+
+impl Default for SteadyStudyConfig {
+    fn default() -> Self {
+        let mut rig = RigConfig::default();
+        rig.ground.kind = GroundKind::Road;
+        rig.ground.cleat = false;
+        Self {
+            tire: TireSource::default(),
+            rig,
+            slip_angles_deg: vec![-0.2, 0.2, 1.0, 4.0],
+            drive_torques_n_m: vec![-1000.0, 1000.0],
+            point_time: 0.3,
+            average_time: 0.05,
+        }
+    }
+}
+
+impl mbd_core::config::PartialRules for SteadyStudyConfig {}
+
+impl Validate for SteadyStudyConfig {
+    /// The tire, the rig (`rig.…`), finite slip angles within ±45° and torques, at most
+    /// [`MAX_STEADY_POINTS`] points, a positive `point_time` of at least 2 steps (and at most
+    /// the rig's step limit), `average_time` in (0, `point_time`], no cleat.
+    fn validate(&self) -> Result<(), InvalidField> {
+        self.tire.validate_within("tire")?;
+        self.rig.validate_within("rig")?;
+        if self.rig.ground.cleat {
+            return Err(InvalidField::new(
+                "rig.ground.cleat",
+                "must be false: the steady study rolls on the plain drum or road",
+            ));
+        }
+        let n = self.slip_angles_deg.len() + self.drive_torques_n_m.len() + 1;
+        check::size("slip_angles_deg", n, 1, MAX_STEADY_POINTS)?;
+        for (i, a) in self.slip_angles_deg.iter().enumerate() {
+            let max = crate::rig::MAX_SLIP_ANGLE_DEG;
+            check::within(&format!("slip_angles_deg[{i}]"), *a, -max, max, "deg")?;
+        }
+        for (i, t) in self.drive_torques_n_m.iter().enumerate() {
+            check::finite(&format!("drive_torques_n_m[{i}]"), *t)?;
+        }
+        check::positive("point_time", self.point_time, "s")?;
+        check::positive("average_time", self.average_time, "s")?;
+        let h = self.rig.rolling.time_step;
+        if self.point_time < 2.0 * h {
+            return Err(InvalidField::new(
+                "point_time",
+                format!(
+                    "{} s is less than 2 steps of rig.rolling.time_step = {} s",
+                    check::show(self.point_time),
+                    check::show(h)
+                ),
+            ));
+        }
+        if self.point_time / h > MAX_RIG_STEPS {
+            return Err(InvalidField::new(
+                "point_time",
+                format!(
+                    "{} s is more than {MAX_RIG_STEPS:e} steps of {} s",
+                    check::show(self.point_time),
+                    check::show(h)
+                ),
+            ));
+        }
+        if self.average_time > self.point_time {
+            return Err(InvalidField::new(
+                "average_time",
+                format!(
+                    "{} s is longer than point_time = {} s",
+                    check::show(self.average_time),
+                    check::show(self.point_time)
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One settled point of the sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SteadyPoint {
+    /// Slip angle α \[deg\].
+    pub slip_angle_deg: f64,
+    /// Drive torque \[N·m\].
+    pub drive_torque_n_m: f64,
+    /// Longitudinal slip `κ = Ω/Ω₀ − 1` against the free-rolling spin rate `Ω₀` \[-\].
+    pub kappa: f64,
+    /// Mean spin rate Ω \[rad/s\].
+    pub spin_rad_per_s: f64,
+    /// Mean loads over the last `average_time` (ISO 8855 wheel frame, [`WheelLoads`]).
+    pub loads: WheelLoads,
+    /// Largest minus smallest `F_y` over the averaging window \[N\] (how settled the point is;
+    /// likewise for the torque points' `F_x`).
+    pub spread_n: f64,
+    /// Sum of the normal contact forces at the end \[N\].
+    pub normal_sum_n: f64,
+    /// Contact nodes in contact at the end.
+    pub active_nodes: usize,
+}
+
+/// Result of the steady-state sweep.
+#[derive(Debug, Clone, Serialize)]
+pub struct SteadyResult {
+    /// The free-rolling, straight-ahead point (α = 0, no torque): the reference `Ω₀` of κ and
+    /// the cleat study's steady rolling (its `F_x`, `F_z` are the cleat path's spindle forces).
+    pub free_rolling: SteadyPoint,
+    /// The slip-angle points in the order of `slip_angles_deg`.
+    pub slip: Vec<SteadyPoint>,
+    /// The torque points in the order of `drive_torques_n_m`.
+    pub torque: Vec<SteadyPoint>,
+    /// Model stepped at the slip-angle points (full model when α ≠ 0).
+    pub symmetry: String,
+}
+
+/// Cornering stiffness `C_Fα = dF_y/dα` at α = 0 \[N/rad\] from the points `(α [deg], F_y)`
+/// with the free-rolling point `(0, fy0)`: the central difference over `±α₁` for the smallest
+/// `|α₁| > 0` whose mirror is in the sweep, else the one-sided difference to α = 0 over the
+/// smallest `|α|`. `None` without a non-zero slip angle.
+pub fn cornering_stiffness(points: &[(f64, f64)], fy0: f64) -> Option<f64> {
+    let nz: Vec<&(f64, f64)> = points.iter().filter(|p| p.0 != 0.0).collect();
+    let smallest = |ps: &[&(f64, f64)]| {
+        ps.iter()
+            .copied()
+            .min_by(|a, b| a.0.abs().total_cmp(&b.0.abs()))
+            .copied()
+    };
+    let paired: Vec<&(f64, f64)> = nz
+        .iter()
+        .copied()
+        .filter(|p| p.0 > 0.0 && nz.iter().any(|q| q.0 == -p.0))
+        .collect();
+    if let Some(p) = smallest(&paired) {
+        let q = nz.iter().find(|q| q.0 == -p.0)?;
+        return Some((p.1 - q.1) / (2.0 * p.0.to_radians()));
+    }
+    let p = smallest(&nz)?;
+    Some((p.1 - fy0) / p.0.to_radians())
+}
+
+impl SteadyResult {
+    /// Cornering stiffness `dF_y/dα` at α = 0 \[N/rad\] ([`cornering_stiffness`]).
+    pub fn cornering_stiffness(&self) -> Option<f64> {
+        let pts: Vec<(f64, f64)> = self
+            .slip
+            .iter()
+            .map(|p| (p.slip_angle_deg, p.loads.fy))
+            .collect();
+        cornering_stiffness(&pts, self.free_rolling.loads.fy)
+    }
+
+    /// Pneumatic trail `t = −M_z/F_y` \[m\] of each slip-angle point (`NaN` where `F_y = 0`).
+    pub fn pneumatic_trail(&self) -> Vec<f64> {
+        self.slip
+            .iter()
+            .map(|p| {
+                if p.loads.fy == 0.0 {
+                    f64::NAN
+                } else {
+                    -p.loads.mz / p.loads.fy
+                }
+            })
+            .collect()
+    }
+}
+
+/// Run one point: the rig of `cfg` with the wheel inputs `(α [deg], torque [N·m])`, the means
+/// over the last `average_time`. `omega0` is the free-rolling spin rate for κ (`None`: this
+/// is the free-rolling point, κ = 0).
+fn run_point(
+    red: &ReducedTire,
+    cfg: &SteadyStudyConfig,
+    alpha_deg: f64,
+    torque: f64,
+    omega0: Option<f64>,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(SteadyPoint, String), TireError> {
+    let mut rig = cfg.rig.clone();
+    rig.settle_time = cfg.point_time;
+    rig.record_time = 0.0;
+    rig.wheel.slip_angle_deg = alpha_deg;
+    rig.wheel.drive_torque = torque;
+    // (the rig names its fields relative to itself; the study's root has them under `rig.`)
+    let r = run_cleat(red, &rig, progress).map_err(|e| match e {
+        TireError::Invalid { item, reason } => TireError::Invalid {
+            item: format!("rig.{item}"),
+            reason,
+        },
+        other => other,
+    })?;
+    let t_end = r.samples.last().map_or(0.0, |s| s.t);
+    let w: Vec<_> = r
+        .samples
+        .iter()
+        .filter(|s| s.t > t_end - cfg.average_time)
+        .collect();
+    let n = w.len().max(1) as f64;
+    let mean = |f: &dyn Fn(&crate::rig::Sample) -> f64| w.iter().map(|s| f(s)).sum::<f64>() / n;
+    let loads = WheelLoads {
+        fx: mean(&|s| s.fx),
+        fy: mean(&|s| s.fz),
+        fz: mean(&|s| s.fy),
+        mx: mean(&|s| s.mx),
+        my: mean(&|s| s.my),
+        mz: mean(&|s| s.mz),
+    };
+    let spin = mean(&|s| s.spin);
+    let watch = |s: &crate::rig::Sample| if torque != 0.0 { s.fx } else { s.fz };
+    let hi = w.iter().map(|s| watch(s)).fold(f64::MIN, f64::max);
+    let lo = w.iter().map(|s| watch(s)).fold(f64::MAX, f64::min);
+    let last = r.samples.last();
+    Ok((
+        SteadyPoint {
+            slip_angle_deg: alpha_deg,
+            drive_torque_n_m: torque,
+            kappa: omega0.map_or(0.0, |o| spin / o - 1.0),
+            spin_rad_per_s: spin,
+            loads,
+            spread_n: if w.is_empty() { 0.0 } else { hi - lo },
+            normal_sum_n: last.map_or(0.0, |s| s.normal_sum),
+            active_nodes: last.map_or(0, |s| s.active),
+        },
+        r.symmetry,
+    ))
+}
+
+/// Run the steady-state sweep of `cfg` on the reduced tire `red` (module documentation): the
+/// free-rolling point, then every slip angle, then every torque. `progress` receives the
+/// fraction done (0..1). The settings are validated first ([`SteadyStudyConfig`]'s
+/// [`Validate`]; errors name the field relative to the study's root).
+pub fn run_steady(
+    red: &ReducedTire,
+    cfg: &SteadyStudyConfig,
+    progress: &mut dyn FnMut(f64),
+) -> Result<SteadyResult, TireError> {
+    cfg.validate()?;
+    let total = (1 + cfg.slip_angles_deg.len() + cfg.drive_torques_n_m.len()) as f64;
+    let mut k = 0.0;
+    let (free, _) = run_point(red, cfg, 0.0, 0.0, None, &mut |f| progress(f / total))?;
+    k += 1.0;
+    let omega0 = free.spin_rad_per_s;
+    let mut slip = Vec::with_capacity(cfg.slip_angles_deg.len());
+    let mut symmetry = String::new();
+    for &a in &cfg.slip_angles_deg {
+        let (p, s) = run_point(red, cfg, a, 0.0, Some(omega0), &mut |f| {
+            progress((k + f) / total)
+        })?;
+        k += 1.0;
+        if a != 0.0 || symmetry.is_empty() {
+            symmetry = s;
+        }
+        slip.push(p);
+    }
+    let mut torque = Vec::with_capacity(cfg.drive_torques_n_m.len());
+    for &t in &cfg.drive_torques_n_m {
+        let (p, _) = run_point(red, cfg, 0.0, t, Some(omega0), &mut |f| {
+            progress((k + f) / total)
+        })?;
+        k += 1.0;
+        torque.push(p);
+    }
+    progress(1.0);
+    Ok(SteadyResult {
+        free_rolling: free,
+        slip,
+        torque,
+        symmetry,
+    })
+}
+
+/// Summary of the steady-state study (`summary.json` of `flowmbd-tire steady`).
+#[derive(Debug, Serialize)]
+pub struct SteadySummary {
+    /// Speed \[km/h\].
+    pub speed_kmh: f64,
+    /// Preload \[N\].
+    pub load_n: f64,
+    /// Friction coefficient μ \[-\].
+    pub friction: f64,
+    /// Cornering stiffness `dF_y/dα` at α = 0 \[N/rad\] (`null` without a slip angle).
+    pub cornering_stiffness_n_per_rad: Option<f64>,
+    /// Slip angles \[deg\].
+    pub slip_angle_deg: Vec<f64>,
+    /// Side force `F_y(α)` \[N\].
+    pub fy_n: Vec<f64>,
+    /// Aligning moment `M_z(α)` \[N·m\].
+    pub mz_n_m: Vec<f64>,
+    /// Vertical force `F_z` at each slip angle \[N\].
+    pub fz_n: Vec<f64>,
+    /// Pneumatic trail `−M_z/F_y` at each slip angle \[m\].
+    pub pneumatic_trail_m: Vec<f64>,
+    /// `|F_y|/(μ F_z)` at each slip angle \[-\] (at most 1 by Coulomb's law).
+    pub fy_over_mu_fz: Vec<f64>,
+    /// Drive torques \[N·m\].
+    pub drive_torque_n_m: Vec<f64>,
+    /// Longitudinal slip κ at each torque \[-\].
+    pub kappa: Vec<f64>,
+    /// Longitudinal force `F_x(κ)` \[N\].
+    pub fx_n: Vec<f64>,
+    /// Free-rolling point: `F_x` (rolling resistance) \[N\], `F_z` \[N\], spin rate `Ω₀`
+    /// \[rad/s\] and effective rolling radius `R_e = V_x/Ω₀` \[m\].
+    pub free_rolling_fx_n: f64,
+    /// `F_z` of the free-rolling point \[N\].
+    pub free_rolling_fz_n: f64,
+    /// `Ω₀` \[rad/s\].
+    pub free_rolling_spin_rad_per_s: f64,
+    /// `R_e = V_x/Ω₀` \[m\].
+    pub effective_rolling_radius_m: f64,
+    /// Every point in full.
+    pub points: Vec<SteadyPoint>,
+    /// Model stepped at the slip-angle points.
+    pub symmetry: String,
+    /// What the numbers mean.
+    pub meaning: String,
+}
+
+/// The steady study's "what the numbers mean" paragraph.
+pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced tire rolling on \
+    a flat road at speed_kmh under the preload load_n (issue 38): each point starts from free \
+    rolling, applies its slip angle (the road moving at tan(alpha) = -V_y/|V_x| to the wheel \
+    plane, Pacejka) or drive torque, rolls for point_time and is averaged over average_time. \
+    Forces and moments are in the ISO 8855 wheel frame (x forward, y left, z up; moments about \
+    the wheel centre, those of the contact forces). fy_n(alpha) and mz_n_m(alpha) are the side \
+    force and aligning moment, cornering_stiffness_n_per_rad = dFy/dalpha at 0, \
+    pneumatic_trail_m = -Mz/Fy, fy_over_mu_fz <= 1 (Coulomb); fx_n(kappa) is the longitudinal \
+    force at the drive torques with kappa = Omega/Omega0 - 1 against the free-rolling spin.";
+
+/// The summary of a steady result.
+pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummary {
+    let mu = cfg.rig.rolling.friction;
+    let v = cfg.rig.speed_kmh / 3.6;
+    let f = &r.free_rolling;
+    SteadySummary {
+        speed_kmh: cfg.rig.speed_kmh,
+        load_n: cfg.rig.load,
+        friction: mu,
+        cornering_stiffness_n_per_rad: r.cornering_stiffness(),
+        slip_angle_deg: r.slip.iter().map(|p| p.slip_angle_deg).collect(),
+        fy_n: r.slip.iter().map(|p| p.loads.fy).collect(),
+        mz_n_m: r.slip.iter().map(|p| p.loads.mz).collect(),
+        fz_n: r.slip.iter().map(|p| p.loads.fz).collect(),
+        pneumatic_trail_m: r.pneumatic_trail(),
+        fy_over_mu_fz: r
+            .slip
+            .iter()
+            .map(|p| p.loads.fy.abs() / (mu * p.loads.fz))
+            .collect(),
+        drive_torque_n_m: r.torque.iter().map(|p| p.drive_torque_n_m).collect(),
+        kappa: r.torque.iter().map(|p| p.kappa).collect(),
+        fx_n: r.torque.iter().map(|p| p.loads.fx).collect(),
+        free_rolling_fx_n: f.loads.fx,
+        free_rolling_fz_n: f.loads.fz,
+        free_rolling_spin_rad_per_s: f.spin_rad_per_s,
+        effective_rolling_radius_m: v / f.spin_rad_per_s,
+        points: std::iter::once(*f)
+            .chain(r.slip.iter().copied())
+            .chain(r.torque.iter().copied())
+            .collect(),
+        symmetry: r.symmetry.clone(),
+        meaning: STEADY_MEANING.to_string(),
+    }
+}
+
+/// Columns of the steady study's point table (`points.csv`): slip angle \[deg\], drive torque
+/// \[N·m\], κ \[-\], spin \[rad/s\], the six loads (ISO 8855 wheel frame) \[N\], \[N·m\], the spread
+/// over the averaging window \[N\].
+pub const STEADY_COLUMNS: [&str; 11] = [
+    "slip_angle_deg",
+    "drive_torque_N_m",
+    "kappa_ratio",
+    "spin_rad_per_s",
+    "fx_N",
+    "fy_N",
+    "fz_N",
+    "mx_N_m",
+    "my_N_m",
+    "mz_N_m",
+    "spread_N",
+];
+
+/// The [`STEADY_COLUMNS`] row of a point.
+pub fn steady_row(p: &SteadyPoint) -> [f64; 11] {
+    let l = &p.loads;
+    [
+        p.slip_angle_deg,
+        p.drive_torque_n_m,
+        p.kappa,
+        p.spin_rad_per_s,
+        l.fx,
+        l.fy,
+        l.fz,
+        l.mx,
+        l.my,
+        l.mz,
+        p.spread_n,
+    ]
+}
