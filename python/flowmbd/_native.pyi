@@ -166,6 +166,9 @@ def tire_import(config: str) -> _Fe:
 def tire_reduce(config: Optional[str] = None) -> ReducedTire:
     """The reduced tire of the ``[tire]`` table (JSON text)."""
 
+def tire_steady(config: Optional[str] = None, tire: Optional[ReducedTire] = None) -> str:
+    """JSON text of the steady-state study's summary (``flowmbd-tire steady``)."""
+
 def tire_cleat(
     config: Optional[str] = None,
     speed_kmh: Optional[float] = None,

@@ -184,3 +184,38 @@ def cleat(
         out["spectra"] = {n: np.asarray(c, dtype=float)
                           for n, c in zip(SPECTRUM_COLUMNS, spectra)}
     return out
+
+
+def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTire"] = None) -> dict:
+    """The steady-state characteristics on a flat road (``flowmbd-tire steady``): each point
+    starts from free rolling, gets its slip angle or drive torque, rolls
+    ``config["point_time"]`` and is averaged over the last ``config["average_time"]``.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire steady --print-config`` (``tire``, ``rig``,
+        ``slip_angles_deg`` [deg], ``drive_torques_n_m`` [N m], ``point_time`` [s],
+        ``average_time`` [s]).
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]`` (which must then be absent).
+
+    Returns
+    -------
+    dict
+        The CLI's ``summary.json``: side force ``fy_n`` and aligning moment over
+        ``slip_angle_deg``, the cornering stiffness [N/rad], pneumatic trail, longitudinal
+        force over drive torque with its slip, in the ISO 8855 wheel frame.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        A rolling simulation failed.
+    """
+    if tire is not None:
+        if not isinstance(tire, ReducedTire):
+            raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
+        if isinstance(config, Mapping) and "tire" in config:
+            raise ValueError("tire: given both as tire= and as config[\"tire\"]; pass one of them")
+    return from_json(_native.tire_steady(config_json(config), tire))

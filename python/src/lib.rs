@@ -107,6 +107,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tire::tire_import, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_reduce, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_cleat, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_steady, m)?)?;
     m.add("CLEAT_FORCE_COLUMNS", ::tire::study::FORCE_COLUMNS.to_vec())?;
     m.add(
         "CLEAT_SPECTRUM_COLUMNS",

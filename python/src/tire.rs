@@ -16,9 +16,9 @@ use pyo3::types::PyBytes;
 use std::sync::Arc;
 use tire::study::{FORCE_COLUMNS, force_row, sample_row};
 use tire::{
-    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, TireError, TireFe,
-    TireSource, cleat_summary, imported_tire, phase_spread, rig_input_error, run_cleat_observed,
-    tire_input_error,
+    CleatStudyConfig, ImportFiles, ReducedTire, RigResult, RollingTire, SteadyStudyConfig,
+    TireError, TireFe, TireSource, cleat_summary, imported_tire, phase_spread, rig_input_error,
+    run_cleat_observed, run_steady, steady_summary, tire_input_error,
 };
 
 /// Bad input (`ValueError` with the CLI's `field: reason`) or a numerical failure
@@ -371,6 +371,48 @@ fn history_of(r: &RigResult) -> History {
     h
 }
 
+/// The reduced tire `given`, or `source` reduced (GIL released).
+fn reduced_or(
+    py: Python<'_>,
+    given: Option<PyRef<'_, PyReducedTire>>,
+    source: &TireSource,
+) -> PyResult<Arc<ReducedTire>> {
+    if let Some(t) = given {
+        return Ok(Arc::clone(&t.inner));
+    }
+    let red = py
+        .detach(|| {
+            let fe = source.fe_model()?;
+            source.reduce_fe(&fe).map(|(red, _)| red)
+        })
+        .map_err(|e| tire_error(py, e, None))?;
+    Ok(Arc::new(red))
+}
+
+/// The steady-state study ([`tire::run_steady`], `flowmbd-tire steady`): side force and
+/// aligning moment over slip angle, longitudinal force over drive torque, cornering stiffness
+/// and pneumatic trail; returns the JSON text of the summary. `tire` replaces the reduction of
+/// `config.tire`.
+#[pyfunction]
+#[pyo3(signature = (config=None, tire=None))]
+pub fn tire_steady(
+    py: Python<'_>,
+    config: Option<&str>,
+    tire: Option<PyRef<'_, PyReducedTire>>,
+) -> PyResult<String> {
+    let c: SteadyStudyConfig = read_config(config)?;
+    c.validate().map_err(input_error)?;
+    let red = reduced_or(py, tire, &c.tire)?;
+    let result = py.detach(|| run_steady(&red, &c, &mut |_| {}));
+    match result {
+        Ok(r) => to_json(&steady_summary(&c, &r)),
+        Err(e) => Err(match rig_input_error(e) {
+            Ok(field) => input_error(field),
+            Err(other) => numerical_error(py, other.to_string(), None),
+        }),
+    }
+}
+
 /// The cleat test (Ribaric §8.3) at one speed: `(summary JSON text, force history columns,
 /// spectra columns (f [Hz], |F_x|, |F_y| [N]))`. `tire` replaces the reduction of
 /// `config.tire`; `speed_kmh` replaces `rig.speed_kmh` (the CLI's `--speed`). A numerical
@@ -388,20 +430,7 @@ pub fn tire_cleat(
         c.rig.speed_kmh = v;
     }
     c.validate().map_err(input_error)?;
-    let given = tire.map(|t| Arc::clone(&t.inner));
-    let red = match given {
-        Some(red) => red,
-        None => {
-            let source = c.tire.clone();
-            let red = py
-                .detach(|| {
-                    let fe = source.fe_model()?;
-                    source.reduce_fe(&fe).map(|(red, _)| red)
-                })
-                .map_err(|e| tire_error(py, e, None))?;
-            Arc::new(red)
-        }
-    };
+    let red = reduced_or(py, tire, &c.tire)?;
     let settle = c.rig.settle_time;
     let mut seen: History = Default::default();
     let result = py.detach(|| {

@@ -222,3 +222,17 @@ def test_bad_input_raises_value_error_with_the_cli_message(cli, tmp_path, reduce
         flowmbd.tire.generate({"circumferential_divisions": 1000000000})
     with pytest.raises(ValueError, match="reduced tire file JSON text: field `format`"):
         flowmbd.tire.ReducedTire.from_json('{"format": "something else"}')
+
+
+def test_steady_equals_the_cli(cli, tmp_path, reduced):
+    # reference: flowmbd-tire steady on the same tire (reduced by the CLI itself) and inputs
+    cfg = tmp_path / "steady.toml"
+    cfg.write_text("slip_angles_deg = [-0.1, 0.1]\ndrive_torques_n_m = []\npoint_time = 0.08\n"
+                   "average_time = 0.02\n" + f"[tire]\nreduced_file = ''\n" + TIRE_TOML)
+    code, ref, err = cli("tire", "steady", "--config", str(cfg))
+    assert code == 0, err
+    py = flowmbd.tire.steady(config={"slip_angles_deg": [-0.1, 0.1], "drive_torques_n_m": [],
+                                     "point_time": 0.08, "average_time": 0.02}, tire=reduced)
+    assert_same(py, ref)
+    # the mirrored pair: Fy odd in the slip angle (symmetric tire)
+    assert py["fy_n"][0] == pytest.approx(-py["fy_n"][1], rel=1e-9)
