@@ -1,39 +1,14 @@
 //! Steady-state characteristics of the rolling tire (issue 38, items 1 and 5) on the coarse
 //! generated tire of the validation tests (96 x 8 elements, isotropic tread of 150 MPa, no
-//! cords, 33 contact nodes, 50 free-node modes: `tests/tests/common`'s
-//! `coarse_reduced_tire`, which rolls steadily on this mesh): mirror symmetry of F_y and M_z in the slip
+//! cords, 33 contact nodes, 50 free-node modes: `common::coarse_reduced_tire`, which rolls
+//! steadily on this mesh): mirror symmetry of F_y and M_z in the slip
 //! angle, Coulomb's bound on |F_x| and |F_y| and its approach at large slip, the pneumatic
 //! trail at small slip, and the zero-input point against today's cleat path.
 
 use tire::*;
 
-use std::sync::OnceLock;
-
-/// The coarse tire (see the module documentation), reduced once per test binary.
-fn tire() -> &'static ReducedTire {
-    static T: OnceLock<ReducedTire> = OnceLock::new();
-    T.get_or_init(|| {
-        let mut cfg = coarse_tire_config(96, 8, 20.0);
-        cfg.tread.young = 150e6;
-        cfg.carcass = None;
-        let fe = generated_tire(&cfg).expect("tire");
-        let cfg = ReductionConfig {
-            contact_nodes: 33,
-            free_modes: 50,
-            ..Default::default()
-        };
-        reduce(&fe, &cfg).expect("reduce").0
-    })
-}
-
-/// The default rig on the ground `kind`, with or without the cleat, friction `mu`.
-fn rig(kind: GroundKind, cleat: bool, mu: f64) -> RigConfig {
-    let mut rc = RigConfig::default();
-    rc.ground.kind = kind;
-    rc.ground.cleat = cleat;
-    rc.rolling.friction = mu;
-    rc
-}
+mod common;
+use common::{coarse_reduced_tire as tire, rig};
 
 /// The steady study on the coarse tire: flat road, no cleat, μ = 0.85, 60 km/h.
 fn steady(slip: &[f64], torques: &[f64]) -> SteadyStudyConfig {
