@@ -5,7 +5,7 @@
 use belt::{BeltModel, Layout, Motion, Pulley, Report, Section, Signal, WrapSide};
 use drives::ancf_model::{AncfBelt, AncfConfig};
 
-mod common;
+use crate::common;
 use common::{fead_triangle, four_pulleys};
 
 fn ramp(to: f64, t: f64) -> Signal {

@@ -6,7 +6,7 @@ use contact::friction::FrictionSpec;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, State};
 use mbd_core::{SecondOrderSystem, Validate};
 
-mod common;
+use crate::common;
 use common::{flowing, four_pulleys, four_pulleys_settings, nodal};
 
 // Static tension equal in all spans at zero load on frictionless idlers (issue 17 item 6):

@@ -12,7 +12,7 @@ use flowing::belt::NodalBelt;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Stepper};
 use mbd_core::{SecondOrderSystem, Validate, Workspace};
 
-mod common;
+use crate::common;
 use common::{fead_triangle, flowing, nodal, triangle, uniform};
 
 // Static tension equal in all spans at zero load on frictionless pulleys (issue 17 item 6) for

@@ -9,7 +9,7 @@ use mbd_core::integrators::{
     ActiveSetStepper, ActiveSetSystem, AlphaConfig, State, UnilateralConstraints, UnilateralEval,
 };
 
-mod support;
+use crate::support;
 use support::PointMasses;
 
 const G: f64 = 9.81;

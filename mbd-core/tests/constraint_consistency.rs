@@ -3,7 +3,7 @@
 //! Lin (2.11)–(2.12) / Ribaric (2.16) with rheonomic terms); and of the force elements with
 //! their potential energy (f = −∂V/∂q).
 
-mod common;
+use crate::common;
 
 use mbd_core::body::BodyState;
 use mbd_core::constraints::*;

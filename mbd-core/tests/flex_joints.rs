@@ -5,7 +5,7 @@
 //! * a rigid link and a very stiff flexible bar joined by a revolute joint against the same
 //!   double pendulum built from rigid bodies in `MultibodySystem` (the rigid model).
 
-mod common;
+use crate::common;
 
 use faer::Mat;
 use mbd_core::body::BodyState;

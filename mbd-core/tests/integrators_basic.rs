@@ -8,7 +8,7 @@ use mbd_core::integrators::{
 use mbd_core::{MbdError, SecondOrderSystem, SysMatrix};
 use std::f64::consts::PI;
 
-mod support;
+use crate::support;
 use support::Oscillator;
 
 /// Planar pendulum, point mass in Cartesian coordinates, Φ = (x² + y² − L²)/2, gravity −y.

@@ -8,7 +8,7 @@ use mbd_core::integrators::{
 };
 use mbd_core::{History, MbdError, Probe};
 
-mod support;
+use crate::support;
 use support::{Oscillator, PointMasses};
 
 /// Error at t = 1 s of the method built by `make(h)` through the boxed `Stepper` factory.

@@ -13,7 +13,7 @@ use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Rk4, State, Stepper};
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 use std::f64::consts::PI;
 
-mod support;
+use crate::support;
 use support::Oscillator;
 
 struct Chain {

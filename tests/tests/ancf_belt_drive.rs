@@ -1,6 +1,6 @@
 //! Validation of the planar ANCF belt drive (Kerkkänen ch. 3): quick checks. The long
 //! simulations of the issue are `#[ignore]`d; run them with
-//! `cargo test --release -p flowmbd-validation --test ancf_belt_drive -- --ignored`.
+//! `cargo test --release -p flowmbd-validation --test integration ancf_belt_drive:: -- --ignored`.
 
 use ancf::belt_drive::*;
 use mbd_core::SecondOrderSystem;

@@ -2,7 +2,7 @@
 //! the Ribaric Table 6-1 drive mapped onto ANCF belt elements (the adapter in the `drives`
 //! crate, `drives::ancf_model`), compared with the flowing-material model.
 //! The long comparison is `#[ignore]`d; run it with
-//! `cargo test --release -p flowmbd-validation --test ancf_belt_speed_loss -- --ignored --nocapture`.
+//! `cargo test --release -p flowmbd-validation --test integration ancf_belt_speed_loss:: -- --ignored --nocapture`.
 
 use ancf::belt_drive::post;
 use belt::BeltModel;

@@ -1,7 +1,7 @@
 //! Validation of the three-dimensional plate-belt drive (Kerkkänen ch. 4, §4.5–4.6) and its
 //! comparison with Bechtel's steady model and with the planar ANCF belt. Quick checks run in
 //! every `cargo test`; the long simulations of the issue are `#[ignore]`d (run them with
-//! `cargo test --release -p flowmbd-validation --test ancf_plate_belt -- --ignored`).
+//! `cargo test --release -p flowmbd-validation --test integration ancf_plate_belt:: -- --ignored`).
 
 use ancf::belt_drive::{BeltDrive, BeltDriveSpec, BeltFriction, InitialOptions, post as post2d};
 use ancf::plate::belt_drive::post::{line_samples, span_states};

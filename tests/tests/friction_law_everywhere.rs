@@ -11,7 +11,7 @@
 use contact::FrictionSpec;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha, Stepper};
 
-mod common;
+use crate::common;
 
 const KAPPA: f64 = 40.0;
 

@@ -1,6 +1,6 @@
 //! Issue 9 acceptance on the default full-size truck tire (63 936 DOF, reduced to 341): the
 //! cleat test's validation items with the shipped defaults. Heavy (one reduction, ~25 s, and
-//! six rig runs): run with `cargo test --release -p flowmbd-validation --test tire_default --
+//! six rig runs): run with `cargo test --release -p flowmbd-validation --test integration tire_default:: --
 //! --ignored`.
 
 use fe_model::generate::TireConfig;

@@ -5,7 +5,7 @@
 use fe_model::generate::TireConfig;
 use tire::*;
 
-mod common;
+use crate::common;
 use common::coarse_reduced_tire as tire;
 
 #[test]

@@ -3,7 +3,7 @@
 
 use tire::*;
 
-mod common;
+use crate::common;
 use common::{coarse_reduced_tire as tire, rig};
 
 /// The cleat rig on the drum (μ = 0.85) without sub-steps, settling for `t` and recording `t`

@@ -5,7 +5,7 @@
 
 use tire::*;
 
-mod common;
+use crate::common;
 use std::fmt::Write as _;
 
 #[test]

@@ -3,7 +3,7 @@
 //! mode (issue 9: "the dominant vertical spindle frequency of the cleat response is a vertical
 //! in-plane mode of the loaded tire").
 
-mod common;
+use crate::common;
 
 use common::{coarse_reduced_tire, rig};
 use faer::prelude::*;

@@ -5,7 +5,7 @@
 
 use tire::*;
 
-mod common;
+use crate::common;
 use common::{coarse_reduced_tire as tire, rig};
 
 /// `steps` steps from the rig's rolling start on the drum with the cleat reaching the patch

@@ -4,7 +4,7 @@
 use tire::statics::{full_flexibility, reduced_flexibility};
 use tire::*;
 
-mod common;
+use crate::common;
 
 /// A coarse generated truck tire (295/80 R22.5 dimensions, 38 psi prestress), 1296 DOF.
 fn small() -> TireFe {

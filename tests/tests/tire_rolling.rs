@@ -4,7 +4,7 @@
 
 use tire::*;
 
-mod common;
+use crate::common;
 use common::{coarse_reduced_tire as tire, rig};
 
 #[test]

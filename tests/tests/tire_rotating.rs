@@ -2,7 +2,7 @@
 //! zero-speed limit, the forward/backward split of the circumferential modes against thin-ring
 //! theory, and the full (untruncated) flowing FE model against the reduced one.
 
-mod common;
+use crate::common;
 
 use common::coarse_reduced_tire;
 use faer::Mat;

@@ -4,7 +4,7 @@
 
 use tire::*;
 
-mod common;
+use crate::common;
 use common::{coarse_reduced_tire as tire, rig};
 
 /// Mean `(F_y, Σλ)` over the last 50 ms of steady rolling without a cleat.

@@ -3,7 +3,7 @@
 
 use tire::*;
 
-mod common;
+use crate::common;
 
 /// A 24 × 8 generated truck tire (default cord-reinforced materials), 12 contact nodes, with
 /// `free_modes` free-node modes (`usize::MAX`: untruncated, the basis spans every tire DOF).

@@ -7,7 +7,7 @@
 
 use tire::*;
 
-mod common;
+use crate::common;
 use common::{coarse_reduced_tire as tire, rig};
 
 /// The steady study on the coarse tire: flat road, no cleat, μ = 0.85, 60 km/h.

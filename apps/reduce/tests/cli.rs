@@ -1,7 +1,7 @@
 //! End-to-end tests of `flowmbd-reduce tire-mesh` and `modes` (app conventions: JSON summary,
 //! exit code 2 with a one-line message naming the field on bad input).
 
-mod common;
+use crate::common;
 use common::{bin, tmp};
 
 /// tire-mesh writes M, K, mesh and node sets; modes on them with the rim fixed returns

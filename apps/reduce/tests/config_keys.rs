@@ -1,7 +1,7 @@
 //! Issue 20: every table of every `flowmbd-reduce` study's configuration rejects an unknown key
 //! (exit 2, one line naming it).
 
-mod common;
+use crate::common;
 use common::{bin, tmp};
 use flowmbd_cli::config::{UNKNOWN_KEY, tables_accepting_unknown_keys_by};
 

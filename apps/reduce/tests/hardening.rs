@@ -4,7 +4,7 @@
 //! `--print-config` into a closed pipe. Every one exits 0 with a correct result or 2 with one
 //! line naming the file (and line) or option.
 
-mod common;
+use crate::common;
 use common::{bin, tmp};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};

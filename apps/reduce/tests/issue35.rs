@@ -5,7 +5,7 @@
 //! files are refused before reading, also with `--allow-large`; text from a file is echoed
 //! escaped; `reduce` prints and reads its configuration.
 
-mod common;
+use crate::common;
 use common::{bin, tmp};
 use std::path::Path;
 use std::process::Output;

@@ -3,7 +3,7 @@
 //! the NR emulation follows the source run (the unreduced model it was recorded from), and bad
 //! simulation-3 parameters exit with code 2 naming the field.
 
-mod common;
+use crate::common;
 use common::{bin, tmp};
 
 #[test]

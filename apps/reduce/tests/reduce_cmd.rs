@@ -2,7 +2,7 @@
 //! (Lin's Appendix B slab), the written `ReducedModel` compared with the library's
 //! Craig–Bampton, and bad input (exit 2, one line naming the option, file and line).
 
-mod common;
+use crate::common;
 use common::{bin, tmp};
 use faer::Mat;
 use flowmbd_cases::lin::slab::{appendix_b_slab, node_dofs};

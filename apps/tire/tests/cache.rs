@@ -11,7 +11,7 @@
 //! * nothing but the finished cache files is left in the cache folder (written through a
 //!   temporary file renamed on completion).
 
-mod common;
+use crate::common;
 use common::export::{Export, refused};
 use common::{bin, outcome};
 use serde_json::Value;

@@ -4,7 +4,7 @@
 //! `cleat --speed 60 --json`, the output files, and the exit codes (2 for bad input naming the
 //! field, 1 for a numerical failure with the results so far kept).
 
-mod common;
+use crate::common;
 use common::*;
 use serde_json::Value;
 use std::path::Path;

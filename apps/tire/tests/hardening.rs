@@ -6,7 +6,7 @@
 //! not under the working folder; and the sweep's speed × frequency map carries every speed's
 //! spectrum (the 90 km/h row was zero off the 5 Hz grid).
 
-mod common;
+use crate::common;
 use common::*;
 use flowmbd_cli::config::{UNKNOWN_KEY, tables_accepting_unknown_keys_by};
 use std::path::Path;

@@ -6,7 +6,7 @@
 //! The reference model is the coarse generated tire exported to Matrix Market files, which
 //! imports and reduces cleanly (the first case).
 
-mod common;
+use crate::common;
 use common::export::{Export, lines, mtx, refused};
 use common::{outcome, run, tmp};
 use std::fmt::Write as _;

@@ -2,7 +2,7 @@
 //! error, a Matrix Market `general` file storing one triangle, and a directory given for a
 //! file all exit 2 with one line naming the file (and line); nothing panics.
 
-mod common;
+use crate::common;
 use common::{outcome, run, tmp};
 use std::path::Path;
 

@@ -1,0 +1,14 @@
+//! The package's integration tests, one module per file, in one test binary (one link
+//! instead of one per file: the CI build time, `.ci/run`). Run one file's tests with
+//! `cargo test --release -p <package> --test integration <module>::`.
+
+mod ancf_layout;
+mod common;
+mod crank_trace;
+mod fead_design;
+mod fead_sweep;
+mod issue35_inputs;
+mod layout;
+mod layout_nodal;
+mod partial_rules;
+mod simulation;

@@ -1,0 +1,55 @@
+//! The package's integration tests, one module per file, in one test binary (one link
+//! instead of one per file: the CI build time, `.ci/run`). Run one file's tests with
+//! `cargo test --release -p <package> --test integration <module>::`.
+
+mod ancf_belt;
+mod ancf_belt_drive;
+mod ancf_belt_law;
+mod ancf_belt_recovery;
+mod ancf_belt_speed_loss;
+mod ancf_contact_lagrange;
+mod ancf_dynamics;
+mod ancf_elements;
+mod ancf_plate;
+mod ancf_plate_belt;
+mod ancf_tables;
+mod belt_balances;
+mod belt_drive_outputs;
+mod belt_wave;
+mod common;
+mod contact_laws;
+mod contact_solver;
+mod fe_model_elements;
+mod fe_model_frame3d;
+mod fe_model_hex8;
+mod fe_model_io;
+mod fe_model_sparse_eigen;
+mod fe_model_tire;
+mod flowing_belt;
+mod flowing_belt_nodal;
+mod flowing_contact;
+mod flowing_derivatives;
+mod flowing_galerkin;
+mod flowing_modes;
+mod flowing_travelling;
+mod friction_law_everywhere;
+mod reduction_eitelberg;
+mod reduction_floating;
+mod reduction_lin_beam;
+mod reduction_lin_slab;
+mod reduction_lin_slab3;
+mod reduction_props;
+mod string_wrap_contact_solver;
+mod tire_default;
+mod tire_dips;
+mod tire_impact;
+mod tire_import;
+mod tire_loaded;
+mod tire_mirror;
+mod tire_reduction;
+mod tire_rolling;
+mod tire_rotating;
+mod tire_sensitivity;
+mod tire_spindle;
+mod tire_steady;
+mod tire_viz;
