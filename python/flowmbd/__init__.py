@@ -12,8 +12,9 @@ results as the ``flowmbd-*`` command-line studies):
 
 Studies take their configuration as a dict with the keys of the TOML file (``--print-config``
 of the CLI), read deeply over the defaults like a partial TOML file (``{"drive": {"tension":
-300.0}}`` changes one number of the default drive), and return the content of the CLI's ``summary.json`` as a dict with numpy arrays
-for number series. Bad input raises ``ValueError`` (the CLI's message); a numerical failure
+300.0}}`` changes one number of the default drive), and return the content of the CLI's ``summary.json`` as a :class:`Result`: a dict with numpy
+arrays for number series, whose ``to_dataframe()`` gives its per-point records as a pandas
+DataFrame. Bad input raises ``ValueError`` (the CLI's message); a numerical failure
 raises :class:`NumericalError` with the partial results attached. Long runs release the GIL.
 """
 
@@ -21,6 +22,7 @@ from importlib.metadata import PackageNotFoundError, version
 
 from . import belt, reduce, string, tire
 from ._errors import NumericalError
+from ._results import Result
 from .sweep import points, sweep
 
 try:
@@ -29,4 +31,4 @@ try:
 except PackageNotFoundError:  # imported from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["belt", "string", "tire", "reduce", "sweep", "points", "NumericalError", "__version__"]
+__all__ = ["belt", "string", "tire", "reduce", "sweep", "points", "NumericalError", "Result", "__version__"]

@@ -10,15 +10,15 @@ class NumericalError(RuntimeError):
     """A computation failed (the CLI's exit code 1).
 
     ``partial`` holds the results computed before the failure (the ``partial`` object of the
-    CLI's ``summary.json``) as a dict, or ``None`` when nothing was computed.
+    CLI's ``summary.json``) as a :class:`flowmbd.Result` (a dict), or ``None`` when nothing was computed.
     """
 
     def __init__(self, message: str, partial: Optional[Any] = None) -> None:
         super().__init__(message)
         if isinstance(partial, str):
-            from ._results import to_result
+            from ._results import from_json
 
-            partial = to_result(json.loads(partial))
+            partial = from_json(partial)
         self.partial = partial
 
     def __reduce__(self):  # picklable, so that Dask can send it back from a worker

@@ -40,9 +40,58 @@ def to_result(value: Any) -> Any:
     return value
 
 
-def from_json(text: str) -> dict:
+class Result(dict):
+    """A study's summary: the ``summary.json`` content as a dict (:func:`to_result`), with
+    :meth:`to_dataframe` for its per-point records."""
+
+    def records(self) -> str:
+        """The default record list of :meth:`to_dataframe`: ``"points"``, else ``"cases"``,
+        else the first key holding a list of dicts."""
+        for key in ("points", "cases"):
+            if isinstance(self.get(key), list):
+                return key
+        for key, v in self.items():
+            if isinstance(v, list) and v and all(isinstance(x, Mapping) for x in v):
+                return key
+        raise KeyError(f"no list of records in this result (keys: {', '.join(self)})")
+
+    def to_dataframe(self, records: Optional[str] = None, explode: Optional[str] = None):
+        """A pandas DataFrame of the records at the dotted path ``records`` (default
+        :meth:`records`, e.g. ``"points"``): one row per record with its scalar fields (numbers,
+        strings, flags; nested lists and dicts are left out), or with ``explode`` (a key of each
+        record holding a list, e.g. ``"pulleys"``) one row per element of that list, with the
+        record's scalar fields, ``<records>_index``, ``<explode>_index`` and the element's
+        scalar fields (units as in the field names and the study's docstring).
+
+        Needs pandas (``pip install "./python[sweep]"``)."""
+        try:
+            import pandas as pd
+        except ImportError as e:
+            raise ImportError(
+                'to_dataframe needs pandas: pip install pandas (or the "sweep" extra)'
+            ) from e
+        from .sweep import _path, _rows
+
+        path = self.records() if records is None else records
+        items = _path(self, path)
+        if not isinstance(items, list):
+            raise KeyError(f"records {path!r}: a {type(items).__name__}, not a list of records")
+        index = f"{path.rsplit('.', 1)[-1]}_index"
+        rows = []
+        for i, item in enumerate(items):
+            if not isinstance(item, Mapping):
+                raise KeyError(f"records {path!r}: element {i} is a {type(item).__name__}")
+            for r in _rows({index: i}, item, None, None, explode):
+                if r.get("error") is not None:
+                    raise KeyError(f"records {path!r}, element {i}: {r['error']}")
+                r.pop("error", None)
+                rows.append(r)
+        return pd.DataFrame(rows)
+
+
+def from_json(text: str) -> Result:
     """A summary returned by the native module."""
-    return to_result(json.loads(text))
+    return Result(to_result(json.loads(text)))
 
 
 def config_json(config: Optional[Mapping[str, Any]]) -> Optional[str]:

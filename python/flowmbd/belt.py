@@ -8,7 +8,7 @@ from __future__ import annotations
 from typing import Any, Mapping, Optional, Sequence
 
 from . import _args, _native
-from ._results import config_json, from_json
+from ._results import Result, config_json, from_json
 
 
 def speed_loss(
@@ -16,7 +16,7 @@ def speed_loss(
     torques: Optional[Sequence[float]] = (0.0, 10.0),
     model: Optional[str] = "flowing",
     config: Optional[Mapping[str, Any]] = None,
-) -> dict:
+) -> Result:
     """Angular speed loss ``Δω = ω₁ − ω₂`` against the load torque (Ribaric Figs. 6-6, 6-7),
     with Bechtel's analytical line (6.3).
 
@@ -63,7 +63,7 @@ def speed_loss(
     )
 
 
-def ancf(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = None) -> dict:
+def ancf(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = None) -> Result:
     """The planar ANCF belt drive of Kerkkänen ch. 3 (``flowmbd-belt ancf``): by default
     example 3.3-B (Table 3.1, 20 elements, driver ramp (3.29) to 12 rad/s, 1 s);
     ``config={"analysis": "static_closure"}`` is example 3.3-A.
@@ -94,7 +94,7 @@ def ancf(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = No
     return from_json(_native.ancf(config_json(config), _args.optional_number("t_end", t_end)))
 
 
-def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = None) -> dict:
+def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = None) -> Result:
     """The three-dimensional plate-belt drive of Kerkkänen ch. 4 (``flowmbd-belt plate``): by
     default Model 2 of Table 4.1 (20 thin-plate elements, driver ramp (3.29) to 500 rad/s, load
     (4.47) to 2 N m, 1.3 s; about 10 min on a free core), compared with Bechtel's steady
@@ -129,7 +129,7 @@ def plate(config: Optional[Mapping[str, Any]] = None, t_end: Optional[float] = N
     return from_json(_native.plate(config_json(config), _args.optional_number("t_end", t_end)))
 
 
-def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[float]] = None) -> dict:
+def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[float]] = None) -> Result:
     """The front-end accessory drive sweep (``flowmbd-belt fead``): a six-pulley passenger-car
     drive with an automatic tensioner, run over engine speeds with the crank's firing-order speed
     fluctuation and the accessory loads, on the flowing-material belt model (``model``:
@@ -160,7 +160,7 @@ def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[floa
     return from_json(_native.fead(config_json(config), speeds))
 
 
-def design(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[float]] = None) -> dict:
+def design(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[float]] = None) -> Result:
     """The steady FEAD design without time stepping (``flowmbd-belt design``, issue 36): per
     engine speed the span tensions [N] (centrifugal tension included), the tensioner arm's angle
     and force, each wrap's adhesion and slip arcs (creep theory), hub loads [N] and slip margins,
@@ -313,7 +313,7 @@ class Simulation:
             raise ValueError(f"signal: expected a dict, got {type(signal).__name__}")
         self._sim.set_signal(_args.count("pulley", pulley), config_json(signal))
 
-    def report(self) -> dict:
+    def report(self) -> Result:
         """The report of the current state: ``pulleys`` (speed, arcs, slip velocities, hub
         load, torque, power, torque residual), ``spans`` (force [N]), ``balances`` (torque
         and power residuals)."""

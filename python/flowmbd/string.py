@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any, Mapping, Optional
 
 from . import _args, _native
-from ._results import config_json, from_json
+from ._results import Result, config_json, from_json
 
 
 def modes(
@@ -13,7 +13,7 @@ def modes(
     nodes: Optional[int] = 99,
     modes: Optional[int] = 40,
     config: Optional[Mapping[str, Any]] = None,
-) -> dict:
+) -> Result:
     """Damped natural frequencies of the Galerkin model (4.29) and of the discrete
     flowing-material model (4.20) of the travelling string at one axial speed.
 

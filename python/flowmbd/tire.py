@@ -23,7 +23,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import _args, _native
-from ._results import config_json, from_json
+from ._results import Result, config_json, from_json
 
 ReducedTire = _native.ReducedTire
 
@@ -130,7 +130,7 @@ def cleat(
     config: Optional[Mapping[str, Any]] = None,
     tire: Optional["ReducedTire"] = None,
     series: bool = False,
-) -> dict:
+) -> Result:
     """The cleat test of Ribaric §8.3 at one speed (``flowmbd-tire cleat --speed``): the
     preloaded tire rolls over a semicircular cleat on the drum (or road) and the spindle forces
     are recorded.
@@ -186,7 +186,7 @@ def cleat(
     return out
 
 
-def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTire"] = None) -> dict:
+def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTire"] = None) -> Result:
     """The steady-state characteristics on a flat road (``flowmbd-tire steady``): each point
     starts from free rolling, gets its slip angle or drive torque, rolls
     ``config["point_time"]`` and is averaged over the last ``config["average_time"]``.

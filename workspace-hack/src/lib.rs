@@ -1,0 +1,1 @@
+//! Feature unification of the workspace's shared dependencies (no code): see `Cargo.toml`.
