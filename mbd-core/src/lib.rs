@@ -92,6 +92,7 @@ pub mod floating;
 pub mod forces;
 pub mod history;
 pub mod kinematics;
+pub mod least_squares;
 pub mod marker;
 pub mod multibody;
 pub mod newton;

@@ -204,7 +204,10 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
     dict
         The CLI's ``summary.json``: side force ``fy_n`` and aligning moment over
         ``slip_angle_deg``, the cornering stiffness [N/rad], pneumatic trail, longitudinal
-        force over drive torque with its slip, in the ISO 8855 wheel frame.
+        force over drive torque with its slip, in the ISO 8855 wheel frame; and
+        ``magic_formula``: the Magic Formula fit of the points (``fit`` coefficients and
+        errors, fitted values, ``warnings``; ``tir`` is ``None``: the CLI writes the MF 6.1
+        ``tire.tir``), or ``None`` with the reason in ``magic_formula_note``.
 
     Raises
     ------

@@ -45,6 +45,7 @@ mod tire_dips;
 mod tire_impact;
 mod tire_import;
 mod tire_loaded;
+mod tire_magic_formula;
 mod tire_mirror;
 mod tire_reduction;
 mod tire_rolling;

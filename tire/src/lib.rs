@@ -109,15 +109,18 @@ pub use stats::StepStats;
 
 // the studies: cleat test, spectra, speed dips
 pub mod dips;
+pub mod magic_formula;
 pub mod rig;
 pub mod spectrum;
 pub mod steady;
 pub mod study;
+pub mod tir;
 
 pub use dips::{
     DipConfig, DipPrediction, EnvelopingProfile, GroundDips, PulseShape, enveloping_profile,
     geometric_envelope_half_length, ground_dips, line_amplitude, local_minima, predict_dips,
 };
+pub use magic_formula::{MfCurve, MfFit, MfFitError, TrailCurve, fit_steady};
 pub use rig::{
     DampingConfig, ImpactConfig, MAX_SLIP_ANGLE_DEG, RigConfig, RigResult, RigStart, Sample,
     WheelInputs, run_cleat, run_cleat_observed, start_rolling,
@@ -134,3 +137,4 @@ pub use study::{
     CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, cleat_summary, phase_spread,
     rig_input_error, summarize, tire_input_error,
 };
+pub use tir::{TirTyre, write_tir};

@@ -361,6 +361,12 @@ pub struct SteadySummary {
     pub points: Vec<SteadyPoint>,
     /// Model stepped at the slip-angle points.
     pub symmetry: String,
+    /// Magic Formula fit of the points ([`crate::magic_formula`]; the app writes its `.tir`,
+    /// [`crate::tir`]); `None` when the points do not allow one (the reason in
+    /// `magic_formula_note`).
+    pub magic_formula: Option<crate::magic_formula::MfSummary>,
+    /// Why there is no fit (empty when there is one).
+    pub magic_formula_note: String,
     /// What the numbers mean.
     pub meaning: String,
 }
@@ -378,6 +384,14 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
 
 /// The summary of a steady result.
 pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummary {
+    let (magic_formula, magic_formula_note) =
+        match crate::magic_formula::fit_steady(r, cfg.rig.load) {
+            Ok(fit) => (
+                Some(crate::magic_formula::MfSummary::new(&fit, r, None)),
+                String::new(),
+            ),
+            Err(e) => (None, e.to_string()),
+        };
     let mu = cfg.rig.rolling.friction;
     let v = cfg.rig.speed_kmh / 3.6;
     let f = &r.free_rolling;
@@ -408,6 +422,8 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
             .chain(r.torque.iter().copied())
             .collect(),
         symmetry: r.symmetry.clone(),
+        magic_formula,
+        magic_formula_note,
         meaning: STEADY_MEANING.to_string(),
     }
 }

@@ -57,7 +57,7 @@ impl Study for Steady {
         let bar = ctx.progress(1.0, "steady sweep");
         let r = run_steady(&red, c, &mut |f| bar.set(f)).map_err(tire_err)?;
         bar.finish();
-        let s = steady_summary(c, &r);
+        let mut s = steady_summary(c, &r);
         ctx.out.write_csv(
             "points.csv",
             &STEADY_COLUMNS,
@@ -97,8 +97,116 @@ impl Study for Steady {
         )
         .with(Series::line("Fx", by_kappa))
         .save(&ctx.out.path("fx_kappa"))?;
+        if let Some(m) = s.magic_formula.as_mut() {
+            write_fit(m, &r, &red, c, ctx)?;
+        }
         Ok(s)
     }
+}
+
+/// Write `tire.tir` and the data-with-fit plots of the Magic Formula fit of the summary, and
+/// put the file's path into it.
+fn write_fit(
+    m: &mut tire::magic_formula::MfSummary,
+    r: &tire::SteadyResult,
+    red: &tire::ReducedTire,
+    c: &Config,
+    ctx: &mut StudyContext,
+) -> Result<(), StudyError> {
+    let fit = m.fit;
+    let ys = red.contact_positions.iter().map(|p| p[1]);
+    let width = ys.clone().fold(f64::MIN, f64::max) - ys.fold(f64::MAX, f64::min);
+    let tyre = tire::TirTyre {
+        unloaded_radius: red.outer_radius,
+        width,
+        speed: c.rig.speed_kmh / 3.6,
+        pressure: None,
+        vertical_stiffness: None,
+    };
+    let text = tire::write_tir(
+        &fit,
+        &tyre,
+        &format!(
+            "flowmbd-tire steady, load {} N, {} km/h, friction {}",
+            c.rig.load, c.rig.speed_kmh, c.rig.rolling.friction
+        ),
+    );
+    let path = ctx.out.write_text("tire.tir", &text)?;
+    m.tir = Some(path.display().to_string());
+    // data points and fitted curves (the fit sampled finely over the data's range)
+    let fine = |lo: f64, hi: f64| (0..=200).map(move |i| lo + (hi - lo) * i as f64 / 200.0);
+    let (amin, amax) = m
+        .slip_angle_deg
+        .iter()
+        .fold((f64::MAX, f64::MIN), |a, &v| (a.0.min(v), a.1.max(v)));
+    let l = &fit.lateral;
+    let pts = |v: &[f64]| {
+        m.slip_angle_deg
+            .iter()
+            .copied()
+            .zip(v.iter().copied())
+            .collect()
+    };
+    let fy_data: Vec<f64> = std::iter::once(&r.free_rolling)
+        .chain(&r.slip)
+        .map(|p| p.loads.fy)
+        .collect();
+    let mz_data: Vec<f64> = std::iter::once(&r.free_rolling)
+        .chain(&r.slip)
+        .map(|p| p.loads.mz)
+        .collect();
+    LinePlot::new(
+        "Side force: data and Magic Formula fit",
+        "alpha [deg]",
+        "Fy [N]",
+    )
+    .with(Series::points("Fy (simulation)", pts(&fy_data)))
+    .with(Series::line(
+        "Fy (MF fit)",
+        fine(amin, amax)
+            .map(|a| (a, l.fy.eval(a.to_radians().tan())))
+            .collect(),
+    ))
+    .save(&ctx.out.path("mf_fy_alpha"))?;
+    LinePlot::new(
+        "Aligning moment: data and Magic Formula fit",
+        "alpha [deg]",
+        "Mz [N m]",
+    )
+    .with(Series::points("Mz (simulation)", pts(&mz_data)))
+    .with(Series::line(
+        "Mz (MF fit)",
+        fine(amin, amax)
+            .map(|a| {
+                (
+                    a,
+                    tire::magic_formula::aligning_moment(&l.fy, &l.trail, a.to_radians()),
+                )
+            })
+            .collect(),
+    ))
+    .save(&ctx.out.path("mf_mz_alpha"))?;
+    if let Some(x) = &fit.longitudinal {
+        let data: Vec<(f64, f64)> = std::iter::once(&r.free_rolling)
+            .chain(&r.torque)
+            .map(|p| (p.kappa, p.loads.fx))
+            .collect();
+        let (kmin, kmax) = data
+            .iter()
+            .fold((f64::MAX, f64::MIN), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+        LinePlot::new(
+            "Longitudinal force: data and Magic Formula fit",
+            "kappa [-]",
+            "Fx [N]",
+        )
+        .with(Series::points("Fx (simulation)", data))
+        .with(Series::line(
+            "Fx (MF fit)",
+            fine(kmin, kmax).map(|k| (k, x.fx.eval(k))).collect(),
+        ))
+        .save(&ctx.out.path("mf_fx_kappa"))?;
+    }
+    Ok(())
 }
 
 /// Run the study.

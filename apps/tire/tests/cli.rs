@@ -139,8 +139,13 @@ fn reduce_writes_the_file_and_modes_reuses_it() {
     assert_eq!(f(&s["free_modes"]), MODES as f64);
     assert_eq!(s["file"].as_str(), Some(file.to_str().unwrap()));
     let t = &s["timings"];
-    let parts = f(&t["modes_s"]) + f(&t["static_modes_s"]) + f(&t["derivatives_s"]);
-    assert!(parts <= f(&t["total_s"]) + 1e-9, "stage times {t}");
+    // the free-node modes and the static modes are computed side by side (rayon::join in
+    // reduction::sparse::craig_bampton_modes), the derivatives after both: each of the two with
+    // the derivatives fits in the total, their sum need not (it exceeded it by 1 % once)
+    for stage in ["modes_s", "static_modes_s"] {
+        let parts = f(&t[stage]) + f(&t["derivatives_s"]);
+        assert!(parts <= f(&t["total_s"]) + 1e-9, "{stage}: stage times {t}");
+    }
 
     let dir = tmp("modes");
     let before = mtime(file);
