@@ -106,13 +106,19 @@ impl MfCurve {
     }
     /// `y(x)` (Pacejka eq. 4.49) \[N\].
     pub fn eval(&self, x: f64) -> f64 {
-        let bu = self.b * (x + self.sh);
-        self.d * (self.c * (bu - self.e * (bu - bu.atan())).atan()).sin() + self.sv
+        self.d * shape_angle(self.b, self.c, self.e, x + self.sh).sin() + self.sv
     }
     /// Slope at `u = 0`, `K = B C D` (Pacejka eq. 4.50) \[N\] per unit `x`.
     pub fn stiffness(&self) -> f64 {
         self.b * self.c * self.d
     }
+}
+
+/// The argument of the Magic Formula's sine (eq. 4.49) and of the trail's cosine (eq. 4.E33),
+/// `C atan(B u − E(B u − atan(B u)))` \[rad\].
+fn shape_angle(b: f64, c: f64, e: f64, u: f64) -> f64 {
+    let bu = b * u;
+    c * (bu - e * (bu - bu.atan())).atan()
 }
 
 /// Pneumatic trail curve (Pacejka eq. 4.E33 without the `cos'α` factor):
@@ -143,8 +149,7 @@ impl TrailCurve {
     }
     /// `t(x)` \[m\] at `x = tan α` (eq. 4.E33 without `cos'α`).
     pub fn eval(&self, x: f64) -> f64 {
-        let bu = self.b * (x + self.sh);
-        self.d * (self.c * (bu - self.e * (bu - bu.atan())).atan()).cos()
+        self.d * shape_angle(self.b, self.c, self.e, x + self.sh).cos()
     }
 }
 

@@ -134,78 +134,64 @@ fn write_fit(
     let path = ctx.out.write_text("tire.tir", &text)?;
     m.tir = Some(path.display().to_string());
     // data points and fitted curves (the fit sampled finely over the data's range)
-    let fine = |lo: f64, hi: f64| (0..=200).map(move |i| lo + (hi - lo) * i as f64 / 200.0);
-    let (amin, amax) = m
-        .slip_angle_deg
-        .iter()
-        .fold((f64::MAX, f64::MIN), |a, &v| (a.0.min(v), a.1.max(v)));
     let l = &fit.lateral;
-    let pts = |v: &[f64]| {
-        m.slip_angle_deg
-            .iter()
-            .copied()
-            .zip(v.iter().copied())
+    let lateral = |load: fn(&tire::WheelLoads) -> f64| -> Vec<(f64, f64)> {
+        std::iter::once(&r.free_rolling)
+            .chain(&r.slip)
+            .map(|p| (p.slip_angle_deg, load(&p.loads)))
             .collect()
     };
-    let fy_data: Vec<f64> = std::iter::once(&r.free_rolling)
-        .chain(&r.slip)
-        .map(|p| p.loads.fy)
-        .collect();
-    let mz_data: Vec<f64> = std::iter::once(&r.free_rolling)
-        .chain(&r.slip)
-        .map(|p| p.loads.mz)
-        .collect();
-    LinePlot::new(
-        "Side force: data and Magic Formula fit",
-        "alpha [deg]",
-        "Fy [N]",
-    )
-    .with(Series::points("Fy (simulation)", pts(&fy_data)))
-    .with(Series::line(
-        "Fy (MF fit)",
-        fine(amin, amax)
-            .map(|a| (a, l.fy.eval(a.to_radians().tan())))
-            .collect(),
-    ))
-    .save(&ctx.out.path("mf_fy_alpha"))?;
-    LinePlot::new(
-        "Aligning moment: data and Magic Formula fit",
-        "alpha [deg]",
-        "Mz [N m]",
-    )
-    .with(Series::points("Mz (simulation)", pts(&mz_data)))
-    .with(Series::line(
-        "Mz (MF fit)",
-        fine(amin, amax)
-            .map(|a| {
-                (
-                    a,
-                    tire::magic_formula::aligning_moment(&l.fy, &l.trail, a.to_radians()),
-                )
-            })
-            .collect(),
-    ))
-    .save(&ctx.out.path("mf_mz_alpha"))?;
+    fit_plot(
+        ctx,
+        "mf_fy_alpha",
+        ("Side force", "alpha [deg]", "Fy [N]", "Fy"),
+        lateral(|w| w.fy),
+        |a| l.fy.eval(a.to_radians().tan()),
+    )?;
+    fit_plot(
+        ctx,
+        "mf_mz_alpha",
+        ("Aligning moment", "alpha [deg]", "Mz [N m]", "Mz"),
+        lateral(|w| w.mz),
+        |a| tire::magic_formula::aligning_moment(&l.fy, &l.trail, a.to_radians()),
+    )?;
     if let Some(x) = &fit.longitudinal {
-        let data: Vec<(f64, f64)> = std::iter::once(&r.free_rolling)
+        let data = std::iter::once(&r.free_rolling)
             .chain(&r.torque)
             .map(|p| (p.kappa, p.loads.fx))
             .collect();
-        let (kmin, kmax) = data
-            .iter()
-            .fold((f64::MAX, f64::MIN), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-        LinePlot::new(
-            "Longitudinal force: data and Magic Formula fit",
-            "kappa [-]",
-            "Fx [N]",
-        )
-        .with(Series::points("Fx (simulation)", data))
-        .with(Series::line(
-            "Fx (MF fit)",
-            fine(kmin, kmax).map(|k| (k, x.fx.eval(k))).collect(),
-        ))
-        .save(&ctx.out.path("mf_fx_kappa"))?;
+        fit_plot(
+            ctx,
+            "mf_fx_kappa",
+            ("Longitudinal force", "kappa [-]", "Fx [N]", "Fx"),
+            data,
+            |k| x.fx.eval(k),
+        )?;
     }
+    Ok(())
+}
+
+/// Plot `file`: the simulated `data` as points and the fitted `curve` sampled at 201 points over
+/// the data's range; `labels` = (title, x axis, y axis, quantity).
+fn fit_plot(
+    ctx: &mut StudyContext,
+    file: &str,
+    labels: (&str, &str, &str, &str),
+    data: Vec<(f64, f64)>,
+    curve: impl Fn(f64) -> f64,
+) -> Result<(), StudyError> {
+    let (title, xl, yl, q) = labels;
+    let (lo, hi) = data
+        .iter()
+        .fold((f64::MAX, f64::MIN), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+    let line = (0..=200)
+        .map(|i| lo + (hi - lo) * i as f64 / 200.0)
+        .map(|x| (x, curve(x)))
+        .collect();
+    LinePlot::new(format!("{title}: data and Magic Formula fit"), xl, yl)
+        .with(Series::points(format!("{q} (simulation)"), data))
+        .with(Series::line(format!("{q} (MF fit)"), line))
+        .save(&ctx.out.path(file))?;
     Ok(())
 }
 
