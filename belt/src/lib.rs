@@ -39,7 +39,9 @@ pub use layout::{
 };
 pub use model::{BeltModel, ModelTraits, PulleyState, Snapshot, SpanState, WrapPoint};
 pub use motion::{Motion, Role};
-pub use path::{BeltPath, PathPiece, PathPoint, Segment, SpanLine, tributary_lengths};
+pub use path::{
+    BeltPath, LineOfAction, PathPiece, PathPoint, Segment, SpanLine, tributary_lengths,
+};
 pub use pulley::{CentreShift, Pulley, WrapSide};
 pub use report::{Balances, HubLoad, PulleyReport, Report, SpanReport};
 pub use section::{BeltContact, BeltDamping, MaterialLaw, Ribs, Section};

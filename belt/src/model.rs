@@ -12,6 +12,7 @@
 use crate::decoupler::DecouplerState;
 use crate::layout::Drive;
 use crate::motion::Motion;
+use crate::path::LineOfAction;
 use crate::signal::Signal;
 use mbd_core::integrators::State;
 use mbd_core::validate::InvalidField;
@@ -64,6 +65,10 @@ pub struct PulleyState {
     pub torque: f64,
     /// Velocity of the pulley's centre \[m/s\] (a tensioner's idler; zero for fixed centres).
     pub center_velocity: [f64; 2],
+    /// Position of the pulley's centre \[m\] (a tensioner's idler where its arm has turned it;
+    /// the layout's centre for fixed centres): the point about which the report takes the
+    /// spans' moments ([`crate::report`]).
+    pub center: [f64; 2],
 }
 
 /// A span's state in a snapshot.
@@ -78,6 +83,10 @@ pub struct SpanState {
     /// Transverse displacement of the span's mid-point from the undeformed span line,
     /// positive to the left of the travel direction \[m\].
     pub transverse: f64,
+    /// The line the span's force acts along: the least-squares line through the deformed belt
+    /// over the span's middle half ([`crate::SpanLine::line_of_action`]); `None` where the
+    /// model gives no points there (the report then takes the undeformed span line).
+    pub line: Option<LineOfAction>,
 }
 
 /// What a model reports at one state `(t, q, v)` ([`BeltModel::snapshot`]).

@@ -73,6 +73,26 @@ pub struct PathPoint {
     pub pulley: Option<usize>,
 }
 
+/// A line along which a span's force acts: a point on it and its unit travel direction.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct LineOfAction {
+    /// A point of the line \[m\].
+    pub point: [f64; 2],
+    /// Unit direction, in the belt's travel sense.
+    pub direction: [f64; 2],
+}
+
+impl LineOfAction {
+    /// Lever arm \[m\] of a force along the line about `center`, positive when a pull in the
+    /// travel direction turns a pulley wrapped with `turn` ([`crate::WrapSide::turn`]: `+1`
+    /// clockwise) in its travel sense: `−turn (p − c) × e`. On the undeformed path it is the
+    /// belt-line radius `R` of the pulleys the span joins (tangent to their belt-line circles).
+    pub fn lever(&self, center: [f64; 2], turn: f64) -> f64 {
+        let d = sub(self.point, center);
+        -turn * (d[0] * self.direction[1] - d[1] * self.direction[0])
+    }
+}
+
 /// A straight span of the path: start, unit travel direction, length and the pulleys it joins.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpanLine {
@@ -107,13 +127,61 @@ impl SpanLine {
         u > 0.25 * self.length && u < 0.75 * self.length && w.abs() < 0.25 * self.length
     }
 
+    /// Where the force of a deformed belt's span acts, away from the bending boundary layers
+    /// at the pulleys: the least-squares line `w = w̄ + m (u − ū)` (span frame,
+    /// [`Self::local`]) through the points of the closed polyline `points` (the deformed belt,
+    /// in travel order) that run, without a break, over the span's middle half
+    /// ([`Self::middle_half_contains`]) from where the polyline crosses the span's bisector
+    /// ([`Self::bisector_crossing`]). `None` if it does not cross it or with fewer than two such
+    /// points.
+    pub fn line_of_action(&self, points: &[[f64; 2]]) -> Option<LineOfAction> {
+        let n = points.len();
+        let (i0, _) = self.bisector_segment(points)?;
+        let inside = |k: usize| self.middle_half_contains(points[k % n]);
+        let mut local = Vec::new();
+        for k in (i0 + 1..i0 + 1 + n).take_while(|&k| inside(k)) {
+            local.push(self.local(points[k % n]));
+        }
+        for k in (0..n).map(|j| (i0 + n - j) % n).take_while(|&k| inside(k)) {
+            if local.len() >= n {
+                break;
+            }
+            local.push(self.local(points[k]));
+        }
+        let n = local.len() as f64;
+        if local.len() < 2 {
+            return None;
+        }
+        let ub = local.iter().map(|p| p.0).sum::<f64>() / n;
+        let wb = local.iter().map(|p| p.1).sum::<f64>() / n;
+        let suu: f64 = local.iter().map(|p| (p.0 - ub).powi(2)).sum();
+        if suu <= 1e-18 * self.length * self.length {
+            return None;
+        }
+        let m = local.iter().map(|p| (p.0 - ub) * (p.1 - wb)).sum::<f64>() / suu;
+        let (e, nrm) = (self.direction, [-self.direction[1], self.direction[0]]);
+        let h = m.hypot(1.0);
+        Some(LineOfAction {
+            point: [
+                self.start[0] + ub * e[0] + wb * nrm[0],
+                self.start[1] + ub * e[1] + wb * nrm[1],
+            ],
+            direction: [(e[0] + m * nrm[0]) / h, (e[1] + m * nrm[1]) / h],
+        })
+    }
+
     /// Where the closed polyline `points` crosses the span's perpendicular bisector, closest
     /// to the span's mid-point and within half a span length of it (linear interpolation
     /// between consecutive points); `None` if it does not.
     pub fn bisector_crossing(&self, points: &[[f64; 2]]) -> Option<[f64; 2]> {
+        self.bisector_segment(points).map(|(_, p)| p)
+    }
+
+    /// [`Self::bisector_crossing`] with the index `i` of the segment `i → i+1` it lies on.
+    fn bisector_segment(&self, points: &[[f64; 2]]) -> Option<(usize, [f64; 2])> {
         let n = points.len();
         let g = |p: [f64; 2]| self.local(p).0 - 0.5 * self.length;
-        let mut best: Option<([f64; 2], f64)> = None;
+        let mut best: Option<(usize, [f64; 2], f64)> = None;
         for i in 0..n {
             let (a, b) = (points[i], points[(i + 1) % n]);
             let (ga, gb) = (g(a), g(b));
@@ -123,11 +191,11 @@ impl SpanLine {
             let f = ga / (ga - gb);
             let p = [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])];
             let off = self.local(p).1.abs();
-            if off < 0.5 * self.length && best.is_none_or(|(_, o)| off < o) {
-                best = Some((p, off));
+            if off < 0.5 * self.length && best.is_none_or(|(_, _, o)| off < o) {
+                best = Some((i, p, off));
             }
         }
-        best.map(|(p, _)| p)
+        best.map(|(i, p, _)| (i, p))
     }
 }
 
@@ -315,6 +383,15 @@ impl BeltPath {
             .filter(|(_, s)| s.middle_half_contains(p))
             .min_by(|a, b| a.1.local(p).1.abs().total_cmp(&b.1.local(p).1.abs()))
             .map(|(k, _)| k)
+    }
+
+    /// The line of action of every span ([`SpanLine::line_of_action`]) of the deformed belt
+    /// `points` (a closed polyline in travel order), in span order.
+    pub fn lines_of_action(&self, points: &[[f64; 2]]) -> Vec<Option<LineOfAction>> {
+        self.spans()
+            .iter()
+            .map(|sp| sp.line_of_action(points))
+            .collect()
     }
 
     /// The arc on pulley `k`: (s at arrival, wrap length) \[m\].
@@ -519,6 +596,66 @@ mod tests {
                 sp.start[1] + 0.5 * sp.length * sp.direction[1],
             ];
             assert_eq!(BeltPath::span_middle_of(&spans, m), Some(k));
+        }
+    }
+
+    // Lines of action (reference: tangent geometry). On the undeformed path every span is
+    // tangent to the belt-line circles of the pulleys it joins, so the lever of its line about
+    // either pulley is that pulley's radius R, with the travel-sense sign of the wrap: here on
+    // an inside, a back-side and an inside pulley of different radii. A span shifted by e to
+    // the left of travel has the lever R + turn·e about both ends (the left of travel is the
+    // outside of a clockwise wrap), and a span turned about its mid-point by a small angle φ
+    // changes the two levers by ∓φ L/2.
+    #[test]
+    fn lines_of_action_have_the_radius_as_lever_on_the_path() {
+        let pulleys = [
+            wheel([0.0, 0.0], 0.05, WrapSide::Inside),
+            wheel([0.25, 0.08], 0.03, WrapSide::Outside),
+            wheel([0.5, 0.0], 0.07, WrapSide::Inside),
+        ];
+        let path = BeltPath::new(&pulleys).unwrap();
+        let pts: Vec<[f64; 2]> = (0..2000)
+            .map(|k| path.point(path.length() * k as f64 / 2000.0).position)
+            .collect();
+        let turn = |k: usize| pulleys[k].side.turn();
+        let lines = path.lines_of_action(&pts);
+        let spans = path.spans();
+        assert_eq!(lines.len(), spans.len());
+        for (sp, line) in spans.iter().zip(&lines) {
+            let l = line.expect("points over every middle half");
+            for k in [sp.from, sp.to] {
+                let lever = l.lever(pulleys[k].center, turn(k));
+                assert!(
+                    (lever - pulleys[k].radius).abs() < 1e-12,
+                    "span {}→{} about {k}: {lever}",
+                    sp.from,
+                    sp.to
+                );
+            }
+            let (e, phi) = (2e-4, 1e-4);
+            let n = [-sp.direction[1], sp.direction[0]];
+            let mid = [
+                sp.start[0] + 0.5 * sp.length * sp.direction[0],
+                sp.start[1] + 0.5 * sp.length * sp.direction[1],
+            ];
+            let moved: Vec<[f64; 2]> = pts
+                .iter()
+                .filter(|&&p| sp.middle_half_contains(p) && sp.local(p).1.abs() < 1e-9)
+                .map(|&p| {
+                    let u = sp.local(p).0 - 0.5 * sp.length;
+                    [
+                        mid[0] + u * sp.direction[0] + (e + phi * u) * n[0],
+                        mid[1] + u * sp.direction[1] + (e + phi * u) * n[1],
+                    ]
+                })
+                .collect();
+            let l = sp.line_of_action(&moved).unwrap();
+            for (k, end) in [(sp.from, -1.0), (sp.to, 1.0)] {
+                let want = pulleys[k].radius
+                    + turn(k) * (e + end * phi * 0.5 * sp.length) / (1.0 + phi * phi).sqrt();
+                let lever = l.lever(pulleys[k].center, turn(k));
+                assert!((lever - want).abs() < 1e-9, "{lever} vs {want}");
+            }
         }
     }
 

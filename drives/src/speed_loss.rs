@@ -291,7 +291,9 @@ pub fn tension_range_issue(tight: f64, t0: f64, ea: f64) -> Option<String> {
 /// loads, damping and sliding) at which a linearised model's operating point still counts as
 /// valid. The flowing belt misses the balances by a few per cent on drives with small or
 /// back-side pulleys (torque 1.9 %, 4.4 %, 9.8 % at 800, 1500, 2500 rpm on the default `fead`
-/// drive, BENCHMARKS.md; 38 % on a three-pulley drive with a back-side idler, issue 34); beyond
+/// drive, BENCHMARKS.md, with the spans' moments taken about the belt-line radius; 1.5 % at
+/// 800 rpm about their lines of action, [`belt::report`]; 38 % on a three-pulley drive with a
+/// back-side idler, issue 34); beyond
 /// this its tensions do not carry the pulley torques and the point is flagged.
 pub const BALANCE_LIMIT: f64 = 0.05;
 

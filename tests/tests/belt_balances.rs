@@ -10,17 +10,12 @@ use belt::Report;
 use drives::fead::{FeadConfig, FeadModel, run_fead};
 use drives::table_6_1;
 use drives::{SpeedLossConfig, speed_loss_sweep};
-use flowing::belt::{BeltMesh, NodalBelt};
+use flowing::belt::{BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
 
 /// Largest relative residual allowed (issue 34 item 2: 0.5 %).
 const TOL: f64 = 5e-3;
 
 fn assert_balanced(what: &str, r: &Report) {
-    assert_balanced_within(what, r, TOL);
-}
-
-/// [`assert_balanced`] with the torque residual allowed up to `torque_tol`.
-fn assert_balanced_within(what: &str, r: &Report, torque_tol: f64) {
     let b = &r.balances;
     for p in &r.pulleys {
         println!(
@@ -33,15 +28,34 @@ fn assert_balanced_within(what: &str, r: &Report, torque_tol: f64) {
          of {:.2} W",
         b.torque_residual_rel, b.power_in_w, b.sliding_w, b.power_residual_rel, b.driver_power_w
     );
-    assert!(
-        b.torque_residual_rel.abs() <= torque_tol,
-        "{what}: torque {b:?}"
-    );
+    assert!(b.torque_residual_rel.abs() <= TOL, "{what}: torque {b:?}");
     assert!(b.power_residual_rel.abs() <= TOL, "{what}: power {b:?}");
 }
 
-// Table 6-1 (Ribaric): the speed-loss procedure's steady points at 10 and 30 N m, nodal model
-// (the flowing model misses the torque balance here by 0.7 %: issue 34, open).
+// Table 6-1 (Ribaric): the speed-loss procedure's steady point at 10 N m, flowing model with
+// the study's defaults. With the spans' moments taken about the belt-line radius R the torque
+// residual was 0.75 % (the deformed tight span acts 0.10–0.16 mm outside R); about the spans'
+// lines of action it is 0.24 %, the power residual 0.33 %. Not asserted: at 30 N m the flowing
+// model misses by 0.74 % (torque) and 0.92 % (power). There the contact forces on the whole
+// belt carry a net moment of 0.21 N m in the steady state (0.003 N m at 10 N m), balanced by
+// its linear elastic forces: K δ about the mounted state is rotation-invariant to first order
+// only, so the residual grows with the square of the load (issue 34, open for the flowing
+// model; the nodal model, the same K on material nodes, holds 0.3 %).
+#[test]
+fn table_6_1_balances_on_flowing() {
+    let drive = table_6_1::drive();
+    let settings = SpeedLossConfig {
+        torques: vec![10.0],
+        ..SpeedLossConfig::default()
+    };
+    let mut model = FlowingBelt::new(&drive, &FlowingSettings::default()).unwrap();
+    let (points, _) = speed_loss_sweep(&mut model, &settings, |_, _| {}).unwrap();
+    for p in &points {
+        assert_balanced(&format!("Table 6-1 flowing {} N m", p.torque), &p.report);
+    }
+}
+
+// Table 6-1 (Ribaric): the same steady points on the nodal model.
 #[test]
 fn table_6_1_balances_on_nodal() {
     let drive = table_6_1::drive();
@@ -119,11 +133,9 @@ fn pechstein_gerstmayr_balances_on_nodal() {
 
 // The default fead drive (six pulleys, back-side tensioner idler, crank fluctuation) at 800
 // rpm, nodal model: window means over whole periods of the second engine order, the belt's
-// Rayleigh damping in the power balance (the flowing model misses both balances on this
-// drive by 2–4 %, at the 28 mm alternator and the back-side idler: issue 34, open). The power
-// balance closes to 0.3 %; the torque residual is 0.62 % of the crank torque, all of it on the
-// back-side tensioner idler (0.12 N m: its spans differ by 3.4 N, its bearing carries nothing),
-// so the torque check here is 1 % (issue 34 asks 0.5 %: open).
+// Rayleigh damping in the power balance. Both close to 0.3 % (the torque residual was 0.62 %
+// with the spans' moments about R, 0.12 N m on the back-side idler). The flowing model misses
+// the torque balance here by 1.5 % (0.28 N m at the 28 mm alternator: issue 34, open).
 #[test]
 fn default_fead_balances_on_nodal() {
     let mut c = FeadConfig {
@@ -135,5 +147,5 @@ fn default_fead_balances_on_nodal() {
     let p = &s.points[0];
     println!("settled {} s, steady {}", p.settled_s, p.steady);
     assert!(p.steady);
-    assert_balanced_within("fead 800 rpm nodal", &p.report, 1e-2);
+    assert_balanced("fead 800 rpm nodal", &p.report);
 }

@@ -233,15 +233,20 @@ pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) ->
 /// The snapshot ([`belt::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
 /// at the travel-sense speeds `omegas` \[rad/s\]: the contact quadrature points of every wrap
 /// ([`wrap_records`]), hub loads and torques ([`BeltDrive::pulley_loads_with`]), span
-/// forces ([`span_tensions`]) and mid-point offsets ([`span_transverse`]).
+/// forces ([`span_tensions`]), mid-point offsets ([`span_transverse`]) and lines of action
+/// (through the centreline samples over each span's middle half).
 pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
     let loads = drive.pulley_loads_with(q, v, omegas);
     let pulleys = (0..drive.pulleys().len())
-        .map(|k| PulleyState {
-            omega: omegas[k],
-            hub_load: loads[k].force,
-            torque: loads[k].torque,
-            center_velocity: drive.pulley_center(k, q, v).1,
+        .map(|k| {
+            let (center, center_velocity) = drive.pulley_center(k, q, v);
+            PulleyState {
+                omega: omegas[k],
+                hub_load: loads[k].force,
+                torque: loads[k].torque,
+                center_velocity,
+                center,
+            }
         })
         .collect();
     let wrap = wrap_records(drive, q, v, omegas)
@@ -259,6 +264,11 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
         .collect();
     let tensions = span_tensions(drive, q);
     let offsets = span_transverse(drive, q);
+    let centreline: Vec<[f64; 2]> = tension_samples(drive, q, 4)
+        .iter()
+        .map(|s| s.position)
+        .collect();
+    let lines = drive.path().lines_of_action(&centreline);
     let spans = spans(drive)
         .iter()
         .enumerate()
@@ -267,6 +277,7 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
             to: sp.to,
             tension: tensions[k],
             transverse: offsets[k],
+            line: lines[k],
         })
         .collect();
     Snapshot {

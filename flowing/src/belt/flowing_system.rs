@@ -537,8 +537,10 @@ impl FlowingBelt {
 
     /// The tensioner idler's index and centre velocity \[m/s\] at `(q, v)` (`None`: no
     /// tensioner).
-    pub(crate) fn idler_velocity(&self, q: &[f64], v: &[f64]) -> Option<(usize, [f64; 2])> {
-        Some((self.tensioner?.tensioner.pulley, self.arm_state(q, v)?.vel))
+    /// The tensioner's idler: (pulley, centre \[m\], centre velocity \[m/s\]).
+    pub(crate) fn idler_motion(&self, q: &[f64], v: &[f64]) -> Option<(usize, [f64; 2], [f64; 2])> {
+        let arm = self.arm_state(q, v)?;
+        Some((self.tensioner?.tensioner.pulley, arm.center, arm.vel))
     }
 
     fn arm_state(&self, q: &[f64], v: &[f64]) -> Option<ArmState> {

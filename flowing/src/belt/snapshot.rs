@@ -30,7 +30,8 @@ fn deformed(reference: &[[f64; 2]], d: &[f64]) -> Vec<[f64; 2]> {
 
 /// The snapshot of a belt of frame elements with nodal contacts: pulley speeds `omega[k]`
 /// \[rad/s\], hub loads and torques summed from the contacts, span forces from the element
-/// forces, wrap points at the contact nodes.
+/// forces (acting along the nodes' line over each span's middle half), wrap points at the
+/// contact nodes; `idler`: the tensioner idler's (pulley, centre, centre velocity).
 fn snapshot_with(
     fe: &BeltFe,
     t: f64,
@@ -38,20 +39,23 @@ fn snapshot_with(
     forces: &[f64],
     contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
     omega: Vec<f64>,
-    idler_velocity: Option<(usize, [f64; 2])>,
+    idler: Option<(usize, [f64; 2], [f64; 2])>,
 ) -> Snapshot {
     let path = fe.path();
     let nn = nodes.len();
     let mut pulleys: Vec<PulleyState> = omega
         .into_iter()
-        .map(|omega| PulleyState {
+        .zip(fe.drive.pulleys())
+        .map(|(omega, p)| PulleyState {
             omega,
             hub_load: [0.0; 2],
             torque: 0.0,
             center_velocity: [0.0; 2],
+            center: p.center,
         })
         .collect();
-    if let Some((k, vel)) = idler_velocity {
+    if let Some((k, center, vel)) = idler {
+        pulleys[k].center = center;
         pulleys[k].center_velocity = vel;
     }
     let mut wrap = Vec::new();
@@ -163,7 +167,7 @@ impl BeltModel for FlowingBelt {
             &forces,
             contacts,
             omega,
-            self.idler_velocity(q, v),
+            self.idler_motion(q, v),
         ))
     }
 
@@ -197,7 +201,7 @@ impl BeltModel for NodalBelt {
             &forces,
             contacts,
             omega,
-            self.idler_velocity(q, v),
+            self.idler_motion(q, v),
         );
         snap.belt_dissipation = Some(self.damping_dissipation(q, v)?);
         Ok(snap)

@@ -274,10 +274,17 @@ impl AncfDrive for PlateBeltDrive {
                 hub_load: [loads[k].0[0], loads[k].0[1]],
                 torque: loads[k].1,
                 center_velocity: [0.0, 0.0],
+                center: d.pulleys()[k].center,
             })
             .collect();
         let states = post::span_states(d, q, v);
         let offsets = self.span_offsets(q)?;
+        let w = d.spec().belt.width;
+        let centreline: Vec<[f64; 2]> = post::line_samples(d, q, v, 0.5 * w, 4)
+            .iter()
+            .map(|s| [s.position[0], s.position[1]])
+            .collect();
+        let lines = d.path().lines_of_action(&centreline);
         let spans = post::spans(d)
             .iter()
             .enumerate()
@@ -286,9 +293,9 @@ impl AncfDrive for PlateBeltDrive {
                 to: sp.to,
                 tension: states[k].membrane_force,
                 transverse: offsets[k],
+                line: lines[k],
             })
             .collect();
-        let w = d.spec().belt.width;
         let a = d.element_length();
         let path: &BeltPath = d.path();
         let wrap = d
