@@ -175,3 +175,18 @@ def tire_cleat(
     tire: Optional[ReducedTire] = None,
 ) -> Tuple[str, List[List[float]], List[List[float]]]:
     """(JSON text of the cleat summary, force history columns, spectra columns)."""
+
+def tire_rotating_modes(
+    config: Optional[str] = None,
+    speeds_kmh: Optional[List[float]] = None,
+    tire: Optional[ReducedTire] = None,
+) -> Tuple[str, dict]:
+    """(JSON text of the rotating-modes summary, ``{"rotating_modes": {column: array}}``)."""
+
+def tire_sweep(
+    config: Optional[str] = None,
+    speeds_kmh: Optional[List[float]] = None,
+    tire: Optional[ReducedTire] = None,
+) -> Tuple[str, dict]:
+    """(JSON text of the sweep summary, the series: ``waterfall``, ``spectrum_map``,
+    ``run_series``)."""
