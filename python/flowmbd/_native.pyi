@@ -190,3 +190,17 @@ def tire_sweep(
 ) -> Tuple[str, dict]:
     """(JSON text of the sweep summary, the series: ``waterfall``, ``spectrum_map``,
     ``run_series``)."""
+
+def tire_dips(
+    config: Optional[str] = None, tire: Optional[ReducedTire] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the dips summary, ``{"profile_<ground>", "prediction_<ground>",
+    "sweep_<ground>": {column: array}}``)."""
+
+def tire_pressure(
+    config: Optional[str] = None, tire: Optional[ReducedTire] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the pressure summary, ``{"patch_drum", "patch_road": {column: array}}``)."""
+
+def tire_modes(config: Optional[str] = None) -> Tuple[str, dict]:
+    """(JSON text of the modes summary, ``{"modes", "loaded_modes": {column: array}}``)."""

@@ -15,7 +15,13 @@ from the file that ``flowmbd-tire`` uses as ``tire.reduced_file``.
 - :func:`rotating_modes`: complex modes of the rolling tire in the ground frame, Campbell
   diagram (``flowmbd-tire rotating-modes``);
 - :func:`sweep`: the cleat test over speeds, Ribaric Figs. 8-7, 8-8, 8-14
-  (``flowmbd-tire sweep``).
+  (``flowmbd-tire sweep``);
+- :func:`dips`: the speed dips of the cleat test, predicted and measured
+  (``flowmbd-tire dips``);
+- :func:`pressure`: the preloaded contact patch on drum and road, Fig. 8-12
+  (``flowmbd-tire pressure``);
+- :func:`modes`: full FE against reduced frequencies, and the loaded modes
+  (``flowmbd-tire modes``).
 
 Series that the CLI writes as CSV files come back with ``series=True``: under the CSV file's
 name without ``.csv`` (e.g. ``"rotating_modes"``), a dict of its columns (the CSV header) as
@@ -346,4 +352,123 @@ def sweep(
     _check_tire(config, tire)
     speeds = None if speeds_kmh is None else _args.numbers_list("speeds_kmh", speeds_kmh)
     text, data = _native.tire_sweep(config_json(config), speeds, tire)
+    return _result(text, data, series)
+
+
+def dips(
+    config: Optional[Mapping[str, Any]] = None,
+    tire: Optional["ReducedTire"] = None,
+    series: bool = False,
+) -> Result:
+    """The speed dips of the cleat test (``flowmbd-tire dips``; Ribaric §8.3/§8.5: 40–50 km/h
+    on the drum, 45–55 km/h on the road): per ground the cleat's quasi-static enveloping
+    profile, the loaded vertical mode, the predicted ring-down amplitude of that mode against
+    speed and the measured amplitude of the vertical line in a cleat sweep.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire dips --print-config`` (``tire``, ``rig``,
+        ``dips`` (``profile_step`` [m], ``pulse``, ``blocked_below_hz`` [Hz],
+        ``predict_speeds_kmh``, ``sweep_speeds_kmh`` [km/h], …), ``grounds``
+        (``["drum", "road"]``)). ``{"dips": {"sweep_speeds_kmh": []}}`` predicts only (the
+        CLI's ``--no-sweep``).
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]`` (which must then be absent).
+    series : also return the CLI's CSV files per ground as dicts of numpy arrays:
+        ``"profile_<ground>"`` (``cleat_x_m`` [m], ``dfy_N``, ``fx_N`` [N],
+        ``active_nodes_count``), ``"prediction_<ground>"`` (``speed_km_per_h``,
+        ``amplitude_N``) and, with sweep speeds, ``"sweep_<ground>"`` (``speed_km_per_h``,
+        ``line_amplitude_N``).
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``grounds`` (per ground ``ground``, ``deflection_m``,
+        ``envelope_length_m``, ``geometric_envelope_length_m``, ``contact_node_span_m`` [m],
+        ``profile_peak_n`` [N], ``vertical_mode_hz`` [Hz], ``zeta``, ``predicted_dips_kmh``,
+        ``measured_dips_kmh``, ``sweep_speeds_kmh`` [km/h], ``line_amplitude_n`` [N]) and
+        ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message, e.g. ``dips.profile_step: …``).
+    flowmbd.NumericalError
+        The profile, the preload or a sweep run failed (the message names the ground).
+    """
+    _check_tire(config, tire)
+    text, data = _native.tire_dips(config_json(config), tire)
+    return _result(text, data, series)
+
+
+def pressure(
+    config: Optional[Mapping[str, Any]] = None,
+    tire: Optional["ReducedTire"] = None,
+    series: bool = False,
+) -> Result:
+    """The preloaded contact patch on the drum and on a flat road (``flowmbd-tire pressure``;
+    Ribaric Fig. 8-12): static contact with Lagrange multipliers (§7.3) under the vertical
+    load, the contact-node forces and the patch extent.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire pressure --print-config`` (``tire``,
+        ``load`` [N], ``drum_radius`` [m]).
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]`` (which must then be absent).
+    series : also return ``"patch_drum"`` and ``"patch_road"``: the columns of
+        ``patch_<ground>.csv`` (``x_m``, ``y_m``, ``z_m``: undeformed contact-node position
+        [m]; ``force_N``: its normal force [N], 0 off the patch) as numpy arrays.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``drum`` and ``road``, each with ``deflection_m`` [m],
+        ``nodes_in_contact``, ``peak_node_force_n`` [N] and ``length_m`` [m]; and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        The contact solve failed.
+    """
+    _check_tire(config, tire)
+    text, data = _native.tire_pressure(config_json(config), tire)
+    return _result(text, data, series)
+
+
+def modes(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> Result:
+    """Eigenfrequencies of the tire with the rim fixed, full FE model against the reduced
+    model (the validation of the reduction, Ribaric §8.2), and the modes of the loaded tire
+    (preloaded patch held, wheel fixed) with their effective spindle masses
+    (``flowmbd-tire modes``). The full FE model is part of the study, so the tire is built
+    from ``config["tire"]`` and reduced here (no ``tire=``).
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire modes --print-config`` (``tire``,
+        ``count``, ``ground``, ``load`` [N]).
+    series : also return ``"modes"`` (``mode``, ``full_Hz``, ``reduced_Hz``) and
+        ``"loaded_modes"`` (``mode``, ``f_Hz``, ``spindle_fx_N_per_sqrt_kg``,
+        ``spindle_fy_N_per_sqrt_kg``, ``spindle_lateral_N_per_sqrt_kg``,
+        ``vertical_mass_kg``, ``longitudinal_mass_kg``): the columns of ``modes.csv`` and
+        ``loaded_modes.csv`` as numpy arrays.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``full_hz``, ``reduced_hz`` [Hz],
+        ``max_rel_error_below_240hz``, ``loaded_held_nodes``, ``loaded_hz`` [Hz],
+        ``loaded_vertical_mode_hz`` [Hz], ``loaded_vertical_mass_kg`` [kg],
+        ``loaded_longitudinal_mode_hz`` [Hz] and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        An eigen solve or the preload failed.
+    """
+    text, data = _native.tire_modes(config_json(config))
     return _result(text, data, series)

@@ -140,6 +140,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tire::tire_steady, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_rotating_modes, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_dips, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_pressure, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_modes, m)?)?;
     m.add("CLEAT_FORCE_COLUMNS", ::tire::study::FORCE_COLUMNS.to_vec())?;
     m.add(
         "CLEAT_SPECTRUM_COLUMNS",

@@ -587,3 +587,111 @@ pub fn tire_sweep<'py>(
         }),
     }
 }
+
+/// The speed-dips study ([`tire::run_dips`], `flowmbd-tire dips`; Ribaric §8.3/§8.5): returns
+/// `(summary JSON text, series)` with the series (numpy arrays) `{"profile_<ground>",
+/// "prediction_<ground>", "sweep_<ground>" (when the sweep has speeds): the columns of the CSV
+/// file of that name}` per ground. `tire` replaces the reduction of `config.tire`.
+#[pyfunction]
+#[pyo3(signature = (config=None, tire=None))]
+pub fn tire_dips<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    tire: Option<PyRef<'_, PyReducedTire>>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    use ::tire::dips_study::{
+        DipsStudyConfig, PREDICTION_COLUMNS, PROFILE_COLUMNS, SWEEP_COLUMNS, prediction_rows,
+        profile_rows, sweep_rows,
+    };
+    let c: DipsStudyConfig = read_config(config)?;
+    c.validate().map_err(input_error)?;
+    let red = reduced_or(py, tire, &c.tire)?;
+    let (summary, grounds) = py
+        .detach(|| ::tire::run_dips(&red, &c, &mut |_| {}))
+        .map_err(|f| match rig_input_error(f.error) {
+            Ok(field) => input_error(field),
+            Err(other) => numerical_error(py, format!("{}: {other}", f.ground.name()), None),
+        })?;
+    let series = PyDict::new(py);
+    for d in &grounds {
+        let n = d.ground.name();
+        series.set_item(
+            format!("profile_{n}"),
+            columns(&PROFILE_COLUMNS, profile_rows(d)).into_py(py)?,
+        )?;
+        series.set_item(
+            format!("prediction_{n}"),
+            columns(&PREDICTION_COLUMNS, prediction_rows(d)).into_py(py)?,
+        )?;
+        if !d.sweep_speeds_kmh.is_empty() {
+            series.set_item(
+                format!("sweep_{n}"),
+                columns(&SWEEP_COLUMNS, sweep_rows(d)).into_py(py)?,
+            )?;
+        }
+    }
+    Ok((to_json(&summary)?, series))
+}
+
+/// The contact-patch study ([`tire::run_pressure`], `flowmbd-tire pressure`; Ribaric Fig.
+/// 8-12): returns `(summary JSON text, series)` with the series `{"patch_drum", "patch_road":
+/// the columns of patch_<ground>.csv}` (numpy arrays). `tire` replaces the reduction of
+/// `config.tire`.
+#[pyfunction]
+#[pyo3(signature = (config=None, tire=None))]
+pub fn tire_pressure<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    tire: Option<PyRef<'_, PyReducedTire>>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    use ::tire::pressure_study::{PATCH_COLUMNS, PressureStudyConfig};
+    let c: PressureStudyConfig = read_config(config)?;
+    c.validate().map_err(input_error)?;
+    let red = reduced_or(py, tire, &c.tire)?;
+    let (summary, patches) = py
+        .detach(|| ::tire::run_pressure(&red, &c))
+        .map_err(|e| tire_error(py, e, None))?;
+    let series = PyDict::new(py);
+    for p in patches {
+        series.set_item(
+            format!("patch_{}", p.ground.name()),
+            columns(&PATCH_COLUMNS, &p.rows).into_py(py)?,
+        )?;
+    }
+    Ok((to_json(&summary)?, series))
+}
+
+/// The modes study ([`tire::run_modes`], `flowmbd-tire modes`): full FE against reduced
+/// frequencies with the rim fixed, and the loaded modes at the static preload; returns
+/// `(summary JSON text, series)` with the series `{"modes", "loaded_modes": the columns of
+/// modes.csv and loaded_modes.csv}` (numpy arrays). The FE tire of `config.tire` is built and
+/// reduced here (the full model is part of the study, so a prebuilt reduced tire is not taken).
+#[pyfunction]
+#[pyo3(signature = (config=None))]
+pub fn tire_modes<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    use ::tire::modes_study::{
+        LOADED_COLUMNS, MODES_COLUMNS, ModesStudyConfig, loaded_rows, modes_rows,
+    };
+    let c: ModesStudyConfig = read_config(config)?;
+    c.validate().map_err(input_error)?;
+    let (summary, loaded) = py
+        .detach(|| {
+            let fe = c.tire.fe_model()?;
+            let (red, _) = c.tire.reduce_fe(&fe)?;
+            ::tire::run_modes(&fe, &red, &c)
+        })
+        .map_err(|e| tire_error(py, e, None))?;
+    let series = PyDict::new(py);
+    series.set_item(
+        "modes",
+        columns(&MODES_COLUMNS, modes_rows(&summary)).into_py(py)?,
+    )?;
+    series.set_item(
+        "loaded_modes",
+        columns(&LOADED_COLUMNS, loaded_rows(&loaded)).into_py(py)?,
+    )?;
+    Ok((to_json(&summary)?, series))
+}

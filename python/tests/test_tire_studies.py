@@ -115,3 +115,94 @@ def test_sweep_bad_input(cli, tmp_path, reduced):
         flowmbd.tire.sweep({"rig": {"speed": 3.0}}, tire=reduced)
     with pytest.raises(ValueError, match=r"speeds_kmh\[0\]: expected a number"):
         flowmbd.tire.sweep(tire=reduced, speeds_kmh=["fast"])
+
+
+def test_dips_equal_the_cli(cli, tmp_path, reduced):
+    # same as `flowmbd-tire dips` summary.json and profile_/prediction_/sweep_road.csv: the
+    # road only, a two-speed sweep on the short rig
+    cfg = cli_config(tmp_path, 'grounds = ["road"]\n[dips]\nsweep_speeds_kmh = [50.0, 60.0]\n'
+                     + SWEEP_RIG)
+    code, ref, err = cli("tire", "dips", "--config", str(cfg))
+    assert code == 0, err
+    config = {"grounds": ["road"], "dips": {"sweep_speeds_kmh": [50.0, 60.0]},
+              "rig": {"settle_time": 0.05, "record_time": 0.05}}
+    py = flowmbd.tire.dips(config, tire=reduced, series=True)
+    series = {k: py.pop(k) for k in ("profile_road", "prediction_road", "sweep_road")}
+    assert_same(py, ref)
+    for name, cols in series.items():
+        assert_series(cols, tmp_path / "tire" / f"{name}.csv")
+    g = py["grounds"][0]
+    assert g["ground"] == "road" and len(g["line_amplitude_n"]) == 2
+    # the predicted dips are minima of the prediction series
+    a, v = series["prediction_road"]["amplitude_N"], series["prediction_road"]["speed_km_per_h"]
+    for d in g["predicted_dips_kmh"]:
+        i = int(np.flatnonzero(v == d)[0])
+        assert a[i] < a[i - 1] and a[i] < a[i + 1]
+
+
+def test_dips_bad_input(cli, tmp_path, reduced):
+    cfg = cli_config(tmp_path, "[dips]\nprofile_step = -1.0")
+    code, _, err = cli("tire", "dips", "--no-sweep", "--config", str(cfg))
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.tire.dips({"dips": {"profile_step": -1.0, "sweep_speeds_kmh": []}},
+                          tire=reduced)
+    assert str(e.value).startswith("dips.profile_step: ")
+    assert str(e.value) in err
+    with pytest.raises(ValueError, match=r'config\["grounds"\]\[0\]'):
+        flowmbd.tire.dips({"grounds": ["moon"]}, tire=reduced)
+
+
+def test_pressure_equals_the_cli(cli, tmp_path, reduced):
+    # same as `flowmbd-tire pressure` summary.json, patch_drum.csv and patch_road.csv
+    cfg = cli_config(tmp_path, "load = 3000.0")
+    code, ref, err = cli("tire", "pressure", "--config", str(cfg))
+    assert code == 0, err
+    py = flowmbd.tire.pressure({"load": 3000.0}, tire=reduced, series=True)
+    patches = {k: py.pop(k) for k in ("patch_drum", "patch_road")}
+    assert_same(py, ref)
+    for name, cols in patches.items():
+        assert_series(cols, tmp_path / "tire" / f"{name}.csv")
+        # the node forces carry the load (static equilibrium, Ribaric §7.3)
+        assert cols["force_N"].sum() == pytest.approx(3000.0, rel=1e-6)
+    assert py["drum"]["deflection_m"] > py["road"]["deflection_m"]
+
+
+def test_pressure_bad_input(cli, tmp_path, reduced):
+    cfg = cli_config(tmp_path, "drum_radius = -1.0")
+    code, _, err = cli("tire", "pressure", "--config", str(cfg))
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.tire.pressure({"drum_radius": -1.0}, tire=reduced)
+    assert str(e.value) == "drum_radius: must be positive"
+    assert str(e.value) in err
+    with pytest.raises(ValueError, match=r'config\["load"\]'):
+        flowmbd.tire.pressure({"load": "heavy"}, tire=reduced)
+
+
+def test_modes_equal_the_cli(cli, tmp_path):
+    # same as `flowmbd-tire modes` summary.json, modes.csv and loaded_modes.csv (both sides
+    # build and reduce the small tire themselves)
+    from tire_case import TIRE
+
+    cfg = cli_config(tmp_path, "count = 12")
+    code, ref, err = cli("tire", "modes", "--config", str(cfg))
+    assert code == 0, err
+    py = flowmbd.tire.modes({"count": 12, "tire": TIRE}, series=True)
+    modes, loaded = py.pop("modes"), py.pop("loaded_modes")
+    assert_same(py, ref)
+    assert_series(modes, tmp_path / "tire" / "modes.csv")
+    assert_series(loaded, tmp_path / "tire" / "loaded_modes.csv")
+    # Rayleigh-Ritz: the reduced frequencies bound the full ones from above
+    assert np.all(py["reduced_hz"] >= py["full_hz"] * (1 - 1e-9))
+    assert len(py["full_hz"]) == 12
+
+
+def test_modes_bad_input(cli, tmp_path):
+    cfg = cli_config(tmp_path, "count = 0")
+    code, _, err = cli("tire", "modes", "--config", str(cfg))
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.tire.modes({"count": 0})
+    assert str(e.value) == "count: must be positive"
+    assert str(e.value) in err

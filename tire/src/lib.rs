@@ -36,6 +36,8 @@
 //! * [`rotating_study`]: the rotating-modes study (configuration, summary, Campbell splits);
 //! * [`dips`]: the speed dips of the cleat test from the cleat's enveloping profile and the
 //!   loaded vertical mode;
+//! * [`dips_study`], [`pressure_study`], [`modes_study`]: the speed-dips, contact-patch and
+//!   modes studies (configuration, summary, CSV tables);
 //! * [`sweep_study`]: the speed sweep of the cleat test (Ribaric Figs. 8-7, 8-8, 8-14);
 //! * [`study`]: the cleat study's configuration and summary and the classification of errors
 //!   into bad input and numerical failures, shared by `flowmbd-tire` and the Python package.
@@ -113,7 +115,10 @@ pub use stats::StepStats;
 
 // the studies: cleat test, spectra, speed dips
 pub mod dips;
+pub mod dips_study;
 pub mod magic_formula;
+pub mod modes_study;
+pub mod pressure_study;
 pub mod rig;
 pub mod spectrum;
 pub mod steady;
@@ -125,7 +130,10 @@ pub use dips::{
     DipConfig, DipPrediction, EnvelopingProfile, GroundDips, PulseShape, enveloping_profile,
     geometric_envelope_half_length, ground_dips, line_amplitude, local_minima, predict_dips,
 };
+pub use dips_study::{DipsStudyConfig, DipsSummary, run_dips};
 pub use magic_formula::{MfCurve, MfFit, MfFitError, TrailCurve, fit_steady};
+pub use modes_study::{ModesStudyConfig, ModesSummary, run_modes};
+pub use pressure_study::{PressureStudyConfig, PressureSummary, run_pressure};
 pub use rig::{
     DampingConfig, ImpactConfig, MAX_SLIP_ANGLE_DEG, RigConfig, RigResult, RigStart, Sample,
     WheelInputs, run_cleat, run_cleat_observed, start_rolling,
