@@ -35,6 +35,13 @@ def string_modes(
 ) -> str:
     """JSON text of the string modes summary (``summary.json`` of ``flowmbd-string modes``)."""
 
+def string_sweep(
+    config: Optional[str] = None,
+    nodes: Optional[int] = None,
+    modes: Optional[int] = None,
+) -> Tuple[str, dict]:
+    """(JSON text of the string sweep summary, ``{"sweep": {column: array}}``)."""
+
 def modes(
     n: int, m: _Triplets, k: _Triplets, count: int, fixed: List[int]
 ) -> Tuple[List[float], List[float], npt.NDArray[np.float64]]:
