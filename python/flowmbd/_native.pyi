@@ -42,6 +42,12 @@ def string_sweep(
 ) -> Tuple[str, dict]:
     """(JSON text of the string sweep summary, ``{"sweep": {column: array}}``)."""
 
+def string_simulate(
+    config: Optional[str] = None, speed: Optional[float] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the pluck-transient summary, ``{"modal_history", "spectra": {column:
+    array}}``)."""
+
 def modes(
     n: int, m: _Triplets, k: _Triplets, count: int, fixed: List[int]
 ) -> Tuple[List[float], List[float], npt.NDArray[np.float64]]:

@@ -1,5 +1,7 @@
 """Travelling string (Ribaric ch. 4): the modes study of §4.2.3 (``flowmbd-string modes``) and
-the speed sweep (``flowmbd-string sweep``)."""
+the speed sweep (``flowmbd-string sweep``) and the pluck transient (``flowmbd-string
+simulate``). Series that the CLI writes as CSV files come back with ``series=True``: under the
+CSV file's name without ``.csv``, a dict of its columns as numpy arrays."""
 
 from __future__ import annotations
 
@@ -104,6 +106,52 @@ def sweep(
         None if nodes is None else _args.count("nodes", nodes),
         None if modes is None else _args.count("modes", modes),
     )
+    out = from_json(text)
+    if series:
+        out.update(data)
+    return out
+
+
+def simulate(
+    config: Optional[Mapping[str, Any]] = None,
+    speed: Optional[float] = None,
+    series: bool = False,
+) -> Result:
+    """The travelling string plucked into a triangle and let go (``flowmbd-string simulate``;
+    Ribaric Fig. 4-6 right): the flowing-material model (4.20) integrated in time by RK4, the
+    amplitude spectra of its modal coordinates and their peaks (the axial motion couples the
+    modes, so each coordinate vibrates at several natural frequencies).
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-string simulate --print-config`` (``string``,
+        ``speed`` [m/s], ``nodes``, ``modes``, ``pluck`` (``x`` [m], ``amplitude`` [m]),
+        ``duration`` [s], ``step`` [s], ``sample_every``, ``peak_threshold``,
+        ``derivative``). The speed must lie below the critical speed.
+    speed : axial speed [m/s] (replaces ``config["speed"]``; the CLI's ``--speed``).
+    series : also return ``"modal_history"`` (``t_s`` [s] and ``z<i>_sqrt_kg_m``, the modal
+        coordinates of the mass-normalised modes [√kg·m]) and ``"spectra"`` (``f_Hz`` [Hz] and
+        ``amp_z<i>_sqrt_kg_m``): the columns of ``modal_history.csv`` and ``spectra.csv`` as
+        numpy arrays.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``speed`` [m/s], ``model_hz`` (the model's natural
+        frequencies) and ``exact_hz`` (n(c² − v²)/(2cL)) [Hz], ``resolution_hz`` [Hz],
+        ``peaks`` (per mode its spectral peaks ``peaks_hz`` [Hz]), ``hamiltonian_drift`` (the
+        relative drift of the energy-like invariant, a check of the integration) and
+        ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message; also a step beyond RK4's stability
+        limit, or a derivative operator whose model grows below the critical speed).
+    flowmbd.NumericalError
+        The response is not finite.
+    """
+    text, data = _native.string_simulate(config_json(config), _args.optional_number("speed", speed))
     out = from_json(text)
     if series:
         out.update(data)

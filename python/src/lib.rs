@@ -130,6 +130,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<stepping::PyBeltSimulation>()?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(string::string_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::eitelberg, m)?)?;

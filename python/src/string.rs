@@ -1,6 +1,7 @@
 //! `flowmbd.string`: the travelling-string modes study of Ribaric §4.2.3 through
 //! [`flowing::string_study`] (the same as `flowmbd-string modes`) and the speed sweep through
-//! [`flowing::string_sweep`] (`flowmbd-string sweep`).
+//! [`flowing::string_sweep`] (`flowmbd-string sweep`) and the pluck transient through
+//! [`flowing::string_simulate`] (`flowmbd-string simulate`).
 
 use crate::{columns, input_error, numerical_error, read_config, to_json};
 use flowing::FlowError;
@@ -86,4 +87,42 @@ pub fn string_sweep<'py>(
     let series = pyo3::types::PyDict::new(py);
     series.set_item("sweep", columns(&header, &rows).into_py(py)?)?;
     Ok((to_json(&summary)?, series))
+}
+
+/// The pluck transient ([`flowing::string_simulate::string_simulate`],
+/// `flowmbd-string simulate`; Ribaric Fig. 4-6 right): returns `(summary JSON text, series)`
+/// with the series `{"modal_history", "spectra": the columns of modal_history.csv and
+/// spectra.csv}` (numpy arrays). `speed` replaces the configuration's (the CLI's `--speed`).
+#[pyfunction]
+#[pyo3(signature = (config=None, speed=None))]
+pub fn string_simulate<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    speed: Option<f64>,
+) -> PyResult<(String, Bound<'py, pyo3::types::PyDict>)> {
+    use flowing::string_simulate::{
+        SimulateConfig, history_header, history_rows, spectra_header, spectra_rows,
+        string_simulate as simulate,
+    };
+    let mut c: SimulateConfig = read_config(config)?;
+    if let Some(v) = speed {
+        c.speed = v;
+    }
+    c.validate().map_err(input_error)?;
+    let r = py
+        .detach(|| simulate(&c, &mut |_| std::ops::ControlFlow::Continue(())))
+        .map_err(|e| flow_error(py, e))?;
+    let series = pyo3::types::PyDict::new(py);
+    for (name, header, rows) in [
+        (
+            "modal_history",
+            history_header(c.modes),
+            history_rows(&r.history),
+        ),
+        ("spectra", spectra_header(c.modes), spectra_rows(&r.spectra)),
+    ] {
+        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+        series.set_item(name, columns(&header, &rows).into_py(py)?)?;
+    }
+    Ok((to_json(&r.summary)?, series))
 }

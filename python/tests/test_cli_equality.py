@@ -127,3 +127,41 @@ def test_string_sweep_bad_input_names_the_field(cli, tmp_path):
     assert str(e.value) in err
     with pytest.raises(ValueError, match=r'config\["string"\]\["tension"\]'):
         flowmbd.string.sweep({"string": {"tension": "high"}})
+
+
+def test_string_simulate_equals_cli(cli, tmp_path):
+    # same as `flowmbd-string simulate` summary.json, modal_history.csv and spectra.csv on a short
+    # coarse run (30 nodes, 6 modes, 0.2 s)
+    import numpy as np
+
+    toml = "nodes = 30\nmodes = 6\nduration = 0.2\n"
+    (tmp_path / "c.toml").write_text(toml)
+    code, ref, err = cli("string", "simulate", "--speed", "10", "--config",
+                         str(tmp_path / "c.toml"))
+    assert code == 0, err
+    py = flowmbd.string.simulate({"nodes": 30, "modes": 6, "duration": 0.2}, speed=10.0,
+                                 series=True)
+    series = {k: py.pop(k) for k in ("modal_history", "spectra")}
+    assert_same(py, ref)
+    for name, cols in series.items():
+        csv = np.genfromtxt(tmp_path / "string" / f"{name}.csv", delimiter=",", names=True)
+        assert list(cols) == list(csv.dtype.names), name
+        for k in cols:
+            np.testing.assert_allclose(cols[k], csv[k], rtol=1e-9, atol=1e-300,
+                                       err_msg=f"{name}:{k}")
+    # RK4 nearly conserves the invariant; the pluck starts from rest at t = 0
+    assert abs(py["hamiltonian_drift"]) < 1e-6
+    assert series["modal_history"]["t_s"][0] == 0.0 and py["speed"] == 10.0
+
+
+def test_string_simulate_bad_input_names_the_field(cli, tmp_path):
+    import pytest
+
+    code, _, err = cli("string", "simulate", "--speed", "100")
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.string.simulate(speed=100.0)
+    assert str(e.value).startswith("speed: |speed| = 100 m/s is at or above the critical speed")
+    assert str(e.value) in err
+    with pytest.raises(ValueError, match=r'config\["pluck"\]\["y"\]'):
+        flowmbd.string.simulate({"pluck": {"y": 0.1}})
