@@ -12,6 +12,9 @@
 //!   eigenvalues and the matrix-exponential response.
 //! * [`travelling`]: the travelling string with fixed ends in flowing-material modal coordinates
 //!   (4.12)–(4.20), a gyroscopic [`mbd_core::SecondOrderSystem`].
+//! * [`string_study`], [`string_sweep`], [`string_simulate`]: the string's modes study, speed
+//!   sweep and pluck transient (configuration,
+//!   checks, summaries), shared by `flowmbd-string` and the Python package.
 //! * [`contact`], [`pulley`]: the string wrapped on two pulleys with variable-size contact
 //!   (4.10), (4.11) and the travelling string with variable contact (4.31)–(4.40).
 
@@ -31,7 +34,9 @@ pub mod params;
 pub mod pulley;
 pub mod spectrum;
 pub mod string_fe;
+pub mod string_simulate;
 pub mod string_study;
+pub mod string_sweep;
 pub mod travelling;
 
 pub use contact::{ContactConfig, ContactString, HarmonicLoad, simulate_contact};

@@ -4,9 +4,10 @@ The Python API over the flowmbd Rust crates (the same engine, configuration keys
 results as the ``flowmbd-*`` command-line studies):
 
 - :mod:`flowmbd.belt`: ``speed_loss`` (Ribaric §6.4–6.5) and ``ancf`` (Kerkkänen ch. 3);
-- :mod:`flowmbd.string`: ``modes`` (Ribaric §4.2.3);
+- :mod:`flowmbd.string`: ``modes`` (Ribaric §4.2.3), ``sweep`` and ``simulate`` (ch. 4);
 - :mod:`flowmbd.tire`: the reduced FE tire (generate, import, ``reduce`` once into a picklable
-  ``ReducedTire``) and ``cleat`` (Ribaric ch. 7–8);
+  ``ReducedTire``) and its studies ``cleat``, ``steady``, ``sweep``, ``dips``, ``pressure``,
+  ``modes`` and ``rotating_modes`` (Ribaric ch. 7–8);
 - :mod:`flowmbd.reduce`: ``modes`` and ``craig_bampton`` of scipy.sparse matrices (Lin ch. 6);
 - :func:`flowmbd.sweep`: parameter sweeps on Dask distributed.
 
@@ -14,7 +15,8 @@ Studies take their configuration as a dict with the keys of the TOML file (``--p
 of the CLI), read deeply over the defaults like a partial TOML file (``{"drive": {"tension":
 300.0}}`` changes one number of the default drive), and return the content of the CLI's ``summary.json`` as a :class:`Result`: a dict with numpy
 arrays for number series, whose ``to_dataframe()`` gives its per-point records as a pandas
-DataFrame. Bad input raises ``ValueError`` (the CLI's message); a numerical failure
+DataFrame; with ``series=True`` a study also returns the series its CLI writes as CSV files
+(under the file's name, a dict of numpy columns). Bad input raises ``ValueError`` (the CLI's message); a numerical failure
 raises :class:`NumericalError` with the partial results attached. Long runs release the GIL.
 """
 

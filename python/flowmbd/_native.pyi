@@ -35,6 +35,19 @@ def string_modes(
 ) -> str:
     """JSON text of the string modes summary (``summary.json`` of ``flowmbd-string modes``)."""
 
+def string_sweep(
+    config: Optional[str] = None,
+    nodes: Optional[int] = None,
+    modes: Optional[int] = None,
+) -> Tuple[str, dict]:
+    """(JSON text of the string sweep summary, ``{"sweep": {column: array}}``)."""
+
+def string_simulate(
+    config: Optional[str] = None, speed: Optional[float] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the pluck-transient summary, ``{"modal_history", "spectra": {column:
+    array}}``)."""
+
 def modes(
     n: int, m: _Triplets, k: _Triplets, count: int, fixed: List[int]
 ) -> Tuple[List[float], List[float], npt.NDArray[np.float64]]:
@@ -175,3 +188,32 @@ def tire_cleat(
     tire: Optional[ReducedTire] = None,
 ) -> Tuple[str, List[List[float]], List[List[float]]]:
     """(JSON text of the cleat summary, force history columns, spectra columns)."""
+
+def tire_rotating_modes(
+    config: Optional[str] = None,
+    speeds_kmh: Optional[List[float]] = None,
+    tire: Optional[ReducedTire] = None,
+) -> Tuple[str, dict]:
+    """(JSON text of the rotating-modes summary, ``{"rotating_modes": {column: array}}``)."""
+
+def tire_sweep(
+    config: Optional[str] = None,
+    speeds_kmh: Optional[List[float]] = None,
+    tire: Optional[ReducedTire] = None,
+) -> Tuple[str, dict]:
+    """(JSON text of the sweep summary, the series: ``waterfall``, ``spectrum_map``,
+    ``run_series``)."""
+
+def tire_dips(
+    config: Optional[str] = None, tire: Optional[ReducedTire] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the dips summary, ``{"profile_<ground>", "prediction_<ground>",
+    "sweep_<ground>": {column: array}}``)."""
+
+def tire_pressure(
+    config: Optional[str] = None, tire: Optional[ReducedTire] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the pressure summary, ``{"patch_drum", "patch_road": {column: array}}``)."""
+
+def tire_modes(config: Optional[str] = None) -> Tuple[str, dict]:
+    """(JSON text of the modes summary, ``{"modes", "loaded_modes": {column: array}}``)."""

@@ -1,4 +1,7 @@
-"""Travelling string: the modes study of Ribaric §4.2.3 (``flowmbd-string modes``)."""
+"""Travelling string (Ribaric ch. 4): the modes study of §4.2.3 (``flowmbd-string modes``) and
+the speed sweep (``flowmbd-string sweep``) and the pluck transient (``flowmbd-string
+simulate``). Series that the CLI writes as CSV files come back with ``series=True``: under the
+CSV file's name without ``.csv``, a dict of its columns as numpy arrays."""
 
 from __future__ import annotations
 
@@ -54,3 +57,102 @@ def modes(
         )
     )
 
+
+
+def sweep(
+    config: Optional[Mapping[str, Any]] = None,
+    nodes: Optional[int] = None,
+    modes: Optional[int] = None,
+    series: bool = False,
+) -> Result:
+    """Natural frequencies of the travelling string against the axial speed from 0 to
+    ``max_speed_ratio`` times the critical speed ``c = sqrt(T/(rho A))``
+    (``flowmbd-string sweep``): the neutral frequencies of the Galerkin model (4.29) and of
+    the flowing-material model (4.20), and the exact ``f_n = n|c² − v²|/(2cL)``; every growing
+    eigenvalue of a model is checked by a second discretisation (growth it does not reproduce
+    is a truncation artefact; see :func:`modes`).
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-string sweep --print-config`` (``string``
+        (``length`` [m], ``density`` [kg/m³], ``area`` [m²], ``tension`` [N]), ``nodes``,
+        ``modes``, ``galerkin_terms``, ``max_speed_ratio``, ``steps``, ``tracked``,
+        ``derivative``).
+    nodes, modes : replace ``config["nodes"]`` and ``config["modes"]`` (the CLI's ``--nodes``,
+        ``--modes``; ``None`` keeps them).
+    series : also return ``"sweep"``: the columns of ``sweep.csv`` as numpy arrays
+        (``speed_m_per_s`` [m/s]; ``analytical_f<n>_Hz``, ``flowing_f<n>_Hz``,
+        ``exact_f<n>_Hz`` [Hz] for n = 1..tracked, NaN where a model has no such frequency;
+        ``analytical_max_growth_1_per_s``, ``flowing_max_growth_1_per_s`` [1/s];
+        ``string_unstable_flag``).
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``critical_speed`` [m/s], ``unstable_from``,
+        ``analytical_truncation_growth_from``, ``flowing_truncation_growth_from`` [m/s] (or
+        ``None``), ``max_rel_error_below_0_9c``, ``analytical_max_rel_error_above_1_1c`` and
+        ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        An eigen solve failed.
+    """
+    text, data = _native.string_sweep(
+        config_json(config),
+        None if nodes is None else _args.count("nodes", nodes),
+        None if modes is None else _args.count("modes", modes),
+    )
+    out = from_json(text)
+    if series:
+        out.update(data)
+    return out
+
+
+def simulate(
+    config: Optional[Mapping[str, Any]] = None,
+    speed: Optional[float] = None,
+    series: bool = False,
+) -> Result:
+    """The travelling string plucked into a triangle and let go (``flowmbd-string simulate``;
+    Ribaric Fig. 4-6 right): the flowing-material model (4.20) integrated in time by RK4, the
+    amplitude spectra of its modal coordinates and their peaks (the axial motion couples the
+    modes, so each coordinate vibrates at several natural frequencies).
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-string simulate --print-config`` (``string``,
+        ``speed`` [m/s], ``nodes``, ``modes``, ``pluck`` (``x`` [m], ``amplitude`` [m]),
+        ``duration`` [s], ``step`` [s], ``sample_every``, ``peak_threshold``,
+        ``derivative``). The speed must lie below the critical speed.
+    speed : axial speed [m/s] (replaces ``config["speed"]``; the CLI's ``--speed``).
+    series : also return ``"modal_history"`` (``t_s`` [s] and ``z<i>_sqrt_kg_m``, the modal
+        coordinates of the mass-normalised modes [√kg·m]) and ``"spectra"`` (``f_Hz`` [Hz] and
+        ``amp_z<i>_sqrt_kg_m``): the columns of ``modal_history.csv`` and ``spectra.csv`` as
+        numpy arrays.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``speed`` [m/s], ``model_hz`` (the model's natural
+        frequencies) and ``exact_hz`` (n(c² − v²)/(2cL)) [Hz], ``resolution_hz`` [Hz],
+        ``peaks`` (per mode its spectral peaks ``peaks_hz`` [Hz]), ``hamiltonian_drift`` (the
+        relative drift of the energy-like invariant, a check of the integration) and
+        ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message; also a step beyond RK4's stability
+        limit, or a derivative operator whose model grows below the critical speed).
+    flowmbd.NumericalError
+        The response is not finite.
+    """
+    text, data = _native.string_simulate(config_json(config), _args.optional_number("speed", speed))
+    out = from_json(text)
+    if series:
+        out.update(data)
+    return out

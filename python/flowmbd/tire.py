@@ -9,7 +9,23 @@ from the file that ``flowmbd-tire`` uses as ``tire.reduced_file``.
 - :func:`generate`, :func:`import_model`: the FE tire (``M``, ``K`` as scipy.sparse matrices,
   node coordinates, rim and candidate patch node sets), e.g. for :mod:`flowmbd.reduce`;
 - :func:`reduce`: the reduced tire;
-- :func:`cleat`: the cleat test of §8.3 at one speed (``flowmbd-tire cleat``).
+- :func:`cleat`: the cleat test of §8.3 at one speed (``flowmbd-tire cleat``);
+- :func:`steady`: steady-state side force, aligning moment and longitudinal force
+  (``flowmbd-tire steady``);
+- :func:`rotating_modes`: complex modes of the rolling tire in the ground frame, Campbell
+  diagram (``flowmbd-tire rotating-modes``);
+- :func:`sweep`: the cleat test over speeds, Ribaric Figs. 8-7, 8-8, 8-14
+  (``flowmbd-tire sweep``);
+- :func:`dips`: the speed dips of the cleat test, predicted and measured
+  (``flowmbd-tire dips``);
+- :func:`pressure`: the preloaded contact patch on drum and road, Fig. 8-12
+  (``flowmbd-tire pressure``);
+- :func:`modes`: full FE against reduced frequencies, and the loaded modes
+  (``flowmbd-tire modes``).
+
+Series that the CLI writes as CSV files come back with ``series=True``: under the CSV file's
+name without ``.csv`` (e.g. ``"rotating_modes"``), a dict of its columns (the CSV header) as
+numpy arrays.
 
 Configurations are dicts with the keys of the TOML files (``flowmbd-tire cleat
 --print-config``): the ``tire`` table has ``generator`` (or ``import``) and ``reduction``.
@@ -17,7 +33,7 @@ Configurations are dicts with the keys of the TOML files (``flowmbd-tire cleat
 
 from __future__ import annotations
 
-from typing import Any, Mapping, Optional
+from typing import Any, Mapping, Optional, Sequence
 
 import numpy as np
 import scipy.sparse as sp
@@ -222,3 +238,237 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
         if isinstance(config, Mapping) and "tire" in config:
             raise ValueError("tire: given both as tire= and as config[\"tire\"]; pass one of them")
     return from_json(_native.tire_steady(config_json(config), tire))
+
+
+def _check_tire(config: Optional[Mapping[str, Any]], tire: Optional["ReducedTire"]) -> None:
+    """``tire`` must be a :class:`ReducedTire`, and not given twice (``config["tire"]``)."""
+    if tire is not None:
+        if not isinstance(tire, ReducedTire):
+            raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
+        if isinstance(config, Mapping) and "tire" in config:
+            raise ValueError("tire: given both as tire= and as config[\"tire\"]; pass one of them")
+
+
+def _result(summary: str, series_data: dict, series: bool) -> Result:
+    """The summary, with the CSV series (``{file stem: {column: array}}``) when ``series``."""
+    out = from_json(summary)
+    if series:
+        out.update(series_data)
+    return out
+
+
+def rotating_modes(
+    config: Optional[Mapping[str, Any]] = None,
+    tire: Optional["ReducedTire"] = None,
+    speeds_kmh: Optional[Sequence[float]] = None,
+    series: bool = False,
+) -> Result:
+    """Complex modes of the rolling tire in the ground-fixed frame at several speeds
+    (``flowmbd-tire rotating-modes``): the gyroscopic and convective terms of the flowing
+    material (Ribaric (7.17)) split each circumferential order ``n`` into a forward and a
+    backward travelling wave (Campbell diagram). Free tire (rim fixed) and loaded tire (the
+    rolling preload's patch held).
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire rotating-modes --print-config`` (``tire``,
+        ``speeds_kmh`` [km/h], ``max_hz`` [Hz], ``ground``, ``load`` [N], ``damped``,
+        ``damping``).
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]`` (which must then be absent).
+    speeds_kmh : speeds [km/h] (replaces ``config["speeds_kmh"]``; the CLI's ``--speeds``).
+    series : also return ``"rotating_modes"``: the columns of ``rotating_modes.csv`` (one row
+        per mode: ``speed_km_per_h``, ``loaded_flag`` (0 free, 1 loaded), ``f_Hz``, ``n``,
+        ``direction_code`` (+1 forward, -1 backward, 0 standing), ``damping_ratio``,
+        ``growth_rate_1_per_s``, ``natural_Hz``, ``travelling_share``, ``lateral_share``) as
+        numpy arrays.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``speeds`` (per speed ``speed_kmh``, ``spin_rad_s``
+        [rad/s], ``free`` and ``loaded`` modes with ``hz`` [Hz], ``n``, ``direction``,
+        ``damping_ratio``, ``growth_rate`` [1/s], ``natural_hz`` [Hz], ``travelling``,
+        ``lateral_share``, and ``loaded_held_nodes``), ``splits`` (forward/backward frequency
+        per speed of the free tire's orders 1–8 per plane, [Hz]; NaN where not found),
+        ``zero_speed_max_rel_diff_vs_modes``, ``rayleigh`` (α [1/s], β [s]) and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        An eigen solve or the preload failed.
+    """
+    _check_tire(config, tire)
+    speeds = None if speeds_kmh is None else _args.numbers_list("speeds_kmh", speeds_kmh)
+    text, data = _native.tire_rotating_modes(config_json(config), speeds, tire)
+    return _result(text, data, series)
+
+
+def sweep(
+    config: Optional[Mapping[str, Any]] = None,
+    tire: Optional["ReducedTire"] = None,
+    speeds_kmh: Optional[Sequence[float]] = None,
+    series: bool = False,
+) -> Result:
+    """The cleat test of Ribaric §8.3 at every speed (``flowmbd-tire sweep``; Figs. 8-7, 8-8
+    on the drum, 8-14 on the flat road): the peak spectral amplitudes of the spindle forces
+    against speed, their local minima (the speed dips) and the spectra as a speed × frequency
+    table. For one speed with its force history use :func:`cleat`.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire sweep --print-config`` (``tire``, ``rig``,
+        ``speeds_kmh`` [km/h]; ``rig.speed_kmh`` is replaced by each speed).
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]`` (which must then be absent).
+    speeds_kmh : speeds [km/h] (replaces ``config["speeds_kmh"]``).
+    series : also return the CLI's CSV files as numpy arrays: ``"waterfall"`` (the columns of
+        ``waterfall.csv``: ``speed_km_per_h``, ``f_Hz``, ``fx_amp_N``, ``fy_amp_N``, every
+        run's own bins up to 300 Hz), ``"spectrum_map"`` (``speed_km_per_h``, ``f_Hz`` and the
+        amplitude matrices ``fx_amp_N``, ``fy_amp_N`` [N], speeds × frequencies, of
+        ``fx_matrix.csv`` and ``fy_matrix.csv``) and ``"run_series"`` (per speed ``"forces"``
+        and ``"spectra"``: the columns of ``v<speed>_forces.csv`` and ``v<speed>_spectra.csv``,
+        :data:`FORCE_COLUMNS`, :data:`SPECTRUM_COLUMNS`).
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``runs`` (per speed the cleat summary without the mode
+        labels, see :func:`cleat`), ``fy_peak_amplitude_n``, ``fx_peak_amplitude_n`` [N],
+        ``fy_peak_hz`` [Hz] (interpolated), ``peak_resolution_hz`` [Hz],
+        ``fy_amplitude_non_monotonic``, ``fy_amplitude_dips_kmh`` [km/h] and ``meaning``.
+        ``to_dataframe()`` gives one row per speed of ``runs``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        A run failed (the message names its speed); ``err.partial`` is the list of the
+        summaries of the speeds done before it.
+    """
+    _check_tire(config, tire)
+    speeds = None if speeds_kmh is None else _args.numbers_list("speeds_kmh", speeds_kmh)
+    text, data = _native.tire_sweep(config_json(config), speeds, tire)
+    return _result(text, data, series)
+
+
+def dips(
+    config: Optional[Mapping[str, Any]] = None,
+    tire: Optional["ReducedTire"] = None,
+    series: bool = False,
+) -> Result:
+    """The speed dips of the cleat test (``flowmbd-tire dips``; Ribaric §8.3/§8.5: 40–50 km/h
+    on the drum, 45–55 km/h on the road): per ground the cleat's quasi-static enveloping
+    profile, the loaded vertical mode, the predicted ring-down amplitude of that mode against
+    speed and the measured amplitude of the vertical line in a cleat sweep.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire dips --print-config`` (``tire``, ``rig``,
+        ``dips`` (``profile_step`` [m], ``pulse``, ``blocked_below_hz`` [Hz],
+        ``predict_speeds_kmh``, ``sweep_speeds_kmh`` [km/h], …), ``grounds``
+        (``["drum", "road"]``)). ``{"dips": {"sweep_speeds_kmh": []}}`` predicts only (the
+        CLI's ``--no-sweep``).
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]`` (which must then be absent).
+    series : also return the CLI's CSV files per ground as dicts of numpy arrays:
+        ``"profile_<ground>"`` (``cleat_x_m`` [m], ``dfy_N``, ``fx_N`` [N],
+        ``active_nodes_count``), ``"prediction_<ground>"`` (``speed_km_per_h``,
+        ``amplitude_N``) and, with sweep speeds, ``"sweep_<ground>"`` (``speed_km_per_h``,
+        ``line_amplitude_N``).
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``grounds`` (per ground ``ground``, ``deflection_m``,
+        ``envelope_length_m``, ``geometric_envelope_length_m``, ``contact_node_span_m`` [m],
+        ``profile_peak_n`` [N], ``vertical_mode_hz`` [Hz], ``zeta``, ``predicted_dips_kmh``,
+        ``measured_dips_kmh``, ``sweep_speeds_kmh`` [km/h], ``line_amplitude_n`` [N]) and
+        ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message, e.g. ``dips.profile_step: …``).
+    flowmbd.NumericalError
+        The profile, the preload or a sweep run failed (the message names the ground).
+    """
+    _check_tire(config, tire)
+    text, data = _native.tire_dips(config_json(config), tire)
+    return _result(text, data, series)
+
+
+def pressure(
+    config: Optional[Mapping[str, Any]] = None,
+    tire: Optional["ReducedTire"] = None,
+    series: bool = False,
+) -> Result:
+    """The preloaded contact patch on the drum and on a flat road (``flowmbd-tire pressure``;
+    Ribaric Fig. 8-12): static contact with Lagrange multipliers (§7.3) under the vertical
+    load, the contact-node forces and the patch extent.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire pressure --print-config`` (``tire``,
+        ``load`` [N], ``drum_radius`` [m]).
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]`` (which must then be absent).
+    series : also return ``"patch_drum"`` and ``"patch_road"``: the columns of
+        ``patch_<ground>.csv`` (``x_m``, ``y_m``, ``z_m``: undeformed contact-node position
+        [m]; ``force_N``: its normal force [N], 0 off the patch) as numpy arrays.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``drum`` and ``road``, each with ``deflection_m`` [m],
+        ``nodes_in_contact``, ``peak_node_force_n`` [N] and ``length_m`` [m]; and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        The contact solve failed.
+    """
+    _check_tire(config, tire)
+    text, data = _native.tire_pressure(config_json(config), tire)
+    return _result(text, data, series)
+
+
+def modes(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> Result:
+    """Eigenfrequencies of the tire with the rim fixed, full FE model against the reduced
+    model (the validation of the reduction, Ribaric §8.2), and the modes of the loaded tire
+    (preloaded patch held, wheel fixed) with their effective spindle masses
+    (``flowmbd-tire modes``). The full FE model is part of the study, so the tire is built
+    from ``config["tire"]`` and reduced here (no ``tire=``).
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire modes --print-config`` (``tire``,
+        ``count``, ``ground``, ``load`` [N]).
+    series : also return ``"modes"`` (``mode``, ``full_Hz``, ``reduced_Hz``) and
+        ``"loaded_modes"`` (``mode``, ``f_Hz``, ``spindle_fx_N_per_sqrt_kg``,
+        ``spindle_fy_N_per_sqrt_kg``, ``spindle_lateral_N_per_sqrt_kg``,
+        ``vertical_mass_kg``, ``longitudinal_mass_kg``): the columns of ``modes.csv`` and
+        ``loaded_modes.csv`` as numpy arrays.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``full_hz``, ``reduced_hz`` [Hz],
+        ``max_rel_error_below_240hz``, ``loaded_held_nodes``, ``loaded_hz`` [Hz],
+        ``loaded_vertical_mode_hz`` [Hz], ``loaded_vertical_mass_kg`` [kg],
+        ``loaded_longitudinal_mode_hz`` [Hz] and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        An eigen solve or the preload failed.
+    """
+    text, data = _native.tire_modes(config_json(config))
+    return _result(text, data, series)

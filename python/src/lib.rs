@@ -89,6 +89,36 @@ pub(crate) fn to_json<S: serde::Serialize>(summary: &S) -> PyResult<String> {
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
 }
 
+/// The series of a CSV file: its header and columns (collected with the GIL released, then
+/// handed to Python by [`Columns::into_py`]).
+pub(crate) struct Columns(Vec<(String, Vec<f64>)>);
+
+/// The columns of the CSV with `header` and `rows` (as the app writes it).
+pub(crate) fn columns<R: AsRef<[f64]>>(
+    header: &[&str],
+    rows: impl IntoIterator<Item = R>,
+) -> Columns {
+    let mut cols: Vec<Vec<f64>> = vec![Vec::new(); header.len()];
+    for row in rows {
+        for (col, x) in cols.iter_mut().zip(row.as_ref()) {
+            col.push(*x);
+        }
+    }
+    Columns(header.iter().map(|h| h.to_string()).zip(cols).collect())
+}
+
+impl Columns {
+    /// A dict `{column: numpy array}` in the CSV's column order.
+    pub(crate) fn into_py(self, py: Python<'_>) -> PyResult<Bound<'_, pyo3::types::PyDict>> {
+        use numpy::IntoPyArray;
+        let d = pyo3::types::PyDict::new(py);
+        for (name, col) in self.0 {
+            d.set_item(name, col.into_pyarray(py))?;
+        }
+        Ok(d)
+    }
+}
+
 /// The native module `flowmbd._native`.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -99,6 +129,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(belt::design, m)?)?;
     m.add_class::<stepping::PyBeltSimulation>()?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
+    m.add_function(wrap_pyfunction!(string::string_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(string::string_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::eitelberg, m)?)?;
@@ -108,6 +140,11 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tire::tire_reduce, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_cleat, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_steady, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_rotating_modes, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_dips, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_pressure, m)?)?;
+    m.add_function(wrap_pyfunction!(tire::tire_modes, m)?)?;
     m.add("CLEAT_FORCE_COLUMNS", ::tire::study::FORCE_COLUMNS.to_vec())?;
     m.add(
         "CLEAT_SPECTRUM_COLUMNS",

@@ -1,7 +1,9 @@
 //! `flowmbd.string`: the travelling-string modes study of Ribaric §4.2.3 through
-//! [`flowing::string_study`] (the same as `flowmbd-string modes`).
+//! [`flowing::string_study`] (the same as `flowmbd-string modes`) and the speed sweep through
+//! [`flowing::string_sweep`] (`flowmbd-string sweep`) and the pluck transient through
+//! [`flowing::string_simulate`] (`flowmbd-string simulate`).
 
-use crate::{input_error, numerical_error, read_config, to_json};
+use crate::{columns, input_error, numerical_error, read_config, to_json};
 use flowing::FlowError;
 use flowing::string_study::{ModesConfig, string_modes as run};
 use mbd_core::{InvalidField, Validate};
@@ -32,13 +34,95 @@ pub fn string_modes(
     c.validate().map_err(input_error)?;
     match py.detach(|| run(&c)) {
         Ok(summary) => to_json(&summary),
-        // the classification of the app (apps/string/src/common.rs: study_error)
-        Err(FlowError::InvalidInput { item, reason }) => {
-            Err(input_error(InvalidField::new(item, reason)))
-        }
-        Err(FlowError::MethodNotApplicable { method, reason }) => Err(input_error(
-            InvalidField::new("derivative", format!("{method}: {reason}")),
-        )),
-        Err(e) => Err(numerical_error(py, e.to_string(), None)),
+        Err(e) => Err(flow_error(py, e)),
     }
+}
+
+/// Bad input (`ValueError`) or a numerical failure (`flowmbd.NumericalError`): the
+/// classification of the app (apps/string/src/common.rs: `study_error`).
+fn flow_error(py: Python<'_>, e: FlowError) -> PyErr {
+    match e {
+        FlowError::InvalidInput { item, reason } => input_error(InvalidField::new(item, reason)),
+        FlowError::MethodNotApplicable { method, reason } => input_error(InvalidField::new(
+            "derivative",
+            format!("{method}: {reason}"),
+        )),
+        e => numerical_error(py, e.to_string(), None),
+    }
+}
+
+/// The speed sweep ([`flowing::string_sweep::string_sweep`], `flowmbd-string sweep`):
+/// frequencies of the Galerkin (4.29), flowing-material (4.20) and exact models from 0 to past
+/// the critical speed; returns `(summary JSON text, series)` with the series `{"sweep": the
+/// columns of sweep.csv}` (numpy arrays). `nodes`, `modes` replace the configuration's (the
+/// CLI's `--nodes`, `--modes`).
+#[pyfunction]
+#[pyo3(signature = (config=None, nodes=None, modes=None))]
+pub fn string_sweep<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    nodes: Option<usize>,
+    modes: Option<usize>,
+) -> PyResult<(String, Bound<'py, pyo3::types::PyDict>)> {
+    use flowing::string_sweep::{SweepConfig, string_sweep as sweep, sweep_header};
+    let mut c: SweepConfig = read_config(config)?;
+    if let Some(n) = nodes {
+        c.nodes = n;
+    }
+    if let Some(k) = modes {
+        c.modes = k;
+    }
+    c.validate().map_err(input_error)?;
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let summary = py
+        .detach(|| {
+            sweep(&c, &mut |_, row| {
+                rows.push(row.to_vec());
+                std::ops::ControlFlow::Continue(())
+            })
+        })
+        .map_err(|e| flow_error(py, e))?;
+    let header = sweep_header(c.tracked);
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let series = pyo3::types::PyDict::new(py);
+    series.set_item("sweep", columns(&header, &rows).into_py(py)?)?;
+    Ok((to_json(&summary)?, series))
+}
+
+/// The pluck transient ([`flowing::string_simulate::string_simulate`],
+/// `flowmbd-string simulate`; Ribaric Fig. 4-6 right): returns `(summary JSON text, series)`
+/// with the series `{"modal_history", "spectra": the columns of modal_history.csv and
+/// spectra.csv}` (numpy arrays). `speed` replaces the configuration's (the CLI's `--speed`).
+#[pyfunction]
+#[pyo3(signature = (config=None, speed=None))]
+pub fn string_simulate<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    speed: Option<f64>,
+) -> PyResult<(String, Bound<'py, pyo3::types::PyDict>)> {
+    use flowing::string_simulate::{
+        SimulateConfig, history_header, history_rows, spectra_header, spectra_rows,
+        string_simulate as simulate,
+    };
+    let mut c: SimulateConfig = read_config(config)?;
+    if let Some(v) = speed {
+        c.speed = v;
+    }
+    c.validate().map_err(input_error)?;
+    let r = py
+        .detach(|| simulate(&c, &mut |_| std::ops::ControlFlow::Continue(())))
+        .map_err(|e| flow_error(py, e))?;
+    let series = pyo3::types::PyDict::new(py);
+    for (name, header, rows) in [
+        (
+            "modal_history",
+            history_header(c.modes),
+            history_rows(&r.history),
+        ),
+        ("spectra", spectra_header(c.modes), spectra_rows(&r.spectra)),
+    ] {
+        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+        series.set_item(name, columns(&header, &rows).into_py(py)?)?;
+    }
+    Ok((to_json(&r.summary)?, series))
 }

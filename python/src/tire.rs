@@ -4,7 +4,7 @@
 //! reusable, picklable [`PyReducedTire`], and the cleat test of §8.3 with the configuration and
 //! summary of [`tire::study`] (the same as `flowmbd-tire cleat`).
 
-use crate::{input_error, numerical_error, read_config, to_json};
+use crate::{columns, input_error, numerical_error, read_config, to_json};
 use faer::Mat;
 use fe_model::generate::TireConfig;
 use mbd_core::Validate;
@@ -12,7 +12,7 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyBytes;
+use pyo3::types::{PyBytes, PyDict, PyList};
 use std::sync::Arc;
 use tire::study::{FORCE_COLUMNS, force_row, sample_row};
 use tire::{
@@ -42,6 +42,11 @@ fn file_error(py: Python<'_>, e: TireError) -> PyErr {
 
 fn to_numpy<'py>(py: Python<'py>, a: &Mat<f64>) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_fn((a.nrows(), a.ncols()), |(i, j)| a[(i, j)]).into_pyarray(py)
+}
+
+/// Rows of equal length `ncols` as a 2-D numpy array.
+fn matrix<'py>(py: Python<'py>, rows: &[Vec<f64>], ncols: usize) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((rows.len(), ncols), |(i, j)| rows[i][j]).into_pyarray(py)
 }
 
 fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
@@ -478,4 +483,215 @@ pub fn tire_cleat(
             }
         },
     }
+}
+
+/// The rotating-modes study ([`tire::run_rotating`], `flowmbd-tire rotating-modes`): complex
+/// modes of the free and loaded tire rolling at each speed, in the ground frame; returns
+/// `(summary JSON text, series)` with the series `{"rotating_modes": {column: numpy array}}`
+/// (the columns of `rotating_modes.csv`). `speeds_kmh` replaces `speeds_kmh` (the
+/// CLI's `--speeds`); `tire` replaces the reduction of `config.tire`.
+#[pyfunction]
+#[pyo3(signature = (config=None, speeds_kmh=None, tire=None))]
+pub fn tire_rotating_modes<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    speeds_kmh: Option<Vec<f64>>,
+    tire: Option<PyRef<'_, PyReducedTire>>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    use ::tire::rotating_study::{ROTATING_COLUMNS, RotatingStudyConfig, rotating_rows};
+    let mut c: RotatingStudyConfig = read_config(config)?;
+    if let Some(v) = speeds_kmh {
+        c.speeds_kmh = v;
+    }
+    c.validate().map_err(input_error)?;
+    let red = reduced_or(py, tire, &c.tire)?;
+    let (summary, _) = py
+        .detach(|| ::tire::run_rotating(&red, &c, &mut |_| {}))
+        .map_err(|e| tire_error(py, e, None))?;
+    let series = PyDict::new(py);
+    series.set_item(
+        "rotating_modes",
+        columns(&ROTATING_COLUMNS, rotating_rows(&summary)).into_py(py)?,
+    )?;
+    Ok((to_json(&summary)?, series))
+}
+
+/// The speed sweep of the cleat test ([`tire::run_sweep`], `flowmbd-tire sweep`; Ribaric Figs.
+/// 8-7, 8-8, 8-14): returns `(summary JSON text, series)` with the series (numpy arrays)
+/// `{"waterfall": columns of waterfall.csv, "spectrum_map": {"speed_km_per_h", "f_Hz",
+/// "fx_amp_N", "fy_amp_N" (speeds × frequencies, fx_matrix.csv / fy_matrix.csv)}, "run_series":
+/// [per speed {"forces": columns of v<speed>_forces.csv, "spectra": v<speed>_spectra.csv}]}`.
+/// `speeds_kmh` replaces `speeds_kmh`; `tire` replaces the reduction of `config.tire`. A
+/// numerical failure names the speed and carries the runs done before it as `partial`.
+#[pyfunction]
+#[pyo3(signature = (config=None, speeds_kmh=None, tire=None))]
+pub fn tire_sweep<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    speeds_kmh: Option<Vec<f64>>,
+    tire: Option<PyRef<'_, PyReducedTire>>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    use ::tire::study::SPECTRUM_COLUMNS;
+    use ::tire::sweep_study::{SweepStudyConfig, WATERFALL_COLUMNS};
+    let mut c: SweepStudyConfig = read_config(config)?;
+    if let Some(v) = speeds_kmh {
+        c.speeds_kmh = v;
+    }
+    c.validate().map_err(input_error)?;
+    let red = reduced_or(py, tire, &c.tire)?;
+    let mut run_series = Vec::new();
+    let result = py.detach(|| {
+        ::tire::run_sweep(&red, &c, &mut |_| {}, &mut |_, r| {
+            let (sx, sy) = r.spectra();
+            run_series.push((
+                columns(&FORCE_COLUMNS, r.samples.iter().map(sample_row)),
+                columns(
+                    &SPECTRUM_COLUMNS,
+                    (0..sx.freq_hz.len())
+                        .map(|k| [sx.freq_hz[k], sx.amplitude[k], sy.amplitude[k]]),
+                ),
+            ));
+            Ok(())
+        })
+    });
+    match result {
+        Ok(s) => {
+            let series = PyDict::new(py);
+            series.set_item(
+                "waterfall",
+                columns(&WATERFALL_COLUMNS, &s.waterfall).into_py(py)?,
+            )?;
+            let map = PyDict::new(py);
+            map.set_item("speed_km_per_h", c.speeds_kmh.clone().into_pyarray(py))?;
+            map.set_item("f_Hz", s.freq_hz.clone().into_pyarray(py))?;
+            map.set_item("fx_amp_N", matrix(py, &s.fx_matrix, s.freq_hz.len()))?;
+            map.set_item("fy_amp_N", matrix(py, &s.fy_matrix, s.freq_hz.len()))?;
+            series.set_item("spectrum_map", map)?;
+            let runs = PyList::empty(py);
+            for (forces, spectra) in run_series {
+                let d = PyDict::new(py);
+                d.set_item("forces", forces.into_py(py)?)?;
+                d.set_item("spectra", spectra.into_py(py)?)?;
+                runs.append(d)?;
+            }
+            series.set_item("run_series", runs)?;
+            Ok((to_json(&s.summary)?, series))
+        }
+        Err(f) => Err(match rig_input_error(f.error) {
+            Ok(field) => input_error(field),
+            Err(other) => numerical_error(
+                py,
+                format!("at {} km/h: {other}", f.speed_kmh),
+                serde_json::to_value(&f.runs).ok(),
+            ),
+        }),
+    }
+}
+
+/// The speed-dips study ([`tire::run_dips`], `flowmbd-tire dips`; Ribaric §8.3/§8.5): returns
+/// `(summary JSON text, series)` with the series (numpy arrays) `{"profile_<ground>",
+/// "prediction_<ground>", "sweep_<ground>" (when the sweep has speeds): the columns of the CSV
+/// file of that name}` per ground. `tire` replaces the reduction of `config.tire`.
+#[pyfunction]
+#[pyo3(signature = (config=None, tire=None))]
+pub fn tire_dips<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    tire: Option<PyRef<'_, PyReducedTire>>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    use ::tire::dips_study::{
+        DipsStudyConfig, PREDICTION_COLUMNS, PROFILE_COLUMNS, SWEEP_COLUMNS, prediction_rows,
+        profile_rows, sweep_rows,
+    };
+    let c: DipsStudyConfig = read_config(config)?;
+    c.validate().map_err(input_error)?;
+    let red = reduced_or(py, tire, &c.tire)?;
+    let (summary, grounds) = py
+        .detach(|| ::tire::run_dips(&red, &c, &mut |_| {}))
+        .map_err(|f| match rig_input_error(f.error) {
+            Ok(field) => input_error(field),
+            Err(other) => numerical_error(py, format!("{}: {other}", f.ground.name()), None),
+        })?;
+    let series = PyDict::new(py);
+    for d in &grounds {
+        let n = d.ground.name();
+        series.set_item(
+            format!("profile_{n}"),
+            columns(&PROFILE_COLUMNS, profile_rows(d)).into_py(py)?,
+        )?;
+        series.set_item(
+            format!("prediction_{n}"),
+            columns(&PREDICTION_COLUMNS, prediction_rows(d)).into_py(py)?,
+        )?;
+        if !d.sweep_speeds_kmh.is_empty() {
+            series.set_item(
+                format!("sweep_{n}"),
+                columns(&SWEEP_COLUMNS, sweep_rows(d)).into_py(py)?,
+            )?;
+        }
+    }
+    Ok((to_json(&summary)?, series))
+}
+
+/// The contact-patch study ([`tire::run_pressure`], `flowmbd-tire pressure`; Ribaric Fig.
+/// 8-12): returns `(summary JSON text, series)` with the series `{"patch_drum", "patch_road":
+/// the columns of patch_<ground>.csv}` (numpy arrays). `tire` replaces the reduction of
+/// `config.tire`.
+#[pyfunction]
+#[pyo3(signature = (config=None, tire=None))]
+pub fn tire_pressure<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    tire: Option<PyRef<'_, PyReducedTire>>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    use ::tire::pressure_study::{PATCH_COLUMNS, PressureStudyConfig};
+    let c: PressureStudyConfig = read_config(config)?;
+    c.validate().map_err(input_error)?;
+    let red = reduced_or(py, tire, &c.tire)?;
+    let (summary, patches) = py
+        .detach(|| ::tire::run_pressure(&red, &c))
+        .map_err(|e| tire_error(py, e, None))?;
+    let series = PyDict::new(py);
+    for p in patches {
+        series.set_item(
+            format!("patch_{}", p.ground.name()),
+            columns(&PATCH_COLUMNS, &p.rows).into_py(py)?,
+        )?;
+    }
+    Ok((to_json(&summary)?, series))
+}
+
+/// The modes study ([`tire::run_modes`], `flowmbd-tire modes`): full FE against reduced
+/// frequencies with the rim fixed, and the loaded modes at the static preload; returns
+/// `(summary JSON text, series)` with the series `{"modes", "loaded_modes": the columns of
+/// modes.csv and loaded_modes.csv}` (numpy arrays). The FE tire of `config.tire` is built and
+/// reduced here (the full model is part of the study, so a prebuilt reduced tire is not taken).
+#[pyfunction]
+#[pyo3(signature = (config=None))]
+pub fn tire_modes<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    use ::tire::modes_study::{
+        LOADED_COLUMNS, MODES_COLUMNS, ModesStudyConfig, loaded_rows, modes_rows,
+    };
+    let c: ModesStudyConfig = read_config(config)?;
+    c.validate().map_err(input_error)?;
+    let (summary, loaded) = py
+        .detach(|| {
+            let fe = c.tire.fe_model()?;
+            let (red, _) = c.tire.reduce_fe(&fe)?;
+            ::tire::run_modes(&fe, &red, &c)
+        })
+        .map_err(|e| tire_error(py, e, None))?;
+    let series = PyDict::new(py);
+    series.set_item(
+        "modes",
+        columns(&MODES_COLUMNS, modes_rows(&summary)).into_py(py)?,
+    )?;
+    series.set_item(
+        "loaded_modes",
+        columns(&LOADED_COLUMNS, loaded_rows(&loaded)).into_py(py)?,
+    )?;
+    Ok((to_json(&summary)?, series))
 }

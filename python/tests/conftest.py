@@ -35,3 +35,12 @@ def cli(tmp_path):
         return p.returncode, summary, p.stderr
 
     return run
+
+
+@pytest.fixture(scope="session")
+def reduced():
+    """The small generated tire of `tire_case.TIRE` reduced once for the session (about 2 s)."""
+    import flowmbd
+    from tire_case import TIRE
+
+    return flowmbd.tire.reduce(TIRE)

@@ -89,3 +89,79 @@ def test_fead_bad_input_is_a_value_error():
 
     with pytest.raises(ValueError, match="speeds_rpm"):
         flowmbd.belt.fead(rpm=[-100.0])
+
+
+def test_string_sweep_equals_cli(cli, tmp_path):
+    # same as `flowmbd-string sweep` summary.json and sweep.csv on a coarse sweep (12 speeds up
+    # to 1.2 c, 30 nodes, 10 modes, 3 tracked frequencies); the supercritical speeds exercise the
+    # growth check by a second discretisation
+    import numpy as np
+
+    toml = "nodes = 30\nmodes = 10\ngalerkin_terms = 10\nsteps = 12\ntracked = 3\n"
+    (tmp_path / "c.toml").write_text(toml)
+    code, ref, err = cli("string", "sweep", "--config", str(tmp_path / "c.toml"))
+    assert code == 0, err
+    config = {"nodes": 30, "modes": 10, "galerkin_terms": 10, "steps": 12, "tracked": 3}
+    py = flowmbd.string.sweep(config, series=True)
+    series = py.pop("sweep")
+    assert_same(py, ref)
+    csv = np.genfromtxt(tmp_path / "string" / "sweep.csv", delimiter=",", names=True)
+    assert list(series) == list(csv.dtype.names)
+    for k in series:
+        np.testing.assert_allclose(series[k], csv[k], rtol=1e-9, atol=1e-300, equal_nan=True,
+                                   err_msg=k)
+    # the exact frequencies vanish near the critical speed and the first is n c/(2L) at rest
+    assert abs(series["exact_f1_Hz"][0] / (py["critical_speed"] / 2.0) - 1.0) < 1e-14
+    assert len(series["speed_m_per_s"]) == 12
+
+
+def test_string_sweep_bad_input_names_the_field(cli, tmp_path):
+    import pytest
+
+    (tmp_path / "c.toml").write_text("max_speed_ratio = 0.5\n")
+    code, _, err = cli("string", "sweep", "--config", str(tmp_path / "c.toml"))
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.string.sweep({"max_speed_ratio": 0.5})
+    assert str(e.value).startswith("max_speed_ratio: must exceed 1")
+    assert str(e.value) in err
+    with pytest.raises(ValueError, match=r'config\["string"\]\["tension"\]'):
+        flowmbd.string.sweep({"string": {"tension": "high"}})
+
+
+def test_string_simulate_equals_cli(cli, tmp_path):
+    # same as `flowmbd-string simulate` summary.json, modal_history.csv and spectra.csv on a short
+    # coarse run (30 nodes, 6 modes, 0.2 s)
+    import numpy as np
+
+    toml = "nodes = 30\nmodes = 6\nduration = 0.2\n"
+    (tmp_path / "c.toml").write_text(toml)
+    code, ref, err = cli("string", "simulate", "--speed", "10", "--config",
+                         str(tmp_path / "c.toml"))
+    assert code == 0, err
+    py = flowmbd.string.simulate({"nodes": 30, "modes": 6, "duration": 0.2}, speed=10.0,
+                                 series=True)
+    series = {k: py.pop(k) for k in ("modal_history", "spectra")}
+    assert_same(py, ref)
+    for name, cols in series.items():
+        csv = np.genfromtxt(tmp_path / "string" / f"{name}.csv", delimiter=",", names=True)
+        assert list(cols) == list(csv.dtype.names), name
+        for k in cols:
+            np.testing.assert_allclose(cols[k], csv[k], rtol=1e-9, atol=1e-300,
+                                       err_msg=f"{name}:{k}")
+    # RK4 nearly conserves the invariant; the pluck starts from rest at t = 0
+    assert abs(py["hamiltonian_drift"]) < 1e-6
+    assert series["modal_history"]["t_s"][0] == 0.0 and py["speed"] == 10.0
+
+
+def test_string_simulate_bad_input_names_the_field(cli, tmp_path):
+    import pytest
+
+    code, _, err = cli("string", "simulate", "--speed", "100")
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.string.simulate(speed=100.0)
+    assert str(e.value).startswith("speed: |speed| = 100 m/s is at or above the critical speed")
+    assert str(e.value) in err
+    with pytest.raises(ValueError, match=r'config\["pluck"\]\["y"\]'):
+        flowmbd.string.simulate({"pluck": {"y": 0.1}})

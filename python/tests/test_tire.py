@@ -8,7 +8,6 @@ tire's frequencies (the library test `tests/tests/tire_import.rs` does the same 
 
 import json
 import pickle
-import tomllib
 
 import numpy as np
 import pytest
@@ -17,44 +16,11 @@ import scipy.sparse as sp
 
 import flowmbd
 from compare import assert_same
+from tire_case import RIG, RIG_TOML, TIRE, TIRE_TOML
 
-# The small generated tire of the app tests (apps/tire/tests/common: 96 x 8 elements, isotropic
-# tread, 33 contact nodes, 50 free-node modes; reduced in about 2 s) and a short rig (0.05 s
-# settling + 0.05 s record at 60 km/h: 500 steps, about 1 s) as the TOML the CLI reads.
-TIRE_TOML = """
-[tire.generator]
-circumferential_divisions = 96
-section_divisions = 8
-thickness_divisions = 1
-bead_elements = 1
-patch_half_angle_deg = 20.0
-[tire.generator.tread]
-young = 150e6
-poisson = 0.45
-density = 1500.0
-[tire.generator.carcass]
-modulus = 0.0
-[tire.reduction]
-contact_nodes = 33
-free_modes = 50
-"""
-RIG_TOML = """
-vtk_interval = 0
-vtk_tire_interval = 0
-[rig]
-settle_time = 0.05
-record_time = 0.05
-"""
-TIRE = tomllib.loads(TIRE_TOML)["tire"]
-RIG = tomllib.loads(RIG_TOML)
 MATRICES = ("m", "k", "g1", "g2", "k1", "kr", "kr1", "kt", "kt1", "tc", "tc_theta",
             "p_e", "p_e1", "p_e2", "m_theta", "c_s", "contact_positions", "free_mode_hz",
             "contact_mode_hz")
-
-
-@pytest.fixture(scope="module")
-def reduced():
-    return flowmbd.tire.reduce(TIRE)
 
 
 def write_config(tmp_path, reduced_file, rig=True):

@@ -23,6 +23,16 @@ pub enum GroundKind {
     Road,
 }
 
+impl GroundKind {
+    /// `"drum"` or `"road"` (its configuration value; the studies' file-name suffix).
+    pub fn name(self) -> &'static str {
+        match self {
+            GroundKind::Drum => "drum",
+            GroundKind::Road => "road",
+        }
+    }
+}
+
 /// Ground settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]

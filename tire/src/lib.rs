@@ -33,8 +33,12 @@
 //! * [`rotating`]: complex modes of the rotating tire in the ground frame (gyroscopic and
 //!   convective terms of (7.17)), labelled by [`harmonics`] with circumferential order and
 //!   forward/backward direction;
+//! * [`rotating_study`]: the rotating-modes study (configuration, summary, Campbell splits);
 //! * [`dips`]: the speed dips of the cleat test from the cleat's enveloping profile and the
 //!   loaded vertical mode;
+//! * [`dips_study`], [`pressure_study`], [`modes_study`]: the speed-dips, contact-patch and
+//!   modes studies (configuration, summary, CSV tables);
+//! * [`sweep_study`]: the speed sweep of the cleat test (Ribaric Figs. 8-7, 8-8, 8-14);
 //! * [`study`]: the cleat study's configuration and summary and the classification of errors
 //!   into bad input and numerical failures, shared by `flowmbd-tire` and the Python package.
 
@@ -74,6 +78,7 @@ pub mod harmonics;
 pub mod lines;
 pub mod loaded;
 pub mod rotating;
+pub mod rotating_study;
 
 pub use harmonics::{Harmonic, WaveDirection};
 pub use lines::{LineMode, SpindleComponent, line_modes};
@@ -85,6 +90,7 @@ pub use rotating::{
     FlowingMatrices, RotatingMode, RotatingOptions, SpeedModes, modes_at_speed, rotating_modes,
     spinning_modes,
 };
+pub use rotating_study::{RotatingStudyConfig, RotatingSummary, run_rotating};
 
 // the ground, the preload and the rolling tire
 pub mod contact_step;
@@ -109,18 +115,25 @@ pub use stats::StepStats;
 
 // the studies: cleat test, spectra, speed dips
 pub mod dips;
+pub mod dips_study;
 pub mod magic_formula;
+pub mod modes_study;
+pub mod pressure_study;
 pub mod rig;
 pub mod spectrum;
 pub mod steady;
 pub mod study;
+pub mod sweep_study;
 pub mod tir;
 
 pub use dips::{
     DipConfig, DipPrediction, EnvelopingProfile, GroundDips, PulseShape, enveloping_profile,
     geometric_envelope_half_length, ground_dips, line_amplitude, local_minima, predict_dips,
 };
+pub use dips_study::{DipsStudyConfig, DipsSummary, run_dips};
 pub use magic_formula::{MfCurve, MfFit, MfFitError, TrailCurve, fit_steady};
+pub use modes_study::{ModesStudyConfig, ModesSummary, run_modes};
+pub use pressure_study::{PressureStudyConfig, PressureSummary, run_pressure};
 pub use rig::{
     DampingConfig, ImpactConfig, MAX_SLIP_ANGLE_DEG, RigConfig, RigResult, RigStart, Sample,
     WheelInputs, run_cleat, run_cleat_observed, start_rolling,
@@ -137,4 +150,5 @@ pub use study::{
     CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, cleat_summary, phase_spread,
     rig_input_error, summarize, tire_input_error,
 };
+pub use sweep_study::{SweepResult, SweepStudyConfig, SweepSummary, run_sweep};
 pub use tir::{TirTyre, write_tir};

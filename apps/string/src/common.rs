@@ -1,7 +1,6 @@
-//! Pieces shared by the studies: error mapping, validation helpers, model building.
+//! Pieces shared by the studies: error mapping, validation helpers.
 
-use flowing::string_study::{self, Spectrum};
-use flowing::{FlowError, FlowingString, StringConfig};
+use flowing::FlowError;
 use flowmbd_cli::{InputError, StudyError};
 
 /// The flowing-material model's discretisation on the command line of the `modes` and `sweep`
@@ -43,21 +42,5 @@ pub fn study_error(e: FlowError) -> StudyError {
 
 /// The shared checks, defined with the modes study in `flowing` (one set of messages).
 pub use flowing::string_study::{
-    MAX_GALERKIN_TERMS, MAX_STRING_NODES, Regime, check_nodes_modes, check_number, check_scales,
-    check_steps, check_string,
+    MAX_STRING_NODES, Regime, check_number, check_scales, check_steps, check_string,
 };
-
-/// Eigen analysis of the Galerkin model (4.29) ([`flowing::string_study::galerkin_spectrum`]).
-pub fn galerkin_spectrum(
-    p: StringConfig,
-    speed: f64,
-    terms: usize,
-) -> Result<Spectrum, StudyError> {
-    string_study::galerkin_spectrum(p, speed, terms).map_err(study_error)
-}
-
-/// Eigen analysis of the flowing model frozen at `speed`
-/// ([`flowing::string_study::flowing_spectrum`]).
-pub fn flowing_spectrum(sys: &FlowingString, speed: f64) -> Result<Spectrum, StudyError> {
-    string_study::flowing_spectrum(sys, speed).map_err(study_error)
-}

@@ -1,147 +1,13 @@
-//! `sweep`: frequencies against axial speed from 0 to past the critical speed.
+//! `sweep`: frequencies against axial speed from 0 to past the critical speed
+//! ([`flowing::string_sweep`]).
 
 use crate::common::*;
-use flowing::string_study;
-use flowing::{DerivativeMethod, StringConfig};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
-use serde::{Deserialize, Serialize};
+use flowmbd_cli::{CliError, Study, StudyContext, StudyError};
+use std::ops::ControlFlow;
 
-/// Configuration.
-#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(default, deny_unknown_fields)]
-pub struct SweepConfig {
-    /// String parameters.
-    pub string: StringConfig,
-    /// Interior FE nodes.
-    pub nodes: usize,
-    /// Retained modes of the flowing-material model.
-    pub modes: usize,
-    /// Sine terms of the Galerkin model.
-    pub galerkin_terms: usize,
-    /// Highest speed as a multiple of the critical speed \[-\].
-    pub max_speed_ratio: f64,
-    /// Number of speeds (the default avoids hitting v = c exactly, where the stiffness vanishes
-    /// and only the gyroscopic eigenvalues remain).
-    pub steps: usize,
-    /// Frequencies tracked per model.
-    pub tracked: usize,
-    /// Mode-shape derivative operator.
-    pub derivative: DerivativeMethod,
-}
-
-impl Default for SweepConfig {
-    fn default() -> Self {
-        Self {
-            string: StringConfig::default(),
-            nodes: 99,
-            modes: 20,
-            galerkin_terms: 40,
-            max_speed_ratio: 1.2,
-            steps: 50,
-            tracked: 5,
-            derivative: DerivativeMethod::default(),
-        }
-    }
-}
-
-/// Most eigenvalue work of one sweep, in units of `n³` of the dense non-symmetric eigen solver
-/// (about 25 flops each): `steps × 9((2·galerkin_terms)³ + (2·modes)³)`, the models at every
-/// speed and, where they grow, their second discretisations (twice the size). 10¹² is about an
-/// hour; the default sweep takes 2.6·10⁸.
-pub const MAX_SWEEP_EIGEN_WORK: f64 = 1e12;
-
-/// Highest `max_speed_ratio` (the supercritical branch up to 100 c).
-pub const MAX_SPEED_RATIO: f64 = 100.0;
-
-impl flowmbd_cli::PartialRules for SweepConfig {}
-
-impl Validate for SweepConfig {
-    fn validate(&self) -> Result<(), InputError> {
-        check_string(&self.string, "string")?;
-        check_nodes_modes(self.nodes, self.modes)?;
-        if !(self.max_speed_ratio.is_finite()
-            && self.max_speed_ratio > 1.0
-            && self.max_speed_ratio <= MAX_SPEED_RATIO)
-        {
-            return Err(InputError::new(
-                "max_speed_ratio",
-                format!(
-                    "must exceed 1 (past the critical speed) and be at most {MAX_SPEED_RATIO}, \
-                     got {}",
-                    mbd_core::validate::check::show(self.max_speed_ratio)
-                ),
-            ));
-        }
-        // one Galerkin and one flowing eigen problem per speed
-        mbd_core::validate::check::size("steps", self.steps, 2, 100_000)?;
-        mbd_core::validate::check::size(
-            "galerkin_terms",
-            self.galerkin_terms,
-            1,
-            MAX_GALERKIN_TERMS,
-        )?;
-        if self.tracked == 0 || self.tracked > self.modes {
-            return Err(InputError::new(
-                "tracked",
-                format!("must be between 1 and modes = {}", self.modes),
-            ));
-        }
-        if self.galerkin_terms < self.tracked {
-            return Err(InputError::new(
-                "galerkin_terms",
-                "must be at least `tracked`",
-            ));
-        }
-        check_scales(
-            &self.string,
-            "string",
-            "max_speed_ratio",
-            self.max_speed_ratio * self.string.wave_speed(),
-            2 * self.nodes.max(self.galerkin_terms) + 1,
-        )?;
-        let cube = |n: usize| (2.0 * n as f64).powi(3);
-        let work = self.steps as f64 * 9.0 * (cube(self.galerkin_terms) + cube(self.modes));
-        let max = mbd_core::validate::limits::ceiling(MAX_SWEEP_EIGEN_WORK);
-        if work > max {
-            return Err(InputError::new(
-                "steps",
-                format!(
-                    "{} speeds of {} Galerkin terms and {} modes are {work:.3e} units of eigen \
-                     work (steps × 9((2·galerkin_terms)³ + (2·modes)³)), more than the {max:e} a \
-                     sweep may take{}",
-                    self.steps,
-                    self.galerkin_terms,
-                    self.modes,
-                    mbd_core::validate::limits::raise_hint()
-                ),
-            ));
-        }
-        Ok(())
-    }
-}
-
-/// Summary.
-#[derive(Debug, Clone, Serialize)]
-pub struct SweepSummary {
-    /// Critical speed \[m/s\].
-    pub critical_speed: f64,
-    /// Lowest swept speed at which the string is unstable \[m/s\]: the critical speed when a
-    /// swept speed hits it (divergence), or growth of a model that its second discretisation
-    /// reproduces (`None`: stable at every swept speed).
-    pub unstable_from: Option<f64>,
-    /// Lowest swept speed at which the truncated Galerkin model has truncation-dependent growth
-    /// \[m/s\] (an artefact of the truncation above c, not an instability of the string).
-    pub analytical_truncation_growth_from: Option<f64>,
-    /// Likewise for the flowing-material model \[m/s\].
-    pub flowing_truncation_growth_from: Option<f64>,
-    /// Largest relative deviation of the flowing from the exact frequencies below 0.9 c.
-    pub max_rel_error_below_0_9c: f64,
-    /// Largest relative deviation of the Galerkin model's neutral frequencies from the exact
-    /// ones above 1.1 c (the supercritical branch, over the tracked frequencies the model has;
-    /// `None` when no swept speed is above 1.1 c).
-    pub analytical_max_rel_error_above_1_1c: Option<f64>,
-}
+use flowing::string_sweep::{SWEEP_MEANING, string_sweep, sweep_header};
+use flowing::string_sweep::{SweepConfig, SweepSummary};
 
 /// The `sweep` study.
 pub struct SweepStudy {
@@ -155,25 +21,7 @@ impl Study for SweepStudy {
     const NAME: &'static str = "sweep";
 
     fn meaning(&self) -> &'static str {
-        "Natural frequencies of the travelling string (Ribaric ch. 4) against the axial speed \
-         from 0 to max_speed_ratio times the critical speed c = sqrt(T/(rho A)) = \
-         critical_speed [m/s] (sweep.csv, sweep.png): the neutral eigenvalues of the Galerkin \
-         model (4.29) and of the flowing-material model (4.20), and the exact \
-         f_n = n|c^2 - v^2|/(2cL) (Wickert & Mote 1990). Every frequency falls with the speed \
-         to 0 Hz at v = c (divergence) and rises again above c, where the string between \
-         fixed guides stays neutrally stable. The truncated models have growing eigenvalues \
-         above c whose rates rise without bound as the truncation is refined (largest in \
-         analytical_ / flowing_max_growth_1_s, 0 when nothing grows): at every speed where a \
-         model grows it is solved again with twice the Galerkin terms or half the FE spacing \
-         and twice the modes, and growth that this does not reproduce within 10 % is a \
-         truncation artefact (analytical_ / flowing_truncation_growth_from, the lowest such \
-         speed; shaded on the plot). unstable_from is the lowest speed at which the string \
-         itself is unstable (v = c hit exactly, or reproduced growth; string_unstable_flag in \
-         sweep.csv; null: stable everywhere). max_rel_error_below_0_9c is the flowing \
-         model's largest deviation from the exact frequencies below 0.9 c (near c its modal \
-         basis converges slowly), analytical_max_rel_error_above_1_1c the Galerkin model's \
-         above 1.1 c. A frequency a model does not have at a speed (its growing pairs took \
-         the place) is NaN in sweep.csv."
+        SWEEP_MEANING
     }
 
     fn apply_overrides(&self, c: &mut SweepConfig) {
@@ -181,97 +29,29 @@ impl Study for SweepStudy {
     }
 
     fn run(&self, c: &SweepConfig, ctx: &mut StudyContext) -> Result<SweepSummary, StudyError> {
-        let crit = c.string.wave_speed();
-        let (_, sys) = string_study::flowing_model(c.string, c.nodes, c.modes, c.derivative, 0.0)
-            .map_err(study_error)?;
-        // the second discretisation of the flowing model, built when it first grows
-        let mut sys_check = None;
-        let mut header = vec!["speed_m_per_s".to_string()];
-        for kind in ["analytical", "flowing", "exact"] {
-            for n in 1..=c.tracked {
-                header.push(format!("{kind}_f{n}_Hz"));
-            }
-        }
-        header.push("analytical_max_growth_1_per_s".into());
-        header.push("flowing_max_growth_1_per_s".into());
-        header.push("string_unstable_flag".into());
+        let header = sweep_header(c.tracked);
         let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         let mut csv = ctx.out.csv("sweep.csv", &hdr)?;
         let bar = ctx.progress(c.steps as f64, "speed sweep");
+        // the Galerkin (columns 1..=tracked) and flowing (tracked+1..=2 tracked) frequencies
         let mut series: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 2 * c.tracked];
-        let mut unstable_from = None;
-        let (mut a_trunc, mut f_trunc) = (None, None);
-        let (mut max_err, mut max_err_super) = (0.0f64, None::<f64>);
-        for i in 0..c.steps {
-            let v = c.max_speed_ratio * crit * i as f64 / (c.steps - 1) as f64;
-            let regime = Regime::of(&c.string, v);
-            let a = galerkin_spectrum(c.string, v, c.galerkin_terms)?;
-            let f = flowing_spectrum(&sys, v)?;
-            let mut reproduced = false;
-            if !a.growth.is_empty() {
-                let check =
-                    galerkin_spectrum(c.string, v, string_study::check_terms(c.galerkin_terms))?;
-                let (kept, trunc) = string_study::classify_growth(&a.growth, &check.growth);
-                reproduced |= !kept.is_empty();
-                if !trunc.is_empty() {
-                    a_trunc.get_or_insert(v);
+        let mut kept: Option<CliError> = None;
+        let summary = string_sweep(c, &mut |i, row| {
+            for (s, f) in series.iter_mut().zip(&row[1..=2 * c.tracked]) {
+                if !f.is_nan() {
+                    s.push((row[0], *f));
                 }
             }
-            if !f.growth.is_empty() {
-                if sys_check.is_none() {
-                    let (n, k) = string_study::check_mesh(c.nodes, c.modes);
-                    sys_check = Some(
-                        string_study::flowing_model(c.string, n, k, c.derivative, 0.0)
-                            .map_err(study_error)?
-                            .1,
-                    );
-                }
-                if let Some(s2) = &sys_check {
-                    let check = flowing_spectrum(s2, v)?;
-                    let (kept, trunc) = string_study::classify_growth(&f.growth, &check.growth);
-                    reproduced |= !kept.is_empty();
-                    if !trunc.is_empty() {
-                        f_trunc.get_or_insert(v);
-                    }
-                }
+            if let Err(e) = csv.row(row) {
+                kept = Some(e);
+                return ControlFlow::Break(());
             }
-            let unstable = regime == Regime::Critical || reproduced;
-            if unstable {
-                unstable_from.get_or_insert(v);
-            }
-            let mut row = vec![v];
-            for (n, s) in series.iter_mut().enumerate().take(c.tracked) {
-                row.push(a.neutral_hz.get(n).copied().unwrap_or(f64::NAN));
-                if let Some(f) = a.neutral_hz.get(n) {
-                    s.push((v, *f));
-                }
-            }
-            for n in 0..c.tracked {
-                let ex = c.string.exact_moving_frequency_hz(n + 1, v);
-                row.push(f.neutral_hz.get(n).copied().unwrap_or(f64::NAN));
-                if let Some(x) = f.neutral_hz.get(n) {
-                    series[c.tracked + n].push((v, *x));
-                    if v < 0.9 * crit {
-                        max_err = max_err.max((x - ex).abs() / ex);
-                    }
-                }
-                if v > 1.1 * crit
-                    && let Some(x) = a.neutral_hz.get(n)
-                {
-                    max_err_super = Some(max_err_super.unwrap_or(0.0).max((x - ex).abs() / ex));
-                }
-            }
-            for n in 0..c.tracked {
-                row.push(c.string.exact_moving_frequency_hz(n + 1, v));
-            }
-            row.push(a.growth.first().map_or(0.0, |g| g.rate_per_s));
-            row.push(f.growth.first().map_or(0.0, |g| g.rate_per_s));
-            row.push(f64::from(u8::from(unstable)));
-            csv.row(&row)?;
-            if ctx.tick(&bar, (i + 1) as f64).is_break() {
-                // interrupted: the speeds swept so far make the summary
-                break;
-            }
+            // interrupted: the speeds swept so far make the summary
+            ctx.tick(&bar, (i + 1) as f64)
+        })
+        .map_err(study_error)?;
+        if let Some(e) = kept {
+            return Err(e.into());
         }
         csv.finish()?;
         bar.finish();
@@ -290,8 +70,11 @@ impl Study for SweepStudy {
                 series[c.tracked + n].clone(),
             ));
         }
-        let v_max = c.max_speed_ratio * crit;
-        let trunc_from = match (a_trunc, f_trunc) {
+        let v_max = c.max_speed_ratio * summary.critical_speed;
+        let trunc_from = match (
+            summary.analytical_truncation_growth_from,
+            summary.flowing_truncation_growth_from,
+        ) {
             (Some(a), Some(f)) => Some(a.min(f)),
             (a, f) => a.or(f),
         };
@@ -302,17 +85,10 @@ impl Study for SweepStudy {
                 v_max,
             );
         }
-        if let Some(v0) = unstable_from {
+        if let Some(v0) = summary.unstable_from {
             plot = plot.with_band(format!("unstable (from {v0:.2} m/s)"), v0, v_max);
         }
         plot.save(&ctx.out.path("sweep"))?;
-        Ok(SweepSummary {
-            critical_speed: crit,
-            unstable_from,
-            analytical_truncation_growth_from: a_trunc,
-            flowing_truncation_growth_from: f_trunc,
-            max_rel_error_below_0_9c: max_err,
-            analytical_max_rel_error_above_1_1c: max_err_super,
-        })
+        Ok(summary)
     }
 }

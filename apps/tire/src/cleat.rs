@@ -29,9 +29,7 @@ pub struct Args {
 }
 
 /// Configuration and summary of the study: in the library, shared with the Python package.
-pub use tire::study::{
-    CleatStudyConfig as Config, CleatSummary as Summary, summarize, validate_rig,
-};
+pub use tire::study::{CleatStudyConfig as Config, CleatSummary as Summary};
 use tire::study::{FORCE_COLUMNS, SPECTRUM_COLUMNS, force_row, sample_row};
 
 /// Write the spectra and plots of a rig result under `prefix`, and its force history
