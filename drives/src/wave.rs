@@ -3,9 +3,12 @@
 //! of each run and the drift speed of its deflection centroid, compared with the axially moving
 //! string's frequency ratio `1 − v²/c²` (Ribaric §4.2).
 
-use belt::Drive;
-use flowing::belt::wave::{WaveConfig, WaveRun, dominant_frequency, wave_speed};
-use serde::Serialize;
+use belt::{Drive, Layout};
+use flowing::FlowError;
+use flowing::belt::wave::{WaveConfig, WaveRun, dominant_frequency, wave_run, wave_speed};
+use flowing::belt::{BeltMesh, BeltReduction, FlowingSettings};
+use mbd_core::{InvalidField, Validate};
+use serde::{Deserialize, Serialize};
 
 /// The measurements of one run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -86,6 +89,174 @@ pub fn summarize(
         running: b,
         free_time: t_free,
     }
+}
+
+/// The `flowmbd-belt wave` study's configuration (SI units): the belt of Ribaric Fig. 6-3
+/// deflected on one span and let go, at rest and running.
+#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields)]
+pub struct WaveStudyConfig {
+    /// The drive (Ribaric Table 6-1); the bump starts on span 0 (pulley 0 → pulley 1).
+    pub drive: Layout,
+    /// The flowing model's loop and reduction (all free-node modes kept and 40 elements per
+    /// span by default: the wave packet needs the short wavelengths).
+    pub flowing: FlowingSettings,
+    /// The demonstration.
+    pub wave: WaveConfig,
+    /// Number of VTK frames per run.
+    pub vtk_frames: usize,
+    /// Scale of the deflection in the VTK files \[-\].
+    pub vtk_scale: f64,
+}
+
+impl Default for WaveStudyConfig {
+    fn default() -> Self {
+        Self {
+            drive: crate::table_6_1::layout(),
+            flowing: FlowingSettings {
+                mesh: BeltMesh {
+                    span_element: 0.45 / 40.0,
+                    ..BeltMesh::default()
+                },
+                reduction: BeltReduction { free_modes: None },
+                ..FlowingSettings::default()
+            },
+            wave: WaveConfig::default(),
+            vtk_frames: 100,
+            vtk_scale: 10.0,
+        }
+    }
+}
+
+// the layout's merge rules (`tension` / `belt_length`, `pulleys` / `tensioner`)
+impl mbd_core::config::PartialRules for WaveStudyConfig {
+    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
+}
+
+impl Validate for WaveStudyConfig {
+    fn validate(&self) -> Result<(), InvalidField> {
+        let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
+        self.flowing.validate_within("flowing")?;
+        self.flowing
+            .mesh
+            .check_on(drive.path())
+            .map_err(|e| e.within("flowing.mesh"))?;
+        self.wave.validate_within("wave")?;
+        // at most one frame per recorded sample (issue 35: `vtk_frames = 1e9` was taken and
+        // silently gave one frame per sample)
+        if !(1..=self.wave.samples).contains(&self.vtk_frames) {
+            return Err(InvalidField::new(
+                "vtk_frames",
+                format!(
+                    "must lie in [1, wave.samples = {}] (one frame per recorded sample at most), got {}",
+                    self.wave.samples, self.vtk_frames
+                ),
+            ));
+        }
+        if !(self.vtk_scale.is_finite() && self.vtk_scale > 0.0) {
+            return Err(InvalidField::new("vtk_scale", "must be finite and > 0"));
+        }
+        Ok(())
+    }
+}
+
+/// The study's summary (`summary.json`).
+#[derive(Debug, Clone, Serialize)]
+pub struct WaveStudySummary {
+    /// Transverse wave speed `c = √(T0/ρA)` \[m/s\].
+    pub wave_speed: f64,
+    /// At rest.
+    pub rest: RunSummary,
+    /// Running.
+    pub running: RunSummary,
+    /// Measured frequency ratio running/rest.
+    pub frequency_ratio: f64,
+    /// Moving-string prediction `1 − v²/c²` (Ribaric §4.2).
+    pub frequency_ratio_string: f64,
+    /// Wall time \[s\].
+    pub wall_time_s: f64,
+    /// What the numbers mean ([`WAVE_MEANING`]).
+    pub meaning: String,
+}
+
+/// What the summary's numbers mean.
+pub const WAVE_MEANING: &str = "The flowing-material belt drive of Ribaric Fig. 6-3 with one \
+span deflected and let go, once at rest and once running at the belt speed. wave_speed is the \
+transverse wave speed c = sqrt(T0/(rho A)) [m/s]; rest and running hold the span's measured \
+vibration in each case; frequency_ratio is the running span's lowest frequency over the resting \
+one, and frequency_ratio_string the travelling-string prediction 1 - v^2/c^2 (Wickert and \
+Mote): the axial motion lowers the span's frequencies, and the two ratios agree when the span \
+behaves like a travelling string.";
+
+/// Both runs of the study, their measurements and the undeformed loop.
+#[derive(Debug, Clone)]
+pub struct WaveStudy {
+    /// The summary.
+    pub summary: WaveStudySummary,
+    /// [`WaveSummary::free_time`] \[s\].
+    pub free_time: f64,
+    /// The run at rest.
+    pub rest: WaveRun,
+    /// The running belt.
+    pub running: WaveRun,
+    /// Node positions of the undeformed loop \[m\] (the runs' shapes deflect from them).
+    pub reference: Vec<[f64; 2]>,
+}
+
+/// Run the study `c` (validated): [`wave_run`] at rest and running, measured by
+/// [`summarize`]; `progress` is called with the fraction done after each run.
+pub fn run_wave_study(
+    c: &WaveStudyConfig,
+    mut progress: impl FnMut(f64),
+) -> Result<WaveStudy, FlowError> {
+    let start = std::time::Instant::now();
+    let drive = c.drive.resolve().map_err(|e| e.within("drive"))?;
+    let rest = wave_run(&drive, &c.flowing, &c.wave, false)?;
+    progress(0.5);
+    let running = wave_run(&drive, &c.flowing, &c.wave, true)?;
+    progress(1.0);
+    let m = summarize(&drive, &c.wave, &rest, &running);
+    let reference = flowing::belt::BeltFe::new(&drive, &c.flowing.mesh)?.position;
+    Ok(WaveStudy {
+        summary: WaveStudySummary {
+            wave_speed: m.wave_speed,
+            frequency_ratio: m.frequency_ratio,
+            frequency_ratio_string: m.frequency_ratio_string,
+            rest: m.rest,
+            running: m.running,
+            wall_time_s: start.elapsed().as_secs_f64(),
+            meaning: WAVE_MEANING.to_string(),
+        },
+        free_time: m.free_time,
+        rest,
+        running,
+        reference,
+    })
+}
+
+/// Columns of `wave.csv`.
+pub const WAVE_CSV_HEADER: [&str; 5] = [
+    "t_s",
+    "midspan_rest_m",
+    "midspan_running_m",
+    "centroid_rest_m",
+    "centroid_running_m",
+];
+
+/// Rows of `wave.csv` ([`WAVE_CSV_HEADER`]): per sample time the mid-span deflection and the
+/// deflection centroid of both runs \[s, m\].
+pub fn wave_csv_rows(rest: &WaveRun, running: &WaveRun) -> Vec<[f64; 5]> {
+    (0..rest.times.len().min(running.times.len()))
+        .map(|k| {
+            [
+                rest.times[k],
+                rest.midspan[k],
+                running.midspan[k],
+                rest.centroid[k],
+                running.centroid[k],
+            ]
+        })
+        .collect()
 }
 
 #[cfg(test)]

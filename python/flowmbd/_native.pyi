@@ -42,6 +42,12 @@ def string_sweep(
 ) -> Tuple[str, dict]:
     """(JSON text of the string sweep summary, ``{"sweep": {column: array}}``)."""
 
+def wave(
+    config: Optional[str] = None, speed: Optional[float] = None, t_end: Optional[float] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the travelling-wave demonstration's summary, ``{"wave": {column:
+    array}}``)."""
+
 def string_simulate(
     config: Optional[str] = None, speed: Optional[float] = None
 ) -> Tuple[str, dict]:

@@ -94,6 +94,15 @@ def from_json(text: str) -> Result:
     return Result(to_result(json.loads(text)))
 
 
+def with_series(text: str, series_data: Mapping[str, Any], series: bool) -> Result:
+    """The summary JSON ``text`` as a :class:`Result`, with the CSV series
+    (``{file stem: {column: array}}``) added when ``series``."""
+    out = from_json(text)
+    if series:
+        out.update(series_data)
+    return out
+
+
 def config_json(config: Optional[Mapping[str, Any]]) -> Optional[str]:
     """The configuration dict (TOML keys) as JSON text for the native module."""
     if config is None:

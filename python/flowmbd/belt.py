@@ -8,7 +8,7 @@ from __future__ import annotations
 from typing import Any, Mapping, Optional, Sequence
 
 from . import _args, _native
-from ._results import Result, config_json, from_json
+from ._results import Result, config_json, from_json, with_series
 
 
 def speed_loss(
@@ -318,3 +318,49 @@ class Simulation:
         load, torque, power, torque residual), ``spans`` (force [N]), ``balances`` (torque
         and power residuals)."""
         return from_json(self._sim.report())
+
+
+def wave(
+    config: Optional[Mapping[str, Any]] = None,
+    speed: Optional[float] = None,
+    t_end: Optional[float] = None,
+    series: bool = False,
+) -> Result:
+    """The rotating vs non-rotating belt of Ribaric §6.2, Fig. 6-3 (``flowmbd-belt wave``): the
+    flowing-material belt drive of Table 6-1 with its upper span deflected by a bump and let
+    go, once at rest and once running at ``wave.belt_speed``. The running span vibrates lower,
+    by the travelling string's ``1 − v²/c²`` (Wickert and Mote), and its deflection drifts with
+    the belt.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-belt wave --print-config`` (``drive``,
+        ``flowing``, ``wave``, ``vtk_frames``, ``vtk_scale``).
+    speed : belt speed of the running case [m/s] (replaces ``config["wave"]["belt_speed"]``;
+        the CLI's ``--speed``).
+    t_end : simulated time [s] (replaces ``config["wave"]["t_end"]``; the CLI's ``--t-end``).
+    series : also return ``"wave"``: the columns of the CLI's ``wave.csv`` as numpy arrays
+        (``t_s`` [s], ``midspan_rest_m``, ``midspan_running_m`` [m]: mid-span deflection,
+        ``centroid_rest_m``, ``centroid_running_m`` [m]: centroid of the span deflection along
+        the span).
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``wave_speed`` [m/s], ``rest`` and ``running`` (each
+        ``belt_speed`` [m/s], ``frequency_hz`` [Hz], ``centroid_speed`` [m/s]),
+        ``frequency_ratio``, ``frequency_ratio_string``, ``wall_time_s`` [s] and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        A run failed.
+    """
+    text, data = _native.wave(
+        config_json(config),
+        _args.optional_number("speed", speed),
+        _args.optional_number("t_end", t_end),
+    )
+    return with_series(text, data, series)

@@ -8,7 +8,7 @@ from __future__ import annotations
 from typing import Any, Mapping, Optional
 
 from . import _args, _native
-from ._results import Result, config_json, from_json
+from ._results import Result, config_json, from_json, with_series
 
 
 def modes(
@@ -106,10 +106,7 @@ def sweep(
         None if nodes is None else _args.count("nodes", nodes),
         None if modes is None else _args.count("modes", modes),
     )
-    out = from_json(text)
-    if series:
-        out.update(data)
-    return out
+    return with_series(text, data, series)
 
 
 def simulate(
@@ -152,7 +149,4 @@ def simulate(
         The response is not finite.
     """
     text, data = _native.string_simulate(config_json(config), _args.optional_number("speed", speed))
-    out = from_json(text)
-    if series:
-        out.update(data)
-    return out
+    return with_series(text, data, series)

@@ -39,7 +39,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import _args, _native
-from ._results import Result, config_json, from_json
+from ._results import Result, config_json, from_json, with_series
 
 ReducedTire = _native.ReducedTire
 
@@ -249,14 +249,6 @@ def _check_tire(config: Optional[Mapping[str, Any]], tire: Optional["ReducedTire
             raise ValueError("tire: given both as tire= and as config[\"tire\"]; pass one of them")
 
 
-def _result(summary: str, series_data: dict, series: bool) -> Result:
-    """The summary, with the CSV series (``{file stem: {column: array}}``) when ``series``."""
-    out = from_json(summary)
-    if series:
-        out.update(series_data)
-    return out
-
-
 def rotating_modes(
     config: Optional[Mapping[str, Any]] = None,
     tire: Optional["ReducedTire"] = None,
@@ -303,7 +295,7 @@ def rotating_modes(
     _check_tire(config, tire)
     speeds = None if speeds_kmh is None else _args.numbers_list("speeds_kmh", speeds_kmh)
     text, data = _native.tire_rotating_modes(config_json(config), speeds, tire)
-    return _result(text, data, series)
+    return with_series(text, data, series)
 
 
 def sweep(
@@ -352,7 +344,7 @@ def sweep(
     _check_tire(config, tire)
     speeds = None if speeds_kmh is None else _args.numbers_list("speeds_kmh", speeds_kmh)
     text, data = _native.tire_sweep(config_json(config), speeds, tire)
-    return _result(text, data, series)
+    return with_series(text, data, series)
 
 
 def dips(
@@ -398,7 +390,7 @@ def dips(
     """
     _check_tire(config, tire)
     text, data = _native.tire_dips(config_json(config), tire)
-    return _result(text, data, series)
+    return with_series(text, data, series)
 
 
 def pressure(
@@ -435,7 +427,7 @@ def pressure(
     """
     _check_tire(config, tire)
     text, data = _native.tire_pressure(config_json(config), tire)
-    return _result(text, data, series)
+    return with_series(text, data, series)
 
 
 def modes(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> Result:
@@ -471,4 +463,4 @@ def modes(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> R
         An eigen solve or the preload failed.
     """
     text, data = _native.tire_modes(config_json(config))
-    return _result(text, data, series)
+    return with_series(text, data, series)

@@ -207,3 +207,39 @@ fn summary_or_failure<S: serde::Serialize>(
         )),
     }
 }
+
+/// The rotating vs non-rotating belt demonstration of Ribaric §6.2, Fig. 6-3
+/// ([`drives::wave::run_wave_study`], `flowmbd-belt wave`): returns `(summary JSON text,
+/// series)` with the series `{"wave": the columns of wave.csv}` (numpy arrays). `speed`
+/// \[m/s\] and `t_end` \[s\] replace `wave.belt_speed` and `wave.t_end` (the CLI's `--speed`,
+/// `--t-end`).
+#[pyfunction]
+#[pyo3(signature = (config=None, speed=None, t_end=None))]
+pub fn wave<'py>(
+    py: Python<'py>,
+    config: Option<&str>,
+    speed: Option<f64>,
+    t_end: Option<f64>,
+) -> PyResult<(String, Bound<'py, pyo3::types::PyDict>)> {
+    use drives::wave::{WAVE_CSV_HEADER, WaveStudyConfig, run_wave_study, wave_csv_rows};
+    let mut c: WaveStudyConfig = read_config(config)?;
+    if let Some(v) = speed {
+        c.wave.belt_speed = v;
+    }
+    if let Some(t) = t_end {
+        c.wave.t_end = t;
+    }
+    c.validate().map_err(input_error)?;
+    let study = py
+        .detach(|| run_wave_study(&c, |_| {}))
+        .map_err(|e| match e {
+            flowing::FlowError::InvalidInput { item, reason } => {
+                input_error(InvalidField::new(item, reason))
+            }
+            other => numerical_error(py, other.to_string(), None),
+        })?;
+    let series = pyo3::types::PyDict::new(py);
+    let rows = wave_csv_rows(&study.rest, &study.running);
+    series.set_item("wave", crate::columns(&WAVE_CSV_HEADER, &rows).into_py(py)?)?;
+    Ok((to_json(&study.summary)?, series))
+}

@@ -127,6 +127,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(belt::plate, m)?)?;
     m.add_function(wrap_pyfunction!(belt::fead, m)?)?;
     m.add_function(wrap_pyfunction!(belt::design, m)?)?;
+    m.add_function(wrap_pyfunction!(belt::wave, m)?)?;
     m.add_class::<stepping::PyBeltSimulation>()?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_sweep, m)?)?;

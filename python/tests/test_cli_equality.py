@@ -165,3 +165,43 @@ def test_string_simulate_bad_input_names_the_field(cli, tmp_path):
     assert str(e.value) in err
     with pytest.raises(ValueError, match=r'config\["pluck"\]\["y"\]'):
         flowmbd.string.simulate({"pluck": {"y": 0.1}})
+
+
+def test_belt_wave_equals_cli(cli, tmp_path):
+    # same as `flowmbd-belt wave` summary.json and wave.csv on a short coarse run (10 elements
+    # per span, 20 ms at 0.1 ms steps)
+    import numpy as np
+
+    toml = (
+        "vtk_frames = 5\n[flowing.mesh]\nspan_element = 0.045\n"
+        "[wave]\nt_end = 0.02\nstep = 1e-4\nsamples = 100\n"
+    )
+    (tmp_path / "c.toml").write_text(toml)
+    code, ref, err = cli("belt", "wave", "--speed", "10", "--config", str(tmp_path / "c.toml"))
+    assert code == 0, err
+    config = {
+        "vtk_frames": 5,
+        "flowing": {"mesh": {"span_element": 0.045}},
+        "wave": {"t_end": 0.02, "step": 1e-4, "samples": 100},
+    }
+    py = flowmbd.belt.wave(config, speed=10.0, series=True)
+    cols = py.pop("wave")
+    assert_same(py, ref)
+    csv = np.genfromtxt(tmp_path / "belt" / "wave.csv", delimiter=",", names=True)
+    assert list(cols) == list(csv.dtype.names)
+    for k in cols:
+        np.testing.assert_allclose(cols[k], csv[k], rtol=1e-9, atol=1e-300, err_msg=k)
+    # the running belt's span vibrates lower than the resting one (travelling string)
+    assert py["running"]["belt_speed"] == 10.0 and py["rest"]["belt_speed"] == 0.0
+
+
+def test_belt_wave_bad_input_names_the_field(cli, tmp_path):
+    import pytest
+
+    code, _, err = cli("belt", "wave", "--t-end", "-1")
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        flowmbd.belt.wave(t_end=-1.0)
+    assert str(e.value) in err
+    with pytest.raises(ValueError, match=r'config\["wave"\]\["samples"\]'):
+        flowmbd.belt.wave({"wave": {"samples": -3}})

@@ -8,16 +8,13 @@
 //! and a VTK series of the belt loop per run (`vtk/<run>_NNNN.vtu` + `<run>.vtu.series`, the
 //! deflection scaled by `vtk_scale` as in the "highly exaggerated" figure).
 
-use belt::Layout;
-use drives::wave::{RunSummary, summarize};
-use fe_model::io::vtk::{PointField, polyline, write_vtu};
-use flowing::belt::wave::{WaveConfig, WaveRun, wave_run};
-use flowing::belt::{BeltMesh, BeltReduction, FlowingSettings};
-use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{
-    CommonArgs, InputError, Study, StudyContext, StudyError, Validate, VtkSeries, run_study,
+use drives::wave::{
+    WAVE_CSV_HEADER, WAVE_MEANING, WaveStudyConfig, WaveStudySummary, run_wave_study, wave_csv_rows,
 };
-use serde::{Deserialize, Serialize};
+use fe_model::io::vtk::{PointField, polyline, write_vtu};
+use flowing::belt::wave::WaveRun;
+use flowmbd_cli::plot::{LinePlot, Series};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, VtkSeries, run_study};
 use std::process::ExitCode;
 
 /// Command-line arguments of the `wave` study.
@@ -35,91 +32,6 @@ pub struct Args {
     pub t_end: Option<f64>,
 }
 
-/// Configuration (SI units).
-#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(default, deny_unknown_fields)]
-pub struct Config {
-    /// The drive (Ribaric Table 6-1); the bump starts on span 0 (pulley 0 → pulley 1).
-    pub drive: Layout,
-    /// The flowing model's loop and reduction (all free-node modes kept and 40 elements per
-    /// span by default: the wave packet needs the short wavelengths).
-    pub flowing: FlowingSettings,
-    /// The demonstration.
-    pub wave: WaveConfig,
-    /// Number of VTK frames per run.
-    pub vtk_frames: usize,
-    /// Scale of the deflection in the VTK files \[-\].
-    pub vtk_scale: f64,
-}
-
-impl Default for Config {
-    fn default() -> Self {
-        Self {
-            drive: drives::table_6_1::layout(),
-            flowing: FlowingSettings {
-                mesh: BeltMesh {
-                    span_element: 0.45 / 40.0,
-                    ..BeltMesh::default()
-                },
-                reduction: BeltReduction { free_modes: None },
-                ..FlowingSettings::default()
-            },
-            wave: WaveConfig::default(),
-            vtk_frames: 100,
-            vtk_scale: 10.0,
-        }
-    }
-}
-
-// the layout's merge rules (`tension` / `belt_length`, `pulleys` / `tensioner`)
-impl flowmbd_cli::PartialRules for Config {
-    const DROPPED_BY: &'static [(&'static str, &'static str)] = belt::PARTIAL_RULES;
-}
-
-impl Validate for Config {
-    fn validate(&self) -> Result<(), InputError> {
-        let drive = self.drive.resolve().map_err(|e| e.within("drive"))?;
-        self.flowing.validate_within("flowing")?;
-        self.flowing
-            .mesh
-            .check_on(drive.path())
-            .map_err(|e| e.within("flowing.mesh"))?;
-        self.wave.validate_within("wave")?;
-        // at most one frame per recorded sample (issue 35: `vtk_frames = 1e9` was taken and
-        // silently gave one frame per sample)
-        if !(1..=self.wave.samples).contains(&self.vtk_frames) {
-            return Err(InputError::new(
-                "vtk_frames",
-                format!(
-                    "must lie in [1, wave.samples = {}] (one frame per recorded sample at most), got {}",
-                    self.wave.samples, self.vtk_frames
-                ),
-            ));
-        }
-        if !(self.vtk_scale.is_finite() && self.vtk_scale > 0.0) {
-            return Err(InputError::new("vtk_scale", "must be finite and > 0"));
-        }
-        Ok(())
-    }
-}
-
-/// Summary (`summary.json`, `--json`).
-#[derive(Debug, Clone, Serialize)]
-pub struct Summary {
-    /// Transverse wave speed `c = √(T0/ρA)` \[m/s\].
-    pub wave_speed: f64,
-    /// At rest.
-    pub rest: RunSummary,
-    /// Running.
-    pub running: RunSummary,
-    /// Measured frequency ratio running/rest.
-    pub frequency_ratio: f64,
-    /// Moving-string prediction `1 − v²/c²`.
-    pub frequency_ratio_string: f64,
-    /// Wall time \[s\].
-    pub wall_time_s: f64,
-}
-
 struct Wave {
     args: Args,
 }
@@ -131,7 +43,7 @@ fn write_vtk(
     name: &str,
     run: &WaveRun,
     base: &[[f64; 2]],
-    c: &Config,
+    c: &WaveStudyConfig,
 ) -> Result<(), StudyError> {
     let mut frames = VtkSeries::new(name, "vtu", 0.0);
     let every = run.times.len().div_ceil(c.vtk_frames).max(1);
@@ -169,22 +81,16 @@ fn write_vtk(
 }
 
 impl Study for Wave {
-    type Config = Config;
-    type Summary = Summary;
+    type Config = WaveStudyConfig;
+    type Summary = WaveStudySummary;
     const APP: &'static str = "belt";
     const NAME: &'static str = "wave";
 
     fn meaning(&self) -> &'static str {
-        "The flowing-material belt drive of Ribaric Fig. 6-3 with one span deflected and let \
-         go, once at rest and once running at the belt speed. wave_speed is the transverse \
-         wave speed c = sqrt(T0/(rho A)) [m/s]; rest and running hold the span's measured \
-         vibration in each case; frequency_ratio is the running span's lowest frequency over \
-         the resting one, and frequency_ratio_string the travelling-string prediction 1 - \
-         v^2/c^2 (Wickert and Mote): the axial motion lowers the span's frequencies, and the \
-         two ratios agree when the span behaves like a travelling string."
+        WAVE_MEANING
     }
 
-    fn apply_overrides(&self, c: &mut Config) {
+    fn apply_overrides(&self, c: &mut WaveStudyConfig) {
         if let Some(v) = self.args.speed {
             c.wave.belt_speed = v;
         }
@@ -193,49 +99,24 @@ impl Study for Wave {
         }
     }
 
-    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let start = std::time::Instant::now();
-        let progress = ctx.progress(2.0, "wave");
-        let num = |e: flowing::FlowError| match e {
+    fn run(
+        &self,
+        c: &WaveStudyConfig,
+        ctx: &mut StudyContext,
+    ) -> Result<WaveStudySummary, StudyError> {
+        let progress = ctx.progress(1.0, "wave");
+        let study = run_wave_study(c, |f| progress.set(f)).map_err(|e| match e {
             flowing::FlowError::InvalidInput { item, reason } => {
                 StudyError::Input(InputError::new(item, reason))
             }
             other => StudyError::numerical(other),
-        };
-        let drive = c
-            .drive
-            .resolve()
-            .map_err(|e| StudyError::Input(e.within("drive")))?;
-        let rest = wave_run(&drive, &c.flowing, &c.wave, false).map_err(num)?;
-        progress.set(1.0);
-        let running = wave_run(&drive, &c.flowing, &c.wave, true).map_err(num)?;
+        })?;
         progress.finish();
-        let m = summarize(&drive, &c.wave, &rest, &running);
-        let base = flowing::belt::BeltFe::new(&drive, &c.flowing.mesh)
-            .map_err(num)?
-            .position
-            .clone();
-        write_vtk(ctx, "rest", &rest, &base, c)?;
-        write_vtk(ctx, "running", &running, &base, c)?;
-        ctx.out.write_csv(
-            "wave.csv",
-            &[
-                "t_s",
-                "midspan_rest_m",
-                "midspan_running_m",
-                "centroid_rest_m",
-                "centroid_running_m",
-            ],
-            (0..rest.times.len()).map(|k| {
-                [
-                    rest.times[k],
-                    rest.midspan[k],
-                    running.midspan[k],
-                    rest.centroid[k],
-                    running.centroid[k],
-                ]
-            }),
-        )?;
+        let (rest, running) = (&study.rest, &study.running);
+        write_vtk(ctx, "rest", rest, &study.reference, c)?;
+        write_vtk(ctx, "running", running, &study.reference, c)?;
+        ctx.out
+            .write_csv("wave.csv", &WAVE_CSV_HEADER, wave_csv_rows(rest, running))?;
         let ms = |r: &WaveRun| -> Vec<(f64, f64)> {
             r.times
                 .iter()
@@ -248,13 +129,13 @@ impl Study for Wave {
             "t [ms]",
             "deflection [mm]",
         )
-        .with(Series::line("at rest", ms(&rest)))
+        .with(Series::line("at rest", ms(rest)))
         .with(Series::line(
             format!("running at {} m/s", c.wave.belt_speed),
-            ms(&running),
+            ms(running),
         ))
         .save(&ctx.out.path("span_deflection"))?;
-        let t_free = m.free_time;
+        let t_free = study.free_time;
         let cen = |r: &WaveRun| -> Vec<(f64, f64)> {
             r.times
                 .iter()
@@ -268,20 +149,13 @@ impl Study for Wave {
             "t [ms]",
             "position along the span [m]",
         )
-        .with(Series::line("at rest", cen(&rest)))
+        .with(Series::line("at rest", cen(rest)))
         .with(Series::line(
             format!("running at {} m/s", c.wave.belt_speed),
-            cen(&running),
+            cen(running),
         ))
         .save(&ctx.out.path("centroid"))?;
-        Ok(Summary {
-            wave_speed: m.wave_speed,
-            frequency_ratio: m.frequency_ratio,
-            frequency_ratio_string: m.frequency_ratio_string,
-            rest: m.rest,
-            running: m.running,
-            wall_time_s: start.elapsed().as_secs_f64(),
-        })
+        Ok(study.summary)
     }
 }
 
