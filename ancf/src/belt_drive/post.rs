@@ -147,10 +147,14 @@ pub fn spans(drive: &BeltDrive) -> Vec<SpanLine> {
 /// (within a quarter span length of the undeformed span line, assigned to the nearest span:
 /// [`BeltPath::span_middle_of`]), in span order; `NaN` when no sample lies there.
 pub fn span_tensions(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
-    let samples = tension_samples(drive, q, 4);
+    span_tensions_of(drive, &tension_samples(drive, q, 4))
+}
+
+/// [`span_tensions`] from the samples `samples` of [`tension_samples`].
+fn span_tensions_of(drive: &BeltDrive, samples: &[TensionSample]) -> Vec<f64> {
     let spans = spans(drive);
     let mut sum = vec![(0.0, 0usize); spans.len()];
-    for s in &samples {
+    for s in samples {
         if let Some(k) = BeltPath::span_middle_of(&spans, s.position) {
             sum[k].0 += s.tension;
             sum[k].1 += 1;
@@ -262,12 +266,10 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
             slip: w.contact.slip,
         })
         .collect();
-    let tensions = span_tensions(drive, q);
+    let samples = tension_samples(drive, q, 4);
+    let tensions = span_tensions_of(drive, &samples);
     let offsets = span_transverse(drive, q);
-    let centreline: Vec<[f64; 2]> = tension_samples(drive, q, 4)
-        .iter()
-        .map(|s| s.position)
-        .collect();
+    let centreline: Vec<[f64; 2]> = samples.iter().map(|s| s.position).collect();
     let lines = drive.path().lines_of_action(&centreline);
     let spans = spans(drive)
         .iter()

@@ -278,12 +278,8 @@ impl AncfDrive for PlateBeltDrive {
             })
             .collect();
         let states = post::span_states(d, q, v);
-        let offsets = self.span_offsets(q)?;
-        let w = d.spec().belt.width;
-        let centreline: Vec<[f64; 2]> = post::line_samples(d, q, v, 0.5 * w, 4)
-            .iter()
-            .map(|s| [s.position[0], s.position[1]])
-            .collect();
+        let centreline = centreline(d, q, v);
+        let offsets = centreline_offsets(d, &centreline);
         let lines = d.path().lines_of_action(&centreline);
         let spans = post::spans(d)
             .iter()
@@ -296,6 +292,7 @@ impl AncfDrive for PlateBeltDrive {
                 line: lines[k],
             })
             .collect();
+        let w = d.spec().belt.width;
         let a = d.element_length();
         let path: &BeltPath = d.path();
         let wrap = d
@@ -327,28 +324,40 @@ impl AncfDrive for PlateBeltDrive {
     }
 
     /// Offset of the centreline sample nearest each span's mid-point from the span line
-    /// (positive to the left of travel) \[m\].
+    /// (positive to the left of travel) \[m\] ([`centreline_offsets`]).
     fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
-        let d = self;
-        let w = d.spec().belt.width;
         let v = vec![0.0; q.len()];
-        let samples = post::line_samples(d, q, &v, 0.5 * w, 4);
-        Ok(post::spans(d)
-            .iter()
-            .map(|sp| {
-                samples
-                    .iter()
-                    .map(|s| sp.local([s.position[0], s.position[1]]))
-                    .filter(|(_, off)| off.abs() < 0.25 * sp.length)
-                    .min_by(|a, b| {
-                        (a.0 - 0.5 * sp.length)
-                            .abs()
-                            .total_cmp(&(b.0 - 0.5 * sp.length).abs())
-                    })
-                    .map_or(f64::NAN, |(_, off)| off)
-            })
-            .collect())
+        Ok(centreline_offsets(self, &centreline(self, q, &v)))
     }
+}
+
+/// Positions \[m\] of the plate's centreline (`y = b/2`) at 4 points per element, in travel
+/// order ([`post::line_samples`]).
+fn centreline(d: &PlateBeltDrive, q: &[f64], v: &[f64]) -> Vec<[f64; 2]> {
+    post::line_samples(d, q, v, 0.5 * d.spec().belt.width, 4)
+        .iter()
+        .map(|s| [s.position[0], s.position[1]])
+        .collect()
+}
+
+/// Offset from each span's line of the centreline point `centreline` nearest the span's
+/// mid-point (positive to the left of travel) \[m\]; NaN where none lies within a quarter span.
+fn centreline_offsets(d: &PlateBeltDrive, centreline: &[[f64; 2]]) -> Vec<f64> {
+    post::spans(d)
+        .iter()
+        .map(|sp| {
+            centreline
+                .iter()
+                .map(|&p| sp.local(p))
+                .filter(|(_, off)| off.abs() < 0.25 * sp.length)
+                .min_by(|a, b| {
+                    (a.0 - 0.5 * sp.length)
+                        .abs()
+                        .total_cmp(&(b.0 - 0.5 * sp.length).abs())
+                })
+                .map_or(f64::NAN, |(_, off)| off)
+        })
+        .collect()
 }
 
 #[cfg(test)]
