@@ -324,7 +324,7 @@ impl AncfDrive for PlateBeltDrive {
     }
 
     /// Offset of the centreline sample nearest each span's mid-point from the span line
-    /// (positive to the left of travel) \[m\] ([`centreline_offsets`]).
+    /// (positive to the left of travel) \[m\] (`centreline_offsets`).
     fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
         let v = vec![0.0; q.len()];
         Ok(centreline_offsets(self, &centreline(self, q, &v)))
