@@ -35,7 +35,7 @@ fn static_span_tensions_are_equal_on_frictionless_pulleys() {
         res.belt_length()
     );
     let q = belt.static_state().unwrap();
-    let k = belt.arm_dof().unwrap();
+    let k = belt.coords.arm_dof().unwrap();
     let v = vec![0.0; q.len()];
     let snap = belt.snapshot(0.0, &q, &v).unwrap();
     assert_eq!(snap.spans.len(), 4);
@@ -81,7 +81,7 @@ fn tensioner_static_angle_matches_hand_statics() {
     let cfg = four_pulleys(0.0);
     let (mut belt, res) = flowing(&cfg, &four_pulleys_settings());
     let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
-    belt.tensioner.as_mut().unwrap().tensioner.preload -= 6.0;
+    belt.coords.tensioner.as_mut().unwrap().tensioner.preload -= 6.0;
     let theta_m = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
     check_arm_change(&cfg, &res, theta_m0, theta_m, "flowing");
 }
@@ -94,7 +94,7 @@ fn nodal_tensioner_static_angle_matches_hand_statics() {
     let cfg = four_pulleys(0.0);
     let (mut belt, res) = nodal(&cfg, &four_pulleys_settings());
     let theta_m0 = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
-    belt.tensioner.as_mut().unwrap().tensioner.preload -= 6.0;
+    belt.coords.tensioner.as_mut().unwrap().tensioner.preload -= 6.0;
     let theta_m = belt.arm_angle(&belt.static_state().unwrap()).unwrap();
     check_arm_change(&cfg, &res, theta_m0, theta_m, "nodal");
 }

@@ -127,7 +127,7 @@ fn nodal_damping_power(belt: &NodalBelt, t: f64, q: &[f64], v: &[f64]) -> f64 {
     layout.damping.alpha = 0.0;
     layout.damping.beta = 0.0;
     let mut still = NodalBelt::new(&layout.resolve().unwrap(), &belt.fe.mesh).unwrap();
-    still.motions = belt.motions.clone();
+    still.coords.motions = belt.coords.motions.clone();
     let n = belt.n_q();
     let (mut f, mut f0) = (vec![0.0; n], vec![0.0; n]);
     belt.forces(t, q, v, &mut f, &mut Workspace::new()).unwrap();

@@ -82,7 +82,7 @@ pub use integrators::{
     AlphaConfig, DormandPrince, GeneralizedAlpha, Integrator, Observer, Recorder, Rk4, Solution,
     State, Stats, StepCorrection, Stepper,
 };
-pub use system::{ForceTangent, SecondOrderSystem, SysMatrix};
+pub use system::{ForceTangent, SecondOrderSystem, SysMatrix, central_difference_column};
 pub use validate::{InvalidField, Validate};
 pub use workspace::Workspace;
 pub mod body;

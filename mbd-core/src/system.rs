@@ -224,6 +224,42 @@ pub trait SecondOrderSystem {
     }
 }
 
+/// Column `j` of the force tangent by central differences with step `h`: of `K = −∂f/∂q`
+/// (`in_q`, perturbing `q` through [`SecondOrderSystem::integrate_position`]) or of
+/// `C = −∂f/∂v`, `−(f(x + h e_j) − f(x − h e_j))/(2h)`. The reference the models' analytic
+/// [`SecondOrderSystem::force_tangent`] is tested against.
+pub fn central_difference_column<S: SecondOrderSystem + ?Sized>(
+    sys: &S,
+    (t, q, v): (f64, &[f64], &[f64]),
+    j: usize,
+    h: f64,
+    in_q: bool,
+) -> Result<Vec<f64>, MbdError> {
+    let n = sys.n_v();
+    let mut ws = Workspace::new();
+    let mut at = |s: f64| -> Result<Vec<f64>, MbdError> {
+        let mut f = vec![0.0; n];
+        if in_q {
+            let mut e = vec![0.0; n];
+            e[j] = s;
+            let mut qs = vec![0.0; q.len()];
+            sys.integrate_position(q, &e, &mut qs);
+            sys.forces(t, &qs, v, &mut f, &mut ws)?;
+        } else {
+            let mut vs = v.to_vec();
+            vs[j] += s;
+            sys.forces(t, q, &vs, &mut f, &mut ws)?;
+        }
+        Ok(f)
+    };
+    let (fp, fm) = (at(h)?, at(-h)?);
+    Ok(fp
+        .iter()
+        .zip(&fm)
+        .map(|(a, b)| -(a - b) / (2.0 * h))
+        .collect())
+}
+
 /// Dense forward-difference tangent of a model's forces: `K = −∂f/∂q` (perturbing `q` through
 /// [`SecondOrderSystem::integrate_position`], so rotations stay on their manifold) and
 /// `C = −∂f/∂v`; `2 n_v + 1` force evaluations with the model's workspace `ws`. The fallback

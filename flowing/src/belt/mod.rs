@@ -13,6 +13,7 @@
 
 pub mod config;
 pub mod contact;
+mod coordinates;
 pub mod flowing_system;
 pub mod model;
 pub mod nodal;
@@ -21,6 +22,7 @@ mod statics;
 pub mod wave;
 
 pub use config::{AxialForce, BeltMesh, BeltReduction, FlowingSettings};
+pub use coordinates::DriveCoordinates;
 pub use flowing_system::{FlowingBelt, NodeReport};
 pub use model::{BeltFe, FlowingBasis};
 pub use nodal::NodalBelt;

@@ -93,11 +93,11 @@ fn snapshot_with(
 }
 
 /// The [`BeltModel`] methods the flowing and nodal belts share: the same fields (`fe`,
-/// `motions`), inherent methods of the same meaning and the belt travel `s_b` as the first
+/// `coords`: [`super::DriveCoordinates`]) and the belt travel `s_b` as the first
 /// coordinate (`ṡ_b` is the belt speed). A macro because `BeltModel` is the belt crate's trait:
 /// a blanket implementation over a trait of this crate is not allowed (orphan rule).
 macro_rules! shared_belt_model_methods {
-    ($model:ident, $name:literal) => {
+    ($name:literal) => {
         fn drive(&self) -> &Drive {
             &self.fe.drive
         }
@@ -117,23 +117,23 @@ macro_rules! shared_belt_model_methods {
         }
 
         fn motion(&self, k: usize) -> Option<&Motion> {
-            self.motions.get(k)
+            self.coords.motions.get(k)
         }
 
         fn motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
-            self.motions.get_mut(k)
+            self.coords.motions.get_mut(k)
         }
 
         fn pulley_speed(&self, k: usize, t: f64, v: &[f64]) -> f64 {
-            $model::pulley_speed(self, k, t, v)
+            self.coords.pulley_speed(k, t, v)
         }
 
         fn arm_angle(&self, q: &[f64]) -> Option<f64> {
-            $model::arm_angle(self, q)
+            self.coords.arm_angle(q)
         }
 
         fn decoupler_state(&self, k: usize, q: &[f64], v: &[f64]) -> Option<belt::DecouplerState> {
-            $model::decoupler_state(self, k, q, v)
+            self.coords.decoupler_state(k, q, v)
         }
 
         /// `ṡ_b`, the speed of the material along the path.
@@ -146,7 +146,7 @@ macro_rules! shared_belt_model_methods {
 /// Coordinates `(s_b, z, φ_k…, Δθ)`: belt travel, the reduced coordinates, the free pulleys
 /// and the tensioner arm.
 impl BeltModel for FlowingBelt {
-    shared_belt_model_methods!(FlowingBelt, "flowing");
+    shared_belt_model_methods!("flowing");
 
     /// Contact nodes of the stationary mesh, element forces `T0 + EA Δl/l`.
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
@@ -157,8 +157,8 @@ impl BeltModel for FlowingBelt {
             .contact_report(t, q, v)
             .into_iter()
             .map(|r| (r.node, r.pulley, r.contact));
-        let omega = (0..self.motions.len())
-            .map(|k| self.pulley_speed(k, t, v))
+        let omega = (0..self.coords.motions.len())
+            .map(|k| self.coords.pulley_speed(k, t, v))
             .collect();
         Ok(snapshot_with(
             &self.fe,
@@ -167,7 +167,7 @@ impl BeltModel for FlowingBelt {
             &forces,
             contacts,
             omega,
-            self.idler_motion(q, v),
+            self.coords.idler_motion(q, v),
         ))
     }
 
@@ -181,7 +181,7 @@ impl BeltModel for FlowingBelt {
 /// Coordinates `(s_b, δ, φ_k…, Δθ)`: belt travel, the nodal deflections, the free pulleys and
 /// the tensioner arm.
 impl BeltModel for NodalBelt {
-    shared_belt_model_methods!(NodalBelt, "nodal");
+    shared_belt_model_methods!("nodal");
 
     /// Material nodes on the reference polygon at `s_b`, element forces `T0 + EA Δl/l`.
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
@@ -191,8 +191,8 @@ impl BeltModel for NodalBelt {
             .contact_report(t, q, v)?
             .into_iter()
             .map(|(i, p, _, c)| (i, p, c));
-        let omega = (0..self.motions.len())
-            .map(|k| self.pulley_speed(k, t, v))
+        let omega = (0..self.coords.motions.len())
+            .map(|k| self.coords.pulley_speed(k, t, v))
             .collect();
         let mut snap = snapshot_with(
             &self.fe,
@@ -201,7 +201,7 @@ impl BeltModel for NodalBelt {
             &forces,
             contacts,
             omega,
-            self.idler_motion(q, v),
+            self.coords.idler_motion(q, v),
         );
         snap.belt_dissipation = Some(self.damping_dissipation(q, v)?);
         Ok(snap)

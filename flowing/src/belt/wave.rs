@@ -269,7 +269,7 @@ pub fn wave_run(
     vel[0] = v;
     vel[1..=m].copy_from_slice(&zd0);
     for (k, r) in radius.iter().enumerate() {
-        if let Some(j) = belt.pulley_dof(k) {
+        if let Some(j) = belt.coords.pulley_dof(k) {
             vel[j] = v / r;
         }
     }
