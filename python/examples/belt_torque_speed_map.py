@@ -4,14 +4,12 @@ model), one Dask task per point, written to belt_torque_speed_map.png.
     python python/examples/belt_torque_speed_map.py [--out DIR] [--scheduler ADDRESS]
 """
 
-import argparse
-import pathlib
-
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import _example  # noqa: E402
 import flowmbd  # noqa: E402
 
 
@@ -22,15 +20,8 @@ def point(omega, torque):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--out", default=".", help="output folder")
-    ap.add_argument("--scheduler", default=None, help="Dask scheduler address (default: LocalCluster)")
-    args = ap.parse_args()
-    client = None
-    if args.scheduler:
-        from dask.distributed import Client
-
-        client = Client(args.scheduler)
+    args = _example.arguments(__doc__)
+    client = _example.client(args.scheduler)
     grid = {"omega": [22.6, 42.7, 62.8], "torque": [0.0, 2.5, 5.0, 7.5, 10.0]}
     df = flowmbd.sweep(point, grid, client=client)
     failed = df[df["error"].notna()]
@@ -44,11 +35,7 @@ def main():
     ax.set_ylabel("Δω = ω₁ − ω₂ [rad/s]")
     ax.set_title("Belt speed loss, Ribaric Table 6-1")
     ax.legend(fontsize=7)
-    out = pathlib.Path(args.out) / "belt_torque_speed_map.png"
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    print(df)
-    print(f"wrote {out}")
+    _example.save(fig, args.out, "belt_torque_speed_map.png", df)
 
 
 if __name__ == "__main__":

@@ -6,15 +6,13 @@ speed c = √(T/ρA) (Ribaric §4.2.3).
     python python/examples/string_speed_sweep.py [--out DIR] [--scheduler ADDRESS]
 """
 
-import argparse
-import pathlib
-
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import _example  # noqa: E402
 import flowmbd  # noqa: E402
 
 VARIANTS = {
@@ -34,15 +32,8 @@ def point(variant, fraction):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--out", default=".", help="output folder")
-    ap.add_argument("--scheduler", default=None, help="Dask scheduler address (default: LocalCluster)")
-    args = ap.parse_args()
-    client = None
-    if args.scheduler:
-        from dask.distributed import Client
-
-        client = Client(args.scheduler)
+    args = _example.arguments(__doc__)
+    client = _example.client(args.scheduler)
     grid = {"variant": list(VARIANTS), "fraction": list(np.linspace(0.0, 0.95, 12))}
     df = flowmbd.sweep(point, grid, client=client)
     fig, ax = plt.subplots(figsize=(6, 4))
@@ -52,11 +43,7 @@ def main():
     ax.set_xlabel("axial speed [m/s]")
     ax.set_ylabel("first damped frequency [Hz]")
     ax.legend(fontsize=7)
-    out = pathlib.Path(args.out) / "string_speed_sweep.png"
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    print(df)
-    print(f"wrote {out}")
+    _example.save(fig, args.out, "string_speed_sweep.png", df)
 
 
 if __name__ == "__main__":

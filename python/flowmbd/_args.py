@@ -41,6 +41,11 @@ def numbers_list(name: str, values: Any) -> List[float]:
     return [number(f"{name}[{i}]", v) for i, v in enumerate(items)]
 
 
+def optional_numbers(name: str, values: Any) -> Optional[List[float]]:
+    """:func:`numbers_list`, or ``None``."""
+    return None if values is None else numbers_list(name, values)
+
+
 def count(name: str, value: Any) -> int:
     """A non-negative integer (``True``, 2.5, ``"3"``, NaN, infinities and values past the
     native ``usize`` are refused)."""
@@ -56,3 +61,8 @@ def count(name: str, value: Any) -> int:
     if n < 0 or n > MAX_COUNT:
         raise ValueError(f"{name}: must be a non-negative integer below 2**63, got {n}")
     return n
+
+
+def optional_count(name: str, value: Any) -> Optional[int]:
+    """:func:`count`, or ``None``."""
+    return None if value is None else count(name, value)

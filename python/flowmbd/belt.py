@@ -57,7 +57,7 @@ def speed_loss(
         _native.speed_loss(
             config_json(config),
             _args.optional_number("omega", omega),
-            None if torques is None else _args.numbers_list("torques", torques),
+            _args.optional_numbers("torques", torques),
             model,
         )
     )
@@ -156,7 +156,7 @@ def fead(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[floa
     flowmbd.NumericalError
         The sweep failed; ``err.partial`` holds the engine speeds completed.
     """
-    speeds = None if rpm is None else _args.numbers_list("rpm", rpm)
+    speeds = _args.optional_numbers("rpm", rpm)
     return from_json(_native.fead(config_json(config), speeds))
 
 
@@ -184,8 +184,25 @@ def design(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[fl
     ValueError
         Bad input (the CLI's message).
     """
-    speeds = None if rpm is None else _args.numbers_list("rpm", rpm)
+    speeds = _args.optional_numbers("rpm", rpm)
     return from_json(_native.design(config_json(config), speeds))
+
+
+class _Native:
+    """A read-only attribute of a :class:`Simulation`: its native simulation's attribute of the
+    same name."""
+
+    def __init__(self, doc: str) -> None:
+        self.__doc__ = doc
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    def __get__(self, obj: Any, owner: Optional[type] = None) -> Any:
+        return self if obj is None else getattr(obj._sim, self.name)
+
+    def __set__(self, obj: Any, value: Any) -> None:
+        raise AttributeError(f"{self.name}: read-only (set the state with set_state)")
 
 
 class Simulation:
@@ -220,50 +237,17 @@ class Simulation:
     def __init__(self, config: Optional[Mapping[str, Any]] = None) -> None:
         self._sim = _native.BeltSimulation(config_json(config))
 
-    @property
-    def model(self) -> str:
-        """The model kind."""
-        return self._sim.model
-
-    @property
-    def step_size(self) -> float:
-        """The step [s]."""
-        return self._sim.step_size
-
-    @property
-    def t(self) -> float:
-        """Time [s]."""
-        return self._sim.t
-
-    @property
-    def q(self):
-        """Coordinates (numpy copy; names in ``coordinate_names``)."""
-        return self._sim.q
-
-    @property
-    def v(self):
-        """Velocities (numpy copy)."""
-        return self._sim.v
-
-    @property
-    def coordinate_names(self) -> list:
-        """The name of every coordinate."""
-        return self._sim.coordinate_names
-
-    @property
-    def pulley_speeds(self):
-        """Pulley speeds in the belt's travel sense [rad/s], in the layout's order (numpy)."""
-        return self._sim.pulley_speeds
-
-    @property
-    def belt_speed(self) -> float:
-        """Belt speed along its path [m/s]."""
-        return self._sim.belt_speed
-
-    @property
-    def arm_angle(self) -> Optional[float]:
-        """Tensioner arm angle [rad] (``None`` without a tensioner)."""
-        return self._sim.arm_angle
+    model = _Native("The model kind.")
+    step_size = _Native("The step [s].")
+    t = _Native("Time [s].")
+    q = _Native("Coordinates (numpy copy; names in ``coordinate_names``).")
+    v = _Native("Velocities (numpy copy).")
+    coordinate_names = _Native("The name of every coordinate.")
+    pulley_speeds = _Native(
+        "Pulley speeds in the belt's travel sense [rad/s], in the layout's order (numpy)."
+    )
+    belt_speed = _Native("Belt speed along its path [m/s].")
+    arm_angle = _Native("Tensioner arm angle [rad] (``None`` without a tensioner).")
 
     def state(self) -> tuple:
         """The state ``(t, q, v)`` (copies), to restart from with ``set_state``."""

@@ -52,8 +52,8 @@ def modes(
         _native.string_modes(
             config_json(config),
             _args.optional_number("speed", speed),
-            None if nodes is None else _args.count("nodes", nodes),
-            None if modes is None else _args.count("modes", modes),
+            _args.optional_count("nodes", nodes),
+            _args.optional_count("modes", modes),
         )
     )
 
@@ -103,8 +103,8 @@ def sweep(
     """
     text, data = _native.string_sweep(
         config_json(config),
-        None if nodes is None else _args.count("nodes", nodes),
-        None if modes is None else _args.count("modes", modes),
+        _args.optional_count("nodes", nodes),
+        _args.optional_count("modes", modes),
     )
     return with_series(text, data, series)
 

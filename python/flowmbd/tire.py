@@ -232,11 +232,7 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
     flowmbd.NumericalError
         A rolling simulation failed.
     """
-    if tire is not None:
-        if not isinstance(tire, ReducedTire):
-            raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
-        if isinstance(config, Mapping) and "tire" in config:
-            raise ValueError("tire: given both as tire= and as config[\"tire\"]; pass one of them")
+    _check_tire(config, tire)
     return from_json(_native.tire_steady(config_json(config), tire))
 
 
@@ -247,6 +243,22 @@ def _check_tire(config: Optional[Mapping[str, Any]], tire: Optional["ReducedTire
             raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
         if isinstance(config, Mapping) and "tire" in config:
             raise ValueError("tire: given both as tire= and as config[\"tire\"]; pass one of them")
+
+
+#: ``speeds_kmh`` not a parameter of the study (:func:`_tire_series`).
+_NO_SPEEDS = object()
+
+
+def _tire_series(native, config, tire, series: bool, speeds_kmh: Any = _NO_SPEEDS) -> Result:
+    """The result of the native tire study ``native`` on ``config`` with the prebuilt ``tire``
+    (checked by :func:`_check_tire` first) and, for the studies that take them, the
+    ``speeds_kmh`` [km/h]; with its series when ``series``."""
+    _check_tire(config, tire)
+    speeds = ()
+    if speeds_kmh is not _NO_SPEEDS:
+        speeds = (_args.optional_numbers("speeds_kmh", speeds_kmh),)
+    text, data = native(config_json(config), *speeds, tire)
+    return with_series(text, data, series)
 
 
 def rotating_modes(
@@ -292,10 +304,7 @@ def rotating_modes(
     flowmbd.NumericalError
         An eigen solve or the preload failed.
     """
-    _check_tire(config, tire)
-    speeds = None if speeds_kmh is None else _args.numbers_list("speeds_kmh", speeds_kmh)
-    text, data = _native.tire_rotating_modes(config_json(config), speeds, tire)
-    return with_series(text, data, series)
+    return _tire_series(_native.tire_rotating_modes, config, tire, series, speeds_kmh)
 
 
 def sweep(
@@ -341,10 +350,7 @@ def sweep(
         A run failed (the message names its speed); ``err.partial`` is the list of the
         summaries of the speeds done before it.
     """
-    _check_tire(config, tire)
-    speeds = None if speeds_kmh is None else _args.numbers_list("speeds_kmh", speeds_kmh)
-    text, data = _native.tire_sweep(config_json(config), speeds, tire)
-    return with_series(text, data, series)
+    return _tire_series(_native.tire_sweep, config, tire, series, speeds_kmh)
 
 
 def dips(
@@ -388,9 +394,7 @@ def dips(
     flowmbd.NumericalError
         The profile, the preload or a sweep run failed (the message names the ground).
     """
-    _check_tire(config, tire)
-    text, data = _native.tire_dips(config_json(config), tire)
-    return with_series(text, data, series)
+    return _tire_series(_native.tire_dips, config, tire, series)
 
 
 def pressure(
@@ -425,9 +429,7 @@ def pressure(
     flowmbd.NumericalError
         The contact solve failed.
     """
-    _check_tire(config, tire)
-    text, data = _native.tire_pressure(config_json(config), tire)
-    return with_series(text, data, series)
+    return _tire_series(_native.tire_pressure, config, tire, series)
 
 
 def modes(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> Result:

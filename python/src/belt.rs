@@ -6,7 +6,9 @@
 //! `flowmbd-belt plate`), the FEAD sweep (`flowmbd-belt fead`) and its steady design
 //! (`flowmbd-belt design`).
 
-use crate::{input_error, numerical_error, read_config, to_json};
+use crate::{
+    WithSeries, input_error, numerical_error, read_config, study_config, to_json, with_series,
+};
 use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, run_fead};
 use drives::fead_design::{DesignConfig, run_design};
@@ -101,11 +103,11 @@ fn ancf_error(py: Python<'_>, e: ::ancf::AncfError) -> PyErr {
 #[pyfunction]
 #[pyo3(signature = (config=None, t_end=None))]
 pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResult<String> {
-    let mut c: AncfStudyConfig = read_config(config)?;
-    if let Some(t) = t_end {
-        c.t_end = t;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut AncfStudyConfig| {
+        if let Some(t) = t_end {
+            c.t_end = t;
+        }
+    })?;
     match c.analysis {
         Analysis::StaticClosure => {
             let result = py.detach(|| closure_study(&c));
@@ -132,11 +134,11 @@ pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResul
 #[pyfunction]
 #[pyo3(signature = (config=None, t_end=None))]
 pub fn plate(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResult<String> {
-    let mut c: PlateStudyConfig = read_config(config)?;
-    if let Some(t) = t_end {
-        c.t_end = t;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut PlateStudyConfig| {
+        if let Some(t) = t_end {
+            c.t_end = t;
+        }
+    })?;
     let start = Instant::now();
     let result = py.detach(|| {
         let (drive, init) = plate_setup(&c)?;
@@ -155,11 +157,11 @@ pub fn plate(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResu
 #[pyfunction]
 #[pyo3(signature = (config=None, rpm=None))]
 pub fn fead(py: Python<'_>, config: Option<&str>, rpm: Option<Vec<f64>>) -> PyResult<String> {
-    let mut c: FeadConfig = read_config(config)?;
-    if let Some(r) = rpm {
-        c.engine.speeds_rpm = r;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut FeadConfig| {
+        if let Some(r) = rpm {
+            c.engine.speeds_rpm = r;
+        }
+    })?;
     match py.detach(|| run_fead(&c, |_| {})) {
         Ok(summary) => to_json(&summary),
         Err(e) => Err(match *e {
@@ -182,11 +184,11 @@ pub fn fead(py: Python<'_>, config: Option<&str>, rpm: Option<Vec<f64>>) -> PyRe
 #[pyfunction]
 #[pyo3(signature = (config=None, rpm=None))]
 pub fn design(py: Python<'_>, config: Option<&str>, rpm: Option<Vec<f64>>) -> PyResult<String> {
-    let mut c: DesignConfig = read_config(config)?;
-    if let Some(r) = rpm {
-        c.engine.speeds_rpm = r;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut DesignConfig| {
+        if let Some(r) = rpm {
+            c.engine.speeds_rpm = r;
+        }
+    })?;
     let summary = py.detach(|| run_design(&c)).map_err(input_error)?;
     to_json(&summary)
 }
@@ -220,16 +222,16 @@ pub fn wave<'py>(
     config: Option<&str>,
     speed: Option<f64>,
     t_end: Option<f64>,
-) -> PyResult<(String, Bound<'py, pyo3::types::PyDict>)> {
+) -> PyResult<WithSeries<'py>> {
     use drives::wave::{WAVE_CSV_HEADER, WaveStudyConfig, run_wave_study, wave_csv_rows};
-    let mut c: WaveStudyConfig = read_config(config)?;
-    if let Some(v) = speed {
-        c.wave.belt_speed = v;
-    }
-    if let Some(t) = t_end {
-        c.wave.t_end = t;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut WaveStudyConfig| {
+        if let Some(v) = speed {
+            c.wave.belt_speed = v;
+        }
+        if let Some(t) = t_end {
+            c.wave.t_end = t;
+        }
+    })?;
     let study = py
         .detach(|| run_wave_study(&c, |_| {}))
         .map_err(|e| match e {
@@ -238,8 +240,10 @@ pub fn wave<'py>(
             }
             other => numerical_error(py, other.to_string(), None),
         })?;
-    let series = pyo3::types::PyDict::new(py);
     let rows = wave_csv_rows(&study.rest, &study.running);
-    series.set_item("wave", crate::columns(&WAVE_CSV_HEADER, &rows).into_py(py)?)?;
-    Ok((to_json(&study.summary)?, series))
+    with_series(
+        py,
+        &study.summary,
+        [("wave", crate::columns(&WAVE_CSV_HEADER, &rows))],
+    )
 }

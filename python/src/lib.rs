@@ -83,6 +83,23 @@ where
     })
 }
 
+/// A study's configuration `C` as the CLI's `run_study` makes it: read from `json`
+/// ([`read_config`]), changed by `overrides` (the keyword arguments that replace keys, like the
+/// CLI's flags), then validated once (bad input raises `ValueError` naming the field).
+pub(crate) fn study_config<C>(json: Option<&str>, overrides: impl FnOnce(&mut C)) -> PyResult<C>
+where
+    C: DeserializeOwned
+        + serde::Serialize
+        + Default
+        + mbd_core::config::PartialRules
+        + mbd_core::Validate,
+{
+    let mut c: C = read_config(json)?;
+    overrides(&mut c);
+    c.validate().map_err(input_error)?;
+    Ok(c)
+}
+
 /// JSON text of a summary (infallible for the plain summary structs).
 pub(crate) fn to_json<S: serde::Serialize>(summary: &S) -> PyResult<String> {
     serde_json::to_string(summary)
@@ -93,9 +110,10 @@ pub(crate) fn to_json<S: serde::Serialize>(summary: &S) -> PyResult<String> {
 /// handed to Python by [`Columns::into_py`]).
 pub(crate) struct Columns(Vec<(String, Vec<f64>)>);
 
-/// The columns of the CSV with `header` and `rows` (as the app writes it).
-pub(crate) fn columns<R: AsRef<[f64]>>(
-    header: &[&str],
+/// The columns of the CSV with `header` (names as `&str` or `String`) and `rows` (as the app
+/// writes it).
+pub(crate) fn columns<R: AsRef<[f64]>, S: AsRef<str>>(
+    header: &[S],
     rows: impl IntoIterator<Item = R>,
 ) -> Columns {
     let mut cols: Vec<Vec<f64>> = vec![Vec::new(); header.len()];
@@ -104,7 +122,31 @@ pub(crate) fn columns<R: AsRef<[f64]>>(
             col.push(*x);
         }
     }
-    Columns(header.iter().map(|h| h.to_string()).zip(cols).collect())
+    Columns(
+        header
+            .iter()
+            .map(|h| h.as_ref().to_string())
+            .zip(cols)
+            .collect(),
+    )
+}
+
+/// What a study with series returns to Python: the JSON text of its summary and the dict
+/// `{name: {column: numpy array}}` of its series.
+pub(crate) type WithSeries<'py> = (String, Bound<'py, pyo3::types::PyDict>);
+
+/// `summary` as JSON text ([`to_json`]) with its `series`, each named by the CSV file the app
+/// writes ([`WithSeries`]).
+pub(crate) fn with_series<'py, S: serde::Serialize, K: AsRef<str>>(
+    py: Python<'py>,
+    summary: &S,
+    series: impl IntoIterator<Item = (K, Columns)>,
+) -> PyResult<WithSeries<'py>> {
+    let d = pyo3::types::PyDict::new(py);
+    for (name, cols) in series {
+        d.set_item(name.as_ref(), cols.into_py(py)?)?;
+    }
+    Ok((to_json(summary)?, d))
 }
 
 impl Columns {

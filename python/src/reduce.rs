@@ -63,7 +63,27 @@ fn reduction_error(py: Python<'_>, e: ReductionError) -> PyErr {
     }
 }
 
-fn to_numpy<'py>(py: Python<'py>, a: &Mat<f64>) -> Bound<'py, PyArray2<f64>> {
+/// Run `solve` with the GIL released; its error mapped by [`reduction_error`].
+fn detached<T: Send>(
+    py: Python<'_>,
+    solve: impl FnOnce() -> Result<T, ReductionError> + Send,
+) -> PyResult<T> {
+    py.detach(solve).map_err(|e| reduction_error(py, e))
+}
+
+/// The mass and stiffness matrices `(M, K)` (`n × n`) from their triplets ([`sparse`]).
+fn mass_stiffness(
+    n: usize,
+    m: Triplets<'_>,
+    k: Triplets<'_>,
+) -> PyResult<(SparseColMat<usize, f64>, SparseColMat<usize, f64>)> {
+    Ok((
+        sparse("M", n, m.0, m.1, m.2)?,
+        sparse("K", n, k.0, k.1, k.2)?,
+    ))
+}
+
+fn to_numpy<'py>(py: Python<'py>, a: &Mat<f64>) -> Matrix<'py> {
     Array2::from_shape_fn((a.nrows(), a.ncols()), |(i, j)| a[(i, j)]).into_pyarray(py)
 }
 
@@ -73,16 +93,17 @@ type Triplets<'py> = (
     PyReadonlyArray1<'py, f64>,
 );
 
+/// A matrix handed to Python (numpy).
+type Matrix<'py> = Bound<'py, PyArray2<f64>>;
+
+/// A vector handed to Python (numpy).
+type Vector<'py> = Bound<'py, PyArray1<f64>>;
+
 /// `(eigenvalues, frequencies, vectors)` of [`modes`].
-type ModesOut<'py> = (Vec<f64>, Vec<f64>, Bound<'py, PyArray2<f64>>);
+type ModesOut<'py> = (Vec<f64>, Vec<f64>, Matrix<'py>);
 
 /// `(M_r, K_r, Ψ, frequencies)` of [`craig_bampton`].
-type CbOut<'py> = (
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray1<f64>>,
-);
+type CbOut<'py> = (Matrix<'py>, Matrix<'py>, Matrix<'py>, Vector<'py>);
 
 /// The lowest `count` modes of `K φ = λ M φ` with the `fixed` DOFs clamped (Lin (6.11) with an
 /// empty boundary set): `(eigenvalues [rad²/s²], frequencies [Hz], n × count M-normalised
@@ -96,8 +117,7 @@ pub fn modes<'py>(
     count: usize,
     fixed: Vec<usize>,
 ) -> PyResult<ModesOut<'py>> {
-    let m = sparse("M", n, m.0, m.1, m.2)?;
-    let k = sparse("K", n, k.0, k.1, k.2)?;
+    let (m, k) = mass_stiffness(n, m, k)?;
     let part = DofPartition::new(n, &[], &fixed).map_err(|e| reduction_error(py, e))?;
     // fewer modes than asked would come back silently (issue 35)
     if count > part.interior().len() {
@@ -107,7 +127,7 @@ pub fn modes<'py>(
             part.fixed().len()
         )));
     }
-    let result = py.detach(|| {
+    let (modes, _) = detached(py, || {
         fixed_interface_modes_sparse(
             k.as_ref(),
             m.as_ref(),
@@ -115,8 +135,7 @@ pub fn modes<'py>(
             count,
             &SparseEigenOptions::default(),
         )
-    });
-    let (modes, _) = result.map_err(|e| reduction_error(py, e))?;
+    })?;
     if modes.values.len() < count {
         return Err(numerical_error(
             py,
@@ -148,17 +167,15 @@ pub fn craig_bampton<'py>(
     boundary: Vec<usize>,
     n_modes: usize,
 ) -> PyResult<CbOut<'py>> {
-    let m = sparse("M", n, m.0, m.1, m.2)?;
-    let k = sparse("K", n, k.0, k.1, k.2)?;
+    let (m, k) = mass_stiffness(n, m, k)?;
     let part =
         DofPartition::from_boundary_dofs(n, &boundary).map_err(|e| reduction_error(py, e))?;
     let opts = CraigBamptonOptions::with_modes(n_modes);
-    let result = py.detach(|| {
+    let (red, hz) = detached(py, || {
         let (red, _) = craig_bampton_sparse(k.as_ref(), m.as_ref(), &part, &opts, 1)?;
         let hz = red.natural_frequencies_hz()?;
-        Ok::<_, ReductionError>((red, hz))
-    });
-    let (red, hz) = result.map_err(|e| reduction_error(py, e))?;
+        Ok((red, hz))
+    })?;
     Ok((
         to_numpy(py, &red.mass),
         to_numpy(py, &red.stiffness),
@@ -169,11 +186,11 @@ pub fn craig_bampton<'py>(
 
 /// `(M⁻¹K on the boundary, A_r, B_r, C_r, natural frequencies [Hz])` of [`eitelberg`].
 type EitelbergOut<'py> = (
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray1<f64>>,
+    Matrix<'py>,
+    Matrix<'py>,
+    Matrix<'py>,
+    Matrix<'py>,
+    Vector<'py>,
 );
 
 /// Eitelberg's reduction of the structure onto the `boundary` DOFs with the `fixed` DOFs
@@ -188,15 +205,13 @@ pub fn eitelberg<'py>(
     boundary: Vec<usize>,
     fixed: Vec<usize>,
 ) -> PyResult<EitelbergOut<'py>> {
-    let m = sparse("M", n, m.0, m.1, m.2)?;
-    let k = sparse("K", n, k.0, k.1, k.2)?;
+    let (m, k) = mass_stiffness(n, m, k)?;
     let part = DofPartition::new(n, &boundary, &fixed).map_err(|e| reduction_error(py, e))?;
-    let result = py.detach(|| {
+    let (red, hz) = detached(py, || {
         let red = EitelbergModel::reduce_sparse(k.as_ref(), m.as_ref(), &part)?;
         let hz = red.natural_frequencies_hz()?;
-        Ok::<_, ReductionError>((red, hz))
-    });
-    let (red, hz) = result.map_err(|e| reduction_error(py, e))?;
+        Ok((red, hz))
+    })?;
     Ok((
         to_numpy(py, &red.minv_k),
         to_numpy(py, &red.reduction.a_r),

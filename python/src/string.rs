@@ -3,10 +3,12 @@
 //! [`flowing::string_sweep`] (`flowmbd-string sweep`) and the pluck transient through
 //! [`flowing::string_simulate`] (`flowmbd-string simulate`).
 
-use crate::{columns, input_error, numerical_error, read_config, to_json};
+use crate::{
+    WithSeries, columns, input_error, numerical_error, study_config, to_json, with_series,
+};
 use flowing::FlowError;
 use flowing::string_study::{ModesConfig, string_modes as run};
-use mbd_core::{InvalidField, Validate};
+use mbd_core::InvalidField;
 use pyo3::prelude::*;
 
 /// Damped natural frequencies of the Galerkin (4.29) and flowing-material (4.20) models;
@@ -21,17 +23,17 @@ pub fn string_modes(
     nodes: Option<usize>,
     modes: Option<usize>,
 ) -> PyResult<String> {
-    let mut c: ModesConfig = read_config(config)?;
-    if let Some(v) = speed {
-        c.speed = v;
-    }
-    if let Some(n) = nodes {
-        c.nodes = n;
-    }
-    if let Some(k) = modes {
-        c.modes = k;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut ModesConfig| {
+        if let Some(v) = speed {
+            c.speed = v;
+        }
+        if let Some(n) = nodes {
+            c.nodes = n;
+        }
+        if let Some(k) = modes {
+            c.modes = k;
+        }
+    })?;
     match py.detach(|| run(&c)) {
         Ok(summary) => to_json(&summary),
         Err(e) => Err(flow_error(py, e)),
@@ -63,16 +65,16 @@ pub fn string_sweep<'py>(
     config: Option<&str>,
     nodes: Option<usize>,
     modes: Option<usize>,
-) -> PyResult<(String, Bound<'py, pyo3::types::PyDict>)> {
+) -> PyResult<WithSeries<'py>> {
     use flowing::string_sweep::{SweepConfig, string_sweep as sweep, sweep_header};
-    let mut c: SweepConfig = read_config(config)?;
-    if let Some(n) = nodes {
-        c.nodes = n;
-    }
-    if let Some(k) = modes {
-        c.modes = k;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut SweepConfig| {
+        if let Some(n) = nodes {
+            c.nodes = n;
+        }
+        if let Some(k) = modes {
+            c.modes = k;
+        }
+    })?;
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let summary = py
         .detach(|| {
@@ -83,10 +85,7 @@ pub fn string_sweep<'py>(
         })
         .map_err(|e| flow_error(py, e))?;
     let header = sweep_header(c.tracked);
-    let header: Vec<&str> = header.iter().map(String::as_str).collect();
-    let series = pyo3::types::PyDict::new(py);
-    series.set_item("sweep", columns(&header, &rows).into_py(py)?)?;
-    Ok((to_json(&summary)?, series))
+    with_series(py, &summary, [("sweep", columns(&header, &rows))])
 }
 
 /// The pluck transient ([`flowing::string_simulate::string_simulate`],
@@ -99,30 +98,31 @@ pub fn string_simulate<'py>(
     py: Python<'py>,
     config: Option<&str>,
     speed: Option<f64>,
-) -> PyResult<(String, Bound<'py, pyo3::types::PyDict>)> {
+) -> PyResult<WithSeries<'py>> {
     use flowing::string_simulate::{
         SimulateConfig, history_header, history_rows, spectra_header, spectra_rows,
         string_simulate as simulate,
     };
-    let mut c: SimulateConfig = read_config(config)?;
-    if let Some(v) = speed {
-        c.speed = v;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut SimulateConfig| {
+        if let Some(v) = speed {
+            c.speed = v;
+        }
+    })?;
     let r = py
         .detach(|| simulate(&c, &mut |_| std::ops::ControlFlow::Continue(())))
         .map_err(|e| flow_error(py, e))?;
-    let series = pyo3::types::PyDict::new(py);
-    for (name, header, rows) in [
-        (
-            "modal_history",
-            history_header(c.modes),
-            history_rows(&r.history),
-        ),
-        ("spectra", spectra_header(c.modes), spectra_rows(&r.spectra)),
-    ] {
-        let header: Vec<&str> = header.iter().map(String::as_str).collect();
-        series.set_item(name, columns(&header, &rows).into_py(py)?)?;
-    }
-    Ok((to_json(&r.summary)?, series))
+    with_series(
+        py,
+        &r.summary,
+        [
+            (
+                "modal_history",
+                columns(&history_header(c.modes), history_rows(&r.history)),
+            ),
+            (
+                "spectra",
+                columns(&spectra_header(c.modes), spectra_rows(&r.spectra)),
+            ),
+        ],
+    )
 }

@@ -4,7 +4,10 @@
 //! reusable, picklable [`PyReducedTire`], and the cleat test of §8.3 with the configuration and
 //! summary of [`tire::study`] (the same as `flowmbd-tire cleat`).
 
-use crate::{columns, input_error, numerical_error, read_config, to_json};
+use crate::{
+    WithSeries, columns, input_error, numerical_error, read_config, study_config, to_json,
+    with_series,
+};
 use faer::Mat;
 use fe_model::generate::TireConfig;
 use mbd_core::Validate;
@@ -405,8 +408,7 @@ pub fn tire_steady(
     config: Option<&str>,
     tire: Option<PyRef<'_, PyReducedTire>>,
 ) -> PyResult<String> {
-    let c: SteadyStudyConfig = read_config(config)?;
-    c.validate().map_err(input_error)?;
+    let c: SteadyStudyConfig = study_config(config, |_| {})?;
     let red = reduced_or(py, tire, &c.tire)?;
     let result = py.detach(|| run_steady(&red, &c, &mut |_| {}));
     match result {
@@ -430,11 +432,11 @@ pub fn tire_cleat(
     speed_kmh: Option<f64>,
     tire: Option<PyRef<'_, PyReducedTire>>,
 ) -> PyResult<(String, History, [Vec<f64>; 3])> {
-    let mut c: CleatStudyConfig = read_config(config)?;
-    if let Some(v) = speed_kmh {
-        c.rig.speed_kmh = v;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut CleatStudyConfig| {
+        if let Some(v) = speed_kmh {
+            c.rig.speed_kmh = v;
+        }
+    })?;
     let red = reduced_or(py, tire, &c.tire)?;
     let settle = c.rig.settle_time;
     let mut seen: History = Default::default();
@@ -497,23 +499,19 @@ pub fn tire_rotating_modes<'py>(
     config: Option<&str>,
     speeds_kmh: Option<Vec<f64>>,
     tire: Option<PyRef<'_, PyReducedTire>>,
-) -> PyResult<(String, Bound<'py, PyDict>)> {
+) -> PyResult<WithSeries<'py>> {
     use ::tire::rotating_study::{ROTATING_COLUMNS, RotatingStudyConfig, rotating_rows};
-    let mut c: RotatingStudyConfig = read_config(config)?;
-    if let Some(v) = speeds_kmh {
-        c.speeds_kmh = v;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut RotatingStudyConfig| {
+        if let Some(v) = speeds_kmh {
+            c.speeds_kmh = v;
+        }
+    })?;
     let red = reduced_or(py, tire, &c.tire)?;
     let (summary, _) = py
         .detach(|| ::tire::run_rotating(&red, &c, &mut |_| {}))
         .map_err(|e| tire_error(py, e, None))?;
-    let series = PyDict::new(py);
-    series.set_item(
-        "rotating_modes",
-        columns(&ROTATING_COLUMNS, rotating_rows(&summary)).into_py(py)?,
-    )?;
-    Ok((to_json(&summary)?, series))
+    let series = columns(&ROTATING_COLUMNS, rotating_rows(&summary));
+    with_series(py, &summary, [("rotating_modes", series)])
 }
 
 /// The speed sweep of the cleat test ([`tire::run_sweep`], `flowmbd-tire sweep`; Ribaric Figs.
@@ -530,14 +528,14 @@ pub fn tire_sweep<'py>(
     config: Option<&str>,
     speeds_kmh: Option<Vec<f64>>,
     tire: Option<PyRef<'_, PyReducedTire>>,
-) -> PyResult<(String, Bound<'py, PyDict>)> {
-    use ::tire::study::SPECTRUM_COLUMNS;
+) -> PyResult<WithSeries<'py>> {
+    use ::tire::study::{SPECTRUM_COLUMNS, spectrum_rows};
     use ::tire::sweep_study::{SweepStudyConfig, WATERFALL_COLUMNS};
-    let mut c: SweepStudyConfig = read_config(config)?;
-    if let Some(v) = speeds_kmh {
-        c.speeds_kmh = v;
-    }
-    c.validate().map_err(input_error)?;
+    let c = study_config(config, |c: &mut SweepStudyConfig| {
+        if let Some(v) = speeds_kmh {
+            c.speeds_kmh = v;
+        }
+    })?;
     let red = reduced_or(py, tire, &c.tire)?;
     let mut run_series = Vec::new();
     let result = py.detach(|| {
@@ -545,11 +543,7 @@ pub fn tire_sweep<'py>(
             let (sx, sy) = r.spectra();
             run_series.push((
                 columns(&FORCE_COLUMNS, r.samples.iter().map(sample_row)),
-                columns(
-                    &SPECTRUM_COLUMNS,
-                    (0..sx.freq_hz.len())
-                        .map(|k| [sx.freq_hz[k], sx.amplitude[k], sy.amplitude[k]]),
-                ),
+                columns(&SPECTRUM_COLUMNS, spectrum_rows(&sx, &sy)),
             ));
             Ok(())
         })
@@ -598,13 +592,12 @@ pub fn tire_dips<'py>(
     py: Python<'py>,
     config: Option<&str>,
     tire: Option<PyRef<'_, PyReducedTire>>,
-) -> PyResult<(String, Bound<'py, PyDict>)> {
+) -> PyResult<WithSeries<'py>> {
     use ::tire::dips_study::{
         DipsStudyConfig, PREDICTION_COLUMNS, PROFILE_COLUMNS, SWEEP_COLUMNS, prediction_rows,
         profile_rows, sweep_rows,
     };
-    let c: DipsStudyConfig = read_config(config)?;
-    c.validate().map_err(input_error)?;
+    let c: DipsStudyConfig = study_config(config, |_| {})?;
     let red = reduced_or(py, tire, &c.tire)?;
     let (summary, grounds) = py
         .detach(|| ::tire::run_dips(&red, &c, &mut |_| {}))
@@ -612,25 +605,22 @@ pub fn tire_dips<'py>(
             Ok(field) => input_error(field),
             Err(other) => numerical_error(py, format!("{}: {other}", f.ground.name()), None),
         })?;
-    let series = PyDict::new(py);
+    let mut series = Vec::new();
     for d in &grounds {
         let n = d.ground.name();
-        series.set_item(
+        series.push((
             format!("profile_{n}"),
-            columns(&PROFILE_COLUMNS, profile_rows(d)).into_py(py)?,
-        )?;
-        series.set_item(
+            columns(&PROFILE_COLUMNS, profile_rows(d)),
+        ));
+        series.push((
             format!("prediction_{n}"),
-            columns(&PREDICTION_COLUMNS, prediction_rows(d)).into_py(py)?,
-        )?;
+            columns(&PREDICTION_COLUMNS, prediction_rows(d)),
+        ));
         if !d.sweep_speeds_kmh.is_empty() {
-            series.set_item(
-                format!("sweep_{n}"),
-                columns(&SWEEP_COLUMNS, sweep_rows(d)).into_py(py)?,
-            )?;
+            series.push((format!("sweep_{n}"), columns(&SWEEP_COLUMNS, sweep_rows(d))));
         }
     }
-    Ok((to_json(&summary)?, series))
+    with_series(py, &summary, series)
 }
 
 /// The contact-patch study ([`tire::run_pressure`], `flowmbd-tire pressure`; Ribaric Fig.
@@ -643,22 +633,20 @@ pub fn tire_pressure<'py>(
     py: Python<'py>,
     config: Option<&str>,
     tire: Option<PyRef<'_, PyReducedTire>>,
-) -> PyResult<(String, Bound<'py, PyDict>)> {
+) -> PyResult<WithSeries<'py>> {
     use ::tire::pressure_study::{PATCH_COLUMNS, PressureStudyConfig};
-    let c: PressureStudyConfig = read_config(config)?;
-    c.validate().map_err(input_error)?;
+    let c: PressureStudyConfig = study_config(config, |_| {})?;
     let red = reduced_or(py, tire, &c.tire)?;
     let (summary, patches) = py
         .detach(|| ::tire::run_pressure(&red, &c))
         .map_err(|e| tire_error(py, e, None))?;
-    let series = PyDict::new(py);
-    for p in patches {
-        series.set_item(
+    let series = patches.iter().map(|p| {
+        (
             format!("patch_{}", p.ground.name()),
-            columns(&PATCH_COLUMNS, &p.rows).into_py(py)?,
-        )?;
-    }
-    Ok((to_json(&summary)?, series))
+            columns(&PATCH_COLUMNS, &p.rows),
+        )
+    });
+    with_series(py, &summary, series)
 }
 
 /// The modes study ([`tire::run_modes`], `flowmbd-tire modes`): full FE against reduced
@@ -668,15 +656,11 @@ pub fn tire_pressure<'py>(
 /// reduced here (the full model is part of the study, so a prebuilt reduced tire is not taken).
 #[pyfunction]
 #[pyo3(signature = (config=None))]
-pub fn tire_modes<'py>(
-    py: Python<'py>,
-    config: Option<&str>,
-) -> PyResult<(String, Bound<'py, PyDict>)> {
+pub fn tire_modes<'py>(py: Python<'py>, config: Option<&str>) -> PyResult<WithSeries<'py>> {
     use ::tire::modes_study::{
         LOADED_COLUMNS, MODES_COLUMNS, ModesStudyConfig, loaded_rows, modes_rows,
     };
-    let c: ModesStudyConfig = read_config(config)?;
-    c.validate().map_err(input_error)?;
+    let c: ModesStudyConfig = study_config(config, |_| {})?;
     let (summary, loaded) = py
         .detach(|| {
             let fe = c.tire.fe_model()?;
@@ -684,14 +668,12 @@ pub fn tire_modes<'py>(
             ::tire::run_modes(&fe, &red, &c)
         })
         .map_err(|e| tire_error(py, e, None))?;
-    let series = PyDict::new(py);
-    series.set_item(
-        "modes",
-        columns(&MODES_COLUMNS, modes_rows(&summary)).into_py(py)?,
-    )?;
-    series.set_item(
-        "loaded_modes",
-        columns(&LOADED_COLUMNS, loaded_rows(&loaded)).into_py(py)?,
-    )?;
-    Ok((to_json(&summary)?, series))
+    let series = [
+        ("modes", columns(&MODES_COLUMNS, modes_rows(&summary))),
+        (
+            "loaded_modes",
+            columns(&LOADED_COLUMNS, loaded_rows(&loaded)),
+        ),
+    ];
+    with_series(py, &summary, series)
 }

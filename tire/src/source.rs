@@ -17,6 +17,18 @@ use std::path::Path;
 /// The `reduced_file` value that keeps reduced tires in the OS cache folder (`flowmbd-tire`).
 pub const CACHE: &str = "cache";
 
+/// The example of an `import` table that the printed configuration of a study with a generated
+/// tire ends with, commented out (TOML has no null, so an absent import would not show
+/// otherwise): its heading, then the table's lines (`flowmbd_cli::commented`'s
+/// `x-commented-example`).
+pub const IMPORT_EXAMPLE: &str = "An imported tire replaces the generated one (uncomment and give the files; README, \"Imported tire\"):\n\
+format = \"abaqus\"          # or \"matrix_market\" (3n x 3n, node-major x, y, z)\n\
+stiffness = \"job_STIF1.mtx\" # K with the inflation prestress (ABAQUS *MATRIX GENERATE)\n\
+mass = \"job_MASS1.mtx\"      # M\n\
+nodes = \"nodes.inp\"         # `label, x, y, z` per line [m] (Matrix Market: `x, y, z`)\n\
+rim_nodes = \"rim.inp\"       # node labels bonded to the rim (Matrix Market: 0-based indices)\n\
+patch_nodes = \"patch.inp\"   # candidate contact-patch node labels\n";
+
 /// Where the reduced tire comes from (the `[tire]` table of the tire studies).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
@@ -36,6 +48,7 @@ pub struct TireSource {
     /// Imported tire (ABAQUS `*MATRIX GENERATE` or Matrix Market M and K, node coordinates,
     /// rim and candidate patch node sets; see [`ImportFiles`] and the README); replaces the
     /// generated one when given.
+    #[schemars(extend("x-commented-example" = IMPORT_EXAMPLE))]
     pub import: Option<ImportFiles>,
     /// Reduction (Ribaric §8.2: 95 contact nodes, 50 free-node modes).
     pub reduction: ReductionConfig,

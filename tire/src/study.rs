@@ -417,6 +417,12 @@ pub const FORCE_COLUMNS: [&str; 10] = [
 /// amplitudes of `F_x` and `F_y` \[N\] ([`RigResult::spectra`]).
 pub const SPECTRUM_COLUMNS: [&str; 3] = ["f_Hz", "fx_amp_N", "fy_amp_N"];
 
+/// The [`SPECTRUM_COLUMNS`] rows of the spectra `(sx, sy)` of `F_x` and `F_y` of a rig result
+/// ([`RigResult::spectra`]).
+pub fn spectrum_rows(sx: &Spectrum, sy: &Spectrum) -> impl Iterator<Item = [f64; 3]> {
+    (0..sx.freq_hz.len()).map(|k| [sx.freq_hz[k], sx.amplitude[k], sy.amplitude[k]])
+}
+
 /// The [`FORCE_COLUMNS`] row of the rolling tire after a step (a run's observer; `settle` is
 /// the rig's `settle_time`, so that the cleat hits at `t = 0`): the same numbers as the step's
 /// [`Sample`].

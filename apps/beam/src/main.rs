@@ -9,10 +9,12 @@
 
 mod studies;
 
-use ancf::beam_mesh::BeamElementKind;
-use clap::{Parser, Subcommand, ValueEnum};
-use flowmbd_cli::{CommonArgs, run_study};
+use clap::{Parser, Subcommand};
+use flowmbd_cli::run_study;
 use std::process::ExitCode;
+
+/// The app's name (`flowmbd-beam`: its default output folder `out/beam/<study>`).
+const APP: &str = "beam";
 
 #[derive(Parser, Debug)]
 #[command(
@@ -25,140 +27,27 @@ struct Cli {
     study: Command,
 }
 
-/// Element choice on the command line.
-#[derive(Debug, Clone, Copy, ValueEnum)]
-enum ElementArg {
-    /// Kerkkänen's proposed 8-DOF linear shear-deformable element.
-    Proposed,
-    /// The Omar–Shabana 12-DOF element.
-    OmarShabana,
-}
-
-impl From<ElementArg> for BeamElementKind {
-    fn from(e: ElementArg) -> Self {
-        match e {
-            ElementArg::Proposed => BeamElementKind::Proposed,
-            ElementArg::OmarShabana => BeamElementKind::OmarShabana,
-        }
-    }
-}
-
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Simply supported beam under a 1000 N mid-point load (Tables 2.1/2.2).
-    SimplySupported {
-        /// Element type.
-        #[arg(long, value_enum)]
-        element: Option<ElementArg>,
-        /// Poisson's ratio.
-        #[arg(long)]
-        nu: Option<f64>,
-        /// Number of elements (even).
-        #[arg(long)]
-        elements: Option<usize>,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    SimplySupported(studies::SimplySupported),
     /// Large-deflection cantilever under the tip force −5·10⁸ h³ N (Tables 2.3/2.4).
-    Cantilever {
-        /// Element type.
-        #[arg(long, value_enum)]
-        element: Option<ElementArg>,
-        // `[m]` stays unescaped: clap prints this doc comment as the --help text.
-        /// Section height h [m].
-        #[allow(rustdoc::broken_intra_doc_links)]
-        #[arg(long)]
-        h: Option<f64>,
-        /// Poisson's ratio.
-        #[arg(long)]
-        nu: Option<f64>,
-        /// Number of elements.
-        #[arg(long)]
-        elements: Option<usize>,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    Cantilever(studies::Cantilever),
     /// Falling flexible pendulum: tip history and energy balance (Figs 2.6/2.7).
-    Pendulum {
-        /// Number of elements.
-        #[arg(long)]
-        elements: Option<usize>,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    Pendulum(studies::Pendulum),
     /// Spinning beam: spin-up and centrifugal axial extension (Figs 2.10/2.11).
-    Spinning {
-        /// Number of elements.
-        #[arg(long)]
-        elements: Option<usize>,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    Spinning(studies::Spinning),
     /// Cantilever under a line load q = f·q* on rigid ground (unilateral Lagrange contact).
-    GroundContact {
-        /// Element type.
-        #[arg(long, value_enum)]
-        element: Option<ElementArg>,
-        /// Number of elements.
-        #[arg(long)]
-        elements: Option<usize>,
-        /// Line load as a multiple f of the critical load q* = 72 EI g₀/L⁴.
-        #[arg(long)]
-        load_factor: Option<f64>,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    GroundContact(studies::GroundContact),
 }
 
 fn main() -> ExitCode {
     let cli = flowmbd_cli::parse_args::<Cli>();
     match cli.study {
-        Command::SimplySupported {
-            element,
-            nu,
-            elements,
-            common,
-        } => run_study(
-            &studies::SimplySupported {
-                element: element.map(Into::into),
-                nu,
-                elements,
-            },
-            &common,
-        ),
-        Command::Cantilever {
-            element,
-            h,
-            nu,
-            elements,
-            common,
-        } => run_study(
-            &studies::Cantilever {
-                element: element.map(Into::into),
-                h,
-                nu,
-                elements,
-            },
-            &common,
-        ),
-        Command::Pendulum { elements, common } => {
-            run_study(&studies::Pendulum { elements }, &common)
-        }
-        Command::Spinning { elements, common } => {
-            run_study(&studies::Spinning { elements }, &common)
-        }
-        Command::GroundContact {
-            element,
-            elements,
-            load_factor,
-            common,
-        } => run_study(
-            &studies::GroundContact {
-                element: element.map(Into::into),
-                elements,
-                load_factor,
-            },
-            &common,
-        ),
+        Command::SimplySupported(s) => run_study(crate::APP, &s, &s.common),
+        Command::Cantilever(s) => run_study(crate::APP, &s, &s.common),
+        Command::Pendulum(s) => run_study(crate::APP, &s, &s.common),
+        Command::Spinning(s) => run_study(crate::APP, &s, &s.common),
+        Command::GroundContact(s) => run_study(crate::APP, &s, &s.common),
     }
 }

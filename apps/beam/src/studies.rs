@@ -7,10 +7,46 @@ use fe_model::io::vtk::{polyline, write_vtu};
 use flowmbd_cases::ancf_beams::{self as studies, GroundContactCase, StaticBeamCase};
 use flowmbd_cases::ancf_dynamics::{self as dynamics, PendulumCase, Sample, SpinningCase};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, set_given};
 use mbd_core::validate::plausible::Checks;
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
+
+/// Element choice on the command line.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum ElementArg {
+    /// Kerkkänen's proposed 8-DOF linear shear-deformable element.
+    Proposed,
+    /// The Omar–Shabana 12-DOF element.
+    OmarShabana,
+}
+
+impl From<ElementArg> for BeamElementKind {
+    fn from(e: ElementArg) -> Self {
+        match e {
+            ElementArg::Proposed => BeamElementKind::Proposed,
+            ElementArg::OmarShabana => BeamElementKind::OmarShabana,
+        }
+    }
+}
+
+/// The number of elements on the command line (`--elements`).
+#[derive(clap::Args, Debug)]
+pub struct ElementCount {
+    /// Number of elements.
+    #[arg(long)]
+    pub elements: Option<usize>,
+}
+
+/// The element type and number on the command line (`--element`, `--elements`).
+#[derive(clap::Args, Debug)]
+pub struct Mesh {
+    /// Element type.
+    #[arg(long, value_enum)]
+    pub element: Option<ElementArg>,
+    #[command(flatten)]
+    pub count: ElementCount,
+}
 
 /// Library errors: invalid input → exit code 2, anything else → numerical failure (exit 1).
 fn study_error(e: AncfError) -> StudyError {
@@ -88,10 +124,19 @@ fn series(s: &[Sample], value: impl Fn(&Sample) -> f64) -> Vec<(f64, f64)> {
 }
 
 /// `simply-supported`: Table 2.1 (ν = 0) by default.
+#[derive(clap::Args, Debug)]
 pub struct SimplySupported {
-    pub element: Option<BeamElementKind>,
+    /// Element type.
+    #[arg(long, value_enum)]
+    pub element: Option<ElementArg>,
+    /// Poisson's ratio.
+    #[arg(long)]
     pub nu: Option<f64>,
+    /// Number of elements (even).
+    #[arg(long)]
     pub elements: Option<usize>,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 /// Summary of `simply-supported`.
@@ -104,27 +149,17 @@ pub struct DeflectionSummary {
 impl Study for SimplySupported {
     type Config = StaticBeamCase;
     type Summary = DeflectionSummary;
-    const APP: &'static str = "beam";
     const NAME: &'static str = "simply-supported";
-
-    fn meaning(&self) -> &'static str {
-        "The simply supported ANCF beam of Kerkkanen 2.4 under a 1000 N mid-point load: \
+    const MEANING: &'static str = "The simply supported ANCF beam of Kerkkanen 2.4 under a 1000 N mid-point load: \
          midpoint_deflection_mm is the vertical position of the mid-point [mm], compared in \
          Kerkkanen Tables 2.1/2.2 with the Euler-Bernoulli and Timoshenko values; the \
          proposed element converges to them with the number of elements, the Omar-Shabana \
-         element locks (is too stiff) for thick beams."
-    }
+         element locks (is too stiff) for thick beams.";
 
     fn apply_overrides(&self, c: &mut StaticBeamCase) {
-        if let Some(e) = self.element {
-            c.element = e;
-        }
-        if let Some(v) = self.nu {
-            c.nu = v;
-        }
-        if let Some(n) = self.elements {
-            c.elements = n;
-        }
+        set_given(&mut c.element, self.element.map(Into::into));
+        set_given(&mut c.nu, self.nu);
+        set_given(&mut c.elements, self.elements);
     }
 
     fn run(
@@ -187,11 +222,24 @@ impl Validate for CantileverConfig {
 }
 
 /// `cantilever`.
+#[derive(clap::Args, Debug)]
 pub struct Cantilever {
-    pub element: Option<BeamElementKind>,
+    /// Element type.
+    #[arg(long, value_enum)]
+    pub element: Option<ElementArg>,
+    // `[m]` stays unescaped: clap prints this doc comment as the --help text.
+    /// Section height h [m].
+    #[allow(rustdoc::broken_intra_doc_links)]
+    #[arg(long)]
     pub h: Option<f64>,
+    /// Poisson's ratio.
+    #[arg(long)]
     pub nu: Option<f64>,
+    /// Number of elements.
+    #[arg(long)]
     pub elements: Option<usize>,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 /// Summary of `cantilever`.
@@ -204,29 +252,17 @@ pub struct TipSummary {
 impl Study for Cantilever {
     type Config = CantileverConfig;
     type Summary = TipSummary;
-    const APP: &'static str = "beam";
     const NAME: &'static str = "cantilever";
-
-    fn meaning(&self) -> &'static str {
-        "The large-deflection cantilever of Kerkkanen 2.4 under the tip force -5e8 h^3 N: tip \
+    const MEANING: &'static str = "The large-deflection cantilever of Kerkkanen 2.4 under the tip force -5e8 h^3 N: tip \
          is the deformed tip position (x, y) [m] (Kerkkanen Tables 2.3/2.4), compared with \
          the converged reference of the thesis; the beam bends far beyond the linear range, \
-         so the tip moves inwards (x < L) as well as down."
-    }
+         so the tip moves inwards (x < L) as well as down.";
 
     fn apply_overrides(&self, c: &mut CantileverConfig) {
-        if let Some(e) = self.element {
-            c.beam.element = e;
-        }
-        if let Some(v) = self.h {
-            c.beam.height = v;
-        }
-        if let Some(v) = self.nu {
-            c.beam.nu = v;
-        }
-        if let Some(n) = self.elements {
-            c.beam.elements = n;
-        }
+        set_given(&mut c.beam.element, self.element.map(Into::into));
+        set_given(&mut c.beam.height, self.h);
+        set_given(&mut c.beam.nu, self.nu);
+        set_given(&mut c.beam.elements, self.elements);
     }
 
     fn run(&self, c: &CantileverConfig, ctx: &mut StudyContext) -> Result<TipSummary, StudyError> {
@@ -268,8 +304,12 @@ impl Study for Cantilever {
 }
 
 /// `pendulum`.
+#[derive(clap::Args, Debug)]
 pub struct Pendulum {
-    pub elements: Option<usize>,
+    #[command(flatten)]
+    pub count: ElementCount,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 /// Summary of `pendulum`.
@@ -290,22 +330,16 @@ pub struct PendulumSummary {
 impl Study for Pendulum {
     type Config = PendulumCase;
     type Summary = PendulumSummary;
-    const APP: &'static str = "beam";
     const NAME: &'static str = "pendulum";
-
-    fn meaning(&self) -> &'static str {
-        "The falling flexible pendulum of Kerkkanen Figs. 2.6/2.7, pinned at one end and \
+    const MEANING: &'static str = "The falling flexible pendulum of Kerkkanen Figs. 2.6/2.7, pinned at one end and \
          released horizontally under gravity. max_energy_deviation_j is the largest deviation \
          of the total energy T + U + V from its initial value [J] (the thesis reports 0.62e-4 \
          J): the energy balance of the time integration; min_tip_y_m is the lowest tip \
          position [m], max_kinetic_j the largest kinetic energy [J], final_tip the tip \
-         position at the end [m]."
-    }
+         position at the end [m].";
 
     fn apply_overrides(&self, c: &mut PendulumCase) {
-        if let Some(n) = self.elements {
-            c.elements = n;
-        }
+        set_given(&mut c.elements, self.count.elements);
     }
 
     fn run(&self, c: &PendulumCase, ctx: &mut StudyContext) -> Result<PendulumSummary, StudyError> {
@@ -385,8 +419,12 @@ impl Study for Pendulum {
 }
 
 /// `spinning`.
+#[derive(clap::Args, Debug)]
 pub struct Spinning {
-    pub elements: Option<usize>,
+    #[command(flatten)]
+    pub count: ElementCount,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 /// Summary of `spinning`.
@@ -407,23 +445,17 @@ pub struct SpinningSummary {
 impl Study for Spinning {
     type Config = SpinningCase;
     type Summary = SpinningSummary;
-    const APP: &'static str = "beam";
     const NAME: &'static str = "spinning";
-
-    fn meaning(&self) -> &'static str {
-        "The spinning beam of Kerkkanen Figs. 2.10/2.11: the hub spins up to omega and the \
+    const MEANING: &'static str = "The spinning beam of Kerkkanen Figs. 2.10/2.11: the hub spins up to omega and the \
          beam stretches under the centrifugal load. steady_extension_m is the mean axial \
          extension of the tip over the last 10 % of the run [m], analytical_extension_m the \
          closed form (2.37) with the configuration's data and printed_extension_m the value \
          printed in the thesis; relative_error compares the first two; max_tip_offset_m is \
          the largest transverse tip deflection [m] (small: the spin-up excites little \
-         bending)."
-    }
+         bending).";
 
     fn apply_overrides(&self, c: &mut SpinningCase) {
-        if let Some(n) = self.elements {
-            c.elements = n;
-        }
+        set_given(&mut c.elements, self.count.elements);
     }
 
     fn run(&self, c: &SpinningCase, ctx: &mut StudyContext) -> Result<SpinningSummary, StudyError> {
@@ -495,10 +527,15 @@ impl Study for Spinning {
 
 /// Ground-contact configuration (newtype over the library case; default: proposed element,
 /// `ground-contact`.
+#[derive(clap::Args, Debug)]
 pub struct GroundContact {
-    pub element: Option<BeamElementKind>,
-    pub elements: Option<usize>,
+    #[command(flatten)]
+    pub mesh: Mesh,
+    /// Line load as a multiple f of the critical load q* = 72 EI g₀/L⁴.
+    #[arg(long)]
     pub load_factor: Option<f64>,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 /// Summary of `ground-contact`.
@@ -518,29 +555,19 @@ pub struct GroundContactSummary {
 impl Study for GroundContact {
     type Config = GroundContactCase;
     type Summary = GroundContactSummary;
-    const APP: &'static str = "beam";
     const NAME: &'static str = "ground-contact";
-
-    fn meaning(&self) -> &'static str {
-        "A cantilever pressed onto rigid ground by a line load q = load_factor q* with \
+    const MEANING: &'static str = "A cantilever pressed onto rigid ground by a line load q = load_factor q* with \
          unilateral Lagrange contact at the nodes: line_load and critical_load [N/m] (q*, the \
          load at which the tip of an Euler-Bernoulli beam just touches); total_force [N] is \
          the sum of the contact forces and first_contact_x [m] where the contact zone starts, \
          compared with the Euler-Bernoulli closed forms euler_bernoulli_total_force and \
          euler_bernoulli_contact_start (for q > q* the beam lies flat from a = (72 EI g0 / \
-         q)^(1/4) to the tip)."
-    }
+         q)^(1/4) to the tip).";
 
     fn apply_overrides(&self, c: &mut GroundContactCase) {
-        if let Some(e) = self.element {
-            c.element = e;
-        }
-        if let Some(n) = self.elements {
-            c.elements = n;
-        }
-        if let Some(v) = self.load_factor {
-            c.load_factor = v;
-        }
+        set_given(&mut c.element, self.mesh.element.map(Into::into));
+        set_given(&mut c.elements, self.mesh.count.elements);
+        set_given(&mut c.load_factor, self.load_factor);
     }
 
     fn run(

@@ -368,12 +368,8 @@ impl AncfStudy {
 impl Study for AncfStudy {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "belt";
     const NAME: &'static str = "ancf";
-
-    fn meaning(&self) -> &'static str {
-        drives::ancf_study::ANCF_MEANING
-    }
+    const MEANING: &'static str = drives::ancf_study::ANCF_MEANING;
 
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(t) = self.t_end {
@@ -391,5 +387,5 @@ impl Study for AncfStudy {
 
 /// Run the `ancf` study under the app conventions.
 pub fn run(args: &Args) -> ExitCode {
-    run_study(&AncfStudy { t_end: args.t_end }, &args.common)
+    run_study(crate::APP, &AncfStudy { t_end: args.t_end }, &args.common)
 }

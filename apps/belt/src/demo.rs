@@ -5,16 +5,15 @@
 
 use flowmbd_cases::slider_crank::SliderCrank;
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, set_given};
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 use serde::{Deserialize, Serialize};
-use std::process::ExitCode;
 
 /// Command-line arguments of the demo.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    common: CommonArgs,
+    pub common: CommonArgs,
     // `[s]` stays unescaped: clap prints this doc comment as the --help text.
     /// End time [s] (overrides `t_end`).
     #[allow(rustdoc::broken_intra_doc_links)]
@@ -154,10 +153,6 @@ pub struct Summary {
     pub wall_time_s: f64,
 }
 
-struct Demo {
-    t_end: Option<f64>,
-}
-
 impl Config {
     fn case(&self) -> SliderCrank {
         SliderCrank {
@@ -170,26 +165,20 @@ impl Config {
     }
 }
 
-impl Study for Demo {
+impl Study for Args {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "belt";
     const NAME: &'static str = "demo";
-
-    fn meaning(&self) -> &'static str {
-        "A rigid slider-crank driven at constant crank speed, integrated by the shared \
+    const MEANING: &'static str = "A rigid slider-crank driven at constant crank speed, integrated by the shared \
          generalized-alpha stepper with its joints as index-3 constraints (mbd-core \
          demonstration). max_slider_error_m is the largest difference between the simulated \
          slider position and the closed-form position of the crank-slider kinematics, x = r \
          cos(theta) + sqrt(l^2 - r^2 sin^2(theta)) [m]: it measures the integrator and \
          constraint accuracy and should be tiny compared with the crank length. steps and \
-         newton_iterations are the integrator's work."
-    }
+         newton_iterations are the integrator's work.";
 
     fn apply_overrides(&self, c: &mut Config) {
-        if let Some(t) = self.t_end {
-            c.t_end = t;
-        }
+        set_given(&mut c.t_end, self.t_end);
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
@@ -239,9 +228,4 @@ impl Study for Demo {
             wall_time_s: start.elapsed().as_secs_f64(),
         })
     }
-}
-
-/// Run the demo under the app conventions.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&Demo { t_end: args.t_end }, &args.common)
 }

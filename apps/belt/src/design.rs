@@ -14,10 +14,9 @@
 //! scales), `slip_margins.png/svg` and `campbell.png/svg` (the coupled modes and the engine
 //! orders with their crossings; legend beside the chart).
 
-use drives::fead_design::{DesignConfig, DesignSummary, Severity, run_design};
+use drives::fead_design::{DesignConfig, DesignPoint, DesignSummary, Severity, run_design};
 use flowmbd_cli::plot::{Legend, LinePlot, Series, Style};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use std::process::ExitCode;
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, set_given};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -30,25 +29,13 @@ pub struct Args {
     pub rpm: Option<Vec<f64>>,
 }
 
-struct Design {
-    args: Args,
-}
-
-impl Study for Design {
+impl Study for Args {
     type Config = DesignConfig;
     type Summary = DesignSummary;
-    const APP: &'static str = "belt";
     const NAME: &'static str = "design";
 
-    fn meaning(&self) -> &'static str {
-        "Steady design of a belt drive without time stepping (the summary's own `meaning` names \
-         the layout run)."
-    }
-
     fn apply_overrides(&self, c: &mut DesignConfig) {
-        if let Some(r) = &self.args.rpm {
-            c.engine.speeds_rpm = r.clone();
-        }
+        set_given(&mut c.engine.speeds_rpm, self.rpm.clone());
     }
 
     fn run(&self, c: &DesignConfig, ctx: &mut StudyContext) -> Result<DesignSummary, StudyError> {
@@ -65,6 +52,34 @@ impl Study for Design {
         write_outputs(ctx, &s, c.design.slip_margin_warning)?;
         Ok(s)
     }
+}
+
+/// Write `name`: the engine speed, the columns `fixed` and `extra`; a row per engine speed and
+/// element of `items(point)` (travel order) holding the speed and `row(point, index, element)`.
+fn per_speed_csv<T>(
+    ctx: &StudyContext,
+    name: &str,
+    fixed: &[&str],
+    extra: impl Iterator<Item = String>,
+    s: &DesignSummary,
+    items: impl Fn(&DesignPoint) -> &[T],
+    row: impl Fn(&DesignPoint, usize, &T) -> Vec<f64>,
+) -> Result<(), StudyError> {
+    let header: Vec<String> = std::iter::once("engine_speed_rpm")
+        .chain(fixed.iter().copied())
+        .map(str::to_string)
+        .chain(extra)
+        .collect();
+    let (items, row) = (&items, &row);
+    let rows = s.points.iter().flat_map(|p| {
+        items(p).iter().enumerate().map(move |(i, x)| {
+            let mut r = vec![p.engine_rpm];
+            r.extend(row(p, i, x));
+            r
+        })
+    });
+    ctx.out.write_csv(name, &header, rows)?;
+    Ok(())
 }
 
 /// CSV tables and plots.
@@ -109,26 +124,23 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
         .first()
         .and_then(|p| p.spans.first())
         .map_or(0, |sp| sp.modes.frequencies_hz.len());
-    let mut header: Vec<String> = [
-        "engine_speed_rpm",
-        "span_index",
-        "length_m",
-        "tension_N",
-        "effective_tension_N",
-        "tight_flag",
-        "stiffness_N_per_m",
-        "coupled_through_arm_flag",
-    ]
-    .iter()
-    .map(|x| x.to_string())
-    .collect();
-    header.extend((1..=harmonics).map(|n| format!("frequency{n}_Hz")));
-    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
-    let mut csv = ctx.out.csv("design_spans.csv", &refs)?;
-    for p in &s.points {
-        for (k, sp) in p.spans.iter().enumerate() {
+    per_speed_csv(
+        ctx,
+        "design_spans.csv",
+        &[
+            "span_index",
+            "length_m",
+            "tension_N",
+            "effective_tension_N",
+            "tight_flag",
+            "stiffness_N_per_m",
+            "coupled_through_arm_flag",
+        ],
+        (1..=harmonics).map(|n| format!("frequency{n}_Hz")),
+        s,
+        |p| &p.spans[..],
+        |_, k, sp| {
             let mut row = vec![
-                p.engine_rpm,
                 k as f64,
                 sp.length_m,
                 sp.tension_n,
@@ -138,15 +150,13 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
                 flag(sp.modes.coupled_through_arm),
             ];
             row.extend(sp.modes.frequencies_hz.iter().map(|f| opt(*f)));
-            csv.row(&row)?;
-        }
-    }
-    csv.finish()?;
-    // pulleys
-    let mut csv = ctx.out.csv(
+            row
+        },
+    )?;
+    per_speed_csv(
+        ctx,
         "design_pulleys.csv",
         &[
-            "engine_speed_rpm",
             "pulley_index",
             "wrap_deg",
             "speed_rad_per_s",
@@ -163,11 +173,11 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
             "hub_load_N",
             "hub_load_direction_deg",
         ],
-    )?;
-    for p in &s.points {
-        for (k, pl) in p.pulleys.iter().enumerate() {
-            csv.row(&[
-                p.engine_rpm,
+        std::iter::empty(),
+        s,
+        |p| &p.pulleys[..],
+        |_, k, pl| {
+            vec![
                 k as f64,
                 pl.wrap_deg,
                 pl.speed_rad_per_s,
@@ -183,58 +193,49 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
                 pl.hub_load_n[1],
                 pl.hub_load_magnitude_n,
                 pl.hub_load_direction_deg,
-            ])?;
-        }
-    }
-    csv.finish()?;
+            ]
+        },
+    )?;
     // rotational modes
     let dofs = s.points.first().map_or(0, |p| p.rotational_dofs.len());
-    let mut header: Vec<String> = vec![
-        "engine_speed_rpm".into(),
-        "mode".into(),
-        "frequency_Hz".into(),
-    ];
-    header.extend((0..dofs).map(|i| format!("dof{i}_energy_share")));
-    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
-    let mut csv = ctx.out.csv("rotational_modes.csv", &refs)?;
-    for p in &s.points {
-        for (i, m) in p.rotational_modes.iter().enumerate() {
-            let mut row = vec![p.engine_rpm, (i + 1) as f64, m.frequency_hz];
+    per_speed_csv(
+        ctx,
+        "rotational_modes.csv",
+        &["mode", "frequency_Hz"],
+        (0..dofs).map(|i| format!("dof{i}_energy_share")),
+        s,
+        |p| &p.rotational_modes[..],
+        |_, i, m| {
+            let mut row = vec![(i + 1) as f64, m.frequency_hz];
             row.extend(m.energy_share.iter().copied());
-            csv.row(&row)?;
-        }
-    }
-    csv.finish()?;
+            row
+        },
+    )?;
     // coupled modes
     let parts = s.points.first().map_or(0, |p| p.coupled_parts.len());
-    let mut header: Vec<String> = vec![
-        "engine_speed_rpm".into(),
-        "mode".into(),
-        "frequency_Hz".into(),
-        "dominant_part_index".into(),
-    ];
-    header.extend((0..parts).map(|i| format!("part{i}_energy_share")));
-    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
-    let mut csv = ctx.out.csv("coupled_modes.csv", &refs)?;
-    for p in &s.points {
-        for (i, m) in p.coupled_modes.iter().enumerate() {
+    per_speed_csv(
+        ctx,
+        "coupled_modes.csv",
+        &["mode", "frequency_Hz", "dominant_part_index"],
+        (0..parts).map(|i| format!("part{i}_energy_share")),
+        s,
+        |p| &p.coupled_modes[..],
+        |p, i, m| {
             let dom = p
                 .coupled_parts
                 .iter()
                 .position(|x| *x == m.dominant)
                 .map_or(f64::NAN, |k| k as f64);
-            let mut row = vec![p.engine_rpm, (i + 1) as f64, m.frequency_hz, dom];
+            let mut row = vec![(i + 1) as f64, m.frequency_hz, dom];
             row.extend(m.energy_share.iter().copied());
-            csv.row(&row)?;
-        }
-    }
-    csv.finish()?;
+            row
+        },
+    )?;
     // Campbell diagram and crossings
     let c = &s.campbell;
     let mut header: Vec<String> = vec!["engine_speed_rpm".into()];
     header.extend((0..c.curves.len()).map(|i| format!("curve{i}_Hz")));
-    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
-    let mut csv = ctx.out.csv("campbell.csv", &refs)?;
+    let mut csv = ctx.out.csv("campbell.csv", &header)?;
     for (i, &r) in c.engine_rpm.iter().enumerate() {
         let mut row = vec![r];
         row.extend(c.curves.iter().map(|cv| opt(cv.frequencies_hz[i])));
@@ -337,11 +338,6 @@ fn hub_polar(s: &DesignSummary) -> LinePlot {
     hub.series
         .push(Series::points("origin (no load)", vec![(0.0, 0.0)]));
     hub
-}
-
-/// Run the study under the app conventions.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&Design { args: args.clone() }, &args.common)
 }
 
 /// Bar chart of the slip margins (capacity over torque, `drives::fead_design`) per pulley:

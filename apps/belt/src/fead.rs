@@ -5,8 +5,7 @@
 use drives::ModelKind;
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, FeadSummary, run_fead};
 use flowmbd_cli::plot::{LinePlot, Series, Style};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use std::process::ExitCode;
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, set_given};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -22,29 +21,16 @@ pub struct Args {
     pub model: Option<ModelKind>,
 }
 
-struct Fead {
-    args: Args,
-}
-
-impl Study for Fead {
+impl Study for Args {
     type Config = FeadConfig;
     type Summary = FeadSummary;
-    const APP: &'static str = "belt";
     const NAME: &'static str = "fead";
 
-    fn meaning(&self) -> &'static str {
-        drives::fead::FEAD_MEANING
-    }
-
     fn apply_overrides(&self, c: &mut FeadConfig) {
-        if let Some(r) = &self.args.rpm {
-            c.engine.speeds_rpm = r.clone();
-        }
-        if let Some(m) = self.args.model {
-            c.model = m;
-        }
+        set_given(&mut c.engine.speeds_rpm, self.rpm.clone());
+        set_given(&mut c.model, self.model);
         // a relative trace file is the configuration file's neighbour (drives::crank_trace)
-        if let (Some(t), Some(cfg)) = (&c.engine.trace, &self.args.common.config) {
+        if let (Some(t), Some(cfg)) = (&c.engine.trace, &self.common.config) {
             // absolute, so the config.toml written with the results still finds it
             let dir = cfg.parent().unwrap_or(std::path::Path::new(""));
             let dir = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
@@ -147,8 +133,7 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
     }
     header.push("torque_residual_ratio".into());
     header.push("power_residual_ratio".into());
-    let refs: Vec<&str> = header.iter().map(String::as_str).collect();
-    let mut csv = ctx.out.csv("fead_sweep.csv", &refs)?;
+    let mut csv = ctx.out.csv("fead_sweep.csv", &header)?;
     for p in &s.points {
         let mut row = vec![p.engine_rpm, p.belt_speed];
         if has_arm {
@@ -308,9 +293,4 @@ fn write_outputs(ctx: &StudyContext, s: &FeadSummary) -> Result<(), StudyError> 
     }
     camp.save(&ctx.out.path("campbell"))?;
     Ok(())
-}
-
-/// Run the study under the app conventions.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&Fead { args: args.clone() }, &args.common)
 }

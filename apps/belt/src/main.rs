@@ -16,6 +16,7 @@
 //! Run without a subcommand, the default study runs on its embedded defaults.
 
 use clap::{Parser, Subcommand};
+use flowmbd_cli::run_study;
 use std::process::ExitCode;
 
 mod ancf;
@@ -26,6 +27,9 @@ mod plate;
 mod speed_loss;
 mod wave;
 mod wrap_csv;
+
+/// The app's name (`flowmbd-belt`: its default output folder `out/belt/<study>`).
+const APP: &str = "belt";
 
 /// Belt-drive studies of the flowmbd toolkit.
 #[derive(Debug, Parser)]
@@ -56,13 +60,16 @@ enum Study {
 fn main() -> ExitCode {
     let cli = flowmbd_cli::parse_args::<Cli>();
     match cli.study {
-        Some(Study::Demo(args)) => demo::run(&args),
+        Some(Study::Demo(args)) => run_study(APP, &args, &args.common),
         Some(Study::Ancf(args)) => ancf::run(&args),
         Some(Study::Plate(args)) => plate::run(&args),
-        Some(Study::SpeedLoss(args)) => speed_loss::run(&args),
-        Some(Study::Wave(args)) => wave::run(&args),
-        Some(Study::Fead(args)) => fead::run(&args),
-        Some(Study::Design(args)) => design::run(&args),
-        None => speed_loss::run(&speed_loss::Args::default()),
+        Some(Study::SpeedLoss(args)) => run_study(APP, &args, &args.common),
+        Some(Study::Wave(args)) => run_study(APP, &args, &args.common),
+        Some(Study::Fead(args)) => run_study(APP, &args, &args.common),
+        Some(Study::Design(args)) => run_study(APP, &args, &args.common),
+        None => {
+            let args = speed_loss::Args::default();
+            run_study(APP, &args, &args.common)
+        }
     }
 }

@@ -393,12 +393,8 @@ impl PlateStudy {
 impl Study for PlateStudy {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "belt";
     const NAME: &'static str = "plate";
-
-    fn meaning(&self) -> &'static str {
-        drives::plate_study::PLATE_MEANING
-    }
+    const MEANING: &'static str = drives::plate_study::PLATE_MEANING;
 
     fn apply_overrides(&self, c: &mut Config) {
         if let Some(t) = self.t_end {
@@ -413,5 +409,5 @@ impl Study for PlateStudy {
 
 /// Run the `plate` study under the app conventions.
 pub fn run(args: &Args) -> ExitCode {
-    run_study(&PlateStudy { t_end: args.t_end }, &args.common)
+    run_study(crate::APP, &PlateStudy { t_end: args.t_end }, &args.common)
 }

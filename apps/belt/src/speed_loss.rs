@@ -12,9 +12,8 @@ use drives::speed_loss_study::{
 };
 use drives::{ModelKind, SpeedLossCase, SpeedLossSummary as Summary};
 use flowmbd_cli::plot::{LinePlot, Series, Style};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, set_given};
 use rayon::prelude::*;
-use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 pub(crate) fn model_parser() -> impl TypedValueParser<Value = ModelKind> {
@@ -42,10 +41,6 @@ pub struct Args {
 
 /// Study configuration (defined in `drives`, shared with the Python package).
 pub type Config = SpeedLossStudyConfig;
-
-struct SpeedLoss {
-    args: Args,
-}
 
 fn sweep_error(omega: f64, f: SweepFailure) -> StudyError {
     StudyError::Numerical {
@@ -162,15 +157,10 @@ fn run_case(
     Ok((Case::new(case, start.elapsed().as_secs_f64()), coordinates))
 }
 
-impl Study for SpeedLoss {
+impl Study for Args {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "belt";
     const NAME: &'static str = "speed-loss";
-
-    fn meaning(&self) -> &'static str {
-        drives::speed_loss_study::SPEED_LOSS_MEANING
-    }
 
     /// Per driver speed and load: Δω, Bechtel's Δω (6.3), the span tensions, and the torque
     /// and power balance residuals (or why a point has no numbers).
@@ -179,15 +169,11 @@ impl Study for SpeedLoss {
     }
 
     fn apply_overrides(&self, c: &mut Config) {
-        if let Some(w) = self.args.omega {
+        if let Some(w) = self.omega {
             c.omegas = vec![w];
         }
-        if let Some(t) = &self.args.torques {
-            c.procedure.torques = t.clone();
-        }
-        if let Some(m) = self.args.model {
-            c.model = m;
-        }
+        set_given(&mut c.procedure.torques, self.torques.clone());
+        set_given(&mut c.model, self.model);
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
@@ -320,11 +306,6 @@ impl Study for SpeedLoss {
             start.elapsed().as_secs_f64(),
         ))
     }
-}
-
-/// Run the study under the app conventions.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&SpeedLoss { args: args.clone() }, &args.common)
 }
 
 /// The table [`Study::result_table`] prints.

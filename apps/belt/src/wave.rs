@@ -9,13 +9,12 @@
 //! deflection scaled by `vtk_scale` as in the "highly exaggerated" figure).
 
 use drives::wave::{
-    WAVE_CSV_HEADER, WAVE_MEANING, WaveStudyConfig, WaveStudySummary, run_wave_study, wave_csv_rows,
+    WAVE_CSV_HEADER, WaveStudyConfig, WaveStudySummary, run_wave_study, wave_csv_rows,
 };
 use fe_model::io::vtk::{PointField, polyline, write_vtu};
 use flowing::belt::wave::WaveRun;
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, VtkSeries, run_study};
-use std::process::ExitCode;
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, VtkSeries, set_given};
 
 /// Command-line arguments of the `wave` study.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -30,10 +29,6 @@ pub struct Args {
     #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     pub t_end: Option<f64>,
-}
-
-struct Wave {
-    args: Args,
 }
 
 /// Every `n/vtk_frames`-th recorded shape of `run` as a closed `.vtu` polyline, its deflection
@@ -80,23 +75,14 @@ fn write_vtk(
     Ok(())
 }
 
-impl Study for Wave {
+impl Study for Args {
     type Config = WaveStudyConfig;
     type Summary = WaveStudySummary;
-    const APP: &'static str = "belt";
     const NAME: &'static str = "wave";
 
-    fn meaning(&self) -> &'static str {
-        WAVE_MEANING
-    }
-
     fn apply_overrides(&self, c: &mut WaveStudyConfig) {
-        if let Some(v) = self.args.speed {
-            c.wave.belt_speed = v;
-        }
-        if let Some(t) = self.args.t_end {
-            c.wave.t_end = t;
-        }
+        set_given(&mut c.wave.belt_speed, self.speed);
+        set_given(&mut c.wave.t_end, self.t_end);
     }
 
     fn run(
@@ -124,17 +110,21 @@ impl Study for Wave {
                 .map(|(t, w)| (1e3 * t, 1e3 * w))
                 .collect()
         };
-        LinePlot::new(
+        let both = |title: &str, y: &str, of: &dyn Fn(&WaveRun) -> Vec<(f64, f64)>, stem| {
+            LinePlot::new(title, "t [ms]", y)
+                .with(Series::line("at rest", of(rest)))
+                .with(Series::line(
+                    format!("running at {} m/s", c.wave.belt_speed),
+                    of(running),
+                ))
+                .save(&ctx.out.path(stem))
+        };
+        both(
             "Mid-span deflection of the upper span (Ribaric Fig. 6-3)",
-            "t [ms]",
             "deflection [mm]",
-        )
-        .with(Series::line("at rest", ms(rest)))
-        .with(Series::line(
-            format!("running at {} m/s", c.wave.belt_speed),
-            ms(running),
-        ))
-        .save(&ctx.out.path("span_deflection"))?;
+            &ms,
+            "span_deflection",
+        )?;
         let t_free = study.free_time;
         let cen = |r: &WaveRun| -> Vec<(f64, f64)> {
             r.times
@@ -144,22 +134,12 @@ impl Study for Wave {
                 .map(|(t, x)| (1e3 * t, *x))
                 .collect()
         };
-        LinePlot::new(
+        both(
             "Centroid of the span deflection",
-            "t [ms]",
             "position along the span [m]",
-        )
-        .with(Series::line("at rest", cen(rest)))
-        .with(Series::line(
-            format!("running at {} m/s", c.wave.belt_speed),
-            cen(running),
-        ))
-        .save(&ctx.out.path("centroid"))?;
+            &cen,
+            "centroid",
+        )?;
         Ok(study.summary)
     }
-}
-
-/// Run the `wave` study under the app conventions.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&Wave { args: args.clone() }, &args.common)
 }

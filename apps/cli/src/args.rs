@@ -85,6 +85,14 @@ fn takes_number(a: &clap::Arg) -> bool {
     .any(|t| id == *t)
 }
 
+/// A command-line override of a configuration key: `given` (a flag's value), when there is
+/// one, replaces `key` ([`crate::Study::apply_overrides`]: `set_given(&mut c.speed, self.speed)`).
+pub fn set_given<T>(key: &mut T, given: Option<T>) {
+    if let Some(v) = given {
+        *key = v;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

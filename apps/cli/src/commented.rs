@@ -8,6 +8,11 @@
 //! written has a comment, and the comment of a key holding a floating-point number (or an
 //! array of them) states a unit in brackets: `[N]`, `[m]`, `[rad/s]`, `[-]` for a
 //! dimensionless number. Integers are counts or indices, dimensionless by their type.
+//!
+//! TOML has no null, so an optional table that a configuration leaves out (`None`) would not
+//! show at all: a field that carries [`EXAMPLE_KEY`] in its schema
+//! (`#[schemars(extend("x-commented-example" = TEXT))]`) is shown, when absent, as a
+//! commented-out example after the configuration ([`commented_example`]).
 
 use schemars::JsonSchema;
 use serde::Serialize;
@@ -43,7 +48,8 @@ pub fn annotate(text: &str, schema: &Json) -> Result<String, toml_edit::TomlErro
     let mut doc: DocumentMut = text.parse()?;
     let walker = Walker { root: schema };
     let root = doc.as_table_mut();
-    walker.table(root, schema);
+    let mut examples = String::new();
+    walker.table(root, schema, "", &mut examples);
     let mut out = String::new();
     if let Some(d) = walker.description(schema, None) {
         out.push_str(&comment_block(&d));
@@ -53,7 +59,24 @@ pub fn annotate(text: &str, schema: &Json) -> Result<String, toml_edit::TomlErro
         );
     }
     out.push_str(&doc.to_string());
+    out.push_str(&examples);
     Ok(out)
+}
+
+/// The schema key of a field's commented example: a string whose first line is the example's
+/// heading and the others the lines of its table (see [`commented_example`]).
+pub const EXAMPLE_KEY: &str = "x-commented-example";
+
+/// The commented-out example of the table at `path` (dotted) from `example` ([`EXAMPLE_KEY`]):
+/// an empty line, the heading (its first line), the table header `[path]`, the table's lines,
+/// each line commented out.
+pub fn commented_example(path: &str, example: &str) -> String {
+    let mut lines = example.lines();
+    let mut out = format!("\n# {}\n# [{path}]\n", lines.next().unwrap_or_default());
+    for line in lines {
+        out.push_str(&format!("# {line}\n"));
+    }
+    out
 }
 
 /// Schema walker: `root` holds the `$defs` that `$ref`s point into.
@@ -198,8 +221,28 @@ impl<'a> Walker<'a> {
         })
     }
 
-    /// Comment the keys of `table` (schema `s`) and the tables below it.
-    fn table(&self, table: &mut Table, s: &'a Json) {
+    /// Comment the keys of `table` (schema `s`, at the dotted `path`) and the tables below it;
+    /// add to `examples` the commented examples of the fields it leaves out.
+    fn table(&self, table: &mut Table, s: &'a Json, path: &str, examples: &mut String) {
+        let within = |key: &str| {
+            if path.is_empty() {
+                key.to_string()
+            } else {
+                format!("{path}.{key}")
+            }
+        };
+        let absent = self
+            .resolve(s)
+            .get("properties")
+            .and_then(Json::as_object)
+            .into_iter()
+            .flatten()
+            .filter(|(k, _)| !table.contains_key(k));
+        for (key, p) in absent {
+            if let Some(example) = p.get(EXAMPLE_KEY).and_then(Json::as_str) {
+                examples.push_str(&commented_example(&within(key), example));
+            }
+        }
         let keys: Vec<String> = table.iter().map(|(k, _)| k.to_string()).collect();
         for key in keys {
             let Some(p) = self.property(s, &key, table) else {
@@ -227,7 +270,7 @@ impl<'a> Walker<'a> {
                     {
                         sub.decor_mut().set_prefix(format!("\n{c}"));
                     }
-                    self.table(sub, p);
+                    self.table(sub, p, &within(&key), examples);
                 }
                 Item::ArrayOfTables(array) => {
                     let element = self.items(p);
@@ -241,7 +284,7 @@ impl<'a> Walker<'a> {
                             sub.decor_mut().set_prefix(prefix);
                         }
                         if let Some(e) = element {
-                            self.table(sub, e);
+                            self.table(sub, e, &within(&key), examples);
                         }
                     }
                 }

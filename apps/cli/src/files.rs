@@ -18,8 +18,7 @@ mod tests {
     /// The three cases a user meets, told apart (issue #20: a directory was "does not exist").
     #[test]
     fn missing_directory_and_file_are_told_apart() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-files-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::testing::fresh_dir("flowmbd-cli", "files");
         let e = check_input_file("tire.import.mass", &dir).unwrap_err();
         assert!(e.to_string().contains("is a directory"), "{e}");
         assert!(e.to_string().starts_with("tire.import.mass"), "{e}");

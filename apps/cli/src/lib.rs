@@ -34,7 +34,7 @@ pub mod stdout;
 pub mod study;
 pub mod testing;
 
-pub use args::{CommonArgs, parse_args};
+pub use args::{CommonArgs, parse_args, set_given};
 pub use cancel::Cancel;
 pub use config::{PartialRules, Validate, load_config, read_config};
 pub use error::{CliError, InputError};

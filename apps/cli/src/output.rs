@@ -199,9 +199,11 @@ impl OutputDir {
         Ok(path)
     }
 
-    /// Write a whole numeric table as CSV with a header row.
-    pub fn write_csv<R>(&self, name: &str, header: &[&str], rows: R) -> Result<PathBuf, CliError>
+    /// Write a whole numeric table as CSV with a header row (column names as `&str` or
+    /// `String`).
+    pub fn write_csv<R, S>(&self, name: &str, header: &[S], rows: R) -> Result<PathBuf, CliError>
     where
+        S: AsRef<str>,
         R: IntoIterator,
         R::Item: AsRef<[f64]>,
     {
@@ -215,24 +217,26 @@ impl OutputDir {
     /// Open a CSV file for streaming rows (histories are written as they are computed, so a
     /// failed run keeps what it had): rows go to `.NAME.part`, renamed to `NAME` by
     /// [`CsvSink::finish`] or when the sink is dropped (a failed or interrupted run keeps its
-    /// rows under the final name; `summary.json` says the run is incomplete).
-    pub fn csv(&self, name: &str, header: &[&str]) -> Result<CsvSink, CliError> {
+    /// rows under the final name; `summary.json` says the run is incomplete). Column names
+    /// as `&str` or `String`.
+    pub fn csv<S: AsRef<str>>(&self, name: &str, header: &[S]) -> Result<CsvSink, CliError> {
         let path = self.path(name);
         let part = part_path(&path, false);
         let file = File::create(&part).map_err(|e| write_error(&path, e))?;
         let mut writer = csv::Writer::from_writer(BufWriter::new(file));
+        let names: Vec<String> = header.iter().map(|c| c.as_ref().to_string()).collect();
         writer
-            .write_record(header)
+            .write_record(&names)
             .map_err(|e| write_error(&path, e))?;
         Ok(CsvSink {
             path,
             part,
             writer: Some(writer),
-            names: header.iter().map(|c| c.to_string()).collect(),
-            kinds: header
+            kinds: names
                 .iter()
                 .map(|c| column_kind(c).unwrap_or(ColumnKind::Real))
                 .collect(),
+            names,
         })
     }
 }
@@ -559,8 +563,7 @@ mod tests {
     // convention is reported by `csv_violations` (reference: the cells written by hand below)
     #[test]
     fn integer_columns_are_written_and_checked_as_integers() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-int-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
+        let dir = crate::testing::fresh_dir("flowmbd-cli", "int");
         let out = OutputDir::create(&dir).unwrap();
         let p = out
             .write_csv(
@@ -597,7 +600,7 @@ mod tests {
 
     #[test]
     fn csv_round_trip_and_row_length_check() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-out-{}", std::process::id()));
+        let dir = crate::testing::fresh_dir("flowmbd-cli", "out");
         let out = OutputDir::create(&dir).unwrap();
         let p = out
             .write_csv("t.csv", &["t_s", "x_m"], [[0.0, 1.5], [0.5, -2.0]])
@@ -622,8 +625,7 @@ mod tests {
     // and names reaching outside the folder are left alone
     #[test]
     fn files_in_sub_folders_are_listed_and_cleared() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-sub-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
+        let dir = crate::testing::fresh_dir("flowmbd-cli", "sub");
         let out = OutputDir::create(&dir).unwrap();
         let vtk = out.path("vtk");
         std::fs::create_dir_all(&vtk).unwrap();

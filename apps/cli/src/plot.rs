@@ -346,16 +346,25 @@ impl LinePlot {
                 y += 20;
             }
         } else if self.series.iter().any(|s| !s.name.is_empty()) || !self.bands.is_empty() {
-            chart
-                .configure_series_labels()
-                .label_font((FONT, 15))
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()
-                .map_err(e)?;
+            draw_legend(&mut chart, 15)?;
         }
         Ok(())
     }
+}
+
+/// Draw the legend of `chart` the plots' way: labels of `font_size` px in a box with a
+/// translucent white background and a black border (errors as text).
+pub fn draw_legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    font_size: u32,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .label_font((FONT, font_size))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| e.to_string())
 }
 
 /// The ranges `((x0, x1), (y0, y1))` with the shorter widened about its centre so that both
@@ -382,10 +391,18 @@ fn err(path: &Path, message: String) -> CliError {
 mod tests {
     use super::*;
 
+    /// The PNG bytes and SVG text of `plot` saved into a fresh folder `tag` (removed again).
+    fn saved(plot: &LinePlot, tag: &str) -> (Vec<u8>, String) {
+        let dir = crate::testing::fresh_dir("flowmbd-cli", tag);
+        let files = plot.save(&dir.join("p")).unwrap();
+        let png = std::fs::read(&files[0]).unwrap();
+        let svg = std::fs::read_to_string(&files[1]).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+        (png, svg)
+    }
+
     #[test]
     fn writes_png_and_svg_with_text() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-plot-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
         let plot = LinePlot::new("sine", "t [s]", "x [m]")
             .with(Series::line(
                 "sin",
@@ -394,34 +411,27 @@ mod tests {
                     .collect(),
             ))
             .with(Series::points("samples", vec![(0.0, 0.0), (1.0, 0.5)]));
-        let files = plot.save(&dir.join("p")).unwrap();
-        let png = std::fs::read(&files[0]).unwrap();
+        let (png, svg) = saved(&plot, "plot");
         assert_eq!(&png[1..4], b"PNG");
-        let svg = std::fs::read_to_string(&files[1]).unwrap();
         assert!(
             svg.contains("<svg") && svg.contains("sin"),
             "legend text present in SVG"
         );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     // a shaded band is drawn and labelled (its legend text is in the SVG)
     #[test]
     fn bands_are_shaded_and_labelled() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-band-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
         let plot = LinePlot::new("f", "v [m/s]", "f [Hz]")
             .with(Series::line("f1", vec![(0.0, 20.0), (50.0, 0.0)]))
             .with_band("unstable (v > c)", 40.0, 60.0);
-        let files = plot.save(&dir.join("b")).unwrap();
-        let svg = std::fs::read_to_string(&files[1]).unwrap();
+        let (_, svg) = saved(&plot, "band");
         assert!(svg.contains("unstable (v &gt; c)") || svg.contains("unstable (v > c)"));
         // the band's fill colour (230, 80, 60): the band and its legend swatch
         assert!(
             svg.to_uppercase().matches("E6503C").count() >= 2,
             "a shaded rectangle and its legend entry"
         );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     // Equal axes: the drawn x and y ranges have the same units per pixel (the data of a
@@ -429,15 +439,12 @@ mod tests {
     // writes every series' name.
     #[test]
     fn equal_axes_and_outside_legend() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-eq-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
         let plot = LinePlot::new("polar", "F_x [N]", "F_y [N]")
             .with(Series::line("a", vec![(0.0, 0.0), (100.0, 10.0)]))
             .with(Series::points("b", vec![(50.0, 5.0)]))
             .with_equal_axes()
             .with_legend(Legend::Outside);
-        let files = plot.save(&dir.join("e")).unwrap();
-        let svg = std::fs::read_to_string(&files[1]).unwrap();
+        let (_, svg) = saved(&plot, "eq");
         assert!(
             svg.contains(&format!("width=\"{}\"", SIZE.0 + LEGEND_PANEL)),
             "panel width"
@@ -456,7 +463,6 @@ mod tests {
             assert!((sx / sy - 1.0).abs() < 1e-12, "{sx} {sy}");
             assert!(x0 <= r.0.0 && x1 >= r.0.1 && y0 <= r.1.0 && y1 >= r.1.1);
         }
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

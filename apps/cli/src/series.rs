@@ -99,8 +99,7 @@ mod tests {
     // times (ParaView's `.series` format).
     #[test]
     fn frames_every_interval_and_the_index_lists_them() {
-        let root = std::env::temp_dir().join(format!("flowmbd-series-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&root);
+        let root = crate::testing::fresh_dir("flowmbd-cli", "series");
         let out = OutputDir::create(&root).unwrap();
         // steps of 0.25 s, frames every 0.75 s (exact binary fractions)
         let mut s = VtkSeries::new("belt", "vtk", 0.75);

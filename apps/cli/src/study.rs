@@ -107,26 +107,20 @@ pub trait Study {
         + schemars::JsonSchema;
     /// The study's summary (written to `summary.json`, printed by `--json`).
     type Summary: Serialize;
-    /// App name, e.g. `"belt"` (default output folder `out/<app>/<study>`).
-    const APP: &'static str;
-    /// Study name, e.g. `"speed-loss"`.
+    /// Study name, e.g. `"speed-loss"` (the app's name is given to [`run_study`]; default
+    /// output folder `out/<app>/<study>`).
     const NAME: &'static str;
 
     /// One paragraph on what the summary's numbers mean (what is computed, the reference it
     /// is compared with, how to read the result); written as `"meaning"` into
-    /// `summary.json` and `--json` unless the summary has a `meaning` of its own (the studies
-    /// whose summary is defined in a library crate, shared with Python).
-    fn meaning(&self) -> &'static str;
+    /// `summary.json` and `--json`. A summary with a `meaning` of its own keeps it: the
+    /// studies whose summary is defined in a library crate (shared with Python) leave this
+    /// empty, the summary carries the library's paragraph (every app's tests check that each
+    /// example's summary has a meaning).
+    const MEANING: &'static str = "";
 
     /// Apply command-line overrides (such as `--speed`) to the loaded configuration.
     fn apply_overrides(&self, _config: &mut Self::Config) {}
-
-    /// TOML comments appended to the printed configuration (`--print-config`, `config.toml`):
-    /// e.g. a commented example of an optional table that `config` leaves out (TOML has no
-    /// null, so an absent optional table would not show otherwise).
-    fn config_notes(&self, _config: &Self::Config) -> String {
-        String::new()
-    }
 
     /// A short plain-text table of the main results, printed on stdout when the study completes
     /// (not with `--json`, which prints the whole summary): what a user reads first, before
@@ -152,17 +146,19 @@ pub trait Study {
     ) -> Result<Self::Summary, StudyError>;
 }
 
-/// Run `study` under the app conventions and return the process exit code:
-/// 0 success, 2 bad input (one line naming the field), 1 numerical failure (partial results
-/// kept), 130 / 143 interrupted by SIGINT / SIGTERM (results so far kept, marked incomplete).
-pub fn run_study<S: Study>(study: &S, args: &CommonArgs) -> ExitCode {
+/// Run `study` of the app `app` (e.g. `"belt"` for `flowmbd-belt`: the default output folder
+/// `out/<app>/<study>` and the prefix of its messages) under the app conventions and return the
+/// process exit code: 0 success, 2 bad input (one line naming the field), 1 numerical failure
+/// (partial results kept), 130 / 143 interrupted by SIGINT / SIGTERM (results so far kept,
+/// marked incomplete).
+pub fn run_study<S: Study>(app: &'static str, study: &S, args: &CommonArgs) -> ExitCode {
     let cancel = Cancel::install();
-    match try_run(study, args, &cancel, true) {
+    match try_run(app, study, args, &cancel, true) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::Interrupted { out }) => {
             eprintln!(
                 "flowmbd-{} {}: interrupted by {}; results so far in {} (marked \"complete\": false)",
-                S::APP,
+                app,
                 S::NAME,
                 cancel.signal_name(),
                 mbd_core::validate::escape_message(&out.display().to_string())
@@ -172,7 +168,7 @@ pub fn run_study<S: Study>(study: &S, args: &CommonArgs) -> ExitCode {
         Err(e) => {
             eprintln!(
                 "flowmbd-{} {}: error: {}",
-                S::APP,
+                app,
                 S::NAME,
                 mbd_core::validate::escape_message(&e.to_string())
             );
@@ -286,6 +282,7 @@ fn watch_cancel(
 }
 
 fn try_run<S: Study>(
+    app: &'static str,
     study: &S,
     args: &CommonArgs,
     cancel: &Cancel,
@@ -300,7 +297,7 @@ fn try_run<S: Study>(
         origin: format!("{origin} with command-line options"),
         error,
     })?;
-    let config_text = to_commented_toml(&config) + &study.config_notes(&config);
+    let config_text = to_commented_toml(&config);
     if args.print_config {
         crate::stdout::print_stdout(&config_text).map_err(|e| CliError::Write {
             path: "<stdout>".into(),
@@ -308,7 +305,7 @@ fn try_run<S: Study>(
         })?;
         return Ok(Outcome::Done);
     }
-    let out = OutputDir::create(args.out_dir(S::APP, S::NAME))?;
+    let out = OutputDir::create(args.out_dir(app, S::NAME))?;
     // the previous run's files go; until the end summary.json says "complete": false
     out.begin_run()?;
     out.write_text("config.toml", &config_text)?;
@@ -319,13 +316,7 @@ fn try_run<S: Study>(
     };
     let finished = std::sync::Arc::new(std::sync::Mutex::new(false));
     if watch {
-        watch_cancel(
-            S::APP,
-            S::NAME,
-            out.clone(),
-            cancel.clone(),
-            finished.clone(),
-        );
+        watch_cancel(app, S::NAME, out.clone(), cancel.clone(), finished.clone());
     }
     // what a run that did not finish leaves in summary.json
     let unfinished = |status: &str, error: Option<String>, partial: Option<serde_json::Value>| {
@@ -370,7 +361,7 @@ fn try_run<S: Study>(
     match result {
         Ok(summary) => {
             let table = study.result_table(&summary);
-            let summary = with_meaning(&summary, study.meaning()).map_err(|e| CliError::Write {
+            let summary = with_meaning(&summary, S::MEANING).map_err(|e| CliError::Write {
                 path: out.path("summary.json"),
                 message: e.to_string(),
             })?;
@@ -492,11 +483,8 @@ mod tests {
     impl Study for Sum {
         type Config = Cfg;
         type Summary = serde_json::Value;
-        const APP: &'static str = "test";
         const NAME: &'static str = "sum";
-        fn meaning(&self) -> &'static str {
-            "total: the sum 0 + 1 + ... + (steps - 1)"
-        }
+        const MEANING: &'static str = "total: the sum 0 + 1 + ... + (steps - 1)";
         fn apply_overrides(&self, c: &mut Cfg) {
             if let Some(s) = self.steps {
                 c.steps = s;
@@ -527,18 +515,20 @@ mod tests {
         }
     }
 
+    /// [`Sum`] with `steps` and `fail_after`, run into `out` (unwatched).
+    fn run_sum(
+        steps: Option<usize>,
+        fail_after: Option<usize>,
+        out: &std::path::Path,
+    ) -> Result<Outcome, StudyError> {
+        let sum = Sum { steps, fail_after };
+        try_run("test", &sum, &args(out), &Cancel::new(), false)
+    }
+
     #[test]
     fn exit_codes_follow_the_conventions() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-study-{}", std::process::id()));
-        let ok = try_run(
-            &Sum {
-                steps: Some(5),
-                fail_after: None,
-            },
-            &args(&dir),
-            &Cancel::new(),
-            false,
-        );
+        let dir = crate::testing::fresh_dir("flowmbd-cli", "study");
+        let ok = run_sum(Some(5), None, &dir);
         assert!(ok.is_ok());
         let summary: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
@@ -549,29 +539,11 @@ mod tests {
             Some("total: the sum 0 + 1 + ... + (steps - 1)")
         );
 
-        let bad = try_run(
-            &Sum {
-                steps: Some(0),
-                fail_after: None,
-            },
-            &args(&dir),
-            &Cancel::new(),
-            false,
-        )
-        .unwrap_err();
+        let bad = run_sum(Some(0), None, &dir).unwrap_err();
         assert_eq!(bad.exit_code(), 2);
         assert!(bad.to_string().contains("steps"), "{bad}");
 
-        let failed = try_run(
-            &Sum {
-                steps: None,
-                fail_after: Some(2),
-            },
-            &args(&dir),
-            &Cancel::new(),
-            false,
-        )
-        .unwrap_err();
+        let failed = run_sum(None, Some(2), &dir).unwrap_err();
         assert_eq!(failed.exit_code(), 1);
         let kept = std::fs::read_to_string(dir.join("h.csv")).unwrap();
         assert_eq!(kept.lines().count(), 3, "header + 2 rows kept: {kept}");
@@ -590,11 +562,8 @@ mod tests {
     impl Study for Interruptible {
         type Config = Cfg;
         type Summary = serde_json::Value;
-        const APP: &'static str = "test";
         const NAME: &'static str = "interruptible";
-        fn meaning(&self) -> &'static str {
-            "done: steps taken"
-        }
+        const MEANING: &'static str = "done: steps taken";
         fn run(&self, c: &Cfg, ctx: &mut StudyContext) -> Result<serde_json::Value, StudyError> {
             let mut sink = ctx.out.csv("h.csv", &["i"])?;
             let mut done = 0;
@@ -618,8 +587,7 @@ mod tests {
     // removes the files the previous run listed and never leaves them unmarked
     #[test]
     fn interrupted_runs_are_marked_and_stale_outputs_removed() {
-        let dir = std::env::temp_dir().join(format!("flowmbd-cli-int-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
+        let dir = crate::testing::fresh_dir("flowmbd-cli", "int");
         // a complete earlier run that wrote an extra file
         std::fs::create_dir_all(&dir).unwrap();
         std::fs::write(dir.join("old.csv"), "x\n").unwrap();
@@ -630,7 +598,14 @@ mod tests {
         )
         .unwrap();
         let cancel = Cancel::new();
-        let r = try_run(&Interruptible { cancel_at: 2 }, &args(&dir), &cancel, false).unwrap();
+        let r = try_run(
+            "test",
+            &Interruptible { cancel_at: 2 },
+            &args(&dir),
+            &cancel,
+            false,
+        )
+        .unwrap();
         assert!(matches!(r, Outcome::Interrupted { .. }));
         assert_eq!(cancel.exit_code(), 130);
         let summary: serde_json::Value =
@@ -691,16 +666,7 @@ mod tests {
     fn out_that_is_a_file_is_bad_input() {
         let f = std::env::temp_dir().join(format!("flowmbd-cli-outfile-{}", std::process::id()));
         std::fs::write(&f, "x").unwrap();
-        let e = try_run(
-            &Sum {
-                steps: None,
-                fail_after: None,
-            },
-            &args(&f),
-            &Cancel::new(),
-            false,
-        )
-        .unwrap_err();
+        let e = run_sum(None, None, &f).unwrap_err();
         assert_eq!(e.exit_code(), 2);
         assert!(e.to_string().starts_with("--out "), "{e}");
         std::fs::remove_file(&f).unwrap();

@@ -1,13 +1,11 @@
 //! `flowmbd-reduce lin-beam`: Lin (2005) ch. 6.2, 6.3, 7.1 and 8.5 on the Appendix A beam.
 
 use flowmbd_cases::lin::beam::{self, LinBeamConfig, LinBeamSummary, PROFILE_DELTA};
-use flowmbd_cli::args::CommonArgs;
 use flowmbd_cli::config::Validate;
 use flowmbd_cli::error::InputError;
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
+use flowmbd_cli::study::{Study, StudyContext, StudyError};
 use serde::{Deserialize, Serialize};
-use std::process::ExitCode;
 
 /// Configuration; the defaults are Lin's Appendix A beam and profile (7.1).
 #[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
@@ -48,20 +46,17 @@ impl Validate for Config {
     }
 }
 
-struct LinBeamStudy;
+/// The study.
+pub struct LinBeamStudy;
 
 impl Study for LinBeamStudy {
     type Config = Config;
     type Summary = LinBeamSummary;
-    const APP: &'static str = "reduce";
     const NAME: &'static str = "lin-beam";
-
-    fn meaning(&self) -> &'static str {
-        "Lin ch. 6-8 on the Appendix A beam: the frequencies of the full model and of the \
+    const MEANING: &'static str = "Lin ch. 6-8 on the Appendix A beam: the frequencies of the full model and of the \
          reduced models (Guyan, modal truncation, Craig-Bampton, mode condensation) compared \
          with Lin's tables, the deflection profiles of the profile tests [m] and the \
-         mean-axis frame: how well each reduction reproduces the full model."
-    }
+         mean-axis frame: how well each reduction reproduces the full model.";
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<LinBeamSummary, StudyError> {
         let b = beam::beam_from(&c.beam).map_err(StudyError::numerical)?;
@@ -124,9 +119,4 @@ impl Study for LinBeamStudy {
         }
         Ok(summary)
     }
-}
-
-/// Runs `lin-beam` under the app conventions.
-pub fn run(args: &CommonArgs) -> ExitCode {
-    run_study(&LinBeamStudy, args)
 }

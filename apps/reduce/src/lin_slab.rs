@@ -8,14 +8,12 @@
 use flowmbd_cases::lin::slab::{self, SlabMethod};
 use flowmbd_cases::lin::slab_sim::{SlabSimConfig, SlabSimulation, simulate};
 use flowmbd_cases::lin::slab_sim3::{DRIVEN_NODES, record_source, simulate_emulated};
-use flowmbd_cli::args::CommonArgs;
 use flowmbd_cli::config::Validate;
 use flowmbd_cli::error::InputError;
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::study::{Study, StudyContext, StudyError, run_study};
+use flowmbd_cli::study::{Study, StudyContext, StudyError};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::process::ExitCode;
 use std::sync::Arc;
 
 /// Configuration; the defaults reproduce Lin's set-up (6 kept modes, R = 4 m, T = 1 s) with the
@@ -102,7 +100,8 @@ pub struct Sim3Source {
     pub nr_emulation_vs_source_m: Option<f64>,
 }
 
-struct LinSlabStudy;
+/// The study.
+pub struct LinSlabStudy;
 
 fn sim_name(s: SlabSimulation) -> &'static str {
     match s {
@@ -115,16 +114,12 @@ fn sim_name(s: SlabSimulation) -> &'static str {
 impl Study for LinSlabStudy {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "reduce";
     const NAME: &'static str = "lin-slab";
-
-    fn meaning(&self) -> &'static str {
-        "Lin 7.2 simulations 1-3 on the Appendix B slab: the local deflections of node 8 [m] \
+    const MEANING: &'static str = "Lin 7.2 simulations 1-3 on the Appendix B slab: the local deflections of node 8 [m] \
          in the floating frame for every reduction method (Newton-Raphson on the full model, \
          Guyan, modal truncation, Craig-Bampton, mode condensation), the linearised gravity \
          statics of simulation 1, and simulation 3 against Lin's printed tables; the methods \
-         agree where the reduction basis spans the loading."
-    }
+         agree where the reduction basis spans the loading.";
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let s = slab::appendix_b_slab().map_err(StudyError::numerical)?;
@@ -190,7 +185,6 @@ impl Study for LinSlabStudy {
                     header.push(format!("{}_{comp}_m", m.label()));
                 }
             }
-            let hdr: Vec<&str> = header.iter().map(|x| x.as_str()).collect();
             let n = hist[0].1.len();
             let rows: Vec<Vec<f64>> = (0..n)
                 .map(|i| {
@@ -203,7 +197,7 @@ impl Study for LinSlabStudy {
                 .collect();
             ctx.out.write_csv(
                 &format!("{name}_node8.csv"),
-                &hdr,
+                &header,
                 rows.iter().map(|r| r.as_slice()),
             )?;
             for (comp, label) in ["ξ", "η", "ζ"].iter().enumerate() {
@@ -305,7 +299,6 @@ fn write_sim3_tables(
             header.push(format!("a{c}{j}_m_per_s2"));
         }
     }
-    let hdr: Vec<&str> = header.iter().map(|x| x.as_str()).collect();
     let rows: Vec<Vec<f64>> = src
         .table
         .acc
@@ -319,8 +312,11 @@ fn write_sim3_tables(
             r
         })
         .collect();
-    ctx.out
-        .write_csv("sim3_tables.csv", &hdr, rows.iter().map(|r| r.as_slice()))?;
+    ctx.out.write_csv(
+        "sim3_tables.csv",
+        &header,
+        rows.iter().map(|r| r.as_slice()),
+    )?;
     let rows: Vec<[f64; 4]> = src
         .t
         .iter()
@@ -333,9 +329,4 @@ fn write_sim3_tables(
         rows.iter().map(|r| r.as_slice()),
     )?;
     Ok(())
-}
-
-/// Runs `lin-slab` under the app conventions.
-pub fn run(args: &CommonArgs) -> ExitCode {
-    run_study(&LinSlabStudy, args)
 }

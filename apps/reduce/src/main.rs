@@ -9,7 +9,7 @@
 //! - `reduce`: reduce user Matrix Market matrices and write the reduced model.
 
 use clap::{Parser, Subcommand};
-use flowmbd_cli::CommonArgs;
+use flowmbd_cli::{CommonArgs, run_study};
 use std::process::ExitCode;
 
 mod lin_beam;
@@ -17,6 +17,9 @@ mod lin_slab;
 mod modes;
 mod reduce_cmd;
 mod tire_mesh;
+
+/// The app's name (`flowmbd-reduce`: its default output folder `out/reduce/<study>`).
+const APP: &str = "reduce";
 
 /// Model-reduction studies of the flowmbd toolkit.
 #[derive(Debug, Parser)]
@@ -42,10 +45,10 @@ enum Study {
 
 fn main() -> ExitCode {
     match flowmbd_cli::parse_args::<Cli>().study {
-        Study::Modes(args) => modes::run(&args),
-        Study::TireMesh(args) => tire_mesh::run(&args),
-        Study::LinBeam(args) => lin_beam::run(&args),
-        Study::LinSlab(args) => lin_slab::run(&args),
+        Study::Modes(args) => run_study(APP, &args, &args.common),
+        Study::TireMesh(args) => run_study(APP, &tire_mesh::TireMesh, &args),
+        Study::LinBeam(args) => run_study(APP, &lin_beam::LinBeamStudy, &args),
+        Study::LinSlab(args) => run_study(APP, &lin_slab::LinSlabStudy, &args),
         Study::Reduce(args) => reduce_cmd::run(args),
     }
 }

@@ -8,16 +8,15 @@ use fe_model::eigen::{SparseEigenOptions, sparse_modes};
 use fe_model::io::{mtx, vtk};
 use fe_model::plausibility::check_stiffness_mass;
 use fe_model::{DofSplit, FeError, Mesh};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    common: CommonArgs,
+    pub common: CommonArgs,
     /// Mass matrix (Matrix Market).
     #[arg(long, value_name = "M.mtx")]
     mass: Option<PathBuf>,
@@ -95,10 +94,6 @@ pub struct Summary {
     pub frequencies_hz: Vec<f64>,
 }
 
-struct ModesStudy<'a> {
-    args: &'a Args,
-}
-
 fn input(field: &str, e: impl std::fmt::Display) -> StudyError {
     StudyError::Input(InputError::new(field, e.to_string()))
 }
@@ -137,21 +132,17 @@ fn read_fixed(path: &Path, n: usize) -> Result<Vec<usize>, StudyError> {
     Ok(out)
 }
 
-impl Study for ModesStudy<'_> {
+impl Study for Args {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "reduce";
     const NAME: &'static str = "modes";
-
-    fn meaning(&self) -> &'static str {
-        "Natural frequencies [Hz] of the Matrix Market model K phi = lambda M phi (lambda = \
+    const MEANING: &'static str = "Natural frequencies [Hz] of the Matrix Market model K phi = lambda M phi (lambda = \
          omega^2 in rad^2/s^2), lowest first, with the fixed DOFs removed; the eigen solver \
          checks its result (Sturm count, M-orthogonality): a missed or ghost mode is \
-         reported, not printed."
-    }
+         reported, not printed.";
 
     fn apply_overrides(&self, c: &mut Config) {
-        let a = self.args;
+        let a = self;
         let s = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
         if let Some(v) = s(&a.mass) {
             c.mass = v;
@@ -184,7 +175,7 @@ impl Study for ModesStudy<'_> {
             ));
         }
         let bar = ctx.progress(4.0, "modes");
-        let opts = mtx::ReadOptions::symmetric().allow_large(self.args.common.allow_large);
+        let opts = mtx::ReadOptions::symmetric().allow_large(self.common.allow_large);
         let read = |field: &str, p: &str| -> Result<_, StudyError> {
             mtx::read_sparse_with(p, &opts).map_err(|e: FeError| input(field, e))
         };
@@ -310,9 +301,4 @@ impl Study for ModesStudy<'_> {
             frequencies_hz: modes.frequencies_hz,
         })
     }
-}
-
-/// Run the study with the app conventions.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(&ModesStudy { args }, &args.common)
 }

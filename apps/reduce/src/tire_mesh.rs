@@ -6,10 +6,9 @@
 use fe_model::generate::{TireConfig, TireZone, tire};
 use fe_model::io::{mtx, vtk};
 use fe_model::{FeError, MassKind};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::process::ExitCode;
 
 /// Configuration of the `tire-mesh` study.
 #[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
@@ -61,7 +60,8 @@ pub struct Summary {
     pub files: Vec<String>,
 }
 
-struct TireMesh;
+/// The study.
+pub struct TireMesh;
 
 fn numerical(what: &str, e: FeError) -> StudyError {
     StudyError::numerical(format!("{what}: {e}"))
@@ -70,14 +70,10 @@ fn numerical(what: &str, e: FeError) -> StudyError {
 impl Study for TireMesh {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "reduce";
     const NAME: &'static str = "tire-mesh";
-
-    fn meaning(&self) -> &'static str {
-        "The generated truck-tire carcass: the nodes, hexahedra and DOFs of the mesh written \
+    const MEANING: &'static str = "The generated truck-tire carcass: the nodes, hexahedra and DOFs of the mesh written \
          as mesh.json, M and K (Matrix Market) and the node sets (rim, contact patch), for \
-         flowmbd-reduce and other FE tools."
-    }
+         flowmbd-reduce and other FE tools.";
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let bar = ctx.progress(4.0, "tire-mesh");
@@ -153,9 +149,4 @@ impl Study for TireMesh {
             files,
         })
     }
-}
-
-/// Run the study with the app conventions.
-pub fn run(args: &CommonArgs) -> ExitCode {
-    run_study(&TireMesh, args)
 }

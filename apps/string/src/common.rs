@@ -1,7 +1,7 @@
 //! Pieces shared by the studies: error mapping, validation helpers.
 
 use flowing::FlowError;
-use flowmbd_cli::{InputError, StudyError};
+use flowmbd_cli::{InputError, StudyError, set_given};
 
 /// The flowing-material model's discretisation on the command line of the `modes` and `sweep`
 /// studies (`--nodes`, `--modes`): each given value replaces the configuration's.
@@ -18,12 +18,24 @@ pub struct ModelArgs {
 impl ModelArgs {
     /// Replace `nodes` and `modes` (a configuration's) by the values given.
     pub fn apply(&self, nodes: &mut usize, modes: &mut usize) {
-        if let Some(n) = self.nodes {
-            *nodes = n;
-        }
-        if let Some(k) = self.modes {
-            *modes = k;
-        }
+        set_given(nodes, self.nodes);
+        set_given(modes, self.modes);
+    }
+}
+
+/// The axial speed on the command line of the `modes`, `simulate` and `wrap` studies
+/// (`--speed`): given, it replaces the configuration's.
+#[derive(clap::Args, Debug, Clone, Copy, Default)]
+pub struct SpeedArg {
+    /// Axial speed [m/s].
+    #[arg(long)]
+    pub speed: Option<f64>,
+}
+
+impl SpeedArg {
+    /// Replace `speed` (a configuration's) by the value given.
+    pub fn apply(&self, speed: &mut f64) {
+        set_given(speed, self.speed);
     }
 }
 

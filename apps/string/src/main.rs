@@ -11,8 +11,11 @@ mod sweep;
 mod wrap;
 
 use clap::{Parser, Subcommand};
-use flowmbd_cli::{CommonArgs, run_study};
+use flowmbd_cli::run_study;
 use std::process::ExitCode;
+
+/// The app's name (`flowmbd-string`: its default output folder `out/string/<study>`).
+const APP: &str = "string";
 
 #[derive(Parser, Debug)]
 #[command(
@@ -30,53 +33,22 @@ enum Command {
     /// Natural frequencies of the analytical Galerkin model and the discrete flowing-material
     /// model at one axial speed, with the exact ones and the models' growth checked by a second
     /// discretisation.
-    Modes {
-        /// Axial speed [m/s].
-        #[arg(long)]
-        speed: Option<f64>,
-        #[command(flatten)]
-        model: common::ModelArgs,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    Modes(modes::ModesStudy),
     /// Frequencies against axial speed from 0 to past the critical speed (CSV and plot).
-    Sweep {
-        #[command(flatten)]
-        model: common::ModelArgs,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    Sweep(sweep::SweepStudy),
     /// Transient after a pluck below the critical speed: modal coordinates and their spectra
     /// (Ribaric Fig. 4-6 right).
-    Simulate {
-        /// Axial speed [m/s].
-        #[arg(long)]
-        speed: Option<f64>,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    Simulate(simulate::SimulateStudy),
     /// The string partly wrapped on two pulleys, lifting off under a harmonic load.
-    Wrap {
-        /// Axial speed [m/s].
-        #[arg(long)]
-        speed: Option<f64>,
-        #[command(flatten)]
-        common: CommonArgs,
-    },
+    Wrap(wrap::WrapStudy),
 }
 
 fn main() -> ExitCode {
     let cli = flowmbd_cli::parse_args::<Cli>();
     match cli.study {
-        Command::Modes {
-            speed,
-            model,
-            common,
-        } => run_study(&modes::ModesStudy { speed, model }, &common),
-        Command::Sweep { model, common } => run_study(&sweep::SweepStudy { model }, &common),
-        Command::Simulate { speed, common } => {
-            run_study(&simulate::SimulateStudy { speed }, &common)
-        }
-        Command::Wrap { speed, common } => run_study(&wrap::WrapStudy { speed }, &common),
+        Command::Modes(s) => run_study(crate::APP, &s, &s.common),
+        Command::Sweep(s) => run_study(crate::APP, &s, &s.common),
+        Command::Simulate(s) => run_study(crate::APP, &s, &s.common),
+        Command::Wrap(s) => run_study(crate::APP, &s, &s.common),
     }
 }

@@ -1,30 +1,28 @@
 //! `modes`: damped natural frequencies of the analytical and the flowing-material models
 //! (configuration, summary and computation in [`flowing::string_study`]).
 
-use crate::common::{ModelArgs, study_error};
+use crate::common::{ModelArgs, SpeedArg, study_error};
 use flowing::string_study::{ModesConfig, ModesSummary, string_modes};
-use flowmbd_cli::{Study, StudyContext, StudyError};
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError};
 
-/// The `modes` study.
+/// The `modes` study: its command line.
+#[derive(clap::Args, Debug)]
 pub struct ModesStudy {
-    pub speed: Option<f64>,
+    #[command(flatten)]
+    pub speed: SpeedArg,
+    #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 impl Study for ModesStudy {
     type Config = ModesConfig;
     type Summary = ModesSummary;
-    const APP: &'static str = "string";
     const NAME: &'static str = "modes";
 
-    fn meaning(&self) -> &'static str {
-        flowing::string_study::MODES_MEANING
-    }
-
     fn apply_overrides(&self, c: &mut ModesConfig) {
-        if let Some(v) = self.speed {
-            c.speed = v;
-        }
+        self.speed.apply(&mut c.speed);
         self.model.apply(&mut c.nodes, &mut c.modes);
     }
 

@@ -4,31 +4,28 @@
 
 use crate::common::*;
 use flowing::string_simulate::{
-    SIMULATE_MEANING, SimulateConfig, SimulateSummary, history_header, history_rows,
-    spectra_header, spectra_rows, string_simulate,
+    SimulateConfig, SimulateSummary, history_header, history_rows, spectra_header, spectra_rows,
+    string_simulate,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{Study, StudyContext, StudyError};
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError};
 
-/// The `simulate` study.
+/// The `simulate` study: its command line.
+#[derive(clap::Args, Debug)]
 pub struct SimulateStudy {
-    pub speed: Option<f64>,
+    #[command(flatten)]
+    pub speed: SpeedArg,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 impl Study for SimulateStudy {
     type Config = SimulateConfig;
     type Summary = SimulateSummary;
-    const APP: &'static str = "string";
     const NAME: &'static str = "simulate";
 
-    fn meaning(&self) -> &'static str {
-        SIMULATE_MEANING
-    }
-
     fn apply_overrides(&self, c: &mut SimulateConfig) {
-        if let Some(v) = self.speed {
-            c.speed = v;
-        }
+        self.speed.apply(&mut c.speed);
     }
 
     fn run(
@@ -43,13 +40,11 @@ impl Study for SimulateStudy {
         let k = c.modes;
         // mass-normalised modes: the modal coordinates carry √kg·m
         let header = history_header(k);
-        let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         ctx.out
-            .write_csv("modal_history.csv", &hdr, history_rows(&hist))?;
+            .write_csv("modal_history.csv", &header, history_rows(&hist))?;
         let header = spectra_header(k);
-        let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
         ctx.out
-            .write_csv("spectra.csv", &hdr, spectra_rows(&spectra))?;
+            .write_csv("spectra.csv", &header, spectra_rows(&spectra))?;
         let fmax = summary.model_hz.get(k.min(6) - 1).copied().unwrap_or(200.0) * 1.3;
         let mut plot = LinePlot::new(
             "Spectra of the modal coordinates",

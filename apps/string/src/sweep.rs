@@ -3,26 +3,25 @@
 
 use crate::common::*;
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CliError, Study, StudyContext, StudyError};
+use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError};
 use std::ops::ControlFlow;
 
-use flowing::string_sweep::{SWEEP_MEANING, string_sweep, sweep_header};
 use flowing::string_sweep::{SweepConfig, SweepSummary};
+use flowing::string_sweep::{string_sweep, sweep_header};
 
-/// The `sweep` study.
+/// The `sweep` study: its command line.
+#[derive(clap::Args, Debug)]
 pub struct SweepStudy {
+    #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 impl Study for SweepStudy {
     type Config = SweepConfig;
     type Summary = SweepSummary;
-    const APP: &'static str = "string";
     const NAME: &'static str = "sweep";
-
-    fn meaning(&self) -> &'static str {
-        SWEEP_MEANING
-    }
 
     fn apply_overrides(&self, c: &mut SweepConfig) {
         self.model.apply(&mut c.nodes, &mut c.modes);
@@ -30,8 +29,7 @@ impl Study for SweepStudy {
 
     fn run(&self, c: &SweepConfig, ctx: &mut StudyContext) -> Result<SweepSummary, StudyError> {
         let header = sweep_header(c.tracked);
-        let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
-        let mut csv = ctx.out.csv("sweep.csv", &hdr)?;
+        let mut csv = ctx.out.csv("sweep.csv", &header)?;
         let bar = ctx.progress(c.steps as f64, "speed sweep");
         // the Galerkin (columns 1..=tracked) and flowing (tracked+1..=2 tracked) frequencies
         let mut series: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 2 * c.tracked];

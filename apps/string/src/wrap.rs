@@ -9,7 +9,7 @@ use flowing::{
     simulate_contact,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
+use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate};
 use mbd_core::integrators::State;
 use serde::{Deserialize, Serialize};
 
@@ -309,9 +309,13 @@ fn write_vtk(
     write_vtu(path, &mesh, &fields).map_err(|e| StudyError::numerical(format!("VTK output: {e}")))
 }
 
-/// The `wrap` study.
+/// The `wrap` study: its command line.
+#[derive(clap::Args, Debug)]
 pub struct WrapStudy {
-    pub speed: Option<f64>,
+    #[command(flatten)]
+    pub speed: SpeedArg,
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 fn per_pulley(sys: &ContactString, n: usize, f: impl Fn(usize) -> f64) -> Vec<f64> {
@@ -345,11 +349,8 @@ fn free_span(sys: &ContactString, length: f64, n_pulleys: usize) -> f64 {
 impl Study for WrapStudy {
     type Config = WrapConfig;
     type Summary = WrapSummary;
-    const APP: &'static str = "string";
     const NAME: &'static str = "wrap";
-
-    fn meaning(&self) -> &'static str {
-        "A string partly wrapped on two pulleys under a harmonic load (Ribaric (4.10), \
+    const MEANING: &'static str = "A string partly wrapped on two pulleys under a harmonic load (Ribaric (4.10), \
          (4.11), (4.40)): contact nodes lift off and land again as the load shakes the free \
          span. coordinates is the model size; candidates_, initial_active_ and \
          initial_force_per_pulley [N] describe the static wrap; min_active_per_pulley is the \
@@ -357,13 +358,10 @@ impl Study for WrapStudy {
          landing events; impact_loss [J] is the kinetic energy removed by the plastic \
          landings; max_free_span [m] the longest free span reached (the wrap shrinks when \
          nodes lift off); max_active_gap [m] the largest gap of a node held in contact \
-         (constraint drift, near 0 for a sound integration)."
-    }
+         (constraint drift, near 0 for a sound integration).";
 
     fn apply_overrides(&self, c: &mut WrapConfig) {
-        if let Some(v) = self.speed {
-            c.speed = v;
-        }
+        self.speed.apply(&mut c.speed);
     }
 
     fn run(&self, c: &WrapConfig, ctx: &mut StudyContext) -> Result<WrapSummary, StudyError> {
@@ -406,8 +404,7 @@ impl Study for WrapStudy {
         ];
         header.extend((0..np).map(|p| format!("pulley{p}_active_count")));
         header.extend((0..np).map(|p| format!("pulley{p}_force_N")));
-        let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
-        let mut csv = ctx.out.csv("history.csv", &hdr)?;
+        let mut csv = ctx.out.csv("history.csv", &header)?;
         let bar = ctx.progress(c.duration, "contact simulation");
         let mut next = 0.0;
         let mut min_act = act_pp.clone();

@@ -5,9 +5,7 @@ use crate::common::{RigFlags, TireSourceExt, rig_err};
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError, VtkSeries, run_study};
-use std::process::ExitCode;
-use tire::study::CLEAT_MEANING;
+use flowmbd_cli::{CliError, CommonArgs, Study, StudyContext, StudyError, VtkSeries, set_given};
 use tire::{
     LineMode, RigResult, RollingTire, TireError, cleat_summary, phase_spread, run_cleat_observed,
 };
@@ -16,7 +14,7 @@ use tire::{
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    common: CommonArgs,
+    pub common: CommonArgs,
     /// Speed [km/h] (overrides `rig.speed_kmh`).
     #[arg(long)]
     speed: Option<f64>,
@@ -30,7 +28,7 @@ pub struct Args {
 
 /// Configuration and summary of the study: in the library, shared with the Python package.
 pub use tire::study::{CleatStudyConfig as Config, CleatSummary as Summary};
-use tire::study::{FORCE_COLUMNS, SPECTRUM_COLUMNS, force_row, sample_row};
+use tire::study::{FORCE_COLUMNS, SPECTRUM_COLUMNS, force_row, sample_row, spectrum_rows};
 
 /// Write the spectra and plots of a rig result under `prefix`, and its force history
 /// `{prefix}forces.csv` too when `history` is set (the `cleat` study streams that file while it
@@ -56,7 +54,7 @@ pub fn write_outputs(
     ctx.out.write_csv(
         &format!("{prefix}spectra.csv"),
         &SPECTRUM_COLUMNS,
-        (0..sx.freq_hz.len()).map(|k| vec![sx.freq_hz[k], sx.amplitude[k], sy.amplitude[k]]),
+        spectrum_rows(&sx, &sy),
     )?;
     let fx: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.fx)).collect();
     let fy: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.fy)).collect();
@@ -179,33 +177,14 @@ fn write_tire_vtu(
     Ok(write_vtu(path, &mesh, &fields)?)
 }
 
-struct Cleat {
-    speed: Option<f64>,
-    phases: Option<usize>,
-    rig: RigFlags,
-}
-
-impl Study for Cleat {
+impl Study for Args {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "tire";
     const NAME: &'static str = "cleat";
 
-    fn meaning(&self) -> &'static str {
-        CLEAT_MEANING
-    }
-
-    fn config_notes(&self, c: &Config) -> String {
-        crate::common::import_notes(&c.tire)
-    }
-
     fn apply_overrides(&self, c: &mut Config) {
-        if let Some(v) = self.speed {
-            c.rig.speed_kmh = v;
-        }
-        if let Some(n) = self.phases {
-            c.cleat_phases = n;
-        }
+        set_given(&mut c.rig.speed_kmh, self.speed);
+        set_given(&mut c.cleat_phases, self.phases);
         self.rig.apply(&mut c.tire, &mut c.rig);
     }
 
@@ -317,16 +296,4 @@ impl Study for Cleat {
         }
         Ok(s)
     }
-}
-
-/// Run the study.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(
-        &Cleat {
-            speed: args.speed,
-            phases: args.phases,
-            rig: args.rig.clone(),
-        },
-        &args.common,
-    )
 }

@@ -1,34 +1,13 @@
 //! Shared pieces of the tire studies: the tire source (generated truck tire, reduced and saved,
 //! or a saved reduced tire reused) and error mapping.
 
-use flowmbd_cli::StudyError;
+use flowmbd_cli::{StudyContext, StudyError, set_given};
 use tire::{
     CacheUse, GroundKind, ReducedTire, Reducing, RigConfig, TireError, rig_input_error,
     tire_input_error,
 };
 
 pub use tire::TireSource;
-
-/// The commented `[tire.import]` example that `--print-config` appends (TOML has no null, so
-/// an absent import would not show otherwise).
-pub const IMPORT_EXAMPLE: &str = "\n\
-# An imported tire replaces the generated one (uncomment and give the files; README, \"Imported tire\"):\n\
-# [tire.import]\n\
-# format = \"abaqus\"          # or \"matrix_market\" (3n x 3n, node-major x, y, z)\n\
-# stiffness = \"job_STIF1.mtx\" # K with the inflation prestress (ABAQUS *MATRIX GENERATE)\n\
-# mass = \"job_MASS1.mtx\"      # M\n\
-# nodes = \"nodes.inp\"         # `label, x, y, z` per line [m] (Matrix Market: `x, y, z`)\n\
-# rim_nodes = \"rim.inp\"       # node labels bonded to the rim (Matrix Market: 0-based indices)\n\
-# patch_nodes = \"patch.inp\"   # candidate contact-patch node labels\n";
-
-/// [`IMPORT_EXAMPLE`] when `tire` has no import (the studies' `config_notes`).
-pub fn import_notes(tire: &TireSource) -> String {
-    if tire.import.is_none() {
-        IMPORT_EXAMPLE.to_string()
-    } else {
-        String::new()
-    }
-}
 
 /// Map a library error: invalid input → exit 2 naming the item
 /// ([`tire::tire_input_error`]), otherwise numerical (exit 1).
@@ -91,6 +70,33 @@ impl TireSourceExt for TireSource {
     }
 }
 
+/// The reduced tire of `source` ([`TireSourceExt::reduced`]) and what `run` makes of it behind a
+/// progress bar over `steps` units of work labelled `label`: `run` gets the reduced tire and
+/// the progress callback of the library's run, which takes the fraction done.
+pub fn run_reduced<T>(
+    ctx: &StudyContext,
+    source: &TireSource,
+    steps: usize,
+    label: &str,
+    run: impl FnOnce(&ReducedTire, &mut dyn FnMut(f64)) -> Result<T, StudyError>,
+) -> Result<(ReducedTire, T), StudyError> {
+    let red = source.reduced(ctx.quiet)?;
+    let n = steps as f64;
+    let bar = ctx.progress(n, label);
+    let out = run(&red, &mut |f| bar.set(f * n))?;
+    bar.finish();
+    Ok((red, out))
+}
+
+/// The ground named on the command line (`drum` or `road`, the values clap accepts).
+pub fn ground_named(name: &str) -> GroundKind {
+    if name == "road" {
+        GroundKind::Road
+    } else {
+        GroundKind::Drum
+    }
+}
+
 /// Command-line overrides of the rig shared by `cleat` and `sweep` (the sensitivity studies of
 /// Ribaric §8.4–8.5 without editing a configuration file).
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -129,15 +135,9 @@ impl RigFlags {
     /// Apply the overrides.
     pub fn apply(&self, tire: &mut TireSource, rig: &mut RigConfig) {
         if let Some(g) = &self.ground {
-            rig.ground.kind = if g == "road" {
-                GroundKind::Road
-            } else {
-                GroundKind::Drum
-            };
+            rig.ground.kind = ground_named(g);
         }
-        if let Some(mu) = self.friction {
-            rig.rolling.friction = mu;
-        }
+        set_given(&mut rig.rolling.friction, self.friction);
         if let Some(z) = self.zeta {
             rig.damping.zeta1 = z;
             rig.damping.zeta2 = z;
@@ -145,12 +145,8 @@ impl RigFlags {
         if self.no_cleat {
             rig.ground.cleat = false;
         }
-        if let Some(h) = self.time_step {
-            rig.rolling.time_step = h;
-        }
-        if let Some(n) = self.substeps {
-            rig.impact.substeps = n;
-        }
+        set_given(&mut rig.rolling.time_step, self.time_step);
+        set_given(&mut rig.impact.substeps, self.substeps);
         if let Some(n) = self.contact_nodes {
             // (the cached file's name follows the reduction, see `TireSource::reduced_path`)
             tire.reduction.contact_nodes = n;

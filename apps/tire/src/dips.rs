@@ -3,13 +3,12 @@
 //! profile and the loaded vertical mode (`tire::dips`) and measured by a cleat sweep,
 //! on the drum and on the flat road ([`tire::dips_study`]).
 
-use crate::common::{RigFlags, TireSourceExt, rig_err};
+use crate::common::{RigFlags, ground_named, rig_err, run_reduced};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use std::process::ExitCode;
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, set_given};
 use tire::dips_study::{
-    DIPS_MEANING, DipsStudyConfig as Config, DipsSummary as Summary, PREDICTION_COLUMNS,
-    PROFILE_COLUMNS, SWEEP_COLUMNS, prediction_rows, profile_rows, run_dips, sweep_rows,
+    DipsStudyConfig as Config, DipsSummary as Summary, PREDICTION_COLUMNS, PROFILE_COLUMNS,
+    SWEEP_COLUMNS, prediction_rows, profile_rows, run_dips, sweep_rows,
 };
 use tire::{GroundKind, PulseShape};
 
@@ -17,7 +16,7 @@ use tire::{GroundKind, PulseShape};
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    common: CommonArgs,
+    pub common: CommonArgs,
     #[command(flatten)]
     rig: RigFlags,
     /// Prediction only: no cleat sweep (overrides `dips.sweep_speeds_kmh` with none).
@@ -36,14 +35,6 @@ pub struct Args {
     blocked_below_hz: Option<f64>,
 }
 
-struct Dips {
-    rig: RigFlags,
-    no_sweep: bool,
-    only: Option<String>,
-    blocked_below_hz: Option<f64>,
-    pulse: Option<String>,
-}
-
 /// Ribaric's dip band \[km/h\] (§8.5: drum 40–50, road 45–55).
 fn ribaric_band(k: GroundKind) -> (f64, f64) {
     match k {
@@ -52,19 +43,10 @@ fn ribaric_band(k: GroundKind) -> (f64, f64) {
     }
 }
 
-impl Study for Dips {
+impl Study for Args {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "tire";
     const NAME: &'static str = "dips";
-
-    fn meaning(&self) -> &'static str {
-        DIPS_MEANING
-    }
-
-    fn config_notes(&self, c: &Config) -> String {
-        crate::common::import_notes(&c.tire)
-    }
 
     fn apply_overrides(&self, c: &mut Config) {
         self.rig.apply(&mut c.tire, &mut c.rig);
@@ -78,31 +60,23 @@ impl Study for Dips {
                 PulseShape::HalfSine
             };
         }
-        if let Some(b) = self.blocked_below_hz {
-            c.dips.blocked_below_hz = b;
-        }
+        set_given(&mut c.dips.blocked_below_hz, self.blocked_below_hz);
         if let Some(g) = &self.only {
-            c.grounds = vec![if g == "road" {
-                GroundKind::Road
-            } else {
-                GroundKind::Drum
-            }];
+            c.grounds = vec![ground_named(g)];
         }
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let red = c.tire.reduced(ctx.quiet)?;
-        let n = c.grounds.len() as f64;
-        let bar = ctx.progress(n, "dips");
-        let (summary, out) =
-            run_dips(&red, c, &mut |f| bar.set(f * n)).map_err(|f| match rig_err(f.error) {
-                StudyError::Numerical { message, .. } => StudyError::Numerical {
-                    message: format!("{}: {message}", f.ground.name()),
-                    partial: None,
-                },
-                other => other,
+        let (_, (summary, out)) =
+            run_reduced(ctx, &c.tire, c.grounds.len(), "dips", |red, bar| {
+                run_dips(red, c, bar).map_err(|f| match rig_err(f.error) {
+                    StudyError::Numerical { message, .. } => StudyError::Numerical {
+                        message: format!("{}: {message}", f.ground.name()),
+                        partial: None,
+                    },
+                    other => other,
+                })
             })?;
-        bar.finish();
         let mut profile_plot = LinePlot::new(
             "Quasi-static vertical force change while the cleat passes (spindle held)",
             "cleat ahead of the patch centre x [m]",
@@ -171,18 +145,4 @@ impl Study for Dips {
         amp_plot.save(&ctx.out.path("amplitude_vs_speed"))?;
         Ok(summary)
     }
-}
-
-/// Run the study.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(
-        &Dips {
-            rig: args.rig.clone(),
-            no_sweep: args.no_sweep,
-            only: args.only.clone(),
-            blocked_below_hz: args.blocked_below_hz,
-            pulse: args.pulse.clone(),
-        },
-        &args.common,
-    )
 }

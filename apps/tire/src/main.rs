@@ -14,7 +14,7 @@
 //!   loaded vertical mode, and measured by a sweep (drum and road).
 
 use clap::{Parser, Subcommand};
-use flowmbd_cli::CommonArgs;
+use flowmbd_cli::{CommonArgs, run_study};
 use std::process::ExitCode;
 
 mod cleat;
@@ -27,6 +27,9 @@ mod reduce;
 mod rotating;
 mod steady;
 mod sweep;
+
+/// The app's name (`flowmbd-tire`: its default output folder `out/tire/<study>`).
+const APP: &str = "tire";
 
 /// Reduced FE tire studies of the flowmbd toolkit.
 #[derive(Debug, Parser)]
@@ -62,14 +65,17 @@ enum Study {
 fn main() -> ExitCode {
     let cli = flowmbd_cli::parse_args::<Cli>();
     match cli.study {
-        Some(Study::Modes(a)) => modes::run(&a),
-        Some(Study::Reduce(a)) => reduce::run(&a),
-        Some(Study::Cleat(a)) => cleat::run(&a),
-        Some(Study::Sweep(a)) => sweep::run(&a),
-        Some(Study::Pressure(a)) => pressure::run(&a),
-        Some(Study::RotatingModes(a)) => rotating::run(&a),
-        Some(Study::Dips(a)) => dips::run(&a),
-        Some(Study::Steady(a)) => steady::run(&a),
-        None => cleat::run(&cleat::Args::default()),
+        Some(Study::Modes(a)) => run_study(APP, &modes::Modes, &a),
+        Some(Study::Reduce(a)) => run_study(APP, &reduce::Reduce, &a),
+        Some(Study::Cleat(a)) => run_study(APP, &a, &a.common),
+        Some(Study::Sweep(a)) => run_study(APP, &a, &a.common),
+        Some(Study::Pressure(a)) => run_study(APP, &pressure::Pressure, &a),
+        Some(Study::RotatingModes(a)) => run_study(APP, &a, &a.common),
+        Some(Study::Dips(a)) => run_study(APP, &a, &a.common),
+        Some(Study::Steady(a)) => run_study(APP, &a, &a.common),
+        None => {
+            let a = cleat::Args::default();
+            run_study(APP, &a, &a.common)
+        }
     }
 }

@@ -2,7 +2,7 @@
 //! (colour) map and a waterfall plot, each written as PNG and SVG with plotters.
 
 use flowmbd_cli::StudyError;
-use flowmbd_cli::plot::{FONT, register_font};
+use flowmbd_cli::plot::{FONT, draw_legend, register_font};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -35,22 +35,6 @@ fn colour(t: f64) -> RGBColor {
 /// A chart with frequency \[Hz\] across and speed \[km/h\] up.
 type SpeedFrequencyChart<'a, DB> =
     ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
-
-/// The frame shared by the contour map and the waterfall: frequency \[Hz\] across, speed
-/// \[km/h\] up, the same caption font, margin and label areas.
-fn speed_frequency_chart<'a, DB: DrawingBackend>(
-    area: &'a DrawingArea<DB, Shift>,
-    caption: &str,
-    f: std::ops::Range<f64>,
-    v: std::ops::Range<f64>,
-) -> Result<SpeedFrequencyChart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
-    ChartBuilder::on(area)
-        .caption(caption, (FONT, 22))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(70)
-        .build_cartesian_2d(f, v)
-}
 
 impl SpectrumMap<'_> {
     fn max_amp(&self) -> f64 {
@@ -94,26 +78,50 @@ impl SpectrumMap<'_> {
         )
     }
 
+    /// The frame shared by the contour map and the waterfall on `area`: frequency \[Hz\]
+    /// across, speed \[km/h\] up from half a speed step below the first speed to `above`
+    /// steps above the last (axis title `speed_axis`), the same caption font, margin, label
+    /// areas and label styles; a grid when `grid`.
+    fn frame<'b, DB: DrawingBackend>(
+        &self,
+        area: &'b DrawingArea<DB, Shift>,
+        caption: &str,
+        above: f64,
+        speed_axis: &str,
+        grid: bool,
+    ) -> Result<SpeedFrequencyChart<'b, DB>, String> {
+        let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+        let (_, dv) = self.steps();
+        let (f0, f1) = self.freq_range();
+        let (v0, v1) = self.speed_range(dv, above);
+        let mut chart = ChartBuilder::on(area)
+            .caption(caption, (FONT, 22))
+            .margin(16)
+            .x_label_area_size(48)
+            .y_label_area_size(70)
+            .build_cartesian_2d(f0..f1, v0..v1)
+            .map_err(e)?;
+        let mut mesh = chart.configure_mesh();
+        if !grid {
+            mesh.disable_mesh();
+        }
+        mesh.x_desc("f [Hz]")
+            .y_desc(speed_axis)
+            .label_style((FONT, 15))
+            .axis_desc_style((FONT, 17))
+            .draw()
+            .map_err(e)?;
+        Ok(chart)
+    }
+
     fn draw_contour<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), String> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-        root.fill(&WHITE).map_err(e)?;
         let (df, dv) = self.steps();
-        let (f0, f1) = self.freq_range();
-        let (v0, v1) = self.speed_range(dv, 0.5);
         let (main, bar) = root.split_horizontally(860);
-        let mut chart = speed_frequency_chart(&main, &self.title, f0..f1, v0..v1).map_err(e)?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .x_desc("f [Hz]")
-            .y_desc("v [km/h]")
-            .label_style((FONT, 15))
-            .axis_desc_style((FONT, 17))
-            .draw()
-            .map_err(e)?;
+        let mut chart = self.frame(&main, &self.title, 0.5, "v [km/h]", false)?;
         let amax = self.max_amp();
         let cells = self.speeds.iter().enumerate().flat_map(|(i, &v)| {
             self.freqs.iter().enumerate().map(move |(j, &f)| {
@@ -158,24 +166,20 @@ impl SpectrumMap<'_> {
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), String> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-        root.fill(&WHITE).map_err(e)?;
         let (_, dv) = self.steps();
         let amax = self.max_amp();
         // each spectrum is drawn at the height of its speed, scaled so that the largest peak
         // spans 1.6 speed steps
         let scale = 1.6 * dv / amax;
         let (f0, f1) = self.freq_range();
-        let (v0, v1) = self.speed_range(dv, 2.0);
         let caption = format!("{} (largest peak {:.0} N)", self.title, amax);
-        let mut chart = speed_frequency_chart(root, &caption, f0..f1, v0..v1).map_err(e)?;
-        chart
-            .configure_mesh()
-            .x_desc("f [Hz]")
-            .y_desc("v [km/h] (baseline of each spectrum)")
-            .label_style((FONT, 15))
-            .axis_desc_style((FONT, 17))
-            .draw()
-            .map_err(e)?;
+        let mut chart = self.frame(
+            root,
+            &caption,
+            2.0,
+            "v [km/h] (baseline of each spectrum)",
+            true,
+        )?;
         // back to front so that lower speeds overlap the higher ones
         for (i, &v) in self.speeds.iter().enumerate().rev() {
             let pts: Vec<(f64, f64)> = self
@@ -199,14 +203,7 @@ impl SpectrumMap<'_> {
                     PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
                 });
         }
-        chart
-            .configure_series_labels()
-            .label_font((FONT, 13))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(e)?;
-        Ok(())
+        draw_legend(&mut chart, 13)
     }
 
     /// Draw the `kind` plot (`contour` or `waterfall`) on `root` and write it to `path` (the
@@ -217,6 +214,7 @@ impl SpectrumMap<'_> {
         root: &DrawingArea<DB, Shift>,
         path: &Path,
     ) -> Result<(), StudyError> {
+        root.fill(&WHITE).map_err(|m| io(path, m))?;
         match kind {
             "contour" => self.draw_contour(root),
             _ => self.draw_waterfall(root),

@@ -6,28 +6,19 @@
 
 use crate::common::{TireSourceExt, tire_err};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use std::process::ExitCode;
+use flowmbd_cli::{Study, StudyContext, StudyError};
 use tire::modes_study::{
-    LOADED_COLUMNS, MODES_COLUMNS, MODES_MEANING, ModesStudyConfig as Config,
-    ModesSummary as Summary, loaded_rows, modes_rows, run_modes,
+    LOADED_COLUMNS, MODES_COLUMNS, ModesStudyConfig as Config, ModesSummary as Summary,
+    loaded_rows, modes_rows, run_modes,
 };
 
-struct Modes;
+/// The study.
+pub struct Modes;
 
 impl Study for Modes {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "tire";
     const NAME: &'static str = "modes";
-
-    fn meaning(&self) -> &'static str {
-        MODES_MEANING
-    }
-
-    fn config_notes(&self, c: &Config) -> String {
-        crate::common::import_notes(&c.tire)
-    }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let fe = c.tire.fe_model_or_err()?;
@@ -53,9 +44,4 @@ impl Study for Modes {
             .write_csv("loaded_modes.csv", &LOADED_COLUMNS, loaded_rows(&loaded))?;
         Ok(summary)
     }
-}
-
-/// Run the study.
-pub fn run(args: &CommonArgs) -> ExitCode {
-    run_study(&Modes, args)
 }

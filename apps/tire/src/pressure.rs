@@ -3,28 +3,18 @@
 
 use crate::common::{TireSourceExt, tire_err};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use std::process::ExitCode;
+use flowmbd_cli::{Study, StudyContext, StudyError};
 use tire::pressure_study::{
-    PATCH_COLUMNS, PRESSURE_MEANING, PressureStudyConfig as Config, PressureSummary as Summary,
-    run_pressure,
+    PATCH_COLUMNS, PressureStudyConfig as Config, PressureSummary as Summary, run_pressure,
 };
 
-struct Pressure;
+/// The study.
+pub struct Pressure;
 
 impl Study for Pressure {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "tire";
     const NAME: &'static str = "pressure";
-
-    fn meaning(&self) -> &'static str {
-        PRESSURE_MEANING
-    }
-
-    fn config_notes(&self, c: &Config) -> String {
-        crate::common::import_notes(&c.tire)
-    }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let red = c.tire.reduced(ctx.quiet)?;
@@ -53,9 +43,4 @@ impl Study for Pressure {
         plot.save(&ctx.out.path("patch_forces"))?;
         Ok(summary)
     }
-}
-
-/// Run the study.
-pub fn run(args: &CommonArgs) -> ExitCode {
-    run_study(&Pressure, args)
 }

@@ -2,9 +2,8 @@
 //! file; the stage times are the benchmark record of the 60 000-DOF reduction.
 
 use crate::common::{TireSource, TireSourceExt, tire_err};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate, run_study};
+use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
 use serde::{Deserialize, Serialize};
-use std::process::ExitCode;
 use std::time::Instant;
 use tire::ReductionTimings;
 
@@ -49,26 +48,19 @@ pub struct Summary {
     pub file: String,
 }
 
-struct Reduce;
+/// The study.
+pub struct Reduce;
 
 impl Study for Reduce {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "tire";
     const NAME: &'static str = "reduce";
-
-    fn meaning(&self) -> &'static str {
-        "The reduction of Ribaric 8.2: the FE tire (fe_dof DOFs) reduced to dof coordinates \
+    const MEANING: &'static str = "The reduction of Ribaric 8.2: the FE tire (fe_dof DOFs) reduced to dof coordinates \
          (6 wheel DOFs, 3 per contact node, free_modes free-node modes) and saved to file. \
          free_mode_max_hz and contact_mode_max_hz are the highest kept free-node and \
          contact-node modes [Hz] (the band the reduced tire resolves); tire_mass_kg is the \
          tire's mass; the timings [s] are the stages of the reduction (modes, static modes, \
-         derivatives, projection)."
-    }
-
-    fn config_notes(&self, c: &Config) -> String {
-        crate::common::import_notes(&c.tire)
-    }
+         derivatives, projection).";
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let t = Instant::now();
@@ -103,9 +95,4 @@ impl Study for Reduce {
             file,
         })
     }
-}
-
-/// Run the study.
-pub fn run(args: &CommonArgs) -> ExitCode {
-    run_study(&Reduce, args)
 }

@@ -4,13 +4,12 @@
 //! wave. Free tire (rim fixed) and loaded tire (rolling preload's patch held); Campbell
 //! diagrams, a CSV of every mode and the forward/backward splits.
 
-use crate::common::{TireSourceExt, tire_err};
+use crate::common::{run_reduced, tire_err};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use std::process::ExitCode;
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, set_given};
 use tire::rotating_study::{
-    ROTATING_COLUMNS, ROTATING_MEANING, RotatingStudyConfig as Config, RotatingSummary as Summary,
-    SplitOut, rotating_rows, run_rotating,
+    ROTATING_COLUMNS, RotatingStudyConfig as Config, RotatingSummary as Summary, SplitOut,
+    rotating_rows, run_rotating,
 };
 use tire::{SpeedModes, WaveDirection};
 
@@ -18,7 +17,7 @@ use tire::{SpeedModes, WaveDirection};
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    common: CommonArgs,
+    pub common: CommonArgs,
     /// Speeds [km/h], comma separated (overrides `speeds_kmh`), e.g. `--speeds 0,30,60,90,120`.
     #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_delimiter = ',')]
@@ -26,11 +25,6 @@ pub struct Args {
     /// Highest damped frequency reported [Hz] (overrides `max_hz`).
     #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
-    max_hz: Option<f64>,
-}
-
-struct Rotating {
-    speeds: Option<Vec<f64>>,
     max_hz: Option<f64>,
 }
 
@@ -82,35 +76,24 @@ fn campbell(
     Ok(())
 }
 
-impl Study for Rotating {
+impl Study for Args {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "tire";
     const NAME: &'static str = "rotating-modes";
 
-    fn meaning(&self) -> &'static str {
-        ROTATING_MEANING
-    }
-
-    fn config_notes(&self, c: &Config) -> String {
-        crate::common::import_notes(&c.tire)
-    }
-
     fn apply_overrides(&self, c: &mut Config) {
-        if let Some(s) = &self.speeds {
-            c.speeds_kmh = s.clone();
-        }
-        if let Some(f) = self.max_hz {
-            c.max_hz = f;
-        }
+        set_given(&mut c.speeds_kmh, self.speeds.clone());
+        set_given(&mut c.max_hz, self.max_hz);
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let red = c.tire.reduced(ctx.quiet)?;
-        let n = c.speeds_kmh.len() as f64;
-        let bar = ctx.progress(n, "rotating modes");
-        let (summary, runs) = run_rotating(&red, c, &mut |f| bar.set(f * n)).map_err(tire_err)?;
-        bar.finish();
+        let (_, (summary, runs)) = run_reduced(
+            ctx,
+            &c.tire,
+            c.speeds_kmh.len(),
+            "rotating modes",
+            |red, bar| run_rotating(red, c, bar).map_err(tire_err),
+        )?;
         ctx.out.write_csv(
             "rotating_modes.csv",
             &ROTATING_COLUMNS,
@@ -130,15 +113,4 @@ impl Study for Rotating {
         )?;
         Ok(summary)
     }
-}
-
-/// Run the study.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(
-        &Rotating {
-            speeds: args.speeds.clone(),
-            max_hz: args.max_hz,
-        },
-        &args.common,
-    )
 }

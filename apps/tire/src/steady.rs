@@ -3,18 +3,17 @@
 //! and pneumatic trail over a slip-angle sweep, `F_x(κ)` over a drive/brake torque sweep
 //! ([`tire::steady`]).
 
-use crate::common::{TireSourceExt, tire_err};
+use crate::common::{run_reduced, tire_err};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use std::process::ExitCode;
-use tire::steady::{STEADY_COLUMNS, STEADY_MEANING, steady_row};
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, set_given};
+use tire::steady::{STEADY_COLUMNS, steady_row};
 use tire::{SteadyStudyConfig as Config, SteadySummary as Summary, run_steady, steady_summary};
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    common: CommonArgs,
+    pub common: CommonArgs,
     /// Coulomb friction coefficient (overrides `rig.rolling.friction`).
     #[arg(long)]
     friction: Option<f64>,
@@ -24,39 +23,20 @@ pub struct Args {
     speed: Option<f64>,
 }
 
-struct Steady {
-    friction: Option<f64>,
-    speed: Option<f64>,
-}
-
-impl Study for Steady {
+impl Study for Args {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "tire";
     const NAME: &'static str = "steady";
 
-    fn meaning(&self) -> &'static str {
-        STEADY_MEANING
-    }
-
-    fn config_notes(&self, c: &Config) -> String {
-        crate::common::import_notes(&c.tire)
-    }
-
     fn apply_overrides(&self, c: &mut Config) {
-        if let Some(mu) = self.friction {
-            c.rig.rolling.friction = mu;
-        }
-        if let Some(v) = self.speed {
-            c.rig.speed_kmh = v;
-        }
+        set_given(&mut c.rig.rolling.friction, self.friction);
+        set_given(&mut c.rig.speed_kmh, self.speed);
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let red = c.tire.reduced(ctx.quiet)?;
-        let bar = ctx.progress(1.0, "steady sweep");
-        let r = run_steady(&red, c, &mut |f| bar.set(f)).map_err(tire_err)?;
-        bar.finish();
+        let (red, r) = run_reduced(ctx, &c.tire, 1, "steady sweep", |red, bar| {
+            run_steady(red, c, bar).map_err(tire_err)
+        })?;
         let mut s = steady_summary(c, &r);
         ctx.out.write_csv(
             "points.csv",
@@ -193,15 +173,4 @@ fn fit_plot(
         .with(Series::line(format!("{q} (MF fit)"), line))
         .save(&ctx.out.path(file))?;
     Ok(())
-}
-
-/// Run the study.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(
-        &Steady {
-            friction: args.friction,
-            speed: args.speed,
-        },
-        &args.common,
-    )
 }

@@ -2,85 +2,70 @@
 //! drum, 8-14 on the flat road; [`tire::sweep_study`]): peak spectral amplitudes against speed
 //! and the spectra as a speed × frequency table for contour/waterfall plots.
 
-use crate::common::{RigFlags, TireSourceExt, rig_err};
+use crate::common::{RigFlags, rig_err, run_reduced};
 use crate::maps::SpectrumMap;
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, run_study};
-use std::process::ExitCode;
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError};
 use tire::TireError;
 use tire::sweep_study::{
-    SWEEP_MEANING, SweepStudyConfig as Config, SweepSummary as Summary, WATERFALL_COLUMNS,
-    matrix_header, run_sweep,
+    SweepStudyConfig as Config, SweepSummary as Summary, WATERFALL_COLUMNS, matrix_header,
+    run_sweep,
 };
 
 /// Command-line arguments.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    common: CommonArgs,
+    pub common: CommonArgs,
     #[command(flatten)]
     rig: RigFlags,
 }
 
-struct Sweep {
-    rig: RigFlags,
-}
-
-impl Study for Sweep {
+impl Study for Args {
     type Config = Config;
     type Summary = Summary;
-    const APP: &'static str = "tire";
     const NAME: &'static str = "sweep";
-
-    fn meaning(&self) -> &'static str {
-        SWEEP_MEANING
-    }
-
-    fn config_notes(&self, c: &Config) -> String {
-        crate::common::import_notes(&c.tire)
-    }
 
     fn apply_overrides(&self, c: &mut Config) {
         self.rig.apply(&mut c.tire, &mut c.rig);
     }
 
     fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let red = c.tire.reduced(ctx.quiet)?;
-        let n = c.speeds_kmh.len() as f64;
-        let bar = ctx.progress(n, "speed sweep");
-        // each speed's files are written as soon as it is done (a failed sweep keeps them); a
-        // write error stops the sweep and is reported as such
-        let mut kept: Option<StudyError> = None;
-        let result = run_sweep(&red, c, &mut |f| bar.set(f * n), &mut |v, r| {
-            crate::cleat::write_outputs(ctx, r, &format!("v{v:03.0}_"), true, &[]).map_err(|e| {
-                let reason = format!("{e:?}");
-                kept = Some(e);
-                TireError::Simulation { time: 0.0, reason }
-            })
-        });
-        if let Some(e) = kept {
-            return Err(e);
-        }
-        let s = match result {
-            Ok(s) => s,
-            // the speeds done so far keep their files and go into the failed summary
-            Err(f) => {
-                let f = *f;
-                return Err(match rig_err(f.error) {
+        let (_, s) = run_reduced(
+            ctx,
+            &c.tire,
+            c.speeds_kmh.len(),
+            "speed sweep",
+            |red, bar| {
+                // each speed's files are written as soon as it is done (a failed sweep keeps
+                // them); a write error stops the sweep and is reported as such
+                let mut kept: Option<StudyError> = None;
+                let result = run_sweep(red, c, bar, &mut |v, r| {
+                    crate::cleat::write_outputs(ctx, r, &format!("v{v:03.0}_"), true, &[]).map_err(
+                        |e| {
+                            let reason = format!("{e:?}");
+                            kept = Some(e);
+                            TireError::Simulation { time: 0.0, reason }
+                        },
+                    )
+                });
+                if let Some(e) = kept {
+                    return Err(e);
+                }
+                // the speeds done so far keep their files and go into the failed summary
+                result.map_err(|f| match rig_err(f.error) {
                     StudyError::Numerical { message, .. } => StudyError::Numerical {
                         message: format!("at {} km/h: {message}", f.speed_kmh),
                         partial: serde_json::to_value(&f.runs).ok(),
                     },
                     other => other,
-                });
-            }
-        };
-        bar.finish();
+                })
+            },
+        )?;
         ctx.out
             .write_csv("waterfall.csv", &WATERFALL_COLUMNS, &s.waterfall)?;
         // the speed x frequency matrices (rows: speeds, columns: frequencies)
         let header = matrix_header(&s.freq_hz);
-        let header: Vec<&str> = header.iter().map(String::as_str).collect();
         for (name, m) in [("fy", &s.fy_matrix), ("fx", &s.fx_matrix)] {
             ctx.out.write_csv(
                 &format!("{name}_matrix.csv"),
@@ -122,14 +107,4 @@ impl Study for Sweep {
         .save(&ctx.out.path("peak_vs_speed"))?;
         Ok(summary)
     }
-}
-
-/// Run the study.
-pub fn run(args: &Args) -> ExitCode {
-    run_study(
-        &Sweep {
-            rig: args.rig.clone(),
-        },
-        &args.common,
-    )
 }
