@@ -7,14 +7,17 @@
 //! (`flowmbd-belt design`).
 
 use crate::{input_error, numerical_error, read_config, to_json};
+use drives::ancf_run::StudyEnd;
 use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, run_fead};
 use drives::fead_design::{DesignConfig, run_design};
 use drives::plate_study::{PlateStudyConfig, plate_run, plate_setup};
 use drives::speed_loss_study::{CaseFailure, SummaryCase, SummaryPoint, run_case};
 use drives::{ModelKind, SpeedLossStudyConfig, SpeedLossSummary};
+use mbd_core::config::PartialRules;
 use mbd_core::{InvalidField, Validate};
 use pyo3::prelude::*;
+use serde::de::DeserializeOwned;
 use std::time::Instant;
 
 /// Why a run stopped: bad input or a numerical failure with partial results.
@@ -95,17 +98,45 @@ fn ancf_error(py: Python<'_>, e: ::ancf::AncfError) -> PyErr {
     }
 }
 
+/// The configuration of an ANCF study from `config` with `t_end` \[s\], if given, as its end
+/// time (`end_time` the field), validated.
+fn timed_config<C>(
+    config: Option<&str>,
+    t_end: Option<f64>,
+    end_time: fn(&mut C) -> &mut f64,
+) -> PyResult<C>
+where
+    C: DeserializeOwned + serde::Serialize + Default + Validate + PartialRules,
+{
+    let mut c: C = read_config(config)?;
+    if let Some(t) = t_end {
+        *end_time(&mut c) = t;
+    }
+    c.validate().map_err(input_error)?;
+    Ok(c)
+}
+
+/// A dynamic run of either ANCF drive (`run`, outside the GIL) as the JSON text of its
+/// summary, or the failure that stopped it with the summary as its partial result.
+fn drive_study<S, H>(
+    py: Python<'_>,
+    run: impl Send + FnOnce() -> Result<StudyEnd<S, H>, ::ancf::AncfError>,
+) -> PyResult<String>
+where
+    S: serde::Serialize + Send,
+    H: Send,
+{
+    let end = py.detach(run).map_err(|e| ancf_error(py, e))?;
+    summary_or_failure(py, end.failure, &end.summary)
+}
+
 /// The planar ANCF belt drive of Kerkkänen ch. 3 (defaults: example 3.3-B, Table 3.1);
 /// returns the JSON text of the summary. `t_end` replaces the configuration's end time (the
 /// CLI's `--t-end`).
 #[pyfunction]
 #[pyo3(signature = (config=None, t_end=None))]
 pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResult<String> {
-    let mut c: AncfStudyConfig = read_config(config)?;
-    if let Some(t) = t_end {
-        c.t_end = t;
-    }
-    c.validate().map_err(input_error)?;
+    let c = timed_config(config, t_end, |c: &mut AncfStudyConfig| &mut c.t_end)?;
     match c.analysis {
         Analysis::StaticClosure => {
             let result = py.detach(|| closure_study(&c));
@@ -114,14 +145,10 @@ pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResul
         }
         Analysis::Dynamic => {
             let start = Instant::now();
-            let result = py.detach(|| {
+            drive_study(py, || {
                 let (drive, init) = dynamic_setup(&c)?;
-                dynamic_run(&c, &drive, &init, start, |_, _| {
-                    Ok::<(), ::ancf::AncfError>(())
-                })
-            });
-            let end = result.map_err(|e| ancf_error(py, e))?;
-            summary_or_failure(py, end.failure, &end.summary)
+                dynamic_run(&c, &drive, &init, start, |_, _| Ok(()))
+            })
         }
     }
 }
@@ -132,20 +159,12 @@ pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResul
 #[pyfunction]
 #[pyo3(signature = (config=None, t_end=None))]
 pub fn plate(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResult<String> {
-    let mut c: PlateStudyConfig = read_config(config)?;
-    if let Some(t) = t_end {
-        c.t_end = t;
-    }
-    c.validate().map_err(input_error)?;
+    let c = timed_config(config, t_end, |c: &mut PlateStudyConfig| &mut c.t_end)?;
     let start = Instant::now();
-    let result = py.detach(|| {
+    drive_study(py, || {
         let (drive, init) = plate_setup(&c)?;
-        plate_run(&c, &drive, &init, start, |_, _| {
-            Ok::<(), ::ancf::AncfError>(())
-        })
-    });
-    let end = result.map_err(|e| ancf_error(py, e))?;
-    summary_or_failure(py, end.failure, &end.summary)
+        plate_run(&c, &drive, &init, start, |_, _| Ok(()))
+    })
 }
 
 /// The front-end accessory drive with an automatic tensioner over an engine-speed sweep
