@@ -41,8 +41,8 @@ struct Scratch {
 /// shared first node, Kerkkänen §2.3 option (b)), `θ` the travel-sense rotation angles of the
 /// free pulleys in pulley order. The equations are `M ë = Q_e + Q_c` (2.27) with the contact
 /// forces (3.27), and `I θ̈ = s τ − T_a(t)` for each free pulley, with `τ` the counter-clockwise
-/// contact torque (3.26), `s = ±1` the travel-sense sign of the pulley ([`belt::Pulley::ccw_sign`])
-/// and `T_a` the load, which opposes the travel-sense rotation.
+/// contact torque (3.26), `s = ±1` the travel-sense sign of the pulley
+/// ([`belt::Pulley::ccw_sign`]) and `T_a` the load, which opposes the travel-sense rotation.
 pub type BeltDrive = AncfBeltDrive<Planar>;
 
 /// The planar discretisation of an [`AncfBeltDrive`] ([`BeltDrive`]): ANCF belt elements

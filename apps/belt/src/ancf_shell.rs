@@ -141,6 +141,13 @@ pub(crate) struct Sampled<'a> {
     pub columns: Vec<String>,
 }
 
+/// The observer of a study's run ([`sampled_run`]): sees each sampled state and what it is
+/// due for.
+pub(crate) type Observer<'a> = &'a mut dyn FnMut(&State, Due) -> Result<(), StudyError>;
+
+/// Each pulley's `(t [s], ω [rad/s])` at the history samples of a run ([`sampled_run`]).
+pub(crate) type PulleySpeeds = Vec<Vec<(f64, f64)>>;
+
 /// Run a study with its sampled outputs: `history.csv` (`t_s`, each pulley's speed
 /// `omega_NAME_rad_per_s`, then `sampled.columns`; a row `[t, row(s)]` per history sample, whose
 /// first values are the pulleys' speeds), a VTK series of the belt (`vtk/belt_NNNN.vtu`, a frame
@@ -148,15 +155,14 @@ pub(crate) struct Sampled<'a> {
 /// state `s0` is the first row and frame; `run` runs the study with the observer that writes
 /// the others. Returns what `run` returns and each pulley's speed at the history samples, for
 /// their plot.
-#[allow(clippy::type_complexity)] // the observer handed to `run`
 pub(crate) fn sampled_run<T>(
     ctx: &mut StudyContext,
     sampled: Sampled<'_>,
     s0: &State,
     mut row: impl FnMut(&State) -> Vec<f64>,
     mut frame: impl FnMut(&State, &Path) -> Result<(), StudyError>,
-    run: impl FnOnce(&mut dyn FnMut(&State, Due) -> Result<(), StudyError>) -> Result<T, StudyError>,
-) -> Result<(T, Vec<Vec<(f64, f64)>>), StudyError> {
+    run: impl FnOnce(Observer<'_>) -> Result<T, StudyError>,
+) -> Result<(T, PulleySpeeds), StudyError> {
     let mut header = vec!["t_s".to_string()];
     header.extend(
         sampled
@@ -168,7 +174,7 @@ pub(crate) fn sampled_run<T>(
     let hdr: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut csv = ctx.out.csv("history.csv", &hdr)?;
     let mut frames = VtkSeries::new("belt", "vtu", sampled.vtk_interval);
-    let mut speeds: Vec<Vec<(f64, f64)>> = vec![Vec::new(); sampled.pulleys.len()];
+    let mut speeds: PulleySpeeds = vec![Vec::new(); sampled.pulleys.len()];
     let mut record = |s: &State, csv: &mut flowmbd_cli::output::CsvSink| {
         let values = row(s);
         for (sp, &w) in speeds.iter_mut().zip(&values) {
