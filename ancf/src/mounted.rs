@@ -2,22 +2,29 @@
 //! ([`belt::Drive`]), mounted (its static state solved), as a [`belt::BeltModel`] and a
 //! [`SecondOrderSystem`] (issue 33: the planar belt of Kerkkänen ch. 3,
 //! [`crate::belt_drive::AncfBelt`], and the plate belt of ch. 4,
-//! [`crate::plate::belt_drive::PlateBelt`], are the same shell around two discretisations).
+//! [`crate::plate::belt_drive::PlateBelt`], are the same shell around the same drive).
 //!
-//! What differs between the discretisations — the reported quantities (snapshot, belt speed,
-//! span offsets, the tensioner arm) and the mounted state's type — is the extension point
-//! [`AncfDrive`]; the pulleys' motions and speeds, the equations of motion and the initial state
-//! are the shell's.
+//! The drive is one over the dimension, [`AncfBeltDrive`]: its description ([`DriveSpec`]),
+//! the path, the pulleys' coordinates, the system matrices' pattern and mass, the accessors
+//! and what the shell asks of it ([`AncfDrive`]) are written once; what differs between the
+//! discretisations — the elements, the mounted state's type, the reported quantities
+//! (snapshot, belt speed, span offsets, the tensioner arm) — is the extension point
+//! [`DriveKind`]. The pulleys' motions and speeds, the equations of motion and the initial
+//! state are the shell's.
 
+mod drive;
 mod equations;
 mod pulleys;
 mod resting;
+mod spec;
 
 pub(crate) use equations::ancf_equations;
 
+pub use drive::{AncfBeltDrive, DriveKind};
 pub use pulleys::{MAX_PULLEYS, PulleyCoordinates, validate_pulleys};
 pub use resting::InitialOptions;
-pub(crate) use resting::{RestingBelt, solve_resting};
+pub(crate) use resting::{Linearisation, RestingBelt, solve_resting};
+pub use spec::DriveSpec;
 
 use belt::{BeltModel, Drive, ModelTraits, Motion, Snapshot};
 use mbd_core::integrators::State;
@@ -96,8 +103,9 @@ impl MappedDrive {
     }
 }
 
-/// An ANCF discretisation of a belt drive that [`MountedBelt`] wraps (module documentation):
-/// its equations of motion ([`SecondOrderSystem`]) and what a [`BeltModel`] reports of it.
+/// An ANCF belt drive that [`MountedBelt`] wraps (module documentation): its equations of
+/// motion ([`SecondOrderSystem`]) and what a [`BeltModel`] reports of it; implemented once,
+/// for [`AncfBeltDrive`] of every [`DriveKind`].
 pub trait AncfDrive: SecondOrderSystem {
     /// The mounted static state.
     type Initial;

@@ -13,6 +13,7 @@ use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::{GeneralizedAlpha, Observer, Recorder, Rk4, State, Stats, Stepper};
 use mbd_core::validate::{InvalidField, check};
 use serde::Serialize;
+use std::time::Instant;
 
 /// Which pulleys play driver and driven in a summary of either ANCF drive: the first
 /// speed-driven pulley (0 if none) and the first free one.
@@ -69,18 +70,19 @@ pub const MAX_HISTORY_ROWS: f64 = 1e7;
 pub const MAX_VTK_FRAMES: f64 = 1e5;
 
 /// The checks of a run's length and output shared by the ANCF studies, before anything runs
-/// or is written: the integrator's options ([`SimulationConfig::validate`]), `t_end` \[s\] and the output intervals \[s\] positive; the steps
+/// or is written ([`RunPlan`]): the integrator's options ([`SimulationConfig::validate`]),
+/// `t_end` \[s\] and the output intervals \[s\] positive; the steps
 /// `t_end / h`, history rows `t_end / history_interval` and VTK frames `t_end / vtk_interval`
 /// within [`MAX_STEPS`], [`MAX_HISTORY_ROWS`] and [`MAX_VTK_FRAMES`] (raised by
 /// `--allow-large`, [`mbd_core::validate::limits`]), each refusal naming `t_end` and the
 /// interval to raise; `points_per_element` of the distributions in 1..=100.
-pub fn validate_run(
-    t_end: f64,
-    integrator: &SimulationConfig,
-    history_interval: f64,
-    vtk_interval: f64,
-    points_per_element: usize,
-) -> Result<(), InvalidField> {
+pub fn validate_run(plan: RunPlan<'_>, points_per_element: usize) -> Result<(), InvalidField> {
+    let RunPlan {
+        t_end,
+        integrator,
+        sampling,
+    } = plan;
+    let (history_interval, vtk_interval) = (sampling.history, sampling.frame);
     integrator.validate().map_err(|e| match e {
         AncfError::InvalidInput { item, reason } => InvalidField::new(item, reason),
         other => InvalidField::new("integrator", other.to_string()),
@@ -304,6 +306,97 @@ pub struct RunEnd {
     pub newton_iterations: usize,
 }
 
+impl RunEnd {
+    /// The end of `run` of `drive`: the driver's and the driven pulley's speeds ([`roles`]) at
+    /// its last state, the tight and slack span tensions `[tight, slack]` \[N\] (each study's
+    /// own measure), the wall time since `start` and the stepper's work.
+    pub fn of<D: AncfDrive>(
+        drive: &D,
+        run: &DriveRun,
+        [tight, slack]: [f64; 2],
+        start: Instant,
+    ) -> Self {
+        let (driver, driven) = roles(drive);
+        let s = &run.state;
+        let speed = |p: usize| drive.travel_speed(p, s.t, &s.v);
+        Self {
+            omega_driver_end: speed(driver),
+            omega_driven_end: driven.map(speed).unwrap_or(f64::NAN),
+            tension_tight: tight,
+            tension_slack: slack,
+            wall_time_s: start.elapsed().as_secs_f64(),
+            t_end: s.t,
+            steps: run.stats.steps,
+            newton_iterations: run.stats.newton_iterations,
+        }
+    }
+}
+
+/// How a study runs either ANCF drive ([`run_reported`]): to `t_end` \[s\] with the
+/// integrator's options, sampled as `sampling`.
+#[derive(Debug, Clone, Copy)]
+pub struct RunPlan<'a> {
+    /// End time \[s\].
+    pub t_end: f64,
+    /// The integrator.
+    pub integrator: &'a SimulationConfig,
+    /// The output intervals.
+    pub sampling: Sampling,
+}
+
+impl<'a> RunPlan<'a> {
+    /// The plan of a study's configuration: `t_end` \[s\], the integrator, and the
+    /// intervals of its history samples and VTK frames \[s\].
+    pub fn new(
+        t_end: f64,
+        integrator: &'a SimulationConfig,
+        history_interval: f64,
+        vtk_interval: f64,
+    ) -> Self {
+        Self {
+            t_end,
+            integrator,
+            sampling: Sampling {
+                history: history_interval,
+                frame: vtk_interval,
+            },
+        }
+    }
+}
+
+/// The end of a study's run of either ANCF drive (`flowmbd-belt ancf`, `plate`).
+#[derive(Debug, Clone)]
+pub struct StudyEnd<S, H = ()> {
+    /// Last state reached.
+    pub state: State,
+    /// The summary (wall time since the start given to the run).
+    pub summary: S,
+    /// Why the integration stopped early, if it did (the summary then holds the state
+    /// reached).
+    pub failure: Option<String>,
+    /// The contact points of every wrap at the last state ([`belt::WrapPoint`]).
+    pub wrap: Vec<WrapPoint>,
+    /// Coefficient μ of the friction law (for the points' utilisation).
+    pub friction_coefficient: f64,
+    /// The study's own histories at the history samples (none for the planar drive).
+    pub history: H,
+}
+
+impl<S, H> StudyEnd<S, H> {
+    /// The end of the reported run `end` (friction coefficient `mu`) with its summary and the
+    /// study's histories.
+    pub fn of(end: ReportedRun, summary: S, mu: f64, history: H) -> Self {
+        Self {
+            state: end.run.state,
+            summary,
+            failure: end.run.failure,
+            wrap: end.wrap,
+            friction_coefficient: mu,
+            history,
+        }
+    }
+}
+
 /// Fraction of the run at its end over which the span vibration amplitudes of the summary
 /// are taken (half the peak-to-peak of the mid-point offsets at the history samples).
 pub const VIBRATION_WINDOW: f64 = 0.2;
@@ -346,20 +439,23 @@ pub struct ReportedRun {
     pub wrap: Vec<WrapPoint>,
 }
 
-/// [`run_drive`] of either ANCF drive from rest at `q0` to `t_end`, reporting the drive at
-/// the last state ([`EndReport`], friction utilisation against `mu`) with each span's
+/// [`run_drive`] of either ANCF drive from rest at `q0` as `plan` says, reporting the drive
+/// at the last state ([`EndReport`], friction utilisation against `mu`) with each span's
 /// vibration amplitude, half the peak-to-peak of its mid-point offset
 /// ([`AncfDrive::span_offsets`]) at the history samples of the last [`VIBRATION_WINDOW`].
 /// A snapshot that cannot be taken at the end is reported as the run's failure.
 pub fn run_reported<D: AncfDrive, E>(
     drive: &D,
     q0: &[f64],
-    t_end: f64,
-    opts: &SimulationConfig,
-    sampling: Sampling,
+    plan: RunPlan<'_>,
     mu: f64,
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<ReportedRun, E> {
+    let RunPlan {
+        t_end,
+        integrator: opts,
+        sampling,
+    } = plan;
     let window_start = (1.0 - VIBRATION_WINDOW) * t_end;
     let n_spans = drive.drive_path().spans().len();
     let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); n_spans];

@@ -6,14 +6,13 @@
 //! [`tight_slack`].
 
 use crate::ancf_run::{
-    Due, EndReport, RunEnd, Sampling, closure_on_path, roles, run_reported, tight_slack,
+    Due, EndReport, RunEnd, RunPlan, StudyEnd, closure_on_path, roles, run_reported, tight_slack,
     validate_run,
 };
 use ancf::AncfError;
 use ancf::belt_drive::{
     BeltDrive, BeltDriveSpec, ClosureResult, InitialOptions, InitialState, SimulationConfig, post,
 };
-use belt::WrapPoint;
 use contact::friction::FrictionLaw;
 use mbd_core::integrators::State;
 use mbd_core::validate::{InvalidField, Validate};
@@ -102,14 +101,13 @@ impl Validate for AncfStudyConfig {
             return Err(InvalidField::new("tangent_refresh", "must be ≥ 0"));
         }
         let o = &self.output;
-        validate_run(
+        let plan = RunPlan::new(
             self.t_end,
             &self.integrator,
             o.history_interval,
             o.vtk_interval,
-            o.points_per_element,
-        )?;
-        Ok(())
+        );
+        validate_run(plan, o.points_per_element)
     }
 }
 
@@ -181,21 +179,9 @@ pub fn dynamic_setup(c: &AncfStudyConfig) -> Result<(BeltDrive, InitialState), A
     Ok((drive, init))
 }
 
-/// The end of a dynamic run.
-#[derive(Debug, Clone)]
-pub struct DynamicEnd {
-    /// Last state reached.
-    pub state: State,
-    /// The summary (wall time since `start`).
-    pub summary: AncfStudySummary,
-    /// Why the integration stopped early, if it did (the summary then holds the state
-    /// reached).
-    pub failure: Option<String>,
-    /// The contact points of every wrap at the last state ([`belt::WrapPoint`]).
-    pub wrap: Vec<WrapPoint>,
-    /// Coefficient μ of the friction law (for the points' utilisation).
-    pub friction_coefficient: f64,
-}
+/// The end of a dynamic run ([`StudyEnd`]: the state reached, the summary, the failure that
+/// stopped it early if one did, the wrap points at the end and the friction coefficient).
+pub type DynamicEnd = StudyEnd<AncfStudySummary>;
 
 /// Run the drive from `init` to `c.t_end` ([`run_reported`] with the configured sampling; its
 /// end report in the summary).
@@ -208,59 +194,30 @@ pub fn dynamic_run<E>(
     start: Instant,
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<DynamicEnd, E> {
-    let (driver, driven) = roles(drive);
+    let (driver, _) = roles(drive);
     let (tight, slack) = tight_slack(drive, driver);
     let mut last_tensions = post::span_tensions(drive, &init.q);
-    let sampling = Sampling {
-        history: c.output.history_interval,
-        frame: c.output.vtk_interval,
-    };
     let mu = drive.spec().contact.friction.coefficient();
-    let end = run_reported(
-        drive,
-        &init.q,
-        c.t_end,
-        &c.integrator,
-        sampling,
-        mu,
-        |s, due| {
-            if due.history {
-                last_tensions = post::span_tensions(drive, &s.q);
-            }
-            observer(s, due)
-        },
-    )?;
-    let run = end.run;
-    let s = &run.state;
-    let w_driver = drive.pulley_speed(driver, s.t, &s.v);
-    let w_driven = driven
-        .map(|p| drive.pulley_speed(p, s.t, &s.v))
-        .unwrap_or(f64::NAN);
+    let o = &c.output;
+    let plan = RunPlan::new(c.t_end, &c.integrator, o.history_interval, o.vtk_interval);
+    let mut end = run_reported(drive, &init.q, plan, mu, |s, due| {
+        if due.history {
+            last_tensions = post::span_tensions(drive, &s.q);
+        }
+        observer(s, due)
+    })?;
+    let pick = |k: Option<usize>| k.map(|k| last_tensions[k]).unwrap_or(f64::NAN);
+    let run = RunEnd::of(drive, &end.run, [pick(tight), pick(slack)], start);
     let summary = AncfStudySummary {
-        report: end.report,
-        run: RunEnd {
-            omega_driver_end: w_driver,
-            omega_driven_end: w_driven,
-            tension_tight: tight.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
-            tension_slack: slack.map(|k| last_tensions[k]).unwrap_or(f64::NAN),
-            wall_time_s: start.elapsed().as_secs_f64(),
-            t_end: s.t,
-            steps: run.steps,
-            newton_iterations: run.newton_iterations,
-        },
+        report: std::mem::take(&mut end.report),
+        speed_ratio: Some(run.omega_driven_end / run.omega_driver_end).filter(|r| r.is_finite()),
+        run,
         initial_tension: init.mean_tension,
-        speed_ratio: Some(w_driven / w_driver).filter(|r| r.is_finite()),
         closure_radius: None,
         closure_radius_variation: None,
         meaning: ANCF_MEANING.to_string(),
     };
-    Ok(DynamicEnd {
-        state: run.state,
-        summary,
-        failure: run.failure,
-        wrap: end.wrap,
-        friction_coefficient: mu,
-    })
+    Ok(StudyEnd::of(end, summary, mu, ()))
 }
 
 #[cfg(test)]

@@ -7,7 +7,8 @@
 //! is Bechtel's steady model ([`crate::bechtel_steady`]) for the same belt.
 
 use crate::ancf_run::{
-    Due, EndReport, RunEnd, Sampling, roles, run_reported, tight_slack, validate_run,
+    DriveRun, Due, EndReport, RunEnd, RunPlan, StudyEnd, roles, run_reported, tight_slack,
+    validate_run,
 };
 use crate::bechtel_steady::{SteadyDriveInput, SteadyPoint, SteadySolution, solve_steady};
 use ancf::AncfError;
@@ -21,7 +22,7 @@ use ancf::plate::belt_drive::{
 };
 use belt::{Motion, Shape};
 use contact::FrictionLaw;
-use mbd_core::integrators::{NewtonUpdate, State, Stats};
+use mbd_core::integrators::{NewtonUpdate, State};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -133,13 +134,13 @@ impl Validate for PlateStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         self.drive.validate_within("drive")?;
         let o = &self.output;
-        validate_run(
+        let plan = RunPlan::new(
             self.t_end,
             &self.integrator,
             o.history_interval,
             o.vtk_interval,
-            o.points_per_element,
-        )?;
+        );
+        validate_run(plan, o.points_per_element)?;
         check::positive("output.average_window", o.average_window, "s")?;
         let w = self.drive.belt.width;
         if !(o.strain_line.is_finite() && (0.0..=w).contains(&o.strain_line)) {
@@ -334,19 +335,11 @@ pub fn plate_setup(c: &PlateStudyConfig) -> Result<(PlateBeltDrive, PlateInitial
     Ok((drive, init))
 }
 
-/// The end of a run.
-#[derive(Debug, Clone)]
-pub struct PlateEnd {
-    /// Last sampled state.
-    pub state: State,
-    /// The summary (wall time since the start given to [`plate_run`]).
-    pub summary: PlateStudySummary,
-    /// The histories of the driven and driver speeds and the driven contact torque at the
-    /// history samples: `(t, ω_driver, ω_driven, τ_driven)`.
-    pub history: Vec<[f64; 4]>,
-    /// Why the integration stopped early, if it did (the summary holds the state reached).
-    pub failure: Option<String>,
-}
+/// The end of a run ([`StudyEnd`]: the state reached, the summary, the failure that stopped
+/// it early if one did, the wrap points at the end, the friction coefficient) with the
+/// histories of the driver and driven speeds and the driven contact torque at the history
+/// samples: `(t, ω_driver, ω_driven, τ_driven)`.
+pub type PlateEnd = StudyEnd<PlateStudySummary, Vec<[f64; 4]>>;
 
 /// Run the drive from `init` (at rest) to `c.t_end` with the one ANCF time loop
 /// ([`crate::ancf_run::run_reported`]; samples every `output.history_interval`). `observer` sees every sample (each is a history
@@ -359,41 +352,25 @@ pub fn plate_run<E>(
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<PlateEnd, E> {
     let (driver, driven) = roles(drive);
-    let sampling = Sampling {
-        history: c.output.history_interval,
-        frame: c.output.vtk_interval,
-    };
+    let mu = c.drive.contact.friction.coefficient();
     let mut history: Vec<[f64; 4]> = Vec::new();
-    let end = run_reported(
-        drive,
-        &init.q,
-        c.t_end,
-        &c.integrator,
-        sampling,
-        c.drive.contact.friction.coefficient(),
-        |s, due| {
-            let wd = drive.pulley_speed(driver, s.t, &s.v);
-            let (wn, tau) = match driven {
-                Some(p) => (
-                    drive.pulley_speed(p, s.t, &s.v),
-                    pulley_torques(drive, s.t, &s.q, &s.v)[p],
-                ),
-                None => (f64::NAN, f64::NAN),
-            };
-            history.push([s.t, wd, wn, tau]);
-            observer(s, due)
-        },
-    )?;
-    let run = end.run;
-    let (stats, state, failure) = (run.stats, run.state, run.failure);
-    let mut summary = summarize(c, drive, init, &state, &history, stats, start);
-    summary.report = end.report;
-    Ok(PlateEnd {
-        state,
-        summary,
-        history,
-        failure,
-    })
+    let o = &c.output;
+    let plan = RunPlan::new(c.t_end, &c.integrator, o.history_interval, o.vtk_interval);
+    let mut end = run_reported(drive, &init.q, plan, mu, |s, due| {
+        let wd = drive.pulley_speed(driver, s.t, &s.v);
+        let (wn, tau) = match driven {
+            Some(p) => (
+                drive.pulley_speed(p, s.t, &s.v),
+                pulley_torques(drive, s.t, &s.q, &s.v)[p],
+            ),
+            None => (f64::NAN, f64::NAN),
+        };
+        history.push([s.t, wd, wn, tau]);
+        observer(s, due)
+    })?;
+    let mut summary = summarize(c, drive, init, &end.run, &history, start);
+    summary.report = std::mem::take(&mut end.report);
+    Ok(StudyEnd::of(end, summary, mu, history))
 }
 
 /// Mean of column `k` of `history` over `t ≥ t_from`.
@@ -414,11 +391,11 @@ fn summarize(
     c: &PlateStudyConfig,
     drive: &PlateBeltDrive,
     init: &PlateInitialState,
-    s: &State,
+    run: &DriveRun,
     history: &[[f64; 4]],
-    stats: Stats,
     start: Instant,
 ) -> PlateStudySummary {
+    let s = &run.state;
     let (driver, driven) = roles(drive);
     let (tight, slack) = tight_slack(drive, driver);
     let nan = SpanState {
@@ -449,19 +426,9 @@ fn summarize(
     );
     let [full, capstan] = analytical_solutions(&c.drive);
     let torque = |m: usize| (st.tension[m] - ss.tension[m]) * r_driven;
+    let m = c.output.strain_measure as usize;
     PlateStudySummary {
-        run: RunEnd {
-            omega_driver_end: drive.pulley_speed(driver, s.t, &s.v),
-            omega_driven_end: driven
-                .map(|p| drive.pulley_speed(p, s.t, &s.v))
-                .unwrap_or(f64::NAN),
-            tension_tight: st.tension[c.output.strain_measure as usize],
-            tension_slack: ss.tension[c.output.strain_measure as usize],
-            wall_time_s: start.elapsed().as_secs_f64(),
-            t_end: s.t,
-            steps: stats.steps,
-            newton_iterations: stats.newton_iterations,
-        },
+        run: RunEnd::of(drive, run, [st.tension[m], ss.tension[m]], start),
         analytical_omega_driven: full.map_or(f64::NAN, |a| a.omega_driven),
         omega_driver_mean: wd,
         omega_driven_mean: wn,

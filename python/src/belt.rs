@@ -9,6 +9,7 @@
 use crate::{
     WithSeries, input_error, numerical_error, read_config, study_config, to_json, with_series,
 };
+use drives::ancf_run::StudyEnd;
 use drives::ancf_study::{Analysis, AncfStudyConfig, closure_study, dynamic_run, dynamic_setup};
 use drives::fead::{FeadConfig, FeadFailureOrInvalid, run_fead};
 use drives::fead_design::{DesignConfig, run_design};
@@ -97,6 +98,20 @@ fn ancf_error(py: Python<'_>, e: ::ancf::AncfError) -> PyErr {
     }
 }
 
+/// A dynamic run of either ANCF drive (`run`, outside the GIL) as the JSON text of its
+/// summary, or the failure that stopped it with the summary as its partial result.
+fn drive_study<S, H>(
+    py: Python<'_>,
+    run: impl Send + FnOnce() -> Result<StudyEnd<S, H>, ::ancf::AncfError>,
+) -> PyResult<String>
+where
+    S: serde::Serialize + Send,
+    H: Send,
+{
+    let end = py.detach(run).map_err(|e| ancf_error(py, e))?;
+    summary_or_failure(py, end.failure, &end.summary)
+}
+
 /// The planar ANCF belt drive of Kerkkänen ch. 3 (defaults: example 3.3-B, Table 3.1);
 /// returns the JSON text of the summary. `t_end` replaces the configuration's end time (the
 /// CLI's `--t-end`).
@@ -116,14 +131,10 @@ pub fn ancf(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResul
         }
         Analysis::Dynamic => {
             let start = Instant::now();
-            let result = py.detach(|| {
+            drive_study(py, || {
                 let (drive, init) = dynamic_setup(&c)?;
-                dynamic_run(&c, &drive, &init, start, |_, _| {
-                    Ok::<(), ::ancf::AncfError>(())
-                })
-            });
-            let end = result.map_err(|e| ancf_error(py, e))?;
-            summary_or_failure(py, end.failure, &end.summary)
+                dynamic_run(&c, &drive, &init, start, |_, _| Ok(()))
+            })
         }
     }
 }
@@ -140,14 +151,10 @@ pub fn plate(py: Python<'_>, config: Option<&str>, t_end: Option<f64>) -> PyResu
         }
     })?;
     let start = Instant::now();
-    let result = py.detach(|| {
+    drive_study(py, || {
         let (drive, init) = plate_setup(&c)?;
-        plate_run(&c, &drive, &init, start, |_, _| {
-            Ok::<(), ::ancf::AncfError>(())
-        })
-    });
-    let end = result.map_err(|e| ancf_error(py, e))?;
-    summary_or_failure(py, end.failure, &end.summary)
+        plate_run(&c, &drive, &init, start, |_, _| Ok(()))
+    })
 }
 
 /// The front-end accessory drive with an automatic tensioner over an engine-speed sweep

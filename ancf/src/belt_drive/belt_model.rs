@@ -19,10 +19,11 @@
 //! Slip is measured against the surface speed `ω (R + p₀)` at the contact radius (Kerkkänen
 //! (3.25)); a sticking belt sees a small negative slip `−ω p₀` on every pulley alike.
 
+use super::model::Planar;
 use super::{BeltDrive, BeltDriveSpec, BeltSpec, ContactSpec, InitialOptions, InitialState, post};
 use crate::error::{AncfError, invalid};
-use crate::mounted::{AncfDrive, MountedBelt, PulleyCoordinates};
-use belt::{Drive, ModelTraits, Motion, Snapshot};
+use crate::mounted::{DriveKind, MountedBelt};
+use belt::{Drive, ModelTraits, Snapshot};
 use mbd_core::validate::{InvalidField, Validate, check};
 use mbd_core::{MbdError, Workspace};
 use serde::{Deserialize, Serialize};
@@ -251,58 +252,58 @@ impl MountedBelt<BeltDrive> {
 
 /// Coordinates: the belt nodes (Kerkkänen (3.1)), the free pulleys' angles and the tensioner
 /// arm angle.
-impl AncfDrive for BeltDrive {
+impl DriveKind for Planar {
+    type Belt = BeltSpec;
+    type Contact = ContactSpec;
     type Initial = InitialState;
     type Mapping = AncfMapping;
-
+    const NAME: &'static str = "BeltDrive";
     /// Not linearised (the ANCF belt is geometrically exact, Kerkkänen (3.18)).
-    fn model_traits(&self) -> ModelTraits {
-        ModelTraits {
-            name: "ancf",
-            linearised: false,
-            force_measure: ANCF_FORCE_MEASURE,
-        }
+    const TRAITS: ModelTraits = ModelTraits {
+        name: "ancf",
+        linearised: false,
+        force_measure: ANCF_FORCE_MEASURE,
+    };
+
+    fn elements(&self) -> usize {
+        self.mesh.elements().len()
+    }
+
+    fn belt_coordinates(&self) -> usize {
+        self.mesh.n_dof()
+    }
+
+    /// The 12 coordinates of each element (Kerkkänen (3.1)).
+    fn element_dofs(&self) -> Vec<Vec<Option<usize>>> {
+        (0..self.elements())
+            .map(|e| (0..12).map(|k| Some(self.mesh.global_dof(e, k))).collect())
+            .collect()
+    }
+
+    fn element_mass(&self, e: usize) -> Vec<f64> {
+        self.mesh.element_mass(e).to_vec()
     }
 
     fn initial_q(initial: &InitialState) -> &[f64] {
         &initial.q
     }
 
-    fn drive_pulleys(&self) -> &[belt::Pulley] {
-        self.pulleys()
-    }
-
-    fn drive_path(&self) -> &belt::BeltPath {
-        self.path()
-    }
-
-    fn pulley_coordinates(&self) -> &PulleyCoordinates {
-        self.pulley_dofs()
-    }
-
-    fn pulley_motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
-        self.motion_mut(k)
-    }
-
-    fn arm_angle_at(&self, q: &[f64]) -> Option<f64> {
-        self.arm().map(|a| q[a.dof])
+    fn arm_angle_at(d: &BeltDrive, q: &[f64]) -> Option<f64> {
+        d.arm().map(|a| q[a.dof])
     }
 
     /// The mean material speed along the centreline ([`post::belt_speed`]).
-    fn mean_belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
-        post::belt_speed(self, q, v)
+    fn mean_belt_speed(d: &BeltDrive, q: &[f64], v: &[f64]) -> f64 {
+        post::belt_speed(d, q, v)
     }
 
     /// [`post::snapshot`] of the drive's state.
-    fn snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
-        let omegas: Vec<f64> = (0..self.pulleys().len())
-            .map(|k| self.pulley_speed(k, t, v))
-            .collect();
-        Ok(post::snapshot(self, t, q, v, &omegas))
+    fn snapshot_at(d: &BeltDrive, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        Ok(post::snapshot(d, t, q, v, &d.speeds(t, v)))
     }
 
-    fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
-        Ok(post::span_transverse(self, q))
+    fn span_offsets(d: &BeltDrive, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+        Ok(post::span_transverse(d, q))
     }
 }
 

@@ -19,8 +19,7 @@
 
 use super::model::BeltDrive;
 use crate::error::AncfError;
-use crate::mounted::{RestingBelt, solve_resting};
-use crate::sparse::Pattern;
+use crate::mounted::{Linearisation, RestingBelt, solve_resting};
 use mbd_core::SecondOrderSystem;
 use mbd_core::Workspace;
 
@@ -98,17 +97,6 @@ impl BeltDrive {
 impl RestingBelt for BeltDrive {
     const LABEL: &'static str = "belt";
 
-    fn belt_size(&self) -> usize {
-        self.n_belt()
-    }
-
-    fn element_dofs(&self) -> Vec<Vec<Option<usize>>> {
-        let mesh = self.mesh();
-        (0..mesh.elements().len())
-            .map(|e| (0..12).map(|k| Some(mesh.global_dof(e, k))).collect())
-            .collect()
-    }
-
     fn holding(&self) -> (f64, Vec<Vec<f64>>) {
         let b = &self.spec().belt;
         let k_hold = b.alpha1 * b.young * b.width * b.thickness / self.element_length();
@@ -120,17 +108,9 @@ impl RestingBelt for BeltDrive {
         self.belt_forces(q, &vec![0.0; q.len()], &omegas, f, torques, ws);
     }
 
-    fn resting_tangent(
-        &self,
-        q: &[f64],
-        pattern: &Pattern,
-        f: &mut [f64],
-        kv: &mut [f64],
-        _scratch: &mut Vec<f64>,
-        ws: &mut Workspace,
-    ) {
+    fn resting_tangent(&self, q: &[f64], out: Linearisation<'_>, ws: &mut Workspace) {
         let omegas = vec![0.0; self.pulleys().len()];
-        self.belt_stiffness(q, &omegas, pattern, f, kv, ws);
+        self.belt_stiffness(q, &omegas, out.pattern, out.f, out.kv, ws);
     }
 }
 
@@ -148,11 +128,7 @@ impl BeltDrive {
                 v[k + 1] = speed * q[k + 3] / n;
             }
         }
-        for (p, pl) in self.pulleys().iter().enumerate() {
-            if let Some(j) = self.pulley_dof(p) {
-                v[j] = speed / pl.radius;
-            }
-        }
+        self.roll_pulleys(speed, &mut v);
         v
     }
 }

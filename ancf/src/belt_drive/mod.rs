@@ -29,6 +29,8 @@ pub use belt_model::{AncfBelt, AncfConfig, AncfMapping};
 pub use closure::{ClosureResult, free_belt_closure};
 pub use friction::BeltFriction;
 pub use initial::{InitialOptions, InitialState};
-pub use model::{BeltArm, BeltDrive, PointRecord, PulleyLoad, SECTION_CELLS, SectionForces};
+pub use model::{
+    BeltArm, BeltDrive, Planar, PointRecord, PulleyLoad, SECTION_CELLS, SectionForces,
+};
 pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationConfig, simulate};
 pub use spec::{BeltDriveSpec, BeltSpec, ContactSpec};

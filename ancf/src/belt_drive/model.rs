@@ -8,12 +8,12 @@ use crate::element::{AncfElement, BeltElement};
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
 use crate::mesh::AncfMesh;
-use crate::mounted::PulleyCoordinates;
+use crate::mounted::{AncfBeltDrive, PulleyCoordinates};
 use crate::section::Section;
 use crate::shape;
 use crate::sparse::Pattern;
 use belt::tensioner::cross;
-use belt::{BeltPath, Pulley, Tensioner};
+use belt::{BeltPath, Tensioner};
 use contact::{ContactRecord, Disk, ElementContact, GaussRule, LineContact};
 use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
@@ -41,17 +41,16 @@ struct Scratch {
 /// shared first node, Kerkkänen §2.3 option (b)), `θ` the travel-sense rotation angles of the
 /// free pulleys in pulley order. The equations are `M ë = Q_e + Q_c` (2.27) with the contact
 /// forces (3.27), and `I θ̈ = s τ − T_a(t)` for each free pulley, with `τ` the counter-clockwise
-/// contact torque (3.26), `s = ±1` the travel-sense sign of the pulley ([`Pulley::ccw_sign`])
-/// and `T_a` the load, which opposes the travel-sense rotation.
-pub struct BeltDrive {
-    spec: BeltDriveSpec,
-    path: BeltPath,
-    mesh: AncfMesh<BeltElement>,
-    n_belt: usize,
-    pulley_dofs: PulleyCoordinates,
+/// contact torque (3.26), `s = ±1` the travel-sense sign of the pulley
+/// ([`belt::Pulley::ccw_sign`]) and `T_a` the load, which opposes the travel-sense rotation.
+pub type BeltDrive = AncfBeltDrive<Planar>;
+
+/// The planar discretisation of an [`AncfBeltDrive`] ([`BeltDrive`]): ANCF belt elements
+/// (Kerkkänen §3.1) in a closed loop, the distributed contact on the pulleys' disks and the
+/// optional tensioner arm.
+pub struct Planar {
+    pub(super) mesh: AncfMesh<BeltElement>,
     line: LineContact<Disk, BeltNormal, BeltFriction>,
-    pattern: Pattern,
-    mass_values: Vec<f64>,
     tangent_refresh: f64,
     /// Elastic tangent evaluations so far, over all workspaces (a statistic).
     elastic_evaluations: AtomicUsize,
@@ -79,16 +78,6 @@ struct ElasticCache {
     q: Vec<f64>,
     k: Vec<f64>,
     valid: bool,
-}
-
-impl std::fmt::Debug for BeltDrive {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("BeltDrive")
-            .field("elements", &self.mesh.elements().len())
-            .field("pulleys", &self.spec.pulleys.len())
-            .field("n_q", &self.n_q())
-            .finish()
-    }
 }
 
 impl BeltDrive {
@@ -167,8 +156,7 @@ impl BeltDrive {
             .with_law(b.law);
         let mesh = AncfMesh::closed_loop(vec![el; b.elements])?;
         let n_belt = mesh.n_dof();
-        let pulley_dofs = PulleyCoordinates::new(&spec.pulleys, n_belt);
-        let n_free = pulley_dofs.count();
+        let n_free = PulleyCoordinates::new(&spec.pulleys, n_belt).count();
         let arm = tensioner.map(|t| {
             let (length, installed_angle) = t.arm(spec.pulleys[t.pulley].center);
             BeltArm {
@@ -178,93 +166,36 @@ impl BeltDrive {
                 dof: n_belt + n_free,
             }
         });
-        let n = n_belt + n_free + usize::from(arm.is_some());
-        let n_el = mesh.elements().len();
-        let mut groups: Vec<Vec<Option<usize>>> = (0..n_el)
-            .map(|e| (0..NE).map(|k| Some(mesh.global_dof(e, k))).collect())
-            .collect();
-        for e in 0..n_el {
-            let mut g: Vec<Option<usize>> = (0..NE).map(|k| Some(mesh.global_dof(e, k))).collect();
-            g.extend((0..n_free).map(|k| Some(n_belt + k)));
-            if let Some(a) = &arm {
-                g.push(Some(a.dof));
-            }
-            groups.push(g);
-        }
-        let pattern = Pattern::new(n, &groups);
-        let mut mass_values = pattern.zeros();
-        for e in 0..n_el {
-            pattern.add_element(&mut mass_values, e, mesh.element_mass(e), 1.0);
-        }
-        pulley_dofs.add_inertias(&spec.pulleys, &pattern, &mut mass_values);
-        if let Some(a) = &arm {
-            mass_values[pattern.diagonal_position(a.dof)] += a.spec.inertia;
-        }
         let line = LineContact {
             surface: Disk::fixed(Point2::origin(), 1.0),
             normal: spec.contact.normal_law(),
             friction: spec.contact.friction,
             rule: GaussRule::new(spec.contact.points),
         };
-        Ok(Self {
-            spec,
-            path,
+        let arm_inertia: Vec<f64> = arm.iter().map(|a| a.spec.inertia).collect();
+        let kind = Planar {
             mesh,
-            n_belt,
-            pulley_dofs,
             line,
-            pattern,
-            mass_values,
             tangent_refresh: 0.02,
             elastic_evaluations: AtomicUsize::new(0),
             arm,
-        })
+        };
+        Ok(Self::assemble(spec, path, kind, &arm_inertia))
     }
 
-    /// The description the drive was built from.
-    pub fn spec(&self) -> &BeltDriveSpec {
-        &self.spec
-    }
-    /// The undeformed open-belt path over the pulleys.
-    pub fn path(&self) -> &BeltPath {
-        &self.path
-    }
     /// The belt mesh.
     pub fn mesh(&self) -> &AncfMesh<BeltElement> {
-        &self.mesh
-    }
-    /// The pulleys in travel order.
-    pub fn pulleys(&self) -> &[Pulley] {
-        &self.spec.pulleys
-    }
-    /// The motion of pulley `p` (its signals may be replaced between runs; its kind must stay
-    /// speed-driven or free: the coordinates depend on it).
-    pub fn motion_mut(&mut self, p: usize) -> Option<&mut belt::Motion> {
-        self.spec.pulleys.get_mut(p).map(|p| &mut p.motion)
-    }
-
-    /// Number of belt coordinates.
-    pub fn n_belt(&self) -> usize {
-        self.n_belt
-    }
-    /// The pulleys' angle coordinates.
-    pub fn pulley_dofs(&self) -> &PulleyCoordinates {
-        &self.pulley_dofs
-    }
-
-    /// Coordinate index of pulley `p`'s angle, if it is free.
-    pub fn pulley_dof(&self, p: usize) -> Option<usize> {
-        self.pulley_dofs.dof(p)
+        &self.kind.mesh
     }
     /// The tensioner arm, if any ([`BeltDrive::with_tensioner`]).
     pub fn arm(&self) -> Option<&BeltArm> {
-        self.arm.as_ref()
+        self.kind.arm.as_ref()
     }
 
     /// Centre \[m\] and centre velocity \[m/s\] of pulley `p` at `(q, v)`: the spec's centre at
     /// rest, or for the tensioner's idler `c(θ)` and `c'(θ) θ̇` ([`belt::tensioner`]).
     pub fn pulley_center(&self, p: usize, q: &[f64], v: &[f64]) -> ([f64; 2], [f64; 2]) {
-        match &self.arm {
+        match &self.kind.arm {
             Some(a) if a.spec.pulley == p => {
                 let th = q.get(a.dof).copied().unwrap_or(a.installed_angle);
                 let rate = v.get(a.dof).copied().unwrap_or(0.0);
@@ -277,7 +208,7 @@ impl BeltDrive {
 
     /// Reference element length `l` \[m\].
     pub fn element_length(&self) -> f64 {
-        self.mesh.elements()[0].length()
+        self.kind.mesh.elements()[0].length()
     }
     /// Reuse the elastic part of the tangent stiffness in [`SecondOrderSystem::force_tangent`]
     /// until some element's relative node position `(r_J − r_I)/l` or nodal slope has changed
@@ -287,25 +218,25 @@ impl BeltDrive {
     /// generalized-α's Newton iterations marginally, while the belt element's second
     /// derivatives (automatic differentiation) are by far the most expensive part of a step.
     pub fn with_tangent_refresh(mut self, tol: f64) -> Self {
-        self.tangent_refresh = tol.max(0.0);
+        self.kind.tangent_refresh = tol.max(0.0);
         self
     }
 
     /// Number of elastic tangent evaluations so far (for statistics).
     pub fn elastic_tangent_evaluations(&self) -> usize {
-        self.elastic_evaluations.load(Ordering::Relaxed)
+        self.kind.elastic_evaluations.load(Ordering::Relaxed)
     }
 
     /// Whether the cached elastic tangent at `q_ref` may be reused at `q`.
     fn tangent_still_valid(&self, q_ref: &[f64], q: &[f64]) -> bool {
-        let tol = self.tangent_refresh;
+        let tol = self.kind.tangent_refresh;
         if tol <= 0.0 {
             return false;
         }
         let l = self.element_length();
-        for el in 0..self.mesh.elements().len() {
-            let i = self.mesh.global_dof(el, 0);
-            let j = self.mesh.global_dof(el, 6);
+        for el in 0..self.kind.mesh.elements().len() {
+            let i = self.kind.mesh.global_dof(el, 0);
+            let j = self.kind.mesh.global_dof(el, 6);
             for a in 0..2 {
                 let d = (q[j + a] - q[i + a]) - (q_ref[j + a] - q_ref[i + a]);
                 if d.abs() > tol * l {
@@ -313,7 +244,7 @@ impl BeltDrive {
                 }
             }
         }
-        for node in 0..self.mesh.n_nodes() {
+        for node in 0..self.kind.mesh.n_nodes() {
             for k in 2..6 {
                 let g = 6 * node + k;
                 if (q[g] - q_ref[g]).abs() > tol {
@@ -322,17 +253,6 @@ impl BeltDrive {
             }
         }
         true
-    }
-
-    /// Assembly pattern of the system matrices (built once).
-    pub fn pattern(&self) -> &Pattern {
-        &self.pattern
-    }
-
-    /// Travel-sense angular speed of pulley `p` at `(t, v)` \[rad/s\]: the prescribed history for
-    /// driven pulleys, the velocity coordinate for free ones.
-    pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        self.pulley_dofs.speed(&self.spec.pulleys, p, t, v)
     }
 
     /// Disk of pulley `p` spinning with travel-sense speed `omega` \[rad/s\] at `(q, v)`
@@ -374,8 +294,8 @@ impl BeltDrive {
         let l = self.element_length();
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
-        for el in 0..self.mesh.elements().len() {
-            self.mesh.gather(q, el, &mut e);
+        for el in 0..self.kind.mesh.elements().len() {
+            self.kind.mesh.gather(q, el, &mut e);
             let mut gathered_v = false;
             for (p, &omega) in omegas.iter().enumerate() {
                 let disk = self.disk(p, omega, q, v);
@@ -383,11 +303,11 @@ impl BeltDrive {
                     continue;
                 }
                 if !gathered_v {
-                    self.mesh.gather(v, el, &mut ed);
+                    self.kind.mesh.gather(v, el, &mut ed);
                     gathered_v = true;
                 }
                 let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
-                self.line.element_on(
+                self.kind.line.element_on(
                     &disk,
                     l,
                     6,
@@ -406,14 +326,10 @@ impl BeltDrive {
         }
     }
 
-    fn speeds(&self, t: f64, v: &[f64]) -> Vec<f64> {
-        self.pulley_dofs.speeds(&self.spec.pulleys, t, v)
-    }
-
     /// The drive's work buffers and tangent cache in the caller's workspace `ws`, created on
     /// first use (and anew if `ws` held those of a drive with other sizes).
     fn scratch<'w>(&self, ws: &'w mut Workspace) -> &'w mut Scratch {
-        let m = NE + self.pulley_dofs.count() + usize::from(self.arm.is_some());
+        let m = NE + self.pulley_dofs.count() + usize::from(self.kind.arm.is_some());
         let fresh = || Scratch {
             contact: ElementContact::new(NE),
             k_local: vec![0.0; m * m],
@@ -443,11 +359,11 @@ impl BeltDrive {
         ws: &mut Workspace,
     ) {
         let nb = self.n_belt;
-        self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
+        self.kind.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
         torques.fill(0.0);
         let scratch = self.scratch(ws);
         self.contact_pass(q, v, omegas, false, scratch, |el, p, ec, _| {
-            self.mesh.scatter_add(f, el, &ec.q, 1.0);
+            self.kind.mesh.scatter_add(f, el, &ec.q, 1.0);
             torques[p] += self.spec.pulleys[p].ccw_sign() * ec.moment;
         });
     }
@@ -466,12 +382,13 @@ impl BeltDrive {
     ) {
         let nb = self.n_belt;
         k_vals.fill(0.0);
-        self.mesh
+        self.kind
+            .mesh
             .elastic_tangent_into(&q[..nb], &mut f[..nb], pat, k_vals, 1.0);
         let zero = vec![0.0; q.len()];
         let scratch = self.scratch(ws);
         self.contact_pass(q, &zero, omegas, true, scratch, |el, _, ec, _| {
-            self.mesh.scatter_add(f, el, &ec.q, 1.0);
+            self.kind.mesh.scatter_add(f, el, &ec.q, 1.0);
             pat.add_element(k_vals, el, &ec.dq_de, -1.0);
         });
     }
@@ -501,13 +418,13 @@ impl BeltDrive {
     /// Contact state at every active quadrature point, for output (force distributions and
     /// belt–pulley relative velocity, Kerkkänen Figs 3.13–3.20).
     pub fn contact_records(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<PointRecord> {
-        self.records_on(&self.line, q, v, &self.speeds(t, v))
+        self.records_on(&self.kind.line, q, v, &self.speeds(t, v))
     }
 
     /// [`Self::contact_records`] with the pulleys spinning at the travel-sense speeds `omegas`
     /// \[rad/s\] (one per pulley; see [`Self::forces_with`]).
     pub fn contact_records_with(&self, q: &[f64], v: &[f64], omegas: &[f64]) -> Vec<PointRecord> {
-        self.records_on(&self.line, q, v, omegas)
+        self.records_on(&self.kind.line, q, v, omegas)
     }
 
     /// Contact state sampled at `per_element` equally spaced points of every element (at
@@ -539,9 +456,9 @@ impl BeltDrive {
     ) -> Vec<PointRecord> {
         let n = per_element.max(1);
         let line = LineContact {
-            surface: self.line.surface,
-            normal: self.line.normal,
-            friction: self.line.friction,
+            surface: self.kind.line.surface,
+            normal: self.kind.line.normal,
+            friction: self.kind.line.friction,
             rule: GaussRule {
                 points: (0..n).map(|k| (k as f64 + 0.5) / n as f64).collect(),
                 weights: vec![1.0 / n as f64; n],
@@ -563,9 +480,9 @@ impl BeltDrive {
         let mut ec = ElementContact::new(NE);
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
-        for el in 0..self.mesh.elements().len() {
-            self.mesh.gather(q, el, &mut e);
-            self.mesh.gather(v, el, &mut ed);
+        for el in 0..self.kind.mesh.elements().len() {
+            self.kind.mesh.gather(q, el, &mut e);
+            self.kind.mesh.gather(v, el, &mut ed);
             for (p, &omega) in omegas.iter().enumerate() {
                 let disk = self.disk(p, omega, q, v);
                 if !self.may_touch(&e, p, [disk.center.x, disk.center.y]) {
@@ -711,7 +628,7 @@ pub struct PointRecord {
 
 impl SecondOrderSystem for BeltDrive {
     fn n_q(&self) -> usize {
-        self.n_belt + self.pulley_dofs.count() + usize::from(self.arm.is_some())
+        self.n_belt + self.pulley_dofs.count() + usize::from(self.kind.arm.is_some())
     }
     fn dof_name(&self, dof: usize) -> String {
         if dof < self.n_belt {
@@ -719,7 +636,7 @@ impl SecondOrderSystem for BeltDrive {
             format!("belt node {} {}", dof / 6, names[dof % 6])
         } else if let Some(name) = self.pulley_dofs.dof_name(&self.spec.pulleys, dof) {
             name
-        } else if self.arm.is_some_and(|a| a.dof == dof) {
+        } else if self.kind.arm.is_some_and(|a| a.dof == dof) {
             "tensioner arm angle".into()
         } else {
             format!("coordinate {dof}")
@@ -748,13 +665,13 @@ impl BeltDrive {
         ws: &mut Workspace,
     ) {
         let nb = self.n_belt;
-        self.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
+        self.kind.mesh.elastic_forces(&q[..nb], &mut f[..nb]);
         f[nb..].fill(0.0);
         self.axial_damping(q, v, f, None);
         let scratch = self.scratch(ws);
-        let arm = self.arm.map(|a| (a, self.arm_lever(&a, q)));
+        let arm = self.kind.arm.map(|a| (a, self.arm_lever(&a, q)));
         self.contact_pass(q, v, omegas, false, scratch, |el, p, ec, _| {
-            self.mesh.scatter_add(f, el, &ec.q, 1.0);
+            self.kind.mesh.scatter_add(f, el, &ec.q, 1.0);
             if let Some(j) = self.pulley_dofs.dof(p) {
                 f[j] += self.spec.pulleys[p].ccw_sign() * ec.moment;
             }
@@ -765,7 +682,7 @@ impl BeltDrive {
             }
         });
         self.pulley_dofs.subtract_loads(loads, f);
-        if let Some(a) = &self.arm {
+        if let Some(a) = &self.kind.arm {
             f[a.dof] += self.arm_moment(a, q, v);
         }
     }
@@ -804,21 +721,24 @@ impl BeltDrive {
             if !(cache.valid && cache.q.len() == q.len() && self.tangent_still_valid(&cache.q, q)) {
                 let mut fbuf = vec![0.0; nb];
                 let mut kv = pat.zeros();
-                self.mesh
+                self.kind
+                    .mesh
                     .elastic_tangent_into(&q[..nb], &mut fbuf, pat, &mut kv, 1.0);
                 cache.k = kv;
                 cache.q = q.to_vec();
                 cache.valid = true;
-                self.elastic_evaluations.fetch_add(1, Ordering::Relaxed);
+                self.kind
+                    .elastic_evaluations
+                    .fetch_add(1, Ordering::Relaxed);
             }
             cache.k.clone()
         };
         let mut c = pat.zeros();
         self.axial_damping(q, v, &mut [], Some((&mut k, &mut c)));
-        let n_el = self.mesh.elements().len();
+        let n_el = self.kind.mesh.elements().len();
         let nf = self.pulley_dofs.count();
-        let m = NE + nf + usize::from(self.arm.is_some());
-        let arm = self.arm.map(|a| (a, self.arm_lever(&a, q)));
+        let m = NE + nf + usize::from(self.kind.arm.is_some());
+        let arm = self.kind.arm.map(|a| (a, self.arm_lever(&a, q)));
         self.contact_pass(q, v, omegas, true, scratch, |el, p, ec, s| {
             s.k_local.fill(0.0);
             s.c_local.fill(0.0);
@@ -859,7 +779,7 @@ impl BeltDrive {
             pat.add_element(&mut k, n_el + el, &s.k_local, 1.0);
             pat.add_element(&mut c, n_el + el, &s.c_local, 1.0);
         });
-        if let Some(a) = &self.arm {
+        if let Some(a) = &self.kind.arm {
             let (th, rate) = (q[a.dof], v[a.dof]);
             let d = pat.diagonal_position(a.dof);
             let (_, ks, cs) = a.spec.moment(th, rate);
@@ -898,13 +818,13 @@ impl BeltDrive {
         let mut qd = [0.0; NE];
         let mut kl = [0.0; NE * NE];
         let mut cl = [0.0; NE * NE];
-        for el in 0..self.mesh.elements().len() {
-            self.mesh.gather(q, el, &mut e);
-            self.mesh.gather(v, el, &mut ed);
+        for el in 0..self.kind.mesh.elements().len() {
+            self.kind.mesh.gather(q, el, &mut e);
+            self.kind.mesh.gather(v, el, &mut ed);
             let local = tangent.is_some().then_some((&mut kl, &mut cl));
             self.element_damping(&e, &ed, &mut qd, local);
             if !f.is_empty() {
-                self.mesh.scatter_add(f, el, &qd, 1.0);
+                self.kind.mesh.scatter_add(f, el, &qd, 1.0);
             }
             if let Some((k, c)) = tangent.as_mut() {
                 self.pattern.add_element(k, el, &kl, 1.0);
@@ -996,8 +916,8 @@ impl BeltDrive {
         let sx = shape::cubic(l, xi * l, 0.0).sx;
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
-        self.mesh.gather(q, el, &mut e);
-        self.mesh.gather(v, el, &mut ed);
+        self.kind.mesh.gather(q, el, &mut e);
+        self.kind.mesh.gather(v, el, &mut ed);
         let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
         for a in 0..6 {
             for c in 0..2 {
@@ -1110,7 +1030,7 @@ pub const SECTION_CELLS: usize = 96;
 
 impl<'a> SectionForces<'a> {
     fn new(drive: &'a BeltDrive, q: &'a [f64], v: &'a [f64], omegas: &[f64]) -> Self {
-        let n_el = drive.mesh.elements().len();
+        let n_el = drive.kind.mesh.elements().len();
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
         let mut qe = [0.0; NE];
@@ -1119,11 +1039,18 @@ impl<'a> SectionForces<'a> {
         let mut ec = ElementContact::new(NE);
         let mut ends = vec![[[0.0; 2]; 2]; n_el];
         for (el, end) in ends.iter_mut().enumerate() {
-            drive.mesh.gather(q, el, &mut e);
-            drive.mesh.gather(v, el, &mut ed);
-            drive.mesh.elements()[el].elastic_forces(&e, &mut qe);
+            drive.kind.mesh.gather(q, el, &mut e);
+            drive.kind.mesh.gather(v, el, &mut ed);
+            drive.kind.mesh.elements()[el].elastic_forces(&e, &mut qe);
             drive.element_damping(&e, &ed, &mut qd, None);
-            drive.element_contact_force(&drive.line, (q, v), omegas, (&e, &ed), &mut ec, &mut qc);
+            drive.element_contact_force(
+                &drive.kind.line,
+                (q, v),
+                omegas,
+                (&e, &ed),
+                &mut ec,
+                &mut qc,
+            );
             for c in 0..2 {
                 end[0][c] = qe[c] + qd[c] + qc[c];
                 end[1][c] = -(qe[6 + c] + qd[6 + c] + qc[6 + c]);
@@ -1158,12 +1085,12 @@ impl<'a> SectionForces<'a> {
         let m = (SECTION_CELLS as f64 * xi).ceil().max(1.0) as usize;
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
-        d.mesh.gather(self.q, el, &mut e);
-        d.mesh.gather(self.v, el, &mut ed);
+        d.kind.mesh.gather(self.q, el, &mut e);
+        d.kind.mesh.gather(self.v, el, &mut ed);
         let line = LineContact {
-            surface: d.line.surface,
-            normal: d.line.normal,
-            friction: d.line.friction,
+            surface: d.kind.line.surface,
+            normal: d.kind.line.normal,
+            friction: d.kind.line.friction,
             rule: GaussRule {
                 points: (0..m).map(|c| (c as f64 + 0.5) * xi / m as f64).collect(),
                 weights: vec![xi / m as f64; m],
@@ -1197,7 +1124,7 @@ impl<'a> SectionForces<'a> {
         let l = self.drive.element_length();
         let sx = shape::cubic(l, xi * l, 0.0).sx;
         let mut e = [0.0; NE];
-        self.drive.mesh.gather(self.q, el, &mut e);
+        self.drive.kind.mesh.gather(self.q, el, &mut e);
         let mut rx = [0.0; 2];
         for a in 0..6 {
             rx[0] += sx[a] * e[2 * a];

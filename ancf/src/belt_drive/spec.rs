@@ -2,6 +2,7 @@
 
 use super::friction::{BeltFriction, BeltNormal};
 use crate::error::{AncfError, invalid};
+use crate::mounted::DriveSpec;
 use belt::{MaterialLaw, Motion, Pulley, Signal, WrapSide};
 use mbd_core::Validate;
 use serde::{Deserialize, Serialize};
@@ -111,17 +112,9 @@ impl Default for ContactSpec {
     }
 }
 
-/// A complete belt drive: pulleys in travel order, belt and contact.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields, default)]
-pub struct BeltDriveSpec {
-    /// Pulleys in travel order (the belt runs from pulley 0 to pulley 1, …).
-    pub pulleys: Vec<Pulley>,
-    /// Belt.
-    pub belt: BeltSpec,
-    /// Contact.
-    pub contact: ContactSpec,
-}
+/// A complete planar belt drive: pulleys in travel order, belt and contact (the one drive
+/// description, [`DriveSpec`]).
+pub type BeltDriveSpec = DriveSpec<BeltSpec, ContactSpec>;
 
 impl Default for BeltDriveSpec {
     /// Kerkkänen Table 3.1 (example 3.3-B): driver at (−0.191441, 0) ramped to 12 rad/s by

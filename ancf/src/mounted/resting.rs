@@ -14,12 +14,13 @@
 //! placed position and `d` the held unit directions. What differs between the discretisations
 //! (the element groups, the forces, the tangent and the held directions) is [`RestingBelt`].
 
+use super::{AncfBeltDrive, DriveKind};
 use crate::error::AncfError;
 use crate::sparse::Pattern;
 use crate::statics::run_newton;
 use faer::sparse::linalg::solvers::SymbolicLu;
-use mbd_core::Workspace;
 use mbd_core::newton::{Fallback, LineSearch, NewtonOptions, NewtonProblem, Tolerances};
+use mbd_core::{SecondOrderSystem, Workspace};
 
 /// Options of the static solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,35 +40,32 @@ impl Default for InitialOptions {
     }
 }
 
-/// An ANCF belt discretisation whose resting equilibrium [`solve_resting`] finds (module
-/// documentation). The belt's coordinates are the first [`Self::belt_size`] of the system's;
-/// node 0's position is their first `dim`, `dim` the length of each
-/// held direction of [`Self::holding`].
-pub(crate) trait RestingBelt: super::AncfDrive {
+/// An ANCF belt drive whose resting equilibrium [`solve_resting`] finds (module
+/// documentation). The belt's coordinates are the first [`AncfBeltDrive::n_belt`] of the
+/// system's, grouped by element as [`DriveKind::element_dofs`]; node 0's position is their
+/// first `dim`, `dim` the length of each held direction of [`Self::holding`].
+pub(crate) trait RestingBelt: SecondOrderSystem {
     /// What the errors call the belt (`"belt"`, `"plate belt"`).
     const LABEL: &'static str;
-    /// Coordinates of the belt (the first ones of the system's [`mbd_core::SecondOrderSystem::n_q`]).
-    fn belt_size(&self) -> usize;
-    /// The belt coordinates of each element, in element order (the groups of the tangent's
-    /// sparsity pattern).
-    fn element_dofs(&self) -> Vec<Vec<Option<usize>>>;
     /// Stiffness `k_hold` \[N/m\] of the holding springs and their unit directions in node 0's
     /// position coordinates.
     fn holding(&self) -> (f64, Vec<Vec<f64>>);
     /// `Q_e + Q_c` at rest into `f` (the system's length) and the pulley torques into `torques`.
     fn resting_forces(&self, q: &[f64], f: &mut [f64], torques: &mut [f64], ws: &mut Workspace);
-    /// `Q_e + Q_c` at rest into `f` and their tangent `−∂(Q_e + Q_c)/∂e` into `kv`, the values
-    /// of `pattern` (built from [`Self::element_dofs`] plus one holding group); `scratch` is the
-    /// implementation's to keep between calls.
-    fn resting_tangent(
-        &self,
-        q: &[f64],
-        pattern: &Pattern,
-        f: &mut [f64],
-        kv: &mut [f64],
-        scratch: &mut Vec<f64>,
-        ws: &mut Workspace,
-    );
+    /// `Q_e + Q_c` at rest and their tangent `−∂(Q_e + Q_c)/∂e` into `out`.
+    fn resting_tangent(&self, q: &[f64], out: Linearisation<'_>, ws: &mut Workspace);
+}
+
+/// Where [`RestingBelt::resting_tangent`] writes: the forces `f` (the system's length) and the
+/// tangent's values `kv` in `pattern` (built from [`DriveKind::element_dofs`] plus one holding
+/// group: its first groups are the elements, in order).
+pub(crate) struct Linearisation<'a> {
+    /// The tangent's sparsity pattern.
+    pub pattern: &'a Pattern,
+    /// The forces.
+    pub f: &'a mut [f64],
+    /// The tangent's values in `pattern`.
+    pub kv: &'a mut [f64],
 }
 
 /// The resting equilibrium of [`solve_resting`].
@@ -86,23 +84,29 @@ pub(crate) struct Resting {
 /// The resting equilibrium of `belt` from the start `q0` (module documentation); the
 /// coordinates beyond the belt's (pulley angles, a tensioner arm's angle) are held at their
 /// values in `q0`. `name` names the solve in errors.
-pub(crate) fn solve_resting<B: RestingBelt>(
-    belt: &B,
+pub(crate) fn solve_resting<K: DriveKind>(
+    belt: &AncfBeltDrive<K>,
     name: &str,
     q0: Vec<f64>,
     opts: &InitialOptions,
-) -> Result<Resting, AncfError> {
-    let nb = belt.belt_size();
+) -> Result<Resting, AncfError>
+where
+    AncfBeltDrive<K>: RestingBelt,
+{
+    let nb = belt.n_belt();
     let (k_hold, dirs) = belt.holding();
     let dim = dirs.first().map_or(0, Vec::len);
-    let mut groups = belt.element_dofs();
+    let mut groups = belt.kind.element_dofs();
     let n_el = groups.len();
     groups.push((0..dim).map(Some).collect());
     let pattern = Pattern::new(nb, &groups);
     let symbolic =
         SymbolicLu::try_new(pattern.symbolic().as_ref()).map_err(|e| AncfError::Singular {
             load_factor: 1.0,
-            detail: format!("symbolic LU of the {} stiffness: {e:?}", B::LABEL),
+            detail: format!(
+                "symbolic LU of the {} stiffness: {e:?}",
+                <AncfBeltDrive<K> as RestingBelt>::LABEL
+            ),
         })?;
     let mut hold = vec![0.0; dim * dim];
     for d in &dirs {
@@ -124,8 +128,7 @@ pub(crate) fn solve_resting<B: RestingBelt>(
         dirs,
         x0: q0[..dim].to_vec(),
         f: vec![0.0; n],
-        torques: vec![0.0; belt.drive_pulleys().len()],
-        scratch: Vec::new(),
+        torques: vec![0.0; belt.pulleys().len()],
         iteration: 0,
         ws: Workspace::new(),
     };
@@ -156,8 +159,8 @@ pub(crate) fn solve_resting<B: RestingBelt>(
 
 /// The problem of [`solve_resting`]: `x = q` (belt and the other coordinates; only the belt's
 /// are corrected), `R` of the module documentation on the belt rows.
-struct Problem<'a, B: RestingBelt> {
-    belt: &'a B,
+struct Problem<'a, K: DriveKind> {
+    belt: &'a AncfBeltDrive<K>,
     pattern: Pattern,
     symbolic: SymbolicLu<usize>,
     kv: Vec<f64>,
@@ -169,14 +172,16 @@ struct Problem<'a, B: RestingBelt> {
     x0: Vec<f64>,
     f: Vec<f64>,
     torques: Vec<f64>,
-    scratch: Vec<f64>,
     /// The belt's scratch ([`mbd_core::Workspace`]).
     ws: Workspace,
     /// Linearisations so far (named in errors).
     iteration: usize,
 }
 
-impl<B: RestingBelt> Problem<'_, B> {
+impl<K: DriveKind> Problem<'_, K>
+where
+    AncfBeltDrive<K>: RestingBelt,
+{
     /// `d·(x₀ − x₀⁰)` for each held direction `d` \[m\].
     fn offsets(&self, q: &[f64]) -> Vec<f64> {
         self.dirs
@@ -197,7 +202,7 @@ impl<B: RestingBelt> Problem<'_, B> {
                 *fi -= self.k_hold * u * di;
             }
         }
-        let nb = self.belt.belt_size();
+        let nb = self.belt.n_belt();
         r.fill(0.0);
         for i in 0..nb {
             r[i] = -self.f[i];
@@ -205,7 +210,10 @@ impl<B: RestingBelt> Problem<'_, B> {
     }
 }
 
-impl<B: RestingBelt> NewtonProblem for Problem<'_, B> {
+impl<K: DriveKind> NewtonProblem for Problem<'_, K>
+where
+    AncfBeltDrive<K>: RestingBelt,
+{
     type Error = AncfError;
 
     fn tangent_dim(&self) -> usize {
@@ -214,14 +222,12 @@ impl<B: RestingBelt> NewtonProblem for Problem<'_, B> {
 
     fn linearize(&mut self, q: &[f64], _load: f64, r: &mut [f64]) -> Result<(), AncfError> {
         self.iteration += 1;
-        self.belt.resting_tangent(
-            q,
-            &self.pattern,
-            &mut self.f,
-            &mut self.kv,
-            &mut self.scratch,
-            &mut self.ws,
-        );
+        let out = Linearisation {
+            pattern: &self.pattern,
+            f: &mut self.f,
+            kv: &mut self.kv,
+        };
+        self.belt.resting_tangent(q, out, &mut self.ws);
         self.pattern
             .add_element(&mut self.kv, self.n_el, &self.hold, 1.0);
         self.hold_and_scatter(q, r);
@@ -242,7 +248,7 @@ impl<B: RestingBelt> NewtonProblem for Problem<'_, B> {
                 load_factor: 1.0,
                 detail: format!(
                     "{} tangent stiffness at iteration {}: {e}",
-                    B::LABEL,
+                    <AncfBeltDrive<K> as RestingBelt>::LABEL,
                     self.iteration
                 ),
             })

@@ -15,65 +15,28 @@
 //! load and torque, and per span the tension and the transverse vibration amplitude
 //! ([`belt::report`]).
 
+use crate::ancf_shell::{
+    self, AncfApp, Args, Sampled, finish, sampled_run, time_plot, to_study_error,
+};
 use crate::wrap_csv;
 use ancf::belt_drive::{BeltDrive, post};
-use drives::ancf_run::Due;
 use drives::ancf_study::{
     Analysis, AncfStudyConfig, AncfStudySummary, closure_study, dynamic_run, dynamic_setup,
 };
 use fe_model::io::vtk::{PointField, polyline, write_vtu};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, VtkSeries, run_study};
+use flowmbd_cli::{StudyContext, StudyError, VtkSeries};
 use mbd_core::integrators::State;
 use std::process::ExitCode;
 use std::time::Instant;
-
-/// Command-line arguments of the `ancf` and `plate` studies.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct Args {
-    #[command(flatten)]
-    pub common: CommonArgs,
-    // `[s]` stays unescaped: clap prints this doc comment as the --help text.
-    /// End time [s] (overrides `t_end`).
-    #[allow(rustdoc::broken_intra_doc_links)]
-    #[arg(long)]
-    pub t_end: Option<f64>,
-}
 
 /// Configuration of the `ancf` study (defined in `drives`, shared with the Python package).
 pub type Config = AncfStudyConfig;
 /// Summary of a run (`summary.json`, `--json`).
 pub type Summary = AncfStudySummary;
 
-struct AncfStudy {
-    t_end: Option<f64>,
-}
-
-/// An ANCF error as the app reports it: bad input names the drive's field (exit 2), anything
-/// else is numerical (exit 1). Shared with the `plate` study.
-pub(crate) fn to_study_error(e: ancf::AncfError) -> StudyError {
-    match e {
-        ancf::AncfError::InvalidInput { item, reason } => {
-            StudyError::Input(InputError::new(format!("drive: {item}"), reason))
-        }
-        other => StudyError::numerical(other),
-    }
-}
-
-/// The summary of a run, or the numerical failure that stopped it with the summary at the
-/// state reached as its partial result (shared with the `plate` study).
-pub(crate) fn finish<S: serde::Serialize>(
-    summary: S,
-    failure: Option<String>,
-) -> Result<S, StudyError> {
-    match failure {
-        Some(msg) => Err(StudyError::failed_with(
-            format!("integration failed: {msg}"),
-            &summary,
-        )),
-        None => Ok(summary),
-    }
-}
+/// The `ancf` study ([`AncfApp`]).
+pub(crate) struct AncfStudy;
 
 /// The belt's centreline at `q` as a closed `.vtu` polyline with its tension \[N\].
 fn write_vtk(
@@ -101,8 +64,7 @@ fn write_vtk(
 }
 
 impl AncfStudy {
-    fn closure(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let start = Instant::now();
+    fn closure(c: &Config, ctx: &mut StudyContext, start: Instant) -> Result<Summary, StudyError> {
         // the belt is stress-free on the path length (Kerkkänen: 1.276 m on the 1.276273 m path)
         let (drive, r, mut summary) = closure_study(c).map_err(to_study_error)?;
         let samples = post::tension_samples(&drive, &r.q, c.output.points_per_element);
@@ -134,40 +96,28 @@ impl AncfStudy {
         Ok(summary)
     }
 
-    fn dynamic(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let start = Instant::now();
+    fn dynamic(c: &Config, ctx: &mut StudyContext, start: Instant) -> Result<Summary, StudyError> {
         let (drive, init) = dynamic_setup(c).map_err(to_study_error)?;
         let spans = post::spans(&drive);
-        let np = drive.pulleys().len();
-
-        let mut header: Vec<String> = vec!["t_s".into()];
-        for p in drive.pulleys() {
-            header.push(format!("omega_{}_rad_per_s", p.name));
-        }
+        let mut columns = Vec::new();
         for k in 0..spans.len() {
-            header.push(format!("span{k}_mid_x_m"));
-            header.push(format!("span{k}_mid_y_m"));
+            columns.push(format!("span{k}_mid_x_m"));
+            columns.push(format!("span{k}_mid_y_m"));
         }
-        for k in 0..spans.len() {
-            header.push(format!("span{k}_tension_N"));
-        }
-        let hdr: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
-        let mut csv = ctx.out.csv("history.csv", &hdr)?;
-        let mut frames = VtkSeries::new("belt", "vtu", c.output.vtk_interval);
-        let mut speeds: Vec<Vec<(f64, f64)>> = vec![Vec::new(); np];
+        columns.extend((0..spans.len()).map(|k| format!("span{k}_tension_N")));
+        let sampled = Sampled {
+            label: "ANCF belt drive",
+            t_end: c.t_end,
+            vtk_interval: c.output.vtk_interval,
+            pulleys: drive.pulleys().iter().map(|p| p.name.clone()).collect(),
+            columns,
+        };
         let mut mids: Vec<Vec<(f64, f64)>> = vec![Vec::new(); spans.len()];
         let mut tens: Vec<Vec<(f64, f64)>> = vec![Vec::new(); spans.len()];
-
-        let mut record = |s: &State,
-                          csv: &mut flowmbd_cli::output::CsvSink,
-                          speeds: &mut Vec<Vec<(f64, f64)>>|
-         -> Result<(), StudyError> {
-            let mut row = vec![s.t];
-            for (p, sp) in speeds.iter_mut().enumerate() {
-                let w = drive.pulley_speed(p, s.t, &s.v);
-                row.push(w);
-                sp.push((s.t, w));
-            }
+        let row = |s: &State| {
+            let mut row: Vec<f64> = (0..drive.pulleys().len())
+                .map(|p| drive.pulley_speed(p, s.t, &s.v))
+                .collect();
             let m = post::span_midpoints(&drive, &s.q);
             for (k, mp) in m.iter().enumerate() {
                 let p = mp.unwrap_or([f64::NAN, f64::NAN]);
@@ -184,39 +134,19 @@ impl AncfStudy {
                     tens[k].push((s.t, *v));
                 }
             }
-            csv.row(&row)?;
-            Ok(())
+            row
         };
-
+        let per_el = c.output.points_per_element;
         let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
-        record(&s0, &mut csv, &mut speeds)?;
-        let path = frames.frame(&ctx.out, 0.0)?;
-        write_vtk(&drive, &s0.q, c.output.points_per_element, &path)?;
-
-        let progress = ctx.progress(c.t_end, "ANCF belt drive");
-        let out = &ctx.out;
-        let end = dynamic_run(
-            c,
-            &drive,
-            &init,
-            start,
-            |s, due: Due| -> Result<(), StudyError> {
-                if due.history {
-                    record(s, &mut csv, &mut speeds)?;
-                }
-                if due.frame {
-                    let path = frames.frame(out, s.t)?;
-                    write_vtk(&drive, &s.q, c.output.points_per_element, &path)?;
-                }
-                progress.set(s.t);
-                Ok(())
-            },
+        let (end, speeds) = sampled_run(
+            ctx,
+            sampled,
+            &s0,
+            row,
+            |s, path| write_vtk(&drive, &s.q, per_el, path),
+            |observer| dynamic_run(c, &drive, &init, start, observer),
         )?;
-        progress.finish();
-        csv.finish()?;
         let s = &end.state;
-
-        frames.finish(&ctx.out)?;
 
         // end-of-run distributions
         let samples = post::tension_samples(&drive, &s.q, c.output.points_per_element);
@@ -300,21 +230,16 @@ impl AncfStudy {
         )?;
 
         // plots
-        let mut pl = LinePlot::new("Pulley speeds", "t [s]", "ω [rad/s]");
-        for (p, sp) in speeds.into_iter().enumerate() {
-            pl = pl.with(Series::line(drive.pulleys()[p].name.clone(), sp));
-        }
-        pl.save(&ctx.out.path("pulley_speeds"))?;
-        let mut pl = LinePlot::new("Span mid-points", "t [s]", "y [m]");
-        for (k, m) in mids.into_iter().enumerate() {
-            pl = pl.with(Series::line(format!("span {k}"), m));
-        }
-        pl.save(&ctx.out.path("span_midpoints"))?;
-        let mut pl = LinePlot::new("Span tensions", "t [s]", "T [N]");
-        for (k, m) in tens.into_iter().enumerate() {
-            pl = pl.with(Series::line(format!("span {k}"), m));
-        }
-        pl.save(&ctx.out.path("span_tensions"))?;
+        let names = drive.pulleys().iter().map(|p| p.name.clone());
+        time_plot("Pulley speeds", "ω [rad/s]", names.zip(speeds))
+            .save(&ctx.out.path("pulley_speeds"))?;
+        let spans = |v: Vec<Vec<(f64, f64)>>| {
+            v.into_iter()
+                .enumerate()
+                .map(|(k, m)| (format!("span {k}"), m))
+        };
+        time_plot("Span mid-points", "y [m]", spans(mids)).save(&ctx.out.path("span_midpoints"))?;
+        time_plot("Span tensions", "T [N]", spans(tens)).save(&ctx.out.path("span_tensions"))?;
         LinePlot::new(
             format!("Tension along the belt at t = {:.3} s", s.t),
             "s (material) [m]",
@@ -359,33 +284,29 @@ impl AncfStudy {
             .save(&ctx.out.path(&format!("relative_velocity_{}", pulley.name)))?;
         }
 
-        let mut summary = end.summary;
-        summary.run.wall_time_s = start.elapsed().as_secs_f64();
-        finish(summary, end.failure)
+        finish(end.summary, |s| &mut s.run, end.failure, start)
     }
 }
 
-impl Study for AncfStudy {
+impl AncfApp for AncfStudy {
     type Config = Config;
     type Summary = Summary;
     const NAME: &'static str = "ancf";
     const MEANING: &'static str = drives::ancf_study::ANCF_MEANING;
 
-    fn apply_overrides(&self, c: &mut Config) {
-        if let Some(t) = self.t_end {
-            c.t_end = t;
-        }
+    fn t_end(c: &mut Config) -> &mut f64 {
+        &mut c.t_end
     }
 
-    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+    fn run(c: &Config, ctx: &mut StudyContext, start: Instant) -> Result<Summary, StudyError> {
         match c.analysis {
-            Analysis::StaticClosure => self.closure(c, ctx),
-            Analysis::Dynamic => self.dynamic(c, ctx),
+            Analysis::StaticClosure => Self::closure(c, ctx, start),
+            Analysis::Dynamic => Self::dynamic(c, ctx, start),
         }
     }
 }
 
 /// Run the `ancf` study under the app conventions.
 pub fn run(args: &Args) -> ExitCode {
-    run_study(crate::APP, &AncfStudy { t_end: args.t_end }, &args.common)
+    ancf_shell::run::<AncfStudy>(args)
 }

@@ -20,6 +20,7 @@ use flowmbd_cli::run_study;
 use std::process::ExitCode;
 
 mod ancf;
+mod ancf_shell;
 mod demo;
 mod design;
 mod fead;
@@ -46,9 +47,9 @@ enum Study {
     /// Rigid-body slider-crank with a rotational driver (mbd-core demonstration).
     Demo(demo::Args),
     /// Planar ANCF belt drive (Kerkkänen ch. 3).
-    Ancf(ancf::Args),
+    Ancf(ancf_shell::Args),
     /// Three-dimensional plate-belt drive vs Bechtel's steady model (Kerkkänen ch. 4).
-    Plate(plate::Args),
+    Plate(ancf_shell::Args),
     /// Front-end accessory drive with a tensioner over an engine-speed sweep.
     Fead(fead::Args),
     /// Steady FEAD design without time stepping: tensions, arm, slip margins, modes, Campbell.

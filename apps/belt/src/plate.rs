@@ -11,10 +11,12 @@
 //! (`pulley_speeds`, `tension`, `speed`, `area_ratio`, `friction_driven`, `normal_driven`) and
 //! a VTK series of the belt surface (`vtk/belt_NNNN.vtu` + `belt.vtu.series`).
 
+use crate::ancf_shell::{
+    self, AncfApp, Args, Sampled, finish, sampled_run, time_plot, to_study_error,
+};
 use ancf::plate::StrainMeasure;
 use ancf::plate::belt_drive::PlateBeltDrive;
 use ancf::plate::belt_drive::post::{pulley_torques, span_states, surface_grid};
-use drives::ancf_run::Due;
 use drives::bechtel_steady::SteadyPoint;
 use drives::plate_study::{
     PlateStudyConfig, PlateStudySummary, plate_distributions, plate_run, plate_setup,
@@ -22,22 +24,18 @@ use drives::plate_study::{
 use fe_model::io::vtk::{PointField, write_vtu};
 use fe_model::{Cell, CellKind, Mesh};
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{Study, StudyContext, StudyError, VtkSeries, run_study};
+use flowmbd_cli::{StudyContext, StudyError};
 use mbd_core::integrators::State;
 use std::process::ExitCode;
 use std::time::Instant;
-
-/// Command-line arguments of the `plate` study (those of `ancf`).
-pub type Args = crate::ancf::Args;
 
 /// Configuration of the `plate` study (defined in `drives`, shared with the Python package).
 pub type Config = PlateStudyConfig;
 /// Summary of a run (`summary.json`, `--json`).
 pub type Summary = PlateStudySummary;
 
-struct PlateStudy {
-    t_end: Option<f64>,
-}
+/// The `plate` study ([`AncfApp`]).
+pub(crate) struct PlateStudy;
 
 /// The belt surface at `(q, v)` as a `.vtu` file of quadrilaterals (4 per element) with the
 /// tension (by `measure`) and velocity fields.
@@ -86,41 +84,38 @@ fn analytical_series(
     (!a.is_empty()).then(|| Series::line(name, a.iter().map(|p| (p.s, f(p))).collect()))
 }
 
-impl PlateStudy {
-    fn dynamic(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        let start = Instant::now();
-        let (drive, init) = plate_setup(c).map_err(crate::ancf::to_study_error)?;
+impl AncfApp for PlateStudy {
+    type Config = Config;
+    type Summary = Summary;
+    const NAME: &'static str = "plate";
+    const MEANING: &'static str = drives::plate_study::PLATE_MEANING;
+
+    fn t_end(c: &mut Config) -> &mut f64 {
+        &mut c.t_end
+    }
+
+    fn run(c: &Config, ctx: &mut StudyContext, start: Instant) -> Result<Summary, StudyError> {
+        let (drive, init) = plate_setup(c).map_err(to_study_error)?;
         let (_, driven) = drives::ancf_run::roles(&drive);
         let names: Vec<String> = drive.pulleys().iter().map(|p| p.name.clone()).collect();
-        let mut header: Vec<String> = vec!["t_s".into()];
-        for n in &names {
-            header.push(format!("omega_{n}_rad_per_s"));
-        }
-        header.push("torque_driven_N_m".into());
-        header.push("load_driven_N_m".into());
-        let nspans = drive.path().pulleys().len();
-        for k in 0..nspans {
+        let mut columns = vec!["torque_driven_N_m".to_string(), "load_driven_N_m".into()];
+        for k in 0..drive.path().pulleys().len() {
             for m in StrainMeasure::ALL {
-                header.push(format!("span{k}_tension_{}_N", m.name()));
+                columns.push(format!("span{k}_tension_{}_N", m.name()));
             }
-            header.push(format!("span{k}_membrane_force_N"));
+            columns.push(format!("span{k}_membrane_force_N"));
         }
-        let hdr: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
-        let mut csv = ctx.out.csv("history.csv", &hdr)?;
-        let mut frames = VtkSeries::new("belt", "vtu", c.output.vtk_interval);
-        let np = names.len();
-        let mut speeds: Vec<Vec<(f64, f64)>> = vec![Vec::new(); np];
-
-        let record = |s: &State,
-                      csv: &mut flowmbd_cli::output::CsvSink,
-                      speeds: &mut Vec<Vec<(f64, f64)>>|
-         -> Result<(), StudyError> {
-            let mut row = vec![s.t];
-            for (p, sp) in speeds.iter_mut().enumerate() {
-                let w = drive.pulley_speed(p, s.t, &s.v);
-                row.push(w);
-                sp.push((s.t, w));
-            }
+        let sampled = Sampled {
+            label: "plate belt drive",
+            t_end: c.t_end,
+            vtk_interval: c.output.vtk_interval,
+            pulleys: names.clone(),
+            columns,
+        };
+        let row = |s: &State| {
+            let mut row: Vec<f64> = (0..names.len())
+                .map(|p| drive.pulley_speed(p, s.t, &s.v))
+                .collect();
             match driven {
                 Some(p) => {
                     row.push(pulley_torques(&drive, s.t, &s.q, &s.v)[p]);
@@ -132,38 +127,19 @@ impl PlateStudy {
                 row.extend(st.tension);
                 row.push(st.membrane_force);
             }
-            csv.row(&row)?;
-            Ok(())
+            row
         };
-
+        let measure = c.output.strain_measure;
         let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
-        record(&s0, &mut csv, &mut speeds)?;
-        let path = frames.frame(&ctx.out, 0.0)?;
-        write_surface(&drive, &s0, c.output.strain_measure, &path)?;
-
-        let progress = ctx.progress(c.t_end, "plate belt drive");
-        let out = &ctx.out;
-        let end = plate_run(
-            c,
-            &drive,
-            &init,
-            start,
-            |s, due: Due| -> Result<(), StudyError> {
-                if due.history {
-                    record(s, &mut csv, &mut speeds)?;
-                }
-                if due.frame {
-                    let path = frames.frame(out, s.t)?;
-                    write_surface(&drive, s, c.output.strain_measure, &path)?;
-                }
-                progress.set(s.t);
-                Ok(())
-            },
+        let (end, speeds) = sampled_run(
+            ctx,
+            sampled,
+            &s0,
+            row,
+            |s, path| write_surface(&drive, s, measure, path),
+            |observer| plate_run(c, &drive, &init, start, observer),
         )?;
-        progress.finish();
-        csv.finish()?;
         let s = &end.state;
-        frames.finish(&ctx.out)?;
 
         // distributions at the end (Figs 4.11–4.18)
         let d = plate_distributions(c, &drive, s);
@@ -272,15 +248,9 @@ impl PlateStudy {
         )?;
 
         // plots
-        let mut pl = LinePlot::new(
-            "Pulley speeds (Kerkkänen Figs 4.10, 4.16)",
-            "t [s]",
-            "ω [rad/s]",
-        );
-        for (p, sp) in speeds.into_iter().enumerate() {
-            pl = pl.with(Series::line(names[p].clone(), sp));
-        }
-        pl.save(&ctx.out.path("pulley_speeds"))?;
+        let title = "Pulley speeds (Kerkkänen Figs 4.10, 4.16)";
+        time_plot(title, "ω [rad/s]", names.into_iter().zip(speeds))
+            .save(&ctx.out.path("pulley_speeds"))?;
 
         let mut pl = LinePlot::new(
             format!(
@@ -384,30 +354,11 @@ impl PlateStudy {
             }
         }
 
-        let mut summary = end.summary;
-        summary.run.wall_time_s = start.elapsed().as_secs_f64();
-        crate::ancf::finish(summary, end.failure)
-    }
-}
-
-impl Study for PlateStudy {
-    type Config = Config;
-    type Summary = Summary;
-    const NAME: &'static str = "plate";
-    const MEANING: &'static str = drives::plate_study::PLATE_MEANING;
-
-    fn apply_overrides(&self, c: &mut Config) {
-        if let Some(t) = self.t_end {
-            c.t_end = t;
-        }
-    }
-
-    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
-        self.dynamic(c, ctx)
+        finish(end.summary, |s| &mut s.run, end.failure, start)
     }
 }
 
 /// Run the `plate` study under the app conventions.
 pub fn run(args: &Args) -> ExitCode {
-    run_study(crate::APP, &PlateStudy { t_end: args.t_end }, &args.common)
+    ancf_shell::run::<PlateStudy>(args)
 }

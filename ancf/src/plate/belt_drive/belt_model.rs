@@ -19,14 +19,15 @@
 //! carry, [`post::SpanState::membrane_force`]); the wrap points are the contact quadrature
 //! points with their area densities turned into line densities (times `b`).
 
+use super::model::Plate;
 use super::post;
 use super::{PlateBeltDrive, PlateBeltSpec, PlateContactSpec, PlateDriveSpec, PlateInitialState};
 use crate::belt_drive::BeltFriction;
 use crate::error::{AncfError, invalid};
 use crate::mounted::InitialOptions;
-use crate::mounted::{AncfDrive, MountedBelt, PulleyCoordinates};
+use crate::mounted::{DriveKind, MountedBelt};
 use belt::{
-    BeltPath, Drive, MaterialLaw, ModelTraits, Motion, PulleyState, Snapshot, SpanState, WrapPoint,
+    BeltPath, Drive, MaterialLaw, ModelTraits, PulleyState, Snapshot, SpanState, WrapPoint,
 };
 use mbd_core::MbdError;
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -216,48 +217,54 @@ fn membrane_force_at(drive: &PlateBeltDrive, q: &[f64], el: usize, x: f64) -> f6
 }
 
 /// Coordinates: the belt's cross-section nodes (Kerkkänen (4.1)) and the free pulleys' angles.
-impl AncfDrive for PlateBeltDrive {
+impl DriveKind for Plate {
+    type Belt = PlateBeltSpec;
+    type Contact = PlateContactSpec;
     type Initial = PlateInitialState;
     type Mapping = PlateMapping;
-
+    const NAME: &'static str = "PlateBeltDrive";
     /// Not linearised (geometrically exact membrane and plate, Kerkkänen ch. 4).
-    fn model_traits(&self) -> ModelTraits {
-        ModelTraits {
-            name: "plate",
-            linearised: false,
-            force_measure: PLATE_FORCE_MEASURE,
-        }
+    const TRAITS: ModelTraits = ModelTraits {
+        name: "plate",
+        linearised: false,
+        force_measure: PLATE_FORCE_MEASURE,
+    };
+
+    fn elements(&self) -> usize {
+        self.mesh.cells.len()
+    }
+
+    fn belt_coordinates(&self) -> usize {
+        self.mesh.n_coords()
+    }
+
+    /// The 36 coordinates of each element's four nodes (Kerkkänen (4.1)).
+    fn element_dofs(&self) -> Vec<Vec<Option<usize>>> {
+        let mesh = &self.mesh;
+        let dofs = |c| mesh.cell_dofs(c).iter().map(|&d| Some(d)).collect();
+        mesh.cells.iter().map(dofs).collect()
+    }
+
+    /// The plate's consistent mass matrix ([`crate::plate::ThinPlate::mass_matrix`]).
+    fn element_mass(&self, e: usize) -> Vec<f64> {
+        let m = self.mesh.cells[e].plate.mass_matrix();
+        let n = m.nrows();
+        (0..n * n).map(|k| m[(k % n, k / n)]).collect()
     }
 
     fn initial_q(initial: &PlateInitialState) -> &[f64] {
         &initial.q
     }
 
-    fn drive_pulleys(&self) -> &[belt::Pulley] {
-        self.pulleys()
-    }
-
-    fn drive_path(&self) -> &belt::BeltPath {
-        self.path()
-    }
-
-    fn pulley_coordinates(&self) -> &PulleyCoordinates {
-        self.pulley_dofs()
-    }
-
-    fn pulley_motion_mut(&mut self, k: usize) -> Option<&mut Motion> {
-        self.motion_mut(k)
-    }
-
     /// `None`: the plate drive has no tensioner arm.
-    fn arm_angle_at(&self, _q: &[f64]) -> Option<f64> {
+    fn arm_angle_at(_d: &PlateBeltDrive, _q: &[f64]) -> Option<f64> {
         None
     }
 
     /// Mean belt speed (4.12)–(4.13) along the centreline.
-    fn mean_belt_speed(&self, q: &[f64], v: &[f64]) -> f64 {
-        let w = self.spec().belt.width;
-        let s = post::line_samples(self, q, v, 0.5 * w, 2);
+    fn mean_belt_speed(d: &PlateBeltDrive, q: &[f64], v: &[f64]) -> f64 {
+        let w = d.spec().belt.width;
+        let s = post::line_samples(d, q, v, 0.5 * w, 2);
         s.iter().map(|p| p.speed).sum::<f64>() / s.len().max(1) as f64
     }
 
@@ -265,8 +272,7 @@ impl AncfDrive for PlateBeltDrive {
     /// ([`post::span_states`]) and the contact quadrature points as wrap points (densities per
     /// unit area times the width `b`, tributary length = area weight / `b`; circumferential
     /// friction and slip).
-    fn snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
-        let d = self;
+    fn snapshot_at(d: &PlateBeltDrive, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
         let loads = d.pulley_loads(t, q, v);
         let pulleys = (0..d.pulleys().len())
             .map(|k| PulleyState {
@@ -325,9 +331,9 @@ impl AncfDrive for PlateBeltDrive {
 
     /// Offset of the centreline sample nearest each span's mid-point from the span line
     /// (positive to the left of travel) \[m\] (`centreline_offsets`).
-    fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
+    fn span_offsets(d: &PlateBeltDrive, q: &[f64]) -> Result<Vec<f64>, MbdError> {
         let v = vec![0.0; q.len()];
-        Ok(centreline_offsets(self, &centreline(self, q, &v)))
+        Ok(centreline_offsets(d, &centreline(d, q, &v)))
     }
 }
 

@@ -19,8 +19,7 @@
 
 use super::model::PlateBeltDrive;
 use crate::error::AncfError;
-use crate::mounted::{InitialOptions, RestingBelt, solve_resting};
-use crate::sparse::Pattern;
+use crate::mounted::{InitialOptions, Linearisation, RestingBelt, solve_resting};
 use mbd_core::SecondOrderSystem;
 use mbd_core::Workspace;
 
@@ -86,19 +85,6 @@ impl PlateBeltDrive {
 impl RestingBelt for PlateBeltDrive {
     const LABEL: &'static str = "plate belt";
 
-    fn belt_size(&self) -> usize {
-        self.n_belt()
-    }
-
-    /// The same element groups as the drive's pattern.
-    fn element_dofs(&self) -> Vec<Vec<Option<usize>>> {
-        self.mesh()
-            .cells
-            .iter()
-            .map(|c| self.mesh().cell_dofs(c).iter().map(|&d| Some(d)).collect())
-            .collect()
-    }
-
     fn holding(&self) -> (f64, Vec<Vec<f64>>) {
         let b = &self.spec().belt;
         let k_hold = b.young * b.width * b.thickness / self.element_length();
@@ -111,34 +97,11 @@ impl RestingBelt for PlateBeltDrive {
         self.belt_forces(0.0, q, &vec![0.0; q.len()], &omegas, f, torques, ws);
     }
 
-    /// The tangent in the drive's pattern (`scratch`), its belt block copied into `pattern`.
-    fn resting_tangent(
-        &self,
-        q: &[f64],
-        pattern: &Pattern,
-        f: &mut [f64],
-        kv: &mut [f64],
-        scratch: &mut Vec<f64>,
-        ws: &mut Workspace,
-    ) {
-        if scratch.is_empty() {
-            *scratch = self.pattern().zeros();
-        }
+    fn resting_tangent(&self, q: &[f64], out: Linearisation<'_>, ws: &mut Workspace) {
         let omegas = vec![0.0; self.pulleys().len()];
         let zero_v = vec![0.0; q.len()];
-        self.belt_stiffness(0.0, q, &zero_v, &omegas, f, scratch, ws);
-        kv.fill(0.0);
-        let nb = self.n_belt();
-        for (i, j, pos) in self.pattern().entries() {
-            if i < nb && j < nb {
-                let v = scratch[pos];
-                if v != 0.0
-                    && let Some(p) = pattern.position(i, j)
-                {
-                    kv[p] += v;
-                }
-            }
-        }
+        let Linearisation { pattern, f, kv } = out;
+        self.belt_stiffness(0.0, q, &zero_v, &omegas, pattern, f, kv, ws);
     }
 }
 
@@ -157,11 +120,7 @@ impl PlateBeltDrive {
                 }
             }
         }
-        for (p, pl) in self.pulleys().iter().enumerate() {
-            if let Some(j) = self.pulley_dof(p) {
-                v[j] = speed / pl.radius;
-            }
-        }
+        self.roll_pulleys(speed, &mut v);
         v
     }
 }

@@ -25,5 +25,5 @@ pub mod spec;
 pub use crate::mounted::InitialOptions;
 pub use belt_model::{PlateBelt, PlateConfig, PlateMapping};
 pub use initial::PlateInitialState;
-pub use model::{PlateBeltDrive, PlateContactRecord, PulleySurface};
+pub use model::{Plate, PlateBeltDrive, PlateContactRecord, PulleySurface};
 pub use spec::{PlateBeltSpec, PlateContactSpec, PlateDriveSpec};

@@ -8,7 +8,7 @@ use crate::belt_drive::BeltFriction;
 use crate::belt_drive::friction::BeltNormal;
 use crate::error::{AncfError, invalid};
 use crate::material::Material;
-use crate::mounted::PulleyCoordinates;
+use crate::mounted::{AncfBeltDrive, MAX_PULLEYS};
 use crate::plate::mesh::{PLATE_NODE_COORDS, PlateCell, PlateMesh};
 use crate::plate::{PLATE_NDOF, ThinPlate};
 use crate::sparse::Pattern;
@@ -79,12 +79,13 @@ struct Scratch {
 /// for each free pulley `I θ̈ = τ − T_a(t)` with `τ` the travel-sense contact torque, the
 /// spatial (3.26). No gravity: the thesis never mentions it for its belt drives (seed note §11
 /// item 27).
-pub struct PlateBeltDrive {
-    spec: PlateDriveSpec,
-    path: BeltPath,
-    mesh: PlateMesh,
-    n_belt: usize,
-    pulley_dofs: PulleyCoordinates,
+pub type PlateBeltDrive = AncfBeltDrive<Plate>;
+
+/// The plate discretisation of an [`AncfBeltDrive`] ([`PlateBeltDrive`]): one row of thin-plate
+/// elements (Kerkkänen (4.1)) in a closed loop and the distributed contact over the plate's
+/// surface on the pulleys' cylinders.
+pub struct Plate {
+    pub(super) mesh: PlateMesh,
     /// Normal contact law per unit area (penalty (3.20) with damping).
     normal: BeltNormal,
     /// Friction law per unit area (creep-rate, §4.5).
@@ -95,18 +96,6 @@ pub struct PlateBeltDrive {
     quad_s: Vec<[f64; 12]>,
     /// Shape matrices `S = [S_k I₃]` (3 × 36) at each contact point.
     quad_shape: Vec<BlockShape>,
-    pattern: Pattern,
-    mass_values: Vec<f64>,
-}
-
-impl std::fmt::Debug for PlateBeltDrive {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("PlateBeltDrive")
-            .field("elements", &self.mesh.cells.len())
-            .field("pulleys", &self.spec.pulleys.len())
-            .field("n_q", &self.n_q())
-            .finish()
-    }
 }
 
 /// Node index of cross-section `i` (mod `n`), edge `j` (0: `y = 0`, 1: `y = w`).
@@ -154,28 +143,6 @@ impl PlateBeltDrive {
             n_nodes: 2 * n,
             cells,
         };
-        let n_belt = mesh.n_coords();
-        let pulley_dofs = PulleyCoordinates::new(&spec.pulleys, n_belt);
-        let n_free = pulley_dofs.count();
-        let n_q = n_belt + n_free;
-        let mut groups: Vec<Vec<Option<usize>>> = mesh
-            .cells
-            .iter()
-            .map(|c| mesh.cell_dofs(c).iter().map(|&d| Some(d)).collect())
-            .collect();
-        for c in &mesh.cells {
-            let mut g: Vec<Option<usize>> = mesh.cell_dofs(c).iter().map(|&d| Some(d)).collect();
-            g.extend((0..n_free).map(|k| Some(n_belt + k)));
-            groups.push(g);
-        }
-        let pattern = Pattern::new(n_q, &groups);
-        let mut mass_values = pattern.zeros();
-        let m = plate.mass_matrix();
-        let me: Vec<f64> = (0..NE * NE).map(|k| m[(k % NE, k / NE)]).collect();
-        for el in 0..n {
-            pattern.add_element(&mut mass_values, el, &me, 1.0);
-        }
-        pulley_dofs.add_inertias(&spec.pulleys, &pattern, &mut mass_values);
         let rule = GaussRule::new(spec.contact.points);
         let mut quad = Vec::new();
         let mut quad_s = Vec::new();
@@ -191,94 +158,50 @@ impl PlateBeltDrive {
         }
         let normal = BeltNormal::penalty(spec.contact.stiffness, 0.0, spec.contact.damping);
         let friction = spec.contact.friction;
-        Ok(Self {
-            spec,
-            path,
+        let kind = Plate {
             mesh,
-            n_belt,
-            pulley_dofs,
             normal,
             friction,
             quad,
             quad_s,
             quad_shape,
-            pattern,
-            mass_values,
-        })
+        };
+        Ok(Self::assemble(spec, path, kind, &[]))
     }
 
-    /// The description the drive was built from.
-    pub fn spec(&self) -> &PlateDriveSpec {
-        &self.spec
-    }
-    /// The undeformed path of the belt mid-line over the pulleys (initial centres).
-    pub fn path(&self) -> &BeltPath {
-        &self.path
-    }
     /// The belt mesh.
     pub fn mesh(&self) -> &PlateMesh {
-        &self.mesh
-    }
-    /// The pulleys in travel order.
-    pub fn pulleys(&self) -> &[Pulley] {
-        &self.spec.pulleys
-    }
-    /// The motion of pulley `p` (its signals may be replaced between runs; its kind and
-    /// inertia must stay: the coordinates and the mass matrix depend on them).
-    pub fn motion_mut(&mut self, p: usize) -> Option<&mut belt::Motion> {
-        self.spec.pulleys.get_mut(p).map(|p| &mut p.motion)
-    }
-    /// Number of belt coordinates.
-    pub fn n_belt(&self) -> usize {
-        self.n_belt
+        &self.kind.mesh
     }
     /// Number of elements along the belt.
     pub fn n_elements(&self) -> usize {
-        self.mesh.cells.len()
+        self.kind.mesh.cells.len()
     }
     /// Reference element length `a` \[m\].
     pub fn element_length(&self) -> f64 {
-        self.mesh.cells[0].plate.shape().a()
+        self.kind.mesh.cells[0].plate.shape().a()
     }
-    /// The pulleys' angle coordinates.
-    pub fn pulley_dofs(&self) -> &PulleyCoordinates {
-        &self.pulley_dofs
-    }
-
-    /// Coordinate index of pulley `p`'s angle, if it is free.
-    pub fn pulley_dof(&self, p: usize) -> Option<usize> {
-        self.pulley_dofs.dof(p)
-    }
-    /// Assembly pattern of the system matrices.
-    pub fn pattern(&self) -> &Pattern {
-        &self.pattern
-    }
-
-    /// Travel-sense angular speed of pulley `p` at `(t, v)` \[rad/s\].
-    pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        self.pulley_dofs.speed(&self.spec.pulleys, p, t, v)
-    }
-
-    /// Load torque on pulley `p` at `t` \[N·m\] (0 for speed-driven pulleys and idlers).
-    pub fn load_torque(&self, p: usize, t: f64) -> f64 {
-        self.spec.pulleys[p].motion.load_torque(t)
-    }
-
     /// The contact surface of pulley `p` at time `t` \[s\] turning at the travel-sense speed
     /// `omega` \[rad/s\].
     pub fn surface(&self, p: usize, t: f64, omega: f64) -> PulleySurface {
         surface_of(&self.spec.pulleys[p], t, omega)
     }
 
+    /// The coordinates of element `el`.
+    fn element_dofs(&self, el: usize) -> [usize; NE] {
+        let mesh = &self.kind.mesh;
+        mesh.cell_dofs(&mesh.cells[el])
+    }
+
     /// Mesh coordinates of element `el`.
     pub fn gather(&self, q: &[f64], el: usize, e: &mut [f64; NE]) {
-        for (k, d) in self.mesh.cell_dofs(&self.mesh.cells[el]).iter().enumerate() {
+        for (k, d) in self.element_dofs(el).iter().enumerate() {
             e[k] = q[*d];
         }
     }
 
     fn scatter_add(&self, f: &mut [f64], el: usize, qe: &[f64], scale: f64) {
-        for (k, d) in self.mesh.cell_dofs(&self.mesh.cells[el]).iter().enumerate() {
+        for (k, d) in self.element_dofs(el).iter().enumerate() {
             f[*d] += scale * qe[k];
         }
     }
@@ -306,10 +229,11 @@ impl PlateBeltDrive {
         e: &'a [f64; NE],
         ed: &'a [f64; NE],
     ) -> impl Iterator<Item = QuadPoint<3, BlockShape>> + 'a {
-        self.quad
+        self.kind
+            .quad
             .iter()
-            .zip(&self.quad_s)
-            .zip(&self.quad_shape)
+            .zip(&self.kind.quad_s)
+            .zip(&self.kind.quad_shape)
             .map(move |((&(_, _, w), s), shape)| quad_point(s, *shape, w, e, ed))
     }
 
@@ -322,17 +246,21 @@ impl PlateBeltDrive {
             .collect()
     }
 
-    /// Runs the distributed contact of every element against every pulley surface and hands
-    /// each element–pulley pair with active points to `sink` (with the pulley's rotation axis).
+    /// Runs the distributed contact of every element against every pulley surface at time `t`
+    /// with the travel-sense speeds `omegas` and hands each element–pulley pair with active
+    /// points to `sink` (with the pulley's rotation axis). The element contact buffer is the
+    /// one in `slot` (created there if empty).
     fn contact_pass(
         &self,
-        surfaces: &[PulleySurface],
+        (t, omegas): (f64, &[f64]),
         q: &[f64],
         v: &[f64],
         jacobian: bool,
-        ec: &mut ElementContact3,
+        slot: &mut Option<ElementContact3>,
         mut sink: impl FnMut(usize, usize, &Vector3<f64>, &ElementContact3),
     ) {
+        let surfaces = self.surfaces(t, omegas);
+        let ec = slot.get_or_insert_with(|| ElementContact3::new(NE));
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
         for el in 0..self.n_elements() {
@@ -348,8 +276,8 @@ impl PlateBeltDrive {
                 }
                 contact::element_contact(
                     surf,
-                    &self.normal,
-                    &self.friction,
+                    &self.kind.normal,
+                    &self.kind.friction,
                     self.points(&e, &ed),
                     jacobian,
                     ec,
@@ -360,10 +288,6 @@ impl PlateBeltDrive {
                 }
             }
         }
-    }
-
-    fn speeds(&self, t: f64, v: &[f64]) -> Vec<f64> {
-        self.pulley_dofs.speeds(&self.spec.pulleys, t, v)
     }
 
     /// The drive's work buffers in the caller's workspace `ws`, created on first use (and
@@ -391,7 +315,7 @@ impl PlateBeltDrive {
         let mut e = [0.0; NE];
         for el in 0..self.n_elements() {
             self.gather(q, el, &mut e);
-            self.mesh.cells[el].plate.elastic_forces(&e, &mut s.fe);
+            self.kind.mesh.cells[el].plate.elastic_forces(&e, &mut s.fe);
             let fe = s.fe;
             self.scatter_add(f, el, &fe, 1.0);
         }
@@ -413,19 +337,10 @@ impl PlateBeltDrive {
         let s = self.scratch(ws);
         self.elastic_forces_into(q, f, s);
         torques.fill(0.0);
-        let mut ec = s.ec.take().unwrap_or_else(|| ElementContact3::new(NE));
-        self.contact_pass(
-            &self.surfaces(t, omegas),
-            q,
-            v,
-            false,
-            &mut ec,
-            |el, p, axis, c| {
-                self.scatter_add(f, el, &c.q, 1.0);
-                torques[p] += c.moment.dot(axis);
-            },
-        );
-        s.ec = Some(ec);
+        self.contact_pass((t, omegas), q, v, false, &mut s.ec, |el, p, axis, c| {
+            self.scatter_add(f, el, &c.q, 1.0);
+            torques[p] += c.moment.dot(axis);
+        });
     }
 
     /// Resultant contact force on every pulley \[N\] and travel-sense contact torque \[N·m\]
@@ -433,25 +348,18 @@ impl PlateBeltDrive {
     pub fn pulley_loads(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<([f64; 3], f64)> {
         let omegas = self.speeds(t, v);
         let mut out = vec![([0.0; 3], 0.0); omegas.len()];
-        let mut ec = ElementContact3::new(NE);
-        self.contact_pass(
-            &self.surfaces(t, &omegas),
-            q,
-            v,
-            false,
-            &mut ec,
-            |_, p, axis, c| {
-                for k in 0..3 {
-                    out[p].0[k] += c.reaction[k];
-                }
-                out[p].1 += c.moment.dot(axis);
-            },
-        );
+        self.contact_pass((t, &omegas), q, v, false, &mut None, |_, p, axis, c| {
+            for k in 0..3 {
+                out[p].0[k] += c.reaction[k];
+            }
+            out[p].1 += c.moment.dot(axis);
+        });
         out
     }
 
     /// Belt tangent `K = −∂(Q_e + Q_c)/∂e` (contact velocities and pulley speeds held) into the
-    /// value array `k_vals` of [`PlateBeltDrive::pattern`] (belt rows only), forces into `f`.
+    /// value array `k_vals` of `pat` (whose first groups are the elements, in order: the
+    /// drive's [`PlateBeltDrive::pattern`] or the belt's alone), forces into `f`.
     #[allow(clippy::too_many_arguments)] // the state, the pulley speeds, outputs, and the workspace
     pub(crate) fn belt_stiffness(
         &self,
@@ -459,37 +367,34 @@ impl PlateBeltDrive {
         q: &[f64],
         v: &[f64],
         omegas: &[f64],
+        pat: &Pattern,
         f: &mut [f64],
         k_vals: &mut [f64],
         ws: &mut Workspace,
     ) {
         let s = self.scratch(ws);
         k_vals.fill(0.0);
-        self.elastic_tangent_into(q, f, k_vals, s);
-        let mut ec = s.ec.take().unwrap_or_else(|| ElementContact3::new(NE));
-        self.contact_pass(
-            &self.surfaces(t, omegas),
-            q,
-            v,
-            true,
-            &mut ec,
-            |el, _, _, c| {
-                self.scatter_add(f, el, &c.q, 1.0);
-                self.pattern
-                    .add_element(k_vals, el, c.dq_de.as_slice(), -1.0);
-            },
-        );
-        s.ec = Some(ec);
+        self.elastic_tangent_into(q, f, (pat, k_vals), s);
+        self.contact_pass((t, omegas), q, v, true, &mut s.ec, |el, _, _, c| {
+            self.scatter_add(f, el, &c.q, 1.0);
+            pat.add_element(k_vals, el, c.dq_de.as_slice(), -1.0);
+        });
     }
 
     /// Elastic forces into `f[..n_belt]` (overwritten) and the elastic tangent added to the
-    /// element blocks of `k_vals`.
-    fn elastic_tangent_into(&self, q: &[f64], f: &mut [f64], k_vals: &mut [f64], s: &mut Scratch) {
+    /// element blocks of the values `k_vals` of `pat` (its first groups the elements).
+    fn elastic_tangent_into(
+        &self,
+        q: &[f64],
+        f: &mut [f64],
+        (pat, k_vals): (&Pattern, &mut [f64]),
+        s: &mut Scratch,
+    ) {
         f[..self.n_belt].fill(0.0);
         let mut e = [0.0; NE];
         for el in 0..self.n_elements() {
             self.gather(q, el, &mut e);
-            self.mesh.cells[el]
+            self.kind.mesh.cells[el]
                 .plate
                 .elastic_tangent(&e, &mut s.fe, &mut s.ke);
             let fe = s.fe;
@@ -499,14 +404,14 @@ impl PlateBeltDrive {
                     s.kl[i + j * NE] = s.ke[(i, j)];
                 }
             }
-            self.pattern.add_element(k_vals, el, &s.kl, 1.0);
+            pat.add_element(k_vals, el, &s.kl, 1.0);
         }
     }
 
     /// Contact records of every active quadrature point (or of the points given by `line`, see
     /// [`PlateBeltDrive::contact_records_on`]) with the element and pulley they belong to.
     pub fn contact_records(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<PlateContactRecord> {
-        self.contact_records_on(t, q, v, &self.quad)
+        self.contact_records_on(t, q, v, &self.kind.quad)
     }
 
     /// Contact state at the local points `(x, y, weight)` of every element (e.g. a line of
@@ -519,7 +424,7 @@ impl PlateBeltDrive {
         local: &[(f64, f64, f64)],
     ) -> Vec<PlateContactRecord> {
         let omegas = self.speeds(t, v);
-        let plate = &self.mesh.cells[0].plate;
+        let plate = &self.kind.mesh.cells[0].plate;
         let shapes: Vec<[f64; 12]> = local
             .iter()
             .map(|&(x, y, _)| plate.shape().eval(x, y).s)
@@ -544,8 +449,8 @@ impl PlateBeltDrive {
                     .map(|(&(_, _, w), s)| quad_point(s, shape_matrix(s), w, &e, &ed));
                 contact::element_contact(
                     &surf,
-                    &self.normal,
-                    &self.friction,
+                    &self.kind.normal,
+                    &self.kind.friction,
                     pts,
                     false,
                     &mut ec,
@@ -572,7 +477,7 @@ impl PlateBeltDrive {
 
     /// The contact quadrature of one element: local `(x, y)` \[m\] and weight × area \[m²\].
     pub fn contact_quadrature(&self) -> &[(f64, f64, f64)] {
-        &self.quad
+        &self.kind.quad
     }
 
     /// [`SecondOrderSystem::forces`] with externally supplied pulley speeds `omegas` (travel
@@ -589,25 +494,13 @@ impl PlateBeltDrive {
         f: &mut [f64],
         ws: &mut Workspace,
     ) {
-        let nb = self.n_belt;
-        let s = self.scratch(ws);
-        self.elastic_forces_into(q, f, s);
-        f[nb..].fill(0.0);
-        let mut ec = s.ec.take().unwrap_or_else(|| ElementContact3::new(NE));
-        self.contact_pass(
-            &self.surfaces(t, omegas),
-            q,
-            v,
-            false,
-            &mut ec,
-            |el, p, axis, c| {
-                self.scatter_add(f, el, &c.q, 1.0);
-                if let Some(j) = self.pulley_dofs.dof(p) {
-                    f[j] += c.moment.dot(axis);
-                }
-            },
-        );
-        s.ec = Some(ec);
+        let np = self.spec.pulleys.len();
+        let mut torques = [0.0; MAX_PULLEYS];
+        self.belt_forces(t, q, v, omegas, f, &mut torques[..np], ws);
+        f[self.n_belt..].fill(0.0);
+        for (p, j) in self.pulley_dofs.free() {
+            f[j] = torques[p];
+        }
         self.pulley_dofs.subtract_loads(loads, f);
     }
 }
@@ -736,45 +629,36 @@ impl PlateBeltDrive {
         let mut c = pat.zeros();
         let mut fbuf = vec![0.0; nb];
         let s = self.scratch(ws);
-        self.elastic_tangent_into(q, &mut fbuf, &mut k, s);
+        self.elastic_tangent_into(q, &mut fbuf, (pat, &mut k), s);
         let n_el = self.n_elements();
         let nf = self.pulley_dofs.count();
         let m = NE + nf;
-        let mut ec = s.ec.take().unwrap_or_else(|| ElementContact3::new(NE));
         let (k_local, c_local) = (&mut s.k_local, &mut s.c_local);
-        self.contact_pass(
-            &self.surfaces(t, omegas),
-            q,
-            v,
-            true,
-            &mut ec,
-            |el, p, axis, ec| {
-                k_local.fill(0.0);
-                c_local.fill(0.0);
-                for b in 0..NE {
-                    for a in 0..NE {
-                        k_local[a + b * m] = -ec.dq_de[a + b * NE];
-                        c_local[a + b * m] = -ec.dq_dedot[a + b * NE];
-                    }
+        self.contact_pass((t, omegas), q, v, true, &mut s.ec, |el, p, axis, ec| {
+            k_local.fill(0.0);
+            c_local.fill(0.0);
+            for b in 0..NE {
+                for a in 0..NE {
+                    k_local[a + b * m] = -ec.dq_de[a + b * NE];
+                    c_local[a + b * m] = -ec.dq_dedot[a + b * NE];
                 }
-                if let Some(j) = self.pulley_dofs.dof(p) {
-                    let col = NE + (j - nb);
-                    for a in 0..NE {
-                        let (dmde, dmdv) =
-                            (axis.dot(&ec.dmoment_de[a]), axis.dot(&ec.dmoment_dedot[a]));
-                        // the belt forces depend on the pulley speed θ̇
-                        c_local[a + col * m] = -ec.dq_domega[a];
-                        // pulley row: τ = aᵀ M
-                        k_local[col + a * m] = -dmde;
-                        c_local[col + a * m] = -dmdv;
-                    }
-                    c_local[col + col * m] = -axis.dot(&ec.dmoment_domega);
+            }
+            if let Some(j) = self.pulley_dofs.dof(p) {
+                let col = NE + (j - nb);
+                for a in 0..NE {
+                    let (dmde, dmdv) =
+                        (axis.dot(&ec.dmoment_de[a]), axis.dot(&ec.dmoment_dedot[a]));
+                    // the belt forces depend on the pulley speed θ̇
+                    c_local[a + col * m] = -ec.dq_domega[a];
+                    // pulley row: τ = aᵀ M
+                    k_local[col + a * m] = -dmde;
+                    c_local[col + a * m] = -dmdv;
                 }
-                pat.add_element(&mut k, n_el + el, k_local, 1.0);
-                pat.add_element(&mut c, n_el + el, c_local, 1.0);
-            },
-        );
-        s.ec = Some(ec);
+                c_local[col + col * m] = -axis.dot(&ec.dmoment_domega);
+            }
+            pat.add_element(&mut k, n_el + el, k_local, 1.0);
+            pat.add_element(&mut c, n_el + el, c_local, 1.0);
+        });
         // the free pulleys' viscous dampers: −c ω
         self.pulley_dofs
             .add_damping(&self.spec.pulleys, pat, &mut c);

@@ -2,6 +2,7 @@
 
 use crate::belt_drive::{BeltDriveSpec, BeltFriction, BeltSpec, ContactSpec};
 use crate::error::{AncfError, invalid};
+use crate::mounted::DriveSpec;
 use belt::{CentreShift, Motion, Pulley, Shape, Signal, WrapSide};
 use mbd_core::Validate;
 use mbd_core::validate::InvalidField;
@@ -65,18 +66,10 @@ pub struct PlateContactSpec {
     pub points: usize,
 }
 
-/// A complete three-dimensional plate-belt drive.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields, default)]
-pub struct PlateDriveSpec {
-    /// Pulleys in travel order (the belt runs from pulley 0 to pulley 1, …), with their
-    /// crowns, flanges and centre shifts (Kerkkänen (4.43)–(4.46)).
-    pub pulleys: Vec<Pulley>,
-    /// Belt.
-    pub belt: PlateBeltSpec,
-    /// Contact.
-    pub contact: PlateContactSpec,
-}
+/// A complete three-dimensional plate-belt drive: pulleys in travel order with their crowns,
+/// flanges and centre shifts (Kerkkänen (4.43)–(4.46)), belt and contact (the one drive
+/// description, [`DriveSpec`]).
+pub type PlateDriveSpec = DriveSpec<PlateBeltSpec, PlateContactSpec>;
 
 impl Default for PlateBeltSpec {
     /// Kerkkänen Model 2's belt.
