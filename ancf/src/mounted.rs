@@ -14,7 +14,7 @@
 
 mod drive;
 mod equations;
-mod pulleys;
+pub(crate) mod pulleys;
 mod resting;
 mod spec;
 

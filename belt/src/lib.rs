@@ -22,6 +22,7 @@
 //!
 //! SI units throughout; speeds and torques of pulleys in the belt's travel sense.
 
+pub mod coordinates;
 pub mod decoupler;
 pub mod layout;
 pub mod model;
@@ -33,6 +34,7 @@ pub mod section;
 pub mod signal;
 pub mod tensioner;
 
+pub use coordinates::{HasMotion, PulleyCoordinates};
 pub use decoupler::{ClutchState, Decoupler, DecouplerForces, DecouplerState};
 pub use layout::{
     Arm, Drive, Layout, MAX_MOUNTING_STRAIN, MAX_PULLEYS, MIN_WRAP_DEG, PARTIAL_RULES,

@@ -787,8 +787,7 @@ impl BeltDrive {
             c[d] -= cs;
         }
         // the free pulleys' viscous dampers: −c ω
-        self.pulley_dofs
-            .add_damping(&self.spec.pulleys, pat, &mut c);
+        crate::mounted::pulleys::add_damping(&self.pulley_dofs, &self.spec.pulleys, pat, &mut c);
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),

@@ -117,7 +117,7 @@ impl<K: DriveKind> AncfBeltDrive<K> {
         for e in 0..n_el {
             pattern.add_element(&mut mass_values, e, &kind.element_mass(e), 1.0);
         }
-        pulley_dofs.add_inertias(&spec.pulleys, &pattern, &mut mass_values);
+        super::pulleys::add_inertias(&pulley_dofs, &spec.pulleys, &pattern, &mut mass_values);
         for (k, inertia) in extra_inertias.iter().enumerate() {
             mass_values[pattern.diagonal_position(n_belt + n_free + k)] += inertia;
         }

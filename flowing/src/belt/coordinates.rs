@@ -8,7 +8,7 @@
 
 use super::contact::NodeContact;
 use belt::tensioner::cross;
-use belt::{Arm, DecouplerState, Motion};
+use belt::{Arm, DecouplerState, Motion, PulleyCoordinates};
 
 /// The local coordinates of a pulley's decoupler ([`belt::decoupler`]): the pulley's own
 /// velocity index, then the carrier's (with a clutch) and the accessory's.
@@ -29,8 +29,8 @@ pub struct DriveCoordinates {
     pub motions: Vec<Motion>,
     /// The tensioner's arm, if any (at its static angle on the laid-out path).
     pub tensioner: Option<Arm>,
-    /// Velocity index of each pulley's speed (`None`: prescribed).
-    pulley_dof: Vec<Option<usize>>,
+    /// Velocity index of each free pulley's speed ([`belt::PulleyCoordinates`]).
+    pulleys: PulleyCoordinates,
     /// Velocity index of the tensioner arm.
     arm_dof: Option<usize>,
     /// The decouplers' coordinates (after the arm's).
@@ -41,23 +41,16 @@ impl DriveCoordinates {
     /// Numbers the coordinates from `*next` (advanced past them): the free pulleys in pulley
     /// order, the arm, then the decouplers' carriers and accessories in pulley order.
     pub(crate) fn number(motions: Vec<Motion>, tensioner: Option<Arm>, next: &mut usize) -> Self {
-        let pulley_dof: Vec<Option<usize>> = motions
-            .iter()
-            .map(|mo| {
-                mo.is_free().then(|| {
-                    *next += 1;
-                    *next - 1
-                })
-            })
-            .collect();
+        let pulleys = PulleyCoordinates::new(&motions, *next);
+        *next += pulleys.count();
         let arm_dof = tensioner.map(|_| {
             *next += 1;
             *next - 1
         });
         let mut decouplers = Vec::new();
-        for (p, (mo, k)) in motions.iter().zip(&pulley_dof).enumerate() {
-            if let (Some(d), Some(k)) = (mo.decoupler(), k) {
-                let mut dofs = vec![*k];
+        for (p, k) in pulleys.free() {
+            if let Some(d) = motions[p].decoupler() {
+                let mut dofs = vec![k];
                 dofs.extend(*next..*next + d.n_extra());
                 *next += d.n_extra();
                 decouplers.push(DecouplerDofs { pulley: p, dofs });
@@ -66,7 +59,7 @@ impl DriveCoordinates {
         Self {
             motions,
             tensioner,
-            pulley_dof,
+            pulleys,
             arm_dof,
             decouplers,
         }
@@ -83,7 +76,7 @@ impl DriveCoordinates {
 
     /// Velocity index of pulley `p`'s speed (`None`: prescribed).
     pub fn pulley_dof(&self, p: usize) -> Option<usize> {
-        self.pulley_dof[p]
+        self.pulleys.dof(p)
     }
 
     /// Velocity index of the tensioner arm's rotation `Δθ` (`None`: no tensioner).
@@ -94,10 +87,7 @@ impl DriveCoordinates {
     /// Speed of pulley `p` \[rad/s\] at `(t, v)`, positive in the travel sense: its coordinate's
     /// rate, or its prescribed speed.
     pub fn pulley_speed(&self, p: usize, t: f64, v: &[f64]) -> f64 {
-        match self.pulley_dof[p] {
-            Some(k) => v[k],
-            None => self.motions[p].prescribed_speed(t).unwrap_or(0.0),
-        }
+        self.pulleys.speed(&self.motions, p, t, v)
     }
 
     /// Arm angle θ \[rad\] at `q` (`None`: no tensioner).
@@ -115,7 +105,7 @@ impl DriveCoordinates {
 
     /// Name of a rigid coordinate `d` (`None`: not one of them).
     pub(crate) fn dof_name(&self, d: usize) -> Option<String> {
-        if let Some(p) = self.pulley_dof.iter().position(|&k| k == Some(d)) {
+        if let Some((p, _)) = self.pulleys.free().find(|&(_, k)| k == d) {
             return Some(format!("pulley {p} angle"));
         }
         if Some(d) == self.arm_dof {
@@ -151,11 +141,7 @@ impl DriveCoordinates {
 
     /// The free pulleys: `(pulley, velocity index)`.
     pub(crate) fn free_pulleys(&self) -> Vec<(usize, usize)> {
-        self.pulley_dof
-            .iter()
-            .enumerate()
-            .filter_map(|(p, d)| d.map(|d| (p, d)))
-            .collect()
+        self.pulleys.free().collect()
     }
 
     /// The decouplers' extra coordinates (carrier, accessory): on them no contact acts.
@@ -170,9 +156,9 @@ impl DriveCoordinates {
     /// accessory inertias and the arm's.
     pub(crate) fn inertias(&self) -> Vec<(usize, f64)> {
         let mut out = Vec::new();
-        for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let (Some(inertia), Some(k)) = (mo.pulley_inertia(), k) {
-                out.push((*k, inertia));
+        for (p, k) in self.pulleys.free() {
+            if let Some(inertia) = self.motions[p].pulley_inertia() {
+                out.push((k, inertia));
             }
         }
         for dd in &self.decouplers {
@@ -195,9 +181,10 @@ impl DriveCoordinates {
     /// [`belt::Decoupler::forces`]) and the arm's spring, damper and friction moment
     /// ([`belt::Tensioner::moment`]).
     pub(crate) fn add_forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
-        for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let (Some(k), None) = (k, mo.decoupler()) {
-                f[*k] += mo.applied_torque(t, v[*k]).0;
+        for (p, k) in self.pulleys.free() {
+            let mo = &self.motions[p];
+            if mo.decoupler().is_none() {
+                f[k] += mo.applied_torque(t, v[k]).0;
             }
         }
         for (dofs, d) in self.decoupler_forces(t, q, v) {
@@ -227,9 +214,10 @@ impl DriveCoordinates {
             add_c(k, k, -cs);
         }
         // the free pulleys' dampers: −c ω (behind a decoupler: the chain (D3))
-        for (mo, k) in self.motions.iter().zip(&self.pulley_dof) {
-            if let (Some(k), None) = (k, mo.decoupler()) {
-                add_c(*k, *k, -mo.applied_torque(t, v[*k]).1);
+        for (p, k) in self.pulleys.free() {
+            let mo = &self.motions[p];
+            if mo.decoupler().is_none() {
+                add_c(k, k, -mo.applied_torque(t, v[k]).1);
             }
         }
         for (dofs, d) in self.decoupler_forces(t, q, v) {
