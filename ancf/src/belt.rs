@@ -37,12 +37,7 @@ pub fn coordinates_on_belt_path<E: AncfElement>(mesh: &AncfMesh<E>, path: &BeltP
 /// A closed loop of `n` belt elements of total unstretched length `length` \[m\]
 /// (Kerkkänen §3.3: elements straight and stress-free in their reference configuration).
 pub fn belt_loop(
-    n: usize,
-    length: f64,
-    material: Material,
-    section: Section,
-    alpha1: f64,
-    alpha2: f64,
+    n: usize, length: f64, material: Material, section: Section, alpha1: f64, alpha2: f64,
     gauss_x: usize,
 ) -> Result<AncfMesh<BeltElement>, AncfError> {
     if n < 3 {
@@ -63,9 +58,7 @@ pub fn belt_loop(
 /// nodes equally spaced, `r_x = (path_length / belt_length) t` (uniform stretch), `r_y = Ĩ t`
 /// (seed note §9, initial conditions).
 pub fn coordinates_on_path<E: AncfElement>(
-    mesh: &AncfMesh<E>,
-    path_length: f64,
-    point: impl Fn(f64) -> ([f64; 2], [f64; 2]),
+    mesh: &AncfMesh<E>, path_length: f64, point: impl Fn(f64) -> ([f64; 2], [f64; 2]),
 ) -> Vec<f64> {
     let n = mesh.n_nodes();
     let belt_length: f64 = mesh.elements().iter().map(|e| e.length()).sum();

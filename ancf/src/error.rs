@@ -66,9 +66,7 @@ pub(crate) fn invalid(item: impl Into<String>, reason: impl Into<String>) -> Anc
 /// says `must be > 0{unit}, got {value}`, where `unit` is the SI unit with its leading space
 /// (`" m"`) or `""` for a dimensionless value.
 pub(crate) fn check_positive(
-    item: impl Into<String>,
-    value: f64,
-    unit: &str,
+    item: impl Into<String>, value: f64, unit: &str,
 ) -> Result<(), AncfError> {
     if value.is_finite() && value > 0.0 {
         Ok(())

@@ -23,9 +23,7 @@ pub struct AncfMesh<E: AncfElement> {
 impl<E: AncfElement> AncfMesh<E> {
     /// Mesh of `elements` with `connectivity[i] = [node_I, node_J]` over `n_nodes` nodes.
     pub fn new(
-        elements: Vec<E>,
-        connectivity: Vec<[usize; 2]>,
-        n_nodes: usize,
+        elements: Vec<E>, connectivity: Vec<[usize; 2]>, n_nodes: usize,
     ) -> Result<Self, AncfError> {
         if elements.is_empty() {
             return Err(invalid("mesh", "has no elements"));
@@ -192,12 +190,7 @@ impl<E: AncfElement> AncfMesh<E> {
     /// pattern `pattern`, with element-to-pattern scatter as built for this mesh's element order)
     /// added into `k_vals` times `k_scale`. `f` is overwritten, `k_vals` accumulated.
     pub fn elastic_tangent_into(
-        &self,
-        q: &[f64],
-        f: &mut [f64],
-        pattern: &Pattern,
-        k_vals: &mut [f64],
-        k_scale: f64,
+        &self, q: &[f64], f: &mut [f64], pattern: &Pattern, k_vals: &mut [f64], k_scale: f64,
     ) {
         f.fill(0.0);
         let mut e = [0.0; MAX_NDOF];
@@ -267,10 +260,7 @@ impl<E: AncfElement> AncfMesh<E> {
 
 /// Reference coordinates of a straight beam from `start` to `end` with `n_el` equal elements.
 pub fn straight_coordinates(
-    layout: NodeLayout,
-    start: [f64; 2],
-    end: [f64; 2],
-    n_el: usize,
+    layout: NodeLayout, start: [f64; 2], end: [f64; 2], n_el: usize,
 ) -> Vec<f64> {
     let d = [end[0] - start[0], end[1] - start[1]];
     let len = (d[0] * d[0] + d[1] * d[1]).sqrt();

@@ -154,10 +154,7 @@ pub struct MountedBelt<D: AncfDrive> {
 impl<D: AncfDrive> MountedBelt<D> {
     /// The shell around the discretisation `drive` of `layout` mounted at `initial`.
     pub(crate) fn from_parts(
-        drive: D,
-        layout: &Drive,
-        initial: D::Initial,
-        mapping: D::Mapping,
+        drive: D, layout: &Drive, initial: D::Initial, mapping: D::Mapping,
     ) -> Self {
         Self {
             drive,

@@ -25,10 +25,7 @@ pub struct NodalContact<S, NL, FL> {
 impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> NodalContact<S, NL, FL> {
     /// Contact state of every candidate node (`None` when separated).
     pub fn states<E: AncfElement>(
-        &self,
-        mesh: &AncfMesh<E>,
-        q: &[f64],
-        v: &[f64],
+        &self, mesh: &AncfMesh<E>, q: &[f64], v: &[f64],
     ) -> Vec<Option<PointContact<2>>> {
         self.nodes
             .iter()
@@ -64,12 +61,7 @@ where
     }
 
     fn add_tangent(
-        &self,
-        mesh: &AncfMesh<E>,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        k_vals: &mut [f64],
+        &self, mesh: &AncfMesh<E>, _t: f64, q: &[f64], v: &[f64], k_vals: &mut [f64],
         c_vals: &mut [f64],
     ) {
         let pat = mesh.pattern();

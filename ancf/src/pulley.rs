@@ -37,11 +37,7 @@ pub struct ContactDistribution {
 
 impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
     fn each<E: AncfElement>(
-        &self,
-        mesh: &AncfMesh<E>,
-        q: &[f64],
-        v: &[f64],
-        jacobian: bool,
+        &self, mesh: &AncfMesh<E>, q: &[f64], v: &[f64], jacobian: bool,
         mut sink: impl FnMut(usize, &ElementContact<2>),
         mut records: Option<&mut Vec<ElementRecord>>,
     ) {
@@ -83,10 +79,7 @@ impl<S: Surface<2>, NL: NormalLaw, FL: FrictionLaw> PulleyContact<S, NL, FL> {
     /// Contact records (pressure, friction, slip at every quadrature point in contact), torque
     /// and resultant force on the obstacle.
     pub fn distribution<E: AncfElement>(
-        &self,
-        mesh: &AncfMesh<E>,
-        q: &[f64],
-        v: &[f64],
+        &self, mesh: &AncfMesh<E>, q: &[f64], v: &[f64],
     ) -> ContactDistribution {
         let mut records = Vec::new();
         let mut torque = 0.0;
@@ -129,12 +122,7 @@ where
     }
 
     fn add_tangent(
-        &self,
-        mesh: &AncfMesh<E>,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        k_vals: &mut [f64],
+        &self, mesh: &AncfMesh<E>, _t: f64, q: &[f64], v: &[f64], k_vals: &mut [f64],
         c_vals: &mut [f64],
     ) {
         let pat = mesh.pattern();

@@ -128,11 +128,7 @@ impl Pattern {
     /// values `vals` in this pattern, by sparse LU with the reused symbolic factorisation
     /// `symbolic` (of [`Pattern::symbolic`]); the error carries faer's message.
     pub fn lu_correction(
-        &self,
-        symbolic: &SymbolicLu<usize>,
-        vals: &[f64],
-        r: &[f64],
-        dx: &mut [f64],
+        &self, symbolic: &SymbolicLu<usize>, vals: &[f64], r: &[f64], dx: &mut [f64],
     ) -> Result<(), String> {
         let n = self.n;
         let rhs = Mat::<f64>::from_fn(n, 1, |i, _| -r[i]);

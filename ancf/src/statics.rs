@@ -57,10 +57,7 @@ pub struct AncfStaticSolution {
 /// Check that the start coordinates `q0` and the load `load` both have the `n` entries of the
 /// model; `context` names the solver in the error.
 pub(crate) fn check_sizes(
-    context: &str,
-    n: usize,
-    q0: &[f64],
-    load: &[f64],
+    context: &str, n: usize, q0: &[f64], load: &[f64],
 ) -> Result<(), AncfError> {
     if q0.len() != n || load.len() != n {
         return Err(invalid(
@@ -81,9 +78,7 @@ pub(crate) fn check_sizes(
 /// of reduced row `i`, in increasing order. An index `≥ n` in `fixed` is an error naming
 /// `context`.
 pub(crate) fn free_coordinates(
-    context: &str,
-    n: usize,
-    fixed: &[usize],
+    context: &str, n: usize, fixed: &[usize],
 ) -> Result<(Vec<Option<usize>>, Vec<usize>), AncfError> {
     let mut map: Vec<Option<usize>> = vec![Some(0); n];
     for &k in fixed {
@@ -108,11 +103,7 @@ pub(crate) fn free_coordinates(
 /// Solve `Q_e(q) + λ F = 0` for `λ = 1/n, 2/n, …, 1` starting from `q0`, keeping the global
 /// coordinates listed in `fixed` at their `q0` values (supports eliminated from the unknowns).
 pub fn solve_static<E: AncfElement>(
-    mesh: &AncfMesh<E>,
-    q0: &[f64],
-    fixed: &[usize],
-    load: &[f64],
-    opts: &AncfStaticOptions,
+    mesh: &AncfMesh<E>, q0: &[f64], fixed: &[usize], load: &[f64], opts: &AncfStaticOptions,
 ) -> Result<AncfStaticSolution, AncfError> {
     solve_static_with(mesh, q0, fixed, load, &[], opts)
 }
@@ -126,11 +117,7 @@ pub fn solve_static<E: AncfElement>(
 /// backtracks on the total potential `Π = U − λFᵀq` after regularising `K + μI`
 /// (Levenberg–Marquardt) until the step descends, otherwise on `‖R‖₂`.
 pub fn solve_static_with<E: AncfElement>(
-    mesh: &AncfMesh<E>,
-    q0: &[f64],
-    fixed: &[usize],
-    load: &[f64],
-    extra: &[&dyn MeshForce<E>],
+    mesh: &AncfMesh<E>, q0: &[f64], fixed: &[usize], load: &[f64], extra: &[&dyn MeshForce<E>],
     opts: &AncfStaticOptions,
 ) -> Result<AncfStaticSolution, AncfError> {
     let n = mesh.n_dof();
@@ -226,10 +213,7 @@ impl AncfStaticOptions {
 /// [`newton::solve`] from `x` with a fresh workspace, its failures as [`AncfError`] naming
 /// `context`.
 pub(crate) fn run_newton<P: NewtonProblem<Error = AncfError>>(
-    context: &str,
-    problem: &mut P,
-    x: &mut [f64],
-    opts: &NewtonOptions,
+    context: &str, problem: &mut P, x: &mut [f64], opts: &NewtonOptions,
 ) -> Result<NewtonReport, AncfError> {
     newton::solve(problem, x, opts, &mut NewtonWorkspace::new())
         .map_err(|e| newton_error(context, e))

@@ -56,12 +56,7 @@ pub trait MeshForce<E: AncfElement>: Send + Sync {
     fn add_forces(&self, mesh: &AncfMesh<E>, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
     /// `k_vals += −∂Q/∂q`, `c_vals += −∂Q/∂v` in the mesh pattern ([`AncfMesh::pattern`]).
     fn add_tangent(
-        &self,
-        mesh: &AncfMesh<E>,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        k_vals: &mut [f64],
+        &self, mesh: &AncfMesh<E>, t: f64, q: &[f64], v: &[f64], k_vals: &mut [f64],
         c_vals: &mut [f64],
     );
 }
@@ -237,12 +232,7 @@ impl<E: AncfElement> SecondOrderSystem for AncfSystem<E> {
         Ok(SysMatrix::Sparse(self.mesh.mass_matrix()))
     }
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         self.mesh.elastic_forces(q, f);
         for ((fi, g), l) in f.iter_mut().zip(&self.gravity_forces).zip(&self.load) {
@@ -254,11 +244,7 @@ impl<E: AncfElement> SecondOrderSystem for AncfSystem<E> {
         Ok(())
     }
     fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let pat = self.mesh.pattern();
         let mut k = pat.zeros();
@@ -289,11 +275,7 @@ impl<E: AncfElement> SecondOrderSystem for AncfSystem<E> {
         Ok(())
     }
     fn constraint_gamma(
-        &self,
-        t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        gamma: &mut [f64],
+        &self, t: f64, _q: &[f64], _v: &[f64], gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         for (p, r) in self.prescribed.iter().zip(gamma.iter_mut()) {
             *r = (p.motion)(t)[2];

@@ -92,10 +92,7 @@ impl PulleyCoordinates {
     /// # Errors
     /// [`MbdError::InvalidInput`] for more than [`MAX_PULLEYS`] pulleys.
     pub fn speeds_and_loads(
-        &self,
-        pulleys: &[impl HasMotion],
-        t: f64,
-        v: &[f64],
+        &self, pulleys: &[impl HasMotion], t: f64, v: &[f64],
     ) -> Result<([f64; MAX_PULLEYS], [f64; MAX_PULLEYS]), MbdError> {
         let np = pulleys.len();
         if np > MAX_PULLEYS {

@@ -501,14 +501,8 @@ impl Layout {
     /// `tension` \[N\], default contact and damping.
     #[allow(clippy::too_many_arguments)]
     pub fn two_pulley(
-        center_distance: f64,
-        r_driver: f64,
-        r_driven: f64,
-        speed: crate::signal::Signal,
-        inertia: f64,
-        torque: crate::signal::Signal,
-        belt: Section,
-        tension: f64,
+        center_distance: f64, r_driver: f64, r_driven: f64, speed: crate::signal::Signal,
+        inertia: f64, torque: crate::signal::Signal, belt: Section, tension: f64,
     ) -> Self {
         use crate::pulley::WrapSide;
         Self::new(

@@ -115,11 +115,7 @@ impl Tensioner {
     /// ±0.6 rad about `preload_angle` (a typical automotive tensioner: Beikmann, Perkins &
     /// Ulsoy 1997).
     pub fn new(
-        pulley: usize,
-        pivot: [f64; 2],
-        stiffness: f64,
-        preload: f64,
-        preload_angle: f64,
+        pulley: usize, pivot: [f64; 2], stiffness: f64, preload: f64, preload_angle: f64,
     ) -> Self {
         Self {
             pulley,

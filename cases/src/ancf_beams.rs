@@ -227,9 +227,7 @@ fn run_study<S: Study>(case: &StaticBeamCase, study: &S) -> Result<S::Output, An
 }
 
 fn solve_study<E: AncfElement, S: Study>(
-    case: &StaticBeamCase,
-    mesh: &AncfMesh<E>,
-    study: &S,
+    case: &StaticBeamCase, mesh: &AncfMesh<E>, study: &S,
 ) -> Result<S::Output, AncfError> {
     let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [case.length, 0.0], case.elements);
     let opts = AncfStaticOptions {
@@ -352,8 +350,7 @@ impl Study for CantileverLine {
 /// Deformed centreline of the cantilever of [`cantilever_tip`], `per_element` segments per
 /// element (for plots and VTK output).
 pub fn cantilever_centreline(
-    case: &StaticBeamCase,
-    per_element: usize,
+    case: &StaticBeamCase, per_element: usize,
 ) -> Result<Vec<[f64; 2]>, AncfError> {
     if per_element == 0 {
         return Err(invalid("per_element", "must be ≥ 1"));
@@ -470,13 +467,8 @@ pub fn ground_contact(case: &GroundContactCase) -> Result<GroundContactResult, A
 }
 
 fn solve_ground<E: AncfElement>(
-    case: &GroundContactCase,
-    mesh: &AncfMesh<E>,
-    g_eff: [f64; 2],
-    q: f64,
-    q_star: f64,
-    total_eb: f64,
-    start_eb: f64,
+    case: &GroundContactCase, mesh: &AncfMesh<E>, g_eff: [f64; 2], q: f64, q_star: f64,
+    total_eb: f64, start_eb: f64,
 ) -> Result<GroundContactResult, AncfError> {
     let n = case.elements;
     let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [case.length, 0.0], n);

@@ -142,9 +142,7 @@ fn check_run(h: f64, t_end: f64, every: usize) -> Result<(), AncfError> {
 /// `progress` gets the fraction done at every sample; answering `ControlFlow::Break(())`
 /// ([`mbd_core::integrators::Proceed`]) stops the run there, returning the samples so far.
 pub fn pendulum<R: Proceed>(
-    case: &PendulumCase,
-    every: usize,
-    progress: impl FnMut(f64) -> R,
+    case: &PendulumCase, every: usize, progress: impl FnMut(f64) -> R,
 ) -> Result<Vec<Sample>, AncfError> {
     check_run(case.h, case.t_end, every)?;
     let mat = Material::new(case.young, case.nu, case.density)?;
@@ -166,10 +164,7 @@ pub fn pendulum<R: Proceed>(
 }
 
 fn pendulum_run<E: AncfElement, R: Proceed>(
-    case: &PendulumCase,
-    mesh: AncfMesh<E>,
-    every: usize,
-    mut progress: impl FnMut(f64) -> R,
+    case: &PendulumCase, mesh: AncfMesh<E>, every: usize, mut progress: impl FnMut(f64) -> R,
 ) -> Result<Vec<Sample>, AncfError> {
     let q0 = straight_coordinates(mesh.layout(), [0.0, 0.0], [case.length, 0.0], case.elements);
     let pins = vec![
@@ -334,9 +329,7 @@ pub fn spinning_extension(length: f64, density: f64, young: f64, omega: f64) -> 
 /// lengths minus `L`) \[m\], `value2` the tip's transverse offset from the rigid shadow beam \[m\].
 /// `progress` as for [`pendulum`] (a `Break` stops the run, keeping the samples so far).
 pub fn spinning<R: Proceed>(
-    case: &SpinningCase,
-    every: usize,
-    mut progress: impl FnMut(f64) -> R,
+    case: &SpinningCase, every: usize, mut progress: impl FnMut(f64) -> R,
 ) -> Result<Vec<Sample>, AncfError> {
     check_run(case.h, case.t_end, every)?;
     if case.spin_up.is_nan() || case.spin_up <= 0.0 {

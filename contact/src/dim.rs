@@ -70,10 +70,7 @@ pub trait ContactDim<const D: usize> {
     /// the slip `v_t = Tᵀw` (the normal part of `w` has no tangential component), the law's
     /// output and the force `T f_t(v_t, f_n)` with its derivatives in world components.
     fn friction<FL: FrictionLaw + ?Sized>(
-        law: &FL,
-        basis: &Self::Basis,
-        w: &SVector<f64, D>,
-        normal: f64,
+        law: &FL, basis: &Self::Basis, w: &SVector<f64, D>, normal: f64,
     ) -> (Self::Slip, Self::Friction, TangentialForce<D>);
 
     /// The tangential force of a friction output in the tangent basis (for records).
@@ -113,10 +110,7 @@ impl ContactDim<2> for Dim<2> {
     /// `v_t = tᵀw`, `f = f_t(v_t, f_n) t`, Kerkkänen (3.23)–(3.25).
     #[inline]
     fn friction<FL: FrictionLaw + ?Sized>(
-        law: &FL,
-        t: &Vector2<f64>,
-        w: &Vector2<f64>,
-        normal: f64,
+        law: &FL, t: &Vector2<f64>, w: &Vector2<f64>, normal: f64,
     ) -> (f64, FrictionForce, TangentialForce<2>) {
         let slip = t[0] * w[0] + t[1] * w[1];
         let ff = law.friction(slip, normal);
@@ -160,10 +154,7 @@ impl ContactDim<3> for Dim<3> {
     /// `v_t = Tᵀw`, `f = T f_t(v_t, f_n)` with the isotropic spatial law
     /// ([`FrictionLaw::friction_tangent`]).
     fn friction<FL: FrictionLaw + ?Sized>(
-        law: &FL,
-        tb: &Matrix3x2<f64>,
-        w: &Vector3<f64>,
-        normal: f64,
+        law: &FL, tb: &Matrix3x2<f64>, w: &Vector3<f64>, normal: f64,
     ) -> (Vector2<f64>, TangentFriction, TangentialForce<3>) {
         let slip = tb.transpose() * w;
         let ff = law.friction_tangent(slip, normal);

@@ -34,10 +34,7 @@ pub trait ShapeMatrix<const D: usize> {
     fn ndof(&self) -> usize;
     /// `out += w Sᵀ x` for the `D` values `x` (force components, or moment columns).
     fn add_transposed<M: Copy + AddAssign + Mul<f64, Output = M>>(
-        &self,
-        x: &[M; D],
-        w: f64,
-        out: &mut [M],
+        &self, x: &[M; D], w: f64, out: &mut [M],
     );
     /// `k += w Sᵀ A S` (`k` column-major `ndof × ndof`).
     fn add_congruence(&self, a: &SMatrix<f64, D, D>, w: f64, k: &mut [f64]);
@@ -60,10 +57,7 @@ impl<const D: usize> ShapeMatrix<D> for BlockShape {
     }
     #[inline]
     fn add_transposed<M: Copy + AddAssign + Mul<f64, Output = M>>(
-        &self,
-        x: &[M; D],
-        w: f64,
-        out: &mut [M],
+        &self, x: &[M; D], w: f64, out: &mut [M],
     ) {
         for (b, &s) in self.values[..self.blocks].iter().enumerate() {
             let ws = w * s;
@@ -95,10 +89,7 @@ impl<const D: usize, const N: usize> ShapeMatrix<D> for SMatrix<f64, D, N> {
         N
     }
     fn add_transposed<M: Copy + AddAssign + Mul<f64, Output = M>>(
-        &self,
-        x: &[M; D],
-        w: f64,
-        out: &mut [M],
+        &self, x: &[M; D], w: f64, out: &mut [M],
     ) {
         for k in 0..N {
             for i in 0..D {
@@ -236,13 +227,8 @@ where
 /// arm `a = r − r_o`, `∂M/∂r_b = −(e_b × f + a × ∂f/∂r_b)` (Kerkkänen (3.26)–(3.27)).
 #[allow(clippy::too_many_arguments)]
 pub fn element_contact<const D: usize, S, NL, FL, Sh>(
-    surface: &S,
-    normal: &NL,
-    friction: &FL,
-    points: impl IntoIterator<Item = QuadPoint<D, Sh>>,
-    jacobian: bool,
-    out: &mut ElementContact<D>,
-    mut records: Option<&mut Vec<ContactRecord<D>>>,
+    surface: &S, normal: &NL, friction: &FL, points: impl IntoIterator<Item = QuadPoint<D, Sh>>,
+    jacobian: bool, out: &mut ElementContact<D>, mut records: Option<&mut Vec<ContactRecord<D>>>,
 ) where
     Dim<D>: ContactDim<D>,
     S: Surface<D> + ?Sized,
@@ -317,14 +303,8 @@ impl<S, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
     /// records to `records` when given.
     #[allow(clippy::too_many_arguments)]
     pub fn element<const D: usize>(
-        &self,
-        length: f64,
-        blocks: usize,
-        shape: impl Fn(f64, &mut [f64]),
-        e: &[f64],
-        edot: &[f64],
-        jacobian: bool,
-        out: &mut ElementContact<D>,
+        &self, length: f64, blocks: usize, shape: impl Fn(f64, &mut [f64]), e: &[f64],
+        edot: &[f64], jacobian: bool, out: &mut ElementContact<D>,
         records: Option<&mut Vec<ContactRecord<D>>>,
     ) where
         Dim<D>: ContactDim<D>,
@@ -348,15 +328,8 @@ impl<S, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
     /// rebuilding the pairing).
     #[allow(clippy::too_many_arguments)]
     pub fn element_on<const D: usize>(
-        &self,
-        surface: &S,
-        length: f64,
-        blocks: usize,
-        shape: impl Fn(f64, &mut [f64]),
-        e: &[f64],
-        edot: &[f64],
-        jacobian: bool,
-        out: &mut ElementContact<D>,
+        &self, surface: &S, length: f64, blocks: usize, shape: impl Fn(f64, &mut [f64]), e: &[f64],
+        edot: &[f64], jacobian: bool, out: &mut ElementContact<D>,
         records: Option<&mut Vec<ContactRecord<D>>>,
     ) where
         Dim<D>: ContactDim<D>,
@@ -413,11 +386,8 @@ impl<S, NL: NormalLaw, FL: FrictionLaw> SurfaceContact<S, NL, FL> {
     /// [`element_contact`] (which takes the obstacle separately, for an obstacle whose state
     /// changes between calls).
     pub fn element<const D: usize, Sh: ShapeMatrix<D>>(
-        &self,
-        points: impl IntoIterator<Item = QuadPoint<D, Sh>>,
-        jacobian: bool,
-        out: &mut ElementContact<D>,
-        records: Option<&mut Vec<ContactRecord<D>>>,
+        &self, points: impl IntoIterator<Item = QuadPoint<D, Sh>>, jacobian: bool,
+        out: &mut ElementContact<D>, records: Option<&mut Vec<ContactRecord<D>>>,
     ) where
         Dim<D>: ContactDim<D>,
         S: Surface<D>,

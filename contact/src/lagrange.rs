@@ -21,9 +21,7 @@ pub struct UnilateralRow<const D: usize> {
 
 /// Constraint row of a node at `p` moving with `v` against `surface` (plane or space).
 pub fn unilateral_row<const D: usize, S: Surface<D> + ?Sized>(
-    surface: &S,
-    p: &Point<f64, D>,
-    v: &SVector<f64, D>,
+    surface: &S, p: &Point<f64, D>, v: &SVector<f64, D>,
 ) -> UnilateralRow<D> {
     let sp = surface.closest(p);
     let n = sp.normal;
@@ -70,11 +68,7 @@ impl ActiveSet {
     /// Update with the current gaps, gap rates and multipliers (multipliers of inactive
     /// contacts are ignored). Returns whether the set changed.
     pub fn update(
-        &mut self,
-        gaps: &[f64],
-        gap_rates: &[f64],
-        multipliers: &[f64],
-        tol: f64,
+        &mut self, gaps: &[f64], gap_rates: &[f64], multipliers: &[f64], tol: f64,
     ) -> bool {
         let mut changed = false;
         for i in 0..self.active.len() {

@@ -59,11 +59,7 @@ pub type PointContact3 = PointContact<3>;
 /// basis with the normal is the `n nᵀ` term) — and
 /// `∂W/∂p = −(∂n/∂p)(nᵀw) − n wᵀ(∂n/∂p) − P ∂u_s/∂p`, `∂W/∂ṙ = P`, `∂W/∂ω = −P ∂u_s/∂ω`.
 pub fn point_contact<const D: usize, S, NL, FL>(
-    surface: &S,
-    normal_law: &NL,
-    friction_law: &FL,
-    p: &Point<f64, D>,
-    v: &SVector<f64, D>,
+    surface: &S, normal_law: &NL, friction_law: &FL, p: &Point<f64, D>, v: &SVector<f64, D>,
 ) -> Option<PointContact<D>>
 where
     Dim<D>: ContactDim<D>,
@@ -135,10 +131,8 @@ mod tests {
     /// Central differences of the force of `eval(p, v, ω)` in `p`, `ṙ` and `ω` against the
     /// exact derivatives, relative to the largest entry of each derivative.
     fn fd_check<const D: usize>(
-        eval: impl Fn(&Point<f64, D>, &SVector<f64, D>, f64) -> PointContact<D>,
-        p: Point<f64, D>,
-        v: SVector<f64, D>,
-        w: f64,
+        eval: impl Fn(&Point<f64, D>, &SVector<f64, D>, f64) -> PointContact<D>, p: Point<f64, D>,
+        v: SVector<f64, D>, w: f64,
     ) where
         Dim<D>: ContactDim<D>,
     {

@@ -204,11 +204,7 @@ impl<F: FnMut(&State, Due) -> Result<(), E>, E> Observer for Sink<F, E> {
 /// stop the run with an error. A failed integration is reported in [`DriveRun::failure`] with
 /// the last sampled state.
 pub fn run_drive<S: SecondOrderSystem, E>(
-    system: &S,
-    q0: &[f64],
-    t_end: f64,
-    opts: &SimulationConfig,
-    sampling: Sampling,
+    system: &S, q0: &[f64], t_end: f64, opts: &SimulationConfig, sampling: Sampling,
     observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<DriveRun, E> {
     let s0 = State::new(0.0, q0.to_vec(), vec![0.0; q0.len()]);
@@ -311,10 +307,7 @@ impl RunEnd {
     /// its last state, the tight and slack span tensions `[tight, slack]` \[N\] (each study's
     /// own measure), the wall time since `start` and the stepper's work.
     pub fn of<D: AncfDrive>(
-        drive: &D,
-        run: &DriveRun,
-        [tight, slack]: [f64; 2],
-        start: Instant,
+        drive: &D, run: &DriveRun, [tight, slack]: [f64; 2], start: Instant,
     ) -> Self {
         let (driver, driven) = roles(drive);
         let s = &run.state;
@@ -348,10 +341,7 @@ impl<'a> RunPlan<'a> {
     /// The plan of a study's configuration: `t_end` \[s\], the integrator, and the
     /// intervals of its history samples and VTK frames \[s\].
     pub fn new(
-        t_end: f64,
-        integrator: &'a SimulationConfig,
-        history_interval: f64,
-        vtk_interval: f64,
+        t_end: f64, integrator: &'a SimulationConfig, history_interval: f64, vtk_interval: f64,
     ) -> Self {
         Self {
             t_end,
@@ -445,10 +435,7 @@ pub struct ReportedRun {
 /// ([`AncfDrive::span_offsets`]) at the history samples of the last [`VIBRATION_WINDOW`].
 /// A snapshot that cannot be taken at the end is reported as the run's failure.
 pub fn run_reported<D: AncfDrive, E>(
-    drive: &D,
-    q0: &[f64],
-    plan: RunPlan<'_>,
-    mu: f64,
+    drive: &D, q0: &[f64], plan: RunPlan<'_>, mu: f64,
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<ReportedRun, E> {
     let RunPlan {

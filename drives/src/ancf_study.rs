@@ -188,10 +188,7 @@ pub type DynamicEnd = StudyEnd<AncfStudySummary>;
 /// `observer` sees every sampled state; the span tensions of the summary are those of the
 /// last history sample (the initial state before the first).
 pub fn dynamic_run<E>(
-    c: &AncfStudyConfig,
-    drive: &BeltDrive,
-    init: &InitialState,
-    start: Instant,
+    c: &AncfStudyConfig, drive: &BeltDrive, init: &InitialState, start: Instant,
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<DynamicEnd, E> {
     let (driver, _) = roles(drive);

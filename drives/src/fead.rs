@@ -737,11 +737,7 @@ pub struct FeadProgress {
 /// the restart of time (a jump of the orders' sum, 2 % of the speed by default, made the first
 /// steps of the next point fail to converge).
 pub fn crank_signal(
-    engine: &EngineConfig,
-    from: f64,
-    to: f64,
-    ramp: f64,
-    previous: Option<f64>,
+    engine: &EngineConfig, from: f64, to: f64, ramp: f64, previous: Option<f64>,
 ) -> Signal {
     let knots = if ramp > 0.0 {
         vec![(0.0, from), (ramp, to)]
@@ -873,8 +869,7 @@ pub fn crank_points(cfg: &FeadConfig, h: f64) -> Result<Vec<CrankPoint>, Invalid
 /// numerical failures: a bad configuration returns [`crate::DriveError::Invalid`] through
 /// `Validate` before this is called by the apps).
 pub fn run_fead(
-    cfg: &FeadConfig,
-    observer: impl FnMut(FeadProgress),
+    cfg: &FeadConfig, observer: impl FnMut(FeadProgress),
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     cfg.validate()
         .map_err(|e| Box::new(FeadFailureOrInvalid::Invalid(e)))?;
@@ -968,11 +963,7 @@ fn linear_alpha(cfg: &FeadConfig) -> AlphaConfig {
 /// The engine-speed sweep of [`run_fead`] on the built model `model` with the stepping
 /// `alpha`.
 fn sweep<M: BeltModel>(
-    cfg: &FeadConfig,
-    mut model: M,
-    drive: &Drive,
-    alpha: AlphaConfig,
-    model_settings: String,
+    cfg: &FeadConfig, mut model: M, drive: &Drive, alpha: AlphaConfig, model_settings: String,
     mut observer: impl FnMut(FeadProgress),
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     let names = drive.names();

@@ -345,10 +345,7 @@ pub type PlateEnd = StudyEnd<PlateStudySummary, Vec<[f64; 4]>>;
 /// ([`crate::ancf_run::run_reported`]; samples every `output.history_interval`). `observer` sees every sample (each is a history
 /// sample; every `output.vtk_interval` one is also a frame) and may stop the run with an error.
 pub fn plate_run<E>(
-    c: &PlateStudyConfig,
-    drive: &PlateBeltDrive,
-    init: &PlateInitialState,
-    start: Instant,
+    c: &PlateStudyConfig, drive: &PlateBeltDrive, init: &PlateInitialState, start: Instant,
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<PlateEnd, E> {
     let (driver, driven) = roles(drive);
@@ -388,12 +385,8 @@ fn window_mean(history: &[[f64; 4]], k: usize, t_from: f64) -> f64 {
 }
 
 fn summarize(
-    c: &PlateStudyConfig,
-    drive: &PlateBeltDrive,
-    init: &PlateInitialState,
-    run: &DriveRun,
-    history: &[[f64; 4]],
-    start: Instant,
+    c: &PlateStudyConfig, drive: &PlateBeltDrive, init: &PlateInitialState, run: &DriveRun,
+    history: &[[f64; 4]], start: Instant,
 ) -> PlateStudySummary {
     let s = &run.state;
     let (driver, driven) = roles(drive);
@@ -490,9 +483,7 @@ pub struct PlateDistributions {
 
 /// The distributions of the state `s` (see [`PlateDistributions`]).
 pub fn plate_distributions(
-    c: &PlateStudyConfig,
-    drive: &PlateBeltDrive,
-    s: &State,
+    c: &PlateStudyConfig, drive: &PlateBeltDrive, s: &State,
 ) -> PlateDistributions {
     let o = &c.output;
     let path = drive.path();

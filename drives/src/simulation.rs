@@ -74,9 +74,7 @@ impl<M: BeltModel> BeltSimulation<M> {
 
     /// Step until `t_end` \[s\], `observer` seeing the model and every new state.
     pub fn run_to(
-        &mut self,
-        t_end: f64,
-        mut observer: impl FnMut(&M, &State),
+        &mut self, t_end: f64, mut observer: impl FnMut(&M, &State),
     ) -> Result<(), MbdError> {
         while self.stepper.state().t < t_end - 0.5 * self.alpha.h {
             self.step()?;

@@ -408,9 +408,7 @@ impl Window {
 /// The report of `model` at `state` ([`BeltModel::snapshot`]) averaged with the reports
 /// sampled over `window`, with the span amplitudes of `window`; and the wrap points at `state`.
 fn report_of<M: BeltModel>(
-    model: &M,
-    state: &State,
-    window: &Window,
+    model: &M, state: &State, window: &Window,
 ) -> Result<(Report, Vec<WrapPoint>), MbdError> {
     let snap = model.snapshot(state.t, &state.q, &state.v)?;
     let now = Report::new(
@@ -443,9 +441,7 @@ fn report_of<M: BeltModel>(
 /// becomes steady within `max_hold` (reported as such, not as a Newton failure), stays an
 /// error ([`SweepFailure`]).
 pub fn speed_loss_sweep<M: BeltModel>(
-    model: &mut M,
-    settings: &SpeedLossConfig,
-    mut observer: impl FnMut(&State, Sample),
+    model: &mut M, settings: &SpeedLossConfig, mut observer: impl FnMut(&State, Sample),
 ) -> Result<(Vec<SpeedLossPoint>, SweepStats), SweepFailure> {
     let mut points: Vec<SpeedLossPoint> = Vec::new();
     let fail = |error: MbdError, points: &Vec<SpeedLossPoint>| SweepFailure {

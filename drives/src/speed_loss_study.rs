@@ -163,9 +163,7 @@ pub enum CaseFailure {
 /// its settings, the procedure at `omega` \[rad/s\] ([`procedure_for`]). Returns the case, the
 /// number of coordinates and the ANCF mapping (ANCF model only). `observer` sees every step.
 pub fn run_case(
-    c: &SpeedLossStudyConfig,
-    omega: f64,
-    observer: impl FnMut(&State, Sample),
+    c: &SpeedLossStudyConfig, omega: f64, observer: impl FnMut(&State, Sample),
 ) -> Result<(SpeedLossCase, usize, Option<AncfMapping>), CaseFailure> {
     c.validate().map_err(CaseFailure::Input)?;
     let drive = c
@@ -330,10 +328,7 @@ impl SpeedLossSummary {
     /// The summary of `cases` (in the configured order of speeds, at least one) of `model`
     /// with `coordinates` coordinates, which took `wall_time_s` \[s\] in all.
     pub fn new(
-        model: ModelKind,
-        cases: Vec<SummaryCase>,
-        coordinates: usize,
-        wall_time_s: f64,
+        model: ModelKind, cases: Vec<SummaryCase>, coordinates: usize, wall_time_s: f64,
     ) -> Self {
         let (omega_driver, points, analytical) = cases
             .first()

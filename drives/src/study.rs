@@ -145,9 +145,7 @@ macro_rules! with_model {
 impl AnyModel {
     /// Build the model `kind` of `drive` with its settings from `settings`.
     pub fn new(
-        kind: ModelKind,
-        drive: &Drive,
-        settings: &ModelSettings,
+        kind: ModelKind, drive: &Drive, settings: &ModelSettings,
     ) -> Result<Self, DriveError> {
         Ok(match kind {
             ModelKind::Flowing => {
@@ -196,9 +194,7 @@ pub struct SpeedLossCase {
 /// The procedure's settings for the model `kind`: the nodal model's window and tolerance, the
 /// ANCF belt's own step.
 pub fn procedure_for(
-    kind: ModelKind,
-    procedure: &SpeedLossConfig,
-    settings: &ModelSettings,
+    kind: ModelKind, procedure: &SpeedLossConfig, settings: &ModelSettings,
 ) -> SpeedLossConfig {
     let mut p = procedure.clone();
     match kind {
@@ -216,9 +212,7 @@ pub fn procedure_for(
 /// adapted to the model: [`procedure_for`]), with Bechtel's line and the capacity of its drive
 /// at the same torques. `observer` sees every step.
 pub fn speed_loss_case(
-    model: &mut AnyModel,
-    settings: &SpeedLossConfig,
-    observer: impl FnMut(&State, Sample),
+    model: &mut AnyModel, settings: &SpeedLossConfig, observer: impl FnMut(&State, Sample),
 ) -> Result<SpeedLossCase, SweepFailure> {
     let (points, stats) = with_model!(model, |m| speed_loss_sweep(m.as_mut(), settings, observer))?;
     let drive = with_model!(model, |m| m.drive().clone());

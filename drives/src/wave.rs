@@ -56,10 +56,7 @@ pub fn slope(t: &[f64], y: &[f64]) -> f64 {
 /// mid-span frequency searched between 0.2 and 2 times the string's fundamental `c/(2 L_s)` (`L_s` span 0's length),
 /// and the centroid's drift speed until [`WaveSummary::free_time`].
 pub fn summarize(
-    drive: &Drive,
-    settings: &WaveConfig,
-    rest: &WaveRun,
-    running: &WaveRun,
+    drive: &Drive, settings: &WaveConfig, rest: &WaveRun, running: &WaveRun,
 ) -> WaveSummary {
     let cw = wave_speed(drive);
     let span = drive.spans().first().map_or(f64::NAN, |s| s.length);
@@ -206,8 +203,7 @@ pub struct WaveStudy {
 /// Run the study `c` (validated): [`wave_run`] at rest and running, measured by
 /// [`summarize`]; `progress` is called with the fraction done after each run.
 pub fn run_wave_study(
-    c: &WaveStudyConfig,
-    mut progress: impl FnMut(f64),
+    c: &WaveStudyConfig, mut progress: impl FnMut(f64),
 ) -> Result<WaveStudy, FlowError> {
     let start = std::time::Instant::now();
     let drive = c.drive.resolve().map_err(|e| e.within("drive"))?;

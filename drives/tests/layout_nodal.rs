@@ -68,12 +68,8 @@ struct Steady {
 /// 0.3–0.4 s, run to `t_end` and average over its last `window` \[s\] (snapshots every 4
 /// steps). `extra` gives the damping power at a state (the nodal model's).
 fn steady_run<M: BeltModel>(
-    model: &mut M,
-    load: f64,
-    t_end: f64,
-    window: f64,
-    damping_power: impl Fn(&M, f64, &[f64], &[f64]) -> f64,
-    mu: f64,
+    model: &mut M, load: f64, t_end: f64, window: f64,
+    damping_power: impl Fn(&M, f64, &[f64], &[f64]) -> f64, mu: f64,
 ) -> Steady {
     model
         .set_signal(0, Signal::schedule(vec![(0.0, 0.0), (0.3, 62.8)]))

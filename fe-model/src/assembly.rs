@@ -94,9 +94,7 @@ impl Assembler {
     /// Assemble the global matrix of `kind` for the same `elements` that built the pattern.
     /// Elements without a matrix of that kind (e.g. no geometric stiffness) contribute zeros.
     pub fn assemble(
-        &self,
-        elements: &[Box<dyn Element>],
-        kind: MatrixKind,
+        &self, elements: &[Box<dyn Element>], kind: MatrixKind,
     ) -> Result<SparseColMat<usize, f64>, FeError> {
         if elements.len() + 1 != self.offsets.len() {
             return Err(FeError::Dimension {
@@ -166,9 +164,7 @@ impl Assembler {
 
 /// One-shot assembly: build the pattern and assemble `kind`.
 pub fn assemble(
-    n_dofs: usize,
-    elements: &[Box<dyn Element>],
-    kind: MatrixKind,
+    n_dofs: usize, elements: &[Box<dyn Element>], kind: MatrixKind,
 ) -> Result<SparseColMat<usize, f64>, FeError> {
     Assembler::new(n_dofs, elements)?.assemble(elements, kind)
 }

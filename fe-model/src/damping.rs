@@ -23,10 +23,7 @@ impl Rayleigh {
     /// Coefficients giving damping ratios `zeta1` at `omega1` and `zeta2` at `omega2`
     /// (circular frequencies in rad/s).
     pub fn from_modal_ratios(
-        omega1: f64,
-        zeta1: f64,
-        omega2: f64,
-        zeta2: f64,
+        omega1: f64, zeta1: f64, omega2: f64, zeta2: f64,
     ) -> Result<Self, FeError> {
         FeError::check_positive("omega1", omega1)?;
         FeError::check_positive("omega2", omega2)?;
@@ -53,9 +50,7 @@ impl Rayleigh {
 
     /// Sparse damping matrix `C = α M + β K` (M and K must have the same shape).
     pub fn matrix(
-        &self,
-        m: &SparseColMat<usize, f64>,
-        k: &SparseColMat<usize, f64>,
+        &self, m: &SparseColMat<usize, f64>, k: &SparseColMat<usize, f64>,
     ) -> Result<SparseColMat<usize, f64>, FeError> {
         if m.nrows() != k.nrows() || m.ncols() != k.ncols() {
             return Err(FeError::Dimension {
@@ -76,9 +71,7 @@ impl Rayleigh {
 
     /// Dense damping matrix `C = α M + β K`.
     pub fn dense(
-        &self,
-        m: faer::MatRef<'_, f64>,
-        k: faer::MatRef<'_, f64>,
+        &self, m: faer::MatRef<'_, f64>, k: faer::MatRef<'_, f64>,
     ) -> Result<faer::Mat<f64>, FeError> {
         if m.nrows() != k.nrows() || m.ncols() != k.ncols() {
             return Err(FeError::Dimension {

@@ -143,9 +143,7 @@ impl Mesh {
     /// Global DOFs of a node set, restricted to the local DOFs `locals` (all if `None`),
     /// sorted ascending.
     pub fn node_set_dofs(
-        &self,
-        name: &str,
-        locals: Option<&[usize]>,
+        &self, name: &str, locals: Option<&[usize]>,
     ) -> Result<Vec<usize>, FeError> {
         let nodes = self.node_set(name)?;
         let mut out = Vec::new();

@@ -74,10 +74,7 @@ impl DofSplit {
 
     /// Sparse block `A[rows, cols]` where each set is chosen by `true` = selected, `false` = rest.
     pub fn block(
-        &self,
-        a: SparseColMatRef<'_, usize, f64>,
-        rows_selected: bool,
-        cols_selected: bool,
+        &self, a: SparseColMatRef<'_, usize, f64>, rows_selected: bool, cols_selected: bool,
     ) -> Result<SparseColMat<usize, f64>, FeError> {
         self.check(a.nrows(), a.ncols())?;
         submatrix(a, self.set(rows_selected), self.set(cols_selected))
@@ -85,10 +82,7 @@ impl DofSplit {
 
     /// Dense block `A[rows, cols]`.
     pub fn dense_block(
-        &self,
-        a: MatRef<'_, f64>,
-        rows_selected: bool,
-        cols_selected: bool,
+        &self, a: MatRef<'_, f64>, rows_selected: bool, cols_selected: bool,
     ) -> Result<Mat<f64>, FeError> {
         self.check(a.nrows(), a.ncols())?;
         Ok(dense_submatrix(
@@ -114,9 +108,7 @@ impl DofSplit {
     /// rows and columns are zeroed and `diag` is put on their diagonal (e.g. 1 in K and 0 in a
     /// static solve's load, so that `u_fixed = 0`). The matrix keeps its size and numbering.
     pub fn keep_fixed(
-        &self,
-        a: SparseColMatRef<'_, usize, f64>,
-        diag: f64,
+        &self, a: SparseColMatRef<'_, usize, f64>, diag: f64,
     ) -> Result<SparseColMat<usize, f64>, FeError> {
         self.check(a.nrows(), a.ncols())?;
         let mut t = Vec::with_capacity(a.compute_nnz());

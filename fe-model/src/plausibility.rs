@@ -98,9 +98,7 @@ pub fn check_symmetric(matrix: &str, a: SparseColMatRef<'_, usize, f64>) -> Resu
 /// Check K and M (module documentation); returns warnings (one line each) or the first error
 /// as [`FeError::Implausible`] naming the matrix and the DOFs (1-based rows).
 pub fn check_stiffness_mass(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    opts: &PairCheckOptions,
+    k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, opts: &PairCheckOptions,
 ) -> Result<Vec<String>, FeError> {
     let n = k.nrows();
     if k.ncols() != n || m.nrows() != n || m.ncols() != n {

@@ -36,9 +36,7 @@ pub fn from_dense(a: MatRef<'_, f64>, drop_tol: f64) -> Result<SparseColMat<usiz
 ///
 /// `rows` and `cols` are lists of distinct indices; their order defines the new numbering.
 pub fn submatrix(
-    a: SparseColMatRef<'_, usize, f64>,
-    rows: &[usize],
-    cols: &[usize],
+    a: SparseColMatRef<'_, usize, f64>, rows: &[usize], cols: &[usize],
 ) -> Result<SparseColMat<usize, f64>, FeError> {
     const NONE: usize = usize::MAX;
     let mut row_map = vec![NONE; a.nrows()];
@@ -105,9 +103,7 @@ pub struct BlockProductWork {
 /// `b` contiguous values of row r (faer's `sparse_dense_matmul` streams A once per column of
 /// X, which made the mass product the costliest part of the block operator).
 pub fn csc_times_block(
-    a: SparseColMatRef<'_, usize, f64>,
-    x: MatRef<'_, f64>,
-    mut out: MatMut<'_, f64>,
+    a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, mut out: MatMut<'_, f64>,
     work: &mut BlockProductWork,
 ) {
     let (n, b) = (x.nrows(), x.ncols());

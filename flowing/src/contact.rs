@@ -99,9 +99,7 @@ pub struct ContactString {
 
 /// Candidate nodes: the mesh nodes within `half_width` of a pulley centre \[m\].
 pub fn candidates(
-    mesh: &StringMesh,
-    pulleys: &[PulleyObstacle],
-    half_width: f64,
+    mesh: &StringMesh, pulleys: &[PulleyObstacle], half_width: f64,
 ) -> Result<Vec<Candidate>, FlowError> {
     let mut c = Vec::new();
     for (p, pl) in pulleys.iter().enumerate() {
@@ -153,13 +151,8 @@ fn motion_prescribed(motion: AxialMotion) -> Result<AxialMotion, FlowError> {
 
 impl ContactString {
     fn build(
-        mesh: &StringMesh,
-        t: Mat<f64>,
-        candidates: Vec<Candidate>,
-        method: DerivativeMethod,
-        motion: AxialMotion,
-        load: Option<HarmonicLoad>,
-        coordinate_kind: &'static str,
+        mesh: &StringMesh, t: Mat<f64>, candidates: Vec<Candidate>, method: DerivativeMethod,
+        motion: AxialMotion, load: Option<HarmonicLoad>, coordinate_kind: &'static str,
     ) -> Result<Self, FlowError> {
         let motion = motion_prescribed(motion)?;
         let d = mode_shape_derivatives(&[mesh.flow_line()], method, t.as_ref())?;
@@ -195,11 +188,8 @@ impl ContactString {
 
     /// Nodal form (4.10): `y = u`.
     pub fn nodal(
-        mesh: &StringMesh,
-        candidates: Vec<Candidate>,
-        method: DerivativeMethod,
-        motion: AxialMotion,
-        load: Option<HarmonicLoad>,
+        mesh: &StringMesh, candidates: Vec<Candidate>, method: DerivativeMethod,
+        motion: AxialMotion, load: Option<HarmonicLoad>,
     ) -> Result<Self, FlowError> {
         let n = mesh.n_dofs();
         Self::build(
@@ -217,12 +207,8 @@ impl ContactString {
     /// `Ψ^f` of the free nodes (truncated), static modes `Ψ_s = −K^ff⁻¹K^fc` and all normal modes
     /// `Ψ^c` of the candidate nodes, `Ψ_s^c = Ψ_s Ψ^c` (4.35). Eigen problems by fe-model.
     pub fn craig_bampton(
-        mesh: &StringMesh,
-        candidates: Vec<Candidate>,
-        k_f: usize,
-        method: DerivativeMethod,
-        motion: AxialMotion,
-        load: Option<HarmonicLoad>,
+        mesh: &StringMesh, candidates: Vec<Candidate>, k_f: usize, method: DerivativeMethod,
+        motion: AxialMotion, load: Option<HarmonicLoad>,
     ) -> Result<Self, FlowError> {
         let n = mesh.n_dofs();
         let mut is_c = vec![false; n];
@@ -438,12 +424,7 @@ impl SecondOrderSystem for ContactString {
     }
 
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         let (s, a) = self.motion.prescribed(t).ok_or_else(|| MbdError::Model {
             t,
@@ -579,10 +560,7 @@ fn kinetic(sys: &ContactString, v: &[f64]) -> f64 {
 /// ([`mbd_core::integrators::Proceed`]) to stop the run there (a cancelled run: the run so far
 /// is returned).
 pub fn simulate_contact<R: mbd_core::integrators::Proceed>(
-    sys: &mut ContactString,
-    state0: State,
-    t_end: f64,
-    settings: &ContactConfig,
+    sys: &mut ContactString, state0: State, t_end: f64, settings: &ContactConfig,
     mut observer: impl FnMut(&ContactString, &State) -> R,
 ) -> Result<ContactRun, FlowError> {
     let stab = Stabilization {
@@ -703,9 +681,7 @@ pub fn simulate_contact<R: mbd_core::integrators::Proceed>(
 /// tensile first), then activates penetrating candidates with a plastic impact, until nothing
 /// changes.
 fn settle(
-    sys: &mut ContactString,
-    state: &mut State,
-    settings: &ContactConfig,
+    sys: &mut ContactString, state: &mut State, settings: &ContactConfig,
     events: &mut Vec<ContactEvent>,
 ) -> Result<(), FlowError> {
     let stab = Stabilization {
@@ -762,9 +738,7 @@ fn settle(
 /// `Tᵀ M u` helper: generalized coordinates of a nodal field in the span of `T` (least squares
 /// in the `TᵀMT` metric).
 pub fn coordinates_of(
-    sys: &ContactString,
-    mass: MatRef<'_, f64>,
-    u: &[f64],
+    sys: &ContactString, mass: MatRef<'_, f64>, u: &[f64],
 ) -> Result<Vec<f64>, FlowError> {
     let r = sys.dim();
     if u.len() != sys.t.nrows() {

@@ -205,12 +205,7 @@ impl SecondOrderSystem for GyroscopicSystem {
     }
 
     fn forces(
-        &self,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         let n = self.dim();
         for i in 0..n {

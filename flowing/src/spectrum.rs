@@ -17,9 +17,7 @@ pub struct Spectrum {
 /// Hann-windowed, mean-removed, zero-padded (to `pad_factor · N`, rounded up to a power of two)
 /// amplitude spectrum of `signal` sampled every `dt` seconds.
 pub fn amplitude_spectrum(
-    signal: &[f64],
-    dt: f64,
-    pad_factor: usize,
+    signal: &[f64], dt: f64, pad_factor: usize,
 ) -> Result<Spectrum, FlowError> {
     if signal.len() < 4 {
         return Err(invalid(

@@ -239,8 +239,7 @@ fn failed(t: f64, message: String) -> FlowError {
 /// stop the run); the Hann-windowed spectra of the modal coordinates with their peaks above
 /// `c.peak_threshold` of the largest; the drift of the energy-like invariant `H`.
 pub fn string_simulate(
-    c: &SimulateConfig,
-    tick: &mut dyn FnMut(f64) -> ControlFlow<()>,
+    c: &SimulateConfig, tick: &mut dyn FnMut(f64) -> ControlFlow<()>,
 ) -> Result<SimulateResult, FlowError> {
     let (mesh, sys) = flowing_model(c.string, c.nodes, c.modes, c.derivative, c.speed)?;
     let spectrum = flowing_spectrum(&sys, c.speed)?;

@@ -100,11 +100,7 @@ pub const FREQUENCY_SCALE_RANGE: (f64, f64) = (1e-100, 1e100);
 /// speed would otherwise give infinite or zero matrices and non-finite results). The refusal
 /// names `speed_field` when the speed sets the top scale, else `prefix.length`.
 pub fn check_scales(
-    p: &StringConfig,
-    prefix: &str,
-    speed_field: &str,
-    speed: f64,
-    dofs: usize,
+    p: &StringConfig, prefix: &str, speed_field: &str, speed: f64, dofs: usize,
 ) -> Result<(), InvalidField> {
     let c = p.wave_speed();
     let top = c.max(speed.abs()) * std::f64::consts::PI * (dofs as f64 + 1.0) / p.length;
@@ -178,11 +174,7 @@ pub fn check_nodes_modes(nodes: usize, modes: usize) -> Result<(), InvalidField>
 /// Checks that `duration / step` (both \[s\], positive) is at most `max` steps or samples, naming
 /// `field` (the run's length is bounded before it starts).
 pub fn check_steps(
-    field: &str,
-    duration: f64,
-    step: f64,
-    max: f64,
-    what: &str,
+    field: &str, duration: f64, step: f64, max: f64, what: &str,
 ) -> Result<(), InvalidField> {
     let n = duration / step;
     let max = mbd_core::validate::limits::ceiling(max);
@@ -203,11 +195,7 @@ pub fn check_steps(
 /// The string mesh of `nodes` interior nodes (Ribaric (4.1)) and its flowing-material model
 /// (4.20) with `modes` modes at the constant axial speed `speed` \[m/s\].
 pub fn flowing_model(
-    p: StringConfig,
-    nodes: usize,
-    modes: usize,
-    method: DerivativeMethod,
-    speed: f64,
+    p: StringConfig, nodes: usize, modes: usize, method: DerivativeMethod, speed: f64,
 ) -> Result<(StringMesh, FlowingString), FlowError> {
     let mesh = StringMesh::uniform(p, nodes)?;
     let basis = mesh.modes(modes)?;

@@ -199,8 +199,7 @@ pub fn sweep_header(tracked: usize) -> Vec<String> {
 /// speed) goes to `on_row` with its index as soon as it is computed, and
 /// [`ControlFlow::Break`] from it stops the sweep (the speeds done make the summary).
 pub fn string_sweep(
-    c: &SweepConfig,
-    on_row: &mut dyn FnMut(usize, &[f64]) -> ControlFlow<()>,
+    c: &SweepConfig, on_row: &mut dyn FnMut(usize, &[f64]) -> ControlFlow<()>,
 ) -> Result<SweepSummary, FlowError> {
     let crit = c.string.wave_speed();
     let (_, sys) = flowing_model(c.string, c.nodes, c.modes, c.derivative, 0.0)?;

@@ -158,10 +158,7 @@ impl FlowingString {
     /// Precomputes the constant matrices of (4.20) from the FE mass matrix `M`, a mass-normalised
     /// basis and the flow lines of the model's DOFs.
     pub fn new(
-        mass: &SysMatrix,
-        basis: ModalBasis,
-        lines: &[FlowLine],
-        method: DerivativeMethod,
+        mass: &SysMatrix, basis: ModalBasis, lines: &[FlowLine], method: DerivativeMethod,
         motion: AxialMotion,
     ) -> Result<Self, FlowError> {
         motion.validate()?;
@@ -314,12 +311,7 @@ impl SecondOrderSystem for FlowingString {
     }
 
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         let k = self.n_modes();
         let (s, a) = self.axial_state(t, v);
@@ -347,11 +339,7 @@ impl SecondOrderSystem for FlowingString {
 /// Triangular pluck `u(x)` of peak `amplitude` \[m\] at `x_peak` \[m\] on a string between fixed ends
 /// at `a` and `b`, sampled at `positions` (the initial condition of Ribaric Fig. 4-6).
 pub fn triangular_pluck(
-    positions: &[f64],
-    a: f64,
-    b: f64,
-    x_peak: f64,
-    amplitude: f64,
+    positions: &[f64], a: f64, b: f64, x_peak: f64, amplitude: f64,
 ) -> Result<Vec<f64>, FlowError> {
     if !(x_peak > a && x_peak < b) {
         return Err(invalid(
@@ -392,12 +380,7 @@ pub struct TimeHistory {
 /// current time at every kept sample; answering `ControlFlow::Break(())` stops the run there,
 /// returning the samples so far (a cancelled run).
 pub fn simulate_rk4<R: mbd_core::integrators::Proceed>(
-    sys: &FlowingString,
-    q0: Vec<f64>,
-    v0: Vec<f64>,
-    t_end: f64,
-    h: f64,
-    every: usize,
+    sys: &FlowingString, q0: Vec<f64>, v0: Vec<f64>, t_end: f64, h: f64, every: usize,
     mut progress: impl FnMut(f64) -> R,
 ) -> Result<TimeHistory, FlowError> {
     if every == 0 {

@@ -101,10 +101,7 @@ impl<'a> CompositeSystem<'a> {
     /// The couplings evaluated at `(t, q, v)` (`v = 0` when `None`), checked by
     /// [`Self::check_eval`].
     fn couplings_eval(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: Option<&[f64]>,
+        &self, t: f64, q: &[f64], v: Option<&[f64]>,
     ) -> Result<Vec<CouplingEval>, MbdError> {
         let zero;
         let v = match v {
@@ -135,11 +132,7 @@ impl<'a> CompositeSystem<'a> {
     /// Write the couplings' rows of one constraint vector (`Φ`, `ν` or `γ`, picked by `field`)
     /// into `out` below the parts' rows.
     fn put_couplings(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: Option<&[f64]>,
-        out: &mut [f64],
+        &self, t: f64, q: &[f64], v: Option<&[f64]>, out: &mut [f64],
         field: fn(&CouplingEval) -> &[f64],
     ) -> Result<(), MbdError> {
         let mut r = self.n_c_parts;
@@ -176,12 +169,8 @@ impl<'a> CompositeSystem<'a> {
     /// Block-diagonal assembly (rows/columns offset per part), sparse if any block is or the
     /// matrix is large ([`SysMatrix::assemble`]).
     fn block_diag(
-        &self,
-        blocks: Vec<(usize, usize, SysMatrix)>,
-        extra: Vec<Triplet<usize, usize, f64>>,
-        nr: usize,
-        nc: usize,
-        t: f64,
+        &self, blocks: Vec<(usize, usize, SysMatrix)>, extra: Vec<Triplet<usize, usize, f64>>,
+        nr: usize, nc: usize, t: f64,
     ) -> Result<SysMatrix, MbdError> {
         SysMatrix::assemble(&blocks, extra, nr, nc, nr.max(nc) > 600, t)
     }
@@ -248,12 +237,7 @@ impl SecondOrderSystem for CompositeSystem<'_> {
 
     /// The parts' forces, each with its own workspace ([`Workspace::parts`]).
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         let part_ws = ws.parts(self.parts.len());
         for (k, p) in self.parts.iter().enumerate() {
@@ -273,11 +257,7 @@ impl SecondOrderSystem for CompositeSystem<'_> {
     /// Block-diagonal tangent; parts without an analytic tangent get a local forward-difference
     /// block.
     fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let mut kb = Vec::new();
         let mut cb = Vec::new();
@@ -298,10 +278,7 @@ impl SecondOrderSystem for CompositeSystem<'_> {
     }
 
     fn constraint_force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        lambda: &[f64],
+        &self, t: f64, q: &[f64], lambda: &[f64],
     ) -> Result<Option<SysMatrix>, MbdError> {
         let mut blocks = Vec::new();
         for (k, p) in self.parts.iter().enumerate() {
@@ -365,11 +342,7 @@ impl SecondOrderSystem for CompositeSystem<'_> {
     }
 
     fn constraint_gamma(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        gamma: &mut [f64],
+        &self, t: f64, q: &[f64], v: &[f64], gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         for (k, p) in self.parts.iter().enumerate() {
             let o = self.c_off[k];
@@ -432,11 +405,7 @@ fn prefix(name: &str, e: MbdError) -> MbdError {
 
 /// Dense forward-difference tangent of one part (through its `⊕`).
 fn fd_tangent(
-    p: &dyn SecondOrderSystem,
-    t: f64,
-    q: &[f64],
-    v: &[f64],
-    ws: &mut Workspace,
+    p: &dyn SecondOrderSystem, t: f64, q: &[f64], v: &[f64], ws: &mut Workspace,
 ) -> Result<ForceTangent, MbdError> {
     crate::system::finite_difference_tangent(p, t, q, v, ws)
 }

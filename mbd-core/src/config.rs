@@ -111,11 +111,8 @@ fn deserialize<C: DeserializeOwned>(t: toml::Table) -> Result<C, PartialConfigEr
 /// tables that switch a variant are pushed to `switches`; the tables at `replace` are taken from
 /// `user` whole; the default keys that a given key excludes are dropped (`C`'s rules).
 fn merge<C: PartialRules>(
-    mut base: toml::Table,
-    user: toml::Table,
-    here: &mut Vec<PathStep>,
-    switches: &mut Vec<Vec<PathStep>>,
-    replace: &[Vec<PathStep>],
+    mut base: toml::Table, user: toml::Table, here: &mut Vec<PathStep>,
+    switches: &mut Vec<Vec<PathStep>>, replace: &[Vec<PathStep>],
 ) -> toml::Table {
     if replace.iter().any(|r| r == here) {
         return user;

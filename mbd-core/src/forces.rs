@@ -51,11 +51,7 @@ fn check_params(name: &str, params: &[(&str, f64, bool)]) -> Result<(), MbdError
 
 /// Adds the global force `force` \[N\] acting at body point `s'` of body `b` to `f`.
 pub fn add_point_force(
-    f: &mut [f64],
-    b: BodyId,
-    k: &BodyKin,
-    s: &Vector3<f64>,
-    force: &Vector3<f64>,
+    f: &mut [f64], b: BodyId, k: &BodyKin, s: &Vector3<f64>, force: &Vector3<f64>,
 ) {
     add3(f, 6 * b, force);
     add3(f, 6 * b + 3, &s.cross(&(k.a.transpose() * force)));

@@ -33,21 +33,12 @@ macro_rules! forward_dynamics {
             self.$inner.mass(t, q)
         }
         fn forces(
-            &self,
-            t: f64,
-            q: &[f64],
-            v: &[f64],
-            f: &mut [f64],
-            ws: &mut $crate::Workspace,
+            &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], ws: &mut $crate::Workspace,
         ) -> Result<(), $crate::MbdError> {
             self.$inner.forces(t, q, v, f, ws)
         }
         fn force_tangent(
-            &self,
-            t: f64,
-            q: &[f64],
-            v: &[f64],
-            ws: &mut $crate::Workspace,
+            &self, t: f64, q: &[f64], v: &[f64], ws: &mut $crate::Workspace,
         ) -> Result<Option<$crate::ForceTangent>, $crate::MbdError> {
             self.$inner.force_tangent(t, q, v, ws)
         }

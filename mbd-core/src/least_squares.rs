@@ -103,9 +103,7 @@ pub struct LmResult {
 /// [`MbdError::InvalidInput`] for fewer residuals than parameters or no parameters;
 /// [`MbdError::NonFinite`] when `r(p0)` or the Jacobian is not finite.
 pub fn levenberg_marquardt(
-    problem: &impl LeastSquares,
-    p0: &[f64],
-    settings: &LmSettings,
+    problem: &impl LeastSquares, p0: &[f64], settings: &LmSettings,
 ) -> Result<LmResult, MbdError> {
     let n = p0.len();
     let m = problem.residual_count();

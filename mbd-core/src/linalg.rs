@@ -215,11 +215,7 @@ impl SysMatrix {
     /// An `nr × nc` matrix from `entries` (duplicates summed), sparse when `sparse`, dense
     /// otherwise; `t` \[s\] names the time of a failed sparse assembly.
     pub fn from_triplets(
-        nr: usize,
-        nc: usize,
-        entries: &[Triplet<usize, usize, f64>],
-        sparse: bool,
-        t: f64,
+        nr: usize, nc: usize, entries: &[Triplet<usize, usize, f64>], sparse: bool, t: f64,
     ) -> Result<SysMatrix, MbdError> {
         if sparse {
             SparseColMat::try_new_from_triplets(nr, nc, entries)
@@ -242,12 +238,8 @@ impl SysMatrix {
     /// block-diagonal composites. Sparse when `sparse` or any block is sparse (dense blocks
     /// then contribute every entry, zeros included), dense otherwise.
     pub fn assemble(
-        blocks: &[(usize, usize, SysMatrix)],
-        mut entries: Vec<Triplet<usize, usize, f64>>,
-        nr: usize,
-        nc: usize,
-        sparse: bool,
-        t: f64,
+        blocks: &[(usize, usize, SysMatrix)], mut entries: Vec<Triplet<usize, usize, f64>>,
+        nr: usize, nc: usize, sparse: bool, t: f64,
     ) -> Result<SysMatrix, MbdError> {
         if sparse || blocks.iter().any(|b| b.2.is_sparse()) {
             for (r0, c0, b) in blocks {
@@ -389,11 +381,7 @@ pub fn csc_position(col_ptr: &[usize], row_idx: &[usize], r: usize, c: usize) ->
 impl SparsePath {
     /// Union pattern of `[Σ Aₖ, Dᵀ; D, 0]` plus the diagonal, maps and symbolic factorisation.
     fn build(
-        blocks: &[ScaledBlock<'_>],
-        d: Option<&SysMatrix>,
-        n: usize,
-        n_c: usize,
-        t: f64,
+        blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>, n: usize, n_c: usize, t: f64,
         banded: bool,
     ) -> Result<Self, MbdError> {
         let dim = n + n_c;
@@ -486,11 +474,7 @@ impl SparsePath {
 
     /// Whether the blocks have the patterns this path was built for.
     fn matches(
-        &self,
-        blocks: &[ScaledBlock<'_>],
-        d: Option<&SysMatrix>,
-        dim: usize,
-        banded: bool,
+        &self, blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>, dim: usize, banded: bool,
     ) -> bool {
         let nk = blocks.len() + usize::from(d.is_some());
         self.dim == dim
@@ -506,10 +490,7 @@ impl SparsePath {
     /// Scatters `Σ sₖ Aₖ` and `D` into the values and factors them numerically; returns the
     /// number of banded factorisations rejected by the backward-error check on the way.
     fn factor(
-        &mut self,
-        blocks: &[ScaledBlock<'_>],
-        d: Option<&SysMatrix>,
-        t: f64,
+        &mut self, blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>, t: f64,
     ) -> Result<usize, MbdError> {
         self.vals.fill(0.0);
         for ((s, b), map) in blocks.iter().zip(&self.maps) {
@@ -718,10 +699,7 @@ impl KktSolver {
     /// Assembles and factors `[Σ sₖ Aₖ, Dᵀ; D, 0]`. `d` may be `None` or have zero rows for an
     /// unconstrained system. `t` is only used in error messages.
     pub fn factor(
-        &mut self,
-        blocks: &[ScaledBlock<'_>],
-        d: Option<&SysMatrix>,
-        t: f64,
+        &mut self, blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>, t: f64,
     ) -> Result<(), MbdError> {
         self.factor = None;
         let n = blocks.first().map(|b| b.1.nrows()).unwrap_or(0);
@@ -837,10 +815,7 @@ impl KktSolver {
     /// [`solve_columns`](Self::solve_columns) with the one-column scratch `mem` of the sparse
     /// path.
     fn solve_with(
-        &self,
-        mut rhs: faer::MatMut<'_, f64>,
-        t: f64,
-        mem: Option<&mut MemBuffer>,
+        &self, mut rhs: faer::MatMut<'_, f64>, t: f64, mem: Option<&mut MemBuffer>,
     ) -> Result<(), MbdError> {
         let dim = self.n + self.n_c;
         if rhs.nrows() != dim {

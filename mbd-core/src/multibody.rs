@@ -304,11 +304,7 @@ impl MultibodySystem {
     }
 
     fn matrix_from_triplets(
-        &self,
-        nr: usize,
-        nc: usize,
-        trip: Vec<Triplet<usize, usize, f64>>,
-        t: f64,
+        &self, nr: usize, nc: usize, trip: Vec<Triplet<usize, usize, f64>>, t: f64,
     ) -> Result<SysMatrix, MbdError> {
         SysMatrix::from_triplets(nr, nc, &trip, self.use_sparse(), t)
     }
@@ -367,12 +363,7 @@ impl SecondOrderSystem for MultibodySystem {
     }
 
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         f.fill(0.0);
         let kin = self.kinematics(q, Some(v));
@@ -397,11 +388,7 @@ impl SecondOrderSystem for MultibodySystem {
     /// each state-dependent force element, forward differences over the (at most two) bodies
     /// it acts on, so that the tangent stays sparse.
     fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let n = self.n_v();
         let kin = self.kinematics(q, Some(v));
@@ -482,10 +469,7 @@ impl SecondOrderSystem for MultibodySystem {
 
     /// `∂(Dᵀλ)/∂q` by forward differences local to each constraint's two bodies (sparse).
     fn constraint_force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        lambda: &[f64],
+        &self, t: f64, q: &[f64], lambda: &[f64],
     ) -> Result<Option<SysMatrix>, MbdError> {
         let n = self.n_v();
         let kin = self.kinematics(q, None);
@@ -577,11 +561,7 @@ impl SecondOrderSystem for MultibodySystem {
     }
 
     fn constraint_gamma(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        gamma: &mut [f64],
+        &self, t: f64, q: &[f64], v: &[f64], gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         for (p, e) in gamma.iter_mut().zip(self.equations(t, q, Some(v))) {
             *p = e.gamma;

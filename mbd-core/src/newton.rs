@@ -451,10 +451,7 @@ pub fn max_abs(v: &[f64]) -> f64 {
 /// Solve `R(x, μ) = 0` for the load factors of `opts.load`, starting from and overwriting `x`.
 /// See the module documentation for the iteration.
 pub fn solve<P: NewtonProblem + ?Sized>(
-    problem: &mut P,
-    x: &mut [f64],
-    opts: &NewtonOptions,
-    ws: &mut NewtonWorkspace,
+    problem: &mut P, x: &mut [f64], opts: &NewtonOptions, ws: &mut NewtonWorkspace,
 ) -> Result<NewtonReport, NewtonError<P::Error>> {
     let n = opts.load.increments;
     if n == 0 {
@@ -510,11 +507,7 @@ pub fn solve<P: NewtonProblem + ?Sized>(
 
 /// Newton passes at one load factor until converged and settled.
 fn increment<P: NewtonProblem + ?Sized>(
-    problem: &mut P,
-    x: &mut [f64],
-    load: f64,
-    opts: &NewtonOptions,
-    ws: &mut NewtonWorkspace,
+    problem: &mut P, x: &mut [f64], load: f64, opts: &NewtonOptions, ws: &mut NewtonWorkspace,
     report: &mut NewtonReport,
 ) -> Result<IncrementReport, NewtonError<P::Error>> {
     let tol = &opts.tolerances;
@@ -644,12 +637,7 @@ fn increment<P: NewtonProblem + ?Sized>(
 /// Armijo backtracking along `ws.dx` from `x`; leaves the accepted step in `ws.step` and the
 /// new iterate in `ws.trial`. Returns whether the full step was taken.
 fn line_search<P: NewtonProblem + ?Sized>(
-    problem: &mut P,
-    x: &[f64],
-    load: f64,
-    res: f64,
-    ls: &LineSearch,
-    ws: &mut NewtonWorkspace,
+    problem: &mut P, x: &[f64], load: f64, res: f64, ls: &LineSearch, ws: &mut NewtonWorkspace,
 ) -> Result<bool, NewtonError<P::Error>> {
     let err = NewtonError::Problem;
     let potential = problem.potential(x, load).map_err(err)?;

@@ -54,10 +54,7 @@ impl Stop {
 /// continuous `g` that changes sign is found with `above = |x| g(x)·sign(g(lo)) ≤ 0`; a
 /// threshold (first `x` at which something happens) is the returned `hi`.
 pub fn bisect(
-    mut lo: f64,
-    mut hi: f64,
-    mut above: impl FnMut(f64) -> bool,
-    stop: Stop,
+    mut lo: f64, mut hi: f64, mut above: impl FnMut(f64) -> bool, stop: Stop,
 ) -> (f64, f64) {
     for _ in 0..stop.max_iterations {
         let mid = 0.5 * (lo + hi);
@@ -108,11 +105,7 @@ pub struct Bracketed {
 /// at `m` (with `residual = 0`) shrinks the bracket from the right, so the earliest zero of a
 /// bracket holding several is approached (event location). An error of `g` is returned as is.
 pub fn false_position<E>(
-    mut g: impl FnMut(f64) -> Result<f64, E>,
-    mut a: f64,
-    mut b: f64,
-    mut ga: f64,
-    mut gb: f64,
+    mut g: impl FnMut(f64) -> Result<f64, E>, mut a: f64, mut b: f64, mut ga: f64, mut gb: f64,
     stop: FalsePositionStop,
 ) -> Result<Bracketed, E> {
     let mut side = 0i8;
@@ -211,10 +204,7 @@ pub struct Secant {
 /// whose evaluation is costly (superlinear convergence, one evaluation per step). Stops as
 /// [`SecantStop`] says; an error of `g` is returned as is.
 pub fn secant<E>(
-    mut g: impl FnMut(f64) -> Result<f64, E>,
-    mut x0: f64,
-    mut g0: f64,
-    mut x1: f64,
+    mut g: impl FnMut(f64) -> Result<f64, E>, mut x0: f64, mut g0: f64, mut x1: f64,
     stop: SecantStop,
 ) -> Result<Secant, E> {
     let mut last = Secant {

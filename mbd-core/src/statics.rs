@@ -45,10 +45,7 @@ pub struct StaticSolution {
 /// [`newton::solve`]. A model without stiffness in some direction (a free body) gives
 /// [`MbdError::Singular`].
 pub fn static_equilibrium<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    t: f64,
-    q0: &[f64],
-    opts: &StaticOptions,
+    sys: &S, t: f64, q0: &[f64], opts: &StaticOptions,
 ) -> Result<StaticSolution, MbdError> {
     let n = sys.n_v();
     let nc = sys.n_c();

@@ -146,12 +146,7 @@ pub trait SecondOrderSystem {
     /// Generalized forces `f(t, q, v)` (length `n_v`), written into `f` (overwrite, not add);
     /// `ws` is the caller's scratch for this model.
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], ws: &mut Workspace,
     ) -> Result<(), MbdError>;
 
     /// The dynamic residual `r = M(q) v̇ − f(t, q, v)` (length `n_v`, constraint forces
@@ -160,13 +155,7 @@ pub trait SecondOrderSystem {
     /// `f` itself. A model overrides it when one fused product is cheaper than forming `M(q)`
     /// (e.g. a mass with a configuration-dependent coupling, as the rolling tire's `G₁ z θ̈`).
     fn dynamic_residual(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        _vdot: &[f64],
-        _r: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], _v: &[f64], _vdot: &[f64], _r: &mut [f64], _ws: &mut Workspace,
     ) -> Result<bool, MbdError> {
         Ok(false)
     }
@@ -174,11 +163,7 @@ pub trait SecondOrderSystem {
     /// Analytic tangent of the forces, or `None` to request finite differences; `ws` is the
     /// caller's scratch for this model (the same as for [`forces`](Self::forces)).
     fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], _v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         Ok(None)
     }
@@ -187,10 +172,7 @@ pub trait SecondOrderSystem {
     /// (`n_v × n_v`, the "geometric stiffness" of the joints), or `None` to neglect it in the
     /// Newton matrix of the implicit integrators (quasi-Newton).
     fn constraint_force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _lambda: &[f64],
+        &self, _t: f64, _q: &[f64], _lambda: &[f64],
     ) -> Result<Option<SysMatrix>, MbdError> {
         Ok(None)
     }
@@ -213,11 +195,7 @@ pub trait SecondOrderSystem {
 
     /// Acceleration right-hand side `γ` of `D v̇ = γ` (length `n_c`).
     fn constraint_gamma(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        gamma: &mut [f64],
+        &self, _t: f64, _q: &[f64], _v: &[f64], gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         gamma.fill(0.0);
         Ok(())
@@ -229,11 +207,7 @@ pub trait SecondOrderSystem {
 /// `C = −∂f/∂v`, `−(f(x + h e_j) − f(x − h e_j))/(2h)`. The reference the models' analytic
 /// [`SecondOrderSystem::force_tangent`] is tested against.
 pub fn central_difference_column<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    (t, q, v): (f64, &[f64], &[f64]),
-    j: usize,
-    h: f64,
-    in_q: bool,
+    sys: &S, (t, q, v): (f64, &[f64], &[f64]), j: usize, h: f64, in_q: bool,
 ) -> Result<Vec<f64>, MbdError> {
     let n = sys.n_v();
     let mut ws = Workspace::new();
@@ -265,11 +239,7 @@ pub fn central_difference_column<S: SecondOrderSystem + ?Sized>(
 /// `C = −∂f/∂v`; `2 n_v + 1` force evaluations with the model's workspace `ws`. The fallback
 /// of the implicit integrators for models without [`SecondOrderSystem::force_tangent`].
 pub fn finite_difference_tangent<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    t: f64,
-    q: &[f64],
-    v: &[f64],
-    ws: &mut Workspace,
+    sys: &S, t: f64, q: &[f64], v: &[f64], ws: &mut Workspace,
 ) -> Result<ForceTangent, MbdError> {
     let n = sys.n_v();
     let mut f0 = vec![0.0; n];

@@ -334,10 +334,7 @@ pub mod plausible {
 
         /// Every value of `values` is finite and `≥ 0`.
         pub fn all_non_negative(
-            &mut self,
-            quantity: &str,
-            values: &[f64],
-            what: &str,
+            &mut self, quantity: &str, values: &[f64], what: &str,
         ) -> &mut Self {
             for (i, v) in values.iter().enumerate() {
                 self.non_negative(&format!("{quantity}[{i}]"), *v, what);
@@ -347,11 +344,7 @@ pub mod plausible {
 
         /// `|value| ≤ bound` (`why` names the bound, e.g. "the beam's length 8 m").
         pub fn magnitude_at_most(
-            &mut self,
-            quantity: &str,
-            value: f64,
-            bound: f64,
-            why: &str,
+            &mut self, quantity: &str, value: f64, bound: f64, why: &str,
         ) -> &mut Self {
             self.finite(quantity, value);
             if value.abs() > bound {
@@ -450,11 +443,7 @@ pub mod check {
 
     /// `lo ≤ value ≤ hi` (and finite).
     pub fn within(
-        field: &str,
-        value: f64,
-        lo: f64,
-        hi: f64,
-        unit: &str,
+        field: &str, value: f64, lo: f64, hi: f64, unit: &str,
     ) -> Result<(), InvalidField> {
         if value.is_finite() && (lo..=hi).contains(&value) {
             Ok(())

@@ -34,12 +34,7 @@ impl SecondOrderSystem for Chain {
         Ok(dense(M))
     }
     fn forces(
-        &self,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         for i in 0..2 {
             f[i] = -(0..2).map(|j| K[i][j] * q[j] + C[i][j] * v[j]).sum::<f64>();
@@ -47,11 +42,7 @@ impl SecondOrderSystem for Chain {
         Ok(())
     }
     fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], _v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         Ok(Some(ForceTangent {
             stiffness: dense(K),
@@ -275,22 +266,13 @@ impl SecondOrderSystem for StickSlip {
         Ok(SysMatrix::Dense(Mat::from_fn(1, 1, |_, _| 1.0)))
     }
     fn forces(
-        &self,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         f[0] = -100.0 * q[0] + Self::friction(v[0]).0;
         Ok(())
     }
     fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        v: &[f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let d = Self::friction(v[0]).1;
         Ok(Some(ForceTangent {

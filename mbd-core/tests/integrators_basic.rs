@@ -34,12 +34,7 @@ impl SecondOrderSystem for CartPendulum {
         })))
     }
     fn forces(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], _v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         f[0] = 0.0;
         f[1] = -self.m * self.g;
@@ -53,11 +48,7 @@ impl SecondOrderSystem for CartPendulum {
         Ok(SysMatrix::Dense(Mat::from_fn(1, 2, |_, j| q[j])))
     }
     fn constraint_gamma(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        v: &[f64],
-        gamma: &mut [f64],
+        &self, _t: f64, _q: &[f64], v: &[f64], gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         gamma[0] = -(v[0] * v[0] + v[1] * v[1]);
         Ok(())

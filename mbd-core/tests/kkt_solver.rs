@@ -73,11 +73,7 @@ fn residual(s: &SysMatrix, d: &SysMatrix, sol: &[f64], rhs: &[f64]) -> f64 {
 /// against each other and against the residual of the augmented system; returns the
 /// right-hand side, `solver`'s solution and the solution's size.
 fn compare(
-    solver: &mut KktSolver,
-    dense: &mut KktSolver,
-    s_sp: &SysMatrix,
-    d_sp: &SysMatrix,
-    label: &str,
+    solver: &mut KktSolver, dense: &mut KktSolver, s_sp: &SysMatrix, d_sp: &SysMatrix, label: &str,
 ) -> (Vec<f64>, Vec<f64>, f64) {
     let (n, m) = (s_sp.nrows(), d_sp.nrows());
     let s_de = SysMatrix::Dense(s_sp.to_dense());
@@ -149,10 +145,7 @@ fn sparse_scalar_pattern_matches_dense_lu() {
 /// coordinates in `isolate` keep only their (zero) diagonal and their coupling to the border
 /// (the pattern is unchanged), so that the banded part alone is singular.
 fn bordered(
-    b: usize,
-    nodes: usize,
-    seed: usize,
-    isolate: &[usize],
+    b: usize, nodes: usize, seed: usize, isolate: &[usize],
 ) -> Vec<Triplet<usize, usize, f64>> {
     let n = b * nodes;
     let mut t: Vec<_> = block_band(b, nodes, seed)

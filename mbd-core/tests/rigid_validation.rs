@@ -238,9 +238,7 @@ fn slider_crank(omega: f64, theta0: f64) -> (MultibodySystem, State) {
 }
 
 fn slider_crank_with(
-    omega: f64,
-    theta0: f64,
-    wrist: Wrist,
+    omega: f64, theta0: f64, wrist: Wrist,
 ) -> Result<(MultibodySystem, State), MbdError> {
     let (a, b) = (CRANK, ROD);
     let mut sys = MultibodySystem::new();

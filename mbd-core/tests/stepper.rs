@@ -318,12 +318,7 @@ impl mbd_core::SecondOrderSystem for Duffing {
         Ok(support::diagonal(&[1.0]))
     }
     fn forces(
-        &self,
-        _t: f64,
-        q: &[f64],
-        _v: &[f64],
-        f: &mut [f64],
-        _ws: &mut mbd_core::Workspace,
+        &self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64], _ws: &mut mbd_core::Workspace,
     ) -> Result<(), MbdError> {
         f[0] = -self.k3 * q[0].powi(3);
         Ok(())
@@ -333,10 +328,7 @@ impl mbd_core::SecondOrderSystem for Duffing {
 /// The step split of the drives' former `robust_step`, written against a stepper without
 /// subdivision: one step of `h`, else two halves, recursively `depth` levels.
 fn split_by_hand(
-    st: &mut mbd_core::integrators::AlphaStepper,
-    sys: &Duffing,
-    h: f64,
-    depth: usize,
+    st: &mut mbd_core::integrators::AlphaStepper, sys: &Duffing, h: f64, depth: usize,
 ) -> Result<(), MbdError> {
     match st.step(sys, Some(h)) {
         Err(MbdError::NoConvergence { .. }) if depth > 0 => {

@@ -72,23 +72,14 @@ impl SecondOrderSystem for Chain {
         ))
     }
     fn forces(
-        &self,
-        _t: f64,
-        q: &[f64],
-        _v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         SysMatrix::Sparse(self.stiffness()).mul_vec(q, f);
         f.iter_mut().for_each(|x| *x = -*x);
         Ok(())
     }
     fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], _v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let n = self.n_q();
         Ok(Some(ForceTangent {

@@ -61,10 +61,7 @@ fn run(c: &SpeedLossStudyConfig) -> Result<SpeedLossSummary, Failure> {
 #[pyfunction]
 #[pyo3(signature = (config=None, omega=None, torques=None, model=None))]
 pub fn speed_loss(
-    py: Python<'_>,
-    config: Option<&str>,
-    omega: Option<f64>,
-    torques: Option<Vec<f64>>,
+    py: Python<'_>, config: Option<&str>, omega: Option<f64>, torques: Option<Vec<f64>>,
     model: Option<&str>,
 ) -> PyResult<String> {
     let mut c: SpeedLossStudyConfig = read_config(config)?;
@@ -101,8 +98,7 @@ fn ancf_error(py: Python<'_>, e: ::ancf::AncfError) -> PyErr {
 /// A dynamic run of either ANCF drive (`run`, outside the GIL) as the JSON text of its
 /// summary, or the failure that stopped it with the summary as its partial result.
 fn drive_study<S, H>(
-    py: Python<'_>,
-    run: impl Send + FnOnce() -> Result<StudyEnd<S, H>, ::ancf::AncfError>,
+    py: Python<'_>, run: impl Send + FnOnce() -> Result<StudyEnd<S, H>, ::ancf::AncfError>,
 ) -> PyResult<String>
 where
     S: serde::Serialize + Send,
@@ -203,9 +199,7 @@ pub fn design(py: Python<'_>, config: Option<&str>, rpm: Option<Vec<f64>>) -> Py
 /// The JSON text of `summary`, or the integration failure with the summary as its partial
 /// result (the apps' exit-1 convention).
 fn summary_or_failure<S: serde::Serialize>(
-    py: Python<'_>,
-    failure: Option<String>,
-    summary: &S,
+    py: Python<'_>, failure: Option<String>, summary: &S,
 ) -> PyResult<String> {
     match failure {
         None => to_json(summary),
@@ -225,10 +219,7 @@ fn summary_or_failure<S: serde::Serialize>(
 #[pyfunction]
 #[pyo3(signature = (config=None, speed=None, t_end=None))]
 pub fn wave<'py>(
-    py: Python<'py>,
-    config: Option<&str>,
-    speed: Option<f64>,
-    t_end: Option<f64>,
+    py: Python<'py>, config: Option<&str>, speed: Option<f64>, t_end: Option<f64>,
 ) -> PyResult<WithSeries<'py>> {
     use drives::wave::{WAVE_CSV_HEADER, WaveStudyConfig, run_wave_study, wave_csv_rows};
     let c = study_config(config, |c: &mut WaveStudyConfig| {

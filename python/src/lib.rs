@@ -33,9 +33,7 @@ pub(crate) fn input_error(e: InvalidField) -> PyErr {
 /// computed before the failure attached as JSON text (the `partial` of the CLI's
 /// `summary.json`).
 pub(crate) fn numerical_error(
-    py: Python<'_>,
-    message: String,
-    partial: Option<serde_json::Value>,
+    py: Python<'_>, message: String, partial: Option<serde_json::Value>,
 ) -> PyErr {
     let partial = partial.map(|p| p.to_string());
     match py
@@ -113,8 +111,7 @@ pub(crate) struct Columns(Vec<(String, Vec<f64>)>);
 /// The columns of the CSV with `header` (names as `&str` or `String`) and `rows` (as the app
 /// writes it).
 pub(crate) fn columns<R: AsRef<[f64]>, S: AsRef<str>>(
-    header: &[S],
-    rows: impl IntoIterator<Item = R>,
+    header: &[S], rows: impl IntoIterator<Item = R>,
 ) -> Columns {
     let mut cols: Vec<Vec<f64>> = vec![Vec::new(); header.len()];
     for row in rows {
@@ -138,9 +135,7 @@ pub(crate) type WithSeries<'py> = (String, Bound<'py, pyo3::types::PyDict>);
 /// `summary` as JSON text ([`to_json`]) with its `series`, each named by the CSV file the app
 /// writes ([`WithSeries`]).
 pub(crate) fn with_series<'py, S: serde::Serialize, K: AsRef<str>>(
-    py: Python<'py>,
-    summary: &S,
-    series: impl IntoIterator<Item = (K, Columns)>,
+    py: Python<'py>, summary: &S, series: impl IntoIterator<Item = (K, Columns)>,
 ) -> PyResult<WithSeries<'py>> {
     let d = pyo3::types::PyDict::new(py);
     for (name, cols) in series {

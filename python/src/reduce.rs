@@ -19,10 +19,7 @@ use reduction::{DofPartition, ReductionError};
 /// A sparse `n × n` matrix from triplets, named `name` in errors (indices in range, values
 /// finite, the three arrays of equal length).
 fn sparse(
-    name: &str,
-    n: usize,
-    rows: PyReadonlyArray1<'_, i64>,
-    cols: PyReadonlyArray1<'_, i64>,
+    name: &str, n: usize, rows: PyReadonlyArray1<'_, i64>, cols: PyReadonlyArray1<'_, i64>,
     vals: PyReadonlyArray1<'_, f64>,
 ) -> PyResult<SparseColMat<usize, f64>> {
     let (r, c, v) = (rows.as_slice()?, cols.as_slice()?, vals.as_slice()?);
@@ -65,17 +62,14 @@ fn reduction_error(py: Python<'_>, e: ReductionError) -> PyErr {
 
 /// Run `solve` with the GIL released; its error mapped by [`reduction_error`].
 fn detached<T: Send>(
-    py: Python<'_>,
-    solve: impl FnOnce() -> Result<T, ReductionError> + Send,
+    py: Python<'_>, solve: impl FnOnce() -> Result<T, ReductionError> + Send,
 ) -> PyResult<T> {
     py.detach(solve).map_err(|e| reduction_error(py, e))
 }
 
 /// The mass and stiffness matrices `(M, K)` (`n × n`) from their triplets ([`sparse`]).
 fn mass_stiffness(
-    n: usize,
-    m: Triplets<'_>,
-    k: Triplets<'_>,
+    n: usize, m: Triplets<'_>, k: Triplets<'_>,
 ) -> PyResult<(SparseColMat<usize, f64>, SparseColMat<usize, f64>)> {
     Ok((
         sparse("M", n, m.0, m.1, m.2)?,
@@ -110,12 +104,7 @@ type CbOut<'py> = (Matrix<'py>, Matrix<'py>, Matrix<'py>, Vector<'py>);
 /// vectors with zero rows at the fixed DOFs)`.
 #[pyfunction]
 pub fn modes<'py>(
-    py: Python<'py>,
-    n: usize,
-    m: Triplets<'py>,
-    k: Triplets<'py>,
-    count: usize,
-    fixed: Vec<usize>,
+    py: Python<'py>, n: usize, m: Triplets<'py>, k: Triplets<'py>, count: usize, fixed: Vec<usize>,
 ) -> PyResult<ModesOut<'py>> {
     let (m, k) = mass_stiffness(n, m, k)?;
     let part = DofPartition::new(n, &[], &fixed).map_err(|e| reduction_error(py, e))?;
@@ -160,11 +149,7 @@ pub fn modes<'py>(
 /// fixed-interface modes: `(M_r, K_r, Ψ, natural frequencies of the reduced model [Hz])`.
 #[pyfunction]
 pub fn craig_bampton<'py>(
-    py: Python<'py>,
-    n: usize,
-    m: Triplets<'py>,
-    k: Triplets<'py>,
-    boundary: Vec<usize>,
+    py: Python<'py>, n: usize, m: Triplets<'py>, k: Triplets<'py>, boundary: Vec<usize>,
     n_modes: usize,
 ) -> PyResult<CbOut<'py>> {
     let (m, k) = mass_stiffness(n, m, k)?;
@@ -198,11 +183,7 @@ type EitelbergOut<'py> = (
 /// [`reduction::eitelberg_model::EITELBERG_LIMIT`] unclamped DOFs).
 #[pyfunction]
 pub fn eitelberg<'py>(
-    py: Python<'py>,
-    n: usize,
-    m: Triplets<'py>,
-    k: Triplets<'py>,
-    boundary: Vec<usize>,
+    py: Python<'py>, n: usize, m: Triplets<'py>, k: Triplets<'py>, boundary: Vec<usize>,
     fixed: Vec<usize>,
 ) -> PyResult<EitelbergOut<'py>> {
     let (m, k) = mass_stiffness(n, m, k)?;

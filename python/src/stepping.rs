@@ -139,10 +139,7 @@ impl PyBeltSimulation {
 
     /// Restart from the state `(t, q, v)` (same model and step), e.g. one saved earlier.
     fn set_state(
-        &mut self,
-        t: f64,
-        q: PyReadonlyArray1<'_, f64>,
-        v: PyReadonlyArray1<'_, f64>,
+        &mut self, t: f64, q: PyReadonlyArray1<'_, f64>, v: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<()> {
         let (q, v) = (q.as_slice()?.to_vec(), v.as_slice()?.to_vec());
         if !t.is_finite() || q.iter().chain(&v).any(|x| !x.is_finite()) {

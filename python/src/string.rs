@@ -17,10 +17,7 @@ use pyo3::prelude::*;
 #[pyfunction]
 #[pyo3(signature = (config=None, speed=None, nodes=None, modes=None))]
 pub fn string_modes(
-    py: Python<'_>,
-    config: Option<&str>,
-    speed: Option<f64>,
-    nodes: Option<usize>,
+    py: Python<'_>, config: Option<&str>, speed: Option<f64>, nodes: Option<usize>,
     modes: Option<usize>,
 ) -> PyResult<String> {
     let c = study_config(config, |c: &mut ModesConfig| {
@@ -61,10 +58,7 @@ fn flow_error(py: Python<'_>, e: FlowError) -> PyErr {
 #[pyfunction]
 #[pyo3(signature = (config=None, nodes=None, modes=None))]
 pub fn string_sweep<'py>(
-    py: Python<'py>,
-    config: Option<&str>,
-    nodes: Option<usize>,
-    modes: Option<usize>,
+    py: Python<'py>, config: Option<&str>, nodes: Option<usize>, modes: Option<usize>,
 ) -> PyResult<WithSeries<'py>> {
     use flowing::string_sweep::{SweepConfig, string_sweep as sweep, sweep_header};
     let c = study_config(config, |c: &mut SweepConfig| {
@@ -95,9 +89,7 @@ pub fn string_sweep<'py>(
 #[pyfunction]
 #[pyo3(signature = (config=None, speed=None))]
 pub fn string_simulate<'py>(
-    py: Python<'py>,
-    config: Option<&str>,
-    speed: Option<f64>,
+    py: Python<'py>, config: Option<&str>, speed: Option<f64>,
 ) -> PyResult<WithSeries<'py>> {
     use flowing::string_simulate::{
         SimulateConfig, history_header, history_rows, spectra_header, spectra_rows,

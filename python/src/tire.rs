@@ -262,8 +262,7 @@ impl PyReducedTire {
     }
     /// Pickle support: `flowmbd.tire._reduced_tire_from_bytes(<versioned JSON as bytes>)`.
     fn __reduce__<'py>(
-        &self,
-        py: Python<'py>,
+        &self, py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
         let text = self.to_json(py)?;
         let f = py
@@ -381,9 +380,7 @@ fn history_of(r: &RigResult) -> History {
 
 /// The reduced tire `given`, or `source` reduced (GIL released).
 fn reduced_or(
-    py: Python<'_>,
-    given: Option<PyRef<'_, PyReducedTire>>,
-    source: &TireSource,
+    py: Python<'_>, given: Option<PyRef<'_, PyReducedTire>>, source: &TireSource,
 ) -> PyResult<Arc<ReducedTire>> {
     if let Some(t) = given {
         return Ok(Arc::clone(&t.inner));
@@ -404,9 +401,7 @@ fn reduced_or(
 #[pyfunction]
 #[pyo3(signature = (config=None, tire=None))]
 pub fn tire_steady(
-    py: Python<'_>,
-    config: Option<&str>,
-    tire: Option<PyRef<'_, PyReducedTire>>,
+    py: Python<'_>, config: Option<&str>, tire: Option<PyRef<'_, PyReducedTire>>,
 ) -> PyResult<String> {
     let c: SteadyStudyConfig = study_config(config, |_| {})?;
     let red = reduced_or(py, tire, &c.tire)?;
@@ -427,9 +422,7 @@ pub fn tire_steady(
 #[pyfunction]
 #[pyo3(signature = (config=None, speed_kmh=None, tire=None))]
 pub fn tire_cleat(
-    py: Python<'_>,
-    config: Option<&str>,
-    speed_kmh: Option<f64>,
+    py: Python<'_>, config: Option<&str>, speed_kmh: Option<f64>,
     tire: Option<PyRef<'_, PyReducedTire>>,
 ) -> PyResult<(String, History, [Vec<f64>; 3])> {
     let c = study_config(config, |c: &mut CleatStudyConfig| {
@@ -495,9 +488,7 @@ pub fn tire_cleat(
 #[pyfunction]
 #[pyo3(signature = (config=None, speeds_kmh=None, tire=None))]
 pub fn tire_rotating_modes<'py>(
-    py: Python<'py>,
-    config: Option<&str>,
-    speeds_kmh: Option<Vec<f64>>,
+    py: Python<'py>, config: Option<&str>, speeds_kmh: Option<Vec<f64>>,
     tire: Option<PyRef<'_, PyReducedTire>>,
 ) -> PyResult<WithSeries<'py>> {
     use ::tire::rotating_study::{ROTATING_COLUMNS, RotatingStudyConfig, rotating_rows};
@@ -524,9 +515,7 @@ pub fn tire_rotating_modes<'py>(
 #[pyfunction]
 #[pyo3(signature = (config=None, speeds_kmh=None, tire=None))]
 pub fn tire_sweep<'py>(
-    py: Python<'py>,
-    config: Option<&str>,
-    speeds_kmh: Option<Vec<f64>>,
+    py: Python<'py>, config: Option<&str>, speeds_kmh: Option<Vec<f64>>,
     tire: Option<PyRef<'_, PyReducedTire>>,
 ) -> PyResult<WithSeries<'py>> {
     use ::tire::study::{SPECTRUM_COLUMNS, spectrum_rows};
@@ -589,9 +578,7 @@ pub fn tire_sweep<'py>(
 #[pyfunction]
 #[pyo3(signature = (config=None, tire=None))]
 pub fn tire_dips<'py>(
-    py: Python<'py>,
-    config: Option<&str>,
-    tire: Option<PyRef<'_, PyReducedTire>>,
+    py: Python<'py>, config: Option<&str>, tire: Option<PyRef<'_, PyReducedTire>>,
 ) -> PyResult<WithSeries<'py>> {
     use ::tire::dips_study::{
         DipsStudyConfig, PREDICTION_COLUMNS, PROFILE_COLUMNS, SWEEP_COLUMNS, prediction_rows,
@@ -630,9 +617,7 @@ pub fn tire_dips<'py>(
 #[pyfunction]
 #[pyo3(signature = (config=None, tire=None))]
 pub fn tire_pressure<'py>(
-    py: Python<'py>,
-    config: Option<&str>,
-    tire: Option<PyRef<'_, PyReducedTire>>,
+    py: Python<'py>, config: Option<&str>, tire: Option<PyRef<'_, PyReducedTire>>,
 ) -> PyResult<WithSeries<'py>> {
     use ::tire::pressure_study::{PATCH_COLUMNS, PressureStudyConfig};
     let c: PressureStudyConfig = study_config(config, |_| {})?;

@@ -191,10 +191,7 @@ pub fn rigid_body_modes(s: &[f64], dim: usize) -> Result<Mat<f64>> {
 /// Linearised mean-axis condition rows `Pᵀ M Ψ` (Lin (8.26)–(8.27); `IhᵀMΨ Δz = 0`,
 /// `s~ᵀMΨ Δz = 0`), `n_rigid × n_z`.
 pub fn mean_axis_rows(
-    m: MatRef<'_, f64>,
-    s: &[f64],
-    dim: usize,
-    psi: MatRef<'_, f64>,
+    m: MatRef<'_, f64>, s: &[f64], dim: usize, psi: MatRef<'_, f64>,
 ) -> Result<Mat<f64>> {
     let p = rigid_body_modes(s, dim)?;
     check_square("mass matrix M", m, p.nrows())?;
@@ -206,10 +203,7 @@ pub fn mean_axis_rows(
 ///
 /// Returns `(rigid amplitudes (n_rigid × n_z), deformation part (n × n_z))`.
 pub fn mean_axes_decomposition(
-    m: MatRef<'_, f64>,
-    s: &[f64],
-    dim: usize,
-    psi: MatRef<'_, f64>,
+    m: MatRef<'_, f64>, s: &[f64], dim: usize, psi: MatRef<'_, f64>,
 ) -> Result<(Mat<f64>, Mat<f64>)> {
     let p = rigid_body_modes(s, dim)?;
     let ptmp = congruence(p.as_ref(), m, p.as_ref());
@@ -242,11 +236,7 @@ pub struct MeanAxesPreconditions {
 /// of the order of `Ψ`'s rows and that `s` has one entry per DOF (the input checks shared by
 /// [`check_mean_axes_preconditions`] and [`crate::mean_axes_eval::evaluate_mean_axes`]).
 pub(crate) fn checked_rigid_body_modes(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    psi: MatRef<'_, f64>,
-    s: &[f64],
-    dim: usize,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, psi: MatRef<'_, f64>, s: &[f64], dim: usize,
 ) -> Result<Mat<f64>> {
     let n = psi.nrows();
     check_square("stiffness matrix K", k, n)?;
@@ -266,9 +256,7 @@ pub(crate) fn checked_rigid_body_modes(
 /// `V0`: the eigenvectors of `eig(ΨᵀKΨ, ΨᵀMΨ)` whose eigenvalues are (numerically) zero,
 /// `|λ| ≤ 1e-9 max|λ|` (Lin (8.14)), as columns (none when the pencil has no zero eigenvalue).
 fn zero_eigenvectors(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    psi: MatRef<'_, f64>,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, psi: MatRef<'_, f64>,
 ) -> Result<Mat<f64>> {
     let kr = congruence(psi, k, psi);
     let mr = congruence(psi, m, psi);
@@ -284,11 +272,7 @@ fn zero_eigenvectors(
 /// full column rank, exactly 6 (3 in 2-D) zero eigenvalues of `eig(ΨᵀKΨ, ΨᵀMΨ)`, and
 /// `col-space(Ψ0) = col-space(P)` (R of (8.18) invertible).
 pub fn check_mean_axes_preconditions(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    psi: MatRef<'_, f64>,
-    s: &[f64],
-    dim: usize,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, psi: MatRef<'_, f64>, s: &[f64], dim: usize,
 ) -> Result<MeanAxesPreconditions> {
     let p = checked_rigid_body_modes(k, m, psi, s, dim)?;
     let n_rigid = p.ncols();
@@ -323,11 +307,7 @@ pub fn check_mean_axes_preconditions(
 /// `eig(ΨᵀKΨ, ΨᵀMΨ)`). Requires the chapter-8 preconditions
 /// ([`check_mean_axes_preconditions`]).
 pub fn adapting_vector(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    psi: MatRef<'_, f64>,
-    s: &[f64],
-    dim: usize,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, psi: MatRef<'_, f64>, s: &[f64], dim: usize,
     rigid: &[f64],
 ) -> Result<Vec<f64>> {
     let pre = check_mean_axes_preconditions(k, m, psi, s, dim)?;

@@ -134,9 +134,7 @@ pub struct Basis {
 /// Fixed-interface normal modes: all eigenpairs of `(K_ii, M_ii)` (Lin (6.11), Ribaric (3.11)),
 /// ascending, M-normalized.
 pub fn fixed_interface_modes(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    part: &DofPartition,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, part: &DofPartition,
 ) -> Result<(Vec<f64>, Mat<f64>)> {
     check_inputs(k, m, part)?;
     let kii = select(k, part.interior(), part.interior());
@@ -169,10 +167,7 @@ pub fn static_modes(k: MatRef<'_, f64>, part: &DofPartition) -> Result<Mat<f64>>
 /// `modes` is ignored by [`Method::Guyan`]. For [`Method::FreeFreeModalTruncation`] the modes are
 /// those of the whole `(K, M)` restricted to the unfixed DOFs; the boundary set is not used.
 pub fn build_basis(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    part: &DofPartition,
-    method: Method,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, part: &DofPartition, method: Method,
     modes: &ModeSelection,
 ) -> Result<Basis> {
     check_inputs(k, m, part)?;
@@ -236,11 +231,7 @@ pub fn build_basis(
 /// (Lin (6.27), (6.29); Ribaric (3.20)); `kept` lists the kept mode indices, all others are
 /// deleted. `lam`, `phi` must be the complete, M-normalized fixed-interface eigensolution.
 pub fn condensed_modes(
-    k: MatRef<'_, f64>,
-    part: &DofPartition,
-    lam: &[f64],
-    phi: &Mat<f64>,
-    kept: &[usize],
+    k: MatRef<'_, f64>, part: &DofPartition, lam: &[f64], phi: &Mat<f64>, kept: &[usize],
 ) -> Result<Mat<f64>> {
     let theta = theta_matrix(k, part, lam, phi, kept)?;
     let deleted = deleted_modes(lam.len(), kept);
@@ -251,11 +242,7 @@ pub fn condensed_modes(
 /// `Θ = −(K̄n^d)⁻¹ Ψn^dᵀ K_ib` (Lin (6.27), Ribaric (3.20)): deleted-mode amplitudes per unit
 /// boundary displacement; `n_d × n_b`, rows in ascending order of the deleted modes.
 pub fn theta_matrix(
-    k: MatRef<'_, f64>,
-    part: &DofPartition,
-    lam: &[f64],
-    phi: &Mat<f64>,
-    kept: &[usize],
+    k: MatRef<'_, f64>, part: &DofPartition, lam: &[f64], phi: &Mat<f64>, kept: &[usize],
 ) -> Result<Mat<f64>> {
     let deleted = deleted_modes(lam.len(), kept);
     // K̄n^d = φdᵀ K_ii φd = λ_d (M-normalized)
@@ -265,11 +252,7 @@ pub fn theta_matrix(
 /// The coordinate change `X = −(K̄n^k)⁻¹ Ψn^kᵀ K_ib` of Lin (6.34), with `Ψs = Ψm + Ψn^k X`:
 /// `Ψ_CB = Ψ_MC T`, `T = [I 0; X I]`, so `z_MC = T z_CB` (Lin §6.5.4). `n_k × n_b`.
 pub fn cb_to_mc_x(
-    k: MatRef<'_, f64>,
-    part: &DofPartition,
-    lam: &[f64],
-    phi: &Mat<f64>,
-    kept: &[usize],
+    k: MatRef<'_, f64>, part: &DofPartition, lam: &[f64], phi: &Mat<f64>, kept: &[usize],
 ) -> Result<Mat<f64>> {
     modal_coupling(k, part, lam, phi, kept, "kept")
 }
@@ -283,11 +266,7 @@ fn deleted_modes(n_modes: usize, kept: &[usize]) -> Vec<usize> {
 /// `−λ_j⁻¹ φ_jᵀ K_ib` for the fixed-interface modes `modes` (rows), the common kernel of Θ
 /// (Lin (6.29)) and X (Lin (6.34)); `which` names the mode set in errors.
 fn modal_coupling(
-    k: MatRef<'_, f64>,
-    part: &DofPartition,
-    lam: &[f64],
-    phi: &Mat<f64>,
-    modes: &[usize],
+    k: MatRef<'_, f64>, part: &DofPartition, lam: &[f64], phi: &Mat<f64>, modes: &[usize],
     which: &str,
 ) -> Result<Mat<f64>> {
     let kib = select(k, part.interior(), part.boundary());
@@ -317,10 +296,7 @@ fn modal_coupling(
 /// Coordinates `[δb; zn^k]` (the column order of [`Method::ModeCondensation`] bases); returns
 /// `(M_MC, K_MC)`. Equals `Ψ_MCᵀ M Ψ_MC`, `Ψ_MCᵀ K Ψ_MC` (tested).
 pub fn mode_condensation_matrices(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    part: &DofPartition,
-    kept: &ModeSelection,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, part: &DofPartition, kept: &ModeSelection,
 ) -> Result<(Mat<f64>, Mat<f64>)> {
     let (lam, phi) = fixed_interface_modes(k, m, part)?;
     let idx = kept.resolve(lam.len())?;
@@ -377,12 +353,8 @@ fn check_inputs(k: MatRef<'_, f64>, m: MatRef<'_, f64>, part: &DofPartition) -> 
 /// `Ψ = [I 0; C Φk]` in natural row order (fixed rows zero); `coupling` = interior block of the
 /// boundary columns, `phi` the interior rows of the modes, `kept` the mode indices taken.
 pub(crate) fn assemble(
-    part: &DofPartition,
-    method: Method,
-    coupling: Option<&Mat<f64>>,
-    phi: Option<&Mat<f64>>,
-    lam: &[f64],
-    kept: &[usize],
+    part: &DofPartition, method: Method, coupling: Option<&Mat<f64>>, phi: Option<&Mat<f64>>,
+    lam: &[f64], kept: &[usize],
 ) -> Basis {
     let b = part.boundary();
     let ii = part.interior();

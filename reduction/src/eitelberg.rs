@@ -79,10 +79,7 @@ pub fn lyapunov_kronecker(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<
 /// `R` (v × n) selects the kept states (`x_r = R x`), `C = C_r R`. `A` must be asymptotically
 /// stable (use output feedback first, see [`eitelberg_structure`]).
 pub fn eitelberg(
-    a: MatRef<'_, f64>,
-    b: MatRef<'_, f64>,
-    c: MatRef<'_, f64>,
-    r: MatRef<'_, f64>,
+    a: MatRef<'_, f64>, b: MatRef<'_, f64>, c: MatRef<'_, f64>, r: MatRef<'_, f64>,
 ) -> Result<EitelbergReduction> {
     eitelberg_with(a, b, c, r, LyapunovSolver::BartelsStewart)
 }
@@ -101,10 +98,7 @@ pub enum LyapunovSolver {
 
 /// [`eitelberg`] with a chosen Lyapunov solver.
 pub fn eitelberg_with(
-    a: MatRef<'_, f64>,
-    b: MatRef<'_, f64>,
-    c: MatRef<'_, f64>,
-    r: MatRef<'_, f64>,
+    a: MatRef<'_, f64>, b: MatRef<'_, f64>, c: MatRef<'_, f64>, r: MatRef<'_, f64>,
     solver: LyapunovSolver,
 ) -> Result<EitelbergReduction> {
     let n = a.nrows();
@@ -154,19 +148,14 @@ pub fn eitelberg_with(
 /// Returns the reduced `M_⁻¹K_ = −A_r[n_b.., ..n_b]` (n_b × n_b, Lin §6.6.4 printed matrix) and
 /// the full reduction.
 pub fn eitelberg_structure(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    boundary: &[usize],
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, boundary: &[usize],
 ) -> Result<(Mat<f64>, EitelbergReduction)> {
     eitelberg_structure_with(k, m, boundary, LyapunovSolver::BartelsStewart)
 }
 
 /// [`eitelberg_structure`] with a chosen Lyapunov solver.
 pub fn eitelberg_structure_with(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    boundary: &[usize],
-    solver: LyapunovSolver,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, boundary: &[usize], solver: LyapunovSolver,
 ) -> Result<(Mat<f64>, EitelbergReduction)> {
     let n = k.nrows();
     check_square("stiffness matrix K", k, n)?;

@@ -64,9 +64,7 @@ impl EitelbergModel {
     /// # Errors
     /// As [`reduce`](Self::reduce); the size is checked before the dense copies are made.
     pub fn reduce_sparse(
-        k: SparseColMatRef<'_, usize, f64>,
-        m: SparseColMatRef<'_, usize, f64>,
-        part: &DofPartition,
+        k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, part: &DofPartition,
     ) -> Result<Self> {
         Self::check_size(part)?;
         Self::reduce(k.to_dense().as_ref(), m.to_dense().as_ref(), part)

@@ -192,9 +192,7 @@ pub fn lstsq(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Result<Mat<f64>> {
 /// Returns eigenvalues in ascending order and M-normalized eigenvectors (`ΦᵀMΦ = I`), each
 /// signed so that its largest-magnitude entry is positive (fe-model's convention).
 pub fn sym_gen_eig(
-    what: &str,
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
+    what: &str, k: MatRef<'_, f64>, m: MatRef<'_, f64>,
 ) -> Result<(Vec<f64>, Mat<f64>)> {
     let n = k.nrows();
     check_square(what, k, n)?;

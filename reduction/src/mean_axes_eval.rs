@@ -37,11 +37,7 @@ pub struct MeanAxesEvaluation {
 /// gives a symmetric-definite problem equivalent to the singular pencil (8.33) for `ω ≠ 0`
 /// (Lin note §13.2).
 pub fn evaluate_mean_axes(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    psi: MatRef<'_, f64>,
-    s: &[f64],
-    dim: usize,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, psi: MatRef<'_, f64>, s: &[f64], dim: usize,
     boundary: &[usize],
 ) -> Result<MeanAxesEvaluation> {
     let n = psi.nrows();

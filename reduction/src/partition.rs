@@ -76,10 +76,7 @@ impl DofPartition {
     /// Three-set partition from boundary and fixed nodes (0-based node indices, every DOF of a
     /// listed node), see [`DofPartition::new`].
     pub fn from_nodes(
-        n: usize,
-        dofs_per_node: usize,
-        boundary_nodes: &[usize],
-        fixed_nodes: &[usize],
+        n: usize, dofs_per_node: usize, boundary_nodes: &[usize], fixed_nodes: &[usize],
     ) -> Result<Self> {
         if dofs_per_node == 0 || !n.is_multiple_of(dofs_per_node) {
             return Err(ReductionError::InvalidParameter {

@@ -36,10 +36,7 @@ pub struct ReducedModel {
 impl ReducedModel {
     /// Projects full dense `M`, `K` (and optional `C`) onto `basis`.
     pub fn from_basis(
-        basis: Basis,
-        k: MatRef<'_, f64>,
-        m: MatRef<'_, f64>,
-        c: Option<MatRef<'_, f64>>,
+        basis: Basis, k: MatRef<'_, f64>, m: MatRef<'_, f64>, c: Option<MatRef<'_, f64>>,
         dofs_per_node: usize,
     ) -> Result<Self> {
         let n = basis.psi.nrows();
@@ -293,10 +290,7 @@ impl DenseMatrix {
     }
 
     fn to_mat(
-        &self,
-        field: &str,
-        rows: usize,
-        cols: usize,
+        &self, field: &str, rows: usize, cols: usize,
     ) -> std::result::Result<Mat<f64>, String> {
         if self.rows != rows || self.cols != cols || self.col_major.len() != rows * cols {
             return Err(format!(

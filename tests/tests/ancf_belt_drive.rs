@@ -319,10 +319,7 @@ fn bad_input_names_the_field() {
 /// Driven-pulley speed history sampled every `dt` \[s\] and the final state of a run of `spec`
 /// from the pre-strained rest state (the driver ramp (3.29) starts at rest).
 fn run(
-    spec: BeltDriveSpec,
-    t_end: f64,
-    h: f64,
-    dt: f64,
+    spec: BeltDriveSpec, t_end: f64, h: f64, dt: f64,
 ) -> (BeltDrive, Vec<(f64, f64)>, mbd_core::integrators::State) {
     let d = BeltDrive::new(spec).unwrap();
     let init = d.initial_state(&InitialOptions::default()).unwrap();

@@ -47,9 +47,7 @@ struct Beam<El: AncfElement> {
 }
 
 fn beam<El: AncfElement>(
-    n: usize,
-    q_line: f64,
-    make: impl Fn(f64, Material, Section) -> Result<El, ancf::AncfError>,
+    n: usize, q_line: f64, make: impl Fn(f64, Material, Section) -> Result<El, ancf::AncfError>,
 ) -> Beam<El> {
     let mat = Material::new(E, 0.0, RHO).unwrap();
     let sec = Section::rectangle(W, H).unwrap();

@@ -39,10 +39,7 @@ fn diag_of(d: &[f64], m: usize) -> Vec<[f64; 2]> {
 }
 
 fn solve(
-    d: &[f64],
-    b: &[f64],
-    warm: &[f64],
-    s: &ContactSolverOptions,
+    d: &[f64], b: &[f64], warm: &[f64], s: &ContactSolverOptions,
 ) -> (Vec<f64>, ContactSolverReport) {
     let mut solver = ContactSolver::default();
     let rep = solver.solve_dense(&mut DenseProblem { d, b }, warm, s);

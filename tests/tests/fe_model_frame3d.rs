@@ -10,12 +10,7 @@ use std::f64::consts::PI;
 
 /// Straight 3D frame along `dir` with `n` elements; returns elements and DOF count.
 fn frame(
-    n: usize,
-    l: f64,
-    dir: [f64; 3],
-    up: [f64; 3],
-    s: Frame3dSection,
-    axial: f64,
+    n: usize, l: f64, dir: [f64; 3], up: [f64; 3], s: Frame3dSection, axial: f64,
 ) -> (Vec<Box<dyn Element>>, usize) {
     let norm = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
     let p = |i: usize| {
@@ -49,10 +44,7 @@ fn section() -> Frame3dSection {
 }
 
 fn fixed_modes(
-    els: &[Box<dyn Element>],
-    n: usize,
-    fixed: &[usize],
-    count: usize,
+    els: &[Box<dyn Element>], n: usize, fixed: &[usize], count: usize,
 ) -> fe_model::Modes {
     let k = assemble(n, els, MatrixKind::Stiffness).unwrap().to_dense();
     let m = assemble(n, els, MatrixKind::Mass(MassKind::Consistent))

@@ -15,10 +15,7 @@ const STEEL: Elastic = Elastic {
 
 /// Solve K_ff u_f = f_f − K_fc u_c for prescribed u_c (sparse Cholesky), return full u.
 fn solve_static(
-    k: &faer::sparse::SparseColMat<usize, f64>,
-    fixed: &[usize],
-    u_fixed: &[f64],
-    f: &[f64],
+    k: &faer::sparse::SparseColMat<usize, f64>, fixed: &[usize], u_fixed: &[f64], f: &[f64],
 ) -> Vec<f64> {
     let n = k.nrows();
     let p = DofSplit::fixed(n, fixed).unwrap();

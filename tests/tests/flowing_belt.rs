@@ -9,10 +9,7 @@ use drives::{SpeedLossConfig, SpeedLossPoint, analytical_speed_loss, speed_loss_
 use flowing::belt::{BeltReduction, FlowingBelt, FlowingSettings};
 
 fn sweep(
-    (cfg, settings): &(Layout, FlowingSettings),
-    omega: f64,
-    torques: &[f64],
-    tol: f64,
+    (cfg, settings): &(Layout, FlowingSettings), omega: f64, torques: &[f64], tol: f64,
 ) -> (Vec<SpeedLossPoint>, Vec<(f64, f64)>) {
     let mut belt = FlowingBelt::new(&cfg.resolve().unwrap(), settings).unwrap();
     let settings = SpeedLossConfig {

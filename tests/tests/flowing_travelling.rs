@@ -14,9 +14,7 @@ use mbd_core::SysMatrix;
 use std::f64::consts::PI;
 
 fn string_model(
-    p: &StringConfig,
-    n: usize,
-    modes: usize,
+    p: &StringConfig, n: usize, modes: usize,
 ) -> (SysMatrix, ModalBasis, Vec<FlowLine>) {
     let h = p.length / (n + 1) as f64;
     let mu = p.mu();

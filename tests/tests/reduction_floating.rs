@@ -28,12 +28,7 @@ fn truss_block(nx: usize, ny: usize, nz: usize, h: f64, ea: f64) -> (Vec<f64>, M
 /// As [`truss_block`]; with `principal`, the positions are expressed in the principal axes of
 /// the undeformed inertia (so `J'` is diagonal at `z = 0`). Also returns the node masses.
 fn truss_block_rotated(
-    nx: usize,
-    ny: usize,
-    nz: usize,
-    h: f64,
-    ea: f64,
-    principal: bool,
+    nx: usize, ny: usize, nz: usize, h: f64, ea: f64, principal: bool,
 ) -> (Vec<f64>, Mat<f64>, Mat<f64>, Vec<f64>) {
     let mut pos = Vec::new();
     for k in 0..nz {

@@ -12,11 +12,7 @@ use common::{coarse_reduced_tire as tire, rig};
 /// centre after `cleat_time` \[s\], the contact solved to `contact_tolerance`: per step
 /// `[Fx, Fy, Fz, θ̇, Σλ]`, and the model description.
 fn run(
-    red: &ReducedTire,
-    symmetry: Symmetry,
-    contact_tolerance: f64,
-    cleat_time: f64,
-    steps: usize,
+    red: &ReducedTire, symmetry: Symmetry, contact_tolerance: f64, cleat_time: f64, steps: usize,
 ) -> (Vec<[f64; 5]>, String) {
     let mut rc = rig(GroundKind::Drum, true, 0.85);
     rc.rolling.symmetry = symmetry;

@@ -104,8 +104,7 @@ impl TireSource {
     /// another tire or reduction ([`TireError::File`]), the FE model's and the reduction's
     /// errors, a user-named file that cannot be written.
     pub fn reduced_tire(
-        &self,
-        reducing: &mut dyn FnMut(&Reducing<'_>),
+        &self, reducing: &mut dyn FnMut(&Reducing<'_>),
     ) -> Result<SourcedTire, TireError> {
         // (the fingerprint hashes the import files: once per call)
         let fingerprint = self.fingerprint()?;
@@ -157,11 +156,7 @@ impl TireSource {
     /// the fingerprint, and for the cache also the code version; else the [`TireError::File`]
     /// saying what differs.
     fn check_saved(
-        &self,
-        path: &Path,
-        red: ReducedTire,
-        fingerprint: &str,
-        cached: bool,
+        &self, path: &Path, red: ReducedTire, fingerprint: &str, cached: bool,
     ) -> Result<ReducedTire, TireError> {
         let refuse = |reason: String| TireError::File {
             path: path.display().to_string(),

@@ -137,11 +137,7 @@ pub fn geometric_envelope_half_length(r_tire: f64, ground: &GroundConfig, deflec
 /// tire when its passage is short against the periods of those modes; with 0 every mode
 /// follows (the quasi-static profile).
 pub fn enveloping_profile(
-    red: &ReducedTire,
-    ground: &GroundConfig,
-    load: f64,
-    step: f64,
-    blocked_below_hz: f64,
+    red: &ReducedTire, ground: &GroundConfig, load: f64, step: f64, blocked_below_hz: f64,
 ) -> Result<EnvelopingProfile, TireError> {
     check::positive("step", step, "m")?;
     check::non_negative("blocked_below_hz", blocked_below_hz, "Hz")?;
@@ -238,10 +234,7 @@ pub struct DipPrediction {
 /// `A(v)` of `profile` for the mode `f_hz` \[Hz\], `zeta` over `speeds_kmh` \[km/h\] and its
 /// local minima (module docs).
 pub fn predict_dips(
-    profile: &EnvelopingProfile,
-    f_hz: f64,
-    zeta: f64,
-    speeds_kmh: &[f64],
+    profile: &EnvelopingProfile, f_hz: f64, zeta: f64, speeds_kmh: &[f64],
 ) -> Result<DipPrediction, TireError> {
     check::positive("mode frequency", f_hz, "Hz")?;
     check::within("zeta", zeta, 0.0, 0.99, "")?;
@@ -417,10 +410,7 @@ pub struct GroundDips {
 /// for each sweep speed, the cleat test ([`super::rig::run_cleat`]) with the amplitude of its
 /// vertical line ([`line_amplitude`]). `progress` gets the fraction of sweep runs done.
 pub fn ground_dips(
-    red: &ReducedTire,
-    rig: &super::rig::RigConfig,
-    cfg: &DipConfig,
-    progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, rig: &super::rig::RigConfig, cfg: &DipConfig, progress: &mut dyn FnMut(f64),
 ) -> Result<GroundDips, TireError> {
     cfg.validate_within("dips")?;
     let ground = &rig.ground;

@@ -144,9 +144,7 @@ pub struct DipsFailure {
 /// `progress` gets the fraction done (0–1). Returns the summary and each ground's profile,
 /// prediction and sweep (the tables of [`profile_rows`], [`prediction_rows`], [`sweep_rows`]).
 pub fn run_dips(
-    red: &ReducedTire,
-    c: &DipsStudyConfig,
-    progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, c: &DipsStudyConfig, progress: &mut dyn FnMut(f64),
 ) -> Result<(DipsSummary, Vec<GroundDips>), Box<DipsFailure>> {
     let n = c.grounds.len().max(1) as f64;
     let mut out: Vec<GroundDips> = Vec::new();

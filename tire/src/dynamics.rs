@@ -85,11 +85,7 @@ impl<'a> TireDynamics<'a> {
     /// inertia `wheel_spin_inertia` \[kg·m²\] (the rim's is added) and the spin-dependent
     /// matrices formed at `spin` \[rad/s\].
     pub fn new(
-        red: &'a ReducedTire,
-        alpha: f64,
-        beta: f64,
-        wheel_spin_inertia: f64,
-        spin: f64,
+        red: &'a ReducedTire, alpha: f64, beta: f64, wheel_spin_inertia: f64, spin: f64,
     ) -> Self {
         Self::from_cow(Cow::Borrowed(red), alpha, beta, wheel_spin_inertia, spin)
     }
@@ -97,21 +93,13 @@ impl<'a> TireDynamics<'a> {
     /// [`TireDynamics::new`] owning its reduced tire (e.g. the modal form of
     /// [`ReducedTire::modal`]).
     pub fn owned(
-        red: ReducedTire,
-        alpha: f64,
-        beta: f64,
-        wheel_spin_inertia: f64,
-        spin: f64,
+        red: ReducedTire, alpha: f64, beta: f64, wheel_spin_inertia: f64, spin: f64,
     ) -> TireDynamics<'static> {
         TireDynamics::from_cow(Cow::Owned(red), alpha, beta, wheel_spin_inertia, spin)
     }
 
     fn from_cow(
-        red: Cow<'a, ReducedTire>,
-        alpha: f64,
-        beta: f64,
-        wheel_spin_inertia: f64,
-        spin: f64,
+        red: Cow<'a, ReducedTire>, alpha: f64, beta: f64, wheel_spin_inertia: f64, spin: f64,
     ) -> Self {
         let nz = red.n_z();
         let modal = is_modal(&red);
@@ -266,12 +254,7 @@ impl<'a> TireDynamics<'a> {
     /// The residual `M v̇ − f` in modal coordinates (module documentation); `vdot = None`
     /// for `v̇ = 0`.
     fn modal_residual(
-        &self,
-        lam: &[f64],
-        q: &[f64],
-        v: &[f64],
-        vdot: Option<&[f64]>,
-        r: &mut [f64],
+        &self, lam: &[f64], q: &[f64], v: &[f64], vdot: Option<&[f64]>, r: &mut [f64],
     ) {
         let nz = lam.len();
         let (a, b) = (self.alpha, self.beta);
@@ -349,12 +332,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
 
     /// `f = [τ − β k_θᵀ ż − (k_θ + β θ̇_R k_θ,θ)ᵀ z; −θ̇² c_s − C_eff ż − K_eff z − G₁ w]`.
     fn forces(
-        &self,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         if let Some(lam) = &self.modal {
             self.modal_residual(lam, q, v, None, f);
@@ -374,13 +352,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
 
     /// `M(q) v̇ − f` in one pass over `Q` (module documentation).
     fn dynamic_residual(
-        &self,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        vdot: &[f64],
-        r: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], v: &[f64], vdot: &[f64], r: &mut [f64], _ws: &mut Workspace,
     ) -> Result<bool, MbdError> {
         if let Some(lam) = &self.modal {
             self.modal_residual(lam, q, v, Some(vdot), r);
@@ -409,11 +381,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
     /// `C = [0 β k_θᵀ; 0 C_eff]` (the derivatives in θ̇ of the gyroscopic and centrifugal
     /// forces are left out, as in the iteration matrix of Ribaric's linearly implicit step).
     fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], _v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let nz = self.red.n_z();
         let n = nz + 1;

@@ -73,10 +73,7 @@ pub struct LineMode {
 /// Errors: nothing held, a `held` index out of range, a reduced tire without tread rows,
 /// `line_hz` not positive, or a failed solve.
 pub fn line_modes(
-    red: &ReducedTire,
-    held: &[usize],
-    opt: &RotatingOptions,
-    component: SpindleComponent,
+    red: &ReducedTire, held: &[usize], opt: &RotatingOptions, component: SpindleComponent,
     line_hz: f64,
 ) -> Result<Vec<LineMode>, TireError> {
     if !(line_hz > 0.0 && line_hz.is_finite()) {

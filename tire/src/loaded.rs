@@ -167,9 +167,7 @@ pub fn dominant_longitudinal_mode(modes: &[LoadedMode]) -> Option<&LoadedMode> {
 /// The loaded modes at the static preload: the tire pressed onto `ground` with `load` \[N\]
 /// ([`super::statics::preload`]), the contact nodes with a positive multiplier held.
 pub fn loaded_modes_at_preload(
-    red: &ReducedTire,
-    ground: &super::ground::GroundConfig,
-    load: f64,
+    red: &ReducedTire, ground: &super::ground::GroundConfig, load: f64,
 ) -> Result<(super::statics::Preload, Vec<LoadedMode>), TireError> {
     let pre = super::statics::preload(red, ground, load)?;
     let modes = loaded_modes(red, &held_nodes(&pre.patch))?;

@@ -258,10 +258,7 @@ impl LeastSquares for Problem<'_> {
 /// Least-squares fit of `model(p, x)` to `data` over the coefficients `free` (indices into
 /// `p0`), starting from `p0`; returns all coefficients.
 fn least_squares(
-    curve: &'static str,
-    data: &[(f64, f64)],
-    model: &dyn Fn(&[f64], f64) -> f64,
-    p0: &[f64],
+    curve: &'static str, data: &[(f64, f64)], model: &dyn Fn(&[f64], f64) -> f64, p0: &[f64],
     free: &[usize],
 ) -> Result<Vec<f64>, MfFitError> {
     let problem = Problem {
@@ -297,12 +294,8 @@ fn least_squares(
 /// puts outside its bound is held at the bound and the others refitted, until none is outside
 /// (at most once per bound). Returns the coefficients and the number fitted.
 fn fit_bounded(
-    curve: &'static str,
-    data: &[(f64, f64)],
-    model: &dyn Fn(&[f64], f64) -> f64,
-    p0: &[f64],
-    free: &[usize],
-    bounds: &[(usize, f64, f64)],
+    curve: &'static str, data: &[(f64, f64)], model: &dyn Fn(&[f64], f64) -> f64, p0: &[f64],
+    free: &[usize], bounds: &[(usize, f64, f64)],
 ) -> Result<(Vec<f64>, usize), MfFitError> {
     let mut start = p0.to_vec();
     let mut free = free.to_vec();
@@ -349,9 +342,7 @@ fn mf_model(p: &[f64], x: f64) -> f64 {
 /// Fit the sine-form curve `y(x)` to `data` (`x` \[-\], `y` \[N\]) with the starting shape factor
 /// `c0`; coefficients freed in [`FY_FREE_ORDER`] up to `min(6, points − 1)`.
 pub fn fit_curve(
-    curve: &'static str,
-    data: &[(f64, f64)],
-    c0: f64,
+    curve: &'static str, data: &[(f64, f64)], c0: f64,
 ) -> Result<(MfCurve, FitError), MfFitError> {
     if data.iter().any(|p| !p.0.is_finite() || !p.1.is_finite()) {
         return Err(MfFitError::NonFinite { curve });

@@ -53,11 +53,8 @@ impl TireFe {
     /// `mass` may be consistent: it is lumped by row sums (documented approximation; Ribaric's
     /// formulation assumes a diagonal mass). Errors name the offending node or matrix.
     pub fn from_matrices(
-        nodes: Vec<[f64; 3]>,
-        stiffness: SparseColMat<usize, f64>,
-        mass: &SparseColMat<usize, f64>,
-        rim: Vec<usize>,
-        candidates: Vec<usize>,
+        nodes: Vec<[f64; 3]>, stiffness: SparseColMat<usize, f64>, mass: &SparseColMat<usize, f64>,
+        rim: Vec<usize>, candidates: Vec<usize>,
     ) -> Result<Self, TireError> {
         let n = 3 * nodes.len();
         for (name, a) in [("stiffness", &stiffness), ("mass", mass)] {
@@ -91,10 +88,7 @@ impl TireFe {
     /// Build from an fe-model [`FeModel`] with 3 DOFs per node and node sets `rim_set` and
     /// `candidate_set`; `with_geometric` adds the (inflation) prestress stiffness `K_G`.
     pub fn from_fe_model(
-        model: &FeModel,
-        rim_set: &str,
-        candidate_set: &str,
-        with_geometric: bool,
+        model: &FeModel, rim_set: &str, candidate_set: &str, with_geometric: bool,
     ) -> Result<Self, TireError> {
         if model.mesh.dofs_per_node != 3 {
             return Err(invalid(

@@ -103,9 +103,7 @@ pub const MODES_MEANING: &str = "Natural frequencies of the tire with the rim fi
 /// `c.load` on `c.ground`. Returns the summary and every loaded mode (the rows of
 /// [`loaded_rows`]).
 pub fn run_modes(
-    fe: &TireFe,
-    red: &ReducedTire,
-    c: &ModesStudyConfig,
+    fe: &TireFe, red: &ReducedTire, c: &ModesStudyConfig,
 ) -> Result<(ModesSummary, Vec<LoadedMode>), TireError> {
     let full = full_frequencies_hz(fe, c.count)?;
     let mut reduced = red.frequencies_hz()?;

@@ -100,8 +100,7 @@ pub struct GroundPatch {
 /// the cleat; the patch length is the extent along x of the nodes with a positive force.
 /// Returns the summary and the drum's and the road's patch.
 pub fn run_pressure(
-    red: &ReducedTire,
-    c: &PressureStudyConfig,
+    red: &ReducedTire, c: &PressureStudyConfig,
 ) -> Result<(PressureSummary, [GroundPatch; 2]), TireError> {
     let patch = |kind: GroundKind| -> Result<GroundPatch, TireError> {
         let g = GroundConfig {

@@ -200,8 +200,7 @@ fn eigen_options() -> SparseEigenOptions {
 
 /// Reduce the tire (Ribaric §8.2). Returns the reduced tire and the stage timings.
 pub fn reduce(
-    fe: &TireFe,
-    cfg: &ReductionConfig,
+    fe: &TireFe, cfg: &ReductionConfig,
 ) -> Result<(ReducedTire, ReductionTimings), TireError> {
     reduce_with(fe, cfg, Projection::Blocks)
 }
@@ -219,9 +218,7 @@ enum Projection {
 }
 
 fn reduce_with(
-    fe: &TireFe,
-    cfg: &ReductionConfig,
-    projection: Projection,
+    fe: &TireFe, cfg: &ReductionConfig, projection: Projection,
 ) -> Result<(ReducedTire, ReductionTimings), TireError> {
     let t0 = Instant::now();
     fe.validate()?;

@@ -532,9 +532,7 @@ pub fn start_rolling<'a>(red: &'a ReducedTire, cfg: &RigConfig) -> Result<RigSta
 
 /// Run the cleat test. `progress` receives the fraction done (0..1).
 pub fn run_cleat(
-    red: &ReducedTire,
-    cfg: &RigConfig,
-    progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, cfg: &RigConfig, progress: &mut dyn FnMut(f64),
 ) -> Result<RigResult, TireError> {
     run_cleat_observed(red, cfg, progress, &mut |_, _| Ok(()))
 }
@@ -542,9 +540,7 @@ pub fn run_cleat(
 /// [`run_cleat`] with an observer called after every step with the step number and the model
 /// (e.g. to write VTK snapshots of the patch).
 pub fn run_cleat_observed(
-    red: &ReducedTire,
-    cfg: &RigConfig,
-    progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, cfg: &RigConfig, progress: &mut dyn FnMut(f64),
     observer: &mut dyn FnMut(usize, &RollingTire) -> Result<(), TireError>,
 ) -> Result<RigResult, TireError> {
     cfg.validate()?;

@@ -275,13 +275,8 @@ impl<'a> RollingTire<'a> {
     /// coefficients `alpha`, `beta`, starting from rest accelerations (`v̇ = 0`: the steady
     /// state, whose contact forces the acceleration equations without contact do not see).
     pub fn new(
-        red: &'a ReducedTire,
-        cfg: RollingConfig,
-        ground: Ground,
-        alpha: f64,
-        beta: f64,
-        z0: Vec<f64>,
-        spin: f64,
+        red: &'a ReducedTire, cfg: RollingConfig, ground: Ground, alpha: f64, beta: f64,
+        z0: Vec<f64>, spin: f64,
     ) -> Result<Self, TireError> {
         cfg.validate_within("rolling")?;
         ground.cfg.validate_within("ground")?;

@@ -119,9 +119,7 @@ pub struct RotatingOptions {
 /// Errors: a `held` index out of range, a reduced tire without the tread rows that label the
 /// modes (written before they existed: reduce again), invalid options, or a failed solve.
 pub fn rotating_modes(
-    red: &ReducedTire,
-    held: &[usize],
-    opt: &RotatingOptions,
+    red: &ReducedTire, held: &[usize], opt: &RotatingOptions,
 ) -> Result<Vec<RotatingMode>, TireError> {
     let a = held_rows(red, held)?;
     let tread = red.tread.as_ref().ok_or_else(|| {
@@ -139,10 +137,7 @@ pub fn rotating_modes(
 /// `tread` (whose columns are the coordinates of `mats`); ascending in frequency, undamped
 /// frequencies up to `opt.max_hz`.
 pub fn spinning_modes(
-    mats: FlowingMatrices<'_>,
-    tread: &TreadBasis,
-    a: MatRef<'_, f64>,
-    opt: &RotatingOptions,
+    mats: FlowingMatrices<'_>, tread: &TreadBasis, a: MatRef<'_, f64>, opt: &RotatingOptions,
 ) -> Result<Vec<RotatingMode>, TireError> {
     for (name, v) in [("spin", opt.spin), ("alpha", opt.alpha), ("beta", opt.beta)] {
         if !v.is_finite() {
@@ -190,8 +185,7 @@ pub(crate) struct StateModes {
 
 /// `C_Ω = 2ΩG₁ + αM + βK` and `K_Ω = K + Ω²G₂ + βΩK₁` (module docs).
 pub(crate) fn spin_matrices(
-    mats: FlowingMatrices<'_>,
-    opt: &RotatingOptions,
+    mats: FlowingMatrices<'_>, opt: &RotatingOptions,
 ) -> (Mat<f64>, Mat<f64>) {
     let nz = mats.m.nrows();
     let (w, al, be) = (opt.spin, opt.alpha, opt.beta);
@@ -206,9 +200,7 @@ pub(crate) fn spin_matrices(
 
 /// Solve the state-space eigenproblem of the equations on the null space of `a`.
 pub(crate) fn state_eigen(
-    mats: FlowingMatrices<'_>,
-    a: MatRef<'_, f64>,
-    opt: &RotatingOptions,
+    mats: FlowingMatrices<'_>, a: MatRef<'_, f64>, opt: &RotatingOptions,
 ) -> Result<StateModes, TireError> {
     let nz = mats.m.nrows();
     let (c, k) = spin_matrices(mats, opt);
@@ -230,11 +222,7 @@ pub(crate) fn state_eigen(
 impl StateModes {
     /// The labelled mode of the eigenvalue `col` (module docs).
     pub fn mode(
-        &self,
-        mats: FlowingMatrices<'_>,
-        tread: &TreadBasis,
-        col: usize,
-        spin: f64,
+        &self, mats: FlowingMatrices<'_>, tread: &TreadBasis, col: usize, spin: f64,
     ) -> RotatingMode {
         let nz = mats.m.nrows();
         let ny = self.n.ncols();
@@ -302,11 +290,7 @@ pub struct SpeedModes {
 /// ([`preload_rolling`], spin `Ω`, Rayleigh `β`). `alpha`, `beta`, `max_hz` as in
 /// [`RotatingOptions`].
 pub fn modes_at_speed(
-    red: &ReducedTire,
-    ground: &GroundConfig,
-    load: f64,
-    speed_kmh: f64,
-    (alpha, beta): (f64, f64),
+    red: &ReducedTire, ground: &GroundConfig, load: f64, speed_kmh: f64, (alpha, beta): (f64, f64),
     max_hz: f64,
 ) -> Result<SpeedModes, TireError> {
     if !(speed_kmh.is_finite() && speed_kmh >= 0.0) {

@@ -268,9 +268,7 @@ pub fn direction_code(d: WaveDirection) -> f64 {
 /// `c.damped`), then [`modes_at_speed`] at every speed; `progress` gets the fraction done
 /// (0–1). Returns the summary and the modes per speed (for plots).
 pub fn run_rotating(
-    red: &ReducedTire,
-    c: &RotatingStudyConfig,
-    progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, c: &RotatingStudyConfig, progress: &mut dyn FnMut(f64),
 ) -> Result<(RotatingSummary, Vec<SpeedModes>), TireError> {
     let rayleigh = if c.damped {
         let r = c.damping.rayleigh(red)?;

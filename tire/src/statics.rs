@@ -45,9 +45,7 @@ pub(crate) type ContactState = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// Contact state for a fixed ground height: returns (λ, f^c, δ^c).
 pub(crate) fn contact_at(
-    y: &Mat<f64>,
-    s_c: &[[f64; 3]],
-    ground: &Ground,
+    y: &Mat<f64>, s_c: &[[f64; 3]], ground: &Ground,
 ) -> Result<ContactState, TireError> {
     let nc = s_c.len();
     let mut delta = vec![0.0; 3 * nc];
@@ -108,10 +106,7 @@ pub(crate) fn contact_at(
 /// Press the contact nodes (positions `s_c`, flexibility `y`) onto the ground until the
 /// vertical force equals `load` \[N\].
 pub fn solve_patch(
-    y: &Mat<f64>,
-    s_c: &[[f64; 3]],
-    ground_cfg: &GroundConfig,
-    load: f64,
+    y: &Mat<f64>, s_c: &[[f64; 3]], ground_cfg: &GroundConfig, load: f64,
 ) -> Result<PatchSolution, TireError> {
     check::positive("load", load, "N")?;
     ground_cfg.validate_within("ground")?;
@@ -226,11 +221,7 @@ pub fn preload(red: &ReducedTire, ground: &GroundConfig, load: f64) -> Result<Pr
 /// `load` (friction neglected in the preload). With the spindle fixed at this position the
 /// rolling tire starts in equilibrium, so the vertical spindle force equals the load.
 pub fn preload_rolling(
-    red: &ReducedTire,
-    ground: &GroundConfig,
-    load: f64,
-    spin: f64,
-    beta: f64,
+    red: &ReducedTire, ground: &GroundConfig, load: f64, spin: f64, beta: f64,
 ) -> Result<Preload, TireError> {
     let nz = red.n_z();
     let keff = Mat::from_fn(nz, nz, |i, j| {

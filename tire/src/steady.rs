@@ -219,11 +219,7 @@ impl SteadyResult {
 /// over the last `average_time`. `omega0` is the free-rolling spin rate for κ (`None`: this
 /// is the free-rolling point, κ = 0).
 fn run_point(
-    red: &ReducedTire,
-    cfg: &SteadyStudyConfig,
-    alpha_deg: f64,
-    torque: f64,
-    omega0: Option<f64>,
+    red: &ReducedTire, cfg: &SteadyStudyConfig, alpha_deg: f64, torque: f64, omega0: Option<f64>,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(SteadyPoint, String), TireError> {
     let mut rig = cfg.rig.clone();
@@ -280,9 +276,7 @@ fn run_point(
 /// fraction done (0..1). The settings are validated first ([`SteadyStudyConfig`]'s
 /// [`Validate`]; errors name the field relative to the study's root).
 pub fn run_steady(
-    red: &ReducedTire,
-    cfg: &SteadyStudyConfig,
-    progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, cfg: &SteadyStudyConfig, progress: &mut dyn FnMut(f64),
 ) -> Result<SteadyResult, TireError> {
     cfg.validate()?;
     let total = (1 + cfg.slip_angles_deg.len() + cfg.drive_torques_n_m.len()) as f64;

@@ -170,10 +170,7 @@ impl PhaseSpread {
 /// run in parallel (rayon), each summarised by [`summarize`]; `progress` receives the fraction
 /// of these runs done. `phases = 1` runs nothing.
 pub fn phase_spread(
-    red: &ReducedTire,
-    rig: &RigConfig,
-    phases: usize,
-    first: &CleatSummary,
+    red: &ReducedTire, rig: &RigConfig, phases: usize, first: &CleatSummary,
     progress: &(dyn Fn(f64) + Sync),
 ) -> Result<PhaseSpread, TireError> {
     use rayon::prelude::*;
@@ -314,10 +311,7 @@ pub const CLEAT_MEANING: &str = "The cleat test of Ribaric 8.3: the preloaded ti
 /// ([`line_modes`]: largest participation); `None` when that solve fails (the run's results do
 /// not depend on it).
 pub fn line_mode(
-    red: &ReducedTire,
-    r: &RigResult,
-    component: SpindleComponent,
-    hz: f64,
+    red: &ReducedTire, r: &RigResult, component: SpindleComponent, hz: f64,
 ) -> Option<LineMode> {
     let opt = RotatingOptions {
         spin: r.samples.first()?.spin,

@@ -133,9 +133,7 @@ pub struct SweepFailure {
 /// interpolated in [`PEAK_BAND_HZ`]; the dips are the interior local minima of the vertical
 /// peak amplitude against speed ([`local_minima`]).
 pub fn run_sweep(
-    red: &ReducedTire,
-    c: &SweepStudyConfig,
-    progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, c: &SweepStudyConfig, progress: &mut dyn FnMut(f64),
     on_run: &mut dyn FnMut(f64, &RigResult) -> Result<(), TireError>,
 ) -> Result<SweepResult, Box<SweepFailure>> {
     let n = c.speeds_kmh.len().max(1) as f64;

@@ -74,9 +74,7 @@ impl BeltDrive {
     /// coordinates beyond the belt's (pulley angles, a tensioner arm's angle, which places
     /// its idler) are held at their values in `q0`.
     pub fn initial_state_from(
-        &self,
-        q0: Vec<f64>,
-        opts: &InitialOptions,
+        &self, q0: Vec<f64>, opts: &InitialOptions,
     ) -> Result<InitialState, AncfError> {
         let r = solve_resting(self, "initial belt equilibrium", q0, opts)?;
         let tension = super::post::tension_samples(self, &r.q, 3);

@@ -283,12 +283,7 @@ impl BeltDrive {
     /// Runs the distributed contact of every element against every pulley at travel-sense
     /// pulley speeds `omegas` and hands each element–pulley pair with active points to `sink`.
     fn contact_pass(
-        &self,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        jacobian: bool,
-        scratch: &mut Scratch,
+        &self, q: &[f64], v: &[f64], omegas: &[f64], jacobian: bool, scratch: &mut Scratch,
         mut sink: impl FnMut(usize, usize, &ElementContact<2>, &mut Scratch),
     ) {
         let l = self.element_length();
@@ -350,12 +345,7 @@ impl BeltDrive {
     /// Belt forces `Q_e + Q_c` (length `n_belt`) and the travel-sense contact torques on every
     /// pulley `s τ` \[N·m\], with the pulleys spinning at `omegas` (travel sense, rad/s).
     pub fn belt_forces(
-        &self,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        f: &mut [f64],
-        torques: &mut [f64],
+        &self, q: &[f64], v: &[f64], omegas: &[f64], f: &mut [f64], torques: &mut [f64],
         ws: &mut Workspace,
     ) {
         let nb = self.n_belt;
@@ -372,12 +362,7 @@ impl BeltDrive {
     /// held at `omegas`, assembled into `pat` (whose first groups are the mesh elements, in
     /// order); `f` receives the forces.
     pub(crate) fn belt_stiffness(
-        &self,
-        q: &[f64],
-        omegas: &[f64],
-        pat: &Pattern,
-        f: &mut [f64],
-        k_vals: &mut [f64],
+        &self, q: &[f64], omegas: &[f64], pat: &Pattern, f: &mut [f64], k_vals: &mut [f64],
         ws: &mut Workspace,
     ) {
         let nb = self.n_belt;
@@ -436,11 +421,7 @@ impl BeltDrive {
     /// velocity turns away from the pulley tangent (Kerkkänen Fig. 3.17). The force values of
     /// these records are the force densities (3.20), (3.23) at the sampled points.
     pub fn contact_records_sampled(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        per_element: usize,
+        &self, t: f64, q: &[f64], v: &[f64], per_element: usize,
     ) -> Vec<PointRecord> {
         self.contact_records_sampled_with(q, v, &self.speeds(t, v), per_element)
     }
@@ -448,11 +429,7 @@ impl BeltDrive {
     /// [`Self::contact_records_sampled`] with the pulleys spinning at the travel-sense speeds
     /// `omegas` \[rad/s\] (one per pulley; see [`Self::forces_with`]).
     pub fn contact_records_sampled_with(
-        &self,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        per_element: usize,
+        &self, q: &[f64], v: &[f64], omegas: &[f64], per_element: usize,
     ) -> Vec<PointRecord> {
         let n = per_element.max(1);
         let line = LineContact {
@@ -468,10 +445,7 @@ impl BeltDrive {
     }
 
     fn records_on(
-        &self,
-        line: &LineContact<Disk, BeltNormal, BeltFriction>,
-        q: &[f64],
-        v: &[f64],
+        &self, line: &LineContact<Disk, BeltNormal, BeltFriction>, q: &[f64], v: &[f64],
         omegas: &[f64],
     ) -> Vec<PointRecord> {
         let l = self.element_length();
@@ -534,13 +508,8 @@ impl BeltDrive {
 /// `∂X/∂θ̇ = ∂X/∂ċ·c'`. The arm's moment is `(c − p) × F` with `F` = `ec.reaction`
 /// `= −(Q₀ + Q₆, Q₁ + Q₇)` (the same partition of unity), so `∂F/∂e` follows from `∂Q/∂e`.
 fn arm_contact_tangent(
-    a: &BeltArm,
-    lever: [f64; 2],
-    (angle, rate): (f64, f64),
-    ec: &ElementContact<2>,
-    spin: Option<(usize, f64)>,
-    nf: usize,
-    s: &mut Scratch,
+    a: &BeltArm, lever: [f64; 2], (angle, rate): (f64, f64), ec: &ElementContact<2>,
+    spin: Option<(usize, f64)>, nf: usize, s: &mut Scratch,
 ) {
     let m = NE + nf + 1;
     let ca = NE + nf;
@@ -655,13 +624,7 @@ impl BeltDrive {
     /// (its pulley surfaces move); the planar contact does not depend on it.
     #[allow(clippy::too_many_arguments)] // the state, the pulley inputs, outputs, and the workspace
     pub fn forces_with(
-        &self,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        loads: &[f64],
-        f: &mut [f64],
+        &self, _t: f64, q: &[f64], v: &[f64], omegas: &[f64], loads: &[f64], f: &mut [f64],
         ws: &mut Workspace,
     ) {
         let nb = self.n_belt;
@@ -706,12 +669,7 @@ impl BeltDrive {
     /// this drive (it keeps the reused elastic tangent). The time `t` \[s\] as in
     /// [`Self::forces_with`].
     pub fn force_tangent_with(
-        &self,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], v: &[f64], omegas: &[f64], ws: &mut Workspace,
     ) -> ForceTangent {
         let nb = self.n_belt;
         let pat = &self.pattern;
@@ -803,10 +761,7 @@ impl BeltDrive {
     /// (`g'/g = 0` or `−1/a`) and `−∂Q_d/∂ė = β α₁EA ∫ S_xᵀ g r_x r_xᵀ S_x dx` are added to the
     /// element blocks.
     fn axial_damping(
-        &self,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
+        &self, q: &[f64], v: &[f64], f: &mut [f64],
         mut tangent: Option<(&mut Vec<f64>, &mut Vec<f64>)>,
     ) {
         if self.spec.belt.axial_damping <= 0.0 {
@@ -836,10 +791,7 @@ impl BeltDrive {
     /// ([`Self::axial_damping`]) written into `qd`, and with `tangent` its local Jacobians
     /// (both overwritten).
     fn element_damping(
-        &self,
-        e: &[f64; NE],
-        ed: &[f64; NE],
-        qd: &mut [f64; NE],
+        &self, e: &[f64; NE], ed: &[f64; NE], qd: &mut [f64; NE],
         mut tangent: Option<(&mut [f64; NE * NE], &mut [f64; NE * NE])>,
     ) {
         qd.fill(0.0);
@@ -936,12 +888,8 @@ impl BeltDrive {
     /// every pulley, at the pulleys' travel-sense speeds `omegas`, integrated with `line`'s
     /// rule (summed over the pulleys into `out`).
     fn element_contact_force(
-        &self,
-        line: &LineContact<Disk, BeltNormal, BeltFriction>,
-        (q, v): (&[f64], &[f64]),
-        omegas: &[f64],
-        (e, ed): (&[f64; NE], &[f64; NE]),
-        ec: &mut ElementContact<2>,
+        &self, line: &LineContact<Disk, BeltNormal, BeltFriction>, (q, v): (&[f64], &[f64]),
+        omegas: &[f64], (e, ed): (&[f64; NE], &[f64; NE]), ec: &mut ElementContact<2>,
         out: &mut [f64; NE],
     ) {
         let l = self.element_length();
@@ -974,10 +922,7 @@ impl BeltDrive {
     /// travel-sense speeds `omegas` \[rad/s\] ([`SectionForces`]: issue 34, a smooth axial force
     /// along the wraps).
     pub fn section_forces<'a>(
-        &'a self,
-        q: &'a [f64],
-        v: &'a [f64],
-        omegas: &[f64],
+        &'a self, q: &'a [f64], v: &'a [f64], omegas: &[f64],
     ) -> SectionForces<'a> {
         SectionForces::new(self, q, v, omegas)
     }

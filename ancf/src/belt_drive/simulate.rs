@@ -149,10 +149,7 @@ impl SimulationConfig {
 /// Integrate `drive` from rest at `q0` (t = 0) to `t_end` \[s\]; `observer` sees every accepted
 /// step.
 pub fn simulate(
-    drive: &BeltDrive,
-    q0: &[f64],
-    t_end: f64,
-    opts: &SimulationConfig,
+    drive: &BeltDrive, q0: &[f64], t_end: f64, opts: &SimulationConfig,
     observer: impl FnMut(&State),
 ) -> Result<Solution, AncfError> {
     opts.validate()?;
@@ -234,10 +231,7 @@ impl BeltDrive {
     /// every decaying or oscillating mode inside RK4's stability region. Eigenvalues with
     /// `Re λ > 0` (physical instabilities) and `|λ| < 1e-6` (rigid motions) set no limit.
     pub fn rk4_step_limit(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
+        &self, t: f64, q: &[f64], v: &[f64],
     ) -> Result<ExplicitStepLimit, AncfError> {
         use faer::Mat;
         use faer::prelude::Solve;

@@ -62,12 +62,7 @@ impl BeltElement {
     /// Element of reference length `length` \[m\] with multipliers `alpha1` (axial) and `alpha2`
     /// (bending and shear), and `gauss_x` Gauss points along the axis.
     pub fn new(
-        length: f64,
-        material: Material,
-        section: Section,
-        alpha1: f64,
-        alpha2: f64,
-        gauss_x: usize,
+        length: f64, material: Material, section: Section, alpha1: f64, alpha2: f64, gauss_x: usize,
     ) -> Result<Self, AncfError> {
         check_positive("belt element: length", length, " m")?;
         check_positive("belt element: alpha1", alpha1, "")?;

@@ -300,11 +300,7 @@ pub(crate) fn axial_force(cst: &Constants, length: f64, p: &KernelPoint, e: &[f6
 /// tangent `∂²U/∂e²` (column-major 12 × 12) of the belt element with coordinates `e`
 /// (module documentation).
 pub(crate) fn evaluate(
-    cst: &Constants,
-    length: f64,
-    points: &[KernelPoint],
-    e: &[f64],
-    q: &mut [f64],
+    cst: &Constants, length: f64, points: &[KernelPoint], e: &[f64], q: &mut [f64],
     k: Option<&mut [f64]>,
 ) -> f64 {
     let Some(kout) = k else {
@@ -462,10 +458,7 @@ pub(crate) fn evaluate(
 
 /// `r_{c,x}`, `r_{c,xx}` and the five scalars `(a, z, sin γ, (sin γ)_x, ε_yy)` at a point.
 fn point_scalars(
-    p: &KernelPoint,
-    e: &[f64],
-    nodes: &[NodeScalars; 2],
-    il: f64,
+    p: &KernelPoint, e: &[f64], nodes: &[NodeScalars; 2], il: f64,
 ) -> ([f64; 2], [f64; 2], [f64; 5]) {
     let xi = p.xi;
     let mut rcx = [0.0; 2];

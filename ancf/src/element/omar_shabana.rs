@@ -18,10 +18,7 @@ impl OmarShabanaBeam {
     /// Element of reference length `length` \[m\] with `gauss_x` points along the axis (4 in the
     /// thesis).
     pub fn with_rule(
-        length: f64,
-        material: Material,
-        section: Section,
-        gauss_x: usize,
+        length: f64, material: Material, section: Section, gauss_x: usize,
     ) -> Result<Self, AncfError> {
         check_positive("Omar-Shabana element: length", length, " m")?;
         if gauss_x == 0 {

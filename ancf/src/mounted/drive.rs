@@ -45,10 +45,7 @@ pub trait DriveKind: Sized {
     fn mean_belt_speed(d: &AncfBeltDrive<Self>, q: &[f64], v: &[f64]) -> f64;
     /// Pulleys, spans and wrap points of `d` at the state ([`belt::BeltModel::snapshot`]).
     fn snapshot_at(
-        d: &AncfBeltDrive<Self>,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
+        d: &AncfBeltDrive<Self>, t: f64, q: &[f64], v: &[f64],
     ) -> Result<Snapshot, MbdError>;
     /// Transverse offset of each span's middle from its line \[m\].
     fn span_offsets(d: &AncfBeltDrive<Self>, q: &[f64]) -> Result<Vec<f64>, MbdError>;
@@ -91,10 +88,7 @@ impl<K: DriveKind> AncfBeltDrive<K> {
     /// element's mass matrix (Kerkkänen (2.26)), the free pulleys' inertias (3.26) and the
     /// extra inertias.
     pub(crate) fn assemble(
-        spec: DriveSpec<K::Belt, K::Contact>,
-        path: BeltPath,
-        kind: K,
-        extra_inertias: &[f64],
+        spec: DriveSpec<K::Belt, K::Contact>, path: BeltPath, kind: K, extra_inertias: &[f64],
     ) -> Self {
         let n_belt = kind.belt_coordinates();
         let pulley_dofs = PulleyCoordinates::new(&spec.pulleys, n_belt);

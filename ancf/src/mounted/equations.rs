@@ -25,12 +25,7 @@ macro_rules! ancf_equations {
             Ok(mbd_core::SysMatrix::Sparse(self.pattern.to_matrix(values)))
         }
         fn forces(
-            &self,
-            t: f64,
-            q: &[f64],
-            v: &[f64],
-            f: &mut [f64],
-            ws: &mut mbd_core::Workspace,
+            &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], ws: &mut mbd_core::Workspace,
         ) -> Result<(), mbd_core::MbdError> {
             let pulleys = &self.spec.pulleys;
             let (omegas, loads) = self.pulley_dofs.speeds_and_loads(pulleys, t, v)?;
@@ -39,11 +34,7 @@ macro_rules! ancf_equations {
             Ok(())
         }
         fn force_tangent(
-            &self,
-            t: f64,
-            q: &[f64],
-            v: &[f64],
-            ws: &mut mbd_core::Workspace,
+            &self, t: f64, q: &[f64], v: &[f64], ws: &mut mbd_core::Workspace,
         ) -> Result<Option<mbd_core::system::ForceTangent>, mbd_core::MbdError> {
             let omegas = self.pulley_dofs.speeds(&self.spec.pulleys, t, v);
             Ok(Some(self.force_tangent_with(t, q, v, &omegas, ws)))

@@ -40,10 +40,7 @@ pub fn validate_pulleys(pulleys: &[Pulley]) -> Result<(), InvalidField> {
 
 /// Add the free pulleys' inertias to the diagonal of the mass values `m` of `pattern`.
 pub(crate) fn add_inertias(
-    pc: &PulleyCoordinates,
-    pulleys: &[Pulley],
-    pattern: &Pattern,
-    m: &mut [f64],
+    pc: &PulleyCoordinates, pulleys: &[Pulley], pattern: &Pattern, m: &mut [f64],
 ) {
     for (p, j) in pc.free() {
         if let Some(inertia) = pulleys[p].motion.inertia() {
@@ -55,10 +52,7 @@ pub(crate) fn add_inertias(
 /// Add the free pulleys' viscous damping `c` of `−c ω` to the diagonal of the damping
 /// values `c` of `pattern`.
 pub(crate) fn add_damping(
-    pc: &PulleyCoordinates,
-    pulleys: &[Pulley],
-    pattern: &Pattern,
-    c: &mut [f64],
+    pc: &PulleyCoordinates, pulleys: &[Pulley], pattern: &Pattern, c: &mut [f64],
 ) {
     for (p, j) in pc.free() {
         let damping = pulleys[p].motion.damping();

@@ -85,10 +85,7 @@ pub(crate) struct Resting {
 /// coordinates beyond the belt's (pulley angles, a tensioner arm's angle) are held at their
 /// values in `q0`. `name` names the solve in errors.
 pub(crate) fn solve_resting<K: DriveKind>(
-    belt: &AncfBeltDrive<K>,
-    name: &str,
-    q0: Vec<f64>,
-    opts: &InitialOptions,
+    belt: &AncfBeltDrive<K>, name: &str, q0: Vec<f64>, opts: &InitialOptions,
 ) -> Result<Resting, AncfError>
 where
     AncfBeltDrive<K>: RestingBelt,

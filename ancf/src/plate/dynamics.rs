@@ -51,10 +51,7 @@ impl PlateDynamics {
     /// The mesh with the mesh coordinates `fixed` held at their values in `q0` (all mesh
     /// coordinates) and the gravitational acceleration `gravity` \[m/s²\].
     pub fn new(
-        mesh: PlateMesh,
-        q0: &[f64],
-        fixed: &[usize],
-        gravity: [f64; 3],
+        mesh: PlateMesh, q0: &[f64], fixed: &[usize], gravity: [f64; 3],
     ) -> Result<Self, AncfError> {
         let n_all = mesh.n_coords();
         if q0.len() != n_all {
@@ -207,12 +204,7 @@ impl SecondOrderSystem for PlateDynamics {
     }
     /// `Q_e + Q_g` on the free coordinates.
     fn forces(
-        &self,
-        _t: f64,
-        q: &[f64],
-        _v: &[f64],
-        f: &mut [f64],
-        ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64], ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         let Scratch {
             q: q_all, f: fe, ..
@@ -236,11 +228,7 @@ impl SecondOrderSystem for PlateDynamics {
     }
     /// `K = −∂Q_e/∂q` (analytic), no damping.
     fn force_tangent(
-        &self,
-        _t: f64,
-        q: &[f64],
-        _v: &[f64],
-        ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], _v: &[f64], ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let Scratch {
             q: q_all,

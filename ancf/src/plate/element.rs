@@ -39,12 +39,7 @@ impl ThinPlate {
     /// energy (Kerkkänen's Model 2); `gauss` points per direction for the energy (≥ 2; the
     /// thesis does not state its rule, 5 is a safe default).
     pub fn new(
-        a: f64,
-        b: f64,
-        thickness: f64,
-        material: Material,
-        bending: bool,
-        gauss: usize,
+        a: f64, b: f64, thickness: f64, material: Material, bending: bool, gauss: usize,
     ) -> Result<Self, AncfError> {
         let shape = PlateShape::new(a, b)?;
         material.validate()?;

@@ -36,13 +36,7 @@ impl PlateMesh {
     /// index `j (nx + 1) + i`.
     #[allow(clippy::too_many_arguments)]
     pub fn rectangle(
-        lx: f64,
-        ly: f64,
-        nx: usize,
-        ny: usize,
-        thickness: f64,
-        material: Material,
-        bending: bool,
+        lx: f64, ly: f64, nx: usize, ny: usize, thickness: f64, material: Material, bending: bool,
         gauss: usize,
     ) -> Result<(Self, Vec<f64>), AncfError> {
         if nx == 0 || ny == 0 {
@@ -161,8 +155,7 @@ impl PlateMesh {
 
     /// Assembled elastic forces \[N\] and sparse tangent stiffness `∂²U/∂q²` \[N/m\].
     pub fn elastic_tangent(
-        &self,
-        q: &[f64],
+        &self, q: &[f64],
     ) -> Result<(Vec<f64>, SparseColMat<usize, f64>), AncfError> {
         let map: Vec<Option<usize>> = (0..self.n_coords()).map(Some).collect();
         self.elastic_tangent_mapped(q, &map, self.n_coords())
@@ -172,10 +165,7 @@ impl PlateMesh {
     /// coordinates with `map[i] = Some(row)`, as an `n × n` sparse matrix in those rows (the
     /// unknowns of a solve with supports eliminated).
     pub fn elastic_tangent_mapped(
-        &self,
-        q: &[f64],
-        map: &[Option<usize>],
-        n: usize,
+        &self, q: &[f64], map: &[Option<usize>], n: usize,
     ) -> Result<(Vec<f64>, SparseColMat<usize, f64>), AncfError> {
         self.check(q)?;
         if map.len() != self.n_coords() || map.iter().flatten().any(|&r| r >= n) {
@@ -229,8 +219,7 @@ impl PlateMesh {
     }
 
     fn sparse(
-        &self,
-        t: &[Triplet<usize, usize, f64>],
+        &self, t: &[Triplet<usize, usize, f64>],
     ) -> Result<SparseColMat<usize, f64>, AncfError> {
         let n = self.n_coords();
         SparseColMat::try_new_from_triplets(n, n, t).map_err(|e| {

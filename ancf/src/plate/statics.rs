@@ -14,11 +14,7 @@ use mbd_core::newton::{self, Fallback, LineSearch, NewtonProblem};
 /// Solve `Q_e(q) + λ F = 0` for `λ = 1/n, …, 1` from `q0`, keeping the coordinates in `fixed`
 /// at their `q0` values. `load` is the generalized external force \[N\] (all coordinates).
 pub fn solve_plate_static(
-    mesh: &PlateMesh,
-    q0: &[f64],
-    fixed: &[usize],
-    load: &[f64],
-    opts: &AncfStaticOptions,
+    mesh: &PlateMesh, q0: &[f64], fixed: &[usize], load: &[f64], opts: &AncfStaticOptions,
 ) -> Result<AncfStaticSolution, AncfError> {
     let n_all = mesh.n_coords();
     check_sizes("plate statics", n_all, q0, load)?;

@@ -79,12 +79,7 @@ impl UnilateralSolution {
 /// keeping the coordinates `fixed` at their `q0` values. `q0` must be admissible (no node
 /// penetrating by more than the tolerance).
 pub fn solve_static_unilateral<E: AncfElement, S: Surface<2> + ?Sized>(
-    mesh: &AncfMesh<E>,
-    q0: &[f64],
-    fixed: &[usize],
-    load: &[f64],
-    surface: &S,
-    nodes: &[usize],
+    mesh: &AncfMesh<E>, q0: &[f64], fixed: &[usize], load: &[f64], surface: &S, nodes: &[usize],
     opts: &UnilateralOptions,
 ) -> Result<UnilateralSolution, AncfError> {
     let n = mesh.n_dof();

@@ -88,13 +88,8 @@ pub struct ContactStep {
 /// [`ActiveSetStepper`] with [`NodeContacts`]); `observer` sees every accepted step. The nodes
 /// must start outside the obstacle.
 pub fn integrate_unilateral<E: AncfElement, S: Surface<2> + ?Sized>(
-    system: &AncfSystem<E>,
-    surface: &S,
-    nodes: &[usize],
-    state0: State,
-    params: AlphaConfig,
-    t_end: f64,
-    observer: &mut dyn FnMut(&ContactStep),
+    system: &AncfSystem<E>, surface: &S, nodes: &[usize], state0: State, params: AlphaConfig,
+    t_end: f64, observer: &mut dyn FnMut(&ContactStep),
 ) -> Result<(), AncfError> {
     let mesh = &system.mesh;
     for &nd in nodes {

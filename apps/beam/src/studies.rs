@@ -65,11 +65,7 @@ fn study_error(e: AncfError) -> StudyError {
 /// `run` gets the progress callback to hand to the library loop: it moves the bar and answers
 /// `Break` once SIGINT/SIGTERM arrived, so the loop stops and the samples so far are kept.
 fn sampled_history(
-    ctx: &StudyContext,
-    label: &str,
-    t_end: f64,
-    h: f64,
-    samples: f64,
+    ctx: &StudyContext, label: &str, t_end: f64, h: f64, samples: f64,
     run: impl FnOnce(usize, &mut dyn FnMut(f64) -> ControlFlow<()>) -> Result<Vec<Sample>, AncfError>,
 ) -> Result<Vec<Sample>, StudyError> {
     let bar = ctx.progress(1.0, label);
@@ -82,9 +78,7 @@ fn sampled_history(
 /// The plausibility checks of a summary as the study's error (skipped when the run was
 /// interrupted: its summary is partial and marked so).
 fn plausible<T: Serialize>(
-    ctx: &StudyContext,
-    summary: T,
-    checks: impl FnOnce(&mut Checks),
+    ctx: &StudyContext, summary: T, checks: impl FnOnce(&mut Checks),
 ) -> Result<T, StudyError> {
     if ctx.cancel.is_cancelled() {
         return Ok(summary);
@@ -99,10 +93,7 @@ fn plausible<T: Serialize>(
 /// Write `history.csv`: time \[s\], tip position \[m\], then the study's `N` columns
 /// `columns` with the values `values(sample)`.
 fn write_history<const N: usize>(
-    ctx: &StudyContext,
-    s: &[Sample],
-    columns: [&str; N],
-    values: impl Fn(&Sample) -> [f64; N],
+    ctx: &StudyContext, s: &[Sample], columns: [&str; N], values: impl Fn(&Sample) -> [f64; N],
 ) -> Result<(), StudyError> {
     let mut header = vec!["t_s", "tip_x_m", "tip_y_m"];
     header.extend(columns);
@@ -163,9 +154,7 @@ impl Study for SimplySupported {
     }
 
     fn run(
-        &self,
-        c: &StaticBeamCase,
-        ctx: &mut StudyContext,
+        &self, c: &StaticBeamCase, ctx: &mut StudyContext,
     ) -> Result<DeflectionSummary, StudyError> {
         if !c.elements.is_multiple_of(2) {
             return Err(
@@ -571,9 +560,7 @@ impl Study for GroundContact {
     }
 
     fn run(
-        &self,
-        c: &GroundContactCase,
-        ctx: &mut StudyContext,
+        &self, c: &GroundContactCase, ctx: &mut StudyContext,
     ) -> Result<GroundContactSummary, StudyError> {
         let r = studies::ground_contact(c).map_err(study_error)?;
         ctx.out.write_csv(

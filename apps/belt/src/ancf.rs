@@ -40,10 +40,7 @@ pub(crate) struct AncfStudy;
 
 /// The belt's centreline at `q` as a closed `.vtu` polyline with its tension \[N\].
 fn write_vtk(
-    drive: &BeltDrive,
-    q: &[f64],
-    per_el: usize,
-    path: &std::path::Path,
+    drive: &BeltDrive, q: &[f64], per_el: usize, path: &std::path::Path,
 ) -> Result<(), StudyError> {
     let samples = post::tension_samples(drive, q, per_el);
     let points: Vec<[f64; 3]> = samples

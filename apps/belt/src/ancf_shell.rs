@@ -47,9 +47,7 @@ pub(crate) trait AncfApp {
     fn t_end(c: &mut Self::Config) -> &mut f64;
     /// Run the study (`start`: the study's start, for its wall time).
     fn run(
-        c: &Self::Config,
-        ctx: &mut StudyContext,
-        start: Instant,
+        c: &Self::Config, ctx: &mut StudyContext, start: Instant,
     ) -> Result<Self::Summary, StudyError>;
 }
 
@@ -106,9 +104,7 @@ pub(crate) fn to_study_error(e: ancf::AncfError) -> StudyError {
 /// The summary of a run (its wall time since `start`), or the numerical failure that stopped
 /// it with the summary at the state reached as its partial result.
 pub(crate) fn finish<S: Serialize>(
-    mut summary: S,
-    run: impl FnOnce(&mut S) -> &mut RunEnd,
-    failure: Option<String>,
+    mut summary: S, run: impl FnOnce(&mut S) -> &mut RunEnd, failure: Option<String>,
     start: Instant,
 ) -> Result<S, StudyError> {
     run(&mut summary).wall_time_s = start.elapsed().as_secs_f64();
@@ -152,9 +148,7 @@ pub(crate) type PulleySpeeds = Vec<Vec<(f64, f64)>>;
 /// the others. Returns what `run` returns and each pulley's speed at the history samples, for
 /// their plot.
 pub(crate) fn sampled_run<T>(
-    ctx: &mut StudyContext,
-    sampled: Sampled<'_>,
-    s0: &State,
+    ctx: &mut StudyContext, sampled: Sampled<'_>, s0: &State,
     mut row: impl FnMut(&State) -> Vec<f64>,
     mut frame: impl FnMut(&State, &Path) -> Result<(), StudyError>,
     run: impl FnOnce(Observer<'_>) -> Result<T, StudyError>,
@@ -202,9 +196,7 @@ pub(crate) fn sampled_run<T>(
 
 /// A plot over the time `t [s]` with one line per `(name, points)` of `lines`.
 pub(crate) fn time_plot(
-    title: &str,
-    y_label: &str,
-    lines: impl IntoIterator<Item = (String, Vec<(f64, f64)>)>,
+    title: &str, y_label: &str, lines: impl IntoIterator<Item = (String, Vec<(f64, f64)>)>,
 ) -> LinePlot {
     lines.into_iter().fold(
         LinePlot::new(title, "t [s]", y_label),

@@ -57,12 +57,8 @@ impl Study for Args {
 /// Write `name`: the engine speed, the columns `fixed` and `extra`; a row per engine speed and
 /// element of `items(point)` (travel order) holding the speed and `row(point, index, element)`.
 fn per_speed_csv<T>(
-    ctx: &StudyContext,
-    name: &str,
-    fixed: &[&str],
-    extra: impl Iterator<Item = String>,
-    s: &DesignSummary,
-    items: impl Fn(&DesignPoint) -> &[T],
+    ctx: &StudyContext, name: &str, fixed: &[&str], extra: impl Iterator<Item = String>,
+    s: &DesignSummary, items: impl Fn(&DesignPoint) -> &[T],
     row: impl Fn(&DesignPoint, usize, &T) -> Vec<f64>,
 ) -> Result<(), StudyError> {
     let header: Vec<String> = std::iter::once("engine_speed_rpm")

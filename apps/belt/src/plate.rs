@@ -40,10 +40,7 @@ pub(crate) struct PlateStudy;
 /// The belt surface at `(q, v)` as a `.vtu` file of quadrilaterals (4 per element) with the
 /// tension (by `measure`) and velocity fields.
 fn write_surface(
-    drive: &PlateBeltDrive,
-    s: &State,
-    measure: StrainMeasure,
-    path: &std::path::Path,
+    drive: &PlateBeltDrive, s: &State, measure: StrainMeasure, path: &std::path::Path,
 ) -> Result<(), StudyError> {
     let g = surface_grid(drive, &s.q, &s.v, 4, measure);
     let mut mesh = Mesh::new(3);
@@ -77,9 +74,7 @@ fn write_surface(
 }
 
 fn analytical_series(
-    a: &[SteadyPoint],
-    name: &str,
-    f: impl Fn(&SteadyPoint) -> f64,
+    a: &[SteadyPoint], name: &str, f: impl Fn(&SteadyPoint) -> f64,
 ) -> Option<Series> {
     (!a.is_empty()).then(|| Series::line(name, a.iter().map(|p| (p.s, f(p))).collect()))
 }

@@ -102,11 +102,7 @@ fn report_slips(model: ModelKind, case: &SpeedLossCase) {
 /// One driver speed: run the study's case ([`study_case`]) writing the history CSV, then the
 /// ANCF mapping (if any) and the wrap distributions. `(case, number of coordinates)`.
 fn run_case(
-    c: &Config,
-    omega: f64,
-    ctx: &StudyContext,
-    done: &AtomicUsize,
-    report: &(dyn Fn(usize) + Sync),
+    c: &Config, omega: f64, ctx: &StudyContext, done: &AtomicUsize, report: &(dyn Fn(usize) + Sync),
 ) -> Result<(Case, usize), StudyError> {
     let start = std::time::Instant::now();
     let name = format!("history_omega_{omega:.1}.csv");

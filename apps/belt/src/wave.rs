@@ -34,11 +34,7 @@ pub struct Args {
 /// Every `n/vtk_frames`-th recorded shape of `run` as a closed `.vtu` polyline, its deflection
 /// from `base` scaled by `vtk_scale`, with the true deflection \[m\] as point data.
 fn write_vtk(
-    ctx: &StudyContext,
-    name: &str,
-    run: &WaveRun,
-    base: &[[f64; 2]],
-    c: &WaveStudyConfig,
+    ctx: &StudyContext, name: &str, run: &WaveRun, base: &[[f64; 2]], c: &WaveStudyConfig,
 ) -> Result<(), StudyError> {
     let mut frames = VtkSeries::new(name, "vtu", 0.0);
     let every = run.times.len().div_ceil(c.vtk_frames).max(1);
@@ -86,9 +82,7 @@ impl Study for Args {
     }
 
     fn run(
-        &self,
-        c: &WaveStudyConfig,
-        ctx: &mut StudyContext,
+        &self, c: &WaveStudyConfig, ctx: &mut StudyContext,
     ) -> Result<WaveStudySummary, StudyError> {
         let progress = ctx.progress(1.0, "wave");
         let study = run_wave_study(c, |f| progress.set(f)).map_err(|e| match e {

@@ -196,10 +196,7 @@ fn coordinates_of_the_wrong_length_are_refused() {
 /// Start `args`, wait until `ready` exists, wait `delay` more, send `signal`; the exit code,
 /// stderr and how long the process took to end after the signal.
 fn interrupt(
-    args: &[&str],
-    ready: &Path,
-    delay: Duration,
-    signal: &str,
+    args: &[&str], ready: &Path, delay: Duration, signal: &str,
 ) -> (i32, String, Duration) {
     let child = Command::new(EXE)
         .args(args)

@@ -199,8 +199,7 @@ pub fn tables_accepting_unknown_keys<C: Serialize + DeserializeOwned>(config: &C
 /// The tables of the configuration `text` whose [`unknown_key_variants`] `accepts` (e.g. an
 /// app run with `--config variant --print-config` that exits 0): their dotted paths.
 pub fn tables_accepting_unknown_keys_by(
-    text: &str,
-    mut accepts: impl FnMut(&str) -> bool,
+    text: &str, mut accepts: impl FnMut(&str) -> bool,
 ) -> Vec<String> {
     match unknown_key_variants(text) {
         Ok(variants) => variants

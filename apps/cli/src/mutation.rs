@@ -342,11 +342,7 @@ pub fn sampled_findings(exe: &str, studies: &[&str], pick: &[usize], tag: &str) 
 /// Every mutation of every study validated, and every `run_every`-th accepted one run under
 /// `timeout` ([`Mode::Run`]): what breaks the conventions.
 pub fn exhaustive_findings(
-    exe: &str,
-    studies: &[&str],
-    tag: &str,
-    run_every: usize,
-    timeout: Duration,
+    exe: &str, studies: &[&str], tag: &str, run_every: usize, timeout: Duration,
 ) -> Vec<String> {
     let mut report = Vec::new();
     for study in studies {

@@ -113,9 +113,7 @@ pub fn register_font() {
 impl LinePlot {
     /// A plot with labels and no series yet.
     pub fn new(
-        title: impl Into<String>,
-        x_label: impl Into<String>,
-        y_label: impl Into<String>,
+        title: impl Into<String>, x_label: impl Into<String>, y_label: impl Into<String>,
     ) -> Self {
         Self {
             title: title.into(),
@@ -355,8 +353,7 @@ impl LinePlot {
 /// Draw the legend of `chart` the plots' way: labels of `font_size` px in a box with a
 /// translucent white background and a black border (errors as text).
 pub fn draw_legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
-    chart: &mut ChartContext<'a, DB, CT>,
-    font_size: u32,
+    chart: &mut ChartContext<'a, DB, CT>, font_size: u32,
 ) -> Result<(), String> {
     chart
         .configure_series_labels()

@@ -44,8 +44,7 @@ impl StudyError {
     /// An implausible result ([`mbd_core::validate::plausible`]): a numerical failure whose
     /// partial results are the summary that failed the check.
     pub fn implausible<T: Serialize>(
-        e: mbd_core::validate::plausible::Implausible,
-        summary: &T,
+        e: mbd_core::validate::plausible::Implausible, summary: &T,
     ) -> Self {
         Self::failed_with(e.to_string(), summary)
     }
@@ -140,9 +139,7 @@ pub trait Study {
 
     /// Run the study. Write histories into `ctx.out` as they are computed.
     fn run(
-        &self,
-        config: &Self::Config,
-        ctx: &mut StudyContext,
+        &self, config: &Self::Config, ctx: &mut StudyContext,
     ) -> Result<Self::Summary, StudyError>;
 }
 
@@ -229,10 +226,7 @@ pub const CANCEL_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
 /// once the study returned: from then on the runner writes the summary and the watch stands
 /// down.
 fn watch_cancel(
-    app: &'static str,
-    name: &'static str,
-    out: OutputDir,
-    cancel: Cancel,
+    app: &'static str, name: &'static str, out: OutputDir, cancel: Cancel,
     finished: std::sync::Arc<std::sync::Mutex<bool>>,
 ) {
     let lock =
@@ -282,11 +276,7 @@ fn watch_cancel(
 }
 
 fn try_run<S: Study>(
-    app: &'static str,
-    study: &S,
-    args: &CommonArgs,
-    cancel: &Cancel,
-    watch: bool,
+    app: &'static str, study: &S, args: &CommonArgs, cancel: &Cancel, watch: bool,
 ) -> Result<Outcome, StudyError> {
     // before any check: the ceilings of sizes and run lengths (`--allow-large`, issue 20)
     mbd_core::validate::limits::set_allow_large(args.allow_large);
@@ -436,8 +426,7 @@ fn try_run<S: Study>(
 
 /// `summary` as JSON with `"meaning": meaning` added (a summary object without one).
 fn with_meaning<T: Serialize>(
-    summary: &T,
-    meaning: &str,
+    summary: &T, meaning: &str,
 ) -> Result<serde_json::Value, serde_json::Error> {
     let mut v = serde_json::to_value(summary)?;
     if let serde_json::Value::Object(m) = &mut v
@@ -517,9 +506,7 @@ mod tests {
 
     /// [`Sum`] with `steps` and `fail_after`, run into `out` (unwatched).
     fn run_sum(
-        steps: Option<usize>,
-        fail_after: Option<usize>,
-        out: &std::path::Path,
+        steps: Option<usize>, fail_after: Option<usize>, out: &std::path::Path,
     ) -> Result<Outcome, StudyError> {
         let sum = Sum { steps, fail_after };
         try_run("test", &sum, &args(out), &Cancel::new(), false)

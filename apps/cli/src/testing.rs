@@ -120,11 +120,7 @@ pub fn with_overrides(text: &str, overrides: &str) -> String {
 /// code, stdout, stderr). The merged copy is written next to the example, so that the files
 /// it names relative to itself are found, and removed after the run.
 pub fn run_example(
-    exe: &str,
-    study: &str,
-    path: &std::path::Path,
-    overrides: &str,
-    args: &[&str],
+    exe: &str, study: &str, path: &std::path::Path, overrides: &str, args: &[&str],
 ) -> (i32, String, String) {
     /// A file removed when dropped (also when the test panics).
     struct Scratch(PathBuf);
@@ -221,9 +217,7 @@ pub enum ExampleRun {
 /// (study, example) pair run as `how(study, example)` says exits 0 with a summary holding its
 /// `meaning`.
 pub fn assert_examples_run(
-    exe: &str,
-    dir: &std::path::Path,
-    how: impl Fn(&str, &std::path::Path) -> ExampleRun,
+    exe: &str, dir: &std::path::Path, how: impl Fn(&str, &std::path::Path) -> ExampleRun,
 ) {
     let missing = studies_without_example(exe, dir);
     assert!(

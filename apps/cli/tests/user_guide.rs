@@ -212,10 +212,7 @@ fn run(app: &str, args: &[String], home: &Path) -> Result<std::time::Duration, S
 
 /// [`run`] from the folder `cwd`.
 fn run_in(
-    app: &str,
-    args: &[String],
-    home: &Path,
-    cwd: &Path,
+    app: &str, args: &[String], home: &Path, cwd: &Path,
 ) -> Result<std::time::Duration, String> {
     let exe = bin_dir().join(format!("{app}{}", std::env::consts::EXE_SUFFIX));
     let t0 = Instant::now();

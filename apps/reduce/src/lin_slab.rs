@@ -290,8 +290,7 @@ impl Study for LinSlabStudy {
 /// Writes the regenerated tables (`sim3_tables.csv`: t, then x, y, z accelerations of nodes 16,
 /// 18, 28, 30 \[m/s²\]) and the source's node-8 history (`sim3_source_node8.csv`).
 fn write_sim3_tables(
-    ctx: &mut StudyContext,
-    src: &flowmbd_cases::lin::slab_sim3::SourceRun,
+    ctx: &mut StudyContext, src: &flowmbd_cases::lin::slab_sim3::SourceRun,
 ) -> Result<(), StudyError> {
     let mut header = vec!["t_s".to_string()];
     for j in DRIVEN_NODES {

@@ -249,9 +249,7 @@ fn parse_nodes(text: &str, flag: &str) -> Result<Vec<(usize, usize)>, String> {
 
 /// The 0-based nodes of `ranges`, each checked against the model's `n_nodes` first.
 fn expand_nodes(
-    ranges: &[(usize, usize)],
-    flag: &str,
-    n_nodes: usize,
+    ranges: &[(usize, usize)], flag: &str, n_nodes: usize,
 ) -> Result<Vec<usize>, String> {
     if let Some(&(_, b)) = ranges.iter().find(|r| r.1 > n_nodes) {
         return Err(format!(
@@ -402,10 +400,7 @@ fn run_inner(a: &Args, c: &ReduceConfig) -> Result<Summary, Failure> {
 /// `--method eitelberg`: the dense Eitelberg reduction (`reduction::eitelberg_model`) written
 /// to `out`, its frequencies in the summary.
 fn eitelberg(
-    red: EitelbergModel,
-    part: &DofPartition,
-    out: &std::path::Path,
-    t0: Instant,
+    red: EitelbergModel, part: &DofPartition, out: &std::path::Path, t0: Instant,
 ) -> Result<Summary, Failure> {
     let reduction_s = t0.elapsed().as_secs_f64();
     red.save(out)

@@ -29,9 +29,7 @@ impl Study for SimulateStudy {
     }
 
     fn run(
-        &self,
-        c: &SimulateConfig,
-        ctx: &mut StudyContext,
+        &self, c: &SimulateConfig, ctx: &mut StudyContext,
     ) -> Result<SimulateSummary, StudyError> {
         let bar = ctx.progress(c.duration, "RK4");
         let r = string_simulate(c, &mut |t| ctx.tick(&bar, t)).map_err(study_error)?;

@@ -227,12 +227,8 @@ pub struct WrapSummary {
 /// Writes the deformed string (anchors included), the pulley circles and the nodal contact
 /// forces as a VTK unstructured grid (fe-model's VTU writer).
 fn write_vtk(
-    path: &std::path::Path,
-    sys: &ContactString,
-    st: &State,
-    pulleys: &[PulleyObstacle],
-    length: f64,
-    positions: &[f64],
+    path: &std::path::Path, sys: &ContactString, st: &State, pulleys: &[PulleyObstacle],
+    length: f64, positions: &[f64],
 ) -> Result<(), StudyError> {
     use fe_model::io::vtk::{PointField, write_vtu};
     use fe_model::{Cell, CellKind, Mesh};

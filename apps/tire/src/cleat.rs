@@ -37,11 +37,7 @@ use tire::study::{FORCE_COLUMNS, SPECTRUM_COLUMNS, force_row, sample_row, spectr
 /// `lines` (e.g. [`tire::study::line_mode`]'s) are marked on the spectrum plot as vertical lines at the
 /// modes' frequencies, labelled with the mode.
 pub fn write_outputs(
-    ctx: &StudyContext,
-    r: &RigResult,
-    prefix: &str,
-    history: bool,
-    lines: &[(&str, &LineMode)],
+    ctx: &StudyContext, r: &RigResult, prefix: &str, history: bool, lines: &[(&str, &LineMode)],
 ) -> Result<(), StudyError> {
     if history {
         ctx.out.write_csv(
@@ -109,10 +105,7 @@ pub fn write_outputs(
 /// The frame of `series` due at simulated time `now` \[s\] ([`VtkSeries::due`]); a write error
 /// is kept in `kept` (the study reports it as such) and stops the run.
 fn due_frame(
-    series: &mut VtkSeries,
-    out: &flowmbd_cli::OutputDir,
-    now: f64,
-    kept: &mut Option<CliError>,
+    series: &mut VtkSeries, out: &flowmbd_cli::OutputDir, now: f64, kept: &mut Option<CliError>,
 ) -> Result<Option<std::path::PathBuf>, TireError> {
     series.due(out, now).map_err(|e| {
         let reason = e.to_string();
@@ -149,9 +142,7 @@ fn write_patch_vtu(path: &std::path::Path, sim: &RollingTire) -> Result<(), Tire
 /// The whole deforming tire (visualisation rows of the reduced basis) as VTK line cells with the
 /// displacement field.
 fn write_tire_vtu(
-    path: &std::path::Path,
-    viz: &tire::VizBasis,
-    sim: &RollingTire,
+    path: &std::path::Path, viz: &tire::VizBasis, sim: &RollingTire,
 ) -> Result<(), TireError> {
     let x = viz.deformed(&sim.coordinates());
     let mut mesh = Mesh::new(3);

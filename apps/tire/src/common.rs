@@ -74,10 +74,7 @@ impl TireSourceExt for TireSource {
 /// progress bar over `steps` units of work labelled `label`: `run` gets the reduced tire and
 /// the progress callback of the library's run, which takes the fraction done.
 pub fn run_reduced<T>(
-    ctx: &StudyContext,
-    source: &TireSource,
-    steps: usize,
-    label: &str,
+    ctx: &StudyContext, source: &TireSource, steps: usize, label: &str,
     run: impl FnOnce(&ReducedTire, &mut dyn FnMut(f64)) -> Result<T, StudyError>,
 ) -> Result<(ReducedTire, T), StudyError> {
     let red = source.reduced(ctx.quiet)?;

@@ -83,11 +83,7 @@ impl SpectrumMap<'_> {
     /// steps above the last (axis title `speed_axis`), the same caption font, margin, label
     /// areas and label styles; a grid when `grid`.
     fn frame<'b, DB: DrawingBackend>(
-        &self,
-        area: &'b DrawingArea<DB, Shift>,
-        caption: &str,
-        above: f64,
-        speed_axis: &str,
+        &self, area: &'b DrawingArea<DB, Shift>, caption: &str, above: f64, speed_axis: &str,
         grid: bool,
     ) -> Result<SpeedFrequencyChart<'b, DB>, String> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
@@ -115,8 +111,7 @@ impl SpectrumMap<'_> {
     }
 
     fn draw_contour<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
+        &self, root: &DrawingArea<DB, Shift>,
     ) -> Result<(), String> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
         let (df, dv) = self.steps();
@@ -162,8 +157,7 @@ impl SpectrumMap<'_> {
     }
 
     fn draw_waterfall<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
+        &self, root: &DrawingArea<DB, Shift>,
     ) -> Result<(), String> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
         let (_, dv) = self.steps();
@@ -209,10 +203,7 @@ impl SpectrumMap<'_> {
     /// Draw the `kind` plot (`contour` or `waterfall`) on `root` and write it to `path` (the
     /// backend's file, named in errors).
     fn render<DB: DrawingBackend>(
-        &self,
-        kind: &str,
-        root: &DrawingArea<DB, Shift>,
-        path: &Path,
+        &self, kind: &str, root: &DrawingArea<DB, Shift>, path: &Path,
     ) -> Result<(), StudyError> {
         root.fill(&WHITE).map_err(|m| io(path, m))?;
         match kind {

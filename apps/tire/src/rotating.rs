@@ -29,10 +29,7 @@ pub struct Args {
 }
 
 fn campbell(
-    runs: &[SpeedModes],
-    splits: &[SplitOut],
-    loaded: bool,
-    stem: &std::path::Path,
+    runs: &[SpeedModes], splits: &[SplitOut], loaded: bool, stem: &std::path::Path,
 ) -> Result<(), StudyError> {
     let mut plot = LinePlot::new(
         if loaded {

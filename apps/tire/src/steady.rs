@@ -87,11 +87,8 @@ impl Study for Args {
 /// Write `tire.tir` and the data-with-fit plots of the Magic Formula fit of the summary, and
 /// put the file's path into it.
 fn write_fit(
-    m: &mut tire::magic_formula::MfSummary,
-    r: &tire::SteadyResult,
-    red: &tire::ReducedTire,
-    c: &Config,
-    ctx: &mut StudyContext,
+    m: &mut tire::magic_formula::MfSummary, r: &tire::SteadyResult, red: &tire::ReducedTire,
+    c: &Config, ctx: &mut StudyContext,
 ) -> Result<(), StudyError> {
     let fit = m.fit;
     let ys = red.contact_positions.iter().map(|p| p[1]);
@@ -154,10 +151,7 @@ fn write_fit(
 /// Plot `file`: the simulated `data` as points and the fitted `curve` sampled at 201 points over
 /// the data's range; `labels` = (title, x axis, y axis, quantity).
 fn fit_plot(
-    ctx: &mut StudyContext,
-    file: &str,
-    labels: (&str, &str, &str, &str),
-    data: Vec<(f64, f64)>,
+    ctx: &mut StudyContext, file: &str, labels: (&str, &str, &str, &str), data: Vec<(f64, f64)>,
     curve: impl Fn(f64) -> f64,
 ) -> Result<(), StudyError> {
     let (title, xl, yl, q) = labels;

@@ -148,9 +148,7 @@ pub(super) fn validated(p: &SlabSimConfig) -> Result<()> {
 /// (`g` = [`G`] \[m/s²\]). Returns the system, the body's index and the number of modal
 /// coordinates; `err` names the system in mbd-core errors.
 pub(super) fn slab_system(
-    slab: &LinSlab,
-    method: SlabMethod,
-    n_modes: usize,
+    slab: &LinSlab, method: SlabMethod, n_modes: usize,
     err: impl Fn(mbd_core::MbdError) -> ReductionError,
 ) -> Result<(FloatingSystem, usize, usize)> {
     let basis = slab_basis(slab, method, n_modes)?;
@@ -171,10 +169,7 @@ pub(super) fn slab_system(
 
 /// Builds the floating-frame system and its initial state for `method` and `sim`.
 pub fn build(
-    slab: &LinSlab,
-    method: SlabMethod,
-    sim: SlabSimulation,
-    p: &SlabSimConfig,
+    slab: &LinSlab, method: SlabMethod, sim: SlabSimulation, p: &SlabSimConfig,
 ) -> Result<(FloatingSystem, State)> {
     if sim == SlabSimulation::Emulated {
         let table = std::sync::Arc::new(record_source(slab, p)?.table);
@@ -271,10 +266,7 @@ pub fn build(
 /// The observer may answer `ControlFlow::Break(())` ([`Proceed`]) to stop the run there (a
 /// cancelled run; the residual so far is returned).
 pub fn simulate<R: Proceed>(
-    slab: &LinSlab,
-    method: SlabMethod,
-    sim: SlabSimulation,
-    p: &SlabSimConfig,
+    slab: &LinSlab, method: SlabMethod, sim: SlabSimulation, p: &SlabSimConfig,
     observer: impl FnMut(f64, [f64; 3]) -> R,
 ) -> Result<f64> {
     validated(p)?;
@@ -294,12 +286,8 @@ pub fn simulate<R: Proceed>(
 /// after every step. Returns the largest position-level constraint residual \[m\]; `what`
 /// names the simulation in errors. Shared by simulations 1–3.
 pub(super) fn run_observed<R: Proceed>(
-    sys: &FloatingSystem,
-    st: State,
-    step: f64,
-    duration: f64,
-    mut observer: impl FnMut(f64, [f64; 3]) -> R,
-    what: String,
+    sys: &FloatingSystem, st: State, step: f64, duration: f64,
+    mut observer: impl FnMut(f64, [f64; 3]) -> R, what: String,
 ) -> Result<f64> {
     let mut drift = 0.0f64;
     let mut phi = vec![0.0; mbd_core::SecondOrderSystem::n_c(sys)];

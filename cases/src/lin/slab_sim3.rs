@@ -136,10 +136,7 @@ impl AccelTable {
     /// Builds the table; velocities and positions at the samples are the exact integrals of the
     /// piecewise-linear acceleration.
     pub fn new(
-        interval_s: f64,
-        nodes: Vec<usize>,
-        x0: Vec<Vector3<f64>>,
-        v0: Vec<Vector3<f64>>,
+        interval_s: f64, nodes: Vec<usize>, x0: Vec<Vector3<f64>>, v0: Vec<Vector3<f64>>,
         acc: Vec<Vec<Vector3<f64>>>,
     ) -> Result<Self> {
         let bad = |reason: String| ReductionError::InvalidParameter {
@@ -427,10 +424,7 @@ pub fn record_source(slab: &LinSlab, p: &SlabSimConfig) -> Result<SourceRun> {
 /// interpolated tables, gravity and the two constant forces, starting from the source's initial
 /// configuration at rest.
 pub fn emulation_system(
-    slab: &LinSlab,
-    method: SlabMethod,
-    table: &Arc<AccelTable>,
-    p: &SlabSimConfig,
+    slab: &LinSlab, method: SlabMethod, table: &Arc<AccelTable>, p: &SlabSimConfig,
 ) -> Result<(FloatingSystem, State)> {
     check(p)?;
     if table.nodes != DRIVEN_NODES {
@@ -469,10 +463,7 @@ pub fn emulation_system(
 /// \[m\] at the start and after every RK4 step of `step_s`. Returns the largest position-level
 /// constraint residual \[m\].
 pub fn simulate_emulated<R: mbd_core::integrators::Proceed>(
-    slab: &LinSlab,
-    method: SlabMethod,
-    table: &Arc<AccelTable>,
-    p: &SlabSimConfig,
+    slab: &LinSlab, method: SlabMethod, table: &Arc<AccelTable>, p: &SlabSimConfig,
     observer: impl FnMut(f64, [f64; 3]) -> R,
 ) -> Result<f64> {
     super::slab_sim::validated(p)?;

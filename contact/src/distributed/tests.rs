@@ -19,10 +19,7 @@ fn amax3(x: &[Vector3<f64>]) -> f64 {
 /// Bilinear 4-node surface element (3 coordinates per node, node `i + 2j` at `(ξ_i, η_j)`):
 /// quadrature points of the tensor Gauss rule with a constant area Jacobian `area`.
 fn bilinear_points(
-    e: &SVector<f64, 12>,
-    edot: &SVector<f64, 12>,
-    rule_xi: &GaussRule,
-    rule_eta: &GaussRule,
+    e: &SVector<f64, 12>, edot: &SVector<f64, 12>, rule_xi: &GaussRule, rule_eta: &GaussRule,
     area: f64,
 ) -> Vec<QuadPoint<3, SMatrix<f64, 3, 12>>> {
     let mut out = Vec::new();

@@ -43,12 +43,7 @@ impl FrictionLaw for Coulomb {
     /// `∂p/∂f = a Q`, `∂p/∂u = −a r_T Q`, `∂p/∂λ̂ = μ ẑ` with `a = ρ/|z|`, `Q = I − ẑ ẑᵀ`.
     /// With `ρ ≤ 0` the disk is a point: `p = 0` whatever the slip.
     fn augmented(
-        &self,
-        f: Vector2<f64>,
-        u: Vector2<f64>,
-        normal: f64,
-        rt: f64,
-        jacobian: bool,
+        &self, f: Vector2<f64>, u: Vector2<f64>, normal: f64, rt: f64, jacobian: bool,
     ) -> Augmented {
         let rho = self.mu * normal;
         let z = Vector2::new(f[0] - rt * u[0], f[1] - rt * u[1]);

@@ -117,12 +117,7 @@ pub trait FrictionLaw: Debug + Send + Sync {
     /// force `normal = λ̂ > 0` and tangential augmentation `r_t` \[N·s/m\] (see [`Augmented`]).
     /// Derivatives are filled when `jacobian`. The default (smooth laws) is `p = f_t(u, λ̂)`.
     fn augmented(
-        &self,
-        _force: Vector2<f64>,
-        slip: Vector2<f64>,
-        normal: f64,
-        _r_t: f64,
-        _jacobian: bool,
+        &self, _force: Vector2<f64>, slip: Vector2<f64>, normal: f64, _r_t: f64, _jacobian: bool,
     ) -> Augmented {
         let t = self.friction_tangent(slip, normal);
         Augmented {
@@ -182,12 +177,7 @@ impl<L: FrictionLaw + ?Sized> FrictionLaw for &L {
         (**self).is_set_valued()
     }
     fn augmented(
-        &self,
-        force: Vector2<f64>,
-        slip: Vector2<f64>,
-        normal: f64,
-        r_t: f64,
-        jacobian: bool,
+        &self, force: Vector2<f64>, slip: Vector2<f64>, normal: f64, r_t: f64, jacobian: bool,
     ) -> Augmented {
         (**self).augmented(force, slip, normal, r_t, jacobian)
     }

@@ -186,12 +186,7 @@ impl FrictionLaw for FrictionSpec {
         dispatch!(self, l => l.is_set_valued())
     }
     fn augmented(
-        &self,
-        force: Vector2<f64>,
-        slip: Vector2<f64>,
-        normal: f64,
-        r_t: f64,
-        jacobian: bool,
+        &self, force: Vector2<f64>, slip: Vector2<f64>, normal: f64, r_t: f64, jacobian: bool,
     ) -> Augmented {
         dispatch!(self, l => l.augmented(force, slip, normal, r_t, jacobian))
     }

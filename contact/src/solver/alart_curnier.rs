@@ -199,10 +199,7 @@ impl ContactSolver {
     /// [`ContactSolver::solve`] with the diagonal compliances of `problem.d`, without reuse of
     /// earlier Newton matrices. The solution is [`ContactSolver::x`].
     pub fn solve_dense(
-        &mut self,
-        problem: &mut DenseProblem<'_>,
-        x0: &[f64],
-        options: &ContactSolverOptions,
+        &mut self, problem: &mut DenseProblem<'_>, x0: &[f64], options: &ContactSolverOptions,
     ) -> ContactSolverReport {
         self.reset(x0);
         let m = problem.b.len() / 3;
@@ -258,11 +255,7 @@ impl ContactSolver {
     /// `L_k`, `G_k` of `dΦ_k = L_k dx_k + G_k dy_k` (the law's target is the same with or
     /// without its derivatives).
     pub(super) fn residual(
-        &self,
-        s: &ContactSolverOptions,
-        x: &[f64],
-        y: &[f64],
-        phi: &mut [f64],
+        &self, s: &ContactSolverOptions, x: &[f64], y: &[f64], phi: &mut [f64],
         mut lin: Option<&mut Linearization>,
     ) -> f64 {
         let mut norm = 0.0f64;
@@ -316,10 +309,7 @@ impl ContactSolver {
     /// have them yet, adding them to the tangential rows of `y` and of `also` (`b` enters
     /// only these rows).
     fn prefetch(
-        &mut self,
-        src: &mut dyn DelassusSource,
-        x: &[f64],
-        y: &mut [f64],
+        &mut self, src: &mut dyn DelassusSource, x: &[f64], y: &mut [f64],
         mut also: Option<&mut [f64]>,
     ) {
         if !self.need_slip {
@@ -341,9 +331,7 @@ impl ContactSolver {
 
     /// `y = D x + b` with the needed columns, and `Φ`; returns `‖Φ‖∞`.
     pub(super) fn evaluate(
-        &mut self,
-        src: &mut dyn DelassusSource,
-        s: &ContactSolverOptions,
+        &mut self, src: &mut dyn DelassusSource, s: &ContactSolverOptions,
     ) -> f64 {
         for l in 0..self.m {
             if self.x[3 * l..3 * l + 3] != [0.0; 3] {
@@ -390,12 +378,8 @@ impl ContactSolver {
     /// same as in the previous solve (a nearby `D`): its last LU may serve for chord steps.
     /// `alts` are further warm starts (3m each), used if their residual is smaller.
     pub fn solve(
-        &mut self,
-        src: &mut dyn DelassusSource,
-        diag: &[[f64; 2]],
-        s: &ContactSolverOptions,
-        reuse: bool,
-        alts: &[&[f64]],
+        &mut self, src: &mut dyn DelassusSource, diag: &[[f64; 2]], s: &ContactSolverOptions,
+        reuse: bool, alts: &[&[f64]],
     ) -> ContactSolverReport {
         let m = self.m;
         let n = 3 * m;

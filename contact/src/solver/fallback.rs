@@ -11,10 +11,7 @@ impl ContactSolver {
     /// sweeps on the friction forces (exact local Coulomb / regularised solve per contact),
     /// until `‖Φ‖∞ ≤ tol · max λ` or `max_rounds`. Returns `‖Φ‖∞`.
     pub(super) fn alternation(
-        &mut self,
-        src: &mut dyn DelassusSource,
-        diag: &[[f64; 2]],
-        s: &ContactSolverOptions,
+        &mut self, src: &mut dyn DelassusSource, diag: &[[f64; 2]], s: &ContactSolverOptions,
         rep: &mut ContactSolverReport,
     ) -> f64 {
         // x changes below without a residual: no linearisation at it

@@ -60,11 +60,7 @@ impl LcpWork {
     /// Solve `w = q + W λ ≥ 0, λ ≥ 0, λᵀw = 0` (see [`solve_lcp`]); the multipliers are left in
     /// `self.lambda`. Returns `(converged, iterations)`.
     pub fn solve(
-        &mut self,
-        w: MatRef<'_, f64>,
-        q: &[f64],
-        warm: &[bool],
-        tol: f64,
+        &mut self, w: MatRef<'_, f64>, q: &[f64], warm: &[bool], tol: f64,
     ) -> (bool, usize) {
         let n = q.len();
         self.active.clear();

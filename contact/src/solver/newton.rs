@@ -43,10 +43,7 @@ impl ContactSolver {
     /// or (`chord`) the classification changed since the last LU, else whether an LU was made.
     /// With `chord`, the last LU replaces the Jacobian (simplified Newton).
     pub(super) fn newton_direction(
-        &mut self,
-        src: &mut dyn DelassusSource,
-        s: &ContactSolverOptions,
-        chord: bool,
+        &mut self, src: &mut dyn DelassusSource, s: &ContactSolverOptions, chord: bool,
     ) -> Option<bool> {
         let m = self.m;
         let n = 3 * m;

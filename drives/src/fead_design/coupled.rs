@@ -130,10 +130,7 @@ pub struct CoupledMode {
 /// Build the coupled model of `drive` about the steady state `s` with the rotational model
 /// `rot` (module documentation).
 pub fn coupled_model(
-    drive: &Drive,
-    s: &SteadyState,
-    rot: &RotationalModel,
-    options: &CoupledOptions,
+    drive: &Drive, s: &SteadyState, rot: &RotationalModel, options: &CoupledOptions,
 ) -> CoupledModel {
     coupled_model_with(drive, s, rot, options, drive.belt().mass_per_length)
 }
@@ -141,11 +138,7 @@ pub fn coupled_model(
 /// [`coupled_model`] with the spans' transverse mass per length `rho` \[kg/m\] (the belt's
 /// `ρA` in [`coupled_model`]; the statics, hence `T_i` and `ρA v²`, keep the belt's).
 pub(crate) fn coupled_model_with(
-    drive: &Drive,
-    s: &SteadyState,
-    rot: &RotationalModel,
-    options: &CoupledOptions,
-    rho: f64,
+    drive: &Drive, s: &SteadyState, rot: &RotationalModel, options: &CoupledOptions, rho: f64,
 ) -> CoupledModel {
     let names = drive.names();
     let nt = options.terms.max(1);

@@ -638,9 +638,7 @@ pub fn describe(drive: &Drive) -> String {
 /// The design point of `drive` at `engine_rpm` (pulley `driver` speed-driven at that speed),
 /// with its findings.
 fn design_point(
-    drive: &Drive,
-    engine_rpm: f64,
-    settings: &DesignSettings,
+    drive: &Drive, engine_rpm: f64, settings: &DesignSettings,
 ) -> Result<(DesignPoint, Vec<DesignIssue>), InvalidField> {
     let omega = engine_rpm * std::f64::consts::PI / 30.0;
     let s = steady_state(drive, omega)?;
@@ -868,9 +866,7 @@ fn design_point(
 /// Frequencies of every Campbell curve at `engine_rpm`: the rotational modes ascending, then
 /// every span's harmonics, then the coupled modes ascending.
 fn curve_values(
-    drive: &Drive,
-    engine_rpm: f64,
-    settings: &DesignSettings,
+    drive: &Drive, engine_rpm: f64, settings: &DesignSettings,
 ) -> Result<Vec<Option<f64>>, InvalidField> {
     let (p, _) = design_point(drive, engine_rpm, settings)?;
     // one entry per rotational coordinate (`None` where the eigen solution failed)
@@ -889,10 +885,7 @@ fn curve_values(
 /// documentation); crossings located by the Illinois root finder on the recomputed curves
 /// ([`mbd_core::roots::illinois`], 0.01 rpm).
 fn campbell(
-    drive: &Drive,
-    engine: &EngineConfig,
-    settings: &DesignSettings,
-    first: &DesignPoint,
+    drive: &Drive, engine: &EngineConfig, settings: &DesignSettings, first: &DesignPoint,
 ) -> Result<Campbell, InvalidField> {
     let [lo, hi] = settings.campbell_rpm.unwrap_or_else(|| {
         let lo = engine

@@ -290,13 +290,7 @@ fn unstretched_length(geo: &Geometry, t: &[f64], tc: f64, mu: &[f64], section: &
 /// belt is too long to keep every span's quasi-static tension positive (then the slackest
 /// span is returned at `T_c`).
 fn close_length(
-    geo: &Geometry,
-    d: &[f64],
-    tc: f64,
-    mu: &[f64],
-    section: &Section,
-    lb: f64,
-    scale: f64,
+    geo: &Geometry, d: &[f64], tc: f64, mu: &[f64], section: &Section, lb: f64, scale: f64,
 ) -> (f64, bool) {
     let tensions = |tref: f64| -> Vec<f64> { d.iter().map(|x| tref + x).collect() };
     let f = |tref: f64| unstretched_length(geo, &tensions(tref), tc, mu, section) - lb;

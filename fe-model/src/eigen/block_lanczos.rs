@@ -51,9 +51,7 @@ pub(crate) struct BlockKsResult {
 /// Largest `nev` eigenpairs of the symmetric operator `apply: (out, x) ↦ out = T x` of size `n`,
 /// started from the block `start` (`n × b`, full column rank).
 pub(crate) fn block_krylov_schur(
-    n: usize,
-    apply: &mut dyn FnMut(MatMut<'_, f64>, MatRef<'_, f64>),
-    start: MatRef<'_, f64>,
+    n: usize, apply: &mut dyn FnMut(MatMut<'_, f64>, MatRef<'_, f64>), start: MatRef<'_, f64>,
     opts: &BlockKsOptions,
 ) -> Result<BlockKsResult, FeError> {
     let b = opts.block.max(1).min(n);
@@ -166,10 +164,7 @@ pub(crate) fn block_krylov_schur(
 /// Ritz vectors `V Y_sel` of the columns `cols` of `y` (the eigenvectors of `H_m`), with
 /// `Y_sel`.
 fn ritz_vectors(
-    v: MatRef<'_, f64>,
-    y: MatRef<'_, f64>,
-    cols: &[usize],
-    par: Par,
+    v: MatRef<'_, f64>, y: MatRef<'_, f64>, cols: &[usize], par: Par,
 ) -> (Mat<f64>, Mat<f64>) {
     let ysel = Mat::from_fn(y.nrows(), cols.len(), |i, j| y[(i, cols[j])]);
     let mut x = Mat::<f64>::zeros(v.nrows(), cols.len());
@@ -184,9 +179,7 @@ fn ritz_vectors(
 /// are replaced by pseudo-random vectors orthogonalised against `basis` and `Q`, with zero rows
 /// in `R` (the Krylov–Schur relation stays valid to the size of the dropped part).
 fn orthonormal_block(
-    w: &mut Mat<f64>,
-    basis: MatRef<'_, f64>,
-    par: Par,
+    w: &mut Mat<f64>, basis: MatRef<'_, f64>, par: Par,
 ) -> Result<(Mat<f64>, Mat<f64>), FeError> {
     let b = w.ncols();
     if w.as_ref().norm_l2().is_nan() {

@@ -67,10 +67,7 @@ pub fn dense_modes(k: MatRef<'_, f64>, m: MatRef<'_, f64>, count: usize) -> Resu
 
 /// [`dense_modes`] with an explicit shift σ \[rad²/s²\] below the wanted spectrum (`None` = auto).
 pub fn dense_modes_shifted(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    count: usize,
-    shift: Option<f64>,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, count: usize, shift: Option<f64>,
 ) -> Result<Modes, FeError> {
     Ok(dense_modes_report(k, m, count, shift)?.0)
 }
@@ -100,10 +97,7 @@ fn check_input(k: MatRef<'_, f64>, m: MatRef<'_, f64>) -> Result<(), FeError> {
 
 /// [`dense_modes_shifted`] returning the residual and orthogonality diagnostics as well.
 pub fn dense_modes_report(
-    k: MatRef<'_, f64>,
-    m: MatRef<'_, f64>,
-    count: usize,
-    shift: Option<f64>,
+    k: MatRef<'_, f64>, m: MatRef<'_, f64>, count: usize, shift: Option<f64>,
 ) -> Result<(Modes, DenseEigenReport), FeError> {
     check_input(k, m)?;
     let n = k.nrows();

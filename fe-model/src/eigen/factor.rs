@@ -21,9 +21,7 @@ use std::sync::Arc;
 /// `K − σ M` with the union pattern of K and M (so that every shift gives the same pattern
 /// and one symbolic factorization serves all shifts).
 pub fn shifted(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    sigma: f64,
+    k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, sigma: f64,
 ) -> Result<SparseColMat<usize, f64>, FeError> {
     if k.nrows() != m.nrows() || k.ncols() != m.ncols() || k.nrows() != k.ncols() {
         return Err(FeError::Dimension {
@@ -136,8 +134,7 @@ impl Analysis {
     /// ascending; their number is the number of negative eigenvalues of `a` (Sylvester's law
     /// of inertia). Errors on a zero pivot.
     pub fn negative_pivot_dofs(
-        &self,
-        a: SparseColMatRef<'_, usize, f64>,
+        &self, a: SparseColMatRef<'_, usize, f64>,
     ) -> Result<Vec<usize>, FeError> {
         let mut values = vec![0.0; self.symbolic.len_val()];
         let par = Par::rayon(0);

@@ -142,9 +142,7 @@ fn start_block(n: usize, b: usize, seed: u64) -> Mat<f64> {
 /// documentation. Returns the modes (ascending, M-normalised, sign convention of [`Modes`]) and
 /// a diagnostic report.
 pub fn sparse_modes(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    count: usize,
+    k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, count: usize,
     opts: &SparseEigenOptions,
 ) -> Result<(Modes, SparseEigenReport), FeError> {
     let n = k.nrows();
@@ -399,9 +397,7 @@ pub fn orthogonality_error(m: SparseColMatRef<'_, usize, f64>, phi: MatRef<'_, f
 
 /// Largest relative residual `‖Kφ − λMφ‖ / max(‖Kφ‖, ‖λMφ‖)` over the modes.
 pub fn max_residual(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    modes: &Modes,
+    k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, modes: &Modes,
 ) -> f64 {
     let phi = modes.vectors.as_ref();
     let mut kp = Mat::zeros(phi.nrows(), phi.ncols());

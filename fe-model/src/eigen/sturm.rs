@@ -11,9 +11,7 @@ use faer::sparse::SparseColMatRef;
 /// `analysis` must be the symbolic analysis of the union pattern of K and M (see
 /// [`super::factor::shifted`]); pass `None` to analyse here.
 pub fn sturm_count(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    cut: f64,
+    k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, cut: f64,
     analysis: Option<&Analysis>,
 ) -> Result<usize, FeError> {
     if !cut.is_finite() {

@@ -30,13 +30,8 @@ impl Bar {
     /// New bar between points `xa` and `xb` (only the first `dofs_a.len()` coordinates are
     /// used, 1 ≤ dim ≤ 3). `dofs_a`/`dofs_b` are the node's translational DOFs.
     pub fn new(
-        dofs_a: &[usize],
-        dofs_b: &[usize],
-        xa: [f64; 3],
-        xb: [f64; 3],
-        ea: f64,
-        mass_per_length: f64,
-        axial_force: f64,
+        dofs_a: &[usize], dofs_b: &[usize], xa: [f64; 3], xb: [f64; 3], ea: f64,
+        mass_per_length: f64, axial_force: f64,
     ) -> Result<Self, FeError> {
         let dim = dofs_a.len();
         if !(1..=3).contains(&dim) || dofs_b.len() != dim {

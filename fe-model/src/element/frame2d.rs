@@ -59,11 +59,7 @@ pub struct Frame2d {
 impl Frame2d {
     /// New element between points `xa` and `xb` \[m\].
     pub fn new(
-        dofs: [usize; 6],
-        xa: [f64; 2],
-        xb: [f64; 2],
-        section: Frame2dSection,
-        axial_force: f64,
+        dofs: [usize; 6], xa: [f64; 2], xb: [f64; 2], section: Frame2dSection, axial_force: f64,
     ) -> Result<Self, FeError> {
         section.validate()?;
         if !axial_force.is_finite() {

@@ -88,12 +88,8 @@ impl Frame3d {
     /// New element between `xa` and `xb` \[m\]; `orientation` gives the local y direction (any
     /// vector not parallel to the element).
     pub fn new(
-        dofs: [usize; 12],
-        xa: [f64; 3],
-        xb: [f64; 3],
-        orientation: [f64; 3],
-        section: Frame3dSection,
-        axial_force: f64,
+        dofs: [usize; 12], xa: [f64; 3], xb: [f64; 3], orientation: [f64; 3],
+        section: Frame3dSection, axial_force: f64,
     ) -> Result<Self, FeError> {
         section.validate()?;
         if !axial_force.is_finite() {

@@ -141,10 +141,7 @@ impl Hex8 {
     /// New element; checks the material and that the Jacobian is positive at all Gauss points
     /// and at the centre (no inverted or degenerate element).
     pub fn new(
-        dofs: [usize; 24],
-        x: [[f64; 3]; 8],
-        material: Elastic,
-        integration: Hex8Integration,
+        dofs: [usize; 24], x: [[f64; 3]; 8], material: Elastic, integration: Hex8Integration,
         prestress: Option<[[f64; 3]; 3]>,
     ) -> Result<Self, FeError> {
         mbd_core::Validate::validate(&material)?;

@@ -25,10 +25,7 @@ pub struct StringElement {
 impl StringElement {
     /// New string element; checks that length, tension and mass are positive.
     pub fn new(
-        dofs: [usize; 2],
-        length: f64,
-        tension: f64,
-        mass_per_length: f64,
+        dofs: [usize; 2], length: f64, tension: f64, mass_per_length: f64,
     ) -> Result<Self, FeError> {
         FeError::check_positive("length", length)?;
         FeError::check_non_negative("tension", tension)?;
@@ -69,10 +66,7 @@ impl Element for StringElement {
 /// seed note U3 (the end-node masses are irrelevant for fixed ends, where only the interior
 /// `n × n` block is used). Returns `(M, K)` of size `(n+2) × (n+2)`, units kg and N/m.
 pub fn ribaric_string_matrices(
-    n_interior: usize,
-    length: f64,
-    tension: f64,
-    mass_per_length: f64,
+    n_interior: usize, length: f64, tension: f64, mass_per_length: f64,
 ) -> Result<(Mat<f64>, Mat<f64>), FeError> {
     FeError::check_positive("length", length)?;
     FeError::check_non_negative("tension", tension)?;

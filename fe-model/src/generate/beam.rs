@@ -9,10 +9,7 @@ use crate::model::FeModel;
 /// equal elements, DOFs (u, v, θ) per node, all elements with axial force `axial_force` \[N\]
 /// (tension > 0) for the geometric stiffness. Node sets: `start`, `end`, `all`.
 pub fn straight_beam_2d(
-    length: f64,
-    n_elements: usize,
-    section: Frame2dSection,
-    axial_force: f64,
+    length: f64, n_elements: usize, section: Frame2dSection, axial_force: f64,
 ) -> Result<FeModel, FeError> {
     FeError::check_positive("length", length)?;
     if n_elements == 0 {
@@ -42,11 +39,7 @@ pub fn straight_beam_2d(
 /// `axial_force` \[N\] (tension > 0) for the geometric stiffness. Shared by the frame meshes
 /// of this module and of [`super::belt`].
 pub(crate) fn frame2d_line(
-    mesh: &mut Mesh,
-    a: usize,
-    b: usize,
-    section: Frame2dSection,
-    axial_force: f64,
+    mesh: &mut Mesh, a: usize, b: usize, section: Frame2dSection, axial_force: f64,
 ) -> Result<Frame2d, FeError> {
     mesh.cells.push(Cell {
         kind: CellKind::Line,
@@ -69,10 +62,7 @@ pub(crate) fn frame2d_line(
 /// `n_elements` equal elements, tension `tension` \[N\], mass per length `mass_per_length` \[kg/m\].
 /// Node sets: `start`, `end`, `interior`.
 pub fn straight_string(
-    length: f64,
-    n_elements: usize,
-    tension: f64,
-    mass_per_length: f64,
+    length: f64, n_elements: usize, tension: f64, mass_per_length: f64,
 ) -> Result<FeModel, FeError> {
     FeError::check_positive("length", length)?;
     if n_elements == 0 {

@@ -12,12 +12,8 @@ use crate::model::FeModel;
 /// pass `|p| p` for the straight block.
 #[allow(clippy::too_many_arguments)]
 pub fn hex_block(
-    size: [f64; 3],
-    divisions: [usize; 3],
-    material: Elastic,
-    integration: Hex8Integration,
-    prestress: Option<[[f64; 3]; 3]>,
-    map: impl Fn([f64; 3]) -> [f64; 3],
+    size: [f64; 3], divisions: [usize; 3], material: Elastic, integration: Hex8Integration,
+    prestress: Option<[[f64; 3]; 3]>, map: impl Fn([f64; 3]) -> [f64; 3],
 ) -> Result<FeModel, FeError> {
     for (i, &s) in size.iter().enumerate() {
         FeError::check_positive(["lx", "ly", "lz"][i], s)?;

@@ -126,11 +126,7 @@ pub(crate) fn err(file: &str, line: usize, kind: crate::error::MatrixFileError) 
 /// relative tolerance `10⁻¹²·max(|value|, |mirror|)` (symmetric storage, `A_rc = A_cr`);
 /// `row`, `col` are 0-based and reported 1-based.
 pub(crate) fn check_mirror(
-    file: &str,
-    line: usize,
-    (row, col): (usize, usize),
-    value: f64,
-    mirror: f64,
+    file: &str, line: usize, (row, col): (usize, usize), value: f64, mirror: f64,
 ) -> Result<(), crate::FeError> {
     let tol = 1e-12 * mirror.abs().max(value.abs());
     if (mirror - value).abs() > tol {

@@ -35,10 +35,7 @@ pub fn default_layout(dofs_per_node: usize) -> DisplacementLayout {
 
 /// Displacement vector fields from mode shapes (full-DOF columns of `vectors`).
 pub fn mode_fields(
-    mesh: &Mesh,
-    vectors: MatRef<'_, f64>,
-    frequencies_hz: &[f64],
-    layout: DisplacementLayout,
+    mesh: &Mesh, vectors: MatRef<'_, f64>, frequencies_hz: &[f64], layout: DisplacementLayout,
 ) -> Result<Vec<PointField>, FeError> {
     if vectors.nrows() != mesh.n_dofs() {
         return Err(FeError::Dimension {
@@ -191,9 +188,7 @@ pub fn polyline(points: &[[f64; 3]], closed: bool) -> Mesh {
 
 /// Write a `.vtu` file.
 pub fn write_vtu(
-    path: impl AsRef<Path>,
-    mesh: &Mesh,
-    fields: &[PointField],
+    path: impl AsRef<Path>, mesh: &Mesh, fields: &[PointField],
 ) -> Result<(), FeError> {
     let path = path.as_ref();
     let text = vtu_string(mesh, fields)?;

@@ -65,11 +65,7 @@ pub struct NodeContact {
 /// maps its counter-clockwise tangent `t_ccw = Ĩ n` onto the belt's travel tangent
 /// `t = −turn·t_ccw` and adds the reaction torque on the pulley.
 pub fn node_contact(
-    pulley: &PulleyFrame,
-    omega: f64,
-    d: [f64; 2],
-    vel: [f64; 2],
-    normal_law: &impl NormalLaw,
+    pulley: &PulleyFrame, omega: f64, d: [f64; 2], vel: [f64; 2], normal_law: &impl NormalLaw,
     friction_law: &impl FrictionLaw,
 ) -> NodeContact {
     let sgn = -pulley.turn;

@@ -201,11 +201,7 @@ impl DriveCoordinates {
     /// `add_c(i, j, −∂f_i/∂v_j)` for every non-zero entry (the arm's spring and damper, the
     /// pulleys' dampers, the decouplers' (D3)).
     pub(crate) fn add_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        mut add_k: impl FnMut(usize, usize, f64),
+        &self, t: f64, q: &[f64], v: &[f64], mut add_k: impl FnMut(usize, usize, f64),
         mut add_c: impl FnMut(usize, usize, f64),
     ) {
         if let (Some(a), Some(tm), Some(k)) = (self.arm_state(q, v), self.tensioner, self.arm_dof) {
@@ -233,10 +229,7 @@ impl DriveCoordinates {
     /// Forces (D3) of every decoupler at `(t, q, v)` with their local coordinates
     /// ([`belt::Decoupler::forces`]).
     fn decoupler_forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
+        &self, t: f64, q: &[f64], v: &[f64],
     ) -> Vec<(&[usize], belt::DecouplerForces)> {
         self.decouplers
             .iter()
@@ -287,8 +280,7 @@ impl ArmState {
     /// `∂/∂θ̇ = −F_V c'`.
     #[allow(clippy::type_complexity)]
     pub(crate) fn contact_derivatives(
-        &self,
-        c: &NodeContact,
+        &self, c: &NodeContact,
     ) -> (([f64; 2], f64), ([f64; 2], f64)) {
         let mv = |m: &[[f64; 2]; 2], x: [f64; 2]| {
             [

@@ -203,10 +203,7 @@ impl FlowingBelt {
     }
 
     fn on(
-        fe: BeltFe,
-        basis: FlowingBasis,
-        motions: Vec<Motion>,
-        tensioner: Option<Arm>,
+        fe: BeltFe, basis: FlowingBasis, motions: Vec<Motion>, tensioner: Option<Arm>,
     ) -> Result<Self, crate::FlowError> {
         let n = fe.n_dofs();
         let m = basis.len();
@@ -304,11 +301,7 @@ impl FlowingBelt {
     }
 
     fn node_state(
-        &self,
-        r: &ContactRow,
-        z: &[f64],
-        zd: &[f64],
-        vb: f64,
+        &self, r: &ContactRow, z: &[f64], zd: &[f64], vb: f64,
     ) -> ([f64; 2], [f64; 2], [f64; 2]) {
         let i = r.node;
         let (mut d, mut vel, mut bs) = (self.fe.position[i], [0.0; 2], [0.0; 2]);
@@ -329,13 +322,7 @@ impl FlowingBelt {
     /// Contact of one row at a state; the idler's frame and the relative velocity when the
     /// row's pulley is the tensioner's.
     fn row_contact(
-        &self,
-        r: &ContactRow,
-        arm: Option<&ArmState>,
-        t: f64,
-        z: &[f64],
-        zd: &[f64],
-        v: &[f64],
+        &self, r: &ContactRow, arm: Option<&ArmState>, t: f64, z: &[f64], zd: &[f64], v: &[f64],
     ) -> (NodeContact, [f64; 2], bool) {
         let (d, mut vel, bs) = self.node_state(r, z, zd, v[0]);
         let w = self.coords.pulley_speed(r.pulley, t, v);
@@ -607,12 +594,7 @@ impl SecondOrderSystem for FlowingBelt {
     }
 
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         let m = self.m;
         let (z, zd, vb) = (&q[1..=m], &v[1..=m], v[0]);
@@ -673,11 +655,7 @@ impl SecondOrderSystem for FlowingBelt {
     }
 
     fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let (k, c) = self.tangent(t, q, v);
         Ok(Some(ForceTangent {

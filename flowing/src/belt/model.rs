@@ -563,10 +563,7 @@ pub(crate) mod tests {
     /// tangents `tan`: deflections `δ_i = φ J (r_i − c)`, `θ_i = φ`, and the rate of their
     /// global components as the material flows along the path at unit speed, `φ J t_i`.
     pub(crate) fn rigid_rotation(
-        pos: &[[f64; 2]],
-        tan: &[[f64; 2]],
-        c: [f64; 2],
-        phi: f64,
+        pos: &[[f64; 2]], tan: &[[f64; 2]], c: [f64; 2], phi: f64,
     ) -> (Vec<f64>, Vec<f64>) {
         let n = 3 * pos.len();
         let (mut delta, mut rate) = (vec![0.0; n], vec![0.0; n]);

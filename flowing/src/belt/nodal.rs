@@ -217,9 +217,7 @@ impl NodalBelt {
     }
 
     pub(crate) fn on(
-        fe: BeltFe,
-        motions: Vec<Motion>,
-        tensioner: Option<Arm>,
+        fe: BeltFe, motions: Vec<Motion>, tensioner: Option<Arm>,
     ) -> Result<Self, crate::FlowError> {
         let b = *fe.drive.belt();
         let contact = *fe.drive.contact();
@@ -355,11 +353,7 @@ impl NodalBelt {
 
     /// Every active node–pulley contact at `(t, q, v)`: `(node, pulley, contact)`.
     fn contacts(
-        &self,
-        mesh: &Mesh,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
+        &self, mesh: &Mesh, t: f64, q: &[f64], v: &[f64],
     ) -> Vec<(usize, usize, NodeContact)> {
         let (d, dd, vb) = (&q[1..], &v[1..], v[0]);
         let arm = self.coords.arm_state(q, v);
@@ -400,10 +394,7 @@ impl NodalBelt {
     /// Contact state of every touching node at `(t, q, v)`: `(node, pulley, path position s
     /// [m], contact)`.
     pub fn contact_report(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
+        &self, t: f64, q: &[f64], v: &[f64],
     ) -> Result<Vec<(usize, usize, f64, NodeContact)>, MbdError> {
         let mesh = self.mesh(q[0])?;
         Ok(self
@@ -485,12 +476,7 @@ impl NodalBelt {
     /// Nodal forces `g − v² M ε_n` (`3N`), the contact torque on each pulley \[N m\] and the
     /// moment of the idler's contact forces about the tensioner's pivot \[N m\].
     fn nodal_forces(
-        &self,
-        mesh: &Mesh,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        g: &mut [f64],
+        &self, mesh: &Mesh, t: f64, q: &[f64], v: &[f64], g: &mut [f64],
     ) -> (Vec<f64>, f64) {
         let n = self.n();
         let nd = self.n_nodal();
@@ -546,12 +532,7 @@ impl NodalBelt {
     }
 
     fn forces_on(
-        &self,
-        mesh: &Mesh,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
+        &self, mesh: &Mesh, t: f64, q: &[f64], v: &[f64], f: &mut [f64],
     ) -> Result<(), MbdError> {
         let nd = self.n_nodal();
         let (torque, moment) = self.nodal_forces(mesh, t, q, v, &mut f[1..=nd]);
@@ -703,15 +684,8 @@ impl NodalBelt {
     /// travel, idler-spin and arm columns (the lever turns with the arm: `∂(c − p)/∂θ = c'`).
     #[allow(clippy::too_many_arguments)]
     fn add_arm_entries(
-        &self,
-        kq: &mut Tangent<'_>,
-        cv: &mut Tangent<'_>,
-        arm: &ArmState,
-        ia: usize,
-        pi: usize,
-        r: usize,
-        et: [f64; 2],
-        c: &NodeContact,
+        &self, kq: &mut Tangent<'_>, cv: &mut Tangent<'_>, arm: &ArmState, ia: usize, pi: usize,
+        r: usize, et: [f64; 2], c: &NodeContact,
     ) {
         let ((f_q, t_q), (f_v, t_v)) = arm.contact_derivatives(c);
         let lever = |f: [f64; 2]| -arm.moment(f);
@@ -863,23 +837,14 @@ impl SecondOrderSystem for NodalBelt {
     }
 
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         let mesh = self.mesh(q[0])?;
         self.forces_on(&mesh, t, q, v, f)
     }
 
     fn force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let (k, c) = self.tangent(t, q, v)?;
         Ok(Some(ForceTangent {
@@ -920,11 +885,7 @@ impl SecondOrderSystem for NodalBelt {
 
     /// `γ = v² κ² e_tᵀ δ^k − 2 v κ e_nᵀ δ̇^k` (`∂e_n/∂s = −κ e_t`).
     fn constraint_gamma(
-        &self,
-        _t: f64,
-        q: &[f64],
-        v: &[f64],
-        gamma: &mut [f64],
+        &self, _t: f64, q: &[f64], v: &[f64], gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         let k = self.reference_node;
         let p = self.fe.path().point(self.fe.s[k] + q[0]);

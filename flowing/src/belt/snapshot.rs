@@ -33,12 +33,8 @@ fn deformed(reference: &[[f64; 2]], d: &[f64]) -> Vec<[f64; 2]> {
 /// forces (acting along the nodes' line over each span's middle half), wrap points at the
 /// contact nodes; `idler`: the tensioner idler's (pulley, centre, centre velocity).
 fn snapshot_with(
-    fe: &BeltFe,
-    t: f64,
-    nodes: &[[f64; 2]],
-    forces: &[f64],
-    contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
-    omega: Vec<f64>,
+    fe: &BeltFe, t: f64, nodes: &[[f64; 2]], forces: &[f64],
+    contacts: impl Iterator<Item = (usize, usize, NodeContact)>, omega: Vec<f64>,
     idler: Option<(usize, [f64; 2], [f64; 2])>,
 ) -> Snapshot {
     let path = fe.path();

@@ -62,11 +62,7 @@ where
 /// iteration `residual_from` on), at most 50 iterations; `what` names the model in errors.
 /// Returns `x` (`n_x` entries).
 pub(crate) fn dense_equilibrium<F>(
-    what: &str,
-    n_x: usize,
-    dim: usize,
-    residual_from: usize,
-    eval: F,
+    what: &str, n_x: usize, dim: usize, residual_from: usize, eval: F,
 ) -> Result<Vec<f64>, MbdError>
 where
     F: FnMut(&[f64], &mut [f64]) -> Result<Mat<f64>, MbdError>,

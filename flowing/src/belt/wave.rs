@@ -181,10 +181,7 @@ fn project(t: &Mat<f64>, w: &[f64], d: &[f64]) -> Result<Vec<f64>, FlowError> {
 /// when `running` is false, at `wave.belt_speed` otherwise. Pulley 0 turns at `v/R₀`, every
 /// free pulley starts at `v/R_k` without load.
 pub fn wave_run(
-    drive: &Drive,
-    settings: &FlowingSettings,
-    wave: &WaveConfig,
-    running: bool,
+    drive: &Drive, settings: &FlowingSettings, wave: &WaveConfig, running: bool,
 ) -> Result<WaveRun, FlowError> {
     wave.validate_within("wave")?;
     let v = if running { wave.belt_speed } else { 0.0 };

@@ -112,8 +112,7 @@ pub fn line_fe_matrices(grid: &FlowGrid, mass: MassKind) -> (Mat<f64>, Mat<f64>,
 
 /// Dense `(D₁, D₂) = (M₁⁻¹G₁, −M₁⁻¹K₁)` on `grid`.
 pub fn consistent_matrices(
-    grid: &FlowGrid,
-    mass: MassKind,
+    grid: &FlowGrid, mass: MassKind,
 ) -> Result<(Mat<f64>, Mat<f64>), FlowError> {
     crate::grid::require_nodes(grid, 2, "FE-consistent derivative")?;
     let (m, g, k) = line_fe_matrices(grid, mass);

@@ -31,9 +31,7 @@ impl FlowLine {
     /// the model node index of grid node `j` and the layout is node-major
     /// (`dof = node * dofs_per_node + component`).
     pub fn per_component(
-        grid: &FlowGrid,
-        node_order: &[usize],
-        dofs_per_node: usize,
+        grid: &FlowGrid, node_order: &[usize], dofs_per_node: usize,
     ) -> Result<Vec<Self>, FlowError> {
         if node_order.len() != grid.len() {
             return Err(invalid(
@@ -71,9 +69,7 @@ pub struct ModeDerivatives {
 /// Rows of DOFs not on any line are zero. A DOF on more than one line is an error (the flow
 /// derivative of one DOF must be unique).
 pub fn mode_shape_derivatives(
-    lines: &[FlowLine],
-    method: DerivativeMethod,
-    psi: MatRef<'_, f64>,
+    lines: &[FlowLine], method: DerivativeMethod, psi: MatRef<'_, f64>,
 ) -> Result<ModeDerivatives, FlowError> {
     let n_dof = psi.nrows();
     let m = psi.ncols();

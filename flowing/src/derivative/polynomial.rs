@@ -34,8 +34,7 @@ fn legendre(m: usize, xi: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
 /// Dense `(D₁, D₂)` of the degree-`degree` least-squares fit on an open grid: `Ψ_,x = V_,x P`,
 /// `P = V⁺ Ψ` (A.9)–(A.11).
 pub fn polynomial_matrices(
-    grid: &FlowGrid,
-    degree: usize,
+    grid: &FlowGrid, degree: usize,
 ) -> Result<(Mat<f64>, Mat<f64>), FlowError> {
     let Topology::Open { start, end } = grid.topology() else {
         return Err(FlowError::MethodNotApplicable {

@@ -81,10 +81,7 @@ pub trait Constraint: Send + Sync {
 }
 
 pub(crate) fn check_vec(
-    name: &str,
-    field: &str,
-    v: &Vector3<f64>,
-    nonzero: bool,
+    name: &str, field: &str, v: &Vector3<f64>, nonzero: bool,
 ) -> Result<(), MbdError> {
     if !v.iter().all(|x| x.is_finite()) || (nonzero && v.norm() == 0.0) {
         return Err(MbdError::InvalidInput {
@@ -100,10 +97,7 @@ pub(crate) fn check_vec(
 }
 
 pub(crate) fn check_reference(
-    name: &str,
-    field: &str,
-    axis: &Vector3<f64>,
-    r: &Vector3<f64>,
+    name: &str, field: &str, axis: &Vector3<f64>, r: &Vector3<f64>,
 ) -> Result<(), MbdError> {
     check_vec(name, field, r, true)?;
     if (r - axis * axis.dot(r)).norm() <= 1e-9 * r.norm() {

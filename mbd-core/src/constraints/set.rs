@@ -24,8 +24,7 @@ impl ConstraintSet {
     /// Validates `c` (its parameters, each marker with `check_marker(marker, what)`, no marker
     /// pair on the same body and node, not ground to ground) and appends it; returns its index.
     pub fn add(
-        &mut self,
-        c: Box<dyn Constraint>,
+        &mut self, c: Box<dyn Constraint>,
         check_marker: impl Fn(&Marker, &str) -> Result<(), MbdError>,
     ) -> Result<usize, MbdError> {
         let what = format!("constraint \"{}\"", c.name());
@@ -73,10 +72,7 @@ impl ConstraintSet {
     /// Appends the equations of every constraint at time `t` \[s\]; `carrier(marker)` gives
     /// the kinematics of the body carrying a marker.
     pub fn eval<'a>(
-        &self,
-        t: f64,
-        carrier: impl Fn(&Marker) -> Carrier<'a>,
-        out: &mut Vec<Equation>,
+        &self, t: f64, carrier: impl Fn(&Marker) -> Carrier<'a>, out: &mut Vec<Equation>,
     ) {
         out.reserve(self.n_c);
         for c in &self.items {
@@ -89,10 +85,7 @@ impl ConstraintSet {
     /// rows counted from `row0`; `columns(marker)` gives the first velocity column of the
     /// marker's body frame `(ṙ, ω')` and of its elastic coordinates `ż` (`None` for the ground).
     pub fn jacobian_entries(
-        &self,
-        eqs: &[Equation],
-        row0: usize,
-        columns: impl Fn(&Marker) -> Option<(usize, usize)>,
+        &self, eqs: &[Equation], row0: usize, columns: impl Fn(&Marker) -> Option<(usize, usize)>,
         mut push: impl FnMut(usize, usize, f64),
     ) {
         let mut row = row0;

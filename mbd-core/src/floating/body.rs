@@ -104,12 +104,8 @@ impl FlexBody {
     ///   the modal one;
     /// * `axis`: the axis condition.
     pub fn new(
-        name: &str,
-        s: &[f64],
-        mass: MatRef<'_, f64>,
-        stiffness: MatRef<'_, f64>,
-        psi: MatRef<'_, f64>,
-        axis: AxisCondition,
+        name: &str, s: &[f64], mass: MatRef<'_, f64>, stiffness: MatRef<'_, f64>,
+        psi: MatRef<'_, f64>, axis: AxisCondition,
     ) -> Result<Self, MbdError> {
         let n = s.len();
         if n == 0 || !n.is_multiple_of(3) {

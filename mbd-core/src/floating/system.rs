@@ -165,10 +165,7 @@ impl FloatingSystem {
 
     /// Assembles the system state.
     pub fn state(
-        &self,
-        t: f64,
-        rigid: &[BodyState],
-        flex: &[FlexState],
+        &self, t: f64, rigid: &[BodyState], flex: &[FlexState],
     ) -> Result<State, MbdError> {
         if rigid.len() != self.rigid.len() || flex.len() != self.flex.len() {
             return Err(MbdError::InvalidInput {
@@ -665,12 +662,7 @@ impl SecondOrderSystem for FloatingSystem {
     /// depend on the frame motion), so the system is conservative; Lin's `−b~ᵀ(−Kδ)` rotational
     /// row is zero to first order and is omitted (the energy-consistent choice).
     fn forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        out: &mut [f64],
-        _ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], out: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         out.fill(0.0);
         let (rk, fk) = self.kinematics(q, Some(v));
@@ -810,11 +802,7 @@ impl SecondOrderSystem for FloatingSystem {
     }
 
     fn constraint_gamma(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        gamma: &mut [f64],
+        &self, t: f64, q: &[f64], v: &[f64], gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         let (axis, eqs) = self.equations(t, q, Some(v));
         let all = axis
@@ -874,10 +862,7 @@ fn vectors(x: &[f64]) -> Vec<Vector3<f64>> {
 /// A marker must name an existing rigid body (`node: None`) or an existing node of a flexible
 /// body (`node: Some`), or the ground.
 fn check_marker(
-    rigid: &[RigidBody],
-    flex: &[FlexBody],
-    m: &Marker,
-    what: &str,
+    rigid: &[RigidBody], flex: &[FlexBody], m: &Marker, what: &str,
 ) -> Result<(), MbdError> {
     let err = |reason: String| MbdError::InvalidInput {
         item: what.to_string(),

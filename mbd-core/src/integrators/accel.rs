@@ -64,15 +64,8 @@ pub(crate) struct AccelSolver {
 
 impl AccelSolver {
     pub(crate) fn solve<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        stab: &Stabilization,
-        stats: &mut Stats,
-        vdot: &mut [f64],
-        lambda: &mut [f64],
+        &mut self, sys: &S, t: f64, q: &[f64], v: &[f64], stab: &Stabilization, stats: &mut Stats,
+        vdot: &mut [f64], lambda: &mut [f64],
     ) -> Result<(), MbdError> {
         let n = sys.n_v();
         let nc = sys.n_c();
@@ -134,11 +127,7 @@ impl AccelSolver {
 
     /// Projects `q` then `v` onto the constraint manifold (see [`Stabilization`]).
     pub(crate) fn project<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        state: &mut State,
-        stab: &Stabilization,
-        stats: &mut Stats,
+        &mut self, sys: &S, state: &mut State, stab: &Stabilization, stats: &mut Stats,
     ) -> Result<(), MbdError> {
         let nc = sys.n_c();
         if nc == 0 {
@@ -187,10 +176,7 @@ impl AccelSolver {
 }
 
 fn project_velocities_with<S: SecondOrderSystem + ?Sized>(
-    kkt: &mut KktSolver,
-    sys: &S,
-    state: &mut State,
-    stats: &mut Stats,
+    kkt: &mut KktSolver, sys: &S, state: &mut State, stats: &mut Stats,
 ) -> Result<(), MbdError> {
     let nc = sys.n_c();
     if nc == 0 {
@@ -220,9 +206,7 @@ fn project_velocities_with<S: SecondOrderSystem + ?Sized>(
 /// Accelerations and multipliers of `sys` at `state` from the index-1 augmented equations
 /// (Ribaric (2.16), Lin (2.27)), with the Baumgarte terms of `stab`.
 pub fn accelerations<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    state: &State,
-    stab: &Stabilization,
+    sys: &S, state: &State, stab: &Stabilization,
 ) -> Result<Acceleration, MbdError> {
     state.check(sys)?;
     let mut solver = AccelSolver::default();
@@ -245,9 +229,7 @@ pub fn accelerations<S: SecondOrderSystem + ?Sized>(
 /// Projects the positions of `state` onto `Φ(t, q) = 0` (mass-weighted minimum-norm Newton
 /// correction) and then the velocities onto `D v = ν`. Returns the number of Newton iterations.
 pub fn project_positions<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    state: &mut State,
-    stab: &Stabilization,
+    sys: &S, state: &mut State, stab: &Stabilization,
 ) -> Result<usize, MbdError> {
     state.check(sys)?;
     let mut solver = AccelSolver::default();
@@ -258,8 +240,7 @@ pub fn project_positions<S: SecondOrderSystem + ?Sized>(
 
 /// Projects the velocities of `state` onto `D v = ν` (mass-weighted minimum-norm correction).
 pub fn project_velocities<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    state: &mut State,
+    sys: &S, state: &mut State,
 ) -> Result<(), MbdError> {
     state.check(sys)?;
     let mut kkt = KktSolver::new();

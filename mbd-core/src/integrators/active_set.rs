@@ -98,10 +98,7 @@ impl<'a, S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized>
 
     /// Rows of the active candidates at `(t, q, v)`.
     fn rows<'s>(
-        &'s self,
-        t: f64,
-        q: &'s [f64],
-        v: Option<&'s [f64]>,
+        &'s self, t: f64, q: &'s [f64], v: Option<&'s [f64]>,
     ) -> impl Iterator<Item = UnilateralEval> + 's {
         let v = v.unwrap_or(&self.zero_v);
         self.active.iter().map(move |&c| {
@@ -142,22 +139,13 @@ impl<S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized> SecondOrd
         }
     }
     fn dynamic_residual(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        vdot: &[f64],
-        r: &mut [f64],
-        ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], vdot: &[f64], r: &mut [f64], ws: &mut Workspace,
     ) -> Result<bool, MbdError> {
         self.base.dynamic_residual(t, q, v, vdot, r, ws)
     }
     /// The model's tangent plus `Σ λ_c ∂²g_c/∂q²` of the active rows.
     fn constraint_force_tangent(
-        &self,
-        t: f64,
-        q: &[f64],
-        lambda: &[f64],
+        &self, t: f64, q: &[f64], lambda: &[f64],
     ) -> Result<Option<SysMatrix>, MbdError> {
         let nb = self.base.n_c();
         let base = if nb > 0 {
@@ -217,11 +205,7 @@ impl<S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized> SecondOrd
         Ok(())
     }
     fn constraint_gamma(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        gamma: &mut [f64],
+        &self, t: f64, q: &[f64], v: &[f64], gamma: &mut [f64],
     ) -> Result<(), MbdError> {
         let nb = self.base.n_c();
         self.base.constraint_gamma(t, q, v, &mut gamma[..nb])?;
@@ -264,10 +248,7 @@ impl<'a, S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized>
     /// Starts at `state0` with no candidate active; every candidate must start open
     /// (`g_c ≥ 0`).
     pub fn new(
-        base: &'a S,
-        set: &'a U,
-        state0: State,
-        params: AlphaConfig,
+        base: &'a S, set: &'a U, state0: State, params: AlphaConfig,
     ) -> Result<Self, MbdError> {
         state0.check(base)?;
         for c in 0..set.n_candidates() {
@@ -389,9 +370,7 @@ impl<'a, S: SecondOrderSystem + ?Sized, U: UnilateralConstraints + ?Sized>
     /// Steps with the nominal step `params.h` (the last one shortened) until `t_end` \[s\],
     /// calling `observer` after every accepted step (before its releases take effect).
     pub fn advance_to(
-        &mut self,
-        t_end: f64,
-        observer: &mut dyn FnMut(&ActiveSetStep),
+        &mut self, t_end: f64, observer: &mut dyn FnMut(&ActiveSetStep),
     ) -> Result<(), MbdError> {
         let h = self.params.h;
         while self.stepper.state().t < t_end - 1e-9 * h {

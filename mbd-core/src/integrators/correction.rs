@@ -166,10 +166,7 @@ impl AlphaCorrection<'_> {
     /// S⁻¹ f` on the bilateral constraints (length `n_v`), `dlambda` their multipliers
     /// (length `n_c`).
     pub fn solve(
-        &mut self,
-        f: &[f64],
-        dvdot: &mut [f64],
-        dlambda: &mut [f64],
+        &mut self, f: &[f64], dvdot: &mut [f64], dlambda: &mut [f64],
     ) -> Result<(), MbdError> {
         let n = self.v.len();
         let nc = self.lambda.len();

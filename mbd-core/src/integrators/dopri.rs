@@ -191,11 +191,7 @@ impl DormandPrince {
 
     /// Integrates without events.
     pub fn integrate<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
-        &self,
-        sys: &S,
-        state0: State,
-        t_end: f64,
-        observer: impl FnMut(&State) -> R,
+        &self, sys: &S, state0: State, t_end: f64, observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         self.integrate_with_events(sys, state0, t_end, &[], observer)
     }
@@ -204,11 +200,7 @@ impl DormandPrince {
     /// (on the dense output, Illinois regula falsi to `event_tol`). `observer` sees the initial
     /// state, every accepted step and every located event.
     pub fn integrate_with_events<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
-        &self,
-        sys: &S,
-        state0: State,
-        t_end: f64,
-        events: &[Event<'_>],
+        &self, sys: &S, state0: State, t_end: f64, events: &[Event<'_>],
         observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         self.run(sys, state0, t_end, events, None, observer)
@@ -218,11 +210,7 @@ impl DormandPrince {
     /// time) and calls `observer` exactly at these times, from the 4th-order dense output
     /// (Hairer's `contd5`), plus at a stopping event.
     pub fn integrate_dense<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
-        &self,
-        sys: &S,
-        state0: State,
-        times: &[f64],
-        events: &[Event<'_>],
+        &self, sys: &S, state0: State, times: &[f64], events: &[Event<'_>],
         observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         let bad = |reason: String| MbdError::InvalidInput {
@@ -252,20 +240,13 @@ impl DormandPrince {
 
     /// A stepper started at `state0`.
     pub fn stepper<S: SecondOrderSystem + ?Sized>(
-        &self,
-        sys: &S,
-        state0: State,
+        &self, sys: &S, state0: State,
     ) -> Result<DopriStepper, MbdError> {
         DopriStepper::new(sys, state0, *self)
     }
 
     fn run<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
-        &self,
-        sys: &S,
-        state0: State,
-        t_end: f64,
-        events: &[Event<'_>],
-        output: Option<&[f64]>,
+        &self, sys: &S, state0: State, t_end: f64, events: &[Event<'_>], output: Option<&[f64]>,
         mut observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         let mut st = DopriStepper::new(sys, state0, *self)?;
@@ -403,15 +384,8 @@ fn scale(p: &DormandPrince, y0: &[f64], y1: &[f64], i: usize) -> f64 {
 }
 
 fn eval_rhs<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    solver: &mut AccelSolver,
-    lam: &mut [f64],
-    stab: &Stabilization,
-    nq: usize,
-    t: f64,
-    y: &[f64],
-    dy: &mut [f64],
-    stats: &mut Stats,
+    sys: &S, solver: &mut AccelSolver, lam: &mut [f64], stab: &Stabilization, nq: usize, t: f64,
+    y: &[f64], dy: &mut [f64], stats: &mut Stats,
 ) -> Result<(), MbdError> {
     let (q, v) = y.split_at(nq);
     let (dq, dv) = dy.split_at_mut(nq);
@@ -432,9 +406,7 @@ impl DopriStepper {
 
     /// Starts at `state0` (one right-hand-side evaluation).
     pub fn new<S: SecondOrderSystem + ?Sized>(
-        sys: &S,
-        state0: State,
-        params: DormandPrince,
+        sys: &S, state0: State, params: DormandPrince,
     ) -> Result<Self, MbdError> {
         params.validate()?;
         state0.check(sys)?;
@@ -491,9 +463,7 @@ impl DopriStepper {
 
     /// Initial step (Hairer, Nørsett & Wanner II.4) for a run of length `span` \[s\].
     fn initial_step<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        span: f64,
+        &mut self, sys: &S, span: f64,
     ) -> Result<f64, MbdError> {
         let p = self.params;
         let h_max = if p.h_max > 0.0 { p.h_max } else { span };
@@ -548,9 +518,7 @@ impl DopriStepper {
     /// size) without the projection and the bookkeeping of [`finish`](Self::finish), so that
     /// events can stop the run at a state before the step's end.
     fn attempt<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        t_end: f64,
+        &mut self, sys: &S, t_end: f64,
     ) -> Result<bool, MbdError> {
         if self.t >= t_end || t_end.is_nan() {
             return Ok(false);

@@ -283,9 +283,7 @@ impl GeneralizedAlpha {
     /// A stepper started at `state0` (consistent initial accelerations and multipliers from the
     /// index-1 equations).
     pub fn stepper<S: SecondOrderSystem + ?Sized>(
-        &self,
-        sys: &S,
-        state0: State,
+        &self, sys: &S, state0: State,
     ) -> Result<AlphaStepper, MbdError> {
         AlphaStepper::new(sys, state0, self.params)
     }
@@ -293,10 +291,7 @@ impl GeneralizedAlpha {
     /// A stepper started at `state0` that applies `correction` after every step's Newton
     /// iteration (nonsmooth contact, module [`correction`](super::StepCorrection)).
     pub fn stepper_with<S: SecondOrderSystem + ?Sized, C: StepCorrection<S>>(
-        &self,
-        sys: &S,
-        state0: State,
-        correction: C,
+        &self, sys: &S, state0: State, correction: C,
     ) -> Result<AlphaStepper<C>, MbdError> {
         Ok(AlphaStepper::new(sys, state0, self.params)?.with_correction(correction))
     }
@@ -305,11 +300,7 @@ impl GeneralizedAlpha {
     /// is shortened; failed Newton iterations halve the step). `observer` sees the initial state
     /// and every accepted step.
     pub fn integrate<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
-        &self,
-        sys: &S,
-        state0: State,
-        t_end: f64,
-        observer: impl FnMut(&State) -> R,
+        &self, sys: &S, state0: State, t_end: f64, observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         integrate_stepper(self.stepper(sys, state0)?, sys, t_end, observer)
     }
@@ -389,9 +380,7 @@ pub struct AlphaStepper<C = NoCorrection> {
 impl AlphaStepper<NoCorrection> {
     /// Starts at `state0`; `v̇₀` and `λ₀` solve the index-1 equations, `a₀ = v̇₀`.
     pub fn new<S: SecondOrderSystem + ?Sized>(
-        sys: &S,
-        state0: State,
-        params: AlphaConfig,
+        sys: &S, state0: State, params: AlphaConfig,
     ) -> Result<Self, MbdError> {
         check_step(params.h, "generalized-alpha step h")?;
         if let Some(c) = params.coefficients {
@@ -478,8 +467,7 @@ impl<C> AlphaStepper<C> {
     /// thread), from the next factorisation on; the results are the same bit for bit
     /// ([`crate::parallel`]).
     pub fn set_product_worker(
-        &mut self,
-        worker: Option<std::sync::Arc<crate::parallel::ProductWorker>>,
+        &mut self, worker: Option<std::sync::Arc<crate::parallel::ProductWorker>>,
     ) {
         self.worker = worker;
     }
@@ -571,10 +559,7 @@ impl<C> AlphaStepper<C> {
     /// [`AlphaConfig::subdivisions`] levels (recursively, ending on `t + h`). On failure the
     /// state is that reached by the sub-steps already accepted.
     fn step_subdivided<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        h: f64,
-        levels: usize,
+        &mut self, sys: &S, h: f64, levels: usize,
     ) -> Result<(), MbdError>
     where
         C: StepCorrection<S>,
@@ -593,10 +578,7 @@ impl<C> AlphaStepper<C> {
 
     /// One step of size `h` ending at `t1 ≈ t + h` (`t1` exactly, so that stop times are hit).
     fn step_to<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        h: f64,
-        t1: f64,
+        &mut self, sys: &S, h: f64, t1: f64,
     ) -> Result<(), MbdError>
     where
         C: StepCorrection<S>,
@@ -616,12 +598,7 @@ impl<C> AlphaStepper<C> {
     }
 
     fn step_impl<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        h: f64,
-        t1: f64,
-        update: NewtonUpdate,
-        w: &mut Work,
+        &mut self, sys: &S, h: f64, t1: f64, update: NewtonUpdate, w: &mut Work,
     ) -> Result<(), MbdError>
     where
         C: StepCorrection<S>,
@@ -796,16 +773,8 @@ impl<C> AlphaStepper<C> {
     /// `r = M v̇ + Dᵀλ − f`, `φ = Φ(t, q)`.
     #[allow(clippy::too_many_arguments)]
     fn residual<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        vdot: &[f64],
-        lam: &[f64],
-        r: &mut [f64],
-        phi: &mut [f64],
-        f: &mut [f64],
+        &mut self, sys: &S, t: f64, q: &[f64], v: &[f64], vdot: &[f64], lam: &[f64], r: &mut [f64],
+        phi: &mut [f64], f: &mut [f64],
     ) -> Result<(), MbdError> {
         self.stats.force_evaluations += 1;
         if sys.dynamic_residual(t, q, v, vdot, r, &mut self.ws)? {
@@ -878,10 +847,7 @@ impl<C> AlphaStepper<C> {
     }
 
     fn mass<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        q: &[f64],
+        &mut self, sys: &S, t: f64, q: &[f64],
     ) -> Result<SysMatrix, MbdError> {
         if sys.mass_is_constant() {
             if let Some(m) = &self.mass_cache {
@@ -897,19 +863,8 @@ impl<C> AlphaStepper<C> {
 
     #[allow(clippy::too_many_arguments)]
     fn newton_matrix<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        vdot: &[f64],
-        lam: &[f64],
-        r0: &[f64],
-        phi0: &[f64],
-        bp: f64,
-        gp: f64,
-        h: f64,
-        f: &mut [f64],
+        &mut self, sys: &S, t: f64, q: &[f64], v: &[f64], vdot: &[f64], lam: &[f64], r0: &[f64],
+        phi0: &[f64], bp: f64, gp: f64, h: f64, f: &mut [f64],
     ) -> Result<(), MbdError> {
         let n = sys.n_v();
         let nc = sys.n_c();
@@ -991,11 +946,7 @@ impl<C> AlphaStepper<C> {
 
     /// Forward-difference tangent `K = −∂f/∂q` (through `⊕`), `C = −∂f/∂v` (dense).
     fn fd_force_tangent<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
+        &mut self, sys: &S, t: f64, q: &[f64], v: &[f64],
     ) -> Result<(SysMatrix, SysMatrix), MbdError> {
         let tan = crate::system::finite_difference_tangent(sys, t, q, v, &mut self.ws)?;
         self.stats.force_evaluations += 2 * sys.n_v() + 1;
@@ -1055,10 +1006,7 @@ impl<S: SecondOrderSystem + ?Sized, C: StepCorrection<S>> Stepper<S> for AlphaSt
 
     /// Every call starts from the nominal step.
     fn advance_to(
-        &mut self,
-        sys: &S,
-        t_stop: f64,
-        observer: &mut dyn super::Observer,
+        &mut self, sys: &S, t_stop: f64, observer: &mut dyn super::Observer,
     ) -> Result<(), MbdError> {
         self.h_cur = self.params.h;
         self.halvings = 0;

@@ -148,19 +148,14 @@ pub trait Integrator {
     /// Integrates `sys` from `state0` to `t_end` \[s\], calling `observer` with the initial state
     /// and after every accepted step.
     fn integrate_dyn(
-        &mut self,
-        sys: &dyn SecondOrderSystem,
-        state0: State,
-        t_end: f64,
+        &mut self, sys: &dyn SecondOrderSystem, state0: State, t_end: f64,
         observer: &mut dyn FnMut(&State),
     ) -> Result<Solution, MbdError>;
 
     /// A [`Stepper`] of this method started at `state0` (the stepper factory: run it with
     /// [`Stepper::advance_to`] or a [`Recorder`]).
     fn stepper_dyn<'a>(
-        &self,
-        sys: &(dyn SecondOrderSystem + 'a),
-        state0: State,
+        &self, sys: &(dyn SecondOrderSystem + 'a), state0: State,
     ) -> Result<Box<dyn Stepper<dyn SecondOrderSystem + 'a>>, MbdError>;
 }
 
@@ -170,10 +165,7 @@ pub trait Integrator {
 /// The observer may return `()` or a [`Proceed`] answer: `ControlFlow::Break(())` ends the
 /// run after that step with `Ok` and the state reached (a cancelled run; the caller knows).
 pub(crate) fn integrate_stepper<S: SecondOrderSystem + ?Sized, St: Stepper<S>, R: Proceed>(
-    mut stepper: St,
-    sys: &S,
-    t_end: f64,
-    mut observer: impl FnMut(&State) -> R,
+    mut stepper: St, sys: &S, t_end: f64, mut observer: impl FnMut(&State) -> R,
 ) -> Result<Solution, MbdError> {
     if observer(stepper.state()).proceed() {
         stepper.advance_to(sys, t_end, &mut observe_fn(observer))?;
@@ -191,18 +183,14 @@ macro_rules! impl_integrator {
     ($method:ty) => {
         impl $crate::integrators::Integrator for $method {
             fn integrate_dyn(
-                &mut self,
-                sys: &dyn $crate::SecondOrderSystem,
-                state0: $crate::integrators::State,
-                t_end: f64,
-                observer: &mut dyn FnMut(&$crate::integrators::State),
+                &mut self, sys: &dyn $crate::SecondOrderSystem, state0: $crate::integrators::State,
+                t_end: f64, observer: &mut dyn FnMut(&$crate::integrators::State),
             ) -> Result<$crate::integrators::Solution, $crate::MbdError> {
                 self.integrate(sys, state0, t_end, observer)
             }
 
             fn stepper_dyn<'a>(
-                &self,
-                sys: &(dyn $crate::SecondOrderSystem + 'a),
+                &self, sys: &(dyn $crate::SecondOrderSystem + 'a),
                 state0: $crate::integrators::State,
             ) -> Result<
                 Box<dyn $crate::integrators::Stepper<dyn $crate::SecondOrderSystem + 'a>>,
@@ -227,10 +215,7 @@ pub(crate) fn check_step(h: f64, what: &str) -> Result<(), MbdError> {
 
 /// Names the redundant constraints of `sys` at `(t, q)` if its Jacobian is rank deficient.
 pub(crate) fn explain_singular<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    t: f64,
-    q: &[f64],
-    err: MbdError,
+    sys: &S, t: f64, q: &[f64], err: MbdError,
 ) -> MbdError {
     if let MbdError::Singular { .. } = err
         && sys.n_c() > 0

@@ -46,11 +46,7 @@ impl<O: Observer> Recorder<O> {
     /// `[state time, t_end]` (a sample within `10⁻⁹ Δt` after `t_end` counts as `t_end`).
     /// `observer` sees every accepted step. The sample's time is `t_k` exactly.
     pub fn run<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        stepper: &mut dyn Stepper<S>,
-        sys: &S,
-        t_end: f64,
-        observer: &mut dyn Observer,
+        &mut self, stepper: &mut dyn Stepper<S>, sys: &S, t_end: f64, observer: &mut dyn Observer,
     ) -> Result<(), MbdError> {
         let tol = 1e-9 * self.dt;
         // output times before the current state are skipped
@@ -103,10 +99,7 @@ impl<O: Observer> Recorder<O> {
 
     /// Hands `state` to the sink, its time set to the output time `t` (equal up to rounding).
     fn sample<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        state: &State,
-        t: f64,
-        stepper: &dyn Stepper<S>,
+        &mut self, state: &State, t: f64, stepper: &dyn Stepper<S>,
     ) {
         if state.t == t {
             self.sink.observe(state, stepper.stats());

@@ -38,9 +38,7 @@ impl Rk4 {
 
     /// A stepper started at `state0`.
     pub fn stepper<S: SecondOrderSystem + ?Sized>(
-        &self,
-        sys: &S,
-        state0: State,
+        &self, sys: &S, state0: State,
     ) -> Result<Rk4Stepper, MbdError> {
         Rk4Stepper::new(sys, state0, *self)
     }
@@ -48,11 +46,7 @@ impl Rk4 {
     /// Integrates from `state0` to `t_end` \[s\]; `observer` sees the initial state and every
     /// step's end state.
     pub fn integrate<S: SecondOrderSystem + ?Sized, R: super::Proceed>(
-        &self,
-        sys: &S,
-        state0: State,
-        t_end: f64,
-        observer: impl FnMut(&State) -> R,
+        &self, sys: &S, state0: State, t_end: f64, observer: impl FnMut(&State) -> R,
     ) -> Result<Solution, MbdError> {
         integrate_stepper(self.stepper(sys, state0)?, sys, t_end, observer)
     }
@@ -90,9 +84,7 @@ impl Rk4Stepper {
 
     /// Starts at `state0`.
     pub fn new<S: SecondOrderSystem + ?Sized>(
-        sys: &S,
-        state0: State,
-        params: Rk4,
+        sys: &S, state0: State, params: Rk4,
     ) -> Result<Self, MbdError> {
         check_step(params.h, "RK4 step")?;
         state0.check(sys)?;
@@ -114,10 +106,7 @@ impl Rk4Stepper {
 
     /// One RK4 step from `t0` to `t1` (`state.t` is replaced by `t1`).
     fn step_from<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        t0: f64,
-        t1: f64,
+        &mut self, sys: &S, t0: f64, t1: f64,
     ) -> Result<(), MbdError> {
         let h = t1 - t0;
         let stab = self.params.stabilization;

@@ -118,10 +118,7 @@ pub trait Stepper<S: SecondOrderSystem + ?Sized> {
     /// every accepted step; returns early when the observer asks to stop
     /// ([`Observer::stop_requested`]).
     fn advance_to(
-        &mut self,
-        sys: &S,
-        t_stop: f64,
-        observer: &mut dyn Observer,
+        &mut self, sys: &S, t_stop: f64, observer: &mut dyn Observer,
     ) -> Result<(), MbdError> {
         while self.step_until(sys, t_stop)? {
             observer.observe(self.state(), self.stats());

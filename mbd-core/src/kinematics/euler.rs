@@ -56,9 +56,7 @@ pub fn pddot(p: &Vector4<f64>, omega: &Vector3<f64>, omega_dot: &Vector3<f64>) -
 
 /// `p̈ = ½ Lᵀ ω̇' − ¼ (ω'ᵀω') p` (Lin (2.21)).
 pub fn pddot_local(
-    p: &Vector4<f64>,
-    omega_local: &Vector3<f64>,
-    omega_local_dot: &Vector3<f64>,
+    p: &Vector4<f64>, omega_local: &Vector3<f64>, omega_local_dot: &Vector3<f64>,
 ) -> Vector4<f64> {
     l_matrix(p).transpose() * omega_local_dot * 0.5 - p * (0.25 * omega_local.norm_squared())
 }

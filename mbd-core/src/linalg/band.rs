@@ -115,11 +115,7 @@ impl BandPlan {
 
     /// Reverse Cuthill–McKee numbering of the vertices outside `border`, then `border`.
     fn with_border(
-        dim: usize,
-        col_ptr: &[usize],
-        row_idx: &[usize],
-        adj: &[Vec<usize>],
-        border: &[usize],
+        dim: usize, col_ptr: &[usize], row_idx: &[usize], adj: &[Vec<usize>], border: &[usize],
     ) -> Self {
         let mut is_border = vec![false; dim];
         for &b in border {
@@ -227,10 +223,7 @@ impl BandPlan {
 /// Vertices reached from `root` in breadth-first order (non-border only), the vertices of the
 /// last level and its depth; `level_of` receives the levels (the caller resets it).
 fn bfs_levels(
-    root: usize,
-    adj: &[Vec<usize>],
-    is_border: &[bool],
-    level_of: &mut [usize],
+    root: usize, adj: &[Vec<usize>], is_border: &[bool], level_of: &mut [usize],
 ) -> (Vec<usize>, Vec<usize>, usize) {
     let mut out = vec![root];
     level_of[root] = 0;
@@ -305,10 +298,7 @@ impl BandLu {
     /// Factors the matrix with the plan's pattern whose values are `vals` (same column-wise
     /// storage as given to [`BandPlan::new`]).
     pub(crate) fn factor(
-        &mut self,
-        col_ptr: &[usize],
-        row_idx: &[usize],
-        vals: &[f64],
+        &mut self, col_ptr: &[usize], row_idx: &[usize], vals: &[f64],
     ) -> Result<(), BandError> {
         let (n1, kl, ku, ld) = (self.plan.n1, self.plan.kl, self.plan.ku, self.ld);
         let nb = self.plan.border();
@@ -406,10 +396,7 @@ impl BandLu {
     /// pivoting confined to a band that lacks the rows it needs gives orders more. `vals` are
     /// the values just factored, in the pattern `(col_ptr, row_idx)`.
     pub(crate) fn backward_error(
-        &mut self,
-        col_ptr: &[usize],
-        row_idx: &[usize],
-        vals: &[f64],
+        &mut self, col_ptr: &[usize], row_idx: &[usize], vals: &[f64],
     ) -> f64 {
         let [mut x, mut b, mut w] = std::mem::take(&mut self.check);
         let dim = x.len();

@@ -21,8 +21,7 @@ struct Dense {
 
 impl Dense {
     fn new(
-        n: usize,
-        r: impl FnMut(&[f64], f64, &mut [f64]) + 'static,
+        n: usize, r: impl FnMut(&[f64], f64, &mut [f64]) + 'static,
         j: impl FnMut(&[f64], f64) -> [[f64; 2]; 2] + 'static,
     ) -> Self {
         Self {

@@ -45,22 +45,13 @@ impl SecondOrderSystem for Oscillator {
         Ok(diagonal(&[self.m]))
     }
     fn forces(
-        &self,
-        _t: f64,
-        q: &[f64],
-        _v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         f[0] = -self.k * q[0];
         Ok(())
     }
     fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], _v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         if !self.tangent {
             return Ok(None);
@@ -101,12 +92,7 @@ impl SecondOrderSystem for PointMasses {
         Ok(diagonal(&d))
     }
     fn forces(
-        &self,
-        t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        f: &mut [f64],
-        _ws: &mut Workspace,
+        &self, t: f64, _q: &[f64], _v: &[f64], f: &mut [f64], _ws: &mut Workspace,
     ) -> Result<(), MbdError> {
         f.fill(0.0);
         for (i, m) in self.m.iter().enumerate() {
@@ -115,11 +101,7 @@ impl SecondOrderSystem for PointMasses {
         Ok(())
     }
     fn force_tangent(
-        &self,
-        _t: f64,
-        _q: &[f64],
-        _v: &[f64],
-        _ws: &mut Workspace,
+        &self, _t: f64, _q: &[f64], _v: &[f64], _ws: &mut Workspace,
     ) -> Result<Option<ForceTangent>, MbdError> {
         let n = self.n_q();
         Ok(Some(ForceTangent {

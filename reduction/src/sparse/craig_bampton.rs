@@ -111,9 +111,7 @@ impl CraigBamptonModes {
 
 /// The lowest `count` modes of `(K_ii, M_ii)` (blocks already extracted).
 fn interior_modes(
-    kii: SparseColMatRef<'_, usize, f64>,
-    mii: SparseColMatRef<'_, usize, f64>,
-    count: usize,
+    kii: SparseColMatRef<'_, usize, f64>, mii: SparseColMatRef<'_, usize, f64>, count: usize,
     opts: &SparseEigenOptions,
 ) -> Result<(Modes, Option<SparseEigenReport>)> {
     let ni = kii.nrows();
@@ -135,11 +133,8 @@ fn interior_modes(
 /// clamped at its fixed DOFs. Vectors are `n_i × count` on the interior DOFs (ascending); the
 /// report is `None` when `count` is 0.
 pub fn fixed_interface_modes_sparse(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    part: &DofPartition,
-    count: usize,
-    opts: &SparseEigenOptions,
+    k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, part: &DofPartition,
+    count: usize, opts: &SparseEigenOptions,
 ) -> Result<(Modes, Option<SparseEigenReport>)> {
     check_sparse("stiffness matrix K", k, part.n())?;
     check_sparse("mass matrix M", m, part.n())?;
@@ -153,9 +148,7 @@ pub fn fixed_interface_modes_sparse(
 /// documentation): `K_ii` extracted once, one sparse Cholesky of it for all static modes, the
 /// lowest `opts.n_modes` interior modes by the sparse shift-invert eigen solver.
 pub fn craig_bampton_modes(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    part: &DofPartition,
+    k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, part: &DofPartition,
     opts: &CraigBamptonOptions,
 ) -> Result<CraigBamptonModes> {
     check_sparse("stiffness matrix K", k, part.n())?;
@@ -202,11 +195,8 @@ pub fn craig_bampton_modes(
 /// the basis `Ψ_CB` ([`CraigBamptonModes::basis`]) and the sparse Galerkin projection
 /// `M_r = ΨᵀMΨ`, `K_r = ΨᵀKΨ` (Lin (6.20)–(6.25)).
 pub fn craig_bampton_sparse(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    part: &DofPartition,
-    opts: &CraigBamptonOptions,
-    dofs_per_node: usize,
+    k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, part: &DofPartition,
+    opts: &CraigBamptonOptions, dofs_per_node: usize,
 ) -> Result<(ReducedModel, SparseCbReport)> {
     let modes = craig_bampton_modes(k, m, part, opts)?;
     let t = Instant::now();

@@ -47,10 +47,7 @@ pub(crate) fn check_sparse(what: &str, a: SparseColMatRef<'_, usize, f64>, n: us
 
 /// `K[rows, cols]` of a sparse matrix, with the block named in errors.
 pub(crate) fn block(
-    a: SparseColMatRef<'_, usize, f64>,
-    rows: &[usize],
-    cols: &[usize],
-    what: &str,
+    a: SparseColMatRef<'_, usize, f64>, rows: &[usize], cols: &[usize], what: &str,
 ) -> Result<faer::sparse::SparseColMat<usize, f64>> {
     fe_model::sparse::submatrix(a, rows, cols).map_err(fe_err(what))
 }
@@ -58,8 +55,7 @@ pub(crate) fn block(
 /// `Ψs = −K_ii⁻¹ K_ib` from the extracted blocks: one sparse Cholesky of `K_ii` (AMD ordering,
 /// faer) solved for all `n_b` right-hand sides at once.
 pub(crate) fn static_modes_of_blocks(
-    kii: SparseColMatRef<'_, usize, f64>,
-    kib: SparseColMatRef<'_, usize, f64>,
+    kii: SparseColMatRef<'_, usize, f64>, kib: SparseColMatRef<'_, usize, f64>,
 ) -> Result<Mat<f64>> {
     if kii.nrows() == 0 {
         return Ok(Mat::zeros(0, kib.ncols()));
@@ -86,8 +82,7 @@ pub(crate) fn static_modes_of_blocks(
 /// Fixed DOFs of `part` are clamped (they belong to neither block). Returns the dense
 /// `n_i × n_b` block (interior rows in ascending DOF order).
 pub fn static_modes_sparse(
-    k: SparseColMatRef<'_, usize, f64>,
-    part: &DofPartition,
+    k: SparseColMatRef<'_, usize, f64>, part: &DofPartition,
 ) -> Result<Mat<f64>> {
     check_sparse("stiffness matrix K", k, part.n())?;
     let kii = block(k, part.interior(), part.interior(), "K_ii extraction")?;
@@ -104,9 +99,7 @@ pub fn project_sparse(a: SparseColMatRef<'_, usize, f64>, psi: &Mat<f64>) -> Mat
 
 /// Projects sparse `K`, `M` onto `basis` into a [`ReducedModel`].
 pub fn reduced_model_sparse(
-    basis: Basis,
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
+    basis: Basis, k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>,
     dofs_per_node: usize,
 ) -> Result<ReducedModel> {
     let n = basis.psi.nrows();

@@ -56,13 +56,8 @@ pub(super) struct TireDelassus<'b> {
 
 /// The scaled frames and rigid-spin coefficients of the candidates for [`TireDelassus`].
 pub(super) fn candidate_frames(
-    red: &ReducedTire,
-    cand: &[usize],
-    gp: &[GroundPoint],
-    c1: f64,
-    c2: f64,
-    frames: &mut Vec<[[f64; 3]; 3]>,
-    rig_t1: &mut Vec<f64>,
+    red: &ReducedTire, cand: &[usize], gp: &[GroundPoint], c1: f64, c2: f64,
+    frames: &mut Vec<[[f64; 3]; 3]>, rig_t1: &mut Vec<f64>,
 ) {
     frames.clear();
     rig_t1.clear();

@@ -128,10 +128,7 @@ impl TireContact {
     /// mirrored, on its image (generalised force `2 T_cᵀ f`); the image's force is the mirror
     /// of the representative's.
     pub fn new(
-        red: &ReducedTire,
-        cfg: RollingConfig,
-        ground: Ground,
-        mirror: Option<&MirrorHalf>,
+        red: &ReducedTire, cfg: RollingConfig, ground: Ground, mirror: Option<&MirrorHalf>,
     ) -> Self {
         let nz = red.n_z();
         let nc = red.n_contact();
@@ -204,9 +201,7 @@ impl TireContact {
     /// Makes the responses of the factorisation `step.factor_id()` the current entry (computed
     /// once per factorisation; the entry of the other step size is kept).
     fn ensure_responses(
-        &mut self,
-        red: &ReducedTire,
-        step: &AlphaCorrection<'_>,
+        &mut self, red: &ReducedTire, step: &AlphaCorrection<'_>,
     ) -> Result<(), MbdError> {
         let id = step.factor_id();
         if self.responses[0].as_ref().is_some_and(|r| r.id == id) {
@@ -243,9 +238,7 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
     /// Candidates from the free end-of-step gaps, the coupled normal and friction problem on
     /// the local Delassus matrix, and `Δv̇ = X Σ fⱼ` applied to the step.
     fn correct(
-        &mut self,
-        sys: &TireDynamics<'_>,
-        step: &mut AlphaCorrection<'_>,
+        &mut self, sys: &TireDynamics<'_>, step: &mut AlphaCorrection<'_>,
     ) -> Result<(), MbdError> {
         let red = sys.reduced();
         let nc = red.n_contact();

@@ -16,9 +16,7 @@ impl TireContact {
     /// matrix (gathered lazily from the copied blocks of `Y`, `X`), warm-started from the previous
     /// steps' forces; leaves the contact forces in `work.forces`.
     pub(super) fn solve_contact(
-        &mut self,
-        red: &ReducedTire,
-        step: &AlphaCorrection<'_>,
+        &mut self, red: &ReducedTire, step: &AlphaCorrection<'_>,
     ) -> Result<(), MbdError> {
         let t1 = step.t();
         // Δq = Δv̇/β', Δv = (γ'/β') Δv̇

@@ -136,9 +136,7 @@ pub(super) fn check_pair(files: &ImportFiles, k: &Sparse, m: &Sparse) -> Result<
 
 /// K is `3n × 3n` for the `n` nodes of the node file.
 pub(super) fn check_sizes(
-    files: &ImportFiles,
-    k: &Sparse,
-    n_nodes: usize,
+    files: &ImportFiles, k: &Sparse, n_nodes: usize,
 ) -> Result<(), TireError> {
     let n = 3 * n_nodes;
     if k.nrows() != n || k.ncols() != n {
@@ -163,9 +161,7 @@ pub(super) fn check_sizes(
 /// of the graph whose edges are the nonzero entries `K_ij` between DOFs of different nodes
 /// (union–find over the nodes).
 pub(super) fn check_coupling(
-    files: &ImportFiles,
-    fe: &TireFe,
-    nodes: &Nodes,
+    files: &ImportFiles, fe: &TireFe, nodes: &Nodes,
 ) -> Result<(), TireError> {
     let n = fe.n_nodes();
     let mut parent: Vec<usize> = (0..n).collect();
@@ -222,9 +218,7 @@ pub(super) fn check_coupling(
 /// circumferential ring by angle, and coincident nodes (or a node file whose coordinates are
 /// all the same) make no ring. Points closer than 10⁻⁹ of the model's extent count as the same.
 pub(super) fn check_distinct_positions(
-    files: &ImportFiles,
-    fe: &TireFe,
-    nodes: &Nodes,
+    files: &ImportFiles, fe: &TireFe, nodes: &Nodes,
 ) -> Result<(), TireError> {
     let rim = fe.rim_mask();
     let mut idx: Vec<usize> = (0..fe.n_nodes()).filter(|&i| !rim[i]).collect();
@@ -283,10 +277,7 @@ pub(super) fn check_distinct_positions(
 /// set, an inner-liner set, a set shifted by one (1-based indices) or a model in another frame
 /// is refused instead of giving a tire that never touches the ground.
 pub(super) fn check_patch_on_tread(
-    files: &ImportFiles,
-    fe: &TireFe,
-    nodes: &Nodes,
-    patch: &[Listed],
+    files: &ImportFiles, fe: &TireFe, nodes: &Nodes, patch: &[Listed],
 ) -> Result<(), TireError> {
     let rho = |i: usize| fe.nodes[i][0].hypot(fe.nodes[i][2]);
     let rim = fe.rim_mask();

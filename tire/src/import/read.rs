@@ -151,10 +151,7 @@ pub(super) fn read_nodes(path: &str, labelled: bool) -> Result<Nodes, TireError>
 
 /// The node labels of a set (ABAQUS) as 0-based indices in the node file's order.
 pub(super) fn labels_to_indices(
-    field: &'static str,
-    path: &str,
-    listed: &[Listed],
-    labels: &[u64],
+    field: &'static str, path: &str, listed: &[Listed], labels: &[u64],
 ) -> Result<Vec<Listed>, TireError> {
     let pos: HashMap<u64, usize> = labels.iter().enumerate().map(|(i, &l)| (l, i)).collect();
     listed
@@ -175,10 +172,7 @@ pub(super) fn labels_to_indices(
 /// A node listed twice in one set file is refused (a copy-and-paste slip; the reduction would
 /// constrain its DOFs twice), naming both lines.
 pub(super) fn unique_in_file(
-    field: &'static str,
-    path: &str,
-    listed: &[Listed],
-    nodes: &Nodes,
+    field: &'static str, path: &str, listed: &[Listed], nodes: &Nodes,
 ) -> Result<(), TireError> {
     let mut first: HashMap<usize, usize> = HashMap::with_capacity(listed.len());
     for l in listed {
@@ -201,8 +195,7 @@ pub(super) fn unique_in_file(
 /// file storing one triangle is refused, see `fe_model::io::mtx`), default size ceiling unless
 /// raised (`mbd_core::validate::limits`).
 pub(super) fn read_mtx(
-    field: &'static str,
-    path: &str,
+    field: &'static str, path: &str,
 ) -> Result<faer::sparse::SparseColMat<usize, f64>, TireError> {
     // `--allow-large` (mbd_core::validate::limits) lifts the reader's size ceiling too
     let opts = fe_model::io::mtx::ReadOptions::symmetric()
@@ -215,8 +208,7 @@ pub(super) type Sparse = faer::sparse::SparseColMat<usize, f64>;
 /// ABAQUS matrices reordered to the node order of the node file (DOF `3 i + d − 1` for node
 /// `i`, DOF `d` = 1..3).
 pub(super) fn read_abaqus(
-    files: &ImportFiles,
-    labels: &[u64],
+    files: &ImportFiles, labels: &[u64],
 ) -> Result<(Sparse, Sparse), TireError> {
     let ke = fe_model::io::abaqus::read(&files.stiffness)
         .map_err(|e| import_err("stiffness", e.to_string()))?;

@@ -216,9 +216,7 @@ impl ReducedTire {
     /// by [`ReducedTire::modal`] (`P = Φ`) and the mirror half model
     /// ([`super::mirror::half_tire`], `P` a selection of coordinates).
     pub fn with_coordinates(
-        &self,
-        square: impl Fn(&Mat<f64>) -> Mat<f64>,
-        right: impl Fn(&Mat<f64>) -> Mat<f64>,
+        &self, square: impl Fn(&Mat<f64>) -> Mat<f64>, right: impl Fn(&Mat<f64>) -> Mat<f64>,
         vector: impl Fn(&[f64]) -> Vec<f64>,
     ) -> ReducedTire {
         let mut tire = self.clone();

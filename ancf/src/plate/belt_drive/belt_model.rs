@@ -106,8 +106,7 @@ pub type PlateBelt = MountedBelt<PlateBeltDrive>;
 
 /// The plate-belt drive spec of `drive` (module documentation) and the mapping.
 pub fn plate_spec(
-    drive: &Drive,
-    s: &PlateConfig,
+    drive: &Drive, s: &PlateConfig,
 ) -> Result<(PlateDriveSpec, PlateMapping), AncfError> {
     s.validate_within("plate")?;
     crate::mounted::refuse_decouplers(drive, "plate")?;

@@ -225,9 +225,7 @@ impl PlateBeltDrive {
 
     /// The contact quadrature points of element `el` with coordinates `e` and velocities `ed`.
     fn points<'a>(
-        &'a self,
-        e: &'a [f64; NE],
-        ed: &'a [f64; NE],
+        &'a self, e: &'a [f64; NE], ed: &'a [f64; NE],
     ) -> impl Iterator<Item = QuadPoint<3, BlockShape>> + 'a {
         self.kind
             .quad
@@ -251,11 +249,7 @@ impl PlateBeltDrive {
     /// points to `sink` (with the pulley's rotation axis). The element contact buffer is the
     /// one in `slot` (created there if empty).
     fn contact_pass(
-        &self,
-        (t, omegas): (f64, &[f64]),
-        q: &[f64],
-        v: &[f64],
-        jacobian: bool,
+        &self, (t, omegas): (f64, &[f64]), q: &[f64], v: &[f64], jacobian: bool,
         slot: &mut Option<ElementContact3>,
         mut sink: impl FnMut(usize, usize, &Vector3<f64>, &ElementContact3),
     ) {
@@ -325,13 +319,7 @@ impl PlateBeltDrive {
     /// pulley \[N·m\] at time `t` with the pulleys turning at `omegas` (travel sense, rad/s).
     #[allow(clippy::too_many_arguments)] // the state, the pulley speeds, outputs, and the workspace
     pub fn belt_forces(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        f: &mut [f64],
-        torques: &mut [f64],
+        &self, t: f64, q: &[f64], v: &[f64], omegas: &[f64], f: &mut [f64], torques: &mut [f64],
         ws: &mut Workspace,
     ) {
         let s = self.scratch(ws);
@@ -362,15 +350,8 @@ impl PlateBeltDrive {
     /// drive's [`PlateBeltDrive::pattern`] or the belt's alone), forces into `f`.
     #[allow(clippy::too_many_arguments)] // the state, the pulley speeds, outputs, and the workspace
     pub(crate) fn belt_stiffness(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        pat: &Pattern,
-        f: &mut [f64],
-        k_vals: &mut [f64],
-        ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], omegas: &[f64], pat: &Pattern, f: &mut [f64],
+        k_vals: &mut [f64], ws: &mut Workspace,
     ) {
         let s = self.scratch(ws);
         k_vals.fill(0.0);
@@ -384,11 +365,7 @@ impl PlateBeltDrive {
     /// Elastic forces into `f[..n_belt]` (overwritten) and the elastic tangent added to the
     /// element blocks of the values `k_vals` of `pat` (its first groups the elements).
     fn elastic_tangent_into(
-        &self,
-        q: &[f64],
-        f: &mut [f64],
-        (pat, k_vals): (&Pattern, &mut [f64]),
-        s: &mut Scratch,
+        &self, q: &[f64], f: &mut [f64], (pat, k_vals): (&Pattern, &mut [f64]), s: &mut Scratch,
     ) {
         f[..self.n_belt].fill(0.0);
         let mut e = [0.0; NE];
@@ -417,11 +394,7 @@ impl PlateBeltDrive {
     /// Contact state at the local points `(x, y, weight)` of every element (e.g. a line of
     /// points along the centreline `y = w/2`, Kerkkänen Figs 4.17–4.18), for output.
     pub fn contact_records_on(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        local: &[(f64, f64, f64)],
+        &self, t: f64, q: &[f64], v: &[f64], local: &[(f64, f64, f64)],
     ) -> Vec<PlateContactRecord> {
         let omegas = self.speeds(t, v);
         let plate = &self.kind.mesh.cells[0].plate;
@@ -485,13 +458,7 @@ impl PlateBeltDrive {
     /// (one per pulley).
     #[allow(clippy::too_many_arguments)] // the state, the pulley speeds, outputs, and the workspace
     pub fn forces_with(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        loads: &[f64],
-        f: &mut [f64],
+        &self, t: f64, q: &[f64], v: &[f64], omegas: &[f64], loads: &[f64], f: &mut [f64],
         ws: &mut Workspace,
     ) {
         let np = self.spec.pulleys.len();
@@ -533,11 +500,7 @@ pub struct PlateContactRecord {
 /// The quadrature point with shape values `s` (matrix `shape`) and weight `w` of an element with
 /// coordinates `e` and velocities `ed`: `r = S e`, `ṙ = S ė`.
 fn quad_point(
-    s: &[f64; 12],
-    shape: BlockShape,
-    w: f64,
-    e: &[f64; NE],
-    ed: &[f64; NE],
+    s: &[f64; 12], shape: BlockShape, w: f64, e: &[f64; NE], ed: &[f64; NE],
 ) -> QuadPoint<3, BlockShape> {
     let (mut r, mut v) = (Vector3::zeros(), Vector3::zeros());
     for k in 0..12 {
@@ -616,12 +579,7 @@ impl PlateBeltDrive {
     /// speed coupling): `K = −∂f/∂q`, `C = −∂f/∂v` with the analytic elastic tangent and the
     /// exact contact Jacobians of [`contact::element_contact`].
     pub fn force_tangent_with(
-        &self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        omegas: &[f64],
-        ws: &mut Workspace,
+        &self, t: f64, q: &[f64], v: &[f64], omegas: &[f64], ws: &mut Workspace,
     ) -> ForceTangent {
         let nb = self.n_belt;
         let pat = &self.pattern;

@@ -41,11 +41,7 @@ impl BeltSample {
 /// element along the material line `y` \[m\] (Kerkkänen: 20 points per element on the edge
 /// `y = 0` for Figs 4.12–4.15).
 pub fn line_samples(
-    drive: &PlateBeltDrive,
-    q: &[f64],
-    v: &[f64],
-    y: f64,
-    per_element: usize,
+    drive: &PlateBeltDrive, q: &[f64], v: &[f64], y: f64, per_element: usize,
 ) -> Vec<BeltSample> {
     let k_axial = drive.spec().belt.axial_stiffness();
     let a = drive.element_length();
@@ -217,11 +213,7 @@ pub struct SurfaceGrid {
 
 /// See [`SurfaceGrid`]; the tension with the strain `measure`.
 pub fn surface_grid(
-    drive: &PlateBeltDrive,
-    q: &[f64],
-    v: &[f64],
-    per_element: usize,
-    measure: StrainMeasure,
+    drive: &PlateBeltDrive, q: &[f64], v: &[f64], per_element: usize, measure: StrainMeasure,
 ) -> SurfaceGrid {
     let n = per_element.max(1);
     let a = drive.element_length();

@@ -73,12 +73,7 @@ impl Export {
     /// The `[tire]` tables importing this export's files (`stiffness`, `mass`, `nodes`,
     /// `patch` named; the rim set as exported) with 12 contact nodes and 20 free-node modes.
     pub fn tables(
-        &self,
-        reduced_file: &str,
-        stiffness: &str,
-        mass: &str,
-        nodes: &str,
-        patch: &str,
+        &self, reduced_file: &str, stiffness: &str, mass: &str, nodes: &str, patch: &str,
     ) -> String {
         let p = |n: &str| self.path(n).display().to_string();
         format!(
@@ -96,12 +91,7 @@ impl Export {
     /// `reduce` with the import (files of this export, the stiffness and patch files named),
     /// 12 contact nodes and 20 free-node modes: (exit code, stderr).
     pub fn reduce(
-        &self,
-        case: &str,
-        stiffness: &str,
-        mass: &str,
-        nodes: &str,
-        patch: &str,
+        &self, case: &str, stiffness: &str, mass: &str, nodes: &str, patch: &str,
     ) -> (i32, String) {
         let cfg = self.path(&format!("{case}.toml"));
         std::fs::write(&cfg, self.tables("", stiffness, mass, nodes, patch)).unwrap();

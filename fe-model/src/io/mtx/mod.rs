@@ -212,10 +212,7 @@ fn placed<T: Slot>(part: Part<'_, T>, e: T) -> Option<(usize, usize, f64)> {
 /// parallel, one range of columns per thread (each thread scans all entries and keeps its
 /// columns', so the result is that of a sequential fill).
 fn csc_from_parts<T: Slot>(
-    m: usize,
-    n: usize,
-    col_ptr: Vec<usize>,
-    parts: &[Part<'_, T>],
+    m: usize, n: usize, col_ptr: Vec<usize>, parts: &[Part<'_, T>],
 ) -> SparseColMat<usize, f64> {
     let nnz = col_ptr[n];
     let mut rows = vec![0usize; nnz];
@@ -276,12 +273,8 @@ fn csc_from_parts<T: Slot>(
 /// order, then each column's rows put in ascending order (stable: duplicates keep entry order)
 /// and duplicates summed at the front of the block, their number in `kept`.
 fn fill_columns<T: Slot>(
-    parts: &[Part<'_, T>],
-    col_ptr: &[usize],
-    cols: std::ops::Range<usize>,
-    rows: &mut [usize],
-    vals: &mut [f64],
-    kept: &mut [usize],
+    parts: &[Part<'_, T>], col_ptr: &[usize], cols: std::ops::Range<usize>, rows: &mut [usize],
+    vals: &mut [f64], kept: &mut [usize],
 ) {
     let base = col_ptr[cols.start];
     let mut next: Vec<usize> = col_ptr[cols.clone()].iter().map(|p| p - base).collect();
@@ -375,10 +368,7 @@ pub fn parse_with(data: &[u8], file: &str, opts: &ReadOptions) -> Result<MtxMatr
 
 /// The triplets of a coordinate file's data `body` ([`scan::coordinate`]).
 fn coordinate_entries<T: Slot>(
-    body: &[u8],
-    h: &header::Header,
-    file: &str,
-    mirror_room: bool,
+    body: &[u8], h: &header::Header, file: &str, mirror_room: bool,
 ) -> Result<(Vec<T>, bool), FeError> {
     scan::coordinate(
         body,
@@ -395,11 +385,7 @@ fn coordinate_entries<T: Slot>(
 /// The matrix of parsed `entries`: a coordinate `symmetric` file's mirrored (arrays come
 /// mirrored from the scanner), then checked when `opts` require symmetry.
 fn finish(
-    entries: scan::Entries,
-    any_upper: bool,
-    h: &header::Header,
-    body: &[u8],
-    file: &str,
+    entries: scan::Entries, any_upper: bool, h: &header::Header, body: &[u8], file: &str,
     opts: &ReadOptions,
 ) -> Result<MtxMatrix, FeError> {
     let entries = match (h.format, h.symmetry) {
@@ -428,9 +414,7 @@ fn finish(
 /// triangle in a `symmetric` file, a `general` one that must be symmetric, more than
 /// `u32::MAX` rows or columns) take the general path.
 pub fn parse_sparse_with(
-    data: &[u8],
-    file: &str,
-    opts: &ReadOptions,
+    data: &[u8], file: &str, opts: &ReadOptions,
 ) -> Result<SparseColMat<usize, f64>, FeError> {
     let h = header::parse(data, file, opts.max_dim)?;
     let fits = |d: usize| u32::try_from(d).is_ok();
@@ -514,8 +498,7 @@ fn column_starts<T: Slot>(n: usize, parts: &[Part<'_, T>]) -> Vec<usize> {
 /// path is a [`FeError::Io`] naming it. The file is memory-mapped (read into memory where it
 /// cannot be): it must not be truncated by another process while it is read.
 pub fn read_sparse_with(
-    path: impl AsRef<Path>,
-    opts: &ReadOptions,
+    path: impl AsRef<Path>, opts: &ReadOptions,
 ) -> Result<SparseColMat<usize, f64>, FeError> {
     let (name, data) = super::map_bytes(path.as_ref())?;
     parse_sparse_with(&data, &name, opts)

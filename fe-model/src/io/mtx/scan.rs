@@ -217,10 +217,7 @@ fn blanks(data: &[u8], pos: &mut usize) -> bool {
 /// [`entry`] then handles with its typed error: both accept the same well-formed lines.
 #[inline]
 fn fast_entry(
-    data: &[u8],
-    mut p: usize,
-    nrows: u64,
-    ncols: u64,
+    data: &[u8], mut p: usize, nrows: u64, ncols: u64,
 ) -> Option<((usize, usize, f64), usize)> {
     let r = digits(data, &mut p)?;
     if !blanks(data, &mut p) {
@@ -357,14 +354,8 @@ fn chunks(data: &[u8]) -> Vec<(usize, usize)> {
 /// up in place (they have gaps only where a chunk had comments or blank lines).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn coordinate<T: Slot>(
-    data: &[u8],
-    first_line: usize,
-    size_line: usize,
-    nrows: usize,
-    ncols: usize,
-    nnz: usize,
-    file: &str,
-    mirror_room: bool,
+    data: &[u8], first_line: usize, size_line: usize, nrows: usize, ncols: usize, nnz: usize,
+    file: &str, mirror_room: bool,
 ) -> Result<(Vec<T>, bool), FeError> {
     let bounds = chunks(data);
     // a chunk's entries: at most one per line, and each takes at least `1 1 1` and a newline
@@ -450,11 +441,7 @@ pub(super) fn coordinate<T: Slot>(
 /// column) into entries, mirrored for symmetric files. The declared size is compared with the
 /// values found after reading, so nothing is allocated from the header.
 pub(super) fn array(
-    data: &[u8],
-    first_line: usize,
-    size_line: usize,
-    h: &Header,
-    file: &str,
+    data: &[u8], first_line: usize, size_line: usize, h: &Header, file: &str,
 ) -> Result<Vec<(usize, usize, f64)>, FeError> {
     let (nrows, ncols) = (h.nrows, h.ncols);
     // position of the next value; `None` once all declared positions are filled

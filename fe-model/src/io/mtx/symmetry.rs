@@ -59,11 +59,7 @@ fn pairs(entries: &[(usize, usize, f64)]) -> (Pairs, Vec<usize>) {
 /// with its mirror ([`check_mirror`], reported at the line of the later one) and duplicates on
 /// one side are summed.
 pub(super) fn expand(
-    entries: Entries,
-    any_upper: bool,
-    data: &[u8],
-    first_line: usize,
-    file: &str,
+    entries: Entries, any_upper: bool, data: &[u8], first_line: usize, file: &str,
 ) -> Result<Entries, FeError> {
     if !any_upper {
         // mirrors appended in place (no second copy of the entries), in file order; large
@@ -123,10 +119,7 @@ pub(super) fn expand(
 /// entries on one side only is [`E::OneTriangle`] at line 1, and one whose entries differ from
 /// their mirror by more than [`SYMMETRY_RTOL`] is [`E::NotSymmetric`] at the entry's line.
 pub(super) fn require(
-    entries: &[(usize, usize, f64)],
-    h: &Header,
-    data: &[u8],
-    file: &str,
+    entries: &[(usize, usize, f64)], h: &Header, data: &[u8], file: &str,
 ) -> Result<(), FeError> {
     if h.nrows != h.ncols {
         return Err(err(

@@ -47,8 +47,7 @@ fn check_symmetric(a: SparseColMatRef<'_, usize, f64>) -> Result<(), FeError> {
 /// [`Symmetry::Symmetric`] only the lower triangle is written (the matrix must be exactly
 /// symmetric).
 pub fn sparse_to_string(
-    a: SparseColMatRef<'_, usize, f64>,
-    symmetry: Symmetry,
+    a: SparseColMatRef<'_, usize, f64>, symmetry: Symmetry,
 ) -> Result<String, FeError> {
     if symmetry == Symmetry::Symmetric {
         check_symmetric(a)?;
@@ -129,18 +128,14 @@ fn write_text(path: &Path, text: &str) -> Result<(), FeError> {
 
 /// Write a sparse matrix (coordinate format).
 pub fn write_sparse(
-    path: impl AsRef<Path>,
-    a: SparseColMatRef<'_, usize, f64>,
-    symmetry: Symmetry,
+    path: impl AsRef<Path>, a: SparseColMatRef<'_, usize, f64>, symmetry: Symmetry,
 ) -> Result<(), FeError> {
     write_text(path.as_ref(), &sparse_to_string(a, symmetry)?)
 }
 
 /// Write a dense matrix (array format).
 pub fn write_dense(
-    path: impl AsRef<Path>,
-    a: MatRef<'_, f64>,
-    symmetry: Symmetry,
+    path: impl AsRef<Path>, a: MatRef<'_, f64>, symmetry: Symmetry,
 ) -> Result<(), FeError> {
     write_text(path.as_ref(), &dense_to_string(a, symmetry)?)
 }

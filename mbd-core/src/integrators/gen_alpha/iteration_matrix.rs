@@ -58,11 +58,7 @@ impl IterationMatrix {
     /// Factors `[Σ sₖ Aₖ, Dᵀ; D, 0]` (and inverts it when `explicit`, its products then split
     /// with `worker`, if any).
     pub(crate) fn factor(
-        &mut self,
-        blocks: &[ScaledBlock<'_>],
-        d: Option<&SysMatrix>,
-        t: f64,
-        explicit: bool,
+        &mut self, blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>, t: f64, explicit: bool,
         worker: Option<&Arc<ProductWorker>>,
     ) -> Result<(), MbdError> {
         self.inverse_t = None;
@@ -90,10 +86,7 @@ impl IterationMatrix {
     /// Solves in place: `rhs = [b; c]` on input, `[x; μ]` on output; `scratch` (same length)
     /// receives the product with the explicit inverse.
     pub(crate) fn solve(
-        &mut self,
-        rhs: &mut [f64],
-        scratch: &mut [f64],
-        t: f64,
+        &mut self, rhs: &mut [f64], scratch: &mut [f64], t: f64,
     ) -> Result<(), MbdError> {
         match &self.inverse_t {
             Some(inv_t) => {
@@ -128,10 +121,7 @@ impl IterationMatrix {
     /// `out = [S Dᵀ; D 0]⁻¹ [f; 0]` for the columns of `f` (`n_v × k`); `out` is
     /// `(n_v + n_c) × k`.
     pub(crate) fn solve_columns(
-        &self,
-        f: MatRef<'_, f64>,
-        mut out: MatMut<'_, f64>,
-        t: f64,
+        &self, f: MatRef<'_, f64>, mut out: MatMut<'_, f64>, t: f64,
     ) -> Result<(), MbdError> {
         let n = f.nrows();
         if out.ncols() != f.ncols() || out.nrows() < n {
