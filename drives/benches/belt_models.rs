@@ -12,45 +12,10 @@
 //! 0.25 ms. The printed ratio compares the fastest accurate run of each form.
 //! Run: `cargo bench -p drives --bench belt_models` (several minutes: the nodal model is slow).
 
-use belt::BeltModel;
-use drives::{SpeedLossConfig, speed_loss_sweep};
+mod timed;
+
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
-use std::time::Instant;
-
-struct Run {
-    name: String,
-    dofs: usize,
-    step: f64,
-    simulated: f64,
-    wall: f64,
-    delta_omega: f64,
-}
-
-fn run<M: BeltModel>(name: &str, dofs: usize, model: &mut M, step: f64) -> Option<Run> {
-    let settings = SpeedLossConfig {
-        torques: vec![0.0, 8.0],
-        window: 0.1,
-        tolerance: 1e-3,
-        max_hold: 3.0,
-        step,
-        ..Default::default()
-    };
-    let start = Instant::now();
-    match speed_loss_sweep(model, &settings, |_, _| {}) {
-        Ok((points, stats)) => Some(Run {
-            name: name.into(),
-            dofs,
-            step,
-            simulated: stats.simulated_time,
-            wall: start.elapsed().as_secs_f64(),
-            delta_omega: points[1].delta_omega,
-        }),
-        Err(f) => {
-            println!("{name:<34} h = {step:.2e}: failed ({})", f.error);
-            None
-        }
-    }
-}
+use timed::{Run, print, run};
 
 fn flowing(mesh: Option<(usize, usize)>, free_modes: Option<usize>, step: f64) -> Option<Run> {
     let mut settings = FlowingSettings {
@@ -97,27 +62,11 @@ fn best(group: &[Run]) -> Option<&Run> {
     group
         .iter()
         .filter(|r| (r.delta_omega / reference.delta_omega - 1.0).abs() < 0.01)
-        .min_by(|a, b| (a.wall / a.simulated).total_cmp(&(b.wall / b.simulated)))
+        .min_by(|a, b| a.rate().total_cmp(&b.rate()))
 }
 
 fn main() {
-    println!("belt drive, Table 6-1, 62.8 rad/s, load 0 -> 8 N m (generalized-alpha, rho = 0.6)");
-    println!(
-        "{:<34} {:>5} {:>8} {:>9} {:>8} {:>11} {:>11}",
-        "model", "DOF", "h [ms]", "sim [s]", "wall [s]", "wall/sim", "dw(8) rad/s"
-    );
-    let print = |r: &Run| {
-        println!(
-            "{:<34} {:>5} {:>8.2} {:>9.3} {:>8.2} {:>11.3} {:>11.5}",
-            r.name,
-            r.dofs,
-            1e3 * r.step,
-            r.simulated,
-            r.wall,
-            r.wall / r.simulated,
-            r.delta_omega
-        )
-    };
+    timed::header();
     let mut groups: Vec<Vec<Run>> = Vec::new();
     for (mesh, modes) in [(None, Some(20)), (None, None), (Some((80, 28)), Some(20))] {
         let mut g = Vec::new();
@@ -143,7 +92,7 @@ fn main() {
         print(r);
     }
     if let [Some(tr), Some(un), Some(same), Some(no)] = picks[..] {
-        let rate = |r: &Run| r.wall / r.simulated;
+        let rate = Run::rate;
         println!(
             "ratios of wall time per simulated second: nodal / flowing truncated (56 el.) = {:.1}, \
              nodal / flowing truncated (same 216-el. mesh) = {:.1}, \

@@ -88,6 +88,19 @@ impl Default for AncfStudyConfig {
 
 impl mbd_core::config::PartialRules for AncfStudyConfig {}
 
+impl AncfStudyConfig {
+    /// The run's plan: `t_end`, the integrator and the output's sampling intervals.
+    pub fn plan(&self) -> RunPlan<'_> {
+        let o = &self.output;
+        RunPlan::new(
+            self.t_end,
+            &self.integrator,
+            o.history_interval,
+            o.vtk_interval,
+        )
+    }
+}
+
 impl Validate for AncfStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {
         let input = |e: ancf::AncfError| match e {
@@ -100,14 +113,7 @@ impl Validate for AncfStudyConfig {
         if !(self.tangent_refresh.is_finite() && self.tangent_refresh >= 0.0) {
             return Err(InvalidField::new("tangent_refresh", "must be ≥ 0"));
         }
-        let o = &self.output;
-        let plan = RunPlan::new(
-            self.t_end,
-            &self.integrator,
-            o.history_interval,
-            o.vtk_interval,
-        );
-        validate_run(plan, o.points_per_element)
+        validate_run(self.plan(), self.output.points_per_element)
     }
 }
 
@@ -195,9 +201,7 @@ pub fn dynamic_run<E>(
     let (tight, slack) = tight_slack(drive, driver);
     let mut last_tensions = post::span_tensions(drive, &init.q);
     let mu = drive.spec().contact.friction.coefficient();
-    let o = &c.output;
-    let plan = RunPlan::new(c.t_end, &c.integrator, o.history_interval, o.vtk_interval);
-    let mut end = run_reported(drive, &init.q, plan, mu, |s, due| {
+    let mut end = run_reported(drive, &init.q, c.plan(), mu, |s, due| {
         if due.history {
             last_tensions = post::span_tensions(drive, &s.q);
         }

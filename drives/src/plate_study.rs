@@ -130,17 +130,24 @@ impl PlateStudyConfig {
 
 impl mbd_core::config::PartialRules for PlateStudyConfig {}
 
-impl Validate for PlateStudyConfig {
-    fn validate(&self) -> Result<(), InvalidField> {
-        self.drive.validate_within("drive")?;
+impl PlateStudyConfig {
+    /// The run's plan: `t_end`, the integrator and the output's sampling intervals.
+    pub fn plan(&self) -> RunPlan<'_> {
         let o = &self.output;
-        let plan = RunPlan::new(
+        RunPlan::new(
             self.t_end,
             &self.integrator,
             o.history_interval,
             o.vtk_interval,
-        );
-        validate_run(plan, o.points_per_element)?;
+        )
+    }
+}
+
+impl Validate for PlateStudyConfig {
+    fn validate(&self) -> Result<(), InvalidField> {
+        self.drive.validate_within("drive")?;
+        let o = &self.output;
+        validate_run(self.plan(), o.points_per_element)?;
         check::positive("output.average_window", o.average_window, "s")?;
         let w = self.drive.belt.width;
         if !(o.strain_line.is_finite() && (0.0..=w).contains(&o.strain_line)) {
@@ -351,9 +358,7 @@ pub fn plate_run<E>(
     let (driver, driven) = roles(drive);
     let mu = c.drive.contact.friction.coefficient();
     let mut history: Vec<[f64; 4]> = Vec::new();
-    let o = &c.output;
-    let plan = RunPlan::new(c.t_end, &c.integrator, o.history_interval, o.vtk_interval);
-    let mut end = run_reported(drive, &init.q, plan, mu, |s, due| {
+    let mut end = run_reported(drive, &init.q, c.plan(), mu, |s, due| {
         let wd = drive.pulley_speed(driver, s.t, &s.v);
         let (wn, tau) = match driven {
             Some(p) => (

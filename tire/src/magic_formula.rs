@@ -94,15 +94,12 @@ pub struct MfCurve {
 }
 
 impl MfCurve {
+    /// From the fitted parameters `[B, C, D, E, S_h, S_v]` (at least six).
     fn from_params(p: &[f64]) -> Self {
-        Self {
-            b: p[0],
-            c: p[1],
-            d: p[2],
-            e: p[3],
-            sh: p[4],
-            sv: p[5],
-        }
+        let &[b, c, d, e, sh, sv, ..] = p else {
+            unreachable!("the fit has six parameters")
+        };
+        Self { b, c, d, e, sh, sv }
     }
     /// `y(x)` (Pacejka eq. 4.49) \[N\].
     pub fn eval(&self, x: f64) -> f64 {
@@ -138,14 +135,12 @@ pub struct TrailCurve {
 }
 
 impl TrailCurve {
+    /// From the fitted parameters `[B_t, C_t, D_t, E_t, S_ht]` (at least five).
     fn from_params(p: &[f64]) -> Self {
-        Self {
-            b: p[0],
-            c: p[1],
-            d: p[2],
-            e: p[3],
-            sh: p[4],
-        }
+        let &[b, c, d, e, sh, ..] = p else {
+            unreachable!("the fit has five parameters")
+        };
+        Self { b, c, d, e, sh }
     }
     /// `t(x)` \[m\] at `x = tan α` (eq. 4.E33 without `cos'α`).
     pub fn eval(&self, x: f64) -> f64 {

@@ -216,9 +216,7 @@ pub struct Cantilever {
     /// Element type.
     #[arg(long, value_enum)]
     pub element: Option<ElementArg>,
-    // `[m]` stays unescaped: clap prints this doc comment as the --help text.
     /// Section height h [m].
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     pub h: Option<f64>,
     /// Poisson's ratio.

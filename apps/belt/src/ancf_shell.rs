@@ -24,9 +24,7 @@ use std::time::Instant;
 pub struct Args {
     #[command(flatten)]
     pub common: CommonArgs,
-    // `[s]` stays unescaped: clap prints this doc comment as the --help text.
     /// End time [s] (overrides `t_end`).
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     pub t_end: Option<f64>,
 }

@@ -14,9 +14,7 @@ use serde::{Deserialize, Serialize};
 pub struct Args {
     #[command(flatten)]
     pub common: CommonArgs,
-    // `[s]` stays unescaped: clap prints this doc comment as the --help text.
     /// End time [s] (overrides `t_end`).
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     t_end: Option<f64>,
 }

@@ -24,7 +24,6 @@ pub struct Args {
     #[command(flatten)]
     pub common: CommonArgs,
     /// Engine speeds [rpm], comma separated (replaces the configured operating points).
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_delimiter = ',')]
     pub rpm: Option<Vec<f64>>,
 }

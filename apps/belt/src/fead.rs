@@ -13,7 +13,6 @@ pub struct Args {
     #[command(flatten)]
     pub common: CommonArgs,
     /// Engine speeds [rpm], comma separated (replaces the configured sweep).
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_delimiter = ',')]
     pub rpm: Option<Vec<f64>>,
     /// Belt model (replaces `model`; `ancf` is slow: minutes per engine speed).

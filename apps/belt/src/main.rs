@@ -14,6 +14,8 @@
 //! - `demo`: rigid-body slider-crank driven at constant speed (mbd-core demonstration).
 //!
 //! Run without a subcommand, the default study runs on its embedded defaults.
+// Argument doc comments are clap's --help texts, where `[m]` names a unit, not a link.
+#![allow(rustdoc::broken_intra_doc_links)]
 
 use clap::{Parser, Subcommand};
 use flowmbd_cli::run_study;

@@ -24,9 +24,7 @@ pub struct Args {
     /// Belt speed of the running case [m/s] (overrides `wave.belt_speed`).
     #[arg(long)]
     pub speed: Option<f64>,
-    // `[s]` stays unescaped: clap prints this doc comment as the --help text.
     /// Simulated time [s] (overrides `wave.t_end`).
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     pub t_end: Option<f64>,
 }

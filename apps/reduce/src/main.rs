@@ -7,6 +7,8 @@
 //! - `lin-beam`: Lin ch. 6, 7.1 and 8.5 on the Appendix A beam;
 //! - `lin-slab`: Lin §7.2 simulations on the Appendix B slab (NR, GR, MT, CB, MC);
 //! - `reduce`: reduce user Matrix Market matrices and write the reduced model.
+// Argument doc comments are clap's --help texts, where `[m]` names a unit, not a link.
+#![allow(rustdoc::broken_intra_doc_links)]
 
 use clap::{Parser, Subcommand};
 use flowmbd_cli::{CommonArgs, run_study};

@@ -73,9 +73,7 @@ pub struct Args {
     /// Print the effective configuration as TOML and exit.
     #[arg(long)]
     print_config: bool,
-    // `[kg]` stays unescaped: clap prints this doc comment as the --help text.
     /// Mass matrix (Matrix Market, symmetric positive definite) [kg].
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_name = "M.mtx")]
     mass: Option<PathBuf>,
     /// Stiffness matrix (Matrix Market, symmetric) [N/m].

@@ -111,9 +111,7 @@ pub struct RigFlags {
     /// Roll without the cleat (steady rolling).
     #[arg(long)]
     pub no_cleat: bool,
-    // `[s]` stays unescaped: clap prints this doc comment as the --help text.
     /// Time step [s] (overrides `rig.rolling.time_step`).
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     pub time_step: Option<f64>,
     /// Sub-steps per time step while the cleat passes the patch (overrides

@@ -12,6 +12,8 @@
 //!   over slip angle and drive torque (issue 38);
 //! - `dips`: the speed dips of the cleat test, predicted from the enveloping profile and the
 //!   loaded vertical mode, and measured by a sweep (drum and road).
+// Argument doc comments are clap's --help texts, where `[m]` names a unit, not a link.
+#![allow(rustdoc::broken_intra_doc_links)]
 
 use clap::{Parser, Subcommand};
 use flowmbd_cli::{CommonArgs, run_study};

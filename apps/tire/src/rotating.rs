@@ -19,11 +19,9 @@ pub struct Args {
     #[command(flatten)]
     pub common: CommonArgs,
     /// Speeds [km/h], comma separated (overrides `speeds_kmh`), e.g. `--speeds 0,30,60,90,120`.
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_delimiter = ',')]
     speeds: Option<Vec<f64>>,
     /// Highest damped frequency reported [Hz] (overrides `max_hz`).
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     max_hz: Option<f64>,
 }

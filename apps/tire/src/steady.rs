@@ -18,7 +18,6 @@ pub struct Args {
     #[arg(long)]
     friction: Option<f64>,
     /// Speed [km/h] (overrides `rig.speed_kmh`).
-    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long)]
     speed: Option<f64>,
 }

@@ -5,6 +5,8 @@
 //! [`crate::assembly`] module scatters them into sparse global matrices.
 
 use faer::Mat;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 pub mod bar;
 pub mod fibre;
@@ -24,17 +26,7 @@ pub use point::{PointMass, Spring};
 pub use string::StringElement;
 
 /// Mass discretisation.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    serde::Serialize,
-    serde::Deserialize,
-    schemars::JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum MassKind {
     /// Consistent mass (same shape functions as the stiffness).

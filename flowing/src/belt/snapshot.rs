@@ -4,6 +4,7 @@
 //! (5.5)), pulley torques and hub loads summed from the node contacts.
 
 use super::contact::NodeContact;
+use super::coordinates::DriveCoordinates;
 use super::flowing_system::FlowingBelt;
 use super::model::BeltFe;
 use super::nodal::NodalBelt;
@@ -28,19 +29,19 @@ fn deformed(reference: &[[f64; 2]], d: &[f64]) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// The snapshot of a belt of frame elements with nodal contacts: pulley speeds `omega[k]`
-/// \[rad/s\], hub loads and torques summed from the contacts, span forces from the element
-/// forces (acting along the nodes' line over each span's middle half), wrap points at the
-/// contact nodes; `idler`: the tensioner idler's (pulley, centre, centre velocity).
+/// The snapshot of a belt of frame elements with nodal contacts at `(t, q, v)`: pulley speeds
+/// \[rad/s\] and the tensioner idler's centre from the drive's rigid coordinates `coords`, hub
+/// loads and torques summed from the contacts, span forces from the element forces (acting
+/// along the nodes' line over each span's middle half), wrap points at the contact nodes.
 fn snapshot_with(
-    fe: &BeltFe, t: f64, nodes: &[[f64; 2]], forces: &[f64],
-    contacts: impl Iterator<Item = (usize, usize, NodeContact)>, omega: Vec<f64>,
-    idler: Option<(usize, [f64; 2], [f64; 2])>,
+    fe: &BeltFe, coords: &DriveCoordinates, (t, q, v): (f64, &[f64], &[f64]), nodes: &[[f64; 2]],
+    forces: &[f64], contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
 ) -> Snapshot {
     let path = fe.path();
+    let omega = (0..coords.motions.len()).map(|k| coords.pulley_speed(k, t, v));
+    let idler = coords.idler_motion(q, v);
     let nn = nodes.len();
     let mut pulleys: Vec<PulleyState> = omega
-        .into_iter()
         .zip(fe.drive.pulleys())
         .map(|(omega, p)| PulleyState {
             omega,
@@ -153,17 +154,13 @@ impl BeltModel for FlowingBelt {
             .contact_report(t, q, v)
             .into_iter()
             .map(|r| (r.node, r.pulley, r.contact));
-        let omega = (0..self.coords.motions.len())
-            .map(|k| self.coords.pulley_speed(k, t, v))
-            .collect();
         Ok(snapshot_with(
             &self.fe,
-            t,
+            &self.coords,
+            (t, q, v),
             &nodes,
             &forces,
             contacts,
-            omega,
-            self.coords.idler_motion(q, v),
         ))
     }
 
@@ -187,18 +184,7 @@ impl BeltModel for NodalBelt {
             .contact_report(t, q, v)?
             .into_iter()
             .map(|(i, p, _, c)| (i, p, c));
-        let omega = (0..self.coords.motions.len())
-            .map(|k| self.coords.pulley_speed(k, t, v))
-            .collect();
-        let mut snap = snapshot_with(
-            &self.fe,
-            t,
-            &nodes,
-            &forces,
-            contacts,
-            omega,
-            self.coords.idler_motion(q, v),
-        );
+        let mut snap = snapshot_with(&self.fe, &self.coords, (t, q, v), &nodes, &forces, contacts);
         snap.belt_dissipation = Some(self.damping_dissipation(q, v)?);
         Ok(snap)
     }

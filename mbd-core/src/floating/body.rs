@@ -4,11 +4,11 @@
 use crate::MbdError;
 use faer::{Mat, MatRef};
 use nalgebra::{Matrix3, Vector3};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 /// How the body frame of a [`FlexBody`] is defined (Lin ch. 4; Ribaric §2.2.5–2.2.8).
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum AxisCondition {
     /// Nodal-fixed axes (Lin §4.1, Table 4-1): the six anchored local coordinates are zero,
@@ -63,17 +63,7 @@ pub struct FlexBody {
 
 /// Where the linear elastic forces act (they differ at second order in the deflection,
 /// because linear elasticity is not rotation invariant).
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    serde::Serialize,
-    serde::Deserialize,
-    schemars::JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum ElasticForces {
     /// Only on the elastic coordinates, `−Ψ'ᵀK'Ψ'z` (from the strain energy `½zᵀK_r z`, which

@@ -23,19 +23,11 @@ use crate::mesh::TireFe;
 use read::{
     Listed, labels_to_indices, read_abaqus, read_indices, read_mtx, read_nodes, unique_in_file,
 };
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 /// Format of the matrix files of an imported tire.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    serde::Serialize,
-    serde::Deserialize,
-    schemars::JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ImportFormat {
     /// Matrix Market (`3n × 3n`, node-major DOFs x, y, z); nodes, rim and patch sets are
@@ -53,7 +45,7 @@ pub enum ImportFormat {
 /// the rim and candidate patch node sets (separated by white space or commas). Lines starting
 /// with `#` and `*` are comments, except that an ABAQUS keyword line with `GENERATE` (e.g.
 /// `*NSET, NSET=RIM, GENERATE`) makes the following data lines `first, last[, step]` ranges.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ImportFiles {
     /// Matrix file format (default: Matrix Market).
