@@ -8,10 +8,12 @@
 //!   contact case;
 //! * [`ancf_dynamics`]: Kerkkänen §2.4 dynamic cases (falling pendulum, spinning beam);
 //! * [`chain`]: a hanging spherical-joint chain (multibody benchmarks and examples);
-//! * [`slider_crank`]: the rigid slider-crank of the `flowmbd-belt demo` study.
+//! * [`slider_crank`]: the rigid slider-crank, and [`slider_crank_study`] the
+//!   `flowmbd-belt demo` study on it.
 
 pub mod ancf_beams;
 pub mod ancf_dynamics;
 pub mod chain;
 pub mod lin;
 pub mod slider_crank;
+pub mod slider_crank_study;

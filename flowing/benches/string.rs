@@ -4,37 +4,20 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use flowing::contact::candidates;
+use flowing::string_wrap::WrapConfig;
 use flowing::{
     AxialMotion, ContactConfig, ContactString, DerivativeMethod, FlowingString, GalerkinString,
-    PulleyObstacle, StringConfig, StringMesh, simulate_contact,
+    StringConfig, StringMesh, simulate_contact,
 };
 use mbd_core::integrators::State;
 use std::hint::black_box;
 
 fn wrapped(c: &mut Criterion) {
-    let p = StringConfig {
-        length: 1.2,
-        ..StringConfig::default()
-    };
-    let mesh = StringMesh::uniform(p, 119).unwrap();
-    let pulleys = [
-        PulleyObstacle {
-            center_x: 0.1,
-            top: 0.015,
-            radius: 0.25,
-        },
-        PulleyObstacle {
-            center_x: 1.1,
-            top: 0.015,
-            radius: 0.25,
-        },
-    ];
-    let cands = candidates(&mesh, &pulleys, 0.08).unwrap();
-    let load = Some(flowing::HarmonicLoad {
-        x: 0.6,
-        amplitude: 15.0,
-        frequency: 20.0,
-    });
+    // the `flowmbd-string wrap` study's default string, pulleys and load
+    let w = WrapConfig::default();
+    let mesh = StringMesh::uniform(w.string, w.nodes).unwrap();
+    let cands = candidates(&mesh, &w.pulleys, w.candidate_half_width).unwrap();
+    let load = Some(w.load);
     let motion = AxialMotion::Constant { speed: 0.0 };
     let nodal = ContactString::nodal(
         &mesh,

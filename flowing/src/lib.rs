@@ -37,6 +37,7 @@ pub mod string_fe;
 pub mod string_simulate;
 pub mod string_study;
 pub mod string_sweep;
+pub mod string_wrap;
 pub mod travelling;
 
 pub use contact::{ContactConfig, ContactString, HarmonicLoad, simulate_contact};

@@ -3,8 +3,9 @@
 The Python API over the flowmbd Rust crates (the same engine, configuration keys, checks and
 results as the ``flowmbd-*`` command-line studies):
 
-- :mod:`flowmbd.belt`: ``speed_loss`` (Ribaric §6.4–6.5) and ``ancf`` (Kerkkänen ch. 3);
-- :mod:`flowmbd.string`: ``modes`` (Ribaric §4.2.3), ``sweep`` and ``simulate`` (ch. 4);
+- :mod:`flowmbd.belt`: ``speed_loss`` (Ribaric §6.4–6.5), ``ancf`` and ``plate`` (Kerkkänen
+  ch. 3–4), ``fead``, ``design``, ``wave`` and ``demo``;
+- :mod:`flowmbd.string`: ``modes`` (Ribaric §4.2.3), ``sweep``, ``simulate`` and ``wrap`` (ch. 4);
 - :mod:`flowmbd.tire`: the reduced FE tire (generate, import, ``reduce`` once into a picklable
   ``ReducedTire``) and its studies ``cleat``, ``steady``, ``sweep``, ``dips``, ``pressure``,
   ``modes`` and ``rotating_modes`` (Ribaric ch. 7–8);

@@ -48,10 +48,22 @@ def wave(
     """(JSON text of the travelling-wave demonstration's summary, ``{"wave": {column:
     array}}``)."""
 
+def demo(
+    config: Optional[str] = None, t_end: Optional[float] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the slider-crank demonstration's summary, ``{"history": {column:
+    array}}``)."""
+
 def string_simulate(
     config: Optional[str] = None, speed: Optional[float] = None
 ) -> Tuple[str, dict]:
     """(JSON text of the pluck-transient summary, ``{"modal_history", "spectra": {column:
+    array}}``)."""
+
+def string_wrap(
+    config: Optional[str] = None, speed: Optional[float] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the wrapped string's summary, ``{"history", "events": {column:
     array}}``)."""
 
 def modes(

@@ -1,7 +1,8 @@
 """Belt drives: the speed-loss study of Ribaric §6.4–6.5 (``flowmbd-belt speed-loss``), the
 planar ANCF drive of Kerkkänen ch. 3 (``flowmbd-belt ancf``) and his three-dimensional plate-belt
 drive of ch. 4 (``flowmbd-belt plate``), the FEAD sweep (``flowmbd-belt fead``) and its steady
-design without time stepping (``flowmbd-belt design``)."""
+design without time stepping (``flowmbd-belt design``), the travelling span wave
+(``flowmbd-belt wave``) and the slider-crank demonstration (``flowmbd-belt demo``)."""
 
 from __future__ import annotations
 
@@ -347,4 +348,40 @@ def wave(
         _args.optional_number("speed", speed),
         _args.optional_number("t_end", t_end),
     )
+    return with_series(text, data, series)
+
+
+def demo(
+    config: Optional[Mapping[str, Any]] = None,
+    t_end: Optional[float] = None,
+    series: bool = False,
+) -> Result:
+    """The rigid slider-crank demonstration (``flowmbd-belt demo``): the crank driven at
+    constant speed, integrated by the shared generalized-α stepper with its joints as index-3
+    constraints, and the slider position compared with the closed-form kinematics
+    ``x = a cos θ + sqrt(b² − a² sin² θ)``.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-belt demo --print-config`` (``crank_length``,
+        ``rod_length`` [m], ``masses`` [kg] (crank, rod, slider), ``omega`` [rad/s],
+        ``theta0`` [rad], ``t_end`` [s], ``step`` [s], ``rho_inf``).
+    t_end : simulated time [s] (replaces ``config["t_end"]``; the CLI's ``--t-end``).
+    series : also return ``"history"``: the columns of the CLI's ``history.csv`` as numpy
+        arrays (``t_s`` [s], ``theta_rad`` [rad], ``slider_x_m`` and ``closed_form_x_m`` [m]).
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``max_slider_error_m`` [m], ``steps``,
+        ``newton_iterations``, ``wall_time_s`` [s] and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        The integration failed.
+    """
+    text, data = _native.demo(config_json(config), _args.optional_number("t_end", t_end))
     return with_series(text, data, series)

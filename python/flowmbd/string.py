@@ -1,6 +1,6 @@
 """Travelling string (Ribaric ch. 4): the modes study of §4.2.3 (``flowmbd-string modes``) and
-the speed sweep (``flowmbd-string sweep``) and the pluck transient (``flowmbd-string
-simulate``). Series that the CLI writes as CSV files come back with ``series=True``: under the
+the speed sweep (``flowmbd-string sweep``), the pluck transient (``flowmbd-string
+simulate``) and the string wrapped on two pulleys (``flowmbd-string wrap``). Series that the CLI writes as CSV files come back with ``series=True``: under the
 CSV file's name without ``.csv``, a dict of its columns as numpy arrays."""
 
 from __future__ import annotations
@@ -149,4 +149,49 @@ def simulate(
         The response is not finite.
     """
     text, data = _native.string_simulate(config_json(config), _args.optional_number("speed", speed))
+    return with_series(text, data, series)
+
+
+def wrap(
+    config: Optional[Mapping[str, Any]] = None,
+    speed: Optional[float] = None,
+    series: bool = False,
+) -> Result:
+    """The string partly wrapped on two pulleys, lifting off and landing again under a harmonic
+    load (``flowmbd-string wrap``; Ribaric Fig. 4-4, 4-7, (4.10), (4.11), (4.31)–(4.40)):
+    active-set Lagrange contact with event location, from the static wrap on the pulleys.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-string wrap --print-config`` (``string``
+        (``length`` [m] anchor to anchor, ``density`` [kg/m³], ``area`` [m²], ``tension`` [N]),
+        ``nodes``, ``pulleys`` (each ``center_x`` [m], ``top`` [m] above the anchors'
+        line, ``radius`` [m]), ``candidate_half_width`` [m], ``formulation`` (``"nodal"`` or
+        ``"craig_bampton"``), ``free_modes``, ``speed`` [m/s], ``load`` (``x`` [m],
+        ``amplitude`` [N], ``frequency`` [Hz]), ``duration`` [s], ``sample`` [s],
+        ``derivative``, ``contact`` (integrator tolerances), ``vtk_snapshots`` (unused here:
+        no files are written)). The speed must lie below the critical speed.
+    speed : axial speed [m/s] (replaces ``config["speed"]``; the CLI's ``--speed``).
+    series : also return ``"history"`` (``t_s`` [s], ``midload_deflection_m`` [m],
+        ``free_span_m`` [m], ``energy_J`` [J], per pulley ``pulley<p>_active_count`` and
+        ``pulley<p>_force_N`` [N]) and ``"events"`` (``t_s`` [s], ``candidate_index``,
+        ``node_index``, ``activated_flag`` (1 landing, 0 lift-off), ``impact_loss_J`` [J]): the
+        columns of ``history.csv`` and ``events.csv`` as numpy arrays.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``coordinates``, ``candidates_per_pulley``,
+        ``initial_active_per_pulley``, ``initial_force_per_pulley`` [N] (the static wrap),
+        ``min_active_per_pulley``, ``releases``, ``contacts``, ``impact_loss`` [J],
+        ``max_free_span`` [m], ``max_active_gap`` [m] (constraint drift) and ``steps``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        The contact simulation failed.
+    """
+    text, data = _native.string_wrap(config_json(config), _args.optional_number("speed", speed))
     return with_series(text, data, series)

@@ -245,3 +245,29 @@ pub fn wave<'py>(
         [("wave", crate::columns(&WAVE_CSV_HEADER, &rows))],
     )
 }
+
+/// The rigid slider-crank demonstration
+/// ([`flowmbd_cases::slider_crank_study::slider_crank_demo`], `flowmbd-belt demo`): returns
+/// `(summary JSON text, series)` with the series `{"history": the columns of history.csv}`
+/// (numpy arrays). `t_end` \[s\] replaces the configuration's (the CLI's `--t-end`).
+#[pyfunction]
+#[pyo3(signature = (config=None, t_end=None))]
+pub fn demo<'py>(
+    py: Python<'py>, config: Option<&str>, t_end: Option<f64>,
+) -> PyResult<WithSeries<'py>> {
+    use flowmbd_cases::slider_crank_study::{DEMO_HISTORY_HEADER, DemoConfig, slider_crank_demo};
+    let c = study_config(config, |c: &mut DemoConfig| {
+        if let Some(t) = t_end {
+            c.t_end = t;
+        }
+    })?;
+    let mut rows: Vec<[f64; 4]> = Vec::new();
+    let summary = py
+        .detach(|| slider_crank_demo(&c, &mut |r| rows.push(*r)))
+        .map_err(|e| numerical_error(py, e.to_string(), None))?;
+    with_series(
+        py,
+        &summary,
+        [("history", crate::columns(&DEMO_HISTORY_HEADER, &rows))],
+    )
+}

@@ -165,10 +165,12 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(belt::fead, m)?)?;
     m.add_function(wrap_pyfunction!(belt::design, m)?)?;
     m.add_function(wrap_pyfunction!(belt::wave, m)?)?;
+    m.add_function(wrap_pyfunction!(belt::demo, m)?)?;
     m.add_class::<stepping::PyBeltSimulation>()?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(string::string_wrap, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::eitelberg, m)?)?;

@@ -1,7 +1,8 @@
 //! `flowmbd.string`: the travelling-string modes study of Ribaric §4.2.3 through
 //! [`flowing::string_study`] (the same as `flowmbd-string modes`) and the speed sweep through
-//! [`flowing::string_sweep`] (`flowmbd-string sweep`) and the pluck transient through
-//! [`flowing::string_simulate`] (`flowmbd-string simulate`).
+//! [`flowing::string_sweep`] (`flowmbd-string sweep`), the pluck transient through
+//! [`flowing::string_simulate`] (`flowmbd-string simulate`) and the string wrapped on two
+//! pulleys through [`flowing::string_wrap`] (`flowmbd-string wrap`).
 
 use crate::{
     WithSeries, columns, input_error, numerical_error, study_config, to_json, with_series,
@@ -115,6 +116,38 @@ pub fn string_simulate<'py>(
                 "spectra",
                 columns(&spectra_header(c.modes), spectra_rows(&r.spectra)),
             ),
+        ],
+    )
+}
+
+/// The string wrapped on two pulleys under a harmonic load
+/// ([`flowing::string_wrap::string_wrap`], `flowmbd-string wrap`; Ribaric (4.10), (4.11),
+/// (4.40)): returns `(summary JSON text, series)` with the series `{"history", "events": the
+/// columns of history.csv and events.csv}` (numpy arrays; no VTK frames). `speed` replaces the
+/// configuration's (the CLI's `--speed`).
+#[pyfunction]
+#[pyo3(signature = (config=None, speed=None))]
+pub fn string_wrap<'py>(
+    py: Python<'py>, config: Option<&str>, speed: Option<f64>,
+) -> PyResult<WithSeries<'py>> {
+    use flowing::string_wrap::{
+        EVENTS_HEADER, WrapConfig, event_rows, string_wrap as wrap, wrap_history_header,
+    };
+    let c = study_config(config, |c: &mut WrapConfig| {
+        if let Some(v) = speed {
+            c.speed = v;
+        }
+    })?;
+    let r = py
+        .detach(|| wrap(&c, &mut |_| std::ops::ControlFlow::Continue(())))
+        .map_err(|e| flow_error(py, e))?;
+    let history_header = wrap_history_header(c.pulleys.len());
+    with_series(
+        py,
+        &r.summary,
+        [
+            ("history", columns(&history_header, &r.history)),
+            ("events", columns(&EVENTS_HEADER, event_rows(&r.events))),
         ],
     )
 }

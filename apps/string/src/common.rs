@@ -1,4 +1,4 @@
-//! Pieces shared by the studies: error mapping, validation helpers.
+//! Pieces shared by the studies: their command-line flags and the error mapping.
 
 use flowing::FlowError;
 use flowmbd_cli::{InputError, StudyError, set_given};
@@ -51,8 +51,3 @@ pub fn study_error(e: FlowError) -> StudyError {
         other => StudyError::numerical(other),
     }
 }
-
-/// The shared checks, defined with the modes study in `flowing` (one set of messages).
-pub use flowing::string_study::{
-    MAX_STRING_NODES, Regime, check_number, check_scales, check_steps, check_string,
-};

@@ -1,309 +1,15 @@
 //! `wrap`: the string partly wrapped on two pulleys (Ribaric Fig. 4-4, 4-7, (4.10), (4.11),
-//! (4.31)–(4.40)), lifting off under a harmonic load; active-set Lagrange contact with
-//! event location.
+//! (4.31)–(4.40)), lifting off under a harmonic load; active-set Lagrange contact with event
+//! location. The configuration, checks and run live in [`flowing::string_wrap`]; this module
+//! writes `history.csv`, `events.csv`, the VTK frames and the plots.
 
 use crate::common::*;
-use flowing::contact::{ContactString, HarmonicLoad, candidates};
-use flowing::{
-    AxialMotion, ContactConfig, DerivativeMethod, PulleyObstacle, StringConfig, StringMesh,
-    simulate_contact,
+use flowing::string_wrap::{
+    EVENTS_HEADER, WrapConfig, WrapSummary, event_rows, string_wrap, wrap_frame,
+    wrap_history_header,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
-use flowmbd_cli::{CommonArgs, InputError, Study, StudyContext, StudyError, Validate};
-use mbd_core::integrators::State;
-use serde::{Deserialize, Serialize};
-
-/// Coordinates of the wrapped string.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum Formulation {
-    /// Nodal deflections (4.10).
-    Nodal,
-    /// Craig–Bampton / flowing material (4.11), (4.40).
-    CraigBampton,
-}
-
-/// Configuration. The string runs between anchors at 0 and `string.length` (both at u = 0) and
-/// over two pulleys whose tops lie `top` above the anchors (the default wraps ≈ 5 cm on each).
-#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(default, deny_unknown_fields)]
-pub struct WrapConfig {
-    /// String parameters (`length`: anchor to anchor) \[SI\].
-    pub string: StringConfig,
-    /// Interior FE nodes.
-    pub nodes: usize,
-    /// Pulleys.
-    pub pulleys: Vec<PulleyObstacle>,
-    /// Candidate contact nodes: within this distance of a pulley centre \[m\].
-    pub candidate_half_width: f64,
-    /// Formulation.
-    pub formulation: Formulation,
-    /// Retained free-node modes (Craig–Bampton only).
-    pub free_modes: usize,
-    /// Axial speed \[m/s\] (travelling string, (4.40)).
-    pub speed: f64,
-    /// Harmonic load.
-    pub load: HarmonicLoad,
-    /// Duration \[s\].
-    pub duration: f64,
-    /// Output sampling period \[s\].
-    pub sample: f64,
-    /// Mode-shape derivative operator.
-    pub derivative: DerivativeMethod,
-    /// Contact and integrator settings.
-    pub contact: ContactConfig,
-    /// Number of VTK snapshots (`wrap_NNN.vtu`: deformed string, pulleys, contact forces).
-    pub vtk_snapshots: usize,
-}
-
-impl Default for WrapConfig {
-    fn default() -> Self {
-        Self {
-            string: StringConfig {
-                length: 1.2,
-                ..StringConfig::default()
-            },
-            nodes: 119,
-            pulleys: vec![
-                PulleyObstacle {
-                    center_x: 0.1,
-                    top: 0.015,
-                    radius: 0.25,
-                },
-                PulleyObstacle {
-                    center_x: 1.1,
-                    top: 0.015,
-                    radius: 0.25,
-                },
-            ],
-            candidate_half_width: 0.08,
-            formulation: Formulation::CraigBampton,
-            free_modes: 20,
-            speed: 0.0,
-            load: HarmonicLoad {
-                x: 0.6,
-                amplitude: 15.0,
-                frequency: 20.0,
-            },
-            duration: 0.3,
-            sample: 5e-4,
-            derivative: DerivativeMethod::default(),
-            contact: ContactConfig::default(),
-            vtk_snapshots: 20,
-        }
-    }
-}
-
-/// Most periods of the model's fastest motion in one run, `duration × max(c(n+1)/(πL),
-/// load.frequency)` (the FE mesh's highest natural frequency or the load's): Dormand–Prince
-/// takes about 40 steps per period at the default tolerances, so 2.5·10⁵ periods are about 10⁷
-/// steps; the default run is 385 periods.
-pub const MAX_WRAP_PERIODS: f64 = 2.5e5;
-
-/// Most pulleys of the wrapped string.
-pub const MAX_WRAP_PULLEYS: usize = 64;
-
-impl flowmbd_cli::PartialRules for WrapConfig {}
-
-impl Validate for WrapConfig {
-    fn validate(&self) -> Result<(), InputError> {
-        use mbd_core::validate::check::show;
-        check_string(&self.string, "string")?;
-        mbd_core::validate::check::size("nodes", self.nodes, 5, MAX_STRING_NODES)?;
-        check_scales(&self.string, "string", "speed", self.speed, self.nodes)?;
-        mbd_core::validate::check::size("pulleys", self.pulleys.len(), 1, MAX_WRAP_PULLEYS)?;
-        for (i, p) in self.pulleys.iter().enumerate() {
-            if !(p.radius.is_finite() && p.radius > 0.0) {
-                return Err(InputError::new(
-                    format!("pulleys[{i}].radius"),
-                    format!("must be positive, got {}", show(p.radius)),
-                ));
-            }
-            if !(p.center_x > 0.0 && p.center_x < self.string.length) {
-                return Err(InputError::new(
-                    format!("pulleys[{i}].center_x"),
-                    "must lie between the anchors",
-                ));
-            }
-            check_number(&format!("pulleys[{i}].top"), p.top, false)?;
-            // the string model is one of small deflections (issue 35: top = 1e300 m ran into a
-            // step size underflow, exit 1)
-            mbd_core::validate::check::within(
-                &format!("pulleys[{i}].top"),
-                p.top,
-                -self.string.length,
-                self.string.length,
-                "m (within the string's length of its line: small deflections)",
-            )?;
-            if !(self.candidate_half_width > 0.0 && self.candidate_half_width < p.radius) {
-                return Err(InputError::new(
-                    "candidate_half_width",
-                    format!("must be positive and below pulleys[{i}].radius"),
-                ));
-            }
-        }
-        check_number("speed", self.speed, false)?;
-        let crit = self.string.wave_speed();
-        if Regime::of(&self.string, self.speed) != Regime::Subcritical {
-            return Err(InputError::new(
-                "speed",
-                format!(
-                    "|speed| = {} m/s must be below the critical speed c = √(T/ρA) = {crit:.4} \
-                     m/s of this string (above it the travelling string between fixed \
-                     supports is no initial-value problem: both waves travel downstream)",
-                    show(self.speed.abs())
-                ),
-            ));
-        }
-        check_number("load.amplitude", self.load.amplitude, false)?;
-        check_number("load.frequency", self.load.frequency, true)?;
-        if !(self.load.x > 0.0 && self.load.x < self.string.length) {
-            return Err(InputError::new("load.x", "must lie between the anchors"));
-        }
-        if !(self.duration.is_finite() && self.duration > 0.0) {
-            return Err(InputError::new("duration", "must be positive"));
-        }
-        if !(self.sample.is_finite() && self.sample > 0.0 && self.sample <= self.duration) {
-            return Err(InputError::new(
-                "sample",
-                "must be positive and at most the duration",
-            ));
-        }
-        check_steps("duration", self.duration, self.sample, 1e7, "samples")?;
-        let f_top = (crit * (self.nodes + 1) as f64 / (std::f64::consts::PI * self.string.length))
-            .max(self.load.frequency);
-        check_steps(
-            "duration",
-            self.duration,
-            1.0 / f_top,
-            MAX_WRAP_PERIODS,
-            "periods of the fastest motion (the FE mesh's highest frequency or the load's)",
-        )?;
-        mbd_core::validate::check::size("vtk_snapshots", self.vtk_snapshots, 0, 100_000)?;
-        if self.formulation == Formulation::CraigBampton && self.free_modes == 0 {
-            return Err(InputError::new("free_modes", "must be at least 1"));
-        }
-        if self.formulation == Formulation::CraigBampton && self.free_modes > self.nodes {
-            return Err(InputError::new(
-                "free_modes",
-                format!(
-                    "must be at most nodes = {}, got {}",
-                    self.nodes, self.free_modes
-                ),
-            ));
-        }
-        self.contact.validate_within("contact")?;
-        Ok(())
-    }
-}
-
-/// Summary.
-#[derive(Debug, Clone, Serialize)]
-pub struct WrapSummary {
-    /// Generalized coordinates.
-    pub coordinates: usize,
-    /// Candidate contact nodes per pulley.
-    pub candidates_per_pulley: Vec<usize>,
-    /// Active contact nodes per pulley in static equilibrium.
-    pub initial_active_per_pulley: Vec<usize>,
-    /// Static contact force per pulley \[N\].
-    pub initial_force_per_pulley: Vec<f64>,
-    /// Fewest active contact nodes per pulley during the run.
-    pub min_active_per_pulley: Vec<usize>,
-    /// Lift-off (release) events.
-    pub releases: usize,
-    /// Re-contact (activation) events.
-    pub contacts: usize,
-    /// Kinetic energy removed by plastic impacts \[J\].
-    pub impact_loss: f64,
-    /// Longest free span between the pulleys during the run \[m\].
-    pub max_free_span: f64,
-    /// Largest |gap| of an active node (constraint drift) \[m\].
-    pub max_active_gap: f64,
-    /// Integrator steps.
-    pub steps: usize,
-}
-
-/// Writes the deformed string (anchors included), the pulley circles and the nodal contact
-/// forces as a VTK unstructured grid (fe-model's VTU writer).
-fn write_vtk(
-    path: &std::path::Path, sys: &ContactString, st: &State, pulleys: &[PulleyObstacle],
-    length: f64, positions: &[f64],
-) -> Result<(), StudyError> {
-    use fe_model::io::vtk::{PointField, write_vtu};
-    use fe_model::{Cell, CellKind, Mesh};
-    let u = sys.deflection(&st.q);
-    let p = sys.contact_forces(st).map_err(study_error)?;
-    let mut force = vec![0.0; u.len()];
-    let mut active = vec![0.0; u.len()];
-    for (c, k) in sys.candidates.iter().enumerate() {
-        force[k.node] = p[c];
-        active[k.node] = f64::from(u8::from(sys.active[c]));
-    }
-    let mut mesh = Mesh::new(1);
-    let mut fvals = Vec::new();
-    let mut avals = Vec::new();
-    let mut uvals = Vec::new();
-    let mut push = |mesh: &mut Mesh, x: f64, y: f64, f: f64, a: f64, defl: f64| {
-        fvals.push(f);
-        avals.push(a);
-        uvals.push(defl);
-        mesh.add_node([x, y, 0.0])
-    };
-    let mut prev = push(&mut mesh, 0.0, 0.0, 0.0, 0.0, 0.0);
-    for (j, x) in positions.iter().enumerate() {
-        let n = push(&mut mesh, *x, u[j], force[j], active[j], u[j]);
-        mesh.cells.push(Cell {
-            kind: CellKind::Line,
-            nodes: vec![prev, n],
-        });
-        prev = n;
-    }
-    let n = push(&mut mesh, length, 0.0, 0.0, 0.0, 0.0);
-    mesh.cells.push(Cell {
-        kind: CellKind::Line,
-        nodes: vec![prev, n],
-    });
-    for pl in pulleys {
-        let segs = 96;
-        let cy = pl.top - pl.radius;
-        let first = mesh.n_nodes();
-        for k in 0..segs {
-            let a = 2.0 * std::f64::consts::PI * k as f64 / segs as f64;
-            let id = push(
-                &mut mesh,
-                pl.center_x + pl.radius * a.cos(),
-                cy + pl.radius * a.sin(),
-                0.0,
-                0.0,
-                0.0,
-            );
-            let next = if k + 1 == segs { first } else { id + 1 };
-            mesh.cells.push(Cell {
-                kind: CellKind::Line,
-                nodes: vec![id, next],
-            });
-        }
-    }
-    let fields = vec![
-        PointField {
-            name: "contact_force_N".into(),
-            components: 1,
-            values: fvals,
-        },
-        PointField {
-            name: "active".into(),
-            components: 1,
-            values: avals,
-        },
-        PointField {
-            name: "deflection_m".into(),
-            components: 1,
-            values: uvals,
-        },
-    ];
-    write_vtu(path, &mesh, &fields).map_err(|e| StudyError::numerical(format!("VTK output: {e}")))
-}
+use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError};
 
 /// The `wrap` study: its command line.
 #[derive(clap::Args, Debug)]
@@ -314,147 +20,40 @@ pub struct WrapStudy {
     pub common: CommonArgs,
 }
 
-fn per_pulley(sys: &ContactString, n: usize, f: impl Fn(usize) -> f64) -> Vec<f64> {
-    let mut v = vec![0.0; n];
-    for (c, k) in sys.candidates.iter().enumerate() {
-        v[k.pulley] += f(c);
-    }
-    v
-}
-
-/// Length between the last contact on the first pulley and the first contact on the last pulley
-/// (an anchor where a pulley has no contact) \[m\].
-fn free_span(sys: &ContactString, length: f64, n_pulleys: usize) -> f64 {
-    let right0 = sys
-        .candidates
-        .iter()
-        .enumerate()
-        .filter(|(c, k)| sys.active[*c] && k.pulley == 0)
-        .map(|(_, k)| k.x)
-        .fold(0.0, f64::max);
-    let left1 = sys
-        .candidates
-        .iter()
-        .enumerate()
-        .filter(|(c, k)| sys.active[*c] && k.pulley + 1 == n_pulleys)
-        .map(|(_, k)| k.x)
-        .fold(length, f64::min);
-    left1 - right0
-}
-
 impl Study for WrapStudy {
     type Config = WrapConfig;
     type Summary = WrapSummary;
     const NAME: &'static str = "wrap";
-    const MEANING: &'static str = "A string partly wrapped on two pulleys under a harmonic load (Ribaric (4.10), \
-         (4.11), (4.40)): contact nodes lift off and land again as the load shakes the free \
-         span. coordinates is the model size; candidates_, initial_active_ and \
-         initial_force_per_pulley [N] describe the static wrap; min_active_per_pulley is the \
-         fewest nodes in contact during the run; releases and contacts count lift-off and \
-         landing events; impact_loss [J] is the kinetic energy removed by the plastic \
-         landings; max_free_span [m] the longest free span reached (the wrap shrinks when \
-         nodes lift off); max_active_gap [m] the largest gap of a node held in contact \
-         (constraint drift, near 0 for a sound integration).";
 
     fn apply_overrides(&self, c: &mut WrapConfig) {
         self.speed.apply(&mut c.speed);
     }
 
     fn run(&self, c: &WrapConfig, ctx: &mut StudyContext) -> Result<WrapSummary, StudyError> {
-        let mesh = StringMesh::uniform(c.string, c.nodes).map_err(study_error)?;
-        let cands = candidates(&mesh, &c.pulleys, c.candidate_half_width).map_err(study_error)?;
-        let motion = AxialMotion::Constant { speed: c.speed };
-        let mut sys = match c.formulation {
-            Formulation::Nodal => {
-                ContactString::nodal(&mesh, cands, c.derivative, motion, Some(c.load))
-            }
-            Formulation::CraigBampton => ContactString::craig_bampton(
-                &mesh,
-                cands,
-                c.free_modes,
-                c.derivative,
-                motion,
-                Some(c.load),
-            ),
-        }
-        .map_err(study_error)?;
         let np = c.pulleys.len();
-        let y0 = sys.static_equilibrium().map_err(study_error)?;
-        let st0 = State::new(0.0, y0.clone(), vec![0.0; y0.len()]);
-        let p0 = sys.contact_forces(&st0).map_err(study_error)?;
-        let cand_pp: Vec<usize> = per_pulley(&sys, np, |_| 1.0)
-            .iter()
-            .map(|x| *x as usize)
-            .collect();
-        let act_pp: Vec<usize> = per_pulley(&sys, np, |c| f64::from(u8::from(sys.active[c])))
-            .iter()
-            .map(|x| *x as usize)
-            .collect();
-        let force_pp = per_pulley(&sys, np, |c| p0[c]);
-        let load_node = sys.load.map(|l| l.0).unwrap_or(0);
-        let mut header = vec![
-            "t_s".to_string(),
-            "midload_deflection_m".into(),
-            "free_span_m".into(),
-            "energy_J".into(),
-        ];
-        header.extend((0..np).map(|p| format!("pulley{p}_active_count")));
-        header.extend((0..np).map(|p| format!("pulley{p}_force_N")));
-        let mut csv = ctx.out.csv("history.csv", &header)?;
+        let mut csv = ctx.out.csv("history.csv", &wrap_history_header(np))?;
         let bar = ctx.progress(c.duration, "contact simulation");
-        let mut next = 0.0;
-        let mut min_act = act_pp.clone();
-        let mut max_span = free_span(&sys, c.string.length, np);
-        let mut max_gap: f64 = 0.0;
-        let mut rows: Vec<Vec<f64>> = Vec::new();
-        let mut io_err = None;
-        let mut num_err: Option<String> = None;
-        let positions = mesh.grid.positions().to_vec();
-        let vtk_dt = if c.vtk_snapshots > 0 {
-            c.duration / c.vtk_snapshots as f64
-        } else {
-            f64::INFINITY
-        };
-        let mut next_vtk = 0.0;
-        let mut vtk_count = 0usize;
-        let run = simulate_contact(&mut sys, st0, c.duration, &c.contact, |s, st| {
-            for (ci, a) in s.active.iter().enumerate() {
-                if *a {
-                    max_gap = max_gap.max(s.gap(ci, &st.q).abs());
-                }
-            }
-            let act: Vec<f64> = per_pulley(s, np, |k| f64::from(u8::from(s.active[k])));
-            for p in 0..np {
-                min_act[p] = min_act[p].min(act[p] as usize);
-            }
-            let span = free_span(s, c.string.length, np);
-            max_span = max_span.max(span);
-            if st.t + 1e-12 >= next_vtk {
-                next_vtk += vtk_dt;
-                let path = ctx.out.path(&format!("wrap_{vtk_count:03}.vtu"));
-                vtk_count += 1;
-                if let Err(e) = write_vtk(&path, s, st, &c.pulleys, c.string.length, &positions) {
+        let mut io_err: Option<StudyError> = None;
+        let mut samples = 0usize;
+        let run = string_wrap(c, &mut |s| {
+            if let Some(i) = s.frame {
+                let path = ctx.out.path(&format!("wrap_{i:03}.vtu"));
+                let written = wrap_frame(s, &c.pulleys, c.string.length)
+                    .map_err(study_error)
+                    .and_then(|(mesh, fields)| {
+                        fe_model::io::vtk::write_vtu(&path, &mesh, &fields)
+                            .map_err(|e| StudyError::numerical(format!("VTK output: {e}")))
+                    });
+                if let Err(e) = written {
                     io_err.get_or_insert(e);
                 }
             }
-            if st.t + 1e-12 >= next {
-                next += c.sample;
-                let p = match s.contact_forces(st) {
-                    Ok(p) => p,
-                    Err(e) => {
-                        num_err.get_or_insert(format!("contact forces at t = {} s: {e}", st.t));
-                        vec![0.0; s.candidates.len()]
-                    }
-                };
-                let u = s.deflection(&st.q);
-                let mut row = vec![st.t, u[load_node], span, s.energy(&st.q, &st.v, c.speed)];
-                row.extend(act.iter());
-                row.extend(per_pulley(s, np, |k| p[k]));
-                if let Err(e) = csv.row(&row) {
+            if let Some(row) = s.row {
+                samples += 1;
+                if let Err(e) = csv.row(row) {
                     io_err.get_or_insert(e.into());
                 }
-                rows.push(row);
-                bar.set(st.t);
+                bar.set(s.state.t);
             }
             ctx.cancel.check()
         });
@@ -463,35 +62,16 @@ impl Study for WrapStudy {
         if let Some(e) = io_err {
             return Err(e);
         }
-        if let Some(message) = num_err {
-            return Err(StudyError::Numerical {
-                message,
-                partial: Some(serde_json::json!({ "samples": rows.len() })),
-            });
-        }
-        let run = run.map_err(|e| StudyError::Numerical {
-            message: format!("contact simulation failed: {e}"),
-            partial: Some(serde_json::json!({ "samples": rows.len() })),
+        let run = run.map_err(|e| match study_error(e) {
+            StudyError::Numerical { message, .. } => StudyError::Numerical {
+                message: format!("contact simulation failed: {message}"),
+                partial: Some(serde_json::json!({ "samples": samples })),
+            },
+            input => input,
         })?;
-        ctx.out.write_csv(
-            "events.csv",
-            &[
-                "t_s",
-                "candidate_index",
-                "node_index",
-                "activated_flag",
-                "impact_loss_J",
-            ],
-            run.events.iter().map(|e| {
-                [
-                    e.t,
-                    e.candidate as f64,
-                    e.node as f64,
-                    f64::from(u8::from(e.activated)),
-                    e.impact_loss,
-                ]
-            }),
-        )?;
+        ctx.out
+            .write_csv("events.csv", &EVENTS_HEADER, event_rows(&run.events))?;
+        let rows = &run.history;
         let mut plot = LinePlot::new(
             "Wrapped string: active contact nodes",
             "t [s]",
@@ -508,29 +88,6 @@ impl Study for WrapStudy {
             Series::line("u(load)", rows.iter().map(|r| (r[0], r[1])).collect()),
         );
         plot.save(&ctx.out.path("deflection"))?;
-        let summary = WrapSummary {
-            coordinates: sys.dim(),
-            candidates_per_pulley: cand_pp,
-            initial_active_per_pulley: act_pp,
-            initial_force_per_pulley: force_pp,
-            min_active_per_pulley: min_act,
-            releases: run.events.iter().filter(|e| !e.activated).count(),
-            contacts: run.events.iter().filter(|e| e.activated).count(),
-            impact_loss: run.events.iter().map(|e| e.impact_loss).sum(),
-            max_free_span: max_span,
-            max_active_gap: max_gap,
-            steps: run.stats.steps,
-        };
-        let numbers = summary.initial_force_per_pulley.iter().chain([
-            &summary.impact_loss,
-            &summary.max_free_span,
-            &summary.max_active_gap,
-        ]);
-        if numbers.into_iter().any(|x| !x.is_finite()) {
-            return Err(StudyError::numerical(format!(
-                "the contact simulation gave non-finite results: {summary:?}"
-            )));
-        }
-        Ok(summary)
+        Ok(run.summary)
     }
 }
