@@ -3,7 +3,8 @@
 //! `model = "nodal"`, on the rotating-mesh nodal belt, with `model = "ancf"` on the ANCF belt:
 //! [`FeadModel`]) ([`belt::layout`]) over an engine-speed sweep with the crankshaft's
 //! firing-order speed fluctuation and the accessories' load torques. All three models run on
-//! the same loop below (one generalized-α stepper, through the public trait [`belt::BeltModel`]).
+//! the same loop below (a [`BeltSimulation`]: the public stepping, through the trait
+//! [`belt::BeltModel`]).
 //!
 //! Model-appropriate settings (reported in [`FeadSummary::model_settings`]):
 //!
@@ -81,7 +82,8 @@
 
 use crate::ancf_model::{AncfBelt, AncfConfig};
 use crate::crank_trace::CrankTrace;
-use crate::speed_loss::{LINEAR_MIN_SLACK, STEP_SUBDIVISIONS, balance_issue, tension_range_issue};
+use crate::simulation::BeltSimulation;
+use crate::speed_loss::{LINEAR_MIN_SLACK, balance_issue, tension_range_issue};
 use crate::study::{ModelSettings, NodalConfig};
 use ancf::belt_drive::SimulationConfig;
 use belt::{
@@ -91,7 +93,7 @@ use belt::{
 use contact::friction::FrictionLaw;
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
-use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stepper};
+use mbd_core::integrators::{AlphaConfig, State};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
@@ -995,10 +997,6 @@ fn sweep<M: BeltModel>(
     };
     let invalid = |e: InvalidField| Box::new(FeadFailureOrInvalid::Invalid(e));
     let h = alpha.h;
-    let alpha = GeneralizedAlpha::new(AlphaConfig {
-        subdivisions: STEP_SUBDIVISIONS,
-        ..alpha
-    });
     let linearised = model.traits().linearised;
     let mut state: Option<State> = None;
     let points = crank_points(cfg, h).map_err(invalid)?;
@@ -1032,45 +1030,42 @@ fn sweep<M: BeltModel>(
             Some(s) => State::new(0.0, s.q, s.v),
             None => model.initial_state().map_err(|e| fail(e, &summary))?,
         };
-        let mut stepper: AlphaStepper = alpha.stepper(&model, s0).map_err(|e| fail(e, &summary))?;
+        let mut sim: BeltSimulation<M, &mut M> =
+            BeltSimulation::from_state(&mut model, alpha, s0).map_err(|e| fail(e, &summary))?;
         let (window_s, per_window) = point.window;
         let t_min = cfg.run.ramp + cfg.run.settle;
         let t_last = cfg.run.ramp + cfg.run.max_settle;
         let duration = t_last + window_s;
         // ramp and the shortest settling time
-        while stepper.state().t < t_min - 0.5 * h {
-            stepper
-                .step(&model, Some(h))
-                .map_err(|e| fail(e, &summary))?;
+        while sim.state().t < t_min - 0.5 * h {
+            sim.step().map_err(|e| fail(e, &summary))?;
             summary.steps += 1;
             observer(FeadProgress {
                 point: ip,
-                t: stepper.state().t,
+                t: sim.state().t,
                 duration,
             });
         }
         // windows of whole periods until two consecutive ones agree (FeadRun::steady_tolerance)
         let mut previous: Option<WindowMeans> = None;
         let (w, steady, window_start) = loop {
-            let window_start = stepper.state().t;
+            let window_start = sim.state().t;
             let mut w = WindowAcc::new(names.len(), spans.len());
             for i in 0..per_window {
-                stepper
-                    .step(&model, Some(h))
-                    .map_err(|e| fail(e, &summary))?;
+                sim.step().map_err(|e| fail(e, &summary))?;
                 summary.steps += 1;
-                let st = stepper.state();
+                let st = sim.state();
                 observer(FeadProgress {
                     point: ip,
                     t: st.t,
                     duration,
                 });
-                if let Some(a) = model.arm_angle(&st.q) {
+                if let Some(a) = sim.model().arm_angle(&st.q) {
                     w.arm.add(a);
                 }
-                w.vbelt.add(model.belt_speed(&st.q, &st.v));
+                w.vbelt.add(sim.model().belt_speed(&st.q, &st.v));
                 for (k, d) in w.dec.iter_mut().enumerate() {
-                    if let Some(s) = model.decoupler_state(k, &st.q, &st.v) {
+                    if let Some(s) = sim.model().decoupler_state(k, &st.q, &st.v) {
                         d.speed.add(s.accessory_speed);
                         d.torque.add(s.spring_torque);
                         d.overrunning +=
@@ -1078,15 +1073,16 @@ fn sweep<M: BeltModel>(
                         d.last = Some(s);
                     }
                 }
-                let wc = model.pulley_speed(0, st.t, &st.v) * radii[0];
+                let wc = sim.model().pulley_speed(0, st.t, &st.v) * radii[0];
                 for (k, r) in radii.iter().enumerate() {
-                    let s = model.pulley_speed(k, st.t, &st.v);
+                    let s = sim.model().pulley_speed(k, st.t, &st.v);
                     w.speed[k].add(s);
                     w.slip[k].add(100.0 * (1.0 - s * r / wc));
                 }
                 // the report every other step
                 if i % 2 == 0 {
-                    let snap = model
+                    let snap = sim
+                        .model()
                         .snapshot(st.t, &st.q, &st.v)
                         .map_err(|e| fail(e, &summary))?;
                     for (a, s) in w.tens.iter_mut().zip(&snap.spans) {
@@ -1106,7 +1102,7 @@ fn sweep<M: BeltModel>(
                     summary.installed_tension,
                 )
             });
-            if agree || stepper.state().t >= t_last - 0.5 * h {
+            if agree || sim.state().t >= t_last - 0.5 * h {
                 break (w, agree, window_start);
             }
             previous = Some(means);
@@ -1120,7 +1116,8 @@ fn sweep<M: BeltModel>(
             vbelt,
             dec,
         } = w;
-        let st = stepper.state().clone();
+        let st = sim.state().clone();
+        drop(sim);
         if reports.is_empty() {
             let snap = model
                 .snapshot(st.t, &st.q, &st.v)

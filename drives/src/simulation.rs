@@ -1,6 +1,7 @@
 //! A belt model stepped in time: build a model from a drive, step it, read and set its state,
 //! observe it, and read the one report ([`belt::Report`]) at any state. The procedures of this
-//! crate use the same stepping (mbd-core's generalized-α stepper, a failed step subdivided
+//! crate step their models through it ([`crate::speed_loss_sweep`], [`crate::fead::run_fead`]:
+//! mbd-core's generalized-α stepper, a failed step subdivided
 //! [`crate::speed_loss::STEP_SUBDIVISIONS`] levels, [`AlphaConfig::subdivisions`]).
 //!
 //! ```
@@ -34,41 +35,54 @@ use crate::study::{AnyModel, ModelKind, ModelSettings};
 use belt::{BeltModel, Layout, Motion, Report, Signal};
 use contact::friction::FrictionLaw;
 use flowing::belt::{FlowingBelt, NodalBelt};
-use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stepper};
+use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stats, Stepper};
 use mbd_core::validate::{InvalidField, Validate, check};
 use mbd_core::{MbdError, SecondOrderSystem};
 use serde::{Deserialize, Serialize};
+use std::borrow::BorrowMut;
+use std::marker::PhantomData;
 use thiserror::Error;
 
-/// A belt model and its generalized-α stepper (module documentation).
-pub struct BeltSimulation<M: BeltModel> {
-    model: M,
+/// A belt model and its generalized-α stepper (module documentation). The model is owned
+/// (`B = M`) or borrowed (`B = &mut M`: the procedures step the model their caller built).
+pub struct BeltSimulation<M: BeltModel, B: BorrowMut<M> = M> {
+    model: B,
     stepper: AlphaStepper,
     alpha: AlphaConfig,
+    /// The counters of the steppers before the last restart ([`Self::set_state`]).
+    earlier: Stats,
+    _model: PhantomData<fn() -> M>,
 }
 
-impl<M: BeltModel> BeltSimulation<M> {
+impl<M: BeltModel, B: BorrowMut<M>> BeltSimulation<M, B> {
     /// Start `model` from its mounted static state ([`BeltModel::initial_state`]) with the
     /// generalized-α settings `alpha` (its step `alpha.h` \[s\] is the simulation's step; a
     /// failed step is subdivided at least [`STEP_SUBDIVISIONS`] levels).
-    pub fn new(model: M, alpha: AlphaConfig) -> Result<Self, MbdError> {
+    pub fn new(model: B, alpha: AlphaConfig) -> Result<Self, MbdError> {
+        let s0 = model.borrow().initial_state()?;
+        Self::from_state(model, alpha, s0)
+    }
+
+    /// Start `model` from `state` (as [`Self::new`] otherwise).
+    pub fn from_state(model: B, alpha: AlphaConfig, state: State) -> Result<Self, MbdError> {
         let alpha = AlphaConfig {
             subdivisions: alpha.subdivisions.max(STEP_SUBDIVISIONS),
             ..alpha
         };
-        let s0 = model.initial_state()?;
-        let stepper = GeneralizedAlpha::new(alpha).stepper(&model, s0)?;
+        let stepper = GeneralizedAlpha::new(alpha).stepper(model.borrow(), state)?;
         Ok(Self {
             model,
             stepper,
             alpha,
+            earlier: Stats::default(),
+            _model: PhantomData,
         })
     }
 
     /// One step (split into halves up to [`AlphaConfig::subdivisions`] levels when Newton
     /// fails); the new state.
     pub fn step(&mut self) -> Result<&State, MbdError> {
-        self.stepper.step(&self.model, Some(self.alpha.h))?;
+        self.stepper.step(self.model.borrow(), Some(self.alpha.h))?;
         Ok(self.stepper.state())
     }
 
@@ -78,7 +92,7 @@ impl<M: BeltModel> BeltSimulation<M> {
     ) -> Result<(), MbdError> {
         while self.stepper.state().t < t_end - 0.5 * self.alpha.h {
             self.step()?;
-            observer(&self.model, self.stepper.state());
+            observer(self.model.borrow(), self.stepper.state());
         }
         Ok(())
     }
@@ -93,28 +107,38 @@ impl<M: BeltModel> BeltSimulation<M> {
         self.alpha.h
     }
 
-    /// Restart from `state` (same model and step).
+    /// Restart from `state` (same model and step; the work counters carry on).
     pub fn set_state(&mut self, state: State) -> Result<(), MbdError> {
-        self.stepper = GeneralizedAlpha::new(self.alpha).stepper(&self.model, state)?;
+        let stepper = GeneralizedAlpha::new(self.alpha).stepper(self.model.borrow(), state)?;
+        let done = std::mem::replace(&mut self.stepper, stepper);
+        self.earlier.accumulate(&done.stats);
         Ok(())
+    }
+
+    /// The work since the start: steps, Newton iterations, factorisations (over restarts).
+    pub fn stats(&self) -> Stats {
+        let mut s = self.earlier;
+        s.accumulate(&self.stepper.stats);
+        s
     }
 
     /// The model.
     pub fn model(&self) -> &M {
-        &self.model
+        self.model.borrow()
     }
 
     /// The model, to change its pulleys' signals between steps ([`BeltModel::set_signal`]).
     pub fn model_mut(&mut self) -> &mut M {
-        &mut self.model
+        self.model.borrow_mut()
     }
 
     /// The report of the current state ([`Report::new`]).
     pub fn report(&self) -> Result<Report, MbdError> {
         let s = self.stepper.state();
-        let snap = self.model.snapshot(s.t, &s.q, &s.v)?;
-        let mu = self.model.drive().contact().friction.coefficient();
-        Ok(Report::new(self.model.drive(), &snap, mu))
+        let model = self.model();
+        let snap = model.snapshot(s.t, &s.q, &s.v)?;
+        let mu = model.drive().contact().friction.coefficient();
+        Ok(Report::new(model.drive(), &snap, mu))
     }
 }
 

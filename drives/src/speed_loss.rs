@@ -10,11 +10,12 @@
 //! The load schedule is extended while integrating, so each torque is held only as long as it
 //! needs. A failure keeps the points already found ([`SweepFailure`]).
 
+use crate::simulation::BeltSimulation;
 use belt::report::sliding_speed;
 use belt::{BeltModel, Report, Signal, WrapPoint};
 use contact::friction::{FrictionLaw, FrictionSpec};
 use mbd_core::MbdError;
-use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stepper};
+use mbd_core::integrators::{AlphaConfig, State};
 use mbd_core::validate::{InvalidField, Validate};
 use serde::{Deserialize, Serialize};
 
@@ -427,8 +428,10 @@ fn report_of<M: BeltModel>(
 
 /// Run the procedure on `model`: the driver is the drive's first speed-driven pulley, the
 /// driven pulley its first loaded pulley (else its first idler) ([`belt::Drive::driver`],
-/// [`belt::Drive::driven`]); their speed and load signals are overwritten. `observer`
-/// sees every step (e.g. to write histories or update a progress bar).
+/// [`belt::Drive::driven`]); their speed and load signals are overwritten. The model is
+/// stepped as a [`BeltSimulation`] (the public stepping; a gross slip restarts it from the
+/// last sound state). `observer` sees every step (e.g. to write histories or update a
+/// progress bar).
 ///
 /// Each point carries the drive's report ([`Report`]: span tensions, per-pulley arcs,
 /// hub loads and torques averaged over the last window (every [`REPORT_EVERY`] steps and the
@@ -475,14 +478,14 @@ pub fn speed_loss_sweep<M: BeltModel>(
     let belt = BeltData::of(&*model, driven);
     let mu = belt.friction.coefficient();
     let bound = gross_slip_bound(&belt, settings.omega_driver);
-    let s0 = model.initial_state().map_err(|e| fail(e, &points))?;
-    let alpha = GeneralizedAlpha::new(AlphaConfig {
+    let alpha = AlphaConfig {
         h: settings.step,
         rho_inf: settings.rho_inf,
         subdivisions: STEP_SUBDIVISIONS,
         ..Default::default()
-    });
-    let mut stepper: AlphaStepper = alpha.stepper(&*model, s0).map_err(|e| fail(e, &points))?;
+    };
+    let mut sim: BeltSimulation<M, &mut M> =
+        BeltSimulation::new(model, alpha).map_err(|e| fail(e, &points))?;
     let mut stats = SweepStats::default();
     let h = settings.step;
     let per_window = (settings.window / h).round().max(1.0) as usize;
@@ -500,7 +503,11 @@ pub fn speed_loss_sweep<M: BeltModel>(
                 load_knots.push((t0, current));
             }
             load_knots.push((t0 + settings.torque_ramp, target));
-            signal(model, driven, Signal::schedule(load_knots.clone()))?;
+            signal(
+                sim.model_mut(),
+                driven,
+                Signal::schedule(load_knots.clone()),
+            )?;
             level_start = t0 + settings.torque_ramp;
             current = target;
         }
@@ -509,19 +516,20 @@ pub fn speed_loss_sweep<M: BeltModel>(
         let (mut sum, mut count) = (0.0, 0usize);
         let mut window = Window::default();
         let slipped: Option<(State, String)> = loop {
-            stepper
-                .step(&*model, Some(h))
-                .map_err(|e| fail(e, &points))?;
-            let st = stepper.state();
+            sim.step().map_err(|e| fail(e, &points))?;
+            let st = sim.state();
             if anchor.is_none() && st.t >= settings.spin_up - 0.5 * h {
                 anchor = Some((st.clone(), 0.0));
             }
             let sample = Sample {
                 t: st.t,
-                omega_driver: model.pulley_speed(driver, st.t, &st.v),
-                omega_driven: model.pulley_speed(driven, st.t, &st.v),
-                load: model.motion(driven).map_or(0.0, |m| m.load_torque(st.t)),
-                belt_speed: model.belt_speed(&st.q, &st.v),
+                omega_driver: sim.model().pulley_speed(driver, st.t, &st.v),
+                omega_driven: sim.model().pulley_speed(driven, st.t, &st.v),
+                load: sim
+                    .model()
+                    .motion(driven)
+                    .map_or(0.0, |m| m.load_torque(st.t)),
+                belt_speed: sim.model().belt_speed(&st.q, &st.v),
                 points: points.len(),
             };
             observer(st, sample);
@@ -538,14 +546,21 @@ pub fn speed_loss_sweep<M: BeltModel>(
             if st.t < level_start - 0.5 * h {
                 continue;
             }
-            window.add(&model.span_transverse(&st.q).map_err(|e| fail(e, &points))?);
+            window.add(
+                &sim.model()
+                    .span_transverse(&st.q)
+                    .map_err(|e| fail(e, &points))?,
+            );
             sum += dw;
             count += 1;
             if count % REPORT_EVERY == 0 && count < per_window {
-                let snap = model
+                let snap = sim
+                    .model()
                     .snapshot(st.t, &st.q, &st.v)
                     .map_err(|e| fail(e, &points))?;
-                window.reports.push(Report::new(model.drive(), &snap, mu));
+                window
+                    .reports
+                    .push(Report::new(sim.model().drive(), &snap, mu));
             }
             if count == per_window {
                 means.push(sum / count as f64);
@@ -554,9 +569,9 @@ pub fn speed_loss_sweep<M: BeltModel>(
                 let last_window = std::mem::take(&mut window);
                 let k = means.len();
                 if k >= 2 && (means[k - 1] - means[k - 2]).abs() < settings.tolerance {
-                    let st = stepper.state().clone();
+                    let st = sim.state().clone();
                     let (report, wrap) =
-                        report_of(&*model, &st, &last_window).map_err(|e| fail(e, &points))?;
+                        report_of(sim.model(), &st, &last_window).map_err(|e| fail(e, &points))?;
                     let gross = report.gross_slip().map(|p| {
                         let r = &report.pulleys[p];
                         GrossSlip {
@@ -574,7 +589,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                     points.push(SpeedLossPoint {
                         torque: target,
                         delta_omega: means[k - 1],
-                        omega_driven: model.pulley_speed(driver, st.t, &st.v) - means[k - 1],
+                        omega_driven: sim.model().pulley_speed(driver, st.t, &st.v) - means[k - 1],
                         drift: Some(means[k - 1] - means[k - 2]),
                         time: st.t,
                         settled_s: st.t - level_start,
@@ -590,10 +605,10 @@ pub fn speed_loss_sweep<M: BeltModel>(
                     }
                     break Some((st, String::new()));
                 }
-                if stepper.state().t - level_start > settings.max_hold {
+                if sim.state().t - level_start > settings.max_hold {
                     return Err(fail(
                         MbdError::Model {
-                            t: stepper.state().t,
+                            t: sim.state().t,
                             message: format!(
                                 "no steady state at {target} N m within max_hold = {} s: the \
                                  last window means of the speed loss differ by {:.3e} rad/s \
@@ -617,7 +632,8 @@ pub fn speed_loss_sweep<M: BeltModel>(
         };
         if !criterion.is_empty() {
             // runaway: report the pulley whose wrap has the least adhesion left
-            let (report, wrap) = report_of(&*model, &st, &window).map_err(|e| fail(e, &points))?;
+            let (report, wrap) =
+                report_of(sim.model(), &st, &window).map_err(|e| fail(e, &points))?;
             let p = (0..report.pulleys.len())
                 .min_by(|&a, &b| {
                     let f = |k: usize| {
@@ -627,8 +643,8 @@ pub fn speed_loss_sweep<M: BeltModel>(
                     f(a).total_cmp(&f(b))
                 })
                 .unwrap_or(0);
-            let omega_driven = model.pulley_speed(driven, st.t, &st.v);
-            let dw = model.pulley_speed(driver, st.t, &st.v) - omega_driven;
+            let omega_driven = sim.model().pulley_speed(driven, st.t, &st.v);
+            let dw = sim.model().pulley_speed(driver, st.t, &st.v) - omega_driven;
             points.push(SpeedLossPoint {
                 torque: target,
                 delta_omega: dw,
@@ -651,15 +667,17 @@ pub fn speed_loss_sweep<M: BeltModel>(
         let (sound, load) = anchor.clone().unwrap_or_else(|| (st.clone(), 0.0));
         load_knots.retain(|k| k.0 < st.t);
         load_knots.push((st.t, load));
-        signal(model, driven, Signal::schedule(load_knots.clone()))?;
+        signal(
+            sim.model_mut(),
+            driven,
+            Signal::schedule(load_knots.clone()),
+        )?;
         current = load;
         level_start = st.t;
-        stats.add(&stepper.stats);
-        stepper = alpha
-            .stepper(&*model, State::new(st.t, sound.q, sound.v))
+        sim.set_state(State::new(st.t, sound.q, sound.v))
             .map_err(|e| fail(e, &points))?;
     }
-    stats.add(&stepper.stats);
-    stats.simulated_time = stepper.state().t;
+    stats.add(&sim.stats());
+    stats.simulated_time = sim.state().t;
     Ok((points, stats))
 }
