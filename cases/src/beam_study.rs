@@ -243,45 +243,56 @@ impl PendulumSummary {
     }
 }
 
-/// Columns of the pendulum's `history.csv`: time \[s\], tip position \[m\], kinetic, strain,
-/// potential and total energy \[J\] (Kerkkänen Figs 2.6/2.7).
-pub const PENDULUM_HISTORY_COLUMNS: [&str; 7] = [
-    "t_s",
-    "tip_x_m",
-    "tip_y_m",
-    "kinetic_J",
-    "strain_J",
-    "potential_J",
-    "total_J",
-];
+/// A dynamic study's summary with the layout of its `history.csv` (the pendulum's and the
+/// spinning beam's).
+pub trait History {
+    /// Columns of `history.csv`.
+    const COLUMNS: [&'static str; 7];
+    /// The row of `history.csv` of one sample.
+    fn row(x: &Sample) -> [f64; 7];
+}
 
-/// Result of [`pendulum`]: the summary and the sampled history.
+impl History for PendulumSummary {
+    /// Time \[s\], tip position \[m\], kinetic, strain, potential and total energy \[J\]
+    /// (Kerkkänen Figs 2.6/2.7).
+    const COLUMNS: [&'static str; 7] = [
+        "t_s",
+        "tip_x_m",
+        "tip_y_m",
+        "kinetic_J",
+        "strain_J",
+        "potential_J",
+        "total_J",
+    ];
+
+    fn row(x: &Sample) -> [f64; 7] {
+        let e = &x.energy;
+        [
+            x.t,
+            x.tip[0],
+            x.tip[1],
+            e.kinetic,
+            e.strain,
+            e.potential,
+            e.total,
+        ]
+    }
+}
+
+/// Result of a dynamic study ([`pendulum`], [`spinning`]): the summary and the sampled
+/// history.
 #[derive(Debug, Clone, PartialEq)]
-pub struct PendulumRun {
+pub struct HistoryRun<S> {
     /// The summary.
-    pub summary: PendulumSummary,
-    /// About [`PENDULUM_SAMPLES`] samples of the run.
+    pub summary: S,
+    /// The kept samples of the run (about [`PENDULUM_SAMPLES`] or [`SPINNING_SAMPLES`]).
     pub samples: Vec<Sample>,
 }
 
-impl PendulumRun {
-    /// The rows of `history.csv` ([`PENDULUM_HISTORY_COLUMNS`]).
+impl<S: History> HistoryRun<S> {
+    /// The rows of `history.csv` ([`History::COLUMNS`]).
     pub fn history_rows(&self) -> Vec<[f64; 7]> {
-        self.samples
-            .iter()
-            .map(|x| {
-                let e = &x.energy;
-                [
-                    x.t,
-                    x.tip[0],
-                    x.tip[1],
-                    e.kinetic,
-                    e.strain,
-                    e.potential,
-                    e.total,
-                ]
-            })
-            .collect()
+        self.samples.iter().map(S::row).collect()
     }
 }
 
@@ -290,7 +301,7 @@ impl PendulumRun {
 /// fraction done; a `Break` stops the run there, the summary then covers the samples so far.
 pub fn pendulum(
     case: &PendulumCase, progress: impl FnMut(f64) -> ControlFlow<()>,
-) -> Result<PendulumRun, BeamStudyError> {
+) -> Result<HistoryRun<PendulumSummary>, BeamStudyError> {
     let every = sample_every(case.t_end, case.h, PENDULUM_SAMPLES);
     let samples = dynamics::pendulum(case, every, progress)?;
     let last = samples.last().ok_or(BeamStudyError::Empty("no samples"))?;
@@ -305,7 +316,7 @@ pub fn pendulum(
         max_kinetic_j: samples.iter().map(|x| x.energy.kinetic).fold(0.0, f64::max),
         meaning: PENDULUM_MEANING.to_string(),
     };
-    Ok(PendulumRun { summary, samples })
+    Ok(HistoryRun { summary, samples })
 }
 
 /// Axial extension of the spinning beam printed in Kerkkänen §2.4 (Fig. 2.11) \[m\].
@@ -361,46 +372,29 @@ impl SpinningSummary {
     }
 }
 
-/// Columns of the spinning beam's `history.csv`: time \[s\], tip position \[m\], axial
-/// extension \[m\], tip offset from the rigid shadow beam \[m\], kinetic and strain energy \[J\]
-/// (Kerkkänen Figs 2.10/2.11).
-pub const SPINNING_HISTORY_COLUMNS: [&str; 7] = [
-    "t_s",
-    "tip_x_m",
-    "tip_y_m",
-    "axial_extension_m",
-    "tip_offset_m",
-    "kinetic_J",
-    "strain_J",
-];
+impl History for SpinningSummary {
+    /// Time \[s\], tip position \[m\], axial extension \[m\], tip offset from the rigid shadow
+    /// beam \[m\], kinetic and strain energy \[J\] (Kerkkänen Figs 2.10/2.11).
+    const COLUMNS: [&'static str; 7] = [
+        "t_s",
+        "tip_x_m",
+        "tip_y_m",
+        "axial_extension_m",
+        "tip_offset_m",
+        "kinetic_J",
+        "strain_J",
+    ];
 
-/// Result of [`spinning`]: the summary and the sampled history.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpinningRun {
-    /// The summary.
-    pub summary: SpinningSummary,
-    /// About [`SPINNING_SAMPLES`] samples of the run (`value`: axial extension \[m\],
-    /// `value2`: tip offset \[m\]).
-    pub samples: Vec<Sample>,
-}
-
-impl SpinningRun {
-    /// The rows of `history.csv` ([`SPINNING_HISTORY_COLUMNS`]).
-    pub fn history_rows(&self) -> Vec<[f64; 7]> {
-        self.samples
-            .iter()
-            .map(|x| {
-                [
-                    x.t,
-                    x.tip[0],
-                    x.tip[1],
-                    x.value,
-                    x.value2,
-                    x.energy.kinetic,
-                    x.energy.strain,
-                ]
-            })
-            .collect()
+    fn row(x: &Sample) -> [f64; 7] {
+        [
+            x.t,
+            x.tip[0],
+            x.tip[1],
+            x.value,
+            x.value2,
+            x.energy.kinetic,
+            x.energy.strain,
+        ]
     }
 }
 
@@ -410,7 +404,7 @@ impl SpinningRun {
 /// for [`pendulum`].
 pub fn spinning(
     case: &SpinningCase, progress: impl FnMut(f64) -> ControlFlow<()>,
-) -> Result<SpinningRun, BeamStudyError> {
+) -> Result<HistoryRun<SpinningSummary>, BeamStudyError> {
     let every = sample_every(case.t_end, case.h, SPINNING_SAMPLES);
     let samples = dynamics::spinning(case, every, progress)?;
     let exact = dynamics::spinning_extension(case.length, case.density, case.young, case.omega);
@@ -429,7 +423,7 @@ pub fn spinning(
         max_tip_offset_m: samples.iter().map(|x| x.value2.abs()).fold(0.0, f64::max),
         meaning: SPINNING_MEANING.to_string(),
     };
-    Ok(SpinningRun { summary, samples })
+    Ok(HistoryRun { summary, samples })
 }
 
 /// The `meaning` of the `ground-contact` summary.

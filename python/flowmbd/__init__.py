@@ -14,7 +14,7 @@ results as the ``flowmbd-*`` command-line studies):
   ``modes`` and ``rotating_modes`` (Ribaric ch. 7–8);
 - :mod:`flowmbd.reduce`: ``modes``, ``craig_bampton`` and ``eitelberg`` of scipy.sparse
   matrices (Lin ch. 6), and the studies ``lin_beam`` (Lin ch. 6–8, Appendix A beam) and
-  ``lin_slab`` (Lin §7.2, Appendix B slab);
+  ``lin_slab`` (Lin §7.2, Appendix B slab) and ``tire_mesh`` (the generated tire's K and M);
 - :func:`flowmbd.sweep`: parameter sweeps on Dask distributed.
 
 Studies take their configuration as a dict with the keys of the TOML file (``--print-config``

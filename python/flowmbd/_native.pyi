@@ -100,6 +100,18 @@ def lin_slab(config: Optional[str] = None) -> Tuple[str, dict]:
     """(JSON text of the ``flowmbd-reduce lin-slab`` summary, ``{"<sim>_node8",
     "sim3_tables", "sim3_source_node8": {column: array}}``)."""
 
+def tire_mesh(
+    config: Optional[str] = None,
+) -> Tuple[
+    str,
+    npt.NDArray[np.float64],
+    Tuple[npt.NDArray[np.uintp], npt.NDArray[np.uintp], npt.NDArray[np.float64]],
+    Tuple[npt.NDArray[np.uintp], npt.NDArray[np.uintp], npt.NDArray[np.float64]],
+    dict,
+]:
+    """(JSON text of the ``flowmbd-reduce tire-mesh`` summary without ``files``, nodes (n × 3),
+    K triplets, M triplets, ``{node set: node indices}``)."""
+
 def beam_simply_supported(
     config: Optional[str] = None,
     element: Optional[str] = None,

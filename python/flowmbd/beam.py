@@ -21,6 +21,12 @@ def _element(element: Any) -> Optional[str]:
     )
 
 
+def _dynamic(native: Any, config: Any, elements: Any, series: bool) -> Result:
+    """A dynamic study (``native``: the pendulum's or the spinning beam's) with its history."""
+    text, data = native(config_json(config), _args.optional_count("elements", elements))
+    return with_series(text, data, series)
+
+
 def simply_supported(
     config: Optional[Mapping[str, Any]] = None,
     element: Optional[str] = None,
@@ -144,10 +150,7 @@ def pendulum(
     flowmbd.NumericalError
         The time integration failed, or the result is implausible.
     """
-    text, data = _native.beam_pendulum(
-        config_json(config), _args.optional_count("elements", elements)
-    )
-    return with_series(text, data, series)
+    return _dynamic(_native.beam_pendulum, config, elements, series)
 
 
 def spinning(
@@ -185,10 +188,7 @@ def spinning(
     flowmbd.NumericalError
         The time integration failed, or the result is implausible.
     """
-    text, data = _native.beam_spinning(
-        config_json(config), _args.optional_count("elements", elements)
-    )
-    return with_series(text, data, series)
+    return _dynamic(_native.beam_spinning, config, elements, series)
 
 
 def ground_contact(

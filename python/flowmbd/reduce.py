@@ -1,7 +1,8 @@
 """Model reduction of sparse mass and stiffness matrices (Lin ch. 6), through the engine of
 ``flowmbd-reduce`` and the tire reduction. Matrices are scipy.sparse (any format) or dense
-numpy arrays; results are numpy arrays. DOF indices are 0-based. The studies ``lin_beam`` and
-``lin_slab`` are those of ``flowmbd-reduce`` (Lin's Appendix A beam and Appendix B slab)."""
+numpy arrays; results are numpy arrays. DOF indices are 0-based. The studies ``lin_beam``,
+``lin_slab`` (Lin's Appendix A beam and Appendix B slab) and ``tire_mesh`` (the generated
+tire's K and M) are those of ``flowmbd-reduce``."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import _args, _native
-from ._results import Result, config_json, with_series
+from ._results import Result, config_json, from_json, with_series
 
 
 def _triplets(name: str, a: Any, n: Optional[int] = None):
@@ -186,3 +187,49 @@ def lin_slab(config: Optional[Mapping[str, Any]] = None, series: bool = False) -
     """
     text, data = _native.lin_slab(config_json(config))
     return with_series(text, data, series)
+
+
+def _sparse(n: int, triplets) -> sp.csc_matrix:
+    rows, cols, vals = triplets
+    return sp.csc_matrix((vals, (rows.astype(np.int64), cols.astype(np.int64))), shape=(n, n))
+
+
+def tire_mesh(config: Optional[Mapping[str, Any]] = None) -> Result:
+    """The generated truck-tire carcass with its stiffness and mass matrices on all DOFs
+    (``flowmbd-reduce tire-mesh``): fe-model's generator (295/80 R22.5 at 38 psi by default,
+    63 936 DOFs standing in for Ribaric §8.1's ABAQUS model). Unlike
+    :func:`flowmbd.tire.generate` (always the lumped mass of the reduction, Ribaric §7.2), the
+    mass is consistent by default and every node set is returned.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-reduce tire-mesh --print-config``: ``tire`` (the
+        generator, the keys of ``[tire.generator]``), ``mass`` (``"consistent"`` or
+        ``"lumped"``) and ``geometric_stiffness`` (add the inflation prestress to ``K``,
+        default true).
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json`` without ``files``: ``nodes``, ``elements``, ``dof``,
+        ``nnz_k``, ``node_sets`` (set sizes), ``mass_kg`` (total mass [kg]) and ``meaning``;
+        and what the CLI writes as files: ``"K"`` [N/m] and ``"M"`` [kg] (scipy.sparse CSC,
+        3n × 3n, node-major DOFs x, y, z; ``K.mtx``, ``M.mtx``), ``"coordinates"`` (n × 3
+        node positions [m], wheel frame; ``mesh.json``) and ``"node_set_nodes"`` (``{name:
+        0-based node indices}``; ``node_sets.json``, e.g. ``"rim"`` and ``"contact_patch"``).
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``tire.…: reason`` message).
+    flowmbd.NumericalError
+        The assembly failed.
+    """
+    text, nodes, k, m, sets = _native.tire_mesh(config_json(config))
+    out = from_json(text)
+    n = 3 * nodes.shape[0]
+    out["K"] = _sparse(n, k)
+    out["M"] = _sparse(n, m)
+    out["coordinates"] = nodes
+    out["node_set_nodes"] = {name: ids.astype(np.int64) for name, ids in sets.items()}
+    return out

@@ -8,7 +8,9 @@ use crate::{
 use ancf::beam_mesh::BeamElementKind;
 use flowmbd_cases::ancf_beams::{GroundContactCase, StaticBeamCase};
 use flowmbd_cases::ancf_dynamics::{PendulumCase, SpinningCase};
-use flowmbd_cases::beam_study::{self as study, BeamStudyError, CantileverConfig};
+use flowmbd_cases::beam_study::{
+    self as study, BeamStudyError, CantileverConfig, History, HistoryRun,
+};
 use mbd_core::InvalidField;
 use mbd_core::validate::plausible::Implausible;
 use pyo3::prelude::*;
@@ -103,6 +105,18 @@ pub fn beam_cantilever<'py>(
     with_series(py, &run.summary, [("shape", shape)])
 }
 
+/// A dynamic study's result from Python: its plausibility `check`, then
+/// `(summary JSON text, {"history": the columns of history.csv})`.
+fn with_history<'py, S: History + serde::Serialize>(
+    py: Python<'py>, run: Result<HistoryRun<S>, BeamStudyError>,
+    check: impl FnOnce(&S) -> Result<(), Implausible>,
+) -> PyResult<WithSeries<'py>> {
+    let run = run.map_err(|e| beam_error(py, e))?;
+    plausible(py, &run.summary, check(&run.summary))?;
+    let history = columns(&S::COLUMNS, run.history_rows());
+    with_series(py, &run.summary, [("history", history)])
+}
+
 /// The falling flexible pendulum (Kerkkänen Figs 2.6/2.7, [`study::pendulum`]): returns
 /// `(summary JSON text, {"history": the columns of history.csv})`. `elements` replaces the
 /// configuration's (the CLI's `--elements`).
@@ -114,12 +128,8 @@ pub fn beam_pendulum<'py>(
     let c = study_config(config, |c: &mut PendulumCase| {
         set(&mut c.elements, elements)
     })?;
-    let run = py
-        .detach(|| study::pendulum(&c, go_on))
-        .map_err(|e| beam_error(py, e))?;
-    plausible(py, &run.summary, run.summary.check(&c))?;
-    let history = columns(&study::PENDULUM_HISTORY_COLUMNS, run.history_rows());
-    with_series(py, &run.summary, [("history", history)])
+    let run = py.detach(|| study::pendulum(&c, go_on));
+    with_history(py, run, |s| s.check(&c))
 }
 
 /// The spinning beam (Kerkkänen Figs 2.10/2.11, (2.37), [`study::spinning`]): returns
@@ -133,12 +143,8 @@ pub fn beam_spinning<'py>(
     let c = study_config(config, |c: &mut SpinningCase| {
         set(&mut c.elements, elements)
     })?;
-    let run = py
-        .detach(|| study::spinning(&c, go_on))
-        .map_err(|e| beam_error(py, e))?;
-    plausible(py, &run.summary, run.summary.check(&c))?;
-    let history = columns(&study::SPINNING_HISTORY_COLUMNS, run.history_rows());
-    with_series(py, &run.summary, [("history", history)])
+    let run = py.detach(|| study::spinning(&c, go_on));
+    with_history(py, run, |s| s.check(&c))
 }
 
 /// The cantilever on rigid ground by unilateral Lagrange contact ([`study::ground_contact`]):

@@ -178,6 +178,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reduce::eitelberg, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::lin_beam, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::lin_slab, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::tire_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(beam::beam_simply_supported, m)?)?;
     m.add_function(wrap_pyfunction!(beam::beam_cantilever, m)?)?;
     m.add_function(wrap_pyfunction!(beam::beam_pendulum, m)?)?;

@@ -275,3 +275,60 @@ pub fn lin_slab<'py>(py: Python<'py>, config: Option<&str>) -> PyResult<crate::W
     }
     crate::with_series(py, &r.summary, series)
 }
+
+/// Coordinate triplets `(rows, cols, values)` of a sparse matrix as numpy arrays.
+type TripletsOut<'py> = (
+    Bound<'py, PyArray1<usize>>,
+    Bound<'py, PyArray1<usize>>,
+    Vector<'py>,
+);
+
+fn triplets_out<'py>(py: Python<'py>, a: &SparseColMat<usize, f64>) -> TripletsOut<'py> {
+    let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+    for (i, j, x) in fe_model::sparse::triplets(a.as_ref()) {
+        r.push(i);
+        c.push(j);
+        v.push(x);
+    }
+    (r.into_pyarray(py), c.into_pyarray(py), v.into_pyarray(py))
+}
+
+/// `(summary JSON text, nodes (n × 3) [m], K triplets [N/m], M triplets [kg], {node set: node
+/// indices})` of [`tire_mesh`].
+type TireMeshOut<'py> = (
+    String,
+    Matrix<'py>,
+    TripletsOut<'py>,
+    TripletsOut<'py>,
+    Bound<'py, pyo3::types::PyDict>,
+);
+
+/// The `flowmbd-reduce tire-mesh` study ([`fe_model::generate::tire_mesh::tire_mesh`]): the
+/// generated truck-tire carcass with K (inflation geometric stiffness when
+/// `geometric_stiffness`) and M (`mass`: consistent or lumped) on all DOFs; what the CLI
+/// writes as `mesh.json`, `K.mtx`, `M.mtx` and `node_sets.json` comes back as arrays.
+#[pyfunction]
+#[pyo3(signature = (config=None))]
+pub fn tire_mesh<'py>(py: Python<'py>, config: Option<&str>) -> PyResult<TireMeshOut<'py>> {
+    use fe_model::generate::tire_mesh::{TireMeshConfig, TireMeshError, tire_mesh as run};
+    let c: TireMeshConfig = crate::study_config(config, |_| {})?;
+    let r = py.detach(|| run(&c)).map_err(|e| match e {
+        TireMeshError::Generate(e) => {
+            crate::input_error(mbd_core::InvalidField::new("tire", e.to_string()))
+        }
+        e @ TireMeshError::Assembly(_) => numerical_error(py, e.to_string(), None),
+    })?;
+    let mesh = &r.tire.model.mesh;
+    let nodes = Array2::from_shape_fn((mesh.nodes.len(), 3), |(i, j)| mesh.nodes[i][j]);
+    let sets = pyo3::types::PyDict::new(py);
+    for (name, ids) in &mesh.node_sets {
+        sets.set_item(name, ids.clone().into_pyarray(py))?;
+    }
+    Ok((
+        crate::to_json(&r.summary)?,
+        nodes.into_pyarray(py),
+        triplets_out(py, &r.k),
+        triplets_out(py, &r.m),
+        sets,
+    ))
+}

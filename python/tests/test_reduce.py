@@ -175,3 +175,73 @@ def test_lin_slab_statics_and_cb_equals_mc():
 def test_lin_slab_bad_input_names_the_field():
     with pytest.raises(ValueError, match="methods"):
         flowmbd.reduce.lin_slab({"methods": ["guyan"]})
+
+
+# the small generated tire of the tire tests (tire_case.TIRE: 96 x 8 elements, isotropic tread)
+TIRE_MESH_TOML = """
+[tire]
+circumferential_divisions = 96
+section_divisions = 8
+thickness_divisions = 1
+bead_elements = 1
+patch_half_angle_deg = 20.0
+[tire.tread]
+young = 150e6
+poisson = 0.45
+density = 1500.0
+[tire.carcass]
+modulus = 0.0
+"""
+
+
+def _tire_mesh_config():
+    from tire_case import TIRE
+
+    return {"tire": TIRE["generator"]}
+
+
+def test_tire_mesh_equals_cli(cli, tmp_path):
+    import scipy.io
+
+    from compare import assert_same
+
+    (tmp_path / "c.toml").write_text(TIRE_MESH_TOML)
+    code, ref, err = cli("reduce", "tire-mesh", "--config", str(tmp_path / "c.toml"))
+    assert code == 0, err
+    py = flowmbd.reduce.tire_mesh(_tire_mesh_config())
+    K, M, nodes, sets = (py.pop(k) for k in ("K", "M", "coordinates", "node_set_nodes"))
+    ref.pop("files")
+    assert_same(py, ref)
+    out = tmp_path / "reduce"
+    for name, a in (("K", K), ("M", M)):
+        b = sp.csc_matrix(scipy.io.mmread(out / f"{name}.mtx"))
+        assert abs(a - b).max() <= 1e-15 * abs(b).max(), name
+    assert nodes.shape == (py["nodes"], 3) and K.shape == (py["dof"], py["dof"])
+    import json
+
+    ref_sets = json.loads((out / "node_sets.json").read_text())
+    assert set(sets) == set(ref_sets)
+    for k in sets:
+        np.testing.assert_array_equal(sets[k], ref_sets[k])
+        assert len(sets[k]) == py["node_sets"][k]
+
+
+def test_tire_mesh_mass_and_stiffness_match_tire_generate():
+    # independent discretisation of the same body: the consistent mass (tire-mesh default) and
+    # the lumped mass of flowmbd.tire.generate both carry the total mass rho V of the carcass;
+    # K (with the inflation prestress) is the same matrix
+    config = _tire_mesh_config()
+    py = flowmbd.reduce.tire_mesh(config)
+    gen = flowmbd.tire.generate(config["tire"])
+    lumped_total = gen["mass"][0::3].sum()
+    assert abs(py["mass_kg"] / lumped_total - 1.0) < 1e-9
+    u = np.zeros(py["dof"])
+    u[0::3] = 1.0
+    assert abs(u @ (py["M"] @ u) / py["mass_kg"] - 1.0) < 1e-12
+    assert abs(py["K"] - gen["K"]).max() <= 1e-12 * abs(gen["K"]).max()
+    np.testing.assert_array_equal(py["node_set_nodes"]["rim"], gen["rim_nodes"])
+
+
+def test_tire_mesh_bad_input_names_the_field():
+    with pytest.raises(ValueError, match=r"tire\.section_divisions"):
+        flowmbd.reduce.tire_mesh({"tire": {"section_divisions": 2}})

@@ -8,12 +8,13 @@ use flowmbd_cases::ancf_beams::{GroundContactCase, StaticBeamCase};
 use flowmbd_cases::ancf_dynamics::{PendulumCase, Sample, SpinningCase};
 use flowmbd_cases::beam_study::{
     self as study, BeamStudyError, CantileverConfig, DeflectionSummary, GroundContactSummary,
-    PendulumSummary, SpinningSummary, TipSummary,
+    History, HistoryRun, PendulumSummary, SpinningSummary, TipSummary,
 };
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{CommonArgs, Study, StudyContext, StudyError, set_given};
 use mbd_core::validate::plausible::Implausible;
 use serde::Serialize;
+use std::ops::ControlFlow;
 
 /// Element choice on the command line.
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
@@ -68,6 +69,21 @@ fn plausible<T: Serialize>(
         check(&summary).map_err(|e| StudyError::implausible(e, &summary))?;
     }
     Ok(summary)
+}
+
+/// Run a dynamic study (`run` gets the progress callback: it moves a bar labelled `label` and
+/// answers `Break` once SIGINT/SIGTERM arrived, keeping the samples so far) and write its
+/// `history.csv`.
+fn history_run<S: History>(
+    ctx: &StudyContext, label: &str,
+    run: impl FnOnce(&mut dyn FnMut(f64) -> ControlFlow<()>) -> Result<HistoryRun<S>, BeamStudyError>,
+) -> Result<HistoryRun<S>, StudyError> {
+    let bar = ctx.progress(1.0, label);
+    let r = run(&mut |f| ctx.tick(&bar, f)).map_err(study_error)?;
+    bar.finish();
+    ctx.out
+        .write_csv("history.csv", &S::COLUMNS, r.history_rows())?;
+    Ok(r)
 }
 
 /// The plot series `(t, value(sample))` of a history.
@@ -183,15 +199,8 @@ impl Study for Pendulum {
     }
 
     fn run(&self, c: &PendulumCase, ctx: &mut StudyContext) -> Result<PendulumSummary, StudyError> {
-        let bar = ctx.progress(1.0, "pendulum");
-        let run = study::pendulum(c, |f| ctx.tick(&bar, f)).map_err(study_error)?;
-        bar.finish();
+        let run = history_run(ctx, "pendulum", |tick| study::pendulum(c, tick))?;
         let s = &run.samples;
-        ctx.out.write_csv(
-            "history.csv",
-            &study::PENDULUM_HISTORY_COLUMNS,
-            run.history_rows(),
-        )?;
         LinePlot::new(
             "Pendulum tip vertical position (Kerkkänen Fig. 2.6)",
             "t [s]",
@@ -235,15 +244,8 @@ impl Study for Spinning {
     }
 
     fn run(&self, c: &SpinningCase, ctx: &mut StudyContext) -> Result<SpinningSummary, StudyError> {
-        let bar = ctx.progress(1.0, "spinning beam");
-        let run = study::spinning(c, |f| ctx.tick(&bar, f)).map_err(study_error)?;
-        bar.finish();
+        let run = history_run(ctx, "spinning beam", |tick| study::spinning(c, tick))?;
         let s = &run.samples;
-        ctx.out.write_csv(
-            "history.csv",
-            &study::SPINNING_HISTORY_COLUMNS,
-            run.history_rows(),
-        )?;
         LinePlot::new(
             "Tip offset from the rigid shadow beam (Kerkkänen Fig. 2.10)",
             "t [s]",
