@@ -7,12 +7,15 @@
 //! * [`ancf_beams`]: Kerkkänen (2006) §2.4 static beam set-ups (Tables 2.1–2.4) and the ground
 //!   contact case;
 //! * [`ancf_dynamics`]: Kerkkänen §2.4 dynamic cases (falling pendulum, spinning beam);
+//! * [`beam_study`]: the five studies of `flowmbd-beam` on those cases (summaries, checks and
+//!   CSV series shared by the app and the Python package);
 //! * [`chain`]: a hanging spherical-joint chain (multibody benchmarks and examples);
 //! * [`slider_crank`]: the rigid slider-crank, and [`slider_crank_study`] the
 //!   `flowmbd-belt demo` study on it.
 
 pub mod ancf_beams;
 pub mod ancf_dynamics;
+pub mod beam_study;
 pub mod chain;
 pub mod lin;
 pub mod slider_crank;

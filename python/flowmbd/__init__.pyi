@@ -2,6 +2,7 @@
 
 from typing import Any, Callable, Iterable, List, Mapping, Optional, Sequence, Union
 
+from . import beam as beam
 from . import belt as belt
 from . import reduce as reduce
 from . import string as string

@@ -1,6 +1,6 @@
 """Type stub of the native module ``flowmbd._native`` (Rust, pyo3). Use the public wrappers in
-:mod:`flowmbd.belt`, :mod:`flowmbd.string`, :mod:`flowmbd.tire` and :mod:`flowmbd.reduce`
-instead (``ReducedTire`` is public as ``flowmbd.tire.ReducedTire``)."""
+:mod:`flowmbd.belt`, :mod:`flowmbd.beam`, :mod:`flowmbd.string`, :mod:`flowmbd.tire` and
+:mod:`flowmbd.reduce` instead (``ReducedTire`` is public as ``flowmbd.tire.ReducedTire``)."""
 
 import os
 from typing import List, Optional, Sequence, Tuple, Union
@@ -91,6 +91,62 @@ def eitelberg(
     npt.NDArray[np.float64],
 ]:
     """(M⁻¹K on the boundary, A_r, B_r, C_r, frequencies [Hz]) of Eitelberg's reduction."""
+
+def lin_beam(config: Optional[str] = None) -> Tuple[str, dict]:
+    """(JSON text of the ``flowmbd-reduce lin-beam`` summary, ``{"profiles", "frequencies":
+    {column: array}}``)."""
+
+def lin_slab(config: Optional[str] = None) -> Tuple[str, dict]:
+    """(JSON text of the ``flowmbd-reduce lin-slab`` summary, ``{"<sim>_node8",
+    "sim3_tables", "sim3_source_node8": {column: array}}``)."""
+
+def tire_mesh(
+    config: Optional[str] = None,
+) -> Tuple[
+    str,
+    npt.NDArray[np.float64],
+    Tuple[npt.NDArray[np.uintp], npt.NDArray[np.uintp], npt.NDArray[np.float64]],
+    Tuple[npt.NDArray[np.uintp], npt.NDArray[np.uintp], npt.NDArray[np.float64]],
+    dict,
+]:
+    """(JSON text of the ``flowmbd-reduce tire-mesh`` summary without ``files``, nodes (n × 3),
+    K triplets, M triplets, ``{node set: node indices}``)."""
+
+def beam_simply_supported(
+    config: Optional[str] = None,
+    element: Optional[str] = None,
+    nu: Optional[float] = None,
+    elements: Optional[int] = None,
+) -> str:
+    """JSON text of the ``flowmbd-beam simply-supported`` summary."""
+
+def beam_cantilever(
+    config: Optional[str] = None,
+    element: Optional[str] = None,
+    h: Optional[float] = None,
+    nu: Optional[float] = None,
+    elements: Optional[int] = None,
+) -> Tuple[str, dict]:
+    """(JSON text of the ``flowmbd-beam cantilever`` summary, ``{"shape": {column: array}}``)."""
+
+def beam_pendulum(
+    config: Optional[str] = None, elements: Optional[int] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the ``flowmbd-beam pendulum`` summary, ``{"history": {column: array}}``)."""
+
+def beam_spinning(
+    config: Optional[str] = None, elements: Optional[int] = None
+) -> Tuple[str, dict]:
+    """(JSON text of the ``flowmbd-beam spinning`` summary, ``{"history": {column: array}}``)."""
+
+def beam_ground_contact(
+    config: Optional[str] = None,
+    element: Optional[str] = None,
+    elements: Optional[int] = None,
+    load_factor: Optional[float] = None,
+) -> Tuple[str, dict]:
+    """(JSON text of the ``flowmbd-beam ground-contact`` summary, ``{"contact": {column:
+    array}}``)."""
 
 _Array = npt.NDArray[np.float64]
 _Index = npt.NDArray[np.uintp]

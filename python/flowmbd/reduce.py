@@ -1,15 +1,18 @@
 """Model reduction of sparse mass and stiffness matrices (Lin ch. 6), through the engine of
 ``flowmbd-reduce`` and the tire reduction. Matrices are scipy.sparse (any format) or dense
-numpy arrays; results are numpy arrays. DOF indices are 0-based."""
+numpy arrays; results are numpy arrays. DOF indices are 0-based. The studies ``lin_beam``,
+``lin_slab`` (Lin's Appendix A beam and Appendix B slab) and ``tire_mesh`` (the generated
+tire's K and M) are those of ``flowmbd-reduce``."""
 
 from __future__ import annotations
 
-from typing import Any, Optional, Sequence
+from typing import Any, Mapping, Optional, Sequence
 
 import numpy as np
 import scipy.sparse as sp
 
 from . import _args, _native
+from ._results import Result, config_json, from_json, with_series
 
 
 def _triplets(name: str, a: Any, n: Optional[int] = None):
@@ -107,3 +110,126 @@ def eitelberg(M: Any, K: Any, boundary: Sequence[int], fixed: Sequence[int] = ()
         n, m, k, _dofs("boundary", boundary), _dofs("fixed", fixed)
     )
     return {"minv_k": minv_k, "A": a, "B": b, "C": c, "frequencies_hz": hz}
+
+
+def lin_beam(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> Result:
+    """Lin ch. 6.2, 6.3, 7.1 and 8.5 on the Appendix A beam (``flowmbd-reduce lin-beam``):
+    frequencies of the full five-node beam and of its reduced models, the profile tests of
+    §7.1 and the mean-axes eigenproblem (8.45) with mode condensation.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-reduce lin-beam --print-config``: ``beam``
+        (``young_modulus_pa`` [Pa], ``area_m2`` [m²], ``second_moment_m4`` [m⁴], ``length_m``
+        [m], ``node_masses_kg`` [kg], 5 values) and ``profile_delta_m`` (the assumed
+        deformation (7.1), DOF order ξ1, η1, …, ξ5, η5 [m]); default Lin's Appendix A.
+    series : also return ``"profiles"`` (``dof_index``, ``reference_m`` and the deflections
+        ``p<1|2>_<mt|cb|mc>_m`` [m] of profiles 1 and 2 with modal truncation, Craig–Bampton
+        and mode condensation) and ``"frequencies"`` (``set_index``: 0 free-free, 1 Guyan (a),
+        2 Guyan (b), 3 fixed-interface, 4 mean-axes; ``mode_index``; ``frequency_Hz`` [Hz]):
+        the columns of ``profiles.csv`` and ``frequencies.csv``.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``free_free_hz``, ``guyan_a_hz`` (masters 1, 3, 5),
+        ``guyan_b_hz`` (masters 1, 2, 5), ``fixed_interface_hz`` (boundary nodes 1, 5),
+        ``mean_axes_normal_hz`` [Hz], ``profile1_errors`` and ``profile2_errors`` (‖δ* − δ‖
+        [m] of MT, CB, MC) and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message, e.g. ``beam.length_m: …``).
+    flowmbd.NumericalError
+        An eigen solve or reduction failed.
+    """
+    text, data = _native.lin_beam(config_json(config))
+    return with_series(text, data, series)
+
+
+def lin_slab(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> Result:
+    """Lin §7.2 simulations 1–3 on the Appendix B slab (``flowmbd-reduce lin-slab``): the local
+    deflection δ'8 of node 8 in the floating frame with no reduction (NR), Guyan (GR),
+    fixed-interface modal truncation (MT), Craig–Bampton (CB) and mode condensation (MC).
+    Simulation 3 first regenerates Lin's acceleration tables with the previous simulation of
+    Fig. 7-12(b).
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-reduce lin-slab --print-config``:
+        ``simulations`` (``"no-rigid-motion"``, ``"orbit"``, ``"emulated"``), ``methods``
+        (``"no-reduction"`` (required: the reference), ``"guyan"``,
+        ``"fixed-interface-modal-truncation"``, ``"craig-bampton"``, ``"mode-condensation"``)
+        and ``params`` (``duration_s`` [s], ``step_s`` [s], ``n_modes``, ``orbit_radius_m``
+        [m], ``orbit_period_s`` [s], ``sim3``); default all three simulations, all methods,
+        1 s with RK4 steps of 1 ms.
+    series : also return ``"<sim>_node8"`` per simulation (``t_s`` [s], then
+        ``<method>_xi_m``, ``<method>_eta_m``, ``<method>_zeta_m`` [m]) and, with simulation
+        3, ``"sim3_tables"`` (``t_s``, ``a<x|y|z><node>_m_per_s2`` [m/s²] of nodes 16, 18, 28,
+        30) and ``"sim3_source_node8"`` (``t_s``, ``xi_m``, ``eta_m``, ``zeta_m`` [m]): the
+        columns of the CSV files of those names.
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json``: ``sim1_statics_m`` (δ'8 of the gravity statics per method
+        [m]), ``simulations`` (per simulation and method ``rms_vs_nr_m``, ``peak_m``,
+        ``max_drift_m`` [m]), ``cb_mc_max_difference_m`` [m] (Lin §6.5.4: zero up to
+        round-off), ``sim3_source`` and ``meaning``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message, e.g. ``methods: …``).
+    flowmbd.NumericalError
+        A model or simulation failed (the statics computed so far attached as ``partial``).
+    """
+    text, data = _native.lin_slab(config_json(config))
+    return with_series(text, data, series)
+
+
+def _sparse(n: int, triplets) -> sp.csc_matrix:
+    rows, cols, vals = triplets
+    return sp.csc_matrix((vals, (rows.astype(np.int64), cols.astype(np.int64))), shape=(n, n))
+
+
+def tire_mesh(config: Optional[Mapping[str, Any]] = None) -> Result:
+    """The generated truck-tire carcass with its stiffness and mass matrices on all DOFs
+    (``flowmbd-reduce tire-mesh``): fe-model's generator (295/80 R22.5 at 38 psi by default,
+    63 936 DOFs standing in for Ribaric §8.1's ABAQUS model). Unlike
+    :func:`flowmbd.tire.generate` (always the lumped mass of the reduction, Ribaric §7.2), the
+    mass is consistent by default and every node set is returned.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-reduce tire-mesh --print-config``: ``tire`` (the
+        generator, the keys of ``[tire.generator]``), ``mass`` (``"consistent"`` or
+        ``"lumped"``) and ``geometric_stiffness`` (add the inflation prestress to ``K``,
+        default true).
+
+    Returns
+    -------
+    Result
+        The CLI's ``summary.json`` without ``files``: ``nodes``, ``elements``, ``dof``,
+        ``nnz_k``, ``node_sets`` (set sizes), ``mass_kg`` (total mass [kg]) and ``meaning``;
+        and what the CLI writes as files: ``"K"`` [N/m] and ``"M"`` [kg] (scipy.sparse CSC,
+        3n × 3n, node-major DOFs x, y, z; ``K.mtx``, ``M.mtx``), ``"coordinates"`` (n × 3
+        node positions [m], wheel frame; ``mesh.json``) and ``"node_set_nodes"`` (``{name:
+        0-based node indices}``; ``node_sets.json``, e.g. ``"rim"`` and ``"contact_patch"``).
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``tire.…: reason`` message).
+    flowmbd.NumericalError
+        The assembly failed.
+    """
+    text, nodes, k, m, sets = _native.tire_mesh(config_json(config))
+    out = from_json(text)
+    n = 3 * nodes.shape[0]
+    out["K"] = _sparse(n, k)
+    out["M"] = _sparse(n, m)
+    out["coordinates"] = nodes
+    out["node_set_nodes"] = {name: ids.astype(np.int64) for name, ids in sets.items()}
+    return out

@@ -71,7 +71,10 @@ def _fe_dict(out) -> dict:
 
 def generate(config: Optional[Mapping[str, Any]] = None) -> dict:
     """Generate the FE tire (fe-model's truck-tire generator: 295/80 R22.5 at 38 psi by default)
-    with the inflation prestress in ``K`` (Ribaric §8.1) and the lumped mass (§7.2).
+    with the inflation prestress in ``K`` (Ribaric §8.1) and the lumped mass (§7.2): the model
+    :func:`reduce` starts from. ``flowmbd-reduce tire-mesh`` is :func:`flowmbd.reduce.tire_mesh`
+    (same mesh and ``K``, but the consistent mass by default, the geometric stiffness
+    switchable and every node set).
 
     Parameters
     ----------

@@ -1,7 +1,8 @@
 //! # flowmbd-python
 //!
 //! The native part (`flowmbd._native`) of the `flowmbd` Python package: thin pyo3 wrappers
-//! over the library crates (`drives`, `flowing`, `reduction`, `fe-model`; the reduced tire as the class `ReducedTire`). Configurations come
+//! over the library crates (`drives`, `flowing`, `reduction`, `fe-model`, the paper cases of
+//! `flowmbd-cases`; the reduced tire as the class `ReducedTire`). Configurations come
 //! in as JSON text of the Python dicts (the same keys as the TOML files) and are read into the
 //! study's configuration struct, checked with the same [`mbd_core::Validate`] as the apps (so
 //! bad input raises `ValueError` with the CLI's `field: reason` message) and run with the GIL
@@ -18,6 +19,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use serde::de::DeserializeOwned;
 
+mod beam;
 mod belt;
 mod reduce;
 mod stepping;
@@ -174,6 +176,14 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reduce::modes, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::craig_bampton, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::eitelberg, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::lin_beam, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::lin_slab, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::tire_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(beam::beam_simply_supported, m)?)?;
+    m.add_function(wrap_pyfunction!(beam::beam_cantilever, m)?)?;
+    m.add_function(wrap_pyfunction!(beam::beam_pendulum, m)?)?;
+    m.add_function(wrap_pyfunction!(beam::beam_spinning, m)?)?;
+    m.add_function(wrap_pyfunction!(beam::beam_ground_contact, m)?)?;
     m.add_class::<tire::PyReducedTire>()?;
     m.add_function(wrap_pyfunction!(tire::tire_generate, m)?)?;
     m.add_function(wrap_pyfunction!(tire::tire_import, m)?)?;

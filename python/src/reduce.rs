@@ -201,3 +201,134 @@ pub fn eitelberg<'py>(
         hz.into_pyarray(py),
     ))
 }
+
+/// The `flowmbd-reduce lin-beam` study (Lin ch. 6.2, 6.3, 7.1, 8.5 on the Appendix A beam,
+/// [`flowmbd_cases::lin::beam_study::lin_beam`]): returns `(summary JSON text, {"profiles",
+/// "frequencies": the columns of profiles.csv and frequencies.csv})`.
+#[pyfunction]
+#[pyo3(signature = (config=None))]
+pub fn lin_beam<'py>(py: Python<'py>, config: Option<&str>) -> PyResult<crate::WithSeries<'py>> {
+    use flowmbd_cases::lin::beam_study::{
+        FREQUENCY_COLUMNS, LinBeamStudyConfig, PROFILE_COLUMNS, lin_beam as run,
+    };
+    let c: LinBeamStudyConfig = crate::study_config(config, |_| {})?;
+    let r = detached(py, || run(&c))?;
+    crate::with_series(
+        py,
+        &r.summary,
+        [
+            (
+                "profiles",
+                crate::columns(&PROFILE_COLUMNS, r.profile_rows()),
+            ),
+            (
+                "frequencies",
+                crate::columns(&FREQUENCY_COLUMNS, r.frequency_rows()),
+            ),
+        ],
+    )
+}
+
+/// The `flowmbd-reduce lin-slab` study (Lin §7.2 simulations 1–3 on the Appendix B slab,
+/// [`flowmbd_cases::lin::slab_study::lin_slab`]): returns `(summary JSON text, series)` with
+/// the series `{"<sim>_node8"` per completed simulation, and `"sim3_tables"`,
+/// `"sim3_source_node8"` when simulation 3 ran`}`, the columns of the CSV files of the same
+/// names (the CLI has no flags of its own: everything is in `config`).
+#[pyfunction]
+#[pyo3(signature = (config=None))]
+pub fn lin_slab<'py>(py: Python<'py>, config: Option<&str>) -> PyResult<crate::WithSeries<'py>> {
+    use flowmbd_cases::lin::slab_study::{
+        LinSlabConfig, LinSlabError, SIM3_SOURCE_COLUMNS, lin_slab as run, sim3_source_rows,
+        sim3_tables_header, sim3_tables_rows,
+    };
+    let c: LinSlabConfig = crate::study_config(config, |_| {})?;
+    let r = py
+        .detach(|| run(&c, |_| std::ops::ControlFlow::Continue(())))
+        .map_err(|e| match e {
+            LinSlabError::Input(field) => crate::input_error(field),
+            LinSlabError::Numerical {
+                source,
+                partial_statics_m,
+            } => numerical_error(
+                py,
+                source.to_string(),
+                partial_statics_m.and_then(|p| serde_json::to_value(p).ok()),
+            ),
+        })?;
+    let mut series: Vec<(String, crate::Columns)> = r
+        .simulations
+        .iter()
+        .map(|s| {
+            let name = format!("{}_node8", s.name);
+            (name, crate::columns(&s.node8_header(), s.node8_rows()))
+        })
+        .collect();
+    if let Some(src) = &r.sim3_source {
+        series.push((
+            "sim3_tables".into(),
+            crate::columns(&sim3_tables_header(), sim3_tables_rows(src)),
+        ));
+        series.push((
+            "sim3_source_node8".into(),
+            crate::columns(&SIM3_SOURCE_COLUMNS, sim3_source_rows(src)),
+        ));
+    }
+    crate::with_series(py, &r.summary, series)
+}
+
+/// Coordinate triplets `(rows, cols, values)` of a sparse matrix as numpy arrays.
+type TripletsOut<'py> = (
+    Bound<'py, PyArray1<usize>>,
+    Bound<'py, PyArray1<usize>>,
+    Vector<'py>,
+);
+
+fn triplets_out<'py>(py: Python<'py>, a: &SparseColMat<usize, f64>) -> TripletsOut<'py> {
+    let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+    for (i, j, x) in fe_model::sparse::triplets(a.as_ref()) {
+        r.push(i);
+        c.push(j);
+        v.push(x);
+    }
+    (r.into_pyarray(py), c.into_pyarray(py), v.into_pyarray(py))
+}
+
+/// `(summary JSON text, nodes (n × 3) [m], K triplets [N/m], M triplets [kg], {node set: node
+/// indices})` of [`tire_mesh`].
+type TireMeshOut<'py> = (
+    String,
+    Matrix<'py>,
+    TripletsOut<'py>,
+    TripletsOut<'py>,
+    Bound<'py, pyo3::types::PyDict>,
+);
+
+/// The `flowmbd-reduce tire-mesh` study ([`fe_model::generate::tire_mesh::tire_mesh`]): the
+/// generated truck-tire carcass with K (inflation geometric stiffness when
+/// `geometric_stiffness`) and M (`mass`: consistent or lumped) on all DOFs; what the CLI
+/// writes as `mesh.json`, `K.mtx`, `M.mtx` and `node_sets.json` comes back as arrays.
+#[pyfunction]
+#[pyo3(signature = (config=None))]
+pub fn tire_mesh<'py>(py: Python<'py>, config: Option<&str>) -> PyResult<TireMeshOut<'py>> {
+    use fe_model::generate::tire_mesh::{TireMeshConfig, TireMeshError, tire_mesh as run};
+    let c: TireMeshConfig = crate::study_config(config, |_| {})?;
+    let r = py.detach(|| run(&c)).map_err(|e| match e {
+        TireMeshError::Generate(e) => {
+            crate::input_error(mbd_core::InvalidField::new("tire", e.to_string()))
+        }
+        e @ TireMeshError::Assembly(_) => numerical_error(py, e.to_string(), None),
+    })?;
+    let mesh = &r.tire.model.mesh;
+    let nodes = Array2::from_shape_fn((mesh.nodes.len(), 3), |(i, j)| mesh.nodes[i][j]);
+    let sets = pyo3::types::PyDict::new(py);
+    for (name, ids) in &mesh.node_sets {
+        sets.set_item(name, ids.clone().into_pyarray(py))?;
+    }
+    Ok((
+        crate::to_json(&r.summary)?,
+        nodes.into_pyarray(py),
+        triplets_out(py, &r.k),
+        triplets_out(py, &r.m),
+        sets,
+    ))
+}

@@ -1,61 +1,22 @@
-//! `flowmbd-reduce tire-mesh`: generate the truck-tire carcass (fe-model `generate::tire`) and
-//! write `M.mtx`, `K.mtx` (Matrix Market, symmetric, all DOFs; K includes the inflation
-//! geometric stiffness when enabled), `mesh.vtu` (zones and node sets), `mesh.json` (for
-//! `modes --mesh`), `node_sets.json` and `rim_dofs.txt` (for `modes --fixed`).
+//! `flowmbd-reduce tire-mesh`: generate the truck-tire carcass and assemble M and K
+//! (`fe_model::generate::tire_mesh`), then write `M.mtx`, `K.mtx` (Matrix Market, symmetric,
+//! all DOFs; K includes the inflation geometric stiffness when enabled), `mesh.vtu` (zones and
+//! node sets), `mesh.json` (for `modes --mesh`), `node_sets.json` and `rim_dofs.txt` (for
+//! `modes --fixed`).
 
-use fe_model::generate::{TireConfig, TireZone, tire};
+use fe_model::FeError;
+use fe_model::generate::TireZone;
+use fe_model::generate::tire_mesh::{TireMeshConfig, TireMeshError, TireMeshSummary, tire_mesh};
 use fe_model::io::{mtx, vtk};
-use fe_model::{FeError, MassKind};
-use flowmbd_cli::{InputError, Study, StudyContext, StudyError, Validate};
-use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
+use flowmbd_cli::{InputError, Study, StudyContext, StudyError};
+use serde::Serialize;
 
-/// Configuration of the `tire-mesh` study.
-#[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(default, deny_unknown_fields)]
-pub struct Config {
-    /// Tire geometry, mesh divisions, materials and inflation.
-    pub tire: TireConfig,
-    /// Mass discretisation (`consistent` or `lumped`).
-    pub mass: MassKind,
-    /// Add the inflation geometric stiffness to K.
-    pub geometric_stiffness: bool,
-}
-
-impl Default for Config {
-    /// The 63 936-DOF truck tire standing in for Ribaric §8.1's >60 000-DOF ABAQUS model.
-    fn default() -> Self {
-        Self {
-            tire: TireConfig::default(),
-            mass: MassKind::Consistent,
-            geometric_stiffness: true,
-        }
-    }
-}
-
-impl flowmbd_cli::PartialRules for Config {}
-
-impl Validate for Config {
-    fn validate(&self) -> Result<(), InputError> {
-        self.tire.validate_within("tire")
-    }
-}
-
-/// `summary.json`.
+/// `summary.json`: the library's summary and the files written.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
-    /// Nodes.
-    pub nodes: usize,
-    /// Hexahedra.
-    pub elements: usize,
-    /// DOFs (3 per node).
-    pub dof: usize,
-    /// Stored entries of K (both triangles).
-    pub nnz_k: usize,
-    /// Node-set sizes.
-    pub node_sets: BTreeMap<String, usize>,
-    /// Total mass \[kg\] (rigid translation uᵀ M u).
-    pub mass_kg: f64,
+    /// Mesh size and mass.
+    #[serde(flatten)]
+    pub mesh: TireMeshSummary,
     /// Files written.
     pub files: Vec<String>,
 }
@@ -68,26 +29,20 @@ fn numerical(what: &str, e: FeError) -> StudyError {
 }
 
 impl Study for TireMesh {
-    type Config = Config;
+    type Config = TireMeshConfig;
     type Summary = Summary;
     const NAME: &'static str = "tire-mesh";
-    const MEANING: &'static str = "The generated truck-tire carcass: the nodes, hexahedra and DOFs of the mesh written \
-         as mesh.json, M and K (Matrix Market) and the node sets (rim, contact patch), for \
-         flowmbd-reduce and other FE tools.";
 
-    fn run(&self, c: &Config, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
+    fn run(&self, c: &TireMeshConfig, ctx: &mut StudyContext) -> Result<Summary, StudyError> {
         let bar = ctx.progress(4.0, "tire-mesh");
-        let t =
-            tire(&c.tire).map_err(|e| StudyError::Input(InputError::new("tire", e.to_string())))?;
-        bar.set(1.0);
-        let (k, m) = t
-            .model
-            .k_and_m(c.mass, c.geometric_stiffness)
-            .map_err(|e| numerical("assembly", e))?;
+        let r = tire_mesh(c).map_err(|e| match e {
+            TireMeshError::Generate(e) => StudyError::Input(InputError::new("tire", e.to_string())),
+            e @ TireMeshError::Assembly(_) => StudyError::numerical(e),
+        })?;
         bar.set(2.0);
-        let mesh = &t.model.mesh;
+        let mesh = &r.tire.model.mesh;
         let mut files = Vec::new();
-        for (name, a) in [("K.mtx", &k), ("M.mtx", &m)] {
+        for (name, a) in [("K.mtx", &r.k), ("M.mtx", &r.m)] {
             let p = ctx.out.path(name);
             mtx::write_sparse(&p, a.as_ref(), mtx::Symmetry::Symmetric)
                 .map_err(|e| numerical(name, e))?;
@@ -99,7 +54,7 @@ impl Study for TireMesh {
             components: 1,
             values: {
                 let mut v = vec![0.0; mesh.n_nodes()];
-                for (cell, z) in mesh.cells.iter().zip(&t.zones) {
+                for (cell, z) in mesh.cells.iter().zip(&r.tire.zones) {
                     for &n in &cell.nodes {
                         v[n] = match z {
                             TireZone::Bead => 0.0,
@@ -131,21 +86,8 @@ impl Study for TireMesh {
         files.push("rim_dofs.txt".into());
         bar.set(4.0);
         bar.finish();
-        let mass_kg = fe_model::sparse::triplets(m.as_ref())
-            .filter(|&(r, c, _)| r % 3 == 0 && c % 3 == 0)
-            .map(|t| t.2)
-            .sum();
         Ok(Summary {
-            nodes: mesh.n_nodes(),
-            elements: t.model.elements.len(),
-            dof: mesh.n_dofs(),
-            nnz_k: k.compute_nnz(),
-            node_sets: mesh
-                .node_sets
-                .iter()
-                .map(|(k, v)| (k.clone(), v.len()))
-                .collect(),
-            mass_kg,
+            mesh: r.summary,
             files,
         })
     }

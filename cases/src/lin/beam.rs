@@ -394,7 +394,15 @@ pub struct LinBeamSummary {
     pub profile2_errors: Vec<f64>,
     /// Non-zero frequencies of the mean-axes eigenproblem (8.45) with mode condensation \[Hz\].
     pub mean_axes_normal_hz: Vec<f64>,
+    /// What the numbers mean ([`LIN_BEAM_MEANING`]).
+    pub meaning: String,
 }
+
+/// The `meaning` of the `lin-beam` summary.
+pub const LIN_BEAM_MEANING: &str = "Lin ch. 6-8 on the Appendix A beam: the frequencies of the full model and of the \
+     reduced models (Guyan, modal truncation, Craig-Bampton, mode condensation) compared \
+     with Lin's tables, the deflection profiles of the profile tests [m] and the \
+     mean-axis frame: how well each reduction reproduces the full model.";
 
 /// Runs every beam study of Lin ch. 6-8 and collects the summary.
 pub fn summary(beam: &LinBeam) -> Result<LinBeamSummary> {
@@ -412,5 +420,6 @@ pub fn summary_with(beam: &LinBeam, delta: &[f64; 10]) -> Result<LinBeamSummary>
         profile1_errors: prof.profile1.iter().map(|p| p.error).collect(),
         profile2_errors: prof.profile2.iter().map(|p| p.error).collect(),
         mean_axes_normal_hz: mean_axes_study(beam, Method::ModeCondensation)?.normal_frequencies_hz,
+        meaning: LIN_BEAM_MEANING.to_string(),
     })
 }
