@@ -3,7 +3,7 @@
 :mod:`flowmbd.reduce` instead (``ReducedTire`` is public as ``flowmbd.tire.ReducedTire``)."""
 
 import os
-from typing import List, Optional, Sequence, Tuple, Union
+from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -291,3 +291,20 @@ def tire_pressure(
 
 def tire_modes(config: Optional[str] = None) -> Tuple[str, dict]:
     """(JSON text of the modes summary, ``{"modes", "loaded_modes": {column: array}}``)."""
+
+class TireSimulation:
+    """The reduced tire rolling on the cleat rig, stepped in time; public as
+    ``flowmbd.tire.Simulation``."""
+
+    t: float
+    settle_time: float
+    step_size: float
+    spin: float
+    drive_torque: float
+    coordinates: npt.NDArray[np.float64]
+    normal_forces: npt.NDArray[np.float64]
+    contact_positions: npt.NDArray[np.float64]
+    def __init__(self, config: Optional[str] = None, tire: Optional[ReducedTire] = None) -> None: ...
+    def forces(self) -> Dict[str, float]: ...
+    def step(self, n: int) -> None: ...
+    def run_to(self, t_end: float) -> None: ...

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 from typing import Any, Mapping, Optional, Sequence
 
-from . import _args, _native
+from . import _args, _native, _stepping
+from ._stepping import Native
 from ._results import Result, config_json, from_json, with_series
 
 
@@ -189,23 +190,6 @@ def design(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[fl
     return from_json(_native.design(config_json(config), speeds))
 
 
-class _Native:
-    """A read-only attribute of a :class:`Simulation`: its native simulation's attribute of the
-    same name."""
-
-    def __init__(self, doc: str) -> None:
-        self.__doc__ = doc
-
-    def __set_name__(self, owner: type, name: str) -> None:
-        self.name = name
-
-    def __get__(self, obj: Any, owner: Optional[type] = None) -> Any:
-        return self if obj is None else getattr(obj._sim, self.name)
-
-    def __set__(self, obj: Any, value: Any) -> None:
-        raise AttributeError(f"{self.name}: read-only (set the state with set_state)")
-
-
 class Simulation:
     """A belt drive stepped in time: build the model from a layout, step it, read and set its
     state, change a pulley's speed or load between steps, observe it, and read the report of
@@ -238,17 +222,17 @@ class Simulation:
     def __init__(self, config: Optional[Mapping[str, Any]] = None) -> None:
         self._sim = _native.BeltSimulation(config_json(config))
 
-    model = _Native("The model kind.")
-    step_size = _Native("The step [s].")
-    t = _Native("Time [s].")
-    q = _Native("Coordinates (numpy copy; names in ``coordinate_names``).")
-    v = _Native("Velocities (numpy copy).")
-    coordinate_names = _Native("The name of every coordinate.")
-    pulley_speeds = _Native(
+    model = Native("The model kind.")
+    step_size = Native("The step [s].")
+    t = Native("Time [s].")
+    q = Native("Coordinates (numpy copy; names in ``coordinate_names``).")
+    v = Native("Velocities (numpy copy).")
+    coordinate_names = Native("The name of every coordinate.")
+    pulley_speeds = Native(
         "Pulley speeds in the belt's travel sense [rad/s], in the layout's order (numpy)."
     )
-    belt_speed = _Native("Belt speed along its path [m/s].")
-    arm_angle = _Native("Tensioner arm angle [rad] (``None`` without a tensioner).")
+    belt_speed = Native("Belt speed along its path [m/s].")
+    arm_angle = Native("Tensioner arm angle [rad] (``None`` without a tensioner).")
 
     def state(self) -> tuple:
         """The state ``(t, q, v)`` (copies), to restart from with ``set_state``."""
@@ -274,20 +258,7 @@ class Simulation:
     ) -> None:
         """Step until ``t_end`` [s]; ``observer(sim)`` is called after every ``every``-th step
         (and at the end). An exception in the observer stops the run and propagates."""
-        t_end = _args.number("t_end", t_end)
-        if observer is None:
-            self._sim.run_to(t_end)
-            return
-        every = _args.count("every", every)
-        if every < 1:
-            raise ValueError("every: must be at least 1")
-        if not callable(observer):
-            raise ValueError(f"observer: expected a callable, got {type(observer).__name__}")
-        h = self._sim.step_size
-        while self._sim.t < t_end - 0.5 * h:
-            left = int(round((t_end - self._sim.t) / h))
-            self._sim.step(max(1, min(every, left)))
-            observer(self)
+        _stepping.run_to(self, t_end, observer, every)
 
     def set_signal(self, pulley: int, signal: Mapping[str, Any]) -> None:
         """Replace the signal of ``pulley`` (index in the layout) from now on: a driver's speed

@@ -21,7 +21,9 @@ from the file that ``flowmbd-tire`` uses as ``tire.reduced_file``.
 - :func:`pressure`: the preloaded contact patch on drum and road, Fig. 8-12
   (``flowmbd-tire pressure``);
 - :func:`modes`: full FE against reduced frequencies, and the loaded modes
-  (``flowmbd-tire modes``).
+  (``flowmbd-tire modes``);
+- :class:`Simulation`: the tire rolling on the cleat rig, stepped in time (the cleat test's
+  start and step).
 
 Series that the CLI writes as CSV files come back with ``series=True``: under the CSV file's
 name without ``.csv`` (e.g. ``"rotating_modes"``), a dict of its columns (the CSV header) as
@@ -38,7 +40,8 @@ from typing import Any, Mapping, Optional, Sequence
 import numpy as np
 import scipy.sparse as sp
 
-from . import _args, _native
+from . import _args, _native, _stepping
+from ._stepping import Native
 from ._results import Result, config_json, from_json, with_series
 
 ReducedTire = _native.ReducedTire
@@ -469,3 +472,73 @@ def modes(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> R
     """
     text, data = _native.tire_modes(config_json(config))
     return with_series(text, data, series)
+
+
+class Simulation:
+    """The reduced tire rolling on the cleat rig, stepped in time: started as the cleat test
+    starts it (the rolling preload; the cleat reaches the patch centre at ``settle_time``) and
+    advanced by the cleat test's own step (sub-stepped through the impact; Rust:
+    ``tire::start_rolling`` and ``tire::rig_step``), so that stepping it reproduces
+    :func:`cleat` step by step. Read the spindle forces of any state, change the drive torque
+    between steps, observe it.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire cleat --print-config`` (``tire``, ``rig``:
+        ``speed_kmh`` [km/h], ``load`` [N], ``settle_time`` and ``record_time`` [s],
+        ``ground``, ``rolling``, ``wheel``, ...); missing keys keep their defaults.
+    tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
+        ``config["tire"]``.
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    flowmbd.NumericalError
+        The preload failed.
+
+    Example
+    -------
+    >>> sim = flowmbd.tire.Simulation(config, tire=tire)
+    >>> sim.run_to(sim.settle_time + 0.05, observer=lambda s: print(s.forces()["fy_N"]))
+    """
+
+    def __init__(
+        self, config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTire"] = None
+    ) -> None:
+        if tire is not None and not isinstance(tire, ReducedTire):
+            raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
+        self._sim = _native.TireSimulation(config_json(config), tire)
+
+    t = Native("Time [s] (the cleat hit at ``settle_time``).")
+    settle_time = Native("The rig's ``settle_time`` [s]: when the cleat reaches the patch centre.")
+    step_size = Native("The rig's step ``rolling.time_step`` [s].")
+    spin = Native("Spin rate [rad/s].")
+    coordinates = Native("The reduced coordinates ``z`` of the tire (numpy copy).")
+    normal_forces = Native("Normal force per contact node [N] (numpy copy).")
+    contact_positions = Native("Contact-node positions in the wheel frame [m] (n x 3).")
+
+    @property
+    def drive_torque(self) -> float:
+        """Drive torque about the wheel axis [N m] (0: free rolling); settable between steps."""
+        return self._sim.drive_torque
+
+    @drive_torque.setter
+    def drive_torque(self, torque: float) -> None:
+        self._sim.drive_torque = _args.number("drive_torque", torque)
+
+    def forces(self) -> dict:
+        """The cleat test's force row of the present state: the columns of its ``forces``
+        series (``t_s`` [s] from the hit, ``fx_N``, ``fy_N`` (vertical), ``f_lateral_N`` [N],
+        ``spin_rad_per_s``, ``active_nodes_count``, ``normal_sum_N`` [N], ``mx_N_m``,
+        ``my_N_m``, ``mz_N_m`` [N m])."""
+        return self._sim.forces()
+
+    def step(self, n: int = 1) -> None:
+        """Take ``n`` rig steps (a failed step raises ``flowmbd.NumericalError``)."""
+        self._sim.step(_args.count("n", n))
+
+    def run_to(self, t_end: float, observer: Optional[Any] = None, every: int = 1) -> None:
+        """Step until ``t_end`` [s]; ``observer(sim)`` is called after every ``every``-th step
+        (and at the end). An exception in the observer stops the run and propagates."""
+        _stepping.run_to(self, t_end, observer, every)

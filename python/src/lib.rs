@@ -25,6 +25,7 @@ mod reduce;
 mod stepping;
 mod string;
 mod tire;
+mod tire_stepping;
 
 /// `ValueError` carrying the CLI's one-line message for a rejected field (`field: reason`).
 pub(crate) fn input_error(e: InvalidField) -> PyErr {
@@ -169,6 +170,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(belt::wave, m)?)?;
     m.add_function(wrap_pyfunction!(belt::demo, m)?)?;
     m.add_class::<stepping::PyBeltSimulation>()?;
+    m.add_class::<tire_stepping::PyTireSimulation>()?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_simulate, m)?)?;

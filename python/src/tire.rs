@@ -27,7 +27,9 @@ use tire::{
 /// Bad input (`ValueError` with the CLI's `field: reason`) or a numerical failure
 /// (`flowmbd.NumericalError` with `partial`), classified like `flowmbd-tire`
 /// ([`tire_input_error`]).
-fn tire_error(py: Python<'_>, e: TireError, partial: Option<serde_json::Value>) -> PyErr {
+pub(crate) fn tire_error(
+    py: Python<'_>, e: TireError, partial: Option<serde_json::Value>,
+) -> PyErr {
     match tire_input_error(e) {
         Ok(field) => input_error(field),
         Err(other) => numerical_error(py, other.to_string(), partial),
@@ -379,7 +381,7 @@ fn history_of(r: &RigResult) -> History {
 }
 
 /// The reduced tire `given`, or `source` reduced (GIL released).
-fn reduced_or(
+pub(crate) fn reduced_or(
     py: Python<'_>, given: Option<PyRef<'_, PyReducedTire>>, source: &TireSource,
 ) -> PyResult<Arc<ReducedTire>> {
     if let Some(t) = given {

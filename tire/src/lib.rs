@@ -136,7 +136,7 @@ pub use modes_study::{ModesStudyConfig, ModesSummary, run_modes};
 pub use pressure_study::{PressureStudyConfig, PressureSummary, run_pressure};
 pub use rig::{
     DampingConfig, ImpactConfig, MAX_SLIP_ANGLE_DEG, RigConfig, RigResult, RigStart, Sample,
-    WheelInputs, run_cleat, run_cleat_observed, start_rolling,
+    WheelInputs, rig_step, run_cleat, run_cleat_observed, start_rolling,
 };
 pub use spectrum::{
     LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation,

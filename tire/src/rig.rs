@@ -537,6 +537,23 @@ pub fn run_cleat(
     run_cleat_observed(red, cfg, progress, &mut |_, _| Ok(()))
 }
 
+/// One step of the rig: the rolling tire advanced by `cfg.rolling.time_step` \[s\], in
+/// `cfg.impact.substeps` equal sub-steps while the cleat impact is active
+/// (the window of [`ImpactConfig`]). The step of [`run_cleat`]; a tire started with
+/// [`start_rolling`] and stepped by it runs the cleat test.
+pub fn rig_step(sim: &mut RollingTire<'_>, cfg: &RigConfig) -> Result<(), TireError> {
+    let n = if cfg.impact.active(sim.ground(), sim.state.t) {
+        cfg.impact.substeps
+    } else {
+        1
+    };
+    sim.set_time_step(cfg.rolling.time_step / n as f64)?;
+    for _ in 0..n {
+        sim.step()?;
+    }
+    Ok(())
+}
+
 /// [`run_cleat`] with an observer called after every step with the step number and the model
 /// (e.g. to write VTK snapshots of the patch).
 pub fn run_cleat_observed(
@@ -566,15 +583,7 @@ pub fn run_cleat_observed(
     let c0 = run_cpu(&sim);
     let (mut obs_wall, mut obs_cpu) = (0.0, 0.0);
     for k in 0..steps {
-        let n = if cfg.impact.active(sim.ground(), sim.state.t) {
-            cfg.impact.substeps
-        } else {
-            1
-        };
-        sim.set_time_step(h / n as f64)?;
-        for _ in 0..n {
-            sim.step()?;
-        }
+        rig_step(&mut sim, cfg)?;
         // the observer's output (e.g. VTK files) is not part of the integration cost
         let (w_obs, c_obs) = (Instant::now(), thread_cpu_s());
         observer(k, &sim)?;
