@@ -8,4 +8,8 @@ mod hex8_rebar;
 mod issue35;
 mod mtx_fast_read;
 mod mtx_hardening;
+mod partition;
 mod plausibility;
+#[cfg(feature = "sprs")]
+mod sprs_conv;
+mod vtk_polyline;

@@ -3,4 +3,6 @@
 //! `cargo test --release -p <package> --test integration <module>::`.
 
 mod issue35;
+mod lyapunov;
+mod partition;
 mod partitioned_cb;
