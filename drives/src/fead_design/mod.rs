@@ -257,7 +257,11 @@ pub enum DesignIssue {
         threshold: f64,
     },
     /// A span adjacent to the tensioner whose transverse frequency lies near a mode the arm
-    /// takes part in (Beikmann, Perkins & Ulsoy 1996).
+    /// takes part in (Beikmann, Perkins & Ulsoy 1996), at or below the frequency the highest
+    /// engine order reaches at this speed (plus [`DesignSettings::coupling_band`]): a coupling
+    /// above every order is not driven, directly or parametrically (the principal parametric
+    /// resonance of a span lies at half the excitation frequency). Without engine orders every
+    /// coupling is reported.
     #[error(
         "{engine_rpm} rpm: span {from} → {to} ({span_hz:.1} Hz) lies near the arm's mode at \
          {mode_hz:.1} Hz: transverse and rotational motion couple through the arm"
@@ -1030,8 +1034,24 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
             );
         }
     }
+    // the highest engine order (NaN without orders: every coupling is kept)
+    let highest_order = cfg
+        .engine
+        .orders
+        .iter()
+        .map(|o| o.order)
+        .fold(f64::NAN, f64::max);
     for &rpm in &cfg.engine.speeds_rpm {
-        let (p, issues) = design_point(&drive, rpm, &cfg.design)?;
+        let (p, mut issues) = design_point(&drive, rpm, &cfg.design)?;
+        // a span–arm coupling above the frequency every engine order reaches at this speed
+        // (with the coupling band) is not driven: no finding
+        let reach = highest_order * rpm / 60.0 * (1.0 + cfg.design.coupling_band);
+        issues.retain(|i| match i {
+            DesignIssue::SpanArmCoupling {
+                span_hz, mode_hz, ..
+            } => highest_order.is_nan() || span_hz.min(*mode_hz) <= reach,
+            _ => true,
+        });
         findings.extend(issues.into_iter().map(Finding::from));
         points.push(p);
     }
@@ -1203,6 +1223,42 @@ mod tests {
     // from the crank to it carry the lower tension and the arm is on the slack side. A travel
     // ending 2° above the installed angle is flagged near its stop, at rest (rpm 0) and under
     // load.
+    // The span–arm coupling finding stands where an engine order reaches it (its documentation):
+    // the default drive's alternator → tensioner span (about 550 Hz at 1500 rpm) lies within
+    // 10 % of an arm mode (about 516 Hz) that the default orders 2 and 4 (50 and 100 Hz) never
+    // reach: no finding; an order 24 (600 Hz) reaches it, and without orders it is reported.
+    #[test]
+    fn span_arm_coupling_only_where_an_order_reaches_it() {
+        let couplings = |cfg: &DesignConfig| -> Vec<(f64, f64)> {
+            run_design(cfg)
+                .unwrap()
+                .findings
+                .into_iter()
+                .filter_map(|f| match f.issue {
+                    DesignIssue::SpanArmCoupling {
+                        span_hz, mode_hz, ..
+                    } => Some((span_hz, mode_hz)),
+                    _ => None,
+                })
+                .collect()
+        };
+        let mut cfg = DesignConfig::default();
+        cfg.engine.speeds_rpm = vec![1500.0];
+        cfg.design.campbell_points = 2;
+        assert!(couplings(&cfg).is_empty(), "{:?}", couplings(&cfg));
+        cfg.engine.orders.push(crate::fead::EngineOrder {
+            order: 24.0,
+            amplitude: 0.001,
+            phase: 0.0,
+        });
+        let reached = couplings(&cfg);
+        assert_eq!(reached.len(), 1, "{reached:?}");
+        let (span, mode) = reached[0];
+        assert!((span / mode - 1.0).abs() <= 0.1 && span.min(mode) <= 24.0 * 25.0 * 1.1);
+        cfg.engine.orders.clear();
+        assert_eq!(couplings(&cfg), reached);
+    }
+
     #[test]
     fn tight_span_and_end_stop_findings() {
         let kinds = |cfg: &DesignConfig| -> Vec<DesignIssue> {
