@@ -306,15 +306,18 @@ pub struct SpeedLossSummary {
     pub meaning: String,
 }
 
-/// The speed-loss study's "what the numbers mean" paragraph (`meaning` in the summary).
-pub const SPEED_LOSS_MEANING: &str = "points: the steady angular speed loss \
+/// The speed-loss study's "what the numbers mean" paragraph (`meaning` in the summary), in
+/// two parts around the run's own comparison with Bechtel's line ([`SpeedLossSummary::new`]).
+pub const SPEED_LOSS_MEANING: [&str; 2] = [
+    "points, analytical and omega_driver: those of the first driver speed; cases: every driver \
+speed with its points. points: the steady angular speed loss \
 delta_omega = omega_driver - omega_driven [rad/s] of the two-pulley belt drive of Ribaric \
 Table 6-1 at each load torque [N m] on the driven pulley (the driver held at omega_driver); \
 analytical: Bechtel's line (6.3) at the same torques, 2 M omega / (2R(T0 + EA) + M). Bechtel \
 counts only the elastic creep of an extensible belt on rigid pulleys: the belt stretches by \
 the tension change T1 - T2 = M/R along the contact arc. The FE model (flowing material, or \
-nodal / ANCF belt) loses more speed, about 2.9 times Bechtel's at 10 N m and 62.8 rad/s \
-(BENCHMARKS.md), because it adds what (6.3) leaves out (Ribaric ch. 6, section 6.3: creep, \
+nodal / ANCF belt) loses more speed (",
+    "), because it adds what (6.3) leaves out (Ribaric ch. 6, section 6.3: creep, \
 shear and radial compliance): the radial contact compliance of the penalty law (6.1), which \
 lets the belt sink into the pulley and the tight and slack spans run on different effective \
 radii; the slip of the regularised friction law (6.2), whose force needs a relative velocity \
@@ -322,7 +325,38 @@ everywhere on the arc (no true stick, so the whole arc creeps); and the radius a
 speeds are compared (the belt centreline in contact lies at the penetrated radius, not at R). \
 Shear of the belt section is not modelled (beam elements), so the FE figures still lie below \
 Ribaric's measurements. The speed loss grows about linearly with the torque and with the \
-driver speed.";
+driver speed.",
+];
+
+/// The run's comparison with Bechtel's line for the meaning: per driver speed, the FE speed
+/// loss over Bechtel's (6.3) at its largest load torque.
+fn bechtel_ratios(cases: &[SummaryCase]) -> String {
+    let parts: Vec<String> = cases
+        .iter()
+        .filter_map(|c| {
+            let (k, p) = c
+                .points
+                .iter()
+                .enumerate()
+                .filter(|(_, p)| p.torque > 0.0 && p.delta_omega.is_some_and(f64::is_finite))
+                .max_by(|a, b| a.1.torque.total_cmp(&b.1.torque))?;
+            let (dw, a) = (p.delta_omega?, *c.analytical.get(k)?);
+            (a > 0.0).then(|| {
+                format!(
+                    "{:.2} times Bechtel's at {} N m and {} rad/s",
+                    dw / a,
+                    p.torque,
+                    c.omega_driver
+                )
+            })
+        })
+        .collect();
+    if parts.is_empty() {
+        "no loaded steady point to compare in this run".into()
+    } else {
+        format!("in this run {}", parts.join(", "))
+    }
+}
 
 impl SpeedLossSummary {
     /// The summary of `cases` (in the configured order of speeds, at least one) of `model`
@@ -334,6 +368,12 @@ impl SpeedLossSummary {
             .first()
             .map(|c| (c.omega_driver, c.points.clone(), c.analytical.clone()))
             .unwrap_or_default();
+        let meaning = format!(
+            "{}{}{}",
+            SPEED_LOSS_MEANING[0],
+            bechtel_ratios(&cases),
+            SPEED_LOSS_MEANING[1]
+        );
         Self {
             omega_driver,
             model,
@@ -342,7 +382,7 @@ impl SpeedLossSummary {
             modal_coordinates: coordinates,
             cases,
             wall_time_s,
-            meaning: SPEED_LOSS_MEANING.to_string(),
+            meaning,
         }
     }
 }

@@ -37,6 +37,16 @@ fn speed_loss_prints_its_result_table() {
         assert!(row.contains(&d) && row.contains(&t1), "{row} vs {p}");
     }
     assert!(stdout.starts_with("speed loss, flowing belt"), "{stdout}");
+    // issue 39 item 3: the meaning compares this run with Bechtel's line, from its own numbers
+    // (reference: the summary's delta_omega and analytical at 4 N m)
+    let ratio =
+        v["points"][1]["delta_omega"].as_f64().unwrap() / v["analytical"][1].as_f64().unwrap();
+    let said = format!("in this run {ratio:.2} times Bechtel's at 4 N m and 22.6 rad/s");
+    assert!(
+        v["meaning"].as_str().unwrap().contains(&said),
+        "{said} not in {}",
+        v["meaning"]
+    );
     let _ = std::fs::remove_dir_all(out);
 }
 
