@@ -391,6 +391,100 @@ fn user_guide_blocks_parse_and_commands_run() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
+/// mdBook's anchor of a heading: lower case, spaces to `-`, other punctuation dropped.
+fn slug(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The relative links `](target)` of a Markdown text outside code blocks.
+fn links(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut in_code = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            in_code = !in_code;
+            continue;
+        }
+        if in_code {
+            continue;
+        }
+        let mut rest = line;
+        while let Some(k) = rest.find("](") {
+            rest = &rest[k + 2..];
+            let Some(end) = rest.find(')') else { break };
+            let target = &rest[..end];
+            if !target.contains("://") && !target.starts_with("mailto:") {
+                out.push(target.to_string());
+            }
+            rest = &rest[end..];
+        }
+    }
+    out
+}
+
+// The book's structure, as `mdbook build` checks it (issue 39 item 1: the guide built in CI,
+// without installing mdBook): SUMMARY.md lists every chapter of src/ once and only existing
+// files, and every relative link of a chapter reaches an existing chapter and, with an
+// anchor, one of its headings.
+#[test]
+fn the_books_summary_and_links_hold() {
+    let src = repo_root().join("docs/guide/src");
+    let summary = std::fs::read_to_string(src.join("SUMMARY.md")).unwrap();
+    let listed: Vec<String> = links(&summary);
+    let chapters: Vec<String> = markdown_files(&src)
+        .iter()
+        .map(|p| p.strip_prefix(&src).unwrap().to_string_lossy().into_owned())
+        .filter(|n| n != "SUMMARY.md")
+        .collect();
+    for c in &chapters {
+        let n = listed.iter().filter(|l| *l == c).count();
+        assert_eq!(n, 1, "{c} is listed {n} times in SUMMARY.md");
+    }
+    for l in &listed {
+        assert!(
+            chapters.contains(l),
+            "SUMMARY.md lists {l}, which is not in docs/guide/src"
+        );
+    }
+    let headings = |name: &str| -> Vec<String> {
+        std::fs::read_to_string(src.join(name))
+            .unwrap()
+            .lines()
+            .filter(|l| l.starts_with('#'))
+            .map(|l| slug(l.trim_start_matches('#')))
+            .collect()
+    };
+    for c in &chapters {
+        let text = std::fs::read_to_string(src.join(c)).unwrap();
+        for l in links(&text) {
+            let (file, anchor) = l.split_once('#').unwrap_or((&l, ""));
+            let file = if file.is_empty() { c.as_str() } else { file };
+            if !file.ends_with(".md") {
+                continue;
+            }
+            assert!(
+                chapters.iter().any(|x| x == file),
+                "{c}: link to {file}, no such chapter"
+            );
+            if !anchor.is_empty() {
+                assert!(
+                    headings(file).iter().any(|h| h == anchor),
+                    "{c}: link to {file}#{anchor}, no such heading"
+                );
+            }
+        }
+    }
+}
+
 fn md_stem(p: &Path) -> String {
     p.file_stem().unwrap().to_string_lossy().into_owned()
 }
