@@ -685,16 +685,15 @@ pub struct FeadSummary {
     pub dofs: usize,
     /// Steps taken.
     pub steps: usize,
-    /// What the numbers mean ([`FEAD_MEANING`]).
+    /// What the numbers mean: the drive's pulleys in travel order with their roles, then
+    /// [`FEAD_MEANING`] ([`fead_meaning`]).
     pub meaning: String,
 }
 
 /// The FEAD study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
-pub const FEAD_MEANING: &str = "A serpentine front-end accessory drive (six pulleys: crankshaft, \
-power steering, alternator, tensioner idler on a spring-loaded arm, water pump, a/c compressor) \
-run on the flowing-material belt model (with model = \"nodal\": the rotating-mesh nodal model on \
-a uniform loop; with model = \"ancf\": the ANCF belt, the slow reference; `model_settings` says \
-what was run) over an engine-speed sweep. The crank turns at the mean \
+pub const FEAD_MEANING: &str = "run on the flowing-material belt model (with model = \"nodal\": \
+the rotating-mesh nodal model on a uniform loop; with model = \"ancf\": the ANCF belt, the slow \
+reference; `model_settings` says what was run) over an engine-speed sweep. The crank turns at the mean \
 speed plus its firing-order fluctuation; each accessory carries its load torque. Per engine \
 speed, after a ramp and the shortest settling time (run.settle), windows of whole periods of the \
 lowest engine order (window_s) follow each other until two consecutive ones agree (every \
@@ -711,6 +710,33 @@ Campbell diagram: a span resonates where an order line crosses its frequency). A
 span's tension dips below 10 % of the installed tension, or a wrap slips as a whole, leaves the \
 linearised (flowing, nodal) model's range: its `linearisation` says why and its numbers only \
 show how the limit was left (the ANCF belt is not linearised: never flagged). The defaults are a plausible drive, not one published engine (see drives::fead).";
+
+/// The summary's `meaning` for `drive`: its pulleys in travel order with their roles (the
+/// crank, loaded accessories, idlers, the tensioner's idler), then [`FEAD_MEANING`].
+pub fn fead_meaning(drive: &Drive) -> String {
+    let tensioner = drive.arm().map(|a| a.tensioner.pulley);
+    let pulleys: Vec<String> = drive
+        .names()
+        .into_iter()
+        .zip(drive.roles())
+        .enumerate()
+        .map(|(k, (name, role))| {
+            let what = match role {
+                _ if k == 0 => "the crank",
+                _ if Some(k) == tensioner => "the tensioner's idler on its arm",
+                belt::Role::Driver => "speed-driven",
+                belt::Role::Driven => "loaded",
+                belt::Role::Idler => "idler",
+            };
+            format!("{name} ({what})")
+        })
+        .collect();
+    format!(
+        "A front-end accessory drive of {} pulleys in travel order: {}, {FEAD_MEANING}",
+        pulleys.len(),
+        pulleys.join(", ")
+    )
+}
 
 /// A sweep that stopped on a numerical failure, with the points completed before it.
 #[derive(Debug)]
@@ -987,7 +1013,7 @@ fn sweep<M: BeltModel>(
         force_measure: model.traits().force_measure.to_string(),
         dofs: model.n_q(),
         steps: 0,
-        meaning: FEAD_MEANING.to_string(),
+        meaning: fead_meaning(drive),
     };
     let fail = |error: MbdError, summary: &FeadSummary| {
         Box::new(FeadFailureOrInvalid::Numerical(FeadFailure {

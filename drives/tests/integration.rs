@@ -6,6 +6,7 @@ mod ancf_layout;
 mod common;
 mod crank_trace;
 mod fead_design;
+mod fead_meaning;
 mod fead_sweep;
 mod issue35_inputs;
 mod layout;
