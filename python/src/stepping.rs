@@ -14,7 +14,7 @@ use pyo3::prelude::*;
 
 /// Most steps one call may take (a run longer than this is a loop of calls; the bound keeps
 /// a typo such as `t_end = 1e9` from hanging the interpreter without a way to stop it).
-const MAX_STEPS_PER_CALL: f64 = 1e8;
+pub(crate) const MAX_STEPS_PER_CALL: f64 = 1e8;
 
 /// A stepping failure: `flowmbd.NumericalError` with the state reached as `partial`.
 fn step_error(py: Python<'_>, e: MbdError, state: &State) -> PyErr {

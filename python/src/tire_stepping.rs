@@ -4,6 +4,7 @@
 //! the cleat test's own step ([`tire::rig_step`]), so that a stepped run reproduces
 //! `flowmbd.tire.cleat` step by step.
 
+use crate::stepping::MAX_STEPS_PER_CALL;
 use crate::study_config;
 use crate::tire::{PyReducedTire, reduced_or, tire_error};
 use numpy::ndarray::Array2;
@@ -15,10 +16,6 @@ use tire::study::{FORCE_COLUMNS, force_row};
 use tire::{
     CleatStudyConfig, ReducedTire, RigConfig, RollingTire, TireError, rig_step, start_rolling,
 };
-
-/// Most steps one call may take (a longer run is a loop of calls; the bound keeps a typo such
-/// as `t_end = 1e9` from hanging the interpreter).
-const MAX_STEPS_PER_CALL: f64 = 1e8;
 
 self_cell::self_cell!(
     /// The rolling tire with the reduced tire it borrows.

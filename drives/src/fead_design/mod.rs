@@ -641,8 +641,10 @@ pub fn describe(drive: &Drive) -> String {
 
 /// The design point of `drive` at `engine_rpm` (pulley `driver` speed-driven at that speed),
 /// with its findings.
+/// The steady design at `engine_rpm` with its findings; `highest_order` (NaN: none) bounds
+/// the span–arm couplings reported ([`DesignIssue::SpanArmCoupling`]).
 fn design_point(
-    drive: &Drive, engine_rpm: f64, settings: &DesignSettings,
+    drive: &Drive, engine_rpm: f64, settings: &DesignSettings, highest_order: f64,
 ) -> Result<(DesignPoint, Vec<DesignIssue>), InvalidField> {
     let omega = engine_rpm * std::f64::consts::PI / 30.0;
     let s = steady_state(drive, omega)?;
@@ -812,6 +814,7 @@ fn design_point(
             Vec::new()
         }
     };
+    let reach = highest_order * engine_rpm / 60.0 * (1.0 + settings.coupling_band);
     if let Some(arm_dof) = model.names.iter().position(|x| x == "tensioner arm") {
         for sp in spans.iter().filter(|sp| sp.modes.coupled_through_arm) {
             for f in sp.modes.frequencies_hz.iter().flatten() {
@@ -819,7 +822,10 @@ fn design_point(
                     .iter()
                     .filter(|m| m.energy_share[arm_dof] >= 0.25)
                 {
-                    if (f / m.frequency_hz - 1.0).abs() <= settings.coupling_band {
+                    // above the frequency every engine order reaches at this speed (with
+                    // the band) the coupling is not driven: no finding
+                    let driven = highest_order.is_nan() || f.min(m.frequency_hz) <= reach;
+                    if driven && (f / m.frequency_hz - 1.0).abs() <= settings.coupling_band {
                         issues.push(DesignIssue::SpanArmCoupling {
                             engine_rpm,
                             from: sp.from.clone(),
@@ -872,7 +878,7 @@ fn design_point(
 fn curve_values(
     drive: &Drive, engine_rpm: f64, settings: &DesignSettings,
 ) -> Result<Vec<Option<f64>>, InvalidField> {
-    let (p, _) = design_point(drive, engine_rpm, settings)?;
+    let (p, _) = design_point(drive, engine_rpm, settings, f64::NAN)?;
     // one entry per rotational coordinate (`None` where the eigen solution failed)
     let mut out: Vec<Option<f64>> = (0..p.rotational_dofs.len())
         .map(|i| p.rotational_modes.get(i).map(|m| m.frequency_hz))
@@ -1034,7 +1040,7 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
             );
         }
     }
-    // the highest engine order (NaN without orders: every coupling is kept)
+    // the highest engine order (NaN without orders: every span–arm coupling is reported)
     let highest_order = cfg
         .engine
         .orders
@@ -1042,16 +1048,7 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
         .map(|o| o.order)
         .fold(f64::NAN, f64::max);
     for &rpm in &cfg.engine.speeds_rpm {
-        let (p, mut issues) = design_point(&drive, rpm, &cfg.design)?;
-        // a span–arm coupling above the frequency every engine order reaches at this speed
-        // (with the coupling band) is not driven: no finding
-        let reach = highest_order * rpm / 60.0 * (1.0 + cfg.design.coupling_band);
-        issues.retain(|i| match i {
-            DesignIssue::SpanArmCoupling {
-                span_hz, mode_hz, ..
-            } => highest_order.is_nan() || span_hz.min(*mode_hz) <= reach,
-            _ => true,
-        });
+        let (p, issues) = design_point(&drive, rpm, &cfg.design, highest_order)?;
         findings.extend(issues.into_iter().map(Finding::from));
         points.push(p);
     }
@@ -1199,7 +1196,7 @@ mod tests {
             wedge_angle: 40f64.to_radians(),
         });
         let drive = cfg.drive.resolve().unwrap();
-        let (p, _) = design_point(&drive, 1500.0, &cfg.design).unwrap();
+        let (p, _) = design_point(&drive, 1500.0, &cfg.design, f64::NAN).unwrap();
         let mu = drive.contact().friction.coefficient();
         for (pl, pulley) in p.pulleys.iter().zip(drive.pulleys()) {
             let eff = match pulley.side {
@@ -1358,7 +1355,7 @@ mod tests {
     fn default_fead_invariants() {
         let cfg = DesignConfig::default();
         let drive = cfg.drive.resolve().unwrap();
-        let (p, _) = design_point(&drive, 1500.0, &cfg.design).unwrap();
+        let (p, _) = design_point(&drive, 1500.0, &cfg.design, f64::NAN).unwrap();
         for (k, pl) in p.pulleys.iter().enumerate() {
             let m = &drive.pulleys()[k].motion;
             if m.is_free() {
