@@ -534,6 +534,41 @@ class Simulation:
         ``my_N_m``, ``mz_N_m`` [N m])."""
         return self._sim.forces()
 
+    def state(self) -> dict:
+        """The state (copies), to continue from with :meth:`set_state`: ``t`` [s]; the
+        simulation's reduced coordinates ``z``, their rates ``zd`` and accelerations ``zdd``
+        and the generalized-alpha pseudo-accelerations ``acc`` (arrays; the modal, possibly
+        mirror-half, coordinates the simulation steps: :attr:`coordinates` gives the tire's);
+        the spin angle ``theta`` [rad], ``theta_d`` [rad/s], ``theta_dd`` and ``theta_acc``
+        [rad/s^2]; the normal force per contact node ``lambda`` [N], the friction force per
+        node ``friction`` (n x 3) [N] and the net contact force ``contact_force`` (3) [N]."""
+        return self._sim.state()
+
+    def set_state(self, state: Mapping[str, Any]) -> None:
+        """Continue from ``state``, a dict of :meth:`state` saved earlier from this simulation
+        or one of the same tire and configuration. The following steps depend on the state
+        only: restarted here or in a fresh simulation they are the same; against the run
+        that was never stopped they differ by what re-forming the spin-frozen matrices
+        changes (on the test tire 5e-4 of the load before a cleat; Rust:
+        ``RollingTire::set_state``). Raises ``ValueError`` naming the key (``state.z``) of a
+        missing key, a wrong length or a value that is not finite."""
+        import numpy as np
+
+        if not isinstance(state, Mapping):
+            raise ValueError(f"state: expected a dict from state(), got {type(state).__name__}")
+        arrays = ("z", "zd", "zdd", "acc", "lambda", "contact_force")
+        converted = {}
+        for k, v in state.items():
+            if k != "friction" and k not in arrays:
+                converted[k] = _args.number(f"state.{k}", v)
+                continue
+            try:
+                a = np.ascontiguousarray(v, dtype=float)
+                converted[k] = a.reshape(-1, 3) if k == "friction" else a.ravel()
+            except (TypeError, ValueError) as e:
+                raise ValueError(f"state.{k}: expected an array of numbers ({e})") from None
+        self._sim.set_state(converted)
+
     def step(self, n: int = 1) -> None:
         """Take ``n`` rig steps (a failed step raises ``flowmbd.NumericalError``)."""
         self._sim.step(_args.count("n", n))

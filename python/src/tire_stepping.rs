@@ -8,13 +8,14 @@ use crate::stepping::MAX_STEPS_PER_CALL;
 use crate::study_config;
 use crate::tire::{PyReducedTire, reduced_or, tire_error};
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::Arc;
 use tire::study::{FORCE_COLUMNS, force_row};
 use tire::{
-    CleatStudyConfig, ReducedTire, RigConfig, RollingTire, TireError, rig_step, start_rolling,
+    CleatStudyConfig, ReducedTire, RigConfig, RollingState, RollingTire, TireError, rig_step,
+    start_rolling,
 };
 
 self_cell::self_cell!(
@@ -151,6 +152,89 @@ impl PyTireSimulation {
             d.set_item(*k, x)?;
         }
         Ok(d)
+    }
+
+    /// The state (`tire::RollingState`, copies) as a dict: `t` \[s\], the simulation's reduced
+    /// coordinates `z`, `zd`, `zdd` and the generalized-α pseudo-accelerations `acc`, the spin
+    /// angle `theta` \[rad\], `theta_d` \[rad/s\], `theta_dd`, `theta_acc` \[rad/s²\], the
+    /// normal force per contact node `lambda` \[N\], the friction force per node `friction`
+    /// (n × 3) \[N\] and the net contact force `contact_force` (3) \[N\].
+    fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.rolling.with_dependent(|_, sim| sim.state.clone());
+        let d = PyDict::new(py);
+        d.set_item("t", s.t)?;
+        for (k, v) in [("z", s.z), ("zd", s.zd), ("zdd", s.zdd), ("acc", s.acc)] {
+            d.set_item(k, v.into_pyarray(py))?;
+        }
+        for (k, v) in [
+            ("theta", s.theta),
+            ("theta_d", s.theta_d),
+            ("theta_dd", s.theta_dd),
+            ("theta_acc", s.theta_acc),
+        ] {
+            d.set_item(k, v)?;
+        }
+        d.set_item("lambda", s.lambda.into_pyarray(py))?;
+        let f = &s.friction;
+        d.set_item(
+            "friction",
+            Array2::from_shape_fn((f.len(), 3), |(i, j)| f[i][j]).into_pyarray(py),
+        )?;
+        d.set_item("contact_force", s.contact_force.to_vec().into_pyarray(py))?;
+        Ok(d)
+    }
+
+    /// Continue from a state of [`Self::state`] (a dict with its keys, float64 arrays), e.g.
+    /// one saved earlier (`tire::RollingTire::set_state`).
+    fn set_state(&mut self, py: Python<'_>, state: &Bound<'_, PyDict>) -> PyResult<()> {
+        let get = |k: &str| -> PyResult<Bound<'_, PyAny>> {
+            state.get_item(k)?.ok_or_else(|| {
+                pyo3::exceptions::PyValueError::new_err(format!("state: missing key '{k}'"))
+            })
+        };
+        let num = |k: &str| -> PyResult<f64> { get(k)?.extract() };
+        let vec = |k: &str| -> PyResult<Vec<f64>> {
+            Ok(get(k)?
+                .extract::<PyReadonlyArray1<'_, f64>>()?
+                .as_array()
+                .to_vec())
+        };
+        let friction = get("friction")?.extract::<PyReadonlyArray2<'_, f64>>()?;
+        let friction = friction.as_array();
+        if friction.ncols() != 3 {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "state.friction: {} columns, must be 3 (x, y, z per contact node)",
+                friction.ncols()
+            )));
+        }
+        let contact_force = vec("contact_force")?;
+        let contact_force: [f64; 3] = contact_force.as_slice().try_into().map_err(|_| {
+            pyo3::exceptions::PyValueError::new_err(format!(
+                "state.contact_force: {} values, must be 3",
+                contact_force.len()
+            ))
+        })?;
+        let s = RollingState {
+            t: num("t")?,
+            z: vec("z")?,
+            zd: vec("zd")?,
+            zdd: vec("zdd")?,
+            acc: vec("acc")?,
+            theta: num("theta")?,
+            theta_d: num("theta_d")?,
+            theta_dd: num("theta_dd")?,
+            theta_acc: num("theta_acc")?,
+            lambda: vec("lambda")?,
+            friction: friction
+                .rows()
+                .into_iter()
+                .map(|r| [r[0], r[1], r[2]])
+                .collect(),
+            contact_force,
+        };
+        self.rolling
+            .with_dependent_mut(|_, sim| sim.set_state(s))
+            .map_err(|e| tire_error(py, e, None))
     }
 
     /// Take `n` rig steps; a failed step raises `flowmbd.NumericalError` (`partial`: the time

@@ -39,3 +39,49 @@ def test_drive_torque_pushes_the_tire_forward(reduced):
         driven.drive_torque = float("nan")
     with pytest.raises(ValueError, match="speed_kmh"):
         flowmbd.tire.Simulation({"rig": {"speed_kmh": -1.0}}, tire=reduced)
+
+
+def test_a_saved_state_restarts_the_run(reduced):
+    # reference: the run that was never stopped (Rust test tire_restart holds the same through
+    # a cleat impact): a restart in a fresh simulation and one in the same simulation step
+    # alike, and follow the uninterrupted run to the effect of re-formed matrices
+    sim = flowmbd.tire.Simulation(RIG, tire=reduced)
+    sim.step(100)
+    saved = sim.state()
+    load = sim.forces()["fy_N"]  # the carried load, about 4.5 kN
+    assert set(saved) == {"t", "z", "zd", "zdd", "acc", "theta", "theta_d", "theta_dd",
+                          "theta_acc", "lambda", "friction", "contact_force"}
+    assert saved["friction"].shape == (33, 3) and saved["lambda"].shape == (33,)
+
+    def run(s):
+        rows = []
+        for _ in range(50):
+            s.step()
+            rows.append([s.forces()[c] for c in ("fx_N", "fy_N", "normal_sum_N")])
+        return np.array(rows)
+
+    uninterrupted = run(sim)
+    sim.set_state(saved)
+    assert sim.t == saved["t"]
+    again = run(sim)
+    fresh = flowmbd.tire.Simulation(RIG, tire=reduced)
+    fresh.set_state({k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in saved.items()})
+    other = run(fresh)
+    np.testing.assert_allclose(again, other, rtol=0, atol=1e-9 * load)
+    np.testing.assert_allclose(again, uninterrupted, rtol=0, atol=1e-3 * load)
+
+
+def test_a_bad_state_names_the_key(reduced):
+    sim = flowmbd.tire.Simulation(RIG, tire=reduced)
+    good = sim.state()
+    with pytest.raises(ValueError, match="missing key 'acc'"):
+        sim.set_state({k: v for k, v in good.items() if k != "acc"})
+    with pytest.raises(ValueError, match=r"state\.z: .*values"):
+        sim.set_state({**good, "z": good["z"][:-1]})
+    with pytest.raises(ValueError, match=r"state\.lambda"):
+        sim.set_state({**good, "lambda": np.full_like(good["lambda"], np.nan)})
+    with pytest.raises(ValueError, match=r"state\.t: expected a number"):
+        sim.set_state({**good, "t": "later"})
+    with pytest.raises(ValueError, match="state: expected a dict"):
+        sim.set_state([1, 2])
+    sim.step(1)

@@ -438,6 +438,86 @@ impl<'a> RollingTire<'a> {
         &self.stepper.correction().ground
     }
 
+    /// Continues from `state`, a [`RollingTire::state`] saved earlier from this simulation (or
+    /// one of the same tire, configuration and [`RollingTire::symmetry`]): its coordinates are
+    /// those of [`RollingTire::reduced`], its contact forces the next step's warm start. With
+    /// the generalized-α accelerations it holds, this is the stepper's whole memory
+    /// ([`AlphaStepper::resume`]). The next step forms the spin-dependent matrices and the
+    /// iteration matrix at the state's spin rate and starts the contact solve from the state's
+    /// forces ([`TireContact`] keeps no older history), so the steps after a restart depend on
+    /// the state only: a restart in this simulation and one in a fresh simulation step alike.
+    /// Against the run that was never stopped they differ by what a re-formed matrix changes
+    /// anywhere in a run (the spin-frozen matrices are re-formed after a drift of
+    /// `spin_tolerance`/`matrix_tolerance`; the test `tire_restart` measures it). Errors:
+    /// lengths other than the simulation's coordinates and contact nodes, values that are not
+    /// finite, negative normal forces.
+    pub fn set_state(&mut self, state: RollingState) -> Result<(), TireError> {
+        let (nz, nc) = (self.sys.reduced().n_z(), self.sys.reduced().n_contact());
+        let lengths = [
+            ("z", state.z.len(), nz),
+            ("zd", state.zd.len(), nz),
+            ("zdd", state.zdd.len(), nz),
+            ("acc", state.acc.len(), nz),
+            ("lambda", state.lambda.len(), nc),
+            ("friction", state.friction.len(), nc),
+        ];
+        for (field, n, want) in lengths {
+            if n != want {
+                return Err(invalid(
+                    format!("state.{field}"),
+                    format!("{n} values, the simulation has {want}"),
+                ));
+            }
+        }
+        let scalars = [
+            ("t", state.t),
+            ("theta", state.theta),
+            ("theta_d", state.theta_d),
+            ("theta_dd", state.theta_dd),
+            ("theta_acc", state.theta_acc),
+        ];
+        let friction: Vec<f64> = state.friction.iter().flatten().copied().collect();
+        let arrays: [(&str, &[f64]); 5] = [
+            ("zdd", &state.zdd),
+            ("acc", &state.acc),
+            ("lambda", &state.lambda),
+            ("friction", &friction),
+            ("contact_force", &state.contact_force),
+        ];
+        let bad = scalars
+            .iter()
+            .find(|(_, x)| !x.is_finite())
+            .map(|(f, _)| *f)
+            .or_else(|| {
+                arrays
+                    .iter()
+                    .find(|(_, x)| x.iter().any(|v| !v.is_finite()))
+                    .map(|(f, _)| *f)
+            });
+        if let Some(field) = bad {
+            return Err(invalid(format!("state.{field}"), "a value is not finite"));
+        }
+        if state.lambda.iter().any(|&l| l < 0.0) {
+            return Err(invalid(
+                "state.lambda",
+                "a normal force is negative (contact pushes only)",
+            ));
+        }
+        let join = |x: f64, rest: &[f64]| [&[x][..], rest].concat();
+        let q = join(state.theta, &state.z);
+        let v = join(state.theta_d, &state.zd);
+        let vdot = join(state.theta_dd, &state.zdd);
+        let a = join(state.theta_acc, &state.acc);
+        self.stepper
+            .resume(&self.sys, State::new(state.t, q, v), &vdot, &a)
+            .map_err(|e| invalid("state", e.to_string()))?;
+        self.stepper
+            .correction_mut()
+            .restart(&state.lambda, &state.friction);
+        self.state = state;
+        Ok(())
+    }
+
     /// Advance one time step of mbd-core's generalized-α stepper (module documentation): the
     /// spin-dependent matrices are re-formed first if θ̇ has drifted by more than
     /// `spin_tolerance`.

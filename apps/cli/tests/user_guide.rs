@@ -485,6 +485,53 @@ fn the_books_summary_and_links_hold() {
     }
 }
 
+// The guide builds with mdBook (issue 39 item 1), as `mdbook build docs/guide` does, through
+// mdBook's own library (no binary to install), into a scratch folder: every chapter of
+// SUMMARY.md becomes a page (README.md: index.html), and every heading of a chapter gets the
+// anchor our link check above expects (mdBook's slugs, not ours, decide).
+#[test]
+fn the_book_builds_with_mdbook() {
+    let root = repo_root().join("docs/guide");
+    let out = scratch("book");
+    let mut book = mdbook_driver::MDBook::load(&root)
+        .unwrap_or_else(|e| panic!("docs/guide: mdBook cannot load the book: {e:#}"));
+    book.config.build.build_dir = out.clone();
+    book.build()
+        .unwrap_or_else(|e| panic!("docs/guide: mdBook cannot build the book: {e:#}"));
+    let src = root.join("src");
+    let summary = std::fs::read_to_string(src.join("SUMMARY.md")).unwrap();
+    let listed = links(&summary);
+    assert!(
+        listed.len() >= 5,
+        "SUMMARY.md lists {} chapters",
+        listed.len()
+    );
+    for chapter in &listed {
+        let page = match chapter.as_str() {
+            "README.md" => "index.html".to_string(),
+            c => c.replace(".md", ".html"),
+        };
+        let html = std::fs::read_to_string(out.join(&page))
+            .unwrap_or_else(|e| panic!("{chapter}: no page {page} in the built book: {e}"));
+        let text = std::fs::read_to_string(src.join(chapter)).unwrap();
+        let mut fenced = false;
+        for line in text.lines() {
+            if line.trim_start().starts_with("```") {
+                fenced = !fenced;
+            }
+            if fenced || !line.starts_with('#') {
+                continue;
+            }
+            let id = slug(line.trim_start_matches('#'));
+            assert!(
+                html.contains(&format!("id=\"{id}\"")),
+                "{chapter}: heading {line:?} has no anchor #{id} in the built {page}"
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
 fn md_stem(p: &Path) -> String {
     p.file_stem().unwrap().to_string_lossy().into_owned()
 }

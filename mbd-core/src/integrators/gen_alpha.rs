@@ -523,6 +523,40 @@ impl<C> AlphaStepper<C> {
         Ok(())
     }
 
+    /// Continues from a state saved earlier from this stepper (or one of the same model):
+    /// `state`, its accelerations `v̇` ([`AlphaStepper::acceleration`]) and algorithmic
+    /// accelerations `a` ([`AlphaStepper::algorithmic_acceleration`]), which together are the
+    /// generalized-α scheme's whole memory (Arnold & Brüls 2007, (8)–(10)). The factorisations
+    /// are dropped (the next step factors at the resumed state, so that a resumed run does
+    /// not depend on where this stepper was before: with [`NewtonUpdate::Frozen`] a kept
+    /// factorisation would); the statistics are kept. Errors: a length other than
+    /// `n_q`/`n_v`, or a value that is not finite.
+    pub fn resume<S: SecondOrderSystem + ?Sized>(
+        &mut self, sys: &S, state: State, vdot: &[f64], a: &[f64],
+    ) -> Result<(), MbdError> {
+        state.check(sys)?;
+        for (what, x) in [("acceleration", vdot), ("algorithmic acceleration", a)] {
+            if x.len() != self.vdot.len() {
+                return Err(MbdError::InvalidInput {
+                    item: format!("generalized-alpha {what}"),
+                    reason: format!("{} values for n_v = {}", x.len(), self.vdot.len()),
+                });
+            }
+            if x.iter().any(|v| !v.is_finite()) {
+                return Err(MbdError::NonFinite {
+                    what: format!("generalized-alpha {what}"),
+                    t: state.t,
+                });
+            }
+        }
+        self.vdot.copy_from_slice(vdot);
+        self.a.copy_from_slice(a);
+        self.state = state;
+        self.matrix.invalidate();
+        self.spare = None;
+        Ok(())
+    }
+
     /// Current Lagrange multipliers `λ` (generalized reactions `−Dᵀλ`).
     pub fn lambda(&self) -> &[f64] {
         &self.lambda

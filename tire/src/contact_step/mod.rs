@@ -193,6 +193,21 @@ impl TireContact {
         }
     }
 
+    /// Restart from the contact forces `lambda` \[N\] and `friction` \[N\] of a saved state
+    /// ([`crate::RollingTire::set_state`]): they become the warm start of the next solve, with
+    /// no older history (the start two steps back is the same one), every node is searched
+    /// again and counts as a candidate of the previous step, so that the restarted steps do
+    /// not depend on the steps this contact took before. Lengths are the caller's to check.
+    pub(crate) fn restart(&mut self, lambda: &[f64], friction: &[[f64; 3]]) {
+        self.lambda.copy_from_slice(lambda);
+        self.friction.copy_from_slice(friction);
+        let w = &mut self.work;
+        w.lambda2.copy_from_slice(lambda);
+        w.friction2.copy_from_slice(friction);
+        w.was_cand.iter_mut().for_each(|c| *c = true);
+        w.bound.valid = false;
+    }
+
     /// The settings.
     pub fn config(&self) -> &RollingConfig {
         &self.cfg
