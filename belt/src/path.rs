@@ -553,6 +553,30 @@ mod tests {
         Pulley::new("p", center, radius, side, Motion::idler(1e-3))
     }
 
+    /// An inside, a back-side and an inside pulley of different radii.
+    fn three_pulleys() -> [Pulley; 3] {
+        [
+            wheel([0.0, 0.0], 0.05, WrapSide::Inside),
+            wheel([0.25, 0.08], 0.03, WrapSide::Outside),
+            wheel([0.5, 0.0], 0.07, WrapSide::Inside),
+        ]
+    }
+
+    /// The mid-point of the span `sp` \[m\].
+    fn span_midpoint(sp: &SpanLine) -> [f64; 2] {
+        [
+            sp.start[0] + 0.5 * sp.length * sp.direction[0],
+            sp.start[1] + 0.5 * sp.length * sp.direction[1],
+        ]
+    }
+
+    /// `n` points of `path` equally spaced along its length, from `s = 0`.
+    fn polyline(path: &BeltPath, n: usize) -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|k| path.point(path.length() * k as f64 / n as f64).position)
+            .collect()
+    }
+
     impl BeltPath {
         /// Two pulleys at (0, 0) and (`center_distance`, 0) (Ribaric Table 6-1's geometry).
         fn two_pulleys(center_distance: f64, r1: f64, r2: f64) -> Result<Self, InvalidField> {
@@ -574,14 +598,9 @@ mod tests {
             (spans[0].from, spans[0].to, spans[1].from, spans[1].to),
             (0, 1, 1, 0)
         );
-        let pts: Vec<[f64; 2]> = (0..400)
-            .map(|k| path.point(path.length() * k as f64 / 400.0).position)
-            .collect();
+        let pts = polyline(&path, 400);
         for sp in &spans {
-            let m = [
-                sp.start[0] + 0.5 * sp.length * sp.direction[0],
-                sp.start[1] + 0.5 * sp.length * sp.direction[1],
-            ];
+            let m = span_midpoint(sp);
             let (u, w) = sp.local(m);
             assert!((u - 0.5 * sp.length).abs() < 1e-12 && w.abs() < 1e-12);
             assert!(sp.middle_half_contains(m));
@@ -591,10 +610,7 @@ mod tests {
         // the spans of this drive lie 0.13 m apart, closer than a quarter span (0.11 m) from
         // each other's middle band: each mid-point is still assigned to its own span
         for (k, sp) in spans.iter().enumerate() {
-            let m = [
-                sp.start[0] + 0.5 * sp.length * sp.direction[0],
-                sp.start[1] + 0.5 * sp.length * sp.direction[1],
-            ];
+            let m = span_midpoint(sp);
             assert_eq!(BeltPath::span_middle_of(&spans, m), Some(k));
         }
     }
@@ -608,15 +624,9 @@ mod tests {
     // changes the two levers by ∓φ L/2.
     #[test]
     fn lines_of_action_have_the_radius_as_lever_on_the_path() {
-        let pulleys = [
-            wheel([0.0, 0.0], 0.05, WrapSide::Inside),
-            wheel([0.25, 0.08], 0.03, WrapSide::Outside),
-            wheel([0.5, 0.0], 0.07, WrapSide::Inside),
-        ];
+        let pulleys = three_pulleys();
         let path = BeltPath::new(&pulleys).unwrap();
-        let pts: Vec<[f64; 2]> = (0..2000)
-            .map(|k| path.point(path.length() * k as f64 / 2000.0).position)
-            .collect();
+        let pts = polyline(&path, 2000);
         let turn = |k: usize| pulleys[k].side.turn();
         let lines = path.lines_of_action(&pts);
         let spans = path.spans();
@@ -634,10 +644,7 @@ mod tests {
             }
             let (e, phi) = (2e-4, 1e-4);
             let n = [-sp.direction[1], sp.direction[0]];
-            let mid = [
-                sp.start[0] + 0.5 * sp.length * sp.direction[0],
-                sp.start[1] + 0.5 * sp.length * sp.direction[1],
-            ];
+            let mid = span_midpoint(sp);
             let moved: Vec<[f64; 2]> = pts
                 .iter()
                 .filter(|&&p| sp.middle_half_contains(p) && sp.local(p).1.abs() < 1e-9)
@@ -663,11 +670,7 @@ mod tests {
     // over R (definition of the path's arcs), on an inside and a back-side pulley
     #[test]
     fn angle_from_inlet_follows_the_arc_length() {
-        let pulleys = [
-            wheel([0.0, 0.0], 0.05, WrapSide::Inside),
-            wheel([0.25, 0.08], 0.03, WrapSide::Outside),
-            wheel([0.5, 0.0], 0.07, WrapSide::Inside),
-        ];
+        let pulleys = three_pulleys();
         let path = BeltPath::new(&pulleys).unwrap();
         for (k, pulley) in pulleys.iter().enumerate() {
             let (a, len) = path.arc_of(k).unwrap();

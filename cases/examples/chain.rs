@@ -1,21 +1,13 @@
 //! Spherical-joint chain demo: integrates an N-link chain with generalized-α and prints the
 //! run statistics. Usage: `cargo run --release -p flowmbd-cases --example chain -- [N] [t_end]`.
 
-use flowmbd_cases::chain::spherical_chain;
+mod common;
+
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::{AlphaConfig, GeneralizedAlpha};
 
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(100);
-    let t_end: f64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(0.05);
-    let (sys, s0) = match spherical_chain(n, 0.1) {
-        Ok(x) => x,
-        Err(e) => {
-            eprintln!("error: {e}");
-            std::process::exit(2);
-        }
-    };
+    let (n, t_end, sys, s0) = common::chain_from_args::<f64>(0.05);
     let ga = GeneralizedAlpha::new(AlphaConfig {
         h: 1e-3,
         rho_inf: 0.8,

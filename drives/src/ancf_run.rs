@@ -354,6 +354,48 @@ impl<'a> RunPlan<'a> {
     }
 }
 
+/// The configuration of a study that runs either ANCF drive over time (`flowmbd-belt ancf`:
+/// [`crate::ancf_study::AncfStudyConfig`], `plate`: [`crate::plate_study::PlateStudyConfig`]):
+/// its summary and meaning, its end time and its [`RunPlan`]. Implemented by
+/// `drive_study_config!`.
+pub trait DriveStudyConfig {
+    /// The summary of a run.
+    type Summary: Serialize;
+    /// What the summary's numbers mean.
+    const MEANING: &'static str;
+    /// The end time `t_end` \[s\] (set by `--t-end`).
+    fn t_end_mut(&mut self) -> &mut f64;
+    /// The run's plan: `t_end`, the integrator and the output's sampling intervals.
+    fn plan(&self) -> RunPlan<'_>;
+}
+
+/// Implements [`DriveStudyConfig`] for a study configuration `$config` with the fields `t_end`,
+/// `integrator` and `output.history_interval`, `output.vtk_interval`, whose summary is
+/// `$summary` with the meaning `$meaning`.
+macro_rules! drive_study_config {
+    ($config:ty, $summary:ty, $meaning:expr) => {
+        impl $crate::ancf_run::DriveStudyConfig for $config {
+            type Summary = $summary;
+            const MEANING: &'static str = $meaning;
+
+            fn t_end_mut(&mut self) -> &mut f64 {
+                &mut self.t_end
+            }
+
+            fn plan(&self) -> $crate::ancf_run::RunPlan<'_> {
+                let o = &self.output;
+                $crate::ancf_run::RunPlan::new(
+                    self.t_end,
+                    &self.integrator,
+                    o.history_interval,
+                    o.vtk_interval,
+                )
+            }
+        }
+    };
+}
+pub(crate) use drive_study_config;
+
 /// The end of a study's run of either ANCF drive (`flowmbd-belt ancf`, `plate`).
 #[derive(Debug, Clone)]
 pub struct StudyEnd<S, H = ()> {

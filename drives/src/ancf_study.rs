@@ -6,8 +6,8 @@
 //! [`tight_slack`].
 
 use crate::ancf_run::{
-    Due, EndReport, RunEnd, RunPlan, StudyEnd, closure_on_path, roles, run_reported, tight_slack,
-    validate_run,
+    DriveStudyConfig, Due, EndReport, RunEnd, StudyEnd, closure_on_path, roles, run_reported,
+    tight_slack, validate_run,
 };
 use ancf::AncfError;
 use ancf::belt_drive::{
@@ -88,18 +88,7 @@ impl Default for AncfStudyConfig {
 
 impl mbd_core::config::PartialRules for AncfStudyConfig {}
 
-impl AncfStudyConfig {
-    /// The run's plan: `t_end`, the integrator and the output's sampling intervals.
-    pub fn plan(&self) -> RunPlan<'_> {
-        let o = &self.output;
-        RunPlan::new(
-            self.t_end,
-            &self.integrator,
-            o.history_interval,
-            o.vtk_interval,
-        )
-    }
-}
+crate::ancf_run::drive_study_config!(AncfStudyConfig, AncfStudySummary, ANCF_MEANING);
 
 impl Validate for AncfStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {

@@ -7,7 +7,7 @@
 //! is Bechtel's steady model ([`crate::bechtel_steady`]) for the same belt.
 
 use crate::ancf_run::{
-    DriveRun, Due, EndReport, RunEnd, RunPlan, StudyEnd, roles, run_reported, tight_slack,
+    DriveRun, DriveStudyConfig, Due, EndReport, RunEnd, StudyEnd, roles, run_reported, tight_slack,
     validate_run,
 };
 use crate::bechtel_steady::{SteadyDriveInput, SteadyPoint, SteadySolution, solve_steady};
@@ -130,18 +130,7 @@ impl PlateStudyConfig {
 
 impl mbd_core::config::PartialRules for PlateStudyConfig {}
 
-impl PlateStudyConfig {
-    /// The run's plan: `t_end`, the integrator and the output's sampling intervals.
-    pub fn plan(&self) -> RunPlan<'_> {
-        let o = &self.output;
-        RunPlan::new(
-            self.t_end,
-            &self.integrator,
-            o.history_interval,
-            o.vtk_interval,
-        )
-    }
-}
+crate::ancf_run::drive_study_config!(PlateStudyConfig, PlateStudySummary, PLATE_MEANING);
 
 impl Validate for PlateStudyConfig {
     fn validate(&self) -> Result<(), InvalidField> {

@@ -10,17 +10,15 @@
 //! scipy and scikit-sparse). The matrices are written once per size into DIR (default: the
 //! system temp folder) as `K.mtx`, `M.mtx`; neither side's reading is timed.
 
+mod common;
+
+use common::{arg, free_blocks, k_and_m};
 use fe_model::eigen::{SparseEigenOptions, sparse_modes};
 use fe_model::generate::{TireConfig, tire};
 use fe_model::io::mtx;
-use fe_model::{DofSplit, MassKind};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
-
-fn arg(name: &str) -> Option<String> {
-    std::env::args().skip_while(|a| a != name).nth(1)
-}
 
 /// The peer's printed `key = value` line.
 fn field(out: &str, key: &str) -> Option<String> {
@@ -61,14 +59,8 @@ fn main() {
             ..TireConfig::default()
         };
         let t = tire(&cfg).expect("tire generation");
-        let (k, m) = t
-            .model
-            .k_and_m(MassKind::Consistent, true)
-            .expect("assembly");
-        let fixed = t.model.mesh.node_set_dofs("rim", None).expect("rim set");
-        let p = DofSplit::fixed(k.nrows(), &fixed).expect("partition");
-        let kff = p.block(k.as_ref(), false, false).expect("K_ff");
-        let mff = p.block(m.as_ref(), false, false).expect("M_ff");
+        let (k, m) = k_and_m(&t);
+        let (kff, mff) = free_blocks(&t, &k, &m);
         let (kp, mp) = (dir.join("K.mtx"), dir.join("M.mtx"));
         mtx::write_sparse(&kp, kff.as_ref(), mtx::Symmetry::Symmetric).expect("K.mtx");
         mtx::write_sparse(&mp, mff.as_ref(), mtx::Symmetry::Symmetric).expect("M.mtx");

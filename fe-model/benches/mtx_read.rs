@@ -12,16 +12,14 @@
 //! including the conversion to a CSC matrix, and `ratio = ours / peer` for each; ours also
 //! straight into CSC (`mtx::read_sparse_with`), against scipy's read + CSC and read alone.
 
+mod common;
+
+use common::{arg, free_blocks, k_and_m};
 use fe_model::generate::{TireConfig, tire};
 use fe_model::io::mtx;
-use fe_model::{DofSplit, MassKind};
 use std::path::PathBuf;
 use std::process::Command;
 use std::time::Instant;
-
-fn arg(name: &str) -> Option<String> {
-    std::env::args().skip_while(|a| a != name).nth(1)
-}
 
 fn main() {
     let python = arg("--python").unwrap_or_else(|| "python3".into());
@@ -37,14 +35,8 @@ fn main() {
     let (kp, mp) = (dir.join("K.mtx"), dir.join("M.mtx"));
     if !(kp.is_file() && mp.is_file()) {
         let t = tire(&TireConfig::default()).expect("tire generation");
-        let (k, m) = t
-            .model
-            .k_and_m(MassKind::Consistent, true)
-            .expect("assembly");
-        let fixed = t.model.mesh.node_set_dofs("rim", None).expect("rim set");
-        let p = DofSplit::fixed(k.nrows(), &fixed).expect("partition");
-        let kff = p.block(k.as_ref(), false, false).expect("K_ff");
-        let mff = p.block(m.as_ref(), false, false).expect("M_ff");
+        let (k, m) = k_and_m(&t);
+        let (kff, mff) = free_blocks(&t, &k, &m);
         mtx::write_sparse(&kp, kff.as_ref(), mtx::Symmetry::Symmetric).expect("K.mtx");
         mtx::write_sparse(&mp, mff.as_ref(), mtx::Symmetry::Symmetric).expect("M.mtx");
     }

@@ -5,28 +5,24 @@
 //! M.mtx, K.mtx (free DOFs)). The side-by-side comparison with scipy's eigsh at three sizes is
 //! `benches/eigen_vs_scipy.rs`.
 
+mod common;
+
+use common::{arg, free_blocks, k_and_m};
 use fe_model::eigen::{SparseEigenOptions, sparse_modes};
 use fe_model::generate::{TireConfig, tire};
 use fe_model::io::mtx;
-use fe_model::{DofSplit, MassKind};
 use std::time::Instant;
 
 fn main() {
-    let export = std::env::args().skip_while(|a| a != "--export").nth(1);
+    let export = arg("--export");
     let cfg = TireConfig::default();
     let t0 = Instant::now();
     let tire = tire(&cfg).expect("tire generation");
     let t_gen = t0.elapsed();
     let t1 = Instant::now();
-    let (k, m) = tire
-        .model
-        .k_and_m(MassKind::Consistent, true)
-        .expect("assembly");
+    let (k, m) = k_and_m(&tire);
     let t_asm = t1.elapsed();
-    let fixed = tire.model.mesh.node_set_dofs("rim", None).expect("rim set");
-    let p = DofSplit::fixed(k.nrows(), &fixed).expect("partition");
-    let kff = p.block(k.as_ref(), false, false).expect("K_ff");
-    let mff = p.block(m.as_ref(), false, false).expect("M_ff");
+    let (kff, mff) = free_blocks(&tire, &k, &m);
     if let Some(dir) = export {
         std::fs::create_dir_all(&dir).expect("export dir");
         mtx::write_sparse(

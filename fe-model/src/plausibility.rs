@@ -48,6 +48,20 @@ fn implausible(matrix: &str, reason: String) -> FeError {
     }
 }
 
+/// The error "`what` at DOFs …" of `matrix` when `bad` holds for some of its `n` DOFs.
+fn refuse_dofs(
+    matrix: &str, n: usize, bad: impl Fn(usize) -> bool, what: &str,
+) -> Result<(), FeError> {
+    let dofs: Vec<usize> = (0..n).filter(|&i| bad(i)).collect();
+    if dofs.is_empty() {
+        return Ok(());
+    }
+    Err(implausible(
+        matrix,
+        format!("{what} at DOFs {}", dof_list(&dofs)),
+    ))
+}
+
 /// Relative tolerance of [`check_symmetric`]: `|a_ij − a_ji| ≤ 10⁻⁸ max|A|` (the
 /// rounding of an exported matrix, far below any physical asymmetry).
 pub const SYMMETRY_TOL: f64 = 1e-8;
@@ -135,16 +149,12 @@ pub fn check_stiffness_mass(
         }
     }
     // M
-    let negative: Vec<usize> = (0..n).filter(|&i| diag_m[i] < 0.0).collect();
-    if !negative.is_empty() {
-        return Err(implausible(
-            "M",
-            format!(
-                "negative diagonal (negative mass) at DOFs {}",
-                dof_list(&negative)
-            ),
-        ));
-    }
+    refuse_dofs(
+        "M",
+        n,
+        |i| diag_m[i] < 0.0,
+        "negative diagonal (negative mass)",
+    )?;
     let massless: Vec<usize> = (0..n).filter(|&i| diag_m[i] == 0.0).collect();
     if massless.len() == n && n > 0 {
         return Err(implausible("M", "every diagonal entry is zero".into()));
@@ -170,28 +180,18 @@ pub fn check_stiffness_mass(
             "every entry is zero: no stiffness at all".into(),
         ));
     }
-    let negative: Vec<usize> = (0..n).filter(|&i| diag_k[i] < 0.0).collect();
-    if !negative.is_empty() {
-        return Err(implausible(
-            "K",
-            format!(
-                "negative diagonal (K is indefinite) at DOFs {}",
-                dof_list(&negative)
-            ),
-        ));
-    }
-    let coupled: Vec<usize> = (0..n)
-        .filter(|&i| diag_k[i] == 0.0 && offdiag_k[i])
-        .collect();
-    if !coupled.is_empty() {
-        return Err(implausible(
-            "K",
-            format!(
-                "zero diagonal with off-diagonal entries (K is indefinite) at DOFs {}",
-                dof_list(&coupled)
-            ),
-        ));
-    }
+    refuse_dofs(
+        "K",
+        n,
+        |i| diag_k[i] < 0.0,
+        "negative diagonal (K is indefinite)",
+    )?;
+    refuse_dofs(
+        "K",
+        n,
+        |i| diag_k[i] == 0.0 && offdiag_k[i],
+        "zero diagonal with off-diagonal entries (K is indefinite)",
+    )?;
     let free: Vec<usize> = (0..n).filter(|&i| !row_k[i]).collect();
     if !free.is_empty() {
         warnings.push(format!(

@@ -417,6 +417,20 @@ impl SecondOrderSystem for MultibodySystem {
             }
             f0.fill(0.0);
             fe.apply(t, &self.bodies, &kin, &mut f0);
+            // the column `6 b + c` of `−∂f/∂x` by the forward difference of the perturbed
+            // kinematics `kp` with step `h`, into `out`
+            let mut column = |kp: &[BodyKin], h: f64, b: usize, c: usize, out: &mut Vec<_>| {
+                f1.fill(0.0);
+                fe.apply(t, &self.bodies, kp, &mut f1);
+                for &r in &bs {
+                    for i in 0..6 {
+                        let d = -(f1[6 * r + i] - f0[6 * r + i]) / h;
+                        if d != 0.0 {
+                            out.push(Triplet::new(6 * r + i, 6 * b + c, d));
+                        }
+                    }
+                }
+            };
             for &b in &bs {
                 for c in 0..6 {
                     let mut kp = kin.clone();
@@ -430,16 +444,7 @@ impl SecondOrderSystem for MultibodySystem {
                         let p = compose_local_rotation(&kin[b].p, &th);
                         kp[b] = BodyKin::new(kin[b].r, p, kin[b].rdot, kin[b].w);
                     }
-                    f1.fill(0.0);
-                    fe.apply(t, &self.bodies, &kp, &mut f1);
-                    for &r in &bs {
-                        for i in 0..6 {
-                            let d = -(f1[6 * r + i] - f0[6 * r + i]) / eps;
-                            if d != 0.0 {
-                                kt.push(Triplet::new(6 * r + i, 6 * b + c, d));
-                            }
-                        }
-                    }
+                    column(&kp, eps, b, c, &mut kt);
                     // velocity perturbation
                     let mut kp = kin.clone();
                     let ev = 1e-7 * (1.0 + v[6 * b + c].abs());
@@ -448,16 +453,7 @@ impl SecondOrderSystem for MultibodySystem {
                     } else {
                         kp[b].w[c - 3] += ev;
                     }
-                    f1.fill(0.0);
-                    fe.apply(t, &self.bodies, &kp, &mut f1);
-                    for &r in &bs {
-                        for i in 0..6 {
-                            let d = -(f1[6 * r + i] - f0[6 * r + i]) / ev;
-                            if d != 0.0 {
-                                ct.push(Triplet::new(6 * r + i, 6 * b + c, d));
-                            }
-                        }
-                    }
+                    column(&kp, ev, b, c, &mut ct);
                 }
             }
         }

@@ -54,57 +54,41 @@ fn main() {
         .map(|v| v.split(',').map(str::to_owned).collect())
         .unwrap_or_default();
     let base = RigConfig::default();
+    // the default rig with `change` applied
+    let variant = |name, change: fn(&mut RigConfig)| {
+        let mut c = base.clone();
+        change(&mut c);
+        (name, c)
+    };
     let variants: Vec<(&str, RigConfig)> = vec![
         ("default (gen-alpha 0.5, S once)", base.clone()),
-        ("no impact sub-steps", {
-            let mut c = base.clone();
-            c.impact.substeps = 1;
-            c
+        variant("no impact sub-steps", |c| c.impact.substeps = 1),
+        variant("gen-alpha rho 0.9", |c| {
+            c.rolling = c.rolling.clone().generalized_alpha(0.9)
         }),
-        ("gen-alpha rho 0.9", {
-            let mut c = base.clone();
-            c.rolling = c.rolling.generalized_alpha(0.9);
-            c
+        variant("S re-inverted at 1 % drift", |c| {
+            c.rolling.matrix_tolerance = 0.01
         }),
-        ("S re-inverted at 1 % drift", {
-            let mut c = base.clone();
-            c.rolling.matrix_tolerance = 0.01;
-            c
+        variant("trapezoidal rule (rho 1)", |c| {
+            c.rolling = c.rolling.clone().generalized_alpha(1.0)
         }),
-        ("trapezoidal rule (rho 1)", {
-            let mut c = base.clone();
-            c.rolling = c.rolling.generalized_alpha(1.0);
-            c
+        variant("penalty normal law 1e9 N/m", |c| {
+            c.rolling.normal = NormalContact::Penalty { stiffness: 1e9 }
         }),
-        ("penalty normal law 1e9 N/m", {
-            let mut c = base.clone();
-            c.rolling.normal = NormalContact::Penalty { stiffness: 1e9 };
-            c
-        }),
-        ("no friction (mu 0)", {
-            let mut c = base.clone();
-            c.rolling.friction = 0.0;
-            c
-        }),
-        ("h 0.05 ms, no sub-steps (reference)", {
-            let mut c = base.clone();
+        variant("no friction (mu 0)", |c| c.rolling.friction = 0.0),
+        variant("h 0.05 ms, no sub-steps (reference)", |c| {
             c.rolling.time_step = 5e-5;
             c.impact.substeps = 1;
-            c
         }),
-        ("h 0.05 ms, no sub-steps, 2 threads", {
-            let mut c = base.clone();
+        variant("h 0.05 ms, no sub-steps, 2 threads", |c| {
             c.rolling.time_step = 5e-5;
             c.impact.substeps = 1;
             c.rolling.threads = 2;
-            c
         }),
-        ("h 0.05 ms, full model (symmetry off)", {
-            let mut c = base.clone();
+        variant("h 0.05 ms, full model (symmetry off)", |c| {
             c.rolling.time_step = 5e-5;
             c.impact.substeps = 1;
             c.rolling.symmetry = Symmetry::Off;
-            c
         }),
     ];
     println!(

@@ -164,12 +164,8 @@ impl Study for Cantilever {
             .write_csv("shape.csv", &study::SHAPE_COLUMNS, line.iter().copied())?;
         let points: Vec<[f64; 3]> = line.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let path = ctx.out.path("shape.vtu");
-        write_vtu(&path, &polyline(&points, false), &[]).map_err(|e| {
-            StudyError::Cli(flowmbd_cli::CliError::Write {
-                path: path.clone(),
-                message: e.to_string(),
-            })
-        })?;
+        write_vtu(&path, &polyline(&points, false), &[])
+            .map_err(|e| flowmbd_cli::CliError::write(&path, e))?;
         LinePlot::new("Deformed cantilever (Kerkkänen Fig. 2.4)", "x [m]", "y [m]")
             .with(Series::line(
                 "centreline",

@@ -52,12 +52,8 @@ fn write_vtk(
         components: 1,
         values: samples.iter().map(|s| s.tension).collect(),
     };
-    write_vtu(path, &polyline(&points, true), &[tension]).map_err(|e| {
-        StudyError::Cli(flowmbd_cli::CliError::Write {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })
-    })
+    write_vtu(path, &polyline(&points, true), &[tension])
+        .map_err(|e| flowmbd_cli::CliError::write(path, e).into())
 }
 
 impl AncfStudy {
@@ -134,11 +130,10 @@ impl AncfStudy {
             row
         };
         let per_el = c.output.points_per_element;
-        let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
         let (end, speeds) = sampled_run(
             ctx,
             sampled,
-            &s0,
+            &init.q,
             row,
             |s, path| write_vtk(&drive, &s.q, per_el, path),
             |observer| dynamic_run(c, &drive, &init, start, observer),
@@ -287,13 +282,7 @@ impl AncfStudy {
 
 impl AncfApp for AncfStudy {
     type Config = Config;
-    type Summary = Summary;
     const NAME: &'static str = "ancf";
-    const MEANING: &'static str = drives::ancf_study::ANCF_MEANING;
-
-    fn t_end(c: &mut Config) -> &mut f64 {
-        &mut c.t_end
-    }
 
     fn run(c: &Config, ctx: &mut StudyContext, start: Instant) -> Result<Summary, StudyError> {
         match c.analysis {

@@ -5,7 +5,7 @@
 //! the same way ([`sampled_run`]: `history.csv`, the VTK series of the belt, the progress
 //! bar).
 
-use drives::ancf_run::{Due, RunEnd};
+use drives::ancf_run::{DriveStudyConfig, Due, RunEnd};
 use flowmbd_cli::plot::{LinePlot, Series};
 use flowmbd_cli::{
     CommonArgs, InputError, Study, StudyContext, StudyError, Validate, VtkSeries, run_study,
@@ -29,25 +29,22 @@ pub struct Args {
     pub t_end: Option<f64>,
 }
 
-/// One ANCF study of the app: its configuration and summary (defined in `drives`, shared with
-/// the Python package), its name and meaning, and its run.
+/// One ANCF study of the app: its configuration (defined in `drives`, shared with the Python
+/// package, which also names the summary, its meaning and the end time), its name and its run.
 pub(crate) trait AncfApp {
     /// The configuration.
-    type Config;
-    /// The summary.
-    type Summary: Serialize;
+    type Config: DriveStudyConfig;
     /// Study name (`ancf`, `plate`).
     const NAME: &'static str;
-    /// The summary's `meaning` paragraph.
-    const MEANING: &'static str;
 
-    /// The end time \[s\] of the configuration, for `--t-end`.
-    fn t_end(c: &mut Self::Config) -> &mut f64;
     /// Run the study (`start`: the study's start, for its wall time).
     fn run(
         c: &Self::Config, ctx: &mut StudyContext, start: Instant,
-    ) -> Result<Self::Summary, StudyError>;
+    ) -> Result<Summary<Self>, StudyError>;
 }
+
+/// The summary of the study `A`.
+pub(crate) type Summary<A> = <<A as AncfApp>::Config as DriveStudyConfig>::Summary;
 
 /// The [`Study`] of an [`AncfApp`] (module documentation).
 pub(crate) struct DriveStudy<A> {
@@ -61,17 +58,17 @@ where
     A::Config: schemars::JsonSchema,
 {
     type Config = A::Config;
-    type Summary = A::Summary;
+    type Summary = Summary<A>;
     const NAME: &'static str = A::NAME;
-    const MEANING: &'static str = A::MEANING;
+    const MEANING: &'static str = A::Config::MEANING;
 
     fn apply_overrides(&self, c: &mut A::Config) {
         if let Some(t) = self.t_end {
-            *A::t_end(c) = t;
+            *c.t_end_mut() = t;
         }
     }
 
-    fn run(&self, c: &A::Config, ctx: &mut StudyContext) -> Result<A::Summary, StudyError> {
+    fn run(&self, c: &A::Config, ctx: &mut StudyContext) -> Result<Summary<A>, StudyError> {
         A::run(c, ctx, Instant::now())
     }
 }
@@ -142,11 +139,11 @@ pub(crate) type PulleySpeeds = Vec<Vec<(f64, f64)>>;
 /// `omega_NAME_rad_per_s`, then `sampled.columns`; a row `[t, row(s)]` per history sample, whose
 /// first values are the pulleys' speeds), a VTK series of the belt (`vtk/belt_NNNN.vtu`, a frame
 /// written by `frame(s, path)` every `sampled.vtk_interval`) and a progress bar. The initial
-/// state `s0` is the first row and frame; `run` runs the study with the observer that writes
-/// the others. Returns what `run` returns and each pulley's speed at the history samples, for
+/// state, the coordinates `q0` at rest at `t = 0`, is the first row and frame; `run` runs the
+/// study with the observer that writes the others. Returns what `run` returns and each pulley's speed at the history samples, for
 /// their plot.
 pub(crate) fn sampled_run<T>(
-    ctx: &mut StudyContext, sampled: Sampled<'_>, s0: &State,
+    ctx: &mut StudyContext, sampled: Sampled<'_>, q0: &[f64],
     mut row: impl FnMut(&State) -> Vec<f64>,
     mut frame: impl FnMut(&State, &Path) -> Result<(), StudyError>,
     run: impl FnOnce(Observer<'_>) -> Result<T, StudyError>,
@@ -172,8 +169,9 @@ pub(crate) fn sampled_run<T>(
         r.extend(values);
         csv.row(&r)
     };
-    record(s0, &mut csv)?;
-    frame(s0, &frames.frame(&ctx.out, 0.0)?)?;
+    let s0 = State::new(0.0, q0.to_vec(), vec![0.0; q0.len()]);
+    record(&s0, &mut csv)?;
+    frame(&s0, &frames.frame(&ctx.out, 0.0)?)?;
     let progress = ctx.progress(sampled.t_end, sampled.label);
     let out = &ctx.out;
     let end = run(&mut |s, due| {

@@ -65,12 +65,7 @@ fn write_surface(
             values: g.velocity.iter().flatten().copied().collect(),
         },
     ];
-    write_vtu(path, &mesh, &fields).map_err(|e| {
-        StudyError::Cli(flowmbd_cli::CliError::Write {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })
-    })
+    write_vtu(path, &mesh, &fields).map_err(|e| flowmbd_cli::CliError::write(path, e).into())
 }
 
 fn analytical_series(
@@ -81,13 +76,7 @@ fn analytical_series(
 
 impl AncfApp for PlateStudy {
     type Config = Config;
-    type Summary = Summary;
     const NAME: &'static str = "plate";
-    const MEANING: &'static str = drives::plate_study::PLATE_MEANING;
-
-    fn t_end(c: &mut Config) -> &mut f64 {
-        &mut c.t_end
-    }
 
     fn run(c: &Config, ctx: &mut StudyContext, start: Instant) -> Result<Summary, StudyError> {
         let (drive, init) = plate_setup(c).map_err(to_study_error)?;
@@ -125,11 +114,10 @@ impl AncfApp for PlateStudy {
             row
         };
         let measure = c.output.strain_measure;
-        let s0 = State::new(0.0, init.q.clone(), vec![0.0; init.q.len()]);
         let (end, speeds) = sampled_run(
             ctx,
             sampled,
-            &s0,
+            &init.q,
             row,
             |s, path| write_surface(&drive, s, measure, path),
             |observer| plate_run(c, &drive, &init, start, observer),

@@ -58,12 +58,8 @@ fn write_vtk(
                 .collect(),
         };
         let path = frames.frame(&ctx.out, *t)?;
-        write_vtu(&path, &polyline(&points, true), &[deflection]).map_err(|e| {
-            StudyError::Cli(flowmbd_cli::CliError::Write {
-                path: path.clone(),
-                message: e.to_string(),
-            })
-        })?;
+        write_vtu(&path, &polyline(&points, true), &[deflection])
+            .map_err(|e| flowmbd_cli::CliError::write(&path, e))?;
     }
     frames.finish(&ctx.out)?;
     Ok(())

@@ -67,6 +67,14 @@ pub enum CliError {
 }
 
 impl CliError {
+    /// The output file or folder `path` could not be written: `error` says why.
+    pub fn write(path: impl Into<PathBuf>, error: impl std::fmt::Display) -> Self {
+        CliError::Write {
+            path: path.into(),
+            message: error.to_string(),
+        }
+    }
+
     /// The process exit code for this error: 2 for bad input, 1 for output failures.
     pub fn exit_code(&self) -> u8 {
         match self {

@@ -188,14 +188,15 @@ impl OutputDir {
 
     /// Write `value` as pretty JSON to `name` (atomically).
     pub fn write_json<T: Serialize>(&self, name: &str, value: &T) -> Result<PathBuf, CliError> {
-        let text = serde_json::to_string_pretty(value).map_err(|e| write_error(&self.root, e))?;
+        let text =
+            serde_json::to_string_pretty(value).map_err(|e| CliError::write(&self.root, e))?;
         self.write_text(name, &(text + "\n"))
     }
 
     /// Write `text` to `name` (atomically).
     pub fn write_text(&self, name: &str, text: &str) -> Result<PathBuf, CliError> {
         let path = self.path(name);
-        write_atomic(&path, text.as_bytes()).map_err(|e| write_error(&path, e))?;
+        write_atomic(&path, text.as_bytes()).map_err(|e| CliError::write(&path, e))?;
         Ok(path)
     }
 
@@ -222,12 +223,12 @@ impl OutputDir {
     pub fn csv<S: AsRef<str>>(&self, name: &str, header: &[S]) -> Result<CsvSink, CliError> {
         let path = self.path(name);
         let part = part_path(&path, false);
-        let file = File::create(&part).map_err(|e| write_error(&path, e))?;
+        let file = File::create(&part).map_err(|e| CliError::write(&path, e))?;
         let mut writer = csv::Writer::from_writer(BufWriter::new(file));
         let names: Vec<String> = header.iter().map(|c| c.as_ref().to_string()).collect();
         writer
             .write_record(&names)
-            .map_err(|e| write_error(&path, e))?;
+            .map_err(|e| CliError::write(&path, e))?;
         Ok(CsvSink {
             path,
             part,
@@ -447,16 +448,16 @@ impl CsvSink {
             });
         }
         let Some(w) = self.writer.as_mut() else {
-            return Err(write_error(&self.path, "already finished"));
+            return Err(CliError::write(&self.path, "already finished"));
         };
         w.write_record(&cells)
-            .map_err(|e| write_error(&self.path, e))
+            .map_err(|e| CliError::write(&self.path, e))
     }
 
     /// Flush to disk (also done on drop, silently).
     pub fn flush(&mut self) -> Result<(), CliError> {
         match self.writer.as_mut() {
-            Some(w) => w.flush().map_err(|e| write_error(&self.path, e)),
+            Some(w) => w.flush().map_err(|e| CliError::write(&self.path, e)),
             None => Ok(()),
         }
     }
@@ -469,9 +470,9 @@ impl CsvSink {
 
     fn close(&mut self) -> Result<(), CliError> {
         if let Some(mut w) = self.writer.take() {
-            w.flush().map_err(|e| write_error(&self.path, e))?;
+            w.flush().map_err(|e| CliError::write(&self.path, e))?;
             drop(w);
-            std::fs::rename(&self.part, &self.path).map_err(|e| write_error(&self.path, e))?;
+            std::fs::rename(&self.part, &self.path).map_err(|e| CliError::write(&self.path, e))?;
         }
         Ok(())
     }
@@ -480,13 +481,6 @@ impl CsvSink {
 impl Drop for CsvSink {
     fn drop(&mut self) {
         let _ = self.close();
-    }
-}
-
-fn write_error(path: &Path, e: impl std::fmt::Display) -> CliError {
-    CliError::Write {
-        path: path.to_path_buf(),
-        message: e.to_string(),
     }
 }
 
@@ -500,7 +494,7 @@ mod tests {
     // in the rustdoc of `UNIT_SUFFIXES` and `LEGACY_SUFFIXES`.
     #[test]
     fn columns_follow_the_one_convention() {
-        for ok in [
+        let real: &[&str] = &[
             "t_s",
             "torque_N_m",
             "delta_omega_rad_per_s",
@@ -519,19 +513,15 @@ mod tests {
             "damping_ratio",
             "green_strain",
             "s_m",
-        ] {
-            assert_eq!(column_kind(ok), Some(ColumnKind::Real), "{ok}");
-        }
-        for int in [
+        ];
+        let integer: &[&str] = &[
             "mode",
             "n",
             "pulley_index",
             "active_nodes_count",
             "gross_slip_flag",
-        ] {
-            assert_eq!(column_kind(int), Some(ColumnKind::Integer), "{int}");
-        }
-        for bad in [
+        ];
+        let refused: &[&str] = &[
             "t",
             "torque",
             "hz",
@@ -551,8 +541,15 @@ mod tests {
             "pressure_pa",
             "pulley",
             "active_nodes",
+        ];
+        for (names, kind) in [
+            (real, Some(ColumnKind::Real)),
+            (integer, Some(ColumnKind::Integer)),
+            (refused, None),
         ] {
-            assert_eq!(column_kind(bad), None, "{bad}");
+            for name in names {
+                assert_eq!(column_kind(name), kind, "{name}");
+            }
         }
         assert!(is_integer_cell("3") && is_integer_cell("-1") && is_integer_cell("NaN"));
         assert!(!is_integer_cell("0.0000000000e0") && !is_integer_cell("1.5"));

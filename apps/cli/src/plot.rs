@@ -170,16 +170,18 @@ impl LinePlot {
         let (png_part, svg_part) = (part_path(&png, true), part_path(&svg, true));
         {
             let root = BitMapBackend::new(&png_part, self.size()).into_drawing_area();
-            self.draw(&root).map_err(|m| err(&png, m))?;
-            root.present().map_err(|e| err(&png, e.to_string()))?;
+            self.draw(&root).map_err(|m| CliError::write(&png, m))?;
+            root.present()
+                .map_err(|e| CliError::write(&png, e.to_string()))?;
         }
-        std::fs::rename(&png_part, &png).map_err(|e| err(&png, e.to_string()))?;
+        std::fs::rename(&png_part, &png).map_err(|e| CliError::write(&png, e.to_string()))?;
         {
             let root = SVGBackend::new(&svg_part, self.size()).into_drawing_area();
-            self.draw(&root).map_err(|m| err(&svg, m))?;
-            root.present().map_err(|e| err(&svg, e.to_string()))?;
+            self.draw(&root).map_err(|m| CliError::write(&svg, m))?;
+            root.present()
+                .map_err(|e| CliError::write(&svg, e.to_string()))?;
         }
-        std::fs::rename(&svg_part, &svg).map_err(|e| err(&svg, e.to_string()))?;
+        std::fs::rename(&svg_part, &svg).map_err(|e| CliError::write(&svg, e.to_string()))?;
         Ok(vec![png, svg])
     }
 
@@ -375,13 +377,6 @@ fn equalised(r: ((f64, f64), (f64, f64)), px: (u32, u32)) -> ((f64, f64), (f64, 
         (cx - 0.5 * per_px * w, cx + 0.5 * per_px * w),
         (cy - 0.5 * per_px * h, cy + 0.5 * per_px * h),
     )
-}
-
-fn err(path: &Path, message: String) -> CliError {
-    CliError::Write {
-        path: path.to_path_buf(),
-        message,
-    }
 }
 
 #[cfg(test)]

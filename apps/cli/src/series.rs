@@ -38,10 +38,7 @@ impl VtkSeries {
     pub fn frame(&mut self, out: &OutputDir, t: f64) -> Result<PathBuf, CliError> {
         let dir = out.path("vtk");
         if self.files.is_empty() {
-            std::fs::create_dir_all(&dir).map_err(|e| CliError::Write {
-                path: dir.clone(),
-                message: e.to_string(),
-            })?;
+            std::fs::create_dir_all(&dir).map_err(|e| CliError::write(&dir, e))?;
         }
         let name = format!("vtk/{}_{:04}.{}", self.stem, self.files.len(), self.ext);
         let path = out.path(&name);

@@ -289,10 +289,7 @@ fn try_run<S: Study>(
     })?;
     let config_text = to_commented_toml(&config);
     if args.print_config {
-        crate::stdout::print_stdout(&config_text).map_err(|e| CliError::Write {
-            path: "<stdout>".into(),
-            message: e.to_string(),
-        })?;
+        crate::stdout::print_stdout(&config_text).map_err(|e| CliError::write("<stdout>", e))?;
         return Ok(Outcome::Done);
     }
     let out = OutputDir::create(args.out_dir(app, S::NAME))?;
@@ -351,10 +348,8 @@ fn try_run<S: Study>(
     match result {
         Ok(summary) => {
             let table = study.result_table(&summary);
-            let summary = with_meaning(&summary, S::MEANING).map_err(|e| CliError::Write {
-                path: out.path("summary.json"),
-                message: e.to_string(),
-            })?;
+            let summary = with_meaning(&summary, S::MEANING)
+                .map_err(|e| CliError::write(out.path("summary.json"), e))?;
             if cancel.is_cancelled() {
                 unfinished(
                     "interrupted",
@@ -379,20 +374,14 @@ fn try_run<S: Study>(
             }
             let path = out.write_json("summary.json", &file_summary)?;
             if args.json {
-                let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Write {
-                    path: path.clone(),
-                    message: e.to_string(),
-                })?;
-                crate::stdout::print_stdout(&(text + "\n")).map_err(|e| CliError::Write {
-                    path: "<stdout>".into(),
-                    message: e.to_string(),
-                })?;
+                let text = serde_json::to_string_pretty(&summary)
+                    .map_err(|e| CliError::write(&path, e))?;
+                crate::stdout::print_stdout(&(text + "\n"))
+                    .map_err(|e| CliError::write("<stdout>", e))?;
             } else {
                 if let Some(table) = table {
-                    crate::stdout::print_stdout(&table).map_err(|e| CliError::Write {
-                        path: "<stdout>".into(),
-                        message: e.to_string(),
-                    })?;
+                    crate::stdout::print_stdout(&table)
+                        .map_err(|e| CliError::write("<stdout>", e))?;
                 }
                 if !args.quiet {
                     eprintln!("results written to {}", out.root().display());

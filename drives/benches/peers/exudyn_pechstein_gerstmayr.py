@@ -362,20 +362,28 @@ def stretch(force, material):
     return c * lam
 
 
-def span_forces(mbs, model):
-    """Mean axial force (ForceLocal) at element nodes and midpoints in the middle half of the
-    upper (tight) and lower (slack) span [N], and the number of points averaged."""
+def span_points(mbs, model):
+    """The element nodes and midpoints in the middle half of the spans: `(output, p)` for each,
+    `output(variable)` the cable's output variable there in the current configuration and `p`
+    its position (upper, tight span: `p[1] > 0`; lower, slack span otherwise)."""
     x_lo, x_hi = 0.25 * DIST, 0.75 * DIST
-    tight, slack = [], []
     cfg = exu.ConfigurationType.Current
     for cab in model["cables"]:
         for xl in (0.0, 0.5 * model["l_el"]):
-            p = mbs.GetObjectOutputBody(cab, exu.OutputVariableType.Position, localPosition=[xl, 0, 0], configuration=cfg)
+            def output(variable, cab=cab, xl=xl):
+                return mbs.GetObjectOutputBody(cab, variable, localPosition=[xl, 0, 0], configuration=cfg)
+            p = output(exu.OutputVariableType.Position)
             if x_lo <= p[0] <= x_hi:
-                f = float(np.ravel(
-                    mbs.GetObjectOutputBody(cab, exu.OutputVariableType.ForceLocal, localPosition=[xl, 0, 0], configuration=cfg)
-                )[0])
-                (tight if p[1] > 0.0 else slack).append(f)
+                yield output, p
+
+
+def span_forces(mbs, model):
+    """Mean axial force (ForceLocal) at element nodes and midpoints in the middle half of the
+    upper (tight) and lower (slack) span [N], and the number of points averaged."""
+    tight, slack = [], []
+    for output, p in span_points(mbs, model):
+        f = float(np.ravel(output(exu.OutputVariableType.ForceLocal))[0])
+        (tight if p[1] > 0.0 else slack).append(f)
     return tight, slack
 
 
@@ -383,18 +391,13 @@ def span_speeds(mbs, model):
     """Mean material speed along the span (travel sense: −ẋ on the upper, +ẋ on the lower span)
     [m/s] and mean square transverse speed ẏ² [m²/s²] at the element nodes and midpoints in the
     middle half of the upper (tight) and lower (slack) span."""
-    x_lo, x_hi = 0.25 * DIST, 0.75 * DIST
     tight, slack = [], []
-    cfg = exu.ConfigurationType.Current
-    for cab in model["cables"]:
-        for xl in (0.0, 0.5 * model["l_el"]):
-            p = mbs.GetObjectOutputBody(cab, exu.OutputVariableType.Position, localPosition=[xl, 0, 0], configuration=cfg)
-            if x_lo <= p[0] <= x_hi:
-                v = mbs.GetObjectOutputBody(cab, exu.OutputVariableType.Velocity, localPosition=[xl, 0, 0], configuration=cfg)
-                if p[1] > 0.0:
-                    tight.append((-float(v[0]), float(v[1]) ** 2))
-                else:
-                    slack.append((float(v[0]), float(v[1]) ** 2))
+    for output, p in span_points(mbs, model):
+        v = output(exu.OutputVariableType.Velocity)
+        if p[1] > 0.0:
+            tight.append((-float(v[0]), float(v[1]) ** 2))
+        else:
+            slack.append((float(v[0]), float(v[1]) ** 2))
     mt, ms = np.mean(tight, axis=0), np.mean(slack, axis=0)
     return float(mt[0]), float(ms[0]), float(mt[1]), float(ms[1])
 

@@ -5,21 +5,31 @@ use crate::element::{Frame2d, Frame2dSection, StringElement};
 use crate::mesh::{Cell, CellKind, Mesh};
 use crate::model::FeModel;
 
+/// The `n_elements + 1` equally spaced nodes from x = 0 to x = `length` \[m\] of a straight
+/// line mesh with `dofs_per_node` DOFs per node (no cells yet), and the element length \[m\].
+/// Checks `length > 0` and `n_elements ≥ 1`.
+fn line_nodes(
+    length: f64, n_elements: usize, dofs_per_node: usize,
+) -> Result<(Mesh, f64), FeError> {
+    FeError::check_positive("length", length)?;
+    if n_elements == 0 {
+        return Err(FeError::param("n_elements", 0.0, "must be >= 1"));
+    }
+    let mut mesh = Mesh::new(dofs_per_node);
+    let h = length / n_elements as f64;
+    for i in 0..=n_elements {
+        mesh.add_node([i as f64 * h, 0.0, 0.0]);
+    }
+    Ok((mesh, h))
+}
+
 /// Straight planar Euler–Bernoulli frame from x = 0 to x = `length` \[m\] with `n_elements`
 /// equal elements, DOFs (u, v, θ) per node, all elements with axial force `axial_force` \[N\]
 /// (tension > 0) for the geometric stiffness. Node sets: `start`, `end`, `all`.
 pub fn straight_beam_2d(
     length: f64, n_elements: usize, section: Frame2dSection, axial_force: f64,
 ) -> Result<FeModel, FeError> {
-    FeError::check_positive("length", length)?;
-    if n_elements == 0 {
-        return Err(FeError::param("n_elements", 0.0, "must be >= 1"));
-    }
-    let mut mesh = Mesh::new(3);
-    let h = length / n_elements as f64;
-    for i in 0..=n_elements {
-        mesh.add_node([i as f64 * h, 0.0, 0.0]);
-    }
+    let (mut mesh, _) = line_nodes(length, n_elements, 3)?;
     let mut model_elements = Vec::with_capacity(n_elements);
     for e in 0..n_elements {
         model_elements.push(frame2d_line(&mut mesh, e, e + 1, section, axial_force)?);
@@ -64,15 +74,7 @@ pub(crate) fn frame2d_line(
 pub fn straight_string(
     length: f64, n_elements: usize, tension: f64, mass_per_length: f64,
 ) -> Result<FeModel, FeError> {
-    FeError::check_positive("length", length)?;
-    if n_elements == 0 {
-        return Err(FeError::param("n_elements", 0.0, "must be >= 1"));
-    }
-    let mut mesh = Mesh::new(1);
-    let h = length / n_elements as f64;
-    for i in 0..=n_elements {
-        mesh.add_node([i as f64 * h, 0.0, 0.0]);
-    }
+    let (mut mesh, h) = line_nodes(length, n_elements, 1)?;
     let mut els = Vec::new();
     for e in 0..n_elements {
         mesh.cells.push(Cell {

@@ -8,7 +8,7 @@
 //! (node, DOF) order — the [`AbaqusDofMap`] — and assembles every file with that common map,
 //! mirroring one-triangle storage into a full symmetric matrix.
 
-use super::{check_mirror, err};
+use super::{check_mirror, err, parsed};
 use crate::FeError;
 use crate::error::MatrixFileError as E;
 use faer::sparse::{SparseColMat, Triplet};
@@ -49,6 +49,19 @@ impl AbaqusDofMap {
     }
 }
 
+/// The syntax error "`shape`, found `line`" of a line `line` of the wrong shape (line `ln` of
+/// `file`).
+fn misshapen(shape: &str, line: &str, file: &str, ln: usize) -> FeError {
+    err(
+        file,
+        ln,
+        E::Syntax(format!(
+            "{shape}, found `{}`",
+            mbd_core::validate::escape(line)
+        )),
+    )
+}
+
 /// Parse ABAQUS matrix text; `file` names the source in errors.
 pub fn parse(text: &str, file: &str) -> Result<AbaqusEntries, FeError> {
     let mut entries = Vec::new();
@@ -64,53 +77,23 @@ pub fn parse(text: &str, file: &str) -> Result<AbaqusEntries, FeError> {
             .filter(|s| !s.is_empty())
             .collect();
         if f.len() != 5 {
-            return Err(err(
+            return Err(misshapen(
+                "expected `node, dof, node, dof, value`",
+                t,
                 file,
                 ln,
-                E::Syntax(format!(
-                    "expected `node, dof, node, dof, value`, found `{}`",
-                    mbd_core::validate::escape(t)
-                )),
             ));
         }
-        let node = |s: &str| -> Result<u64, FeError> {
-            s.parse().map_err(|_| {
-                err(
-                    file,
-                    ln,
-                    E::Syntax(format!(
-                        "`{}` is not a node label",
-                        mbd_core::validate::escape(s)
-                    )),
-                )
-            })
-        };
+        let node =
+            |s: &str| -> Result<u64, FeError> { parsed(s, "a node label", E::Syntax, file, ln) };
         let dof = |s: &str| -> Result<u32, FeError> {
-            let d: u32 = s.parse().map_err(|_| {
-                err(
-                    file,
-                    ln,
-                    E::Syntax(format!(
-                        "`{}` is not a DOF number",
-                        mbd_core::validate::escape(s)
-                    )),
-                )
-            })?;
+            let d: u32 = parsed(s, "a DOF number", E::Syntax, file, ln)?;
             if d == 0 {
                 return Err(err(file, ln, E::Syntax("DOF numbers start at 1".into())));
             }
             Ok(d)
         };
-        let v: f64 = f[4].parse().map_err(|_| {
-            err(
-                file,
-                ln,
-                E::Syntax(format!(
-                    "`{}` is not a number",
-                    mbd_core::validate::escape(f[4])
-                )),
-            )
-        })?;
+        let v: f64 = parsed(f[4], "a number", E::Syntax, file, ln)?;
         if !v.is_finite() {
             return Err(err(
                 file,
@@ -180,26 +163,21 @@ pub fn parse_node_set_lines(text: &str, file: &str) -> Result<Vec<(u64, usize)>,
             .filter(|s| !s.is_empty())
             .collect();
         let label = |s: &str| -> Result<u64, FeError> {
-            s.parse().map_err(|_| {
-                err(
-                    file,
-                    ln,
-                    E::Syntax(format!(
-                        "`{}` is not a node label (a non-negative integer)",
-                        mbd_core::validate::escape(s)
-                    )),
-                )
-            })
+            parsed(
+                s,
+                "a node label (a non-negative integer)",
+                E::Syntax,
+                file,
+                ln,
+            )
         };
         if generate {
             if !(2..=3).contains(&fields.len()) {
-                return Err(err(
+                return Err(misshapen(
+                    "a GENERATE line is `first, last[, increment]`",
+                    t,
                     file,
                     ln,
-                    E::Syntax(format!(
-                        "a GENERATE line is `first, last[, increment]`, found `{}`",
-                        mbd_core::validate::escape(t)
-                    )),
                 ));
             }
             let (first, last) = (label(fields[0])?, label(fields[1])?);

@@ -122,6 +122,20 @@ pub(crate) fn err(file: &str, line: usize, kind: crate::error::MatrixFileError) 
     }
 }
 
+/// The field `s` of line `ln` of `file` read as a `T`, or the error `kind` "`s` is not
+/// `what`".
+pub(crate) fn parsed<T: std::str::FromStr>(
+    s: &str, what: &str, kind: fn(String) -> crate::error::MatrixFileError, file: &str, ln: usize,
+) -> Result<T, crate::FeError> {
+    s.parse().map_err(|_| {
+        err(
+            file,
+            ln,
+            kind(format!("`{}` is not {what}", mbd_core::validate::escape(s))),
+        )
+    })
+}
+
 /// Check that an entry `value` given in both triangles agrees with its mirror `mirror` to the
 /// relative tolerance `10⁻¹²·max(|value|, |mirror|)` (symmetric storage, `A_rc = A_cr`);
 /// `row`, `col` are 0-based and reported 1-based.

@@ -318,17 +318,25 @@ pub fn corotational_rate_block(k: &[[f64; 6]; 6]) -> [[f64; 6]; 6] {
 /// `Δl = u·(d_j − d_i)` (`u` the unit chord) — the tension of the belt models linearised about
 /// the mounted state (pre-tension `t0` \[N\], axial stiffness `ea` \[N\]).
 pub fn chord_tensions(position: &[[f64; 2]], d: &[f64], t0: f64, ea: f64) -> Vec<f64> {
-    let nn = position.len();
-    (0..nn)
-        .map(|i| {
-            let j = (i + 1) % nn;
-            let (a, b) = (position[i], position[j]);
-            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            let l = dx.hypot(dy);
+    loop_chords(position)
+        .map(|(i, j, [dx, dy], l)| {
             let dl = (dx * (d[3 * j] - d[3 * i]) + dy * (d[3 * j + 1] - d[3 * i + 1])) / l;
             t0 + ea * dl / l
         })
         .collect()
+}
+
+/// The chords of the elements `i → j = i + 1` (the last closing on node 0) of the closed loop
+/// of nodes at `position` \[m\]: `(i, j, [dx, dy], l)` with the chord vector and its length
+/// \[m\].
+fn loop_chords(position: &[[f64; 2]]) -> impl Iterator<Item = (usize, usize, [f64; 2], f64)> {
+    let n = position.len();
+    (0..n).map(move |i| {
+        let j = (i + 1) % n;
+        let (a, b) = (position[i], position[j]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        (i, j, [dx, dy], dx.hypot(dy))
+    })
 }
 
 /// The axial force of a co-rotated belt element (issue 34) as a function of its length ratio
@@ -385,19 +393,12 @@ pub struct Bar {
 impl Bar {
     /// The elements of the closed loop of nodes at `position` \[m\].
     pub fn loop_of(position: &[[f64; 2]]) -> Vec<Self> {
-        let n = position.len();
-        (0..n)
-            .map(|i| {
-                let j = (i + 1) % n;
-                let (a, b) = (position[i], position[j]);
-                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-                let l = dx.hypot(dy);
-                Self {
-                    i,
-                    j,
-                    u: [dx / l, dy / l],
-                    l,
-                }
+        loop_chords(position)
+            .map(|(i, j, [dx, dy], l)| Self {
+                i,
+                j,
+                u: [dx / l, dy / l],
+                l,
             })
             .collect()
     }

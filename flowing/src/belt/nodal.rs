@@ -944,16 +944,24 @@ mod tests {
         check_tangent(belt().with_axial_force(AxialForce::CoRotated));
     }
 
-    fn check_tangent(b: NodalBelt) {
+    /// A deflected, moving state of `b`: material coordinate `s0` \[m\], belt speed 3 m/s, a
+    /// small smooth deflection and deflection rate at every node.
+    fn moving_state(b: &NodalBelt, s0: f64) -> (Vec<f64>, Vec<f64>) {
         let nv = b.n_q();
         let mut q = vec![0.0; nv];
         let mut v = vec![0.0; nv];
-        q[0] = 0.0123;
+        q[0] = s0;
         v[0] = 3.0;
         for i in 1..=b.n_nodal() {
             q[i] = 2e-5 * ((i as f64) * 0.7).sin();
             v[i] = 1e-2 * ((i as f64) * 1.3).cos();
         }
+        (q, v)
+    }
+
+    fn check_tangent(b: NodalBelt) {
+        let nv = b.n_q();
+        let (q, mut v) = moving_state(&b, 0.0123);
         v[nv - 1] = 59.0;
         let (kt, ct) = b.tangent(0.5, &q, &v).unwrap();
         let (kt, ct) = (kt.to_dense(), ct.to_dense());
@@ -1027,16 +1035,8 @@ mod tests {
             fl.coords.tensioner,
         )
         .unwrap();
-        let nv = b.n_q();
         let ka = b.coords.arm_dof().unwrap();
-        let mut q = vec![0.0; nv];
-        let mut v = vec![0.0; nv];
-        q[0] = 0.0071;
-        v[0] = 3.0;
-        for i in 1..=b.n_nodal() {
-            q[i] = 2e-5 * ((i as f64) * 0.7).sin();
-            v[i] = 1e-2 * ((i as f64) * 1.3).cos();
-        }
+        let (mut q, mut v) = moving_state(&b, 0.0071);
         for p in 1..4 {
             v[b.coords.pulley_dof(p).unwrap()] = 3.0 / [0.06, 0.05, 0.035, 0.04][p] * 0.99;
         }

@@ -189,6 +189,30 @@ fn cardano(k: f64, c: f64, f: f64) -> f64 {
     (-q / 2.0 + d).cbrt() + (-q / 2.0 - d).cbrt()
 }
 
+/// The spring of `k`, `c`, `f` solved from `u = 0` with `opts`: the point reached and the
+/// report or error.
+fn solve_spring(
+    k: f64, c: f64, f: f64, opts: &NewtonOptions,
+) -> (
+    f64,
+    Result<NewtonReport, NewtonError<<Dense as NewtonProblem>::Error>>,
+) {
+    let mut x = vec![0.0];
+    let r = solve(
+        &mut spring(k, c, f),
+        &mut x,
+        opts,
+        &mut NewtonWorkspace::new(),
+    );
+    (x[0], r)
+}
+
+/// `u` is the spring's equilibrium (Cardano) to 10⁻¹² relative.
+fn assert_cardano(u: f64, k: f64, c: f64, f: f64) {
+    let want = cardano(k, c, f);
+    assert!((u - want).abs() < 1e-12 * want, "{u} vs {want}");
+}
+
 // Reference: analytic (Cardano) equilibrium of a hardening spring at every load factor.
 #[test]
 fn load_stepping_follows_the_analytic_path() {
@@ -206,8 +230,7 @@ fn load_stepping_follows_the_analytic_path() {
     let rep = solve(&mut p, &mut x, &opts, &mut NewtonWorkspace::new()).unwrap();
     let loads: Vec<f64> = rep.increments.iter().map(|i| i.load).collect();
     assert_eq!(loads, vec![0.25, 0.5, 0.75, 1.0]);
-    let u = cardano(k, c, f);
-    assert!((x[0] - u).abs() < 1e-12 * u, "{} vs {u}", x[0]);
+    assert_cardano(x[0], k, c, f);
 }
 
 // Reference: analytic (Cardano) equilibrium; a single increment with few iterations fails and
@@ -220,14 +243,7 @@ fn step_cutting_recovers_a_failed_increment() {
         tolerances: Tolerances::relative(1e-13),
         ..Default::default()
     };
-    let mut x = vec![0.0];
-    let e = solve(
-        &mut spring(k, c, f),
-        &mut x,
-        &opts,
-        &mut NewtonWorkspace::new(),
-    )
-    .unwrap_err();
+    let e = solve_spring(k, c, f, &opts).1.unwrap_err();
     assert!(matches!(e, NewtonError::NoConvergence { .. }), "{e}");
     let cut = NewtonOptions {
         load: LoadStepping {
@@ -236,18 +252,11 @@ fn step_cutting_recovers_a_failed_increment() {
         },
         ..opts
     };
-    let mut x = vec![0.0];
-    let rep = solve(
-        &mut spring(k, c, f),
-        &mut x,
-        &cut,
-        &mut NewtonWorkspace::new(),
-    )
-    .unwrap();
+    let (u, rep) = solve_spring(k, c, f, &cut);
+    let rep = rep.unwrap();
     assert!(rep.cuts > 0, "{rep:?}");
     assert_eq!(rep.increments.last().unwrap().load, 1.0);
-    let u = cardano(k, c, f);
-    assert!((x[0] - u).abs() < 1e-12 * u, "{} vs {u}", x[0]);
+    assert_cardano(u, k, c, f);
 }
 
 // Reference: the analytic root of the circle problem; a tangent factored once (modified

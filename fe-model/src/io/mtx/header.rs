@@ -4,7 +4,7 @@
 use super::{Format, Symmetry};
 use crate::FeError;
 use crate::error::MatrixFileError as E;
-use crate::io::err;
+use crate::io::{err, parsed};
 
 /// Largest dimension any sparse matrix can hold here whatever the ceiling: its `n + 1` column
 /// pointers and `n`-long work arrays must fit in `isize::MAX` bytes.
@@ -56,6 +56,21 @@ fn next_line<'a>(data: &'a [u8], pos: &mut usize) -> Option<&'a [u8]> {
     Some(&rest[..end])
 }
 
+/// The value paired with the banner word `word` (`what`: object, format, field or symmetry) in
+/// `table`, or the message "unsupported `what` `word`" followed by `hint`.
+fn keyword<T: Copy>(word: &str, table: &[(&str, T)], what: &str, hint: &str) -> Result<T, String> {
+    table
+        .iter()
+        .find(|(w, _)| *w == word)
+        .map(|&(_, v)| v)
+        .ok_or_else(|| {
+            format!(
+                "unsupported {what} `{}`{hint}",
+                mbd_core::validate::escape(word)
+            )
+        })
+}
+
 /// Parse banner and size line; `max_dim` is the ceiling on rows and columns.
 pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, FeError> {
     let mut pos = 0usize;
@@ -71,41 +86,31 @@ pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, F
             "expected `%%MatrixMarket matrix <format> <field> <symmetry>`".into(),
         ));
     }
-    if b[1] != "matrix" {
-        return Err(header(format!(
-            "unsupported object `{}`",
-            mbd_core::validate::escape(&b[1])
-        )));
-    }
-    let format = match b[2].as_str() {
-        "coordinate" => Format::Coordinate,
-        "array" => Format::Array,
-        f => {
-            return Err(header(format!(
-                "unsupported format `{}`",
-                mbd_core::validate::escape(f)
-            )));
-        }
-    };
-    match b[3].as_str() {
-        "real" | "integer" | "double" => {}
-        f => {
-            return Err(header(format!(
-                "unsupported field `{}` (real or integer)",
-                mbd_core::validate::escape(f)
-            )));
-        }
-    }
-    let symmetry = match b[4].as_str() {
-        "general" => Symmetry::General,
-        "symmetric" => Symmetry::Symmetric,
-        s => {
-            return Err(header(format!(
-                "unsupported symmetry `{}` (general or symmetric)",
-                mbd_core::validate::escape(s)
-            )));
-        }
-    };
+    keyword(&b[1], &[("matrix", ())], "object", "").map_err(header)?;
+    let format = keyword(
+        &b[2],
+        &[("coordinate", Format::Coordinate), ("array", Format::Array)],
+        "format",
+        "",
+    )
+    .map_err(header)?;
+    keyword(
+        &b[3],
+        &[("real", ()), ("integer", ()), ("double", ())],
+        "field",
+        " (real or integer)",
+    )
+    .map_err(header)?;
+    let symmetry = keyword(
+        &b[4],
+        &[
+            ("general", Symmetry::General),
+            ("symmetric", Symmetry::Symmetric),
+        ],
+        "symmetry",
+        " (general or symmetric)",
+    )
+    .map_err(header)?;
     // comments and blank lines up to the size line
     let mut ln = 1usize;
     let size = loop {
@@ -128,16 +133,7 @@ pub(super) fn parse(data: &[u8], file: &str, max_dim: usize) -> Result<Header, F
     }
     let mut d = [0usize; 3];
     for (i, t) in dims.iter().enumerate() {
-        d[i] = t.parse().map_err(|_| {
-            err(
-                file,
-                ln,
-                E::Size(format!(
-                    "`{}` is not a non-negative integer below 2⁶⁴",
-                    mbd_core::validate::escape(t)
-                )),
-            )
-        })?;
+        d[i] = parsed(t, "a non-negative integer below 2⁶⁴", E::Size, file, ln)?;
     }
     let (nrows, ncols) = (d[0], d[1]);
     let limit = max_dim.min(HARD_MAX_DIM);
