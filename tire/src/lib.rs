@@ -133,7 +133,7 @@ pub use dips::{
 pub use dips_study::{DipsStudyConfig, DipsSummary, run_dips};
 pub use magic_formula::{MfCurve, MfFit, MfFitError, TrailCurve, fit_steady};
 pub use modes_study::{ModesStudyConfig, ModesSummary, run_modes};
-pub use pressure_study::{PressureStudyConfig, PressureSummary, run_pressure};
+pub use pressure_study::{PressureStudyConfig, PressureSummary, pressure_meaning, run_pressure};
 pub use rig::{
     DampingConfig, ImpactConfig, MAX_SLIP_ANGLE_DEG, RigConfig, RigResult, RigStart, Sample,
     WheelInputs, rig_step, run_cleat, run_cleat_observed, start_rolling,

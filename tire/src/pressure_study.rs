@@ -70,16 +70,59 @@ pub struct PressureSummary {
     pub drum: Patch,
     /// On the flat road.
     pub road: Patch,
-    /// What the numbers mean ([`PRESSURE_MEANING`]).
+    /// What the numbers mean ([`pressure_meaning`]).
     pub meaning: String,
 }
 
-/// The pressure study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
+/// The pressure study's fixed explanation of its numbers (the start of `meaning` in
+/// `summary.json`, [`pressure_meaning`]).
 pub const PRESSURE_MEANING: &str = "The preloaded contact patch on the drum and on the flat road (Ribaric Fig. 8-12): \
      per ground the deflection [m] of the tire under the load, the contact nodes in \
      contact, the largest node force [N] and the patch length [m] along the rolling \
-     direction. The node forces in patch_*.csv add up to the load; the convex drum needs \
-     a larger deflection and gives a shorter patch with higher peak forces than the road.";
+     direction. The node forces in patch_*.csv add up to the load.";
+
+/// The pressure study's `meaning`: [`PRESSURE_MEANING`], then this run's comparison of the
+/// drum with the road (load \[N\], drum radius \[m\]), each direction said as it came out
+/// (Ribaric Fig. 8-12: the convex drum needs the larger deflection and gives the shorter patch
+/// with the higher peak forces, which a user's tire or drum need not repeat).
+pub fn pressure_meaning(load: f64, drum_radius: f64, drum: &Patch, road: &Patch) -> String {
+    let more = |a: f64, b: f64, up: &'static str, down: &'static str| {
+        if a > b {
+            up
+        } else if a < b {
+            down
+        } else {
+            "the same"
+        }
+    };
+    format!(
+        "{PRESSURE_MEANING} In this run, under {load:.0} N on a drum of radius {drum_radius} m: \
+         the drum needs {} deflection ({:.2} mm against {:.2} mm on the road) and gives {} \
+         patch ({:.1} mm against {:.1} mm, {} against {} nodes) with {} peak node force \
+         ({:.0} N against {:.0} N).",
+        more(
+            drum.deflection_m,
+            road.deflection_m,
+            "a larger",
+            "a smaller"
+        ),
+        1e3 * drum.deflection_m,
+        1e3 * road.deflection_m,
+        more(drum.length_m, road.length_m, "a longer", "a shorter"),
+        1e3 * drum.length_m,
+        1e3 * road.length_m,
+        drum.nodes_in_contact,
+        road.nodes_in_contact,
+        more(
+            drum.peak_node_force_n,
+            road.peak_node_force_n,
+            "a higher",
+            "a lower"
+        ),
+        drum.peak_node_force_n,
+        road.peak_node_force_n,
+    )
+}
 
 /// Columns of `patch_<ground>.csv`: undeformed contact-node position \[m\] and its normal force
 /// \[N\] (0 off the patch).
@@ -135,7 +178,7 @@ pub fn run_pressure(
     let summary = PressureSummary {
         drum: drum.patch,
         road: road.patch,
-        meaning: PRESSURE_MEANING.to_string(),
+        meaning: pressure_meaning(c.load, c.drum_radius, &drum.patch, &road.patch),
     };
     Ok((summary, [drum, road]))
 }

@@ -547,6 +547,13 @@ fn pressure_patch_forces_carry_the_load() {
     }
     assert!(f(&s["drum"]["deflection_m"]) >= f(&s["road"]["deflection_m"]));
     assert!(f(&s["drum"]["length_m"]) <= f(&s["road"]["length_m"]) + 1e-12);
+    // the meaning compares this run's numbers (issue 39 item 3), not Ribaric's statement
+    let (dd, dr) = (f(&s["drum"]["deflection_m"]), f(&s["road"]["deflection_m"]));
+    let m = s["meaning"].as_str().unwrap();
+    let said = format!("{:.2} mm against {:.2} mm on the road", 1e3 * dd, 1e3 * dr);
+    assert!(m.contains("under 4448 N") && m.contains(&said), "{m}");
+    let word = if dd > dr { "a larger" } else { "the same" };
+    assert!(m.contains(&format!("the drum needs {word} deflection")), "{m}");
     assert_plot(&out, "patch_forces");
     assert!(flowmbd_cli::output::csv_violations(&out).is_empty());
     std::fs::remove_dir_all(&dir).ok();
