@@ -553,7 +553,10 @@ fn pressure_patch_forces_carry_the_load() {
     let said = format!("{:.2} mm against {:.2} mm on the road", 1e3 * dd, 1e3 * dr);
     assert!(m.contains("under 4448 N") && m.contains(&said), "{m}");
     let word = if dd > dr { "a larger" } else { "the same" };
-    assert!(m.contains(&format!("the drum needs {word} deflection")), "{m}");
+    assert!(
+        m.contains(&format!("the drum needs {word} deflection")),
+        "{m}"
+    );
     assert_plot(&out, "patch_forces");
     assert!(flowmbd_cli::output::csv_violations(&out).is_empty());
     std::fs::remove_dir_all(&dir).ok();
