@@ -19,7 +19,7 @@
 //! asserted here): the alternator-dominated first mode, predicted at 49.4 Hz (order 2 at
 //! 1482 rpm), peaks in the sweep near 1275–1290 rpm (42.5–43 Hz, −13 %) at κ = 40 and
 //! 400 s/m alike; κ = 2000 s/m does not converge (Newton at the first step). Diagnosis
-//! (issue 36 item 2, 2026-12-05, `cargo run --release -p drives --example fead_ringdown`: the
+//! (issue 36 item 2, 2026-12-04, `cargo run --release -p drives --example fead_ringdown`: the
 //! flowing model's free ring-down after a 4 ms torque pulse on the alternator, crank held at
 //! 1482 rpm, peak of the alternator speed's spectrum on a 0.05 Hz grid):
 //!
