@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from typing import Any, Mapping, Optional, Sequence
 
-from . import _args, _native, _stepping
-from ._stepping import Native
+from . import _args, _native
+from ._stepping import Native, Stepping
 from ._results import Result, config_json, from_json, with_series
 
 
@@ -190,7 +190,7 @@ def design(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[fl
     return from_json(_native.design(config_json(config), speeds))
 
 
-class Simulation:
+class Simulation(Stepping):
     """A belt drive stepped in time: build the model from a layout, step it, read and set its
     state, change a pulley's speed or load between steps, observe it, and read the report of
     any state (the same model, generalized-α stepper and report as the studies; Rust:
@@ -248,17 +248,6 @@ class Simulation:
             np.ascontiguousarray(v, dtype=float),
         )
 
-    def step(self, n: int = 1) -> None:
-        """Take ``n`` steps (a failed step is subdivided; one that still fails raises
-        ``flowmbd.NumericalError`` and keeps the last good state)."""
-        self._sim.step(_args.count("n", n))
-
-    def run_to(
-        self, t_end: float, observer: Optional[Any] = None, every: int = 1
-    ) -> None:
-        """Step until ``t_end`` [s]; ``observer(sim)`` is called after every ``every``-th step
-        (and at the end). An exception in the observer stops the run and propagates."""
-        _stepping.run_to(self, t_end, observer, every)
 
     def set_signal(self, pulley: int, signal: Mapping[str, Any]) -> None:
         """Replace the signal of ``pulley`` (index in the layout) from now on: a driver's speed

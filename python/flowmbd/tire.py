@@ -40,8 +40,8 @@ from typing import Any, Mapping, Optional, Sequence
 import numpy as np
 import scipy.sparse as sp
 
-from . import _args, _native, _stepping
-from ._stepping import Native
+from . import _args, _native
+from ._stepping import Native, Stepping
 from ._results import Result, config_json, from_json, with_series
 
 ReducedTire = _native.ReducedTire
@@ -474,7 +474,7 @@ def modes(config: Optional[Mapping[str, Any]] = None, series: bool = False) -> R
     return with_series(text, data, series)
 
 
-class Simulation:
+class Simulation(Stepping):
     """The reduced tire rolling on the cleat rig, stepped in time: started as the cleat test
     starts it (the rolling preload; the cleat reaches the patch centre at ``settle_time``) and
     advanced by the cleat test's own step (sub-stepped through the impact; Rust:
@@ -568,12 +568,3 @@ class Simulation:
             except (TypeError, ValueError) as e:
                 raise ValueError(f"state.{k}: expected an array of numbers ({e})") from None
         self._sim.set_state(converted)
-
-    def step(self, n: int = 1) -> None:
-        """Take ``n`` rig steps (a failed step raises ``flowmbd.NumericalError``)."""
-        self._sim.step(_args.count("n", n))
-
-    def run_to(self, t_end: float, observer: Optional[Any] = None, every: int = 1) -> None:
-        """Step until ``t_end`` [s]; ``observer(sim)`` is called after every ``every``-th step
-        (and at the end). An exception in the observer stops the run and propagates."""
-        _stepping.run_to(self, t_end, observer, every)

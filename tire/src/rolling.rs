@@ -104,6 +104,7 @@ use crate::stats::StepStats;
 use mbd_core::Validate;
 use mbd_core::integrators::{AlphaStepper, State, Stepper};
 use mbd_core::linalg::matvec;
+use mbd_core::validate::check;
 use serde::Serialize;
 
 /// State of the rolling tire.
@@ -469,6 +470,8 @@ impl<'a> RollingTire<'a> {
                 ));
             }
         }
+        // the shared range checks, on the first offending entry (named `state.<field>[i]`)
+        let bad = |x: &[f64], ok: fn(f64) -> bool| x.iter().position(|&v| !ok(v));
         let scalars = [
             ("t", state.t),
             ("theta", state.theta),
@@ -476,32 +479,27 @@ impl<'a> RollingTire<'a> {
             ("theta_dd", state.theta_dd),
             ("theta_acc", state.theta_acc),
         ];
+        for (field, x) in scalars {
+            check::finite(&format!("state.{field}"), x)?;
+        }
         let friction: Vec<f64> = state.friction.iter().flatten().copied().collect();
-        let arrays: [(&str, &[f64]); 5] = [
+        let arrays: [(&str, &[f64]); 7] = [
+            ("z", &state.z),
+            ("zd", &state.zd),
             ("zdd", &state.zdd),
             ("acc", &state.acc),
-            ("lambda", &state.lambda),
             ("friction", &friction),
             ("contact_force", &state.contact_force),
+            ("lambda", &state.lambda),
         ];
-        let bad = scalars
-            .iter()
-            .find(|(_, x)| !x.is_finite())
-            .map(|(f, _)| *f)
-            .or_else(|| {
-                arrays
-                    .iter()
-                    .find(|(_, x)| x.iter().any(|v| !v.is_finite()))
-                    .map(|(f, _)| *f)
-            });
-        if let Some(field) = bad {
-            return Err(invalid(format!("state.{field}"), "a value is not finite"));
+        for (field, x) in arrays {
+            if let Some(i) = bad(x, f64::is_finite) {
+                check::finite(&format!("state.{field}[{i}]"), x[i])?;
+            }
         }
-        if state.lambda.iter().any(|&l| l < 0.0) {
-            return Err(invalid(
-                "state.lambda",
-                "a normal force is negative (contact pushes only)",
-            ));
+        // contact pushes only
+        if let Some(i) = bad(&state.lambda, |l| l >= 0.0) {
+            check::non_negative(&format!("state.lambda[{i}]"), state.lambda[i], "N")?;
         }
         let join = |x: f64, rest: &[f64]| [&[x][..], rest].concat();
         let q = join(state.theta, &state.z);
