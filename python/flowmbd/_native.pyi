@@ -253,8 +253,11 @@ def tire_import(config: str) -> _Fe:
 def tire_reduce(config: Optional[str] = None) -> ReducedTire:
     """The reduced tire of the ``[tire]`` table (JSON text)."""
 
-def tire_steady(config: Optional[str] = None, tire: Optional[ReducedTire] = None) -> str:
-    """JSON text of the steady-state study's summary (``flowmbd-tire steady``)."""
+def tire_steady(
+    config: Optional[str] = None, tire: Optional[ReducedTire] = None
+) -> Tuple[str, Optional[str]]:
+    """JSON text of the steady-state study's summary (``flowmbd-tire steady``) and the MF 6.1
+    ``.tir`` text of its Magic Formula fit (``None`` without a fit)."""
 
 def tire_cleat(
     config: Optional[str] = None,

@@ -228,8 +228,10 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
         ``slip_angle_deg``, the cornering stiffness [N/rad], pneumatic trail, longitudinal
         force over drive torque with its slip, in the ISO 8855 wheel frame; and
         ``magic_formula``: the Magic Formula fit of the points (``fit`` coefficients and
-        errors, fitted values, ``warnings``; ``tir`` is ``None``: the CLI writes the MF 6.1
-        ``tire.tir``), or ``None`` with the reason in ``magic_formula_note``.
+        errors, fitted values, ``warnings``; ``tir`` is ``None``: no file is written), or
+        ``None`` with the reason in ``magic_formula_note``; and ``tir_text``: the MF 6.1
+        ``.tir`` property file of that fit as text (what the CLI writes as ``tire.tir``), or
+        ``None`` without a fit.
 
     Raises
     ------
@@ -239,7 +241,10 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
         A rolling simulation failed.
     """
     _check_tire(config, tire)
-    return from_json(_native.tire_steady(config_json(config), tire))
+    text, tir = _native.tire_steady(config_json(config), tire)
+    out = from_json(text)
+    out["tir_text"] = tir
+    return out
 
 
 def _check_tire(config: Optional[Mapping[str, Any]], tire: Optional["ReducedTire"]) -> None:

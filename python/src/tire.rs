@@ -398,18 +398,26 @@ pub(crate) fn reduced_or(
 
 /// The steady-state study ([`tire::run_steady`], `flowmbd-tire steady`): side force and
 /// aligning moment over slip angle, longitudinal force over drive torque, cornering stiffness
-/// and pneumatic trail; returns the JSON text of the summary. `tire` replaces the reduction of
-/// `config.tire`.
+/// and pneumatic trail; returns the JSON text of the summary and the MF 6.1 `.tir` text of its
+/// Magic Formula fit ([`tire::steady_tir`], the CLI's `tire.tir`; `None` without a fit). `tire`
+/// replaces the reduction of `config.tire`.
 #[pyfunction]
 #[pyo3(signature = (config=None, tire=None))]
 pub fn tire_steady(
     py: Python<'_>, config: Option<&str>, tire: Option<PyRef<'_, PyReducedTire>>,
-) -> PyResult<String> {
+) -> PyResult<(String, Option<String>)> {
     let c: SteadyStudyConfig = study_config(config, |_| {})?;
     let red = reduced_or(py, tire, &c.tire)?;
     let result = py.detach(|| run_steady(&red, &c, &mut |_| {}));
     match result {
-        Ok(r) => to_json(&steady_summary(&c, &r)),
+        Ok(r) => {
+            let s = steady_summary(&c, &r);
+            let tir = s
+                .magic_formula
+                .as_ref()
+                .map(|m| tire::steady_tir(&m.fit, &red, &c));
+            Ok((to_json(&s)?, tir))
+        }
         Err(e) => Err(match rig_input_error(e) {
             Ok(field) => input_error(field),
             Err(other) => numerical_error(py, other.to_string(), None),

@@ -151,4 +151,4 @@ pub use study::{
     rig_input_error, summarize, tire_input_error,
 };
 pub use sweep_study::{SweepResult, SweepStudyConfig, SweepSummary, run_sweep};
-pub use tir::{TirTyre, write_tir};
+pub use tir::{TirTyre, steady_tir, write_tir};

@@ -35,6 +35,8 @@
 //! camber, nominal pressure and pure slip.
 
 use crate::magic_formula::{FitError, MfFit};
+use crate::reduced::ReducedTire;
+use crate::steady::SteadyStudyConfig;
 use std::fmt::Write as _;
 
 /// Tyre data of the `.tir` besides the fitted coefficients (SI units, as in `[UNITS]`).
@@ -262,4 +264,31 @@ pub fn parse_tir(text: &str) -> Vec<(String, String, f64)> {
         }
     }
     out
+}
+
+/// The `.tir` text of the fit `fit` of a steady study ([`crate::steady`]) on the reduced tire
+/// `red` with the configuration `cfg` (`flowmbd-tire steady`'s `tire.tir`, the Python
+/// `flowmbd.tire.steady`'s `tir_text`): [`write_tir`] with `UNLOADED_RADIUS` = the tire's
+/// outer radius `R_0` \[m\], `WIDTH` = the lateral extent of its contact nodes \[m\] (the
+/// tread band the road can touch), `LONGVL` = the rig's speed \[m/s\], pressure and vertical
+/// stiffness not known to the fit (noted in the file), and the load, speed and friction of the
+/// data in the header.
+pub fn steady_tir(fit: &MfFit, red: &ReducedTire, cfg: &SteadyStudyConfig) -> String {
+    let ys = red.contact_positions.iter().map(|p| p[1]);
+    let width = ys.clone().fold(f64::MIN, f64::max) - ys.fold(f64::MAX, f64::min);
+    let tyre = TirTyre {
+        unloaded_radius: red.outer_radius,
+        width,
+        speed: cfg.rig.speed_kmh / 3.6,
+        pressure: None,
+        vertical_stiffness: None,
+    };
+    write_tir(
+        fit,
+        &tyre,
+        &format!(
+            "flowmbd-tire steady, load {} N, {} km/h, friction {}",
+            cfg.rig.load, cfg.rig.speed_kmh, cfg.rig.rolling.friction
+        ),
+    )
 }

@@ -90,23 +90,7 @@ fn write_fit(
     c: &Config, ctx: &mut StudyContext,
 ) -> Result<(), StudyError> {
     let fit = m.fit;
-    let ys = red.contact_positions.iter().map(|p| p[1]);
-    let width = ys.clone().fold(f64::MIN, f64::max) - ys.fold(f64::MAX, f64::min);
-    let tyre = tire::TirTyre {
-        unloaded_radius: red.outer_radius,
-        width,
-        speed: c.rig.speed_kmh / 3.6,
-        pressure: None,
-        vertical_stiffness: None,
-    };
-    let text = tire::write_tir(
-        &fit,
-        &tyre,
-        &format!(
-            "flowmbd-tire steady, load {} N, {} km/h, friction {}",
-            c.rig.load, c.rig.speed_kmh, c.rig.rolling.friction
-        ),
-    );
+    let text = tire::steady_tir(&fit, red, c);
     let path = ctx.out.write_text("tire.tir", &text)?;
     m.tir = Some(path.display().to_string());
     // data points and fitted curves (the fit sampled finely over the data's range)
