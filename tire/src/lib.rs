@@ -143,8 +143,8 @@ pub use spectrum::{
     spectrum_grid,
 };
 pub use steady::{
-    SteadyPoint, SteadyResult, SteadyStudyConfig, SteadySummary, cornering_stiffness, run_steady,
-    steady_summary,
+    SteadyPoint, SteadyResult, SteadyStudyConfig, SteadySummary, cornering_stiffness,
+    relaxation_length, run_steady, slip_stiffness, steady_summary,
 };
 pub use study::{
     CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, cleat_summary, phase_spread,

@@ -148,6 +148,11 @@ pub struct SteadyPoint {
     pub normal_sum_n: f64,
     /// Contact nodes in contact at the end.
     pub active_nodes: usize,
+    /// Lateral relaxation length σ_α \[m\] of a slip-angle point ([`relaxation_length`]):
+    /// the distance rolled after the step in α until `F_y` first reaches `1 − 1/e` of its
+    /// settled mean; `None` at the torque and free-rolling points, or where `F_y` is zero or
+    /// does not get there.
+    pub relaxation_length_m: Option<f64>,
 }
 
 /// Result of the steady-state sweep.
@@ -189,7 +194,76 @@ pub fn cornering_stiffness(points: &[(f64, f64)], fy0: f64) -> Option<f64> {
     Some((p.1 - fy0) / p.0.to_radians())
 }
 
+/// Longitudinal slip stiffness `C_Fκ = dF_x/dκ` at κ = 0 \[N\] (Pacejka, *Tire and Vehicle
+/// Dynamics*, §1.3, `C_Fκ`) from the points `(κ, F_x)` with the free-rolling point
+/// `(0, fx0)`: the secant between the smallest positive and the smallest negative κ when both
+/// exist, else the one-sided difference to κ = 0 over the smallest `|κ|`. `None` without a
+/// point of non-zero κ.
+pub fn slip_stiffness(points: &[(f64, f64)], fx0: f64) -> Option<f64> {
+    let nearest = |sign: f64| {
+        points
+            .iter()
+            .filter(|p| p.0 * sign > 0.0)
+            .min_by(|a, b| a.0.abs().total_cmp(&b.0.abs()))
+            .copied()
+    };
+    match (nearest(1.0), nearest(-1.0)) {
+        (Some(p), Some(q)) => Some((p.1 - q.1) / (p.0 - q.0)),
+        (Some(p), None) | (None, Some(p)) => Some((p.1 - fx0) / p.0),
+        (None, None) => None,
+    }
+}
+
+/// Relaxation length \[m\] of a force history after a step input at distance 0: the distance
+/// `s` at which the force `f(s)` first reaches `1 − 1/e` of its settled value `f_ss`, linear
+/// between samples (the exponential lag `f = f_ss (1 − e^{−s/σ})` of the stretched-string
+/// model reaches it at `s = σ`: Pacejka, *Tire and Vehicle Dynamics*, §5.3 and §7.2, (7.4)).
+/// `history` holds `(s [m], f [N])` in rolling order. `None` when `f_ss` is zero or not
+/// finite or the force does not get there.
+pub fn relaxation_length(history: &[(f64, f64)], f_ss: f64) -> Option<f64> {
+    if f_ss == 0.0 || !f_ss.is_finite() {
+        return None;
+    }
+    let target = 1.0 - (-1.0f64).exp();
+    let mut prev = (0.0, 0.0);
+    for &(s, f) in history {
+        let r = f / f_ss;
+        if r >= target {
+            let r0 = prev.1 / f_ss;
+            return Some(prev.0 + (s - prev.0) * (target - r0) / (r - r0));
+        }
+        prev = (s, f);
+    }
+    None
+}
+
 impl SteadyResult {
+    /// Longitudinal slip stiffness `dF_x/dκ` at κ = 0 \[N\] ([`slip_stiffness`]) of the torque
+    /// points.
+    pub fn slip_stiffness(&self) -> Option<f64> {
+        let pts: Vec<(f64, f64)> = self.torque.iter().map(|p| (p.kappa, p.loads.fx)).collect();
+        slip_stiffness(&pts, self.free_rolling.loads.fx)
+    }
+
+    /// Lateral relaxation length σ_α \[m\] at small slip: the mean of
+    /// [`SteadyPoint::relaxation_length_m`] over the slip-angle points of the smallest `|α|`
+    /// (the cornering stiffness's pair), `None` without one.
+    pub fn relaxation_length(&self) -> Option<f64> {
+        let a = self
+            .slip
+            .iter()
+            .filter(|p| p.slip_angle_deg != 0.0)
+            .map(|p| p.slip_angle_deg.abs())
+            .min_by(f64::total_cmp)?;
+        let v: Vec<f64> = self
+            .slip
+            .iter()
+            .filter(|p| p.slip_angle_deg.abs() == a)
+            .filter_map(|p| p.relaxation_length_m)
+            .collect();
+        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+    }
+
     /// Cornering stiffness `dF_y/dα` at α = 0 \[N/rad\] ([`cornering_stiffness`]).
     pub fn cornering_stiffness(&self) -> Option<f64> {
         let pts: Vec<(f64, f64)> = self
@@ -256,6 +330,19 @@ fn run_point(
     let hi = w.iter().map(|s| watch(s)).fold(f64::MIN, f64::max);
     let lo = w.iter().map(|s| watch(s)).fold(f64::MAX, f64::min);
     let last = r.samples.last();
+    // the side force against the distance rolled since the step in α (sample times run from
+    // −point_time to 0, the input applies from the start)
+    let relaxation_length_m = if alpha_deg != 0.0 && torque == 0.0 {
+        let v = cfg.rig.speed_kmh / 3.6;
+        let history: Vec<(f64, f64)> = r
+            .samples
+            .iter()
+            .map(|s| (v * (s.t + cfg.point_time), s.fz))
+            .collect();
+        relaxation_length(&history, loads.fy)
+    } else {
+        None
+    };
     Ok((
         SteadyPoint {
             slip_angle_deg: alpha_deg,
@@ -266,6 +353,7 @@ fn run_point(
             spread_n: if w.is_empty() { 0.0 } else { hi - lo },
             normal_sum_n: last.map_or(0.0, |s| s.normal_sum),
             active_nodes: last.map_or(0, |s| s.active),
+            relaxation_length_m,
         },
         r.symmetry,
     ))
@@ -324,6 +412,12 @@ pub struct SteadySummary {
     pub friction: f64,
     /// Cornering stiffness `dF_y/dα` at α = 0 \[N/rad\] (`null` without a slip angle).
     pub cornering_stiffness_n_per_rad: Option<f64>,
+    /// Lateral relaxation length σ_α at the smallest slip angle \[m\]
+    /// ([`SteadyResult::relaxation_length`]; `null` without a slip angle).
+    pub relaxation_length_m: Option<f64>,
+    /// Longitudinal slip stiffness `dF_x/dκ` at κ = 0 \[N\] ([`SteadyResult::slip_stiffness`];
+    /// `null` without a torque point).
+    pub slip_stiffness_n: Option<f64>,
     /// Slip angles \[deg\].
     pub slip_angle_deg: Vec<f64>,
     /// Side force `F_y(α)` \[N\].
@@ -373,8 +467,11 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
     Forces and moments are in the ISO 8855 wheel frame (x forward, y left, z up; moments about \
     the wheel centre, those of the contact forces). fy_n(alpha) and mz_n_m(alpha) are the side \
     force and aligning moment, cornering_stiffness_n_per_rad = dFy/dalpha at 0, \
-    pneumatic_trail_m = -Mz/Fy, fy_over_mu_fz <= 1 (Coulomb); fx_n(kappa) is the longitudinal \
-    force at the drive torques with kappa = Omega/Omega0 - 1 against the free-rolling spin.";
+    pneumatic_trail_m = -Mz/Fy, fy_over_mu_fz <= 1 (Coulomb), relaxation_length_m = the \
+    distance rolled after the step to the smallest slip angle until Fy reaches 1 - 1/e of its \
+    settled value (Pacejka 7.2); fx_n(kappa) is the longitudinal force at the drive torques \
+    with kappa = Omega/Omega0 - 1 against the free-rolling spin, slip_stiffness_n = dFx/dkappa \
+    at 0.";
 
 /// The summary of a steady result.
 pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummary {
@@ -394,6 +491,8 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
         load_n: cfg.rig.load,
         friction: mu,
         cornering_stiffness_n_per_rad: r.cornering_stiffness(),
+        relaxation_length_m: r.relaxation_length(),
+        slip_stiffness_n: r.slip_stiffness(),
         slip_angle_deg: r.slip.iter().map(|p| p.slip_angle_deg).collect(),
         fy_n: r.slip.iter().map(|p| p.loads.fy).collect(),
         mz_n_m: r.slip.iter().map(|p| p.loads.mz).collect(),
