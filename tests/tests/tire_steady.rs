@@ -132,7 +132,24 @@ fn forces_are_bounded_by_coulomb_and_approach_the_bound_at_large_slip() {
         );
         assert!(l.fx.abs() <= 1.005 * mu * l.fz, "|F_x| {} > μ F_z", l.fx);
         assert!(l.fy.abs() <= 1.005 * mu * l.fz, "|F_y| {} > μ F_z", l.fy);
+        // the contact forces themselves: every node |f_i| <= mu lambda_i, so the resultant's
+        // utilisation is at most 1 up to the contact solve's tolerance (1e-10 relative)
+        println!("utilisation {:?}", p.utilisation);
+        for u in p.utilisation {
+            assert!(u <= 1.0 + 1e-8, "utilisation {u} > 1");
+        }
     }
+    // near the bound at 15 deg and in the locked brake
+    assert!(
+        r.slip[0].utilisation[1] > 0.95,
+        "{:?}",
+        r.slip[0].utilisation
+    );
+    assert!(
+        r.torque[0].utilisation[0] > 0.95,
+        "{:?}",
+        r.torque[0].utilisation
+    );
     let s = &r.slip[0].loads;
     assert!(s.fy > 0.85 * mu * s.fz, "F_y(15°) = {} vs μ F_z", s.fy);
     let b = &r.torque[0];

@@ -18,7 +18,7 @@
 use crate::error::TireError;
 use crate::ground::GroundKind;
 use crate::reduced::ReducedTire;
-use crate::rig::{MAX_RIG_STEPS, RigConfig, run_cleat};
+use crate::rig::{MAX_RIG_STEPS, RigConfig, run_cleat_observed};
 use crate::rolling::WheelLoads;
 use crate::source::TireSource;
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -146,6 +146,13 @@ pub struct SteadyPoint {
     pub spread_n: f64,
     /// Sum of the normal contact forces at the end \[N\].
     pub normal_sum_n: f64,
+    /// Coulomb utilisation of the contact forces over the averaging window \[-\]:
+    /// `(|mean Σfᵢ,x|, |mean Σfᵢ,y|)/(μ mean Σλᵢ)` of the friction forces `fᵢ` (wheel frame
+    /// x, y) and normal forces `λᵢ` of the contact nodes. Each node obeys `|fᵢ| ≤ μ λᵢ`
+    /// (Coulomb's law), so both are at most 1 up to the contact solve's tolerance; the
+    /// spindle's `F_x/(μ F_z)` and `F_y/(μ F_z)` can exceed 1 by the tire's inertia over the
+    /// window (its centre-of-mass oscillation is in the spindle force, not in the contact).
+    pub utilisation: [f64; 2],
     /// Contact nodes in contact at the end.
     pub active_nodes: usize,
     /// Lateral relaxation length σ_α \[m\] of a slip-angle point ([`relaxation_length`]):
@@ -302,7 +309,18 @@ fn run_point(
     rig.wheel.slip_angle_deg = alpha_deg;
     rig.wheel.drive_torque = torque;
     // (the rig names its fields relative to itself; the study's root has them under `rig.`)
-    let r = run_cleat(red, &rig, progress).map_err(|e| match e {
+    // per step: the friction resultant (x, y) and the normal sum of the contact nodes
+    let mut contact: Vec<[f64; 3]> = Vec::new();
+    let mut observe = |_: usize, sim: &crate::rolling::RollingTire| {
+        let st = &sim.state;
+        let f = st
+            .friction
+            .iter()
+            .fold([0.0, 0.0], |a, f| [a[0] + f[0], a[1] + f[1]]);
+        contact.push([f[0], f[1], sim.total_normal_force()]);
+        Ok::<(), TireError>(())
+    };
+    let r = run_cleat_observed(red, &rig, progress, &mut observe).map_err(|e| match e {
         TireError::Invalid { item, reason } => TireError::Invalid {
             item: format!("rig.{item}"),
             reason,
@@ -310,11 +328,23 @@ fn run_point(
         other => other,
     })?;
     let t_end = r.samples.last().map_or(0.0, |s| s.t);
-    let w: Vec<_> = r
+    let in_window = |s: &crate::rig::Sample| s.t > t_end - cfg.average_time;
+    let w: Vec<_> = r.samples.iter().filter(|s| in_window(s)).collect();
+    // the observer ran once per step, as the samples were taken
+    let cw: Vec<&[f64; 3]> = r
         .samples
         .iter()
-        .filter(|s| s.t > t_end - cfg.average_time)
+        .zip(&contact)
+        .filter(|(s, _)| in_window(s))
+        .map(|(_, c)| c)
         .collect();
+    let cmean = |k: usize| cw.iter().map(|c| c[k]).sum::<f64>() / cw.len().max(1) as f64;
+    let mu_n = cfg.rig.rolling.friction * cmean(2);
+    let utilisation = if mu_n > 0.0 {
+        [cmean(0).abs() / mu_n, cmean(1).abs() / mu_n]
+    } else {
+        [0.0, 0.0]
+    };
     let n = w.len().max(1) as f64;
     let mean = |f: &dyn Fn(&crate::rig::Sample) -> f64| w.iter().map(|s| f(s)).sum::<f64>() / n;
     let loads = WheelLoads {
@@ -352,6 +382,7 @@ fn run_point(
             loads,
             spread_n: if w.is_empty() { 0.0 } else { hi - lo },
             normal_sum_n: last.map_or(0.0, |s| s.normal_sum),
+            utilisation,
             active_nodes: last.map_or(0, |s| s.active),
             relaxation_length_m,
         },
@@ -428,7 +459,8 @@ pub struct SteadySummary {
     pub fz_n: Vec<f64>,
     /// Pneumatic trail `−M_z/F_y` at each slip angle \[m\].
     pub pneumatic_trail_m: Vec<f64>,
-    /// `|F_y|/(μ F_z)` at each slip angle \[-\] (at most 1 by Coulomb's law).
+    /// `|F_y|/(μ F_z)` at each slip angle \[-\] of the contact forces
+    /// ([`SteadyPoint::utilisation`]: at most 1 by Coulomb's law).
     pub fy_over_mu_fz: Vec<f64>,
     /// Drive torques \[N·m\].
     pub drive_torque_n_m: Vec<f64>,
@@ -436,6 +468,9 @@ pub struct SteadySummary {
     pub kappa: Vec<f64>,
     /// Longitudinal force `F_x(κ)` \[N\].
     pub fx_n: Vec<f64>,
+    /// `|F_x|/(μ F_z)` at each torque \[-\] of the contact forces
+    /// ([`SteadyPoint::utilisation`]: at most 1 by Coulomb's law).
+    pub fx_over_mu_fz: Vec<f64>,
     /// Free-rolling point: `F_x` (rolling resistance) \[N\], `F_z` \[N\], spin rate `Ω₀`
     /// \[rad/s\] and effective rolling radius `R_e = V_x/Ω₀` \[m\].
     pub free_rolling_fx_n: f64,
@@ -467,7 +502,9 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
     Forces and moments are in the ISO 8855 wheel frame (x forward, y left, z up; moments about \
     the wheel centre, those of the contact forces). fy_n(alpha) and mz_n_m(alpha) are the side \
     force and aligning moment, cornering_stiffness_n_per_rad = dFy/dalpha at 0, \
-    pneumatic_trail_m = -Mz/Fy, fy_over_mu_fz <= 1 (Coulomb), relaxation_length_m = the \
+    pneumatic_trail_m = -Mz/Fy, fy_over_mu_fz and fx_over_mu_fz <= 1 (Coulomb's law; of the \
+    contact forces, whose sums the spindle forces differ from by the tire's inertia over the \
+    window), relaxation_length_m = the \
     distance rolled after the step to the smallest slip angle until Fy reaches 1 - 1/e of its \
     settled value (Pacejka 7.2); fx_n(kappa) is the longitudinal force at the drive torques \
     with kappa = Omega/Omega0 - 1 against the free-rolling spin, slip_stiffness_n = dFx/dkappa \
@@ -498,11 +535,8 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
         mz_n_m: r.slip.iter().map(|p| p.loads.mz).collect(),
         fz_n: r.slip.iter().map(|p| p.loads.fz).collect(),
         pneumatic_trail_m: r.pneumatic_trail(),
-        fy_over_mu_fz: r
-            .slip
-            .iter()
-            .map(|p| p.loads.fy.abs() / (mu * p.loads.fz))
-            .collect(),
+        fy_over_mu_fz: r.slip.iter().map(|p| p.utilisation[1]).collect(),
+        fx_over_mu_fz: r.torque.iter().map(|p| p.utilisation[0]).collect(),
         drive_torque_n_m: r.torque.iter().map(|p| p.drive_torque_n_m).collect(),
         kappa: r.torque.iter().map(|p| p.kappa).collect(),
         fx_n: r.torque.iter().map(|p| p.loads.fx).collect(),
