@@ -57,6 +57,9 @@ pub struct TireDynamics<'a> {
     spin_inertia: f64,
     /// Drive torque about the wheel axis \[N·m\].
     pub drive_torque: f64,
+    /// The prescribed spin of the current step, if any: the rheonomic constraint
+    /// `θ − θ_p(t) = 0` ([`PrescribedSpin`]).
+    prescribed: Option<PrescribedSpin>,
     /// Spin rate θ̇_R of the spin-dependent matrices \[rad/s\].
     spin: f64,
     /// The lagged argument `w` of the coupling `G₁ w` (n_z).
@@ -78,6 +81,53 @@ pub struct TireDynamics<'a> {
     /// The product with `Qᵀ`, split between two threads after
     /// [`TireDynamics::set_product_worker`] (bitwise the same result).
     product: SplitProduct,
+}
+
+/// A prescribed spin of the wheel over one step `[t₀, t₀ + h]` (issue 38, item 1): the spin
+/// rate varies linearly from `ω₀` to `ω₁`, so the prescribed angle is
+///
+/// ```text
+///   θ_p(t) = θ₀ + ω₀ s + ½ (ω₁ − ω₀) s²/h,   s = t − t₀,
+///   θ̇_p = ω₀ + (ω₁ − ω₀) s/h,   θ̈_p = (ω₁ − ω₀)/h,
+/// ```
+///
+/// and the end of the step `θ_p(t₀ + h) = θ₀ + h (ω₀ + ω₁)/2` (the trapezoidal rule of the
+/// rate). Imposed as the rheonomic constraint `Φ(t, q) = θ − θ_p(t) = 0` with Jacobian
+/// `D = [1 0 ⋯ 0]`, `ν = θ̇_p`, `γ = θ̈_p` (the kinematic driver of a coordinate, Haug,
+/// *Computer-Aided Kinematics and Dynamics of Mechanical Systems*, §3.4, as
+/// `mbd_core::constraints::drivers`) on the shared generalized-α stepper (index 3, Arnold &
+/// Brüls 2007). Its multiplier `λ` is the reaction: the torque `−λ` \[N·m\] that the
+/// prescribing drive applies to the wheel about +y.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrescribedSpin {
+    /// Start of the step `t₀` \[s\].
+    pub t0: f64,
+    /// Prescribed angle at `t₀` \[rad\].
+    pub theta0: f64,
+    /// Spin rate at `t₀` \[rad/s\].
+    pub omega0: f64,
+    /// Spin rate at `t₀ + h` \[rad/s\].
+    pub omega1: f64,
+    /// Step `h` \[s\] (positive).
+    pub h: f64,
+}
+
+impl PrescribedSpin {
+    /// `θ_p(t)` \[rad\].
+    pub fn angle(&self, t: f64) -> f64 {
+        let s = t - self.t0;
+        self.theta0 + self.omega0 * s + 0.5 * (self.omega1 - self.omega0) * s * s / self.h
+    }
+
+    /// `θ̇_p(t)` \[rad/s\].
+    pub fn rate(&self, t: f64) -> f64 {
+        self.omega0 + (self.omega1 - self.omega0) * (t - self.t0) / self.h
+    }
+
+    /// `θ̈_p` \[rad/s²\].
+    pub fn acceleration(&self) -> f64 {
+        (self.omega1 - self.omega0) / self.h
+    }
 }
 
 impl<'a> TireDynamics<'a> {
@@ -147,6 +197,7 @@ impl<'a> TireDynamics<'a> {
             beta,
             spin_inertia,
             drive_torque: 0.0,
+            prescribed: None,
             spin,
             lagged: vec![0.0; nz],
             qt,
@@ -164,6 +215,20 @@ impl<'a> TireDynamics<'a> {
     pub fn set_product_worker(&mut self, worker: Option<Arc<ProductWorker>>) {
         self.product = SplitProduct::new(worker);
         self.product.set(self.qt.as_ref());
+    }
+
+    /// Prescribes the wheel's spin over the next step (`Some`) or leaves it free (`None`, the
+    /// drive torque drives it): the rheonomic constraint `Φ = θ − θ_p(t) = 0`
+    /// ([`PrescribedSpin`]), one constraint equation of [`SecondOrderSystem::n_c`] whose
+    /// multiplier is the reaction torque. A stepper must be re-sized when the count changes
+    /// ([`AlphaStepper::resize_constraints`](mbd_core::integrators::AlphaStepper::resize_constraints)).
+    pub fn set_prescribed_spin(&mut self, p: Option<PrescribedSpin>) {
+        self.prescribed = p;
+    }
+
+    /// The prescribed spin of the current step ([`TireDynamics::set_prescribed_spin`]).
+    pub fn prescribed_spin(&self) -> Option<&PrescribedSpin> {
+        self.prescribed.as_ref()
     }
 
     /// Whether the tire is in modal coordinates (`M = I`, `K` diagonal; module documentation).
@@ -301,6 +366,49 @@ impl<'a> TireDynamics<'a> {
 impl SecondOrderSystem for TireDynamics<'_> {
     fn n_q(&self) -> usize {
         self.red.n_z() + 1
+    }
+
+    /// One equation with a prescribed spin ([`PrescribedSpin`]), else none.
+    fn n_c(&self) -> usize {
+        usize::from(self.prescribed.is_some())
+    }
+
+    fn constraint_name(&self, _row: usize) -> String {
+        "prescribed wheel spin".into()
+    }
+
+    /// `Φ = θ − θ_p(t)`.
+    fn constraint_residual(&self, t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
+        if let (Some(p), Some(x)) = (&self.prescribed, phi.first_mut()) {
+            *x = q[0] - p.angle(t);
+        }
+        Ok(())
+    }
+
+    /// `D = [1 0 ⋯ 0]`.
+    fn constraint_jacobian(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
+        let nc = self.n_c();
+        Ok(SysMatrix::Dense(Mat::from_fn(nc, self.n_q(), |_, j| {
+            if j == 0 { 1.0 } else { 0.0 }
+        })))
+    }
+
+    /// `ν = θ̇_p(t)`.
+    fn constraint_velocity_rhs(&self, t: f64, _q: &[f64], nu: &mut [f64]) -> Result<(), MbdError> {
+        if let (Some(p), Some(x)) = (&self.prescribed, nu.first_mut()) {
+            *x = p.rate(t);
+        }
+        Ok(())
+    }
+
+    /// `γ = θ̈_p`.
+    fn constraint_gamma(
+        &self, _t: f64, _q: &[f64], _v: &[f64], gamma: &mut [f64],
+    ) -> Result<(), MbdError> {
+        if let (Some(p), Some(x)) = (&self.prescribed, gamma.first_mut()) {
+            *x = p.acceleration();
+        }
+        Ok(())
     }
 
     fn dof_name(&self, dof: usize) -> String {
