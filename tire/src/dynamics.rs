@@ -60,6 +60,9 @@ pub struct TireDynamics<'a> {
     /// The prescribed spin of the current step, if any: the rheonomic constraint
     /// `θ − θ_p(t) = 0` ([`PrescribedSpin`]).
     prescribed: Option<PrescribedSpin>,
+    /// Acceleration `a` of the wheel frame (the spindle's rigid translation) \[m/s²\] in the
+    /// wheel frame ([`TireDynamics::set_frame_acceleration`]).
+    frame_acceleration: [f64; 3],
     /// Spin rate θ̇_R of the spin-dependent matrices \[rad/s\].
     spin: f64,
     /// The lagged argument `w` of the coupling `G₁ w` (n_z).
@@ -198,6 +201,7 @@ impl<'a> TireDynamics<'a> {
             spin_inertia,
             drive_torque: 0.0,
             prescribed: None,
+            frame_acceleration: [0.0; 3],
             spin,
             lagged: vec![0.0; nz],
             qt,
@@ -224,6 +228,35 @@ impl<'a> TireDynamics<'a> {
     /// ([`AlphaStepper::resize_constraints`](mbd_core::integrators::AlphaStepper::resize_constraints)).
     pub fn set_prescribed_spin(&mut self, p: Option<PrescribedSpin>) {
         self.prescribed = p;
+    }
+
+    /// Sets the acceleration `a` \[m/s²\] of the wheel frame, the rigid translation of the
+    /// spindle (wheel frame x, y, z; issue 38 item 2). The frame is then not inertial: every
+    /// material point carries the inertial load `−dm a` (d'Alembert), whose generalized force
+    /// on the tire's coordinates is `−Tᵀ M e a = −Pᵀ a` with the translational momentum rows
+    /// `P = eᵀ M T` ([`ReducedTire::p_e`]); the wheel's spin row sees none (a uniform field has
+    /// no moment about the centre of the axisymmetric wheel and rim). 0 (default): the fixed
+    /// spindle.
+    pub fn set_frame_acceleration(&mut self, a: [f64; 3]) {
+        self.frame_acceleration = a;
+    }
+
+    /// The acceleration of the wheel frame \[m/s²\] ([`TireDynamics::set_frame_acceleration`]).
+    pub fn frame_acceleration(&self) -> [f64; 3] {
+        self.frame_acceleration
+    }
+
+    /// `r[1 + i] += s (Pᵀ a)_i`: the inertial load of the accelerating frame (nothing when
+    /// `a = 0`, so that the fixed spindle's sums are unchanged bit for bit).
+    fn add_frame_load(&self, s: f64, r: &mut [f64]) {
+        let a = self.frame_acceleration;
+        if a == [0.0; 3] {
+            return;
+        }
+        let p = &self.red.p_e;
+        for (i, ri) in r[1..].iter_mut().enumerate() {
+            *ri += s * (p[(0, i)] * a[0] + p[(1, i)] * a[1] + p[(2, i)] * a[2]);
+        }
     }
 
     /// The prescribed spin of the current step ([`TireDynamics::set_prescribed_spin`]).
@@ -342,6 +375,7 @@ impl<'a> TireDynamics<'a> {
                 + w2 * self.red.c_s[i]
                 + self.red.m_theta[i] * th;
         }
+        self.add_frame_load(1.0, r);
     }
 
     /// `r = Q u` (one pass over the stored `Qᵀ`, split between two threads with a worker).
@@ -455,6 +489,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
         for (fi, c) in f[1..].iter_mut().zip(&self.red.c_s) {
             *fi -= w2 * c;
         }
+        self.add_frame_load(-1.0, f);
         Ok(())
     }
 
@@ -482,6 +517,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
         for ((ri, c), mt) in r[1..].iter_mut().zip(&self.red.c_s).zip(&self.red.m_theta) {
             *ri += w2 * c + mt * th;
         }
+        self.add_frame_load(1.0, r);
         Ok(true)
     }
 

@@ -579,6 +579,51 @@ impl<'a> RollingTire<'a> {
         Ok(())
     }
 
+    /// Replaces the ground under the wheel for the following steps: its height `top` (the
+    /// wheel centre's height above the road is `−top`), surface speed and lateral velocity
+    /// (the wheel centre's velocity over the road, [`Ground`]), e.g. per step from a prescribed
+    /// wheel-centre motion (issue 38 item 2, [`crate::motion`]). The contact is position-level
+    /// (index 3): a changed height is met at the end of the next step. Errors: an invalid
+    /// ground configuration, a non-finite height or speed, and a lateral velocity on the half
+    /// model of symmetric motion (which has no lateral coordinates: start with
+    /// `rolling.symmetry = "off"` or a non-zero slip angle).
+    pub fn set_ground(&mut self, ground: Ground) -> Result<(), TireError> {
+        ground.cfg.validate_within("ground")?;
+        check::finite("ground.top", ground.top)?;
+        check::finite("ground.speed", ground.speed)?;
+        check::finite("ground.lateral_speed", ground.lateral_speed)?;
+        check::finite("ground.cleat_time", ground.cleat_time)?;
+        if ground.lateral_speed != 0.0 && matches!(self.symmetry, SymmetryUse::Half(_)) {
+            return Err(invalid(
+                "ground.lateral_speed",
+                "the half model of symmetric motion is stepped (no lateral motion): start \
+                 with rolling.symmetry = \"off\" for a lateral velocity",
+            ));
+        }
+        self.stepper.correction_mut().set_ground(ground);
+        Ok(())
+    }
+
+    /// Sets the acceleration of the wheel frame (the spindle's rigid translation, wheel frame
+    /// x, y, z) \[m/s²\] for the following steps ([`TireDynamics::set_frame_acceleration`]:
+    /// the inertial load `−M a` on the tire; the momentum spindle force then also carries
+    /// the tire's `−m a`, [`RollingTire::spindle_force`]). Errors: a value that is not finite,
+    /// a lateral component on the half model.
+    pub fn set_frame_acceleration(&mut self, a: [f64; 3]) -> Result<(), TireError> {
+        for (c, x) in ["x", "y", "z"].iter().zip(a) {
+            check::finite(&format!("frame_acceleration.{c}"), x)?;
+        }
+        if a[1] != 0.0 && matches!(self.symmetry, SymmetryUse::Half(_)) {
+            return Err(invalid(
+                "frame_acceleration.y",
+                "the half model of symmetric motion is stepped (no lateral motion): start \
+                 with rolling.symmetry = \"off\" for a lateral acceleration",
+            ));
+        }
+        self.sys.set_frame_acceleration(a);
+        Ok(())
+    }
+
     /// The prescribed spin rate `Ω` \[rad/s\] ([`RollingTire::prescribe_spin`]), `None` when
     /// the spin is free.
     pub fn prescribed_spin(&self) -> Option<f64> {
@@ -785,6 +830,13 @@ impl<'a> RollingTire<'a> {
                     + w2 * p2[j] * st.z[j];
             }
             *fc = st.contact_force[c] - inertia;
+        }
+        // the accelerating spindle frame: the tire's momentum also changes by m a
+        let a = self.sys.frame_acceleration();
+        if a != [0.0; 3] {
+            for (fc, ac) in f.iter_mut().zip(a) {
+                *fc -= red.tire_mass * ac;
+            }
         }
         f
     }

@@ -209,6 +209,20 @@ impl TireContact {
         w.bound.valid = false;
     }
 
+    /// Replaces the ground (e.g. its height, speed or lateral velocity set per step by a
+    /// prescribed wheel-centre motion, [`crate::RollingTire::set_ground`]). The skip bound of
+    /// the candidate search assumes a ground fixed but for the cleat's travel, so it is reset
+    /// when anything but the velocities changes (every node is searched at the next step).
+    pub fn set_ground(&mut self, ground: Ground) {
+        if ground.cfg != self.ground.cfg
+            || ground.top != self.ground.top
+            || ground.cleat_time != self.ground.cleat_time
+        {
+            self.work.bound.valid = false;
+        }
+        self.ground = ground;
+    }
+
     /// The settings.
     pub fn config(&self) -> &RollingConfig {
         &self.cfg
