@@ -573,3 +573,117 @@ class Simulation(Stepping):
             except (TypeError, ValueError) as e:
                 raise ValueError(f"state.{k}: expected an array of numbers ({e})") from None
         self._sim.set_state(converted)
+
+
+def _motion_json(motion: Mapping[str, Any]) -> str:
+    """The JSON of a wheel-centre motion dict (``height`` [m], ``velocity`` [m/s] (3, road
+    frame), ``yaw``, ``camber`` [rad], ``spin_rate`` [rad/s]), checked for its keys."""
+    import json
+
+    if not isinstance(motion, Mapping):
+        raise ValueError(f"motion: expected a dict, got {type(motion).__name__}")
+    out = {}
+    for k, v in motion.items():
+        if k == "velocity":
+            vel = [_args.number(f"motion.velocity[{i}]", x) for i, x in enumerate(v)]
+            if len(vel) != 3:
+                raise ValueError(f"motion.velocity: {len(vel)} values, must be 3 (x, y, z)")
+            out[k] = vel
+        else:
+            out[k] = _args.number(f"motion.{k}", v)
+    return json.dumps(out)
+
+
+class CoSimulation:
+    """The reduced tire on a flat road driven by a prescribed wheel-centre motion (issue 38
+    items 1, 2 and 4; Rust: ``tire::motion::CoSimulation``, the same implementation as the
+    tire FMU of :func:`build_fmu`): each :meth:`do_step` holds the motion over a communication
+    step and returns the six loads of the tire on the wheel in the ISO 8855 wheel frame.
+
+    The motion is a dict: ``height`` of the wheel centre above the road [m], its ``velocity``
+    over the road (road frame x forward, y left, z up) [m/s], the wheel's ``yaw`` about z and
+    ``camber`` about its x axis [rad] (camber must be 0: not supported yet) and its prescribed
+    ``spin_rate`` [rad/s]. The spindle's acceleration (the difference of the velocities over
+    a step) loads the tire with its inertia ``-M a``.
+
+    Parameters
+    ----------
+    config : dict with the keys of ``flowmbd-tire cleat --print-config`` (its ``rig``: load,
+        damping, ``rolling`` with ``friction`` and ``time_step``, the largest internal step).
+    tire : a :class:`ReducedTire` used instead of reducing ``config["tire"]``.
+    motion : the start motion; default the rig's steady start (:attr:`motion` afterwards).
+    """
+
+    def __init__(
+        self,
+        config: Optional[Mapping[str, Any]] = None,
+        tire: Optional["ReducedTire"] = None,
+        motion: Optional[Mapping[str, Any]] = None,
+    ) -> None:
+        if tire is not None and not isinstance(tire, ReducedTire):
+            raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
+        m = None if motion is None else _motion_json(motion)
+        self._sim = _native.TireCoSimulation(config_json(config), tire, m)
+
+    @property
+    def t(self) -> float:
+        """Time [s]."""
+        return self._sim.t
+
+    @property
+    def motion(self) -> dict:
+        """The motion of the last communication point."""
+        return self._sim.motion()
+
+    def do_step(self, h: float, motion: Mapping[str, Any]) -> dict:
+        """One communication step of ``h`` [s] with ``motion`` held (internal steps of at
+        most ``rig.rolling.time_step``); returns ``fx``, ``fy``, ``fz`` [N], ``mx``, ``my``,
+        ``mz`` [N m] (ISO 8855 wheel frame, at the wheel centre; ``fz`` the carried load) and
+        ``spin_torque`` [N m] (the torque that holds the prescribed spin)."""
+        return self._sim.do_step(_args.number("h", h), _motion_json(motion))
+
+
+def fmu_library() -> str:
+    """The compiled FMU library ``libflowmbd_tire_fmu.so`` (``cargo build --release -p
+    flowmbd-tire-fmu``): ``$FLOWMBD_FMU_LIB``, else in ``$FLOWMBD_BIN_DIR``, else in the
+    workspace's ``target/release`` next to this package's source."""
+    import os
+    import pathlib
+    import sys
+
+    if os.environ.get("FLOWMBD_FMU_LIB"):
+        return os.environ["FLOWMBD_FMU_LIB"]
+    name = {"darwin": "libflowmbd_tire_fmu.dylib", "win32": "flowmbd_tire_fmu.dll"}.get(
+        sys.platform, "libflowmbd_tire_fmu.so"
+    )
+    dirs = []
+    if os.environ.get("FLOWMBD_BIN_DIR"):
+        dirs.append(pathlib.Path(os.environ["FLOWMBD_BIN_DIR"]))
+    dirs.append(pathlib.Path.cwd() / "target" / "release")
+    for d in dirs:
+        if (d / name).exists():
+            return str(d / name)
+    raise FileNotFoundError(
+        f"{name} not found in {[str(d) for d in dirs]}: build it with "
+        "`cargo build --release -p flowmbd-tire-fmu` or set FLOWMBD_FMU_LIB"
+    )
+
+
+def build_fmu(
+    out: str,
+    config: Optional[Mapping[str, Any]] = None,
+    tire: Optional["ReducedTire"] = None,
+    library: Optional[str] = None,
+) -> dict:
+    """Write the FMI 3.0 co-simulation FMU of the tire to ``out`` (a ``.fmu`` zip:
+    ``modelDescription.xml``, ``binaries/<platform>/flowmbd_tire_fmu.so`` = ``library``
+    (default :func:`fmu_library`), ``resources/`` with the reduced tire and the rig of
+    ``config``). Inputs: wheel-centre position ``x``, ``y``, ``z`` [m], velocity ``vx``,
+    ``vy``, ``vz`` [m/s] (road frame), ``yaw``, ``camber`` [rad], ``spin_rate`` [rad/s];
+    outputs ``Fx`` ... ``Mz`` (ISO 8855 wheel frame) and ``spin_torque``; parameters
+    ``load`` [N], ``friction``, ``time_step`` [s] (see :class:`CoSimulation`). Returns the
+    start motion (the inputs' start values: the rig's steady start)."""
+    if tire is not None and not isinstance(tire, ReducedTire):
+        raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
+    lib = library if library is not None else fmu_library()
+    return _native.tire_build_fmu(str(out), str(lib), config_json(config), tire)

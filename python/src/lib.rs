@@ -25,6 +25,7 @@ mod reduce;
 mod stepping;
 mod string;
 mod tire;
+mod tire_fmu;
 mod tire_stepping;
 
 /// `ValueError` carrying the CLI's one-line message for a rejected field (`field: reason`).
@@ -171,6 +172,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(belt::demo, m)?)?;
     m.add_class::<stepping::PyBeltSimulation>()?;
     m.add_class::<tire_stepping::PyTireSimulation>()?;
+    m.add_class::<tire_fmu::PyTireCoSimulation>()?;
+    m.add_function(wrap_pyfunction!(tire_fmu::tire_build_fmu, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_modes, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(string::string_simulate, m)?)?;

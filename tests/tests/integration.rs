@@ -47,6 +47,7 @@ mod tire_import;
 mod tire_loaded;
 mod tire_magic_formula;
 mod tire_mirror;
+mod tire_prescribed;
 mod tire_reduction;
 mod tire_restart;
 mod tire_rolling;

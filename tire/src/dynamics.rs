@@ -57,6 +57,12 @@ pub struct TireDynamics<'a> {
     spin_inertia: f64,
     /// Drive torque about the wheel axis \[N·m\].
     pub drive_torque: f64,
+    /// The prescribed spin of the current step, if any: the rheonomic constraint
+    /// `θ − θ_p(t) = 0` ([`PrescribedSpin`]).
+    prescribed: Option<PrescribedSpin>,
+    /// Acceleration `a` of the wheel frame (the spindle's rigid translation) \[m/s²\] in the
+    /// wheel frame ([`TireDynamics::set_frame_acceleration`]).
+    frame_acceleration: [f64; 3],
     /// Spin rate θ̇_R of the spin-dependent matrices \[rad/s\].
     spin: f64,
     /// The lagged argument `w` of the coupling `G₁ w` (n_z).
@@ -78,6 +84,53 @@ pub struct TireDynamics<'a> {
     /// The product with `Qᵀ`, split between two threads after
     /// [`TireDynamics::set_product_worker`] (bitwise the same result).
     product: SplitProduct,
+}
+
+/// A prescribed spin of the wheel over one step `[t₀, t₀ + h]` (issue 38, item 1): the spin
+/// rate varies linearly from `ω₀` to `ω₁`, so the prescribed angle is
+///
+/// ```text
+///   θ_p(t) = θ₀ + ω₀ s + ½ (ω₁ − ω₀) s²/h,   s = t − t₀,
+///   θ̇_p = ω₀ + (ω₁ − ω₀) s/h,   θ̈_p = (ω₁ − ω₀)/h,
+/// ```
+///
+/// and the end of the step `θ_p(t₀ + h) = θ₀ + h (ω₀ + ω₁)/2` (the trapezoidal rule of the
+/// rate). Imposed as the rheonomic constraint `Φ(t, q) = θ − θ_p(t) = 0` with Jacobian
+/// `D = [1 0 ⋯ 0]`, `ν = θ̇_p`, `γ = θ̈_p` (the kinematic driver of a coordinate, Haug,
+/// *Computer-Aided Kinematics and Dynamics of Mechanical Systems*, §3.4, as
+/// `mbd_core::constraints::drivers`) on the shared generalized-α stepper (index 3, Arnold &
+/// Brüls 2007). Its multiplier `λ` is the reaction: the torque `−λ` \[N·m\] that the
+/// prescribing drive applies to the wheel about +y.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrescribedSpin {
+    /// Start of the step `t₀` \[s\].
+    pub t0: f64,
+    /// Prescribed angle at `t₀` \[rad\].
+    pub theta0: f64,
+    /// Spin rate at `t₀` \[rad/s\].
+    pub omega0: f64,
+    /// Spin rate at `t₀ + h` \[rad/s\].
+    pub omega1: f64,
+    /// Step `h` \[s\] (positive).
+    pub h: f64,
+}
+
+impl PrescribedSpin {
+    /// `θ_p(t)` \[rad\].
+    pub fn angle(&self, t: f64) -> f64 {
+        let s = t - self.t0;
+        self.theta0 + self.omega0 * s + 0.5 * (self.omega1 - self.omega0) * s * s / self.h
+    }
+
+    /// `θ̇_p(t)` \[rad/s\].
+    pub fn rate(&self, t: f64) -> f64 {
+        self.omega0 + (self.omega1 - self.omega0) * (t - self.t0) / self.h
+    }
+
+    /// `θ̈_p` \[rad/s²\].
+    pub fn acceleration(&self) -> f64 {
+        (self.omega1 - self.omega0) / self.h
+    }
 }
 
 impl<'a> TireDynamics<'a> {
@@ -147,6 +200,8 @@ impl<'a> TireDynamics<'a> {
             beta,
             spin_inertia,
             drive_torque: 0.0,
+            prescribed: None,
+            frame_acceleration: [0.0; 3],
             spin,
             lagged: vec![0.0; nz],
             qt,
@@ -164,6 +219,49 @@ impl<'a> TireDynamics<'a> {
     pub fn set_product_worker(&mut self, worker: Option<Arc<ProductWorker>>) {
         self.product = SplitProduct::new(worker);
         self.product.set(self.qt.as_ref());
+    }
+
+    /// Prescribes the wheel's spin over the next step (`Some`) or leaves it free (`None`, the
+    /// drive torque drives it): the rheonomic constraint `Φ = θ − θ_p(t) = 0`
+    /// ([`PrescribedSpin`]), one constraint equation of [`SecondOrderSystem::n_c`] whose
+    /// multiplier is the reaction torque. A stepper must be re-sized when the count changes
+    /// ([`AlphaStepper::resize_constraints`](mbd_core::integrators::AlphaStepper::resize_constraints)).
+    pub fn set_prescribed_spin(&mut self, p: Option<PrescribedSpin>) {
+        self.prescribed = p;
+    }
+
+    /// Sets the acceleration `a` \[m/s²\] of the wheel frame, the rigid translation of the
+    /// spindle (wheel frame x, y, z; issue 38 item 2). The frame is then not inertial: every
+    /// material point carries the inertial load `−dm a` (d'Alembert), whose generalized force
+    /// on the tire's coordinates is `−Tᵀ M e a = −Pᵀ a` with the translational momentum rows
+    /// `P = eᵀ M T` ([`ReducedTire::p_e`]); the wheel's spin row sees none (a uniform field has
+    /// no moment about the centre of the axisymmetric wheel and rim). 0 (default): the fixed
+    /// spindle.
+    pub fn set_frame_acceleration(&mut self, a: [f64; 3]) {
+        self.frame_acceleration = a;
+    }
+
+    /// The acceleration of the wheel frame \[m/s²\] ([`TireDynamics::set_frame_acceleration`]).
+    pub fn frame_acceleration(&self) -> [f64; 3] {
+        self.frame_acceleration
+    }
+
+    /// `r[1 + i] += s (Pᵀ a)_i`: the inertial load of the accelerating frame (nothing when
+    /// `a = 0`, so that the fixed spindle's sums are unchanged bit for bit).
+    fn add_frame_load(&self, s: f64, r: &mut [f64]) {
+        let a = self.frame_acceleration;
+        if a == [0.0; 3] {
+            return;
+        }
+        let p = &self.red.p_e;
+        for (i, ri) in r[1..].iter_mut().enumerate() {
+            *ri += s * (p[(0, i)] * a[0] + p[(1, i)] * a[1] + p[(2, i)] * a[2]);
+        }
+    }
+
+    /// The prescribed spin of the current step ([`TireDynamics::set_prescribed_spin`]).
+    pub fn prescribed_spin(&self) -> Option<&PrescribedSpin> {
+        self.prescribed.as_ref()
     }
 
     /// Whether the tire is in modal coordinates (`M = I`, `K` diagonal; module documentation).
@@ -277,6 +375,7 @@ impl<'a> TireDynamics<'a> {
                 + w2 * self.red.c_s[i]
                 + self.red.m_theta[i] * th;
         }
+        self.add_frame_load(1.0, r);
     }
 
     /// `r = Q u` (one pass over the stored `Qᵀ`, split between two threads with a worker).
@@ -301,6 +400,49 @@ impl<'a> TireDynamics<'a> {
 impl SecondOrderSystem for TireDynamics<'_> {
     fn n_q(&self) -> usize {
         self.red.n_z() + 1
+    }
+
+    /// One equation with a prescribed spin ([`PrescribedSpin`]), else none.
+    fn n_c(&self) -> usize {
+        usize::from(self.prescribed.is_some())
+    }
+
+    fn constraint_name(&self, _row: usize) -> String {
+        "prescribed wheel spin".into()
+    }
+
+    /// `Φ = θ − θ_p(t)`.
+    fn constraint_residual(&self, t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
+        if let (Some(p), Some(x)) = (&self.prescribed, phi.first_mut()) {
+            *x = q[0] - p.angle(t);
+        }
+        Ok(())
+    }
+
+    /// `D = [1 0 ⋯ 0]`.
+    fn constraint_jacobian(&self, _t: f64, _q: &[f64]) -> Result<SysMatrix, MbdError> {
+        let nc = self.n_c();
+        Ok(SysMatrix::Dense(Mat::from_fn(nc, self.n_q(), |_, j| {
+            if j == 0 { 1.0 } else { 0.0 }
+        })))
+    }
+
+    /// `ν = θ̇_p(t)`.
+    fn constraint_velocity_rhs(&self, t: f64, _q: &[f64], nu: &mut [f64]) -> Result<(), MbdError> {
+        if let (Some(p), Some(x)) = (&self.prescribed, nu.first_mut()) {
+            *x = p.rate(t);
+        }
+        Ok(())
+    }
+
+    /// `γ = θ̈_p`.
+    fn constraint_gamma(
+        &self, _t: f64, _q: &[f64], _v: &[f64], gamma: &mut [f64],
+    ) -> Result<(), MbdError> {
+        if let (Some(p), Some(x)) = (&self.prescribed, gamma.first_mut()) {
+            *x = p.acceleration();
+        }
+        Ok(())
     }
 
     fn dof_name(&self, dof: usize) -> String {
@@ -347,6 +489,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
         for (fi, c) in f[1..].iter_mut().zip(&self.red.c_s) {
             *fi -= w2 * c;
         }
+        self.add_frame_load(-1.0, f);
         Ok(())
     }
 
@@ -374,6 +517,7 @@ impl SecondOrderSystem for TireDynamics<'_> {
         for ((ri, c), mt) in r[1..].iter_mut().zip(&self.red.c_s).zip(&self.red.m_theta) {
             *ri += w2 * c + mt * th;
         }
+        self.add_frame_load(1.0, r);
         Ok(true)
     }
 

@@ -27,7 +27,7 @@ use crate::steady::SteadyResult;
 use mbd_core::least_squares::{LeastSquares, LmSettings, levenberg_marquardt};
 use serde::Serialize;
 
-/// Least number of torque points for the `F_x(κ)` fit (with the free-rolling point, four points
+/// Least number of torque and prescribed-spin points for the `F_x(κ)` fit (with the free-rolling point, four points
 /// for at least three coefficients).
 pub const MIN_TORQUE_POINTS: usize = 3;
 /// Least number of slip-angle points for the `F_y(α)`, `M_z(α)` fits.
@@ -401,8 +401,8 @@ pub fn fit_lateral(points: &[(f64, f64, f64)]) -> Result<LateralFit, MfFitError>
 }
 
 /// Fit a steady result at its one load `fz` \[N\] (recorded as [`MfFit::fz_n`]): the slip
-/// points with the free-rolling point for `F_y`, `M_z`, the torque points with it for `F_x(κ)`
-/// (skipped with fewer than [`MIN_TORQUE_POINTS`] torque points).
+/// points with the free-rolling point for `F_y`, `M_z`, the torque and prescribed-spin points
+/// with it for `F_x(κ)` (skipped with fewer than [`MIN_TORQUE_POINTS`] of them together).
 pub fn fit_steady(r: &SteadyResult, fz: f64) -> Result<MfFit, MfFitError> {
     if r.slip.len() < MIN_SLIP_POINTS {
         return Err(MfFitError::TooFewPoints {
@@ -417,9 +417,10 @@ pub fn fit_steady(r: &SteadyResult, fz: f64) -> Result<MfFit, MfFitError> {
         .map(|p| (p.slip_angle_deg.to_radians(), p.loads.fy, p.loads.mz))
         .collect();
     let lateral = fit_lateral(&lat)?;
-    let longitudinal = if r.torque.len() >= MIN_TORQUE_POINTS {
+    let longitudinal = if r.torque.len() + r.prescribed.len() >= MIN_TORQUE_POINTS {
         let d: Vec<(f64, f64)> = std::iter::once(&r.free_rolling)
             .chain(&r.torque)
+            .chain(&r.prescribed)
             .map(|p| (p.kappa, p.loads.fx))
             .collect();
         let (fx, fx_error) = fit_curve("Fx(kappa)", &d, C_LONGITUDINAL)?;
@@ -510,6 +511,7 @@ impl MfSummary {
             Some(x) => {
                 let k: Vec<f64> = std::iter::once(&r.free_rolling)
                     .chain(&r.torque)
+                    .chain(&r.prescribed)
                     .map(|p| p.kappa)
                     .collect();
                 let f = k.iter().map(|&k| x.fx.eval(k)).collect();

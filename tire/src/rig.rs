@@ -155,6 +155,16 @@ pub struct WheelInputs {
     /// centre, a negative aligning moment `M_z`. Within ±45°. A non-zero α breaks the mirror
     /// symmetry: the full model is stepped.
     pub slip_angle_deg: f64,
+    /// Prescribed spin rate Ω \[rad/s\] about +y instead of a torque (absent: the spin is
+    /// free and `drive_torque` drives it). From the start of the run the spin rate goes
+    /// linearly from the free-rolling start's to Ω over the first step and is then held: a
+    /// kinematic constraint on the spin coordinate ([`crate::dynamics::PrescribedSpin`],
+    /// [`RollingTire::prescribe_spin`]) whose reaction torque is an output
+    /// ([`RollingTire::reaction_torque`]). The longitudinal slip follows as
+    /// `κ = Ω/Ω₀ − 1` against the free-rolling spin rate Ω₀ (Pacejka §1.2; the steady study's
+    /// `slip_ratios` sweep sets Ω this way). Requires `drive_torque = 0`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spin_rate: Option<f64>,
 }
 
 impl Default for WheelInputs {
@@ -162,15 +172,21 @@ impl Default for WheelInputs {
         Self {
             drive_torque: 0.0,
             slip_angle_deg: 0.0,
+            spin_rate: None,
         }
     }
 }
+
+/// Largest prescribed spin rate of [`WheelInputs::spin_rate`] \[rad/s\] (about 16 000 rpm,
+/// several times any road tire's at its speed rating).
+pub const MAX_SPIN_RATE: f64 = 1700.0;
 
 /// Largest slip angle of [`WheelInputs::slip_angle_deg`] \[deg\].
 pub const MAX_SLIP_ANGLE_DEG: f64 = 45.0;
 
 impl Validate for WheelInputs {
-    /// A finite torque and a slip angle within ±[`MAX_SLIP_ANGLE_DEG`].
+    /// A finite torque, a slip angle within ±[`MAX_SLIP_ANGLE_DEG`] and a prescribed spin rate
+    /// within ±[`MAX_SPIN_RATE`] only with `drive_torque = 0`.
     fn validate(&self) -> Result<(), InvalidField> {
         check::finite("drive_torque", self.drive_torque)?;
         check::within(
@@ -179,7 +195,21 @@ impl Validate for WheelInputs {
             -MAX_SLIP_ANGLE_DEG,
             MAX_SLIP_ANGLE_DEG,
             "deg",
-        )
+        )?;
+        if let Some(w) = self.spin_rate {
+            check::within("spin_rate", w, -MAX_SPIN_RATE, MAX_SPIN_RATE, "rad/s")?;
+            if self.drive_torque != 0.0 {
+                return Err(InvalidField::new(
+                    "drive_torque",
+                    format!(
+                        "must be 0 with a prescribed spin_rate (got {} N·m): the spin is \
+                         either driven by a torque or prescribed",
+                        check::show(self.drive_torque)
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -361,6 +391,9 @@ pub struct Sample {
     pub mz: f64,
     /// Spin rate \[rad/s\].
     pub spin: f64,
+    /// Torque applied to the wheel about +y \[N·m\]: the drive torque plus the reaction of a
+    /// prescribed spin ([`RollingTire::spin_torque`]).
+    pub spin_torque: f64,
     /// Contact nodes in contact.
     pub active: usize,
     /// Sum of the normal multipliers \[N\].
@@ -518,6 +551,9 @@ pub fn start_rolling<'a>(red: &'a ReducedTire, cfg: &RigConfig) -> Result<RigSta
         spin,
     )?;
     sim.drive_torque = cfg.wheel.drive_torque;
+    if cfg.wheel.spin_rate.is_some() {
+        sim.prescribe_spin(cfg.wheel.spin_rate)?;
+    }
     sim.state.lambda = pre.patch.lambda.clone();
     for (k, f) in pre.patch.f_c.iter().enumerate() {
         sim.state.contact_force[k % 3] += f;
@@ -599,6 +635,7 @@ pub fn run_cleat_observed(
             my: f.my,
             mz: f.mz,
             spin: sim.state.theta_d,
+            spin_torque: sim.spin_torque(),
             active: sim.active_count(),
             normal_sum: sim.total_normal_force(),
             cleat_nodes: sim.cleat_contacts,

@@ -94,7 +94,7 @@
 //! model runs and, for the full one, why.
 
 use crate::contact_step::TireContact;
-use crate::dynamics::TireDynamics;
+use crate::dynamics::{PrescribedSpin, TireDynamics};
 use crate::error::{TireError, invalid};
 use crate::ground::Ground;
 use crate::mirror::MirrorHalf;
@@ -200,6 +200,10 @@ pub struct RollingTire<'a> {
     pub beta: f64,
     /// Drive torque about the wheel axis \[N·m\] (0: free-rolling spindle).
     pub drive_torque: f64,
+    /// The prescribed spin, if any ([`RollingTire::prescribe_spin`]).
+    spin_drive: Option<SpinDrive>,
+    /// Reaction torque of the prescribed spin in the last step \[N·m\] (0 without one).
+    reaction_torque: f64,
     /// Current state (a copy of the stepper's, with the contact forces; the contact forces
     /// written here before a step are its warm start, e.g. the preload's multipliers).
     pub state: RollingState,
@@ -218,6 +222,18 @@ pub struct RollingTire<'a> {
     /// The worker thread of the split products (`threads ≥ 2`).
     product_worker: Option<std::sync::Arc<mbd_core::parallel::ProductWorker>>,
     symmetry: SymmetryUse,
+}
+
+/// The prescribed spin of a [`RollingTire`]: the target rate and the prescription at the
+/// present time (the start of the next step's [`PrescribedSpin`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct SpinDrive {
+    /// Target spin rate Ω \[rad/s\] (reached at the end of the next step).
+    target: f64,
+    /// Prescribed angle at the present time \[rad\].
+    angle: f64,
+    /// Prescribed rate at the present time \[rad/s\].
+    rate: f64,
 }
 
 /// Whether a [`RollingTire`] steps the half model of symmetric motion
@@ -386,6 +402,8 @@ impl<'a> RollingTire<'a> {
             alpha,
             beta,
             drive_torque: 0.0,
+            spin_drive: None,
+            reaction_torque: 0.0,
             state: RollingState {
                 t: 0.0,
                 z: z0,
@@ -512,8 +530,118 @@ impl<'a> RollingTire<'a> {
         self.stepper
             .correction_mut()
             .restart(&state.lambda, &state.friction);
+        if let Some(d) = &mut self.spin_drive {
+            // the prescription continues from the restored spin
+            d.angle = state.theta;
+            d.rate = state.theta_d;
+        }
         self.state = state;
         Ok(())
+    }
+
+    /// Prescribes the wheel's spin rate `Ω` \[rad/s\] for the following steps (`Some`) instead
+    /// of driving the spin by the torque [`RollingTire::drive_torque`] (`None`, the default:
+    /// the spin is free, issue 38 item 1). The spin is then a kinematic constraint
+    /// `θ = θ_p(t)` on the spin coordinate of the shared generalized-α stepper
+    /// ([`PrescribedSpin`]; not a second integrator): over each step the rate goes linearly
+    /// from its value at the start (at the switch: the present spin rate) to `Ω`, and the
+    /// torque that holds it is the reaction [`RollingTire::reaction_torque`] (any
+    /// `drive_torque` acts on top of it). Switching the prescription on or off re-sizes the
+    /// stepper's constraints ([`AlphaStepper::resize_constraints`]); the next step factors
+    /// the iteration matrix again. Errors: `Ω` not finite.
+    pub fn prescribe_spin(&mut self, omega: Option<f64>) -> Result<(), TireError> {
+        if let Some(w) = omega {
+            check::finite("spin_rate", w)?;
+        }
+        let was = self.spin_drive.is_some();
+        self.spin_drive = omega.map(|target| match self.spin_drive {
+            Some(d) => SpinDrive { target, ..d },
+            None => SpinDrive {
+                target,
+                angle: self.state.theta,
+                rate: self.state.theta_d,
+            },
+        });
+        if was != omega.is_some() {
+            self.sys
+                .set_prescribed_spin(self.spin_drive.map(|d| PrescribedSpin {
+                    t0: self.state.t,
+                    theta0: d.angle,
+                    omega0: d.rate,
+                    omega1: d.target,
+                    h: self.cfg.time_step,
+                }));
+            self.stepper
+                .resize_constraints(&self.sys)
+                .map_err(|e| invalid("spin_rate", e.to_string()))?;
+            self.reaction_torque = 0.0;
+        }
+        Ok(())
+    }
+
+    /// Replaces the ground under the wheel for the following steps: its height `top` (the
+    /// wheel centre's height above the road is `−top`), surface speed and lateral velocity
+    /// (the wheel centre's velocity over the road, [`Ground`]), e.g. per step from a prescribed
+    /// wheel-centre motion (issue 38 item 2, [`crate::motion`]). The contact is position-level
+    /// (index 3): a changed height is met at the end of the next step. Errors: an invalid
+    /// ground configuration, a non-finite height or speed, and a lateral velocity on the half
+    /// model of symmetric motion (which has no lateral coordinates: start with
+    /// `rolling.symmetry = "off"` or a non-zero slip angle).
+    pub fn set_ground(&mut self, ground: Ground) -> Result<(), TireError> {
+        ground.cfg.validate_within("ground")?;
+        check::finite("ground.top", ground.top)?;
+        check::finite("ground.speed", ground.speed)?;
+        check::finite("ground.lateral_speed", ground.lateral_speed)?;
+        check::finite("ground.cleat_time", ground.cleat_time)?;
+        if ground.lateral_speed != 0.0 && matches!(self.symmetry, SymmetryUse::Half(_)) {
+            return Err(invalid(
+                "ground.lateral_speed",
+                "the half model of symmetric motion is stepped (no lateral motion): start \
+                 with rolling.symmetry = \"off\" for a lateral velocity",
+            ));
+        }
+        self.stepper.correction_mut().set_ground(ground);
+        Ok(())
+    }
+
+    /// Sets the acceleration of the wheel frame (the spindle's rigid translation, wheel frame
+    /// x, y, z) \[m/s²\] for the following steps ([`TireDynamics::set_frame_acceleration`]:
+    /// the inertial load `−M a` on the tire; the momentum spindle force then also carries
+    /// the tire's `−m a`, [`RollingTire::spindle_force`]). Errors: a value that is not finite,
+    /// a lateral component on the half model.
+    pub fn set_frame_acceleration(&mut self, a: [f64; 3]) -> Result<(), TireError> {
+        for (c, x) in ["x", "y", "z"].iter().zip(a) {
+            check::finite(&format!("frame_acceleration.{c}"), x)?;
+        }
+        if a[1] != 0.0 && matches!(self.symmetry, SymmetryUse::Half(_)) {
+            return Err(invalid(
+                "frame_acceleration.y",
+                "the half model of symmetric motion is stepped (no lateral motion): start \
+                 with rolling.symmetry = \"off\" for a lateral acceleration",
+            ));
+        }
+        self.sys.set_frame_acceleration(a);
+        Ok(())
+    }
+
+    /// The prescribed spin rate `Ω` \[rad/s\] ([`RollingTire::prescribe_spin`]), `None` when
+    /// the spin is free.
+    pub fn prescribed_spin(&self) -> Option<f64> {
+        self.spin_drive.map(|d| d.target)
+    }
+
+    /// Reaction torque of the prescribed spin about the spin axis +y in the last step \[N·m\]:
+    /// the torque the prescribing drive applies to the wheel, `−λ` with the constraint's
+    /// multiplier λ ([`PrescribedSpin`]); 0 when the spin is free. In the steady state it
+    /// balances the moment of the road, `≈ −M_y` ([`WheelLoads::my`]).
+    pub fn reaction_torque(&self) -> f64 {
+        self.reaction_torque
+    }
+
+    /// The total torque applied to the wheel about +y in the last step \[N·m\]:
+    /// [`RollingTire::drive_torque`] plus [`RollingTire::reaction_torque`].
+    pub fn spin_torque(&self) -> f64 {
+        self.drive_torque + self.reaction_torque
     }
 
     /// Advance one time step of mbd-core's generalized-α stepper (module documentation): the
@@ -551,6 +679,15 @@ impl<'a> RollingTire<'a> {
         self.sys.set_lagged(st.theta_dd, &st.z, &st.zdd, lag);
         let c_r = clk.elapsed().as_secs_f64();
         self.sys.drive_torque = self.drive_torque;
+        if let Some(d) = self.spin_drive {
+            self.sys.set_prescribed_spin(Some(PrescribedSpin {
+                t0: self.state.t,
+                theta0: d.angle,
+                omega0: d.rate,
+                omega1: d.target,
+                h,
+            }));
+        }
         let contact = self.stepper.correction_mut();
         contact.lambda.copy_from_slice(&self.state.lambda);
         contact.friction.copy_from_slice(&self.state.friction);
@@ -580,6 +717,11 @@ impl<'a> RollingTire<'a> {
         st.lambda.copy_from_slice(&c.lambda);
         st.friction.copy_from_slice(&c.friction);
         st.contact_force = c.contact_force;
+        if let (Some(d), Some(p)) = (&mut self.spin_drive, self.sys.prescribed_spin()) {
+            d.angle = p.angle(st.t);
+            d.rate = d.target;
+            self.reaction_torque = -self.stepper.lambda()[0];
+        }
         self.cleat_contacts = c.cleat_contacts;
         self.refactors = self.stepper.stats.jacobian_evaluations;
         let own = self.stats;
@@ -688,6 +830,13 @@ impl<'a> RollingTire<'a> {
                     + w2 * p2[j] * st.z[j];
             }
             *fc = st.contact_force[c] - inertia;
+        }
+        // the accelerating spindle frame: the tire's momentum also changes by m a
+        let a = self.sys.frame_acceleration();
+        if a != [0.0; 3] {
+            for (fc, ac) in f.iter_mut().zip(a) {
+                *fc -= red.tire_mass * ac;
+            }
         }
         f
     }

@@ -1,6 +1,8 @@
 //! Steady-state force and moment characteristics of the rolling tire on a flat road (issue 38,
 //! items 1 and 5): the side force `F_y(α)` and aligning moment `M_z(α)` over a sweep of slip
-//! angles, and the longitudinal force `F_x(κ)` over a sweep of drive/brake torques, each point
+//! angles, and the longitudinal force `F_x(κ)` over a sweep of drive/brake torques and over a
+//! sweep of prescribed longitudinal slips (the spin rate held at `Ω = (1 + κ) Ω₀`, through and
+//! beyond the peak of `F_x`, with the reaction torque as an output), each point
 //! settled on the same rig and time stepper as the cleat test ([`crate::rig::run_cleat`]
 //! without a cleat, [`crate::rig::WheelInputs`] set per point).
 //!
@@ -27,6 +29,9 @@ use serde::{Deserialize, Serialize};
 /// Most points of one steady sweep (slip angles plus torques plus the free-rolling point).
 pub const MAX_STEADY_POINTS: usize = 1000;
 
+/// Largest longitudinal slip of [`SteadyStudyConfig::slip_ratios`] \[-\].
+pub const MAX_SLIP_RATIO: f64 = 10.0;
+
 /// Configuration of the steady-state study (`flowmbd-tire steady`).
 #[derive(Debug, Clone, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
@@ -45,6 +50,12 @@ pub struct SteadyStudyConfig {
     /// Drive (positive) or brake (negative) torques of the longitudinal sweep \[N·m\] (each at
     /// zero slip angle).
     pub drive_torques_n_m: Vec<f64>,
+    /// Longitudinal slips κ of the prescribed-spin sweep \[-\] (each at zero slip angle and
+    /// no torque; within \[−1, 10\]): the spin rate is held at `Ω = (1 + κ) Ω₀` with `Ω₀` of
+    /// the free-rolling point ([`crate::rig::WheelInputs::spin_rate`]), so `F_x(κ)` is
+    /// obtained through and beyond its peak (a torque sweep cannot pass the peak: a torque
+    /// above it spins the wheel up without a steady state).
+    pub slip_ratios: Vec<f64>,
     /// Simulated time of each point from the free-rolling start \[s\].
     pub point_time: f64,
     /// The point's loads are the means over its last `average_time` \[s\].
@@ -61,6 +72,7 @@ impl Default for SteadyStudyConfig {
             rig,
             slip_angles_deg: vec![-0.2, 0.2, 1.0, 4.0],
             drive_torques_n_m: vec![-1000.0, 1000.0],
+            slip_ratios: Vec::new(),
             point_time: 0.3,
             average_time: 0.05,
         }
@@ -82,7 +94,8 @@ impl Validate for SteadyStudyConfig {
                 "must be false: the steady study rolls on the plain drum or road",
             ));
         }
-        let n = self.slip_angles_deg.len() + self.drive_torques_n_m.len() + 1;
+        let n =
+            self.slip_angles_deg.len() + self.drive_torques_n_m.len() + self.slip_ratios.len() + 1;
         check::size("slip_angles_deg", n, 1, MAX_STEADY_POINTS)?;
         for (i, a) in self.slip_angles_deg.iter().enumerate() {
             let max = crate::rig::MAX_SLIP_ANGLE_DEG;
@@ -90,6 +103,9 @@ impl Validate for SteadyStudyConfig {
         }
         for (i, t) in self.drive_torques_n_m.iter().enumerate() {
             check::finite(&format!("drive_torques_n_m[{i}]"), *t)?;
+        }
+        for (i, k) in self.slip_ratios.iter().enumerate() {
+            check::within(&format!("slip_ratios[{i}]"), *k, -1.0, MAX_SLIP_RATIO, "")?;
         }
         check::positive("point_time", self.point_time, "s")?;
         check::positive("average_time", self.average_time, "s")?;
@@ -133,8 +149,12 @@ impl Validate for SteadyStudyConfig {
 pub struct SteadyPoint {
     /// Slip angle α \[deg\].
     pub slip_angle_deg: f64,
-    /// Drive torque \[N·m\].
+    /// Drive torque \[N·m\] (the input; 0 at a prescribed-spin point).
     pub drive_torque_n_m: f64,
+    /// Mean torque applied to the wheel about +y \[N·m\]: the drive torque, or at a
+    /// prescribed-spin point the reaction torque that holds the spin
+    /// ([`crate::RollingTire::spin_torque`]).
+    pub spin_torque_n_m: f64,
     /// Longitudinal slip `κ = Ω/Ω₀ − 1` against the free-rolling spin rate `Ω₀` \[-\].
     pub kappa: f64,
     /// Mean spin rate Ω \[rad/s\].
@@ -172,6 +192,8 @@ pub struct SteadyResult {
     pub slip: Vec<SteadyPoint>,
     /// The torque points in the order of `drive_torques_n_m`.
     pub torque: Vec<SteadyPoint>,
+    /// The prescribed-spin points in the order of `slip_ratios`.
+    pub prescribed: Vec<SteadyPoint>,
     /// Model stepped at the slip-angle points (full model when α ≠ 0).
     pub symmetry: String,
 }
@@ -245,10 +267,16 @@ pub fn relaxation_length(history: &[(f64, f64)], f_ss: f64) -> Option<f64> {
 }
 
 impl SteadyResult {
-    /// Longitudinal slip stiffness `dF_x/dκ` at κ = 0 \[N\] ([`slip_stiffness`]) of the torque
-    /// points.
+    /// Longitudinal slip stiffness `dF_x/dκ` at κ = 0 \[N\] ([`slip_stiffness`]) of the
+    /// prescribed-spin points (κ set, not reached through the wheel's inertia), or of the
+    /// torque points when there are none.
     pub fn slip_stiffness(&self) -> Option<f64> {
-        let pts: Vec<(f64, f64)> = self.torque.iter().map(|p| (p.kappa, p.loads.fx)).collect();
+        let points = if self.prescribed.is_empty() {
+            &self.torque
+        } else {
+            &self.prescribed
+        };
+        let pts: Vec<(f64, f64)> = points.iter().map(|p| (p.kappa, p.loads.fx)).collect();
         slip_stiffness(&pts, self.free_rolling.loads.fx)
     }
 
@@ -296,18 +324,19 @@ impl SteadyResult {
     }
 }
 
-/// Run one point: the rig of `cfg` with the wheel inputs `(α [deg], torque [N·m])`, the means
-/// over the last `average_time`. `omega0` is the free-rolling spin rate for κ (`None`: this
-/// is the free-rolling point, κ = 0).
+/// Run one point: the rig of `cfg` with the wheel inputs `(α [deg], torque [N·m], prescribed
+/// spin rate [rad/s])`, the means over the last `average_time`. `omega0` is the free-rolling
+/// spin rate for κ (`None`: this is the free-rolling point, κ = 0).
 fn run_point(
-    red: &ReducedTire, cfg: &SteadyStudyConfig, alpha_deg: f64, torque: f64, omega0: Option<f64>,
-    progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, cfg: &SteadyStudyConfig, (alpha_deg, torque, spin_rate): PointInputs,
+    omega0: Option<f64>, progress: &mut dyn FnMut(f64),
 ) -> Result<(SteadyPoint, String), TireError> {
     let mut rig = cfg.rig.clone();
     rig.settle_time = cfg.point_time;
     rig.record_time = 0.0;
     rig.wheel.slip_angle_deg = alpha_deg;
     rig.wheel.drive_torque = torque;
+    rig.wheel.spin_rate = spin_rate;
     // (the rig names its fields relative to itself; the study's root has them under `rig.`)
     // per step: the friction resultant (x, y) and the normal sum of the contact nodes
     let mut contact: Vec<[f64; 3]> = Vec::new();
@@ -356,7 +385,9 @@ fn run_point(
         mz: mean(&|s| s.mz),
     };
     let spin = mean(&|s| s.spin);
-    let watch = |s: &crate::rig::Sample| if torque != 0.0 { s.fx } else { s.fz };
+    let spin_torque = mean(&|s| s.spin_torque);
+    let longitudinal = torque != 0.0 || spin_rate.is_some();
+    let watch = |s: &crate::rig::Sample| if longitudinal { s.fx } else { s.fz };
     let hi = w.iter().map(|s| watch(s)).fold(f64::MIN, f64::max);
     let lo = w.iter().map(|s| watch(s)).fold(f64::MAX, f64::min);
     let last = r.samples.last();
@@ -377,6 +408,7 @@ fn run_point(
         SteadyPoint {
             slip_angle_deg: alpha_deg,
             drive_torque_n_m: torque,
+            spin_torque_n_m: spin_torque,
             kappa: omega0.map_or(0.0, |o| spin / o - 1.0),
             spin_rad_per_s: spin,
             loads,
@@ -390,6 +422,10 @@ fn run_point(
     ))
 }
 
+/// The wheel inputs of one point: slip angle \[deg\], drive torque \[N·m\], prescribed spin
+/// rate \[rad/s\].
+type PointInputs = (f64, f64, Option<f64>);
+
 /// Run the steady-state sweep of `cfg` on the reduced tire `red` (module documentation): the
 /// free-rolling point, then every slip angle, then every torque. `progress` receives the
 /// fraction done (0..1). The settings are validated first ([`SteadyStudyConfig`]'s
@@ -398,15 +434,19 @@ pub fn run_steady(
     red: &ReducedTire, cfg: &SteadyStudyConfig, progress: &mut dyn FnMut(f64),
 ) -> Result<SteadyResult, TireError> {
     cfg.validate()?;
-    let total = (1 + cfg.slip_angles_deg.len() + cfg.drive_torques_n_m.len()) as f64;
+    let total =
+        (1 + cfg.slip_angles_deg.len() + cfg.drive_torques_n_m.len() + cfg.slip_ratios.len())
+            as f64;
     let mut k = 0.0;
-    let (free, _) = run_point(red, cfg, 0.0, 0.0, None, &mut |f| progress(f / total))?;
+    let (free, _) = run_point(red, cfg, (0.0, 0.0, None), None, &mut |f| {
+        progress(f / total)
+    })?;
     k += 1.0;
     let omega0 = free.spin_rad_per_s;
     let mut slip = Vec::with_capacity(cfg.slip_angles_deg.len());
     let mut symmetry = String::new();
     for &a in &cfg.slip_angles_deg {
-        let (p, s) = run_point(red, cfg, a, 0.0, Some(omega0), &mut |f| {
+        let (p, s) = run_point(red, cfg, (a, 0.0, None), Some(omega0), &mut |f| {
             progress((k + f) / total)
         })?;
         k += 1.0;
@@ -417,17 +457,27 @@ pub fn run_steady(
     }
     let mut torque = Vec::with_capacity(cfg.drive_torques_n_m.len());
     for &t in &cfg.drive_torques_n_m {
-        let (p, _) = run_point(red, cfg, 0.0, t, Some(omega0), &mut |f| {
+        let (p, _) = run_point(red, cfg, (0.0, t, None), Some(omega0), &mut |f| {
             progress((k + f) / total)
         })?;
         k += 1.0;
         torque.push(p);
+    }
+    let mut prescribed = Vec::with_capacity(cfg.slip_ratios.len());
+    for &kappa in &cfg.slip_ratios {
+        let spin = Some((1.0 + kappa) * omega0);
+        let (p, _) = run_point(red, cfg, (0.0, 0.0, spin), Some(omega0), &mut |f| {
+            progress((k + f) / total)
+        })?;
+        k += 1.0;
+        prescribed.push(p);
     }
     progress(1.0);
     Ok(SteadyResult {
         free_rolling: free,
         slip,
         torque,
+        prescribed,
         symmetry,
     })
 }
@@ -471,6 +521,16 @@ pub struct SteadySummary {
     /// `|F_x|/(μ F_z)` at each torque \[-\] of the contact forces
     /// ([`SteadyPoint::utilisation`]: at most 1 by Coulomb's law).
     pub fx_over_mu_fz: Vec<f64>,
+    /// Prescribed longitudinal slips κ of the prescribed-spin sweep \[-\] (measured from the
+    /// settled spin rate: equal to `slip_ratios` to the settling).
+    pub prescribed_kappa: Vec<f64>,
+    /// Longitudinal force `F_x(κ)` at the prescribed slips \[N\].
+    pub prescribed_fx_n: Vec<f64>,
+    /// `F_x/(μ F_z)` at the prescribed slips \[-\] of the contact forces, signed as `F_x`
+    /// ([`SteadyPoint::utilisation`]: within ±1 by Coulomb's law).
+    pub prescribed_fx_over_mu_fz: Vec<f64>,
+    /// Reaction torque that holds the prescribed spin \[N·m\].
+    pub prescribed_spin_torque_n_m: Vec<f64>,
     /// Free-rolling point: `F_x` (rolling resistance) \[N\], `F_z` \[N\], spin rate `Ω₀`
     /// \[rad/s\] and effective rolling radius `R_e = V_x/Ω₀` \[m\].
     pub free_rolling_fx_n: f64,
@@ -504,11 +564,13 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
     force and aligning moment, cornering_stiffness_n_per_rad = dFy/dalpha at 0, \
     pneumatic_trail_m = -Mz/Fy, fy_over_mu_fz and fx_over_mu_fz <= 1 (Coulomb's law; of the \
     contact forces, whose sums the spindle forces differ from by the tire's inertia over the \
-    window), relaxation_length_m = the \
-    distance rolled after the step to the smallest slip angle until Fy reaches 1 - 1/e of its \
-    settled value (Pacejka 7.2); fx_n(kappa) is the longitudinal force at the drive torques \
-    with kappa = Omega/Omega0 - 1 against the free-rolling spin, slip_stiffness_n = dFx/dkappa \
-    at 0.";
+    window), relaxation_length_m = the distance rolled after the step to the smallest slip \
+    angle until Fy reaches 1 - 1/e of its settled value (Pacejka 7.2); fx_n(kappa) is the \
+    longitudinal force at the drive torques with kappa = Omega/Omega0 - 1 against the \
+    free-rolling spin; prescribed_fx_n(prescribed_kappa) is F_x with the spin rate held at \
+    (1 + kappa) Omega0 (slip_ratios), through and beyond the peak, and \
+    prescribed_spin_torque_n_m the reaction torque that holds it; slip_stiffness_n = \
+    dFx/dkappa at 0 (of the prescribed points when there are any, else of the torque points).";
 
 /// The summary of a steady result.
 pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummary {
@@ -540,6 +602,14 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
         drive_torque_n_m: r.torque.iter().map(|p| p.drive_torque_n_m).collect(),
         kappa: r.torque.iter().map(|p| p.kappa).collect(),
         fx_n: r.torque.iter().map(|p| p.loads.fx).collect(),
+        prescribed_kappa: r.prescribed.iter().map(|p| p.kappa).collect(),
+        prescribed_fx_n: r.prescribed.iter().map(|p| p.loads.fx).collect(),
+        prescribed_fx_over_mu_fz: r
+            .prescribed
+            .iter()
+            .map(|p| p.utilisation[0].copysign(p.loads.fx))
+            .collect(),
+        prescribed_spin_torque_n_m: r.prescribed.iter().map(|p| p.spin_torque_n_m).collect(),
         free_rolling_fx_n: f.loads.fx,
         free_rolling_fz_n: f.loads.fz,
         free_rolling_spin_rad_per_s: f.spin_rad_per_s,
@@ -547,6 +617,7 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
         points: std::iter::once(*f)
             .chain(r.slip.iter().copied())
             .chain(r.torque.iter().copied())
+            .chain(r.prescribed.iter().copied())
             .collect(),
         symmetry: r.symmetry.clone(),
         magic_formula,
@@ -556,11 +627,12 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
 }
 
 /// Columns of the steady study's point table (`points.csv`): slip angle \[deg\], drive torque
-/// \[N·m\], κ \[-\], spin \[rad/s\], the six loads (ISO 8855 wheel frame) \[N\], \[N·m\], the spread
+/// \[N·m\], torque on the wheel (drive or reaction of a prescribed spin) \[N·m\], κ \[-\], spin \[rad/s\], the six loads (ISO 8855 wheel frame) \[N\], \[N·m\], the spread
 /// over the averaging window \[N\].
-pub const STEADY_COLUMNS: [&str; 11] = [
+pub const STEADY_COLUMNS: [&str; 12] = [
     "slip_angle_deg",
     "drive_torque_N_m",
+    "spin_torque_N_m",
     "kappa_ratio",
     "spin_rad_per_s",
     "fx_N",
@@ -573,11 +645,12 @@ pub const STEADY_COLUMNS: [&str; 11] = [
 ];
 
 /// The [`STEADY_COLUMNS`] row of a point.
-pub fn steady_row(p: &SteadyPoint) -> [f64; 11] {
+pub fn steady_row(p: &SteadyPoint) -> [f64; 12] {
     let l = &p.loads;
     [
         p.slip_angle_deg,
         p.drive_torque_n_m,
+        p.spin_torque_n_m,
         p.kappa,
         p.spin_rad_per_s,
         l.fx,

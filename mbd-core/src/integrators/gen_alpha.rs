@@ -557,6 +557,35 @@ impl<C> AlphaStepper<C> {
         Ok(())
     }
 
+    /// Continues after the model's number of constraint equations changed between steps (a
+    /// rheonomic constraint switched on or off, e.g. a prescribed coordinate): the multipliers,
+    /// the per-step vectors and the iteration matrix are re-sized to `sys.n_c()`; the state,
+    /// `v̇`, `a` and the statistics are kept. The new multipliers start at 0 (only the predictor
+    /// of the next Newton iteration: λ enters the step equations linearly) and the next step
+    /// factors the augmented matrix again. Errors: a model with another number of coordinates
+    /// or velocities.
+    pub fn resize_constraints<S: SecondOrderSystem + ?Sized>(
+        &mut self, sys: &S,
+    ) -> Result<(), MbdError> {
+        let (nq, n, nc) = (sys.n_q(), sys.n_v(), sys.n_c());
+        if nq != self.state.q.len() || n != self.vdot.len() {
+            return Err(MbdError::InvalidInput {
+                item: "generalized-alpha constraints".into(),
+                reason: format!(
+                    "the model has n_q = {nq}, n_v = {n}; the stepper {} and {}",
+                    self.state.q.len(),
+                    self.vdot.len()
+                ),
+            });
+        }
+        self.lambda = vec![0.0; nc];
+        self.work = Work::new(nq, n, nc);
+        self.scratch = vec![0.0; n + nc];
+        self.matrix = IterationMatrix::new();
+        self.spare = None;
+        Ok(())
+    }
+
     /// Current Lagrange multipliers `λ` (generalized reactions `−Dᵀλ`).
     pub fn lambda(&self) -> &[f64] {
         &self.lambda

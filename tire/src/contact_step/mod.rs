@@ -88,7 +88,8 @@ struct Work {
     bound: GapBound,
     /// The nodes evaluated by the candidate search in this step.
     eval: Vec<usize>,
-    /// Acceleration increment `X Σ fⱼ` (n).
+    /// Acceleration increment `X Σ fⱼ` (n, then the multiplier increment of a prescribed
+    /// spin).
     dvdot: Vec<f64>,
     /// The contact forces as coefficients of the columns of `X` (3 n_c, zero between steps).
     coef: Vec<f64>,
@@ -208,6 +209,20 @@ impl TireContact {
         w.bound.valid = false;
     }
 
+    /// Replaces the ground (e.g. its height, speed or lateral velocity set per step by a
+    /// prescribed wheel-centre motion, [`crate::RollingTire::set_ground`]). The skip bound of
+    /// the candidate search assumes a ground fixed but for the cleat's travel, so it is reset
+    /// when anything but the velocities changes (every node is searched at the next step).
+    pub fn set_ground(&mut self, ground: Ground) {
+        if ground.cfg != self.ground.cfg
+            || ground.top != self.ground.top
+            || ground.cleat_time != self.ground.cleat_time
+        {
+            self.work.bound.valid = false;
+        }
+        self.ground = ground;
+    }
+
     /// The settings.
     pub fn config(&self) -> &RollingConfig {
         &self.cfg
@@ -228,11 +243,17 @@ impl TireContact {
         }
         let (n, nc3) = (self.load.nrows(), self.load.ncols());
         let nz = n - 1;
-        let mut r = self.responses[0].take().unwrap_or_else(|| Responses {
-            id,
-            x: Mat::zeros(n, nc3),
-            y: Mat::zeros(nc3, nc3),
-        });
+        // (with a prescribed spin the responses carry the reaction's multiplier in their last
+        // row: `S⁻¹` on the bilateral constraint, [`AlphaCorrection::solve_columns`])
+        let rows = n + step.lambda().len();
+        let mut r = self.responses[0]
+            .take()
+            .filter(|r| r.x.nrows() == rows)
+            .unwrap_or_else(|| Responses {
+                id,
+                x: Mat::zeros(rows, nc3),
+                y: Mat::zeros(nc3, nc3),
+            });
         r.id = id;
         step.solve_columns(self.load.as_ref(), r.x.as_mut())?;
         matmul(
@@ -342,8 +363,9 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
                 message: "no contact responses".into(),
             });
         };
-        // contact correction Δv̇ = X Σ fⱼ
+        // contact correction Δv̇ = X Σ fⱼ (and the reaction's Δλ with a prescribed spin)
         // (the columns in increasing order, as the candidates are)
+        w.dvdot.resize(fac.x.nrows(), 0.0);
         w.dvdot.iter_mut().for_each(|x| *x = 0.0);
         for (k, &j) in w.cand.iter().enumerate() {
             w.coef[3 * j..3 * j + 3].copy_from_slice(&w.forces[k]);
@@ -352,7 +374,8 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
         for &j in &w.cand {
             w.coef[3 * j..3 * j + 3].copy_from_slice(&[0.0; 3]);
         }
-        step.apply(&w.dvdot, &[]);
+        let n = self.load.nrows();
+        step.apply(&w.dvdot[..n], &w.dvdot[n..]);
         self.lambda.iter_mut().for_each(|l| *l = 0.0);
         self.friction.iter_mut().for_each(|f| *f = [0.0; 3]);
         self.contact_force = [0.0; 3];
