@@ -5,11 +5,15 @@
 //!
 //! The default drive with the tensioner's dry friction and damping removed and belt damping
 //! β = 2e-4 s, as in `drives/tests/fead_sweep.rs`. Prints the design model's spans, wraps
-//! (slip arcs), modes, the modes with the arm locked, on the installed geometry and with each
-//! wrap's slip arc added to the span leaving it as compliance (`r (1 − e^{−μ φ_s})/μ`, the
-//! capstan law on a sliding arc), then the flowing model's ring-down: the spectral peaks of
-//! the alternator's speed and the arm's angle (Hann window, 0.05 Hz grid) and the ring-down's
-//! shape at the peak (complex amplitudes of the angles per the alternator's).
+//! (slip arcs), modes (the default wrap model: the belt held on the adhesion arcs, each span in
+//! series with the slip arc it leaves, `drives::fead_design::modes`), the modes with the arm
+//! locked and on the installed geometry, each slip arc's compliance as a length of belt
+//! `EA c_w` against the diagnosis's estimate `r (1 − e^{−μ φ_s})/μ`, the first modes with the
+//! belt held on the whole wrap and with the belt's mass added (a measurement: the spans' axial
+//! mass lumped consistently to their ends, the wraps' belt to their pulleys), then the flowing
+//! model's ring-down (`drives::ringdown`): the spectral peaks of the alternator's speed and the
+//! arm's angle (Hann window, 0.05 Hz grid) and the ring-down's shape at the peak (complex
+//! amplitudes of the angles per the alternator's).
 //!
 //! `cargo run --release -p drives --example fead_ringdown -- [key=value ...]` with keys
 //! `rpm`, `kappa` (tanh law \[s/m\]; above about 400 s/m the start from rest does not
@@ -20,9 +24,9 @@
 //! issue 36 item 2 (module documentation of `drives/tests/fead_sweep.rs`) are its output.
 
 use drives::fead::FeadConfig;
-use drives::fead_design::modes::rotational_model;
+use drives::fead_design::modes::{WrapModel, rotational_model, rotational_model_with};
 use drives::fead_design::steady_state;
-use drives::simulation::BeltSimulation;
+use drives::ringdown::{RingDownSettings, ring_down, spectrum_peaks};
 use flowing::belt::FlowingBelt;
 use mbd_core::integrators::AlphaConfig;
 use std::collections::HashMap;
@@ -139,149 +143,154 @@ fn main() {
             ri.arm_geometric_stiffness
         );
     }
-    // the slip arcs (creep theory, at each wrap's exit) as compliance of the span leaving it:
-    // tension increments along a sliding arc follow the capstan law, effective length
-    // r (1 − e^{−μ φ_s})/μ
+    // the wrap models (drives::fead_design::modes): the belt held on the whole wrap, and on
+    // the adhesion arcs only (creep theory: each span in series with the slip arc it leaves);
+    // the compliance lengths EA c_w against the diagnosis's estimate r (1 − e^{−μ φ_s})/μ
     {
-        let mut ss = s.clone();
         let radii: Vec<f64> = drive.pulleys().iter().map(|p| p.radius).collect();
-        for sp in &mut ss.geometry.spans {
-            let w = &s.wraps[sp.from];
-            let mu = s.mu[sp.from];
-            sp.length += radii[sp.from] * (1.0 - (-mu * w.slip_arc).exp()) / mu;
+        let held = rotational_model_with(&drive, &s, WrapModel::Held);
+        let ea = drive.belt().ea;
+        for (k, cw) in rm.wrap_compliance.iter().enumerate() {
+            let w = &s.wraps[k];
+            let mu = s.mu[k];
+            println!(
+                "  slip arc of {} -> span {}: EA c_w {:.2} mm (estimate {:.2} mm)",
+                names[k],
+                k,
+                1e3 * ea * cw,
+                1e3 * radii[k] * (1.0 - (-mu * w.slip_arc).exp()) / mu
+            );
         }
-        let rs = rotational_model(&drive, &ss);
-        let ms = rs.modes().expect("modes");
-        println!(
-            "  slip arcs as span compliance: {:?}",
-            ms.iter()
+        let f = |m: &drives::fead_design::modes::RotationalModel| -> Vec<String> {
+            m.modes()
+                .expect("modes")
+                .iter()
                 .take(3)
-                .map(|m| m.frequency_hz)
+                .map(|m| format!("{:.2}", m.frequency_hz))
+                .collect()
+        };
+        println!("  wrap held: {:?}; creep (default): {:?}", f(&held), f(&rm));
+        // the belt's mass (measurement, issue 36 item 2): each span's axial mass lumped
+        // consistently to its ends (m L/6 [2 1; 1 2] on the end displacements b_i, b_j per
+        // coordinate), the belt on each wrap added to its pulley (m r³ φ)
+        let mut mass = rm.mass.clone();
+        let m = drive.belt().mass_per_length;
+        let pulleys = s.geometry.path.pulleys();
+        let dofs = |k: usize| rm.names.iter().position(|x| *x == pulleys[k].name);
+        for sp in &s.geometry.spans {
+            let mut ends = [vec![0.0; rm.names.len()], vec![0.0; rm.names.len()]];
+            for (e, k) in [sp.from, sp.to].into_iter().enumerate() {
+                if let Some(c) = dofs(k) {
+                    ends[e][c] = radii[k];
+                }
+            }
+            if let (Some(a), Some(ad)) = (
+                drive.arm().zip(s.arm_angle),
+                rm.names.iter().position(|x| x == "tensioner arm"),
+            ) {
+                let v = a.0.tensioner.center(a.0.length, a.1).1;
+                for (e, k) in [sp.from, sp.to].into_iter().enumerate() {
+                    if k == a.0.tensioner.pulley {
+                        ends[e][ad] = sp.direction[0] * v[0] + sp.direction[1] * v[1];
+                    }
+                }
+            }
+            let ml = m * sp.length / 6.0;
+            for r in 0..rm.names.len() {
+                for c in 0..rm.names.len() {
+                    mass[(r, c)] += ml
+                        * (2.0 * ends[0][r] * ends[0][c]
+                            + ends[0][r] * ends[1][c]
+                            + ends[1][r] * ends[0][c]
+                            + 2.0 * ends[1][r] * ends[1][c]);
+                }
+            }
+        }
+        for (k, w) in s.wraps.iter().enumerate() {
+            if let Some(c) = dofs(k) {
+                mass[(c, c)] += m * radii[k].powi(3) * w.wrap;
+            }
+        }
+        let nm = rm.names.len();
+        let with_mass = fe_model::dense_modes(rm.stiffness.as_ref(), mass.as_ref(), nm)
+            .expect("modes with the belt's mass");
+        println!(
+            "  creep with the belt's mass: {:?}",
+            with_mass
+                .frequencies_hz
+                .iter()
+                .take(3)
+                .map(|f| format!("{f:.2}"))
                 .collect::<Vec<_>>()
         );
     }
     if arg("sim", 1.0) == 0.0 {
         return;
     }
-    // flowing ring-down
+    // flowing ring-down (drives::ringdown): a 4 ms pulse of 0.5 N m on the alternator
     let alt = 2;
-    let settle = arg("settle", 0.5);
-    let record = arg("record", 0.4);
-    let t1 = 0.1 + settle;
-    let t0 = &drive.motions()[alt];
-    let torque = match t0 {
-        belt::Motion::Load { torque, .. } => torque.final_value(),
-        _ => 0.0,
-    };
-    let dt = 0.002;
-    let mut model = FlowingBelt::new(&drive, &cfg.models.flowing).expect("model");
-    use belt::BeltModel;
-    model
-        .set_signal(
-            alt,
-            belt::Signal::schedule(vec![
-                (0.0, 0.0),
-                (0.1, torque),
-                (t1, torque),
-                (t1 + dt, torque + 0.5),
-                (t1 + 2.0 * dt, torque),
-            ]),
-        )
-        .unwrap();
-    let h = arg("h", 2.5e-4);
+    let model = FlowingBelt::new(&drive, &cfg.models.flowing).expect("model");
     let alpha = AlphaConfig {
-        h,
+        h: arg("h", 2.5e-4),
         rho_inf: 0.8,
         ..Default::default()
     };
-    let mut sim: BeltSimulation<FlowingBelt> = BeltSimulation::new(model, alpha).expect("sim");
-    let mut all: Vec<Vec<f64>> = Vec::new();
-    let mut ts = Vec::new();
-    let mut ys = Vec::new();
-    let mut arm = Vec::new();
-    while sim.state().t < t1 + 2.0 * dt + record {
-        sim.step().expect("step");
-        let st = sim.state();
-        if st.t > t1 + 2.0 * dt {
-            ts.push(st.t);
-            ys.push(sim.model().pulley_speed(alt, st.t, &st.v));
-            arm.push(sim.model().arm_angle(&st.q).unwrap_or(0.0));
-            let mut row: Vec<f64> = (1..6)
-                .map(|k| sim.model().pulley_speed(k, st.t, &st.v))
-                .collect();
-            row.push(arm.last().copied().unwrap_or(0.0));
-            all.push(row);
-        }
-    }
-    let spectrum = |y: &[f64]| {
-        let mean = y.iter().sum::<f64>() / y.len() as f64;
-        let n = y.len();
-        let mut best = (0.0, 0.0);
-        let mut rows = Vec::new();
-        let mut f = 10.0;
-        while f < 200.0 {
-            let w = 2.0 * std::f64::consts::PI * f;
-            let (mut c, mut s) = (0.0, 0.0);
-            for (i, (&t, &v)) in ts.iter().zip(y).enumerate() {
-                let hann = 0.5 - 0.5 * (2.0 * std::f64::consts::PI * i as f64 / n as f64).cos();
-                c += hann * (v - mean) * (w * t).cos();
-                s += hann * (v - mean) * (w * t).sin();
-            }
-            let a = (c * c + s * s).sqrt();
-            rows.push((f, a));
-            if a > best.1 {
-                best = (f, a);
-            }
-            f += 0.05;
-        }
-        // local maxima above 5 % of the largest
-        let peaks: Vec<String> = (1..rows.len() - 1)
-            .filter(|&i| rows[i].1 > rows[i - 1].1 && rows[i].1 >= rows[i + 1].1)
-            .filter(|&i| rows[i].1 > 0.05 * best.1)
-            .map(|i| format!("{:.2} Hz ({:.2})", rows[i].0, rows[i].1 / best.1))
-            .collect();
-        peaks
+    let rd = ring_down(
+        model,
+        alpha,
+        &RingDownSettings {
+            pulley: alt,
+            ramp: 0.1,
+            settle: arg("settle", 0.5),
+            pulse_torque: 0.5,
+            pulse_duration: 0.004,
+            record: arg("record", 0.4),
+        },
+    )
+    .expect("ring-down");
+    let ts = &rd.times;
+    let spectrum = |y: &[f64]| -> Vec<String> {
+        spectrum_peaks(ts, y, [10.0, 200.0], 0.05, 0.05)
+            .iter()
+            .map(|(f, a)| format!("{f:.2} Hz ({a:.2})"))
+            .collect()
     };
     println!(
         "flowing ring-down at {rpm} rpm: alternator speed peaks {:?}",
-        spectrum(&ys)
+        spectrum(&rd.pulley_speeds[alt])
     );
-    println!("  arm angle peaks {:?}", spectrum(&arm));
+    println!("  arm angle peaks {:?}", spectrum(&rd.arm_angle));
     // the ring-down's shape at the alternator's peak: complex amplitudes of the angles
     // (speeds / iω, the arm's angle) relative to the alternator's
-    let fpk: f64 = spectrum(&ys)[0].split(' ').next().unwrap().parse().unwrap();
+    let fpk = spectrum_peaks(ts, &rd.pulley_speeds[alt], [10.0, 200.0], 0.05, 0.05)
+        .iter()
+        .copied()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(f64::NAN, |p| p.0);
     let w = 2.0 * std::f64::consts::PI * fpk;
-    let dft = |c: usize| {
-        let y: Vec<f64> = all.iter().map(|r| r[c]).collect();
+    let dft = |y: &[f64]| {
         let mean = y.iter().sum::<f64>() / y.len() as f64;
         let (mut re, mut im) = (0.0, 0.0);
-        for (&t, &v) in ts.iter().zip(&y) {
+        for (&t, &v) in ts.iter().zip(y) {
             re += (v - mean) * (w * t).cos();
             im -= (v - mean) * (w * t).sin();
         }
         (re, im)
     };
-    let amp: Vec<(f64, f64)> = (0..6)
-        .map(|c| {
-            let (re, im) = dft(c);
+    let mut amp: Vec<(f64, f64)> = (1..6)
+        .map(|k| {
+            let (re, im) = dft(&rd.pulley_speeds[k]);
             // speeds to angles: divide by iω
-            if c < 5 { (im / w, -re / w) } else { (re, im) }
+            (im / w, -re / w)
         })
         .collect();
+    amp.push(dft(&rd.arm_angle));
     let (ar, ai) = amp[1];
     let d = ar * ar + ai * ai;
     println!(
-        "  flowing shape (re, im per alternator): {:?}",
+        "  flowing shape at {fpk:.2} Hz (re, im per alternator): {:?}",
         amp.iter()
             .map(|&(r, i)| format!("{:.3}{:+.3}i", (r * ar + i * ai) / d, (i * ar - r * ai) / d))
-            .collect::<Vec<_>>()
-    );
-    let snap = sim.report().expect("report");
-    println!(
-        "  settled spans: {:?}",
-        snap.spans
-            .iter()
-            .map(|s| format!("{:.1}", s.tension_n))
             .collect::<Vec<_>>()
     );
 }

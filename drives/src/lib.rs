@@ -17,6 +17,8 @@
 //! * [`ancf_run`], [`ancf_study`]: the ANCF belt-drive study of Kerkkänen ch. 3 (time loop with
 //!   sampled outputs, closure);
 //! * [`plate_study`]: the three-dimensional plate-belt study of Kerkkänen §4.6;
+//! * [`ringdown`]: a drive's free ring-down after a torque pulse and its spectral peaks (the
+//!   design study's modes against the time simulation);
 //! * [`wave`]: the measurements of the rotating vs non-rotating belt demonstration (Fig. 6-3);
 //! * [`table_6_1`]: Ribaric's Table 6-1 drive, the default of the speed-loss study.
 //!
@@ -33,6 +35,7 @@ pub mod error;
 pub mod fead;
 pub mod fead_design;
 pub mod plate_study;
+pub mod ringdown;
 pub mod simulation;
 pub mod speed_loss;
 pub mod speed_loss_study;

@@ -166,7 +166,10 @@ def design(config: Optional[Mapping[str, Any]] = None, rpm: Optional[Sequence[fl
     """The steady FEAD design without time stepping (``flowmbd-belt design``, issue 36): per
     engine speed the span tensions [N] (centrifugal tension included), the tensioner arm's angle
     and force, each wrap's adhesion and slip arcs (creep theory), hub loads [N] and slip margins,
-    the drive's rotational modes, the spans' transverse modes and the coupled modes (spans,
+    the drive's rotational modes (the belt held on the adhesion arcs, the slip arcs stretching:
+    ``design.wrap = "creep"``, the default; ``"held"`` holds the whole wrap, whose frequencies
+    every point also reports as ``held_wrap_frequencies_hz``), the spans' transverse modes and
+    the coupled modes (spans,
     pulleys and tensioner arm together: ``coupled_modes`` with ``coupled_parts``) [Hz], the
     Campbell diagram with its crossings, and the findings (warnings and errors before any time stepping).
 

@@ -129,6 +129,8 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
             "effective_tension_N",
             "tight_flag",
             "stiffness_N_per_m",
+            "wrap_compliance_m_per_N",
+            "series_stiffness_N_per_m",
             "coupled_through_arm_flag",
         ],
         (1..=harmonics).map(|n| format!("frequency{n}_Hz")),
@@ -142,6 +144,8 @@ fn write_outputs(ctx: &StudyContext, s: &DesignSummary, warning: f64) -> Result<
                 sp.effective_tension_n,
                 flag(sp.side == "tight"),
                 sp.stiffness_n_per_m,
+                sp.wrap_compliance_m_per_n,
+                sp.series_stiffness_n_per_m,
                 flag(sp.modes.coupled_through_arm),
             ];
             row.extend(sp.modes.frequencies_hz.iter().map(|f| opt(*f)));

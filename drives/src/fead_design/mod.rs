@@ -36,7 +36,7 @@ use contact::friction::FrictionLaw;
 use coupled::{CoupledMode, CoupledOptions, MAX_SPAN_TERMS, coupled_model};
 use mbd_core::roots::illinois;
 use mbd_core::validate::{InvalidField, Validate, check};
-use modes::{RotationalMode, SpanModes, rotational_model, span_modes};
+use modes::{RotationalMode, SpanModes, WrapModel, rotational_model_with, span_modes};
 use serde::{Deserialize, Serialize};
 use statics::{Loading, SteadyState, WrapState, hub_force, single_driver, solve, state_issues};
 
@@ -65,11 +65,15 @@ pub struct DesignSettings {
     pub coupling_band: f64,
     /// Sine terms per span of the coupled transverse–rotational model ([`coupled`]).
     pub span_terms: usize,
+    /// How the rotational model holds the belt on the wraps: `"creep"` on the adhesion arcs
+    /// only, each span in series with the slip arc it leaves (creep theory), or `"held"` on the
+    /// whole wrap, the spans the only springs (an upper bound; [`modes`]).
+    pub wrap: WrapModel,
 }
 
 impl Default for DesignSettings {
     /// 3° from a stop, slip margin 1.5, two harmonics, 61 Campbell points, 10 % coupling band,
-    /// 16 sine terms per span.
+    /// 16 sine terms per span, the belt held on the adhesion arcs (`wrap = "creep"`).
     fn default() -> Self {
         Self {
             stop_margin_deg: 3.0,
@@ -79,6 +83,7 @@ impl Default for DesignSettings {
             campbell_rpm: None,
             coupling_band: 0.1,
             span_terms: 16,
+            wrap: WrapModel::Creep,
         }
     }
 }
@@ -362,8 +367,15 @@ pub struct DesignSpan {
     pub effective_tension_n: f64,
     /// `"tight"` above the loop's length-weighted mean tension, `"slack"` otherwise.
     pub side: String,
-    /// Axial stiffness `EA_t/L` \[N/m\] of the rotational model.
+    /// Axial stiffness of the free span `EA_t/L` \[N/m\].
     pub stiffness_n_per_m: f64,
+    /// Compliance of the slip arc of the pulley the span leaves `c_w` \[m/N\] (creep theory,
+    /// [`modes`]: the belt's extension on that arc per newton of span tension; zero without
+    /// load).
+    pub wrap_compliance_m_per_n: f64,
+    /// The span's spring in the rotational model \[N/m\]: `1/(L/EA_t + c_w)` with
+    /// `wrap = "creep"`, `EA_t/L` with `"held"`.
+    pub series_stiffness_n_per_m: f64,
     /// Transverse modes.
     pub modes: SpanModes,
 }
@@ -444,8 +456,15 @@ pub struct DesignPoint {
     pub rotational_dofs: Vec<String>,
     /// Geometric stiffness of the belt's pull on the arm \[N m/rad\] ([`modes`]).
     pub arm_geometric_stiffness_n_m_per_rad: Option<f64>,
+    /// How the rotational model holds the belt on the wraps (`"creep"` or `"held"`,
+    /// [`DesignSettings::wrap`]).
+    pub wrap_model: String,
     /// Rotational modes, ascending.
     pub rotational_modes: Vec<RotationalMode>,
+    /// Frequencies of the rotational modes with the belt held on the whole wrap \[Hz\],
+    /// ascending: the upper bound the `"creep"` modes are compared with (the same as
+    /// `rotational_modes` with `wrap = "held"`; empty where its eigen solution failed).
+    pub held_wrap_frequencies_hz: Vec<f64>,
     /// Parts of the coupled model ([`coupled`]): the rotational coordinates, then the spans.
     pub coupled_parts: Vec<String>,
     /// The lowest modes of the coupled model (as many as the rotational modes and the spans'
@@ -663,12 +682,14 @@ fn design_point(
         .sum::<f64>()
         / total;
     let transverse = span_modes(drive, &s, settings.harmonics);
+    let model = rotational_model_with(drive, &s, settings.wrap);
     let spans: Vec<DesignSpan> = s
         .geometry
         .spans
         .iter()
         .zip(transverse)
-        .map(|(sp, m)| {
+        .enumerate()
+        .map(|(k, (sp, m))| {
             let t = s.tensions[sp.from];
             DesignSpan {
                 from: names[sp.from].clone(),
@@ -678,6 +699,8 @@ fn design_point(
                 effective_tension_n: t - tc,
                 side: if t > mean { "tight" } else { "slack" }.into(),
                 stiffness_n_per_m: section.tangent_stiffness(t) / sp.length,
+                wrap_compliance_m_per_n: model.wrap_compliance[k],
+                series_stiffness_n_per_m: model.span_stiffness[k],
                 modes: m,
             }
         })
@@ -783,7 +806,6 @@ fn design_point(
         _ => None,
     };
     // modes
-    let model = rotational_model(drive, &s);
     let rotational_modes = match model.modes() {
         Ok(m) => m,
         Err(e) => {
@@ -793,6 +815,15 @@ fn design_point(
             });
             Vec::new()
         }
+    };
+    // the held wrap for comparison (its failure is reported by the modes above when it is
+    // the study's model, and otherwise leaves the comparison empty)
+    let held_wrap_frequencies_hz = match settings.wrap {
+        WrapModel::Held => rotational_modes.iter().map(|m| m.frequency_hz).collect(),
+        WrapModel::Creep => rotational_model_with(drive, &s, WrapModel::Held)
+            .modes()
+            .map(|m| m.iter().map(|x| x.frequency_hz).collect())
+            .unwrap_or_default(),
     };
     let hybrid = coupled_model(
         drive,
@@ -865,7 +896,9 @@ fn design_point(
             pulleys,
             rotational_dofs: model.names.clone(),
             arm_geometric_stiffness_n_m_per_rad: model.arm_geometric_stiffness,
+            wrap_model: settings.wrap.name().into(),
             rotational_modes,
+            held_wrap_frequencies_hz,
             coupled_parts: hybrid.parts.clone(),
             coupled_modes,
         },
@@ -1060,6 +1093,18 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
     let warnings = findings.len() - errors;
     let layout = describe(&drive);
     let travel_direction = travel_direction(&drive);
+    let wrap = match cfg.design.wrap {
+        WrapModel::Creep => {
+            "wrap = \"creep\": the belt held on each wrap's adhesion arc and stretching on its slip \
+             arc by the capstan law (creep theory), each span an axial spring EA/L in series with \
+             the slip arc it leaves, wrap_compliance_m_per_n = r |T_out − T_in|/(μ EA (T_out − \
+             ρAv²)) for the linear law"
+        }
+        WrapModel::Held => {
+            "wrap = \"held\": the belt held on the whole wrap, the spans the only springs EA/L \
+             (no slip-arc compliance)"
+        }
+    };
     let meaning = format!(
         "Steady design of the belt drive without time stepping (drives::fead_design): {layout}. \
          Per engine speed (points): belt speed and centrifugal tension ρA v²; every pulley's \
@@ -1069,12 +1114,13 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
          angle that takes up the belt's stretch); each wrap's adhesion arc at the inlet and \
          slip arc at the exit by creep theory ((T_out − ρAv²)/(T_in − ρAv²) = e^(μ φ_slip)); \
          hub loads (magnitude, direction); slip margin = torque to gross slip over torque \
-         carried. Modes: the linearised rotational model (free pulleys and the arm; spans as \
-         axial springs EA/L, the belt held on its wraps, the crank held: upper bounds, which the \
-         belt's creep and slip arcs on the wraps and its mass lower; on the default fead drive \
-         the flowing model's first mode lies 14 % below, 2 % on a two-pulley drive, \
-         drives/tests/fead_sweep.rs) and every span's \
-         travelling-string frequencies; the coupled modes (coupled_modes: the spans' transverse \
+         carried. Modes: the linearised rotational model (free pulleys and the arm, the crank \
+         held; {wrap}; held_wrap_frequencies_hz: the belt held on the whole wrap, the spans the \
+         only springs EA/L, an upper bound; the belt's mass and transport are left out, so the \
+         frequencies are upper bounds: on the default fead drive the flowing model's first mode \
+         (κ = 40 s/m) lies 7.6 % below the creep model's 45.8 Hz, 3.1 % extrapolated to a sharp \
+         friction law, 14 % below the held one's 49.4 Hz, drives/tests/fead_sweep.rs) and every \
+         span's travelling-string frequencies; the coupled modes (coupled_modes: the spans' transverse \
          motion, travelling strings with their gyroscopic terms, coupled with the rotational \
          model through the tensioner arm, Beikmann, Perkins & Ulsoy 1996; each with its \
          dominant part); the Campbell diagram (campbell: rotational, separate span and coupled \
@@ -1104,6 +1150,7 @@ pub fn run_design(cfg: &DesignConfig) -> Result<DesignSummary, InvalidField> {
 mod tests {
     use super::*;
     use belt::{MaterialLaw, Section, Signal};
+    use modes::rotational_model;
 
     fn two_pulley(r1: f64, r2: f64, j: f64, torque: f64, law: MaterialLaw) -> Drive {
         Layout::two_pulley(
@@ -1144,6 +1191,125 @@ mod tests {
             modes[0].frequency_hz
         );
         assert_eq!(modes[0].dominant, "driven");
+    }
+
+    // Closed form of the loaded two-pulley drive (modes module, "Wrap compliance"): driver
+    // held at 300 rad/s (T_c = ρA v² ≈ 21.6 N), driven pulley (J, r), linear law, the slip arcs
+    // φ_s of the statics. The driver's slip arc (its exit onto the slack span 0) adds
+    // ℓ_0 = r (e^{μ φ_s,0} − 1)/μ of belt to span 0, the driven one's (its exit onto the tight
+    // span 1) ℓ_1 = r (1 − e^{−μ φ_s,1})/μ to span 1: f = √((k_0 + k_1) r²/J)/(2π) with
+    // k_i = EA/(L + ℓ_i). As the load → 0 the slip arcs vanish and f → √(2 EA r²/(L J))/(2π),
+    // the held wrap's closed form, with a gap proportional to the load (ℓ ∝ φ_s ∝ Q).
+    #[test]
+    fn two_pulley_creep_mode_is_the_series_spring_closed_form() {
+        let (r, j, w) = (0.05, 0.013, 300.0);
+        let mut gaps = Vec::new();
+        for q in [8.0, 0.8, 0.08] {
+            let drive = two_pulley(r, r, j, q, MaterialLaw::Linear);
+            let s = steady_state(&drive, w).unwrap();
+            assert!(!s.wraps.iter().any(WrapState::gross_slip));
+            assert!(
+                s.wraps[1].tension_out > s.wraps[1].tension_in,
+                "driven: tight exit"
+            );
+            let mu = drive.contact().friction.coefficient();
+            let (ea, l) = (drive.belt().ea, s.geometry.spans[0].length);
+            let l0 = r * ((mu * s.wraps[0].slip_arc).exp() - 1.0) / mu;
+            let l1 = r * (1.0 - (-mu * s.wraps[1].slip_arc).exp()) / mu;
+            let k = ea / (l + l0) + ea / (l + l1);
+            let f = (k * r * r / j).sqrt() / (2.0 * std::f64::consts::PI);
+            let modes = rotational_model(&drive, &s).modes().unwrap();
+            assert!(
+                (modes[0].frequency_hz / f - 1.0).abs() < 1e-6,
+                "{q} N m: {} vs {f}",
+                modes[0].frequency_hz
+            );
+            let held = (2.0 * ea / l * r * r / j).sqrt() / (2.0 * std::f64::consts::PI);
+            let gap = 1.0 - modes[0].frequency_hz / held;
+            assert!(gap > 0.0);
+            gaps.push(gap / q);
+        }
+        // gap per load: constant to first order in the load (measured 0.00332, 0.00320,
+        // 0.00321 per N m), so the gap vanishes with the load: 2.6e-4 at 0.08 N m
+        assert!((gaps[2] / gaps[0] - 1.0).abs() < 0.15, "{gaps:?}");
+        assert!((gaps[2] / gaps[1] - 1.0).abs() < 0.01, "{gaps:?}");
+        assert!(gaps[2] * 0.08 < 3e-4, "{gaps:?}");
+    }
+
+    // The slip arc's compliance by a second route: the extension of the belt on the slip arc
+    // E(δ) = ∫ (λ(T_δ(ψ)) − 1) r dψ, with the perturbed profile of the modes module
+    // T_δ = T_c + (T(ψ) − T_c)(T_out + δ − T_c)/(T_out − T_c) and the section's stretch λ(T)
+    // (St Venant–Kirchhoff: the law inverted, not its tangent stiffness), differenced
+    // centrally over δ = ±1 N and integrated by the trapezoidal rule on 4000 intervals; on
+    // the default drive at 1500 rpm (every loaded wrap).
+    #[test]
+    fn slip_arc_compliance_is_the_derivative_of_its_extension() {
+        let cfg = DesignConfig::default();
+        let drive = cfg.drive.resolve().unwrap();
+        assert_eq!(drive.belt().law, MaterialLaw::StVenantKirchhoff);
+        let s = steady_state(&drive, 1500.0 * std::f64::consts::PI / 30.0).unwrap();
+        let tc = s.centrifugal;
+        let mut checked = 0;
+        for (k, w) in s.wraps.iter().enumerate() {
+            let r = drive.pulleys()[k].radius;
+            let c = w.exit_compliance(r, tc, drive.belt());
+            if w.slip_arc == 0.0 {
+                assert_eq!(c, 0.0);
+                continue;
+            }
+            let a = w.wrap - w.slip_arc;
+            let ext = |d: f64| {
+                let n = 4000;
+                let h = w.slip_arc / n as f64;
+                (0..=n)
+                    .map(|i| {
+                        let t = w.tension_at(a + i as f64 * h, tc);
+                        let t = tc + (t - tc) * (w.tension_out + d - tc) / (w.tension_out - tc);
+                        let wt = if i == 0 || i == n { 0.5 } else { 1.0 };
+                        wt * (drive.belt().stretch(t) - 1.0) * r * h
+                    })
+                    .sum::<f64>()
+            };
+            let fd = 0.5 * (ext(1.0) - ext(-1.0));
+            assert!(
+                (c / fd - 1.0).abs() < 1e-6,
+                "{}: {c} vs {fd}",
+                drive.names()[k]
+            );
+            checked += 1;
+        }
+        assert!(checked >= 4, "{checked} loaded wraps");
+    }
+
+    // Invariants of the wrap models on the default drive at 1500 rpm: the creep model's spans
+    // are the held model's springs in series with a compliance, so K_creep ≤ K_held (Loewner
+    // order) and every creep frequency lies at or below the held one (Courant–Fischer), the
+    // first strictly (the loaded wraps have slip arcs); `held_wrap_frequencies_hz` is the held
+    // model's; with `wrap = "held"` the rotational modes are those frequencies and every span's
+    // series stiffness is its EA_t/L.
+    #[test]
+    fn creep_wrap_frequencies_lie_below_the_held_ones() {
+        let mut cfg = DesignConfig::default();
+        let drive = cfg.drive.resolve().unwrap();
+        let (p, _) = design_point(&drive, 1500.0, &cfg.design, f64::NAN).unwrap();
+        assert_eq!(p.wrap_model, "creep");
+        let creep: Vec<f64> = p.rotational_modes.iter().map(|m| m.frequency_hz).collect();
+        assert_eq!(creep.len(), p.held_wrap_frequencies_hz.len());
+        for (c, h) in creep.iter().zip(&p.held_wrap_frequencies_hz) {
+            assert!(c <= &(h * (1.0 + 1e-12)), "{c} vs {h}");
+        }
+        assert!(creep[0] < 0.99 * p.held_wrap_frequencies_hz[0]);
+        assert!(p.spans.iter().any(|sp| sp.wrap_compliance_m_per_n > 0.0));
+        cfg.design.wrap = WrapModel::Held;
+        let (h, _) = design_point(&drive, 1500.0, &cfg.design, f64::NAN).unwrap();
+        assert_eq!(h.wrap_model, "held");
+        let held: Vec<f64> = h.rotational_modes.iter().map(|m| m.frequency_hz).collect();
+        assert_eq!(held, p.held_wrap_frequencies_hz);
+        assert_eq!(h.held_wrap_frequencies_hz, held);
+        for sp in &h.spans {
+            assert_eq!(sp.wrap_compliance_m_per_n, 0.0);
+            assert!((sp.series_stiffness_n_per_m / sp.stiffness_n_per_m - 1.0).abs() < 1e-12);
+        }
     }
 
     // Closed forms of the two-pulley drive with equal radii, the linear law, at rest, under a

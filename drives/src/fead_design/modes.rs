@@ -6,8 +6,9 @@
 //! Coordinates `q`: the rotation `θ_k` \[rad\] (travel sense) of every free pulley and, with a
 //! tensioner, its arm angle `θ_a` \[rad\]; the speed-driven pulley is held (`θ = 0`: the crank's
 //! inertia is large). Span `k`, from pulley `i` to pulley `j` with unit direction `d_k`, is an
-//! axial spring of stiffness `k_k = EA_t/L_k` \[N/m\] (`EA_t = dN/dλ` at the span's tension,
-//! [`belt::Section::tangent_stiffness`]; `L_k` the span length) on the stretch
+//! axial spring of stiffness `k_k = 1/(L_k/EA_t + c_{w,i})` \[N/m\] (`EA_t = dN/dλ` at the
+//! span's tension, [`belt::Section::tangent_stiffness`]; `L_k` the span length; `c_{w,i}` the
+//! compliance of the slip arc of pulley `i`, below) on the stretch
 //!
 //! ```text
 //!   e_k = r_j θ_j − r_i θ_i + d_k · (u_j − u_i),     u_t = c'(θ_a) δθ_a  (the idler on the arm)
@@ -22,16 +23,74 @@
 //! `k` in `K`. The eigenpairs of `K φ = ω² M φ`
 //! come from the workspace's dense generalized symmetric solver ([`fe_model::dense_modes`]).
 //!
-//! **Not modelled**: the belt's compliance and creep on the wraps (the belt is fixed to the
-//! pulleys over its wraps: the spans are the only springs), the belt's mass, damping, and the
-//! spans' transverse motion (see below). For a two-pulley drive with the driver held this
-//! gives exactly `f = √(2 k r²/J)/(2π)`, `k = EA/L`. Each omission adds compliance or mass, so
-//! the frequencies are upper bounds of a model that had them (Rayleigh's principle). Against
-//! the flowing belt model's free ring-down (`drives/examples/fead_ringdown.rs`,
-//! `drives/tests/fead_sweep.rs`): −2 % on a two-pulley drive at κ = 2000 s/m; −14 % for the
-//! default FEAD drive's first mode (49.4 Hz predicted, 42.35 Hz at κ = 40 s/m), about a third
-//! each from the tanh law's creep on the wraps, the loaded pulleys' slip arcs and the flowing
-//! model's discretisation.
+//! **Wrap compliance** ([`WrapModel::Creep`], the default; derived below): the belt is held
+//! on each wrap's adhesion arc and free on its slip arc, so span `k` leaving pulley `i` is in
+//! series with the compliance `c_{w,i}` of the belt on `i`'s slip arc:
+//! `k_k = 1/(L_k/EA_t + c_{w,i})`. [`WrapModel::Held`] holds the belt on the whole wrap
+//! (`c_w = 0`, the model of Hwang et al. 1994), for comparison.
+//!
+//! **Not modelled**: the compliance of the adhesion arcs (rigid in creep theory; a regularised
+//! friction law such as the flowing model's `tanh` has creep there), the belt's mass, damping,
+//! the transport of stretch by the moving belt (terms `v δλ`), and the spans' transverse
+//! motion (see below). For a two-pulley drive with the driver held and no load this gives
+//! exactly `f = √(2 k r²/J)/(2π)`, `k = EA/L`. Each omission adds compliance or mass, so the
+//! frequencies are upper bounds of a model that had them (Rayleigh's principle).
+//! Measurements against the flowing belt model's free ring-down: `drives/tests/fead_sweep.rs`.
+//!
+//! # Wrap compliance (linearised creep theory)
+//!
+//! The steady wrap is Euler's creep theory (Grashof; Johnson, *Contact Mechanics* §8.6;
+//! Firbank 1970, Int. J. Mech. Sci. 12; [`super::statics`], step 2): the belt enters pulley `i`
+//! and sticks over the adhesion arc `[0, φ_a]` with the stretch of the span running on, then
+//! slides over the slip arc `[φ_a, φ]` at the exit, where the friction per length is saturated,
+//! `μ p` with the pressure `p = (T − T_c)/r`, and
+//!
+//! ```text
+//!   d(T − T_c)/dψ = σ μ (T − T_c)      (σ = +1 where the belt gains tension, a driven
+//!                                       pulley; σ = −1 on the driver)
+//! ```
+//!
+//! The linearisation about it is derived here (the steady theory is the cited one's; the
+//! perturbation is this module's). A small vibration about the steady state leaves the slip
+//! arc sliding in the same sense (its sliding speed, the creep speed `v |λ(ψ) − λ_in|/λ_in`,
+//! exceeds the vibration's but in a neighbourhood of the arc's start that shrinks with the
+//! amplitude), so its friction stays saturated and changes only with the
+//! pressure, `δf = μ δp = μ δT/r`: the perturbation obeys the same capstan law,
+//! `dδT/dψ = σ μ δT`, and with the exit tension `T_out + δT_out` (the span leaving the wrap)
+//!
+//! ```text
+//!   δT(ψ) = δT_out (T(ψ) − T_c)/(T_out − T_c)        on the slip arc.
+//! ```
+//!
+//! The end of the slip arc moves to meet the adhesion arc's tension; that changes the profile
+//! over a first-order length by a first-order amount, so no belt moves to first order. The
+//! adhesion arc moves with the pulley. The span from the exit of `i` to the inlet of `j` then
+//! receives, by the belt's material balance on the wrap (flux `F = V/λ`, continuity
+//! `∂_t(1/λ) + ∂_s F = 0`), `r_i δθ_i` from the pulley plus the extension of the slip arc
+//! `∫ δλ r dψ`, and gives `r_j δθ_j` to the adhesion arc of `j`. With `λ ≈ 1` as in the span
+//! springs and the transport terms `v δλ` dropped (as Hwang et al. drop them for the spans):
+//!
+//! ```text
+//!   L_k δT_k/EA_t = e_k − ∫_slip δλ r dψ = e_k − c_{w,i} δT_k
+//!   c_{w,i} = ∫_slip r dψ (T(ψ) − T_c)/((T_out − T_c) EA_t(T(ψ)))      [m/N]
+//! ```
+//!
+//! ([`super::statics::WrapState::exit_compliance`]): the span and the slip arc it leaves are
+//! springs in series. For the linear law, `∫_slip (T − T_c) dψ = |T_out − T_in|/μ` gives
+//!
+//! ```text
+//!   EA c_w = r |T_out − T_in| / (μ (T_out − T_c))
+//!          = r (1 − e^{−μ φ_s})/μ    on a driven pulley (T_out the tighter side)
+//!          = r (e^{μ φ_s} − 1)/μ     on the driver (T_out the slacker side)
+//! ```
+//!
+//! a length of belt proportional to the torque the pulley carries, zero without load, `→ r φ_s`
+//! as `μ φ_s → 0`. (The estimate `r (1 − e^{−μ φ_s})/μ` of the issue 36 diagnosis is the driven
+//! pulleys' and falls short on the driver by the factor `e^{μ φ_s}`.) The compliance does not
+//! depend on frequency (quasi-static capstan on the arc: the belt's inertia there is
+//! neglected). On a two-pulley drive, driver held, driven pulley `(J, r)` on spans of length
+//! `L`: `f = √((k_0 + k_1) r²/J)/(2π)` with `k_0 = EA/(L + EA c_{w,driver})` (slack span) and
+//! `k_1 = EA/(L + EA c_{w,driven})` (tight span).
 //!
 //! # Transverse span modes
 //!
@@ -46,7 +105,33 @@
 use super::statics::{Geometry, SteadyState, belt_moment};
 use belt::Drive;
 use faer::Mat;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+
+/// How the rotational model holds the belt on the wraps (module documentation).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum WrapModel {
+    /// Held on the adhesion arcs, free on the slip arcs (creep theory): each span in series
+    /// with the compliance of the slip arc it leaves,
+    /// [`super::statics::WrapState::exit_compliance`].
+    #[default]
+    Creep,
+    /// Held on the whole wrap: the spans are the only springs (Hwang et al. 1994; an upper
+    /// bound of the creep model's frequencies).
+    Held,
+}
+
+impl WrapModel {
+    /// Its name in the configuration (`"creep"`, `"held"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            WrapModel::Creep => "creep",
+            WrapModel::Held => "held",
+        }
+    }
+}
 
 /// Arm angle step of the geometric stiffness's central difference \[rad\].
 const ARM_STEP: f64 = 1e-6;
@@ -62,6 +147,14 @@ pub struct RotationalModel {
     pub mass: Mat<f64>,
     /// Geometric stiffness of the belt's pull on the arm `k_g` \[N m/rad\] (`None`: no arm).
     pub arm_geometric_stiffness: Option<f64>,
+    /// How the belt is held on the wraps.
+    pub wrap: WrapModel,
+    /// Compliance of the slip arc each span leaves, `c_w` \[m/N\] (span order; zero for
+    /// [`WrapModel::Held`]).
+    pub wrap_compliance: Vec<f64>,
+    /// Axial stiffness of every span in series with that slip arc,
+    /// `1/(L/EA_t + c_w)` \[N/m\] (span order).
+    pub span_stiffness: Vec<f64>,
 }
 
 /// One rotational mode.
@@ -93,8 +186,15 @@ pub struct SpanModes {
     pub coupled_through_arm: bool,
 }
 
-/// Build the rotational model of `drive` about the steady state `s` (module documentation).
+/// Build the rotational model of `drive` about the steady state `s` with the belt held on the
+/// adhesion arcs only ([`WrapModel::Creep`], module documentation).
 pub fn rotational_model(drive: &Drive, s: &SteadyState) -> RotationalModel {
+    rotational_model_with(drive, s, WrapModel::Creep)
+}
+
+/// Build the rotational model of `drive` about the steady state `s` holding the belt on the
+/// wraps as `wrap` says (module documentation).
+pub fn rotational_model_with(drive: &Drive, s: &SteadyState, wrap: WrapModel) -> RotationalModel {
     let pulleys = s.geometry.path.pulleys();
     let n = pulleys.len();
     let section = drive.belt();
@@ -132,9 +232,19 @@ pub fn rotational_model(drive: &Drive, s: &SteadyState) -> RotationalModel {
     let mut stiffness = Mat::<f64>::zeros(m, m);
     // idler centre velocity per arm rate c'(θ)
     let dc = arm.map(|(a, th)| (a.tensioner.pulley, a.tensioner.center(a.length, th).1));
+    let mut wrap_compliance = Vec::with_capacity(s.geometry.spans.len());
+    let mut span_stiffness = Vec::with_capacity(s.geometry.spans.len());
     for sp in &s.geometry.spans {
         let (i, j) = (sp.from, sp.to);
-        let k = section.tangent_stiffness(s.tensions[i]) / sp.length;
+        let cw = match wrap {
+            WrapModel::Creep => {
+                s.wraps[i].exit_compliance(pulleys[i].radius, s.centrifugal, section)
+            }
+            WrapModel::Held => 0.0,
+        };
+        let k = 1.0 / (sp.length / section.tangent_stiffness(s.tensions[i]) + cw);
+        wrap_compliance.push(cw);
+        span_stiffness.push(k);
         let mut b = vec![0.0; m];
         if let Some(c) = index[j] {
             b[c] += pulleys[j].radius;
@@ -182,6 +292,9 @@ pub fn rotational_model(drive: &Drive, s: &SteadyState) -> RotationalModel {
         stiffness,
         mass,
         arm_geometric_stiffness: kg,
+        wrap,
+        wrap_compliance,
+        span_stiffness,
     }
 }
 

@@ -209,6 +209,38 @@ impl WrapState {
         tc + a * (rate * (psi - adhesion)).exp()
     }
 
+    /// Compliance of the belt on the slip arc to a change of the exit tension \[m/N\]: the
+    /// extension `∫ δλ r dψ` of the belt on the slip arc per `δT_out`, for a pulley of radius
+    /// `r` \[m\] ([`super::modes`], "Wrap compliance"):
+    ///
+    /// ```text
+    ///   c_w = ∫_slip r dψ (T(ψ) − T_c)/((T_out − T_c) EA_t(T(ψ)))
+    /// ```
+    ///
+    /// (Simpson's rule on the slip arc's profile [`Self::tension_at`], `EA_t` the section's
+    /// tangent stiffness [`Section::tangent_stiffness`]). For the linear law it is the closed
+    /// form `r |T_out − T_in| / (μ EA (T_out − T_c))`. Zero without a slip arc. A wrap with a
+    /// side without quasi-static tension (a flagged state, [`Self::required_ratio`] `∞`) has
+    /// no friction to hold a perturbation: it is taken uniform on the slip arc.
+    pub fn exit_compliance(&self, r: f64, tc: f64, section: &Section) -> f64 {
+        if self.slip_arc <= 0.0 {
+            return 0.0;
+        }
+        let adhesion = self.wrap - self.slip_arc;
+        let b = self.tension_out - tc;
+        let pressure = self.tension_in > tc && b > 0.0;
+        let n = SIMPSON_INTERVALS;
+        let h = self.slip_arc / n as f64;
+        let mut s = 0.0;
+        for i in 0..=n {
+            let w = crate::analytical::simpson_weight(i, n);
+            let t = self.tension_at(adhesion + i as f64 * h, tc);
+            let share = if pressure { (t - tc) / b } else { 1.0 };
+            s += w * share / section.tangent_stiffness(t);
+        }
+        r * s * h / 3.0
+    }
+
     /// Unstretched length of the belt on the wrap \[m\] for a pulley of radius `r` \[m\]:
     /// `∫ r dψ / λ(T(ψ))` (adhesion arc exact, slip arc by Simpson's rule).
     pub fn unstretched(&self, r: f64, tc: f64, section: &Section) -> f64 {
