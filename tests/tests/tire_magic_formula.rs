@@ -220,6 +220,7 @@ fn magic_formula_fit_reproduces_the_coarse_tire_sweep() {
         rig: rig(GroundKind::Road, false, 0.85),
         slip_angles_deg: vec![-1.0, -0.4, -0.2, -0.1, 0.1, 0.2, 0.4, 1.0],
         drive_torques_n_m: vec![],
+        slip_ratios: vec![],
         point_time: 0.3,
         average_time: 0.05,
         ..Default::default()

@@ -16,6 +16,7 @@ fn steady(slip: &[f64], torques: &[f64]) -> SteadyStudyConfig {
         rig: rig(GroundKind::Road, false, 0.85),
         slip_angles_deg: slip.to_vec(),
         drive_torques_n_m: torques.to_vec(),
+        slip_ratios: vec![],
         point_time: 0.3,
         average_time: 0.05,
         ..Default::default()

@@ -64,18 +64,30 @@ impl Study for Args {
             by_alpha.iter().map(|p| (p.0, p.2)).collect(),
         ))
         .save(&ctx.out.path("mz_alpha"))?;
-        let mut by_kappa: Vec<(f64, f64)> = std::iter::once(&r.free_rolling)
-            .chain(&r.torque)
-            .map(|p| (p.kappa, p.loads.fx))
-            .collect();
-        by_kappa.sort_by(|a, b| a.0.total_cmp(&b.0));
-        LinePlot::new(
+        // F_x(κ): the torque points (κ reached through the wheel's inertia) and the
+        // prescribed-spin points (κ set), each with the free-rolling point
+        let by_kappa = |pts: &[tire::SteadyPoint]| {
+            let mut v: Vec<(f64, f64)> = std::iter::once(&r.free_rolling)
+                .chain(pts)
+                .map(|p| (p.kappa, p.loads.fx))
+                .collect();
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            v
+        };
+        let mut fx = LinePlot::new(
             "Longitudinal force against longitudinal slip",
             "kappa [-]",
             "Fx [N]",
-        )
-        .with(Series::line("Fx", by_kappa))
-        .save(&ctx.out.path("fx_kappa"))?;
+        );
+        for (name, pts) in [
+            ("Fx, drive torque", &r.torque),
+            ("Fx, prescribed spin", &r.prescribed),
+        ] {
+            if !pts.is_empty() || (r.torque.is_empty() && r.prescribed.is_empty()) {
+                fx = fx.with(Series::line(name, by_kappa(pts)));
+            }
+        }
+        fx.save(&ctx.out.path("fx_kappa"))?;
         if let Some(m) = s.magic_formula.as_mut() {
             write_fit(m, &r, &red, c, ctx)?;
         }
@@ -118,6 +130,7 @@ fn write_fit(
     if let Some(x) = &fit.longitudinal {
         let data = std::iter::once(&r.free_rolling)
             .chain(&r.torque)
+            .chain(&r.prescribed)
             .map(|p| (p.kappa, p.loads.fx))
             .collect();
         fit_plot(
