@@ -579,7 +579,11 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
     free-rolling spin; prescribed_fx_n(prescribed_kappa) is F_x with the spin rate held at \
     (1 + kappa) Omega0 (slip_ratios), through and beyond the peak, and \
     prescribed_spin_torque_n_m the reaction torque that holds it; slip_stiffness_n = \
-    dFx/dkappa at 0 (of the prescribed points when there are any, else of the torque points).";
+    dFx/dkappa at 0 (of the prescribed points when there are any, else of the torque points). \
+    Validity: the small-slip values (cornering stiffness, trail, relaxation length, slip \
+    stiffness) are not converged in the tire's circumferential mesh: on the generated truck \
+    tire the 0.2 deg cornering stiffness moves by up to 70 % between 192 and 576 divisions \
+    (BENCHMARKS.md, 'Steady characteristics: convergence'); the saturated forces (mu Fz) do not.";
 
 /// The summary of a steady result.
 pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummary {
