@@ -10,7 +10,10 @@
 //! * a table that selects another variant of an enum (a [`VARIANT_TAGS`] key whose value differs
 //!   from the default's, e.g. `law = "coulomb"` where the default friction is `law = "creep"`) replaces
 //!   the default table whole when merging it would mix the two variants' keys: the merge is tried
-//!   first and the replacement only when the merged table does not deserialize;
+//!   first and the replacement only when the merged table does not deserialize; likewise an
+//!   externally tagged enum (serde's default representation, a one-key table named by its
+//!   variant, e.g. `derivative = { Spectral = ... }` over the default
+//!   `{ FiniteDifference = ... }`): a one-key table over a one-key default of another key;
 //! * a key the user gives drops from the defaults the keys that depend on it or exclude it, as
 //!   the configuration type declares ([`PartialRules::DROPPED_BY`]; this crate knows no
 //!   domain's keys: the belt drive's rules are `belt::PARTIAL_RULES`, declared by every
@@ -121,7 +124,13 @@ fn merge<C: PartialRules>(
         VARIANT_TAGS.contains(&k.as_str())
             && matches!((v, base.get(k)), (toml::Value::String(a), Some(toml::Value::String(b))) if a != b)
     });
-    if switches_variant {
+    // an externally tagged enum: one key, the variant's name, in the default and in the user's
+    // table, and they differ
+    let switches_external = base.len() == 1
+        && user.len() == 1
+        && base.keys().next() != user.keys().next()
+        && !here.is_empty();
+    if switches_variant || switches_external {
         switches.push(here.clone());
     }
     for &(given, dropped) in C::DROPPED_BY {
@@ -277,6 +286,52 @@ mod tests {
             Friction::Creep {
                 kappa: 40.0,
                 mu: 0.3
+            }
+        );
+    }
+
+    /// An externally tagged enum (serde's default representation): the user's one-key table of
+    /// another variant replaces the default's (reference: the value written by hand), and a
+    /// table of the same variant merges.
+    #[test]
+    fn an_external_variant_switch_replaces_the_table() {
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+        #[serde(deny_unknown_fields)]
+        enum Derivative {
+            Stencil { first: String, second: String },
+            Galerkin(String),
+            Spectral,
+        }
+        #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
+        #[serde(deny_unknown_fields)]
+        struct Reduction {
+            modes: usize,
+            derivative: Derivative,
+        }
+        impl PartialRules for Reduction {}
+        impl Default for Reduction {
+            fn default() -> Self {
+                Reduction {
+                    modes: 50,
+                    derivative: Derivative::Stencil {
+                        first: "central".into(),
+                        second: "three".into(),
+                    },
+                }
+            }
+        }
+        let r = |t: &str| from_partial::<Reduction>(toml::from_str(t).unwrap());
+        let g = r("[derivative]\nGalerkin = \"lumped\"\n").unwrap();
+        assert_eq!(g.derivative, Derivative::Galerkin("lumped".into()));
+        assert_eq!(g.modes, 50);
+        let sp = r("derivative = \"Spectral\"\n").unwrap();
+        assert_eq!(sp.derivative, Derivative::Spectral);
+        let m = r("[derivative.Stencil]\nfirst = \"three\"\n").unwrap();
+        assert_eq!(
+            m.derivative,
+            Derivative::Stencil {
+                first: "three".into(),
+                second: "three".into()
             }
         );
     }
