@@ -49,6 +49,7 @@ mod tire_magic_formula;
 mod tire_mirror;
 mod tire_reduction;
 mod tire_restart;
+mod tire_roads;
 mod tire_rolling;
 mod tire_rotating;
 mod tire_sensitivity;

@@ -1,8 +1,14 @@
 //! Steady-state force and moment characteristics of the rolling tire on a flat road (issue 38,
 //! items 1 and 5): the side force `F_y(α)` and aligning moment `M_z(α)` over a sweep of slip
-//! angles, and the longitudinal force `F_x(κ)` over a sweep of drive/brake torques, each point
-//! settled on the same rig and time stepper as the cleat test ([`crate::rig::run_cleat`]
-//! without a cleat, [`crate::rig::WheelInputs`] set per point).
+//! angles, the longitudinal force `F_x(κ)` over a sweep of drive/brake torques and the camber
+//! thrust `F_y(γ)` with `M_x(γ)`, `M_z(γ)` over a sweep of camber angles, each point settled on
+//! the same rig and time stepper as the cleat test ([`crate::rig::run_cleat`] without a cleat,
+//! [`crate::rig::WheelInputs`] set per point). The road may be a height grid
+//! (`rig.ground.grid_file`: the loads are then means over the rough road).
+//!
+//! With camber the loads are in the W-axis orientation (z along the road normal,
+//! [`WheelLoads`]); the camber sign is that of [`crate::rig::WheelInputs::camber_deg`] (ISO
+//! 8855: positive when the top of the wheel leans to the right).
 //!
 //! Frame and signs: the ISO 8855 wheel frame of [`WheelLoads`] (x forward, y left, z up, origin
 //! at the wheel centre). Slip definitions of Pacejka, *Tire and Vehicle Dynamics* (§1.2):
@@ -35,7 +41,8 @@ pub struct SteadyStudyConfig {
     pub tire: TireSource,
     /// The rig: load, speed, friction, damping and integration (default: flat road without
     /// cleat at 60 km/h). Its `settle_time`, `record_time` and `wheel` are replaced per point
-    /// (`point_time`, 0 and the point's input); `ground.cleat` must be off.
+    /// (`point_time`, 0 and the point's input); `ground.cleat` must be off and
+    /// `ground.obstacles` empty (a height-grid road is allowed).
     pub rig: RigConfig,
     /// Slip angles of the side-force sweep \[deg\] (each at zero drive torque; within ±45°).
     /// The cornering stiffness is the secant over the smallest mirrored pair
@@ -45,6 +52,9 @@ pub struct SteadyStudyConfig {
     /// Drive (positive) or brake (negative) torques of the longitudinal sweep \[N·m\] (each at
     /// zero slip angle).
     pub drive_torques_n_m: Vec<f64>,
+    /// Camber angles of the camber sweep \[deg\] (each at zero slip angle and torque; within
+    /// ±[`crate::rig::MAX_CAMBER_DEG`]; none by default). Each runs the full model.
+    pub camber_angles_deg: Vec<f64>,
     /// Simulated time of each point from the free-rolling start \[s\].
     pub point_time: f64,
     /// The point's loads are the means over its last `average_time` \[s\].
@@ -61,6 +71,7 @@ impl Default for SteadyStudyConfig {
             rig,
             slip_angles_deg: vec![-0.2, 0.2, 1.0, 4.0],
             drive_torques_n_m: vec![-1000.0, 1000.0],
+            camber_angles_deg: Vec::new(),
             point_time: 0.3,
             average_time: 0.05,
         }
@@ -70,9 +81,10 @@ impl Default for SteadyStudyConfig {
 impl mbd_core::config::PartialRules for SteadyStudyConfig {}
 
 impl Validate for SteadyStudyConfig {
-    /// The tire, the rig (`rig.…`), finite slip angles within ±45° and torques, at most
-    /// [`MAX_STEADY_POINTS`] points, a positive `point_time` of at least 2 steps (and at most
-    /// the rig's step limit), `average_time` in (0, `point_time`], no cleat.
+    /// The tire, the rig (`rig.…`), finite slip angles within ±45°, torques and camber angles
+    /// within ±30°, at most [`MAX_STEADY_POINTS`] points, a positive `point_time` of at least
+    /// 2 steps (and at most the rig's step limit), `average_time` in (0, `point_time`], no
+    /// cleat or obstacles.
     fn validate(&self) -> Result<(), InvalidField> {
         self.tire.validate_within("tire")?;
         self.rig.validate_within("rig")?;
@@ -82,7 +94,17 @@ impl Validate for SteadyStudyConfig {
                 "must be false: the steady study rolls on the plain drum or road",
             ));
         }
-        let n = self.slip_angles_deg.len() + self.drive_torques_n_m.len() + 1;
+        if !self.rig.ground.obstacles.is_empty() {
+            return Err(InvalidField::new(
+                "rig.ground.obstacles",
+                "must be empty: the steady study rolls on the plain drum or road (or a \
+                 height-grid road)",
+            ));
+        }
+        let n = self.slip_angles_deg.len()
+            + self.drive_torques_n_m.len()
+            + self.camber_angles_deg.len()
+            + 1;
         check::size("slip_angles_deg", n, 1, MAX_STEADY_POINTS)?;
         for (i, a) in self.slip_angles_deg.iter().enumerate() {
             let max = crate::rig::MAX_SLIP_ANGLE_DEG;
@@ -90,6 +112,10 @@ impl Validate for SteadyStudyConfig {
         }
         for (i, t) in self.drive_torques_n_m.iter().enumerate() {
             check::finite(&format!("drive_torques_n_m[{i}]"), *t)?;
+        }
+        for (i, g) in self.camber_angles_deg.iter().enumerate() {
+            let max = crate::rig::MAX_CAMBER_DEG;
+            check::within(&format!("camber_angles_deg[{i}]"), *g, -max, max, "deg")?;
         }
         check::positive("point_time", self.point_time, "s")?;
         check::positive("average_time", self.average_time, "s")?;
@@ -135,11 +161,14 @@ pub struct SteadyPoint {
     pub slip_angle_deg: f64,
     /// Drive torque \[N·m\].
     pub drive_torque_n_m: f64,
+    /// Camber angle γ \[deg\].
+    pub camber_deg: f64,
     /// Longitudinal slip `κ = Ω/Ω₀ − 1` against the free-rolling spin rate `Ω₀` \[-\].
     pub kappa: f64,
     /// Mean spin rate Ω \[rad/s\].
     pub spin_rad_per_s: f64,
-    /// Mean loads over the last `average_time` (ISO 8855 wheel frame, [`WheelLoads`]).
+    /// Mean loads over the last `average_time` (ISO 8855 wheel frame; with camber the W-axis
+    /// orientation, [`WheelLoads`]).
     pub loads: WheelLoads,
     /// Largest minus smallest `F_y` over the averaging window \[N\] (how settled the point is;
     /// likewise for the torque points' `F_x`).
@@ -160,8 +189,12 @@ pub struct SteadyResult {
     pub slip: Vec<SteadyPoint>,
     /// The torque points in the order of `drive_torques_n_m`.
     pub torque: Vec<SteadyPoint>,
+    /// The camber points in the order of `camber_angles_deg`.
+    pub camber: Vec<SteadyPoint>,
     /// Model stepped at the slip-angle points (full model when α ≠ 0).
     pub symmetry: String,
+    /// Model stepped at the camber points (full model when γ ≠ 0; empty without them).
+    pub camber_symmetry: String,
 }
 
 /// Cornering stiffness `C_Fα = dF_y/dα` at α = 0 \[N/rad\] from the points `(α [deg], F_y)`
@@ -200,6 +233,18 @@ impl SteadyResult {
         cornering_stiffness(&pts, self.free_rolling.loads.fy)
     }
 
+    /// Camber stiffness `dF_y/dγ` at γ = 0 \[N/rad\] (W-axis `F_y`; [`cornering_stiffness`] on
+    /// the camber points: the central difference over the smallest mirrored pair). `None`
+    /// without a non-zero camber angle.
+    pub fn camber_stiffness(&self) -> Option<f64> {
+        let pts: Vec<(f64, f64)> = self
+            .camber
+            .iter()
+            .map(|p| (p.camber_deg, p.loads.fy))
+            .collect();
+        cornering_stiffness(&pts, self.free_rolling.loads.fy)
+    }
+
     /// Pneumatic trail `t = −M_z/F_y` \[m\] of each slip-angle point (`NaN` where `F_y = 0`).
     pub fn pneumatic_trail(&self) -> Vec<f64> {
         self.slip
@@ -215,18 +260,32 @@ impl SteadyResult {
     }
 }
 
-/// Run one point: the rig of `cfg` with the wheel inputs `(α [deg], torque [N·m])`, the means
-/// over the last `average_time`. `omega0` is the free-rolling spin rate for κ (`None`: this
-/// is the free-rolling point, κ = 0).
+/// The wheel inputs of one point: slip angle \[deg\], drive torque \[N·m\], camber \[deg\].
+#[derive(Debug, Clone, Copy)]
+struct PointInputs {
+    alpha_deg: f64,
+    torque: f64,
+    camber_deg: f64,
+}
+
+/// Run one point: the rig of `cfg` with the wheel inputs `inp`, the means over the last
+/// `average_time`. `omega0` is the free-rolling spin rate for κ (`None`: this is the
+/// free-rolling point, κ = 0).
 fn run_point(
-    red: &ReducedTire, cfg: &SteadyStudyConfig, alpha_deg: f64, torque: f64, omega0: Option<f64>,
+    red: &ReducedTire, cfg: &SteadyStudyConfig, inp: PointInputs, omega0: Option<f64>,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(SteadyPoint, String), TireError> {
+    let PointInputs {
+        alpha_deg,
+        torque,
+        camber_deg,
+    } = inp;
     let mut rig = cfg.rig.clone();
     rig.settle_time = cfg.point_time;
     rig.record_time = 0.0;
     rig.wheel.slip_angle_deg = alpha_deg;
     rig.wheel.drive_torque = torque;
+    rig.wheel.camber_deg = camber_deg;
     // (the rig names its fields relative to itself; the study's root has them under `rig.`)
     let r = run_cleat(red, &rig, progress).map_err(|e| match e {
         TireError::Invalid { item, reason } => TireError::Invalid {
@@ -260,6 +319,7 @@ fn run_point(
         SteadyPoint {
             slip_angle_deg: alpha_deg,
             drive_torque_n_m: torque,
+            camber_deg,
             kappa: omega0.map_or(0.0, |o| spin / o - 1.0),
             spin_rad_per_s: spin,
             loads,
@@ -279,15 +339,24 @@ pub fn run_steady(
     red: &ReducedTire, cfg: &SteadyStudyConfig, progress: &mut dyn FnMut(f64),
 ) -> Result<SteadyResult, TireError> {
     cfg.validate()?;
-    let total = (1 + cfg.slip_angles_deg.len() + cfg.drive_torques_n_m.len()) as f64;
+    let total =
+        (1 + cfg.slip_angles_deg.len() + cfg.drive_torques_n_m.len() + cfg.camber_angles_deg.len())
+            as f64;
     let mut k = 0.0;
-    let (free, _) = run_point(red, cfg, 0.0, 0.0, None, &mut |f| progress(f / total))?;
+    let at = |alpha_deg, torque, camber_deg| PointInputs {
+        alpha_deg,
+        torque,
+        camber_deg,
+    };
+    let (free, _) = run_point(red, cfg, at(0.0, 0.0, 0.0), None, &mut |f| {
+        progress(f / total)
+    })?;
     k += 1.0;
     let omega0 = free.spin_rad_per_s;
     let mut slip = Vec::with_capacity(cfg.slip_angles_deg.len());
     let mut symmetry = String::new();
     for &a in &cfg.slip_angles_deg {
-        let (p, s) = run_point(red, cfg, a, 0.0, Some(omega0), &mut |f| {
+        let (p, s) = run_point(red, cfg, at(a, 0.0, 0.0), Some(omega0), &mut |f| {
             progress((k + f) / total)
         })?;
         k += 1.0;
@@ -298,18 +367,32 @@ pub fn run_steady(
     }
     let mut torque = Vec::with_capacity(cfg.drive_torques_n_m.len());
     for &t in &cfg.drive_torques_n_m {
-        let (p, _) = run_point(red, cfg, 0.0, t, Some(omega0), &mut |f| {
+        let (p, _) = run_point(red, cfg, at(0.0, t, 0.0), Some(omega0), &mut |f| {
             progress((k + f) / total)
         })?;
         k += 1.0;
         torque.push(p);
+    }
+    let mut camber = Vec::with_capacity(cfg.camber_angles_deg.len());
+    let mut camber_symmetry = String::new();
+    for &g in &cfg.camber_angles_deg {
+        let (p, s) = run_point(red, cfg, at(0.0, 0.0, g), Some(omega0), &mut |f| {
+            progress((k + f) / total)
+        })?;
+        k += 1.0;
+        if g != 0.0 || camber_symmetry.is_empty() {
+            camber_symmetry = s;
+        }
+        camber.push(p);
     }
     progress(1.0);
     Ok(SteadyResult {
         free_rolling: free,
         slip,
         torque,
+        camber,
         symmetry,
+        camber_symmetry,
     })
 }
 
@@ -353,8 +436,22 @@ pub struct SteadySummary {
     pub effective_rolling_radius_m: f64,
     /// Every point in full.
     pub points: Vec<SteadyPoint>,
+    /// Camber angles \[deg\].
+    pub camber_deg: Vec<f64>,
+    /// Camber thrust `F_y(γ)` \[N\] (W-axis: in the road plane).
+    pub fy_camber_n: Vec<f64>,
+    /// Vertical force `F_z` at each camber angle \[N\] (W-axis: along the road normal).
+    pub fz_camber_n: Vec<f64>,
+    /// Overturning moment `M_x(γ)` about the wheel centre \[N·m\].
+    pub mx_camber_n_m: Vec<f64>,
+    /// Aligning moment `M_z(γ)` \[N·m\] (W-axis: about the road normal).
+    pub mz_camber_n_m: Vec<f64>,
+    /// Camber stiffness `dF_y/dγ` at γ = 0 \[N/rad\] (`null` without a camber angle).
+    pub camber_stiffness_n_per_rad: Option<f64>,
     /// Model stepped at the slip-angle points.
     pub symmetry: String,
+    /// Model stepped at the camber points (empty without them).
+    pub camber_symmetry: String,
     /// Magic Formula fit of the points ([`crate::magic_formula`]; the app writes its `.tir`,
     /// [`crate::tir`]); `None` when the points do not allow one (the reason in
     /// `magic_formula_note`).
@@ -374,7 +471,12 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
     the wheel centre, those of the contact forces). fy_n(alpha) and mz_n_m(alpha) are the side \
     force and aligning moment, cornering_stiffness_n_per_rad = dFy/dalpha at 0, \
     pneumatic_trail_m = -Mz/Fy, fy_over_mu_fz <= 1 (Coulomb); fx_n(kappa) is the longitudinal \
-    force at the drive torques with kappa = Omega/Omega0 - 1 against the free-rolling spin.";
+    force at the drive torques with kappa = Omega/Omega0 - 1 against the free-rolling spin. \
+    fy_camber_n, mx_camber_n_m and mz_camber_n_m are the loads at the camber angles camber_deg \
+    (ISO 8855 inclination: positive when the top of the wheel leans to the right; the camber \
+    thrust points to the side the wheel leans to, Fy < 0 for gamma > 0), given in the W-axis \
+    orientation (z along the road normal, y in the road plane; moments about the wheel centre), \
+    camber_stiffness_n_per_rad = dFy/dgamma at 0.";
 
 /// The summary of a steady result.
 pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummary {
@@ -411,11 +513,19 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
         free_rolling_fz_n: f.loads.fz,
         free_rolling_spin_rad_per_s: f.spin_rad_per_s,
         effective_rolling_radius_m: v / f.spin_rad_per_s,
+        camber_deg: r.camber.iter().map(|p| p.camber_deg).collect(),
+        fy_camber_n: r.camber.iter().map(|p| p.loads.fy).collect(),
+        fz_camber_n: r.camber.iter().map(|p| p.loads.fz).collect(),
+        mx_camber_n_m: r.camber.iter().map(|p| p.loads.mx).collect(),
+        mz_camber_n_m: r.camber.iter().map(|p| p.loads.mz).collect(),
+        camber_stiffness_n_per_rad: r.camber_stiffness(),
         points: std::iter::once(*f)
             .chain(r.slip.iter().copied())
             .chain(r.torque.iter().copied())
+            .chain(r.camber.iter().copied())
             .collect(),
         symmetry: r.symmetry.clone(),
+        camber_symmetry: r.camber_symmetry.clone(),
         magic_formula,
         magic_formula_note,
         meaning: STEADY_MEANING.to_string(),
@@ -423,9 +533,10 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
 }
 
 /// Columns of the steady study's point table (`points.csv`): slip angle \[deg\], drive torque
-/// \[N·m\], κ \[-\], spin \[rad/s\], the six loads (ISO 8855 wheel frame) \[N\], \[N·m\], the spread
-/// over the averaging window \[N\].
-pub const STEADY_COLUMNS: [&str; 11] = [
+/// \[N·m\], κ \[-\], spin \[rad/s\], the six loads (ISO 8855 wheel frame; at a camber angle
+/// the W-axis orientation, z along the road normal) \[N\], \[N·m\], the spread over the
+/// averaging window \[N\], the camber angle \[deg\].
+pub const STEADY_COLUMNS: [&str; 12] = [
     "slip_angle_deg",
     "drive_torque_N_m",
     "kappa_ratio",
@@ -437,10 +548,11 @@ pub const STEADY_COLUMNS: [&str; 11] = [
     "my_N_m",
     "mz_N_m",
     "spread_N",
+    "camber_deg",
 ];
 
 /// The [`STEADY_COLUMNS`] row of a point.
-pub fn steady_row(p: &SteadyPoint) -> [f64; 11] {
+pub fn steady_row(p: &SteadyPoint) -> [f64; 12] {
     let l = &p.loads;
     [
         p.slip_angle_deg,
@@ -454,5 +566,6 @@ pub fn steady_row(p: &SteadyPoint) -> [f64; 11] {
         l.my,
         l.mz,
         p.spread_n,
+        p.camber_deg,
     ]
 }
