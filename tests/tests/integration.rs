@@ -50,6 +50,7 @@ mod tire_mirror;
 mod tire_prescribed;
 mod tire_reduction;
 mod tire_restart;
+mod tire_roads;
 mod tire_rolling;
 mod tire_rotating;
 mod tire_sensitivity;

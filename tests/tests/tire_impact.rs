@@ -20,13 +20,7 @@ fn plain_rig(t: f64) -> RigConfig {
 fn cleat_position_along_drum_and_road() {
     // Analytical: the cleat moves with the surface speed; on the drum it comes round every
     // 2πR/v and the nearest passage is reported.
-    let mut g = Ground {
-        cfg: GroundConfig::default(),
-        top: -0.5,
-        speed: 10.0,
-        lateral_speed: 0.0,
-        cleat_time: 0.3,
-    };
+    let mut g = Ground::new(GroundConfig::default(), -0.5, 10.0, 0.0, 0.3).unwrap();
     let period = 2.0 * std::f64::consts::PI * 1.25 / 10.0;
     for (t, want) in [(0.3, 0.0), (0.29, 0.1), (0.31, -0.1), (0.3 + period, 0.0)] {
         let d = g.cleat_ahead(t).unwrap();

@@ -117,13 +117,7 @@ fn unsymmetric_tire_or_start_steps_the_full_model() {
         .map(|i| (0..red.n_z()).map(|j| modal.phi[(i, j)] * y0[j]).sum())
         .collect();
     let rc = rig(GroundKind::Drum, false, 0.85);
-    let ground = Ground {
-        cfg: rc.ground.clone(),
-        top: -red.outer_radius,
-        speed: 10.0,
-        lateral_speed: 0.0,
-        cleat_time: 1.0,
-    };
+    let ground = Ground::new(rc.ground.clone(), -red.outer_radius, 10.0, 0.0, 1.0).unwrap();
     let sim = RollingTire::new(red, rc.rolling.clone(), ground, 0.0, 0.0, z0, 20.0).unwrap();
     let d = sim.symmetry().describe();
     assert!(d.contains("initial state is not mirror-symmetric"), "{d}");

@@ -99,13 +99,7 @@ fn spin_up_with(set: impl Fn(&mut RollingConfig)) -> (Vec<[f64; 3]>, usize) {
     let pre = preload(red, &rc.ground, rc.load).unwrap();
     let v = rc.speed_kmh / 3.6;
     let spin = v / (red.outer_radius - pre.patch.deflection / 3.0);
-    let ground = Ground {
-        cfg: rc.ground.clone(),
-        top: pre.patch.top,
-        speed: v,
-        lateral_speed: 0.0,
-        cleat_time: 1.0,
-    };
+    let ground = Ground::new(rc.ground.clone(), pre.patch.top, v, 0.0, 1.0).unwrap();
     let mut sim = RollingTire::new(
         red,
         rc.rolling.clone(),

@@ -148,6 +148,12 @@ pub fn enveloping_profile(
             "the enveloping profile needs the cleat",
         ));
     }
+    if ground.has_issue38_features() {
+        return Err(invalid(
+            "ground.obstacles",
+            "the enveloping profile is that of the cleat alone (no obstacles or height grid)",
+        ));
+    }
     let pre = preload(red, ground, load)?;
     let (mut y, _) = reduced_flexibility(red)?;
     let mut shifted = red.contact_positions.clone();
@@ -186,13 +192,7 @@ pub fn enveloping_profile(
     for k in 0..n {
         let x = lo - reach + k as f64 * step;
         // the cleat `x` ahead of the patch centre at t = 0 (`Ground::cleat_ahead`)
-        let g = Ground {
-            cfg: ground.clone(),
-            top: pre.patch.top,
-            speed: 1.0,
-            lateral_speed: 0.0,
-            cleat_time: x,
-        };
+        let g = Ground::without_grid(ground.clone(), pre.patch.top, 1.0, 0.0, x);
         let (lambda, f_c, _) = contact_at(&y, s_c, &g)?;
         xs.push(x);
         dfy.push((0..s_c.len()).map(|i| f_c[3 * i + 2]).sum::<f64>() - f0);

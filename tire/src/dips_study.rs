@@ -54,6 +54,24 @@ impl Validate for DipsStudyConfig {
                 "the dips need the cleat",
             ));
         }
+        if !self.rig.ground.obstacles.is_empty() {
+            return Err(InvalidField::new(
+                "rig.ground.obstacles",
+                "the dips are those of the cleat alone: no further obstacles",
+            ));
+        }
+        if !self.rig.ground.grid_file.is_empty() {
+            return Err(InvalidField::new(
+                "rig.ground.grid_file",
+                "the dips are those of the cleat on the plain drum or road: no height grid",
+            ));
+        }
+        if self.rig.wheel.camber_deg != 0.0 {
+            return Err(InvalidField::new(
+                "rig.wheel.camber_deg",
+                "the dips' quasi-static profile is that of the upright wheel: must be 0",
+            ));
+        }
         self.dips.validate_within("dips")?;
         if self.grounds.is_empty() {
             return Err(InvalidField::new("grounds", "is empty"));

@@ -19,7 +19,9 @@
 //!   code version ([`CODE_VERSION`]); [`files`]: bounded reads, atomic writes, digests.
 //!
 //! The rolling tire and its studies:
-//! * [`ground`]: drum or flat road with a semicircular cleat (contact crate geometry);
+//! * [`ground`]: drum or flat road with a semicircular cleat, obstacles (cleats of any section,
+//!   oblique cleats, steps, potholes) and height-grid roads, tilted for camber (contact crate
+//!   geometry);
 //! * [`statics`]: the preload (static contact with Lagrange multipliers, Ribaric §7.3);
 //! * [`mirror`]: the half model of mirror-symmetric motion (symmetric modal coordinates, one
 //!   contact unknown per mirrored node pair);
@@ -107,12 +109,15 @@ pub mod stats;
 pub use contact_step::TireContact;
 pub use dynamics::TireDynamics;
 pub use friction::TireFriction;
-pub use ground::{Ground, GroundConfig, GroundKind};
+pub use ground::{CleatSection, Ground, GroundConfig, GroundKind, GroundPoint, Obstacle};
 pub use mirror::{MirrorHalf, half_tire, mirror_half};
 pub use motion::{CoSimulation, WheelMotion};
 pub use rolling::{RollingState, RollingTire, SpindleForce, SymmetryUse, WheelLoads};
 pub use rolling_config::{NormalContact, RollingConfig, SpindleForceMethod, Symmetry};
-pub use statics::{PatchSolution, Preload, preload, preload_rolling, solve_patch};
+pub use statics::{
+    PatchSolution, Preload, preload, preload_cambered, preload_rolling, preload_rolling_cambered,
+    solve_patch, solve_patch_cambered,
+};
 pub use stats::StepStats;
 
 // the studies: cleat test, spectra, speed dips
@@ -137,8 +142,8 @@ pub use magic_formula::{MfCurve, MfFit, MfFitError, TrailCurve, fit_steady};
 pub use modes_study::{ModesStudyConfig, ModesSummary, run_modes};
 pub use pressure_study::{PressureStudyConfig, PressureSummary, pressure_meaning, run_pressure};
 pub use rig::{
-    DampingConfig, ImpactConfig, MAX_SLIP_ANGLE_DEG, RigConfig, RigResult, RigStart, Sample,
-    WheelInputs, rig_step, run_cleat, run_cleat_observed, start_rolling,
+    DampingConfig, ImpactConfig, MAX_CAMBER_DEG, MAX_SLIP_ANGLE_DEG, RigConfig, RigResult,
+    RigStart, Sample, WheelInputs, rig_step, run_cleat, run_cleat_observed, start_rolling,
 };
 pub use spectrum::{
     LINE_BAND_HZ, PEAK_BAND_HZ, Spectrum, SpectrumGrid, amplitude_spectrum, rms_fluctuation,

@@ -17,7 +17,7 @@ use crate::reduced::ReducedTire;
 use crate::rolling::RollingTire;
 use crate::rolling_config::RollingConfig;
 use crate::spectrum::{PEAK_BAND_HZ, Spectrum, amplitude_spectrum, rms_fluctuation};
-use crate::statics::{PatchSolution, Preload, preload, preload_rolling};
+use crate::statics::{PatchSolution, Preload, preload_cambered, preload_rolling_cambered};
 use crate::stats::StepStats;
 use fe_model::Rayleigh;
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -123,18 +123,17 @@ impl Default for ImpactConfig {
 }
 
 impl ImpactConfig {
-    /// Whether the step starting at `t` lies in the window of `ground`.
+    /// Whether the step starting at `t` lies in the window of `ground` (the cleat's or any
+    /// obstacle's: [`Ground::obstacle_near`]).
     fn active(&self, ground: &Ground, t: f64) -> bool {
-        self.substeps > 1
-            && ground
-                .cleat_ahead(t)
-                .is_some_and(|d| d <= self.lead && d >= -ground.speed * self.trail)
+        self.substeps > 1 && ground.obstacle_near(t, self.lead, self.trail)
     }
 }
 
 /// Inputs at the wheel (issue 38, item 1): a drive or brake torque on the spin degree of
-/// freedom and a slip angle of the road velocity to the wheel plane. The defaults (zero) are
-/// the free-rolling, straight-ahead wheel of Ribaric §8.3.
+/// freedom, a slip angle of the road velocity to the wheel plane and a camber angle of the
+/// rim to the road normal. The defaults (zero) are the free-rolling, straight-ahead, upright
+/// wheel of Ribaric §8.3.
 ///
 /// Frame and signs: the wheel frame of the rig is the ISO 8855 wheel frame (x forward in the
 /// travel direction, y left along the spin axis, z up), with the wheel centre at its origin.
@@ -165,6 +164,16 @@ pub struct WheelInputs {
     /// `slip_ratios` sweep sets Ω this way). Requires `drive_torque = 0`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub spin_rate: Option<f64>,
+    /// Camber (inclination) angle γ \[deg\] of the rim to the road normal (ISO 8855; Pacejka,
+    /// *Tire and Vehicle Dynamics*, §1.2): a right-handed rotation of the wheel about its x
+    /// axis, positive when the top of the wheel leans to the right (towards `−y`) seen from
+    /// behind. Applied as the road tilted by `−γ` about the x-parallel line through the
+    /// contact centre ([`Ground::camber`]; road normal `(0, sin γ, cos γ)` in the wheel frame),
+    /// the preload `load` along the road normal. With γ ≠ 0 the loads are reported in the
+    /// W-axis orientation (z along the road normal; [`crate::rolling::WheelLoads`]) and the
+    /// full model is stepped. The camber thrust of a tire points to the side it leans to
+    /// (Pacejka §3.2, §4.3): `F_y < 0` for γ > 0. Within ±[`MAX_CAMBER_DEG`].
+    pub camber_deg: f64,
 }
 
 impl Default for WheelInputs {
@@ -173,6 +182,7 @@ impl Default for WheelInputs {
             drive_torque: 0.0,
             slip_angle_deg: 0.0,
             spin_rate: None,
+            camber_deg: 0.0,
         }
     }
 }
@@ -184,9 +194,13 @@ pub const MAX_SPIN_RATE: f64 = 1700.0;
 /// Largest slip angle of [`WheelInputs::slip_angle_deg`] \[deg\].
 pub const MAX_SLIP_ANGLE_DEG: f64 = 45.0;
 
+/// Largest camber angle of [`WheelInputs::camber_deg`] \[deg\].
+pub const MAX_CAMBER_DEG: f64 = 30.0;
+
 impl Validate for WheelInputs {
-    /// A finite torque, a slip angle within ±[`MAX_SLIP_ANGLE_DEG`] and a prescribed spin rate
-    /// within ±[`MAX_SPIN_RATE`] only with `drive_torque = 0`.
+    /// A finite torque, a slip angle within ±[`MAX_SLIP_ANGLE_DEG`], a camber angle within
+    /// ±[`MAX_CAMBER_DEG`] and a prescribed spin rate within ±[`MAX_SPIN_RATE`] only with
+    /// `drive_torque = 0`.
     fn validate(&self) -> Result<(), InvalidField> {
         check::finite("drive_torque", self.drive_torque)?;
         check::within(
@@ -194,6 +208,13 @@ impl Validate for WheelInputs {
             self.slip_angle_deg,
             -MAX_SLIP_ANGLE_DEG,
             MAX_SLIP_ANGLE_DEG,
+            "deg",
+        )?;
+        check::within(
+            "camber_deg",
+            self.camber_deg,
+            -MAX_CAMBER_DEG,
+            MAX_CAMBER_DEG,
             "deg",
         )?;
         if let Some(w) = self.spin_rate {
@@ -218,6 +239,11 @@ impl WheelInputs {
     pub fn lateral_speed(&self, v: f64) -> f64 {
         v * self.slip_angle_deg.to_radians().tan()
     }
+
+    /// The camber angle γ \[rad\].
+    pub fn camber(&self) -> f64 {
+        self.camber_deg.to_radians()
+    }
 }
 
 /// Cleat-test settings (defaults: Ribaric §8.3 at 60 km/h on the drum).
@@ -240,7 +266,8 @@ pub struct RigConfig {
     pub rolling: RollingConfig,
     /// Sub-stepping through the cleat impact.
     pub impact: ImpactConfig,
-    /// Wheel inputs: drive/brake torque and slip angle (default: free rolling, straight).
+    /// Wheel inputs: drive/brake torque, slip angle and camber (default: free rolling,
+    /// straight, upright).
     pub wheel: WheelInputs,
 }
 
@@ -378,9 +405,10 @@ pub struct Sample {
     pub t: f64,
     /// Longitudinal spindle force `F_x` \[N\].
     pub fx: f64,
-    /// Vertical spindle force `F_y` \[N\].
+    /// Vertical spindle force `F_y` \[N\] (ISO 8855 `F_z`; with camber along the road normal).
     pub fy: f64,
-    /// Lateral spindle force \[N\] (along the wheel axis, left positive: ISO 8855 `F_y`).
+    /// Lateral spindle force \[N\] (along the wheel axis, left positive: ISO 8855 `F_y`; with
+    /// camber in the road plane, W-axis `y`).
     pub fz: f64,
     /// Overturning moment `M_x` of the contact forces about the wheel centre \[N·m\] (ISO 8855
     /// wheel frame, [`crate::rolling::WheelLoads`]).
@@ -398,7 +426,7 @@ pub struct Sample {
     pub active: usize,
     /// Sum of the normal multipliers \[N\].
     pub normal_sum: f64,
-    /// Contact nodes pressed onto the cleat.
+    /// Contact nodes pressed onto the cleat or another obstacle.
     pub cleat_nodes: usize,
 }
 
@@ -409,6 +437,9 @@ pub struct RigResult {
     pub speed_kmh: f64,
     /// Preload \[N\].
     pub load: f64,
+    /// Camber angle γ \[deg\] (with γ ≠ 0 the samples' loads are in the W-axis orientation,
+    /// [`crate::rolling::WheelLoads`]).
+    pub camber_deg: f64,
     /// DOF of the wheel–tire model (6 + n_z).
     pub dof: usize,
     /// Whether the half model of symmetric motion was stepped, and why not
@@ -525,22 +556,35 @@ pub struct RigStart<'a> {
 
 /// Press the tire onto the ground and set it rolling steadily (see [`RigStart`]): Rayleigh
 /// damping from `cfg.damping`, spin rate `v / (R − d/3)`, the steady state of
-/// [`preload_rolling`] with its contact forces as the initial multipliers. The settings are
-/// validated first ([`RigConfig`]'s [`Validate`]).
+/// [`preload_rolling_cambered`] (on the plain, cambered ground) with its contact forces as the
+/// initial multipliers. The settings are validated first ([`RigConfig`]'s [`Validate`]); a
+/// height-grid file is read here ([`Ground::new`]).
 pub fn start_rolling<'a>(red: &'a ReducedTire, cfg: &RigConfig) -> Result<RigStart<'a>, TireError> {
     cfg.validate()?;
     let rayleigh = cfg.damping.rayleigh(red)?;
     let v = cfg.speed_kmh / 3.6;
-    let static_preload = preload(red, &cfg.ground, cfg.load)?;
+    let gamma = cfg.wheel.camber();
+    let static_preload = preload_cambered(red, &cfg.ground, gamma, cfg.load)?;
     let spin = v / (red.outer_radius - static_preload.patch.deflection / 3.0);
-    let pre = preload_rolling(red, &cfg.ground, cfg.load, spin, rayleigh.beta)?;
-    let ground = Ground {
-        cfg: cfg.ground.clone(),
-        top: pre.patch.top,
-        speed: v,
-        lateral_speed: cfg.wheel.lateral_speed(v),
-        cleat_time: cfg.settle_time,
-    };
+    let pre = preload_rolling_cambered(red, &cfg.ground, gamma, cfg.load, spin, rayleigh.beta)?;
+    let mut ground = Ground::new(
+        cfg.ground.clone(),
+        pre.patch.top,
+        v,
+        cfg.wheel.lateral_speed(v),
+        cfg.settle_time,
+    )?
+    .with_camber(gamma);
+    ground.lateral_reach = red
+        .contact_positions
+        .iter()
+        .map(|s| s[1].abs())
+        .fold(0.0, f64::max);
+    // a height-grid road: its reference plane lowered by the grid's height under the patch at
+    // the start, so that the tire preloaded on the flat road starts on the grid's surface
+    if ground.grid().is_some() {
+        ground.top -= ground.grid_height_at_centre(0.0);
+    }
     let mut sim = RollingTire::new(
         red,
         cfg.rolling.clone(),
@@ -648,6 +692,7 @@ pub fn run_cleat_observed(
     Ok(RigResult {
         speed_kmh: cfg.speed_kmh,
         load: cfg.load,
+        camber_deg: cfg.wheel.camber_deg,
         dof: red.dof(),
         symmetry: sim.symmetry().describe(),
         preload: pre.patch,

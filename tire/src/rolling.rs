@@ -82,7 +82,9 @@
 //!
 //! # Mirror symmetry
 //! A tire that is symmetric about its mid-plane, started symmetric on the (axially extruded)
-//! drum or road, moves symmetrically: with [`RollingConfig::symmetry`] = `auto` (default) the
+//! drum or road (and on any ground that is its own mirror image: transverse obstacles, centred
+//! potholes, a grid symmetric in `y`; no camber or slip angle, [`Ground::mirror_symmetric`]),
+//! moves symmetrically: with [`RollingConfig::symmetry`] = `auto` (default) the
 //! step runs on the half model of [`super::mirror`] — the symmetric modal coordinates (172 of
 //! the default tire's 335) and one contact unknown per mirrored pair of contact nodes (52 of
 //! 95) — which has the full model's symmetric solution at about a quarter of the matrix data
@@ -166,6 +168,12 @@ pub struct SpindleForce {
 /// behind the contact centre). Moments about the contact centre (the W-axis system of ISO
 /// 8855, the point of the road below the wheel centre at height `h` below it) follow as
 /// `M_x − h F_y`, `M_y + h F_x`, `M_z`.
+///
+/// With a camber angle γ ≠ 0 ([`crate::rig::WheelInputs::camber_deg`]) the forces and moments
+/// are given in the W-axis orientation instead (TYDEX/ISO 8855 W-axes: `x_W` the wheel's `x`,
+/// `z_W = (0, sin γ, cos γ)` the road normal, `y_W = z_W × x_W = (0, cos γ, −sin γ)` in the
+/// road plane), the moments still about the wheel centre: `fz` is then the load along the road
+/// normal and `fy` the side force in the road plane. At γ = 0 the two frames coincide.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct WheelLoads {
     /// Longitudinal force `F_x` (forward positive) \[N\].
@@ -310,6 +318,7 @@ impl<'a> RollingTire<'a> {
         // exact to round-off (e.g. unsymmetric M or K)
         let modal = red.modal()?;
         let mut symmetry = SymmetryUse::Full("symmetry = \"off\"".into());
+        let ground_asymmetry = ground.mirror_symmetric().err();
         let (sys, z0, map) = if modal.deviation <= MODAL_DEVIATION {
             let y0 = (&modal.phi_inv * faer::MatRef::from_column_major_slice(&z0, nz, 1))
                 .col(0)
@@ -323,6 +332,10 @@ impl<'a> RollingTire<'a> {
                         "the road's lateral velocity (slip angle) breaks the mirror symmetry"
                             .into(),
                     );
+                    None
+                }
+                Symmetry::Auto if ground_asymmetry.is_some() => {
+                    symmetry = SymmetryUse::Full(ground_asymmetry.unwrap_or_default());
                     None
                 }
                 Symmetry::Auto => match symmetric_half(&modal.tire, &y0) {
@@ -752,9 +765,10 @@ impl<'a> RollingTire<'a> {
         }
     }
 
-    /// All six spindle forces and moments in the ISO 8855 wheel frame ([`WheelLoads`]): the
-    /// forces of [`RollingTire::spindle_force`] and the moments of the contact forces about
-    /// the wheel centre (deformed positions of the nodes in contact only).
+    /// All six spindle forces and moments in the ISO 8855 wheel frame ([`WheelLoads`]; with
+    /// camber in the W-axis orientation): the forces of [`RollingTire::spindle_force`] and the
+    /// moments of the contact forces about the wheel centre (deformed positions of the nodes in
+    /// contact only).
     pub fn wheel_loads(&self) -> WheelLoads {
         let f = self.spindle_force();
         let red = self.sys.reduced();
@@ -781,13 +795,26 @@ impl<'a> RollingTire<'a> {
             m[1] += x[2] * g[0] - x[0] * g[2];
             m[2] += x[0] * g[1] - x[1] * g[0];
         }
+        let gamma = self.ground().camber;
+        if gamma == 0.0 {
+            return WheelLoads {
+                fx: f.fx,
+                fy: f.fz,
+                fz: f.fy,
+                mx: m[0],
+                my: m[1],
+                mz: m[2],
+            };
+        }
+        // the W-axis orientation: y_W = (0, cos γ, −sin γ), z_W = (0, sin γ, cos γ)
+        let (sg, cg) = gamma.sin_cos();
         WheelLoads {
             fx: f.fx,
-            fy: f.fz,
-            fz: f.fy,
+            fy: cg * f.fz - sg * f.fy,
+            fz: sg * f.fz + cg * f.fy,
             mx: m[0],
-            my: m[1],
-            mz: m[2],
+            my: cg * m[1] - sg * m[2],
+            mz: sg * m[1] + cg * m[2],
         }
     }
 

@@ -30,7 +30,7 @@ pub struct PatchSolution {
     /// Vertical deflection: unloaded outer radius + top \[m\] (the ground's travel past first
     /// touch).
     pub deflection: f64,
-    /// Total vertical contact force \[N\].
+    /// Total vertical contact force \[N\] (with camber: along the road normal).
     pub force: f64,
     /// Normal multiplier per contact node \[N\] (contact force magnitude).
     pub lambda: Vec<f64>,
@@ -104,27 +104,48 @@ pub(crate) fn contact_at(
 }
 
 /// Press the contact nodes (positions `s_c`, flexibility `y`) onto the ground until the
-/// vertical force equals `load` \[N\].
+/// vertical force equals `load` \[N\] ([`solve_patch_cambered`] upright).
 pub fn solve_patch(
     y: &Mat<f64>, s_c: &[[f64; 3]], ground_cfg: &GroundConfig, load: f64,
 ) -> Result<PatchSolution, TireError> {
+    solve_patch_cambered(y, s_c, ground_cfg, 0.0, load)
+}
+
+/// Press the contact nodes (positions `s_c`, flexibility `y`) onto the plain ground of
+/// `ground_cfg` ([`GroundConfig::plain`]: no cleat, obstacles or grid) tilted for the camber
+/// angle `camber` \[rad\] ([`Ground::with_camber`]: the road's normal `n = (0, sin γ, cos γ)`)
+/// until the contact force along the road normal, `Σ nᵀ fᶜ`, equals `load` \[N\]: the preload
+/// along the road normal. The ground's position is its top `top` (the contact centre
+/// `(0, 0, top)` about which it is tilted); the first touch is at `top = minᵢ nᵀsᵢ / n_z`, and
+/// [`PatchSolution::deflection`] is the road's travel along its normal past it. Upright
+/// (`camber = 0`) the normal is `ẑ` and the force the vertical one.
+pub fn solve_patch_cambered(
+    y: &Mat<f64>, s_c: &[[f64; 3]], ground_cfg: &GroundConfig, camber: f64, load: f64,
+) -> Result<PatchSolution, TireError> {
     check::positive("load", load, "N")?;
     ground_cfg.validate_within("ground")?;
-    let mut cfg = ground_cfg.clone();
-    cfg.cleat = false;
+    let cfg = ground_cfg.plain();
+    let (sg, cg) = camber.sin_cos();
     // first touch: the lowest contact node on the ground
-    let touch = s_c.iter().map(|s| s[2]).fold(f64::INFINITY, f64::min);
-    let outer = -touch;
-    let ground_at = |top: f64| Ground {
-        cfg: cfg.clone(),
-        top,
-        speed: 0.0,
-        lateral_speed: 0.0,
-        cleat_time: 0.0,
+    let touch = if camber == 0.0 {
+        s_c.iter().map(|s| s[2]).fold(f64::INFINITY, f64::min)
+    } else {
+        s_c.iter()
+            .map(|s| (sg * s[1] + cg * s[2]) / cg)
+            .fold(f64::INFINITY, f64::min)
     };
+    let outer = -s_c.iter().map(|s| s[2]).fold(f64::INFINITY, f64::min);
+    let ground_at =
+        |top: f64| Ground::without_grid(cfg.clone(), top, 0.0, 0.0, 0.0).with_camber(camber);
     let force = |top: f64| -> Result<(f64, ContactState), TireError> {
         let (l, f, d) = contact_at(y, s_c, &ground_at(top))?;
-        let fz: f64 = (0..s_c.len()).map(|i| f[3 * i + 2]).sum();
+        let fz: f64 = if camber == 0.0 {
+            (0..s_c.len()).map(|i| f[3 * i + 2]).sum()
+        } else {
+            (0..s_c.len())
+                .map(|i| sg * f[3 * i + 1] + cg * f[3 * i + 2])
+                .sum()
+        };
         Ok((fz, (l, f, d)))
     };
     // bracket: e in (0, e_hi]
@@ -155,7 +176,7 @@ pub fn solve_patch(
     let (fz, (lambda, f_c, delta_c)) = force(touch + e)?;
     Ok(PatchSolution {
         top: touch + e,
-        deflection: e,
+        deflection: if camber == 0.0 { e } else { e * cg },
         force: fz,
         lambda,
         delta_c,
@@ -207,8 +228,16 @@ pub struct Preload {
 
 /// Preload the reduced tire onto the ground with `load` \[N\] (not rolling).
 pub fn preload(red: &ReducedTire, ground: &GroundConfig, load: f64) -> Result<Preload, TireError> {
+    preload_cambered(red, ground, 0.0, load)
+}
+
+/// [`preload`] on the ground tilted for the camber angle `camber` \[rad\], `load` along the
+/// road normal ([`solve_patch_cambered`]).
+pub fn preload_cambered(
+    red: &ReducedTire, ground: &GroundConfig, camber: f64, load: f64,
+) -> Result<Preload, TireError> {
     let (y, x) = reduced_flexibility(red)?;
-    let patch = solve_patch(&y, &red.contact_positions, ground, load)?;
+    let patch = solve_patch_cambered(&y, &red.contact_positions, ground, camber, load)?;
     let z = (0..red.n_z())
         .map(|r| (0..patch.f_c.len()).map(|k| x[(r, k)] * patch.f_c[k]).sum())
         .collect();
@@ -222,6 +251,14 @@ pub fn preload(red: &ReducedTire, ground: &GroundConfig, load: f64) -> Result<Pr
 /// rolling tire starts in equilibrium, so the vertical spindle force equals the load.
 pub fn preload_rolling(
     red: &ReducedTire, ground: &GroundConfig, load: f64, spin: f64, beta: f64,
+) -> Result<Preload, TireError> {
+    preload_rolling_cambered(red, ground, 0.0, load, spin, beta)
+}
+
+/// [`preload_rolling`] on the ground tilted for the camber angle `camber` \[rad\], `load`
+/// along the road normal ([`solve_patch_cambered`]).
+pub fn preload_rolling_cambered(
+    red: &ReducedTire, ground: &GroundConfig, camber: f64, load: f64, spin: f64, beta: f64,
 ) -> Result<Preload, TireError> {
     let nz = red.n_z();
     let keff = Mat::from_fn(nz, nz, |i, j| {
@@ -257,14 +294,25 @@ pub fn preload_rolling(
             p
         })
         .collect();
-    let mut patch = solve_patch(&y, &shifted, ground, load)?;
+    let mut patch = solve_patch_cambered(&y, &shifted, ground, camber, load)?;
     // deflection measured from the unloaded, non-rolling outer radius
     let touch = red
         .contact_positions
         .iter()
         .map(|s| s[2])
         .fold(f64::INFINITY, f64::min);
-    patch.deflection = patch.top - touch;
+    patch.deflection = if camber == 0.0 {
+        patch.top - touch
+    } else {
+        // along the road normal from the first touch of the unloaded, non-rolling tire
+        let (sg, cg) = camber.sin_cos();
+        let touch_n = red
+            .contact_positions
+            .iter()
+            .map(|s| (sg * s[1] + cg * s[2]) / cg)
+            .fold(f64::INFINITY, f64::min);
+        (patch.top - touch_n) * cg
+    };
     for i in 0..nc3 {
         patch.delta_c[i] += (0..nz).map(|j| red.tc[(i, j)] * z0[j]).sum::<f64>();
     }

@@ -1,10 +1,16 @@
 //! Steady-state force and moment characteristics of the rolling tire on a flat road (issue 38,
 //! items 1 and 5): the side force `F_y(α)` and aligning moment `M_z(α)` over a sweep of slip
-//! angles, and the longitudinal force `F_x(κ)` over a sweep of drive/brake torques and over a
+//! angles, the longitudinal force `F_x(κ)` over a sweep of drive/brake torques and over a
 //! sweep of prescribed longitudinal slips (the spin rate held at `Ω = (1 + κ) Ω₀`, through and
-//! beyond the peak of `F_x`, with the reaction torque as an output), each point
-//! settled on the same rig and time stepper as the cleat test ([`crate::rig::run_cleat`]
-//! without a cleat, [`crate::rig::WheelInputs`] set per point).
+//! beyond the peak of `F_x`, with the reaction torque as an output), and the camber thrust
+//! `F_y(γ)` with `M_x(γ)`, `M_z(γ)` over a sweep of camber angles, each point settled on the
+//! same rig and time stepper as the cleat test ([`crate::rig::run_cleat`] without a cleat,
+//! [`crate::rig::WheelInputs`] set per point). The road may be a height grid
+//! (`rig.ground.grid_file`: the loads are then means over the rough road).
+//!
+//! With camber the loads are in the W-axis orientation (z along the road normal,
+//! [`WheelLoads`]); the camber sign is that of [`crate::rig::WheelInputs::camber_deg`] (ISO
+//! 8855: positive when the top of the wheel leans to the right).
 //!
 //! Frame and signs: the ISO 8855 wheel frame of [`WheelLoads`] (x forward, y left, z up, origin
 //! at the wheel centre). Slip definitions of Pacejka, *Tire and Vehicle Dynamics* (§1.2):
@@ -45,7 +51,8 @@ pub struct SteadyStudyConfig {
     pub tire: TireSource,
     /// The rig: load, speed, friction, damping and integration (default: flat road without
     /// cleat at 60 km/h). Its `settle_time`, `record_time` and `wheel` are replaced per point
-    /// (`point_time`, 0 and the point's input); `ground.cleat` must be off.
+    /// (`point_time`, 0 and the point's input); `ground.cleat` must be off and
+    /// `ground.obstacles` empty (a height-grid road is allowed).
     pub rig: RigConfig,
     /// Slip angles of the side-force sweep \[deg\] (each at zero drive torque; within ±45°).
     /// The cornering stiffness is the secant over the smallest mirrored pair
@@ -61,6 +68,9 @@ pub struct SteadyStudyConfig {
     /// obtained through and beyond its peak (a torque sweep cannot pass the peak: a torque
     /// above it spins the wheel up without a steady state).
     pub slip_ratios: Vec<f64>,
+    /// Camber angles of the camber sweep \[deg\] (each at zero slip angle and torque; within
+    /// ±[`crate::rig::MAX_CAMBER_DEG`]; none by default). Each runs the full model.
+    pub camber_angles_deg: Vec<f64>,
     /// Simulated time of each point from the free-rolling start \[s\].
     pub point_time: f64,
     /// The point's loads are the means over its last `average_time` \[s\].
@@ -82,6 +92,7 @@ impl Default for SteadyStudyConfig {
             slip_angles_deg: vec![-0.2, 0.2, 1.0, 4.0],
             drive_torques_n_m: vec![-1000.0, 1000.0],
             slip_ratios: vec![-0.2, -0.05, -0.01, 0.01, 0.05, 0.2],
+            camber_angles_deg: Vec::new(),
             point_time: 0.3,
             average_time: 0.05,
         }
@@ -91,9 +102,10 @@ impl Default for SteadyStudyConfig {
 impl mbd_core::config::PartialRules for SteadyStudyConfig {}
 
 impl Validate for SteadyStudyConfig {
-    /// The tire, the rig (`rig.…`), finite slip angles within ±45° and torques, at most
-    /// [`MAX_STEADY_POINTS`] points, a positive `point_time` of at least 2 steps (and at most
-    /// the rig's step limit), `average_time` in (0, `point_time`], no cleat.
+    /// The tire, the rig (`rig.…`), finite slip angles within ±45°, torques and camber angles
+    /// within ±30°, at most [`MAX_STEADY_POINTS`] points, a positive `point_time` of at least
+    /// 2 steps (and at most the rig's step limit), `average_time` in (0, `point_time`], no
+    /// cleat or obstacles.
     fn validate(&self) -> Result<(), InvalidField> {
         self.tire.validate_within("tire")?;
         self.rig.validate_within("rig")?;
@@ -103,8 +115,18 @@ impl Validate for SteadyStudyConfig {
                 "must be false: the steady study rolls on the plain drum or road",
             ));
         }
-        let n =
-            self.slip_angles_deg.len() + self.drive_torques_n_m.len() + self.slip_ratios.len() + 1;
+        if !self.rig.ground.obstacles.is_empty() {
+            return Err(InvalidField::new(
+                "rig.ground.obstacles",
+                "must be empty: the steady study rolls on the plain drum or road (or a \
+                 height-grid road)",
+            ));
+        }
+        let n = self.slip_angles_deg.len()
+            + self.drive_torques_n_m.len()
+            + self.camber_angles_deg.len()
+            + self.slip_ratios.len()
+            + 1;
         check::size("slip_angles_deg", n, 1, MAX_STEADY_POINTS)?;
         for (i, a) in self.slip_angles_deg.iter().enumerate() {
             let max = crate::rig::MAX_SLIP_ANGLE_DEG;
@@ -115,6 +137,10 @@ impl Validate for SteadyStudyConfig {
         }
         for (i, k) in self.slip_ratios.iter().enumerate() {
             check::within(&format!("slip_ratios[{i}]"), *k, -1.0, MAX_SLIP_RATIO, "")?;
+        }
+        for (i, g) in self.camber_angles_deg.iter().enumerate() {
+            let max = crate::rig::MAX_CAMBER_DEG;
+            check::within(&format!("camber_angles_deg[{i}]"), *g, -max, max, "deg")?;
         }
         check::positive("point_time", self.point_time, "s")?;
         check::positive("average_time", self.average_time, "s")?;
@@ -164,11 +190,14 @@ pub struct SteadyPoint {
     /// prescribed-spin point the reaction torque that holds the spin
     /// ([`crate::RollingTire::spin_torque`]).
     pub spin_torque_n_m: f64,
+    /// Camber angle γ \[deg\].
+    pub camber_deg: f64,
     /// Longitudinal slip `κ = Ω/Ω₀ − 1` against the free-rolling spin rate `Ω₀` \[-\].
     pub kappa: f64,
     /// Mean spin rate Ω \[rad/s\].
     pub spin_rad_per_s: f64,
-    /// Mean loads over the last `average_time` (ISO 8855 wheel frame, [`WheelLoads`]).
+    /// Mean loads over the last `average_time` (ISO 8855 wheel frame; with camber the W-axis
+    /// orientation, [`WheelLoads`]).
     pub loads: WheelLoads,
     /// Largest minus smallest `F_y` over the averaging window \[N\] (how settled the point is;
     /// likewise for the torque points' `F_x`).
@@ -203,8 +232,12 @@ pub struct SteadyResult {
     pub torque: Vec<SteadyPoint>,
     /// The prescribed-spin points in the order of `slip_ratios`.
     pub prescribed: Vec<SteadyPoint>,
+    /// The camber points in the order of `camber_angles_deg`.
+    pub camber: Vec<SteadyPoint>,
     /// Model stepped at the slip-angle points (full model when α ≠ 0).
     pub symmetry: String,
+    /// Model stepped at the camber points (full model when γ ≠ 0; empty without them).
+    pub camber_symmetry: String,
 }
 
 /// Cornering stiffness `C_Fα = dF_y/dα` at α = 0 \[N/rad\] from the points `(α [deg], F_y)`
@@ -318,6 +351,18 @@ impl SteadyResult {
         cornering_stiffness(&pts, self.free_rolling.loads.fy)
     }
 
+    /// Camber stiffness `dF_y/dγ` at γ = 0 \[N/rad\] (W-axis `F_y`; [`cornering_stiffness`] on
+    /// the camber points: the central difference over the smallest mirrored pair). `None`
+    /// without a non-zero camber angle.
+    pub fn camber_stiffness(&self) -> Option<f64> {
+        let pts: Vec<(f64, f64)> = self
+            .camber
+            .iter()
+            .map(|p| (p.camber_deg, p.loads.fy))
+            .collect();
+        cornering_stiffness(&pts, self.free_rolling.loads.fy)
+    }
+
     /// Pneumatic trail `t = −M_z/F_y` \[m\] of each slip-angle point (`NaN` where `F_y = 0`).
     pub fn pneumatic_trail(&self) -> Vec<f64> {
         self.slip
@@ -333,19 +378,36 @@ impl SteadyResult {
     }
 }
 
-/// Run one point: the rig of `cfg` with the wheel inputs `(α [deg], torque [N·m], prescribed
-/// spin rate [rad/s])`, the means over the last `average_time`. `omega0` is the free-rolling
-/// spin rate for κ (`None`: this is the free-rolling point, κ = 0).
+/// The wheel inputs of one point: slip angle \[deg\], drive torque \[N·m\], camber \[deg\],
+/// prescribed spin rate \[rad/s\] (`None`: free spin).
+#[derive(Debug, Clone, Copy)]
+struct PointInputs {
+    alpha_deg: f64,
+    torque: f64,
+    camber_deg: f64,
+    spin_rate: Option<f64>,
+}
+
+/// Run one point: the rig of `cfg` with the wheel inputs `inp`, the means over the last
+/// `average_time`. `omega0` is the free-rolling spin rate for κ (`None`: this is the
+/// free-rolling point, κ = 0).
 fn run_point(
-    red: &ReducedTire, cfg: &SteadyStudyConfig, (alpha_deg, torque, spin_rate): PointInputs,
-    omega0: Option<f64>, progress: &mut dyn FnMut(f64),
+    red: &ReducedTire, cfg: &SteadyStudyConfig, inp: PointInputs, omega0: Option<f64>,
+    progress: &mut dyn FnMut(f64),
 ) -> Result<(SteadyPoint, String), TireError> {
+    let PointInputs {
+        alpha_deg,
+        torque,
+        camber_deg,
+        spin_rate,
+    } = inp;
     let mut rig = cfg.rig.clone();
     rig.settle_time = cfg.point_time;
     rig.record_time = 0.0;
     rig.wheel.slip_angle_deg = alpha_deg;
     rig.wheel.drive_torque = torque;
     rig.wheel.spin_rate = spin_rate;
+    rig.wheel.camber_deg = camber_deg;
     // (the rig names its fields relative to itself; the study's root has them under `rig.`)
     // per step: the friction resultant (x, y) and the normal sum of the contact nodes
     let mut contact: Vec<[f64; 3]> = Vec::new();
@@ -418,6 +480,7 @@ fn run_point(
             slip_angle_deg: alpha_deg,
             drive_torque_n_m: torque,
             spin_torque_n_m: spin_torque,
+            camber_deg,
             kappa: omega0.map_or(0.0, |o| spin / o - 1.0),
             spin_rad_per_s: spin,
             loads,
@@ -431,10 +494,6 @@ fn run_point(
     ))
 }
 
-/// The wheel inputs of one point: slip angle \[deg\], drive torque \[N·m\], prescribed spin
-/// rate \[rad/s\].
-type PointInputs = (f64, f64, Option<f64>);
-
 /// Run the steady-state sweep of `cfg` on the reduced tire `red` (module documentation): the
 /// free-rolling point, then every slip angle, then every torque. `progress` receives the
 /// fraction done (0..1). The settings are validated first ([`SteadyStudyConfig`]'s
@@ -443,11 +502,19 @@ pub fn run_steady(
     red: &ReducedTire, cfg: &SteadyStudyConfig, progress: &mut dyn FnMut(f64),
 ) -> Result<SteadyResult, TireError> {
     cfg.validate()?;
-    let total =
-        (1 + cfg.slip_angles_deg.len() + cfg.drive_torques_n_m.len() + cfg.slip_ratios.len())
-            as f64;
+    let total = (1
+        + cfg.slip_angles_deg.len()
+        + cfg.drive_torques_n_m.len()
+        + cfg.slip_ratios.len()
+        + cfg.camber_angles_deg.len()) as f64;
     let mut k = 0.0;
-    let (free, _) = run_point(red, cfg, (0.0, 0.0, None), None, &mut |f| {
+    let at = |alpha_deg, torque, camber_deg, spin_rate| PointInputs {
+        alpha_deg,
+        torque,
+        camber_deg,
+        spin_rate,
+    };
+    let (free, _) = run_point(red, cfg, at(0.0, 0.0, 0.0, None), None, &mut |f| {
         progress(f / total)
     })?;
     k += 1.0;
@@ -455,7 +522,7 @@ pub fn run_steady(
     let mut slip = Vec::with_capacity(cfg.slip_angles_deg.len());
     let mut symmetry = String::new();
     for &a in &cfg.slip_angles_deg {
-        let (p, s) = run_point(red, cfg, (a, 0.0, None), Some(omega0), &mut |f| {
+        let (p, s) = run_point(red, cfg, at(a, 0.0, 0.0, None), Some(omega0), &mut |f| {
             progress((k + f) / total)
         })?;
         k += 1.0;
@@ -466,7 +533,7 @@ pub fn run_steady(
     }
     let mut torque = Vec::with_capacity(cfg.drive_torques_n_m.len());
     for &t in &cfg.drive_torques_n_m {
-        let (p, _) = run_point(red, cfg, (0.0, t, None), Some(omega0), &mut |f| {
+        let (p, _) = run_point(red, cfg, at(0.0, t, 0.0, None), Some(omega0), &mut |f| {
             progress((k + f) / total)
         })?;
         k += 1.0;
@@ -475,11 +542,23 @@ pub fn run_steady(
     let mut prescribed = Vec::with_capacity(cfg.slip_ratios.len());
     for &kappa in &cfg.slip_ratios {
         let spin = Some((1.0 + kappa) * omega0);
-        let (p, _) = run_point(red, cfg, (0.0, 0.0, spin), Some(omega0), &mut |f| {
+        let (p, _) = run_point(red, cfg, at(0.0, 0.0, 0.0, spin), Some(omega0), &mut |f| {
             progress((k + f) / total)
         })?;
         k += 1.0;
         prescribed.push(p);
+    }
+    let mut camber = Vec::with_capacity(cfg.camber_angles_deg.len());
+    let mut camber_symmetry = String::new();
+    for &g in &cfg.camber_angles_deg {
+        let (p, s) = run_point(red, cfg, at(0.0, 0.0, g, None), Some(omega0), &mut |f| {
+            progress((k + f) / total)
+        })?;
+        k += 1.0;
+        if g != 0.0 || camber_symmetry.is_empty() {
+            camber_symmetry = s;
+        }
+        camber.push(p);
     }
     progress(1.0);
     Ok(SteadyResult {
@@ -487,7 +566,9 @@ pub fn run_steady(
         slip,
         torque,
         prescribed,
+        camber,
         symmetry,
+        camber_symmetry,
     })
 }
 
@@ -551,8 +632,22 @@ pub struct SteadySummary {
     pub effective_rolling_radius_m: f64,
     /// Every point in full.
     pub points: Vec<SteadyPoint>,
+    /// Camber angles \[deg\].
+    pub camber_deg: Vec<f64>,
+    /// Camber thrust `F_y(γ)` \[N\] (W-axis: in the road plane).
+    pub fy_camber_n: Vec<f64>,
+    /// Vertical force `F_z` at each camber angle \[N\] (W-axis: along the road normal).
+    pub fz_camber_n: Vec<f64>,
+    /// Overturning moment `M_x(γ)` about the wheel centre \[N·m\].
+    pub mx_camber_n_m: Vec<f64>,
+    /// Aligning moment `M_z(γ)` \[N·m\] (W-axis: about the road normal).
+    pub mz_camber_n_m: Vec<f64>,
+    /// Camber stiffness `dF_y/dγ` at γ = 0 \[N/rad\] (`null` without a camber angle).
+    pub camber_stiffness_n_per_rad: Option<f64>,
     /// Model stepped at the slip-angle points.
     pub symmetry: String,
+    /// Model stepped at the camber points (empty without them).
+    pub camber_symmetry: String,
     /// Magic Formula fit of the points ([`crate::magic_formula`]; the app writes its `.tir`,
     /// [`crate::tir`]); `None` when the points do not allow one (the reason in
     /// `magic_formula_note`).
@@ -580,6 +675,11 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
     (1 + kappa) Omega0 (slip_ratios), through and beyond the peak, and \
     prescribed_spin_torque_n_m the reaction torque that holds it; slip_stiffness_n = \
     dFx/dkappa at 0 (of the prescribed points when there are any, else of the torque points). \
+    fy_camber_n, mx_camber_n_m and mz_camber_n_m are the loads at the camber angles camber_deg \
+    (ISO 8855 inclination: positive when the top of the wheel leans to the right; the camber \
+    thrust points to the side the wheel leans to, Fy < 0 for gamma > 0), given in the W-axis \
+    orientation (z along the road normal, y in the road plane; moments about the wheel centre), \
+    camber_stiffness_n_per_rad = dFy/dgamma at 0. \
     Validity: the small-slip values (cornering stiffness, trail, relaxation length, slip \
     stiffness) are not converged in the tire's circumferential mesh: on the generated truck \
     tire the 0.2 deg cornering stiffness moves by up to 70 % between 192 and 576 divisions \
@@ -627,12 +727,20 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
         free_rolling_fz_n: f.loads.fz,
         free_rolling_spin_rad_per_s: f.spin_rad_per_s,
         effective_rolling_radius_m: v / f.spin_rad_per_s,
+        camber_deg: r.camber.iter().map(|p| p.camber_deg).collect(),
+        fy_camber_n: r.camber.iter().map(|p| p.loads.fy).collect(),
+        fz_camber_n: r.camber.iter().map(|p| p.loads.fz).collect(),
+        mx_camber_n_m: r.camber.iter().map(|p| p.loads.mx).collect(),
+        mz_camber_n_m: r.camber.iter().map(|p| p.loads.mz).collect(),
+        camber_stiffness_n_per_rad: r.camber_stiffness(),
         points: std::iter::once(*f)
             .chain(r.slip.iter().copied())
             .chain(r.torque.iter().copied())
             .chain(r.prescribed.iter().copied())
+            .chain(r.camber.iter().copied())
             .collect(),
         symmetry: r.symmetry.clone(),
+        camber_symmetry: r.camber_symmetry.clone(),
         magic_formula,
         magic_formula_note,
         meaning: STEADY_MEANING.to_string(),
@@ -640,9 +748,11 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
 }
 
 /// Columns of the steady study's point table (`points.csv`): slip angle \[deg\], drive torque
-/// \[N·m\], torque on the wheel (drive or reaction of a prescribed spin) \[N·m\], κ \[-\], spin \[rad/s\], the six loads (ISO 8855 wheel frame) \[N\], \[N·m\], the spread
-/// over the averaging window \[N\].
-pub const STEADY_COLUMNS: [&str; 12] = [
+/// \[N·m\], torque on the wheel (drive or reaction of a prescribed spin) \[N·m\], κ \[-\],
+/// spin \[rad/s\], the six loads (ISO 8855 wheel frame; at a camber angle the W-axis
+/// orientation, z along the road normal) \[N\], \[N·m\], the spread over the averaging window
+/// \[N\], the camber angle \[deg\].
+pub const STEADY_COLUMNS: [&str; 13] = [
     "slip_angle_deg",
     "drive_torque_N_m",
     "spin_torque_N_m",
@@ -655,10 +765,11 @@ pub const STEADY_COLUMNS: [&str; 12] = [
     "my_N_m",
     "mz_N_m",
     "spread_N",
+    "camber_deg",
 ];
 
 /// The [`STEADY_COLUMNS`] row of a point.
-pub fn steady_row(p: &SteadyPoint) -> [f64; 12] {
+pub fn steady_row(p: &SteadyPoint) -> [f64; 13] {
     let l = &p.loads;
     [
         p.slip_angle_deg,
@@ -673,5 +784,6 @@ pub fn steady_row(p: &SteadyPoint) -> [f64; 12] {
         l.my,
         l.mz,
         p.spread_n,
+        p.camber_deg,
     ]
 }

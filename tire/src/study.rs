@@ -253,6 +253,12 @@ pub struct CleatSummary {
     pub mz_mean_before_n_m: f64,
     /// Preload \[N\].
     pub load_n: f64,
+    /// Camber angle γ \[deg\] (`rig.wheel.camber_deg`).
+    pub camber_deg: f64,
+    /// The frame of the forces and moments (`forces.csv`, the means before the cleat): the ISO
+    /// 8855 wheel frame, or with camber the W-axis orientation (z along the road normal);
+    /// moments about the wheel centre.
+    pub load_frame: String,
     /// Rayleigh α \[1/s\], β \[s\].
     pub rayleigh: [f64; 2],
     /// Time steps and refactorisations of the iteration matrix.
@@ -289,7 +295,9 @@ pub struct CleatSummary {
 
 /// The cleat study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
 pub const CLEAT_MEANING: &str = "The cleat test of Ribaric 8.3: the preloaded tire rolls at speed_kmh over a \
-         semicircular cleat on the drum (or road) and the spindle forces are recorded. \
+         semicircular cleat on the drum (or road; or over the configured obstacles and height-grid \
+         road, rig.ground) and the spindle forces are recorded (in load_frame: with a camber \
+         angle the W-axis orientation, z along the road normal). \
          fy_peak_hz and fx_peak_hz are the frequencies of the largest spectral peaks of the \
          vertical and longitudinal force after the hit (sought in 10-500 Hz, interpolated \
          between the bins of the record's spectrum, whose spacing is peak_resolution_hz) and \
@@ -323,6 +331,20 @@ pub fn line_mode(
         .ok()?
         .into_iter()
         .next()
+}
+
+/// The frame of a run's forces and moments at the camber angle `camber_deg` \[deg\]
+/// ([`crate::rolling::WheelLoads`]).
+pub fn load_frame(camber_deg: f64) -> String {
+    if camber_deg == 0.0 {
+        "ISO 8855 wheel frame (x forward, y left, z up), moments about the wheel centre".into()
+    } else {
+        format!(
+            "W-axis orientation at camber {} deg (x forward, z along the road normal, y in the \
+             road plane), moments about the wheel centre",
+            check::show(camber_deg)
+        )
+    }
 }
 
 /// Summary of a rig result (without the line modes: [`cleat_summary`] adds them).
@@ -363,6 +385,8 @@ pub fn summarize(r: &RigResult) -> CleatSummary {
         my_mean_before_n_m: moments[1],
         mz_mean_before_n_m: moments[2],
         load_n: r.load,
+        camber_deg: r.camber_deg,
+        load_frame: load_frame(r.camber_deg),
         rayleigh: [r.rayleigh.alpha, r.rayleigh.beta],
         steps: r.samples.len(),
         refactors: r.refactors,
@@ -391,7 +415,8 @@ pub fn cleat_summary(red: &ReducedTire, r: &RigResult) -> CleatSummary {
 /// `F_x`, `F_y`, `F_lateral` \[N\], the spin rate \[rad/s\], the active contact nodes and
 /// their total normal force \[N\], and the moments `M_x`, `M_y`, `M_z` of the contact forces
 /// about the wheel centre \[N·m\] in the ISO 8855 wheel frame (x forward, y left, z up;
-/// [`crate::rolling::WheelLoads`]). (The force columns keep their names: `fy_N` is the
+/// [`crate::rolling::WheelLoads`]; with a camber angle in the W-axis orientation, z along the
+/// road normal: [`CleatSummary::load_frame`]). (The force columns keep their names: `fy_N` is the
 /// vertical force, ISO `F_z`, and `f_lateral_N` the lateral one, ISO `F_y`.)
 pub const FORCE_COLUMNS: [&str; 10] = [
     "t_s",

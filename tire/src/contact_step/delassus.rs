@@ -14,10 +14,30 @@ pub(super) fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Tangent basis `t1 = [n_z, 0, −n_x]`, `t2 = ŷ` of a ground normal in the wheel's `(x, z)`
-/// plane (the ground is extruded along the axis `y`, so `n_y = 0`).
+/// Tangent basis of a ground normal `n`: `t1 = ŷ × n/|ŷ × n| = [n_z, 0, −n_x]/√(n_x² + n_z²)`
+/// (along the road in the travel direction), `t2 = n × t1`. For a normal in the wheel's
+/// `(x, z)` plane (`n_y = 0`: the drum, the road and transverse obstacles, extruded along the
+/// axis `y`) this is `t1 = [n_z, 0, −n_x]`, `t2 = ŷ`, computed as such (the arithmetic of the
+/// planar ground, kept bit for bit). A normal along the axis (a pothole's side wall) takes
+/// `t1 = x̂` projected onto the tangent plane.
 pub(super) fn tangents(n: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
-    ([n[2], 0.0, -n[0]], [0.0, 1.0, 0.0])
+    if n[1] == 0.0 {
+        return ([n[2], 0.0, -n[0]], [0.0, 1.0, 0.0]);
+    }
+    let r = n[0].hypot(n[2]);
+    let t1 = if r > 1e-6 {
+        [n[2] / r, 0.0, -n[0] / r]
+    } else {
+        let a = [1.0 - n[0] * n[0], -n[0] * n[1], -n[0] * n[2]];
+        let l = dot3(&a, &a).sqrt();
+        [a[0] / l, a[1] / l, a[2] / l]
+    };
+    let t2 = [
+        n[1] * t1[2] - n[2] * t1[1],
+        n[2] * t1[0] - n[0] * t1[2],
+        n[0] * t1[1] - n[1] * t1[0],
+    ];
+    (t1, t2)
 }
 
 /// The local Delassus matrix of the candidates, gathered lazily from the cached columns:
@@ -30,6 +50,10 @@ pub(super) fn tangents(n: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
 ///
 /// where `Y_kl` moves contact node k under a unit force on node l (end-of-step displacement per
 /// unit `Δz̈`) and `(η × s_k) X_θ,l` is the rigid spin part of the material velocity (E15).
+/// While every candidate's normal lies in the wheel's `(x, z)` plane (`planar`) the products
+/// use that each frame vector then has two (`n`, `t1`) or one (`t2 = ŷ`) non-zero component
+/// and that `t2ᵀ(η × s) = 0`: the arithmetic of the planar ground, kept bit for bit; otherwise
+/// the full 3 × 3 products.
 pub(super) struct TireDelassus<'b> {
     pub(super) fac: &'b Responses,
     /// The candidates' blocks of `Y` and `X_θ` (gathered on demand).
@@ -40,8 +64,12 @@ pub(super) struct TireDelassus<'b> {
     /// Local frames `[n, t1, t2]` of the candidates, scaled by `β_N h²` (row n) and `γ_N h`
     /// (rows t1, t2).
     pub(super) frames: &'b [[[f64; 3]; 3]],
-    /// `γ_N h t1ᵀ(η × s)` per candidate (`t2ᵀ(η × s) = 0`).
+    /// `γ_N h t1ᵀ(η × s)` per candidate.
     pub(super) rig_t1: &'b [f64],
+    /// `γ_N h t2ᵀ(η × s)` per candidate (0 when `planar`).
+    pub(super) rig_t2: &'b [f64],
+    /// Whether every candidate's normal lies in the wheel's `(x, z)` plane.
+    pub(super) planar: bool,
     pub(super) penalty: f64,
     /// [`TireContact`]'s weight of each contact node (half model: 1 on the mid-plane).
     pub(super) weight: &'b [f64],
@@ -54,24 +82,36 @@ pub(super) struct TireDelassus<'b> {
     pub(super) spin_free: f64,
 }
 
-/// The scaled frames and rigid-spin coefficients of the candidates for [`TireDelassus`].
+/// The scaled frames and rigid-spin coefficients of the candidates for [`TireDelassus`];
+/// returns whether every candidate's normal lies in the wheel's `(x, z)` plane.
+/// (`(c1, c2)` = `(γ_N h, β_N h²)` scale the tangent and normal rows.)
 pub(super) fn candidate_frames(
-    red: &ReducedTire, cand: &[usize], gp: &[GroundPoint], c1: f64, c2: f64,
-    frames: &mut Vec<[[f64; 3]; 3]>, rig_t1: &mut Vec<f64>,
-) {
+    red: &ReducedTire, cand: &[usize], gp: &[GroundPoint], (c1, c2): (f64, f64),
+    frames: &mut Vec<[[f64; 3]; 3]>, rig_t1: &mut Vec<f64>, rig_t2: &mut Vec<f64>,
+) -> bool {
     frames.clear();
     rig_t1.clear();
+    rig_t2.clear();
+    let mut planar = true;
     for (k, &i) in cand.iter().enumerate() {
         let n = gp[k].normal;
+        planar &= n[1] == 0.0;
         let (t1, t2) = tangents(&n);
         frames.push([
             [c2 * n[0], c2 * n[1], c2 * n[2]],
             [c1 * t1[0], c1 * t1[1], c1 * t1[2]],
             [c1 * t2[0], c1 * t2[1], c1 * t2[2]],
         ]);
+        // η × s = (s_z, 0, −s_x) for the spin axis η = ŷ
         let s = red.contact_positions[i];
         rig_t1.push(c1 * (t1[0] * s[2] - t1[2] * s[0]));
+        rig_t2.push(if n[1] == 0.0 {
+            0.0
+        } else {
+            c1 * (t2[0] * s[2] - t2[2] * s[0])
+        });
     }
+    planar
 }
 
 impl TireDelassus<'_> {
@@ -94,11 +134,19 @@ impl TireDelassus<'_> {
             xth += er * x_theta[r];
         }
         let f = &self.frames[k];
-        [
-            dot3(&f[0], &v),
-            dot3(&f[1], &v) + self.rig_t1[k] * xth,
-            dot3(&f[2], &v),
-        ]
+        if self.planar {
+            [
+                dot3(&f[0], &v),
+                dot3(&f[1], &v) + self.rig_t1[k] * xth,
+                dot3(&f[2], &v),
+            ]
+        } else {
+            [
+                dot3(&f[0], &v),
+                dot3(&f[1], &v) + self.rig_t1[k] * xth,
+                dot3(&f[2], &v) + self.rig_t2[k] * xth,
+            ]
+        }
     }
 
     /// The diagonal compliances `[D_N,kk, (D_T,kk,11 + D_T,kk,22)/2]` of node `k`.
@@ -124,6 +172,39 @@ impl TireDelassus<'_> {
     }
 }
 
+impl TireDelassus<'_> {
+    /// [`DelassusSource::columns`] for any normals: the three `Y` columns of node `l`
+    /// combined along its unit force directions `e` (`X_θ e` in `xth`), projected on each
+    /// candidate's scaled frame, with the rigid spin terms of both tangents.
+    fn columns_3d(&mut self, l: usize, e: &[[f64; 3]; 3], xth: &[f64; 3], cols: &mut [f64]) {
+        let ld = 3 * self.cand.len();
+        let yb = &self.blocks.y[3 * l * ld..(3 * l + 3) * ld];
+        let (y0, y1, y2) = (&yb[..ld], &yb[ld..2 * ld], &yb[2 * ld..]);
+        for k in 0..self.cand.len() {
+            let f = &self.frames[k];
+            let (a, b, c) = (
+                &y0[3 * k..3 * k + 3],
+                &y1[3 * k..3 * k + 3],
+                &y2[3 * k..3 * k + 3],
+            );
+            for (col, ec) in e.iter().enumerate() {
+                let v = [
+                    ec[0] * a[0] + ec[1] * b[0] + ec[2] * c[0],
+                    ec[0] * a[1] + ec[1] * b[1] + ec[2] * c[1],
+                    ec[0] * a[2] + ec[1] * b[2] + ec[2] * c[2],
+                ];
+                let o = &mut cols[col * ld + 3 * k..col * ld + 3 * k + 3];
+                o[0] = dot3(&f[0], &v);
+                o[1] = dot3(&f[1], &v) + self.rig_t1[k] * xth[col];
+                o[2] = dot3(&f[2], &v) + self.rig_t2[k] * xth[col];
+            }
+        }
+        cols[3 * l] += self.penalty;
+        let d1 = cols[ld + 3 * l + 1];
+        cols[2 * ld + 3 * l + 2] += self.lateral_compliance(l, d1);
+    }
+}
+
 impl DelassusSource for TireDelassus<'_> {
     fn columns(&mut self, l: usize, cols: &mut [f64]) {
         let ld = 3 * self.cand.len();
@@ -139,6 +220,10 @@ impl DelassusSource for TireDelassus<'_> {
             for (r, er) in ec.iter().enumerate() {
                 xth[c] += er * x_theta[r];
             }
+        }
+        if !self.planar {
+            self.columns_3d(l, &e, &xth, cols);
+            return;
         }
         // planar ground (n_y = 0): n and t1 lie in the (x, z) plane, t2 = ŷ, so each frame
         // vector has two (n, t1) or one (t2) nonzero component

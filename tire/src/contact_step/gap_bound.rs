@@ -8,36 +8,43 @@ use mbd_core::linalg::col_slice;
 /// margin (issue #16: the 3 n_c × n_z product `T_c z` of all nodes and their ground queries
 /// were a fixed cost per step).
 ///
-/// The gap is the smaller of the distances to the drum or road and to the cleat
-/// (`contact::geometry`: distances to circles and a line, each 1-Lipschitz in the node
-/// position); the first does not depend on time (the drum turns about its centre), the second
-/// moves by at most the surface speed `v` per unit time ([`Ground::cleat_center`]). Node `i`
-/// evaluated at time `tᵢ` with gap `gᵢ`, cleat gap `cᵢ` and reduced coordinates `zᵢ` moves
-/// by `|(T_c)ᵢ (z − zᵢ)| ≤ Lᵢ ‖z − zᵢ‖` (`Lᵢ` the spectral norm of its three rows, at most
-/// their Frobenius norm), and `‖z − zᵢ‖ ≤ ‖z − z_ref‖ + eᵢ` with `eᵢ ≥ ‖zᵢ − z_ref‖` (`‖zᵢ −
-/// z_ref‖` at the evaluation) for a common reference `z_ref`, so
+/// Every ground query returns two lower-bound values `[b_s, b_m]` ([`GroundPoint::bound`],
+/// argued per surface in the module documentation of [`crate::ground`]) with
+/// `g(p', t') ≥ min(b_s − |p' − p|, b_m − |p' − p| − r |t' − t|)` wherever the right-hand side
+/// is not negative: a static part (the drum or road, which do not depend on time; the gap
+/// itself for the drum and road with the cleat, whose distances are 1-Lipschitz) and a moving
+/// part (the cleat's and obstacles' distances, or a height grid's 1-Lipschitz lower bound)
+/// that changes at a fixed point by at most the rate `r` ([`Ground::bound_rate`]: the surface
+/// speed `v` for the cleat). Node `i` evaluated at time `tᵢ` with the values `sᵢ`, `mᵢ` and
+/// reduced coordinates `zᵢ` moves by `|(T_c)ᵢ (z − zᵢ)| ≤ Lᵢ ‖z − zᵢ‖` (`Lᵢ` the spectral norm
+/// of its three rows, at most their Frobenius norm), and `‖z − zᵢ‖ ≤ ‖z − z_ref‖ + eᵢ` with
+/// `eᵢ ≥ ‖zᵢ − z_ref‖` (`‖zᵢ − z_ref‖` at the evaluation) for a common reference `z_ref`, so
 /// with `Δ = Lᵢ (‖z − z_ref‖ + eᵢ)`
 ///
 /// ```text
-///   g(t, z) ≥ min(gᵢ − Δ, cᵢ − Δ − 1.01 v |t − tᵢ|) − 1e-9 m,
+///   g(t, z) ≥ min(sᵢ − Δ, mᵢ − Δ − 1.01 r |t − tᵢ|) − 1e-9 m,
 /// ```
 ///
-/// and the node is skipped when this is at least the largest margin `contact_margin + h v`: its
-/// free gap is then certainly above the margin, so the candidates are exactly those of a
-/// search over all nodes. The reference moves to the current `z` when `L_max ‖z − z_ref‖`
-/// exceeds 0.1 mm, each `eᵢ` growing by the distance moved ([`GapBound::distance`]), without
-/// evaluating the nodes again. On the cleat run at h = 0.05 ms (31 candidates a step) this
-/// evaluates 47 nodes a step; a reset that evaluated every node at 1 mm, with the Frobenius
-/// norm for `Lᵢ`, evaluated 61.
+/// and the node is skipped when this is at least the largest margin `contact_margin + h v`
+/// (positive, so the bound's condition holds): its free gap is then certainly above the
+/// margin, so the candidates are exactly those of a search over all nodes. The reference moves
+/// to the current `z` when `L_max ‖z − z_ref‖` exceeds 0.1 mm, each `eᵢ` growing by the
+/// distance moved ([`GapBound::distance`]), without evaluating the nodes again. On the cleat
+/// run at h = 0.05 ms (31 candidates a step) this evaluates 47 nodes a step; a reset that
+/// evaluated every node at 1 mm, with the Frobenius norm for `Lᵢ`, evaluated 61.
+///
+/// [`GroundPoint::bound`]: crate::ground::GroundPoint::bound
+/// [`Ground::bound_rate`]: crate::ground::Ground::bound_rate
 pub(super) struct GapBound {
     /// `Lᵢ` (with relative allowances for the round-off of the norms).
     pub(super) lip: Vec<f64>,
     pub(super) l_max: f64,
     pub(super) z_ref: Vec<f64>,
     pub(super) valid: bool,
-    /// Per node: last evaluated gap and cleat gap \[m\], their time \[s\] and `eᵢ`.
-    pub(super) gap: Vec<f64>,
-    pub(super) cleat: Vec<f64>,
+    /// Per node: the last evaluated static and moving bound values \[m\], their time \[s\]
+    /// and `eᵢ`.
+    pub(super) stat: Vec<f64>,
+    pub(super) moving: Vec<f64>,
     pub(super) time: Vec<f64>,
     pub(super) e: Vec<f64>,
 }
@@ -65,8 +72,8 @@ impl GapBound {
             l_max,
             z_ref: vec![0.0; tct.nrows()],
             valid: false,
-            gap: vec![0.0; nc],
-            cleat: vec![0.0; nc],
+            stat: vec![0.0; nc],
+            moving: vec![0.0; nc],
             time: vec![0.0; nc],
             e: vec![0.0; nc],
         }
@@ -100,21 +107,23 @@ impl GapBound {
     }
 
     /// Whether node `i`'s free gap at time `t` is certainly at least `margin` \[m\] (`dist` =
-    /// [`GapBound::distance`], `speed` the ground's surface speed \[m/s\]).
-    pub(super) fn skip(&self, i: usize, t: f64, dist: f64, speed: f64, margin: f64) -> bool {
+    /// [`GapBound::distance`], `rate` the moving bound value's rate \[m/s\],
+    /// [`Ground::bound_rate`](crate::ground::Ground::bound_rate)).
+    pub(super) fn skip(&self, i: usize, t: f64, dist: f64, rate: f64, margin: f64) -> bool {
         if !self.valid {
             return false;
         }
         let moved = self.lip[i] * (dist + self.e[i]);
-        let cleat = self.cleat[i] - moved - 1.01 * speed * (t - self.time[i]).abs();
-        (self.gap[i] - moved).min(cleat) - 1e-9 >= margin
+        let moving = self.moving[i] - moved - 1.01 * rate * (t - self.time[i]).abs();
+        (self.stat[i] - moved).min(moving) - 1e-9 >= margin
     }
 
-    /// Node `i` evaluated: gap `g` and cleat gap `cleat` ([`Ground::cleat_center`]) \[m\] at time
-    /// `t` \[s\], `dist` = [`GapBound::distance`].
-    pub(super) fn record(&mut self, i: usize, g: f64, cleat: Option<f64>, t: f64, dist: f64) {
-        self.gap[i] = g;
-        self.cleat[i] = cleat.unwrap_or(f64::INFINITY);
+    /// Node `i` evaluated: the bound values `[b_s, b_m]` \[m\]
+    /// ([`GroundPoint::bound`](crate::ground::GroundPoint::bound)) at time `t` \[s\], `dist` =
+    /// [`GapBound::distance`].
+    pub(super) fn record(&mut self, i: usize, bound: [f64; 2], t: f64, dist: f64) {
+        self.stat[i] = bound[0];
+        self.moving[i] = bound[1];
         self.time[i] = t;
         self.e[i] = dist;
     }
@@ -184,7 +193,7 @@ mod tests {
                     assert!(gap >= margin, "step {step} node {i}: gap {gap} skipped");
                     skipped += 1;
                 } else {
-                    bound.record(i, gap, Some(cleat), t, dist);
+                    bound.record(i, [gap, cleat], t, dist);
                     evaluated += 1;
                 }
             }

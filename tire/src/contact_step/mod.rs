@@ -3,9 +3,12 @@
 //!
 //! After the smooth end-of-step solution (`[θ̈; z̈]` free of contact, [`super::dynamics`]) a
 //! contact node `i` at `xᵢ = sᵢ + (T_c z)ᵢ` is a candidate when its gap on the ground is below
-//! `contact_margin` (plus `h v` in front of the cleat, whose faces approach at the surface
-//! speed; nodes whose gap is certainly above that by a lower bound from their last evaluation
-//! are not evaluated, `GapBound`). Contact forces `fⱼ` (wheel frame) on the candidates change
+//! `contact_margin` (plus `h v` in front of the cleat or an obstacle, whose faces approach at the
+//! surface speed: [`GroundPoint::approach`]; nodes whose gap is certainly above that by a lower
+//! bound from their last evaluation are not evaluated, `GapBound`). The ground's normals may
+//! point anywhere (obstacles, height grids, camber): the tangent bases and the local Delassus
+//! matrix are formed in 3-D, with the earlier planar arithmetic kept, bit for bit, while every
+//! candidate's normal lies in the wheel's `(x, z)` plane (`delassus`). Contact forces `fⱼ` (wheel frame) on the candidates change
 //! the end-of-step accelerations by `Δv̇ = X Σ fⱼ` with the responses `X = S⁻¹ [0; T_cᵀ]` of all contact nodes
 //! to unit forces and the node displacements by `Y = T_c X_z / β'` ([`AlphaCorrection`]: the
 //! Delassus operator `W = J S⁻¹ Jᵀ`). `X` and `Y` are computed with the stepper's factored
@@ -112,6 +115,7 @@ struct Work {
     /// Scaled local frames and rigid-spin coefficients of the candidates ([`TireDelassus`]).
     frames: Vec<[[f64; 3]; 3]>,
     rig_t1: Vec<f64>,
+    rig_t2: Vec<f64>,
     /// The coupled normal + friction solver (buffers reused).
     solver: ContactSolver,
     /// The candidates' blocks of `Y` and `X_θ` gathered so far (kept while the candidates and
@@ -185,6 +189,7 @@ impl TireContact {
                 diag: Vec::with_capacity(nc),
                 frames: Vec::with_capacity(nc),
                 rig_t1: Vec::with_capacity(nc),
+                rig_t2: Vec::with_capacity(nc),
                 solver: ContactSolver::default(),
                 blocks: CandidateBlocks {
                     id: usize::MAX,
@@ -287,17 +292,15 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
         let z_free = &step.q()[1..];
         // candidates: the nodes whose free gap is below the margin; a node whose gap is
         // certainly above it (by the bound of `GapBound`) is not evaluated
-        let speed = self.ground.speed.abs();
-        let margin_max = self.cfg.contact_margin + h * speed;
+        let margin_max = self.cfg.contact_margin + h * self.ground.max_approach();
+        let rate = self.ground.bound_rate();
         let dist = w.bound.distance(z_free);
-        let cleat = self.ground.cleat_center(t1);
-        let cleat_r = self.ground.cfg.cleat_radius;
         w.cand.clear();
         w.gp.clear();
         w.eval.clear();
         let weight = &self.weight;
         w.eval.extend(
-            (0..nc).filter(|&i| weight[i] > 0.0 && !w.bound.skip(i, t1, dist, speed, margin_max)),
+            (0..nc).filter(|&i| weight[i] > 0.0 && !w.bound.skip(i, t1, dist, rate, margin_max)),
         );
         // `T_c z` of the evaluated nodes: one product per run of consecutive nodes instead of
         // one three-row product per node (fewer calls; each entry is the same dot product of
@@ -328,16 +331,11 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
                 s[2] + w.dc[3 * i + 2],
             ];
             let g = self.ground.query(t1, p);
-            // (for the skip bound only, whose 1e-9 m allowance covers the few ulps by which
-            // √(x² + z²) can differ from `hypot`: the candidates do not depend on it)
-            let cleat_gap = cleat.map(|c| {
-                let (dx, dz) = (p[0] - c[0], p[2] - c[1]);
-                (dx * dx + dz * dz).sqrt() - cleat_r
-            });
-            w.bound.record(i, g.gap, cleat_gap, t1, dist);
-            // the cleat's faces approach the nodes at up to the surface speed
-            let margin = if g.on_cleat {
-                self.cfg.contact_margin + h * self.ground.speed.abs()
+            // (the bound values: for the skip test only, the candidates do not depend on them)
+            w.bound.record(i, g.bound, t1, dist);
+            // an obstacle's faces approach the nodes at up to the surface speed
+            let margin = if g.approach > 0.0 {
+                self.cfg.contact_margin + h * g.approach
             } else {
                 self.cfg.contact_margin
             };

@@ -60,7 +60,15 @@ impl TireContact {
             NormalContact::Penalty { stiffness } => 1.0 / stiffness,
             NormalContact::Lagrange => 0.0,
         };
-        candidate_frames(red, &w.cand, &w.gp, c1, c2, &mut w.frames, &mut w.rig_t1);
+        let planar = candidate_frames(
+            red,
+            &w.cand,
+            &w.gp,
+            (c1, c2),
+            &mut w.frames,
+            &mut w.rig_t1,
+            &mut w.rig_t2,
+        );
         let v = step.v();
         w.blocks.prepare(fac, &w.cand);
         let mut src = TireDelassus {
@@ -71,6 +79,8 @@ impl TireContact {
             gp: &w.gp,
             frames: &w.frames,
             rig_t1: &w.rig_t1,
+            rig_t2: &w.rig_t2,
+            planar,
             penalty,
             weight: &self.weight,
             half: self.mirror.is_some(),
