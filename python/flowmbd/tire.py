@@ -602,7 +602,8 @@ class CoSimulation:
 
     The motion is a dict: ``height`` of the wheel centre above the road [m], its ``velocity``
     over the road (road frame x forward, y left, z up) [m/s], the wheel's ``yaw`` about z and
-    ``camber`` about its x axis [rad] (camber must be 0: not supported yet) and its prescribed
+    ``camber`` about its x axis [rad] (ISO 8855, within ±30°; loads then in the W-axis
+    orientation) and its prescribed
     ``spin_rate`` [rad/s]. The spindle's acceleration (the difference of the velocities over
     a step) loads the tire with its inertia ``-M a``.
 

@@ -10,9 +10,12 @@
 //! - orientation of the wheel: yaw angle ψ of the wheel plane about the road's z axis \[rad\]
 //!   (the wheel's heading) and camber angle γ (rim tilt about the wheel's x axis) \[rad\]; the
 //!   wheel frame is the road frame turned by ψ about z, then by γ about x (ISO 8855 wheel
-//!   frame: x forward in the wheel plane, y along the spin axis, z up). Camber is not
-//!   supported yet: a non-zero γ is refused ([`MotionError`]) rather than ignored; it will map
-//!   onto the rig's camber (`WheelInputs::camber_deg`, branch h-road) once that exists.
+//!   frame: x forward in the wheel plane, y along the spin axis, z up). The camber is the
+//!   rig's ([`crate::rig::WheelInputs::camber_deg`], ISO 8855: positive when the top of the
+//!   wheel leans to the right, within ±[`crate::rig::MAX_CAMBER_DEG`]): the road tilted by −γ
+//!   about the x-parallel line through the contact centre ([`crate::Ground::camber`]), whose
+//!   plane lies at the perpendicular distance `z` from the wheel centre (the ground's `top`
+//!   at `−z/cos γ` on the wheel's vertical).
 //! - spin rate Ω of the wheel about its axis \[rad/s\], prescribed
 //!   ([`crate::RollingTire::prescribe_spin`]).
 //!
@@ -35,7 +38,8 @@
 //! # Outputs
 //! The six spindle loads of the tire on the wheel in the ISO 8855 wheel frame at the wheel
 //! centre ([`WheelLoads`]: `F_x` forward, `F_y` left, `F_z` up = the carried load; `M_x`,
-//! `M_y`, `M_z` about the centre), and the torque that holds the prescribed spin
+//! `M_y`, `M_z` about the centre; with a camber γ ≠ 0 in the W-axis orientation, z along the
+//! road normal and y in the road plane), and the torque that holds the prescribed spin
 //! ([`crate::RollingTire::spin_torque`]).
 //!
 //! # Time stepping
@@ -90,24 +94,17 @@ impl Default for WheelMotion {
 pub const MAX_YAW: f64 = std::f64::consts::PI;
 
 impl Validate for WheelMotion {
-    /// Finite values, a positive height, a yaw within ±π, a zero camber (not supported yet), a
-    /// forward wheel-frame speed `V_x > 0` and a slip angle within the rig's ±45°.
+    /// Finite values, a positive height, a yaw within ±π, a camber within the rig's
+    /// ±[`crate::rig::MAX_CAMBER_DEG`], a forward wheel-frame speed `V_x > 0` and a slip angle
+    /// within the rig's ±45°.
     fn validate(&self) -> Result<(), InvalidField> {
         check::positive("height", self.height, "m")?;
         for (c, v) in ["x", "y", "z"].iter().zip(self.velocity) {
             check::finite(&format!("velocity.{c}"), v)?;
         }
         check::within("yaw", self.yaw, -MAX_YAW, MAX_YAW, "rad")?;
-        check::finite("camber", self.camber)?;
-        if self.camber != 0.0 {
-            return Err(InvalidField::new(
-                "camber",
-                format!(
-                    "{} rad: camber is not supported yet (the rig has no rim tilt; only 0)",
-                    check::show(self.camber)
-                ),
-            ));
-        }
+        let max = crate::rig::MAX_CAMBER_DEG.to_radians();
+        check::within("camber", self.camber, -max, max, "rad")?;
         check::within(
             "spin_rate",
             self.spin_rate,
@@ -183,6 +180,7 @@ impl<'a> CoSimulation<'a> {
         rig.wheel.drive_torque = 0.0;
         rig.wheel.slip_angle_deg = (-vy / vx).atan().to_degrees();
         rig.wheel.spin_rate = Some(motion.spin_rate);
+        rig.wheel.camber_deg = motion.camber.to_degrees();
         let start = start_rolling(red, &rig).map_err(|e| prefix("rig", e))?;
         let mut cs = Self {
             sim: start.sim,
@@ -234,7 +232,9 @@ impl<'a> CoSimulation<'a> {
     fn apply(&mut self, m: &WheelMotion, a: [f64; 3]) -> Result<(), MotionError> {
         let [vx, vy] = m.wheel_velocity();
         let mut ground = self.sim.ground().clone();
-        ground.top = -m.height;
+        // the tilted road's plane at the perpendicular distance `height` from the centre
+        ground.top = -m.height / m.camber.cos();
+        ground.camber = m.camber;
         ground.speed = vx;
         ground.lateral_speed = -vy;
         self.sim.set_ground(ground)?;

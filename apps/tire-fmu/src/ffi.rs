@@ -445,7 +445,7 @@ pub unsafe extern "C" fn fmi3SetFloat64(
 }
 
 /// `fmi3DoStep`: one communication step of the tire ([`CoSimulation::do_step`]) with the
-/// inputs held; an invalid input (e.g. a camber ≠ 0, not supported yet) or a failed step is
+/// inputs held; an invalid input (e.g. a camber beyond ±30°) or a failed step is
 /// `fmi3Error` with the reason logged.
 ///
 /// # Safety

@@ -12,11 +12,11 @@
 //! - inputs (continuous): wheel-centre position `x`, `y` (unused on the flat road), `z`
 //!   (height above the road) \[m\]; velocity `vx`, `vy`, `vz` over the road, road frame
 //!   \[m/s\]; orientation as yaw ψ and camber γ angles \[rad\] (wheel frame = road frame turned
-//!   by ψ about z, then γ about x; γ ≠ 0 is refused with an error status and a logged message
-//!   until the rig has camber); spin rate Ω \[rad/s\];
+//!   by ψ about z, then γ about x; the rig's camber, [`tire::motion`]); spin rate Ω \[rad/s\];
 //! - outputs (continuous): `Fx`, `Fy`, `Fz` \[N\], `Mx`, `My`, `Mz` \[N·m\], the loads of the
 //!   tire on the wheel in the ISO 8855 wheel frame at the wheel centre (x forward in the wheel
-//!   plane, y left along the spin axis, z up; `Fz` > 0 is the carried load,
+//!   plane, y left along the spin axis, z up; with camber in the W-axis orientation, z along
+//!   the road normal; `Fz` > 0 is the carried load,
 //!   [`tire::WheelLoads`]), and `spin_torque` \[N·m\], the torque that holds the prescribed spin
 //!   about +y.
 //!
@@ -135,7 +135,7 @@ pub const VARIABLES: [Variable; 19] = {
             17,
             Input,
             "rad",
-            "camber angle about the wheel x axis (only 0)",
+            "camber angle about the wheel x axis (ISO 8855, within the rig's +-30 deg)",
         ),
         var(
             "spin_rate",
