@@ -308,8 +308,35 @@ class TireSimulation:
     normal_forces: npt.NDArray[np.float64]
     contact_positions: npt.NDArray[np.float64]
     def __init__(self, config: Optional[str] = None, tire: Optional[ReducedTire] = None) -> None: ...
+    prescribed_spin: Optional[float]
+    reaction_torque: float
+    spin_torque: float
+    def prescribe_spin(self, rate: Optional[float] = None) -> None: ...
     def forces(self) -> Dict[str, float]: ...
     def state(self) -> Dict[str, Any]: ...
     def set_state(self, state: Dict[str, Any]) -> None: ...
     def step(self, n: int) -> None: ...
     def run_to(self, t_end: float) -> None: ...
+
+class TireCoSimulation:
+    """The rolling tire driven by its wheel-centre motion (``tire::motion::CoSimulation``, the
+    FMU's model); public as ``flowmbd.tire.CoSimulation``."""
+
+    t: float
+    def __init__(
+        self,
+        config: Optional[str] = None,
+        tire: Optional[ReducedTire] = None,
+        motion: Optional[str] = None,
+    ) -> None: ...
+    def motion(self) -> Dict[str, Any]: ...
+    def do_step(self, h: float, motion: str) -> Dict[str, float]: ...
+
+def tire_build_fmu(
+    out: Union[str, os.PathLike],
+    library: Union[str, os.PathLike],
+    config: Optional[str] = None,
+    tire: Optional[ReducedTire] = None,
+) -> Dict[str, Any]:
+    """Write the FMI 3.0 co-simulation FMU of the tire (JSON text of a cleat-study dict) to
+    ``out`` with the compiled library ``library`` packed; returns the start motion."""

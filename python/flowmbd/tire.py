@@ -216,8 +216,10 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
     Parameters
     ----------
     config : dict with the keys of ``flowmbd-tire steady --print-config`` (``tire``, ``rig``,
-        ``slip_angles_deg`` [deg], ``drive_torques_n_m`` [N m], ``point_time`` [s],
-        ``average_time`` [s]).
+        ``slip_angles_deg`` [deg], ``drive_torques_n_m`` [N m], ``slip_ratios`` [-] (points
+        whose spin is prescribed at ``(1 + kappa)`` times the free-rolling spin),
+        ``point_time`` [s], ``average_time`` [s]). ``python/examples/tire_steady_curves.py``
+        runs it on the small tire and plots F_x(kappa), F_y(alpha), M_z(alpha).
     tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
         ``config["tire"]`` (which must then be absent).
 
@@ -226,7 +228,9 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
     dict
         The CLI's ``summary.json``: side force ``fy_n`` and aligning moment over
         ``slip_angle_deg``, the cornering stiffness [N/rad], pneumatic trail, longitudinal
-        force over drive torque with its slip, in the ISO 8855 wheel frame; and
+        force over drive torque with its slip, in the ISO 8855 wheel frame; over the
+        prescribed slips ``prescribed_kappa``, ``prescribed_fx_n`` and the torque holding the
+        spin ``prescribed_spin_torque_n_m``; and
         ``magic_formula``: the Magic Formula fit of the points (``fit`` coefficients and
         errors, fitted values, ``warnings``; ``tir`` is ``None``: no file is written), or
         ``None`` with the reason in ``magic_formula_note``; and ``tir_text``: the MF 6.1
@@ -485,7 +489,8 @@ class Simulation(Stepping):
     advanced by the cleat test's own step (sub-stepped through the impact; Rust:
     ``tire::start_rolling`` and ``tire::rig_step``), so that stepping it reproduces
     :func:`cleat` step by step. Read the spindle forces of any state, change the drive torque
-    between steps, observe it.
+    or prescribe the spin rate (:meth:`prescribe_spin`, its :attr:`reaction_torque`) between
+    steps, observe it.
 
     Parameters
     ----------
@@ -531,6 +536,42 @@ class Simulation(Stepping):
     @drive_torque.setter
     def drive_torque(self, torque: float) -> None:
         self._sim.drive_torque = _args.number("drive_torque", torque)
+
+    reaction_torque = Native(
+        "Reaction torque of the prescribed spin about the spin axis +y in the last step [N m] "
+        "(0 when the spin is free; Rust: ``RollingTire::reaction_torque``)."
+    )
+    spin_torque = Native(
+        "Total torque on the wheel about +y in the last step [N m]: :attr:`drive_torque` plus "
+        ":attr:`reaction_torque`."
+    )
+
+    @property
+    def prescribed_spin(self) -> Optional[float]:
+        """The prescribed spin rate [rad/s], ``None`` while the spin is free
+        (:meth:`prescribe_spin`)."""
+        return self._sim.prescribed_spin
+
+    def prescribe_spin(self, rate: Optional[float]) -> None:
+        """Prescribe the wheel's spin rate for the following steps, or free it again.
+
+        The spin becomes a kinematic constraint on the spin coordinate of the stepper (Rust:
+        ``RollingTire::prescribe_spin``): over the next step the rate goes linearly from its
+        present value to ``rate``, then stays there; the torque that holds it is
+        :attr:`reaction_torque` (a :attr:`drive_torque` acts on top of it). The longitudinal
+        slip is ``kappa = rate / spin_free - 1`` with the free-rolling spin ``spin_free``.
+
+        Parameters
+        ----------
+        rate : spin rate [rad/s] (positive: rolling forwards), or ``None`` to free the spin
+            (driven by :attr:`drive_torque` again).
+
+        Raises
+        ------
+        ValueError
+            ``rate`` is not a finite number (the message names ``rate``).
+        """
+        self._sim.prescribe_spin(None if rate is None else _args.number("rate", rate))
 
     def forces(self) -> dict:
         """The cleat test's force row of the present state: the columns of its ``forces``
@@ -613,6 +654,20 @@ class CoSimulation:
         damping, ``rolling`` with ``friction`` and ``time_step``, the largest internal step).
     tire : a :class:`ReducedTire` used instead of reducing ``config["tire"]``.
     motion : the start motion; default the rig's steady start (:attr:`motion` afterwards).
+
+    Raises
+    ------
+    ValueError
+        Bad input: a key of ``config`` or ``motion`` (named in the message, ``motion.camber``
+        for a camber other than 0).
+    flowmbd.NumericalError
+        The preload of the start failed.
+
+    Example
+    -------
+    >>> cs = flowmbd.tire.CoSimulation(config, tire=tire)
+    >>> m = dict(cs.motion, height=cs.motion["height"] - 0.001)  # lower the wheel by 1 mm
+    >>> cs.do_step(0.01, m)["fz"]
     """
 
     def __init__(
@@ -638,16 +693,47 @@ class CoSimulation:
 
     def do_step(self, h: float, motion: Mapping[str, Any]) -> dict:
         """One communication step of ``h`` [s] with ``motion`` held (internal steps of at
-        most ``rig.rolling.time_step``); returns ``fx``, ``fy``, ``fz`` [N], ``mx``, ``my``,
-        ``mz`` [N m] (ISO 8855 wheel frame, at the wheel centre; ``fz`` the carried load) and
-        ``spin_torque`` [N m] (the torque that holds the prescribed spin)."""
+        most ``rig.rolling.time_step``, the last ending on ``t + h``).
+
+        Parameters
+        ----------
+        h : communication step [s] (> 0).
+        motion : the wheel-centre motion held over the step (the keys of :attr:`motion`).
+
+        Returns
+        -------
+        dict
+            ``fx``, ``fy``, ``fz`` [N], ``mx``, ``my``, ``mz`` [N m] (the loads of the tire on
+            the wheel in the ISO 8855 wheel frame at the wheel centre; ``fz`` the carried load)
+            and ``spin_torque`` [N m] (the torque that holds the prescribed spin).
+
+        Raises
+        ------
+        ValueError
+            Bad input (``communication_step`` or ``motion.<key>`` named).
+        flowmbd.NumericalError
+            An internal step failed (the state is that of the last step taken).
+        """
         return self._sim.do_step(_args.number("h", h), _motion_json(motion))
 
 
 def fmu_library() -> str:
-    """The compiled FMU library ``libflowmbd_tire_fmu.so`` (``cargo build --release -p
-    flowmbd-tire-fmu``): ``$FLOWMBD_FMU_LIB``, else in ``$FLOWMBD_BIN_DIR``, else in the
-    workspace's ``target/release`` next to this package's source."""
+    """The compiled FMU library to pack into an FMU.
+
+    The library ``libflowmbd_tire_fmu.so`` is built by ``cargo build --release -p
+    flowmbd-tire-fmu``; it is looked up as ``$FLOWMBD_FMU_LIB``, else in ``$FLOWMBD_BIN_DIR``,
+    else in ``target/release`` under the working folder (the workspace root).
+
+    Returns
+    -------
+    str
+        Its path.
+
+    Raises
+    ------
+    FileNotFoundError
+        Not found: the message says how to build it.
+    """
     import os
     import pathlib
     import sys
@@ -682,8 +768,31 @@ def build_fmu(
     ``config``). Inputs: wheel-centre position ``x``, ``y``, ``z`` [m], velocity ``vx``,
     ``vy``, ``vz`` [m/s] (road frame), ``yaw``, ``camber`` [rad], ``spin_rate`` [rad/s];
     outputs ``Fx`` ... ``Mz`` (ISO 8855 wheel frame) and ``spin_torque``; parameters
-    ``load`` [N], ``friction``, ``time_step`` [s] (see :class:`CoSimulation`). Returns the
-    start motion (the inputs' start values: the rig's steady start)."""
+    ``load`` [N], ``friction``, ``time_step`` [s] (see :class:`CoSimulation`). The CLI's
+    ``flowmbd-tire fmu`` writes the same FMU with a summary of its variables.
+
+    Parameters
+    ----------
+    out : path of the ``.fmu`` to write (written through a temporary file).
+    config : dict with the keys of ``flowmbd-tire cleat --print-config`` (``tire``, ``rig``).
+    tire : a :class:`ReducedTire` used instead of reducing ``config["tire"]``.
+    library : the compiled FMU library to pack (default :func:`fmu_library`).
+
+    Returns
+    -------
+    dict
+        The start motion (the inputs' start values, the rig's steady start): ``height`` [m],
+        ``velocity`` [m/s], ``yaw``, ``camber`` [rad], ``spin_rate`` [rad/s].
+
+    Raises
+    ------
+    ValueError
+        Bad input (the CLI's ``field: reason`` message).
+    OSError
+        The library cannot be read or the FMU cannot be written.
+    flowmbd.NumericalError
+        The preload of the start failed.
+    """
     if tire is not None and not isinstance(tire, ReducedTire):
         raise ValueError(f"tire: expected a flowmbd.tire.ReducedTire, got {type(tire).__name__}")
     lib = library if library is not None else fmu_library()

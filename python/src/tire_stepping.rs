@@ -114,6 +114,45 @@ impl PyTireSimulation {
         Ok(())
     }
 
+    /// Prescribe the spin rate `rate` \[rad/s\] for the following steps, or free the spin
+    /// (`None`, the start: driven by `drive_torque`): [`RollingTire::prescribe_spin`], a
+    /// kinematic constraint on the spin coordinate of the stepper, the rate going linearly to
+    /// `rate` over the next step. Errors: `rate` not finite (`ValueError` naming `rate`).
+    #[pyo3(signature = (rate=None))]
+    fn prescribe_spin(&mut self, py: Python<'_>, rate: Option<f64>) -> PyResult<()> {
+        if let Some(r) = rate
+            && !r.is_finite()
+        {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "rate: must be finite, got {r}"
+            )));
+        }
+        self.rolling
+            .with_dependent_mut(|_, sim| sim.prescribe_spin(rate))
+            .map_err(|e| tire_error(py, e, None))
+    }
+
+    /// The prescribed spin rate \[rad/s\], `None` when the spin is free
+    /// ([`RollingTire::prescribed_spin`]).
+    #[getter]
+    fn prescribed_spin(&self) -> Option<f64> {
+        self.rolling.with_dependent(|_, sim| sim.prescribed_spin())
+    }
+
+    /// Reaction torque of the prescribed spin about the spin axis +y in the last step \[N·m\]
+    /// (0 when the spin is free; [`RollingTire::reaction_torque`]).
+    #[getter]
+    fn reaction_torque(&self) -> f64 {
+        self.rolling.with_dependent(|_, sim| sim.reaction_torque())
+    }
+
+    /// Total torque on the wheel about +y in the last step \[N·m\]: the drive torque plus the
+    /// reaction torque ([`RollingTire::spin_torque`]).
+    #[getter]
+    fn spin_torque(&self) -> f64 {
+        self.rolling.with_dependent(|_, sim| sim.spin_torque())
+    }
+
     /// The reduced coordinates `z` of the input tire (numpy copy).
     #[getter]
     fn coordinates<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {

@@ -151,7 +151,7 @@ pub use spectrum::{
 };
 pub use steady::{
     SteadyPoint, SteadyResult, SteadyStudyConfig, SteadySummary, cornering_stiffness,
-    relaxation_length, run_steady, slip_stiffness, steady_summary,
+    relaxation_length, rim_moment_transfer, run_steady, slip_stiffness, steady_summary,
 };
 pub use study::{
     CleatStudyConfig, CleatSummary, MAX_CLEAT_PHASES, PhaseSpread, cleat_summary, phase_spread,

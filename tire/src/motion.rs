@@ -46,9 +46,9 @@
 //! A communication step `H` is taken as `n = ⌈H/h⌉` equal internal steps of the rolling tire
 //! (`h` = `rig.rolling.time_step`; the last internal step ends exactly on `t + H`). The inputs
 //! are held over the communication step (zero-order hold, FMI 3.0 co-simulation); the spin
-//! rate goes linearly to the new input over the first internal step ([`PrescribedSpin`]
-//! (crate::dynamics::PrescribedSpin)), and a changed height is met by the contact at the end
-//! of the first internal step.
+//! rate goes linearly to the new input over the first internal step
+//! ([`PrescribedSpin`](crate::dynamics::PrescribedSpin)), and a changed height is met by the
+//! contact at the end of the first internal step.
 
 use crate::error::TireError;
 use crate::ground::GroundKind;

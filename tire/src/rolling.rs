@@ -646,7 +646,9 @@ impl<'a> RollingTire<'a> {
     /// Reaction torque of the prescribed spin about the spin axis +y in the last step \[N·m\]:
     /// the torque the prescribing drive applies to the wheel, `−λ` with the constraint's
     /// multiplier λ ([`PrescribedSpin`]); 0 when the spin is free. In the steady state it
-    /// balances the moment of the road, `≈ −M_y` ([`WheelLoads::my`]).
+    /// balances the rim moment (Ribaric (7.2)), which is `t (−M_y)` of the contact moment
+    /// ([`WheelLoads::my`]) with `t` = [`crate::steady::rim_moment_transfer`] (1 for a
+    /// rotation-invariant stiffness, 0.85 on the inflated coarse test tire).
     pub fn reaction_torque(&self) -> f64 {
         self.reaction_torque
     }

@@ -199,6 +199,13 @@ pub struct SteadyPoint {
     /// Mean loads over the last `average_time` (ISO 8855 wheel frame; with camber the W-axis
     /// orientation, [`WheelLoads`]).
     pub loads: WheelLoads,
+    /// Torque balance of the wheel about its axle \[N·m\]: `spin_torque_n_m + M_y`, the torque
+    /// applied to the wheel plus the moment of the contact forces about the axle (ISO 8855
+    /// `M_y`, deformed positions). Zero in a steady state of a model whose elastic forces carry
+    /// no moment under a rigid rotation; the reduced tire's rim moment (Ribaric (7.2),
+    /// `K_θ z`) transmits only [`SteadyResult::rim_moment_transfer`] of the contact moment, so
+    /// here it is about `−(1 − transfer)` of `−M_y` (see that field).
+    pub torque_residual_n_m: f64,
     /// Largest minus smallest `F_y` over the averaging window \[N\] (how settled the point is;
     /// likewise for the torque points' `F_x`).
     pub spread_n: f64,
@@ -238,6 +245,36 @@ pub struct SteadyResult {
     pub symmetry: String,
     /// Model stepped at the camber points (full model when γ ≠ 0; empty without them).
     pub camber_symmetry: String,
+    /// Share of the moment of a contact force about the axle that the reduced tire's rim
+    /// moment carries \[-\] ([`rim_moment_transfer`]): 1 for a tire whose stiffness matrix
+    /// has no moment under a rigid rotation about the axle.
+    pub rim_moment_transfer: f64,
+}
+
+/// The share of the moment of a longitudinal contact force about the axle that reaches the rim
+/// through the reduced tire's rim moment (Ribaric (7.2): `n_K^θ = K^θ δ`, the row `k_θ` of
+/// [`ReducedTire::kt`]) \[-\]: the static reduced solve `K_z z = T_cᵀ f` of a unit force
+/// along x at the lowest contact node `s` gives the rim moment `k_θ·z`, compared with the
+/// force's moment `s_z f_x` about the axle: `−k_θ·z/s_z`. Equilibrium of the tire makes it 1
+/// when the elastic forces of a rigid rotation about the axle have no moment (`r_rotᵀ K r = 0`
+/// for every `r`); the generated tire's inflation prestress (`fe_model::generate::tire`:
+/// the geometric stiffness of the membrane forces, without the stiffness of the pressure load
+/// that follows the surface) breaks that, and the rim then carries less than the contact
+/// moment (0.85 on the coarse test tire at 262 kPa, 1 to 1e-12 without pressure). In a steady
+/// state the torque on the wheel is the rim moment, so `spin_torque ≈ transfer · (−M_y)`
+/// ([`SteadyPoint::torque_residual_n_m`]). Errors: a singular `K_z`.
+pub fn rim_moment_transfer(red: &ReducedTire) -> Result<f64, TireError> {
+    let i = (0..red.n_contact())
+        .min_by(|&a, &b| red.contact_positions[a][2].total_cmp(&red.contact_positions[b][2]))
+        .ok_or_else(|| crate::error::invalid("tire", "the reduced tire has no contact node"))?;
+    let nz = red.n_z();
+    let rhs = faer::Mat::from_fn(nz, 1, |j, _| red.tc[(3 * i, j)]);
+    let z = faer::linalg::solvers::Solve::solve(&red.k.partial_piv_lu(), &rhs);
+    if !z.as_ref().is_all_finite() {
+        return Err(crate::error::linalg("reduced stiffness K_z", "singular"));
+    }
+    let rim: f64 = (0..nz).map(|j| red.kt[(1, j)] * z[(j, 0)]).sum();
+    Ok(-rim / red.contact_positions[i][2])
 }
 
 /// Cornering stiffness `C_Fα = dF_y/dα` at α = 0 \[N/rad\] from the points `(α [deg], F_y)`
@@ -484,6 +521,7 @@ fn run_point(
             kappa: omega0.map_or(0.0, |o| spin / o - 1.0),
             spin_rad_per_s: spin,
             loads,
+            torque_residual_n_m: spin_torque + loads.my,
             spread_n: if w.is_empty() { 0.0 } else { hi - lo },
             normal_sum_n: last.map_or(0.0, |s| s.normal_sum),
             utilisation,
@@ -569,6 +607,7 @@ pub fn run_steady(
         camber,
         symmetry,
         camber_symmetry,
+        rim_moment_transfer: rim_moment_transfer(red)?,
     })
 }
 
@@ -644,6 +683,16 @@ pub struct SteadySummary {
     pub mz_camber_n_m: Vec<f64>,
     /// Camber stiffness `dF_y/dγ` at γ = 0 \[N/rad\] (`null` without a camber angle).
     pub camber_stiffness_n_per_rad: Option<f64>,
+    /// Share of a contact moment about the axle that the reduced tire's rim moment carries
+    /// \[-\] ([`rim_moment_transfer`]; 1 for a rotation-invariant stiffness).
+    pub rim_moment_transfer: f64,
+    /// Torque balance of the wheel at the torque and prescribed-spin points, in their order
+    /// (torques, then slips) \[N·m\]: `spin_torque + M_y` ([`SteadyPoint::torque_residual_n_m`]).
+    pub torque_residual_n_m: Vec<f64>,
+    /// The same relative to the contact moment, `(spin_torque + M_y)/|M_y|` \[-\] (`null`
+    /// where `|M_y|` is below 1e-6 of the load times 1 m); about `rim_moment_transfer − 1`
+    /// ([`rim_moment_transfer`]).
+    pub torque_residual_rel: Vec<Option<f64>>,
     /// Model stepped at the slip-angle points.
     pub symmetry: String,
     /// Model stepped at the camber points (empty without them).
@@ -680,6 +729,12 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
     thrust points to the side the wheel leans to, Fy < 0 for gamma > 0), given in the W-axis \
     orientation (z along the road normal, y in the road plane; moments about the wheel centre), \
     camber_stiffness_n_per_rad = dFy/dgamma at 0. \
+    torque_residual_n_m (torque points, then prescribed points) is the wheel's torque balance \
+    spin torque + M_y, zero in a steady state of a consistent model; here it is about \
+    (rim_moment_transfer - 1)|M_y| (torque_residual_rel): the rim moment of the reduced tire \
+    (Ribaric 7.2) carries only rim_moment_transfer of a contact force's moment about the axle, \
+    because the generated tire's inflation prestress stiffness (without the pressure load's \
+    own stiffness) is not invariant under a rigid rotation (1 without inflation pressure). \
     Validity: the small-slip values (cornering stiffness, trail, relaxation length, slip \
     stiffness) are not converged in the tire's circumferential mesh: on the generated truck \
     tire the 0.2 deg cornering stiffness moves by up to 70 % between 192 and 576 divisions \
@@ -738,6 +793,22 @@ pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummar
             .chain(r.torque.iter().copied())
             .chain(r.prescribed.iter().copied())
             .chain(r.camber.iter().copied())
+            .collect(),
+        rim_moment_transfer: r.rim_moment_transfer,
+        torque_residual_n_m: r
+            .torque
+            .iter()
+            .chain(&r.prescribed)
+            .map(|p| p.torque_residual_n_m)
+            .collect(),
+        torque_residual_rel: r
+            .torque
+            .iter()
+            .chain(&r.prescribed)
+            .map(|p| {
+                (p.loads.my.abs() > 1e-6 * cfg.rig.load)
+                    .then(|| p.torque_residual_n_m / p.loads.my.abs())
+            })
             .collect(),
         symmetry: r.symmetry.clone(),
         camber_symmetry: r.camber_symmetry.clone(),

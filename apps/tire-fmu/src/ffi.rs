@@ -1,6 +1,6 @@
 //! The FMI 3.0 C API of the tire FMU (co-simulation, `Float64` variables, no event mode),
 //! declared as in the standard's `fmi3FunctionTypes.h`. Every entry point runs inside
-//! `catch_unwind` ([`guard`]): a panic becomes `fmi3Fatal` with a logged message, never an
+//! `catch_unwind` (`guard`): a panic becomes `fmi3Fatal` with a logged message, never an
 //! unwind across the C ABI. Errors are reported through the importer's `logMessage`
 //! callback (category `logStatusError`) and the returned status. Functions of the interface
 //! that this FMU does not support (other variable types, FMU state, model exchange, scheduled
@@ -378,7 +378,7 @@ unsafe fn slices<'a, T>(
 /// `fmi3GetFloat64`: `time` (vr 0), parameters, inputs and outputs.
 ///
 /// # Safety
-/// As [`slices`].
+/// As `slices`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetFloat64(
     instance: *mut c_void, vr: *const u32, n_vr: usize, values: *mut f64, n_values: usize,
@@ -408,7 +408,7 @@ pub unsafe extern "C" fn fmi3GetFloat64(
 /// values are checked when the tire starts or steps.
 ///
 /// # Safety
-/// As [`slices`].
+/// As `slices`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3SetFloat64(
     instance: *mut c_void, vr: *const u32, n_vr: usize, values: *const f64, n_values: usize,

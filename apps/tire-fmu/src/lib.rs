@@ -4,7 +4,8 @@
 //! `flowmbd.tire.CoSimulation`): the tire on the cleat rig's road, driven by the wheel-centre
 //! motion, its spin prescribed; see that module for frames, signs and the internal stepping.
 //! This crate is its FMI shell only: the C API ([`ffi`], exported by the cdylib
-//! `flowmbd_tire_fmu`) and the packaging of the `.fmu` ([`write_fmu`]).
+//! `flowmbd_tire_fmu`), the packaging of the `.fmu` ([`write_fmu`]) and the study of
+//! `flowmbd-tire fmu` ([`study`]: configuration, library search, summary).
 //!
 //! # Variables ([`VARIABLES`])
 //! - parameters (fixed): `load` \[N\] (the preload the tire starts from), `friction` μ \[-\],
@@ -32,7 +33,10 @@
 //! with `catch_unwind` around every entry point.
 
 pub mod ffi;
+pub mod study;
 mod zip;
+
+pub use study::{FmuConfig, FmuSummary, find_library, fmu_summary};
 
 use std::path::Path;
 use tire::motion::{CoSimulation, WheelMotion};

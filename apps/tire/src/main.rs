@@ -10,6 +10,8 @@
 //!   (forward/backward waves, Campbell diagram);
 //! - `steady`: steady-state side force, aligning moment and longitudinal force on a flat road
 //!   over slip angle and drive torque (issue 38);
+//! - `fmu`: the FMI 3.0 co-simulation FMU of the tire driven by its wheel-centre motion
+//!   (issue 38);
 //! - `dips`: the speed dips of the cleat test, predicted from the enveloping profile and the
 //!   loaded vertical mode, and measured by a sweep (drum and road).
 // Argument doc comments are clap's --help texts, where `[m]` names a unit, not a link.
@@ -22,6 +24,7 @@ use std::process::ExitCode;
 mod cleat;
 mod common;
 mod dips;
+mod fmu;
 mod maps;
 mod modes;
 mod pressure;
@@ -62,6 +65,9 @@ enum Study {
     /// Steady-state characteristics on a flat road: Fy and Mz against slip angle, cornering
     /// stiffness, pneumatic trail, Fx against longitudinal slip (issue 38).
     Steady(steady::Args),
+    /// FMI 3.0 co-simulation FMU of the tire driven by its wheel-centre motion: `tire.fmu`
+    /// with the compiled library, the reduced tire and the rig (issue 38).
+    Fmu(fmu::Args),
 }
 
 fn main() -> ExitCode {
@@ -75,6 +81,7 @@ fn main() -> ExitCode {
         Some(Study::RotatingModes(a)) => run_study(APP, &a, &a.common),
         Some(Study::Dips(a)) => run_study(APP, &a, &a.common),
         Some(Study::Steady(a)) => run_study(APP, &a, &a.common),
+        Some(Study::Fmu(a)) => run_study(APP, &a, &a.common),
         None => {
             let a = cleat::Args::default();
             run_study(APP, &a, &a.common)

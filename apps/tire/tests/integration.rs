@@ -6,6 +6,7 @@ mod cache;
 mod cli;
 mod common;
 mod config_mutation;
+mod fmu;
 mod hardening;
 mod import_checks;
 mod import_errors;
