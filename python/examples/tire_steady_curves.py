@@ -4,9 +4,9 @@ moment against the slip angle, F_y(alpha) and M_z(alpha) (ISO 8855 wheel frame),
 ``flowmbd.tire.steady``.
 
 The configuration is ``apps/tire/examples/small-tire-steady.toml`` (the coarse tire of the tests,
-seven slip angles, one drive torque, 0.15 s per point) as a dict, with a prescribed-spin sweep
-``slip_ratios`` added (each such point holds the spin at ``(1 + kappa)`` times the free-rolling
-spin, so F_x(kappa) is obtained through and beyond its peak). About 15 s.
+seven slip angles, one drive torque, eight prescribed slips, 0.15 s per point) as a dict; each
+``slip_ratios`` point holds the spin at ``(1 + kappa)`` times the free-rolling spin, so F_x(kappa)
+is obtained through and beyond its peak. About 15 s.
 
 Writes ``fx_kappa.csv``, ``fy_mz_alpha.csv`` and, when matplotlib is installed,
 ``tire_steady_curves.png`` into ``--out`` (default ``out/tire/steady-curves``, as the CLI's
@@ -22,11 +22,11 @@ import pathlib
 import flowmbd
 
 # apps/tire/examples/small-tire-steady.toml as a dict (its [tire] without ``reduced_file``,
-# which the Python package ignores: it keeps the reduced tire as an object), plus the
-# prescribed slips
+# which the Python package ignores: it keeps the reduced tire as an object)
 CONFIG = {
     "slip_angles_deg": [-1.0, -0.4, -0.1, 0.1, 0.2, 0.4, 1.0],
     "drive_torques_n_m": [500.0],
+    "slip_ratios": [-0.01, -0.004, -0.002, -0.001, 0.001, 0.002, 0.004, 0.01],
     "point_time": 0.15,
     "average_time": 0.03,
     "tire": {
@@ -43,7 +43,7 @@ CONFIG = {
     },
 }
 # prescribed longitudinal slips [-]: braking and driving, through the peak of this stiff tire
-SLIP_RATIOS = [-0.01, -0.004, -0.002, -0.001, 0.001, 0.002, 0.004, 0.01]
+SLIP_RATIOS = CONFIG["slip_ratios"]
 
 
 def curves(summary):
@@ -109,7 +109,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    summary = flowmbd.tire.steady({**CONFIG, "slip_ratios": SLIP_RATIOS})
+    summary = flowmbd.tire.steady(CONFIG)
     c = curves(summary)
     paths = write_csv(out, c)
     png = plot(out, c)
