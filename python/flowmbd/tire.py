@@ -209,15 +209,16 @@ def cleat(
 
 
 def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTire"] = None) -> Result:
-    """The steady-state characteristics on a flat road (``flowmbd-tire steady``): each point
-    starts from free rolling, gets its slip angle or drive torque, rolls
-    ``config["point_time"]`` and is averaged over the last ``config["average_time"]``.
+    """The steady-state characteristics on a flat (or height-grid) road (``flowmbd-tire
+    steady``): each point starts from free rolling, gets its slip angle, drive torque or camber
+    angle, rolls ``config["point_time"]`` and is averaged over the last
+    ``config["average_time"]``.
 
     Parameters
     ----------
     config : dict with the keys of ``flowmbd-tire steady --print-config`` (``tire``, ``rig``,
-        ``slip_angles_deg`` [deg], ``drive_torques_n_m`` [N m], ``point_time`` [s],
-        ``average_time`` [s]).
+        ``slip_angles_deg`` [deg], ``drive_torques_n_m`` [N m], ``camber_angles_deg`` [deg],
+        ``point_time`` [s], ``average_time`` [s]).
     tire : a :class:`ReducedTire` from :func:`reduce`, used instead of reducing
         ``config["tire"]`` (which must then be absent).
 
@@ -226,7 +227,10 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
     dict
         The CLI's ``summary.json``: side force ``fy_n`` and aligning moment over
         ``slip_angle_deg``, the cornering stiffness [N/rad], pneumatic trail, longitudinal
-        force over drive torque with its slip, in the ISO 8855 wheel frame; and
+        force over drive torque with its slip, in the ISO 8855 wheel frame; the camber
+        thrust ``fy_camber_n``, ``mx_camber_n_m``, ``mz_camber_n_m`` over ``camber_deg`` (ISO
+        8855 sign, W-axis orientation: z along the road normal) and ``camber_stiffness_n_per_rad``;
+        and
         ``magic_formula``: the Magic Formula fit of the points (``fit`` coefficients and
         errors, fitted values, ``warnings``; ``tir`` is ``None``: the CLI writes the MF 6.1
         ``tire.tir``), or ``None`` with the reason in ``magic_formula_note``.

@@ -425,7 +425,8 @@ impl Validate for GroundConfig {
     /// Positive drum radius (drum) and cleat radius (with a cleat) \[m\], and a cleat smaller
     /// than the drum; each obstacle (`obstacles[k].…`, at most [`MAX_OBSTACLES`]) valid and
     /// possible on this ground: on the drum only transverse cleats smaller than the drum; at
-    /// most one step, not with potholes; with a height grid (road only) only cleats.
+    /// most one step, not with potholes; with a height grid (road only, its file a readable
+    /// regular file; its content is read by [`Ground::new`]) only cleats.
     fn validate(&self) -> Result<(), InvalidField> {
         if self.kind == GroundKind::Drum {
             check::positive("drum_radius", self.drum_radius, "m")?;
@@ -450,6 +451,9 @@ impl Validate for GroundConfig {
                 "grid_file",
                 "a height grid needs the road (kind = \"road\")",
             ));
+        }
+        if grid {
+            check::input_file("grid_file", std::path::Path::new(&self.grid_file))?;
         }
         let mut steps = 0;
         let potholes = self
@@ -1250,5 +1254,12 @@ mod tests {
         let mut grid = on(GroundKind::Drum, vec![]);
         grid.grid_file = "road.csv".into();
         assert_eq!(grid.validate().unwrap_err().field, "grid_file");
+        grid.kind = GroundKind::Road;
+        grid.grid_file = "/no/such/road.csv".into();
+        let e = grid.validate().unwrap_err();
+        assert!(
+            e.field == "grid_file" && e.reason.contains("does not exist"),
+            "{e:?}"
+        );
     }
 }
