@@ -552,7 +552,7 @@ impl GroundConfig {
 
     /// Whether the ground has anything beyond the plain drum or road and the cleat of §8.3
     /// (obstacles or a grid).
-    pub fn has_issue38_features(&self) -> bool {
+    pub fn has_obstacles_or_grid(&self) -> bool {
         !self.obstacles.is_empty() || !self.grid_file.is_empty()
     }
 
@@ -794,7 +794,7 @@ impl Ground {
     /// the cleat of §8.3 alone, the road's `|u|` with obstacles, the grid's slope bound on a
     /// grid road.
     pub fn bound_rate(&self) -> f64 {
-        if !self.cfg.has_issue38_features() {
+        if !self.cfg.has_obstacles_or_grid() {
             return self.speed.abs();
         }
         let members = self.cfg.cleat
@@ -809,7 +809,7 @@ impl Ground {
 
     /// The largest [`GroundPoint::approach`] of this ground \[m/s\].
     pub fn max_approach(&self) -> f64 {
-        if !self.cfg.has_issue38_features() {
+        if !self.cfg.has_obstacles_or_grid() {
             return self.speed.abs();
         }
         let obstacles = self.cfg.cleat || !self.cfg.obstacles.is_empty();
@@ -848,7 +848,7 @@ impl Ground {
 
     /// [`Ground::query`] on the upright ground.
     fn query_upright_point(&self, t: f64, p: [f64; 3]) -> GroundPoint {
-        if !self.cfg.has_issue38_features() {
+        if !self.cfg.has_obstacles_or_grid() {
             return self.query_plain(t, p);
         }
         let u = self.query_upright(t, Point3::new(p[0], p[1], p[2]));
