@@ -209,14 +209,16 @@ def cleat(
 
 
 def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTire"] = None) -> Result:
-    """The steady-state characteristics on a flat road (``flowmbd-tire steady``): each point
-    starts from free rolling, gets its slip angle or drive torque, rolls
-    ``config["point_time"]`` and is averaged over the last ``config["average_time"]``.
+    """The steady-state characteristics on a flat (or height-grid) road (``flowmbd-tire
+    steady``): each point starts from free rolling, gets its slip angle, drive torque or camber
+    angle, rolls ``config["point_time"]`` and is averaged over the last
+    ``config["average_time"]``.
 
     Parameters
     ----------
     config : dict with the keys of ``flowmbd-tire steady --print-config`` (``tire``, ``rig``,
-        ``slip_angles_deg`` [deg], ``drive_torques_n_m`` [N m], ``slip_ratios`` [-] (points
+        ``slip_angles_deg`` [deg], ``drive_torques_n_m`` [N m], ``camber_angles_deg`` [deg],
+        ``slip_ratios`` [-] (points
         whose spin is prescribed at ``(1 + kappa)`` times the free-rolling spin),
         ``point_time`` [s], ``average_time`` [s]). ``python/examples/tire_steady_curves.py``
         runs it on the small tire and plots F_x(kappa), F_y(alpha), M_z(alpha).
@@ -230,7 +232,9 @@ def steady(config: Optional[Mapping[str, Any]] = None, tire: Optional["ReducedTi
         ``slip_angle_deg``, the cornering stiffness [N/rad], pneumatic trail, longitudinal
         force over drive torque with its slip, in the ISO 8855 wheel frame; over the
         prescribed slips ``prescribed_kappa``, ``prescribed_fx_n`` and the torque holding the
-        spin ``prescribed_spin_torque_n_m``; and
+        spin ``prescribed_spin_torque_n_m``; the camber thrust ``fy_camber_n``,
+        ``mx_camber_n_m``, ``mz_camber_n_m`` over ``camber_deg`` (ISO 8855 sign, W-axis
+        orientation: z along the road normal) and ``camber_stiffness_n_per_rad``; and
         ``magic_formula``: the Magic Formula fit of the points (``fit`` coefficients and
         errors, fitted values, ``warnings``; ``tir`` is ``None``: no file is written), or
         ``None`` with the reason in ``magic_formula_note``; and ``tir_text``: the MF 6.1

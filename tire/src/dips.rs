@@ -148,7 +148,7 @@ pub fn enveloping_profile(
             "the enveloping profile needs the cleat",
         ));
     }
-    if ground.has_issue38_features() {
+    if ground.has_obstacles_or_grid() {
         return Err(invalid(
             "ground.obstacles",
             "the enveloping profile is that of the cleat alone (no obstacles or height grid)",

@@ -425,7 +425,8 @@ impl Validate for GroundConfig {
     /// Positive drum radius (drum) and cleat radius (with a cleat) \[m\], and a cleat smaller
     /// than the drum; each obstacle (`obstacles[k].…`, at most [`MAX_OBSTACLES`]) valid and
     /// possible on this ground: on the drum only transverse cleats smaller than the drum; at
-    /// most one step, not with potholes; with a height grid (road only) only cleats.
+    /// most one step, not with potholes; with a height grid (road only, its file a readable
+    /// regular file; its content is read by [`Ground::new`]) only cleats.
     fn validate(&self) -> Result<(), InvalidField> {
         if self.kind == GroundKind::Drum {
             check::positive("drum_radius", self.drum_radius, "m")?;
@@ -450,6 +451,9 @@ impl Validate for GroundConfig {
                 "grid_file",
                 "a height grid needs the road (kind = \"road\")",
             ));
+        }
+        if grid {
+            check::input_file("grid_file", std::path::Path::new(&self.grid_file))?;
         }
         let mut steps = 0;
         let potholes = self
@@ -548,7 +552,7 @@ impl GroundConfig {
 
     /// Whether the ground has anything beyond the plain drum or road and the cleat of §8.3
     /// (obstacles or a grid).
-    pub fn has_issue38_features(&self) -> bool {
+    pub fn has_obstacles_or_grid(&self) -> bool {
         !self.obstacles.is_empty() || !self.grid_file.is_empty()
     }
 
@@ -790,7 +794,7 @@ impl Ground {
     /// the cleat of §8.3 alone, the road's `|u|` with obstacles, the grid's slope bound on a
     /// grid road.
     pub fn bound_rate(&self) -> f64 {
-        if !self.cfg.has_issue38_features() {
+        if !self.cfg.has_obstacles_or_grid() {
             return self.speed.abs();
         }
         let members = self.cfg.cleat
@@ -805,7 +809,7 @@ impl Ground {
 
     /// The largest [`GroundPoint::approach`] of this ground \[m/s\].
     pub fn max_approach(&self) -> f64 {
-        if !self.cfg.has_issue38_features() {
+        if !self.cfg.has_obstacles_or_grid() {
             return self.speed.abs();
         }
         let obstacles = self.cfg.cleat || !self.cfg.obstacles.is_empty();
@@ -844,7 +848,7 @@ impl Ground {
 
     /// [`Ground::query`] on the upright ground.
     fn query_upright_point(&self, t: f64, p: [f64; 3]) -> GroundPoint {
-        if !self.cfg.has_issue38_features() {
+        if !self.cfg.has_obstacles_or_grid() {
             return self.query_plain(t, p);
         }
         let u = self.query_upright(t, Point3::new(p[0], p[1], p[2]));
@@ -1250,5 +1254,12 @@ mod tests {
         let mut grid = on(GroundKind::Drum, vec![]);
         grid.grid_file = "road.csv".into();
         assert_eq!(grid.validate().unwrap_err().field, "grid_file");
+        grid.kind = GroundKind::Road;
+        grid.grid_file = "/no/such/road.csv".into();
+        let e = grid.validate().unwrap_err();
+        assert!(
+            e.field == "grid_file" && e.reason.contains("does not exist"),
+            "{e:?}"
+        );
     }
 }

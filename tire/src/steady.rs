@@ -52,7 +52,9 @@ pub struct SteadyStudyConfig {
     /// The rig: load, speed, friction, damping and integration (default: flat road without
     /// cleat at 60 km/h). Its `settle_time`, `record_time` and `wheel` are replaced per point
     /// (`point_time`, 0 and the point's input); `ground.cleat` must be off and
-    /// `ground.obstacles` empty (a height-grid road is allowed).
+    /// `ground.obstacles` empty (a height-grid road is allowed: its `x = 0` passes the patch
+    /// centre at the end of each point, so each point rolls over the grid's stretch
+    /// `−v point_time ≤ x ≤ 0`).
     pub rig: RigConfig,
     /// Slip angles of the side-force sweep \[deg\] (each at zero drive torque; within ±45°).
     /// The cornering stiffness is the secant over the smallest mirrored pair

@@ -1,7 +1,7 @@
 //! `flowmbd-tire steady`: steady-state force and moment characteristics of the rolling tire on
-//! a flat road (issue 38): side force `F_y(α)`, aligning moment `M_z(α)`, cornering stiffness
-//! and pneumatic trail over a slip-angle sweep, `F_x(κ)` over a drive/brake torque sweep
-//! ([`tire::steady`]).
+//! a flat (or height-grid) road (issue 38): side force `F_y(α)`, aligning moment `M_z(α)`,
+//! cornering stiffness and pneumatic trail over a slip-angle sweep, `F_x(κ)` over a drive/brake
+//! torque sweep, camber thrust `F_y(γ)` and `M_x(γ)` over a camber sweep ([`tire::steady`]).
 
 use crate::common::{run_reduced, tire_err};
 use flowmbd_cli::plot::{LinePlot, Series};
@@ -88,6 +88,28 @@ impl Study for Args {
             }
         }
         fx.save(&ctx.out.path("fx_kappa"))?;
+        if !r.camber.is_empty() {
+            // F_y(γ) and M_x(γ) (W-axis orientation) with the free-rolling point
+            let mut by_gamma: Vec<(f64, f64, f64)> = std::iter::once(&r.free_rolling)
+                .chain(&r.camber)
+                .map(|p| (p.camber_deg, p.loads.fy, p.loads.mx))
+                .collect();
+            by_gamma.sort_by(|a, b| a.0.total_cmp(&b.0));
+            LinePlot::new(
+                "Camber thrust and overturning moment against camber angle (W-axis)",
+                "gamma [deg]",
+                "Fy [N], Mx [N m]",
+            )
+            .with(Series::line(
+                "Fy",
+                by_gamma.iter().map(|p| (p.0, p.1)).collect(),
+            ))
+            .with(Series::line(
+                "Mx",
+                by_gamma.iter().map(|p| (p.0, p.2)).collect(),
+            ))
+            .save(&ctx.out.path("fy_gamma"))?;
+        }
         if let Some(m) = s.magic_formula.as_mut() {
             write_fit(m, &r, &red, c, ctx)?;
         }
