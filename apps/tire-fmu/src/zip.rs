@@ -3,27 +3,6 @@
 //! record; no compression, no ZIP64, so each entry and the whole archive must stay below
 //! 4 GiB).
 
-/// CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320) of `data`, as the ZIP format requires.
-fn crc32(data: &[u8]) -> u32 {
-    let mut table = [0u32; 256];
-    for (i, t) in table.iter_mut().enumerate() {
-        let mut c = i as u32;
-        for _ in 0..8 {
-            c = if c & 1 != 0 {
-                0xEDB8_8320 ^ (c >> 1)
-            } else {
-                c >> 1
-            };
-        }
-        *t = c;
-    }
-    let mut c = 0xFFFF_FFFFu32;
-    for &b in data {
-        c = table[((c ^ b as u32) & 0xFF) as usize] ^ (c >> 8);
-    }
-    c ^ 0xFFFF_FFFF
-}
-
 /// The ZIP archive of `entries` (name, bytes), stored. Errors: an entry or the archive of
 /// 4 GiB or more, or more than 65535 entries.
 pub fn stored(entries: &[(String, &[u8])]) -> Result<Vec<u8>, String> {
@@ -39,7 +18,8 @@ pub fn stored(entries: &[(String, &[u8])]) -> Result<Vec<u8>, String> {
     let (time, date) = (0u16, (1u16 << 5) | 1);
     for (name, data) in entries {
         let offset = small(out.len(), "archive")?;
-        let (crc, size) = (crc32(data), small(data.len(), name)?);
+        // CRC-32 (IEEE 802.3), as the ZIP format requires
+        let (crc, size) = (crc32fast::hash(data), small(data.len(), name)?);
         let n = name.len() as u16;
         // local file header
         out.extend_from_slice(&0x0403_4b50u32.to_le_bytes());
