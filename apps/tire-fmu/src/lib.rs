@@ -34,7 +34,6 @@
 
 pub mod ffi;
 pub mod study;
-mod zip;
 
 pub use study::{FmuConfig, FmuSummary, find_library, fmu_summary};
 
@@ -344,6 +343,23 @@ pub fn platform() -> String {
     format!("{arch}-{sys}")
 }
 
+/// The ZIP archive (FMI 3.0 §2.5; PKWARE APPNOTE.TXT) of `entries` (name, bytes), stored
+/// uncompressed, written by the `zip` crate (ZIP64 records where an entry needs them).
+fn stored_zip(entries: &[(String, &[u8])]) -> Result<Vec<u8>, zip::result::ZipError> {
+    use std::io::Write;
+    let options =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    for (name, data) in entries {
+        w.start_file(
+            name.as_str(),
+            options.large_file(data.len() as u64 >= u32::MAX as u64),
+        )?;
+        w.write_all(data)?;
+    }
+    Ok(w.finish()?.into_inner())
+}
+
 /// Writes the FMU of the reduced tire `red` on the rig `rig` to `out` (a zip: FMI 3.0
 /// §2.5): `modelDescription.xml` ([`model_description`], the start values of the rig's
 /// steady start [`CoSimulation::rig_start`]), `binaries/<platform>/flowmbd_tire_fmu.<so|dylib|
@@ -380,7 +396,7 @@ pub fn write_fmu(
         (format!("resources/{TIRE_FILE}"), tire_json.as_bytes()),
         (format!("resources/{RIG_FILE}"), rig_toml.as_bytes()),
     ];
-    let bytes = zip::stored(&entries).map_err(write)?;
+    let bytes = stored_zip(&entries).map_err(|e| write(e.to_string()))?;
     tire::files::write_atomic(out, &bytes).map_err(write)?;
     Ok(start)
 }
