@@ -228,7 +228,13 @@ fn load(inertia: f64, torque: f64) -> Motion {
 }
 
 impl Default for FeadConfig {
-    /// The plausible passenger-car drive of the module documentation.
+    /// The plausible passenger-car drive of the module documentation, with Ribaric's contact
+    /// ([`BeltContact::ribaric`]: tanh friction (6.2) with κ = 40 s/m, the law its studies in
+    /// BENCHMARKS.md and README were measured with), not the belt drives' default friction
+    /// (`contact::friction::spec::DEFAULT_SLIP_VELOCITY`): the flowing model's Newton stalls on
+    /// this drive at `v_s` = 0.1 and 0.4 mm/s (t = 0.073 and 0.122 s of the first ramp, with
+    /// line search) and runs the default sweep at 1 mm/s (BENCHMARKS.md, "friction
+    /// regularisation").
     fn default() -> Self {
         let pulley = |name: &str, center: [f64; 2], radius: f64, side: WrapSide, motion: Motion| {
             Pulley::new(name, center, radius, side, motion)
@@ -294,7 +300,7 @@ impl Default for FeadConfig {
                 belt: Section::default(),
                 tension: Some(400.0),
                 belt_length: None,
-                contact: BeltContact::default(),
+                contact: BeltContact::ribaric(),
                 damping: BeltDamping::default(),
             },
             engine: EngineConfig::default(),
@@ -930,7 +936,14 @@ pub fn run_fead(
                 base.n_modes(),
                 1e3 * h
             );
-            sweep(cfg, base, &drive, linear_alpha(cfg), note, observer)
+            // Armijo line search: with a sharp friction law (the default v_s, issue 34 item 3)
+            // full Newton cycles between the saturated branches of tanh(v_t/v_s) at the first
+            // steps of the default drive
+            let alpha = AlphaConfig {
+                newton_line_search: true,
+                ..linear_alpha(cfg)
+            };
+            sweep(cfg, base, &drive, alpha, note, observer)
         }
         FeadModel::Nodal => {
             let base = NodalBelt::new(&drive, &m.nodal.mesh)

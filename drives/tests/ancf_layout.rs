@@ -12,35 +12,39 @@ fn ramp(to: f64, t: f64) -> Signal {
     Signal::schedule(vec![(0.0, 0.0), (t, to)])
 }
 
-/// Driver, idler (grooved side) and a loaded pulley on a triangle, Table 6-1 belt at 310 N.
+/// Driver, idler (grooved side) and a loaded pulley on a triangle, Table 6-1 belt at 310 N
+/// with Ribaric's contact (κ = 40 s/m).
 fn three_pulleys(load: f64) -> Layout {
-    Layout::new(
-        vec![
-            Pulley::new(
-                "driver",
-                [0.0, 0.0],
-                0.05,
-                WrapSide::Inside,
-                Motion::speed(ramp(20.0, 0.1)),
-            ),
-            Pulley::new(
-                "idler",
-                [0.15, 0.2],
-                0.03,
-                WrapSide::Inside,
-                Motion::idler(1e-4),
-            ),
-            Pulley::new(
-                "driven",
-                [0.3, 0.0],
-                0.05,
-                WrapSide::Inside,
-                Motion::load(0.002, ramp(load, 0.1)),
-            ),
-        ],
-        Section::default(),
-        310.0,
-    )
+    Layout {
+        contact: belt::BeltContact::ribaric(),
+        ..Layout::new(
+            vec![
+                Pulley::new(
+                    "driver",
+                    [0.0, 0.0],
+                    0.05,
+                    WrapSide::Inside,
+                    Motion::speed(ramp(20.0, 0.1)),
+                ),
+                Pulley::new(
+                    "idler",
+                    [0.15, 0.2],
+                    0.03,
+                    WrapSide::Inside,
+                    Motion::idler(1e-4),
+                ),
+                Pulley::new(
+                    "driven",
+                    [0.3, 0.0],
+                    0.05,
+                    WrapSide::Inside,
+                    Motion::load(0.002, ramp(load, 0.1)),
+                ),
+            ],
+            Section::default(),
+            310.0,
+        )
+    }
 }
 
 /// The ANCF belt of `layout` (resolved first) and the resolved drive.

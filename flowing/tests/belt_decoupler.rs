@@ -40,6 +40,7 @@ fn drive(speed: Signal, motion: Motion) -> belt::Drive {
         310.0,
     );
     l.pulleys[1].motion = motion;
+    l.contact = belt::BeltContact::ribaric();
     l.resolve().unwrap()
 }
 

@@ -35,7 +35,8 @@ pub enum FrictionSpec {
     TanhSlip {
         /// Friction coefficient `μ` \[-\].
         mu: f64,
-        /// Slip-velocity scale `v_s` \[m/s\].
+        /// Slip-velocity scale `v_s` \[m/s\] (default [`DEFAULT_SLIP_VELOCITY`]).
+        #[serde(default = "default_slip_velocity")]
         slip_velocity: f64,
     },
     /// [`Coulomb`]: set-valued, with stick (Ribaric §7.3, §8.4.3).
@@ -64,6 +65,41 @@ pub enum FrictionSpec {
     /// [`Frictionless`].
     #[serde(deserialize_with = "mbd_core::validate::unit_variant")]
     Frictionless,
+}
+
+/// Default slip-velocity scale `v_s` \[m/s\] of [`FrictionSpec::TanhSlip`] and of the belt
+/// drives' default contact (`belt::BeltContact::default`): `f_t = −μ tanh(v_t / v_s) |f_n|`
+/// (Ribaric (6.2) with `κ = 1/v_s`).
+///
+/// The regularised law lets the belt creep on the whole wrap at slip velocities of order
+/// `v_s`, on top of the creep of its stretch (`u ≈ v ΔT / EA`); the speed loss reaches its
+/// Coulomb limit (`v_s → 0`) when `v_s` is well below the wrap's creep scale
+/// `μ θ T v / EA` (24 mm/s on Ribaric's Table 6-1 at 62.8 rad/s, 0.1 m/s on the
+/// Pechstein–Gerstmayr drive). 0.05 mm/s (`κ` = 2·10⁴ s/m) is the convergence study's choice
+/// (BENCHMARKS.md, "friction regularisation"): on Table 6-1 at 62.8 rad/s the flowing model's
+/// speed loss lies within 1 % of its value at `v_s / 4` at 10 N·m (0.7 %) and at 30 N·m
+/// (0.8 %); Ribaric's κ = 40 s/m (`v_s` = 25 mm/s) gives 3.3 and 4.8 times the limit. The
+/// speed loss converges slowly (about as `v_s^0.7` at 20 N·m), so a larger default is not
+/// near the limit. The stiffer law costs Newton iterations and smaller steps: the ANCF belt on
+/// Table 6-1 needs 25 µs steps at this scale (0.1 ms at 0.1 mm/s), and a drive whose Newton
+/// stalls with it (the default six-pulley FEAD drive at 0.1 and 0.4 mm/s; on the
+/// Pechstein–Gerstmayr drive the ANCF belt at this scale and the flowing one with 20 mm
+/// elements at 0.05 and 0.2 mm/s) needs a larger `v_s` or Ribaric's κ.
+pub const DEFAULT_SLIP_VELOCITY: f64 = 5.0e-5;
+
+fn default_slip_velocity() -> f64 {
+    DEFAULT_SLIP_VELOCITY
+}
+
+impl FrictionSpec {
+    /// `μ tanh(v_t / v_s)` with the default scale [`DEFAULT_SLIP_VELOCITY`]
+    /// ([`FrictionSpec::TanhSlip`]).
+    pub fn tanh_slip(mu: f64) -> Self {
+        FrictionSpec::TanhSlip {
+            mu,
+            slip_velocity: DEFAULT_SLIP_VELOCITY,
+        }
+    }
 }
 
 macro_rules! dispatch {
@@ -216,6 +252,15 @@ mod tests {
         assert!(
             (a.force - b.force).abs() < 1e-12 * b.force.abs(),
             "{a:?} {b:?}"
+        );
+        // without `slip_velocity` the default scale (by hand: the constant)
+        let s: FrictionSpec = serde_json::from_str(r#"{"law":"tanh_slip","mu":1.2}"#).unwrap();
+        assert_eq!(
+            s,
+            FrictionSpec::TanhSlip {
+                mu: 1.2,
+                slip_velocity: DEFAULT_SLIP_VELOCITY
+            }
         );
         let bad = FrictionSpec::Stribeck {
             mu_static: 0.5,

@@ -60,6 +60,8 @@ pub fn four_pulleys(load: f64) -> Layout {
         inertia: 2e-3,
         travel: [-1.6, -0.8],
     });
+    // Ribaric's κ = 40 s/m, the law these tests were measured with (not the default friction)
+    layout.contact = belt::BeltContact::ribaric();
     layout
 }
 
@@ -81,33 +83,36 @@ pub fn four_pulleys_settings() -> FlowingSettings {
 /// Driver (R 50 mm) and driven (R 50 mm, J of Table 6-1) 0.3 m apart, an idler (R 30 mm)
 /// below them closing a triangle; the Table 6-1 belt, contact and damping at 310 N.
 pub fn triangle() -> Layout {
-    Layout::new(
-        vec![
-            Pulley::new(
-                "driver",
-                [0.0, 0.0],
-                0.05,
-                WrapSide::Inside,
-                Motion::speed(Signal::constant(0.0)),
-            ),
-            Pulley::new(
-                "driven",
-                [0.3, 0.0],
-                0.05,
-                WrapSide::Inside,
-                Motion::load(0.013, Signal::constant(0.0)),
-            ),
-            Pulley::new(
-                "idler",
-                [0.15, -0.2],
-                0.03,
-                WrapSide::Inside,
-                Motion::idler(5e-4),
-            ),
-        ],
-        Section::default(),
-        310.0,
-    )
+    Layout {
+        contact: belt::BeltContact::ribaric(),
+        ..Layout::new(
+            vec![
+                Pulley::new(
+                    "driver",
+                    [0.0, 0.0],
+                    0.05,
+                    WrapSide::Inside,
+                    Motion::speed(Signal::constant(0.0)),
+                ),
+                Pulley::new(
+                    "driven",
+                    [0.3, 0.0],
+                    0.05,
+                    WrapSide::Inside,
+                    Motion::load(0.013, Signal::constant(0.0)),
+                ),
+                Pulley::new(
+                    "idler",
+                    [0.15, -0.2],
+                    0.03,
+                    WrapSide::Inside,
+                    Motion::idler(5e-4),
+                ),
+            ],
+            Section::default(),
+            310.0,
+        )
+    }
 }
 
 /// A uniform mesh of element length `h` \[m\] on spans and wraps (the rotating mesh needs it)

@@ -711,6 +711,7 @@ pub(crate) mod tests {
             ),
         ];
         let mut layout = Layout::new(pulleys, Section::default(), 310.0);
+        layout.contact = belt::BeltContact::ribaric();
         layout.tensioner = Some(Tensioner {
             pulley: 2,
             pivot: [0.14, 0.04],

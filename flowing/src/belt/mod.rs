@@ -29,20 +29,12 @@ pub use nodal::NodalBelt;
 pub use snapshot::LINEAR_FORCE_MEASURE;
 
 /// Ribaric Table 6-1's drive for the tests: driver at 0 (speed `speed` \[rad/s\]), driven
-/// free with 0.013 kg m² against `load` \[N m\], T0 = 310 N.
+/// free with 0.013 kg m² against `load` \[N m\], T0 = 310 N, Ribaric's contact (κ = 40 s/m).
 #[cfg(test)]
 pub(crate) fn table_6_1(speed: f64, load: f64) -> belt::Drive {
-    use belt::{Layout, Section, Signal};
-    Layout::two_pulley(
-        0.45,
-        0.05,
-        0.05,
-        Signal::constant(speed),
-        0.013,
-        Signal::constant(load),
-        Section::default(),
-        310.0,
-    )
-    .resolve()
-    .unwrap()
+    use belt::{Layout, Signal};
+    let mut l = Layout::table_6_1();
+    l.pulleys[0].motion = belt::Motion::speed(Signal::constant(speed));
+    l.pulleys[1].motion = belt::Motion::load(0.013, Signal::constant(load));
+    l.resolve().unwrap()
 }
