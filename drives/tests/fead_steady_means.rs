@@ -87,9 +87,9 @@ fn flowing_and_nodal_steady_means_agree_at_800_rpm() {
 // opposite directions (module documentation). Measured 2026-12-05: flowing 307.3, 331.9,
 // (458.8), 440.6, 459.7, 542.0 N against nodal 298.6, 324.9, (404.9), 437.9, 461.3, 543.7 N
 // (+2.9 % the largest), the ends' tension 440 against 435 N (+1.1 %).
-// Heavy: the nodal sweep's three points take about 2 min of CPU in release.
+// Heavy: 157 s of CPU in release with the flowing sweep (2026-12-05, passed).
 #[test]
-#[ignore = "heavy: about 3 min of CPU (nodal sweep 800 → 1500 → 2500 rpm)"]
+#[ignore = "heavy: about 2.6 min of CPU (nodal sweep 800 → 1500 → 2500 rpm)"]
 fn flowing_and_nodal_steady_means_agree_at_2500_rpm() {
     let mut cfg = refined(&[800.0, 1500.0, 2500.0]);
     if let Some(t) = cfg.drive.tensioner.as_mut() {
