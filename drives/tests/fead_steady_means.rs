@@ -8,10 +8,13 @@
 //! does not separate the models (without it both move by at most 1 %: the engine orders keep
 //! the arm sliding both ways at every speed). What does: the flowing model's default loop
 //! (50 mm span elements, 12 free modes) is not converged at high belt speed (with a steady
-//! crank at 3500 rpm it oscillates on its own), and the 57 mm alternator → tensioner span's
-//! middle-half mean departs from the tension its two ends balance, in opposite directions in
-//! the two models (flowing +20 N, nodal −33 N at 2500 rpm), while the tension implied by the
-//! ends agrees within 2 %.
+//! crank at 3500 rpm it oscillates on its own), most of all on the 57 mm alternator →
+//! tensioner span: its middle-half mean departs from the tension its two ends balance (on the
+//! 12 mm loop in opposite directions in the two models, flowing +20 N, nodal −33 N at
+//! 2500 rpm, while the tension implied by the ends agrees within 2 %). On a 6 mm loop the
+//! flowing span falls to 404.0 N (steady crank, 2500 rpm), below its ends as the nodal
+//! model's, and every span agrees with the nodal model within 3 % (not run here: 205 s of
+//! CPU).
 
 use drives::fead::{EngineOrder, FeadConfig, FeadModel, FeadPoint, run_fead};
 
