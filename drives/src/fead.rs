@@ -564,9 +564,74 @@ pub struct FeadPoint {
     /// Length of the reported window \[s\]: whole periods of the lowest engine order
     /// ([`steady_window`]).
     pub window_s: f64,
+    /// How the tensioner arm moved through its dry friction in the window (`None`: no
+    /// tensioner, or no dry friction at its pivot): [`ArmFriction`].
+    pub arm_friction: Option<ArmFriction>,
     /// Every decoupled accessory (pulley order; empty without decouplers).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub decouplers: Vec<FeadDecoupler>,
+}
+
+/// The tensioner arm's motion through its dry friction over one window (issue 34 item 6).
+///
+/// The pivot's dry friction is the regularised Coulomb law `M_f = −M_c tanh(θ̇/ω_f)`
+/// ([`belt::Tensioner::dry_friction`], Ribaric (6.2)): below the rate `ω_f` (`friction_rate`)
+/// the arm is in the law's stick band, where the moment follows the rate instead of holding
+/// `±M_c`. An arm that slides both ways in a window (`θ̇ > ω_f` and `θ̇ < −ω_f`, dithered by the
+/// engine orders) has its mean set by the balance of spring and belt moments, whatever the
+/// history: the friction's moment averages out. An arm that does not can be held by its
+/// friction near where the ramp left it, up to `M_c` of unbalanced moment (`M_c / k` of arm
+/// angle, 67 mrad on the default drive), so the window means can depend on how the point was
+/// reached, and the settle criterion ([`FeadRun::steady_tolerance`]) cannot see it (a held arm
+/// is steady, or creeps at below `ω_f`). The flag is a bound, not a measured spread: the
+/// regularised law lets a held arm creep towards the balance (on the default drive with a
+/// steady crank, 1500 rpm reached from 800 and from 2500 rpm gives the same arm angle within
+/// 0.01 mrad: BENCHMARKS.md, issue 34 item 6). On the default drive with its engine orders the
+/// arm slides both ways at every speed of the sweep (never held).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ArmFriction {
+    /// Fraction of the window's steps in which the arm turned slower than `friction_rate`
+    /// (`|θ̇| ≤ ω_f`, the rate from consecutive steps' arm angles) \[-\].
+    pub stick_fraction: f64,
+    /// Fastest arm rate of the window, each way: `[most negative, most positive]` \[rad/s\].
+    pub rate_range: [f64; 2],
+    /// Whether the arm did not slide both ways (no step with `θ̇ > ω_f`, or none with
+    /// `θ̇ < −ω_f`): its dry friction holds it, and the point's means depend on the ramp
+    /// history (not unique).
+    pub held: bool,
+}
+
+/// The arm rate's samples of one window ([`ArmFriction`]).
+#[derive(Debug, Clone, Default)]
+struct ArmRateAcc {
+    previous: Option<f64>,
+    slow: usize,
+    n: usize,
+    range: [f64; 2],
+}
+
+impl ArmRateAcc {
+    /// Adds the arm angle `angle` \[rad\] of the next step of `h` \[s\]; the rate is counted
+    /// against the friction rate `rate` \[rad/s\].
+    fn add(&mut self, angle: f64, h: f64, rate: f64) {
+        if let Some(a0) = self.previous.replace(angle) {
+            let w = (angle - a0) / h;
+            if self.n == 0 {
+                self.range = [w, w];
+            }
+            self.range = [self.range[0].min(w), self.range[1].max(w)];
+            self.slow += usize::from(w.abs() <= rate);
+            self.n += 1;
+        }
+    }
+
+    fn get(&self, rate: f64) -> Option<ArmFriction> {
+        (self.n > 0).then(|| ArmFriction {
+            stick_fraction: self.slow as f64 / self.n as f64,
+            rate_range: self.range,
+            held: !(self.range[0] < -rate && self.range[1] > rate),
+        })
+    }
 }
 
 /// The observation window at the crank speed `omega` \[rad/s\] with the step `h` \[s\]:
@@ -594,6 +659,7 @@ pub fn steady_window(engine: &EngineConfig, window: f64, omega: f64, h: f64) -> 
 /// Samples of one observation window.
 struct WindowAcc {
     arm: Acc,
+    arm_rate: ArmRateAcc,
     tens: Vec<Acc>,
     speed: Vec<Acc>,
     slip: Vec<Acc>,
@@ -622,6 +688,7 @@ impl WindowAcc {
     fn new(pulleys: usize, spans: usize) -> Self {
         Self {
             arm: Acc::default(),
+            arm_rate: ArmRateAcc::default(),
             tens: vec![Acc::default(); spans],
             speed: vec![Acc::default(); pulleys],
             slip: vec![Acc::default(); pulleys],
@@ -715,7 +782,14 @@ with the computed span tension and belt speed, to be read against the engine ord
 Campbell diagram: a span resonates where an order line crosses its frequency). A point where a \
 span's tension dips below 10 % of the installed tension, or a wrap slips as a whole, leaves the \
 linearised (flowing, nodal) model's range: its `linearisation` says why and its numbers only \
-show how the limit was left (the ANCF belt is not linearised: never flagged). The defaults are a plausible drive, not one published engine (see drives::fead).";
+show how the limit was left (the ANCF belt is not linearised: never flagged). With dry friction \
+at the tensioner's pivot, `arm_friction` gives the fraction of the window's steps in which the \
+arm turned slower than the friction's regularisation rate (friction_rate: the stick band), its \
+fastest rates each way, and `held` = true when the arm did not slide both ways in the window: \
+the friction can then hold it near where the ramp left it (by up to dry_friction / stiffness of \
+arm angle), so the point's means can depend on how it was reached (another sweep history may \
+give other means) although the windows agree; an arm that slides both ways has means set by the \
+moment balance alone. The defaults are a plausible drive, not one published engine (see drives::fead).";
 
 /// The summary's `meaning` for `drive`: its pulleys in travel order with their roles (the
 /// crank, loaded accessories, idlers, the tensioner's idler), then [`FEAD_MEANING`].
@@ -1012,6 +1086,10 @@ fn sweep<M: BeltModel>(
     let spans = drive.spans();
     let rho = drive.belt().mass_per_length;
     let radii: Vec<f64> = drive.pulleys().iter().map(|p| p.radius).collect();
+    // the tensioner's dry friction, if any (ArmFriction)
+    let (dry, friction_rate) = drive.arm().map_or((false, f64::INFINITY), |a| {
+        (a.tensioner.dry_friction > 0.0, a.tensioner.friction_rate)
+    });
     let mut summary = FeadSummary {
         installed_tension: drive.tension(),
         belt_length: drive.belt_length(),
@@ -1090,6 +1168,8 @@ fn sweep<M: BeltModel>(
         let (w, steady, window_start) = loop {
             let window_start = sim.state().t;
             let mut w = WindowAcc::new(names.len(), spans.len());
+            // the arm rate from the window's first step on (ArmFriction)
+            w.arm_rate.previous = sim.model().arm_angle(&sim.state().q);
             for i in 0..per_window {
                 sim.step().map_err(|e| fail(e, &summary))?;
                 summary.steps += 1;
@@ -1101,6 +1181,7 @@ fn sweep<M: BeltModel>(
                 });
                 if let Some(a) = sim.model().arm_angle(&st.q) {
                     w.arm.add(a);
+                    w.arm_rate.add(a, h, friction_rate);
                 }
                 w.vbelt.add(sim.model().belt_speed(&st.q, &st.v));
                 for (k, d) in w.dec.iter_mut().enumerate() {
@@ -1148,6 +1229,7 @@ fn sweep<M: BeltModel>(
         };
         let WindowAcc {
             arm,
+            arm_rate,
             tens,
             speed,
             slip,
@@ -1221,6 +1303,7 @@ fn sweep<M: BeltModel>(
             steady,
             settled_s: window_start - cfg.run.ramp,
             window_s,
+            arm_friction: dry.then(|| arm_rate.get(friction_rate)).flatten(),
             decouplers: dec
                 .iter()
                 .enumerate()

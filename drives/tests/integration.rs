@@ -7,6 +7,7 @@ mod common;
 mod crank_trace;
 mod fead_design;
 mod fead_meaning;
+mod fead_steady_means;
 mod fead_sweep;
 mod friction_default;
 mod issue35_inputs;
