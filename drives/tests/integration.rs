@@ -12,4 +12,5 @@ mod issue35_inputs;
 mod layout;
 mod layout_nodal;
 mod partial_rules;
+mod ribs;
 mod simulation;
