@@ -27,6 +27,7 @@ use crate::path::{BeltPath, SpanLine};
 use crate::pulley::Pulley;
 use crate::section::{BeltContact, BeltDamping, Section};
 use crate::tensioner::{Tensioner, cross};
+use contact::friction::{FrictionLaw, FrictionSpec};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
@@ -420,6 +421,42 @@ impl Drive {
     /// The belt–pulley contact.
     pub fn contact(&self) -> &BeltContact {
         &self.layout.contact
+    }
+
+    /// The friction law of the belt on pulley `pulley` (travel order): the contact's law with
+    /// `μ` scaled by the section's factor for the pulley's wrap side,
+    /// `μ/sin(β/2)` where a multi-ribbed belt runs its ribs in a grooved pulley
+    /// ([`crate::pulley::WrapSide::Inside`]) and `μ` on a flat back-side pulley or for a flat
+    /// belt ([`Section::friction_factor`], [`FrictionSpec::scaled`]; Johnson, *Contact
+    /// Mechanics* §8.6). The one place the per-pulley law is made: every time-stepped model
+    /// contacts pulley `pulley` with it, the report measures its friction utilisation against
+    /// its `μ`, and the design study's capacity check uses the same `μ`.
+    ///
+    /// # Panics
+    /// `pulley` is not a pulley of the drive.
+    pub fn wrap_friction_law(&self, pulley: usize) -> FrictionSpec {
+        let side = self.layout.pulleys[pulley].side;
+        self.layout
+            .contact
+            .friction
+            .scaled(self.layout.belt.friction_factor(side))
+    }
+
+    /// [`Self::wrap_friction_law`] of every pulley, travel order.
+    pub fn wrap_friction_laws(&self) -> Vec<FrictionSpec> {
+        (0..self.layout.pulleys.len())
+            .map(|k| self.wrap_friction_law(k))
+            .collect()
+    }
+
+    /// The friction coefficient `μ` of every pulley's wrap, travel order
+    /// ([`Self::wrap_friction_law`], [`FrictionLaw::coefficient`]: the largest one of a
+    /// Stribeck law).
+    pub fn wrap_friction_coefficients(&self) -> Vec<f64> {
+        self.wrap_friction_laws()
+            .iter()
+            .map(FrictionLaw::coefficient)
+            .collect()
     }
 
     /// The belt's damping.

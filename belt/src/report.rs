@@ -7,7 +7,9 @@
 //! Definitions (one set for all models):
 //!
 //! * **friction utilisation** `u = |f|/(μ p)` at a point (`f` friction, `p` pressure, both per
-//!   unit length, `μ` the law's coefficient, [`FrictionLaw::coefficient`]);
+//!   unit length, `μ` the coefficient of the law on that pulley's wrap,
+//!   [`FrictionLaw::coefficient`] of [`Drive::wrap_friction_law`]: `μ/sin(β/2)` on the grooved
+//!   pulleys of a multi-ribbed belt);
 //! * **contact arc**: from the first to the last point in contact; each point stands for the
 //!   angular cell halfway to its neighbours;
 //! * **slip arc** `φ_slip = ∫ u dθ` over the contact arc: the arc over which a Coulomb belt
@@ -188,15 +190,20 @@ fn wrap_arcs(on: &[&WrapPoint], mu: f64) -> [f64; 6] {
 }
 
 impl Report {
-    /// The report of `snap` of a model of `drive`, with the friction coefficient `mu` of the
-    /// contact law.
-    pub fn new(drive: &Drive, snap: &Snapshot, mu: f64) -> Self {
-        Self::of(drive.pulleys(), snap, mu)
+    /// The report of `snap` of a model of `drive`, with the friction coefficient of each
+    /// pulley's wrap ([`Drive::wrap_friction_coefficients`]: `μ/sin(β/2)` on the grooved
+    /// pulleys of a multi-ribbed belt, the law the models contact that pulley with).
+    pub fn new(drive: &Drive, snap: &Snapshot) -> Self {
+        Self::of(drive.pulleys(), snap, &drive.wrap_friction_coefficients())
     }
 
     /// The report of `snap` of a belt running over `pulleys` (names, roles and belt-line radii
-    /// taken from them), with the friction coefficient `mu` of the contact law.
-    pub fn of(pulleys: &[crate::pulley::Pulley], snap: &Snapshot, mu: f64) -> Self {
+    /// taken from them), with the friction coefficient `mu[k]` of the law on pulley `k`'s wrap
+    /// (travel order; one per pulley).
+    ///
+    /// # Panics
+    /// `mu` has fewer entries than `snap` has pulleys.
+    pub fn of(pulleys: &[crate::pulley::Pulley], snap: &Snapshot, mu: &[f64]) -> Self {
         let names: Vec<String> = pulleys.iter().map(|p| p.name.clone()).collect();
         let roles: Vec<Role> = pulleys.iter().map(|p| p.motion.role()).collect();
         let radius: Vec<f64> = pulleys.iter().map(|p| p.radius).collect();
@@ -235,7 +242,7 @@ impl Report {
                     .filter(|w| w.pulley == k && w.pressure > 0.0)
                     .collect();
                 on.sort_by(|a, b| a.angle.total_cmp(&b.angle));
-                let [arc, slip_arc, saturated, vmax, vmean, sliding] = wrap_arcs(&on, mu);
+                let [arc, slip_arc, saturated, vmax, vmean, sliding] = wrap_arcs(&on, mu[k]);
                 let ((t_in, l_in), (t_out, l_out)) =
                     (span_t(&|s| s.to == k, k), span_t(&|s| s.from == k, k));
                 let span_torque = t_out * l_out - t_in * l_in;
@@ -496,9 +503,12 @@ mod tests {
     /// A string on the driven pulley of a two-pulley drive: saturated friction on the last
     /// `phi_slip` of a π wrap (Coulomb slip arc) and none before; spans, pulley torques and
     /// hub loads of the string's statics.
-    fn capstan_snapshot(mu: f64, phi_slip: f64) -> (Drive, Snapshot, f64, f64) {
+    ///
+    /// The drive's contact law is the tanh law with `mu`, or with `ribs` (wedge angle) the law
+    /// whose grooved wraps hold `mu`: `μ = mu · sin(β/2)`.
+    fn capstan_snapshot(mu: f64, phi_slip: f64, ribs: Option<f64>) -> (Drive, Snapshot, f64, f64) {
         let (r, t_out) = (0.05, 100.0);
-        let drive = Layout::two_pulley(
+        let mut layout = Layout::two_pulley(
             0.45,
             r,
             r,
@@ -507,9 +517,16 @@ mod tests {
             Signal::constant(1.0),
             Section::default(),
             300.0,
-        )
-        .resolve()
-        .unwrap();
+        );
+        layout.belt.ribs = ribs.map(|b| crate::Ribs {
+            count: 6,
+            wedge_angle: b,
+        });
+        layout.contact.friction = contact::friction::FrictionSpec::Tanh {
+            mu: mu * ribs.map_or(1.0, |b| (0.5 * b).sin()),
+            kappa: 40.0,
+        };
+        let drive = layout.resolve().unwrap();
         let n = 2001;
         let pi = std::f64::consts::PI;
         let dphi = pi / (n - 1) as f64;
@@ -581,8 +598,8 @@ mod tests {
     #[test]
     fn arcs_and_balances_of_a_capstan_wrap() {
         let (mu, phi_slip) = (0.5, 2.0);
-        let (drive, snap, t_in, t_out) = capstan_snapshot(mu, phi_slip);
-        let rep = Report::new(&drive, &snap, mu);
+        let (drive, snap, t_in, t_out) = capstan_snapshot(mu, phi_slip, None);
+        let rep = Report::new(&drive, &snap);
         let p = &rep.pulleys[1];
         let (pi, dphi) = (std::f64::consts::PI, std::f64::consts::PI / 2000.0);
         assert!((p.contact_arc_rad - pi).abs() < 1e-12);
@@ -626,8 +643,34 @@ mod tests {
     // arc)
     #[test]
     fn a_fully_sliding_wrap_is_gross_slip() {
-        let (drive, snap, _, _) = capstan_snapshot(0.5, std::f64::consts::PI);
-        let rep = Report::new(&drive, &snap, 0.5);
+        let (drive, snap, _, _) = capstan_snapshot(0.5, std::f64::consts::PI, None);
+        let rep = Report::new(&drive, &snap);
         assert_eq!(rep.gross_slip(), Some(1));
+    }
+
+    // Ribs: the report measures a grooved wrap's utilisation against μ/sin(β/2) (Johnson
+    // §8.6), the μ of the law the models contact it with. A string saturated over the last
+    // 1.5 rad with μ' = 0.9 builds e^{0.9·1.5} (Euler–Eytelwein with μ'): the report of the
+    // ribbed drive (contact law μ = 0.9 sin 20°) finds slip arc 1.5 rad = ln(T_in/T_out)/μ',
+    // and a sliding point's utilisation 1 (against the flat μ it would be 1/sin 20° = 2.92).
+    #[test]
+    fn a_ribbed_wrap_is_measured_against_its_wedge_coefficient() {
+        let (mu_eff, phi_slip, beta) = (0.9, 1.5, 40f64.to_radians());
+        let (drive, snap, t_in, t_out) = capstan_snapshot(mu_eff, phi_slip, Some(beta));
+        let mu = drive.wrap_friction_coefficients();
+        assert!((mu[1] - mu_eff).abs() < 1e-12, "{mu:?}");
+        let rep = Report::new(&drive, &snap);
+        let p = &rep.pulleys[1];
+        let dphi = std::f64::consts::PI / 2000.0;
+        assert!(
+            (p.slip_arc_rad - phi_slip).abs() < 2.0 * dphi,
+            "{}",
+            p.slip_arc_rad
+        );
+        assert!(((t_in / t_out).ln() / mu_eff - p.slip_arc_rad).abs() < 2.0 * dphi);
+        assert_eq!(rep.gross_slip(), None);
+        let last = snap.wrap.last().unwrap();
+        assert!((last.utilisation(mu[1]) - 1.0).abs() < 1e-12);
+        assert!((mu[0] - mu_eff).abs() < 1e-12, "both wraps grooved");
     }
 }

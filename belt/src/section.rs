@@ -21,9 +21,15 @@
 //! raises the normal force on the flanks by `1/sin(β/2)`, so the belt transmits as a flat belt
 //! of friction coefficient `μ/sin(β/2)` on grooved pulleys and `μ` on flat ones
 //! ([`Section::friction_factor`]; Johnson, *Contact Mechanics* §8.6; ISO 9981 and SAE J1459
-//! give `β = 40°` for the PK profile). The time-stepped belt models contact the belt-line
-//! radius as a flat belt with the contact law's `μ`; the ribs enter the steady design study's
-//! capacity check (`drives::fead_design`).
+//! give `β = 40°` for the PK profile). [`crate::Drive::wrap_friction_law`] makes that law per
+//! pulley, once: the contact law with `μ` scaled by [`Section::friction_factor`]
+//! (`contact::friction::FrictionSpec::scaled`). Every time-stepped belt model (flowing, nodal,
+//! planar ANCF) contacts each pulley's belt-line radius as a flat belt with that pulley's law,
+//! the report ([`crate::Report`]) measures friction utilisation and slip arcs against that
+//! pulley's `μ`, and the steady design study's capacity check (`drives::fead_design`) uses the
+//! same coefficients, so the design study and the simulations cannot disagree. The rib count
+//! enters the per-rib loads of the design study only; the section's `EA` and `ρA` are the
+//! whole belt's.
 //!
 //! Both agree to first order (`N ≈ EA (λ − 1)` at small strain) and differ by `3/2 (λ − 1)`
 //! relative at finite strain: 7.6 % at 5 %. Every model reports, mounts to and plots the force

@@ -335,6 +335,32 @@ impl<S, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
         Dim<D>: ContactDim<D>,
         S: Surface<D>,
     {
+        self.element_on_with(
+            surface,
+            &self.friction,
+            length,
+            blocks,
+            shape,
+            e,
+            edot,
+            jacobian,
+            out,
+            records,
+        );
+    }
+
+    /// As [`LineContact::element_on`] with the friction law `friction` instead of
+    /// `self.friction` (an obstacle with a friction law of its own, e.g. the grooved pulleys of
+    /// a multi-ribbed belt, without rebuilding the pairing).
+    #[allow(clippy::too_many_arguments)]
+    pub fn element_on_with<const D: usize>(
+        &self, surface: &S, friction: &FL, length: f64, blocks: usize,
+        shape: impl Fn(f64, &mut [f64]), e: &[f64], edot: &[f64], jacobian: bool,
+        out: &mut ElementContact<D>, records: Option<&mut Vec<ContactRecord<D>>>,
+    ) where
+        Dim<D>: ContactDim<D>,
+        S: Surface<D>,
+    {
         debug_assert!(blocks <= MAX_BLOCKS && out.ndof == D * blocks);
         let points = self.rule.iter().map(|(xi, wq)| {
             let mut s = BlockShape {
@@ -360,7 +386,7 @@ impl<S, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
         element_contact(
             surface,
             &self.normal,
-            &self.friction,
+            friction,
             points,
             jacobian,
             out,

@@ -2,7 +2,6 @@
 //! and the Euler–Eytelwein capacity of the two-pulley drive.
 
 use belt::Drive;
-use contact::friction::FrictionLaw;
 
 /// Angular speed loss of Bechtel et al., Ribaric (6.3):
 /// `Δω = (1 − (2RT0 − M_p + 2Rk)/(2RT0 + M_p + 2Rk)) ω = 2 M_p ω / (2R(T0 + k) + M_p)` \[rad/s\],
@@ -29,6 +28,18 @@ pub fn bechtel(d: &Drive, torque: f64, omega: f64) -> f64 {
     )
 }
 
+/// The friction coefficient of both wraps of the two-pulley drive `d` (driver first, no
+/// tensioner): [`Drive::wrap_friction_law`]'s `μ` (`μ/sin(β/2)` for a multi-ribbed belt in
+/// grooved pulleys); `None` for other drives or if the two wraps' coefficients differ (the
+/// closed forms below take one `μ`).
+fn two_pulley_mu(d: &Drive) -> Option<f64> {
+    if d.pulleys().len() != 2 || d.driver() != Some(0) || d.arm().is_some() {
+        return None;
+    }
+    let mu = d.wrap_friction_coefficients();
+    (mu[0] == mu[1]).then_some(mu[0])
+}
+
 /// Largest load torque \[N·m\] friction lets the two-pulley drive `d` (driver first) transmit
 /// at driver speed `omega` \[rad/s\] (Euler–Eytelwein capacity of a fixed-centre drive; `NaN`
 /// for other layouts).
@@ -46,10 +57,9 @@ pub fn bechtel(d: &Drive, torque: f64, omega: f64) -> f64 {
 /// tension profile over the wraps averages below the span tensions).
 pub fn euler_eytelwein_capacity(d: &Drive, omega: f64) -> f64 {
     let path = d.path();
-    if path.pulleys().len() != 2 || d.driver() != Some(0) || d.arm().is_some() {
+    let Some(mu) = two_pulley_mu(d) else {
         return f64::NAN;
-    }
-    let mu = d.contact().friction.coefficient();
+    };
     let radii = [path.pulleys()[0].radius, path.pulleys()[1].radius];
     let wraps = [0, 1].map(|k| path.wrap_angle(k).unwrap_or(f64::NAN));
     let phi_min = wraps[0].min(wraps[1]);
@@ -112,10 +122,7 @@ fn penalty_penetration(d: &Drive, p: f64) -> f64 {
 /// first, without a tensioner.
 pub fn penetrating_string(d: &Drive, omega: f64, torque: f64) -> Option<PenetratingString> {
     let path = d.path();
-    if path.pulleys().len() != 2 || d.driver() != Some(0) || d.arm().is_some() {
-        return None;
-    }
-    let mu = d.contact().friction.coefficient();
+    let mu = two_pulley_mu(d)?;
     let radii = [path.pulleys()[0].radius, path.pulleys()[1].radius];
     let wraps = [0, 1].map(|k| path.wrap_angle(k).unwrap_or(f64::NAN));
     let v = omega * radii[0];

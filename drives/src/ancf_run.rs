@@ -408,22 +408,23 @@ pub struct StudyEnd<S, H = ()> {
     pub failure: Option<String>,
     /// The contact points of every wrap at the last state ([`belt::WrapPoint`]).
     pub wrap: Vec<WrapPoint>,
-    /// Coefficient μ of the friction law (for the points' utilisation).
-    pub friction_coefficient: f64,
+    /// Coefficient μ of the friction law on each pulley's wrap, travel order (for the points'
+    /// utilisation).
+    pub friction_coefficients: Vec<f64>,
     /// The study's own histories at the history samples (none for the planar drive).
     pub history: H,
 }
 
 impl<S, H> StudyEnd<S, H> {
-    /// The end of the reported run `end` (friction coefficient `mu`) with its summary and the
-    /// study's histories.
-    pub fn of(end: ReportedRun, summary: S, mu: f64, history: H) -> Self {
+    /// The end of the reported run `end` (friction coefficient `mu[k]` on pulley `k`'s wrap)
+    /// with its summary and the study's histories.
+    pub fn of(end: ReportedRun, summary: S, mu: Vec<f64>, history: H) -> Self {
         Self {
             state: end.run.state,
             summary,
             failure: end.run.failure,
             wrap: end.wrap,
-            friction_coefficient: mu,
+            friction_coefficients: mu,
             history,
         }
     }
@@ -472,12 +473,12 @@ pub struct ReportedRun {
 }
 
 /// [`run_drive`] of either ANCF drive from rest at `q0` as `plan` says, reporting the drive
-/// at the last state ([`EndReport`], friction utilisation against `mu`) with each span's
+/// at the last state ([`EndReport`], friction utilisation against `mu[k]` on pulley `k`) with each span's
 /// vibration amplitude, half the peak-to-peak of its mid-point offset
 /// ([`AncfDrive::span_offsets`]) at the history samples of the last [`VIBRATION_WINDOW`].
 /// A snapshot that cannot be taken at the end is reported as the run's failure.
 pub fn run_reported<D: AncfDrive, E>(
-    drive: &D, q0: &[f64], plan: RunPlan<'_>, mu: f64,
+    drive: &D, q0: &[f64], plan: RunPlan<'_>, mu: &[f64],
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<ReportedRun, E> {
     let RunPlan {

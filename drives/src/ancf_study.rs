@@ -189,8 +189,10 @@ pub fn dynamic_run<E>(
     let (driver, _) = roles(drive);
     let (tight, slack) = tight_slack(drive, driver);
     let mut last_tensions = post::span_tensions(drive, &init.q);
-    let mu = drive.spec().contact.friction.coefficient();
-    let mut end = run_reported(drive, &init.q, c.plan(), mu, |s, due| {
+    let mu: Vec<f64> = (0..drive.spec().pulleys.len())
+        .map(|p| drive.friction_law(p).coefficient())
+        .collect();
+    let mut end = run_reported(drive, &init.q, c.plan(), &mu, |s, due| {
         if due.history {
             last_tensions = post::span_tensions(drive, &s.q);
         }

@@ -90,7 +90,6 @@ use belt::{
     BeltContact, BeltDamping, BeltModel, Drive, Harmonic, Layout, Motion, Pulley, Report, Section,
     Shape, Signal, Tensioner, WrapSide,
 };
-use contact::friction::FrictionLaw;
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, State};
@@ -1082,7 +1081,6 @@ fn sweep<M: BeltModel>(
     mut observer: impl FnMut(FeadProgress),
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     let names = drive.names();
-    let mu = drive.contact().friction.coefficient();
     let spans = drive.spans();
     let rho = drive.belt().mass_per_length;
     let radii: Vec<f64> = drive.pulleys().iter().map(|p| p.radius).collect();
@@ -1210,7 +1208,7 @@ fn sweep<M: BeltModel>(
                             a.add(s.tension);
                         }
                     }
-                    w.reports.push(Report::new(drive, &snap, mu));
+                    w.reports.push(Report::new(drive, &snap));
                 }
             }
             let means = w.means();
@@ -1243,7 +1241,7 @@ fn sweep<M: BeltModel>(
             let snap = model
                 .snapshot(st.t, &st.q, &st.v)
                 .map_err(|e| fail(e, &summary))?;
-            reports.push(Report::new(drive, &snap, mu));
+            reports.push(Report::new(drive, &snap));
         }
         let report = Report::mean(&reports).unwrap_or_else(|| reports[0].clone());
         let slipping = report.gross_slip();

@@ -345,9 +345,10 @@ pub fn plate_run<E>(
     mut observer: impl FnMut(&State, Due) -> Result<(), E>,
 ) -> Result<PlateEnd, E> {
     let (driver, driven) = roles(drive);
-    let mu = c.drive.contact.friction.coefficient();
+    // the plate belt has one friction law on every pulley
+    let mu = vec![c.drive.contact.friction.coefficient(); c.drive.pulleys.len()];
     let mut history: Vec<[f64; 4]> = Vec::new();
-    let mut end = run_reported(drive, &init.q, c.plan(), mu, |s, due| {
+    let mut end = run_reported(drive, &init.q, c.plan(), &mu, |s, due| {
         let wd = drive.pulley_speed(driver, s.t, &s.v);
         let (wn, tau) = match driven {
             Some(p) => (

@@ -33,7 +33,6 @@ use crate::ancf_model::AncfBelt;
 use crate::speed_loss::STEP_SUBDIVISIONS;
 use crate::study::{AnyModel, ModelKind, ModelSettings};
 use belt::{BeltModel, Layout, Motion, Report, Signal};
-use contact::friction::FrictionLaw;
 use flowing::belt::{FlowingBelt, NodalBelt};
 use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stats, Stepper};
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -137,8 +136,7 @@ impl<M: BeltModel, B: BorrowMut<M>> BeltSimulation<M, B> {
         let s = self.stepper.state();
         let model = self.model();
         let snap = model.snapshot(s.t, &s.q, &s.v)?;
-        let mu = model.drive().contact().friction.coefficient();
-        Ok(Report::new(model.drive(), &snap, mu))
+        Ok(Report::new(model.drive(), &snap))
     }
 }
 

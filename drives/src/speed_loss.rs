@@ -13,7 +13,7 @@
 use crate::simulation::BeltSimulation;
 use belt::report::sliding_speed;
 use belt::{BeltModel, Report, Signal, WrapPoint};
-use contact::friction::{FrictionLaw, FrictionSpec};
+use contact::friction::FrictionSpec;
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, State};
 use mbd_core::validate::{InvalidField, Validate};
@@ -132,7 +132,8 @@ pub struct BeltData {
     pub ea: f64,
     /// Radius of the driven pulley's belt line \[m\].
     pub driven_radius: f64,
-    /// The belt–pulley friction law.
+    /// The friction law on the driven pulley's wrap ([`belt::Drive::wrap_friction_law`]:
+    /// `μ/sin(β/2)` for a multi-ribbed belt in a grooved pulley).
     pub friction: FrictionSpec,
     /// Whether the model is linearised about the installation tension ([`belt::ModelTraits`]).
     pub linearised: bool,
@@ -146,7 +147,7 @@ impl BeltData {
             pretension: d.tension(),
             ea: d.belt().ea,
             driven_radius: d.pulleys()[driven].radius,
-            friction: d.contact().friction,
+            friction: d.wrap_friction_law(driven),
             linearised: model.traits().linearised,
         }
     }
@@ -412,11 +413,7 @@ fn report_of<M: BeltModel>(
     model: &M, state: &State, window: &Window,
 ) -> Result<(Report, Vec<WrapPoint>), MbdError> {
     let snap = model.snapshot(state.t, &state.q, &state.v)?;
-    let now = Report::new(
-        model.drive(),
-        &snap,
-        model.drive().contact().friction.coefficient(),
-    );
+    let now = Report::new(model.drive(), &snap);
     let mut all = window.reports.clone();
     all.push(now);
     let mut report = Report::mean(&all).unwrap_or_else(|| all[0].clone());
@@ -476,7 +473,6 @@ pub fn speed_loss_sweep<M: BeltModel>(
     let mut load_knots: Vec<(f64, f64)> = vec![(0.0, 0.0)];
     signal(model, driven, Signal::schedule(load_knots.clone()))?;
     let belt = BeltData::of(&*model, driven);
-    let mu = belt.friction.coefficient();
     let bound = gross_slip_bound(&belt, settings.omega_driver);
     let alpha = AlphaConfig {
         h: settings.step,
@@ -565,9 +561,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                     .model()
                     .snapshot(st.t, &st.q, &st.v)
                     .map_err(|e| fail(e, &points))?;
-                window
-                    .reports
-                    .push(Report::new(sim.model().drive(), &snap, mu));
+                window.reports.push(Report::new(sim.model().drive(), &snap));
             }
             if count == per_window {
                 means.push(sum / count as f64);

@@ -9,7 +9,6 @@ use crate::error::DriveError;
 use crate::speed_loss::speed_loss_sweep;
 use crate::speed_loss::{Sample, SpeedLossConfig, SpeedLossPoint, SweepFailure, SweepStats};
 use belt::{BeltModel, Drive};
-use contact::friction::FrictionLaw;
 use flowing::belt::{AxialForce, BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::SecondOrderSystem;
 use mbd_core::integrators::State;
@@ -185,8 +184,10 @@ pub struct SpeedLossCase {
     /// Euler–Eytelwein capacity of the drive at this speed \[N m\]
     /// ([`crate::euler_eytelwein_capacity`]; `NaN` for drives other than two pulleys).
     pub capacity: f64,
-    /// Coefficient μ of the belt–pulley friction law.
-    pub friction_coefficient: f64,
+    /// Coefficient μ of the friction law on each pulley's wrap, travel order
+    /// ([`belt::Drive::wrap_friction_coefficients`]: `μ/sin(β/2)` on the grooved pulleys of a
+    /// multi-ribbed belt; the utilisation of the wrap points).
+    pub friction_coefficients: Vec<f64>,
     /// Integration statistics.
     pub stats: SweepStats,
 }
@@ -219,7 +220,7 @@ pub fn speed_loss_case(
     Ok(SpeedLossCase {
         omega_driver: settings.omega_driver,
         capacity: euler_eytelwein_capacity(&drive, settings.omega_driver),
-        friction_coefficient: drive.contact().friction.coefficient(),
+        friction_coefficients: drive.wrap_friction_coefficients(),
         analytical: points
             .iter()
             .map(|p| bechtel(&drive, p.torque, settings.omega_driver))

@@ -153,11 +153,7 @@ fn ancf_layout_capstan_on_the_slip_arcs() {
             .integrate(&m, m.initial_state().unwrap(), t_end, |s| {
                 if s.t >= next {
                     next += 0.005;
-                    reports.push(Report::new(
-                        &drive,
-                        &m.snapshot(s.t, &s.q, &s.v).unwrap(),
-                        mu,
-                    ));
+                    reports.push(Report::new(&drive, &m.snapshot(s.t, &s.q, &s.v).unwrap()));
                 }
             })
             .unwrap();
@@ -205,11 +201,9 @@ fn ancf_layout_capstan_on_the_slip_arcs() {
 #[test]
 fn ancf_tensioner_arm_balances_the_running_span_tensions() {
     use belt::tensioner::cross;
-    use contact::friction::FrictionLaw;
     use mbd_core::integrators::GeneralizedAlpha;
     let cfg = four_pulleys(2.5);
     let (m, drive) = ancf_model(&cfg, &ancf());
-    let mu = cfg.contact.friction.coefficient();
     let sim = ancf::belt_drive::SimulationConfig::default();
     let t_end = 0.4;
     let mut reports = Vec::new();
@@ -221,11 +215,7 @@ fn ancf_tensioner_arm_balances_the_running_span_tensions() {
         .integrate(&m, m.initial_state().unwrap(), t_end, |s| {
             // every step of the window: the contact torques ring at kHz, 5 ms samples alias
             if s.t >= next {
-                reports.push(Report::new(
-                    &drive,
-                    &m.snapshot(s.t, &s.q, &s.v).unwrap(),
-                    mu,
-                ));
+                reports.push(Report::new(&drive, &m.snapshot(s.t, &s.q, &s.v).unwrap()));
                 arm.push(s.q[a.dof]);
                 times.push(s.t);
             }

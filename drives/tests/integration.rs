@@ -14,4 +14,5 @@ mod issue35_inputs;
 mod layout;
 mod layout_nodal;
 mod partial_rules;
+mod ribs;
 mod simulation;

@@ -69,7 +69,7 @@ struct Steady {
 /// steps). `extra` gives the damping power at a state (the nodal model's).
 fn steady_run<M: BeltModel>(
     model: &mut M, load: f64, t_end: f64, window: f64,
-    damping_power: impl Fn(&M, f64, &[f64], &[f64]) -> f64, mu: f64,
+    damping_power: impl Fn(&M, f64, &[f64], &[f64]) -> f64,
 ) -> Steady {
     model
         .set_signal(0, Signal::schedule(vec![(0.0, 0.0), (0.3, 62.8)]))
@@ -97,7 +97,7 @@ fn steady_run<M: BeltModel>(
         let s = st.state();
         if s.t >= t_end - window - 0.5 * h && step % 4 == 0 {
             let snap = model.snapshot(s.t, &s.q, &s.v).unwrap();
-            reports.push(Report::new(model.drive(), &snap, mu));
+            reports.push(Report::new(model.drive(), &snap));
             dw += model.pulley_speed(0, s.t, &s.v) - model.pulley_speed(1, s.t, &s.v);
             pd += damping_power(model, s.t, &s.q, &s.v);
             count += 1;
@@ -157,10 +157,10 @@ fn both_models(h: f64, load: f64, t_end: f64) -> (Steady, Steady, f64) {
             .collect::<Vec<_>>()
     );
     let t = std::time::Instant::now();
-    let sn = steady_run(&mut nodal_belt, load, t_end, 0.2, nodal_damping_power, mu);
+    let sn = steady_run(&mut nodal_belt, load, t_end, 0.2, nodal_damping_power);
     eprintln!("nodal run {:.1} s", t.elapsed().as_secs_f64());
     let (mut flow, _) = flowing(&cfg, &uniform(h));
-    let sf = steady_run(&mut flow, load, t_end, 0.2, |_, _, _, _| f64::NAN, mu);
+    let sf = steady_run(&mut flow, load, t_end, 0.2, |_, _, _, _| f64::NAN);
     for (name, s) in [("nodal", &sn), ("flowing", &sf)] {
         eprintln!(
             "{name}: Δω {:.5} rad/s; spans {:?} N; torques {:?} N m; slip arcs {:?} rad; \

@@ -12,7 +12,7 @@
 //! | section EA, EI, ρA, material law | rectangular section of thickness `h = √(12 EI/EA)` and width `b` ([`AncfConfig::width`]); `E = EA/(b h)`, `ρ = ρA/(b h)`, `α₁ = α₂ = 1` (Kerkkänen (3.18)); the section's [`belt::MaterialLaw`] is the element's law ([`BeltSpec::law`]), so the reported and mounted forces are the axial force the elements carry ([`crate::BeltElement::axial_force`]) |
 //! | installation tension `T0` | unstretched length `L_b = L_path/λ(T0)` ([`belt::Section::stretch`]), corrected by secant steps `L_b ← L_b (1 + (T̄ − T0)/EA)` until the mean static span force `T̄` of the ANCF belt ([`BeltDrive::initial_state`]) is `T0` within [`TENSION_TOLERANCE`], `T̄` the axial force of the belt's law; the first estimate lands a few per cent off: at rest the axial force on a wrap is the span's less `EI/(2R²)` (beam statics, 5.2 N on Table 6-1), and the contact pressure and penetration follow it; a given belt length is used as is |
 //! | penalty (6.1) `k₂ d² + k₁ d` per unit length | the same law, distributed: `f_n = k₂ d² + k₁ d + c_p ḋ` (Kerkkänen (3.20) with the quadratic term), Gauss quadrature (3.27); `c_p` = [`AncfConfig::contact_damping`] |
-//! | friction law | the same law per unit length |
+//! | friction law of each pulley ([`belt::Drive::wrap_friction_law`]: `μ/sin(β/2)` on the grooved pulleys of a multi-ribbed belt) | the same law per unit length on that pulley ([`BeltDrive::with_pulley_friction`]; the spec's `contact.friction` is the contact's unscaled law) |
 //! | Rayleigh `β` | Kelvin–Voigt damping of the axial strain rate, axial force `EA(ε + β ε̇)` ([`BeltSpec::axial_damping`]); the mass-proportional `α M` is dropped (on the absolute velocities of a Lagrangian mesh it would brake the moving belt); generalized-α's numerical damping damps the contact vibrations |
 //! | tensioner | the arm a coordinate ([`BeltDrive::with_tensioner`]); its static angle re-solved with the ANCF belt (secant on the arm's moment balance to [`ARM_ANGLE_TOLERANCE`]) |
 //!
@@ -178,7 +178,8 @@ impl MountedBelt<BeltDrive> {
                 Some(t) => BeltDrive::with_tensioner(spec.clone(), t)?,
                 None => BeltDrive::new(spec.clone())?,
             };
-            Ok(d.with_tangent_refresh(s.tangent_refresh))
+            d.with_tangent_refresh(s.tangent_refresh)
+                .with_pulley_friction(drive.wrap_friction_laws())
         };
         let opts = InitialOptions::default();
         let t0 = drive.tension();

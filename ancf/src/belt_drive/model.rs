@@ -51,6 +51,9 @@ pub type BeltDrive = AncfBeltDrive<Planar>;
 pub struct Planar {
     pub(super) mesh: AncfMesh<BeltElement>,
     line: LineContact<Disk, BeltNormal, BeltFriction>,
+    /// The friction law on each pulley, travel order (the spec's law on every pulley unless
+    /// [`BeltDrive::with_pulley_friction`] set them; `line.friction` is the spec's law).
+    friction: Vec<BeltFriction>,
     tangent_refresh: f64,
     /// Elastic tangent evaluations so far, over all workspaces (a statistic).
     elastic_evaluations: AtomicUsize,
@@ -175,6 +178,7 @@ impl BeltDrive {
         let arm_inertia: Vec<f64> = arm.iter().map(|a| a.spec.inertia).collect();
         let kind = Planar {
             mesh,
+            friction: vec![spec.contact.friction; spec.pulleys.len()],
             line,
             tangent_refresh: 0.02,
             elastic_evaluations: AtomicUsize::new(0),
@@ -220,6 +224,47 @@ impl BeltDrive {
     pub fn with_tangent_refresh(mut self, tol: f64) -> Self {
         self.kind.tangent_refresh = tol.max(0.0);
         self
+    }
+
+    /// The drive with the friction law `laws[p]` on pulley `p` (travel order) instead of the
+    /// spec's `contact.friction` on every pulley: a multi-ribbed belt's `μ/sin(β/2)` on its
+    /// grooved pulleys ([`belt::Drive::wrap_friction_law`], which the layout adapter
+    /// [`crate::belt_drive::belt_model`] hands over).
+    ///
+    /// # Errors
+    /// Not one law per pulley, or a law with negative or non-finite parameters (a law scaled
+    /// past the configuration bound [`contact::friction::spec::MAX_FRICTION_COEFFICIENT`] is
+    /// accepted: it is an effective coefficient, not an input).
+    pub fn with_pulley_friction(mut self, laws: Vec<BeltFriction>) -> Result<Self, AncfError> {
+        if laws.len() != self.spec.pulleys.len() {
+            return Err(invalid(
+                "contact.friction",
+                format!(
+                    "{} friction laws for {} pulleys",
+                    laws.len(),
+                    self.spec.pulleys.len()
+                ),
+            ));
+        }
+        for (p, law) in laws.iter().enumerate() {
+            let mu = contact::FrictionLaw::coefficient(law);
+            if !(mu.is_finite() && mu >= 0.0) {
+                return Err(invalid(
+                    format!("contact.friction[{p}]"),
+                    format!("friction coefficient must be finite and ≥ 0, got {mu}"),
+                ));
+            }
+        }
+        self.kind.friction = laws;
+        Ok(self)
+    }
+
+    /// The friction law on pulley `p` (travel order; [`Self::with_pulley_friction`]).
+    ///
+    /// # Panics
+    /// `p` is not a pulley of the drive.
+    pub fn friction_law(&self, p: usize) -> &BeltFriction {
+        &self.kind.friction[p]
     }
 
     /// Number of elastic tangent evaluations so far (for statistics).
@@ -302,8 +347,9 @@ impl BeltDrive {
                     gathered_v = true;
                 }
                 let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
-                self.kind.line.element_on(
+                self.kind.line.element_on_with(
                     &disk,
+                    &self.kind.friction[p],
                     l,
                     6,
                     |xi, s| s[..6].copy_from_slice(&shape::cubic(l, xi * l, 0.0).s),
@@ -463,8 +509,9 @@ impl BeltDrive {
                     continue;
                 }
                 recs.clear();
-                line.element_on(
+                line.element_on_with(
                     &disk,
+                    &self.kind.friction[p],
                     l,
                     6,
                     |xi, s| s[..6].copy_from_slice(&shape::cubic(l, xi * l, 0.0).s),
@@ -899,8 +946,9 @@ impl BeltDrive {
             if !self.may_touch(e, p, [disk.center.x, disk.center.y]) {
                 continue;
             }
-            line.element_on(
+            line.element_on_with(
                 &disk,
+                &self.kind.friction[p],
                 l,
                 6,
                 |xi, s| s[..6].copy_from_slice(&shape::cubic(l, xi * l, 0.0).s),

@@ -214,11 +214,11 @@ impl AncfStudy {
         )?;
 
         // tension, pressure, friction and slip along every wrap at the end
-        let mu = end.friction_coefficient;
+        let mu = &end.friction_coefficients;
         ctx.out.write_csv(
             "wrap.csv",
             &wrap_csv::COLUMNS,
-            end.wrap.iter().map(|w| wrap_csv::row(w, mu)),
+            end.wrap.iter().map(|w| wrap_csv::row(w, mu[w.pulley])),
         )?;
 
         // plots

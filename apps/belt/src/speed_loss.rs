@@ -61,8 +61,8 @@ fn write_wrap(ctx: &StudyContext, case: &SpeedLossCase) -> Result<(), StudyError
         .out
         .csv(&format!("wrap_omega_{:.1}.csv", case.omega_driver), &header)?;
     for p in &case.points {
-        let mu = case.friction_coefficient;
         for w in &p.wrap {
+            let mu = case.friction_coefficients[w.pulley];
             csv.row(&[&[p.torque][..], &wrap_csv::row(w, mu)].concat())?;
         }
     }

@@ -15,8 +15,9 @@ pub(crate) const COLUMNS: [&str; 8] = [
     "friction_utilisation_ratio",
 ];
 
-/// The contact point `w` as a row of [`COLUMNS`]; `mu` is the friction law's coefficient of the
-/// utilisation `|f|/(μ p)` ([`WrapPoint::utilisation`]).
+/// The contact point `w` as a row of [`COLUMNS`]; `mu` is the coefficient of the friction law on
+/// `w`'s pulley, of the utilisation `|f|/(μ p)` ([`WrapPoint::utilisation`],
+/// [`belt::Drive::wrap_friction_law`]).
 pub(crate) fn row(w: &WrapPoint, mu: f64) -> [f64; 8] {
     [
         w.pulley as f64,

@@ -155,6 +155,48 @@ impl FrictionSpec {
     pub fn mu(&self) -> f64 {
         self.coefficient()
     }
+
+    /// The same law with its friction coefficient scaled by `factor` \[-\]: `μ → factor·μ`
+    /// (both `μ_s` and `μ_k` of a Stribeck law), every other parameter (`κ`, `v_s`, `ε`, `ν_s`,
+    /// the Stribeck velocity) unchanged; [`FrictionSpec::Frictionless`] stays frictionless.
+    ///
+    /// This is the friction of a wedge: a V- or V-ribbed belt of included angle `β` in a
+    /// groove carries the flank normal force `N/sin(β/2)` for the radial force `N`, so each
+    /// flank's law, stated per unit flank normal force, acts on the radial force with
+    /// `μ/sin(β/2)` (Johnson, *Contact Mechanics* §8.6; `factor = 1/sin(β/2)`,
+    /// `belt::Section::friction_factor`). The regularisation parameters are slip-velocity
+    /// scales of the flank contact and so stay as they are; the creep-rate law's sliding
+    /// branch `μ|f_n|` scales, its creep branch `ν_s |v_t|` does not. The result is not
+    /// re-validated: a factor above 1 may take `μ` past [`MAX_FRICTION_COEFFICIENT`], which
+    /// bounds what a user writes, not an effective coefficient.
+    pub fn scaled(&self, factor: f64) -> Self {
+        let f = factor;
+        match *self {
+            FrictionSpec::CreepRate { mu, creep } => FrictionSpec::CreepRate { mu: f * mu, creep },
+            FrictionSpec::Tanh { mu, kappa } => FrictionSpec::Tanh { mu: f * mu, kappa },
+            FrictionSpec::TanhSlip { mu, slip_velocity } => FrictionSpec::TanhSlip {
+                mu: f * mu,
+                slip_velocity,
+            },
+            FrictionSpec::Coulomb { mu } => FrictionSpec::Coulomb { mu: f * mu },
+            FrictionSpec::Regularized { mu, epsilon } => FrictionSpec::Regularized {
+                mu: f * mu,
+                epsilon,
+            },
+            FrictionSpec::Stribeck {
+                mu_static,
+                mu_kinetic,
+                stribeck_velocity,
+                kappa,
+            } => FrictionSpec::Stribeck {
+                mu_static: f * mu_static,
+                mu_kinetic: f * mu_kinetic,
+                stribeck_velocity,
+                kappa,
+            },
+            FrictionSpec::Frictionless => FrictionSpec::Frictionless,
+        }
+    }
 }
 
 /// Largest friction coefficient a configuration may give. Dry friction of engineering
@@ -269,5 +311,73 @@ mod tests {
             kappa: 40.0,
         };
         assert_eq!(bad.validate().unwrap_err().field, "stribeck_velocity");
+    }
+
+    // Reference: the wedge (Johnson §8.6) scales the force of every law by the factor on its
+    // sliding branch, f'(v, N) = factor · f(v, N), at the law's own slip scale; the creep-rate
+    // law's creep branch ν_s|v| (below μN) does not scale; factor 1 is the law itself.
+    #[test]
+    fn scaled_laws_scale_the_sliding_force() {
+        let k = 1.0 / 20f64.to_radians().sin();
+        let n = 50.0;
+        let laws = [
+            FrictionSpec::Tanh {
+                mu: 1.2,
+                kappa: 40.0,
+            },
+            FrictionSpec::TanhSlip {
+                mu: 0.5,
+                slip_velocity: 0.025,
+            },
+            FrictionSpec::Coulomb { mu: 0.4 },
+            FrictionSpec::Regularized {
+                mu: 0.6,
+                epsilon: 0.01,
+            },
+            FrictionSpec::Stribeck {
+                mu_static: 0.6,
+                mu_kinetic: 0.4,
+                stribeck_velocity: 0.1,
+                kappa: 40.0,
+            },
+            FrictionSpec::CreepRate {
+                mu: 1.2,
+                creep: 1.0e5,
+            },
+            FrictionSpec::Frictionless,
+        ];
+        for law in laws {
+            let s = law.scaled(k);
+            assert_eq!(law.scaled(1.0), law);
+            assert!(
+                (s.coefficient() - k * law.coefficient()).abs() < 1e-12,
+                "{law:?}"
+            );
+            // sliding at 0.05 and 0.5 m/s (creep-rate: past μN/ν_s = 0.6 mm/s and k times it)
+            for v in [0.05, 0.5] {
+                let (a, b) = (s.friction(v, n).force, law.friction(v, n).force);
+                assert!(
+                    (a - k * b).abs() < 1e-9 * b.abs().max(1.0),
+                    "{law:?} at {v}"
+                );
+            }
+        }
+        // the creep branch of the creep-rate law (ν_s |v| below μN) is the flank's, unscaled
+        let c = FrictionSpec::CreepRate {
+            mu: 1.2,
+            creep: 1.0e5,
+        };
+        let v = 1e-4;
+        assert_eq!(c.scaled(k).friction(v, n).force, c.friction(v, n).force);
+        if let FrictionSpec::Stribeck {
+            mu_static,
+            mu_kinetic,
+            ..
+        } = laws[4].scaled(k)
+        {
+            assert!((mu_static - 0.6 * k).abs() < 1e-12 && (mu_kinetic - 0.4 * k).abs() < 1e-12);
+        } else {
+            panic!("Stribeck stays Stribeck");
+        }
     }
 }

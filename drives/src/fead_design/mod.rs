@@ -545,14 +545,10 @@ pub struct DesignSummary {
 
 /// Friction coefficient of every wrap of `drive`: the contact law's `μ`, for a multi-ribbed
 /// belt `μ/sin(β/2)` on grooved pulleys (wrapped inside the loop) and `μ` on flat back-side
-/// ones ([`belt::Section::friction_factor`]).
+/// ones: the coefficient of [`Drive::wrap_friction_law`], the law the time-stepped models
+/// contact each pulley with, so that the capacity check and the simulations agree.
 pub fn wrap_friction(drive: &Drive) -> Vec<f64> {
-    let mu = drive.contact().friction.coefficient();
-    drive
-        .pulleys()
-        .iter()
-        .map(|p| mu * drive.belt().friction_factor(p.side))
-        .collect()
+    drive.wrap_friction_coefficients()
 }
 
 /// The steady state of `drive` with its single driver turning at `driver_speed` \[rad/s\]

@@ -99,7 +99,8 @@ pub struct FlowingBelt {
     /// The free pulleys', the tensioner arm's and the decouplers' coordinates, after `z`.
     pub coords: DriveCoordinates,
     pulleys: Vec<PulleyFrame>,
-    friction: FrictionSpec,
+    /// The friction law of each pulley, travel order ([`belt::Drive::wrap_friction_law`]).
+    friction: Vec<FrictionSpec>,
     m: usize,
     a_mass: Mat<f64>,
     mts: Mat<f64>,
@@ -267,7 +268,7 @@ impl FlowingBelt {
         let coords = DriveCoordinates::number(motions, tensioner, &mut n_v);
         Ok(Self {
             coords,
-            friction: contact.friction,
+            friction: fe.drive.wrap_friction_laws(),
             fe,
             basis,
             pulleys,
@@ -337,7 +338,7 @@ impl FlowingBelt {
             _ => false,
         };
         (
-            node_contact(&frame, w, d, vel, &r.law, &self.friction),
+            node_contact(&frame, w, d, vel, &r.law, &self.friction[r.pulley]),
             bs,
             idler,
         )
@@ -380,9 +381,14 @@ impl FlowingBelt {
         chord_tensions(&self.fe.position, &d, dr.tension(), dr.belt().ea)
     }
 
-    /// The friction law of the belt–pulley contact.
-    pub fn friction_law(&self) -> &FrictionSpec {
-        &self.friction
+    /// The friction law of the belt on pulley `pulley` (travel order): the contact's law with
+    /// `μ` scaled for the wrap ([`belt::Drive::wrap_friction_law`]: `μ/sin(β/2)` on the grooved
+    /// pulleys of a multi-ribbed belt).
+    ///
+    /// # Panics
+    /// `pulley` is not a pulley of the drive.
+    pub fn friction_law(&self, pulley: usize) -> &FrictionSpec {
+        &self.friction[pulley]
     }
 
     /// Static equilibrium of the belt on the resting pulleys (`v = 0`, `ż = 0`): the modal

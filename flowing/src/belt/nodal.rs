@@ -122,7 +122,8 @@ pub struct NodalBelt {
     pub coords: DriveCoordinates,
     section: Frame2dSection,
     pulleys: Vec<PulleyFrame>,
-    friction: FrictionSpec,
+    /// The friction law of each pulley, travel order ([`belt::Drive::wrap_friction_law`]).
+    friction: Vec<FrictionSpec>,
     laws: Vec<PolynomialPenalty>,
     mass_total: f64,
     n_v: usize,
@@ -243,7 +244,7 @@ impl NodalBelt {
             coords,
             section,
             pulleys,
-            friction: contact.friction,
+            friction: fe.drive.wrap_friction_laws(),
             laws,
             mass_total,
             fe,
@@ -382,7 +383,7 @@ impl NodalBelt {
                     vb * mesh.tan[i][1] + dd[NODE_DOFS * i + 1] - frame_vel[1],
                 ];
                 let w = self.coords.pulley_speed(p, t, v);
-                let c = node_contact(&frame, w, x, vel, &self.laws[i], &self.friction);
+                let c = node_contact(&frame, w, x, vel, &self.laws[i], &self.friction[p]);
                 if c.normal != 0.0 || c.friction != 0.0 {
                     out.push((i, p, c));
                 }
@@ -431,9 +432,14 @@ impl NodalBelt {
         )
     }
 
-    /// The friction law of the belt–pulley contact.
-    pub fn friction_law(&self) -> &FrictionSpec {
-        &self.friction
+    /// The friction law of the belt on pulley `pulley` (travel order): the contact's law with
+    /// `μ` scaled for the wrap ([`belt::Drive::wrap_friction_law`]: `μ/sin(β/2)` on the grooved
+    /// pulleys of a multi-ribbed belt).
+    ///
+    /// # Panics
+    /// `pulley` is not a pulley of the drive.
+    pub fn friction_law(&self, pulley: usize) -> &FrictionSpec {
+        &self.friction[pulley]
     }
 
     /// Torques of the contact forces on the pulleys in their travel sense \[N m\] (pulley

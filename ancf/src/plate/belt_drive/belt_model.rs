@@ -14,6 +14,7 @@
 //! | penalty `k₁` per unit length | `k₁/b` per unit area (Kerkkänen (3.20)); the quadratic term `k₂` has no plate counterpart and is refused unless 0 |
 //! | friction law | the same law per unit area (the creep-rate slope divided by `b`) |
 //! | tensioner | refused (the plate drive has no arm coordinate) |
+//! | ribs (a multi-ribbed belt) | refused (a flat plate on crowned pulleys: no wedge) |
 //!
 //! The span forces reported are the membrane force along the belt (the force the elements
 //! carry, [`post::SpanState::membrane_force`]); the wrap points are the contact quadrature
@@ -117,6 +118,13 @@ pub fn plate_spec(
         ));
     }
     let b = drive.belt();
+    if b.ribs.is_some() {
+        return Err(invalid(
+            "belt.ribs",
+            "the plate belt is a flat belt on crowned pulleys: a multi-ribbed belt's wedge \
+             (μ/sin(β/2) in the grooves) has no plate counterpart; use the ANCF or a flowing model",
+        ));
+    }
     if b.law != MaterialLaw::StVenantKirchhoff {
         return Err(invalid(
             "belt.law",
@@ -432,5 +440,13 @@ mod tests {
         l2.belt.law = MaterialLaw::Linear;
         let e = plate_spec(&l2.resolve().unwrap(), &PlateConfig::default()).unwrap_err();
         assert!(e.to_string().contains("belt.law"), "{e}");
+        let mut l3 = layout.clone();
+        l3.contact.penalty_quadratic = 0.0;
+        l3.belt.ribs = Some(belt::Ribs {
+            count: 6,
+            wedge_angle: 40f64.to_radians(),
+        });
+        let e = plate_spec(&l3.resolve().unwrap(), &PlateConfig::default()).unwrap_err();
+        assert!(e.to_string().contains("belt.ribs"), "{e}");
     }
 }
