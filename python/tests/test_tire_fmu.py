@@ -187,9 +187,7 @@ def test_fmu_matches_the_cli_run_on_the_same_inputs(tmp_path):
     exe = _tire_cli()
     load = 4448.2
     h_comm = 1e-3
-    base = f"""vtk_interval = 0.0
-vtk_tire_interval = 0.0
-[tire]
+    base = f"""[tire]
 reduced_file = {str(tmp_path / "reduced.json")!r}
 {TIRE_TOML}
 [rig]
@@ -234,7 +232,9 @@ spin_rate = {_toml_array(spin)}
 camber = {_toml_array(camber)}
 communication_step = {h_comm!r}
 """
-    (tmp_path / "motion.toml").write_text(base + motion)
+    # (the cleat study's own top-level keys: no VTK frames)
+    top = "vtk_interval = 0.0\nvtk_tire_interval = 0.0\n"
+    (tmp_path / "motion.toml").write_text(top + base + motion)
     _run(exe, "cleat", tmp_path / "motion.toml", tmp_path / "cli")
     with open(tmp_path / "cli" / "forces.csv", newline="") as f:
         rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]

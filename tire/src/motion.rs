@@ -44,7 +44,8 @@
 //!
 //! # Time stepping
 //! A communication step `H` is taken as `n = ⌈H/h⌉` equal internal steps of the rolling tire
-//! (`h` = `rig.rolling.time_step`; the last internal step ends exactly on `t + H`). The inputs
+//! (`h` = `rig.rolling.time_step`; the last internal step ends on `t + H`, to round-off: an
+//! internal step within [`ROUND_OFF`] of the current one is kept). The inputs
 //! are held over the communication step (zero-order hold, FMI 3.0 co-simulation); the spin
 //! rate goes linearly to the new input over the first internal step
 //! ([`PrescribedSpin`](crate::dynamics::PrescribedSpin)), and a changed height is met by the
@@ -146,6 +147,11 @@ impl WheelMotion {
         [c * v[0] + s * v[1], -s * v[0] + c * v[1], v[2]]
     }
 }
+
+/// Relative difference of an internal step from the current one below which
+/// [`CoSimulation::do_step`] keeps the current step (round-off of the master's time
+/// arithmetic, a few ulps of `H`).
+pub const ROUND_OFF: f64 = 1e-12;
 
 /// Errors of the co-simulation: invalid inputs and failures of the tire.
 pub type MotionError = TireError;
@@ -295,8 +301,16 @@ impl<'a> CoSimulation<'a> {
         self.apply(m, m.in_wheel_frame(dv))?;
         self.last = *m;
         // equal internal steps (one factorisation of the iteration matrix per step size; the
-        // flat road does not depend on time, so the round-off of n h/n against h is harmless)
-        self.sim.set_time_step(h / n as f64)?;
+        // flat road does not depend on time, so the round-off of n h/n against h is harmless).
+        // An internal step that differs from the current one by round-off only keeps it: a
+        // master that steps by `t_(k+1) − t_k` (FMPy) passes `H` give or take an ulp, which
+        // would otherwise refactor the iteration matrix (and change the stale-matrix iterates
+        // within their tolerance) for nothing.
+        let hi_new = h / n as f64;
+        let hi_now = self.sim.config().time_step;
+        if (hi_new - hi_now).abs() > ROUND_OFF * hi_now {
+            self.sim.set_time_step(hi_new)?;
+        }
         for _ in 0..n {
             self.sim.step()?;
             self.internal_steps += 1;

@@ -189,11 +189,11 @@ pub struct WheelInputs {
 /// The example of a `centre_motion` table that the printed rig configuration ends with,
 /// commented out (`flowmbd_cli::commented`'s `x-commented-example`): its heading, then the
 /// table's lines.
-pub const CENTRE_MOTION_EXAMPLE: &str = "A prescribed wheel-centre motion, the tire FMU's inputs as time series (road without cleat; guide, \"Prescribed wheel-centre motion\"):\n\
-time = [0.0, 0.04, 0.05]           # [s] from the start of the run, strictly increasing\n\
-velocity_y = [0.0, 0.0, 0.3]       # [m/s] road frame; also height [m], velocity_x, velocity_z [m/s]\n\
-camber = [0.0, 0.0, 0.01]          # [rad]; also yaw [rad], spin_rate [rad/s] (absent: the rig's start)\n\
-communication_step = 0.001         # [s] inputs sampled and held (absent: rolling.time_step)\n";
+pub const CENTRE_MOTION_EXAMPLE: &str = "A prescribed wheel-centre motion: the FMU's inputs as time series (road, no cleat; guide):\n\
+time = [0.0, 0.04, 0.05]      # [s] from the start of the run, strictly increasing\n\
+velocity_y = [0.0, 0.0, 0.3]  # [m/s] road frame; also height [m], velocity_x, velocity_z [m/s]\n\
+camber = [0.0, 0.0, 0.01]     # [rad]; also yaw [rad], spin_rate [rad/s] (absent: the start's)\n\
+communication_step = 0.001    # [s] inputs sampled and held (absent: rolling.time_step)\n";
 
 impl Default for WheelInputs {
     fn default() -> Self {
