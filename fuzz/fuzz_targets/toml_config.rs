@@ -1,6 +1,7 @@
 //! TOML configuration reader of the apps (`flowmbd_cli::config::parse_config`) on the real
 //! configurations (belt drive, tire rig, generated tire, the library study configurations of
-//! the ANCF drive, speed loss and string modes; Kerkkänen's dynamic beam cases and Lin's beam
+//! the ANCF drive, speed loss and string modes (the rig also with a prescribed wheel-centre
+//! motion, seed `rig_centre_motion.toml`); Kerkkänen's dynamic beam cases and Lin's beam
 //! and slab of `flowmbd-beam` / `flowmbd-reduce`, issue 35): a configuration or a one-line error naming a
 //! line inside the file; parsed configurations are validated without panicking. The same
 //! bodies run as property tests in `apps/cli/tests/config_fuzz.rs`.

@@ -44,16 +44,23 @@
 //!
 //! # Time stepping
 //! A communication step `H` is taken as `n = ⌈H/h⌉` equal internal steps of the rolling tire
-//! (`h` = `rig.rolling.time_step`; the last internal step ends exactly on `t + H`). The inputs
+//! (`h` = `rig.rolling.time_step`; the last internal step ends on `t + H`, to round-off: an
+//! internal step within [`ROUND_OFF`] of the current one is kept). The inputs
 //! are held over the communication step (zero-order hold, FMI 3.0 co-simulation); the spin
 //! rate goes linearly to the new input over the first internal step
 //! ([`PrescribedSpin`](crate::dynamics::PrescribedSpin)), and a changed height is met by the
 //! contact at the end of the first internal step.
+//!
+//! # Prescribed series (`flowmbd-tire cleat`)
+//! A [`CentreMotion`] (`[rig.wheel.centre_motion]`) gives the inputs as time series; the rig
+//! run ([`run_centre_motion`]) samples them at the communication points `t_k = k H` and takes
+//! the communication steps with [`CoSimulation::do_step`]: what an FMI importer does with the
+//! FMU and the same input signal, through the same code.
 
 use crate::error::TireError;
 use crate::ground::GroundKind;
 use crate::reduced::ReducedTire;
-use crate::rig::{RigConfig, start_rolling};
+use crate::rig::{Recording, RigConfig, RigResult, RigStartInfo, record_run, start_rolling};
 use crate::rolling::{RollingTire, WheelLoads};
 use crate::rolling_config::Symmetry;
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -141,6 +148,11 @@ impl WheelMotion {
     }
 }
 
+/// Relative difference of an internal step from the current one below which
+/// [`CoSimulation::do_step`] keeps the current step (round-off of the master's time
+/// arithmetic, a few ulps of `H`).
+pub const ROUND_OFF: f64 = 1e-12;
+
 /// Errors of the co-simulation: invalid inputs and failures of the tire.
 pub type MotionError = TireError;
 
@@ -168,8 +180,19 @@ impl<'a> CoSimulation<'a> {
     pub fn start(
         red: &'a ReducedTire, rig: &RigConfig, motion: &WheelMotion,
     ) -> Result<Self, MotionError> {
+        Self::begin(red, rig, motion).map(|(cs, _)| cs)
+    }
+
+    /// [`CoSimulation::start`], also returning what a recorded run reports of the rig's
+    /// start ([`start_rolling`]: the Rayleigh coefficients and the preloads;
+    /// [`run_centre_motion`]).
+    fn begin(
+        red: &'a ReducedTire, rig: &RigConfig, motion: &WheelMotion,
+    ) -> Result<(Self, RigStartInfo), MotionError> {
         motion.validate_within("motion")?;
         let mut rig = rig.clone();
+        // the motion replaces a prescribed series (this is how a series is run)
+        rig.wheel.centre_motion = None;
         rig.ground.kind = GroundKind::Road;
         rig.ground.cleat = false;
         rig.rolling.symmetry = Symmetry::Off;
@@ -182,6 +205,11 @@ impl<'a> CoSimulation<'a> {
         rig.wheel.spin_rate = Some(motion.spin_rate);
         rig.wheel.camber_deg = motion.camber.to_degrees();
         let start = start_rolling(red, &rig).map_err(|e| prefix("rig", e))?;
+        let info = RigStartInfo {
+            rayleigh: start.rayleigh,
+            static_preload: start.static_preload,
+            preload: start.preload,
+        };
         let mut cs = Self {
             sim: start.sim,
             rig,
@@ -189,7 +217,7 @@ impl<'a> CoSimulation<'a> {
             internal_steps: 0,
         };
         cs.apply(motion, [0.0; 3])?;
-        Ok(cs)
+        Ok((cs, info))
     }
 
     /// The motion of the rig's steady start ([`start_rolling`] at `rig.load` and
@@ -199,6 +227,7 @@ impl<'a> CoSimulation<'a> {
     /// FMU takes it as its inputs' start values).
     pub fn rig_start(red: &ReducedTire, rig: &RigConfig) -> Result<WheelMotion, MotionError> {
         let mut rig = rig.clone();
+        rig.wheel.centre_motion = None;
         rig.ground.kind = GroundKind::Road;
         rig.ground.cleat = false;
         rig.settle_time = 0.0;
@@ -272,8 +301,16 @@ impl<'a> CoSimulation<'a> {
         self.apply(m, m.in_wheel_frame(dv))?;
         self.last = *m;
         // equal internal steps (one factorisation of the iteration matrix per step size; the
-        // flat road does not depend on time, so the round-off of n h/n against h is harmless)
-        self.sim.set_time_step(h / n as f64)?;
+        // flat road does not depend on time, so the round-off of n h/n against h is harmless).
+        // An internal step that differs from the current one by round-off only keeps it: a
+        // master that steps by `t_(k+1) − t_k` (FMPy) passes `H` give or take an ulp, which
+        // would otherwise refactor the iteration matrix (and change the stale-matrix iterates
+        // within their tolerance) for nothing.
+        let hi_new = h / n as f64;
+        let hi_now = self.sim.config().time_step;
+        if (hi_new - hi_now).abs() > ROUND_OFF * hi_now {
+            self.sim.set_time_step(hi_new)?;
+        }
         for _ in 0..n {
             self.sim.step()?;
             self.internal_steps += 1;
@@ -288,6 +325,242 @@ fn prefix(root: &str, e: TireError) -> TireError {
         TireError::Invalid { item, reason } => TireError::Invalid {
             item: format!("{root}.{item}"),
             reason,
+        },
+        other => other,
+    }
+}
+
+/// Most points of a [`CentreMotion`] series (8 columns of 10⁶ values: 64 MB).
+pub const MAX_MOTION_POINTS: usize = 1_000_000;
+
+/// A prescribed wheel-centre motion (issue 38, items 1 and 4): the inputs of the
+/// co-simulation ([`WheelMotion`], the tire FMU's inputs `z`, `vx`, `vy`, `vz`, `yaw`,
+/// `camber`, `spin_rate`) as time series over the rig run, `[rig.wheel.centre_motion]`.
+///
+/// Each input is piecewise linear in time between the points `(time[i], value[i])` and held at
+/// its first and last value outside them; an absent column holds the value of the rig's steady
+/// start ([`CoSimulation::rig_start`]: the preload's height, `speed_kmh` straight ahead, yaw and
+/// camber 0, the free-rolling spin rate). The run ([`run_centre_motion`]) samples the series
+/// at `t_k = k H` (time from the start of the run, `H` = [`communication_step`]) and holds the
+/// sample over `[t_k, t_k + H]` (zero-order hold, as an FMI importer does), lasting
+/// `settle_time + record_time`; its samples are taken at `t_k + H`, with `t = 0` at
+/// `settle_time` as in the cleat test. Frames as in the module documentation (road frame for
+/// the velocity, ISO 8855 wheel frame for the loads; W-axis orientation with camber).
+///
+/// [`communication_step`]: CentreMotion::communication_step
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CentreMotion {
+    /// Times of the points \[s\] from the start of the run, finite and strictly increasing
+    /// (1 to 10⁶ points).
+    pub time: Vec<f64>,
+    /// Height `z` of the wheel centre above the road \[m\] at the points (positive).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<Vec<f64>>,
+    /// Velocity `v_x` of the wheel centre over the road, road frame \[m/s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_x: Option<Vec<f64>>,
+    /// Velocity `v_y` of the wheel centre over the road, road frame (left) \[m/s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_y: Option<Vec<f64>>,
+    /// Velocity `v_z` of the wheel centre over the road, road frame (up) \[m/s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_z: Option<Vec<f64>>,
+    /// Yaw angle ψ of the wheel plane about the road's z axis \[rad\] (within ±π).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub yaw: Option<Vec<f64>>,
+    /// Camber angle γ about the wheel's x axis \[rad\] (ISO 8855, within the rig's ±30°).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camber: Option<Vec<f64>>,
+    /// Spin rate Ω of the wheel about its axis \[rad/s\] (prescribed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin_rate: Option<Vec<f64>>,
+    /// Communication step `H` \[s\]: the series is sampled every `H` and each sample held
+    /// over `⌈H/h⌉` equal internal steps (`h` = `rolling.time_step`), one recorded sample per
+    /// communication step (the cleat study's spectra up to 500 Hz need `H` ≤ 1 ms). Absent:
+    /// `rolling.time_step`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub communication_step: Option<f64>,
+}
+
+impl CentreMotion {
+    /// The columns given, with their field names, in [`WheelMotion`] order.
+    fn columns(&self) -> [(&'static str, Option<&Vec<f64>>); 7] {
+        [
+            ("height", self.height.as_ref()),
+            ("velocity_x", self.velocity_x.as_ref()),
+            ("velocity_y", self.velocity_y.as_ref()),
+            ("velocity_z", self.velocity_z.as_ref()),
+            ("yaw", self.yaw.as_ref()),
+            ("camber", self.camber.as_ref()),
+            ("spin_rate", self.spin_rate.as_ref()),
+        ]
+    }
+
+    /// The piecewise-linear value of `column` at `t` \[s\], held beyond the ends: between
+    /// the points `i`, `i + 1` the weighted mean `w v_i + (1 − w) v_{i+1}` with
+    /// `w = (t_{i+1} − t)/(t_{i+1} − t_i)` (exact at the points; the arithmetic of FMPy's
+    /// `Input.interpolate`, so that an FMI importer given the same table feeds the FMU the
+    /// same numbers).
+    fn interpolate(&self, column: &[f64], t: f64) -> f64 {
+        let time = &self.time;
+        // (a series that fails validation gives NaN, refused by the step's input check)
+        let at = |i: usize| column.get(i).copied().unwrap_or(f64::NAN);
+        let i = time.partition_point(|&s| s <= t);
+        if i == 0 {
+            return at(0);
+        }
+        if i == time.len() {
+            return at(i - 1);
+        }
+        let (t0, t1) = (time[i - 1], time[i]);
+        let w = (t1 - t) / (t1 - t0);
+        w * at(i - 1) + (1.0 - w) * at(i)
+    }
+
+    /// The inputs at `t` \[s\]: the given columns interpolated, the others those of `base`.
+    pub fn at(&self, t: f64, base: &WheelMotion) -> WheelMotion {
+        let v = |c: &Option<Vec<f64>>, b: f64| c.as_ref().map_or(b, |c| self.interpolate(c, t));
+        WheelMotion {
+            height: v(&self.height, base.height),
+            velocity: [
+                v(&self.velocity_x, base.velocity[0]),
+                v(&self.velocity_y, base.velocity[1]),
+                v(&self.velocity_z, base.velocity[2]),
+            ],
+            yaw: v(&self.yaw, base.yaw),
+            camber: v(&self.camber, base.camber),
+            spin_rate: v(&self.spin_rate, base.spin_rate),
+        }
+    }
+
+    /// The values of the absent columns: the rig's steady start ([`CoSimulation::rig_start`],
+    /// solved only when the height or the spin rate is absent), else `speed_kmh` straight
+    /// ahead, upright.
+    pub fn base(&self, red: &ReducedTire, rig: &RigConfig) -> Result<WheelMotion, MotionError> {
+        if self.height.is_none() || self.spin_rate.is_none() {
+            return CoSimulation::rig_start(red, rig);
+        }
+        Ok(WheelMotion {
+            height: self.height.as_ref().map_or(0.0, |h| h[0]),
+            velocity: [rig.speed_kmh / 3.6, 0.0, 0.0],
+            yaw: 0.0,
+            camber: 0.0,
+            spin_rate: self.spin_rate.as_ref().map_or(0.0, |w| w[0]),
+        })
+    }
+}
+
+impl Validate for CentreMotion {
+    /// 1 to [`MAX_MOTION_POINTS`] points of finite, strictly increasing time; every column
+    /// given as long as `time` (checked before its values) with finite values, a positive
+    /// height, a yaw within ±π, a camber within the rig's ±30° and a spin rate within
+    /// ±[`crate::rig::MAX_SPIN_RATE`]; a positive communication step. The forward speed and the
+    /// slip angle of the interpolated inputs are checked at each communication point
+    /// ([`WheelMotion`]'s `Validate`).
+    fn validate(&self) -> Result<(), InvalidField> {
+        let n = self.time.len();
+        check::size("time", n, 1, MAX_MOTION_POINTS)?;
+        for (name, col) in self.columns() {
+            if let Some(c) = col
+                && c.len() != n
+            {
+                return Err(InvalidField::new(
+                    name,
+                    format!("has {} values, time has {n}", c.len()),
+                ));
+            }
+        }
+        for (i, t) in self.time.iter().enumerate() {
+            check::finite(&format!("time[{i}]"), *t)?;
+            if i > 0 && *t <= self.time[i - 1] {
+                return Err(InvalidField::new(
+                    format!("time[{i}]"),
+                    format!(
+                        "must be greater than time[{}] = {} s (strictly increasing), got {} s",
+                        i - 1,
+                        check::show(self.time[i - 1]),
+                        check::show(*t)
+                    ),
+                ));
+            }
+        }
+        let camber = crate::rig::MAX_CAMBER_DEG.to_radians();
+        let spin = crate::rig::MAX_SPIN_RATE;
+        for (name, col) in self.columns() {
+            for (i, v) in col.into_iter().flatten().enumerate() {
+                let field = format!("{name}[{i}]");
+                match name {
+                    "height" => check::positive(&field, *v, "m")?,
+                    "yaw" => check::within(&field, *v, -MAX_YAW, MAX_YAW, "rad")?,
+                    "camber" => check::within(&field, *v, -camber, camber, "rad")?,
+                    "spin_rate" => check::within(&field, *v, -spin, spin, "rad/s")?,
+                    _ => check::finite(&field, *v)?,
+                }
+            }
+        }
+        if let Some(h) = self.communication_step {
+            check::positive("communication_step", h, "s")?;
+        }
+        Ok(())
+    }
+}
+
+/// The rig run of a prescribed wheel-centre motion `motion` (= `rig.wheel.centre_motion`;
+/// [`CentreMotion`]): the co-simulation of the tire FMU ([`CoSimulation`]) started at the
+/// inputs of `t = 0` and stepped by communication steps `H` with the inputs sampled at each
+/// step's start, recorded as a cleat-test result ([`RigResult`]: one sample per
+/// communication step, `dt = H`, `t = 0` at `settle_time`; the loads of the samples as in
+/// [`crate::rig::Sample`]). The observer sees the rolling tire after every communication
+/// step. Errors: the rig's (`rig.validate`), an input that is invalid at a communication point
+/// (field `wheel.centre_motion`, the time and the input named), a failed step.
+pub fn run_centre_motion(
+    red: &ReducedTire, rig: &RigConfig, motion: &CentreMotion, progress: &mut dyn FnMut(f64),
+    observer: &mut dyn FnMut(usize, &RollingTire) -> Result<(), TireError>,
+) -> Result<RigResult, TireError> {
+    rig.validate()?;
+    let base = motion.base(red, rig)?;
+    let h = rig.sample_step();
+    let steps = ((rig.settle_time + rig.record_time) / h).round() as usize;
+    let (mut cs, start) =
+        CoSimulation::begin(red, rig, &motion.at(0.0, &base)).map_err(|e| at_time(0.0, e))?;
+    let rec = Recording {
+        start,
+        steps,
+        dt: h,
+    };
+    let step = |cs: &mut CoSimulation<'_>, k: usize| {
+        let t = k as f64 * h;
+        cs.do_step(h, &motion.at(t, &base))
+            .map(|_| ())
+            .map_err(|e| at_time(t, e))
+    };
+    let mut r = record_run(
+        red,
+        rig,
+        rec,
+        &mut cs,
+        |cs| &cs.sim,
+        step,
+        progress,
+        observer,
+    )?;
+    // the frame of the loads at the end of the run (W-axis orientation with a camber)
+    r.camber_deg = cs.motion().camber.to_degrees();
+    Ok(r)
+}
+
+/// An invalid input `motion.…` of the co-simulation at time `t` \[s\] as an error of the
+/// rig's `wheel.centre_motion` naming the time and the input; other errors unchanged.
+fn at_time(t: f64, e: TireError) -> TireError {
+    match e {
+        TireError::Invalid { item, reason } if item.starts_with("motion") => TireError::Invalid {
+            item: "wheel.centre_motion".into(),
+            reason: format!(
+                "the input at t = {} s: {}: {reason}",
+                check::show(t),
+                item.trim_start_matches("motion.")
+            ),
         },
         other => other,
     }

@@ -13,6 +13,7 @@ use crate::ground::{Ground, GroundConfig};
 use crate::loaded::{
     LoadedMode, dominant_longitudinal_mode, dominant_vertical_mode, held_nodes, loaded_modes,
 };
+use crate::motion::CentreMotion;
 use crate::reduced::ReducedTire;
 use crate::rolling::RollingTire;
 use crate::rolling_config::RollingConfig;
@@ -138,7 +139,7 @@ impl ImpactConfig {
 /// Frame and signs: the wheel frame of the rig is the ISO 8855 wheel frame (x forward in the
 /// travel direction, y left along the spin axis, z up), with the wheel centre at its origin.
 /// The wheel rolls forwards with a positive spin rate θ̇ about +y.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct WheelInputs {
     /// Drive torque on the wheel's spin degree of freedom about +y \[N·m\]: positive drives
@@ -174,7 +175,25 @@ pub struct WheelInputs {
     /// full model is stepped. The camber thrust of a tire points to the side it leans to
     /// (Pacejka §3.2, §4.3): `F_y < 0` for γ > 0. Within ±[`MAX_CAMBER_DEG`].
     pub camber_deg: f64,
+    /// Prescribed wheel-centre motion: time series of the co-simulation inputs (height,
+    /// velocity, yaw, camber, spin rate; [`CentreMotion`]), interpolated piecewise linearly,
+    /// sampled at every communication step and held over it, and stepped by the tire FMU's
+    /// engine ([`crate::motion::CoSimulation`]) on the flat road. Absent (default): the
+    /// wheel centre is fixed. Requires `ground.kind = "road"` without cleat, obstacles or
+    /// grid, and the other wheel inputs at their defaults (the series gives them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("x-commented-example" = CENTRE_MOTION_EXAMPLE))]
+    pub centre_motion: Option<CentreMotion>,
 }
+
+/// The example of a `centre_motion` table that the printed rig configuration ends with,
+/// commented out (`flowmbd_cli::commented`'s `x-commented-example`): its heading, then the
+/// table's lines.
+pub const CENTRE_MOTION_EXAMPLE: &str = "A prescribed wheel-centre motion: the FMU's inputs as time series (road, no cleat; guide):\n\
+time = [0.0, 0.04, 0.05]      # [s] from the start of the run, strictly increasing\n\
+velocity_y = [0.0, 0.0, 0.3]  # [m/s] road frame; also height [m], velocity_x, velocity_z [m/s]\n\
+camber = [0.0, 0.0, 0.01]     # [rad]; also yaw [rad], spin_rate [rad/s] (absent: the start's)\n\
+communication_step = 0.001    # [s] inputs sampled and held (absent: rolling.time_step)\n";
 
 impl Default for WheelInputs {
     fn default() -> Self {
@@ -183,6 +202,7 @@ impl Default for WheelInputs {
             slip_angle_deg: 0.0,
             spin_rate: None,
             camber_deg: 0.0,
+            centre_motion: None,
         }
     }
 }
@@ -228,6 +248,25 @@ impl Validate for WheelInputs {
                         check::show(self.drive_torque)
                     ),
                 ));
+            }
+        }
+        if let Some(m) = &self.centre_motion {
+            m.validate_within("centre_motion")?;
+            // the series prescribes the spin, the slip and the camber itself
+            let given = |v: f64| v != 0.0;
+            for (field, set) in [
+                ("drive_torque", given(self.drive_torque)),
+                ("slip_angle_deg", given(self.slip_angle_deg)),
+                ("camber_deg", given(self.camber_deg)),
+                ("spin_rate", self.spin_rate.is_some()),
+            ] {
+                if set {
+                    return Err(InvalidField::new(
+                        field,
+                        "must be left at its default with a centre_motion (give it as a \
+                         series of centre_motion: velocity_y, camber, spin_rate)",
+                    ));
+                }
             }
         }
         Ok(())
@@ -318,8 +357,31 @@ impl Validate for RigConfig {
         )?;
         check::non_negative("impact.lead", self.impact.lead, "m")?;
         check::non_negative("impact.trail", self.impact.trail, "s")?;
+        if self.wheel.centre_motion.is_some() {
+            let needs = |ok: bool, field: &str, reason: &str| {
+                if ok {
+                    Ok(())
+                } else {
+                    Err(InvalidField::new(
+                        field,
+                        format!("{reason} with a wheel.centre_motion (the FMU's flat road)"),
+                    ))
+                }
+            };
+            needs(
+                self.ground.kind == crate::ground::GroundKind::Road,
+                "ground.kind",
+                "must be \"road\"",
+            )?;
+            needs(!self.ground.cleat, "ground.cleat", "must be false")?;
+            needs(
+                !self.ground.has_obstacles_or_grid(),
+                "ground.obstacles",
+                "obstacles and a grid_file are not supported",
+            )?;
+        }
         let h = self.rolling.time_step;
-        let steps = (self.settle_time + self.record_time) / h;
+        let steps = (self.settle_time + self.record_time) / h.min(self.sample_step());
         let max = mbd_core::validate::limits::ceiling(MAX_RIG_STEPS);
         if steps > max {
             return Err(InvalidField::new(
@@ -338,6 +400,16 @@ impl Validate for RigConfig {
 }
 
 impl RigConfig {
+    /// The step of the recorded samples \[s\]: the communication step of a prescribed
+    /// wheel-centre motion ([`CentreMotion::communication_step`]), else `rolling.time_step`.
+    pub fn sample_step(&self) -> f64 {
+        self.wheel
+            .centre_motion
+            .as_ref()
+            .and_then(|m| m.communication_step)
+            .unwrap_or(self.rolling.time_step)
+    }
+
     /// The step that resolves the cleat impact \[s\]: `rolling.time_step / impact.substeps`
     /// (the sub-steps of the impact window), `rolling.time_step` without sub-steps.
     pub fn impact_step(&self) -> f64 {
@@ -369,11 +441,20 @@ impl RigConfig {
     /// search of 8 samples found "0 Hz", issue 20) and a recording of at least 2 steps.
     /// Field paths relative to the rig.
     pub fn validate_spectrum(&self) -> Result<(), InvalidField> {
-        let h = self.rolling.time_step;
+        let h = self.sample_step();
+        let own_step = self
+            .wheel
+            .centre_motion
+            .as_ref()
+            .and_then(|m| m.communication_step);
+        let field = match own_step {
+            Some(_) => "wheel.centre_motion.communication_step",
+            None => "rolling.time_step",
+        };
         let f_hi = PEAK_BAND_HZ[1];
         if 1.0 / (2.0 * h) < f_hi {
             return Err(InvalidField::new(
-                "rolling.time_step",
+                field,
                 format!(
                     "{} s cannot resolve the spindle-force spectrum: its Nyquist frequency \
                      1/(2h) = {} Hz is below the {f_hi} Hz up to which peaks are sought \
@@ -386,7 +467,7 @@ impl RigConfig {
         }
         if 2.0 * h > self.record_time {
             return Err(InvalidField::new(
-                "rolling.time_step",
+                field,
                 format!(
                     "{} s leaves fewer than 2 steps in record_time = {} s",
                     check::show(h),
@@ -438,7 +519,8 @@ pub struct RigResult {
     /// Preload \[N\].
     pub load: f64,
     /// Camber angle γ \[deg\] (with γ ≠ 0 the samples' loads are in the W-axis orientation,
-    /// [`crate::rolling::WheelLoads`]).
+    /// [`crate::rolling::WheelLoads`]); with a prescribed wheel-centre motion the camber of its
+    /// last communication step (each sample's loads are in the orientation of its own camber).
     pub camber_deg: f64,
     /// DOF of the wheel–tire model (6 + n_z).
     pub dof: usize,
@@ -557,10 +639,19 @@ pub struct RigStart<'a> {
 /// Press the tire onto the ground and set it rolling steadily (see [`RigStart`]): Rayleigh
 /// damping from `cfg.damping`, spin rate `v / (R − d/3)`, the steady state of
 /// [`preload_rolling_cambered`] (on the plain, cambered ground) with its contact forces as the
-/// initial multipliers. The settings are validated first ([`RigConfig`]'s [`Validate`]); a
-/// height-grid file is read here ([`Ground::new`]).
+/// initial multipliers. The settings are validated first ([`RigConfig`]'s [`Validate`]; a
+/// prescribed `wheel.centre_motion` is refused: [`run_cleat`] runs it); a height-grid file is
+/// read here ([`Ground::new`]).
 pub fn start_rolling<'a>(red: &'a ReducedTire, cfg: &RigConfig) -> Result<RigStart<'a>, TireError> {
     cfg.validate()?;
+    if cfg.wheel.centre_motion.is_some() {
+        // the start of a fixed wheel centre: a prescribed motion would be ignored
+        return Err(invalid(
+            "wheel.centre_motion",
+            "is run by the cleat test (run_cleat, `flowmbd-tire cleat` and `sweep`) only: this \
+             study steps the tire with its wheel centre fixed",
+        ));
+    }
     let rayleigh = cfg.damping.rayleigh(red)?;
     let v = cfg.speed_kmh / 3.6;
     let gamma = cfg.wheel.camber();
@@ -635,60 +726,127 @@ pub fn rig_step(sim: &mut RollingTire<'_>, cfg: &RigConfig) -> Result<(), TireEr
 }
 
 /// [`run_cleat`] with an observer called after every step with the step number and the model
-/// (e.g. to write VTK snapshots of the patch).
+/// (e.g. to write VTK snapshots of the patch). With a prescribed wheel-centre motion
+/// (`cfg.wheel.centre_motion`) the run is that of [`crate::motion::run_centre_motion`].
 pub fn run_cleat_observed(
     red: &ReducedTire, cfg: &RigConfig, progress: &mut dyn FnMut(f64),
     observer: &mut dyn FnMut(usize, &RollingTire) -> Result<(), TireError>,
 ) -> Result<RigResult, TireError> {
     cfg.validate()?;
+    if let Some(motion) = &cfg.wheel.centre_motion {
+        return crate::motion::run_centre_motion(red, cfg, motion, progress, observer);
+    }
     let RigStart {
         mut sim,
-        rayleigh: ray,
-        static_preload: pre0,
-        preload: pre,
+        rayleigh,
+        static_preload,
+        preload,
     } = start_rolling(red, cfg)?;
+    let h = cfg.rolling.time_step;
+    let steps = ((cfg.settle_time + cfg.record_time) / h).round() as usize;
+    let rec = Recording {
+        start: RigStartInfo {
+            rayleigh,
+            static_preload,
+            preload,
+        },
+        steps,
+        dt: h,
+    };
+    let step = |sim: &mut RollingTire<'_>, _k: usize| rig_step(sim, cfg);
+    record_run(red, cfg, rec, &mut sim, |s| s, step, progress, observer)
+}
+
+/// What a recorded rig run reports of its start ([`RigStart`] without the rolling tire).
+pub(crate) struct RigStartInfo {
+    /// Rayleigh coefficients from the damping targets.
+    pub rayleigh: Rayleigh,
+    /// The static (non-rolling) preload (the loaded modes are those of its patch).
+    pub static_preload: Preload,
+    /// The rolling preload the tire starts from.
+    pub preload: Preload,
+}
+
+/// A recorded run: its start, the number of samples and the time between them \[s\].
+pub(crate) struct Recording {
+    /// The start.
+    pub start: RigStartInfo,
+    /// Samples (one after every `step`).
+    pub steps: usize,
+    /// Time between samples \[s\].
+    pub dt: f64,
+}
+
+/// The sample of the rolling tire after a step (`settle` \[s\]: the time that is `t = 0` of
+/// the samples).
+fn sample_of(sim: &RollingTire, settle: f64) -> Sample {
+    let f = sim.wheel_loads();
+    Sample {
+        t: sim.state.t - settle,
+        fx: f.fx,
+        fy: f.fz,
+        fz: f.fy,
+        mx: f.mx,
+        my: f.my,
+        mz: f.mz,
+        spin: sim.state.theta_d,
+        spin_torque: sim.spin_torque(),
+        active: sim.active_count(),
+        normal_sum: sim.total_normal_force(),
+        cleat_nodes: sim.cleat_contacts,
+    }
+}
+
+/// The recording loop of a rig run: `rec.steps` times `step(state, k)`, then the observer and
+/// a [`Sample`] of the rolling tire `sim_of(state)`; the wall and CPU time of the stepping
+/// (the observer's excluded) and the loaded modes of the static preload's patch. One loop
+/// for the cleat rig ([`run_cleat_observed`], the state its rolling tire) and the prescribed
+/// wheel-centre motion ([`crate::motion::run_centre_motion`], a
+/// [`crate::motion::CoSimulation`]).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn record_run<'a, S>(
+    red: &ReducedTire, cfg: &RigConfig, rec: Recording, state: &mut S,
+    sim_of: impl Fn(&S) -> &RollingTire<'a>,
+    mut step: impl FnMut(&mut S, usize) -> Result<(), TireError>, progress: &mut dyn FnMut(f64),
+    observer: &mut dyn FnMut(usize, &RollingTire) -> Result<(), TireError>,
+) -> Result<RigResult, TireError> {
+    let Recording {
+        start:
+            RigStartInfo {
+                rayleigh: ray,
+                static_preload: pre0,
+                preload: pre,
+            },
+        steps,
+        dt,
+    } = rec;
     // a failure here only loses the reference mode, not the run
     let loaded = loaded_modes(red, &held_nodes(&pre0.patch)).unwrap_or_default();
     let loaded_vertical_mode = dominant_vertical_mode(&loaded).cloned();
     let loaded_longitudinal_mode = dominant_longitudinal_mode(&loaded).cloned();
-    let h = cfg.rolling.time_step;
-    let total = cfg.settle_time + cfg.record_time;
-    let steps = (total / h).round() as usize;
     let mut samples = Vec::with_capacity(steps);
     let t0 = Instant::now();
     // CPU time of this thread and of the products' worker thread, if any
     let run_cpu = |sim: &RollingTire| {
         thread_cpu_s().map(|c| c + sim.product_worker().and_then(worker_cpu_s).unwrap_or(0.0))
     };
-    let c0 = run_cpu(&sim);
+    let c0 = run_cpu(sim_of(state));
     let (mut obs_wall, mut obs_cpu) = (0.0, 0.0);
     for k in 0..steps {
-        rig_step(&mut sim, cfg)?;
+        step(state, k)?;
+        let sim = sim_of(state);
         // the observer's output (e.g. VTK files) is not part of the integration cost
         let (w_obs, c_obs) = (Instant::now(), thread_cpu_s());
-        observer(k, &sim)?;
+        observer(k, sim)?;
         obs_wall += w_obs.elapsed().as_secs_f64();
         obs_cpu += thread_cpu_s().zip(c_obs).map_or(0.0, |(b, a)| b - a);
-        let f = sim.wheel_loads();
-        samples.push(Sample {
-            t: sim.state.t - cfg.settle_time,
-            fx: f.fx,
-            fy: f.fz,
-            fz: f.fy,
-            mx: f.mx,
-            my: f.my,
-            mz: f.mz,
-            spin: sim.state.theta_d,
-            spin_torque: sim.spin_torque(),
-            active: sim.active_count(),
-            normal_sum: sim.total_normal_force(),
-            cleat_nodes: sim.cleat_contacts,
-        });
+        samples.push(sample_of(sim, cfg.settle_time));
         if k % 200 == 0 {
             progress(k as f64 / steps as f64);
         }
     }
     progress(1.0);
+    let sim = sim_of(state);
     Ok(RigResult {
         speed_kmh: cfg.speed_kmh,
         load: cfg.load,
@@ -698,10 +856,10 @@ pub fn run_cleat_observed(
         preload: pre.patch,
         rayleigh: ray,
         samples,
-        dt: h,
+        dt,
         wall_time_s: t0.elapsed().as_secs_f64() - obs_wall,
-        cpu_time_s: c0.zip(run_cpu(&sim)).map(|(a, b)| b - a - obs_cpu),
-        simulated_s: steps as f64 * h,
+        cpu_time_s: c0.zip(run_cpu(sim)).map(|(a, b)| b - a - obs_cpu),
+        simulated_s: steps as f64 * dt,
         refactors: sim.refactors,
         stats: sim.stats,
         loaded_vertical_mode,

@@ -59,6 +59,27 @@ fn odd_value() -> impl Strategy<Value = String> {
     ]
 }
 
+/// The default rig with a prescribed wheel-centre motion (`[wheel.centre_motion]`, every
+/// column given) on the flat road it requires: the series' keys are mutated too.
+fn rig_with_centre_motion() -> RigConfig {
+    let mut rig = RigConfig::default();
+    rig.ground.kind = tire::GroundKind::Road;
+    rig.ground.cleat = false;
+    let col = |a: f64, b: f64| Some(vec![a, b]);
+    rig.wheel.centre_motion = Some(tire::motion::CentreMotion {
+        time: vec![0.0, 0.1],
+        height: col(0.49, 0.488),
+        velocity_x: col(16.0, 16.5),
+        velocity_y: col(0.0, 0.1),
+        velocity_z: col(0.0, 0.0),
+        yaw: col(0.0, 0.01),
+        camber: col(0.0, 0.01),
+        spin_rate: col(33.0, 34.0),
+        communication_step: Some(1e-3),
+    });
+    rig
+}
+
 /// The default configuration's TOML with the value of one `key = value` line replaced.
 fn mutate(text: &str, pick: prop::sample::Index, value: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();
@@ -88,6 +109,7 @@ proptest! {
     #[test]
     fn mutated_defaults_never_panic(pick in any::<prop::sample::Index>(), value in odd_value()) {
         check::<RigConfig>(&mutate(&to_toml(&RigConfig::default()), pick, &value))?;
+        check::<RigConfig>(&mutate(&to_toml(&rig_with_centre_motion()), pick, &value))?;
         check::<FeadConfig>(&mutate(&to_toml(&FeadConfig::default()), pick, &value))?;
         check::<TireConfig>(&mutate(&to_toml(&TireConfig::default()), pick, &value))?;
         check::<AncfStudyConfig>(&mutate(&to_toml(&AncfStudyConfig::default()), pick, &value))?;
@@ -112,6 +134,10 @@ fn library_configurations_reject_unknown_keys_everywhere() {
     use flowmbd_cli::config::tables_accepting_unknown_keys;
     assert_eq!(
         tables_accepting_unknown_keys(&RigConfig::default()),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        tables_accepting_unknown_keys(&rig_with_centre_motion()),
         Vec::<String>::new()
     );
     assert_eq!(

@@ -364,7 +364,8 @@ fn stored_zip(entries: &[(String, &[u8])]) -> Result<Vec<u8>, zip::result::ZipEr
 /// §2.5): `modelDescription.xml` ([`model_description`], the start values of the rig's
 /// steady start [`CoSimulation::rig_start`]), `binaries/<platform>/flowmbd_tire_fmu.<so|dylib|
 /// dll>` (a copy of the compiled cdylib at `library`) and `resources/` with the reduced tire
-/// ([`TIRE_FILE`]) and the rig ([`RIG_FILE`]). The rig is validated and its start solved
+/// ([`TIRE_FILE`]) and the rig ([`RIG_FILE`]; without a prescribed `wheel.centre_motion`, which
+/// the FMU's inputs replace). The rig is validated and its start solved
 /// first, so an FMU that is written starts. Written through a temporary file renamed onto
 /// `out`.
 pub fn write_fmu(
@@ -385,6 +386,10 @@ pub fn write_fmu(
         reason,
     };
     let tire_json = red.to_json()?;
+    // the FMU's inputs are the wheel-centre motion: a prescribed series is not packed
+    let mut rig = rig.clone();
+    rig.wheel.centre_motion = None;
+    let rig = &rig;
     let rig_toml = toml::to_string(rig).map_err(|e| write(e.to_string()))?;
     let xml = model_description(&start_values(rig, &start), rig.rolling.time_step);
     let entries: Vec<(String, &[u8])> = vec![

@@ -3,6 +3,7 @@
 //! `cargo test --release -p <package> --test integration <module>::`.
 
 mod cache;
+mod centre_motion;
 mod cli;
 mod common;
 mod config_mutation;
