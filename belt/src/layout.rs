@@ -567,7 +567,7 @@ impl Layout {
     /// Ribaric's Table 6-1 drive (§6.1, §6.4) as a [`Layout::two_pulley`]: centres 0.45 m
     /// apart, both belt-line radii 0.05 m, the driver at rest, the driven pulley of
     /// 0.013 kg m² without load, the default [`Section`] mounted at T0 = 310 N, Ribaric's
-    /// contact with κ = 40 s/m ([`BeltContact::ribaric`], not the default friction).
+    /// contact with κ = 40 s/m ([`BeltContact::ribaric`], also the default friction).
     pub fn table_6_1() -> Self {
         Self {
             contact: BeltContact::ribaric(),

@@ -229,8 +229,8 @@ fn load(inertia: f64, torque: f64) -> Motion {
 impl Default for FeadConfig {
     /// The plausible passenger-car drive of the module documentation, with Ribaric's contact
     /// ([`BeltContact::ribaric`]: tanh friction (6.2) with κ = 40 s/m, the law its studies in
-    /// BENCHMARKS.md and README were measured with), not the belt drives' default friction
-    /// (`contact::friction::spec::DEFAULT_SLIP_VELOCITY`): the flowing model's Newton stalls on
+    /// BENCHMARKS.md and README were measured with; also `BeltContact::default`), not the sharper
+    /// `tanh_slip` scale (`contact::friction::spec::DEFAULT_SLIP_VELOCITY`): the flowing model's Newton stalls on
     /// this drive at `v_s` = 0.1 and 0.4 mm/s (t = 0.073 and 0.122 s of the first ramp, with
     /// line search) and runs the default sweep at 1 mm/s (BENCHMARKS.md, "friction
     /// regularisation").

@@ -67,8 +67,9 @@ pub enum FrictionSpec {
     Frictionless,
 }
 
-/// Default slip-velocity scale `v_s` \[m/s\] of [`FrictionSpec::TanhSlip`] and of the belt
-/// drives' default contact (`belt::BeltContact::default`): `f_t = −μ tanh(v_t / v_s) |f_n|`
+/// Default slip-velocity scale `v_s` \[m/s\] of [`FrictionSpec::TanhSlip`] (not the belt
+/// drives' default contact, `belt::BeltContact::default`, which is Ribaric's κ = 40 s/m for
+/// the robustness reasons below): `f_t = −μ tanh(v_t / v_s) |f_n|`
 /// (Ribaric (6.2) with `κ = 1/v_s`).
 ///
 /// The regularised law lets the belt creep on the whole wrap at slip velocities of order

@@ -60,7 +60,7 @@ pub fn four_pulleys(load: f64) -> Layout {
         inertia: 2e-3,
         travel: [-1.6, -0.8],
     });
-    // Ribaric's κ = 40 s/m, the law these tests were measured with (not the default friction)
+    // Ribaric's κ = 40 s/m, the law these tests were measured with (stated, whatever the default)
     layout.contact = belt::BeltContact::ribaric();
     layout
 }
