@@ -312,31 +312,6 @@ impl<S, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
     {
         self.element_on(
             &self.surface,
-            length,
-            blocks,
-            shape,
-            e,
-            edot,
-            jacobian,
-            out,
-            records,
-        );
-    }
-
-    /// As [`LineContact::element`] but against `surface` instead of `self.surface` (an obstacle
-    /// whose state — e.g. a pulley's angular velocity — changes between calls, without
-    /// rebuilding the pairing).
-    #[allow(clippy::too_many_arguments)]
-    pub fn element_on<const D: usize>(
-        &self, surface: &S, length: f64, blocks: usize, shape: impl Fn(f64, &mut [f64]), e: &[f64],
-        edot: &[f64], jacobian: bool, out: &mut ElementContact<D>,
-        records: Option<&mut Vec<ContactRecord<D>>>,
-    ) where
-        Dim<D>: ContactDim<D>,
-        S: Surface<D>,
-    {
-        self.element_on_with(
-            surface,
             &self.friction,
             length,
             blocks,
@@ -349,11 +324,12 @@ impl<S, NL: NormalLaw, FL: FrictionLaw> LineContact<S, NL, FL> {
         );
     }
 
-    /// As [`LineContact::element_on`] with the friction law `friction` instead of
-    /// `self.friction` (an obstacle with a friction law of its own, e.g. the grooved pulleys of
-    /// a multi-ribbed belt, without rebuilding the pairing).
+    /// As [`LineContact::element`] but against `surface` with the friction law `friction`
+    /// instead of `self.surface` and `self.friction`: an obstacle whose state (e.g. a pulley's
+    /// angular velocity) changes between calls, or with a friction law of its own (e.g. the
+    /// grooved pulleys of a multi-ribbed belt), without rebuilding the pairing.
     #[allow(clippy::too_many_arguments)]
-    pub fn element_on_with<const D: usize>(
+    pub fn element_on<const D: usize>(
         &self, surface: &S, friction: &FL, length: f64, blocks: usize,
         shape: impl Fn(f64, &mut [f64]), e: &[f64], edot: &[f64], jacobian: bool,
         out: &mut ElementContact<D>, records: Option<&mut Vec<ContactRecord<D>>>,

@@ -347,7 +347,7 @@ impl BeltDrive {
                     gathered_v = true;
                 }
                 let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
-                self.kind.line.element_on_with(
+                self.kind.line.element_on(
                     &disk,
                     &self.kind.friction[p],
                     l,
@@ -509,7 +509,7 @@ impl BeltDrive {
                     continue;
                 }
                 recs.clear();
-                line.element_on_with(
+                line.element_on(
                     &disk,
                     &self.kind.friction[p],
                     l,
@@ -946,7 +946,7 @@ impl BeltDrive {
             if !self.may_touch(e, p, [disk.center.x, disk.center.y]) {
                 continue;
             }
-            line.element_on_with(
+            line.element_on(
                 &disk,
                 &self.kind.friction[p],
                 l,
