@@ -2,11 +2,16 @@
 //! Exudyn, in one bench, alternating, each side run as its users run it:
 //!
 //! - ours: `flowmbd-belt fead --config apps/belt/examples/pechstein-gerstmayr.toml --model M
-//!   --json --quiet` for each model `M` of `PG_MODELS` (default `ancf,flowing,nodal`);
-//! - peer: `drives/benches/peers/exudyn_pechstein_gerstmayr.py` (Exudyn's ANCF cable, 120
-//!   elements, the example's settings: `drives/benches/peers/PECHSTEIN_GERSTMAYR.md`) run by
-//!   `EXUDYN_PYTHON` (default `<workspace>/.venv/bin/python`, a venv with exudyn and numpy from
-//!   PyPI).
+//!   --json --quiet` for each model `M` of `PG_MODELS` (default `ancf,flowing,nodal`), with the
+//!   binary this bench was built with, or `FLOWMBD_BELT` (a copy of it, where a shared target
+//!   directory may be rebuilt during the run);
+//! - peer: `drives/benches/peers/exudyn_pechstein_gerstmayr.py` (Exudyn's ANCF cable with the
+//!   example's bristle friction, `drives/benches/peers/PECHSTEIN_GERSTMAYR.md`) with the
+//!   arguments `PG_PEER_ARGS` (default `--elements 240 --segments 12`: the contact refined until
+//!   the bristle's sticking-position error, ε·L_seg/2 per segment wrapping on, is below its stick
+//!   displacement; the example's own 120 elements × 2 segments is `PG_PEER_ARGS=""` and gives a
+//!   speed loss 6 % low, see that note), run by `EXUDYN_PYTHON` (default
+//!   `<workspace>/.venv/bin/python`, a venv with exudyn and numpy from PyPI).
 //!
 //! Per round (`PG_REPS`, default 1): the peer, then each of our models; every run under
 //! `/usr/bin/time` (user + system CPU and wall of the whole process, both sides single-threaded).
@@ -15,8 +20,9 @@
 //! CPU ratio ours / Exudyn. Accuracy targets (issue 34 item 7): spans within 2 %, ω_driven within
 //! 0.5 %, speed loss within 5 %.
 //!
-//! Run: `cargo bench --profile release -p flowmbd-belt --bench pg_vs_exudyn` (≈ 8 min of CPU
-//! with the three models: ANCF ≈ 35 s, flowing ≈ 170 s, nodal ≈ 130 s, Exudyn ≈ 90 s).
+//! Run: `cargo bench --profile release -p flowmbd-belt --bench pg_vs_exudyn` (≈ 13 min of CPU
+//! with the three models, 2026-12-06: ANCF ≈ 37 s, flowing ≈ 220 s, nodal ≈ 190 s, Exudyn ≈ 340 s;
+//! Exudyn ≈ 90 s with the example's contact).
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -114,6 +120,11 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(1);
+    let peer_args =
+        std::env::var("PG_PEER_ARGS").unwrap_or_else(|_| "--elements 240 --segments 12".into());
+    let belt_bin = std::env::var_os("FLOWMBD_BELT")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_flowmbd-belt")));
     let config = root.join("apps/belt/examples/pechstein-gerstmayr.toml");
     let script = root.join("drives/benches/peers/exudyn_pechstein_gerstmayr.py");
     let out_dir = std::env::temp_dir().join(format!("pg-vs-exudyn-{}", std::process::id()));
@@ -121,12 +132,12 @@ fn main() {
     let mut our_runs: Vec<(String, Timed)> = Vec::new();
     for round in 0..reps {
         let mut peer = Command::new(&python);
-        peer.arg(&script);
+        peer.arg(&script).args(peer_args.split_whitespace());
         eprintln!("round {}: Exudyn", round + 1);
         peer_runs.push(timed(peer, "the Exudyn peer"));
         for m in models.split(',').map(str::trim).filter(|m| !m.is_empty()) {
             eprintln!("round {}: ours, {m}", round + 1);
-            let mut ours = Command::new(env!("CARGO_BIN_EXE_flowmbd-belt"));
+            let mut ours = Command::new(&belt_bin);
             ours.args(["fead", "--config"])
                 .arg(&config)
                 .args(["--model", m, "--json", "--quiet", "--out"])
@@ -143,13 +154,15 @@ fn main() {
         pnum("speed_loss_pct"),
         pnum("tension_tight_n"),
         pnum("tension_slack_n"),
+        pnum("creep_speed_loss_pct"),
     ];
     let peer_cpu = mean(&peer_runs.iter().map(|r| r.cpu).collect::<Vec<_>>());
     let peer_wall = mean(&peer_runs.iter().map(|r| r.wall).collect::<Vec<_>>());
     println!(
-        "Exudyn: omega_driven {:.4} rad/s, speed loss {:.3} %, tight / slack {:.1} / {:.1} N, \
-         CPU {peer_cpu:.1} s, wall {peer_wall:.1} s (mean of {reps})",
-        peer[0], peer[1], peer[2], peer[3]
+        "Exudyn ({peer_args}): omega_driven {:.4} rad/s, speed loss {:.3} % (creep theory of its \
+         spans {:.3} %), tight / slack {:.1} / {:.1} N, CPU {peer_cpu:.1} s, wall {peer_wall:.1} s \
+         (mean of {reps})",
+        peer[0], peer[1], peer[4], peer[2], peer[3]
     );
     let rel = |a: f64, b: f64| 100.0 * (a / b - 1.0);
     for m in models.split(',').map(str::trim).filter(|m| !m.is_empty()) {

@@ -70,7 +70,8 @@ final state (pressure, friction per metre, relative velocity, axial force by ang
 Prints one JSON object on stdout. Usage (figures and convergence: PECHSTEIN_GERSTMAYR.md):
   exudyn_pechstein_gerstmayr.py [--elements 120] [--segments 2] [--h 1e-4] [--t-end 2.45]
       [--window 0.45] [--friction bristle|velocity] [--friction-scale 1]
-      [--material linear|svk] [--damping 2] [--wrap-profile]
+      [--material linear|svk] [--damping 2] [--solver trapezoidal|galpha] [--rho-inf 0.9]
+      [--reference-scale 1] [--wrap-profile]
 """
 
 import argparse
@@ -204,10 +205,19 @@ def build(a):
     n_ground = mbs.AddNode(NodePointGround())
     m_ground = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=n_ground, coordinate=0))
 
+    # `--reference-scale f`: the same physical belt on elements of reference length f·l_el
+    # (nodes on the path, slopes t/f, so |r'| = (current length)/(f·l_el)); the law is kept by
+    # EA' = f·EA, 1 + ε0' = (1 + ε0)/f, dEA' = f·dEA, ρA' = ρA/f and EI' = f·EI (Exudyn's
+    # material curvature (r'×r'')/|r'|² integrated over the reference length). Only the contact's
+    # sticking-position bookkeeping, which measures the position along a segment in reference
+    # length (CObjectContactFrictionCircleCable2D.cpp, CObjectContactFrictionCircleCable2DuseL),
+    # sees f: its error vanishes where the belt's current length equals f·l_el.
+    f = a.reference_scale
+    l_ref = f * l_el
     nodes = []
     for i in range(n_el):
         p, t = path_point(i * l_el)
-        nodes.append(mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[p[0], p[1], t[0], t[1]])))
+        nodes.append(mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[p[0], p[1], t[0] / f, t[1] / f])))
 
     ea0, c_svk = svk_parameters()
 
@@ -233,13 +243,13 @@ def build(a):
             kw["bendingMomentUserFunction"] = linear_moment
         cab = mbs.AddObject(
             ObjectANCFCable2D(
-                length=l_el,
-                massPerLength=RHO_A,
-                bendingStiffness=EI,
-                axialStiffness=EA,
+                length=l_ref,
+                massPerLength=RHO_A / f,
+                bendingStiffness=EI * f,
+                axialStiffness=EA * f,
                 bendingDamping=0.0,
-                axialDamping=D_EA,
-                referenceAxialStrain=PRE_STRAIN,
+                axialDamping=D_EA * f,
+                referenceAxialStrain=(1.0 + PRE_STRAIN) / f - 1.0,
                 referenceCurvature=0.0,
                 strainIsRelativeToReference=0.0,
                 useReducedOrderIntegration=2,
@@ -326,7 +336,8 @@ def build(a):
     mbs.Assemble()
     return sc, mbs, {
         "cables": cables,
-        "l_el": l_el,
+        "l_el": l_ref,
+        "reference_scale": f,
         "vel": vel,
         "holds": holds,
         "hold_belt": hold_belt,
@@ -409,7 +420,8 @@ def wrap_profile(mbs, model, k, cx, segments):
     friction = along the pulley's counter-clockwise surface motion), the relative tangential
     velocity belt − pulley [m/s] and the belt's axial force at the midpoint [N]."""
     rows = []
-    l_seg = model["l_el"] / segments
+    l_seg = model["l_el"] / segments  # reference length: localPosition
+    l_seg_path = l_seg / model["reference_scale"]  # path length: forces per metre
     cfg = exu.ConfigurationType.Current
     for cab, co in zip(model["cables"], model["contacts"][k]):
         f = np.ravel(mbs.GetObjectOutput(co, exu.OutputVariableType.ForceLocal))
@@ -422,7 +434,7 @@ def wrap_profile(mbs, model, k, cx, segments):
             n = float(np.ravel(mbs.GetObjectOutputBody(cab, exu.OutputVariableType.ForceLocal, localPosition=[xl, 0, 0], configuration=cfg))[0])
             ang = math.atan2(p[1], p[0] - cx)  # counter-clockwise from +x
             travel = (ang - math.pi / 2) % (2 * math.pi)  # CCW from the top
-            rows.append((travel, -f[2 * j + 1] / l_seg, f[2 * j] / l_seg, float(v[2 * j]), n))
+            rows.append((travel, -f[2 * j + 1] / l_seg_path, f[2 * j] / l_seg_path, float(v[2 * j]), n))
     rows.sort()
     return [list(r) for r in rows]
 
@@ -466,6 +478,11 @@ def main():
     ap.add_argument("--disc-tol", type=float, default=1e-3, help="discontinuous iteration tolerance")
     ap.add_argument("--solver", choices=["trapezoidal", "galpha"], default="trapezoidal",
                     help="TrapezoidalIndex2 (the example) or GeneralizedAlpha (rho_inf 0.9, Exudyn default)")
+    ap.add_argument("--reference-scale", type=float, default=1.0,
+                    help="diagnostic: element reference length f x path length / n, same physical belt "
+                    "(scaled EA, eps0, dEA, rhoA, EI); moves only the contact's sticking-position error")
+    ap.add_argument("--rho-inf", type=float, default=0.9,
+                    help="spectral radius of --solver galpha (timeIntegration.generalizedAlpha.spectralRadius)")
     ap.add_argument("--threads", type=int, default=1, help="parallel.numberOfThreads")
     ap.add_argument("--wrap-profile", action="store_true",
                     help="print the contact along both wraps in the final state")
@@ -473,6 +490,8 @@ def main():
     a = ap.parse_args()
     if a.elements < 8 or a.segments < 1 or a.h <= 0 or a.t_end <= 0 or not 0 < a.window <= a.t_end:
         ap.error("need elements >= 8, segments >= 1, h > 0, 0 < window <= t_end")
+    if a.reference_scale <= 0 or (a.reference_scale != 1.0 and a.material != "linear"):
+        ap.error("--reference-scale must be > 0 and needs --material linear")
 
     t_build = time.perf_counter()
     sc, mbs, model = build(a)
@@ -487,6 +506,7 @@ def main():
     st.timeIntegration.verboseMode = 0
     st.timeIntegration.stepInformation = 0
     st.timeIntegration.newton.useModifiedNewton = True
+    st.timeIntegration.generalizedAlpha.spectralRadius = a.rho_inf
     st.timeIntegration.discontinuous.iterationTolerance = a.disc_tol
     st.timeIntegration.discontinuous.maxIterations = a.disc_max
     st.show.computationTime = False
@@ -592,11 +612,13 @@ def main():
         "friction_scale": a.friction_scale,
         "friction_per_segment": model["friction"],
         "material": a.material,
+        "reference_scale": a.reference_scale,
         "initial_gaps": a.initial_gaps,
         "gravity": a.gravity,
         "load": a.load,
         "damping": a.damping,
         "solver": a.solver,
+        "rho_inf": a.rho_inf if a.solver == "galpha" else None,
         "threads": a.threads,
         "omega_driver": om0,
         "omega_driven": om1,
