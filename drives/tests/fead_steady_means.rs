@@ -4,18 +4,14 @@
 //! (5.14), stationary mesh, linear axial force), and the tensioner arm's dry-friction flag
 //! (`drives::fead::ArmFriction`).
 //!
-//! Measured 2026-12-05 (BENCHMARKS.md, "FEAD steady means"): the tensioner's dry friction
-//! does not separate the models (without it both move by at most 1 %: the engine orders keep
-//! the arm sliding both ways at every speed). What does: the flowing model's default loop
-//! (50 mm span elements, 12 free modes) is not converged at high belt speed (with a steady
-//! crank at 3500 rpm it oscillates on its own), most of all on the 57 mm alternator →
-//! tensioner span: its middle-half mean departs from the tension its two ends balance (on the
-//! 12 mm loop in opposite directions in the two models, flowing +20 N, nodal −33 N at
-//! 2500 rpm, while the tension implied by the ends agrees within 2 %). On a 6 mm loop the
-//! flowing span falls to 404.0 N (steady crank, 2500 rpm), below its ends as the nodal
-//! model's, and every span agrees with the nodal model within 3 % (not run here: 205 s of
-//! CPU). That departure is the belt's stiffness-proportional damping at belt speed: with
-//! β = 0 the span meets its ends within 0.6 % and the torque residual is 0.3 %.
+//! Measured 2026-12-06 (BENCHMARKS.md, "FEAD steady means"): with the spans' whole axial
+//! force (elastic plus the viscous force of the β damping, which carries `β v dT/ds` over a
+//! layer of length `β v` = 11–49 mm beyond each wrap) the flowing model's default loop agrees
+//! with the nodal model within 3.4 % over the sweep 800–3500 rpm (41 % with the elastic force
+//! alone) and within 1.2 % on every span but the two slack spans after the crank. Those carry
+//! the flowing model's crank torque deficit (0.3–0.9 N m): its power balance returns energy
+//! from the belt where the nodal belt dissipates it (issue 34, open). The tensioner's dry
+//! friction does not separate the models (the engine orders keep the arm sliding both ways).
 
 use drives::fead::{EngineOrder, FeadConfig, FeadModel, FeadPoint, run_fead};
 
@@ -45,14 +41,18 @@ fn spans(p: &FeadPoint) -> Vec<f64> {
 
 // Reference: the nodal model (second formulation) on the same drive and sweep point. The
 // default drive at 800 rpm from rest with its engine orders (both windows steady): every
-// span's mean tension within 3 % and the arm's mean angle within 1 mrad (0.03 N m of the
-// spring's 30 N m/rad). The flowing model runs on the nodal model's 12 mm loop without
-// reduction: on its default loop (50 mm spans, 12 free modes) span power steering →
-// alternator is 3.4 % above the nodal model's (307.2 against 297.2 N, measured 2026-12-05),
-// which fails this test. Measured 2026-12-05: flowing 273.7, 303.2, 398.6, 403.3, 432.0,
-// 515.2 N against nodal 266.2, 297.2, 404.4, 407.6, 434.9, 518.8 N (+2.8 % the largest), arm
-// 0.37052 against 0.37050 rad. About 35 s of CPU in release (the nodal point most of it):
-// kept in the default run as the only flowing-against-nodal check on the default drive.
+// span's mean force (elastic plus viscous, the whole force the elements carry) within 3 % and
+// the arm's mean angle within 1 mrad (0.03 N m of the spring's 30 N m/rad). The flowing model
+// runs on the nodal model's 12 mm loop without reduction. Measured 2026-12-06 (h-bal2): flowing
+// 273.7, 303.6, 405.8, 405.0, 432.0, 515.3 N against nodal 266.2, 297.3, 406.2, 407.3, 434.9,
+// 518.8 N (+2.8 % the largest), arm 0.3705 both; on the default loop (50 mm spans, 12 free
+// modes) +3.1 % on crank → power steering. What separates the slack spans (checked here as
+// well): the flowing model's crank torque is 0.87 N m below the nodal model's (18.12 against
+// 19.00 N m) while the accessories' loads are the same, so the crank's spans differ by that
+// torque over its radius (slack +7.5 N, tight −3.5 N: 11.0 N against (19.00 − 18.12)/0.075 =
+// 11.6 N); the power balances show why: the flowing belt returns 35 W to the pulleys (its
+// damping forces do −10 W on the advected material), the nodal belt absorbs 40 W (sliding
+// 9.5 W, damping 25.8 W). About 35 s of CPU in release (the nodal point most of it).
 #[test]
 fn flowing_and_nodal_steady_means_agree_at_800_rpm() {
     let cfg = refined(&[800.0]);
@@ -76,6 +76,14 @@ fn flowing_and_nodal_steady_means_agree_at_800_rpm() {
     }
     let arm = |p: &FeadPoint| p.arm_angle.expect("the default drive has a tensioner").mean;
     assert!((arm(f) - arm(n)).abs() < 1e-3, "{} {}", arm(f), arm(n));
+    // the spans' gap at the crank (slack above, tight below the nodal model's) is the crank's
+    // torque deficit over its radius (within 25 %), not the accessories'
+    let crank = |p: &FeadPoint| -p.report.pulleys[0].torque_n_m;
+    let deficit = (crank(n) - crank(f)) / cfg.drive.pulleys[0].radius;
+    let (sf, sn) = (spans(f), spans(n));
+    let gap = (sf[0] - sn[0]) - (sf[5] - sn[5]);
+    eprintln!("crank spans' gap {gap:.1} N, crank torque deficit over radius {deficit:.1} N");
+    assert!(deficit > 0.0 && (gap / deficit - 1.0).abs() < 0.25);
     // the engine orders keep the arm sliding both ways through its dry friction
     for p in [f, n] {
         let af = p.arm_friction.as_ref().expect("dry friction at the pivot");
@@ -84,14 +92,14 @@ fn flowing_and_nodal_steady_means_agree_at_800_rpm() {
 }
 
 // Reference: as above, at 2500 rpm after the sweep's 800 and 1500 rpm points (no dry
-// friction). Every span but the 57 mm alternator → tensioner one within 3 %; that span is
-// compared by the tension its ends balance, the mean of (i) the span before the alternator
-// plus the alternator's torque over its radius and (ii) the span after the tensioner's idler
-// (no load): the two models' middle-half means of the short span depart from these in
-// opposite directions (module documentation). Measured 2026-12-05: flowing 307.3, 331.9,
-// (458.8), 440.6, 459.7, 542.0 N against nodal 298.6, 324.9, (404.9), 437.9, 461.3, 543.7 N
-// (+2.9 % the largest), the ends' tension 440 against 435 N (+1.1 %).
-// Heavy: 157 s of CPU in release with the flowing sweep (2026-12-05, passed).
+// friction). With the whole force measure (elastic plus viscous) the 57 mm alternator →
+// tensioner span is compared directly like the others (its elastic mid-span force departed
+// from its ends' balance by the β v layer; the viscous force closes it). The four spans from
+// the alternator to the crank within 1.5 %, the two slack spans after the crank within 4 %
+// (their excess is the flowing model's crank torque deficit, 800 rpm test). Measured
+// 2026-12-06 with dry friction (not this test's configuration): flowing 305.0, 334.6, 433.5,
+// 432.2, 459.6, 543.1 N against nodal 295.4, 326.0, 434.4, 434.8, 461.8, 545.1 N (+3.2, +2.6,
+// −0.2, −0.6, −0.5, −0.4 %).
 #[test]
 #[ignore = "heavy: about 2.6 min of CPU (nodal sweep 800 → 1500 → 2500 rpm)"]
 fn flowing_and_nodal_steady_means_agree_at_2500_rpm() {
@@ -101,32 +109,12 @@ fn flowing_and_nodal_steady_means_agree_at_2500_rpm() {
     }
     let (flow, nodal) = both(&cfg);
     let (f, n) = (&flow[2], &nodal[2]);
-    let names = &f.report.pulleys;
-    let alt = names
-        .iter()
-        .position(|p| p.name == "alternator")
-        .expect("the default drive");
-    let radius = cfg.drive.pulleys[alt].radius;
-    let ends = |p: &FeadPoint| {
-        let s = spans(p);
-        // span alt - 1 runs into the alternator, span alt out of it, span alt + 1 out of
-        // the tensioner's idler
-        0.5 * (s[alt - 1] + p.report.pulleys[alt].torque_n_m / radius + s[alt + 1])
-    };
-    eprintln!(
-        "flowing {:?} ends {:.1}; nodal {:?} ends {:.1}",
-        spans(f),
-        ends(f),
-        spans(n),
-        ends(n)
-    );
+    eprintln!("flowing {:?}; nodal {:?}", spans(f), spans(n));
     assert!(f.steady && n.steady);
     for (k, (a, b)) in spans(f).iter().zip(spans(n)).enumerate() {
-        if k != alt {
-            assert!((a / b - 1.0).abs() < 0.03, "span {k}: {a:.1} N, {b:.1} N");
-        }
+        let tol = if k < 2 { 0.04 } else { 0.015 };
+        assert!((a / b - 1.0).abs() < tol, "span {k}: {a:.1} N, {b:.1} N");
     }
-    assert!((ends(f) / ends(n) - 1.0).abs() < 0.03);
 }
 
 // Reference: the regularised dry friction's stick band `|θ̇| ≤ ω_f` (belt::Tensioner, Ribaric

@@ -165,30 +165,20 @@ fn pechstein_gerstmayr_balances_on_nodal() {
 
 // The default fead drive (six pulleys, back-side tensioner idler, crank fluctuation) at 800
 // rpm, nodal model: window means over whole periods of the second engine order, the belt's
-// Rayleigh damping in the power balance. Both close to 0.3 % (the torque residual was 0.62 %
-// with the spans' moments about R, 0.12 N m on the back-side idler).
+// Rayleigh damping in the power balance, span forces elastic plus viscous. Measured
+// 2026-12-06: 0.14 % / 0.30 % (torque / power: power in 40.1 W = sliding 9.5 W + belt damping
+// 25.8 W + 4.8 W).
 //
-// Not asserted: the flowing model on the same point misses the torque balance by 1.5 % (linear,
-// 0.28 N m at the 28 mm alternator) and 2.3 % (co-rotated axial force), the power balance by
-// −1.7 % / −3.6 % (issue 34, open for the flowing model). Diagnosis (2026-12-05, the same drive
-// at a steady 800 rpm without the crank orders, 12 free-node modes, co-rotated; moments about
-// each pulley's centre of the forces on the belt from mid-span to mid-span, N m): the elements'
-// bending and the beam part of K_g(T0) carry at most 0.014 (alternator) and a co-rotated
-// bending of Crisfield's planar beam changed the residuals by < 0.001: not the cause. What is:
-// (1) the β K_e damping on the material rate, frame-turn corrected, is not moment-balanced per
-// element: −0.084 on the whole belt, −0.087 within the alternator's piece, and it makes the
-// span's elastic force non-uniform over its middle half (the exponential layer of length β v
-// = 11 mm under 42 mm span elements), so the reported span force (elastic only,
-// `LINEAR_FORCE_MEASURE`) differs from the cut force by ≈ 10 N on the span power steering →
-// alternator: span moments off by +0.25 and −0.30 against those of the cut elements; (2) modal
-// truncation: with 12 free-node modes the nodal residual reaches 15–24 N and its moment 0.2–0.3
-// per piece; with every mode it vanishes but the residuals stay (2.4 % / −3.8 %, co-rotated) as
-// (1) remains. With β = 0 the torque residual falls to 0.12 % (co-rotated) / 0.18 % (linear):
-// (1) is the torque gap. The power residual stays (−1.7 % / −1.6 % with β = 0): the net power
-// into the belt is negative (−22 W against 4 W of sliding, of 1530 W), some force of the
-// flowing model does net work on the material advected through the stationary mesh (not
-// isolated yet), and the model reports no belt-damping dissipation. The nodal model's damping
-// has the same form on material nodes with a fine mesh and closes both.
+// Not asserted: the flowing model on the same point. With the whole force measure (elastic plus
+// the viscous force β EA Dε/Dt each element carries, flowing::belt::model::chord_viscous_forces)
+// its torque residual fell from 1.5 % to 0.72 % (12 mm loop, all modes: 0.32 %); its power
+// balance misses by −1.1 % (−1.9 % on the 12 mm loop): the pulleys take 21 W (35 W) out of the
+// belt, and the power of its damping forces on the advected material is −10 W where the
+// objective Kelvin–Voigt dissipation of its axial forces, Σ N_v² l/(β EA), is +25–30 W and the
+// nodal belt's damping dissipates 25.8 W. The flowing model's damping and linear elastic forces
+// do net work on the material flowing through the stationary mesh (issue 34, open): its crank
+// torque is 0.7–0.9 N m below the nodal model's, which is also what separates the two models'
+// slack spans (drives/tests/fead_steady_means.rs).
 #[test]
 fn default_fead_balances_on_nodal() {
     let mut c = FeadConfig {

@@ -897,6 +897,25 @@ impl BeltDrive {
         }
     }
 
+    /// Power dissipated by the belt's Kelvin–Voigt axial damping at `(q, v)` \[W\]:
+    /// `−Σ Q_dᵀ ė` over the elements ([`Self::axial_damping`]), `∫ N_d ε̇ dx ≥ 0` (the belt's
+    /// only non-conservative force besides the contact; issue 34 power balance). Zero without
+    /// axial damping.
+    pub fn damping_dissipation(&self, q: &[f64], v: &[f64]) -> f64 {
+        if self.spec.belt.axial_damping <= 0.0 {
+            return 0.0;
+        }
+        let (mut e, mut ed, mut qd) = ([0.0; NE], [0.0; NE], [0.0; NE]);
+        let mut p = 0.0;
+        for el in 0..self.kind.mesh.elements().len() {
+            self.kind.mesh.gather(q, el, &mut e);
+            self.kind.mesh.gather(v, el, &mut ed);
+            self.element_damping(&e, &ed, &mut qd, None);
+            p -= qd.iter().zip(&ed).map(|(a, b)| a * b).sum::<f64>();
+        }
+        p
+    }
+
     /// Viscous axial force \[N\] of the Kelvin–Voigt axial damping
     /// ([`super::BeltSpec::axial_damping`]) at `ξ` of element `el` at
     /// `(q, v)`: `N_d = β α₁EA λ ε̇_G = β α₁EA λ (r_xᵀṙ_x)` (St Venant–Kirchhoff) or

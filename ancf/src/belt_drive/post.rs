@@ -237,8 +237,12 @@ pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) ->
 /// The snapshot ([`belt::report`]) of the ANCF drive at `(t, q, v)` with the pulleys spinning
 /// at the travel-sense speeds `omegas` \[rad/s\]: the contact quadrature points of every wrap
 /// ([`wrap_records`]), hub loads and torques ([`BeltDrive::pulley_loads_with`]), span
-/// forces ([`span_tensions`]), mid-point offsets ([`span_transverse`]) and lines of action
-/// (through the centreline samples over each span's middle half).
+/// forces (as [`span_tensions`], plus the viscous force of the axial damping,
+/// [`BeltDrive::viscous_axial_force`](super::BeltDrive::viscous_axial_force): the whole axial
+/// force the belt carries), the axial damping's dissipation
+/// ([`BeltDrive::damping_dissipation`](super::BeltDrive::damping_dissipation)), mid-point
+/// offsets ([`span_transverse`]) and lines of action (through the centreline samples over each
+/// span's middle half).
 pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
     let loads = drive.pulley_loads_with(q, v, omegas);
     let pulleys = (0..drive.pulleys().len())
@@ -266,7 +270,11 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
             slip: w.contact.slip,
         })
         .collect();
-    let samples = tension_samples(drive, q, 4);
+    // the whole axial force: elastic plus the axial damping's viscous force (issue 34)
+    let mut samples = tension_samples(drive, q, 4);
+    for (k, smp) in samples.iter_mut().enumerate() {
+        smp.tension += drive.viscous_axial_force(q, v, k / 4, (k % 4) as f64 / 4.0 + 0.125);
+    }
     let tensions = span_tensions_of(drive, &samples);
     let offsets = span_transverse(drive, q);
     let centreline: Vec<[f64; 2]> = samples.iter().map(|s| s.position).collect();
@@ -287,6 +295,6 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
         pulleys,
         spans,
         wrap,
-        belt_dissipation: None,
+        belt_dissipation: Some(drive.damping_dissipation(q, v)),
     }
 }

@@ -47,6 +47,18 @@
 //! [`super::BeltFe::frame_turn`] — Ribaric (5.5)'s `C δ̇` on global components is not
 //! frame-invariant) and `α M` on the Eulerian rate `T ż` (no drag in the steady state; the same
 //! choice as the tire model).
+//!
+//! Why the material rate (issue 34): the stiffness-proportional damping models the rubber's
+//! viscoelasticity, a Kelvin–Voigt stress `β EA Dε/Dt` on the rate of strain of the material. A
+//! Lagrangian belt (the nodal model's material nodes, the ANCF belt) has that rate directly;
+//! in the stationary mesh it is the material derivative `Dε/Dt = ∂ε/∂t + v ∂ε/∂s`, which is what
+//! `δ̇_m` of Ribaric (5.10) (`T ż + v T_,s z`, the convective part included) gives. With
+//! `∂/∂t` alone (`β K_e T ż`) a steady drive would carry no viscous force: the belt leaving a
+//! wrap, where its tension changes, would lose the force `β v dT/ds` the Lagrangian models
+//! carry (on the default fead drive `β v` = 11–49 mm at 800–3500 rpm against spans of 57 mm
+//! and more). Each element's viscous axial force is reported with its elastic force
+//! ([`Self::element_forces`]); the power these damping forces do on the material is
+//! [`Self::damping_dissipation`].
 
 use super::config::{AxialForce, FlowingSettings};
 use super::contact::{NodeContact, PulleyFrame, node_contact};
@@ -366,6 +378,67 @@ impl FlowingBelt {
             tq[r.pulley] += r.contact.torque;
         }
         tq
+    }
+
+    /// Material rate of the nodal deflections `δ̇_m = T ż + v T_,s z` (`3N`, Ribaric (5.10):
+    /// the rate a material point sees as it flows through the stationary mesh) at `(q, v)`.
+    pub fn material_rate(&self, q: &[f64], v: &[f64]) -> Vec<f64> {
+        let m = self.m;
+        let mut r = vec![0.0; self.fe.n_dofs()];
+        gemv(&mut r, &self.basis.t, &v[1..=m], 1.0);
+        gemv(&mut r, &self.basis.ts, &q[1..=m], v[0]);
+        r
+    }
+
+    /// Viscous axial force of the belt element starting at each node \[N\]: `β EA Dε/Dt` on
+    /// the co-rotated material stretch rate ([`super::model::chord_viscous_forces`] with the
+    /// material rate [`Self::material_rate`]), the part of the element's axial force its
+    /// `β K_e` damping carries beside the elastic force [`Self::element_tensions`].
+    pub fn element_viscous_forces(&self, q: &[f64], v: &[f64]) -> Vec<f64> {
+        let dr = &self.fe.drive;
+        super::model::chord_viscous_forces(
+            &self.fe.position,
+            &self.fe.tangent,
+            &self.deflection(&q[1..=self.m]),
+            &self.material_rate(q, v),
+            v[0],
+            dr.damping().beta * dr.belt().ea,
+        )
+    }
+
+    /// The whole axial force the belt element starting at each node carries \[N\]: elastic
+    /// ([`Self::element_tensions`]) plus viscous ([`Self::element_viscous_forces`]).
+    pub fn element_forces(&self, q: &[f64], v: &[f64]) -> Vec<f64> {
+        let mut f = self.element_tensions(&q[1..=self.m]);
+        for (a, b) in f.iter_mut().zip(self.element_viscous_forces(q, v)) {
+            *a += b;
+        }
+        f
+    }
+
+    /// Power dissipated by the belt's Rayleigh damping at `(q, v)` \[W\]: `−Q_dᵀ δ̇_m`, the
+    /// power of the damping forces `Q_d = −α M T ż − β K_e (δ̇_m − v ψ′ J δ)` (module
+    /// documentation) on the material, which moves at the rate `δ̇_m` ([`Self::material_rate`])
+    /// relative to the path (issue 34 power balance).
+    pub fn damping_dissipation(&self, q: &[f64], v: &[f64]) -> f64 {
+        let m = self.m;
+        let (alpha, beta) = (self.fe.drive.damping().alpha, self.fe.drive.damping().beta);
+        let d = self.deflection(&q[1..=m]);
+        let rate = self.material_rate(q, v);
+        let mut euler = vec![0.0; self.fe.n_dofs()];
+        gemv(&mut euler, &self.basis.t, &v[1..=m], 1.0);
+        let n = rate.len();
+        let mut p = 0.0;
+        for i in 0..n {
+            let mut acc = 0.0;
+            for j in 0..n {
+                let ke =
+                    self.fe.damping[(i, j)] - if i == j { alpha * self.fe.mass[i] } else { 0.0 };
+                acc += ke * rate[j] - beta * v[0] * self.fe.frame_turn[(i, j)] * d[j];
+            }
+            p += (acc + alpha * self.fe.mass[i] * euler[i]) * rate[i];
+        }
+        p
     }
 
     /// Axial tension of the belt element starting at each node \[N\]: `T0 + EA Δl/l`, or with

@@ -326,6 +326,42 @@ pub fn chord_tensions(position: &[[f64; 2]], d: &[f64], t0: f64, ea: f64) -> Vec
         .collect()
 }
 
+/// Viscous axial force \[N\] of each element `i → i+1` of the closed loop of nodes at
+/// `position` with path tangents `tangent` \[m\], deflected by `d` at the material rate `rate`
+/// (`x, y, θ` per node) while the material moves along the path at `speed` \[m/s\]: the axial
+/// part of the stiffness-proportional damping force `β K_e (δ̇ − v ψ′ J δ)` of both belt
+/// formulations ([`BeltFe::frame_turn`]),
+///
+/// ```text
+///   N_v = β EA u·(w_j − w_i)/l,   w = δ̇ − v ψ′_e J δ,   J (x, y) = (−y, x)
+/// ```
+///
+/// (`u` the unit chord, `l` its length, `ψ′_e` [`chord_turn_rate`]): `β EA` times the
+/// co-rotated material stretch rate of the element, the Kelvin–Voigt force `β EA Dε/Dt` that
+/// the element carries beside its elastic force (the frame element's `K_e` couples no bending
+/// into the axial stretch, so this is the whole axial damping force). `beta_ea = β EA` \[N s\].
+/// In a steady drive `Dε/Dt = v dε/ds` (Ribaric (5.10)'s convective part): the force is zero
+/// where the strain is uniform and carries the tension change `β v dT/ds` wherever it varies,
+/// over the wraps and over a layer of length `β v` beyond each wrap where the elastic strain
+/// relaxes to the span's (issue 34).
+pub fn chord_viscous_forces(
+    position: &[[f64; 2]], tangent: &[[f64; 2]], d: &[f64], rate: &[f64], speed: f64, beta_ea: f64,
+) -> Vec<f64> {
+    loop_chords(position)
+        .map(|(i, j, [dx, dy], l)| {
+            let turn = speed * chord_turn_rate(position[i], position[j], tangent[i], tangent[j]);
+            let w = |k: usize| {
+                [
+                    rate[3 * k] + turn * d[3 * k + 1],
+                    rate[3 * k + 1] - turn * d[3 * k],
+                ]
+            };
+            let (wi, wj) = (w(i), w(j));
+            beta_ea * (dx * (wj[0] - wi[0]) + dy * (wj[1] - wi[1])) / (l * l)
+        })
+        .collect()
+}
+
 /// The chords of the elements `i → j = i + 1` (the last closing on node 0) of the closed loop
 /// of nodes at `position` \[m\]: `(i, j, [dx, dy], l)` with the chord vector and its length
 /// \[m\].
@@ -577,6 +613,50 @@ pub(crate) mod tests {
             rate[3 * i + 1] = phi * tan[i][0];
         }
         (delta, rate)
+    }
+
+    // The viscous axial force of chord_viscous_forces against the Kelvin–Voigt law in a steady
+    // flow (analytical reference: N_v = β EA Dε/Dt = β EA v dε/ds): the tangential deflection
+    // u(s) = a s²/2 along Table 6-1's loop (strain ε = u' = a s on the spans, advected at v, so
+    // that the material rate of δ is v u' e_t plus the turn of e_t on the arcs) gives
+    // N_v = β EA v a on every span element; a rigid rotation carried by the material gives 0.
+    #[test]
+    fn viscous_force_is_kelvin_voigt_on_the_material_rate() {
+        let fe = BeltFe::new(&crate::belt::table_6_1(0.0, 0.0), &BeltMesh::default()).unwrap();
+        let (beta_ea, v, a) = (1.8e-3 * 1.0e5, 3.0, 2e-3);
+        let n = fe.n_nodes();
+        let mut delta = vec![0.0; 3 * n];
+        let mut rate = vec![0.0; 3 * n];
+        for i in 0..n {
+            let (s, t) = (fe.s[i], fe.tangent[i]);
+            for c in 0..2 {
+                delta[3 * i + c] = 0.5 * a * s * s * t[c];
+                // D/Dt of u e_t at speed v: v (u' e_t + u κ e_n); on the spans κ = 0
+                rate[3 * i + c] = v * a * s * t[c];
+            }
+        }
+        let on_span = |i: usize| {
+            let j = (i + 1) % n;
+            let (ti, tj) = (fe.tangent[i], fe.tangent[j]);
+            (ti[0] - tj[0]).abs() + (ti[1] - tj[1]).abs() < 1e-12 && fe.s[j] > fe.s[i]
+        };
+        let nv = chord_viscous_forces(&fe.position, &fe.tangent, &delta, &rate, v, beta_ea);
+        let mut spans = 0;
+        for (i, f) in nv.iter().enumerate().filter(|(i, _)| on_span(*i)) {
+            assert!(
+                (f - beta_ea * v * a).abs() < 1e-9 * beta_ea,
+                "element {i}: {f} N"
+            );
+            spans += 1;
+        }
+        assert!(spans > 10, "{spans} span elements");
+        for c in [[0.0, 0.0], [0.45, 0.0], [0.17, -0.3]] {
+            let (delta, rate) = rigid_rotation(&fe.position, &fe.tangent, c, 1e-3);
+            let rate: Vec<f64> = rate.iter().map(|r| v * r).collect();
+            let nv = chord_viscous_forces(&fe.position, &fe.tangent, &delta, &rate, v, beta_ea);
+            let big = nv.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+            assert!(big < 1e-9 * beta_ea, "rigid rotation about {c:?}: {big} N");
+        }
     }
 
     // Frame invariance of the β damping (BeltFe::frame_turn): a rigid rotation of the mounted

@@ -453,6 +453,42 @@ impl NodalBelt {
         Ok(tq)
     }
 
+    /// Viscous axial force of the belt element starting at each material node \[N\]:
+    /// `β EA Dε/Dt` on the co-rotated stretch rate of the material element
+    /// ([`super::model::chord_viscous_forces`] on the reference polygon at `s_b = q[0]`, `δ̇`
+    /// the material rate), the part of the element's axial force its `β K_e` damping carries
+    /// beside the elastic force [`Self::element_tensions`].
+    pub fn element_viscous_forces(&self, q: &[f64], v: &[f64]) -> Vec<f64> {
+        let dr = &self.fe.drive;
+        let nd = self.n_nodal();
+        let pts: Vec<_> = self
+            .fe
+            .s
+            .iter()
+            .map(|&s| self.fe.path().point(s + q[0]))
+            .collect();
+        let pos: Vec<[f64; 2]> = pts.iter().map(|p| p.position).collect();
+        let tan: Vec<[f64; 2]> = pts.iter().map(|p| p.tangent).collect();
+        super::model::chord_viscous_forces(
+            &pos,
+            &tan,
+            &q[1..=nd],
+            &v[1..=nd],
+            v[0],
+            dr.damping().beta * dr.belt().ea,
+        )
+    }
+
+    /// The whole axial force the belt element starting at each material node carries \[N\]:
+    /// elastic ([`Self::element_tensions`]) plus viscous ([`Self::element_viscous_forces`]).
+    pub fn element_forces(&self, q: &[f64], v: &[f64]) -> Vec<f64> {
+        let mut f = self.element_tensions(q);
+        for (a, b) in f.iter_mut().zip(self.element_viscous_forces(q, v)) {
+            *a += b;
+        }
+        f
+    }
+
     /// Power dissipated by the belt's Rayleigh damping at `(q, v)` \[W\]: `−Q_dᵀ δ̇` with the
     /// damping forces `Q_d = −α M δ̇ − β K_e (δ̇ − v ψ′ J δ)` of the nodal forces (the
     /// only non-conservative forces of the belt besides the contact; issue 34 power balance).

@@ -1,7 +1,9 @@
 //! The flowing-material and nodal belts as [`BeltModel`]s: their snapshots for the one
-//! report ([`belt::report`]) — contact nodes as wrap points, element forces `T0 + EA Δl/l`
-//! as span forces (the force of the models linearised about the mounted state, Ribaric
-//! (5.5)), pulley torques and hub loads summed from the node contacts.
+//! report ([`belt::report`]) — contact nodes as wrap points, the whole axial force each element
+//! carries (elastic `T0 + EA Δl/l` or the co-rotated material law, plus the viscous force of the
+//! `β K_e` damping, [`super::model::chord_viscous_forces`]) as span and wrap forces, pulley
+//! torques and hub loads summed from the node contacts, and the power of the belt's damping
+//! forces ([`FlowingBelt::damping_dissipation`], [`NodalBelt::damping_dissipation`]).
 
 use super::contact::NodeContact;
 use super::coordinates::DriveCoordinates;
@@ -14,11 +16,14 @@ use mbd_core::MbdError;
 use mbd_core::integrators::State;
 
 /// What the linearised models report as the belt's force.
-pub const LINEAR_FORCE_MEASURE: &str = "the axial force each element carries: with \
-axial_force = \"co_rotated\" (default) the belt's material law (drive.belt.law, stretch from the \
-unstretched belt, mounted at T0) at the element's chord length, along the chord; with \
-\"linear\" T0 + EA Δl/l linearised about the mounted tension T0 (Ribaric (5.5)); mean over \
-each span's middle half";
+pub const LINEAR_FORCE_MEASURE: &str = "the whole axial force each element carries, elastic \
+plus viscous: the elastic part with axial_force = \"co_rotated\" (the nodal model's default) the \
+belt's material law (drive.belt.law, stretch from the unstretched belt, mounted at T0) at the \
+element's chord length, along the chord, with \"linear\" (the flowing model's default) T0 + EA \
+Δl/l linearised about the mounted tension T0 (Ribaric (5.5)); the viscous part beta EA De/Dt of \
+the stiffness-proportional damping on the element's co-rotated material stretch rate (in a \
+steady drive beta v dT/ds: nonzero over the wraps and a layer of length beta v beyond them); \
+spans: mean over each span's middle half";
 
 /// Deformed node positions: `reference` plus the translations of `d` (3 DOFs per node).
 fn deformed(reference: &[[f64; 2]], d: &[f64]) -> Vec<[f64; 2]> {
@@ -145,23 +150,19 @@ macro_rules! shared_belt_model_methods {
 impl BeltModel for FlowingBelt {
     shared_belt_model_methods!("flowing");
 
-    /// Contact nodes of the stationary mesh, element forces `T0 + EA Δl/l`.
+    /// Contact nodes of the stationary mesh, the elements' whole axial forces
+    /// ([`FlowingBelt::element_forces`]).
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
         let z = &q[1..=self.n_modes()];
         let nodes = deformed(&self.fe.position, &self.deflection(z));
-        let forces = self.element_tensions(z);
+        let forces = self.element_forces(q, v);
         let contacts = self
             .contact_report(t, q, v)
             .into_iter()
             .map(|r| (r.node, r.pulley, r.contact));
-        Ok(snapshot_with(
-            &self.fe,
-            &self.coords,
-            (t, q, v),
-            &nodes,
-            &forces,
-            contacts,
-        ))
+        let mut snap = snapshot_with(&self.fe, &self.coords, (t, q, v), &nodes, &forces, contacts);
+        snap.belt_dissipation = Some(self.damping_dissipation(q, v));
+        Ok(snap)
     }
 
     fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
@@ -176,10 +177,11 @@ impl BeltModel for FlowingBelt {
 impl BeltModel for NodalBelt {
     shared_belt_model_methods!("nodal");
 
-    /// Material nodes on the reference polygon at `s_b`, element forces `T0 + EA Δl/l`.
+    /// Material nodes on the reference polygon at `s_b`, the elements' whole axial forces
+    /// ([`NodalBelt::element_forces`]).
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
         let nodes = deformed(&self.reference_positions(q[0]), &q[1..=self.n_nodal()]);
-        let forces = self.element_tensions(q);
+        let forces = self.element_forces(q, v);
         let contacts = self
             .contact_report(t, q, v)?
             .into_iter()
