@@ -39,8 +39,9 @@ pub struct SparseEigenOptions {
     /// Krylov basis size before a thick restart; `None` = `max(2·nev + 2·block, nev + 4·block)`
     /// (rounded up to a multiple of the block size).
     pub max_dim: Option<usize>,
-    /// Convergence tolerance: Ritz residual `‖T y − θ y‖ ≤ tolerance · |θ|` of each wanted
-    /// pair of the shift-invert operator T (ARPACK's criterion, `tol` of scipy's `eigsh`).
+    /// Convergence tolerance: Ritz residual `‖T y − θ y‖ ≤ tolerance · max(|θ|, ε^(2/3) θ_max)`
+    /// of each wanted pair of the shift-invert operator T (ARPACK's criterion, `tol` of scipy's
+    /// `eigsh`; the floor matters only for pairs far below the largest θ).
     pub tolerance: f64,
     /// Block width of the block Lanczos (right-hand sides per triangular solve). 8 with the
     /// default basis took the fewest seconds on the 30 240-DOF tire (BENCHMARKS.md: 4 to 48
