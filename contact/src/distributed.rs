@@ -19,7 +19,7 @@ use crate::dim::{ContactDim, Dim, Moment, Slip};
 use crate::friction::FrictionLaw;
 use crate::geometry::Surface;
 use crate::normal::NormalLaw;
-use crate::point::point_contact;
+use crate::point::point_contact_with;
 use crate::quadrature::GaussRule;
 use nalgebra::{Point, SMatrix, SVector};
 use std::ops::{AddAssign, Mul};
@@ -38,6 +38,12 @@ pub trait ShapeMatrix<const D: usize> {
     );
     /// `k += w Sᵀ A S` (`k` column-major `ndof × ndof`).
     fn add_congruence(&self, a: &SMatrix<f64, D, D>, w: f64, k: &mut [f64]);
+    /// The values `s_b` of a block shape `S = [s₁ I, s₂ I, …]` ([`BlockShape`]), whose
+    /// congruences [`element_contact`] then sums over all points at once (see
+    /// [`add_block_congruences`]); `None` (the default) for a general matrix.
+    fn block_values(&self) -> Option<&[f64]> {
+        None
+    }
 }
 
 /// Block shape functions `S = [s₁ I, s₂ I, …]` (a line element's centreline, or the mid-surface
@@ -65,6 +71,9 @@ impl<const D: usize> ShapeMatrix<D> for BlockShape {
                 out[D * b + i] += x[i] * ws;
             }
         }
+    }
+    fn block_values(&self) -> Option<&[f64]> {
+        Some(&self.values[..self.blocks])
     }
     #[inline]
     fn add_congruence(&self, a: &SMatrix<f64, D, D>, w: f64, k: &mut [f64]) {
@@ -109,6 +118,76 @@ impl<const D: usize, const N: usize> ShapeMatrix<D> for SMatrix<f64, D, N> {
                     sum += self[(i, row)] * as_[(i, col)];
                 }
                 k[row + col * N] += sum;
+            }
+        }
+    }
+}
+
+/// A shape matrix by reference (the caller keeps its precomputed shapes; a point need not copy
+/// one).
+impl<const D: usize, T: ShapeMatrix<D>> ShapeMatrix<D> for &T {
+    fn ndof(&self) -> usize {
+        (**self).ndof()
+    }
+    #[inline]
+    fn add_transposed<M: Copy + AddAssign + Mul<f64, Output = M>>(
+        &self, x: &[M; D], w: f64, out: &mut [M],
+    ) {
+        (**self).add_transposed(x, w, out)
+    }
+    fn add_congruence(&self, a: &SMatrix<f64, D, D>, w: f64, k: &mut [f64]) {
+        (**self).add_congruence(a, w, k)
+    }
+    fn block_values(&self) -> Option<&[f64]> {
+        (**self).block_values()
+    }
+}
+
+/// `k_p += Σ_q Sᵀ_q A_q S_q` and `k_v += Σ_q Sᵀ_q B_q S_q` (column-major `ndof × ndof`,
+/// `ndof = D·blocks`) for block shapes `S_q = [s_q1 I, s_q2 I, …]`, the Jacobian sums of
+/// [`element_contact`]. `points` holds per point the `blocks` values `s_q`, then `A_q` and `B_q`
+/// (`D × D` column-major each, the weight included). The `(i, j)` block of the sum is
+/// `Σ_q s_qi s_qj A_q`, equal to the `(j, i)` block, so only the pairs `i ≤ j` are summed —
+/// one 2D²-wide multiply–add per pair and point — and mirrored at the end; `acc` is the
+/// caller's buffer for the pair sums.
+pub fn add_block_congruences<const D: usize>(
+    blocks: usize, points: &[f64], kp: &mut [f64], kv: &mut [f64], acc: &mut Vec<f64>,
+) {
+    let dd = D * D;
+    let nc = 2 * dd;
+    let ndof = D * blocks;
+    let pairs = blocks * (blocks + 1) / 2;
+    acc.clear();
+    acc.resize(pairs * nc, 0.0);
+    for rec in points.chunks_exact(blocks + nc) {
+        let (s, m) = rec.split_at(blocks);
+        let mut rows = acc.chunks_exact_mut(nc);
+        for j in 0..blocks {
+            for i in 0..=j {
+                let t = s[i] * s[j];
+                let row = rows.next().expect("one row per pair");
+                for (r, v) in row.iter_mut().zip(m) {
+                    *r += t * v;
+                }
+            }
+        }
+    }
+    let mut rows = acc.chunks_exact(nc);
+    for j in 0..blocks {
+        for i in 0..=j {
+            let row = rows.next().expect("one row per pair");
+            for b in 0..D {
+                for r in 0..D {
+                    let (va, vb) = (row[r + D * b], row[dd + r + D * b]);
+                    let ij = D * i + r + (D * j + b) * ndof;
+                    kp[ij] += va;
+                    kv[ij] += vb;
+                    if i != j {
+                        let ji = D * j + r + (D * i + b) * ndof;
+                        kp[ji] += va;
+                        kv[ji] += vb;
+                    }
+                }
             }
         }
     }
@@ -180,6 +259,11 @@ where
     pub reaction: SVector<f64, D>,
     /// Number of quadrature points in contact.
     pub active_points: usize,
+    /// Per-point block values and weighted Jacobians of the current call, summed by
+    /// [`add_block_congruences`] at its end.
+    batch: Vec<f64>,
+    /// Pair sums of [`add_block_congruences`].
+    pairs: Vec<f64>,
 }
 
 impl<const D: usize> ElementContact<D>
@@ -200,6 +284,8 @@ where
             dmoment_domega: Moment::<D>::default(),
             reaction: SVector::zeros(),
             active_points: 0,
+            batch: Vec::new(),
+            pairs: Vec::new(),
         }
     }
 
@@ -216,6 +302,7 @@ where
         self.dmoment_domega = Moment::<D>::default();
         self.reaction.fill(0.0);
         self.active_points = 0;
+        self.batch.clear();
     }
 }
 
@@ -240,7 +327,14 @@ pub fn element_contact<const D: usize, S, NL, FL, Sh>(
     let c = surface.center();
     for (index, qp) in points.into_iter().enumerate() {
         debug_assert_eq!(qp.shape.ndof(), out.ndof);
-        let Some(pc) = point_contact(surface, normal, friction, &qp.position, &qp.velocity) else {
+        let Some(pc) = point_contact_with(
+            surface,
+            normal,
+            friction,
+            &qp.position,
+            &qp.velocity,
+            jacobian,
+        ) else {
             continue;
         };
         out.active_points += 1;
@@ -251,8 +345,14 @@ pub fn element_contact<const D: usize, S, NL, FL, Sh>(
         out.reaction -= f * w;
         out.moment -= <Dim<D>>::cross(&arm, &f) * w;
         if jacobian {
-            qp.shape.add_congruence(&pc.df_dp, w, &mut out.dq_de);
-            qp.shape.add_congruence(&pc.df_dv, w, &mut out.dq_dedot);
+            if let Some(s) = qp.shape.block_values() {
+                out.batch.extend_from_slice(s);
+                out.batch.extend(pc.df_dp.iter().map(|x| x * w));
+                out.batch.extend(pc.df_dv.iter().map(|x| x * w));
+            } else {
+                qp.shape.add_congruence(&pc.df_dp, w, &mut out.dq_de);
+                qp.shape.add_congruence(&pc.df_dv, w, &mut out.dq_dedot);
+            }
             qp.shape
                 .add_transposed(&pc.df_domega.into(), w, &mut out.dq_domega);
             let mut dm_dp = [Moment::<D>::default(); D];
@@ -279,6 +379,15 @@ pub fn element_contact<const D: usize, S, NL, FL, Sh>(
                 slip: pc.slip,
             });
         }
+    }
+    if !out.batch.is_empty() {
+        add_block_congruences::<D>(
+            out.ndof / D,
+            &out.batch,
+            &mut out.dq_de,
+            &mut out.dq_dedot,
+            &mut out.pairs,
+        );
     }
 }
 

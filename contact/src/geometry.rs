@@ -46,6 +46,12 @@ pub struct SurfacePoint<const D: usize> {
 pub trait Surface<const D: usize> {
     /// Closest-point query for the point `p` \[m\].
     fn closest(&self, p: &Point<f64, D>) -> SurfacePoint<D>;
+    /// [`Surface::closest`] where only the values are needed (gap, normal, gap gradient,
+    /// tangent, point, surface velocity, `∂u_s/∂ω`, part): a shape may leave the derivatives
+    /// `dn_dp` and `dus_dp` zero to save their cost (force-only evaluations). Default: `closest`.
+    fn closest_value(&self, p: &Point<f64, D>) -> SurfacePoint<D> {
+        self.closest(p)
+    }
     /// Reference point of the body for moments (pulley axis) \[m\].
     fn center(&self) -> Point<f64, D>;
 }
@@ -53,6 +59,9 @@ pub trait Surface<const D: usize> {
 impl<const D: usize, S: Surface<D> + ?Sized> Surface<D> for &S {
     fn closest(&self, p: &Point<f64, D>) -> SurfacePoint<D> {
         (**self).closest(p)
+    }
+    fn closest_value(&self, p: &Point<f64, D>) -> SurfacePoint<D> {
+        (**self).closest_value(p)
     }
     fn center(&self) -> Point<f64, D> {
         (**self).center()

@@ -61,7 +61,7 @@ pub use geometry::{
 };
 pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};
 pub use normal::{LinearPenalty, NormalForce, NormalLaw, NormalSpec, PolynomialPenalty};
-pub use point::{PointContact, PointContact2, PointContact3, point_contact};
+pub use point::{PointContact, PointContact2, PointContact3, point_contact, point_contact_with};
 pub use quadrature::GaussRule;
 pub use solver::{
     ContactSolver, ContactSolverOptions, ContactSolverReport, DelassusSource, DenseProblem,

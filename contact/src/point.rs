@@ -67,7 +67,27 @@ where
     NL: NormalLaw + ?Sized,
     FL: FrictionLaw + ?Sized,
 {
-    let sp = surface.closest(p);
+    point_contact_with(surface, normal_law, friction_law, p, v, true)
+}
+
+/// [`point_contact`], with the derivatives `df_dp`, `df_dv`, `df_domega` (and the surface's
+/// `dn_dp`, `dus_dp`) only when `jacobian`: without it they are zero, and the closest point is
+/// the cheaper [`Surface::closest_value`] (a force-only evaluation of a Newton residual).
+pub fn point_contact_with<const D: usize, S, NL, FL>(
+    surface: &S, normal_law: &NL, friction_law: &FL, p: &Point<f64, D>, v: &SVector<f64, D>,
+    jacobian: bool,
+) -> Option<PointContact<D>>
+where
+    Dim<D>: ContactDim<D>,
+    S: Surface<D> + ?Sized,
+    NL: NormalLaw + ?Sized,
+    FL: FrictionLaw + ?Sized,
+{
+    let sp = if jacobian {
+        surface.closest(p)
+    } else {
+        surface.closest_value(p)
+    };
     if sp.gap > 0.0 {
         return None;
     }
@@ -79,6 +99,21 @@ where
     let rate = -nw;
     let nf = normal_law.normal(pen, rate);
     let (slip, friction, ft) = <Dim<D>>::friction(friction_law, &tangents, &w, nf.force);
+    if !jacobian {
+        return Some(PointContact {
+            surface: sp,
+            tangents,
+            penetration: pen,
+            penetration_rate: rate,
+            slip,
+            normal: nf,
+            friction,
+            force: n * nf.force + ft.force,
+            df_dp: SMatrix::zeros(),
+            df_dv: SMatrix::zeros(),
+            df_domega: SVector::zeros(),
+        });
+    }
 
     let dn = sp.dn_dp;
     let dus = sp.dus_dp;

@@ -59,6 +59,9 @@ pub struct Planar {
     elastic_evaluations: AtomicUsize,
     /// The tensioner arm, if any ([`BeltDrive::with_tensioner`]).
     arm: Option<BeltArm>,
+    /// The axial damping's Gauss rule along an element (`belt.gauss_points`): weight and the
+    /// cubic shape functions' `x` derivatives at each point (constant: built once).
+    damping_points: Vec<(f64, [f64; 6])>,
 }
 
 /// A tensioner arm of a belt drive ([`BeltDrive::with_tensioner`], [`belt::tensioner`]):
@@ -176,7 +179,12 @@ impl BeltDrive {
             rule: GaussRule::new(spec.contact.points),
         };
         let arm_inertia: Vec<f64> = arm.iter().map(|a| a.spec.inertia).collect();
+        let damping_points = GaussRule::new(b.gauss_points)
+            .iter()
+            .map(|(xi, w)| (w, shape::cubic(l, xi * l, 0.0).sx))
+            .collect();
         let kind = Planar {
+            damping_points,
             mesh,
             friction: vec![spec.contact.friction; spec.pulleys.len()],
             line,
@@ -852,9 +860,7 @@ impl BeltDrive {
         }
         let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
         let l = self.element_length();
-        let rule = GaussRule::new(b.gauss_points);
-        for (xi, w) in rule.iter() {
-            let sx = shape::cubic(l, xi * l, 0.0).sx;
+        for &(w, sx) in &self.kind.damping_points {
             let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
             for a in 0..6 {
                 for c in 0..2 {

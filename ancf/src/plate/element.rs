@@ -156,11 +156,12 @@ impl ThinPlate {
     pub fn elastic_forces(&self, e: &[f64], q: &mut [f64]) {
         q[..PLATE_NDOF].fill(0.0);
         let mut ld = LocalDerivatives::zero();
+        let blocks = self.derivative_blocks();
         for (sv, w) in &self.points {
-            let u: [f64; NU] = gather(sv, e);
+            let u: [f64; NU] = gather_blocks(sv, e, blocks);
             ld.g = [0.0; NU];
             self.local_derivatives(&u, false, &mut ld);
-            scatter_gradient(sv, -w, &ld.g, q);
+            scatter_gradient_blocks(sv, -w, &ld.g, q, blocks);
         }
     }
 
@@ -172,20 +173,20 @@ impl ThinPlate {
     pub fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut Mat<f64>) {
         q[..PLATE_NDOF].fill(0.0);
         k.fill(0.0);
-        let blocks = if self.bending { 5 } else { 2 };
+        let blocks = self.derivative_blocks();
         let nr = 3 * blocks;
         let mut ld = LocalDerivatives::zero();
         let mut kl = [[0.0; PLATE_NDOF]; PLATE_NDOF];
         // A_l = Σ_q d_q[l] H[:, 3q..3q+3] for one shape function l (nr × 3)
         let mut al = [[0.0; 3]; NU];
         for (sv, w) in &self.points {
-            let u: [f64; NU] = gather(sv, e);
+            let u: [f64; NU] = gather_blocks(sv, e, blocks);
             ld.g = [0.0; NU];
             for row in ld.h.iter_mut().take(nr) {
                 row[..nr].fill(0.0);
             }
             self.local_derivatives(&u, true, &mut ld);
-            scatter_gradient(sv, -w, &ld.g, q);
+            scatter_gradient_blocks(sv, -w, &ld.g, q, blocks);
             let d = [&sv.sx, &sv.sy, &sv.sxx, &sv.sxy, &sv.syy];
             for l in 0..12 {
                 for (r, a) in al.iter_mut().enumerate().take(nr) {
@@ -277,6 +278,12 @@ impl ThinPlate {
         if self.bending {
             energy::bending(u, self.rigidity(), nu, jac, out);
         }
+    }
+
+    /// Number of shape-derivative blocks the energy density depends on: `r_x`, `r_y` (membrane,
+    /// (4.16)), and `r_xx`, `r_xy`, `r_yy` with bending (4.17).
+    fn derivative_blocks(&self) -> usize {
+        if self.bending { 5 } else { 2 }
     }
 
     /// Bending rigidity `D = E h³ / (12 (1 − ν²))` \[N·m\] (see the type documentation).
@@ -372,9 +379,15 @@ fn cross<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
 
 /// Local kinematic quantities `[r_x, r_y, r_xx, r_xy, r_yy]` from the element coordinates.
 fn gather(sv: &ShapeValues, e: &[f64]) -> [f64; NU] {
+    gather_blocks(sv, e, 5)
+}
+
+/// [`gather`] of the first `blocks` derivatives only (2: `r_x`, `r_y`, all the membrane energy
+/// needs; the rest stay zero).
+fn gather_blocks(sv: &ShapeValues, e: &[f64], blocks: usize) -> [f64; NU] {
     let mut u = [0.0; NU];
     let d = [&sv.sx, &sv.sy, &sv.sxx, &sv.sxy, &sv.syy];
-    for (p, dp) in d.iter().enumerate() {
+    for (p, dp) in d.iter().enumerate().take(blocks) {
         for k in 0..12 {
             for c in 0..3 {
                 u[3 * p + c] += dp[k] * e[3 * k + c];
@@ -386,8 +399,16 @@ fn gather(sv: &ShapeValues, e: &[f64]) -> [f64; NU] {
 
 /// `q += scale · Bᵀ g` with `B` the map of [`gather`].
 fn scatter_gradient(sv: &ShapeValues, scale: f64, g: &[f64; NU], q: &mut [f64]) {
+    scatter_gradient_blocks(sv, scale, g, q, 5)
+}
+
+/// [`scatter_gradient`] of the first `blocks` gradient blocks only (the others must be zero:
+/// without bending the membrane density has no gradient in `r_xx`, `r_xy`, `r_yy`).
+fn scatter_gradient_blocks(
+    sv: &ShapeValues, scale: f64, g: &[f64; NU], q: &mut [f64], blocks: usize,
+) {
     let d = [&sv.sx, &sv.sy, &sv.sxx, &sv.sxy, &sv.syy];
-    for (p, dp) in d.iter().enumerate() {
+    for (p, dp) in d.iter().enumerate().take(blocks) {
         for k in 0..12 {
             for c in 0..3 {
                 q[3 * k + c] += scale * dp[k] * g[3 * p + c];

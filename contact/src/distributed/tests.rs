@@ -333,3 +333,95 @@ fn planar_line_contact_equals_extruded_plate() {
         }
     }
 }
+
+// Reference (second formulation): the block-shape path (pair sums of
+// `add_block_congruences`, force-only points through `Surface::closest_value`) against the
+// general matrix path (`Sᵀ A S` point by point with the full 3 × 12 shape matrix) on the same
+// bilinear element pressed onto a crowned, rotating pulley; the forces of a force-only pass
+// equal those of the pass with Jacobians bit for bit.
+#[test]
+fn block_shapes_equal_the_general_shape_matrix() {
+    let normal = LinearPenalty {
+        stiffness: 1e9,
+        damping: 1e3,
+    };
+    let friction = Stribeck {
+        mu_static: 0.6,
+        mu_kinetic: 0.4,
+        stribeck_velocity: 0.05,
+        kappa: 40.0,
+    };
+    let r = 0.098;
+    let mut e = SVector::<f64, 12>::zeros();
+    let mut edot = SVector::<f64, 12>::zeros();
+    for (k, (th, z)) in [
+        (0.05f64, -0.01),
+        (0.35, -0.01),
+        (0.05, 0.015),
+        (0.35, 0.015),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let rr = r + 1e-4 * k as f64;
+        e.fixed_rows_mut::<3>(3 * k)
+            .copy_from(&Vector3::new(rr * th.cos(), rr * th.sin(), z));
+        edot.fixed_rows_mut::<3>(3 * k).copy_from(&Vector3::new(
+            -1.97 * th.sin() + 0.01 * k as f64,
+            1.97 * th.cos(),
+            0.03 - 0.02 * k as f64,
+        ));
+    }
+    let rule = GaussRule::new(3);
+    let full = bilinear_points(&e, &edot, &rule, &rule, 0.03 * 0.025);
+    // the same points with the block shape [n_k I₃]: n_k = S[(0, 3k)]
+    let blocks: Vec<QuadPoint<3, BlockShape>> = full
+        .iter()
+        .map(|p| {
+            let mut values = [0.0; MAX_BLOCKS];
+            for (k, v) in values.iter_mut().take(4).enumerate() {
+                *v = p.shape[(0, 3 * k)];
+            }
+            QuadPoint {
+                position: p.position,
+                velocity: p.velocity,
+                shape: BlockShape { values, blocks: 4 },
+                weight: p.weight,
+            }
+        })
+        .collect();
+    let surf = pulley(20.0);
+    let mut a = ElementContact::<3>::new(12);
+    let mut b = ElementContact::<3>::new(12);
+    let mut f = ElementContact::<3>::new(12);
+    element_contact(&surf, &normal, &friction, full, true, &mut a, None);
+    element_contact(
+        &surf,
+        &normal,
+        &friction,
+        blocks.clone(),
+        true,
+        &mut b,
+        None,
+    );
+    element_contact(&surf, &normal, &friction, blocks, false, &mut f, None);
+    assert!(a.active_points > 0, "{}", a.active_points);
+    assert_eq!(a.active_points, b.active_points);
+    let close = |x: &[f64], y: &[f64]| {
+        let scale = amax(x);
+        x.iter().zip(y).all(|(u, v)| (u - v).abs() <= 1e-12 * scale)
+    };
+    assert!(close(&a.q, &b.q));
+    assert!(close(&a.dq_de, &b.dq_de));
+    assert!(close(&a.dq_dedot, &b.dq_dedot));
+    assert!(close(&a.dq_domega, &b.dq_domega));
+    assert!(amax3(&a.dmoment_de) > 0.0);
+    for (u, v) in a.dmoment_de.iter().zip(&b.dmoment_de) {
+        assert!((u - v).amax() <= 1e-12 * amax3(&a.dmoment_de));
+    }
+    // the force-only pass: the same forces, moment and reaction, no Jacobians
+    assert_eq!(f.q, b.q);
+    assert_eq!(f.moment, b.moment);
+    assert_eq!(f.reaction, b.reaction);
+    assert!(f.dq_de.iter().all(|v| *v == 0.0));
+}

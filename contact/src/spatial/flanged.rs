@@ -67,6 +67,16 @@ impl Surface<3> for FlangedCylinder {
         }
         best
     }
+    fn closest_value(&self, p: &Point3<f64>) -> SurfacePoint<3> {
+        let mut best = self.cylinder.closest_value(p);
+        for k in 0..2 {
+            let f = self.flange(k, p);
+            if f.gap < best.gap {
+                best = f;
+            }
+        }
+        best
+    }
     fn center(&self) -> Point3<f64> {
         self.cylinder.center
     }

@@ -45,9 +45,10 @@ pub struct Cylinder {
     pub omega: f64,
 }
 
-impl Surface<3> for Cylinder {
-    /// `u_s = ṙ_o + ω R(ζ) (a × e_r)` (nominal radius, as Kerkkänen (3.24)–(3.25)).
-    fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
+impl Cylinder {
+    /// The closest-point data of `p`; the derivatives `dn_dp`, `dus_dp` only when `derivatives`
+    /// (zero otherwise).
+    fn closest_point(&self, p: &Point3<f64>, derivatives: bool) -> SurfacePoint<3> {
         let a = self.axis;
         let d = p - self.center;
         let zeta = a.dot(&d);
@@ -60,20 +61,25 @@ impl Surface<3> for Cylinder {
         };
         let r = self.radius - self.crown * zeta * zeta;
         let drdz = -2.0 * self.crown * zeta;
-        let proj = Matrix3::identity() - a * a.transpose();
-        // ∂e_r/∂p = (I − a aᵀ − e_r e_rᵀ)/ρ
-        let der = (proj - er * er.transpose()) * inv;
         let m = er - a * drdz;
         let mn = m.norm();
         let n = m / mn;
-        // ∂m/∂p = ∂e_r/∂p + 2c a aᵀ
-        let dm = der + a * a.transpose() * (2.0 * self.crown);
-        let dn = (Matrix3::identity() - n * n.transpose()) * dm / mn;
         let circ = a.cross(&er);
-        let cross_a = a.cross_matrix();
         let w = self.omega;
-        // u_s = ṙ_o + ω R(ζ) a × e_r ⇒ ∂u_s/∂p = ω [(a × e_r) R' aᵀ + R [a]× ∂e_r/∂p]
-        let dus = (circ * a.transpose() * drdz + cross_a * der * r) * w;
+        let (dn, dus) = if derivatives {
+            let proj = Matrix3::identity() - a * a.transpose();
+            // ∂e_r/∂p = (I − a aᵀ − e_r e_rᵀ)/ρ
+            let der = (proj - er * er.transpose()) * inv;
+            // ∂m/∂p = ∂e_r/∂p + 2c a aᵀ
+            let dm = der + a * a.transpose() * (2.0 * self.crown);
+            let dn = (Matrix3::identity() - n * n.transpose()) * dm / mn;
+            let cross_a = a.cross_matrix();
+            // u_s = ṙ_o + ω R(ζ) a × e_r ⇒ ∂u_s/∂p = ω [(a × e_r) R' aᵀ + R [a]× ∂e_r/∂p]
+            let dus = (circ * a.transpose() * drdz + cross_a * der * r) * w;
+            (dn, dus)
+        } else {
+            (Matrix3::zeros(), Matrix3::zeros())
+        };
         SurfacePoint {
             gap: rho - r,
             normal: n,
@@ -86,6 +92,16 @@ impl Surface<3> for Cylinder {
             dus_domega: circ * r,
             part: 0,
         }
+    }
+}
+
+impl Surface<3> for Cylinder {
+    /// `u_s = ṙ_o + ω R(ζ) (a × e_r)` (nominal radius, as Kerkkänen (3.24)–(3.25)).
+    fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
+        self.closest_point(p, true)
+    }
+    fn closest_value(&self, p: &Point3<f64>) -> SurfacePoint<3> {
+        self.closest_point(p, false)
     }
     fn center(&self) -> Point3<f64> {
         self.center

@@ -51,6 +51,12 @@ impl Surface<3> for PulleySurface {
             PulleySurface::Flanged(f) => f.closest(p),
         }
     }
+    fn closest_value(&self, p: &Point3<f64>) -> SurfacePoint3 {
+        match self {
+            PulleySurface::Cylinder(c) => c.closest_value(p),
+            PulleySurface::Flanged(f) => f.closest_value(p),
+        }
+    }
     fn center(&self) -> Point3<f64> {
         self.cylinder().center
     }
@@ -226,13 +232,13 @@ impl PlateBeltDrive {
     /// The contact quadrature points of element `el` with coordinates `e` and velocities `ed`.
     fn points<'a>(
         &'a self, e: &'a [f64; NE], ed: &'a [f64; NE],
-    ) -> impl Iterator<Item = QuadPoint<3, BlockShape>> + 'a {
+    ) -> impl Iterator<Item = QuadPoint<3, &'a BlockShape>> + 'a {
         self.kind
             .quad
             .iter()
             .zip(&self.kind.quad_s)
             .zip(&self.kind.quad_shape)
-            .map(move |((&(_, _, w), s), shape)| quad_point(s, *shape, w, e, ed))
+            .map(move |((&(_, _, w), s), shape)| quad_point(s, shape, w, e, ed))
     }
 
     /// The pulley surfaces at time `t` with the travel-sense speeds `omegas`.
@@ -499,9 +505,9 @@ pub struct PlateContactRecord {
 
 /// The quadrature point with shape values `s` (matrix `shape`) and weight `w` of an element with
 /// coordinates `e` and velocities `ed`: `r = S e`, `ṙ = S ė`.
-fn quad_point(
-    s: &[f64; 12], shape: BlockShape, w: f64, e: &[f64; NE], ed: &[f64; NE],
-) -> QuadPoint<3, BlockShape> {
+fn quad_point<Sh>(
+    s: &[f64; 12], shape: Sh, w: f64, e: &[f64; NE], ed: &[f64; NE],
+) -> QuadPoint<3, Sh> {
     let (mut r, mut v) = (Vector3::zeros(), Vector3::zeros());
     for k in 0..12 {
         for c in 0..3 {
