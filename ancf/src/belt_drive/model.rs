@@ -904,7 +904,7 @@ impl BeltDrive {
     }
 
     /// Power dissipated by the belt's Kelvin–Voigt axial damping at `(q, v)` \[W\]:
-    /// `−Σ Q_dᵀ ė` over the elements ([`Self::axial_damping`]), `∫ N_d ε̇ dx ≥ 0` (the belt's
+    /// `−Σ Q_dᵀ ė` over the elements (`axial_damping`), `∫ N_d ε̇ dx ≥ 0` (the belt's
     /// only non-conservative force besides the contact; issue 34 power balance). Zero without
     /// axial damping.
     pub fn damping_dissipation(&self, q: &[f64], v: &[f64]) -> f64 {

@@ -57,8 +57,8 @@
 //! wrap, where its tension changes, would lose the force `β v dT/ds` the Lagrangian models
 //! carry (on the default fead drive `β v` = 11–49 mm at 800–3500 rpm against spans of 57 mm
 //! and more). Each element's viscous axial force is reported with its elastic force
-//! ([`Self::element_forces`]); the power these damping forces do on the material is
-//! [`Self::damping_dissipation`].
+//! ([`FlowingBelt::element_forces`]); the power these damping forces do on the material is
+//! [`FlowingBelt::damping_dissipation`].
 
 use super::config::{AxialForce, FlowingSettings};
 use super::contact::{NodeContact, PulleyFrame, node_contact};
