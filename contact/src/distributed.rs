@@ -10,7 +10,7 @@
 //! velocity `ṙ = S ė`, the shape-function matrix `S = ∂r/∂e` ([`ShapeMatrix`]: a full
 //! `D × N` matrix, or the blocks `S₀ = [N₁I, N₂I, …]` of a line element's centreline,
 //! [`BlockShape`]) and the weight `w_q` (Gauss weight × length or area Jacobian). The point
-//! forces and their derivatives are those of [`point_contact`], so the laws are the crate's
+//! forces and their derivatives are those of [`point_contact`](crate::point_contact), so the laws are the crate's
 //! [`NormalLaw`] and [`FrictionLaw`] per unit length or area. One implementation,
 //! [`element_contact`], serves [`LineContact`] (a Gauss rule along line elements) and
 //! [`SurfaceContact`] (quadrature points supplied by the caller).
@@ -309,7 +309,7 @@ where
 /// Contact of one element given by its quadrature `points` against `surface` with the laws
 /// `normal` and `friction` (per unit length or area). Fills `out` (forces always; Jacobians when
 /// `jacobian`) and appends point records to `records` when given. With `f` the point force
-/// ([`point_contact`]) and `S` the shape matrix: `Q_c = Σ w Sᵀ f`,
+/// ([`point_contact`](crate::point_contact)) and `S` the shape matrix: `Q_c = Σ w Sᵀ f`,
 /// `∂Q_c/∂e = Σ w Sᵀ (∂f/∂r) S`, `∂Q_c/∂ė = Σ w Sᵀ (∂f/∂ṙ) S`, `∂Q_c/∂ω = Σ w Sᵀ ∂f/∂ω`; with the
 /// arm `a = r − r_o`, `∂M/∂r_b = −(e_b × f + a × ∂f/∂r_b)` (Kerkkänen (3.26)–(3.27)).
 #[allow(clippy::too_many_arguments)]
