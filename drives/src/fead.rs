@@ -230,10 +230,11 @@ impl Default for FeadConfig {
     /// The plausible passenger-car drive of the module documentation, with Ribaric's contact
     /// ([`BeltContact::ribaric`]: tanh friction (6.2) with κ = 40 s/m, the law its studies in
     /// BENCHMARKS.md and README were measured with; also `BeltContact::default`), not the sharper
-    /// `tanh_slip` scale (`contact::friction::spec::DEFAULT_SLIP_VELOCITY`): the flowing model's Newton stalls on
-    /// this drive at `v_s` = 0.1 and 0.4 mm/s (t = 0.073 and 0.122 s of the first ramp, with
-    /// line search) and runs the default sweep at 1 mm/s (BENCHMARKS.md, "friction
-    /// regularisation").
+    /// `tanh_slip` scale (`contact::friction::spec::DEFAULT_SLIP_VELOCITY`): with the belt
+    /// procedures' 13 line-search trials ([`crate::speed_loss::BELT_LINE_SEARCH_TRIALS`]) the
+    /// flowing model runs the default sweep with it (all four speeds steady), but at 20 times
+    /// the CPU of κ = 40, and the nodal model's cost there is not known (BENCHMARKS.md,
+    /// "friction regularisation").
     fn default() -> Self {
         let pulley = |name: &str, center: [f64; 2], radius: f64, side: WrapSide, motion: Motion| {
             Pulley::new(name, center, radius, side, motion)
@@ -1065,11 +1066,14 @@ pub fn run_fead(
 }
 
 /// The generalized-α settings of the flowing and nodal models: `run.step`, `run.rho_inf`,
-/// mbd-core's Newton defaults (as the speed-loss procedure).
+/// the belt procedures' Newton settings (as the speed-loss procedure:
+/// [`crate::speed_loss::BELT_LINE_SEARCH_TRIALS`], [`crate::speed_loss::BELT_NEWTON_ITERATIONS`]).
 fn linear_alpha(cfg: &FeadConfig) -> AlphaConfig {
     AlphaConfig {
         h: cfg.run.step,
         rho_inf: cfg.run.rho_inf,
+        newton_line_search_trials: crate::speed_loss::BELT_LINE_SEARCH_TRIALS,
+        max_newton_iterations: crate::speed_loss::BELT_NEWTON_ITERATIONS,
         ..Default::default()
     }
 }

@@ -30,7 +30,7 @@
 
 use crate::DriveError;
 use crate::ancf_model::AncfBelt;
-use crate::speed_loss::STEP_SUBDIVISIONS;
+use crate::speed_loss::{BELT_LINE_SEARCH_TRIALS, BELT_NEWTON_ITERATIONS, STEP_SUBDIVISIONS};
 use crate::study::{AnyModel, ModelKind, ModelSettings};
 use belt::{BeltModel, Layout, Motion, Report, Signal};
 use flowing::belt::{FlowingBelt, NodalBelt};
@@ -141,7 +141,8 @@ impl<M: BeltModel, B: BorrowMut<M>> BeltSimulation<M, B> {
 }
 
 /// The generalized-α settings a belt model of `kind` is stepped with at the step `h` \[s\]:
-/// mbd-core's defaults with a line search, the ANCF belt with its own Newton settings
+/// mbd-core's defaults with a line search of [`BELT_LINE_SEARCH_TRIALS`] trials and
+/// [`BELT_NEWTON_ITERATIONS`] iterations (flowing and nodal), the ANCF belt with its own Newton settings
 /// ([`ancf::belt_drive::SimulationConfig::alpha_params`]).
 pub fn alpha_for(kind: ModelKind, h: f64) -> AlphaConfig {
     match kind {
@@ -153,6 +154,8 @@ pub fn alpha_for(kind: ModelKind, h: f64) -> AlphaConfig {
         ModelKind::Flowing | ModelKind::Nodal => AlphaConfig {
             h,
             newton_line_search: true,
+            newton_line_search_trials: BELT_LINE_SEARCH_TRIALS,
+            max_newton_iterations: BELT_NEWTON_ITERATIONS,
             ..Default::default()
         },
     }

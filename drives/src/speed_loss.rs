@@ -370,6 +370,22 @@ pub struct Sample {
 /// ([`flowing::belt::nodal::NodalBelt`]) needs it when a coarse element lands on a pulley.
 pub const STEP_SUBDIVISIONS: usize = 4;
 
+/// Line-search trial steps of the flowing and nodal belts' Newton iteration
+/// ([`AlphaConfig::newton_line_search_trials`]: `1, ½, …, 1/4096`). With the sharp friction
+/// law (`tanh_slip` at 0.05 mm/s) the Newton correction moves slip velocities by far more than
+/// `v_s`; with mbd-core's 5 trials the full-step fallback throws the iterate onto the opposite
+/// saturated branch of tanh and the default FEAD drive fails at t = 0.061 s of its first ramp
+/// even with [`STEP_SUBDIVISIONS`] levels (8 levels: t = 0.063 s); with 13 it runs (issue 34
+/// item 3, BENCHMARKS.md "friction regularisation"). At Ribaric's κ = 40 s/m no iteration
+/// needs more than 5 trials (the default FEAD drive at 800 rpm: the same means to all digits).
+pub const BELT_LINE_SEARCH_TRIALS: usize = 13;
+
+/// Newton iterations per step of the flowing and nodal belts
+/// ([`AlphaConfig::max_newton_iterations`]): a backtracked iteration progresses in short steps
+/// (the nodal belt on the default FEAD drive with the sharp friction law converges
+/// quadratically at its 20th to 25th iteration where mbd-core's default of 20 stopped it).
+pub const BELT_NEWTON_ITERATIONS: usize = 50;
+
 /// Steps between the reports sampled over an averaging window ([`Report::mean`]): every other
 /// step, so that the window mean resolves a nodal belt's element-passing ripple (a few steps
 /// long) and the balances close on the mean (issue 34).
@@ -481,6 +497,8 @@ pub fn speed_loss_sweep<M: BeltModel>(
         // Armijo backtracking: Newton cycles between the saturated branches of a sharp friction
         // law (the ANCF belt on Table 6-1 at v_s ≤ 0.8 mm/s in its first step without it)
         newton_line_search: true,
+        newton_line_search_trials: BELT_LINE_SEARCH_TRIALS,
+        max_newton_iterations: BELT_NEWTON_ITERATIONS,
         ..Default::default()
     };
     let mut sim: BeltSimulation<M, &mut M> =

@@ -213,11 +213,20 @@ pub struct AlphaConfig {
     /// reused by the next iteration. `None`: plain Newton up to `max_newton_iterations`.
     pub newton_stall: Option<crate::newton::Stall>,
     /// Armijo backtracking on the residual norm in every Newton iteration
-    /// ([`crate::newton::LineSearch`] with trial steps 1, ½, ¼, ⅛, 1/16 and the full step when
-    /// none decreases `‖r‖`): a globalised Newton that does not cycle at the kinks of
+    /// ([`crate::newton::LineSearch`] with the trial steps of
+    /// [`Self::newton_line_search_trials`] and the full step when none decreases `‖r‖`): a
+    /// globalised Newton that does not cycle at the kinks of
     /// piecewise-smooth forces. The residual of an accepted trial is reused by the next
     /// iteration, so an accepted full step costs nothing extra.
     pub newton_line_search: bool,
+    /// Trial steps of the line search of [`Self::newton_line_search`]: `1, ½, …, 2^{1−n}`,
+    /// then the full step when none decreases `‖r‖` (≥ 1; default 5). A sharp regularised
+    /// friction law (`μ tanh(v_t/v_s)` with `v_s` = 0.05 mm/s on a belt) needs deeper
+    /// backtracking: its Newton correction moves the slip velocity by orders of magnitude more
+    /// than `v_s`, and after five halvings the full step throws the iterate onto the opposite
+    /// saturated branch (the belt procedures of `drives` use 13, BENCHMARKS.md "friction
+    /// regularisation").
+    pub newton_line_search_trials: usize,
 }
 
 impl Default for AlphaConfig {
@@ -242,6 +251,7 @@ impl Default for AlphaConfig {
             refactor_contraction: None,
             newton_stall: None,
             newton_line_search: false,
+            newton_line_search_trials: 5,
         }
     }
 }
@@ -712,7 +722,7 @@ impl<C> AlphaStepper<C> {
             tolerances: Tolerances::mixed(p.newton_atol, p.newton_rtol),
             stall: p.newton_stall,
             line_search: p.newton_line_search.then_some(LineSearch {
-                max_trials: 5,
+                max_trials: p.newton_line_search_trials,
                 ..Default::default()
             }),
             ..Default::default()
