@@ -25,8 +25,7 @@ pub(crate) struct BlockKsOptions {
     pub block: usize,
     /// Largest basis size m before a restart (a multiple of b is used).
     pub max_dim: usize,
-    /// Converged when `‖residual‖ ≤ tol · max(|θ|, ε^(2/3) θ_max)` (ARPACK's criterion, dsconv,
-    /// with its floor ε^(2/3) taken relative to the largest Ritz value).
+    /// Converged when `‖residual‖ ≤ tol · θ_max` (θ_max ≈ 1 for a scaled operator).
     pub tol: f64,
     /// Restarts allowed.
     pub max_restarts: usize,
@@ -47,12 +46,6 @@ pub(crate) struct BlockKsResult {
     pub restarts: usize,
     /// Vectors the operator was applied to.
     pub applies: usize,
-    /// Wall-clock seconds in the operator.
-    pub seconds_operator: f64,
-    /// Wall-clock seconds orthogonalising the new blocks (Gram–Schmidt and block QR).
-    pub seconds_orthogonalisation: f64,
-    /// Wall-clock seconds in the Rayleigh–Ritz steps and restarts.
-    pub seconds_rayleigh_ritz: f64,
 }
 
 /// Largest `nev` eigenpairs of the symmetric operator `apply: (out, x) ↦ out = T x` of size `n`,
@@ -83,15 +76,11 @@ pub(crate) fn block_krylov_schur(
     let (mut q_done, mut p) = (0usize, b);
     let mut applies = 0usize;
     let mut w = Mat::<f64>::zeros(n, b);
-    let (mut s_op, mut s_orth, mut s_rr) = (0.0, 0.0, 0.0);
     for restart in 0..=opts.max_restarts {
         // expand until the basis has m expanded columns
         while q_done < m {
-            let t0 = Instant::now();
             apply(w.as_mut(), v.as_ref().subcols(q_done, b));
             applies += b;
-            let t1 = Instant::now();
-            s_op += (t1 - t0).as_secs_f64();
             let basis = v.as_ref().subcols(0, p);
             let mut c = Mat::<f64>::zeros(p, b);
             let mut ci = Mat::<f64>::zeros(p, b);
@@ -113,31 +102,24 @@ pub(crate) fn block_krylov_schur(
             h.as_mut().submatrix_mut(p, q_done, b, b).copy_from(&r);
             q_done += b;
             p += b;
-            let t2 = Instant::now();
-            s_orth += (t2 - t1).as_secs_f64();
-            if t2 > opts.deadline {
+            if Instant::now() > opts.deadline {
                 return Err(FeError::Eigen(format!(
                     "block Lanczos exceeded its wall-clock limit after {restart} restarts"
                 )));
             }
         }
         // Rayleigh–Ritz on H_m
-        let t_rr = Instant::now();
         let hm = Mat::from_fn(m, m, |i, j| 0.5 * (h[(i, j)] + h[(j, i)]));
         let (theta, y) = super::dense::self_adjoint_eigen_qr(hm.as_ref())?;
         // descending order
         let order: Vec<usize> = (0..m).rev().collect();
-        // ARPACK's floor of the convergence test: ε^(2/3) relative to the largest Ritz value
-        // (reached only by pairs far below θ_max, e.g. elastic modes beside rigid-body modes
-        // of a free–free model under a tiny negative shift)
-        let floor =
-            f64::EPSILON.powf(2.0 / 3.0) * theta.iter().fold(0.0f64, |a, &t| a.max(t.abs()));
+        let theta_max = theta.iter().fold(0.0f64, |a, &t| a.max(t.abs()));
         // residual block coupling: the rows m..m+b of H times y
         let coupling = h.as_ref().submatrix(m, 0, b, m);
         let mut converged = 0;
         for &i in order.iter().take(nev) {
             let r = (coupling * y.col(i)).norm_l2();
-            if r <= opts.tol * theta[i].abs().max(floor) {
+            if r <= opts.tol * theta_max {
                 converged += 1;
             } else {
                 break;
@@ -152,9 +134,6 @@ pub(crate) fn block_krylov_schur(
                 vectors: x,
                 restarts: restart,
                 applies,
-                seconds_operator: s_op,
-                seconds_orthogonalisation: s_orth,
-                seconds_rayleigh_ritz: s_rr + t_rr.elapsed().as_secs_f64(),
             });
         }
         // thick restart: keep the k leading Ritz vectors plus the residual block, k chosen so
@@ -178,7 +157,6 @@ pub(crate) fn block_krylov_schur(
             .copy_from(new_coupling.transpose());
         q_done = k;
         p = k + b;
-        s_rr += t_rr.elapsed().as_secs_f64();
     }
     Err(FeError::Eigen("block Lanczos: no restart left".into()))
 }

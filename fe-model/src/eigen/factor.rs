@@ -45,7 +45,6 @@ pub fn shifted(
 #[derive(Debug, Clone)]
 pub struct Analysis {
     symbolic: Arc<SymbolicCholesky<usize>>,
-    par: Par,
 }
 
 impl Analysis {
@@ -60,15 +59,7 @@ impl Analysis {
         .map_err(|e| FeError::Sparse(format!("symbolic Cholesky: {e:?}")))?;
         Ok(Self {
             symbolic: Arc::new(symbolic),
-            par: Par::rayon(0),
         })
-    }
-
-    /// The parallelism of the numeric factorizations (default `Par::rayon(0)`: every thread
-    /// of the current rayon pool).
-    pub fn with_par(mut self, par: Par) -> Self {
-        self.par = par;
-        self
     }
 
     /// Number of stored entries of the factor L.
@@ -94,7 +85,7 @@ impl Analysis {
     /// error when `a` is not positive definite.
     pub fn llt(&self, a: SparseColMatRef<'_, usize, f64>, name: &str) -> Result<Llt, FeError> {
         let mut values = vec![0.0; self.symbolic.len_val()];
-        let par = self.par;
+        let par = Par::rayon(0);
         let mut mem = MemBuffer::new(
             self.symbolic
                 .factorize_numeric_llt_scratch::<f64>(par, Default::default()),
@@ -146,7 +137,7 @@ impl Analysis {
         &self, a: SparseColMatRef<'_, usize, f64>,
     ) -> Result<Vec<usize>, FeError> {
         let mut values = vec![0.0; self.symbolic.len_val()];
-        let par = self.par;
+        let par = Par::rayon(0);
         let mut mem = MemBuffer::new(
             self.symbolic
                 .factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),

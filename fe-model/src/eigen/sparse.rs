@@ -18,7 +18,7 @@
 
 use super::block_lanczos::{BlockKsOptions, block_krylov_schur};
 use super::dense::dense_modes;
-use super::factor::{Analysis, Llt, shifted};
+use super::factor::{Analysis, shifted};
 use super::{Modes, frequency_hz};
 use crate::FeError;
 use crate::sparse::{BlockProductWork, csc_times_block, triplets};
@@ -36,16 +36,13 @@ pub struct SparseEigenOptions {
     pub shift: Option<f64>,
     /// Extra modes computed beyond the requested count (multiplets at the cut).
     pub extra: usize,
-    /// Krylov basis size before a thick restart; `None` = `max(2·nev + 2·block, nev + 4·block)`
+    /// Krylov basis size before a thick restart; `None` = `max(2·nev, nev + 4·block)`
     /// (rounded up to a multiple of the block size).
     pub max_dim: Option<usize>,
-    /// Convergence tolerance: Ritz residual `‖T y − θ y‖ ≤ tolerance · max(|θ|, ε^(2/3) θ_max)`
-    /// of each wanted pair of the shift-invert operator T (ARPACK's criterion, `tol` of scipy's
-    /// `eigsh`; the floor matters only for pairs far below the largest θ).
+    /// Convergence tolerance: Ritz residual `‖T y − θ y‖ ≤ tolerance · θ_max` of the
+    /// shift-invert operator T.
     pub tolerance: f64,
-    /// Block width of the block Lanczos (right-hand sides per triangular solve). 8 with the
-    /// default basis took the fewest seconds on the 30 240-DOF tire (BENCHMARKS.md: 4 to 48
-    /// measured; wider blocks make a solve cheaper per vector but need more vectors).
+    /// Block width of the block Lanczos (right-hand sides per triangular solve).
     pub block_size: usize,
     /// Maximum Krylov–Schur restarts per attempt.
     pub max_restarts: usize,
@@ -59,10 +56,6 @@ pub struct SparseEigenOptions {
     pub timeout: Duration,
     /// Models with at most this many DOFs are solved densely.
     pub dense_below: usize,
-    /// Parallelism of the factorizations and of the block operator (with two or more threads
-    /// its columns are solved in two concurrent halves); the Lanczos' dense kernels run on one
-    /// thread. `Par::rayon(0)`: every thread of the current rayon pool.
-    pub par: Par,
 }
 
 impl Default for SparseEigenOptions {
@@ -72,14 +65,13 @@ impl Default for SparseEigenOptions {
             extra: 4,
             max_dim: None,
             tolerance: 1e-12,
-            block_size: 8,
+            block_size: 24,
             max_restarts: 500,
             orthogonality_tol: 1e-6,
             sturm_check: true,
             attempts: 3,
             timeout: Duration::from_secs(1800),
             dense_below: 400,
-            par: Par::rayon(0),
         }
     }
 }
@@ -125,46 +117,6 @@ pub struct SparseEigenReport {
     pub seconds_lanczos: f64,
     /// Wall-clock seconds of the Sturm-count LDLᵀ factorizations.
     pub seconds_sturm: f64,
-    /// Of `seconds_lanczos`: the operator (block triangular solves and mass products).
-    pub seconds_operator: f64,
-    /// Of `seconds_lanczos`: orthogonalisation of the new blocks.
-    pub seconds_orthogonalisation: f64,
-    /// Of `seconds_lanczos`: Rayleigh–Ritz steps and thick restarts.
-    pub seconds_rayleigh_ritz: f64,
-    /// Wall-clock seconds of the back-transformation and the M-orthogonality and residual
-    /// checks.
-    pub seconds_checks: f64,
-}
-
-/// One thread's share of the block operator: `width` columns with their solve scratch.
-struct Lane {
-    width: usize,
-    mem: MemBuffer,
-    tmp: Mat<f64>,
-    work: BlockProductWork,
-}
-
-impl Lane {
-    fn new(llt: &Llt, n: usize, width: usize) -> Self {
-        Self {
-            width,
-            mem: MemBuffer::new(llt.scratch(width, Par::Seq)),
-            tmp: Mat::zeros(n, width),
-            work: BlockProductWork::default(),
-        }
-    }
-
-    /// `out = L⁻¹ (P M Pᵀ) L⁻ᵀ x`, sequentially.
-    fn apply(
-        &mut self, llt: &Llt, m_perm: SparseColMatRef<'_, usize, f64>, mut out: MatMut<'_, f64>,
-        x: MatRef<'_, f64>,
-    ) {
-        let stack = MemStack::new(&mut self.mem);
-        self.tmp.copy_from(x);
-        llt.lt_solve(self.tmp.as_mut(), Par::Seq, stack);
-        csc_times_block(m_perm, self.tmp.as_ref(), out.as_mut(), &mut self.work);
-        llt.l_solve(out, Par::Seq, stack);
-    }
 }
 
 /// Deterministic pseudo-random start block (a fixed linear congruential sequence; no
@@ -220,7 +172,7 @@ pub fn sparse_modes(
     let block = opts.block_size.max(1);
     let base_dim = opts
         .max_dim
-        .unwrap_or((2 * nev + 2 * block).max(nev + 4 * block))
+        .unwrap_or((2 * nev).max(nev + 4 * block))
         .max(nev + 2 * block);
 
     if n <= opts.dense_below || n <= base_dim + 4 * block {
@@ -245,10 +197,6 @@ pub fn sparse_modes(
             seconds_factor: 0.0,
             seconds_lanczos: 0.0,
             seconds_sturm: 0.0,
-            seconds_operator: 0.0,
-            seconds_orthogonalisation: 0.0,
-            seconds_rayleigh_ritz: 0.0,
-            seconds_checks: 0.0,
         };
         return Ok((modes, report));
     }
@@ -256,7 +204,7 @@ pub fn sparse_modes(
     // factorization of K − σM on the union pattern
     let t_factor = Instant::now();
     let a0 = shifted(k, m, 0.0)?;
-    let analysis = Analysis::new(a0.as_ref())?.with_par(opts.par);
+    let analysis = Analysis::new(a0.as_ref())?;
     let (sigma, llt) = match opts.shift {
         Some(s) => {
             let a = shifted(k, m, s)?;
@@ -288,42 +236,25 @@ pub fn sparse_modes(
     }
     let m_perm = SparseColMat::try_new_from_triplets(n, n, &t)
         .map_err(|e| FeError::Sparse(format!("P M Pᵀ: {e:?}")))?;
-    let par = opts.par;
+    let par = Par::Seq;
     let mut dim = base_dim;
     let mut rejected = Vec::new();
     let (mut seconds_lanczos, mut seconds_sturm) = (0.0, 0.0);
-    let (mut seconds_operator, mut seconds_orth, mut seconds_rr, mut seconds_checks) =
-        (0.0, 0.0, 0.0, 0.0);
     let mut applications = 0usize;
     let mut last_err = FeError::Eigen("no attempt made".into());
     let deadline = Instant::now() + opts.timeout;
     for attempt in 1..=opts.attempts.max(1) {
         let t_l = Instant::now();
-        // shift-invert operator T x = L⁻¹ P M Pᵀ L⁻ᵀ x on a block, scratch allocated once; with
-        // two or more threads the block's columns are split into two halves solved
-        // concurrently, each sequentially (the dense kernels of one supernode are too small to
-        // share between threads: faer's parallel kernels on 8 columns were slower than one
-        // thread on this 2-core machine)
-        let parts = if par.degree() >= 2 && block >= 2 {
-            2
-        } else {
-            1
-        };
-        let mut lanes: Vec<Lane> = (0..parts)
-            .map(|i| Lane::new(&llt, n, (block + i) / parts))
-            .collect();
-        let mut apply = |out: MatMut<'_, f64>, x: MatRef<'_, f64>| match lanes.as_mut_slice() {
-            [one] => one.apply(&llt, m_perm.as_ref(), out, x),
-            [l0, l1] => {
-                let w0 = l0.width;
-                let (o0, o1) = out.split_at_col_mut(w0);
-                let (x0, x1) = x.split_at_col(w0);
-                rayon::join(
-                    || l0.apply(&llt, m_perm.as_ref(), o0, x0),
-                    || l1.apply(&llt, m_perm.as_ref(), o1, x1),
-                );
-            }
-            _ => unreachable!("one or two lanes"),
+        // shift-invert operator T x = L⁻¹ P M Pᵀ L⁻ᵀ x on a block, scratch allocated once
+        let mut mem = MemBuffer::new(llt.scratch(block, par));
+        let mut tmp = Mat::<f64>::zeros(n, block);
+        let mut work = BlockProductWork::default();
+        let mut apply = |mut out: MatMut<'_, f64>, x: MatRef<'_, f64>| {
+            let stack = MemStack::new(&mut mem);
+            tmp.copy_from(x);
+            llt.lt_solve(tmp.as_mut(), par, stack);
+            csc_times_block(m_perm.as_ref(), tmp.as_ref(), out.as_mut(), &mut work);
+            llt.l_solve(out, par, stack);
         };
         let ks = block_krylov_schur(
             n,
@@ -336,16 +267,11 @@ pub fn sparse_modes(
                 tol: opts.tolerance,
                 max_restarts: opts.max_restarts,
                 deadline,
-                // the basis has few columns: one thread (see the operator above)
-                par: Par::Seq,
+                par,
             },
         )?;
         seconds_lanczos += t_l.elapsed().as_secs_f64();
         applications += ks.applies;
-        seconds_operator += ks.seconds_operator;
-        seconds_orth += ks.seconds_orthogonalisation;
-        seconds_rr += ks.seconds_rayleigh_ritz;
-        let (t_checks, sturm_before) = (Instant::now(), seconds_sturm);
         let (vals, vecs, restarts) = (ks.values, ks.vectors, ks.restarts);
         let conv = vals.len();
         let result = (|| -> Result<(Modes, SparseEigenReport), FeError> {
@@ -431,19 +357,11 @@ pub fn sparse_modes(
                 seconds_factor,
                 seconds_lanczos,
                 seconds_sturm,
-                seconds_operator,
-                seconds_orthogonalisation: seconds_orth,
-                seconds_rayleigh_ritz: seconds_rr,
-                seconds_checks: 0.0,
             };
             Ok((modes, report))
         })();
-        seconds_checks += t_checks.elapsed().as_secs_f64() - (seconds_sturm - sturm_before);
         match result {
-            Ok(mut r) => {
-                r.1.seconds_checks = seconds_checks;
-                return Ok(r);
-            }
+            Ok(r) => return Ok(r),
             Err(e) => {
                 rejected.push(format!("attempt {attempt} (subspace {dim}): {e}"));
                 last_err = e;
