@@ -3,7 +3,7 @@
 //! point's position and velocity and to the obstacle's angular velocity (the ingredients of
 //! Kerkkänen (3.20)–(3.26), and their spatial form).
 
-use crate::dim::{Basis, ContactDim, Dim, Friction, Slip};
+use crate::dim::{Basis, ContactDim, Dim, Friction, Slip, TangentialForce};
 use crate::friction::FrictionLaw;
 use crate::geometry::{Surface, SurfacePoint};
 use crate::normal::{NormalForce, NormalLaw};
@@ -99,22 +99,36 @@ where
     let rate = -nw;
     let nf = normal_law.normal(pen, rate);
     let (slip, friction, ft) = <Dim<D>>::friction(friction_law, &tangents, &w, nf.force);
-    if !jacobian {
-        return Some(PointContact {
-            surface: sp,
-            tangents,
-            penetration: pen,
-            penetration_rate: rate,
-            slip,
-            normal: nf,
-            friction,
-            force: n * nf.force + ft.force,
-            df_dp: SMatrix::zeros(),
-            df_dv: SMatrix::zeros(),
-            df_domega: SVector::zeros(),
-        });
-    }
+    let force = n * nf.force + ft.force;
+    let (df_dp, df_dv, df_domega) = if jacobian {
+        point_jacobian(&sp, &nf, &ft, &w)
+    } else {
+        (SMatrix::zeros(), SMatrix::zeros(), SVector::zeros())
+    };
+    Some(PointContact {
+        surface: sp,
+        tangents,
+        penetration: pen,
+        penetration_rate: rate,
+        slip,
+        normal: nf,
+        friction,
+        force,
+        df_dp,
+        df_dv,
+        df_domega,
+    })
+}
 
+/// The derivatives `(df_dp, df_dv, df_domega)` of [`point_contact`]'s force (its rustdoc).
+fn point_jacobian<const D: usize>(
+    sp: &SurfacePoint<D>, nf: &NormalForce, ft: &TangentialForce<D>, w: &SVector<f64, D>,
+) -> (SMatrix<f64, D, D>, SMatrix<f64, D, D>, SVector<f64, D>)
+where
+    Dim<D>: ContactDim<D>,
+{
+    let n = sp.normal;
+    let nw = n.dot(w);
     let dn = sp.dn_dp;
     let dus = sp.dus_dp;
     let nnt = n * n.transpose();
@@ -139,19 +153,7 @@ where
     let df_dv = n * dfn_dv.transpose() + dft_dw * proj + ft.d_normal * dfn_dv.transpose();
     let dfn_dw = nf.d_rate * n.dot(&sp.dus_domega);
     let df_dw = n * dfn_dw - dft_dw * (proj * sp.dus_domega) + ft.d_normal * dfn_dw;
-    Some(PointContact {
-        surface: sp,
-        tangents,
-        penetration: pen,
-        penetration_rate: rate,
-        slip,
-        normal: nf,
-        friction,
-        force: n * nf.force + ft.force,
-        df_dp,
-        df_dv,
-        df_domega: df_dw,
-    })
+    (df_dp, df_dv, df_dw)
 }
 
 #[cfg(test)]

@@ -59,6 +59,30 @@ fn pulley(omega: f64) -> Cylinder {
     }
 }
 
+/// Coordinates and velocities of a bilinear element pressed onto [`pulley`] (radius 0.098 m,
+/// the corners 0.1 mm deeper each, θ from 0.05 to 0.35 rad, z from −0.01 to 0.015 m), moving
+/// near the surface speed ωR = 2 m/s with some slip and out-of-plane motion.
+fn pressed_element() -> (SVector<f64, 12>, SVector<f64, 12>) {
+    let r = 0.098;
+    let (th0, th1, z0, z1): (f64, f64, f64, f64) = (0.05, 0.35, -0.01, 0.015);
+    let mut e = SVector::<f64, 12>::zeros();
+    let mut edot = SVector::<f64, 12>::zeros();
+    for (k, (th, z)) in [(th0, z0), (th1, z0), (th0, z1), (th1, z1)]
+        .into_iter()
+        .enumerate()
+    {
+        let rr = r + 1e-4 * k as f64;
+        e.fixed_rows_mut::<3>(3 * k)
+            .copy_from(&Vector3::new(rr * th.cos(), rr * th.sin(), z));
+        edot.fixed_rows_mut::<3>(3 * k).copy_from(&Vector3::new(
+            -1.97 * th.sin() + 0.01 * k as f64,
+            1.97 * th.cos(),
+            0.03 - 0.02 * k as f64,
+        ));
+    }
+    (e, edot)
+}
+
 // Reference (second formulation): central differences of the element force and moment in the
 // coordinates, the velocities and the pulley's angular velocity.
 #[test]
@@ -76,24 +100,7 @@ fn tangent_matches_finite_differences() {
             kappa: 40.0,
         },
     };
-    let r = 0.098;
-    let (th0, th1, z0, z1): (f64, f64, f64, f64) = (0.05, 0.35, -0.01, 0.015);
-    let mut e = SVector::<f64, 12>::zeros();
-    let mut edot = SVector::<f64, 12>::zeros();
-    for (k, (th, z)) in [(th0, z0), (th1, z0), (th0, z1), (th1, z1)]
-        .into_iter()
-        .enumerate()
-    {
-        let rr = r + 1e-4 * k as f64;
-        e.fixed_rows_mut::<3>(3 * k)
-            .copy_from(&Vector3::new(rr * th.cos(), rr * th.sin(), z));
-        // near the surface speed ωR = 2 m/s with some slip and out-of-plane motion
-        edot.fixed_rows_mut::<3>(3 * k).copy_from(&Vector3::new(
-            -1.97 * th.sin() + 0.01 * k as f64,
-            1.97 * th.cos(),
-            0.03 - 0.02 * k as f64,
-        ));
-    }
+    let (e, edot) = pressed_element();
     let rule = GaussRule::new(3);
     let eval = |e: &SVector<f64, 12>, edot: &SVector<f64, 12>, w: f64| {
         let mut out = ElementContact::<3>::new(12);
@@ -351,27 +358,7 @@ fn block_shapes_equal_the_general_shape_matrix() {
         stribeck_velocity: 0.05,
         kappa: 40.0,
     };
-    let r = 0.098;
-    let mut e = SVector::<f64, 12>::zeros();
-    let mut edot = SVector::<f64, 12>::zeros();
-    for (k, (th, z)) in [
-        (0.05f64, -0.01),
-        (0.35, -0.01),
-        (0.05, 0.015),
-        (0.35, 0.015),
-    ]
-    .into_iter()
-    .enumerate()
-    {
-        let rr = r + 1e-4 * k as f64;
-        e.fixed_rows_mut::<3>(3 * k)
-            .copy_from(&Vector3::new(rr * th.cos(), rr * th.sin(), z));
-        edot.fixed_rows_mut::<3>(3 * k).copy_from(&Vector3::new(
-            -1.97 * th.sin() + 0.01 * k as f64,
-            1.97 * th.cos(),
-            0.03 - 0.02 * k as f64,
-        ));
-    }
+    let (e, edot) = pressed_element();
     let rule = GaussRule::new(3);
     let full = bilinear_points(&e, &edot, &rule, &rule, 0.03 * 0.025);
     // the same points with the block shape [n_k I₃]: n_k = S[(0, 3k)]

@@ -26,6 +26,19 @@ pub struct FlangedCylinder {
 }
 
 impl FlangedCylinder {
+    /// The closest of the cylinder's point `cylinder` (part 0) and the two flanges' points
+    /// (parts 1, 2) to `p`; ties go to the lower part index.
+    fn nearest_of(&self, cylinder: SurfacePoint<3>, p: &Point3<f64>) -> SurfacePoint<3> {
+        let mut best = cylinder;
+        for k in 0..2 {
+            let f = self.flange(k, p);
+            if f.gap < best.gap {
+                best = f;
+            }
+        }
+        best
+    }
+
     /// Contact data of flange `k` (0: `ζ_lo`, 1: `ζ_hi`) for the point `p`.
     fn flange(&self, k: usize, p: &Point3<f64>) -> SurfacePoint<3> {
         let c = &self.cylinder;
@@ -58,24 +71,10 @@ impl Surface<3> for FlangedCylinder {
     /// The closest of the cylinder (part 0), the lower flange (part 1) and the upper flange
     /// (part 2); ties go to the lower part index.
     fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
-        let mut best = self.cylinder.closest(p);
-        for k in 0..2 {
-            let f = self.flange(k, p);
-            if f.gap < best.gap {
-                best = f;
-            }
-        }
-        best
+        self.nearest_of(self.cylinder.closest(p), p)
     }
     fn closest_value(&self, p: &Point3<f64>) -> SurfacePoint<3> {
-        let mut best = self.cylinder.closest_value(p);
-        for k in 0..2 {
-            let f = self.flange(k, p);
-            if f.gap < best.gap {
-                best = f;
-            }
-        }
-        best
+        self.nearest_of(self.cylinder.closest_value(p), p)
     }
     fn center(&self) -> Point3<f64> {
         self.cylinder.center
