@@ -17,7 +17,8 @@
 //! dissipation is 29.8 W). Lagrange's equations of the same model
 //! (`FlowingBelt::with_lagrange_equations`, not yet selectable in `fead`) conserve energy
 //! exactly and give a crank torque of 19.08 N m against the nodal model's 19.00 N m (18.29 N m
-//! with (5.14)), but move the defect (about 10 N) into the reference node's tangential balance,
+//! with (5.14)), but move the defect (10.7 N: 4.2 N elastic, 6.5 N viscous) into the reference
+//! node's tangential balance,
 //! so the crank's spans then miss its torque by 4.8 %. The tensioner's dry friction does not
 //! separate the models (the engine orders keep the arm sliding both ways).
 

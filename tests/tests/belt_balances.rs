@@ -189,8 +189,9 @@ fn pechstein_gerstmayr_balances_on_nodal() {
 // order), the damping forces +10.8 W (so the reported belt damping is −10.8 W) where their
 // dissipation 2R is 29.8 W. Lagrange's equations of the same model
 // (FlowingBelt::with_lagrange_equations) close the power balance to 0.65 % (0.04 % on 4 mm wraps)
-// with the crank torque of the nodal model (19.08 against 19.00 N m), but put the same defect,
-// about 10 N, on the reference node's tangential balance: the crank's torque residual is then
+// with the crank torque of the nodal model (19.08 against 19.00 N m), but put the same defect on
+// the reference node's tangential balance (window means: elastic bᵀ(f0 − Kδ) = 4.2 N, damping
+// bᵀg_d + ∂R/∂v = 6.5 N; times the crank's 75 mm, 0.80 N m): the crank's torque residual is then
 // 4.8 % (Table 6-1 at 10 N m: 0.76 % / 0.03 %). Neither form meets 0.5 % on both balances here;
 // the open fix is relabelling-invariant elastic and viscous forces (along the deformed chord).
 #[test]

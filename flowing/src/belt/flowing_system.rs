@@ -71,7 +71,10 @@
 //! reference node 0 on the driver: on the same drive their power residual is 0.65 % (0.36 % on
 //! 8.7 mm wraps, 0.04 % on 4 mm wraps) and the crank torque 19.08 N m against the nodal model's
 //! 19.00 N m (18.29 N m with (5.14)), but the crank's torque residual against its spans is
-//! 4.8 % (0.92 N m, the defect `≈ 10 N` times the crank radius), and on Table 6-1 at 10 N m
+//! 4.8 % (0.92 N m against 0.13 N m with (5.14)): the window mean of the defect on the slide,
+//! `bᵀ (f0 − K δ) = 4.2 N` and `bᵀ g_d + ∂R/∂v = 6.5 N`, times the crank's 75 mm is the
+//! 0.80 N m added (with (5.14) the same 4.3 N and 6.5 N times `v` = 6.28 m/s are the 27 W and
+//! 41 W above), and on Table 6-1 at 10 N m
 //! 0.76 % (power 0.03 %, Δω 0.18667 rad/s against 0.18630). So (5.14) stays the default; the
 //! open fix is elastic and viscous forces that are invariant under the relabelling (both along
 //! the deformed chord, and a derivative operator exact on the wraps).
