@@ -22,31 +22,73 @@
 //! Kinematics (Ribaric (5.10)–(5.13), with erratum E11):
 //!
 //! ```text
-//!   material velocity   ḋ = v e_t + T ż + v T_,s z
-//!   material accel.     d̈ = a (e_t + b) + T z̈ + v² ε_n + c,   b = T_,s z,
-//!                       c = v² T_,ss z + 2 v T_,s ż
+//!   material velocity   V = v b + T ż,   b = e_t + T_,s z
+//!   material accel.     d̈ = a b + T z̈ + v² ε_n + c,   c = v² T_,ss z + 2 v T_,s ż
 //! ```
 //!
-//! Nodal balance `M d̈ = g`, `g = f0 + f_contact − K δ − C δ̇_m`, projected on `P = [e_t | T]`:
+//! Ribaric's equations (5.14), the default: the nodal balance `M d̈ = g`,
+//! `g = f0 + f_contact − K δ − C δ̇_m`, projected on `P = [e_t | T]`:
 //!
 //! ```text
-//!   [ e_tᵀM(e_t + b)   e_tᵀ M T ] [a ]   [ e_tᵀ (g − M (v² ε_n + c)) ]
-//!   [ Tᵀ M(e_t + b)    Tᵀ M T   ] [z̈] = [ Tᵀ  (g − M (v² ε_n + c)) ]
+//!   [ e_tᵀ M b   e_tᵀ M T ] [a ]   [ e_tᵀ (g − M (v² ε_n + c)) ]
+//!   [ Tᵀ M b     Tᵀ M T   ] [z̈] = [ Tᵀ  (g − M (v² ε_n + c)) ]
 //!   J_k ω̇_k = τ_contact,k − M_load,k(t)                (free pulleys)
 //!   J_a Δθ̈  = (c − p) × F_hub + M_s + M_d + M_f          (tensioner arm)
 //! ```
 //!
+//! Lagrange's equations ([`FlowingBelt::with_lagrange_equations`], issue 34): the material
+//! point with label `X` is at `x = r(s) + T(s) z`, `s = X + s_b`, so `(s_b, z)` are
+//! generalized coordinates of the material (`∂x/∂s_b = b`, `∂x/∂z = T`). With the kinetic
+//! energy `𝒯 = ½ Vᵀ M V` (lumped `M` at the nodes of the stationary mesh, which the material
+//! fills around the closed loop), the elastic energy `U = ½ δᵀ K δ − f0ᵀ δ` (independent of
+//! `s_b`), the Rayleigh dissipation function `R = ½ Σ_e w_eᵀ β K_e,e w_e + ½ α (T ż)ᵀ M T ż` of
+//! the co-rotated material rate `w_e = T ż + v (T_,s − ψ'_e J) T z` ([`super::BeltFe::frame_turn`],
+//! [`super::BeltFe::frame_turn2`]) and the contact forces `F` (generalized forces `bᵀ F`,
+//! `Tᵀ F`), the belt rows are
+//!
+//! ```text
+//!   [ bᵀ M b   bᵀ M T ] [a ]   [ bᵀF − ∂R/∂v − 2v bᵀM T_,s ż − żᵀ T_,sᵀ M T ż                  ]
+//!   [ Tᵀ M b   Tᵀ M T ] [z̈] = [ TᵀF − ∂U/∂z − ∂R/∂ż + v (T_,sᵀ M T − Tᵀ M T_,s) ż + v² T_,sᵀ M b ]
+//! ```
+//!
+//! and the mechanical energy `E = ½ Vᵀ M V + U` obeys `dE/dt = Vᵀ F − 2R` exactly for any
+//! basis, mesh and derivative operator (Jacobi's integral of the autonomous Lagrangian; the
+//! `z` rows are those of (5.14) up to the inertia terms, which agree when `M T_,s` is skew,
+//! `T_,ss = T_,s T_,s` and `ε_n = D e_t` with `D` the derivative operator of `T_,s`).
+//!
+//! Why (5.14) is not energy-consistent (issue 34 item 2): the continuous loop conserves energy
+//! in both forms, (5.14) through the relabelling invariance of the elastic and viscous forces,
+//! `bᵀ (f0 − K δ) = 0` and `bᵀ g_d = −∂R/∂v`. The discrete linear forces keep neither: the
+//! `e_t` row's elastic and damping forces do work `v bᵀ g` on the material's slide. Measured on
+//! the default fead drive at 800 rpm (window means): the elastic forces put `+32.7 W` into the
+//! belt through their linear part `v (f0ᵀ T_,s z − e_tᵀ K δ)` (19 W of it on the alternator's
+//! 12 mm wrap elements of 28 mm radius; it falls as the wraps are refined) and `−5.6 W` through
+//! their second-order part `−v δᵀ T_,sᵀ K δ`; the inertia terms `−0.07 W`; the damping forces
+//! do `+10.8 W` on the material where `2R`, their Kelvin–Voigt dissipation, is 29.8 W (the
+//! viscous axial force acts along the mesh's chord, not the deformed one, so its virtual work
+//! on the slide misses `Σ_e N_v ψ'_e (J u_e)·Δδ`). Lagrange's equations move that defect from
+//! the energy to the one direction the basis leaves to `s_b`, the tangential balance of the
+//! reference node 0 on the driver: on the same drive their power residual is 0.65 % (0.36 % on
+//! 8.7 mm wraps, 0.04 % on 4 mm wraps) and the crank torque 19.08 N m against the nodal model's
+//! 19.00 N m (18.29 N m with (5.14)), but the crank's torque residual against its spans is
+//! 4.8 % (0.92 N m against 0.13 N m with (5.14)): the window mean of the defect on the slide,
+//! `bᵀ (f0 − K δ) = 4.2 N` and `bᵀ g_d + ∂R/∂v = 6.5 N`, times the crank's 75 mm is the
+//! 0.80 N m added (with (5.14) the same 4.3 N and 6.5 N times `v` = 6.28 m/s are the 27 W and
+//! 41 W above), and on Table 6-1 at 10 N m
+//! 0.76 % (power 0.03 %, Δω 0.18667 rad/s against 0.18630). So (5.14) stays the default; the
+//! open fix is elastic and viscous forces that are invariant under the relabelling (both along
+//! the deformed chord, and a derivative operator exact on the wraps).
+//!
 //! Choices (documented per the seed-000 note): the unknown vector is `[a; z̈]` (erratum E13);
 //! with penalty contact the λ rows of (5.14) vanish (so E12 does not arise); the `z` rows are
-//! projected with the whole basis `Tᵀ` (Galerkin) instead of (5.14)'s mixed projection (`Ψ^fᵀ` on
-//! free rows, nodal contact rows) — both coincide when all modes are kept (T square), and the
-//! Galerkin form keeps the truncated model's energy balance (cf. U15 for the tire); the damping
-//! `β K_e` acts on the co-rotated material deflection rate `δ̇_m − v ψ' J δ` with
-//! `δ̇_m = T ż + v T_,s z` (note U10: the viscoelastic strain rate follows the material; the
-//! `− v ψ' J δ` term removes the turning of the element frames the material passes through,
-//! [`super::BeltFe::frame_turn`] — Ribaric (5.5)'s `C δ̇` on global components is not
-//! frame-invariant) and `α M` on the Eulerian rate `T ż` (no drag in the steady state; the same
-//! choice as the tire model).
+//! taken with the whole basis `T` (Galerkin) instead of (5.14)'s mixed projection (`Ψ^fᵀ` on
+//! free rows, nodal contact rows), both coinciding when all modes are kept (T square); the
+//! damping `β K_e` acts on the co-rotated material deflection rate
+//! `δ̇_m − v ψ' J δ` with `δ̇_m = T ż + v T_,s z` (note U10: the viscoelastic strain rate
+//! follows the material; the `− v ψ' J δ` term removes the turning of the element frames the
+//! material passes through, [`super::BeltFe::frame_turn`] — Ribaric (5.5)'s `C δ̇` on global
+//! components is not frame-invariant) and `α M` on the Eulerian rate `T ż` (no drag in the
+//! steady state; the same choice as the tire model).
 //!
 //! Why the material rate (issue 34): the stiffness-proportional damping models the rubber's
 //! viscoelasticity, a Kelvin–Voigt stress `β EA Dε/Dt` on the rate of strain of the material. A
@@ -57,7 +99,7 @@
 //! wrap, where its tension changes, would lose the force `β v dT/ds` the Lagrangian models
 //! carry (on the default fead drive `β v` = 11–49 mm at 800–3500 rpm against spans of 57 mm
 //! and more). Each element's viscous axial force is reported with its elastic force
-//! ([`FlowingBelt::element_forces`]); the power these damping forces do on the material is
+//! ([`FlowingBelt::element_forces`]); the power these damping forces take from the belt is
 //! [`FlowingBelt::damping_dissipation`].
 
 use super::config::{AxialForce, FlowingSettings};
@@ -114,14 +156,40 @@ pub struct FlowingBelt {
     /// The friction law of each pulley, travel order ([`belt::Drive::wrap_friction_law`]).
     friction: Vec<FrictionSpec>,
     m: usize,
+    /// Lagrange's equations (`true`) or Ribaric's projection (5.14) (`false`, the default):
+    /// module documentation, [`Self::with_lagrange_equations`].
+    lagrange: bool,
+    /// Ribaric (5.14): `Pᵀ M [e_t | T]`, `Pᵀ K T`, `Pᵀ C T`, `Pᵀ β (K_e T_,s − frame_turn T)`,
+    /// `Pᵀ M T_,ss`, `Pᵀ M ε_n`, `Pᵀ f0`.
     a_mass: Mat<f64>,
-    mts: Mat<f64>,
     a_k: Mat<f64>,
     a_c: Mat<f64>,
     a_cs: Mat<f64>,
     a_mss: Mat<f64>,
     p_en: Vec<f64>,
     p_f0: Vec<f64>,
+    /// `e_tᵀ M e_t` \[kg\].
+    mee: f64,
+    /// `Tᵀ M e_t` (`m`).
+    mte: Vec<f64>,
+    /// `Tᵀ M T` (`m × m`).
+    mtt: Mat<f64>,
+    /// `Pᵀ M T_,s` (`(m + 1) × m`, `P = [e_t | T]`): row 0 `e_tᵀ M T_,s`, then `Tᵀ M T_,s`.
+    mts: Mat<f64>,
+    /// `T_,sᵀ M T_,s` (`m × m`).
+    mss: Mat<f64>,
+    /// `T_,sᵀ M e_t` (`m`).
+    mse: Vec<f64>,
+    /// `Tᵀ K T` (`m × m`), `K = K_e + K_g(T0)`.
+    kz: Mat<f64>,
+    /// `Tᵀ f0` (`m`).
+    f0z: Vec<f64>,
+    /// Rayleigh dissipation `R = ½ żᵀ C_t ż + v żᵀ C_g z + ½ v² zᵀ C_h z`: `C_t` (`m × m`).
+    ct: Mat<f64>,
+    /// `C_g` of the dissipation function (`m × m`).
+    cg: Mat<f64>,
+    /// `C_h` of the dissipation function (`m × m`, symmetric).
+    ch: Mat<f64>,
     rows: Vec<ContactRow>,
     n_v: usize,
     /// The elements' chords for the co-rotated axial force ([`Self::exact_axial`]).
@@ -176,6 +244,10 @@ fn project_vec(e: &[f64], t: &Mat<f64>, x: &[f64]) -> Vec<f64> {
     out
 }
 
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
 /// `y += s · A x` for a dense `A`.
 fn gemv(y: &mut [f64], a: &Mat<f64>, x: &[f64], s: f64) {
     for (j, &xj) in x.iter().enumerate() {
@@ -221,9 +293,9 @@ impl FlowingBelt {
         let n = fe.n_dofs();
         let m = basis.len();
         let et = fe.stacked_tangent();
-        let en = fe.stacked_curvature();
         let mdiag = &fe.mass;
         let scale_rows = |a: &Mat<f64>| Mat::from_fn(n, a.ncols(), |i, j| mdiag[i] * a[(i, j)]);
+        let en = fe.stacked_curvature();
         let mt = scale_rows(&basis.t);
         let mut a_mass = Mat::<f64>::zeros(m + 1, m + 1);
         let met: Vec<f64> = (0..n).map(|i| mdiag[i] * et[i]).collect();
@@ -240,13 +312,12 @@ impl FlowingBelt {
         let a_k = project(&et, &basis.t, &(&fe.stiffness * &basis.t));
         let a_c = project(&et, &basis.t, &(&fe.damping * &basis.t));
         // β K_e acts on the material rate, α M on the Eulerian rate only (module docs)
-        let alpha = fe.drive.damping().alpha;
+        let (alpha, beta) = (fe.drive.damping().alpha, fe.drive.damping().beta);
         let beta_k = Mat::from_fn(n, n, |i, j| {
             fe.damping[(i, j)] - if i == j { alpha * mdiag[i] } else { 0.0 }
         });
         // the frame-invariant material strain rate (BeltFe::frame_turn): β K_e (v T_,s z) minus
         // the co-rotation β v Σ ψ'_e K_e J T z of the elements the material passes through
-        let beta = fe.drive.damping().beta;
         let turn = Mat::from_fn(n, n, |i, j| beta * fe.frame_turn[(i, j)]);
         let a_cs = project(
             &et,
@@ -256,6 +327,27 @@ impl FlowingBelt {
         let men: Vec<f64> = (0..n).map(|i| mdiag[i] * en[i]).collect();
         let p_en = project_vec(&et, &basis.t, &men);
         let p_f0 = project_vec(&et, &basis.t, &fe.pretension);
+        // Lagrange's equations (module documentation)
+        let (t, ts) = (&basis.t, &basis.ts);
+        let mee = (0..n).map(|i| et[i] * met[i]).sum();
+        let mte = t.transpose() * Mat::from_fn(n, 1, |i, _| met[i]);
+        let mse = ts.transpose() * Mat::from_fn(n, 1, |i, _| met[i]);
+        let mtt = t.transpose() * &mt;
+        let mss = ts.transpose() * scale_rows(ts);
+        let kz = t.transpose() * (&fe.stiffness * t);
+        let f0z = t.transpose() * Mat::from_fn(n, 1, |i, _| fe.pretension[i]);
+        // the Rayleigh dissipation of the co-rotated material rate (module documentation):
+        // Σ_e w_eᵀ β K_e,e w_e with w = T ż + v (T_,s − ψ' J T) z, and α M on T ż
+        let ke = &beta_k;
+        let ct = t.transpose() * (&fe.damping * t);
+        let sc = |a: Mat<f64>| Mat::from_fn(a.nrows(), a.ncols(), |i, j| beta * a[(i, j)]);
+        let ft = sc(&fe.frame_turn * t);
+        let cg = t.transpose() * &(&(ke * ts) - &ft);
+        let sft = ts.transpose() * &ft;
+        let ch0 = &(ts.transpose() * (ke * ts)) + &sc(t.transpose() * (&fe.frame_turn2 * t));
+        let ch = Mat::from_fn(m, m, |i, j| {
+            0.5 * (ch0[(i, j)] + ch0[(j, i)]) - (sft[(i, j)] + sft[(j, i)])
+        });
         let contact = *fe.drive.contact();
         let mut rows = Vec::new();
         for (p, set) in fe.contact_nodes.iter().enumerate() {
@@ -286,19 +378,44 @@ impl FlowingBelt {
             pulleys,
             n_v,
             m,
+            lagrange: false,
             a_mass,
-            mts,
             a_k,
             a_c,
             a_cs,
             a_mss,
             p_en,
             p_f0,
+            mee,
+            mte: (0..m).map(|i| mte[(i, 0)]).collect(),
+            mtt,
+            mts,
+            mss,
+            mse: (0..m).map(|i| mse[(i, 0)]).collect(),
+            kz,
+            f0z: (0..m).map(|i| f0z[(i, 0)]).collect(),
+            ct,
+            cg,
+            ch,
             rows,
             bar_dx: Mat::zeros(0, 0),
             bars: super::model::Bar::loop_of(&fe_pos),
             exact_axial: false,
         })
+    }
+
+    /// The same model with Lagrange's equations of `(s_b, z)` instead of Ribaric's projection
+    /// (5.14) (module documentation): the belt's mechanical energy then changes exactly by the
+    /// power of its contact forces less its damping dissipation (issue 34).
+    #[must_use]
+    pub fn with_lagrange_equations(mut self) -> Self {
+        self.lagrange = true;
+        self
+    }
+
+    /// Whether the model runs Lagrange's equations ([`Self::with_lagrange_equations`]).
+    pub fn lagrange_equations(&self) -> bool {
+        self.lagrange
     }
 
     /// Number of modal coordinates `m` (the system has `m + 2` DOFs).
@@ -416,11 +533,38 @@ impl FlowingBelt {
         f
     }
 
-    /// Power dissipated by the belt's Rayleigh damping at `(q, v)` \[W\]: `−Q_dᵀ δ̇_m`, the
+    /// Power dissipated by the belt's Rayleigh damping at `(q, v)` \[W\]: twice the
+    /// dissipation function `R` of the model (module documentation),
+    ///
+    /// ```text
+    ///   2R = Σ_e w_eᵀ β K_e,e w_e + α (T ż)ᵀ M (T ż) = żᵀ C_t ż + 2 v żᵀ C_g z + v² zᵀ C_h z,
+    ///   w_e = T ż + v (T_,s z − ψ'_e J T z)
+    /// ```
+    ///
+    /// the Kelvin–Voigt dissipation of every element's co-rotated material rate (`≥ 0`), which
+    /// is the power the damping forces `−∂R/∂(v, ż)` take from the belt (issue 34 power
+    /// balance). With Ribaric's projection (5.14) (the default, [`Self::with_lagrange_equations`])
+    /// the power of its damping forces `Q_d = −α M T ż − β K_e (δ̇_m − v ψ′ J δ)` on the
+    /// material's rate relative to the path, `−Q_dᵀ δ̇_m`, which is not sign-definite (issue 34:
+    /// −10.8 W on the default fead drive at 800 rpm where `2R` is 29.4 W).
+    pub fn damping_dissipation(&self, q: &[f64], v: &[f64]) -> f64 {
+        if !self.lagrange {
+            return self.projected_dissipation(q, v);
+        }
+        let m = self.m;
+        let (z, zd, vb) = (&q[1..=m], &v[1..=m], v[0]);
+        let (mut c, mut g, mut h) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+        gemv(&mut c, &self.ct, zd, 1.0);
+        gemv(&mut g, &self.cg, z, 1.0);
+        gemv(&mut h, &self.ch, z, 1.0);
+        dot(zd, &c) + 2.0 * vb * dot(zd, &g) + vb * vb * dot(z, &h)
+    }
+
+    /// Ribaric (5.14)'s damping power at `(q, v)` \[W\]: `−Q_dᵀ δ̇_m`, the
     /// power of the damping forces `Q_d = −α M T ż − β K_e (δ̇_m − v ψ′ J δ)` (module
     /// documentation) on the material, which moves at the rate `δ̇_m` ([`Self::material_rate`])
     /// relative to the path (issue 34 power balance).
-    pub fn damping_dissipation(&self, q: &[f64], v: &[f64]) -> f64 {
+    fn projected_dissipation(&self, q: &[f64], v: &[f64]) -> f64 {
         let m = self.m;
         let (alpha, beta) = (self.fe.drive.damping().alpha, self.fe.drive.damping().beta);
         let d = self.deflection(&q[1..=m]);
@@ -507,6 +651,33 @@ impl FlowingBelt {
         Ok(out)
     }
 
+    /// The belt rows `[s_b; z]` of Lagrange's equations without the contact forces (module
+    /// documentation).
+    fn lagrange_forces(&self, z: &[f64], zd: &[f64], vb: f64, head: &mut [f64]) {
+        let m = self.m;
+        let (mut g, mut h, mut sz, mut szd) =
+            (vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+        gemv(&mut g, &self.cg, z, 1.0);
+        gemv(&mut h, &self.ch, z, 1.0);
+        gemv(&mut sz, &self.mss, z, 1.0);
+        gemv(&mut szd, &self.mss, zd, 1.0);
+        let mut tszd = vec![0.0; m + 1];
+        gemv(&mut tszd, &self.mts, zd, 1.0);
+        // row 0: −∂R/∂v and the velocity terms of d/dt(∂𝒯/∂v)
+        head[0] = -dot(zd, &g)
+            - vb * dot(z, &h)
+            - 2.0 * vb * (tszd[0] + dot(z, &szd))
+            - dot(zd, &tszd[1..]);
+        let z_rows = &mut head[1..];
+        for (i, r) in z_rows.iter_mut().enumerate() {
+            // (T_,sᵀ M T − Tᵀ M T_,s) ż: the skew gyroscopic matrix
+            let skew: f64 = (0..m).map(|j| self.mts[(j + 1, i)] * zd[j]).sum::<f64>() - tszd[i + 1];
+            *r = self.f0z[i] - vb * g[i] + vb * skew + vb * vb * (self.mse[i] + sz[i]);
+        }
+        gemv(z_rows, &self.kz, z, -1.0);
+        gemv(z_rows, &self.ct, zd, -1.0);
+    }
+
     /// `(K_t, C_t)` as dense matrices: `−∂f/∂q`, `−∂f/∂v`.
     fn tangent(&self, t: f64, q: &[f64], v: &[f64]) -> (Mat<f64>, Mat<f64>) {
         let m = self.m;
@@ -514,20 +685,59 @@ impl FlowingBelt {
         let nv = self.n_v;
         let mut kq = Mat::<f64>::zeros(nv, nv);
         let mut cv = Mat::<f64>::zeros(nv, nv);
-        for i in 0..=m {
+        if self.lagrange {
+            let (mut g, mut gt, mut h, mut sz, mut szd) = (
+                vec![0.0; m],
+                vec![0.0; m],
+                vec![0.0; m],
+                vec![0.0; m],
+                vec![0.0; m],
+            );
+            gemv(&mut g, &self.cg, z, 1.0);
+            gemv(&mut gt, &self.cg.transpose().to_owned(), zd, 1.0);
+            gemv(&mut h, &self.ch, z, 1.0);
+            gemv(&mut sz, &self.mss, z, 1.0);
+            gemv(&mut szd, &self.mss, zd, 1.0);
+            let mut tszd = vec![0.0; m + 1];
+            gemv(&mut tszd, &self.mts, zd, 1.0);
+            // the transposed product T_,sᵀ M T ż
+            let tszd_t: Vec<f64> = (0..m)
+                .map(|i| (0..m).map(|j| self.mts[(j + 1, i)] * zd[j]).sum())
+                .collect();
+            // row 0 (forces(): −żᵀC_g z − v zᵀC_h z − 2v (e_tᵀ M T_,s ż + zᵀ M_ss ż) − żᵀ M_ts ż)
             for j in 0..m {
-                kq[(i, j + 1)] =
-                    self.a_k[(i, j)] + vb * self.a_cs[(i, j)] + vb * vb * self.a_mss[(i, j)];
-                cv[(i, j + 1)] = self.a_c[(i, j)] + 2.0 * vb * self.mts[(i, j)];
+                kq[(0, j + 1)] = gt[j] + 2.0 * vb * (h[j] + szd[j]);
+                cv[(0, j + 1)] =
+                    g[j] + 2.0 * vb * (self.mts[(0, j)] + sz[j]) + tszd[j + 1] + tszd_t[j];
             }
-        }
-        // ∂f/∂v_b of the linear part, with a minus sign
-        let mut col = vec![0.0; m + 1];
-        gemv(&mut col, &self.a_cs, z, 1.0);
-        gemv(&mut col, &self.a_mss, z, 2.0 * vb);
-        gemv(&mut col, &self.mts, zd, 2.0);
-        for i in 0..=m {
-            cv[(i, 0)] = col[i] + 2.0 * vb * self.p_en[i];
+            cv[(0, 0)] = dot(z, &h) + 2.0 * (tszd[0] + dot(z, &szd));
+            // rows of z
+            for i in 0..m {
+                for j in 0..m {
+                    kq[(i + 1, j + 1)] =
+                        self.kz[(i, j)] + vb * self.cg[(i, j)] - vb * vb * self.mss[(i, j)];
+                    cv[(i + 1, j + 1)] =
+                        self.ct[(i, j)] - vb * (self.mts[(j + 1, i)] - self.mts[(i + 1, j)]);
+                }
+                cv[(i + 1, 0)] =
+                    g[i] - (tszd_t[i] - tszd[i + 1]) - 2.0 * vb * (self.mse[i] + sz[i]);
+            }
+        } else {
+            for i in 0..=m {
+                for j in 0..m {
+                    kq[(i, j + 1)] =
+                        self.a_k[(i, j)] + vb * self.a_cs[(i, j)] + vb * vb * self.a_mss[(i, j)];
+                    cv[(i, j + 1)] = self.a_c[(i, j)] + 2.0 * vb * self.mts[(i, j)];
+                }
+            }
+            // ∂f/∂v_b of the linear part, with a minus sign
+            let mut col = vec![0.0; m + 1];
+            gemv(&mut col, &self.a_cs, z, 1.0);
+            gemv(&mut col, &self.a_mss, z, 2.0 * vb);
+            gemv(&mut col, &self.mts, zd, 2.0);
+            for i in 0..=m {
+                cv[(i, 0)] = col[i] + 2.0 * vb * self.p_en[i];
+            }
         }
         if self.exact_axial {
             // −∂/∂z of D̃ᵀ c with ∂c_b/∂z = −G_b ΔT_b: kq[0..=m, 1..=m] += D̃ᵀ (G ΔT)
@@ -545,7 +755,7 @@ impl FlowingBelt {
             }
             let add = dx.transpose() * &gd;
             for k in 0..m {
-                for r in 0..=m {
+                for r in usize::from(self.lagrange)..=m {
                     kq[(r, k + 1)] += add[(r, k)];
                 }
             }
@@ -557,7 +767,6 @@ impl FlowingBelt {
             if c.normal == 0.0 && c.friction == 0.0 {
                 continue;
             }
-            let et = self.fe.tangent[r.node];
             // dF/dz = F_d T + v F_V T_s (2 × m), dF/dż = F_V T, dF/dv = F_V b_s
             let mut dfz = [vec![0.0; m], vec![0.0; m]];
             let mut dfzd = [vec![0.0; m], vec![0.0; m]];
@@ -592,10 +801,22 @@ impl FlowingBelt {
                 extra.push((k, true, f_q, t_q));
                 extra.push((k, false, f_v, t_v));
             }
-            // belt rows 0 (e_tᵀ) and 1..=m (Tᵀ)
+            // Lagrange: row 0 is bᵀ F (b = e_t + T_,s z at the node, ∂b/∂z = T_,s);
+            // Ribaric (5.14): e_tᵀ F
+            if self.lagrange {
+                for j in 0..m {
+                    kq[(0, j + 1)] -= c.force[0] * r.ts[(0, j)] + c.force[1] * r.ts[(1, j)];
+                }
+            }
+            let p0 = if self.lagrange {
+                bs
+            } else {
+                self.fe.tangent[r.node]
+            };
+            // belt rows 0 and 1..=m (Tᵀ)
             for i in 0..=m {
                 let p = if i == 0 {
-                    et
+                    p0
                 } else {
                     [r.t[(0, i - 1)], r.t[(1, i - 1)]]
                 };
@@ -654,17 +875,36 @@ impl SecondOrderSystem for FlowingBelt {
 
     fn mass(&self, _t: f64, q: &[f64]) -> Result<SysMatrix, MbdError> {
         let m = self.m;
+        let z = &q[1..=m];
         let mut mm = Mat::<f64>::zeros(self.n_v, self.n_v);
-        for i in 0..=m {
-            for j in 0..=m {
-                mm[(i, j)] = self.a_mass[(i, j)];
+        if !self.lagrange {
+            // Ribaric (5.14): Pᵀ M [e_t + b | T], b = T_,s z
+            let mut col = vec![0.0; m + 1];
+            gemv(&mut col, &self.mts, z, 1.0);
+            for i in 0..=m {
+                for j in 0..=m {
+                    mm[(i, j)] = self.a_mass[(i, j)];
+                }
+                mm[(i, 0)] += col[i];
             }
+            for (k, j) in self.coords.inertias() {
+                mm[(k, k)] = j;
+            }
+            return Ok(SysMatrix::Dense(mm));
         }
-        // the b = T_,s z part of the first column: Pᵀ M T_,s z
-        let mut col = vec![0.0; m + 1];
-        gemv(&mut col, &self.mts, &q[1..=m], 1.0);
-        for (i, c) in col.iter().enumerate() {
-            mm[(i, 0)] += c;
+        // [bᵀ M b, bᵀ M T; Tᵀ M b, Tᵀ M T] with b = e_t + T_,s z (∂V/∂v)
+        let mut tsz = vec![0.0; m + 1];
+        gemv(&mut tsz, &self.mts, z, 1.0);
+        let mut sz = vec![0.0; m];
+        gemv(&mut sz, &self.mss, z, 1.0);
+        mm[(0, 0)] = self.mee + 2.0 * tsz[0] + dot(z, &sz);
+        for i in 0..m {
+            let c = self.mte[i] + tsz[i + 1];
+            mm[(0, i + 1)] = c;
+            mm[(i + 1, 0)] = c;
+            for j in 0..m {
+                mm[(i + 1, j + 1)] = self.mtt[(i, j)];
+            }
         }
         for (k, j) in self.coords.inertias() {
             mm[(k, k)] = j;
@@ -678,14 +918,18 @@ impl SecondOrderSystem for FlowingBelt {
         let m = self.m;
         let (z, zd, vb) = (&q[1..=m], &v[1..=m], v[0]);
         let (head, tail) = f.split_at_mut(m + 1);
-        for i in 0..=m {
-            head[i] = self.p_f0[i] - vb * vb * self.p_en[i];
+        if self.lagrange {
+            self.lagrange_forces(z, zd, vb, head);
+        } else {
+            for i in 0..=m {
+                head[i] = self.p_f0[i] - vb * vb * self.p_en[i];
+            }
+            gemv(head, &self.a_k, z, -1.0);
+            gemv(head, &self.a_c, zd, -1.0);
+            gemv(head, &self.a_cs, z, -vb);
+            gemv(head, &self.a_mss, z, -vb * vb);
+            gemv(head, &self.mts, zd, -2.0 * vb);
         }
-        gemv(head, &self.a_k, z, -1.0);
-        gemv(head, &self.a_c, zd, -1.0);
-        gemv(head, &self.a_cs, z, -vb);
-        gemv(head, &self.a_mss, z, -vb * vb);
-        gemv(head, &self.mts, zd, -2.0 * vb);
         if self.exact_axial {
             let d = self.deflection(z);
             let law = super::model::BarLaw::of(&self.fe.drive);
@@ -696,7 +940,8 @@ impl SecondOrderSystem for FlowingBelt {
                 c[2 * b + 1] = cb[1];
             }
             let dx = &self.bar_dx;
-            for (k, h) in head.iter_mut().enumerate().take(m + 1) {
+            // Lagrange: the elastic forces do no work on the slide s_b (module documentation)
+            for (k, h) in head.iter_mut().enumerate().skip(usize::from(self.lagrange)) {
                 let mut acc = 0.0;
                 for (r, cr) in c.iter().enumerate() {
                     acc += dx[(r, k)] * cr;
@@ -707,12 +952,18 @@ impl SecondOrderSystem for FlowingBelt {
         tail.fill(0.0);
         let arm = self.coords.arm_state(q, v);
         for r in &self.rows {
-            let (c, _, idler) = self.row_contact(r, arm.as_ref(), t, z, zd, v);
+            let (c, bs, idler) = self.row_contact(r, arm.as_ref(), t, z, zd, v);
             if c.normal == 0.0 && c.friction == 0.0 {
                 continue;
             }
-            let et = self.fe.tangent[r.node];
-            head[0] += et[0] * c.force[0] + et[1] * c.force[1];
+            // generalized force on s_b: Lagrange, the work of F on the material's displacement
+            // b δs_b; Ribaric (5.14), the projection on e_t
+            let p0 = if self.lagrange {
+                bs
+            } else {
+                self.fe.tangent[r.node]
+            };
+            head[0] += p0[0] * c.force[0] + p0[1] * c.force[1];
             for j in 0..m {
                 head[j + 1] += r.t[(0, j)] * c.force[0] + r.t[(1, j)] * c.force[1];
             }
@@ -818,6 +1069,190 @@ pub(crate) mod tests {
         FlowingBelt::new(&drive, &settings).unwrap()
     }
 
+    /// The belt's mechanical energy `E = ½ Vᵀ M V + ½ δᵀ K δ − f0ᵀ δ` at `(q, v)` and its rate
+    /// along the equations of motion with every contact removed (the loop floating free of its
+    /// pulleys): `(dE/dt, E)`, with `V = v (e_t + T_,s z) + T ż` the material velocity of the nodes
+    /// (Ribaric (5.10)) and the accelerations `[a; z̈] = M(q)⁻¹ f(q, v)` of the model; the
+    /// second value is the sum of the magnitudes of the terms that cancel in the rate.
+    fn free_energy_rate(belt: &FlowingBelt, q: &[f64], v: &[f64]) -> (f64, f64) {
+        let m = belt.n_modes();
+        let n = belt.fe.n_dofs();
+        let (z, zd, vb) = (&q[1..=m], &v[1..=m], v[0]);
+        let mut ws = Workspace::new();
+        let mut f = vec![0.0; belt.n_q()];
+        belt.forces(0.0, q, v, &mut f, &mut ws).unwrap();
+        let SysMatrix::Dense(mm) = belt.mass(0.0, q).unwrap() else {
+            panic!("dense mass")
+        };
+        let blk = Mat::from_fn(m + 1, m + 1, |i, j| mm[(i, j)]);
+        let rhs = Mat::from_fn(m + 1, 1, |i, _| f[i]);
+        let acc = faer::prelude::Solve::solve(&blk.partial_piv_lu(), &rhs);
+        let et = belt.fe.stacked_tangent();
+        let d = belt.deflection(z);
+        let mut b = et;
+        gemv(&mut b, &belt.basis.ts, z, 1.0);
+        let mut vel: Vec<f64> = b.iter().map(|x| vb * x).collect();
+        gemv(&mut vel, &belt.basis.t, zd, 1.0);
+        let mv: Vec<f64> = (0..n).map(|i| belt.fe.mass[i] * vel[i]).collect();
+        let kd: Vec<f64> = (0..n)
+            .map(|i| (0..n).map(|j| belt.fe.stiffness[(i, j)] * d[j]).sum())
+            .collect();
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        // ∂E/∂v = bᵀ M V, ∂E/∂ż = Tᵀ M V, ∂E/∂z = v T_,sᵀ M V + Tᵀ (K δ − f0)
+        let el: Vec<f64> = (0..n).map(|i| kd[i] - belt.fe.pretension[i]).collect();
+        let mut terms = vec![acc[(0, 0)] * dot(&b, &mv)];
+        for j in 0..m {
+            let col = |a: &Mat<f64>, x: &[f64]| (0..n).map(|i| a[(i, j)] * x[i]).sum::<f64>();
+            terms.push(acc[(j + 1, 0)] * col(&belt.basis.t, &mv));
+            terms.push(zd[j] * vb * col(&belt.basis.ts, &mv));
+            terms.push(zd[j] * col(&belt.basis.t, &el));
+        }
+        (terms.iter().sum(), terms.iter().map(|x| x.abs()).sum())
+    }
+
+    /// A deflected, moving state of `belt`: every mode excited, the largest nodal deflection
+    /// 0.1 mm and the largest deflection rate 10 mm/s; belt speed `speed` \[m/s\].
+    fn moving_state(belt: &FlowingBelt, speed: f64) -> (Vec<f64>, Vec<f64>) {
+        let (n, m) = (belt.n_q(), belt.n_modes());
+        let (mut q, mut v) = (vec![0.0; n], vec![0.0; n]);
+        let z: Vec<f64> = (0..m).map(|i| ((i as f64) * 0.7).sin()).collect();
+        let zd: Vec<f64> = (0..m).map(|i| ((i as f64) * 1.3).cos()).collect();
+        let big = |x: &[f64]| {
+            belt.deflection(x)
+                .iter()
+                .fold(0.0f64, |a, y| a.max(y.abs()))
+        };
+        let (sz, szd) = (1e-4 / big(&z), 1e-2 / big(&zd));
+        for i in 0..m {
+            q[i + 1] = sz * z[i];
+            v[i + 1] = szd * zd[i];
+        }
+        v[0] = speed;
+        (q, v)
+    }
+
+    /// `|dE/dt|` and the scale of its terms for the free undamped belt of every case of the
+    /// energy tests (Table 6-1's loop and the four-pulley layout's non-uniform loop, all modes
+    /// and 10 free-node modes), with Lagrange's equations or Ribaric's projection (5.14).
+    fn free_undamped_energy_rates(lagrange: bool) -> Vec<(String, f64, f64)> {
+        let four = layout_belt(AxialForce::Linear).fe;
+        let mut out = Vec::new();
+        for (name, drive, mesh) in [
+            (
+                "Table 6-1",
+                crate::belt::table_6_1(0.0, 0.0),
+                BeltMesh::default(),
+            ),
+            ("layout", four.drive.clone(), four.mesh),
+        ] {
+            let mut layout = drive.layout().clone();
+            layout.damping = belt::BeltDamping {
+                alpha: 0.0,
+                beta: 0.0,
+            };
+            let drive = layout.resolve().unwrap();
+            for free_modes in [None, Some(10)] {
+                let settings = FlowingSettings {
+                    mesh,
+                    reduction: BeltReduction { free_modes },
+                    axial_force: AxialForce::Linear,
+                };
+                let mut belt = FlowingBelt::new(&drive, &settings).unwrap();
+                if lagrange {
+                    belt = belt.with_lagrange_equations();
+                }
+                belt.rows.clear();
+                let (q, v) = moving_state(&belt, 5.0);
+                let (rate, scale) = free_energy_rate(&belt, &q, &v);
+                let name = format!("{name} {free_modes:?}");
+                println!("{name}: dE/dt {rate:.3e} W (terms {scale:.3e} W)");
+                out.push((name, rate, scale));
+            }
+        }
+        out
+    }
+
+    // Issue 34 item 2, the invariant behind the power balance: with no contact and no damping
+    // the floating belt is a conservative system, so the rate of its mechanical energy along
+    // the equations of motion is zero at every state (reference: the energy theorem of the
+    // closed loop; the material flux through the stationary mesh cancels around the loop).
+    // Lagrange's equations keep it to round-off: measured |dE/dt| ≤ 4e-12 W against terms of
+    // 1e4 W. Checked on Table 6-1's loop (56 elements, uniform on each span and arc) and on the
+    // four-pulley layout's non-uniform loop (50 mm spans against 10 mm arcs), all modes and
+    // reduced, at 5 m/s, 0.1 mm and 10 mm/s.
+    #[test]
+    fn the_free_undamped_belt_conserves_its_energy() {
+        for (name, rate, scale) in free_undamped_energy_rates(true) {
+            assert!(rate.abs() < 1e-9 * scale, "{name}: dE/dt = {rate} W");
+        }
+    }
+
+    // The same invariant on Ribaric's projection (5.14), the default equations: it fails. At
+    // the test's states dE/dt = −0.39 W (Table 6-1, all modes), 8.7e-3 W (10 modes), −0.35 W
+    // (layout, all modes), −6.3e-3 W (10 modes), 6e-5 to 4e-5 of the terms: on the default fead
+    // drive at 800 rpm the projection's elastic forces do +32.7 W on the flowing material
+    // (v (f0ᵀ T_,s z − e_tᵀ K δ), 19 W of it on the alternator's 12 mm wrap elements) and −5.6 W
+    // at second order (−v δᵀ T_,sᵀ K δ), its inertia −0.07 W, and its damping forces +10.8 W
+    // (their Kelvin–Voigt dissipation is 29.8 W): the work of the e_t row's elastic and damping
+    // forces on the slide (module documentation). Kept as the record of the defect; run with
+    // `--ignored`.
+    #[test]
+    #[ignore = "fails: Ribaric's projection (5.14) is not energy-consistent (issue 34)"]
+    fn the_free_undamped_belt_conserves_its_energy_with_ribaric_projection() {
+        for (name, rate, scale) in free_undamped_energy_rates(false) {
+            assert!(rate.abs() < 1e-9 * scale, "{name}: dE/dt = {rate} W");
+        }
+    }
+
+    // Issue 34 item 2: with the belt's Rayleigh damping (Table 6-1's α = 2.8 1/s, β = 1.8 ms) and
+    // Lagrange's equations the free belt's energy falls at exactly the rate damping_dissipation reports (reference: the
+    // energy theorem, dE/dt = −2R), and that dissipation is at least the Kelvin–Voigt
+    // dissipation Σ N_v² l/(β EA) of the elements' viscous axial forces (chord_viscous_forces,
+    // an independent element-by-element evaluation; the rest is bending and α).
+    #[test]
+    fn the_free_damped_belt_loses_what_its_damping_dissipates() {
+        let four = layout_belt(AxialForce::Linear).fe;
+        for (name, drive, mesh) in [
+            (
+                "Table 6-1",
+                crate::belt::table_6_1(0.0, 0.0),
+                BeltMesh::default(),
+            ),
+            ("layout", four.drive.clone(), four.mesh),
+        ] {
+            let settings = FlowingSettings {
+                mesh,
+                reduction: BeltReduction { free_modes: None },
+                axial_force: AxialForce::Linear,
+            };
+            let mut belt = FlowingBelt::new(&drive, &settings)
+                .unwrap()
+                .with_lagrange_equations();
+            belt.rows.clear();
+            let (q, v) = moving_state(&belt, 5.0);
+            let (rate, scale) = free_energy_rate(&belt, &q, &v);
+            let diss = belt.damping_dissipation(&q, &v);
+            let bea = drive.damping().beta * drive.belt().ea;
+            let nv = belt.element_viscous_forces(&q, &v);
+            let n = belt.fe.n_nodes();
+            let kv: f64 = (0..n)
+                .map(|i| {
+                    let (a, b) = (belt.fe.position[i], belt.fe.position[(i + 1) % n]);
+                    nv[i] * nv[i] * (b[0] - a[0]).hypot(b[1] - a[1]) / bea
+                })
+                .sum();
+            println!("{name}: dE/dt {rate:.6e} W, dissipation {diss:.6e} W, axial KV {kv:.6e} W");
+            assert!(
+                kv > 0.0 && diss >= kv * (1.0 - 1e-9),
+                "{name}: {diss} < {kv}"
+            );
+            assert!(
+                (rate + diss).abs() < 1e-9 * scale,
+                "{name}: {rate} + {diss} (scale {scale})"
+            );
+        }
+    }
+
     // The analytic tangent of the layout model (pulley spins, moving idler, arm moment,
     // spring, damper, dry friction) against central differences of the forces (an independent
     // evaluation of the same equations).
@@ -830,6 +1265,13 @@ pub(crate) mod tests {
     #[test]
     fn layout_tangent_with_co_rotated_axial_force_matches_finite_differences() {
         check_layout_tangent(layout_belt(AxialForce::CoRotated));
+    }
+
+    // The same with Lagrange's equations (issue 34), linear and co-rotated axial force.
+    #[test]
+    fn layout_tangent_of_lagrange_equations_matches_finite_differences() {
+        check_layout_tangent(layout_belt(AxialForce::Linear).with_lagrange_equations());
+        check_layout_tangent(layout_belt(AxialForce::CoRotated).with_lagrange_equations());
     }
 
     fn check_layout_tangent(belt: FlowingBelt) {
@@ -851,6 +1293,7 @@ pub(crate) mod tests {
         let scale = kt.norm_max().max(ct.norm_max());
         for (j, h) in [
             (k, 1e-7),
+            (0, 1e-6),
             (1, 1e-9),
             (belt.coords.pulley_dof(2).unwrap(), 1e-6),
         ] {

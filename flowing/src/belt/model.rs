@@ -78,6 +78,13 @@ pub struct BeltFe {
     /// is `β K_e (δ̇ − v ψ' J δ)` with `δ̇` the material deflection rate, i.e. the damping force
     /// `−β K_e δ̇ + β v frame_turn δ`.
     pub frame_turn: Mat<f64>,
+    /// `Σ_e ψ'_e² J_eᵀ K_e,e J_e` (`3N × 3N`) \[N/m³\]: the elastic stiffness of each element
+    /// applied to the co-rotation of its nodal translations from both sides, so that the
+    /// Kelvin–Voigt dissipation of the co-rotated material rate `w_e = δ̇ − v ψ'_e J δ` of
+    /// every element ([`Self::frame_turn`]) sums to
+    /// `Σ_e w_eᵀ β K_e,e w_e = β (δ̇ᵀ K_e δ̇ − 2 v δ̇ᵀ frame_turn δ + v² δᵀ frame_turn2 δ)`
+    /// (the Rayleigh dissipation function of the flowing model, [`super::FlowingBelt`]).
+    pub frame_turn2: Mat<f64>,
     /// Pre-tension force of the reference state (`3N`) \[N\].
     pub pretension: Vec<f64>,
     /// Contact nodes of each pulley (two-pulley drive: pulley 0 = driver, 1 = driven).
@@ -137,6 +144,7 @@ impl BeltFe {
         let mut stiffness = Mat::<f64>::zeros(ndof, ndof);
         let mut elastic = Mat::<f64>::zeros(ndof, ndof);
         let mut frame_turn = Mat::<f64>::zeros(ndof, ndof);
+        let mut frame_turn2 = Mat::<f64>::zeros(ndof, ndof);
         let mut mass = vec![0.0; ndof];
         for i in 0..n_nodes {
             let j = (i + 1) % n_nodes;
@@ -147,6 +155,8 @@ impl BeltFe {
             let kj = corotational_rate_block(&std::array::from_fn(|a| {
                 std::array::from_fn(|b| k[(a, b)])
             }));
+            // Jᵀ K J = (K J)ᵀ J (K symmetric)
+            let jkj = corotational_rate_block(&transposed(&kj));
             let kg = e
                 .matrix(MatrixKind::Geometric)
                 .unwrap_or_else(|| Mat::zeros(6, 6));
@@ -157,6 +167,7 @@ impl BeltFe {
                     stiffness[(dofs[a], dofs[b])] += k[(a, b)] + kg[(a, b)];
                     elastic[(dofs[a], dofs[b])] += k[(a, b)];
                     frame_turn[(dofs[a], dofs[b])] += turn * kj[a][b];
+                    frame_turn2[(dofs[a], dofs[b])] += turn * turn * jkj[a][b];
                 }
             }
         }
@@ -210,6 +221,7 @@ impl BeltFe {
             stiffness,
             damping,
             frame_turn,
+            frame_turn2,
             pretension,
             contact_nodes,
         })
@@ -311,6 +323,11 @@ pub fn corotational_rate_block(k: &[[f64; 6]; 6]) -> [[f64; 6]; 6] {
         }
     }
     out
+}
+
+/// The transpose of a 6×6 block.
+fn transposed(k: &[[f64; 6]; 6]) -> [[f64; 6]; 6] {
+    std::array::from_fn(|a| std::array::from_fn(|b| k[b][a]))
 }
 
 /// Axial tension \[N\] of each element `i → i+1` of the closed loop of nodes at `position`
