@@ -56,4 +56,5 @@ mod tire_rotating;
 mod tire_sensitivity;
 mod tire_spindle;
 mod tire_steady;
+mod tire_stick;
 mod tire_viz;

@@ -234,10 +234,11 @@ fn generalized_alpha_with_unit_spectral_radius_is_the_trapezoidal_rule() {
 #[test]
 fn steady_rolling_with_friction_does_not_chatter() {
     // Issue 9: rolling steadily on a flat road without a cleat, the spindle forces become
-    // constant and the vertical force equals the load, here with μ = 0.85. With the
-    // trapezoidal rule (ρ∞ = 1) the index-3 contact forces alternate from step to step
-    // (period-two chatter at the patch edges); generalized-α with ρ∞ < 1 (default 0.5) damps it. The
-    // indicator is the largest second difference of the total normal force Σλ over the steps.
+    // constant and the vertical force equals the load, here with μ = 0.85, and the index-3
+    // contact forces do not alternate from step to step (period-two chatter at the patch
+    // edges), with the default generalized-α (ρ∞ = 0.5) and with the trapezoidal rule (ρ∞ = 1).
+    // The indicator is the largest second difference of the total normal force Σλ over the
+    // steps.
     let red = tire();
     let mut rc = rig(GroundKind::Road, false, 0.85);
     rc.settle_time = 0.3;
@@ -262,17 +263,24 @@ fn steady_rolling_with_friction_does_not_chatter() {
     println!(
         "default rho: Fy {fy} N, spread {spread} N, chatter {chatter} N; rho 1: chatter {trap_chatter} N"
     );
+    // (the spindle is held at the frictionless rolling preload's height, statics::preload_rolling;
+    // with friction the sticking patch stiffens the tire vertically: +2.3 % on this tire since
+    // the contact holds stick on the material velocity, transport term included (tire_stick);
+    // the frictionless run meets the load, tire_steady::zero_inputs_give_the_cleat_path_forces)
     assert!(
-        (fy - rc.load).abs() < 0.02 * rc.load,
+        (fy - rc.load).abs() < 0.03 * rc.load,
         "Fy {fy} vs load {}",
         rc.load
     );
     assert!(spread < 0.005 * rc.load, "Fy ripple {spread} N");
     assert!(chatter < 1e-4 * rc.load, "Σλ alternates by {chatter} N");
-    // the indicator sees the trapezoidal rule's chatter
+    // The trapezoidal rule does not chatter either since the contact's tangential rows carry
+    // the transport of the deflection (Ribaric (7.10), upwind; tire_stick): before, Σλ
+    // alternated by more than 5× the default scheme's second difference under ρ∞ = 1, from the
+    // even/odd decoupling of the central T_c,θ in the stick condition, not from the integrator.
     assert!(
-        trap_chatter > 5.0 * chatter,
-        "trapezoidal {trap_chatter} N vs {chatter} N"
+        trap_chatter < 1e-4 * rc.load,
+        "trapezoidal: Σλ alternates by {trap_chatter} N"
     );
 }
 

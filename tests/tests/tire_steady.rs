@@ -177,7 +177,8 @@ fn forces_are_bounded_by_coulomb_and_approach_the_bound_at_large_slip() {
 /// against the cleat path: the same run of `run_cleat`, whose samples give F_x, F_z unchanged,
 /// and the steady study's free-rolling point averages exactly those samples), the moments are
 /// those of the contact forces (their force sum Σ(λᵢnᵢ + fᵢ) equals the contact force of the
-/// step), and the mirror symmetry leaves no lateral force or M_x, M_z.
+/// step), and the mirror symmetry leaves no lateral force or M_x, M_z; without friction F_z is
+/// the load the rolling preload was solved for.
 #[test]
 fn zero_inputs_give_the_cleat_path_forces() {
     let red = tire();
@@ -200,10 +201,26 @@ fn zero_inputs_give_the_cleat_path_forces() {
     let l = st.free_rolling.loads;
     assert_eq!(l.fx, fx);
     assert_eq!(l.fz, fz);
+    // The spindle is held at the height of the rolling preload, which neglects friction
+    // (statics::preload_rolling): without friction the rolling tire carries the load there
+    // (0.5 %); with μ = 0.85 the patch sticks (tire_stick) and the tread, held longitudinally,
+    // stiffens the tire vertically: F_z is 2.3 % above the load on this tire (3 % allowed).
     assert!(
-        (l.fz - rc.load).abs() < 0.01 * rc.load,
+        (l.fz - rc.load).abs() < 0.03 * rc.load,
         "F_z {} vs load",
         l.fz
+    );
+    let mut frictionless = cfg.clone();
+    frictionless.rig.rolling.friction = 0.0;
+    let l0 = run_steady(red, &frictionless, &mut |_| {})
+        .unwrap()
+        .free_rolling
+        .loads;
+    println!("F_z {} N (mu 0.85), {} N (mu 0)", l.fz, l0.fz);
+    assert!(
+        (l0.fz - rc.load).abs() < 5e-3 * rc.load,
+        "F_z {} vs load without friction",
+        l0.fz
     );
     assert!(l.fy.abs() < 1e-6 * rc.load, "F_y {}", l.fy);
     assert!(l.mx.abs() < 1e-6 * rc.load, "M_x {}", l.mx);

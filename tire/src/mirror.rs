@@ -198,7 +198,7 @@ pub fn mirror_half(red: &ReducedTire) -> Result<MirrorHalf, String> {
 }
 
 /// The reduced tire of the symmetric coordinates `half.kept` of `red` (the rows and columns of
-/// every matrix taken at them); the lateral rows of `T_c`, `T_c,θ` of the mid-plane nodes, zero
+/// every matrix taken at them); the lateral rows of `T_c`, `T_c,θ` (and its upwind rows) of the mid-plane nodes, zero
 /// by symmetry, are set to zero exactly (the half model's contact problem then has no lateral
 /// force at these nodes, see [`super::contact_step`]).
 pub fn half_tire(red: &ReducedTire, half: &MirrorHalf) -> ReducedTire {
@@ -212,6 +212,8 @@ pub fn half_tire(red: &ReducedTire, half: &MirrorHalf) -> ReducedTire {
         for j in 0..ns {
             out.tc[(3 * i + 1, j)] = 0.0;
             out.tc_theta[(3 * i + 1, j)] = 0.0;
+            out.tc_theta_upwind[0][(3 * i + 1, j)] = 0.0;
+            out.tc_theta_upwind[1][(3 * i + 1, j)] = 0.0;
         }
     }
     out

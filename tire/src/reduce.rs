@@ -428,6 +428,7 @@ fn reduce_with(
     let (kr1, kt1) = rim_sum(&|k, c, j| ktd[(3 * fe.rim[k] + c, j)]);
     let tc = Mat::from_fn(nc3, nz, |i, j| t[(part.c[i], j)]);
     let tc_theta = Mat::from_fn(nc3, nz, |i, j| der.d1[(part.c[i], j)]);
+    let tc_theta_upwind = upwind_rows(&rings, &part.c, t.as_ref())?;
     // translational momentum of the tire (non-rim nodes; the rim's rows of T and its
     // derivatives are zero): eᵀM T, eᵀM T_,θ, eᵀM T_,θθ per Cartesian direction e, and eᵀM s_,θ,
     // eᵀM s_,θθ of the rigid rotation
@@ -488,6 +489,7 @@ fn reduce_with(
             kt1,
             tc,
             tc_theta,
+            tc_theta_upwind,
             p_e,
             p_e1,
             p_e2,
@@ -555,6 +557,63 @@ pub fn full_frequencies_hz(fe: &TireFe, count: usize) -> Result<Vec<f64>, TireEr
         &eigen_options(),
     )?;
     Ok(modes.frequencies_hz)
+}
+
+/// The one-sided (upwind) circumferential differences of the rows `dofs` of `t` along their
+/// rings, for the material transport of the contact nodes' slip velocity, Ribaric (7.10)
+/// (`v = … + Ω T_c,θ z`): `[0]` from each node's predecessor in θ,
+/// `(T_j − T_{j−1})/(θ_j − θ_{j−1})` (upwind when the material flows towards increasing θ,
+/// spin `Ω ≥ 0`), `[1]` towards its successor (`Ω < 0`) \[1/rad\].
+///
+/// Why not the derivative operator of `T_,θ` itself: the central difference (A.1) of a contact
+/// node ignores the node, so a stick condition on `v` leaves the patch's even and odd nodes
+/// decoupled (a zig-zag of the tangential displacement that sticks at zero central slip while
+/// the nodes slide); the upwind difference couples each node to the one the material comes
+/// from. First order in the node spacing; the rest of the model keeps the operator of
+/// [`ReductionConfig::derivative`].
+fn upwind_rows(
+    rings: &[crate::mesh::Ring], dofs: &[usize], t: faer::MatRef<'_, f64>,
+) -> Result<[Mat<f64>; 2], TireError> {
+    // each node's ring and place on it
+    let mut place = std::collections::HashMap::new();
+    let mut grids = Vec::with_capacity(rings.len());
+    for (r, ring) in rings.iter().enumerate() {
+        for (j, &node) in ring.nodes.iter().enumerate() {
+            place.insert(node, (r, j));
+        }
+        grids.push(ring.grid()?);
+    }
+    let nz = t.ncols();
+    let mut out = [
+        Mat::<f64>::zeros(dofs.len(), nz),
+        Mat::<f64>::zeros(dofs.len(), nz),
+    ];
+    for (i, &d) in dofs.iter().enumerate() {
+        let (node, comp) = (d / 3, d % 3);
+        let &(r, j) = place.get(&node).ok_or_else(|| {
+            invalid(
+                "contact nodes",
+                format!(
+                    "contact node {node} lies on no circumferential ring (no transport derivative)"
+                ),
+            )
+        })?;
+        let nb = grids[r].neighbours(j);
+        for (side, other) in [nb.left, nb.right].into_iter().enumerate() {
+            let flowing::grid::Node::Value(k, s) = other else {
+                return Err(invalid(
+                    "contact nodes",
+                    format!("the ring of contact node {node} has fewer than 3 nodes"),
+                ));
+            };
+            let dk = 3 * rings[r].nodes[k] + comp;
+            let h = nb.s - s;
+            for c in 0..nz {
+                out[side][(i, c)] = (t[(d, c)] - t[(dk, c)]) / h;
+            }
+        }
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -84,9 +84,10 @@ impl Default for SteadyStudyConfig {
         let mut rig = RigConfig::default();
         rig.ground.kind = GroundKind::Road;
         rig.ground.cleat = false;
-        // the converged step of the small-slip characteristics (BENCHMARKS, "tire: steady
-        // characteristics, convergence"): on the default tire F_y(0.2°) is 1014, 1121, 1176
-        // and 1189 N at 0.2, 0.1, 0.05 and 0.025 ms; the rig's 0.2 ms is 15 % off
+        // the step chosen when the small-slip characteristics depended on it (BENCHMARKS,
+        // "Steady characteristics"): since the contact's stick condition carries the transport
+        // term (2026-12-06) F_y(0.2°) on the default tire is 767.847, 767.840, 767.838 and
+        // 767.837 N at 0.2, 0.1, 0.05 and 0.025 ms, so the rig's 0.2 ms would do as well
         rig.rolling.time_step = DEFAULT_TIME_STEP;
         Self {
             tire: TireSource::default(),
@@ -737,10 +738,11 @@ pub const STEADY_MEANING: &str = "Steady-state characteristics of the reduced ti
     (Ribaric 7.2) carries only rim_moment_transfer of a contact force's moment about the axle, \
     because the generated tire's inflation prestress stiffness (without the pressure load's \
     own stiffness) is not invariant under a rigid rotation (1 without inflation pressure). \
-    Validity: the small-slip values (cornering stiffness, trail, relaxation length, slip \
-    stiffness) are not converged in the tire's circumferential mesh: on the generated truck \
-    tire the 0.2 deg cornering stiffness moves by up to 70 % between 192 and 576 divisions \
-    (BENCHMARKS.md, 'Steady characteristics: convergence'); the saturated forces (mu Fz) do not.";
+    Convergence: on the generated truck tire the small-slip values are converged in the \
+    circumferential mesh (192 to 480 divisions: cornering stiffness within 3.1 %, relaxation \
+    length within 2 %; the pneumatic trail, a moment arm of a few node spacings, within 6 mm) \
+    and in the time step (0.2 to 0.025 ms: Fy within 1.3e-5) (BENCHMARKS.md, 'Steady \
+    characteristics: convergence in contact nodes').";
 
 /// The summary of a steady result.
 pub fn steady_summary(cfg: &SteadyStudyConfig, r: &SteadyResult) -> SteadySummary {

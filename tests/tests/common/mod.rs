@@ -19,18 +19,25 @@ use tire::{
 /// integrator and the contact against steady states, so they need a tire that has them.
 pub fn coarse_reduced_tire() -> &'static ReducedTire {
     static T: OnceLock<ReducedTire> = OnceLock::new();
-    T.get_or_init(|| {
-        let mut cfg = coarse_tire_config(96, 8, 20.0);
-        cfg.tread.young = 150e6;
-        cfg.carcass = None;
-        let fe = generated_tire(&cfg).expect("tire");
-        let cfg = ReductionConfig {
-            contact_nodes: 33,
-            free_modes: 50,
-            ..Default::default()
-        };
-        reduce(&fe, &cfg).expect("reduce").0
-    })
+    T.get_or_init(|| isotropic_reduced_tire(96, 20.0, 33))
+}
+
+/// The coarse isotropic tire of [`coarse_reduced_tire`] (8 section elements, tread 150 MPa, no
+/// cords, 50 free-node modes) with `circumferential` elements around, the candidate patch
+/// ±`patch_deg` degrees and `contact_nodes` contact nodes.
+pub fn isotropic_reduced_tire(
+    circumferential: usize, patch_deg: f64, contact_nodes: usize,
+) -> ReducedTire {
+    let mut cfg = coarse_tire_config(circumferential, 8, patch_deg);
+    cfg.tread.young = 150e6;
+    cfg.carcass = None;
+    let fe = generated_tire(&cfg).expect("tire");
+    let cfg = ReductionConfig {
+        contact_nodes,
+        free_modes: 50,
+        ..Default::default()
+    };
+    reduce(&fe, &cfg).expect("reduce").0
 }
 
 /// The default cleat rig on the ground `kind`, with or without the cleat, friction `mu`.

@@ -45,15 +45,17 @@ pub(super) fn tangents(n: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
 ///
 /// ```text
 ///   D_N,kl = β_N h² n_kᵀ Y_kl R_l (+ 1/k_penalty on the diagonal),
-///   D_T,kl = γ_N h t_kᵀ (Y_kl + (η × s_k) X_θ,l) R_l,     R_l = [n_l t1_l t2_l],
+///   D_T,kl = γ_N h t_kᵀ (Y_kl + (η × s_k) X_θ,l + (Ω/γ_N h) Y_θ,kl) R_l,   R_l = [n_l t1_l t2_l],
 /// ```
 ///
 /// where `Y_kl` moves contact node k under a unit force on node l (end-of-step displacement per
-/// unit `Δz̈`) and `(η × s_k) X_θ,l` is the rigid spin part of the material velocity (E15).
+/// unit `Δz̈`), `(η × s_k) X_θ,l` is the rigid spin part of the material velocity (E15) and
+/// `Ω Y_θ,kl β_N h²` the change of the transported deflection `Ω T_c,θ z` (Ribaric (7.10),
+/// upwind rows) with the displacement (the change of `Ω` itself in that product is left out:
+/// `|T_c,θ z| ≪ |η × s|`).
 /// While every candidate's normal lies in the wheel's `(x, z)` plane (`planar`) the products
-/// use that each frame vector then has two (`n`, `t1`) or one (`t2 = ŷ`) non-zero component
-/// and that `t2ᵀ(η × s) = 0`: the arithmetic of the planar ground, kept bit for bit; otherwise
-/// the full 3 × 3 products.
+/// use that each frame vector then has two (`n`, `t1`) or one (`t2 = ŷ`) non-zero component;
+/// otherwise the full 3 × 3 products.
 pub(super) struct TireDelassus<'b> {
     pub(super) fac: &'b Responses,
     /// The candidates' blocks of `Y` and `X_θ` (gathered on demand).
@@ -64,9 +66,9 @@ pub(super) struct TireDelassus<'b> {
     /// Local frames `[n, t1, t2]` of the candidates, scaled by `β_N h²` (row n) and `γ_N h`
     /// (rows t1, t2).
     pub(super) frames: &'b [[[f64; 3]; 3]],
-    /// `γ_N h t1ᵀ(η × s)` per candidate.
+    /// `γ_N h t1ᵀ(η × s + T_c,θ z)` per candidate.
     pub(super) rig_t1: &'b [f64],
-    /// `γ_N h t2ᵀ(η × s)` per candidate (0 when `planar`).
+    /// `γ_N h t2ᵀ(η × s + T_c,θ z)` per candidate.
     pub(super) rig_t2: &'b [f64],
     /// Whether every candidate's normal lies in the wheel's `(x, z)` plane.
     pub(super) planar: bool,
@@ -76,18 +78,27 @@ pub(super) struct TireDelassus<'b> {
     /// Whether this is the half model of symmetric motion.
     pub(super) half: bool,
     pub(super) tct: &'b Mat<f64>,
+    /// The upwind `T_c,θᵀ` of the spin direction of `Y_θ`.
     pub(super) tct_theta: &'b Mat<f64>,
+    /// `Ω/γ_N h` (free spin over the velocity factor): the weight of `Y_θ` in the tangential
+    /// rows, whose frames carry `γ_N h`.
+    pub(super) transport: f64,
     pub(super) z_free: &'b [f64],
     pub(super) zd_free: &'b [f64],
     pub(super) spin_free: f64,
 }
 
-/// The scaled frames and rigid-spin coefficients of the candidates for [`TireDelassus`];
+/// The scaled frames and spin coefficients of the candidates for [`TireDelassus`];
 /// returns whether every candidate's normal lies in the wheel's `(x, z)` plane.
-/// (`(c1, c2)` = `(γ_N h, β_N h²)` scale the tangent and normal rows.)
+/// (`(c1, c2)` = `(γ_N h, β_N h²)` scale the tangent and normal rows.) A change `ΔΩ` of the
+/// spin moves a node's material velocity by `ΔΩ (η × s + T_c,θ z)` (Ribaric (7.10): the rigid
+/// rotation and the transported deflection, `tct_theta` the upwind `T_c,θᵀ`, `z` the free
+/// end-of-step coordinates); its tangential components are the coefficients.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn candidate_frames(
     red: &ReducedTire, cand: &[usize], gp: &[GroundPoint], (c1, c2): (f64, f64),
-    frames: &mut Vec<[[f64; 3]; 3]>, rig_t1: &mut Vec<f64>, rig_t2: &mut Vec<f64>,
+    tct_theta: &Mat<f64>, z: &[f64], frames: &mut Vec<[[f64; 3]; 3]>, rig_t1: &mut Vec<f64>,
+    rig_t2: &mut Vec<f64>,
 ) -> bool {
     frames.clear();
     rig_t1.clear();
@@ -104,12 +115,16 @@ pub(super) fn candidate_frames(
         ]);
         // η × s = (s_z, 0, −s_x) for the spin axis η = ŷ
         let s = red.contact_positions[i];
-        rig_t1.push(c1 * (t1[0] * s[2] - t1[2] * s[0]));
-        rig_t2.push(if n[1] == 0.0 {
-            0.0
-        } else {
-            c1 * (t2[0] * s[2] - t2[2] * s[0])
-        });
+        let mut a = [s[2], 0.0, -s[0]];
+        for (c, ac) in a.iter_mut().enumerate() {
+            *ac += col_slice(tct_theta, 3 * i + c)
+                .iter()
+                .zip(z)
+                .map(|(p, q)| p * q)
+                .sum::<f64>();
+        }
+        rig_t1.push(c1 * dot3(&t1, &a));
+        rig_t2.push(c1 * dot3(&t2, &a));
     }
     planar
 }
@@ -124,29 +139,30 @@ impl TireDelassus<'_> {
 
     /// Local outputs of node `k` for a unit force `e` (wheel frame) on itself.
     fn response(&self, k: usize, e: &[f64; 3]) -> [f64; 3] {
-        let (d, x_theta) = (&self.blocks.diag[k], &self.blocks.x_theta[k]);
+        let (d, dt, x_theta) = (
+            &self.blocks.diag[k],
+            &self.blocks.diag_t[k],
+            &self.blocks.x_theta[k],
+        );
         let mut v = [0.0; 3];
+        let mut vt = [0.0; 3];
         let mut xth = 0.0;
         for (r, er) in e.iter().enumerate() {
-            v[0] += er * d[r][0];
-            v[1] += er * d[r][1];
-            v[2] += er * d[r][2];
+            for a in 0..3 {
+                v[a] += er * d[r][a];
+                vt[a] += er * dt[r][a];
+            }
             xth += er * x_theta[r];
         }
         let f = &self.frames[k];
-        if self.planar {
-            [
-                dot3(&f[0], &v),
-                dot3(&f[1], &v) + self.rig_t1[k] * xth,
-                dot3(&f[2], &v),
-            ]
-        } else {
-            [
-                dot3(&f[0], &v),
-                dot3(&f[1], &v) + self.rig_t1[k] * xth,
-                dot3(&f[2], &v) + self.rig_t2[k] * xth,
-            ]
-        }
+        let w = self.transport;
+        // (tangential rows: the material velocity, the transport term added to it)
+        let u = [v[0] + w * vt[0], v[1] + w * vt[1], v[2] + w * vt[2]];
+        [
+            dot3(&f[0], &v),
+            dot3(&f[1], &u) + self.rig_t1[k] * xth,
+            dot3(&f[2], &u) + self.rig_t2[k] * xth,
+        ]
     }
 
     /// The diagonal compliances `[D_N,kk, (D_T,kk,11 + D_T,kk,22)/2]` of node `k`.
@@ -178,25 +194,32 @@ impl TireDelassus<'_> {
     /// candidate's scaled frame, with the rigid spin terms of both tangents.
     fn columns_3d(&mut self, l: usize, e: &[[f64; 3]; 3], xth: &[f64; 3], cols: &mut [f64]) {
         let ld = 3 * self.cand.len();
+        let w = self.transport;
         let yb = &self.blocks.y[3 * l * ld..(3 * l + 3) * ld];
-        let (y0, y1, y2) = (&yb[..ld], &yb[ld..2 * ld], &yb[2 * ld..]);
+        let tb = &self.blocks.yt[3 * l * ld..(3 * l + 3) * ld];
+        // unit force e_c on node l: the displacement Y e_c and the transport Y_θ e_c at node k
+        let combine = |blk: &[f64], k: usize, ec: &[f64; 3]| {
+            let (a, b, c) = (
+                &blk[3 * k..3 * k + 3],
+                &blk[ld + 3 * k..ld + 3 * k + 3],
+                &blk[2 * ld + 3 * k..2 * ld + 3 * k + 3],
+            );
+            [
+                ec[0] * a[0] + ec[1] * b[0] + ec[2] * c[0],
+                ec[0] * a[1] + ec[1] * b[1] + ec[2] * c[1],
+                ec[0] * a[2] + ec[1] * b[2] + ec[2] * c[2],
+            ]
+        };
         for k in 0..self.cand.len() {
             let f = &self.frames[k];
-            let (a, b, c) = (
-                &y0[3 * k..3 * k + 3],
-                &y1[3 * k..3 * k + 3],
-                &y2[3 * k..3 * k + 3],
-            );
             for (col, ec) in e.iter().enumerate() {
-                let v = [
-                    ec[0] * a[0] + ec[1] * b[0] + ec[2] * c[0],
-                    ec[0] * a[1] + ec[1] * b[1] + ec[2] * c[1],
-                    ec[0] * a[2] + ec[1] * b[2] + ec[2] * c[2],
-                ];
+                let v = combine(yb, k, ec);
+                let vt = combine(tb, k, ec);
+                let u = [v[0] + w * vt[0], v[1] + w * vt[1], v[2] + w * vt[2]];
                 let o = &mut cols[col * ld + 3 * k..col * ld + 3 * k + 3];
                 o[0] = dot3(&f[0], &v);
-                o[1] = dot3(&f[1], &v) + self.rig_t1[k] * xth[col];
-                o[2] = dot3(&f[2], &v) + self.rig_t2[k] * xth[col];
+                o[1] = dot3(&f[1], &u) + self.rig_t1[k] * xth[col];
+                o[2] = dot3(&f[2], &u) + self.rig_t2[k] * xth[col];
             }
         }
         cols[3 * l] += self.penalty;
@@ -214,6 +237,9 @@ impl DelassusSource for TireDelassus<'_> {
         // directions: Y e_c = Σ_r e_c[r] Y[:, 3j + r], and X_θ e_c
         let yb = &self.blocks.y[3 * l * ld..(3 * l + 3) * ld];
         let (y0, y1, y2) = (&yb[..ld], &yb[ld..2 * ld], &yb[2 * ld..]);
+        let tb = &self.blocks.yt[3 * l * ld..(3 * l + 3) * ld];
+        let (t0, t1, t2) = (&tb[..ld], &tb[ld..2 * ld], &tb[2 * ld..]);
+        let w = self.transport;
         let x_theta = self.blocks.x_theta[l];
         let mut xth = [0.0; 3];
         for (c, ec) in e.iter().enumerate() {
@@ -235,31 +261,41 @@ impl DelassusSource for TireDelassus<'_> {
             .chunks_exact(3)
             .zip(y1.chunks_exact(3))
             .zip(y2.chunks_exact(3))
-            .zip(self.frames.iter().zip(self.rig_t1));
+            .zip(self.frames.iter().zip(self.rig_t1.iter().zip(self.rig_t2)));
+        let trows = t0
+            .chunks_exact(3)
+            .zip(t1.chunks_exact(3))
+            .zip(t2.chunks_exact(3));
         let outs = c0
             .chunks_exact_mut(3)
             .zip(c1.chunks_exact_mut(3))
             .zip(c2.chunks_exact_mut(3));
-        for ((((a, b), c3), (f, &rig)), ((o0, o1), o2)) in rows.zip(outs) {
-            let (fnx, fnz, ftx, ftz, fy) = (f[0][0], f[0][2], f[1][0], f[1][2], f[2][1]);
-            // unit force along n, t1 (combinations of Y columns 0 and 2) and ŷ (column 1)
-            let vs = [
+        // unit force along n, t1 (combinations of columns 0 and 2) and ŷ (column 1)
+        let along = |a: &[f64], b: &[f64], c: &[f64]| {
+            [
                 [
-                    nx * a[0] + nz * c3[0],
-                    nx * a[1] + nz * c3[1],
-                    nx * a[2] + nz * c3[2],
+                    nx * a[0] + nz * c[0],
+                    nx * a[1] + nz * c[1],
+                    nx * a[2] + nz * c[2],
                 ],
                 [
-                    nz * a[0] - nx * c3[0],
-                    nz * a[1] - nx * c3[1],
-                    nz * a[2] - nx * c3[2],
+                    nz * a[0] - nx * c[0],
+                    nz * a[1] - nx * c[1],
+                    nz * a[2] - nx * c[2],
                 ],
                 [b[0], b[1], b[2]],
-            ];
-            for ((v, o), xc) in vs.iter().zip([o0, o1, o2]).zip(xth) {
+            ]
+        };
+        for (((((a, b), c3), (f, (&rig, &rig2))), ((ta, tb), tc)), ((o0, o1), o2)) in
+            rows.zip(trows).zip(outs)
+        {
+            let (fnx, fnz, ftx, ftz, fy) = (f[0][0], f[0][2], f[1][0], f[1][2], f[2][1]);
+            let vs = along(a, b, c3);
+            let vts = along(ta, tb, tc);
+            for (((v, vt), o), xc) in vs.iter().zip(&vts).zip([o0, o1, o2]).zip(xth) {
                 o[0] = fnx * v[0] + fnz * v[2];
-                o[1] = ftx * v[0] + ftz * v[2] + rig * xc;
-                o[2] = fy * v[1];
+                o[1] = ftx * (v[0] + w * vt[0]) + ftz * (v[2] + w * vt[2]) + rig * xc;
+                o[2] = fy * (v[1] + w * vt[1]) + rig2 * xc;
             }
         }
         cols[3 * l] += self.penalty;

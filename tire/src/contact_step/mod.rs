@@ -7,11 +7,15 @@
 //! surface speed: [`GroundPoint::approach`]; nodes whose gap is certainly above that by a lower
 //! bound from their last evaluation are not evaluated, `GapBound`). The ground's normals may
 //! point anywhere (obstacles, height grids, camber): the tangent bases and the local Delassus
-//! matrix are formed in 3-D, with the earlier planar arithmetic kept, bit for bit, while every
-//! candidate's normal lies in the wheel's `(x, z)` plane (`delassus`). Contact forces `fⱼ` (wheel frame) on the candidates change
+//! matrix are formed in 3-D, with shorter products while every candidate's normal lies in the
+//! wheel's `(x, z)` plane (`delassus`). Contact forces `fⱼ` (wheel frame) on the candidates change
 //! the end-of-step accelerations by `Δv̇ = X Σ fⱼ` with the responses `X = S⁻¹ [0; T_cᵀ]` of all contact nodes
 //! to unit forces and the node displacements by `Y = T_c X_z / β'` ([`AlphaCorrection`]: the
-//! Delassus operator `W = J S⁻¹ Jᵀ`). `X` and `Y` are computed with the stepper's factored
+//! Delassus operator `W = J S⁻¹ Jᵀ`). The slip velocity of a contact node carries the transport
+//! of the deflection through the patch, `Ω T_c,θ z` (Ribaric (7.10)), taken with the upwind
+//! rows of `T_c,θ` ([`ReducedTire::tc_theta_upwind`]); its response `Ω Y_θ/β'` with
+//! `Y_θ = T_c,θ X_z` enters the tangential rows of the Delassus matrix, so that a sticking node
+//! holds zero material slip, not only zero `T_c ż`. `X`, `Y` and `Y_θ` are computed with the stepper's factored
 //! iteration matrix ([`AlphaCorrection::solve_columns`]) once per factorisation and cached by
 //! [`AlphaCorrection::factor_id`] (two entries: the rig alternates between two step sizes).
 //! The normal and friction problems are solved together by the semismooth Newton method of
@@ -58,9 +62,10 @@ pub struct TireContact {
     law: Arc<dyn FrictionLaw>,
     /// `[0; T_cᵀ]` (n × 3 n_c), the right-hand sides of the responses.
     load: Mat<f64>,
-    /// `T_cᵀ` and `T_c,θᵀ` (n_z × 3 n_c): contiguous rows of the contact-node maps.
+    /// `T_cᵀ` and the upwind `T_c,θᵀ` of both spin directions (n_z × 3 n_c): contiguous rows
+    /// of the contact-node maps.
     tct: Mat<f64>,
-    tct_theta: Mat<f64>,
+    tct_theta: [Mat<f64>; 2],
     /// Responses of the current and of the other step size's factorisation.
     responses: [Option<Responses>; 2],
     /// Normal multiplier per contact node \[N\] (last step).
@@ -160,7 +165,10 @@ impl TireContact {
             law,
             load,
             tct,
-            tct_theta: red.tc_theta.transpose().to_owned(),
+            tct_theta: [
+                red.tc_theta_upwind[0].transpose().to_owned(),
+                red.tc_theta_upwind[1].transpose().to_owned(),
+            ],
             responses: [None, None],
             lambda: vec![0.0; nc],
             friction: vec![[0.0; 3]; nc],
@@ -234,20 +242,36 @@ impl TireContact {
     }
 
     /// Makes the responses of the factorisation `step.factor_id()` the current entry (computed
-    /// once per factorisation; the entry of the other step size is kept).
+    /// once per factorisation; the entry of the other step size is kept), with `Y_θ` of the
+    /// spin direction `dir`.
     fn ensure_responses(
-        &mut self, red: &ReducedTire, step: &AlphaCorrection<'_>,
+        &mut self, red: &ReducedTire, step: &AlphaCorrection<'_>, dir: usize,
     ) -> Result<(), MbdError> {
         let id = step.factor_id();
-        if self.responses[0].as_ref().is_some_and(|r| r.id == id) {
+        let nz = self.load.nrows() - 1;
+        let transported = |r: &mut Responses| {
+            if r.dir != dir {
+                r.dir = dir;
+                matmul(
+                    r.yt.as_mut(),
+                    Accum::Replace,
+                    red.tc_theta_upwind[dir].as_ref(),
+                    r.x.as_ref().subrows(1, nz),
+                    1.0,
+                    Par::Seq,
+                );
+            }
+        };
+        if let Some(r) = self.responses[0].as_mut().filter(|r| r.id == id) {
+            transported(r);
             return Ok(());
         }
         self.responses.swap(0, 1);
-        if self.responses[0].as_ref().is_some_and(|r| r.id == id) {
+        if let Some(r) = self.responses[0].as_mut().filter(|r| r.id == id) {
+            transported(r);
             return Ok(());
         }
         let (n, nc3) = (self.load.nrows(), self.load.ncols());
-        let nz = n - 1;
         // (with a prescribed spin the responses carry the reaction's multiplier in their last
         // row: `S⁻¹` on the bilateral constraint, [`AlphaCorrection::solve_columns`])
         let rows = n + step.lambda().len();
@@ -258,6 +282,8 @@ impl TireContact {
                 id,
                 x: Mat::zeros(rows, nc3),
                 y: Mat::zeros(nc3, nc3),
+                yt: Mat::zeros(nc3, nc3),
+                dir,
             });
         r.id = id;
         step.solve_columns(self.load.as_ref(), r.x.as_mut())?;
@@ -269,6 +295,8 @@ impl TireContact {
             1.0,
             Par::Seq,
         );
+        r.dir = usize::MAX;
+        transported(&mut r);
         self.responses[0] = Some(r);
         self.stats.columns += red.n_contact();
         Ok(())
@@ -286,7 +314,9 @@ impl StepCorrection<TireDynamics<'_>> for TireContact {
         let t1 = step.t();
         let h = step.h();
         let clk = std::time::Instant::now();
-        self.ensure_responses(red, step)?;
+        // the upwind side of the transport: material flows towards +θ for a positive spin
+        let dir = usize::from(step.v()[0] < 0.0);
+        self.ensure_responses(red, step, dir)?;
         let c0 = clk.elapsed().as_secs_f64();
         let w = &mut self.work;
         let z_free = &step.q()[1..];

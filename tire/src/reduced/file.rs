@@ -1,7 +1,7 @@
 //! The reduced-tire file: versioned JSON whose body carries a SHA-256 checksum,
 //!
 //! ```text
-//!   {"format":"flowmbd-reduced-tire","version":3,"checksum":"sha256:<hex>","tire":{…}}
+//!   {"format":"flowmbd-reduced-tire","version":4,"checksum":"sha256:<hex>","tire":{…}}
 //! ```
 //!
 //! the checksum being that of the bytes of the `tire` value as they stand in the file. A file
@@ -23,8 +23,9 @@ use std::path::Path;
 /// File format name of a saved reduced tire.
 pub const FORMAT: &str = "flowmbd-reduced-tire";
 /// Current file format version (2: the momentum projections `p_e`, `p_e1`, `p_e2`, `p_s`; 3:
-/// the body in `tire` with its SHA-256 `checksum`, and `code_version`).
-pub const VERSION: u32 = 3;
+/// the body in `tire` with its SHA-256 `checksum`, and `code_version`; 4: the upwind transport
+/// rows `tc_theta_upwind`).
+pub const VERSION: u32 = 4;
 /// Largest reduced-tire file read \[bytes\] (1 GiB; the default 341-DOF tire's file is 65 MB):
 /// a documented ceiling, raised 1000-fold by `--allow-large`
 /// ([`mbd_core::validate::limits`]).
@@ -126,6 +127,7 @@ struct Body {
     kt1: Dense,
     tc: Dense,
     tc_theta: Dense,
+    tc_theta_upwind: [Dense; 2],
     p_e: Dense,
     p_e1: Dense,
     p_e2: Dense,
@@ -165,6 +167,10 @@ impl ReducedTire {
             kt1: Dense::from(&self.kt1),
             tc: Dense::from(&self.tc),
             tc_theta: Dense::from(&self.tc_theta),
+            tc_theta_upwind: [
+                Dense::from(&self.tc_theta_upwind[0]),
+                Dense::from(&self.tc_theta_upwind[1]),
+            ],
             p_e: Dense::from(&self.p_e),
             p_e1: Dense::from(&self.p_e1),
             p_e2: Dense::from(&self.p_e2),
@@ -291,6 +297,10 @@ impl ReducedTire {
             kt1: f.kt1.to("kt1", 3, nz)?,
             tc: f.tc.to("tc", 3 * nc, nz)?,
             tc_theta: f.tc_theta.to("tc_theta", 3 * nc, nz)?,
+            tc_theta_upwind: [
+                f.tc_theta_upwind[0].to("tc_theta_upwind[0]", 3 * nc, nz)?,
+                f.tc_theta_upwind[1].to("tc_theta_upwind[1]", 3 * nc, nz)?,
+            ],
             p_e: f.p_e.to("p_e", 3, nz)?,
             p_e1: f.p_e1.to("p_e1", 3, nz)?,
             p_e2: f.p_e2.to("p_e2", 3, nz)?,

@@ -11,7 +11,8 @@
 //!   m_θ = TᵀM s_,θ,  c_s = TᵀM s_,θθ,
 //!   K_r = Σ_rim K_{rim,·} T,  K_θ = Σ_rim s̃ K_{rim,·} T  (and the same with T_,θ)   (7.2)
 //! ```
-//! plus the contact-node rows `T_c`, `T_c,θ`, the undeformed contact-node positions `s^c` and
+//! plus the contact-node rows `T_c`, `T_c,θ` (and the upwind differences of `T_c` along the
+//! rings that transport the contact nodes' slip), the undeformed contact-node positions `s^c` and
 //! the translational momentum projections `P = eᵀM T`, `P₁ = eᵀM T_,θ`, `P₂ = eᵀM T_,θθ`,
 //! `eᵀM s_,θ`, `eᵀM s_,θθ` (e = the three Cartesian directions; tire nodes only) of the
 //! momentum-balance spindle force ([`crate::SpindleForceMethod`]).
@@ -73,6 +74,11 @@ pub struct ReducedTire {
     pub tc: Mat<f64>,
     /// Contact-node rows of `T_,θ` (3 n_c × n_z) \[1/rad\].
     pub tc_theta: Mat<f64>,
+    /// Contact-node rows of the upwind difference of `T` along the rings (3 n_c × n_z)
+    /// \[1/rad\]: `[0]` from each node's predecessor in θ (spin `Ω ≥ 0`), `[1]` towards its
+    /// successor (`Ω < 0`). The transport `Ω T_c,θ z` of the contact nodes' slip velocity,
+    /// Ribaric (7.10), uses these (see `upwind_rows` in [`mod@crate::reduce`]).
+    pub tc_theta_upwind: [Mat<f64>; 2],
     /// Translational momentum per coordinate `P = eᵀM T` (3 × n_z, rows x, y, z) \[kg\].
     pub p_e: Mat<f64>,
     /// `P₁ = eᵀM T_,θ` (3 × n_z) \[kg/rad\]; zero up to round-off for uniform rings (the periodic
@@ -244,6 +250,10 @@ impl ReducedTire {
         ] {
             *t = right(a);
         }
+        tire.tc_theta_upwind = [
+            right(&self.tc_theta_upwind[0]),
+            right(&self.tc_theta_upwind[1]),
+        ];
         tire.viz = None;
         tire.tread = None;
         tire
