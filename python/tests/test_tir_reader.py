@@ -158,11 +158,13 @@ def test_mf61_from_the_tir_reproduces_the_fit_and_the_simulation(steady):
         # reference 1: the study's own evaluation of its fit (tire::magic_formula)
         assert fy == pytest.approx(fy_fit, rel=1e-9, abs=1e-6 * err_y["peak"]), a
         assert mz == pytest.approx(mz_fit, rel=1e-9, abs=1e-6 * err_z["peak"]), a
-        # reference 2: the simulated points, within the fit's own stated largest error
+        # reference 2: the simulated points, within the fit's own stated largest error plus
+        # the file's rounding (reference 1's tolerance: the reader's curve may differ from the
+        # fit's by 1e-6 of the peak, so |fy - sim| <= fit error + that)
         if round(a, 9) in pts:
             sim_fy, sim_mz = pts[round(a, 9)]
-            assert abs(fy - sim_fy) <= err_y["max"] * (1 + 1e-9) + 1e-9, a
-            assert abs(mz - sim_mz) <= err_z["max"] * (1 + 1e-9) + 1e-9, a
+            assert abs(fy - sim_fy) <= err_y["max"] * (1 + 1e-9) + 1e-6 * err_y["peak"], a
+            assert abs(mz - sim_mz) <= err_z["max"] * (1 + 1e-9) + 1e-6 * err_z["peak"], a
     lon = m["fit"]["longitudinal"]
     assert lon is not None, m.get("warnings")
     for k, fx_fit in zip(m["kappa"], m["fx_fit_n"]):

@@ -9,10 +9,12 @@ run on the same inputs written as `[rig.wheel.centre_motion]` (tolerance there).
 Reference and tolerance: the FMU loads the reduced tire from its resources/ (JSON that reloads
 bit for bit) and steps it through the same library function, so the spindle loads agree to
 1e-9 of the load (measured: identical); independently of that, the free-rolling loads carry
-the preload (F_z within 3 %, 40 ms after the start) and a faster spin drives the tire forward (F_x rises by more than
-1 kN, Pacejka's sign); a camber of 0.01 rad (top to the right) then pushes F_y towards the
-side the wheel leans to (camber thrust, Pacejka §4.3: F_y falls). A camber beyond the rig's
-±30° is refused with an error status and a logged message.
+the preload (F_z within 3 %, 40 ms after the start); a camber of 0.01 rad (top to the right) at
+the free-rolling spin pushes F_y towards the side the wheel leans to (camber thrust, Pacejka
+§4.3: F_y falls) by the steady study's camber thrust (a second run: the rig's free spin,
+settled) within 15 %; then a faster spin drives the tire forward (F_x rises by more than
+1 kN, Pacejka's sign). A camber beyond the rig's ±30° is refused with an error status and a
+logged message.
 """
 
 import csv
@@ -85,11 +87,22 @@ def test_fmu_matches_the_stepping_api(reduced, fmu):
     slave.exitInitializationMode()
     ref = flowmbd.tire.CoSimulation(RIG, tire=reduced, motion=start)
     load = 4448.2
-    faster = dict(start, spin_rate=start["spin_rate"] * 1.02, height=start["height"] - 5e-4)
-    cambered = dict(faster, camber=0.01)
+    # the steady study on the same tire: its free-rolling spin (the FMU's spin is an input, so
+    # a pure camber needs that spin: the start's `v/R_e` estimate is 0.2 % below it, a braking
+    # slip) and its camber thrust at +-0.01 rad (the W-axis F_y; measured -30.8 N)
+    gamma = 0.01
+    steady = flowmbd.tire.steady(
+        config={"slip_angles_deg": [], "drive_torques_n_m": [],
+                "camber_angles_deg": [-math.degrees(gamma), math.degrees(gamma)],
+                "point_time": 0.15, "average_time": 0.03},
+        tire=reduced)
+    thrust = steady["fy_camber_n"][1]
+    rolling = dict(start, spin_rate=steady["free_rolling_spin_rad_per_s"])
+    cambered = dict(rolling, camber=gamma)
+    faster = dict(cambered, spin_rate=rolling["spin_rate"] * 1.02, height=start["height"] - 5e-4)
     rows, t, worst = [], 0.0, 0.0
     for k in range(120):
-        m = start if k < 40 else faster if k < 80 else cambered
+        m = rolling if k < 40 else cambered if k < 80 else faster
         slave.setFloat64([vr[n] for n in INPUTS], _values(m))
         slave.doStep(t, H)
         t += H
@@ -101,11 +114,15 @@ def test_fmu_matches_the_stepping_api(reduced, fmu):
             assert abs(g - want[key]) <= 1e-9 * load, f"{name} at step {k}: {g} vs {want[key]}"
     print(f"largest FMU - stepping API difference {worst:.3e} N or N m")
     assert slave.getFloat64([vr["time"]])[0] == pytest.approx(120 * H)
-    free, driven, leaning = rows[39], rows[79], rows[-1]
-    assert leaning[1] < driven[1] - 50.0, f"F_y {driven[1]} -> {leaning[1]} with camber"
+    free, leaning, driven = rows[39], rows[79], rows[-1]
+    # (measured -32.6 N after 40 ms of camber, 1.9 relaxation lengths at 60 km/h, against the
+    # steady -30.8 N: the FMU holds the centre's height, F_z 4527 N against the study's 4550 N)
+    assert thrust < -10.0, f"steady camber thrust {thrust}"
+    assert leaning[1] - free[1] == pytest.approx(thrust, rel=0.15), \
+        f"F_y {free[1]} -> {leaning[1]} with camber; steady camber thrust {thrust}"
     # (40 ms after the start: the rolling preload's transient is not over, 3 %)
     assert abs(free[2] - load) < 0.03 * load, f"F_z {free[2]}"
-    assert driven[0] > free[0] + 1000.0, f"F_x {free[0]} -> {driven[0]}"
+    assert driven[0] > leaning[0] + 1000.0, f"F_x {leaning[0]} -> {driven[0]}"
     assert driven[6] > 0.0, "a faster spin needs a driving torque"
     slave.terminate()
 
@@ -182,7 +199,9 @@ def test_fmu_matches_the_cli_run_on_the_same_inputs(tmp_path):
     round-off; what is compared is further rounded by the CSV's 11 significant digits
     (`{:.10e}`: 5e-11 of each value). Allowed: 1e-9 of the load (4.4e-6 N or N m). The
     inputs reach the loads (not a comparison of constants): F_z follows the height by more
-    than 100 N, and the camber moves F_y by more than 50 N.
+    than 100 N, and the camber moves F_y by more than 5 N (measured 14.6 N: under the +1 %
+    spin the patch carries about 0.8 % of longitudinal slip, and the combined slip takes
+    half of the 31 N pure camber thrust, test_fmu_matches_the_stepping_api).
     """
     exe = _tire_cli()
     load = 4448.2
@@ -257,4 +276,4 @@ communication_step = {h_comm!r}
     fy = np.array([r["f_lateral_N"] for r in rows])
     assert fz.max() - fz.min() > 100.0, f"F_z range {fz.min()} .. {fz.max()}"
     before = fy[(np.arange(steps) + 1) * h_comm <= 0.08 + 1e-9][-1]
-    assert abs(fy[-1] - before) > 50.0, f"F_y {before} -> {fy[-1]} with camber"
+    assert abs(fy[-1] - before) > 5.0, f"F_y {before} -> {fy[-1]} with camber"
