@@ -92,8 +92,9 @@ fn table_6_1_balances_on_flowing_co_rotated() {
 // 2026-12-06 (h-bal4): torque 0.14 %, power −0.40 % (the linear damping's 0.24 % / −0.41 %).
 // Not asserted: Table 6-1's speed loss. This damping gives Δω = 0.19079 rad/s, +2.4 % on
 // Ribaric's 0.18630 rad/s, which the linear damping of (5.5) reproduces (the Kelvin–Voigt force
-// on the chords' stretch rate is larger in the creep arcs than (5.5)'s on `v T_,s z`); that is
-// why it is selectable, not the default.
+// on the chords' stretch rate is larger in the creep arcs than (5.5)'s on `v T_,s z`); the
+// nodal model (material nodes, the Lagrangian rate) gives 0.19426 rad/s on the same sweep. It is
+// selectable, not the default.
 #[test]
 fn table_6_1_balances_on_flowing_with_chord_damping() {
     let drive = table_6_1::drive();

@@ -201,8 +201,9 @@ pub enum ViscousForce {
     /// `R = Σ_e ½ (β EA/l₀)(Dl/Dt)²`, so that with [`BeltEquations::Lagrange`] the belt loses
     /// exactly `2R`. Bending keeps the linear form. Measured 2026-12-06 (torque / power
     /// residual): Table 6-1 at 10 N m 0.14 % / −0.40 % but Δω = 0.19079 rad/s (+2.4 % on
-    /// Ribaric's 0.18630); default fead drive at 800 rpm 0.98 % / −1.63 % (linear damping:
-    /// 0.72 % / −1.06 %). Not the default (issue 34, open).
+    /// Ribaric's 0.18630, which the linear damping reproduces; the nodal model gives 0.19426);
+    /// default fead drive at 800 rpm 0.98 % / −1.63 % (linear damping: 0.72 % / −1.06 %). Not
+    /// the default (issue 34, open).
     Chord,
 }
 
