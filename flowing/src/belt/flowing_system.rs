@@ -92,7 +92,9 @@
 //! by `1/R` at every tangent point, and `½ ∫ EI (κ − κ₀(s))² ds` is not invariant under the
 //! material's slide (its slide force is `Σ EI (κ − κ₀) Δκ₀` at the tangent points; `EI/R²` is
 //! 33 N on the drive's 28 mm pulleys, 0.13 N on the Pechstein–Gerstmayr drive). With EI/100 the
-//! default formulation closes both balances on that drive (0.31 % / −0.27 %). A naturally
+//! default formulation closes both balances on that drive (0.31 % / −0.27 %), Lagrange's
+//! equations still miss (4.13 % / 0.83 %; with the chord damping 1.59 % / 0.92 %): the other
+//! slide defects remain. A naturally
 //! straight belt (the pre-moment `EI κ₀` of the mounted state added to `f0`, tried without its
 //! geometric stiffness) removes the bending part (0.46 N) but its lift-off at the tangent points
 //! is then carried by the linear axial force (its slide defect rises to 11–12 N): a co-rotated
