@@ -15,7 +15,7 @@
 //! energy-consistent on the stationary mesh; at 800 rpm its linear elastic forces do +32.7 W
 //! and −5.6 W and its damping forces +10.8 W on the flowing material (their Kelvin–Voigt
 //! dissipation is 29.8 W). Lagrange's equations of the same model
-//! (`FlowingBelt::with_lagrange_equations`, not yet selectable in `fead`) conserve energy
+//! (`FlowingBelt::with_lagrange_equations`; in `fead` `[models.flowing] equations = "lagrange"`) conserve energy
 //! exactly and give a crank torque of 19.08 N m against the nodal model's 19.00 N m (18.29 N m
 //! with (5.14)), but move the defect (10.7 N: 4.2 N elastic, 6.5 N viscous) into the reference
 //! node's tangential balance,

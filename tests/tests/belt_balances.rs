@@ -10,7 +10,7 @@ use belt::Report;
 use drives::fead::{FeadConfig, FeadModel, run_fead};
 use drives::table_6_1;
 use drives::{SpeedLossConfig, speed_loss_sweep};
-use flowing::belt::{AxialForce, BeltMesh, FlowingBelt, FlowingSettings, NodalBelt};
+use flowing::belt::{AxialForce, BeltMesh, FlowingBelt, FlowingSettings, NodalBelt, ViscousForce};
 
 /// Largest relative residual allowed (issue 34 item 2: 0.5 %).
 const TOL: f64 = 5e-3;
@@ -87,6 +87,30 @@ fn table_6_1_balances_on_flowing_co_rotated() {
     }
 }
 
+// Table 6-1 at 10 N m on the flowing model with the axial damping along the deformed chords
+// (ViscousForce::Chord, Ribaric's projection (5.14)), against the balance invariants. Measured
+// 2026-12-06 (h-bal4): torque 0.14 %, power −0.40 % (the linear damping's 0.24 % / −0.41 %).
+// Not asserted: Table 6-1's speed loss. This damping gives Δω = 0.19079 rad/s, +2.4 % on
+// Ribaric's 0.18630 rad/s, which the linear damping of (5.5) reproduces (the Kelvin–Voigt force
+// on the chords' stretch rate is larger in the creep arcs than (5.5)'s on `v T_,s z`); the
+// nodal model (material nodes, the Lagrangian rate) gives 0.19426 rad/s on the same sweep. It is
+// selectable, not the default.
+#[test]
+fn table_6_1_balances_on_flowing_with_chord_damping() {
+    let drive = table_6_1::drive();
+    // the procedure's own sweep 0, 2, …, 10 N m
+    let settings = SpeedLossConfig::default();
+    let flowing = FlowingSettings {
+        viscous_force: ViscousForce::Chord,
+        ..FlowingSettings::default()
+    };
+    let mut model = FlowingBelt::new(&drive, &flowing).unwrap();
+    let (points, _) = speed_loss_sweep(&mut model, &settings, |_, _| {}).unwrap();
+    let p = points.iter().find(|p| p.torque == 10.0).unwrap();
+    println!("Δω {} rad/s", p.delta_omega);
+    assert_balanced("Table 6-1 flowing chord damping 10 N m", &p.report);
+}
+
 // Table 6-1 (Ribaric): the same steady points on the nodal model.
 #[test]
 fn table_6_1_balances_on_nodal() {
@@ -144,6 +168,21 @@ fn pechstein_gerstmayr_balances_on_flowing() {
     )
     .unwrap();
     assert_balanced("Pechstein–Gerstmayr flowing", &s.points[0].report);
+}
+
+// The same with the axial damping along the deformed chords (ViscousForce::Chord). The whole
+// shipped example with it (`fead --config apps/belt/examples/pechstein-gerstmayr.toml` plus
+// `viscous_force = "chord"`, 10.5 mm loop, all modes), measured 2026-12-06: torque 0.002 %,
+// power −0.083 %, driven 11.3075 rad/s (linear damping: 0.016 % / −0.083 %, 11.3075 rad/s).
+#[test]
+fn pechstein_gerstmayr_balances_on_flowing_with_chord_damping() {
+    let mut c = pechstein_gerstmayr(FeadModel::Flowing, 0.02, 2.5e-4);
+    c.models.flowing.viscous_force = ViscousForce::Chord;
+    let s = run_fead(&c, |_| {}).unwrap();
+    assert_balanced(
+        "Pechstein–Gerstmayr flowing chord damping",
+        &s.points[0].report,
+    );
 }
 
 // The same on the ANCF belt (120 elements of the linear law, the example's 0.1 ms step).
@@ -206,4 +245,50 @@ fn default_fead_balances_on_nodal() {
     println!("settled {} s, steady {}", p.settled_s, p.steady);
     assert!(p.steady);
     assert_balanced("fead 800 rpm nodal", &p.report);
+}
+
+/// The default fead drive at 800 rpm on the flowing model (`FeadConfig::default`).
+fn default_fead_flowing() -> FeadConfig {
+    let mut c = FeadConfig {
+        model: FeadModel::Flowing,
+        ..FeadConfig::default()
+    };
+    c.engine.speeds_rpm = vec![800.0];
+    c
+}
+
+// Issue 34 item 2 on the flowing model's default formulation (Ribaric (5.14), linear axial and
+// damping forces): fails. Measured 2026-12-06 (h-bal4, window means at 800 rpm): torque 0.72 %,
+// power −1.06 % (−16.3 W of 1535 W). Every other formulation of the flowing module misses as
+// well (torque / power): co-rotated axial force 0.72 / −2.83 %; chord damping
+// (ViscousForce::Chord) 0.98 / −1.63 %; Lagrange's equations 4.81 / 0.65 %, with chord damping
+// 3.15 / 0.71 %; every free-node mode kept 0.27 / −1.88 %; 4 mm wraps 5.50 / 1.85 %.
+// What remains is the elastic forces' work on the slide, bᵀ(f0 − K δ) (window means on the
+// default loop: pre-tension −24.2 N and the string part of K_g(T0) +25.6 N, cancelling to
+// 1.4 N, 0.1 N on 4 mm wraps; axial −0.4 N; bending +4.0 N, 4.4 N on 4 mm wraps): the bending
+// stiffness of Ribaric (5.5) is stress-free on the mounted polygon (the belt's natural
+// curvature follows the path), and a curvature reference that jumps by 1/R at the tangent points
+// is not invariant under the material's slide, in the continuum as on the mesh (EI/R² = 33 N on
+// the 28 mm pulleys). With EI/100 the default formulation closes both (next test).
+#[test]
+#[ignore = "fails: the path-referenced bending of Ribaric (5.5) does work on the slide (issue 34)"]
+fn default_fead_balances_on_flowing() {
+    let s = run_fead(&default_fead_flowing(), |_| {}).unwrap();
+    assert!(s.points[0].steady);
+    assert_balanced("fead 800 rpm flowing", &s.points[0].report);
+}
+
+// The default fead drive with a belt of a hundredth of the bending stiffness (EI = 2.6e-4
+// N m²), default flowing formulation: the balance invariants hold once the bending reference's
+// work on the slide (previous test) is small. Measured 2026-12-06 (h-bal4): torque 0.31 %, power
+// −0.27 %. The other forms still miss at EI/100 (Lagrange's equations 4.13 % / 0.83 %, chord
+// damping 0.33 % / −0.79 %): the smaller slide defects remain, and this pass may be in part
+// their cancellation.
+#[test]
+fn default_fead_with_a_thin_belt_balances_on_flowing() {
+    let mut c = default_fead_flowing();
+    c.drive.belt.ei /= 100.0;
+    let s = run_fead(&c, |_| {}).unwrap();
+    assert!(s.points[0].steady);
+    assert_balanced("fead 800 rpm flowing EI/100", &s.points[0].report);
 }

@@ -21,7 +21,9 @@ mod snapshot;
 mod statics;
 pub mod wave;
 
-pub use config::{AxialForce, BeltMesh, BeltReduction, FlowingSettings};
+pub use config::{
+    AxialForce, BeltEquations, BeltMesh, BeltReduction, FlowingSettings, ViscousForce,
+};
 pub use coordinates::DriveCoordinates;
 pub use flowing_system::{FlowingBelt, NodeReport};
 pub use model::{BeltFe, FlowingBasis};

@@ -379,6 +379,47 @@ pub fn chord_viscous_forces(
         .collect()
 }
 
+/// The axial parts of [`BeltFe::damping`]'s `K_e`, [`BeltFe::frame_turn`] and
+/// [`BeltFe::frame_turn2`] (`3N × 3N` each, without `β`): per element the bar stiffness
+/// `K_a = (EA/l) [u uᵀ, −u uᵀ; −u uᵀ, u uᵀ]` on the translations (the axial block of the frame
+/// element), `ψ'_e K_a J` and `ψ'_e² Jᵀ K_a J`. The flowing model's chord damping
+/// ([`super::ViscousForce::Chord`]) removes them from the linear damping and carries the
+/// axial viscous force itself, along the deformed chord.
+pub(crate) fn axial_damping_parts(fe: &BeltFe) -> (Mat<f64>, Mat<f64>, Mat<f64>) {
+    let n = fe.n_dofs();
+    let ea = fe.drive.belt().ea;
+    let (mut k, mut t1, mut t2) = (
+        Mat::<f64>::zeros(n, n),
+        Mat::<f64>::zeros(n, n),
+        Mat::<f64>::zeros(n, n),
+    );
+    for (i, j, [dx, dy], l) in loop_chords(&fe.position) {
+        let u = [dx / l, dy / l];
+        let dofs = [3 * i, 3 * i + 1, 3 * i + 2, 3 * j, 3 * j + 1, 3 * j + 2];
+        let mut ka = [[0.0; 6]; 6];
+        for a in 0..2 {
+            for b in 0..2 {
+                let x = ea / l * u[a] * u[b];
+                ka[a][b] = x;
+                ka[a + 3][b + 3] = x;
+                ka[a][b + 3] = -x;
+                ka[a + 3][b] = -x;
+            }
+        }
+        let turn = chord_turn_rate(fe.position[i], fe.position[j], fe.tangent[i], fe.tangent[j]);
+        let kj = corotational_rate_block(&ka);
+        let jkj = corotational_rate_block(&transposed(&kj));
+        for a in 0..6 {
+            for b in 0..6 {
+                k[(dofs[a], dofs[b])] += ka[a][b];
+                t1[(dofs[a], dofs[b])] += turn * kj[a][b];
+                t2[(dofs[a], dofs[b])] += turn * turn * jkj[a][b];
+            }
+        }
+    }
+    (k, t1, t2)
+}
+
 /// The chords of the elements `i → j = i + 1` (the last closing on node 0) of the closed loop
 /// of nodes at `position` \[m\]: `(i, j, [dx, dy], l)` with the chord vector and its length
 /// \[m\].
