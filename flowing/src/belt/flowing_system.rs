@@ -295,6 +295,18 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// `y += s · Aᵀ x` for a dense `A`, `x` on the rows `r0..r0 + x.len()` of `A` (`y` over the
+/// first `y.len()` columns).
+fn gemv_t(y: &mut [f64], a: &Mat<f64>, r0: usize, x: &[f64], s: f64) {
+    for (j, yj) in y.iter_mut().enumerate() {
+        *yj += s * x
+            .iter()
+            .enumerate()
+            .map(|(i, xi)| a[(r0 + i, j)] * xi)
+            .sum::<f64>();
+    }
+}
+
 /// `y += s · A x` for a dense `A`.
 fn gemv(y: &mut [f64], a: &Mat<f64>, x: &[f64], s: f64) {
     for (j, &xj) in x.iter().enumerate() {
@@ -830,6 +842,9 @@ impl FlowingBelt {
         gemv(&mut szd, &self.mss, zd, 1.0);
         let mut tszd = vec![0.0; m + 1];
         gemv(&mut tszd, &self.mts, zd, 1.0);
+        // the transposed product T_,sᵀ M T ż
+        let mut tszd_t = vec![0.0; m];
+        gemv_t(&mut tszd_t, &self.mts, 1, zd, 1.0);
         // row 0: −∂R/∂v and the velocity terms of d/dt(∂𝒯/∂v)
         head[0] = -dot(zd, &g)
             - vb * dot(z, &h)
@@ -838,11 +853,19 @@ impl FlowingBelt {
         let z_rows = &mut head[1..];
         for (i, r) in z_rows.iter_mut().enumerate() {
             // (T_,sᵀ M T − Tᵀ M T_,s) ż: the skew gyroscopic matrix
-            let skew: f64 = (0..m).map(|j| self.mts[(j + 1, i)] * zd[j]).sum::<f64>() - tszd[i + 1];
+            let skew = tszd_t[i] - tszd[i + 1];
             *r = self.f0z[i] - vb * g[i] + vb * skew + vb * vb * (self.mse[i] + sz[i]);
         }
         gemv(z_rows, &self.kz, z, -1.0);
         gemv(z_rows, &self.ct, zd, -1.0);
+    }
+
+    /// `e_t,j − e_t,i` of bar `b` from node `i` to node `j`: on Ribaric's row 0 (5.14) a bar's
+    /// chord force `N û` (on `j`, `−N û` on `i`) contributes `N û·(e_t,j − e_t,i)`.
+    fn bar_tangent_step(&self, b: usize) -> [f64; 2] {
+        let (i, j) = (self.bars[b].i, self.bars[b].j);
+        let t = &self.fe.tangent;
+        [t[j][0] - t[i][0], t[j][1] - t[i][1]]
     }
 
     /// `−∂Q/∂(z, v, ż)` of the chord damping ([`Self::chord_viscous`]) added to `kq`, `cv`.
@@ -862,7 +885,6 @@ impl FlowingBelt {
         let bars = self.chord_viscous(z, zd, vb);
         let nb = bars.len();
         let dx = &self.bar_dx;
-        let tan = &self.fe.tangent;
         let proj =
             |w: [f64; 2], b: usize, k: usize| w[0] * dx[(2 * b, k)] + w[1] * dx[(2 * b + 1, k)];
         // B and B⊥ per bar over z
@@ -885,12 +907,11 @@ impl FlowingBelt {
         for (b, c) in bars.iter().enumerate() {
             let nh = [-c.uh[1], c.uh[0]];
             let (p, n) = ((b + nb - 1) % nb, (b + 1) % nb);
-            let (bi, bj) = (self.bars[b].i, self.bars[b].j);
             let kv = self.bar_kv[b];
             if self.lagrange {
                 a[(b, 0)] = c.grad;
             } else {
-                let det = [tan[bj][0] - tan[bi][0], tan[bj][1] - tan[bi][1]];
+                let det = self.bar_tangent_step(b);
                 a[(b, 0)] = c.uh[0] * det[0] + c.uh[1] * det[1];
                 ap[(b, 0)] = nh[0] * det[0] + nh[1] * det[1];
             }
@@ -939,16 +960,15 @@ impl FlowingBelt {
                 vec![0.0; m],
             );
             gemv(&mut g, &self.cg, z, 1.0);
-            gemv(&mut gt, &self.cg.transpose().to_owned(), zd, 1.0);
+            gemv_t(&mut gt, &self.cg, 0, zd, 1.0);
             gemv(&mut h, &self.ch, z, 1.0);
             gemv(&mut sz, &self.mss, z, 1.0);
             gemv(&mut szd, &self.mss, zd, 1.0);
             let mut tszd = vec![0.0; m + 1];
             gemv(&mut tszd, &self.mts, zd, 1.0);
             // the transposed product T_,sᵀ M T ż
-            let tszd_t: Vec<f64> = (0..m)
-                .map(|i| (0..m).map(|j| self.mts[(j + 1, i)] * zd[j]).sum())
-                .collect();
+            let mut tszd_t = vec![0.0; m];
+            gemv_t(&mut tszd_t, &self.mts, 1, zd, 1.0);
             // row 0 (forces(): −żᵀC_g z − v zᵀC_h z − 2v (e_tᵀ M T_,s ż + zᵀ M_ss ż) − żᵀ M_ts ż)
             for j in 0..m {
                 kq[(0, j + 1)] = gt[j] + 2.0 * vb * (h[j] + szd[j]);
@@ -1205,9 +1225,8 @@ impl SecondOrderSystem for FlowingBelt {
                     * if self.lagrange {
                         c.grad
                     } else {
-                        let (i, j) = (self.bars[b].i, self.bars[b].j);
-                        let t = &self.fe.tangent;
-                        c.uh[0] * (t[j][0] - t[i][0]) + c.uh[1] * (t[j][1] - t[i][1])
+                        let det = self.bar_tangent_step(b);
+                        c.uh[0] * det[0] + c.uh[1] * det[1]
                     };
                 let (r0, r1) = (2 * b, 2 * b + 1);
                 for k in 0..m {

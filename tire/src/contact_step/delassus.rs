@@ -77,14 +77,12 @@ pub(super) struct TireDelassus<'b> {
     pub(super) weight: &'b [f64],
     /// Whether this is the half model of symmetric motion.
     pub(super) half: bool,
-    pub(super) tct: &'b Mat<f64>,
-    /// The upwind `T_c,θᵀ` of the spin direction of `Y_θ`.
-    pub(super) tct_theta: &'b Mat<f64>,
+    /// `[(T_c ż)_k, (T_c,θ z)_k]` of the free end-of-step state per candidate (the upwind
+    /// `T_c,θ` of the spin direction of `Y_θ`; [`candidate_frames`]).
+    pub(super) free_rates: &'b [[[f64; 3]; 2]],
     /// `Ω/γ_N h` (free spin over the velocity factor): the weight of `Y_θ` in the tangential
     /// rows, whose frames carry `γ_N h`.
     pub(super) transport: f64,
-    pub(super) z_free: &'b [f64],
-    pub(super) zd_free: &'b [f64],
     pub(super) spin_free: f64,
 }
 
@@ -93,16 +91,20 @@ pub(super) struct TireDelassus<'b> {
 /// (`(c1, c2)` = `(γ_N h, β_N h²)` scale the tangent and normal rows.) A change `ΔΩ` of the
 /// spin moves a node's material velocity by `ΔΩ (η × s + T_c,θ z)` (Ribaric (7.10): the rigid
 /// rotation and the transported deflection, `tct_theta` the upwind `T_c,θᵀ`, `z` the free
-/// end-of-step coordinates); its tangential components are the coefficients.
+/// end-of-step coordinates); its tangential components are the coefficients. `free_rates`
+/// receives each candidate's `[(T_c ż)ᵢ, (T_c,θ z)ᵢ]` (six dot products of length n_z in one
+/// pass), which the free slip ([`TireDelassus`]) reads.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn candidate_frames(
     red: &ReducedTire, cand: &[usize], gp: &[GroundPoint], (c1, c2): (f64, f64),
-    tct_theta: &Mat<f64>, z: &[f64], frames: &mut Vec<[[f64; 3]; 3]>, rig_t1: &mut Vec<f64>,
-    rig_t2: &mut Vec<f64>,
+    (tct, tct_theta): (&Mat<f64>, &Mat<f64>), (z, zd): (&[f64], &[f64]),
+    frames: &mut Vec<[[f64; 3]; 3]>, rig_t1: &mut Vec<f64>, rig_t2: &mut Vec<f64>,
+    free_rates: &mut Vec<[[f64; 3]; 2]>,
 ) -> bool {
     frames.clear();
     rig_t1.clear();
     rig_t2.clear();
+    free_rates.clear();
     let mut planar = true;
     for (k, &i) in cand.iter().enumerate() {
         let n = gp[k].normal;
@@ -115,14 +117,13 @@ pub(super) fn candidate_frames(
         ]);
         // η × s = (s_z, 0, −s_x) for the spin axis η = ŷ
         let s = red.contact_positions[i];
-        let mut a = [s[2], 0.0, -s[0]];
-        for (c, ac) in a.iter_mut().enumerate() {
-            *ac += col_slice(tct_theta, 3 * i + c)
-                .iter()
-                .zip(z)
-                .map(|(p, q)| p * q)
-                .sum::<f64>();
-        }
+        let (tc, tt) = (
+            |a| col_slice(tct, 3 * i + a),
+            |a| col_slice(tct_theta, 3 * i + a),
+        );
+        let [vc, vt] = dots3x2([tc(0), tc(1), tc(2)], zd, [tt(0), tt(1), tt(2)], z);
+        free_rates.push([vc, vt]);
+        let a = [s[2] + vt[0], vt[1], -s[0] + vt[2]];
         rig_t1.push(c1 * dot3(&t1, &a));
         rig_t2.push(c1 * dot3(&t2, &a));
     }
@@ -308,13 +309,7 @@ impl DelassusSource for TireDelassus<'_> {
         let s = self.red.contact_positions[i];
         let sf = self.spin_free;
         let rig = [sf * s[2], 0.0, -sf * s[0]];
-        // (T_c ż)ᵢ and (T_c,θ z)ᵢ: six dot products of length n_z in one pass
-        let (tc, tt) = (
-            |a| col_slice(self.tct, 3 * i + a),
-            |a| col_slice(self.tct_theta, 3 * i + a),
-        );
-        let (zd, z) = (self.zd_free, self.z_free);
-        let [vc, vt] = dots3x2([tc(0), tc(1), tc(2)], zd, [tt(0), tt(1), tt(2)], z);
+        let [vc, vt] = self.free_rates[k];
         let mut v = [0.0; 3];
         for (a, va) in v.iter_mut().enumerate() {
             *va = rig[a] + vc[a] + sf * vt[a] - self.gp[k].velocity[a];

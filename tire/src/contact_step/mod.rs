@@ -121,6 +121,8 @@ struct Work {
     frames: Vec<[[f64; 3]; 3]>,
     rig_t1: Vec<f64>,
     rig_t2: Vec<f64>,
+    /// `[(T_c ż)ᵢ, (T_c,θ z)ᵢ]` of the free state per candidate ([`TireDelassus`]).
+    free_rates: Vec<[[f64; 3]; 2]>,
     /// The coupled normal + friction solver (buffers reused).
     solver: ContactSolver,
     /// The candidates' blocks of `Y` and `X_θ` gathered so far (kept while the candidates and
@@ -198,6 +200,7 @@ impl TireContact {
                 frames: Vec::with_capacity(nc),
                 rig_t1: Vec::with_capacity(nc),
                 rig_t2: Vec::with_capacity(nc),
+                free_rates: Vec::with_capacity(nc),
                 solver: ContactSolver::default(),
                 blocks: CandidateBlocks {
                     id: usize::MAX,

@@ -65,11 +65,12 @@ impl TireContact {
             &w.cand,
             &w.gp,
             (c1, c2),
-            &self.tct_theta[fac.dir],
-            &step.q()[1..],
+            (&self.tct, &self.tct_theta[fac.dir]),
+            (&step.q()[1..], &step.v()[1..]),
             &mut w.frames,
             &mut w.rig_t1,
             &mut w.rig_t2,
+            &mut w.free_rates,
         );
         let v = step.v();
         w.blocks.prepare(fac, &w.cand);
@@ -86,11 +87,8 @@ impl TireContact {
             penalty,
             weight: &self.weight,
             half: self.mirror.is_some(),
-            tct: &self.tct,
-            tct_theta: &self.tct_theta[fac.dir],
+            free_rates: &w.free_rates,
             transport: v[0] * step.gamma_prime().recip(),
-            z_free: &step.q()[1..],
-            zd_free: &v[1..],
             spin_free: v[0],
         };
         w.diag.clear();
