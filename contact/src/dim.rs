@@ -15,9 +15,8 @@
 //!   space.
 
 use crate::friction::{FrictionForce, FrictionLaw, TangentFriction};
-use crate::geometry::SurfacePoint;
 use crate::spatial::geometry::perpendicular;
-use nalgebra::{Matrix3, Matrix3x2, SMatrix, SVector, Vector2, Vector3};
+use nalgebra::{Matrix3x2, SMatrix, SVector, Vector2, Vector3};
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Mul, Neg, SubAssign};
 
@@ -63,8 +62,9 @@ pub trait ContactDim<const D: usize> {
         + Mul<f64, Output = Self::Moment>
         + 'static;
 
-    /// Tangent basis at the surface point `sp`.
-    fn basis(sp: &SurfacePoint<D>) -> Self::Basis;
+    /// Tangent basis at a surface point with unit normal `normal` and reference tangent
+    /// `tangent` ([`crate::SurfacePoint::normal`], [`crate::SurfacePoint::tangent`]).
+    fn basis(normal: &SVector<f64, D>, tangent: &SVector<f64, D>) -> Self::Basis;
 
     /// The friction law at the relative velocity `w = ṙ − u_s` and normal force `normal`:
     /// the slip `v_t = Tᵀw` (the normal part of `w` has no tangential component), the law's
@@ -72,6 +72,12 @@ pub trait ContactDim<const D: usize> {
     fn friction<FL: FrictionLaw + ?Sized>(
         law: &FL, basis: &Self::Basis, w: &SVector<f64, D>, normal: f64,
     ) -> (Self::Slip, Self::Friction, TangentialForce<D>);
+
+    /// [`ContactDim::friction`] without derivatives: the slip `v_t = Tᵀw`, the friction force
+    /// `f_t` in the tangent basis and `T f_t` in world components.
+    fn friction_value<FL: FrictionLaw + ?Sized>(
+        law: &FL, basis: &Self::Basis, w: &SVector<f64, D>, normal: f64,
+    ) -> (Self::Slip, Self::Slip, SVector<f64, D>);
 
     /// The tangential force of a friction output in the tangent basis (for records).
     fn friction_force(friction: &Self::Friction) -> Self::Slip;
@@ -103,8 +109,8 @@ impl ContactDim<2> for Dim<2> {
 
     /// `t = Ĩ n`, Kerkkänen (3.6).
     #[inline]
-    fn basis(sp: &SurfacePoint<2>) -> Vector2<f64> {
-        rot90(sp.normal)
+    fn basis(normal: &Vector2<f64>, _tangent: &Vector2<f64>) -> Vector2<f64> {
+        rot90(*normal)
     }
 
     /// `v_t = tᵀw`, `f = f_t(v_t, f_n) t`, Kerkkänen (3.23)–(3.25).
@@ -120,6 +126,15 @@ impl ContactDim<2> for Dim<2> {
             d_normal: t * ff.d_normal,
         };
         (slip, ff, tf)
+    }
+
+    #[inline]
+    fn friction_value<FL: FrictionLaw + ?Sized>(
+        law: &FL, t: &Vector2<f64>, w: &Vector2<f64>, normal: f64,
+    ) -> (f64, f64, Vector2<f64>) {
+        let slip = t[0] * w[0] + t[1] * w[1];
+        let f = law.friction(slip, normal).force;
+        (slip, f, t * f)
     }
 
     #[inline]
@@ -140,11 +155,11 @@ impl ContactDim<3> for Dim<3> {
     type Moment = Vector3<f64>;
 
     /// `t₁ = P t_ref/|P t_ref|`, `t₂ = n × t₁` (any unit vector normal to `n` when the
-    /// reference tangent is along `n`).
-    fn basis(sp: &SurfacePoint<3>) -> Matrix3x2<f64> {
-        let n = sp.normal;
-        let proj = Matrix3::identity() - n * n.transpose();
-        let t1 = (proj * sp.tangent)
+    /// reference tangent is along `n`), with `P t_ref = t_ref − n (nᵀ t_ref)`.
+    #[inline]
+    fn basis(normal: &Vector3<f64>, tangent: &Vector3<f64>) -> Matrix3x2<f64> {
+        let n = *normal;
+        let t1 = (tangent - n * n.dot(tangent))
             .try_normalize(1e-300)
             .unwrap_or_else(|| perpendicular(&n));
         let t2 = n.cross(&t1);
@@ -164,6 +179,15 @@ impl ContactDim<3> for Dim<3> {
             d_normal: tb * ff.d_normal,
         };
         (slip, ff, tf)
+    }
+
+    #[inline]
+    fn friction_value<FL: FrictionLaw + ?Sized>(
+        law: &FL, tb: &Matrix3x2<f64>, w: &Vector3<f64>, normal: f64,
+    ) -> (Vector2<f64>, Vector2<f64>, Vector3<f64>) {
+        let slip = tb.transpose() * w;
+        let f = law.friction_tangent_force(slip, normal);
+        (slip, f, tb * f)
     }
 
     #[inline]

@@ -10,16 +10,16 @@
 //! velocity `ṙ = S ė`, the shape-function matrix `S = ∂r/∂e` ([`ShapeMatrix`]: a full
 //! `D × N` matrix, or the blocks `S₀ = [N₁I, N₂I, …]` of a line element's centreline,
 //! [`BlockShape`]) and the weight `w_q` (Gauss weight × length or area Jacobian). The point
-//! forces and their derivatives are those of [`point_contact`](crate::point_contact), so the laws are the crate's
+//! forces and their derivatives are those of [`point_contact`], so the laws are the crate's
 //! [`NormalLaw`] and [`FrictionLaw`] per unit length or area. One implementation,
 //! [`element_contact`], serves [`LineContact`] (a Gauss rule along line elements) and
 //! [`SurfaceContact`] (quadrature points supplied by the caller).
 
 use crate::dim::{ContactDim, Dim, Moment, Slip};
 use crate::friction::FrictionLaw;
-use crate::geometry::Surface;
+use crate::geometry::{Surface, SurfaceValues};
 use crate::normal::NormalLaw;
-use crate::point::point_contact_with;
+use crate::point::{point_contact, point_force, point_force_at};
 use crate::quadrature::GaussRule;
 use nalgebra::{Point, SMatrix, SVector};
 use std::ops::{AddAssign, Mul};
@@ -159,19 +159,12 @@ pub fn add_block_congruences<const D: usize>(
     let pairs = blocks * (blocks + 1) / 2;
     acc.clear();
     acc.resize(pairs * nc, 0.0);
-    for rec in points.chunks_exact(blocks + nc) {
-        let (s, m) = rec.split_at(blocks);
-        let mut rows = acc.chunks_exact_mut(nc);
-        for j in 0..blocks {
-            for i in 0..=j {
-                let t = s[i] * s[j];
-                let row = rows.next().expect("one row per pair");
-                for (r, v) in row.iter_mut().zip(m) {
-                    *r += t * v;
-                }
-            }
-        }
-    }
+    // the pair sums compiled for the machine's vector width (`mbd_core::simd`, the same bits)
+    mbd_core::simd::dispatch(PairSums::<D> {
+        blocks,
+        points,
+        acc,
+    });
     let mut rows = acc.chunks_exact(nc);
     for j in 0..blocks {
         for i in 0..=j {
@@ -187,6 +180,40 @@ pub fn add_block_congruences<const D: usize>(
                         kp[ji] += va;
                         kv[ji] += vb;
                     }
+                }
+            }
+        }
+    }
+}
+
+/// [`pair_sums`] as a [`mbd_core::simd::Kernel`].
+struct PairSums<'a, const D: usize> {
+    blocks: usize,
+    points: &'a [f64],
+    acc: &'a mut [f64],
+}
+
+impl<const D: usize> mbd_core::simd::Kernel for PairSums<'_, D> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        pair_sums::<D>(self.blocks, self.points, self.acc)
+    }
+}
+
+/// `acc[pair] += s_i s_j m` over the point records of [`add_block_congruences`].
+#[inline(always)]
+fn pair_sums<const D: usize>(blocks: usize, points: &[f64], acc: &mut [f64]) {
+    let nc = 2 * D * D;
+    for rec in points.chunks_exact(blocks + nc) {
+        let (s, m) = rec.split_at(blocks);
+        let mut rows = acc.chunks_exact_mut(nc);
+        for j in 0..blocks {
+            for i in 0..=j {
+                let t = s[i] * s[j];
+                let row = rows.next().expect("one row per pair");
+                for (r, v) in row.iter_mut().zip(m) {
+                    *r += t * v;
                 }
             }
         }
@@ -264,6 +291,27 @@ where
     batch: Vec<f64>,
     /// Pair sums of [`add_block_congruences`].
     pairs: Vec<f64>,
+    /// Positions and velocities of the points of [`element_forces_blocks`] (structure of
+    /// arrays), and their surface values.
+    soa: BatchScratch<D>,
+}
+
+/// Work arrays of [`element_forces_blocks`].
+#[derive(Debug, Clone, PartialEq)]
+struct BatchScratch<const D: usize> {
+    position: [Vec<f64>; D],
+    velocity: [Vec<f64>; D],
+    values: SurfaceValues<D>,
+}
+
+impl<const D: usize> Default for BatchScratch<D> {
+    fn default() -> Self {
+        Self {
+            position: std::array::from_fn(|_| Vec::new()),
+            velocity: std::array::from_fn(|_| Vec::new()),
+            values: SurfaceValues::default(),
+        }
+    }
 }
 
 impl<const D: usize> ElementContact<D>
@@ -286,6 +334,7 @@ where
             active_points: 0,
             batch: Vec::new(),
             pairs: Vec::new(),
+            soa: BatchScratch::default(),
         }
     }
 
@@ -309,7 +358,7 @@ where
 /// Contact of one element given by its quadrature `points` against `surface` with the laws
 /// `normal` and `friction` (per unit length or area). Fills `out` (forces always; Jacobians when
 /// `jacobian`) and appends point records to `records` when given. With `f` the point force
-/// ([`point_contact`](crate::point_contact)) and `S` the shape matrix: `Q_c = Σ w Sᵀ f`,
+/// ([`point_contact`]) and `S` the shape matrix: `Q_c = Σ w Sᵀ f`,
 /// `∂Q_c/∂e = Σ w Sᵀ (∂f/∂r) S`, `∂Q_c/∂ė = Σ w Sᵀ (∂f/∂ṙ) S`, `∂Q_c/∂ω = Σ w Sᵀ ∂f/∂ω`; with the
 /// arm `a = r − r_o`, `∂M/∂r_b = −(e_b × f + a × ∂f/∂r_b)` (Kerkkänen (3.26)–(3.27)).
 #[allow(clippy::too_many_arguments)]
@@ -327,24 +376,28 @@ pub fn element_contact<const D: usize, S, NL, FL, Sh>(
     let c = surface.center();
     for (index, qp) in points.into_iter().enumerate() {
         debug_assert_eq!(qp.shape.ndof(), out.ndof);
-        let Some(pc) = point_contact_with(
-            surface,
-            normal,
-            friction,
-            &qp.position,
-            &qp.velocity,
-            jacobian,
-        ) else {
-            continue;
+        // a force-only evaluation forms none of the Jacobian terms (`point_force`)
+        let (pf, pc) = if jacobian {
+            let Some(pc) = point_contact(surface, normal, friction, &qp.position, &qp.velocity)
+            else {
+                continue;
+            };
+            (pc.value(), Some(pc))
+        } else {
+            let Some(pf) = point_force(surface, normal, friction, &qp.position, &qp.velocity)
+            else {
+                continue;
+            };
+            (pf, None)
         };
         out.active_points += 1;
         let w = qp.weight;
-        let f = pc.force;
+        let f = pf.force;
         let arm = qp.position - c;
         qp.shape.add_transposed(&f.into(), w, &mut out.q);
         out.reaction -= f * w;
         out.moment -= <Dim<D>>::cross(&arm, &f) * w;
-        if jacobian {
+        if let Some(pc) = pc {
             if let Some(s) = qp.shape.block_values() {
                 out.batch.extend_from_slice(s);
                 out.batch.extend(pc.df_dp.iter().map(|x| x * w));
@@ -373,10 +426,10 @@ pub fn element_contact<const D: usize, S, NL, FL, Sh>(
             r.push(ContactRecord {
                 index,
                 position: qp.position,
-                penetration: pc.penetration,
-                normal_force: pc.normal.force,
-                friction_force: <Dim<D>>::friction_force(&pc.friction),
-                slip: pc.slip,
+                penetration: pf.penetration,
+                normal_force: pf.normal_force,
+                friction_force: pf.friction_force,
+                slip: pf.slip,
             });
         }
     }
@@ -388,6 +441,145 @@ pub fn element_contact<const D: usize, S, NL, FL, Sh>(
             &mut out.dq_dedot,
             &mut out.pairs,
         );
+    }
+}
+
+/// The contact quadrature of an element with block shape functions `S = [s₁ I, s₂ I, …]`
+/// ([`BlockShape`]) in structure-of-arrays form, for [`element_forces_blocks`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockQuadrature {
+    blocks: usize,
+    /// `s_b` at point `q` in `shape[b · points + q]`.
+    shape: Vec<f64>,
+    /// `w_q s_b` at point `q` in `weighted[b · points + q]`.
+    weighted: Vec<f64>,
+    /// Weights `w_q` \[m or m²\].
+    weight: Vec<f64>,
+}
+
+impl BlockQuadrature {
+    /// The quadrature of the points `(s, w)`: the `blocks` shape values `s` and the weight × length
+    /// or area Jacobian `w` of each point, in order.
+    pub fn new<'a>(blocks: usize, points: impl IntoIterator<Item = (&'a [f64], f64)>) -> Self {
+        let pts: Vec<(&[f64], f64)> = points.into_iter().collect();
+        let np = pts.len();
+        let mut shape = vec![0.0; blocks * np];
+        let mut weighted = vec![0.0; blocks * np];
+        for (q, (s, w)) in pts.iter().enumerate() {
+            for b in 0..blocks {
+                shape[b * np + q] = s[b];
+                weighted[b * np + q] = w * s[b];
+            }
+        }
+        Self {
+            blocks,
+            shape,
+            weighted,
+            weight: pts.iter().map(|p| p.1).collect(),
+        }
+    }
+
+    /// Number of points.
+    pub fn points(&self) -> usize {
+        self.weight.len()
+    }
+
+    /// Number of blocks.
+    pub fn blocks(&self) -> usize {
+        self.blocks
+    }
+}
+
+/// The positions `r_q = Σ_b s_b(q) e_b` and velocities of every point of a
+/// [`BlockQuadrature`] (structure of arrays, zeroed on entry), as a [`mbd_core::simd::Kernel`].
+struct BlockPositions<'a, const D: usize> {
+    quad: &'a BlockQuadrature,
+    e: &'a [f64],
+    edot: &'a [f64],
+    position: &'a mut [Vec<f64>; D],
+    velocity: &'a mut [Vec<f64>; D],
+}
+
+impl<const D: usize> mbd_core::simd::Kernel for BlockPositions<'_, D> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let np = self.quad.points();
+        for b in 0..self.quad.blocks {
+            let s = &self.quad.shape[b * np..(b + 1) * np];
+            for i in 0..D {
+                let (eb, vb) = (self.e[D * b + i], self.edot[D * b + i]);
+                for (r, &sq) in self.position[i].iter_mut().zip(s) {
+                    *r += sq * eb;
+                }
+                for (v, &sq) in self.velocity[i].iter_mut().zip(s) {
+                    *v += sq * vb;
+                }
+            }
+        }
+    }
+}
+
+/// The force-only [`element_contact`] (no Jacobians, no records) of an element with block shape
+/// functions and coordinates `e`, velocities `edot` (`D` per block), evaluated as a batch: the
+/// positions `r_q = Σ_b s_b(q) e_b` and velocities of all points, the surface's
+/// [`Surface::closest_values`] for all of them, then [`point_force_at`] at every point in
+/// contact and `Q_c = Σ w Sᵀ f` with the moment and the reaction as in [`element_contact`]
+/// (Kerkkänen (4.43)–(4.45)). The same operations per point in the same order: equal to
+/// [`element_contact`] with the points' [`BlockShape`]s to the last bit.
+pub fn element_forces_blocks<const D: usize, S, NL, FL>(
+    surface: &S, normal: &NL, friction: &FL, quad: &BlockQuadrature, e: &[f64], edot: &[f64],
+    out: &mut ElementContact<D>,
+) where
+    Dim<D>: ContactDim<D>,
+    S: Surface<D> + ?Sized,
+    NL: NormalLaw + ?Sized,
+    FL: FrictionLaw + ?Sized,
+{
+    debug_assert_eq!(D * quad.blocks, out.ndof);
+    out.clear(false);
+    let (nb, np) = (quad.blocks, quad.points());
+    let sc = &mut out.soa;
+    for i in 0..D {
+        sc.position[i].clear();
+        sc.position[i].resize(np, 0.0);
+        sc.velocity[i].clear();
+        sc.velocity[i].resize(np, 0.0);
+    }
+    mbd_core::simd::dispatch(BlockPositions {
+        quad,
+        e,
+        edot,
+        position: &mut sc.position,
+        velocity: &mut sc.velocity,
+    });
+    surface.closest_values(&sc.position, &mut sc.values);
+    let c = surface.center();
+    let vals = &sc.values;
+    for q in 0..np {
+        let gap = vals.gap[q];
+        if gap > 0.0 {
+            continue;
+        }
+        let col = |a: &[Vec<f64>; D]| SVector::<f64, D>::from_fn(|i, _| a[i][q]);
+        let (n, t, us) = (
+            col(&vals.normal),
+            col(&vals.tangent),
+            col(&vals.surface_velocity),
+        );
+        let pf = point_force_at((gap, &n, &t, &us), normal, friction, &col(&sc.velocity));
+        out.active_points += 1;
+        let w = quad.weight[q];
+        let f = pf.force;
+        for b in 0..nb {
+            let ws = quad.weighted[b * np + q];
+            for i in 0..D {
+                out.q[D * b + i] += f[i] * ws;
+            }
+        }
+        out.reaction -= f * w;
+        let arm = Point::<f64, D>::from(col(&sc.position)) - c;
+        out.moment -= <Dim<D>>::cross(&arm, &f) * w;
     }
 }
 

@@ -52,8 +52,79 @@ pub trait Surface<const D: usize> {
     fn closest_value(&self, p: &Point<f64, D>) -> SurfacePoint<D> {
         self.closest(p)
     }
+    /// [`Surface::closest_value`] of a batch of points given in structure-of-arrays form
+    /// (coordinate `i` of point `q` at `p[i][q]`), into `out` (resized to the batch): the
+    /// values a force-only evaluation needs. A shape may override it with loops over the
+    /// batch (independent square roots and divisions pipelined or vectorised, where one
+    /// point at a time waits for each); the default queries point by point.
+    fn closest_values(&self, p: &[Vec<f64>; D], out: &mut SurfaceValues<D>) {
+        let n = p[0].len();
+        out.resize(n);
+        for q in 0..n {
+            let sp = self.closest_value(&Point::from(SVector::from_fn(|i, _| p[i][q])));
+            out.set(q, &sp);
+        }
+    }
     /// Reference point of the body for moments (pulley axis) \[m\].
     fn center(&self) -> Point<f64, D>;
+}
+
+/// Closest-point values of a batch of query points in structure-of-arrays form
+/// ([`Surface::closest_values`]): entry `q` of each array belongs to point `q`, component `i`
+/// of a vector is in array `i`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceValues<const D: usize> {
+    /// Signed gaps \[m\] ([`SurfacePoint::gap`]).
+    pub gap: Vec<f64>,
+    /// Outward unit normals ([`SurfacePoint::normal`]).
+    pub normal: [Vec<f64>; D],
+    /// Reference tangents ([`SurfacePoint::tangent`]).
+    pub tangent: [Vec<f64>; D],
+    /// Surface material velocities \[m/s\] ([`SurfacePoint::surface_velocity`]).
+    pub surface_velocity: [Vec<f64>; D],
+}
+
+impl<const D: usize> Default for SurfaceValues<D> {
+    fn default() -> Self {
+        Self {
+            gap: Vec::new(),
+            normal: std::array::from_fn(|_| Vec::new()),
+            tangent: std::array::from_fn(|_| Vec::new()),
+            surface_velocity: std::array::from_fn(|_| Vec::new()),
+        }
+    }
+}
+
+impl<const D: usize> SurfaceValues<D> {
+    /// Resizes every array to `n` points (new entries zero).
+    pub fn resize(&mut self, n: usize) {
+        self.gap.resize(n, 0.0);
+        for i in 0..D {
+            self.normal[i].resize(n, 0.0);
+            self.tangent[i].resize(n, 0.0);
+            self.surface_velocity[i].resize(n, 0.0);
+        }
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.gap.len()
+    }
+
+    /// Whether the batch is empty.
+    pub fn is_empty(&self) -> bool {
+        self.gap.is_empty()
+    }
+
+    /// Stores the values of `sp` as point `q`.
+    pub fn set(&mut self, q: usize, sp: &SurfacePoint<D>) {
+        self.gap[q] = sp.gap;
+        for i in 0..D {
+            self.normal[i][q] = sp.normal[i];
+            self.tangent[i][q] = sp.tangent[i];
+            self.surface_velocity[i][q] = sp.surface_velocity[i];
+        }
+    }
 }
 
 impl<const D: usize, S: Surface<D> + ?Sized> Surface<D> for &S {
@@ -62,6 +133,9 @@ impl<const D: usize, S: Surface<D> + ?Sized> Surface<D> for &S {
     }
     fn closest_value(&self, p: &Point<f64, D>) -> SurfacePoint<D> {
         (**self).closest_value(p)
+    }
+    fn closest_values(&self, p: &[Vec<f64>; D], out: &mut SurfaceValues<D>) {
+        (**self).closest_values(p, out)
     }
     fn center(&self) -> Point<f64, D> {
         (**self).center()

@@ -49,19 +49,23 @@ pub mod spatial;
 
 pub use dim::{ContactDim, Dim, TangentialForce};
 pub use distributed::{
-    BlockShape, ContactRecord, ElementContact, LineContact, QuadPoint, ShapeMatrix, SurfaceContact,
-    element_contact,
+    BlockQuadrature, BlockShape, ContactRecord, ElementContact, LineContact, QuadPoint,
+    ShapeMatrix, SurfaceContact, element_contact, element_forces_blocks,
 };
 pub use friction::{
     Augmented, Coulomb, CoulombTanh, CreepRate, FrictionForce, FrictionLaw, FrictionSpec,
     Frictionless, SlipRegularized, Stribeck, TangentFriction,
 };
 pub use geometry::{
-    CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface, SurfacePoint, SurfacePoint2, rot90,
+    CleatedDrum, CleatedRoad, Disk, HalfPlane, Surface, SurfacePoint, SurfacePoint2, SurfaceValues,
+    rot90,
 };
 pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};
 pub use normal::{LinearPenalty, NormalForce, NormalLaw, NormalSpec, PolynomialPenalty};
-pub use point::{PointContact, PointContact2, PointContact3, point_contact, point_contact_with};
+pub use point::{
+    PointContact, PointContact2, PointContact3, PointForce, point_contact, point_force,
+    point_force_at,
+};
 pub use quadrature::GaussRule;
 pub use solver::{
     ContactSolver, ContactSolverOptions, ContactSolverReport, DelassusSource, DenseProblem,

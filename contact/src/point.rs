@@ -41,6 +41,23 @@ where
     pub df_domega: SVector<f64, D>,
 }
 
+impl<const D: usize> PointContact<D>
+where
+    Dim<D>: ContactDim<D>,
+{
+    /// The force part of the contact (what [`point_force`] returns for the same point).
+    pub fn value(&self) -> PointForce<D> {
+        PointForce {
+            penetration: self.penetration,
+            penetration_rate: self.penetration_rate,
+            slip: self.slip,
+            normal_force: self.normal.force,
+            friction_force: <Dim<D>>::friction_force(&self.friction),
+            force: self.force,
+        }
+    }
+}
+
 /// Contact of one point in the plane.
 pub type PointContact2 = PointContact<2>;
 /// Contact of one point in space.
@@ -67,44 +84,19 @@ where
     NL: NormalLaw + ?Sized,
     FL: FrictionLaw + ?Sized,
 {
-    point_contact_with(surface, normal_law, friction_law, p, v, true)
-}
-
-/// [`point_contact`], with the derivatives `df_dp`, `df_dv`, `df_domega` (and the surface's
-/// `dn_dp`, `dus_dp`) only when `jacobian`: without it they are zero, and the closest point is
-/// the cheaper [`Surface::closest_value`] (a force-only evaluation of a Newton residual).
-pub fn point_contact_with<const D: usize, S, NL, FL>(
-    surface: &S, normal_law: &NL, friction_law: &FL, p: &Point<f64, D>, v: &SVector<f64, D>,
-    jacobian: bool,
-) -> Option<PointContact<D>>
-where
-    Dim<D>: ContactDim<D>,
-    S: Surface<D> + ?Sized,
-    NL: NormalLaw + ?Sized,
-    FL: FrictionLaw + ?Sized,
-{
-    let sp = if jacobian {
-        surface.closest(p)
-    } else {
-        surface.closest_value(p)
-    };
+    let sp = surface.closest(p);
     if sp.gap > 0.0 {
         return None;
     }
     let n = sp.normal;
-    let tangents = <Dim<D>>::basis(&sp);
+    let tangents = <Dim<D>>::basis(&sp.normal, &sp.tangent);
     let w = v - sp.surface_velocity;
     let pen = -sp.gap;
-    let nw = n.dot(&w);
-    let rate = -nw;
+    let rate = -n.dot(&w);
     let nf = normal_law.normal(pen, rate);
     let (slip, friction, ft) = <Dim<D>>::friction(friction_law, &tangents, &w, nf.force);
     let force = n * nf.force + ft.force;
-    let (df_dp, df_dv, df_domega) = if jacobian {
-        point_jacobian(&sp, &nf, &ft, &w)
-    } else {
-        (SMatrix::zeros(), SMatrix::zeros(), SVector::zeros())
-    };
+    let (df_dp, df_dv, df_domega) = point_jacobian(&sp, &nf, &ft, &w);
     Some(PointContact {
         surface: sp,
         tangents,
@@ -118,6 +110,83 @@ where
         df_dv,
         df_domega,
     })
+}
+
+/// The force of one point in contact without derivatives: what a force-only evaluation (a
+/// Newton residual, an output record) needs of [`point_contact`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointForce<const D: usize>
+where
+    Dim<D>: ContactDim<D>,
+{
+    /// Penetration `d = −gap ≥ 0` \[m\], Kerkkänen (3.21).
+    pub penetration: f64,
+    /// Penetration rate `ḋ = −nᵀ(ṙ − u_s)` \[m/s\].
+    pub penetration_rate: f64,
+    /// Slip velocity `v_t = Tᵀ(ṙ − u_s)` in the tangent basis \[m/s\].
+    pub slip: Slip<D>,
+    /// Normal force `f_n(d, ḋ)` (per unit length or area for distributed laws).
+    pub normal_force: f64,
+    /// Friction force `f_t(v_t, f_n)` in the tangent basis.
+    pub friction_force: Slip<D>,
+    /// Force on the body `f = f_n n + T f_t`.
+    pub force: SVector<f64, D>,
+}
+
+/// [`point_contact`] without derivatives: the same force `f = f_n n + T f_t` from the
+/// surface's [`Surface::closest_value`] ([`point_force_at`]). `None` when the point is
+/// separated (Kerkkänen (3.20)).
+#[inline(always)]
+pub fn point_force<const D: usize, S, NL, FL>(
+    surface: &S, normal_law: &NL, friction_law: &FL, p: &Point<f64, D>, v: &SVector<f64, D>,
+) -> Option<PointForce<D>>
+where
+    Dim<D>: ContactDim<D>,
+    S: Surface<D> + ?Sized,
+    NL: NormalLaw + ?Sized,
+    FL: FrictionLaw + ?Sized,
+{
+    let sp = surface.closest_value(p);
+    if sp.gap > 0.0 {
+        return None;
+    }
+    Some(point_force_at(
+        (sp.gap, &sp.normal, &sp.tangent, &sp.surface_velocity),
+        normal_law,
+        friction_law,
+        v,
+    ))
+}
+
+/// The force of a point in contact moving with `v` \[m/s\] from the closest-point values
+/// `(gap ≤ 0, n, t_ref, u_s)` of its surface ([`SurfacePoint`] or one entry of
+/// [`crate::SurfaceValues`]): `w = v − u_s`, `d = −g`, `ḋ = −nᵀw`, `f = f_n(d, ḋ) n + T f_t(Tᵀw,
+/// f_n)` with the tangent basis `T` of [`ContactDim::basis`] and the friction law's
+/// [`FrictionLaw::friction_tangent_force`] (in space), none of the Jacobian terms formed.
+#[inline(always)]
+pub fn point_force_at<const D: usize, NL, FL>(
+    (gap, n, tangent, us): (f64, &SVector<f64, D>, &SVector<f64, D>, &SVector<f64, D>),
+    normal_law: &NL, friction_law: &FL, v: &SVector<f64, D>,
+) -> PointForce<D>
+where
+    Dim<D>: ContactDim<D>,
+    NL: NormalLaw + ?Sized,
+    FL: FrictionLaw + ?Sized,
+{
+    let tangents = <Dim<D>>::basis(n, tangent);
+    let w = v - us;
+    let pen = -gap;
+    let rate = -n.dot(&w);
+    let fn_ = normal_law.normal(pen, rate).force;
+    let (slip, ft, ftw) = <Dim<D>>::friction_value(friction_law, &tangents, &w, fn_);
+    PointForce {
+        penetration: pen,
+        penetration_rate: rate,
+        slip,
+        normal_force: fn_,
+        friction_force: ft,
+        force: n * fn_ + ftw,
+    }
 }
 
 /// The derivatives `(df_dp, df_dv, df_domega)` of [`point_contact`]'s force (its rustdoc).

@@ -98,6 +98,7 @@ pub mod multibody;
 pub mod newton;
 pub mod parallel;
 pub mod roots;
+pub mod simd;
 pub mod statics;
 
 pub use body::{BodyState, RigidBody};

@@ -171,6 +171,18 @@ impl ThinPlate {
     /// shape-function derivatives, `K = Σ_g w_g Bᵀ H B` with `B = [S_x; S_y; S_xx; S_xy; S_yy] ⊗ I₃`
     /// (only `S_x`, `S_y` without bending).
     pub fn elastic_tangent(&self, e: &[f64], q: &mut [f64], k: &mut Mat<f64>) {
+        // compiled for the machine's vector width (`mbd_core::simd`, the same bits)
+        mbd_core::simd::dispatch(PlateTangent {
+            plate: self,
+            e,
+            q,
+            k,
+        });
+    }
+
+    /// The body of [`ThinPlate::elastic_tangent`] ([`PlateTangent`]).
+    #[inline(always)]
+    fn elastic_tangent_kernel(&self, e: &[f64], q: &mut [f64], k: &mut Mat<f64>) {
         q[..PLATE_NDOF].fill(0.0);
         k.fill(0.0);
         let blocks = self.derivative_blocks();
@@ -380,6 +392,22 @@ fn cross<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
 /// Local kinematic quantities `[r_x, r_y, r_xx, r_xy, r_yy]` from the element coordinates.
 fn gather(sv: &ShapeValues, e: &[f64]) -> [f64; NU] {
     gather_blocks(sv, e, 5)
+}
+
+/// [`ThinPlate::elastic_tangent`] as a [`mbd_core::simd::Kernel`].
+struct PlateTangent<'a> {
+    plate: &'a ThinPlate,
+    e: &'a [f64],
+    q: &'a mut [f64],
+    k: &'a mut Mat<f64>,
+}
+
+impl mbd_core::simd::Kernel for PlateTangent<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        self.plate.elastic_tangent_kernel(self.e, self.q, self.k)
+    }
 }
 
 /// [`gather`] of the first `blocks` derivatives only (2: `r_x`, `r_y`, all the membrane energy

@@ -391,6 +391,22 @@ fn block_shapes_equal_the_general_shape_matrix() {
         &mut b,
         None,
     );
+    // the batch path: the same block shapes and weights as a `BlockQuadrature`
+    let shapes: Vec<[f64; MAX_BLOCKS]> = blocks.iter().map(|p| p.shape.values).collect();
+    let quad = BlockQuadrature::new(
+        4,
+        shapes.iter().zip(&blocks).map(|(s, p)| (&s[..4], p.weight)),
+    );
+    let mut g = ElementContact::<3>::new(12);
+    element_forces_blocks(
+        &surf,
+        &normal,
+        &friction,
+        &quad,
+        e.as_slice(),
+        edot.as_slice(),
+        &mut g,
+    );
     element_contact(&surf, &normal, &friction, blocks, false, &mut f, None);
     assert!(a.active_points > 0, "{}", a.active_points);
     assert_eq!(a.active_points, b.active_points);
@@ -411,4 +427,11 @@ fn block_shapes_equal_the_general_shape_matrix() {
     assert_eq!(f.moment, b.moment);
     assert_eq!(f.reaction, b.reaction);
     assert!(f.dq_de.iter().all(|v| *v == 0.0));
+    // the batch: the same points in contact and forces (its positions Σ_b s_b e_b are summed in
+    // another order than the matrix product `S e` of the points above: round-off apart)
+    assert_eq!(g.active_points, f.active_points);
+    assert!(close(&f.q, &g.q));
+    assert!((f.moment - g.moment).amax() <= 1e-12 * f.moment.amax());
+    assert!((f.reaction - g.reaction).amax() <= 1e-12 * f.reaction.amax());
+    assert!(g.dq_de.iter().all(|v| *v == 0.0));
 }

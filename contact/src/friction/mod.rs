@@ -107,6 +107,19 @@ pub trait FrictionLaw: Debug + Send + Sync {
         }
     }
 
+    /// The force of [`FrictionLaw::friction_tangent`] alone (force-only evaluations). The
+    /// default is the isotropic extension's `f(|v_t|, f_n) v_t/|v_t|` (zero at rest), equal to
+    /// the default `friction_tangent`'s force; a law that overrides `friction_tangent` overrides
+    /// this too.
+    fn friction_tangent_force(&self, slip: Vector2<f64>, normal: f64) -> Vector2<f64> {
+        let s = slip.norm();
+        if s == 0.0 {
+            return Vector2::zeros();
+        }
+        let e = slip / s;
+        e * self.friction(s, normal).force
+    }
+
     /// Whether the law is set-valued at zero slip (Coulomb with stick): a solver must then use
     /// [`FrictionLaw::augmented`] rather than the single-valued [`FrictionLaw::friction`].
     fn is_set_valued(&self) -> bool {
@@ -172,6 +185,9 @@ impl<L: FrictionLaw + ?Sized> FrictionLaw for &L {
     }
     fn friction_tangent(&self, slip: Vector2<f64>, normal: f64) -> TangentFriction {
         (**self).friction_tangent(slip, normal)
+    }
+    fn friction_tangent_force(&self, slip: Vector2<f64>, normal: f64) -> Vector2<f64> {
+        (**self).friction_tangent_force(slip, normal)
     }
     fn is_set_valued(&self) -> bool {
         (**self).is_set_valued()

@@ -27,6 +27,9 @@ impl FrictionLaw for SlipRegularized {
     fn coefficient(&self) -> f64 {
         self.mu
     }
+    fn friction_tangent_force(&self, u: Vector2<f64>, normal: f64) -> Vector2<f64> {
+        self.friction_tangent(u, normal).force
+    }
     /// `f_t = −μ|f_n| u/ρ`, `ρ = √(|u|²+ε²)`; `∂f_t/∂u = −μ|f_n| (I − s sᵀ)/ρ`, `s = u/ρ`.
     fn friction_tangent(&self, u: Vector2<f64>, normal: f64) -> TangentFriction {
         let r = (u[0] * u[0] + u[1] * u[1] + self.epsilon * self.epsilon).sqrt();

@@ -261,6 +261,10 @@ impl FrictionLaw for FrictionSpec {
     fn friction_tangent(&self, slip: Vector2<f64>, normal: f64) -> TangentFriction {
         dispatch!(self, l => l.friction_tangent(slip, normal))
     }
+    #[inline]
+    fn friction_tangent_force(&self, slip: Vector2<f64>, normal: f64) -> Vector2<f64> {
+        dispatch!(self, l => l.friction_tangent_force(slip, normal))
+    }
     fn is_set_valued(&self) -> bool {
         dispatch!(self, l => l.is_set_valued())
     }

@@ -4,7 +4,7 @@
 //! penetrating), the outward unit normal, the surface material velocity, a reference tangent,
 //! and the derivatives of normal and surface velocity with respect to the query point.
 
-use crate::geometry::{Surface, SurfacePoint};
+use crate::geometry::{Surface, SurfacePoint, SurfaceValues};
 use nalgebra::{Matrix3, Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -45,51 +45,69 @@ pub struct Cylinder {
     pub omega: f64,
 }
 
+/// The closest-point quantities of a query point against a [`Cylinder`] shared by the value
+/// and the derivative evaluations.
+struct CylinderFrame {
+    zeta: f64,
+    er: Vector3<f64>,
+    inv_rho: f64,
+    rho: f64,
+    radius: f64,
+    drdz: f64,
+    m: Vector3<f64>,
+    mn: f64,
+    n: Vector3<f64>,
+    circ: Vector3<f64>,
+}
+
 impl Cylinder {
-    /// The closest-point data of `p`; the derivatives `dn_dp`, `dus_dp` only when `derivatives`
-    /// (zero otherwise).
-    fn closest_point(&self, p: &Point3<f64>, derivatives: bool) -> SurfacePoint<3> {
+    /// The axial coordinate `ζ`, radial unit vector `e_r`, radius `R(ζ)`, gap gradient `m` and
+    /// normal `n = m/|m|` of `p`, and the circumferential direction `a × e_r`.
+    #[inline(always)]
+    fn frame(&self, p: &Point3<f64>) -> CylinderFrame {
         let a = self.axis;
         let d = p - self.center;
         let zeta = a.dot(&d);
         let radial = d - a * zeta;
         let rho = radial.norm();
-        let (er, inv) = if rho > 0.0 {
+        let (er, inv_rho) = if rho > 0.0 {
             (radial / rho, 1.0 / rho)
         } else {
             (perpendicular(&a), 0.0)
         };
-        let r = self.radius - self.crown * zeta * zeta;
+        let radius = self.radius - self.crown * zeta * zeta;
         let drdz = -2.0 * self.crown * zeta;
         let m = er - a * drdz;
         let mn = m.norm();
-        let n = m / mn;
-        let circ = a.cross(&er);
-        let w = self.omega;
-        let (dn, dus) = if derivatives {
-            let proj = Matrix3::identity() - a * a.transpose();
-            // ∂e_r/∂p = (I − a aᵀ − e_r e_rᵀ)/ρ
-            let der = (proj - er * er.transpose()) * inv;
-            // ∂m/∂p = ∂e_r/∂p + 2c a aᵀ
-            let dm = der + a * a.transpose() * (2.0 * self.crown);
-            let dn = (Matrix3::identity() - n * n.transpose()) * dm / mn;
-            let cross_a = a.cross_matrix();
-            // u_s = ṙ_o + ω R(ζ) a × e_r ⇒ ∂u_s/∂p = ω [(a × e_r) R' aᵀ + R [a]× ∂e_r/∂p]
-            let dus = (circ * a.transpose() * drdz + cross_a * der * r) * w;
-            (dn, dus)
-        } else {
-            (Matrix3::zeros(), Matrix3::zeros())
-        };
+        CylinderFrame {
+            zeta,
+            er,
+            inv_rho,
+            rho,
+            radius,
+            drdz,
+            m,
+            mn,
+            n: m / mn,
+            circ: a.cross(&er),
+        }
+    }
+
+    /// The closest-point data of the frame `f`, with the derivatives `dn_dp`, `dus_dp` given.
+    #[inline(always)]
+    fn surface_point(
+        &self, f: &CylinderFrame, dn_dp: Matrix3<f64>, dus_dp: Matrix3<f64>,
+    ) -> SurfacePoint<3> {
         SurfacePoint {
-            gap: rho - r,
-            normal: n,
-            gap_gradient: m,
-            tangent: circ,
-            point: self.center + a * zeta + er * r,
-            surface_velocity: self.velocity + circ * (w * r),
-            dn_dp: dn,
-            dus_dp: dus,
-            dus_domega: circ * r,
+            gap: f.rho - f.radius,
+            normal: f.n,
+            gap_gradient: f.m,
+            tangent: f.circ,
+            point: self.center + self.axis * f.zeta + f.er * f.radius,
+            surface_velocity: self.velocity + f.circ * (self.omega * f.radius),
+            dn_dp,
+            dus_dp,
+            dus_domega: f.circ * f.radius,
             part: 0,
         }
     }
@@ -98,13 +116,63 @@ impl Cylinder {
 impl Surface<3> for Cylinder {
     /// `u_s = ṙ_o + ω R(ζ) (a × e_r)` (nominal radius, as Kerkkänen (3.24)–(3.25)).
     fn closest(&self, p: &Point3<f64>) -> SurfacePoint<3> {
-        self.closest_point(p, true)
+        let f = self.frame(p);
+        let a = self.axis;
+        let proj = Matrix3::identity() - a * a.transpose();
+        // ∂e_r/∂p = (I − a aᵀ − e_r e_rᵀ)/ρ
+        let der = (proj - f.er * f.er.transpose()) * f.inv_rho;
+        // ∂m/∂p = ∂e_r/∂p + 2c a aᵀ
+        let dm = der + a * a.transpose() * (2.0 * self.crown);
+        let dn = (Matrix3::identity() - f.n * f.n.transpose()) * dm / f.mn;
+        // u_s = ṙ_o + ω R(ζ) a × e_r ⇒ ∂u_s/∂p = ω [(a × e_r) R' aᵀ + R [a]× ∂e_r/∂p]
+        let dus =
+            (f.circ * a.transpose() * f.drdz + a.cross_matrix() * der * f.radius) * self.omega;
+        self.surface_point(&f, dn, dus)
     }
+    #[inline(always)]
     fn closest_value(&self, p: &Point3<f64>) -> SurfacePoint<3> {
-        self.closest_point(p, false)
+        let f = self.frame(p);
+        self.surface_point(&f, Matrix3::zeros(), Matrix3::zeros())
+    }
+    /// The batch of [`Cylinder::closest_value`]s in one loop over the points (same operations
+    /// per point, so the same values to the last bit), compiled for the machine's vector width
+    /// ([`mbd_core::simd`]).
+    fn closest_values(&self, p: &[Vec<f64>; 3], out: &mut SurfaceValues<3>) {
+        out.resize(p[0].len());
+        mbd_core::simd::dispatch(CylinderValues { c: self, p, out });
     }
     fn center(&self) -> Point3<f64> {
         self.center
+    }
+}
+
+/// [`Cylinder::closest_values`] as a [`mbd_core::simd::Kernel`] (`out` sized to the batch).
+struct CylinderValues<'a> {
+    c: &'a Cylinder,
+    p: &'a [Vec<f64>; 3],
+    out: &'a mut SurfaceValues<3>,
+}
+
+impl mbd_core::simd::Kernel for CylinderValues<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let (c, p) = (self.c, self.p);
+        let n = p[0].len();
+        let (px, py, pz) = (&p[0][..n], &p[1][..n], &p[2][..n]);
+        let out = self.out;
+        let gap = &mut out.gap[..n];
+        let [nx, ny, nz] = &mut out.normal;
+        let [tx, ty, tz] = &mut out.tangent;
+        let [ux, uy, uz] = &mut out.surface_velocity;
+        for q in 0..n {
+            let f = c.frame(&Point3::new(px[q], py[q], pz[q]));
+            let us = c.velocity + f.circ * (c.omega * f.radius);
+            gap[q] = f.rho - f.radius;
+            (nx[q], ny[q], nz[q]) = (f.n.x, f.n.y, f.n.z);
+            (tx[q], ty[q], tz[q]) = (f.circ.x, f.circ.y, f.circ.z);
+            (ux[q], uy[q], uz[q]) = (us.x, us.y, us.z);
+        }
     }
 }
 
@@ -195,6 +263,42 @@ pub(crate) mod tests {
     #[test]
     fn cylinder_derivatives() {
         fd_check3(&crowned(), Point3::new(0.17, -0.16, 0.08));
+    }
+
+    // Reference (second formulation): the batch `closest_values` of a crowned, moving cylinder
+    // against `closest_value` point by point, bit for bit, on points in contact and apart (and
+    // the trait's default batch, point by point, on a half-space).
+    #[test]
+    fn cylinder_batch_equals_point_by_point() {
+        let c = crowned();
+        let pts: Vec<Point3<f64>> = (0..37)
+            .map(|k| {
+                let (th, z) = (0.17 * k as f64, -0.05 + 0.003 * k as f64);
+                let r = 0.07 + 0.0007 * k as f64;
+                c.center + Vector3::new(r * th.cos(), r * th.sin(), z)
+            })
+            .collect();
+        let soa: [Vec<f64>; 3] = std::array::from_fn(|i| pts.iter().map(|p| p[i]).collect());
+        let mut out = SurfaceValues::default();
+        c.closest_values(&soa, &mut out);
+        assert_eq!(out.len(), pts.len());
+        assert!(out.gap.iter().any(|g| *g < 0.0) && out.gap.iter().any(|g| *g > 0.0));
+        let mut one = SurfaceValues::default();
+        one.resize(pts.len());
+        for (q, p) in pts.iter().enumerate() {
+            one.set(q, &c.closest_value(p));
+        }
+        assert_eq!(out, one);
+        let road = HalfSpace {
+            origin: Point3::new(0.0, 0.0, 0.01),
+            normal: Vector3::z(),
+            tangent: Vector3::x(),
+            velocity: Vector3::new(3.0, 0.0, 0.0),
+        };
+        road.closest_values(&soa, &mut out);
+        for (q, p) in pts.iter().enumerate() {
+            assert_eq!(out.gap[q], road.closest(p).gap);
+        }
     }
 
     // Reference: a straight cylinder about z is the planar disk in every cross-section.

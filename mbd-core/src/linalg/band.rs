@@ -269,6 +269,78 @@ pub(crate) struct BandLu {
     check: [Vec<f64>; 3],
 }
 
+/// [`dgbtf2`] as a [`crate::simd::Kernel`].
+struct Dgbtf2<'a> {
+    ab: &'a mut [f64],
+    ipiv: &'a mut [usize],
+    n1: usize,
+    kl: usize,
+    ku: usize,
+    ld: usize,
+}
+
+impl crate::simd::Kernel for Dgbtf2<'_> {
+    type Output = Result<(), BandError>;
+    #[inline(always)]
+    fn run(self) -> Self::Output {
+        dgbtf2(self.ab, self.ipiv, self.n1, self.kl, self.ku, self.ld)
+    }
+}
+
+/// LAPACK dgbtf2 on the band storage `ab` (leading dimension `ld`, bandwidths `kl`, `ku`) of
+/// an `n1 × n1` matrix: column `j` pivots among rows `j..=j + kl`, `U` fills up to column `ju`.
+#[inline(always)]
+fn dgbtf2(
+    ab: &mut [f64], ipiv: &mut [usize], n1: usize, kl: usize, ku: usize, ld: usize,
+) -> Result<(), BandError> {
+    let kv = kl + ku;
+    let mut ju = 0usize;
+    for j in 0..n1 {
+        let km = kl.min(n1 - 1 - j);
+        let col = kv + j * ld;
+        let mut jp = 0;
+        let mut best = ab[col].abs();
+        for i in 1..=km {
+            let a = ab[col + i].abs();
+            if a > best {
+                best = a;
+                jp = i;
+            }
+        }
+        ipiv[j] = j + jp;
+        if best == 0.0 || !best.is_finite() {
+            return Err(BandError::ZeroPivot(j));
+        }
+        ju = ju.max((j + ku + jp).min(n1 - 1));
+        if jp != 0 {
+            // swap rows j and j + jp in columns j..=ju
+            for c in j..=ju {
+                let base = kv + c * ld;
+                ab.swap(base + j - c, base + j + jp - c);
+            }
+        }
+        if km > 0 {
+            let inv = 1.0 / ab[col];
+            for i in 1..=km {
+                ab[col + i] *= inv;
+            }
+            for c in j + 1..=ju {
+                // column j (multipliers) lies before column c in the storage
+                let (lo, hi) = ab.split_at_mut(c * ld);
+                let l = &lo[col + 1..=col + km];
+                let top = kv + j - c;
+                let ujc = hi[top];
+                if ujc != 0.0 {
+                    for (t, li) in hi[top + 1..=top + km].iter_mut().zip(l) {
+                        *t -= ujc * li;
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Why a banded factorisation failed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum BandError {
@@ -321,52 +393,17 @@ impl BandLu {
                 }
             }
         }
-        // dgbtf2: column j, pivot among rows j..=j+km, U fill up to column ju
-        let ab = &mut self.ab;
-        let mut ju = 0usize;
-        for j in 0..n1 {
-            let km = kl.min(n1 - 1 - j);
-            let col = kv + j * ld;
-            let mut jp = 0;
-            let mut best = ab[col].abs();
-            for i in 1..=km {
-                let a = ab[col + i].abs();
-                if a > best {
-                    best = a;
-                    jp = i;
-                }
-            }
-            self.ipiv[j] = j + jp;
-            if best == 0.0 || !best.is_finite() {
-                return Err(BandError::ZeroPivot(j));
-            }
-            ju = ju.max((j + ku + jp).min(n1 - 1));
-            if jp != 0 {
-                // swap rows j and j + jp in columns j..=ju
-                for c in j..=ju {
-                    let base = kv + c * ld;
-                    ab.swap(base + j - c, base + j + jp - c);
-                }
-            }
-            if km > 0 {
-                let inv = 1.0 / ab[col];
-                for i in 1..=km {
-                    ab[col + i] *= inv;
-                }
-                for c in j + 1..=ju {
-                    // column j (multipliers) lies before column c in the storage
-                    let (lo, hi) = ab.split_at_mut(c * ld);
-                    let l = &lo[col + 1..=col + km];
-                    let top = kv + j - c;
-                    let ujc = hi[top];
-                    if ujc != 0.0 {
-                        for (t, li) in hi[top + 1..=top + km].iter_mut().zip(l) {
-                            *t -= ujc * li;
-                        }
-                    }
-                }
-            }
-        }
+        // dgbtf2: column j, pivot among rows j..=j+km, U fill up to column ju (compiled for the
+        // machine's vector width: `crate::simd`, the same bits)
+        let (ab, ipiv) = (&mut self.ab, &mut self.ipiv);
+        crate::simd::dispatch(Dgbtf2 {
+            ab,
+            ipiv,
+            n1,
+            kl,
+            ku,
+            ld,
+        })?;
         for (j, u) in self.u_inv.iter_mut().enumerate() {
             *u = 1.0 / self.ab[kv + j * ld];
         }
@@ -492,8 +529,15 @@ struct Band<'a> {
 }
 
 impl Band<'_> {
-    /// Solves with the banded LU (dgbtrs, no transpose) in place; `b` has the band's size.
+    /// Solves with the banded LU (dgbtrs, no transpose) in place; `b` has the band's size
+    /// (compiled for the machine's vector width: [`crate::simd`], the same bits).
     fn solve(&self, b: &mut [f64]) {
+        crate::simd::dispatch(BandSolve { band: self, b });
+    }
+
+    /// The body of [`Band::solve`].
+    #[inline(always)]
+    fn solve_kernel(&self, b: &mut [f64]) {
         let (ab, ld, kl) = (self.ab, self.ld, self.kl);
         let kv = kl + self.ku;
         let n = b.len();
@@ -525,6 +569,20 @@ impl Band<'_> {
                 }
             }
         }
+    }
+}
+
+/// [`Band::solve`] as a [`crate::simd::Kernel`].
+struct BandSolve<'a, 'b> {
+    band: &'a Band<'b>,
+    b: &'a mut [f64],
+}
+
+impl crate::simd::Kernel for BandSolve<'_, '_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        self.band.solve_kernel(self.b)
     }
 }
 

@@ -15,7 +15,7 @@ use crate::sparse::Pattern;
 use belt::{BeltPath, Pulley};
 use contact::distributed::MAX_BLOCKS;
 use contact::spatial::{ContactRecord3, Cylinder, ElementContact3, FlangedCylinder, SurfacePoint3};
-use contact::{BlockShape, GaussRule, QuadPoint, Surface};
+use contact::{BlockQuadrature, BlockShape, GaussRule, QuadPoint, Surface, SurfaceValues};
 use faer::Mat;
 use mbd_core::Workspace;
 use mbd_core::system::ForceTangent;
@@ -51,10 +51,17 @@ impl Surface<3> for PulleySurface {
             PulleySurface::Flanged(f) => f.closest(p),
         }
     }
+    #[inline(always)]
     fn closest_value(&self, p: &Point3<f64>) -> SurfacePoint3 {
         match self {
             PulleySurface::Cylinder(c) => c.closest_value(p),
             PulleySurface::Flanged(f) => f.closest_value(p),
+        }
+    }
+    fn closest_values(&self, p: &[Vec<f64>; 3], out: &mut SurfaceValues<3>) {
+        match self {
+            PulleySurface::Cylinder(c) => c.closest_values(p, out),
+            PulleySurface::Flanged(f) => f.closest_values(p, out),
         }
     }
     fn center(&self) -> Point3<f64> {
@@ -102,6 +109,8 @@ pub struct Plate {
     quad_s: Vec<[f64; 12]>,
     /// Shape matrices `S = [S_k I₃]` (3 × 36) at each contact point.
     quad_shape: Vec<BlockShape>,
+    /// The same quadrature as a batch (force-only contact evaluations).
+    quad_blocks: BlockQuadrature,
 }
 
 /// Node index of cross-section `i` (mod `n`), edge `j` (0: `y = 0`, 1: `y = w`).
@@ -164,6 +173,8 @@ impl PlateBeltDrive {
         }
         let normal = BeltNormal::penalty(spec.contact.stiffness, 0.0, spec.contact.damping);
         let friction = spec.contact.friction;
+        let quad_blocks =
+            BlockQuadrature::new(12, quad_s.iter().zip(&quad).map(|(s, q)| (&s[..], q.2)));
         let kind = Plate {
             mesh,
             normal,
@@ -171,6 +182,7 @@ impl PlateBeltDrive {
             quad,
             quad_s,
             quad_shape,
+            quad_blocks,
         };
         Ok(Self::assemble(spec, path, kind, &[]))
     }
@@ -274,15 +286,27 @@ impl PlateBeltDrive {
                     self.gather(v, el, &mut ed);
                     gathered_v = true;
                 }
-                contact::element_contact(
-                    surf,
-                    &self.kind.normal,
-                    &self.kind.friction,
-                    self.points(&e, &ed),
-                    jacobian,
-                    ec,
-                    None,
-                );
+                if jacobian {
+                    contact::element_contact(
+                        surf,
+                        &self.kind.normal,
+                        &self.kind.friction,
+                        self.points(&e, &ed),
+                        true,
+                        ec,
+                        None,
+                    );
+                } else {
+                    contact::element_forces_blocks(
+                        surf,
+                        &self.kind.normal,
+                        &self.kind.friction,
+                        &self.kind.quad_blocks,
+                        &e,
+                        &ed,
+                        ec,
+                    );
+                }
                 if ec.active_points > 0 {
                     sink(el, p, &surf.cylinder().axis, ec);
                 }
