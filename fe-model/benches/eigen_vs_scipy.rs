@@ -5,7 +5,8 @@
 //! alternating (ours, peer, ours, peer, … per size and thread count).
 //!
 //! Run: `cargo bench -p fe-model --bench eigen_vs_scipy -- --peer-venv /tmp/eigpeer
-//! [--divisions 96,192,384] [--threads 1,2] [--repeat 2] [--nev 50] [--tol 1e-12] [--peer-coretype SkylakeX] [--dir DIR] [--no-peer]` (`--no-peer`: ours only, for profiling).
+//! [--divisions 96,192,384] [--threads 1,2] [--repeat 2] [--nev 50] [--tol 1e-12] [--peer-coretype SkylakeX] [--dir DIR] [--block B] [--no-peer]` (`--no-peer`: ours only, for profiling;
+//! `--block B`: our block width instead of the default).
 //!
 //! **The peer, configured as its users would.** `--peer-venv DIR` installs it on first use by
 //! running `benches/peers/setup_eigsh_peer.sh DIR` (Debian's SuiteSparse 5.12 CHOLMOD with
@@ -97,6 +98,7 @@ fn main() {
     let no_peer = std::env::args().any(|a| a == "--no-peer");
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
     let python = match (arg("--python"), arg("--peer-venv")) {
+        _ if no_peer => String::new(),
         (Some(p), _) => p,
         (None, Some(venv)) => {
             let st = Command::new("bash")
@@ -107,7 +109,6 @@ fn main() {
             assert!(st.success(), "setup_eigsh_peer.sh {venv} failed");
             format!("{venv}/bin/python")
         }
-        (None, None) if no_peer => String::new(),
         (None, None) => panic!("give --peer-venv DIR (installed on first use) or --python PY"),
     };
     let base = PathBuf::from(arg("--dir").unwrap_or_else(|| {
@@ -118,9 +119,13 @@ fn main() {
     }));
     let coretype = arg("--peer-coretype").unwrap_or_else(|| "SkylakeX".into());
     let script = manifest.join("benches/peers/eigsh.py");
+    let defaults = SparseEigenOptions::default();
     let opts = SparseEigenOptions {
         tolerance: tol,
-        ..SparseEigenOptions::default()
+        block_size: arg("--block")
+            .and_then(|b| b.parse().ok())
+            .unwrap_or(defaults.block_size),
+        ..defaults
     };
     println!(
         "eigen_vs_scipy: nev {nev}, tol {tol:e}, threads {threads:?}, repeat {repeat}; peer {python}, OPENBLAS_CORETYPE {coretype}"
@@ -226,12 +231,13 @@ fn main() {
             let (modes, rep) = last.expect("at least one repeat");
             if no_peer {
                 println!(
-                    "  {nt} thread(s): ours {:.3} s wall, {:.2} s CPU (factor {:.3} s, nnz(L) {}, Lanczos {:.3} s [{} vectors, block {}, basis {}, {} restarts], Sturm {:.3} s)",
+                    "  {nt} thread(s): ours {:.3} s wall, {:.2} s CPU (factor {:.3} s, nnz(L) {}, Lanczos {:.3} s [operator {:.3} s, {} vectors, block {}, basis {}, {} restarts], Sturm {:.3} s)",
                     ours.wall,
                     ours.cpu,
                     rep.seconds_factor,
                     rep.factor_nnz,
                     rep.seconds_lanczos,
+                    rep.seconds_operator,
                     rep.operator_applications,
                     rep.block_size,
                     rep.max_dim,
@@ -253,12 +259,13 @@ fn main() {
                 .fold(0.0f64, f64::max);
             println!("  {nt} thread(s):");
             println!(
-                "    ours: {:.3} s wall, {:.2} s CPU (factor {:.3} s, nnz(L) {}, block Lanczos {:.3} s [{} vectors, block {}, basis {}, {} restarts], Sturm {:.3} s: {} below the cut = {} found), max |ΦᵀMΦ − I| {:.1e}, max residual {:.1e}",
+                "    ours: {:.3} s wall, {:.2} s CPU (factor {:.3} s, nnz(L) {}, block Lanczos {:.3} s [operator {:.3} s, {} vectors, block {}, basis {}, {} restarts], Sturm {:.3} s: {} below the cut = {} found), max |ΦᵀMΦ − I| {:.1e}, max residual {:.1e}",
                 ours.wall,
                 ours.cpu,
                 rep.seconds_factor,
                 rep.factor_nnz,
                 rep.seconds_lanczos,
+                rep.seconds_operator,
                 rep.operator_applications,
                 rep.block_size,
                 rep.max_dim,

@@ -11,6 +11,11 @@
 //! `φ = Pᵀ L⁻ᵀ y / √θ` is M-normalised (Ritz vectors of `T` are T-orthogonal, so the φ are
 //! M-orthonormal to round-off).
 //!
+//! Threads: the numeric factorisations run on rayon's current pool (faer's `Par::rayon`); with
+//! two or more threads the block solves split the block's columns into two halves solved
+//! concurrently, and the mass product `P M Pᵀ X` splits its rows; the dense kernels of the
+//! Lanczos stay sequential. Run inside `rayon::ThreadPool::install` to choose the count.
+//!
 //! Safeguards (shared/notes/rust-ecosystem.md §1.3): `extra` modes beyond the requested count
 //! so that a multiplet at the cut is not split; a deterministic pseudo-random start block;
 //! M-orthogonality check (catches ghost duplicates); a Sturm count by LDLᵀ of `K − cM` proving
@@ -18,12 +23,13 @@
 
 use super::block_lanczos::{BlockKsOptions, block_krylov_schur};
 use super::dense::dense_modes;
-use super::factor::{Analysis, shifted};
+use super::factor::{Analysis, Llt, shifted};
+use super::operator::{PermutedSymmetric, ProductWork};
 use super::{Modes, frequency_hz};
 use crate::FeError;
-use crate::sparse::{BlockProductWork, csc_times_block, triplets};
+use crate::sparse::{sparse_times_dense, triplets};
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
+use faer::sparse::SparseColMatRef;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 use serde::Serialize;
 use std::time::{Duration, Instant};
@@ -36,13 +42,18 @@ pub struct SparseEigenOptions {
     pub shift: Option<f64>,
     /// Extra modes computed beyond the requested count (multiplets at the cut).
     pub extra: usize,
-    /// Krylov basis size before a thick restart; `None` = `max(2·nev, nev + 4·block)`
-    /// (rounded up to a multiple of the block size).
+    /// Krylov basis size before a thick restart; `None` = `max(3·nev, nev + 4·block)`
+    /// (rounded up to a multiple of the block size; 3·nev: one or two restarts on the tire,
+    /// where 2·nev needed five to seven and more operator applications).
     pub max_dim: Option<usize>,
     /// Convergence tolerance: Ritz residual `‖T y − θ y‖ ≤ tolerance · θ_max` of the
     /// shift-invert operator T.
     pub tolerance: f64,
-    /// Block width of the block Lanczos (right-hand sides per triangular solve).
+    /// Block width of the block Lanczos (right-hand sides per triangular solve). Default 8:
+    /// the solves are bound by reading L, so a wider block costs little more per block, but
+    /// the Krylov space grows less per vector and each vector must be orthogonalised against
+    /// a larger basis (50 modes of the tire: 296 vectors at width 8, 276 at 4 at 60 480 DOF,
+    /// 5.5 against 7.0 s; 672 at width 24 at 30 240 DOF, 4.0 against 2.9 s at width 8).
     pub block_size: usize,
     /// Maximum Krylov–Schur restarts per attempt.
     pub max_restarts: usize,
@@ -65,7 +76,7 @@ impl Default for SparseEigenOptions {
             extra: 4,
             max_dim: None,
             tolerance: 1e-12,
-            block_size: 24,
+            block_size: 8,
             max_restarts: 500,
             orthogonality_tol: 1e-6,
             sturm_check: true,
@@ -115,6 +126,9 @@ pub struct SparseEigenReport {
     pub seconds_factor: f64,
     /// Wall-clock seconds in the block Lanczos (all attempts).
     pub seconds_lanczos: f64,
+    /// Of `seconds_lanczos`: in the operator (the two block triangular solves and the mass
+    /// product); the rest is orthogonalisation, Rayleigh–Ritz and restarts.
+    pub seconds_operator: f64,
     /// Wall-clock seconds of the Sturm-count LDLᵀ factorizations.
     pub seconds_sturm: f64,
 }
@@ -172,7 +186,7 @@ pub fn sparse_modes(
     let block = opts.block_size.max(1);
     let base_dim = opts
         .max_dim
-        .unwrap_or((2 * nev).max(nev + 4 * block))
+        .unwrap_or((3 * nev).max(nev + 4 * block))
         .max(nev + 2 * block);
 
     if n <= opts.dense_below || n <= base_dim + 4 * block {
@@ -196,6 +210,7 @@ pub fn sparse_modes(
             rejected_attempts: Vec::new(),
             seconds_factor: 0.0,
             seconds_lanczos: 0.0,
+            seconds_operator: 0.0,
             seconds_sturm: 0.0,
         };
         return Ok((modes, report));
@@ -229,32 +244,29 @@ pub fn sparse_modes(
         },
     };
     let seconds_factor = t_factor.elapsed().as_secs_f64();
-    let (_fwd, inv) = analysis.perm();
-    let mut t = Vec::with_capacity(m.compute_nnz());
-    for (r, c, v) in triplets(m) {
-        t.push(Triplet::new(inv[r], inv[c], v));
-    }
-    let m_perm = SparseColMat::try_new_from_triplets(n, n, &t)
-        .map_err(|e| FeError::Sparse(format!("P M Pᵀ: {e:?}")))?;
+    let (fwd, inv) = analysis.perm();
+    let m_perm = PermutedSymmetric::new(m, &fwd, &inv)?;
+    // the pool's threads (rayon::current_num_threads) in the block solves and dense kernels
+    // dense kernels of the Lanczos sequential: on the skinny n × b blocks faer's parallel
+    // matmul was slower on the two shared cores (measured 2.4-5.6 s against 2.1-2.7 s at
+    // 30 240 DOF); the block solves and the mass product use the pool's threads themselves
     let par = Par::Seq;
     let mut dim = base_dim;
     let mut rejected = Vec::new();
-    let (mut seconds_lanczos, mut seconds_sturm) = (0.0, 0.0);
+    let (mut seconds_lanczos, mut seconds_sturm, mut seconds_operator) = (0.0, 0.0, 0.0);
     let mut applications = 0usize;
     let mut last_err = FeError::Eigen("no attempt made".into());
     let deadline = Instant::now() + opts.timeout;
     for attempt in 1..=opts.attempts.max(1) {
         let t_l = Instant::now();
         // shift-invert operator T x = L⁻¹ P M Pᵀ L⁻ᵀ x on a block, scratch allocated once
-        let mut mem = MemBuffer::new(llt.scratch(block, par));
         let mut tmp = Mat::<f64>::zeros(n, block);
-        let mut work = BlockProductWork::default();
+        let mut work = ProductWork::default();
         let mut apply = |mut out: MatMut<'_, f64>, x: MatRef<'_, f64>| {
-            let stack = MemStack::new(&mut mem);
             tmp.copy_from(x);
-            llt.lt_solve(tmp.as_mut(), par, stack);
-            csc_times_block(m_perm.as_ref(), tmp.as_ref(), out.as_mut(), &mut work);
-            llt.l_solve(out, par, stack);
+            split_solve(&llt, tmp.as_mut(), true);
+            m_perm.apply(tmp.as_ref(), out.as_mut(), &mut work);
+            split_solve(&llt, out, false);
         };
         let ks = block_krylov_schur(
             n,
@@ -271,6 +283,7 @@ pub fn sparse_modes(
             },
         )?;
         seconds_lanczos += t_l.elapsed().as_secs_f64();
+        seconds_operator += ks.seconds_apply;
         applications += ks.applies;
         let (vals, vecs, restarts) = (ks.values, ks.vectors, ks.restarts);
         let conv = vals.len();
@@ -282,8 +295,7 @@ pub fn sparse_modes(
             }
             // back-transform: θ = scale_inv · θ', λ = σ + 1/θ, φ = Pᵀ L⁻ᵀ y / √θ
             let mut y = vecs;
-            let mut mem = MemBuffer::new(llt.scratch(conv, par));
-            llt.lt_solve(y.as_mut(), par, MemStack::new(&mut mem));
+            split_solve(&llt, y.as_mut(), true);
             let mut lambdas = Vec::with_capacity(conv);
             let mut phi = Mat::zeros(n, conv);
             for j in 0..conv {
@@ -356,6 +368,7 @@ pub fn sparse_modes(
                 rejected_attempts: rejected.clone(),
                 seconds_factor,
                 seconds_lanczos,
+                seconds_operator,
                 seconds_sturm,
             };
             Ok((modes, report))
@@ -372,10 +385,33 @@ pub fn sparse_modes(
     Err(last_err)
 }
 
+/// `x ← L⁻ᵀ x` (`transpose`) or `x ← L⁻¹ x` on a block: with two or more threads in rayon's
+/// current pool the columns are split into two halves solved concurrently, each by the
+/// sequential supernodal kernel (the solves are bound by reading L; faer's parallel solve
+/// splits the supernodal tree instead, whose small supernodes near the leaves make it slower
+/// than the sequential kernel on this model).
+fn split_solve(llt: &Llt, x: MatMut<'_, f64>, transpose: bool) {
+    let one = |x: MatMut<'_, f64>| {
+        let mut mem = MemBuffer::new(llt.scratch(x.ncols(), Par::Seq));
+        let stack = MemStack::new(&mut mem);
+        if transpose {
+            llt.lt_solve(x, Par::Seq, stack);
+        } else {
+            llt.l_solve(x, Par::Seq, stack);
+        }
+    };
+    if rayon::current_num_threads() >= 2 && x.ncols() >= 2 {
+        let h = x.ncols() / 2;
+        let (a, b) = x.split_at_col_mut(h);
+        rayon::join(|| one(a), || one(b));
+    } else {
+        one(x);
+    }
+}
+
 /// `max |φᵢᵀ M φⱼ − δᵢⱼ|`.
 pub fn orthogonality_error(m: SparseColMatRef<'_, usize, f64>, phi: MatRef<'_, f64>) -> f64 {
-    let mut mp = Mat::zeros(phi.nrows(), phi.ncols());
-    csc_times_block(m, phi, mp.as_mut(), &mut BlockProductWork::default());
+    let mp = sparse_times_dense(m, phi);
     let mut g = Mat::zeros(phi.ncols(), phi.ncols());
     faer::linalg::matmul::matmul(
         g.as_mut(),
@@ -400,11 +436,8 @@ pub fn max_residual(
     k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, modes: &Modes,
 ) -> f64 {
     let phi = modes.vectors.as_ref();
-    let mut kp = Mat::zeros(phi.nrows(), phi.ncols());
-    let mut mp = Mat::zeros(phi.nrows(), phi.ncols());
-    let mut work = BlockProductWork::default();
-    csc_times_block(k, phi, kp.as_mut(), &mut work);
-    csc_times_block(m, phi, mp.as_mut(), &mut work);
+    let kp = sparse_times_dense(k, phi);
+    let mp = sparse_times_dense(m, phi);
     let mut worst: f64 = 0.0;
     for j in 0..phi.ncols() {
         let l = modes.values[j];
