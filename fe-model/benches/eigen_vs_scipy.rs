@@ -5,8 +5,8 @@
 //! alternating (ours, peer, ours, peer, … per size and thread count).
 //!
 //! Run: `cargo bench -p fe-model --bench eigen_vs_scipy -- --peer-venv /tmp/eigpeer
-//! [--divisions 96,192,384] [--threads 1,2] [--repeat 2] [--nev 50] [--tol 1e-12] [--peer-coretype SkylakeX] [--dir DIR] [--block B] [--no-peer]` (`--no-peer`: ours only, for profiling;
-//! `--block B`: our block width instead of the default).
+//! [--divisions 96,192,384] [--threads 1,2] [--repeat 2] [--nev 50] [--tol 1e-12] [--peer-coretype SkylakeX] [--dir DIR] [--block B] [--max-dim M] [--no-peer]` (`--no-peer`: ours only, for profiling;
+//! `--block B`, `--max-dim M`: our block width and basis size instead of the defaults).
 //!
 //! **The peer, configured as its users would.** `--peer-venv DIR` installs it on first use by
 //! running `benches/peers/setup_eigsh_peer.sh DIR` (Debian's SuiteSparse 5.12 CHOLMOD with
@@ -125,6 +125,7 @@ fn main() {
         block_size: arg("--block")
             .and_then(|b| b.parse().ok())
             .unwrap_or(defaults.block_size),
+        max_dim: arg("--max-dim").and_then(|b| b.parse().ok()),
         ..defaults
     };
     println!(

@@ -13,8 +13,9 @@
 //!
 //! Threads: the numeric factorisations run on rayon's current pool (faer's `Par::rayon`); with
 //! two or more threads the block solves split the block's columns into two halves solved
-//! concurrently, and the mass product `P M Pᵀ X` splits its rows; the dense kernels of the
-//! Lanczos stay sequential. Run inside `rayon::ThreadPool::install` to choose the count.
+//! concurrently, the mass product `P M Pᵀ X` splits its rows, and the Sturm factorisation
+//! runs beside the back-transform and the orthogonality and residual checks; the dense
+//! kernels of the Lanczos stay sequential. Run inside `rayon::ThreadPool::install` to choose the count.
 //!
 //! Safeguards (shared/notes/rust-ecosystem.md §1.3): `extra` modes beyond the requested count
 //! so that a multiplet at the cut is not split; a deterministic pseudo-random start block;
@@ -293,35 +294,23 @@ pub fn sparse_modes(
                     "only {conv} of {nev} Ritz pairs converged (subspace {dim})"
                 )));
             }
-            // back-transform: θ = scale_inv · θ', λ = σ + 1/θ, φ = Pᵀ L⁻ᵀ y / √θ
-            let mut y = vecs;
-            split_solve(&llt, y.as_mut(), true);
-            let mut lambdas = Vec::with_capacity(conv);
-            let mut phi = Mat::zeros(n, conv);
-            for j in 0..conv {
-                let theta = vals[j];
+            for &theta in &vals {
                 if theta.is_nan() || theta <= 0.0 {
                     return Err(FeError::Eigen(format!(
                         "non-positive Ritz value {theta:e}: shift σ = {sigma:e} is not below the spectrum"
                     )));
                 }
-                lambdas.push(sigma + 1.0 / theta);
-                let s = 1.0 / theta.sqrt();
-                for r in 0..n {
-                    phi[(r, j)] = y[(inv[r], j)] * s;
+            }
+            // λ = σ + 1/θ, ascending as the modes will be sorted
+            let lambdas: Vec<f64> = vals.iter().map(|&theta| sigma + 1.0 / theta).collect();
+            let mut lam = lambdas.clone();
+            lam.sort_by(f64::total_cmp);
+            // the Sturm count at the cut between the last returned mode and the next distinct
+            // converged one: (cut, modes found below it, negative pivots, seconds)
+            let sturm_job = || -> Result<Option<(f64, usize, usize, f64)>, FeError> {
+                if !opts.sturm_check {
+                    return Ok(None);
                 }
-            }
-            let all = Modes::from_parts(lambdas, phi);
-            let orth = orthogonality_error(m, all.vectors.as_ref());
-            if orth > opts.orthogonality_tol {
-                return Err(FeError::Eigen(format!(
-                    "M-orthogonality check failed (max |φᵢᵀMφⱼ − δᵢⱼ| = {orth:e}): duplicated (ghost) Ritz vector"
-                )));
-            }
-            // Sturm cut between the last returned mode and the next distinct converged one
-            let (mut cut, mut found_below, mut sturm) = (None, None, None);
-            if opts.sturm_check {
-                let lam = &all.values;
                 let last = lam[count - 1];
                 let tolgap = 1e-7 * last.abs().max(sigma.abs()).max(1e-300);
                 let next = lam[count..].iter().copied().find(|&l| l - last > tolgap);
@@ -333,7 +322,43 @@ pub fn sparse_modes(
                 let t_s = Instant::now();
                 let a = shifted(k, m, c)?;
                 let negs = analysis.negative_pivots(a.as_ref())?;
-                seconds_sturm += t_s.elapsed().as_secs_f64();
+                Ok(Some((c, below, negs, t_s.elapsed().as_secs_f64())))
+            };
+            // back-transform φ = Pᵀ L⁻ᵀ y / √θ, M-orthogonality and residuals
+            let modes_job = || -> (Modes, f64, f64) {
+                let mut y = vecs;
+                split_solve(&llt, y.as_mut(), true);
+                let mut phi = Mat::zeros(n, conv);
+                for (j, &theta) in vals.iter().enumerate() {
+                    let s = 1.0 / theta.sqrt();
+                    for r in 0..n {
+                        phi[(r, j)] = y[(inv[r], j)] * s;
+                    }
+                }
+                let all = Modes::from_parts(lambdas, phi);
+                let orth = orthogonality_error(m, all.vectors.as_ref());
+                let modes = Modes {
+                    values: all.values[..count].to_vec(),
+                    frequencies_hz: all.frequencies_hz[..count].to_vec(),
+                    vectors: all.vectors.subcols(0, count).to_owned(),
+                };
+                let resid = max_residual(k, m, &modes);
+                (modes, orth, resid)
+            };
+            // with two threads the Sturm factorisation runs beside the back-transform and checks
+            let (sturm_res, (modes, orth, resid)) = if rayon::current_num_threads() >= 2 {
+                rayon::join(sturm_job, modes_job)
+            } else {
+                (sturm_job(), modes_job())
+            };
+            if orth > opts.orthogonality_tol {
+                return Err(FeError::Eigen(format!(
+                    "M-orthogonality check failed (max |φᵢᵀMφⱼ − δᵢⱼ| = {orth:e}): duplicated (ghost) Ritz vector"
+                )));
+            }
+            let (mut cut, mut found_below, mut sturm) = (None, None, None);
+            if let Some((c, below, negs, secs)) = sturm_res? {
+                seconds_sturm += secs;
                 if negs != below {
                     return Err(FeError::Eigen(format!(
                         "Sturm check failed: {negs} eigenvalues below {c:e} rad²/s² ({:.6} Hz) but {below} found",
@@ -344,11 +369,6 @@ pub fn sparse_modes(
                 found_below = Some(below);
                 sturm = Some(negs);
             }
-            let modes = Modes {
-                values: all.values[..count].to_vec(),
-                frequencies_hz: all.frequencies_hz[..count].to_vec(),
-                vectors: all.vectors.subcols(0, count).to_owned(),
-            };
             let report = SparseEigenReport {
                 dof: n,
                 shift: sigma,
@@ -360,7 +380,7 @@ pub fn sparse_modes(
                 converged: conv,
                 factor_nnz: analysis.factor_nnz(),
                 max_orthogonality_error: orth,
-                max_relative_residual: max_residual(k, m, &modes),
+                max_relative_residual: resid,
                 sturm_cut: cut,
                 sturm_count: sturm,
                 found_below_cut: found_below,
