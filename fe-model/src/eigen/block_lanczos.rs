@@ -25,8 +25,12 @@ pub(crate) struct BlockKsOptions {
     pub block: usize,
     /// Largest basis size m before a restart (a multiple of b is used).
     pub max_dim: usize,
-    /// Converged when `‖residual‖ ≤ tol · θ_max` (θ_max ≈ 1 for a scaled operator).
+    /// Converged when `‖residual‖ ≤ tol · θ_max` (θ_max ≈ 1 for a scaled operator), or
+    /// `≤ tol · |θ_i|` per pair when `per_pair`.
     pub tol: f64,
+    /// ARPACK's per-pair test `‖r_i‖ ≤ tol · |θ_i|` instead of `tol · θ_max` for the
+    /// `per_pair` leading pairs (the rest keep `tol · θ_max`).
+    pub per_pair: usize,
     /// Restarts allowed.
     pub max_restarts: usize,
     /// Wall-clock limit.
@@ -149,9 +153,14 @@ pub(crate) fn block_krylov_schur(
         // residual block coupling: the rows m..m+b of H times y
         let coupling = h.as_ref().submatrix(m, 0, b, m);
         let mut converged = 0;
-        for &i in order.iter().take(nev) {
+        for (rank, &i) in order.iter().take(nev).enumerate() {
             let r = (coupling * y.col(i)).norm_l2();
-            if r <= opts.tol * theta_max {
+            let scale = if rank < opts.per_pair {
+                theta[i].abs()
+            } else {
+                theta_max
+            };
+            if r <= opts.tol * scale {
                 converged += 1;
             } else {
                 break;
