@@ -10,6 +10,7 @@ mod mtx_fast_read;
 mod mtx_hardening;
 mod partition;
 mod plausibility;
+mod shifted_merge;
 #[cfg(feature = "sprs")]
 mod sprs_conv;
 mod vtk_polyline;

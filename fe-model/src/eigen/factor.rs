@@ -3,7 +3,6 @@
 //! faer's AMD-ordered simplicial/supernodal Cholesky (`faer::sparse::linalg::cholesky`).
 
 use crate::FeError;
-use crate::sparse::triplets;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -14,7 +13,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_lower_triangular_transpose_in_place,
 };
-use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
+use faer::sparse::{SparseColMat, SparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 use std::sync::Arc;
 
@@ -23,22 +22,7 @@ use std::sync::Arc;
 pub fn shifted(
     k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, sigma: f64,
 ) -> Result<SparseColMat<usize, f64>, FeError> {
-    if k.nrows() != m.nrows() || k.ncols() != m.ncols() || k.nrows() != k.ncols() {
-        return Err(FeError::Dimension {
-            context: "K − σM: K and M must be square and of equal size".into(),
-            expected: k.nrows(),
-            got: m.nrows(),
-        });
-    }
-    let mut t = Vec::with_capacity(k.compute_nnz() + m.compute_nnz());
-    for (r, c, v) in triplets(k) {
-        t.push(Triplet::new(r, c, v));
-    }
-    for (r, c, v) in triplets(m) {
-        t.push(Triplet::new(r, c, -sigma * v));
-    }
-    SparseColMat::try_new_from_triplets(k.nrows(), k.ncols(), &t)
-        .map_err(|e| FeError::Sparse(format!("K − σM: {e:?}")))
+    super::operator::shifted_merge(k, m, sigma)
 }
 
 /// Symbolic Cholesky analysis (AMD ordering) of a symmetric pattern, shareable across shifts.

@@ -10,6 +10,7 @@ use serde::Serialize;
 mod block_lanczos;
 pub mod dense;
 pub mod factor;
+mod operator;
 pub mod sparse;
 pub mod sturm;
 

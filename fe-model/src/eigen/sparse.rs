@@ -11,6 +11,12 @@
 //! `φ = Pᵀ L⁻ᵀ y / √θ` is M-normalised (Ritz vectors of `T` are T-orthogonal, so the φ are
 //! M-orthonormal to round-off).
 //!
+//! Threads: the numeric factorisations run on rayon's current pool (faer's `Par::rayon`); with
+//! two or more threads the block solves split the block's columns into two halves solved
+//! concurrently, the mass product `P M Pᵀ X` splits its rows, and the Sturm factorisation
+//! runs beside the back-transform and the orthogonality and residual checks; the dense
+//! kernels of the Lanczos stay sequential. Run inside `rayon::ThreadPool::install` to choose the count.
+//!
 //! Safeguards (shared/notes/rust-ecosystem.md §1.3): `extra` modes beyond the requested count
 //! so that a multiplet at the cut is not split; a deterministic pseudo-random start block;
 //! M-orthogonality check (catches ghost duplicates); a Sturm count by LDLᵀ of `K − cM` proving
@@ -18,12 +24,13 @@
 
 use super::block_lanczos::{BlockKsOptions, block_krylov_schur};
 use super::dense::dense_modes;
-use super::factor::{Analysis, shifted};
+use super::factor::{Analysis, Llt, shifted};
+use super::operator::{PermutedSymmetric, ProductWork};
 use super::{Modes, frequency_hz};
 use crate::FeError;
-use crate::sparse::{BlockProductWork, csc_times_block, triplets};
+use crate::sparse::{sparse_times_dense, triplets};
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
+use faer::sparse::SparseColMatRef;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 use serde::Serialize;
 use std::time::{Duration, Instant};
@@ -36,13 +43,26 @@ pub struct SparseEigenOptions {
     pub shift: Option<f64>,
     /// Extra modes computed beyond the requested count (multiplets at the cut).
     pub extra: usize,
-    /// Krylov basis size before a thick restart; `None` = `max(2·nev, nev + 4·block)`
-    /// (rounded up to a multiple of the block size).
+    /// Krylov basis size before a thick restart; `None` = `max(4·nev, nev + 4·block)`
+    /// (rounded up to a multiple of the block size). On the tire (50 modes, block 8, per-pair
+    /// test) 4·nev needs one restart and 304 operator applications, 3·nev three restarts and
+    /// 360 at 60k and 121k DOF (15–25 % more time), 2·nev five to seven restarts.
     pub max_dim: Option<usize>,
     /// Convergence tolerance: Ritz residual `‖T y − θ y‖ ≤ tolerance · θ_max` of the
-    /// shift-invert operator T.
+    /// shift-invert operator T (`≤ tolerance · θ` per pair with [`Self::per_pair_test`]).
     pub tolerance: f64,
-    /// Block width of the block Lanczos (right-hand sides per triangular solve).
+    /// ARPACK's convergence test (`dsconv`) for the `count` returned modes: each Ritz pair
+    /// against its own value, `‖T y − θ y‖ ≤ tolerance · θ`, stricter than the default
+    /// `tolerance · θ_max` for the smaller θ (the higher modes); the [`Self::extra`] pairs,
+    /// which only place the Sturm cut, keep `tolerance · θ_max`. Default true: each returned
+    /// mode meets the test that scipy's `eigsh` applies (with the extras held to it too, the
+    /// 60 480-DOF tire needed 360 instead of 296 operator applications).
+    pub per_pair_test: bool,
+    /// Block width of the block Lanczos (right-hand sides per triangular solve). Default 8:
+    /// the solves are bound by reading L, so a wider block costs little more per block, but
+    /// the Krylov space grows less per vector and each vector must be orthogonalised against
+    /// a larger basis (50 modes of the tire: 296 vectors at width 8, 276 at 4 at 60 480 DOF,
+    /// 5.5 against 7.0 s; 672 at width 24 at 30 240 DOF, 4.0 against 2.9 s at width 8).
     pub block_size: usize,
     /// Maximum Krylov–Schur restarts per attempt.
     pub max_restarts: usize,
@@ -65,7 +85,8 @@ impl Default for SparseEigenOptions {
             extra: 4,
             max_dim: None,
             tolerance: 1e-12,
-            block_size: 24,
+            per_pair_test: true,
+            block_size: 8,
             max_restarts: 500,
             orthogonality_tol: 1e-6,
             sturm_check: true,
@@ -115,6 +136,9 @@ pub struct SparseEigenReport {
     pub seconds_factor: f64,
     /// Wall-clock seconds in the block Lanczos (all attempts).
     pub seconds_lanczos: f64,
+    /// Of `seconds_lanczos`: in the operator (the two block triangular solves and the mass
+    /// product); the rest is orthogonalisation, Rayleigh–Ritz and restarts.
+    pub seconds_operator: f64,
     /// Wall-clock seconds of the Sturm-count LDLᵀ factorizations.
     pub seconds_sturm: f64,
 }
@@ -172,7 +196,7 @@ pub fn sparse_modes(
     let block = opts.block_size.max(1);
     let base_dim = opts
         .max_dim
-        .unwrap_or((2 * nev).max(nev + 4 * block))
+        .unwrap_or((4 * nev).max(nev + 4 * block))
         .max(nev + 2 * block);
 
     if n <= opts.dense_below || n <= base_dim + 4 * block {
@@ -196,6 +220,7 @@ pub fn sparse_modes(
             rejected_attempts: Vec::new(),
             seconds_factor: 0.0,
             seconds_lanczos: 0.0,
+            seconds_operator: 0.0,
             seconds_sturm: 0.0,
         };
         return Ok((modes, report));
@@ -229,32 +254,29 @@ pub fn sparse_modes(
         },
     };
     let seconds_factor = t_factor.elapsed().as_secs_f64();
-    let (_fwd, inv) = analysis.perm();
-    let mut t = Vec::with_capacity(m.compute_nnz());
-    for (r, c, v) in triplets(m) {
-        t.push(Triplet::new(inv[r], inv[c], v));
-    }
-    let m_perm = SparseColMat::try_new_from_triplets(n, n, &t)
-        .map_err(|e| FeError::Sparse(format!("P M Pᵀ: {e:?}")))?;
+    let (fwd, inv) = analysis.perm();
+    let m_perm = PermutedSymmetric::new(m, &fwd, &inv)?;
+    // the pool's threads (rayon::current_num_threads) in the block solves and dense kernels
+    // dense kernels of the Lanczos sequential: on the skinny n × b blocks faer's parallel
+    // matmul was slower on the two shared cores (measured 2.4-5.6 s against 2.1-2.7 s at
+    // 30 240 DOF); the block solves and the mass product use the pool's threads themselves
     let par = Par::Seq;
     let mut dim = base_dim;
     let mut rejected = Vec::new();
-    let (mut seconds_lanczos, mut seconds_sturm) = (0.0, 0.0);
+    let (mut seconds_lanczos, mut seconds_sturm, mut seconds_operator) = (0.0, 0.0, 0.0);
     let mut applications = 0usize;
     let mut last_err = FeError::Eigen("no attempt made".into());
     let deadline = Instant::now() + opts.timeout;
     for attempt in 1..=opts.attempts.max(1) {
         let t_l = Instant::now();
         // shift-invert operator T x = L⁻¹ P M Pᵀ L⁻ᵀ x on a block, scratch allocated once
-        let mut mem = MemBuffer::new(llt.scratch(block, par));
         let mut tmp = Mat::<f64>::zeros(n, block);
-        let mut work = BlockProductWork::default();
+        let mut work = ProductWork::default();
         let mut apply = |mut out: MatMut<'_, f64>, x: MatRef<'_, f64>| {
-            let stack = MemStack::new(&mut mem);
             tmp.copy_from(x);
-            llt.lt_solve(tmp.as_mut(), par, stack);
-            csc_times_block(m_perm.as_ref(), tmp.as_ref(), out.as_mut(), &mut work);
-            llt.l_solve(out, par, stack);
+            split_solve(&llt, tmp.as_mut(), true);
+            m_perm.apply(tmp.as_ref(), out.as_mut(), &mut work);
+            split_solve(&llt, out, false);
         };
         let ks = block_krylov_schur(
             n,
@@ -265,12 +287,14 @@ pub fn sparse_modes(
                 block,
                 max_dim: dim,
                 tol: opts.tolerance,
+                per_pair: if opts.per_pair_test { count } else { 0 },
                 max_restarts: opts.max_restarts,
                 deadline,
                 par,
             },
         )?;
         seconds_lanczos += t_l.elapsed().as_secs_f64();
+        seconds_operator += ks.seconds_apply;
         applications += ks.applies;
         let (vals, vecs, restarts) = (ks.values, ks.vectors, ks.restarts);
         let conv = vals.len();
@@ -280,36 +304,23 @@ pub fn sparse_modes(
                     "only {conv} of {nev} Ritz pairs converged (subspace {dim})"
                 )));
             }
-            // back-transform: θ = scale_inv · θ', λ = σ + 1/θ, φ = Pᵀ L⁻ᵀ y / √θ
-            let mut y = vecs;
-            let mut mem = MemBuffer::new(llt.scratch(conv, par));
-            llt.lt_solve(y.as_mut(), par, MemStack::new(&mut mem));
-            let mut lambdas = Vec::with_capacity(conv);
-            let mut phi = Mat::zeros(n, conv);
-            for j in 0..conv {
-                let theta = vals[j];
+            for &theta in &vals {
                 if theta.is_nan() || theta <= 0.0 {
                     return Err(FeError::Eigen(format!(
                         "non-positive Ritz value {theta:e}: shift σ = {sigma:e} is not below the spectrum"
                     )));
                 }
-                lambdas.push(sigma + 1.0 / theta);
-                let s = 1.0 / theta.sqrt();
-                for r in 0..n {
-                    phi[(r, j)] = y[(inv[r], j)] * s;
+            }
+            // λ = σ + 1/θ, ascending as the modes will be sorted
+            let lambdas: Vec<f64> = vals.iter().map(|&theta| sigma + 1.0 / theta).collect();
+            let mut lam = lambdas.clone();
+            lam.sort_by(f64::total_cmp);
+            // the Sturm count at the cut between the last returned mode and the next distinct
+            // converged one: (cut, modes found below it, negative pivots, seconds)
+            let sturm_job = || -> Result<Option<(f64, usize, usize, f64)>, FeError> {
+                if !opts.sturm_check {
+                    return Ok(None);
                 }
-            }
-            let all = Modes::from_parts(lambdas, phi);
-            let orth = orthogonality_error(m, all.vectors.as_ref());
-            if orth > opts.orthogonality_tol {
-                return Err(FeError::Eigen(format!(
-                    "M-orthogonality check failed (max |φᵢᵀMφⱼ − δᵢⱼ| = {orth:e}): duplicated (ghost) Ritz vector"
-                )));
-            }
-            // Sturm cut between the last returned mode and the next distinct converged one
-            let (mut cut, mut found_below, mut sturm) = (None, None, None);
-            if opts.sturm_check {
-                let lam = &all.values;
                 let last = lam[count - 1];
                 let tolgap = 1e-7 * last.abs().max(sigma.abs()).max(1e-300);
                 let next = lam[count..].iter().copied().find(|&l| l - last > tolgap);
@@ -321,7 +332,43 @@ pub fn sparse_modes(
                 let t_s = Instant::now();
                 let a = shifted(k, m, c)?;
                 let negs = analysis.negative_pivots(a.as_ref())?;
-                seconds_sturm += t_s.elapsed().as_secs_f64();
+                Ok(Some((c, below, negs, t_s.elapsed().as_secs_f64())))
+            };
+            // back-transform φ = Pᵀ L⁻ᵀ y / √θ, M-orthogonality and residuals
+            let modes_job = || -> (Modes, f64, f64) {
+                let mut y = vecs;
+                split_solve(&llt, y.as_mut(), true);
+                let mut phi = Mat::zeros(n, conv);
+                for (j, &theta) in vals.iter().enumerate() {
+                    let s = 1.0 / theta.sqrt();
+                    for r in 0..n {
+                        phi[(r, j)] = y[(inv[r], j)] * s;
+                    }
+                }
+                let all = Modes::from_parts(lambdas, phi);
+                let orth = orthogonality_error(m, all.vectors.as_ref());
+                let modes = Modes {
+                    values: all.values[..count].to_vec(),
+                    frequencies_hz: all.frequencies_hz[..count].to_vec(),
+                    vectors: all.vectors.subcols(0, count).to_owned(),
+                };
+                let resid = max_residual(k, m, &modes);
+                (modes, orth, resid)
+            };
+            // with two threads the Sturm factorisation runs beside the back-transform and checks
+            let (sturm_res, (modes, orth, resid)) = if rayon::current_num_threads() >= 2 {
+                rayon::join(sturm_job, modes_job)
+            } else {
+                (sturm_job(), modes_job())
+            };
+            if orth > opts.orthogonality_tol {
+                return Err(FeError::Eigen(format!(
+                    "M-orthogonality check failed (max |φᵢᵀMφⱼ − δᵢⱼ| = {orth:e}): duplicated (ghost) Ritz vector"
+                )));
+            }
+            let (mut cut, mut found_below, mut sturm) = (None, None, None);
+            if let Some((c, below, negs, secs)) = sturm_res? {
+                seconds_sturm += secs;
                 if negs != below {
                     return Err(FeError::Eigen(format!(
                         "Sturm check failed: {negs} eigenvalues below {c:e} rad²/s² ({:.6} Hz) but {below} found",
@@ -332,11 +379,6 @@ pub fn sparse_modes(
                 found_below = Some(below);
                 sturm = Some(negs);
             }
-            let modes = Modes {
-                values: all.values[..count].to_vec(),
-                frequencies_hz: all.frequencies_hz[..count].to_vec(),
-                vectors: all.vectors.subcols(0, count).to_owned(),
-            };
             let report = SparseEigenReport {
                 dof: n,
                 shift: sigma,
@@ -348,7 +390,7 @@ pub fn sparse_modes(
                 converged: conv,
                 factor_nnz: analysis.factor_nnz(),
                 max_orthogonality_error: orth,
-                max_relative_residual: max_residual(k, m, &modes),
+                max_relative_residual: resid,
                 sturm_cut: cut,
                 sturm_count: sturm,
                 found_below_cut: found_below,
@@ -356,6 +398,7 @@ pub fn sparse_modes(
                 rejected_attempts: rejected.clone(),
                 seconds_factor,
                 seconds_lanczos,
+                seconds_operator,
                 seconds_sturm,
             };
             Ok((modes, report))
@@ -372,10 +415,33 @@ pub fn sparse_modes(
     Err(last_err)
 }
 
+/// `x ← L⁻ᵀ x` (`transpose`) or `x ← L⁻¹ x` on a block: with two or more threads in rayon's
+/// current pool the columns are split into two halves solved concurrently, each by the
+/// sequential supernodal kernel (the solves are bound by reading L; faer's parallel solve
+/// splits the supernodal tree instead, whose small supernodes near the leaves make it slower
+/// than the sequential kernel on this model).
+fn split_solve(llt: &Llt, x: MatMut<'_, f64>, transpose: bool) {
+    let one = |x: MatMut<'_, f64>| {
+        let mut mem = MemBuffer::new(llt.scratch(x.ncols(), Par::Seq));
+        let stack = MemStack::new(&mut mem);
+        if transpose {
+            llt.lt_solve(x, Par::Seq, stack);
+        } else {
+            llt.l_solve(x, Par::Seq, stack);
+        }
+    };
+    if rayon::current_num_threads() >= 2 && x.ncols() >= 2 {
+        let h = x.ncols() / 2;
+        let (a, b) = x.split_at_col_mut(h);
+        rayon::join(|| one(a), || one(b));
+    } else {
+        one(x);
+    }
+}
+
 /// `max |φᵢᵀ M φⱼ − δᵢⱼ|`.
 pub fn orthogonality_error(m: SparseColMatRef<'_, usize, f64>, phi: MatRef<'_, f64>) -> f64 {
-    let mut mp = Mat::zeros(phi.nrows(), phi.ncols());
-    csc_times_block(m, phi, mp.as_mut(), &mut BlockProductWork::default());
+    let mp = sparse_times_dense(m, phi);
     let mut g = Mat::zeros(phi.ncols(), phi.ncols());
     faer::linalg::matmul::matmul(
         g.as_mut(),
@@ -400,11 +466,8 @@ pub fn max_residual(
     k: SparseColMatRef<'_, usize, f64>, m: SparseColMatRef<'_, usize, f64>, modes: &Modes,
 ) -> f64 {
     let phi = modes.vectors.as_ref();
-    let mut kp = Mat::zeros(phi.nrows(), phi.ncols());
-    let mut mp = Mat::zeros(phi.nrows(), phi.ncols());
-    let mut work = BlockProductWork::default();
-    csc_times_block(k, phi, kp.as_mut(), &mut work);
-    csc_times_block(m, phi, mp.as_mut(), &mut work);
+    let kp = sparse_times_dense(k, phi);
+    let mp = sparse_times_dense(m, phi);
     let mut worst: f64 = 0.0;
     for j in 0..phi.ncols() {
         let l = modes.values[j];
