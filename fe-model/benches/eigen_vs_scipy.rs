@@ -92,6 +92,24 @@ struct Best {
     sturm: f64,
 }
 
+/// Our run's times and counts (up to the Sturm time, parenthesis open).
+fn ours_line(ours: &Best, rep: &SparseEigenReport) -> String {
+    format!(
+        "{:.3} s wall, {:.2} s CPU (factor {:.3} s, nnz(L) {}, block Lanczos {:.3} s [operator {:.3} s, {} vectors, block {}, basis {}, {} restarts], Sturm {:.3} s",
+        ours.wall,
+        ours.cpu,
+        rep.seconds_factor,
+        rep.factor_nnz,
+        rep.seconds_lanczos,
+        rep.seconds_operator,
+        rep.operator_applications,
+        rep.block_size,
+        rep.max_dim,
+        rep.restarts,
+        rep.seconds_sturm
+    )
+}
+
 fn main() {
     let repeat: usize = arg("--repeat").and_then(|r| r.parse().ok()).unwrap_or(2);
     let nev: usize = arg("--nev").and_then(|r| r.parse().ok()).unwrap_or(50);
@@ -241,20 +259,7 @@ fn main() {
             }
             let (modes, rep) = last.expect("a finite time");
             if no_peer {
-                println!(
-                    "  {nt} thread(s): ours {:.3} s wall, {:.2} s CPU (factor {:.3} s, nnz(L) {}, Lanczos {:.3} s [operator {:.3} s, {} vectors, block {}, basis {}, {} restarts], Sturm {:.3} s)",
-                    ours.wall,
-                    ours.cpu,
-                    rep.seconds_factor,
-                    rep.factor_nnz,
-                    rep.seconds_lanczos,
-                    rep.seconds_operator,
-                    rep.operator_applications,
-                    rep.block_size,
-                    rep.max_dim,
-                    rep.restarts,
-                    rep.seconds_sturm
-                );
+                println!("  {nt} thread(s): ours {})", ours_line(&ours, &rep));
                 continue;
             }
             let peer_vals: Vec<f64> = std::fs::read_to_string(&vals_file)
@@ -270,18 +275,8 @@ fn main() {
                 .fold(0.0f64, f64::max);
             println!("  {nt} thread(s):");
             println!(
-                "    ours: {:.3} s wall, {:.2} s CPU (factor {:.3} s, nnz(L) {}, block Lanczos {:.3} s [operator {:.3} s, {} vectors, block {}, basis {}, {} restarts], Sturm {:.3} s: {} below the cut = {} found), max |ΦᵀMΦ − I| {:.1e}, max residual {:.1e}",
-                ours.wall,
-                ours.cpu,
-                rep.seconds_factor,
-                rep.factor_nnz,
-                rep.seconds_lanczos,
-                rep.seconds_operator,
-                rep.operator_applications,
-                rep.block_size,
-                rep.max_dim,
-                rep.restarts,
-                rep.seconds_sturm,
+                "    ours: {}: {} below the cut = {} found), max |ΦᵀMΦ − I| {:.1e}, max residual {:.1e}",
+                ours_line(&ours, &rep),
                 rep.sturm_count.unwrap_or(0),
                 rep.found_below_cut.unwrap_or(0),
                 rep.max_orthogonality_error,
