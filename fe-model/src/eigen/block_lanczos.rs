@@ -10,6 +10,10 @@
 //! At the maximum basis size the Ritz pairs of `H_m` are formed; the residual of the pair
 //! `(θ, V_m y)` is `‖B Eᵀ y‖`; if the wanted pairs have not converged, the basis is contracted
 //! to the leading Ritz vectors plus the residual block (thick restart) and expanded again.
+//! After a restart the pairs are tested after every expanded block (the relation holds for
+//! every leading `V_q`), and the expansion stops where they pass: on the 50-mode tire 288
+//! instead of 304 operator applications at 30 240 DOF, 296 at 60 480 (a larger kept basis at
+//! the restart, 2/3 to 5/6 of it instead of half, changed neither count).
 
 use crate::FeError;
 use faer::linalg::matmul::matmul;
@@ -86,8 +90,10 @@ pub(crate) fn block_krylov_schur(
     let mut seconds_apply = 0.0;
     let mut w = Mat::<f64>::zeros(n, b);
     for restart in 0..=opts.max_restarts {
-        // expand until the basis has m expanded columns
-        while q_done < m {
+        // expand until the basis has m expanded columns; after a restart the Ritz pairs are
+        // also tested after every block, so that the cycle stops at the block where they
+        // converge instead of at m
+        let rr = loop {
             let t_apply = Instant::now();
             apply(w.as_mut(), v.as_ref().subcols(q_done, b));
             seconds_apply += t_apply.elapsed().as_secs_f64();
@@ -144,33 +150,25 @@ pub(crate) fn block_krylov_schur(
                     "block Lanczos exceeded its wall-clock limit after {restart} restarts"
                 )));
             }
-        }
-        // Rayleigh–Ritz on H_m
-        let hm = Mat::from_fn(m, m, |i, j| 0.5 * (h[(i, j)] + h[(j, i)]));
-        let (theta, y) = super::dense::self_adjoint_eigen_qr(hm.as_ref())?;
-        // descending order
-        let order: Vec<usize> = (0..m).rev().collect();
-        let theta_max = theta.iter().fold(0.0f64, |a, &t| a.max(t.abs()));
-        // residual block coupling: the rows m..m+b of H times y
-        let coupling = h.as_ref().submatrix(m, 0, b, m);
-        let mut converged = 0;
-        for (rank, &i) in order.iter().take(nev).enumerate() {
-            let r = (coupling * y.col(i)).norm_l2();
-            let scale = if rank < opts.per_pair {
-                theta[i].abs()
-            } else {
-                theta_max
-            };
-            if r <= opts.tol * scale {
-                converged += 1;
-            } else {
-                break;
+            if q_done == m || (restart > 0 && q_done >= nev + b) {
+                let rr = rayleigh_ritz(h.as_ref(), q_done, b, nev, opts)?;
+                if q_done == m || rr.converged == nev {
+                    break rr;
+                }
             }
-        }
+        };
+        let RitzTest {
+            theta,
+            y,
+            order,
+            converged,
+        } = rr;
+        let q = q_done;
+        let coupling = h.as_ref().submatrix(q, 0, b, q);
         let done = converged == nev || restart == opts.max_restarts;
         if done {
             let keep = converged;
-            let (x, _) = ritz_vectors(v.as_ref().subcols(0, m), y.as_ref(), &order[..keep], par);
+            let (x, _) = ritz_vectors(v.as_ref().subcols(0, q), y.as_ref(), &order[..keep], par);
             return Ok(BlockKsResult {
                 values: order[..keep].iter().map(|&i| theta[i]).collect(),
                 vectors: x,
@@ -203,6 +201,52 @@ pub(crate) fn block_krylov_schur(
         p = k + b;
     }
     Err(FeError::Eigen("block Lanczos: no restart left".into()))
+}
+
+/// Ritz pairs of the projected matrix of an expanded basis and how many of the wanted ones
+/// passed the convergence test.
+struct RitzTest {
+    /// Eigenvalues of `H_q`, ascending.
+    theta: Vec<f64>,
+    /// Eigenvectors of `H_q`, one column per value.
+    y: Mat<f64>,
+    /// Indices into `theta`, descending θ.
+    order: Vec<usize>,
+    /// Leading pairs (descending θ) that passed the test, at most `nev`.
+    converged: usize,
+}
+
+/// Rayleigh–Ritz on the leading `q × q` block of `H` (the first `q` expanded columns), with the
+/// residual of the pair `(θ, V_q y)` given by the coupling rows `q..q+b`, `‖B Eᵀ y‖` (the
+/// Krylov–Schur relation holds after every expanded block, not only at the full basis).
+fn rayleigh_ritz(
+    h: MatRef<'_, f64>, q: usize, b: usize, nev: usize, opts: &BlockKsOptions,
+) -> Result<RitzTest, FeError> {
+    let hq = Mat::from_fn(q, q, |i, j| 0.5 * (h[(i, j)] + h[(j, i)]));
+    let (theta, y) = super::dense::self_adjoint_eigen_qr(hq.as_ref())?;
+    let order: Vec<usize> = (0..q).rev().collect();
+    let theta_max = theta.iter().fold(0.0f64, |a, &t| a.max(t.abs()));
+    let coupling = h.submatrix(q, 0, b, q);
+    let mut converged = 0;
+    for (rank, &i) in order.iter().take(nev).enumerate() {
+        let r = (coupling * y.col(i)).norm_l2();
+        let scale = if rank < opts.per_pair {
+            theta[i].abs()
+        } else {
+            theta_max
+        };
+        if r <= opts.tol * scale {
+            converged += 1;
+        } else {
+            break;
+        }
+    }
+    Ok(RitzTest {
+        theta,
+        y,
+        order,
+        converged,
+    })
 }
 
 /// Squared Euclidean norms of the columns of `w`, summed in eight interleaved partial sums (one
