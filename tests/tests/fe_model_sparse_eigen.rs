@@ -113,16 +113,19 @@ fn sparse_matches_dense_on_3000_dof_model() {
     assert!(rep.max_orthogonality_error >= orth - 1e-15);
 }
 
-/// The threaded path (split block solves, parallel mass products and factorisation, Sturm
-/// count beside the back-transform) against the one-thread path that small factors take, in a
-/// two-thread pool: a second run of the same solver, equal eigenvalues to round-off.
-#[test]
-fn two_thread_path_matches_one_thread_path() {
+/// K and M (consistent) of a free circular ring of radius 0.5 m with `arc_elements` frame
+/// elements (the belt-loop generator with zero centre distance), 3 DOFs per node.
+fn free_ring(
+    arc_elements: usize,
+) -> (
+    faer::sparse::SparseColMat<usize, f64>,
+    faer::sparse::SparseColMat<usize, f64>,
+) {
     let cfg = BeltLoopConfig {
         center_distance: 0.0,
         radius: 0.5,
         span_elements: 0,
-        arc_elements: 400,
+        arc_elements,
         section: Frame2dSection {
             ea: 1e5,
             ei: 2.0,
@@ -130,8 +133,18 @@ fn two_thread_path_matches_one_thread_path() {
         },
         tension: 0.0,
     };
-    let model = belt_loop(&cfg).unwrap();
-    let (k, m) = model.k_and_m(MassKind::Consistent, false).unwrap();
+    belt_loop(&cfg)
+        .unwrap()
+        .k_and_m(MassKind::Consistent, false)
+        .unwrap()
+}
+
+/// The threaded path (split block solves, parallel mass products and factorisation, Sturm
+/// count beside the back-transform) against the one-thread path that small factors take, in a
+/// two-thread pool: a second run of the same solver, equal eigenvalues to round-off.
+#[test]
+fn two_thread_path_matches_one_thread_path() {
+    let (k, m) = free_ring(400);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
@@ -158,20 +171,7 @@ fn two_thread_path_matches_one_thread_path() {
 /// count equals the modes found below the cut, also when the requested count splits a pair.
 #[test]
 fn free_free_ring_with_repeated_modes_passes_sturm_check() {
-    let cfg = BeltLoopConfig {
-        center_distance: 0.0,
-        radius: 0.5,
-        span_elements: 0,
-        arc_elements: 250,
-        section: Frame2dSection {
-            ea: 1e5,
-            ei: 2.0,
-            mass_per_length: 0.5,
-        },
-        tension: 0.0,
-    };
-    let model = belt_loop(&cfg).unwrap();
-    let (k, m) = model.k_and_m(MassKind::Consistent, false).unwrap();
+    let (k, m) = free_ring(250);
     assert_eq!(k.nrows(), 1500);
     for count in [4usize, 12, 25] {
         let (sp, rep) = sparse_modes(
