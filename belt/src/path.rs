@@ -177,6 +177,38 @@ impl SpanLine {
         self.bisector_segment(points).map(|(_, p)| p)
     }
 
+    /// The segments `i → i+1` of the closed polyline `points` (the deformed belt, in travel
+    /// order) that carry the span's force: those whose mid-points lie over the span's middle
+    /// half ([`Self::middle_half_contains`]), running without a break from the one that crosses
+    /// its bisector ([`Self::bisector_crossing`]). Empty if the polyline does not cross it.
+    ///
+    /// Contiguity matters where another part of the belt passes within a quarter span length
+    /// of this span's line: on `apps/belt/examples/fead-three-pulley.toml` the slack span under
+    /// the back-side idler, with the arm turned past −0.19 rad, lies in the tight span's middle
+    /// band, and one of its elements was averaged into the tight span's force (issue 34: the
+    /// 25 % torque residual at 1500 rpm).
+    pub fn middle_run(&self, points: &[[f64; 2]]) -> Vec<usize> {
+        let n = points.len();
+        let Some((i0, _)) = self.bisector_segment(points) else {
+            return Vec::new();
+        };
+        let inside = |i: usize| {
+            let (a, b) = (points[i % n], points[(i + 1) % n]);
+            self.middle_half_contains([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])])
+        };
+        let mut run: Vec<usize> = (i0..i0 + n)
+            .take_while(|&i| inside(i))
+            .map(|i| i % n)
+            .collect();
+        for i in (1..n).map(|j| (i0 + n - j) % n) {
+            if run.len() >= n || !inside(i) {
+                break;
+            }
+            run.push(i);
+        }
+        run
+    }
+
     /// [`Self::bisector_crossing`] with the index `i` of the segment `i → i+1` it lies on.
     fn bisector_segment(&self, points: &[[f64; 2]]) -> Option<(usize, [f64; 2])> {
         let n = points.len();
@@ -612,6 +644,33 @@ mod tests {
         for (k, sp) in spans.iter().enumerate() {
             let m = span_midpoint(sp);
             assert_eq!(BeltPath::span_middle_of(&spans, m), Some(k));
+        }
+    }
+
+    // The elements that carry a span's force (SpanLine::middle_run; reference: the path's own
+    // arc lengths). On a two-pulley path whose spans lie 0.09 m apart, inside each other's
+    // middle band (a quarter span, 0.1125 m), each span's run is exactly the polyline's
+    // segments with both ends on that span's middle half, and the runs are disjoint.
+    #[test]
+    fn middle_run_is_the_span_s_own_middle_half() {
+        let path = BeltPath::two_pulleys(0.45, 0.05, 0.04).unwrap();
+        let spans = path.spans();
+        let n = 400;
+        let pts = polyline(&path, n);
+        let mut seen = vec![false; n];
+        for sp in &spans {
+            let run = sp.middle_run(&pts);
+            assert!(run.len() > 50, "{}", run.len());
+            for &i in &run {
+                assert!(!seen[i], "segment {i} in two runs");
+                seen[i] = true;
+                let (a, b) = (pts[i], pts[(i + 1) % n]);
+                for p in [a, b] {
+                    let (u, w) = sp.local(p);
+                    assert!(w.abs() < 1e-9, "segment {i} off the span's line by {w} m");
+                    assert!(u > 0.24 * sp.length && u < 0.76 * sp.length);
+                }
+            }
         }
     }
 

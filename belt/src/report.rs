@@ -418,22 +418,20 @@ impl Report {
 
 /// Force and transverse mid-point displacement of every span of `path` for a belt whose
 /// deformed nodes are `nodes` (closed polyline) and whose element `i → i+1` carries
-/// `forces[i]` \[N\]: the mean force of the elements whose mid-points lie over the middle half
-/// of the span ([`BeltPath::span_middle_of`]), the polyline's crossing of the span's
+/// `forces[i]` \[N\]: the mean force of the elements over the middle half of the span that run
+/// without a break from its bisector ([`crate::path::SpanLine::middle_run`]: not the elements
+/// of another span that passes within the band), the polyline's crossing of the span's
 /// bisector and the line of action through its nodes over the middle half
 /// ([`BeltPath::lines_of_action`]).
 pub fn span_states(path: &BeltPath, nodes: &[[f64; 2]], forces: &[f64]) -> Vec<SpanState> {
-    let n = nodes.len();
     let spans = path.spans();
-    let mut sum = vec![(0.0, 0usize); spans.len()];
-    for i in 0..n {
-        let (a, b) = (nodes[i], nodes[(i + 1) % n]);
-        let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-        if let Some(k) = BeltPath::span_middle_of(&spans, mid) {
-            sum[k].0 += forces[i];
-            sum[k].1 += 1;
-        }
-    }
+    let sum: Vec<(f64, usize)> = spans
+        .iter()
+        .map(|sp| {
+            let run = sp.middle_run(nodes);
+            (run.iter().map(|&i| forces[i]).sum(), run.len())
+        })
+        .collect();
     spans
         .iter()
         .zip(span_offsets(path, nodes))

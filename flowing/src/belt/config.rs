@@ -227,6 +227,36 @@ pub enum BeltEquations {
     Lagrange,
 }
 
+/// How the flowing model's belt elements carry their bending moment (issue 34 item 2).
+/// Selectable in `[models.flowing]` as `bending`.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema, Default,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum BendingForce {
+    /// The Hermite frame element of Ribaric (5.5), linear about the mounted path and stress-free
+    /// on it: the belt's natural curvature is the path's, which jumps by `1/R` at every tangent
+    /// point, so the bending forces do work on the material's slide (`EI/R²` = 33 N on the
+    /// default fead drive's 28 mm pulleys; issue 34).
+    #[default]
+    Linear,
+    /// A naturally straight, co-rotated bending element with its geometric stiffness
+    /// ([`super::model::BendElement`]): the bending energy `½ ∫ EI κ² ds` of the true
+    /// curvature, so the material flowing through a wrap does no net bending work. Replaces the
+    /// bending block of the elastic stiffness `K_e` (the reduction basis stays that of the
+    /// linear model); the geometric stiffness of the pre-tension `K_g(T0)` stays linear, and the
+    /// bending is undamped (the linear `β K_b` on the advected lift-off deflection dissipated
+    /// 70 W on the default fead drive at 800 rpm against the nodal belt's 25.8 W in all).
+    /// Measured 2026-12-06 (torque / power residual, default fead drive at 800 rpm): with the
+    /// chord damping ([`ViscousForce::Chord`]) 0.46 % / −0.88 % (crank 18.49 N m; the linear
+    /// model 0.72 % / −1.06 %, 18.29 N m; nodal 19.00 N m), with the linear damping
+    /// 0.48 % / −6.0 %; on Table 6-1 at 10 N m 1.35 % / −0.31 % with Δω = 0.19186 rad/s
+    /// (Ribaric's 0.18630: a naturally straight belt is another belt, stiffer to wrap), and
+    /// runs on the default fead drive with 4 or 8 mm wraps or 40 free modes stop on a singular
+    /// Newton matrix. Not the default (issue 34, open).
+    CoRotated,
+}
+
 /// The flowing-material model's settings (Ribaric (5.14)).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema, Default)]
 #[serde(default, deny_unknown_fields)]
@@ -241,6 +271,8 @@ pub struct FlowingSettings {
     pub viscous_force: ViscousForce,
     /// The equations of motion (default: Ribaric's projection (5.14)).
     pub equations: BeltEquations,
+    /// The elements' bending moment (default: linear, Ribaric (5.5)).
+    pub bending: BendingForce,
 }
 
 impl Validate for FlowingSettings {

@@ -123,10 +123,10 @@
 //! ([`FlowingBelt::element_forces`]); the power these damping forces take from the belt is
 //! [`FlowingBelt::damping_dissipation`].
 
-use super::config::{AxialForce, BeltEquations, FlowingSettings, ViscousForce};
+use super::config::{AxialForce, BeltEquations, BendingForce, FlowingSettings, ViscousForce};
 use super::contact::{NodeContact, PulleyFrame, node_contact};
 use super::coordinates::{ArmState, DriveCoordinates};
-use super::model::{BeltFe, FlowingBasis, NODE_DOFS, chord_tensions};
+use super::model::{BeltFe, BendElement, FlowingBasis, NODE_DOFS, chord_tensions};
 use super::statics::dense_equilibrium;
 use belt::tensioner::cross;
 use belt::{Arm, Drive, Motion};
@@ -234,6 +234,9 @@ pub struct FlowingBelt {
     bar_span: Vec<f64>,
     /// `β EA / l₀` of each bar \[N s/m\].
     bar_kv: Vec<f64>,
+    /// The naturally straight, co-rotated bending elements ([`BendingForce::CoRotated`]; empty
+    /// with the linear bending of Ribaric (5.5), whose block then stays in the stiffness).
+    bend: Vec<BendElement>,
 }
 
 /// One bar's axial damping force along its deformed chord ([`ViscousForce::Chord`]).
@@ -319,6 +322,12 @@ fn gemv(y: &mut [f64], a: &Mat<f64>, x: &[f64], s: f64) {
     }
 }
 
+/// The nodal DOFs `(x_i, y_i, θ_i, x_j, y_j, θ_j)` of a bending element.
+fn bend_dofs(e: &BendElement) -> [usize; 6] {
+    let (i, j) = (NODE_DOFS * e.i, NODE_DOFS * e.j);
+    [i, i + 1, i + 2, j, j + 1, j + 2]
+}
+
 impl FlowingBelt {
     /// The flowing-material model of `drive` (Ribaric (5.14)): the stationary loop of
     /// `settings.mesh` on the mounted path, the basis of `settings.reduction`, all projections
@@ -337,8 +346,43 @@ impl FlowingBelt {
             fe.frame_turn = &fe.frame_turn - &t1;
             fe.frame_turn2 = &fe.frame_turn2 - &t2;
         }
+        // the basis is built on the linear stiffness of Ribaric (5.5) in either case
         let basis = FlowingBasis::new(&fe, settings.reduction.free_modes)?;
+        let bend = if settings.bending == BendingForce::CoRotated {
+            // the bending block moves out of the linear stiffness into Self::bending_forces
+            let els = BendElement::loop_of(&fe.position, &fe.tangent, drive.belt().ei);
+            // ... and out of the Rayleigh damping: β K_b on the natural-straight belt's steady
+            // lift-off deflection, advected through the mesh (v T_,s z), dissipated 70 W on the
+            // default fead drive at 800 rpm (149 W with Lagrange's equations) where the nodal
+            // belt's whole damping takes 25.8 W (issue 34): the bending is undamped
+            let beta = fe.drive.damping().beta;
+            for e in &els {
+                let k = e.linear_stiffness();
+                let dofs = bend_dofs(e);
+                let turn = super::model::chord_turn_rate(
+                    fe.position[e.i],
+                    fe.position[e.j],
+                    fe.tangent[e.i],
+                    fe.tangent[e.j],
+                );
+                let kj = super::model::corotational_rate_block(&k);
+                let kt: [[f64; 6]; 6] = std::array::from_fn(|a| std::array::from_fn(|b| kj[b][a]));
+                let jkj = super::model::corotational_rate_block(&kt);
+                for a in 0..6 {
+                    for b in 0..6 {
+                        fe.stiffness[(dofs[a], dofs[b])] -= k[a][b];
+                        fe.damping[(dofs[a], dofs[b])] -= beta * k[a][b];
+                        fe.frame_turn[(dofs[a], dofs[b])] -= turn * kj[a][b];
+                        fe.frame_turn2[(dofs[a], dofs[b])] -= turn * turn * jkj[a][b];
+                    }
+                }
+            }
+            els
+        } else {
+            Vec::new()
+        };
         let mut belt = Self::on(fe, basis, drive.motions(), drive.arm().copied())?;
+        belt.bend = bend;
         belt.exact_axial = settings.axial_force == AxialForce::CoRotated;
         belt.chord_viscous = chord;
         belt.lagrange = settings.equations == BeltEquations::Lagrange;
@@ -486,6 +530,7 @@ impl FlowingBelt {
             chord_viscous: false,
             bar_span: Vec::new(),
             bar_kv: Vec::new(),
+            bend: Vec::new(),
         })
     }
 
@@ -944,6 +989,48 @@ impl FlowingBelt {
         }
     }
 
+    /// The nodal forces `−∂U_b/∂δ` (`3N`) of the co-rotated bending elements
+    /// ([`BendingForce::CoRotated`], [`BendElement::forces`]) at the deflection `δ = T z`; with
+    /// `tangent` also `K_b T` (`3N × m`, `K_b = ∂²U_b/∂δ²`).
+    fn bending_forces(&self, z: &[f64], tangent: bool) -> (Vec<f64>, Mat<f64>) {
+        let d = self.deflection(z);
+        let (n, m) = (self.fe.n_dofs(), self.m);
+        let t = &self.basis.t;
+        let mut f = vec![0.0; n];
+        let mut kt = if tangent {
+            Mat::<f64>::zeros(n, m)
+        } else {
+            Mat::zeros(0, 0)
+        };
+        for e in &self.bend {
+            let (fe, ke) = e.forces(&d, tangent);
+            let dofs = bend_dofs(e);
+            for a in 0..6 {
+                f[dofs[a]] += fe[a];
+                if !tangent {
+                    continue;
+                }
+                for b in 0..6 {
+                    let k = ke[a][b];
+                    if k != 0.0 {
+                        for c in 0..m {
+                            kt[(dofs[a], c)] += k * t[(dofs[b], c)];
+                        }
+                    }
+                }
+            }
+        }
+        (f, kt)
+    }
+
+    /// Bending energy `U_b = Σ_e ½ θ̄ᵀ B θ̄` \[J\] of the co-rotated bending elements at the
+    /// modal coordinates `z` ([`BendElement::energy`]; 0 with the linear bending of Ribaric
+    /// (5.5), whose energy is part of `½ δᵀ K δ`).
+    pub fn bending_energy(&self, z: &[f64]) -> f64 {
+        let d = self.deflection(z);
+        self.bend.iter().map(|e| e.energy(&d)).sum()
+    }
+
     /// `(K_t, C_t)` as dense matrices: `−∂f/∂q`, `−∂f/∂v`.
     fn tangent(&self, t: f64, q: &[f64], v: &[f64]) -> (Mat<f64>, Mat<f64>) {
         let m = self.m;
@@ -1027,6 +1114,28 @@ impl FlowingBelt {
         }
         if self.chord_viscous {
             self.chord_viscous_tangent(z, zd, vb, &mut kq, &mut cv);
+        }
+        if !self.bend.is_empty() {
+            // −∂/∂z of Pᵀ f_b = Pᵀ K_b T (row 0 e_t with Ribaric's projection (5.14) only:
+            // with Lagrange's equations U_b does not depend on s_b)
+            let (_, kt) = self.bending_forces(z, true);
+            let tk = self.basis.t.transpose() * &kt;
+            for k in 0..m {
+                if !self.lagrange {
+                    kq[(0, k + 1)] += self
+                        .fe
+                        .tangent
+                        .iter()
+                        .enumerate()
+                        .map(|(i, e)| {
+                            e[0] * kt[(NODE_DOFS * i, k)] + e[1] * kt[(NODE_DOFS * i + 1, k)]
+                        })
+                        .sum::<f64>();
+                }
+                for r in 0..m {
+                    kq[(r + 1, k + 1)] += tk[(r, k)];
+                }
+            }
         }
         let arm = self.coords.arm_state(q, v);
         // contact: f[0..=m] += Pᵢᵀ F, f[spin] += τ, f[arm] += −(c − p) × F
@@ -1235,6 +1344,19 @@ impl SecondOrderSystem for FlowingBelt {
                 }
             }
         }
+        if !self.bend.is_empty() {
+            let (fb, _) = self.bending_forces(z, false);
+            if !self.lagrange {
+                head[0] += self
+                    .fe
+                    .tangent
+                    .iter()
+                    .enumerate()
+                    .map(|(i, e)| e[0] * fb[NODE_DOFS * i] + e[1] * fb[NODE_DOFS * i + 1])
+                    .sum::<f64>();
+            }
+            gemv_t(&mut head[1..], &self.basis.t, 0, &fb, 1.0);
+        }
         tail.fill(0.0);
         let arm = self.coords.arm_state(q, v);
         for r in &self.rows {
@@ -1298,6 +1420,13 @@ pub(crate) mod tests {
     pub(crate) fn layout_belt_with(
         axial_force: AxialForce, viscous_force: ViscousForce,
     ) -> FlowingBelt {
+        layout_belt_bending(axial_force, viscous_force, BendingForce::Linear)
+    }
+
+    /// [`layout_belt_with`] with the bending force `bending`.
+    pub(crate) fn layout_belt_bending(
+        axial_force: AxialForce, viscous_force: ViscousForce, bending: BendingForce,
+    ) -> FlowingBelt {
         let free = |j| Motion::load(j, Signal::constant(1.5));
         let pulleys = vec![
             Pulley::new(
@@ -1359,6 +1488,7 @@ pub(crate) mod tests {
             },
             axial_force,
             viscous_force,
+            bending,
             ..FlowingSettings::default()
         };
         FlowingBelt::new(&drive, &settings).unwrap()
@@ -1592,6 +1722,20 @@ pub(crate) mod tests {
             check_layout_tangent(
                 layout_belt_with(axial, ViscousForce::Chord).with_lagrange_equations(),
             );
+        }
+    }
+
+    // The analytic tangent of the co-rotated bending elements (BendingForce::CoRotated, issue
+    // 34) against central differences of the forces, with both equations of motion and both
+    // axial forces.
+    #[test]
+    fn layout_tangent_with_co_rotated_bending_matches_finite_differences() {
+        for axial in [AxialForce::Linear, AxialForce::CoRotated] {
+            for viscous in [ViscousForce::Linear, ViscousForce::Chord] {
+                let b = || layout_belt_bending(axial, viscous, BendingForce::CoRotated);
+                check_layout_tangent(b());
+                check_layout_tangent(b().with_lagrange_equations());
+            }
         }
     }
 

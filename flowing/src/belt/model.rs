@@ -546,6 +546,160 @@ impl Bar {
     }
 }
 
+/// A naturally straight, co-rotated Euler–Bernoulli bending element `i → j` of the closed loop
+/// (issue 34 item 2, [`super::BendingForce::CoRotated`]). Its bending energy is that of a belt
+/// that is straight when unstressed,
+///
+/// ```text
+///   U_e = ½ θ̄ᵀ B θ̄ = (2 EI/l₀)(θ̄_i² + θ̄_i θ̄_j + θ̄_j²),   B = (EI/l₀) [4 2; 2 4]
+///   θ̄_k = θ̄₀,k + θ_k − Δψ,   Δψ = atan2(u × c, u · c),   c = l₀ u + d_j − d_i
+/// ```
+///
+/// with `θ̄_k` the end rotations relative to the deformed chord `c` (the Hermite cubic's
+/// bending block of Ribaric (5.5) written in the co-rotated frame; Crisfield, *Non-linear
+/// Finite Element Analysis of Solids and Structures*, vol. 1, §7.2), `θ̄₀,k` the angle from the
+/// mounted chord `u` to the path tangent at node `k` (`∓Δ/2` on an arc element of angle `Δ`,
+/// 0 on a span) and `θ_k` the nodal rotation deflections. On a circular arc of radius `R` the
+/// element's energy is `EI Δ²/(2 l₀)`, the constant curvature `Δ/l₀` of its cubic over its chord
+/// (`EI l₀/(2R²)` to `O(Δ²)`: `(Δ/2)/sin(Δ/2)`), so the loop carries `½ ∫ EI κ² ds` of its
+/// true curvature: the energy depends on the shape only, not on which material fills it, and the
+/// material flowing through a wrap does no bending work at the tangent points (Ribaric (5.5)'s
+/// frame elements are stress-free on the mounted polygon, a natural curvature that jumps by `1/R`
+/// there). The linear model's bending block `Gᵀ B G` at the mounted state (`θ̄₀ = 0`) is
+/// [`Self::linear_stiffness`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BendElement {
+    /// First node.
+    pub i: usize,
+    /// Second node.
+    pub j: usize,
+    /// Unit mounted chord `u`.
+    pub u: [f64; 2],
+    /// Mounted chord length `l₀` \[m\].
+    pub l: f64,
+    /// Mounted end rotations relative to the chord `θ̄₀` \[rad\].
+    pub theta0: [f64; 2],
+    /// Bending stiffness `EI` \[N m²\].
+    pub ei: f64,
+}
+
+impl BendElement {
+    /// The elements of the closed loop of nodes at `position` with path tangents `tangent`
+    /// (bending stiffness `ei` \[N m²\]).
+    pub fn loop_of(position: &[[f64; 2]], tangent: &[[f64; 2]], ei: f64) -> Vec<Self> {
+        loop_chords(position)
+            .map(|(i, j, [dx, dy], l)| {
+                let u = [dx / l, dy / l];
+                let angle =
+                    |t: [f64; 2]| (u[0] * t[1] - u[1] * t[0]).atan2(u[0] * t[0] + u[1] * t[1]);
+                Self {
+                    i,
+                    j,
+                    u,
+                    l,
+                    theta0: [angle(tangent[i]), angle(tangent[j])],
+                    ei,
+                }
+            })
+            .collect()
+    }
+
+    /// `B = (EI/l₀) [4 2; 2 4]`.
+    fn b(&self) -> [[f64; 2]; 2] {
+        let k = self.ei / self.l;
+        [[4.0 * k, 2.0 * k], [2.0 * k, 4.0 * k]]
+    }
+
+    /// The deformed chord `c` under the deflections `d` (3 per node).
+    fn chord(&self, d: &[f64]) -> [f64; 2] {
+        [
+            self.l * self.u[0] + d[3 * self.j] - d[3 * self.i],
+            self.l * self.u[1] + d[3 * self.j + 1] - d[3 * self.i + 1],
+        ]
+    }
+
+    /// End rotations `θ̄` relative to the deformed chord \[rad\].
+    pub fn rotations(&self, d: &[f64]) -> [f64; 2] {
+        let (u, c) = (self.u, self.chord(d));
+        let dpsi = (u[0] * c[1] - u[1] * c[0]).atan2(u[0] * c[0] + u[1] * c[1]);
+        [
+            self.theta0[0] + d[3 * self.i + 2] - dpsi,
+            self.theta0[1] + d[3 * self.j + 2] - dpsi,
+        ]
+    }
+
+    /// Bending energy `U_e = ½ θ̄ᵀ B θ̄` \[J\].
+    pub fn energy(&self, d: &[f64]) -> f64 {
+        let (t, b) = (self.rotations(d), self.b());
+        0.5 * (b[0][0] * t[0] * t[0] + 2.0 * b[0][1] * t[0] * t[1] + b[1][1] * t[1] * t[1])
+    }
+
+    /// The element's forces on its nodes, `−∂U_e/∂(x_i, y_i, θ_i, x_j, y_j, θ_j)`, and with
+    /// `tangent` the stiffness `∂²U_e/∂(…)²`: with the end moments `m = B θ̄`, `n̂ = J c/|c|`,
+    ///
+    /// ```text
+    ///   −∂U/∂θ_k = −m_k,   −∂U/∂d_i = −(m_i + m_j) n̂/l,   −∂U/∂d_j = +(m_i + m_j) n̂/l
+    ///   K = Gᵀ B G − (m_i + m_j) [H −H; −H H],   H = ∂²ψ/∂c² = [2c_x c_y, c_y² − c_x²; ·, −2c_x c_y]/l⁴
+    /// ```
+    ///
+    /// (`G = ∂θ̄/∂(…)`, rows `[n̂/l, 1, −n̂/l, 0]` and `[n̂/l, 0, −n̂/l, 1]`, `l = |c|`).
+    pub fn forces(&self, d: &[f64], tangent: bool) -> ([f64; 6], [[f64; 6]; 6]) {
+        let c = self.chord(d);
+        let l2 = c[0] * c[0] + c[1] * c[1];
+        // ∂ψ/∂c = n̂/l = (−c_y, c_x)/l²
+        let p = [-c[1] / l2, c[0] / l2];
+        let (t, b) = (self.rotations(d), self.b());
+        let m = [
+            b[0][0] * t[0] + b[0][1] * t[1],
+            b[1][0] * t[0] + b[1][1] * t[1],
+        ];
+        let s = m[0] + m[1];
+        let f = [-s * p[0], -s * p[1], -m[0], s * p[0], s * p[1], -m[1]];
+        let mut k = [[0.0; 6]; 6];
+        if tangent {
+            let g = [
+                [p[0], p[1], 1.0, -p[0], -p[1], 0.0],
+                [p[0], p[1], 0.0, -p[0], -p[1], 1.0],
+            ];
+            let l4 = l2 * l2;
+            let h = [
+                [2.0 * c[0] * c[1] / l4, (c[1] * c[1] - c[0] * c[0]) / l4],
+                [(c[1] * c[1] - c[0] * c[0]) / l4, -2.0 * c[0] * c[1] / l4],
+            ];
+            for (a, row) in k.iter_mut().enumerate() {
+                for (e, x) in row.iter_mut().enumerate() {
+                    *x = (0..2)
+                        .map(|r| (0..2).map(|q| g[r][a] * b[r][q] * g[q][e]).sum::<f64>())
+                        .sum();
+                }
+            }
+            // −(m_i + m_j) ∂²ψ/∂d²: translations (0, 1) of i and (3, 4) of j
+            for (ai, sa) in [(0, -1.0), (3, 1.0)] {
+                for (ei, se) in [(0, -1.0), (3, 1.0)] {
+                    for r in 0..2 {
+                        for q in 0..2 {
+                            k[ai + r][ei + q] -= s * sa * se * h[r][q];
+                        }
+                    }
+                }
+            }
+        }
+        (f, k)
+    }
+
+    /// The linear model's bending block at the mounted state, stress-free there
+    /// (`θ̄₀ = 0`): `G₀ᵀ B G₀` with `G₀` of the mounted chord — the Hermite bending block of the
+    /// frame element of Ribaric (5.5) in global axes (6 × 6, `x, y, θ` per node).
+    pub fn linear_stiffness(&self) -> [[f64; 6]; 6] {
+        let straight = Self {
+            theta0: [0.0; 2],
+            ..*self
+        };
+        let zero = vec![0.0; 3 * (self.i.max(self.j) + 1)];
+        straight.forces(&zero, true).1
+    }
+}
+
 /// The flowing-material basis `δ = T z` with its periodic derivatives along s (Ribaric
 /// (5.9)–(5.13)).
 ///
@@ -828,6 +982,138 @@ pub(crate) mod tests {
             for (a, row) in g0.iter().enumerate() {
                 for (b, x) in row.iter().enumerate() {
                     assert!((x - k * u[a] * u[b]).abs() < 1e-9 * ea / l);
+                }
+            }
+        }
+    }
+
+    // The naturally straight co-rotated bending element (issue 34 item 2) against three
+    // independent references: (1) closed form, a ring of n elements on a circle of radius R
+    // stores EI Δ²/(2 l₀) per element (Δ = 2π/n, l₀ = 2R sin(Δ/2)), → π EI/R = ½ ∫ EI κ² ds,
+    // and is in equilibrium (a straight ring closed on itself, no nodal force); (2) invariance,
+    // a finite rigid rotation and translation of a deflected loop leaves the energy unchanged;
+    // (3) central differences of the energy give the forces, and of the forces the tangent;
+    // (4) at the mounted state without its natural curvature the tangent is the Hermite bending
+    // block of fe-model's Frame2d (K_e minus its axial bar).
+    #[test]
+    fn co_rotated_bending_element_against_closed_forms() {
+        let (ei, r) = (0.026, 0.028);
+        for n in [8usize, 32, 128] {
+            let dphi = 2.0 * std::f64::consts::PI / n as f64;
+            let pos: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let a = dphi * k as f64;
+                    [r * a.cos(), r * a.sin()]
+                })
+                .collect();
+            let tan: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let a = dphi * k as f64;
+                    [-a.sin(), a.cos()]
+                })
+                .collect();
+            let els = BendElement::loop_of(&pos, &tan, ei);
+            let d = vec![0.0; 3 * n];
+            let u: f64 = els.iter().map(|e| e.energy(&d)).sum();
+            let l0 = 2.0 * r * (0.5 * dphi).sin();
+            let exact = n as f64 * ei * dphi * dphi / (2.0 * l0);
+            assert!((u - exact).abs() < 1e-12 * exact, "n = {n}: {u} vs {exact}");
+            let ring = std::f64::consts::PI * ei / r;
+            let rel = (0.5 * dphi) / (0.5 * dphi).sin() - 1.0;
+            assert!(((u - ring) / ring - rel).abs() < 1e-12, "n = {n}");
+            let mut f = vec![0.0; 3 * n];
+            for e in &els {
+                let (fe, _) = e.forces(&d, false);
+                for (a, x) in fe.iter().enumerate() {
+                    let k = if a < 3 { 3 * e.i + a } else { 3 * e.j + a - 3 };
+                    f[k] += x;
+                }
+            }
+            let big = f.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            assert!(big < 1e-9 * ei / (r * r), "n = {n}: ring force {big} N");
+        }
+        // a four-node loop with a span and an arc, deflected, then moved rigidly
+        let pos = [[0.0, 0.0], [0.02, 0.0], [0.03, 0.01], [0.01, 0.015]];
+        let tan = [[1.0, 0.0], [1.0, 0.0], [0.6, 0.8], [-0.8, 0.6]];
+        let els = BendElement::loop_of(&pos, &tan, ei);
+        let d0: Vec<f64> = (0..12)
+            .map(|k| 1e-3 * ((k as f64 * 1.7).sin() + if k % 3 == 2 { 50.0 } else { 0.0 }))
+            .collect();
+        let energy = |d: &[f64]| els.iter().map(|e| e.energy(d)).sum::<f64>();
+        let (phi, c, shift) = (0.7f64, [0.01, -0.02], [0.003, -0.001]);
+        let (cs, sn) = (phi.cos(), phi.sin());
+        let moved: Vec<f64> = (0..12)
+            .map(|k| {
+                let (i, a) = (k / 3, k % 3);
+                if a == 2 {
+                    return d0[k] + phi;
+                }
+                let x = [
+                    pos[i][0] + d0[3 * i] - c[0],
+                    pos[i][1] + d0[3 * i + 1] - c[1],
+                ];
+                let y = [cs * x[0] - sn * x[1], sn * x[0] + cs * x[1]];
+                c[a] + y[a] + shift[a] - pos[i][a]
+            })
+            .collect();
+        let (u0, u1) = (energy(&d0), energy(&moved));
+        assert!(u0 > 1e-3 && (u1 - u0).abs() < 1e-12 * u0, "{u0} vs {u1}");
+        for e in &els {
+            let (f, k) = e.forces(&d0, true);
+            let dofs = [
+                3 * e.i,
+                3 * e.i + 1,
+                3 * e.i + 2,
+                3 * e.j,
+                3 * e.j + 1,
+                3 * e.j + 2,
+            ];
+            for b in 0..6 {
+                let h = 1e-7;
+                let (mut dp, mut dm) = (d0.clone(), d0.clone());
+                dp[dofs[b]] += h;
+                dm[dofs[b]] -= h;
+                let fd = -(e.energy(&dp) - e.energy(&dm)) / (2.0 * h);
+                assert!(
+                    (fd - f[b]).abs() < 1e-6 * (1.0 + f[b].abs()),
+                    "f[{b}] {fd} vs {}",
+                    f[b]
+                );
+                let (fp, _) = e.forces(&dp, false);
+                let (fm, _) = e.forces(&dm, false);
+                for a in 0..6 {
+                    let kd = -(fp[a] - fm[a]) / (2.0 * h);
+                    let scale = ei / (e.l * e.l * e.l);
+                    assert!(
+                        (kd - k[a][b]).abs() < 1e-5 * scale,
+                        "K[{a}][{b}] {kd} vs {}",
+                        k[a][b]
+                    );
+                }
+            }
+        }
+        // the mounted linear block against Frame2d (independent assembly of Ribaric (5.5))
+        let section = Frame2dSection {
+            ea: 1.0e5,
+            ei,
+            mass_per_length: 0.1,
+        };
+        for e in &els {
+            let fr = Frame2d::new([0, 1, 2, 3, 4, 5], pos[e.i], pos[e.j], section, 0.0).unwrap();
+            let ke = fr.stiffness();
+            let kb = e.linear_stiffness();
+            for a in 0..6 {
+                for b in 0..6 {
+                    let (ta, tb) = (a % 3 < 2, b % 3 < 2);
+                    let sa = if a < 3 { -1.0 } else { 1.0 };
+                    let sb = if b < 3 { -1.0 } else { 1.0 };
+                    let bar = if ta && tb {
+                        sa * sb * 1.0e5 / e.l * e.u[a % 3] * e.u[b % 3]
+                    } else {
+                        0.0
+                    };
+                    let x = ke[(a, b)] - bar;
+                    assert!((x - kb[a][b]).abs() < 1e-9 * ei / e.l.powi(3), "[{a}][{b}]");
                 }
             }
         }
