@@ -135,7 +135,6 @@ pub fn wrap_records(drive: &BeltDrive, q: &[f64], v: &[f64], omegas: &[f64]) -> 
         .collect()
 }
 
-use belt::BeltPath;
 pub use belt::SpanLine;
 
 /// The straight spans of the drive's path in travel order.
@@ -150,18 +149,23 @@ pub fn span_tensions(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
     span_tensions_of(drive, &tension_samples(drive, q, 4))
 }
 
-/// [`span_tensions`] from the samples `samples` of [`tension_samples`].
+/// [`span_tensions`] from the samples `samples` of [`tension_samples`] (in belt order): per
+/// span the mean over the samples over its middle half that run without a break from its
+/// bisector ([`SpanLine::middle_run`], the rule of the flowing and nodal reports: a part of the
+/// belt that passes within the span's middle band, such as the slack span under a back-side
+/// idler, is not averaged in); NaN where the belt does not cross the span's bisector.
 fn span_tensions_of(drive: &BeltDrive, samples: &[TensionSample]) -> Vec<f64> {
-    let spans = spans(drive);
-    let mut sum = vec![(0.0, 0usize); spans.len()];
-    for s in samples {
-        if let Some(k) = BeltPath::span_middle_of(&spans, s.position) {
-            sum[k].0 += s.tension;
-            sum[k].1 += 1;
-        }
-    }
-    sum.iter()
-        .map(|&(t, n)| if n == 0 { f64::NAN } else { t / n as f64 })
+    let points: Vec<[f64; 2]> = samples.iter().map(|s| s.position).collect();
+    spans(drive)
+        .iter()
+        .map(|sp| {
+            let run = sp.middle_run(&points);
+            if run.is_empty() {
+                f64::NAN
+            } else {
+                run.iter().map(|&i| samples[i].tension).sum::<f64>() / run.len() as f64
+            }
+        })
         .collect()
 }
 
