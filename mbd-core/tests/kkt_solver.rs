@@ -209,6 +209,53 @@ fn banded_lu_matches_dense_lu() {
     }
 }
 
+/// Three border coordinates (last) coupled weakly both ways to every loop coordinate, with
+/// the border block `A₂₂ = [4 1 0; 1 0.1 3; 2 5 1]`: the border's Schur complement
+/// `S = A₂₂ − A₂₁ A₁₁⁻¹ A₁₂ ≈ A₂₂` needs a row swap at its second column (after the first
+/// column's elimination, 0.1 − 1/4 against 5 − 2/4), between rows whose first-column
+/// multipliers differ (1/4, 1/2). The dense LU of `S` swaps whole rows (multipliers
+/// included), so its solve must permute the right-hand side by every swap before the forward
+/// substitution; interleaving the swaps with the substitution (the banded solve's order)
+/// paired the swapped rows with each other's multipliers, gave a backward error of 1e-7 to
+/// 3e-6 on the ANCF FEAD belt's Newton matrices, and every such factorisation was rejected
+/// and went to faer's LU (issue 37 item 4). Reference: the dense partial-pivoting LU of the
+/// whole matrix (`compare`); the banded LU must factor all three value sets itself.
+#[test]
+fn banded_lu_pivots_the_border_schur_complement() {
+    let (b, nodes) = (6, 20);
+    let n = b * nodes;
+    let a22 = [[4.0, 1.0, 0.0], [1.0, 0.1, 3.0], [2.0, 5.0, 1.0]];
+    let d_sp = SysMatrix::from_triplets(0, n + 3, &[], true, 0.0).expect("no constraints");
+    let mut banded = KktSolver::new();
+    banded.banded = true;
+    let mut dense = KktSolver::new();
+    for seed in 0..3 {
+        let mut st = block_band(b, nodes, seed);
+        for (k, row) in a22.iter().enumerate() {
+            for i in 0..n {
+                let v = 1e-3 * (1.0 + ((i * 5 + k * 3 + seed) % 7) as f64 / 7.0);
+                st.push(Triplet::new(i, n + k, v));
+                st.push(Triplet::new(n + k, i, -0.5 * v));
+            }
+            for (c, &v) in row.iter().enumerate() {
+                st.push(Triplet::new(n + k, n + c, v));
+            }
+        }
+        let s_sp = SysMatrix::from_triplets(n + 3, n + 3, &st, true, 0.0).expect("S");
+        compare(
+            &mut banded,
+            &mut dense,
+            &s_sp,
+            &d_sp,
+            &format!("seed {seed}"),
+        );
+    }
+    assert_eq!(
+        (banded.banded_factorizations, banded.banded_rejections),
+        (3, 0)
+    );
+}
+
 /// A matrix whose banded part is singular (coordinates coupled only to the border) but
 /// which is regular as a whole: the banded LU meets a zero pivot and the factorisation falls
 /// back to faer's sparse LU, whose solution matches the dense LU's.

@@ -934,8 +934,25 @@ impl<C> AlphaStepper<C> {
         }
     }
 
+    /// Evaluates and factors the Newton matrix ([`Self::newton_matrix_factor`]) and counts the
+    /// banded factorisations and rejections of the KKT solver ([`Stats::banded_factorizations`]).
     #[allow(clippy::too_many_arguments)]
     fn newton_matrix<S: SecondOrderSystem + ?Sized>(
+        &mut self, sys: &S, t: f64, q: &[f64], v: &[f64], vdot: &[f64], lam: &[f64], r0: &[f64],
+        phi0: &[f64], bp: f64, gp: f64, h: f64, f: &mut [f64],
+    ) -> Result<(), MbdError> {
+        let kkt = &self.matrix.kkt;
+        let before = (kkt.banded_factorizations, kkt.banded_rejections);
+        let out = self.newton_matrix_factor(sys, t, q, v, vdot, lam, r0, phi0, bp, gp, h, f);
+        let kkt = &self.matrix.kkt;
+        self.stats.banded_factorizations += kkt.banded_factorizations.saturating_sub(before.0);
+        self.stats.banded_rejections += kkt.banded_rejections.saturating_sub(before.1);
+        out
+    }
+
+    /// The body of [`Self::newton_matrix`].
+    #[allow(clippy::too_many_arguments)]
+    fn newton_matrix_factor<S: SecondOrderSystem + ?Sized>(
         &mut self, sys: &S, t: f64, q: &[f64], v: &[f64], vdot: &[f64], lam: &[f64], r0: &[f64],
         phi0: &[f64], bp: f64, gp: f64, h: f64, f: &mut [f64],
     ) -> Result<(), MbdError> {

@@ -111,6 +111,15 @@ pub struct Stats {
     pub jacobian_evaluations: usize,
     /// Numeric factorisations of the augmented or Newton matrix.
     pub factorizations: usize,
+    /// Of [`Stats::factorizations`], those done by the banded-plus-border LU
+    /// ([`crate::linalg::KktSolver::banded`], generalized-α with [`AlphaConfig::banded_lu`]); the
+    /// others went to faer's sparse LU (a zero band pivot, or every band plan rejected by the
+    /// backward-error check).
+    pub banded_factorizations: usize,
+    /// Banded factorisations discarded by the backward-error check
+    /// ([`crate::linalg::BAND_BACKWARD_ERROR_LIMIT`]): each moves the pattern to its next band
+    /// plan or to faer's sparse LU for good.
+    pub banded_rejections: usize,
     /// Located events.
     pub events: usize,
     /// Steps halved after a Newton failure (generalized-α: [`AlphaConfig::max_halvings`],
@@ -127,6 +136,8 @@ impl Stats {
         self.force_evaluations += o.force_evaluations;
         self.jacobian_evaluations += o.jacobian_evaluations;
         self.factorizations += o.factorizations;
+        self.banded_factorizations += o.banded_factorizations;
+        self.banded_rejections += o.banded_rejections;
         self.events += o.events;
         self.halvings += o.halvings;
     }

@@ -83,10 +83,13 @@ impl BandPlan {
         // A closed chain (a belt loop) numbered from one vertex has levels on both sides of
         // it, i.e. a band of two levels; moving the start vertex's supervariable (the
         // vertices with its closed neighbourhood: the coordinates of one node) to the border
-        // cuts the loop into an open chain with half the band. Tried first when cheaper, but
-        // its pivoting cannot reach the cut node's rows: on the plate belt's Newton matrix it
-        // solved to a residual of 24 against a right-hand side of 0.5 (faer's LU and the plan
-        // without the cut: 1e-12; issue 37), so both plans are kept and the solver checks.
+        // cuts the loop into an open chain with half the band. Tried first when cheaper; on
+        // the plate belt's Newton matrix it solved to a residual of 24 against a right-hand
+        // side of 0.5 (faer's LU and the plan without the cut: 1e-12; issue 37), so both plans
+        // are kept and the solver checks. (On the ANCF FEAD belt the same rejections, 2e-8 to
+        // 3e-6 backward error, were the Schur complement's solve interleaving its row swaps,
+        // fixed in `dense_solve` 2026-12-06: both plans then give 1e-16 there. Whether the
+        // plate belt's residual had the same cause was not re-checked.)
         let Some(&root) = plan.perm[..plan.n1].last() else {
             return vec![plan];
         };
@@ -620,11 +623,21 @@ fn dense_lu(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize> {
 }
 
 /// Solves with the LU of [`dense_lu`] in place.
+///
+/// [`dense_lu`] swaps whole rows (LAPACK dgetf2: the multipliers of the earlier columns move
+/// with their rows), so its factors are those of `P A = L U` with `P` the product of all the
+/// swaps: `b` is permuted by every swap first, then `L y = P b` is solved (LAPACK dgetrs:
+/// dlaswp, then dtrsm). Interleaving the swaps with the elimination, as the banded solve does
+/// ([`Band::solve`], whose dgbtf2 leaves the multipliers in place), pairs a later-swapped row
+/// with the other row's multipliers.
 fn dense_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
+    for (j, &p) in piv.iter().enumerate().take(n) {
+        b.swap(j, p);
+    }
     for j in 0..n {
-        b.swap(j, piv[j]);
+        let bj = b[j];
         for i in j + 1..n {
-            b[i] -= a[i + j * n] * b[j];
+            b[i] -= a[i + j * n] * bj;
         }
     }
     for j in (0..n).rev() {
@@ -682,5 +695,29 @@ mod tests {
             seen[v] = true;
         }
         assert!(seen.iter().all(|&s| s));
+    }
+
+    /// The dense LU of the border's Schur complement and its solve on a 3 × 3 matrix whose
+    /// second column pivots (after the first column's elimination, 0.1 − 1/4 against 5 − 2/4)
+    /// between rows with different multipliers (1/4, 1/2): the solve recovers the `x` that made
+    /// `b = A x` (reference: the product), which interleaving the swaps with the forward
+    /// substitution did not (issue 37 item 4).
+    #[test]
+    fn dense_solve_applies_every_row_swap_first() {
+        let rows = [[4.0, 1.0, 0.0], [1.0, 0.1, 3.0], [2.0, 5.0, 1.0]];
+        let n = 3;
+        let mut a: Vec<f64> = (0..n * n).map(|k| rows[k % n][k / n]).collect();
+        let x = [1.5, -2.0, 0.75];
+        let mut b: Vec<f64> = rows
+            .iter()
+            .map(|r| r.iter().zip(&x).map(|(p, q)| p * q).sum())
+            .collect();
+        let mut piv = vec![0; n];
+        dense_lu(&mut a, n, &mut piv).expect("regular");
+        assert_eq!(piv, [0, 2, 2], "the second column pivots");
+        dense_solve(&a, n, &piv, &mut b);
+        for (bi, xi) in b.iter().zip(&x) {
+            assert!((bi - xi).abs() <= 1e-14, "{b:?} against {x:?}");
+        }
     }
 }
