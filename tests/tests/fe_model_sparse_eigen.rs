@@ -139,11 +139,12 @@ fn free_ring(
         .unwrap()
 }
 
-/// The threaded path (split block solves, parallel mass products and factorisation, Sturm
-/// count beside the back-transform) against the one-thread path that small factors take, in a
-/// two-thread pool: a second run of the same solver, equal eigenvalues to round-off.
+/// The threaded kernels (split block solves, parallel mass products and factorisations) against
+/// the one-thread kernels that small factors take, both in a two-thread pool (the Sturm count
+/// beside the back-transform in both): a second run of the same solver, equal eigenvalues to
+/// round-off.
 #[test]
-fn two_thread_path_matches_one_thread_path() {
+fn threaded_kernels_match_one_thread_kernels() {
     let (k, m) = free_ring(400);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)

@@ -29,6 +29,7 @@ pub fn shifted(
 #[derive(Debug, Clone)]
 pub struct Analysis {
     symbolic: Arc<SymbolicCholesky<usize>>,
+    par: Par,
 }
 
 impl Analysis {
@@ -43,7 +44,14 @@ impl Analysis {
         .map_err(|e| FeError::Sparse(format!("symbolic Cholesky: {e:?}")))?;
         Ok(Self {
             symbolic: Arc::new(symbolic),
+            par: Par::rayon(0),
         })
+    }
+
+    /// The parallelism of the numeric factorisations ([`Self::llt`], [`Self::negative_pivots`]);
+    /// default `Par::rayon(0)`, the threads of rayon's current pool.
+    pub fn with_par(self, par: Par) -> Self {
+        Self { par, ..self }
     }
 
     /// Number of stored entries of the factor L.
@@ -69,7 +77,7 @@ impl Analysis {
     /// error when `a` is not positive definite.
     pub fn llt(&self, a: SparseColMatRef<'_, usize, f64>, name: &str) -> Result<Llt, FeError> {
         let mut values = vec![0.0; self.symbolic.len_val()];
-        let par = Par::rayon(0);
+        let par = self.par;
         let mut mem = MemBuffer::new(
             self.symbolic
                 .factorize_numeric_llt_scratch::<f64>(par, Default::default()),
@@ -121,7 +129,7 @@ impl Analysis {
         &self, a: SparseColMatRef<'_, usize, f64>,
     ) -> Result<Vec<usize>, FeError> {
         let mut values = vec![0.0; self.symbolic.len_val()];
-        let par = Par::rayon(0);
+        let par = self.par;
         let mut mem = MemBuffer::new(
             self.symbolic
                 .factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),

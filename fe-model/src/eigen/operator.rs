@@ -122,8 +122,11 @@ impl PermutedSymmetric {
         Ok(Self { ptr, row, val })
     }
 
-    /// `out = P M Pᵀ x` for a block `x` (`n × b`), rows split over rayon's current pool.
-    pub(crate) fn apply(&self, x: MatRef<'_, f64>, mut out: MatMut<'_, f64>, w: &mut ProductWork) {
+    /// `out = P M Pᵀ x` for a block `x` (`n × b`), rows split over rayon's current pool when
+    /// `threaded`.
+    pub(crate) fn apply(
+        &self, x: MatRef<'_, f64>, mut out: MatMut<'_, f64>, w: &mut ProductWork, threaded: bool,
+    ) {
         let (n, b) = (x.nrows(), x.ncols());
         w.xt.resize(n * b, 0.0);
         w.ot.resize(n * b, 0.0);
@@ -133,7 +136,11 @@ impl PermutedSymmetric {
                 w.xt[r * b + k] = col[r];
             }
         }
-        let threads = rayon::current_num_threads();
+        let threads = if threaded {
+            rayon::current_num_threads()
+        } else {
+            1
+        };
         let xt = &w.xt;
         if threads <= 1 || b == 0 {
             gather_rows(&self.ptr, &self.row, &self.val, xt, &mut w.ot, 0, b);

@@ -16,8 +16,8 @@
 //! concurrently, the mass product `P M Pᵀ X` splits its rows, and the Sturm factorisation
 //! runs beside the back-transform and the orthogonality and residual checks; the dense
 //! kernels of the Lanczos stay sequential. Run inside `rayon::ThreadPool::install` to choose the count.
-//! Factors with fewer than [`SparseEigenOptions::parallel_min_factor_nnz`] non-zeros are solved
-//! on one thread whatever the pool (the second thread did not pay below it on two cores).
+//! Factors with fewer than [`SparseEigenOptions::parallel_min_factor_nnz`] non-zeros keep only
+//! the concurrent Sturm count (the threaded kernels did not pay below it on two cores).
 //!
 //! Safeguards (shared/notes/rust-ecosystem.md §1.3): `extra` modes beyond the requested count
 //! so that a multiplet at the cut is not split; a deterministic pseudo-random start block;
@@ -78,13 +78,14 @@ pub struct SparseEigenOptions {
     pub timeout: Duration,
     /// Models with at most this many DOFs are solved densely.
     pub dense_below: usize,
-    /// Fewest non-zeros of the Cholesky factor L for which the solver uses the threads of
-    /// rayon's current pool; below it the factorisations, solves and checks run on one thread.
-    /// Default 25 million: on the two-core test machine the second thread cost more than it
-    /// saved at nnz(L) = 8.7 M and 17.6 M (the generated tire at 30 240 and 60 480 DOF: 2.87
-    /// against 2.44 s and 5.53 against 5.11 s wall, BENCHMARKS "sparse eigen") and saved 27 %
-    /// at 35.5 M (120 960 DOF: 9.31 against 12.82 s). The solves read L once per block, so
-    /// below this size two threads compete for the memory bandwidth one of them already uses.
+    /// Fewest non-zeros of the Cholesky factor L for which the factorisations, the block solves
+    /// and the sparse products use the threads of rayon's current pool; below it each runs on
+    /// one thread, and only the Sturm count runs beside the back-transform and checks. Default
+    /// 25 million: on the two-core test machine the threaded kernels cost more than they saved
+    /// at nnz(L) = 8.7 M and 17.6 M (the generated tire at 30 240 and 60 480 DOF: 2.87 against
+    /// 2.44 s and 5.53 against 5.11 s wall, BENCHMARKS "sparse eigen") and saved 27 % at 35.5 M
+    /// (120 960 DOF: 9.31 against 12.82 s). The solves read L once per block, so below this size
+    /// two threads compete for the memory bandwidth one of them already uses.
     pub parallel_min_factor_nnz: usize,
 }
 
@@ -240,210 +241,202 @@ pub fn sparse_modes(
     // factorization of K − σM on the union pattern
     let t_factor = Instant::now();
     let a0 = shifted(k, m, 0.0)?;
+    // the threads of the pool in the factorisations, solves and products only for a factor
+    // large enough to pay for them; the Sturm count beside the back-transform at any size
     let analysis = Analysis::new(a0.as_ref())?;
-    // below `parallel_min_factor_nnz` the rest runs in a one-thread pool (the factorisations'
-    // `Par::rayon(0)`, the split solves and the concurrent Sturm count all ask the current pool)
-    let factored = || -> Result<(Modes, SparseEigenReport), FeError> {
-        let (sigma, llt) = match opts.shift {
-            Some(s) => {
+    let threaded =
+        rayon::current_num_threads() >= 2 && analysis.factor_nnz() >= opts.parallel_min_factor_nnz;
+    let analysis = analysis.with_par(if threaded { Par::rayon(0) } else { Par::Seq });
+    let (sigma, llt) = match opts.shift {
+        Some(s) => {
+            let a = shifted(k, m, s)?;
+            (
+                s,
+                analysis.llt(a.as_ref(), &format!("K - sigma M (sigma = {s})"))?,
+            )
+        }
+        None => match analysis.llt(a0.as_ref(), "K") {
+            Ok(l) => (0.0, l),
+            Err(_) => {
+                let tr = |a: SparseColMatRef<'_, usize, f64>| {
+                    triplets(a).filter(|t| t.0 == t.1).map(|t| t.2).sum::<f64>()
+                };
+                let s = -1e-6 * tr(k) / tr(m);
                 let a = shifted(k, m, s)?;
                 (
                     s,
-                    analysis.llt(a.as_ref(), &format!("K - sigma M (sigma = {s})"))?,
+                    analysis.llt(a.as_ref(), &format!("K - sigma M (sigma = {s:e})"))?,
                 )
             }
-            None => match analysis.llt(a0.as_ref(), "K") {
-                Ok(l) => (0.0, l),
-                Err(_) => {
-                    let tr = |a: SparseColMatRef<'_, usize, f64>| {
-                        triplets(a).filter(|t| t.0 == t.1).map(|t| t.2).sum::<f64>()
-                    };
-                    let s = -1e-6 * tr(k) / tr(m);
-                    let a = shifted(k, m, s)?;
-                    (
-                        s,
-                        analysis.llt(a.as_ref(), &format!("K - sigma M (sigma = {s:e})"))?,
-                    )
-                }
-            },
+        },
+    };
+    let seconds_factor = t_factor.elapsed().as_secs_f64();
+    let (fwd, inv) = analysis.perm();
+    let m_perm = PermutedSymmetric::new(m, &fwd, &inv)?;
+    // the pool's threads (rayon::current_num_threads) in the block solves and dense kernels
+    // dense kernels of the Lanczos sequential: on the skinny n × b blocks faer's parallel
+    // matmul was slower on the two shared cores (measured 2.4-5.6 s against 2.1-2.7 s at
+    // 30 240 DOF); the block solves and the mass product use the pool's threads themselves
+    let par = Par::Seq;
+    let mut dim = base_dim;
+    let mut rejected = Vec::new();
+    let (mut seconds_lanczos, mut seconds_sturm, mut seconds_operator) = (0.0, 0.0, 0.0);
+    let mut applications = 0usize;
+    let mut last_err = FeError::Eigen("no attempt made".into());
+    let deadline = Instant::now() + opts.timeout;
+    for attempt in 1..=opts.attempts.max(1) {
+        let t_l = Instant::now();
+        // shift-invert operator T x = L⁻¹ P M Pᵀ L⁻ᵀ x on a block, scratch allocated once
+        let mut tmp = Mat::<f64>::zeros(n, block);
+        let mut work = ProductWork::default();
+        let mut apply = |mut out: MatMut<'_, f64>, x: MatRef<'_, f64>| {
+            tmp.copy_from(x);
+            split_solve(&llt, tmp.as_mut(), true, threaded);
+            m_perm.apply(tmp.as_ref(), out.as_mut(), &mut work, threaded);
+            split_solve(&llt, out, false, threaded);
         };
-        let seconds_factor = t_factor.elapsed().as_secs_f64();
-        let (fwd, inv) = analysis.perm();
-        let m_perm = PermutedSymmetric::new(m, &fwd, &inv)?;
-        // the pool's threads (rayon::current_num_threads) in the block solves and dense kernels
-        // dense kernels of the Lanczos sequential: on the skinny n × b blocks faer's parallel
-        // matmul was slower on the two shared cores (measured 2.4-5.6 s against 2.1-2.7 s at
-        // 30 240 DOF); the block solves and the mass product use the pool's threads themselves
-        let par = Par::Seq;
-        let mut dim = base_dim;
-        let mut rejected = Vec::new();
-        let (mut seconds_lanczos, mut seconds_sturm, mut seconds_operator) = (0.0, 0.0, 0.0);
-        let mut applications = 0usize;
-        let mut last_err = FeError::Eigen("no attempt made".into());
-        let deadline = Instant::now() + opts.timeout;
-        for attempt in 1..=opts.attempts.max(1) {
-            let t_l = Instant::now();
-            // shift-invert operator T x = L⁻¹ P M Pᵀ L⁻ᵀ x on a block, scratch allocated once
-            let mut tmp = Mat::<f64>::zeros(n, block);
-            let mut work = ProductWork::default();
-            let mut apply = |mut out: MatMut<'_, f64>, x: MatRef<'_, f64>| {
-                tmp.copy_from(x);
-                split_solve(&llt, tmp.as_mut(), true);
-                m_perm.apply(tmp.as_ref(), out.as_mut(), &mut work);
-                split_solve(&llt, out, false);
-            };
-            let ks = block_krylov_schur(
-                n,
-                &mut apply,
-                start_block(n, block, 12345 + attempt as u64).as_ref(),
-                &BlockKsOptions {
-                    nev,
-                    block,
-                    max_dim: dim,
-                    tol: opts.tolerance,
-                    per_pair: if opts.per_pair_test { count } else { 0 },
-                    max_restarts: opts.max_restarts,
-                    deadline,
-                    par,
-                },
-            )?;
-            seconds_lanczos += t_l.elapsed().as_secs_f64();
-            seconds_operator += ks.seconds_apply;
-            applications += ks.applies;
-            let (vals, vecs, restarts) = (ks.values, ks.vectors, ks.restarts);
-            let conv = vals.len();
-            let result = (|| -> Result<(Modes, SparseEigenReport), FeError> {
-                if conv < count {
+        let ks = block_krylov_schur(
+            n,
+            &mut apply,
+            start_block(n, block, 12345 + attempt as u64).as_ref(),
+            &BlockKsOptions {
+                nev,
+                block,
+                max_dim: dim,
+                tol: opts.tolerance,
+                per_pair: if opts.per_pair_test { count } else { 0 },
+                max_restarts: opts.max_restarts,
+                deadline,
+                par,
+            },
+        )?;
+        seconds_lanczos += t_l.elapsed().as_secs_f64();
+        seconds_operator += ks.seconds_apply;
+        applications += ks.applies;
+        let (vals, vecs, restarts) = (ks.values, ks.vectors, ks.restarts);
+        let conv = vals.len();
+        let result = (|| -> Result<(Modes, SparseEigenReport), FeError> {
+            if conv < count {
+                return Err(FeError::Eigen(format!(
+                    "only {conv} of {nev} Ritz pairs converged (subspace {dim})"
+                )));
+            }
+            for &theta in &vals {
+                if theta.is_nan() || theta <= 0.0 {
                     return Err(FeError::Eigen(format!(
-                        "only {conv} of {nev} Ritz pairs converged (subspace {dim})"
+                        "non-positive Ritz value {theta:e}: shift σ = {sigma:e} is not below the spectrum"
                     )));
-                }
-                for &theta in &vals {
-                    if theta.is_nan() || theta <= 0.0 {
-                        return Err(FeError::Eigen(format!(
-                            "non-positive Ritz value {theta:e}: shift σ = {sigma:e} is not below the spectrum"
-                        )));
-                    }
-                }
-                // λ = σ + 1/θ, ascending as the modes will be sorted
-                let lambdas: Vec<f64> = vals.iter().map(|&theta| sigma + 1.0 / theta).collect();
-                let mut lam = lambdas.clone();
-                lam.sort_by(f64::total_cmp);
-                // the Sturm count at the cut between the last returned mode and the next distinct
-                // converged one: (cut, modes found below it, negative pivots, seconds)
-                let sturm_job = || -> Result<Option<(f64, usize, usize, f64)>, FeError> {
-                    if !opts.sturm_check {
-                        return Ok(None);
-                    }
-                    let last = lam[count - 1];
-                    let tolgap = 1e-7 * last.abs().max(sigma.abs()).max(1e-300);
-                    let next = lam[count..].iter().copied().find(|&l| l - last > tolgap);
-                    let c = match next {
-                        Some(nx) => 0.5 * (last + nx),
-                        None => last + 1e-4 * last.abs().max(1e-12),
-                    };
-                    let below = lam.iter().filter(|&&l| l < c).count();
-                    let t_s = Instant::now();
-                    let a = shifted(k, m, c)?;
-                    let negs = analysis.negative_pivots(a.as_ref())?;
-                    Ok(Some((c, below, negs, t_s.elapsed().as_secs_f64())))
-                };
-                // back-transform φ = Pᵀ L⁻ᵀ y / √θ, M-orthogonality and residuals
-                let modes_job = || -> Result<(Modes, f64, f64), FeError> {
-                    let mut y = vecs;
-                    split_solve(&llt, y.as_mut(), true);
-                    // y ← L⁻ᵀ y / √θ = P φ: the modes in the factor's order, where the checks
-                    // run on the gather products of P K Pᵀ and P M Pᵀ (norms and the Gram matrix
-                    // do not depend on the order of the rows)
-                    for (j, &theta) in vals.iter().enumerate() {
-                        let s = 1.0 / theta.sqrt();
-                        y.as_mut().col_mut(j).iter_mut().for_each(|x| *x *= s);
-                    }
-                    let mut order: Vec<usize> = (0..conv).collect();
-                    order.sort_by(|&a, &b| lambdas[a].total_cmp(&lambdas[b]));
-                    let kept = &order[..count];
-                    let k_perm = PermutedSymmetric::new(k, &fwd, &inv)?;
-                    let (orth, resid) =
-                        permuted_checks(&k_perm, &m_perm, &lambdas, y.as_ref(), kept);
-                    let mut phi = Mat::from_fn(n, count, |r, j| y[(inv[r], kept[j])]);
-                    super::normalize_signs(phi.as_mut());
-                    let values: Vec<f64> = kept.iter().map(|&i| lambdas[i]).collect();
-                    let modes = Modes {
-                        frequencies_hz: values.iter().map(|&l| frequency_hz(l)).collect(),
-                        values,
-                        vectors: phi,
-                    };
-                    Ok((modes, orth, resid))
-                };
-                // with two threads the Sturm factorisation runs beside the back-transform and checks
-                let (sturm_res, modes_res) = if rayon::current_num_threads() >= 2 {
-                    rayon::join(sturm_job, modes_job)
-                } else {
-                    (sturm_job(), modes_job())
-                };
-                let (modes, orth, resid) = modes_res?;
-                if orth > opts.orthogonality_tol {
-                    return Err(FeError::Eigen(format!(
-                        "M-orthogonality check failed (max |φᵢᵀMφⱼ − δᵢⱼ| = {orth:e}): duplicated (ghost) Ritz vector"
-                    )));
-                }
-                let (mut cut, mut found_below, mut sturm) = (None, None, None);
-                if let Some((c, below, negs, secs)) = sturm_res? {
-                    seconds_sturm += secs;
-                    if negs != below {
-                        return Err(FeError::Eigen(format!(
-                            "Sturm check failed: {negs} eigenvalues below {c:e} rad²/s² ({:.6} Hz) but {below} found",
-                            frequency_hz(c)
-                        )));
-                    }
-                    cut = Some(c);
-                    found_below = Some(below);
-                    sturm = Some(negs);
-                }
-                let report = SparseEigenReport {
-                    dof: n,
-                    shift: sigma,
-                    max_dim: dim,
-                    block_size: block,
-                    restarts,
-                    operator_applications: applications,
-                    attempts: attempt,
-                    converged: conv,
-                    factor_nnz: analysis.factor_nnz(),
-                    max_orthogonality_error: orth,
-                    max_relative_residual: resid,
-                    sturm_cut: cut,
-                    sturm_count: sturm,
-                    found_below_cut: found_below,
-                    dense_fallback: false,
-                    rejected_attempts: rejected.clone(),
-                    seconds_factor,
-                    seconds_lanczos,
-                    seconds_operator,
-                    seconds_sturm,
-                };
-                Ok((modes, report))
-            })();
-            match result {
-                Ok(r) => return Ok(r),
-                Err(e) => {
-                    rejected.push(format!("attempt {attempt} (subspace {dim}): {e}"));
-                    last_err = e;
-                    dim = ((dim * 3) / 2).min(n.saturating_sub(2 * block));
                 }
             }
+            // λ = σ + 1/θ, ascending as the modes will be sorted
+            let lambdas: Vec<f64> = vals.iter().map(|&theta| sigma + 1.0 / theta).collect();
+            let mut lam = lambdas.clone();
+            lam.sort_by(f64::total_cmp);
+            // the Sturm count at the cut between the last returned mode and the next distinct
+            // converged one: (cut, modes found below it, negative pivots, seconds)
+            let sturm_job = || -> Result<Option<(f64, usize, usize, f64)>, FeError> {
+                if !opts.sturm_check {
+                    return Ok(None);
+                }
+                let last = lam[count - 1];
+                let tolgap = 1e-7 * last.abs().max(sigma.abs()).max(1e-300);
+                let next = lam[count..].iter().copied().find(|&l| l - last > tolgap);
+                let c = match next {
+                    Some(nx) => 0.5 * (last + nx),
+                    None => last + 1e-4 * last.abs().max(1e-12),
+                };
+                let below = lam.iter().filter(|&&l| l < c).count();
+                let t_s = Instant::now();
+                let a = shifted(k, m, c)?;
+                let negs = analysis.negative_pivots(a.as_ref())?;
+                Ok(Some((c, below, negs, t_s.elapsed().as_secs_f64())))
+            };
+            // back-transform φ = Pᵀ L⁻ᵀ y / √θ, M-orthogonality and residuals
+            let modes_job = || -> Result<(Modes, f64, f64), FeError> {
+                let mut y = vecs;
+                split_solve(&llt, y.as_mut(), true, threaded);
+                // y ← L⁻ᵀ y / √θ = P φ: the modes in the factor's order, where the checks
+                // run on the gather products of P K Pᵀ and P M Pᵀ (norms and the Gram matrix
+                // do not depend on the order of the rows)
+                for (j, &theta) in vals.iter().enumerate() {
+                    let s = 1.0 / theta.sqrt();
+                    y.as_mut().col_mut(j).iter_mut().for_each(|x| *x *= s);
+                }
+                let mut order: Vec<usize> = (0..conv).collect();
+                order.sort_by(|&a, &b| lambdas[a].total_cmp(&lambdas[b]));
+                let kept = &order[..count];
+                let k_perm = PermutedSymmetric::new(k, &fwd, &inv)?;
+                let (orth, resid) =
+                    permuted_checks(&k_perm, &m_perm, &lambdas, y.as_ref(), kept, threaded);
+                let mut phi = Mat::from_fn(n, count, |r, j| y[(inv[r], kept[j])]);
+                super::normalize_signs(phi.as_mut());
+                let values: Vec<f64> = kept.iter().map(|&i| lambdas[i]).collect();
+                let modes = Modes {
+                    frequencies_hz: values.iter().map(|&l| frequency_hz(l)).collect(),
+                    values,
+                    vectors: phi,
+                };
+                Ok((modes, orth, resid))
+            };
+            // with two threads the Sturm factorisation runs beside the back-transform and checks
+            let (sturm_res, modes_res) = if rayon::current_num_threads() >= 2 {
+                rayon::join(sturm_job, modes_job)
+            } else {
+                (sturm_job(), modes_job())
+            };
+            let (modes, orth, resid) = modes_res?;
+            if orth > opts.orthogonality_tol {
+                return Err(FeError::Eigen(format!(
+                    "M-orthogonality check failed (max |φᵢᵀMφⱼ − δᵢⱼ| = {orth:e}): duplicated (ghost) Ritz vector"
+                )));
+            }
+            let (mut cut, mut found_below, mut sturm) = (None, None, None);
+            if let Some((c, below, negs, secs)) = sturm_res? {
+                seconds_sturm += secs;
+                if negs != below {
+                    return Err(FeError::Eigen(format!(
+                        "Sturm check failed: {negs} eigenvalues below {c:e} rad²/s² ({:.6} Hz) but {below} found",
+                        frequency_hz(c)
+                    )));
+                }
+                cut = Some(c);
+                found_below = Some(below);
+                sturm = Some(negs);
+            }
+            let report = SparseEigenReport {
+                dof: n,
+                shift: sigma,
+                max_dim: dim,
+                block_size: block,
+                restarts,
+                operator_applications: applications,
+                attempts: attempt,
+                converged: conv,
+                factor_nnz: analysis.factor_nnz(),
+                max_orthogonality_error: orth,
+                max_relative_residual: resid,
+                sturm_cut: cut,
+                sturm_count: sturm,
+                found_below_cut: found_below,
+                dense_fallback: false,
+                rejected_attempts: rejected.clone(),
+                seconds_factor,
+                seconds_lanczos,
+                seconds_operator,
+                seconds_sturm,
+            };
+            Ok((modes, report))
+        })();
+        match result {
+            Ok(r) => return Ok(r),
+            Err(e) => {
+                rejected.push(format!("attempt {attempt} (subspace {dim}): {e}"));
+                last_err = e;
+                dim = ((dim * 3) / 2).min(n.saturating_sub(2 * block));
+            }
         }
-        Err(last_err)
-    };
-    if rayon::current_num_threads() > 1 && analysis.factor_nnz() < opts.parallel_min_factor_nnz {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .map_err(|e| FeError::Eigen(format!("one-thread pool for a small factor: {e}")))?;
-        pool.install(factored)
-    } else {
-        factored()
     }
+    Err(last_err)
 }
 
 /// The checks of [`orthogonality_error`] and [`max_residual`] on modes given in the factor's
@@ -455,12 +448,12 @@ pub fn sparse_modes(
 /// (no stored zeros, rows split over rayon's pool).
 fn permuted_checks(
     k_perm: &PermutedSymmetric, m_perm: &PermutedSymmetric, lambdas: &[f64], y: MatRef<'_, f64>,
-    kept: &[usize],
+    kept: &[usize], threaded: bool,
 ) -> (f64, f64) {
     let (n, c) = (y.nrows(), y.ncols());
     let mut work = ProductWork::default();
     let mut my = Mat::<f64>::zeros(n, c);
-    m_perm.apply(y, my.as_mut(), &mut work);
+    m_perm.apply(y, my.as_mut(), &mut work, threaded);
     let mut g = Mat::<f64>::zeros(c, c);
     faer::linalg::matmul::matmul(
         g.as_mut(),
@@ -479,7 +472,7 @@ fn permuted_checks(
     }
     let ysel = Mat::from_fn(n, kept.len(), |r, j| y[(r, kept[j])]);
     let mut ky = Mat::<f64>::zeros(n, kept.len());
-    k_perm.apply(ysel.as_ref(), ky.as_mut(), &mut work);
+    k_perm.apply(ysel.as_ref(), ky.as_mut(), &mut work, threaded);
     let mut worst: f64 = 0.0;
     for (j, &col) in kept.iter().enumerate() {
         let l = lambdas[col];
@@ -504,7 +497,7 @@ fn permuted_checks(
 /// sequential supernodal kernel (the solves are bound by reading L; faer's parallel solve
 /// splits the supernodal tree instead, whose small supernodes near the leaves make it slower
 /// than the sequential kernel on this model).
-fn split_solve(llt: &Llt, x: MatMut<'_, f64>, transpose: bool) {
+fn split_solve(llt: &Llt, x: MatMut<'_, f64>, transpose: bool, threaded: bool) {
     let one = |x: MatMut<'_, f64>| {
         let mut mem = MemBuffer::new(llt.scratch(x.ncols(), Par::Seq));
         let stack = MemStack::new(&mut mem);
@@ -514,7 +507,7 @@ fn split_solve(llt: &Llt, x: MatMut<'_, f64>, transpose: bool) {
             llt.l_solve(x, Par::Seq, stack);
         }
     };
-    if rayon::current_num_threads() >= 2 && x.ncols() >= 2 {
+    if threaded && x.ncols() >= 2 {
         let h = x.ncols() / 2;
         let (a, b) = x.split_at_col_mut(h);
         rayon::join(|| one(a), || one(b));
