@@ -142,9 +142,9 @@ pub fn spans(drive: &BeltDrive) -> Vec<SpanLine> {
     drive.path().spans()
 }
 
-/// Mean tension \[N\] of the belt points that currently lie over the middle half of each span
-/// (within a quarter span length of the undeformed span line, assigned to the nearest span:
-/// [`BeltPath::span_middle_of`]), in span order; `NaN` when no sample lies there.
+/// Mean tension \[N\] of the belt points over the middle half of each span that run without a
+/// break from the span's bisector ([`SpanLine::middle_run`]), in span order; `NaN` when the belt
+/// does not cross the bisector.
 pub fn span_tensions(drive: &BeltDrive, q: &[f64]) -> Vec<f64> {
     span_tensions_of(drive, &tension_samples(drive, q, 4))
 }
