@@ -454,42 +454,51 @@ fn permuted_checks(
     let mut work = ProductWork::default();
     let mut my = Mat::<f64>::zeros(n, c);
     m_perm.apply(y, my.as_mut(), &mut work, threaded);
-    let mut g = Mat::<f64>::zeros(c, c);
-    faer::linalg::matmul::matmul(
-        g.as_mut(),
-        Accum::Replace,
-        y.transpose(),
-        my.as_ref(),
-        1.0,
-        Par::Seq,
-    );
-    let mut orth: f64 = 0.0;
-    for i in 0..c {
-        for j in 0..c {
-            let d = if i == j { 1.0 } else { 0.0 };
-            orth = orth.max((g[(i, j)] - d).abs());
-        }
-    }
+    let orth = gram_deviation(y, my.as_ref());
     let ysel = Mat::from_fn(n, kept.len(), |r, j| y[(r, kept[j])]);
     let mut ky = Mat::<f64>::zeros(n, kept.len());
     k_perm.apply(ysel.as_ref(), ky.as_mut(), &mut work, threaded);
+    let worst = relative_residual(ky.as_ref(), |j| (lambdas[kept[j]], my.col(kept[j])));
+    (orth, worst)
+}
+
+/// `max |Xᵀ (M X) − I|` from `X` and the product `M X`.
+fn gram_deviation(x: MatRef<'_, f64>, mx: MatRef<'_, f64>) -> f64 {
+    let c = x.ncols();
+    let mut g = Mat::<f64>::zeros(c, c);
+    faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, x.transpose(), mx, 1.0, Par::Seq);
+    let mut e: f64 = 0.0;
+    for i in 0..c {
+        for j in 0..c {
+            let d = if i == j { 1.0 } else { 0.0 };
+            e = e.max((g[(i, j)] - d).abs());
+        }
+    }
+    e
+}
+
+/// Largest `‖K φ_j − λ_j M φ_j‖ / max(‖K φ_j‖, ‖λ_j M φ_j‖)` over the columns `j` of `kx`
+/// (`K φ_j`), with `pair(j)` giving `λ_j` and the column `M φ_j`.
+fn relative_residual<'a>(
+    kx: MatRef<'_, f64>, pair: impl Fn(usize) -> (f64, faer::ColRef<'a, f64>),
+) -> f64 {
     let mut worst: f64 = 0.0;
-    for (j, &col) in kept.iter().enumerate() {
-        let l = lambdas[col];
-        let (kc, mc) = (ky.col(j), my.col(col));
+    for j in 0..kx.ncols() {
+        let (l, mc) = pair(j);
+        let kc = kx.col(j);
         let (mut r, mut a, mut b) = (0.0, 0.0, 0.0);
-        for i in 0..n {
-            let (kx, mx) = (kc[i], l * mc[i]);
-            r += (kx - mx) * (kx - mx);
-            a += kx * kx;
-            b += mx * mx;
+        for i in 0..kx.nrows() {
+            let (k, m) = (kc[i], l * mc[i]);
+            r += (k - m) * (k - m);
+            a += k * k;
+            b += m * m;
         }
         let den = a.max(b).sqrt();
         if den > 0.0 {
             worst = worst.max(r.sqrt() / den);
         }
     }
-    (orth, worst)
+    worst
 }
 
 /// `x ← L⁻ᵀ x` (`transpose`) or `x ← L⁻¹ x` on a block: with two or more threads in rayon's
@@ -518,24 +527,7 @@ fn split_solve(llt: &Llt, x: MatMut<'_, f64>, transpose: bool, threaded: bool) {
 
 /// `max |φᵢᵀ M φⱼ − δᵢⱼ|`.
 pub fn orthogonality_error(m: SparseColMatRef<'_, usize, f64>, phi: MatRef<'_, f64>) -> f64 {
-    let mp = sparse_times_dense(m, phi);
-    let mut g = Mat::zeros(phi.ncols(), phi.ncols());
-    faer::linalg::matmul::matmul(
-        g.as_mut(),
-        Accum::Replace,
-        phi.transpose(),
-        mp.as_ref(),
-        1.0,
-        Par::Seq,
-    );
-    let mut e: f64 = 0.0;
-    for i in 0..g.nrows() {
-        for j in 0..g.ncols() {
-            let d = if i == j { 1.0 } else { 0.0 };
-            e = e.max((g[(i, j)] - d).abs());
-        }
-    }
-    e
+    gram_deviation(phi, sparse_times_dense(m, phi).as_ref())
 }
 
 /// Largest relative residual `‖Kφ − λMφ‖ / max(‖Kφ‖, ‖λMφ‖)` over the modes.
@@ -545,20 +537,5 @@ pub fn max_residual(
     let phi = modes.vectors.as_ref();
     let kp = sparse_times_dense(k, phi);
     let mp = sparse_times_dense(m, phi);
-    let mut worst: f64 = 0.0;
-    for j in 0..phi.ncols() {
-        let l = modes.values[j];
-        let (mut r, mut a, mut b) = (0.0, 0.0, 0.0);
-        for i in 0..phi.nrows() {
-            let x = kp[(i, j)] - l * mp[(i, j)];
-            r += x * x;
-            a += kp[(i, j)] * kp[(i, j)];
-            b += (l * mp[(i, j)]).powi(2);
-        }
-        let den = a.max(b).sqrt();
-        if den > 0.0 {
-            worst = worst.max(r.sqrt() / den);
-        }
-    }
-    worst
+    relative_residual(kp.as_ref(), |j| (modes.values[j], mp.col(j)))
 }
