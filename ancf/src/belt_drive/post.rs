@@ -245,8 +245,8 @@ pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) ->
 /// [`BeltDrive::viscous_axial_force`](super::BeltDrive::viscous_axial_force): the whole axial
 /// force the belt carries), the axial damping's dissipation
 /// ([`BeltDrive::damping_dissipation`](super::BeltDrive::damping_dissipation)), mid-point
-/// offsets ([`span_transverse`]) and lines of action (through the centreline samples over each
-/// span's middle half).
+/// offsets ([`span_transverse`]) and the lines of action of the spans' section forces
+/// ([`BeltDrive::span_force_lines`]).
 pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
     let loads = drive.pulley_loads_with(q, v, omegas);
     let pulleys = (0..drive.pulleys().len())
@@ -281,8 +281,7 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
     }
     let tensions = span_tensions_of(drive, &samples);
     let offsets = span_transverse(drive, q);
-    let centreline: Vec<[f64; 2]> = samples.iter().map(|s| s.position).collect();
-    let lines = drive.path().lines_of_action(&centreline);
+    let lines = drive.span_force_lines(q, v);
     let spans = spans(drive)
         .iter()
         .enumerate()
