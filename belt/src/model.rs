@@ -83,10 +83,19 @@ pub struct SpanState {
     /// Transverse displacement of the span's mid-point from the undeformed span line,
     /// positive to the left of the travel direction \[m\].
     pub transverse: f64,
-    /// The line the span's force acts along: the least-squares line through the deformed belt
-    /// over the span's middle half ([`crate::SpanLine::line_of_action`]); `None` where the
-    /// model gives no points there (the report then takes the undeformed span line).
+    /// The line the span's force acts along (the flowing, nodal and plate models: the
+    /// least-squares line through the deformed belt over the span's middle half,
+    /// [`crate::SpanLine::line_of_action`]; the ANCF belt: the line of its section force,
+    /// `ancf::belt_drive::BeltDrive::span_force_lines`); `None` where the model gives no points
+    /// there (the report then takes the undeformed span line).
     pub line: Option<LineOfAction>,
+    /// The momentum the moving belt carries through the span's middle, `ṁ v` \[N\] along its
+    /// line (`ṁ` the mass flow \[kg/s\], `v` the material velocity), where the model states it
+    /// (`None`: not evaluated; the report then takes the balance as quasi-static). A pulley's
+    /// contact torque balances the moments of the section forces at the middles of its two
+    /// spans less the angular momentum the belt carries out through them (module
+    /// [`crate::report`]); with equal levers in and out the two fluxes cancel.
+    pub momentum_flux: Option<(f64, LineOfAction)>,
 }
 
 /// What a model reports at one state `(t, q, v)` ([`BeltModel::snapshot`]).

@@ -25,9 +25,11 @@
 //!   moment `T_out ℓ_out − T_in ℓ_in` of the forces of the spans leaving and reaching it about
 //!   its centre, `ℓ` the lever of each span's line of action ([`SpanState::line`],
 //!   [`crate::LineOfAction::lever`]; the belt-line radius `R` on the undeformed path, `R` also
-//!   where a model gives no line): moment balance of the belt from the middle of one span over
-//!   the wrap to the middle of the next (a quasi-static wrap: the belt's inertia on the wrap
-//!   enters only while its speed changes). A deformed belt's spans do not leave the pulleys
+//!   where a model gives no line), less the angular momentum the moving belt carries out
+//!   through the two sections where the model states it ([`SpanState::momentum_flux`]: the
+//!   ANCF belt): moment balance of the belt from the middle of one span over the wrap to the
+//!   middle of the next (a steady wrap: the belt's inertia on the wrap enters only while its
+//!   speed changes). A deformed belt's spans do not leave the pulleys
 //!   along the undeformed tangents: on Table 6-1 at 10 N m the flowing model's tight span acts
 //!   0.10 mm and 0.16 mm outside `R` at the driver and the driven pulley; `(T_out − T_in) R`
 //!   missed the contact torques by 0.43 % and 0.75 % there, the lines of action by 0.24 % and
@@ -90,7 +92,8 @@ pub struct PulleyReport {
     /// Force of the span leaving the pulley \[N\].
     pub tension_out_n: f64,
     /// `T_out ℓ_out − T_in ℓ_in`: the moment of the span forces about the pulley's centre,
-    /// `ℓ` the lever of each span's line of action (module documentation) \[N m\].
+    /// `ℓ` the lever of each span's line of action, less the moment of the momentum flux
+    /// where the model states it (module documentation) \[N m\].
     pub span_torque_n_m: f64,
     /// Torque balance residual `τ − (T_out ℓ_out − T_in ℓ_in)` \[N m\].
     pub torque_residual_n_m: f64,
@@ -219,16 +222,19 @@ impl Report {
                 vibration_amplitude_m: None,
             })
             .collect();
-        // (force, lever about pulley k) of the span matching `f`
+        // (moment of the force, less that of the momentum flux, lever) about pulley k of the
+        // span matching `f`
         let span_t = |f: &dyn Fn(&SpanState) -> bool, k: usize| {
             snap.spans
                 .iter()
                 .find(|s| f(s))
                 .map_or((f64::NAN, 0.0), |s| {
-                    let lever = s
-                        .line
-                        .map_or(radius[k], |l| l.lever(snap.pulleys[k].center, turn[k]));
-                    (s.tension, lever)
+                    let c = snap.pulleys[k].center;
+                    let lever = s.line.map_or(radius[k], |l| l.lever(c, turn[k]));
+                    let flux = s
+                        .momentum_flux
+                        .map_or(0.0, |(m, l)| m * l.lever(c, turn[k]));
+                    (s.tension * lever - flux, lever)
                 })
         };
         let pulleys: Vec<PulleyReport> = snap
@@ -243,9 +249,16 @@ impl Report {
                     .collect();
                 on.sort_by(|a, b| a.angle.total_cmp(&b.angle));
                 let [arc, slip_arc, saturated, vmax, vmean, sliding] = wrap_arcs(&on, mu[k]);
-                let ((t_in, l_in), (t_out, l_out)) =
+                let ((m_in, _), (m_out, _)) =
                     (span_t(&|s| s.to == k, k), span_t(&|s| s.from == k, k));
-                let span_torque = t_out * l_out - t_in * l_in;
+                let span_torque = m_out - m_in;
+                let tension = |f: &dyn Fn(&SpanState) -> bool| {
+                    snap.spans
+                        .iter()
+                        .find(|s| f(s))
+                        .map_or(f64::NAN, |s| s.tension)
+                };
+                let (t_in, t_out) = (tension(&|s| s.to == k), tension(&|s| s.from == k));
                 PulleyReport {
                     name: names[k].clone(),
                     role: roles[k],
@@ -443,6 +456,7 @@ pub fn span_states(path: &BeltPath, nodes: &[[f64; 2]], forces: &[f64]) -> Vec<S
             tension: if k == 0 { f64::NAN } else { t / k as f64 },
             transverse,
             line,
+            momentum_flux: None,
         })
         .collect()
 }
@@ -572,6 +586,7 @@ mod tests {
                     tension: t_out,
                     transverse: 0.0,
                     line: None,
+                    momentum_flux: None,
                 },
                 SpanState {
                     from: 1,
@@ -579,6 +594,7 @@ mod tests {
                     tension: t_in,
                     transverse: 0.0,
                     line: None,
+                    momentum_flux: None,
                 },
             ],
             wrap,
@@ -635,6 +651,50 @@ mod tests {
         // a window mean of two equal reports is the report
         let m = Report::mean(&[rep.clone(), rep.clone()]).unwrap();
         assert_eq!(m.pulleys[1].slip_arc_rad, rep.pulleys[1].slip_arc_rad);
+    }
+
+    // Angular momentum balance of the steady belt between the middles of two spans (module
+    // documentation): the contact torque is the moment of the section forces less that of the
+    // momentum carried out, `ṁv` along each span. With the momentum of the span leaving the
+    // driven pulley on a line offset by d outward (lever R + d about both pulleys, a common
+    // external tangent) and the other on the undeformed tangent (lever R), the driven pulley
+    // transmits Φ d less than (T_in − T_out) R and the driver Φ d more; the report closes both
+    // balances with the fluxes and misses them by Φ d without.
+    #[test]
+    fn momentum_flux_enters_the_torque_balance_through_its_levers() {
+        let (drive, mut snap, _, _) = capstan_snapshot(0.5, 2.0, None);
+        let (phi, d) = (20.0, 1e-3);
+        let spans = drive.path().spans();
+        let line = |k: usize, off: f64| {
+            let sp = spans.iter().find(|s| s.from == k).unwrap();
+            let e = sp.direction;
+            // the pulleys are wrapped clockwise: their centres lie right of the travel
+            let left = [-e[1], e[0]];
+            crate::LineOfAction {
+                point: [sp.start[0] + off * left[0], sp.start[1] + off * left[1]],
+                direction: e,
+            }
+        };
+        for s in &mut snap.spans {
+            let off = if s.from == 1 { d } else { 0.0 };
+            s.momentum_flux = Some((phi, line(s.from, off)));
+        }
+        snap.pulleys[1].torque -= phi * d;
+        snap.pulleys[0].torque += phi * d;
+        let rep = Report::new(&drive, &snap);
+        for q in &rep.pulleys {
+            assert!(q.torque_residual_n_m.abs() < 1e-9, "{q:?}");
+        }
+        for s in &mut snap.spans {
+            s.momentum_flux = None;
+        }
+        let rep = Report::new(&drive, &snap);
+        for q in &rep.pulleys {
+            assert!(
+                (q.torque_residual_n_m.abs() - phi * d).abs() < 1e-9,
+                "{q:?}"
+            );
+        }
     }
 
     // a wrap without adhesion is gross slip (definition: adhesion arc below 5 % of the contact

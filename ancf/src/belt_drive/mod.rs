@@ -30,7 +30,7 @@ pub use closure::{ClosureResult, free_belt_closure};
 pub use friction::BeltFriction;
 pub use initial::{InitialOptions, InitialState};
 pub use model::{
-    BeltArm, BeltDrive, Planar, PointRecord, PulleyLoad, SECTION_CELLS, SectionForces,
+    BeltArm, BeltDrive, Planar, PointRecord, PulleyLoad, SECTION_CELLS, SectionForces, SpanSection,
 };
 pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationConfig, simulate};
 pub use spec::{BeltDriveSpec, BeltSpec, ContactSpec};

@@ -860,16 +860,22 @@ impl BeltDrive {
     /// missed the alternator's contact torque by 0.12 N m at 800 rpm and 0.16 N m at 2500 rpm,
     /// the section forces' lines by 0.03 and 0.07 N m (issue 34).
     ///
-    /// The balance this gives a pulley is the moment balance of the belt between the middle of
-    /// one span and the middle of the next (quasi-static: the momentum flux `ρA v²` of the
-    /// spans enters both ends alike).
-    pub fn span_force_lines(&self, q: &[f64], v: &[f64]) -> Vec<Option<belt::LineOfAction>> {
+    /// With each line comes the momentum the belt carries through the same sections, `ṁ ṙ`
+    /// (mass flow `ṁ = ρ b h (ṙ·t)/‖r_x‖` through a fixed section, `ṙ` the material velocity),
+    /// averaged the same way: the balance this gives a pulley is the moment balance of the belt
+    /// between the middle of one span and the middle of the next, the contact torque against the
+    /// moments of the section forces less the angular momentum carried out (the fluxes of the
+    /// two spans cancel only where their levers are equal: at 3500 rpm `ρA v²` is 73 N on the
+    /// default FEAD drive).
+    pub fn span_force_lines(&self, q: &[f64], v: &[f64]) -> Vec<SpanSection> {
         let mesh = &self.kind.mesh;
         let cpn = mesh.coords_per_node();
         let nodes: Vec<[f64; 2]> = (0..mesh.n_nodes())
             .map(|k| [q[cpn * k], q[cpn * k + 1]])
             .collect();
         let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+        let b = &self.spec.belt;
+        let rho_a = b.density * b.width * b.thickness;
         let (mut e, mut ed, mut qe, mut qd) = ([0.0; NE], [0.0; NE], [0.0; NE], [0.0; NE]);
         self.path()
             .spans()
@@ -877,9 +883,10 @@ impl BeltDrive {
             .map(|sp| {
                 let run = sp.middle_run(&nodes);
                 if run.is_empty() {
-                    return None;
+                    return (None, None);
                 }
                 let (mut f, mut m) = ([0.0; 2], 0.0);
+                let (mut flux, mut mflux) = ([0.0; 2], 0.0);
                 for &el in &run {
                     mesh.gather(q, el, &mut e);
                     mesh.gather(v, el, &mut ed);
@@ -895,25 +902,38 @@ impl BeltDrive {
                         f[0] += sign * fo[0];
                         f[1] += sign * fo[1];
                         m += sign * (cross(p, fo) + mo);
+                        // ṁ ṙ through a fixed section at this node
+                        let (rd, rx) = ([ed[o], ed[o + 1]], at(o + 2));
+                        let mdot = rho_a * (rd[0] * rx[0] + rd[1] * rx[1]) / rx[0].hypot(rx[1]);
+                        let phi = [mdot * rd[0], mdot * rd[1]];
+                        flux[0] += phi[0];
+                        flux[1] += phi[1];
+                        mflux += cross(p, phi);
                     }
                 }
                 let n = 2.0 * run.len() as f64;
-                let (f, m) = ([f[0] / n, f[1] / n], m / n);
-                let f2 = f[0] * f[0] + f[1] * f[1];
-                if f2 == 0.0 {
-                    return None;
-                }
-                // the travel sense: a span in compression pushes against it
-                let s = if f[0] * sp.direction[0] + f[1] * sp.direction[1] >= 0.0 {
-                    1.0
-                } else {
-                    -1.0
+                let line = |g: [f64; 2], m: f64| {
+                    let (g, m) = ([g[0] / n, g[1] / n], m / n);
+                    let g2 = g[0] * g[0] + g[1] * g[1];
+                    if g2 == 0.0 {
+                        return None;
+                    }
+                    // in the travel sense: a span in compression pushes against it
+                    let s = if g[0] * sp.direction[0] + g[1] * sp.direction[1] >= 0.0 {
+                        1.0
+                    } else {
+                        -1.0
+                    };
+                    let gl = g2.sqrt();
+                    Some((
+                        s * gl,
+                        belt::LineOfAction {
+                            point: [m * g[1] / g2, -m * g[0] / g2],
+                            direction: [s * g[0] / gl, s * g[1] / gl],
+                        },
+                    ))
                 };
-                let fl = f2.sqrt();
-                Some(belt::LineOfAction {
-                    point: [m * f[1] / f2, -m * f[0] / f2],
-                    direction: [s * f[0] / fl, s * f[1] / fl],
-                })
+                (line(f, m).map(|l| l.1), line(flux, mflux))
             })
             .collect()
     }
@@ -1116,6 +1136,14 @@ pub struct SectionForces<'a> {
     nodal: Vec<[f64; 2]>,
     defect: Vec<[f64; 2]>,
 }
+
+/// What [`BeltDrive::span_force_lines`] gives per span: the line of action of the section
+/// force (`None` where the belt does not cross the span's bisector) and the momentum flux `ṁ v`
+/// \[N\] with its line ([`belt::SpanState::momentum_flux`]).
+pub type SpanSection = (
+    Option<belt::LineOfAction>,
+    Option<(f64, belt::LineOfAction)>,
+);
 
 /// Midpoint cells per element of the fine integral of the contact force density in
 /// [`SectionForces`].

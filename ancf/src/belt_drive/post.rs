@@ -290,7 +290,8 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
             to: sp.to,
             tension: tensions[k],
             transverse: offsets[k],
-            line: lines[k],
+            line: lines[k].0,
+            momentum_flux: lines[k].1,
         })
         .collect();
     Snapshot {

@@ -303,6 +303,7 @@ impl DriveKind for Plate {
                 tension: states[k].membrane_force,
                 transverse: offsets[k],
                 line: lines[k],
+                momentum_flux: None,
             })
             .collect();
         let w = d.spec().belt.width;
