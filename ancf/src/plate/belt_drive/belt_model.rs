@@ -164,6 +164,7 @@ pub fn plate_spec(
             damping: 0.0,
             friction,
             points: s.contact_points,
+            points_across: None,
         },
     };
     let mapping = PlateMapping {

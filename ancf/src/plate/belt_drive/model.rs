@@ -159,10 +159,11 @@ impl PlateBeltDrive {
             cells,
         };
         let rule = GaussRule::new(spec.contact.points);
+        let across = GaussRule::new(spec.contact.points_across.unwrap_or(spec.contact.points));
         let mut quad = Vec::new();
         let mut quad_s = Vec::new();
         let mut quad_shape = Vec::new();
-        for (eta, wy) in rule.iter() {
+        for (eta, wy) in across.iter() {
             for (xi, wx) in rule.iter() {
                 let (x, y) = (xi * a, eta * b.width);
                 let s = plate.shape().eval(x, y).s;
@@ -652,6 +653,72 @@ impl PlateBeltDrive {
         ForceTangent {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // The contact quadrature `points × points_across` (Gauss–Legendre in both directions):
+    // its weights sum to the element area a·w (closed form), and since the plate's shape
+    // functions are at most cubic across the width, 3 Gauss points (exact to degree 5)
+    // integrate every S_k as the 9 × 9 rule does (second rule as the reference, to
+    // round-off). `points_across = None` is the square rule, point for point.
+    #[test]
+    fn contact_quadrature_across_the_width() {
+        let square = PlateBeltDrive::new(PlateDriveSpec::kerkkanen_model2()).unwrap();
+        let mut spec = PlateDriveSpec::kerkkanen_model2();
+        spec.contact.points_across = Some(9);
+        let same = PlateBeltDrive::new(spec.clone()).unwrap();
+        assert_eq!(square.contact_quadrature(), same.contact_quadrature());
+        spec.contact.points_across = Some(3);
+        let narrow = PlateBeltDrive::new(spec).unwrap();
+        assert_eq!(narrow.contact_quadrature().len(), 27);
+        let (a, w) = (square.element_length(), square.spec().belt.width);
+        let integrals = |d: &PlateBeltDrive| {
+            let mut s = [0.0; 12];
+            let mut area = 0.0;
+            for (x, y, wq) in d.contact_quadrature() {
+                area += wq;
+                let sv = d.mesh().cells[0].plate.shape().eval(*x, *y).s;
+                for k in 0..12 {
+                    s[k] += wq * sv[k];
+                }
+            }
+            (area, s)
+        };
+        let (area9, s9) = integrals(&square);
+        let (area3, s3) = integrals(&narrow);
+        assert!(
+            (area9 - a * w).abs() < 1e-13 * a * w,
+            "{area9} vs {}",
+            a * w
+        );
+        assert!(
+            (area3 - a * w).abs() < 1e-13 * a * w,
+            "{area3} vs {}",
+            a * w
+        );
+        for k in 0..12 {
+            assert!(
+                (s9[k] - s3[k]).abs() < 1e-15,
+                "S_{k}: {} vs {}",
+                s9[k],
+                s3[k]
+            );
+        }
+    }
+
+    // A rule of 0 or more than 20 points across is rejected and named.
+    #[test]
+    fn points_across_is_checked() {
+        for n in [0, 21] {
+            let mut spec = PlateDriveSpec::kerkkanen_model2();
+            spec.contact.points_across = Some(n);
+            let e = PlateBeltDrive::new(spec).err().unwrap().to_string();
+            assert!(e.contains("contact.points_across"), "{e}");
         }
     }
 }
