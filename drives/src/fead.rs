@@ -92,7 +92,7 @@ use belt::{
 };
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
-use mbd_core::integrators::{AlphaConfig, State};
+use mbd_core::integrators::{AlphaConfig, State, Stats};
 use mbd_core::validate::{InvalidField, Validate, check};
 use serde::{Deserialize, Serialize};
 
@@ -570,6 +570,10 @@ pub struct FeadPoint {
     /// Every decoupled accessory (pulley order; empty without decouplers).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub decouplers: Vec<FeadDecoupler>,
+    /// The stepper's work at this point, ramp, settling and windows (accepted and rejected
+    /// steps, Newton iterations, Newton-matrix evaluations and factorisations:
+    /// [`mbd_core::integrators::Stats`]); load-independent measures of the point's cost.
+    pub work: Stats,
 }
 
 /// The tensioner arm's motion through its dry friction over one window (issue 34 item 6).
@@ -758,6 +762,8 @@ pub struct FeadSummary {
     pub dofs: usize,
     /// Steps taken.
     pub steps: usize,
+    /// The stepper's work over the whole sweep (the sum of the points' [`FeadPoint::work`]).
+    pub work: Stats,
     /// What the numbers mean: the drive's pulleys in travel order with their roles, then
     /// [`FEAD_MEANING`] ([`fead_meaning`]).
     pub meaning: String,
@@ -1106,6 +1112,7 @@ fn sweep<M: BeltModel>(
         force_measure: model.traits().force_measure.to_string(),
         dofs: model.n_q(),
         steps: 0,
+        work: Stats::default(),
         meaning: fead_meaning(drive),
     };
     let fail = |error: MbdError, summary: &FeadSummary| {
@@ -1240,6 +1247,8 @@ fn sweep<M: BeltModel>(
             dec,
         } = w;
         let st = sim.state().clone();
+        let work = sim.stats();
+        summary.work.accumulate(&work);
         drop(sim);
         if reports.is_empty() {
             let snap = model
@@ -1306,6 +1315,7 @@ fn sweep<M: BeltModel>(
             settled_s: window_start - cfg.run.ramp,
             window_s,
             arm_friction: dry.then(|| arm_rate.get(friction_rate)).flatten(),
+            work,
             decouplers: dec
                 .iter()
                 .enumerate()

@@ -395,6 +395,20 @@ fn fead_runs_the_ancf_model_and_agrees_with_the_flowing_one() {
     assert!((a.belt_speed / crank - 1.0).abs() < 5e-3);
     // the ANCF belt is not linearised: no linearisation flag
     assert!(a.linearisation.is_none());
+    // the work counters (issue 37 item 4; definitions): the sweep's are the sum of its points',
+    // every step of the procedure is at least one accepted step of the stepper (a subdivided
+    // step counts its parts), and every Newton matrix of the ANCF belt went to the band LU
+    for run in [&ancf, &flow] {
+        let mut sum = mbd_core::integrators::Stats::default();
+        run.points.iter().for_each(|p| sum.accumulate(&p.work));
+        assert_eq!(sum, run.work);
+        assert!(run.work.steps >= run.steps && run.steps > 0);
+        assert!(run.work.newton_iterations >= run.work.steps);
+    }
+    assert_eq!(
+        ancf.work.banded_factorizations,
+        ancf.work.jacobian_evaluations
+    );
 }
 
 // The FEAD study's 2500 rpm point of the default six-pulley drive, from rest (issue 17: the

@@ -42,5 +42,10 @@ macro_rules! forward_dynamics {
         ) -> Result<Option<$crate::ForceTangent>, $crate::MbdError> {
             self.$inner.force_tangent(t, q, v, ws)
         }
+        fn predict_increment(
+            &self, t: f64, q: &[f64], v: &[f64], vdot: &[f64], h: f64, dq: &mut [f64],
+        ) -> bool {
+            self.$inner.predict_increment(t, q, v, vdot, h, dq)
+        }
     };
 }

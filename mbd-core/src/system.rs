@@ -117,6 +117,23 @@ pub trait SecondOrderSystem {
         }
     }
 
+    /// The model's own prediction of a step of size `h` \[s\] from the state `(t, q, v)` with
+    /// accelerations `vdot`: the position increment `Δq` (velocity coordinates, as
+    /// [`integrate_position`](Self::integrate_position)) written over `dq`, which holds the
+    /// integrator's own prediction on entry (a model may keep it for some coordinates).
+    /// Returns whether it predicted (default: `false`, `dq` untouched). Only the starting
+    /// iterate of the implicit integrators' Newton iteration: the step's solution does not
+    /// depend on it (generalized-α with
+    /// [`AlphaConfig::model_predictor`](crate::integrators::AlphaConfig::model_predictor)
+    /// starts from whichever prediction has the smaller residual). E.g. a Lagrangian belt mesh
+    /// in a steady drive: every node moves to where the material ahead of it was, which the
+    /// constant-acceleration predictor misses at every wrap entry by `h v²/R` in velocity.
+    fn predict_increment(
+        &self, _t: f64, _q: &[f64], _v: &[f64], _vdot: &[f64], _h: f64, _dq: &mut [f64],
+    ) -> bool {
+        false
+    }
+
     /// Model-specific validation of a state at time `t` \[s\] (e.g. unit Euler parameters),
     /// called by the integrators on the initial state; sizes and finiteness are checked by the
     /// caller.

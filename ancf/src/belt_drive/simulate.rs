@@ -60,6 +60,18 @@ pub struct SimulationConfig {
     /// creep-rate friction law (Kerkkänen Fig. 3.3) in a few per cent of the steps, which are
     /// then halved.
     pub line_search: bool,
+    /// Offer each step's Newton iteration the belt convected along itself
+    /// ([`BeltDrive::convected_increment`]) as its starting iterate when its residual is
+    /// smaller than the constant-acceleration predictor's (mbd-core
+    /// `AlphaConfig::model_predictor`). A node entering a wrap at belt speed `v` changes its
+    /// acceleration by `v²/R` within the step, which the constant-acceleration predictor
+    /// misses by about `γ h v²/R` in velocity (≈ 3 m/s on the 28 mm alternator at 3500 rpm of
+    /// the default FEAD drive, against the friction law's 25 mm/s, `1/κ`). Default `false`:
+    /// on the default ANCF FEAD sweep (BENCHMARKS.md, issue 37 item 4) it cut the
+    /// factorisations at 2500 and 3500 rpm by 28 % and 52 % but doubled and tripled them at
+    /// 1500 and 800 rpm (a smaller starting residual is not a shorter Newton iteration
+    /// there), 25 % fewer in all, for no saving in CPU time.
+    pub convected_predictor: bool,
 }
 
 impl Default for SimulationConfig {
@@ -73,6 +85,7 @@ impl Default for SimulationConfig {
             newton_update: NewtonUpdate::Frozen,
             refactor_contraction: 0.8,
             line_search: true,
+            convected_predictor: false,
         }
     }
 }
@@ -141,6 +154,7 @@ impl SimulationConfig {
             max_halvings: 10,
             project_velocities: false,
             banded_lu: true,
+            model_predictor: self.convected_predictor,
             ..AlphaConfig::default()
         }
     }

@@ -227,6 +227,14 @@ pub struct AlphaConfig {
     /// saturated branch (the belt procedures of `drives` use 13, BENCHMARKS.md "friction
     /// regularisation").
     pub newton_line_search_trials: usize,
+    /// Offer every step's Newton iteration the model's own prediction
+    /// ([`SecondOrderSystem::predict_increment`]) besides the constant-acceleration predictor
+    /// `v̇ₙ₊₁ = v̇ₙ`, and start from the one whose residual `‖[M v̇ + Dᵀλ − f; Φ]‖₂` is
+    /// smaller (one residual evaluation more per step when the model predicts). The model's
+    /// increment `Δq̂` moves the whole unknown along the Newmark relations of the update,
+    /// `v ← v + γ' (Δq̂ − Δq)`, `v̇ ← v̇ + β' (Δq̂ − Δq)`, as a Newton correction would: only
+    /// the starting iterate changes, not the equations solved.
+    pub model_predictor: bool,
 }
 
 impl Default for AlphaConfig {
@@ -252,6 +260,7 @@ impl Default for AlphaConfig {
             newton_stall: None,
             newton_line_search: false,
             newton_line_search_trials: 5,
+            model_predictor: false,
         }
     }
 }
@@ -714,6 +723,21 @@ impl<C> AlphaStepper<C> {
             }
         }
 
+        let mut cached = false;
+        if p.model_predictor {
+            cached = self.model_prediction(
+                sys,
+                (h, t1, bp, gp),
+                x,
+                q1,
+                f,
+                r_lin,
+                x_lin,
+                dx_lin,
+                cache_x,
+                cache_r,
+            )?;
+        }
         if update == NewtonUpdate::Frozen {
             self.select_frozen_matrix(h, &x[n..2 * n]);
         }
@@ -743,7 +767,7 @@ impl<C> AlphaStepper<C> {
             prev_norm: f64::INFINITY,
             cache_x,
             cache_r,
-            cached: false,
+            cached,
         };
         let solved = if p.linearly_implicit {
             // one iteration from the predictor, no convergence test
@@ -893,6 +917,53 @@ impl<C> AlphaStepper<C> {
     /// [`NewtonUpdate::Frozen`]: keeps the factored matrix unless the step size `h` \[s\]
     /// changed (then swaps in the spare of that size, or keeps the current one as the spare)
     /// or the drift trigger fires on the predicted velocities `v1`.
+    /// [`AlphaConfig::model_predictor`]: replaces the predicted unknown `x` by the model's
+    /// prediction ([`SecondOrderSystem::predict_increment`], moved along the Newmark
+    /// relations) when its residual is smaller. Returns whether `cache_x`/`cache_r` hold the
+    /// residual at the chosen `x` (the first Newton iteration then reuses it).
+    #[allow(clippy::too_many_arguments)] // the step's coefficients and the work vectors
+    fn model_prediction<S: SecondOrderSystem + ?Sized>(
+        &mut self, sys: &S, (h, t1, bp, gp): (f64, f64, f64, f64), x: &mut [f64], q1: &mut [f64],
+        f: &mut [f64], r_std: &mut [f64], x_alt: &mut [f64], dq_alt: &mut [f64],
+        cache_x: &mut [f64], cache_r: &mut [f64],
+    ) -> Result<bool, MbdError> {
+        let n = sys.n_v();
+        let dq_alt = &mut dq_alt[..n];
+        dq_alt.copy_from_slice(&x[..n]);
+        let (t, q, v) = (self.state.t, &self.state.q, &self.state.v);
+        if !sys.predict_increment(t, q, v, &self.vdot, h, dq_alt) {
+            return Ok(false);
+        }
+        x_alt.copy_from_slice(x);
+        for (i, &dq) in dq_alt.iter().enumerate() {
+            let d = dq - x[i];
+            x_alt[i] = dq;
+            x_alt[n + i] += gp * d;
+            x_alt[2 * n + i] += bp * d;
+        }
+        let norm = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let mut eval = |st: &mut Self, xx: &[f64], r: &mut [f64]| -> Result<f64, MbdError> {
+            let (dq, rest) = xx.split_at(n);
+            let (v1, rest) = rest.split_at(n);
+            let (vdot1, lam1) = rest.split_at(n);
+            sys.integrate_position(&st.state.q, dq, q1);
+            let (rr, phi) = r.split_at_mut(n);
+            st.residual(sys, t1, q1, v1, vdot1, lam1, rr, phi, f)?;
+            Ok(norm(r))
+        };
+        let standard = eval(self, x, r_std)?;
+        // a prediction whose residual is not finite is not taken
+        let alternative = eval(self, x_alt, cache_r).unwrap_or(f64::INFINITY);
+        if alternative < standard {
+            x.copy_from_slice(x_alt);
+            self.stats.model_predictions += 1;
+        } else {
+            cache_r.copy_from_slice(r_std);
+        }
+        cache_x.copy_from_slice(x);
+        Ok(true)
+    }
+
     fn select_frozen_matrix(&mut self, h: f64, v1: &[f64]) {
         if self.matrix.is_factored() && self.matrix.h != h {
             if self

@@ -122,6 +122,10 @@ pub struct Stats {
     pub banded_rejections: usize,
     /// Located events.
     pub events: usize,
+    /// Steps (attempts included) whose Newton iteration started from the model's own
+    /// prediction ([`crate::SecondOrderSystem::predict_increment`], generalized-α with
+    /// [`AlphaConfig::model_predictor`]) because its residual was the smaller.
+    pub model_predictions: usize,
     /// Steps halved after a Newton failure (generalized-α: [`AlphaConfig::max_halvings`],
     /// [`AlphaConfig::subdivisions`]); each also counts as a rejected step.
     pub halvings: usize,
@@ -140,6 +144,7 @@ impl Stats {
         self.banded_rejections += o.banded_rejections;
         self.events += o.events;
         self.halvings += o.halvings;
+        self.model_predictions += o.model_predictions;
     }
 }
 
