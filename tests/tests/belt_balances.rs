@@ -160,6 +160,25 @@ fn table_6_1_balances_on_ancf() {
     }
 }
 
+/// The default fead drive at 800 rpm (`FeadConfig::default`) on `model`.
+fn default_fead(model: FeadModel) -> FeadConfig {
+    let mut c = FeadConfig {
+        model,
+        ..FeadConfig::default()
+    };
+    c.engine.speeds_rpm = vec![800.0];
+    c
+}
+
+/// Run the one-point sweep `c` and check that it settles and closes both balances.
+fn assert_steady_and_balanced(what: &str, c: &FeadConfig) {
+    let s = run_fead(c, |_| {}).unwrap();
+    let p = &s.points[0];
+    println!("settled {} s, steady {}", p.settled_s, p.steady);
+    assert!(p.steady);
+    assert_balanced(what, &p.report);
+}
+
 /// The Pechstein–Gerstmayr drive of the shipped example, shortened for the test: load ramped
 /// 0.1 → 0.4 s, 0.4 s settle after the crank's 0.3 s ramp; `element` \[m\], `step` \[s\].
 fn pechstein_gerstmayr(model: FeadModel, element: f64, step: f64) -> FeadConfig {
@@ -261,16 +280,7 @@ fn pechstein_gerstmayr_balances_on_nodal() {
 // the open fix is relabelling-invariant elastic and viscous forces (along the deformed chord).
 #[test]
 fn default_fead_balances_on_nodal() {
-    let mut c = FeadConfig {
-        model: FeadModel::Nodal,
-        ..FeadConfig::default()
-    };
-    c.engine.speeds_rpm = vec![800.0];
-    let s = run_fead(&c, |_| {}).unwrap();
-    let p = &s.points[0];
-    println!("settled {} s, steady {}", p.settled_s, p.steady);
-    assert!(p.steady);
-    assert_balanced("fead 800 rpm nodal", &p.report);
+    assert_steady_and_balanced("fead 800 rpm nodal", &default_fead(FeadModel::Nodal));
 }
 
 // The same on the ANCF belt (the fead study's ANCF settings). The alternator → tensioner span
@@ -281,26 +291,7 @@ fn default_fead_balances_on_nodal() {
 // the lines of the section forces (`BeltDrive::span_force_lines`) 0.18 %, power 0.20 %.
 #[test]
 fn default_fead_balances_on_ancf() {
-    let mut c = FeadConfig {
-        model: FeadModel::Ancf,
-        ..FeadConfig::default()
-    };
-    c.engine.speeds_rpm = vec![800.0];
-    let s = run_fead(&c, |_| {}).unwrap();
-    let p = &s.points[0];
-    println!("settled {} s, steady {}", p.settled_s, p.steady);
-    assert!(p.steady);
-    assert_balanced("fead 800 rpm ANCF", &p.report);
-}
-
-/// The default fead drive at 800 rpm on the flowing model (`FeadConfig::default`).
-fn default_fead_flowing() -> FeadConfig {
-    let mut c = FeadConfig {
-        model: FeadModel::Flowing,
-        ..FeadConfig::default()
-    };
-    c.engine.speeds_rpm = vec![800.0];
-    c
+    assert_steady_and_balanced("fead 800 rpm ANCF", &default_fead(FeadModel::Ancf));
 }
 
 // Issue 34 item 2 on the flowing model's default formulation (Ribaric (5.14), linear axial and
@@ -319,9 +310,7 @@ fn default_fead_flowing() -> FeadConfig {
 #[test]
 #[ignore = "fails: the path-referenced bending of Ribaric (5.5) does work on the slide (issue 34)"]
 fn default_fead_balances_on_flowing() {
-    let s = run_fead(&default_fead_flowing(), |_| {}).unwrap();
-    assert!(s.points[0].steady);
-    assert_balanced("fead 800 rpm flowing", &s.points[0].report);
+    assert_steady_and_balanced("fead 800 rpm flowing", &default_fead(FeadModel::Flowing));
 }
 
 // The default fead drive with a belt of a hundredth of the bending stiffness (EI = 2.6e-4
@@ -332,9 +321,7 @@ fn default_fead_balances_on_flowing() {
 // their cancellation.
 #[test]
 fn default_fead_with_a_thin_belt_balances_on_flowing() {
-    let mut c = default_fead_flowing();
+    let mut c = default_fead(FeadModel::Flowing);
     c.drive.belt.ei /= 100.0;
-    let s = run_fead(&c, |_| {}).unwrap();
-    assert!(s.points[0].steady);
-    assert_balanced("fead 800 rpm flowing EI/100", &s.points[0].report);
+    assert_steady_and_balanced("fead 800 rpm flowing EI/100", &c);
 }
