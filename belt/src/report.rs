@@ -222,19 +222,19 @@ impl Report {
                 vibration_amplitude_m: None,
             })
             .collect();
-        // (moment of the force, less that of the momentum flux, lever) about pulley k of the
-        // span matching `f`
+        // (force, its moment less that of the momentum flux) about pulley k of the span
+        // matching `f`
         let span_t = |f: &dyn Fn(&SpanState) -> bool, k: usize| {
             snap.spans
                 .iter()
                 .find(|s| f(s))
-                .map_or((f64::NAN, 0.0), |s| {
+                .map_or((f64::NAN, f64::NAN), |s| {
                     let c = snap.pulleys[k].center;
                     let lever = s.line.map_or(radius[k], |l| l.lever(c, turn[k]));
                     let flux = s
                         .momentum_flux
                         .map_or(0.0, |(m, l)| m * l.lever(c, turn[k]));
-                    (s.tension * lever - flux, lever)
+                    (s.tension, s.tension * lever - flux)
                 })
         };
         let pulleys: Vec<PulleyReport> = snap
@@ -249,16 +249,9 @@ impl Report {
                     .collect();
                 on.sort_by(|a, b| a.angle.total_cmp(&b.angle));
                 let [arc, slip_arc, saturated, vmax, vmean, sliding] = wrap_arcs(&on, mu[k]);
-                let ((m_in, _), (m_out, _)) =
+                let ((t_in, m_in), (t_out, m_out)) =
                     (span_t(&|s| s.to == k, k), span_t(&|s| s.from == k, k));
                 let span_torque = m_out - m_in;
-                let tension = |f: &dyn Fn(&SpanState) -> bool| {
-                    snap.spans
-                        .iter()
-                        .find(|s| f(s))
-                        .map_or(f64::NAN, |s| s.tension)
-                };
-                let (t_in, t_out) = (tension(&|s| s.to == k), tension(&|s| s.from == k));
                 PulleyReport {
                     name: names[k].clone(),
                     role: roles[k],

@@ -914,9 +914,6 @@ impl<C> AlphaStepper<C> {
         Ok(())
     }
 
-    /// [`NewtonUpdate::Frozen`]: keeps the factored matrix unless the step size `h` \[s\]
-    /// changed (then swaps in the spare of that size, or keeps the current one as the spare)
-    /// or the drift trigger fires on the predicted velocities `v1`.
     /// [`AlphaConfig::model_predictor`]: replaces the predicted unknown `x` by the model's
     /// prediction ([`SecondOrderSystem::predict_increment`], moved along the Newmark
     /// relations) when its residual is smaller. Returns whether `cache_x`/`cache_r` hold the
@@ -964,6 +961,9 @@ impl<C> AlphaStepper<C> {
         Ok(true)
     }
 
+    /// [`NewtonUpdate::Frozen`]: keeps the factored matrix unless the step size `h` \[s\]
+    /// changed (then swaps in the spare of that size, or keeps the current one as the spare)
+    /// or the drift trigger fires on the predicted velocities `v1`.
     fn select_frozen_matrix(&mut self, h: f64, v1: &[f64]) {
         if self.matrix.is_factored() && self.matrix.h != h {
             if self
