@@ -141,6 +141,8 @@ pub trait AncfDrive: SecondOrderSystem {
     fn snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError>;
     /// Transverse offset of each span's middle from its line \[m\].
     fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError>;
+    /// Number of belt elements along the belt.
+    fn belt_elements(&self) -> usize;
 }
 
 /// A mounted ANCF belt of a drive (module documentation).
@@ -196,6 +198,12 @@ impl<D: AncfDrive> BeltModel for MountedBelt<D> {
 
     fn traits(&self) -> ModelTraits {
         self.drive.model_traits()
+    }
+
+    /// The belt's equal elements (the planar belt's beam elements, Kerkkänen (3.1); the plate
+    /// belt's elements along the belt, (4.1)): the mounted belt length over their number.
+    fn material_element(&self) -> Option<f64> {
+        Some(self.layout.belt_length() / self.drive.belt_elements().max(1) as f64)
     }
 
     /// The mounted static state, at rest.

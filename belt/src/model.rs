@@ -157,6 +157,17 @@ pub trait BeltModel: SecondOrderSystem {
     /// Lagrangian mesh).
     fn belt_speed(&self, q: &[f64], v: &[f64]) -> f64;
 
+    /// Length of the belt elements that travel with the material \[m\]: a Lagrangian mesh
+    /// (the ANCF and nodal belts) carries its elements and contact points through the wraps at
+    /// the belt speed `v`, so a step `h` moves them `v h` along the path, and a node entering
+    /// a wrap changes its acceleration by `v²/R` within the step (the procedures limit `v h` to
+    /// a fraction of this length, e.g. the FEAD study's `run.max_travel`). `None` (the default)
+    /// for a stationary (Eulerian) mesh, the flowing belt's (Ribaric (5.10): the material
+    /// moves through the mesh, whose nodes stay in place).
+    fn material_element(&self) -> Option<f64> {
+        None
+    }
+
     /// The drive's state at `(t, q, v)` for the report.
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError>;
 

@@ -180,6 +180,18 @@ pub struct FeadRun {
     /// 100 × this), and every span's mean tension within 10 × this fraction of the
     /// installed tension.
     pub steady_tolerance: f64,
+    /// Largest belt travel per step on a Lagrangian mesh, as a fraction of its element length
+    /// \[-\] (the ANCF and nodal belts, [`belt::BeltModel::material_element`]; the flowing
+    /// belt's mesh is stationary and keeps its step). A point whose crank drives the belt at
+    /// `v = ω R_crank` steps at the model's step divided into the fewest equal parts with
+    /// `v h ≤ max_travel · ℓ` ([`travel_limited_step`]). A node entering a wrap changes its
+    /// acceleration by `v²/R` within the step: at the model's 0.25 ms the default drive's ANCF
+    /// belt moves half an element per step at 3500 rpm. A convergence control: with 0.3 the
+    /// default sweep's 2500 and 3500 rpm points step at 0.125 and 0.083 ms and their span
+    /// means move by up to 4 N (1 %), while the torque residual on the alternator → tensioner
+    /// span rises to 0.5–0.6 % (BENCHMARKS.md, issue 37 item 4). `0` (the default): the model's
+    /// step at every point.
+    pub max_travel: f64,
 }
 
 impl Default for FeadRun {
@@ -195,6 +207,7 @@ impl Default for FeadRun {
             window: 0.1,
             max_settle: 2.0,
             steady_tolerance: 5e-4,
+            max_travel: 0.0,
         }
     }
 }
@@ -417,6 +430,7 @@ impl Validate for FeadConfig {
             0.1,
             "",
         )?;
+        check::within("run.max_travel", self.run.max_travel, 0.0, 100.0, "")?;
         // the longest run of a point: the last window starts at ramp + max_settle and is at
         // most one order period (≤ window at the slowest speed checked below) longer
         let per_point = self.run.ramp + self.run.max_settle + 2.0 * self.run.window;
@@ -564,6 +578,10 @@ pub struct FeadPoint {
     /// Length of the reported window \[s\]: whole periods of the lowest engine order
     /// ([`steady_window`]).
     pub window_s: f64,
+    /// The generalized-α step of this point \[s\]: the model's step, divided on a Lagrangian
+    /// mesh so that the belt travels at most `run.max_travel` elements per step
+    /// ([`travel_limited_step`]).
+    pub step_s: f64,
     /// How the tensioner arm moved through its dry friction in the window (`None`: no
     /// tensioner, or no dry friction at its pivot): [`ArmFriction`].
     pub arm_friction: Option<ArmFriction>,
@@ -658,6 +676,31 @@ pub fn steady_window(engine: &EngineConfig, window: f64, omega: f64, h: f64) -> 
     };
     let steps = (w / h).round().max(1.0) as usize;
     (steps as f64 * h, steps)
+}
+
+/// The ANCF belt's largest Newton correction in the FEAD sweep \[m\]
+/// (`ancf::belt_drive::SimulationConfig::max_correction`, with its convected predictor,
+/// `convected_predictor`): under a tenth of the default drive's 13 mm elements and of the
+/// 7 mm the belt travels in a 0.25 ms step at 3500 rpm, far above the 5 µm tolerance. On the
+/// default sweep at the model's fixed 0.25 ms step the two together took 22 % fewer Newton
+/// iterations and 38 % fewer factorisations (0.61 of the CPU time, run side by side), with the
+/// same means at 800–2500 rpm within the sweep's tolerance (BENCHMARKS.md, issue 37 item 4).
+pub const ANCF_MAX_CORRECTION: f64 = 1e-3;
+
+/// The step of a sweep point on a Lagrangian mesh ([`FeadRun::max_travel`]) \[s\]: `h` divided
+/// into the fewest equal parts `h/k` with `v h/k ≤ max_travel · ℓ` for the belt speed `v`
+/// \[m/s\] and the element length `ℓ` \[m\] the material carries
+/// ([`belt::BeltModel::material_element`]); `h` itself without an element (a stationary mesh),
+/// with `max_travel = 0` or at rest. Whole parts keep the point's windows on whole periods
+/// of the lowest engine order ([`steady_window`]).
+pub fn travel_limited_step(h: f64, max_travel: f64, element: Option<f64>, v: f64) -> f64 {
+    match element {
+        Some(l) if max_travel > 0.0 && l > 0.0 && v.abs() > 0.0 => {
+            let k = (h * v.abs() / (max_travel * l)).ceil().max(1.0);
+            h / k
+        }
+        _ => h,
+    }
 }
 
 /// Samples of one observation window.
@@ -778,8 +821,9 @@ speed, after a ramp and the shortest settling time (run.settle), windows of whol
 lowest engine order (window_s) follow each other until two consecutive ones agree (every \
 pulley's mean belt-line speed within run.steady_tolerance of the belt speed, every span's mean \
 tension within 10 x that fraction of the installed tension; steady = false when run.max_settle \
-ran out first, settled_s = time from the end of the ramp to the reported window). The last \
-window gives: the tensioner arm angle \
+ran out first, settled_s = time from the end of the ramp to the reported window; step_s = the \
+point's step: on a mesh that travels with the belt (nodal, ANCF) the model's step divided so \
+that the belt moves at most run.max_travel elements per step, if set). The last window gives: the tensioner arm angle \
 (min/mean/max, rad), every span's tension extremes (N), each pulley's speed loss against the \
 crank (%, creep and slip), the drive report averaged over the window (slip arcs, hub loads, \
 gross slip, per-pulley torque residual between the pulley's torque and the spans' \
@@ -1057,12 +1101,15 @@ pub fn run_fead(
                 base.mapping().mounted_tension
             );
             // the ANCF drive's own Newton settings (frozen iteration matrix, line search, stall
-            // detection, 5 µm tolerance: ancf::belt_drive::SimulationConfig); ρ∞ =
+            // detection, 5 µm tolerance: ancf::belt_drive::SimulationConfig) with the convected
+            // predictor and a 1 mm trust region (ANCF_MAX_CORRECTION); ρ∞ =
             // run.ancf_rho_inf (module documentation: the sliding crank wrap's contact modes
             // grow at 0.8)
             let alpha = SimulationConfig {
                 h: m.ancf.step,
                 rho_inf: cfg.run.ancf_rho_inf,
+                convected_predictor: true,
+                max_correction: Some(ANCF_MAX_CORRECTION),
                 ..Default::default()
             }
             .alpha_params();
@@ -1129,10 +1176,39 @@ fn sweep<M: BeltModel>(
     if cfg.engine.trace.is_some() {
         summary.orders.clear();
     }
+    // each point's step: the belt's travel per step on a Lagrangian mesh (FeadRun::max_travel)
+    // at the fastest crank speed of its ramp, fluctuation included
+    let element = model.material_element();
+    let fluctuation: f64 = match cfg.engine.trace {
+        None => cfg.engine.orders.iter().map(|o| o.amplitude.abs()).sum(),
+        Some(_) => 0.0,
+    };
+    let point_steps: Vec<f64> = points
+        .iter()
+        .scan(0.0_f64, |prev, p| {
+            let omega = p.rpm * std::f64::consts::PI / 30.0;
+            let v = omega.max(*prev) * radii[0] * (1.0 + fluctuation);
+            *prev = omega;
+            Some(travel_limited_step(h, cfg.run.max_travel, element, v))
+        })
+        .collect();
+    let per_point = cfg.run.ramp + cfg.run.max_settle + 2.0 * cfg.run.window;
+    let total_steps: f64 = point_steps.iter().map(|hp| per_point / hp).sum();
+    if total_steps > MAX_STEPS as f64 {
+        return Err(invalid(InvalidField::new(
+            "run.max_travel",
+            format!(
+                "with the belt's travel per step limited the sweep would take {total_steps:.3e} \
+                 steps (max {MAX_STEPS})"
+            ),
+        )));
+    }
     let mut omega_prev = 0.0;
     for (ip, point) in points.into_iter().enumerate() {
         let rpm = point.rpm;
         let omega = rpm * std::f64::consts::PI / 30.0;
+        let h = point_steps[ip];
+        let alpha = AlphaConfig { h, ..alpha };
         // the crank's speed; the loads at their final values after the first point (time
         // restarts at 0 at every point). After the first engine speed the orders of the
         // previous one are carried on and faded out ([`crank_signal`]), so the crank speed
@@ -1158,7 +1234,9 @@ fn sweep<M: BeltModel>(
         };
         let mut sim: BeltSimulation<M, &mut M> =
             BeltSimulation::from_state(&mut model, alpha, s0).map_err(|e| fail(e, &summary))?;
-        let (window_s, per_window) = point.window;
+        // the window's whole periods in steps of this point's h (h divides the model's step)
+        let window_s = point.window.0;
+        let per_window = ((window_s / h).round() as usize).max(1);
         let t_min = cfg.run.ramp + cfg.run.settle;
         let t_last = cfg.run.ramp + cfg.run.max_settle;
         let duration = t_last + window_s;
@@ -1287,6 +1365,7 @@ fn sweep<M: BeltModel>(
         };
         summary.points.push(FeadPoint {
             engine_rpm: rpm,
+            step_s: h,
             belt_speed: v,
             arm_angle: arm.get_some(),
             spans: spans

@@ -8,6 +8,7 @@ mod crank_trace;
 mod fead_design;
 mod fead_meaning;
 mod fead_steady_means;
+mod fead_step;
 mod fead_sweep;
 mod friction_default;
 mod issue35_inputs;

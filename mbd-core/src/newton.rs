@@ -468,6 +468,12 @@ pub fn solve<P: NewtonProblem + ?Sized>(
             reason: format!("needs iterations ≥ 1 and ratio > 0, got {st:?}"),
         });
     }
+    if opts.max_step.is_nan() || opts.max_step <= 0.0 {
+        return Err(NewtonError::InvalidOption {
+            field: "max_step",
+            reason: format!("must be > 0, got {}", opts.max_step),
+        });
+    }
     if let Some(ls) = &opts.line_search
         && ls.max_trials == 0
     {

@@ -72,6 +72,15 @@ pub struct SimulationConfig {
     /// 1500 and 800 rpm (a smaller starting residual is not a shorter Newton iteration
     /// there), 25 % fewer in all, for no saving in CPU time.
     pub convected_predictor: bool,
+    /// Largest Newton correction per iteration \[m; the slope coordinates' correction in the
+    /// same number\] (mbd-core `AlphaConfig::newton_max_step`, a trust region; `None`:
+    /// unlimited, the default). Where the belt carries contact points into and out of the
+    /// wraps within a step, the Newton matrix at the predictor can miss the contact and
+    /// friction forces by orders of magnitude: the first corrections of the default FEAD
+    /// drive's ANCF belt at 3500 rpm reached 2–20 cm in steps that move the belt 7 mm, and the
+    /// line search spent most of the step's 25 iterations reining them in (BENCHMARKS.md,
+    /// issue 37 item 4). The FEAD study sets 1 mm.
+    pub max_correction: Option<f64>,
 }
 
 impl Default for SimulationConfig {
@@ -86,6 +95,7 @@ impl Default for SimulationConfig {
             refactor_contraction: 0.8,
             line_search: true,
             convected_predictor: false,
+            max_correction: None,
         }
     }
 }
@@ -123,6 +133,14 @@ impl SimulationConfig {
         if self.max_newton_iterations == 0 {
             return Err(invalid("integrator.max_newton_iterations", "must be ≥ 1"));
         }
+        if let Some(m) = self.max_correction
+            && !(m.is_finite() && m > 0.0)
+        {
+            return Err(invalid(
+                "integrator.max_correction",
+                format!("must be > 0 m, got {m}"),
+            ));
+        }
         if !(self.refactor_contraction > 0.0 && self.refactor_contraction < 1.0) {
             return Err(invalid(
                 "integrator.refactor_contraction",
@@ -155,6 +173,7 @@ impl SimulationConfig {
             project_velocities: false,
             banded_lu: true,
             model_predictor: self.convected_predictor,
+            newton_max_step: self.max_correction,
             ..AlphaConfig::default()
         }
     }

@@ -219,4 +219,7 @@ where
     fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
         K::span_offsets(self, q)
     }
+    fn belt_elements(&self) -> usize {
+        self.kind.elements()
+    }
 }

@@ -177,6 +177,12 @@ impl BeltModel for FlowingBelt {
 impl BeltModel for NodalBelt {
     shared_belt_model_methods!("nodal");
 
+    /// The rotating mesh's mean element: the mounted path's length over its nodes (the loop
+    /// of Ribaric (5.7) carries the nodes with the material).
+    fn material_element(&self) -> Option<f64> {
+        Some(self.fe.drive.path().length() / self.fe.n_nodes().max(1) as f64)
+    }
+
     /// Material nodes on the reference polygon at `s_b`, the elements' whole axial forces
     /// ([`NodalBelt::element_forces`]).
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {

@@ -235,6 +235,15 @@ pub struct AlphaConfig {
     /// `v ← v + γ' (Δq̂ − Δq)`, `v̇ ← v̇ + β' (Δq̂ − Δq)`, as a Newton correction would: only
     /// the starting iterate changes, not the equations solved.
     pub model_predictor: bool,
+    /// Largest Newton correction `‖Δx‖∞` taken in one iteration (a trust region,
+    /// [`crate::newton::NewtonOptions::max_step`]: a longer correction is scaled down to it
+    /// before the line search; an iteration converges only on an unscaled correction), in the
+    /// position coordinates' units (`None`: unlimited). Where contact points enter and leave
+    /// their contact within a step, the Newton matrix at the predictor can miss the forces by
+    /// orders of magnitude: on the default FEAD drive at 3500 rpm the ANCF belt's first
+    /// corrections reached 2–20 cm in a step that moves the belt 7 mm, and the line search
+    /// then spent up to 25 iterations reining them in (BENCHMARKS.md, issue 37 item 4).
+    pub newton_max_step: Option<f64>,
 }
 
 impl Default for AlphaConfig {
@@ -261,6 +270,7 @@ impl Default for AlphaConfig {
             newton_line_search: false,
             newton_line_search_trials: 5,
             model_predictor: false,
+            newton_max_step: None,
         }
     }
 }
@@ -749,6 +759,7 @@ impl<C> AlphaStepper<C> {
                 max_trials: p.newton_line_search_trials,
                 ..Default::default()
             }),
+            max_step: p.newton_max_step.unwrap_or(f64::INFINITY),
             ..Default::default()
         };
         let mut problem = StepProblem {
