@@ -201,20 +201,30 @@ impl<const D: usize> mbd_core::simd::Kernel for PairSums<'_, D> {
     }
 }
 
-/// `acc[pair] += s_i s_j m` over the point records of [`add_block_congruences`].
+/// `acc[pair] += s_i s_j m` over the point records of [`add_block_congruences`]: for each pair
+/// `(i ≤ j)` the `2D²` sums run over the points in their order, held in registers (one pass
+/// over the records per pair instead of one load and store of every pair sum per point; each
+/// sum adds the same products in the same order, so the same bits).
 #[inline(always)]
 fn pair_sums<const D: usize>(blocks: usize, points: &[f64], acc: &mut [f64]) {
+    /// `2D²` for `D = 3` (the largest dimension).
+    const MAX_NC: usize = 18;
     let nc = 2 * D * D;
-    for rec in points.chunks_exact(blocks + nc) {
-        let (s, m) = rec.split_at(blocks);
-        let mut rows = acc.chunks_exact_mut(nc);
-        for j in 0..blocks {
-            for i in 0..=j {
-                let t = s[i] * s[j];
-                let row = rows.next().expect("one row per pair");
-                for (r, v) in row.iter_mut().zip(m) {
+    debug_assert!(nc <= MAX_NC);
+    let stride = blocks + nc;
+    let mut rows = acc.chunks_exact_mut(nc);
+    for j in 0..blocks {
+        for i in 0..=j {
+            let row = rows.next().expect("one row per pair");
+            let mut sum = [0.0; MAX_NC];
+            for rec in points.chunks_exact(stride) {
+                let t = rec[i] * rec[j];
+                for (r, v) in sum[..nc].iter_mut().zip(&rec[blocks..]) {
                     *r += t * v;
                 }
+            }
+            for (r, v) in row.iter_mut().zip(&sum[..nc]) {
+                *r += v;
             }
         }
     }

@@ -154,6 +154,13 @@ impl ThinPlate {
     /// Elastic forces `Q_e = −(∂U/∂e)ᵀ` \[N\] (Kerkkänen (2.20)) into `q` (36 entries), from the
     /// analytic gradient of the energy density ([`super::energy`]).
     pub fn elastic_forces(&self, e: &[f64], q: &mut [f64]) {
+        // compiled for the machine's vector width (`mbd_core::simd`, the same bits)
+        mbd_core::simd::dispatch(PlateForces { plate: self, e, q });
+    }
+
+    /// The body of [`ThinPlate::elastic_forces`] ([`PlateForces`]).
+    #[inline(always)]
+    fn elastic_forces_kernel(&self, e: &[f64], q: &mut [f64]) {
         q[..PLATE_NDOF].fill(0.0);
         let mut ld = LocalDerivatives::zero();
         let blocks = self.derivative_blocks();
@@ -213,7 +220,9 @@ impl ThinPlate {
                         }
                     }
                 }
-                for kk in 0..12 {
+                // the blocks (kk, l) with kk ≤ l only: K is symmetric (a Hessian), the blocks
+                // below the diagonal are mirrored at the end
+                for kk in 0..=l {
                     for (p, dp) in d.iter().enumerate().take(blocks) {
                         let f = w * dp[kk];
                         if f == 0.0 {
@@ -232,7 +241,9 @@ impl ThinPlate {
         }
         for (i, row) in kl.iter().enumerate() {
             for (j, v) in row.iter().enumerate() {
-                k[(i, j)] = *v;
+                // upper block triangle as summed; the lower one its transpose
+                let v = if i / 3 <= j / 3 { *v } else { kl[j][i] };
+                k[(i, j)] = v;
             }
         }
     }
@@ -284,6 +295,7 @@ impl ThinPlate {
 
     /// Analytic derivatives of the energy density at the local kinematics `u` added into `out`
     /// (gradient; Hessian when `jac`).
+    #[inline(always)]
     fn local_derivatives(&self, u: &[f64; NU], jac: bool, out: &mut LocalDerivatives) {
         let (e, nu, h) = (self.material.young, self.material.poisson, self.thickness);
         energy::membrane(u, e * h / (2.0 * (1.0 - nu * nu)), nu, jac, out);
@@ -410,8 +422,24 @@ impl mbd_core::simd::Kernel for PlateTangent<'_> {
     }
 }
 
+/// [`ThinPlate::elastic_forces`] as a [`mbd_core::simd::Kernel`].
+struct PlateForces<'a> {
+    plate: &'a ThinPlate,
+    e: &'a [f64],
+    q: &'a mut [f64],
+}
+
+impl mbd_core::simd::Kernel for PlateForces<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        self.plate.elastic_forces_kernel(self.e, self.q)
+    }
+}
+
 /// [`gather`] of the first `blocks` derivatives only (2: `r_x`, `r_y`, all the membrane energy
 /// needs; the rest stay zero).
+#[inline(always)]
 fn gather_blocks(sv: &ShapeValues, e: &[f64], blocks: usize) -> [f64; NU] {
     let mut u = [0.0; NU];
     let d = [&sv.sx, &sv.sy, &sv.sxx, &sv.sxy, &sv.syy];
@@ -432,6 +460,7 @@ fn scatter_gradient(sv: &ShapeValues, scale: f64, g: &[f64; NU], q: &mut [f64]) 
 
 /// [`scatter_gradient`] of the first `blocks` gradient blocks only (the others must be zero:
 /// without bending the membrane density has no gradient in `r_xx`, `r_xy`, `r_yy`).
+#[inline(always)]
 fn scatter_gradient_blocks(
     sv: &ShapeValues, scale: f64, g: &[f64; NU], q: &mut [f64], blocks: usize,
 ) {

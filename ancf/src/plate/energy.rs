@@ -74,6 +74,7 @@ fn skew(a: &[f64; 3]) -> [[f64; 3]; 3] {
 
 /// Membrane energy density \[J/m²\] and its derivatives with respect to `(r_x, r_y)` added into
 /// `out` (`jac`: also the Hessian). `cm = E h / (2(1 − ν²))`.
+#[inline(always)]
 pub(crate) fn membrane(u: &[f64; NU], cm: f64, nu: f64, jac: bool, out: &mut LocalDerivatives) {
     let rx = v3(u, RX);
     let ry = v3(u, RY);

@@ -435,3 +435,38 @@ fn block_shapes_equal_the_general_shape_matrix() {
     assert!((f.reaction - g.reaction).amax() <= 1e-12 * f.reaction.amax());
     assert!(g.dq_de.iter().all(|v| *v == 0.0));
 }
+
+// Reference (the previous formulation): the pair sums of `add_block_congruences` taken point
+// by point (each point's `s_i s_j m` added to every pair's stored sum, the loop order before
+// the sums were held per pair) on 81 records of 12 blocks with irregular values: the same bits,
+// since every sum adds the same products in the same order.
+#[test]
+fn pair_sums_per_pair_equal_the_point_by_point_sums() {
+    let (blocks, nc) = (12, 18);
+    let points: Vec<f64> = (0..81 * (blocks + nc))
+        .map(|k| (0.37 * k as f64).sin() * (1.0 + (k % 7) as f64))
+        .collect();
+    let pairs = blocks * (blocks + 1) / 2;
+    let mut reference = vec![0.0; pairs * nc];
+    for rec in points.chunks_exact(blocks + nc) {
+        let (s, m) = rec.split_at(blocks);
+        let mut rows = reference.chunks_exact_mut(nc);
+        for j in 0..blocks {
+            for i in 0..=j {
+                let t = s[i] * s[j];
+                for (r, v) in rows.next().unwrap().iter_mut().zip(m) {
+                    *r += t * v;
+                }
+            }
+        }
+    }
+    let mut acc = vec![0.0; pairs * nc];
+    super::pair_sums::<3>(blocks, &points, &mut acc);
+    assert!(reference.iter().any(|v| *v != 0.0));
+    assert!(
+        reference
+            .iter()
+            .zip(&acc)
+            .all(|(a, b)| a.to_bits() == b.to_bits())
+    );
+}
