@@ -371,15 +371,15 @@ fn axial_at(w: &[WrapSample], angle: f64) -> f64 {
 // 160 elements (40 elements does not reach a steady state at 34 N·m: the window means of the
 // speed loss still differ by 8e-3 rad/s after the 2 s hold). On a common grid of 2000 polar
 // angles over the overlap of the two contact arcs, the interior (outside the 80-element mesh's
-// layers max(3λ, l)) differs by at most 3.3 % (driven, at 0.37 rad, 1.2 N of 37 N) and 2.5 %
-// (driver, 15 N of 607 N where its slip arc begins), rms 0.55 % and 1.6 % (bounds 3.5 % and
-// 2 %); the layers by up to 8 % (the slack inlet's spread concentrated force narrows with the
-// element: its jump beyond the string, 4.7 % at 80 elements, is 2.1 % at 160; bound: less than
-// 0.6 of it). The capstan check holds within 3.5 % on both meshes (80: 1.25 / 1.40 %, 160:
-// 1.00 / 3.06 %, driven / driver: not monotone, the driver's low-tension half at 160 elements
-// deviates by −3 % at N ≈ 50 N; not explained).
+// layers max(3λ, l)) differs by at most 2.92 % (driven, just past the inlet layer, ≈ 1 N of
+// 37 N) and 2.47 % (driver, 15 N of 607 N where its slip arc begins), rms 0.53 % and 1.58 %
+// (bounds 3.5 % and 2 %); the layers by up to 8 % (the slack inlet's spread concentrated force
+// narrows with the element: its jump beyond the string, 4.94 % at 80 elements, is 2.02 % at
+// 160; bound: less than 0.6 of it). The capstan check holds within 3.5 % on both meshes (80:
+// 1.34 / 1.39 %, 160: 1.05 / 3.07 %, driven / driver: not monotone, the driver's low-tension
+// half at 160 elements deviates by −3 % at N ≈ 50 N; not explained). 1285 s.
 #[test]
-#[ignore = "two ANCF runs to a steady state at 34 N·m (80 and 160 elements, ~25 min)"]
+#[ignore = "two ANCF runs to a steady state at 34 N·m (80 and 160 elements, ~21 min)"]
 fn recovered_wrap_force_converges_with_the_mesh() {
     let runs: Vec<_> = [80, 160].into_iter().map(steady_at_34).collect();
     for pulley in [1, 0] {
