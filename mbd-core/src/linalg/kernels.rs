@@ -6,7 +6,9 @@
 //! [`lu_solve_in_place`]).
 
 /// Column `j` of `m` as a slice (a `Mat`'s columns are contiguous; empty otherwise, which the
-/// kernels' length checks then refuse).
+/// kernels' length checks then refuse). Inlined across crates: the contact kernels call it
+/// once per column (on the full rolling tire 2.7 % of a step's instructions went to the call).
+#[inline]
 pub fn col_slice(m: &faer::Mat<f64>, j: usize) -> &[f64] {
     m.col(j)
         .try_as_col_major()
