@@ -186,7 +186,7 @@ pub struct FeadRun {
     /// `v = ω R_crank` steps at the model's step divided into the fewest equal parts with
     /// `v h ≤ max_travel · ℓ` ([`travel_limited_step`]). A node entering a wrap changes its
     /// acceleration by `v²/R` within the step: at the model's 0.25 ms the default drive's ANCF
-    /// belt moves half an element per step at 3500 rpm. A convergence control: with 0.3 the
+    /// belt moves half an element per step at 3500 rpm. A convergence control: with 0.25 the
     /// default sweep's 2500 and 3500 rpm points step at 0.125 and 0.083 ms and their span
     /// means move by up to 4 N (1 %), while the torque residual on the alternator → tensioner
     /// span rises to 0.5–0.6 % (BENCHMARKS.md, issue 37 item 4). `0` (the default): the model's
