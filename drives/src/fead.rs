@@ -683,7 +683,8 @@ pub fn steady_window(engine: &EngineConfig, window: f64, omega: f64, h: f64) -> 
 /// `convected_predictor`): under a tenth of the default drive's 13 mm elements and of the
 /// 7 mm the belt travels in a 0.25 ms step at 3500 rpm, far above the 5 µm tolerance. On the
 /// default sweep at the model's fixed 0.25 ms step the two together took 22 % fewer Newton
-/// iterations and 38 % fewer factorisations (0.61 of the CPU time, run side by side), with the
+/// iterations and 38 % fewer factorisations (0.81 of the CPU time alone on the idle machine,
+/// 0.61 side by side under load), with the
 /// same means at 800–2500 rpm within the sweep's tolerance (BENCHMARKS.md, issue 37 item 4).
 pub const ANCF_MAX_CORRECTION: f64 = 1e-3;
 

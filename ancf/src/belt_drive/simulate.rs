@@ -71,7 +71,8 @@ pub struct SimulationConfig {
     /// factorisations at 2500 and 3500 rpm by 28 % and 52 % but doubled and tripled them at
     /// 1500 and 800 rpm (a smaller starting residual is not a shorter Newton iteration
     /// there), 25 % fewer in all, for no saving in CPU time. Together with
-    /// [`Self::max_correction`] it pays: the FEAD study sets both (0.61 of the sweep's CPU).
+    /// [`Self::max_correction`] it pays: the FEAD study sets both (0.81 of the sweep's CPU on
+    /// the idle machine).
     pub convected_predictor: bool,
     /// Largest Newton correction per iteration \[m; the slope coordinates' correction in the
     /// same number\] (mbd-core `AlphaConfig::newton_max_step`, a trust region; `None`:
