@@ -953,7 +953,8 @@ impl BeltDrive {
     /// the section forces' lines by 0.03 and 0.07 N m (issue 34).
     ///
     /// With each line comes the momentum the belt carries through the same sections, `ṁ ṙ`
-    /// (mass flow `ṁ = ρ b h (ṙ·t)/‖r_x‖` through a fixed section, `ṙ` the material velocity),
+    /// (mass flow `ṁ = ρ b h (ṙ·t)/‖r_x‖` through a fixed section, `ṙ` the material velocity;
+    /// the private `mass_flow`),
     /// averaged the same way: the balance this gives a pulley is the moment balance of the belt
     /// between the middle of one span and the middle of the next, the contact torque against the
     /// moments of the section forces less the angular momentum carried out (the fluxes of the
@@ -996,7 +997,7 @@ impl BeltDrive {
                         m += sign * (cross(p, fo) + mo);
                         // ṁ ṙ through a fixed section at this node
                         let (rd, rx) = ([ed[o], ed[o + 1]], at(o + 2));
-                        let mdot = rho_a * (rd[0] * rx[0] + rd[1] * rx[1]) / rx[0].hypot(rx[1]);
+                        let mdot = mass_flow(rho_a, rd, rx);
                         let phi = [mdot * rd[0], mdot * rd[1]];
                         flux[0] += phi[0];
                         flux[1] += phi[1];
@@ -1229,6 +1230,15 @@ pub struct SectionForces<'a> {
     defect: Vec<[f64; 2]>,
 }
 
+/// Mass flow \[kg/s\] of the belt through a section fixed in space at a material point with
+/// velocity `rd` \[m/s\] and slope `rx` (`∂r/∂x`, `x` the unstretched arc length), for a mass
+/// `rho_a` \[kg/m\] per unstretched length: the material label passes the section at
+/// `ẋ = (ṙ·t)/‖r_x‖` (from `(r_x ẋ + ṙ)·t = 0`), so `ṁ = ρA (ṙ·r_x)/‖r_x‖²`, `ρA v/λ` for a
+/// belt stretched by `λ` moving at `v` along itself.
+fn mass_flow(rho_a: f64, rd: [f64; 2], rx: [f64; 2]) -> f64 {
+    rho_a * (rd[0] * rx[0] + rd[1] * rx[1]) / (rx[0] * rx[0] + rx[1] * rx[1])
+}
+
 /// What [`BeltDrive::span_force_lines`] gives per span: the line of action of the section
 /// force (`None` where the belt does not cross the span's bisector) and the momentum flux `ṁ v`
 /// \[N\] with its line ([`belt::SpanState::momentum_flux`]).
@@ -1369,6 +1379,23 @@ mod tests {
     // (radius R = N l/2π, unstretched) spinning at ω is a steady flow of its material: over h
     // every node turns by ωh, r = R(cos φ, sin φ), r_x = (−sin φ, cos φ), r_y = (cos φ, sin φ).
     // The convected prediction lands there within the cubic interpolation error (l/R = 2π/N).
+    // Reference: mass conservation in closed form. A belt stretched by λ whose material moves
+    // at v along itself carries ρA/λ per metre of its length past a fixed section, ṁ = ρA v/λ;
+    // a velocity across the belt carries none.
+    #[test]
+    fn mass_flow_through_a_fixed_section_is_rho_a_v_over_lambda() {
+        let (rho_a, v, lambda) = (0.096, 19.6, 1.0028);
+        let t = [0.6, 0.8];
+        let rx = [lambda * t[0], lambda * t[1]];
+        let along = mass_flow(rho_a, [v * t[0], v * t[1]], rx);
+        assert!(
+            (along - rho_a * v / lambda).abs() < 1e-15 * rho_a * v,
+            "{along}"
+        );
+        let across = mass_flow(rho_a, [-v * t[1], v * t[0]], rx);
+        assert!(across.abs() < 1e-15 * rho_a * v, "{across}");
+    }
+
     #[test]
     fn convected_increment_reproduces_a_rigid_rotation() {
         let drive = BeltDrive::new(BeltDriveSpec::default()).unwrap();
