@@ -83,6 +83,31 @@ pub struct LineOfAction {
 }
 
 impl LineOfAction {
+    /// The line of a planar force system with resultant `f` \[N\] and moment `m` \[N m\] about
+    /// the origin (`m = Σ p × f_i`): the points `p` with `p × f = m`, the one nearest the
+    /// origin `(m f_y, −m f_x)/|f|²`, directed in the travel sense `travel` (a unit vector), with
+    /// the resultant's magnitude signed positive along it (a span in tension pulls along the
+    /// travel direction, one in compression against it). `None` for a zero resultant.
+    pub fn of_resultant(f: [f64; 2], m: f64, travel: [f64; 2]) -> Option<(f64, Self)> {
+        let f2 = f[0] * f[0] + f[1] * f[1];
+        if f2 == 0.0 {
+            return None;
+        }
+        let s = if f[0] * travel[0] + f[1] * travel[1] >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let fl = f2.sqrt();
+        Some((
+            s * fl,
+            Self {
+                point: [m * f[1] / f2, -m * f[0] / f2],
+                direction: [s * f[0] / fl, s * f[1] / fl],
+            },
+        ))
+    }
+
     /// Lever arm \[m\] of a force along the line about `center`, positive when a pull in the
     /// travel direction turns a pulley wrapped with `turn` ([`crate::WrapSide::turn`]: `+1`
     /// clockwise) in its travel sense: `−turn (p − c) × e`. On the undeformed path it is the
@@ -651,6 +676,22 @@ mod tests {
     // arc lengths). On a two-pulley path whose spans lie 0.09 m apart, inside each other's
     // middle band (a quarter span, 0.1125 m), each span's run is exactly the polyline's
     // segments with both ends on that span's middle half, and the runs are disjoint.
+    #[test]
+    fn a_resultant_s_line_carries_its_moment() {
+        // Reference: statics. Two parallel forces of 3 N and 1 N along +x at heights 0.2 and
+        // 0.6 m: resultant 4 N along +x on the line y = (3·0.2 + 1·0.6)/4 = 0.3 m; the moment
+        // about the origin of a force (f, 0) at height y is −y f.
+        let m = -(3.0 * 0.2 + 1.0 * 0.6);
+        let (t, line) = LineOfAction::of_resultant([4.0, 0.0], m, [1.0, 0.0]).unwrap();
+        assert!((t - 4.0).abs() < 1e-15 && (line.point[1] - 0.3).abs() < 1e-15);
+        assert_eq!(line.direction, [1.0, 0.0]);
+        // against the travel sense: negative, the same line directed along the travel
+        let (c, back) = LineOfAction::of_resultant([-4.0, 0.0], -m, [1.0, 0.0]).unwrap();
+        assert!((c + 4.0).abs() < 1e-15 && (back.point[1] - 0.3).abs() < 1e-15);
+        assert_eq!(back.direction, [1.0, 0.0]);
+        assert!(LineOfAction::of_resultant([0.0, 0.0], 1.0, [1.0, 0.0]).is_none());
+    }
+
     #[test]
     fn middle_run_is_the_span_s_own_middle_half() {
         let path = BeltPath::two_pulleys(0.45, 0.05, 0.04).unwrap();

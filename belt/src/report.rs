@@ -27,7 +27,7 @@
 //!   [`crate::LineOfAction::lever`]; the belt-line radius `R` on the undeformed path, `R` also
 //!   where a model gives no line), less the angular momentum the moving belt carries out
 //!   through the two sections where the model states it ([`SpanState::momentum_flux`]: the
-//!   ANCF belt): moment balance of the belt from the middle of one span over the wrap to the
+//!   ANCF, flowing and nodal belts; [`span_momentum_fluxes`]): moment balance of the belt from the middle of one span over the wrap to the
 //!   middle of the next (a steady wrap: the belt's inertia on the wrap enters only while its
 //!   speed changes). A deformed belt's spans do not leave the pulleys
 //!   along the undeformed tangents: on Table 6-1 at 10 N m the flowing model's tight span acts
@@ -44,7 +44,7 @@
 use crate::layout::Drive;
 use crate::model::{Snapshot, SpanState, WrapPoint};
 use crate::motion::Role;
-use crate::path::BeltPath;
+use crate::path::{BeltPath, LineOfAction};
 use contact::friction::FrictionLaw;
 use serde::Serialize;
 
@@ -450,6 +450,39 @@ pub fn span_states(path: &BeltPath, nodes: &[[f64; 2]], forces: &[f64]) -> Vec<S
             transverse,
             line,
             momentum_flux: None,
+        })
+        .collect()
+}
+
+/// The momentum flux of every span of `path` ([`SpanState::momentum_flux`]) from the
+/// momentum `flux[i]` = `ṁ_i V_i` \[N\] the belt carries through a section fixed in space at
+/// node `i` of the deformed closed polyline `nodes` (`ṁ` the mass flow \[kg/s\], `V` the
+/// material velocity \[m/s\]): the resultant and moment `Σ p × φ` of the fluxes at both ends of
+/// the elements over the span's middle half ([`crate::path::SpanLine::middle_run`], the same
+/// sections as [`span_states`]), averaged, and their line
+/// ([`LineOfAction::of_resultant`]). `None` where the span has no such elements.
+pub fn span_momentum_fluxes(
+    path: &BeltPath, nodes: &[[f64; 2]], flux: &[[f64; 2]],
+) -> Vec<Option<(f64, LineOfAction)>> {
+    let n = nodes.len();
+    path.spans()
+        .iter()
+        .map(|sp| {
+            let run = sp.middle_run(nodes);
+            if run.is_empty() {
+                return None;
+            }
+            let (mut f, mut m) = ([0.0; 2], 0.0);
+            for &e in &run {
+                for i in [e, (e + 1) % n] {
+                    let (p, phi) = (nodes[i], flux[i]);
+                    f[0] += phi[0];
+                    f[1] += phi[1];
+                    m += p[0] * phi[1] - p[1] * phi[0];
+                }
+            }
+            let k = 2.0 * run.len() as f64;
+            LineOfAction::of_resultant([f[0] / k, f[1] / k], m / k, sp.direction)
         })
         .collect()
 }

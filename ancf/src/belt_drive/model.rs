@@ -1006,25 +1006,7 @@ impl BeltDrive {
                 }
                 let n = 2.0 * run.len() as f64;
                 let line = |g: [f64; 2], m: f64| {
-                    let (g, m) = ([g[0] / n, g[1] / n], m / n);
-                    let g2 = g[0] * g[0] + g[1] * g[1];
-                    if g2 == 0.0 {
-                        return None;
-                    }
-                    // in the travel sense: a span in compression pushes against it
-                    let s = if g[0] * sp.direction[0] + g[1] * sp.direction[1] >= 0.0 {
-                        1.0
-                    } else {
-                        -1.0
-                    };
-                    let gl = g2.sqrt();
-                    Some((
-                        s * gl,
-                        belt::LineOfAction {
-                            point: [m * g[1] / g2, -m * g[0] / g2],
-                            direction: [s * g[0] / gl, s * g[1] / gl],
-                        },
-                    ))
+                    belt::LineOfAction::of_resultant([g[0] / n, g[1] / n], m / n, sp.direction)
                 };
                 (line(f, m).map(|l| l.1), line(flux, mflux))
             })

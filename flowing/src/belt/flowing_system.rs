@@ -638,6 +638,26 @@ impl FlowingBelt {
         r
     }
 
+    /// Momentum the belt carries through a section at each node of the stationary mesh \[N\]:
+    /// `ṁ V` with the mass flow `ṁ = ρ v` (the material label passes every mesh point at the
+    /// belt speed `v = ṡ_b`, Ribaric (5.10); `ρ` the node's lumped mass over its tributary
+    /// length) and the material velocity `V = v b + T ż = v e_t + δ̇_m` ([`Self::material_rate`]).
+    /// The belt report subtracts its moment from the spans' ([`belt::SpanState::momentum_flux`]).
+    pub fn momentum_flux(&self, q: &[f64], v: &[f64]) -> Vec<[f64; 2]> {
+        let vb = v[0];
+        let rate = self.material_rate(q, v);
+        (0..self.fe.n_nodes())
+            .map(|i| {
+                let mdot = vb * self.fe.mass[NODE_DOFS * i] / self.fe.tributary[i];
+                let t = self.fe.tangent[i];
+                [
+                    mdot * (vb * t[0] + rate[NODE_DOFS * i]),
+                    mdot * (vb * t[1] + rate[NODE_DOFS * i + 1]),
+                ]
+            })
+            .collect()
+    }
+
     /// Viscous axial force of the belt element starting at each node \[N\]: `β EA Dε/Dt` on
     /// the co-rotated material stretch rate ([`super::model::chord_viscous_forces`] with the
     /// material rate [`Self::material_rate`]), the part of the element's axial force its
@@ -1554,6 +1574,32 @@ pub(crate) mod tests {
         }
         v[0] = speed;
         (q, v)
+    }
+
+    // Reference: the Eulerian steady flow in closed form. A belt moving rigidly along its
+    // mounted path at v (no deflection, no deflection rate) carries ρ v² along the path's
+    // tangent through every section (ρ = mass per length of the drive's belt, up to the lumped
+    // mass of the chord polygon over the arc length, 1 − (l/R)²/24 on the smallest pulley).
+    #[test]
+    fn momentum_flux_of_a_rigid_flow_is_rho_v_squared_along_the_path() {
+        let belt = layout_belt(AxialForce::Linear);
+        let (n, speed) = (belt.n_q(), 12.0);
+        let mut v = vec![0.0; n];
+        v[0] = speed;
+        let rho = belt.fe.drive.belt().mass_per_length;
+        let flux = belt.momentum_flux(&vec![0.0; n], &v);
+        assert_eq!(flux.len(), belt.fe.n_nodes());
+        let scale = rho * speed * speed;
+        let r_min = (belt.fe.drive.pulleys().iter())
+            .map(|p| p.radius)
+            .fold(f64::INFINITY, f64::min);
+        let chord = 1.1 * (belt.fe.mesh.arc_element / r_min).powi(2) / 24.0;
+        for (phi, t) in flux.iter().zip(&belt.fe.tangent) {
+            let along = phi[0] * t[0] + phi[1] * t[1];
+            let across = -phi[0] * t[1] + phi[1] * t[0];
+            assert!((along / scale - 1.0).abs() < chord, "{along} of {scale}");
+            assert!(across.abs() < 1e-12 * scale, "{across}");
+        }
     }
 
     /// `|dE/dt|` and the scale of its terms for the free undamped belt of every case of the

@@ -10,7 +10,7 @@ use super::coordinates::DriveCoordinates;
 use super::flowing_system::FlowingBelt;
 use super::model::BeltFe;
 use super::nodal::NodalBelt;
-use belt::report::{span_offsets, span_states};
+use belt::report::{span_momentum_fluxes, span_offsets, span_states};
 use belt::{BeltModel, Drive, ModelTraits, Motion, PulleyState, Snapshot, WrapPoint};
 use mbd_core::MbdError;
 use mbd_core::integrators::State;
@@ -40,7 +40,8 @@ fn deformed(reference: &[[f64; 2]], d: &[f64]) -> Vec<[f64; 2]> {
 /// along the nodes' line over each span's middle half), wrap points at the contact nodes.
 fn snapshot_with(
     fe: &BeltFe, coords: &DriveCoordinates, (t, q, v): (f64, &[f64], &[f64]), nodes: &[[f64; 2]],
-    forces: &[f64], contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
+    (forces, flux): (&[f64], &[[f64; 2]]),
+    contacts: impl Iterator<Item = (usize, usize, NodeContact)>,
 ) -> Snapshot {
     let path = fe.path();
     let omega = (0..coords.motions.len()).map(|k| coords.pulley_speed(k, t, v));
@@ -85,10 +86,17 @@ fn snapshot_with(
             .partial_cmp(&(b.pulley, b.angle))
             .unwrap_or(std::cmp::Ordering::Equal)
     });
+    let mut spans = span_states(path, nodes, forces);
+    for (sp, f) in spans
+        .iter_mut()
+        .zip(span_momentum_fluxes(path, nodes, flux))
+    {
+        sp.momentum_flux = f;
+    }
     Snapshot {
         time: t,
         pulleys,
-        spans: span_states(path, nodes, forces),
+        spans,
         wrap,
         belt_dissipation: None,
     }
@@ -160,7 +168,15 @@ impl BeltModel for FlowingBelt {
             .contact_report(t, q, v)
             .into_iter()
             .map(|r| (r.node, r.pulley, r.contact));
-        let mut snap = snapshot_with(&self.fe, &self.coords, (t, q, v), &nodes, &forces, contacts);
+        let flux = self.momentum_flux(q, v);
+        let mut snap = snapshot_with(
+            &self.fe,
+            &self.coords,
+            (t, q, v),
+            &nodes,
+            (&forces, &flux),
+            contacts,
+        );
         snap.belt_dissipation = Some(self.damping_dissipation(q, v));
         Ok(snap)
     }
@@ -192,7 +208,15 @@ impl BeltModel for NodalBelt {
             .contact_report(t, q, v)?
             .into_iter()
             .map(|(i, p, _, c)| (i, p, c));
-        let mut snap = snapshot_with(&self.fe, &self.coords, (t, q, v), &nodes, &forces, contacts);
+        let flux = self.momentum_flux(q, v);
+        let mut snap = snapshot_with(
+            &self.fe,
+            &self.coords,
+            (t, q, v),
+            &nodes,
+            (&forces, &flux),
+            contacts,
+        );
         snap.belt_dissipation = Some(self.damping_dissipation(q, v)?);
         Ok(snap)
     }
