@@ -1031,9 +1031,12 @@ impl BeltDrive {
         }
         let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
         let l = self.element_length();
+        // `S_x` of the slope blocks `r_y` vanishes on the centreline (`y = 0`): only the
+        // centre blocks contribute, the others' rows and columns stay zero
+        const CENTRE: [usize; 4] = [0, 1, 3, 4];
         for &(w, sx) in &self.kind.damping_points {
             let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
-            for a in 0..6 {
+            for a in CENTRE {
                 for c in 0..2 {
                     rx[c] += sx[a] * e[2 * a + c];
                     rxd[c] += sx[a] * ed[2 * a + c];
@@ -1049,22 +1052,28 @@ impl BeltDrive {
                 }
             };
             let wl = w * l * coef * g;
-            for a in 0..6 {
+            for a in CENTRE {
                 for c in 0..2 {
                     qd[2 * a + c] -= wl * sx[a] * rx[c] * rate;
                 }
             }
             if let Some((kl, cl)) = tangent.as_mut() {
-                for bb in 0..6 {
-                    for d in 0..2 {
-                        let col = 2 * bb + d;
-                        for a in 0..6 {
+                // the 2 × 2 factors of the point, each product formed as before
+                let mut kf = [[0.0; 2]; 2];
+                for (c, kc) in kf.iter_mut().enumerate() {
+                    for (d, k) in kc.iter_mut().enumerate() {
+                        let delta = if c == d { rate } else { 0.0 };
+                        *k = delta + rx[c] * rxd[d] + 2.0 * dlog * rate * rx[c] * rx[d];
+                    }
+                }
+                for bb in CENTRE {
+                    for a in CENTRE {
+                        let ss = wl * sx[a] * sx[bb];
+                        for d in 0..2 {
+                            let col = 2 * bb + d;
                             for c in 0..2 {
                                 let row = 2 * a + c;
-                                let ss = wl * sx[a] * sx[bb];
-                                let delta = if c == d { rate } else { 0.0 };
-                                kl[row + col * NE] += ss
-                                    * (delta + rx[c] * rxd[d] + 2.0 * dlog * rate * rx[c] * rx[d]);
+                                kl[row + col * NE] += ss * kf[c][d];
                                 cl[row + col * NE] += ss * rx[c] * rx[d];
                             }
                         }
@@ -1356,6 +1365,72 @@ impl<'a> SectionForces<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // Reference: the loops of `element_damping` before they skipped the slope blocks (all six
+    // blocks of `S_x`, the 2 × 2 factor formed inside the innermost loop), bit for bit.
+    #[test]
+    fn element_damping_without_slope_blocks_is_the_full_loops_bit_for_bit() {
+        for law in [
+            ::belt::MaterialLaw::StVenantKirchhoff,
+            ::belt::MaterialLaw::Linear,
+        ] {
+            let mut spec = BeltDriveSpec::default();
+            spec.belt.law = law;
+            if spec.belt.axial_damping <= 0.0 {
+                spec.belt.axial_damping = 1e-4;
+            }
+            let drive = BeltDrive::new(spec).unwrap();
+            let e: [f64; NE] = std::array::from_fn(|i| 0.3 * (i as f64 * 0.7).sin() + 0.9);
+            let ed: [f64; NE] = std::array::from_fn(|i| 2.0 * (i as f64 * 1.3).cos());
+            let (mut qd, mut kl, mut cl) = ([0.0; NE], [0.0; NE * NE], [0.0; NE * NE]);
+            drive.element_damping(&e, &ed, &mut qd, Some((&mut kl, &mut cl)));
+            let b = &drive.spec.belt;
+            let coef = b.axial_damping * b.alpha1 * b.young * b.width * b.thickness;
+            let l = drive.element_length();
+            let (mut q0, mut k0, mut c0) = ([0.0; NE], [0.0; NE * NE], [0.0; NE * NE]);
+            for &(w, sx) in &drive.kind.damping_points {
+                let (mut rx, mut rxd) = ([0.0; 2], [0.0; 2]);
+                for a in 0..6 {
+                    for c in 0..2 {
+                        rx[c] += sx[a] * e[2 * a + c];
+                        rxd[c] += sx[a] * ed[2 * a + c];
+                    }
+                }
+                let rate = rx[0] * rxd[0] + rx[1] * rxd[1];
+                let (g, dlog) = match law {
+                    ::belt::MaterialLaw::StVenantKirchhoff => (1.0, 0.0),
+                    ::belt::MaterialLaw::Linear => {
+                        let a = rx[0] * rx[0] + rx[1] * rx[1];
+                        (1.0 / a, -1.0 / a)
+                    }
+                };
+                let wl = w * l * coef * g;
+                for a in 0..6 {
+                    for c in 0..2 {
+                        q0[2 * a + c] -= wl * sx[a] * rx[c] * rate;
+                    }
+                }
+                for bb in 0..6 {
+                    for d in 0..2 {
+                        for a in 0..6 {
+                            for c in 0..2 {
+                                let (row, col) = (2 * a + c, 2 * bb + d);
+                                let ss = wl * sx[a] * sx[bb];
+                                let delta = if c == d { rate } else { 0.0 };
+                                k0[row + col * NE] += ss
+                                    * (delta + rx[c] * rxd[d] + 2.0 * dlog * rate * rx[c] * rx[d]);
+                                c0[row + col * NE] += ss * rx[c] * rx[d];
+                            }
+                        }
+                    }
+                }
+            }
+            assert!(q0.iter().zip(&qd).all(|(a, b)| a == b), "{law:?} forces");
+            assert!(k0.iter().zip(&kl).all(|(a, b)| a == b), "{law:?} stiffness");
+            assert!(c0.iter().zip(&cl).all(|(a, b)| a == b), "{law:?} damping");
+            assert!(k0.iter().any(|&v| v != 0.0) && c0.iter().any(|&v| v != 0.0));
+        }
+    }
 
     // Reference: the closed form of a rigid rotation. A belt on a circle of its own length
     // (radius R = N l/2π, unstretched) spinning at ω is a steady flow of its material: over h

@@ -1053,27 +1053,16 @@ impl<C> AlphaStepper<C> {
             .unwrap_or(0.0);
         match self.params.jacobian {
             JacobianMode::Analytic => {
-                let m = self.mass(sys, t, q)?;
-                let d = if nc > 0 {
-                    Some(sys.constraint_jacobian(t, q)?)
-                } else {
-                    None
+                // a constant mass is lent out of its cache for the factorisation (no copy)
+                let m = match self.mass_cache.take() {
+                    Some(m) if sys.mass_is_constant() => m,
+                    _ => self.mass(sys, t, q)?,
                 };
-                let tangent = match sys.force_tangent(t, q, v, &mut self.ws)? {
-                    Some(tg) => (tg.stiffness, tg.damping),
-                    None => self.fd_force_tangent(sys, t, q, v)?,
-                };
-                let kc = if nc > 0 {
-                    sys.constraint_force_tangent(t, q, lam)?
-                } else {
-                    None
-                };
-                let mut blocks = vec![(1.0, &m), (gp / bp, &tangent.1), (1.0 / bp, &tangent.0)];
-                if let Some(kc) = &kc {
-                    blocks.push((1.0 / bp, kc));
+                let out = self.analytic_newton_matrix(sys, t, q, v, lam, bp, gp, &m, explicit);
+                if sys.mass_is_constant() {
+                    self.mass_cache = Some(m);
                 }
-                self.matrix
-                    .factor(&blocks, d.as_ref(), t, explicit, self.worker.as_ref())
+                out
             }
             JacobianMode::FiniteDifference => {
                 // column j: perturb the Newton unknown Δx_j by ε:
@@ -1114,6 +1103,36 @@ impl<C> AlphaStepper<C> {
                 )
             }
         }
+    }
+
+    /// The analytic Newton matrix `M + γ'/β' C + 1/β' (K + K_c)` with the mass `m`, factored
+    /// with the constraint Jacobian ([`Self::newton_matrix_factor`]).
+    #[allow(clippy::too_many_arguments)]
+    fn analytic_newton_matrix<S: SecondOrderSystem + ?Sized>(
+        &mut self, sys: &S, t: f64, q: &[f64], v: &[f64], lam: &[f64], bp: f64, gp: f64,
+        m: &SysMatrix, explicit: bool,
+    ) -> Result<(), MbdError> {
+        let nc = sys.n_c();
+        let d = if nc > 0 {
+            Some(sys.constraint_jacobian(t, q)?)
+        } else {
+            None
+        };
+        let tangent = match sys.force_tangent(t, q, v, &mut self.ws)? {
+            Some(tg) => (tg.stiffness, tg.damping),
+            None => self.fd_force_tangent(sys, t, q, v)?,
+        };
+        let kc = if nc > 0 {
+            sys.constraint_force_tangent(t, q, lam)?
+        } else {
+            None
+        };
+        let mut blocks = vec![(1.0, m), (gp / bp, &tangent.1), (1.0 / bp, &tangent.0)];
+        if let Some(kc) = &kc {
+            blocks.push((1.0 / bp, kc));
+        }
+        self.matrix
+            .factor(&blocks, d.as_ref(), t, explicit, self.worker.as_ref())
     }
 
     /// Forward-difference tangent `K = −∂f/∂q` (through `⊕`), `C = −∂f/∂v` (dense).

@@ -261,13 +261,16 @@ pub(crate) struct BandLu {
     ipiv: Vec<usize>,
     /// `1 / U(j, j)` (a solve multiplies instead of dividing on its serial path).
     u_inv: Vec<f64>,
-    /// `A₁₂` columns, overwritten by `X = A₁₁⁻¹ A₁₂` (`n1 × nb`, column-major).
+    /// `A₁₂`, overwritten by `X = A₁₁⁻¹ A₁₂` (`n1 × nb`, row-major: the `nb` border columns
+    /// of one row side by side, so that one banded solve serves them all, [`Band::solve_rows`]).
     x: Vec<f64>,
     /// `A₂₁` (`nb × n1`, column-major).
     a21: Vec<f64>,
     /// `A₂₂`, overwritten by the LU of the Schur complement (`nb × nb`, column-major).
     s: Vec<f64>,
     s_piv: Vec<usize>,
+    /// `A₂₁ X` (`nb × nb`, column-major) before it is subtracted from `A₂₂`.
+    acc: Vec<f64>,
     /// Scratch of [`BandLu::backward_error`]: test solution, right-hand side, permuted work.
     check: [Vec<f64>; 3],
 }
@@ -365,6 +368,7 @@ impl BandLu {
             a21: vec![0.0; nb * n1],
             s: vec![0.0; nb * nb],
             s_piv: vec![0; nb],
+            acc: vec![0.0; nb * nb],
             check: [vec![0.0; n1 + nb], vec![0.0; n1 + nb], vec![0.0; n1 + nb]],
             plan,
         }
@@ -390,7 +394,7 @@ impl BandLu {
                 let v = vals[k];
                 match (pi < n1, pj < n1) {
                     (true, true) => self.ab[kv + pi - pj + pj * ld] += v,
-                    (true, false) => self.x[pi + (pj - n1) * n1] += v,
+                    (true, false) => self.x[pi * nb + (pj - n1)] += v,
                     (false, true) => self.a21[(pi - n1) + pj * nb] += v,
                     (false, false) => self.s[(pi - n1) + (pj - n1) * nb] += v,
                 }
@@ -410,21 +414,23 @@ impl BandLu {
         for (j, u) in self.u_inv.iter_mut().enumerate() {
             *u = 1.0 / self.ab[kv + j * ld];
         }
-        // X = A11^-1 A12, Schur complement S = A22 - A21 X and its LU
-        let mut x = std::mem::take(&mut self.x);
-        let band = self.band();
-        for xb in x.chunks_exact_mut(n1.max(1)).take(nb) {
-            band.solve(xb);
-        }
-        self.x = x;
-        for c in 0..nb {
-            for r in 0..nb {
-                let mut acc = 0.0;
-                for k in 0..n1 {
-                    acc += self.a21[r + k * nb] * self.x[k + c * n1];
-                }
-                self.s[r + c * nb] -= acc;
+        // X = A11^-1 A12 (all border columns in one pass over the band), Schur complement
+        // S = A22 - A21 X and its LU
+        if nb > 0 {
+            let mut x = std::mem::take(&mut self.x);
+            self.band().solve_rows(&mut x, nb);
+            self.x = x;
+            let mut acc = std::mem::take(&mut self.acc);
+            crate::simd::dispatch(SchurProduct {
+                a21: &self.a21,
+                x: &self.x,
+                acc: &mut acc,
+                nb,
+            });
+            for (s, a) in self.s.iter_mut().zip(&acc) {
+                *s -= a;
             }
+            self.acc = acc;
         }
         dense_lu(&mut self.s, nb, &mut self.s_piv).map_err(|c| BandError::ZeroPivot(n1 + c))
     }
@@ -507,10 +513,9 @@ impl BandLu {
                 y2[r] -= acc;
             }
             dense_solve(&self.s, nb, &self.s_piv, y2);
-            for c in 0..nb {
-                let xc = &self.x[c * n1..(c + 1) * n1];
-                let v = y2[c];
-                for (y, x) in y1.iter_mut().zip(xc) {
+            // y1 -= X x2, each row's border columns in the order of the columns
+            for (y, xr) in y1.iter_mut().zip(self.x.chunks_exact(nb)) {
+                for (x, v) in xr.iter().zip(y2.iter()) {
                     *y -= x * v;
                 }
             }
@@ -569,6 +574,109 @@ impl Band<'_> {
                 let u = &ab[kv - len + j * ld..kv + j * ld];
                 for (t, ui) in b[top..j].iter_mut().zip(u) {
                     *t -= ui * xj;
+                }
+            }
+        }
+    }
+}
+
+impl Band<'_> {
+    /// Solves with the banded LU for the `k` right-hand sides stored row-major in `b`
+    /// (`n × k`: row `i` of all of them at `b[i k..(i + 1) k]`), in place: every column
+    /// undergoes exactly the operations of [`Band::solve`] in the same order, so each gives
+    /// the same bits as its own solve, but the inner loops run along the `k` columns of a row
+    /// (contiguous, vectorised) instead of along the band (at most `kl` or `kl + ku` long).
+    fn solve_rows(&self, b: &mut [f64], k: usize) {
+        crate::simd::dispatch(BandSolveRows { band: self, b, k });
+    }
+
+    /// The body of [`Band::solve_rows`].
+    #[inline(always)]
+    fn solve_rows_kernel(&self, b: &mut [f64], k: usize) {
+        let (ab, ld, kl) = (self.ab, self.ld, self.kl);
+        let kv = kl + self.ku;
+        let n = b.len() / k;
+        // L y = P b
+        for j in 0..n {
+            let p = self.ipiv[j];
+            if p != j {
+                let (lo, hi) = b.split_at_mut(p * k);
+                lo[j * k..(j + 1) * k].swap_with_slice(&mut hi[..k]);
+            }
+            let km = kl.min(n - 1 - j);
+            let (head, tail) = b.split_at_mut((j + 1) * k);
+            let bj = &head[j * k..];
+            // (`Band::solve` skips a zero `b_j`; here a zero entry subtracts `l·0`, which
+            // leaves `t` equal, and a row of zeros is skipped)
+            if bj.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            for (i, row) in tail.chunks_exact_mut(k).take(km).enumerate() {
+                let li = ab[kv + 1 + i + j * ld];
+                for (t, &v) in row.iter_mut().zip(bj) {
+                    *t -= li * v;
+                }
+            }
+        }
+        // U x = y, column by column from the last
+        for j in (0..n).rev() {
+            let uj = self.u_inv[j];
+            let (head, tail) = b.split_at_mut(j * k);
+            let xj = &mut tail[..k];
+            for v in xj.iter_mut() {
+                *v *= uj;
+            }
+            if xj.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            let top = j.saturating_sub(kv);
+            let len = j - top;
+            for (i, row) in head[top * k..].chunks_exact_mut(k).enumerate().take(len) {
+                let ui = ab[kv - len + i + j * ld];
+                for (t, &v) in row.iter_mut().zip(xj.iter()) {
+                    *t -= ui * v;
+                }
+            }
+        }
+    }
+}
+
+/// [`Band::solve_rows`] as a [`crate::simd::Kernel`].
+struct BandSolveRows<'a, 'b> {
+    band: &'a Band<'b>,
+    b: &'a mut [f64],
+    k: usize,
+}
+
+impl crate::simd::Kernel for BandSolveRows<'_, '_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        self.band.solve_rows_kernel(self.b, self.k)
+    }
+}
+
+/// `acc = A₂₁ X` (`A₂₁` column-major `nb × n1`, `X` row-major `n1 × nb`, `acc` column-major
+/// `nb × nb`) as rank-one updates over `k = 0, 1, …`: each entry is summed in the order of the
+/// inner products `Σₖ A₂₁(r, k) X(k, c)` it replaces (the same bits), the loops run along the
+/// `nb` rows of a column.
+struct SchurProduct<'a> {
+    a21: &'a [f64],
+    x: &'a [f64],
+    acc: &'a mut [f64],
+    nb: usize,
+}
+
+impl crate::simd::Kernel for SchurProduct<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let nb = self.nb;
+        self.acc.fill(0.0);
+        for (a, xr) in self.a21.chunks_exact(nb).zip(self.x.chunks_exact(nb)) {
+            for (col, &xv) in self.acc.chunks_exact_mut(nb).zip(xr) {
+                for (t, &av) in col.iter_mut().zip(a) {
+                    *t += av * xv;
                 }
             }
         }
@@ -677,6 +785,53 @@ mod tests {
             col_ptr.push(row_idx.len());
         }
         (n + 1, col_ptr, row_idx)
+    }
+
+    /// One pass of [`Band::solve_rows`] over several right-hand sides gives every column the
+    /// value of its own [`Band::solve`] (reference: the single-column solve, the kernel the
+    /// border columns were solved with before), on a factored ring whose band pivots, with
+    /// columns that start with zero rows.
+    #[test]
+    fn row_major_solve_matches_the_single_column_solves() {
+        let (dim, cp, ri) = ring(6, 20);
+        let plan = BandPlan::new(dim, &cp, &ri);
+        let mut vals = vec![0.0; ri.len()];
+        for j in 0..dim {
+            for p in cp[j]..cp[j + 1] {
+                let i = ri[p];
+                // weak diagonal: the band's partial pivoting swaps rows
+                vals[p] = ((i * 31 + j * 17) as f64 * 0.37).sin() + if i == j { 0.3 } else { 0.0 };
+            }
+        }
+        let mut lu = BandLu::new(plan);
+        lu.factor(&cp, &ri, &vals).expect("regular");
+        assert!(
+            lu.ipiv.iter().enumerate().any(|(j, &p)| p != j),
+            "the band pivots"
+        );
+        let n1 = lu.plan.n1;
+        let k = 5;
+        let mut rows = vec![0.0; n1 * k];
+        for i in 0..n1 {
+            for c in 0..k {
+                rows[i * k + c] = if i < 3 * c {
+                    0.0
+                } else {
+                    ((i * 7 + c * 3) as f64).cos()
+                };
+            }
+        }
+        let mut cols: Vec<Vec<f64>> = (0..k)
+            .map(|c| (0..n1).map(|i| rows[i * k + c]).collect())
+            .collect();
+        let band = lu.band();
+        band.solve_rows(&mut rows, k);
+        for (c, col) in cols.iter_mut().enumerate() {
+            band.solve(col);
+            for i in 0..n1 {
+                assert!(rows[i * k + c] == col[i], "row {i}, column {c}");
+            }
+        }
     }
 
     /// The loop is cut at one node: the pulley and that node's six coordinates form the
