@@ -15,6 +15,9 @@
 //!   space.
 
 use crate::friction::{FrictionForce, FrictionLaw, TangentFriction};
+use crate::geometry::SurfaceValues;
+use crate::normal::NormalLaw;
+use crate::point::point_force_at;
 use crate::spatial::geometry::perpendicular;
 use nalgebra::{Matrix3x2, SMatrix, SVector, Vector2, Vector3};
 use std::fmt::Debug;
@@ -79,6 +82,20 @@ pub trait ContactDim<const D: usize> {
         law: &FL, basis: &Self::Basis, w: &SVector<f64, D>, normal: f64,
     ) -> (Self::Slip, Self::Slip, SVector<f64, D>);
 
+    /// The force `f_q` of [`crate::point_force_at`] at every point `q` of a batch in contact
+    /// (`gap ≤ 0`), zero at the separated points: the surface `values` and the velocities
+    /// `velocity` of the points in structure-of-arrays form, `force` sized like them, `work` a
+    /// scratch buffer. In space one loop over the points forms `w = ṙ − u_s`, `d = −g`,
+    /// `ḋ = −nᵀw`, the basis `t₁ = P t_ref/|P t_ref|`, `t₂ = n × t₁` and the slip `Tᵀw` (the
+    /// operations of [`ContactDim::basis`] and [`ContactDim::friction_value`]), the laws run as
+    /// batches ([`NormalLaw::normal_forces`], [`FrictionLaw::friction_tangent_forces`]) and a
+    /// last loop forms `f = f_n n + T f_t`, all compiled for the machine's vector width
+    /// ([`mbd_core::simd`]); in the plane the points are taken one at a time.
+    fn batch_forces<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized>(
+        normal: &NL, friction: &FL, values: &SurfaceValues<D>, velocity: &[Vec<f64>; D],
+        work: &mut Vec<f64>, force: &mut [Vec<f64>; D],
+    );
+
     /// The tangential force of a friction output in the tangent basis (for records).
     fn friction_force(friction: &Self::Friction) -> Self::Slip;
 
@@ -137,6 +154,27 @@ impl ContactDim<2> for Dim<2> {
         (slip, f, t * f)
     }
 
+    fn batch_forces<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized>(
+        normal: &NL, friction: &FL, values: &SurfaceValues<2>, velocity: &[Vec<f64>; 2],
+        _work: &mut Vec<f64>, force: &mut [Vec<f64>; 2],
+    ) {
+        for (q, &gap) in values.gap.iter().enumerate() {
+            let f = if gap > 0.0 {
+                Vector2::zeros()
+            } else {
+                let col = |a: &[Vec<f64>; 2]| Vector2::new(a[0][q], a[1][q]);
+                let (n, t, us) = (
+                    col(&values.normal),
+                    col(&values.tangent),
+                    col(&values.surface_velocity),
+                );
+                point_force_at((gap, &n, &t, &us), normal, friction, &col(velocity)).force
+            };
+            force[0][q] = f[0];
+            force[1][q] = f[1];
+        }
+    }
+
     #[inline]
     fn friction_force(friction: &FrictionForce) -> f64 {
         friction.force
@@ -190,6 +228,50 @@ impl ContactDim<3> for Dim<3> {
         (slip, f, tb * f)
     }
 
+    fn batch_forces<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized>(
+        normal: &NL, friction: &FL, values: &SurfaceValues<3>, velocity: &[Vec<f64>; 3],
+        work: &mut Vec<f64>, force: &mut [Vec<f64>; 3],
+    ) {
+        let n = values.gap.len();
+        work.clear();
+        work.resize(WORK_ARRAYS * n, 0.0);
+        for f in force.iter_mut() {
+            f.resize(n, 0.0);
+        }
+        let degenerate = mbd_core::simd::dispatch(SpatialForces {
+            normal,
+            friction,
+            values,
+            velocity,
+            work,
+            force,
+        });
+        if degenerate {
+            // a reference tangent along the normal: the basis of `ContactDim::basis`
+            for (q, &gap) in values.gap.iter().enumerate() {
+                let len = work[BASIS_NORM * n + q];
+                if gap <= 0.0 && len <= 1e-300 {
+                    let col = |a: &[Vec<f64>; 3]| Vector3::new(a[0][q], a[1][q], a[2][q]);
+                    let f = point_force_at(
+                        (
+                            gap,
+                            &col(&values.normal),
+                            &col(&values.tangent),
+                            &col(&values.surface_velocity),
+                        ),
+                        normal,
+                        friction,
+                        &col(velocity),
+                    )
+                    .force;
+                    for i in 0..3 {
+                        force[i][q] = f[i];
+                    }
+                }
+            }
+        }
+    }
+
     #[inline]
     fn friction_force(friction: &TangentFriction) -> Vector2<f64> {
         friction.force
@@ -198,5 +280,96 @@ impl ContactDim<3> for Dim<3> {
     #[inline]
     fn cross(a: &Vector3<f64>, f: &Vector3<f64>) -> Vector3<f64> {
         a.cross(f)
+    }
+}
+
+/// Arrays of `n` values in the work buffer of [`Dim<3>`]'s [`ContactDim::batch_forces`], in
+/// this order: `d`, `ḋ`, `f_n`, the slip `(v₁, v₂)`, the friction `(f₁, f₂)`, `t₁`, `t₂` (3
+/// each) and `|P t_ref|` (the last, at [`BASIS_NORM`] · n).
+const WORK_ARRAYS: usize = 14;
+/// Offset (× n) of `|P t_ref|` in the work buffer.
+const BASIS_NORM: usize = 13;
+
+/// [`Dim<3>`]'s [`ContactDim::batch_forces`] as a [`mbd_core::simd::Kernel`]; returns whether
+/// a point in contact has a reference tangent along its normal (`|P t_ref| ≤ 10⁻³⁰⁰`, left to
+/// the caller).
+struct SpatialForces<'a, NL: ?Sized, FL: ?Sized> {
+    normal: &'a NL,
+    friction: &'a FL,
+    values: &'a SurfaceValues<3>,
+    velocity: &'a [Vec<f64>; 3],
+    work: &'a mut [f64],
+    force: &'a mut [Vec<f64>; 3],
+}
+
+impl<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized> mbd_core::simd::Kernel
+    for SpatialForces<'_, NL, FL>
+{
+    type Output = bool;
+    #[inline(always)]
+    fn run(self) -> bool {
+        let vals = self.values;
+        let n = vals.gap.len();
+        let (work, force) = (self.work, self.force);
+        let (pen_rate, rest) = work.split_at_mut(2 * n);
+        let (pen, rate) = pen_rate.split_at_mut(n);
+        let (fnorm, rest) = rest.split_at_mut(n);
+        let (v1, rest) = rest.split_at_mut(n);
+        let (v2, rest) = rest.split_at_mut(n);
+        let (f1, rest) = rest.split_at_mut(n);
+        let (f2, rest) = rest.split_at_mut(n);
+        let (t1, rest) = rest.split_at_mut(3 * n);
+        let (t2, len) = rest.split_at_mut(3 * n);
+        let (t1x, t1) = t1.split_at_mut(n);
+        let (t1y, t1z) = t1.split_at_mut(n);
+        let (t2x, t2) = t2.split_at_mut(n);
+        let (t2y, t2z) = t2.split_at_mut(n);
+        let gap = &vals.gap[..n];
+        let [nx, ny, nz] = &vals.normal;
+        let [tx, ty, tz] = &vals.tangent;
+        let [ux, uy, uz] = &vals.surface_velocity;
+        let [vx, vy, vz] = self.velocity;
+        let (nx, ny, nz) = (&nx[..n], &ny[..n], &nz[..n]);
+        let (tx, ty, tz) = (&tx[..n], &ty[..n], &tz[..n]);
+        let (ux, uy, uz) = (&ux[..n], &uy[..n], &uz[..n]);
+        let (vx, vy, vz) = (&vx[..n], &vy[..n], &vz[..n]);
+        let mut degenerate = false;
+        for q in 0..n {
+            let (wx, wy, wz) = (vx[q] - ux[q], vy[q] - uy[q], vz[q] - uz[q]);
+            pen[q] = -gap[q];
+            rate[q] = -(nx[q] * wx + ny[q] * wy + nz[q] * wz);
+            // t₁ = P t_ref/|P t_ref| (`try_normalize`), t₂ = n × t₁
+            let nt = nx[q] * tx[q] + ny[q] * ty[q] + nz[q] * tz[q];
+            let (px, py, pz) = (tx[q] - nx[q] * nt, ty[q] - ny[q] * nt, tz[q] - nz[q] * nt);
+            let l = (px * px + py * py + pz * pz).sqrt();
+            len[q] = l;
+            degenerate |= gap[q] <= 0.0 && l <= 1e-300;
+            let (ax, ay, az) = (px / l, py / l, pz / l);
+            let (bx, by, bz) = (
+                ny[q] * az - nz[q] * ay,
+                nz[q] * ax - nx[q] * az,
+                nx[q] * ay - ny[q] * ax,
+            );
+            (t1x[q], t1y[q], t1z[q]) = (ax, ay, az);
+            (t2x[q], t2y[q], t2z[q]) = (bx, by, bz);
+            v1[q] = ax * wx + ay * wy + az * wz;
+            v2[q] = bx * wx + by * wy + bz * wz;
+        }
+        self.normal.normal_forces(pen, rate, fnorm);
+        self.friction
+            .friction_tangent_forces([v1, v2], fnorm, [&mut *f1, &mut *f2]);
+        let [fx, fy, fz] = force;
+        let (fx, fy, fz) = (&mut fx[..n], &mut fy[..n], &mut fz[..n]);
+        for q in 0..n {
+            let contact = gap[q] <= 0.0;
+            let (a, b, c) = (f1[q], f2[q], fnorm[q]);
+            let x = nx[q] * c + (t1x[q] * a + t2x[q] * b);
+            let y = ny[q] * c + (t1y[q] * a + t2y[q] * b);
+            let z = nz[q] * c + (t1z[q] * a + t2z[q] * b);
+            fx[q] = if contact { x } else { 0.0 };
+            fy[q] = if contact { y } else { 0.0 };
+            fz[q] = if contact { z } else { 0.0 };
+        }
+        degenerate
     }
 }

@@ -19,7 +19,7 @@ use crate::dim::{ContactDim, Dim, Moment, Slip};
 use crate::friction::FrictionLaw;
 use crate::geometry::{Surface, SurfaceValues};
 use crate::normal::NormalLaw;
-use crate::point::{point_contact, point_force, point_force_at};
+use crate::point::{point_contact, point_force};
 use crate::quadrature::GaussRule;
 use nalgebra::{Point, SMatrix, SVector};
 use std::ops::{AddAssign, Mul};
@@ -312,6 +312,14 @@ struct BatchScratch<const D: usize> {
     position: [Vec<f64>; D],
     velocity: [Vec<f64>; D],
     values: SurfaceValues<D>,
+    /// Force per point (zero where separated), [`ContactDim::batch_forces`].
+    force: [Vec<f64>; D],
+    /// Work buffer of [`ContactDim::batch_forces`].
+    work: Vec<f64>,
+    /// Points in contact.
+    active: Vec<usize>,
+    /// `Q_c` by component: `acc[i · blocks + b]`.
+    acc: Vec<f64>,
 }
 
 impl<const D: usize> Default for BatchScratch<D> {
@@ -320,6 +328,10 @@ impl<const D: usize> Default for BatchScratch<D> {
             position: std::array::from_fn(|_| Vec::new()),
             velocity: std::array::from_fn(|_| Vec::new()),
             values: SurfaceValues::default(),
+            force: std::array::from_fn(|_| Vec::new()),
+            work: Vec::new(),
+            active: Vec::new(),
+            acc: Vec::new(),
         }
     }
 }
@@ -461,8 +473,8 @@ pub struct BlockQuadrature {
     blocks: usize,
     /// `s_b` at point `q` in `shape[b · points + q]`.
     shape: Vec<f64>,
-    /// `w_q s_b` at point `q` in `weighted[b · points + q]`.
-    weighted: Vec<f64>,
+    /// `w_q s_b` at point `q` in `weighted_by_point[q · blocks + b]`.
+    weighted_by_point: Vec<f64>,
     /// Weights `w_q` \[m or m²\].
     weight: Vec<f64>,
 }
@@ -474,17 +486,17 @@ impl BlockQuadrature {
         let pts: Vec<(&[f64], f64)> = points.into_iter().collect();
         let np = pts.len();
         let mut shape = vec![0.0; blocks * np];
-        let mut weighted = vec![0.0; blocks * np];
+        let mut weighted_by_point = vec![0.0; blocks * np];
         for (q, (s, w)) in pts.iter().enumerate() {
             for b in 0..blocks {
                 shape[b * np + q] = s[b];
-                weighted[b * np + q] = w * s[b];
+                weighted_by_point[q * blocks + b] = w * s[b];
             }
         }
         Self {
             blocks,
             shape,
-            weighted,
+            weighted_by_point,
             weight: pts.iter().map(|p| p.1).collect(),
         }
     }
@@ -533,10 +545,11 @@ impl<const D: usize> mbd_core::simd::Kernel for BlockPositions<'_, D> {
 /// The force-only [`element_contact`] (no Jacobians, no records) of an element with block shape
 /// functions and coordinates `e`, velocities `edot` (`D` per block), evaluated as a batch: the
 /// positions `r_q = Σ_b s_b(q) e_b` and velocities of all points, the surface's
-/// [`Surface::closest_values`] for all of them, then [`point_force_at`] at every point in
-/// contact and `Q_c = Σ w Sᵀ f` with the moment and the reaction as in [`element_contact`]
-/// (Kerkkänen (4.43)–(4.45)). The same operations per point in the same order: equal to
-/// [`element_contact`] with the points' [`BlockShape`]s to the last bit.
+/// [`Surface::closest_values`] for all of them, the forces of [`crate::point_force_at`] of all of them
+/// as structure-of-arrays loops ([`ContactDim::batch_forces`]), then `Q_c = Σ w Sᵀ f` over the
+/// points in contact (vectorised over the blocks) with the moment and the reaction as in
+/// [`element_contact`] (Kerkkänen (4.43)–(4.45)). The same operations per point, and every sum
+/// over the points in the same order as [`element_contact`] with the points' [`BlockShape`]s.
 pub fn element_forces_blocks<const D: usize, S, NL, FL>(
     surface: &S, normal: &NL, friction: &FL, quad: &BlockQuadrature, e: &[f64], edot: &[f64],
     out: &mut ElementContact<D>,
@@ -564,32 +577,67 @@ pub fn element_forces_blocks<const D: usize, S, NL, FL>(
         velocity: &mut sc.velocity,
     });
     surface.closest_values(&sc.position, &mut sc.values);
+    <Dim<D>>::batch_forces(
+        normal,
+        friction,
+        &sc.values,
+        &sc.velocity,
+        &mut sc.work,
+        &mut sc.force,
+    );
+    // Q_c = Σ_q w_q Sᵀ f_q over the points in contact, in point order for every entry (so the
+    // sums of the point-by-point loop), vectorised over the blocks
+    sc.acc.clear();
+    sc.acc.resize(D * nb, 0.0);
+    sc.active.clear();
+    sc.active
+        .extend((0..np).filter(|&q| sc.values.gap[q] <= 0.0));
+    mbd_core::simd::dispatch(BlockScatter::<D> {
+        quad,
+        active: &sc.active,
+        force: &sc.force,
+        acc: &mut sc.acc,
+    });
+    for b in 0..nb {
+        for i in 0..D {
+            out.q[D * b + i] = sc.acc[i * nb + b];
+        }
+    }
     let c = surface.center();
-    let vals = &sc.values;
-    for q in 0..np {
-        let gap = vals.gap[q];
-        if gap > 0.0 {
-            continue;
-        }
+    out.active_points = sc.active.len();
+    for &q in &sc.active {
         let col = |a: &[Vec<f64>; D]| SVector::<f64, D>::from_fn(|i, _| a[i][q]);
-        let (n, t, us) = (
-            col(&vals.normal),
-            col(&vals.tangent),
-            col(&vals.surface_velocity),
-        );
-        let pf = point_force_at((gap, &n, &t, &us), normal, friction, &col(&sc.velocity));
-        out.active_points += 1;
-        let w = quad.weight[q];
-        let f = pf.force;
-        for b in 0..nb {
-            let ws = quad.weighted[b * np + q];
-            for i in 0..D {
-                out.q[D * b + i] += f[i] * ws;
-            }
-        }
+        let (f, w) = (col(&sc.force), quad.weight[q]);
         out.reaction -= f * w;
         let arm = Point::<f64, D>::from(col(&sc.position)) - c;
         out.moment -= <Dim<D>>::cross(&arm, &f) * w;
+    }
+}
+
+/// `acc[i · blocks + b] = Σ_q w_q s_b(q) f_i(q)` over the `active` points in their order, as
+/// a [`mbd_core::simd::Kernel`] (the innermost loop runs over the blocks).
+struct BlockScatter<'a, const D: usize> {
+    quad: &'a BlockQuadrature,
+    active: &'a [usize],
+    force: &'a [Vec<f64>; D],
+    acc: &'a mut [f64],
+}
+
+impl<const D: usize> mbd_core::simd::Kernel for BlockScatter<'_, D> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let nb = self.quad.blocks;
+        for (i, acc) in self.acc.chunks_exact_mut(nb).enumerate() {
+            let fi = &self.force[i];
+            for &q in self.active {
+                let f = fi[q];
+                let ws = &self.quad.weighted_by_point[q * nb..(q + 1) * nb];
+                for (a, &w) in acc.iter_mut().zip(ws) {
+                    *a += f * w;
+                }
+            }
+        }
     }
 }
 

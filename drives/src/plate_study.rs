@@ -186,7 +186,8 @@ impl ByMeasure {
 /// The plate study's "what the numbers mean" paragraph (`meaning` in `summary.json`).
 pub const PLATE_MEANING: &str = "The three-dimensional belt drive of Kerkkanen ch. 4: a thin-plate \
 ANCF belt (4.1) on cylindrical (crowned or flanged) pulleys with distributed penalty contact and \
-creep-rate friction at 81 points per element (4.43)-(4.45). The driver follows the speed ramp \
+creep-rate friction at Gauss points over each element (4.43)-(4.45): 9 along times 3 across \
+on flat pulleys by default, 9 x 9 (Kerkkanen's 81) on crowned or flanged ones. The driver follows the speed ramp \
 (3.29), the driven pulley carries the load torque (4.47). omega_driver_end / omega_driven_end \
 are the pulley speeds at t_end [rad/s] and *_mean their means over the final averaging window; \
 speed_ratio is the driven over the driver surface speed (below 1 by creep). \

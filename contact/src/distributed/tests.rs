@@ -470,3 +470,105 @@ fn pair_sums_per_pair_equal_the_point_by_point_sums() {
             .all(|(a, b)| a.to_bits() == b.to_bits())
     );
 }
+
+// Reference (the previous formulation): `element_contact`'s force-only pass, one point at a
+// time through `point_force` (closest point, basis, normal law, friction law, `Sᵀ f`), on the
+// plate belt's laws (linear penalty with damping `NormalSpec`, the creep-rate `FrictionSpec`)
+// over a 9 × 3 grid, with the points' positions summed as the batch sums them
+// (`r = Σ_b s_b e_b`). The batch forms every point's force with the same operations and adds
+// every sum over the points in the same order, so the forces, moment and reaction are equal
+// to the last bit; the three pulley speeds put the points on the creep branch (19.7 rad/s,
+// slip of a few cm/s), on the saturated branch (200 rad/s) and in between.
+#[test]
+fn batch_forces_of_the_plate_laws_equal_the_point_by_point_pass() {
+    use crate::friction::FrictionSpec;
+    use crate::normal::NormalSpec;
+    let normal = NormalSpec::penalty(1e9, 0.0, 1e3);
+    let friction = FrictionSpec::CreepRate {
+        mu: 0.6,
+        creep: 2e5,
+    };
+    let (e, edot) = pressed_element();
+    let (rx, ry) = (GaussRule::new(9), GaussRule::new(3));
+    let area = 0.03 * 0.025;
+    let mut shapes = Vec::new();
+    let mut weights = Vec::new();
+    for (eta, we) in ry.iter() {
+        for (xi, wx) in rx.iter() {
+            let mut v = [0.0; MAX_BLOCKS];
+            v[..4].copy_from_slice(&[
+                (1.0 - xi) * (1.0 - eta),
+                xi * (1.0 - eta),
+                (1.0 - xi) * eta,
+                xi * eta,
+            ]);
+            shapes.push(v);
+            weights.push(wx * we * area);
+        }
+    }
+    let points: Vec<QuadPoint<3, BlockShape>> = shapes
+        .iter()
+        .zip(&weights)
+        .map(|(v, &w)| {
+            let (mut p, mut u) = (Point3::origin(), Vector3::zeros());
+            for b in 0..4 {
+                for i in 0..3 {
+                    p[i] += v[b] * e[3 * b + i];
+                    u[i] += v[b] * edot[3 * b + i];
+                }
+            }
+            QuadPoint {
+                position: p,
+                velocity: u,
+                shape: BlockShape {
+                    values: *v,
+                    blocks: 4,
+                },
+                weight: w,
+            }
+        })
+        .collect();
+    let quad = BlockQuadrature::new(4, shapes.iter().zip(&weights).map(|(s, &w)| (&s[..4], w)));
+    for omega in [19.7, 25.0, 200.0] {
+        let surf = pulley(omega);
+        let mut reference = ElementContact::<3>::new(12);
+        let mut records = Vec::new();
+        element_contact(
+            &surf,
+            &normal,
+            &friction,
+            points.clone(),
+            false,
+            &mut reference,
+            Some(&mut records),
+        );
+        let mut batch = ElementContact::<3>::new(12);
+        element_forces_blocks(
+            &surf,
+            &normal,
+            &friction,
+            &quad,
+            e.as_slice(),
+            edot.as_slice(),
+            &mut batch,
+        );
+        let saturated = records
+            .iter()
+            .filter(|r| (r.friction_force.norm() - 0.6 * r.normal_force.abs()).abs() < 1e-9)
+            .count();
+        println!(
+            "ω = {omega}: {} of 27 points in contact, {saturated} saturated",
+            reference.active_points
+        );
+        assert!(reference.active_points > 0);
+        assert_eq!(
+            saturated > 0,
+            omega > 100.0,
+            "ω = {omega}: {saturated} saturated"
+        );
+        assert_eq!(batch.active_points, reference.active_points);
+        assert_eq!(batch.q, reference.q, "ω = {omega}");
+        assert_eq!(batch.moment, reference.moment, "ω = {omega}");
+        assert_eq!(batch.reaction, reference.reaction, "ω = {omega}");
+    }
+}

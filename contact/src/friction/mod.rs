@@ -120,6 +120,21 @@ pub trait FrictionLaw: Debug + Send + Sync {
         e * self.friction(s, normal).force
     }
 
+    /// [`FrictionLaw::friction_tangent_force`] of a batch of points (structure of arrays):
+    /// `(out[0][q], out[1][q]) = f_t((slip[0][q], slip[1][q]), normal[q])` for every `q` of
+    /// `normal`. The default calls the law point by point; a law whose force is branch-free
+    /// overrides it with one loop that the compiler vectorises (the same operations per point,
+    /// so the same values).
+    #[inline(always)]
+    fn friction_tangent_forces(&self, slip: [&[f64]; 2], normal: &[f64], out: [&mut [f64]; 2]) {
+        let [o1, o2] = out;
+        for (q, &fn_) in normal.iter().enumerate() {
+            let f = self.friction_tangent_force(Vector2::new(slip[0][q], slip[1][q]), fn_);
+            o1[q] = f[0];
+            o2[q] = f[1];
+        }
+    }
+
     /// Whether the law is set-valued at zero slip (Coulomb with stick): a solver must then use
     /// [`FrictionLaw::augmented`] rather than the single-valued [`FrictionLaw::friction`].
     fn is_set_valued(&self) -> bool {
@@ -188,6 +203,10 @@ impl<L: FrictionLaw + ?Sized> FrictionLaw for &L {
     }
     fn friction_tangent_force(&self, slip: Vector2<f64>, normal: f64) -> Vector2<f64> {
         (**self).friction_tangent_force(slip, normal)
+    }
+    #[inline(always)]
+    fn friction_tangent_forces(&self, slip: [&[f64]; 2], normal: &[f64], out: [&mut [f64]; 2]) {
+        (**self).friction_tangent_forces(slip, normal, out)
     }
     fn is_set_valued(&self) -> bool {
         (**self).is_set_valued()

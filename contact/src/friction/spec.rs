@@ -265,6 +265,11 @@ impl FrictionLaw for FrictionSpec {
     fn friction_tangent_force(&self, slip: Vector2<f64>, normal: f64) -> Vector2<f64> {
         dispatch!(self, l => l.friction_tangent_force(slip, normal))
     }
+    /// The law chosen once for the whole batch (its own batch loop).
+    #[inline(always)]
+    fn friction_tangent_forces(&self, slip: [&[f64]; 2], normal: &[f64], out: [&mut [f64]; 2]) {
+        dispatch!(self, l => l.friction_tangent_forces(slip, normal, out))
+    }
     fn is_set_valued(&self) -> bool {
         dispatch!(self, l => l.is_set_valued())
     }

@@ -22,6 +22,17 @@ pub struct NormalForce {
 pub trait NormalLaw {
     /// Force and derivatives at penetration `d` \[m\] and penetration rate `ḋ` \[m/s\].
     fn normal(&self, pen: f64, pen_rate: f64) -> NormalForce;
+
+    /// The forces of a batch of points (structure of arrays, force-only evaluations):
+    /// `out[q] = f_n(pen[q], pen_rate[q])` for every `q` of `out`. The default calls
+    /// [`NormalLaw::normal`] point by point; a law may override it with a loop that the
+    /// compiler vectorises (the same operations per point, so the same values).
+    #[inline(always)]
+    fn normal_forces(&self, pen: &[f64], pen_rate: &[f64], out: &mut [f64]) {
+        for (q, o) in out.iter_mut().enumerate() {
+            *o = self.normal(pen[q], pen_rate[q]).force;
+        }
+    }
 }
 
 /// Linear penalty with damping, Kerkkänen (3.20): `f_n = k_p d + c_p ḋ` (per unit length:

@@ -100,6 +100,25 @@ impl NormalLaw for NormalSpec {
             }
         }
     }
+    /// The linear law `k_p d + c_p ḋ` (3.20) in one loop over the batch (the same operations
+    /// as [`NormalLaw::normal`], vectorised); the polynomial law point by point.
+    #[inline(always)]
+    fn normal_forces(&self, pen: &[f64], pen_rate: &[f64], out: &mut [f64]) {
+        match *self {
+            Self::Linear { stiffness, damping } => {
+                let n = out.len();
+                let (pen, rate) = (&pen[..n], &pen_rate[..n]);
+                for q in 0..n {
+                    out[q] = stiffness * pen[q] + damping * rate[q];
+                }
+            }
+            Self::Polynomial { .. } => {
+                for (q, o) in out.iter_mut().enumerate() {
+                    *o = self.normal(pen[q], pen_rate[q]).force;
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]

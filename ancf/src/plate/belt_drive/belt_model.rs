@@ -164,7 +164,9 @@ pub fn plate_spec(
             damping: 0.0,
             friction,
             points: s.contact_points,
-            points_across: None,
+            // `contact_points` per direction (the square rule), as documented: the flat-pulley
+            // default of 3 across was studied on Kerkkänen's drives only
+            points_across: Some(s.contact_points),
         },
     };
     let mapping = PlateMapping {

@@ -26,4 +26,4 @@ pub use crate::mounted::InitialOptions;
 pub use belt_model::{PlateBelt, PlateConfig, PlateMapping};
 pub use initial::PlateInitialState;
 pub use model::{Plate, PlateBeltDrive, PlateContactRecord, PulleySurface};
-pub use spec::{PlateBeltSpec, PlateContactSpec, PlateDriveSpec};
+pub use spec::{DEFAULT_POINTS_ACROSS, PlateBeltSpec, PlateContactSpec, PlateDriveSpec};

@@ -159,7 +159,7 @@ impl PlateBeltDrive {
             cells,
         };
         let rule = GaussRule::new(spec.contact.points);
-        let across = GaussRule::new(spec.contact.points_across.unwrap_or(spec.contact.points));
+        let across = GaussRule::new(spec.contact.points_across_for(&spec.pulleys));
         let mut quad = Vec::new();
         let mut quad_s = Vec::new();
         let mut quad_shape = Vec::new();
@@ -665,17 +665,23 @@ mod tests {
     // its weights sum to the element area a·w (closed form), and since the plate's shape
     // functions are at most cubic across the width, 3 Gauss points (exact to degree 5)
     // integrate every S_k as the 9 × 9 rule does (second rule as the reference, to
-    // round-off). `points_across = None` is the square rule, point for point.
+    // round-off). `points_across = None` is 3 across on flat pulleys (Model 2: the same points
+    // as `Some(3)`) and the square rule on a crowned pulley.
     #[test]
     fn contact_quadrature_across_the_width() {
-        let square = PlateBeltDrive::new(PlateDriveSpec::kerkkanen_model2()).unwrap();
         let mut spec = PlateDriveSpec::kerkkanen_model2();
         spec.contact.points_across = Some(9);
-        let same = PlateBeltDrive::new(spec.clone()).unwrap();
-        assert_eq!(square.contact_quadrature(), same.contact_quadrature());
+        let square = PlateBeltDrive::new(spec.clone()).unwrap();
+        assert_eq!(square.contact_quadrature().len(), 81);
         spec.contact.points_across = Some(3);
         let narrow = PlateBeltDrive::new(spec).unwrap();
         assert_eq!(narrow.contact_quadrature().len(), 27);
+        let default = PlateBeltDrive::new(PlateDriveSpec::kerkkanen_model2()).unwrap();
+        assert_eq!(default.contact_quadrature(), narrow.contact_quadrature());
+        let mut crowned = PlateDriveSpec::kerkkanen_model2();
+        crowned.pulleys[1].crown = 0.5;
+        let crowned = PlateBeltDrive::new(crowned).unwrap();
+        assert_eq!(crowned.contact_quadrature(), square.contact_quadrature());
         let (a, w) = (square.element_length(), square.spec().belt.width);
         let integrals = |d: &PlateBeltDrive| {
             let mut s = [0.0; 12];

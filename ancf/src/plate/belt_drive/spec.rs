@@ -61,16 +61,43 @@ pub struct PlateContactSpec {
     /// friction direction (seed note §11 item 12); the isotropic extension keeps the planar law
     /// in the circumferential direction and lets the belt creep axially under the same law.
     pub friction: BeltFriction,
-    /// Gauss points per direction of the contact quadrature: `points²` per element (Kerkkänen:
-    /// 81 discrete points per element, layout unstated; 9 × 9 Gauss points here), or `points`
-    /// along the belt times [`Self::points_across`] across its width.
+    /// Gauss points along the belt of the contact quadrature (Kerkkänen: 81 discrete points
+    /// per element, layout unstated; 9 along here); the quadrature is `points ×`
+    /// [`Self::points_across`] per element.
     pub points: usize,
-    /// Gauss points across the width (`None`: `points`, the square rule): the contact
-    /// quadrature is then `points × points_across` per element. The plate's shape functions
-    /// are at most cubic across the width, so 3 points integrate each `S_k` exactly; on
-    /// Kerkkänen's Model 2, 9 × 3 takes less CPU than 9 × 9 and moves the end-of-run span
-    /// tensions by about 2·10⁻⁴ (BENCHMARKS.md, plate-belt drive), hence not the default.
+    /// Gauss points across the width. `None` (the default): [`DEFAULT_POINTS_ACROSS`] = 3 when
+    /// every pulley is a flat cylinder (no crown, no flanges), `points` (the square rule)
+    /// otherwise ([`PlateContactSpec::points_across_for`]). The plate's shape functions are at
+    /// most cubic across the width, so 3 points integrate each `S_k` exactly; on flat pulleys
+    /// the pressure and friction across the width are smooth, and on Kerkkänen's Model 2 and
+    /// the wide-pulley case 9 × 3 agrees with 9 × 9 within the solution's own sensitivity to
+    /// its Newton tolerance (driven speed 3·10⁻⁶, contact torque 1.2·10⁻⁴, end-of-run span
+    /// tensions 1.9–2.6·10⁻⁴: BENCHMARKS.md, plate-belt drive) at about 0.7 of the CPU. A
+    /// crowned or flanged pulley loads the belt unevenly across its width (tracking, edge
+    /// contact), which that study does not cover.
     pub points_across: Option<usize>,
+}
+
+/// Gauss points across the width of the plate belt's contact quadrature on flat pulleys when
+/// [`PlateContactSpec::points_across`] is not given.
+pub const DEFAULT_POINTS_ACROSS: usize = 3;
+
+impl PlateContactSpec {
+    /// The Gauss points across the width on the pulleys `pulleys`: [`Self::points_across`]
+    /// when given, else [`DEFAULT_POINTS_ACROSS`] if no pulley has a crown or flanges and
+    /// [`Self::points`] (the square rule) if one has.
+    pub fn points_across_for(&self, pulleys: &[Pulley]) -> usize {
+        self.points_across.unwrap_or_else(|| {
+            if pulleys
+                .iter()
+                .all(|p| p.crown == 0.0 && p.flanges.is_none())
+            {
+                DEFAULT_POINTS_ACROSS
+            } else {
+                self.points
+            }
+        })
+    }
 }
 
 /// A complete three-dimensional plate-belt drive: pulleys in travel order with their crowns,
