@@ -17,6 +17,9 @@ pub struct Pattern {
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
     scatter: Vec<Vec<usize>>,
+    /// faer's structure of the pattern, checked once: [`Pattern::to_matrix`] clones it instead
+    /// of checking the sorted row indices of every assembled matrix again.
+    structure: SymbolicSparseColMat<usize>,
 }
 
 impl Pattern {
@@ -49,11 +52,14 @@ impl Pattern {
                 s
             })
             .collect();
+        let structure =
+            SymbolicSparseColMat::new_checked(n, n, col_ptr.clone(), None, row_idx.clone());
         Self {
             n,
             col_ptr,
             row_idx,
             scatter,
+            structure,
         }
     }
 
@@ -103,25 +109,12 @@ impl Pattern {
 
     /// faer CSC matrix with this pattern and the given values.
     pub fn to_matrix(&self, vals: Vec<f64>) -> SparseColMat<usize, f64> {
-        let sym = SymbolicSparseColMat::new_checked(
-            self.n,
-            self.n,
-            self.col_ptr.clone(),
-            None,
-            self.row_idx.clone(),
-        );
-        SparseColMat::new(sym, vals)
+        SparseColMat::new(self.structure.clone(), vals)
     }
 
     /// Symbolic structure (for symbolic factorizations that are reused).
     pub fn symbolic(&self) -> SymbolicSparseColMat<usize> {
-        SymbolicSparseColMat::new_checked(
-            self.n,
-            self.n,
-            self.col_ptr.clone(),
-            None,
-            self.row_idx.clone(),
-        )
+        self.structure.clone()
     }
 
     /// Newton correction `dx = −A⁻¹ r` on the first `n` rows (the rest of `dx` zeroed) for the
@@ -152,5 +145,36 @@ impl Pattern {
                 y[self.row_idx[p]] += vals[p] * xj;
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The matrix of [`Pattern::to_matrix`], built on the structure checked once, is the one
+    /// checked anew from the pattern's own arrays as before (reference: faer's checked
+    /// constructor on `col_ptr` and `row_idx`): the same dimensions, column pointers, row
+    /// indices and values, on a two-element chain with a dropped coordinate.
+    #[test]
+    fn matrix_on_the_stored_structure_is_the_checked_one() {
+        let dofs = vec![
+            vec![Some(0), Some(1), Some(2), None],
+            vec![Some(2), Some(3), Some(4), Some(1)],
+        ];
+        let pat = Pattern::new(5, &dofs);
+        let vals: Vec<f64> = (0..pat.nnz()).map(|k| (k as f64 * 0.3).sin()).collect();
+        let got = pat.to_matrix(vals.clone());
+        let reference = SparseColMat::new(
+            SymbolicSparseColMat::new_checked(5, 5, pat.col_ptr.clone(), None, pat.row_idx.clone()),
+            vals,
+        );
+        assert_eq!(got.nrows(), reference.nrows());
+        assert_eq!(got.ncols(), reference.ncols());
+        assert_eq!(got.symbolic().col_ptr(), reference.symbolic().col_ptr());
+        assert_eq!(got.symbolic().row_idx(), reference.symbolic().row_idx());
+        assert!(got.symbolic().col_nnz().is_none());
+        assert_eq!(got.val(), reference.val());
+        assert_eq!(pat.symbolic().row_idx(), reference.symbolic().row_idx());
     }
 }

@@ -273,6 +273,24 @@ pub(crate) struct BandLu {
     acc: Vec<f64>,
     /// Scratch of [`BandLu::backward_error`]: test solution, right-hand side, permuted work.
     check: [Vec<f64>; 3],
+    /// Where each stored entry of the plan's pattern goes ([`BandScatter`]), built at the first
+    /// factorisation.
+    scatter: Option<BandScatter>,
+}
+
+/// The destinations of the stored entries of one pattern in the storage of [`BandLu`]: per
+/// block of the permuted matrix (`A₁₁` in band storage, `A₁₂`, `A₂₁`, `A₂₂`) the pairs
+/// `(position in the values, position in the block's array)`, in the pattern's column-major
+/// order. Built once per pattern, so that a factorisation scatters its values without the
+/// permutation look-ups and the block test of every entry.
+#[derive(Debug, Clone)]
+struct BandScatter {
+    /// Length of the `col_ptr` and `row_idx` the map was built for.
+    shape: (usize, usize),
+    ab: Vec<(usize, usize)>,
+    x: Vec<(usize, usize)>,
+    a21: Vec<(usize, usize)>,
+    s: Vec<(usize, usize)>,
 }
 
 /// [`dgbtf2`] as a [`crate::simd::Kernel`].
@@ -370,8 +388,38 @@ impl BandLu {
             s_piv: vec![0; nb],
             acc: vec![0.0; nb * nb],
             check: [vec![0.0; n1 + nb], vec![0.0; n1 + nb], vec![0.0; n1 + nb]],
+            scatter: None,
             plan,
         }
+    }
+
+    /// The destinations of the entries of the pattern (`col_ptr`, `row_idx`) in the arrays
+    /// `ab`, `x`, `a21` and `s` ([`BandScatter`]): the block test and index of the loop that
+    /// scattered every entry before (kept as [`BandLu::scatter_reference`] in the tests).
+    fn scatter_map(&self, col_ptr: &[usize], row_idx: &[usize]) -> BandScatter {
+        let (n1, kl, ku, ld) = (self.plan.n1, self.plan.kl, self.plan.ku, self.ld);
+        let nb = self.plan.border();
+        let kv = kl + ku;
+        let mut m = BandScatter {
+            shape: (col_ptr.len(), row_idx.len()),
+            ab: Vec::new(),
+            x: Vec::new(),
+            a21: Vec::new(),
+            s: Vec::new(),
+        };
+        for j in 0..n1 + nb {
+            let pj = self.plan.inv[j];
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let pi = self.plan.inv[row_idx[k]];
+                match (pi < n1, pj < n1) {
+                    (true, true) => m.ab.push((k, kv + pi - pj + pj * ld)),
+                    (true, false) => m.x.push((k, pi * nb + (pj - n1))),
+                    (false, true) => m.a21.push((k, (pi - n1) + pj * nb)),
+                    (false, false) => m.s.push((k, (pi - n1) + (pj - n1) * nb)),
+                }
+            }
+        }
+        m
     }
 
     /// Factors the matrix with the plan's pattern whose values are `vals` (same column-wise
@@ -386,17 +434,24 @@ impl BandLu {
         self.x.fill(0.0);
         self.a21.fill(0.0);
         self.s.fill(0.0);
-        let dim = n1 + nb;
-        for j in 0..dim {
-            let pj = self.plan.inv[j];
-            for k in col_ptr[j]..col_ptr[j + 1] {
-                let pi = self.plan.inv[row_idx[k]];
-                let v = vals[k];
-                match (pi < n1, pj < n1) {
-                    (true, true) => self.ab[kv + pi - pj + pj * ld] += v,
-                    (true, false) => self.x[pi * nb + (pj - n1)] += v,
-                    (false, true) => self.a21[(pi - n1) + pj * nb] += v,
-                    (false, false) => self.s[(pi - n1) + (pj - n1) * nb] += v,
+        // every slot receives at most one entry (the pattern's entries are distinct), so the
+        // order of the scatter does not change a bit
+        if self
+            .scatter
+            .as_ref()
+            .is_none_or(|m| m.shape != (col_ptr.len(), row_idx.len()))
+        {
+            self.scatter = Some(self.scatter_map(col_ptr, row_idx));
+        }
+        if let Some(m) = &self.scatter {
+            for (dst, map) in [
+                (&mut self.ab, &m.ab),
+                (&mut self.x, &m.x),
+                (&mut self.a21, &m.a21),
+                (&mut self.s, &m.s),
+            ] {
+                for &(k, p) in map {
+                    dst[p] += vals[k];
                 }
             }
         }
@@ -831,6 +886,90 @@ mod tests {
             for i in 0..n1 {
                 assert!(rows[i * k + c] == col[i], "row {i}, column {c}");
             }
+        }
+    }
+
+    impl BandLu {
+        /// The scatter of every entry with its block test and permutation look-ups, as
+        /// [`BandLu::factor`] did it before [`BandScatter`] (the reference of
+        /// `scatter_map_places_every_entry_as_the_entrywise_loop`).
+        fn scatter_reference(
+            &self, col_ptr: &[usize], row_idx: &[usize], vals: &[f64],
+        ) -> [Vec<f64>; 4] {
+            let (n1, kl, ku, ld) = (self.plan.n1, self.plan.kl, self.plan.ku, self.ld);
+            let nb = self.plan.border();
+            let kv = kl + ku;
+            let mut ab = vec![0.0; self.ab.len()];
+            let mut x = vec![0.0; self.x.len()];
+            let mut a21 = vec![0.0; self.a21.len()];
+            let mut s = vec![0.0; self.s.len()];
+            for j in 0..n1 + nb {
+                let pj = self.plan.inv[j];
+                for k in col_ptr[j]..col_ptr[j + 1] {
+                    let pi = self.plan.inv[row_idx[k]];
+                    let v = vals[k];
+                    match (pi < n1, pj < n1) {
+                        (true, true) => ab[kv + pi - pj + pj * ld] += v,
+                        (true, false) => x[pi * nb + (pj - n1)] += v,
+                        (false, true) => a21[(pi - n1) + pj * nb] += v,
+                        (false, false) => s[(pi - n1) + (pj - n1) * nb] += v,
+                    }
+                }
+            }
+            [ab, x, a21, s]
+        }
+    }
+
+    /// The precomputed scatter ([`BandScatter`]) fills the band, the border blocks and `A₂₂`
+    /// with the same bits as the entry-by-entry loop it replaced (reference:
+    /// `BandLu::scatter_reference`, `==` on every stored number, negative zeros included), and
+    /// the factors of a second factorisation with other values are those of a fresh `BandLu`.
+    #[test]
+    fn scatter_map_places_every_entry_as_the_entrywise_loop() {
+        let (dim, cp, ri) = ring(6, 20);
+        let plan = BandPlan::new(dim, &cp, &ri);
+        let values = |seed: f64| -> Vec<f64> {
+            let mut vals = vec![0.0; ri.len()];
+            for j in 0..dim {
+                for p in cp[j]..cp[j + 1] {
+                    let i = ri[p];
+                    vals[p] =
+                        ((i * 31 + j * 17) as f64 * seed).sin() + if i == j { 0.3 } else { 0.0 };
+                }
+            }
+            vals[1] = -0.0;
+            vals
+        };
+        let mut lu = BandLu::new(plan.clone());
+        for seed in [0.37, 0.91] {
+            let vals = values(seed);
+            let reference = lu.scatter_reference(&cp, &ri, &vals);
+            // the scatter alone: the factorisation's first step, before dgbtf2 overwrites it
+            let map = lu.scatter_map(&cp, &ri);
+            let mut got = [
+                vec![0.0; lu.ab.len()],
+                vec![0.0; lu.x.len()],
+                vec![0.0; lu.a21.len()],
+                vec![0.0; lu.s.len()],
+            ];
+            for (dst, m) in got.iter_mut().zip([&map.ab, &map.x, &map.a21, &map.s]) {
+                for &(k, p) in m {
+                    dst[p] += vals[k];
+                }
+            }
+            for (g, r) in got.iter().zip(&reference) {
+                assert!(
+                    g.iter().zip(r).all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "seed {seed}"
+                );
+            }
+            lu.factor(&cp, &ri, &vals).expect("regular");
+            let mut fresh = BandLu::new(plan.clone());
+            fresh.factor(&cp, &ri, &vals).expect("regular");
+            assert!(
+                lu.ab == fresh.ab && lu.x == fresh.x && lu.s == fresh.s,
+                "seed {seed}"
+            );
         }
     }
 
