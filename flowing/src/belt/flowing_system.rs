@@ -219,6 +219,8 @@ pub struct FlowingBelt {
     /// stacked tangent `e_t` and of the basis rows `T` between its end nodes, so that the
     /// co-rotated corrections `c` enter the forces as `D̃ᵀ c` and the tangent as `D̃ᵀ G ΔT`.
     bar_dx: Mat<f64>,
+    /// `D̃ᵀ` (`(m + 1) × 2 n_bars`): a bar's rows of [`Self::bar_dx`] as contiguous columns.
+    bar_dxt: Mat<f64>,
     /// Apply each element's axial force `N = F(λ₀ l/l₀)` of the material law ([`super::model::BarLaw`]) along its deformed chord
     /// (issue 34): the linear model (`f0 − (K_e + K_g(T0)) δ`) keeps the increment
     /// `EA Δl/l` along the reference chord, and its elements then do not balance moments once
@@ -237,6 +239,9 @@ pub struct FlowingBelt {
     /// The naturally straight, co-rotated bending elements ([`BendingForce::CoRotated`]; empty
     /// with the linear bending of Ribaric (5.5), whose block then stays in the stiffness).
     bend: Vec<BendElement>,
+    /// `Tᵀ` (`m × 3N`): the basis rows of a node's dofs as contiguous columns, for the
+    /// element-by-element tangent of the co-rotated bending ([`Self::bending_tangent`]).
+    tt: Mat<f64>,
 }
 
 /// One bar's axial damping force along its deformed chord ([`ViscousForce::Chord`]).
@@ -298,15 +303,20 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// Column `j` of a dense (column-major) matrix as a slice.
+fn col(a: &Mat<f64>, j: usize) -> &[f64] {
+    a.col(j)
+        .try_as_col_major()
+        .expect("an owned matrix's columns are contiguous")
+        .as_slice()
+}
+
 /// `y += s · Aᵀ x` for a dense `A`, `x` on the rows `r0..r0 + x.len()` of `A` (`y` over the
 /// first `y.len()` columns).
 fn gemv_t(y: &mut [f64], a: &Mat<f64>, r0: usize, x: &[f64], s: f64) {
     for (j, yj) in y.iter_mut().enumerate() {
-        *yj += s * x
-            .iter()
-            .enumerate()
-            .map(|(i, xi)| a[(r0 + i, j)] * xi)
-            .sum::<f64>();
+        let aj = &col(a, j)[r0..r0 + x.len()];
+        *yj += s * aj.iter().zip(x).map(|(a, xi)| a * xi).sum::<f64>();
     }
 }
 
@@ -315,8 +325,8 @@ fn gemv(y: &mut [f64], a: &Mat<f64>, x: &[f64], s: f64) {
     for (j, &xj) in x.iter().enumerate() {
         let c = s * xj;
         if c != 0.0 {
-            for (i, yi) in y.iter_mut().enumerate() {
-                *yi += a[(i, j)] * c;
+            for (yi, aij) in y.iter_mut().zip(col(a, j)) {
+                *yi += aij * c;
             }
         }
     }
@@ -409,6 +419,7 @@ impl FlowingBelt {
                     t[(3 * bar.j + a, k - 1)] - t[(3 * bar.i + a, k - 1)]
                 }
             });
+            belt.bar_dxt = belt.bar_dx.transpose().to_owned();
         }
         Ok(belt)
     }
@@ -494,6 +505,7 @@ impl FlowingBelt {
         }
         let pulleys = pulley_frames(&fe);
         let fe_pos = fe.position.clone();
+        let tt = basis.t.transpose().to_owned();
         let mut n_v = m + 1;
         let coords = DriveCoordinates::number(motions, tensioner, &mut n_v);
         Ok(Self {
@@ -525,12 +537,14 @@ impl FlowingBelt {
             ch,
             rows,
             bar_dx: Mat::zeros(0, 0),
+            bar_dxt: Mat::zeros(0, 0),
             bars: super::model::Bar::loop_of(&fe_pos),
             exact_axial: false,
             chord_viscous: false,
             bar_span: Vec::new(),
             bar_kv: Vec::new(),
             bend: Vec::new(),
+            tt,
         })
     }
 
@@ -787,7 +801,7 @@ impl FlowingBelt {
     /// misses `Σ_e N_v ψ′_e (J u_e)·Δδ` (issue 34). On Ribaric's rows (5.14) the nodal forces
     /// are projected on `e_t` as the linear ones are.
     fn chord_viscous(&self, z: &[f64], zd: &[f64], vb: f64) -> Vec<ChordViscous> {
-        let dx = &self.bar_dx;
+        let dxt = &self.bar_dxt;
         let nb = self.bars.len();
         // deformed chords and Eulerian velocity differences
         let geo: Vec<([f64; 2], f64, [f64; 2])> = self
@@ -797,11 +811,11 @@ impl FlowingBelt {
             .map(|(b, bar)| {
                 let (mut chord, mut de) = ([0.0; 2], [0.0; 2]);
                 for a in 0..2 {
-                    let r = 2 * b + a;
                     let (mut dd, mut dzd) = (0.0, 0.0);
-                    for k in 0..self.m {
-                        dd += dx[(r, k + 1)] * z[k];
-                        dzd += dx[(r, k + 1)] * zd[k];
+                    let row = &col(dxt, 2 * b + a)[1..=self.m];
+                    for ((d, zk), zdk) in row.iter().zip(z).zip(zd) {
+                        dd += d * zk;
+                        dzd += d * zdk;
                     }
                     chord[a] = bar.l * bar.u[a] + dd;
                     de[a] = dzd;
@@ -950,46 +964,44 @@ impl FlowingBelt {
         let bars = self.chord_viscous(z, zd, vb);
         let nb = bars.len();
         let dx = &self.bar_dx;
-        let proj =
-            |w: [f64; 2], b: usize, k: usize| w[0] * dx[(2 * b, k)] + w[1] * dx[(2 * b + 1, k)];
-        // B and B⊥ per bar over z
-        let mut bm = Mat::<f64>::zeros(nb, m);
-        let mut bp = Mat::<f64>::zeros(nb, m);
-        for (b, c) in bars.iter().enumerate() {
-            let nh = [-c.uh[1], c.uh[0]];
-            for k in 0..m {
-                bm[(b, k)] = proj(c.uh, b, k + 1);
-                bp[(b, k)] = proj(nh, b, k + 1);
-            }
-        }
+        // per bar: n̂, its neighbours, and the scalars of its rows
+        let nh: Vec<[f64; 2]> = bars.iter().map(|c| [-c.uh[1], c.uh[0]]).collect();
+        let ne: Vec<f64> = (0..nb)
+            .map(|b| nh[b][0] * bars[b].de[0] + nh[b][1] * bars[b].de[1])
+            .collect();
         let mut a = Mat::<f64>::zeros(nb, m + 1);
         let mut ap = Mat::<f64>::zeros(nb, m + 1);
         let mut g = Mat::<f64>::zeros(nb, m);
         let mut rz = Mat::<f64>::zeros(nb, m);
         let mut nbp = Mat::<f64>::zeros(nb, m);
         let mut kb = Mat::<f64>::zeros(nb, m);
-        let mut c0 = vec![0.0; nb];
+        let c0: Vec<f64> = (0..nb).map(|b| self.bar_kv[b] * bars[b].grad).collect();
         for (b, c) in bars.iter().enumerate() {
-            let nh = [-c.uh[1], c.uh[0]];
-            let (p, n) = ((b + nb - 1) % nb, (b + 1) % nb);
-            let kv = self.bar_kv[b];
             if self.lagrange {
                 a[(b, 0)] = c.grad;
             } else {
                 let det = self.bar_tangent_step(b);
                 a[(b, 0)] = c.uh[0] * det[0] + c.uh[1] * det[1];
-                ap[(b, 0)] = nh[0] * det[0] + nh[1] * det[1];
+                ap[(b, 0)] = nh[b][0] * det[0] + nh[b][1] * det[1];
             }
-            let ne = nh[0] * c.de[0] + nh[1] * c.de[1];
-            c0[b] = kv * c.grad;
-            for k in 0..m {
-                a[(b, k + 1)] = bm[(b, k)];
-                ap[(b, k + 1)] = bp[(b, k)];
-                g[(b, k)] =
-                    self.bar_span[b] * (bm[(n, k)] / self.bars[n].l - bm[(p, k)] / self.bars[p].l);
-                rz[(b, k)] = kv * (vb * g[(b, k)] + ne * bp[(b, k)] / c.l);
-                nbp[(b, k)] = c.n * bp[(b, k)] / c.l;
-                kb[(b, k)] = kv * bm[(b, k)];
+        }
+        // column by column (the matrices are column-major): B = û·ΔT and B⊥ = n̂·ΔT of every
+        // bar in column k of A and A⊥, then the bar's G (its neighbours' B), R_z, N B⊥/l, k B
+        for k in 0..m {
+            for (b, c) in bars.iter().enumerate() {
+                let (d0, d1) = (dx[(2 * b, k + 1)], dx[(2 * b + 1, k + 1)]);
+                a[(b, k + 1)] = c.uh[0] * d0 + c.uh[1] * d1;
+                ap[(b, k + 1)] = nh[b][0] * d0 + nh[b][1] * d1;
+            }
+            for (b, c) in bars.iter().enumerate() {
+                let (p, n) = ((b + nb - 1) % nb, (b + 1) % nb);
+                let kv = self.bar_kv[b];
+                let (bm, bp) = (a[(b, k + 1)], ap[(b, k + 1)]);
+                g[(b, k)] = self.bar_span[b]
+                    * (a[(n, k + 1)] / self.bars[n].l - a[(p, k + 1)] / self.bars[p].l);
+                rz[(b, k)] = kv * (vb * g[(b, k)] + ne[b] * bp / c.l);
+                nbp[(b, k)] = c.n * bp / c.l;
+                kb[(b, k)] = kv * bm;
             }
         }
         let at = a.transpose();
@@ -997,7 +1009,9 @@ impl FlowingBelt {
         let dv = at * &kb;
         for r in 0..=m {
             cv[(r, 0)] += (0..nb).map(|b| a[(b, r)] * c0[b]).sum::<f64>();
-            for k in 0..m {
+        }
+        for k in 0..m {
+            for r in 0..=m {
                 kq[(r, k + 1)] += dq[(r, k)];
                 cv[(r, k + 1)] += dv[(r, k)];
             }
@@ -1010,37 +1024,65 @@ impl FlowingBelt {
     }
 
     /// The nodal forces `−∂U_b/∂δ` (`3N`) of the co-rotated bending elements
-    /// ([`BendingForce::CoRotated`], [`BendElement::forces`]) at the deflection `δ = T z`; with
-    /// `tangent` also `K_b T` (`3N × m`, `K_b = ∂²U_b/∂δ²`).
-    fn bending_forces(&self, z: &[f64], tangent: bool) -> (Vec<f64>, Mat<f64>) {
+    /// ([`BendingForce::CoRotated`], [`BendElement::forces`]) at the deflection `δ = T z`.
+    fn bending_forces(&self, z: &[f64]) -> Vec<f64> {
         let d = self.deflection(z);
-        let (n, m) = (self.fe.n_dofs(), self.m);
-        let t = &self.basis.t;
-        let mut f = vec![0.0; n];
-        let mut kt = if tangent {
-            Mat::<f64>::zeros(n, m)
-        } else {
-            Mat::zeros(0, 0)
-        };
+        let mut f = vec![0.0; self.fe.n_dofs()];
         for e in &self.bend {
-            let (fe, ke) = e.forces(&d, tangent);
+            let (fe, _) = e.forces(&d, false);
+            for (&r, x) in bend_dofs(e).iter().zip(fe) {
+                f[r] += x;
+            }
+        }
+        f
+    }
+
+    /// The co-rotated bending elements' stiffness `K_b = ∂²U_b/∂δ²` at `δ = T z`
+    /// ([`BendElement::forces`]) projected on the basis: `Tᵀ K_b T` (`m × m`) and with Ribaric's
+    /// projection (5.14) the row `e_tᵀ K_b T` (`m`; empty with Lagrange's equations, where
+    /// `U_b` does not depend on `s_b`). `K_b T` is formed transposed, `(K_b T)ᵀ = Tᵀ K_b`
+    /// (`m × 3N`), element by element on contiguous columns of [`Self::tt`].
+    fn bending_tangent(&self, z: &[f64]) -> (Mat<f64>, Vec<f64>) {
+        let d = self.deflection(z);
+        let (n, m, tt) = (self.fe.n_dofs(), self.m, &self.tt);
+        let mut ktt = Mat::<f64>::zeros(m, n);
+        for e in &self.bend {
+            let (_, ke) = e.forces(&d, true);
             let dofs = bend_dofs(e);
-            for a in 0..6 {
-                f[dofs[a]] += fe[a];
-                if !tangent {
-                    continue;
-                }
-                for b in 0..6 {
-                    let k = ke[a][b];
-                    if k != 0.0 {
-                        for c in 0..m {
-                            kt[(dofs[a], c)] += k * t[(dofs[b], c)];
-                        }
+            for (a, krow) in ke.iter().enumerate() {
+                for (b, &k) in krow.iter().enumerate() {
+                    if k == 0.0 {
+                        continue;
+                    }
+                    let src = col(tt, dofs[b]);
+                    let dst = ktt
+                        .col_mut(dofs[a])
+                        .try_as_col_major_mut()
+                        .expect("an owned matrix's columns are contiguous")
+                        .as_slice_mut();
+                    for (x, y) in dst.iter_mut().zip(src) {
+                        *x += k * y;
                     }
                 }
             }
         }
-        (f, kt)
+        let row0 = if self.lagrange {
+            Vec::new()
+        } else {
+            (0..m)
+                .map(|k| {
+                    self.fe
+                        .tangent
+                        .iter()
+                        .enumerate()
+                        .map(|(i, e)| {
+                            e[0] * ktt[(k, NODE_DOFS * i)] + e[1] * ktt[(k, NODE_DOFS * i + 1)]
+                        })
+                        .sum()
+                })
+                .collect()
+        };
+        (tt * ktt.transpose(), row0)
     }
 
     /// Bending energy `U_b = Σ_e ½ θ̄ᵀ B θ̄` \[J\] of the co-rotated bending elements at the
@@ -1084,19 +1126,22 @@ impl FlowingBelt {
             }
             cv[(0, 0)] = dot(z, &h) + 2.0 * (tszd[0] + dot(z, &szd));
             // rows of z
-            for i in 0..m {
-                for j in 0..m {
+            // column by column: the matrices are column-major
+            for j in 0..m {
+                for i in 0..m {
                     kq[(i + 1, j + 1)] =
                         self.kz[(i, j)] + vb * self.cg[(i, j)] - vb * vb * self.mss[(i, j)];
                     cv[(i + 1, j + 1)] =
                         self.ct[(i, j)] - vb * (self.mts[(j + 1, i)] - self.mts[(i + 1, j)]);
                 }
+            }
+            for i in 0..m {
                 cv[(i + 1, 0)] =
                     g[i] - (tszd_t[i] - tszd[i + 1]) - 2.0 * vb * (self.mse[i] + sz[i]);
             }
         } else {
-            for i in 0..=m {
-                for j in 0..m {
+            for j in 0..m {
+                for i in 0..=m {
                     kq[(i, j + 1)] =
                         self.a_k[(i, j)] + vb * self.a_cs[(i, j)] + vb * vb * self.a_mss[(i, j)];
                     cv[(i, j + 1)] = self.a_c[(i, j)] + 2.0 * vb * self.mts[(i, j)];
@@ -1138,19 +1183,10 @@ impl FlowingBelt {
         if !self.bend.is_empty() {
             // −∂/∂z of Pᵀ f_b = Pᵀ K_b T (row 0 e_t with Ribaric's projection (5.14) only:
             // with Lagrange's equations U_b does not depend on s_b)
-            let (_, kt) = self.bending_forces(z, true);
-            let tk = self.basis.t.transpose() * &kt;
+            let (tk, row0) = self.bending_tangent(z);
             for k in 0..m {
                 if !self.lagrange {
-                    kq[(0, k + 1)] += self
-                        .fe
-                        .tangent
-                        .iter()
-                        .enumerate()
-                        .map(|(i, e)| {
-                            e[0] * kt[(NODE_DOFS * i, k)] + e[1] * kt[(NODE_DOFS * i + 1, k)]
-                        })
-                        .sum::<f64>();
+                    kq[(0, k + 1)] += row0[k];
                 }
                 for r in 0..m {
                     kq[(r + 1, k + 1)] += tk[(r, k)];
@@ -1210,20 +1246,28 @@ impl FlowingBelt {
             } else {
                 self.fe.tangent[r.node]
             };
-            // belt rows 0 and 1..=m (Tᵀ)
-            for i in 0..=m {
-                let p = if i == 0 {
-                    p0
-                } else {
-                    [r.t[(0, i - 1)], r.t[(1, i - 1)]]
-                };
-                if p[0] == 0.0 && p[1] == 0.0 {
+            // belt rows 0 and 1..=m (Tᵀ): the node's nonzero rows, column by column
+            let ps: Vec<(usize, [f64; 2])> = (0..=m)
+                .filter_map(|i| {
+                    let p = if i == 0 {
+                        p0
+                    } else {
+                        [r.t[(0, i - 1)], r.t[(1, i - 1)]]
+                    };
+                    (p[0] != 0.0 || p[1] != 0.0).then_some((i, p))
+                })
+                .collect();
+            for j in 0..m {
+                let (fz, fzd) = ([dfz[0][j], dfz[1][j]], [dfzd[0][j], dfzd[1][j]]);
+                if fz == [0.0; 2] && fzd == [0.0; 2] {
                     continue;
                 }
-                for j in 0..m {
-                    kq[(i, j + 1)] -= p[0] * dfz[0][j] + p[1] * dfz[1][j];
-                    cv[(i, j + 1)] -= p[0] * dfzd[0][j] + p[1] * dfzd[1][j];
+                for &(i, p) in &ps {
+                    kq[(i, j + 1)] -= p[0] * fz[0] + p[1] * fz[1];
+                    cv[(i, j + 1)] -= p[0] * fzd[0] + p[1] * fzd[1];
                 }
+            }
+            for &(i, p) in &ps {
                 for &(col, in_q, df, _) in &extra {
                     let target = if in_q { &mut kq } else { &mut cv };
                     target[(i, col)] -= dot(p, df);
@@ -1278,10 +1322,12 @@ impl SecondOrderSystem for FlowingBelt {
             // Ribaric (5.14): Pᵀ M [e_t + b | T], b = T_,s z
             let mut col = vec![0.0; m + 1];
             gemv(&mut col, &self.mts, z, 1.0);
-            for i in 0..=m {
-                for j in 0..=m {
+            for j in 0..=m {
+                for i in 0..=m {
                     mm[(i, j)] = self.a_mass[(i, j)];
                 }
+            }
+            for i in 0..=m {
                 mm[(i, 0)] += col[i];
             }
             for (k, j) in self.coords.inertias() {
@@ -1299,7 +1345,9 @@ impl SecondOrderSystem for FlowingBelt {
             let c = self.mte[i] + tsz[i + 1];
             mm[(0, i + 1)] = c;
             mm[(i + 1, 0)] = c;
-            for j in 0..m {
+        }
+        for j in 0..m {
+            for i in 0..m {
                 mm[(i + 1, j + 1)] = self.mtt[(i, j)];
             }
         }
@@ -1357,15 +1405,14 @@ impl SecondOrderSystem for FlowingBelt {
                         let det = self.bar_tangent_step(b);
                         c.uh[0] * det[0] + c.uh[1] * det[1]
                     };
-                let (r0, r1) = (2 * b, 2 * b + 1);
+                let (r0, r1) = (col(&self.bar_dxt, 2 * b), col(&self.bar_dxt, 2 * b + 1));
                 for k in 0..m {
-                    head[k + 1] -= c.n
-                        * (c.uh[0] * self.bar_dx[(r0, k + 1)] + c.uh[1] * self.bar_dx[(r1, k + 1)]);
+                    head[k + 1] -= c.n * (c.uh[0] * r0[k + 1] + c.uh[1] * r1[k + 1]);
                 }
             }
         }
         if !self.bend.is_empty() {
-            let (fb, _) = self.bending_forces(z, false);
+            let fb = self.bending_forces(z);
             if !self.lagrange {
                 head[0] += self
                     .fe
@@ -1768,6 +1815,154 @@ pub(crate) mod tests {
             check_layout_tangent(
                 layout_belt_with(axial, ViscousForce::Chord).with_lagrange_equations(),
             );
+        }
+    }
+
+    /// The chord damping's tangent as it was before its loops ran column by column
+    /// (2026-12-07), the reference of
+    /// `column_order_tangent_equals_the_row_order_loops`.
+    fn chord_viscous_tangent_dense(
+        belt: &FlowingBelt, z: &[f64], zd: &[f64], vb: f64, kq: &mut Mat<f64>, cv: &mut Mat<f64>,
+    ) {
+        let this = belt;
+        let m = this.m;
+        let bars = this.chord_viscous(z, zd, vb);
+        let nb = bars.len();
+        let dx = &this.bar_dx;
+        let proj =
+            |w: [f64; 2], b: usize, k: usize| w[0] * dx[(2 * b, k)] + w[1] * dx[(2 * b + 1, k)];
+        // B and B⊥ per bar over z
+        let mut bm = Mat::<f64>::zeros(nb, m);
+        let mut bp = Mat::<f64>::zeros(nb, m);
+        for (b, c) in bars.iter().enumerate() {
+            let nh = [-c.uh[1], c.uh[0]];
+            for k in 0..m {
+                bm[(b, k)] = proj(c.uh, b, k + 1);
+                bp[(b, k)] = proj(nh, b, k + 1);
+            }
+        }
+        let mut a = Mat::<f64>::zeros(nb, m + 1);
+        let mut ap = Mat::<f64>::zeros(nb, m + 1);
+        let mut g = Mat::<f64>::zeros(nb, m);
+        let mut rz = Mat::<f64>::zeros(nb, m);
+        let mut nbp = Mat::<f64>::zeros(nb, m);
+        let mut kb = Mat::<f64>::zeros(nb, m);
+        let mut c0 = vec![0.0; nb];
+        for (b, c) in bars.iter().enumerate() {
+            let nh = [-c.uh[1], c.uh[0]];
+            let (p, n) = ((b + nb - 1) % nb, (b + 1) % nb);
+            let kv = this.bar_kv[b];
+            if this.lagrange {
+                a[(b, 0)] = c.grad;
+            } else {
+                let det = this.bar_tangent_step(b);
+                a[(b, 0)] = c.uh[0] * det[0] + c.uh[1] * det[1];
+                ap[(b, 0)] = nh[0] * det[0] + nh[1] * det[1];
+            }
+            let ne = nh[0] * c.de[0] + nh[1] * c.de[1];
+            c0[b] = kv * c.grad;
+            for k in 0..m {
+                a[(b, k + 1)] = bm[(b, k)];
+                ap[(b, k + 1)] = bp[(b, k)];
+                g[(b, k)] =
+                    this.bar_span[b] * (bm[(n, k)] / this.bars[n].l - bm[(p, k)] / this.bars[p].l);
+                rz[(b, k)] = kv * (vb * g[(b, k)] + ne * bp[(b, k)] / c.l);
+                nbp[(b, k)] = c.n * bp[(b, k)] / c.l;
+                kb[(b, k)] = kv * bm[(b, k)];
+            }
+        }
+        let at = a.transpose();
+        let dq = &(at * &rz) + &(ap.transpose() * &nbp);
+        let dv = at * &kb;
+        for r in 0..=m {
+            cv[(r, 0)] += (0..nb).map(|b| a[(b, r)] * c0[b]).sum::<f64>();
+            for k in 0..m {
+                kq[(r, k + 1)] += dq[(r, k)];
+                cv[(r, k + 1)] += dv[(r, k)];
+            }
+        }
+        if this.lagrange {
+            for k in 0..m {
+                kq[(0, k + 1)] += (0..nb).map(|b| bars[b].n * g[(b, k)]).sum::<f64>();
+            }
+        }
+    }
+
+    /// The co-rotated bending stiffness projected as before (2026-12-07): `K_b T` (`3N × m`)
+    /// scattered element by element, then `Tᵀ (K_b T)` and Ribaric's row `e_tᵀ K_b T`.
+    fn bending_tangent_dense(belt: &FlowingBelt, z: &[f64]) -> (Mat<f64>, Vec<f64>) {
+        let d = belt.deflection(z);
+        let (n, m, t) = (belt.fe.n_dofs(), belt.m, &belt.basis.t);
+        let mut kt = Mat::<f64>::zeros(n, m);
+        for e in &belt.bend {
+            let (_, ke) = e.forces(&d, true);
+            let dofs = bend_dofs(e);
+            for a in 0..6 {
+                for b in 0..6 {
+                    for c in 0..m {
+                        kt[(dofs[a], c)] += ke[a][b] * t[(dofs[b], c)];
+                    }
+                }
+            }
+        }
+        let row0 = (0..m)
+            .map(|k| {
+                (0..belt.fe.n_nodes())
+                    .map(|i| {
+                        let e = belt.fe.tangent[i];
+                        e[0] * kt[(NODE_DOFS * i, k)] + e[1] * kt[(NODE_DOFS * i + 1, k)]
+                    })
+                    .sum()
+            })
+            .collect();
+        (t.transpose() * &kt, row0)
+    }
+
+    // The tangent with its loops in column order (`Tᵀ` stored, `K_b T` formed transposed)
+    // against the loops it replaced (the functions above, reference: the same formulas in row
+    // order), for both equations of motion and both axial forces, to round-off.
+    #[test]
+    fn column_order_tangent_equals_the_row_order_loops() {
+        for axial in [AxialForce::Linear, AxialForce::CoRotated] {
+            for lagrange in [false, true] {
+                let mut belt =
+                    layout_belt_bending(axial, ViscousForce::Chord, BendingForce::CoRotated);
+                if lagrange {
+                    belt = belt.with_lagrange_equations();
+                }
+                let n = belt.n_q();
+                let m = belt.n_modes();
+                let (mut q, mut v) = (vec![0.0; n], vec![0.0; n]);
+                for i in 1..=m {
+                    q[i] = 1e-4 * ((i as f64) * 0.7).sin();
+                    v[i] = 1e-2 * ((i as f64) * 1.3).cos();
+                }
+                v[0] = 3.0;
+                let (kq, cv) = belt.tangent(0.1, &q, &v);
+                // the reference: the rest of the tangent, plus the dense parts
+                let mut rest = belt.clone();
+                rest.chord_viscous = false;
+                rest.bend.clear();
+                let (mut kr, mut cr) = rest.tangent(0.1, &q, &v);
+                let (z, zd) = (&q[1..=m], &v[1..=m]);
+                chord_viscous_tangent_dense(&belt, z, zd, v[0], &mut kr, &mut cr);
+                let (tk, row0) = bending_tangent_dense(&belt, z);
+                for k in 0..m {
+                    if !lagrange {
+                        kr[(0, k + 1)] += row0[k];
+                    }
+                    for r in 0..m {
+                        kr[(r + 1, k + 1)] += tk[(r, k)];
+                    }
+                }
+                let scale = kr.norm_max().max(cr.norm_max());
+                let dk = (&kq - &kr).norm_max();
+                let dc = (&cv - &cr).norm_max();
+                assert!(
+                    dk < 1e-12 * scale && dc < 1e-12 * scale,
+                    "{axial:?} lagrange {lagrange}: |Δk| {dk:e}, |Δc| {dc:e}, scale {scale:e}"
+                );
+            }
         }
     }
 
