@@ -986,7 +986,12 @@ impl<C> AlphaStepper<C> {
                     std::mem::swap(&mut self.matrix, spare);
                 }
             } else {
-                let old = std::mem::replace(&mut self.matrix, IterationMatrix::new());
+                // a step of another size (an output time's shortened step, a halving): factor
+                // it on the spare's symbolic analysis (the pattern does not change with `h`),
+                // so that the band plan and the symbolic LU are not redone at every such step
+                let mut fresh = self.spare.take().unwrap_or_else(IterationMatrix::new);
+                fresh.invalidate();
+                let old = std::mem::replace(&mut self.matrix, fresh);
                 self.spare = Some(old);
             }
         }
