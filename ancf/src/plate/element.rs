@@ -241,12 +241,7 @@ impl ThinPlate {
             for i in 0..len {
                 let rx = [u[0][i], u[1][i], u[2][i]];
                 let ry = [u[3][i], u[4][i], u[5][i]];
-                let exx = 0.5 * (dot(&rx, &rx) - 1.0);
-                let eyy = 0.5 * (dot(&ry, &ry) - 1.0);
-                let exy = 0.5 * dot(&rx, &ry);
-                let nx = cm * (2.0 * exx + 2.0 * nu * eyy);
-                let ny = cm * (2.0 * eyy + 2.0 * nu * exx);
-                let nxy = cm * 4.0 * (1.0 - nu) * exy;
+                let [nx, ny, nxy] = energy::membrane_resultants(&rx, &ry, cm, nu);
                 for c in 0..3 {
                     // `0.0 +`: the pointwise pass adds into a zeroed gradient
                     gr[c][i] = 0.0 + (nx * rx[c] + 0.5 * nxy * ry[c]);

@@ -72,18 +72,28 @@ fn skew(a: &[f64; 3]) -> [[f64; 3]; 3] {
     [[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]]
 }
 
+/// The plane stress resultants `(N_x, N_y, N_xy)` \[N/m\] of the Green strains of the
+/// mid-surface slopes `(r_x, r_y)` for the St Venant–Kirchhoff membrane with
+/// `cm = E h / (2(1 − ν²))` (Kerkkänen ch. 4, the thin plate), shared by [`membrane`] and the plate
+/// element's batched membrane forces.
+#[inline(always)]
+pub(crate) fn membrane_resultants(rx: &[f64; 3], ry: &[f64; 3], cm: f64, nu: f64) -> [f64; 3] {
+    let exx = 0.5 * (dot(rx, rx) - 1.0);
+    let eyy = 0.5 * (dot(ry, ry) - 1.0);
+    let exy = 0.5 * dot(rx, ry);
+    let nx = cm * (2.0 * exx + 2.0 * nu * eyy);
+    let ny = cm * (2.0 * eyy + 2.0 * nu * exx);
+    let nxy = cm * 4.0 * (1.0 - nu) * exy;
+    [nx, ny, nxy]
+}
+
 /// Membrane energy density \[J/m²\] and its derivatives with respect to `(r_x, r_y)` added into
 /// `out` (`jac`: also the Hessian). `cm = E h / (2(1 − ν²))`.
 #[inline(always)]
 pub(crate) fn membrane(u: &[f64; NU], cm: f64, nu: f64, jac: bool, out: &mut LocalDerivatives) {
     let rx = v3(u, RX);
     let ry = v3(u, RY);
-    let exx = 0.5 * (dot(&rx, &rx) - 1.0);
-    let eyy = 0.5 * (dot(&ry, &ry) - 1.0);
-    let exy = 0.5 * dot(&rx, &ry);
-    let nx = cm * (2.0 * exx + 2.0 * nu * eyy);
-    let ny = cm * (2.0 * eyy + 2.0 * nu * exx);
-    let nxy = cm * 4.0 * (1.0 - nu) * exy;
+    let [nx, ny, nxy] = membrane_resultants(&rx, &ry, cm, nu);
     for c in 0..3 {
         out.g[RX + c] += nx * rx[c] + 0.5 * nxy * ry[c];
         out.g[RY + c] += ny * ry[c] + 0.5 * nxy * rx[c];
