@@ -3,7 +3,8 @@
 
 /// Inside an `impl SecondOrderSystem for Wrapper`, forwards the unconstrained dynamics to the
 /// wrapped model in the field `$inner`: [`n_q`], [`dof_name`], [`mass_is_constant`], [`mass`],
-/// [`forces`] and [`force_tangent`] (Lin (2.27)'s `M(q)` and `f(t, q, v)` with their tangent).
+/// [`forces`] and [`force_tangent`] (Lin (2.27)'s `M(q)` and `f(t, q, v)` with their tangent),
+/// and the Newton hooks [`predict_increment`] and [`correction_limit`].
 ///
 /// For the wrappers that change something else and keep the coordinates, mass and forces of
 /// the model they wrap: the unilateral rows of
@@ -17,6 +18,8 @@
 /// [`mass`]: crate::SecondOrderSystem::mass
 /// [`forces`]: crate::SecondOrderSystem::forces
 /// [`force_tangent`]: crate::SecondOrderSystem::force_tangent
+/// [`predict_increment`]: crate::SecondOrderSystem::predict_increment
+/// [`correction_limit`]: crate::SecondOrderSystem::correction_limit
 #[macro_export]
 macro_rules! forward_dynamics {
     ($inner:ident) => {
@@ -46,6 +49,11 @@ macro_rules! forward_dynamics {
             &self, t: f64, q: &[f64], v: &[f64], vdot: &[f64], h: f64, dq: &mut [f64],
         ) -> bool {
             self.$inner.predict_increment(t, q, v, vdot, h, dq)
+        }
+        fn correction_limit(
+            &self, t: f64, q: &[f64], v: &[f64], dq: &[f64], dv: &[f64], ws: &mut $crate::Workspace,
+        ) -> Result<f64, $crate::MbdError> {
+            self.$inner.correction_limit(t, q, v, dq, dv, ws)
         }
     };
 }

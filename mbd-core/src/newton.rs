@@ -100,6 +100,15 @@ pub trait NewtonProblem {
         Ok(None)
     }
 
+    /// Largest fraction `α ∈ (0, 1]` of the correction `dx` from `x` that the problem admits
+    /// in this iteration (default `1`; called after [`Self::solve`], before the line search).
+    /// The correction is scaled by `α` like a [`NewtonOptions::max_step`] damping, so an
+    /// iteration with `α < 1` never counts as converged. E.g. a step limit that keeps a
+    /// regularised friction law's contacts from crossing its steep band in one iteration.
+    fn step_limit(&mut self, _x: &[f64], _dx: &[f64]) -> Result<f64, Self::Error> {
+        Ok(1.0)
+    }
+
     /// Additional convergence condition checked after the correction test passed (e.g. on
     /// multipliers with their own tolerance). Default: none.
     fn converged(&self, _x_old: &[f64], _x_new: &[f64], _dx: &[f64]) -> bool {
@@ -557,11 +566,17 @@ fn increment<P: NewtonProblem + ?Sized>(
                 }
             }
             prev_full = norm;
-            let damp = if norm > opts.max_step {
+            let mut damp = if norm > opts.max_step {
                 opts.max_step / norm
             } else {
                 1.0
             };
+            let limit = problem
+                .step_limit(x, &ws.dx)
+                .map_err(NewtonError::Problem)?;
+            if limit < 1.0 && limit > 0.0 {
+                damp = damp.min(limit);
+            }
             for d in ws.dx.iter_mut() {
                 *d *= damp;
             }

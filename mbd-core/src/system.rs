@@ -134,6 +134,23 @@ pub trait SecondOrderSystem {
         false
     }
 
+    /// Largest fraction `α ∈ (0, 1]` of a Newton correction that the model admits in one
+    /// iteration of an implicit step (default `1`): the iterate is the state `(t, q, v)` and the
+    /// correction moves it by `dq` (velocity coordinates, as
+    /// [`integrate_position`](Self::integrate_position)) and `dv` \[units of v\]. Only the
+    /// path of the iteration changes, not the equations solved: generalized-α with
+    /// [`AlphaConfig::model_correction_limit`](crate::integrators::AlphaConfig::model_correction_limit)
+    /// scales the correction by `α` before its line search, and a scaled iteration never
+    /// counts as converged. E.g. a regularised friction law whose band of steep slope is
+    /// narrow: the transition-aware limit of Castro et al. (2019) stops every contact's slip
+    /// velocity from crossing the band in one iteration (`contact::friction::transition_limit`,
+    /// the smallest `α` over the contact points).
+    fn correction_limit(
+        &self, _t: f64, _q: &[f64], _v: &[f64], _dq: &[f64], _dv: &[f64], _ws: &mut Workspace,
+    ) -> Result<f64, MbdError> {
+        Ok(1.0)
+    }
+
     /// Model-specific validation of a state at time `t` \[s\] (e.g. unit Euler parameters),
     /// called by the integrators on the initial state; sizes and finiteness are checked by the
     /// caller.

@@ -6,6 +6,7 @@ mod active_set;
 mod common;
 mod composite;
 mod constraint_consistency;
+mod correction_limit;
 mod euler_props;
 mod flex_joints;
 mod frozen_matrix;

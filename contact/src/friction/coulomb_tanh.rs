@@ -27,4 +27,8 @@ impl FrictionLaw for CoulombTanh {
     fn coefficient(&self) -> f64 {
         self.mu
     }
+    /// `1/κ` \[m/s\]: `tanh` reaches 76 % of the sliding force there.
+    fn transition_width(&self) -> Option<f64> {
+        Some(1.0 / self.kappa)
+    }
 }

@@ -22,6 +22,7 @@ pub mod frictionless;
 pub mod slip_regularized;
 pub mod spec;
 pub mod stribeck;
+pub mod transition;
 
 pub use coulomb::Coulomb;
 pub use coulomb_tanh::CoulombTanh;
@@ -30,6 +31,7 @@ pub use frictionless::Frictionless;
 pub use slip_regularized::SlipRegularized;
 pub use spec::FrictionSpec;
 pub use stribeck::Stribeck;
+pub use transition::transition_limit;
 
 /// Tangential force of a planar contact and its partial derivatives.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -83,6 +85,14 @@ pub trait FrictionLaw: Debug + Send + Sync {
     /// Largest friction coefficient of the law, `|f_t| ≤ μ |f_n|` (0: frictionless; a solver
     /// may then skip the slip velocities).
     fn coefficient(&self) -> f64;
+
+    /// Width `w` \[m/s\] of the slip-velocity band in which a regularised law is steep
+    /// (`1/κ` of the tanh law, `ε` of the square-root law), for the transition-aware limit on
+    /// Newton corrections ([`transition_limit`]); `None` (the default) for a law without one
+    /// (set-valued, piecewise linear or frictionless).
+    fn transition_width(&self) -> Option<f64> {
+        None
+    }
 
     /// Spatial law for the slip 2-vector `v_t` \[m/s\] in the tangent plane. The default is the
     /// isotropic extension of the planar law, `f_t = f(|v_t|, f_n) v_t/|v_t|`, with
@@ -197,6 +207,9 @@ impl<L: FrictionLaw + ?Sized> FrictionLaw for &L {
     }
     fn coefficient(&self) -> f64 {
         (**self).coefficient()
+    }
+    fn transition_width(&self) -> Option<f64> {
+        (**self).transition_width()
     }
     fn friction_tangent(&self, slip: Vector2<f64>, normal: f64) -> TangentFriction {
         (**self).friction_tangent(slip, normal)

@@ -27,6 +27,10 @@ impl FrictionLaw for SlipRegularized {
     fn coefficient(&self) -> f64 {
         self.mu
     }
+    /// `ε` \[m/s\]: the law reaches 71 % of the sliding force there.
+    fn transition_width(&self) -> Option<f64> {
+        Some(self.epsilon)
+    }
     fn friction_tangent_force(&self, u: Vector2<f64>, normal: f64) -> Vector2<f64> {
         self.friction_tangent(u, normal).force
     }

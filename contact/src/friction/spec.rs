@@ -258,6 +258,9 @@ impl FrictionLaw for FrictionSpec {
     fn coefficient(&self) -> f64 {
         dispatch!(self, l => l.coefficient())
     }
+    fn transition_width(&self) -> Option<f64> {
+        dispatch!(self, l => l.transition_width())
+    }
     fn friction_tangent(&self, slip: Vector2<f64>, normal: f64) -> TangentFriction {
         dispatch!(self, l => l.friction_tangent(slip, normal))
     }

@@ -40,6 +40,10 @@ impl FrictionLaw for Stribeck {
     fn coefficient(&self) -> f64 {
         self.mu_static.max(self.mu_kinetic)
     }
+    /// `1/κ` \[m/s\] of the `tanh` factor.
+    fn transition_width(&self) -> Option<f64> {
+        Some(1.0 / self.kappa)
+    }
 }
 
 #[cfg(test)]

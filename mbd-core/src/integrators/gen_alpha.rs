@@ -244,6 +244,14 @@ pub struct AlphaConfig {
     /// corrections reached 2–20 cm in a step that moves the belt 7 mm, and the line search
     /// then spent up to 25 iterations reining them in (BENCHMARKS.md, issue 37 item 4).
     pub newton_max_step: Option<f64>,
+    /// Ask the model for the largest fraction of each Newton correction it admits
+    /// ([`SecondOrderSystem::correction_limit`], with the iterate's `q = qₙ ⊕ Δq`, `v` and
+    /// the correction's `Δq`, `Δv = γ' Δq`) and scale the correction to it before the line
+    /// search; a scaled iteration never counts as converged. Only the path of the iteration
+    /// changes, not the equations solved. E.g. the transition-aware limit of a sharp
+    /// regularised friction law (Castro et al. 2019), whose Newton corrections otherwise move
+    /// slip velocities across the law's steep band onto the opposite flat branch.
+    pub model_correction_limit: bool,
 }
 
 impl Default for AlphaConfig {
@@ -271,6 +279,7 @@ impl Default for AlphaConfig {
             newton_line_search_trials: 5,
             model_predictor: false,
             newton_max_step: None,
+            model_correction_limit: false,
         }
     }
 }

@@ -166,6 +166,27 @@ impl<S: SecondOrderSystem + ?Sized, C> NewtonProblem for StepProblem<'_, S, C> {
         Ok(())
     }
 
+    /// The model's [`SecondOrderSystem::correction_limit`] at the iterate `q = qₙ ⊕ Δq`, `v`,
+    /// for the correction `Δq = dx`, `Δv = γ' dx` (`1` unless
+    /// [`AlphaConfig::model_correction_limit`](super::AlphaConfig::model_correction_limit)).
+    fn step_limit(&mut self, x: &[f64], dx: &[f64]) -> Result<f64, MbdError> {
+        if !self.stepper.params.model_correction_limit {
+            return Ok(1.0);
+        }
+        let sys = self.sys;
+        let n = sys.n_v();
+        let (dq, rest) = x.split_at(n);
+        let v1 = &rest[..n];
+        sys.integrate_position(&self.stepper.state.q, dq, self.q1);
+        // `f` is free between the residual evaluations: it holds Δv here
+        let dv = &mut *self.f;
+        for (o, d) in dv.iter_mut().zip(&dx[..n]) {
+            *o = self.gp * d;
+        }
+        let st = &mut *self.stepper;
+        sys.correction_limit(self.t1, self.q1, v1, &dx[..n], dv, &mut st.ws)
+    }
+
     /// `‖Δx‖∞` over the position part.
     fn correction_norm(&self, dx: &[f64]) -> f64 {
         max_abs(&dx[..self.sys.n_v()])
