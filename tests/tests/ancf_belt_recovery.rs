@@ -917,12 +917,18 @@ fn recovered_wrap_force_window_mean_converges() {
                     d.iter().sum::<f64>() / d.len() as f64
                 );
                 if k > 0 {
-                    let p = (rms_prev / rms).log2();
+                    let (n0, n1, n2) =
+                        (meshes[k - 1] as f64, meshes[k] as f64, meshes[k + 1] as f64);
+                    let p = observed_order(n0, n1, n2, rms_prev / rms);
+                    // N_R = N₂ + (N₂ − N₁) n₂^{−p} / (n₁^{−p} − n₂^{−p})
+                    let factor = {
+                        let pp = p.max(0.5);
+                        n2.powf(-pp) / (n1.powf(-pp) - n2.powf(-pp))
+                    };
                     let rich = idx
                         .iter()
                         .map(|&i| {
-                            ((fields[k + 1][i].axial - fields[k][i].axial)
-                                / (2f64.powf(p.max(0.5)) - 1.0)
+                            ((fields[k + 1][i].axial - fields[k][i].axial) * factor
                                 / fields[k + 1][i].axial)
                                 .abs()
                         })
@@ -938,4 +944,38 @@ fn recovered_wrap_force_window_mean_converges() {
             println!("{line}");
         }
     }
+}
+
+/// Observed order `p` of a field `N(n) = N* + C n^{−p}` on meshes of `n0 < n1 < n2` elements
+/// from the ratio `ratio = |N(n0) − N(n1)| / |N(n1) − N(n2)|` of its successive differences
+/// (Roache's generalised Richardson for unequal refinement ratios): the root of
+/// `(n0^{−p} − n1^{−p}) / (n1^{−p} − n2^{−p}) = ratio` on `p ∈ [0.05, 20]` by bisection
+/// (the left side grows with `p`); for `n, 2n, 4n` it is `log₂ ratio`. NaN when the ratio lies
+/// outside what any `p` in that range gives (no monotone convergence).
+fn observed_order(n0: f64, n1: f64, n2: f64, ratio: f64) -> f64 {
+    let g = |p: f64| (n0.powf(-p) - n1.powf(-p)) / (n1.powf(-p) - n2.powf(-p)) - ratio;
+    let (mut lo, mut hi) = (0.05, 20.0);
+    if !(g(lo) <= 0.0 && g(hi) >= 0.0) {
+        return f64::NAN;
+    }
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if g(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+// Reference: the closed form log₂ of the ratio for doubled meshes, and a field built with a
+// known order on unequal meshes.
+#[test]
+fn observed_order_recovers_a_known_order() {
+    assert!((observed_order(80.0, 160.0, 320.0, 4.0) - 2.0).abs() < 1e-12);
+    let f = |n: f64| 3.0 + 7.0 * n.powf(-1.5);
+    let r = (f(80.0) - f(120.0)) / (f(120.0) - f(160.0));
+    assert!((observed_order(80.0, 120.0, 160.0, r) - 1.5).abs() < 1e-12);
+    assert!(observed_order(80.0, 120.0, 160.0, 0.1).is_nan());
 }
