@@ -128,16 +128,21 @@ fn membrane_model(elements: usize) -> (belt::Layout, AncfBelt) {
     (cfg, m)
 }
 
-/// The membrane drive stepped 20 → 34 N·m (62.8 rad/s, h = 0.1 ms) to its steady state: the
-/// model, the last state and the pulleys' travel-sense speeds.
-fn steady_at_34(elements: usize) -> (belt::Layout, AncfBelt, mbd_core::State, [f64; 2]) {
-    let (cfg, mut m) = membrane_model(elements);
-    let settings = drives::SpeedLossConfig {
+/// The speed-loss procedure of the 34 N·m runs: 62.8 rad/s, 20 then 34 N·m, 0.1 ms steps.
+fn settings_34() -> drives::SpeedLossConfig {
+    drives::SpeedLossConfig {
         omega_driver: 62.8,
         torques: vec![20.0, 34.0],
         step: 1e-4,
         ..Default::default()
-    };
+    }
+}
+
+/// The membrane drive stepped 20 → 34 N·m (62.8 rad/s, h = 0.1 ms) to its steady state: the
+/// model, the last state and the pulleys' travel-sense speeds.
+fn steady_at_34(elements: usize) -> (belt::Layout, AncfBelt, mbd_core::State, [f64; 2]) {
+    let (cfg, mut m) = membrane_model(elements);
+    let settings = settings_34();
     let mut last = None;
     let (points, _) = drives::speed_loss_sweep(&mut m, &settings, |s, _| {
         last = Some(s.clone());
@@ -493,12 +498,7 @@ fn steady_window(elements: usize) -> (belt::Layout, AncfBelt, Vec<mbd_core::Stat
         return (cfg, m, states);
     }
     let (cfg, mut m) = membrane_model(elements);
-    let settings = drives::SpeedLossConfig {
-        omega_driver: 62.8,
-        torques: vec![20.0, 34.0],
-        step: 1e-4,
-        ..Default::default()
-    };
+    let settings = settings_34();
     let mut kept: std::collections::VecDeque<mbd_core::State> = Default::default();
     let mut steps = 0usize;
     let (points, _) = drives::speed_loss_sweep(&mut m, &settings, |s, sample| {
