@@ -652,7 +652,11 @@ fn deviation_range(c: &CapstanCheck, a: f64, b: f64) -> (f64, f64) {
 // resolution 10 Hz; the driver's at 160 elements peaks at 800 Hz, 0.53 N), the capstan law on
 // the window mean within 2.5 %; between consecutive meshes past the transition the bounds
 // above. The meshes: FLOWMBD_WRAP_MESHES (default "80,160"); with three meshes it prints the
-// observed order per band and a Richardson estimate (320 elements not run). Command:
+// observed order per band (`observed_order`, unequal meshes allowed) and a Richardson
+// estimate. Measured with 80,120,160 (2026-12-07, BENCHMARKS "Third round"): the capstan worst
+// falls at every refinement (driven 1.97 / 0.92 / 0.84 %, driver 0.82 / 0.58 / 0.50 %), but in
+// six of eight bands the 120 → 160 difference exceeds the 80 → 120 one (driver past its
+// transition rms 1.26 then 3.68 %): no asymptotic range, no order. Command:
 // `FLOWMBD_WRAP_CACHE=/tmp/dir cargo test --release -p flowmbd-validation --test integration
 // recovered_wrap_force_window_mean_converges -- --ignored --nocapture` (runs 80 and 160
 // elements: 8 and 54 min wall on the shared machine at load 7; with the states cached 2.6 s).
