@@ -30,6 +30,15 @@ const NE: usize = 12;
 /// [`BeltDrive::scratch`]).
 struct Scratch {
     contact: ElementContact<2>,
+    /// The active points' records of the last element–pulley pair of a pass that asked for
+    /// them ([`BeltDrive::contact_pass`]).
+    records: Vec<ContactRecord<2>>,
+    /// The transition-aware limit's slip velocities at the iterate, one per element, pulley
+    /// and contact point (NaN: not in contact), and the corrected state `(q + Δq, v + Δv)`
+    /// ([`SecondOrderSystem::correction_limit`]).
+    slips: Vec<f64>,
+    q1: Vec<f64>,
+    v1: Vec<f64>,
     k_local: Vec<f64>,
     c_local: Vec<f64>,
     elastic: ElasticCache,
@@ -337,6 +346,29 @@ impl BeltDrive {
     /// pulley speeds `omegas` and hands each element–pulley pair with active points to `sink`.
     fn contact_pass(
         &self, q: &[f64], v: &[f64], omegas: &[f64], jacobian: bool, scratch: &mut Scratch,
+        sink: impl FnMut(usize, usize, &ElementContact<2>, &mut Scratch),
+    ) {
+        self.contact_pass_on(
+            &self.kind.line,
+            q,
+            v,
+            omegas,
+            jacobian,
+            false,
+            scratch,
+            sink,
+        );
+    }
+
+    /// [`Self::contact_pass`] with the contact quadrature of `line` (the drive's own or a
+    /// sampling rule, [`Self::contact_records_sampled`]); with `records` the pair's active
+    /// points' [`ContactRecord`]s are in `scratch.records` when `sink` sees it. The one loop
+    /// over the element–pulley pairs of the forces, the tangent, the outputs and the
+    /// transition-aware limit.
+    #[allow(clippy::too_many_arguments)] // the state, the rule, the switches, scratch and sink
+    fn contact_pass_on(
+        &self, line: &LineContact<Disk, BeltNormal, BeltFriction>, q: &[f64], v: &[f64],
+        omegas: &[f64], jacobian: bool, records: bool, scratch: &mut Scratch,
         mut sink: impl FnMut(usize, usize, &ElementContact<2>, &mut Scratch),
     ) {
         let l = self.element_length();
@@ -355,7 +387,9 @@ impl BeltDrive {
                     gathered_v = true;
                 }
                 let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
-                self.kind.line.element_on(
+                let mut recs = std::mem::take(&mut scratch.records);
+                recs.clear();
+                line.element_on(
                     &disk,
                     &self.kind.friction[p],
                     l,
@@ -365,8 +399,9 @@ impl BeltDrive {
                     &ed,
                     jacobian,
                     &mut ec,
-                    None,
+                    records.then_some(&mut recs),
                 );
+                scratch.records = recs;
                 if ec.active_points > 0 {
                     sink(el, p, &ec, scratch);
                 }
@@ -381,6 +416,10 @@ impl BeltDrive {
         let m = NE + self.pulley_dofs.count() + usize::from(self.kind.arm.is_some());
         let fresh = || Scratch {
             contact: ElementContact::new(NE),
+            records: Vec::new(),
+            slips: Vec::new(),
+            q1: Vec::new(),
+            v1: Vec::new(),
             k_local: vec![0.0; m * m],
             c_local: vec![0.0; m * m],
             elastic: ElasticCache {
@@ -504,48 +543,26 @@ impl BeltDrive {
     ) -> Vec<PointRecord> {
         let l = self.element_length();
         let mut out = Vec::new();
-        let mut recs: Vec<ContactRecord<2>> = Vec::new();
-        let mut ec = ElementContact::new(NE);
-        let mut e = [0.0; NE];
-        let mut ed = [0.0; NE];
-        for el in 0..self.kind.mesh.elements().len() {
-            self.kind.mesh.gather(q, el, &mut e);
-            self.kind.mesh.gather(v, el, &mut ed);
-            for (p, &omega) in omegas.iter().enumerate() {
-                let disk = self.disk(p, omega, q, v);
-                if !self.may_touch(&e, p, [disk.center.x, disk.center.y]) {
-                    continue;
-                }
-                recs.clear();
-                line.element_on(
-                    &disk,
-                    &self.kind.friction[p],
-                    l,
-                    6,
-                    |xi, s| s[..6].copy_from_slice(&shape::cubic(l, xi * l, 0.0).s),
-                    &e,
-                    &ed,
-                    false,
-                    &mut ec,
-                    Some(&mut recs),
-                );
-                let sgn = self.spec.pulleys[p].ccw_sign();
-                for r in &recs {
-                    let k = r.index;
-                    out.push(PointRecord {
-                        weight: line.rule.weights.get(k).copied().unwrap_or(0.0) * l,
-                        pulley: p,
-                        element: el,
-                        s_material: (el as f64 + line.rule.points[r.index]) * l,
-                        position: r.position.into(),
-                        penetration: r.penetration,
-                        normal_force: r.normal_force,
-                        friction_force: sgn * r.friction_force,
-                        slip: sgn * r.slip,
-                    });
-                }
+        // an output (sampled, not per step): a scratch of its own
+        let mut ws = Workspace::new();
+        let scratch = self.scratch(&mut ws);
+        self.contact_pass_on(line, q, v, omegas, false, true, scratch, |el, p, _, s| {
+            let sgn = self.spec.pulleys[p].ccw_sign();
+            for r in &s.records {
+                let k = r.index;
+                out.push(PointRecord {
+                    weight: line.rule.weights.get(k).copied().unwrap_or(0.0) * l,
+                    pulley: p,
+                    element: el,
+                    s_material: (el as f64 + line.rule.points[r.index]) * l,
+                    position: r.position.into(),
+                    penetration: r.penetration,
+                    normal_force: r.normal_force,
+                    friction_force: sgn * r.friction_force,
+                    slip: sgn * r.slip,
+                });
             }
-        }
+        });
         out
     }
 }
@@ -674,6 +691,98 @@ impl SecondOrderSystem for BeltDrive {
         &self, _t: f64, q: &[f64], v: &[f64], vdot: &[f64], h: f64, dq: &mut [f64],
     ) -> bool {
         self.convected_increment(q, v, vdot, h, dq)
+    }
+
+    /// The transition-aware limit of the contact points' slip velocities
+    /// ([`BeltDrive::transition_limit`]).
+    fn correction_limit(
+        &self, t: f64, q: &[f64], v: &[f64], dq: &[f64], dv: &[f64], ws: &mut Workspace,
+    ) -> Result<f64, mbd_core::MbdError> {
+        Ok(self.transition_limit(t, q, v, dq, dv, ws))
+    }
+}
+
+impl BeltDrive {
+    /// Largest fraction `α ∈ (0, 1]` of a Newton correction `(Δq, Δv)` from the state
+    /// `(t, q, v)` that keeps every contact point's slip velocity from crossing its friction
+    /// law's steep band in one iteration: the transition-aware limit of Castro et al. (2019)
+    /// (`contact::friction::transition_limit`, width `w` = the law's
+    /// [`transition_width`](contact::FrictionLaw::transition_width), `1/κ` of the tanh law
+    /// Ribaric (6.2)), the smallest over the points.
+    ///
+    /// The slip velocity is Kerkkänen (3.25)'s `v_t = tᵀ(ṙ − u_s)` of every contact quadrature
+    /// point, evaluated exactly at both ends: at `(q, v)` and at the fully corrected state
+    /// `(q + Δq, v + Δv)` with the pulleys' speeds (and a tensioner idler's centre) of each
+    /// state, by the contact loop of the forces (the same kinematics, two force-only contact
+    /// evaluations without the belt's elastic forces); the change `v_t(q + Δq, v + Δv) −
+    /// v_t(q, v)` is then taken as linear in `α`. At 27 m/s belt speed the convective part of
+    /// the change (the point moving along the wrap and its tangent turning with `Δq`) is not
+    /// small against the `γ' Δq` of the velocity, which is why the change is not linearised.
+    /// Only points in contact (penetration ≥ 0) at both ends are limited: a point entering or
+    /// leaving the wrap within the correction has no friction at one end, and its friction
+    /// force, `∝ f_n`, vanishes continuously with the penalty force (3.20) at the wrap's edge.
+    /// `1` without a law that has a band (the creep-rate law, Coulomb).
+    pub fn transition_limit(
+        &self, t: f64, q: &[f64], v: &[f64], dq: &[f64], dv: &[f64], ws: &mut Workspace,
+    ) -> f64 {
+        let widths: Vec<Option<f64>> = self
+            .kind
+            .friction
+            .iter()
+            .map(contact::FrictionLaw::transition_width)
+            .collect();
+        if widths.iter().all(Option::is_none) {
+            return 1.0;
+        }
+        let np = widths.len();
+        let npts = self.kind.line.rule.points.len();
+        let n_el = self.kind.mesh.elements().len();
+        let line = &self.kind.line;
+        let scratch = self.scratch(ws);
+        let mut slips = std::mem::take(&mut scratch.slips);
+        slips.clear();
+        slips.resize(n_el * np * npts, f64::NAN);
+        let at = |el: usize, p: usize, k: usize| (el * np + p) * npts + k;
+        let omegas = self.speeds(t, v);
+        self.contact_pass_on(line, q, v, &omegas, false, true, scratch, |el, p, _, s| {
+            if widths[p].is_some() {
+                for r in &s.records {
+                    slips[at(el, p, r.index)] = r.slip;
+                }
+            }
+        });
+        let (mut q1, mut v1) = (
+            std::mem::take(&mut scratch.q1),
+            std::mem::take(&mut scratch.v1),
+        );
+        q1.clear();
+        q1.extend(q.iter().zip(dq).map(|(a, b)| a + b));
+        v1.clear();
+        v1.extend(v.iter().zip(dv).map(|(a, b)| a + b));
+        let omegas1 = self.speeds(t, &v1);
+        let mut alpha = 1.0_f64;
+        self.contact_pass_on(
+            line,
+            &q1,
+            &v1,
+            &omegas1,
+            false,
+            true,
+            scratch,
+            |el, p, _, s| {
+                let Some(w) = widths[p] else { return };
+                for r in &s.records {
+                    let s0 = slips[at(el, p, r.index)];
+                    if !s0.is_nan() {
+                        alpha = alpha.min(contact::friction::transition_limit(s0, r.slip - s0, w));
+                    }
+                }
+            },
+        );
+        scratch.slips = slips;
+        scratch.q1 = q1;
+        scratch.v1 = v1;
+        alpha
     }
 }
 
@@ -1515,5 +1624,160 @@ mod tests {
         let mut dq0 = vec![0.0; n];
         assert!(drive.convected_increment(&q, &vec![0.0; n], &vec![0.0; n], h, &mut dq0));
         assert!(dq0.iter().all(|x| x.abs() < 1e-15));
+    }
+
+    /// The two-pulley drive of Kerkkänen Table 3.1 with the tanh law (κ = 40 s/m, the FEAD
+    /// study's) and the driver held at rest, in its static equilibrium (the belt pressed into
+    /// both wraps): `(drive, q, free pulley's coordinate, its radius, the law's width)`.
+    fn tanh_drive_at_rest() -> (BeltDrive, Vec<f64>, usize, f64, f64) {
+        let mut spec = BeltDriveSpec::two_pulley(
+            0.08125,
+            0.08125,
+            ::belt::Signal::constant(0.0),
+            ::belt::Signal::constant(0.0),
+        );
+        spec.contact.friction = BeltFriction::Tanh {
+            mu: 0.5,
+            kappa: 40.0,
+        };
+        let drive = BeltDrive::new(spec).unwrap();
+        let q = drive
+            .initial_state(&crate::mounted::InitialOptions::default())
+            .unwrap()
+            .q;
+        let j = drive.pulley_dofs.dof(1).unwrap();
+        let w = contact::FrictionLaw::transition_width(drive.friction_law(1)).unwrap();
+        let r = drive.spec.pulleys[1].radius;
+        (drive, q, j, r, w)
+    }
+
+    // Reference: the closed form. With the belt and the driver at rest every slip velocity is
+    // zero, and spinning the free pulley by Δω changes the slip of every point on its wrap by
+    // exactly Δω R (the disk's surface speed) and of no other point: a point inside the band
+    // leaving it stops at 2w, α = 2w/(|Δω| R); a point sliding at ω₀R reversed by −2ω₀ lands
+    // at w/2 on its own side, α = (|ω₀| R − w/2)/(2|ω₀| R).
+    #[test]
+    fn transition_limit_of_a_spinning_pulley_is_the_closed_form() {
+        let (drive, q, j, r, w) = tanh_drive_at_rest();
+        let n = q.len();
+        let on_wrap = drive
+            .contact_records_with(&q, &vec![0.0; n], &[0.0, 0.0])
+            .iter()
+            .filter(|p| p.pulley == 1)
+            .count();
+        assert!(on_wrap > 5, "{on_wrap} points on the free pulley's wrap");
+        let mut ws = Workspace::new();
+        let zero = vec![0.0; n];
+        // inside the band, leaving it
+        for dw in [3.0, -1.7, 40.0] {
+            let mut dv = vec![0.0; n];
+            dv[j] = dw;
+            let a = drive.transition_limit(0.0, &q, &zero, &zero, &dv, &mut ws);
+            let want = 2.0 * w / (dw.abs() * r);
+            assert!((a - want).abs() < 1e-12 * want, "{dw}: {a} against {want}");
+            assert_eq!(
+                <BeltDrive as SecondOrderSystem>::correction_limit(
+                    &drive, 0.0, &q, &zero, &zero, &dv, &mut ws
+                )
+                .unwrap(),
+                a
+            );
+        }
+        // inside the band, staying within 2w: the whole correction
+        let mut dv = vec![0.0; n];
+        dv[j] = 1.9 * w / r;
+        assert_eq!(
+            drive.transition_limit(0.0, &q, &zero, &zero, &dv, &mut ws),
+            1.0
+        );
+        // sliding, reversed across the band
+        for w0 in [2.0, -5.0] {
+            let mut v = vec![0.0; n];
+            v[j] = w0;
+            let mut dv = vec![0.0; n];
+            dv[j] = -2.0 * w0;
+            let a = drive.transition_limit(0.0, &q, &v, &zero, &dv, &mut ws);
+            let want = (w0.abs() * r - 0.5 * w) / (2.0 * w0.abs() * r);
+            assert!((a - want).abs() < 1e-12, "{w0}: {a} against {want}");
+        }
+        // a law without a band is not limited
+        let creep = drive
+            .with_pulley_friction(vec![
+                BeltFriction::CreepRate {
+                    mu: 0.5,
+                    creep: 1e4,
+                };
+                2
+            ])
+            .unwrap();
+        assert_eq!(
+            creep.transition_limit(0.0, &q, &zero, &zero, &dv, &mut ws),
+            1.0
+        );
+    }
+
+    // Reference: the invariant the limit stands for, checked on the slip velocities of the
+    // limited state read from the output path (`contact_records_with`). With `Δq = 0` the
+    // contact set and the tangents are fixed and the slip is affine in `v`, so at
+    // `v + αΔv`: no point sliding at the iterate (|v_t| > w) is past `w/2` on the other side
+    // of zero, no point inside the band is beyond `2w`, and one point sits on its bound (α is
+    // the largest such fraction).
+    #[test]
+    fn limited_slip_velocities_stop_at_the_band() {
+        let (drive, q, j, r, w) = tanh_drive_at_rest();
+        let n = q.len();
+        let nb = drive.n_belt;
+        let mut ws = Workspace::new();
+        // belt travelling at 10 m/s over the driver at rest (sliding) and the free pulley
+        // rolling with its wrap's median slip zero (the interpolated belt velocity is not
+        // tangent between the nodes: half its points inside the band)
+        let mut v = drive.travelling_velocity(&q, 10.0);
+        let omegas = |v: &[f64]| [0.0, v[j]];
+        let mut wrap: Vec<f64> = drive
+            .contact_records_with(&q, &v, &omegas(&v))
+            .iter()
+            .filter(|p| p.pulley == 1)
+            .map(|p| p.slip)
+            .collect();
+        wrap.sort_by(f64::total_cmp);
+        v[j] += wrap[wrap.len() / 2] / r;
+        let before = drive.contact_records_with(&q, &v, &omegas(&v));
+        let sliding = before.iter().filter(|p| p.slip.abs() > w).count();
+        let inside = before.len() - sliding;
+        assert!(
+            sliding > 10 && inside > 0,
+            "{sliding} sliding, {inside} inside"
+        );
+        for seed in 0..4_u32 {
+            let mut dv = vec![0.0; n];
+            for (i, d) in dv.iter_mut().enumerate().take(nb) {
+                *d = 0.3 * (((i as u32 * 7 + seed * 13) % 11) as f64 - 5.0);
+            }
+            dv[j] = -0.5 * v[j] * (seed as f64 - 1.5);
+            let a = drive.transition_limit(0.0, &q, &v, &vec![0.0; n], &dv, &mut ws);
+            assert!(a > 0.0 && a < 1.0, "{seed}: α = {a}");
+            let va: Vec<f64> = v.iter().zip(&dv).map(|(x, d)| x + a * d).collect();
+            let after = drive.contact_records_with(&q, &va, &omegas(&va));
+            assert_eq!(after.len(), before.len());
+            let mut slack = f64::INFINITY;
+            for (p0, p1) in before.iter().zip(&after) {
+                assert_eq!((p0.element, p0.pulley), (p1.element, p1.pulley));
+                let (s0, s1) = (p0.slip, p1.slip);
+                let (valid, gap) = if s0.abs() > w {
+                    // sliding: on its own side beyond w/2, or (its full correction ending
+                    // inside the band) within the band
+                    let own = s0.signum() * s1;
+                    (
+                        own >= 0.5 * w - 1e-12 || s1.abs() <= w,
+                        (own - 0.5 * w).abs(),
+                    )
+                } else {
+                    (s1.abs() <= 2.0 * w + 1e-12, (s1.abs() - 2.0 * w).abs())
+                };
+                assert!(valid, "{seed}: {s0} → {s1} (w = {w})");
+                slack = slack.min(gap);
+            }
+            assert!(slack < 1e-12, "{seed}: no point on its bound ({slack})");
+        }
     }
 }
