@@ -215,11 +215,14 @@ pub struct BeltContact {
 
 impl Default for BeltContact {
     /// [`BeltContact::ribaric`]. Not the sharper `tanh_slip` scale (issue 34 item 3): at
-    /// `v_s` = 0.05 mm/s the flowing model's speed loss is within 1 % of its Coulomb limit on
-    /// Table 6-1, but the models' Newton iterations fail on drives nobody tuned the step to
-    /// (the three-model example of `drives::simulation` at its first step, t = 16 µs;
-    /// Pechstein–Gerstmayr on the flowing and ANCF belts), so it stays a choice, not the
-    /// default, until the steppers handle it.
+    /// `v_s` = 0.05 mm/s the flowing and nodal models' speed losses are within 1 % of their
+    /// Coulomb limits on Table 6-1, and with the flowing and nodal belts' transition-aware
+    /// limit on Newton corrections (Castro et al. 2019) the default FEAD drive and the
+    /// three-model example of `drives::simulation` run on both, but at 5–9 times the CPU of
+    /// κ = 40; the flowing belt does not finish the Pechstein–Gerstmayr drive with 20 mm
+    /// elements, and the ANCF belt fails at its first step on the `drives::simulation`
+    /// example (BENCHMARKS.md, "friction regularisation"). So it stays a choice, not the
+    /// default.
     fn default() -> Self {
         Self::ribaric()
     }

@@ -69,6 +69,10 @@ pub trait ContactDim<const D: usize> {
     /// `tangent` ([`crate::SurfacePoint::normal`], [`crate::SurfacePoint::tangent`]).
     fn basis(normal: &SVector<f64, D>, tangent: &SVector<f64, D>) -> Self::Basis;
 
+    /// The slip velocity `v_t = Tᵀw` \[m/s\] in the tangent basis `basis` of the relative
+    /// velocity `w = ṙ − u_s` (Kerkkänen (3.24)–(3.25) in the plane: `v_t = tᵀw`).
+    fn slip(basis: &Self::Basis, w: &SVector<f64, D>) -> Self::Slip;
+
     /// The friction law at the relative velocity `w = ṙ − u_s` and normal force `normal`:
     /// the slip `v_t = Tᵀw` (the normal part of `w` has no tangential component), the law's
     /// output and the force `T f_t(v_t, f_n)` with its derivatives in world components.
@@ -130,12 +134,18 @@ impl ContactDim<2> for Dim<2> {
         rot90(*normal)
     }
 
+    /// `v_t = tᵀw`, Kerkkänen (3.24)–(3.25).
+    #[inline]
+    fn slip(t: &Vector2<f64>, w: &Vector2<f64>) -> f64 {
+        t[0] * w[0] + t[1] * w[1]
+    }
+
     /// `v_t = tᵀw`, `f = f_t(v_t, f_n) t`, Kerkkänen (3.23)–(3.25).
     #[inline]
     fn friction<FL: FrictionLaw + ?Sized>(
         law: &FL, t: &Vector2<f64>, w: &Vector2<f64>, normal: f64,
     ) -> (f64, FrictionForce, TangentialForce<2>) {
-        let slip = t[0] * w[0] + t[1] * w[1];
+        let slip = Self::slip(t, w);
         let ff = law.friction(slip, normal);
         let tf = TangentialForce {
             force: t * ff.force,
@@ -149,7 +159,7 @@ impl ContactDim<2> for Dim<2> {
     fn friction_value<FL: FrictionLaw + ?Sized>(
         law: &FL, t: &Vector2<f64>, w: &Vector2<f64>, normal: f64,
     ) -> (f64, f64, Vector2<f64>) {
-        let slip = t[0] * w[0] + t[1] * w[1];
+        let slip = Self::slip(t, w);
         let f = law.friction(slip, normal).force;
         (slip, f, t * f)
     }
@@ -204,12 +214,18 @@ impl ContactDim<3> for Dim<3> {
         Matrix3x2::from_columns(&[t1, t2])
     }
 
+    /// `v_t = Tᵀw`.
+    #[inline]
+    fn slip(tb: &Matrix3x2<f64>, w: &Vector3<f64>) -> Vector2<f64> {
+        tb.transpose() * w
+    }
+
     /// `v_t = Tᵀw`, `f = T f_t(v_t, f_n)` with the isotropic spatial law
     /// ([`FrictionLaw::friction_tangent`]).
     fn friction<FL: FrictionLaw + ?Sized>(
         law: &FL, tb: &Matrix3x2<f64>, w: &Vector3<f64>, normal: f64,
     ) -> (Vector2<f64>, TangentFriction, TangentialForce<3>) {
-        let slip = tb.transpose() * w;
+        let slip = Self::slip(tb, w);
         let ff = law.friction_tangent(slip, normal);
         let tf = TangentialForce {
             force: tb * ff.force,
@@ -223,7 +239,7 @@ impl ContactDim<3> for Dim<3> {
     fn friction_value<FL: FrictionLaw + ?Sized>(
         law: &FL, tb: &Matrix3x2<f64>, w: &Vector3<f64>, normal: f64,
     ) -> (Vector2<f64>, Vector2<f64>, Vector3<f64>) {
-        let slip = tb.transpose() * w;
+        let slip = Self::slip(tb, w);
         let f = law.friction_tangent_force(slip, normal);
         (slip, f, tb * f)
     }

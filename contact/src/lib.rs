@@ -64,7 +64,7 @@ pub use lagrange::{ActiveSet, UnilateralRow, unilateral_row};
 pub use normal::{LinearPenalty, NormalForce, NormalLaw, NormalSpec, PolynomialPenalty};
 pub use point::{
     PointContact, PointContact2, PointContact3, PointForce, point_contact, point_force,
-    point_force_at,
+    point_force_at, point_slip,
 };
 pub use quadrature::GaussRule;
 pub use solver::{

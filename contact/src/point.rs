@@ -112,6 +112,27 @@ where
     })
 }
 
+/// The kinematics of [`point_contact`] without its laws: the gap `g` \[m\] (> 0 separated) and
+/// the slip velocity `v_t = Tᵀ(ṙ − u_s)` \[m/s\] (Kerkkänen (3.21), (3.24)–(3.25)) of the point
+/// at `p` \[m\] moving with `v` \[m/s\] against `surface`, from its
+/// [`Surface::closest_value`] — also for a separated point (where `point_contact` returns
+/// `None`). E.g. a model's slip velocities before and after a Newton correction, for the
+/// transition-aware limit [`crate::friction::transition_limit`].
+pub fn point_slip<const D: usize, S>(
+    surface: &S, p: &Point<f64, D>, v: &SVector<f64, D>,
+) -> (f64, Slip<D>)
+where
+    Dim<D>: ContactDim<D>,
+    S: Surface<D> + ?Sized,
+{
+    let sp = surface.closest_value(p);
+    let tangents = <Dim<D>>::basis(&sp.normal, &sp.tangent);
+    (
+        sp.gap,
+        <Dim<D>>::slip(&tangents, &(v - sp.surface_velocity)),
+    )
+}
+
 /// The force of one point in contact without derivatives: what a force-only evaluation (a
 /// Newton residual, an output record) needs of [`point_contact`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -447,5 +468,43 @@ mod tests {
         assert!(b.force[2].abs() < 1e-12);
         // the slip along t = Ĩn is the spatial slip along t₁ = a × e_r (same direction)
         assert!((a.slip - b.slip[0]).abs() < 1e-12 && b.slip[1].abs() < 1e-12);
+    }
+
+    // Reference: the slip of point_contact (in contact) and the closed form of a rotating,
+    // translating disk, `t·(v − ṙ_o) − ωR` with `t = Ĩ n`, for a separated point.
+    #[test]
+    fn point_slip_is_the_contact_slip_and_extends_to_separated_points() {
+        let disk = Disk {
+            center: Point2::new(0.02, -0.01),
+            radius: 0.1,
+            velocity: Vector2::new(0.1, 0.05),
+            omega: 20.0,
+        };
+        let v = Vector2::new(-1.6, 1.2);
+        let p = Point2::new(0.08, 0.0699);
+        let c = point_contact(&disk, &penalty(), &tanh(), &p, &v).unwrap();
+        let (gap, slip) = point_slip(&disk, &p, &v);
+        assert_eq!((gap, slip), (-c.penetration, c.slip));
+        // separated by 5 mm along the normal at 30°
+        let n = Vector2::new(30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let p = disk.center + 0.105 * n;
+        let (gap, slip) = point_slip(&disk, &p, &v);
+        let exact = rot90(n).dot(&(v - disk.velocity)) - disk.omega * disk.radius;
+        assert!((gap - 0.005).abs() < 1e-15, "{gap}");
+        assert!((slip - exact).abs() < 1e-14, "{slip} vs {exact}");
+        assert!(point_contact(&disk, &penalty(), &tanh(), &p, &v).is_none());
+        // in space: the spatial contact's slip
+        let (q, u) = (
+            Point3::new(0.06, 0.0799, 0.3),
+            Vector3::new(-1.638, 1.166, 0.2),
+        );
+        let cyl = Cylinder {
+            axis: Vector3::z(),
+            crown: 0.0,
+            ..pulley()
+        };
+        let (gap, slip) = point_slip(&cyl, &q, &u);
+        let c = point_contact(&cyl, &penalty(), &tanh(), &q, &u).unwrap();
+        assert_eq!((gap, slip), (-c.penetration, c.slip));
     }
 }

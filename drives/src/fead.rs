@@ -1121,13 +1121,15 @@ pub fn run_fead(
 
 /// The generalized-α settings of the flowing and nodal models: `run.step`, `run.rho_inf`,
 /// the belt procedures' Newton settings (as the speed-loss procedure:
-/// [`crate::speed_loss::BELT_LINE_SEARCH_TRIALS`], [`crate::speed_loss::BELT_NEWTON_ITERATIONS`]).
+/// [`crate::speed_loss::BELT_LINE_SEARCH_TRIALS`], [`crate::speed_loss::BELT_NEWTON_ITERATIONS`],
+/// the models' transition-aware correction limit [`AlphaConfig::model_correction_limit`]).
 fn linear_alpha(cfg: &FeadConfig) -> AlphaConfig {
     AlphaConfig {
         h: cfg.run.step,
         rho_inf: cfg.run.rho_inf,
         newton_line_search_trials: crate::speed_loss::BELT_LINE_SEARCH_TRIALS,
         max_newton_iterations: crate::speed_loss::BELT_NEWTON_ITERATIONS,
+        model_correction_limit: true,
         ..Default::default()
     }
 }

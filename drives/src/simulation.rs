@@ -141,8 +141,11 @@ impl<M: BeltModel, B: BorrowMut<M>> BeltSimulation<M, B> {
 }
 
 /// The generalized-α settings a belt model of `kind` is stepped with at the step `h` \[s\]:
-/// mbd-core's defaults with a line search of [`BELT_LINE_SEARCH_TRIALS`] trials and
-/// [`BELT_NEWTON_ITERATIONS`] iterations (flowing and nodal), the ANCF belt with its own Newton settings
+/// mbd-core's defaults with a line search of [`BELT_LINE_SEARCH_TRIALS`] trials,
+/// [`BELT_NEWTON_ITERATIONS`] iterations and the models' transition-aware limit on Newton
+/// corrections ([`AlphaConfig::model_correction_limit`]: the friction's slip velocities do
+/// not cross its steep band in one iteration, Castro et al. 2019) (flowing and nodal), the
+/// ANCF belt with its own Newton settings
 /// ([`ancf::belt_drive::SimulationConfig::alpha_params`]).
 pub fn alpha_for(kind: ModelKind, h: f64) -> AlphaConfig {
     match kind {
@@ -156,6 +159,7 @@ pub fn alpha_for(kind: ModelKind, h: f64) -> AlphaConfig {
             newton_line_search: true,
             newton_line_search_trials: BELT_LINE_SEARCH_TRIALS,
             max_newton_iterations: BELT_NEWTON_ITERATIONS,
+            model_correction_limit: true,
             ..Default::default()
         },
     }

@@ -499,6 +499,9 @@ pub fn speed_loss_sweep<M: BeltModel>(
         newton_line_search: true,
         newton_line_search_trials: BELT_LINE_SEARCH_TRIALS,
         max_newton_iterations: BELT_NEWTON_ITERATIONS,
+        // the model's transition-aware limit (Castro et al. 2019): no contact's slip velocity
+        // crosses the friction law's steep band in one Newton iteration
+        model_correction_limit: true,
         ..Default::default()
     };
     let mut sim: BeltSimulation<M, &mut M> =

@@ -11,10 +11,10 @@
 //! `F_T = f(v_slip, F_N)` opposing the slip. The reaction torque on the pulley in its travel sense
 //! is `τ = −F_T R`.
 
-use contact::friction::FrictionLaw;
+use contact::friction::{FrictionLaw, transition_limit};
 use contact::geometry::{Disk, rot90};
 use contact::normal::NormalLaw;
-use contact::point::point_contact;
+use contact::point::{point_contact, point_slip};
 use nalgebra::{Point2, Vector2};
 
 /// A rigid pulley seen by the belt nodes.
@@ -26,6 +26,77 @@ pub struct PulleyFrame {
     pub radius: f64,
     /// +1 clockwise wrap, −1 counter-clockwise (back-side) wrap.
     pub turn: f64,
+}
+
+impl PulleyFrame {
+    /// The pulley as the contact crate's rotating [`Disk`]: at rest, turning
+    /// counter-clockwise at `−turn·ω` for the travel-sense speed `omega` \[rad/s\].
+    fn disk(&self, omega: f64) -> Disk {
+        Disk {
+            center: Point2::from(self.center),
+            radius: self.radius,
+            velocity: Vector2::zeros(),
+            omega: -self.turn * omega,
+        }
+    }
+}
+
+/// What a node's slip velocity against a pulley depends on: the pulley's frame and
+/// travel-sense speed `omega` \[rad/s\], the node's position \[m\] and material velocity
+/// \[m/s\] relative to the pulley's centre (the arguments of [`node_contact`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeMotion {
+    /// The pulley (its centre where the node sees it, e.g. an idler moved by its arm).
+    pub frame: PulleyFrame,
+    /// Pulley speed in the belt's travel sense \[rad/s\].
+    pub omega: f64,
+    /// Node position `d` \[m\].
+    pub position: [f64; 2],
+    /// Material velocity `V` of the node relative to the pulley's centre \[m/s\].
+    pub velocity: [f64; 2],
+}
+
+impl NodeMotion {
+    /// Penetration `p = R − |d − c|` \[m\] and slip velocity `v_slip = t·V − ωR` \[m/s\] along the
+    /// travel tangent (module documentation), from the contact crate's kinematics
+    /// ([`point_slip`], Kerkkänen (3.21), (3.24)–(3.25)): what [`node_contact`] reports, also
+    /// for an open contact.
+    pub fn penetration_and_slip(&self) -> (f64, f64) {
+        let (gap, slip) = point_slip(
+            &self.frame.disk(self.omega),
+            &Point2::from(self.position),
+            &Vector2::from(self.velocity),
+        );
+        (-gap, -self.frame.turn * slip)
+    }
+}
+
+/// The transition-aware limit on a Newton correction (Castro et al. 2019;
+/// [`transition_limit`]) over a belt's contact points: for each point its motion at the
+/// iterate, its motion at the corrected state (the full correction applied) and its pulley's
+/// friction law, the largest fraction `α ∈ (0, 1]` of the correction that takes no point in
+/// contact at the iterate (penetration > 0) across the law's steep band
+/// ([`FrictionLaw::transition_width`]) in one iteration. The slip change is the difference of
+/// the exact slip velocities at the two states, so it carries every nonlinear term of the
+/// model's kinematics (the turning normal, the convective term of a flowing belt, a node's
+/// path along a wrap); the rule takes the slip as linear in `α` between them. Points of a law
+/// without a band (Coulomb, frictionless) and open points do not limit (`1`).
+pub fn correction_limit<'a, L: FrictionLaw + 'a>(
+    points: impl IntoIterator<Item = (NodeMotion, NodeMotion, &'a L)>,
+) -> f64 {
+    let mut alpha: f64 = 1.0;
+    for (now, next, law) in points {
+        let Some(width) = law.transition_width() else {
+            continue;
+        };
+        let (penetration, slip) = now.penetration_and_slip();
+        if penetration <= 0.0 {
+            continue;
+        }
+        let (_, end) = next.penetration_and_slip();
+        alpha = alpha.min(transition_limit(slip, end - slip, width));
+    }
+    alpha
 }
 
 /// Force of one node–pulley contact and its derivatives.
@@ -69,12 +140,7 @@ pub fn node_contact(
     friction_law: &impl FrictionLaw,
 ) -> NodeContact {
     let sgn = -pulley.turn;
-    let disk = Disk {
-        center: Point2::from(pulley.center),
-        radius: pulley.radius,
-        velocity: Vector2::zeros(),
-        omega: sgn * omega,
-    };
+    let disk = pulley.disk(omega);
     let Some(c) = point_contact(
         &disk,
         normal_law,

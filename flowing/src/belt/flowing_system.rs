@@ -124,13 +124,13 @@
 //! [`FlowingBelt::damping_dissipation`].
 
 use super::config::{AxialForce, BeltEquations, BendingForce, FlowingSettings, ViscousForce};
-use super::contact::{NodeContact, PulleyFrame, node_contact};
+use super::contact::{NodeContact, NodeMotion, PulleyFrame, correction_limit, node_contact};
 use super::coordinates::{ArmState, DriveCoordinates};
 use super::model::{BeltFe, BendElement, FlowingBasis, NODE_DOFS, chord_tensions};
 use super::statics::dense_equilibrium;
 use belt::tensioner::cross;
 use belt::{Arm, Drive, Motion};
-use contact::friction::FrictionSpec;
+use contact::friction::{FrictionLaw, FrictionSpec};
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use mbd_core::Workspace;
@@ -594,11 +594,13 @@ impl FlowingBelt {
         (d, vel, bs)
     }
 
-    /// Contact of one row at a state; the idler's frame and the relative velocity when the
-    /// row's pulley is the tensioner's.
-    fn row_contact(
+    /// Motion of one row's node against its pulley at a state (position `x₀ + T z`, material
+    /// velocity `v (b + T_,s z) + T ż`, Ribaric (5.10)); the idler's frame and the relative
+    /// velocity when the row's pulley is the tensioner's. Also returns `b + T_,s z` and
+    /// whether the pulley is the tensioner's idler.
+    fn row_motion(
         &self, r: &ContactRow, arm: Option<&ArmState>, t: f64, z: &[f64], zd: &[f64], v: &[f64],
-    ) -> (NodeContact, [f64; 2], bool) {
+    ) -> (NodeMotion, [f64; 2], bool) {
         let (d, mut vel, bs) = self.node_state(r, z, zd, v[0]);
         let w = self.coords.pulley_speed(r.pulley, t, v);
         let mut frame = self.pulleys[r.pulley];
@@ -611,11 +613,42 @@ impl FlowingBelt {
             }
             _ => false,
         };
+        let motion = NodeMotion {
+            frame,
+            omega: w,
+            position: d,
+            velocity: vel,
+        };
+        (motion, bs, idler)
+    }
+
+    /// Contact of one row at a state ([`Self::row_motion`]).
+    fn row_contact(
+        &self, r: &ContactRow, arm: Option<&ArmState>, t: f64, z: &[f64], zd: &[f64], v: &[f64],
+    ) -> (NodeContact, [f64; 2], bool) {
+        let (m, bs, idler) = self.row_motion(r, arm, t, z, zd, v);
         (
-            node_contact(&frame, w, d, vel, &r.law, &self.friction[r.pulley]),
+            node_contact(
+                &m.frame,
+                m.omega,
+                m.position,
+                m.velocity,
+                &r.law,
+                &self.friction[r.pulley],
+            ),
             bs,
             idler,
         )
+    }
+
+    /// The motion of every contact node at `(t, q, v)` ([`Self::row_motion`]).
+    fn row_motions(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<NodeMotion> {
+        let (z, zd) = (&q[1..=self.m], &v[1..=self.m]);
+        let arm = self.coords.arm_state(q, v);
+        self.rows
+            .iter()
+            .map(|r| self.row_motion(r, arm.as_ref(), t, z, zd, v).0)
+            .collect()
     }
 
     /// Contact state of every contact node at `(t, q, v)`.
@@ -1468,6 +1501,30 @@ impl SecondOrderSystem for FlowingBelt {
             damping: SysMatrix::Dense(c),
         }))
     }
+
+    /// The transition-aware limit of the contact rows' friction ([`correction_limit`], Castro
+    /// et al. 2019): each row's slip velocity at the iterate and at the corrected state
+    /// `(q + dq, v + dv)`, exact at both (the slip `t·(v (b + T_,s z) + T ż) − ωR` of the
+    /// material flowing through the mesh is bilinear in `v` and `z`, and its tangent turns
+    /// with the node: the end point carries both), linear in `α` between them.
+    fn correction_limit(
+        &self, t: f64, q: &[f64], v: &[f64], dq: &[f64], dv: &[f64], _ws: &mut Workspace,
+    ) -> Result<f64, MbdError> {
+        if self.friction.iter().all(|f| f.transition_width().is_none()) {
+            return Ok(1.0);
+        }
+        let mut q1 = vec![0.0; q.len()];
+        self.integrate_position(q, dq, &mut q1);
+        let v1: Vec<f64> = v.iter().zip(dv).map(|(a, b)| a + b).collect();
+        let now = self.row_motions(t, q, v);
+        let next = self.row_motions(t, &q1, &v1);
+        Ok(correction_limit(
+            now.into_iter()
+                .zip(next)
+                .zip(&self.rows)
+                .map(|((a, b), r)| (a, b, &self.friction[r.pulley])),
+        ))
+    }
 }
 
 #[cfg(test)]
@@ -2012,5 +2069,22 @@ pub(crate) mod tests {
                 }
             }
         }
+    }
+
+    // Reference: the closed-form slip change of a pulley-speed correction
+    // (crate::belt::check_pulley_speed_limit).
+    #[test]
+    fn correction_limit_stops_the_driven_wrap_inside_the_band() {
+        let drive = crate::belt::table_6_1_sharp(60.0);
+        let belt = FlowingBelt::new(&drive, &FlowingSettings::default()).unwrap();
+        let q = belt.static_state().unwrap();
+        let (_, dof) = belt.coords.free_pulleys()[0];
+        let radius = belt.pulleys[1].radius;
+        crate::belt::check_pulley_speed_limit(&belt, &q, dof, radius, |v| {
+            belt.contact_report(0.0, &q, v)
+                .iter()
+                .map(|r| (r.pulley, r.contact.penetration, r.contact.slip))
+                .collect()
+        });
     }
 }

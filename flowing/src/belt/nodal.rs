@@ -69,14 +69,14 @@
 //! 1.7 % (216).
 
 use super::config::BeltMesh;
-use super::contact::{NodeContact, PulleyFrame, node_contact};
+use super::contact::{NodeContact, NodeMotion, PulleyFrame, correction_limit, node_contact};
 use super::coordinates::{ArmState, DriveCoordinates};
 use super::flowing_system::pulley_frames;
 use super::model::{BeltFe, NODE_DOFS, chord_tensions, chord_turn_rate, corotational_rate_block};
 use super::statics::dense_equilibrium;
 use belt::tensioner::cross;
 use belt::{Arm, Drive, Motion};
-use contact::friction::FrictionSpec;
+use contact::friction::{FrictionLaw, FrictionSpec};
 use contact::normal::PolynomialPenalty;
 use faer::Mat;
 use faer::sparse::{SparseColMat, Triplet};
@@ -352,38 +352,57 @@ impl NodalBelt {
         [3 * e, 3 * e + 1, 3 * e + 2, 3 * j, 3 * j + 1, 3 * j + 2]
     }
 
+    /// Motion of material node `i` against pulley `p` at `(t, q, v)`, the node's reference
+    /// position `pos` and unit tangent `tan` on the path at `s_i0 + s_b` given: position
+    /// `r^i + δ^i`, material velocity `v e_t^i + δ̇^i` (Ribaric (5.1), (5.3)), relative to the
+    /// idler's centre when `p` is the tensioner's (`arm`, a rigid disk translating with the arm).
+    #[allow(clippy::too_many_arguments)]
+    fn node_motion(
+        &self, i: usize, p: usize, pos: [f64; 2], tan: [f64; 2], arm: Option<&ArmState>, t: f64,
+        q: &[f64], v: &[f64],
+    ) -> NodeMotion {
+        let (d, dd, vb) = (&q[1..], &v[1..], v[0]);
+        let mut frame = self.pulleys[p];
+        let mut frame_vel = [0.0; 2];
+        if let (Some(a), Some(k)) = (arm, self.coords.idler())
+            && k == p
+        {
+            frame.center = a.center;
+            frame_vel = a.vel;
+        }
+        NodeMotion {
+            frame,
+            omega: self.coords.pulley_speed(p, t, v),
+            position: [pos[0] + d[NODE_DOFS * i], pos[1] + d[NODE_DOFS * i + 1]],
+            velocity: [
+                vb * tan[0] + dd[NODE_DOFS * i] - frame_vel[0],
+                vb * tan[1] + dd[NODE_DOFS * i + 1] - frame_vel[1],
+            ],
+        }
+    }
+
     /// Every active node–pulley contact at `(t, q, v)`: `(node, pulley, contact)`.
     fn contacts(
         &self, mesh: &Mesh, t: f64, q: &[f64], v: &[f64],
     ) -> Vec<(usize, usize, NodeContact)> {
-        let (d, dd, vb) = (&q[1..], &v[1..], v[0]);
         let arm = self.coords.arm_state(q, v);
         let mut out = Vec::new();
         for i in 0..self.n() {
-            let x = [
-                mesh.pos[i][0] + d[NODE_DOFS * i],
-                mesh.pos[i][1] + d[NODE_DOFS * i + 1],
-            ];
-            for (p, pulley) in self.pulleys.iter().enumerate() {
-                // the idler of a tensioner: a rigid disk translating with the arm
-                let mut frame = *pulley;
-                let mut frame_vel = [0.0; 2];
-                if let (Some(a), Some(k)) = (&arm, self.coords.idler())
-                    && k == p
-                {
-                    frame.center = a.center;
-                    frame_vel = a.vel;
-                }
+            for p in 0..self.pulleys.len() {
+                let m = self.node_motion(i, p, mesh.pos[i], mesh.tan[i], arm.as_ref(), t, q, v);
+                let (x, frame) = (m.position, m.frame);
                 let rel = [x[0] - frame.center[0], x[1] - frame.center[1]];
                 if rel[0].hypot(rel[1]) >= frame.radius {
                     continue;
                 }
-                let vel = [
-                    vb * mesh.tan[i][0] + dd[NODE_DOFS * i] - frame_vel[0],
-                    vb * mesh.tan[i][1] + dd[NODE_DOFS * i + 1] - frame_vel[1],
-                ];
-                let w = self.coords.pulley_speed(p, t, v);
-                let c = node_contact(&frame, w, x, vel, &self.laws[i], &self.friction[p]);
+                let c = node_contact(
+                    &frame,
+                    m.omega,
+                    x,
+                    m.velocity,
+                    &self.laws[i],
+                    &self.friction[p],
+                );
                 if c.normal != 0.0 || c.friction != 0.0 {
                     out.push((i, p, c));
                 }
@@ -931,6 +950,49 @@ impl SecondOrderSystem for NodalBelt {
         }))
     }
 
+    /// The transition-aware limit of the node–pulley friction ([`correction_limit`], Castro
+    /// et al. 2019) over the pairs in contact at the iterate: each pair's slip velocity at the
+    /// iterate and at the corrected state `(q + dq, v + dv)`, exact at both (the material node
+    /// moves to `s_i0 + s_b + Δs_b` along the path, its tangent and the contact normal turn
+    /// with it), linear in `α` between them.
+    fn correction_limit(
+        &self, t: f64, q: &[f64], v: &[f64], dq: &[f64], dv: &[f64], _ws: &mut Workspace,
+    ) -> Result<f64, MbdError> {
+        if self.friction.iter().all(|f| f.transition_width().is_none()) {
+            return Ok(1.0);
+        }
+        let mut q1 = vec![0.0; q.len()];
+        self.integrate_position(q, dq, &mut q1);
+        let v1: Vec<f64> = v.iter().zip(dv).map(|(a, b)| a + b).collect();
+        let (arm, arm1) = (self.coords.arm_state(q, v), self.coords.arm_state(&q1, &v1));
+        let path = self.fe.path();
+        let mut pairs = Vec::new();
+        for (i, &s) in self.fe.s.iter().enumerate() {
+            let mut next = None;
+            let here = path.point(s + q[0]);
+            for p in 0..self.pulleys.len() {
+                let now =
+                    self.node_motion(i, p, here.position, here.tangent, arm.as_ref(), t, q, v);
+                if now.penetration_and_slip().0 <= 0.0 {
+                    continue;
+                }
+                let there = *next.get_or_insert_with(|| path.point(s + q1[0]));
+                let after = self.node_motion(
+                    i,
+                    p,
+                    there.position,
+                    there.tangent,
+                    arm1.as_ref(),
+                    t,
+                    &q1,
+                    &v1,
+                );
+                pairs.push((now, after, &self.friction[p]));
+            }
+        }
+        Ok(correction_limit(pairs))
+    }
+
     fn constraint_residual(&self, _t: f64, q: &[f64], phi: &mut [f64]) -> Result<(), MbdError> {
         let k = self.reference_node;
         let p = self.fe.path().point(self.fe.s[k] + q[0]);
@@ -1202,5 +1264,23 @@ mod tests {
             scale > 1e-9 && err < 1e-6 * scale.max(1e-6),
             "{err} vs {scale}"
         );
+    }
+
+    // Reference: the closed-form slip change of a pulley-speed correction
+    // (crate::belt::check_pulley_speed_limit).
+    #[test]
+    fn correction_limit_stops_the_driven_wrap_inside_the_band() {
+        let drive = crate::belt::table_6_1_sharp(60.0);
+        let b = NodalBelt::new(&drive, &BeltMesh::default()).unwrap();
+        let q = b.static_state().unwrap();
+        let (_, dof) = b.coords.free_pulleys()[0];
+        let radius = b.pulleys[1].radius;
+        crate::belt::check_pulley_speed_limit(&b, &q, dof, radius, |v| {
+            b.contact_report(0.0, &q, v)
+                .unwrap()
+                .iter()
+                .map(|&(_, p, _, c)| (p, c.penetration, c.slip))
+                .collect()
+        });
     }
 }
