@@ -500,8 +500,10 @@ pub fn speed_loss_sweep<M: BeltModel>(
         newton_line_search_trials: BELT_LINE_SEARCH_TRIALS,
         max_newton_iterations: BELT_NEWTON_ITERATIONS,
         // the model's transition-aware limit (Castro et al. 2019): no contact's slip velocity
-        // crosses the friction law's steep band in one Newton iteration
-        model_correction_limit: true,
+        // crosses the friction law's steep band in one Newton iteration (flowing and nodal
+        // belts; the ANCF belt's limit, `ancf::SimulationConfig::correction_limit`, is
+        // measured on the fead sweep only and stays off here, as in its own settings)
+        model_correction_limit: model.traits().name != "ancf",
         ..Default::default()
     };
     let mut sim: BeltSimulation<M, &mut M> =
