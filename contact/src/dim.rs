@@ -334,7 +334,7 @@ impl<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized> mbd_core::simd::Kernel
         let (ux, uy, uz) = (&ux[..n], &uy[..n], &uz[..n]);
         let (vx, vy, vz) = (&vx[..n], &vy[..n], &vz[..n]);
         let mut degenerate = false;
-        // groups of LANES points through local arrays: the 14 output arrays are slices of one
+        // groups of LANES points through local arrays: the 11 output arrays are slices of one
         // buffer that the vectoriser cannot prove apart, local arrays it can
         const LANES: usize = 4;
         let mut start = 0;
@@ -394,15 +394,31 @@ impl<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized> mbd_core::simd::Kernel
             .friction_tangent_forces([v1, v2], fnorm, [&mut *f1, &mut *f2]);
         let [fx, fy, fz] = force;
         let (fx, fy, fz) = (&mut fx[..n], &mut fy[..n], &mut fz[..n]);
-        for q in 0..n {
-            let contact = gap[q] <= 0.0;
-            let (a, b, c) = (f1[q], f2[q], fnorm[q]);
-            let x = nx[q] * c + (t1x[q] * a + t2x[q] * b);
-            let y = ny[q] * c + (t1y[q] * a + t2y[q] * b);
-            let z = nz[q] * c + (t1z[q] * a + t2z[q] * b);
-            fx[q] = if contact { x } else { 0.0 };
-            fy[q] = if contact { y } else { 0.0 };
-            fz[q] = if contact { z } else { 0.0 };
+        // f = f_n n + T f_t, in groups of LANES points through local arrays as above
+        let mut start = 0;
+        while start < n {
+            let len = (n - start).min(LANES);
+            let lane =
+                |a: &[f64]| -> [f64; LANES] { std::array::from_fn(|l| a[start + l.min(len - 1)]) };
+            let (g, a, b, c) = (lane(gap), lane(f1), lane(f2), lane(fnorm));
+            let (nx, ny, nz) = (lane(nx), lane(ny), lane(nz));
+            let (t1x, t1y, t1z) = (lane(t1x), lane(t1y), lane(t1z));
+            let (t2x, t2y, t2z) = (lane(t2x), lane(t2y), lane(t2z));
+            let mut o = [[0.0; LANES]; 3];
+            for q in 0..LANES {
+                let contact = g[q] <= 0.0;
+                let (a, b, c) = (a[q], b[q], c[q]);
+                let x = nx[q] * c + (t1x[q] * a + t2x[q] * b);
+                let y = ny[q] * c + (t1y[q] * a + t2y[q] * b);
+                let z = nz[q] * c + (t1z[q] * a + t2z[q] * b);
+                o[0][q] = if contact { x } else { 0.0 };
+                o[1][q] = if contact { y } else { 0.0 };
+                o[2][q] = if contact { z } else { 0.0 };
+            }
+            fx[start..start + len].copy_from_slice(&o[0][..len]);
+            fy[start..start + len].copy_from_slice(&o[1][..len]);
+            fz[start..start + len].copy_from_slice(&o[2][..len]);
+            start += len;
         }
         degenerate
     }

@@ -213,10 +213,10 @@ impl ThinPlate {
     /// membrane density (4.16)) over the Gauss points in groups of [`LANES`]: per group the
     /// gathers `r_x = S_x e`, `r_y = S_y e` and the density's gradient (`N_x r_x + ½ N_xy r_y`,
     /// `N_y r_y + ½ N_xy r_x` with `N_x = C(2ε_xx + 2ν ε_yy)`, `N_y = C(2ε_yy + 2ν ε_xx)`,
-    /// `N_xy = 4C(1 − ν) ε_xy`, `C = E h / (2(1 − ν²))`) one point per vector lane, then the
-    /// scatter into the `3 × 12` force sums, which stay in registers over all the points (the
-    /// earlier chunked loop of this kernel kept its sums and the gathered slopes in memory, a
-    /// load and a store per term). Each point's quantities and each force entry's sum over the
+    /// `N_xy = 4C(1 − ν) ε_xy`, `C = E h / (2(1 − ν²))`) one point per vector lane, eight
+    /// groups at a time, then their scatter into the `3 × 12` force sums, held as nine vectors
+    /// that stay in registers over all the points (the earlier chunked loop of this kernel kept
+    /// its sums and the gathered slopes in memory, a load and a store per term). Each point's quantities and each force entry's sum over the
     /// points come out of the same operations in the same order as the point-by-point pass
     /// (`ThinPlate::elastic_forces_pointwise`): the gathers over `k = 0..12`, the sums over the
     /// points, then `S_x` before `S_y`; so the two give the same bits.
@@ -227,40 +227,56 @@ impl ThinPlate {
         let (ym, nu, h) = (self.material.young, self.material.poisson, self.thickness);
         let cm = ym * h / (2.0 * (1.0 - nu * nu));
         let e: &[f64; PLATE_NDOF] = e[..PLATE_NDOF].try_into().expect("36 coordinates");
-        // q transposed: qt[c][k] = Q[3k + c]
-        let mut qt = [[0.0; 12]; 3];
-        for (j, (gx, gy)) in m.dx.chunks_exact(12).zip(m.dy.chunks_exact(12)).enumerate() {
-            // r_x, r_y of the group's points: u[c] = r_x[c], u[3 + c] = r_y[c], one per lane
-            let mut u = [[0.0; LANES]; 6];
-            for k in 0..12 {
-                let (dxk, dyk) = (&gx[k], &gy[k]);
-                for c in 0..3 {
-                    let ek = e[3 * k + c];
-                    for l in 0..LANES {
-                        u[c][l] += dxk[l] * ek;
-                        u[3 + c][l] += dyk[l] * ek;
+        // the force sums, q transposed in vectors: qt[c][v][i] = Q[3(4v + i) + c]
+        let mut qt = [[[0.0; LANES]; 3]; 3];
+        let groups = m.dx.len() / 12;
+        // CHUNK groups at a time: their gradients first, then their scatter
+        const CHUNK: usize = 8;
+        for j0 in (0..groups).step_by(CHUNK) {
+            let nj = (groups - j0).min(CHUNK);
+            let mut grs = [[[0.0; LANES]; 6]; CHUNK];
+            for (jj, gr) in grs.iter_mut().enumerate().take(nj) {
+                let j = j0 + jj;
+                let (gx, gy) = (&m.dx[12 * j..12 * j + 12], &m.dy[12 * j..12 * j + 12]);
+                // r_x, r_y of the group's points: u[c] = r_x[c], u[3 + c] = r_y[c], one per lane
+                let mut u = [[0.0; LANES]; 6];
+                for k in 0..12 {
+                    let (dxk, dyk) = (&gx[k], &gy[k]);
+                    for c in 0..3 {
+                        let ek = e[3 * k + c];
+                        for l in 0..LANES {
+                            u[c][l] += dxk[l] * ek;
+                            u[3 + c][l] += dyk[l] * ek;
+                        }
+                    }
+                }
+                for l in 0..LANES {
+                    let rx = [u[0][l], u[1][l], u[2][l]];
+                    let ry = [u[3][l], u[4][l], u[5][l]];
+                    let [nx, ny, nxy] = energy::membrane_resultants(&rx, &ry, cm, nu);
+                    for c in 0..3 {
+                        // `0.0 +`: the pointwise pass adds into a zeroed gradient
+                        gr[c][l] = 0.0 + (nx * rx[c] + 0.5 * nxy * ry[c]);
+                        gr[3 + c][l] = 0.0 + (ny * ry[c] + 0.5 * nxy * rx[c]);
                     }
                 }
             }
-            let mut gr = [[0.0; LANES]; 6];
-            for l in 0..LANES {
-                let rx = [u[0][l], u[1][l], u[2][l]];
-                let ry = [u[3][l], u[4][l], u[5][l]];
-                let [nx, ny, nxy] = energy::membrane_resultants(&rx, &ry, cm, nu);
-                for c in 0..3 {
-                    // `0.0 +`: the pointwise pass adds into a zeroed gradient
-                    gr[c][l] = 0.0 + (nx * rx[c] + 0.5 * nxy * ry[c]);
-                    gr[3 + c][l] = 0.0 + (ny * ry[c] + 0.5 * nxy * rx[c]);
-                }
-            }
-            for l in 0..LANES.min(np - LANES * j) {
-                let g = LANES * j + l;
-                for p in 0..2 {
-                    let wd = &m.wd[2 * g + p];
-                    for (c, row) in qt.iter_mut().enumerate() {
-                        let gv = gr[3 * p + c][l];
-                        for (r, w) in row.iter_mut().zip(wd) {
-                            *r += w * gv;
+            // the scatter, point by point and S_x before S_y, into the 3 × 3 vector sums
+            for (jj, gr) in grs.iter().enumerate().take(nj) {
+                let j = j0 + jj;
+                for l in 0..LANES.min(np - LANES * j) {
+                    let g = LANES * j + l;
+                    for p in 0..2 {
+                        let wd = &m.wd[2 * g + p];
+                        // constant indices, so that the sums stay in registers
+                        #[allow(clippy::needless_range_loop)]
+                        for c in 0..3 {
+                            let gv = gr[3 * p + c][l];
+                            for v in 0..3 {
+                                for i in 0..LANES {
+                                    qt[c][v][i] += wd[LANES * v + i] * gv;
+                                }
+                            }
                         }
                     }
                 }
@@ -268,7 +284,7 @@ impl ThinPlate {
         }
         for k in 0..12 {
             for c in 0..3 {
-                q[3 * k + c] = qt[c][k];
+                q[3 * k + c] = qt[c][k / LANES][k % LANES];
             }
         }
     }
