@@ -335,7 +335,7 @@ impl<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized> mbd_core::simd::Kernel
         let (f1, rest) = rest.split_at_mut(n);
         let (f2, rest) = rest.split_at_mut(n);
         let (t1, rest) = rest.split_at_mut(3 * n);
-        let (t2, len) = rest.split_at_mut(3 * n);
+        let (t2, len_out) = rest.split_at_mut(3 * n);
         let (t1x, t1) = t1.split_at_mut(n);
         let (t1y, t1z) = t1.split_at_mut(n);
         let (t2x, t2) = t2.split_at_mut(n);
@@ -350,41 +350,91 @@ impl<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized> mbd_core::simd::Kernel
         let (ux, uy, uz) = (&ux[..n], &uy[..n], &uz[..n]);
         let (vx, vy, vz) = (&vx[..n], &vy[..n], &vz[..n]);
         let mut degenerate = false;
-        for q in 0..n {
-            let (wx, wy, wz) = (vx[q] - ux[q], vy[q] - uy[q], vz[q] - uz[q]);
-            pen[q] = -gap[q];
-            rate[q] = -(nx[q] * wx + ny[q] * wy + nz[q] * wz);
-            // t₁ = P t_ref/|P t_ref| (`try_normalize`), t₂ = n × t₁
-            let nt = nx[q] * tx[q] + ny[q] * ty[q] + nz[q] * tz[q];
-            let (px, py, pz) = (tx[q] - nx[q] * nt, ty[q] - ny[q] * nt, tz[q] - nz[q] * nt);
-            let l = (px * px + py * py + pz * pz).sqrt();
-            len[q] = l;
-            degenerate |= gap[q] <= 0.0 && l <= 1e-300;
-            let (ax, ay, az) = (px / l, py / l, pz / l);
-            let (bx, by, bz) = (
-                ny[q] * az - nz[q] * ay,
-                nz[q] * ax - nx[q] * az,
-                nx[q] * ay - ny[q] * ax,
-            );
-            (t1x[q], t1y[q], t1z[q]) = (ax, ay, az);
-            (t2x[q], t2y[q], t2z[q]) = (bx, by, bz);
-            v1[q] = ax * wx + ay * wy + az * wz;
-            v2[q] = bx * wx + by * wy + bz * wz;
+        // groups of LANES points through local arrays: the 11 output arrays are slices of one
+        // buffer that the vectoriser cannot prove apart, local arrays it can
+        const LANES: usize = 4;
+        let mut start = 0;
+        while start < n {
+            let len = (n - start).min(LANES);
+            let lane =
+                |a: &[f64]| -> [f64; LANES] { std::array::from_fn(|l| a[start + l.min(len - 1)]) };
+            let (g, nx, ny, nz) = (lane(gap), lane(nx), lane(ny), lane(nz));
+            let (tx, ty, tz) = (lane(tx), lane(ty), lane(tz));
+            let (ux, uy, uz) = (lane(ux), lane(uy), lane(uz));
+            let (vx, vy, vz) = (lane(vx), lane(vy), lane(vz));
+            let mut o = [[0.0; LANES]; 11];
+            let mut deg = [false; LANES];
+            for q in 0..LANES {
+                let (wx, wy, wz) = (vx[q] - ux[q], vy[q] - uy[q], vz[q] - uz[q]);
+                o[0][q] = -g[q];
+                o[1][q] = -(nx[q] * wx + ny[q] * wy + nz[q] * wz);
+                // t₁ = P t_ref/|P t_ref| (`try_normalize`), t₂ = n × t₁
+                let nt = nx[q] * tx[q] + ny[q] * ty[q] + nz[q] * tz[q];
+                let (px, py, pz) = (tx[q] - nx[q] * nt, ty[q] - ny[q] * nt, tz[q] - nz[q] * nt);
+                let l = (px * px + py * py + pz * pz).sqrt();
+                o[10][q] = l;
+                deg[q] = g[q] <= 0.0 && l <= 1e-300;
+                let (ax, ay, az) = (px / l, py / l, pz / l);
+                let (bx, by, bz) = (
+                    ny[q] * az - nz[q] * ay,
+                    nz[q] * ax - nx[q] * az,
+                    nx[q] * ay - ny[q] * ax,
+                );
+                (o[4][q], o[5][q], o[6][q]) = (ax, ay, az);
+                (o[7][q], o[8][q], o[9][q]) = (bx, by, bz);
+                o[2][q] = ax * wx + ay * wy + az * wz;
+                o[3][q] = bx * wx + by * wy + bz * wz;
+            }
+            degenerate |= deg[..len].iter().any(|&d| d);
+            let r = start..start + len;
+            let outs: [&mut [f64]; 11] = [
+                &mut pen[r.clone()],
+                &mut rate[r.clone()],
+                &mut v1[r.clone()],
+                &mut v2[r.clone()],
+                &mut t1x[r.clone()],
+                &mut t1y[r.clone()],
+                &mut t1z[r.clone()],
+                &mut t2x[r.clone()],
+                &mut t2y[r.clone()],
+                &mut t2z[r.clone()],
+                &mut len_out[r],
+            ];
+            for (dst, src) in outs.into_iter().zip(&o) {
+                dst.copy_from_slice(&src[..len]);
+            }
+            start += len;
         }
         self.normal.normal_forces(pen, rate, fnorm);
         self.friction
             .friction_tangent_forces([v1, v2], fnorm, [&mut *f1, &mut *f2]);
         let [fx, fy, fz] = force;
         let (fx, fy, fz) = (&mut fx[..n], &mut fy[..n], &mut fz[..n]);
-        for q in 0..n {
-            let contact = gap[q] <= 0.0;
-            let (a, b, c) = (f1[q], f2[q], fnorm[q]);
-            let x = nx[q] * c + (t1x[q] * a + t2x[q] * b);
-            let y = ny[q] * c + (t1y[q] * a + t2y[q] * b);
-            let z = nz[q] * c + (t1z[q] * a + t2z[q] * b);
-            fx[q] = if contact { x } else { 0.0 };
-            fy[q] = if contact { y } else { 0.0 };
-            fz[q] = if contact { z } else { 0.0 };
+        // f = f_n n + T f_t, in groups of LANES points through local arrays as above
+        let mut start = 0;
+        while start < n {
+            let len = (n - start).min(LANES);
+            let lane =
+                |a: &[f64]| -> [f64; LANES] { std::array::from_fn(|l| a[start + l.min(len - 1)]) };
+            let (g, a, b, c) = (lane(gap), lane(f1), lane(f2), lane(fnorm));
+            let (nx, ny, nz) = (lane(nx), lane(ny), lane(nz));
+            let (t1x, t1y, t1z) = (lane(t1x), lane(t1y), lane(t1z));
+            let (t2x, t2y, t2z) = (lane(t2x), lane(t2y), lane(t2z));
+            let mut o = [[0.0; LANES]; 3];
+            for q in 0..LANES {
+                let contact = g[q] <= 0.0;
+                let (a, b, c) = (a[q], b[q], c[q]);
+                let x = nx[q] * c + (t1x[q] * a + t2x[q] * b);
+                let y = ny[q] * c + (t1y[q] * a + t2y[q] * b);
+                let z = nz[q] * c + (t1z[q] * a + t2z[q] * b);
+                o[0][q] = if contact { x } else { 0.0 };
+                o[1][q] = if contact { y } else { 0.0 };
+                o[2][q] = if contact { z } else { 0.0 };
+            }
+            fx[start..start + len].copy_from_slice(&o[0][..len]);
+            fy[start..start + len].copy_from_slice(&o[1][..len]);
+            fz[start..start + len].copy_from_slice(&o[2][..len]);
+            start += len;
         }
         degenerate
     }

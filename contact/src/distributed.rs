@@ -471,13 +471,18 @@ pub fn element_contact<const D: usize, S, NL, FL, Sh>(
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockQuadrature {
     blocks: usize,
-    /// `s_b` at point `q` in `shape[b · points + q]`.
-    shape: Vec<f64>,
+    /// `s_b` at the points `4j..4j + 4` in `shape4[j · blocks + b]` (the last group padded
+    /// with zeros): the points in groups of [`LANES`], summed in registers by
+    /// [`BlockPositions`].
+    shape4: Vec<[f64; LANES]>,
     /// `w_q s_b` at point `q` in `weighted_by_point[q · blocks + b]`.
     weighted_by_point: Vec<f64>,
     /// Weights `w_q` \[m or m²\].
     weight: Vec<f64>,
 }
+
+/// Points per group of the batch kernels ([`BlockPositions`]): one AVX2 vector of `f64`.
+const LANES: usize = 4;
 
 impl BlockQuadrature {
     /// The quadrature of the points `(s, w)`: the `blocks` shape values `s` and the weight × length
@@ -485,17 +490,18 @@ impl BlockQuadrature {
     pub fn new<'a>(blocks: usize, points: impl IntoIterator<Item = (&'a [f64], f64)>) -> Self {
         let pts: Vec<(&[f64], f64)> = points.into_iter().collect();
         let np = pts.len();
-        let mut shape = vec![0.0; blocks * np];
+        let groups = np.div_ceil(LANES);
+        let mut shape4 = vec![[0.0; LANES]; blocks * groups];
         let mut weighted_by_point = vec![0.0; blocks * np];
         for (q, (s, w)) in pts.iter().enumerate() {
             for b in 0..blocks {
-                shape[b * np + q] = s[b];
+                shape4[(q / LANES) * blocks + b][q % LANES] = s[b];
                 weighted_by_point[q * blocks + b] = w * s[b];
             }
         }
         Self {
             blocks,
-            shape,
+            shape4,
             weighted_by_point,
             weight: pts.iter().map(|p| p.1).collect(),
         }
@@ -512,31 +518,37 @@ impl BlockQuadrature {
     }
 }
 
-/// The positions `r_q = Σ_b s_b(q) e_b` and velocities of every point of a
-/// [`BlockQuadrature`] (structure of arrays, zeroed on entry), as a [`mbd_core::simd::Kernel`].
+/// The sums `x_q = Σ_b s_b(q) e_b` (`D` components) of every point of a [`BlockQuadrature`]
+/// into `out` (structure of arrays, one `Vec` per component, sized to the points), as a
+/// [`mbd_core::simd::Kernel`]: the positions `r_q` for `e` the element coordinates, the
+/// velocities `ṙ_q` for `e = ė`. The points go in groups of [`LANES`] whose `D` sums stay in
+/// registers over the blocks (the earlier loop added each block's term into the stored arrays,
+/// a load and a store per term); every sum takes its terms in the same order, block by block
+/// from `b = 0`, so both give the same bits.
 struct BlockPositions<'a, const D: usize> {
     quad: &'a BlockQuadrature,
     e: &'a [f64],
-    edot: &'a [f64],
-    position: &'a mut [Vec<f64>; D],
-    velocity: &'a mut [Vec<f64>; D],
+    out: &'a mut [Vec<f64>; D],
 }
 
 impl<const D: usize> mbd_core::simd::Kernel for BlockPositions<'_, D> {
     type Output = ();
     #[inline(always)]
     fn run(self) {
-        let np = self.quad.points();
-        for b in 0..self.quad.blocks {
-            let s = &self.quad.shape[b * np..(b + 1) * np];
-            for i in 0..D {
-                let (eb, vb) = (self.e[D * b + i], self.edot[D * b + i]);
-                for (r, &sq) in self.position[i].iter_mut().zip(s) {
-                    *r += sq * eb;
+        let (nb, np) = (self.quad.blocks, self.quad.points());
+        for (j, sg) in self.quad.shape4.chunks_exact(nb).enumerate() {
+            let mut acc = [[0.0; LANES]; D];
+            for (b, s) in sg.iter().enumerate() {
+                for (i, a) in acc.iter_mut().enumerate() {
+                    let eb = self.e[D * b + i];
+                    for l in 0..LANES {
+                        a[l] += s[l] * eb;
+                    }
                 }
-                for (v, &sq) in self.velocity[i].iter_mut().zip(s) {
-                    *v += sq * vb;
-                }
+            }
+            let (q0, q1) = (j * LANES, ((j + 1) * LANES).min(np));
+            for (o, a) in self.out.iter_mut().zip(&acc) {
+                o[q0..q1].copy_from_slice(&a[..q1 - q0]);
             }
         }
     }
@@ -544,12 +556,15 @@ impl<const D: usize> mbd_core::simd::Kernel for BlockPositions<'_, D> {
 
 /// The force-only [`element_contact`] (no Jacobians, no records) of an element with block shape
 /// functions and coordinates `e`, velocities `edot` (`D` per block), evaluated as a batch: the
-/// positions `r_q = Σ_b s_b(q) e_b` and velocities of all points, the surface's
-/// [`Surface::closest_values`] for all of them, the forces of [`crate::point_force_at`] of all of them
-/// as structure-of-arrays loops ([`ContactDim::batch_forces`]), then `Q_c = Σ w Sᵀ f` over the
-/// points in contact (vectorised over the blocks) with the moment and the reaction as in
-/// [`element_contact`] (Kerkkänen (4.43)–(4.45)). The same operations per point, and every sum
-/// over the points in the same order as [`element_contact`] with the points' [`BlockShape`]s.
+/// positions `r_q = Σ_b s_b(q) e_b` of all points and the surface's
+/// [`Surface::closest_values`] for all of them; when none is in contact (`gap ≤ 0`) the element
+/// ends there, with `Q_c`, the moment and the reaction zero and no active point, as
+/// [`element_contact`] ends it. Otherwise the velocities, the forces of
+/// [`crate::point_force_at`] of all points as structure-of-arrays loops
+/// ([`ContactDim::batch_forces`]), then `Q_c = Σ w Sᵀ f` over the points in contact
+/// (vectorised over the blocks) with the moment and the reaction as in [`element_contact`]
+/// (Kerkkänen (4.43)–(4.45)). The same operations per point, and every sum over the points in
+/// the same order as [`element_contact`] with the points' [`BlockShape`]s.
 pub fn element_forces_blocks<const D: usize, S, NL, FL>(
     surface: &S, normal: &NL, friction: &FL, quad: &BlockQuadrature, e: &[f64], edot: &[f64],
     out: &mut ElementContact<D>,
@@ -564,19 +579,27 @@ pub fn element_forces_blocks<const D: usize, S, NL, FL>(
     let (nb, np) = (quad.blocks, quad.points());
     let sc = &mut out.soa;
     for i in 0..D {
-        sc.position[i].clear();
         sc.position[i].resize(np, 0.0);
-        sc.velocity[i].clear();
         sc.velocity[i].resize(np, 0.0);
     }
     mbd_core::simd::dispatch(BlockPositions {
         quad,
         e,
-        edot,
-        position: &mut sc.position,
-        velocity: &mut sc.velocity,
+        out: &mut sc.position,
     });
     surface.closest_values(&sc.position, &mut sc.values);
+    sc.active.clear();
+    sc.active
+        .extend((0..np).filter(|&q| sc.values.gap[q] <= 0.0));
+    if sc.active.is_empty() {
+        // no point in contact: `out` stays as cleared (Q_c = 0, no moment, no reaction)
+        return;
+    }
+    mbd_core::simd::dispatch(BlockPositions {
+        quad,
+        e: edot,
+        out: &mut sc.velocity,
+    });
     <Dim<D>>::batch_forces(
         normal,
         friction,
@@ -589,9 +612,6 @@ pub fn element_forces_blocks<const D: usize, S, NL, FL>(
     // sums of the point-by-point loop), vectorised over the blocks
     sc.acc.clear();
     sc.acc.resize(D * nb, 0.0);
-    sc.active.clear();
-    sc.active
-        .extend((0..np).filter(|&q| sc.values.gap[q] <= 0.0));
     mbd_core::simd::dispatch(BlockScatter::<D> {
         quad,
         active: &sc.active,
@@ -615,7 +635,11 @@ pub fn element_forces_blocks<const D: usize, S, NL, FL>(
 }
 
 /// `acc[i · blocks + b] = Σ_q w_q s_b(q) f_i(q)` over the `active` points in their order, as
-/// a [`mbd_core::simd::Kernel`] (the innermost loop runs over the blocks).
+/// a [`mbd_core::simd::Kernel`] (the innermost loop runs over the blocks). With
+/// [`MAX_BLOCKS`] blocks (the plate) the `D × MAX_BLOCKS` sums stay in registers over the
+/// points (the general loop adds each point's term into the stored sums, component by
+/// component); every sum takes its terms in the same order, point by point, so both give the
+/// same bits.
 struct BlockScatter<'a, const D: usize> {
     quad: &'a BlockQuadrature,
     active: &'a [usize],
@@ -628,6 +652,25 @@ impl<const D: usize> mbd_core::simd::Kernel for BlockScatter<'_, D> {
     #[inline(always)]
     fn run(self) {
         let nb = self.quad.blocks;
+        if nb == MAX_BLOCKS {
+            let mut sums = [[0.0; MAX_BLOCKS]; D];
+            for &q in self.active {
+                let ws: &[f64; MAX_BLOCKS] = self.quad.weighted_by_point
+                    [q * MAX_BLOCKS..(q + 1) * MAX_BLOCKS]
+                    .try_into()
+                    .expect("MAX_BLOCKS values");
+                for (s, fi) in sums.iter_mut().zip(self.force) {
+                    let f = fi[q];
+                    for (a, &w) in s.iter_mut().zip(ws) {
+                        *a += f * w;
+                    }
+                }
+            }
+            for (acc, s) in self.acc.chunks_exact_mut(nb).zip(&sums) {
+                acc.copy_from_slice(s);
+            }
+            return;
+        }
         for (i, acc) in self.acc.chunks_exact_mut(nb).enumerate() {
             let fi = &self.force[i];
             for &q in self.active {

@@ -24,7 +24,9 @@
 //! 0.02 s) shows in them first. The planar drive cannot take Model 2 itself (its belt is 20 %
 //! shorter than the path; the planar drive accepts 10 %), hence the wide-pulley case as the
 //! common ground. Run: `cargo bench --profile release -p drives --bench plate_belt` (about 40 s
-//! on a free core); BENCHMARKS.md records the figures.
+//! on a free core); BENCHMARKS.md records the figures. `PLATE_BENCH_WINDOWS`, a comma-separated
+//! subset of `start`, `steady`, `plate3`, `plate9`, `planar` (default: all), runs only those
+//! windows (to profile one belt alone; the ratios need `plate3` or `plate9` with `planar`).
 
 use ancf::belt_drive::{BeltDrive, InitialOptions, SimulationConfig};
 use ancf::plate::belt_drive::{PlateBeltDrive, PlateDriveSpec};
@@ -118,8 +120,26 @@ fn counts(s: &Stats) -> String {
     )
 }
 
+/// Whether the window `name` runs: listed in `PLATE_BENCH_WINDOWS` (comma-separated), or that
+/// variable unset.
+fn runs(name: &str) -> bool {
+    std::env::var("PLATE_BENCH_WINDOWS")
+        .map(|w| w.split(',').any(|x| x.trim() == name))
+        .unwrap_or(true)
+}
+
 fn main() {
-    // Model 2 as the study runs it: belt at rest on the pulleys, driver ramped from 0
+    if runs("start") {
+        model2_start();
+    }
+    if runs("steady") {
+        model2_steady();
+    }
+    wide_case();
+}
+
+/// Model 2 as the study runs it: belt at rest on the pulleys, driver ramped from 0.
+fn model2_start() {
     let d = PlateBeltDrive::new(PlateDriveSpec::kerkkanen_model2()).expect("Model 2");
     let init = d
         .initial_state(&InitialOptions::default())
@@ -134,8 +154,10 @@ fn main() {
         "Model 2 study start (360 + 1 coordinates), 0-0.05 s: {w} ({})",
         counts(&s)
     );
+}
 
-    // Model 2, steady operation
+/// Model 2 in steady operation: 500 rad/s, 2 N·m, the belt started at 25 m/s.
+fn model2_steady() {
     let mut spec = PlateDriveSpec::kerkkanen_model2();
     spec.pulleys[0].motion = Motion::speed(Signal::constant(500.0));
     spec.pulleys[1].motion = Motion::load(0.00025, Signal::constant(2.0));
@@ -149,9 +171,13 @@ fn main() {
         "Model 2 steady 500 rad/s, 2 N m, 0.01 s: {w} ({})",
         counts(&s)
     );
+}
 
-    // wide-pulley case, plate (9 × 3, the default, and 9 × 9 contact points per element) vs
-    // planar, alternately
+/// The wide-pulley case, plate (9 × 3, the default, and 9 × 9 contact points per element) and
+/// planar, alternately, and the ratios.
+fn wide_case() {
+    let run_plate = [runs("plate3"), runs("plate9")];
+    let run_planar = runs("planar");
     let p = wide_pulley_case(100.0, 0.5);
     let planar = p
         .planar_equivalent(0.01)
@@ -177,6 +203,9 @@ fn main() {
             symbolic: 0,
         }; 2];
         for (k, (d3, i3)) in plates.iter().enumerate() {
+            if !run_plate[k] {
+                continue;
+            }
             let (w, s3, end) = timed(
                 d3,
                 State::new(0.0, i3.q.clone(), vec![0.0; d3.n_q()]),
@@ -193,6 +222,9 @@ fn main() {
             );
             w3[k] = w;
         }
+        if !run_planar {
+            continue;
+        }
         let (w2, s2, end) = timed(
             &d2,
             State::new(0.0, i2.q.clone(), vec![0.0; d2.n_q()]),
@@ -204,11 +236,14 @@ fn main() {
             counts(&s2),
             d2.pulley_speed(1, end.t, &end.v)
         );
-        for k in 0..2 {
+        for k in (0..2).filter(|&k| run_plate[k]) {
             ratios[k].push((w3[k].cpu / w2.cpu, w3[k].wall / w2.wall));
         }
     }
     for (k, name) in ["9 x 3 (the default)", "9 x 9"].iter().enumerate() {
+        if ratios[k].is_empty() {
+            continue;
+        }
         for (what, pick) in [("CPU", 0), ("wall", 1)] {
             let r: Vec<f64> = ratios[k]
                 .iter()

@@ -36,26 +36,33 @@ pub struct ThinPlate {
     membrane: MembranePoints,
 }
 
+/// Points per group of [`ThinPlate`]'s membrane forces: one AVX2 vector of `f64`.
+const LANES: usize = 4;
+
 /// The energy quadrature's first derivatives laid out for [`ThinPlate`]'s membrane forces over
-/// all Gauss points at once: `dx[k·n + g] = ∂S_k/∂x` at point `g` (`n` points), `dy` the same
-/// for `∂S_k/∂y`, and `wd[2g + p][k] = −w_g D_p[k]` (`D_0 = S_x`, `D_1 = S_y`, `w_g` the weight
-/// × area), the factor of the scatter `Q_e += −w_g D_pᵀ ∂W/∂r_p` (Kerkkänen (2.20)).
+/// the Gauss points in groups of [`LANES`]: `dx[12 j + k][l] = ∂S_k/∂x` at point `g = 4j + l`
+/// (the last group padded with zeros), `dy` the same for `∂S_k/∂y`, and `wd[2g + p][k] =
+/// −w_g D_p[k]` (`D_0 = S_x`, `D_1 = S_y`, `w_g` the weight × area), the factor of the scatter
+/// `Q_e += −w_g D_pᵀ ∂W/∂r_p` (Kerkkänen (2.20)).
 #[derive(Debug, Clone, PartialEq)]
 struct MembranePoints {
-    dx: Vec<f64>,
-    dy: Vec<f64>,
+    dx: Vec<[f64; LANES]>,
+    dy: Vec<[f64; LANES]>,
     wd: Vec<[f64; 12]>,
 }
 
 impl MembranePoints {
     fn new(points: &[(ShapeValues, f64)]) -> Self {
-        let n = points.len();
-        let (mut dx, mut dy) = (vec![0.0; 12 * n], vec![0.0; 12 * n]);
-        let mut wd = Vec::with_capacity(2 * n);
+        let groups = points.len().div_ceil(LANES);
+        let (mut dx, mut dy) = (
+            vec![[0.0; LANES]; 12 * groups],
+            vec![[0.0; LANES]; 12 * groups],
+        );
+        let mut wd = Vec::with_capacity(2 * points.len());
         for (g, (sv, w)) in points.iter().enumerate() {
             for k in 0..12 {
-                dx[k * n + g] = sv.sx[k];
-                dy[k * n + g] = sv.sy[k];
+                dx[12 * (g / LANES) + k][g % LANES] = sv.sx[k];
+                dy[12 * (g / LANES) + k][g % LANES] = sv.sy[k];
             }
             // the scatter's `scale · D_p[k]` with scale = −w, the same product
             wd.push(std::array::from_fn(|k| -w * sv.sx[k]));
@@ -203,68 +210,81 @@ impl ThinPlate {
     }
 
     /// Membrane forces `Q_e = −Σ_g w_g [S_x; S_y]ᵀ ∂W_m/∂(r_x, r_y)` (Kerkkänen (2.20) with the
-    /// membrane density (4.16)) over all Gauss points at once, in chunks of 32 points: the
+    /// membrane density (4.16)) over the Gauss points in groups of [`LANES`]: per group the
     /// gathers `r_x = S_x e`, `r_y = S_y e` and the density's gradient (`N_x r_x + ½ N_xy r_y`,
     /// `N_y r_y + ½ N_xy r_x` with `N_x = C(2ε_xx + 2ν ε_yy)`, `N_y = C(2ε_yy + 2ν ε_xx)`,
-    /// `N_xy = 4C(1 − ν) ε_xy`, `C = E h / (2(1 − ν²))`) as loops over the points (vectorised),
-    /// the scatter as loops over the 12 shape functions. Each point's quantities and each
-    /// force entry's sum over the points come out of the same operations in the same order as
-    /// the point-by-point pass (`ThinPlate::elastic_forces_pointwise`), so the two give the
-    /// same bits.
+    /// `N_xy = 4C(1 − ν) ε_xy`, `C = E h / (2(1 − ν²))`) one point per vector lane, eight
+    /// groups at a time, then their scatter into the `3 × 12` force sums, held as nine vectors
+    /// that stay in registers over all the points (the earlier chunked loop of this kernel kept
+    /// its sums and the gathered slopes in memory, a load and a store per term). Each point's quantities and each force entry's sum over the
+    /// points come out of the same operations in the same order as the point-by-point pass
+    /// (`ThinPlate::elastic_forces_pointwise`): the gathers over `k = 0..12`, the sums over the
+    /// points, then `S_x` before `S_y`; so the two give the same bits.
     #[inline(always)]
     fn membrane_forces_batch(&self, e: &[f64], q: &mut [f64]) {
-        const CH: usize = 32;
         let m = &self.membrane;
         let np = self.points.len();
         let (ym, nu, h) = (self.material.young, self.material.poisson, self.thickness);
         let cm = ym * h / (2.0 * (1.0 - nu * nu));
-        // q transposed: qt[c][k] = Q[3k + c]
-        let mut qt = [[0.0; 12]; 3];
-        let mut start = 0;
-        while start < np {
-            let len = (np - start).min(CH);
-            let mut u = [[0.0; CH]; 6];
-            for k in 0..12 {
-                let dxk = &m.dx[k * np + start..k * np + start + len];
-                let dyk = &m.dy[k * np + start..k * np + start + len];
-                for c in 0..3 {
-                    let ek = e[3 * k + c];
-                    for (ug, d) in u[c][..len].iter_mut().zip(dxk) {
-                        *ug += d * ek;
+        let e: &[f64; PLATE_NDOF] = e[..PLATE_NDOF].try_into().expect("36 coordinates");
+        // the force sums, q transposed in vectors: qt[c][v][i] = Q[3(4v + i) + c]
+        let mut qt = [[[0.0; LANES]; 3]; 3];
+        let groups = m.dx.len() / 12;
+        // CHUNK groups at a time: their gradients first, then their scatter
+        const CHUNK: usize = 8;
+        for j0 in (0..groups).step_by(CHUNK) {
+            let nj = (groups - j0).min(CHUNK);
+            let mut grs = [[[0.0; LANES]; 6]; CHUNK];
+            for (jj, gr) in grs.iter_mut().enumerate().take(nj) {
+                let j = j0 + jj;
+                let (gx, gy) = (&m.dx[12 * j..12 * j + 12], &m.dy[12 * j..12 * j + 12]);
+                // r_x, r_y of the group's points: u[c] = r_x[c], u[3 + c] = r_y[c], one per lane
+                let mut u = [[0.0; LANES]; 6];
+                for k in 0..12 {
+                    let (dxk, dyk) = (&gx[k], &gy[k]);
+                    for c in 0..3 {
+                        let ek = e[3 * k + c];
+                        for l in 0..LANES {
+                            u[c][l] += dxk[l] * ek;
+                            u[3 + c][l] += dyk[l] * ek;
+                        }
                     }
-                    for (ug, d) in u[3 + c][..len].iter_mut().zip(dyk) {
-                        *ug += d * ek;
+                }
+                for l in 0..LANES {
+                    let rx = [u[0][l], u[1][l], u[2][l]];
+                    let ry = [u[3][l], u[4][l], u[5][l]];
+                    let [nx, ny, nxy] = energy::membrane_resultants(&rx, &ry, cm, nu);
+                    for c in 0..3 {
+                        // `0.0 +`: the pointwise pass adds into a zeroed gradient
+                        gr[c][l] = 0.0 + (nx * rx[c] + 0.5 * nxy * ry[c]);
+                        gr[3 + c][l] = 0.0 + (ny * ry[c] + 0.5 * nxy * rx[c]);
                     }
                 }
             }
-            let mut gr = [[0.0; CH]; 6];
-            for i in 0..len {
-                let rx = [u[0][i], u[1][i], u[2][i]];
-                let ry = [u[3][i], u[4][i], u[5][i]];
-                let [nx, ny, nxy] = energy::membrane_resultants(&rx, &ry, cm, nu);
-                for c in 0..3 {
-                    // `0.0 +`: the pointwise pass adds into a zeroed gradient
-                    gr[c][i] = 0.0 + (nx * rx[c] + 0.5 * nxy * ry[c]);
-                    gr[3 + c][i] = 0.0 + (ny * ry[c] + 0.5 * nxy * rx[c]);
-                }
-            }
-            for i in 0..len {
-                let g = start + i;
-                for p in 0..2 {
-                    let wd = &m.wd[2 * g + p];
-                    for (c, row) in qt.iter_mut().enumerate() {
-                        let gv = gr[3 * p + c][i];
-                        for (r, w) in row.iter_mut().zip(wd) {
-                            *r += w * gv;
+            // the scatter, point by point and S_x before S_y, into the 3 × 3 vector sums
+            for (jj, gr) in grs.iter().enumerate().take(nj) {
+                let j = j0 + jj;
+                for l in 0..LANES.min(np - LANES * j) {
+                    let g = LANES * j + l;
+                    for p in 0..2 {
+                        let wd = &m.wd[2 * g + p];
+                        // constant indices, so that the sums stay in registers
+                        #[allow(clippy::needless_range_loop)]
+                        for c in 0..3 {
+                            let gv = gr[3 * p + c][l];
+                            for v in 0..3 {
+                                for i in 0..LANES {
+                                    qt[c][v][i] += wd[LANES * v + i] * gv;
+                                }
+                            }
                         }
                     }
                 }
             }
-            start += len;
         }
         for k in 0..12 {
             for c in 0..3 {
-                q[3 * k + c] = qt[c][k];
+                q[3 * k + c] = qt[c][k / LANES][k % LANES];
             }
         }
     }

@@ -572,3 +572,117 @@ fn batch_forces_of_the_plate_laws_equal_the_point_by_point_pass() {
         assert_eq!(batch.reaction, reference.reaction, "ω = {omega}");
     }
 }
+
+// Reference (the previous formulation): `element_contact`'s force-only pass, one point at a
+// time, on an element of `MAX_BLOCKS` = 12 block shape functions (the plate's count, which
+// takes the register-held sums of `BlockScatter`): bilinear corner functions `N_i` and the
+// bubbles `N_i ξ(1 − ξ)`, `N_i η(1 − η)` with small coordinates, over a 9 × 3 grid, the
+// element moved out radially by `lift` so that all (0), part (3 mm: the points beyond the
+// crowned cylinder's radius are separated) or none (2 cm: the early exit of
+// `element_forces_blocks`) of its points are in contact. Positions summed as the batch sums
+// them (`r = Σ_b s_b e_b` from b = 0): the forces, moment, reaction and active count must be
+// equal to the last bit.
+#[test]
+fn batch_forces_of_twelve_blocks_equal_the_point_by_point_pass_in_and_out_of_contact() {
+    use crate::friction::FrictionSpec;
+    use crate::normal::NormalSpec;
+    let normal = NormalSpec::penalty(1e9, 0.0, 1e3);
+    let friction = FrictionSpec::CreepRate {
+        mu: 0.6,
+        creep: 2e5,
+    };
+    let (e4, edot4) = pressed_element();
+    let (rx, ry) = (GaussRule::new(9), GaussRule::new(3));
+    let area = 0.03 * 0.025;
+    let mut shapes = Vec::new();
+    let mut weights = Vec::new();
+    for (eta, we) in ry.iter() {
+        for (xi, wx) in rx.iter() {
+            let n = [
+                (1.0 - xi) * (1.0 - eta),
+                xi * (1.0 - eta),
+                (1.0 - xi) * eta,
+                xi * eta,
+            ];
+            let mut v = [0.0; MAX_BLOCKS];
+            for i in 0..4 {
+                v[i] = n[i];
+                v[4 + i] = n[i] * xi * (1.0 - xi);
+                v[8 + i] = n[i] * eta * (1.0 - eta);
+            }
+            shapes.push(v);
+            weights.push(wx * we * area);
+        }
+    }
+    let quad = BlockQuadrature::new(
+        MAX_BLOCKS,
+        shapes.iter().zip(&weights).map(|(s, &w)| (&s[..], w)),
+    );
+    let surf = pulley(25.0);
+    let mut counts = Vec::new();
+    for lift in [0.0, 3e-3, 2e-2] {
+        let mut e = [0.0; 3 * MAX_BLOCKS];
+        let mut edot = [0.0; 3 * MAX_BLOCKS];
+        for b in 0..4 {
+            let p = Vector3::new(e4[3 * b], e4[3 * b + 1], e4[3 * b + 2]);
+            let radial = Vector3::new(p.x, p.y, 0.0).normalize() * lift;
+            for i in 0..3 {
+                e[3 * b + i] = p[i] + radial[i];
+                edot[3 * b + i] = edot4[3 * b + i];
+            }
+        }
+        for b in 4..MAX_BLOCKS {
+            for i in 0..3 {
+                e[3 * b + i] = 1e-3 * ((b * 3 + i) as f64 * 0.7).sin();
+                edot[3 * b + i] = 1e-2 * ((b * 3 + i) as f64 * 1.3).cos();
+            }
+        }
+        let points: Vec<QuadPoint<3, BlockShape>> = shapes
+            .iter()
+            .zip(&weights)
+            .map(|(v, &w)| {
+                let (mut p, mut u) = (Point3::origin(), Vector3::zeros());
+                for b in 0..MAX_BLOCKS {
+                    for i in 0..3 {
+                        p[i] += v[b] * e[3 * b + i];
+                        u[i] += v[b] * edot[3 * b + i];
+                    }
+                }
+                QuadPoint {
+                    position: p,
+                    velocity: u,
+                    shape: BlockShape {
+                        values: *v,
+                        blocks: MAX_BLOCKS,
+                    },
+                    weight: w,
+                }
+            })
+            .collect();
+        let mut reference = ElementContact::<3>::new(3 * MAX_BLOCKS);
+        element_contact(
+            &surf,
+            &normal,
+            &friction,
+            points,
+            false,
+            &mut reference,
+            None,
+        );
+        let mut batch = ElementContact::<3>::new(3 * MAX_BLOCKS);
+        // twice through the same buffers: the second call must not see the first one's sums
+        for _ in 0..2 {
+            element_forces_blocks(&surf, &normal, &friction, &quad, &e, &edot, &mut batch);
+            assert_eq!(batch.active_points, reference.active_points, "lift {lift}");
+            let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&batch.q), bits(&reference.q), "lift {lift}");
+            assert_eq!(batch.moment, reference.moment, "lift {lift}");
+            assert_eq!(batch.reaction, reference.reaction, "lift {lift}");
+        }
+        counts.push(reference.active_points);
+    }
+    println!("points in contact at the three lifts: {counts:?} of 27");
+    assert_eq!(counts[0], 27);
+    assert!(counts[1] > 0 && counts[1] < 27, "{counts:?}");
+    assert_eq!(counts[2], 0);
+}
