@@ -356,8 +356,7 @@ impl<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized> mbd_core::simd::Kernel
         let mut start = 0;
         while start < n {
             let len = (n - start).min(LANES);
-            let lane =
-                |a: &[f64]| -> [f64; LANES] { std::array::from_fn(|l| a[start + l.min(len - 1)]) };
+            let lane = |a: &[f64]| crate::lanes::gather::<LANES>(a, start, len);
             let (g, nx, ny, nz) = (lane(gap), lane(nx), lane(ny), lane(nz));
             let (tx, ty, tz) = (lane(tx), lane(ty), lane(tz));
             let (ux, uy, uz) = (lane(ux), lane(uy), lane(uz));
@@ -414,8 +413,7 @@ impl<NL: NormalLaw + ?Sized, FL: FrictionLaw + ?Sized> mbd_core::simd::Kernel
         let mut start = 0;
         while start < n {
             let len = (n - start).min(LANES);
-            let lane =
-                |a: &[f64]| -> [f64; LANES] { std::array::from_fn(|l| a[start + l.min(len - 1)]) };
+            let lane = |a: &[f64]| crate::lanes::gather::<LANES>(a, start, len);
             let (g, a, b, c) = (lane(gap), lane(f1), lane(f2), lane(fnorm));
             let (nx, ny, nz) = (lane(nx), lane(ny), lane(nz));
             let (t1x, t1y, t1z) = (lane(t1x), lane(t1y), lane(t1z));

@@ -41,6 +41,7 @@ pub mod distributed;
 pub mod friction;
 pub mod geometry;
 pub mod lagrange;
+mod lanes;
 pub mod normal;
 pub mod point;
 pub mod quadrature;

@@ -187,8 +187,7 @@ impl mbd_core::simd::Kernel for CylinderValues<'_> {
         let mut start = 0;
         while start < n {
             let len = (n - start).min(LANES);
-            let lane =
-                |a: &[f64]| -> [f64; LANES] { std::array::from_fn(|l| a[start + l.min(len - 1)]) };
+            let lane = |a: &[f64]| crate::lanes::gather::<LANES>(a, start, len);
             let (x, y, z) = (lane(px), lane(py), lane(pz));
             let mut o = [[0.0; LANES]; 10];
             for l in 0..LANES {
