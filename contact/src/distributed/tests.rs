@@ -471,6 +471,17 @@ fn pair_sums_per_pair_equal_the_point_by_point_sums() {
     );
 }
 
+/// The plate belt's contact laws: linear penalty with damping and the creep-rate friction.
+fn plate_laws() -> (crate::normal::NormalSpec, crate::friction::FrictionSpec) {
+    (
+        crate::normal::NormalSpec::penalty(1e9, 0.0, 1e3),
+        crate::friction::FrictionSpec::CreepRate {
+            mu: 0.6,
+            creep: 2e5,
+        },
+    )
+}
+
 // Reference (the previous formulation): `element_contact`'s force-only pass, one point at a
 // time through `point_force` (closest point, basis, normal law, friction law, `Sᵀ f`), on the
 // plate belt's laws (linear penalty with damping `NormalSpec`, the creep-rate `FrictionSpec`)
@@ -481,13 +492,7 @@ fn pair_sums_per_pair_equal_the_point_by_point_sums() {
 // slip of a few cm/s), on the saturated branch (200 rad/s) and in between.
 #[test]
 fn batch_forces_of_the_plate_laws_equal_the_point_by_point_pass() {
-    use crate::friction::FrictionSpec;
-    use crate::normal::NormalSpec;
-    let normal = NormalSpec::penalty(1e9, 0.0, 1e3);
-    let friction = FrictionSpec::CreepRate {
-        mu: 0.6,
-        creep: 2e5,
-    };
+    let (normal, friction) = plate_laws();
     let (e, edot) = pressed_element();
     let (rx, ry) = (GaussRule::new(9), GaussRule::new(3));
     let area = 0.03 * 0.025;
@@ -584,13 +589,7 @@ fn batch_forces_of_the_plate_laws_equal_the_point_by_point_pass() {
 // equal to the last bit.
 #[test]
 fn batch_forces_of_twelve_blocks_equal_the_point_by_point_pass_in_and_out_of_contact() {
-    use crate::friction::FrictionSpec;
-    use crate::normal::NormalSpec;
-    let normal = NormalSpec::penalty(1e9, 0.0, 1e3);
-    let friction = FrictionSpec::CreepRate {
-        mu: 0.6,
-        creep: 2e5,
-    };
+    let (normal, friction) = plate_laws();
     let (e4, edot4) = pressed_element();
     let (rx, ry) = (GaussRule::new(9), GaussRule::new(3));
     let area = 0.03 * 0.025;
