@@ -10,6 +10,7 @@ mod fead_meaning;
 mod fead_steady_means;
 mod fead_step;
 mod fead_sweep;
+mod flowing_creep;
 mod friction_default;
 mod issue35_inputs;
 mod layout;

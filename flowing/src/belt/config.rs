@@ -257,6 +257,39 @@ pub enum BendingForce {
     CoRotated,
 }
 
+/// How the flowing model takes the material velocity of its contact nodes, whose slip
+/// against the pulley drives the friction (Ribaric (5.10), `V = v b + T ż`, `b = e_t + T_,s z`;
+/// issue 34 item 3). Selectable in `[models.flowing]` as `contact_velocity`.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema, Default,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactVelocity {
+    /// `T_,s` of Ribaric App. A: the three-point difference of each Cartesian component along
+    /// the path, the operator of the whole model. At a tangent point it mixes the wrap's
+    /// radial deflection (the change of penetration, rotated by the wrap's turn) into the
+    /// tangential rate, a spurious slip of about `v Δd/(2R)` at the inlet and lift-off nodes
+    /// that a near-Coulomb law answers with a friction force there: on Table 6-1 at 10 N m
+    /// with `tanh_slip` at 0.05 mm/s the speed loss is 0.0570 rad/s on the default mesh
+    /// against Grashof's creep 0.0824 (−31 %), 0.0775 with 5 mm span elements. The default:
+    /// Table 6-1's figure (Δω = 0.18630 rad/s at κ = 40 s/m) is taken with it.
+    #[default]
+    Ribaric,
+    /// The node's rate taken on its two elements' chords ([`super::BeltFe::chord_rate_rows`]):
+    /// each chord's difference quotient split into its stretch and its turn, the two
+    /// tributary-weighted and set in the node's frame, so that the tangential material
+    /// velocity is `v (1 + ε)` with `ε` the mean strain the node's two elements carry (mass
+    /// conservation on the mesh). Only the contact rows change (their slip and its tangent,
+    /// and the contact's generalized force on `s_b`). Measured 2026-12-07 (Table 6-1, 10 N m,
+    /// `tanh_slip` at 0.05 mm/s; BENCHMARKS.md): 0.0829 rad/s on the default mesh (+0.6 % on
+    /// Grashof), 0.0842 on 5 mm span elements; with [`ViscousForce::Chord`] as well 0.0818 and
+    /// 0.0822 (−0.7 %, −0.2 %): the creep no longer depends on the span mesh. At κ = 40 s/m
+    /// Δω = 0.18934 rad/s with the torque / power residuals unchanged (0.24 % / −0.42 %); on
+    /// the default fead drive at 800 rpm 0.75 % / −1.47 % (the default: 0.72 % / −1.06 %).
+    /// Not the default: it moves Table 6-1's figure by +1.6 % (issue 34, open).
+    Chord,
+}
+
 /// The flowing-material model's settings (Ribaric (5.14)).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema, Default)]
 #[serde(default, deny_unknown_fields)]
@@ -273,6 +306,8 @@ pub struct FlowingSettings {
     pub equations: BeltEquations,
     /// The elements' bending moment (default: linear, Ribaric (5.5)).
     pub bending: BendingForce,
+    /// The contact nodes' material velocity (default: Ribaric's `T_,s`, (5.10)).
+    pub contact_velocity: ContactVelocity,
 }
 
 impl Validate for FlowingSettings {

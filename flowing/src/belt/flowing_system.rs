@@ -123,7 +123,9 @@
 //! ([`FlowingBelt::element_forces`]); the power these damping forces take from the belt is
 //! [`FlowingBelt::damping_dissipation`].
 
-use super::config::{AxialForce, BeltEquations, BendingForce, FlowingSettings, ViscousForce};
+use super::config::{
+    AxialForce, BeltEquations, BendingForce, ContactVelocity, FlowingSettings, ViscousForce,
+};
 use super::contact::{NodeContact, NodeMotion, PulleyFrame, correction_limit, node_contact};
 use super::coordinates::{ArmState, DriveCoordinates};
 use super::model::{BeltFe, BendElement, FlowingBasis, NODE_DOFS, chord_tensions};
@@ -392,6 +394,13 @@ impl FlowingBelt {
             Vec::new()
         };
         let mut belt = Self::on(fe, basis, drive.motions(), drive.arm().copied())?;
+        if settings.contact_velocity == ContactVelocity::Chord {
+            // the contact rows' T_,s on their elements' chords (the slip, its tangent and the
+            // contact's force on s_b all read the row's ts)
+            for r in &mut belt.rows {
+                r.ts = belt.fe.chord_rate_rows(belt.basis.t.as_ref(), r.node);
+            }
+        }
         belt.bend = bend;
         belt.exact_axial = settings.axial_force == AxialForce::CoRotated;
         belt.chord_viscous = chord;

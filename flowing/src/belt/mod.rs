@@ -22,7 +22,8 @@ mod statics;
 pub mod wave;
 
 pub use config::{
-    AxialForce, BeltEquations, BeltMesh, BeltReduction, BendingForce, FlowingSettings, ViscousForce,
+    AxialForce, BeltEquations, BeltMesh, BeltReduction, BendingForce, ContactVelocity,
+    FlowingSettings, ViscousForce,
 };
 pub use coordinates::DriveCoordinates;
 pub use flowing_system::{FlowingBelt, NodeReport};

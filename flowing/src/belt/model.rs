@@ -28,7 +28,7 @@ use crate::error::{FlowError, invalid};
 use crate::grid::{FlowGrid, Topology};
 use crate::{FlowLine, mode_shape_derivatives};
 use belt::{BeltPath, Drive, tributary_lengths};
-use faer::Mat;
+use faer::{Mat, MatRef};
 use fe_model::element::{Element, Frame2d, Frame2dSection, MassKind, MatrixKind};
 use reduction::{DofPartition, Method, ModeSelection, build_basis};
 
@@ -274,6 +274,50 @@ impl BeltFe {
             e[NODE_DOFS * i + 1] = k[1];
         }
         e
+    }
+
+    /// The path derivative of the deflection field `t` (`3N × m`, columns in the node DOFs
+    /// `(x, y, θ)`) at `node`, taken on the node's two elements' chords: the `(x, y)` rows
+    /// (`2 × m`) of `δ_,s` for [`super::ContactVelocity::Chord`].
+    ///
+    /// For each element `e` at the node (chord `û_e`, normal `n̂_e = ẑ × û_e`, length `l_e`) the
+    /// difference quotient `g_e = (δ_j − δ_i)/l_e` splits into its stretch `û_e·g_e` (the
+    /// element's linear axial strain, Ribaric (5.5)) and its turn `n̂_e·g_e`; both are averaged
+    /// with the tributary weights `l_e/(l₋ + l₊)` and set in the node's frame `(t̂, ẑ × t̂)`:
+    /// `δ_,s = ε̄ t̂ + φ̄ (ẑ × t̂)`. So the tangential material rate `v (1 + t̂·δ_,s)` of Ribaric
+    /// (5.10) is `v (1 + ε̄)`, the mean strain the elements carry (mass conservation on the
+    /// mesh), also at a tangent point, where the Cartesian difference of App. A rotates the
+    /// wrap's radial deflection into the tangent. Exact (zero) for a rigid translation; equal
+    /// to App. A's three-point difference on a straight uniform run.
+    pub fn chord_rate_rows(&self, t: MatRef<'_, f64>, node: usize) -> Mat<f64> {
+        let nn = self.n_nodes();
+        let (prev, next) = ((node + nn - 1) % nn, (node + 1) % nn);
+        let chord = |a: usize, b: usize| {
+            let (pa, pb) = (self.position[a], self.position[b]);
+            let (dx, dy) = (pb[0] - pa[0], pb[1] - pa[1]);
+            let l = dx.hypot(dy);
+            ([dx / l, dy / l], l)
+        };
+        let sides = [
+            (prev, node, chord(prev, node)),
+            (node, next, chord(node, next)),
+        ];
+        let total: f64 = sides.iter().map(|s| s.2.1).sum();
+        let tan = self.tangent[node];
+        let nrm = [-tan[1], tan[0]];
+        Mat::from_fn(2, t.ncols(), |r, j| {
+            let (mut stretch, mut turn) = (0.0, 0.0);
+            for &(a, b, (u, l)) in &sides {
+                let g = [
+                    (t[(NODE_DOFS * b, j)] - t[(NODE_DOFS * a, j)]) / l,
+                    (t[(NODE_DOFS * b + 1, j)] - t[(NODE_DOFS * a + 1, j)]) / l,
+                ];
+                let w = l / total;
+                stretch += w * (u[0] * g[0] + u[1] * g[1]);
+                turn += w * (u[0] * g[1] - u[1] * g[0]);
+            }
+            stretch * tan[r] + turn * nrm[r]
+        })
     }
 
     /// Pulley index of each contact node (`None` for free nodes).
@@ -825,6 +869,88 @@ pub(crate) mod tests {
             rate[3 * i + 1] = phi * tan[i][0];
         }
         (delta, rate)
+    }
+
+    // chord_rate_rows against a second formulation: the strain and the turn of the deformed
+    // chords themselves. A deflection field `ε δ` (every node moved, wrap and span nodes
+    // alike) changes each element's length by `l ε û·g` and turns it by `ε n̂·g` to first order,
+    // so the rows' tangential part must be the tributary mean of the chords' stretches
+    // `(|Δx + ε Δδ| − l)/(ε l)` and the normal part the mean of their turns, to O(ε); a rigid
+    // translation gives exactly zero, and on a straight uniform run the rows are App. A's
+    // three-point difference (FlowingBasis::ts) to round-off.
+    #[test]
+    fn chord_rates_are_the_elements_stretch_and_turn() {
+        let fe = BeltFe::new(&crate::belt::table_6_1(0.0, 0.0), &BeltMesh::default()).unwrap();
+        let n = fe.n_nodes();
+        // a smooth field with a penetration-like radial step on the wraps, and a translation
+        let field = Mat::from_fn(3 * n, 2, |r, j| {
+            let (i, c) = (r / 3, r % 3);
+            if c == 2 {
+                return 0.0;
+            }
+            let s = fe.s[i];
+            let (t, nrm) = (fe.tangent[i], [-fe.tangent[i][1], fe.tangent[i][0]]);
+            match j {
+                0 => {
+                    let u = 1e-3 * (7.0 * s).sin();
+                    let w = if fe.curvature[i] != [0.0, 0.0] {
+                        -8e-5
+                    } else {
+                        0.0
+                    };
+                    u * t[c] + w * nrm[c]
+                }
+                _ => [0.3, -0.7][c],
+            }
+        });
+        let eps = 1e-6;
+        let mut worst: f64 = 0.0;
+        for i in 0..n {
+            let rows = fe.chord_rate_rows(field.as_ref(), i);
+            // translation: exactly zero
+            assert_eq!((rows[(0, 1)], rows[(1, 1)]), (0.0, 0.0), "node {i}");
+            let (t, nrm) = (fe.tangent[i], [-fe.tangent[i][1], fe.tangent[i][0]]);
+            let (mut stretch, mut turn, mut total) = (0.0, 0.0, 0.0);
+            for (a, b) in [((i + n - 1) % n, i), (i, (i + 1) % n)] {
+                let d0 = [
+                    fe.position[b][0] - fe.position[a][0],
+                    fe.position[b][1] - fe.position[a][1],
+                ];
+                let d1 = [
+                    d0[0] + eps * (field[(3 * b, 0)] - field[(3 * a, 0)]),
+                    d0[1] + eps * (field[(3 * b + 1, 0)] - field[(3 * a + 1, 0)]),
+                ];
+                let l = d0[0].hypot(d0[1]);
+                let angle = (d0[0] * d1[1] - d0[1] * d1[0]).atan2(d0[0] * d1[0] + d0[1] * d1[1]);
+                stretch += (d1[0].hypot(d1[1]) - l) / eps;
+                turn += angle * l / eps;
+                total += l;
+            }
+            let (stretch, turn) = (stretch / total, turn / total);
+            let got_t = t[0] * rows[(0, 0)] + t[1] * rows[(1, 0)];
+            let got_n = nrm[0] * rows[(0, 0)] + nrm[1] * rows[(1, 0)];
+            worst = worst.max((got_t - stretch).abs()).max((got_n - turn).abs());
+        }
+        // the field's rates are up to 7e-3 (1e-3·7) and 9e-3 (the 8e-5 step over 8.73 mm)
+        assert!(
+            worst < 1e-8,
+            "largest difference from the chords: {worst:e}"
+        );
+        // straight uniform run: the middle of the first span against App. A's difference
+        let basis = FlowingBasis::new(&fe, Some(4)).unwrap();
+        let span: Vec<usize> = (0..n).filter(|&i| fe.node_pulley()[i].is_none()).collect();
+        let mid = span[span.len() / 4];
+        let rows = fe.chord_rate_rows(basis.t.as_ref(), mid);
+        for j in 0..basis.len() {
+            for r in 0..2 {
+                let fd = basis.ts[(3 * mid + r, j)];
+                assert!(
+                    (rows[(r, j)] - fd).abs() <= 1e-9 * (1.0 + fd.abs()),
+                    "node {mid} column {j} row {r}: {} vs {fd}",
+                    rows[(r, j)]
+                );
+            }
+        }
     }
 
     // The viscous axial force of chord_viscous_forces against the Kelvin–Voigt law in a steady
