@@ -265,8 +265,8 @@ pub enum BendingForce {
 )]
 #[serde(rename_all = "snake_case")]
 pub enum ContactVelocity {
-    /// `T_,s` of Ribaric App. A: the three-point difference of each Cartesian component along
-    /// the path, the operator of the whole model. At a tangent point it mixes the wrap's
+    /// Ribaric's `T_,s`, the three-point difference of each Cartesian component along the path
+    /// (his appendix A), the operator of the whole model. At a tangent point it mixes the wrap's
     /// radial deflection (the change of penetration, rotated by the wrap's turn) into the
     /// tangential rate, a spurious slip of about `v Δd/(2R)` at the inlet and lift-off nodes
     /// that a near-Coulomb law answers with a friction force there: on Table 6-1 at 10 N m
