@@ -26,7 +26,9 @@
 //! common ground. Run: `cargo bench --profile release -p drives --bench plate_belt` (about 40 s
 //! on a free core); BENCHMARKS.md records the figures. `PLATE_BENCH_WINDOWS`, a comma-separated
 //! subset of `start`, `steady`, `plate3`, `plate9`, `planar` (default: all), runs only those
-//! windows (to profile one belt alone; the ratios need `plate3` or `plate9` with `planar`).
+//! windows (to profile one belt alone; the ratios need `plate3` or `plate9` with `planar`);
+//! `PLATE_BENCH_ROUNDS` sets the wide case's rounds (default 3), after which the ratios of the
+//! belts' fastest rounds and of their medians are printed.
 
 use ancf::belt_drive::{BeltDrive, InitialOptions, SimulationConfig};
 use ancf::plate::belt_drive::{PlateBeltDrive, PlateDriveSpec};
@@ -138,6 +140,30 @@ fn main() {
     wide_case();
 }
 
+/// Rounds of the wide case: `PLATE_BENCH_ROUNDS` (default 3).
+fn bench_rounds() -> usize {
+    std::env::var("PLATE_BENCH_ROUNDS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or(3)
+}
+
+fn min(x: &[f64]) -> f64 {
+    x.iter().cloned().fold(f64::INFINITY, f64::min)
+}
+
+fn median(x: &[f64]) -> f64 {
+    let mut v = x.to_vec();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
 /// Model 2 as the study runs it: belt at rest on the pulleys, driver ramped from 0.
 fn model2_start() {
     let d = PlateBeltDrive::new(PlateDriveSpec::kerkkanen_model2()).expect("Model 2");
@@ -196,7 +222,10 @@ fn wide_case() {
         .initial_state(&InitialOptions::default())
         .expect("initial state");
     let mut ratios = [Vec::new(), Vec::new()];
-    for round in 0..3 {
+    // per belt: the CPU seconds of each round (plate 9 × 3, plate 9 × 9, planar)
+    let mut cpus: [Vec<f64>; 3] = [Vec::new(), Vec::new(), Vec::new()];
+    let rounds = bench_rounds();
+    for round in 0..rounds {
         let mut w3 = [Cost {
             wall: 0.0,
             cpu: 0.0,
@@ -221,6 +250,7 @@ fn wide_case() {
                 d3.pulley_speed(1, end.t, &end.v)
             );
             w3[k] = w;
+            cpus[k].push(w.cpu);
         }
         if !run_planar {
             continue;
@@ -236,8 +266,24 @@ fn wide_case() {
             counts(&s2),
             d2.pulley_speed(1, end.t, &end.v)
         );
+        cpus[2].push(w2.cpu);
         for k in (0..2).filter(|&k| run_plate[k]) {
             ratios[k].push((w3[k].cpu / w2.cpu, w3[k].wall / w2.wall));
+        }
+    }
+    // the belts' own costs over the rounds: the ratio of their fastest rounds and of their
+    // medians (one round's ratio scatters by ±10 %: the planar window is 0.12 s of CPU)
+    if run_planar {
+        for (k, name) in ["9 x 3 (the default)", "9 x 9"].iter().enumerate() {
+            if cpus[k].is_empty() {
+                continue;
+            }
+            println!(
+                "ratio = plate ({name} contact points) / planar over {rounds} rounds, CPU: \
+                 fastest rounds {:.3}, medians {:.3}",
+                min(&cpus[k]) / min(&cpus[2]),
+                median(&cpus[k]) / median(&cpus[2])
+            );
         }
     }
     for (k, name) in ["9 x 3 (the default)", "9 x 9"].iter().enumerate() {
