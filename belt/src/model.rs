@@ -125,6 +125,12 @@ pub struct ModelTraits {
     pub linearised: bool,
     /// The axial force the model reports in its spans and wraps, in words (with the law).
     pub force_measure: &'static str,
+    /// Whether the model's contact slip follows the strain its elements carry, so that its speed
+    /// loss near Coulomb friction is the elastic creep (Grashof): `false` for the flowing belt
+    /// with Ribaric's contact rates (`flowing::belt::ContactVelocity::Ribaric`, 31 % below the
+    /// closed form on Table 6-1's default mesh), whose speed-loss points then carry a caveat
+    /// when the friction law is sharper than the creep.
+    pub near_coulomb_creep: bool,
 }
 
 /// A belt-drive model of N pulleys (module documentation).

@@ -13,7 +13,7 @@
 use crate::simulation::BeltSimulation;
 use belt::report::sliding_speed;
 use belt::{BeltModel, Report, Signal, WrapPoint};
-use contact::friction::FrictionSpec;
+use contact::friction::{FrictionLaw, FrictionSpec};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, State};
 use mbd_core::validate::{InvalidField, Validate};
@@ -137,6 +137,9 @@ pub struct BeltData {
     pub friction: FrictionSpec,
     /// Whether the model is linearised about the installation tension ([`belt::ModelTraits`]).
     pub linearised: bool,
+    /// Whether the model's contact slip follows its elements' strain
+    /// ([`belt::ModelTraits::near_coulomb_creep`]).
+    pub near_coulomb_creep: bool,
 }
 
 impl BeltData {
@@ -149,6 +152,7 @@ impl BeltData {
             driven_radius: d.pulleys()[driven].radius,
             friction: d.wrap_friction_law(driven),
             linearised: model.traits().linearised,
+            near_coulomb_creep: model.traits().near_coulomb_creep,
         }
     }
 }
@@ -190,6 +194,9 @@ pub struct SpeedLossPoint {
     /// Why the results of a model linearised about T0 ([`BeltData::linearised`]) do not hold
     /// at this point (`None`: they hold, or the model is not linearised).
     pub linearisation: Option<String>,
+    /// Why the speed loss may understate the creep at this point ([`creep_caveat`]; `None`:
+    /// no reason known).
+    pub caveat: Option<String>,
     /// Spans and pulleys at the point (vibration amplitudes over the last window).
     pub report: Report,
     /// The contact points of every wrap at the point.
@@ -263,6 +270,35 @@ pub fn linearisation_issue(belt: &BeltData, report: &Report) -> Option<String> {
         ));
     }
     None
+}
+
+/// The caveat of a model whose contact slip does not follow its elements' strain
+/// ([`BeltData::near_coulomb_creep`] false: the flowing belt with Ribaric's contact rates,
+/// `flowing::belt::ContactVelocity::Ribaric`) at a point whose friction law is sharper than the
+/// elastic creep: the law's transition width ([`contact::friction::FrictionLaw::transition_width`];
+/// zero for a law without one) below the creep speed `ω₂ R₂ (T_tight − T_slack)/EA` of the
+/// point (Grashof) \[m/s\], `omega_driven` \[rad/s\]. There the contact nodes at the tangent
+/// points slide by their rates' error and the speed loss falls short of the creep (on Table
+/// 6-1 at 10 N m with a 0.05 mm/s law by 31 % on the default mesh, BENCHMARKS.md); `None`
+/// otherwise (Ribaric's κ = 40 s/m on Table 6-1: 25 mm/s against 4 mm/s).
+pub fn creep_caveat(belt: &BeltData, report: &Report, omega_driven: f64) -> Option<String> {
+    if belt.near_coulomb_creep {
+        return None;
+    }
+    let width = belt.friction.transition_width().unwrap_or(0.0);
+    let creep = omega_driven.abs()
+        * belt.driven_radius
+        * (report.tension_tight() - report.tension_slack()).abs()
+        / belt.ea;
+    (width < creep).then(|| {
+        format!(
+            "the friction law's transition width {width:.2e} m/s is below the elastic creep \
+             speed {creep:.2e} m/s: with Ribaric's contact rates (T_,s) the contact nodes at \
+             the tangent points slide and the speed loss understates the creep (31 % on Table \
+             6-1's default mesh); set [models.flowing] contact_velocity = \"chord\" and \
+             viscous_force = \"chord\""
+        )
+    })
 }
 
 /// The upper end of the linearised models' range ([`LINEAR_MAX_TENSION_RATIO`],
@@ -619,6 +655,11 @@ pub fn speed_loss_sweep<M: BeltModel>(
                         settled_s: st.t - level_start,
                         gross_slip: gross,
                         linearisation: linearisation_issue(&belt, &report),
+                        caveat: creep_caveat(
+                            &belt,
+                            &report,
+                            sim.model().pulley_speed(driver, st.t, &st.v) - means[k - 1],
+                        ),
                         report,
                         wrap,
                     });
@@ -683,6 +724,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                     criterion,
                 }),
                 linearisation: linearisation_issue(&belt, &report),
+                caveat: creep_caveat(&belt, &report, omega_driven),
                 report,
                 wrap,
             });

@@ -44,7 +44,9 @@ def speed_loss(
         torque, sliding loss per pulley), ``spans`` (tension and transverse vibration
         amplitude per span), and ``linearisation_valid`` / ``linearisation``: for the flowing
         and nodal models, linearised about the pre-tension, the numbers are ``None`` where the
-        slack span goes nearly slack or a wrap slides as a whole. Each case adds
+        slack span goes nearly slack or a wrap slides as a whole; ``caveat``: why the speed
+        loss may understate the creep (the flowing model's default contact rates under a
+        friction law sharper than the creep), or ``None``. Each case adds
         ``capacity_euler_eytelwein`` [N m]. A load beyond what friction can transmit is a point
         with ``gross_slip = True``, not an error.
 

@@ -264,6 +264,7 @@ impl DriveKind for Planar {
         name: "ancf",
         linearised: false,
         force_measure: ANCF_FORCE_MEASURE,
+        near_coulomb_creep: true,
     };
 
     fn elements(&self) -> usize {

@@ -96,6 +96,14 @@ fn report_slips(model: ModelKind, case: &SpeedLossCase) {
                 p.torque
             );
         }
+        if let Some(why) = &p.caveat {
+            eprintln!(
+                "flowmbd-belt speed-loss: {} belt, ω₁ = {} rad/s, load {} N m: {why}",
+                model.name(),
+                case.omega_driver,
+                p.torque
+            );
+        }
     }
 }
 

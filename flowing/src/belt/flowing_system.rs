@@ -233,6 +233,8 @@ pub struct FlowingBelt {
     /// ([`ViscousForce::Chord`], [`Self::chord_viscous`]); the linear damping matrices then
     /// keep only their bending part.
     chord_viscous: bool,
+    /// The contact rows' `T_,s` on their elements' chords ([`ContactVelocity::Chord`]).
+    chord_contact: bool,
     /// `l₀,e / Δs_e` of each bar: its length over the path distance between the mid-points of
     /// its two neighbours (the centred difference of the stretch, [`Self::chord_viscous`]).
     bar_span: Vec<f64>,
@@ -341,6 +343,12 @@ fn bend_dofs(e: &BendElement) -> [usize; 6] {
 }
 
 impl FlowingBelt {
+    /// Whether the contact slip follows the strain the elements carry
+    /// ([`ContactVelocity::Chord`]; `belt::ModelTraits::near_coulomb_creep`).
+    pub fn contact_rates_follow_the_strain(&self) -> bool {
+        self.chord_contact
+    }
+
     /// The flowing-material model of `drive` (Ribaric (5.14)): the stationary loop of
     /// `settings.mesh` on the mounted path, the basis of `settings.reduction`, all projections
     /// precomputed; the pulleys turn by the drive's motions, a tensioner's arm (if any) is a
@@ -400,6 +408,7 @@ impl FlowingBelt {
             for r in &mut belt.rows {
                 r.ts = belt.fe.chord_rate_rows(belt.basis.t.as_ref(), r.node);
             }
+            belt.chord_contact = true;
         }
         belt.bend = bend;
         belt.exact_axial = settings.axial_force == AxialForce::CoRotated;
@@ -550,6 +559,7 @@ impl FlowingBelt {
             bars: super::model::Bar::loop_of(&fe_pos),
             exact_axial: false,
             chord_viscous: false,
+            chord_contact: false,
             bar_span: Vec::new(),
             bar_kv: Vec::new(),
             bend: Vec::new(),

@@ -203,6 +203,12 @@ impl<'a> Tangent<'a> {
 }
 
 impl NodalBelt {
+    /// Whether the contact slip follows the strain the elements carry
+    /// (`belt::ModelTraits::near_coulomb_creep`): always, the nodes are material points.
+    pub fn contact_rates_follow_the_strain(&self) -> bool {
+        true
+    }
+
     /// The rotating-mesh model of `drive` (Ribaric (5.7)) on the loop of `mesh` over the
     /// mounted path (give it near-uniform elements, [`BeltMesh::uniform`]: long span elements
     /// landing on a wrap excite it at the element-passing frequency). Every node can touch

@@ -238,6 +238,7 @@ impl DriveKind for Plate {
         name: "plate",
         linearised: false,
         force_measure: PLATE_FORCE_MEASURE,
+        near_coulomb_creep: true,
     };
 
     fn elements(&self) -> usize {
