@@ -566,6 +566,11 @@ pub struct FeadPoint {
     /// (a slack or resonating span, which the linear model would let carry compression), or
     /// gross slip. The point's numbers are kept, flagged: they show how the limit was left.
     pub linearisation: Option<String>,
+    /// Why the speed losses may understate the creep (the flowing belt's default contact rates
+    /// under a friction law sharper than the creep, [`crate::speed_loss::creep_caveat_for`]
+    /// with the belt speed times the largest tension change over a wrap, over EA); the numbers
+    /// are given.
+    pub caveat: Option<String>,
     /// The drive report averaged over the window (span forces, slip arcs, hub loads, torques,
     /// torque and power balances; [`Report::mean`]).
     pub report: Report,
@@ -1174,6 +1179,7 @@ fn sweep<M: BeltModel>(
     let invalid = |e: InvalidField| Box::new(FeadFailureOrInvalid::Invalid(e));
     let h = alpha.h;
     let linearised = model.traits().linearised;
+    let near_coulomb = model.traits().near_coulomb_creep;
     let mut state: Option<State> = None;
     let points = crank_points(cfg, h).map_err(invalid)?;
     if cfg.engine.trace.is_some() {
@@ -1392,6 +1398,20 @@ fn sweep<M: BeltModel>(
             gross_slip: slipping.is_some(),
             gross_slip_pulley: slipping.map(|k| names[k].clone()),
             linearisation,
+            caveat: {
+                let dt = report
+                    .pulleys
+                    .iter()
+                    .map(|p| (p.tension_in_n - p.tension_out_n).abs())
+                    .fold(0.0, f64::max);
+                // the wraps' laws differ in μ only (a grooved wrap scales μ, not the width)
+                let law = drive.wrap_friction_law(0);
+                crate::speed_loss::creep_caveat_for(
+                    near_coulomb,
+                    &law,
+                    v.abs() * dt / drive.belt().ea,
+                )
+            },
             report,
             steady,
             settled_s: window_start - cfg.run.ramp,

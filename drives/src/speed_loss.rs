@@ -282,21 +282,28 @@ pub fn linearisation_issue(belt: &BeltData, report: &Report) -> Option<String> {
 /// 6-1 at 10 N m with a 0.05 mm/s law by 31 % on the default mesh, BENCHMARKS.md); `None`
 /// otherwise (Ribaric's κ = 40 s/m on Table 6-1: 25 mm/s against 4 mm/s).
 pub fn creep_caveat(belt: &BeltData, report: &Report, omega_driven: f64) -> Option<String> {
-    if belt.near_coulomb_creep {
-        return None;
-    }
-    let width = belt.friction.transition_width().unwrap_or(0.0);
     let creep = omega_driven.abs()
         * belt.driven_radius
         * (report.tension_tight() - report.tension_slack()).abs()
         / belt.ea;
+    creep_caveat_for(belt.near_coulomb_creep, &belt.friction, creep)
+}
+
+/// [`creep_caveat`] for a model with [`BeltData::near_coulomb_creep`] `near`, the friction law
+/// `law` and the creep speed `creep` \[m/s\] (a FEAD point: the belt speed times the largest
+/// tension change over a wrap, over EA).
+pub fn creep_caveat_for(near: bool, law: &FrictionSpec, creep: f64) -> Option<String> {
+    if near {
+        return None;
+    }
+    let width = law.transition_width().unwrap_or(0.0);
     (width < creep).then(|| {
         format!(
             "the friction law's transition width {width:.2e} m/s is below the elastic creep \
              speed {creep:.2e} m/s: with Ribaric's contact rates (T_,s) the contact nodes at \
-             the tangent points slide and the speed loss understates the creep (31 % on Table \
-             6-1's default mesh); set [models.flowing] contact_velocity = \"chord\" and \
-             viscous_force = \"chord\""
+             the tangent points slide by their rates' error and the speed loss may understate \
+             the creep (31 % near Coulomb on Table 6-1's default mesh); [models.flowing] \
+             contact_velocity = \"chord\" with viscous_force = \"chord\" follows the strain"
         )
     })
 }

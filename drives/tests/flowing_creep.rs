@@ -17,6 +17,7 @@
 
 use belt::Layout;
 use contact::friction::FrictionSpec;
+use drives::fead::{FeadConfig, run_fead};
 use drives::{SpeedLossConfig, analytical::bechtel, speed_loss_sweep};
 use flowing::belt::{ContactVelocity, FlowingBelt, FlowingSettings, ViscousForce};
 
@@ -111,4 +112,29 @@ fn a_sharp_law_on_ribaric_contact_rates_carries_a_caveat() {
     assert!(sharp.contains("contact_velocity"), "{sharp}");
     assert_eq!(chord, None);
     assert_eq!(kappa40, None);
+}
+
+// The fead points carry the same caveat, with the belt speed times the largest tension change
+// over a wrap as the creep speed (≈ 10 mm/s on the default drive at 800 rpm): given with a
+// tanh law of κ = 1000 s/m (1 mm/s wide) on Ribaric's contact rates, not with κ = 40 s/m
+// (25 mm/s, the drive's own law) nor with the chord rates.
+#[test]
+fn fead_points_carry_the_creep_caveat() {
+    let mut cfg = FeadConfig::default();
+    cfg.engine.speeds_rpm = vec![800.0];
+    cfg.run.max_settle = 0.1;
+    let run = |c: &FeadConfig| {
+        run_fead(c, |_| {}).unwrap_or_else(|e| panic!("{e}")).points[0]
+            .caveat
+            .clone()
+    };
+    let kappa40 = run(&cfg);
+    let mu = cfg.drive.contact.friction.mu();
+    cfg.drive.contact.friction = FrictionSpec::Tanh { mu, kappa: 1000.0 };
+    let sharp = run(&cfg);
+    cfg.models.flowing.contact_velocity = ContactVelocity::Chord;
+    let chord = run(&cfg);
+    assert_eq!(kappa40, None);
+    assert!(sharp.is_some_and(|s| s.contains("contact_velocity")));
+    assert_eq!(chord, None);
 }
