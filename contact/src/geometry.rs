@@ -174,10 +174,11 @@ impl Disk {
     }
 }
 
-impl Surface<2> for Disk {
-    /// Kerkkänen (3.21)–(3.22): `d = R − ‖r − r_o‖`, `n = (r − r_o)/‖r − r_o‖`; the surface
-    /// velocity is `ṙ_o + ω R t` with `t = Ĩ n` (3.24)–(3.25) (nominal radius `R`).
-    fn closest(&self, p: &Point2<f64>) -> SurfacePoint<2> {
+impl Disk {
+    /// The values of [`Surface::closest`] (Kerkkänen (3.21)–(3.22), (3.24)–(3.25)) with the
+    /// derivatives `dn_dp`, `dus_dp` zero, and `1/ρ` (`0` at the centre) for them.
+    #[inline(always)]
+    fn closest_values_of(&self, p: &Point2<f64>) -> (SurfacePoint<2>, f64) {
         let d = [p[0] - self.center[0], p[1] - self.center[1]];
         let rho = (d[0] * d[0] + d[1] * d[1]).sqrt();
         // at the centre any direction is a normal; pick +y to stay finite
@@ -187,22 +188,8 @@ impl Surface<2> for Disk {
             (Vector2::new(0.0, 1.0), 0.0)
         };
         let t = rot90(n);
-        // ∂n/∂p = (I − n nᵀ)/ρ = t tᵀ/ρ
-        let dn = Matrix2::new(
-            t[0] * t[0] * inv,
-            t[0] * t[1] * inv,
-            t[1] * t[0] * inv,
-            t[1] * t[1] * inv,
-        );
-        // u_s = ṙ_o + ω R Ĩ n  ⇒ ∂u_s/∂p = ω R Ĩ ∂n/∂p
         let wr = self.omega * self.radius;
-        let dus = Matrix2::new(
-            -wr * dn[(1, 0)],
-            -wr * dn[(1, 1)],
-            wr * dn[(0, 0)],
-            wr * dn[(0, 1)],
-        );
-        SurfacePoint {
+        let sp = SurfacePoint {
             gap: rho - self.radius,
             normal: n,
             gap_gradient: n,
@@ -215,11 +202,43 @@ impl Surface<2> for Disk {
                 self.velocity[0] + wr * t[0],
                 self.velocity[1] + wr * t[1],
             ),
-            dn_dp: dn,
-            dus_dp: dus,
+            dn_dp: Matrix2::zeros(),
+            dus_dp: Matrix2::zeros(),
             dus_domega: Vector2::new(self.radius * t[0], self.radius * t[1]),
             part: 0,
-        }
+        };
+        (sp, inv)
+    }
+}
+
+impl Surface<2> for Disk {
+    /// Kerkkänen (3.21)–(3.22): `d = R − ‖r − r_o‖`, `n = (r − r_o)/‖r − r_o‖`; the surface
+    /// velocity is `ṙ_o + ω R t` with `t = Ĩ n` (3.24)–(3.25) (nominal radius `R`).
+    fn closest(&self, p: &Point2<f64>) -> SurfacePoint<2> {
+        let (mut sp, inv) = self.closest_values_of(p);
+        let t = sp.tangent;
+        // ∂n/∂p = (I − n nᵀ)/ρ = t tᵀ/ρ
+        let dn = Matrix2::new(
+            t[0] * t[0] * inv,
+            t[0] * t[1] * inv,
+            t[1] * t[0] * inv,
+            t[1] * t[1] * inv,
+        );
+        // u_s = ṙ_o + ω R Ĩ n  ⇒ ∂u_s/∂p = ω R Ĩ ∂n/∂p
+        let wr = self.omega * self.radius;
+        sp.dn_dp = dn;
+        sp.dus_dp = Matrix2::new(
+            -wr * dn[(1, 0)],
+            -wr * dn[(1, 1)],
+            wr * dn[(0, 0)],
+            wr * dn[(0, 1)],
+        );
+        sp
+    }
+    /// [`Surface::closest`] without its derivatives (`dn_dp`, `dus_dp` zero): the same values
+    /// by the same operations, for the force-only evaluations.
+    fn closest_value(&self, p: &Point2<f64>) -> SurfacePoint<2> {
+        self.closest_values_of(p).0
     }
     fn center(&self) -> Point2<f64> {
         self.center
@@ -399,6 +418,49 @@ mod tests {
         assert!((c.surface_velocity[0] - us[0]).abs() < 1e-15);
         assert!((c.surface_velocity[1] - us[1]).abs() < 1e-15);
         fd_check(&d, p);
+    }
+
+    // Reference: `Disk::closest` (its values checked above and its derivatives by finite
+    // differences): the force-only `closest_value` gives its values to the bit and zero
+    // derivatives, also at the centre and on the surface.
+    #[test]
+    fn disk_closest_value_is_closest_without_derivatives_bit_for_bit() {
+        let d = Disk {
+            center: Point2::new(0.2, -0.1),
+            radius: 0.08125,
+            velocity: Vector2::new(0.1, -0.3),
+            omega: -37.0,
+        };
+        let points = [
+            Point2::new(0.25, -0.03),
+            Point2::new(0.2, -0.1),
+            Point2::new(0.2 + 0.08125, -0.1),
+            Point2::new(-1.7, 3.3),
+            Point2::new(0.21, -0.1 - 1e-9),
+        ];
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for p in points {
+            let (c, v) = (d.closest(&p), d.closest_value(&p));
+            assert_eq!(c.gap.to_bits(), v.gap.to_bits());
+            assert_eq!(bits(c.normal.as_slice()), bits(v.normal.as_slice()));
+            assert_eq!(
+                bits(c.gap_gradient.as_slice()),
+                bits(v.gap_gradient.as_slice())
+            );
+            assert_eq!(bits(c.tangent.as_slice()), bits(v.tangent.as_slice()));
+            assert_eq!(
+                bits(c.point.coords.as_slice()),
+                bits(v.point.coords.as_slice())
+            );
+            assert_eq!(
+                bits(c.surface_velocity.as_slice()),
+                bits(v.surface_velocity.as_slice())
+            );
+            assert_eq!(bits(c.dus_domega.as_slice()), bits(v.dus_domega.as_slice()));
+            assert_eq!(c.part, v.part);
+            assert_eq!(v.dn_dp, Matrix2::zeros());
+            assert_eq!(v.dus_dp, Matrix2::zeros());
+        }
     }
 
     // Reference: the cleat dominates near its crest, the drum elsewhere; union distance.

@@ -364,21 +364,9 @@ fn scatter_scaled(vals: &mut [f64], s: f64, b: &SysMatrix, map: &[usize]) {
 /// additions in the same (block) order as from [`scatter_scaled`] block after block: the same
 /// bits.
 fn scatter_shared(vals: &mut [f64], blocks: &[ScaledBlock<'_>], map: &[usize]) -> bool {
-    let mut terms: Vec<(f64, &[f64])> = Vec::with_capacity(blocks.len());
-    for (s, b) in blocks {
-        let SysMatrix::Sparse(sp) = b else {
-            return false;
-        };
-        let Some(nnz) = compact_storage(sp.as_ref()) else {
-            return false;
-        };
-        if nnz != map.len() {
-            return false;
-        }
-        if *s != 0.0 {
-            terms.push((*s, &sp.val()[..nnz]));
-        }
-    }
+    let Some(terms) = shared_terms(blocks, map) else {
+        return false;
+    };
     match terms.as_slice() {
         [] => {}
         [(s0, v0), (s1, v1), (s2, v2)] => {
@@ -401,6 +389,51 @@ fn scatter_shared(vals: &mut [f64], blocks: &[ScaledBlock<'_>], map: &[usize]) -
         }
     }
     true
+}
+
+/// The terms `(sₖ, values of Aₖ)` of [`scatter_shared`] (the blocks with `sₖ ≠ 0`), when every
+/// block is compact sparse storage ([`compact_storage`]) with one entry per position of `map`.
+fn shared_terms<'a>(blocks: &[ScaledBlock<'a>], map: &[usize]) -> Option<Vec<(f64, &'a [f64])>> {
+    let mut terms: Vec<(f64, &[f64])> = Vec::with_capacity(blocks.len());
+    for (s, b) in blocks {
+        let SysMatrix::Sparse(sp) = b else {
+            return None;
+        };
+        let nnz = compact_storage(sp.as_ref())?;
+        if nnz != map.len() {
+            return None;
+        }
+        if *s != 0.0 {
+            terms.push((*s, &sp.val()[..nnz]));
+        }
+    }
+    Some(terms)
+}
+
+/// The values `vals` of a [`SparsePath`]'s pattern: `Σ sₖ Aₖ` through the blocks' maps
+/// (`shared_map`: one map for all, [`scatter_shared`]) and `D`, `Dᵀ` through `d_map`.
+fn fill_vals(
+    vals: &mut [f64], shared_map: bool, maps: &[Vec<usize>], d_map: &[(usize, usize)],
+    blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>,
+) {
+    vals.fill(0.0);
+    if !(shared_map && scatter_shared(vals, blocks, &maps[0])) {
+        for ((s, b), map) in blocks.iter().zip(maps) {
+            if *s == 0.0 {
+                continue;
+            }
+            scatter_scaled(vals, *s, b, map);
+        }
+    }
+    if let Some(d) = d {
+        let mut k = 0;
+        d.for_each_entry(|_, _, v| {
+            let (a, b) = d_map[k];
+            vals[a] += v;
+            vals[b] += v;
+            k += 1;
+        });
+    }
 }
 
 /// The sparse path: union pattern, scatter maps, symbolic and numeric factors, scratch.
@@ -438,6 +471,8 @@ struct SparsePath {
     band_plans: Vec<band::BandPlan>,
     /// Whether the last numeric factorisation is the banded one (else faer's).
     band_active: bool,
+    /// Backward errors measured so far (accepted ones; [`KktSolver::banded_checks`]).
+    band_checks: usize,
     /// Permuted right-hand side of the banded one-column solves.
     band_work: Vec<f64>,
 }
@@ -557,6 +592,7 @@ impl SparsePath {
             band,
             band_plans,
             band_active: false,
+            band_checks: 0,
             band_work: vec![0.0; dim],
         })
     }
@@ -578,56 +614,116 @@ impl SparsePath {
 
     /// Scatters `Σ sₖ Aₖ` and `D` into the values and factors them numerically; returns the
     /// number of banded factorisations rejected by the backward-error check on the way.
+    ///
+    /// Blocks that share one pattern (and no `D`) go straight into the band's arrays
+    /// (`BandLu::load_shared`, the same bits); the pattern's values are then filled only when
+    /// the backward error is measured or faer's LU takes over.
     fn factor(
         &mut self, blocks: &[ScaledBlock<'_>], d: Option<&SysMatrix>, t: f64,
     ) -> Result<usize, MbdError> {
-        self.vals.fill(0.0);
-        if !(self.shared_map && scatter_shared(&mut self.vals, blocks, &self.maps[0])) {
-            for ((s, b), map) in blocks.iter().zip(&self.maps) {
-                if *s == 0.0 {
-                    continue;
+        let non_finite = || MbdError::NonFinite {
+            what: "system matrix (mass, tangent or constraint Jacobian)".into(),
+            t,
+        };
+        let no_d = d.is_none_or(|d| d.nrows() == 0);
+        let direct = match (&mut self.band, self.shared_map && no_d) {
+            (Some(band), true) => match shared_terms(blocks, &self.maps[0]) {
+                Some(terms) => {
+                    let pat = self.symbolic_pattern.as_ref();
+                    band.load_shared(pat.col_ptr(), pat.row_idx(), &terms, &self.maps[0])
                 }
-                scatter_scaled(&mut self.vals, *s, b, map);
+                None => None,
+            },
+            _ => None,
+        };
+        let mut vals_filled = false;
+        match direct {
+            Some(true) => {}
+            // a value that is not finite, as the check of the pattern's values below
+            Some(false) => return Err(non_finite()),
+            None => {
+                fill_vals(
+                    &mut self.vals,
+                    self.shared_map,
+                    &self.maps,
+                    &self.d_map,
+                    blocks,
+                    d,
+                );
+                vals_filled = true;
+                if self.vals.iter().any(|v| !v.is_finite()) {
+                    return Err(non_finite());
+                }
             }
         }
-        if let Some(d) = d {
-            let mut k = 0;
-            let d_map = &self.d_map;
-            let vals = &mut self.vals;
-            d.for_each_entry(|_, _, v| {
-                let (a, b) = d_map[k];
-                vals[a] += v;
-                vals[b] += v;
-                k += 1;
-            });
-        }
-        if self.vals.iter().any(|v| !v.is_finite()) {
-            return Err(MbdError::NonFinite {
-                what: "system matrix (mass, tangent or constraint Jacobian)".into(),
-                t,
-            });
-        }
+        let mut loaded = direct.is_some();
         self.band_active = false;
         let mut rejected = 0;
-        while let Some(band) = self.band.as_mut() {
+        while self.band.is_some() {
             let pat = self.symbolic_pattern.as_ref();
+            if !loaded {
+                if !vals_filled {
+                    fill_vals(
+                        &mut self.vals,
+                        self.shared_map,
+                        &self.maps,
+                        &self.d_map,
+                        blocks,
+                        d,
+                    );
+                    vals_filled = true;
+                }
+                if let Some(band) = self.band.as_mut() {
+                    band.load(pat.col_ptr(), pat.row_idx(), &self.vals);
+                }
+            }
+            let Some(band) = self.band.as_mut() else {
+                break;
+            };
             // a zero pivot of the band (pivoting confined to it) falls back to faer's LU for
             // this factorisation
-            if band
-                .factor(pat.col_ptr(), pat.row_idx(), &self.vals)
-                .is_err()
-            {
+            if band.factor_loaded().is_err() {
                 break;
             }
-            if band.backward_error(pat.col_ptr(), pat.row_idx(), &self.vals)
-                <= BAND_BACKWARD_ERROR_LIMIT
+            // measured unless the factors grew as little as a measured one's
+            let measured = band.check_needed();
+            if measured && !vals_filled {
+                fill_vals(
+                    &mut self.vals,
+                    self.shared_map,
+                    &self.maps,
+                    &self.d_map,
+                    blocks,
+                    d,
+                );
+                vals_filled = true;
+            }
+            let Some(band) = self.band.as_mut() else {
+                break;
+            };
+            if !measured
+                || band.backward_error(pat.col_ptr(), pat.row_idx(), &self.vals)
+                    <= BAND_BACKWARD_ERROR_LIMIT
             {
+                band.verdict(measured);
+                self.band_checks += usize::from(measured);
                 self.band_active = true;
                 return Ok(rejected);
             }
             // inaccurate factors: the next plan for this pattern from now on (else faer's LU)
             rejected += 1;
             self.band = self.band_plans.pop().map(band::BandLu::new);
+            loaded = false;
+        }
+        if !vals_filled {
+            fill_vals(
+                &mut self.vals,
+                self.shared_map,
+                &self.maps,
+                &self.d_map,
+                blocks,
+                d,
+            );
         }
         let a = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.vals);
         self.symbolic
@@ -733,6 +829,12 @@ pub struct KktSolver {
     /// ([`BAND_BACKWARD_ERROR_LIMIT`]); each rejection moves the pattern to its next band
     /// plan or, after the last, to faer's sparse LU for good.
     pub banded_rejections: usize,
+    /// Number of banded factorisations accepted after their backward error was measured by a
+    /// test solve (`BandLu::backward_error`; the rejected ones are
+    /// [`KktSolver::banded_rejections`]). A factorisation whose element growth is at most twice
+    /// that of the last measured and accepted one takes its verdict without a test solve, at
+    /// most 16 in a row (`BandLu::check_needed`).
+    pub banded_checks: usize,
 }
 
 impl Default for KktSolver {
@@ -741,8 +843,10 @@ impl Default for KktSolver {
     }
 }
 
-/// Largest accepted normwise relative backward error of the banded LU \[-\], measured after
-/// every banded factorisation by one test solve (module `band`, `BandLu::backward_error`).
+/// Largest accepted normwise relative backward error of the banded LU \[-\], measured after a
+/// banded factorisation by one test solve (module `band`, `BandLu::backward_error`) unless its
+/// element growth is at most twice that of the last measured one, at most 16 in a row
+/// (`BandLu::check_needed`, [`KktSolver::banded_checks`]).
 ///
 /// Partial pivoting over the whole matrix (faer's LU) gives a small multiple of the unit
 /// roundoff (2.2e-16) on the Newton matrices of the belt models; the banded LU pivots only
@@ -769,6 +873,7 @@ impl KktSolver {
             banded: false,
             banded_factorizations: 0,
             banded_rejections: 0,
+            banded_checks: 0,
         }
     }
 
@@ -881,7 +986,9 @@ impl KktSolver {
                 t,
                 message: "missing sparse assembly".into(),
             })?;
+            let checks = path.band_checks;
             self.banded_rejections += path.factor(blocks, d, t)?;
+            self.banded_checks += path.band_checks - checks;
             if path.band_active {
                 self.banded_factorizations += 1;
             }

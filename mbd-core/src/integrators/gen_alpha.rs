@@ -1038,11 +1038,16 @@ impl<C> AlphaStepper<C> {
         phi0: &[f64], bp: f64, gp: f64, h: f64, f: &mut [f64],
     ) -> Result<(), MbdError> {
         let kkt = &self.matrix.kkt;
-        let before = (kkt.banded_factorizations, kkt.banded_rejections);
+        let before = (
+            kkt.banded_factorizations,
+            kkt.banded_rejections,
+            kkt.banded_checks,
+        );
         let out = self.newton_matrix_factor(sys, t, q, v, vdot, lam, r0, phi0, bp, gp, h, f);
         let kkt = &self.matrix.kkt;
         self.stats.banded_factorizations += kkt.banded_factorizations.saturating_sub(before.0);
         self.stats.banded_rejections += kkt.banded_rejections.saturating_sub(before.1);
+        self.stats.banded_checks += kkt.banded_checks.saturating_sub(before.2);
         out
     }
 

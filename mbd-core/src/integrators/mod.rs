@@ -120,6 +120,10 @@ pub struct Stats {
     /// ([`crate::linalg::BAND_BACKWARD_ERROR_LIMIT`]): each moves the pattern to its next band
     /// plan or to faer's sparse LU for good.
     pub banded_rejections: usize,
+    /// Of [`Stats::banded_factorizations`], those accepted after their backward error was
+    /// measured by a test solve; the others grew at most twice as much as a measured one
+    /// ([`crate::linalg::KktSolver::banded_checks`]).
+    pub banded_checks: usize,
     /// Located events.
     pub events: usize,
     /// Steps (attempts included) whose Newton iteration started from the model's own
@@ -142,6 +146,7 @@ impl Stats {
         self.factorizations += o.factorizations;
         self.banded_factorizations += o.banded_factorizations;
         self.banded_rejections += o.banded_rejections;
+        self.banded_checks += o.banded_checks;
         self.events += o.events;
         self.halvings += o.halvings;
         self.model_predictions += o.model_predictions;

@@ -276,7 +276,55 @@ pub(crate) struct BandLu {
     /// Where each stored entry of the plan's pattern goes ([`BandScatter`]), built at the first
     /// factorisation.
     scatter: Option<BandScatter>,
+    /// The scatter composed with a block's map into the pattern ([`BandLu::load_shared`]),
+    /// built at its first use.
+    direct: Option<DirectScatter>,
+    /// Element growth of the current factors ([`Growth`]).
+    growth: Growth,
+    /// The last factorisation whose backward error was measured and accepted, and how many
+    /// factorisations have taken its verdict since ([`BandLu::check_needed`]).
+    verified: Option<Verified>,
 }
+
+/// Element growth of one factorisation, the factor `ρ` of Gaussian elimination's backward
+/// error bound `|ΔA| ≤ γ_n |L̂||Û|` with `|l| ≤ 1` under partial pivoting (Higham, *Accuracy
+/// and Stability of Numerical Algorithms*, 2nd ed., Thm 9.3 and §9.4; for the block
+/// elimination of the border, Thm 13.6: `‖ΔA‖ ≤ c u (‖A‖ + ‖L̂‖‖Û‖)` with the block factors
+/// `A₂₁A₁₁⁻¹`, `A₁₁⁻¹A₁₂` and `S`): `max |U| / max |A|` over the banded part `A₁₁` (the
+/// entries of `U` in its band storage) and over the border's Schur complement `S` (its dense
+/// LU), and `max |X|` of the border's columns `X = A₁₁⁻¹A₁₂` (in the units of `A₁₂/A₁₁`,
+/// compared only with another factorisation of the same pattern).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Growth {
+    band: f64,
+    schur: f64,
+    border: f64,
+}
+
+impl Growth {
+    /// Whether every part grew at most `ratio` times that of `reference` (false for NaN).
+    fn within(&self, reference: &Growth, ratio: f64) -> bool {
+        self.band <= ratio * reference.band
+            && self.schur <= ratio * reference.schur
+            && self.border <= ratio * reference.border
+    }
+}
+
+/// A factorisation whose backward error passed [`BandLu::backward_error`]: its growth and the
+/// number of later factorisations that took its verdict.
+#[derive(Debug, Clone, Copy)]
+struct Verified {
+    growth: Growth,
+    reused: usize,
+}
+
+/// A factorisation takes the verdict of the last verified one ([`BandLu::check_needed`]) when
+/// its growth is at most this multiple of that one's in every part \[-\].
+const VERDICT_GROWTH_RATIO: f64 = 2.0;
+
+/// At most this many factorisations in a row take a verified factorisation's verdict; the
+/// next one is measured again ([`BandLu::check_needed`]) \[-\].
+pub(crate) const VERDICT_REUSE_LIMIT: usize = 16;
 
 /// The destinations of the stored entries of one pattern in the storage of [`BandLu`]: per
 /// block of the permuted matrix (`A₁₁` in band storage, `A₁₂`, `A₂₁`, `A₂₂`) the pairs
@@ -286,6 +334,53 @@ pub(crate) struct BandLu {
 #[derive(Debug, Clone)]
 struct BandScatter {
     /// Length of the `col_ptr` and `row_idx` the map was built for.
+    shape: (usize, usize),
+    ab: Vec<(usize, usize)>,
+    x: Vec<(usize, usize)>,
+    a21: Vec<(usize, usize)>,
+    s: Vec<(usize, usize)>,
+}
+
+impl BandScatter {
+    /// The destinations of a block's entries whose positions in the pattern (of `nnz`
+    /// entries) are `map` ([`DirectScatter`]); `None` unless `map` names distinct entries of
+    /// the pattern.
+    fn compose(&self, nnz: usize, map: &[usize]) -> Option<DirectScatter> {
+        // where each of the pattern's entries goes: (array, slot)
+        let mut dest = vec![(usize::MAX, 0); nnz];
+        for (a, pairs) in [&self.ab, &self.x, &self.a21, &self.s]
+            .into_iter()
+            .enumerate()
+        {
+            for &(k, p) in pairs {
+                dest[k] = (a, p);
+            }
+        }
+        let mut lists: [Vec<(usize, usize)>; 4] = Default::default();
+        let mut seen = vec![false; nnz];
+        for (k, &u) in map.iter().enumerate() {
+            let (a, p) = *dest.get(u)?;
+            if a >= lists.len() || std::mem::replace(&mut seen[u], true) {
+                return None;
+            }
+            lists[a].push((k, p));
+        }
+        let [ab, x, a21, s] = lists;
+        Some(DirectScatter {
+            shape: (nnz, map.len()),
+            ab,
+            x,
+            a21,
+            s,
+        })
+    }
+}
+
+/// [`BandScatter`] composed with the map of a block into the pattern: per array of
+/// [`BandLu`] the pairs `(entry of the block, slot)` ([`BandLu::load_shared`]).
+#[derive(Debug, Clone)]
+struct DirectScatter {
+    /// Entries of the pattern and of the block the map was built for.
     shape: (usize, usize),
     ab: Vec<(usize, usize)>,
     x: Vec<(usize, usize)>,
@@ -389,6 +484,9 @@ impl BandLu {
             acc: vec![0.0; nb * nb],
             check: [vec![0.0; n1 + nb], vec![0.0; n1 + nb], vec![0.0; n1 + nb]],
             scatter: None,
+            direct: None,
+            growth: Growth::default(),
+            verified: None,
             plan,
         }
     }
@@ -424,25 +522,21 @@ impl BandLu {
 
     /// Factors the matrix with the plan's pattern whose values are `vals` (same column-wise
     /// storage as given to [`BandPlan::new`]).
+    #[cfg(test)]
     pub(crate) fn factor(
         &mut self, col_ptr: &[usize], row_idx: &[usize], vals: &[f64],
     ) -> Result<(), BandError> {
-        let (n1, kl, ku, ld) = (self.plan.n1, self.plan.kl, self.plan.ku, self.ld);
-        let nb = self.plan.border();
-        let kv = kl + ku;
-        self.ab.fill(0.0);
-        self.x.fill(0.0);
-        self.a21.fill(0.0);
-        self.s.fill(0.0);
+        self.load(col_ptr, row_idx, vals);
+        self.factor_loaded()
+    }
+
+    /// Fills the band, border and Schur arrays with the matrix of the plan's pattern whose
+    /// values are `vals` (zero where the pattern has no entry).
+    pub(crate) fn load(&mut self, col_ptr: &[usize], row_idx: &[usize], vals: &[f64]) {
+        self.clear();
         // every slot receives at most one entry (the pattern's entries are distinct), so the
         // order of the scatter does not change a bit
-        if self
-            .scatter
-            .as_ref()
-            .is_none_or(|m| m.shape != (col_ptr.len(), row_idx.len()))
-        {
-            self.scatter = Some(self.scatter_map(col_ptr, row_idx));
-        }
+        self.ensure_scatter(col_ptr, row_idx);
         if let Some(m) = &self.scatter {
             for (dst, map) in [
                 (&mut self.ab, &m.ab),
@@ -455,6 +549,91 @@ impl BandLu {
                 }
             }
         }
+    }
+
+    /// [`BandLu::load`] of the sum `Σ sᵢ vᵢ` of blocks that share one pattern, straight from
+    /// the blocks: `terms` are the scales `sᵢ` and the blocks' stored values `vᵢ`, `map[k]` the
+    /// position of a block's entry `k` in the plan's pattern (`col_ptr`, `row_idx`), which may
+    /// hold more entries (those stay zero). Each slot gets `0 + ((0 + s₀v₀) + s₁v₁) + …`, the
+    /// operations of the sum into the pattern's values followed by [`BandLu::load`], so the
+    /// same bits without the pattern-sized array between. `Some(false)` when a value is not
+    /// finite, `None` (nothing loaded) unless `map` names distinct entries of the pattern.
+    pub(crate) fn load_shared(
+        &mut self, col_ptr: &[usize], row_idx: &[usize], terms: &[(f64, &[f64])], map: &[usize],
+    ) -> Option<bool> {
+        self.clear();
+        self.ensure_scatter(col_ptr, row_idx);
+        if self
+            .direct
+            .as_ref()
+            .is_none_or(|d| d.shape != (row_idx.len(), map.len()))
+        {
+            self.direct = self
+                .scatter
+                .as_ref()
+                .and_then(|m| m.compose(row_idx.len(), map));
+        }
+        let d = self.direct.as_ref()?;
+        for (dst, pairs) in [
+            (&mut self.ab, &d.ab),
+            (&mut self.x, &d.x),
+            (&mut self.a21, &d.a21),
+            (&mut self.s, &d.s),
+        ] {
+            match terms {
+                [(s0, v0), (s1, v1), (s2, v2)] => {
+                    for &(k, p) in pairs {
+                        let mut a = 0.0;
+                        a += s0 * v0[k];
+                        a += s1 * v1[k];
+                        a += s2 * v2[k];
+                        dst[p] += a;
+                    }
+                }
+                _ => {
+                    for &(k, p) in pairs {
+                        let mut a = 0.0;
+                        for (s, v) in terms {
+                            a += s * v[k];
+                        }
+                        dst[p] += a;
+                    }
+                }
+            }
+        }
+        Some(
+            [&self.ab, &self.x, &self.a21, &self.s]
+                .iter()
+                .all(|a| a.iter().all(|v| v.is_finite())),
+        )
+    }
+
+    /// Zeroes the band, border and Schur arrays.
+    fn clear(&mut self) {
+        self.ab.fill(0.0);
+        self.x.fill(0.0);
+        self.a21.fill(0.0);
+        self.s.fill(0.0);
+    }
+
+    /// Builds the [`BandScatter`] of the pattern unless the one at hand fits it.
+    fn ensure_scatter(&mut self, col_ptr: &[usize], row_idx: &[usize]) {
+        if self
+            .scatter
+            .as_ref()
+            .is_none_or(|m| m.shape != (col_ptr.len(), row_idx.len()))
+        {
+            self.scatter = Some(self.scatter_map(col_ptr, row_idx));
+            self.direct = None;
+        }
+    }
+
+    /// Factors the matrix put in place by [`BandLu::load`] or [`BandLu::load_shared`].
+    pub(crate) fn factor_loaded(&mut self) -> Result<(), BandError> {
+        let (n1, kl, ku, ld) = (self.plan.n1, self.plan.kl, self.plan.ku, self.ld);
+        let nb = self.plan.border();
+        let kv = kl + ku;
+        let a_max = max_abs(&self.ab);
         // dgbtf2: column j, pivot among rows j..=j+km, U fill up to column ju (compiled for the
         // machine's vector width: `crate::simd`, the same bits)
         let (ab, ipiv) = (&mut self.ab, &mut self.ipiv);
@@ -469,12 +648,19 @@ impl BandLu {
         for (j, u) in self.u_inv.iter_mut().enumerate() {
             *u = 1.0 / self.ab[kv + j * ld];
         }
+        // U occupies the rows 0..=kv of every column of the band storage
+        let u_max = self
+            .ab
+            .chunks_exact(ld)
+            .fold(0.0f64, |m, col| m.max(max_abs(&col[..=kv])));
+        self.growth.band = growth(u_max, a_max);
         // X = A11^-1 A12 (all border columns in one pass over the band), Schur complement
         // S = A22 - A21 X and its LU
         if nb > 0 {
             let mut x = std::mem::take(&mut self.x);
             self.band().solve_rows(&mut x, nb);
             self.x = x;
+            self.growth.border = max_abs(&self.x);
             let mut acc = std::mem::take(&mut self.acc);
             crate::simd::dispatch(SchurProduct {
                 a21: &self.a21,
@@ -487,7 +673,47 @@ impl BandLu {
             }
             self.acc = acc;
         }
-        dense_lu(&mut self.s, nb, &mut self.s_piv).map_err(|c| BandError::ZeroPivot(n1 + c))
+        let s_max = max_abs(&self.s);
+        dense_lu(&mut self.s, nb, &mut self.s_piv).map_err(|c| BandError::ZeroPivot(n1 + c))?;
+        let su_max = (0..nb).fold(0.0f64, |m, c| m.max(max_abs(&self.s[c * nb..=c + c * nb])));
+        self.growth.schur = growth(su_max, s_max);
+        Ok(())
+    }
+
+    /// Whether the factors just made need their backward error measured
+    /// ([`BandLu::backward_error`]) before they are used: yes unless the last verified
+    /// factorisation ([`BandLu::verdict`] after a passed check) is at most
+    /// [`VERDICT_REUSE_LIMIT`] factorisations old and this one's element growth ([`Growth`])
+    /// is at most [`VERDICT_GROWTH_RATIO`] times that one's in every part.
+    ///
+    /// Why: the check guards against pivoting confined to the band (and the border's Schur
+    /// complement) that lacks the rows it needs, which shows as element growth: the backward
+    /// error bound of the elimination is proportional to `ρ` (Higham Thm 9.3; the band's rows
+    /// have at most `kl + ku + 1` entries of `U` and `kl + 1` of `L`, so
+    /// `‖|L̂||Û|‖∞ ≤ (kl + 1)(kl + ku + 1) ρ max|A|`), so factors whose growth stays within a
+    /// factor of two of a measured one's have a bound within a factor of two of its bound.
+    /// It is a bound, not the measured error, so the measurement is repeated at least every
+    /// [`VERDICT_REUSE_LIMIT`] + 1 factorisations. The pivot rows themselves change from one
+    /// Newton matrix to the next (the FEAD belt: 5–20 of about 380 pivoted rows of 478) at a
+    /// growth of 1.00–1.16.
+    pub(crate) fn check_needed(&self) -> bool {
+        self.verified.is_none_or(|v| {
+            v.reused >= VERDICT_REUSE_LIMIT || !self.growth.within(&v.growth, VERDICT_GROWTH_RATIO)
+        })
+    }
+
+    /// Records the verdict on the factors just made: `measured` after a backward error within
+    /// the limit (they become the verified factorisation), else taken from the verified one
+    /// ([`BandLu::check_needed`] was `false`).
+    pub(crate) fn verdict(&mut self, measured: bool) {
+        if measured {
+            self.verified = Some(Verified {
+                growth: self.growth,
+                reused: 0,
+            });
+        } else if let Some(v) = &mut self.verified {
+            v.reused += 1;
+        }
     }
 
     /// Normwise relative backward error of one solve with the current factors (Rigal &
@@ -579,6 +805,16 @@ impl BandLu {
             b[old] = w[new];
         }
     }
+}
+
+/// `max |a|` over `a` (0 for an empty slice).
+fn max_abs(a: &[f64]) -> f64 {
+    a.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// The growth `u / a` of [`Growth`] (1 when `A` is zero: nothing grew).
+fn growth(u: f64, a: f64) -> f64 {
+    if a > 0.0 { u / a } else { 1.0 }
 }
 
 /// The factors of the banded part.
@@ -886,6 +1122,126 @@ mod tests {
             for i in 0..n1 {
                 assert!(rows[i * k + c] == col[i], "row {i}, column {c}");
             }
+        }
+    }
+
+    /// Values of the ring pattern with a weak diagonal (the band's partial pivoting swaps
+    /// rows), varied by `seed`.
+    fn ring_values(dim: usize, cp: &[usize], ri: &[usize], seed: f64) -> Vec<f64> {
+        let mut vals = vec![0.0; ri.len()];
+        for j in 0..dim {
+            for p in cp[j]..cp[j + 1] {
+                let i = ri[p];
+                vals[p] =
+                    ((i * 31 + j * 17) as f64 * 0.37 + seed).sin() + if i == j { 0.3 } else { 0.0 };
+            }
+        }
+        vals
+    }
+
+    // Reference: the sum of the shared blocks into the pattern's values (the operations of
+    // `linalg::scatter_shared`) followed by `BandLu::load`; `load_shared` must give the same
+    // band, border and Schur arrays and factors to the bit, the entries of the pattern that no
+    // block has staying zero.
+    #[test]
+    fn blocks_loaded_straight_into_the_band_are_the_summed_values_bit_for_bit() {
+        let (dim, cp, ri) = ring(6, 20);
+        let plan = BandPlan::new(dim, &cp, &ri);
+        // the blocks hold every entry of the pattern but every seventh
+        let map: Vec<usize> = (0..ri.len()).filter(|k| k % 7 != 3).collect();
+        let blocks: Vec<Vec<f64>> = (0..3)
+            .map(|b| {
+                let v = ring_values(dim, &cp, &ri, b as f64);
+                map.iter().map(|&u| v[u] * (1.0 + b as f64)).collect()
+            })
+            .collect();
+        let scales = [1.7e7, 3.1e2, 0.37];
+        let mut vals = vec![0.0; ri.len()];
+        for (k, &u) in map.iter().enumerate() {
+            let mut a = vals[u];
+            for (s, v) in scales.iter().zip(&blocks) {
+                a += s * v[k];
+            }
+            vals[u] = a;
+        }
+        let mut reference = BandLu::new(plan.clone());
+        reference.factor(&cp, &ri, &vals).expect("regular");
+        let terms: Vec<(f64, &[f64])> = scales
+            .iter()
+            .zip(&blocks)
+            .map(|(s, v)| (*s, v.as_slice()))
+            .collect();
+        for _ in 0..2 {
+            let mut lu = BandLu::new(plan.clone());
+            assert_eq!(lu.load_shared(&cp, &ri, &terms, &map), Some(true));
+            lu.factor_loaded().expect("regular");
+            let bits = |a: &[f64]| a.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&lu.ab), bits(&reference.ab));
+            assert_eq!(bits(&lu.x), bits(&reference.x));
+            assert_eq!(bits(&lu.a21), bits(&reference.a21));
+            assert_eq!(bits(&lu.s), bits(&reference.s));
+            assert_eq!(lu.ipiv, reference.ipiv);
+            assert_eq!(lu.s_piv, reference.s_piv);
+            assert!(
+                lu.ipiv.iter().enumerate().any(|(j, &p)| p != j),
+                "the band pivots"
+            );
+        }
+        // a value that is not finite is reported; a map that names an entry twice is refused
+        let mut bad = blocks[1].clone();
+        bad[5] = f64::NAN;
+        let nan_terms = [terms[0], (scales[1], bad.as_slice()), terms[2]];
+        let mut lu = BandLu::new(plan.clone());
+        assert_eq!(lu.load_shared(&cp, &ri, &nan_terms, &map), Some(false));
+        let mut twice = map.clone();
+        twice[1] = twice[0];
+        let mut lu = BandLu::new(plan);
+        assert_eq!(lu.load_shared(&cp, &ri, &terms, &twice), None);
+    }
+
+    // Reference: the rule of `check_needed` itself. The first factors and every seventeenth
+    // in a row are measured; factors whose growth exceeds twice the verified one's in any
+    // part are measured; otherwise the verdict is taken. The ring's factors grow by about 1
+    // (partial pivoting, Higham §9.4).
+    #[test]
+    fn the_backward_error_is_measured_unless_the_growth_repeats_a_measured_one() {
+        let (dim, cp, ri) = ring(6, 20);
+        let plan = BandPlan::new(dim, &cp, &ri);
+        let mut lu = BandLu::new(plan);
+        lu.factor(&cp, &ri, &ring_values(dim, &cp, &ri, 0.0))
+            .expect("regular");
+        assert!(lu.check_needed(), "nothing verified yet");
+        assert!(lu.backward_error(&cp, &ri, &ring_values(dim, &cp, &ri, 0.0)) < 1e-14);
+        lu.verdict(true);
+        let g0 = lu.growth;
+        assert!(g0.band > 0.5 && g0.band < 10.0 && g0.schur > 0.5, "{g0:?}");
+        let mut taken = 0;
+        for k in 1..=40 {
+            let vals = ring_values(dim, &cp, &ri, 1e-3 * k as f64);
+            lu.factor(&cp, &ri, &vals).expect("regular");
+            let measured = lu.check_needed();
+            if measured {
+                assert_eq!(taken, VERDICT_REUSE_LIMIT, "factorisation {k}");
+                assert!(lu.backward_error(&cp, &ri, &vals) < 1e-14);
+                taken = 0;
+            } else {
+                taken += 1;
+            }
+            lu.verdict(measured);
+        }
+        // growth beyond the ratio in any part: measured
+        for part in 0..3 {
+            let saved = lu.growth;
+            let g = match part {
+                0 => &mut lu.growth.band,
+                1 => &mut lu.growth.schur,
+                _ => &mut lu.growth.border,
+            };
+            *g *= 2.5;
+            assert!(lu.check_needed(), "part {part}");
+            lu.growth.band = f64::NAN;
+            assert!(lu.check_needed(), "NaN");
+            lu.growth = saved;
         }
     }
 
