@@ -262,6 +262,11 @@ impl ThinPlate {
                 }
             }
             // the scatter, point by point and S_x before S_y, into the 3 × 3 vector sums
+            #[cfg(target_arch = "x86_64")]
+            if let Some(simd) = pulp::x86::V3::try_new() {
+                scatter_v3(simd, &m.wd, &grs[..nj], j0, np, &mut qt);
+                continue;
+            }
             for (jj, gr) in grs.iter().enumerate().take(nj) {
                 let j = j0 + jj;
                 for l in 0..LANES.min(np - LANES * j) {
@@ -634,6 +639,42 @@ impl mbd_core::simd::Kernel for PlateForces<'_> {
     fn run(self) {
         self.plate.elastic_forces_kernel(self.e, self.q)
     }
+}
+
+/// The scatter of [`ThinPlate::membrane_forces_batch`] with the nine sums held as AVX2 vectors
+/// (`pulp`'s `f64x4`), so that they stay in registers over the groups' points: the same
+/// products and additions in the same order as the scalar loop (no fused multiply–add), hence
+/// the same bits. `grs` are the gradients of the groups `j0, j0 + 1, …` (one point per lane).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn scatter_v3(
+    simd: pulp::x86::V3, wd: &[[f64; 12]], grs: &[[[f64; LANES]; 6]], j0: usize, np: usize,
+    qt: &mut [[[f64; LANES]; 3]; 3],
+) {
+    use pulp::f64x4;
+    let v = |a: [f64; LANES]| f64x4(a[0], a[1], a[2], a[3]);
+    let mut acc = qt.map(|row| row.map(v));
+    for (jj, gr) in grs.iter().enumerate() {
+        let j = j0 + jj;
+        for l in 0..LANES.min(np - LANES * j) {
+            let g = LANES * j + l;
+            for p in 0..2 {
+                let w = &wd[2 * g + p];
+                let wv = [
+                    f64x4(w[0], w[1], w[2], w[3]),
+                    f64x4(w[4], w[5], w[6], w[7]),
+                    f64x4(w[8], w[9], w[10], w[11]),
+                ];
+                for (c, row) in acc.iter_mut().enumerate() {
+                    let gv = simd.splat_f64x4(gr[3 * p + c][l]);
+                    for (a, w) in row.iter_mut().zip(&wv) {
+                        *a = simd.add_f64x4(*a, simd.mul_f64x4(*w, gv));
+                    }
+                }
+            }
+        }
+    }
+    *qt = acc.map(|row| row.map(|a| [a.0, a.1, a.2, a.3]));
 }
 
 /// [`gather`] of the first `blocks` derivatives only (2: `r_x`, `r_y`, all the membrane energy
