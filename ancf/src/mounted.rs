@@ -139,6 +139,11 @@ pub trait AncfDrive: SecondOrderSystem {
     fn mean_belt_speed(&self, q: &[f64], v: &[f64]) -> f64;
     /// Pulleys, spans and wrap points at the state ([`BeltModel::snapshot`]).
     fn snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError>;
+    /// [`Self::snapshot_at`] without the wrap points' recovered tension
+    /// ([`BeltModel::report_snapshot`]). Default: [`Self::snapshot_at`].
+    fn report_snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        self.snapshot_at(t, q, v)
+    }
     /// Transverse offset of each span's middle from its line \[m\].
     fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError>;
     /// Number of belt elements along the belt.
@@ -235,6 +240,10 @@ impl<D: AncfDrive> BeltModel for MountedBelt<D> {
 
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
         self.drive.snapshot_at(t, q, v)
+    }
+
+    fn report_snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        self.drive.report_snapshot_at(t, q, v)
     }
 
     fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {

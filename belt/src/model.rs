@@ -177,6 +177,15 @@ pub trait BeltModel: SecondOrderSystem {
     /// The drive's state at `(t, q, v)` for the report.
     fn snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError>;
 
+    /// [`Self::snapshot`] for a [`crate::Report`] only ([`crate::Report::new`] reads the wrap
+    /// points' pressure, friction, slip and length, not their `tension`): a model may leave
+    /// the wrap points' `tension` `NaN` where recovering it is costly (the ANCF belt's
+    /// section-force recovery, a fine contact integral per wrap point). Everything else is
+    /// [`Self::snapshot`]'s, to the bit. Default: [`Self::snapshot`].
+    fn report_snapshot(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        self.snapshot(t, q, v)
+    }
+
     /// Transverse displacement of each span's mid-point \[m\] (sampled every step for the
     /// vibration amplitude; spans in travel order).
     fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError>;

@@ -1297,9 +1297,10 @@ fn sweep<M: BeltModel>(
                 }
                 // the report every other step
                 if i % 2 == 0 {
+                    // only its report is kept (`report_snapshot`: no wrap tensions)
                     let snap = sim
                         .model()
-                        .snapshot(st.t, &st.q, &st.v)
+                        .report_snapshot(st.t, &st.q, &st.v)
                         .map_err(|e| fail(e, &summary))?;
                     for (a, s) in w.tens.iter_mut().zip(&snap.spans) {
                         if s.tension.is_finite() {

@@ -304,6 +304,13 @@ impl DriveKind for Planar {
         Ok(post::snapshot(d, t, q, v, &d.speeds(t, v)))
     }
 
+    /// [`post::snapshot_with`] without the wrap points' section-force recovery.
+    fn report_snapshot_at(
+        d: &BeltDrive, t: f64, q: &[f64], v: &[f64],
+    ) -> Result<Snapshot, MbdError> {
+        Ok(post::snapshot_with(d, t, q, v, &d.speeds(t, v), false))
+    }
+
     fn span_offsets(d: &BeltDrive, q: &[f64]) -> Result<Vec<f64>, MbdError> {
         Ok(post::span_transverse(d, q))
     }

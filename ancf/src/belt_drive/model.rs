@@ -930,7 +930,18 @@ impl BeltDrive {
         let nb = self.n_belt;
         let pat = &self.pattern;
         let scratch = self.scratch(ws);
-        let mut k = {
+        let mut k = if self.kind.tangent_refresh <= 0.0 {
+            // no reuse (the default): the tangent itself, without the cache's copies
+            let mut fbuf = vec![0.0; nb];
+            let mut kv = pat.zeros();
+            self.kind
+                .mesh
+                .elastic_tangent_into(&q[..nb], &mut fbuf, pat, &mut kv, 1.0);
+            self.kind
+                .elastic_evaluations
+                .fetch_add(1, Ordering::Relaxed);
+            kv
+        } else {
             let cache = &mut scratch.elastic;
             if !(cache.valid && cache.q.len() == q.len() && self.tangent_still_valid(&cache.q, q)) {
                 let mut fbuf = vec![0.0; nb];
@@ -1649,6 +1660,29 @@ mod tests {
         let w = contact::FrictionLaw::transition_width(drive.friction_law(1)).unwrap();
         let r = drive.spec.pulleys[1].radius;
         (drive, q, j, r, w)
+    }
+
+    // Reference: the full snapshot (`post::snapshot`). The report's snapshot leaves out only
+    // the wrap points' recovered tension: pulleys, spans and every other field of every wrap
+    // point are the same to the bit, on a moving state with the belt sliding on both wraps.
+    #[test]
+    fn report_snapshot_is_the_snapshot_without_wrap_tensions() {
+        let (drive, q, _, _, _) = tanh_drive_at_rest();
+        let n = q.len();
+        let v: Vec<f64> = (0..n).map(|i| 0.01 * ((i as f64) * 0.37).sin()).collect();
+        let omegas = [30.0, 29.5];
+        let full = super::super::post::snapshot(&drive, 0.1, &q, &v, &omegas);
+        let lean = super::super::post::snapshot_with(&drive, 0.1, &q, &v, &omegas, false);
+        assert_eq!(full.pulleys, lean.pulleys);
+        assert_eq!(full.spans, lean.spans);
+        assert_eq!(full.belt_dissipation, lean.belt_dissipation);
+        assert!(!full.wrap.is_empty());
+        assert_eq!(full.wrap.len(), lean.wrap.len());
+        for (a, b) in full.wrap.iter().zip(&lean.wrap) {
+            assert!(a.tension.is_finite() && b.tension.is_nan());
+            let strip = |w: &::belt::WrapPoint| ::belt::WrapPoint { tension: 0.0, ..*w };
+            assert_eq!(strip(a), strip(b));
+        }
     }
 
     // Reference: the closed form. With the belt and the driver at rest every slip velocity is

@@ -248,6 +248,16 @@ pub fn pulley_arc_coordinate(drive: &BeltDrive, p: usize, position: [f64; 2]) ->
 /// offsets ([`span_transverse`]) and the lines of action of the spans' section forces
 /// ([`BeltDrive::span_force_lines`]).
 pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64]) -> Snapshot {
+    snapshot_with(drive, t, q, v, omegas, true)
+}
+
+/// [`snapshot`], with the wrap points' tension recovered from equilibrium
+/// ([`BeltDrive::section_forces`](super::BeltDrive::section_forces), a fine contact integral
+/// per wrap point) only when `wrap_tension` (otherwise `NaN`: what
+/// [`belt::BeltModel::report_snapshot`] may leave out; every other field is the same).
+pub fn snapshot_with(
+    drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64], wrap_tension: bool,
+) -> Snapshot {
     let loads = drive.pulley_loads_with(q, v, omegas);
     let pulleys = (0..drive.pulleys().len())
         .map(|k| {
@@ -261,19 +271,40 @@ pub fn snapshot(drive: &BeltDrive, t: f64, q: &[f64], v: &[f64], omegas: &[f64])
             }
         })
         .collect();
-    let wrap = wrap_records(drive, q, v, omegas)
-        .into_iter()
-        .filter(|w| w.contact.normal_force > 0.0)
-        .map(|w| WrapPoint {
-            pulley: w.contact.pulley,
-            angle: w.angle,
-            length: w.contact.weight,
-            tension: w.tension,
-            pressure: w.contact.normal_force,
-            friction: w.contact.friction_force,
-            slip: w.contact.slip,
-        })
-        .collect();
+    let wrap = if wrap_tension {
+        wrap_records(drive, q, v, omegas)
+            .into_iter()
+            .filter(|w| w.contact.normal_force > 0.0)
+            .map(|w| WrapPoint {
+                pulley: w.contact.pulley,
+                angle: w.angle,
+                length: w.contact.weight,
+                tension: w.tension,
+                pressure: w.contact.normal_force,
+                friction: w.contact.friction_force,
+                slip: w.contact.slip,
+            })
+            .collect()
+    } else {
+        // the same contact records and angles, without the recovery
+        drive
+            .contact_records_with(q, v, omegas)
+            .into_iter()
+            .filter(|c| c.normal_force > 0.0)
+            .map(|c| WrapPoint {
+                pulley: c.pulley,
+                angle: drive
+                    .path()
+                    .angle_from_inlet(c.pulley, c.position)
+                    .unwrap_or(f64::NAN),
+                length: c.weight,
+                tension: f64::NAN,
+                pressure: c.normal_force,
+                friction: c.friction_force,
+                slip: c.slip,
+            })
+            .collect()
+    };
     // the whole axial force: elastic plus the axial damping's viscous force (issue 34)
     let mut samples = tension_samples(drive, q, 4);
     for (k, smp) in samples.iter_mut().enumerate() {

@@ -47,6 +47,13 @@ pub trait DriveKind: Sized {
     fn snapshot_at(
         d: &AncfBeltDrive<Self>, t: f64, q: &[f64], v: &[f64],
     ) -> Result<Snapshot, MbdError>;
+    /// [`Self::snapshot_at`] without the wrap points' recovered tension
+    /// ([`belt::BeltModel::report_snapshot`]). Default: [`Self::snapshot_at`].
+    fn report_snapshot_at(
+        d: &AncfBeltDrive<Self>, t: f64, q: &[f64], v: &[f64],
+    ) -> Result<Snapshot, MbdError> {
+        Self::snapshot_at(d, t, q, v)
+    }
     /// Transverse offset of each span's middle from its line \[m\].
     fn span_offsets(d: &AncfBeltDrive<Self>, q: &[f64]) -> Result<Vec<f64>, MbdError>;
 }
@@ -215,6 +222,9 @@ where
     }
     fn snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
         K::snapshot_at(self, t, q, v)
+    }
+    fn report_snapshot_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<Snapshot, MbdError> {
+        K::report_snapshot_at(self, t, q, v)
     }
     fn span_offsets(&self, q: &[f64]) -> Result<Vec<f64>, MbdError> {
         K::span_offsets(self, q)
