@@ -636,21 +636,21 @@ impl SparsePath {
             },
             _ => None,
         };
+        // the pattern's values, filled once when first needed
+        let (shared_map, maps, d_map) = (self.shared_map, &self.maps, &self.d_map);
         let mut vals_filled = false;
+        let mut ensure_vals = |vals: &mut Vec<f64>| {
+            if !vals_filled {
+                fill_vals(vals, shared_map, maps, d_map, blocks, d);
+                vals_filled = true;
+            }
+        };
         match direct {
             Some(true) => {}
             // a value that is not finite, as the check of the pattern's values below
             Some(false) => return Err(non_finite()),
             None => {
-                fill_vals(
-                    &mut self.vals,
-                    self.shared_map,
-                    &self.maps,
-                    &self.d_map,
-                    blocks,
-                    d,
-                );
-                vals_filled = true;
+                ensure_vals(&mut self.vals);
                 if self.vals.iter().any(|v| !v.is_finite()) {
                     return Err(non_finite());
                 }
@@ -662,17 +662,7 @@ impl SparsePath {
         while self.band.is_some() {
             let pat = self.symbolic_pattern.as_ref();
             if !loaded {
-                if !vals_filled {
-                    fill_vals(
-                        &mut self.vals,
-                        self.shared_map,
-                        &self.maps,
-                        &self.d_map,
-                        blocks,
-                        d,
-                    );
-                    vals_filled = true;
-                }
+                ensure_vals(&mut self.vals);
                 if let Some(band) = self.band.as_mut() {
                     band.load(pat.col_ptr(), pat.row_idx(), &self.vals);
                 }
@@ -687,16 +677,8 @@ impl SparsePath {
             }
             // measured unless the factors grew as little as a measured one's
             let measured = band.check_needed();
-            if measured && !vals_filled {
-                fill_vals(
-                    &mut self.vals,
-                    self.shared_map,
-                    &self.maps,
-                    &self.d_map,
-                    blocks,
-                    d,
-                );
-                vals_filled = true;
+            if measured {
+                ensure_vals(&mut self.vals);
             }
             let Some(band) = self.band.as_mut() else {
                 break;
@@ -715,16 +697,7 @@ impl SparsePath {
             self.band = self.band_plans.pop().map(band::BandLu::new);
             loaded = false;
         }
-        if !vals_filled {
-            fill_vals(
-                &mut self.vals,
-                self.shared_map,
-                &self.maps,
-                &self.d_map,
-                blocks,
-                d,
-            );
-        }
+        ensure_vals(&mut self.vals);
         let a = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.vals);
         self.symbolic
             .factorize_numeric_lu(
