@@ -107,15 +107,25 @@ fn recovered_axial_force_on_the_mounted_wraps_is_beam_statics() {
     }
 }
 
+/// The tanh law's κ \[s/m\] of [`membrane_model`]: `FLOWMBD_WRAP_KAPPA`, 400 by default (the
+/// convergence study of [`recovered_wrap_force_window_mean_converges`] at other laws).
+fn wrap_kappa() -> f64 {
+    std::env::var("FLOWMBD_WRAP_KAPPA")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|k: &f64| k.is_finite() && *k > 0.0)
+        .unwrap_or(400.0)
+}
+
 /// Table 6-1 with EI/100 (a near-membrane belt: bending boundary layer `λ = √(EI/N)` ≤ 3 mm)
-/// and a near-Coulomb tanh law (μ = 1.2, κ = 400 s/m, saturated above slip speeds of ~7 mm/s)
-/// on `elements` ANCF elements.
+/// and a near-Coulomb tanh law (μ = 1.2, κ = 400 s/m, saturated above slip speeds of ~7 mm/s;
+/// [`wrap_kappa`]) on `elements` ANCF elements.
 fn membrane_model(elements: usize) -> (belt::Layout, AncfBelt) {
     let mut cfg = drives::table_6_1::layout();
     cfg.belt.ei *= 0.01;
     cfg.contact.friction = contact::FrictionSpec::Tanh {
         mu: 1.2,
-        kappa: 400.0,
+        kappa: wrap_kappa(),
     };
     let m = AncfBelt::new(
         &cfg.resolve().unwrap(),
@@ -488,11 +498,18 @@ const WINDOW_STATES: usize = 200;
 /// 34 N·m (every 0.5 ms; the speed-loss procedure ends when two consecutive 50 ms window means
 /// of the speed loss agree within 2e-4 rad/s, so both of its last windows are steady). With
 /// `FLOWMBD_WRAP_CACHE` set to a directory the states are read from (or written to) the file
-/// `membrane34_<elements>.bin` there (little-endian `u64` count, `n_q`, `n_v`, then `t`, `q`,
-/// `v` of every state), so the field can be re-sampled without the run.
+/// `membrane34_<elements>.bin` there (`membrane34_<elements>_k<κ>.bin` for another
+/// [`wrap_kappa`]; little-endian `u64` count, `n_q`, `n_v`, then `t`, `q`, `v` of every
+/// state), so the field can be re-sampled without the run.
 fn steady_window(elements: usize) -> (belt::Layout, AncfBelt, Vec<mbd_core::State>) {
-    let cache = std::env::var_os("FLOWMBD_WRAP_CACHE")
-        .map(|d| std::path::PathBuf::from(d).join(format!("membrane34_{elements}.bin")));
+    let kappa = wrap_kappa();
+    let name = if kappa == 400.0 {
+        format!("membrane34_{elements}.bin")
+    } else {
+        format!("membrane34_{elements}_k{kappa}.bin")
+    };
+    let cache =
+        std::env::var_os("FLOWMBD_WRAP_CACHE").map(|d| std::path::PathBuf::from(d).join(name));
     if let Some(states) = cache.as_deref().and_then(read_states) {
         let (cfg, m) = membrane_model(elements);
         return (cfg, m, states);
@@ -660,6 +677,9 @@ fn deviation_range(c: &CapstanCheck, a: f64, b: f64) -> (f64, f64) {
 // `FLOWMBD_WRAP_CACHE=/tmp/dir cargo test --release -p flowmbd-validation --test integration
 // recovered_wrap_force_window_mean_converges -- --ignored --nocapture` (runs 80 and 160
 // elements: 8 and 54 min wall on the shared machine at load 7; with the states cached 2.6 s).
+// With `FLOWMBD_WRAP_KAPPA=100` (the law's band 10 mm/s, which the meshes resolve; 2026-12-07,
+// BENCHMARKS "Fourth round") all eight bands converge with an observed order p = 2.3–4.0 and
+// the driver's transition point settles (1.378 / 1.299 / 1.283 rad at 80 / 120 / 160).
 #[test]
 #[ignore = "ANCF runs to a steady state at 34 N·m (80 and 160 elements, > 25 min)"]
 fn recovered_wrap_force_window_mean_converges() {
@@ -741,9 +761,12 @@ fn recovered_wrap_force_window_mean_converges() {
                 .fold((0.0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
             // the element-passing frequency v/l (v = ω₁R, the belt's speed on the driver)
             let passing = 62.8 * d0.pulleys()[0].radius / runs[k].1.belt_drive().element_length();
-            // (on the driven wrap; the driver's field at 160 elements peaks at 800 Hz instead)
+            // (on the driven wrap; the driver's field at 160 elements peaks at 800 Hz instead;
+            // observed at κ = 400 s/m: at κ = 100 the 160-element driven field peaks at 40 Hz)
             assert!(
-                pulley == 0 || (f_peak - passing).abs() <= 1.0 / (runs[k].2.len() as f64 * dt),
+                pulley == 0
+                    || wrap_kappa() != 400.0
+                    || (f_peak - passing).abs() <= 1.0 / (runs[k].2.len() as f64 * dt),
                 "{} elements, pulley {pulley}: the field at {probe} rad oscillates at {f_peak} Hz, \
                  not at the element-passing frequency {passing:.1} Hz",
                 meshes[k]
