@@ -186,6 +186,15 @@ pub trait BeltModel: SecondOrderSystem {
         self.snapshot(t, q, v)
     }
 
+    /// The drive's report at `(t, q, v)`: [`crate::Report::new`] of [`Self::report_snapshot`]
+    /// (the one path of every study's report-only samples).
+    fn report_at(&self, t: f64, q: &[f64], v: &[f64]) -> Result<crate::Report, MbdError> {
+        Ok(crate::Report::new(
+            self.drive(),
+            &self.report_snapshot(t, q, v)?,
+        ))
+    }
+
     /// Transverse displacement of each span's mid-point \[m\] (sampled every step for the
     /// vibration amplitude; spans in travel order).
     fn span_transverse(&self, q: &[f64]) -> Result<Vec<f64>, MbdError>;

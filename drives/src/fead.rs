@@ -1297,17 +1297,16 @@ fn sweep<M: BeltModel>(
                 }
                 // the report every other step
                 if i % 2 == 0 {
-                    // only its report is kept (`report_snapshot`: no wrap tensions)
-                    let snap = sim
+                    let report = sim
                         .model()
-                        .report_snapshot(st.t, &st.q, &st.v)
+                        .report_at(st.t, &st.q, &st.v)
                         .map_err(|e| fail(e, &summary))?;
-                    for (a, s) in w.tens.iter_mut().zip(&snap.spans) {
-                        if s.tension.is_finite() {
-                            a.add(s.tension);
+                    for (a, s) in w.tens.iter_mut().zip(&report.spans) {
+                        if s.tension_n.is_finite() {
+                            a.add(s.tension_n);
                         }
                     }
-                    w.reports.push(Report::new(drive, &snap));
+                    w.reports.push(report);
                 }
             }
             let means = w.means();
@@ -1339,10 +1338,11 @@ fn sweep<M: BeltModel>(
         summary.work.accumulate(&work);
         drop(sim);
         if reports.is_empty() {
-            let snap = model
-                .snapshot(st.t, &st.q, &st.v)
-                .map_err(|e| fail(e, &summary))?;
-            reports.push(Report::new(drive, &snap));
+            reports.push(
+                model
+                    .report_at(st.t, &st.q, &st.v)
+                    .map_err(|e| fail(e, &summary))?,
+            );
         }
         let report = Report::mean(&reports).unwrap_or_else(|| reports[0].clone());
         let slipping = report.gross_slip();

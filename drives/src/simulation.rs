@@ -134,9 +134,7 @@ impl<M: BeltModel, B: BorrowMut<M>> BeltSimulation<M, B> {
     /// The report of the current state ([`Report::new`]).
     pub fn report(&self) -> Result<Report, MbdError> {
         let s = self.stepper.state();
-        let model = self.model();
-        let snap = model.snapshot(s.t, &s.q, &s.v)?;
-        Ok(Report::new(model.drive(), &snap))
+        self.model().report_at(s.t, &s.q, &s.v)
     }
 }
 

@@ -623,11 +623,11 @@ pub fn speed_loss_sweep<M: BeltModel>(
             sum += dw;
             count += 1;
             if count % REPORT_EVERY == 0 && count < per_window {
-                let snap = sim
+                let report = sim
                     .model()
-                    .snapshot(st.t, &st.q, &st.v)
+                    .report_at(st.t, &st.q, &st.v)
                     .map_err(|e| fail(e, &points))?;
-                window.reports.push(Report::new(sim.model().drive(), &snap));
+                window.reports.push(report);
             }
             if count == per_window {
                 means.push(sum / count as f64);
