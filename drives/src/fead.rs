@@ -29,9 +29,10 @@
 //! * **ancf**: the belt is `ancf.elements` equal ANCF elements (default 120: 12.7 mm, about
 //!   five on the smallest wrap) stepped at `ancf.step` (which replaces `run.step`; default
 //!   0.25 ms, the ANCF drive's own step, [`SimulationConfig`]) with the ANCF drive's Newton
-//!   settings ([`SimulationConfig::alpha_params`]) and ρ∞ = `run.ancf_rho_inf` (default 0.6,
-//!   which replaces `run.rho_inf`). It is the expensive model (README and BENCHMARKS.md for
-//!   measured times).
+//!   settings ([`SimulationConfig::alpha_params`]), ρ∞ = `run.ancf_rho_inf` (default 0.6,
+//!   which replaces `run.rho_inf`) and the travel limit `run.ancf_max_travel` (default 0.5,
+//!   which replaces `run.max_travel`: [`FeadRun::ancf_max_travel`]). It is the expensive model
+//!   (README and BENCHMARKS.md for measured times).
 //!
 //!   *Gross slip at the crank.* The default drive cannot follow the 1500 → 2500 rpm ramp
 //!   without slipping on the crankshaft: the accessories' inertia seen at the crank,
@@ -190,8 +191,18 @@ pub struct FeadRun {
     /// default sweep's 2500 and 3500 rpm points step at 0.125 and 0.083 ms and their span
     /// means move by up to 4 N (1 %), while the torque residual on the alternator → tensioner
     /// span rises to 0.5–0.6 % (BENCHMARKS.md, issue 37 item 4). `0` (the default): the model's
-    /// step at every point.
+    /// step at every point. The ANCF belt takes [`FeadRun::ancf_max_travel`] instead.
     pub max_travel: f64,
+    /// [`FeadRun::max_travel`] for `model = "ancf"` (replaces it for that model) \[-\];
+    /// default 0.5. At `models.ancf.step` = 0.25 ms the default drive's 120-element belt
+    /// moves 0.54 of an element per step at 3500 rpm (0.39 at 2500 rpm), and 85 % of those
+    /// steps failed Newton at the full step and were halved anyway (1379 halvings, 2867
+    /// rejected attempts of the 3500 rpm point): with 0.5 that point steps at 0.125 ms from
+    /// the start, the others keep 0.25 ms. Every mean of the 800–2500 rpm points stays the
+    /// same to the bit, the 3500 rpm spans move by at most 0.63 N and the speed losses by
+    /// 7e-4 percentage points (the steady tolerance: 2 N and 0.05), for 0.83 of the sweep's
+    /// CPU (BENCHMARKS.md, issue 37 item 4). `0`: the model's step at every point.
+    pub ancf_max_travel: f64,
 }
 
 impl Default for FeadRun {
@@ -208,6 +219,7 @@ impl Default for FeadRun {
             max_settle: 2.0,
             steady_tolerance: 5e-4,
             max_travel: 0.0,
+            ancf_max_travel: 0.5,
         }
     }
 }
@@ -431,6 +443,13 @@ impl Validate for FeadConfig {
             "",
         )?;
         check::within("run.max_travel", self.run.max_travel, 0.0, 100.0, "")?;
+        check::within(
+            "run.ancf_max_travel",
+            self.run.ancf_max_travel,
+            0.0,
+            100.0,
+            "",
+        )?;
         // the longest run of a point: the last window starts at ramp + max_settle and is at
         // most one order period (≤ window at the slowest speed checked below) longer
         let per_point = self.run.ramp + self.run.max_settle + 2.0 * self.run.window;
@@ -584,8 +603,8 @@ pub struct FeadPoint {
     /// ([`steady_window`]).
     pub window_s: f64,
     /// The generalized-α step of this point \[s\]: the model's step, divided on a Lagrangian
-    /// mesh so that the belt travels at most `run.max_travel` elements per step
-    /// ([`travel_limited_step`]).
+    /// mesh so that the belt travels at most `run.max_travel` (ANCF: `run.ancf_max_travel`)
+    /// elements per step ([`travel_limited_step`]).
     pub step_s: f64,
     /// How the tensioner arm moved through its dry friction in the window (`None`: no
     /// tensioner, or no dry friction at its pivot): [`ArmFriction`].
@@ -829,7 +848,7 @@ pulley's mean belt-line speed within run.steady_tolerance of the belt speed, eve
 tension within 10 x that fraction of the installed tension; steady = false when run.max_settle \
 ran out first, settled_s = time from the end of the ramp to the reported window; step_s = the \
 point's step: on a mesh that travels with the belt (nodal, ANCF) the model's step divided so \
-that the belt moves at most run.max_travel elements per step, if set). The last window gives: the tensioner arm angle \
+that the belt moves at most run.max_travel elements per step, run.ancf_max_travel on the ANCF belt, if set). The last window gives: the tensioner arm angle \
 (min/mean/max, rad), every span's tension extremes (N), each pulley's speed loss against the \
 crank (%, creep and slip), the drive report averaged over the window (slip arcs, hub loads, \
 gross slip, per-pulley torque residual between the pulley's torque and the spans' \
@@ -1073,7 +1092,15 @@ pub fn run_fead(
                 newton_line_search: true,
                 ..linear_alpha(cfg)
             };
-            sweep(cfg, base, &drive, alpha, note, observer)
+            sweep(
+                cfg,
+                base,
+                &drive,
+                alpha,
+                ("run.max_travel", cfg.run.max_travel),
+                note,
+                observer,
+            )
         }
         FeadModel::Nodal => {
             let base = NodalBelt::new(&drive, &m.nodal.mesh)
@@ -1091,7 +1118,15 @@ pub fn run_fead(
                 ..linear_alpha(cfg)
             };
             note.push_str(", Newton with line search");
-            sweep(cfg, base, &drive, alpha, note, observer)
+            sweep(
+                cfg,
+                base,
+                &drive,
+                alpha,
+                ("run.max_travel", cfg.run.max_travel),
+                note,
+                observer,
+            )
         }
         FeadModel::Ancf => {
             let base = AncfBelt::new(&drive, &m.ancf).map_err(|e| build(e.into()))?;
@@ -1119,7 +1154,15 @@ pub fn run_fead(
                 ..Default::default()
             }
             .alpha_params();
-            sweep(cfg, base, &drive, alpha, note, observer)
+            sweep(
+                cfg,
+                base,
+                &drive,
+                alpha,
+                ("run.ancf_max_travel", cfg.run.ancf_max_travel),
+                note,
+                observer,
+            )
         }
     }
 }
@@ -1140,9 +1183,10 @@ fn linear_alpha(cfg: &FeadConfig) -> AlphaConfig {
 }
 
 /// The engine-speed sweep of [`run_fead`] on the built model `model` with the stepping
-/// `alpha`.
+/// `alpha` and the travel limit `max_travel` of the model (`travel_field` names it in errors).
 fn sweep<M: BeltModel>(
-    cfg: &FeadConfig, mut model: M, drive: &Drive, alpha: AlphaConfig, model_settings: String,
+    cfg: &FeadConfig, mut model: M, drive: &Drive, alpha: AlphaConfig,
+    (travel_field, max_travel): (&'static str, f64), model_settings: String,
     mut observer: impl FnMut(FeadProgress),
 ) -> Result<FeadSummary, Box<FeadFailureOrInvalid>> {
     let names = drive.names();
@@ -1185,7 +1229,8 @@ fn sweep<M: BeltModel>(
     if cfg.engine.trace.is_some() {
         summary.orders.clear();
     }
-    // each point's step: the belt's travel per step on a Lagrangian mesh (FeadRun::max_travel)
+    // each point's step: the belt's travel per step on a Lagrangian mesh (FeadRun::max_travel,
+    // FeadRun::ancf_max_travel)
     // at the fastest crank speed of its ramp, fluctuation included
     let element = model.material_element();
     let fluctuation: f64 = match cfg.engine.trace {
@@ -1198,14 +1243,14 @@ fn sweep<M: BeltModel>(
             let omega = p.rpm * std::f64::consts::PI / 30.0;
             let v = omega.max(*prev) * radii[0] * (1.0 + fluctuation);
             *prev = omega;
-            Some(travel_limited_step(h, cfg.run.max_travel, element, v))
+            Some(travel_limited_step(h, max_travel, element, v))
         })
         .collect();
     let per_point = cfg.run.ramp + cfg.run.max_settle + 2.0 * cfg.run.window;
     let total_steps: f64 = point_steps.iter().map(|hp| per_point / hp).sum();
     if total_steps > MAX_STEPS as f64 {
         return Err(invalid(InvalidField::new(
-            "run.max_travel",
+            travel_field,
             format!(
                 "with the belt's travel per step limited the sweep would take {total_steps:.3e} \
                  steps (max {MAX_STEPS})"

@@ -62,9 +62,32 @@ fn lagrangian_meshes_state_the_element_the_material_carries() {
     assert_eq!(flow.material_element(), None);
 }
 
+// Reference: the default sweep's points in closed form (the crank's belt speed with the 2.5 %
+// fluctuation, at the fastest speed of each point's ramp, against the ANCF belt's 12.7 mm
+// elements at 0.25 ms): with run.ancf_max_travel = 0.5 the 800–2500 rpm points keep the
+// model's step (at most 0.40 of an element a step) and 3500 rpm takes two parts (0.56).
+#[test]
+fn the_default_ancf_sweep_halves_only_the_fastest_point() {
+    let cfg = FeadConfig::default();
+    let drive = cfg.drive.resolve().unwrap();
+    let l = drive.belt_length() / cfg.models.ancf.elements as f64;
+    let h = cfg.models.ancf.step;
+    let r = drive.pulleys()[0].radius;
+    for (rpm, parts) in [(800.0, 1.0), (1500.0, 1.0), (2500.0, 1.0), (3500.0, 2.0)] {
+        let v = rpm * std::f64::consts::PI / 30.0 * r * 1.025;
+        let travel = v * h / l;
+        assert_eq!(
+            travel_limited_step(h, cfg.run.ancf_max_travel, Some(l), v),
+            h / parts,
+            "{rpm} rpm: {travel} elements a step"
+        );
+    }
+}
+
 // Reference: travel_limited_step at the point's crank speed (3500 rpm on the 75 mm crank with
-// the 2.5 % fluctuation: 28.2 m/s, 7.0 mm per 0.25 ms against 0.3 of the ANCF belt's 13.3 mm
-// elements: two parts); the flowing belt keeps run.step.
+// the 2.5 % fluctuation: 28.2 m/s, 7.0 mm per 0.25 ms against 0.2 of the ANCF belt's 12.7 mm
+// elements: three parts); run.max_travel, which the ANCF belt does not take, at 1 (one part);
+// the flowing belt keeps run.step.
 #[test]
 fn each_point_reports_its_travel_limited_step() {
     let mut cfg = FeadConfig::default();
@@ -73,15 +96,16 @@ fn each_point_reports_its_travel_limited_step() {
     cfg.run.settle = 0.0;
     cfg.run.window = 0.005;
     cfg.run.max_settle = 0.0;
-    cfg.run.max_travel = 0.3;
+    cfg.run.max_travel = 1.0;
+    cfg.run.ancf_max_travel = 0.2;
     let flow = run_fead(&cfg, |_| {}).unwrap();
     assert_eq!(flow.points[0].step_s, cfg.run.step);
     cfg.model = FeadModel::Ancf;
     let drive = cfg.drive.resolve().unwrap();
     let l = drive.belt_length() / cfg.models.ancf.elements as f64;
     let v = 3500.0 * std::f64::consts::PI / 30.0 * drive.pulleys()[0].radius * 1.025;
-    let expected = travel_limited_step(cfg.models.ancf.step, cfg.run.max_travel, Some(l), v);
-    assert_eq!(expected, cfg.models.ancf.step / 2.0);
+    let expected = travel_limited_step(cfg.models.ancf.step, cfg.run.ancf_max_travel, Some(l), v);
+    assert_eq!(expected, cfg.models.ancf.step / 3.0);
     let a = run_fead(&cfg, |_| {}).unwrap();
     assert_eq!(a.points[0].step_s, expected);
     // the steps taken: the ramp and the window at that step

@@ -450,6 +450,12 @@ fn fead_bad_layout_exits_2_naming_the_field() {
         &|c| c.run.ancf_rho_inf = 1.5,
         "run.ancf_rho_inf",
     );
+    // the ANCF belt's travel limit negative
+    check(
+        "ancf_travel",
+        &|c| c.run.ancf_max_travel = -0.5,
+        "run.ancf_max_travel",
+    );
     // the tensioner idler placed to deflect the alternator–water pump span by 2 mm from
     // outside: a wrap of ≈ 2 (2 mm / 85 mm) rad ≈ 3°, below 10°
     check(
