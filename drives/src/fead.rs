@@ -1074,6 +1074,8 @@ pub fn run_fead(
     let h = cfg.run.step;
     let elements = |n: usize, l: f64| format!("{n} elements, {:.1} mm mean", 1e3 * l / n as f64);
     let m = &cfg.models;
+    // the travel limit of the flowing and nodal belts (the ANCF belt has its own)
+    let travel = ("run.max_travel", cfg.run.max_travel);
     match cfg.model {
         FeadModel::Flowing => {
             let base = FlowingBelt::new(&drive, &m.flowing).map_err(|e| build(e.into()))?;
@@ -1092,15 +1094,7 @@ pub fn run_fead(
                 newton_line_search: true,
                 ..linear_alpha(cfg)
             };
-            sweep(
-                cfg,
-                base,
-                &drive,
-                alpha,
-                ("run.max_travel", cfg.run.max_travel),
-                note,
-                observer,
-            )
+            sweep(cfg, base, &drive, alpha, travel, note, observer)
         }
         FeadModel::Nodal => {
             let base = NodalBelt::new(&drive, &m.nodal.mesh)
@@ -1118,15 +1112,7 @@ pub fn run_fead(
                 ..linear_alpha(cfg)
             };
             note.push_str(", Newton with line search");
-            sweep(
-                cfg,
-                base,
-                &drive,
-                alpha,
-                ("run.max_travel", cfg.run.max_travel),
-                note,
-                observer,
-            )
+            sweep(cfg, base, &drive, alpha, travel, note, observer)
         }
         FeadModel::Ancf => {
             let base = AncfBelt::new(&drive, &m.ancf).map_err(|e| build(e.into()))?;
