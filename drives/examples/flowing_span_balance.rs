@@ -16,10 +16,16 @@
 //! `v² ε_n + v² T_,ss z + 2 v T_,s ż` of Ribaric (5.10)–(5.13), and `r` what the projection on
 //! `[e_t | T]` leaves unbalanced at the nodes. Printed beside the report's torque residual
 //! and its span moments, so that the residual splits into: span measure against internal
-//! moment, momentum flux against inertia, and the projection's nodal residual.
+//! moment, momentum flux against inertia, and the projection's nodal residual. Then the
+//! report's residuals with three other span measures: the spans' elastic force alone, the
+//! length-weighted mean of the elements between each span's bounding contact nodes, and the
+//! lines of action of the elements' own end forces (resultant and moment of
+//! `f0 − (K_e + K_g) δ − β K_e w`, as `ancf::belt_drive::BeltDrive::span_force_lines`).
+//! The measurements of BENCHMARKS.md "Found: the truncated basis leaves the spans' interior
+//! unbalanced at speed" (issue 34 item 2, h-v2) are its output.
 //!
 //! `cargo run --release -p drives --example flowing_span_balance -- [key=value ...]` with keys
-//! `rpm` (default 3500), `t_end` \[s\] (0.6), `ramp` \[s\] (0.2), `modes` (free modes; 0: all),
+//! `rpm` (default 3500), `t_end` \[s\] (0.6), `ramp` \[s\] (0.2), `modes` (free modes, default 12; 0: all),
 //! `ei` (factor on EI), `rho` (factor on the mass per length), `arc`, `span` (element lengths
 //! \[m\]), `dump` (1: print every element's force along the loop).
 
@@ -100,8 +106,8 @@ fn main() {
     let rate = b.material_rate(q, v);
     let mut tzd = vec![0.0; n];
     for (j, &x) in zd.iter().enumerate() {
-        for i in 0..n {
-            tzd[i] += b.basis.t[(i, j)] * x;
+        for (i, y) in tzd.iter_mut().enumerate() {
+            *y += b.basis.t[(i, j)] * x;
         }
     }
     let mut fint = fe.pretension.clone();
@@ -121,8 +127,8 @@ fn main() {
         acc[3 * i + 1] = vb * vb * fe.curvature[i][1];
     }
     for j in 0..m {
-        for i in 0..n {
-            acc[i] += vb * vb * b.basis.tss[(i, j)] * z[j] + 2.0 * vb * b.basis.ts[(i, j)] * zd[j];
+        for (i, a) in acc.iter_mut().enumerate() {
+            *a += vb * vb * b.basis.tss[(i, j)] * z[j] + 2.0 * vb * b.basis.ts[(i, j)] * zd[j];
         }
     }
     // contact forces on the belt
@@ -280,12 +286,12 @@ fn main() {
         c
     };
     let mut snap_w = snap.clone();
-    for k in 0..spans.len() {
-        let mut a = mid[k];
+    for (k, &mk) in mid.iter().enumerate() {
+        let mut a = mk;
         while !contact[a] {
             a = (a + nn - 1) % nn;
         }
-        let mut e = (mid[k] + 1) % nn;
+        let mut e = (mk + 1) % nn;
         while !contact[e] {
             e = (e + 1) % nn;
         }
