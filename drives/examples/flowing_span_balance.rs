@@ -25,9 +25,9 @@
 //! unbalanced at speed" (issue 34 item 2, h-v2) are its output.
 //!
 //! `cargo run --release -p drives --example flowing_span_balance -- [key=value ...]` with keys
-//! `rpm` (default 3500), `t_end` \[s\] (0.6), `ramp` \[s\] (0.2), `modes` (free modes, default 12; 0: all),
-//! `ei` (factor on EI), `rho` (factor on the mass per length), `arc`, `span` (element lengths
-//! \[m\]), `dump` (1: print every element's force along the loop).
+//! `rpm` (default 3500), `t_end` \[s\] (0.6), `ramp` \[s\] (0.2), `modes` (free modes,
+//! default 12; 0: all), `ei` (factor on EI), `rho` (factor on the mass per length), `arc`,
+//! `span` (element lengths \[m\]), `dump` (1: print every element's force along the loop).
 
 use belt::BeltModel;
 use drives::fead::FeadConfig;
