@@ -386,6 +386,33 @@ fn main() {
             snap_l.spans[k].line = Some(line);
         }
     }
+    // the segments' internal moment split: the elements inside each segment (their own
+    // moment imbalance about the deformed nodes) and the two cut elements' forces on it
+    for (k, p) in drive.pulleys().iter().enumerate() {
+        let si = spans.iter().position(|s| s.to == k).unwrap();
+        let so = spans.iter().position(|s| s.from == k).unwrap();
+        let (a, e_out) = ((mid[si] + 1) % nn, mid[so]);
+        let c = snap.pulleys[k].center;
+        let mom = |node: usize, g: &[f64; 6], o: usize| {
+            let x = [nodes[node][0] - c[0], nodes[node][1] - c[1]];
+            cross(x, [g[o], g[o + 1]]) + g[o + 2]
+        };
+        let g_in = elem_forces(mid[si]);
+        let cut_in = mom(a, &g_in, 3);
+        let g_out = elem_forces(e_out);
+        let cut_out = mom(e_out, &g_out, 0);
+        let mut imb = 0.0;
+        let mut e = a;
+        while e != e_out {
+            let g = elem_forces(e);
+            imb += mom(e, &g, 0) + mom((e + 1) % nn, &g, 3);
+            e = (e + 1) % nn;
+        }
+        println!(
+            "{:>16}: cut in {cut_in:+.4}, cut out {cut_out:+.4}, elements' imbalance {imb:+.4} N m",
+            p.name
+        );
+    }
     let rep_l = belt::Report::new(&drive, &snap_l);
     println!(
         "section-force lines: residuals {:?} N m, {:.3} %",
