@@ -338,7 +338,7 @@ impl Default for FeadConfig {
                 // static (constraint) modes of K hold the elastic strain uniform over a span,
                 // so the viscous force β EA v ∂ε/∂s that the strain's relaxation beyond a wrap
                 // exit (over β v = 49 mm at 3500 rpm) should balance stayed unbalanced at the
-                // span's nodes, and the span's element forces varied by up to 1.5 kN along the
+                // span's nodes, and the span's element forces varied by up to 1.6 kN along the
                 // span at 3500 rpm (elastic 550 N uniform, total 543 … 653 N on the a/c →
                 // crank span); the report's torque residual grew as v² (0.72 % at 800 rpm,
                 // 3.9 % at 3500 rpm), the crank's torque 0.5 N m high there. 24 modes change
