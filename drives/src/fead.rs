@@ -332,16 +332,25 @@ impl Default for FeadConfig {
             run: FeadRun::default(),
             model: FeadModel::default(),
             models: ModelSettings {
-                // 50 mm on the spans, 12 mm on the wraps; 12 free-node modes
+                // 50 mm on the spans, 12 mm on the wraps; every free-node mode kept (no
+                // truncation: 218 coordinates). With 12 modes (137) the spans' interior nodes
+                // could not balance the convective Kelvin–Voigt force of (5.10) at speed: the
+                // static (constraint) modes of K hold the elastic strain uniform over a span,
+                // so the viscous force β EA v ∂ε/∂s that the strain's relaxation beyond a wrap
+                // exit (over β v = 49 mm at 3500 rpm) should balance stayed unbalanced at the
+                // span's nodes, and the span's element forces varied by up to 1.6 kN along the
+                // span at 3500 rpm (elastic 550 N uniform, total 543 … 653 N on the a/c →
+                // crank span); the report's torque residual grew as v² (0.72 % at 800 rpm,
+                // 3.9 % at 3500 rpm), the crank's torque 0.5 N m high there. 24 modes change
+                // nothing, 48 and 72 are worse (41 % and 44 %: the crank's wrap); all modes give
+                // uniform span forces (BENCHMARKS.md, issue 34 item 2, h-v2)
                 flowing: FlowingSettings {
                     mesh: BeltMesh {
                         span_element: 0.05,
                         arc_element: 0.012,
                         contact_margin_nodes: 1,
                     },
-                    reduction: BeltReduction {
-                        free_modes: Some(12),
-                    },
+                    reduction: BeltReduction { free_modes: None },
                     ..FlowingSettings::default()
                 },
                 // the flowing mesh's shorter length everywhere (module documentation)

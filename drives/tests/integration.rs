@@ -11,6 +11,7 @@ mod fead_steady_means;
 mod fead_step;
 mod fead_sweep;
 mod flowing_creep;
+mod flowing_span_force;
 mod friction_default;
 mod issue35_inputs;
 mod layout;

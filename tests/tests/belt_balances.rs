@@ -321,7 +321,8 @@ fn default_fead_balances_on_flowing() {
 // Kelvin–Voigt axial force along the deformed chords (ViscousForce::Chord) and Lagrange's
 // equations of (s_b, z) (BeltEquations::Lagrange: dE/dt = Vᵀ F − 2R for any mesh), on 6 mm wrap
 // elements. The invariants of issue 34 item 2 hold: measured 2026-12-07, torque 0.41 %, power
-// 0.43 % (8 mm wraps: 0.39 / 0.55 %; 4 mm: 0.46 / 0.11 %; 12 mm: 1.53 / 0.51 %). Not the
+// 0.43 % (8 mm wraps: 0.39 / 0.55 %; 4 mm: 0.46 / 0.11 %; 12 mm: 1.53 / 0.51 %), with 12
+// free-node modes; with every mode (the study's default since h-v2) 0.37 / 0.43 %. Not the
 // default: at 1500–3500 rpm its torque residual is 0.6–1.2 % (power ≤ 0.31 %), on Table 6-1 1.4 %
 // (BENCHMARKS, "an energy-consistent flowing belt"), and it costs 28 s against 1.5 s.
 #[test]
@@ -338,7 +339,7 @@ fn default_fead_balances_on_the_energy_consistent_flowing_belt() {
 // The default fead drive with a belt of a hundredth of the bending stiffness (EI = 2.6e-4
 // N m²), default flowing formulation: the balance invariants hold once the bending reference's
 // work on the slide (previous test) is small. Measured 2026-12-06 (h-bal4): torque 0.31 %, power
-// −0.27 %. The other forms still miss at EI/100 (Lagrange's equations 4.13 % / 0.83 %, chord
+// −0.27 % (12 free-node modes; every mode, the study's default since h-v2: 0.32 / −0.23 %). The other forms still miss at EI/100 (Lagrange's equations 4.13 % / 0.83 %, chord
 // damping 0.33 % / −0.79 %): the smaller slide defects remain, and this pass may be in part
 // their cancellation.
 #[test]
