@@ -211,9 +211,9 @@ pub enum ViscousForce {
     /// linear damping's convective term `β K_e v T_,s z` (App. A's operator) still carries the
     /// tangent points' error into the creep, and the speed loss converges in the law's scale
     /// only below 0.05 mm/s (BENCHMARKS.md, "friction regularisation": Table 6-1 at 10 N m,
-    /// 0.0775 rad/s at 0.5 mm/s, 0.0814 at 0.125 mm/s, 0.0838 at 0.0125 mm/s), with the chord
-    /// damping as well within 1 % from 0.5 mm/s down (0.0814, 0.0816, 0.0823). Resolved once,
-    /// when the model is built ([`Self::resolve`]).
+    /// 0.0775 rad/s at 0.5 mm/s, 0.0814 at 0.125 mm/s, 0.0838 at 0.0125 mm/s); with the chord
+    /// damping as well 0.0814, 0.0816 and 0.0823 (0.3 % from the run at `v_s / 4` at 0.5 mm/s;
+    /// closed form 0.0824). Resolved once, when the model is built ([`Self::resolve`]).
     #[default]
     Auto,
 }
