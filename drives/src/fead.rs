@@ -242,12 +242,9 @@ fn load(inertia: f64, torque: f64) -> Motion {
 impl Default for FeadConfig {
     /// The plausible passenger-car drive of the module documentation, with Ribaric's contact
     /// ([`BeltContact::ribaric`]: tanh friction (6.2) with κ = 40 s/m, the law its studies in
-    /// BENCHMARKS.md and README were measured with; also `BeltContact::default`), not the sharper
-    /// `tanh_slip` scale (`contact::friction::spec::DEFAULT_SLIP_VELOCITY`): with the belt
-    /// procedures' 13 line-search trials ([`crate::speed_loss::BELT_LINE_SEARCH_TRIALS`]) the
-    /// flowing model runs the default sweep with it (all four speeds steady), but at 20 times
-    /// the CPU of κ = 40, and the nodal model's cost there is not known (BENCHMARKS.md,
-    /// "friction regularisation").
+    /// BENCHMARKS.md and README were measured with), stated: not the layouts' default friction
+    /// (`BeltContact::default`, `tanh_slip` at `contact::friction::spec::DEFAULT_SLIP_VELOCITY`),
+    /// which a drive with new pulleys gets when it states none (`belt::PARTIAL_RULES`).
     fn default() -> Self {
         let pulley = |name: &str, center: [f64; 2], radius: f64, side: WrapSide, motion: Motion| {
             Pulley::new(name, center, radius, side, motion)
