@@ -80,7 +80,9 @@ pub enum FrictionSpec {
 /// convergence study (BENCHMARKS.md, "friction regularisation", 2026-12-07) at which every model
 /// (flowing with its chord contact rates and damping, nodal, ANCF) runs Table 6-1, the
 /// Pechstein–Gerstmayr drive and the default FEAD drive at 800 rpm with its default steps (the
-/// ANCF belt's Newton fails on the FEAD drive at 0.25 mm/s) and its speed loss lies within 1 %
+/// ANCF belt in the FEAD study with the transition-aware limit that it takes with any law but
+/// Ribaric's κ law: with its trust region it failed on the FEAD drive at 0.25 mm/s and on a
+/// three-pulley drive at 0.5 mm/s) and its speed loss lies within 1 %
 /// of its run at `v_s / 4` (on the Pechstein–Gerstmayr drive of the creep theory of its spans),
 /// the nodal belt's lightly loaded power-steering pulley on the FEAD drive at the edge (+0.99 %
 /// from `v_s / 4`, +1.3 % from its Richardson limit); Ribaric's κ = 40 s/m (`v_s` = 25 mm/s)
