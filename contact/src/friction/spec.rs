@@ -87,7 +87,8 @@ pub enum FrictionSpec {
 /// the nodal belt's lightly loaded power-steering pulley on the FEAD drive at the edge (+0.99 %
 /// from `v_s / 4`, +1.3 % from its Richardson limit); Ribaric's κ = 40 s/m (`v_s` = 25 mm/s)
 /// gives 2.3 times the limit on Table 6-1 at 10 N·m. The sharper law costs Newton iterations:
-/// 1.5–10 times κ = 40's CPU on these drives (the ANCF belt on the FEAD drive 10 times). The
+/// 1–7 times κ = 40's CPU on these drives, 26 times for the ANCF belt on a three-pulley
+/// drive at 1500 rpm. The
 /// earlier 0.05 mm/s cost 5–9 times κ = 40's on the flowing and nodal belts and failed on the
 /// ANCF belt (Table 6-1 at 0.1 ms steps, the Pechstein–Gerstmayr drive).
 pub const DEFAULT_SLIP_VELOCITY: f64 = 5.0e-4;
