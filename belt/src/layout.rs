@@ -46,11 +46,15 @@ pub const MAX_MOUNTING_STRAIN: f64 = 0.15;
 /// the installation `tension` \[N\] and the unstretched `belt_length` \[m\] exclude each other
 /// (the user's one drops the default's other); a new list of `pulleys` drops the default's
 /// `tensioner`, whose `pulley` indexed the old list (a drive with new pulleys has a tensioner
-/// only if the user gives one).
+/// only if the user gives one), and the default's `contact.friction`: a drive with new pulleys
+/// is the user's drive, whose friction is the layouts' default ([`BeltContact::default`]: the
+/// `tanh_slip` law near the Coulomb limit) unless the user gives one, not the seed's κ = 40 s/m
+/// that the studies' default drives state to reproduce their figures (issue 34 item 3).
 pub const PARTIAL_RULES: &[(&str, &str)] = &[
     ("tension", "belt_length"),
     ("belt_length", "tension"),
     ("pulleys", "tensioner"),
+    ("pulleys", "contact.friction"),
 ];
 
 /// A belt drive as a user describes it (module documentation).
@@ -567,7 +571,8 @@ impl Layout {
     /// Ribaric's Table 6-1 drive (§6.1, §6.4) as a [`Layout::two_pulley`]: centres 0.45 m
     /// apart, both belt-line radii 0.05 m, the driver at rest, the driven pulley of
     /// 0.013 kg m² without load, the default [`Section`] mounted at T0 = 310 N, Ribaric's
-    /// contact with κ = 40 s/m ([`BeltContact::ribaric`], also the default friction).
+    /// contact with κ = 40 s/m ([`BeltContact::ribaric`], stated: the seed's figures are taken
+    /// with it; not the layouts' default friction, [`BeltContact::default`]).
     pub fn table_6_1() -> Self {
         Self {
             contact: BeltContact::ribaric(),

@@ -91,6 +91,7 @@ use belt::{
     BeltContact, BeltDamping, BeltModel, Drive, Harmonic, Layout, Motion, Pulley, Report, Section,
     Shape, Signal, Tensioner, WrapSide,
 };
+use contact::friction::FrictionSpec;
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, State, Stats};
@@ -254,12 +255,9 @@ fn load(inertia: f64, torque: f64) -> Motion {
 impl Default for FeadConfig {
     /// The plausible passenger-car drive of the module documentation, with Ribaric's contact
     /// ([`BeltContact::ribaric`]: tanh friction (6.2) with κ = 40 s/m, the law its studies in
-    /// BENCHMARKS.md and README were measured with; also `BeltContact::default`), not the sharper
-    /// `tanh_slip` scale (`contact::friction::spec::DEFAULT_SLIP_VELOCITY`): with the belt
-    /// procedures' 13 line-search trials ([`crate::speed_loss::BELT_LINE_SEARCH_TRIALS`]) the
-    /// flowing model runs the default sweep with it (all four speeds steady), but at 20 times
-    /// the CPU of κ = 40, and the nodal model's cost there is not known (BENCHMARKS.md,
-    /// "friction regularisation").
+    /// BENCHMARKS.md and README were measured with), stated: not the layouts' default friction
+    /// (`BeltContact::default`, `tanh_slip` at `contact::friction::spec::DEFAULT_SLIP_VELOCITY`),
+    /// which a drive with new pulleys gets when it states none (`belt::PARTIAL_RULES`).
     fn default() -> Self {
         let pulley = |name: &str, center: [f64; 2], radius: f64, side: WrapSide, motion: Motion| {
             Pulley::new(name, center, radius, side, motion)
@@ -721,6 +719,28 @@ pub fn steady_window(engine: &EngineConfig, window: f64, omega: f64, h: f64) -> 
 /// same means at 800–2500 rpm within the sweep's tolerance (BENCHMARKS.md, issue 37 item 4).
 pub const ANCF_MAX_CORRECTION: f64 = 1e-3;
 
+/// The ANCF belt's FEAD settings `base` for a friction law other than Ribaric's κ law (the
+/// layouts' default `tanh_slip` at `contact::friction::spec::DEFAULT_SLIP_VELOCITY`): the
+/// transition-aware limit on the Newton corrections
+/// (`ancf::belt_drive::SimulationConfig::correction_limit`, Castro et al. 2019, which also
+/// turns the stall detection off) instead of the 1 mm trust region, the iteration matrix
+/// renewed below a contraction of 0.5 (the variant of BENCHMARKS.md issue 37 item 4). With the
+/// trust region and the stall detection the ANCF belt's Newton fails on the default FEAD drive
+/// at 800 rpm at `v_s` = 0.25 mm/s and on the three-pulley example without its friction table
+/// at 1500 rpm at 0.5 mm/s, where κ = 40 s/m runs; with the limit both run, and the default
+/// drive at 800 rpm at 0.5 mm/s takes 39 instead of 53 s (BENCHMARKS.md, "friction
+/// regularisation"). Ribaric's κ law keeps `base` (the figures of its studies; at 800 rpm the
+/// limit gives the same speed losses to 2·10⁻⁵ percentage points, but h-tancf found it moves
+/// the default sweep's 3500 rpm point outside the sweep's tolerance).
+pub fn ancf_sharp_law_settings(base: SimulationConfig) -> SimulationConfig {
+    SimulationConfig {
+        max_correction: None,
+        correction_limit: true,
+        refactor_contraction: 0.5,
+        ..base
+    }
+}
+
 /// The step of a sweep point on a Lagrangian mesh ([`FeadRun::max_travel`]) \[s\]: `h` divided
 /// into the fewest equal parts `h/k` with `v h/k ≤ max_travel · ℓ` for the belt speed `v`
 /// \[m/s\] and the element length `ℓ` \[m\] the material carries
@@ -1136,17 +1156,24 @@ pub fn run_fead(
                 base.mapping().belt_length,
                 base.mapping().mounted_tension
             );
-            // the ANCF drive's own Newton settings (frozen iteration matrix, line search, stall
-            // detection, 5 µm tolerance: ancf::belt_drive::SimulationConfig) with the convected
-            // predictor and a 1 mm trust region (ANCF_MAX_CORRECTION); ρ∞ =
-            // run.ancf_rho_inf (module documentation: the sliding crank wrap's contact modes
-            // grow at 0.8)
-            let alpha = SimulationConfig {
+            // the ANCF drive's own Newton settings (frozen iteration matrix, line search, 5 µm
+            // tolerance: ancf::belt_drive::SimulationConfig) with the convected predictor and,
+            // with Ribaric's κ law, the stall detection and a 1 mm trust region
+            // (ANCF_MAX_CORRECTION); with any other law (the layouts' default tanh_slip) the
+            // transition-aware limit instead (ancf_sharp_law_settings); ρ∞ = run.ancf_rho_inf
+            // (module documentation: the sliding crank wrap's contact modes grow at 0.8)
+            let ribaric = matches!(drive.contact().friction, FrictionSpec::Tanh { .. });
+            let own = SimulationConfig {
                 h: m.ancf.step,
                 rho_inf: cfg.run.ancf_rho_inf,
                 convected_predictor: true,
                 max_correction: Some(ANCF_MAX_CORRECTION),
                 ..Default::default()
+            };
+            let alpha = if ribaric {
+                own
+            } else {
+                ancf_sharp_law_settings(own)
             }
             .alpha_params();
             sweep(

@@ -303,7 +303,8 @@ pub fn creep_caveat_for(near: bool, law: &FrictionSpec, creep: f64) -> Option<St
              speed {creep:.2e} m/s: with Ribaric's contact rates (T_,s) the contact nodes at \
              the tangent points slide by their rates' error and the speed loss may understate \
              the creep (31 % near Coulomb on Table 6-1's default mesh); [models.flowing] \
-             contact_velocity = \"chord\" with viscous_force = \"chord\" follows the strain"
+             contact_velocity = \"chord\" with viscous_force = \"chord\" follows the strain \
+             (the defaults, \"auto\", take them with any law but Ribaric's kappa law)"
         )
     })
 }

@@ -326,10 +326,11 @@ nodal / ANCF belt) loses more speed (",
 velocity everywhere on the arc (no true stick, so the whole arc creeps; with Ribaric's \
 kappa = 40 s/m that slip is about twice the creep). Near Coulomb friction (a slip-velocity \
 scale well below the creep speed) the models approach (6.3) itself: on Table 6-1 at 10 N m \
-the nodal belt lies 0.6 % and the flowing belt with contact_velocity = \"chord\" 0.7 % below \
-it (BENCHMARKS.md), so the radial contact compliance of the penalty law (6.1) and the radius \
-at which the speeds are compared add little; a point's caveat says where the flowing belt's \
-default contact rates understate the creep. Shear of the belt section is not modelled (beam \
+the nodal belt lies 0.6 % and the flowing belt with its chord contact rates and damping \
+(contact_velocity and viscous_force = \"auto\", the defaults, with any law but Ribaric's kappa \
+law) 0.7 % below it (BENCHMARKS.md), so the radial contact compliance of the penalty law (6.1) \
+and the radius at which the speeds are compared add little; a point's caveat says where the \
+flowing belt's contact rates of Ribaric's T_,s understate the creep. Shear of the belt section is not modelled (beam \
 elements), so the FE figures still lie below Ribaric's measurements. The speed loss grows \
 about linearly with the torque and with the driver speed.",
 ];

@@ -58,6 +58,16 @@ fn creep_with(
     )
 }
 
+/// Ribaric's contact rates and linear damping, stated (the defaults, `ContactVelocity::Auto`
+/// and `ViscousForce::Auto`, take the chords' with a `tanh_slip` law).
+fn ribaric() -> FlowingSettings {
+    FlowingSettings {
+        contact_velocity: ContactVelocity::Ribaric,
+        viscous_force: ViscousForce::Linear,
+        ..FlowingSettings::default()
+    }
+}
+
 fn chord() -> FlowingSettings {
     FlowingSettings {
         contact_velocity: ContactVelocity::Chord,
@@ -73,7 +83,7 @@ fn chord_contact_rates_give_the_closed_form_creep_on_any_span_mesh() {
     fine.mesh.span_element = 0.015;
     let (fine, _) = creep(&fine, 62.8);
     let (slow, grashof_slow) = creep(&chord(), 22.6);
-    let (ribaric, _) = creep(&FlowingSettings::default(), 62.8);
+    let (ribaric, _) = creep(&ribaric(), 62.8);
     eprintln!(
         "Δω [rad/s]: chord 45 mm {coarse:.5}, 15 mm {fine:.5}, closed form {grashof:.5}; \
          22.6 rad/s {slow:.5} against {grashof_slow:.5}; Ribaric's T_,s {ribaric:.5}"
@@ -105,12 +115,15 @@ fn chord_contact_rates_give_the_closed_form_creep_on_any_span_mesh() {
 // (25 mm/s wide), whose Table 6-1 figure the default reproduces.
 #[test]
 fn a_sharp_law_on_ribaric_contact_rates_carries_a_caveat() {
-    let (_, _, sharp) = creep_with(&FlowingSettings::default(), 62.8, 5e-5);
+    let (_, _, sharp) = creep_with(&ribaric(), 62.8, 5e-5);
     let (_, _, chord) = creep_with(&chord(), 62.8, 5e-5);
+    // the default settings: the chords' rates with this law (ContactVelocity::Auto)
+    let (_, _, auto) = creep_with(&FlowingSettings::default(), 62.8, 5e-5);
     let (_, _, kappa40) = creep_with(&FlowingSettings::default(), 62.8, None);
     let sharp = sharp.expect("Ribaric's rates under a 0.05 mm/s law: a caveat");
     assert!(sharp.contains("contact_velocity"), "{sharp}");
     assert_eq!(chord, None);
+    assert_eq!(auto, None);
     assert_eq!(kappa40, None);
 }
 

@@ -34,7 +34,9 @@ use serde::de::DeserializeOwned;
 pub trait PartialRules {
     /// `(given, dropped)`: when a user's table gives the key `given`, the default's key
     /// `dropped` in the same table is left out (e.g. a length that excludes a tension, a list
-    /// whose indices another key refers to). None by default.
+    /// whose indices another key refers to) unless the user gives it too. `dropped` may be a
+    /// dotted path into the table's sub-tables (`contact.friction`: the default's friction
+    /// goes, the rest of its contact stays). None by default.
     const DROPPED_BY: &'static [(&'static str, &'static str)] = &[];
 }
 
@@ -134,8 +136,8 @@ fn merge<C: PartialRules>(
         switches.push(here.clone());
     }
     for &(given, dropped) in C::DROPPED_BY {
-        if user.contains_key(given) && !user.contains_key(dropped) {
-            base.remove(dropped);
+        if user.contains_key(given) && lookup(&user, dropped).is_none() {
+            remove(&mut base, dropped);
         }
     }
     for (k, v) in user {
@@ -151,6 +153,35 @@ fn merge<C: PartialRules>(
         base.insert(k, merged);
     }
     base
+}
+
+/// The value at the dotted key path `path` (`contact.friction`) of `table`, through its
+/// sub-tables.
+fn lookup<'a>(table: &'a toml::Table, path: &str) -> Option<&'a toml::Value> {
+    let (head, rest) = match path.split_once('.') {
+        Some((h, r)) => (h, Some(r)),
+        None => (path, None),
+    };
+    let v = table.get(head)?;
+    match (rest, v) {
+        (None, v) => Some(v),
+        (Some(r), toml::Value::Table(t)) => lookup(t, r),
+        (Some(_), _) => None,
+    }
+}
+
+/// Remove the dotted key path `path` from `table` (nothing when it is not there).
+fn remove(table: &mut toml::Table, path: &str) {
+    match path.split_once('.') {
+        None => {
+            table.remove(path);
+        }
+        Some((head, rest)) => {
+            if let Some(toml::Value::Table(t)) = table.get_mut(head) {
+                remove(t, rest);
+            }
+        }
+    }
 }
 
 /// The dotted text of a path (`drive.pulleys[2].radius`; `<root>` for the empty path), the
@@ -379,6 +410,66 @@ mod tests {
         let m: Mount =
             from_partial(toml::from_str("belt_length = 1.2\ntension = 3.0").unwrap()).unwrap();
         assert_eq!((m.tension, m.belt_length), (Some(3.0), Some(1.2)));
+    }
+
+    #[test]
+    fn a_given_key_drops_a_nested_default() {
+        #[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
+        #[serde(deny_unknown_fields)]
+        struct Drive {
+            pulleys: Vec<f64>,
+            #[serde(default)]
+            contact: Contact,
+        }
+        #[derive(Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+        #[serde(default, deny_unknown_fields)]
+        struct Contact {
+            stiffness: f64,
+            kappa: f64,
+        }
+        // the type's own default, which a dropped key falls back to
+        impl Default for Contact {
+            fn default() -> Self {
+                Contact {
+                    stiffness: 1.0,
+                    kappa: 2.0,
+                }
+            }
+        }
+        impl PartialRules for Drive {
+            const DROPPED_BY: &'static [(&'static str, &'static str)] =
+                &[("pulleys", "contact.kappa")];
+        }
+        // the configuration's default: another contact than the type's
+        impl Default for Drive {
+            fn default() -> Self {
+                Drive {
+                    pulleys: vec![0.1, 0.2, 0.3],
+                    contact: Contact {
+                        stiffness: 5.0,
+                        kappa: 40.0,
+                    },
+                }
+            }
+        }
+        let read = |s: &str| from_partial::<Drive>(toml::from_str(s).unwrap()).unwrap();
+        // new pulleys: the default's kappa goes (the type's default), its stiffness stays
+        let d = read("pulleys = [0.1]");
+        assert_eq!(
+            d.contact,
+            Contact {
+                stiffness: 5.0,
+                kappa: 2.0
+            }
+        );
+        let d = read("pulleys = [0.1]\n[contact]\nstiffness = 7.0\n");
+        assert_eq!((d.contact.stiffness, d.contact.kappa), (7.0, 2.0));
+        // given by the user: kept
+        let d = read("pulleys = [0.1]\n[contact]\nkappa = 9.0\n");
+        assert_eq!((d.contact.stiffness, d.contact.kappa), (5.0, 9.0));
+        // the pulleys not given: the default's contact whole
+        let d = read("[contact]\nstiffness = 7.0\n");
+        assert_eq!((d.contact.stiffness, d.contact.kappa), (7.0, 40.0));
     }
 
     #[test]

@@ -33,12 +33,19 @@ fn close(a: f64, b: f64) -> bool {
 /// contact node of the final state.
 fn flowing_run(law: FrictionSpec) -> (f64, bool) {
     use belt::{BeltModel, Motion, Signal};
-    use flowing::belt::{FlowingBelt, FlowingSettings};
+    use flowing::belt::{ContactVelocity, FlowingBelt, FlowingSettings, ViscousForce};
     let mut cfg = drives::table_6_1::layout();
     cfg.contact.friction = law;
     cfg.pulleys[0].motion = Motion::speed(Signal::schedule(vec![(0.0, 0.0), (0.02, 30.0)]));
     cfg.pulleys[1].motion = Motion::load(0.013, Signal::schedule(vec![(0.0, 0.0), (0.02, 4.0)]));
-    let belt = FlowingBelt::new(&cfg.resolve().unwrap(), &FlowingSettings::default()).unwrap();
+    // one formulation for every law, stated (the defaults, `auto`, take Ribaric's operator with
+    // the tanh law and the chords' with any other)
+    let settings = FlowingSettings {
+        contact_velocity: ContactVelocity::Ribaric,
+        viscous_force: ViscousForce::Linear,
+        ..FlowingSettings::default()
+    };
+    let belt = FlowingBelt::new(&cfg.resolve().unwrap(), &settings).unwrap();
     let s0 = belt.initial_state().unwrap();
     let h = 2.5e-4;
     let mut st = GeneralizedAlpha::new(AlphaConfig {

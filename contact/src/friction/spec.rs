@@ -67,26 +67,31 @@ pub enum FrictionSpec {
     Frictionless,
 }
 
-/// Default slip-velocity scale `v_s` \[m/s\] of [`FrictionSpec::TanhSlip`] (not the belt
-/// drives' default contact, `belt::BeltContact::default`, which is Ribaric's κ = 40 s/m for
-/// the robustness reasons below): `f_t = −μ tanh(v_t / v_s) |f_n|`
-/// (Ribaric (6.2) with `κ = 1/v_s`).
+/// Default slip-velocity scale `v_s` \[m/s\] of [`FrictionSpec::TanhSlip`], and with μ = 1.2
+/// the belt drives' default friction (`belt::BeltContact::default`, the friction a layout gets
+/// when it states none): `f_t = −μ tanh(v_t / v_s) |f_n|` (Ribaric (6.2) with `κ = 1/v_s`;
+/// issue 34 item 3).
 ///
 /// The regularised law lets the belt creep on the whole wrap at slip velocities of order
 /// `v_s`, on top of the creep of its stretch (`u ≈ v ΔT / EA`); the speed loss reaches its
 /// Coulomb limit (`v_s → 0`) when `v_s` is well below the wrap's creep scale
 /// `μ θ T v / EA` (24 mm/s on Ribaric's Table 6-1 at 62.8 rad/s, 0.1 m/s on the
-/// Pechstein–Gerstmayr drive). 0.05 mm/s (`κ` = 2·10⁴ s/m) is the convergence study's choice
-/// (BENCHMARKS.md, "friction regularisation"): on Table 6-1 at 62.8 rad/s the flowing model's
-/// speed loss lies within 1 % of its value at `v_s / 4` at 10 N·m (0.7 %) and at 30 N·m
-/// (0.8 %); Ribaric's κ = 40 s/m (`v_s` = 25 mm/s) gives 3.3 and 4.8 times the limit. The
-/// speed loss converges slowly (about as `v_s^0.7` at 20 N·m), so a larger default is not
-/// near the limit. The stiffer law costs Newton iterations and smaller steps: the ANCF belt on
-/// Table 6-1 needs 25 µs steps at this scale (0.1 ms at 0.1 mm/s), and a drive whose Newton
-/// stalls with it (the default six-pulley FEAD drive at 0.1 and 0.4 mm/s; on the
-/// Pechstein–Gerstmayr drive the ANCF belt at this scale and the flowing one with 20 mm
-/// elements at 0.05 and 0.2 mm/s) needs a larger `v_s` or Ribaric's κ.
-pub const DEFAULT_SLIP_VELOCITY: f64 = 5.0e-5;
+/// Pechstein–Gerstmayr drive). 0.5 mm/s (`κ` = 2000 s/m) is the largest scale of the
+/// convergence study (BENCHMARKS.md, "friction regularisation", 2026-12-07) at which every model
+/// (flowing with its chord contact rates and damping, nodal, ANCF) runs Table 6-1, the
+/// Pechstein–Gerstmayr drive and the default FEAD drive at 800 rpm with its default steps (the
+/// ANCF belt in the FEAD study with the transition-aware limit that it takes with any law but
+/// Ribaric's κ law: with its trust region it failed on the FEAD drive at 0.25 mm/s and on a
+/// three-pulley drive at 0.5 mm/s) and its speed loss lies within 1 %
+/// of its run at `v_s / 4` (on the Pechstein–Gerstmayr drive of the creep theory of its spans),
+/// the nodal belt's lightly loaded power-steering pulley on the FEAD drive at the edge (+0.99 %
+/// from `v_s / 4`, +1.3 % from its Richardson limit); Ribaric's κ = 40 s/m (`v_s` = 25 mm/s)
+/// gives 2.3 times the limit on Table 6-1 at 10 N·m. The sharper law costs Newton iterations:
+/// 1–7 times κ = 40's CPU on these drives, 26 times for the ANCF belt on a three-pulley
+/// drive at 1500 rpm. The
+/// earlier 0.05 mm/s cost 5–9 times κ = 40's on the flowing and nodal belts and failed on the
+/// ANCF belt (Table 6-1 at 0.1 ms steps, the Pechstein–Gerstmayr drive).
+pub const DEFAULT_SLIP_VELOCITY: f64 = 5.0e-4;
 
 fn default_slip_velocity() -> f64 {
     DEFAULT_SLIP_VELOCITY

@@ -357,7 +357,8 @@ impl FlowingBelt {
         use mbd_core::Validate;
         settings.validate()?;
         let mut fe = BeltFe::new(drive, &settings.mesh)?;
-        let chord = settings.viscous_force == ViscousForce::Chord;
+        let law = &drive.contact().friction;
+        let chord = settings.viscous_force.resolve(law) == ViscousForce::Chord;
         if chord {
             // the axial damping moves out of the linear matrices into Self::chord_viscous
             let (k, t1, t2) = super::model::axial_damping_parts(&fe);
@@ -402,7 +403,7 @@ impl FlowingBelt {
             Vec::new()
         };
         let mut belt = Self::on(fe, basis, drive.motions(), drive.arm().copied())?;
-        if settings.contact_velocity == ContactVelocity::Chord {
+        if settings.contact_velocity.resolve(law) == ContactVelocity::Chord {
             // the contact rows' T_,s on their elements' chords (the slip, its tangent and the
             // contact's force on s_b all read the row's ts)
             for r in &mut belt.rows {
