@@ -33,7 +33,6 @@ use belt::BeltModel;
 use drives::fead::FeadConfig;
 use drives::simulation::BeltSimulation;
 use flowing::belt::FlowingBelt;
-use mbd_core::integrators::AlphaConfig;
 use std::collections::HashMap;
 
 fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -64,15 +63,7 @@ fn main() {
         belt::Motion::speed(belt::Signal::schedule(vec![(0.0, 0.0), (ramp, omega)]));
     let drive = cfg.drive.resolve().expect("drive");
     let model = FlowingBelt::new(&drive, &cfg.models.flowing).expect("model");
-    let alpha = AlphaConfig {
-        h: cfg.run.step,
-        rho_inf: cfg.run.rho_inf,
-        newton_line_search: true,
-        newton_line_search_trials: drives::speed_loss::BELT_LINE_SEARCH_TRIALS,
-        max_newton_iterations: drives::speed_loss::BELT_NEWTON_ITERATIONS,
-        model_correction_limit: true,
-        ..Default::default()
-    };
+    let alpha = drives::fead::belt_alpha(&cfg);
     let mut sim = BeltSimulation::new(model, alpha).expect("simulation");
     sim.run_to(arg("t_end", 0.6), |_, _| {}).expect("run");
     let st = sim.state().clone();

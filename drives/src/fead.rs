@@ -1116,14 +1116,7 @@ pub fn run_fead(
                 base.n_modes(),
                 1e3 * h
             );
-            // Armijo line search: with a sharp friction law (the default v_s, issue 34 item 3)
-            // full Newton cycles between the saturated branches of tanh(v_t/v_s) at the first
-            // steps of the default drive
-            let alpha = AlphaConfig {
-                newton_line_search: true,
-                ..linear_alpha(cfg)
-            };
-            sweep(cfg, base, &drive, alpha, travel, note, observer)
+            sweep(cfg, base, &drive, belt_alpha(cfg), travel, note, observer)
         }
         FeadModel::Nodal => {
             let base = NodalBelt::new(&drive, &m.nodal.mesh)
@@ -1134,14 +1127,8 @@ pub fn run_fead(
                 elements(base.fe.n_nodes(), drive.path().length()),
                 1e3 * h
             );
-            // Armijo line search (module documentation: Newton cycles at the penalty's kink as
-            // nodes cross the pulley surface near the tangent points)
-            let alpha = AlphaConfig {
-                newton_line_search: true,
-                ..linear_alpha(cfg)
-            };
             note.push_str(", Newton with line search");
-            sweep(cfg, base, &drive, alpha, travel, note, observer)
+            sweep(cfg, base, &drive, belt_alpha(cfg), travel, note, observer)
         }
         FeadModel::Ancf => {
             let base = AncfBelt::new(&drive, &m.ancf).map_err(|e| build(e.into()))?;
@@ -1189,12 +1176,17 @@ pub fn run_fead(
     }
 }
 
-/// The generalized-α settings of the flowing and nodal models: `run.step`, `run.rho_inf`,
-/// the belt procedures' Newton settings (as the speed-loss procedure:
+/// The generalized-α settings of the flowing and nodal models in the FEAD study: `run.step`,
+/// `run.rho_inf`, the belt procedures' Newton settings (as the speed-loss procedure:
 /// [`crate::speed_loss::BELT_LINE_SEARCH_TRIALS`], [`crate::speed_loss::BELT_NEWTON_ITERATIONS`],
-/// the models' transition-aware correction limit [`AlphaConfig::model_correction_limit`]).
-fn linear_alpha(cfg: &FeadConfig) -> AlphaConfig {
+/// the models' transition-aware correction limit [`AlphaConfig::model_correction_limit`]) and
+/// Armijo's line search: with a sharp friction law (issue 34 item 3) full Newton cycles between
+/// the saturated branches of tanh(v_t/v_s) at the first steps of the default drive, and the
+/// nodal belt's Newton cycles at the penalty's kink as its nodes cross the pulley surface near
+/// the tangent points (module documentation).
+pub fn belt_alpha(cfg: &FeadConfig) -> AlphaConfig {
     AlphaConfig {
+        newton_line_search: true,
         h: cfg.run.step,
         rho_inf: cfg.run.rho_inf,
         newton_line_search_trials: crate::speed_loss::BELT_LINE_SEARCH_TRIALS,

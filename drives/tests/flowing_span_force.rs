@@ -18,7 +18,6 @@
 use drives::fead::FeadConfig;
 use drives::simulation::BeltSimulation;
 use flowing::belt::FlowingBelt;
-use mbd_core::integrators::AlphaConfig;
 
 /// The largest spread (max − min) \[N\] of the whole axial force over the elements between the
 /// contact nodes that bound each span, for the default FEAD drive's flowing belt with
@@ -32,15 +31,7 @@ fn span_spreads(free_modes: Option<usize>, rpm: f64) -> Vec<f64> {
     let drive = cfg.drive.resolve().unwrap();
     let model = FlowingBelt::new(&drive, &cfg.models.flowing).unwrap();
     // the FEAD study's generalized-α settings for the flowing belt
-    let alpha = AlphaConfig {
-        h: cfg.run.step,
-        rho_inf: cfg.run.rho_inf,
-        newton_line_search: true,
-        newton_line_search_trials: drives::speed_loss::BELT_LINE_SEARCH_TRIALS,
-        max_newton_iterations: drives::speed_loss::BELT_NEWTON_ITERATIONS,
-        model_correction_limit: true,
-        ..Default::default()
-    };
+    let alpha = drives::fead::belt_alpha(&cfg);
     let mut sim = BeltSimulation::new(model, alpha).unwrap();
     sim.run_to(0.6, |_, _| {}).unwrap();
     let (b, st) = (sim.model(), sim.state());
