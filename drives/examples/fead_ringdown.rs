@@ -29,17 +29,11 @@ use drives::fead_design::steady_state;
 use drives::ringdown::{RingDownSettings, ring_down, spectrum_peaks};
 use flowing::belt::FlowingBelt;
 use mbd_core::integrators::AlphaConfig;
-use std::collections::HashMap;
+
+mod common;
 
 fn main() {
-    let args: HashMap<String, f64> = std::env::args()
-        .skip(1)
-        .filter_map(|a| {
-            let (k, v) = a.split_once('=')?;
-            Some((k.to_string(), v.parse().ok()?))
-        })
-        .collect();
-    let arg = |k: &str, d: f64| args.get(k).copied().unwrap_or(d);
+    let arg = common::numeric_args();
     let rpm = arg("rpm", 1482.0);
     let mut cfg = FeadConfig::default();
     let t = cfg.drive.tensioner.as_mut().unwrap();

@@ -33,21 +33,28 @@ use belt::BeltModel;
 use drives::fead::FeadConfig;
 use drives::simulation::BeltSimulation;
 use flowing::belt::FlowingBelt;
-use std::collections::HashMap;
+
+mod common;
 
 fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
-fn main() {
-    let args: HashMap<String, f64> = std::env::args()
-        .skip(1)
-        .filter_map(|a| {
-            let (k, v) = a.split_once('=')?;
-            Some((k.to_string(), v.parse().ok()?))
-        })
+/// One line of a report's per-pulley torque residuals and their relative maximum.
+fn print_residuals(label: &str, rep: &belt::Report) {
+    let per_pulley: Vec<String> = rep
+        .pulleys
+        .iter()
+        .map(|p| format!("{:+.4}", p.torque_residual_n_m))
         .collect();
-    let arg = |k: &str, d: f64| args.get(k).copied().unwrap_or(d);
+    println!(
+        "{label}: residuals {per_pulley:?} N m, {:.3} %",
+        100.0 * rep.balances.torque_residual_rel
+    );
+}
+
+fn main() {
+    let arg = common::numeric_args();
     let rpm = arg("rpm", 3500.0);
     let mut cfg = FeadConfig::default();
     cfg.drive.belt.ei *= arg("ei", 1.0);
@@ -405,33 +412,9 @@ fn main() {
         );
     }
     let rep_l = belt::Report::new(&drive, &snap_l);
-    println!(
-        "section-force lines: residuals {:?} N m, {:.3} %",
-        rep_l
-            .pulleys
-            .iter()
-            .map(|p| format!("{:+.4}", p.torque_residual_n_m))
-            .collect::<Vec<_>>(),
-        100.0 * rep_l.balances.torque_residual_rel
-    );
-    println!(
-        "bounded-span means: residuals {:?} N m, {:.3} %",
-        rep_w
-            .pulleys
-            .iter()
-            .map(|p| format!("{:+.4}", p.torque_residual_n_m))
-            .collect::<Vec<_>>(),
-        100.0 * rep_w.balances.torque_residual_rel
-    );
-    println!(
-        "elastic span forces: residuals {:?} N m, {:.3} %",
-        rep_e
-            .pulleys
-            .iter()
-            .map(|p| format!("{:+.4}", p.torque_residual_n_m))
-            .collect::<Vec<_>>(),
-        100.0 * rep_e.balances.torque_residual_rel
-    );
+    print_residuals("section-force lines", &rep_l);
+    print_residuals("bounded-span means", &rep_w);
+    print_residuals("elastic span forces", &rep_e);
     println!(
         "report: torque residual {:.3} %, power {:.3} %",
         100.0 * rep.balances.torque_residual_rel,
