@@ -91,7 +91,6 @@ use belt::{
     BeltContact, BeltDamping, BeltModel, Drive, Harmonic, Layout, Motion, Pulley, Report, Section,
     Shape, Signal, Tensioner, WrapSide,
 };
-use contact::friction::FrictionSpec;
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, State, Stats};
@@ -1149,7 +1148,7 @@ pub fn run_fead(
             // (ANCF_MAX_CORRECTION); with any other law (the layouts' default tanh_slip) the
             // transition-aware limit instead (ancf_sharp_law_settings); ρ∞ = run.ancf_rho_inf
             // (module documentation: the sliding crank wrap's contact modes grow at 0.8)
-            let ribaric = matches!(drive.contact().friction, FrictionSpec::Tanh { .. });
+            let ribaric = drive.contact().friction.is_ribaric_tanh();
             let own = SimulationConfig {
                 h: m.ancf.step,
                 rho_inf: cfg.run.ancf_rho_inf,

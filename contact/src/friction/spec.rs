@@ -157,6 +157,14 @@ macro_rules! dispatch {
 }
 
 impl FrictionSpec {
+    /// Whether this is Ribaric's law `μ tanh(κ v_t)` with its time constant κ (Ribaric (6.2),
+    /// [`FrictionSpec::Tanh`]): the law the seed's figures were computed with, to which the
+    /// belt models tie their seed formulations (flowing contact rates and damping, the ANCF
+    /// belt's FEAD Newton settings).
+    pub fn is_ribaric_tanh(&self) -> bool {
+        matches!(self, FrictionSpec::Tanh { .. })
+    }
+
     /// Friction coefficient `μ` \[-\] (the largest one of a Stribeck law).
     pub fn mu(&self) -> f64 {
         self.coefficient()

@@ -223,9 +223,7 @@ impl ViscousForce {
     /// with `FrictionSpec::Tanh`, the chords' otherwise), the others as they are.
     pub fn resolve(self, law: &::contact::friction::FrictionSpec) -> Self {
         match self {
-            Self::Auto if matches!(law, ::contact::friction::FrictionSpec::Tanh { .. }) => {
-                Self::Linear
-            }
+            Self::Auto if law.is_ribaric_tanh() => Self::Linear,
             Self::Auto => Self::Chord,
             other => other,
         }
@@ -332,9 +330,7 @@ impl ContactVelocity {
     /// `FrictionSpec::Tanh`, the chord rates otherwise), the others as they are.
     pub fn resolve(self, law: &::contact::friction::FrictionSpec) -> Self {
         match self {
-            Self::Auto if matches!(law, ::contact::friction::FrictionSpec::Tanh { .. }) => {
-                Self::Ribaric
-            }
+            Self::Auto if law.is_ribaric_tanh() => Self::Ribaric,
             Self::Auto => Self::Chord,
             other => other,
         }
