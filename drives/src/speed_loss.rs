@@ -226,6 +226,11 @@ pub const LINEAR_MAX_STRAIN: f64 = 0.1;
 /// Utilisation of the friction law at which the runaway bound of [`gross_slip_bound`] is set.
 pub const RUNAWAY_UTILISATION: f64 = 0.999;
 
+/// The runaway test of [`speed_loss_sweep`] compares the running mean of the speed loss over
+/// the current window with [`gross_slip_bound`] once it spans `1 / RUNAWAY_MIN_FRACTION` of
+/// the window (a quarter), not single steps.
+pub const RUNAWAY_MIN_FRACTION: usize = 4;
+
 /// Speed loss \[rad/s\] above which the driven pulley has left every steady state the belt can
 /// hold at driver speed `omega` \[rad/s\] (runaway gross slip): the elastic creep of a belt
 /// transmitting its largest tension difference `2 T0` (slack span at zero),
@@ -492,7 +497,8 @@ fn report_of<M: BeltModel>(
 ///
 /// Each point carries the drive's report ([`Report`]: span tensions, per-pulley arcs,
 /// hub loads and torques averaged over the last window (every [`REPORT_EVERY`] steps and the
-/// end state), span vibration amplitudes over it) and its wrap distributions at the end. **Gross slip is a result**: when the speed loss exceeds
+/// end state), span vibration amplitudes over it) and its wrap distributions at the end. **Gross slip is a result**: when the speed loss, averaged over
+/// at least a quarter of the current window ([`RUNAWAY_MIN_FRACTION`]), exceeds
 /// [`gross_slip_bound`] while a load is held (the driven pulley runs away: the load exceeds what friction can
 /// transmit), or a steady state has a wrap without adhesion arc
 /// ([`Report::gross_slip`]: the belt slides over the whole wrap), the point is marked
@@ -600,19 +606,6 @@ pub fn speed_loss_sweep<M: BeltModel>(
             };
             observer(st, sample);
             let dw = sample.omega_driver - sample.omega_driven;
-            // while the load is held: during a load ramp the spans stretch at the rate of the
-            // load, and the driven pulley lags by that rate on top of the steady creep (on
-            // Table 6-1 at v_s = 0.2 mm/s the 10 → 30 N·m ramp peaks at Δω = 0.31 rad/s against
-            // the bound's 0.29 and settles at 0.18); a runaway goes on after the ramp
-            if st.t >= level_start - 0.5 * h && dw > bound {
-                break Some((
-                    st.clone(),
-                    format!(
-                        "speed loss {dw:.3} rad/s above {bound:.3} rad/s, the most any \
-                         steady creep and sliding allow (the driven pulley runs away)"
-                    ),
-                ));
-            }
             if st.t < level_start - 0.5 * h {
                 continue;
             }
@@ -623,6 +616,26 @@ pub fn speed_loss_sweep<M: BeltModel>(
             );
             sum += dw;
             count += 1;
+            // the runaway test, on the window's running mean while the load is held. Not during
+            // a load ramp: the spans stretch at the rate of the load and the driven pulley lags
+            // by that rate on top of the steady creep (on Table 6-1 at v_s = 0.2 mm/s the
+            // 10 → 30 N·m ramp peaks at Δω = 0.31 rad/s against the bound's 0.29 and settles at
+            // 0.18). Not on single steps: near the Coulomb limit the ANCF belt's speed loss
+            // oscillates about its mean by more than the bound's margin over the steady creep
+            // (Table 6-1 at 30 N·m, v_s ≤ 0.125 mm/s: steps above the bound at a point that
+            // settles below it). A runaway goes on: its mean passes the bound a quarter window on.
+            let mean = sum / count as f64;
+            if count >= (per_window / RUNAWAY_MIN_FRACTION).max(1) && mean > bound {
+                break Some((
+                    st.clone(),
+                    format!(
+                        "speed loss {mean:.3} rad/s (mean over the last {:.3} s) above \
+                         {bound:.3} rad/s, the most any steady creep and sliding allow (the \
+                         driven pulley runs away)",
+                        count as f64 * h
+                    ),
+                ));
+            }
             if count % REPORT_EVERY == 0 && count < per_window {
                 let report = sim
                     .model()

@@ -18,4 +18,5 @@ mod layout;
 mod layout_nodal;
 mod partial_rules;
 mod ribs;
+mod runaway_mean;
 mod simulation;
