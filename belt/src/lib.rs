@@ -45,7 +45,7 @@ pub use path::{
     BeltPath, LineOfAction, PathPiece, PathPoint, Segment, SpanLine, tributary_lengths,
 };
 pub use pulley::{CentreShift, Pulley, WrapSide};
-pub use report::{Balances, HubLoad, PulleyReport, Report, SpanReport};
+pub use report::{BALANCE_TOLERANCE, Balances, HubLoad, PulleyReport, Report, SpanReport};
 pub use section::{BeltContact, BeltDamping, MaterialLaw, Ribs, Section};
 pub use signal::{Harmonic, Shape, Signal};
 pub use tensioner::Tensioner;

@@ -136,6 +136,34 @@ pub struct Balances {
     pub driver_power_w: f64,
 }
 
+/// Largest relative torque and power residual \[-\] at which a report's balances hold: 0.5 %,
+/// the bound of issue 34 item 2, which the ANCF and nodal belts keep on Table 6-1, the
+/// Pechstein–Gerstmayr drive and the default FEAD drive (`flowmbd-validation`
+/// `belt_balances`).
+pub const BALANCE_TOLERANCE: f64 = 5e-3;
+
+impl Balances {
+    /// The residuals beyond `bound` \[-\] (e.g. [`BALANCE_TOLERANCE`]), as
+    /// "torque residual +0.72 %, power residual −1.88 % (bound 0.5 %)", or `None` when both
+    /// are within it: the torque residual relative to the largest pulley torque, the power
+    /// residual relative to the drivers' power (a NaN residual counts as beyond). A model
+    /// whose forces on the pulleys are carried by its reported spans and which neither creates
+    /// nor loses energy keeps both near zero at a steady state (module documentation).
+    pub fn beyond(&self, bound: f64) -> Option<String> {
+        let miss = |what: &str, r: f64| {
+            (r.abs() > bound || r.is_nan()).then(|| format!("{what} {:+.2} %", 100.0 * r))
+        };
+        let misses: Vec<String> = [
+            miss("torque residual", self.torque_residual_rel),
+            miss("power residual", self.power_residual_rel),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        (!misses.is_empty()).then(|| format!("{} (bound {} %)", misses.join(", "), 100.0 * bound))
+    }
+}
+
 /// The report of one state, or the mean of a window of states ([`Report::mean`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
@@ -677,6 +705,47 @@ mod tests {
         // a window mean of two equal reports is the report
         let m = Report::mean(&[rep.clone(), rep.clone()]).unwrap();
         assert_eq!(m.pulleys[1].slip_arc_rad, rep.pulleys[1].slip_arc_rad);
+    }
+
+    // Balances::beyond names what misses the bound and nothing else. Reference: the
+    // capstan wrap above, whose torque balance closes to 1e-12 and whose power balance is
+    // short by exactly the wrap's sliding power (the snapshot's pulleys carry no sliding).
+    #[test]
+    fn the_balance_issue_names_each_residual_beyond_the_bound() {
+        let (drive, snap, _, _) = capstan_snapshot(0.5, 2.0, None);
+        let b = Report::new(&drive, &snap).balances;
+        let rel = b.power_residual_rel;
+        assert!(rel < -BALANCE_TOLERANCE, "{b:?}");
+        let why = b
+            .beyond(BALANCE_TOLERANCE)
+            .expect("the power residual is beyond the bound");
+        assert!(
+            why.contains(&format!("power residual {:+.2} %", 100.0 * rel)),
+            "{why}"
+        );
+        assert!(!why.contains("torque"), "{why}");
+        let within = Balances {
+            power_residual_rel: 0.9 * BALANCE_TOLERANCE,
+            torque_residual_rel: -0.9 * BALANCE_TOLERANCE,
+            ..b
+        };
+        assert_eq!(within.beyond(BALANCE_TOLERANCE), None);
+        let torque = Balances {
+            torque_residual_rel: 1.1 * BALANCE_TOLERANCE,
+            ..within
+        };
+        let why = torque.beyond(BALANCE_TOLERANCE).unwrap();
+        assert!(
+            why.contains("torque residual +0.55 %") && !why.contains("power"),
+            "{why}"
+        );
+        let nan = Balances {
+            power_residual_rel: f64::NAN,
+            ..within
+        };
+        assert!(nan.beyond(BALANCE_TOLERANCE).is_some());
+        // a wider bound takes the capstan's power residual in
+        assert_eq!(b.beyond(1.1 * rel.abs()), None);
     }
 
     // Angular momentum balance of the steady belt between the middles of two spans (module

@@ -596,6 +596,10 @@ pub struct FeadPoint {
     /// with the belt speed times the largest tension change over a wrap, over EA); the numbers
     /// are given.
     pub caveat: Option<String>,
+    /// What the window's balances say when they miss [`belt::BALANCE_TOLERANCE`]
+    /// ([`crate::speed_loss::balance_note`]: the residuals and, for the flowing belt, the
+    /// known cause); `None` within it. The numbers are given.
+    pub balance: Option<String>,
     /// The drive report averaged over the window (span forces, slip arcs, hub loads, torques,
     /// torque and power balances; [`Report::mean`]).
     pub report: Report,
@@ -880,7 +884,8 @@ that the belt moves at most run.max_travel elements per step, run.ancf_max_trave
 (min/mean/max, rad), every span's tension extremes (N), each pulley's speed loss against the \
 crank (%, creep and slip), the drive report averaged over the window (slip arcs, hub loads, \
 gross slip, per-pulley torque residual between the pulley's torque and the spans' \
-(T_in - T_out) r, the power balance: power in = sliding losses + belt damping) and every span's first transverse natural frequency from the travelling-string formula \
+(T_in - T_out) r, the power balance: power in = sliding losses + belt damping; `balance` says when either \
+residual misses 0.5 %) and every span's first transverse natural frequency from the travelling-string formula \
 with the computed span tension and belt speed, to be read against the engine orders (the \
 Campbell diagram: a span resonates where an order line crosses its frequency). A point where a \
 span's tension dips below 10 % of the installed tension, or a wrap slips as a whole, leaves the \
@@ -1237,6 +1242,7 @@ fn sweep<M: BeltModel>(
     let h = alpha.h;
     let linearised = model.traits().linearised;
     let near_coulomb = model.traits().near_coulomb_creep;
+    let model_name = model.traits().name;
     let mut state: Option<State> = None;
     let points = crank_points(cfg, h).map_err(invalid)?;
     if cfg.engine.trace.is_some() {
@@ -1471,6 +1477,7 @@ fn sweep<M: BeltModel>(
                     v.abs() * dt / drive.belt().ea,
                 )
             },
+            balance: crate::speed_loss::balance_note(model_name, &report.balances),
             report,
             steady,
             settled_s: window_start - cfg.run.ramp,

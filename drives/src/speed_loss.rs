@@ -197,6 +197,9 @@ pub struct SpeedLossPoint {
     /// Why the speed loss may understate the creep at this point ([`creep_caveat`]; `None`:
     /// no reason known).
     pub caveat: Option<String>,
+    /// What the point's balances say when they miss [`belt::BALANCE_TOLERANCE`]
+    /// ([`balance_note`]); `None` within it. The numbers are given.
+    pub balance: Option<String>,
     /// Spans and pulleys at the point (vibration amplitudes over the last window).
     pub report: Report,
     /// The contact points of every wrap at the point.
@@ -350,19 +353,32 @@ pub const BALANCE_LIMIT: f64 = 0.05;
 
 /// Why a linearised model's point is not valid by its balances ([`BALANCE_LIMIT`]), or `None`.
 pub fn balance_issue(b: &belt::Balances) -> Option<String> {
-    let (torque, power) = (b.torque_residual_rel, b.power_residual_rel);
-    (torque.abs() > BALANCE_LIMIT
-        || power.abs() > BALANCE_LIMIT
-        || !(torque.is_finite() && power.is_finite()))
-    .then(|| {
+    b.beyond(BALANCE_LIMIT).map(|miss| {
         format!(
-            "torque balance residual {:.1} %, power balance residual {:.1} % (limit {:.0} %): \
-             the spans' tensions do not carry the pulley torques; the linearised flowing model \
-             misses the balances on small or back-side pulleys: check with the nodal or ANCF model",
-            100.0 * torque,
-            100.0 * power,
-            100.0 * BALANCE_LIMIT
+            "balances: {miss}: the spans' tensions do not carry the pulley torques; the \
+             linearised flowing model misses the balances on small or back-side pulleys: check \
+             with the nodal or ANCF model"
         )
+    })
+}
+
+/// What a point's balances say when they miss [`belt::BALANCE_TOLERANCE`] (0.5 %), or `None`;
+/// the point's numbers are given (beyond [`BALANCE_LIMIT`] a linearised model's point is
+/// invalid instead, [`balance_issue`]). `model` is the belt model's name
+/// ([`belt::ModelTraits::name`]): for the flowing belt the known cause is named.
+pub fn balance_note(model: &str, b: &belt::Balances) -> Option<String> {
+    b.beyond(belt::BALANCE_TOLERANCE).map(|miss| {
+        let cause = if model == "flowing" {
+            "; the flowing belt of Ribaric (5.5) takes the path's curvature as its stress-free \
+             shape, which does work on the moving material (the power defect grows as the wraps \
+             are refined; BENCHMARKS.md, \"Flowing belt balances by formulation\"): \
+             [models.flowing] bending = \"co_rotated\", viscous_force = \"chord\", equations = \
+             \"lagrange\" with a 6 mm arc_element closes the power balance at about 25 times \
+             the CPU, or run the nodal or ANCF model"
+        } else {
+            ""
+        };
+        format!("balances: {miss}: the model's numbers carry an error of that order{cause}")
     })
 }
 
@@ -681,6 +697,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                             &report,
                             sim.model().pulley_speed(driver, st.t, &st.v) - means[k - 1],
                         ),
+                        balance: balance_note(sim.model().traits().name, &report.balances),
                         report,
                         wrap,
                     });
@@ -746,6 +763,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                 }),
                 linearisation: linearisation_issue(&belt, &report),
                 caveat: creep_caveat(&belt, &report, omega_driven),
+                balance: balance_note(sim.model().traits().name, &report.balances),
                 report,
                 wrap,
             });

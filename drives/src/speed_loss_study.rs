@@ -214,6 +214,9 @@ pub struct SummaryPoint {
     /// under a friction law sharper than the creep: [`crate::speed_loss::creep_caveat`]); the
     /// numbers are still given.
     pub caveat: Option<String>,
+    /// What the balances say when they miss 0.5 % ([`crate::speed_loss::balance_note`]); the
+    /// numbers are still given.
+    pub balance: Option<String>,
     /// Per pulley: arcs, slip velocity, hub load, torque, sliding loss.
     pub pulleys: Option<Vec<PulleyReport>>,
     /// Per span: force and transverse vibration amplitude.
@@ -250,6 +253,7 @@ impl SummaryPoint {
             linearisation_valid: valid,
             linearisation: p.linearisation.clone(),
             caveat: p.caveat.clone(),
+            balance: p.balance.clone(),
             pulleys: valid.then(|| r.pulleys.clone()),
             spans: valid.then(|| r.spans.clone()),
             balances: r.balances,

@@ -46,7 +46,9 @@ def speed_loss(
         and nodal models, linearised about the pre-tension, the numbers are ``None`` where the
         slack span goes nearly slack or a wrap slides as a whole; ``caveat``: why the speed
         loss may understate the creep (the flowing model's default contact rates under a
-        friction law sharper than the creep), or ``None``. Each case adds
+        friction law sharper than the creep), or ``None``; ``balances`` (torque and power
+        residuals) and ``balance``: what they say when either misses 0.5 %, or ``None``. Each
+        case adds
         ``capacity_euler_eytelwein`` [N m]. A load beyond what friction can transmit is a point
         with ``gross_slip = True``, not an error.
 

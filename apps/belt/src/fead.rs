@@ -85,6 +85,9 @@ impl Study for Args {
                 if let Some(why) = &p.caveat {
                     eprintln!("fead: {} rpm: {why}", p.engine_rpm);
                 }
+                if let Some(why) = &p.balance {
+                    eprintln!("fead: {} rpm: {why}", p.engine_rpm);
+                }
                 if let Some(name) = &p.gross_slip_pulley {
                     eprintln!(
                         "fead: gross slip at {} rpm on pulley '{name}'",

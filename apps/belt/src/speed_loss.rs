@@ -104,6 +104,14 @@ fn report_slips(model: ModelKind, case: &SpeedLossCase) {
                 p.torque
             );
         }
+        if let Some(why) = &p.balance {
+            eprintln!(
+                "flowmbd-belt speed-loss: {} belt, ω₁ = {} rad/s, load {} N m: {why}",
+                model.name(),
+                case.omega_driver,
+                p.torque
+            );
+        }
     }
 }
 
