@@ -131,6 +131,10 @@ pub struct ModelTraits {
     /// closed form on Table 6-1's default mesh), whose speed-loss points then carry a caveat
     /// when the friction law is sharper than the creep.
     pub near_coulomb_creep: bool,
+    /// The known cause of the model's balance residuals where they miss
+    /// [`crate::BALANCE_TOLERANCE`], in words with what removes it (`None`: none known; the
+    /// flowing belt with the path-referenced bending of Ribaric (5.5)).
+    pub balance_defect: Option<&'static str>,
 }
 
 /// A belt-drive model of N pulleys (module documentation).

@@ -1242,7 +1242,7 @@ fn sweep<M: BeltModel>(
     let h = alpha.h;
     let linearised = model.traits().linearised;
     let near_coulomb = model.traits().near_coulomb_creep;
-    let model_name = model.traits().name;
+    let balance_defect = model.traits().balance_defect;
     let mut state: Option<State> = None;
     let points = crank_points(cfg, h).map_err(invalid)?;
     if cfg.engine.trace.is_some() {
@@ -1477,7 +1477,7 @@ fn sweep<M: BeltModel>(
                     v.abs() * dt / drive.belt().ea,
                 )
             },
-            balance: crate::speed_loss::balance_note(model_name, &report.balances),
+            balance: crate::speed_loss::balance_note(balance_defect, &report.balances),
             report,
             steady,
             settled_s: window_start - cfg.run.ramp,

@@ -364,20 +364,11 @@ pub fn balance_issue(b: &belt::Balances) -> Option<String> {
 
 /// What a point's balances say when they miss [`belt::BALANCE_TOLERANCE`] (0.5 %), or `None`;
 /// the point's numbers are given (beyond [`BALANCE_LIMIT`] a linearised model's point is
-/// invalid instead, [`balance_issue`]). `model` is the belt model's name
-/// ([`belt::ModelTraits::name`]): for the flowing belt the known cause is named.
-pub fn balance_note(model: &str, b: &belt::Balances) -> Option<String> {
+/// invalid instead, [`balance_issue`]). `defect` is the model's known cause
+/// ([`belt::ModelTraits::balance_defect`]).
+pub fn balance_note(defect: Option<&str>, b: &belt::Balances) -> Option<String> {
     b.beyond(belt::BALANCE_TOLERANCE).map(|miss| {
-        let cause = if model == "flowing" {
-            "; the flowing belt of Ribaric (5.5) takes the path's curvature as its stress-free \
-             shape, which does work on the moving material (the power defect grows as the wraps \
-             are refined; BENCHMARKS.md, \"Flowing belt balances by formulation\"): \
-             [models.flowing] bending = \"co_rotated\", viscous_force = \"chord\", equations = \
-             \"lagrange\" with a 6 mm arc_element closes the power balance at about 25 times \
-             the CPU, or run the nodal or ANCF model"
-        } else {
-            ""
-        };
+        let cause = defect.map_or(String::new(), |d| format!("; {d}"));
         format!("balances: {miss}: the model's numbers carry an error of that order{cause}")
     })
 }
@@ -697,7 +688,10 @@ pub fn speed_loss_sweep<M: BeltModel>(
                             &report,
                             sim.model().pulley_speed(driver, st.t, &st.v) - means[k - 1],
                         ),
-                        balance: balance_note(sim.model().traits().name, &report.balances),
+                        balance: balance_note(
+                            sim.model().traits().balance_defect,
+                            &report.balances,
+                        ),
                         report,
                         wrap,
                     });
@@ -763,7 +757,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                 }),
                 linearisation: linearisation_issue(&belt, &report),
                 caveat: creep_caveat(&belt, &report, omega_driven),
-                balance: balance_note(sim.model().traits().name, &report.balances),
+                balance: balance_note(sim.model().traits().balance_defect, &report.balances),
                 report,
                 wrap,
             });

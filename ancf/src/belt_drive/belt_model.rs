@@ -265,6 +265,7 @@ impl DriveKind for Planar {
         linearised: false,
         force_measure: ANCF_FORCE_MEASURE,
         near_coulomb_creep: true,
+        balance_defect: None,
     };
 
     fn elements(&self) -> usize {

@@ -342,11 +342,30 @@ fn bend_dofs(e: &BendElement) -> [usize; 6] {
     [i, i + 1, i + 2, j, j + 1, j + 2]
 }
 
+/// What the flowing belt's balance note says with Ribaric's path-referenced bending
+/// ([`FlowingBelt::balance_defect`]).
+pub const RIBARIC_BALANCE_DEFECT: &str = "the flowing belt of Ribaric (5.5) takes the path's \
+curvature as its stress-free shape, which does work on the moving material (the power defect \
+grows as the wraps are refined; BENCHMARKS.md, \"Flowing belt balances by formulation\"): \
+[models.flowing] bending = \"co_rotated\", axial_force = \"co_rotated\", viscous_force = \
+\"chord\", equations = \"lagrange\" with a 6 mm arc_element \
+(apps/belt/examples/fead-energy-consistent.toml) closes both balances on the default FEAD drive \
+up to 2500 rpm at 6 to 10 times the CPU, or run the nodal or ANCF model";
+
 impl FlowingBelt {
     /// Whether the contact slip follows the strain the elements carry
     /// ([`ContactVelocity::Chord`]; `belt::ModelTraits::near_coulomb_creep`).
     pub fn contact_rates_follow_the_strain(&self) -> bool {
         self.chord_contact
+    }
+
+    /// The known cause of a balance miss (`belt::ModelTraits::balance_defect`): with the
+    /// path-referenced bending of Ribaric (5.5) ([`BendingForce::Linear`]) the belt's
+    /// stress-free shape is the path's, and its re-curving at the tangent points does work on
+    /// the moving material (module documentation; on the default FEAD drive the power residual
+    /// is −1.9 % and −4.0 % on 4 mm wraps). `None` with the naturally straight belt.
+    pub fn balance_defect(&self) -> Option<&'static str> {
+        self.bend.is_empty().then_some(RIBARIC_BALANCE_DEFECT)
     }
 
     /// The flowing-material model of `drive` (Ribaric (5.14)): the stationary loop of

@@ -209,6 +209,11 @@ impl NodalBelt {
         true
     }
 
+    /// The known cause of a balance miss (`belt::ModelTraits::balance_defect`): none.
+    pub fn balance_defect(&self) -> Option<&'static str> {
+        None
+    }
+
     /// The rotating-mesh model of `drive` (Ribaric (5.7)) on the loop of `mesh` over the
     /// mounted path (give it near-uniform elements, [`BeltMesh::uniform`]: long span elements
     /// landing on a wrap excite it at the element-passing frequency). Every node can touch

@@ -118,6 +118,7 @@ macro_rules! shared_belt_model_methods {
                 linearised: true,
                 force_measure: LINEAR_FORCE_MEASURE,
                 near_coulomb_creep: self.contact_rates_follow_the_strain(),
+                balance_defect: self.balance_defect(),
             }
         }
 

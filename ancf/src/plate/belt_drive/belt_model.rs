@@ -239,6 +239,7 @@ impl DriveKind for Plate {
         linearised: false,
         force_measure: PLATE_FORCE_MEASURE,
         near_coulomb_creep: true,
+        balance_defect: None,
     };
 
     fn elements(&self) -> usize {
