@@ -574,19 +574,24 @@ impl BandLu {
                 .and_then(|m| m.compose(row_idx.len(), map));
         }
         let d = self.direct.as_ref()?;
+        // every slot receives at most one sum (the map names distinct entries, the scatter
+        // distinct slots) onto the cleared zero, so the arrays are finite exactly when every
+        // sum is: checked on the sums instead of over the arrays afterwards
+        let mut finite = true;
         for (dst, pairs) in [
             (&mut self.ab, &d.ab),
             (&mut self.x, &d.x),
             (&mut self.a21, &d.a21),
             (&mut self.s, &d.s),
         ] {
-            match terms {
+            match *terms {
                 [(s0, v0), (s1, v1), (s2, v2)] => {
                     for &(k, p) in pairs {
                         let mut a = 0.0;
                         a += s0 * v0[k];
                         a += s1 * v1[k];
                         a += s2 * v2[k];
+                        finite &= a.is_finite();
                         dst[p] += a;
                     }
                 }
@@ -596,16 +601,13 @@ impl BandLu {
                         for (s, v) in terms {
                             a += s * v[k];
                         }
+                        finite &= a.is_finite();
                         dst[p] += a;
                     }
                 }
             }
         }
-        Some(
-            [&self.ab, &self.x, &self.a21, &self.s]
-                .iter()
-                .all(|a| a.iter().all(|v| v.is_finite())),
-        )
+        Some(finite)
     }
 
     /// Zeroes the band, border and Schur arrays.
@@ -786,13 +788,12 @@ impl BandLu {
         let band = self.band();
         band.solve(y1);
         if nb > 0 {
-            for r in 0..nb {
-                let mut acc = 0.0;
-                for k in 0..n1 {
-                    acc += self.a21[r + k * nb] * y1[k];
-                }
-                y2[r] -= acc;
-            }
+            crate::simd::dispatch(BorderProduct {
+                a21: &self.a21,
+                y1,
+                y2,
+                nb,
+            });
             dense_solve(&self.s, nb, &self.s_piv, y2);
             // y1 -= X x2, each row's border columns in the order of the columns
             for (y, xr) in y1.iter_mut().zip(self.x.chunks_exact(nb)) {
@@ -974,6 +975,41 @@ impl crate::simd::Kernel for SchurProduct<'_> {
     }
 }
 
+/// Rows of the border taken together by [`BorderProduct`] (its accumulators on the stack).
+const BORDER_ROWS: usize = 16;
+
+/// `y₂ −= A₂₁ y₁` of [`BandLu::solve`] (`A₂₁` stored `a21[r + k nb]`): each row's inner
+/// product `Σₖ a₂₁[r, k] y₁[k]` summed from 0 in the order of `k` and then subtracted, as the
+/// row-by-row loop it replaces (kept as `border_product_reference` in the tests), so the same
+/// bits; the rows' sums run side by side (up to [`BORDER_ROWS`] at a time), along the
+/// contiguous rows of `a21`, instead of one strided dependency chain after the other.
+struct BorderProduct<'a> {
+    a21: &'a [f64],
+    y1: &'a [f64],
+    y2: &'a mut [f64],
+    nb: usize,
+}
+
+impl crate::simd::Kernel for BorderProduct<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let nb = self.nb;
+        for r0 in (0..nb).step_by(BORDER_ROWS) {
+            let m = (nb - r0).min(BORDER_ROWS);
+            let mut acc = [0.0; BORDER_ROWS];
+            for (a, &yk) in self.a21.chunks_exact(nb).zip(self.y1) {
+                for (t, &av) in acc[..m].iter_mut().zip(&a[r0..r0 + m]) {
+                    *t += av * yk;
+                }
+            }
+            for (y, a) in self.y2[r0..r0 + m].iter_mut().zip(&acc) {
+                *y -= a;
+            }
+        }
+    }
+}
+
 /// [`Band::solve`] as a [`crate::simd::Kernel`].
 struct BandSolve<'a, 'b> {
     band: &'a Band<'b>,
@@ -1121,6 +1157,46 @@ mod tests {
             band.solve(col);
             for i in 0..n1 {
                 assert!(rows[i * k + c] == col[i], "row {i}, column {c}");
+            }
+        }
+    }
+
+    /// The border's `y₂ −= A₂₁ y₁` as the row-by-row loop that [`BorderProduct`] replaced.
+    fn border_product_reference(a21: &[f64], y1: &[f64], y2: &mut [f64], nb: usize) {
+        let n1 = y1.len();
+        for r in 0..nb {
+            let mut acc = 0.0;
+            for k in 0..n1 {
+                acc += a21[r + k * nb] * y1[k];
+            }
+            y2[r] -= acc;
+        }
+    }
+
+    /// [`BorderProduct`] (rows side by side, dispatched) gives the bits of the row-by-row
+    /// inner products it replaced (reference: `border_product_reference`, `to_bits` on every
+    /// entry), for borders narrower and wider than [`BORDER_ROWS`] and values of mixed
+    /// magnitude whose sums depend on the order of the additions.
+    #[test]
+    fn border_product_is_the_row_by_row_inner_products_bit_for_bit() {
+        for nb in [1, 6, 12, 16, 19, 40] {
+            let n1 = 257;
+            let a21: Vec<f64> = (0..nb * n1)
+                .map(|k| ((k * 13 + 5) as f64 * 0.71).sin() * 10f64.powi((k % 7) as i32 - 3))
+                .collect();
+            let y1: Vec<f64> = (0..n1).map(|k| ((k * 3 + 1) as f64 * 0.29).cos()).collect();
+            let y2: Vec<f64> = (0..nb).map(|r| (r as f64 * 1.3).sin()).collect();
+            let mut reference = y2.clone();
+            border_product_reference(&a21, &y1, &mut reference, nb);
+            let mut got = y2.clone();
+            crate::simd::dispatch(BorderProduct {
+                a21: &a21,
+                y1: &y1,
+                y2: &mut got,
+                nb,
+            });
+            for r in 0..nb {
+                assert_eq!(got[r].to_bits(), reference[r].to_bits(), "nb {nb}, row {r}");
             }
         }
     }
