@@ -379,11 +379,19 @@ impl BeltDrive {
         let l = self.element_length();
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
+        // the pulleys' disks at this state, once for all elements
+        let disks: Vec<Disk> = omegas
+            .iter()
+            .enumerate()
+            .map(|(p, &omega)| self.disk(p, omega, q, v))
+            .collect();
+        // the pair's contact buffers, out of the scratch for the whole pass (the sink gets them
+        // beside the scratch)
+        let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
         for el in 0..self.kind.mesh.elements().len() {
             self.kind.mesh.gather(q, el, &mut e);
             let mut gathered_v = false;
-            for (p, &omega) in omegas.iter().enumerate() {
-                let disk = self.disk(p, omega, q, v);
+            for (p, disk) in disks.iter().enumerate() {
                 if !self.may_touch(&e, p, [disk.center.x, disk.center.y]) {
                     continue;
                 }
@@ -391,11 +399,9 @@ impl BeltDrive {
                     self.kind.mesh.gather(v, el, &mut ed);
                     gathered_v = true;
                 }
-                let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
-                let mut recs = std::mem::take(&mut scratch.records);
-                recs.clear();
+                scratch.records.clear();
                 line.element_on(
-                    &disk,
+                    disk,
                     &self.kind.friction[p],
                     l,
                     6,
@@ -404,15 +410,14 @@ impl BeltDrive {
                     &ed,
                     jacobian,
                     &mut ec,
-                    records.then_some(&mut recs),
+                    records.then_some(&mut scratch.records),
                 );
-                scratch.records = recs;
                 if ec.active_points > 0 {
                     sink(el, p, &ec, scratch);
                 }
-                scratch.contact = ec;
             }
         }
+        scratch.contact = ec;
     }
 
     /// The drive's work buffers and tangent cache in the caller's workspace `ws`, created on

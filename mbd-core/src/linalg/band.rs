@@ -388,8 +388,29 @@ struct DirectScatter {
     s: Vec<(usize, usize)>,
 }
 
-/// [`dgbtf2`] as a [`crate::simd::Kernel`].
-struct Dgbtf2<'a> {
+/// `t[i] −= u · l[i]` along `t` (as long as `l`); with `t` exactly `W` long (`W > 0`) the loop
+/// has a constant length, which the compiler unrolls into whole vectors and a fixed remainder:
+/// the same operations on every entry (the same bits), without the loop overhead of a short
+/// run-time length (the band's `kl` = 11 of the planar ANCF belts, the border's 12 columns of
+/// the FEAD drive).
+#[inline(always)]
+fn sub_scaled<const W: usize>(t: &mut [f64], l: &[f64], u: f64) {
+    if W > 0
+        && let (Ok(t), Ok(l)) = (<&mut [f64; W]>::try_from(&mut *t), <&[f64; W]>::try_from(l))
+    {
+        for i in 0..W {
+            t[i] -= u * l[i];
+        }
+        return;
+    }
+    for (t, li) in t.iter_mut().zip(l) {
+        *t -= u * li;
+    }
+}
+
+/// [`dgbtf2`] as a [`crate::simd::Kernel`], with the constant lower bandwidth `KL` (0: any,
+/// [`sub_scaled`]).
+struct Dgbtf2<'a, const KL: usize> {
     ab: &'a mut [f64],
     ipiv: &'a mut [usize],
     n1: usize,
@@ -398,18 +419,20 @@ struct Dgbtf2<'a> {
     ld: usize,
 }
 
-impl crate::simd::Kernel for Dgbtf2<'_> {
+impl<const KL: usize> crate::simd::Kernel for Dgbtf2<'_, KL> {
     type Output = Result<(), BandError>;
     #[inline(always)]
     fn run(self) -> Self::Output {
-        dgbtf2(self.ab, self.ipiv, self.n1, self.kl, self.ku, self.ld)
+        dgbtf2::<KL>(self.ab, self.ipiv, self.n1, self.kl, self.ku, self.ld)
     }
 }
 
 /// LAPACK dgbtf2 on the band storage `ab` (leading dimension `ld`, bandwidths `kl`, `ku`) of
 /// an `n1 × n1` matrix: column `j` pivots among rows `j..=j + kl`, `U` fills up to column `ju`.
+/// With `KL > 0` (equal to `kl`) the updates of whole columns run on constant lengths
+/// ([`sub_scaled`], the same bits).
 #[inline(always)]
-fn dgbtf2(
+fn dgbtf2<const KL: usize>(
     ab: &mut [f64], ipiv: &mut [usize], n1: usize, kl: usize, ku: usize, ld: usize,
 ) -> Result<(), BandError> {
     let kv = kl + ku;
@@ -450,9 +473,7 @@ fn dgbtf2(
                 let top = kv + j - c;
                 let ujc = hi[top];
                 if ujc != 0.0 {
-                    for (t, li) in hi[top + 1..=top + km].iter_mut().zip(l) {
-                        *t -= ujc * li;
-                    }
+                    sub_scaled::<KL>(&mut hi[top + 1..=top + km], l, ujc);
                 }
             }
         }
@@ -639,14 +660,24 @@ impl BandLu {
         // dgbtf2: column j, pivot among rows j..=j+km, U fill up to column ju (compiled for the
         // machine's vector width: `crate::simd`, the same bits)
         let (ab, ipiv) = (&mut self.ab, &mut self.ipiv);
-        crate::simd::dispatch(Dgbtf2 {
-            ab,
-            ipiv,
-            n1,
-            kl,
-            ku,
-            ld,
-        })?;
+        match kl {
+            11 => crate::simd::dispatch(Dgbtf2::<11> {
+                ab,
+                ipiv,
+                n1,
+                kl,
+                ku,
+                ld,
+            }),
+            _ => crate::simd::dispatch(Dgbtf2::<0> {
+                ab,
+                ipiv,
+                n1,
+                kl,
+                ku,
+                ld,
+            }),
+        }?;
         for (j, u) in self.u_inv.iter_mut().enumerate() {
             *u = 1.0 / self.ab[kv + j * ld];
         }
@@ -832,12 +863,17 @@ impl Band<'_> {
     /// Solves with the banded LU (dgbtrs, no transpose) in place; `b` has the band's size
     /// (compiled for the machine's vector width: [`crate::simd`], the same bits).
     fn solve(&self, b: &mut [f64]) {
-        crate::simd::dispatch(BandSolve { band: self, b });
+        match (self.kl, self.ku) {
+            (11, 11) => crate::simd::dispatch(BandSolve::<11, 22> { band: self, b }),
+            _ => crate::simd::dispatch(BandSolve::<0, 0> { band: self, b }),
+        }
     }
 
-    /// The body of [`Band::solve`].
+    /// The body of [`Band::solve`]; with `KL > 0` and `KV > 0` (equal to `kl` and `kl + ku`)
+    /// the full-length columns of `L` and `U` run on constant lengths ([`sub_scaled`], the same
+    /// bits).
     #[inline(always)]
-    fn solve_kernel(&self, b: &mut [f64]) {
+    fn solve_kernel<const KL: usize, const KV: usize>(&self, b: &mut [f64]) {
         let (ab, ld, kl) = (self.ab, self.ld, self.kl);
         let kv = kl + self.ku;
         let n = b.len();
@@ -851,9 +887,7 @@ impl Band<'_> {
             let bj = b[j];
             if km > 0 && bj != 0.0 {
                 let l = &ab[kv + 1 + j * ld..=kv + km + j * ld];
-                for (t, li) in b[j + 1..=j + km].iter_mut().zip(l) {
-                    *t -= li * bj;
-                }
+                sub_scaled::<KL>(&mut b[j + 1..=j + km], l, bj);
             }
         }
         // U x = y (U has upper bandwidth kv), column by column from the last
@@ -864,9 +898,7 @@ impl Band<'_> {
             let len = j - top;
             if len > 0 && xj != 0.0 {
                 let u = &ab[kv - len + j * ld..kv + j * ld];
-                for (t, ui) in b[top..j].iter_mut().zip(u) {
-                    *t -= ui * xj;
-                }
+                sub_scaled::<KV>(&mut b[top..j], u, xj);
             }
         }
     }
@@ -879,12 +911,16 @@ impl Band<'_> {
     /// the same bits as its own solve, but the inner loops run along the `k` columns of a row
     /// (contiguous, vectorised) instead of along the band (at most `kl` or `kl + ku` long).
     fn solve_rows(&self, b: &mut [f64], k: usize) {
-        crate::simd::dispatch(BandSolveRows { band: self, b, k });
+        match k {
+            12 => crate::simd::dispatch(BandSolveRows::<12> { band: self, b, k }),
+            _ => crate::simd::dispatch(BandSolveRows::<0> { band: self, b, k }),
+        }
     }
 
-    /// The body of [`Band::solve_rows`].
+    /// The body of [`Band::solve_rows`]; with `K > 0` (equal to `k`) the rows run on a
+    /// constant length ([`sub_scaled`], the same bits).
     #[inline(always)]
-    fn solve_rows_kernel(&self, b: &mut [f64], k: usize) {
+    fn solve_rows_kernel<const K: usize>(&self, b: &mut [f64], k: usize) {
         let (ab, ld, kl) = (self.ab, self.ld, self.kl);
         let kv = kl + self.ku;
         let n = b.len() / k;
@@ -905,9 +941,7 @@ impl Band<'_> {
             }
             for (i, row) in tail.chunks_exact_mut(k).take(km).enumerate() {
                 let li = ab[kv + 1 + i + j * ld];
-                for (t, &v) in row.iter_mut().zip(bj) {
-                    *t -= li * v;
-                }
+                sub_scaled::<K>(row, bj, li);
             }
         }
         // U x = y, column by column from the last
@@ -925,26 +959,24 @@ impl Band<'_> {
             let len = j - top;
             for (i, row) in head[top * k..].chunks_exact_mut(k).enumerate().take(len) {
                 let ui = ab[kv - len + i + j * ld];
-                for (t, &v) in row.iter_mut().zip(xj.iter()) {
-                    *t -= ui * v;
-                }
+                sub_scaled::<K>(row, xj, ui);
             }
         }
     }
 }
 
 /// [`Band::solve_rows`] as a [`crate::simd::Kernel`].
-struct BandSolveRows<'a, 'b> {
+struct BandSolveRows<'a, 'b, const K: usize> {
     band: &'a Band<'b>,
     b: &'a mut [f64],
     k: usize,
 }
 
-impl crate::simd::Kernel for BandSolveRows<'_, '_> {
+impl<const K: usize> crate::simd::Kernel for BandSolveRows<'_, '_, K> {
     type Output = ();
     #[inline(always)]
     fn run(self) {
-        self.band.solve_rows_kernel(self.b, self.k)
+        self.band.solve_rows_kernel::<K>(self.b, self.k)
     }
 }
 
@@ -1011,16 +1043,16 @@ impl crate::simd::Kernel for BorderProduct<'_> {
 }
 
 /// [`Band::solve`] as a [`crate::simd::Kernel`].
-struct BandSolve<'a, 'b> {
+struct BandSolve<'a, 'b, const KL: usize, const KV: usize> {
     band: &'a Band<'b>,
     b: &'a mut [f64],
 }
 
-impl crate::simd::Kernel for BandSolve<'_, '_> {
+impl<const KL: usize, const KV: usize> crate::simd::Kernel for BandSolve<'_, '_, KL, KV> {
     type Output = ();
     #[inline(always)]
     fn run(self) {
-        self.band.solve_kernel(self.b)
+        self.band.solve_kernel::<KL, KV>(self.b)
     }
 }
 
@@ -1159,6 +1191,68 @@ mod tests {
                 assert!(rows[i * k + c] == col[i], "row {i}, column {c}");
             }
         }
+    }
+
+    /// The kernels compiled for constant widths (`dgbtf2::<11>`, `BandSolve::<11, 22>`,
+    /// `BandSolveRows::<12>`, [`sub_scaled`]) give the bits of the run-time-width kernels
+    /// (reference: the same kernels with width 0, `to_bits` on every entry), on a ring of six
+    /// coordinates per node (`kl = ku = 11`) whose band pivots, for one and twelve right-hand
+    /// sides.
+    #[test]
+    fn constant_width_kernels_are_the_run_time_width_kernels_bit_for_bit() {
+        let (dim, cp, ri) = ring(6, 24);
+        let plan = BandPlan::new(dim, &cp, &ri);
+        let vals = ring_values(dim, &cp, &ri, 0.3);
+        let mut lu = BandLu::new(plan);
+        lu.load(&cp, &ri, &vals);
+        let (n1, kl, ku, ld) = (lu.plan.n1, lu.plan.kl, lu.plan.ku, lu.ld);
+        assert_eq!(
+            (kl, ku),
+            (11, 11),
+            "the widths the kernels are compiled for"
+        );
+        let (mut ab0, mut ipiv0) = (lu.ab.clone(), lu.ipiv.clone());
+        dgbtf2::<0>(&mut ab0, &mut ipiv0, n1, kl, ku, ld).expect("regular");
+        lu.factor_loaded().expect("regular");
+        assert!(
+            lu.ipiv.iter().enumerate().any(|(j, &p)| p != j),
+            "the band pivots"
+        );
+        assert_eq!(lu.ipiv, ipiv0);
+        assert!(
+            lu.ab
+                .iter()
+                .zip(&ab0)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+        let band = lu.band();
+        let rhs: Vec<f64> = (0..n1).map(|i| ((i * 5 + 2) as f64 * 0.83).sin()).collect();
+        let (mut fast, mut slow) = (rhs.clone(), rhs.clone());
+        band.solve(&mut fast);
+        band.solve_kernel::<0, 0>(&mut slow);
+        assert!(
+            fast.iter()
+                .zip(&slow)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+        let k = 12;
+        let rows: Vec<f64> = (0..n1 * k)
+            .map(|i| {
+                if i < 3 * k {
+                    0.0
+                } else {
+                    ((i * 7) as f64 * 0.29).cos()
+                }
+            })
+            .collect();
+        let (mut fast, mut slow) = (rows.clone(), rows);
+        band.solve_rows(&mut fast, k);
+        band.solve_rows_kernel::<0>(&mut slow, k);
+        assert!(
+            fast.iter()
+                .zip(&slow)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
     }
 
     /// The border's `y₂ −= A₂₁ y₁` as the row-by-row loop that [`BorderProduct`] replaced.
