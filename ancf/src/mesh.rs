@@ -141,21 +141,32 @@ impl<E: AncfElement> AncfMesh<E> {
         node * self.coords_per_node() + k
     }
 
-    /// Element coordinates of `el` gathered from the global vector `q` into `buf`.
+    /// Element coordinates of `el` gathered from the global vector `q` into `buf`: node by
+    /// node, the element's coordinates `k` of node `k / cpn` at offset `k % cpn`
+    /// ([`AncfMesh::global_dof`]) without a division per coordinate.
     #[inline]
     pub fn gather(&self, q: &[f64], el: usize, buf: &mut [f64]) {
         let n = self.elements[el].ndof();
-        for (k, b) in buf[..n].iter_mut().enumerate() {
-            *b = q[self.global_dof(el, k)];
+        let cpn = self.coords_per_node();
+        debug_assert!(n <= 2 * cpn);
+        for (b, &node) in buf[..n].chunks_mut(cpn).zip(&self.connectivity[el]) {
+            let base = node * cpn;
+            b.copy_from_slice(&q[base..base + b.len()]);
         }
     }
 
-    /// `f += scale · fe` scattered from element `el`.
+    /// `f += scale · fe` scattered from element `el` (coordinate by coordinate in the
+    /// element's order, node by node as [`AncfMesh::gather`]).
     #[inline]
     pub fn scatter_add(&self, f: &mut [f64], el: usize, fe: &[f64], scale: f64) {
         let n = self.elements[el].ndof();
-        for (k, v) in fe[..n].iter().enumerate() {
-            f[self.global_dof(el, k)] += scale * v;
+        let cpn = self.coords_per_node();
+        debug_assert!(n <= 2 * cpn);
+        for (v, &node) in fe[..n].chunks(cpn).zip(&self.connectivity[el]) {
+            let base = node * cpn;
+            for (t, x) in f[base..base + v.len()].iter_mut().zip(v) {
+                *t += scale * x;
+            }
         }
     }
 
@@ -271,4 +282,46 @@ pub fn straight_coordinates(
             layout.node_coordinates([start[0] + s * d[0], start[1] + s * d[1]], t, 1.0)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::belt_drive::{BeltDrive, BeltDriveSpec};
+    use crate::element::AncfElement;
+
+    // Reference: the coordinate-by-coordinate loops through `global_dof` (node `k / cpn`,
+    // offset `k % cpn`) that `gather` and `scatter_add` ran before, bit for bit, on every
+    // element of a closed belt loop (its last element ends on node 0), with the scatters of
+    // all elements summed in the same order.
+    #[test]
+    fn node_by_node_gather_and_scatter_are_the_coordinate_loops_bit_for_bit() {
+        let drive = BeltDrive::new(BeltDriveSpec::default()).unwrap();
+        let mesh = drive.mesh();
+        let n = mesh.n_dof();
+        let q: Vec<f64> = (0..n).map(|i| ((i * 7 + 3) as f64 * 0.37).sin()).collect();
+        let (mut f, mut f_ref) = (vec![0.25; n], vec![0.25; n]);
+        let last = mesh.elements().len() - 1;
+        assert_eq!(mesh.connectivity()[last][1], 0, "a closed loop");
+        for el in 0..mesh.elements().len() {
+            let nd = mesh.elements()[el].ndof();
+            let mut e = vec![f64::NAN; nd];
+            mesh.gather(&q, el, &mut e);
+            let fe: Vec<f64> = (0..nd)
+                .map(|k| ((el * 13 + k) as f64 * 0.91).cos())
+                .collect();
+            mesh.scatter_add(&mut f, el, &fe, -1.7);
+            for k in 0..nd {
+                let g = mesh.global_dof(el, k);
+                assert_eq!(
+                    e[k].to_bits(),
+                    q[g].to_bits(),
+                    "element {el}, coordinate {k}"
+                );
+                f_ref[g] += -1.7 * fe[k];
+            }
+        }
+        for (a, b) in f.iter().zip(&f_ref) {
+            assert_eq!(a.to_bits(), b.to_bits());
+        }
+    }
 }

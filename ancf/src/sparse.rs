@@ -88,6 +88,31 @@ impl Pattern {
         }
     }
 
+    /// [`Pattern::add_element`] of the entries `(a, b)` of `ke` (`m × m`, `m` the element's
+    /// coordinates) with `a` and `b` in `local` only (local coordinates of the element, in the
+    /// order given), for an element matrix that is zero outside those rows and columns.
+    ///
+    /// The same bits as [`Pattern::add_element`] for such a `ke` when `vals` was accumulated
+    /// from zeros (`+0.0`) by additions only: the entries left out would add `scale · (±0)`,
+    /// and in round-to-nearest `x + (±0) = x` for every `x` but `−0`, which such a sum never
+    /// holds (`+0 + y` is `y` or `+0`; a sum is `−0` only when both terms are).
+    #[inline]
+    pub fn add_element_on(
+        &self, vals: &mut [f64], el: usize, ke: &[f64], scale: f64, local: &[usize],
+    ) {
+        let s = &self.scatter[el];
+        let m = ke.len().isqrt();
+        debug_assert_eq!(m * m, s.len());
+        for &b in local {
+            for &a in local {
+                let pos = s[a + b * m];
+                if pos != DROPPED {
+                    vals[pos] += scale * ke[a + b * m];
+                }
+            }
+        }
+    }
+
     /// Position of the diagonal entry `(i, i)` in the value array.
     pub fn diagonal_position(&self, i: usize) -> usize {
         let col = &self.row_idx[self.col_ptr[i]..self.col_ptr[i + 1]];
@@ -151,6 +176,48 @@ impl Pattern {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`Pattern::add_element_on`] gives the bits of [`Pattern::add_element`] (reference: the
+    /// full add) for element matrices that are zero (`+0` and `−0`) outside the given rows and
+    /// columns, on values accumulated from zeros by earlier adds (some of them cancelling to
+    /// zero exactly), with a dropped coordinate and repeated adds to shared entries.
+    #[test]
+    fn add_on_the_local_rows_is_the_full_add_bit_for_bit() {
+        let dofs = vec![
+            vec![Some(0), Some(1), Some(2), None, Some(5)],
+            vec![Some(2), Some(3), Some(4), Some(1), Some(5)],
+            vec![Some(4), Some(5), Some(0), Some(3), Some(2)],
+        ];
+        let pat = Pattern::new(6, &dofs);
+        let m = 5;
+        let locals: [&[usize]; 3] = [&[0, 1, 2], &[1, 3, 4], &[4, 0]];
+        let (mut full, mut on) = (pat.zeros(), pat.zeros());
+        for round in 0..4 {
+            for (el, local) in locals.iter().enumerate() {
+                let ke: Vec<f64> = (0..m * m)
+                    .map(|i| {
+                        let (a, b) = (i % m, i / m);
+                        if local.contains(&a) && local.contains(&b) {
+                            // cancels the previous round's add exactly in round 2
+                            let r = if round == 2 { 1 } else { round };
+                            let sign = if round == 2 { -1.0 } else { 1.0 };
+                            sign * ((i * 7 + el + r) as f64 * 0.41).sin()
+                        } else if i % 2 == 0 {
+                            -0.0
+                        } else {
+                            0.0
+                        }
+                    })
+                    .collect();
+                pat.add_element(&mut full, el, &ke, 1.0);
+                pat.add_element_on(&mut on, el, &ke, 1.0, local);
+            }
+        }
+        assert!(full.contains(&0.0) && full.iter().any(|&v| v != 0.0));
+        for (a, b) in full.iter().zip(&on) {
+            assert_eq!(a.to_bits(), b.to_bits());
+        }
+    }
 
     /// The matrix of [`Pattern::to_matrix`], built on the structure checked once, is the one
     /// checked anew from the pattern's own arrays as before (reference: faer's checked

@@ -25,6 +25,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// Coordinates of one element.
 const NE: usize = 12;
 
+/// The element coordinates of the centreline blocks (`r` and `r_x` of both nodes), the rows
+/// and columns of the axial damping's local Jacobians that `element_damping` fills (`S_x` of
+/// the slope blocks `r_y` vanishes on `y = 0`).
+const CENTRE_COORDS: [usize; 8] = [0, 1, 2, 3, 6, 7, 8, 9];
+
 /// Work buffers (kept so that the force and tangent loops do not allocate) and the elastic
 /// tangent reused by [`BeltDrive::with_tangent_refresh`], in the caller's [`Workspace`] (see
 /// [`BeltDrive::scratch`]).
@@ -374,11 +379,19 @@ impl BeltDrive {
         let l = self.element_length();
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
+        // the pulleys' disks at this state, once for all elements
+        let disks: Vec<Disk> = omegas
+            .iter()
+            .enumerate()
+            .map(|(p, &omega)| self.disk(p, omega, q, v))
+            .collect();
+        // the pair's contact buffers, out of the scratch for the whole pass (the sink gets them
+        // beside the scratch)
+        let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
         for el in 0..self.kind.mesh.elements().len() {
             self.kind.mesh.gather(q, el, &mut e);
             let mut gathered_v = false;
-            for (p, &omega) in omegas.iter().enumerate() {
-                let disk = self.disk(p, omega, q, v);
+            for (p, disk) in disks.iter().enumerate() {
                 if !self.may_touch(&e, p, [disk.center.x, disk.center.y]) {
                     continue;
                 }
@@ -386,11 +399,9 @@ impl BeltDrive {
                     self.kind.mesh.gather(v, el, &mut ed);
                     gathered_v = true;
                 }
-                let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
-                let mut recs = std::mem::take(&mut scratch.records);
-                recs.clear();
+                scratch.records.clear();
                 line.element_on(
-                    &disk,
+                    disk,
                     &self.kind.friction[p],
                     l,
                     6,
@@ -399,15 +410,14 @@ impl BeltDrive {
                     &ed,
                     jacobian,
                     &mut ec,
-                    records.then_some(&mut recs),
+                    records.then_some(&mut scratch.records),
                 );
-                scratch.records = recs;
                 if ec.active_points > 0 {
                     sink(el, p, &ec, scratch);
                 }
-                scratch.contact = ec;
             }
         }
+        scratch.contact = ec;
     }
 
     /// The drive's work buffers and tangent cache in the caller's workspace `ws`, created on
@@ -961,48 +971,12 @@ impl BeltDrive {
         let mut c = pat.zeros();
         self.axial_damping(q, v, &mut [], Some((&mut k, &mut c)));
         let n_el = self.kind.mesh.elements().len();
-        let nf = self.pulley_dofs.count();
-        let m = NE + nf + usize::from(self.kind.arm.is_some());
         let arm = self.kind.arm.map(|a| (a, self.arm_lever(&a, q)));
         self.contact_pass(q, v, omegas, true, scratch, |el, p, ec, s| {
-            s.k_local.fill(0.0);
-            s.c_local.fill(0.0);
-            for b in 0..NE {
-                for a in 0..NE {
-                    s.k_local[a + b * m] = -ec.dq_de[a + b * NE];
-                    s.c_local[a + b * m] = -ec.dq_dedot[a + b * NE];
-                }
-            }
-            if let Some(j) = self.pulley_dofs.dof(p) {
-                let kp = j - nb;
-                let sg = self.spec.pulleys[p].ccw_sign();
-                let col = NE + kp;
-                for a in 0..NE {
-                    // f_belt depends on ω_ccw = s θ̇
-                    s.c_local[a + col * m] = -sg * ec.dq_domega[a];
-                    // pulley row: s τ
-                    s.k_local[col + a * m] = -sg * ec.dmoment_de[a];
-                    s.c_local[col + a * m] = -sg * ec.dmoment_dedot[a];
-                }
-                s.c_local[col + col * m] = -ec.dmoment_domega;
-            }
-            if let Some((a, lever)) = arm
-                && a.spec.pulley == p
-            {
-                arm_contact_tangent(
-                    &a,
-                    lever,
-                    (q[a.dof], v[a.dof]),
-                    ec,
-                    self.pulley_dofs
-                        .dof(p)
-                        .map(|j| (j - nb, self.spec.pulleys[p].ccw_sign())),
-                    nf,
-                    s,
-                );
-            }
-            pat.add_element(&mut k, n_el + el, &s.k_local, 1.0);
-            pat.add_element(&mut c, n_el + el, &s.c_local, 1.0);
+            let (local, n_local) = self.contact_local_matrices(p, ec, arm, q, v, s);
+            let local = &local[..n_local];
+            pat.add_element_on(&mut k, n_el + el, &s.k_local, 1.0, local);
+            pat.add_element_on(&mut c, n_el + el, &s.c_local, 1.0, local);
         });
         if let Some(a) = &self.kind.arm {
             let (th, rate) = (q[a.dof], v[a.dof]);
@@ -1017,6 +991,76 @@ impl BeltDrive {
             stiffness: SysMatrix::Sparse(pat.to_matrix(k)),
             damping: SysMatrix::Sparse(pat.to_matrix(c)),
         }
+    }
+
+    /// The local stiffness and damping `−∂Q/∂(e, θ̇, α)`, `−∂Q/∂(ė, θ̇, α̇)` of one element's
+    /// contact `ec` with pulley `p` into `s.k_local`, `s.c_local` (`m × m`, `m` = element, free
+    /// pulleys', arm's coordinates): the element block, the pulley's spin row and column (a
+    /// free pulley) and the arm's (the arm's pulley, [`arm_contact_tangent`]). Returns the
+    /// local rows and columns these fill (`local[..n]`: the element's, the spin's, the arm's);
+    /// the entries among them are cleared first, the others are left as they were (the
+    /// matrices are zero there: `Pattern::add_element_on` adds only `local`).
+    fn contact_local_matrices(
+        &self, p: usize, ec: &ElementContact<2>, arm: Option<(BeltArm, [f64; 2])>, q: &[f64],
+        v: &[f64], s: &mut Scratch,
+    ) -> ([usize; NE + 2], usize) {
+        let nb = self.n_belt;
+        let nf = self.pulley_dofs.count();
+        let m = NE + nf + usize::from(self.kind.arm.is_some());
+        let mut local = [0usize; NE + 2];
+        let mut n_local = NE;
+        for (i, l) in local.iter_mut().enumerate().take(NE) {
+            *l = i;
+        }
+        if let Some(j) = self.pulley_dofs.dof(p) {
+            local[n_local] = NE + (j - nb);
+            n_local += 1;
+        }
+        if arm.is_some_and(|(a, _)| a.spec.pulley == p) {
+            local[n_local] = NE + nf;
+            n_local += 1;
+        }
+        for &b in &local[..n_local] {
+            for &a in &local[..n_local] {
+                s.k_local[a + b * m] = 0.0;
+                s.c_local[a + b * m] = 0.0;
+            }
+        }
+        for b in 0..NE {
+            for a in 0..NE {
+                s.k_local[a + b * m] = -ec.dq_de[a + b * NE];
+                s.c_local[a + b * m] = -ec.dq_dedot[a + b * NE];
+            }
+        }
+        if let Some(j) = self.pulley_dofs.dof(p) {
+            let kp = j - nb;
+            let sg = self.spec.pulleys[p].ccw_sign();
+            let col = NE + kp;
+            for a in 0..NE {
+                // f_belt depends on ω_ccw = s θ̇
+                s.c_local[a + col * m] = -sg * ec.dq_domega[a];
+                // pulley row: s τ
+                s.k_local[col + a * m] = -sg * ec.dmoment_de[a];
+                s.c_local[col + a * m] = -sg * ec.dmoment_dedot[a];
+            }
+            s.c_local[col + col * m] = -ec.dmoment_domega;
+        }
+        if let Some((a, lever)) = arm
+            && a.spec.pulley == p
+        {
+            arm_contact_tangent(
+                &a,
+                lever,
+                (q[a.dof], v[a.dof]),
+                ec,
+                self.pulley_dofs
+                    .dof(p)
+                    .map(|j| (j - nb, self.spec.pulleys[p].ccw_sign())),
+                nf,
+                s,
+            );
+        }
+        (local, n_local)
     }
 
     /// Kelvin–Voigt damping of the axial strain rate ([`super::BeltSpec::axial_damping`]) in the
@@ -1048,8 +1092,9 @@ impl BeltDrive {
                 self.kind.mesh.scatter_add(f, el, &qd, 1.0);
             }
             if let Some((k, c)) = tangent.as_mut() {
-                self.pattern.add_element(k, el, &kl, 1.0);
-                self.pattern.add_element(c, el, &cl, 1.0);
+                // `element_damping` leaves the slope (`r_y`) rows and columns zero
+                self.pattern.add_element_on(k, el, &kl, 1.0, &CENTRE_COORDS);
+                self.pattern.add_element_on(c, el, &cl, 1.0, &CENTRE_COORDS);
             }
         }
     }
@@ -1550,6 +1595,137 @@ mod tests {
             assert!(c0.iter().zip(&cl).all(|(a, b)| a == b), "{law:?} damping");
             assert!(k0.iter().any(|&v| v != 0.0) && c0.iter().any(|&v| v != 0.0));
         }
+    }
+
+    // Invariant behind `axial_damping`'s `Pattern::add_element_on`: the local Jacobians of
+    // `element_damping` are zero (`+0`) in the rows and columns outside `CENTRE_COORDS` (the
+    // slope blocks), for both laws, so adding only the centre entries gives the full add's bits.
+    #[test]
+    fn element_damping_jacobians_vanish_outside_the_centre_coordinates() {
+        for law in [
+            ::belt::MaterialLaw::StVenantKirchhoff,
+            ::belt::MaterialLaw::Linear,
+        ] {
+            let mut spec = BeltDriveSpec::default();
+            spec.belt.law = law;
+            spec.belt.axial_damping = spec.belt.axial_damping.max(1e-4);
+            let drive = BeltDrive::new(spec).unwrap();
+            let e: [f64; NE] = std::array::from_fn(|i| 0.3 * (i as f64 * 0.7).sin() + 0.9);
+            let ed: [f64; NE] = std::array::from_fn(|i| 2.0 * (i as f64 * 1.3).cos());
+            let (mut qd, mut kl, mut cl) = ([0.0; NE], [1.0; NE * NE], [1.0; NE * NE]);
+            drive.element_damping(&e, &ed, &mut qd, Some((&mut kl, &mut cl)));
+            for col in 0..NE {
+                for row in 0..NE {
+                    let inside = CENTRE_COORDS.contains(&row) && CENTRE_COORDS.contains(&col);
+                    for (name, m) in [("stiffness", &kl), ("damping", &cl)] {
+                        let v = m[row + col * NE];
+                        if inside {
+                            continue;
+                        }
+                        assert_eq!(
+                            v.to_bits(),
+                            0.0f64.to_bits(),
+                            "{law:?} {name} ({row}, {col})"
+                        );
+                    }
+                }
+            }
+            assert!(CENTRE_COORDS.iter().any(|&i| kl[i + i * NE] != 0.0));
+        }
+    }
+
+    // Reference: the local matrices as filled before (all `m × m` entries cleared, then the
+    // pair's entries written). `contact_local_matrices` clears and fills only its `local` rows
+    // and columns: on a drive with a free idler on a tensioner arm and a free driven pulley,
+    // in every element–pulley pair of a sliding state, (1) the old fill is `+0` outside
+    // `local × local` (so `Pattern::add_element_on` adds the same bits as the full add) and
+    // (2) inside it the new fill, started from garbage, has the old fill's bits.
+    #[test]
+    fn contact_local_matrices_fill_only_their_rows_and_columns() {
+        let mut spec = BeltDriveSpec::two_pulley(
+            0.08125,
+            0.06,
+            ::belt::Signal::constant(0.0),
+            ::belt::Signal::constant(0.0),
+        );
+        spec.contact.friction = BeltFriction::Tanh {
+            mu: 0.5,
+            kappa: 40.0,
+        };
+        let c1 = spec.pulleys[1].center;
+        let tensioner = Tensioner {
+            pulley: 1,
+            pivot: [c1[0] + 0.05, c1[1] - 0.04],
+            stiffness: 20.0,
+            preload: 0.0,
+            preload_angle: 0.0,
+            damping: 0.1,
+            dry_friction: 0.0,
+            friction_rate: 0.01,
+            inertia: 1e-3,
+            travel: [1.5, 3.5],
+        };
+        let drive = BeltDrive::with_tensioner(spec, tensioner).unwrap();
+        let q = drive.placed_coordinates();
+        let n = q.len();
+        // pressed into the wraps: every belt coordinate pulled towards the pulleys' centres
+        // would need a solve; a small radial scale of the placed belt does it exactly
+        let cx = 0.5 * (drive.spec.pulleys[0].center[0] + c1[0]);
+        let mut q = q;
+        let cpn = drive.mesh().coords_per_node();
+        for node in 0..drive.mesh().n_nodes() {
+            let i = cpn * node;
+            q[i] = cx + 0.999 * (q[i] - cx);
+            q[i + 1] *= 0.995;
+        }
+        let v: Vec<f64> = (0..n).map(|i| 0.05 * ((i as f64) * 0.37).sin()).collect();
+        let omegas = [30.0, 29.0];
+        let arm = drive.kind.arm.map(|a| (a, drive.arm_lever(&a, &q)));
+        assert!(arm.is_some() && drive.pulley_dofs.dof(1).is_some());
+        let mut ws = Workspace::new();
+        let scratch = drive.scratch(&mut ws);
+        let m = scratch.k_local.len().isqrt();
+        let mut pairs = [0usize; 2];
+        drive.contact_pass(&q, &v, &omegas, true, scratch, |_, p, ec, s| {
+            pairs[p] += 1;
+            s.k_local.fill(0.0);
+            s.c_local.fill(0.0);
+            let (local, nl) = drive.contact_local_matrices(p, ec, arm, &q, &v, s);
+            let (old_k, old_c) = (s.k_local.clone(), s.c_local.clone());
+            let local = &local[..nl];
+            assert_eq!(nl, if p == 1 { NE + 2 } else { NE });
+            for b in 0..m {
+                for a in 0..m {
+                    if !(local.contains(&a) && local.contains(&b)) {
+                        assert_eq!(old_k[a + b * m].to_bits(), 0.0f64.to_bits());
+                        assert_eq!(old_c[a + b * m].to_bits(), 0.0f64.to_bits());
+                    }
+                }
+            }
+            s.k_local.fill(f64::NAN);
+            s.c_local.fill(f64::NAN);
+            let (again, _) = drive.contact_local_matrices(p, ec, arm, &q, &v, s);
+            assert_eq!(&again[..nl], local);
+            for &b in local {
+                for &a in local {
+                    let i = a + b * m;
+                    assert_eq!(
+                        s.k_local[i].to_bits(),
+                        old_k[i].to_bits(),
+                        "p {p} ({a}, {b})"
+                    );
+                    assert_eq!(
+                        s.c_local[i].to_bits(),
+                        old_c[i].to_bits(),
+                        "p {p} ({a}, {b})"
+                    );
+                }
+            }
+        });
+        assert!(
+            pairs[0] > 0 && pairs[1] > 0,
+            "contact on both pulleys: {pairs:?}"
+        );
     }
 
     // Reference: the closed form of a rigid rotation. A belt on a circle of its own length

@@ -388,8 +388,29 @@ struct DirectScatter {
     s: Vec<(usize, usize)>,
 }
 
-/// [`dgbtf2`] as a [`crate::simd::Kernel`].
-struct Dgbtf2<'a> {
+/// `t[i] −= u · l[i]` along `t` (as long as `l`); with `t` exactly `W` long (`W > 0`) the loop
+/// has a constant length, which the compiler unrolls into whole vectors and a fixed remainder:
+/// the same operations on every entry (the same bits), without the loop overhead of a short
+/// run-time length (the band's `kl` = 11 of the planar ANCF belts, the border's 12 columns of
+/// the FEAD drive).
+#[inline(always)]
+fn sub_scaled<const W: usize>(t: &mut [f64], l: &[f64], u: f64) {
+    if W > 0
+        && let (Ok(t), Ok(l)) = (<&mut [f64; W]>::try_from(&mut *t), <&[f64; W]>::try_from(l))
+    {
+        for i in 0..W {
+            t[i] -= u * l[i];
+        }
+        return;
+    }
+    for (t, li) in t.iter_mut().zip(l) {
+        *t -= u * li;
+    }
+}
+
+/// [`dgbtf2`] as a [`crate::simd::Kernel`], with the constant lower bandwidth `KL` (0: any,
+/// [`sub_scaled`]).
+struct Dgbtf2<'a, const KL: usize> {
     ab: &'a mut [f64],
     ipiv: &'a mut [usize],
     n1: usize,
@@ -398,18 +419,20 @@ struct Dgbtf2<'a> {
     ld: usize,
 }
 
-impl crate::simd::Kernel for Dgbtf2<'_> {
+impl<const KL: usize> crate::simd::Kernel for Dgbtf2<'_, KL> {
     type Output = Result<(), BandError>;
     #[inline(always)]
     fn run(self) -> Self::Output {
-        dgbtf2(self.ab, self.ipiv, self.n1, self.kl, self.ku, self.ld)
+        dgbtf2::<KL>(self.ab, self.ipiv, self.n1, self.kl, self.ku, self.ld)
     }
 }
 
 /// LAPACK dgbtf2 on the band storage `ab` (leading dimension `ld`, bandwidths `kl`, `ku`) of
 /// an `n1 × n1` matrix: column `j` pivots among rows `j..=j + kl`, `U` fills up to column `ju`.
+/// With `KL > 0` (equal to `kl`) the updates of whole columns run on constant lengths
+/// ([`sub_scaled`], the same bits).
 #[inline(always)]
-fn dgbtf2(
+fn dgbtf2<const KL: usize>(
     ab: &mut [f64], ipiv: &mut [usize], n1: usize, kl: usize, ku: usize, ld: usize,
 ) -> Result<(), BandError> {
     let kv = kl + ku;
@@ -450,9 +473,7 @@ fn dgbtf2(
                 let top = kv + j - c;
                 let ujc = hi[top];
                 if ujc != 0.0 {
-                    for (t, li) in hi[top + 1..=top + km].iter_mut().zip(l) {
-                        *t -= ujc * li;
-                    }
+                    sub_scaled::<KL>(&mut hi[top + 1..=top + km], l, ujc);
                 }
             }
         }
@@ -574,19 +595,24 @@ impl BandLu {
                 .and_then(|m| m.compose(row_idx.len(), map));
         }
         let d = self.direct.as_ref()?;
+        // every slot receives at most one sum (the map names distinct entries, the scatter
+        // distinct slots) onto the cleared zero, so the arrays are finite exactly when every
+        // sum is: checked on the sums instead of over the arrays afterwards
+        let mut finite = true;
         for (dst, pairs) in [
             (&mut self.ab, &d.ab),
             (&mut self.x, &d.x),
             (&mut self.a21, &d.a21),
             (&mut self.s, &d.s),
         ] {
-            match terms {
+            match *terms {
                 [(s0, v0), (s1, v1), (s2, v2)] => {
                     for &(k, p) in pairs {
                         let mut a = 0.0;
                         a += s0 * v0[k];
                         a += s1 * v1[k];
                         a += s2 * v2[k];
+                        finite &= a.is_finite();
                         dst[p] += a;
                     }
                 }
@@ -596,16 +622,13 @@ impl BandLu {
                         for (s, v) in terms {
                             a += s * v[k];
                         }
+                        finite &= a.is_finite();
                         dst[p] += a;
                     }
                 }
             }
         }
-        Some(
-            [&self.ab, &self.x, &self.a21, &self.s]
-                .iter()
-                .all(|a| a.iter().all(|v| v.is_finite())),
-        )
+        Some(finite)
     }
 
     /// Zeroes the band, border and Schur arrays.
@@ -637,14 +660,24 @@ impl BandLu {
         // dgbtf2: column j, pivot among rows j..=j+km, U fill up to column ju (compiled for the
         // machine's vector width: `crate::simd`, the same bits)
         let (ab, ipiv) = (&mut self.ab, &mut self.ipiv);
-        crate::simd::dispatch(Dgbtf2 {
-            ab,
-            ipiv,
-            n1,
-            kl,
-            ku,
-            ld,
-        })?;
+        match kl {
+            11 => crate::simd::dispatch(Dgbtf2::<11> {
+                ab,
+                ipiv,
+                n1,
+                kl,
+                ku,
+                ld,
+            }),
+            _ => crate::simd::dispatch(Dgbtf2::<0> {
+                ab,
+                ipiv,
+                n1,
+                kl,
+                ku,
+                ld,
+            }),
+        }?;
         for (j, u) in self.u_inv.iter_mut().enumerate() {
             *u = 1.0 / self.ab[kv + j * ld];
         }
@@ -786,13 +819,12 @@ impl BandLu {
         let band = self.band();
         band.solve(y1);
         if nb > 0 {
-            for r in 0..nb {
-                let mut acc = 0.0;
-                for k in 0..n1 {
-                    acc += self.a21[r + k * nb] * y1[k];
-                }
-                y2[r] -= acc;
-            }
+            crate::simd::dispatch(BorderProduct {
+                a21: &self.a21,
+                y1,
+                y2,
+                nb,
+            });
             dense_solve(&self.s, nb, &self.s_piv, y2);
             // y1 -= X x2, each row's border columns in the order of the columns
             for (y, xr) in y1.iter_mut().zip(self.x.chunks_exact(nb)) {
@@ -831,12 +863,17 @@ impl Band<'_> {
     /// Solves with the banded LU (dgbtrs, no transpose) in place; `b` has the band's size
     /// (compiled for the machine's vector width: [`crate::simd`], the same bits).
     fn solve(&self, b: &mut [f64]) {
-        crate::simd::dispatch(BandSolve { band: self, b });
+        match (self.kl, self.ku) {
+            (11, 11) => crate::simd::dispatch(BandSolve::<11, 22> { band: self, b }),
+            _ => crate::simd::dispatch(BandSolve::<0, 0> { band: self, b }),
+        }
     }
 
-    /// The body of [`Band::solve`].
+    /// The body of [`Band::solve`]; with `KL > 0` and `KV > 0` (equal to `kl` and `kl + ku`)
+    /// the full-length columns of `L` and `U` run on constant lengths ([`sub_scaled`], the same
+    /// bits).
     #[inline(always)]
-    fn solve_kernel(&self, b: &mut [f64]) {
+    fn solve_kernel<const KL: usize, const KV: usize>(&self, b: &mut [f64]) {
         let (ab, ld, kl) = (self.ab, self.ld, self.kl);
         let kv = kl + self.ku;
         let n = b.len();
@@ -850,9 +887,7 @@ impl Band<'_> {
             let bj = b[j];
             if km > 0 && bj != 0.0 {
                 let l = &ab[kv + 1 + j * ld..=kv + km + j * ld];
-                for (t, li) in b[j + 1..=j + km].iter_mut().zip(l) {
-                    *t -= li * bj;
-                }
+                sub_scaled::<KL>(&mut b[j + 1..=j + km], l, bj);
             }
         }
         // U x = y (U has upper bandwidth kv), column by column from the last
@@ -863,9 +898,7 @@ impl Band<'_> {
             let len = j - top;
             if len > 0 && xj != 0.0 {
                 let u = &ab[kv - len + j * ld..kv + j * ld];
-                for (t, ui) in b[top..j].iter_mut().zip(u) {
-                    *t -= ui * xj;
-                }
+                sub_scaled::<KV>(&mut b[top..j], u, xj);
             }
         }
     }
@@ -878,12 +911,16 @@ impl Band<'_> {
     /// the same bits as its own solve, but the inner loops run along the `k` columns of a row
     /// (contiguous, vectorised) instead of along the band (at most `kl` or `kl + ku` long).
     fn solve_rows(&self, b: &mut [f64], k: usize) {
-        crate::simd::dispatch(BandSolveRows { band: self, b, k });
+        match k {
+            12 => crate::simd::dispatch(BandSolveRows::<12> { band: self, b, k }),
+            _ => crate::simd::dispatch(BandSolveRows::<0> { band: self, b, k }),
+        }
     }
 
-    /// The body of [`Band::solve_rows`].
+    /// The body of [`Band::solve_rows`]; with `K > 0` (equal to `k`) the rows run on a
+    /// constant length ([`sub_scaled`], the same bits).
     #[inline(always)]
-    fn solve_rows_kernel(&self, b: &mut [f64], k: usize) {
+    fn solve_rows_kernel<const K: usize>(&self, b: &mut [f64], k: usize) {
         let (ab, ld, kl) = (self.ab, self.ld, self.kl);
         let kv = kl + self.ku;
         let n = b.len() / k;
@@ -904,9 +941,7 @@ impl Band<'_> {
             }
             for (i, row) in tail.chunks_exact_mut(k).take(km).enumerate() {
                 let li = ab[kv + 1 + i + j * ld];
-                for (t, &v) in row.iter_mut().zip(bj) {
-                    *t -= li * v;
-                }
+                sub_scaled::<K>(row, bj, li);
             }
         }
         // U x = y, column by column from the last
@@ -924,26 +959,24 @@ impl Band<'_> {
             let len = j - top;
             for (i, row) in head[top * k..].chunks_exact_mut(k).enumerate().take(len) {
                 let ui = ab[kv - len + i + j * ld];
-                for (t, &v) in row.iter_mut().zip(xj.iter()) {
-                    *t -= ui * v;
-                }
+                sub_scaled::<K>(row, xj, ui);
             }
         }
     }
 }
 
 /// [`Band::solve_rows`] as a [`crate::simd::Kernel`].
-struct BandSolveRows<'a, 'b> {
+struct BandSolveRows<'a, 'b, const K: usize> {
     band: &'a Band<'b>,
     b: &'a mut [f64],
     k: usize,
 }
 
-impl crate::simd::Kernel for BandSolveRows<'_, '_> {
+impl<const K: usize> crate::simd::Kernel for BandSolveRows<'_, '_, K> {
     type Output = ();
     #[inline(always)]
     fn run(self) {
-        self.band.solve_rows_kernel(self.b, self.k)
+        self.band.solve_rows_kernel::<K>(self.b, self.k)
     }
 }
 
@@ -974,17 +1007,52 @@ impl crate::simd::Kernel for SchurProduct<'_> {
     }
 }
 
+/// Rows of the border taken together by [`BorderProduct`] (its accumulators on the stack).
+const BORDER_ROWS: usize = 16;
+
+/// `y₂ −= A₂₁ y₁` of [`BandLu::solve`] (`A₂₁` stored `a21[r + k nb]`): each row's inner
+/// product `Σₖ a₂₁[r, k] y₁[k]` summed from 0 in the order of `k` and then subtracted, as the
+/// row-by-row loop it replaces (kept as `border_product_reference` in the tests), so the same
+/// bits; the rows' sums run side by side (up to [`BORDER_ROWS`] at a time), along the
+/// contiguous rows of `a21`, instead of one strided dependency chain after the other.
+struct BorderProduct<'a> {
+    a21: &'a [f64],
+    y1: &'a [f64],
+    y2: &'a mut [f64],
+    nb: usize,
+}
+
+impl crate::simd::Kernel for BorderProduct<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let nb = self.nb;
+        for r0 in (0..nb).step_by(BORDER_ROWS) {
+            let m = (nb - r0).min(BORDER_ROWS);
+            let mut acc = [0.0; BORDER_ROWS];
+            for (a, &yk) in self.a21.chunks_exact(nb).zip(self.y1) {
+                for (t, &av) in acc[..m].iter_mut().zip(&a[r0..r0 + m]) {
+                    *t += av * yk;
+                }
+            }
+            for (y, a) in self.y2[r0..r0 + m].iter_mut().zip(&acc) {
+                *y -= a;
+            }
+        }
+    }
+}
+
 /// [`Band::solve`] as a [`crate::simd::Kernel`].
-struct BandSolve<'a, 'b> {
+struct BandSolve<'a, 'b, const KL: usize, const KV: usize> {
     band: &'a Band<'b>,
     b: &'a mut [f64],
 }
 
-impl crate::simd::Kernel for BandSolve<'_, '_> {
+impl<const KL: usize, const KV: usize> crate::simd::Kernel for BandSolve<'_, '_, KL, KV> {
     type Output = ();
     #[inline(always)]
     fn run(self) {
-        self.band.solve_kernel(self.b)
+        self.band.solve_kernel::<KL, KV>(self.b)
     }
 }
 
@@ -1121,6 +1189,108 @@ mod tests {
             band.solve(col);
             for i in 0..n1 {
                 assert!(rows[i * k + c] == col[i], "row {i}, column {c}");
+            }
+        }
+    }
+
+    /// The kernels compiled for constant widths (`dgbtf2::<11>`, `BandSolve::<11, 22>`,
+    /// `BandSolveRows::<12>`, [`sub_scaled`]) give the bits of the run-time-width kernels
+    /// (reference: the same kernels with width 0, `to_bits` on every entry), on a ring of six
+    /// coordinates per node (`kl = ku = 11`) whose band pivots, for one and twelve right-hand
+    /// sides.
+    #[test]
+    fn constant_width_kernels_are_the_run_time_width_kernels_bit_for_bit() {
+        let (dim, cp, ri) = ring(6, 24);
+        let plan = BandPlan::new(dim, &cp, &ri);
+        let vals = ring_values(dim, &cp, &ri, 0.3);
+        let mut lu = BandLu::new(plan);
+        lu.load(&cp, &ri, &vals);
+        let (n1, kl, ku, ld) = (lu.plan.n1, lu.plan.kl, lu.plan.ku, lu.ld);
+        assert_eq!(
+            (kl, ku),
+            (11, 11),
+            "the widths the kernels are compiled for"
+        );
+        let (mut ab0, mut ipiv0) = (lu.ab.clone(), lu.ipiv.clone());
+        dgbtf2::<0>(&mut ab0, &mut ipiv0, n1, kl, ku, ld).expect("regular");
+        lu.factor_loaded().expect("regular");
+        assert!(
+            lu.ipiv.iter().enumerate().any(|(j, &p)| p != j),
+            "the band pivots"
+        );
+        assert_eq!(lu.ipiv, ipiv0);
+        assert!(
+            lu.ab
+                .iter()
+                .zip(&ab0)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+        let band = lu.band();
+        let rhs: Vec<f64> = (0..n1).map(|i| ((i * 5 + 2) as f64 * 0.83).sin()).collect();
+        let (mut fast, mut slow) = (rhs.clone(), rhs.clone());
+        band.solve(&mut fast);
+        band.solve_kernel::<0, 0>(&mut slow);
+        assert!(
+            fast.iter()
+                .zip(&slow)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+        let k = 12;
+        let rows: Vec<f64> = (0..n1 * k)
+            .map(|i| {
+                if i < 3 * k {
+                    0.0
+                } else {
+                    ((i * 7) as f64 * 0.29).cos()
+                }
+            })
+            .collect();
+        let (mut fast, mut slow) = (rows.clone(), rows);
+        band.solve_rows(&mut fast, k);
+        band.solve_rows_kernel::<0>(&mut slow, k);
+        assert!(
+            fast.iter()
+                .zip(&slow)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+    }
+
+    /// The border's `y₂ −= A₂₁ y₁` as the row-by-row loop that [`BorderProduct`] replaced.
+    fn border_product_reference(a21: &[f64], y1: &[f64], y2: &mut [f64], nb: usize) {
+        let n1 = y1.len();
+        for r in 0..nb {
+            let mut acc = 0.0;
+            for k in 0..n1 {
+                acc += a21[r + k * nb] * y1[k];
+            }
+            y2[r] -= acc;
+        }
+    }
+
+    /// [`BorderProduct`] (rows side by side, dispatched) gives the bits of the row-by-row
+    /// inner products it replaced (reference: `border_product_reference`, `to_bits` on every
+    /// entry), for borders narrower and wider than [`BORDER_ROWS`] and values of mixed
+    /// magnitude whose sums depend on the order of the additions.
+    #[test]
+    fn border_product_is_the_row_by_row_inner_products_bit_for_bit() {
+        for nb in [1, 6, 12, 16, 19, 40] {
+            let n1 = 257;
+            let a21: Vec<f64> = (0..nb * n1)
+                .map(|k| ((k * 13 + 5) as f64 * 0.71).sin() * 10f64.powi((k % 7) as i32 - 3))
+                .collect();
+            let y1: Vec<f64> = (0..n1).map(|k| ((k * 3 + 1) as f64 * 0.29).cos()).collect();
+            let y2: Vec<f64> = (0..nb).map(|r| (r as f64 * 1.3).sin()).collect();
+            let mut reference = y2.clone();
+            border_product_reference(&a21, &y1, &mut reference, nb);
+            let mut got = y2.clone();
+            crate::simd::dispatch(BorderProduct {
+                a21: &a21,
+                y1: &y1,
+                y2: &mut got,
+                nb,
+            });
+            for r in 0..nb {
+                assert_eq!(got[r].to_bits(), reference[r].to_bits(), "nb {nb}, row {r}");
             }
         }
     }
