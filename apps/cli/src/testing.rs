@@ -65,7 +65,12 @@ pub fn examples(dir: &std::path::Path) -> Vec<(Vec<String>, PathBuf)> {
             let p = e.path();
             if p.is_dir() {
                 walk(&p, out);
-            } else if p.extension().and_then(|e| e.to_str()) == Some("toml") {
+            } else if p.extension().and_then(|e| e.to_str()) == Some("toml")
+                && !p
+                    .file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with('.'))
+            {
                 out.push(p);
             }
         }
@@ -140,7 +145,10 @@ pub fn run_example(
         path.to_path_buf()
     } else {
         let text = std::fs::read_to_string(path).expect("example readable");
-        let copy = path.with_file_name(format!(".{name}.{}.test.toml", std::process::id()));
+        // in the run's own scratch folder, not beside the example: a copy in the examples'
+        // folder is listed by any test walking it meanwhile ([`examples`]); the paths inside
+        // an example are written from the repository root (below), not from its folder
+        let copy = out.join(format!("{name}.test.toml"));
         std::fs::write(&copy, with_overrides(&text, overrides)).expect("scratch copy");
         _scratch = Some(Scratch(copy.clone()));
         copy
