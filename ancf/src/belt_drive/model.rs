@@ -38,6 +38,8 @@ struct Scratch {
     /// The active points' records of the last element–pulley pair of a pass that asked for
     /// them ([`BeltDrive::contact_pass`]).
     records: Vec<ContactRecord<2>>,
+    /// The pulleys' disks of the current contact pass ([`BeltDrive::contact_pass`]).
+    disks: Vec<Disk>,
     /// The transition-aware limit's slip velocities at the iterate, one per element, pulley
     /// and contact point (NaN: not in contact), and the corrected state `(q + Δq, v + Δv)`
     /// ([`SecondOrderSystem::correction_limit`]).
@@ -379,12 +381,16 @@ impl BeltDrive {
         let l = self.element_length();
         let mut e = [0.0; NE];
         let mut ed = [0.0; NE];
-        // the pulleys' disks at this state, once for all elements
-        let disks: Vec<Disk> = omegas
-            .iter()
-            .enumerate()
-            .map(|(p, &omega)| self.disk(p, omega, q, v))
-            .collect();
+        // the pulleys' disks at this state, once for all elements (in the scratch's buffer,
+        // out of it for the pass as the contact buffers)
+        let mut disks = std::mem::take(&mut scratch.disks);
+        disks.clear();
+        disks.extend(
+            omegas
+                .iter()
+                .enumerate()
+                .map(|(p, &omega)| self.disk(p, omega, q, v)),
+        );
         // the pair's contact buffers, out of the scratch for the whole pass (the sink gets them
         // beside the scratch)
         let mut ec = std::mem::replace(&mut scratch.contact, ElementContact::new(0));
@@ -418,6 +424,7 @@ impl BeltDrive {
             }
         }
         scratch.contact = ec;
+        scratch.disks = disks;
     }
 
     /// The drive's work buffers and tangent cache in the caller's workspace `ws`, created on
@@ -427,6 +434,7 @@ impl BeltDrive {
         let fresh = || Scratch {
             contact: ElementContact::new(NE),
             records: Vec::new(),
+            disks: Vec::new(),
             slips: Vec::new(),
             q1: Vec::new(),
             v1: Vec::new(),

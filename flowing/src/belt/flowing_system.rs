@@ -344,7 +344,7 @@ fn bend_dofs(e: &BendElement) -> [usize; 6] {
 
 /// What the flowing belt's balance note says with Ribaric's path-referenced bending
 /// ([`FlowingBelt::balance_defect`]).
-pub const RIBARIC_BALANCE_DEFECT: &str = "the flowing belt of Ribaric (5.5) takes the path's \
+const RIBARIC_BALANCE_DEFECT: &str = "the flowing belt of Ribaric (5.5) takes the path's \
 curvature as its stress-free shape, which does work on the moving material (the power defect \
 grows as the wraps are refined; BENCHMARKS.md, \"Flowing belt balances by formulation\"): \
 [models.flowing] bending = \"co_rotated\", axial_force = \"co_rotated\", viscous_force = \

@@ -388,6 +388,15 @@ struct DirectScatter {
     s: Vec<(usize, usize)>,
 }
 
+/// The band widths the kernels are compiled for with constant lengths ([`sub_scaled`]): the
+/// lower and upper bandwidth 11 of the planar ANCF belt's cut-loop plan (6 coordinates a node,
+/// an element couples two nodes: `2·6 − 1`), and 12 border columns (the cut node's 6
+/// coordinates and the default FEAD drive's five free pulleys and tensioner arm). Any other
+/// width takes the run-time-length loops, with the same bits.
+const SPECIALISED_KL: usize = 11;
+/// See [`SPECIALISED_KL`].
+const SPECIALISED_BORDER: usize = 12;
+
 /// `t[i] −= u · l[i]` along `t` (as long as `l`); with `t` exactly `W` long (`W > 0`) the loop
 /// has a constant length, which the compiler unrolls into whole vectors and a fixed remainder:
 /// the same operations on every entry (the same bits), without the loop overhead of a short
@@ -661,7 +670,7 @@ impl BandLu {
         // machine's vector width: `crate::simd`, the same bits)
         let (ab, ipiv) = (&mut self.ab, &mut self.ipiv);
         match kl {
-            11 => crate::simd::dispatch(Dgbtf2::<11> {
+            SPECIALISED_KL => crate::simd::dispatch(Dgbtf2::<SPECIALISED_KL> {
                 ab,
                 ipiv,
                 n1,
@@ -864,7 +873,12 @@ impl Band<'_> {
     /// (compiled for the machine's vector width: [`crate::simd`], the same bits).
     fn solve(&self, b: &mut [f64]) {
         match (self.kl, self.ku) {
-            (11, 11) => crate::simd::dispatch(BandSolve::<11, 22> { band: self, b }),
+            (SPECIALISED_KL, SPECIALISED_KL) => {
+                crate::simd::dispatch(BandSolve::<SPECIALISED_KL, { 2 * SPECIALISED_KL }> {
+                    band: self,
+                    b,
+                })
+            }
             _ => crate::simd::dispatch(BandSolve::<0, 0> { band: self, b }),
         }
     }
@@ -912,7 +926,9 @@ impl Band<'_> {
     /// (contiguous, vectorised) instead of along the band (at most `kl` or `kl + ku` long).
     fn solve_rows(&self, b: &mut [f64], k: usize) {
         match k {
-            12 => crate::simd::dispatch(BandSolveRows::<12> { band: self, b, k }),
+            SPECIALISED_BORDER => {
+                crate::simd::dispatch(BandSolveRows::<SPECIALISED_BORDER> { band: self, b, k })
+            }
             _ => crate::simd::dispatch(BandSolveRows::<0> { band: self, b, k }),
         }
     }
