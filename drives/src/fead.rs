@@ -91,6 +91,7 @@ use belt::{
     BeltContact, BeltDamping, BeltModel, Drive, Harmonic, Layout, Motion, Pulley, Report, Section,
     Shape, Signal, Tensioner, WrapSide,
 };
+use contact::friction::FrictionLaw;
 use flowing::belt::{BeltMesh, BeltReduction, FlowingBelt, FlowingSettings, NodalBelt};
 use mbd_core::MbdError;
 use mbd_core::integrators::{AlphaConfig, State, Stats};
@@ -735,13 +736,20 @@ pub const ANCF_MAX_CORRECTION: f64 = 1e-3;
 /// regularisation"). Ribaric's κ law keeps `base` (the figures of its studies; at 800 rpm the
 /// limit gives the same speed losses to 2·10⁻⁵ percentage points, but h-tancf found it moves
 /// the default sweep's 3500 rpm point outside the sweep's tolerance).
-pub fn ancf_sharp_law_settings(base: SimulationConfig) -> SimulationConfig {
+///
+/// The Newton iteration also resolves the velocities to the law's transition width `width`
+/// \[m/s\] ([`SimulationConfig::resolving`]): the 5 µm position test alone lets the last
+/// correction move slip velocities by up to 40 mm/s, 80–130 widths of the default law, and the
+/// friction forces of a converged step are then off by up to `μ f_n` (on the three-pulley
+/// example at 0.3 mm/s the balances missed by 3 %, BENCHMARKS.md, issue 34 item 2).
+pub fn ancf_sharp_law_settings(base: SimulationConfig, width: Option<f64>) -> SimulationConfig {
     SimulationConfig {
         max_correction: None,
         correction_limit: true,
         refactor_contraction: 0.5,
         ..base
     }
+    .resolving(width)
 }
 
 /// The step of a sweep point on a Lagrangian mesh ([`FeadRun::max_travel`]) \[s\]: `h` divided
@@ -1164,7 +1172,7 @@ pub fn run_fead(
             let alpha = if ribaric {
                 own
             } else {
-                ancf_sharp_law_settings(own)
+                ancf_sharp_law_settings(own, drive.contact().friction.transition_width())
             }
             .alpha_params();
             sweep(

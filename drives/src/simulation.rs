@@ -32,7 +32,9 @@ use crate::DriveError;
 use crate::ancf_model::AncfBelt;
 use crate::speed_loss::{BELT_LINE_SEARCH_TRIALS, BELT_NEWTON_ITERATIONS, STEP_SUBDIVISIONS};
 use crate::study::{AnyModel, ModelKind, ModelSettings};
+use crate::with_model;
 use belt::{BeltModel, Layout, Motion, Report, Signal};
+use contact::friction::FrictionLaw;
 use flowing::belt::{FlowingBelt, NodalBelt};
 use mbd_core::integrators::{AlphaConfig, AlphaStepper, GeneralizedAlpha, State, Stats, Stepper};
 use mbd_core::validate::{InvalidField, Validate, check};
@@ -144,13 +146,16 @@ impl<M: BeltModel, B: BorrowMut<M>> BeltSimulation<M, B> {
 /// corrections ([`AlphaConfig::model_correction_limit`]: the friction's slip velocities do
 /// not cross its steep band in one iteration, Castro et al. 2019) (flowing and nodal), the
 /// ANCF belt with its own Newton settings
-/// ([`ancf::belt_drive::SimulationConfig::alpha_params`]).
-pub fn alpha_for(kind: ModelKind, h: f64) -> AlphaConfig {
+/// ([`ancf::belt_drive::SimulationConfig::alpha_params`]), its velocities resolved to the
+/// friction law's transition width `width` \[m/s\]
+/// ([`ancf::belt_drive::SimulationConfig::resolving`]; `None`: a law without a steep band).
+pub fn alpha_for(kind: ModelKind, h: f64, width: Option<f64>) -> AlphaConfig {
     match kind {
         ModelKind::Ancf => ancf::belt_drive::SimulationConfig {
             h,
             ..Default::default()
         }
+        .resolving(width)
         .alpha_params(),
         ModelKind::Flowing | ModelKind::Nodal => AlphaConfig {
             h,
@@ -175,7 +180,8 @@ impl AnyModel {
 
     /// The model stepped from its mounted state with steps `h` \[s\] ([`alpha_for`]).
     pub fn into_simulation(self, h: f64) -> Result<AnySimulation, MbdError> {
-        let alpha = alpha_for(self.kind(), h);
+        let width = with_model!(&self, |m| m.drive().contact().friction.transition_width());
+        let alpha = alpha_for(self.kind(), h, width);
         Ok(match self {
             AnyModel::Flowing(m) => {
                 AnySimulation::Flowing(Box::new(BeltSimulation::new(*m, alpha)?))

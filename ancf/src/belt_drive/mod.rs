@@ -32,5 +32,7 @@ pub use initial::{InitialOptions, InitialState};
 pub use model::{
     BeltArm, BeltDrive, Planar, PointRecord, PulleyLoad, SECTION_CELLS, SectionForces, SpanSection,
 };
-pub use simulate::{ExplicitStepLimit, IntegratorKind, SimulationConfig, simulate};
+pub use simulate::{
+    ExplicitStepLimit, IntegratorKind, SimulationConfig, VTOL_PER_TRANSITION_WIDTH, simulate,
+};
 pub use spec::{BeltDriveSpec, BeltSpec, ContactSpec};

@@ -42,6 +42,14 @@ pub struct SimulationConfig {
     /// E = 1e8 Pa, 1.6e-2 rad/s off; loose enough that Newton does not cycle between the
     /// branches of the piecewise-linear friction law).
     pub newton_atol: f64,
+    /// Newton tolerance on the velocity correction \[m/s\] (mbd-core
+    /// `AlphaConfig::newton_vtol`): with it a step converges only when its last correction also
+    /// moves the velocities by less than this. `None` (the default): [`Self::newton_atol`]
+    /// alone, which lets the last correction move velocities by `γ/(β h)` times 5 µm, 40 mm/s
+    /// at the default step and ρ∞: of the order of the transition width of Ribaric's
+    /// κ = 40 s/m law (25 mm/s), but 80–130 times that of the layouts' default `tanh_slip` law
+    /// at 0.3–0.5 mm/s. Set it from the friction law with [`Self::resolving`].
+    pub newton_vtol: Option<f64>,
     /// Maximum Newton iterations per step.
     pub max_newton_iterations: usize,
     /// When the Newton matrix is re-factored: `every_iteration` (full Newton), `every_step`
@@ -102,6 +110,7 @@ impl Default for SimulationConfig {
             h: 2.5e-4,
             rho_inf: 0.8,
             newton_atol: 5e-6,
+            newton_vtol: None,
             max_newton_iterations: 25,
             newton_update: NewtonUpdate::Frozen,
             refactor_contraction: 0.8,
@@ -117,7 +126,32 @@ impl Default for SimulationConfig {
 /// (Chung & Hulbert 1993) accepted from input \[-\].
 pub const RHO_INF_MIN: f64 = 0.1;
 
+/// The ANCF belt's Newton velocity tolerance per transition width of its friction law \[-\]
+/// ([`SimulationConfig::resolving`]): 4. Measured on the three-pulley example without its
+/// friction table at 1500 rpm (`tanh_slip`, BENCHMARKS.md, issue 34 item 2), torque / power
+/// residual: at 0.5 mm/s the 5 µm position test alone (velocity corrections up to 40 mm/s, 80
+/// widths) 0.63 / −0.05 %, 1, 4 widths 0.04 / 0.43 % and 0.02 / 0.39 %; at 0.3 mm/s the
+/// position test alone +3.06 / −3.11 %, position tests of 0.5 and 0.1 µm (13 and 2.6 widths at
+/// the 0.25 ms step) and 1 width 0.02–0.03 / 0.37–0.47 %. The speed losses move by under 0.5 %.
+/// Four widths cost 1.24 times the position test's CPU there, one width 1.38 times.
+pub const VTOL_PER_TRANSITION_WIDTH: f64 = 4.0;
+
 impl SimulationConfig {
+    /// These settings with [`Self::newton_vtol`] at [`VTOL_PER_TRANSITION_WIDTH`] times the
+    /// friction law's transition width `width` \[m/s\]
+    /// (`contact::friction::FrictionLaw::transition_width`; `None`, a law without a steep band:
+    /// unchanged). Where the position test is the tighter one (mbd-core
+    /// `AlphaConfig::newton_atol_at`) it stays in force.
+    pub fn resolving(self, width: Option<f64>) -> Self {
+        match width.filter(|w| w.is_finite() && *w > 0.0) {
+            Some(w) => Self {
+                newton_vtol: Some(VTOL_PER_TRANSITION_WIDTH * w),
+                ..self
+            },
+            None => self,
+        }
+    }
+
     /// Check the parameters; the error names the field.
     pub fn validate(&self) -> Result<(), AncfError> {
         if !(self.h.is_finite() && self.h > 0.0) {
@@ -141,6 +175,14 @@ impl SimulationConfig {
             return Err(invalid(
                 "integrator.newton_atol",
                 format!("must be > 0, got {}", self.newton_atol),
+            ));
+        }
+        if let Some(v) = self.newton_vtol
+            && !(v.is_finite() && v > 0.0)
+        {
+            return Err(invalid(
+                "integrator.newton_vtol",
+                format!("must be > 0 m/s, got {v}"),
             ));
         }
         if self.max_newton_iterations == 0 {
@@ -173,6 +215,7 @@ impl SimulationConfig {
             h: self.h,
             newton_atol: self.newton_atol,
             newton_rtol: 1e-8,
+            newton_vtol: self.newton_vtol,
             max_newton_iterations: self.max_newton_iterations,
             jacobian: JacobianMode::Analytic,
             update: self.newton_update,

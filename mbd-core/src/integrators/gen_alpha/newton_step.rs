@@ -105,7 +105,9 @@ impl<S: SecondOrderSystem + ?Sized, C> NewtonProblem for StepProblem<'_, S, C> {
             let p = &self.stepper.params;
             let dxn = max_abs(&self.trial[..n]);
             self.reuse = match self.update {
-                NewtonUpdate::EveryIteration => dxn <= p.newton_atol + p.newton_rtol * max_abs(dq),
+                NewtonUpdate::EveryIteration => {
+                    dxn <= p.newton_atol_at(gp) + p.newton_rtol * max_abs(dq)
+                }
                 NewtonUpdate::EveryStep | NewtonUpdate::Frozen => p
                     .refactor_contraction
                     .is_none_or(|theta| self.it == 1 || dxn <= theta * self.prev_norm),
