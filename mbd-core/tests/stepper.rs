@@ -381,3 +381,106 @@ fn alpha_subdivisions_split_a_failed_step_and_keep_the_grid() {
     assert_eq!(stats.halvings, stats.rejected_steps);
     assert!(stats.steps > 5);
 }
+
+/// Two unit masses: a spring (`k = 1`) on the first, and on the second a push `F₀` for
+/// `t > 0` whose force turns, past `x = q₁`, into a negative stiffness of exactly `k_n`
+/// (`f = F₀ + k_n (x − q₁)`), with the analytic tangent. With `k_n = β'` of the step `h₀`
+/// (the Newton matrix `M + γ'/β' C + K/β'`) the Newton matrix at any iterate past `q₁` is
+/// singular at that step and regular at `h₀/2` (`1 − k_n/(4 β') = 3/4`).
+struct SofteningPush {
+    f0: f64,
+    q1: f64,
+    kn: f64,
+}
+
+impl mbd_core::SecondOrderSystem for SofteningPush {
+    fn n_q(&self) -> usize {
+        2
+    }
+    fn mass_is_constant(&self) -> bool {
+        true
+    }
+    fn mass(&self, _t: f64, _q: &[f64]) -> Result<mbd_core::SysMatrix, MbdError> {
+        Ok(support::diagonal(&[1.0, 1.0]))
+    }
+    fn forces(
+        &self, t: f64, q: &[f64], _v: &[f64], f: &mut [f64], _ws: &mut mbd_core::Workspace,
+    ) -> Result<(), MbdError> {
+        f[0] = -q[0];
+        f[1] = if t > 0.0 { self.f0 } else { 0.0 } + self.kn * (q[1] - self.q1).max(0.0);
+        Ok(())
+    }
+    fn force_tangent(
+        &self, _t: f64, q: &[f64], _v: &[f64], _ws: &mut mbd_core::Workspace,
+    ) -> Result<Option<mbd_core::ForceTangent>, MbdError> {
+        let k1 = if q[1] > self.q1 { -self.kn } else { 0.0 };
+        Ok(Some(mbd_core::ForceTangent {
+            stiffness: support::diagonal(&[1.0, k1]),
+            damping: support::diagonal(&[0.0, 0.0]),
+        }))
+    }
+}
+
+// Reference (second formulation): a step whose Newton iterate lands where the Newton matrix is
+// singular fails as a Newton failure (NoConvergence, state unchanged), so that the subdivided
+// step completes on its halves, bit for bit the two half steps taken by hand; a system whose
+// matrix is singular at the step's start still reports Singular (the model's, not the
+// iterate's).
+#[test]
+fn a_singular_newton_matrix_at_an_iterate_halves_the_step() {
+    let h0 = 1e-3;
+    let cfg = AlphaConfig {
+        h: h0,
+        ..Default::default()
+    };
+    let (am, af, beta, _) = cfg.alpha_coefficients();
+    let bp = (1.0 - am) / (h0 * h0 * beta * (1.0 - af));
+    let f0 = 1.0;
+    // the first iterate lands on the linear region's solution, about β h² F₀/(1 − α_m)…
+    // q₁ at a fifth of it: past q₁, before the half step's end
+    let sys = SofteningPush {
+        f0,
+        q1: 0.2 * beta * h0 * h0 * f0,
+        kn: bp,
+    };
+    let s0 = State::new(0.0, vec![1e-3, 0.0], vec![0.0, 0.0]);
+    let mut plain = GeneralizedAlpha::new(cfg)
+        .stepper(&sys, s0.clone())
+        .unwrap();
+    let r = plain.step(&sys, Some(h0));
+    assert!(matches!(r, Err(MbdError::NoConvergence { .. })), "{r:?}");
+    assert_eq!(
+        plain.state().t,
+        0.0,
+        "a failed step leaves the state unchanged"
+    );
+    let mut split = GeneralizedAlpha::new(AlphaConfig {
+        subdivisions: 2,
+        ..cfg
+    })
+    .stepper(&sys, s0.clone())
+    .unwrap();
+    split.step(&sys, Some(h0)).unwrap();
+    let mut by_hand = GeneralizedAlpha::new(cfg)
+        .stepper(&sys, s0.clone())
+        .unwrap();
+    by_hand.step(&sys, Some(0.5 * h0)).unwrap();
+    by_hand.step(&sys, Some(0.5 * h0)).unwrap();
+    assert_eq!(split.state(), by_hand.state());
+    assert!(split.state().q[1] > sys.q1, "the step ends past q₁");
+    assert!(Stepper::<SofteningPush>::stats(&split).halvings > 0);
+    // singular at the step's start (the second mass's whole row is zero there): Singular
+    let zero = SofteningPush {
+        f0: 0.0,
+        q1: -1.0,
+        kn: bp,
+    };
+    let mut at_start = GeneralizedAlpha::new(AlphaConfig {
+        subdivisions: 2,
+        ..cfg
+    })
+    .stepper(&zero, s0)
+    .unwrap();
+    let r = at_start.step(&zero, Some(h0));
+    assert!(matches!(r, Err(MbdError::Singular { .. })), "{r:?}");
+}
