@@ -598,7 +598,7 @@ pub struct FeadPoint {
     /// are given.
     pub caveat: Option<String>,
     /// What the window's balances say when they miss [`belt::BALANCE_TOLERANCE`]
-    /// ([`crate::speed_loss::balance_note`]: the residuals and, for the flowing belt, the
+    /// ([`crate::speed_loss::balance_note`]: the residuals and, for the flowing and nodal belts, the
     /// known cause); `None` within it. The numbers are given.
     pub balance: Option<String>,
     /// The drive report averaged over the window (span forces, slip arcs, hub loads, torques,

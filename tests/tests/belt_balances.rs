@@ -260,6 +260,49 @@ fn three_pulley_balances_on_ancf_with_the_default_friction() {
     assert_steady_and_balanced("three-pulley 1500 rpm ANCF, default friction", &c);
 }
 
+// The same drive and point on the flowing belt's energy-consistent formulation
+// (`energy_consistent` below: naturally straight bending, co-rotated axial force, chord
+// damping, Lagrange's equations, 6 mm wraps). Measured 2026-12-07: torque 0.39 %, power 0.14 %
+// (1.3 W of 951 W), steady after 0.2 s, 43 s of CPU; over three 0.26 s windows from 0.2 to 0.98 s the
+// power residual stays at 1.36–1.47 W. The default formulation misses here by 0.54 % / −4.5 %
+// (its `balance_defect`); at 2500 rpm (21 m/s) this one misses too, 6.72 % / −1.10 % (issue 34
+// item 2, open).
+#[test]
+fn three_pulley_balances_on_the_energy_consistent_flowing_belt() {
+    let text = include_str!("../../apps/belt/examples/fead-three-pulley.toml");
+    let mut c: FeadConfig = toml::from_str(text).unwrap();
+    c.model = FeadModel::Flowing;
+    c.engine.speeds_rpm = vec![1500.0];
+    c.drive.contact.friction = belt::BeltContact::default().friction;
+    energy_consistent(&mut c.models.flowing);
+    assert_steady_and_balanced("three-pulley 1500 rpm flowing, energy-consistent", &c);
+}
+
+// The same point on the nodal belt: fails. Measured 2026-12-07 (window means of 0.26 s, about
+// three loop passages, from 0.2 to 2.54 s): the power residual does not settle to a value but
+// scatters from 3.9 to 25.9 W between windows at the fead study's ρ∞ = 0.8 (−9 to +33 W with
+// 0.1 s windows to 3.1 s), about a mean of +16 W (1.7 % of the crank's 990 W); at ρ∞ = 0.6 the windows
+// agree (15.4–18.6 W) on the same mean: the model's, not the window's. Not the step (0.125 ms:
+// 18.3 W), the mesh (6 mm: 15.7, 12.3, 7.3 W) or the friction law (κ = 40: 12.8–17.1 W). Its
+// linear parts are referenced to the travelling path: the damping forces `β K_e` on the
+// co-rotated rate do +26 W of work on the material's travel (`v e_tᵀ Q_d`, not in the belt's
+// reported dissipation), the rest −10 W. A naturally straight bending and a Kelvin–Voigt chord
+// damping (branch `x-nodal-ec`, not merged) did not close it (−11 to −33 W). Issue 34 item 2,
+// open: `--ignored`.
+#[test]
+#[ignore = "fails: the nodal belt's path-referenced linear forces work on the travel (issue 34)"]
+fn three_pulley_balances_on_nodal() {
+    let text = include_str!("../../apps/belt/examples/fead-three-pulley.toml");
+    let mut c: FeadConfig = toml::from_str(text).unwrap();
+    c.model = FeadModel::Nodal;
+    c.engine.speeds_rpm = vec![1500.0];
+    c.drive.contact.friction = belt::BeltContact::default().friction;
+    c.run.rho_inf = 0.6;
+    c.run.window = 0.26;
+    c.run.settle = 0.8;
+    assert_steady_and_balanced("three-pulley 1500 rpm nodal, default friction", &c);
+}
+
 // The same on the nodal model with the example's 120 elements and 0.1 ms step (about a minute
 // of CPU: `--ignored`; the coarser 20 mm mesh stalls Newton as the load comes on).
 #[test]

@@ -84,6 +84,13 @@ use fe_model::element::{Frame2d, Frame2dSection, FrameElement};
 use mbd_core::Workspace;
 use mbd_core::{ForceTangent, MbdError, SecondOrderSystem, SysMatrix};
 
+/// What the nodal belt's balance note says ([`NodalBelt::balance_defect`]).
+const NODAL_BALANCE_DEFECT: &str = "the nodal belt's linear elastic and damping forces (Ribaric \
+(5.5)) are referenced to the path its material travels along, so they do work on the travel \
+that is neither stored nor dissipated (+1.7 % of the crank's power on the three-pulley \
+example at 12.6 m/s; BENCHMARKS.md, \"The nodal belt on a drive nobody tuned\"): run the ANCF \
+model, or the energy-consistent flowing belt (apps/belt/examples/fead-energy-consistent.toml)";
+
 /// 6×6 element matrix in global axes.
 type Block = [[f64; 6]; 6];
 
@@ -209,9 +216,13 @@ impl NodalBelt {
         true
     }
 
-    /// The known cause of a balance miss (`belt::ModelTraits::balance_defect`): none.
+    /// The known cause of a balance miss (`belt::ModelTraits::balance_defect`): the linear
+    /// parts of Ribaric (5.5) about the travelling reference polygon (module documentation,
+    /// "How K follows the moving nodes") do work on the belt's travel (issue 34 item 2; on the
+    /// three-pulley example at 1500 rpm, 12.6 m/s over 35 and 40 mm pulleys, +1.7 % of the crank's
+    /// power, of which the `β K_e` damping's work on the travel is +2.6 %).
     pub fn balance_defect(&self) -> Option<&'static str> {
-        None
+        Some(NODAL_BALANCE_DEFECT)
     }
 
     /// The rotating-mesh model of `drive` (Ribaric (5.7)) on the loop of `mesh` over the
