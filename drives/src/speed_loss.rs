@@ -32,7 +32,9 @@ pub struct SpeedLossConfig {
     pub spin_up: f64,
     /// Duration of each load ramp \[s\].
     pub torque_ramp: f64,
-    /// Length of the averaging window \[s\].
+    /// Length of the averaging window \[s\] (for a belt whose mesh travels with the
+    /// material, the interval between the compared means over whole loop passages,
+    /// [`averaging_steps`]).
     pub window: f64,
     /// Steady when consecutive window means differ by less than this \[rad/s\].
     pub tolerance: f64,
