@@ -456,12 +456,12 @@ pub const BELT_NEWTON_ITERATIONS: usize = 50;
 /// The steady test compares the mean over this span with the mean over the same span a window
 /// earlier (for the flowing belt: two consecutive windows), so a drift of `r` rad/s² shows as
 /// `r × window` either way, while whatever travels with the material of a Lagrangian mesh
-/// (its speed loss repeats every loop passage, e.g. a strain pattern left by the load ramp) is
-/// averaged out: on Table 6-1 (loop 1.214 m at 3.14 m/s: 0.387 s) with the nodal belt at
-/// `tanh_slip` 0.3 mm/s, 30 N·m, the speed loss carries a ±3.4e-3 rad/s component of that period
+/// (its speed loss repeats every loop passage) is averaged out: on Table 6-1 (loop 1.214 m at
+/// 3.14 m/s: 0.387 s) with the nodal belt at `tanh_slip` 0.3 mm/s, 30 N·m, the speed loss
+/// carries a ±3.4e-3 rad/s component of that period
 /// that did not decay over five passages; the means of 0.1 s windows cycled over 0.2443–0.2512
-/// rad/s, those of one passage agreed to 1e-5 rad/s (BENCHMARKS.md, "The nodal belt's speed-loss
-/// windows"). A zero or non-finite speed falls back to `per_window`.
+/// rad/s, those of one passage agreed to 1e-5 rad/s (BENCHMARKS.md, "0.3 mm/s as the default:
+/// measured and taken"). A zero or non-finite speed falls back to `per_window`.
 pub fn averaging_steps(
     per_window: usize, h: f64, material_element: Option<f64>, loop_length: f64, belt_speed: f64,
 ) -> usize {
