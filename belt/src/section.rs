@@ -218,9 +218,10 @@ impl Default for BeltContact {
     /// `μ tanh(v_t / v_s)`, μ = 1.2, at the default slip-velocity scale `v_s` =
     /// [`contact::friction::spec::DEFAULT_SLIP_VELOCITY`] (Ribaric (6.2) with `κ = 1/v_s`;
     /// issue 34 item 3): the friction a layout gets when it states none. Every model's speed
-    /// loss lies within 1 % of its Coulomb limit (its run at `v_s / 4`) at this scale on the
-    /// drives of BENCHMARKS.md ("friction regularisation"; the nodal belt's lightly loaded
-    /// pulley of the FEAD drive at the edge), where Ribaric's κ = 40 s/m (`v_s` = 25 mm/s)
+    /// loss lies within 1 % of its Coulomb limit (from its runs at smaller scales) at this scale on the
+    /// drives of BENCHMARKS.md ("friction regularisation", "0.3 mm/s as the default"; the nodal
+    /// belt's lightly loaded pulley of the FEAD drive the farthest, +0.8 % from its Richardson
+    /// limit), where Ribaric's κ = 40 s/m (`v_s` = 25 mm/s)
     /// gives 2.3 times it on Table 6-1 at 10 N m (every model). Ribaric's Table 6-1 ([`crate::Layout::table_6_1`]) and the default FEAD
     /// drive state κ = 40 s/m to reproduce their figures.
     fn default() -> Self {

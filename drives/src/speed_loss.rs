@@ -5,7 +5,8 @@
 //! 3. for each load torque in turn: ramp the load on the driven pulley smoothly to the next value,
 //!    then hold it until the speed loss `Δω = ω₁ − ω₂`, averaged over consecutive windows, changes
 //!    by less than the tolerance between two windows (steady state, seed-000 note U14); record the
-//!    last window's mean.
+//!    last window's mean. For a belt whose mesh travels with the material (the nodal and ANCF
+//!    belts) the means are over whole loop passages, taken a window apart ([`averaging_steps`]).
 //!
 //! The load schedule is extended while integrating, so each torque is held only as long as it
 //! needs. A failure keeps the points already found ([`SweepFailure`]).
@@ -31,7 +32,9 @@ pub struct SpeedLossConfig {
     pub spin_up: f64,
     /// Duration of each load ramp \[s\].
     pub torque_ramp: f64,
-    /// Length of the averaging window \[s\].
+    /// Length of the averaging window \[s\] (for a belt whose mesh travels with the
+    /// material, the interval between the compared means over whole loop passages,
+    /// [`averaging_steps`]).
     pub window: f64,
     /// Steady when consecutive window means differ by less than this \[rad/s\].
     pub tolerance: f64,
@@ -176,13 +179,16 @@ pub struct GrossSlip {
 pub struct SpeedLossPoint {
     /// Load torque \[N m\].
     pub torque: f64,
-    /// Steady speed loss ω₁ − ω₂ \[rad/s\] (mean over the last window); at a gross slip
+    /// Steady speed loss ω₁ − ω₂ \[rad/s\] (mean over the last averaging span,
+    /// [`averaging_steps`]: the last window, or the last whole loop passages of a belt whose mesh
+    /// travels with the material); at a gross slip
     /// detected while the driven pulley runs away, the (unsteady) value at detection.
     pub delta_omega: f64,
     /// Steady driven speed \[rad/s\].
     pub omega_driven: f64,
-    /// Difference of the last two window means \[rad/s\] (steady-state residual; `None` when
-    /// the point ended in a runaway gross slip).
+    /// Difference of the last two means \[rad/s\] (over the last averaging span and over the
+    /// one a window earlier, [`averaging_steps`]; steady-state residual; `None` when the point
+    /// ended in a runaway gross slip).
     pub drift: Option<f64>,
     /// Simulation time at which the point was taken \[s\].
     pub time: f64,
@@ -442,6 +448,44 @@ pub const BELT_LINE_SEARCH_TRIALS: usize = 13;
 /// quadratically at its 20th to 25th iteration where mbd-core's default of 20 stopped it).
 pub const BELT_NEWTON_ITERATIONS: usize = 50;
 
+/// Steps of the span over which the steady test and the point average the speed loss, for
+/// windows of `per_window` steps of `h` \[s\]: `per_window` for a belt whose mesh stays in place
+/// (`material_element` `None`, the flowing belt); for one whose mesh travels with the material
+/// ([`BeltModel::material_element`]: the nodal and ANCF belts) the fewest whole loop passages
+/// `L/v` (loop length `loop_length` \[m\] at belt speed `belt_speed` \[m/s\]) that span a window.
+/// The steady test compares the mean over this span with the mean over the same span a window
+/// earlier (for the flowing belt: two consecutive windows), so a drift of `r` rad/s² shows as
+/// `r × window` either way, while whatever travels with the material of a Lagrangian mesh
+/// (its speed loss repeats every loop passage) is averaged out: on Table 6-1 (loop 1.214 m at
+/// 3.14 m/s: 0.387 s) with the nodal belt at `tanh_slip` 0.3 mm/s, 30 N·m, the speed loss
+/// carries a ±3.4e-3 rad/s component of that period
+/// that did not decay over five passages; the means of 0.1 s windows cycled over 0.2443–0.2512
+/// rad/s, those of one passage agreed to 1e-5 rad/s (BENCHMARKS.md, "0.3 mm/s as the default:
+/// measured and taken"). A zero or non-finite speed falls back to `per_window`.
+pub fn averaging_steps(
+    per_window: usize, h: f64, material_element: Option<f64>, loop_length: f64, belt_speed: f64,
+) -> usize {
+    let passage = loop_length / belt_speed.abs();
+    if material_element.is_none() || !(passage.is_finite() && passage > 0.0) {
+        return per_window;
+    }
+    let loop_steps = ((passage / h).round() as usize).max(1);
+    loop_steps * per_window.div_ceil(loop_steps)
+}
+
+/// The steady test's means of the speed losses `hold` (one a step): over the last `avg` steps
+/// and over the `avg` steps ending `per_window` steps earlier ([`averaging_steps`]); `None`
+/// while `hold` is shorter than `avg + per_window`.
+pub fn means_a_window_apart(hold: &[f64], avg: usize, per_window: usize) -> Option<(f64, f64)> {
+    let n = hold.len();
+    let mean = |r: std::ops::Range<usize>| {
+        let len = r.len() as f64;
+        hold[r].iter().sum::<f64>() / len
+    };
+    (avg > 0 && n >= avg + per_window)
+        .then(|| (mean(n - avg..n), mean(n - per_window - avg..n - per_window)))
+}
+
 /// Steps between the reports sampled over an averaging window ([`Report::mean`]): every other
 /// step, so that the window mean resolves a nodal belt's element-passing ripple (a few steps
 /// long) and the balances close on the mean (issue 34).
@@ -503,8 +547,8 @@ fn report_of<M: BeltModel>(
 /// progress bar).
 ///
 /// Each point carries the drive's report ([`Report`]: span tensions, per-pulley arcs,
-/// hub loads and torques averaged over the last window (every [`REPORT_EVERY`] steps and the
-/// end state), span vibration amplitudes over it) and its wrap distributions at the end. **Gross slip is a result**: when the speed loss, averaged over
+/// hub loads and torques averaged over the last averaging span ([`averaging_steps`]: every
+/// [`REPORT_EVERY`] steps and the end state), span vibration amplitudes over the last window) and its wrap distributions at the end. **Gross slip is a result**: when the speed loss, averaged over
 /// at least a quarter of the current window ([`RUNAWAY_MIN_FRACTION`]), exceeds
 /// [`gross_slip_bound`] while a load is held (the driven pulley runs away: the load exceeds what friction can
 /// transmit), or a steady state has a wrap without adhesion arc
@@ -512,7 +556,8 @@ fn report_of<M: BeltModel>(
 /// ([`SpeedLossPoint::gross_slip`]), the drive is put back into the last steady state (load
 /// and all) and the next torque is ramped from there. A Newton failure, or a torque that never
 /// becomes steady within `max_hold` (reported as such, not as a Newton failure), stays an
-/// error ([`SweepFailure`]).
+/// error ([`SweepFailure`]); `max_hold` is raised to the averaging span plus two windows where
+/// it is shorter (a loop passage at a low driver speed: 1.07 s on Table 6-1 at 22.6 rad/s).
 pub fn speed_loss_sweep<M: BeltModel>(
     model: &mut M, settings: &SpeedLossConfig, mut observer: impl FnMut(&State, Sample),
 ) -> Result<(Vec<SpeedLossPoint>, SweepStats), SweepFailure> {
@@ -563,6 +608,9 @@ pub fn speed_loss_sweep<M: BeltModel>(
         model_correction_limit: model.traits().name != "ancf",
         ..Default::default()
     };
+    // a mesh that travels with the material averages over whole loop passages
+    let material_element = model.material_element();
+    let loop_length = model.drive().path().length();
     let mut sim: BeltSimulation<M, &mut M> =
         BeltSimulation::new(model, alpha).map_err(|e| fail(e, &points))?;
     let mut stats = SweepStats::default();
@@ -590,8 +638,12 @@ pub fn speed_loss_sweep<M: BeltModel>(
             level_start = t0 + settings.torque_ramp;
             current = target;
         }
-        // step to the end of the ramp, then average windows until steady
-        let mut means: Vec<f64> = Vec::new();
+        // step to the end of the ramp, then average windows until steady: the speed loss of
+        // every step of the hold, the span of its means (`averaging_steps`, fixed at the hold's
+        // first step) and the reports sampled over it (with their step in the hold)
+        let mut hold: Vec<f64> = Vec::new();
+        let mut avg: Option<usize> = None;
+        let mut sampled: std::collections::VecDeque<(usize, Report)> = Default::default();
         let (mut sum, mut count) = (0.0, 0usize);
         let mut window = Window::default();
         let slipped: Option<(State, String)> = loop {
@@ -616,6 +668,16 @@ pub fn speed_loss_sweep<M: BeltModel>(
             if st.t < level_start - 0.5 * h {
                 continue;
             }
+            let avg = *avg.get_or_insert_with(|| {
+                averaging_steps(
+                    per_window,
+                    h,
+                    material_element,
+                    loop_length,
+                    sample.belt_speed,
+                )
+            });
+            hold.push(dw);
             window.add(
                 &sim.model()
                     .span_transverse(&st.q)
@@ -643,21 +705,32 @@ pub fn speed_loss_sweep<M: BeltModel>(
                     ),
                 ));
             }
+            let n = hold.len();
             if count % REPORT_EVERY == 0 && count < per_window {
                 let report = sim
                     .model()
                     .report_at(st.t, &st.q, &st.v)
                     .map_err(|e| fail(e, &points))?;
-                window.reports.push(report);
+                window.reports.push(report.clone());
+                sampled.push_back((n, report));
+                while sampled.front().is_some_and(|(i, _)| *i + avg <= n) {
+                    sampled.pop_front();
+                }
             }
             if count == per_window {
-                means.push(sum / count as f64);
                 sum = 0.0;
                 count = 0;
-                let last_window = std::mem::take(&mut window);
-                let k = means.len();
-                if k >= 2 && (means[k - 1] - means[k - 2]).abs() < settings.tolerance {
+                let mut last_window = std::mem::take(&mut window);
+                let means = means_a_window_apart(&hold, avg, per_window);
+                if let Some((last, before)) = means
+                    && (last - before).abs() < settings.tolerance
+                {
                     let st = sim.state().clone();
+                    last_window.reports = sampled
+                        .iter()
+                        .filter(|(i, _)| *i + avg > n)
+                        .map(|(_, r)| r.clone())
+                        .collect();
                     let (report, wrap) =
                         report_of(sim.model(), &st, &last_window).map_err(|e| fail(e, &points))?;
                     let gross = report.gross_slip().map(|p| {
@@ -676,9 +749,9 @@ pub fn speed_loss_sweep<M: BeltModel>(
                     let steady = gross.is_none();
                     points.push(SpeedLossPoint {
                         torque: target,
-                        delta_omega: means[k - 1],
-                        omega_driven: sim.model().pulley_speed(driver, st.t, &st.v) - means[k - 1],
-                        drift: Some(means[k - 1] - means[k - 2]),
+                        delta_omega: last,
+                        omega_driven: sim.model().pulley_speed(driver, st.t, &st.v) - last,
+                        drift: Some(last - before),
                         time: st.t,
                         settled_s: st.t - level_start,
                         gross_slip: gross,
@@ -686,7 +759,7 @@ pub fn speed_loss_sweep<M: BeltModel>(
                         caveat: creep_caveat(
                             &belt,
                             &report,
-                            sim.model().pulley_speed(driver, st.t, &st.v) - means[k - 1],
+                            sim.model().pulley_speed(driver, st.t, &st.v) - last,
                         ),
                         balance: balance_note(
                             sim.model().traits().balance_defect,
@@ -702,20 +775,20 @@ pub fn speed_loss_sweep<M: BeltModel>(
                     }
                     break Some((st, String::new()));
                 }
-                if sim.state().t - level_start > settings.max_hold {
+                // at least the averaging span and two windows
+                let max_hold = settings.max_hold.max((avg + 2 * per_window) as f64 * h);
+                if sim.state().t - level_start > max_hold {
                     return Err(fail(
                         MbdError::Model {
                             t: sim.state().t,
                             message: format!(
-                                "no steady state at {target} N m within max_hold = {} s: the \
-                                 last window means of the speed loss differ by {:.3e} rad/s \
-                                 (tolerance {:.1e} rad/s)",
-                                settings.max_hold,
-                                if k >= 2 {
-                                    (means[k - 1] - means[k - 2]).abs()
-                                } else {
-                                    f64::NAN
-                                },
+                                "no steady state at {target} N m within max_hold = {max_hold} \
+                                 s: the last means of the speed loss over {:.4} s, a window \
+                                 ({:.4} s) apart, differ by {:.3e} rad/s (tolerance {:.1e} \
+                                 rad/s)",
+                                avg as f64 * h,
+                                per_window as f64 * h,
+                                means.map_or(f64::NAN, |(a, b)| (a - b).abs()),
                                 settings.tolerance
                             ),
                         },
@@ -779,4 +852,73 @@ pub fn speed_loss_sweep<M: BeltModel>(
     stats.add(&sim.stats());
     stats.simulated_time = sim.state().t;
     Ok((points, stats))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // The span of the means: whole loop passages for a mesh that travels with the material,
+    // the window for one that stays in place. Reference: Table 6-1's loop length over the belt
+    // speed ω₁ R₁ (62.8 rad/s × 0.05 m, Ribaric Table 6-1) by hand, L / v / h steps.
+    #[test]
+    fn a_lagrangian_mesh_averages_whole_loop_passages() {
+        let drive = crate::table_6_1::drive();
+        let l = drive.path().length();
+        assert!((l - 1.214).abs() < 0.01, "Table 6-1 loop {l} m");
+        let (h, v) = (2.5e-4, 62.8 * 0.05);
+        let passage = (l / v / h).round() as usize;
+        assert_eq!(averaging_steps(400, h, Some(5.6e-3), l, v), passage);
+        assert_eq!(
+            averaging_steps(passage + 1, h, Some(5.6e-3), l, v),
+            2 * passage
+        );
+        assert_eq!(averaging_steps(400, h, None, l, v), 400);
+        assert_eq!(averaging_steps(400, h, Some(5.6e-3), l, 0.0), 400);
+        // a window apart: for the stationary mesh two consecutive windows
+        let hold: Vec<f64> = (0..1000).map(|i| i as f64).collect();
+        assert_eq!(means_a_window_apart(&hold[..799], 400, 400), None);
+        assert_eq!(
+            means_a_window_apart(&hold[..800], 400, 400),
+            Some((599.5, 199.5))
+        );
+    }
+
+    // A speed loss that repeats every loop passage, as the nodal belt's on Table 6-1 at
+    // `tanh_slip` 0.3 mm/s and 30 N·m (its history: mean 0.24767 rad/s, ±3.44e-3 rad/s at the
+    // passage 0.387 s, ±2.7e-3 rad/s at 42 Hz; BENCHMARKS.md): the means of 0.1 s windows
+    // never agree within the 2e-4 rad/s tolerance, those over a passage a window apart do, and
+    // a drift shows as the drift over a window either way (the invariant of the comparison).
+    #[test]
+    fn a_loop_passage_modulation_is_averaged_and_a_drift_is_not() {
+        let (h, passage, window) = (2.5e-4, 0.3866_f64, 400);
+        let loop_steps = averaging_steps(window, h, Some(5.6e-3), passage, 1.0);
+        let signal = |t: f64, drift: f64| {
+            0.24767
+                + 3.44e-3 * (std::f64::consts::TAU * t / passage + 0.3).sin()
+                + 2.7e-3 * (std::f64::consts::TAU * 42.0 * t).sin()
+                + drift * t
+        };
+        let hold =
+            |drift: f64| -> Vec<f64> { (0..8000).map(|i| signal(i as f64 * h, drift)).collect() };
+        let steady = hold(0.0);
+        let ends = (2..=20).map(|k| k * window);
+        let windows = ends
+            .clone()
+            .filter_map(|n| means_a_window_apart(&steady[..n], window, window))
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(windows > 4e-3, "0.1 s windows: {windows}");
+        let passages = ends
+            .clone()
+            .filter_map(|n| means_a_window_apart(&steady[..n], loop_steps, window))
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(passages < 2e-4, "loop passages: {passages}");
+        let drifting = hold(1e-2);
+        let (a, b) = means_a_window_apart(&drifting, loop_steps, window).unwrap();
+        let (c, d) = means_a_window_apart(&steady, loop_steps, window).unwrap();
+        let shift = (a - b) - (c - d);
+        assert!((shift - 1e-2 * window as f64 * h).abs() < 1e-12, "{shift}");
+    }
 }

@@ -65,7 +65,10 @@ impl std::str::FromStr for ModelKind {
 pub struct NodalConfig {
     /// Mesh of the rotating loop (default: 5.6 mm everywhere, 216 elements on Table 6-1).
     pub mesh: BeltMesh,
-    /// Averaging window of the speed-loss procedure \[s\].
+    /// Averaging window of the speed-loss procedure \[s\]: the interval between the two means
+    /// its steady test compares; the means themselves span the fewest whole loop passages that
+    /// cover a window (the mesh travels with the material,
+    /// [`crate::speed_loss::averaging_steps`]).
     pub window: f64,
     /// Steady-state tolerance between consecutive windows of the speed-loss procedure
     /// \[rad/s\].

@@ -6,8 +6,9 @@
 //! Reference (the Coulomb limit): the same model on the same drive at a quarter of the default
 //! scale, `v_s / 4` (BENCHMARKS.md, "friction regularisation": on Table 6-1 with the flowing
 //! belt's default settings, whose contact rates are the chords' with this law, the speed loss at
-//! 10 N·m moves by 0.3 % from the default to `v_s / 4` and by 1.2 % down to 0.0125 mm/s; the
-//! closed-form creep, Grashof, is 0.08241 rad/s). Ribaric's κ = 40 s/m on the same drive must
+//! 10 N·m moves by 0.3 % from the default 0.3 mm/s to `v_s / 4` (0.081472 → 0.081710 rad/s,
+//! this test, 2026-12-07) and by 1.0 % down to 0.0125 mm/s; the closed-form creep, Grashof, is
+//! 0.08241 rad/s). Ribaric's κ = 40 s/m on the same drive must
 //! miss it by far (2.3 times: the check discriminates). Table 6-1 at 10 and 30 N·m, one sweep
 //! per law, three flowing sweeps of about 1 s simulated, 2–4 s of CPU each in release.
 

@@ -242,13 +242,13 @@ fn pechstein_gerstmayr_balances_on_ancf() {
 
 // A drive nobody tuned to: the three-pulley example (crank, back-side tensioner idler,
 // alternator; `apps/belt/examples/fead-three-pulley.toml`) without its friction table, so with
-// the layouts' default law (`tanh_slip` at 0.5 mm/s), at 1500 rpm on the ANCF belt with the fead
+// the layouts' default law (`tanh_slip` at 0.3 mm/s), at 1500 rpm on the ANCF belt with the fead
 // study's settings for that law (`drives::fead::ancf_sharp_law_settings`). Measured
-// 2026-12-07: with the 5 µm Newton position test alone the torque residual was 0.63 % (3.06 %,
-// power −3.11 %, at 0.3 mm/s): the last corrections moved slip velocities by up to 40 mm/s, 80
-// widths of the law's band; with the velocity test at four widths
-// (`ancf::belt_drive::VTOL_PER_TRANSITION_WIDTH`) 0.02 % / 0.39 %. About 2.5 min of CPU:
-// `--ignored`.
+// 2026-12-07: with the 5 µm Newton position test alone the torque residual was 0.63 % at
+// 0.5 mm/s and 3.06 % (power −3.11 %) at 0.3 mm/s: the last corrections moved slip velocities
+// by up to 40 mm/s, 80 widths of the law's band; with the velocity test at four widths
+// (`ancf::belt_drive::VTOL_PER_TRANSITION_WIDTH`) 0.02 % / 0.39 % at 0.5 mm/s, 0.01 % / 0.35 %
+// at 0.3 mm/s (`flowmbd-belt fead`, 182 s of CPU). About 3 min of CPU: `--ignored`.
 #[test]
 #[ignore = "minutes: the ANCF belt at a sharp friction law over 0.5 s"]
 fn three_pulley_balances_on_ancf_with_the_default_friction() {
