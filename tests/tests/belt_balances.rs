@@ -262,11 +262,12 @@ fn three_pulley_balances_on_ancf_with_the_default_friction() {
 
 // The same drive and point on the flowing belt's energy-consistent formulation
 // (`energy_consistent` below: naturally straight bending, co-rotated axial force, chord
-// damping, Lagrange's equations, 6 mm wraps). Measured 2026-12-07: torque 0.39 %, power 0.14 %
-// (1.3 W of 951 W), steady after 0.2 s, 43 s of CPU; over three 0.26 s windows from 0.2 to 0.98 s the
-// power residual stays at 1.36–1.47 W. The default formulation misses here by 0.54 % / −4.5 %
-// (its `balance_defect`); at 2500 rpm (21 m/s) this one misses too, 6.72 % / −1.10 % (issue 34
-// item 2, open).
+// damping, Lagrange's equations, 6 mm wraps). Measured 2026-12-07 at the default 0.3 mm/s:
+// torque 0.39 %, power 0.14 % (1.36 W of 951 W), steady after 0.2 s, 50 s of CPU; at the
+// earlier default 0.5 mm/s the same to the printed digits (43 s), and there over three 0.26 s
+// windows from 0.2 to 0.98 s the power residual stays at 1.36–1.47 W. The default formulation
+// misses here by 0.54 % / −4.5 % (its `balance_defect`); at 2500 rpm (21 m/s, 0.5 mm/s) this one
+// misses too, 6.72 % / −1.10 % (issue 34 item 2, open).
 #[test]
 fn three_pulley_balances_on_the_energy_consistent_flowing_belt() {
     let text = include_str!("../../apps/belt/examples/fead-three-pulley.toml");
@@ -278,7 +279,8 @@ fn three_pulley_balances_on_the_energy_consistent_flowing_belt() {
     assert_steady_and_balanced("three-pulley 1500 rpm flowing, energy-consistent", &c);
 }
 
-// The same point on the nodal belt: fails. Measured 2026-12-07 (window means of 0.26 s, about
+// The same point on the nodal belt: fails. Measured 2026-12-07 at the then default 0.5 mm/s
+// (window means of 0.26 s, about
 // three loop passages, from 0.2 to 2.54 s): the power residual does not settle to a value but
 // scatters from 3.9 to 25.9 W between windows at the fead study's ρ∞ = 0.8 (−9 to +33 W with
 // 0.1 s windows to 3.1 s), about a mean of +16 W (1.7 % of the crank's 990 W); at ρ∞ = 0.6 the windows
