@@ -240,6 +240,17 @@ fn pechstein_gerstmayr_balances_on_ancf() {
     assert_balanced("Pechstein–Gerstmayr ANCF", &s.points[0].report);
 }
 
+/// The three-pulley example (`apps/belt/examples/fead-three-pulley.toml`) at 1500 rpm on
+/// `model`, without its friction table: the layouts' default law (`belt::BeltContact::default`).
+fn three_pulley(model: FeadModel) -> FeadConfig {
+    let text = include_str!("../../apps/belt/examples/fead-three-pulley.toml");
+    let mut c: FeadConfig = toml::from_str(text).unwrap();
+    c.model = model;
+    c.engine.speeds_rpm = vec![1500.0];
+    c.drive.contact.friction = belt::BeltContact::default().friction;
+    c
+}
+
 // A drive nobody tuned to: the three-pulley example (crank, back-side tensioner idler,
 // alternator; `apps/belt/examples/fead-three-pulley.toml`) without its friction table, so with
 // the layouts' default law (`tanh_slip` at 0.3 mm/s), at 1500 rpm on the ANCF belt with the fead
@@ -252,11 +263,7 @@ fn pechstein_gerstmayr_balances_on_ancf() {
 #[test]
 #[ignore = "minutes: the ANCF belt at a sharp friction law over 0.5 s"]
 fn three_pulley_balances_on_ancf_with_the_default_friction() {
-    let text = include_str!("../../apps/belt/examples/fead-three-pulley.toml");
-    let mut c: FeadConfig = toml::from_str(text).unwrap();
-    c.model = FeadModel::Ancf;
-    c.engine.speeds_rpm = vec![1500.0];
-    c.drive.contact.friction = belt::BeltContact::default().friction;
+    let c = three_pulley(FeadModel::Ancf);
     assert_steady_and_balanced("three-pulley 1500 rpm ANCF, default friction", &c);
 }
 
@@ -270,11 +277,7 @@ fn three_pulley_balances_on_ancf_with_the_default_friction() {
 // misses too, 6.72 % / −1.10 % (issue 34 item 2, open).
 #[test]
 fn three_pulley_balances_on_the_energy_consistent_flowing_belt() {
-    let text = include_str!("../../apps/belt/examples/fead-three-pulley.toml");
-    let mut c: FeadConfig = toml::from_str(text).unwrap();
-    c.model = FeadModel::Flowing;
-    c.engine.speeds_rpm = vec![1500.0];
-    c.drive.contact.friction = belt::BeltContact::default().friction;
+    let mut c = three_pulley(FeadModel::Flowing);
     energy_consistent(&mut c.models.flowing);
     assert_steady_and_balanced("three-pulley 1500 rpm flowing, energy-consistent", &c);
 }
@@ -294,11 +297,7 @@ fn three_pulley_balances_on_the_energy_consistent_flowing_belt() {
 #[test]
 #[ignore = "fails: the nodal belt's path-referenced linear forces work on the travel (issue 34)"]
 fn three_pulley_balances_on_nodal() {
-    let text = include_str!("../../apps/belt/examples/fead-three-pulley.toml");
-    let mut c: FeadConfig = toml::from_str(text).unwrap();
-    c.model = FeadModel::Nodal;
-    c.engine.speeds_rpm = vec![1500.0];
-    c.drive.contact.friction = belt::BeltContact::default().friction;
+    let mut c = three_pulley(FeadModel::Nodal);
     c.run.rho_inf = 0.6;
     c.run.window = 0.26;
     c.run.settle = 0.8;
